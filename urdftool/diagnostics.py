@@ -1,0 +1,64 @@
+"""Findings: what a rule found, where, and how bad it is."""
+
+from __future__ import annotations
+
+import enum
+import os
+from dataclasses import dataclass, field
+
+
+class Severity(str, enum.Enum):
+    ERROR = "error"
+    WARNING = "warning"
+    INFO = "info"
+
+
+@dataclass(frozen=True)
+class Location:
+    """A place in a file the user wrote.
+
+    file: path as shown to the user (relative to the working directory when inside it)
+    line: 1-based line of the element's opening ``<``, or None when unknown
+    via: for elements a xacro macro produced, the call sites, innermost first
+    """
+
+    file: str
+    line: int | None = None
+    via: tuple["Location", ...] = ()
+
+    def __str__(self) -> str:
+        return self.file if self.line is None else f"{self.file}:{self.line}"
+
+
+@dataclass(frozen=True)
+class Finding:
+    code: str
+    name: str
+    severity: Severity
+    message: str
+    location: Location
+    rule_doc_url: str | None = field(default=None, compare=False)
+
+    @property
+    def file(self) -> str:
+        return self.location.file
+
+    @property
+    def line(self) -> int | None:
+        return self.location.line
+
+    def sort_key(self):
+        return (self.file, self.line or 0, self.code, self.message)
+
+
+def display_path(path: str | os.PathLike) -> str:
+    """The path as a user should read it: relative to the working directory when below it."""
+    text = os.fspath(path)
+    if text == "-" or text.startswith("<"):
+        return text
+    absolute = os.path.abspath(text)
+    try:
+        relative = os.path.relpath(absolute)
+    except ValueError:
+        return absolute
+    return absolute if relative.startswith("..") else relative
