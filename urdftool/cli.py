@@ -1,0 +1,44 @@
+"""The ``urdftool`` command line: thin commands over core modules.
+
+Each command lives in ``urdftool/commands/<name>.py`` with a ``register(app)`` function; heavy
+libraries are imported inside the command that needs them, so ``urdftool --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import typer
+
+COMMANDS = ["check", "tree", "xacro"]
+
+app = typer.Typer(
+    name="urdftool",
+    help="Validate and analyse URDF and xacro robot descriptions, without ROS.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
+
+
+def _version(value: bool):
+    if value:
+        from . import __version__
+
+        typer.echo(f"urdftool {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="Show the version and exit.")):
+    """Validate and analyse URDF and xacro robot descriptions, without ROS."""
+
+
+for _name in COMMANDS:
+    importlib.import_module(f"{__package__}.commands.{_name}").register(app)
+
+
+def main() -> None:
+    app()

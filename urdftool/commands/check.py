@@ -1,0 +1,110 @@
+"""``urdftool check``: the linter and CI step."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import typer
+
+from ..errors import UsageError
+from ._common import PackageOption, XacroArgOption, fail_usage, robot_inputs
+
+
+def register(app: typer.Typer) -> None:
+    app.command(
+        "check",
+        help="Check robot descriptions (files or folders) and report problems. "
+             "Exit code: 0 clean, 1 errors (or warnings with --strict), 2 usage error.",
+    )(check)
+
+
+def check(
+    words: list[str] = typer.Argument(..., metavar="PATH... [NAME:=VALUE...]",
+                                      help="URDF/xacro files or folders; '-' reads stdin."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+    format: str = typer.Option("auto", "--format", "-f",
+                               help="text, json, sarif, junit, github, or auto (github under "
+                                    "GitHub Actions, else text)."),
+    output: Path = typer.Option(None, "--output", "-o", help="Write the report to this file."),
+    select: list[str] = typer.Option([], "--select", help="Only these codes, prefixes or names "
+                                     "(comma-separated, repeatable)."),
+    ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
+    strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
+    verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
+    no_env: bool = typer.Option(False, "--no-env",
+                                help="Make $(env)/$(optenv) errors (for untrusted input)."),
+    max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
+                                      help="Refuse input files larger than this [default: 16 MiB]."),
+) -> None:
+    from ..engine import CheckOptions, Selection, check_file
+    from ..report import FORMATS, Summary, render
+
+    try:
+        paths, args, packages = robot_inputs(words, arg, package)
+        if not paths:
+            raise UsageError("no PATH given")
+        if format not in (*FORMATS, "auto"):
+            raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
+        config = _config_for(paths[0])
+        files, skipped = _expand_paths(paths, packages)
+    except UsageError as error:
+        fail_usage(error)
+    if verbose:
+        for path, reason in skipped.items():
+            typer.echo(f"skipped {path}: {reason}", err=True)
+    base_selection = Selection(tuple(_codes([*config.select, *select])),
+                               tuple(_codes([*config.ignore, *ignore])))
+    options = CheckOptions(
+        xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
+        allow_env=not no_env,
+        max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
+    )
+    results = []
+    for path in files:
+        per_file = config.ignores_for(path)
+        if per_file:
+            options.selection = Selection(base_selection.select,
+                                          (*base_selection.ignore, *_codes(per_file)))
+        results.append(check_file(path, options))
+        options.selection = base_selection
+    stream = open(output, "w", encoding="utf-8") if output else sys.stdout
+    try:
+        render(format, results, stream)
+    finally:
+        if output:
+            stream.close()
+    summary = Summary.of(results)
+    failed = summary.errors or ((strict or config.strict) and summary.warnings)
+    raise typer.Exit(1 if failed else 0)
+
+
+def _codes(values: list[str]) -> list[str]:
+    return [part.strip() for value in values for part in value.split(",") if part.strip()]
+
+
+def _config_for(path: str):
+    from ..config import find_config
+
+    return find_config(Path.cwd() if path == "-" else Path(path))
+
+
+def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
+    """Files to check, in a stable order, and the files skipped in folders with the reason."""
+    from ..discover import robot_files, split_top_level
+    from ..loader.packages import PackageResolver
+
+    files, skipped = [], {}
+    for path in paths:
+        if path == "-" or not Path(path).is_dir():
+            files.append(path)
+            continue
+        found = robot_files(Path(path))
+        top, skipped_here = split_top_level(
+            found, lambda p: PackageResolver(packages, start=p.parent))
+        files.extend(str(p) for p in top)
+        skipped.update({str(p): reason for p, reason in skipped_here.items()})
+        if not found:
+            raise UsageError(f"no .urdf or .xacro files found in '{path}'")
+    return list(dict.fromkeys(files)), skipped

@@ -1,0 +1,96 @@
+"""Run rules over robots: select, stamp, and never let one rule's crash end the run."""
+
+from __future__ import annotations
+
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .diagnostics import Finding, Location, Severity
+from .errors import LoadError
+from .rules import REGISTRY, Rule, all_rules, declare
+
+declare("U900", "internal-error", Severity.ERROR, """
+    A rule crashed on this file: a bug in urdftool, not in the robot.
+
+    The run goes on with the other rules and files. Please report it with the file attached.
+    """)
+
+
+@dataclass(frozen=True)
+class Selection:
+    """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``)."""
+
+    select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+
+    def allows(self, code: str) -> bool:
+        rule = REGISTRY.get(code)
+        if self.select and not any(_matches(rule, code, s) for s in self.select):
+            return False
+        return not any(_matches(rule, code, s) for s in self.ignore)
+
+
+def _matches(rule: Rule | None, code: str, selector: str) -> bool:
+    selector = selector.strip()
+    return code.startswith(selector.upper()) or (rule is not None and rule.name == selector)
+
+
+@dataclass
+class CheckOptions:
+    """How to load and check each file."""
+
+    xacro_args: dict[str, str] = field(default_factory=dict)
+    packages: dict[str, Path] = field(default_factory=dict)
+    selection: Selection = Selection()
+    allow_env: bool = True
+    max_file_size: int = 16 * 1024 * 1024
+    extras: dict = field(default_factory=dict)
+
+
+@dataclass
+class FileResult:
+    path: str
+    findings: list[Finding]
+    robot: object | None = None
+
+
+def stamp(rule: Rule, where, message: str, robot) -> Finding:
+    """A finding for ``rule`` at ``where`` (element, Location or None)."""
+    if isinstance(where, Location):
+        location = where
+    else:
+        location = robot.locate(where)
+    return Finding(rule.code, rule.name, rule.severity, message, location)
+
+
+def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
+    """Run every selected rule over a loaded robot; a crashing rule becomes U900."""
+    findings = [f for f in robot.options.get("load_findings", []) if selection.allows(f.code)]
+    for rule in all_rules():
+        if rule.check is None or not selection.allows(rule.code):
+            continue
+        try:
+            for where, message in rule.check(robot):
+                findings.append(stamp(rule, where, message, robot))
+        except Exception as error:  # a bug in a rule must not hide the other findings
+            frame = traceback.extract_tb(error.__traceback__)[-1]
+            findings.append(stamp(
+                REGISTRY["U900"], None,
+                f"rule {rule.code} ({rule.name}) crashed: {type(error).__name__}: {error} "
+                f"[{Path(frame.filename).name}:{frame.lineno}]", robot))
+    return sorted(set(findings), key=Finding.sort_key)
+
+
+def check_file(path: str, options: CheckOptions) -> FileResult:
+    """Load and check one file; load failures are findings too."""
+    from .loader import load
+
+    try:
+        robot = load(path, xacro_args=options.xacro_args, packages=options.packages,
+                     allow_env=options.allow_env, max_file_size=options.max_file_size)
+    except LoadError as error:
+        # A file that cannot be loaded is never silently passed, whatever the selection.
+        return FileResult(path, error.findings)
+    robot.options.update(options.extras)
+    return FileResult(path, check_robot(robot, options.selection), robot)

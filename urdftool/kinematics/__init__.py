@@ -1,0 +1,1 @@
+"""Kinematics: the tree, forward kinematics and Denavit-Hartenberg tables."""

@@ -1,0 +1,50 @@
+"""The kinematic tree as urdfdom builds it: children ordered by joint name."""
+
+from __future__ import annotations
+
+
+class TreeError(Exception):
+    def __init__(self, message: str, element=None):
+        super().__init__(message)
+        self.element = element
+
+
+def children_by_link(robot) -> dict[str, list[tuple[str, str]]]:
+    """Parent link -> [(joint name, child link)], sorted by joint name like urdfdom's std::map."""
+    children: dict[str, list[tuple[str, str]]] = {}
+    for joint in robot.children("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None:
+            raise TreeError(f"joint '{joint.get('name')}' lacks a parent or child", joint)
+        children.setdefault(parent.get("link"), []).append((joint.get("name"), child.get("link")))
+    for entries in children.values():
+        entries.sort(key=lambda entry: entry[0].encode())
+    return children
+
+
+def root_link(robot) -> str:
+    """The single root link; raises TreeError when there is none or several."""
+    child_links = {child.get("link") for child in robot.root.iter("child")
+                   if child.getparent() is not None and child.getparent().tag == "joint"}
+    roots = [name for name in robot.links if name not in child_links]
+    if len(roots) != 1:
+        what = "no root link (a cycle?)" if not roots else f"{len(roots)} root links: {roots}"
+        raise TreeError(what, robot.root)
+    return roots[0]
+
+
+def format_tree(robot) -> str:
+    """check_urdf's tree listing."""
+    root = root_link(robot)
+    children = children_by_link(robot)
+    lines = [f"robot name is: {robot.name}",
+             "---------- Successfully Parsed XML ---------------",
+             f"root Link: {root} has {len(children.get(root, []))} child(ren)"]
+
+    def walk(link: str, depth: int):
+        for index, (_, child) in enumerate(children.get(link, []), start=1):
+            lines.append("    " * depth + f"child({index}):  {child}")
+            walk(child, depth + 1)
+
+    walk(root, 1)
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,159 @@
+"""Load a robot description (URDF, xacro, or stdin) into a :class:`Robot` with source locations.
+
+Every failure is a :class:`~urdftool.errors.LoadError` whose findings carry a rule code and
+the file and line where the problem is, so broken files go through the same reporters.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+from lxml import etree
+
+from ..diagnostics import Finding, Location, Severity, display_path
+from ..errors import LoadError
+from .model import Robot
+from .packages import PackageResolver
+from .xmlparse import XmlProblem, parse, refuse_empty_or_binary
+
+DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024
+XACRO_SUFFIXES = (".xacro",)
+_XACRO_MARKERS = (b"xmlns:xacro", b"<xacro:")
+
+__all__ = ["Robot", "load", "is_xacro", "PackageResolver"]
+
+
+def is_xacro(path: str, data: bytes) -> bool:
+    """Whether a file needs xacro: by its name, or by xacro elements in a ``.urdf``."""
+    return path.endswith(XACRO_SUFFIXES) or any(marker in data for marker in _XACRO_MARKERS)
+
+
+def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
+         packages: dict[str, Path] | None = None, allow_env: bool = True,
+         max_file_size: int = DEFAULT_MAX_FILE_SIZE, data: bytes | None = None) -> Robot:
+    """Load a robot from ``path`` (``-`` reads stdin); raises LoadError with located findings."""
+    path = os.fspath(path)
+    shown = display_path(path) if path != "-" else "<stdin>"
+    start = Path.cwd() if path == "-" else Path(path).resolve().parent
+    resolver = PackageResolver(packages, start=start)
+    if data is None:
+        data = _read(path, shown, max_file_size)
+    extra_findings = []
+    if path.endswith(XACRO_SUFFIXES) or (path == "-" and is_xacro(path, data)):
+        robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
+                            max_file_size)
+    elif is_xacro(path, data):
+        robot, finding = _load_disguised_xacro(path, shown, data, xacro_args or {}, resolver,
+                                               allow_env, max_file_size)
+        extra_findings.append(finding)
+    else:
+        robot = _load_urdf(path, shown, data, resolver)
+    robot.options["load_findings"] = extra_findings
+    if robot.root.tag != "robot":
+        raise LoadError([_finding("U004", robot.locate(robot.root),
+                                  f"root element is <{robot.root.tag}>, expected <robot>")])
+    return robot
+
+
+def _read(path: str, shown: str, limit: int) -> bytes:
+    if path == "-":
+        data = sys.stdin.buffer.read(limit + 1)
+    else:
+        try:
+            size = os.path.getsize(path)
+            if size > limit:
+                raise LoadError([_finding("U008", Location(shown, None),
+                                          f"file is {size} bytes, over the limit of {limit} "
+                                          "(raise it with --max-file-size)")])
+            with open(path, "rb") as handle:
+                data = handle.read(limit + 1)
+        except OSError as error:
+            raise LoadError([_finding("U001", Location(shown, None),
+                                      f"cannot read file: {error.strerror}")]) from None
+    if len(data) > limit:
+        raise LoadError([_finding("U008", Location(shown, None),
+                                  f"input is over the limit of {limit} bytes "
+                                  "(raise it with --max-file-size)")])
+    return data
+
+
+def _load_disguised_xacro(path, shown, data, args, resolver, allow_env, limit):
+    """A ``.urdf`` holding xacro: expanded when xacro can, read as plain URDF when not."""
+    plain = _load_urdf(path, shown, data, resolver)
+    first = next((e for e in plain.root.iter(etree.Element) if _is_xacro_tag(e.tag)), plain.root)
+    where = plain.locate(first)
+    try:
+        robot = _load_xacro(path, shown, data, args, resolver, allow_env, limit)
+    except LoadError as error:
+        reason = error.findings[0].message
+        return plain, _finding("U007", where, (
+            f"file is named .urdf but contains xacro (<{_shown_tag(first)}>), which xacro cannot expand "
+            f"({reason}) and URDF parsers ignore; remove it or rename the file .urdf.xacro"))
+    return robot, _finding("U007", where, (
+        "file is named .urdf but uses xacro; urdftool expanded it, but URDF parsers will not: "
+        "rename it .urdf.xacro"))
+
+
+def _shown_tag(element) -> str:
+    local = etree.QName(element).localname
+    return f"{element.prefix}:{local}" if element.prefix else local
+
+
+def _is_xacro_tag(tag) -> bool:
+    return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag)
+
+
+def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) -> Robot:
+    try:
+        root, lines = parse(data)
+    except XmlProblem as problem:
+        raise LoadError([_problem_finding(problem, shown)]) from None
+    locations = {element: Location(shown, line) for element, line in lines.items()}
+    return Robot(path=path, display=shown, root=root, locations=locations, resolver=resolver,
+                 files=[shown])
+
+
+def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
+    from .xacro_expand import XacroFailure, expand
+
+    def read_file(name):
+        size = os.path.getsize(name)
+        if size > limit:
+            raise OSError(27, f"file is {size} bytes, over the limit of {limit}", name)
+        with open(name, "rb") as handle:
+            return handle.read(limit + 1)
+
+    try:
+        refuse_empty_or_binary(data)
+        source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
+        expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
+                           read_file=read_file)
+    except XmlProblem as problem:
+        raise LoadError([_problem_finding(problem, shown)]) from None
+    except XacroFailure as failure:
+        code = {"package": "U006", "syntax": "U001", "entity": "U009"}.get(failure.kind, "U005")
+        location = failure.location
+        if path == "-" and location.file.endswith("stdin.xacro"):
+            location = Location(shown, location.line, location.via)
+        raise LoadError([_finding(code, location, failure.message)]) from None
+    robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
+                  resolver=resolver, files=[display_path(f) for f in expansion.files],
+                  from_xacro=True)
+    robot.options["xacro_warnings"] = expansion.warnings
+    return robot
+
+
+_PROBLEM_CODES = {"empty": "U002", "binary": "U003", "syntax": "U001", "entity": "U009"}
+
+
+def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
+    return _finding(_PROBLEM_CODES[problem.kind], Location(shown, problem.line), problem.message)
+
+
+def _finding(code: str, location: Location, message: str) -> Finding:
+    from ..rules import REGISTRY
+
+    rule = REGISTRY[code]
+    return Finding(code, rule.name, rule.severity, message, location)

@@ -1,0 +1,84 @@
+"""The loaded robot: the URDF element tree, where each element was written, and accessors."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+
+from lxml import etree
+
+from ..diagnostics import Location
+from .packages import PackageResolver
+
+
+@dataclass
+class Robot:
+    """A robot description ready for rules and analysis.
+
+    path: the file the user named (``-`` for stdin)
+    root: the ``<robot>`` element of the URDF (after xacro expansion)
+    locations: where each element was written; see :meth:`locate`
+    files: every file read to build it (the input first, then includes)
+    from_xacro: whether the input went through xacro
+    """
+
+    path: str
+    display: str
+    root: etree._Element
+    locations: dict
+    resolver: PackageResolver
+    files: list[str] = field(default_factory=list)
+    from_xacro: bool = False
+    options: dict = field(default_factory=dict)
+
+    def locate(self, element) -> Location:
+        """Where ``element`` was written; the file itself when it has no element."""
+        if element is None:
+            return Location(self.display, None)
+        while element is not None:
+            location = self.locations.get(element)
+            if location is not None:
+                return location
+            element = element.getparent()
+        return Location(self.display, None)
+
+    @property
+    def base_dir(self) -> Path:
+        return Path(self.path).resolve().parent if self.path != "-" else Path.cwd()
+
+    @property
+    def name(self) -> str:
+        return self.root.get("name", "")
+
+    def children(self, tag: str) -> list:
+        """Direct children of ``<robot>`` with this tag, in document order."""
+        return [child for child in self.root if child.tag == tag]
+
+    @cached_property
+    def links(self) -> dict[str, etree._Element]:
+        """Link elements by name; the first of duplicates wins."""
+        return _by_name(self.children("link"))
+
+    @cached_property
+    def joints(self) -> dict[str, etree._Element]:
+        """Joint elements by name; the first of duplicates wins."""
+        return _by_name(self.children("joint"))
+
+    @cached_property
+    def urdf(self) -> str:
+        """The expanded URDF as text, for yourdfpy, Pinocchio and ``urdftool xacro``."""
+        return etree.tostring(self.root, encoding="unicode", pretty_print=False)
+
+    def resolve_uri(self, uri: str) -> Path:
+        """A mesh URI as a path; raises PackageNotFound for an unknown package."""
+        return self.resolver.resolve_uri(uri, self.base_dir)
+
+
+def _by_name(elements) -> dict:
+    found: dict = {}
+    for element in elements:
+        name = element.get("name")
+        if name is not None and name not in found:
+            found[name] = element
+    return found

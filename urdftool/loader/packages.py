@@ -1,0 +1,142 @@
+"""Find ROS packages without ROS, for ``$(find pkg)`` and ``package://pkg/...``.
+
+Search order: ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH (``share/NAME``),
+package.xml files walking up from the input (a folder that is the package, or has it as a child),
+then package.xml files below the repository root (the nearest folder holding ``.git``).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from ..errors import PackageNotFound
+
+_NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
+_MAX_SCAN_DEPTH = 6
+_MAX_SCAN_DIRS = 20000
+
+
+def package_name(folder: Path) -> str | None:
+    """The ``<name>`` a folder's package.xml declares, or None when it has none."""
+    manifest = folder / "package.xml"
+    try:
+        with open(manifest, "rb") as handle:
+            head = handle.read(65536)
+    except OSError:
+        return None
+    match = _NAME.search(head)
+    return match.group(1).decode("utf-8", "replace") if match else folder.name
+
+
+def repository_root(start: Path) -> Path | None:
+    """The nearest ancestor of ``start`` holding a ``.git`` entry."""
+    for folder in [start, *start.parents]:
+        if (folder / ".git").exists():
+            return folder
+    return None
+
+
+class PackageResolver:
+    """Maps package names to folders; one instance serves xacro and mesh look-ups."""
+
+    def __init__(self, explicit: dict[str, Path] | None = None, start: Path | None = None,
+                 environ: dict[str, str] | None = None):
+        self.explicit = {name: Path(path) for name, path in (explicit or {}).items()}
+        self.start = start.resolve() if start else None
+        self.environ = os.environ if environ is None else environ
+        self._cache: dict[str, Path] = {}
+        self._scanned: dict[str, Path] | None = None
+
+    def find(self, name: str) -> Path:
+        """The folder of package ``name``; raises PackageNotFound listing where it looked."""
+        if name in self._cache:
+            return self._cache[name]
+        searched: list[str] = []
+        for candidate, where in self._candidates(name):
+            searched.append(where)
+            if candidate is not None:
+                self._cache[name] = candidate
+                return candidate
+        raise PackageNotFound(name, searched)
+
+    def _candidates(self, name: str):
+        if name in self.explicit:
+            path = self.explicit[name]
+            yield (path if path.is_dir() else None), f"--package {name}={path}"
+        for entry in _split_path(self.environ.get("ROS_PACKAGE_PATH", "")):
+            yield _find_below(Path(entry), name, depth=3), f"ROS_PACKAGE_PATH entry {entry}"
+        for prefix in _split_path(self.environ.get("AMENT_PREFIX_PATH", "")):
+            share = Path(prefix) / "share" / name
+            yield (share if share.is_dir() else None), f"AMENT_PREFIX_PATH {share}"
+        if self.start is None:
+            return
+        yield self._walk_up(name), f"package.xml above {self.start}"
+        root = repository_root(self.start)
+        if root is not None:
+            yield self._scan(root).get(name), f"package.xml below {root}"
+
+    def _walk_up(self, name: str) -> Path | None:
+        for folder in [self.start, *self.start.parents]:
+            if package_name(folder) == name:
+                return folder
+            child = folder / name
+            if package_name(child) == name:
+                return child
+        return None
+
+    def _scan(self, root: Path) -> dict[str, Path]:
+        if self._scanned is None:
+            self._scanned = {}
+            for folder in _walk_dirs(root):
+                name = package_name(folder)
+                if name is not None:
+                    self._scanned.setdefault(name, folder)
+        return self._scanned
+
+    def resolve_uri(self, uri: str, base_dir: Path) -> Path:
+        """A mesh or include URI as a path: package://, file:// or relative to ``base_dir``."""
+        if uri.startswith("package://"):
+            rest = uri[len("package://"):]
+            name, _, tail = rest.partition("/")
+            return self.find(name) / tail
+        if uri.startswith("file://"):
+            return Path(uri[len("file://"):])
+        return base_dir / uri
+
+
+def _split_path(value: str) -> list[str]:
+    return [entry for entry in value.split(os.pathsep) if entry]
+
+
+def _find_below(folder: Path, name: str, depth: int) -> Path | None:
+    if package_name(folder) == name:
+        return folder
+    for candidate in _walk_dirs(folder, max_depth=depth):
+        if package_name(candidate) == name:
+            return candidate
+    return None
+
+
+def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH):
+    """Folders below root, breadth first, bounded in depth and count, never following links."""
+    frontier = [root]
+    seen = 0
+    for _ in range(max_depth + 1):
+        next_frontier = []
+        for folder in frontier:
+            yield folder
+            seen += 1
+            if seen > _MAX_SCAN_DIRS:
+                return
+            try:
+                entries = sorted(os.scandir(folder), key=lambda e: e.name)
+            except OSError:
+                continue
+            next_frontier.extend(
+                Path(entry.path) for entry in entries
+                if entry.is_dir(follow_symlinks=False) and entry.name not in _SKIP_DIRS
+            )
+        frontier = next_frontier

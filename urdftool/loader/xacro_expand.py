@@ -1,0 +1,371 @@
+"""Expand xacro in-process, keeping the source location of every element.
+
+The ``xacro`` package is used as it is; a few of its module functions are wrapped for the length
+of one expansion:
+
+- ``parse`` reads each file through a minidom builder that stamps every element with a hidden
+  ``xmlns:``-prefixed attribute holding ``file-index:line`` (xacro copies attributes when it clones
+  macro bodies, and ``check_attrs`` ignores ``xmlns:`` names, so the stamp survives expansion);
+- ``handle_macro_call`` lifts the stamp off the call and records it as a call site, and
+  ``eval_all`` appends the active call sites to the elements a macro body produces;
+- ``substitution_args._eval_find`` resolves ``$(find pkg)`` through :class:`PackageResolver`.
+
+When xacro raises, the element being processed is recovered from the traceback's frames, so the
+diagnostic points at the line that failed and not just at the file.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import sys
+import xml.dom
+import xml.dom.minidom
+from dataclasses import dataclass, field
+from pathlib import Path
+from xml.dom.expatbuilder import ExpatBuilderNS
+from xml.parsers import expat
+
+from lxml import etree
+
+from ..diagnostics import Location, display_path
+from ..errors import PackageNotFound
+from .xmlparse import XmlProblem
+
+STAMP = "xmlns:urdftool-loc"
+_STAMP_PREFIX = "urn:loc:"
+MAX_MACRO_DEPTH = 100
+_UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
+
+
+@dataclass
+class XacroFailure(Exception):
+    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package' or 'io'."""
+
+    kind: str
+    message: str
+    location: Location
+    package: str | None = None
+
+
+@dataclass
+class Expansion:
+    """The expanded URDF with the source location of each element."""
+
+    root: etree._Element
+    locations: dict[etree._Element, Location]
+    files: list[str]
+    warnings: list[tuple[Location, str]] = field(default_factory=list)
+
+
+class _Session:
+    """State of one expansion: the files read and how to resolve packages and environment."""
+
+    def __init__(self, resolver, allow_env: bool, read_file):
+        self.resolver = resolver
+        self.allow_env = allow_env
+        self.read_file = read_file
+        self.paths: list[str] = []
+        self.call_sites: list[str] = []
+
+    def file_index(self, path: str) -> int:
+        self.paths.append(path)
+        return len(self.paths) - 1
+
+    def location(self, stamp: str) -> Location:
+        places = []
+        for part in stamp[len(_STAMP_PREFIX):].split(";"):
+            index, _, line = part.partition(":")
+            places.append(Location(display_path(self.paths[int(index)]), int(line)))
+        return Location(places[0].file, places[0].line, tuple(places[1:]))
+
+
+class _StampingBuilder(ExpatBuilderNS):
+    def __init__(self, index: int):
+        super().__init__()
+        self._index = index
+
+    def install(self, parser):
+        super().install(parser)
+
+        def refuse_entity(name, *rest):
+            raise XmlProblem("entity", f"entity declaration '{name}' refused: robot descriptions "
+                             "may not declare entities", parser.CurrentLineNumber)
+
+        parser.EntityDeclHandler = refuse_entity
+        parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+
+    def start_element_handler(self, name, attributes):
+        line = self._parser.CurrentLineNumber
+        super().start_element_handler(name, attributes)
+        node = self.curNode
+        # An included file's root is replaced by its content, and xacro copies its xmlns:
+        # attributes onto the include's parent, so only the top file's root is stamped.
+        is_root = node.parentNode is self.document
+        if (not is_root or self._index == 0) and node.tagName not in _UNSTAMPED:
+            node.setAttribute(STAMP, f"{_STAMP_PREFIX}{self._index}:{line}")
+
+
+def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom.Document:
+    builder = _StampingBuilder(session.file_index(path))
+    try:
+        return builder.parseString(data)
+    except expat.ExpatError as error:
+        message = f"malformed XML: {expat.ErrorString(error.code)}"
+        raise XacroFailure("syntax", message, Location(display_path(path), error.lineno)) from None
+    except XmlProblem as problem:
+        raise XacroFailure(problem.kind, problem.message,
+                           Location(display_path(path), problem.line)) from None
+
+
+def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,
+           read_file=None) -> Expansion:
+    """Expand the xacro document ``data`` read from ``path``; raises XacroFailure."""
+    import xacro
+    from xacro import substitution_args
+
+    read_file = read_file or (lambda p: Path(p).read_bytes())
+    session = _Session(resolver, allow_env, read_file)
+    doc = _parse_stamped(session, str(path), data)
+    stderr = io.StringIO()
+    originals = {
+        (xacro, "parse"): xacro.parse,
+        (xacro, "handle_macro_call"): xacro.handle_macro_call,
+        (xacro, "eval_all"): xacro.eval_all,
+        (substitution_args, "_eval_find"): substitution_args._eval_find,
+        (substitution_args, "_eval_env"): substitution_args._eval_env,
+        (substitution_args, "_eval_optenv"): substitution_args._eval_optenv,
+    }
+    replacements = _replacements(session, originals, xacro, substitution_args)
+    saved_limit = sys.getrecursionlimit()
+    try:
+        for (module, name), function in replacements.items():
+            setattr(module, name, function)
+        sys.setrecursionlimit(max(saved_limit, 20000))
+        xacro.init_stacks(str(path))
+        xacro.all_includes = []
+        with contextlib.redirect_stderr(stderr):
+            xacro.process_doc(doc, mappings=dict(args), verbosity=1)
+    except XacroFailure:
+        raise
+    except RecursionError:
+        where = _failure_location(session, sys.exc_info()[2], path)
+        raise XacroFailure("xacro", "expansion nested too deeply (recursive macro or include?)",
+                           where) from None
+    except Exception as error:  # xacro raises many kinds; each becomes a located finding
+        raise _as_failure(session, error, path) from None
+    finally:
+        for (module, name), function in originals.items():
+            setattr(module, name, function)
+        sys.setrecursionlimit(saved_limit)
+        xacro.init_stacks(None)
+        xacro.substitution_args_context.clear()
+    root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
+    warnings = _warnings(stderr.getvalue(), display_path(path))
+    return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings)
+
+
+def _replacements(session: _Session, originals, xacro, substitution_args):
+    original_macro_call = originals[(xacro, "handle_macro_call")]
+    original_eval_all = originals[(xacro, "eval_all")]
+    original_env = originals[(substitution_args, "_eval_env")]
+    original_optenv = originals[(substitution_args, "_eval_optenv")]
+
+    def parse(inp, filename=None):
+        if inp is not None:
+            return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
+        stack = [os.path.realpath(f) for f in xacro.filestack[:-1] if f]
+        if os.path.realpath(filename) in stack:
+            chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
+            raise xacro.XacroException(f"include cycle: {chain}")
+        try:
+            data = session.read_file(filename)
+        except OSError as error:
+            xacro.filestack.pop()
+            hint = ""
+            if "package://" in filename:
+                hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
+            raise xacro.XacroException(f"{error.strerror}: {filename}{hint}", exc=error)
+        return _parse_stamped(session, filename, data)
+
+    def handle_macro_call(node, macros, symbols):
+        if not node.tagName.startswith("xacro:"):
+            return False  # xacro asks this of every element; only xacro: tags are calls
+        call_site = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
+        if call_site:
+            node.removeAttribute(STAMP)
+        if len(xacro.macrostack) >= MAX_MACRO_DEPTH:
+            raise xacro.XacroException(
+                f"macro calls nested deeper than {MAX_MACRO_DEPTH}: recursive macro "
+                f"'{node.tagName}' without a terminating condition?")
+        if call_site:
+            session.call_sites.append(call_site[len(_STAMP_PREFIX):].split(";")[0])
+        try:
+            return original_macro_call(node, macros, symbols)
+        finally:
+            if call_site:
+                session.call_sites.pop()
+
+    def eval_all(node, macros, symbols):
+        if session.call_sites and node.nodeType == xml.dom.Node.ELEMENT_NODE:
+            stamp = node.getAttribute(STAMP)
+            if stamp and ";" not in stamp:
+                node.setAttribute(STAMP, ";".join([stamp, *reversed(session.call_sites)]))
+        return original_eval_all(node, macros, symbols)
+
+    def eval_find(package):
+        try:
+            return str(session.resolver.find(package))
+        except PackageNotFound as error:
+            raise _PackageFailure(error) from None
+
+    def eval_env(name):
+        if not session.allow_env:
+            raise substitution_args.SubstitutionException(
+                f"$(env {name}) is disabled by --no-env")
+        return original_env(name)
+
+    def eval_optenv(name, default=""):
+        if not session.allow_env:
+            raise substitution_args.SubstitutionException(
+                f"$(optenv {name}) is disabled by --no-env")
+        return original_optenv(name, default)
+
+    return {
+        (xacro, "parse"): parse,
+        (xacro, "handle_macro_call"): handle_macro_call,
+        (xacro, "eval_all"): eval_all,
+        (substitution_args, "_eval_find"): eval_find,
+        (substitution_args, "_eval_env"): eval_env,
+        (substitution_args, "_eval_optenv"): eval_optenv,
+    }
+
+
+class _PackageFailure(Exception):
+    def __init__(self, error: PackageNotFound):
+        super().__init__(str(error))
+        self.error = error
+
+
+def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure:
+    where = _failure_location(session, error.__traceback__, path)
+    cause = error
+    while cause is not None and not isinstance(cause, _PackageFailure):
+        cause = getattr(cause, "exc", None) or cause.__context__
+    if isinstance(cause, _PackageFailure):
+        return XacroFailure("package", str(cause.error), where, package=cause.error.name)
+    message = " ".join(str(error).split()) or type(error).__name__
+    if message.startswith("Undefined substitution argument"):
+        name = message.rsplit(" ", 1)[-1]
+        message += f"; pass it as {name}:=VALUE (or --arg {name}=VALUE)"
+    if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
+        message = f"{type(error).__name__}: {message}"
+    return XacroFailure("xacro", message, where)
+
+
+def _failure_location(session: _Session, traceback, path: Path) -> Location:
+    """The innermost element xacro was working on when it raised, from the traceback frames."""
+    frames = []
+    while traceback is not None:
+        frames.append(traceback.tb_frame)
+        traceback = traceback.tb_next
+    for frame in reversed(frames):
+        for name in ("node", "elt"):
+            node = frame.f_locals.get(name)
+            stamp = _nearest_stamp(node)
+            if stamp:
+                return session.location(stamp)
+        call_site = frame.f_locals.get("call_site")
+        if isinstance(call_site, str) and call_site.startswith(_STAMP_PREFIX):
+            return session.location(call_site)
+    return Location(display_path(session.paths[-1] if session.paths else path), None)
+
+
+def _nearest_stamp(node) -> str | None:
+    while isinstance(node, xml.dom.Node):
+        if node.nodeType == xml.dom.Node.ELEMENT_NODE and node.hasAttribute(STAMP):
+            return node.getAttribute(STAMP)
+        node = node.parentNode
+    return None
+
+
+def _to_lxml(session: _Session, doc, root_location: Location):
+    """Copy the expanded minidom document into lxml, moving the stamps into a location map."""
+    locations: dict[etree._Element, Location] = {}
+    source = doc.documentElement
+
+    def build(node, parent):
+        stamp = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
+        element = _make_element(parent, node)
+        if stamp:
+            locations[element] = session.location(stamp)
+        elif parent is not None and parent in locations:
+            locations[element] = locations[parent]
+        else:
+            locations[element] = root_location
+        last = None
+        for child in node.childNodes:
+            if child.nodeType == xml.dom.Node.ELEMENT_NODE:
+                last = build(child, element)
+            elif child.nodeType in (xml.dom.Node.TEXT_NODE, xml.dom.Node.CDATA_SECTION_NODE):
+                if last is None:
+                    element.text = (element.text or "") + child.data
+                else:
+                    last.tail = (last.tail or "") + child.data
+            elif child.nodeType == xml.dom.Node.COMMENT_NODE:
+                comment = etree.Comment(child.data.replace("--", "- -"))
+                element.append(comment)
+                last = comment
+        return element
+
+    root = build(source, None)
+    return root, locations
+
+
+def _make_element(parent, node):
+    """An lxml element for a minidom element, namespaces kept where they were declared."""
+    nsmap = {}
+    tag = _qualified(node, nsmap)
+    attributes = {}
+    for index in range(node.attributes.length):
+        attribute = node.attributes.item(index)
+        if attribute.name == STAMP or attribute.name.startswith("xmlns"):
+            continue
+        attributes[_qualified(attribute, nsmap)] = attribute.value
+    if parent is None:
+        return etree.Element(tag, attributes, nsmap=nsmap or None)
+    return etree.SubElement(parent, tag, attributes, nsmap=nsmap or None)
+
+
+def _qualified(node, nsmap: dict) -> str:
+    name = node.nodeName
+    if ":" not in name:
+        return name
+    prefix, local = name.split(":", 1)
+    uri = node.namespaceURI or f"urn:undeclared:{prefix}"
+    nsmap[prefix] = uri
+    return f"{{{uri}}}{local}"
+
+
+def _warnings(text: str, top: str) -> list[tuple[Location, str]]:
+    """xacro's warnings (written to stderr) as (location, message) pairs."""
+    found = []
+    current: list[str] = []
+    where = top
+    for raw in text.splitlines():
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith(("when processing file:", "in file:", "included from:",
+                            "when instantiating macro:", "instantiated from:")):
+            if line.startswith(("when processing file:", "in file:")):
+                where = display_path(line.split(":", 1)[1].strip())
+            continue
+        if current:
+            found.append((Location(where, None), " ".join(current)))
+            current = []
+        current.append(line)
+    if current:
+        found.append((Location(where, None), " ".join(current)))
+    return found

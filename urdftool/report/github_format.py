@@ -1,0 +1,28 @@
+"""``--format github``: GitHub Actions workflow commands, shown as annotations on the diff."""
+
+from __future__ import annotations
+
+from . import Summary, all_findings
+
+_LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
+
+
+def _escape_data(text: str) -> str:
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _escape_property(text: str) -> str:
+    return _escape_data(text).replace(":", "%3A").replace(",", "%2C")
+
+
+def render(results, stream) -> None:
+    for finding in all_findings(results):
+        properties = [f"file={_escape_property(finding.file)}"]
+        if finding.line is not None:
+            properties.append(f"line={finding.line}")
+        properties.append(f"title={_escape_property(f'{finding.code} {finding.name}')}")
+        stream.write(f"::{_LEVELS[finding.severity.value]} {','.join(properties)}::"
+                     f"{_escape_data(finding.message)}\n")
+    summary = Summary.of(results)
+    stream.write(f"urdftool: {summary.files} files, {summary.errors} errors, "
+                 f"{summary.warnings} warnings\n")

@@ -1,0 +1,31 @@
+"""``--format junit``: one test suite per file, one failing test case per finding."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+
+def render(results, stream) -> None:
+    suites = etree.Element("testsuites", name="urdftool", tests=str(_tests(results)),
+                           failures=str(sum(len(r.findings) for r in results)))
+    for result in results:
+        shown = result.findings[0].file if result.findings else result.path
+        suite = etree.SubElement(suites, "testsuite", name=shown,
+                                 tests=str(max(1, len(result.findings))),
+                                 failures=str(len(result.findings)), errors="0", skipped="0")
+        if not result.findings:
+            etree.SubElement(suite, "testcase", name="urdftool check", classname=shown)
+        for finding in result.findings:
+            case = etree.SubElement(suite, "testcase", name=f"{finding.code} {finding.name}",
+                                    classname=finding.file, file=finding.file)
+            if finding.line is not None:
+                case.set("line", str(finding.line))
+            failure = etree.SubElement(case, "failure", message=finding.message,
+                                       type=finding.severity.value)
+            failure.text = f"{finding.location}: {finding.code} {finding.message}"
+    stream.write(etree.tostring(suites, pretty_print=True, xml_declaration=True,
+                                encoding="UTF-8").decode())
+
+
+def _tests(results) -> int:
+    return sum(max(1, len(r.findings)) for r in results)

@@ -1,0 +1,32 @@
+"""``--format text``: findings grouped by file, with the macro call chain and a summary."""
+
+from __future__ import annotations
+
+from rich.console import Console
+from rich.markup import escape
+
+from . import Summary
+
+_STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+
+
+def render(results, stream, console: Console | None = None) -> None:
+    console = console or Console(file=stream, highlight=False, soft_wrap=True)
+    for result in results:
+        if not result.findings:
+            continue
+        console.print(f"[bold underline]{escape(result.findings[0].file)}[/]")
+        for finding in result.findings:
+            style = _STYLES[finding.severity.value]
+            console.print(
+                f"  {escape(str(finding.location))}: [{style}]{finding.severity.value}[/] "
+                f"[bold]{finding.code}[/] {escape(finding.message)} [dim]({finding.name})[/]")
+            for site in finding.location.via:
+                console.print(f"      [dim]expanded from macro call at {escape(str(site))}[/]")
+        console.print()
+    summary = Summary.of(results)
+    style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
+    verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
+        else f"{summary.errors} errors, {summary.warnings} warnings, {summary.infos} notes"
+    files = "1 file" if summary.files == 1 else f"{summary.files} files"
+    console.print(f"[{style}]{files} checked: {verdict}[/]")

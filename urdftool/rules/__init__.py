@@ -1,0 +1,94 @@
+"""The rule catalogue.
+
+A rule is one function that yields ``(where, message)``: ``where`` is an lxml element of the
+robot, a :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
+The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
+its documentation: a first-line summary, then why it matters, then examples (the README table and
+``urdftool rules CODE`` are generated from it).
+
+Families: U0xx loading, U1xx kinematic tree, U2xx joints, U3xx inertials, U4xx geometry and
+meshes, U5xx transmissions and ros2_control, U6xx controllers and Gazebo, U7xx joint spec table,
+U8xx SRDF and collisions, U9xx urdftool itself.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from dataclasses import dataclass
+from typing import Callable
+
+from ..diagnostics import Severity
+
+__all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "FAMILIES"]
+
+FAMILIES = {
+    "U0": "loading",
+    "U1": "kinematic tree",
+    "U2": "joints",
+    "U3": "inertials",
+    "U4": "geometry and meshes",
+    "U5": "transmissions and ros2_control",
+    "U6": "controllers and Gazebo",
+    "U7": "joint spec table",
+    "U8": "SRDF and collisions",
+    "U9": "urdftool",
+}
+
+
+@dataclass(frozen=True)
+class Rule:
+    code: str
+    name: str
+    severity: Severity
+    check: Callable | None
+    doc: str
+
+    @property
+    def summary(self) -> str:
+        return self.doc.strip().splitlines()[0].strip() if self.doc.strip() else self.name
+
+    @property
+    def family(self) -> str:
+        return FAMILIES[self.code[:2]]
+
+
+REGISTRY: dict[str, Rule] = {}
+
+
+def _register(code: str, name: str, severity: Severity, check, doc: str | None) -> Rule:
+    if code in REGISTRY:
+        raise ValueError(f"rule code {code} registered twice")
+    if code[:2] not in FAMILIES or len(code) != 4 or not code[1:].isdigit():
+        raise ValueError(f"rule code {code} is not of the form U<family><nn>")
+    registered = Rule(code, name, Severity(severity), check, inspect.cleandoc(doc or ""))
+    REGISTRY[code] = registered
+    return registered
+
+
+def rule(code: str, name: str, severity: Severity):
+    """Register a check: a generator function taking the robot and yielding (where, message)."""
+
+    def decorate(function):
+        _register(code, name, severity, function, function.__doc__)
+        return function
+
+    return decorate
+
+
+def declare(code: str, name: str, severity: Severity, doc: str) -> None:
+    """Register a code that the loader or a command reports itself (no check function)."""
+    _register(code, name, severity, None, doc)
+
+
+RULE_MODULES = ["loading", "tree", "joints"]
+
+
+def all_rules() -> list[Rule]:
+    """Every registered rule, sorted by code."""
+    for module in RULE_MODULES:
+        importlib.import_module(f"{__name__}.{module}")
+    return [REGISTRY[code] for code in sorted(REGISTRY)]
+
+
+all_rules()

@@ -1,0 +1,109 @@
+"""U0xx: reading the file, parsing XML and expanding xacro. Reported by the loader."""
+
+from . import Severity, declare, rule
+
+declare("U001", "malformed-xml", Severity.ERROR, """
+    The file is not well-formed XML.
+
+    Every tool that reads the robot (robot_state_publisher, Gazebo, MoveIt) stops here. The
+    finding gives the parser's line and reason.
+
+    Bad: ``<link name="base"><visual></link>``
+    Good: ``<link name="base"><visual/></link>``
+    """)
+
+declare("U002", "empty-file", Severity.ERROR, """
+    The file is empty or holds only white space.
+
+    Bad: a zero-byte ``robot.urdf``.
+    Good: ``<robot name="r"><link name="base"/></robot>``
+    """)
+
+declare("U003", "binary-file", Severity.ERROR, """
+    The file is binary, not XML text.
+
+    Usually a mesh or an archive saved under a ``.urdf`` name.
+    """)
+
+declare("U004", "root-not-robot", Severity.ERROR, """
+    The root element is not ``<robot>``.
+
+    URDF parsers look for ``<robot>`` at the top and find nothing else.
+
+    Bad: ``<model name="r">...</model>`` (that is SDF)
+    Good: ``<robot name="r">...</robot>``
+    """)
+
+declare("U005", "xacro-error", Severity.ERROR, """
+    xacro could not expand the file.
+
+    Undefined properties, bad expressions, missing includes, unknown macros, macro recursion and
+    include cycles end here, located at the line of the xacro file (or the included file) where
+    the element that failed was written.
+
+    Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
+    Good: ``<origin xyz="${wheel_radius} 0 0"/>``
+    """)
+
+declare("U006", "unresolved-package", Severity.ERROR, """
+    A ``$(find pkg)`` names a package that is nowhere on the search path.
+
+    urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
+    package.xml files above the input and below the repository root; the message lists them.
+
+    Bad: ``$(find my_robot_descripton)/urdf/arm.xacro``
+    Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
+    """)
+
+declare("U007", "xacro-in-urdf", Severity.WARNING, """
+    A file named ``.urdf`` contains xacro.
+
+    urdftool expands it, but robot_state_publisher, check_urdf and simulators read ``.urdf`` files
+    as plain URDF and see ``xacro:`` elements they do not understand.
+
+    Bad: ``robot.urdf`` containing ``<xacro:property .../>``
+    Good: rename it ``robot.urdf.xacro``
+    """)
+
+declare("U008", "file-too-large", Severity.ERROR, """
+    The input file is larger than ``--max-file-size`` (default 16 MiB).
+
+    Robot descriptions are small; a huge file is a mistake or an attack on the CI runner.
+    """)
+
+declare("U009", "xml-entity", Severity.ERROR, """
+    The file declares XML entities.
+
+    Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and no
+    robot description needs them. urdftool refuses them without expanding anything.
+
+    Bad: ``<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]>``
+    Good: use a xacro property instead.
+    """)
+
+
+@rule("U010", "xacro-warning", Severity.WARNING)
+def xacro_warning(robot):
+    """xacro printed a warning while expanding the file.
+
+    xacro warns about unknown attributes on its own tags, deprecated syntax and includes whose
+    glob matched nothing; these are usually typos that change the result silently.
+
+    Bad: ``<xacro:include filename="parts/*.xacro"/>`` matching no file
+    Good: a pattern that matches the files meant
+    """
+    for location, message in robot.options.get("xacro_warnings", []):
+        yield location, message
+
+
+@rule("U011", "robot-name-missing", Severity.ERROR)
+def robot_name_missing(robot):
+    """The ``<robot>`` element has no ``name`` attribute.
+
+    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name.
+
+    Bad: ``<robot>``
+    Good: ``<robot name="my_robot">``
+    """
+    if not robot.root.get("name"):
+        yield robot.root, "<robot> has no name attribute; add name=\"...\""

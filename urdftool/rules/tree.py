@@ -1,0 +1,190 @@
+"""U1xx: the kinematic tree (names, parents, children, roots, cycles)."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from . import Severity, rule
+from ._names import available
+
+
+def _duplicates(robot, tag: str):
+    counts = Counter(e.get("name") for e in robot.children(tag) if e.get("name"))
+    seen: set[str] = set()
+    for element in robot.children(tag):
+        name = element.get("name")
+        if name in seen:
+            first = robot.locate(robot.links[name] if tag == "link" else robot.joints[name])
+            yield element, f"{tag} '{name}' is defined {counts[name]} times (first at {first})"
+        seen.add(name)
+
+
+@rule("U101", "duplicate-link", Severity.ERROR)
+def duplicate_link(robot):
+    """Two links have the same name.
+
+    urdfdom refuses the file; tools that tolerate it keep one of the two at random.
+
+    Bad: ``<link name="arm"/> ... <link name="arm"/>``
+    Good: ``<link name="upper_arm"/> ... <link name="forearm"/>``
+    """
+    yield from _duplicates(robot, "link")
+
+
+@rule("U102", "duplicate-joint", Severity.ERROR)
+def duplicate_joint(robot):
+    """Two joints have the same name.
+
+    Joint names key /joint_states, controllers and transmissions: a duplicate makes them ambiguous.
+
+    Bad: two ``<joint name="wheel_joint">`` elements
+    Good: ``left_wheel_joint`` and ``right_wheel_joint``
+    """
+    yield from _duplicates(robot, "joint")
+
+
+@rule("U103", "missing-name", Severity.ERROR)
+def missing_name(robot):
+    """A link or joint has no ``name`` attribute (or an empty one).
+
+    Bad: ``<link><visual>...</visual></link>``
+    Good: ``<link name="base_link">...</link>``
+    """
+    for tag in ("link", "joint"):
+        for element in robot.children(tag):
+            if not element.get("name"):
+                yield element, f"<{tag}> has no name attribute"
+
+
+def _endpoint(joint, side: str):
+    element = joint.find(side)
+    return element, (element.get("link") if element is not None else None)
+
+
+@rule("U104", "joint-missing-endpoint", Severity.ERROR)
+def joint_missing_endpoint(robot):
+    """A joint has no ``<parent link=...>`` or ``<child link=...>``.
+
+    Bad: ``<joint name="j" type="fixed"><parent link="a"/></joint>``
+    Good: ``<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>``
+    """
+    for joint in robot.children("joint"):
+        for side in ("parent", "child"):
+            element, link = _endpoint(joint, side)
+            if element is None:
+                yield joint, f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
+            elif not link:
+                yield element, f"joint '{joint.get('name')}': <{side}> has no link attribute"
+
+
+@rule("U105", "unknown-link", Severity.ERROR)
+def unknown_link(robot):
+    """A joint names a parent or child link that does not exist.
+
+    Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
+    Good: ``<parent link="base_link"/>``
+    """
+    for joint in robot.children("joint"):
+        for side in ("parent", "child"):
+            element, link = _endpoint(joint, side)
+            if link and link not in robot.links:
+                yield element, (f"joint '{joint.get('name')}' names {side} link '{link}', "
+                                f"which does not exist; {available('links', link, robot.links)}")
+
+
+@rule("U106", "no-links", Severity.ERROR)
+def no_links(robot):
+    """The robot has no ``<link>`` at all.
+
+    Bad: ``<robot name="r"/>``
+    Good: ``<robot name="r"><link name="base_link"/></robot>``
+    """
+    if not robot.children("link"):
+        yield robot.root, "robot has no <link> elements; a robot needs at least one link"
+
+
+def parent_map(robot) -> dict[str, list]:
+    """Child link name -> joints that name it as child (only links that exist)."""
+    parents: dict[str, list] = {}
+    for joint in robot.children("joint"):
+        _, child = _endpoint(joint, "child")
+        _, parent = _endpoint(joint, "parent")
+        if child in robot.links and parent in robot.links:
+            parents.setdefault(child, []).append(joint)
+    return parents
+
+
+@rule("U107", "multiple-parents", Severity.ERROR)
+def multiple_parents(robot):
+    """A link is the child of more than one joint.
+
+    URDF describes a tree: each link has at most one parent joint. Closed chains need a
+    different format (SDF) or a mimic joint.
+
+    Bad: joints ``a_to_c`` and ``b_to_c`` both with ``<child link="c"/>``
+    Good: one of them attaches a new link instead.
+    """
+    for child, joints in parent_map(robot).items():
+        if len(joints) > 1:
+            names = ", ".join(f"'{j.get('name')}'" for j in joints)
+            for joint in joints[1:]:
+                yield joint.find("child"), f"link '{child}' has {len(joints)} parent joints ({names})"
+
+
+def roots(robot) -> list[str]:
+    """Links that are nobody's child, in document order."""
+    parents = parent_map(robot)
+    return [name for name in robot.links if name not in parents]
+
+
+@rule("U108", "multiple-roots", Severity.ERROR)
+def multiple_roots(robot):
+    """More than one link has no parent: the robot falls apart into several trees.
+
+    Usually a joint is missing, or a joint's parent or child link is misspelt.
+
+    Bad: links ``base_link`` and ``camera_link`` with no joint between them
+    Good: a fixed joint from ``base_link`` to ``camera_link``
+    """
+    found = roots(robot)
+    if len(found) > 1 and not any(True for _ in unknown_link(robot)):
+        listed = ", ".join(f"'{n}'" for n in found)
+        for name in found[1:]:
+            yield robot.links[name], (f"link '{name}' has no parent joint: the robot has "
+                                      f"{len(found)} roots ({listed}); connect them with joints")
+
+
+@rule("U109", "kinematic-cycle", Severity.ERROR)
+def kinematic_cycle(robot):
+    """The joints form a loop, so the tree has no root or a link is its own ancestor.
+
+    Bad: ``a -> b`` and ``b -> a``
+    Good: a tree: each link reached from the root by exactly one path
+    """
+    parents = parent_map(robot)
+    reported: set[str] = set()
+    for start in robot.links:
+        path, link = [], start
+        while link in parents and link not in path:
+            path.append(link)
+            link = parents[link][0].find("parent").get("link")
+        if link in path and link not in reported:
+            cycle = path[path.index(link):]
+            reported.update(cycle)
+            joint = parents[link][0]
+            yield joint, "joints form a cycle through links " + " -> ".join(
+                [*reversed(cycle), cycle[-1]])
+
+
+@rule("U110", "self-joint", Severity.ERROR)
+def self_joint(robot):
+    """A joint has the same link as parent and child.
+
+    Bad: ``<parent link="a"/><child link="a"/>``
+    Good: two different links
+    """
+    for joint in robot.children("joint"):
+        _, parent = _endpoint(joint, "parent")
+        _, child = _endpoint(joint, "child")
+        if parent and parent == child:
+            yield joint, f"joint '{joint.get('name')}' connects link '{parent}' to itself"
