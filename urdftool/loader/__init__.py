@@ -153,7 +153,8 @@ def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
 
 
 def _finding(code: str, location: Location, message: str) -> Finding:
-    from ..rules import REGISTRY
+    from ..rules import REGISTRY, all_rules
 
+    all_rules()
     rule = REGISTRY[code]
     return Finding(code, rule.name, rule.severity, message, location)

@@ -68,6 +68,7 @@ class _Session:
         self.read_file = read_file
         self.paths: list[str] = []
         self.call_sites: list[str] = []
+        self.warnings: list[tuple[Location, str]] = []
 
     def file_index(self, path: str) -> int:
         self.paths.append(path)
@@ -133,6 +134,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         (xacro, "parse"): xacro.parse,
         (xacro, "handle_macro_call"): xacro.handle_macro_call,
         (xacro, "eval_all"): xacro.eval_all,
+        (xacro, "check_attrs"): xacro.check_attrs,
         (substitution_args, "_eval_find"): substitution_args._eval_find,
         (substitution_args, "_eval_env"): substitution_args._eval_env,
         (substitution_args, "_eval_optenv"): substitution_args._eval_optenv,
@@ -162,13 +164,14 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
     root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
-    warnings = _warnings(stderr.getvalue(), display_path(path))
+    warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings)
 
 
 def _replacements(session: _Session, originals, xacro, substitution_args):
     original_macro_call = originals[(xacro, "handle_macro_call")]
     original_eval_all = originals[(xacro, "eval_all")]
+    original_check_attrs = originals[(xacro, "check_attrs")]
     original_env = originals[(substitution_args, "_eval_env")]
     original_optenv = originals[(substitution_args, "_eval_optenv")]
 
@@ -214,6 +217,21 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
                 node.setAttribute(STAMP, ";".join([stamp, *reversed(session.call_sites)]))
         return original_eval_all(node, macros, symbols)
 
+    def check_attrs(tag, required, optional):
+        # xacro prints unknown attributes of its own tags without a line; report them located
+        # and hand xacro the tag without them (it reads only the known ones).
+        extra = [name for name in tag.attributes.keys()
+                 if name not in (*required, *optional) and not name.startswith("xmlns:")]
+        if extra:
+            stamp = _nearest_stamp(tag)
+            where = session.location(stamp) if stamp else Location(display_path(session.paths[0]))
+            session.warnings.append((where, f"<{tag.tagName}> has unknown attribute(s) "
+                                            f"{', '.join(extra)}; xacro ignores them (known: "
+                                            f"{', '.join([*required, *optional])})"))
+            for name in extra:
+                tag.removeAttribute(name)
+        return original_check_attrs(tag, required, optional)
+
     def eval_find(package):
         try:
             return str(session.resolver.find(package))
@@ -236,6 +254,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         (xacro, "parse"): parse,
         (xacro, "handle_macro_call"): handle_macro_call,
         (xacro, "eval_all"): eval_all,
+        (xacro, "check_attrs"): check_attrs,
         (substitution_args, "_eval_find"): eval_find,
         (substitution_args, "_eval_env"): eval_env,
         (substitution_args, "_eval_optenv"): eval_optenv,

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import pkgutil
 from dataclasses import dataclass
 from typing import Callable
 
@@ -81,14 +82,21 @@ def declare(code: str, name: str, severity: Severity, doc: str) -> None:
     _register(code, name, severity, None, doc)
 
 
-RULE_MODULES = ["loading", "tree", "joints"]
+def rule_modules() -> list[str]:
+    """Every public module of this package: each holds one family's rules."""
+    return sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_"))
+
+
+_loaded = False
 
 
 def all_rules() -> list[Rule]:
     """Every registered rule, sorted by code."""
-    for module in RULE_MODULES:
-        importlib.import_module(f"{__name__}.{module}")
+    global _loaded
+    if not _loaded:
+        for module in rule_modules():
+            importlib.import_module(f"{__name__}.{module}")
+        importlib.import_module("urdftool.engine")  # declares U900
+        _loaded = True
     return [REGISTRY[code] for code in sorted(REGISTRY)]
 
-
-all_rules()

@@ -147,11 +147,17 @@ def multiple_roots(robot):
     Good: a fixed joint from ``base_link`` to ``camera_link``
     """
     found = roots(robot)
-    if len(found) > 1 and not any(True for _ in unknown_link(robot)):
+    if len(found) > 1 and _all_joints_wired(robot):
         listed = ", ".join(f"'{n}'" for n in found)
         for name in found[1:]:
             yield robot.links[name], (f"link '{name}' has no parent joint: the robot has "
                                       f"{len(found)} roots ({listed}); connect them with joints")
+
+
+def _all_joints_wired(robot) -> bool:
+    """Whether every joint names an existing parent and child (else U104/U105 explain roots)."""
+    return all(_endpoint(joint, side)[1] in robot.links
+               for joint in robot.children("joint") for side in ("parent", "child"))
 
 
 @rule("U109", "kinematic-cycle", Severity.ERROR)

@@ -1,0 +1,72 @@
+"""One case per rule: each case marks the lines where a finding is expected with ``expect: CODE``
+(inside an XML comment, or a YAML/TOML comment; ``expect: CODE at FILE:LINE`` where the line
+itself cannot hold a comment, as inside a tag or in an empty file), and the set of (file, line, code) found must
+equal the set marked.
+
+A case is a file ``tests/cases/<CODE>_<slug>.urdf`` (or ``.urdf.xacro``), or a folder
+``tests/cases/<CODE>_<slug>/`` whose robot is the one ``.urdf``/``.urdf.xacro`` file in it and whose
+other files (included xacro, controller YAML, SRDF, spec) are companions found beside it.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import CASES
+from urdftool.engine import CheckOptions, check_file
+from urdftool.rules import all_rules
+
+MARK = re.compile(r"expect:\s*((?:U\d{3}[\s,]*)+)(?:is reported )?(?:at\s+([\w.\-]+):(\d+))?")
+
+
+def case_robot(case: Path) -> Path:
+    if case.is_file():
+        return case
+    robots = sorted(p for p in case.iterdir() if p.name.endswith((".urdf", ".urdf.xacro")))
+    assert len(robots) == 1, f"{case} must hold exactly one .urdf or .urdf.xacro, has {robots}"
+    return robots[0]
+
+
+def expected_marks(case: Path) -> set[tuple[str, int, str]]:
+    files = [case] if case.is_file() else sorted(p for p in case.rglob("*") if p.is_file())
+    marks = set()
+    for path in files:
+        for number, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
+            for codes, elsewhere, at_line in MARK.findall(line):
+                where = (elsewhere, int(at_line)) if elsewhere else (path.name, number)
+                for code in re.findall(r"U\d{3}", codes):
+                    marks.add((*where, code))
+    return marks
+
+
+CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
+
+
+@pytest.mark.parametrize("case", CASE_PATHS, ids=[p.name for p in CASE_PATHS])
+def test_case_findings_match_marks(case):
+    result = check_file(str(case_robot(case)), CheckOptions())
+    found = {(Path(f.file).name, f.line, f.code) for f in result.findings}
+    assert found == expected_marks(case), "\n".join(
+        f"{f.location}: {f.code} {f.message}" for f in result.findings)
+
+
+def test_every_case_marks_its_own_code():
+    for case in CASE_PATHS:
+        code = case.name[:4]
+        assert code in {c for _, _, c in expected_marks(case)}, f"{case.name} never marks {code}"
+
+
+def test_every_rule_has_a_case():
+    covered = {p.name[:4] for p in CASE_PATHS}
+    missing = [r.code for r in all_rules() if r.code not in covered and r.code not in NO_CASE]
+    assert not missing, f"rules without a case file in tests/cases: {missing}"
+
+
+# Codes that cannot be provoked by a file on disk (documented why).
+NO_CASE = {
+    "U900",  # internal-error: needs a crashing rule; tested in test_engine.py
+    "U008",  # file-too-large: would need a 16 MiB fixture; tested in test_loader.py
+}
