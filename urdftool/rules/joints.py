@@ -253,3 +253,41 @@ def zero_effort_or_velocity(robot):
             if values and values[0] <= 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
                               "the joint cannot move")
+
+
+@rule("U213", "safety-controller-incomplete", Severity.ERROR)
+def safety_controller_incomplete(robot):
+    """A ``<safety_controller>`` has no ``k_velocity``.
+
+    urdfdom requires it and refuses the joint without it; the soft limits and ``k_position`` are
+    optional.
+
+    Bad: ``<safety_controller k_position="100" soft_lower_limit="-1" soft_upper_limit="1"/>``
+    Good: ``<safety_controller k_velocity="10" k_position="100" .../>``
+    """
+    for joint in robot.children("joint"):
+        for safety in joint.findall("safety_controller"):
+            if safety.get("k_velocity") is None:
+                yield safety, f"joint '{_name(joint)}': <safety_controller> has no k_velocity"
+
+
+SINGLE_CHILDREN = ("origin", "parent", "child", "axis", "limit", "dynamics", "mimic",
+                   "calibration", "safety_controller")
+
+
+@rule("U214", "repeated-joint-element", Severity.WARNING)
+def repeated_joint_element(robot):
+    """A joint has two ``<origin>``, ``<limit>``, ``<axis>`` (or other single) elements.
+
+    Parsers read the first and silently ignore the rest, so the second one, often the intended
+    edit, has no effect.
+
+    Bad: ``<origin xyz="0 0 0.1"/> ... <origin xyz="0 0 0.2"/>`` in one joint
+    Good: one ``<origin>``
+    """
+    for joint in robot.children("joint"):
+        for tag in SINGLE_CHILDREN:
+            repeats = joint.findall(tag)
+            for extra in repeats[1:]:
+                yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
+                              f"only the first (at {robot.locate(repeats[0])}) is used")
