@@ -291,3 +291,27 @@ def repeated_joint_element(robot):
             for extra in repeats[1:]:
                 yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
                               f"only the first (at {robot.locate(repeats[0])}) is used")
+
+
+@rule("U215", "zero-range", Severity.WARNING)
+def zero_range(robot):
+    """A revolute or prismatic joint's lower and upper limits are equal, so it cannot move.
+
+    A ``<limit>`` without ``lower``/``upper`` defaults both to 0: the joint is silently frozen.
+    If the joint really is rigid, make it ``fixed``; if it spins freely, make it ``continuous``.
+
+    Bad: ``<joint type="revolute"> ... <limit effort="10" velocity="2"/>``
+    Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
+    """
+    for joint in robot.children("joint"):
+        limit = joint.find("limit")
+        if limit is None or joint.get("type") not in LIMITED_TYPES:
+            continue
+        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
+        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+        if lower and upper and lower[0] == upper[0]:
+            defaulted = "" if limit.get("lower") and limit.get("upper") else \
+                " (a missing lower/upper defaults to 0)"
+            yield limit, (f"{joint.get('type')} joint '{_name(joint)}' has lower = upper = "
+                          f"{lower[0]:g}{defaulted}: it cannot move; give its range, or make it "
+                          "fixed or continuous")
