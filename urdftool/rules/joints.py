@@ -76,6 +76,19 @@ def limit_missing_effort_velocity(robot):
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
+def _ranges(robot):
+    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; a
+    missing bound is 0, as in urdfdom."""
+    for joint in robot.children("joint"):
+        limit = joint.find("limit")
+        if limit is None or joint.get("type") not in LIMITED_TYPES:
+            continue
+        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
+        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+        if lower and upper:
+            yield joint, limit, lower[0], upper[0]
+
+
 @rule("U204", "inverted-limits", Severity.ERROR)
 def inverted_limits(robot):
     """A joint's lower limit is above its upper limit.
@@ -85,15 +98,10 @@ def inverted_limits(robot):
     Bad: ``<limit lower="1.57" upper="-1.57" .../>``
     Good: ``<limit lower="-1.57" upper="1.57" .../>``
     """
-    for joint in robot.children("joint"):
-        limit = joint.find("limit")
-        if limit is None or joint.get("type") not in LIMITED_TYPES:
-            continue
-        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
-        if lower and upper and lower[0] > upper[0]:
-            yield limit, (f"joint '{_name(joint)}': lower limit {lower[0]:g} is above upper limit "
-                          f"{upper[0]:g}; swap them")
+    for joint, limit, lower, upper in _ranges(robot):
+        if lower > upper:
+            yield limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper limit "
+                          f"{upper:g}; swap them")
 
 
 def _axis(joint):
@@ -303,15 +311,10 @@ def zero_range(robot):
     Bad: ``<joint type="revolute"> ... <limit effort="10" velocity="2"/>``
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
-    for joint in robot.children("joint"):
-        limit = joint.find("limit")
-        if limit is None or joint.get("type") not in LIMITED_TYPES:
-            continue
-        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
-        if lower and upper and lower[0] == upper[0]:
+    for joint, limit, lower, upper in _ranges(robot):
+        if lower == upper:
             defaulted = "" if limit.get("lower") and limit.get("upper") else \
                 " (a missing lower/upper defaults to 0)"
             yield limit, (f"{joint.get('type')} joint '{_name(joint)}' has lower = upper = "
-                          f"{lower[0]:g}{defaulted}: it cannot move; give its range, or make it "
+                          f"{lower:g}{defaulted}: it cannot move; give its range, or make it "
                           "fixed or continuous")
