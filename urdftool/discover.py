@@ -13,10 +13,7 @@ SUFFIXES = (".urdf", ".xacro")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 _INCLUDE = re.compile(rb"<xacro:include\s[^>]*?filename\s*=\s*[\"']([^\"']+)[\"']", re.S)
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
-_DIRECT_CONTENT = re.compile(rb"<(link|joint)[\s>/]")
-_MACRO_CALL = re.compile(rb"<xacro:(?!(?:include|property|macro|arg|if|unless|insert_block|"
-                         rb"element|attribute)\b)[A-Za-z_]")
-_MACRO_DEF = re.compile(rb"<xacro:macro[\s>].*?</xacro:macro>", re.S)
+_DEFINITIONS = {"property", "arg", "include", "macro", "material"}
 
 
 def robot_files(folder: Path) -> list[Path]:
@@ -53,8 +50,23 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
 
 
 def _defines_robot(data: bytes) -> bool:
-    outside_macros = _MACRO_DEF.sub(b"", data)
-    return bool(_DIRECT_CONTENT.search(outside_macros) or _MACRO_CALL.search(outside_macros))
+    """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
+    definitions (properties, args, includes, macros). Unparsable files count, so that the parse
+    error is reported."""
+    from lxml import etree
+
+    try:
+        root = etree.fromstring(data, etree.XMLParser(resolve_entities=False, no_network=True,
+                                                      load_dtd=False, recover=True))
+    except etree.LxmlError:
+        return True
+    if root is None or etree.QName(root).localname != "robot":
+        return True
+    for child in root.iterchildren(etree.Element):
+        # Pre-2019 xacro wrote the same tags without the xacro: prefix.
+        if etree.QName(child).localname not in _DEFINITIONS:
+            return True
+    return False
 
 
 def _included_files(path: Path, data: bytes, resolver: PackageResolver):

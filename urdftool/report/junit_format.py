@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from lxml import etree
 
+from ..diagnostics import display_path
+
 
 def render(results, stream) -> None:
     suites = etree.Element("testsuites", name="urdftool", tests=str(_tests(results)),
                            failures=str(sum(len(r.findings) for r in results)))
     for result in results:
-        shown = result.findings[0].file if result.findings else result.path
+        shown = display_path(result.path)
         suite = etree.SubElement(suites, "testsuite", name=shown,
                                  tests=str(max(1, len(result.findings))),
                                  failures=str(len(result.findings)), errors="0", skipped="0")

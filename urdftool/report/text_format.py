@@ -5,6 +5,7 @@ from __future__ import annotations
 from rich.console import Console
 from rich.markup import escape
 
+from ..diagnostics import display_path
 from . import Summary
 
 _STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
@@ -15,7 +16,7 @@ def render(results, stream, console: Console | None = None) -> None:
     for result in results:
         if not result.findings:
             continue
-        console.print(f"[bold underline]{escape(result.findings[0].file)}[/]")
+        console.print(f"[bold underline]{escape(display_path(result.path))}[/]")
         for finding in result.findings:
             style = _STYLES[finding.severity.value]
             console.print(
