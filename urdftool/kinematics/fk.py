@@ -10,6 +10,7 @@ ordinary joints. ``pinocchio_q`` gives Pinocchio's own configuration vectors for
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -42,6 +43,21 @@ class _Joint:
     source: tuple = ()
     idx_q: int = -1
     unbounded: bool = False
+
+    @cached_property
+    def terms(self) -> tuple[np.ndarray, np.ndarray]:
+        """For revolute joints (P K, P K^2) with K the axis' cross-product matrix, as 4x4 blocks;
+        for prismatic joints (P u in the translation column, zeros)."""
+        first, second = np.zeros((4, 4)), np.zeros((4, 4))
+        rotation = self.placement[:3, :3]
+        x, y, z = self.axis
+        if self.kind == "prismatic":
+            first[:3, 3] = rotation @ self.axis
+        else:
+            cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+            first[:3, :3] = rotation @ cross
+            second[:3, :3] = rotation @ cross @ cross
+        return first, second
 
 
 @dataclass
@@ -132,34 +148,48 @@ class KinematicModel:
         column, multiplier, offset = self._source(joint)
         return multiplier * values[:, column] + offset
 
-    def link_poses(self, values: np.ndarray) -> np.ndarray:
-        """Poses ``[rows, links, 4, 4]`` of every link (``self.links``) relative to the root."""
+    def link_poses(self, values: np.ndarray, links: list[int] | None = None) -> np.ndarray:
+        """Poses ``[rows, links, 4, 4]`` of links (indices into ``self.links``, default all)
+        relative to the root."""
+        return np.moveaxis(self._frame_poses(values, links), 0, 1)
+
+    def _frame_poses(self, values: np.ndarray, links: list[int] | None) -> np.ndarray:
+        """Poses ``[links, rows, 4, 4]``: each link's block contiguous, so numpy's batched
+        matrix products stay on their fast path (strided or broadcast operands are 5-100x
+        slower)."""
         values = np.atleast_2d(np.asarray(values, dtype=float))
-        rows = len(values)
-        placed = [np.broadcast_to(np.eye(4), (rows, 4, 4))]
+        links = range(len(self._frames)) if links is None else links
+        placed: list = [None]  # the universe: identity
         for joint in self._joints[1:]:
             local = self._local(joint, values)
             parent = placed[joint.parent]
-            placed.append(np.matmul(parent, local))
-        out = np.empty((rows, len(self._frames), 4, 4))
-        for index, (_, joint, placement) in enumerate(self._frames):
-            np.matmul(placed[joint], placement, out=out[:, index])
+            placed.append(local if parent is None else np.matmul(parent, local))
+        out = np.empty((len(links), len(values), 4, 4))
+        for index, link in enumerate(links):
+            _, joint, placement = self._frames[link]
+            if placed[joint] is None:
+                out[index] = placement
+            elif np.array_equal(placement, np.eye(4)):  # a link at its joint: no product
+                out[index] = placed[joint]
+            else:
+                np.matmul(placed[joint], placement, out=out[index])
         return out
 
     def _local(self, joint: _Joint, values: np.ndarray) -> np.ndarray:
         """Joint placement times joint motion, ``[rows, 4, 4]``."""
         rows = len(values)
+        if joint.kind in ("revolute", "prismatic"):
+            # Rodrigues folded into the placement: P R(q) = P + sin q (P K) + (1 - cos q) (P K^2);
+            # P Trans(q u) = P + q (P u e_w^T). Three array operations per joint.
+            column, multiplier, offset = joint.source
+            q = (multiplier * values[:, column] + offset)[:, None, None]
+            first, second = joint.terms
+            if joint.kind == "prismatic":
+                return joint.placement + q * first
+            return joint.placement + np.sin(q) * first + (1.0 - np.cos(q)) * second
         motion = np.zeros((rows, 4, 4))
         motion[:, 3, 3] = 1.0
-        if joint.kind in ("revolute", "prismatic"):
-            column, multiplier, offset = joint.source
-            q = multiplier * values[:, column] + offset
-            if joint.kind == "revolute":
-                motion[:, :3, :3] = transforms.rotations_about(joint.axis, q)
-            else:
-                motion[:, :3, :3] = np.eye(3)
-                motion[:, :3, 3] = q[:, None] * joint.axis
-        elif joint.kind == "floating":
+        if joint.kind == "floating":
             coordinates = values[:, list(joint.source)]
             motion[:, :3, :3] = transforms.rotation_from_rpy(coordinates[:, 3:])
             motion[:, :3, 3] = coordinates[:, :3]
@@ -222,10 +252,12 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
         if name not in index:
             raise FKError(f"unknown link '{name}'; {available('links', name, model.links)}")
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
-    poses = model.link_poses(configurations.values)
-    matrices = poses[:, chosen]
     if base:
-        matrices = np.matmul(transforms.invert(poses[:, index[base]])[:, None], matrices)
+        poses = model._frame_poses(configurations.values, chosen + [index[base]])
+        poses = np.matmul(transforms.invert(poses[-1]), poses[:-1])
+    else:
+        poses = model._frame_poses(configurations.values, chosen)
+    matrices = np.moveaxis(poses, 0, 1)
     root = base or model.links[0]
     return FKResult(root, [model.links[i] for i in chosen], matrices,
                     list(configurations.warnings))
