@@ -1,0 +1,269 @@
+"""D-H tables: the matrices, extraction against published tables, FK from tables, the CLI."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+import yaml
+
+from conftest import ROBOTS, corpus_or_skip
+from urdftool.kinematics import configuration as config
+from urdftool.kinematics import dh
+from urdftool.kinematics.fk import KinematicModel
+from urdftool.loader import load
+
+HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
+PI_2 = math.pi / 2
+
+# Published tables. UR5 (Universal Robots, standard D-H): the signs of a and alpha are UR's.
+UR5 = {"d": [0.089159, 0, 0, 0.10915, 0.09465, 0.0823], "a": [0, -0.425, -0.39225, 0, 0, 0],
+       "alpha": [PI_2, 0, 0, PI_2, -PI_2, 0]}
+# Franka Panda (Franka's documentation, Craig's modified D-H), joints 1-7 without the flange.
+PANDA = {"a": [0, 0, 0, 0.0825, -0.0825, 0, 0.088], "d": [0.333, 0, 0.316, 0, 0.384, 0, 0],
+         "alpha": [0, -PI_2, PI_2, PI_2, -PI_2, PI_2, PI_2]}
+
+LIMBS = [("body_link", "l_foot_link"), ("body_link", "r_foot_link"),
+         ("body_link", "l_forearm_link"), ("body_link", "r_forearm_link"),
+         ("body_link", "head_link"), ("base_link", "l_foot_link")]
+
+
+@pytest.fixture(scope="module")
+def humanoid():
+    return load(HUMANOID)
+
+
+@pytest.fixture(scope="module")
+def humanoid_model(humanoid):
+    return KinematicModel(humanoid)
+
+
+def _worst_errors(robot, model, table, count=200, seed=7):
+    return dh.verify(table, model, config.random(model.variables, count, seed))
+
+
+def _rot_z(t):
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def _rot_x(t):
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+
+def _trans(x, y, z):
+    m = np.eye(4)
+    m[:3, 3] = x, y, z
+    return m
+
+
+# -- the matrices --------------------------------------------------------------------------------
+
+def test_standard_matrix_by_hand():
+    # theta 90 deg, d 0.2, a 0.3, alpha 90 deg: the x axis turns to y, the origin goes to
+    # (0, 0.3, 0.2), and z (rotated about the new x = old y) becomes -old x.
+    matrix = dh.dh_matrices(PI_2, 0.2, 0.3, PI_2)
+    expected = np.array([[0, 0, 1, 0], [1, 0, 0, 0.3], [0, 1, 0, 0.2], [0, 0, 0, 1.0]])
+    np.testing.assert_allclose(matrix, expected, atol=1e-15)
+
+
+def test_modified_matrix_by_hand():
+    # alpha 90 deg about x first, then a 0.3 along x, then theta 90 about the new z (old -y),
+    # then d 0.2 along the new z: origin (0.3, -0.2, 0).
+    matrix = dh.dh_matrices(PI_2, 0.2, 0.3, PI_2, "modified")
+    expected = np.array([[0, -1, 0, 0.3], [0, 0, -1, -0.2], [1, 0, 0, 0], [0, 0, 0, 1.0]])
+    np.testing.assert_allclose(matrix, expected, atol=1e-15)
+
+
+@pytest.mark.parametrize("theta,d,a,alpha", [(0.3, -0.1, 0.7, -1.2), (-2.0, 0.5, -0.2, 2.9)])
+def test_matrices_are_the_products_they_name(theta, d, a, alpha):
+    standard = _rot_z(theta) @ _trans(0, 0, d) @ _trans(a, 0, 0) @ _rot_x(alpha)
+    modified = _rot_x(alpha) @ _trans(a, 0, 0) @ _rot_z(theta) @ _trans(0, 0, d)
+    np.testing.assert_allclose(dh.dh_matrices(theta, d, a, alpha), standard, atol=1e-15)
+    np.testing.assert_allclose(dh.dh_matrices(theta, d, a, alpha, "modified"), modified,
+                               atol=1e-15)
+
+
+def test_planar_two_link_pose_by_hand():
+    table = dh.DHTable("standard", np.eye(4), np.eye(4),
+                       [dh.DHJoint("j1", "revolute", 0, 0, 1.0, 0),
+                        dh.DHJoint("j2", "revolute", 0, 0, 0.5, 0)])
+    pose = dh.table_fk(table, [[PI_2, -PI_2]])[0]
+    np.testing.assert_allclose(pose[:3, 3], [0.5, 1.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(pose[:3, :3], np.eye(3), atol=1e-15)
+
+
+# -- extraction on real robots --------------------------------------------------------------------
+
+def test_ur5_matches_the_published_table():
+    robot = load(corpus_or_skip() / "ur_description/urdf/ur5.xacro")
+    # base_link_inertia is UR's D-H base frame (base_link turned 180 deg about z)
+    table = dh.extract(robot, "base_link_inertia", "wrist_3_link")
+    np.testing.assert_allclose([j.d for j in table.joints], UR5["d"], atol=1e-9)
+    np.testing.assert_allclose([j.a for j in table.joints], UR5["a"], atol=1e-9)
+    np.testing.assert_allclose([j.alpha for j in table.joints], UR5["alpha"], atol=1e-9)
+    np.testing.assert_allclose([j.theta for j in table.joints], 0, atol=1e-9)
+    np.testing.assert_allclose(table.base, np.eye(4), atol=1e-9)
+    np.testing.assert_allclose(table.tool, np.eye(4), atol=1e-9)
+    assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_ur5_from_base_link_differs_only_in_signs():
+    """From base_link (x turned 180 deg) the table is the same up to the sign choices."""
+    robot = load(corpus_or_skip() / "ur_description/urdf/ur5.xacro")
+    table = dh.extract(robot, "base_link", "tool0")
+    np.testing.assert_allclose([abs(j.d) for j in table.joints], UR5["d"], atol=1e-9)
+    np.testing.assert_allclose([abs(j.a) for j in table.joints], np.abs(UR5["a"]), atol=1e-9)
+    np.testing.assert_allclose([abs(j.alpha) for j in table.joints], np.abs(UR5["alpha"]),
+                               atol=1e-9)
+    assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_panda_matches_the_published_craig_table():
+    robot = load(corpus_or_skip() / "franka_description/robots/panda/panda.urdf.xacro")
+    table = dh.extract(robot, "panda_link0", "panda_link7", "modified")
+    assert [j.joint for j in table.joints] == [f"panda_joint{i}" for i in range(1, 8)]
+    for key in ("a", "d", "alpha"):
+        np.testing.assert_allclose([getattr(j, key) for j in table.joints], PANDA[key],
+                                   atol=1e-9, err_msg=key)
+    np.testing.assert_allclose(table.tool, np.eye(4), atol=1e-9)
+    model = KinematicModel(robot)
+    assert max(_worst_errors(robot, model, table)) < 1e-12
+    standard = dh.extract(robot, "panda_link0", "panda_link8")
+    assert max(_worst_errors(robot, model, standard)) < 1e-12
+
+
+@pytest.mark.parametrize("convention", dh.CONVENTIONS)
+@pytest.mark.parametrize("base,tip", LIMBS)
+def test_humanoid_limbs_agree_with_pinocchio(humanoid, humanoid_model, base, tip, convention):
+    table = dh.extract(humanoid, base, tip, convention)
+    position, rotation = _worst_errors(humanoid, humanoid_model, table)
+    assert position < 1e-12 and rotation < 1e-12
+
+
+def test_humanoid_left_leg_parameters(humanoid):
+    """Hip yaw/roll intersect (a = d = 0); hip pitch, knee, ankle pitch are parallel (a = thigh)."""
+    table = dh.extract(humanoid, "body_link", "l_foot_link")
+    assert [j.joint for j in table.joints] == ["l_hip_yaw", "l_hip_roll", "l_hip_pitch",
+                                               "l_knee", "l_ank_pitch", "l_ank_roll"]
+    np.testing.assert_allclose([abs(j.a) for j in table.joints], [0, 0, 0.093, 0.093, 0, 0],
+                               atol=1e-12)
+    np.testing.assert_allclose([abs(j.d) for j in table.joints], [0.122, 0, 0, 0, 0, 0],
+                               atol=1e-12)
+    np.testing.assert_allclose(table.base[:3, 3], [0, 0.037, 0], atol=1e-12)
+
+
+def test_prismatic_joint_and_fixed_joints_are_folded(tmp_path):
+    path = tmp_path / "p.urdf"
+    path.write_text("""<robot name="p"><link name="b"/><link name="m"/><link name="c"/>
+      <link name="e"/><link name="t"/>
+      <joint name="lift" type="prismatic"><parent link="b"/><child link="m"/>
+        <origin xyz="0.2 0.1 0.3" rpy="0 0.4 0"/><axis xyz="0 0 1"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="mount" type="fixed"><parent link="m"/><child link="c"/>
+        <origin xyz="0.05 0 0.1" rpy="0.3 0 0"/></joint>
+      <joint name="turn" type="continuous"><parent link="c"/><child link="e"/>
+        <origin xyz="0.3 0 0" rpy="0 0.2 0.5"/><axis xyz="0 1 0"/></joint>
+      <joint name="tool" type="fixed"><parent link="e"/><child link="t"/>
+        <origin xyz="0.1 0.2 0.3" rpy="0.1 0.2 0.3"/></joint></robot>""")
+    robot = load(path)
+    for convention in dh.CONVENTIONS:
+        table = dh.extract(robot, "b", "t", convention)
+        assert [(j.joint, j.type) for j in table.joints] == [("lift", "prismatic"),
+                                                              ("turn", "revolute")]
+        assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_chain_that_cannot_be_written_in_dh_is_located(tmp_path):
+    path = tmp_path / "f.urdf"
+    path.write_text("""<robot name="f"><link name="b"/><link name="m"/><link name="t"/>
+      <joint name="slide2d" type="planar"><parent link="b"/><child link="m"/>
+        <axis xyz="0 0 1"/></joint>
+      <joint name="j" type="revolute"><parent link="m"/><child link="t"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    robot = load(path)
+    with pytest.raises(dh.DHError, match="'slide2d' is planar") as caught:
+        dh.extract(robot, "b", "t")
+    assert robot.locate(caught.value.element).line == 2
+
+
+def test_mimic_joint_in_chain_is_refused(tmp_path):
+    path = tmp_path / "m.urdf"
+    path.write_text("""<robot name="m"><link name="b"/><link name="m"/><link name="t"/>
+      <joint name="j1" type="revolute"><parent link="b"/><child link="m"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="m"/><child link="t"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/><mimic joint="j1"/></joint></robot>""")
+    with pytest.raises(dh.DHError, match="'j2' mimics 'j1'"):
+        dh.extract(load(path), "b", "t")
+
+
+def test_tip_not_below_base(humanoid):
+    with pytest.raises(dh.DHError, match="not below link 'l_foot_link'"):
+        dh.extract(humanoid, "l_foot_link", "body_link")
+    with pytest.raises(dh.DHError, match="did you mean 'l_foot_link'"):
+        dh.extract(humanoid, "body_link", "l_foot")
+
+
+# -- table files and the CLI ----------------------------------------------------------------------
+
+def test_table_round_trips_through_json_and_yaml(humanoid, tmp_path):
+    table = dh.extract(humanoid, "body_link", "r_foot_link", "modified")
+    (tmp_path / "t.json").write_text(json.dumps(table.as_dict()))
+    (tmp_path / "t.yaml").write_text(yaml.safe_dump(table.as_dict()))
+    for name in ("t.json", "t.yaml"):
+        loaded = dh.load_table(str(tmp_path / name))
+        assert loaded.as_dict() == table.as_dict()
+
+
+def test_bad_table_is_located(tmp_path):
+    path = tmp_path / "t.json"
+    path.write_text(json.dumps({"convention": "standard", "base": np.eye(4).tolist(),
+                                "tool": np.eye(4).tolist(),
+                                "joints": [{"joint": "a", "type": "revolute", "theta": 0,
+                                            "d": "x", "a": 0, "alpha": 0}]}))
+    with pytest.raises(dh.DHError, match="must all be numbers") as caught:
+        dh.load_table(str(path))
+    assert caught.value.where.endswith("t.json: joints[0]")
+
+
+def test_cli_dh_json_then_fk_verify(run_cli, tmp_path):
+    result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_foot_link", "-f", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    assert {"convention", "base", "tool", "joints"} <= set(document)
+    assert set(document["joints"][0]) == {"joint", "type", "theta", "d", "a", "alpha"}
+    path = tmp_path / "leg.json"
+    path.write_text(result.stdout)
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--random", "50")
+    assert result.exit_code == 0, result.output
+    assert "agree" in result.stdout
+    result = run_cli("fk", HUMANOID, "--dh", path, "--q", "l_knee=1", "-f", "json")
+    assert json.loads(result.stdout)["frames"][0]["frame"] == "l_foot_link"
+
+
+def test_cli_verify_fails_on_a_wrong_table(run_cli, tmp_path):
+    document = dh.extract(load(HUMANOID), "body_link", "l_foot_link").as_dict()
+    document["joints"][3]["a"] += 1e-6
+    path = tmp_path / "wrong.yaml"
+    path.write_text(yaml.safe_dump(document))
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify")
+    assert result.exit_code == 1
+    assert "DISAGREE" in result.stdout
+
+
+def test_cli_dh_text_and_located_error(run_cli, tmp_path):
+    result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_forearm_link",
+                     "--convention", "modified")
+    assert result.exit_code == 0, result.output
+    assert "l_sho_pitch" in result.stdout and "a(i-1) [m]" in result.stdout
+    path = tmp_path / "f.urdf"
+    path.write_text('<robot name="f"><link name="b"/><link name="t"/>\n'
+                    '<joint name="fly" type="floating"><parent link="b"/><child link="t"/></joint>'
+                    "</robot>")
+    result = run_cli("dh", path, "--base", "b", "--tip", "t")
+    assert result.exit_code == 1
+    assert "f.urdf:2: error: joint 'fly' is floating" in result.stderr

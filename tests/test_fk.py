@@ -1,0 +1,251 @@
+"""Forward kinematics: the vectorised FK against Pinocchio, configurations, and the CLI."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS, corpus_or_skip
+from urdftool.kinematics import configuration as config
+from urdftool.kinematics import transforms
+from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics, pose_components
+from urdftool.loader import load
+
+HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
+
+# world root + floating joint, continuous joint on a negative axis, mimic joint, prismatic joint
+TINY = b"""<robot name="tiny">
+  <link name="world"/><link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+  <joint name="free" type="floating"><parent link="world"/><child link="a"/>
+    <origin xyz="0 0 1"/></joint>
+  <joint name="spin" type="continuous"><parent link="a"/><child link="b"/>
+    <origin xyz="0.1 0.2 0.3" rpy="0.1 0.2 0.3"/><axis xyz="0 0 -1"/></joint>
+  <joint name="follow" type="revolute"><parent link="b"/><child link="c"/>
+    <origin xyz="0.5 0 0"/><axis xyz="0 0.6 0.8"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+    <mimic joint="spin" multiplier="2" offset="0.1"/></joint>
+  <joint name="slide" type="prismatic"><parent link="c"/><child link="d"/>
+    <axis xyz="1 0 0"/><limit lower="0.1" upper="0.5" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+@pytest.fixture(scope="module")
+def humanoid():
+    return KinematicModel(load(HUMANOID))
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    path = tmp_path_factory.mktemp("fk") / "tiny.urdf"
+    path.write_bytes(TINY)
+    return KinematicModel(load(path))
+
+
+def _pinocchio_poses(model, values):
+    import pinocchio
+
+    data = model.model.createData()
+    q = model.pinocchio_q(values)
+    out = np.empty((len(values), len(model.links), 4, 4))
+    for row in range(len(values)):
+        pinocchio.forwardKinematics(model.model, data, q[row])
+        pinocchio.updateFramePlacements(model.model, data)
+        for k, name in enumerate(model.links):
+            frame = model.model.getFrameId(name, pinocchio.FrameType.BODY)
+            out[row, k] = data.oMf[frame].homogeneous
+    return out
+
+
+@pytest.mark.parametrize("floating", [False, True])
+def test_vectorised_fk_matches_pinocchio_on_humanoid(floating):
+    model = KinematicModel(load(HUMANOID), floating=floating)
+    values = config.random(model.variables, 30, seed=4).values
+    np.testing.assert_allclose(model.link_poses(values), _pinocchio_poses(model, values),
+                               atol=1e-12)
+
+
+def test_tiny_model_with_floating_continuous_mimic_prismatic_matches_pinocchio(tiny):
+    names = [v.name for v in tiny.variables]
+    assert names == ["free.x", "free.y", "free.z", "free.roll", "free.pitch", "free.yaw",
+                     "spin", "slide"]  # the mimic joint is not a variable
+    values = config.random(tiny.variables, 20, seed=1).values
+    np.testing.assert_allclose(tiny.link_poses(values), _pinocchio_poses(tiny, values),
+                               atol=1e-12)
+    assert tiny.model.nq == 7 + 2 + 1 + 1  # free-flyer quaternion, continuous cos/sin
+
+
+def test_mimic_joint_follows_with_multiplier_and_offset(tiny):
+    spin = tiny.variables[[v.name for v in tiny.variables].index("spin")]
+    assert spin.kind == "continuous"
+    values = config.defaults(tiny.variables)[None]
+    values[0, 6] = 0.3
+    assert tiny.joint_values(values, "follow")[0] == pytest.approx(2 * 0.3 + 0.1)
+    poses = tiny.link_poses(values)[0]
+    b, c = tiny.links.index("b"), tiny.links.index("c")
+    relative = transforms.invert(poses[b]) @ poses[c]
+    expected = np.eye(4)
+    expected[:3, :3] = transforms.rotations_about((0, 0.6, 0.8), np.array(0.7))
+    expected[:3, 3] = (0.5, 0, 0)
+    np.testing.assert_allclose(relative, expected, atol=1e-12)
+
+
+def test_default_is_mid_range_when_zero_is_outside_limits(tiny):
+    slide = tiny.variables[-1]
+    assert (slide.lower, slide.upper, slide.default) == (0.1, 0.5, pytest.approx(0.3))
+    assert tiny.variables[0].default == 0.0
+
+
+def test_floating_root_pose_and_base_option(tiny):
+    words = ["free.x=1", "free.yaw=90", "spin=0"]
+    configurations = config.from_words(tiny.variables, words, degrees=True)
+    assert configurations.values[0, 0] == 1.0  # metres are not scaled by --deg
+    result = forward_kinematics(tiny, configurations, ["a"], None)
+    position, rpy, quaternion = pose_components(result.matrices[0, 0])
+    np.testing.assert_allclose(position, [1, 0, 1], atol=1e-12)
+    np.testing.assert_allclose(rpy, [0, 0, math.pi / 2], atol=1e-12)
+    np.testing.assert_allclose(quaternion, [0, 0, math.sqrt(0.5), math.sqrt(0.5)], atol=1e-12)
+    relative = forward_kinematics(tiny, configurations, ["a"], "a")
+    np.testing.assert_allclose(relative.matrices[0, 0], np.eye(4), atol=1e-12)
+    assert relative.base == "a" and result.base == "world"
+
+
+def test_humanoid_leg_pose_by_hand(humanoid):
+    configurations = config.from_words(humanoid.variables, ["l_knee=90"], degrees=True)
+    pose = forward_kinematics(humanoid, configurations, ["l_foot_link"], "body_link").matrices[0, 0]
+    # hip 0.122 below the body, thigh 0.093 down, then the shin points 0.093 backwards (-x)
+    np.testing.assert_allclose(pose[:3, 3], [-0.093, 0.037, -0.122 - 0.093], atol=1e-12)
+
+
+def test_unknown_joint_lists_valid_names(humanoid):
+    with pytest.raises(config.ConfigError, match="did you mean 'l_knee'.*available joints"):
+        config.from_words(humanoid.variables, ["l_kne=1"])
+
+
+def test_setting_a_mimic_joint_names_its_master(tiny):
+    with pytest.raises(config.ConfigError, match="'follow' mimics 'spin'"):
+        config.from_words(tiny.variables, ["follow=1"], mimics=tiny.mimics)
+
+
+def test_non_numeric_value(humanoid):
+    with pytest.raises(config.ConfigError, match="'abc' for joint 'l_knee' is not a number"):
+        config.from_words(humanoid.variables, ["l_knee=abc"])
+
+
+def test_out_of_limits_warns_and_computes(humanoid):
+    configurations = config.from_words(humanoid.variables, ["l_knee=-1"])
+    assert configurations.warnings == [
+        "joint 'l_knee' = -1 is outside its limits [0, 2.26893]; computed anyway"]
+    assert configurations.values[0, [v.name for v in humanoid.variables].index("l_knee")] == -1
+
+
+def test_q_file_csv_wrong_column_count_is_located_by_row(humanoid, tmp_path):
+    path = tmp_path / "q.csv"
+    path.write_text("l_knee,l_hip_pitch\n0.1,0.2\n\n0.3\n")
+    with pytest.raises(config.ConfigError, match=r"q\.csv:4: row has 1 values but the header "
+                                                 "names 2 joints"):
+        config.from_file(humanoid.variables, str(path))
+
+
+def test_q_file_non_numeric_cell_is_located_by_row(humanoid, tmp_path):
+    path = tmp_path / "q.csv"
+    path.write_text("l_knee\n0.1\nnope\n")
+    with pytest.raises(config.ConfigError, match="row 2: value 'nope'"):
+        config.from_file(humanoid.variables, str(path))
+
+
+def test_q_file_json_and_csv_agree(humanoid, tmp_path):
+    (tmp_path / "q.csv").write_text("l_knee,l_hip_pitch\n10,20\n30,40\n")
+    (tmp_path / "q.json").write_text(json.dumps([{"l_knee": 10, "l_hip_pitch": 20},
+                                                 {"l_knee": 30, "l_hip_pitch": 40}]))
+    from_csv = config.from_file(humanoid.variables, str(tmp_path / "q.csv"), degrees=True)
+    from_json = config.from_file(humanoid.variables, str(tmp_path / "q.json"), degrees=True)
+    np.testing.assert_array_equal(from_csv.values, from_json.values)
+    assert from_csv.values.shape == (2, 20)
+    # l_hip_pitch's limits are [-100, 30] deg: 40 deg in row 2 is outside
+    assert from_csv.warnings == ["joint 'l_hip_pitch' = 0.698132 is outside its limits "
+                                 "[-1.74533, 0.523599] in 1 row(s), first row 2; computed anyway"]
+
+
+def test_random_configurations_stay_within_limits(humanoid):
+    values = config.random(humanoid.variables, 500, seed=3).values
+    lower = np.array([v.lower for v in humanoid.variables])
+    upper = np.array([v.upper for v in humanoid.variables])
+    assert np.all(values >= lower) and np.all(values <= upper)
+    np.testing.assert_array_equal(values, config.random(humanoid.variables, 500, seed=3).values)
+
+
+def test_unknown_frame_lists_links(humanoid):
+    with pytest.raises(FKError, match="did you mean 'l_foot_link'"):
+        forward_kinematics(humanoid, config.random(humanoid.variables, 1, 0), ["l_foot"])
+
+
+def test_quaternion_and_rpy_round_trip():
+    rpy = np.random.default_rng(0).uniform(-3, 3, size=(200, 3))
+    rpy[:, 1] /= 2.5  # keep pitch within (-pi/2, pi/2) where rpy is unique
+    rotations = transforms.rotation_from_rpy(rpy)
+    np.testing.assert_allclose(transforms.rpy_from_rotation(rotations), rpy, atol=1e-12)
+    x, y, z, w = np.moveaxis(transforms.quaternion_from_rotation(rotations), -1, 0)
+    rebuilt = np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)], -2)
+    np.testing.assert_allclose(rebuilt, rotations, atol=1e-12)
+    assert np.all(w >= 0)
+
+
+def test_panda_fk_matches_pinocchio():
+    path = corpus_or_skip() / "franka_description/robots/panda/panda.urdf.xacro"
+    model = KinematicModel(load(path))
+    values = config.random(model.variables, 10, seed=2).values
+    np.testing.assert_allclose(model.link_poses(values), _pinocchio_poses(model, values),
+                               atol=1e-12)
+
+
+# -- CLI -----------------------------------------------------------------------------------------
+
+def test_cli_json_single_configuration(run_cli):
+    result = run_cli("fk", HUMANOID, "--base", "body_link", "--frame", "l_foot_link",
+                     "--q", "l_knee=90", "--deg", "-f", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    assert document["base"] == "body_link"
+    (frame,) = document["frames"]
+    assert set(frame) == {"frame", "position", "rpy", "quaternion"}
+    np.testing.assert_allclose(frame["position"], [-0.093, 0.037, -0.215], atol=1e-12)
+
+
+def test_cli_q_file_gives_one_document_per_row_and_csv(run_cli, tmp_path):
+    path = tmp_path / "q.csv"
+    path.write_text("l_knee\n0.5\n1.0\n1.5\n")
+    result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "json")
+    assert result.exit_code == 0, result.output
+    assert len(json.loads(result.stdout)) == 3
+    result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "csv",
+                     "--matrix")
+    lines = result.stdout.splitlines()
+    assert lines[0].startswith("row,base,frame,x,y,z,roll,pitch,yaw,qx,qy,qz,qw,m00")
+    assert len(lines) == 4
+
+
+def test_cli_bad_inputs(run_cli, tmp_path):
+    result = run_cli("fk", HUMANOID, "--q", "l_kne=1")
+    assert result.exit_code == 2 and "did you mean 'l_knee'" in result.stderr
+    result = run_cli("fk", HUMANOID, "--q", "l_knee=one")
+    assert result.exit_code == 2 and "is not a number" in result.stderr
+    result = run_cli("fk", HUMANOID, "--q", "l_knee=-0.5", "--frame", "l_foot_link")
+    assert result.exit_code == 0
+    assert "warning: joint 'l_knee' = -0.5 is outside its limits" in result.stderr
+    path = tmp_path / "q.csv"
+    path.write_text("l_knee,l_el\n1,2,3\n")
+    result = run_cli("fk", HUMANOID, "--q-file", path)
+    assert result.exit_code == 2 and "q.csv:2: row has 3 values" in result.stderr
+    assert "Traceback" not in result.output
+
+
+def test_cli_text_table(run_cli):
+    result = run_cli("fk", HUMANOID, "--frame", "head_link", "--matrix")
+    assert result.exit_code == 0, result.output
+    assert "head_link" in result.stdout and "x [m]" in result.stdout

@@ -1,0 +1,84 @@
+"""``urdftool dh``: the Denavit-Hartenberg table of a serial chain in a URDF."""
+
+from __future__ import annotations
+
+import typer
+
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ..errors import UsageError
+
+FORMATS = ("text", "json", "yaml")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("dh", help="Extract the D-H table of the chain from --base to --tip.")(dh)
+
+
+def dh(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    base: str = typer.Option(..., "--base", metavar="LINK", help="First link of the chain."),
+    tip: str = typer.Option(..., "--tip", metavar="LINK", help="Last link of the chain."),
+    convention: str = typer.Option("standard", "--convention",
+                                   help="standard, or modified (Craig)."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text, json or yaml."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from ..kinematics.dh import CONVENTIONS, DHError, extract
+
+    try:
+        paths, args, packages = robot_inputs(words, arg, package)
+        if len(paths) != 1:
+            raise UsageError("dh takes exactly one FILE")
+        if output_format not in FORMATS:
+            raise UsageError(f"--format must be one of {', '.join(FORMATS)}")
+        if convention not in CONVENTIONS:
+            raise UsageError(f"--convention must be one of {', '.join(CONVENTIONS)}")
+    except UsageError as error:
+        fail_usage(error)
+    robot = load_one(paths[0], args, packages)
+    try:
+        table = extract(robot, base, tip, convention)
+    except DHError as error:
+        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
+        raise typer.Exit(1)
+    if output_format == "json":
+        import json
+
+        typer.echo(json.dumps(table.as_dict(), indent=2))
+    elif output_format == "yaml":
+        import yaml
+
+        typer.echo(yaml.safe_dump(table.as_dict(), sort_keys=False), nl=False)
+    else:
+        _text(table)
+
+
+def _text(table) -> None:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    from ..kinematics.fk import pose_components
+
+    console = Console(highlight=False)
+    console.width = max(console.width, 150)  # tables of poses are wide; do not squeeze them
+    modified = table.convention == "modified"
+    grid = Table(title=f"D-H parameters ({table.convention}), {table.base_link} -> "
+                       f"{table.tip_link}", title_justify="left")
+    for column in ("joint", "type", "theta [rad]", "d [m]",
+                   "a(i-1) [m]" if modified else "a [m]",
+                   "alpha(i-1) [rad]" if modified else "alpha [rad]"):
+        grid.add_column(escape(column), justify="left" if column in ("joint", "type") else "right")
+    for joint in table.joints:
+        grid.add_row(joint.joint, joint.type,
+                     *(f"{v:.6f}" for v in (joint.theta, joint.d, joint.a, joint.alpha)))
+    console.print(grid)
+    for name, matrix in (("base", table.base), ("tool", table.tool)):
+        position, rpy, _ = pose_components(matrix)
+        console.print(f"{name}: xyz {_triple(position)}  rpy {_triple(rpy)}")
+    console.print(f"base * D-H chain * tool reproduces the URDF chain to {table.residual:.1g}")
+
+
+def _triple(values) -> str:
+    return " ".join(f"{v:.6f}" for v in values)

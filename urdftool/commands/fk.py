@@ -1,0 +1,179 @@
+"""``urdftool fk``: link poses for joint configurations, from the URDF or from a D-H table."""
+
+from __future__ import annotations
+
+import sys
+
+import typer
+
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ..errors import UsageError
+
+FORMATS = ("text", "json", "csv")
+VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
+VERIFY_DEFAULT_COUNT = 1000
+
+
+def register(app: typer.Typer) -> None:
+    app.command("fk", help="Forward kinematics: link poses for joint configurations.")(fk)
+
+
+def fk(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+                                help="Joint value [rad or m] (repeatable); others take 0 or mid-range."),
+    deg: bool = typer.Option(False, "--deg", help="Angles are in degrees."),
+    q_file: str = typer.Option(None, "--q-file", metavar="FILE",
+                               help="CSV (header = joint names) or JSON configurations, one per row."),
+    random: int = typer.Option(None, "--random", metavar="N", help="N random configurations."),
+    seed: int = typer.Option(0, "--seed", help="Seed for --random and --verify."),
+    frame: list[str] = typer.Option([], "--frame", metavar="LINK", help="Only this link (repeatable)."),
+    base: str = typer.Option(None, "--base", metavar="LINK", help="Poses relative to this link."),
+    matrix: bool = typer.Option(False, "--matrix", help="Also give each pose as a 4x4 matrix."),
+    floating: bool = typer.Option(False, "--floating",
+                                  help="Add a free-flyer root joint 'root_joint' (.x .y .z .roll .pitch .yaw)."),
+    dh: str = typer.Option(None, "--dh", metavar="TABLE", help="Compute the chain from this D-H table."),
+    verify: bool = typer.Option(False, "--verify",
+                                help="With --dh: compare D-H and URDF FK on random configurations."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text, json or csv."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from ..kinematics import configuration as config
+    from ..kinematics.dh import DHError, load_table, table_forward
+    from ..kinematics.fk import FKError, KinematicModel, forward_kinematics
+
+    try:
+        paths, args, packages = robot_inputs(words, arg, package)
+        if len(paths) != 1:
+            raise UsageError("fk takes exactly one FILE")
+        if output_format not in FORMATS:
+            raise UsageError(f"--format must be one of {', '.join(FORMATS)}")
+        if sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1:
+            raise UsageError("give one of --q, --q-file, --random")
+        if verify and not dh:
+            raise UsageError("--verify needs --dh TABLE")
+        if random is not None and random < 1:
+            raise UsageError("--random must be at least 1")
+    except UsageError as error:
+        fail_usage(error)
+    robot = load_one(paths[0], args, packages)
+    try:
+        table = load_table(dh) if dh else None
+        model = KinematicModel(robot, floating=floating)
+        if verify:
+            _verify(table, model, random or VERIFY_DEFAULT_COUNT, seed, base, frame)
+        configurations = _configurations(model, q, deg, q_file, random, seed)
+        if table is not None:
+            result = table_forward(table, model, configurations, base, frame[0] if frame else None)
+        else:
+            result = forward_kinematics(model, configurations, frame or None, base)
+    except config.ConfigError as error:
+        fail_usage(UsageError(str(error)))
+    except (FKError, DHError) as error:
+        _fail(robot, error)
+    for warning in result.warnings:
+        typer.echo(f"urdftool: warning: {warning}", err=True)
+    _render(result, output_format, matrix, single=not (q_file or random))
+
+
+def _configurations(model, q, deg, q_file, random, seed):
+    from ..kinematics import configuration as config
+
+    if q_file:
+        return config.from_file(model.variables, q_file, deg, model.mimics)
+    if random is not None:
+        return config.random(model.variables, random, seed)
+    return config.from_words(model.variables, q, deg, model.mimics)
+
+
+def _verify(table, model, count, seed, base, frame) -> None:
+    from ..kinematics import configuration as config
+    from ..kinematics.dh import verify
+
+    configurations = config.random(model.variables, count, seed)
+    position, rotation = verify(table, model, configurations, base, frame[0] if frame else None)
+    ok = position <= VERIFY_TOLERANCE and rotation <= VERIFY_TOLERANCE
+    typer.echo(f"D-H vs URDF over {count} random configurations (seed {seed}): worst position "
+               f"error {position:.3g} m, worst orientation error {rotation:.3g} rad: "
+               f"{'agree' if ok else 'DISAGREE'} (tolerance {VERIFY_TOLERANCE:g})")
+    raise typer.Exit(0 if ok else 1)
+
+
+def _fail(robot, error) -> None:
+    where = getattr(error, "where", None)
+    element = getattr(error, "element", None)
+    prefix = where or (str(robot.locate(element)) if element is not None else robot.locate(None))
+    typer.echo(f"{prefix}: error: {error}", err=True)
+    raise typer.Exit(1)
+
+
+def _render(result, output_format: str, matrix: bool, single: bool) -> None:
+    from ..kinematics.fk import pose_components
+
+    positions, rpys, quaternions = pose_components(result.matrices)
+    if output_format == "json":
+        import json
+
+        documents = [{"base": result.base, "frames": [
+            _frame_entry(name, positions[row, k], rpys[row, k], quaternions[row, k],
+                         result.matrices[row, k] if matrix else None)
+            for k, name in enumerate(result.frames)]} for row in range(len(positions))]
+        typer.echo(json.dumps(documents[0] if single else documents, indent=2))
+    elif output_format == "csv":
+        _csv(result, positions, rpys, quaternions, matrix)
+    else:
+        _text(result, positions, rpys, quaternions, matrix)
+
+
+def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
+    entry = {"frame": name, "position": position.tolist(), "rpy": rpy.tolist(),
+             "quaternion": quaternion.tolist()}
+    if matrix is not None:
+        entry["matrix"] = matrix.tolist()
+    return entry
+
+
+def _csv(result, positions, rpys, quaternions, matrix) -> None:
+    import csv
+
+    import numpy as np
+
+    header = ["row", "base", "frame", "x", "y", "z", "roll", "pitch", "yaw",
+              "qx", "qy", "qz", "qw"]
+    if matrix:
+        header += [f"m{i}{j}" for i in range(3) for j in range(4)]
+    writer = csv.writer(sys.stdout, lineterminator="\n")
+    writer.writerow(header)
+    numbers = np.concatenate([positions, rpys, quaternions], axis=-1)
+    if matrix:
+        numbers = np.concatenate([numbers, result.matrices[..., :3, :].reshape(
+            numbers.shape[:2] + (12,))], axis=-1)
+    for row in range(len(numbers)):
+        for k, name in enumerate(result.frames):
+            writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
+
+
+def _text(result, positions, rpys, quaternions, matrix) -> None:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    console = Console(highlight=False)
+    console.width = max(console.width, 150)  # tables of poses are wide; do not squeeze them
+    for row in range(len(positions)):
+        title = f"poses relative to {result.base}" + (
+            f" (configuration {row + 1})" if len(positions) > 1 else "")
+        table = Table(title=title, title_justify="left")
+        for column in ("frame", "x [m]", "y [m]", "z [m]", "roll", "pitch", "yaw",
+                       "qx", "qy", "qz", "qw"):
+            table.add_column(escape(column), justify="left" if column == "frame" else "right")
+        for k, name in enumerate(result.frames):
+            table.add_row(name, *(f"{v:.6f}" for v in
+                                  (*positions[row, k], *rpys[row, k], *quaternions[row, k])))
+        console.print(table)
+        if matrix:
+            for k, name in enumerate(result.frames):
+                console.print(f"{name}:")
+                for line in result.matrices[row, k]:
+                    console.print("  " + " ".join(f"{v: .6f}" for v in line))

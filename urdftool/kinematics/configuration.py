@@ -1,0 +1,262 @@
+"""Joint configurations: which values a robot takes, parsed from words, files or drawn at random.
+
+A *variable* is one number the user sets: the angle [rad] of a revolute or continuous joint, the
+travel [m] of a prismatic joint, or one coordinate of a floating (``NAME.x``, ``.y``, ``.z``,
+``.roll``, ``.pitch``, ``.yaw``) or planar (``NAME.x``, ``.y``, ``.yaw``) joint. Mimic joints are
+not variables: they follow the joint they mimic.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..rules._names import available
+from ..rules._values import parse_numbers
+
+FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")
+PLANAR_COORDINATES = ("x", "y", "yaw")
+_ANGULAR = {"revolute", "continuous", "roll", "pitch", "yaw"}
+_RANDOM_SPAN = {"x": 1.0, "y": 1.0, "z": 1.0}  # [m] drawn for unbounded floating positions
+
+
+class ConfigError(Exception):
+    """A configuration that cannot be used; ``where`` is a file (and row) when it came from one."""
+
+    def __init__(self, message: str, where: str | None = None):
+        super().__init__(f"{where}: {message}" if where else message)
+        self.where = where
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One settable coordinate: ``kind`` is revolute, continuous, prismatic, or a floating or
+    planar coordinate name (x, y, z, roll, pitch, yaw); limits in [rad] or [m], inf when none."""
+
+    name: str
+    joint: str
+    kind: str
+    lower: float
+    upper: float
+
+    @property
+    def angular(self) -> bool:
+        return self.kind in _ANGULAR
+
+    @property
+    def default(self) -> float:
+        """0, or mid-range when 0 is outside the limits (as MoveIt does)."""
+        if self.lower <= 0.0 <= self.upper:
+            return 0.0
+        return 0.5 * (self.lower + self.upper)
+
+
+@dataclass
+class Configurations:
+    """Values ``[rows, variables]`` for ``variables``; warnings about values outside limits."""
+
+    variables: list[Variable]
+    values: np.ndarray
+    warnings: list[str]
+
+
+def variables_of(robot, floating_root: str | None = None) -> list[Variable]:
+    """The robot's variables in document order; ``floating_root`` adds a free root joint first."""
+    result = []
+    if floating_root:
+        result += _coordinates(floating_root, FLOATING_COORDINATES)
+    for name, joint in robot.joints.items():
+        kind = joint.get("type")
+        if joint.find("mimic") is not None or kind not in (
+                "revolute", "continuous", "prismatic", "floating", "planar"):
+            continue
+        if kind == "floating":
+            result += _coordinates(name, FLOATING_COORDINATES)
+        elif kind == "planar":
+            result += _coordinates(name, PLANAR_COORDINATES)
+        else:
+            lower, upper = -math.inf, math.inf
+            limit = joint.find("limit")
+            if kind != "continuous" and limit is not None:
+                lower = _number(limit.get("lower"), 0.0)
+                upper = _number(limit.get("upper"), 0.0)
+            result.append(Variable(name, name, kind, lower, upper))
+    return result
+
+
+def _coordinates(joint: str, names) -> list[Variable]:
+    return [Variable(f"{joint}.{c}", joint, c, -math.inf, math.inf) for c in names]
+
+
+def _number(text, default: float) -> float:
+    values, _ = parse_numbers(text, 1)
+    return default if values is None or not math.isfinite(values[0]) else values[0]
+
+
+def defaults(variables: list[Variable]) -> np.ndarray:
+    return np.array([v.default for v in variables], dtype=float)
+
+
+def from_words(variables: list[Variable], words: list[str], degrees: bool = False,
+               mimics: dict[str, str] | None = None) -> Configurations:
+    """One configuration from ``NAME=VALUE`` words; unnamed variables take their default."""
+    index = {v.name: i for i, v in enumerate(variables)}
+    values = defaults(variables)
+    for word in words:
+        name, sep, text = word.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise ConfigError(f"--q must be NAME=VALUE, got '{word}'")
+        column = _column(index, name, mimics)
+        value = _to_float(text, f"value '{text}' for joint '{name}' is not a number")
+        values[column] = _scaled(value, variables[column], degrees)
+    values = values[None, :]
+    return Configurations(variables, values, limit_warnings(variables, values))
+
+
+def from_file(variables: list[Variable], path: str, degrees: bool = False,
+              mimics: dict[str, str] | None = None) -> Configurations:
+    """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise ConfigError(f"cannot read q-file: {error}", path) from None
+    if path.endswith(".json") or text.lstrip().startswith(("[", "{")):
+        names, rows = _json_rows(text, path)
+    else:
+        names, rows = _csv_rows(text, path)
+    index = {v.name: i for i, v in enumerate(variables)}
+    columns = [_column(index, name, mimics, where=f"{path}: header") for name in names]
+    if len(set(columns)) != len(columns):
+        raise ConfigError("a joint is named twice in the header", path)
+    try:
+        table = np.array([float(cell) for row in rows for cell in row],
+                         dtype=float).reshape(len(rows), len(names))
+        if not np.all(np.isfinite(table)):
+            raise ValueError
+    except (ValueError, TypeError):
+        table = _located_floats(rows, names, path)
+    values = np.tile(defaults(variables), (len(rows), 1))
+    if columns:
+        scale = np.array([math.pi / 180.0 if degrees and variables[c].angular else 1.0
+                          for c in columns])
+        values[:, columns] = table * scale
+    return Configurations(variables, values, limit_warnings(variables, values))
+
+
+def _csv_rows(text: str, path: str) -> tuple[list[str], list[list[str]]]:
+    if '"' in text:
+        lines = list(csv.reader(io.StringIO(text)))
+    else:  # no quoting: splitting is csv's answer, ten times faster on 10,000 rows
+        lines = [line.split(",") if line else [] for line in text.splitlines()]
+    numbered = [(n, line) for n, line in enumerate(lines, start=1)
+                if line and any(cell.strip() for cell in line)]
+    if not numbered:
+        raise ConfigError("empty q-file: expected a header of joint names", path)
+    (_, header), body = numbered[0], numbered[1:]
+    names = [cell.strip() for cell in header]
+    for line_number, line in body:
+        if len(line) != len(names):
+            raise ConfigError(f"row has {len(line)} values but the header names {len(names)} "
+                              "joints", f"{path}:{line_number}")
+    if not body:
+        raise ConfigError("q-file has a header but no rows", path)
+    return names, [line for _, line in body]
+
+
+def _json_rows(text: str, path: str) -> tuple[list[str], list[list]]:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ConfigError(f"invalid JSON: {error.msg}", f"{path}:{error.lineno}") from None
+    if isinstance(data, dict):
+        data = [data]
+    if not isinstance(data, list) or not data:
+        raise ConfigError("expected a JSON list of objects {joint name: value}", path)
+    names: list[str] = []
+    for number, row in enumerate(data, start=1):
+        if not isinstance(row, dict):
+            raise ConfigError("expected an object {joint name: value}", f"{path}: row {number}")
+        names += [name for name in row if name not in names]
+    rows = []
+    for number, row in enumerate(data, start=1):
+        missing = [name for name in names if name not in row]
+        if missing:
+            raise ConfigError(f"row lacks {', '.join(missing)} (every row must name the same "
+                              "joints)", f"{path}: row {number}")
+        rows.append([row[name] for name in names])
+    return names, rows
+
+
+def _located_floats(rows, names, path) -> np.ndarray:
+    table = np.empty((len(rows), len(names)))
+    for number, row in enumerate(rows, start=1):
+        for column, cell in enumerate(row):
+            where = f"{path}: row {number}"
+            message = f"value '{cell}' for joint '{names[column]}' is not a number"
+            if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
+                raise ConfigError(message, where)
+            table[number - 1, column] = _to_float(str(cell), message, where)
+    return table
+
+
+def _column(index: dict, name: str, mimics: dict | None, where: str | None = None) -> int:
+    if name in index:
+        return index[name]
+    if mimics and name in mimics:
+        raise ConfigError(f"joint '{name}' mimics '{mimics[name]}': set '{mimics[name]}' "
+                          "instead", where)
+    raise ConfigError(f"unknown joint '{name}'; {available('joints', name, index)}", where)
+
+
+def _to_float(text: str, message: str, where: str | None = None) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ConfigError(message, where) from None
+    if not math.isfinite(value):
+        raise ConfigError(message.replace("is not a number", "is not finite"), where)
+    return value
+
+
+def _scaled(value: float, variable: Variable, degrees: bool) -> float:
+    return math.radians(value) if degrees and variable.angular else value
+
+
+def limit_warnings(variables: list[Variable], values: np.ndarray) -> list[str]:
+    """One warning per variable that has values outside its limits (still computed)."""
+    lower = np.array([v.lower for v in variables])
+    upper = np.array([v.upper for v in variables])
+    outside = (values < lower - 1e-12) | (values > upper + 1e-12)
+    warnings = []
+    for column in np.flatnonzero(outside.any(axis=0)):
+        rows = np.flatnonzero(outside[:, column])
+        variable = variables[column]
+        first = f"{values[rows[0], column]:g}"
+        where = "" if len(values) == 1 else (
+            f" in {len(rows)} row(s), first row {rows[0] + 1}")
+        warnings.append(f"joint '{variable.name}' = {first} is outside its limits "
+                        f"[{variable.lower:g}, {variable.upper:g}]{where}; computed anyway")
+    return warnings
+
+
+def random(variables: list[Variable], count: int, seed: int | None) -> Configurations:
+    """``count`` configurations drawn uniformly within the limits (continuous: [-pi, pi])."""
+    generator = np.random.default_rng(seed)
+    lower, upper = [], []
+    for v in variables:
+        if math.isfinite(v.lower) and math.isfinite(v.upper):
+            lower.append(v.lower)
+            upper.append(v.upper)
+        else:
+            span = _RANDOM_SPAN.get(v.kind, math.pi)
+            lower.append(-span)
+            upper.append(span)
+    values = generator.uniform(lower, upper, size=(count, len(variables)))
+    return Configurations(variables, values, [])
