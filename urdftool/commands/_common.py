@@ -51,12 +51,18 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
 
 
 def single_robot_input(command: str, words: list[str], arg_options: list[str],
-                       package_options: list[str]):
-    """(path, xacro args, packages) for commands that take exactly one robot; exit 2 otherwise."""
+                       package_options: list[str], choices: dict[str, tuple] | None = None):
+    """(path, xacro args, packages) for commands that take exactly one robot; exit 2 otherwise.
+
+    choices: {option: (value, allowed values)} checked at the same time.
+    """
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
         if len(paths) != 1:
             raise UsageError(f"{command} takes exactly one FILE")
+        for option, (value, allowed) in (choices or {}).items():
+            if value not in allowed:
+                raise UsageError(f"{option} must be one of {', '.join(allowed)}, not '{value}'")
     except UsageError as error:
         fail_usage(error)
     return paths[0], args, packages

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
-from ..errors import UsageError
+from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
 
 FORMATS = ("text", "json", "yaml")
 
@@ -26,17 +25,10 @@ def dh(
 ) -> None:
     from ..kinematics.dh import CONVENTIONS, DHError, extract
 
-    try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("dh takes exactly one FILE")
-        if output_format not in FORMATS:
-            raise UsageError(f"--format must be one of {', '.join(FORMATS)}")
-        if convention not in CONVENTIONS:
-            raise UsageError(f"--convention must be one of {', '.join(CONVENTIONS)}")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    path, args, packages = single_robot_input(
+        "dh", words, arg, package,
+        {"--format": (output_format, FORMATS), "--convention": (convention, CONVENTIONS)})
+    robot = load_one(path, args, packages)
     try:
         table = extract(robot, base, tip, convention)
     except DHError as error:

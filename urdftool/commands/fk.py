@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot_input
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -43,12 +43,9 @@ def fk(
     from ..kinematics.dh import DHError, load_table, table_forward
     from ..kinematics.fk import FKError, KinematicModel, forward_kinematics
 
+    path, args, packages = single_robot_input("fk", words, arg, package,
+                                              {"--format": (output_format, FORMATS)})
     try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("fk takes exactly one FILE")
-        if output_format not in FORMATS:
-            raise UsageError(f"--format must be one of {', '.join(FORMATS)}")
         if sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1:
             raise UsageError("give one of --q, --q-file, --random")
         if verify and not dh:
@@ -57,7 +54,7 @@ def fk(
             raise UsageError("--random must be at least 1")
     except UsageError as error:
         fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    robot = load_one(path, args, packages)
     try:
         table = load_table(dh) if dh else None
         model = KinematicModel(robot, floating=floating)
