@@ -261,7 +261,7 @@ def looks_like_controllers(data, depth: int = 0) -> bool:
     """A controller configuration: ``type: pkg/Class`` in some mapping, or ``controller_manager``."""
     if not isinstance(data, dict) or depth > 6:
         return False
-    if "controller_manager" in data:
+    if "controller_manager" in data or "controller_list" in data:
         return True
     kind = data.get("type")
     if isinstance(kind, str) and "/" in kind:

@@ -60,11 +60,20 @@ def transmissions(robot) -> list:
 
 
 def transmission_joints(transmission) -> list[TransmissionJoint]:
-    """The joints of a transmission; an old-style ``<hardwareInterface>`` beside the joint too."""
+    """The joints of a transmission; an old-style ``<hardwareInterface>`` beside the joint too.
+
+    PR2 transmissions name joints as ``<flexJoint>``, ``<rollJoint>``, ``<gap_joint>`` too.
+    """
     shared = transmission.findall("hardwareInterface")
     return [TransmissionJoint(joint, joint.get("name"),
                               joint.findall("hardwareInterface") or shared)
-            for joint in transmission.findall("joint")]
+            for joint in transmission if _is_joint(joint)]
+
+
+def _is_joint(element) -> bool:
+    tag = element.tag
+    return isinstance(tag, str) and (tag == "joint" or (
+        tag.endswith(("Joint", "_joint")) and element.get("name") is not None))
 
 
 def is_ros2_form(transmission) -> bool:

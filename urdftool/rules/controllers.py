@@ -10,6 +10,7 @@ from ._actuation import command_interfaces, transmissions
 from ._names import available
 
 STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
+STATE_CLASSES = ("StateController", "StateBroadcaster")
 JOINT_KEYS = ("joints", "joint", "joint_names", "left_wheel", "right_wheel", "left_wheel_names",
               "right_wheel_names")
 SINGLE_INTERFACE = {
@@ -36,7 +37,7 @@ class Controller:
 
     @property
     def is_state(self) -> bool:
-        return self.package in STATE_PACKAGES
+        return self.package in STATE_PACKAGES or self.type.endswith(STATE_CLASSES)
 
     def interfaces(self) -> list[str] | None:
         """Command interfaces it claims on each joint, or None when the type is not known."""
@@ -79,8 +80,10 @@ def _file_controllers(file: YamlFile) -> list[Controller]:
                 parameters[str(key).split("/")[-1]] = value["ros__parameters"]
             walk(value)
 
+    if isinstance(file.data, dict) and isinstance(file.data.get("type"), str) and "/" in file.data["type"]:
+        declared.append((file.path.name.split(".")[0], file.data, file.data.lines["type"]))
     walk(file.data)
-    found = []
+    found = _moveit_controllers(file)
     for name, declaration, line in declared:
         settings = {**declaration, **parameters.get(name, {})}
         source = parameters.get(name, declaration)
@@ -89,6 +92,21 @@ def _file_controllers(file: YamlFile) -> list[Controller]:
             holder = source if key in source else declaration
             controller.joints.extend(_names_at(holder, key))
         found.append(controller)
+    return found
+
+
+def _moveit_controllers(file: YamlFile) -> list[Controller]:
+    """MoveIt's ``controller_list`` (moveit_config/config/ros_controllers.yaml): names and joints."""
+    listed = file.data.get("controller_list") if isinstance(file.data, dict) else None
+    if not isinstance(listed, YamlList):
+        return []
+    found = []
+    for entry, line in zip(listed, listed.lines):
+        if isinstance(entry, YamlMap) and "joints" in entry:
+            controller = Controller(file, str(entry.get("name", "?")),
+                                    f"moveit/{entry.get('type', '?')}", line)
+            controller.joints = _names_at(entry, "joints")
+            found.append(controller)
     return found
 
 
@@ -102,6 +120,11 @@ def _names_at(mapping, key) -> list[tuple[str, int]]:
     return []
 
 
+def _substituted(name: str) -> bool:
+    """A roslaunch substitution (``$(arg arm_id)_joint1``) is resolved at launch: not checkable."""
+    return "$(" in name
+
+
 def _label(controller: Controller) -> str:
     return f"controller '{controller.name}' ({controller.type})"
 
@@ -112,7 +135,7 @@ def malformed_controllers_yaml(robot):
 
     The controller manager cannot load its parameters, so no controller starts. Files given
     with ``--controllers`` must hold at least one controller (a mapping with
-    ``type: package/Class``).
+    ``type: package/Class``) or a ``controller_manager`` section.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
@@ -121,7 +144,8 @@ def malformed_controllers_yaml(robot):
     for file in companions(robot).controllers:
         if file.problem:
             yield file.at(file.line), f"{file.display}: {file.problem}"
-        elif explicit and not _file_controllers(file):
+        elif explicit and not _file_controllers(file) and not (
+                isinstance(file.data, dict) and "controller_manager" in file.data):
             yield file.at(1), (f"{file.display} names no controller (a mapping with "
                                "'type: package/Class', e.g. joint_state_broadcaster/JointStateBroadcaster)")
 
@@ -137,7 +161,7 @@ def controller_unknown_joint(robot):
     """
     for controller in controllers(robot):
         for name, line in controller.joints:
-            if name not in robot.joints:
+            if name not in robot.joints and not _substituted(name):
                 yield controller.file.at(line), (
                     f"{_label(controller)} names joint '{name}', which is not in the URDF; "
                     f"{available('joints', name, robot.joints)}")
@@ -206,7 +230,7 @@ def no_joint_state_controller(robot):
     Bad: only ``head_controller`` in the YAML
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
-    found = controllers(robot)
+    found = [c for c in controllers(robot) if c.package != "moveit"]
     if found and not any(c.is_state for c in found):
         first = found[0]
         yield first.file.at(first.line), (

@@ -203,8 +203,9 @@ def sensor_unknown_link(robot):
     """A Gazebo sensor is not attached to a link of the robot, or its plugin names an unknown frame.
 
     A ``<sensor>`` must sit in ``<gazebo reference="LINK">``; outside one, or under a joint
-    reference, Gazebo drops it. A plugin's ``frame_name``/``frameName``/``bodyName`` must be a
-    link, or the published data is stamped with a frame TF does not know.
+    reference (except force_torque sensors, which belong on joints), Gazebo drops it. A sensor
+    plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link, or the
+    data is stamped with a frame TF does not know.
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -215,11 +216,13 @@ def sensor_unknown_link(robot):
             if reference is None:
                 yield sensor, (f"sensor '{sensor.get('name')}' is in a <gazebo> without a "
                                "reference; put it in <gazebo reference=\"LINK\">")
-            elif reference not in robot.links and reference in robot.joints:
+            elif (reference not in robot.links and reference in robot.joints
+                  and sensor.get("type") != "force_torque"):
                 yield sensor, (f"sensor '{sensor.get('name')}' is on joint '{reference}', not a "
                                f"link; {available('links', reference, robot.links)}")
         for tag in FRAME_TAGS:
-            for element in gazebo.iter(tag):
+            holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
+            for element in (e for holder in holders for e in holder.iter(tag)):
                 name = (element.text or "").strip()
                 if name and name not in robot.links:
                     yield element, (f"<{tag}> '{name}' is not a link; "

@@ -51,7 +51,8 @@ def srdf_robot_name(robot):
 
 
 def _virtual_joints(srdf) -> set:
-    return {v.get("name") for v in srdf.root.iterfind("virtual_joint")}
+    """SRDF virtual joints, and Pinocchio's ``root_joint`` (its free-flyer joint's name)."""
+    return {v.get("name") for v in srdf.root.iterfind("virtual_joint")} | {"root_joint"}
 
 
 @rule("U803", "srdf-unknown-joint", Severity.ERROR)
@@ -59,6 +60,8 @@ def srdf_unknown_joint(robot):
     """An SRDF group, group state or passive joint names a joint the URDF lacks.
 
     MoveIt fails to build the group ("Joint 'X' not found in model").
+
+    Virtual joints and ``root_joint`` (Pinocchio's free-flyer) are accepted.
 
     Bad: ``<group name="arm"> <joint name="elbw"/>``
     Good: ``<joint name="elbow"/>``
@@ -147,32 +150,3 @@ def srdf_state_outside_limits(robot):
             yield srdf.at(element.sourceline), (
                 f"SRDF group state '{state}' sets joint '{element.get('name')}' to {values[0]:g}, "
                 f"outside its URDF limits [{lower[0]:g}, {upper[0]:g}]")
-
-
-@rule("U807", "srdf-broken-chain", Severity.ERROR)
-def srdf_broken_chain(robot):
-    """An SRDF chain's tip link is not below its base link in the URDF tree.
-
-    MoveIt cannot build the group from the chain.
-
-    Bad: ``<chain base_link="l_foot_link" tip_link="body_link"/>`` (reversed)
-    Good: ``<chain base_link="body_link" tip_link="l_foot_link"/>``
-    """
-    srdf = _srdf(robot)
-    if srdf is None:
-        return
-    parent_of = {}
-    for joint in robot.children("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is not None and child is not None:
-            parent_of.setdefault(child.get("link"), parent.get("link"))
-    for chain in srdf.root.iterfind("group/chain"):
-        base, tip = chain.get("base_link"), chain.get("tip_link")
-        if base not in robot.links or tip not in robot.links:
-            continue  # U804
-        link, steps = tip, 0
-        while link != base and link in parent_of and steps <= len(parent_of):
-            link, steps = parent_of[link], steps + 1
-        if link != base:
-            yield srdf.at(chain.sourceline), (f"SRDF chain: tip link '{tip}' is not below base "
-                                              f"link '{base}' in the URDF tree")

@@ -50,6 +50,8 @@ def transmission_fixed_joint(robot):
     for transmission in transmissions(robot):
         for joint in transmission_joints(transmission):
             target = robot.joints.get(joint.name)
+            if joint.interfaces and not _commands(joint):
+                continue  # read-only (franka_hw/FrankaModelInterface names the flange joint)
             if target is not None and target.get("type") == "fixed":
                 yield joint.element, f"{_label(transmission)} drives fixed joint '{joint.name}'"
 
@@ -118,28 +120,38 @@ def zero_mechanical_reduction(robot):
                     yield element, f"{_label(transmission)}: <{tag}> is 0; use the gear ratio (1 for direct drive)"
 
 
+def _commands(joint) -> set:
+    """Command interfaces a transmission joint offers (empty for read-only ones)."""
+    return {kind for kind in (interface_kind(i.text)[1] for i in joint.interfaces) if kind}
+
+
 @rule("U506", "duplicate-transmission", Severity.ERROR)
 def duplicate_transmission(robot):
-    """A joint is commanded by more than one transmission.
+    """A joint is driven by more than one transmission with the same interface.
 
-    Two transmissions writing commands to one joint fight; the controller manager reports a
-    resource conflict. Read-only interfaces (JointStateInterface, vendor state interfaces) may
-    be added beside the commanding one.
+    Two transmissions writing the same command to one joint fight; the controller manager
+    reports a resource conflict. Separate transmissions offering different interfaces
+    (franka_gazebo's Position, Velocity and Effort per joint) and read-only ones
+    (JointStateInterface, vendor state interfaces) are allowed.
 
-    Bad: two transmissions with ``<joint name="head_joint">`` and command interfaces
+    Bad: two transmissions with ``<joint name="head_joint">`` and PositionJointInterface
     Good: one transmission per joint
     """
-    first: dict[str, str] = {}
+    first: dict[tuple, str] = {}
     for transmission in transmissions(robot):
         for joint in transmission_joints(transmission):
-            commands = any(interface_kind(i.text)[1] for i in joint.interfaces)
-            if not joint.name or not (commands or is_ros2_form(transmission) or not joint.interfaces):
+            if not joint.name:
                 continue
-            if joint.name in first:
-                yield joint.element, (f"joint '{joint.name}' is already driven by transmission "
-                                      f"'{first[joint.name]}'; keep one")
-            else:
-                first[joint.name] = transmission.get("name") or "?"
+            kinds = _commands(joint) if joint.interfaces else {"(any)"}
+            if is_ros2_form(transmission):
+                kinds = {"(ros2_control)"}
+            for kind in sorted(kinds):
+                if (joint.name, kind) in first:
+                    yield joint.element, (f"joint '{joint.name}' is already driven by transmission "
+                                          f"'{first[joint.name, kind]}'"
+                                          f"{'' if kind.startswith('(') else f' with {kind}'}; keep one")
+                    break
+                first[joint.name, kind] = transmission.get("name") or "?"
 
 
 @rule("U507", "unactuated-joint", Severity.WARNING)
