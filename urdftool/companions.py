@@ -119,6 +119,8 @@ def read_yaml(path: Path) -> YamlFile:
         result.data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark or error.context_mark
+        if error.context_mark is not None and "stream end" in (error.problem or ""):
+            mark = error.context_mark  # an unclosed bracket: point where it opened
         result.line = mark.line + 1 if mark else None
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
     except (yaml.YAMLError, RecursionError) as error:
