@@ -119,7 +119,7 @@ def read_yaml(path: Path) -> YamlFile:
         result.data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark or error.context_mark
-        if error.context_mark is not None and "stream end" in (error.problem or ""):
+        if error.context_mark is not None and (error.context or "").startswith("while parsing a flow"):
             mark = error.context_mark  # an unclosed bracket: point where it opened
         result.line = mark.line + 1 if mark else None
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")

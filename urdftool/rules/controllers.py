@@ -143,7 +143,7 @@ def malformed_controllers_yaml(robot):
     explicit = bool(robot.options.get("controllers"))
     for file in companions(robot).controllers:
         if file.problem:
-            yield file.at(file.line), f"{file.display}: {file.problem}"
+            yield file.at(file.line), file.problem
         elif explicit and not _file_controllers(file) and not (
                 isinstance(file.data, dict) and "controller_manager" in file.data):
             yield file.at(1), (f"{file.display} names no controller (a mapping with "

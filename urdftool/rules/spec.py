@@ -114,7 +114,7 @@ def malformed_spec(robot):
     if spec is not None:
         file, problems = spec[0], spec[1]
         for line, problem in problems:
-            yield file.at(line), f"{file.display}: {problem}"
+            yield file.at(line), problem
 
 
 @rule("U702", "spec-joint-missing", Severity.ERROR)

@@ -31,7 +31,7 @@ def malformed_srdf(robot):
     """
     srdf = companions(robot).srdf
     if srdf is not None and srdf.problem:
-        yield srdf.at(srdf.line), f"{srdf.display}: {srdf.problem}"
+        yield srdf.at(srdf.line), srdf.problem
 
 
 @rule("U802", "srdf-robot-name", Severity.WARNING)
