@@ -9,7 +9,7 @@ Which files (first match wins, per kind):
   name matches the robot name or the robot file name, or the only one there.
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml`` beside the robot or in
   its ``config/`` folder, when it is a urdftool spec (top-level ``unit:`` and ``joints:``; a ROS
-  ``joint_limits.yaml`` has a top-level ``joint_limits:`` and is left alone).
+  ``joint_limits.yaml`` has a top-level ``joint_limits:`` and is left alone) or is not valid YAML.
 
 Files found automatically come only from the robot's folder and its ``config/`` subfolder, and
 never through a symbolic link leading elsewhere: robot files may come from untrusted pull
@@ -249,7 +249,7 @@ def _auto_spec(folders: list[Path]) -> YamlFile | None:
     for name in SPEC_NAMES:
         for path in _candidates(folders, name):
             parsed = read_yaml(path)
-            if is_spec(parsed.data):
+            if is_spec(parsed.data) or parsed.problem:  # a broken file is reported, not skipped
                 return parsed
     return None
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from ..companions import YamlFile, YamlList, YamlMap, companions
 from . import Severity, rule
-from ._actuation import command_interfaces, transmissions
+from ._actuation import command_interfaces, interface_kind, transmission_joints, transmissions
 from ._names import available
 
 STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
@@ -205,12 +205,14 @@ def controller_interface_mismatch(robot):
     Good: matching controller package and hardware interface
     """
     offered = command_interfaces(robot)
+    unknown = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)
+               if any(not interface_kind(i.text)[0] for i in joint.interfaces)}  # U503
     for controller in controllers(robot):
         claimed = controller.interfaces()
         if not claimed or controller.is_state:
             continue
         for name, line in controller.joints:
-            if name not in offered or name not in robot.joints:
+            if name not in offered or name not in robot.joints or name in unknown:
                 continue
             missing = [c for c in claimed if c not in offered[name]]
             if missing:
