@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from conftest import ROBOTS
 from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder, line_of
 
@@ -100,13 +102,18 @@ def test_yaml_alias_bomb_is_walked_once(tmp_path):
 
 # --- the example robots, broken in a temporary copy ------------------------------------------
 
-def test_humanoid_joint_renamed_in_controller_yaml(tmp_path):
-    findings = broken_copy(tmp_path, "humanoid", "config/controllers.yaml",
-                           "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]")
+@pytest.mark.parametrize("file, old, new, code, message", [
+    ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]",
+     "U602", "did you mean 'head_tilt'"),
+    ("parts.xacro", 'interface="Position"', """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""",
+     "U604", "commands position on joint 'head_pan', which offers velocity"),
+], ids=["joint-renamed-in-yaml", "transmission-swapped-to-velocity"])
+def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
+    findings = broken_copy(tmp_path, "humanoid", file, old, new)
     yaml = ROBOTS / "humanoid/config/controllers.yaml"
     assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings] == [
-        ("U602", True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
-    assert "did you mean 'head_tilt'" in findings[0].message
+        (code, True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
+    assert message in findings[0].message
 
 
 def test_r2d2_joint_renamed_in_controller_yaml(tmp_path):
@@ -114,15 +121,6 @@ def test_r2d2_joint_renamed_in_controller_yaml(tmp_path):
                            "      - head_joint", "      - dome_joint")
     yaml = ROBOTS / "r2d2/config/head_controller.yaml"
     assert [(f.code, f.line) for f in findings] == [("U602", line_of(yaml, "- head_joint"))]
-
-
-def test_humanoid_transmission_swapped_to_velocity(tmp_path):
-    findings = broken_copy(tmp_path, "humanoid", "parts.xacro", 'interface="Position"',
-                           """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""")
-    yaml = ROBOTS / "humanoid/config/controllers.yaml"
-    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings] == [
-        ("U604", True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
-    assert "commands position on joint 'head_pan', which offers velocity" in findings[0].message
 
 
 def test_r2d2_ros2_control_and_transmission_swapped_to_velocity(tmp_path):

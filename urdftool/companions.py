@@ -84,8 +84,9 @@ _Loader.add_multi_constructor("!", _Loader.construct_unknown)
 
 
 @dataclass
-class YamlFile:
-    """A parsed YAML companion: ``data`` (YamlMap/YamlList/scalar) or ``problem`` at ``line``."""
+class CompanionFile:
+    """A parsed companion: ``data`` (YAML: YamlMap/YamlList/scalar; SRDF: the ``<robot>``
+    element), or None with ``problem`` at ``line``."""
 
     path: Path
     display: str
@@ -93,20 +94,15 @@ class YamlFile:
     problem: str | None = None
     line: int | None = None
 
-    def at(self, line: int | None) -> Location:
-        return Location(self.display, line)
-
-
-@dataclass
-class SrdfFile:
-    path: Path
-    display: str
-    root: object = None
-    problem: str | None = None
-    line: int | None = None
+    @property
+    def root(self):
+        return self.data
 
     def at(self, line: int | None) -> Location:
         return Location(self.display, line)
+
+
+YamlFile = SrdfFile = CompanionFile
 
 
 def read_yaml(path: Path) -> YamlFile:
@@ -136,14 +132,14 @@ def read_srdf(path: Path) -> SrdfFile:
         return result
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     try:
-        result.root = etree.fromstring(text.encode(), parser)
+        result.data = etree.fromstring(text.encode(), parser)
     except etree.XMLSyntaxError as error:
         result.problem, result.line = f"not well-formed XML: {error.msg}", error.lineno
         return result
-    if result.root.tag != "robot":
-        result.problem, result.line = (f"root element is <{result.root.tag}>, not <robot>",
-                                       result.root.sourceline)
-        result.root = None
+    if result.data.tag != "robot":
+        result.problem, result.line = (f"root element is <{result.data.tag}>, not <robot>",
+                                       result.data.sourceline)
+        result.data = None
     return result
 
 

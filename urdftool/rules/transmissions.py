@@ -117,7 +117,8 @@ def zero_mechanical_reduction(robot):
                 if problem:
                     yield element, f"{_label(transmission)}: <{tag}> {problem}"
                 elif values[0] == 0:
-                    yield element, f"{_label(transmission)}: <{tag}> is 0; use the gear ratio (1 for direct drive)"
+                    yield element, (f"{_label(transmission)}: <{tag}> is 0; use the gear ratio "
+                                    "(1 for direct drive)")
 
 
 def _commands(joint) -> set:
