@@ -37,6 +37,14 @@ def check(
                                 help="Make $(env)/$(optenv) errors (for untrusted input)."),
     max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
                                       help="Refuse input files larger than this [default: 16 MiB]."),
+    controllers: list[Path] = typer.Option([], "--controllers", metavar="FILE",
+                                           help="Controller configuration YAML (repeatable) "
+                                                "[default: config/*.yaml beside the robot]."),
+    srdf: Path = typer.Option(None, "--srdf", metavar="FILE",
+                              help="MoveIt SRDF [default: the *.srdf beside the robot]."),
+    spec: Path = typer.Option(None, "--spec", metavar="FILE",
+                              help="Joint spec table [default: joint_limits.yaml beside the "
+                                   "robot, when it is a urdftool spec]."),
 ) -> None:
     from ..engine import CheckOptions, Selection, check_file
     from ..report import FORMATS, Summary, render
@@ -49,6 +57,7 @@ def check(
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
         config = _config_for(paths[0])
         files, skipped = _expand_paths(paths, packages)
+        extras = _companion_options(controllers, srdf, spec)
     except UsageError as error:
         fail_usage(error)
     if verbose:
@@ -60,6 +69,7 @@ def check(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
         allow_env=not no_env,
         max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
+        extras=extras,
     )
     results = []
     for path in files:
@@ -78,6 +88,19 @@ def check(
     summary = Summary.of(results)
     failed = summary.errors or ((strict or config.strict) and summary.warnings)
     raise typer.Exit(1 if failed else 0)
+
+
+def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None) -> dict:
+    """Companion files named on the command line, checked to exist (else a usage error)."""
+    for path in [*controllers, srdf, spec]:
+        if path is not None and not path.is_file():
+            raise UsageError(f"companion file '{path}' does not exist")
+    extras = {"controllers": [str(p) for p in controllers]} if controllers else {}
+    if srdf is not None:
+        extras["srdf"] = str(srdf)
+    if spec is not None:
+        extras["spec"] = str(spec)
+    return extras
 
 
 def _codes(values: list[str]) -> list[str]:

@@ -1,0 +1,52 @@
+"""Helpers for the cross-file rule tests: tiny robots with companions, broken example copies."""
+
+from __future__ import annotations
+
+import shutil
+import textwrap
+from pathlib import Path
+
+from conftest import ROBOTS
+from urdftool.engine import CheckOptions, Selection, check_file
+
+HEAD_ROBOT = """<robot name="r">
+  <link name="base_link"/><link name="head"/><link name="cam"/>
+  <joint name="head_joint" type="revolute">
+    <parent link="base_link"/><child link="head"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/>
+  </joint>
+  <joint name="cam_joint" type="fixed"><parent link="head"/><child link="cam"/></joint>
+  {body}
+</robot>
+"""
+
+
+def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), **extras):
+    """Write ``files`` (name -> text) into ``folder`` and check ``robot.urdf`` there.
+
+    Returns [(file name, line, code)] of the selected findings, and the findings.
+    """
+    for name, text in files.items():
+        path = folder / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(textwrap.dedent(text))
+    options = CheckOptions(selection=Selection(tuple(select)), extras=extras)
+    result = check_file(str(folder / "robot.urdf"), options)
+    return [(Path(f.file).name, f.line, f.code) for f in result.findings], result.findings
+
+
+def broken_copy(tmp_path: Path, robot: str, file: str, old: str, new: str, count: int = 1):
+    """Copy robots/ROBOT to tmp_path, replace ``old`` by ``new`` in FILE, check the robot."""
+    folder = tmp_path / robot
+    shutil.copytree(ROBOTS / robot, folder)
+    path = folder / file
+    text = path.read_text()
+    assert text.count(old) == count, f"{old!r} occurs {text.count(old)} times in {file}"
+    path.write_text(text.replace(old, new))
+    result = check_file(str(folder / f"{robot}.urdf.xacro"), CheckOptions())
+    return result.findings
+
+
+def line_of(path: Path, text: str) -> int:
+    """1-based line of the first line containing ``text``."""
+    return next(n for n, line in enumerate(path.read_text().splitlines(), 1) if text in line)

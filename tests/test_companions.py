@@ -1,0 +1,163 @@
+"""Companion discovery: which controller YAML, SRDF and spec files a robot is checked against."""
+
+from __future__ import annotations
+
+import os
+import textwrap
+
+import pytest
+
+from conftest import ROBOTS
+from urdftool.companions import companions, is_spec, looks_like_controllers, read_yaml
+from urdftool.engine import CheckOptions, check_file
+from urdftool.loader import load
+
+ROBOT = """<robot name="r">
+  <link name="base_link"/><link name="head"/>
+  <joint name="head_joint" type="revolute">
+    <parent link="base_link"/><child link="head"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/>
+  </joint>
+</robot>
+"""
+CONTROLLERS = "head_controller:\n  type: position_controllers/JointPositionController\n  joint: head_joint\n"
+SPEC = "unit: rad\njoints:\n  head_joint: {servo_id: 1, lower: -1, upper: 1}\n"
+
+
+def write(folder, files: dict):
+    for name, text in files.items():
+        path = folder / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(textwrap.dedent(text))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def example_robots():
+    return {name: check_file(str(ROBOTS / name / f"{name}.urdf.xacro"), CheckOptions())
+            for name in ("diffbot", "r2d2", "humanoid")}
+
+
+@pytest.mark.parametrize("name", ["diffbot", "r2d2", "humanoid"])
+def test_example_robots_check_clean_with_their_companions(example_robots, name):
+    result = example_robots[name]
+    assert result.findings == []
+
+
+def test_example_robots_companions_are_found(example_robots):
+    humanoid = companions(example_robots["humanoid"].robot)
+    assert [f.path.name for f in humanoid.controllers] == ["controllers.yaml"]
+    assert humanoid.srdf.path.name == "humanoid.srdf" and humanoid.spec.path.name == "joint_limits.yaml"
+    r2d2 = companions(example_robots["r2d2"].robot)
+    assert [f.path.name for f in r2d2.controllers] == ["head_controller.yaml"]
+    assert r2d2.srdf is None and r2d2.spec is None
+    assert companions(example_robots["diffbot"].robot).controllers == []
+
+
+def test_companions_are_parsed_once_per_robot(tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "config/c.yaml": CONTROLLERS})
+    robot = load(str(tmp_path / "r.urdf"))
+    assert companions(robot) is companions(robot)
+
+
+def test_yaml_keeps_the_line_of_every_key_and_item(tmp_path):
+    path = write(tmp_path, {"c.yaml": """\
+        # comment
+        a:
+          joints:
+            - j1
+            - j2
+          flow: [x,
+                 y]
+        """}) / "c.yaml"
+    data = read_yaml(path).data
+    assert data.lines["a"] == 2 and data["a"].lines["joints"] == 3
+    assert data["a"]["joints"].lines == [4, 5] and data["a"]["flow"].lines == [6, 7]
+
+
+def test_malformed_yaml_is_located_where_the_bracket_opened(tmp_path):
+    path = write(tmp_path, {"c.yaml": "a: 1\nb: [1, 2\nc: 3\n"}) / "c.yaml"
+    parsed = read_yaml(path)
+    assert parsed.data is None and parsed.problem and parsed.line == 2
+
+
+def test_unknown_yaml_tags_load_as_plain_values(tmp_path):
+    # ur_description/config/*/joint_limits.yaml uses a custom !degrees tag
+    path = write(tmp_path, {"c.yaml": "joint_limits:\n  a: {max_position: !degrees 360}\n"}) / "c.yaml"
+    assert read_yaml(path).data["joint_limits"]["a"]["max_position"] == "360"
+
+
+def test_ros_joint_limits_yaml_is_not_a_spec_nor_controllers(corpus):
+    ros = read_yaml(corpus / "ur_description/config/ur5e/joint_limits.yaml")
+    assert ros.problem is None and not is_spec(ros.data) and not looks_like_controllers(ros.data)
+    assert is_spec(read_yaml(ROBOTS / "humanoid/joint_limits.yaml").data)
+
+
+def test_ros_joint_limits_yaml_beside_the_robot_is_ignored(tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "joint_limits.yaml": "joint_limits:\n  head_joint: {has_position_limits: true}\n"})
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions())
+    assert companions(result.robot).spec is None and result.findings == []
+
+
+def test_given_ros_joint_limits_yaml_as_spec_is_malformed(tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "x/limits.yaml": "joint_limits:\n  head_joint: {max_velocity: 1}\n"})
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(extras={"spec": str(tmp_path / "x/limits.yaml")}))
+    assert [(f.code, f.line) for f in result.findings] == [("U701", 1)]
+    assert "ROS joint_limits.yaml" in result.findings[0].message
+
+
+def test_yaml_beside_the_robot_counts_only_when_it_looks_like_controllers(tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "c.yaml": CONTROLLERS, "other.yaml": "a: [1, 2\n",
+                     "params.yaml": "mass: 3\n"})
+    robot = load(str(tmp_path / "r.urdf"))
+    assert [f.path.name for f in companions(robot).controllers] == ["c.yaml"]
+
+
+def test_srdf_matching_the_robot_name_is_preferred(tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "a.srdf": "<robot name='a'/>", "config/r.srdf": "<robot name='r'/>"})
+    assert companions(load(str(tmp_path / "r.urdf"))).srdf.path.name == "r.srdf"
+    (tmp_path / "config/r.srdf").unlink()
+    write(tmp_path, {"b.srdf": "<robot name='b'/>"})
+    assert companions(load(str(tmp_path / "r.urdf"))).srdf is None  # two, neither matches
+
+
+@pytest.mark.skipif(not hasattr(os, "symlink"), reason="needs symbolic links")
+def test_links_leading_outside_the_robot_folder_are_not_followed(tmp_path):
+    outside = write(tmp_path / "outside", {"c.yaml": CONTROLLERS, "r.srdf": "<robot name='r'/>",
+                                           "joint_limits.yaml": SPEC})
+    robot_dir = write(tmp_path / "robot", {"r.urdf": ROBOT})
+    (robot_dir / "config").symlink_to(outside, target_is_directory=True)
+    for name in ("c.yaml", "r.srdf", "joint_limits.yaml"):
+        (robot_dir / name).symlink_to(outside / name)
+    found = companions(load(str(robot_dir / "r.urdf")))
+    assert found.controllers == [] and found.srdf is None and found.spec is None
+
+
+def test_nothing_is_discovered_for_stdin(tmp_path, monkeypatch):
+    write(tmp_path, {"config/c.yaml": CONTROLLERS, "joint_limits.yaml": SPEC})
+    monkeypatch.chdir(tmp_path)
+    from urdftool.loader.model import Robot
+    from urdftool.loader.packages import PackageResolver
+    from lxml import etree
+
+    robot = Robot("-", "-", etree.fromstring(ROBOT), {}, PackageResolver({}))
+    found = companions(robot)
+    assert found.controllers == [] and found.spec is None
+
+
+def test_cli_options_pass_companions_and_locate_findings(run_cli, tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT, "elsewhere/c.yaml": CONTROLLERS.replace("head_joint", "head_jnt"),
+                     "elsewhere/s.yaml": SPEC, "elsewhere/r.srdf": "<robot name='r'><group name='g'>"
+                     "<joint name='head_joint'/></group></robot>"})
+    other = tmp_path / "elsewhere"
+    result = run_cli("check", tmp_path / "r.urdf", "--controllers", other / "c.yaml",
+                     "--spec", other / "s.yaml", "--srdf", other / "r.srdf", "--format", "json")
+    assert result.exit_code == 1, result.output
+    assert '"U602"' in result.output and '"U605"' in result.output and "c.yaml" in result.output
+
+
+def test_cli_missing_companion_is_a_usage_error(run_cli, tmp_path):
+    write(tmp_path, {"r.urdf": ROBOT})
+    result = run_cli("check", tmp_path / "r.urdf", "--srdf", tmp_path / "nope.srdf")
+    assert result.exit_code == 2 and "nope.srdf" in result.output
+

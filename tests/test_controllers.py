@@ -1,0 +1,138 @@
+"""U60x controller YAML rules: layouts, joints, interfaces, and broken example robots."""
+
+from __future__ import annotations
+
+import pytest
+
+from conftest import ROBOTS
+from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder, line_of
+
+TX = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="head_joint"><hardwareInterface>{iface}</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>"""
+ROS2 = """<ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="head_joint"><command_interface name="{iface}"/><state_interface name="position"/></joint>
+  </ros2_control>"""
+ROS2_YAML = """\
+    controller_manager:
+      ros__parameters:
+        joint_state_broadcaster:
+          type: joint_state_broadcaster/JointStateBroadcaster
+        head_controller:
+          type: {type}
+    head_controller:
+      ros__parameters:
+        joints:
+          - head_joint
+        command_interfaces: [{claim}]
+        interface_name: {claim}
+    """
+
+
+def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
+    robot = HEAD_ROBOT.format(body=ROS2.format(iface="velocity"))
+    yaml = ROS2_YAML.format(type="joint_trajectory_controller/JointTrajectoryController", claim="position")
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
+    assert found == [("c.yaml", 10, "U604")]
+    assert "offers velocity" in findings[0].message
+
+
+def test_ros2_forward_command_controller_uses_interface_name(tmp_path):
+    robot = HEAD_ROBOT.format(body=ROS2.format(iface="effort"))
+    yaml = ROS2_YAML.format(type="forward_command_controller/ForwardCommandController", claim="effort")
+    assert check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})[0] == []
+
+
+def test_ros1_namespaced_layout_and_prefixless_interface(tmp_path):
+    robot = HEAD_ROBOT.format(body=TX.format(iface="EffortJointInterface"))
+    yaml = """\
+        robot:
+          joint_state_controller: {type: joint_state_controller/JointStateController}
+          head_controller:
+            type: effort_controllers/JointPositionController
+            joint: head_joint
+          cam_controller:
+            type: effort_controllers/JointPositionController
+            joint: cam_joint
+        """
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
+    assert found == [("c.yaml", 8, "U603")]
+
+
+def test_moveit_controller_list_joints_are_checked(tmp_path):
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = """\
+        controller_list:
+          - name: arm
+            type: FollowJointTrajectory
+            joints: [head_joint, neck_joint]
+        """
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot, "other/c.yaml": yaml},
+                                   controllers=[str(tmp_path / "other/c.yaml")])
+    assert found == [("c.yaml", 4, "U602")]  # no U605: MoveIt does not publish joint states
+
+
+def test_roslaunch_substitutions_in_joint_names_are_not_checked(tmp_path):
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = ("jsc: {type: joint_state_controller/JointStateController}\n"
+            "c: {type: position_controllers/JointGroupPositionController, joints: [$(arg prefix)head_joint]}\n")
+    assert check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})[0] == []
+
+
+def test_controller_yaml_in_config_without_controllers_is_ignored(tmp_path):
+    robot = HEAD_ROBOT.format(body="")
+    assert check_folder(tmp_path, {"robot.urdf": robot, "config/params.yaml": "rate: 5\n"})[0] == []
+
+
+def test_given_yaml_without_controllers_is_reported(tmp_path):
+    robot = HEAD_ROBOT.format(body="")
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "x/p.yaml": "rate: 5\n"},
+                            controllers=[str(tmp_path / "x/p.yaml")])
+    assert found == [("p.yaml", 1, "U601")]
+
+
+def test_yaml_alias_bomb_is_walked_once(tmp_path):
+    bomb = "a: &a {type: x/Y, joints: [head_joint]}\n" + "".join(
+        f"l{i}: &l{i} [{', '.join([f'*{p}' for p in ['a' if i == 0 else f'l{i - 1}'] * 9])}]\n"
+        for i in range(8))
+    robot = HEAD_ROBOT.format(body="")
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": bomb})
+    assert ("c.yaml", 1, "U605") in found
+
+
+# --- the example robots, broken in a temporary copy ------------------------------------------
+
+@pytest.mark.parametrize("file, old, new, code, message", [
+    ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]",
+     "U602", "did you mean 'head_tilt'"),
+    ("parts.xacro", 'interface="Position"', """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""",
+     "U604", "commands position on joint 'head_pan', which offers velocity"),
+], ids=["joint-renamed-in-yaml", "transmission-swapped-to-velocity"])
+def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
+    findings = broken_copy(tmp_path, "humanoid", file, old, new)
+    yaml = ROBOTS / "humanoid/config/controllers.yaml"
+    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings] == [
+        (code, True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
+    assert message in findings[0].message
+
+
+def test_r2d2_joint_renamed_in_controller_yaml(tmp_path):
+    findings = broken_copy(tmp_path, "r2d2", "config/head_controller.yaml",
+                           "      - head_joint", "      - dome_joint")
+    yaml = ROBOTS / "r2d2/config/head_controller.yaml"
+    assert [(f.code, f.line) for f in findings] == [("U602", line_of(yaml, "- head_joint"))]
+
+
+def test_r2d2_ros2_control_and_transmission_swapped_to_velocity(tmp_path):
+    findings = broken_copy(tmp_path, "r2d2", "r2d2.urdf.xacro",
+                           '<command_interface name="position"/>', '<command_interface name="velocity"/>')
+    assert findings == []  # the ROS 1 transmission still offers position
+    findings = broken_copy(tmp_path / "2", "r2d2", "r2d2.urdf.xacro",
+                           'actuator="head_motor" interface="Position"', 'actuator="head_motor" interface="Velocity"')
+    assert findings == []  # ros2_control still offers position
+
+
+def test_r2d2_without_joint_state_broadcaster(tmp_path):
+    findings = broken_copy(tmp_path, "r2d2", "config/head_controller.yaml",
+                           "type: joint_state_broadcaster/JointStateBroadcaster", "type: x_controllers/Other")
+    assert [f.code for f in findings] == ["U605"]

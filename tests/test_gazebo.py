@@ -1,0 +1,61 @@
+"""U61x Gazebo rules: references, diff-drive geometry (ROS 1 and ROS 2 tags), sensors."""
+
+from __future__ import annotations
+
+import pytest
+
+from crossfile_helpers import broken_copy, check_folder
+
+WHEELS = """<robot name="r">
+  <link name="base_link"/>
+  <link name="l"><collision><geometry><cylinder radius="0.05" length="0.02"/></geometry></collision></link>
+  <link name="r"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+  <joint name="lj" type="continuous"><parent link="base_link"/><child link="l"/>
+    <origin xyz="0 0.1 0" rpy="0 0 1.5707963"/><axis xyz="1 0 0"/></joint>
+  <joint name="rj" type="continuous"><parent link="base_link"/><child link="r"/>
+    <origin xyz="0.03 -0.1 0" rpy="0 0 1.5707963"/><axis xyz="1 0 0"/></joint>
+  <gazebo><plugin name="d" filename="{filename}">
+{tags}
+  </plugin></gazebo>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("filename, tags, expected", [
+    ("libgazebo_ros_diff_drive.so", "<leftJoint>lj</leftJoint><rightJoint>rj</rightJoint>"
+     "<wheelSeparation>0.2</wheelSeparation><wheelDiameter>0.1</wheelDiameter>", []),
+    ("libgazebo_ros_diff_drive.so", "<left_joint>lj</left_joint><right_joint>rj</right_joint>"
+     "<wheel_separation>0.209</wheel_separation><wheel_diameter>0.096</wheel_diameter>", []),
+    ("libgazebo_ros_diff_drive.so", "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"
+     "<wheel_separation>0.22</wheel_separation>", [11]),
+    ("gz-sim-diff-drive-system", "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"
+     "<wheel_radius>0.1</wheel_radius>", [11]),
+])
+def test_diff_drive_geometry_along_the_wheel_axis(tmp_path, filename, tags, expected):
+    found, _ = check_folder(tmp_path, {"robot.urdf": WHEELS.format(filename=filename, tags=tags)})
+    assert [line for _, line, code in found if code == "U614"] == expected
+    assert {code for _, _, code in found} <= {"U614"}
+
+
+def test_force_torque_sensor_on_a_joint_is_fine(tmp_path):
+    tags = "<left_joint>lj</left_joint><right_joint>rj</right_joint>"
+    robot = WHEELS.format(filename="x", tags=tags).replace(
+        "</robot>", '<gazebo reference="lj"><sensor type="force_torque" name="ft"/></gazebo>\n'
+                    '<gazebo reference="rj"><sensor type="imu" name="imu"/></gazebo>\n</robot>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 13, "U615")]
+
+
+def test_diffbot_wheel_separation_changed(tmp_path):
+    findings = broken_copy(tmp_path, "diffbot", "diffbot.urdf.xacro",
+                           "<wheel_separation>${wheel_separation}</wheel_separation>",
+                           "<wheel_separation>${wheel_separation * 1.1}</wheel_separation>")
+    assert [(f.code, f.file.endswith("diffbot.urdf.xacro")) for f in findings] == [("U614", True)]
+    assert "is 0.286 m but the URDF gives 0.26 m (+10.0 %)" in findings[0].message
+
+
+def test_diffbot_camera_reference_misspelt(tmp_path):
+    findings = broken_copy(tmp_path, "diffbot", "diffbot.urdf.xacro", '<gazebo reference="camera_link">',
+                           '<gazebo reference="camera">')
+    assert [f.code for f in findings] == ["U611"]
+    assert "did you mean 'camera_link'" in findings[0].message

@@ -1,0 +1,62 @@
+"""U70x joint spec table: format, units, tolerance, and a widened humanoid limit."""
+
+from __future__ import annotations
+
+import pytest
+
+from conftest import ROBOTS
+from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
+
+ROBOT = HEAD_ROBOT.format(body="")
+
+
+@pytest.mark.parametrize("spec, expected", [
+    ("unit: rad\njoints:\n  head_joint: {lower: -1.2, upper: 1.2}\n", []),
+    ("unit: rad\ntolerance: 0.1\njoints:\n  head_joint: {lower: -0.95, upper: 0.95}\n", []),
+    ("unit: rad\ntolerance: 0.01\njoints:\n  head_joint: {lower: -0.95, upper: 1}\n",
+     [("robot.urdf", 5, "U703")]),
+    ("unit: rad\njoints:\n  head_joint: {lower: -1, upper: 1, effort: 4}\n", [("robot.urdf", 5, "U703")]),
+    ("unit: grad\njoints:\n  head_joint: {lower: -1, upper: 1}\n", [("joint_limits.yaml", 1, "U701")]),
+    ("unit: deg\njoints: [head_joint]\n", [("joint_limits.yaml", 2, "U701")]),
+    ("unit: deg\njoints:\n  head_joint: {lower: 10, upper: -10}\n", [("joint_limits.yaml", 3, "U701")]),
+    ("unit: deg\njoints:\n  head_joint: {servo_id: one, lower: -60, upper: 60}\n",
+     [("joint_limits.yaml", 3, "U701")]),
+    ("unit: deg\njoints:\n  head_joint: {lower: -60, upper: 60\n", [("joint_limits.yaml", 3, "U701")]),
+    ("unit: deg\nunits: rad\njoints: {}\n", [("joint_limits.yaml", 2, "U701")]),
+])
+def test_spec_format_and_limits(tmp_path, spec, expected):
+    assert check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})[0] == expected
+
+
+def test_limit_outside_spec_says_by_how_much_in_the_spec_unit(tmp_path):
+    spec = "unit: deg\ntolerance: 1\njoints:\n  head_joint: {lower: -50, upper: 50}\n"
+    _, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
+    assert [f.message for f in findings] == [
+        "joint 'head_joint': lower limit -57.3 deg is 7.296 deg beyond the spec's -50 deg (tolerance 1 deg)",
+        "joint 'head_joint': upper limit 57.3 deg is 7.296 deg beyond the spec's 50 deg (tolerance 1 deg)"]
+
+
+def test_spec_given_on_the_command_line_under_another_name(tmp_path):
+    spec = "unit: rad\njoints:\n  head_joint: {servo_id: 3, lower: -1, upper: 1}\n  neck: {lower: 0, upper: 1}\n"
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "specs/head.yaml": spec},
+                                   spec=str(tmp_path / "specs/head.yaml"))
+    assert found == [("head.yaml", 4, "U702")]
+    assert "available joints: cam_joint, head_joint" in findings[0].message
+
+
+def test_humanoid_limit_widened_beyond_the_spec(tmp_path):
+    findings = broken_copy(tmp_path, "humanoid", "humanoid.urdf.xacro",
+                           'axis="0 0 1" lower="-90" upper="90"', 'axis="0 0 1" lower="-90" upper="100"')
+    assert [(f.code, f.file.endswith("parts.xacro"), f.line) for f in findings] == [("U703", True, 18)]
+    assert f"{findings[0].location.via[0].file}".endswith("humanoid.urdf.xacro")
+    assert "upper limit 100 deg is 10 deg beyond the spec's 90 deg" in findings[0].message
+
+
+def test_humanoid_duplicate_servo_id_and_missing_joint(tmp_path):
+    findings = broken_copy(tmp_path, "humanoid", "joint_limits.yaml", "l_knee:      {servo_id: 14",
+                           "l_kne:       {servo_id: 13")
+    spec_line = next(n for n, line in enumerate((ROBOTS / "humanoid/joint_limits.yaml").read_text()
+                                                .splitlines(), 1) if "l_knee:" in line)
+    assert sorted((f.code, f.line, f.file.endswith(("parts.xacro", "joint_limits.yaml")))
+                  for f in findings) == [("U702", spec_line, True), ("U704", 13, True),
+                                         ("U705", spec_line, True)]

@@ -1,0 +1,52 @@
+"""U80x SRDF rules, on tiny models and on the humanoid's SRDF."""
+
+from __future__ import annotations
+
+from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
+
+ROBOT = HEAD_ROBOT.format(body="")
+
+
+def srdf(body: str, name: str = "r") -> str:
+    return f"<robot name='{name}'>\n{body}\n</robot>\n"
+
+
+def test_valid_srdf_with_virtual_and_pinocchio_root_joints(tmp_path):
+    body = """<virtual_joint name="world_joint" type="floating" parent_frame="world" child_link="base_link"/>
+<group name="head"><chain base_link="base_link" tip_link="head"/></group>
+<group name="all"><group name="head"/><joint name="world_joint"/></group>
+<group_state name="home" group="all"><joint name="head_joint" value="1"/><joint name="root_joint" value="0 0 0 0 0 0 1"/></group_state>
+<end_effector name="eef" parent_link="head" group="head"/>
+<disable_collisions link1="base_link" link2="cam" reason="Never"/>"""
+    assert check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})[0] == []
+
+
+def test_each_srdf_reference_is_located_in_the_srdf(tmp_path):
+    body = """<group name="arm">
+  <joint name="elbow"/>
+  <link name="hand"/>
+  <group name="legs"/>
+</group>
+<group_state name="home" group="arm"><joint name="head_joint" value="2"/></group_state>
+<passive_joint name="wheel"/>"""
+    found, _ = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body, "other")})
+    assert found == [("robot.srdf", 1, "U802"), ("robot.srdf", 3, "U803"), ("robot.srdf", 4, "U804"),
+                     ("robot.srdf", 5, "U805"), ("robot.srdf", 7, "U806"), ("robot.srdf", 8, "U803")]
+
+
+def test_srdf_given_on_the_command_line(tmp_path):
+    found, _ = check_folder(tmp_path, {"robot.urdf": ROBOT, "moveit/x.srdf": "<robot name='r'><group"},
+                            srdf=str(tmp_path / "moveit/x.srdf"))
+    assert found == [("x.srdf", 1, "U801")]
+
+
+def test_srdf_that_is_not_a_robot(tmp_path):
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": "<?xml version='1.0'?>\n<group/>"})
+    assert found == [("robot.srdf", 2, "U801")] and "<group>" in findings[0].message
+
+
+def test_humanoid_home_pose_outside_limits(tmp_path):
+    findings = broken_copy(tmp_path, "humanoid", "humanoid.srdf", '<joint name="l_knee" value="0"/>',
+                           '<joint name="l_knee" value="-0.5"/>')
+    assert [(f.code, f.file.endswith("humanoid.srdf")) for f in findings] == [("U806", True)]
+    assert "outside its URDF limits [0, 2.26893]" in findings[0].message

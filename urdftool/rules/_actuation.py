@@ -1,0 +1,126 @@
+"""How a robot's joints are actuated: transmissions (ROS 1 and ROS 2 forms) and ros2_control."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+# ROS 1 hardware interfaces (without the hardware_interface/ prefix) -> command interface, or
+# None for the read-only ones.
+HARDWARE_INTERFACES = {
+    "PositionJointInterface": "position",
+    "VelocityJointInterface": "velocity",
+    "EffortJointInterface": "effort",
+    "PosVelJointInterface": "position",
+    "PosVelAccJointInterface": "position",
+    "JointStateInterface": None,
+    "PositionActuatorInterface": "position",
+    "VelocityActuatorInterface": "velocity",
+    "EffortActuatorInterface": "effort",
+    "ActuatorStateInterface": None,
+}
+PREFIXES = ("hardware_interface/", "hardware_interface::")
+MOVING_TYPES = ("revolute", "continuous", "prismatic")
+CONTROL_PLUGINS = ("gazebo_ros_control", "gazebo_ros2_control", "gz_ros2_control",
+                   "ign_ros2_control")
+
+
+def interface_kind(text: str | None):
+    """(known, command interface or None) for a ``<hardwareInterface>`` text.
+
+    Vendor interfaces written ``package/Name`` outside hardware_interface (franka_hw/...) are
+    accepted as known and read-only.
+    """
+    if not text:
+        return False, None
+    name = text.strip()
+    for prefix in PREFIXES:
+        if name.startswith(prefix):
+            name = name[len(prefix):]
+            return name in HARDWARE_INTERFACES, HARDWARE_INTERFACES.get(name)
+    if name in HARDWARE_INTERFACES:
+        return True, HARDWARE_INTERFACES[name]
+    if "/" in name and not name.startswith("/"):
+        return True, None
+    return False, None
+
+
+@dataclass
+class TransmissionJoint:
+    element: object          # the <joint> inside the transmission
+    name: str | None
+    interfaces: list = field(default_factory=list)   # <hardwareInterface> elements
+
+
+def transmissions(robot) -> list:
+    """Every ``<transmission>``: top-level (ROS 1) or inside ``<ros2_control>`` (ROS 2)."""
+    found = list(robot.children("transmission"))
+    for block in robot.children("ros2_control"):
+        found.extend(block.findall("transmission"))
+    return found
+
+
+def transmission_joints(transmission) -> list[TransmissionJoint]:
+    """The joints of a transmission; an old-style ``<hardwareInterface>`` beside the joint too.
+
+    PR2 transmissions name joints as ``<flexJoint>``, ``<rollJoint>``, ``<gap_joint>`` too.
+    """
+    shared = transmission.findall("hardwareInterface")
+    return [TransmissionJoint(joint, joint.get("name"),
+                              joint.findall("hardwareInterface") or shared)
+            for joint in transmission if _is_joint(joint)]
+
+
+def _is_joint(element) -> bool:
+    tag = element.tag
+    return isinstance(tag, str) and (tag == "joint" or (
+        tag.endswith(("Joint", "_joint")) and element.get("name") is not None))
+
+
+def is_ros2_form(transmission) -> bool:
+    return transmission.getparent() is not None and transmission.getparent().tag == "ros2_control"
+
+
+def ros2_control_joints(robot) -> list:
+    """(block, joint element) for every ``<joint>`` of every ``<ros2_control>``."""
+    return [(block, joint) for block in robot.children("ros2_control")
+            for joint in block.findall("joint")]
+
+
+def command_interfaces(robot) -> dict[str, set]:
+    """Joint name -> command interfaces it offers (position, velocity, effort, ...).
+
+    A joint present here with an empty set is actuated read-only (a state interface only).
+    """
+    offered: dict[str, set] = {}
+    for transmission in transmissions(robot):
+        for joint in transmission_joints(transmission):
+            if joint.name is None:
+                continue
+            kinds = offered.setdefault(joint.name, set())
+            for interface in joint.interfaces:
+                _, kind = interface_kind(interface.text)
+                if kind:
+                    kinds.add(kind)
+    for _, joint in ros2_control_joints(robot):
+        kinds = offered.setdefault(joint.get("name"), set())
+        kinds.update(c.get("name") for c in joint.findall("command_interface") if c.get("name"))
+    return offered
+
+
+def control_plugin(robot):
+    """The element that makes a simulator or ros2_control read the transmissions, or None."""
+    blocks = robot.children("ros2_control")
+    if blocks:
+        return blocks[0]
+    for gazebo in robot.children("gazebo"):
+        for plugin in gazebo.findall("plugin"):
+            text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+            if any(name in text for name in CONTROL_PLUGINS):
+                return plugin
+    return None
+
+
+def moving_joints(robot) -> dict:
+    """Non-fixed joints that need a driver: revolute, continuous and prismatic, not mimic."""
+    return {name: joint for name, joint in robot.joints.items()
+            if joint.get("type") in MOVING_TYPES and joint.find("mimic") is None}

@@ -1,0 +1,219 @@
+"""U70x: the joint spec table (servo IDs and the limits each joint must have).
+
+The spec is YAML: top-level ``unit`` (deg or rad, for lower/upper and tolerance), optional
+``tolerance`` (default 0), and ``joints``: a map of URDF joint name to ``servo_id``, ``lower``,
+``upper`` and optional ``effort`` [N m or N] and ``velocity`` [rad/s or m/s].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..companions import YamlMap, companions, is_spec
+from . import Severity, rule
+from ._actuation import moving_joints
+from ._names import available
+from ._values import parse_numbers
+
+UNITS = {"deg": math.pi / 180, "rad": 1.0}
+TOP_KEYS = ("unit", "tolerance", "joints")
+JOINT_KEYS = ("servo_id", "lower", "upper", "effort", "velocity")
+SI_TOLERANCE = 1e-3  # relative, for effort and velocity
+
+
+@dataclass
+class SpecJoint:
+    name: str
+    line: int
+    entry: dict
+    lines: dict
+
+
+def _spec(robot):
+    """(file, problems, joints, unit, tolerance) of the robot's spec, or None without one."""
+    cached = getattr(robot, "_spec", None)
+    if cached is None:
+        cached = _parse(companions(robot).spec)
+        setattr(robot, "_spec", cached)
+    return cached if cached[0] is not None else None
+
+
+def _parse(file):
+    if file is None:
+        return (None, [], [], None, 0.0)
+    if file.problem:
+        return (file, [(file.line, file.problem)], [], None, 0.0)
+    data, problems = file.data, []
+    if not is_spec(data):
+        hint = (" (this is a ROS joint_limits.yaml with 'joint_limits:', not a urdftool spec)"
+                if isinstance(data, dict) and "joint_limits" in data else "")
+        return (file, [(getattr(data, "line", 1) or 1,
+                        f"not a joint spec: needs top-level {', '.join(TOP_KEYS)}{hint}")], [], None, 0.0)
+    for key in data:
+        if key not in TOP_KEYS:
+            problems.append((data.lines[key], f"unknown key '{key}'; valid keys: {', '.join(TOP_KEYS)}"))
+    unit = data.get("unit")
+    if unit not in UNITS:
+        problems.append((data.lines["unit"], f"unit '{unit}' must be deg or rad"))
+        unit = None
+    tolerance = data.get("tolerance", 0)
+    if not isinstance(tolerance, (int, float)) or isinstance(tolerance, bool) or tolerance < 0:
+        problems.append((data.lines.get("tolerance"), f"tolerance '{tolerance}' must be a number >= 0"))
+        tolerance = 0.0
+    joints = []
+    table = data.get("joints")
+    if not isinstance(table, YamlMap):
+        problems.append((data.lines["joints"], "joints must be a map of joint name to "
+                         "{servo_id, lower, upper, effort, velocity}"))
+        table = {}
+    for name, entry in table.items():
+        line = table.lines[name]
+        if not isinstance(entry, YamlMap):
+            problems.append((line, f"joint '{name}' must map to {{{', '.join(JOINT_KEYS)}}}"))
+            continue
+        bad = _entry_problems(name, entry)
+        problems.extend(bad)
+        if not bad:
+            joints.append(SpecJoint(str(name), line, entry, entry.lines))
+    return (file, problems, joints, unit, float(tolerance))
+
+
+def _entry_problems(name, entry) -> list:
+    problems = []
+    for key, value in entry.items():
+        line = entry.lines[key]
+        if key not in JOINT_KEYS:
+            problems.append((line, f"joint '{name}': unknown key '{key}'; valid keys: "
+                             f"{', '.join(JOINT_KEYS)}"))
+        elif key == "servo_id" and (not isinstance(value, int) or isinstance(value, bool)):
+            problems.append((line, f"joint '{name}': servo_id '{value}' must be an integer"))
+        elif key != "servo_id" and (not isinstance(value, (int, float)) or isinstance(value, bool)
+                                    or not math.isfinite(value)):
+            problems.append((line, f"joint '{name}': {key} '{value}' must be a finite number"))
+    for key in ("lower", "upper"):
+        if key not in entry:
+            problems.append((entry.line, f"joint '{name}' has no {key}"))
+    if not problems and entry["lower"] > entry["upper"]:
+        problems.append((entry.lines["lower"], f"joint '{name}': lower {entry['lower']} is above "
+                         f"upper {entry['upper']}"))
+    return problems
+
+
+@rule("U701", "malformed-spec", Severity.ERROR)
+def malformed_spec(robot):
+    """The joint spec file is not valid YAML or not in the spec format.
+
+    A spec that does not parse checks nothing, so it is an error rather than silence.
+    See the README for the format (``unit``, ``tolerance``, ``joints``).
+
+    Bad: ``head_pan: {servo_id: 19, lower: -90, uper: 90}``
+    Good: ``head_pan: {servo_id: 19, lower: -90, upper: 90}``
+    """
+    spec = _spec(robot)
+    if spec is not None:
+        file, problems = spec[0], spec[1]
+        for line, problem in problems:
+            yield file.at(line), problem
+
+
+@rule("U702", "spec-joint-missing", Severity.ERROR)
+def spec_joint_missing(robot):
+    """A joint listed in the spec is not in the URDF.
+
+    Bad: spec lists ``head_yaw`` but the URDF calls it ``head_pan``
+    Good: the same joint names in both
+    """
+    spec = _spec(robot)
+    if spec is None:
+        return
+    for joint in spec[2]:
+        if joint.name not in robot.joints:
+            yield spec[0].at(joint.line), (f"spec joint '{joint.name}' is not in the URDF; "
+                                           f"{available('joints', joint.name, robot.joints)}")
+
+
+def _limit(joint, attribute):
+    limit = joint.find("limit")
+    values, _ = parse_numbers(limit.get(attribute) if limit is not None else None, 1)
+    return values[0] if values else None
+
+
+@rule("U703", "limit-outside-spec", Severity.ERROR)
+def limit_outside_spec(robot):
+    """A URDF joint limit goes beyond the spec by more than its tolerance.
+
+    Planners and controllers would drive the servo past its range. Lower and upper are
+    compared in the spec's unit with its tolerance; effort and velocity must not exceed the
+    spec (0.1 % slack). The finding is located at the URDF limit.
+
+    Bad: spec ``upper: 90`` (deg), URDF ``upper="1.75"`` (100.3 deg)
+    Good: URDF ``upper="1.5708"``
+    """
+    spec = _spec(robot)
+    if spec is None or spec[3] is None:
+        return
+    _, _, joints, unit, tolerance = spec
+    scale = UNITS[unit]
+    for entry in joints:
+        joint = robot.joints.get(entry.name)
+        if joint is None or joint.get("type") not in ("revolute", "prismatic"):
+            continue
+        where = joint.find("limit")
+        for key, sign in (("lower", -1), ("upper", 1)):
+            value = _limit(joint, key)
+            if value is None:
+                continue
+            urdf = value / scale if joint.get("type") == "revolute" else value
+            beyond = sign * (urdf - entry.entry[key])
+            if beyond > tolerance + 1e-9:
+                yield where, (f"joint '{entry.name}': {key} limit {urdf:.4g} {unit} is "
+                              f"{beyond:.4g} {unit} beyond the spec's {entry.entry[key]:g} {unit} "
+                              f"(tolerance {tolerance:g} {unit})")
+        for key in ("effort", "velocity"):
+            value, allowed = _limit(joint, key), entry.entry.get(key)
+            if value is not None and allowed is not None and value > allowed * (1 + SI_TOLERANCE):
+                yield where, (f"joint '{entry.name}': {key} limit {value:g} exceeds the spec's "
+                              f"{allowed:g} by {value - allowed:.4g}")
+
+
+@rule("U704", "joint-not-in-spec", Severity.WARNING)
+def joint_not_in_spec(robot):
+    """An actuated joint of the URDF is missing from the spec.
+
+    Its limits are checked against nothing, and it has no servo ID.
+
+    Bad: the URDF has ``head_tilt`` but the spec lists only ``head_pan``
+    Good: every revolute, continuous and prismatic (non-mimic) joint in the spec
+    """
+    spec = _spec(robot)
+    if spec is None or spec[1]:
+        return
+    listed = {joint.name for joint in spec[2]}
+    for name, joint in moving_joints(robot).items():
+        if name not in listed:
+            yield joint, f"joint '{name}' is not in the spec {spec[0].display}"
+
+
+@rule("U705", "duplicate-servo-id", Severity.ERROR)
+def duplicate_servo_id(robot):
+    """Two spec joints share a servo ID.
+
+    Both joints would answer to the same bus address; one of them never moves as commanded.
+
+    Bad: ``r_knee: {servo_id: 13, ...}`` and ``l_knee: {servo_id: 13, ...}``
+    Good: distinct IDs (DARwIn-OP: left ID, right ID = left - 1)
+    """
+    spec = _spec(robot)
+    if spec is None:
+        return
+    owner: dict[int, str] = {}
+    for joint in spec[2]:
+        servo = joint.entry.get("servo_id")
+        if servo is None:
+            continue
+        if servo in owner:
+            yield spec[0].at(joint.lines["servo_id"]), (
+                f"joint '{joint.name}' has servo_id {servo}, already used by '{owner[servo]}'")
+        else:
+            owner[servo] = joint.name

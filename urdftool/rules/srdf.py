@@ -1,0 +1,152 @@
+"""U80x: the SRDF (MoveIt semantic description) against the URDF."""
+
+from __future__ import annotations
+
+from ..companions import companions
+from . import Severity, rule
+from ._names import available
+from ._values import parse_numbers
+
+LIMIT_TOLERANCE = 1e-6
+
+
+def _srdf(robot):
+    srdf = companions(robot).srdf
+    return srdf if srdf is not None and srdf.root is not None else None
+
+
+def _elements(srdf, *paths):
+    for path in paths:
+        yield from srdf.root.iterfind(path)
+
+
+@rule("U801", "malformed-srdf", Severity.ERROR)
+def malformed_srdf(robot):
+    """The SRDF is not well-formed XML, has no ``<robot>`` root, or cannot be read.
+
+    MoveIt refuses to start with it.
+
+    Bad: ``<group name="arm"> <chain base_link="a" tip_link="b">`` (unclosed)
+    Good: ``<chain base_link="a" tip_link="b"/>``
+    """
+    srdf = companions(robot).srdf
+    if srdf is not None and srdf.problem:
+        yield srdf.at(srdf.line), srdf.problem
+
+
+@rule("U802", "srdf-robot-name", Severity.WARNING)
+def srdf_robot_name(robot):
+    """The SRDF's robot name differs from the URDF's.
+
+    MoveIt warns "Semantic description is not specified for the same robot as the URDF" and
+    the SRDF may belong to another robot.
+
+    Bad: ``<robot name="ur5">`` against a URDF named ``ur5e``
+    Good: the same name in both
+    """
+    srdf = _srdf(robot)
+    if srdf is not None and srdf.root.get("name") != robot.name:
+        yield srdf.at(srdf.root.sourceline), (f"SRDF robot name '{srdf.root.get('name')}' differs "
+                                              f"from the URDF robot name '{robot.name}'")
+
+
+def _virtual_joints(srdf) -> set:
+    """SRDF virtual joints, and Pinocchio's ``root_joint`` (its free-flyer joint's name)."""
+    return {v.get("name") for v in srdf.root.iterfind("virtual_joint")} | {"root_joint"}
+
+
+@rule("U803", "srdf-unknown-joint", Severity.ERROR)
+def srdf_unknown_joint(robot):
+    """An SRDF group, group state or passive joint names a joint the URDF lacks.
+
+    MoveIt fails to build the group ("Joint 'X' not found in model").
+
+    Virtual joints and ``root_joint`` (Pinocchio's free-flyer) are accepted.
+
+    Bad: ``<group name="arm"> <joint name="elbw"/>``
+    Good: ``<joint name="elbow"/>``
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    known = set(robot.joints) | _virtual_joints(srdf)
+    for element in _elements(srdf, "group/joint", "group_state/joint", "passive_joint"):
+        name = element.get("name")
+        if name not in known:
+            yield srdf.at(element.sourceline), (
+                f"SRDF <{element.getparent().tag if element.tag == 'joint' else element.tag}> names "
+                f"joint '{name}', which is not in the URDF; {available('joints', name or '', known)}")
+
+
+@rule("U804", "srdf-unknown-link", Severity.ERROR)
+def srdf_unknown_link(robot):
+    """An SRDF group, chain, end effector, virtual joint or collision pair names a link the URDF lacks.
+
+    Bad: ``<disable_collisions link1="base" link2="shoulder_link"/>`` when the link is ``base_link``
+    Good: ``link1="base_link"``
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    attributes = (("group/link", "name"), ("group/chain", "base_link"), ("group/chain", "tip_link"),
+                  ("end_effector", "parent_link"), ("virtual_joint", "child_link"),
+                  ("disable_collisions", "link1"), ("disable_collisions", "link2"),
+                  ("enable_collisions", "link1"), ("enable_collisions", "link2"),
+                  ("link_sphere_approximation", "link"))
+    for path, attribute in attributes:
+        for element in srdf.root.iterfind(path):
+            name = element.get(attribute)
+            if name is not None and name not in robot.links:
+                yield srdf.at(element.sourceline), (
+                    f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
+                    f"{available('links', name, robot.links)}")
+
+
+@rule("U805", "srdf-unknown-group", Severity.ERROR)
+def srdf_unknown_group(robot):
+    """An SRDF subgroup, group state or end effector names a group that is not defined.
+
+    Bad: ``<group_state name="home" group="arms">`` when the group is ``arm``
+    Good: ``group="arm"``
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    groups = {g.get("name") for g in srdf.root.iterfind("group")}
+    for path, attribute in (("group/group", "name"), ("group_state", "group"),
+                            ("end_effector", "group"), ("end_effector", "parent_group")):
+        for element in srdf.root.iterfind(path):
+            name = element.get(attribute)
+            if name is not None and name not in groups:
+                yield srdf.at(element.sourceline), (
+                    f"SRDF <{element.tag} {attribute}='{name}'> names no group; "
+                    f"{available('groups', name, groups)}")
+
+
+@rule("U806", "srdf-state-outside-limits", Severity.ERROR)
+def srdf_state_outside_limits(robot):
+    """An SRDF group state puts a joint outside its URDF limits.
+
+    MoveIt rejects the named pose as invalid, so "home" cannot be planned to.
+
+    Bad: ``<joint name="knee" value="2.5"/>`` with ``<limit lower="0" upper="2.27" .../>``
+    Good: a value between lower and upper
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    for element in srdf.root.iterfind("group_state/joint"):
+        joint = robot.joints.get(element.get("name"))
+        limit = joint.find("limit") if joint is not None else None
+        if limit is None or joint.get("type") not in ("revolute", "prismatic"):
+            continue
+        values, problem = parse_numbers(element.get("value"), 1)
+        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
+        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+        state = element.getparent().get("name")
+        if problem:
+            yield srdf.at(element.sourceline), f"SRDF group state '{state}': joint value {problem}"
+        elif lower and upper and not (lower[0] - LIMIT_TOLERANCE <= values[0] <= upper[0] + LIMIT_TOLERANCE):
+            yield srdf.at(element.sourceline), (
+                f"SRDF group state '{state}' sets joint '{element.get('name')}' to {values[0]:g}, "
+                f"outside its URDF limits [{lower[0]:g}, {upper[0]:g}]")

@@ -1,0 +1,249 @@
+"""U5xx: transmissions (ROS 1 and ROS 2 forms) and ``<ros2_control>`` blocks."""
+
+from __future__ import annotations
+
+from . import Severity, rule
+from ._actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
+                         moving_joints, ros2_control_joints, transmission_joints, transmissions)
+from ._names import available
+from ._values import parse_numbers
+
+ROS2_INTERFACES = ("position", "velocity", "acceleration", "effort", "torque", "force",
+                   "current", "temperature")
+
+
+def _label(transmission) -> str:
+    return f"transmission '{transmission.get('name') or '?'}'"
+
+
+@rule("U501", "transmission-unknown-joint", Severity.ERROR)
+def transmission_unknown_joint(robot):
+    """A transmission names a joint that does not exist (or names none).
+
+    The controller manager refuses to load: "Could not find resource 'X' in
+    'hardware_interface::EffortJointInterface'".
+
+    Bad: ``<transmission name="t"> <joint name="head_jnt"> ...``
+    Good: ``<joint name="head_joint">``, a joint of the robot
+    """
+    for transmission in transmissions(robot):
+        joints = transmission_joints(transmission)
+        if not joints:
+            yield transmission, f"{_label(transmission)} has no <joint>"
+        for joint in joints:
+            if not joint.name:
+                yield joint.element, f"{_label(transmission)}: <joint> has no name"
+            elif joint.name not in robot.joints:
+                yield joint.element, (f"{_label(transmission)} names joint '{joint.name}', which "
+                                      f"does not exist; {available('joints', joint.name, robot.joints)}")
+
+
+@rule("U502", "transmission-fixed-joint", Severity.ERROR)
+def transmission_fixed_joint(robot):
+    """A transmission drives a fixed joint.
+
+    A fixed joint cannot move; gazebo_ros_control and ros2_control skip or reject it.
+
+    Bad: a transmission on ``camera_joint`` (type fixed)
+    Good: transmissions only on revolute, continuous and prismatic joints
+    """
+    for transmission in transmissions(robot):
+        for joint in transmission_joints(transmission):
+            target = robot.joints.get(joint.name)
+            if joint.interfaces and not _commands(joint):
+                continue  # read-only (franka_hw/FrankaModelInterface names the flange joint)
+            if target is not None and target.get("type") == "fixed":
+                yield joint.element, f"{_label(transmission)} drives fixed joint '{joint.name}'"
+
+
+@rule("U503", "unknown-hardware-interface", Severity.ERROR)
+def unknown_hardware_interface(robot):
+    """A ROS 1 transmission joint has no ``<hardwareInterface>`` or an unknown one.
+
+    ``hardware_interface/`` may be omitted (old Gazebo form). Vendor interfaces written
+    ``package/Name`` (franka_hw/FrankaStateInterface) are accepted. Transmissions inside
+    ``<ros2_control>`` take their interfaces from the ros2_control joint instead.
+
+    Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
+    Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
+    """
+    for transmission in transmissions(robot):
+        kind = transmission.findtext("type") or transmission.get("type") or ""
+        if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
+            continue
+        for joint in transmission_joints(transmission):
+            if not joint.interfaces:
+                yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
+                                      "<hardwareInterface>; e.g. hardware_interface/"
+                                      "PositionJointInterface")
+            for interface in joint.interfaces:
+                known, _ = interface_kind(interface.text)
+                if not known:
+                    text = (interface.text or "").strip()
+                    bare = text.split("/")[-1].split("::")[-1]
+                    yield interface, (f"{_label(transmission)}: unknown hardware interface "
+                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}")
+
+
+@rule("U504", "transmission-no-actuator", Severity.ERROR)
+def transmission_no_actuator(robot):
+    """A transmission has no actuator.
+
+    transmission_interface needs an actuator to map commands through; the transmission is
+    rejected without one.
+
+    Bad: ``<transmission> <type>...</type> <joint .../> </transmission>``
+    Good: add ``<actuator name="head_motor"><mechanicalReduction>1</mechanicalReduction></actuator>``
+    """
+    for transmission in transmissions(robot):
+        if not any(child.tag.lower().endswith("actuator") for child in transmission
+                   if isinstance(child.tag, str)):
+            yield transmission, f"{_label(transmission)} has no <actuator>"
+
+
+@rule("U505", "zero-mechanical-reduction", Severity.ERROR)
+def zero_mechanical_reduction(robot):
+    """A transmission's mechanical reduction is zero or not a number.
+
+    The joint command is divided by the reduction: zero gives infinite actuator commands.
+
+    Bad: ``<mechanicalReduction>0</mechanicalReduction>``
+    Good: ``<mechanicalReduction>1</mechanicalReduction>`` (or the gear ratio)
+    """
+    for transmission in transmissions(robot):
+        for tag in ("mechanicalReduction", "mechanical_reduction"):
+            for element in transmission.iter(tag):
+                values, problem = parse_numbers(element.text, 1)
+                if problem:
+                    yield element, f"{_label(transmission)}: <{tag}> {problem}"
+                elif values[0] == 0:
+                    yield element, (f"{_label(transmission)}: <{tag}> is 0; use the gear ratio "
+                                    "(1 for direct drive)")
+
+
+def _commands(joint) -> set:
+    """Command interfaces a transmission joint offers (empty for read-only ones)."""
+    return {kind for kind in (interface_kind(i.text)[1] for i in joint.interfaces) if kind}
+
+
+@rule("U506", "duplicate-transmission", Severity.ERROR)
+def duplicate_transmission(robot):
+    """A joint is driven by more than one transmission with the same interface.
+
+    Two transmissions writing the same command to one joint fight; the controller manager
+    reports a resource conflict. Separate transmissions offering different interfaces
+    (franka_gazebo's Position, Velocity and Effort per joint) and read-only ones
+    (JointStateInterface, vendor state interfaces) are allowed.
+
+    Bad: two transmissions with ``<joint name="head_joint">`` and PositionJointInterface
+    Good: one transmission per joint
+    """
+    first: dict[tuple, str] = {}
+    for transmission in transmissions(robot):
+        for joint in transmission_joints(transmission):
+            if not joint.name:
+                continue
+            kinds = _commands(joint) if joint.interfaces else {"(any)"}
+            if is_ros2_form(transmission):
+                kinds = {"(ros2_control)"}
+            for kind in sorted(kinds):
+                if (joint.name, kind) in first:
+                    yield joint.element, (f"joint '{joint.name}' is already driven by transmission "
+                                          f"'{first[joint.name, kind]}'"
+                                          f"{'' if kind.startswith('(') else f' with {kind}'}; keep one")
+                    break
+                first[joint.name, kind] = transmission.get("name") or "?"
+
+
+@rule("U507", "unactuated-joint", Severity.WARNING)
+def unactuated_joint(robot):
+    """A moving joint has no transmission or ros2_control entry although the robot loads ros_control.
+
+    With gazebo_ros_control or ``<ros2_control>``, only actuated joints are simulated as
+    actuated and published: the joint never appears in /joint_states and falls limp.
+    Mimic joints are exempt.
+
+    Bad: ``<ros2_control>`` lists head_joint but not the wheel joints
+    Good: a transmission or a ros2_control ``<joint>`` for every revolute, continuous and
+    prismatic joint
+    """
+    plugin = control_plugin(robot)
+    if plugin is None:
+        return
+    actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
+    actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
+    loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
+    for name, joint in moving_joints(robot).items():
+        if name not in actuated:
+            yield joint, (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control "
+                          f"joint although the robot loads {loader}; it will not be in /joint_states")
+
+
+@rule("U511", "ros2-control-unknown-joint", Severity.ERROR)
+def ros2_control_unknown_joint(robot):
+    """A ``<ros2_control>`` joint does not exist in the URDF (or has no name).
+
+    The resource manager fails on start: the hardware's joint is not in the description.
+
+    Bad: ``<ros2_control ...> <joint name="head_jnt">``
+    Good: ``<joint name="head_joint">``
+    """
+    for _, joint in ros2_control_joints(robot):
+        name = joint.get("name")
+        if not name:
+            yield joint, "<ros2_control> <joint> has no name"
+        elif name not in robot.joints:
+            yield joint, (f"ros2_control joint '{name}' does not exist; "
+                          f"{available('joints', name, robot.joints)}")
+
+
+@rule("U512", "ros2-control-fixed-joint", Severity.ERROR)
+def ros2_control_fixed_joint(robot):
+    """A ``<ros2_control>`` joint is a fixed joint.
+
+    Bad: ``<joint name="camera_joint">`` (fixed) in ``<ros2_control>``
+    Good: only moving joints in ``<ros2_control>``
+    """
+    for _, joint in ros2_control_joints(robot):
+        target = robot.joints.get(joint.get("name"))
+        if target is not None and target.get("type") == "fixed":
+            yield joint, f"ros2_control joint '{joint.get('name')}' is a fixed joint"
+
+
+@rule("U513", "ros2-control-interface-name", Severity.WARNING)
+def ros2_control_interface_name(robot):
+    """A ros2_control command or state interface has no name or not a standard one.
+
+    Controllers claim interfaces by name (``head_joint/position``); a misspelt interface is
+    never claimed. Custom names are legal for custom hardware, hence a warning.
+
+    Bad: ``<command_interface name="positon"/>``
+    Good: ``<command_interface name="position"/>`` (velocity, effort, acceleration, ...)
+    """
+    for _, joint in ros2_control_joints(robot):
+        for interface in [*joint.findall("command_interface"), *joint.findall("state_interface")]:
+            name = interface.get("name")
+            if not name:
+                yield interface, f"ros2_control joint '{joint.get('name')}': <{interface.tag}> has no name"
+            elif name not in ROS2_INTERFACES:
+                yield interface, (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> "
+                                  f"'{name}' is not a standard interface; "
+                                  f"{available('interfaces', name, ROS2_INTERFACES)}")
+
+
+@rule("U514", "ros2-control-no-plugin", Severity.ERROR)
+def ros2_control_no_plugin(robot):
+    """A ``<ros2_control>`` block names no hardware plugin.
+
+    The controller manager cannot load hardware without ``<hardware><plugin>``.
+
+    Bad: ``<ros2_control name="sys" type="system"> <hardware/> ...``
+    Good: ``<hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>``
+    """
+    for block in robot.children("ros2_control"):
+        hardware = block.find("hardware")
+        plugin = hardware.findtext("plugin", "").strip() if hardware is not None else ""
+        if not plugin:
+            yield (hardware if hardware is not None else block), (
+                f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>; e.g. "
+                "gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem")
