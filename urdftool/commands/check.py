@@ -92,17 +92,29 @@ def _config_for(path: str):
 
 def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
     """Files to check, in a stable order, and the files skipped in folders with the reason."""
-    from ..discover import robot_files, split_top_level
+    from ..diagnostics import display_path
+    from ..discover import (explicit_targets, includers_below, project_root, robot_files,
+                            split_top_level)
     from ..loader.packages import PackageResolver
 
+    resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
+    includers = {}  # project root -> its include graph, built once
     files, skipped = [], {}
     for path in paths:
-        if path == "-" or not Path(path).is_dir():
+        if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
             files.append(path)
             continue
+        if Path(path).is_file():
+            root = project_root(Path(path))
+            if root not in includers:
+                includers[root] = includers_below(root, resolver_for)
+            targets, reason = explicit_targets(Path(path), includers[root], root)
+            files.extend(display_path(p) if p != Path(path) else path for p in targets)
+            if reason:
+                typer.echo(f"urdftool: {path}: {reason}", err=True)
+            continue
         found = robot_files(Path(path))
-        top, skipped_here = split_top_level(
-            found, lambda p: PackageResolver(packages, start=p.parent))
+        top, skipped_here = split_top_level(found, resolver_for)
         files.extend(str(p) for p in top)
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
