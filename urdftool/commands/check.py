@@ -54,12 +54,14 @@ def check(
     if verbose:
         for path, reason in skipped.items():
             typer.echo(f"skipped {path}: {reason}", err=True)
-    base_selection = Selection(tuple(_codes([*config.select, *select])),
+    # --select replaces the settings' select; --ignore adds to their ignore.
+    base_selection = Selection(tuple(_codes(select or config.select)),
                                tuple(_codes([*config.ignore, *ignore])))
     options = CheckOptions(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
         allow_env=not no_env,
         max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
+        extras=dict(config.companions),  # robot.options["spec"|"controllers"|"srdf"]: Path
     )
     results = []
     for path in files:
