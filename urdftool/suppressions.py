@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .diagnostics import Finding, Location, Severity
-from .rules import FAMILIES, REGISTRY, declare
+from .rules import FAMILIES, REGISTRY, all_rules, declare
 
 declare("U901", "unused-suppression", Severity.WARNING, """
     An ``<!-- urdftool: ignore ... -->`` comment silences nothing.
@@ -129,6 +129,7 @@ def apply(findings: list[Finding], files: list[str], ran) -> list[Finding]:
     suppressions = [s for shown in shown_files for s in in_file(shown)]
     if not suppressions:
         return findings
+    all_rules()  # the whole catalogue, to tell unknown codes from known ones
     by_file: dict[str, list[Suppression]] = {}
     for suppression in suppressions:
         by_file.setdefault(suppression.file, []).append(suppression)

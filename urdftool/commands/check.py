@@ -121,4 +121,7 @@ def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
             raise UsageError(f"no .urdf or .xacro files found in '{path}'")
-    return list(dict.fromkeys(files)), skipped
+    unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
+    for file in files:
+        unique.setdefault(file if file == "-" else Path(file).resolve(), file)
+    return list(unique.values()), skipped
