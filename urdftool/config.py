@@ -84,8 +84,11 @@ def _parse(path: Path, table: dict) -> Config:
     for pattern, codes in table.get("per-file-ignores", {}).items():
         config.per_file_ignores[pattern] = codes if isinstance(codes, list) else [codes]
     config.packages = {name: base / folder for name, folder in table.get("packages", {}).items()}
-    config.companions = {key: base / table[key] for key in ("spec", "controllers", "srdf")
-                         if key in table}
+    config.companions = {key: base / table[key] for key in ("spec", "srdf") if key in table}
+    if "controllers" in table:
+        listed = table["controllers"]
+        config.companions["controllers"] = [base / p for p in
+                                            (listed if isinstance(listed, list) else [listed])]
     config.strict = bool(table.get("strict", False))
     config.max_file_size = table.get("max-file-size")
     return config

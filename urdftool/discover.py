@@ -7,6 +7,7 @@ import os
 import re
 from pathlib import Path
 
+from .diagnostics import display_path
 from .loader.packages import PackageResolver
 
 SUFFIXES = (".urdf", ".xacro")
@@ -81,3 +82,63 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
         if "$" in spec:
             continue
         yield (path.parent / spec).resolve()
+
+
+_NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
+
+
+def project_root(path: Path) -> Path:
+    """The repository holding ``path`` (nearest folder with ``.git``), or its own folder."""
+    for candidate in path.resolve().parents:
+        if (candidate / ".git").exists():
+            return candidate
+    return path.resolve().parent
+
+
+def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path], str | None]:
+    """What to check for a file named on the command line (as pre-commit does), and why.
+
+    includers: :func:`includers_below` ``root``
+    A robot of its own (a named ``<robot>`` with links, joints or macro calls) is checked as it
+    is. A file that is not (a macro library, a fragment) but that robots below ``root`` include,
+    directly or through other includes, is replaced by those top-level robots: a change to
+    ``leg.xacro`` checks the robot built from it. One nobody includes is checked as it is when it
+    has content, and skipped when it only defines macros or properties.
+    """
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return [path], None
+    if _NAMED_ROBOT.search(data) and _defines_robot(data):
+        return [path], None
+    target, seen, tops = path.resolve(), set(), []
+    pending = [target]
+    while pending:
+        current = pending.pop()
+        for parent in includers.get(current, ()):
+            if parent.resolve() in seen:
+                continue
+            seen.add(parent.resolve())
+            pending.append(parent.resolve())
+            if parent.resolve() not in includers:
+                tops.append(parent)
+    if tops:
+        tops = sorted(tops)
+        return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
+    if not _defines_robot(data) and path.name.endswith(".xacro"):
+        return [], "defines only macros or properties, and no robot below " \
+                   f"{root} includes it: nothing to check"
+    return [path], None
+
+
+def includers_below(root: Path, resolver_for) -> dict[Path, list[Path]]:
+    """Included file (resolved) -> the files below ``root`` that include it."""
+    includers: dict[Path, list[Path]] = {}
+    for path in robot_files(root):
+        try:
+            data = path.read_bytes()
+        except OSError:
+            continue
+        for target in _included_files(path, data, resolver_for(path)):
+            includers.setdefault(target, []).append(path)
+    return includers

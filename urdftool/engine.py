@@ -9,6 +9,7 @@ from pathlib import Path
 from .diagnostics import Finding, Location, Severity
 from .errors import LoadError
 from .rules import REGISTRY, Rule, all_rules, declare
+from . import suppressions
 
 declare("U900", "internal-error", Severity.ERROR, """
     A rule crashed on this file: a bug in urdftool, not in the robot.
@@ -65,7 +66,11 @@ def stamp(rule: Rule, where, message: str, robot) -> Finding:
 
 
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
-    """Run every selected rule over a loaded robot; a crashing rule becomes U900."""
+    """Run every selected rule over a loaded robot; a crashing rule becomes U900.
+
+    Inline ``<!-- urdftool: ignore ... -->`` comments then filter the findings (see
+    :mod:`urdftool.suppressions`); unused ones become U901.
+    """
     findings = [f for f in robot.options.get("load_findings", []) if selection.allows(f.code)]
     for rule in all_rules():
         if rule.check is None or not selection.allows(rule.code):
@@ -79,6 +84,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
                 REGISTRY["U900"], None,
                 f"rule {rule.code} ({rule.name}) crashed: {type(error).__name__}: {error} "
                 f"[{Path(frame.filename).name}:{frame.lineno}]", robot))
+    findings = suppressions.apply(findings, robot.files, selection.allows)
     return sorted(set(findings), key=Finding.sort_key)
 
 

@@ -57,13 +57,15 @@ def check(
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
         config = _config_for(paths[0])
         files, skipped = _expand_paths(paths, packages)
-        extras = _companion_options(controllers, srdf, spec)
+        # Command-line companions win over the settings file's.
+        extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec)}
     except UsageError as error:
         fail_usage(error)
     if verbose:
         for path, reason in skipped.items():
             typer.echo(f"skipped {path}: {reason}", err=True)
-    base_selection = Selection(tuple(_codes([*config.select, *select])),
+    # --select replaces the settings' select; --ignore adds to their ignore.
+    base_selection = Selection(tuple(_codes(select or config.select)),
                                tuple(_codes([*config.ignore, *ignore])))
     options = CheckOptions(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
@@ -103,6 +105,16 @@ def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | 
     return extras
 
 
+def _settings_companions(config) -> dict:
+    """``spec``/``controllers``/``srdf`` from the settings file, in the form the rules read."""
+    found = {key: str(path) for key, path in config.companions.items() if key != "controllers"}
+    controllers = config.companions.get("controllers")
+    if controllers is not None:
+        found["controllers"] = [str(p) for p in (controllers if isinstance(controllers, list)
+                                                 else [controllers])]
+    return found
+
+
 def _codes(values: list[str]) -> list[str]:
     return [part.strip() for value in values for part in value.split(",") if part.strip()]
 
@@ -115,19 +127,34 @@ def _config_for(path: str):
 
 def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
     """Files to check, in a stable order, and the files skipped in folders with the reason."""
-    from ..discover import robot_files, split_top_level
+    from ..diagnostics import display_path
+    from ..discover import (explicit_targets, includers_below, project_root, robot_files,
+                            split_top_level)
     from ..loader.packages import PackageResolver
 
+    resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
+    includers = {}  # project root -> its include graph, built once
     files, skipped = [], {}
     for path in paths:
-        if path == "-" or not Path(path).is_dir():
+        if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
             files.append(path)
             continue
+        if Path(path).is_file():
+            root = project_root(Path(path))
+            if root not in includers:
+                includers[root] = includers_below(root, resolver_for)
+            targets, reason = explicit_targets(Path(path), includers[root], root)
+            files.extend(display_path(p) if p != Path(path) else path for p in targets)
+            if reason:
+                typer.echo(f"urdftool: {path}: {reason}", err=True)
+            continue
         found = robot_files(Path(path))
-        top, skipped_here = split_top_level(
-            found, lambda p: PackageResolver(packages, start=p.parent))
+        top, skipped_here = split_top_level(found, resolver_for)
         files.extend(str(p) for p in top)
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
             raise UsageError(f"no .urdf or .xacro files found in '{path}'")
-    return list(dict.fromkeys(files)), skipped
+    unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
+    for file in files:
+        unique.setdefault(file if file == "-" else Path(file).resolve(), file)
+    return list(unique.values()), skipped

@@ -21,7 +21,8 @@ from typing import Callable
 
 from ..diagnostics import Severity
 
-__all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "FAMILIES"]
+__all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "find_rule",
+           "FAMILIES"]
 
 FAMILIES = {
     "U0": "loading",
@@ -100,3 +101,15 @@ def all_rules() -> list[Rule]:
         _loaded = True
     return [REGISTRY[code] for code in sorted(REGISTRY)]
 
+
+
+def find_rule(wanted: str) -> Rule:
+    """A rule by code (any case) or name; a UsageError listing the valid ones otherwise."""
+    from ..errors import UsageError
+
+    rules = all_rules()
+    for candidate in rules:
+        if wanted.upper() == candidate.code or wanted == candidate.name:
+            return candidate
+    valid = ", ".join(f"{r.code} {r.name}" for r in rules)
+    raise UsageError(f"no rule '{wanted}'. Valid rules: {valid}")

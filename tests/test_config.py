@@ -1,0 +1,135 @@
+"""Settings discovery: every key documented in the README does what it says."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from urdftool import engine
+from urdftool.config import find_config
+
+ROBOT = """<robot name="r">
+  <link name="base_link"/>
+  <link name="arm"/>
+  <joint name="elbow" type="revolute">
+    <parent link="base_link"/><child link="arm"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="1" upper="-1" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+@pytest.fixture
+def project(tmp_path):
+    (tmp_path / "robots").mkdir()
+    (tmp_path / "robots" / "arm.urdf").write_text(ROBOT)
+    return tmp_path
+
+
+def codes(run_cli, *args) -> tuple[int, list[str]]:
+    result = run_cli("check", *args, "--format", "json")
+    assert result.exit_code in (0, 1), result.output
+    return result.exit_code, sorted(d["code"] for d in json.loads(result.stdout)["diagnostics"])
+
+
+def settings(project, text: str, name: str = "pyproject.toml") -> None:
+    header = "[tool.urdftool]\n" if name == "pyproject.toml" else ""
+    (project / name).write_text(header + text)
+
+
+def test_no_settings(run_cli, project):
+    assert codes(run_cli, project / "robots") == (1, ["U204", "U206"])
+
+
+def test_select_and_cli_select_replaces_it(run_cli, project):
+    settings(project, 'select = ["U206"]\n')
+    assert codes(run_cli, project / "robots") == (0, ["U206"])
+    assert codes(run_cli, project / "robots", "--select", "U204") == (1, ["U204"])
+
+
+def test_ignore_by_name_and_cli_ignore_adds(run_cli, project):
+    settings(project, 'ignore = ["inverted-limits"]\n')
+    assert codes(run_cli, project / "robots") == (0, ["U206"])
+    assert codes(run_cli, project / "robots", "--ignore", "U2") == (0, [])
+
+
+def test_per_file_ignores_by_relative_glob_and_by_name(run_cli, project):
+    settings(project, '[tool.urdftool.per-file-ignores]\n"robots/*.urdf" = ["U204"]\n'
+                      '"arm.urdf" = "axis-not-unit"\n')
+    assert codes(run_cli, project / "robots") == (0, [])
+    settings(project, '[tool.urdftool.per-file-ignores]\n"other/*.urdf" = ["U2"]\n')
+    assert codes(run_cli, project / "robots") == (1, ["U204", "U206"])
+
+
+def test_strict(run_cli, project):
+    settings(project, 'ignore = ["U204"]\nstrict = true\n')
+    assert codes(run_cli, project / "robots") == (1, ["U206"])
+
+
+def test_max_file_size(run_cli, project):
+    settings(project, "max-file-size = 10\n")
+    assert codes(run_cli, project / "robots") == (1, ["U008"])
+
+
+def test_urdftool_toml_wins_over_pyproject_in_the_same_folder(run_cli, project):
+    settings(project, 'ignore = ["U204"]\n')
+    settings(project, 'ignore = ["U206"]\n', "urdftool.toml")
+    assert codes(run_cli, project / "robots") == (1, ["U204"])
+
+
+def test_found_above_the_input_and_pyproject_without_table_is_skipped(run_cli, project):
+    settings(project, 'ignore = ["U2"]\n')
+    (project / "robots" / "pyproject.toml").write_text("[project]\nname = 'x'\n")
+    assert codes(run_cli, project / "robots" / "arm.urdf") == (0, [])
+
+
+def test_packages_relative_to_the_settings_file(run_cli, project):
+    (project / "src" / "my_description").mkdir(parents=True)
+    (project / "src" / "my_description" / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="arm"/></robot>')
+    (project / "robots" / "arm.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find my_description)/parts.xacro"/>\n'
+        '  <link name="base_link"/>\n'
+        '  <joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>\n'
+        '</robot>\n')
+    (project / "robots" / "arm.urdf").unlink()
+    assert codes(run_cli, project / "robots") == (1, ["U006"])
+    settings(project, '[tool.urdftool.packages]\nmy_description = "src/my_description"\n')
+    assert codes(run_cli, project / "robots") == (0, [])
+
+
+def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
+    settings(project, 'spec = "config/limits.yaml"\ncontrollers = "config/c.yaml"\n'
+                      'srdf = "config/r.srdf"\n')
+    seen = []
+    real = engine.check_file
+    monkeypatch.setattr(engine, "check_file",
+                        lambda path, options: seen.append(options.extras) or real(path, options))
+    codes(run_cli, project / "robots")
+    config = project / "config"
+    assert seen == [{"spec": str(config / "limits.yaml"),
+                     "controllers": [str(config / "c.yaml")], "srdf": str(config / "r.srdf")}]
+
+
+def test_unknown_key_is_a_usage_error(run_cli, project):
+    settings(project, 'selct = ["U2"]\n')
+    result = run_cli("check", project / "robots")
+    assert result.exit_code == 2 and "unknown urdftool setting(s) selct" in result.stderr
+
+
+def test_readme_example_parses(project):
+    from conftest import ROOT
+    import re
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text[text.index("## Using urdftool in CI"):]
+    example = re.search(r"```toml\n(.*?)```", section, re.S).group(1)
+    (project / "pyproject.toml").write_text(example)
+    config = find_config(project)
+    assert config.select == ["U"] and config.ignore == ["U206", "axis-not-unit"]
+    assert config.per_file_ignores == {"legacy/*.urdf": ["U3"]}
+    assert config.packages == {"my_description": project / "src" / "my_description"}
+    assert config.max_file_size == 16777216 and config.strict is False

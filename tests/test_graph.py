@@ -1,0 +1,89 @@
+"""``urdftool graph``: DOT of the kinematic tree, coloured by findings; rendering with dot."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from conftest import ROBOTS
+
+BAD = """<robot name="bad">
+  <link name="base_link"/>
+  <link name="arm"/>
+  <link name="hand"/>
+  <joint name="elbow" type="revolute">
+    <parent link="base_link"/><child link="arm"/>
+    <limit lower="1" upper="-1" effort="1" velocity="1"/>
+  </joint>
+  <joint name="wrist" type="continuous">
+    <parent link="arm"/><child link="hand"/><axis xyz="0 0 2"/>
+  </joint>
+</robot>
+"""
+
+
+@pytest.fixture
+def bad(tmp_path):
+    path = tmp_path / "bad.urdf"
+    path.write_text(BAD)
+    return path
+
+
+def _line(dot: str, start: str) -> str:
+    return next(line.strip() for line in dot.splitlines() if line.strip().startswith(start))
+
+
+def test_dot_colours_links_and_joints_by_worst_finding(run_cli, bad):
+    result = run_cli("graph", bad)
+    assert result.exit_code == 0, result.output
+    dot = result.stdout
+    assert dot.startswith('digraph "bad" {')
+    assert _line(dot, '"base_link"') == '"base_link";'
+    assert 'fillcolor="#ffcdd2"' in _line(dot, '"arm" [')        # error: red
+    assert 'fillcolor="#ffe0b2"' in _line(dot, '"hand" [')       # warning: orange
+    elbow = _line(dot, '"base_link" -> "arm"')
+    assert 'label="elbow\\nrevolute [1, -1] rad"' in elbow and "U204" in elbow
+    assert 'label="wrist\\ncontinuous"' in _line(dot, '"arm" -> "hand"')
+
+
+def test_humanoid_graph_has_every_link_and_joint(run_cli):
+    result = run_cli("graph", ROBOTS / "humanoid" / "humanoid.urdf.xacro")
+    assert result.exit_code == 0
+    assert result.stdout.count(" -> ") == 21 and "#ffcdd2" not in result.stdout
+    assert 'label="l_knee\\nrevolute [0, 2.269] rad"' in result.stdout
+
+
+def test_dot_output_file(run_cli, bad, tmp_path):
+    result = run_cli("graph", bad, "-o", tmp_path / "tree.dot")
+    assert result.exit_code == 0
+    assert (tmp_path / "tree.dot").read_text().startswith('digraph "bad"')
+
+
+def test_without_dot_the_dot_source_is_written_and_explained(run_cli, bad, tmp_path,
+                                                              monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    result = run_cli("graph", bad, "-o", tmp_path / "tree.svg")
+    assert result.exit_code == 1
+    assert "'dot' program is not installed" in result.stderr
+    assert f"wrote the DOT source to {tmp_path / 'tree.dot'}" in result.stderr
+    assert not (tmp_path / "tree.svg").exists()
+    assert (tmp_path / "tree.dot").read_text().startswith('digraph "bad"')
+
+
+@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot is not installed")
+@pytest.mark.parametrize("suffix, magic", [(".svg", b"<?xml"), (".png", b"\x89PNG")])
+def test_rendered_with_dot(run_cli, bad, tmp_path, suffix, magic):
+    out = tmp_path / f"tree{suffix}"
+    result = run_cli("graph", bad, "-o", out)
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes().startswith(magic)
+
+
+def test_unknown_suffix_is_a_usage_error(run_cli, bad, tmp_path):
+    result = run_cli("graph", bad, "-o", tmp_path / "tree.jpeg")
+    assert result.exit_code == 2 and "use .dot" in result.stderr
+
+
+def test_one_file_only(run_cli, bad):
+    assert run_cli("graph", bad, bad).exit_code == 2

@@ -1,0 +1,71 @@
+"""The ``.pre-commit-hooks.yaml`` definition, run by pre-commit itself on a temporary repository.
+
+``pre-commit try-repo`` clones this repository and, as for any user, installs urdftool with pip
+into a fresh virtualenv (from PyPI: about 40 s on a warm pip cache). The install is done once
+for the module; the test is marked ``network`` (deselect with ``-m "not network"``).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import ROBOTS, ROOT
+
+PRE_COMMIT = [sys.executable, "-m", "pre_commit"]
+
+
+def git(repo: Path, *args: str) -> None:
+    subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@example.com", *args],
+                   cwd=repo, check=True, capture_output=True)
+
+
+def test_manifest_is_valid():
+    done = subprocess.run([*PRE_COMMIT, "validate-manifest", ".pre-commit-hooks.yaml"],
+                          cwd=ROOT, capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+
+
+@pytest.fixture(scope="module")
+def hook(tmp_path_factory):
+    """run(files) -> CompletedProcess of ``pre-commit try-repo ROOT urdftool --files ...``."""
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("needs git and urdftool as a git checkout")
+    try:
+        socket.create_connection(("pypi.org", 443), timeout=5).close()
+    except OSError:
+        pytest.skip("PyPI is not reachable: pre-commit cannot install the hook")
+    base = tmp_path_factory.mktemp("precommit")
+    repo = base / "repo"
+    shutil.copytree(ROBOTS, repo / "robots")
+    wheel = repo / "robots" / "diffbot" / "wheel.xacro"
+    wheel.write_text(wheel.read_text().replace('type="continuous"', 'type="contnuous"', 1))
+    git(repo, "init", "-q")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "robots")
+    env = {**os.environ, "PRE_COMMIT_HOME": str(base / "cache"), "PRE_COMMIT_COLOR": "never"}
+
+    def run(*files: str):
+        return subprocess.run([*PRE_COMMIT, "try-repo", str(ROOT), "urdftool", "--verbose",
+                               "--files", *files], cwd=repo, env=env, capture_output=True,
+                              text=True, timeout=600)
+
+    return run
+
+
+@pytest.mark.network
+def test_changed_macro_fails_through_its_robot_and_clean_files_pass(hook):
+    broken = hook("robots/diffbot/wheel.xacro", "robots/r2d2/r2d2.urdf.xacro")
+    assert broken.returncode == 1, broken.stdout + broken.stderr
+    assert "robots/diffbot/wheel.xacro:" in broken.stdout and "U201" in broken.stdout
+    assert "2 files checked: 2 errors" in broken.stdout  # the left and the right wheel
+    clean = hook("robots/humanoid/leg.xacro", "robots/r2d2/r2d2.urdf.xacro",
+                 "robots/humanoid/joint_limits.yaml")
+    assert clean.returncode == 0, clean.stdout + clean.stderr
+    assert "2 files checked: no problems found" in clean.stdout

@@ -1,0 +1,25 @@
+"""``urdftool rules``: the catalogue and each rule's documentation."""
+
+from __future__ import annotations
+
+from urdftool.rules import all_rules
+
+
+def test_list_has_every_rule(run_cli):
+    result = run_cli("rules")
+    assert result.exit_code == 0
+    for rule in all_rules():
+        assert rule.code in result.stdout and rule.name in result.stdout
+
+
+def test_by_code_or_name_prints_the_docstring(run_cli):
+    by_code, by_name = run_cli("rules", "u204"), run_cli("rules", "inverted-limits")
+    assert by_code.exit_code == 0 and by_code.stdout == by_name.stdout
+    assert by_code.stdout.startswith("U204 inverted-limits (error) joints")
+    assert "Bad: ``<limit lower=\"1.57\"" in by_code.stdout and "Good:" in by_code.stdout
+
+
+def test_unknown_lists_valid_ones(run_cli):
+    result = run_cli("rules", "U999")
+    assert result.exit_code == 2
+    assert "no rule 'U999'" in result.stderr and "U204 inverted-limits" in result.stderr

@@ -1,0 +1,72 @@
+"""Inline ``<!-- urdftool: ignore ... -->`` suppressions (the U901 case is in tests/cases)."""
+
+from __future__ import annotations
+
+from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.engine import CheckOptions, Selection, check_file
+from urdftool.suppressions import apply, parse
+
+TEXT = """<robot name="r">
+  <!-- urdftool: ignore U206 -->
+
+  <!-- another comment -->
+  <joint name="a"/>
+  <link name="b"/> <!-- urdftool: ignore U203, axis-not-unit -->
+  <!-- urdftool: ignore-file U1 -->
+  <!--
+       urdftool: ignore U204
+  -->
+  <joint name="c"/>
+</robot>
+"""
+
+
+def test_parse_targets_the_next_element_or_the_trailed_line():
+    found = {s.line: (s.target, s.selectors) for s in parse(TEXT, "r.urdf")}
+    assert found == {
+        2: (5, ("U206",)),                       # skips blank and comment-only lines
+        6: (6, ("U203", "axis-not-unit")),       # a trailing comment covers its own line
+        7: (None, ("U1",)),                      # file level
+        8: (11, ("U204",)),                      # a comment across lines
+    }
+
+
+def _finding(code, file, line, via=()):
+    return Finding(code, "x", Severity.ERROR, "m", Location(file, line, via))
+
+
+def test_apply_silences_by_code_prefix_and_call_site(tmp_path):
+    robot, macro = tmp_path / "robot.xacro", tmp_path / "macro.xacro"
+    robot.write_text("<robot>\n<!-- urdftool: ignore U2 -->\n<xacro:wheel/>\n</robot>\n")
+    macro.write_text("<robot>\n<joint/>\n</robot>\n")
+    call = Location(str(robot), 3)
+    kept = apply([_finding("U206", str(macro), 2, (call,)),
+                  _finding("U206", str(macro), 2, (Location(str(robot), 4),)),
+                  _finding("U101", str(macro), 2, (call,))],
+                 [str(robot), str(macro)], lambda code: True)
+    assert [(f.code, f.location.via[0].line) for f in kept] == [("U206", 4), ("U101", 3)]
+
+
+def test_unused_is_reported_only_when_its_rules_ran(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text("<robot>\n<!-- urdftool: ignore U204 -->\n<joint/>\n</robot>\n")
+    assert [f.code for f in apply([], [str(path)], lambda code: True)] == ["U901"]
+    assert apply([], [str(path)], lambda code: code != "U204") == []
+    assert apply([], [str(path)], lambda code: code != "U901") == []
+
+
+def test_check_file_applies_suppressions_and_selection(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text("""<robot name="r">
+  <link name="a"/><link name="b"/>
+  <!-- urdftool: ignore inverted-limits -->
+  <joint name="j" type="revolute">
+    <parent link="a"/><child link="b"/>
+    <limit lower="1" upper="-1" effort="1" velocity="1"/> <!-- urdftool: ignore U204 -->
+  </joint>
+</robot>
+""")
+    codes = lambda options: [(f.code, f.line) for f in check_file(str(path), options).findings]  # noqa: E731
+    # U204 is located at <limit>: the trailing comment silences it, the one above <joint> is unused
+    assert codes(CheckOptions()) == [("U901", 3)]
+    assert codes(CheckOptions(selection=Selection(ignore=("U204",)))) == []

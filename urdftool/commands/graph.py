@@ -1,0 +1,52 @@
+"""``urdftool graph``: the kinematic tree as a Graphviz picture, coloured by ``check``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ..errors import UsageError
+
+
+def register(app: typer.Typer) -> None:
+    app.command("graph", help="Draw the kinematic tree as Graphviz DOT: links as boxes (red: "
+                              "errors, orange: warnings), joints as edges labelled with type "
+                              "and limits. --output x.svg/x.png renders it with Graphviz's "
+                              "dot.")(graph)
+
+
+def graph(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+    output: Path = typer.Option(None, "--output", "-o",
+                                help="Write to x.dot (or .gv), or render x.svg, x.png, x.pdf; "
+                                     "default: DOT on stdout."),
+) -> None:
+    from ..engine import check_robot
+    from ..kinematics.graph import DotMissing, to_dot, write
+
+    try:
+        paths, args, packages = robot_inputs(words, arg, package)
+        if len(paths) != 1:
+            raise UsageError("graph takes exactly one FILE")
+    except UsageError as error:
+        fail_usage(error)
+    robot = load_one(paths[0], args, packages)
+    dot = to_dot(robot, check_robot(robot))
+    if output is None:
+        typer.echo(dot, nl=False)
+        return
+    try:
+        written = write(dot, output)
+    except DotMissing as missing:
+        typer.echo(f"urdftool: Graphviz's 'dot' program is not installed, so {output} was not "
+                   f"rendered; wrote the DOT source to {missing} instead. Install Graphviz "
+                   "(apt install graphviz, brew install graphviz) or render it with "
+                   f"'dot -T{output.suffix[1:]} {missing} -o {output}'.", err=True)
+        raise typer.Exit(1)
+    except (ValueError, OSError) as error:
+        fail_usage(UsageError(str(error)))
+    typer.echo(f"wrote {written}", err=True)

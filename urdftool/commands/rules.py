@@ -1,0 +1,34 @@
+"""``urdftool rules``: the rule catalogue, and one rule's documentation."""
+
+from __future__ import annotations
+
+import typer
+
+from ._common import fail_usage
+from ..errors import UsageError
+
+
+def register(app: typer.Typer) -> None:
+    app.command("rules", help="List every rule, or show one rule's documentation "
+                              "(CODE or name).")(rules)
+
+
+def rules(code: str = typer.Argument(None, metavar="[CODE]",
+                                     help="A rule code (U204) or name (inverted-limits).")) -> None:
+    from rich.console import Console
+
+    from ..rules import all_rules, find_rule
+
+    console = Console(highlight=False, soft_wrap=True)
+    if code is None:
+        from ..report.rules_format import rules_table
+
+        console.print(rules_table(all_rules()))
+        return
+    try:
+        found = find_rule(code)
+    except UsageError as error:
+        fail_usage(error)
+    from ..report.rules_format import rule_page
+
+    console.print(rule_page(found))

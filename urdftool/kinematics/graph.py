@@ -1,0 +1,133 @@
+"""The kinematic tree as a Graphviz DOT graph: links as boxes, joints as labelled edges, both
+coloured by the worst finding ``check`` reports at them."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+
+from ..diagnostics import Severity
+
+COLOURS = {  # severity -> (outline, fill)
+    Severity.ERROR: ("#c62828", "#ffcdd2"),
+    Severity.WARNING: ("#ef6c00", "#ffe0b2"),
+}
+_RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
+_UNITS = {"revolute": "rad", "prismatic": "m"}
+RENDERED = (".svg", ".png", ".pdf")
+
+
+class DotMissing(Exception):
+    """The ``dot`` program is not installed; the DOT file was written instead."""
+
+
+def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:
+    """(``link``/``joint``, name) -> findings located at that element or inside it."""
+    owner = {}
+    for tag in ("link", "joint"):
+        for element in robot.children(tag):
+            for inner in element.iter():
+                owner.setdefault(robot.locate(inner), (tag, element.get("name", "")))
+    found: dict[tuple[str, str], list] = {}
+    for finding in findings:
+        key = owner.get(finding.location)
+        if key is not None:
+            found.setdefault(key, []).append(finding)
+    return found
+
+
+def to_dot(robot, findings=()) -> str:
+    """DOT source for ``robot``'s tree; ``findings`` (from check) colour links and joints.
+
+    A link takes the worst severity of the findings at it and at the joint that moves it.
+    """
+    marked = findings_by_element(robot, findings)
+    for joint in robot.children("joint"):
+        child = joint.find("child")
+        if child is not None and ("joint", joint.get("name", "")) in marked:
+            marked.setdefault(("link", child.get("link", "")), []).extend(
+                marked[("joint", joint.get("name", ""))])
+    lines = [f"digraph {_quote(robot.name or 'robot')} {{",
+             "  rankdir=TB;",
+             '  node [shape=box, style="rounded,filled", fillcolor="#ffffff", '
+             'fontname="Helvetica", fontsize=11];',
+             '  edge [fontname="Helvetica", fontsize=9];']
+    for name in robot.links:
+        attributes = _colour(marked.get(("link", name)), "color", "fillcolor")
+        lines.append(f"  {_quote(name)}{_attributes(attributes)};")
+    for joint in robot.children("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None or not parent.get("link") or not child.get("link"):
+            continue
+        attributes = {"label": joint_label(joint),
+                      **_colour(marked.get(("joint", joint.get("name", ""))), "color",
+                                "fontcolor")}
+        lines.append(f"  {_quote(parent.get('link'))} -> {_quote(child.get('link'))}"
+                     f"{_attributes(attributes)};")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def joint_label(joint) -> str:
+    """``name``, then the type and, for limited joints, ``[lower, upper] unit``."""
+    kind = joint.get("type", "?")
+    label = f"{joint.get('name', '?')}\n{kind}"
+    limit = joint.find("limit")
+    if kind in _UNITS and limit is not None:
+        lower, upper = _short(limit.get("lower", "0")), _short(limit.get("upper", "0"))
+        label += f" [{lower}, {upper}] {_UNITS[kind]}"
+    return label
+
+
+def _short(text: str) -> str:
+    """A limit with 4 significant digits; as written when it is not a number."""
+    try:
+        return f"{float(text):.4g}"
+    except ValueError:
+        return text
+
+
+def _colour(findings, line_key: str, fill_key: str) -> dict:
+    if not findings:
+        return {}
+    worst = min((f.severity for f in findings), key=_RANK.__getitem__)
+    if worst not in COLOURS:
+        return {}
+    outline, fill = COLOURS[worst]
+    tooltip = "\n".join(f"{f.code} {f.message}" for f in findings)
+    fill_value = fill if fill_key == "fillcolor" else outline
+    return {line_key: outline, fill_key: fill_value, "penwidth": "2", "tooltip": tooltip}
+
+
+def _attributes(attributes: dict) -> str:
+    if not attributes:
+        return ""
+    return " [" + ", ".join(f"{key}={_quote(value)}" for key, value in attributes.items()) + "]"
+
+
+def _quote(text: str) -> str:
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{escaped}"'
+
+
+def write(dot: str, output: Path) -> Path:
+    """Write ``dot`` to ``output``: as is for ``.dot``/``.gv``, rendered by Graphviz's ``dot``
+    for ``.svg``/``.png``/``.pdf``. Returns the file written; raises DotMissing (after writing
+    the DOT beside ``output``) when ``dot`` is not installed, ValueError for other suffixes."""
+    suffix = output.suffix.lower()
+    if suffix in (".dot", ".gv"):
+        output.write_text(dot, encoding="utf-8")
+        return output
+    if suffix not in RENDERED:
+        raise ValueError(f"cannot write '{output.name}': use .dot, .gv, {', '.join(RENDERED)}")
+    program = shutil.which("dot")
+    if program is None:
+        fallback = output.with_suffix(".dot")
+        fallback.write_text(dot, encoding="utf-8")
+        raise DotMissing(str(fallback))
+    done = subprocess.run([program, f"-T{suffix[1:]}", "-o", str(output)], input=dot.encode(),
+                          capture_output=True, check=False)
+    if done.returncode != 0:
+        raise ValueError(f"dot failed: {done.stderr.decode(errors='replace').strip()}")
+    return output

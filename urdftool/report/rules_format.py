@@ -1,0 +1,30 @@
+"""The rule catalogue for a terminal: a table of every rule, and one rule's page."""
+
+from __future__ import annotations
+
+from rich.markup import escape
+from rich.table import Table
+from rich.text import Text
+
+_STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+
+
+def rules_table(rules) -> Table:
+    table = Table(title="urdftool rules", title_justify="left")
+    table.add_column("code", no_wrap=True)
+    table.add_column("name", no_wrap=True)
+    table.add_column("severity", no_wrap=True)
+    table.add_column("what it finds")
+    for rule in rules:
+        severity = rule.severity.value
+        table.add_row(rule.code, rule.name, Text(severity, style=_STYLES[severity]),
+                      Text(rule.summary))
+    return table
+
+
+def rule_page(rule) -> str:
+    """Rich markup: the heading line, then the docstring as written."""
+    style = _STYLES[rule.severity.value]
+    heading = (f"[bold]{rule.code} {escape(rule.name)}[/] [{style}]({rule.severity.value})[/]"
+               f" [dim]{escape(rule.family)}[/]")
+    return f"{heading}\n\n{escape(rule.doc or rule.summary)}"

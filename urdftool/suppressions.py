@@ -1,0 +1,174 @@
+"""Inline suppressions: ``<!-- urdftool: ignore U203 -->`` comments in the files a user wrote.
+
+``<!-- urdftool: ignore CODES -->`` silences those codes for findings located on the line of the
+element that follows the comment (or on the comment's own line, when the comment trails an
+element). ``<!-- urdftool: ignore-file CODES -->`` silences them for every finding located in
+that file. CODES are rule codes, code prefixes (``U3``) or names, separated by commas or spaces.
+
+For xacro, a finding is located where its element was written (often a macro in an included
+file) and at each macro call site that produced it: a comment before either one silences it, so
+a comment before ``<xacro:wheel .../>`` silences one wheel and a comment in the macro all of them.
+
+A suppression that silences nothing is reported as U901, unless one of its codes did not run
+(``--select``/``--ignore``): then it cannot be known to be unused.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+
+from .diagnostics import Finding, Location, Severity
+from .rules import FAMILIES, REGISTRY, all_rules, declare
+
+declare("U901", "unused-suppression", Severity.WARNING, """
+    An ``<!-- urdftool: ignore ... -->`` comment silences nothing.
+
+    The problem it once hid is fixed, the comment drifted away from its element, or a code is
+    misspelled. A stale suppression will silently hide the next real problem at that place:
+    delete it, or move it to the line just above the element the finding points at.
+
+    Bad: ``<!-- urdftool: ignore U206 -->`` above a joint whose axis is a unit vector
+    Good: no comment (or the comment above the element that really has the finding)
+    """)
+
+_COMMENT = re.compile(r"<!--\s*urdftool:\s*(ignore-file|ignore)\b(.*?)-->", re.S)
+_ONLY_COMMENT = re.compile(r"^\s*<!--.*-->\s*$")
+
+
+@dataclass(frozen=True)
+class Suppression:
+    """One comment: where it is, the line it covers (None: the whole file), and its codes."""
+
+    file: str
+    line: int
+    target: int | None
+    selectors: tuple[str, ...]
+
+    def covers(self, finding: Finding, location: Location) -> bool:
+        if self.target is not None and location.line != self.target:
+            return False
+        return any(_matches(finding.code, selector) for selector in self.selectors)
+
+
+def _matches(code: str, selector: str) -> bool:
+    rule = REGISTRY.get(code)
+    return code.startswith(selector.upper()) or (rule is not None and rule.name == selector)
+
+
+def _known(selector: str) -> bool:
+    family = selector.upper()
+    return family in FAMILIES or family == "U" or any(_matches(c, selector) for c in REGISTRY)
+
+
+def parse(text: str, file: str) -> list[Suppression]:
+    """Every suppression comment in ``text`` (the contents of ``file``)."""
+    lines = text.splitlines()
+    found = []
+    for match in _COMMENT.finditer(text):
+        start = text.count("\n", 0, match.start()) + 1
+        end = text.count("\n", 0, match.end()) + 1
+        selectors = tuple(part for part in re.split(r"[\s,]+", match.group(2)) if part)
+        if match.group(1) == "ignore-file":
+            target = None
+        elif _before_comment(text, match.start()):
+            target = start
+        else:
+            target = _next_content_line(lines, end)
+        found.append(Suppression(file, start, target, selectors))
+    return found
+
+
+def _before_comment(text: str, offset: int) -> bool:
+    """Whether an element is written before the comment on its line (a trailing comment)."""
+    line_start = text.rfind("\n", 0, offset) + 1
+    return bool(text[line_start:offset].strip())
+
+
+def _next_content_line(lines: list[str], after: int) -> int:
+    """The first line after line ``after`` that is neither blank nor only a comment."""
+    for number in range(after + 1, len(lines) + 1):
+        line = lines[number - 1]
+        if line.strip() and not _ONLY_COMMENT.match(line):
+            return number
+    return after + 1
+
+
+@lru_cache(maxsize=256)
+def _parse_file(path: str, stamp: tuple[int, int], shown: str) -> tuple[Suppression, ...]:
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read()
+    except OSError:
+        return ()
+    if "urdftool:" not in text:
+        return ()
+    return tuple(parse(text, shown))
+
+
+def in_file(shown: str) -> tuple[Suppression, ...]:
+    """The suppressions in a file as findings name it; cached per file version."""
+    if shown.startswith("<") or shown == "-":
+        return ()
+    try:
+        status = os.stat(shown)
+    except OSError:
+        return ()
+    return _parse_file(os.path.abspath(shown), (status.st_mtime_ns, status.st_size), shown)
+
+
+def apply(findings: list[Finding], files: list[str], ran) -> list[Finding]:
+    """``findings`` without the suppressed ones, plus U901 for suppressions that silenced nothing.
+
+    files: every file the robot was built from (suppressions in them can be unused)
+    ran: ``ran(code) -> bool``, whether a code's rule ran in this check
+    """
+    shown_files = list(dict.fromkeys([*files, *(f.file for f in findings)]))
+    suppressions = [s for shown in shown_files for s in in_file(shown)]
+    if not suppressions:
+        return findings
+    all_rules()  # the whole catalogue, to tell unknown codes from known ones
+    by_file: dict[str, list[Suppression]] = {}
+    for suppression in suppressions:
+        by_file.setdefault(suppression.file, []).append(suppression)
+    used: set[Suppression] = set()
+    kept = []
+    for finding in findings:
+        silenced_by = [s for location in (finding.location, *finding.location.via)
+                       for s in by_file.get(location.file, ()) if s.covers(finding, location)]
+        used.update(silenced_by)
+        if not silenced_by:
+            kept.append(finding)
+    if ran("U901"):
+        kept.extend(_unused(s) for s in suppressions if s not in used and _checkable(s, ran))
+    return kept
+
+
+def _checkable(suppression: Suppression, ran) -> bool:
+    """Whether every code a suppression names ran, so that it can be known to be unused."""
+    for selector in suppression.selectors:
+        codes = [code for code in REGISTRY if _matches(code, selector)]
+        if codes and not all(ran(code) for code in codes):
+            return False
+    return True
+
+
+def _unused(suppression: Suppression) -> Finding:
+    rule = REGISTRY["U901"]
+    unknown = [s for s in suppression.selectors if not _known(s)]
+    if not suppression.selectors:
+        message = "suppression names no rule; write e.g. <!-- urdftool: ignore U203 -->"
+    elif unknown:
+        message = (f"suppression names unknown rule(s) {', '.join(unknown)}; "
+                   "`urdftool rules` lists the valid codes and names")
+    elif suppression.target is None:
+        message = (f"file-level suppression of {', '.join(suppression.selectors)} silences "
+                   "nothing in this file; delete it")
+    else:
+        message = (f"suppression of {', '.join(suppression.selectors)} silences nothing on "
+                   f"line {suppression.target}; delete it or move it just above the element "
+                   "the finding points at")
+    return Finding(rule.code, rule.name, rule.severity, message,
+                   Location(suppression.file, suppression.line))
