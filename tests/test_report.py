@@ -7,6 +7,8 @@ import json
 
 from lxml import etree
 
+import sarif_schema
+
 from urdftool.diagnostics import Finding, Location, Severity
 from urdftool.engine import FileResult
 from urdftool.report import render
@@ -74,3 +76,17 @@ def test_text_groups_by_file_and_shows_the_macro_call_chain():
     assert "a.urdf:7: error U204 lower above upper" in text
     assert "expanded from macro call at a.urdf:9" in text
     assert text.strip().endswith("2 files checked: 1 errors, 1 warnings, 0 notes")
+
+
+def test_sarif_validates_against_the_official_schema():
+    sarif_schema.validate(json.loads(rendered("sarif")))
+
+
+def test_schema_validation_can_fail():
+    import jsonschema
+    import pytest
+
+    log = json.loads(rendered("sarif"))
+    log["runs"][0]["results"][0]["level"] = "fatal"
+    with pytest.raises(jsonschema.ValidationError):
+        sarif_schema.validate(log)
