@@ -21,7 +21,10 @@ def main() -> int:
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
         outcome = module.main()
-        results.extend(outcome if isinstance(outcome, list) else [outcome])
+        for result in outcome if isinstance(outcome, list) else [outcome]:
+            if "ok" not in result and isinstance(result.get("target"), (int, float)):
+                result["ok"] = result["ratio"] <= result["target"]
+            results.append(result)
     print()
     print(f"{'benchmark':58} {'ratio':>8} {'target':>10}  verdict")
     for result in results:

@@ -59,6 +59,11 @@ class _Joint:
             second[:3, :3] = rotation @ cross @ cross
         return first, second
 
+    @cached_property
+    def stacked(self) -> np.ndarray:
+        """``[3, 16]``: the placement and the two terms, flattened, for one BLAS product."""
+        return np.stack([self.placement, *self.terms]).reshape(3, 16)
+
 
 @dataclass
 class FKResult:
@@ -180,13 +185,18 @@ class KinematicModel:
         rows = len(values)
         if joint.kind in ("revolute", "prismatic"):
             # Rodrigues folded into the placement: P R(q) = P + sin q (P K) + (1 - cos q) (P K^2);
-            # P Trans(q u) = P + q (P u e_w^T). Three array operations per joint.
+            # P Trans(q u) = P + q (P u e_w^T). Linear in (1, sin q, 1 - cos q): one BLAS product
+            # of [rows, 3] coefficients with the [3, 16] stacked blocks.
             column, multiplier, offset = joint.source
-            q = (multiplier * values[:, column] + offset)[:, None, None]
-            first, second = joint.terms
+            q = multiplier * values[:, column] + offset
+            coefficients = np.empty((rows, 3))
+            coefficients[:, 0] = 1.0
             if joint.kind == "prismatic":
-                return joint.placement + q * first
-            return joint.placement + np.sin(q) * first + (1.0 - np.cos(q)) * second
+                coefficients[:, 1], coefficients[:, 2] = q, 0.0
+            else:
+                coefficients[:, 1] = np.sin(q)
+                coefficients[:, 2] = 1.0 - np.cos(q)
+            return (coefficients @ joint.stacked).reshape(rows, 4, 4)
         motion = np.zeros((rows, 4, 4))
         motion[:, 3, 3] = 1.0
         if joint.kind == "floating":
