@@ -63,7 +63,8 @@ def _valid(robot):
 
 def _moving(robot) -> set[str]:
     joints = _joints_by_child(robot)
-    return {name for name, joint in joints.items() if joint.get("type") != "fixed"}
+    return {name for name, joint in joints.items()
+            if joint.get("type") in ("revolute", "continuous", "prismatic", "planar", "floating")}
 
 
 @rule("U301", "malformed-inertial", Severity.ERROR)
@@ -125,9 +126,14 @@ def moving_link_without_mass(robot):
     Gazebo silently drops massless links (and what hangs below them); Pinocchio and MuJoCo
     refuse or produce a singular mass matrix. A massless frame fixed to a body with mass is fine.
 
+    Only checked when the robot declares at least one ``<inertial>``: a description without any
+    is a kinematic model (for visualisation or planning) and is not meant to be simulated.
+
     Bad: ``<joint type="revolute">`` whose child link has no ``<inertial>``
     Good: the child link has ``<inertial>`` with its real mass, or a link fixed to it has
     """
+    if not any(link.find("inertial") is not None for link in robot.children("link")):
+        return
     moving = _moving(robot)
     masses = {link.get("name"): p.mass for link, p in _valid(robot)}
     fixed = _fixed_children(robot)
