@@ -87,7 +87,7 @@ def _row(values) -> str:
 
 def _text(result, loads, samples) -> str:
     width = max((len(j) for j in result.joints), default=5)
-    com = " ".join(f"{c:.4g}" for c in result.com)
+    com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
     lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame", ""]
     lines.append("G(q): gravity torque per joint [N m or N]")
     lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
