@@ -163,10 +163,10 @@ def _defines(material) -> bool:
 
 @rule("U405", "malformed-material", Severity.ERROR)
 def malformed_material(robot):
-    """A material has no name, a top-level material has no colour, a colour does not parse, or a
-    material name is defined twice.
+    """A material is malformed: no name, no colour, a bad colour, or a name defined twice.
 
-    urdfdom refuses each of these (components must be four numbers in [0, 1]).
+    A top-level material needs a colour or texture; ``rgba`` is four numbers in [0, 1]. urdfdom
+    refuses each of these (components must be four numbers in [0, 1]).
 
     Bad: ``<material><color rgba="1 0 0"/></material>``
     Good: ``<material name="red"><color rgba="1 0 0 1"/></material>``
@@ -364,10 +364,9 @@ def mesh_implausible_size(robot):
 
 @rule("U414", "mesh-not-watertight", Severity.INFO)
 def mesh_not_watertight(robot):
-    """A mesh that defines a link's inertia (its collision mesh, or visual mesh when the link has
-    no collision) is not closed.
+    """A mesh that defines a link's inertia is not closed (watertight).
 
-    An open mesh has no well-defined volume, so ``urdftool inertia`` uses its convex hull; the
+    That is the link's collision mesh, or its visual mesh when it has no collision. An open mesh has no well-defined volume, so ``urdftool inertia`` uses its convex hull; the
     mesh is fine for display and usually for collision.
 
     Bad: an STL with holes as the only collision geometry of a link

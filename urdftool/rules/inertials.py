@@ -69,10 +69,10 @@ def _moving(robot) -> set[str]:
 
 @rule("U301", "malformed-inertial", Severity.ERROR)
 def malformed_inertial(robot):
-    """An ``<inertial>`` lacks ``<mass value>`` or ``<inertia>`` with all six of ixx, ixy, ixz,
-    iyy, iyz, izz, or one of them is not a finite number.
+    """An ``<inertial>`` lacks its mass or one of the six inertia terms, or one is not a number.
 
-    urdfdom refuses the inertial (and older versions the whole robot); Gazebo then drops the link.
+    urdfdom needs ``<mass value>`` and ``<inertia>`` with all of ixx, ixy, ixz, iyy, iyz, izz,
+    each a finite number. urdfdom refuses the inertial (and older versions the whole robot); Gazebo then drops the link.
 
     Bad: ``<inertia ixx="0.01" iyy="0.01" izz="0.01"/>``
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
@@ -185,10 +185,9 @@ def inertia_not_positive_definite(robot):
 
 @rule("U305", "inertia-indefinite", Severity.ERROR)
 def inertia_indefinite(robot):
-    """The products of inertia (ixy, ixz, iyz) make the tensor indefinite: a principal moment is
-    negative although every diagonal moment is positive.
+    """The products of inertia (ixy, ixz, iyz) make the inertia tensor indefinite.
 
-    No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
+    A principal moment is negative although every diagonal moment is positive. No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
     reporting products of inertia with the opposite sign convention).
 
     Bad: ``ixx="1" iyy="1" izz="1" ixy="2"`` (principal moments -1, 1, 3)
