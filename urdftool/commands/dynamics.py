@@ -7,7 +7,7 @@ import math
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, pairs, robot_inputs
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, pairs, single_robot
 from ..errors import UsageError
 
 
@@ -49,16 +49,12 @@ def dynamics(
     from ..dynamics import DynamicsError, build, gravity_loads, state
 
     try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("dynamics takes exactly one ROBOT")
-        if output_format not in ("text", "json"):
-            raise UsageError(f"--format must be text or json, got '{output_format}'")
+        path, args, packages = single_robot("dynamics", words, arg, package, output_format)
         if samples < 0:
             raise UsageError("--samples must be 0 or more")
     except UsageError as error:
         fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    robot = load_one(path, args, packages)
     try:
         model = build(robot)
     except DynamicsError as error:

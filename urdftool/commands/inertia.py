@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot
 from ..errors import UsageError
 
 
@@ -35,18 +35,14 @@ def inertia(
     from ..inertia_compare import compare, corrected_urdf, inertial_xml
 
     try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("inertia takes exactly one ROBOT")
-        if output_format not in ("text", "json"):
-            raise UsageError(f"--format must be text or json, got '{output_format}'")
+        path, args, packages = single_robot("inertia", words, arg, package, output_format)
         if density is not None and density <= 0:
             raise UsageError("--density must be positive")
         if write is not None and not (link or all_links):
             raise UsageError("--write needs --link NAME (repeatable) or --all")
     except UsageError as error:
         fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    robot = load_one(path, args, packages)
     unknown = [name for name in link if name not in robot.links]
     if unknown:
         from ..rules._names import available
