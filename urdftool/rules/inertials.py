@@ -5,6 +5,9 @@ Thresholds, chosen so that real robots' dummy links do not trip them:
 - A link with zero mass and zero inertia is a massless frame (tool flange, sensor mount,
   ``base_footprint``): fine wherever it is fixed to a body that has mass. Only a *moving* body
   (a link on a non-fixed joint plus every link fixed to it) must have mass.
+- Links lighter than 1e-4 kg (0.1 g) are placeholders for frames: their tensor is not judged
+  (tools write ``1e-6`` into every field, products included, for such links).
+- Moments below ``1e-12 kg m^2`` count as zero (a 1 g, 1 mm part already has ~4e-10).
 - Principal moments count as negative below ``-1e-9`` times the largest and below
   ``-1e-12 kg m^2`` (rounding in printed values), and the triangle inequality allows a relative slack of 1e-3 (CAD tools print few
   digits, and thin plates sit exactly on the bound).
@@ -22,6 +25,8 @@ from ..inertia import INERTIA_ATTRIBUTES, declared, relative_difference, triangl
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
+ZERO_INERTIA = 1e-12  # [kg m^2]: below this a moment counts as zero
+PLACEHOLDER_MASS = 1e-4  # [kg]: lighter links are frames whose tensor is not judged
 TRIANGLE_TOLERANCE = 1e-3
 COM_MARGIN_FRACTION = 1.0
 COM_MARGIN_MIN = 0.05  # [m]
@@ -58,6 +63,13 @@ def _valid(robot):
         properties = declared(link)
         if properties is not None and math.isfinite(properties.mass) \
                 and np.all(np.isfinite(properties.inertia)):
+            yield link, properties
+
+
+def _judged(robot):
+    """(link, MassProperties) of links heavy enough for their tensor to matter."""
+    for link, properties in _valid(robot):
+        if properties.mass >= PLACEHOLDER_MASS:
             yield link, properties
 
 
@@ -171,14 +183,14 @@ def inertia_not_positive_definite(robot):
     Good: the inertia of the link's shape, e.g. ``urdftool inertia ROBOT``
     """
     moving = _moving(robot)
-    for link, properties in _valid(robot):
+    for link, properties in _judged(robot):
         diagonal = np.diag(properties.inertia)
         inertia = link.find("inertial").find("inertia")
-        if np.any(diagonal < 0):
-            names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < 0]
+        if np.any(diagonal < -NEGATIVE_FLOOR):
+            names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
             yield inertia, (f"link '{_name(link)}': {', '.join(names)} negative; moments of "
                             "inertia are positive")
-        elif properties.mass > 0 and _name(link) in moving and np.all(diagonal == 0):
+        elif _name(link) in moving and np.all(np.abs(properties.inertia) < ZERO_INERTIA):
             yield inertia, (f"link '{_name(link)}' has mass {properties.mass:g} kg but zero "
                             "inertia and is moved by a joint; give the inertia of its shape")
 
@@ -193,8 +205,8 @@ def inertia_indefinite(robot):
     Bad: ``ixx="1" iyy="1" izz="1" ixy="2"`` (principal moments -1, 1, 3)
     Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
     """
-    for link, properties in _valid(robot):
-        if np.any(np.diag(properties.inertia) < 0):
+    for link, properties in _judged(robot):
+        if np.any(np.diag(properties.inertia) < -NEGATIVE_FLOOR):
             continue
         moments, largest = _principal(properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
@@ -214,9 +226,10 @@ def inertia_triangle_inequality(robot):
     Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5)
     Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
     """
-    for link, properties in _valid(robot):
+    for link, properties in _judged(robot):
         moments, largest = _principal(properties)
-        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) or moments[-1] <= 0:
+        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) \
+                or moments[-1] < ZERO_INERTIA:
             continue
         broken = triangle_violation(moments, TRIANGLE_TOLERANCE)
         if broken:
