@@ -106,3 +106,18 @@ def test_missing_meshes_on_the_corpus_are_exactly_the_omitted_ones():
                    for row in csv.DictReader(handle, delimiter="\t")
                    for by in row["referenced_by"].split(",")}
     assert found == omitted
+
+
+def test_collada_unit_is_applied(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    text = trimesh.creation.box(extents=(100, 100, 100)).export(file_type="dae").decode()
+    if "<unit" in text:
+        import re
+
+        text = re.sub(r'<unit[^>]*/>', '<unit meter="0.001" name="millimeter"/>', text)
+    else:
+        text = text.replace("<asset>", '<asset><unit meter="0.001" name="millimeter"/>', 1)
+    (tmp_path / "m.dae").write_text(text)
+    mesh = load_mesh(_robot(tmp_path, "m.dae"), "m.dae")
+    assert max(mesh.extents) == pytest.approx(0.1)

@@ -13,10 +13,12 @@ mesh goes through the same checks before trimesh touches it:
 - a file that does not parse is a :class:`MeshProblem`, never a traceback.
 
 Meshes are cached per robot, keyed by resolved path and scale. trimesh is imported lazily.
+COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
 
 from __future__ import annotations
 
+import logging
 import os
 import re
 import struct
@@ -148,10 +150,27 @@ def _check_size(path: Path, uri: str, limits: MeshLimits) -> None:
                                        f"{limits.max_triangles}; decimate it")
 
 
+_DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
+
+
+def collada_unit(path: Path) -> float:
+    """The ``<unit meter=...>`` a COLLADA file declares (1 when none): viewers apply it, and
+    trimesh does not, so :func:`load_mesh` does."""
+    try:
+        with open(path, "rb") as handle:
+            match = _DAE_UNIT.search(handle.read(65536))
+        value = float(match.group(1)) if match else 1.0
+    except (OSError, ValueError):
+        return 1.0
+    return value if value > 0 and value == value and value != float("inf") else 1.0
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     import trimesh
 
     _check_size(path, uri, limits)
+    # trimesh logs missing textures with tracebacks; a mesh's geometry is all urdftool reads
+    logging.getLogger("trimesh").setLevel(logging.CRITICAL)
     try:
         loaded = trimesh.load(str(path), force="mesh", process=True)
     except Exception as error:  # trimesh raises many types for a bad file
@@ -162,6 +181,8 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     if len(loaded.faces) > limits.max_triangles:
         raise MeshProblem("too-large", f"mesh '{uri}' has {len(loaded.faces)} triangles, over "
                                        f"the limit of {limits.max_triangles}; decimate it")
+    if path.suffix.lower() == ".dae" and collada_unit(path) != 1.0:
+        loaded.apply_scale(collada_unit(path))
     return loaded
 
 
