@@ -22,7 +22,8 @@ def inertia(
                                   help="Compute masses from this density instead of keeping "
                                        "the declared ones."),
     keep_mass: bool = typer.Option(True, "--keep-mass/--no-keep-mass",
-                                   help="Keep declared masses (default; --density overrides)."),
+                                   help="Keep declared masses (default; --density overrides; "
+                                        "--no-keep-mass alone uses 1000 kg/m^3)."),
     link: list[str] = typer.Option([], "--link", help="Only this link (repeatable)."),
     all_links: bool = typer.Option(False, "--all", help="With --write: correct every link."),
     write: Path = typer.Option(None, "--write", metavar="OUT",
@@ -49,6 +50,8 @@ def inertia(
 
         fail_usage(UsageError(f"link '{unknown[0]}' does not exist; "
                               f"{available('links', unknown[0], robot.links)}"))
+    if not keep_mass and density is None:
+        density = 1000.0  # --no-keep-mass without --density: water, as the help says
     results = compare(robot, density=density, links=link or None)
     if write is not None:
         chosen = [r for r in results if r.computed is not None]
@@ -58,7 +61,8 @@ def inertia(
                     robot.locate(robot.links[result.link])
                 what = "replaces the <inertial> at" if result.element is not None else \
                     "goes into the link at"
-                typer.echo(f"<!-- link '{result.link}': {what} {where} -->")
+                via = "".join(f", expanded from the macro call at {site}" for site in where.via)
+                typer.echo(f"<!-- link '{result.link}': {what} {where}{via} -->")
                 typer.echo(inertial_xml(result.computed))
         else:
             write.write_text(corrected_urdf(robot, chosen))
