@@ -86,3 +86,15 @@ def load_one(path: str, args, packages, **kwargs):
 
         render("text", [FileResult(path, error.findings)], sys.stderr)
         raise typer.Exit(1)
+
+
+def single_robot(command: str, words: list[str], arg_options: list[str],
+                 package_options: list[str], output_format: str | None = None,
+                 formats: tuple[str, ...] = ("text", "json")):
+    """(path, xacro args, packages) for a command that analyses exactly one robot."""
+    paths, args, packages = robot_inputs(words, arg_options, package_options)
+    if len(paths) != 1:
+        raise UsageError(f"{command} takes exactly one ROBOT")
+    if output_format is not None and output_format not in formats:
+        raise UsageError(f"--format must be {' or '.join(formats)}, got '{output_format}'")
+    return paths[0], args, packages

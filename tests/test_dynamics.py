@@ -1,0 +1,92 @@
+"""Dynamics against a hand-computed two-link arm, and the humanoid's gravity margins."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS
+from urdftool.dynamics import build, gravity_loads, state
+from urdftool.loader import load
+
+G0 = 9.81
+M1, M2, L1, L2 = 2.0, 1.0, 0.5, 0.4  # point-like masses at the link ends, arm in the x-z plane
+
+ARM = f"""<robot name="arm">
+  <link name="base"><inertial><mass value="3"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial></link>
+  <link name="fixed_tool"/>
+  <joint name="tool" type="fixed"><parent link="base"/><child link="fixed_tool"/></joint>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="20" velocity="1"/></joint>
+  <link name="upper"><inertial><origin xyz="{L1} 0 0"/><mass value="{M1}"/>
+    <inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/>
+    <origin xyz="{L1} 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <link name="fore"><inertial><origin xyz="{L2} 0 0"/><mass value="{M2}"/>
+    <inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>
+</robot>"""
+
+
+@pytest.fixture(scope="module")
+def arm(tmp_path_factory):
+    path = tmp_path_factory.mktemp("arm") / "arm.urdf"
+    path.write_text(ARM)
+    return build(load(path))
+
+
+def _hand_gravity(q1, q2):
+    # Rotation about +y pitches a link along x downwards: heights z1 = -L1 sin q1 and
+    # z2 = -L1 sin q1 - L2 sin(q1 + q2). G = dV/dq with V = g (M1 z1 + M2 z2): the torque the
+    # joint must apply to hold the pose (tau = M a + C v + G).
+    g2 = -M2 * G0 * L2 * math.cos(q1 + q2)
+    g1 = -(M1 + M2) * G0 * L1 * math.cos(q1) + g2
+    return np.array([g1, g2])
+
+
+@pytest.mark.parametrize("q1,q2", [(0.0, 0.0), (0.3, -0.7), (1.2, 0.4)])
+def test_gravity_matches_hand_computation(arm, q1, q2):
+    result = state(arm, {"shoulder": q1, "elbow": q2})
+    assert np.allclose(result.G, _hand_gravity(q1, q2), atol=1e-9)
+
+
+def test_total_mass_counts_root_and_fixed_links(arm):
+    assert math.isclose(state(arm, {}).mass, 3 + M1 + M2)
+
+
+def test_whole_body_com(arm):
+    result = state(arm, {})
+    assert np.allclose(result.com, [(M1 * L1 + M2 * (L1 + L2)) / (3 + M1 + M2), 0, 0])
+
+
+def test_tau_matches_rnea(arm):
+    result = state(arm, {"shoulder": 0.2}, {"shoulder": 1.0, "elbow": -2.0}, {"elbow": 3.0})
+    assert result.rnea_residual < 1e-9
+    assert result.C.shape == (2, 2) and np.allclose(result.M, result.M.T)
+
+
+def test_gravity_loads_flag_a_weak_joint(arm):
+    loads = {load.joint: load for load in gravity_loads(arm, 50)}
+    assert math.isclose(loads["elbow"].zero_pose, M2 * G0 * L2)
+    assert not loads["elbow"].holds  # 3.9 N m against a 1 N m limit
+    assert loads["shoulder"].holds
+
+
+def test_humanoid_holds_itself_with_mx28(run_cli):
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--samples", "100",
+                     "--format", "json")
+    assert result.exit_code == 0, result.output
+    loads = json.loads(result.output)["gravity_loads"]
+    assert {load["effort"] for load in loads} == {2.5}
+    assert all(load["holds"] for load in loads)
+    hips = [l for l in loads if "hip_pitch" in l["joint"]]
+    assert all(0.3 < l["worst"] < 2.5 for l in hips)
+
+
+def test_dynamics_unknown_joint_is_usage_error(run_cli):
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_kne=1")
+    assert result.exit_code == 2 and "l_knee" in result.output

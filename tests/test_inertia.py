@@ -1,0 +1,131 @@
+"""Mass properties against closed forms, frames, and the inertia command."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS
+from urdftool import inertia as mp
+from urdftool.loader import load
+
+
+def test_box_closed_form():
+    solid = mp.box((0.1, 0.2, 0.3)).scaled_to(2.0)
+    a, b, c = 0.1, 0.2, 0.3
+    assert np.allclose(np.diag(solid.inertia), [2 / 12 * (b * b + c * c), 2 / 12 * (a * a + c * c),
+                                                2 / 12 * (a * a + b * b)])
+
+
+def test_cylinder_and_sphere_closed_forms():
+    cylinder = mp.cylinder(0.05, 0.2).scaled_to(3.0)
+    side = 3.0 * (3 * 0.05 ** 2 + 0.2 ** 2) / 12
+    assert np.allclose(np.diag(cylinder.inertia), [side, side, 3.0 * 0.05 ** 2 / 2])
+    sphere = mp.sphere(0.1).scaled_to(5.0)
+    assert np.allclose(np.diag(sphere.inertia), [2 / 5 * 5.0 * 0.01] * 3)
+    assert math.isclose(mp.sphere(0.1).mass, 4 / 3 * math.pi * 1e-3)
+
+
+def test_offset_box_parallel_axis():
+    box = mp.box((0.1, 0.1, 0.1)).scaled_to(1.0)
+    moved = mp.transformed(box, np.array([0.0, 0.0, 0.5]), np.eye(3))
+    pair = mp.combine([moved, mp.transformed(box, np.array([0.0, 0.0, -0.5]), np.eye(3))])
+    about_origin = box.inertia[0, 0] + 1.0 * 0.5 ** 2
+    assert np.allclose(pair.com, 0)
+    assert math.isclose(pair.inertia[0, 0], 2 * about_origin)
+    assert math.isclose(pair.inertia[2, 2], 2 * box.inertia[2, 2])
+
+
+def test_rotated_cylinder_lies_along_x():
+    lying = mp.transformed(mp.cylinder(0.05, 0.4), np.zeros(3), mp.rpy_matrix((0, math.pi / 2, 0)))
+    upright = mp.cylinder(0.05, 0.4)
+    assert np.allclose(np.diag(lying.inertia), np.diag(upright.inertia)[[2, 1, 0]])
+
+
+def test_tessellated_cylinder_mesh_within_1e_3():
+    trimesh = pytest.importorskip("trimesh")
+    mesh = trimesh.creation.cylinder(radius=0.05, height=0.2, sections=256)
+    solid = mp.mesh_solid(mesh).scaled_to(1.0)
+    exact = mp.cylinder(0.05, 0.2).scaled_to(1.0)
+    assert mp.relative_difference(solid.inertia, exact.inertia) < 1e-3
+
+
+def test_declared_inertial_with_rotated_origin():
+    from lxml import etree
+
+    link = etree.fromstring(
+        '<link name="l"><inertial><origin xyz="1 2 3" rpy="0 0 1.5707963267948966"/>'
+        '<mass value="2"/><inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/>'
+        '</inertial></link>')
+    found = mp.declared(link)
+    assert np.allclose(found.com, [1, 2, 3])
+    assert np.allclose(np.diag(found.inertia), [2, 1, 3])  # x and y swap under a 90 deg yaw
+
+
+def test_triangle_inequality():
+    assert mp.triangle_violation([0.1, 0.1, 0.5]) is not None
+    assert mp.triangle_violation([0.3, 0.3, 0.5]) is None
+
+
+def _robot(body: str, tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text(f'<robot name="r"><link name="w"/>{body}</robot>')
+    return load(path)
+
+
+def test_mesh_link_with_scale_and_origin(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    trimesh.creation.box(extents=(100, 200, 300)).export(tmp_path / "box_mm.stl")
+    robot = _robot('<link name="a"><collision><origin xyz="0 0 1"/><geometry>'
+                   '<mesh filename="box_mm.stl" scale="0.001 0.001 0.001"/></geometry>'
+                   '</collision></link>', tmp_path)
+    from urdftool.shapes import computed, link_solid
+
+    result = computed(link_solid(robot, robot.links["a"]), mass=2.0)
+    exact = mp.box((0.1, 0.2, 0.3)).scaled_to(2.0)
+    assert np.allclose(result.com, [0, 0, 1])
+    assert np.allclose(result.inertia, exact.inertia, rtol=1e-6)
+
+
+@pytest.fixture(scope="module")
+def humanoid():
+    return str(ROBOTS / "humanoid" / "humanoid.urdf.xacro")
+
+
+def test_inertia_command_json_shape(run_cli, humanoid):
+    result = run_cli("inertia", humanoid, "--format", "json")
+    assert result.exit_code == 0, result.output
+    links = json.loads(result.output)["links"]
+    body = next(l for l in links if l["link"] == "body_link")
+    assert set(body) >= {"link", "declared", "computed", "source", "verdict"}
+    assert body["source"] == "collision" and body["verdict"] == "agrees"
+    assert set(body["declared"]) == {"mass", "com", "inertia"}
+
+
+def test_inertia_write_corrects_selected_link(run_cli, tmp_path):
+    source = tmp_path / "r.urdf"
+    source.write_text(
+        '<robot name="r"><link name="a"><inertial><mass value="2"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+        '<collision><geometry><box size="0.1 0.2 0.3"/></geometry></collision></link></robot>')
+    out = tmp_path / "fixed.urdf"
+    result = run_cli("inertia", source, "--write", out, "--link", "a")
+    assert result.exit_code == 0, result.output
+    fixed = load(out)
+    assert np.allclose(mp.declared(fixed.links["a"]).inertia,
+                       mp.box((0.1, 0.2, 0.3)).scaled_to(2.0).inertia, rtol=1e-5)
+
+
+def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid):
+    result = run_cli("inertia", humanoid, "--write", "unused.urdf", "--link", "head_link")
+    assert result.exit_code == 0, result.output
+    assert "replaces the <inertial> at" in result.output and "inertial.xacro:" in result.output
+    assert "<mass value=\"0.16\"/>" in result.output
+
+
+def test_inertia_write_needs_a_selection(run_cli, humanoid):
+    assert run_cli("inertia", humanoid, "--write", "x.urdf").exit_code == 2

@@ -1,0 +1,123 @@
+"""Mesh resolution, limits and cache; the corpus's missing meshes are exactly OMITTED.tsv."""
+
+from __future__ import annotations
+
+import csv
+import struct
+
+import pytest
+
+from conftest import corpus_or_skip
+from urdftool.errors import LoadError
+from urdftool.loader import load
+from urdftool.meshes import MeshLimits, MeshProblem, load_mesh, resolve, triangle_count
+
+
+def _robot(tmp_path, filename="m.stl"):
+    (tmp_path / ".git").mkdir(exist_ok=True)
+    path = tmp_path / "r.urdf"
+    path.write_text(f'<robot name="r"><link name="a"><visual><geometry>'
+                    f'<mesh filename="{filename}"/></geometry></visual></link></robot>')
+    return load(path)
+
+
+def test_binary_stl_triangle_count_read_from_header(tmp_path):
+    path = tmp_path / "big.stl"
+    path.write_bytes(b"x" * 80 + struct.pack("<I", 5_000_000))
+    assert triangle_count(path) == 5_000_000
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path, "big.stl"), "big.stl")
+    assert error.value.kind == "too-large"
+
+
+def test_relative_path_escaping_the_repository_is_refused(tmp_path):
+    inner = tmp_path / "repo"
+    inner.mkdir()
+    (tmp_path / "secret.stl").write_text("solid x\nendsolid x\n")
+    robot = _robot(inner, "../secret.stl")
+    with pytest.raises(MeshProblem) as error:
+        resolve(robot, "../secret.stl")
+    assert error.value.kind == "outside"
+
+
+def test_non_mesh_extension_is_never_opened(tmp_path):
+    (tmp_path / "notes.txt").write_text("hello")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "notes.txt"), "notes.txt")
+    assert error.value.kind == "format"
+
+
+def test_each_mesh_loads_once_per_scale(tmp_path, monkeypatch):
+    trimesh = pytest.importorskip("trimesh")
+    trimesh.creation.box(extents=(1, 1, 1)).export(tmp_path / "m.stl")
+    robot = _robot(tmp_path)
+    calls = []
+    real = trimesh.load
+    monkeypatch.setattr(trimesh, "load", lambda *a, **k: calls.append(a) or real(*a, **k))
+    first = load_mesh(robot, "m.stl")
+    assert load_mesh(robot, "m.stl") is first
+    half = load_mesh(robot, "m.stl", (0.5, 0.5, 0.5))
+    assert len(calls) == 1 and max(half.extents) == pytest.approx(0.5)
+
+
+def test_corrupt_mesh_is_a_problem_not_a_traceback(tmp_path):
+    (tmp_path / "m.stl").write_bytes(b"\x00\x01garbage" * 3)
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path), "m.stl", limits=MeshLimits())
+    assert error.value.kind in ("corrupt", "too-large")
+
+
+def _corpus_entries(corpus):
+    seen = set()
+    with open(corpus / "CHECKS.tsv") as handle:
+        for row in csv.DictReader(handle, delimiter="\t"):
+            args = dict(word.split(":=", 1) for word in (row["xacro_args"] or "").split())
+            args = {k: v.replace("<corpus>", str(corpus)) for k, v in args.items()}
+            key = (row["path"], tuple(sorted(args.items())))
+            if key not in seen:
+                seen.add(key)
+                yield row["path"], args
+
+
+def test_missing_meshes_on_the_corpus_are_exactly_the_omitted_ones():
+    corpus = corpus_or_skip()
+    from urdftool.shapes import SHAPES  # noqa: F401 (shapes and meshes share the resolver)
+
+    found = set()
+    for path, args in _corpus_entries(corpus):
+        try:
+            robot = load(corpus / path, xacro_args=args)
+        except LoadError:
+            continue
+        for mesh in robot.root.iter("mesh"):
+            uri = mesh.get("filename")
+            try:
+                resolve(robot, uri)
+            except MeshProblem as problem:
+                if problem.kind == "missing":
+                    target = str(robot.resolve_uri(uri).resolve().relative_to(corpus.resolve()))
+                elif problem.kind in ("package", "outside"):
+                    target = uri
+                else:
+                    continue
+                found.add((target, path))
+    with open(corpus / "OMITTED.tsv") as handle:
+        omitted = {(row["referenced_path"], by.strip())
+                   for row in csv.DictReader(handle, delimiter="\t")
+                   for by in row["referenced_by"].split(",")}
+    assert found == omitted
+
+
+def test_collada_unit_is_applied(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    text = trimesh.creation.box(extents=(100, 100, 100)).export(file_type="dae").decode()
+    if "<unit" in text:
+        import re
+
+        text = re.sub(r'<unit[^>]*/>', '<unit meter="0.001" name="millimeter"/>', text)
+    else:
+        text = text.replace("<asset>", '<asset><unit meter="0.001" name="millimeter"/>', 1)
+    (tmp_path / "m.dae").write_text(text)
+    mesh = load_mesh(_robot(tmp_path, "m.dae"), "m.dae")
+    assert max(mesh.extents) == pytest.approx(0.1)

@@ -1,0 +1,113 @@
+"""``urdftool dynamics``: mass, centre of mass, M(q), G(q), C(q, v), tau, gravity margins."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import typer
+
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, pairs, single_robot
+from ..errors import UsageError
+
+
+def register(app: typer.Typer) -> None:
+    app.command("dynamics", help="Mass, centre of mass, M(q), G(q), C(q,v), torques and "
+                                 "gravity margins against effort limits.")(dynamics)
+
+
+def _values(words: list[str], option: str, joints: list[str], degrees: bool) -> dict:
+    from ..rules._names import available
+
+    result = {}
+    for name, text in pairs(words, option).items():
+        if name not in joints:
+            raise UsageError(f"{option}: joint '{name}' is not a moving joint; "
+                             f"{available('joints', name, joints)}")
+        try:
+            value = float(text)
+        except ValueError:
+            raise UsageError(f"{option} {name}={text}: '{text}' is not a number") from None
+        result[name] = math.radians(value) if degrees else value
+    return result
+
+
+def dynamics(
+    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
+                                "(repeatable); others are 0."),
+    v: list[str] = typer.Option([], "--v", metavar="JOINT=VALUE", help="Joint velocity."),
+    a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
+    deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
+    samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
+                                "joint over N random poses within limits (and the zero pose)."),
+    seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from ..dynamics import DynamicsError, build, gravity_loads, state
+
+    try:
+        path, args, packages = single_robot("dynamics", words, arg, package, output_format)
+        if samples < 0:
+            raise UsageError("--samples must be 0 or more")
+    except UsageError as error:
+        fail_usage(error)
+    robot = load_one(path, args, packages)
+    try:
+        model = build(robot)
+    except DynamicsError as error:
+        typer.echo(f"{robot.display}: error: {error}", err=True)
+        raise typer.Exit(1)
+    try:
+        q_values = _values(q, "--q", model.joints, deg)
+        v_values = _values(v, "--v", model.joints, deg) if v else None
+        a_values = _values(a, "--a", model.joints, deg) if a else None
+    except UsageError as error:
+        fail_usage(error)
+    result = state(model, q_values, v_values, a_values)
+    loads = gravity_loads(model, samples, seed) if samples else []
+    if output_format == "json":
+        data = result.as_dict()
+        data["gravity_loads"] = [load.as_dict() for load in loads]
+        typer.echo(json.dumps(data, indent=2))
+    else:
+        typer.echo(_text(result, loads, samples), nl=False)
+    raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
+
+
+def _row(values) -> str:
+    return " ".join(f"{v:10.4g}" for v in values)
+
+
+def _text(result, loads, samples) -> str:
+    width = max((len(j) for j in result.joints), default=5)
+    com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
+    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame", ""]
+    lines.append("G(q): gravity torque per joint [N m or N]")
+    lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
+    lines += ["", "M(q): joint-space mass matrix"]
+    lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
+    if result.C is not None:
+        lines += ["", "C(q, v): Coriolis matrix"]
+        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
+        lines += ["", "tau = M(q) a + C(q, v) v + G(q)"]
+        lines += [f"  {name:{width}s} {t:10.4g}" for name, t in zip(result.joints, result.tau)]
+        lines.append(f"  (matches rnea to {result.rnea_residual:.2g})")
+    if loads:
+        lines += ["", f"static gravity load over the zero pose and {samples} random poses:",
+                  f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
+                  f"{'margin':>10s}"]
+        for load in loads:
+            flag = "" if load.holds else "  ERROR: cannot hold itself against gravity"
+            lines.append(f"  {load.joint:{width}s} {load.effort:8.4g} {load.zero_pose:10.4g} "
+                         f"{load.worst:10.4g} {load.margin:10.4g}{flag}")
+        weakest = min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
+        pose = ", ".join(f"{k}={v:.3f}" for k, v in weakest.worst_pose.items() if v)
+        lines.append(f"  smallest margin: {weakest.joint} ({weakest.margin:.3g} of "
+                     f"{weakest.effort:.3g}) at {pose or 'the zero pose'}")
+        failing = [load.joint for load in loads if not load.holds]
+        lines.append(f"  {len(failing)} joints cannot hold themselves: {', '.join(failing)}"
+                     if failing else "  every joint holds the robot against gravity")
+    return "\n".join(lines) + "\n"

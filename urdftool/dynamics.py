@@ -1,0 +1,186 @@
+"""Rigid-body dynamics of a robot with a fixed base, through Pinocchio.
+
+Joint values are by joint name: angles in [rad], travel in [m]; velocities in [rad/s] or [m/s];
+accelerations in [rad/s^2] or [m/s^2]; torques in [N m] or forces in [N]. Continuous joints,
+which Pinocchio stores as (cos, sin), take one angle here like any revolute joint.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+class DynamicsError(Exception):
+    """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
+
+
+@dataclass
+class Model:
+    """Pinocchio model and data, and the actuated joints in velocity order."""
+
+    model: object
+    data: object
+    joints: list[str]  # one per velocity variable (1-dof joints only)
+
+    def configuration(self, values: dict[str, float]) -> np.ndarray:
+        import pinocchio as pin
+
+        q = pin.neutral(self.model)
+        for name, value in values.items():
+            joint = self.model.joints[self.model.getJointId(name)]
+            if joint.nq == 2:  # continuous: (cos, sin)
+                q[joint.idx_q:joint.idx_q + 2] = (math.cos(value), math.sin(value))
+            else:
+                q[joint.idx_q] = value
+        return q
+
+    def velocity(self, values: dict[str, float]) -> np.ndarray:
+        v = np.zeros(self.model.nv)
+        for name, value in values.items():
+            v[self.model.joints[self.model.getJointId(name)].idx_v] = value
+        return v
+
+
+def build(robot) -> Model:
+    """A fixed-base Pinocchio model of the robot (1-dof joints; planar/floating refused)."""
+    import pinocchio as pin
+
+    try:
+        model = pin.buildModelFromXML(robot.urdf)
+    except (RuntimeError, ValueError) as error:
+        raise DynamicsError(f"Pinocchio cannot build the model: {error}") from None
+    joints = []
+    for joint_id in range(1, model.njoints):
+        if model.joints[joint_id].nv != 1:
+            raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
+                                "degrees of freedom; only 1-dof joints are supported")
+        joints.append(model.names[joint_id])
+    return Model(model, model.createData(), joints)
+
+
+def total_mass(model: Model) -> float:
+    """Sum of every link's mass, including links fixed to the root (Pinocchio keeps them in
+    ``inertias[0]``, which ``computeTotalMass`` leaves out)."""
+    return float(sum(inertia.mass for inertia in model.model.inertias))
+
+
+def centre_of_mass(model: Model, q: np.ndarray) -> np.ndarray:
+    """Whole-body centre of mass [m] in the root frame, counting the root's own inertia."""
+    import pinocchio as pin
+
+    pin.forwardKinematics(model.model, model.data, q)
+    weighted, mass = np.zeros(3), 0.0
+    for joint_id, inertia in enumerate(model.model.inertias):
+        placement = model.data.oMi[joint_id]
+        weighted += inertia.mass * (placement.act(inertia.lever))
+        mass += inertia.mass
+    return weighted / mass if mass > 0 else np.zeros(3)
+
+
+@dataclass
+class State:
+    """Dynamics at one state: M(q), G(q), and with v, a also C(q, v) and tau."""
+
+    joints: list[str]
+    q: dict
+    mass: float
+    com: np.ndarray
+    M: np.ndarray
+    G: np.ndarray
+    C: np.ndarray | None = None
+    tau: np.ndarray | None = None
+    rnea_residual: float | None = None
+
+    def as_dict(self) -> dict:
+        def listed(a):
+            return None if a is None else np.asarray(a).tolist()
+
+        return {"joints": self.joints, "q": self.q, "total_mass": self.mass,
+                "com": listed(self.com), "M": listed(self.M), "G": listed(self.G),
+                "C": listed(self.C), "tau": listed(self.tau),
+                "rnea_residual": self.rnea_residual}
+
+
+def state(model: Model, q_values: dict, v_values: dict | None = None,
+          a_values: dict | None = None) -> State:
+    """M(q) (crba), G(q) (computeGeneralizedGravity) and, given v or a, C(q, v) and
+    tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs difference)."""
+    import pinocchio as pin
+
+    m, d = model.model, model.data
+    q = model.configuration(q_values)
+    mass_matrix = pin.crba(m, d, q)
+    mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
+    gravity = pin.computeGeneralizedGravity(m, d, q).copy()
+    result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
+                   mass_matrix.copy(), gravity)
+    if v_values is not None or a_values is not None:
+        v = model.velocity(v_values or {})
+        a = model.velocity(a_values or {})
+        coriolis = pin.computeCoriolisMatrix(m, d, q, v).copy()
+        tau = mass_matrix @ a + coriolis @ v + gravity
+        result.C, result.tau = coriolis, tau
+        result.rnea_residual = float(np.max(np.abs(pin.rnea(m, d, q, v, a) - tau), initial=0.0))
+    return result
+
+
+@dataclass
+class JointLoad:
+    """Worst static gravity torque of one joint over the sampled poses, against its limit."""
+
+    joint: str
+    effort: float
+    worst: float  # [N m] or [N], absolute
+    worst_pose: dict = field(default_factory=dict)
+    zero_pose: float = 0.0
+
+    @property
+    def margin(self) -> float:
+        return self.effort - self.worst
+
+    @property
+    def holds(self) -> bool:
+        return self.worst <= self.effort
+
+    def as_dict(self) -> dict:
+        return {"joint": self.joint, "effort": self.effort, "worst": self.worst,
+                "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
+                "worst_pose": self.worst_pose}
+
+
+def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
+    """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses within the
+    joint limits (continuous joints over a full turn)."""
+    import pinocchio as pin
+
+    m, d = model.model, model.data
+    rng = np.random.default_rng(seed)
+    ids = [m.getJointId(name) for name in model.joints]
+    lows, highs = [], []
+    for joint_id in ids:
+        joint = m.joints[joint_id]
+        if joint.nq == 2:
+            lows.append(-math.pi)
+            highs.append(math.pi)
+        else:
+            low, high = m.lowerPositionLimit[joint.idx_q], m.upperPositionLimit[joint.idx_q]
+            lows.append(low if np.isfinite(low) else -math.pi)
+            highs.append(high if np.isfinite(high) else math.pi)
+    poses = [{name: 0.0 for name in model.joints}]
+    for _ in range(samples):
+        values = rng.uniform(lows, highs)
+        poses.append(dict(zip(model.joints, (float(v) for v in values))))
+    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
+             for name, i in zip(model.joints, ids)]
+    for number, pose in enumerate(poses):
+        gravity = pin.computeGeneralizedGravity(m, d, model.configuration(pose))
+        for load, joint_id in zip(loads, ids):
+            torque = abs(float(gravity[m.joints[joint_id].idx_v]))
+            if number == 0:
+                load.zero_pose = torque
+            if torque > load.worst or number == 0:
+                load.worst, load.worst_pose = torque, pose
+    return loads

@@ -1,0 +1,129 @@
+"""Declared inertials against those their geometry implies (``urdftool inertia``).
+
+Returns data only; :mod:`urdftool.commands.inertia` renders it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .inertia import MassProperties, declared, relative_difference, triangle_violation
+from .shapes import computed, link_solid
+
+AGREE_TOLERANCE = 0.1  # relative difference of tensor and com offset (vs link size) that agrees
+VERDICTS = ("agrees", "differs", "invalid", "unknown")
+
+
+@dataclass
+class LinkInertia:
+    """One link: declared and computed mass properties, their differences and a verdict.
+
+    source: which geometry the computed values come from (collision, visual, none)
+    verdict: agrees, differs, invalid (the declared values are physically impossible or
+    malformed), unknown (no geometry to compare with)
+    """
+
+    link: str
+    declared: MassProperties | None
+    computed: MassProperties | None
+    source: str
+    verdict: str
+    differences: dict = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    element: object = None
+
+    def as_dict(self) -> dict:
+        return {"link": self.link,
+                "declared": self.declared.as_dict() if self.declared else None,
+                "computed": self.computed.as_dict() if self.computed else None,
+                "source": self.source, "verdict": self.verdict,
+                "differences": self.differences, "notes": self.notes}
+
+
+def _invalid(properties: MassProperties) -> str | None:
+    if not np.isfinite(properties.mass) or not np.all(np.isfinite(properties.inertia)):
+        return "not finite"
+    if properties.mass < 0:
+        return "negative mass"
+    moments = properties.principal_moments()
+    if properties.mass > 0 and moments[0] < -1e-9 * max(abs(moments).max(), 1e-12):
+        return "not positive definite"
+    if properties.mass > 0 and moments[-1] > 0 and triangle_violation(moments, 1e-3):
+        return f"violates the triangle inequality ({triangle_violation(moments, 1e-3)})"
+    return None
+
+
+def compare_link(robot, link, density: float | None = None) -> LinkInertia:
+    """Declared vs computed for one link; mass kept as declared unless ``density`` is given."""
+    name = link.get("name", "?")
+    mine = declared(link)
+    solid = link_solid(robot, link)
+    notes = [message for _, message in solid.problems]
+    if solid.source == "visual":
+        notes.append("no collision geometry: computed from the visual geometry")
+    keep = mine.mass if mine is not None and density is None and mine.mass > 0 else None
+    if keep is None and density is None and solid.parts:
+        notes.append("no declared mass: computed with 1000 kg/m^3 (pass --density)")
+    result = computed(solid, mass=keep, density=density)
+    if link.find("inertial") is not None and mine is None:
+        verdict, notes = "invalid", notes + ["<inertial> is malformed"]
+    elif mine is not None and _invalid(mine):
+        verdict, notes = "invalid", notes + [f"declared inertia {_invalid(mine)}"]
+    elif result is None:
+        verdict = "unknown"
+    else:
+        verdict = "agrees"
+    differences = {}
+    if mine is not None and result is not None:
+        size = max(float(np.max(solid.bounds[1] - solid.bounds[0])), 1e-9)
+        differences = {"mass": relative_difference(mine.mass, result.mass),
+                       "com": float(np.linalg.norm(mine.com - result.com)) / size,
+                       "inertia": relative_difference(mine.inertia, result.inertia)}
+        if verdict == "agrees" and max(differences.values()) > AGREE_TOLERANCE:
+            verdict = "differs"
+    return LinkInertia(name, mine, result, solid.source, verdict, differences, notes,
+                       link.find("inertial"))
+
+
+def compare(robot, density: float | None = None, links: list[str] | None = None):
+    """Every link (or the named ones) of a robot, in document order."""
+    chosen = robot.children("link")
+    if links:
+        chosen = [l for l in chosen if l.get("name") in links]
+    return [compare_link(robot, link, density) for link in chosen]
+
+
+def inertial_xml(properties: MassProperties, indent: str = "  ") -> str:
+    """An ``<inertial>`` block for mass properties: origin at the com, link axes."""
+    i = properties.inertia
+    xyz = " ".join(f"{v:.6g}" for v in properties.com)
+    return (f"{indent}<inertial>\n"
+            f"{indent}  <origin xyz=\"{xyz}\" rpy=\"0 0 0\"/>\n"
+            f"{indent}  <mass value=\"{properties.mass:.6g}\"/>\n"
+            f"{indent}  <inertia ixx=\"{i[0, 0]:.6g}\" ixy=\"{i[0, 1]:.6g}\" "
+            f"ixz=\"{i[0, 2]:.6g}\" iyy=\"{i[1, 1]:.6g}\" iyz=\"{i[1, 2]:.6g}\" "
+            f"izz=\"{i[2, 2]:.6g}\"/>\n"
+            f"{indent}</inertial>")
+
+
+def corrected_urdf(robot, results: list[LinkInertia]) -> str:
+    """The robot's URDF with each result's computed ``<inertial>`` in place of the declared."""
+    from copy import deepcopy
+
+    from lxml import etree
+
+    root = deepcopy(robot.root)
+    by_name = {link.get("name"): link for link in root if link.tag == "link"}
+    for result in results:
+        link = by_name.get(result.link)
+        if link is None or result.computed is None:
+            continue
+        block = etree.fromstring(inertial_xml(result.computed, ""))
+        old = link.find("inertial")
+        if old is not None:
+            old.getparent().replace(old, block)
+        else:
+            link.insert(0, block)
+    return etree.tostring(root, encoding="unicode", pretty_print=True)

@@ -1,0 +1,380 @@
+"""U4xx: geometry, materials and meshes of links (what urdfdom refuses, and what it misses).
+
+Mesh files are resolved, bounded and loaded by :mod:`urdftool.meshes` (once per run).
+"""
+
+from __future__ import annotations
+
+from . import Severity, rule
+from ._values import finite, parse_numbers
+
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+# (shape, attributes it needs, numbers in each); mesh filename is text
+SHAPE_ATTRIBUTES = {"box": (("size", 3),), "cylinder": (("radius", 1), ("length", 1)),
+                    "sphere": (("radius", 1),), "mesh": (("filename", None),)}
+ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
+
+
+def _link_name(element) -> str:
+    while element is not None and element.tag != "link":
+        element = element.getparent()
+    return element.get("name", "?") if element is not None else "?"
+
+
+def _holders(robot, tags=("visual", "collision")):
+    for link in robot.children("link"):
+        for holder in link:
+            if holder.tag in tags:
+                yield link, holder
+
+
+def _shape(holder):
+    geometry = holder.find("geometry")
+    if geometry is None:
+        return None
+    children = [c for c in geometry if isinstance(c.tag, str)]
+    return children[0] if children else None
+
+
+@rule("U401", "missing-geometry", Severity.ERROR)
+def missing_geometry(robot):
+    """A ``<visual>`` or ``<collision>`` has no ``<geometry>``, an empty one, or an unknown shape.
+
+    urdfdom drops the element with an error; simulators then see a link without collision.
+
+    Bad: ``<collision><origin xyz="0 0 0.1"/></collision>``, ``<geometry><cone .../></geometry>``
+    Good: ``<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>``
+    """
+    for link, holder in _holders(robot):
+        geometry = holder.find("geometry")
+        shape = _shape(holder)
+        where = f"link '{link.get('name')}': <{holder.tag}>"
+        if geometry is None:
+            yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
+        elif shape is None:
+            yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"
+        elif shape.tag not in SHAPES:
+            yield shape, (f"{where} has unknown geometry <{shape.tag}>; valid shapes: "
+                          f"{', '.join(SHAPES)}")
+
+
+def _shapes(robot):
+    for link, holder in _holders(robot):
+        shape = _shape(holder)
+        if shape is not None and shape.tag in SHAPES:
+            yield link, holder, shape
+
+
+@rule("U402", "geometry-attribute", Severity.ERROR)
+def geometry_attribute(robot):
+    """A shape lacks a required attribute or its number does not parse.
+
+    urdfdom requires ``box size`` (3 numbers), ``cylinder radius`` and ``length``, ``sphere
+    radius`` and ``mesh filename``, all finite; otherwise it drops the whole visual/collision.
+
+    Bad: ``<box size="0.1 0.2"/>``, ``<cylinder radius="0.05"/>``, ``<mesh/>``
+    Good: ``<box size="0.1 0.2 0.3"/>``, ``<cylinder radius="0.05" length="0.2"/>``
+    """
+    for link, holder, shape in _shapes(robot):
+        for attribute, count in SHAPE_ATTRIBUTES[shape.tag]:
+            text = shape.get(attribute)
+            prefix = f"link '{link.get('name')}': <{shape.tag}>"
+            if text is None or (count is None and not text.strip()):
+                yield shape, f"{prefix} has no {attribute} attribute"
+                continue
+            if count is None:
+                continue
+            values, problem = parse_numbers(text, count)
+            if problem:
+                yield shape, f"{prefix} {attribute}: {problem}"
+            elif not finite(values):
+                yield shape, f"{prefix} {attribute}=\"{text}\" is not finite"
+
+
+@rule("U403", "non-positive-dimension", Severity.ERROR)
+def non_positive_dimension(robot):
+    """A box size, radius, length or mesh scale is zero or negative.
+
+    urdfdom accepts it, but collision checkers build a degenerate or inside-out shape and the
+    geometry's volume (and so any inertia computed from it) is zero or negative.
+
+    A negative mesh scale mirrors the mesh and is allowed; a zero scale is not.
+
+    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``
+    Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
+    """
+    for link, holder, shape in _shapes(robot):
+        fields = [(a, c) for a, c in SHAPE_ATTRIBUTES[shape.tag] if c is not None]
+        if shape.tag == "mesh" and shape.get("scale") is not None:
+            fields = [("scale", 3)]
+        for attribute, count in fields:
+            values, problem = parse_numbers(shape.get(attribute), count)
+            mirrored = attribute == "scale" and all(v != 0 for v in values or [0])
+            if values and finite(values) and any(v <= 0 for v in values) and not mirrored:
+                yield shape, (f"link '{link.get('name')}': <{shape.tag} {attribute}="
+                              f"\"{shape.get(attribute)}\"> has a value <= 0; dimensions must "
+                              "be positive")
+
+
+def _origin_fields(robot):
+    for link in robot.children("link"):
+        for holder in link:
+            if holder.tag not in ("visual", "collision", "inertial"):
+                continue
+            for origin in holder.findall("origin"):
+                for attribute in ("xyz", "rpy"):
+                    if origin.get(attribute) is not None:
+                        yield link, holder, origin, attribute, 3
+            shape = _shape(holder) if holder.tag != "inertial" else None
+            if shape is not None and shape.tag == "mesh" and shape.get("scale") is not None:
+                yield link, holder, shape, "scale", 3
+
+
+@rule("U404", "malformed-link-number", Severity.ERROR)
+def malformed_link_number(robot):
+    """An ``<origin>`` of a visual, collision or inertial, or a mesh ``scale``, does not parse.
+
+    urdfdom needs exactly three finite numbers and drops the whole element otherwise.
+
+    Bad: ``<origin xyz="0 0.1"/>``, ``<mesh filename="a.stl" scale="0.001"/>``
+    Good: ``<origin xyz="0 0.1 0"/>``, ``<mesh filename="a.stl" scale="0.001 0.001 0.001"/>``
+    """
+    for link, holder, element, attribute, count in _origin_fields(robot):
+        values, problem = parse_numbers(element.get(attribute), count)
+        if problem is None and not finite(values):
+            problem = f"'{element.get(attribute)}' is not finite"
+        if problem:
+            yield element, (f"link '{link.get('name')}': <{holder.tag}> <{element.tag} "
+                            f"{attribute}>: {problem}")
+
+
+def _rgba_problem(color) -> str | None:
+    values, problem = parse_numbers(color.get("rgba"), 4)
+    if problem:
+        return f"<color rgba>: {problem}"
+    if not finite(values) or any(v < 0 or v > 1 for v in values):
+        return f"<color rgba=\"{color.get('rgba')}\">: each component must be between 0 and 1"
+    return None
+
+
+def _defines(material) -> bool:
+    return material.find("color") is not None or material.find("texture") is not None
+
+
+@rule("U405", "malformed-material", Severity.ERROR)
+def malformed_material(robot):
+    """A material is malformed: no name, no colour, a bad colour, or a name defined twice.
+
+    A top-level material needs a colour or texture; ``rgba`` is four numbers in [0, 1]. urdfdom
+    refuses each of these (components must be four numbers in [0, 1]).
+
+    Bad: ``<material><color rgba="1 0 0"/></material>``
+    Good: ``<material name="red"><color rgba="1 0 0 1"/></material>``
+    """
+    seen: set[str] = set()
+    for material in robot.children("material"):
+        name = material.get("name")
+        if name is None:
+            yield material, "top-level <material> has no name attribute"
+        elif name in seen:
+            yield material, f"material '{name}' is defined twice at the top level"
+        else:
+            seen.add(name)
+        if not _defines(material):
+            yield material, (f"top-level material '{name}' has neither <color rgba=...> nor "
+                             "<texture filename=...>")
+    materials = robot.children("material") + [
+        m for _, holder in _holders(robot, ("visual",)) for m in holder.findall("material")]
+    for material in materials:
+        parent = material.getparent()
+        if parent.tag == "visual" and material.get("name") is None:
+            yield material, f"link '{_link_name(parent)}': visual <material> has no name attribute"
+        for color in material.findall("color"):
+            problem = _rgba_problem(color)
+            if problem:
+                yield color, f"material '{material.get('name')}': {problem}"
+
+
+@rule("U406", "undefined-material", Severity.WARNING)
+def undefined_material(robot):
+    """A visual names a material that is defined nowhere, so it renders without colour.
+
+    urdfdom warns ``material 'x' undefined``. A name-only reference must match a top-level
+    ``<material>`` or an earlier visual's material that has a colour or texture.
+
+    Bad: ``<material name="gren"/>`` with only ``green`` defined
+    Good: ``<material name="green"/>`` after ``<material name="green"><color .../></material>``
+    """
+    defined = {m.get("name") for m in robot.children("material") if _defines(m)}
+    for link, holder in _holders(robot, ("visual",)):
+        for material in holder.findall("material"):
+            name = material.get("name")
+            if name is None:
+                continue
+            if _defines(material):
+                defined.add(name)
+            elif name not in defined:
+                from ._names import available
+                yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
+                                 f"{available('materials', name, defined)}")
+
+
+# Meshes ------------------------------------------------------------------------------------
+
+def _mesh_elements(robot):
+    for link, holder, shape in _shapes(robot):
+        if shape.tag == "mesh" and shape.get("filename"):
+            yield link, holder, shape
+
+
+def _mesh_outcomes(robot):
+    """(link, holder, mesh element, trimesh or MeshProblem) per mesh element, once per robot."""
+    cached = robot.options.get("_mesh_outcomes")
+    if cached is not None:
+        return cached
+    from ..meshes import MeshProblem, load_mesh
+
+    outcomes = []
+    for link, holder, shape in _mesh_elements(robot):
+        scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
+        if not scale or not finite(scale):
+            continue
+        try:
+            outcome = load_mesh(robot, shape.get("filename"), scale)
+        except MeshProblem as problem:
+            outcome = problem
+        outcomes.append((link, holder, shape, outcome))
+    robot.options["_mesh_outcomes"] = outcomes
+    return outcomes
+
+
+def _problems(robot, kind: str):
+    for link, holder, shape, outcome in _mesh_outcomes(robot):
+        if getattr(outcome, "kind", None) == kind:
+            yield shape, f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+
+
+@rule("U407", "mesh-package-not-found", Severity.ERROR)
+def mesh_package_not_found(robot):
+    """A mesh's ``package://`` names a package that cannot be found.
+
+    Bad: ``package://my_robot_descripton/meshes/base.stl``
+    Good: the right package name, or ``--package my_robot_description=PATH``
+    """
+    yield from _problems(robot, "package")
+
+
+@rule("U408", "mesh-not-found", Severity.ERROR)
+def mesh_not_found(robot):
+    """A mesh file does not exist.
+
+    Every viewer and simulator fails or shows nothing for that link.
+
+    Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
+    Good: the exact file name (case matters on Linux)
+    """
+    yield from _problems(robot, "missing")
+
+
+@rule("U409", "mesh-outside-root", Severity.ERROR)
+def mesh_outside_root(robot):
+    """A ``file://`` or relative mesh path leaves the robot's repository (or package).
+
+    urdftool does not open files outside the repository holding the robot (the nearest folder
+    with ``.git``; without one, the robot's package or folder), nor outside a package for
+    ``package://``: a description should not reach into the rest of a machine, and an absolute
+    path works on one computer only.
+
+    Bad: ``<mesh filename="file:///home/me/meshes/base.stl"/>``, ``filename="../../../x.stl"``
+    Good: ``<mesh filename="package://my_robot/meshes/base.stl"/>``
+    """
+    yield from _problems(robot, "outside")
+
+
+@rule("U410", "mesh-unsupported-format", Severity.WARNING)
+def mesh_unsupported_format(robot):
+    """A mesh file is not in a format urdftool opens (STL, DAE, OBJ, PLY, GLB, glTF, OFF).
+
+    Such files (Ogre ``.mesh``, ``.blend``...) are not opened, so nothing about them is checked;
+    most URDF consumers cannot read them either.
+
+    Bad: ``<mesh filename="package://robot/meshes/base.mesh"/>``
+    Good: ``<mesh filename="package://robot/meshes/base.stl"/>``
+    """
+    yield from _problems(robot, "format")
+
+
+@rule("U411", "mesh-too-large", Severity.WARNING)
+def mesh_too_large(robot):
+    """A mesh file is over the size or triangle limit (128 MiB, 2,000,000 triangles); not opened.
+
+    Collision checking and inertia computation with such meshes is slow, and a crafted file could
+    exhaust memory. Use a decimated collision mesh.
+
+    Bad: a 5,000,000-triangle scan as collision geometry
+    Good: a convex or decimated collision mesh of a few thousand triangles
+    """
+    yield from _problems(robot, "too-large")
+
+
+@rule("U412", "mesh-unreadable", Severity.ERROR)
+def mesh_unreadable(robot):
+    """A mesh file exists but does not load (corrupt, truncated or empty).
+
+    Bad: an STL file truncated by a failed download
+    Good: a mesh that opens in a mesh viewer
+    """
+    yield from _problems(robot, "corrupt")
+
+
+def _extent(mesh) -> float:
+    return float(max(mesh.extents))
+
+
+@rule("U413", "mesh-implausible-size", Severity.WARNING)
+def mesh_implausible_size(robot):
+    """A mesh, after its ``scale``, is over 5 m or under 1 mm across: probably the wrong unit.
+
+    CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
+    too big, and any inertia computed from the mesh is 10^6 too big.
+
+    Bad: ``<mesh filename="base.stl"/>`` for a file in millimetres (extent 350 m)
+    Good: ``<mesh filename="base.stl" scale="0.001 0.001 0.001"/>``
+    """
+    for link, holder, shape, outcome in _mesh_outcomes(robot):
+        if not hasattr(outcome, "extents"):
+            continue
+        extent = _extent(outcome)
+        scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
+        factor = None
+        if extent > 5.0:
+            factor = next((f for f in (0.001, 0.01) if extent * f <= 5.0), None)
+        elif 0 < extent < 0.001:
+            factor = next((f for f in (1000.0, 100.0) if extent * f >= 0.001), None)
+        else:
+            continue
+        where = f"link '{link.get('name')}' <{holder.tag}>: mesh '{shape.get('filename')}'"
+        if factor is None:
+            yield shape, f"{where} is {extent:.4g} m across; check its unit"
+            continue
+        fixed = " ".join(f"{s * factor:g}" for s in scale)
+        yield shape, (f"{where} is {extent:.4g} m across, which suggests the wrong unit; "
+                      f"scale=\"{fixed}\" would make it {extent * factor:.4g} m")
+
+
+@rule("U414", "mesh-not-watertight", Severity.INFO)
+def mesh_not_watertight(robot):
+    """A mesh that defines a link's inertia is not closed (watertight).
+
+    That is the link's collision mesh, or its visual mesh when it has no collision. An open mesh has no well-defined volume, so ``urdftool inertia`` uses its convex hull; the
+    mesh is fine for display and usually for collision.
+
+    Bad: an STL with holes as the only collision geometry of a link
+    Good: a closed (watertight) collision mesh
+    """
+    for link, holder, shape, outcome in _mesh_outcomes(robot):
+        feeds = holder.tag == "collision" or link.find("collision") is None
+        if feeds and hasattr(outcome, "is_watertight") and not outcome.is_watertight:
+            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
+                          f"'{shape.get('filename')}' is not watertight; its inertia is taken "
+                          "from its convex hull")

@@ -1,0 +1,336 @@
+"""U3xx: inertials (what urdfdom refuses, and what makes simulators drop or reject a body).
+
+Thresholds, chosen so that real robots' dummy links do not trip them:
+
+- A link with zero mass and zero inertia is a massless frame (tool flange, sensor mount,
+  ``base_footprint``): fine wherever it is fixed to a body that has mass. Only a *moving* body
+  (a link on a non-fixed joint plus every link fixed to it) must have mass.
+- Links lighter than 1e-4 kg (0.1 g) are placeholders for frames: their tensor is not judged
+  (tools write ``1e-6`` into every field, products included, for such links).
+- Moments below ``1e-12 kg m^2`` count as zero (a 1 g, 1 mm part already has ~4e-10).
+- Principal moments count as negative below ``-1e-9`` times the largest and below
+  ``-1e-12 kg m^2`` (rounding in printed values), and the triangle inequality allows a relative slack of 1e-3 (CAD tools print few
+  digits, and thin plates sit exactly on the bound).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import Severity, rule
+from ._values import parse_numbers
+from ..inertia import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+
+NEGATIVE_TOLERANCE = 1e-9
+NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
+ZERO_INERTIA = 1e-12  # [kg m^2]: below this a moment counts as zero
+PLACEHOLDER_MASS = 1e-4  # [kg]: lighter links are frames whose tensor is not judged
+TRIANGLE_TOLERANCE = 1e-3
+COM_MARGIN_FRACTION = 1.0
+COM_MARGIN_MIN = 0.05  # [m]
+UNIT_FACTORS = (3, 6)  # powers of ten: grams vs kilograms, millimetres vs metres squared
+UNIT_POWER_SLACK = 0.15  # the ratio must be within a factor 1.4 of 1e3 or 1e6
+UNIT_SHAPE_SLACK = 0.3  # and, rescaled, match the geometry's tensor within 30 %
+
+
+def _name(link) -> str:
+    return link.get("name") or "?"
+
+
+def _joints_by_child(robot) -> dict:
+    found = {}
+    for joint in robot.children("joint"):
+        child = joint.find("child")
+        if child is not None and child.get("link") not in found:
+            found[child.get("link")] = joint
+    return found
+
+
+def _fixed_children(robot) -> dict[str, list[str]]:
+    children: dict[str, list[str]] = {}
+    for joint in robot.children("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if joint.get("type") == "fixed" and parent is not None and child is not None:
+            children.setdefault(parent.get("link"), []).append(child.get("link"))
+    return children
+
+
+def _valid(robot):
+    """(link, MassProperties) of every link whose inertial fully parses."""
+    for link in robot.children("link"):
+        properties = declared(link)
+        if properties is not None and math.isfinite(properties.mass) \
+                and np.all(np.isfinite(properties.inertia)):
+            yield link, properties
+
+
+def _judged(robot):
+    """(link, MassProperties) of links heavy enough for their tensor to matter."""
+    for link, properties in _valid(robot):
+        if properties.mass >= PLACEHOLDER_MASS:
+            yield link, properties
+
+
+def _moving(robot) -> set[str]:
+    joints = _joints_by_child(robot)
+    return {name for name, joint in joints.items()
+            if joint.get("type") in ("revolute", "continuous", "prismatic", "planar", "floating")}
+
+
+@rule("U301", "malformed-inertial", Severity.ERROR)
+def malformed_inertial(robot):
+    """An ``<inertial>`` lacks its mass or one of the six inertia terms, or one is not a number.
+
+    urdfdom needs ``<mass value>`` and ``<inertia>`` with all of ixx, ixy, ixz, iyy, iyz, izz,
+    each a finite number. urdfdom refuses the inertial (and older versions the whole robot); Gazebo then drops the link.
+
+    Bad: ``<inertia ixx="0.01" iyy="0.01" izz="0.01"/>``
+    Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
+    """
+    for link in robot.children("link"):
+        for inertial in link.findall("inertial"):
+            prefix = f"link '{_name(link)}': <inertial>"
+            mass = inertial.find("mass")
+            if mass is None:
+                yield inertial, f"{prefix} has no <mass value=...>"
+            elif mass.get("value") is None:
+                yield mass, f"{prefix} <mass> has no value attribute"
+            else:
+                values, problem = parse_numbers(mass.get("value"), 1)
+                if problem or not math.isfinite(values[0]):
+                    yield mass, f"{prefix} mass '{mass.get('value')}' is not a finite number"
+            inertia = inertial.find("inertia")
+            if inertia is None:
+                yield inertial, (f"{prefix} has no <inertia>; give all six of "
+                                 f"{', '.join(INERTIA_ATTRIBUTES)}")
+                continue
+            missing = [a for a in INERTIA_ATTRIBUTES if inertia.get(a) is None]
+            if missing:
+                yield inertia, (f"{prefix} <inertia> lacks {', '.join(missing)} (urdfdom needs "
+                                "all six; write 0 for products of inertia that vanish)")
+            for attribute in INERTIA_ATTRIBUTES:
+                values, problem = parse_numbers(inertia.get(attribute), 1)
+                if inertia.get(attribute) is not None and (problem or
+                                                           not math.isfinite(values[0])):
+                    yield inertia, (f"{prefix} {attribute}='{inertia.get(attribute)}' is not a "
+                                    "finite number")
+
+
+@rule("U302", "negative-mass", Severity.ERROR)
+def negative_mass(robot):
+    """A link's mass is negative.
+
+    Bad: ``<mass value="-1.2"/>``
+    Good: ``<mass value="1.2"/>``
+    """
+    for link, properties in _valid(robot):
+        if properties.mass < 0:
+            yield link.find("inertial").find("mass"), (
+                f"link '{_name(link)}' has negative mass {properties.mass:g} kg")
+
+
+@rule("U303", "moving-link-without-mass", Severity.ERROR)
+def moving_link_without_mass(robot):
+    """A link moved by a joint has no mass, counting every link fixed to it.
+
+    Gazebo silently drops massless links (and what hangs below them); Pinocchio and MuJoCo
+    refuse or produce a singular mass matrix. A massless frame fixed to a body with mass is fine.
+
+    Only checked when the robot declares at least one ``<inertial>``: a description without any
+    is a kinematic model (for visualisation or planning) and is not meant to be simulated.
+
+    Bad: ``<joint type="revolute">`` whose child link has no ``<inertial>``
+    Good: the child link has ``<inertial>`` with its real mass, or a link fixed to it has
+    """
+    if not any(link.find("inertial") is not None for link in robot.children("link")):
+        return
+    moving = _moving(robot)
+    masses = {link.get("name"): p.mass for link, p in _valid(robot)}
+    fixed = _fixed_children(robot)
+    for name in sorted(moving & set(robot.links)):
+        body, stack, total = set(), [name], 0.0
+        while stack:
+            current = stack.pop()
+            if current in body:
+                continue
+            body.add(current)
+            total += max(masses.get(current, 0.0), 0.0)
+            stack.extend(fixed.get(current, []))
+        link = robot.links[name]
+        if total <= 0 and not any(l.find("inertial") is not None and _name(l) not in masses
+                                  for l in (robot.links.get(b) for b in body) if l is not None):
+            what = "no <inertial>" if link.find("inertial") is None else "zero mass"
+            yield link, (f"link '{name}' is moved by joint "
+                         f"'{_joints_by_child(robot)[name].get('name')}' but has {what} (nor "
+                         "does any link fixed to it); give it its real mass and inertia")
+
+
+def _principal(properties):
+    moments = np.linalg.eigvalsh(properties.inertia)
+    return moments, max(abs(moments).max(), 1e-300)
+
+
+@rule("U304", "inertia-not-positive-definite", Severity.ERROR)
+def inertia_not_positive_definite(robot):
+    """A diagonal moment of inertia is negative, or a moving link with mass has zero inertia.
+
+    A body with mass but no rotational inertia cannot be simulated: MuJoCo refuses it, and
+    Gazebo/ODE produce an explosion. Zero mass with zero inertia (a massless frame) is fine.
+
+    Bad: ``<mass value="0.5"/><inertia ixx="0" ... iyy="0" ... izz="0"/>`` on a revolute link
+    Good: the inertia of the link's shape, e.g. ``urdftool inertia ROBOT``
+    """
+    moving = _moving(robot)
+    for link, properties in _judged(robot):
+        diagonal = np.diag(properties.inertia)
+        inertia = link.find("inertial").find("inertia")
+        if np.any(diagonal < -NEGATIVE_FLOOR):
+            names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
+            yield inertia, (f"link '{_name(link)}': {', '.join(names)} negative; moments of "
+                            "inertia are positive")
+        elif _name(link) in moving and np.all(np.abs(properties.inertia) < ZERO_INERTIA):
+            yield inertia, (f"link '{_name(link)}' has mass {properties.mass:g} kg but zero "
+                            "inertia and is moved by a joint; give the inertia of its shape")
+
+
+@rule("U305", "inertia-indefinite", Severity.ERROR)
+def inertia_indefinite(robot):
+    """The products of inertia (ixy, ixz, iyz) make the inertia tensor indefinite.
+
+    A principal moment is negative although every diagonal moment is positive. No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
+    reporting products of inertia with the opposite sign convention).
+
+    Bad: ``ixx="1" iyy="1" izz="1" ixy="2"`` (principal moments -1, 1, 3)
+    Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
+    """
+    for link, properties in _judged(robot):
+        if np.any(np.diag(properties.inertia) < -NEGATIVE_FLOOR):
+            continue
+        moments, largest = _principal(properties)
+        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
+            yield link.find("inertial").find("inertia"), (
+                f"link '{_name(link)}': principal moments "
+                f"{', '.join(f'{m:.4g}' for m in moments)} include a negative one; check the "
+                "signs of ixy, ixz, iyz")
+
+
+@rule("U306", "inertia-triangle-inequality", Severity.ERROR)
+def inertia_triangle_inequality(robot):
+    """The principal moments violate the triangle inequality (A + B >= C): no body has them.
+
+    MuJoCo refuses the model; Gazebo and PyBullet simulate physically impossible motion.
+    Allows a relative slack of 1e-3 for printed rounding.
+
+    Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5)
+    Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
+    """
+    for link, properties in _judged(robot):
+        moments, largest = _principal(properties)
+        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) \
+                or moments[-1] < ZERO_INERTIA:
+            continue
+        broken = triangle_violation(moments, TRIANGLE_TOLERANCE)
+        if broken:
+            yield link.find("inertial").find("inertia"), (
+                f"link '{_name(link)}': principal moments violate the triangle inequality "
+                f"({broken}); recompute with `urdftool inertia`")
+
+
+def _link_solids(robot):
+    """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
+    cached = robot.options.get("_link_solids")
+    if cached is None:
+        from ..shapes import link_solid
+
+        cached = [(link, properties, link_solid(robot, link))
+                  for link, properties in _valid(robot) if properties.mass > 0]
+        robot.options["_link_solids"] = cached
+    return cached
+
+
+@rule("U307", "com-outside-geometry", Severity.WARNING)
+def com_outside_geometry(robot):
+    """A link's centre of mass is far outside the bounding box of its geometry.
+
+    "Far" is farther beyond the box than the geometry's largest extent (and over 5 cm): the
+    inertial origin was probably written in another frame (the joint's, or the CAD part's).
+
+    Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
+    Good: the centre of mass inside or near the link's shape
+    """
+    for link, properties, solid in _link_solids(robot):
+        if solid.bounds is None or solid.problems and not solid.parts:
+            continue
+        low, high = solid.bounds
+        outside = np.maximum(np.maximum(low - properties.com, properties.com - high), 0)
+        distance = float(np.linalg.norm(outside))
+        margin = max(COM_MARGIN_FRACTION * float(np.max(high - low)), COM_MARGIN_MIN)
+        if distance > margin:
+            com = " ".join(f"{v:.4g}" for v in properties.com)
+            yield link.find("inertial"), (
+                f"link '{_name(link)}': centre of mass ({com}) is {distance:.3g} m outside its "
+                f"{solid.source} geometry (box {np.round(low, 4).tolist()} to "
+                f"{np.round(high, 4).tolist()}); check the inertial origin's frame")
+
+
+@rule("U308", "root-link-inertia", Severity.INFO)
+def root_link_inertia(robot):
+    """The root link has mass: KDL (robot_state_publisher's dynamics, KDL solvers) ignores it.
+
+    KDL prints "The root link has an inertia specified in the URDF, but KDL does not support a
+    root link with an inertia". Add a massless root (e.g. ``base_footprint``) fixed to it.
+
+    Bad: ``base_link`` (root) with ``<mass value="5"/>``
+    Good: a massless ``base_footprint`` root with ``base_link`` fixed below it
+
+    A note, not a warning: floating-base robots used with Pinocchio or MuJoCo are right to carry
+    mass in their root.
+    """
+    children = {c.get("link") for j in robot.children("joint") for c in j.findall("child")}
+    masses = dict((_name(l), p.mass) for l, p in _valid(robot))
+    roots = [name for name in robot.links if name not in children]
+    if len(roots) == 1 and masses.get(roots[0], 0) > 0:
+        yield robot.links[roots[0]].find("inertial"), (
+            f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
+            "massless root link fixed to it")
+
+
+@rule("U309", "inertia-unit-mistake", Severity.WARNING)
+def inertia_unit_mistake(robot):
+    """The declared inertia is about 10^3 or 10^6 times off from its geometry's: a unit mistake.
+
+    Compares the declared tensor with the one computed from the link's collision geometry
+    (visual if none) with the declared mass: the traces must be within a factor 1.4 of 10^3 or
+    10^6 apart and, rescaled by that power, the tensors must agree within 30 % (so placeholder
+    values such as ``ixx="1e-3"`` on every link are not mistaken for unit errors). 10^3 points at grams vs
+    kilograms (g·m^2), 10^6 at millimetres vs metres (kg·mm^2). Skipped when a mesh is missing
+    or has an implausible size (then the mesh is suspect, see U413).
+
+    Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
+    Good: ``<inertia ixx="0.0012" .../>``
+    """
+    from ..shapes import computed
+
+    for link, properties, solid in _link_solids(robot):
+        if solid.problems or not solid.parts:
+            continue
+        extent = float(np.max(solid.bounds[1] - solid.bounds[0]))
+        if not 0.001 <= extent <= 5.0:
+            continue
+        expected = computed(solid, mass=properties.mass)
+        ratio = np.trace(properties.inertia) / np.trace(expected.inertia)
+        if ratio <= 0:
+            continue
+        power = math.log10(ratio)
+        for factor in UNIT_FACTORS:
+            rescaled = properties.inertia / 10.0 ** math.copysign(factor, power)
+            if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
+                    rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
+                direction = "larger" if power > 0 else "smaller"
+                yield link.find("inertial").find("inertia"), (
+                    f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
+                    f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
+                    "`urdftool inertia` computes the right values")
+                break

@@ -1,0 +1,151 @@
+"""A link's ``<collision>``/``<visual>`` geometry as solids: mass properties and bounds.
+
+The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
+:mod:`urdftool.meshes`, so both see the same shapes, scales and origins.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import inertia as mp
+from .meshes import MeshProblem, load_mesh
+from .rules._values import finite, parse_numbers
+
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+
+
+@dataclass
+class Shape:
+    """One geometry: ``kind`` in SHAPES, ``params`` (size / radius, length / filename, scale),
+    placed by ``xyz`` and ``rotation`` in the link frame; ``element`` is the geometry child."""
+
+    kind: str
+    params: dict
+    xyz: np.ndarray
+    rotation: np.ndarray
+    element: object
+
+
+@dataclass
+class LinkSolid:
+    """What a link's geometry implies: ``source`` is collision, visual or none.
+
+    parts: unit-density solids in the link frame; problems: (element, message) for geometry
+    that could not count (missing mesh, open mesh replaced by its hull...)
+    """
+
+    source: str
+    parts: list = field(default_factory=list)
+    problems: list = field(default_factory=list)
+    bounds: np.ndarray | None = None  # (2, 3) min and max corner in the link frame
+
+
+def _positive(values) -> bool:
+    return values is not None and finite(values) and all(v > 0 for v in values)
+
+
+def shape_of(holder) -> Shape | None:
+    """The shape of a ``<visual>``/``<collision>``, or None when malformed (rules say why)."""
+    geometry = holder.find("geometry")
+    if geometry is None:
+        return None
+    children = [c for c in geometry if isinstance(c.tag, str)]
+    if not children or children[0].tag not in SHAPES:
+        return None
+    element = children[0]
+    xyz, rotation = mp.origin_of(holder)
+    if element.tag == "box":
+        size = parse_numbers(element.get("size"), 3)[0]
+        params = {"size": size} if _positive(size) else None
+    elif element.tag == "cylinder":
+        radius = parse_numbers(element.get("radius"), 1)[0]
+        length = parse_numbers(element.get("length"), 1)[0]
+        params = {"radius": radius[0], "length": length[0]} \
+            if _positive(radius) and _positive(length) else None
+    elif element.tag == "sphere":
+        radius = parse_numbers(element.get("radius"), 1)[0]
+        params = {"radius": radius[0]} if _positive(radius) else None
+    else:
+        scale = parse_numbers(element.get("scale", "1 1 1"), 3)[0]
+        params = {"filename": element.get("filename"), "scale": tuple(scale)} \
+            if element.get("filename") and scale and finite(scale) else None
+    if params is None:
+        return None
+    return Shape(element.tag, params, xyz, rotation, element)
+
+
+def shapes(link, tag: str) -> list[Shape]:
+    return [s for s in (shape_of(h) for h in link.findall(tag)) if s is not None]
+
+
+def _mesh_solid(robot, shape: Shape, problems: list):
+    """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem."""
+    try:
+        mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
+    except MeshProblem as problem:
+        problems.append((shape.element, str(problem)))
+        return None, None
+    body = mesh
+    if not mesh.is_watertight:
+        body = mesh.convex_hull
+        problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
+                                        "(watertight); its convex hull was used"))
+    solid = mp.mesh_solid(body)
+    if solid.mass <= 0:
+        problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
+        return None, mesh.bounds
+    return solid, mesh.bounds
+
+
+def _local(shape: Shape):
+    p = shape.params
+    if shape.kind == "box":
+        half = np.array(p["size"]) / 2
+        return mp.box(p["size"]), np.array([-half, half])
+    if shape.kind == "cylinder":
+        r, h = p["radius"], p["length"] / 2
+        return mp.cylinder(p["radius"], p["length"]), np.array([[-r, -r, -h], [r, r, h]])
+    r = p["radius"]
+    return mp.sphere(r), np.array([[-r] * 3, [r] * 3])
+
+
+def _corners(bounds: np.ndarray) -> np.ndarray:
+    return np.array([[bounds[i][0], bounds[j][1], bounds[k][2]]
+                     for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+
+
+def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
+    """The solids of a link's collision geometry, or its visual geometry when it has none."""
+    collision = shapes(link, "collision")
+    chosen, source = (collision, "collision") if collision else (shapes(link, "visual"), "visual")
+    if not chosen:
+        return LinkSolid("none")
+    result = LinkSolid(source)
+    corners = []
+    for shape in chosen:
+        if shape.kind == "mesh":
+            if not load_meshes:
+                continue
+            solid, local_bounds = _mesh_solid(robot, shape, result.problems)
+        else:
+            solid, local_bounds = _local(shape)
+        if local_bounds is not None:
+            corners.extend(shape.xyz + shape.rotation @ c for c in _corners(local_bounds))
+        if solid is not None:
+            result.parts.append(mp.transformed(solid, shape.xyz, shape.rotation))
+    if corners:
+        result.bounds = np.array([np.min(corners, axis=0), np.max(corners, axis=0)])
+    return result
+
+
+def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
+    """Mass properties of the solids: with ``mass`` [kg] kept, or from ``density`` [kg/m^3]."""
+    if not solid.parts:
+        return None
+    unit = mp.combine(solid.parts)  # density 1: mass is volume
+    if mass is not None:
+        return unit.scaled_to(mass)
+    return unit.scaled_to(unit.mass * (density if density is not None else 1000.0))
