@@ -175,10 +175,10 @@ def _load_mesh(robot, shape, cache):
 
 
 def _read_mesh(path, uri: str, scale):
-    import trimesh
-
     if not path.is_file():
         return f"mesh '{uri}' not found at {path}"
+    import trimesh
+
     try:
         mesh = trimesh.load(str(path), force="mesh")
     except Exception as error:  # trimesh raises anything from any of its format readers

@@ -113,22 +113,32 @@ class PairChecker:
         result.bound_sample = best + first_sample
 
     def _narrow(self, samples, rows, rotation, translation, collided, result) -> None:
+        """Collision for every candidate, then distance only for candidates of pairs that never
+        collided in this block (a pair that collided is at distance 0 whatever else happens)."""
         fixed, moving, pa, pb, pair_of = self.fixed, self.moving, self.pa, self.pb, self.pair_of
-        distance = result.min_distance
+        apart = []
         for n in range(len(samples)):
             sample, row = samples[n], rows[n]
-            pair = pair_of[row]
-            if collided[sample, pair]:
+            if collided[sample, pair_of[row]]:
                 continue
             mover = moving[pb[row]]
             mover.setTransform(fcl.Transform(rotation[n], translation[n]))
             if fcl.collide(fixed[pa[row]], mover, self._request, fcl.CollisionResult()):
-                collided[sample, pair] = True
+                collided[sample, pair_of[row]] = True
             else:
-                gap = fcl.distance(fixed[pa[row]], mover, self._distance_request,
-                                   fcl.DistanceResult())
-                if gap < distance[pair]:
-                    distance[pair] = gap
+                apart.append(n)
+        hit = collided.any(axis=0)
+        distance = result.min_distance
+        for n in apart:
+            row = rows[n]
+            pair = pair_of[row]
+            if hit[pair]:
+                continue
+            mover = moving[pb[row]]
+            mover.setTransform(fcl.Transform(rotation[n], translation[n]))
+            gap = fcl.distance(fixed[pa[row]], mover, self._distance_request, fcl.DistanceResult())
+            if gap < distance[pair]:
+                distance[pair] = gap
 
     def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False):
         """(colliding, distance [m], penetration depth [m]) of one link pair at one pose."""
