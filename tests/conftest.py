@@ -39,3 +39,31 @@ def run_cli():
                                   "GITHUB_ACTIONS": ""})
 
     return run
+
+
+def corpus_entry_points() -> list[tuple[str, dict[str, str]]]:
+    """Every corpus robot: (path relative to the corpus, xacro args) — the plain URDFs and the
+    xacro entry points with the args CHECKS.tsv records (``<corpus>`` replaced)."""
+    if not CORPUS.is_dir():
+        return []
+    entries = []
+    for line in (CORPUS / "MANIFEST.tsv").read_text().splitlines()[1:]:
+        columns = line.split("\t")
+        if columns[4] == "urdf":
+            entries.append((columns[0], {}))
+    for line in (CORPUS / "CHECKS.tsv").read_text().splitlines()[1:]:
+        columns = line.split("\t")
+        if columns[1] != "xacro":
+            continue
+        args = {}
+        for word in columns[2].split():
+            name, _, value = word.partition(":=")
+            args[name] = value.replace("<corpus>", str(CORPUS))
+        entries.append((columns[0], args))
+    return entries
+
+
+def entry_id(entry) -> str:
+    path, args = entry
+    return path + ("[" + ",".join(f"{k}={Path(v).name}" for k, v in sorted(args.items())) + "]"
+                   if args else "")

@@ -50,6 +50,18 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     return paths, args, packages
 
 
+def single_robot_input(command: str, words: list[str], arg_options: list[str],
+                       package_options: list[str]):
+    """(path, xacro args, packages) for commands that take exactly one robot; exit 2 otherwise."""
+    try:
+        paths, args, packages = robot_inputs(words, arg_options, package_options)
+        if len(paths) != 1:
+            raise UsageError(f"{command} takes exactly one FILE")
+    except UsageError as error:
+        fail_usage(error)
+    return paths[0], args, packages
+
+
 def fail_usage(error: UsageError) -> None:
     typer.echo(f"urdftool: error: {error}", err=True)
     raise typer.Exit(2)

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
-from ..errors import UsageError
+from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
 
 
 def register(app: typer.Typer) -> None:
@@ -19,13 +18,8 @@ def tree(
 ) -> None:
     from ..kinematics.tree import TreeError, format_tree
 
-    try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("tree takes exactly one FILE")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    path, args, packages = single_robot_input("tree", words, arg, package)
+    robot = load_one(path, args, packages)
     try:
         typer.echo(format_tree(robot), nl=False)
     except TreeError as error:

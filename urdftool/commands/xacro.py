@@ -6,8 +6,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
-from ..errors import UsageError
+from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
 
 
 def register(app: typer.Typer) -> None:
@@ -24,13 +23,8 @@ def xacro(
 ) -> None:
     from lxml import etree
 
-    try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("xacro takes exactly one FILE")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(paths[0], args, packages, allow_env=not no_env)
+    path, args, packages = single_robot_input("xacro", words, arg, package)
+    robot = load_one(path, args, packages, allow_env=not no_env)
     etree.indent(robot.root, space="  ")
     text = etree.tostring(robot.root, encoding="unicode", xml_declaration=False)
     text = f'<?xml version="1.0" ?>\n{text}\n'

@@ -20,14 +20,24 @@ from .xmlparse import XmlProblem, parse, refuse_empty_or_binary
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024
 XACRO_SUFFIXES = (".xacro",)
-_XACRO_MARKERS = (b"xmlns:xacro", b"<xacro:")
 
-__all__ = ["Robot", "load", "is_xacro", "PackageResolver"]
+__all__ = ["Robot", "load", "first_xacro_use", "PackageResolver"]
 
 
-def is_xacro(path: str, data: bytes) -> bool:
-    """Whether a file needs xacro: by its name, or by xacro elements in a ``.urdf``."""
-    return path.endswith(XACRO_SUFFIXES) or any(marker in data for marker in _XACRO_MARKERS)
+def first_xacro_use(root):
+    """The first element that needs xacro (a xacro: tag, or a ``${}``/``$()`` in an attribute or
+    text), or None. Comments do not count: generated URDFs often keep commented-out xacro."""
+    for element in root.iter(etree.Element):
+        if _is_xacro_tag(element.tag):
+            return element
+        if any(_substitutes(value) for value in element.attrib.values()) or \
+                _substitutes(element.text):
+            return element
+    return None
+
+
+def _substitutes(text: str | None) -> bool:
+    return bool(text) and ("${" in text or "$(" in text)
 
 
 def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
@@ -41,15 +51,19 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     if data is None:
         data = _read(path, shown, max_file_size)
     extra_findings = []
-    if path.endswith(XACRO_SUFFIXES) or (path == "-" and is_xacro(path, data)):
+    if path.endswith(XACRO_SUFFIXES):
         robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                             max_file_size)
-    elif is_xacro(path, data):
-        robot, finding = _load_disguised_xacro(path, shown, data, xacro_args or {}, resolver,
-                                               allow_env, max_file_size)
-        extra_findings.append(finding)
     else:
         robot = _load_urdf(path, shown, data, resolver)
+        first = first_xacro_use(robot.root)
+        if first is not None and path == "-":
+            robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
+                                max_file_size)
+        elif first is not None:
+            robot, finding = _load_disguised_xacro(robot, first, data, xacro_args or {},
+                                                   allow_env, max_file_size)
+            extra_findings.append(finding)
     robot.options["load_findings"] = extra_findings
     if robot.root.tag != "robot":
         raise LoadError([_finding("U004", robot.locate(robot.root),
@@ -79,21 +93,21 @@ def _read(path: str, shown: str, limit: int) -> bytes:
     return data
 
 
-def _load_disguised_xacro(path, shown, data, args, resolver, allow_env, limit):
+def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
     """A ``.urdf`` holding xacro: expanded when xacro can, read as plain URDF when not."""
-    plain = _load_urdf(path, shown, data, resolver)
-    first = next((e for e in plain.root.iter(etree.Element) if _is_xacro_tag(e.tag)), plain.root)
     where = plain.locate(first)
+    named = f"named {Path(plain.path).suffix or 'without .xacro'}"
     try:
-        robot = _load_xacro(path, shown, data, args, resolver, allow_env, limit)
+        robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
+                            limit)
     except LoadError as error:
         reason = error.findings[0].message
         return plain, _finding("U007", where, (
-            f"file is named .urdf but contains xacro (<{_shown_tag(first)}>), which xacro cannot expand "
-            f"({reason}) and URDF parsers ignore; remove it or rename the file .urdf.xacro"))
+            f"file is {named} but contains xacro (<{_shown_tag(first)}>), which xacro cannot "
+            f"expand ({reason}) and URDF parsers ignore; remove it or rename the file .urdf.xacro"))
     return robot, _finding("U007", where, (
-        "file is named .urdf but uses xacro; urdftool expanded it, but URDF parsers will not: "
-        "rename it .urdf.xacro"))
+        f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); urdftool "
+        "expanded it, but URDF parsers will not: rename it .urdf.xacro"))
 
 
 def _shown_tag(element) -> str:

@@ -69,6 +69,7 @@ class _Session:
         self.paths: list[str] = []
         self.call_sites: list[str] = []
         self.warnings: list[tuple[Location, str]] = []
+        self.detached: dict[int, str] = {}  # macro-call node id -> the stamp lifted off it
 
     def file_index(self, path: str) -> int:
         self.paths.append(path)
@@ -198,6 +199,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         call_site = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
         if call_site:
             node.removeAttribute(STAMP)
+            session.detached[id(node)] = call_site
         if len(xacro.macrostack) >= MAX_MACRO_DEPTH:
             raise xacro.XacroException(
                 f"macro calls nested deeper than {MAX_MACRO_DEPTH}: recursive macro "
@@ -205,10 +207,13 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if call_site:
             session.call_sites.append(call_site[len(_STAMP_PREFIX):].split(";")[0])
         try:
-            return original_macro_call(node, macros, symbols)
+            handled = original_macro_call(node, macros, symbols)
         finally:
             if call_site:
                 session.call_sites.pop()
+        # Kept only while an error propagates: a freed node's id may be reused.
+        session.detached.pop(id(node), None)
+        return handled
 
     def eval_all(node, macros, symbols):
         if session.call_sites and node.nodeType == xml.dom.Node.ELEMENT_NODE:
@@ -292,7 +297,7 @@ def _failure_location(session: _Session, traceback, path: Path) -> Location:
     for frame in reversed(frames):
         for name in ("node", "elt"):
             node = frame.f_locals.get(name)
-            stamp = _nearest_stamp(node)
+            stamp = _nearest_stamp(node, session.detached)
             if stamp:
                 return session.location(stamp)
         call_site = frame.f_locals.get("call_site")
@@ -301,8 +306,10 @@ def _failure_location(session: _Session, traceback, path: Path) -> Location:
     return Location(display_path(session.paths[-1] if session.paths else path), None)
 
 
-def _nearest_stamp(node) -> str | None:
+def _nearest_stamp(node, detached: dict[int, str] | None = None) -> str | None:
     while isinstance(node, xml.dom.Node):
+        if detached and id(node) in detached:
+            return detached[id(node)]
         if node.nodeType == xml.dom.Node.ELEMENT_NODE and node.hasAttribute(STAMP):
             return node.getAttribute(STAMP)
         node = node.parentNode

@@ -3,6 +3,19 @@
 from __future__ import annotations
 
 import math
+import re
+
+# What urdfdom's parser accepts as a double (no hex, no digit separators), plus the non-finite
+# spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
+_DECIMAL = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
+_NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
+
+
+def to_float(text: str) -> float:
+    """``text`` as a float under urdfdom's grammar; ValueError otherwise."""
+    if _DECIMAL.fullmatch(text) or _NON_FINITE.fullmatch(text):
+        return float(text)
+    raise ValueError(text)
 
 
 def parse_numbers(text: str | None, count: int | None = None):
@@ -15,7 +28,7 @@ def parse_numbers(text: str | None, count: int | None = None):
     values = []
     for part in parts:
         try:
-            values.append(float(part))
+            values.append(to_float(part))
         except ValueError:
             return None, f"'{part}' is not a number (in '{text}')"
     return values, None

@@ -76,6 +76,19 @@ def limit_missing_effort_velocity(robot):
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
+def _ranges(robot):
+    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; a
+    missing bound is 0, as in urdfdom."""
+    for joint in robot.children("joint"):
+        limit = joint.find("limit")
+        if limit is None or joint.get("type") not in LIMITED_TYPES:
+            continue
+        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
+        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+        if lower and upper:
+            yield joint, limit, lower[0], upper[0]
+
+
 @rule("U204", "inverted-limits", Severity.ERROR)
 def inverted_limits(robot):
     """A joint's lower limit is above its upper limit.
@@ -85,15 +98,10 @@ def inverted_limits(robot):
     Bad: ``<limit lower="1.57" upper="-1.57" .../>``
     Good: ``<limit lower="-1.57" upper="1.57" .../>``
     """
-    for joint in robot.children("joint"):
-        limit = joint.find("limit")
-        if limit is None or joint.get("type") not in LIMITED_TYPES:
-            continue
-        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
-        if lower and upper and lower[0] > upper[0]:
-            yield limit, (f"joint '{_name(joint)}': lower limit {lower[0]:g} is above upper limit "
-                          f"{upper[0]:g}; swap them")
+    for joint, limit, lower, upper in _ranges(robot):
+        if lower > upper:
+            yield limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper limit "
+                          f"{upper:g}; swap them")
 
 
 def _axis(joint):
@@ -253,3 +261,60 @@ def zero_effort_or_velocity(robot):
             if values and values[0] <= 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
                               "the joint cannot move")
+
+
+@rule("U213", "safety-controller-incomplete", Severity.ERROR)
+def safety_controller_incomplete(robot):
+    """A ``<safety_controller>`` has no ``k_velocity``.
+
+    urdfdom requires it and refuses the joint without it; the soft limits and ``k_position`` are
+    optional.
+
+    Bad: ``<safety_controller k_position="100" soft_lower_limit="-1" soft_upper_limit="1"/>``
+    Good: ``<safety_controller k_velocity="10" k_position="100" .../>``
+    """
+    for joint in robot.children("joint"):
+        for safety in joint.findall("safety_controller"):
+            if safety.get("k_velocity") is None:
+                yield safety, f"joint '{_name(joint)}': <safety_controller> has no k_velocity"
+
+
+SINGLE_CHILDREN = ("origin", "parent", "child", "axis", "limit", "dynamics", "mimic",
+                   "calibration", "safety_controller")
+
+
+@rule("U214", "repeated-joint-element", Severity.WARNING)
+def repeated_joint_element(robot):
+    """A joint has two ``<origin>``, ``<limit>``, ``<axis>`` (or other single) elements.
+
+    Parsers read the first and silently ignore the rest, so the second one, often the intended
+    edit, has no effect.
+
+    Bad: ``<origin xyz="0 0 0.1"/> ... <origin xyz="0 0 0.2"/>`` in one joint
+    Good: one ``<origin>``
+    """
+    for joint in robot.children("joint"):
+        for tag in SINGLE_CHILDREN:
+            repeats = joint.findall(tag)
+            for extra in repeats[1:]:
+                yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
+                              f"only the first (at {robot.locate(repeats[0])}) is used")
+
+
+@rule("U215", "zero-range", Severity.WARNING)
+def zero_range(robot):
+    """A revolute or prismatic joint's lower and upper limits are equal, so it cannot move.
+
+    A ``<limit>`` without ``lower``/``upper`` defaults both to 0: the joint is silently frozen.
+    If the joint really is rigid, make it ``fixed``; if it spins freely, make it ``continuous``.
+
+    Bad: ``<joint type="revolute"> ... <limit effort="10" velocity="2"/>``
+    Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
+    """
+    for joint, limit, lower, upper in _ranges(robot):
+        if lower == upper:
+            defaulted = "" if limit.get("lower") and limit.get("upper") else \
+                " (a missing lower/upper defaults to 0)"
+            yield limit, (f"{joint.get('type')} joint '{_name(joint)}' has lower = upper = "
+                          f"{lower:g}{defaulted}: it cannot move; give its range, or make it "
+                          "fixed or continuous")

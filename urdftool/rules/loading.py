@@ -55,11 +55,12 @@ declare("U006", "unresolved-package", Severity.ERROR, """
     Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
     """)
 
-declare("U007", "xacro-in-urdf", Severity.WARNING, """
+declare("U007", "xacro-in-urdf", Severity.ERROR, """
     A file named ``.urdf`` contains xacro.
 
-    urdftool expands it, but robot_state_publisher, check_urdf and simulators read ``.urdf`` files
-    as plain URDF and see ``xacro:`` elements they do not understand.
+    urdftool expands it (and checks the result), but robot_state_publisher, check_urdf and
+    simulators read ``.urdf`` files as plain URDF: they reject ``${...}`` values and ignore
+    ``xacro:`` elements.
 
     Bad: ``robot.urdf`` containing ``<xacro:property .../>``
     Good: rename it ``robot.urdf.xacro``
@@ -107,3 +108,20 @@ def robot_name_missing(robot):
     """
     if not robot.root.get("name"):
         yield robot.root, "<robot> has no name attribute; add name=\"...\""
+
+
+@rule("U012", "unsupported-version", Severity.ERROR)
+def unsupported_version(robot):
+    """The ``<robot version="...">`` is not a URDF version urdfdom supports (1.0 to 1.2).
+
+    Bad: ``<robot name="r" version="2.0">``, ``version="1"``
+    Good: ``<robot name="r" version="1.0">`` or no version attribute
+    """
+    text = robot.root.get("version")
+    if text is None:
+        return
+    major, dot, minor = text.strip().partition(".")
+    if not dot or not major.isdigit() or not minor.isdigit():
+        yield robot.root, f"version '{text}' is not of the form MAJOR.MINOR (e.g. 1.0)"
+    elif not (1, 0) <= (int(major), int(minor)) <= (1, 2):
+        yield robot.root, f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"

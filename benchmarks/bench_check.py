@@ -1,0 +1,68 @@
+"""Start-up and `check` speed, against references timed in the same run.
+
+- `urdftool --help` against a bare `python -c pass` start-up (target: under 0.3 s absolute).
+- `urdftool check` on one robot, including Python start-up (target: under 0.5 s absolute).
+- `check` over every corpus URDF in one process against a shell loop of `check_urdf` over the
+  same files (target: within 2x).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BIN = Path(sys.executable).parent
+CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
+
+
+def timed(command: list[str], repeat: int = 7, **kwargs) -> float:
+    """Median wall time of a command in [s]."""
+    samples = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **kwargs)
+        samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+
+
+def corpus_urdfs() -> list[Path]:
+    if not CORPUS.is_dir():
+        return []
+    rows = (CORPUS / "MANIFEST.tsv").read_text().splitlines()[1:]
+    return [CORPUS / r.split("\t")[0] for r in rows if r.split("\t")[4] == "urdf"]
+
+
+def main() -> list[dict]:
+    urdftool = str(BIN / "urdftool")
+    python_start = timed([sys.executable, "-c", "pass"])
+    help_time = timed([urdftool, "--help"])
+    robot = ROOT / "robots" / "r2d2" / "r2d2.urdf.xacro"
+    one = timed([urdftool, "check", str(robot)])
+    results = [
+        {"name": f"urdftool --help [{help_time:.3f} s] vs python start-up [{python_start:.3f} s]",
+         "ratio": help_time / python_start, "target": "< 0.3 s", "ok": help_time < 0.3},
+        {"name": f"urdftool check r2d2 [{one:.3f} s] vs python start-up",
+         "ratio": one / python_start, "target": "< 0.5 s", "ok": one < 0.5},
+    ]
+    files = corpus_urdfs()
+    if files:
+        check_urdf = str(BIN / "check_urdf")
+        loop = "for f in \"$@\"; do \"$0\" \"$f\" >/dev/null 2>&1; done"
+        reference = timed(["bash", "-c", loop, check_urdf, *map(str, files)], repeat=3)
+        ours = timed([urdftool, "check", "--format", "json", *map(str, files)], repeat=3)
+        results.append({
+            "name": f"check {len(files)} corpus URDFs [{ours:.2f} s] vs check_urdf loop "
+                    f"[{reference:.2f} s]",
+            "ratio": ours / reference, "target": "<= 2x", "ok": ours <= 2 * reference})
+    for result in results:
+        print(result["name"], f"ratio {result['ratio']:.2f}")
+    return results
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,102 @@
+"""`urdftool check` as a user meets it: exit codes, formats, selection, settings, stdin."""
+
+from __future__ import annotations
+
+import json
+
+from conftest import CASES, ROBOTS
+
+INVERTED = CASES / "U204_inverted_limits.urdf"
+AXIS = CASES / "U206_axis_not_unit.urdf"
+
+
+def test_bundled_robots_check_clean(run_cli):
+    result = run_cli("check", ROBOTS, "--format", "json")
+    data = json.loads(result.stdout)
+    assert result.exit_code == 0, data
+    assert data["summary"] == {"files": 3, "errors": 0, "warnings": 0}
+    assert data["diagnostics"] == []
+
+
+def test_errors_exit_1_warnings_exit_0_unless_strict(run_cli):
+    assert run_cli("check", INVERTED).exit_code == 1
+    assert run_cli("check", AXIS).exit_code == 0
+    assert run_cli("check", AXIS, "--strict").exit_code == 1
+
+
+def test_usage_errors_exit_2(run_cli):
+    assert run_cli("check", "no/such/file.urdf").exit_code == 2
+    assert run_cli("check", INVERTED, "--format", "xml").exit_code == 2
+    assert run_cli("check", INVERTED, "--package", "no-equals-sign").exit_code == 2
+    assert run_cli("check", "--bogus-option", INVERTED).exit_code == 2
+
+
+def test_unparsable_file_is_a_finding_not_a_usage_error(run_cli):
+    result = run_cli("check", CASES / "U001_malformed_xml.urdf", "--format", "json")
+    assert result.exit_code == 1
+    assert json.loads(result.stdout)["diagnostics"][0]["code"] == "U001"
+
+
+def test_select_and_ignore_by_code_prefix_and_name(run_cli):
+    for selector in ("U204", "U2", "inverted-limits"):
+        assert run_cli("check", INVERTED, "--ignore", selector).exit_code == 0
+    assert run_cli("check", INVERTED, "--select", "U1").exit_code == 0
+    assert run_cli("check", INVERTED, "--select", "U1,U204").exit_code == 1
+
+
+def test_pyproject_settings_apply_and_cli_adds_to_them(tmp_path, run_cli):
+    robot = tmp_path / "r.urdf"
+    robot.write_text(INVERTED.read_text())
+    (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nignore = ["inverted-limits"]\n')
+    assert run_cli("check", robot).exit_code == 0
+    (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nper-file-ignores = {"r.urdf" = ["U2"]}\n')
+    assert run_cli("check", robot).exit_code == 0
+    (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nselekt = ["U1"]\n')
+    result = run_cli("check", robot)
+    assert result.exit_code == 2 and "selekt" in result.output
+
+
+def test_output_file_and_formats(tmp_path, run_cli):
+    for name in ("json", "sarif", "junit", "github", "text"):
+        out = tmp_path / f"report.{name}"
+        result = run_cli("check", INVERTED, "--format", name, "--output", out)
+        assert result.exit_code == 1
+        assert "U204" in out.read_text()
+
+
+def test_auto_format_is_github_under_actions(run_cli, monkeypatch):
+    from typer.testing import CliRunner
+
+    from urdftool.cli import app
+
+    result = CliRunner().invoke(app, ["check", str(INVERTED)], env={"GITHUB_ACTIONS": "true"})
+    assert result.stdout.startswith("::error file=")
+
+
+def test_stdin(run_cli):
+    result = run_cli("check", "-", "--format", "json", input=INVERTED.read_text())
+    data = json.loads(result.stdout)
+    assert result.exit_code == 1
+    assert (data["diagnostics"][0]["file"], data["diagnostics"][0]["code"]) == ("<stdin>", "U204")
+
+
+def test_verbose_says_which_files_were_skipped(run_cli):
+    result = run_cli("check", ROBOTS / "r2d2", "-v")
+    assert "skipped" in result.output and "included by" in result.output
+
+
+def test_xacro_command_expands_with_args(tmp_path, run_cli):
+    source = tmp_path / "r.urdf.xacro"
+    source.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                      '<xacro:arg name="n" default="a"/><link name="$(arg n)"/></robot>')
+    out = tmp_path / "r.urdf"
+    assert run_cli("xacro", source, "n:=wheel", "-o", out).exit_code == 0
+    assert '<link name="wheel"/>' in out.read_text()
+    bad = run_cli("xacro", CASES / "U005_xacro_error" / "robot.urdf.xacro")
+    assert bad.exit_code == 1 and "wheel.xacro:6" in bad.output and "Traceback" not in bad.output
+
+
+def test_tree_on_a_bundled_robot(run_cli):
+    result = run_cli("tree", ROBOTS / "r2d2" / "r2d2.urdf.xacro")
+    assert result.exit_code == 0
+    assert result.stdout.splitlines()[2].startswith("root Link: base_footprint")

@@ -1,0 +1,181 @@
+"""The loader: safe XML, the line of each element's '<', xacro locations through includes and
+macros, package resolution, stdin, size limits."""
+
+from __future__ import annotations
+
+import io
+import sys
+
+import pytest
+
+from urdftool.diagnostics import Location
+from urdftool.errors import LoadError
+from urdftool.loader import load
+
+
+def write(tmp_path, name, text):
+    path = tmp_path / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def codes(error: LoadError):
+    return [(f.code, f.line) for f in error.value.findings]
+
+
+def test_start_tag_line_not_closing_bracket_line(tmp_path):
+    path = write(tmp_path, "r.urdf", '<robot name="r">\n  <link\n     name="a"\n  >\n  </link>\n</robot>\n')
+    robot = load(path)
+    assert robot.locate(robot.links["a"]).line == 2
+
+
+def test_undeclared_prefix_is_accepted_like_check_urdf(tmp_path):
+    path = write(tmp_path, "r.urdf", '<robot name="r"><link name="a"/><gazebo><sensor:camera/></gazebo></robot>')
+    assert "a" in load(path).links
+
+
+@pytest.mark.parametrize("text, code", [
+    ("", "U002"), ("   \n", "U002"), ("\x00\x01binary", "U003"),
+    ("<robot name='r'><link name='a'></robot>", "U001"),
+    ("<sdf version='1.6'/>", "U004"),
+    ('<!DOCTYPE r [<!ENTITY a "aaaa">]><robot name="&a;"/>', "U009"),
+])
+def test_bad_files_are_located_findings(tmp_path, text, code):
+    path = tmp_path / "bad.urdf"
+    path.write_bytes(text.encode())
+    with pytest.raises(LoadError) as error:
+        load(path)
+    assert error.value.findings[0].code == code
+    assert error.value.findings[0].line is not None
+
+
+def test_entity_bomb_refused_quickly(tmp_path):
+    entities = "".join(f'<!ENTITY e{i} "{"&e%d;" % (i - 1) * 10}">' for i in range(1, 10))
+    bomb = f'<?xml version="1.0"?><!DOCTYPE r [<!ENTITY e0 "lol">{entities}]><robot name="&e9;"/>'
+    for name in ("bomb.urdf", "bomb.urdf.xacro"):
+        path = tmp_path / name
+        path.write_text(bomb)
+        with pytest.raises(LoadError) as error:
+            load(path)
+        assert codes(error)[0][0] == "U009"
+
+
+def test_file_size_limit(tmp_path):
+    path = write(tmp_path, "big.urdf", "<robot name='r'>" + " " * 2000 + "<link name='a'/></robot>")
+    with pytest.raises(LoadError) as error:
+        load(path, max_file_size=1000)
+    assert codes(error) == [("U008", None)]
+
+
+XACRO_PARTS = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="leg" params="side">
+    <link name="${side}_leg"/>
+    <joint
+        name="${side}_joint" type="fixed">
+      <parent link="base"/>
+      <child link="${side}_leg"/>
+    </joint>
+  </xacro:macro>
+  <xacro:macro name="two">
+    <xacro:leg side="a"/>
+  </xacro:macro>
+</robot>
+"""
+
+XACRO_TOP = """<?xml version="1.0"?>
+<robot name="t" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="base"/>
+  <xacro:two/>
+  <xacro:leg side="b"/>
+</robot>
+"""
+
+
+def test_xacro_locations_through_includes_and_nested_macros(tmp_path):
+    write(tmp_path, "parts.xacro", XACRO_PARTS)
+    top = write(tmp_path, "top.urdf.xacro", XACRO_TOP)
+    robot = load(top)
+    parts = str(tmp_path / "parts.xacro")
+    a_joint = robot.locate(robot.joints["a_joint"])
+    assert (a_joint.file.endswith("parts.xacro"), a_joint.line) == (True, 5)
+    assert [(site.file.endswith(name), site.line) for site, name in
+            zip(a_joint.via, ["parts.xacro", "top.urdf.xacro"])] == [(True, 12), (True, 5)]
+    b_joint = robot.locate(robot.joints["b_joint"])
+    assert b_joint.line == 5 and [s.line for s in b_joint.via] == [6]
+    assert robot.locate(robot.links["base"]) == Location(robot.display, 4)
+    assert any(f.endswith("parts.xacro") for f in robot.files) and parts
+
+
+@pytest.mark.parametrize("body, line, fragment", [
+    ('<link name="${undefined_thing}"/>', 3, "undefined_thing"),
+    ('<xacro:no_such_macro/>', 3, "unknown macro"),
+    ('<xacro:include filename="missing.xacro"/>', 3, "missing.xacro"),
+    ('<link name="${1/0}"/>', 3, "division"),
+    ('<xacro:macro name="r"><xacro:r/></xacro:macro>\n  <xacro:r/>', 3, "nested deeper"),
+])
+def test_xacro_failures_are_located(tmp_path, body, line, fragment):
+    path = write(tmp_path, "r.urdf.xacro",
+                 f'<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n  {body}\n</robot>\n')
+    with pytest.raises(LoadError) as error:
+        load(path)
+    finding = error.value.findings[0]
+    assert finding.code == "U005"
+    assert finding.line == line
+    assert fragment in finding.message.lower()
+
+
+def test_include_cycle_is_an_error_not_a_recursion(tmp_path):
+    write(tmp_path, "a.xacro", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n<xacro:include filename="b.xacro"/>\n</robot>')
+    write(tmp_path, "b.xacro", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n<xacro:include filename="a.xacro"/>\n</robot>')
+    top = write(tmp_path, "top.urdf.xacro", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<xacro:include filename="a.xacro"/>\n</robot>')
+    with pytest.raises(LoadError) as error:
+        load(top)
+    assert "include cycle" in error.value.findings[0].message
+
+
+def test_xacro_args_and_find(tmp_path):
+    pkg = tmp_path / "src" / "my_pkg"
+    write(pkg, "package.xml", "<package><name>my_pkg</name></package>")
+    write(pkg, "urdf/part.xacro", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="$(arg part)"/></robot>')
+    top = write(tmp_path, "robot/r.urdf.xacro",
+                '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                '<xacro:arg name="part" default="x"/>'
+                '<xacro:include filename="$(find my_pkg)/urdf/part.xacro"/></robot>')
+    (tmp_path / ".git").mkdir()
+    robot = load(top, xacro_args={"part": "gripper"})
+    assert list(robot.links) == ["gripper"]
+
+
+def test_unresolved_package_names_it_and_where_it_looked(tmp_path):
+    top = write(tmp_path, "r.urdf.xacro",
+                '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                '<xacro:include filename="$(find ghost_pkg)/x.xacro"/>\n</robot>')
+    with pytest.raises(LoadError) as error:
+        load(top)
+    finding = error.value.findings[0]
+    assert (finding.code, finding.line) == ("U006", 2)
+    assert "ghost_pkg" in finding.message and "--package ghost_pkg=PATH" in finding.message
+
+
+def test_stdin(monkeypatch):
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(b'<robot name="s"><link name="a"/></robot>')))
+    robot = load("-")
+    assert robot.display == "<stdin>" and list(robot.links) == ["a"]
+
+
+def test_disguised_xacro_is_expanded_and_reported(tmp_path):
+    path = write(tmp_path, "r.urdf", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                 '<xacro:property name="n" value="base"/>\n<link name="${n}"/>\n</robot>')
+    robot = load(path)
+    assert list(robot.links) == ["base"]
+    assert [(f.code, f.line) for f in robot.options["load_findings"]] == [("U007", 2)]
+
+
+def test_commented_xacro_in_generated_urdf_is_plain(tmp_path):
+    path = write(tmp_path, "r.urdf", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                 '<!-- <xacro:if value="${x}"> -->\n<link name="a"/>\n</robot>')
+    robot = load(path)
+    assert not robot.from_xacro and robot.options["load_findings"] == []

@@ -1,0 +1,55 @@
+"""Package resolution without ROS: the documented search order."""
+
+from __future__ import annotations
+
+import pytest
+
+from urdftool.errors import PackageNotFound
+from urdftool.loader.packages import PackageResolver
+
+
+def make_package(folder, name):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "package.xml").write_text(f"<package><name>{name}</name></package>")
+    return folder
+
+
+def test_explicit_then_ros_package_path_then_ament(tmp_path):
+    explicit = make_package(tmp_path / "a" / "pkg", "pkg")
+    ros = make_package(tmp_path / "ros" / "deep" / "pkg", "pkg")
+    ament = tmp_path / "ament"
+    (ament / "share" / "pkg").mkdir(parents=True)
+    env = {"ROS_PACKAGE_PATH": str(tmp_path / "ros"), "AMENT_PREFIX_PATH": str(ament)}
+    assert PackageResolver({"pkg": explicit}, environ=env).find("pkg") == explicit
+    assert PackageResolver(environ=env).find("pkg") == ros
+    assert PackageResolver(environ={"AMENT_PREFIX_PATH": str(ament)}).find("pkg") == ament / "share" / "pkg"
+
+
+def test_walks_up_to_sibling_packages_and_down_from_repository_root(tmp_path):
+    (tmp_path / ".git").mkdir()
+    here = make_package(tmp_path / "src" / "robot_description", "robot_description")
+    sibling = make_package(tmp_path / "src" / "robot_meshes", "robot_meshes")
+    nested = make_package(tmp_path / "third_party" / "vendor" / "arm_pkg", "arm_pkg")
+    resolver = PackageResolver(start=here / "urdf", environ={})
+    assert resolver.find("robot_description") == here
+    assert resolver.find("robot_meshes") == sibling
+    assert resolver.find("arm_pkg") == nested
+
+
+def test_package_name_comes_from_package_xml_not_folder(tmp_path):
+    folder = make_package(tmp_path / "checkout-name", "real_name")
+    assert PackageResolver(start=folder, environ={}).find("real_name") == folder
+
+
+def test_not_found_lists_where_it_looked(tmp_path):
+    with pytest.raises(PackageNotFound) as error:
+        PackageResolver(start=tmp_path, environ={"ROS_PACKAGE_PATH": str(tmp_path)}).find("ghost")
+    assert "ROS_PACKAGE_PATH" in str(error.value) and "--package ghost=PATH" in str(error.value)
+
+
+def test_mesh_uris(tmp_path):
+    pkg = make_package(tmp_path / "pkg", "pkg")
+    resolver = PackageResolver({"pkg": pkg}, environ={})
+    assert resolver.resolve_uri("package://pkg/meshes/a.stl", tmp_path) == pkg / "meshes" / "a.stl"
+    assert str(resolver.resolve_uri("file:///abs/b.stl", tmp_path)) == "/abs/b.stl"
+    assert resolver.resolve_uri("meshes/c.stl", tmp_path) == tmp_path / "meshes" / "c.stl"
