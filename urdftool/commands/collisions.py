@@ -9,7 +9,8 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, pairs, robot_inputs
+from ._common import (PackageOption, XacroArgOption, fail_usage, load_one, pairs,
+                      single_robot_input)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -53,10 +54,8 @@ def collisions(
 ) -> None:
     from ..collision.chain import ChainError
 
+    path, args, packages = single_robot_input("collisions", words, arg, package)
     try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("collisions takes exactly one FILE")
         if format not in ("text", "json"):
             raise UsageError(f"unknown format '{format}'; choose from text, json")
         if not matrix and (write_srdf or check_srdf or plot or until_converged):
@@ -70,7 +69,7 @@ def collisions(
         values = pairs(q, "--q")
     except UsageError as error:
         fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    robot = load_one(path, args, packages)
     try:
         if matrix:
             code = _matrix(robot, samples, seed, min_fraction, margin, until_converged,
