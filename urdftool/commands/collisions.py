@@ -265,7 +265,8 @@ def _matrix_text(robot, result, stale, all_pairs, write_srdf, plot) -> None:
     else:
         console.print("[yellow]not converged[/]: " + ", ".join(
             f"{a}/{b} {x or 'enabled'} -> {y or 'enabled'}" for a, b, x, y in result.unsettled)
-            + "; try --until-converged")
+            + f"; these pairs are rare events: more samples (--until-converged, --max-samples) "
+            "would settle them")
     _notes(console, result.problems, result.visual_only)
     for item in stale:
         console.print(f"{escape(str(item.location))}: [bold red]stale[/] {escape(item.message)}")
