@@ -145,12 +145,17 @@ def _pose_text(robot, report, custom: bool) -> None:
     where = "the given configuration" if custom else "the default configuration"
     console.print(f"[bold]{robot.name}[/] at {where} ({len(report.q)} joints), "
                   f"SRDF: {report.srdf or 'none'}")
-    if report.colliding:
+    touching = [c for c in report.colliding if c.allowed == "Adjacent"]
+    listed = [c for c in report.colliding if c.allowed != "Adjacent"]
+    if listed:
         table = Table("link 1", "link 2", "depth (mm)", "status", box=None, pad_edge=False)
-        for c in report.colliding:
+        for c in listed:
             status = f"allowed ({c.allowed})" if c.allowed else "[bold red]COLLIDING[/]"
             table.add_row(c.link1, c.link2, f"{c.depth * 1000:.2f}", status)
         console.print(table)
+    if touching:
+        console.print(f"{len(touching)} adjacent pair(s) overlap at their joints (allowed): "
+                      + ", ".join(f"{c.link1}/{c.link2}" for c in touching))
     if report.closest:
         console.print("Closest pairs apart:")
         table = Table("link 1", "link 2", "distance (mm)", "status", box=None, pad_edge=False)
