@@ -218,7 +218,7 @@ def test_cli_matrix_json_and_write_srdf(run_cli, tmp_path):
 def test_ur5_matches_moveit_adjacency_and_never():
     corpus = corpus_or_skip()
     robot = load(str(corpus / "ur_description" / "urdf" / "ur5.xacro"))
-    result = matrix.compute(robot, samples=1000, seed=0)
+    result = matrix.compute(robot, samples=500, seed=0)
     entries, _ = srdf.read(corpus / "ur5_moveit_config" / "config" / "ur5.srdf")
     moveit = {matrix.pair_key(e.link1, e.link2): e.reason for e in entries}
     ours = {(p.link1, p.link2): p.reason for p in result.pairs if p.disabled}

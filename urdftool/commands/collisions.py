@@ -32,7 +32,7 @@ def collisions(
     srdf: Path = typer.Option(None, "--srdf", help="SRDF whose disable_collisions allow pairs "
                               "[default: the .srdf beside the robot]."),
     matrix: bool = typer.Option(False, "--matrix", help="Compute the collision matrix."),
-    samples: int = typer.Option(10000, "--samples", min=2, help="Random configurations."),
+    samples: int = typer.Option(10000, "--samples", min=2, help="Random configurations (rounded up to a multiple of 500)."),
     seed: int = typer.Option(0, "--seed", help="Random seed; the same seed gives the same matrix."),
     min_fraction: float = typer.Option(0.95, "--min-fraction", min=0.0, max=1.0,
                                        help="Colliding in at least this fraction: Always."),
@@ -282,4 +282,17 @@ def _matrix_text(robot, result, stale, all_pairs, write_srdf, plot) -> None:
 
 
 def _json(data) -> None:
-    typer.echo(json.dumps(data, indent=2, allow_nan=False))
+    typer.echo(json.dumps(_finite(data), indent=2, allow_nan=False))
+
+
+def _finite(value):
+    """``value`` with infinite or NaN floats as null, which JSON can carry."""
+    import math
+
+    if isinstance(value, dict):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
