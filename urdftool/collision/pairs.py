@@ -193,7 +193,9 @@ def separated(a: np.ndarray, half_a: np.ndarray, b: np.ndarray, half_b: np.ndarr
         for j in range(3):
             j1, j2 = (j + 1) % 3, (j + 2) % 3
             lhs = np.abs(t[..., i2] * rotation[..., i1, j] - t[..., i1] * rotation[..., i2, j])
-            rhs = (half_a[..., i1] * absolute[..., i2, j] + half_a[..., i2] * absolute[..., i1, j]
-                   + half_b[..., j1] * absolute[..., i, j2] + half_b[..., j2] * absolute[..., i, j1])
+            rhs = (half_a[..., i1] * absolute[..., i2, j]
+                   + half_a[..., i2] * absolute[..., i1, j]
+                   + half_b[..., j1] * absolute[..., i, j2]
+                   + half_b[..., j2] * absolute[..., i, j1])
             apart |= lhs > rhs
     return apart

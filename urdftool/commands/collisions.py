@@ -32,7 +32,8 @@ def collisions(
     srdf: Path = typer.Option(None, "--srdf", help="SRDF whose disable_collisions allow pairs "
                               "[default: the .srdf beside the robot]."),
     matrix: bool = typer.Option(False, "--matrix", help="Compute the collision matrix."),
-    samples: int = typer.Option(10000, "--samples", min=2, help="Random configurations (rounded up to a multiple of 500)."),
+    samples: int = typer.Option(10000, "--samples", min=2,
+                                help="Random configurations (rounded up to a multiple of 500)."),
     seed: int = typer.Option(0, "--seed", help="Random seed; the same seed gives the same matrix."),
     min_fraction: float = typer.Option(0.95, "--min-fraction", min=0.0, max=1.0,
                                        help="Colliding in at least this fraction: Always."),
