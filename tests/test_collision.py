@@ -229,3 +229,22 @@ def test_ur5_matches_moveit_adjacency_and_never():
     # independently with yourdfpy + trimesh; see the merge report).
     for pair in [("base_link_inertia", "upper_arm_link"), ("shoulder_link", "wrist_1_link")]:
         assert moveit[pair] == "Never" and result.pair(*pair).collisions > 0
+
+
+def test_always_colliding_pair(tmp_path):
+    # A bar swinging about y next to a long fixed bar: apart at 0 (the default), crossing it
+    # whenever |angle| > 0.1 rad, so in about 93% of the range [-1.5, 1.5].
+    text = f"""<robot name="swing">
+  {_box_link("base", xyz="0 0 -50")}
+  <link name="post"><collision><geometry><box size="0.02 0.02 6"/></geometry></collision></link>
+  <link name="bar"><collision><geometry><box size="0.02 0.02 6"/></geometry></collision></link>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="post"/></joint>
+  <joint name="swing" type="revolute"><parent link="base"/><child link="bar"/>
+    <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>"""
+    robot = robot_of(tmp_path, text)
+    loose = matrix.compute(robot, samples=1000, workers=1, min_fraction=0.9).pair("bar", "post")
+    assert loose.reason == "Always" and 0.9 < loose.fraction < 0.95
+    strict = matrix.compute(robot, samples=1000, workers=1).pair("bar", "post")
+    assert strict.reason == "" and strict.collisions == loose.collisions
