@@ -135,12 +135,13 @@ def test_srdf_round_trip_and_merge_keeps_other_content(humanoid_matrix, tmp_path
     assert [(e.link1, e.link2) for e in entries] == sorted(
         [(e.link1, e.link2) for e in entries], key=lambda p: (p[0].encode(), p[1].encode()))
     existing = tmp_path / "old.srdf"
-    existing.write_text('<?xml version="1.0"?>\n<robot name="humanoid_robot">\n'
+    existing.write_text('<?xml version="1.0"?>\n<!-- head -->\n<robot name="humanoid_robot">\n'
                         '  <!-- keep me -->\n  <group name="g"><link name="body_link"/></group>\n'
                         '  <disable_collisions link1="gone" link2="body_link" reason="Never"/>\n'
                         '  <disable_collisions link1="body_link" link2="l_foot_link" '
                         'reason="User"/>\n</robot>\n')
     merged = srdf.render(result, robot.name, existing)
+    assert merged.startswith('<?xml version="1.0"?>\n<!-- head -->\n<robot name=')
     assert "<!-- keep me -->" in merged and '<group name="g">' in merged
     assert 'link1="gone"' not in merged and 'reason="User"' in merged
     existing.write_text(merged)

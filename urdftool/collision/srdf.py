@@ -109,10 +109,34 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         element = etree.Element("disable_collisions", link1=a, link2=b, reason=reason)
         element.tail = indent if offset < len(merged) - 1 else last_tail
         parent.insert(index + offset, element)
-    text = etree.tostring(root.getroottree(), encoding="unicode")
-    declaration = existing.read_text(encoding="utf-8", errors="replace").lstrip()
-    head = declaration.split("?>", 1)[0] + "?>\n" if declaration.startswith("<?xml") else ""
-    return head + text + "\n"
+    data = existing.read_bytes()
+    start, end = _root_span(data)
+    return (data[:start].decode("utf-8", "replace")
+            + etree.tostring(root, encoding="unicode", with_tail=False)
+            + data[end:].decode("utf-8", "replace"))
+
+
+def _root_span(data: bytes) -> tuple[int, int]:
+    """Byte offsets where the root element starts and just after it ends, so that the prolog
+    (declaration, comments) and whatever follows are kept byte for byte."""
+    from xml.parsers import expat
+
+    parser = expat.ParserCreate()
+    span, depth = [0, len(data)], [0]
+
+    def on_start(name, attributes):
+        if depth[0] == 0:
+            span[0] = parser.CurrentByteIndex
+        depth[0] += 1
+
+    def on_end(name):
+        depth[0] -= 1
+        if depth[0] == 0:
+            span[1] = data.index(b">", parser.CurrentByteIndex) + 1
+
+    parser.StartElementHandler, parser.EndElementHandler = on_start, on_end
+    parser.Parse(data, True)
+    return span[0], span[1]
 
 
 def _indent(root) -> str:
