@@ -249,3 +249,20 @@ def test_always_colliding_pair(tmp_path):
     assert loose.reason == "Always" and 0.9 < loose.fraction < 0.95
     strict = matrix.compute(robot, samples=1000, workers=1).pair("bar", "post")
     assert strict.reason == "" and strict.collisions == loose.collisions
+
+
+def test_batched_link_poses_match_yourdfpy():
+    import io
+
+    import yourdfpy
+
+    robot = load(str(HUMANOID))
+    chain = matrix.Scene(robot, 0.0).chain
+    q = chain.sample(np.random.default_rng(3), 4)
+    poses = chain.poses(q)
+    reference = yourdfpy.URDF.load(io.StringIO(robot.urdf), load_meshes=False)
+    for k in range(len(q)):
+        reference.update_cfg(dict(zip(chain.joints, q[k])))
+        for i, link in enumerate(chain.links):
+            assert np.allclose(reference.get_transform(link, chain.links[0]), poses[k, i],
+                               atol=1e-12)
