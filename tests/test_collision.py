@@ -1,0 +1,268 @@
+"""urdftool.collision and ``urdftool collisions``: pose checks, the matrix, SRDF handling."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS, corpus_or_skip
+from urdftool.collision import matrix, pose, srdf
+from urdftool.loader import load
+
+HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
+
+
+def _box_link(name: str, size: float = 0.1, xyz: str = "0 0 0") -> str:
+    return (f'<link name="{name}"><visual><geometry><box size="{size} {size} {size}"/></geometry>'
+            f'</visual><collision><origin xyz="{xyz}"/><geometry><box size="{size} {size} '
+            f'{size}"/></geometry></collision></link>')
+
+
+def two_boxes(lower: float, upper: float, extra: str = "") -> str:
+    """base (far away box) with two children: a fixed box at 0 and a box on a slider along x."""
+    return f"""<robot name="boxes">
+  {_box_link("base", xyz="0 0 -5")}
+  {_box_link("fixed_box")}
+  {_box_link("sliding_box")}
+  <joint name="fix" type="fixed"><parent link="base"/><child link="fixed_box"/></joint>
+  <joint name="slider" type="prismatic"><parent link="base"/><child link="sliding_box"/>
+    <axis xyz="1 0 0"/><limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/></joint>
+  {extra}
+</robot>
+"""
+
+
+def write(tmp_path, text: str, name: str = "robot.urdf"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def robot_of(tmp_path, text: str):
+    return load(str(write(tmp_path, text)))
+
+
+def pose_report(robot, **q):
+    scene = matrix.Scene(robot, 0.0)
+    values = pose.configuration(scene.chain, {k: str(v) for k, v in q.items()})
+    return pose.check(scene, values, {})
+
+
+def test_two_boxes_collide_with_depth(tmp_path):
+    report = pose_report(robot_of(tmp_path, two_boxes(0, 1)), slider=0.06)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert (contact.link1, contact.allowed) == ("fixed_box", "")
+    assert contact.depth == pytest.approx(0.04, abs=1e-6)
+    assert report.forbidden == [contact]
+
+
+def test_two_boxes_apart_with_distance(tmp_path):
+    report = pose_report(robot_of(tmp_path, two_boxes(0, 1)), slider=0.5)
+    assert not report.colliding
+    nearest = report.closest[0]
+    assert (nearest.link1, nearest.link2) == ("fixed_box", "sliding_box")
+    assert nearest.distance == pytest.approx(0.4, abs=1e-6)
+
+
+def test_unknown_joint_in_q_names_the_joints(tmp_path):
+    from urdftool.errors import UsageError
+
+    scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
+    with pytest.raises(UsageError, match="did you mean 'slider'"):
+        pose.configuration(scene.chain, {"slidr": "1"})
+
+
+def test_adjacency_looks_through_links_without_geometry(tmp_path):
+    text = f"""<robot name="chain">
+  {_box_link("a")}<link name="m1"/><link name="m2"/>{_box_link("b")}{_box_link("c")}
+  <joint name="j1" type="fixed"><parent link="a"/><child link="m1"/></joint>
+  <joint name="j2" type="fixed"><parent link="m1"/><child link="m2"/></joint>
+  <joint name="j3" type="fixed"><parent link="m2"/><child link="b"/></joint>
+  <joint name="j4" type="fixed"><parent link="b"/><child link="c"/>
+    <origin xyz="1 0 0"/></joint>
+</robot>"""
+    scene = matrix.Scene(robot_of(tmp_path, text), 0.005)
+    assert scene.adjacent == {("a", "b"), ("b", "c")}
+
+
+def test_default_pose_collision_is_default_class(tmp_path):
+    result = matrix.compute(robot_of(tmp_path, two_boxes(0, 1)), samples=500, workers=1)
+    assert result.pair("fixed_box", "sliding_box").reason == "Default"
+
+
+def test_always_never_and_the_margin(tmp_path):
+    # 0 is outside [0.2, 0.5]: the default is mid-range and the boxes stay >= 0.1 m apart.
+    robot = robot_of(tmp_path, two_boxes(0.2, 0.5))
+    assert matrix.compute(robot, samples=500, workers=1).pair(
+        "fixed_box", "sliding_box").reason == "Never"
+    wide = matrix.compute(robot, samples=500, workers=1, margin=0.2).pair("fixed_box",
+                                                                          "sliding_box")
+    assert wide.reason == "" and wide.collisions == 0
+    assert wide.min_distance == pytest.approx(0.1, abs=0.01)
+
+
+def test_matrix_is_deterministic_for_a_seed_and_any_worker_count(tmp_path):
+    robot = load(str(HUMANOID))
+    runs = [matrix.compute(robot, samples=1000, seed=7, workers=w) for w in (1, 2, 2)]
+    rows = [[(p.link1, p.link2, p.reason, p.collisions, p.min_distance) for p in run.pairs]
+            for run in runs]
+    assert rows[0] == rows[1] == rows[2]
+    other = matrix.compute(robot, samples=1000, seed=8, workers=1)
+    assert [p.collisions for p in other.pairs] != [p.collisions for p in runs[0].pairs]
+
+
+@pytest.fixture(scope="module")
+def humanoid_matrix():
+    robot = load(str(HUMANOID))
+    return robot, matrix.compute(robot, samples=2000, seed=0)
+
+
+def test_humanoid_adjacent_pairs_match_its_srdf(humanoid_matrix):
+    _, result = humanoid_matrix
+    entries, _ = srdf.read(ROBOTS / "humanoid" / "humanoid.srdf")
+    expected = {matrix.pair_key(e.link1, e.link2) for e in entries if e.reason == "Adjacent"}
+    assert {(p.link1, p.link2) for p in result.pairs if p.reason == "Adjacent"} == expected
+
+
+def test_srdf_round_trip_and_merge_keeps_other_content(humanoid_matrix, tmp_path):
+    robot, result = humanoid_matrix
+    fresh = tmp_path / "new.srdf"
+    fresh.write_text(srdf.render(result, robot.name))
+    entries, _ = srdf.read(fresh)
+    assert [(e.link1, e.link2, e.reason) for e in entries] == srdf.entries_of(result)
+    assert [(e.link1, e.link2) for e in entries] == sorted(
+        [(e.link1, e.link2) for e in entries], key=lambda p: (p[0].encode(), p[1].encode()))
+    existing = tmp_path / "old.srdf"
+    existing.write_text('<?xml version="1.0"?>\n<!-- head -->\n<robot name="humanoid_robot">\n'
+                        '  <!-- keep me -->\n  <group name="g"><link name="body_link"/></group>\n'
+                        '  <disable_collisions link1="gone" link2="body_link" reason="Never"/>\n'
+                        '  <disable_collisions link1="body_link" link2="l_foot_link" '
+                        'reason="User"/>\n</robot>\n')
+    merged = srdf.render(result, robot.name, existing)
+    assert merged.startswith('<?xml version="1.0"?>\n<!-- head -->\n<robot name=')
+    assert "<!-- keep me -->" in merged and '<group name="g">' in merged
+    assert 'link1="gone"' not in merged and 'reason="User"' in merged
+    existing.write_text(merged)
+    again, _ = srdf.read(existing)
+    assert len(again) == len(entries) + 1
+
+
+def test_check_srdf_locates_stale_entries_at_the_start_tag(humanoid_matrix, tmp_path):
+    robot, result = humanoid_matrix
+    never = next(p for p in result.pairs if p.reason == "" and p.collisions)
+    path = tmp_path / "stale.srdf"
+    path.write_text('<robot name="humanoid_robot">\n'
+                    '  <disable_collisions link1="nope_link"\n      link2="body_link" '
+                    'reason="Never"/>\n'
+                    f'  <disable_collisions\n    link1="{never.link1}" link2="{never.link2}"\n'
+                    '    reason="Never"/>\n</robot>\n')
+    entries, root = srdf.read(path)
+    found = {(s.location.line, s.message.split(";")[0]) for s in
+             srdf.stale(result, entries, robot.links, root)}
+    assert (2, "disable_collisions names link 'nope_link', which does not exist") in found
+    assert any(line == 4 and "disabled as Never but collided" in m for line, m in found)
+    assert sum(line == 1 and "are adjacent but are not disabled" in m for line, m in found) == 20
+
+
+def test_plot_svg_has_a_cell_per_pair(humanoid_matrix, tmp_path):
+    from urdftool.collision import plot
+
+    _, result = humanoid_matrix
+    out = tmp_path / "m.svg"
+    plot.write(result, out, "humanoid")
+    text = out.read_text()
+    assert text.startswith("<svg") and text.count("<title>") == 2 * len(result.pairs)
+
+
+def test_missing_mesh_and_visual_only_links_are_reported(tmp_path):
+    text = two_boxes(0, 1, extra="""
+  <link name="camera"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual></link>
+  <joint name="cam" type="fixed"><parent link="base"/><child link="camera"/></joint>
+  <link name="meshy"><collision><geometry><mesh filename="missing.stl"/></geometry></collision>
+  </link>
+  <joint name="m" type="fixed"><parent link="base"/><child link="meshy"/></joint>""")
+    scene = matrix.Scene(robot_of(tmp_path, text), 0.0)
+    assert scene.geometry.visual_only == ["camera"]
+    [problem] = scene.geometry.problems
+    assert "missing.stl" in problem.message and problem.location.line == 11
+
+
+def test_cli_pose_exit_codes_and_json(run_cli, tmp_path):
+    path = write(tmp_path, two_boxes(0, 1))
+    colliding = run_cli("collisions", path, "--q", "slider=0.05")
+    assert colliding.exit_code == 1 and "COLLIDING" in colliding.output
+    apart = run_cli("collisions", path, "--q", "slider=0.5", "--format", "json")
+    assert apart.exit_code == 0
+    assert json.loads(apart.output)["closest"][0]["distance"] == pytest.approx(0.4)
+    allowed = write(tmp_path, '<robot name="boxes"><disable_collisions link1="sliding_box" '
+                    'link2="fixed_box" reason="User"/></robot>', "allow.srdf")
+    result = run_cli("collisions", path, "--q", "slider=0.05", "--srdf", allowed)
+    assert result.exit_code == 0 and "allowed (User)" in result.output
+    assert run_cli("collisions", path, "--q", "slidr=1").exit_code == 2
+
+
+def test_cli_matrix_json_and_write_srdf(run_cli, tmp_path):
+    path = write(tmp_path, two_boxes(0.2, 0.5))
+    out = tmp_path / "out.srdf"
+    result = run_cli("collisions", path, "--matrix", "--samples", "500", "--format", "json",
+                     "--write-srdf", out)
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["converged"] and data["samples"] == 500
+    assert {(p["link1"], p["link2"], p["class"]) for p in data["pairs"]} >= {
+        ("fixed_box", "sliding_box", "Never")}
+    assert 'reason="Never"' in out.read_text()
+
+
+def test_ur5_matches_moveit_adjacency_and_never():
+    corpus = corpus_or_skip()
+    robot = load(str(corpus / "ur_description" / "urdf" / "ur5.xacro"))
+    result = matrix.compute(robot, samples=500, seed=0)
+    entries, _ = srdf.read(corpus / "ur5_moveit_config" / "config" / "ur5.srdf")
+    moveit = {matrix.pair_key(e.link1, e.link2): e.reason for e in entries}
+    ours = {(p.link1, p.link2): p.reason for p in result.pairs if p.disabled}
+    assert {k for k, v in moveit.items() if v == "Adjacent"} == \
+        {k for k, v in ours.items() if v == "Adjacent"}
+    assert ours[("wrist_1_link", "wrist_3_link")] == "Never"
+    # MoveIt's SRDF disables these as Never; they collide in a few percent of samples (checked
+    # independently with yourdfpy + trimesh; see the merge report).
+    for pair in [("base_link_inertia", "upper_arm_link"), ("shoulder_link", "wrist_1_link")]:
+        assert moveit[pair] == "Never" and result.pair(*pair).collisions > 0
+
+
+def test_always_colliding_pair(tmp_path):
+    # A bar swinging about y next to a long fixed bar: apart at 0 (the default), crossing it
+    # whenever |angle| > 0.1 rad, so in about 93% of the range [-1.5, 1.5].
+    text = f"""<robot name="swing">
+  {_box_link("base", xyz="0 0 -50")}
+  <link name="post"><collision><geometry><box size="0.02 0.02 6"/></geometry></collision></link>
+  <link name="bar"><collision><geometry><box size="0.02 0.02 6"/></geometry></collision></link>
+  <joint name="fix" type="fixed"><parent link="base"/><child link="post"/></joint>
+  <joint name="swing" type="revolute"><parent link="base"/><child link="bar"/>
+    <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>"""
+    robot = robot_of(tmp_path, text)
+    loose = matrix.compute(robot, samples=1000, workers=1, min_fraction=0.9).pair("bar", "post")
+    assert loose.reason == "Always" and 0.9 < loose.fraction < 0.95
+    strict = matrix.compute(robot, samples=1000, workers=1).pair("bar", "post")
+    assert strict.reason == "" and strict.collisions == loose.collisions
+
+
+def test_batched_link_poses_match_yourdfpy():
+    import io
+
+    import yourdfpy
+
+    robot = load(str(HUMANOID))
+    chain = matrix.Scene(robot, 0.0).chain
+    q = chain.sample(np.random.default_rng(3), 4)
+    poses = chain.poses(q)
+    reference = yourdfpy.URDF.load(io.StringIO(robot.urdf), load_meshes=False)
+    for k in range(len(q)):
+        reference.update_cfg(dict(zip(chain.joints, q[k])))
+        for i, link in enumerate(chain.links):
+            assert np.allclose(reference.get_transform(link, chain.links[0]), poses[k, i],
+                               atol=1e-12)

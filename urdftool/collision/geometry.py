@@ -1,0 +1,196 @@
+"""Collision geometry: one FCL object per ``<collision>`` element, with its bounding box.
+
+Boxes, cylinders and spheres become FCL primitives; meshes become BVH models, scaled. Each part
+also carries an oriented bounding box (frame in the link, half extents) and a bounding sphere, the
+cheap tests the matrix runs across thousands of samples before asking FCL.
+
+Meshes are loaded here through trimesh with a small local loader.
+TODO(merge): switch ``_load_mesh`` to ``urdftool/meshes.py`` (safe mesh loading with limits).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import fcl
+import numpy as np
+
+from ..diagnostics import Location
+from ..rules._values import parse_numbers
+
+
+@dataclass
+class Part:
+    """One ``<collision>`` of a link.
+
+    origin: pose of the geometry in the link frame, 4x4
+    box: pose of the oriented bounding box in the link frame, 4x4 (box centre and axes)
+    half: half extents of that box in [m]
+    radius: radius of the bounding sphere around the box centre in [m]
+    """
+
+    link: str
+    kind: str
+    geometry: object
+    origin: np.ndarray
+    box: np.ndarray
+    half: np.ndarray
+
+    @property
+    def radius(self) -> float:
+        return float(np.linalg.norm(self.half))
+
+
+@dataclass
+class Problem:
+    """A collision element that could not be used, and why; it is left out of every check."""
+
+    location: Location
+    message: str
+
+
+@dataclass
+class Geometry:
+    """Collision parts by link, in link document order, and what was left out."""
+
+    parts: dict[str, list[Part]] = field(default_factory=dict)
+    visual_only: list[str] = field(default_factory=list)
+    problems: list[Problem] = field(default_factory=list)
+
+    @property
+    def links(self) -> list[str]:
+        return list(self.parts)
+
+
+def origin_matrix(element) -> np.ndarray:
+    """The 4x4 transform of an ``<origin xyz rpy>`` child of ``element`` (identity if none)."""
+    matrix = np.eye(4)
+    origin = element.find("origin") if element is not None else None
+    if origin is None:
+        return matrix
+    xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
+    rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
+    matrix[:3, :3] = rpy_matrix(*(rpy or (0.0, 0.0, 0.0)))
+    matrix[:3, 3] = xyz or (0.0, 0.0, 0.0)
+    return matrix
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
+                              np.cos(yaw), np.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def build(robot) -> Geometry:
+    """Collision parts of every link of ``robot``; unusable ones become problems."""
+    result = Geometry()
+    meshes: dict = {}
+    for name, link in robot.links.items():
+        collisions = link.findall("collision")
+        parts = []
+        for collision in collisions:
+            part = _part(robot, name, collision, meshes, result.problems)
+            if part is not None:
+                parts.append(part)
+        if parts:
+            result.parts[name] = parts
+        elif not collisions and link.find("visual") is not None:
+            result.visual_only.append(name)
+    return result
+
+
+def _part(robot, link: str, collision, meshes, problems) -> Part | None:
+    where = robot.locate(collision)
+    shape = collision.find("geometry")
+    shape = shape[0] if shape is not None and len(shape) else None
+    if shape is None or not isinstance(shape.tag, str):
+        problems.append(Problem(where, f"link '{link}': <collision> has no geometry; ignored"))
+        return None
+    kind = shape.tag
+    if kind == "box":
+        size, problem = parse_numbers(shape.get("size"), 3)
+        if size is None or min(size) <= 0 or not np.all(np.isfinite(size)):
+            return _refuse(problems, robot, shape, link, f"box size {problem or shape.get('size')}")
+        geometry, center, half = fcl.Box(*size), np.zeros(3), np.array(size) / 2
+    elif kind in ("cylinder", "sphere"):
+        radius, length = _positive(shape, "radius"), _positive(shape, "length")
+        if radius is None or (kind == "cylinder" and length is None):
+            return _refuse(problems, robot, shape, link, f"{kind} needs positive finite "
+                           "radius" + (" and length" if kind == "cylinder" else ""))
+        if kind == "sphere":
+            geometry, half = fcl.Sphere(radius), np.full(3, radius)
+        else:
+            geometry, half = fcl.Cylinder(radius, length), np.array([radius, radius, length / 2])
+        center = np.zeros(3)
+    elif kind == "mesh":
+        loaded = _load_mesh(robot, shape, meshes)
+        if isinstance(loaded, str):
+            return _refuse(problems, robot, shape, link, loaded)
+        geometry, center, half = loaded
+    else:
+        return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
+    origin = origin_matrix(collision)
+    box = origin.copy()
+    box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
+    return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9))
+
+
+def _positive(element, attribute: str) -> float | None:
+    values, _ = parse_numbers(element.get(attribute), 1)
+    if values is None or not np.isfinite(values[0]) or values[0] <= 0:
+        return None
+    return values[0]
+
+
+def _refuse(problems, robot, shape, link: str, why: str) -> None:
+    problems.append(Problem(robot.locate(shape), f"link '{link}': {why}; this collision is "
+                                                 "left out of every check"))
+    return None
+
+
+def _load_mesh(robot, shape, cache):
+    """(BVH model, bounding box centre, half extents) or a message saying why not."""
+    from ..errors import UrdftoolError
+
+    uri = shape.get("filename")
+    if not uri:
+        return "mesh has no filename"
+    scale = (1.0, 1.0, 1.0)
+    if shape.get("scale") is not None:
+        values, problem = parse_numbers(shape.get("scale"), 3)
+        if values is None or not np.all(np.isfinite(values)) or 0 in values:
+            return f"mesh scale {problem or shape.get('scale')} is unusable"
+        scale = tuple(values)
+    try:
+        path = robot.resolve_uri(uri)
+    except UrdftoolError as error:
+        return f"mesh '{uri}': {error}"
+    key = (str(path), scale)
+    if key not in cache:
+        cache[key] = _read_mesh(path, uri, scale)
+    return cache[key]
+
+
+def _read_mesh(path, uri: str, scale):
+    if not path.is_file():
+        return f"mesh '{uri}' not found at {path}"
+    import trimesh
+
+    try:
+        mesh = trimesh.load(str(path), force="mesh")
+    except Exception as error:  # trimesh raises anything from any of its format readers
+        return f"mesh '{uri}' could not be read: {error}"
+    vertices = np.asarray(getattr(mesh, "vertices", ()), dtype=float).reshape(-1, 3)
+    faces = np.asarray(getattr(mesh, "faces", ()), dtype=np.int64).reshape(-1, 3)
+    if len(vertices) == 0 or len(faces) == 0:
+        return f"mesh '{uri}' has no triangles"
+    vertices = vertices * np.asarray(scale)
+    model = fcl.BVHModel()
+    model.beginModel(len(vertices), len(faces))
+    model.addSubModel(vertices, faces)
+    model.endModel()
+    low, high = vertices.min(axis=0), vertices.max(axis=0)
+    return model, (low + high) / 2, (high - low) / 2

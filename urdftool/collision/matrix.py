@@ -1,0 +1,245 @@
+"""The self-collision matrix, classified the way MoveIt's Setup Assistant does, with convergence.
+
+Every pair of links with collision geometry gets one class, checked in this order:
+
+- ``Adjacent``: joined by a joint, or by a chain of joints through links without geometry;
+- ``Default``: colliding in the default configuration (0, or mid-range where 0 is outside);
+- ``Always``: colliding in at least ``min_fraction`` of the sampled configurations;
+- ``Never``: never seen colliding, and never closer than ``margin`` (MoveIt has no margin: it
+  disables pairs that came within a hair of touching);
+- ``""`` (enabled): everything else; the planner must check it.
+
+Adjacent and Default pairs are not sampled (MoveIt does not sample them either). Sampling runs in
+fixed blocks, each with its own random stream derived from the seed, so the result depends only
+on the seed and the sample count, not on the number of worker processes.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from . import chain as chain_module
+from . import geometry as geometry_module
+from .pairs import PairChecker, Tally
+
+CLASSES = ("Adjacent", "Default", "Always", "Never", "")
+BLOCK = 250
+
+
+@dataclass
+class PairResult:
+    """One pair of links: class, how often it collided and how close it came.
+
+    min_distance: smallest distance seen in [m]; exact whenever it is below the margin, and an
+        upper bound of the true minimum otherwise (FCL is only asked about near pairs)
+    """
+
+    link1: str
+    link2: str
+    reason: str
+    collisions: int = 0
+    samples: int = 0
+    min_distance: float | None = None
+
+    @property
+    def fraction(self) -> float:
+        return self.collisions / self.samples if self.samples else 0.0
+
+    @property
+    def disabled(self) -> bool:
+        return self.reason != ""
+
+
+@dataclass
+class Matrix:
+    """The classified pairs, sorted as MoveIt writes them, and how settled the result is."""
+
+    pairs: list[PairResult]
+    links: list[str]
+    samples: int
+    seed: int
+    margin: float
+    min_fraction: float
+    unsettled: list[tuple[str, str, str, str]] = field(default_factory=list)
+    rounds: list[tuple[int, int]] = field(default_factory=list)
+    visual_only: list[str] = field(default_factory=list)
+    problems: list = field(default_factory=list)
+
+    @property
+    def converged(self) -> bool:
+        return not self.unsettled
+
+    def pair(self, one: str, two: str) -> PairResult | None:
+        key = tuple(sorted((one, two)))
+        return next((p for p in self.pairs if (p.link1, p.link2) == key), None)
+
+
+class Scene:
+    """Everything the checks need, built once per robot: geometry, chain, link pairs."""
+
+    def __init__(self, robot, margin: float):
+        self.geometry = geometry_module.build(robot)
+        self.chain = chain_module.build(robot)
+        self.margin = margin
+        links = [name for name in self.chain.links if name in self.geometry.parts]
+        self.links = links
+        self.pairs = [pair_key(a, b) for i, a in enumerate(links) for b in links[i + 1:]]
+        self.pairs.sort(key=lambda pair: (pair[0].encode(), pair[1].encode()))
+        self.adjacent = adjacent_pairs(self.chain, set(links))
+        self.checker = PairChecker(self.geometry, self.chain, self.pairs, margin)
+
+    def at(self, q: np.ndarray) -> np.ndarray:
+        return self.chain.poses(q[None])[0]
+
+
+def pair_key(one: str, two: str) -> tuple[str, str]:
+    """A pair as MoveIt stores it: the smaller name (byte order) first."""
+    return (one, two) if one.encode() <= two.encode() else (two, one)
+
+
+def adjacent_pairs(chain, with_geometry: set[str]) -> set[tuple[str, str]]:
+    """Pairs joined by a joint, looking through links that have no geometry."""
+    neighbours: dict[str, set[str]] = {name: set() for name in chain.links}
+    for index in range(1, len(chain.links)):
+        parent, child = chain.links[chain.parents[index]], chain.links[index]
+        neighbours[parent].add(child)
+        neighbours[child].add(parent)
+    result = set()
+    for start in with_geometry:
+        seen, stack = {start}, [start]
+        while stack:
+            for other in neighbours[stack.pop()]:
+                if other in seen:
+                    continue
+                seen.add(other)
+                if other in with_geometry:
+                    result.add(pair_key(start, other))
+                else:
+                    stack.append(other)
+    return result
+
+
+def default_collisions(scene: Scene, q: np.ndarray) -> set[tuple[str, str]]:
+    poses = scene.at(q)
+    tally = scene.checker.tally(poses[None])
+    return {pair for pair, hits in zip(scene.pairs, tally.collisions) if hits}
+
+
+# Worker state: set in the parent before the pool forks, so children inherit the FCL objects.
+_WORK: dict = {}
+
+
+def _run_block(block: int) -> Tally:
+    scene = _WORK["scene"]
+    q = scene.chain.sample(np.random.default_rng([_WORK["seed"], block]), BLOCK)
+    return _WORK["checker"].tally(scene.chain.poses(q), block * BLOCK)
+
+
+def _sample_blocks(pool, blocks: range, pairs: int, progress) -> Tally:
+    """Tally over ``blocks`` (in a worker pool when there is one), merged in block order."""
+    total = Tally.empty(pairs)
+    for tally in (pool.imap(_run_block, blocks) if pool else map(_run_block, blocks)):
+        total = total.merge(tally)
+        progress(tally.samples)
+    return total
+
+
+def _pool(workers: int):
+    """A pool of forked workers that inherit ``_WORK``, or None to work in this process."""
+    import contextlib
+    import multiprocessing
+
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return contextlib.nullcontext(None)
+    return multiprocessing.get_context("fork").Pool(workers)
+
+
+def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.95,
+            margin: float = 0.005, until_converged: bool = False, max_samples: int = 160000,
+            workers: int | None = None, progress: Callable[[int, int], None] | None = None,
+            scene: Scene | None = None) -> Matrix:
+    """Classify every pair of links with geometry; see the module docstring.
+
+    samples: configurations to sample (rounded up to whole blocks of 250)
+    margin: a pair that came closer than this in [m] is never marked Never
+    until_converged: double the samples until no pair changed class in the second half
+    progress: called with (samples done, samples planned) as blocks finish
+    """
+    scene = scene or Scene(robot, margin)
+    workers = workers or min(2, os.cpu_count() or 1)
+    classes = {pair: "" for pair in scene.pairs}
+    for pair in scene.adjacent:
+        classes[pair] = "Adjacent"
+    for pair in default_collisions(scene, scene.chain.default()):
+        if not classes[pair]:
+            classes[pair] = "Default"
+    sampled = [pair for pair in scene.pairs if not classes[pair]]
+    checker = PairChecker(scene.geometry, scene.chain, sampled, margin)
+    blocks = max(2, -(-samples // BLOCK))
+    blocks += blocks % 2
+    done = 0
+    planned = blocks * BLOCK
+
+    def advance(count: int) -> None:
+        nonlocal done
+        done += count
+        if progress:
+            progress(done, planned)
+
+
+    _WORK.update(scene=scene, seed=seed, checker=checker)
+    with _pool(workers) as pool:
+        half = _sample_blocks(pool, range(blocks // 2), len(sampled), advance)
+        full = half.merge(_sample_blocks(pool, range(blocks // 2, blocks), len(sampled), advance))
+        rounds = []
+        while True:
+            before = _classify(half, min_fraction, margin)
+            after = _classify(full, min_fraction, margin)
+            unsettled = [(*sampled[i], before[i], after[i]) for i in range(len(sampled))
+                         if before[i] != after[i]]
+            rounds.append((full.samples, len(unsettled)))
+            if not until_converged or not unsettled or blocks * 2 * BLOCK > max_samples:
+                break
+            planned = blocks * 2 * BLOCK
+            half = full
+            full = half.merge(_sample_blocks(pool, range(blocks, blocks * 2), len(sampled),
+                                             advance))
+            blocks *= 2
+    distances = _distances(scene, checker, full)
+    results = []
+    for pair in scene.pairs:
+        result = PairResult(*pair, classes[pair])
+        if pair in sampled:
+            i = sampled.index(pair)
+            result.reason = after[i]
+            result.collisions, result.samples = int(full.collisions[i]), full.samples
+            result.min_distance = distances[i]
+        results.append(result)
+    return Matrix(results, scene.links, full.samples, seed, margin, min_fraction, unsettled,
+                  rounds, scene.geometry.visual_only, scene.geometry.problems)
+
+
+def _classify(tally: Tally, min_fraction: float, margin: float) -> list[str]:
+    fraction = tally.collisions / max(tally.samples, 1)
+    return ["Always" if f >= min_fraction else
+            ("Never" if c == 0 and d >= margin else "")
+            for f, c, d in zip(fraction, tally.collisions, tally.min_distance)]
+
+
+def _distances(scene: Scene, checker: PairChecker, tally: Tally) -> list[float]:
+    """Exact distances where known; for pairs FCL never saw, the distance at the sample where
+    the bounding spheres came closest (an upper bound of the smallest distance)."""
+    result = []
+    for i, distance in enumerate(tally.min_distance):
+        if np.isfinite(distance):
+            result.append(float(distance))
+            continue
+        sample = int(tally.bound_sample[i])
+        block, offset = divmod(sample, BLOCK)
+        q = scene.chain.sample(np.random.default_rng([_WORK["seed"], block]), BLOCK)[offset]
+        result.append(float(checker.exact(scene.at(q), i)[1]))
+    return result

@@ -1,0 +1,191 @@
+"""SRDF ``<disable_collisions>``: read them with their lines, write them as MoveIt does, and say
+which entries a fresh matrix shows to be stale."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from ..diagnostics import Location, display_path
+from ..loader.xmlparse import XmlProblem, parse
+from ..rules._names import available
+from .matrix import Matrix, pair_key
+
+AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
+
+
+class SrdfError(Exception):
+    """The SRDF cannot be read; the message says where and why."""
+
+
+@dataclass
+class Disabled:
+    link1: str
+    link2: str
+    reason: str
+    location: Location
+
+
+@dataclass
+class Stale:
+    """An SRDF entry (or a missing one) the matrix disagrees with."""
+
+    location: Location
+    message: str
+
+
+def beside(robot) -> Path | None:
+    """The SRDF next to the robot: same stem, or the only ``.srdf`` in the folder."""
+    if robot.path == "-":
+        return None
+    path = Path(robot.path)
+    stem = path.name.split(".")[0]
+    same = path.with_name(f"{stem}.srdf")
+    if same.is_file():
+        return same
+    found = sorted(path.parent.glob("*.srdf"))
+    return found[0] if len(found) == 1 else None
+
+
+def _parse(path: Path):
+    try:
+        return parse(path.read_bytes())
+    except OSError as error:
+        raise SrdfError(f"{display_path(path)}: cannot read: {error.strerror}") from None
+    except XmlProblem as problem:
+        raise SrdfError(f"{display_path(path)}:{problem.line}: {problem.message}") from None
+
+
+def read(path: Path) -> tuple[list[Disabled], Location]:
+    """The disable_collisions entries and where ``<robot>`` starts."""
+    root, lines = _parse(path)
+    shown = display_path(path)
+    entries = [Disabled(el.get("link1", ""), el.get("link2", ""), el.get("reason", ""),
+                        Location(shown, lines.get(el)))
+               for el in root.iter("disable_collisions")]
+    return entries, Location(shown, lines.get(root))
+
+
+def allowed_pairs(entries: list[Disabled]) -> dict[tuple[str, str], str]:
+    return {pair_key(e.link1, e.link2): e.reason or "disabled" for e in entries}
+
+
+def entries_of(matrix: Matrix) -> list[tuple[str, str, str]]:
+    """Disabled pairs sorted as MoveIt's SRDF writer sorts them: by (link1, link2)."""
+    return [(p.link1, p.link2, p.reason) for p in matrix.pairs if p.disabled]
+
+
+def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str:
+    """SRDF text: a new document, or ``existing`` with its disable_collisions replaced (entries
+    with other reasons, such as 'User', are kept) and everything else untouched."""
+    new = entries_of(matrix)
+    if existing is None:
+        lines = ['<?xml version="1.0" ?>', f'<robot name="{_attr(robot_name)}">']
+        lines += [f'    <disable_collisions link1="{_attr(a)}" link2="{_attr(b)}" '
+                  f'reason="{r}" />' for a, b, r in new]
+        return "\n".join([*lines, "</robot>", ""])
+    root, _ = _parse(existing)
+    old = list(root.iter("disable_collisions"))
+    computed = {(a, b) for a, b, _ in new}
+    kept = [(*pair_key(e.get("link1", ""), e.get("link2", "")), e.get("reason", ""))
+            for e in old if e.get("reason") not in AUTOMATIC
+            and pair_key(e.get("link1", ""), e.get("link2", "")) not in computed]
+    merged = sorted([*new, *kept], key=lambda e: (e[0].encode(), e[1].encode()))
+    indent = _indent(root)
+    if old:
+        parent, index = old[0].getparent(), old[0].getparent().index(old[0])
+        last_tail = old[-1].tail if old[-1].tail and not old[-1].tail.strip() else indent
+        for element in old:
+            _remove(element)
+    else:
+        parent, index, last_tail = root, len(root), "\n"
+        if len(root):
+            root[-1].tail = indent
+        else:
+            root.text = indent
+    for offset, (a, b, reason) in enumerate(merged):
+        element = etree.Element("disable_collisions", link1=a, link2=b, reason=reason)
+        element.tail = indent if offset < len(merged) - 1 else last_tail
+        parent.insert(index + offset, element)
+    data = existing.read_bytes()
+    start, end = _root_span(data)
+    return (data[:start].decode("utf-8", "replace")
+            + etree.tostring(root, encoding="unicode", with_tail=False)
+            + data[end:].decode("utf-8", "replace"))
+
+
+def _root_span(data: bytes) -> tuple[int, int]:
+    """Byte offsets where the root element starts and just after it ends, so that the prolog
+    (declaration, comments) and whatever follows are kept byte for byte."""
+    from xml.parsers import expat
+
+    parser = expat.ParserCreate()
+    span, depth = [0, len(data)], [0]
+
+    def on_start(name, attributes):
+        if depth[0] == 0:
+            span[0] = parser.CurrentByteIndex
+        depth[0] += 1
+
+    def on_end(name):
+        depth[0] -= 1
+        if depth[0] == 0:
+            span[1] = data.index(b">", parser.CurrentByteIndex) + 1
+
+    parser.StartElementHandler, parser.EndElementHandler = on_start, on_end
+    parser.Parse(data, True)
+    return span[0], span[1]
+
+
+def _indent(root) -> str:
+    """The whitespace that starts a line of ``<robot>``'s children, without blank lines."""
+    space = root.text if root.text and not root.text.strip() else "\n    "
+    return "\n" + space.rsplit("\n", 1)[-1]
+
+
+def _remove(element) -> None:
+    """Remove an element, keeping the whitespace and comments around it in place."""
+    parent, previous = element.getparent(), element.getprevious()
+    if element.tail and element.tail.strip():
+        if previous is not None:
+            previous.tail = (previous.tail or "") + element.tail
+        else:
+            parent.text = (parent.text or "") + element.tail
+    parent.remove(element)
+
+
+def _attr(text: str) -> str:
+    return (text.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;"))
+
+
+def stale(matrix: Matrix, entries: list[Disabled], robot_links, root: Location) -> list[Stale]:
+    """Entries naming links that do not exist, Never pairs that collided, and pairs the matrix
+    disables as Adjacent, Default or Always that the SRDF leaves enabled."""
+    problems = []
+    disabled = set()
+    for entry in entries:
+        missing = [name for name in (entry.link1, entry.link2) if name not in robot_links]
+        for name in missing:
+            problems.append(Stale(entry.location, f"disable_collisions names link '{name}', "
+                                  "which does not exist; " + available("links", name,
+                                                                       robot_links)))
+        if missing:
+            continue
+        pair = pair_key(entry.link1, entry.link2)
+        disabled.add(pair)
+        found = matrix.pair(*pair)
+        if entry.reason == "Never" and found is not None and found.collisions:
+            problems.append(Stale(entry.location, f"{pair[0]} and {pair[1]} are disabled as "
+                                  f"Never but collided in {found.collisions} of "
+                                  f"{found.samples} samples; remove the entry"))
+    for pair in matrix.pairs:
+        if pair.reason in ("Adjacent", "Default", "Always") and \
+                (pair.link1, pair.link2) not in disabled:
+            what = {"Adjacent": "are adjacent", "Default": "collide in the default pose",
+                    "Always": f"collide in {pair.fraction:.0%} of samples"}[pair.reason]
+            problems.append(Stale(root, f"{pair.link1} and {pair.link2} {what} but are not "
+                                  f"disabled; add <disable_collisions link1=\"{pair.link1}\" "
+                                  f"link2=\"{pair.link2}\" reason=\"{pair.reason}\"/>"))
+    return problems
