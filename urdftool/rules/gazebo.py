@@ -198,14 +198,18 @@ def _multiply(a, b):
     return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
 
 
+# Frames Gazebo itself provides: ground-truth plugins (p3d) report poses in the world frame.
+GAZEBO_FRAMES = {"world"}
+
+
 @rule("U615", "sensor-unknown-link", Severity.ERROR)
 def sensor_unknown_link(robot):
     """A Gazebo sensor is not attached to a link of the robot, or its plugin names an unknown frame.
 
     A ``<sensor>`` must sit in ``<gazebo reference="LINK">``; outside one, or under a joint
     reference (except force_torque sensors, which belong on joints), Gazebo drops it. A sensor
-    plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link, or the
-    data is stamped with a frame TF does not know.
+    plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link (or
+    Gazebo's ``world``), or the data is stamped with a frame TF does not know.
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -224,6 +228,6 @@ def sensor_unknown_link(robot):
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
                 name = (element.text or "").strip()
-                if name and name not in robot.links:
+                if name and name not in robot.links and name not in GAZEBO_FRAMES:
                     yield element, (f"<{tag}> '{name}' is not a link; "
                                     f"{available('links', name, robot.links)}")
