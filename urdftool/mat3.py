@@ -71,12 +71,23 @@ def trace(m) -> float:
     return m[0][0] + m[1][1] + m[2][2]
 
 
+def cross(a, b) -> Vector:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
 def eigvalsh(m) -> Vector:
     """Eigenvalues of a symmetric matrix, ascending (its lower triangle is read, as numpy does).
 
-    Closed form (Smith 1961): the eigenvalues of ``B = (A - q I) / p`` are ``2 cos(phi + 2 k pi / 3)``
-    with ``cos(3 phi) = det(B) / 2``, where ``q`` is the mean eigenvalue and ``p`` their spread.
-    Accurate to a few ulps of the largest eigenvalue's magnitude.
+    Closed form, made robust as in Eberly's "A Robust Eigensolver for 3x3 Symmetric Matrices":
+    ``B = (A - q I) / p`` (``q`` the mean eigenvalue, ``p`` their spread) has eigenvalues
+    ``2 cos(phi + 2 k pi / 3)`` with ``cos(3 phi) = det(B) / 2``. That is exact for the
+    eigenvalue farthest from the others, but a nearly repeated pair would come out split by
+    ~1e-8; so the pair is taken from ``B`` restricted to the plane orthogonal to the isolated
+    eigenvalue's eigenvector (a 2x2 problem). Accurate to a few ulps of the largest magnitude.
     """
     a00, a11, a22 = float(m[0][0]), float(m[1][1]), float(m[2][2])
     a10, a20, a21 = float(m[1][0]), float(m[2][0]), float(m[2][1])
@@ -85,13 +96,30 @@ def eigvalsh(m) -> Vector:
     scale = max(abs(a00), abs(a11), abs(a22), abs(a10), abs(a20), abs(a21))
     a00, a11, a22, a10, a20, a21 = (v / scale for v in (a00, a11, a22, a10, a20, a21))
     q = (a00 + a11 + a22) / 3
-    b00, b11, b22 = a00 - q, a11 - q, a22 - q
-    p = math.sqrt((b00 * b00 + b11 * b11 + b22 * b22
+    p = math.sqrt(((a00 - q) ** 2 + (a11 - q) ** 2 + (a22 - q) ** 2
                    + 2 * (a10 * a10 + a20 * a20 + a21 * a21)) / 6)
     if p == 0:
         return (q * scale,) * 3
-    b00, b11, b22, b10, b20, b21 = (v / p for v in (b00, b11, b22, a10, a20, a21))
-    half_det = (b00 * (b11 * b22 - b21 * b21) - b10 * (b10 * b22 - b21 * b20)
-                + b20 * (b10 * b21 - b11 * b20)) / 2
+    b = (((a00 - q) / p, a10 / p, a20 / p), (a10 / p, (a11 - q) / p, a21 / p),
+         (a20 / p, a21 / p, (a22 - q) / p))
+    half_det = (b[0][0] * (b[1][1] * b[2][2] - b[2][1] * b[2][1])
+                - b[1][0] * (b[1][0] * b[2][2] - b[2][1] * b[2][0])
+                + b[2][0] * (b[1][0] * b[2][1] - b[1][1] * b[2][0])) / 2
     phi = math.acos(min(max(half_det, -1.0), 1.0)) / 3
-    return tuple(sorted((q + 2 * p * math.cos(phi + k * _THIRD_TURN)) * scale for k in range(3)))
+    low, middle, high = sorted(2 * math.cos(phi + k * _THIRD_TURN) for k in range(3))
+    isolated = low if middle - low > high - middle else high
+    rows = [(b[i][0] - (isolated if i == 0 else 0.0), b[i][1] - (isolated if i == 1 else 0.0),
+             b[i][2] - (isolated if i == 2 else 0.0)) for i in range(3)]
+    v = max((cross(rows[0], rows[1]), cross(rows[0], rows[2]), cross(rows[1], rows[2])),
+            key=lambda c: dot(c, c))
+    v = tuple(x / math.sqrt(dot(v, v)) for x in v)
+    if abs(v[0]) > abs(v[1]):
+        u = (-v[2] / math.hypot(v[0], v[2]), 0.0, v[0] / math.hypot(v[0], v[2]))
+    else:
+        u = (0.0, v[2] / math.hypot(v[1], v[2]), -v[1] / math.hypot(v[1], v[2]))
+    w = cross(v, u)
+    bu, bw = apply(b, u), apply(b, w)
+    uu, ww, uw = dot(u, bu), dot(w, bw), dot(u, bw)
+    mean, radius = (uu + ww) / 2, math.hypot((uu - ww) / 2, uw)
+    moments = (dot(v, apply(b, v)), mean - radius, mean + radius)
+    return tuple(sorted((q + p * e) * scale for e in moments))
