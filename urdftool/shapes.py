@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 
 from . import mass_properties as mp
 from . import mat3
-from .meshes import MeshProblem, load_mesh
 from .rules._values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
@@ -83,6 +82,8 @@ def shapes(link, tag: str) -> list[Shape]:
 
 def _mesh_solid(robot, shape: Shape, problems: list):
     """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem."""
+    from .meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
+
     try:
         mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem as problem:
