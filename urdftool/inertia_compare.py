@@ -66,7 +66,8 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
     keep = mine.mass if mine is not None and density is None and mine.mass > 0 else None
     if keep is None and density is None and solid.parts:
         notes.append("no declared mass: computed with 1000 kg/m^3 (pass --density)")
-    result = computed(solid, mass=keep, density=density)
+    body = computed(solid, mass=keep, density=density)
+    result = MassProperties.of(body) if body is not None else None
     if link.find("inertial") is not None and mine is None:
         verdict, notes = "invalid", notes + ["<inertial> is malformed"]
     elif mine is not None and _invalid(mine):
@@ -77,7 +78,8 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
         verdict = "agrees"
     differences = {}
     if mine is not None and result is not None:
-        size = max(float(np.max(solid.bounds[1] - solid.bounds[0])), 1e-9)
+        low, high = solid.bounds
+        size = max(max(h - l for l, h in zip(low, high)), 1e-9)
         differences = {"mass": relative_difference(mine.mass, result.mass),
                        "com": float(np.linalg.norm(mine.com - result.com)) / size,
                        "inertia": relative_difference(mine.inertia, result.inertia)}

@@ -1,17 +1,16 @@
 """A link's ``<collision>``/``<visual>`` geometry as solids: mass properties and bounds.
 
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
-:mod:`urdftool.meshes`, so both see the same shapes, scales and origins.
+:mod:`urdftool.meshes`, so both see the same shapes, scales and origins. Pure Python
+(:mod:`urdftool.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
-
-from . import inertia as mp
-from .meshes import MeshProblem, load_mesh
+from . import mass_properties as mp
+from . import mat3
 from .rules._values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
@@ -24,8 +23,8 @@ class Shape:
 
     kind: str
     params: dict
-    xyz: np.ndarray
-    rotation: np.ndarray
+    xyz: mat3.Vector
+    rotation: mat3.Matrix
     element: object
 
 
@@ -40,7 +39,7 @@ class LinkSolid:
     source: str
     parts: list = field(default_factory=list)
     problems: list = field(default_factory=list)
-    bounds: np.ndarray | None = None  # (2, 3) min and max corner in the link frame
+    bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min and max corner, link frame
 
 
 def _positive(values) -> bool:
@@ -83,6 +82,8 @@ def shapes(link, tag: str) -> list[Shape]:
 
 def _mesh_solid(robot, shape: Shape, problems: list):
     """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem."""
+    from .meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
+
     try:
         mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem as problem:
@@ -93,28 +94,31 @@ def _mesh_solid(robot, shape: Shape, problems: list):
         body = mesh.convex_hull
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
-    solid = mp.mesh_solid(body)
+    from .inertia import mesh_solid
+
+    solid = mesh_solid(body).body()
+    bounds = tuple(mat3.vector(corner) for corner in mesh.bounds)
     if solid.mass <= 0:
         problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
-        return None, mesh.bounds
-    return solid, mesh.bounds
+        return None, bounds
+    return solid, bounds
 
 
 def _local(shape: Shape):
     p = shape.params
     if shape.kind == "box":
-        half = np.array(p["size"]) / 2
-        return mp.box(p["size"]), np.array([-half, half])
+        half = tuple(v / 2 for v in p["size"])
+        return mp.box(p["size"]), (tuple(-v for v in half), half)
     if shape.kind == "cylinder":
         r, h = p["radius"], p["length"] / 2
-        return mp.cylinder(p["radius"], p["length"]), np.array([[-r, -r, -h], [r, r, h]])
+        return mp.cylinder(p["radius"], p["length"]), ((-r, -r, -h), (r, r, h))
     r = p["radius"]
-    return mp.sphere(r), np.array([[-r] * 3, [r] * 3])
+    return mp.sphere(r), ((-r,) * 3, (r,) * 3)
 
 
-def _corners(bounds: np.ndarray) -> np.ndarray:
-    return np.array([[bounds[i][0], bounds[j][1], bounds[k][2]]
-                     for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+def _corners(bounds) -> list[mat3.Vector]:
+    return [(bounds[i][0], bounds[j][1], bounds[k][2])
+            for i in (0, 1) for j in (0, 1) for k in (0, 1)]
 
 
 def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
@@ -133,16 +137,19 @@ def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
         else:
             solid, local_bounds = _local(shape)
         if local_bounds is not None:
-            corners.extend(shape.xyz + shape.rotation @ c for c in _corners(local_bounds))
+            corners.extend(mat3.add(shape.xyz, mat3.apply(shape.rotation, c))
+                           for c in _corners(local_bounds))
         if solid is not None:
             result.parts.append(mp.transformed(solid, shape.xyz, shape.rotation))
     if corners:
-        result.bounds = np.array([np.min(corners, axis=0), np.max(corners, axis=0)])
+        result.bounds = (tuple(min(c[i] for c in corners) for i in range(3)),
+                         tuple(max(c[i] for c in corners) for i in range(3)))
     return result
 
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
-    """Mass properties of the solids: with ``mass`` [kg] kept, or from ``density`` [kg/m^3]."""
+    """A :class:`~urdftool.mass_properties.Body` of the solids: with ``mass`` [kg] kept, or
+    from ``density`` [kg/m^3]."""
     if not solid.parts:
         return None
     unit = mp.combine(solid.parts)  # density 1: mass is volume

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from . import Severity, rule
+from .. import mat3
 from ._names import available
 from ._values import parse_numbers
 
@@ -131,7 +132,7 @@ def _separation(robot, left, right) -> float | None:
     delta = [a - b for a, b in zip(left_position, right_position)]
     if not axis or math.hypot(*axis) == 0:
         return math.hypot(*delta)
-    world_axis = _rotate(left_rotation, [a / math.hypot(*axis) for a in axis])
+    world_axis = mat3.apply(left_rotation, [a / math.hypot(*axis) for a in axis])
     return abs(sum(d * a for d, a in zip(delta, world_axis)))
 
 
@@ -165,37 +166,20 @@ def _joint_frames(robot) -> dict:
         origin = joint.find("origin")
         xyz, _ = parse_numbers(origin.get("xyz", "0 0 0") if origin is not None else "0 0 0", 3)
         rpy, _ = parse_numbers(origin.get("rpy", "0 0 0") if origin is not None else "0 0 0", 3)
-        local = (xyz or [0.0, 0.0, 0.0], _rpy_matrix(rpy or [0.0, 0.0, 0.0]))
+        local = (xyz or [0.0, 0.0, 0.0], mat3.rpy_matrix(rpy or [0.0, 0.0, 0.0]))
         parent = joint.find("parent")
         above = by_child.get(parent.get("link")) if parent is not None else None
         if above is None or depth > len(by_child):
             frames[name] = local
         else:
             position, rotation = frame(above, depth + 1)
-            frames[name] = ([p + r for p, r in zip(position, _rotate(rotation, local[0]))],
-                            _multiply(rotation, local[1]))
+            frames[name] = (mat3.add(position, mat3.apply(rotation, local[0])),
+                            mat3.multiply(rotation, local[1]))
         return frames[name]
 
     for joint in robot.children("joint"):
         frame(joint)
     return frames
-
-
-def _rpy_matrix(rpy):
-    roll, pitch, yaw = rpy
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    return [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr]]
-
-
-def _rotate(matrix, vector):
-    return [sum(matrix[i][k] * vector[k] for k in range(3)) for i in range(3)]
-
-
-def _multiply(a, b):
-    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
 
 
 # Frames Gazebo itself provides: ground-truth plugins (p3d) report poses in the world frame.

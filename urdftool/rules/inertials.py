@@ -17,11 +17,10 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from . import Severity, rule
 from ._values import parse_numbers
-from ..inertia import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from .. import mat3
+from ..mass_properties import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -62,7 +61,7 @@ def _valid(robot):
     for link in robot.children("link"):
         properties = declared(link)
         if properties is not None and math.isfinite(properties.mass) \
-                and np.all(np.isfinite(properties.inertia)):
+                and all(math.isfinite(v) for row in properties.inertia for v in row):
             yield link, properties
 
 
@@ -168,8 +167,12 @@ def moving_link_without_mass(robot):
 
 
 def _principal(properties):
-    moments = np.linalg.eigvalsh(properties.inertia)
-    return moments, max(abs(moments).max(), 1e-300)
+    moments = properties.principal_moments()
+    return moments, max(max(abs(m) for m in moments), 1e-300)
+
+
+def _diagonal(properties) -> list[float]:
+    return [properties.inertia[i][i] for i in range(3)]
 
 
 @rule("U304", "inertia-not-positive-definite", Severity.ERROR)
@@ -184,13 +187,14 @@ def inertia_not_positive_definite(robot):
     """
     moving = _moving(robot)
     for link, properties in _judged(robot):
-        diagonal = np.diag(properties.inertia)
+        diagonal = _diagonal(properties)
         inertia = link.find("inertial").find("inertia")
-        if np.any(diagonal < -NEGATIVE_FLOOR):
+        if any(v < -NEGATIVE_FLOOR for v in diagonal):
             names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
             yield inertia, (f"link '{_name(link)}': {', '.join(names)} negative; moments of "
                             "inertia are positive")
-        elif _name(link) in moving and np.all(np.abs(properties.inertia) < ZERO_INERTIA):
+        elif _name(link) in moving and all(abs(v) < ZERO_INERTIA
+                                           for row in properties.inertia for v in row):
             yield inertia, (f"link '{_name(link)}' has mass {properties.mass:g} kg but zero "
                             "inertia and is moved by a joint; give the inertia of its shape")
 
@@ -206,7 +210,7 @@ def inertia_indefinite(robot):
     Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
     """
     for link, properties in _judged(robot):
-        if np.any(np.diag(properties.inertia) < -NEGATIVE_FLOOR):
+        if any(v < -NEGATIVE_FLOOR for v in _diagonal(properties)):
             continue
         moments, largest = _principal(properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
@@ -250,6 +254,17 @@ def _link_solids(robot):
     return cached
 
 
+def _extent(solid) -> float:
+    """The largest side of a solid's bounding box [m]."""
+    low, high = solid.bounds
+    return max(h - l for l, h in zip(low, high))
+
+
+def _rounded(values) -> list[float]:
+    """Values rounded to 4 decimals as numpy rounds them (round half to even of x * 1e4)."""
+    return [math.copysign(round(v * 1e4) / 1e4, v) for v in values]
+
+
 @rule("U307", "com-outside-geometry", Severity.WARNING)
 def com_outside_geometry(robot):
     """A link's centre of mass is far outside the bounding box of its geometry.
@@ -264,15 +279,15 @@ def com_outside_geometry(robot):
         if solid.bounds is None or solid.problems and not solid.parts:
             continue
         low, high = solid.bounds
-        outside = np.maximum(np.maximum(low - properties.com, properties.com - high), 0)
-        distance = float(np.linalg.norm(outside))
-        margin = max(COM_MARGIN_FRACTION * float(np.max(high - low)), COM_MARGIN_MIN)
+        outside = [max(l - c, c - h, 0.0) for l, c, h in zip(low, properties.com, high)]
+        distance = math.sqrt(sum(v * v for v in outside))
+        margin = max(COM_MARGIN_FRACTION * _extent(solid), COM_MARGIN_MIN)
         if distance > margin:
             com = " ".join(f"{v:.4g}" for v in properties.com)
             yield link.find("inertial"), (
                 f"link '{_name(link)}': centre of mass ({com}) is {distance:.3g} m outside its "
-                f"{solid.source} geometry (box {np.round(low, 4).tolist()} to "
-                f"{np.round(high, 4).tolist()}); check the inertial origin's frame")
+                f"{solid.source} geometry (box {_rounded(low)} to {_rounded(high)}); check the "
+                "inertial origin's frame")
 
 
 @rule("U308", "root-link-inertia", Severity.INFO)
@@ -316,16 +331,19 @@ def inertia_unit_mistake(robot):
     for link, properties, solid in _link_solids(robot):
         if solid.problems or not solid.parts:
             continue
-        extent = float(np.max(solid.bounds[1] - solid.bounds[0]))
+        extent = _extent(solid)
         if not 0.001 <= extent <= 5.0:
             continue
         expected = computed(solid, mass=properties.mass)
-        ratio = np.trace(properties.inertia) / np.trace(expected.inertia)
+        if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding either
+            continue
+        ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
         if ratio <= 0:
             continue
         power = math.log10(ratio)
         for factor in UNIT_FACTORS:
-            rescaled = properties.inertia / 10.0 ** math.copysign(factor, power)
+            divisor = 10.0 ** math.copysign(factor, power)
+            rescaled = [[v / divisor for v in row] for row in properties.inertia]
             if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
                     rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
                 direction = "larger" if power > 0 else "smaller"

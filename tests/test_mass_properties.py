@@ -1,0 +1,71 @@
+"""Pure-Python mass properties against numpy, and `check` without numpy."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+
+from conftest import ROBOTS
+from urdftool import mass_properties as mp
+from urdftool import mat3
+
+RNG = np.random.default_rng(11)
+
+
+def test_triangle_inequality_on_principal_moments():
+    body = mp.Body(1.0, (0.0, 0.0, 0.0), mat3.diagonal([0.1, 0.1, 0.5]))
+    assert mp.triangle_violation(body.principal_moments()) == "0.1 + 0.1 < 0.5"
+    assert mp.triangle_violation(mp.box((0.1, 0.2, 0.3)).principal_moments()) is None
+
+
+def test_transformed_and_combined_match_numpy_parallel_axis():
+    parts, expected = [], []
+    for _ in range(4):
+        solid = mp.box(RNG.uniform(0.01, 1.0, 3))
+        xyz, rpy = RNG.normal(size=3), RNG.uniform(-3, 3, 3)
+        placed = mp.transformed(solid, xyz, mat3.rpy_matrix(rpy))
+        r = np.array(mat3.rpy_matrix(rpy))
+        assert np.allclose(placed.inertia, r @ np.array(solid.inertia) @ r.T, rtol=1e-12)
+        parts.append(placed)
+        expected.append((placed.mass, xyz, np.array(placed.inertia)))
+    whole = mp.combine(parts)
+    mass = sum(m for m, _, _ in expected)
+    com = sum(m * c for m, c, _ in expected) / mass
+    inertia = sum(i + m * ((c - com) @ (c - com) * np.eye(3) - np.outer(c - com, c - com))
+                  for m, c, i in expected)
+    assert np.isclose(whole.mass, mass) and np.allclose(whole.com, com, rtol=1e-12)
+    assert np.allclose(whole.inertia, inertia, rtol=1e-12)
+
+
+def test_primitives_bodies_are_what_inertia_wraps():
+    from urdftool import inertia
+
+    for pure, wrapped in [(mp.box((0.1, 0.2, 0.3)), inertia.box((0.1, 0.2, 0.3))),
+                          (mp.cylinder(0.05, 0.2), inertia.cylinder(0.05, 0.2)),
+                          (mp.sphere(0.1), inertia.sphere(0.1))]:
+        assert np.array_equal(np.array(pure.inertia), wrapped.inertia)
+        assert wrapped.body() == pure
+
+
+def test_relative_difference_of_scalars_and_matrices():
+    a = _random = RNG.normal(size=(3, 3))
+    b = a * 1.1
+    assert np.isclose(mp.relative_difference(mat3.matrix(b), mat3.matrix(a)),
+                      np.linalg.norm(b - a) / np.linalg.norm(a))
+    assert mp.relative_difference(2.0, 1.0) == 1.0
+    assert mp.relative_difference(0.0, 0.0) == 0.0 and mp.relative_difference(1.0, 0.0) == np.inf
+
+
+def test_check_without_meshes_never_imports_numpy():
+    code = ("import sys\n"
+            "from urdftool.cli import main\n"
+            f"sys.argv = ['urdftool', 'check', {str(ROBOTS / 'r2d2' / 'r2d2.urdf.xacro')!r}]\n"
+            "try:\n    main()\nexcept SystemExit as exit:\n    assert exit.code == 0, exit.code\n"
+            "heavy = [m for m in ('numpy', 'trimesh', 'yourdfpy', 'pinocchio', 'fcl')"
+            " if m in sys.modules]\n"
+            "assert not heavy, heavy\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            cwd=ROBOTS.parent)
+    assert result.returncode == 0, result.stderr

@@ -1,0 +1,65 @@
+"""Pure-Python 3x3 math against numpy."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from urdftool import mat3
+
+RNG = np.random.default_rng(7)
+
+
+def _close(ours, theirs, scale):
+    assert np.max(np.abs(np.asarray(ours) - np.asarray(theirs))) <= 1e-9 * scale
+
+
+def _random_symmetric(size: float) -> np.ndarray:
+    m = RNG.normal(size=(3, 3)) * size
+    return m + m.T
+
+
+@pytest.mark.parametrize("size", [1e-9, 1e-3, 1.0, 1e4])
+def test_eigvalsh_random_symmetric(size):
+    for _ in range(500):
+        m = _random_symmetric(size)
+        expected = np.linalg.eigvalsh(m)
+        _close(mat3.eigvalsh(m), expected, np.abs(expected).max())
+
+
+def test_eigvalsh_repeated_and_degenerate():
+    cases = [np.zeros((3, 3)), np.eye(3) * 2.5, np.diag([3.0, -1.0, 2.0]),
+             np.diag([1.0, 1.0, 1.0 + 1e-12]), [[1, 2, 0], [2, 1, 0], [0, 0, 1]]]
+    for _ in range(200):  # rotated tensors with two equal moments, and rank-deficient ones
+        q, _ = np.linalg.qr(RNG.normal(size=(3, 3)))
+        moments = RNG.choice([[1.0, 1.0, 2.0], [0.0, 0.0, 1.0], [1.0, 2.0, 2.0], [0.0, 1.0, 1.0],
+                              [-1.0, 1e-12, 1.0]])
+        cases.append(q @ np.diag(moments) @ q.T)
+    for m in cases:
+        m = np.asarray(m, dtype=float)
+        expected = np.linalg.eigvalsh(m)
+        _close(mat3.eigvalsh(m), expected, max(np.abs(expected).max(), 1e-300))
+
+
+def test_eigvalsh_ascending_and_exact_for_diagonal():
+    assert mat3.eigvalsh(mat3.diagonal([3e-4, 1e-4, 2e-4])) == (1e-4, 2e-4, 3e-4)
+
+
+def test_rpy_products_and_rotation_match_numpy():
+    for _ in range(100):
+        rpy = RNG.uniform(-math.pi, math.pi, 3)
+        r = mat3.rpy_matrix(rpy)
+        rx = np.array([[1, 0, 0], [0, math.cos(rpy[0]), -math.sin(rpy[0])],
+                       [0, math.sin(rpy[0]), math.cos(rpy[0])]])
+        ry = np.array([[math.cos(rpy[1]), 0, math.sin(rpy[1])], [0, 1, 0],
+                       [-math.sin(rpy[1]), 0, math.cos(rpy[1])]])
+        rz = np.array([[math.cos(rpy[2]), -math.sin(rpy[2]), 0],
+                       [math.sin(rpy[2]), math.cos(rpy[2]), 0], [0, 0, 1]])
+        _close(r, rz @ ry @ rx, 1.0)
+        tensor, v = _random_symmetric(1.0), RNG.normal(size=3)
+        _close(mat3.rotate(tensor, r), np.array(r) @ tensor @ np.array(r).T, 10.0)
+        _close(mat3.multiply(r, tensor), np.array(r) @ tensor, 10.0)
+        _close(mat3.apply(r, v), np.array(r) @ v, 10.0)
+        assert mat3.trace(tensor) == pytest.approx(np.trace(tensor), rel=1e-12, abs=1e-12)

@@ -1,0 +1,147 @@
+"""Rigid-body mass properties in pure Python: URDF inertials, primitive solids, combination.
+
+Conventions: every tensor is about the body's centre of mass, in [kg m^2]; ``com`` is in [m] and,
+unless said otherwise, expressed in the link frame with axes parallel to the link frame. A URDF
+``<inertial>`` gives its tensor in the frame of its ``<origin>`` (rotated by ``rpy``), so
+:func:`declared` rotates it into the link axes: ``I_link = R I R^T``.
+
+This is the one implementation of these formulas. The inertia rules use it directly (no numpy,
+so ``urdftool check`` starts fast); :mod:`urdftool.inertia` wraps it in numpy arrays for
+``urdftool inertia`` and adds meshes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from . import mat3
+from .rules._values import parse_numbers
+
+INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+@dataclass(frozen=True)
+class Body:
+    """mass [kg], com [m] (3-tuple), inertia [kg m^2] (3x3 tuples) about the com, link axes."""
+
+    mass: float
+    com: mat3.Vector
+    inertia: mat3.Matrix
+
+    def principal_moments(self) -> mat3.Vector:
+        """Eigenvalues of the tensor, ascending."""
+        return mat3.eigvalsh(self.inertia)
+
+    def scaled_to(self, mass: float) -> "Body":
+        """The same shape with another mass: inertia scales linearly with mass."""
+        factor = mass / self.mass if self.mass else 0.0
+        return Body(mass, self.com, mat3.scaled(self.inertia, factor))
+
+
+def origin_of(element) -> tuple[mat3.Vector, mat3.Matrix]:
+    """(xyz, R) of an element's ``<origin>``; identity when absent. Malformed parts count as 0."""
+    origin = element.find("origin") if element is not None else None
+    xyz, rpy = [0.0] * 3, [0.0] * 3
+    if origin is not None:
+        xyz = parse_numbers(origin.get("xyz", "0 0 0"), 3)[0] or xyz
+        rpy = parse_numbers(origin.get("rpy", "0 0 0"), 3)[0] or rpy
+    return mat3.vector(xyz), mat3.rpy_matrix(rpy)
+
+
+def tensor(values: dict[str, float]) -> mat3.Matrix:
+    return mat3.matrix([[values["ixx"], values["ixy"], values["ixz"]],
+                        [values["ixy"], values["iyy"], values["iyz"]],
+                        [values["ixz"], values["iyz"], values["izz"]]])
+
+
+def declared(link) -> Body | None:
+    """A link's ``<inertial>`` in link axes, or None when absent or not fully numeric."""
+    inertial = link.find("inertial")
+    if inertial is None:
+        return None
+    mass_el, inertia_el = inertial.find("mass"), inertial.find("inertia")
+    if mass_el is None or inertia_el is None:
+        return None
+    mass = parse_numbers(mass_el.get("value"), 1)[0]
+    values = {}
+    for name in INERTIA_ATTRIBUTES:
+        number = parse_numbers(inertia_el.get(name), 1)[0]
+        if number is None:
+            return None
+        values[name] = number[0]
+    if mass is None:
+        return None
+    xyz, rotation = origin_of(inertial)
+    return Body(mass[0], xyz, mat3.rotate(tensor(values), rotation))
+
+
+# Solids: mass properties per unit density, about their own centre, in their own frame.
+
+def box(size) -> Body:
+    """Solid box of edges ``size`` [m], unit density."""
+    a, b, c = size
+    m = a * b * c
+    return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([m * (b * b + c * c) / 12,
+                                                   m * (a * a + c * c) / 12,
+                                                   m * (a * a + b * b) / 12]))
+
+
+def cylinder(radius: float, length: float) -> Body:
+    """Solid cylinder along z, unit density."""
+    m = math.pi * radius * radius * length
+    side = m * (3 * radius * radius + length * length) / 12
+    return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([side, side, m * radius * radius / 2]))
+
+
+def sphere(radius: float) -> Body:
+    """Solid sphere, unit density."""
+    m = 4 / 3 * math.pi * radius ** 3
+    moment = 2 / 5 * m * radius * radius
+    return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([moment] * 3))
+
+
+def transformed(solid: Body, xyz, rotation) -> Body:
+    """A solid placed by ``<origin>``: its com moved into the link frame, tensor rotated."""
+    return Body(solid.mass, mat3.add(mat3.vector(xyz), mat3.apply(rotation, solid.com)),
+                mat3.rotate(solid.inertia, rotation))
+
+
+def combine(parts: list[Body]) -> Body:
+    """Several bodies as one, by the parallel-axis theorem about the common centre of mass."""
+    mass = sum(p.mass for p in parts)
+    if mass <= 0:
+        raise ValueError("bodies without mass cannot be combined")
+    com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
+    inertia = [[0.0] * 3 for _ in range(3)]
+    for part in parts:
+        d = [part.com[i] - com[i] for i in range(3)]
+        squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+        for i in range(3):
+            for j in range(3):
+                shift = part.mass * ((squared if i == j else 0.0) - d[i] * d[j])
+                inertia[i][j] += part.inertia[i][j] + shift
+    return Body(mass, com, mat3.matrix(inertia))
+
+
+def triangle_violation(moments, tolerance: float = 0.0) -> str | None:
+    """Which triangle inequality principal moments break (a + b >= c), or None."""
+    a, b, c = sorted(float(m) for m in moments)
+    if a + b < c * (1 - tolerance):
+        return f"{a:.4g} + {b:.4g} < {c:.4g}"
+    return None
+
+
+def _flat(values) -> list[float]:
+    if isinstance(values, (int, float)) or not hasattr(values, "__iter__"):
+        return [float(values)]
+    return [v for item in values for v in _flat(item)]
+
+
+def relative_difference(declared_value, computed_value) -> float:
+    """|declared - computed| / |computed| for scalars, vectors or matrices (Frobenius norm)."""
+    d, c = _flat(declared_value), _flat(computed_value)
+    scale = math.sqrt(sum(v * v for v in c))
+    if scale == 0:
+        return math.inf if any(v != 0 for v in d) else 0.0
+    return math.sqrt(sum((a - b) ** 2 for a, b in zip(d, c))) / scale

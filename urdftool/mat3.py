@@ -1,0 +1,125 @@
+"""3-vectors and 3x3 matrices as tuples, in pure Python (no numpy: ``urdftool check`` starts fast).
+
+Enough for rules that place frames and judge inertia tensors: roll-pitch-yaw rotations,
+products, and the eigenvalues of a symmetric matrix in closed form. Matrices are tuples of
+three row tuples; any sequence of sequences (a numpy array too) is accepted as input.
+"""
+
+from __future__ import annotations
+
+import math
+
+Vector = tuple[float, float, float]
+Matrix = tuple[Vector, Vector, Vector]
+
+IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+_THIRD_TURN = 2 * math.pi / 3
+
+
+def vector(values) -> Vector:
+    return tuple(float(v) for v in values)
+
+
+def matrix(rows) -> Matrix:
+    return tuple(vector(row) for row in rows)
+
+
+def diagonal(values) -> Matrix:
+    a, b, c = values
+    return ((float(a), 0.0, 0.0), (0.0, float(b), 0.0), (0.0, 0.0, float(c)))
+
+
+def rpy_matrix(rpy) -> Matrix:
+    """Rotation matrix of URDF roll-pitch-yaw (fixed axes x, y, z): Rz(y) Ry(p) Rx(r)."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), \
+        math.cos(y), math.sin(y)
+    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+            (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+            (-sp, cp * sr, cp * cr))
+
+
+def apply(m, v) -> Vector:
+    """The product ``m @ v``."""
+    return tuple(m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2] for i in range(3))
+
+
+def multiply(a, b) -> Matrix:
+    """The product ``a @ b``."""
+    return tuple(tuple(a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]
+                       for j in range(3)) for i in range(3))
+
+
+def transpose(m) -> Matrix:
+    return tuple(tuple(m[j][i] for j in range(3)) for i in range(3))
+
+
+def rotate(tensor, rotation) -> Matrix:
+    """A tensor expressed in a frame rotated by ``rotation``: ``R T R^T``."""
+    return multiply(multiply(rotation, tensor), transpose(rotation))
+
+
+def add(a, b) -> Vector:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def scaled(m, factor: float) -> Matrix:
+    return tuple(tuple(v * factor for v in row) for row in m)
+
+
+def trace(m) -> float:
+    return m[0][0] + m[1][1] + m[2][2]
+
+
+def cross(a, b) -> Vector:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def eigvalsh(m) -> Vector:
+    """Eigenvalues of a symmetric matrix, ascending (its lower triangle is read, as numpy does).
+
+    Closed form, made robust as in Eberly's "A Robust Eigensolver for 3x3 Symmetric Matrices":
+    ``B = (A - q I) / p`` (``q`` the mean eigenvalue, ``p`` their spread) has eigenvalues
+    ``2 cos(phi + 2 k pi / 3)`` with ``cos(3 phi) = det(B) / 2``. That is exact for the
+    eigenvalue farthest from the others, but a nearly repeated pair would come out split by
+    ~1e-8; so the pair is taken from ``B`` restricted to the plane orthogonal to the isolated
+    eigenvalue's eigenvector (a 2x2 problem). Accurate to a few ulps of the largest magnitude.
+    """
+    a00, a11, a22 = float(m[0][0]), float(m[1][1]), float(m[2][2])
+    a10, a20, a21 = float(m[1][0]), float(m[2][0]), float(m[2][1])
+    if a10 == 0 and a20 == 0 and a21 == 0:
+        return tuple(sorted((a00, a11, a22)))
+    scale = max(abs(a00), abs(a11), abs(a22), abs(a10), abs(a20), abs(a21))
+    a00, a11, a22, a10, a20, a21 = (v / scale for v in (a00, a11, a22, a10, a20, a21))
+    q = (a00 + a11 + a22) / 3
+    p = math.sqrt(((a00 - q) ** 2 + (a11 - q) ** 2 + (a22 - q) ** 2
+                   + 2 * (a10 * a10 + a20 * a20 + a21 * a21)) / 6)
+    if p == 0:
+        return (q * scale,) * 3
+    b = (((a00 - q) / p, a10 / p, a20 / p), (a10 / p, (a11 - q) / p, a21 / p),
+         (a20 / p, a21 / p, (a22 - q) / p))
+    half_det = (b[0][0] * (b[1][1] * b[2][2] - b[2][1] * b[2][1])
+                - b[1][0] * (b[1][0] * b[2][2] - b[2][1] * b[2][0])
+                + b[2][0] * (b[1][0] * b[2][1] - b[1][1] * b[2][0])) / 2
+    phi = math.acos(min(max(half_det, -1.0), 1.0)) / 3
+    low, middle, high = sorted(2 * math.cos(phi + k * _THIRD_TURN) for k in range(3))
+    isolated = low if middle - low > high - middle else high
+    rows = [(b[i][0] - (isolated if i == 0 else 0.0), b[i][1] - (isolated if i == 1 else 0.0),
+             b[i][2] - (isolated if i == 2 else 0.0)) for i in range(3)]
+    v = max((cross(rows[0], rows[1]), cross(rows[0], rows[2]), cross(rows[1], rows[2])),
+            key=lambda c: dot(c, c))
+    v = tuple(x / math.sqrt(dot(v, v)) for x in v)
+    if abs(v[0]) > abs(v[1]):
+        u = (-v[2] / math.hypot(v[0], v[2]), 0.0, v[0] / math.hypot(v[0], v[2]))
+    else:
+        u = (0.0, v[2] / math.hypot(v[1], v[2]), -v[1] / math.hypot(v[1], v[2]))
+    w = cross(v, u)
+    bu, bw = apply(b, u), apply(b, w)
+    uu, ww, uw = dot(u, bu), dot(w, bw), dot(u, bw)
+    mean, radius = (uu + ww) / 2, math.hypot((uu - ww) / 2, uw)
+    moments = (dot(v, apply(b, v)), mean - radius, mean + radius)
+    return tuple(sorted((q + p * e) * scale for e in moments))
