@@ -9,8 +9,7 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import (PackageOption, XacroArgOption, fail_usage, load_one, pairs,
-                      single_robot_input)
+from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot_input
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -53,7 +52,7 @@ def collisions(
     all_pairs: bool = typer.Option(False, "--all", help="List every pair in text output."),
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
-    from ..collision.chain import ChainError
+    from ..kinematics.fk import FKError
 
     path, args, packages = single_robot_input("collisions", words, arg, package)
     try:
@@ -67,7 +66,6 @@ def collisions(
         for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")):
             if given is not None and not given.is_file():
                 raise UsageError(f"{name}: '{given}' does not exist")
-        values = pairs(q, "--q")
     except UsageError as error:
         fail_usage(error)
     robot = load_one(path, args, packages)
@@ -77,11 +75,11 @@ def collisions(
                            max_samples, workers, write_srdf, check_srdf, plot, all_pairs,
                            format)
         else:
-            code = _pose(robot, values, srdf, format)
+            code = _pose(robot, q, srdf, format)
     except UsageError as error:
         fail_usage(error)
-    except ChainError as error:
-        typer.echo(f"{robot.display}: error: {error}", err=True)
+    except FKError as error:
+        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
         code = 1
     raise typer.Exit(code)
 
@@ -101,12 +99,15 @@ def _srdf_entries(path: Path):
         raise UsageError(str(error)) from None
 
 
-def _pose(robot, values, srdf_path, format) -> int:
+def _pose(robot, words, srdf_path, format) -> int:
     from ..collision import pose, srdf
     from ..diagnostics import display_path
 
     scene = _scene(robot, 0.0)
-    q = pose.configuration(scene.chain, values)
+    configuration = pose.configuration(scene, words)
+    for warning in configuration.warnings:
+        typer.echo(f"urdftool: warning: {warning}", err=True)
+    q = configuration.values[0]
     srdf_path = srdf_path or srdf.beside(robot)
     allowed = srdf.allowed_pairs(_srdf_entries(srdf_path)[0]) if srdf_path else {}
     report = pose.check(scene, q, allowed, srdf=display_path(srdf_path) if srdf_path else None)
@@ -118,7 +119,7 @@ def _pose(robot, values, srdf_path, format) -> int:
                "problems": [{"location": str(p.location), "message": p.message}
                             for p in report.problems]})
     else:
-        _pose_text(robot, report, bool(values))
+        _pose_text(robot, report, bool(words))
     return 1 if report.forbidden else 0
 
 

@@ -17,7 +17,7 @@ import numpy as np
 from ..rules._names import available
 from . import transforms
 from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, Variable,
-                            variables_of)
+                            mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
 
@@ -92,8 +92,7 @@ class KinematicModel:
                           " run 'urdftool check' for the cause", robot.root) from None
         self.robot = robot
         self.variables: list[Variable] = variables_of(robot, FLOATING_ROOT if floating else None)
-        self.mimics = {name: joint.find("mimic").get("joint") for name, joint in robot.joints.items()
-                       if joint.find("mimic") is not None}
+        self.mimics = mimics_of(robot)
         self._columns = {v.name: i for i, v in enumerate(self.variables)}
         self._joints = [self._joint(i) for i in range(self.model.njoints)]
         body = pinocchio.FrameType.BODY
