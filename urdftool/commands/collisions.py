@@ -9,13 +9,16 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot_input
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
         "that neither adjacency nor the SRDF allows. With --matrix: classify every link pair "
         "as MoveIt's Setup Assistant does (Adjacent, Default, Always, Never) from random "
         "samples, with each pair's collision count, minimum distance and convergence.")
+
+
+FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
@@ -54,21 +57,12 @@ def collisions(
 ) -> None:
     from ..kinematics.fk import FKError
 
-    path, args, packages = single_robot_input("collisions", words, arg, package)
-    try:
-        if format not in ("text", "json"):
-            raise UsageError(f"unknown format '{format}'; choose from text, json")
-        if not matrix and (write_srdf or check_srdf or plot or until_converged):
-            raise UsageError("--write-srdf, --check-srdf, --plot and --until-converged need "
-                             "--matrix")
-        if matrix and q:
-            raise UsageError("--q sets the pose of a single check; it does not go with --matrix")
-        for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")):
-            if given is not None and not given.is_file():
-                raise UsageError(f"{name}: '{given}' does not exist")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
+        (not matrix and (write_srdf or check_srdf or plot or until_converged),
+         "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),
+        (matrix and q, "--q sets the pose of a single check; it does not go with --matrix"),
+        *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
+          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
         if matrix:
             code = _matrix(robot, samples, seed, min_fraction, margin, until_converged,

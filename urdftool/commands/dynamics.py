@@ -6,8 +6,11 @@ import json
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 from ..errors import UsageError
+
+
+FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
@@ -49,13 +52,8 @@ def dynamics(
 ) -> None:
     from ..dynamics import DynamicsError, build, gravity_loads, state
 
-    try:
-        path, args, packages = single_robot("dynamics", words, arg, package, output_format)
-        if samples < 0:
-            raise UsageError("--samples must be 0 or more")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
+                         [(samples < 0, "--samples must be 0 or more")])
     try:
         model = build(robot)
     except DynamicsError as error:
