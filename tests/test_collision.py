@@ -266,3 +266,10 @@ def test_batched_link_poses_match_yourdfpy():
         reference.update_cfg(dict(zip((v.name for v in scene.variables), q[k])))
         for i, link in enumerate(scene.links):
             assert np.allclose(reference.get_transform(link, root), poses[k, i], atol=1e-12)
+
+
+def test_pose_q_in_degrees_and_out_of_limit_warning(run_cli):
+    result = run_cli("collisions", HUMANOID, "--q", "l_knee=90", "--deg", "--format", "json")
+    assert json.loads(result.stdout)["q"]["l_knee"] == pytest.approx(np.pi / 2)
+    beyond = run_cli("collisions", HUMANOID, "--q", "l_knee=9", "--format", "json")
+    assert "joint 'l_knee' = 9 is outside its limits" in beyond.stderr

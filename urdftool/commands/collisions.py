@@ -31,6 +31,7 @@ def collisions(
     package: list[str] = PackageOption,
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Joint value in rad or m (repeatable); pose mode."),
+    deg: bool = typer.Option(False, "--deg", help="--q angles are in degrees."),
     srdf: Path = typer.Option(None, "--srdf", help="SRDF whose disable_collisions allow pairs "
                               "[default: the .srdf beside the robot]."),
     matrix: bool = typer.Option(False, "--matrix", help="Compute the collision matrix."),
@@ -60,6 +61,7 @@ def collisions(
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
         (not matrix and (write_srdf or check_srdf or plot or until_converged),
          "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),
+        (matrix and deg, "--deg goes with --q, not with --matrix"),
         (matrix and q, "--q sets the pose of a single check; it does not go with --matrix"),
         *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
           for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
@@ -69,7 +71,7 @@ def collisions(
                            max_samples, workers, write_srdf, check_srdf, plot, all_pairs,
                            format)
         else:
-            code = _pose(robot, q, srdf, format)
+            code = _pose(robot, q, deg, srdf, format)
     except UsageError as error:
         fail_usage(error)
     except FKError as error:
@@ -93,12 +95,12 @@ def _srdf_entries(path: Path):
         raise UsageError(str(error)) from None
 
 
-def _pose(robot, words, srdf_path, format) -> int:
+def _pose(robot, words, degrees, srdf_path, format) -> int:
     from ..collision import pose, srdf
     from ..diagnostics import display_path
 
     scene = _scene(robot, 0.0)
-    configuration = pose.configuration(scene, words)
+    configuration = pose.configuration(scene, words, degrees)
     for warning in configuration.warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
     q = configuration.values[0]
