@@ -99,6 +99,7 @@ class KinematicModel:
         self._frames = [(f.name, f.parentJoint, f.placement.homogeneous.copy())
                         for f in self.model.frames if f.type == body]
         self.links = [name for name, _, _ in self._frames]
+        self._at_joint = [np.array_equal(placement, np.eye(4)) for _, _, placement in self._frames]
 
     def _joint(self, index: int) -> _Joint:
         model = self.model
@@ -173,7 +174,7 @@ class KinematicModel:
             _, joint, placement = self._frames[link]
             if placed[joint] is None:
                 out[index] = placement
-            elif np.array_equal(placement, np.eye(4)):  # a link at its joint: no product
+            elif self._at_joint[link]:  # a link at its joint: no product
                 out[index] = placed[joint]
             else:
                 np.matmul(placed[joint], placement, out=out[index])
