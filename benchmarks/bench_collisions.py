@@ -24,7 +24,7 @@ def naive(scene, sampled, q) -> tuple[float, float]:
     index = {pair: i for i, pair in enumerate(scene.pairs)}
     rows = [checker.pair_of.tolist().index(index[pair]) for pair in sampled]
     parts = [(checker.pa[row], checker.pb[row]) for row in rows]
-    poses = scene.chain.poses(q)
+    poses = scene.poses(q)
     start, cpu = time.perf_counter(), time.process_time()
     request = fcl.CollisionRequest()
     for sample in poses:
@@ -54,7 +54,7 @@ def main() -> dict:
         if workers == 1:
             cpu = time.process_time() - cpu  # the machine may be shared: CPU time tells both
     sampled = [(p.link1, p.link2) for p in result.pairs if p.reason not in ("Adjacent", "Default")]
-    q = scene.chain.sample(np.random.default_rng(0), SAMPLES // 10)
+    q = scene.sample(0, SAMPLES // 10)
     reference, reference_cpu = (10 * t for t in naive(scene, sampled, q))
     ours = timings[2]
     ratio = reference / ours

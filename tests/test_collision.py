@@ -46,7 +46,7 @@ def robot_of(tmp_path, text: str):
 
 def pose_report(robot, **q):
     scene = matrix.Scene(robot, 0.0)
-    values = pose.configuration(scene.chain, {k: str(v) for k, v in q.items()})
+    values = pose.configuration(scene, [f"{k}={v}" for k, v in q.items()]).values[0]
     return pose.check(scene, values, {})
 
 
@@ -71,7 +71,7 @@ def test_unknown_joint_in_q_names_the_joints(tmp_path):
 
     scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
     with pytest.raises(UsageError, match="did you mean 'slider'"):
-        pose.configuration(scene.chain, {"slidr": "1"})
+        pose.configuration(scene, ["slidr=1"])
 
 
 def test_adjacency_looks_through_links_without_geometry(tmp_path):
@@ -257,12 +257,19 @@ def test_batched_link_poses_match_yourdfpy():
     import yourdfpy
 
     robot = load(str(HUMANOID))
-    chain = matrix.Scene(robot, 0.0).chain
-    q = chain.sample(np.random.default_rng(3), 4)
-    poses = chain.poses(q)
+    scene = matrix.Scene(robot, 0.0)
+    q = scene.sample(3, 4)
+    poses = scene.poses(q)
     reference = yourdfpy.URDF.load(io.StringIO(robot.urdf), load_meshes=False)
+    root = scene.kinematics.links[0]
     for k in range(len(q)):
-        reference.update_cfg(dict(zip(chain.joints, q[k])))
-        for i, link in enumerate(chain.links):
-            assert np.allclose(reference.get_transform(link, chain.links[0]), poses[k, i],
-                               atol=1e-12)
+        reference.update_cfg(dict(zip((v.name for v in scene.variables), q[k])))
+        for i, link in enumerate(scene.links):
+            assert np.allclose(reference.get_transform(link, root), poses[k, i], atol=1e-12)
+
+
+def test_pose_q_in_degrees_and_out_of_limit_warning(run_cli):
+    result = run_cli("collisions", HUMANOID, "--q", "l_knee=90", "--deg", "--format", "json")
+    assert json.loads(result.stdout)["q"]["l_knee"] == pytest.approx(np.pi / 2)
+    beyond = run_cli("collisions", HUMANOID, "--q", "l_knee=9", "--format", "json")
+    assert "joint 'l_knee' = 9 is outside its limits" in beyond.stderr

@@ -4,8 +4,7 @@ Boxes, cylinders and spheres become FCL primitives; meshes become BVH models, sc
 also carries an oriented bounding box (frame in the link, half extents) and a bounding sphere, the
 cheap tests the matrix runs across thousands of samples before asking FCL.
 
-Meshes are loaded here through trimesh with a small local loader.
-TODO(merge): switch ``_load_mesh`` to ``urdftool/meshes.py`` (safe mesh loading with limits).
+Meshes are loaded through :mod:`urdftool.meshes`, with its safety limits and per-robot cache.
 """
 
 from __future__ import annotations
@@ -152,8 +151,13 @@ def _refuse(problems, robot, shape, link: str, why: str) -> None:
 
 
 def _load_mesh(robot, shape, cache):
-    """(BVH model, bounding box centre, half extents) or a message saying why not."""
-    from ..errors import UrdftoolError
+    """(BVH model, bounding box centre, half extents) or a message saying why not.
+
+    The mesh itself comes from :mod:`urdftool.meshes` (containment, extension whitelist, size
+    and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
+    once per (file, scale).
+    """
+    from ..meshes import MeshProblem, load_mesh
 
     uri = shape.get("filename")
     if not uri:
@@ -164,30 +168,18 @@ def _load_mesh(robot, shape, cache):
         if values is None or not np.all(np.isfinite(values)) or 0 in values:
             return f"mesh scale {problem or shape.get('scale')} is unusable"
         scale = tuple(values)
-    try:
-        path = robot.resolve_uri(uri)
-    except UrdftoolError as error:
-        return f"mesh '{uri}': {error}"
-    key = (str(path), scale)
+    key = (uri, scale)
     if key not in cache:
-        cache[key] = _read_mesh(path, uri, scale)
+        try:
+            cache[key] = _bvh(load_mesh(robot, uri, scale))
+        except MeshProblem as problem:
+            cache[key] = str(problem)
     return cache[key]
 
 
-def _read_mesh(path, uri: str, scale):
-    if not path.is_file():
-        return f"mesh '{uri}' not found at {path}"
-    import trimesh
-
-    try:
-        mesh = trimesh.load(str(path), force="mesh")
-    except Exception as error:  # trimesh raises anything from any of its format readers
-        return f"mesh '{uri}' could not be read: {error}"
-    vertices = np.asarray(getattr(mesh, "vertices", ()), dtype=float).reshape(-1, 3)
-    faces = np.asarray(getattr(mesh, "faces", ()), dtype=np.int64).reshape(-1, 3)
-    if len(vertices) == 0 or len(faces) == 0:
-        return f"mesh '{uri}' has no triangles"
-    vertices = vertices * np.asarray(scale)
+def _bvh(mesh):
+    vertices = np.asarray(mesh.vertices, dtype=float).reshape(-1, 3)
+    faces = np.asarray(mesh.faces, dtype=np.int64).reshape(-1, 3)
     model = fcl.BVHModel()
     model.beginModel(len(vertices), len(faces))
     model.addSubModel(vertices, faces)

@@ -22,10 +22,10 @@ from typing import Callable
 
 import numpy as np
 
-from . import chain as chain_module
 from . import geometry as geometry_module
 from .pairs import PairChecker, Tally
 
+_MOVING = ("revolute", "continuous", "prismatic")
 CLASSES = ("Adjacent", "Default", "Always", "Never", "")
 BLOCK = 250
 
@@ -79,21 +79,47 @@ class Matrix:
 
 
 class Scene:
-    """Everything the checks need, built once per robot: geometry, chain, link pairs."""
+    """Everything the checks need, built once per robot: geometry, kinematics, link pairs.
+
+    Configurations are rows of values of ``variables`` (urdftool.kinematics.configuration).
+    Floating and planar joints are held at their origin: a self-collision matrix does not
+    depend on where the base is.
+    """
 
     def __init__(self, robot, margin: float):
+        from ..kinematics.fk import KinematicModel
+
         self.geometry = geometry_module.build(robot)
-        self.chain = chain_module.build(robot)
+        self.kinematics = KinematicModel(robot)
+        self.variables = self.kinematics.variables
         self.margin = margin
-        links = [name for name in self.chain.links if name in self.geometry.parts]
+        links = [name for name in self.kinematics.links if name in self.geometry.parts]
         self.links = links
+        self._link_indices = [self.kinematics.links.index(name) for name in links]
+        self._held = {v.name for v in self.variables if v.kind not in _MOVING}
         self.pairs = [pair_key(a, b) for i, a in enumerate(links) for b in links[i + 1:]]
         self.pairs.sort(key=lambda pair: (pair[0].encode(), pair[1].encode()))
-        self.adjacent = adjacent_pairs(self.chain, set(links))
-        self.checker = PairChecker(self.geometry, self.chain, self.pairs, margin)
+        self.adjacent = adjacent_pairs(robot, set(links))
+        self.checker = PairChecker(self.geometry, links, self.pairs, margin)
+
+    def default(self) -> np.ndarray:
+        """MoveIt's default state: 0 where the limits allow it, else the middle of the range."""
+        from ..kinematics import configuration
+
+        return configuration.defaults(self.variables)
+
+    def sample(self, seed, count: int) -> np.ndarray:
+        """``count`` configurations drawn within the limits from the stream of ``seed``."""
+        from ..kinematics import configuration
+
+        return configuration.random(self.variables, count, seed, hold=self._held).values
+
+    def poses(self, q: np.ndarray) -> np.ndarray:
+        """Poses ``[rows, links, 4, 4]`` of ``self.links`` for configurations ``q``."""
+        return self.kinematics.link_poses(q, self._link_indices)
 
     def at(self, q: np.ndarray) -> np.ndarray:
-        return self.chain.poses(q[None])[0]
+        return self.poses(q[None])[0]
 
 
 def pair_key(one: str, two: str) -> tuple[str, str]:
@@ -101,13 +127,15 @@ def pair_key(one: str, two: str) -> tuple[str, str]:
     return (one, two) if one.encode() <= two.encode() else (two, one)
 
 
-def adjacent_pairs(chain, with_geometry: set[str]) -> set[tuple[str, str]]:
+def adjacent_pairs(robot, with_geometry: set[str]) -> set[tuple[str, str]]:
     """Pairs joined by a joint, looking through links that have no geometry."""
-    neighbours: dict[str, set[str]] = {name: set() for name in chain.links}
-    for index in range(1, len(chain.links)):
-        parent, child = chain.links[chain.parents[index]], chain.links[index]
-        neighbours[parent].add(child)
-        neighbours[child].add(parent)
+    from ..kinematics.tree import children_by_link
+
+    neighbours: dict[str, set[str]] = {name: set() for name in robot.links}
+    for parent, children in children_by_link(robot).items():
+        for _, child in children:
+            neighbours.setdefault(parent, set()).add(child)
+            neighbours.setdefault(child, set()).add(parent)
     result = set()
     for start in with_geometry:
         seen, stack = {start}, [start]
@@ -135,8 +163,8 @@ _WORK: dict = {}
 
 def _run_block(block: int) -> Tally:
     scene = _WORK["scene"]
-    q = scene.chain.sample(np.random.default_rng([_WORK["seed"], block]), BLOCK)
-    return _WORK["checker"].tally(scene.chain.poses(q), block * BLOCK)
+    q = scene.sample([_WORK["seed"], block], BLOCK)
+    return _WORK["checker"].tally(scene.poses(q), block * BLOCK)
 
 
 def _sample_blocks(pool, blocks: range, pairs: int, progress) -> Tally:
@@ -174,11 +202,11 @@ def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.
     classes = {pair: "" for pair in scene.pairs}
     for pair in scene.adjacent:
         classes[pair] = "Adjacent"
-    for pair in default_collisions(scene, scene.chain.default()):
+    for pair in default_collisions(scene, scene.default()):
         if not classes[pair]:
             classes[pair] = "Default"
     sampled = [pair for pair in scene.pairs if not classes[pair]]
-    checker = PairChecker(scene.geometry, scene.chain, sampled, margin)
+    checker = PairChecker(scene.geometry, scene.links, sampled, margin)
     blocks = max(2, -(-samples // BLOCK))
     blocks += blocks % 2
     done = 0
@@ -240,6 +268,6 @@ def _distances(scene: Scene, checker: PairChecker, tally: Tally) -> list[float]:
             continue
         sample = int(tally.bound_sample[i])
         block, offset = divmod(sample, BLOCK)
-        q = scene.chain.sample(np.random.default_rng([_WORK["seed"], block]), BLOCK)[offset]
+        q = scene.sample([_WORK["seed"], block], BLOCK)[offset]
         result.append(float(checker.exact(scene.at(q), i)[1]))
     return result

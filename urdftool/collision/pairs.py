@@ -50,10 +50,12 @@ class Tally:
 class PairChecker:
     """FCL objects and bounding boxes for a fixed list of link pairs."""
 
-    def __init__(self, geometry, chain, link_pairs: list[tuple[str, str]], margin: float):
+    def __init__(self, geometry, links: list[str], link_pairs: list[tuple[str, str]],
+                 margin: float):
+        """links: the links of the pose arrays given to the checks, in their order."""
         self.link_pairs = link_pairs
         self.margin = margin
-        link_index = {name: i for i, name in enumerate(chain.links)}
+        link_index = {name: i for i, name in enumerate(links)}
         parts = [part for name in geometry.links for part in geometry.parts[name]]
         first = {}
         for k, part in enumerate(parts):

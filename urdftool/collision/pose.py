@@ -7,7 +7,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import UsageError
-from ..rules._names import available
 
 
 @dataclass
@@ -39,22 +38,16 @@ class PoseReport:
         return [contact for contact in self.colliding if not contact.allowed]
 
 
-def configuration(chain, values: dict[str, str]) -> np.ndarray:
-    """The default configuration with ``NAME=VALUE`` overrides [rad or m]; bad input raises
+def configuration(scene, words: list[str], degrees: bool = False):
+    """Configurations (one row) from ``--q NAME=VALUE`` words over the default configuration
+    (0, or mid-range when 0 is outside the limits), with out-of-limit warnings; bad input raises
     UsageError naming the valid joints."""
-    q = chain.default()
-    for name, text in values.items():
-        if name not in chain.joints:
-            raise UsageError(f"--q: joint '{name}' is not an actuated joint; "
-                             + available("joints", name, chain.joints))
-        try:
-            value = float(text)
-        except ValueError:
-            raise UsageError(f"--q {name}: '{text}' is not a number") from None
-        if not np.isfinite(value):
-            raise UsageError(f"--q {name}: {text} is not finite")
-        q[chain.joints.index(name)] = value
-    return q
+    from ..kinematics import configuration as config
+
+    try:
+        return config.from_words(scene.variables, words, degrees, scene.kinematics.mimics)
+    except config.ConfigError as error:
+        raise UsageError(str(error)) from None
 
 
 def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: int = 5,
@@ -69,6 +62,6 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
     colliding = sorted((c for c in contacts if c.colliding), key=lambda c: -c.depth)
     apart = sorted((c for c in contacts if not c.colliding and c.allowed != "Adjacent"),
                    key=lambda c: c.distance)
-    values = dict(zip(scene.chain.joints, (float(v) for v in q)))
+    values = {v.name: float(x) for v, x in zip(scene.variables, q)}
     return PoseReport(values, colliding, apart[:closest], scene.geometry.visual_only,
                       scene.geometry.problems, srdf)

@@ -50,12 +50,27 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     return paths, args, packages
 
 
-def single_robot_input(command: str, words: list[str], arg_options: list[str],
-                       package_options: list[str], choices: dict[str, tuple] | None = None):
-    """(path, xacro args, packages) for commands that take exactly one robot; exit 2 otherwise.
+def fail_usage(error: UsageError) -> None:
+    typer.echo(f"urdftool: error: {error}", err=True)
+    raise typer.Exit(2)
 
-    choices: {option: (value, allowed values)} checked at the same time.
+
+def single_robot(command: str, words: list[str], arg_options: list[str],
+                 package_options: list[str], choices: dict[str, tuple] | None = None,
+                 problems=(), **load_options):
+    """The one robot a command analyses, loaded.
+
+    Usage errors exit 2 before anything is loaded: not exactly one FILE, an option value not
+    among its choices, or the first of ``problems`` that is true. A robot that does not load
+    prints as located diagnostics and exits 1.
+
+    choices: {option: (value, allowed values)}, e.g. {"--format": (fmt, ("text", "json"))}
+    problems: (is wrong, message) pairs for the command's own option checks
+    load_options: passed to ``urdftool.loader.load`` (e.g. ``allow_env``)
     """
+    from ..errors import LoadError
+    from ..loader import load
+
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
         if len(paths) != 1:
@@ -63,38 +78,16 @@ def single_robot_input(command: str, words: list[str], arg_options: list[str],
         for option, (value, allowed) in (choices or {}).items():
             if value not in allowed:
                 raise UsageError(f"{option} must be one of {', '.join(allowed)}, not '{value}'")
+        for wrong, message in problems:
+            if wrong:
+                raise UsageError(message)
     except UsageError as error:
         fail_usage(error)
-    return paths[0], args, packages
-
-
-def fail_usage(error: UsageError) -> None:
-    typer.echo(f"urdftool: error: {error}", err=True)
-    raise typer.Exit(2)
-
-
-def load_one(path: str, args, packages, **kwargs):
-    """Load one robot for an analysis command; load failures print as diagnostics, exit 1."""
-    from ..errors import LoadError
-    from ..loader import load
-
     try:
-        return load(path, xacro_args=args, packages=packages, **kwargs)
+        return load(paths[0], xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
         from ..engine import FileResult
         from ..report import render
 
-        render("text", [FileResult(path, error.findings)], sys.stderr)
+        render("text", [FileResult(paths[0], error.findings)], sys.stderr)
         raise typer.Exit(1)
-
-
-def single_robot(command: str, words: list[str], arg_options: list[str],
-                 package_options: list[str], output_format: str | None = None,
-                 formats: tuple[str, ...] = ("text", "json")):
-    """(path, xacro args, packages) for a command that analyses exactly one robot."""
-    paths, args, packages = robot_inputs(words, arg_options, package_options)
-    if len(paths) != 1:
-        raise UsageError(f"{command} takes exactly one ROBOT")
-    if output_format is not None and output_format not in formats:
-        raise UsageError(f"--format must be {' or '.join(formats)}, got '{output_format}'")
-    return paths[0], args, packages

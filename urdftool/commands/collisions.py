@@ -9,14 +9,16 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import (PackageOption, XacroArgOption, fail_usage, load_one, pairs,
-                      single_robot_input)
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
         "that neither adjacency nor the SRDF allows. With --matrix: classify every link pair "
         "as MoveIt's Setup Assistant does (Adjacent, Default, Always, Never) from random "
         "samples, with each pair's collision count, minimum distance and convergence.")
+
+
+FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
@@ -29,6 +31,7 @@ def collisions(
     package: list[str] = PackageOption,
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Joint value in rad or m (repeatable); pose mode."),
+    deg: bool = typer.Option(False, "--deg", help="--q angles are in degrees."),
     srdf: Path = typer.Option(None, "--srdf", help="SRDF whose disable_collisions allow pairs "
                               "[default: the .srdf beside the robot]."),
     matrix: bool = typer.Option(False, "--matrix", help="Compute the collision matrix."),
@@ -53,35 +56,26 @@ def collisions(
     all_pairs: bool = typer.Option(False, "--all", help="List every pair in text output."),
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
-    from ..collision.chain import ChainError
+    from ..kinematics.fk import FKError
 
-    path, args, packages = single_robot_input("collisions", words, arg, package)
-    try:
-        if format not in ("text", "json"):
-            raise UsageError(f"unknown format '{format}'; choose from text, json")
-        if not matrix and (write_srdf or check_srdf or plot or until_converged):
-            raise UsageError("--write-srdf, --check-srdf, --plot and --until-converged need "
-                             "--matrix")
-        if matrix and q:
-            raise UsageError("--q sets the pose of a single check; it does not go with --matrix")
-        for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")):
-            if given is not None and not given.is_file():
-                raise UsageError(f"{name}: '{given}' does not exist")
-        values = pairs(q, "--q")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
+        (not matrix and (write_srdf or check_srdf or plot or until_converged),
+         "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),
+        (matrix and deg, "--deg goes with --q, not with --matrix"),
+        (matrix and q, "--q sets the pose of a single check; it does not go with --matrix"),
+        *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
+          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
         if matrix:
             code = _matrix(robot, samples, seed, min_fraction, margin, until_converged,
                            max_samples, workers, write_srdf, check_srdf, plot, all_pairs,
                            format)
         else:
-            code = _pose(robot, values, srdf, format)
+            code = _pose(robot, q, deg, srdf, format)
     except UsageError as error:
         fail_usage(error)
-    except ChainError as error:
-        typer.echo(f"{robot.display}: error: {error}", err=True)
+    except FKError as error:
+        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
         code = 1
     raise typer.Exit(code)
 
@@ -101,12 +95,15 @@ def _srdf_entries(path: Path):
         raise UsageError(str(error)) from None
 
 
-def _pose(robot, values, srdf_path, format) -> int:
+def _pose(robot, words, degrees, srdf_path, format) -> int:
     from ..collision import pose, srdf
     from ..diagnostics import display_path
 
     scene = _scene(robot, 0.0)
-    q = pose.configuration(scene.chain, values)
+    configuration = pose.configuration(scene, words, degrees)
+    for warning in configuration.warnings:
+        typer.echo(f"urdftool: warning: {warning}", err=True)
+    q = configuration.values[0]
     srdf_path = srdf_path or srdf.beside(robot)
     allowed = srdf.allowed_pairs(_srdf_entries(srdf_path)[0]) if srdf_path else {}
     report = pose.check(scene, q, allowed, srdf=display_path(srdf_path) if srdf_path else None)
@@ -118,7 +115,7 @@ def _pose(robot, values, srdf_path, format) -> int:
                "problems": [{"location": str(p.location), "message": p.message}
                             for p in report.problems]})
     else:
-        _pose_text(robot, report, bool(values))
+        _pose_text(robot, report, bool(words))
     return 1 if report.forbidden else 0
 
 

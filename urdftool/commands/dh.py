@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
+from ._common import PackageOption, XacroArgOption, single_robot
 
 FORMATS = ("text", "json", "yaml")
 
@@ -25,10 +25,9 @@ def dh(
 ) -> None:
     from ..kinematics.dh import CONVENTIONS, DHError, extract
 
-    path, args, packages = single_robot_input(
+    robot = single_robot(
         "dh", words, arg, package,
         {"--format": (output_format, FORMATS), "--convention": (convention, CONVENTIONS)})
-    robot = load_one(path, args, packages)
     try:
         table = extract(robot, base, tip, convention)
     except DHError as error:

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import json
-import math
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, pairs, single_robot
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 from ..errors import UsageError
+
+
+FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
@@ -16,20 +18,22 @@ def register(app: typer.Typer) -> None:
                                  "gravity margins against effort limits.")(dynamics)
 
 
-def _values(words: list[str], option: str, joints: list[str], degrees: bool) -> dict:
-    from ..rules._names import available
+def _values(robot, q: list[str], v: list[str], a: list[str], degrees: bool):
+    """{joint: value} for --q, --v (None if not given), --a (None), and limit warnings for --q."""
+    import numpy as np
 
-    result = {}
-    for name, text in pairs(words, option).items():
-        if name not in joints:
-            raise UsageError(f"{option}: joint '{name}' is not a moving joint; "
-                             f"{available('joints', name, joints)}")
-        try:
-            value = float(text)
-        except ValueError:
-            raise UsageError(f"{option} {name}={text}: '{text}' is not a number") from None
-        result[name] = math.radians(value) if degrees else value
-    return result
+    from ..kinematics import configuration as config
+
+    variables, mimics = config.variables_of(robot), config.mimics_of(robot)
+    try:
+        values = [config.assignments(variables, words, option, degrees, mimics)
+                  if words or option == "--q" else None
+                  for words, option in ((q, "--q"), (v, "--v"), (a, "--a"))]
+    except config.ConfigError as error:
+        raise UsageError(str(error)) from None
+    given = [variable for variable in variables if variable.name in values[0]]
+    row = np.array([[values[0][variable.name] for variable in given]])
+    return (*values, config.limit_warnings(given, row))
 
 
 def dynamics(
@@ -48,24 +52,19 @@ def dynamics(
 ) -> None:
     from ..dynamics import DynamicsError, build, gravity_loads, state
 
-    try:
-        path, args, packages = single_robot("dynamics", words, arg, package, output_format)
-        if samples < 0:
-            raise UsageError("--samples must be 0 or more")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
+                         [(samples < 0, "--samples must be 0 or more")])
     try:
         model = build(robot)
     except DynamicsError as error:
         typer.echo(f"{robot.display}: error: {error}", err=True)
         raise typer.Exit(1)
     try:
-        q_values = _values(q, "--q", model.joints, deg)
-        v_values = _values(v, "--v", model.joints, deg) if v else None
-        a_values = _values(a, "--a", model.joints, deg) if a else None
+        q_values, v_values, a_values, warnings = _values(robot, q, v, a, deg)
     except UsageError as error:
         fail_usage(error)
+    for warning in warnings:
+        typer.echo(f"urdftool: warning: {warning}", err=True)
     result = state(model, q_values, v_values, a_values)
     loads = gravity_loads(model, samples, seed) if samples else []
     if output_format == "json":

@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot_input
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -43,18 +43,11 @@ def fk(
     from ..kinematics.dh import DHError, load_table, table_forward
     from ..kinematics.fk import FKError, KinematicModel, forward_kinematics
 
-    path, args, packages = single_robot_input("fk", words, arg, package,
-                                              {"--format": (output_format, FORMATS)})
-    try:
-        if sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1:
-            raise UsageError("give one of --q, --q-file, --random")
-        if verify and not dh:
-            raise UsageError("--verify needs --dh TABLE")
-        if random is not None and random < 1:
-            raise UsageError("--random must be at least 1")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("fk", words, arg, package, {"--format": (output_format, FORMATS)}, (
+        (sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1,
+         "give one of --q, --q-file, --random"),
+        (verify and not dh, "--verify needs --dh TABLE"),
+        (random is not None and random < 1, "--random must be at least 1")))
     try:
         table = load_table(dh) if dh else None
         model = KinematicModel(robot, floating=floating)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, robot_inputs
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 from ..errors import UsageError
 
 
@@ -28,13 +28,7 @@ def graph(
     from ..engine import check_robot
     from ..kinematics.graph import DotMissing, to_dot, write
 
-    try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if len(paths) != 1:
-            raise UsageError("graph takes exactly one FILE")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(paths[0], args, packages)
+    robot = single_robot("graph", words, arg, package)
     dot = to_dot(robot, check_robot(robot))
     if output is None:
         typer.echo(dot, nl=False)

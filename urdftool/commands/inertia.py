@@ -7,8 +7,11 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, load_one, single_robot
+from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
 from ..errors import UsageError
+
+
+FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
@@ -35,15 +38,10 @@ def inertia(
 ) -> None:
     from ..inertia_compare import compare, corrected_urdf, inertial_xml
 
-    try:
-        path, args, packages = single_robot("inertia", words, arg, package, output_format)
-        if density is not None and density <= 0:
-            raise UsageError("--density must be positive")
-        if write is not None and not (link or all_links):
-            raise UsageError("--write needs --link NAME (repeatable) or --all")
-    except UsageError as error:
-        fail_usage(error)
-    robot = load_one(path, args, packages)
+    robot = single_robot("inertia", words, arg, package, {"--format": (output_format, FORMATS)}, [
+        (density is not None and density <= 0, "--density must be positive"),
+        (write is not None and not (link or all_links),
+         "--write needs --link NAME (repeatable) or --all")])
     unknown = [name for name in link if name not in robot.links]
     if unknown:
         from ..rules._names import available

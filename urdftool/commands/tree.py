@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
+from ._common import PackageOption, XacroArgOption, single_robot
 
 
 def register(app: typer.Typer) -> None:
@@ -18,8 +18,7 @@ def tree(
 ) -> None:
     from ..kinematics.tree import TreeError, format_tree
 
-    path, args, packages = single_robot_input("tree", words, arg, package)
-    robot = load_one(path, args, packages)
+    robot = single_robot("tree", words, arg, package)
     try:
         typer.echo(format_tree(robot), nl=False)
     except TreeError as error:

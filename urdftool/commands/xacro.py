@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, load_one, single_robot_input
+from ._common import PackageOption, XacroArgOption, single_robot
 
 
 def register(app: typer.Typer) -> None:
@@ -23,8 +23,7 @@ def xacro(
 ) -> None:
     from lxml import etree
 
-    path, args, packages = single_robot_input("xacro", words, arg, package)
-    robot = load_one(path, args, packages, allow_env=not no_env)
+    robot = single_robot("xacro", words, arg, package, allow_env=not no_env)
     etree.indent(robot.root, space="  ")
     text = etree.tostring(robot.root, encoding="unicode", xml_declaration=False)
     text = f'<?xml version="1.0" ?>\n{text}\n'

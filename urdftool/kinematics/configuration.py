@@ -14,6 +14,7 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Collection
 
 import numpy as np
 
@@ -90,6 +91,12 @@ def variables_of(robot, floating_root: str | None = None) -> list[Variable]:
     return result
 
 
+def mimics_of(robot) -> dict[str, str]:
+    """Mimic joint -> the joint it follows (not variables: setting one is an error)."""
+    return {name: joint.find("mimic").get("joint") for name, joint in robot.joints.items()
+            if joint.find("mimic") is not None}
+
+
 def _coordinates(joint: str, names) -> list[Variable]:
     return [Variable(f"{joint}.{c}", joint, c, -math.inf, math.inf) for c in names]
 
@@ -103,19 +110,35 @@ def defaults(variables: list[Variable]) -> np.ndarray:
     return np.array([v.default for v in variables], dtype=float)
 
 
-def from_words(variables: list[Variable], words: list[str], degrees: bool = False,
-               mimics: dict[str, str] | None = None) -> Configurations:
-    """One configuration from ``NAME=VALUE`` words; unnamed variables take their default."""
+def assignments(variables: list[Variable], words: list[str], option: str = "--q",
+                degrees: bool = False, mimics: dict[str, str] | None = None) -> dict[str, float]:
+    """``{variable: value}`` from ``NAME=VALUE`` words given to ``option`` (--q, --v, --a).
+
+    Values are in [rad] or [m] (or per second, per second squared); with ``degrees`` angular
+    variables are given in degrees. A continuous joint takes one value like any other.
+    """
     index = {v.name: i for i, v in enumerate(variables)}
-    values = defaults(variables)
+    result = {}
     for word in words:
         name, sep, text = word.partition("=")
         name = name.strip()
         if not sep or not name:
-            raise ConfigError(f"--q must be NAME=VALUE, got '{word}'")
-        column = _column(index, name, mimics)
-        value = _to_float(text, f"value '{text}' for joint '{name}' is not a number")
-        values[column] = _scaled(value, variables[column], degrees)
+            raise ConfigError(f"{option} must be NAME=VALUE, got '{word}'")
+        column = _column(index, name, mimics, option=option)
+        value = _to_float(text, f"{option}: value '{text}' for joint '{name}' is not a number")
+        result[name] = _scaled(value, variables[column], degrees)
+    return result
+
+
+def from_words(variables: list[Variable], words: list[str], degrees: bool = False,
+               mimics: dict[str, str] | None = None, option: str = "--q",
+               default: float | None = None) -> Configurations:
+    """One configuration from ``NAME=VALUE`` words; unnamed variables take ``default``, or
+    when None their own default (0, or mid-range when 0 is outside the limits)."""
+    index = {v.name: i for i, v in enumerate(variables)}
+    values = defaults(variables) if default is None else np.full(len(variables), float(default))
+    for name, value in assignments(variables, words, option, degrees, mimics).items():
+        values[index[name]] = value
     values = values[None, :]
     return Configurations(variables, values, limit_warnings(variables, values))
 
@@ -227,13 +250,16 @@ def _located_floats(rows, names, path) -> np.ndarray:
     return table
 
 
-def _column(index: dict, name: str, mimics: dict | None, where: str | None = None) -> int:
+def _column(index: dict, name: str, mimics: dict | None, where: str | None = None,
+            option: str | None = None) -> int:
     if name in index:
         return index[name]
+    prefix = f"{option}: " if option else ""
     if mimics and name in mimics:
-        raise ConfigError(f"joint '{name}' mimics '{mimics[name]}': set '{mimics[name]}' "
-                          "instead", where)
-    raise ConfigError(f"unknown joint '{name}'; {available('joints', name, index)}", where)
+        raise ConfigError(f"{prefix}joint '{name}' mimics '{mimics[name]}': set "
+                          f"'{mimics[name]}' instead", where)
+    raise ConfigError(f"{prefix}unknown joint '{name}'; {available('joints', name, index)}",
+                      where)
 
 
 def _to_float(text: str, message: str, where: str | None = None) -> float:
@@ -267,12 +293,21 @@ def limit_warnings(variables: list[Variable], values: np.ndarray) -> list[str]:
     return warnings
 
 
-def random(variables: list[Variable], count: int, seed: int | None) -> Configurations:
-    """``count`` configurations drawn uniformly within the limits (continuous: [-pi, pi])."""
+def random(variables: list[Variable], count: int, seed=None,
+           hold: Collection[str] = ()) -> Configurations:
+    """``count`` configurations drawn uniformly within the limits (continuous: [-pi, pi]).
+
+    seed: anything ``numpy.random.default_rng`` takes; a sequence such as ``[seed, block]``
+        gives independent streams for blocks drawn apart (e.g. in worker processes)
+    hold: names of variables kept at their default instead of drawn
+    """
     generator = np.random.default_rng(seed)
     lower, upper = [], []
     for v in variables:
-        if math.isfinite(v.lower) and math.isfinite(v.upper):
+        if v.name in hold:
+            lower.append(v.default)
+            upper.append(v.default)
+        elif math.isfinite(v.lower) and math.isfinite(v.upper):
             lower.append(v.lower)
             upper.append(v.upper)
         else:

@@ -17,7 +17,7 @@ import numpy as np
 from ..rules._names import available
 from . import transforms
 from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, Variable,
-                            variables_of)
+                            mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
 
@@ -92,14 +92,14 @@ class KinematicModel:
                           " run 'urdftool check' for the cause", robot.root) from None
         self.robot = robot
         self.variables: list[Variable] = variables_of(robot, FLOATING_ROOT if floating else None)
-        self.mimics = {name: joint.find("mimic").get("joint") for name, joint in robot.joints.items()
-                       if joint.find("mimic") is not None}
+        self.mimics = mimics_of(robot)
         self._columns = {v.name: i for i, v in enumerate(self.variables)}
         self._joints = [self._joint(i) for i in range(self.model.njoints)]
         body = pinocchio.FrameType.BODY
         self._frames = [(f.name, f.parentJoint, f.placement.homogeneous.copy())
                         for f in self.model.frames if f.type == body]
         self.links = [name for name, _, _ in self._frames]
+        self._at_joint = [np.array_equal(placement, np.eye(4)) for _, _, placement in self._frames]
 
     def _joint(self, index: int) -> _Joint:
         model = self.model
@@ -174,7 +174,7 @@ class KinematicModel:
             _, joint, placement = self._frames[link]
             if placed[joint] is None:
                 out[index] = placement
-            elif np.array_equal(placement, np.eye(4)):  # a link at its joint: no product
+            elif self._at_joint[link]:  # a link at its joint: no product
                 out[index] = placed[joint]
             else:
                 np.matmul(placed[joint], placement, out=out[index])
