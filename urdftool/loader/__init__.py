@@ -7,6 +7,7 @@ the file and line where the problem is, so broken files go through the same repo
 from __future__ import annotations
 
 import os
+import stat
 import sys
 from pathlib import Path
 
@@ -62,7 +63,11 @@ def _read(path: str, shown: str, limit: int) -> bytes:
         data = sys.stdin.buffer.read(limit + 1)
     else:
         try:
-            size = os.path.getsize(path)
+            info = os.stat(path)
+            size = info.st_size
+            if not stat.S_ISREG(info.st_mode):
+                raise LoadError([_finding("U001", Location(shown, None),
+                                          "cannot read file: not a regular file")])
             if size > limit:
                 raise LoadError([_finding("U008", Location(shown, None),
                                           f"file is {size} bytes, over the limit of {limit} "
@@ -119,9 +124,11 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
     from .xacro_expand import XacroFailure, expand
 
     def read_file(name):
-        size = os.path.getsize(name)
-        if size > limit:
-            raise OSError(27, f"file is {size} bytes, over the limit of {limit}", name)
+        info = os.stat(name)
+        if not stat.S_ISREG(info.st_mode):
+            raise OSError(21, "not a regular file", name)
+        if info.st_size > limit:
+            raise OSError(27, f"file is {info.st_size} bytes, over the limit of {limit}", name)
         with open(name, "rb") as handle:
             return handle.read(limit + 1)
 
@@ -129,11 +136,12 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=read_file)
+                           read_file=read_file, roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise LoadError([_problem_finding(problem, shown)]) from None
     except XacroFailure as failure:
-        code = {"package": "U006", "syntax": "U001", "entity": "U009"}.get(failure.kind, "U005")
+        code = {"package": "U006", "syntax": "U001", "entity": "U009", "sandbox": "U012",
+                "outside": "U014"}.get(failure.kind, "U005")
         location = failure.location
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
@@ -142,7 +150,27 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True)
     robot.options["xacro_warnings"] = expansion.warnings
+    robot.options["outside_files"] = expansion.outside
     return robot
+
+
+def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
+    """Where included and YAML files may be: the repository (nearest ``.git`` above the input;
+    without one, the nearest package.xml folder, else the input's folder) and the files and
+    folders named by xacro arguments. Folders of packages ``$(find)`` resolves are added later."""
+    from .packages import repository_root
+
+    folder = source.resolve().parent
+    root = repository_root(folder) or next(
+        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
+    roots = [root]
+    for value in args.values():
+        try:
+            if value and os.path.exists(value):
+                roots.append(Path(value))
+        except (OSError, ValueError):
+            continue
+    return roots
 
 
 _PROBLEM_CODES = {"empty": "U002", "binary": "U003", "syntax": "U001", "entity": "U009"}
