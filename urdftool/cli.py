@@ -45,3 +45,7 @@ for _module in sorted(m.name for m in pkgutil.iter_modules(commands.__path__)
 
 def main() -> None:
     app()
+
+
+if __name__ == "__main__":
+    main()
