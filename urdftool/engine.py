@@ -91,13 +91,14 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     return sorted(set(findings), key=Finding.sort_key)
 
 
-def check_file(path: str, options: CheckOptions) -> FileResult:
-    """Load and check one file; load failures are findings too."""
+def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
+    """Load and check one file (``data``: its content, when not to be read from ``path``);
+    load failures are findings too."""
     from .loader import load
 
     try:
         robot = load(path, xacro_args=options.xacro_args, packages=options.packages,
-                     allow_env=options.allow_env, max_file_size=options.max_file_size)
+                     allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, error.findings)

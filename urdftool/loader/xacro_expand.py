@@ -32,13 +32,14 @@ from lxml import etree
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
 from . import xacro_sandbox
-from .xmlparse import XmlProblem
+from .xmlparse import MAX_DEPTH, XmlProblem, too_deep_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
 MAX_MACRO_DEPTH = 100
 MAX_ELEMENTS = 100_000  # elements xacro may evaluate in one expansion (macro bombs)
 MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
+MAX_OUTPUT_DEPTH = 1000  # element nesting of the expanded document
 MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion may produce
 _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 
@@ -118,6 +119,10 @@ class _StampingBuilder(ExpatBuilderNS):
         super().__init__()
         self._index = index
 
+    def end_element_handler(self, name):
+        self._depth -= 1
+        super().end_element_handler(name)
+
     def install(self, parser):
         super().install(parser)
 
@@ -130,6 +135,9 @@ class _StampingBuilder(ExpatBuilderNS):
 
     def start_element_handler(self, name, attributes):
         line = self._parser.CurrentLineNumber
+        self._depth = getattr(self, "_depth", 0) + 1
+        if self._depth > MAX_DEPTH:
+            raise XmlProblem("syntax", too_deep_message(), line)
         super().start_element_handler(name, attributes)
         node = self.curNode
         # An included file's root is replaced by its content, and xacro copies its xmlns:
@@ -189,6 +197,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         xacro.all_includes = []
         with contextlib.redirect_stderr(stderr):
             xacro.process_doc(doc, mappings=dict(args), verbosity=1)
+        root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
     except XacroFailure:
         raise
     except RecursionError:
@@ -205,7 +214,6 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         sys.setrecursionlimit(saved_limit)
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
-    root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
     warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
                      session.outside)
@@ -406,7 +414,10 @@ def _to_lxml(session: _Session, doc, root_location: Location):
     locations: dict[etree._Element, Location] = {}
     source = doc.documentElement
 
-    def build(node, parent):
+    def build(node, parent, depth=0):
+        if depth > MAX_OUTPUT_DEPTH:
+            raise xacro_sandbox.SandboxViolation(
+                f"expanded elements are nested deeper than {MAX_OUTPUT_DEPTH} levels")
         stamp = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
         element = _make_element(parent, node)
         if stamp:
@@ -418,7 +429,7 @@ def _to_lxml(session: _Session, doc, root_location: Location):
         last = None
         for child in node.childNodes:
             if child.nodeType == xml.dom.Node.ELEMENT_NODE:
-                last = build(child, element)
+                last = build(child, element, depth + 1)
             elif child.nodeType in (xml.dom.Node.TEXT_NODE, xml.dom.Node.CDATA_SECTION_NODE):
                 if last is None:
                     element.text = (element.text or "") + child.data
