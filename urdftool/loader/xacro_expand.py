@@ -32,7 +32,7 @@ from lxml import etree
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
 from . import xacro_sandbox
-from .xmlparse import MAX_DEPTH, XmlProblem, too_deep_message
+from .xmlparse import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
@@ -119,6 +119,12 @@ class _StampingBuilder(ExpatBuilderNS):
         super().__init__()
         self._index = index
 
+    def start_doctype_decl_handler(self, name, system_id, public_id, has_internal_subset):
+        if system_id or public_id:
+            raise XmlProblem("entity", external_dtd_message(system_id or public_id),
+                             self._parser.CurrentLineNumber)
+        super().start_doctype_decl_handler(name, system_id, public_id, has_internal_subset)
+
     def end_element_handler(self, name):
         self._depth -= 1
         super().end_element_handler(name)
@@ -157,6 +163,9 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
     except XmlProblem as problem:
         raise XacroFailure(problem.kind, problem.message,
                            Location(display_path(path), problem.line)) from None
+    except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
+        raise XacroFailure("syntax", f"malformed XML: {error}",
+                           Location(display_path(path), 1)) from None
 
 
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,

@@ -36,6 +36,11 @@ class _TooDeep(Exception):
     pass
 
 
+def external_dtd_message(where: str) -> str:
+    return (f"external DTD '{where}' refused: robot descriptions may not load DTDs (a DTD "
+            "can read local files or reach the network)")
+
+
 def too_deep_message() -> str:
     return (f"elements nested deeper than {MAX_DEPTH} levels: refused (libxml2-based parsers "
             "refuse it too, and no robot description needs it)")
@@ -70,6 +75,12 @@ def start_tag_lines(data: bytes) -> list[int]:
         refused.append(name)
         raise _Refused(name)
 
+    def on_doctype(name, system_id, public_id, has_internal_subset):
+        if system_id or public_id:
+            raise XmlProblem("entity", external_dtd_message(system_id or public_id),
+                             parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
+
+    parser.StartDoctypeDeclHandler = on_doctype
     parser.StartElementHandler = on_start
     parser.EndElementHandler = on_end
     parser.EntityDeclHandler = on_entity
@@ -83,6 +94,8 @@ def start_tag_lines(data: bytes) -> list[int]:
             f"entity declaration '{refused[0]}' refused: robot descriptions may not declare "
             "entities (they are how XML bombs and local file reads are built)",
             parser.CurrentLineNumber, parser.CurrentColumnNumber + 1) from None
+    except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
+        raise XmlProblem("syntax", f"malformed XML: {error}", 1) from None
     except _TooDeep:
         raise XmlProblem("syntax", too_deep_message(), parser.CurrentLineNumber) from None
     except expat.ExpatError as error:

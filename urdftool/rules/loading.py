@@ -72,10 +72,12 @@ declare("U008", "file-too-large", Severity.ERROR, """
     """)
 
 declare("U009", "xml-entity", Severity.ERROR, """
-    The file declares XML entities.
+    The file declares XML entities or references an external DTD.
 
-    Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and no
-    robot description needs them. urdftool refuses them without expanding anything.
+    Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and an
+    external DTD (``<!DOCTYPE robot SYSTEM "...">``) makes XML libraries read a local file or
+    reach the network; no robot description needs either. urdftool refuses them without
+    expanding or fetching anything.
 
     Bad: ``<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]>``
     Good: use a xacro property instead.
