@@ -135,24 +135,21 @@ def _run_pool(files, queue, options_for, jobs, timeout, results) -> None:
 
 
 def _timeout(path: str, seconds: float) -> Finding:
-    from .diagnostics import display_path
-    from .rules import REGISTRY, all_rules
-
-    all_rules()
-    rule = REGISTRY["U015"]
-    return Finding(rule.code, rule.name, rule.severity,
-                   f"checking took longer than {seconds:g} s and was stopped "
-                   "(raise the budget with --timeout)", Location(display_path(path)))
+    return _finding("U015", path, f"checking took longer than {seconds:g} s and was stopped "
+                                  "(raise the budget with --timeout)")
 
 
 def _internal(path: str, message: str) -> Finding:
+    return _finding("U900", path, f"internal error: {message}")
+
+
+def _finding(code: str, path: str, message: str) -> Finding:
     from .diagnostics import display_path
     from .rules import REGISTRY, all_rules
 
     all_rules()
-    rule = REGISTRY["U900"]
-    return Finding(rule.code, rule.name, rule.severity, f"internal error: {message}",
-                   Location(display_path(path)))
+    rule = REGISTRY[code]
+    return Finding(rule.code, rule.name, rule.severity, message, Location(display_path(path)))
 
 
 __all__ = ["check_files", "default_jobs", "DEFAULT_TIMEOUT", "CheckOptions"]
