@@ -106,3 +106,16 @@ def test_fifo_input_is_not_read(tmp_path):
     os.mkfifo(fifo)
     result = check_file(str(fifo), CheckOptions())
     assert [f.code for f in result.findings] == ["U001"]
+
+
+def test_odd_files_in_a_folder_do_not_break_the_walk(run_cli, tmp_path):
+    (tmp_path / "r.urdf.xacro").write_bytes(
+        f'<robot name="r"{XACRO_NS}>\n<xacro:include filename="a\0b"/>\n</robot>'.encode())
+    (tmp_path / "loop.xacro").symlink_to(tmp_path / "loop.xacro")
+    os.mkfifo(tmp_path / "pipe.urdf")
+    (tmp_path / "caf\u00e9 bot.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    result = run_cli("check", "--timeout", "20", tmp_path)
+    assert result.exit_code == 1, result.output
+    assert "Traceback" not in result.output and "U900" not in result.output
+    assert "pipe.urdf: error U001 cannot read file: not a regular file" in result.output
+    assert "2 files checked" in result.output  # the FIFO and the robot with an odd name

@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 from pathlib import Path
 
 from .loader.packages import PackageResolver
 
 SUFFIXES = (".urdf", ".xacro")
+_CLASSIFY_BYTES = 16 * 1024 * 1024  # read no more of a file to decide whether it is a robot
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 _INCLUDE = re.compile(rb"<xacro:include\s[^>]*?filename\s*=\s*[\"']([^\"']+)[\"']", re.S)
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
@@ -33,16 +35,13 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
     included: dict[Path, Path] = {}
     contents = {}
     for path in files:
-        try:
-            contents[path] = path.read_bytes()
-        except OSError:
-            contents[path] = b""
+        contents[path] = _head(path)
     for path, data in contents.items():
         for target in _included_files(path, data, resolver_for(path)):
             included.setdefault(target, path)
     top, skipped = [], {}
     for path in files:
-        key = path.resolve()
+        key = _resolved(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
         elif path.name.endswith(".xacro") and not _defines_robot(contents[path]):
@@ -50,6 +49,24 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
         else:
             top.append(path)
     return top, skipped
+
+
+def _resolved(path: Path) -> Path:
+    try:
+        return path.resolve()
+    except (OSError, ValueError, RuntimeError):  # NUL in a name, a symlink loop
+        return path.absolute()
+
+
+def _head(path: Path) -> bytes:
+    """The start of a regular file (enough to classify it); nothing for FIFOs and devices."""
+    try:
+        if not stat.S_ISREG(path.stat().st_mode):
+            return b""
+        with open(path, "rb") as handle:
+            return handle.read(_CLASSIFY_BYTES)
+    except (OSError, ValueError):
+        return b""
 
 
 def _defines_robot(data: bytes) -> bool:
@@ -66,6 +83,6 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
                 spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
             except Exception:
                 continue
-        if "$" in spec:
+        if "$" in spec or "\0" in spec:
             continue
-        yield (path.parent / spec).resolve()
+        yield _resolved(path.parent / spec)
