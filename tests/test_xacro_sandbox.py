@@ -293,3 +293,28 @@ def test_corpus_xacro_expands_as_with_plain_xacro(relative, args):
 
 def test_corpus_has_the_46_expanding_xacro_files(corpus):
     assert len(_corpus_xacro_rows()) == 46
+
+
+def test_yaml_alias_bomb_is_refused(tmp_path):
+    lines = ['a: &a ["lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol"]']
+    for i in range(1, 10):
+        previous = "a" if i == 1 else f"a{i - 1}"
+        lines.append(f"a{i}: &a{i} [" + ", ".join([f"*{previous}"] * 10) + "]")
+    (tmp_path / "bomb.yaml").write_text("\n".join(lines) + "\n")
+    finding = _refused(tmp_path, '<link name="${xacro.load_yaml(\'bomb.yaml\')}"/>')
+    assert finding.code == SANDBOX_CODE and "YAML" in finding.message
+
+
+@pytest.mark.parametrize("expression, code", [
+    ("${xacro.fatal('stop here')}", "U005"),
+    ("${xacro.arg('not_an_arg')}", "U005"),
+    ("${xacro.tokenize('a b', sep='[')}", None),
+    ("${xacro.abs_filename('x.yaml')}", None),
+    ("${xacro.warning('careful')}", None),
+    ("${math.floor(2.5)}", None),
+])
+def test_xacro_helpers_stay_harmless(tmp_path, expression, code):
+    if code is None:
+        _load(tmp_path, f'<link name="{expression}"/>')
+    else:
+        assert _refused(tmp_path, f'<link name="{expression}"/>').code == code

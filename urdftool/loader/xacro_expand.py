@@ -235,7 +235,9 @@ def _yaml_opener(session: _Session):
         session.check_inside(filename, "YAML file")
         data = session.read_file(filename)
         session.paths.append(filename)
-        return io.StringIO(data.decode("utf-8", errors="replace"))
+        text = data.decode("utf-8", errors="replace")
+        xacro_sandbox.refuse_yaml_bomb(text)
+        return io.StringIO(text)
 
     return open_yaml
 

@@ -207,6 +207,36 @@ def safe_eval(expression, symbols, locals=None):
     return _refuse_large(eval(code, symbols, locals), "expression")
 
 
+def refuse_yaml_bomb(text: str) -> None:
+    """Refuse YAML whose aliases expand past MAX_SEQUENCE nodes ("billion laughs" in YAML:
+    ``b: &b [*a, *a, ...]``); xacro would print it in full."""
+    import yaml
+
+    try:
+        documents = list(yaml.compose_all(text, Loader=yaml.SafeLoader))
+    except yaml.YAMLError:
+        return  # xacro's own load reports it
+    sizes: dict[int, int] = {}
+
+    def size(node) -> int:
+        known = sizes.get(id(node))
+        if known is not None:
+            return known
+        sizes[id(node)] = 1  # a recursive alias counts once
+        total = 1
+        if isinstance(node, yaml.SequenceNode):
+            total += sum(size(child) for child in node.value)
+        elif isinstance(node, yaml.MappingNode):
+            total += sum(size(key) + size(value) for key, value in node.value)
+        sizes[id(node)] = total
+        return total
+
+    for document in documents:
+        if document is not None and size(document) > MAX_SEQUENCE:
+            raise SandboxViolation(f"YAML aliases expand to over {MAX_SEQUENCE} nodes "
+                                   "(a YAML bomb?)")
+
+
 def _bounded_range(*args):
     result = range(*args)
     if len(result) > MAX_RANGE:
