@@ -308,7 +308,7 @@ def test_yaml_alias_bomb_is_refused(tmp_path):
 @pytest.mark.parametrize("expression, code", [
     ("${xacro.fatal('stop here')}", "U005"),
     ("${xacro.arg('not_an_arg')}", "U005"),
-    ("${xacro.tokenize('a b', sep='[')}", None),
+    ("${xacro.tokenize('a]b', sep=']')}", None),
     ("${xacro.abs_filename('x.yaml')}", None),
     ("${xacro.warning('careful')}", None),
     ("${math.floor(2.5)}", None),
