@@ -119,3 +119,10 @@ def test_odd_files_in_a_folder_do_not_break_the_walk(run_cli, tmp_path):
     assert "Traceback" not in result.output and "U900" not in result.output
     assert "pipe.urdf: error U001 cannot read file: not a regular file" in result.output
     assert "2 files checked" in result.output  # the FIFO and the robot with an odd name
+
+
+def test_symlink_loop_input_is_a_finding(tmp_path):
+    loop = tmp_path / "loop.urdf"
+    loop.symlink_to(loop)
+    result = check_file(str(loop), CheckOptions())
+    assert [f.code for f in result.findings] == ["U001"]

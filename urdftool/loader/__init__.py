@@ -37,7 +37,7 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     """Load a robot from ``path`` (``-`` reads stdin); raises LoadError with located findings."""
     path = os.fspath(path)
     shown = display_path(path) if path != "-" else "<stdin>"
-    start = Path.cwd() if path == "-" else Path(path).resolve().parent
+    start = Path.cwd() if path == "-" else _folder_of(path)
     resolver = PackageResolver(packages, start=start)
     if data is None:
         data = _read(path, shown, max_file_size)
@@ -56,6 +56,15 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
         raise LoadError([_finding("U004", robot.locate(robot.root),
                                   f"root element is <{robot.root.tag}>, expected <robot>")])
     return robot
+
+
+def _folder_of(path) -> Path:
+    """The real folder holding ``path``; its plain absolute folder when it cannot be resolved
+    (a symbolic link loop: reading the file then reports it)."""
+    try:
+        return Path(path).resolve().parent
+    except (OSError, RuntimeError, ValueError):
+        return Path(os.path.abspath(path)).parent
 
 
 def _read(path: str, shown: str, limit: int) -> bytes:
@@ -160,7 +169,7 @@ def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
     folders named by xacro arguments. Folders of packages ``$(find)`` resolves are added later."""
     from .packages import repository_root
 
-    folder = source.resolve().parent
+    folder = _folder_of(source)
     root = repository_root(folder) or next(
         (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
     roots = [root]
