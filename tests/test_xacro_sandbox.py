@@ -318,3 +318,13 @@ def test_xacro_helpers_stay_harmless(tmp_path, expression, code):
         _load(tmp_path, f'<link name="{expression}"/>')
     else:
         assert _refused(tmp_path, f'<link name="{expression}"/>').code == code
+
+
+def test_bare_range_keeps_xacro_deprecation_warning(tmp_path):
+    from urdftool.engine import CheckOptions, check_file
+
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(HEADER + '<link name="${len(range(3))}"/>\n</robot>\n')
+    result = check_file(str(path), CheckOptions())
+    assert [f.code for f in result.findings] == ["U010"]
+    assert "deprecated" in result.findings[0].message

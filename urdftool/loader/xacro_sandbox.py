@@ -237,11 +237,16 @@ def refuse_yaml_bomb(text: str) -> None:
                                    "(a YAML bomb?)")
 
 
-def _bounded_range(*args):
-    result = range(*args)
-    if len(result) > MAX_RANGE:
-        raise SandboxViolation(f"range of {len(result)} items is over the limit of {MAX_RANGE}")
-    return result
+def _bounded(make_range):
+    """``make_range`` (xacro's range, perhaps wrapped in a deprecation warning), bounded."""
+
+    def bounded_range(*args):
+        result = make_range(*args)
+        if len(result) > MAX_RANGE:
+            raise SandboxViolation(f"range of {len(result)} items is over the limit of {MAX_RANGE}")
+        return result
+
+    return bounded_range
 
 
 def _one_argument_type(value):
@@ -252,13 +257,15 @@ def harden_symbols(symbols: dict) -> dict:
     """Replace the dangerous entries of xacro's global symbols in place; returns the originals."""
     saved = {}
     python = symbols.get("python")
-    targets = [(symbols, "range", _bounded_range)]
+    targets = [(symbols, "range", _bounded)]
     if python is not None:
-        targets += [(python, "range", _bounded_range), (python, "type", _one_argument_type),
+        targets += [(python, "range", _bounded), (python, "type", lambda _: _one_argument_type),
                     (python, "vars", None)]
-    for table, name, replacement in targets:
+    for table, name, make in targets:
         if dict.__contains__(table, name):
-            saved[(id(table), name)] = (table, name, dict.__getitem__(table, name))
+            original = dict.__getitem__(table, name)
+            saved[(id(table), name)] = (table, name, original)
+            replacement = make(original) if make else None
             if replacement is None:
                 dict.__delitem__(table, name)
             else:
