@@ -23,5 +23,8 @@ test: $(INSTALLED)
 bench: $(INSTALLED)
 	$(PY) benchmarks/run.py
 
+fuzz: $(INSTALLED)
+	$(PY) -m tests.fuzz.run 10000
+
 clean:
 	rm -rf $(VENV) .pytest_cache build *.egg-info

@@ -5,12 +5,14 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 from pathlib import Path
 
 from .diagnostics import display_path
 from .loader.packages import PackageResolver
 
 SUFFIXES = (".urdf", ".xacro")
+_CLASSIFY_BYTES = 16 * 1024 * 1024  # read no more of a file to decide whether it is a robot
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 _INCLUDE = re.compile(rb"<xacro:include\s[^>]*?filename\s*=\s*[\"']([^\"']+)[\"']", re.S)
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
@@ -31,16 +33,13 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
     included: dict[Path, Path] = {}
     contents = {}
     for path in files:
-        try:
-            contents[path] = path.read_bytes()
-        except OSError:
-            contents[path] = b""
+        contents[path] = _head(path)
     for path, data in contents.items():
         for target in _included_files(path, data, resolver_for(path)):
             included.setdefault(target, path)
     top, skipped = [], {}
     for path in files:
-        key = path.resolve()
+        key = _resolved(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
         elif path.name.endswith(".xacro") and not _defines_robot(contents[path]):
@@ -48,6 +47,24 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
         else:
             top.append(path)
     return top, skipped
+
+
+def _resolved(path: Path) -> Path:
+    try:
+        return path.resolve()
+    except (OSError, ValueError, RuntimeError):  # NUL in a name, a symlink loop
+        return path.absolute()
+
+
+def _head(path: Path) -> bytes:
+    """The start of a regular file (enough to classify it); nothing for FIFOs and devices."""
+    try:
+        if not stat.S_ISREG(path.stat().st_mode):
+            return b""
+        with open(path, "rb") as handle:
+            return handle.read(_CLASSIFY_BYTES)
+    except (OSError, ValueError):
+        return b""
 
 
 def _defines_robot(data: bytes) -> bool:
@@ -79,9 +96,9 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
                 spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
             except Exception:
                 continue
-        if "$" in spec:
+        if "$" in spec or "\0" in spec:
             continue
-        yield (path.parent / spec).resolve()
+        yield _resolved(path.parent / spec)
 
 
 _NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
@@ -89,10 +106,10 @@ _NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
 
 def project_root(path: Path) -> Path:
     """The repository holding ``path`` (nearest folder with ``.git``), or its own folder."""
-    for candidate in path.resolve().parents:
+    for candidate in _resolved(path).parents:
         if (candidate / ".git").exists():
             return candidate
-    return path.resolve().parent
+    return _resolved(path).parent
 
 
 def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path], str | None]:
@@ -105,22 +122,20 @@ def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path
     ``leg.xacro`` checks the robot built from it. One nobody includes is checked as it is when it
     has content, and skipped when it only defines macros or properties.
     """
-    try:
-        data = path.read_bytes()
-    except OSError:
-        return [path], None
+    data = _head(path)
     if _NAMED_ROBOT.search(data) and _defines_robot(data):
         return [path], None
-    target, seen, tops = path.resolve(), set(), []
+    target, seen, tops = _resolved(path), set(), []
     pending = [target]
     while pending:
         current = pending.pop()
         for parent in includers.get(current, ()):
-            if parent.resolve() in seen:
+            resolved = _resolved(parent)
+            if resolved in seen:
                 continue
-            seen.add(parent.resolve())
-            pending.append(parent.resolve())
-            if parent.resolve() not in includers:
+            seen.add(resolved)
+            pending.append(resolved)
+            if resolved not in includers:
                 tops.append(parent)
     if tops:
         tops = sorted(tops)
@@ -135,10 +150,6 @@ def includers_below(root: Path, resolver_for) -> dict[Path, list[Path]]:
     """Included file (resolved) -> the files below ``root`` that include it."""
     includers: dict[Path, list[Path]] = {}
     for path in robot_files(root):
-        try:
-            data = path.read_bytes()
-        except OSError:
-            continue
-        for target in _included_files(path, data, resolver_for(path)):
+        for target in _included_files(path, _head(path), resolver_for(path)):
             includers.setdefault(target, []).append(path)
     return includers

@@ -12,7 +12,7 @@ from .rules import REGISTRY, Rule, all_rules, declare
 from . import suppressions
 
 declare("U900", "internal-error", Severity.ERROR, """
-    A rule crashed on this file: a bug in urdftool, not in the robot.
+    A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
 
     The run goes on with the other rules and files. Please report it with the file attached.
     """)
@@ -65,6 +65,15 @@ def stamp(rule: Rule, where, message: str, robot) -> Finding:
     return Finding(rule.code, rule.name, rule.severity, message, location)
 
 
+def _loader_crash(path: str, error: BaseException) -> Finding:
+    from .diagnostics import display_path
+
+    frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
+    where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
+    return stamp(REGISTRY["U900"], Location(display_path(path) if path != "-" else "<stdin>"),
+                 f"loading crashed: {type(error).__name__}: {error}{where}", None)
+
+
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     """Run every selected rule over a loaded robot; a crashing rule becomes U900.
 
@@ -88,15 +97,18 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     return sorted(set(findings), key=Finding.sort_key)
 
 
-def check_file(path: str, options: CheckOptions) -> FileResult:
-    """Load and check one file; load failures are findings too."""
+def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
+    """Load and check one file (``data``: its content, when not to be read from ``path``);
+    load failures are findings too."""
     from .loader import load
 
     try:
         robot = load(path, xacro_args=options.xacro_args, packages=options.packages,
-                     allow_env=options.allow_env, max_file_size=options.max_file_size)
+                     allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, error.findings)
+    except Exception as error:  # a loader bug (RecursionError, MemoryError too): a finding, not a traceback
+        return FileResult(path, [_loader_crash(path, error)])
     robot.options.update(options.extras)
     return FileResult(path, check_robot(robot, options.selection), robot)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from pathlib import Path
 
@@ -45,12 +46,19 @@ def check(
     spec: Path = typer.Option(None, "--spec", metavar="FILE",
                               help="Joint spec table [default: joint_limits.yaml beside the "
                                    "robot, when it is a urdftool spec]."),
+    timeout: float = typer.Option(60.0, "--timeout", metavar="SECONDS",
+                                  help="Time budget per file; 0 for none."),
+    jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
+                             help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
-    from ..engine import CheckOptions, Selection, check_file
+    from ..engine import CheckOptions, Selection
+    from ..parallel import check_files
     from ..report import FORMATS, Summary, render
 
     try:
         paths, args, packages = robot_inputs(words, arg, package)
+        if timeout < 0 or jobs < 0:
+            raise UsageError("--timeout and --jobs must not be negative")
         if not paths:
             raise UsageError("no PATH given")
         if format not in (*FORMATS, "auto"):
@@ -73,14 +81,15 @@ def check(
         max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
         extras=extras,
     )
-    results = []
-    for path in files:
+
+    def options_for(path: str) -> CheckOptions:
         per_file = config.ignores_for(path)
-        if per_file:
-            options.selection = Selection(base_selection.select,
-                                          (*base_selection.ignore, *_codes(per_file)))
-        results.append(check_file(path, options))
-        options.selection = base_selection
+        if not per_file:
+            return options
+        return dataclasses.replace(options, selection=Selection(
+            base_selection.select, (*base_selection.ignore, *_codes(per_file))))
+
+    results = check_files(files, options_for, jobs=jobs or None, timeout=timeout or None)
     stream = open(output, "w", encoding="utf-8") if output else sys.stdout
     try:
         render(format, results, stream)

@@ -7,6 +7,7 @@ the file and line where the problem is, so broken files go through the same repo
 from __future__ import annotations
 
 import os
+import stat
 import sys
 from pathlib import Path
 
@@ -46,7 +47,7 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     """Load a robot from ``path`` (``-`` reads stdin); raises LoadError with located findings."""
     path = os.fspath(path)
     shown = display_path(path) if path != "-" else "<stdin>"
-    start = Path.cwd() if path == "-" else Path(path).resolve().parent
+    start = Path.cwd() if path == "-" else _folder_of(path)
     resolver = PackageResolver(packages, start=start)
     if data is None:
         data = _read(path, shown, max_file_size)
@@ -71,12 +72,25 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     return robot
 
 
+def _folder_of(path) -> Path:
+    """The real folder holding ``path``; its plain absolute folder when it cannot be resolved
+    (a symbolic link loop: reading the file then reports it)."""
+    try:
+        return Path(path).resolve().parent
+    except (OSError, RuntimeError, ValueError):
+        return Path(os.path.abspath(path)).parent
+
+
 def _read(path: str, shown: str, limit: int) -> bytes:
     if path == "-":
         data = sys.stdin.buffer.read(limit + 1)
     else:
         try:
-            size = os.path.getsize(path)
+            info = os.stat(path)
+            size = info.st_size
+            if not stat.S_ISREG(info.st_mode):
+                raise LoadError([_finding("U001", Location(shown, None),
+                                          "cannot read file: not a regular file")])
             if size > limit:
                 raise LoadError([_finding("U008", Location(shown, None),
                                           f"file is {size} bytes, over the limit of {limit} "
@@ -133,9 +147,11 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
     from .xacro_expand import XacroFailure, expand
 
     def read_file(name):
-        size = os.path.getsize(name)
-        if size > limit:
-            raise OSError(27, f"file is {size} bytes, over the limit of {limit}", name)
+        info = os.stat(name)
+        if not stat.S_ISREG(info.st_mode):
+            raise OSError(21, "not a regular file", name)
+        if info.st_size > limit:
+            raise OSError(27, f"file is {info.st_size} bytes, over the limit of {limit}", name)
         with open(name, "rb") as handle:
             return handle.read(limit + 1)
 
@@ -143,11 +159,12 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=read_file)
+                           read_file=read_file, roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise LoadError([_problem_finding(problem, shown)]) from None
     except XacroFailure as failure:
-        code = {"package": "U006", "syntax": "U001", "entity": "U009"}.get(failure.kind, "U005")
+        code = {"package": "U006", "syntax": "U001", "entity": "U009", "sandbox": "U016",
+                "outside": "U014"}.get(failure.kind, "U005")
         location = failure.location
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
@@ -156,7 +173,27 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True)
     robot.options["xacro_warnings"] = expansion.warnings
+    robot.options["outside_files"] = expansion.outside
     return robot
+
+
+def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
+    """Where included and YAML files may be: the repository (nearest ``.git`` above the input;
+    without one, the nearest package.xml folder, else the input's folder) and the files and
+    folders named by xacro arguments. Folders of packages ``$(find)`` resolves are added later."""
+    from .packages import repository_root
+
+    folder = _folder_of(source)
+    root = repository_root(folder) or next(
+        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
+    roots = [root]
+    for value in args.values():
+        try:
+            if value and os.path.exists(value):
+                roots.append(Path(value))
+        except (OSError, ValueError):
+            continue
+    return roots
 
 
 _PROBLEM_CODES = {"empty": "U002", "binary": "U003", "syntax": "U001", "entity": "U009"}

@@ -31,17 +31,23 @@ from lxml import etree
 
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
-from .xmlparse import XmlProblem
+from . import xacro_sandbox
+from .xmlparse import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
 MAX_MACRO_DEPTH = 100
+MAX_ELEMENTS = 100_000  # elements xacro may evaluate in one expansion (macro bombs)
+MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
+MAX_OUTPUT_DEPTH = 1000  # element nesting of the expanded document
+MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion may produce
 _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 
 
 @dataclass
 class XacroFailure(Exception):
-    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package' or 'io'."""
+    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package', 'io', 'sandbox' or
+    'outside' (a file outside the allowed roots, refused)."""
 
     kind: str
     message: str
@@ -57,19 +63,45 @@ class Expansion:
     locations: dict[etree._Element, Location]
     files: list[str]
     warnings: list[tuple[Location, str]] = field(default_factory=list)
+    outside: list[tuple[Location, str]] = field(default_factory=list)
 
 
 class _Session:
     """State of one expansion: the files read and how to resolve packages and environment."""
 
-    def __init__(self, resolver, allow_env: bool, read_file):
+    def __init__(self, resolver, allow_env: bool, read_file, roots=()):
         self.resolver = resolver
         self.allow_env = allow_env
         self.read_file = read_file
+        self.roots = [os.path.realpath(root) for root in roots]
         self.paths: list[str] = []
         self.call_sites: list[str] = []
         self.warnings: list[tuple[Location, str]] = []
         self.detached: dict[int, str] = {}  # macro-call node id -> the stamp lifted off it
+        self.outside: list[tuple[Location, str]] = []
+        self.elements = 0
+        self.macro_calls = 0
+        self.text = 0
+
+    def allow_root(self, folder) -> None:
+        self.roots.append(os.path.realpath(folder))
+
+    def check_inside(self, filename: str, what: str) -> None:
+        """Record (or, without environment access, refuse) a file outside the allowed roots."""
+        real = os.path.realpath(filename)
+        if not self.roots or any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
+                                 for root in self.roots):
+            return
+        where = self.current_location()
+        shown = ", ".join(display_path(root) for root in self.roots)
+        if not self.allow_env:
+            raise _Outside(f"{what} '{display_path(filename)}' is outside the repository and the "
+                           f"packages it uses ({shown}); refused under --no-env")
+        self.outside.append((where, f"{what} '{display_path(filename)}' is outside the "
+                                    f"repository and the packages it uses ({shown})"))
+
+    def current_location(self) -> Location:
+        return _failure_location(self, None, self.paths[0], frame=sys._getframe(1))
 
     def file_index(self, path: str) -> int:
         self.paths.append(path)
@@ -88,6 +120,16 @@ class _StampingBuilder(ExpatBuilderNS):
         super().__init__()
         self._index = index
 
+    def start_doctype_decl_handler(self, name, system_id, public_id, has_internal_subset):
+        if system_id or public_id:
+            raise XmlProblem("entity", external_dtd_message(system_id or public_id),
+                             self._parser.CurrentLineNumber)
+        super().start_doctype_decl_handler(name, system_id, public_id, has_internal_subset)
+
+    def end_element_handler(self, name):
+        self._depth -= 1
+        super().end_element_handler(name)
+
     def install(self, parser):
         super().install(parser)
 
@@ -100,6 +142,9 @@ class _StampingBuilder(ExpatBuilderNS):
 
     def start_element_handler(self, name, attributes):
         line = self._parser.CurrentLineNumber
+        self._depth = getattr(self, "_depth", 0) + 1
+        if self._depth > MAX_DEPTH:
+            raise XmlProblem("syntax", too_deep_message(), line)
         super().start_element_handler(name, attributes)
         node = self.curNode
         # An included file's root is replaced by its content, and xacro copies its xmlns:
@@ -119,16 +164,23 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
     except XmlProblem as problem:
         raise XacroFailure(problem.kind, problem.message,
                            Location(display_path(path), problem.line)) from None
+    except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
+        raise XacroFailure("syntax", f"malformed XML: {error}",
+                           Location(display_path(path), 1)) from None
 
 
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,
-           read_file=None) -> Expansion:
-    """Expand the xacro document ``data`` read from ``path``; raises XacroFailure."""
+           read_file=None, roots=()) -> Expansion:
+    """Expand the xacro document ``data`` read from ``path``; raises XacroFailure.
+
+    roots: folders included and YAML files may be in; others are reported (refused when
+    ``allow_env`` is false). Empty means anywhere. Folders of packages found are added.
+    """
     import xacro
     from xacro import substitution_args
 
     read_file = read_file or (lambda p: Path(p).read_bytes())
-    session = _Session(resolver, allow_env, read_file)
+    session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
     stderr = io.StringIO()
     originals = {
@@ -139,17 +191,23 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         (substitution_args, "_eval_find"): substitution_args._eval_find,
         (substitution_args, "_eval_env"): substitution_args._eval_env,
         (substitution_args, "_eval_optenv"): substitution_args._eval_optenv,
+        (xacro, "safe_eval"): xacro.safe_eval,
+        (xacro, "eval_text"): xacro.eval_text,
     }
     replacements = _replacements(session, originals, xacro, substitution_args)
+    replacements[(xacro, "safe_eval")] = xacro_sandbox.safe_eval
     saved_limit = sys.getrecursionlimit()
+    saved_symbols = xacro_sandbox.harden_symbols(xacro._global_symbols)
     try:
         for (module, name), function in replacements.items():
             setattr(module, name, function)
+        xacro.open = _yaml_opener(session)  # load_yaml's open(); shadows the builtin in xacro
         sys.setrecursionlimit(max(saved_limit, 20000))
         xacro.init_stacks(str(path))
         xacro.all_includes = []
         with contextlib.redirect_stderr(stderr):
             xacro.process_doc(doc, mappings=dict(args), verbosity=1)
+        root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
     except XacroFailure:
         raise
     except RecursionError:
@@ -161,12 +219,28 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     finally:
         for (module, name), function in originals.items():
             setattr(module, name, function)
+        del xacro.open
+        xacro_sandbox.restore_symbols(saved_symbols)
         sys.setrecursionlimit(saved_limit)
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
-    root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
     warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
-    return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings)
+    return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
+                     session.outside)
+
+
+def _yaml_opener(session: _Session):
+    """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
+
+    def open_yaml(filename, *args, **kwargs):
+        session.check_inside(filename, "YAML file")
+        data = session.read_file(filename)
+        session.paths.append(filename)
+        text = data.decode("utf-8", errors="replace")
+        xacro_sandbox.refuse_yaml_bomb(text)
+        return io.StringIO(text)
+
+    return open_yaml
 
 
 def _replacements(session: _Session, originals, xacro, substitution_args):
@@ -175,6 +249,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     original_check_attrs = originals[(xacro, "check_attrs")]
     original_env = originals[(substitution_args, "_eval_env")]
     original_optenv = originals[(substitution_args, "_eval_optenv")]
+    original_eval_text = originals[(xacro, "eval_text")]
 
     def parse(inp, filename=None):
         if inp is not None:
@@ -183,6 +258,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if os.path.realpath(filename) in stack:
             chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
             raise xacro.XacroException(f"include cycle: {chain}")
+        session.check_inside(filename, "included file")
         try:
             data = session.read_file(filename)
         except OSError as error:
@@ -200,6 +276,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if call_site:
             node.removeAttribute(STAMP)
             session.detached[id(node)] = call_site
+        session.macro_calls += 1
+        if session.macro_calls > MAX_MACRO_CALLS:
+            raise xacro_sandbox.SandboxViolation(
+                f"expansion made over {MAX_MACRO_CALLS} macro calls (a macro bomb?)")
         if len(xacro.macrostack) >= MAX_MACRO_DEPTH:
             raise xacro.XacroException(
                 f"macro calls nested deeper than {MAX_MACRO_DEPTH}: recursive macro "
@@ -216,6 +296,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         return handled
 
     def eval_all(node, macros, symbols):
+        session.elements += 1
+        if session.elements > MAX_ELEMENTS:
+            raise xacro_sandbox.SandboxViolation(
+                f"expansion produced over {MAX_ELEMENTS} elements (a macro bomb?)")
         if session.call_sites and node.nodeType == xml.dom.Node.ELEMENT_NODE:
             stamp = node.getAttribute(STAMP)
             if stamp and ";" not in stamp:
@@ -237,11 +321,23 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
                 tag.removeAttribute(name)
         return original_check_attrs(tag, required, optional)
 
+    def eval_text(text, symbols):
+        result = original_eval_text(text, symbols)
+        if isinstance(result, str):
+            session.text += len(result)
+            if len(result) > xacro_sandbox.MAX_SEQUENCE or session.text > MAX_TEXT:
+                raise xacro_sandbox.SandboxViolation(
+                    f"substitution produced {len(result)} characters (limits: "
+                    f"{xacro_sandbox.MAX_SEQUENCE} per value, {MAX_TEXT} in all)")
+        return result
+
     def eval_find(package):
         try:
-            return str(session.resolver.find(package))
+            found = session.resolver.find(package)
         except PackageNotFound as error:
             raise _PackageFailure(error) from None
+        session.allow_root(found)
+        return str(found)
 
     def eval_env(name):
         if not session.allow_env:
@@ -260,10 +356,15 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         (xacro, "handle_macro_call"): handle_macro_call,
         (xacro, "eval_all"): eval_all,
         (xacro, "check_attrs"): check_attrs,
+        (xacro, "eval_text"): eval_text,
         (substitution_args, "_eval_find"): eval_find,
         (substitution_args, "_eval_env"): eval_env,
         (substitution_args, "_eval_optenv"): eval_optenv,
     }
+
+
+class _Outside(Exception):
+    """A file outside the allowed roots, refused."""
 
 
 class _PackageFailure(Exception):
@@ -275,10 +376,15 @@ class _PackageFailure(Exception):
 def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure:
     where = _failure_location(session, error.__traceback__, path)
     cause = error
-    while cause is not None and not isinstance(cause, _PackageFailure):
+    while cause is not None and not isinstance(cause, (_PackageFailure, _Outside,
+                                                       xacro_sandbox.SandboxViolation)):
         cause = getattr(cause, "exc", None) or cause.__context__
     if isinstance(cause, _PackageFailure):
         return XacroFailure("package", str(cause.error), where, package=cause.error.name)
+    if isinstance(cause, _Outside):
+        return XacroFailure("outside", str(cause), where)
+    if isinstance(cause, xacro_sandbox.SandboxViolation):
+        return XacroFailure("sandbox", str(cause), where)
     message = " ".join(str(error).split()) or type(error).__name__
     if message.startswith("Undefined substitution argument"):
         name = message.rsplit(" ", 1)[-1]
@@ -288,13 +394,18 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
     return XacroFailure("xacro", message, where)
 
 
-def _failure_location(session: _Session, traceback, path: Path) -> Location:
-    """The innermost element xacro was working on when it raised, from the traceback frames."""
+def _failure_location(session: _Session, traceback, path, frame=None) -> Location:
+    """The innermost element xacro was working on when it raised, from the traceback frames
+    (or, given ``frame``, from the frames of the stack that called it)."""
     frames = []
     while traceback is not None:
         frames.append(traceback.tb_frame)
         traceback = traceback.tb_next
-    for frame in reversed(frames):
+    frames.reverse()
+    while frame is not None:
+        frames.append(frame)
+        frame = frame.f_back
+    for frame in frames:
         for name in ("node", "elt"):
             node = frame.f_locals.get(name)
             stamp = _nearest_stamp(node, session.detached)
@@ -321,7 +432,10 @@ def _to_lxml(session: _Session, doc, root_location: Location):
     locations: dict[etree._Element, Location] = {}
     source = doc.documentElement
 
-    def build(node, parent):
+    def build(node, parent, depth=0):
+        if depth > MAX_OUTPUT_DEPTH:
+            raise xacro_sandbox.SandboxViolation(
+                f"expanded elements are nested deeper than {MAX_OUTPUT_DEPTH} levels")
         stamp = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
         element = _make_element(parent, node)
         if stamp:
@@ -333,7 +447,7 @@ def _to_lxml(session: _Session, doc, root_location: Location):
         last = None
         for child in node.childNodes:
             if child.nodeType == xml.dom.Node.ELEMENT_NODE:
-                last = build(child, element)
+                last = build(child, element, depth + 1)
             elif child.nodeType in (xml.dom.Node.TEXT_NODE, xml.dom.Node.CDATA_SECTION_NODE):
                 if last is None:
                     element.text = (element.text or "") + child.data

@@ -15,6 +15,7 @@ from xml.parsers import expat
 from lxml import etree
 
 BINARY_SNIFF_BYTES = 8192
+MAX_DEPTH = 256  # element nesting libxml2 accepts without its "huge" option
 
 
 @dataclass
@@ -31,6 +32,20 @@ class _Refused(Exception):
     pass
 
 
+class _TooDeep(Exception):
+    pass
+
+
+def external_dtd_message(where: str) -> str:
+    return (f"external DTD '{where}' refused: robot descriptions may not load DTDs (a DTD "
+            "can read local files or reach the network)")
+
+
+def too_deep_message() -> str:
+    return (f"elements nested deeper than {MAX_DEPTH} levels: refused (libxml2-based parsers "
+            "refuse it too, and no robot description needs it)")
+
+
 def refuse_empty_or_binary(data: bytes) -> None:
     """Raise XmlProblem for input that is empty or not text at all."""
     if not data.strip():
@@ -45,15 +60,29 @@ def start_tag_lines(data: bytes) -> list[int]:
     parser = expat.ParserCreate()
     lines: list[int] = []
     refused: list[str] = []
+    depth = [0]
 
     def on_start(name, attributes):
         lines.append(parser.CurrentLineNumber)
+        depth[0] += 1
+        if depth[0] > MAX_DEPTH:
+            raise _TooDeep()
+
+    def on_end(name):
+        depth[0] -= 1
 
     def on_entity(name, is_parameter, value, base, system_id, public_id, notation):
         refused.append(name)
         raise _Refused(name)
 
+    def on_doctype(name, system_id, public_id, has_internal_subset):
+        if system_id or public_id:
+            raise XmlProblem("entity", external_dtd_message(system_id or public_id),
+                             parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
+
+    parser.StartDoctypeDeclHandler = on_doctype
     parser.StartElementHandler = on_start
+    parser.EndElementHandler = on_end
     parser.EntityDeclHandler = on_entity
     parser.ExternalEntityRefHandler = lambda *args: 0
     parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
@@ -65,6 +94,10 @@ def start_tag_lines(data: bytes) -> list[int]:
             f"entity declaration '{refused[0]}' refused: robot descriptions may not declare "
             "entities (they are how XML bombs and local file reads are built)",
             parser.CurrentLineNumber, parser.CurrentColumnNumber + 1) from None
+    except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
+        raise XmlProblem("syntax", f"malformed XML: {error}", 1) from None
+    except _TooDeep:
+        raise XmlProblem("syntax", too_deep_message(), parser.CurrentLineNumber) from None
     except expat.ExpatError as error:
         message = expat.ErrorString(error.code)
         if message == "undefined entity":

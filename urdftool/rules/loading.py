@@ -73,10 +73,12 @@ declare("U008", "file-too-large", Severity.ERROR, """
     """)
 
 declare("U009", "xml-entity", Severity.ERROR, """
-    The file declares XML entities.
+    The file declares XML entities or references an external DTD.
 
-    Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and no
-    robot description needs them. urdftool refuses them without expanding anything.
+    Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and an
+    external DTD (``<!DOCTYPE robot SYSTEM "...">``) makes XML libraries read a local file or
+    reach the network; no robot description needs either. urdftool refuses them without
+    expanding or fetching anything.
 
     Bad: ``<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]>``
     Good: use a xacro property instead.
@@ -125,3 +127,54 @@ def unsupported_version(robot):
         yield robot.root, f"version '{text}' is not of the form MAJOR.MINOR (e.g. 1.0)"
     elif not (1, 0) <= (int(major), int(minor)) <= (1, 2):
         yield robot.root, f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"
+
+
+declare("U016", "unsafe-xacro", Severity.ERROR, """
+    A xacro expression was refused: it reaches into Python internals or builds something huge.
+
+    xacro evaluates ``${...}`` as Python. urdftool evaluates it in a sandbox: no names or
+    attributes starting with ``_``, no frame, code or generator internals (``gi_frame``,
+    ``f_back``), no ``{0.__class__}`` format fields, no ``python.vars``, and limits on the size of
+    numbers, strings, lists and of the expansion itself (macro bombs). Real robot descriptions
+    never need any of these.
+
+    Bad: ``${(lambda: 0).__globals__}``, ``${'x' * 10**9}``
+    Good: ``${radians(90)}``, ``${wheel_radius * 2}``
+    """)
+
+
+@rule("U013", "file-outside-root", Severity.WARNING)
+def file_outside_root(robot):
+    """xacro read an included or YAML file outside the repository and the packages it uses.
+
+    The repository is the nearest folder above the input holding ``.git`` (without one, the
+    nearest package.xml folder, else the input's folder); folders of packages found for
+    ``$(find pkg)`` and paths given as xacro arguments count too. A description that reads
+    ``/etc/...`` or ``~/...`` works only on one machine, or leaks a file into the output. Under
+    ``--no-env`` such files are not read at all (U014).
+
+    Bad: ``<xacro:include filename="/home/me/robot/arm.xacro"/>``
+    Good: ``<xacro:include filename="$(find my_robot)/urdf/arm.xacro"/>``
+    """
+    for location, message in robot.options.get("outside_files", []):
+        yield location, message
+
+
+declare("U014", "file-outside-root-refused", Severity.ERROR, """
+    Under ``--no-env``, xacro tried to read a file outside the repository and its packages.
+
+    ``--no-env`` is for untrusted input (CI on pull requests): the file is not read, so a
+    crafted description cannot copy ``/etc/passwd`` or a CI secret into its output. See U013
+    for which folders are allowed.
+
+    Bad: ``${xacro.load_yaml('/etc/passwd')}``
+    Good: ``${xacro.load_yaml('$(find my_robot)/config/limits.yaml')}``
+    """)
+
+declare("U015", "timeout", Severity.ERROR, """
+    Checking the file took longer than ``--timeout`` seconds (default 60) and was stopped.
+
+    A robot description loads in well under a second; a file that takes this long is a
+    pathological xacro (deep loops, huge numbers) or an attack on the CI runner. The other files
+    are still checked.
+    """)

@@ -13,6 +13,8 @@ def _duplicates(robot, tag: str):
     seen: set[str] = set()
     for element in robot.children(tag):
         name = element.get("name")
+        if name is None:
+            continue  # a missing name is U103's finding
         if name in seen:
             first = robot.locate(robot.links[name] if tag == "link" else robot.joints[name])
             yield element, f"{tag} '{name}' is defined {counts[name]} times (first at {first})"

@@ -1,0 +1,78 @@
+"""A synthetic monorepo of small robots checked with ``--jobs``: does it take about
+files / cores x the cost of one file?
+
+The reference is measured in the same run: the files are checked one after another in this
+process (the cost of one file, times the count), then by ``check_files`` with one worker per core.
+ratio = parallel time / (serial time / workers); about 1 means the workers scale, the target
+allows for process start-up and the pipe.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+COUNT = 1000
+TARGET = 1.5
+
+ROBOT = """<?xml version="1.0"?>
+<robot name="bot{index}" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="r" value="{radius}"/>
+  <xacro:macro name="wheel" params="side y">
+    <link name="${{side}}_wheel">
+      <inertial><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+      <visual><geometry><cylinder radius="${{r}}" length="0.02"/></geometry></visual>
+    </link>
+    <joint name="${{side}}_wheel_joint" type="continuous">
+      <parent link="base_link"/><child link="${{side}}_wheel"/>
+      <origin xyz="0 ${{y}} 0"/><axis xyz="0 1 0"/>
+    </joint>
+  </xacro:macro>
+  <link name="base_link">
+    <inertial><mass value="2"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+  <xacro:wheel side="left" y="0.1"/>
+  <xacro:wheel side="right" y="-0.1"/>
+</robot>
+"""
+
+
+def _write_repo(folder: Path, count: int) -> list[str]:
+    files = []
+    for index in range(count):
+        path = folder / f"pkg{index // 50}" / f"bot{index}.urdf.xacro"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(ROBOT.format(index=index, radius=0.05 + index * 1e-5))
+        files.append(str(path))
+    return files
+
+
+def main() -> dict:
+    from urdftool.engine import CheckOptions, check_file
+    from urdftool.parallel import check_files, default_jobs
+
+    with tempfile.TemporaryDirectory() as tmp:
+        files = _write_repo(Path(tmp), COUNT)
+        options = CheckOptions()
+        check_file(files[0], options)  # warm up imports and rule registration
+        start = time.perf_counter()
+        for path in files:
+            check_file(path, options)
+        serial = time.perf_counter() - start
+        jobs = default_jobs()
+        start = time.perf_counter()
+        results = check_files(files, lambda p: options, jobs=jobs, timeout=60)
+        parallel = time.perf_counter() - start
+    assert len(results) == COUNT
+    ratio = parallel / (serial / jobs)
+    result = {"name": "many-files", "ratio": round(ratio, 3), "target": TARGET, "files": COUNT,
+              "jobs": jobs, "serial_s": round(serial, 3), "parallel_s": round(parallel, 3),
+              "one_file_ms": round(serial / COUNT * 1000, 3)}
+    print(f"many-files: {COUNT} files, {jobs} workers: {parallel:.2f} s vs {serial:.2f} s serial "
+          f"({result['one_file_ms']} ms/file); ratio {ratio:.2f} (target <= {TARGET})")
+    return result
+
+
+if __name__ == "__main__":
+    main()
