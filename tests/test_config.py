@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from urdftool import engine
+from urdftool import parallel
 from urdftool.config import find_config
 
 ROBOT = """<robot name="r">
@@ -105,10 +105,10 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     settings(project, 'spec = "config/limits.yaml"\ncontrollers = "config/c.yaml"\n'
                       'srdf = "config/r.srdf"\n')
     seen = []
-    real = engine.check_file
-    monkeypatch.setattr(engine, "check_file",
+    real = parallel.check_file
+    monkeypatch.setattr(parallel, "check_file",
                         lambda path, options: seen.append(options.extras) or real(path, options))
-    codes(run_cli, project / "robots")
+    codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0")  # in this process
     config = project / "config"
     assert seen == [{"spec": str(config / "limits.yaml"),
                      "controllers": [str(config / "c.yaml")], "srdf": str(config / "r.srdf")}]

@@ -35,7 +35,7 @@ class Config:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
         if not self.per_file_ignores:
             return []
-        target = Path(file).resolve()
+        target = Path(file).absolute()
         base = self.path.parent if self.path else Path.cwd()
         try:
             relative = target.relative_to(base).as_posix()
@@ -50,7 +50,7 @@ class Config:
 
 def find_config(start: Path) -> Config:
     """The nearest settings file above ``start`` (a file or folder); empty Config when none."""
-    folder = start.resolve()
+    folder = start.absolute()
     if not folder.is_dir():
         folder = folder.parent
     for candidate in [folder, *folder.parents]:

@@ -39,7 +39,7 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
             included.setdefault(target, path)
     top, skipped = [], {}
     for path in files:
-        key = _resolved(path)
+        key = resolved_path(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
         elif path.name.endswith(".xacro") and not _defines_robot(contents[path]):
@@ -49,7 +49,7 @@ def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[P
     return top, skipped
 
 
-def _resolved(path: Path) -> Path:
+def resolved_path(path: Path) -> Path:
     try:
         return path.resolve()
     except (OSError, ValueError, RuntimeError):  # NUL in a name, a symlink loop
@@ -98,7 +98,7 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
                 continue
         if "$" in spec or "\0" in spec:
             continue
-        yield _resolved(path.parent / spec)
+        yield resolved_path(path.parent / spec)
 
 
 _NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
@@ -106,10 +106,10 @@ _NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
 
 def project_root(path: Path) -> Path:
     """The repository holding ``path`` (nearest folder with ``.git``), or its own folder."""
-    for candidate in _resolved(path).parents:
+    for candidate in resolved_path(path).parents:
         if (candidate / ".git").exists():
             return candidate
-    return _resolved(path).parent
+    return resolved_path(path).parent
 
 
 def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path], str | None]:
@@ -125,12 +125,12 @@ def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path
     data = _head(path)
     if _NAMED_ROBOT.search(data) and _defines_robot(data):
         return [path], None
-    target, seen, tops = _resolved(path), set(), []
+    target, seen, tops = resolved_path(path), set(), []
     pending = [target]
     while pending:
         current = pending.pop()
         for parent in includers.get(current, ()):
-            resolved = _resolved(parent)
+            resolved = resolved_path(parent)
             if resolved in seen:
                 continue
             seen.add(resolved)

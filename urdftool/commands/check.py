@@ -137,8 +137,8 @@ def _config_for(path: str):
 def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
     """Files to check, in a stable order, and the files skipped in folders with the reason."""
     from ..diagnostics import display_path
-    from ..discover import (explicit_targets, includers_below, project_root, robot_files,
-                            split_top_level)
+    from ..discover import (explicit_targets, includers_below, project_root, resolved_path,
+                            robot_files, split_top_level)
     from ..loader.packages import PackageResolver
 
     resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
@@ -165,5 +165,5 @@ def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
             raise UsageError(f"no .urdf or .xacro files found in '{path}'")
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
-        unique.setdefault(file if file == "-" else Path(file).resolve(), file)
+        unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
     return list(unique.values()), skipped
