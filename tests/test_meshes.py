@@ -121,3 +121,16 @@ def test_collada_unit_is_applied(tmp_path):
     (tmp_path / "m.dae").write_text(text)
     mesh = load_mesh(_robot(tmp_path, "m.dae"), "m.dae")
     assert max(mesh.extents) == pytest.approx(0.1)
+
+
+def test_max_triangles_option_refuses_a_large_mesh(tmp_path, run_cli):
+    import trimesh
+
+    trimesh.creation.icosphere(subdivisions=3).export(tmp_path / "ball.stl")  # 1280 triangles
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"><collision><geometry>'
+                     '<mesh filename="ball.stl"/></geometry></collision></link></robot>')
+    assert "U411" not in run_cli("check", robot).output
+    limited = run_cli("check", robot, "--max-triangles", "1000")
+    assert "U411" in limited.output and "1280 triangles" in limited.output

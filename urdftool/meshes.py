@@ -186,17 +186,17 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     return loaded
 
 
-def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits = MeshLimits()):
+def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None = None):
     """The mesh at ``uri`` scaled by ``scale`` (a trimesh.Trimesh; do not modify it).
 
     Loaded once per robot per (path, scale); problems are cached and raised again as
-    MeshProblem.
+    MeshProblem. The triangle limit is ``robot.options["max_triangles"]`` (``check
+    --max-triangles``) unless ``limits`` are given.
     """
+    limits = limits or MeshLimits(max_triangles=robot.options.get("max_triangles",
+                                                                  MAX_TRIANGLES))
     cache = robot.options.setdefault(_CACHE_KEY, {})
-    try:
-        path = resolve(robot, uri)
-    except MeshProblem:
-        raise
+    path = resolve(robot, uri)
     scale = tuple(float(s) for s in scale)
     key = (path, scale)
     if key not in cache:

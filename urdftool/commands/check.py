@@ -46,6 +46,8 @@ def check(
     spec: Path = typer.Option(None, "--spec", metavar="FILE",
                               help="Joint spec table [default: joint_limits.yaml beside the "
                                    "robot, when it is a urdftool spec]."),
+    max_triangles: int = typer.Option(2_000_000, "--max-triangles", metavar="N",
+                                      help="Refuse meshes with more triangles than this."),
     timeout: float = typer.Option(60.0, "--timeout", metavar="SECONDS",
                                   help="Time budget per file; 0 for none."),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
@@ -66,7 +68,8 @@ def check(
         config = _config_for(paths[0])
         files, skipped = _expand_paths(paths, packages)
         # Command-line companions win over the settings file's.
-        extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec)}
+        extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec),
+                  "max_triangles": max_triangles}
     except UsageError as error:
         fail_usage(error)
     if verbose:
