@@ -179,3 +179,19 @@ def test_commented_xacro_in_generated_urdf_is_plain(tmp_path):
                  '<!-- <xacro:if value="${x}"> -->\n<link name="a"/>\n</robot>')
     robot = load(path)
     assert not robot.from_xacro and robot.options["load_findings"] == []
+
+
+def test_misspelt_property_suggests_the_defined_one(tmp_path):
+    path = write(tmp_path, "r.urdf.xacro",
+                 '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                 '  <xacro:property name="wheel_radius" value="0.05"/>\n'
+                 '  <xacro:macro name="wheel" params="side">\n'
+                 '    <link name="${side}_${wheel_radus}"/>\n'
+                 '  </xacro:macro>\n'
+                 '  <xacro:wheel side="left"/>\n</robot>\n')
+    with pytest.raises(LoadError) as error:
+        load(path)
+    finding = error.value.findings[0]
+    assert (finding.code, finding.line) == ("U005", 4)
+    assert "did you mean 'wheel_radius'?" in finding.message
+    assert "side" in finding.message  # the macro's parameters are properties there too

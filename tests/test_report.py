@@ -75,7 +75,7 @@ def test_text_groups_by_file_and_shows_the_macro_call_chain():
     text = rendered("text")
     assert "a.urdf:7: error U204 lower above upper" in text
     assert "expanded from macro call at a.urdf:9" in text
-    assert text.strip().endswith("2 files checked: 1 errors, 1 warnings, 0 notes")
+    assert text.strip().endswith("2 files checked: 1 error, 1 warning, 0 notes")
 
 
 def test_sarif_validates_against_the_official_schema():

@@ -31,6 +31,7 @@ from lxml import etree
 
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
+from ..rules._names import available
 from . import xacro_sandbox
 from .xmlparse import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
 
@@ -391,7 +392,34 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
         message += f"; pass it as {name}:=VALUE (or --arg {name}=VALUE)"
     if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
         message = f"{type(error).__name__}: {message}"
+    undefined = _undefined_name(error)
+    if undefined:
+        message += "; " + available("properties", undefined, _visible_properties(error))
     return XacroFailure("xacro", message, where)
+
+
+def _undefined_name(error: Exception) -> str | None:
+    """The property name of a NameError that xacro wrapped, if that is what failed."""
+    cause = error
+    while cause is not None and not isinstance(cause, NameError):
+        cause = getattr(cause, "exc", None) or cause.__context__
+    return getattr(cause, "name", None) if cause is not None else None
+
+
+def _visible_properties(error: Exception) -> set[str]:
+    """Property names defined where the expression failed (xacro's symbol tables in the
+    traceback), without xacro's own built-in symbols."""
+    import xacro
+
+    names: set[str] = set()
+    traceback = error.__traceback__
+    while traceback is not None:
+        table = traceback.tb_frame.f_locals.get("symbols")
+        while isinstance(table, xacro.Table):
+            names.update(k for k in table if not k.startswith(("*", "_")))
+            table = table.parent
+        traceback = traceback.tb_next
+    return names - set(xacro._global_symbols)
 
 
 def _failure_location(session: _Session, traceback, path, frame=None) -> Location:

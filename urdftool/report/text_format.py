@@ -30,6 +30,10 @@ def render(results, stream, console: Console | None = None) -> None:
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
-        else f"{summary.errors} errors, {summary.warnings} warnings, {summary.infos} notes"
-    files = "1 file" if summary.files == 1 else f"{summary.files} files"
-    console.print(f"[{style}]{files} checked: {verdict}[/]")
+        else ", ".join([_count(summary.errors, "error"), _count(summary.warnings, "warning"),
+                        _count(summary.infos, "note")])
+    console.print(f"[{style}]{_count(summary.files, 'file')} checked: {verdict}[/]")
+
+
+def _count(number: int, noun: str) -> str:
+    return f"{number} {noun}" if number == 1 else f"{number} {noun}s"
