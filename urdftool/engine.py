@@ -6,7 +6,7 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .diagnostics import Finding, Location, Severity
+from .diagnostics import Finding, Location, Severity, display_path
 from .errors import LoadError
 from .rules import REGISTRY, Rule, all_rules, declare
 from . import suppressions
@@ -65,13 +65,13 @@ def stamp(rule: Rule, where, message: str, robot) -> Finding:
     return Finding(rule.code, rule.name, rule.severity, message, location)
 
 
-def _loader_crash(path: str, error: BaseException) -> Finding:
-    from .diagnostics import display_path
-
+def _crash(what: str, error: BaseException, location: Location) -> Finding:
+    """U900 for a crash in urdftool itself, naming the code line that raised."""
     frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
-    return stamp(REGISTRY["U900"], Location(display_path(path) if path != "-" else "<stdin>"),
-                 f"loading crashed: {type(error).__name__}: {error}{where}", None)
+    rule = REGISTRY["U900"]
+    return Finding(rule.code, rule.name, rule.severity,
+                   f"{what} crashed: {type(error).__name__}: {error}{where}", location)
 
 
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
@@ -88,11 +88,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
             for where, message in rule.check(robot):
                 findings.append(stamp(rule, where, message, robot))
         except Exception as error:  # a bug in a rule must not hide the other findings
-            frame = traceback.extract_tb(error.__traceback__)[-1]
-            findings.append(stamp(
-                REGISTRY["U900"], None,
-                f"rule {rule.code} ({rule.name}) crashed: {type(error).__name__}: {error} "
-                f"[{Path(frame.filename).name}:{frame.lineno}]", robot))
+            findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
     findings = suppressions.apply(findings, robot.files, selection.allows)
     return sorted(set(findings), key=Finding.sort_key)
 
@@ -109,6 +105,7 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, error.findings)
     except Exception as error:  # a loader bug (RecursionError, MemoryError too): a finding, not a traceback
-        return FileResult(path, [_loader_crash(path, error)])
+        shown = display_path(path) if path != "-" else "<stdin>"
+        return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.options.update(options.extras)
     return FileResult(path, check_robot(robot, options.selection), robot)
