@@ -90,3 +90,36 @@ def test_humanoid_holds_itself_with_mx28(run_cli):
 def test_dynamics_unknown_joint_is_usage_error(run_cli):
     result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_kne=1")
     assert result.exit_code == 2 and "l_knee" in result.output
+
+
+MIMIC_ARM = ARM.replace('<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>',
+                        '<limit lower="-3" upper="3" effort="1" velocity="1"/>'
+                        '<mimic joint="shoulder" multiplier="-1" offset="0.2"/></joint>')
+
+
+@pytest.fixture(scope="module")
+def mimic_arm(tmp_path_factory):
+    path = tmp_path_factory.mktemp("mimic") / "arm.urdf"
+    path.write_text(MIMIC_ARM)
+    return build(load(path))
+
+
+@pytest.mark.parametrize("q1", [0.0, 0.7, -1.1])
+def test_mimic_joint_follows_its_variable(mimic_arm, q1):
+    # elbow = -shoulder + 0.2: the forearm keeps a fixed pitch of 0.2 rad
+    result = state(mimic_arm, {"shoulder": q1}, {"shoulder": 1.5}, {})
+    assert np.allclose(result.G, _hand_gravity(q1, -q1 + 0.2), atol=1e-9)
+    assert result.rnea_residual < 1e-9
+    assert np.allclose(mimic_arm.velocity({"shoulder": 1.5}), [1.5, -1.5])
+
+
+def test_gravity_loads_draw_mimic_joints_from_their_variable(mimic_arm):
+    loads = {load.joint: load for load in gravity_loads(mimic_arm, 30, seed=3)}
+    for load in loads.values():
+        assert set(load.worst_pose) == {"shoulder"}  # the mimic joint is not drawn
+    # the forearm's pitch never changes, so neither does the elbow's torque
+    expected = M2 * G0 * L2 * math.cos(0.2)
+    assert math.isclose(loads["elbow"].worst, expected, rel_tol=1e-9)
+    worst = max(abs(_hand_gravity(q, -q + 0.2)[0]) for q in
+                [0.0] + [p["shoulder"] for p in [loads["shoulder"].worst_pose]])
+    assert math.isclose(loads["shoulder"].worst, worst, rel_tol=1e-9)

@@ -16,8 +16,8 @@ import numpy as np
 
 from ..rules._names import available
 from . import transforms
-from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, Variable,
-                            mimics_of, variables_of)
+from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
+                            Variable, mimic_source, mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
 
@@ -129,22 +129,13 @@ class KinematicModel:
     def _coordinate_columns(self, joint: str, coordinates) -> tuple:
         return tuple(self._columns[f"{joint}.{c}"] for c in coordinates)
 
-    def _source(self, name: str, seen=()) -> tuple:
+    def _source(self, name: str) -> tuple:
         """(column, multiplier, offset): the joint's value as a function of one variable."""
-        if name in self._columns:
-            return self._columns[name], 1.0, 0.0
-        element = self.robot.joints.get(name)
-        mimic = element.find("mimic") if element is not None else None
-        if mimic is None or name in seen:
-            raise FKError(f"joint '{name}' has no value (a mimic cycle?)", element)
-        master = mimic.get("joint")
-        if master not in self.robot.joints:
-            raise FKError(f"joint '{name}' mimics unknown joint '{master}'; "
-                          f"{available('joints', master or '', self.robot.joints)}", mimic)
-        multiplier = _attribute(mimic, "multiplier", 1.0)
-        offset = _attribute(mimic, "offset", 0.0)
-        column, m, o = self._source(master, seen + (name,))
-        return column, multiplier * m, multiplier * o + offset
+        try:
+            variable, multiplier, offset = mimic_source(self.robot, name, self._columns)
+        except MimicError as error:
+            raise FKError(str(error), error.element) from None
+        return self._columns[variable], multiplier, offset
 
     # -- poses ------------------------------------------------------------------------------
 
@@ -245,13 +236,6 @@ def _axis(short: str, element) -> np.ndarray:
     values, _ = parse_numbers(axis_element.get("xyz") if axis_element is not None else "1 0 0", 3)
     axis = np.array(values or (1.0, 0.0, 0.0), dtype=float)
     return axis / np.linalg.norm(axis)
-
-
-def _attribute(element, name: str, default: float) -> float:
-    from ..rules._values import number
-
-    value = number(element, name, default)
-    return default if value is None else value
 
 
 def forward_kinematics(model: KinematicModel, configurations: Configurations,
