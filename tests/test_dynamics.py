@@ -123,3 +123,14 @@ def test_gravity_loads_draw_mimic_joints_from_their_variable(mimic_arm):
     worst = max(abs(_hand_gravity(q, -q + 0.2)[0]) for q in
                 [0.0] + [p["shoulder"] for p in [loads["shoulder"].worst_pose]])
     assert math.isclose(loads["shoulder"].worst, worst, rel_tol=1e-9)
+
+
+def test_samples_text_reports_margins_without_the_zero_pose_matrices(run_cli, tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    result = run_cli("dynamics", path, "--samples", "20")
+    assert result.exit_code == 1, result.output
+    assert "M(q)" not in result.output and "G(q)" not in result.output
+    assert "1 joint cannot hold itself: elbow" in result.output
+    with_q = run_cli("dynamics", path, "--samples", "20", "--q", "shoulder=0.5")
+    assert "M(q): joint-space mass matrix" in with_q.output

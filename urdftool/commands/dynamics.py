@@ -72,7 +72,9 @@ def dynamics(
         data["gravity_loads"] = [load.as_dict() for load in loads]
         typer.echo(json.dumps(data, indent=2))
     else:
-        typer.echo(_text(result, loads, samples), nl=False)
+        # --samples alone asks for gravity margins: M and G at the zero pose would be noise
+        typer.echo(_text(result, loads, samples, matrices=bool(q or v or a or not samples)),
+                   nl=False)
     raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
 
 
@@ -80,14 +82,15 @@ def _row(values) -> str:
     return " ".join(f"{v:10.4g}" for v in values)
 
 
-def _text(result, loads, samples) -> str:
+def _text(result, loads, samples, matrices: bool = True) -> str:
     width = max((len(j) for j in result.joints), default=5)
     com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
-    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame", ""]
-    lines.append("G(q): gravity torque per joint [N m or N]")
-    lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
-    lines += ["", "M(q): joint-space mass matrix"]
-    lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
+    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame"]
+    if matrices:
+        lines += ["", "G(q): gravity torque per joint [N m or N]"]
+        lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
+        lines += ["", "M(q): joint-space mass matrix"]
+        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
@@ -107,6 +110,7 @@ def _text(result, loads, samples) -> str:
         lines.append(f"  smallest margin: {weakest.joint} ({weakest.margin:.3g} of "
                      f"{weakest.effort:.3g}) at {pose or 'the zero pose'}")
         failing = [load.joint for load in loads if not load.holds]
-        lines.append(f"  {len(failing)} joints cannot hold themselves: {', '.join(failing)}"
+        lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
+                     f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
                      if failing else "  every joint holds the robot against gravity")
     return "\n".join(lines) + "\n"
