@@ -249,3 +249,11 @@ def test_cli_text_table(run_cli):
     result = run_cli("fk", HUMANOID, "--frame", "head_link", "--matrix")
     assert result.exit_code == 0, result.output
     assert "head_link" in result.stdout and "x [m]" in result.stdout
+
+
+def test_text_shows_no_negative_zero(run_cli):
+    # the crouched leg's foot is back under the hip up to round-off (x = -3e-17)
+    result = run_cli("fk", HUMANOID, "--base", "body_link", "--frame", "l_foot_link",
+                     "--q", "l_hip_pitch=-30", "--q", "l_knee=60", "--q", "l_ank_pitch=-30", "--deg")
+    assert result.exit_code == 0, result.output
+    assert "-0.000000" not in result.output and "0.037000" in result.output

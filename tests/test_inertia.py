@@ -129,3 +129,9 @@ def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid):
 
 def test_inertia_write_needs_a_selection(run_cli, humanoid):
     assert run_cli("inertia", humanoid, "--write", "x.urdf").exit_code == 2
+
+
+def test_inertia_text_summary_counts_one_link_in_the_singular(run_cli, humanoid):
+    result = run_cli("inertia", humanoid, "--link", "head_link")
+    assert result.exit_code == 0, result.output
+    assert result.output.splitlines()[-1] == "1 agrees (1 link)"

@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, fail_usage, fixed, single_robot
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -159,7 +159,7 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
                        "qx", "qy", "qz", "qw"):
             table.add_column(escape(column), justify="left" if column == "frame" else "right")
         for k, name in enumerate(result.frames):
-            table.add_row(name, *(f"{v:.6f}" for v in
+            table.add_row(name, *(fixed(v) for v in
                                   (*positions[row, k], *rpys[row, k], *quaternions[row, k])))
         console.print(table)
         if matrix:

@@ -96,5 +96,7 @@ def _text(results) -> str:
         lines.extend(f"  note: {note}" for note in result.notes)
     counts = {v: sum(r.verdict == v for r in results) for v in ("agrees", "differs", "invalid",
                                                                 "unknown")}
-    lines.append(", ".join(f"{n} {v}" for v, n in counts.items() if n) + f" ({len(results)} links)")
+    plural = "" if len(results) == 1 else "s"
+    lines.append(", ".join(f"{n} {v}" for v, n in counts.items() if n) +
+                 f" ({len(results)} link{plural})")
     return "\n".join(lines) + "\n"
