@@ -267,3 +267,21 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
     result = run_cli("dh", path, "--base", "b", "--tip", "t")
     assert result.exit_code == 1
     assert "f.urdf:2: error: joint 'fly' is floating" in result.stderr
+
+
+@pytest.mark.parametrize("tilt", [1e-8, 1e-5, 1e-3])
+def test_nearly_parallel_axes_give_a_finite_exact_table(tmp_path, tilt):
+    # 1 - cos^2 of a 1e-8 rad tilt rounds to 0: the common normal must not divide by it
+    path = tmp_path / "np.urdf"
+    path.write_text(f"""<robot name="np"><link name="b"/><link name="m"/><link name="t"/>
+      <joint name="j1" type="revolute"><parent link="b"/><child link="m"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="m"/><child link="t"/>
+        <origin xyz="0.3 0 0" rpy="{tilt} 0 0"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    robot = load(path)
+    for convention in dh.CONVENTIONS:
+        table = dh.extract(robot, "b", "t", convention)
+        assert all(np.isfinite([j.theta, j.d, j.a, j.alpha]).all() for j in table.joints)
+        assert np.isfinite(table.tool).all()
+        assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12

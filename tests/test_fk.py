@@ -211,7 +211,7 @@ def test_cli_json_single_configuration(run_cli):
                      "--q", "l_knee=90", "--deg", "-f", "json")
     assert result.exit_code == 0, result.output
     document = json.loads(result.stdout)
-    assert document["base"] == "body_link"
+    assert set(document) == {"base", "frames"} and document["base"] == "body_link"
     (frame,) = document["frames"]
     assert set(frame) == {"frame", "position", "rpy", "quaternion"}
     np.testing.assert_allclose(frame["position"], [-0.093, 0.037, -0.215], atol=1e-12)
@@ -222,7 +222,10 @@ def test_cli_q_file_gives_one_document_per_row_and_csv(run_cli, tmp_path):
     path.write_text("l_knee\n0.5\n1.0\n1.5\n")
     result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "json")
     assert result.exit_code == 0, result.output
-    assert len(json.loads(result.stdout)) == 3
+    documents = json.loads(result.stdout)
+    assert isinstance(documents, list) and len(documents) == 3
+    assert all(set(d) == {"base", "frames"} and [f["frame"] for f in d["frames"]] ==
+               ["l_shin_link"] for d in documents)
     result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "csv",
                      "--matrix")
     lines = result.stdout.splitlines()

@@ -157,7 +157,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         theta, d, a, alpha = (_standard_parameters if convention == "standard"
                               else _modified_parameters)(link)
         error = np.abs(dh_matrices(theta, d, a, alpha, convention) - link).max()
-        if error > 1e-9:
+        if not error <= 1e-9:  # NaN included
             raise DHError(f"joint '{joint.get('name')}': its axis cannot be placed in D-H form "
                           f"(residual {error:.2g}; axes nearly parallel?)", joint)
         residual = max(residual, error)
@@ -213,7 +213,7 @@ def _next_frame(previous: np.ndarray, point, z) -> np.ndarray:
     else:
         w0 = o_prev - point
         b, d1, e = np.dot(z_prev, z), np.dot(z_prev, w0), np.dot(z, w0)
-        t = (e - b * d1) / (1.0 - b * b)
+        t = (e - b * d1) / np.dot(cross, cross)  # 1 - b^2, without cancellation near 1
         origin = point + t * z
         x = cross / np.linalg.norm(cross)
     x = x - np.dot(x, z) * z
