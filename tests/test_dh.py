@@ -285,3 +285,30 @@ def test_nearly_parallel_axes_give_a_finite_exact_table(tmp_path, tilt):
         assert all(np.isfinite([j.theta, j.d, j.a, j.alpha]).all() for j in table.joints)
         assert np.isfinite(table.tool).all()
         assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_cli_table_with_only_the_specified_keys(run_cli, tmp_path):
+    """base_link/tip_link are an extension: a table with just convention, base, tool, joints
+    works when --base and --frame name the chain, and otherwise says so at the table."""
+    document = dh.extract(load(HUMANOID), "body_link", "l_foot_link").as_dict()
+    assert set(document) == {"convention", "base", "tool", "joints", "base_link", "tip_link"}
+    del document["base_link"], document["tip_link"]
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(document))
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--random", "20",
+                     "--base", "body_link", "--frame", "l_foot_link")
+    assert result.exit_code == 0 and "agree" in result.stdout, result.output
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify")
+    assert result.exit_code == 1
+    assert f"{path}: error: the D-H table does not name its base_link" in result.stderr
+
+
+def test_cli_dh_options_that_contradict_the_table(run_cli, tmp_path):
+    path = tmp_path / "leg.yaml"
+    path.write_text(yaml.safe_dump(dh.extract(load(HUMANOID), "body_link", "l_foot_link")
+                                   .as_dict()))
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--frame", "l_hip_link")
+    assert result.exit_code == 1
+    assert "chain is body_link -> l_foot_link; --frame l_hip_link names another" in result.stderr
+    result = run_cli("fk", HUMANOID, "--dh", path, "--frame", "l_foot_link", "--frame", "x")
+    assert result.exit_code == 2 and "at most one --frame" in result.output

@@ -363,6 +363,11 @@ def table_columns(table: DHTable, model) -> list[int]:
 
 def table_links(table: DHTable, base: str | None, tip: str | None) -> tuple[str, str]:
     """The chain's base and tip links: from the table, or from ``--base`` / ``--frame``."""
+    for option, given, named in (("--base", base, table.base_link), ("--frame", tip,
+                                                                      table.tip_link)):
+        if given and named and given != named:
+            raise DHError(f"the D-H table's chain is {table.base_link} -> {table.tip_link}; "
+                          f"{option} {given} names another link (leave it out)")
     base, tip = table.base_link or base, table.tip_link or tip
     if not base or not tip:
         raise DHError("the D-H table does not name its base_link and tip_link: pass --base LINK "
