@@ -260,3 +260,19 @@ def test_text_shows_no_negative_zero(run_cli):
                      "--q", "l_hip_pitch=-30", "--q", "l_knee=60", "--q", "l_ank_pitch=-30", "--deg")
     assert result.exit_code == 0, result.output
     assert "-0.000000" not in result.output and "0.037000" in result.output
+
+
+def test_floating_poses_are_relative_to_the_world_not_the_moving_root(run_cli):
+    result = run_cli("fk", HUMANOID, "--floating", "--q", "root_joint.z=1", "--frame",
+                     "body_link", "-f", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    assert document["base"] == "world"
+    np.testing.assert_allclose(document["frames"][0]["position"][2], 1.0 + _body_height(),
+                               atol=1e-12)
+
+
+def _body_height() -> float:
+    model = KinematicModel(load(HUMANOID))
+    result = forward_kinematics(model, config.from_words(model.variables, []), ["body_link"])
+    return float(result.matrices[0, 0, 2, 3])

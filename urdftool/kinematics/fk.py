@@ -99,6 +99,9 @@ class KinematicModel:
         self._frames = [(f.name, f.parentJoint, f.placement.homogeneous.copy())
                         for f in self.model.frames if f.type == body]
         self.links = [name for name, _, _ in self._frames]
+        # what poses are relative to without --base: the root link, or with a free-flyer root
+        # joint the fixed world it moves in (the root link itself moves)
+        self.root_frame = "world" if floating else self.links[0]
         self._at_joint = [np.array_equal(placement, np.eye(4)) for _, _, placement in self._frames]
 
     def _joint(self, index: int) -> _Joint:
@@ -252,7 +255,7 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
     else:
         poses = model._frame_poses(configurations.values, chosen)
     matrices = np.moveaxis(poses, 0, 1)
-    root = base or model.links[0]
+    root = base or model.root_frame
     return FKResult(root, [model.links[i] for i in chosen], matrices,
                     list(configurations.warnings))
 
