@@ -134,3 +134,10 @@ def test_samples_text_reports_margins_without_the_zero_pose_matrices(run_cli, tm
     assert "1 joint cannot hold itself: elbow" in result.output
     with_q = run_cli("dynamics", path, "--samples", "20", "--q", "shoulder=0.5")
     assert "M(q): joint-space mass matrix" in with_q.output
+
+
+def test_a_vertical_axis_carries_no_gravity_load(run_cli):
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--samples", "20",
+                     "--format", "json")
+    loads = {load["joint"]: load for load in json.loads(result.output)["gravity_loads"]}
+    assert loads["l_hip_yaw"]["worst"] == 0.0 and loads["r_hip_yaw"]["worst"] == 0.0

@@ -13,6 +13,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 
+_ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
+
+
 class DynamicsError(Exception):
     """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 
@@ -191,6 +194,7 @@ def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
         gravity = pin.computeGeneralizedGravity(m, d, model.configuration(pose))
         for load, joint_id in zip(loads, ids):
             torque = abs(float(gravity[m.joints[joint_id].idx_v]))
+            torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
             if number == 0:
                 load.zero_pose = torque
             if torque > load.worst or number == 0:
