@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -141,3 +142,13 @@ def test_a_vertical_axis_carries_no_gravity_load(run_cli):
                      "--format", "json")
     loads = {load["joint"]: load for load in json.loads(result.output)["gravity_loads"]}
     assert loads["l_hip_yaw"]["worst"] == 0.0 and loads["r_hip_yaw"]["worst"] == 0.0
+
+
+def test_a_massless_robot_is_warned_about(run_cli, tmp_path):
+    path = tmp_path / "massless.urdf"
+    path.write_text(re.sub(r"<inertial>.*?</inertial>", "", ARM, flags=re.S))
+    result = run_cli("dynamics", path, "--samples", "5")
+    assert result.exit_code == 0
+    assert "warning: no link has a mass" in result.stderr
+    path.write_text(ARM)
+    assert "warning" not in run_cli("dynamics", path, "--samples", "5").stderr

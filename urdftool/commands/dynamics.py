@@ -63,9 +63,12 @@ def dynamics(
         q_values, v_values, a_values, warnings = _values(robot, q, v, a, deg)
     except UsageError as error:
         fail_usage(error)
+    result = state(model, q_values, v_values, a_values)
+    if result.mass <= 0:
+        warnings.append("no link has a mass (no <inertial>): M(q) and every gravity torque are "
+                        "zero; check the description (xacro arguments?) with 'urdftool check'")
     for warning in warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
-    result = state(model, q_values, v_values, a_values)
     loads = gravity_loads(model, samples, seed) if samples else []
     if output_format == "json":
         data = result.as_dict()

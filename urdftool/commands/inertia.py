@@ -83,6 +83,9 @@ def _fmt(properties) -> tuple[str, str, str]:
 def _text(results) -> str:
     lines = []
     for result in results:
+        if result.declared is None and result.computed is None and not result.notes:
+            lines.append(f"{result.link}: {result.verdict} (a frame: no inertial, no geometry)")
+            continue
         lines.append(f"{result.link}: {result.verdict} (computed from {result.source} geometry)"
                      if result.source != "none" else f"{result.link}: {result.verdict} "
                                                      "(no geometry)")
