@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from conftest import ROBOTS
-from urdftool.dynamics import build, gravity_loads, state
+from urdftool.dynamics import build, gravity_loads, gravity_variables, state
 from urdftool.loader import load
 
 G0 = 9.81
@@ -152,3 +152,11 @@ def test_a_massless_robot_is_warned_about(run_cli, tmp_path):
     assert "warning: no link has a mass" in result.stderr
     path.write_text(ARM)
     assert "warning" not in run_cli("dynamics", path, "--samples", "5").stderr
+
+
+def test_gravity_variables_are_the_branch_of_the_joint(mimic_arm):
+    humanoid = build(load(ROBOTS / "humanoid" / "humanoid.urdf.xacro"))
+    assert gravity_variables(humanoid, "r_knee") == {
+        "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ank_pitch", "r_ank_roll"}
+    assert gravity_variables(humanoid, "head_pan") == {"head_pan", "head_tilt"}
+    assert gravity_variables(mimic_arm, "elbow") == {"shoulder"}  # through the mimic

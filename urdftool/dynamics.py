@@ -174,6 +174,18 @@ class JointLoad:
                 "worst_pose": self.worst_pose}
 
 
+def gravity_variables(model: Model, joint: str) -> set[str]:
+    """The variables that can change ``joint``'s gravity torque: those of the joints that carry
+    it (they turn gravity relative to its axis) and of the joints it carries (they move its
+    load). Joints on other branches cannot."""
+    m = model.model
+    joint_id = m.getJointId(joint)
+    ids = set(m.supports[joint_id]) | set(m.subtrees[joint_id])
+    names = {m.names[i] for i in ids}
+    variables = {variable.name for variable in model.variables}
+    return {model.mimics.get(name, (name,))[0] for name in names} & variables
+
+
 def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic

@@ -50,7 +50,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..dynamics import DynamicsError, build, gravity_loads, state
+    from ..dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
                          [(samples < 0, "--samples must be 0 or more")])
@@ -76,8 +76,9 @@ def dynamics(
         typer.echo(json.dumps(data, indent=2))
     else:
         # --samples alone asks for gravity margins: M and G at the zero pose would be noise
-        typer.echo(_text(result, loads, samples, matrices=bool(q or v or a or not samples)),
-                   nl=False)
+        relevant = gravity_variables(model, _weakest(loads).joint) if loads else set()
+        typer.echo(_text(result, loads, samples, matrices=bool(q or v or a or not samples),
+                         relevant=relevant), nl=False)
     raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
 
 
@@ -85,7 +86,11 @@ def _row(values) -> str:
     return " ".join(f"{v:10.4g}" for v in values)
 
 
-def _text(result, loads, samples, matrices: bool = True) -> str:
+def _weakest(loads):
+    return min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
+
+
+def _text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     width = max((len(j) for j in result.joints), default=5)
     com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
     lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame"]
@@ -108,8 +113,10 @@ def _text(result, loads, samples, matrices: bool = True) -> str:
             flag = "" if load.holds else "  ERROR: cannot hold itself against gravity"
             lines.append(f"  {load.joint:{width}s} {load.effort:8.4g} {load.zero_pose:10.4g} "
                          f"{load.worst:10.4g} {load.margin:10.4g}{flag}")
-        weakest = min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in weakest.worst_pose.items() if v)
+        weakest = _weakest(loads)
+        # only the joints that change its load: the others' values are noise
+        pose = ", ".join(f"{k}={v:.3f}" for k, v in weakest.worst_pose.items()
+                         if v and k in relevant)
         lines.append(f"  smallest margin: {weakest.joint} ({weakest.margin:.3g} of "
                      f"{weakest.effort:.3g}) at {pose or 'the zero pose'}")
         failing = [load.joint for load in loads if not load.holds]
