@@ -160,3 +160,12 @@ def test_gravity_variables_are_the_branch_of_the_joint(mimic_arm):
         "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ank_pitch", "r_ank_roll"}
     assert gravity_variables(humanoid, "head_pan") == {"head_pan", "head_tilt"}
     assert gravity_variables(mimic_arm, "elbow") == {"shoulder"}  # through the mimic
+
+
+@pytest.mark.parametrize("q2,v1,v2", [(0.4, 1.0, -2.0), (-1.1, 0.5, 0.3)])
+def test_coriolis_matrix_matches_the_two_link_closed_form(arm, q2, v1, v2):
+    # point masses: h = -M2 L1 L2 sin q2, C = [[h v2, h (v1 + v2)], [-h v1, 0]] (Christoffel)
+    result = state(arm, {"shoulder": 0.3, "elbow": q2}, {"shoulder": v1, "elbow": v2}, {})
+    h = -M2 * L1 * L2 * math.sin(q2)
+    np.testing.assert_allclose(result.C, [[h * v2, h * (v1 + v2)], [-h * v1, 0.0]], atol=1e-6)
+    np.testing.assert_allclose(result.tau - result.G, result.C @ [v1, v2], atol=1e-12)
