@@ -202,8 +202,10 @@ def test_mimic_joint_in_chain_is_refused(tmp_path):
 
 
 def test_tip_not_below_base(humanoid):
-    with pytest.raises(dh.DHError, match="not below link 'l_foot_link'"):
+    with pytest.raises(dh.DHError, match="not below link 'l_foot_link'.*swap --base and --tip"):
         dh.extract(humanoid, "l_foot_link", "body_link")
+    with pytest.raises(dh.DHError, match="descendants$"):  # other branches: no swap to offer
+        dh.extract(humanoid, "l_foot_link", "r_foot_link")
     with pytest.raises(dh.DHError, match="did you mean 'l_foot_link'"):
         dh.extract(humanoid, "body_link", "l_foot")
 

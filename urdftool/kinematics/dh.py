@@ -121,11 +121,22 @@ def chain(robot, base: str, tip: str) -> list:
     while link != base:
         joint = parent_joint.get(link)
         if joint is None or joint in joints:
+            hint = ""
+            if base != tip and _is_below(parent_joint, base, tip):
+                hint = f"; '{base}' is below '{tip}': swap --base and --tip"
             raise DHError(f"link '{tip}' is not below link '{base}': a D-H chain runs from a "
-                          "link down to one of its descendants")
+                          f"link down to one of its descendants{hint}")
         joints.append(joint)
         link = joint.find("parent").get("link")
     return joints[::-1]
+
+
+def _is_below(parent_joint: dict, link: str, ancestor: str) -> bool:
+    seen = set()
+    while link != ancestor and link in parent_joint and link not in seen:
+        seen.add(link)
+        link = parent_joint[link].find("parent").get("link")
+    return link == ancestor
 
 
 def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable:
