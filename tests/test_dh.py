@@ -202,8 +202,10 @@ def test_mimic_joint_in_chain_is_refused(tmp_path):
 
 
 def test_tip_not_below_base(humanoid):
-    with pytest.raises(dh.DHError, match="not below link 'l_foot_link'"):
+    with pytest.raises(dh.DHError, match="not below link 'l_foot_link'.*swap --base and --tip"):
         dh.extract(humanoid, "l_foot_link", "body_link")
+    with pytest.raises(dh.DHError, match="descendants$"):  # other branches: no swap to offer
+        dh.extract(humanoid, "l_foot_link", "r_foot_link")
     with pytest.raises(dh.DHError, match="did you mean 'l_foot_link'"):
         dh.extract(humanoid, "body_link", "l_foot")
 
@@ -267,3 +269,48 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
     result = run_cli("dh", path, "--base", "b", "--tip", "t")
     assert result.exit_code == 1
     assert "f.urdf:2: error: joint 'fly' is floating" in result.stderr
+
+
+@pytest.mark.parametrize("tilt", [1e-8, 1e-5, 1e-3])
+def test_nearly_parallel_axes_give_a_finite_exact_table(tmp_path, tilt):
+    # 1 - cos^2 of a 1e-8 rad tilt rounds to 0: the common normal must not divide by it
+    path = tmp_path / "np.urdf"
+    path.write_text(f"""<robot name="np"><link name="b"/><link name="m"/><link name="t"/>
+      <joint name="j1" type="revolute"><parent link="b"/><child link="m"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="m"/><child link="t"/>
+        <origin xyz="0.3 0 0" rpy="{tilt} 0 0"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    robot = load(path)
+    for convention in dh.CONVENTIONS:
+        table = dh.extract(robot, "b", "t", convention)
+        assert all(np.isfinite([j.theta, j.d, j.a, j.alpha]).all() for j in table.joints)
+        assert np.isfinite(table.tool).all()
+        assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_cli_table_with_only_the_specified_keys(run_cli, tmp_path):
+    """base_link/tip_link are an extension: a table with just convention, base, tool, joints
+    works when --base and --frame name the chain, and otherwise says so at the table."""
+    document = dh.extract(load(HUMANOID), "body_link", "l_foot_link").as_dict()
+    assert set(document) == {"convention", "base", "tool", "joints", "base_link", "tip_link"}
+    del document["base_link"], document["tip_link"]
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(document))
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--random", "20",
+                     "--base", "body_link", "--frame", "l_foot_link")
+    assert result.exit_code == 0 and "agree" in result.stdout, result.output
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify")
+    assert result.exit_code == 1
+    assert f"{path}: error: the D-H table does not name its base_link" in result.stderr
+
+
+def test_cli_dh_options_that_contradict_the_table(run_cli, tmp_path):
+    path = tmp_path / "leg.yaml"
+    path.write_text(yaml.safe_dump(dh.extract(load(HUMANOID), "body_link", "l_foot_link")
+                                   .as_dict()))
+    result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--frame", "l_hip_link")
+    assert result.exit_code == 1
+    assert "chain is body_link -> l_foot_link; --frame l_hip_link names another" in result.stderr
+    result = run_cli("fk", HUMANOID, "--dh", path, "--frame", "l_foot_link", "--frame", "x")
+    assert result.exit_code == 2 and "at most one --frame" in result.output

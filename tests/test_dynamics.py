@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
 
 from conftest import ROBOTS
-from urdftool.dynamics import build, gravity_loads, state
+from urdftool.dynamics import build, gravity_loads, gravity_variables, state
 from urdftool.loader import load
 
 G0 = 9.81
@@ -90,3 +91,81 @@ def test_humanoid_holds_itself_with_mx28(run_cli):
 def test_dynamics_unknown_joint_is_usage_error(run_cli):
     result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_kne=1")
     assert result.exit_code == 2 and "l_knee" in result.output
+
+
+MIMIC_ARM = ARM.replace('<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>',
+                        '<limit lower="-3" upper="3" effort="1" velocity="1"/>'
+                        '<mimic joint="shoulder" multiplier="-1" offset="0.2"/></joint>')
+
+
+@pytest.fixture(scope="module")
+def mimic_arm(tmp_path_factory):
+    path = tmp_path_factory.mktemp("mimic") / "arm.urdf"
+    path.write_text(MIMIC_ARM)
+    return build(load(path))
+
+
+@pytest.mark.parametrize("q1", [0.0, 0.7, -1.1])
+def test_mimic_joint_follows_its_variable(mimic_arm, q1):
+    # elbow = -shoulder + 0.2: the forearm keeps a fixed pitch of 0.2 rad
+    result = state(mimic_arm, {"shoulder": q1}, {"shoulder": 1.5}, {})
+    assert np.allclose(result.G, _hand_gravity(q1, -q1 + 0.2), atol=1e-9)
+    assert result.rnea_residual < 1e-9
+    assert np.allclose(mimic_arm.velocity({"shoulder": 1.5}), [1.5, -1.5])
+
+
+def test_gravity_loads_draw_mimic_joints_from_their_variable(mimic_arm):
+    loads = {load.joint: load for load in gravity_loads(mimic_arm, 30, seed=3)}
+    for load in loads.values():
+        assert set(load.worst_pose) == {"shoulder"}  # the mimic joint is not drawn
+    # the forearm's pitch never changes, so neither does the elbow's torque
+    expected = M2 * G0 * L2 * math.cos(0.2)
+    assert math.isclose(loads["elbow"].worst, expected, rel_tol=1e-9)
+    worst = max(abs(_hand_gravity(q, -q + 0.2)[0]) for q in
+                [0.0] + [p["shoulder"] for p in [loads["shoulder"].worst_pose]])
+    assert math.isclose(loads["shoulder"].worst, worst, rel_tol=1e-9)
+
+
+def test_samples_text_reports_margins_without_the_zero_pose_matrices(run_cli, tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    result = run_cli("dynamics", path, "--samples", "20")
+    assert result.exit_code == 1, result.output
+    assert "M(q)" not in result.output and "G(q)" not in result.output
+    assert "1 joint cannot hold itself: elbow" in result.output
+    with_q = run_cli("dynamics", path, "--samples", "20", "--q", "shoulder=0.5")
+    assert "M(q): joint-space mass matrix" in with_q.output
+
+
+def test_a_vertical_axis_carries_no_gravity_load(run_cli):
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--samples", "20",
+                     "--format", "json")
+    loads = {load["joint"]: load for load in json.loads(result.output)["gravity_loads"]}
+    assert loads["l_hip_yaw"]["worst"] == 0.0 and loads["r_hip_yaw"]["worst"] == 0.0
+
+
+def test_a_massless_robot_is_warned_about(run_cli, tmp_path):
+    path = tmp_path / "massless.urdf"
+    path.write_text(re.sub(r"<inertial>.*?</inertial>", "", ARM, flags=re.S))
+    result = run_cli("dynamics", path, "--samples", "5")
+    assert result.exit_code == 0
+    assert "warning: no link has a mass" in result.stderr
+    path.write_text(ARM)
+    assert "warning" not in run_cli("dynamics", path, "--samples", "5").stderr
+
+
+def test_gravity_variables_are_the_branch_of_the_joint(mimic_arm):
+    humanoid = build(load(ROBOTS / "humanoid" / "humanoid.urdf.xacro"))
+    assert gravity_variables(humanoid, "r_knee") == {
+        "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ank_pitch", "r_ank_roll"}
+    assert gravity_variables(humanoid, "head_pan") == {"head_pan", "head_tilt"}
+    assert gravity_variables(mimic_arm, "elbow") == {"shoulder"}  # through the mimic
+
+
+@pytest.mark.parametrize("q2,v1,v2", [(0.4, 1.0, -2.0), (-1.1, 0.5, 0.3)])
+def test_coriolis_matrix_matches_the_two_link_closed_form(arm, q2, v1, v2):
+    # point masses: h = -M2 L1 L2 sin q2, C = [[h v2, h (v1 + v2)], [-h v1, 0]] (Christoffel)
+    result = state(arm, {"shoulder": 0.3, "elbow": q2}, {"shoulder": v1, "elbow": v2}, {})
+    h = -M2 * L1 * L2 * math.sin(q2)
+    np.testing.assert_allclose(result.C, [[h * v2, h * (v1 + v2)], [-h * v1, 0.0]], atol=1e-6)
+    np.testing.assert_allclose(result.tau - result.G, result.C @ [v1, v2], atol=1e-12)

@@ -211,7 +211,7 @@ def test_cli_json_single_configuration(run_cli):
                      "--q", "l_knee=90", "--deg", "-f", "json")
     assert result.exit_code == 0, result.output
     document = json.loads(result.stdout)
-    assert document["base"] == "body_link"
+    assert set(document) == {"base", "frames"} and document["base"] == "body_link"
     (frame,) = document["frames"]
     assert set(frame) == {"frame", "position", "rpy", "quaternion"}
     np.testing.assert_allclose(frame["position"], [-0.093, 0.037, -0.215], atol=1e-12)
@@ -222,7 +222,10 @@ def test_cli_q_file_gives_one_document_per_row_and_csv(run_cli, tmp_path):
     path.write_text("l_knee\n0.5\n1.0\n1.5\n")
     result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "json")
     assert result.exit_code == 0, result.output
-    assert len(json.loads(result.stdout)) == 3
+    documents = json.loads(result.stdout)
+    assert isinstance(documents, list) and len(documents) == 3
+    assert all(set(d) == {"base", "frames"} and [f["frame"] for f in d["frames"]] ==
+               ["l_shin_link"] for d in documents)
     result = run_cli("fk", HUMANOID, "--q-file", path, "--frame", "l_shin_link", "-f", "csv",
                      "--matrix")
     lines = result.stdout.splitlines()
@@ -249,3 +252,27 @@ def test_cli_text_table(run_cli):
     result = run_cli("fk", HUMANOID, "--frame", "head_link", "--matrix")
     assert result.exit_code == 0, result.output
     assert "head_link" in result.stdout and "x [m]" in result.stdout
+
+
+def test_text_shows_no_negative_zero(run_cli):
+    # the crouched leg's foot is back under the hip up to round-off (x = -3e-17)
+    result = run_cli("fk", HUMANOID, "--base", "body_link", "--frame", "l_foot_link",
+                     "--q", "l_hip_pitch=-30", "--q", "l_knee=60", "--q", "l_ank_pitch=-30", "--deg")
+    assert result.exit_code == 0, result.output
+    assert "-0.000000" not in result.output and "0.037000" in result.output
+
+
+def test_floating_poses_are_relative_to_the_world_not_the_moving_root(run_cli):
+    result = run_cli("fk", HUMANOID, "--floating", "--q", "root_joint.z=1", "--frame",
+                     "body_link", "-f", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    assert document["base"] == "world"
+    np.testing.assert_allclose(document["frames"][0]["position"][2], 1.0 + _body_height(),
+                               atol=1e-12)
+
+
+def _body_height() -> float:
+    model = KinematicModel(load(HUMANOID))
+    result = forward_kinematics(model, config.from_words(model.variables, []), ["body_link"])
+    return float(result.matrices[0, 0, 2, 3])

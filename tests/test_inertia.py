@@ -129,3 +129,20 @@ def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid):
 
 def test_inertia_write_needs_a_selection(run_cli, humanoid):
     assert run_cli("inertia", humanoid, "--write", "x.urdf").exit_code == 2
+
+
+def test_inertia_text_summary_counts_one_link_in_the_singular(run_cli, humanoid):
+    result = run_cli("inertia", humanoid, "--link", "head_link")
+    assert result.exit_code == 0, result.output
+    assert result.output.splitlines()[-1] == "1 agrees (1 link)"
+
+
+def test_inertia_text_gives_a_frame_one_line(run_cli, tmp_path):
+    path = tmp_path / "frame.urdf"
+    path.write_text('<robot name="f"><link name="base"/><link name="tool0"/>'
+                    '<joint name="j" type="fixed"><parent link="base"/><child link="tool0"/>'
+                    '</joint></robot>')
+    result = run_cli("inertia", path)
+    assert result.output.splitlines() == [
+        "base: unknown (a frame: no inertial, no geometry)",
+        "tool0: unknown (a frame: no inertial, no geometry)", "2 unknown (2 links)"]

@@ -13,6 +13,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 
+_ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
+
+
 class DynamicsError(Exception):
     """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 
@@ -24,12 +27,22 @@ class Model:
     model: object
     data: object
     joints: list[str]  # one per velocity variable (1-dof joints only)
+    variables: list = field(default_factory=list)  # the settable ones: mimic joints follow
+    mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
+
+    def _expanded(self, values: dict[str, float], offsets: bool) -> dict[str, float]:
+        """Variable values plus every mimic joint's (unnamed variables count as 0)."""
+        full = dict(values)
+        for joint, (variable, multiplier, offset) in self.mimics.items():
+            full[joint] = multiplier * values.get(variable, 0.0) + (offset if offsets else 0.0)
+        return full
 
     def configuration(self, values: dict[str, float]) -> np.ndarray:
+        """Pinocchio's q for variable values by name; mimic joints follow their variable."""
         import pinocchio as pin
 
         q = pin.neutral(self.model)
-        for name, value in values.items():
+        for name, value in self._expanded(values, offsets=True).items():
             joint = self.model.joints[self.model.getJointId(name)]
             if joint.nq == 2:  # continuous: (cos, sin)
                 q[joint.idx_q:joint.idx_q + 2] = (math.cos(value), math.sin(value))
@@ -38,8 +51,9 @@ class Model:
         return q
 
     def velocity(self, values: dict[str, float]) -> np.ndarray:
+        """Pinocchio's v (or a) by name; a mimic joint moves at multiplier times its variable."""
         v = np.zeros(self.model.nv)
-        for name, value in values.items():
+        for name, value in self._expanded(values, offsets=False).items():
             v[self.model.joints[self.model.getJointId(name)].idx_v] = value
         return v
 
@@ -47,6 +61,8 @@ class Model:
 def build(robot) -> Model:
     """A fixed-base Pinocchio model of the robot (1-dof joints; planar/floating refused)."""
     import pinocchio as pin
+
+    from .kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
 
     try:
         model = pin.buildModelFromXML(robot.urdf)
@@ -58,7 +74,14 @@ def build(robot) -> Model:
             raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
                                 "degrees of freedom; only 1-dof joints are supported")
         joints.append(model.names[joint_id])
-    return Model(model, model.createData(), joints)
+    variables = variables_of(robot)
+    names = {variable.name for variable in variables}
+    try:
+        mimics = {joint: mimic_source(robot, joint, names) for joint in mimics_of(robot)
+                  if joint in joints}
+    except MimicError as error:
+        raise DynamicsError(str(error)) from None
+    return Model(model, model.createData(), joints, variables, mimics)
 
 
 def total_mass(model: Model) -> float:
@@ -151,34 +174,39 @@ class JointLoad:
                 "worst_pose": self.worst_pose}
 
 
+def gravity_variables(model: Model, joint: str) -> set[str]:
+    """The variables that can change ``joint``'s gravity torque: those of the joints that carry
+    it (they turn gravity relative to its axis) and of the joints it carries (they move its
+    load). Joints on other branches cannot."""
+    m = model.model
+    joint_id = m.getJointId(joint)
+    ids = set(m.supports[joint_id]) | set(m.subtrees[joint_id])
+    names = {m.names[i] for i in ids}
+    variables = {variable.name for variable in model.variables}
+    return {model.mimics.get(name, (name,))[0] for name in names} & variables
+
+
 def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
-    """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses within the
-    joint limits (continuous joints over a full turn)."""
+    """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
+    ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
+    joints follow their variable)."""
     import pinocchio as pin
 
+    from .kinematics.configuration import random
+
     m, d = model.model, model.data
-    rng = np.random.default_rng(seed)
+    names = [variable.name for variable in model.variables]
+    drawn = random(model.variables, samples, seed).values if samples else np.zeros((0, len(names)))
+    poses = [{name: 0.0 for name in names}]
+    poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
-    lows, highs = [], []
-    for joint_id in ids:
-        joint = m.joints[joint_id]
-        if joint.nq == 2:
-            lows.append(-math.pi)
-            highs.append(math.pi)
-        else:
-            low, high = m.lowerPositionLimit[joint.idx_q], m.upperPositionLimit[joint.idx_q]
-            lows.append(low if np.isfinite(low) else -math.pi)
-            highs.append(high if np.isfinite(high) else math.pi)
-    poses = [{name: 0.0 for name in model.joints}]
-    for _ in range(samples):
-        values = rng.uniform(lows, highs)
-        poses.append(dict(zip(model.joints, (float(v) for v in values))))
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
              for name, i in zip(model.joints, ids)]
     for number, pose in enumerate(poses):
         gravity = pin.computeGeneralizedGravity(m, d, model.configuration(pose))
         for load, joint_id in zip(loads, ids):
             torque = abs(float(gravity[m.joints[joint_id].idx_v]))
+            torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
             if number == 0:
                 load.zero_pose = torque
             if torque > load.worst or number == 0:

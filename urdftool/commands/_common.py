@@ -91,3 +91,9 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
         render("text", [FileResult(paths[0], error.findings)], sys.stderr)
         raise typer.Exit(1)
+
+
+def fixed(value: float, places: int = 6) -> str:
+    """``value`` with ``places`` decimals, without the '-0.000000' that round-off leaves."""
+    text = f"{value:.{places}f}"
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text

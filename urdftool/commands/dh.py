@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, single_robot
+from ._common import PackageOption, XacroArgOption, fixed, single_robot
 
 FORMATS = ("text", "json", "yaml")
 
@@ -63,7 +63,7 @@ def _text(table) -> None:
         grid.add_column(escape(column), justify="left" if column in ("joint", "type") else "right")
     for joint in table.joints:
         grid.add_row(joint.joint, joint.type,
-                     *(f"{v:.6f}" for v in (joint.theta, joint.d, joint.a, joint.alpha)))
+                     *(fixed(v) for v in (joint.theta, joint.d, joint.a, joint.alpha)))
     console.print(grid)
     for name, matrix in (("base", table.base), ("tool", table.tool)):
         position, rpy, _ = pose_components(matrix)
@@ -72,4 +72,4 @@ def _text(table) -> None:
 
 
 def _triple(values) -> str:
-    return " ".join(f"{v:.6f}" for v in values)
+    return " ".join(fixed(v) for v in values)

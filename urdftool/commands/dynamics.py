@@ -50,7 +50,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..dynamics import DynamicsError, build, gravity_loads, state
+    from ..dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
                          [(samples < 0, "--samples must be 0 or more")])
@@ -63,16 +63,22 @@ def dynamics(
         q_values, v_values, a_values, warnings = _values(robot, q, v, a, deg)
     except UsageError as error:
         fail_usage(error)
+    result = state(model, q_values, v_values, a_values)
+    if result.mass <= 0:
+        warnings.append("no link has a mass (no <inertial>): M(q) and every gravity torque are "
+                        "zero; check the description (xacro arguments?) with 'urdftool check'")
     for warning in warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
-    result = state(model, q_values, v_values, a_values)
     loads = gravity_loads(model, samples, seed) if samples else []
     if output_format == "json":
         data = result.as_dict()
         data["gravity_loads"] = [load.as_dict() for load in loads]
         typer.echo(json.dumps(data, indent=2))
     else:
-        typer.echo(_text(result, loads, samples), nl=False)
+        # --samples alone asks for gravity margins: M and G at the zero pose would be noise
+        relevant = gravity_variables(model, _weakest(loads).joint) if loads else set()
+        typer.echo(_text(result, loads, samples, matrices=bool(q or v or a or not samples),
+                         relevant=relevant), nl=False)
     raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
 
 
@@ -80,14 +86,19 @@ def _row(values) -> str:
     return " ".join(f"{v:10.4g}" for v in values)
 
 
-def _text(result, loads, samples) -> str:
+def _weakest(loads):
+    return min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
+
+
+def _text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     width = max((len(j) for j in result.joints), default=5)
     com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
-    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame", ""]
-    lines.append("G(q): gravity torque per joint [N m or N]")
-    lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
-    lines += ["", "M(q): joint-space mass matrix"]
-    lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
+    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame"]
+    if matrices:
+        lines += ["", "G(q): gravity torque per joint [N m or N]"]
+        lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
+        lines += ["", "M(q): joint-space mass matrix"]
+        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
@@ -102,11 +113,14 @@ def _text(result, loads, samples) -> str:
             flag = "" if load.holds else "  ERROR: cannot hold itself against gravity"
             lines.append(f"  {load.joint:{width}s} {load.effort:8.4g} {load.zero_pose:10.4g} "
                          f"{load.worst:10.4g} {load.margin:10.4g}{flag}")
-        weakest = min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in weakest.worst_pose.items() if v)
+        weakest = _weakest(loads)
+        # only the joints that change its load: the others' values are noise
+        pose = ", ".join(f"{k}={v:.3f}" for k, v in weakest.worst_pose.items()
+                         if v and k in relevant)
         lines.append(f"  smallest margin: {weakest.joint} ({weakest.margin:.3g} of "
                      f"{weakest.effort:.3g}) at {pose or 'the zero pose'}")
         failing = [load.joint for load in loads if not load.holds]
-        lines.append(f"  {len(failing)} joints cannot hold themselves: {', '.join(failing)}"
+        lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
+                     f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
                      if failing else "  every joint holds the robot against gravity")
     return "\n".join(lines) + "\n"

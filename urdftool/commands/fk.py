@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, fail_usage, fixed, single_robot
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -47,6 +47,7 @@ def fk(
         (sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1,
          "give one of --q, --q-file, --random"),
         (verify and not dh, "--verify needs --dh TABLE"),
+        (dh and len(frame) > 1, "--dh computes one chain: give at most one --frame (its tip)"),
         (random is not None and random < 1, "--random must be at least 1")))
     try:
         table = load_table(dh) if dh else None
@@ -60,7 +61,11 @@ def fk(
             result = forward_kinematics(model, configurations, frame or None, base)
     except config.ConfigError as error:
         fail_usage(UsageError(str(error)))
-    except (FKError, DHError) as error:
+    except DHError as error:
+        if error.element is None and error.where is None and dh:
+            error.where = dh  # about the table, not the robot
+        _fail(robot, error)
+    except FKError as error:
         _fail(robot, error)
     for warning in result.warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
@@ -159,7 +164,7 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
                        "qx", "qy", "qz", "qw"):
             table.add_column(escape(column), justify="left" if column == "frame" else "right")
         for k, name in enumerate(result.frames):
-            table.add_row(name, *(f"{v:.6f}" for v in
+            table.add_row(name, *(fixed(v) for v in
                                   (*positions[row, k], *rpys[row, k], *quaternions[row, k])))
         console.print(table)
         if matrix:

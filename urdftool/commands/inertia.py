@@ -83,6 +83,9 @@ def _fmt(properties) -> tuple[str, str, str]:
 def _text(results) -> str:
     lines = []
     for result in results:
+        if result.declared is None and result.computed is None and not result.notes:
+            lines.append(f"{result.link}: {result.verdict} (a frame: no inertial, no geometry)")
+            continue
         lines.append(f"{result.link}: {result.verdict} (computed from {result.source} geometry)"
                      if result.source != "none" else f"{result.link}: {result.verdict} "
                                                      "(no geometry)")
@@ -96,5 +99,7 @@ def _text(results) -> str:
         lines.extend(f"  note: {note}" for note in result.notes)
     counts = {v: sum(r.verdict == v for r in results) for v in ("agrees", "differs", "invalid",
                                                                 "unknown")}
-    lines.append(", ".join(f"{n} {v}" for v, n in counts.items() if n) + f" ({len(results)} links)")
+    plural = "" if len(results) == 1 else "s"
+    lines.append(", ".join(f"{n} {v}" for v, n in counts.items() if n) +
+                 f" ({len(results)} link{plural})")
     return "\n".join(lines) + "\n"

@@ -19,7 +19,7 @@ from typing import Collection
 import numpy as np
 
 from ..rules._names import available
-from ..rules._values import parse_numbers
+from ..rules._values import number, parse_numbers
 
 FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")
 PLANAR_COORDINATES = ("x", "y", "yaw")
@@ -97,8 +97,41 @@ def mimics_of(robot) -> dict[str, str]:
             if joint.find("mimic") is not None}
 
 
+def mimic_source(robot, name: str, variable_names: Collection[str], seen=()):
+    """(variable, multiplier, offset): joint ``name``'s value as ``multiplier * variable +
+    offset``, following chains of mimic joints; ConfigError (with ``element``) when a joint has
+    no value: a mimic cycle, or a mimic of a joint that does not exist."""
+    if name in variable_names:
+        return name, 1.0, 0.0
+    element = robot.joints.get(name)
+    mimic = element.find("mimic") if element is not None else None
+    if mimic is None or name in seen:
+        raise MimicError(f"joint '{name}' has no value (a mimic cycle?)", element)
+    master = mimic.get("joint")
+    if master not in robot.joints:
+        raise MimicError(f"joint '{name}' mimics unknown joint '{master}'; "
+                         f"{available('joints', master or '', robot.joints)}", mimic)
+    multiplier = _attribute(mimic, "multiplier", 1.0)
+    offset = _attribute(mimic, "offset", 0.0)
+    variable, m, o = mimic_source(robot, master, variable_names, seen + (name,))
+    return variable, multiplier * m, multiplier * o + offset
+
+
+class MimicError(Exception):
+    """A mimic joint whose value cannot be resolved; ``element`` is where."""
+
+    def __init__(self, message: str, element=None):
+        super().__init__(message)
+        self.element = element
+
+
 def _coordinates(joint: str, names) -> list[Variable]:
     return [Variable(f"{joint}.{c}", joint, c, -math.inf, math.inf) for c in names]
+
+
+def _attribute(element, name: str, default: float) -> float:
+    value = number(element, name, default)
+    return default if value is None else value
 
 
 def _number(text, default: float) -> float:

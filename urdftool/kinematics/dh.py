@@ -121,11 +121,22 @@ def chain(robot, base: str, tip: str) -> list:
     while link != base:
         joint = parent_joint.get(link)
         if joint is None or joint in joints:
+            hint = ""
+            if base != tip and _is_below(parent_joint, base, tip):
+                hint = f"; '{base}' is below '{tip}': swap --base and --tip"
             raise DHError(f"link '{tip}' is not below link '{base}': a D-H chain runs from a "
-                          "link down to one of its descendants")
+                          f"link down to one of its descendants{hint}")
         joints.append(joint)
         link = joint.find("parent").get("link")
     return joints[::-1]
+
+
+def _is_below(parent_joint: dict, link: str, ancestor: str) -> bool:
+    seen = set()
+    while link != ancestor and link in parent_joint and link not in seen:
+        seen.add(link)
+        link = parent_joint[link].find("parent").get("link")
+    return link == ancestor
 
 
 def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable:
@@ -157,7 +168,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         theta, d, a, alpha = (_standard_parameters if convention == "standard"
                               else _modified_parameters)(link)
         error = np.abs(dh_matrices(theta, d, a, alpha, convention) - link).max()
-        if error > 1e-9:
+        if not error <= 1e-9:  # NaN included
             raise DHError(f"joint '{joint.get('name')}': its axis cannot be placed in D-H form "
                           f"(residual {error:.2g}; axes nearly parallel?)", joint)
         residual = max(residual, error)
@@ -213,7 +224,7 @@ def _next_frame(previous: np.ndarray, point, z) -> np.ndarray:
     else:
         w0 = o_prev - point
         b, d1, e = np.dot(z_prev, z), np.dot(z_prev, w0), np.dot(z, w0)
-        t = (e - b * d1) / (1.0 - b * b)
+        t = (e - b * d1) / np.dot(cross, cross)  # 1 - b^2, without cancellation near 1
         origin = point + t * z
         x = cross / np.linalg.norm(cross)
     x = x - np.dot(x, z) * z
@@ -363,6 +374,11 @@ def table_columns(table: DHTable, model) -> list[int]:
 
 def table_links(table: DHTable, base: str | None, tip: str | None) -> tuple[str, str]:
     """The chain's base and tip links: from the table, or from ``--base`` / ``--frame``."""
+    for option, given, named in (("--base", base, table.base_link), ("--frame", tip,
+                                                                      table.tip_link)):
+        if given and named and given != named:
+            raise DHError(f"the D-H table's chain is {table.base_link} -> {table.tip_link}; "
+                          f"{option} {given} names another link (leave it out)")
     base, tip = table.base_link or base, table.tip_link or tip
     if not base or not tip:
         raise DHError("the D-H table does not name its base_link and tip_link: pass --base LINK "

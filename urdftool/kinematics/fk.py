@@ -16,8 +16,8 @@ import numpy as np
 
 from ..rules._names import available
 from . import transforms
-from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, Variable,
-                            mimics_of, variables_of)
+from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
+                            Variable, mimic_source, mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
 
@@ -99,6 +99,9 @@ class KinematicModel:
         self._frames = [(f.name, f.parentJoint, f.placement.homogeneous.copy())
                         for f in self.model.frames if f.type == body]
         self.links = [name for name, _, _ in self._frames]
+        # what poses are relative to without --base: the root link, or with a free-flyer root
+        # joint the fixed world it moves in (the root link itself moves)
+        self.root_frame = "world" if floating else self.links[0]
         self._at_joint = [np.array_equal(placement, np.eye(4)) for _, _, placement in self._frames]
 
     def _joint(self, index: int) -> _Joint:
@@ -129,22 +132,13 @@ class KinematicModel:
     def _coordinate_columns(self, joint: str, coordinates) -> tuple:
         return tuple(self._columns[f"{joint}.{c}"] for c in coordinates)
 
-    def _source(self, name: str, seen=()) -> tuple:
+    def _source(self, name: str) -> tuple:
         """(column, multiplier, offset): the joint's value as a function of one variable."""
-        if name in self._columns:
-            return self._columns[name], 1.0, 0.0
-        element = self.robot.joints.get(name)
-        mimic = element.find("mimic") if element is not None else None
-        if mimic is None or name in seen:
-            raise FKError(f"joint '{name}' has no value (a mimic cycle?)", element)
-        master = mimic.get("joint")
-        if master not in self.robot.joints:
-            raise FKError(f"joint '{name}' mimics unknown joint '{master}'; "
-                          f"{available('joints', master or '', self.robot.joints)}", mimic)
-        multiplier = _attribute(mimic, "multiplier", 1.0)
-        offset = _attribute(mimic, "offset", 0.0)
-        column, m, o = self._source(master, seen + (name,))
-        return column, multiplier * m, multiplier * o + offset
+        try:
+            variable, multiplier, offset = mimic_source(self.robot, name, self._columns)
+        except MimicError as error:
+            raise FKError(str(error), error.element) from None
+        return self._columns[variable], multiplier, offset
 
     # -- poses ------------------------------------------------------------------------------
 
@@ -247,13 +241,6 @@ def _axis(short: str, element) -> np.ndarray:
     return axis / np.linalg.norm(axis)
 
 
-def _attribute(element, name: str, default: float) -> float:
-    from ..rules._values import number
-
-    value = number(element, name, default)
-    return default if value is None else value
-
-
 def forward_kinematics(model: KinematicModel, configurations: Configurations,
                        frames: list[str] | None = None, base: str | None = None) -> FKResult:
     """Poses of ``frames`` (default: every link) relative to ``base`` (default: the root)."""
@@ -268,7 +255,7 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
     else:
         poses = model._frame_poses(configurations.values, chosen)
     matrices = np.moveaxis(poses, 0, 1)
-    root = base or model.links[0]
+    root = base or model.root_frame
     return FKResult(root, [model.links[i] for i in chosen], matrices,
                     list(configurations.warnings))
 
