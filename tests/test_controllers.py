@@ -34,7 +34,7 @@ def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
     yaml = ROS2_YAML.format(type="joint_trajectory_controller/JointTrajectoryController", claim="position")
     found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
     assert found == [("c.yaml", 10, "U604")]
-    assert "offers velocity" in findings[0].message
+    assert "offers velocity; set command_interfaces to [velocity]" in findings[0].message
 
 
 def test_ros2_forward_command_controller_uses_interface_name(tmp_path):
@@ -106,7 +106,8 @@ def test_yaml_alias_bomb_is_walked_once(tmp_path):
     ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]",
      "U602", "did you mean 'head_tilt'"),
     ("parts.xacro", 'interface="Position"', """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""",
-     "U604", "commands position on joint 'head_pan', which offers velocity"),
+     "U604", "commands position on joint 'head_pan', which offers velocity; use "
+             "velocity_controllers/JointTrajectoryController, or make the joint offer position"),
 ], ids=["joint-renamed-in-yaml", "transmission-swapped-to-velocity"])
 def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
     findings = broken_copy(tmp_path, "humanoid", file, old, new)
