@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
-from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder, line_of
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder, line_of
 
 TX = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
     <joint name="head_joint"><hardwareInterface>{iface}</hardwareInterface></joint>
@@ -137,3 +137,8 @@ def test_r2d2_without_joint_state_broadcaster(tmp_path):
     findings = broken_copy(tmp_path, "r2d2", "config/head_controller.yaml",
                            "type: joint_state_broadcaster/JointStateBroadcaster", "type: x_controllers/Other")
     assert [f.code for f in findings] == ["U605"]
+
+
+def test_unactuated_controller_joint_says_what_would_be_right():
+    messages = case_messages("U603_controller_joint_not_actuated", "U603")
+    assert messages and all("add one for it, or remove it from the controller" in m for m in messages)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
-from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder
 
 ROBOT = HEAD_ROBOT.format(body="")
 
@@ -87,3 +87,8 @@ def test_revolute_joint_in_the_spec_needs_a_range(tmp_path):
     found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
     assert found == [("joint_limits.yaml", 3, "U701"), ("joint_limits.yaml", 3, "U701")]
     assert "only a continuous joint may leave out both" in findings[0].message
+
+
+def test_joint_not_in_spec_says_what_to_add():
+    messages = case_messages("U704_joint_not_in_spec", "U704")
+    assert messages and all(m.endswith("; add it with its servo_id and range") for m in messages)

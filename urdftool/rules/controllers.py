@@ -187,8 +187,9 @@ def controller_joint_not_actuated(robot):
             joint = robot.joints.get(name)
             if joint is None or name in offered:
                 continue
-            what = "is a fixed joint" if joint.get("type") == "fixed" else \
-                "has no transmission or ros2_control joint"
+            what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
+                    else "has no transmission or ros2_control joint; add one for it, or remove "
+                         "it from the controller")
             yield controller.file.at(line), f"{_label(controller)}: joint '{name}' {what}"
 
 

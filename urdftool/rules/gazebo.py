@@ -76,7 +76,8 @@ def diff_drive_joint_not_continuous(robot):
                 joint = robot.joints.get((element.text or "").strip())
                 if joint is not None and joint.get("type") != "continuous":
                     yield element, (f"diff-drive wheel joint '{joint.get('name')}' is "
-                                    f"{joint.get('type')}, not continuous")
+                                    f"{joint.get('type')}, not continuous; make it "
+                                    "type=\"continuous\" (a wheel turns without limit)")
 
 
 @rule("U614", "diff-drive-geometry", Severity.WARNING)

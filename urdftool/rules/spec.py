@@ -202,7 +202,8 @@ def joint_not_in_spec(robot):
     listed = {joint.name for joint in spec[2]}
     for name, joint in moving_joints(robot).items():
         if name not in listed:
-            yield joint, f"joint '{name}' is not in the spec {spec[0].display}"
+            yield joint, (f"joint '{name}' is not in the spec {spec[0].display}; add it with "
+                          "its servo_id and range")
 
 
 @rule("U705", "duplicate-servo-id", Severity.ERROR)
