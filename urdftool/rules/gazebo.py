@@ -214,5 +214,7 @@ def sensor_unknown_link(robot):
             for element in (e for holder in holders for e in holder.iter(tag)):
                 name = (element.text or "").strip()
                 if name and name not in robot.links and name not in GAZEBO_FRAMES:
-                    yield element, (f"<{tag}> '{name}' is not a link; "
-                                    f"{available('links', name, robot.links)}")
+                    own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
+                           if reference in robot.links else available("links", name, robot.links))
+                    yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
+                                    f"stamped with it; {own}")
