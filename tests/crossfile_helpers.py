@@ -6,7 +6,7 @@ import shutil
 import textwrap
 from pathlib import Path
 
-from conftest import ROBOTS
+from conftest import CASES, ROBOTS
 from urdftool.engine import CheckOptions, Selection, check_file
 
 HEAD_ROBOT = """<robot name="r">
@@ -50,3 +50,11 @@ def broken_copy(tmp_path: Path, robot: str, file: str, old: str, new: str, count
 def line_of(path: Path, text: str) -> int:
     """1-based line of the first line containing ``text``."""
     return next(n for n, line in enumerate(path.read_text().splitlines(), 1) if text in line)
+
+
+def case_messages(case: str, code: str) -> list[str]:
+    """The messages of ``code`` that checking the case file or folder ``case`` gives."""
+    path = CASES / case
+    if path.is_dir():
+        path = next(p for p in path.iterdir() if p.name.endswith((".urdf", ".urdf.xacro")))
+    return [f.message for f in check_file(str(path), CheckOptions()).findings if f.code == code]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
-from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder, line_of
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder, line_of
 
 TX = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
     <joint name="head_joint"><hardwareInterface>{iface}</hardwareInterface></joint>
@@ -34,7 +34,7 @@ def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
     yaml = ROS2_YAML.format(type="joint_trajectory_controller/JointTrajectoryController", claim="position")
     found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
     assert found == [("c.yaml", 10, "U604")]
-    assert "offers velocity" in findings[0].message
+    assert "offers velocity; set command_interfaces to [velocity]" in findings[0].message
 
 
 def test_ros2_forward_command_controller_uses_interface_name(tmp_path):
@@ -106,7 +106,8 @@ def test_yaml_alias_bomb_is_walked_once(tmp_path):
     ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]",
      "U602", "did you mean 'head_tilt'"),
     ("parts.xacro", 'interface="Position"', """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""",
-     "U604", "commands position on joint 'head_pan', which offers velocity"),
+     "U604", "commands position on joint 'head_pan', which offers velocity; use "
+             "velocity_controllers/JointTrajectoryController, or make the joint offer position"),
 ], ids=["joint-renamed-in-yaml", "transmission-swapped-to-velocity"])
 def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
     findings = broken_copy(tmp_path, "humanoid", file, old, new)
@@ -136,3 +137,8 @@ def test_r2d2_without_joint_state_broadcaster(tmp_path):
     findings = broken_copy(tmp_path, "r2d2", "config/head_controller.yaml",
                            "type: joint_state_broadcaster/JointStateBroadcaster", "type: x_controllers/Other")
     assert [f.code for f in findings] == ["U605"]
+
+
+def test_unactuated_controller_joint_says_what_would_be_right():
+    messages = case_messages("U603_controller_joint_not_actuated", "U603")
+    assert messages and all("add one for it, or remove it from the controller" in m for m in messages)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from crossfile_helpers import broken_copy, check_folder
+from crossfile_helpers import broken_copy, case_messages, check_folder
 
 WHEELS = """<robot name="r">
   <link name="base_link"/>
@@ -59,3 +59,15 @@ def test_diffbot_camera_reference_misspelt(tmp_path):
                            '<gazebo reference="camera">')
     assert [f.code for f in findings] == ["U611"]
     assert "did you mean 'camera_link'" in findings[0].message
+
+
+def test_wheel_not_continuous_says_what_would_be_right():
+    messages = case_messages("U613_diff_drive_joint_not_continuous.urdf", "U613")
+    assert messages == ["diff-drive wheel joint 'left_wheel_joint' is revolute, not continuous; "
+                        'make it type="continuous" (a wheel turns without limit)']
+
+
+def test_unknown_frame_name_suggests_the_sensor_link():
+    messages = case_messages("U615_sensor_unknown_link.urdf", "U615")
+    assert "<frame_name> 'cam_optical' is not a link, so TF cannot place the data stamped with it; " \
+           "use 'cam', the link it sits on, or add a link 'cam_optical'" in messages

@@ -107,3 +107,29 @@ def test_sarif(run_cli, monkeypatch, workspaces, broken):
         assert "helpUri" not in rule  # no stable docs host yet: none is invented
         assert entry["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == \
             "robots/broken.urdf"
+
+
+@pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
+def test_junit(run_cli, monkeypatch, workspaces, broken):
+    argv = readme_commands()["junit"]
+    result = run(run_cli, monkeypatch, workspaces[broken], argv)
+    assert result.exit_code == int(broken)
+    root = etree.parse(str(workspaces[broken] / argv[argv.index("--output") + 1])).getroot()
+    assert root.tag == "testsuites"
+    assert (root.get("tests"), root.get("failures")) == (str(3 + broken), str(int(broken)))
+    assert len(root.findall("testsuite")) == 3 + broken
+    failures = root.findall(".//failure")
+    assert [f.getparent().get("name") for f in failures] == \
+        (["U204 inverted-limits"] if broken else [])
+    assert ["robots/broken.urdf:6" in f.get("message", "") + (f.text or "") for f in failures] == \
+        [True] * int(broken)
+
+
+@pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
+@pytest.mark.parametrize("integration", ["make", "pytest"])
+def test_make_and_pytest(run_cli, monkeypatch, workspaces, broken, integration):
+    result = run(run_cli, monkeypatch, workspaces[broken], readme_commands()[integration])
+    assert result.exit_code == int(broken)
+    if integration == "pytest":  # the README's test asserts on the JSON report
+        report = json.loads(result.stdout)
+        assert [d["code"] for d in report["diagnostics"]] == (["U204"] if broken else [])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
-from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder
 
 ROBOT = HEAD_ROBOT.format(body="")
 
@@ -60,3 +60,35 @@ def test_humanoid_duplicate_servo_id_and_missing_joint(tmp_path):
     assert sorted((f.code, f.line, f.file.endswith(("parts.xacro", "joint_limits.yaml")))
                   for f in findings) == [("U702", spec_line, True), ("U704", 13, True),
                                          ("U705", spec_line, True)]
+
+
+WHEELED = HEAD_ROBOT.format(body='<link name="wheel"/><joint name="wheel_joint" type="continuous">'
+                                 '<parent link="base_link"/><child link="wheel"/><axis xyz="0 1 0"/>'
+                                 '<limit effort="2" velocity="10"/></joint>')
+HEAD_SPEC = "unit: deg\njoints:\n  head_joint: {lower: -60, upper: 60}\n"
+
+
+@pytest.mark.parametrize("wheel, expected, message", [
+    ("{servo_id: 1, effort: 2, velocity: 10}", [], None),
+    ("{velocity: 5}", [("robot.urdf", 8, "U703")], "velocity limit 10 exceeds the spec's 5 by 5"),
+    ("{lower: -90, upper: 90}", [("robot.urdf", 8, "U703")],
+     "joint 'wheel_joint' is continuous (no position limit) but the spec limits it to -90 .. 90 deg"),
+    ("{lower: -90}", [("joint_limits.yaml", 4, "U701")], "joint 'wheel_joint' has no upper"),
+], ids=["no-range", "too-fast", "range-on-continuous", "half-a-range"])
+def test_continuous_joint_in_the_spec_needs_no_range(tmp_path, wheel, expected, message):
+    spec = HEAD_SPEC + f"  wheel_joint: {wheel}\n"
+    found, findings = check_folder(tmp_path, {"robot.urdf": WHEELED, "joint_limits.yaml": spec})
+    assert found == expected
+    assert message is None or message in findings[0].message
+
+
+def test_revolute_joint_in_the_spec_needs_a_range(tmp_path):
+    spec = "unit: deg\njoints:\n  head_joint: {servo_id: 1, effort: 5}\n"
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
+    assert found == [("joint_limits.yaml", 3, "U701"), ("joint_limits.yaml", 3, "U701")]
+    assert "only a continuous joint may leave out both" in findings[0].message
+
+
+def test_joint_not_in_spec_says_what_to_add():
+    messages = case_messages("U704_joint_not_in_spec", "U704")
+    assert messages and all(m.endswith("; add it with its servo_id and range") for m in messages)

@@ -50,3 +50,11 @@ def test_humanoid_home_pose_outside_limits(tmp_path):
                            '<joint name="l_knee" value="-0.5"/>')
     assert [(f.code, f.file.endswith("humanoid.srdf")) for f in findings] == [("U806", True)]
     assert "outside its URDF limits [0, 2.26893]" in findings[0].message
+
+
+def test_a_tag_written_across_lines_is_located_where_it_begins(tmp_path):
+    body = """<disable_collisions link1="base_link"
+    link2="hed"
+    reason="Never"/>"""
+    found, _ = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 2, "U804")]

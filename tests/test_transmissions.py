@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
+import pytest
+
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder
 
 
 def tx(joint="head_joint", iface="hardware_interface/PositionJointInterface", name="t"):
@@ -65,3 +67,14 @@ def test_humanoid_unknown_hardware_interface(tmp_path):
                            "${interface}Interface")
     assert {f.code for f in findings} == {"U503"} and len(findings) == 20
     assert "did you mean 'PositionJointInterface'" in findings[0].message
+
+
+@pytest.mark.parametrize("case, code, fix", [
+    ("U502_transmission_fixed_joint.urdf", "U502",
+     "remove the transmission, or make the joint revolute, continuous or prismatic"),
+    ("U504_transmission_no_actuator.urdf", "U504", 'add <actuator name="...">'),
+    ("U512_ros2_control_fixed_joint.urdf", "U512", "remove it from <ros2_control>, or make the joint"),
+])
+def test_message_says_what_would_be_right(case, code, fix):
+    messages = case_messages(case, code)
+    assert messages and all(fix in m for m in messages)

@@ -25,6 +25,7 @@ import yaml
 from lxml import etree
 
 from .diagnostics import Location, display_path
+from .loader.xmlparse import XmlProblem, start_tag_lines
 
 MAX_SIZE = 16 * 1024 * 1024
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
@@ -136,11 +137,24 @@ def read_srdf(path: Path) -> SrdfFile:
     except etree.XMLSyntaxError as error:
         result.problem, result.line = f"not well-formed XML: {error.msg}", error.lineno
         return result
+    _start_tag_lines(result.data, text)
     if result.data.tag != "robot":
         result.problem, result.line = (f"root element is <{result.data.tag}>, not <robot>",
                                        result.data.sourceline)
         result.data = None
     return result
+
+
+def _start_tag_lines(root, text: str) -> None:
+    """Give each element the line of its ``<`` (lxml keeps the line of the closing ``>``)."""
+    elements = list(root.iter(etree.Element))
+    try:
+        lines = start_tag_lines(text.encode())
+    except XmlProblem:  # libxml2 accepted what expat refuses (an entity): keep lxml's lines
+        return
+    if len(lines) == len(elements):
+        for element, line in zip(elements, lines):
+            element.sourceline = line
 
 
 def _read_text(path: Path, result) -> str | None:

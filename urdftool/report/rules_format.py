@@ -9,6 +9,11 @@ from rich.text import Text
 _STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
 
 
+def _plain(text: str) -> str:
+    """Docstring text for a terminal: reST ````code```` becomes `code`, as in Markdown."""
+    return text.replace("``", "`")
+
+
 def rules_table(rules) -> Table:
     table = Table(title="urdftool rules", title_justify="left")
     table.add_column("code", no_wrap=True)
@@ -18,7 +23,7 @@ def rules_table(rules) -> Table:
     for rule in rules:
         severity = rule.severity.value
         table.add_row(rule.code, rule.name, Text(severity, style=_STYLES[severity]),
-                      Text(rule.summary))
+                      Text(_plain(rule.summary)))
     return table
 
 
@@ -27,4 +32,4 @@ def rule_page(rule) -> str:
     style = _STYLES[rule.severity.value]
     heading = (f"[bold]{rule.code} {escape(rule.name)}[/] [{style}]({rule.severity.value})[/]"
                f" [dim]{escape(rule.family)}[/]")
-    return f"{heading}\n\n{escape(rule.doc or rule.summary)}"
+    return f"{heading}\n\n{escape(_plain(rule.doc or rule.summary))}"

@@ -13,6 +13,7 @@ U8xx SRDF and collisions, U9xx urdftool itself.
 
 from __future__ import annotations
 
+import difflib
 import importlib
 import inspect
 import pkgutil
@@ -111,5 +112,12 @@ def find_rule(wanted: str) -> Rule:
     for candidate in rules:
         if wanted.upper() == candidate.code or wanted == candidate.name:
             return candidate
-    valid = ", ".join(f"{r.code} {r.name}" for r in rules)
-    raise UsageError(f"no rule '{wanted}'. Valid rules: {valid}")
+    prefixed = [r for r in rules if r.code.startswith(wanted.upper())]
+    if prefixed:  # a family or part of one: U6, U60
+        listed = ", ".join(f"{r.code} {r.name}" for r in prefixed)
+        raise UsageError(f"no rule '{wanted}'; the rules starting with {wanted.upper()} are: {listed}")
+    by_word = {r.code: r for r in rules} | {r.name: r for r in rules}
+    close = dict.fromkeys(by_word[word] for word in
+                          difflib.get_close_matches(wanted, list(by_word), n=3, cutoff=0.6))
+    hint = ("; did you mean " + " or ".join(f"{r.code} {r.name}" for r in close) + "?") if close else "."
+    raise UsageError(f"no rule '{wanted}'{hint} `urdftool rules` lists all {len(rules)} rules")

@@ -187,8 +187,9 @@ def controller_joint_not_actuated(robot):
             joint = robot.joints.get(name)
             if joint is None or name in offered:
                 continue
-            what = "is a fixed joint" if joint.get("type") == "fixed" else \
-                "has no transmission or ros2_control joint"
+            what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
+                    else "has no transmission or ros2_control joint; add one for it, or remove "
+                         "it from the controller")
             yield controller.file.at(line), f"{_label(controller)}: joint '{name}' {what}"
 
 
@@ -202,7 +203,8 @@ def controller_interface_mismatch(robot):
 
     Bad: ``position_controllers/JointTrajectoryController`` on a joint with
     ``hardware_interface/VelocityJointInterface``
-    Good: matching controller package and hardware interface
+    Good: ``velocity_controllers/JointTrajectoryController`` on that joint, or
+    ``hardware_interface/PositionJointInterface`` in its transmission
     """
     offered = command_interfaces(robot)
     unknown = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)
@@ -219,7 +221,29 @@ def controller_interface_mismatch(robot):
                 has = ", ".join(sorted(offered[name])) or "no command interface (read-only)"
                 yield controller.file.at(line), (
                     f"{_label(controller)} commands {'/'.join(missing)} on joint '{name}', which "
-                    f"offers {has}; change the controller or the transmission/ros2_control interface")
+                    f"offers {has}; {_interface_fix(controller, offered[name], missing)}")
+
+
+# Controller classes that position_, velocity_ and effort_controllers all provide (ROS 1).
+_IN_EVERY_PACKAGE = ("JointPositionController", "JointTrajectoryController")
+
+
+def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> str:
+    """What would be right: a controller for what the joint offers, or the joint offering more."""
+    kinds = sorted(offered & {"position", "velocity", "effort"})
+    if controller.package == "joint_trajectory_controller" and kinds:
+        use = f"set command_interfaces to [{', '.join(kinds)}]"
+    elif controller.package == "forward_command_controller" and kinds:
+        use = f"set interface_name to {kinds[0]}"
+    elif controller.package in SINGLE_INTERFACE and kinds:
+        kind_class = controller.type.split("/")[-1]
+        shown = kind_class if kind_class in _IN_EVERY_PACKAGE else "..."
+        use = "use " + " or ".join(f"{kind}_controllers/{shown}" for kind in kinds)
+    else:
+        use = "change the controller"
+    wanted = missing[0]
+    return (f"{use}, or make the joint offer {wanted} ({wanted.capitalize()}JointInterface in its "
+            f"transmission, or a {wanted} command interface in <ros2_control>)")
 
 
 @rule("U605", "no-joint-state-controller", Severity.WARNING)

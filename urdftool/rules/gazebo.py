@@ -76,7 +76,8 @@ def diff_drive_joint_not_continuous(robot):
                 joint = robot.joints.get((element.text or "").strip())
                 if joint is not None and joint.get("type") != "continuous":
                     yield element, (f"diff-drive wheel joint '{joint.get('name')}' is "
-                                    f"{joint.get('type')}, not continuous")
+                                    f"{joint.get('type')}, not continuous; make it "
+                                    "type=\"continuous\" (a wheel turns without limit)")
 
 
 @rule("U614", "diff-drive-geometry", Severity.WARNING)
@@ -213,5 +214,7 @@ def sensor_unknown_link(robot):
             for element in (e for holder in holders for e in holder.iter(tag)):
                 name = (element.text or "").strip()
                 if name and name not in robot.links and name not in GAZEBO_FRAMES:
-                    yield element, (f"<{tag}> '{name}' is not a link; "
-                                    f"{available('links', name, robot.links)}")
+                    own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
+                           if reference in robot.links else available("links", name, robot.links))
+                    yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
+                                    f"stamped with it; {own}")

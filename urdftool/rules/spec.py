@@ -2,7 +2,8 @@
 
 The spec is YAML: top-level ``unit`` (deg or rad, for lower/upper and tolerance), optional
 ``tolerance`` (default 0), and ``joints``: a map of URDF joint name to ``servo_id``, ``lower``,
-``upper`` and optional ``effort`` [N m or N] and ``velocity`` [rad/s or m/s].
+``upper`` (a continuous joint may leave out both) and optional ``effort`` [N m or N] and
+``velocity`` [rad/s or m/s].
 """
 
 from __future__ import annotations
@@ -34,12 +35,12 @@ def _spec(robot):
     """(file, problems, joints, unit, tolerance) of the robot's spec, or None without one."""
     cached = getattr(robot, "_spec", None)
     if cached is None:
-        cached = _parse(companions(robot).spec)
+        cached = _parse(companions(robot).spec, robot.joints)
         setattr(robot, "_spec", cached)
     return cached if cached[0] is not None else None
 
 
-def _parse(file):
+def _parse(file, urdf_joints):
     if file is None:
         return (None, [], [], None, 0.0)
     if file.problem:
@@ -72,14 +73,15 @@ def _parse(file):
         if not isinstance(entry, YamlMap):
             problems.append((line, f"joint '{name}' must map to {{{', '.join(JOINT_KEYS)}}}"))
             continue
-        bad = _entry_problems(name, entry)
+        bad = _entry_problems(name, entry, urdf_joints.get(str(name)))
         problems.extend(bad)
         if not bad:
             joints.append(SpecJoint(str(name), line, entry, entry.lines))
     return (file, problems, joints, unit, float(tolerance))
 
 
-def _entry_problems(name, entry) -> list:
+def _entry_problems(name, entry, joint) -> list:
+    """The format problems of one spec joint; ``joint`` is the URDF joint of that name, if any."""
     problems = []
     for key, value in entry.items():
         line = entry.lines[key]
@@ -91,10 +93,13 @@ def _entry_problems(name, entry) -> list:
         elif key != "servo_id" and (not isinstance(value, (int, float)) or isinstance(value, bool)
                                     or not math.isfinite(value)):
             problems.append((line, f"joint '{name}': {key} '{value}' must be a finite number"))
-    for key in ("lower", "upper"):
-        if key not in entry:
-            problems.append((entry.line, f"joint '{name}' has no {key}"))
-    if not problems and entry["lower"] > entry["upper"]:
+    missing = [key for key in ("lower", "upper") if key not in entry]
+    unlimited = joint is not None and joint.get("type") == "continuous"
+    if missing and (len(missing) == 1 or not unlimited):  # a continuous joint may have no range
+        for key in missing:
+            problems.append((entry.line, f"joint '{name}' has no {key}; give lower and upper "
+                             "(only a continuous joint may leave out both)"))
+    if not problems and not missing and entry["lower"] > entry["upper"]:
         problems.append((entry.lines["lower"], f"joint '{name}': lower {entry['lower']} is above "
                          f"upper {entry['upper']}"))
     return problems
@@ -157,10 +162,15 @@ def limit_outside_spec(robot):
     scale = UNITS[unit]
     for entry in joints:
         joint = robot.joints.get(entry.name)
-        if joint is None or joint.get("type") not in ("revolute", "prismatic"):
+        if joint is None or joint.get("type") not in ("revolute", "prismatic", "continuous"):
             continue
-        where = joint.find("limit")
-        for key, sign in (("lower", -1), ("upper", 1)):
+        where = joint.find("limit") if joint.find("limit") is not None else joint
+        if joint.get("type") == "continuous":
+            if "lower" in entry.entry:
+                yield joint, (f"joint '{entry.name}' is continuous (no position limit) but the "
+                              f"spec limits it to {entry.entry['lower']:g} .. {entry.entry['upper']:g} "
+                              f"{unit}; make it revolute with those limits")
+        for key, sign in (() if joint.get("type") == "continuous" else (("lower", -1), ("upper", 1))):
             value = _limit(joint, key)
             if value is None:
                 continue
@@ -192,7 +202,8 @@ def joint_not_in_spec(robot):
     listed = {joint.name for joint in spec[2]}
     for name, joint in moving_joints(robot).items():
         if name not in listed:
-            yield joint, f"joint '{name}' is not in the spec {spec[0].display}"
+            yield joint, (f"joint '{name}' is not in the spec {spec[0].display}; add it with "
+                          "its servo_id and range")
 
 
 @rule("U705", "duplicate-servo-id", Severity.ERROR)

@@ -53,7 +53,9 @@ def transmission_fixed_joint(robot):
             if joint.interfaces and not _commands(joint):
                 continue  # read-only (franka_hw/FrankaModelInterface names the flange joint)
             if target is not None and target.get("type") == "fixed":
-                yield joint.element, f"{_label(transmission)} drives fixed joint '{joint.name}'"
+                yield joint.element, (f"{_label(transmission)} drives fixed joint '{joint.name}'; "
+                                       "remove the transmission, or make the joint revolute, "
+                                       "continuous or prismatic")
 
 
 @rule("U503", "unknown-hardware-interface", Severity.ERROR)
@@ -98,7 +100,8 @@ def transmission_no_actuator(robot):
     for transmission in transmissions(robot):
         if not any(child.tag.lower().endswith("actuator") for child in transmission
                    if isinstance(child.tag, str)):
-            yield transmission, f"{_label(transmission)} has no <actuator>"
+            yield transmission, (f"{_label(transmission)} has no <actuator>; add "
+                                   "<actuator name=\"...\"> naming the motor that drives the joint")
 
 
 @rule("U505", "zero-mechanical-reduction", Severity.ERROR)
@@ -207,7 +210,8 @@ def ros2_control_fixed_joint(robot):
     for _, joint in ros2_control_joints(robot):
         target = robot.joints.get(joint.get("name"))
         if target is not None and target.get("type") == "fixed":
-            yield joint, f"ros2_control joint '{joint.get('name')}' is a fixed joint"
+            yield joint, (f"ros2_control joint '{joint.get('name')}' is a fixed joint; remove it "
+                          "from <ros2_control>, or make the joint revolute, continuous or prismatic")
 
 
 @rule("U513", "ros2-control-interface-name", Severity.WARNING)
