@@ -113,6 +113,15 @@ def test_matrix_is_deterministic_for_a_seed_and_any_worker_count(tmp_path):
     assert [p.collisions for p in other.pairs] != [p.collisions for p in runs[0].pairs]
 
 
+
+def test_progress_reports_every_block_up_to_the_planned_total(tmp_path):
+    robot = robot_of(tmp_path, two_boxes(0.2, 0.5))
+    calls = []
+    result = matrix.compute(robot, samples=1000, workers=2,
+                            progress=lambda done, planned: calls.append((done, planned)))
+    assert [done for done, _ in calls] == sorted(done for done, _ in calls)
+    assert calls[-1] == (result.samples, result.samples) and len(calls) == result.samples // 250
+
 @pytest.fixture(scope="module")
 def humanoid_matrix():
     robot = load(str(HUMANOID))
