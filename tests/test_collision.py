@@ -113,6 +113,15 @@ def test_matrix_is_deterministic_for_a_seed_and_any_worker_count(tmp_path):
     assert [p.collisions for p in other.pairs] != [p.collisions for p in runs[0].pairs]
 
 
+
+def test_progress_reports_every_block_up_to_the_planned_total(tmp_path):
+    robot = robot_of(tmp_path, two_boxes(0.2, 0.5))
+    calls = []
+    result = matrix.compute(robot, samples=1000, workers=2,
+                            progress=lambda done, planned: calls.append((done, planned)))
+    assert [done for done, _ in calls] == sorted(done for done, _ in calls)
+    assert calls[-1] == (result.samples, result.samples) and len(calls) == result.samples // 250
+
 @pytest.fixture(scope="module")
 def humanoid_matrix():
     robot = load(str(HUMANOID))
@@ -175,6 +184,35 @@ def test_plot_svg_has_a_cell_per_pair(humanoid_matrix, tmp_path):
     text = out.read_text()
     assert text.startswith("<svg") and text.count("<title>") == 2 * len(result.pairs)
 
+
+
+def test_plot_column_labels_stay_below_the_title_and_legend_matches_cells(humanoid_matrix):
+    import re
+
+    from urdftool.collision import plot
+
+    _, result = humanoid_matrix
+    text = plot.svg(result, "humanoid")
+    longest = max(len(name) for name in result.links)
+    tops = [float(y) for y in re.findall(r'translate\([\d.]+,([\d.]+)\) rotate', text)]
+    assert tops and min(tops) - 7 * longest >= 16 + 4  # title baseline + descent
+    never = plot._shade(next(p for p in result.pairs if p.reason == "Never"))
+    assert f'fill="{plot.COLOURS["Never"]}" fill-opacity="{never:.2f}"></rect>' in text
+
+
+def test_plot_png_draws_the_same_cells(humanoid_matrix, tmp_path):
+    image_module = pytest.importorskip("PIL.Image")
+    from urdftool.collision import plot
+
+    _, result = humanoid_matrix
+    plot.write(result, tmp_path / "m.png", "humanoid")
+    width, height, items = plot._layout(result, "humanoid")
+    image = image_module.open(tmp_path / "m.png").convert("RGB")
+    assert image.size == (2 * width, 2 * height)
+    for item in [i for i in items if i[0] == "rect" and i[5] == "#000000"][:3]:
+        assert image.getpixel((2 * item[1] + 4, 2 * item[2] + 4)) == (0, 0, 0)
+    adjacent = next(i for i in items if i[0] == "rect" and i[5] == plot.COLOURS["Adjacent"])
+    assert image.getpixel((2 * adjacent[1] + 4, 2 * adjacent[2] + 4)) == (127, 127, 127)
 
 def test_missing_mesh_and_visual_only_links_are_reported(tmp_path):
     text = two_boxes(0, 1, extra="""

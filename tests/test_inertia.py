@@ -91,6 +91,22 @@ def test_mesh_link_with_scale_and_origin(tmp_path):
     assert np.allclose(result.inertia, exact.inertia, rtol=1e-6)
 
 
+
+@pytest.mark.parametrize("points", ["0 0 0|0 0 0|0 0 0", "0 0 0|1 0 0|2 0 0"],
+                         ids=["point", "line"])
+def test_mesh_without_volume_is_a_problem_not_a_qhull_crash(tmp_path, points):
+    # fuzz: a triangle collapsed to a point or a line has no convex hull; check gave U900
+    vertices = "".join(f"vertex {p}\n" for p in points.split("|"))
+    (tmp_path / "flat.stl").write_text(f"solid x\nfacet normal 0 0 1\nouter loop\n{vertices}"
+                                       "endloop\nendfacet\nendsolid x\n")
+    robot = _robot('<link name="a"><collision><geometry><mesh filename="flat.stl"/></geometry>'
+                   '</collision></link>', tmp_path)
+    from urdftool.shapes import link_solid
+
+    solid = link_solid(robot, robot.links["a"])
+    assert [message for _, message in solid.problems] == [
+        "mesh 'flat.stl' is flat or a single point: it encloses no volume"]
+
 @pytest.fixture(scope="module")
 def humanoid():
     return str(ROBOTS / "humanoid" / "humanoid.urdf.xacro")

@@ -90,14 +90,19 @@ def _mesh_solid(robot, shape: Shape, problems: list):
         problems.append((shape.element, str(problem)))
         return None, None
     body = mesh
+    bounds = tuple(mat3.vector(corner) for corner in mesh.bounds)
     if not mesh.is_watertight:
-        body = mesh.convex_hull
+        try:
+            body = mesh.convex_hull
+        except RuntimeError:  # qhull: the vertices are one point, a line or (unjoggled) a plane
+            problems.append((shape.element, f"mesh '{shape.params['filename']}' is flat or a "
+                                            "single point: it encloses no volume"))
+            return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
     from .inertia import mesh_solid
 
     solid = mesh_solid(body).body()
-    bounds = tuple(mat3.vector(corner) for corner in mesh.bounds)
     if solid.mass <= 0:
         problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
         return None, bounds

@@ -2,7 +2,10 @@
 
 A case is a seed robot (a real file, so its includes, packages and YAML resolve) and the bytes
 that replace it: the seed with elements deleted, duplicated or moved, attributes and numbers
-corrupted, xacro expressions and entities injected, or its bytes truncated or flipped.
+corrupted, xacro expressions and entities injected, or its bytes truncated or flipped; or its
+``<mesh>`` elements pointed at files outside the repository, at files that are not meshes, at
+the crafted meshes of tests/fuzz/meshes/ (lying headers, bad indices, NaN vertices, flat or
+empty meshes, COLLADA with entities, glTF buffers outside the folder), or given odd scales.
 """
 
 from __future__ import annotations
@@ -68,6 +71,15 @@ INJECTIONS = [
     b'<!DOCTYPE robot [<!ENTITY % p SYSTEM "file:///etc/passwd"> %p;]>\n',
     b'<?xml-stylesheet href="file:///etc/passwd"?>\n',
 ]
+
+
+MESHES = Path(__file__).resolve().parent / "meshes"
+OUTSIDE_MESHES = ["../../../../../../../../etc/passwd", "file:///etc/passwd", "/etc/passwd",
+                  "file:///dev/zero", "file:///proc/self/environ", "../../../../../../../tmp/x.stl",
+                  "file://", "package://", "package://../../etc/passwd", "http://127.0.0.1:9/x.stl",
+                  "", ".", "..", "meshes", "mesh.stl\x00"]
+SCALES = ["0 0 0", "1 1", "nan nan nan", "-1 -1 -1", "1e30 1e30 1e30", "1e-30 1e-30 1e-30",
+          "1 0 1", "inf 1 1", "abc", "0.001 0.001 0.001", "1000 1000 1000"]
 
 
 def _elements(root):
@@ -165,15 +177,51 @@ def byte_mutation(draw, data: bytes) -> bytes:
     return data[:at + 1] + _xml_safe(expression).replace("'", "&apos;").encode() + data[at + 1:]
 
 
+@st.composite
+def mesh_mutation(draw, data: bytes, seed_path: Path) -> bytes:
+    """Point ``<mesh>`` elements (existing ones, or one added to a link) at hostile files."""
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
+    root = etree.fromstring(data, parser)
+    meshes = [e for e in root.iter("mesh")]
+    links = [e for e in root.iter("link")]
+    if links and (not meshes or draw(st.booleans())):
+        link = links[draw(st.integers(0, len(links) - 1))]
+        holder = etree.SubElement(link, draw(st.sampled_from(["collision", "visual"])))
+        meshes.append(etree.SubElement(etree.SubElement(holder, "geometry"), "mesh",
+                                       filename="x.stl"))
+        if draw(st.booleans()) and link.find("inertial") is None:  # the inertia rules read it
+            inertial = etree.SubElement(link, "inertial")
+            etree.SubElement(inertial, "mass", value="1")
+            etree.SubElement(inertial, "inertia", ixx="1", iyy="1", izz="1", ixy="0", ixz="0",
+                             iyz="0")
+    crafted = sorted(p.name for p in MESHES.iterdir())
+    inside = ROOT in seed_path.resolve().parents  # relative paths to MESHES stay in the repo
+    for mesh in meshes:
+        kind = draw(st.sampled_from(["crafted", "outside", "scale"] if inside
+                                    else ["outside", "scale"]))
+        if kind == "crafted":
+            target = MESHES / draw(st.sampled_from(crafted))
+            mesh.set("filename", os.path.relpath(target, seed_path.parent))
+        elif kind == "outside":
+            mesh.set("filename", _xml_safe(draw(st.sampled_from(OUTSIDE_MESHES))))
+        if kind == "scale" or draw(st.integers(0, 3)) == 0:
+            mesh.set("scale", draw(st.sampled_from(SCALES)))
+    return etree.tostring(root, xml_declaration=True, encoding="utf-8")
+
+
 def mutant(seed_list: list[Seed]):
     """A strategy for (seed, mutated bytes)."""
 
     @st.composite
     def build(draw):
-        seed = draw(st.sampled_from(seed_list))
+        kind = draw(st.sampled_from(["tree", "bytes", "mesh"]))
+        pool = seed_list
+        if kind == "mesh" and draw(st.booleans()):  # the crafted meshes only reach own robots
+            pool = [s for s in seed_list if ROOT in s.path.resolve().parents] or seed_list
+        seed = draw(st.sampled_from(pool))
         data = seed.path.read_bytes()
-        strategy = st.one_of(tree_mutation(data), byte_mutation(data))
-        mutated = draw(strategy)
+        strategy = {"tree": tree_mutation, "bytes": byte_mutation}.get(kind)
+        mutated = draw(strategy(data) if strategy else mesh_mutation(data, seed.path))
         return seed, mutated
 
     return build()
