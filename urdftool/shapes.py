@@ -100,10 +100,14 @@ def _mesh_solid(robot, shape: Shape, problems: list):
             return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
+    import warnings
+
     from .inertia import mesh_solid
 
-    solid = mesh_solid(body).body()
-    if solid.mass <= 0:
+    with warnings.catch_warnings():  # a degenerate mesh is reported below, not as numpy noise
+        warnings.simplefilter("ignore", RuntimeWarning)
+        solid = mesh_solid(body).body()
+    if not solid.mass > 0:  # also NaN from a zero-volume mesh
         problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
         return None, bounds
     return solid, bounds
