@@ -19,9 +19,11 @@ COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazeb
 from __future__ import annotations
 
 import logging
+import math
 import os
 import re
 import struct
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -198,6 +200,8 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     cache = robot.options.setdefault(_CACHE_KEY, {})
     path = resolve(robot, uri)
     scale = tuple(float(s) for s in scale)
+    if not all(math.isfinite(s) for s in scale):
+        raise MeshProblem("corrupt", f"mesh '{uri}' has a non-finite scale {scale}; not loaded")
     key = (path, scale)
     if key not in cache:
         raw_key = (path, (1.0, 1.0, 1.0))
@@ -211,8 +215,13 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
             cache[key] = raw
         else:
             scaled = raw.copy()
-            scaled.apply_scale(scale)
-            cache[key] = scaled
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # overflow is reported below
+                scaled.apply_scale(scale)
+            finite_vertices = all(math.isfinite(v) for v in scaled.bounds.ravel())
+            cache[key] = scaled if finite_vertices else MeshProblem(
+                "corrupt", f"mesh '{uri}' scaled by {scale} has coordinates beyond floating "
+                           "point range; not loaded")
     found = cache[key]
     if isinstance(found, MeshProblem):
         raise found

@@ -81,7 +81,19 @@ def shapes(link, tag: str) -> list[Shape]:
 
 
 def _mesh_solid(robot, shape: Shape, problems: list):
-    """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem."""
+    """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem.
+
+    trimesh's numpy warnings on degenerate or absurdly scaled meshes are silenced: U413 and the
+    problems below say what is wrong with the mesh.
+    """
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _mesh_solid_unchecked(robot, shape, problems)
+
+
+def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
     from .meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
 
     try:
@@ -100,13 +112,9 @@ def _mesh_solid(robot, shape: Shape, problems: list):
             return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
-    import warnings
-
     from .inertia import mesh_solid
 
-    with warnings.catch_warnings():  # a degenerate mesh is reported below, not as numpy noise
-        warnings.simplefilter("ignore", RuntimeWarning)
-        solid = mesh_solid(body).body()
+    solid = mesh_solid(body).body()
     if not solid.mass > 0:  # also NaN from a zero-volume mesh
         problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
         return None, bounds
