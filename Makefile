@@ -16,8 +16,8 @@ $(INSTALLED): pyproject.toml
 demo: $(INSTALLED)
 	$(VENV)/bin/urdftool check robots/
 	$(VENV)/bin/urdftool tree robots/r2d2/r2d2.urdf.xacro
-	@echo; echo "A broken robot (the finding points into the included macro file):"
-	-$(VENV)/bin/urdftool check tests/cases/U005_xacro_error/robot.urdf.xacro
+	@echo; echo "A broken robot (exit code 1; the finding points into the included macro file):"
+	@$(VENV)/bin/urdftool check tests/cases/U005_xacro_error/robot.urdf.xacro || true
 
 test: $(INSTALLED)
 	$(PY) -m pytest
