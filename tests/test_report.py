@@ -90,3 +90,15 @@ def test_schema_validation_can_fail():
     log["runs"][0]["results"][0]["level"] = "fatal"
     with pytest.raises(jsonschema.ValidationError):
         sarif_schema.validate(log)
+
+
+def test_text_is_plain_off_a_terminal_and_coloured_on_one(monkeypatch):
+    plain = rendered("text")
+    assert "\x1b[" not in plain
+    monkeypatch.setenv("FORCE_COLOR", "1")
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    coloured = rendered("text")
+    assert "\x1b[" in coloured
+    import re
+
+    assert re.sub(r"\x1b\[[0-9;]*m", "", coloured) == plain

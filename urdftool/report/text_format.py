@@ -1,38 +1,66 @@
-"""``--format text``: findings grouped by file, with the macro call chain and a summary."""
+"""``--format text``: findings grouped by file, with the macro call chain and a summary.
+
+The lines are built once as styled spans. On a terminal (or with FORCE_COLOR) rich renders them
+in colour; anywhere else (CI logs, pipes, files) they are written as plain text, which is what
+rich would write there too, without paying for importing it.
+"""
 
 from __future__ import annotations
 
-from rich.console import Console
-from rich.markup import escape
+import os
 
 from ..diagnostics import display_path
 from . import Summary
 
 _STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
 
+Line = list[tuple[str, str]]  # (text, rich style or "")
 
-def render(results, stream, console: Console | None = None) -> None:
-    # emoji=False: messages are printed as written (":bee:" stays text), and rich's 28 ms
-    # emoji table is never imported
-    console = console or Console(file=stream, highlight=False, soft_wrap=True, emoji=False)
+
+def lines(results) -> list[Line]:
+    """The report as lines of (text, style) spans."""
+    out: list[Line] = []
     for result in results:
         if not result.findings:
             continue
-        console.print(f"[bold underline]{escape(display_path(result.path))}[/]")
+        out.append([(display_path(result.path), "bold underline")])
         for finding in result.findings:
-            style = _STYLES[finding.severity.value]
-            console.print(
-                f"  {escape(str(finding.location))}: [{style}]{finding.severity.value}[/] "
-                f"[bold]{finding.code}[/] {escape(finding.message)} [dim]({finding.name})[/]")
-            for site in finding.location.via:
-                console.print(f"      [dim]expanded from macro call at {escape(str(site))}[/]")
-        console.print()
+            out.append([(f"  {finding.location}: ", ""),
+                        (finding.severity.value, _STYLES[finding.severity.value]),
+                        (" ", ""), (finding.code, "bold"), (f" {finding.message} ", ""),
+                        (f"({finding.name})", "dim")])
+            out.extend([(f"      expanded from macro call at {site}", "dim")]
+                       for site in finding.location.via)
+        out.append([])
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
         else ", ".join([_count(summary.errors, "error"), _count(summary.warnings, "warning"),
                         _count(summary.infos, "note")])
-    console.print(f"[{style}]{_count(summary.files, 'file')} checked: {verdict}[/]")
+    out.append([(f"{_count(summary.files, 'file')} checked: {verdict}", style)])
+    return out
+
+
+def render(results, stream) -> None:
+    report = lines(results)
+    if not _colour(stream):
+        stream.write("".join("".join(text for text, _ in line) + "\n" for line in report))
+        return
+    from rich.console import Console
+    from rich.text import Text
+
+    # emoji=False, highlight=False, Text spans: messages are printed exactly as written
+    console = Console(file=stream, highlight=False, soft_wrap=True, emoji=False)
+    for line in report:
+        console.print(Text.assemble(*line))
+
+
+def _colour(stream) -> bool:
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return hasattr(stream, "isatty") and stream.isatty()
 
 
 def _count(number: int, noun: str) -> str:
