@@ -58,20 +58,16 @@ class FileResult:
 
 def stamp(rule: Rule, where, message: str, robot) -> Finding:
     """A finding for ``rule`` at ``where`` (element, Location or None)."""
-    if isinstance(where, Location):
-        location = where
-    else:
-        location = robot.locate(where)
-    return Finding(rule.code, rule.name, rule.severity, message, location)
+    location = where if isinstance(where, Location) else robot.locate(where)
+    return rule.finding(message, location)
 
 
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
     """U900 for a crash in urdftool itself, naming the code line that raised."""
     frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
-    rule = REGISTRY["U900"]
-    return Finding(rule.code, rule.name, rule.severity,
-                   f"{what} crashed: {type(error).__name__}: {error}{where}", location)
+    return REGISTRY["U900"].finding(f"{what} crashed: {type(error).__name__}: {error}{where}",
+                                    location)
 
 
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:

@@ -13,7 +13,7 @@ import os
 import time
 from multiprocessing.connection import wait
 
-from .diagnostics import Finding, Location
+from .diagnostics import Finding, Location, display_path
 from .engine import CheckOptions, FileResult, check_file
 
 DEFAULT_TIMEOUT = 60.0  # [s] per file
@@ -144,12 +144,9 @@ def _internal(path: str, message: str) -> Finding:
 
 
 def _finding(code: str, path: str, message: str) -> Finding:
-    from .diagnostics import display_path
-    from .rules import REGISTRY, all_rules
+    from .rules import registered
 
-    all_rules()
-    rule = REGISTRY[code]
-    return Finding(rule.code, rule.name, rule.severity, message, Location(display_path(path)))
+    return registered(code).finding(message, Location(display_path(path)))
 
 
 __all__ = ["check_files", "default_jobs", "DEFAULT_TIMEOUT", "CheckOptions"]

@@ -156,7 +156,6 @@ def _checkable(suppression: Suppression, ran) -> bool:
 
 
 def _unused(suppression: Suppression) -> Finding:
-    rule = REGISTRY["U901"]
     unknown = [s for s in suppression.selectors if not _known(s)]
     if not suppression.selectors:
         message = "suppression names no rule; write e.g. <!-- urdftool: ignore U203 -->"
@@ -170,5 +169,4 @@ def _unused(suppression: Suppression) -> Finding:
         message = (f"suppression of {', '.join(suppression.selectors)} silences nothing on "
                    f"line {suppression.target}; delete it or move it just above the element "
                    "the finding points at")
-    return Finding(rule.code, rule.name, rule.severity, message,
-                   Location(suppression.file, suppression.line))
+    return REGISTRY["U901"].finding(message, Location(suppression.file, suppression.line))

@@ -204,8 +204,6 @@ def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
 
 
 def _finding(code: str, location: Location, message: str) -> Finding:
-    from ..rules import REGISTRY, all_rules
+    from ..rules import registered
 
-    all_rules()
-    rule = REGISTRY[code]
-    return Finding(code, rule.name, rule.severity, message, location)
+    return registered(code).finding(message, location)

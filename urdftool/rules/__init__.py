@@ -20,10 +20,10 @@ import pkgutil
 from dataclasses import dataclass
 from typing import Callable
 
-from ..diagnostics import Severity
+from ..diagnostics import Finding, Location, Severity
 
 __all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "find_rule",
-           "FAMILIES"]
+           "registered", "FAMILIES"]
 
 FAMILIES = {
     "U0": "loading",
@@ -54,6 +54,10 @@ class Rule:
     @property
     def family(self) -> str:
         return FAMILIES[self.code[:2]]
+
+    def finding(self, message: str, location: Location) -> Finding:
+        """A finding of this rule at ``location``."""
+        return Finding(self.code, self.name, self.severity, message, location)
 
 
 REGISTRY: dict[str, Rule] = {}
@@ -102,6 +106,13 @@ def all_rules() -> list[Rule]:
         _loaded = True
     return [REGISTRY[code] for code in sorted(REGISTRY)]
 
+
+def registered(code: str) -> Rule:
+    """The rule of an exact code, the catalogue loaded first when the code is not yet known
+    (codes the loader, the engine and the workers report themselves)."""
+    if code not in REGISTRY:
+        all_rules()
+    return REGISTRY[code]
 
 
 def find_rule(wanted: str) -> Rule:
