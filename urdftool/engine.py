@@ -8,7 +8,7 @@ from pathlib import Path
 
 from .diagnostics import Finding, Location, Severity, display_path
 from .errors import LoadError
-from .rules import REGISTRY, Rule, all_rules, declare
+from .rules import REGISTRY, Rule, all_rules, declare, matches
 from . import suppressions
 
 declare("U900", "internal-error", Severity.ERROR, """
@@ -26,15 +26,9 @@ class Selection:
     ignore: tuple[str, ...] = ()
 
     def allows(self, code: str) -> bool:
-        rule = REGISTRY.get(code)
-        if self.select and not any(_matches(rule, code, s) for s in self.select):
+        if self.select and not any(matches(code, s) for s in self.select):
             return False
-        return not any(_matches(rule, code, s) for s in self.ignore)
-
-
-def _matches(rule: Rule | None, code: str, selector: str) -> bool:
-    selector = selector.strip()
-    return code.startswith(selector.upper()) or (rule is not None and rule.name == selector)
+        return not any(matches(code, s) for s in self.ignore)
 
 
 @dataclass

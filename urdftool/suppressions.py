@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .diagnostics import Finding, Location, Severity
-from .rules import FAMILIES, REGISTRY, all_rules, declare
+from .rules import FAMILIES, REGISTRY, all_rules, declare, matches
 
 declare("U901", "unused-suppression", Severity.WARNING, """
     An ``<!-- urdftool: ignore ... -->`` comment silences nothing.
@@ -50,17 +50,12 @@ class Suppression:
     def covers(self, finding: Finding, location: Location) -> bool:
         if self.target is not None and location.line != self.target:
             return False
-        return any(_matches(finding.code, selector) for selector in self.selectors)
-
-
-def _matches(code: str, selector: str) -> bool:
-    rule = REGISTRY.get(code)
-    return code.startswith(selector.upper()) or (rule is not None and rule.name == selector)
+        return any(matches(finding.code, selector) for selector in self.selectors)
 
 
 def _known(selector: str) -> bool:
     family = selector.upper()
-    return family in FAMILIES or family == "U" or any(_matches(c, selector) for c in REGISTRY)
+    return family in FAMILIES or family == "U" or any(matches(c, selector) for c in REGISTRY)
 
 
 def parse(text: str, file: str) -> list[Suppression]:
@@ -149,7 +144,7 @@ def apply(findings: list[Finding], files: list[str], ran) -> list[Finding]:
 def _checkable(suppression: Suppression, ran) -> bool:
     """Whether every code a suppression names ran, so that it can be known to be unused."""
     for selector in suppression.selectors:
-        codes = [code for code in REGISTRY if _matches(code, selector)]
+        codes = [code for code in REGISTRY if matches(code, selector)]
         if codes and not all(ran(code) for code in codes):
             return False
     return True

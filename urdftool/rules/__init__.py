@@ -23,7 +23,7 @@ from typing import Callable
 from ..diagnostics import Finding, Location, Severity
 
 __all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "find_rule",
-           "registered", "FAMILIES"]
+           "registered", "matches", "FAMILIES"]
 
 FAMILIES = {
     "U0": "loading",
@@ -113,6 +113,13 @@ def registered(code: str) -> Rule:
     if code not in REGISTRY:
         all_rules()
     return REGISTRY[code]
+
+
+def matches(code: str, selector: str) -> bool:
+    """Whether a selector (a code, a code prefix such as ``U2``, or a rule name) picks ``code``."""
+    selector = selector.strip()
+    rule = REGISTRY.get(code)
+    return code.startswith(selector.upper()) or (rule is not None and rule.name == selector)
 
 
 def find_rule(wanted: str) -> Rule:
