@@ -7,12 +7,14 @@ A reporter is a function ``(results, stream) -> None``; ``results`` is a list of
 from __future__ import annotations
 
 import importlib
+import json
 import os
 from dataclasses import dataclass
 
 from ..diagnostics import Finding, Severity
 
 FORMATS = ("text", "json", "sarif", "junit", "github")
+STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}  # rich style per severity
 
 
 @dataclass(frozen=True)
@@ -24,7 +26,7 @@ class Summary:
 
     @classmethod
     def of(cls, results) -> "Summary":
-        findings = [f for r in results for f in r.findings]
+        findings = all_findings(results)
         count = lambda level: sum(1 for f in findings if f.severity is level)  # noqa: E731
         return cls(len(results), count(Severity.ERROR), count(Severity.WARNING),
                    count(Severity.INFO))
@@ -32,6 +34,12 @@ class Summary:
 
 def all_findings(results) -> list[Finding]:
     return [finding for result in results for finding in result.findings]
+
+
+def write_json(document: dict, stream) -> None:
+    """A JSON document as the json and sarif formats write it: indented, ending in a newline."""
+    json.dump(document, stream, indent=2)
+    stream.write("\n")
 
 
 def resolve_format(name: str) -> str:

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
-
-from . import Summary, all_findings
+from . import Summary, all_findings, write_json
 
 
 def as_dict(results) -> dict:
@@ -22,5 +20,4 @@ def as_dict(results) -> dict:
 
 
 def render(results, stream) -> None:
-    json.dump(as_dict(results), stream, indent=2)
-    stream.write("\n")
+    write_json(as_dict(results), stream)

@@ -6,7 +6,7 @@ from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
-_STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+from . import STYLES
 
 
 def _plain(text: str) -> str:
@@ -22,14 +22,14 @@ def rules_table(rules) -> Table:
     table.add_column("what it finds")
     for rule in rules:
         severity = rule.severity.value
-        table.add_row(rule.code, rule.name, Text(severity, style=_STYLES[severity]),
+        table.add_row(rule.code, rule.name, Text(severity, style=STYLES[severity]),
                       Text(_plain(rule.summary)))
     return table
 
 
 def rule_page(rule) -> str:
     """Rich markup: the heading line, then the docstring as written."""
-    style = _STYLES[rule.severity.value]
+    style = STYLES[rule.severity.value]
     heading = (f"[bold]{rule.code} {escape(rule.name)}[/] [{style}]({rule.severity.value})[/]"
                f" [dim]{escape(rule.family)}[/]")
     return f"{heading}\n\n{escape(_plain(rule.doc or rule.summary))}"

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import json
-
 from .. import __version__
 from ..rules import all_rules
-from . import all_findings
+from . import all_findings, write_json
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 _LEVELS = {"error": "error", "warning": "warning", "info": "note"}
@@ -66,5 +64,4 @@ def as_dict(results) -> dict:
 
 
 def render(results, stream) -> None:
-    json.dump(as_dict(results), stream, indent=2)
-    stream.write("\n")
+    write_json(as_dict(results), stream)

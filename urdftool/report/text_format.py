@@ -10,9 +10,7 @@ from __future__ import annotations
 import os
 
 from ..diagnostics import display_path
-from . import Summary
-
-_STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+from . import STYLES, Summary
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 
@@ -26,7 +24,7 @@ def lines(results) -> list[Line]:
         out.append([(display_path(result.path), "bold underline")])
         for finding in result.findings:
             out.append([(f"  {finding.location}: ", ""),
-                        (finding.severity.value, _STYLES[finding.severity.value]),
+                        (finding.severity.value, STYLES[finding.severity.value]),
                         (" ", ""), (finding.code, "bold"), (f" {finding.message} ", ""),
                         (f"({finding.name})", "dim")])
             out.extend([(f"      expanded from macro call at {site}", "dim")]
