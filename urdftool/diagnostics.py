@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 
 class Severity(str, enum.Enum):
@@ -37,7 +37,6 @@ class Finding:
     severity: Severity
     message: str
     location: Location
-    rule_doc_url: str | None = field(default=None, compare=False)
 
     @property
     def file(self) -> str:
