@@ -31,16 +31,16 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     None or 0 for none. Without a budget and with one job, files are checked in this process.
     """
     jobs = max(1, jobs or default_jobs())
-    in_process = [i for i, path in enumerate(files) if path == "-"]  # stdin stays here
+    all_here = not timeout and jobs == 1 or "fork" not in multiprocessing.get_all_start_methods()
     results: list[FileResult | None] = [None] * len(files)
-    for index in in_process:
-        results[index] = _without_robot(check_file(files[index], options_for(files[index])))
-    queue = [i for i in range(len(files)) if results[i] is None]
-    if not timeout and jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
-        for index in queue:
-            results[index] = _without_robot(check_file(files[index], options_for(files[index])))
-        return results
-    _run_pool(files, queue, options_for, min(jobs, len(queue)), timeout or None, results)
+    queue = []
+    for index, path in enumerate(files):
+        if all_here or path == "-":  # stdin is only readable in this process
+            results[index] = _without_robot(check_file(path, options_for(path)))
+        else:
+            queue.append(index)
+    if queue:
+        _run_pool(files, queue, options_for, min(jobs, len(queue)), timeout or None, results)
     return results
 
 
@@ -106,26 +106,24 @@ def _run_pool(files, queue, options_for, jobs, timeout, results) -> None:
             for position, worker in enumerate(workers):
                 if worker.index is None:
                     continue
+                failure = None  # the finding of a file whose worker is lost
                 if worker.connection in ready:
                     try:
                         index, findings = worker.connection.recv()
                     except (EOFError, OSError):
                         worker.process.join(5)
-                        code = worker.process.exitcode
-                        results[worker.index] = FileResult(files[worker.index], [_internal(
-                            files[worker.index], f"worker process died (exit code {code})")])
-                        worker.stop(kill=True)
-                        workers[position] = worker = _Worker(context, files, options_for)
+                        failure = _internal(files[worker.index], "worker process died "
+                                            f"(exit code {worker.process.exitcode})")
                     else:
                         results[index] = FileResult(files[index], findings)
-                        worker.index = None
                 elif timeout and time.monotonic() - worker.started >= timeout:
-                    results[worker.index] = FileResult(files[worker.index], [_timeout(
-                        files[worker.index], timeout)])
-                    worker.stop(kill=True)
-                    workers[position] = worker = _Worker(context, files, options_for)
+                    failure = _timeout(files[worker.index], timeout)
                 else:
                     continue
+                if failure is not None:
+                    results[worker.index] = FileResult(files[worker.index], [failure])
+                    worker.stop(kill=True)
+                    workers[position] = worker = _Worker(context, files, options_for)
                 worker.index = None
                 if pending:
                     worker.give(pending.pop())
