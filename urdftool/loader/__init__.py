@@ -86,17 +86,10 @@ def _read(path: str, shown: str, limit: int) -> bytes:
         data = sys.stdin.buffer.read(limit + 1)
     else:
         try:
-            info = os.stat(path)
-            size = info.st_size
-            if not stat.S_ISREG(info.st_mode):
-                raise LoadError([_finding("U001", Location(shown, None),
-                                          "cannot read file: not a regular file")])
-            if size > limit:
-                raise LoadError([_finding("U008", Location(shown, None),
-                                          f"file is {size} bytes, over the limit of {limit} "
-                                          "(raise it with --max-file-size)")])
-            with open(path, "rb") as handle:
-                data = handle.read(limit + 1)
+            data = _read_regular(path, limit)
+        except _TooLarge as error:
+            raise LoadError([_finding("U008", Location(shown, None),
+                                      f"{error.strerror} (raise it with --max-file-size)")]) from None
         except OSError as error:
             raise LoadError([_finding("U001", Location(shown, None),
                                       f"cannot read file: {error.strerror}")]) from None
@@ -105,6 +98,22 @@ def _read(path: str, shown: str, limit: int) -> bytes:
                                   f"input is over the limit of {limit} bytes "
                                   "(raise it with --max-file-size)")])
     return data
+
+
+class _TooLarge(OSError):
+    """A file over the size limit."""
+
+
+def _read_regular(name, limit: int) -> bytes:
+    """A regular file's bytes (at most ``limit + 1``); OSError for anything else, _TooLarge when
+    its size is over ``limit``."""
+    info = os.stat(name)
+    if not stat.S_ISREG(info.st_mode):
+        raise OSError(21, "not a regular file", name)
+    if info.st_size > limit:
+        raise _TooLarge(27, f"file is {info.st_size} bytes, over the limit of {limit}", name)
+    with open(name, "rb") as handle:
+        return handle.read(limit + 1)
 
 
 def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
@@ -146,20 +155,12 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
 def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
     from .xacro_expand import XacroFailure, expand
 
-    def read_file(name):
-        info = os.stat(name)
-        if not stat.S_ISREG(info.st_mode):
-            raise OSError(21, "not a regular file", name)
-        if info.st_size > limit:
-            raise OSError(27, f"file is {info.st_size} bytes, over the limit of {limit}", name)
-        with open(name, "rb") as handle:
-            return handle.read(limit + 1)
-
     try:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=read_file, roots=_allowed_roots(source_path, args))
+                           read_file=lambda name: _read_regular(name, limit),
+                           roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise LoadError([_problem_finding(problem, shown)]) from None
     except XacroFailure as failure:
