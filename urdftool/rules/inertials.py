@@ -72,9 +72,9 @@ def _judged(robot):
             yield link, properties
 
 
-def _moving(robot) -> set[str]:
-    joints = _joints_by_child(robot)
-    return {name for name, joint in joints.items()
+def _moving(robot) -> dict:
+    """Link name -> the joint that moves it, for links a non-fixed joint moves."""
+    return {name: joint for name, joint in _joints_by_child(robot).items()
             if joint.get("type") in ("revolute", "continuous", "prismatic", "planar", "floating")}
 
 
@@ -148,7 +148,7 @@ def moving_link_without_mass(robot):
     moving = _moving(robot)
     masses = {link.get("name"): p.mass for link, p in _valid(robot)}
     fixed = _fixed_children(robot)
-    for name in sorted(moving & set(robot.links)):
+    for name in sorted(moving.keys() & robot.links.keys()):
         body, stack, total = set(), [name], 0.0
         while stack:
             current = stack.pop()
@@ -162,7 +162,7 @@ def moving_link_without_mass(robot):
                                   for l in (robot.links.get(b) for b in body) if l is not None):
             what = "no <inertial>" if link.find("inertial") is None else "zero mass"
             yield link, (f"link '{name}' is moved by joint "
-                         f"'{_joints_by_child(robot)[name].get('name')}' but has {what} (nor "
+                         f"'{moving[name].get('name')}' but has {what} (nor "
                          "does any link fixed to it); give it its real mass and inertia")
 
 
