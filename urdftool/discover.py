@@ -9,7 +9,7 @@ import stat
 from pathlib import Path
 
 from .diagnostics import display_path
-from .loader.packages import PackageResolver
+from .loader.packages import PackageResolver, repository_root
 
 SUFFIXES = (".urdf", ".xacro")
 _CLASSIFY_BYTES = 16 * 1024 * 1024  # read no more of a file to decide whether it is a robot
@@ -106,10 +106,8 @@ _NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
 
 def project_root(path: Path) -> Path:
     """The repository holding ``path`` (nearest folder with ``.git``), or its own folder."""
-    for candidate in resolved_path(path).parents:
-        if (candidate / ".git").exists():
-            return candidate
-    return resolved_path(path).parent
+    folder = resolved_path(path).parent
+    return repository_root(folder) or folder
 
 
 def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path], str | None]:
