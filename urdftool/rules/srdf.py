@@ -20,6 +20,15 @@ def _elements(srdf, *paths):
         yield from srdf.root.iterfind(path)
 
 
+def _references(srdf, attributes):
+    """(element, attribute, name) for each ``(path, attribute)`` the SRDF sets."""
+    for path, attribute in attributes:
+        for element in srdf.root.iterfind(path):
+            name = element.get(attribute)
+            if name is not None:
+                yield element, attribute, name
+
+
 @rule("U801", "malformed-srdf", Severity.ERROR)
 def malformed_srdf(robot):
     """The SRDF is not well-formed XML, has no ``<robot>`` root, or cannot be read.
@@ -93,13 +102,11 @@ def srdf_unknown_link(robot):
                   ("disable_collisions", "link1"), ("disable_collisions", "link2"),
                   ("enable_collisions", "link1"), ("enable_collisions", "link2"),
                   ("link_sphere_approximation", "link"))
-    for path, attribute in attributes:
-        for element in srdf.root.iterfind(path):
-            name = element.get(attribute)
-            if name is not None and name not in robot.links:
-                yield srdf.at(element.sourceline), (
-                    f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
-                    f"{available('links', name, robot.links)}")
+    for element, attribute, name in _references(srdf, attributes):
+        if name not in robot.links:
+            yield srdf.at(element.sourceline), (
+                f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
+                f"{available('links', name, robot.links)}")
 
 
 @rule("U805", "srdf-unknown-group", Severity.ERROR)
@@ -113,14 +120,13 @@ def srdf_unknown_group(robot):
     if srdf is None:
         return
     groups = {g.get("name") for g in srdf.root.iterfind("group")}
-    for path, attribute in (("group/group", "name"), ("group_state", "group"),
-                            ("end_effector", "group"), ("end_effector", "parent_group")):
-        for element in srdf.root.iterfind(path):
-            name = element.get(attribute)
-            if name is not None and name not in groups:
-                yield srdf.at(element.sourceline), (
-                    f"SRDF <{element.tag} {attribute}='{name}'> names no group; "
-                    f"{available('groups', name, groups)}")
+    attributes = (("group/group", "name"), ("group_state", "group"), ("end_effector", "group"),
+                  ("end_effector", "parent_group"))
+    for element, attribute, name in _references(srdf, attributes):
+        if name not in groups:
+            yield srdf.at(element.sourceline), (
+                f"SRDF <{element.tag} {attribute}='{name}'> names no group; "
+                f"{available('groups', name, groups)}")
 
 
 @rule("U806", "srdf-state-outside-limits", Severity.ERROR)
