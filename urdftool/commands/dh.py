@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fixed, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, fixed, single_robot
 
 FORMATS = ("text", "json", "yaml")
 
@@ -31,8 +31,7 @@ def dh(
     try:
         table = extract(robot, base, tip, convention)
     except DHError as error:
-        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
-        raise typer.Exit(1)
+        fail_at(robot, error)
     if output_format == "json":
         import json
 

@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, fixed, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, fail_usage, fixed, single_robot
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -64,9 +64,9 @@ def fk(
     except DHError as error:
         if error.element is None and error.where is None and dh:
             error.where = dh  # about the table, not the robot
-        _fail(robot, error)
+        fail_at(robot, error)
     except FKError as error:
-        _fail(robot, error)
+        fail_at(robot, error)
     for warning in result.warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
     _render(result, output_format, matrix, single=not (q_file or random))
@@ -93,14 +93,6 @@ def _verify(table, model, count, seed, base, frame) -> None:
                f"error {position:.3g} m, worst orientation error {rotation:.3g} rad: "
                f"{'agree' if ok else 'DISAGREE'} (tolerance {VERIFY_TOLERANCE:g})")
     raise typer.Exit(0 if ok else 1)
-
-
-def _fail(robot, error) -> None:
-    where = getattr(error, "where", None)
-    element = getattr(error, "element", None)
-    prefix = where or (str(robot.locate(element)) if element is not None else robot.locate(None))
-    typer.echo(f"{prefix}: error: {error}", err=True)
-    raise typer.Exit(1)
 
 
 def _render(result, output_format: str, matrix: bool, single: bool) -> None:
