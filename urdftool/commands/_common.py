@@ -101,6 +101,15 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
         raise typer.Exit(1)
 
 
+def wide_console():
+    """A rich console at least 150 columns wide: tables of poses are wide; do not squeeze them."""
+    from rich.console import Console
+
+    console = Console(highlight=False)
+    console.width = max(console.width, 150)
+    return console
+
+
 def fixed(value: float, places: int = 6) -> str:
     """``value`` with ``places`` decimals, without the '-0.000000' that round-off leaves."""
     text = f"{value:.{places}f}"

@@ -6,7 +6,8 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_at, fail_usage, fixed, single_robot
+from ._common import (PackageOption, XacroArgOption, fail_at, fail_usage, fixed, single_robot,
+                      wide_console)
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -142,12 +143,10 @@ def _csv(result, positions, rpys, quaternions, matrix) -> None:
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
-    console = Console(highlight=False)
-    console.width = max(console.width, 150)  # tables of poses are wide; do not squeeze them
+    console = wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
