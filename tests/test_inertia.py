@@ -11,6 +11,7 @@ import pytest
 
 from conftest import ROBOTS
 from urdftool import inertia as mp
+from urdftool import mat3
 from urdftool.loader import load
 
 
@@ -41,7 +42,7 @@ def test_offset_box_parallel_axis():
 
 
 def test_rotated_cylinder_lies_along_x():
-    lying = mp.transformed(mp.cylinder(0.05, 0.4), np.zeros(3), mp.rpy_matrix((0, math.pi / 2, 0)))
+    lying = mp.transformed(mp.cylinder(0.05, 0.4), np.zeros(3), mat3.rpy_matrix((0, math.pi / 2, 0)))
     upright = mp.cylinder(0.05, 0.4)
     assert np.allclose(np.diag(lying.inertia), np.diag(upright.inertia)[[2, 1, 0]])
 

@@ -17,8 +17,7 @@ from . import mat3
 from .mass_properties import INERTIA_ATTRIBUTES, relative_difference, triangle_violation
 
 __all__ = ["INERTIA_ATTRIBUTES", "MassProperties", "box", "combine", "cylinder", "declared",
-           "mesh_solid", "origin_of", "relative_difference", "rpy_matrix", "sphere",
-           "transformed", "triangle_violation"]
+           "mesh_solid", "relative_difference", "sphere", "transformed", "triangle_violation"]
 
 
 @dataclass
@@ -49,17 +48,6 @@ class MassProperties:
                 "inertia": {"ixx": float(i[0, 0]), "ixy": float(i[0, 1]),
                             "ixz": float(i[0, 2]), "iyy": float(i[1, 1]),
                             "iyz": float(i[1, 2]), "izz": float(i[2, 2])}}
-
-
-def rpy_matrix(rpy) -> np.ndarray:
-    """Rotation matrix of URDF roll-pitch-yaw (fixed axes x, y, z): Rz(y) Ry(p) Rx(r)."""
-    return np.array(mat3.rpy_matrix(rpy))
-
-
-def origin_of(element) -> tuple[np.ndarray, np.ndarray]:
-    """(xyz, R) of an element's ``<origin>``; identity when absent. Malformed parts count as 0."""
-    xyz, rotation = pure.origin_of(element)
-    return np.array(xyz), np.array(rotation)
 
 
 def declared(link) -> MassProperties | None:

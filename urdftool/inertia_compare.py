@@ -50,9 +50,9 @@ def _invalid(properties: MassProperties) -> str | None:
     moments = properties.principal_moments()
     if properties.mass > 0 and moments[0] < -1e-9 * max(abs(moments).max(), 1e-12):
         return "not positive definite"
-    if properties.mass > 0 and moments[-1] > 0 and triangle_violation(moments, 1e-3):
-        return f"violates the triangle inequality ({triangle_violation(moments, 1e-3)})"
-    return None
+    violation = triangle_violation(moments, 1e-3) if properties.mass > 0 and moments[-1] > 0 \
+        else None
+    return f"violates the triangle inequality ({violation})" if violation else None
 
 
 def compare_link(robot, link, density: float | None = None) -> LinkInertia:
@@ -70,8 +70,8 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
     result = MassProperties.of(body) if body is not None else None
     if link.find("inertial") is not None and mine is None:
         verdict, notes = "invalid", notes + ["<inertial> is malformed"]
-    elif mine is not None and _invalid(mine):
-        verdict, notes = "invalid", notes + [f"declared inertia {_invalid(mine)}"]
+    elif mine is not None and (invalid := _invalid(mine)):
+        verdict, notes = "invalid", notes + [f"declared inertia {invalid}"]
     elif result is None:
         verdict = "unknown"
     else:

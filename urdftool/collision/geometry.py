@@ -15,6 +15,7 @@ import fcl
 import numpy as np
 
 from ..diagnostics import Location
+from ..kinematics import transforms
 from ..rules._values import parse_numbers
 
 
@@ -63,24 +64,12 @@ class Geometry:
 
 def origin_matrix(element) -> np.ndarray:
     """The 4x4 transform of an ``<origin xyz rpy>`` child of ``element`` (identity if none)."""
-    matrix = np.eye(4)
     origin = element.find("origin") if element is not None else None
     if origin is None:
-        return matrix
+        return np.eye(4)
     xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
     rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
-    matrix[:3, :3] = rpy_matrix(*(rpy or (0.0, 0.0, 0.0)))
-    matrix[:3, 3] = xyz or (0.0, 0.0, 0.0)
-    return matrix
-
-
-def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """URDF fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
-                              np.cos(yaw), np.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
+    return transforms.from_xyz_rpy(xyz or (0.0, 0.0, 0.0), rpy or (0.0, 0.0, 0.0))
 
 
 def build(robot) -> Geometry:

@@ -218,7 +218,6 @@ def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.
         if progress:
             progress(done, planned)
 
-
     _WORK.update(scene=scene, seed=seed, checker=checker)
     with _pool(workers) as pool:
         half = _sample_blocks(pool, range(blocks // 2), len(sampled), advance)
@@ -237,12 +236,13 @@ def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.
             full = half.merge(_sample_blocks(pool, range(blocks, blocks * 2), len(sampled),
                                              advance))
             blocks *= 2
-    distances = _distances(scene, checker, full)
+    distances = _distances(scene, checker, full, seed)
+    sampled_index = {pair: i for i, pair in enumerate(sampled)}
     results = []
     for pair in scene.pairs:
         result = PairResult(*pair, classes[pair])
-        if pair in sampled:
-            i = sampled.index(pair)
+        i = sampled_index.get(pair)
+        if i is not None:
             result.reason = after[i]
             result.collisions, result.samples = int(full.collisions[i]), full.samples
             result.min_distance = distances[i]
@@ -258,7 +258,7 @@ def _classify(tally: Tally, min_fraction: float, margin: float) -> list[str]:
             for f, c, d in zip(fraction, tally.collisions, tally.min_distance)]
 
 
-def _distances(scene: Scene, checker: PairChecker, tally: Tally) -> list[float]:
+def _distances(scene: Scene, checker: PairChecker, tally: Tally, seed) -> list[float]:
     """Exact distances where known; for pairs FCL never saw, the distance at the sample where
     the bounding spheres came closest (an upper bound of the smallest distance)."""
     result = []
@@ -268,6 +268,6 @@ def _distances(scene: Scene, checker: PairChecker, tally: Tally) -> list[float]:
             continue
         sample = int(tally.bound_sample[i])
         block, offset = divmod(sample, BLOCK)
-        q = scene.sample([_WORK["seed"], block], BLOCK)[offset]
+        q = scene.sample([seed, block], BLOCK)[offset]
         result.append(float(checker.exact(scene.at(q), i)[1]))
     return result

@@ -55,6 +55,14 @@ def fail_usage(error: UsageError) -> None:
     raise typer.Exit(2)
 
 
+def fail_at(robot, error: Exception) -> None:
+    """Print ``error`` where it is (its ``where``, else its ``element`` in ``robot``, else the
+    robot's file) and exit 1."""
+    where = getattr(error, "where", None) or robot.locate(getattr(error, "element", None))
+    typer.echo(f"{where}: error: {error}", err=True)
+    raise typer.Exit(1)
+
+
 def single_robot(command: str, words: list[str], arg_options: list[str],
                  package_options: list[str], choices: dict[str, tuple] | None = None,
                  problems=(), **load_options):
@@ -91,6 +99,15 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
         render("text", [FileResult(paths[0], error.findings)], sys.stderr)
         raise typer.Exit(1)
+
+
+def wide_console():
+    """A rich console at least 150 columns wide: tables of poses are wide; do not squeeze them."""
+    from rich.console import Console
+
+    console = Console(highlight=False)
+    console.width = max(console.width, 150)
+    return console
 
 
 def fixed(value: float, places: int = 6) -> str:

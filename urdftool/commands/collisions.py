@@ -9,7 +9,7 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, fail_usage, single_robot
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -75,8 +75,7 @@ def collisions(
     except UsageError as error:
         fail_usage(error)
     except FKError as error:
-        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
-        code = 1
+        fail_at(robot, error)
     raise typer.Exit(code)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fixed, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, fixed, single_robot, wide_console
 
 FORMATS = ("text", "json", "yaml")
 
@@ -31,8 +31,7 @@ def dh(
     try:
         table = extract(robot, base, tip, convention)
     except DHError as error:
-        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
-        raise typer.Exit(1)
+        fail_at(robot, error)
     if output_format == "json":
         import json
 
@@ -46,14 +45,12 @@ def dh(
 
 
 def _text(table) -> None:
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
     from ..kinematics.fk import pose_components
 
-    console = Console(highlight=False)
-    console.width = max(console.width, 150)  # tables of poses are wide; do not squeeze them
+    console = wide_console()
     modified = table.convention == "modified"
     grid = Table(title=f"D-H parameters ({table.convention}), {table.base_link} -> "
                        f"{table.tip_link}", title_justify="left")

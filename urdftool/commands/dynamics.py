@@ -6,7 +6,7 @@ import json
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, fail_usage, single_robot
 from ..errors import UsageError
 
 
@@ -57,8 +57,7 @@ def dynamics(
     try:
         model = build(robot)
     except DynamicsError as error:
-        typer.echo(f"{robot.display}: error: {error}", err=True)
-        raise typer.Exit(1)
+        fail_at(robot, error)
     try:
         q_values, v_values, a_values, warnings = _values(robot, q, v, a, deg)
     except UsageError as error:

@@ -6,7 +6,8 @@ import sys
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, fixed, single_robot
+from ._common import (PackageOption, XacroArgOption, fail_at, fail_usage, fixed, single_robot,
+                      wide_console)
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -64,9 +65,9 @@ def fk(
     except DHError as error:
         if error.element is None and error.where is None and dh:
             error.where = dh  # about the table, not the robot
-        _fail(robot, error)
+        fail_at(robot, error)
     except FKError as error:
-        _fail(robot, error)
+        fail_at(robot, error)
     for warning in result.warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
     _render(result, output_format, matrix, single=not (q_file or random))
@@ -93,14 +94,6 @@ def _verify(table, model, count, seed, base, frame) -> None:
                f"error {position:.3g} m, worst orientation error {rotation:.3g} rad: "
                f"{'agree' if ok else 'DISAGREE'} (tolerance {VERIFY_TOLERANCE:g})")
     raise typer.Exit(0 if ok else 1)
-
-
-def _fail(robot, error) -> None:
-    where = getattr(error, "where", None)
-    element = getattr(error, "element", None)
-    prefix = where or (str(robot.locate(element)) if element is not None else robot.locate(None))
-    typer.echo(f"{prefix}: error: {error}", err=True)
-    raise typer.Exit(1)
 
 
 def _render(result, output_format: str, matrix: bool, single: bool) -> None:
@@ -150,12 +143,10 @@ def _csv(result, positions, rpys, quaternions, matrix) -> None:
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
-    from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
-    console = Console(highlight=False)
-    console.width = max(console.width, 150)  # tables of poses are wide; do not squeeze them
+    console = wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")

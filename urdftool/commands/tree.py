@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, single_robot
+from ._common import PackageOption, XacroArgOption, fail_at, single_robot
 
 
 def register(app: typer.Typer) -> None:
@@ -22,5 +22,4 @@ def tree(
     try:
         typer.echo(format_tree(robot), nl=False)
     except TreeError as error:
-        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
-        raise typer.Exit(1)
+        fail_at(robot, error)

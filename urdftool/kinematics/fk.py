@@ -44,6 +44,11 @@ class _Joint:
     idx_q: int = -1
     unbounded: bool = False
 
+    def value(self, values: np.ndarray) -> np.ndarray:
+        """A one-variable joint's value [rad or m] in each row of ``values`` (mimics expanded)."""
+        column, multiplier, offset = self.source
+        return multiplier * values[:, column] + offset
+
     @cached_property
     def terms(self) -> tuple[np.ndarray, np.ndarray]:
         """For revolute joints (P K, P K^2) with K the axis' cross-product matrix, as 4x4 blocks;
@@ -181,8 +186,7 @@ class KinematicModel:
             # Rodrigues folded into the placement: P R(q) = P + sin q (P K) + (1 - cos q) (P K^2);
             # P Trans(q u) = P + q (P u e_w^T). Linear in (1, sin q, 1 - cos q): one BLAS product
             # of [rows, 3] coefficients with the [3, 16] stacked blocks.
-            column, multiplier, offset = joint.source
-            q = multiplier * values[:, column] + offset
+            q = joint.value(values)
             coefficients = np.empty((rows, 3))
             coefficients[:, 0] = 1.0
             if joint.kind == "prismatic":
@@ -210,8 +214,7 @@ class KinematicModel:
         for joint in self._joints[1:]:
             start = joint.idx_q
             if joint.kind in ("revolute", "prismatic"):
-                column, multiplier, offset = joint.source
-                value = multiplier * values[:, column] + offset
+                value = joint.value(values)
                 if joint.unbounded:
                     q[:, start], q[:, start + 1] = np.cos(value), np.sin(value)
                 else:
