@@ -8,8 +8,12 @@ mesh goes through the same checks before trimesh touches it:
   the robot file holding ``.git``; without one, the robot's package folder, else its folder);
   a ``package://`` path may not leave its package folder;
 - only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`);
-- the file size and the triangle count are bounded (the count is read from the header where
-  the format has one, before the mesh is built), so a crafted file cannot exhaust memory;
+- the file size and the triangle count are bounded before trimesh reads a byte (the count is
+  read from the header where the format has one, else counted over the file in chunks: an
+  OBJ face of k corners is k - 2 triangles), so a crafted file cannot exhaust memory;
+- a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
+- beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
+  limit: no textures or material files;
 - a file that does not parse is a :class:`MeshProblem`, never a traceback.
 
 Meshes are cached per robot, keyed by resolved path and scale. trimesh is imported lazily.
@@ -24,6 +28,7 @@ import os
 import re
 import struct
 import warnings
+import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -109,8 +114,98 @@ def resolve(robot, uri: str) -> Path:
     return path
 
 
+_CHUNK = 1 << 20
+# OBJ face corners are counted over bytes, so that no text decoding trimesh may choose finds
+# more: a run of printable ASCII is at most one corner, any other byte that is not ASCII
+# white space at most one more (a separator in some encoding, or a corner of its own)
+_CORNER_CLASSES = bytes.maketrans(bytes(range(256)), bytes(
+    10 if b == 10 else 32 if b in b" \t\r\x0b\x0c" else 112 if 0x21 <= b <= 0x7E else 111
+    for b in range(256)))  # newline stays, white space -> " ", printable -> "p", other -> "o"
+_FACE_LINE = re.compile(rb"^[ \t]*f([^\n]*)", re.MULTILINE)
+
+
+def _chunks(handle):
+    while chunk := handle.read(_CHUNK):
+        yield chunk
+
+
+def _logical_chunks(handle):
+    """The file in chunks with trimesh's line joining applied (``\\r\\n`` as ``\\n``, a
+    backslash before a newline joins the lines), whatever the chunk boundaries."""
+    pending = b""
+    for chunk in _chunks(handle):
+        data = (pending + chunk).replace(b"\r\n", b"\n").replace(b"\\\n", b"")
+        keep = 2 if data.endswith(b"\\\r") else 1 if data.endswith((b"\\", b"\r")) else 0
+        data, pending = data[:len(data) - keep], data[len(data) - keep:]
+        yield data
+    if pending:
+        yield pending
+
+
+def _corners(text: bytes) -> bytes:
+    """``text`` (face lines without their ``f``) with one byte per corner; lines kept."""
+    classes = text.translate(_CORNER_CLASSES)
+    while b"pp" in classes:  # each pass halves the printable runs
+        classes = classes.replace(b"pp", b"p")
+    return classes.replace(b" ", b"")
+
+
+def _fan_triangles(faces: list[bytes]) -> int:
+    """Sum of max(k - 2, 0) over faces of k corners, in C: a face of one corner or none
+    makes no triangle (and must not cancel the triangles of others)."""
+    if not faces:
+        return 0
+    corners = _corners(b"\n".join(faces))
+    marked = b"[" + corners.replace(b"\n", b"]\n[") + b"]"
+    return (len(corners) - (len(faces) - 1) - 2 * len(faces) + 2 * marked.count(b"[]")
+            + marked.count(b"[p]") + marked.count(b"[o]"))
+
+
+def _obj_triangles(handle) -> int:
+    """Triangles that trimesh would make of an OBJ's ``f`` lines, counted without building
+    them: a face with k corners is k - 2 triangles (a fan). Every line that starts with ``f``
+    counts, whatever separates its corners (spaces, tabs, anything else) and however many
+    backslash continuations join it; memory stays near one chunk, time linear in C."""
+    triangles = 0
+    face, corners, joined = None, 0, False  # the line that runs over a chunk boundary
+    for data in _logical_chunks(handle):
+        head, newline, rest = data.partition(b"\n")
+        middle, _, last = rest.rpartition(b"\n")
+        for piece, ends in ((head, bool(newline)), (last, False)):
+            if face is None and piece.lstrip(b" \t"):
+                piece = piece.lstrip(b" \t")
+                face = piece.startswith(b"f")
+                piece = piece[1:] if face else piece
+            if face and piece:  # a printable run split by the chunk boundary counts once
+                classes = piece.translate(_CORNER_CLASSES)
+                corners += len(_corners(piece)) - (joined and classes.startswith(b"p"))
+                joined = classes.endswith(b"p")
+            if ends:
+                triangles += max(corners - 2, 0)
+                face, corners, joined = None, 0, False
+                triangles += _fan_triangles(_FACE_LINE.findall(middle))
+            if not last:
+                break
+    return triangles + max(corners - 2, 0)
+
+
+def _stl_ascii_triangles(handle) -> int:
+    """Triangles of an ASCII STL as trimesh reads it: every ``vertex`` word, three a triangle."""
+    words, tail = 0, b""
+    for chunk in _chunks(handle):
+        text = tail + chunk.lower()
+        words += text.count(b"vertex")
+        tail = text[-5:]  # a word split between chunks is counted in the next one
+        words -= tail.count(b"vertex")
+    return -(-(words + tail.count(b"vertex")) // 3)
+
+
 def triangle_count(path: Path) -> int | None:
-    """The triangle count read from the header without building the mesh, or None."""
+    """The triangle count read without building the mesh, or None when unknown.
+
+    From the header where the format has one (binary STL, PLY, OFF), else counted over the
+    file in chunks (OBJ faces, ASCII STL vertices), in memory bounded by the chunk size.
+    """
     suffix = path.suffix.lower()
     try:
         with open(path, "rb") as handle:
@@ -123,7 +218,8 @@ def triangle_count(path: Path) -> int | None:
                     count = struct.unpack("<I", head[80:84])[0]
                     if 84 + 50 * count == size:  # binary STL whose header starts with "solid"
                         return count
-                return size // 120  # ASCII STL: a facet takes at least ~120 bytes
+                handle.seek(0)
+                return _stl_ascii_triangles(handle)
             if suffix == ".ply":
                 header = handle.read(4096)
                 match = re.search(rb"element\s+face\s+(\d+)", header)
@@ -135,17 +231,23 @@ def triangle_count(path: Path) -> int | None:
                     lines[0].split()[1:] if lines else []
                 return int(counts[1]) if len(counts) > 1 and counts[1].isdigit() else None
             if suffix == ".obj":
-                return sum(1 for line in handle if line.startswith(b"f "))
+                return _obj_triangles(handle)
     except (OSError, struct.error, ValueError):
         return None
     return None
 
 
 def _check_size(path: Path, uri: str, limits: MeshLimits) -> None:
+    """Every limit, checked before trimesh reads a byte: size, archive, triangles."""
     size = path.stat().st_size
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
                                        f"{limits.max_bytes}; not opened")
+    if path.suffix.lower() == ".dae" and zipfile.is_zipfile(path):
+        # pycollada inflates a zipped .dae (ZAE) whole, whatever its name says
+        raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
+                                    "document; urdftool does not inflate archives: store "
+                                    "the .dae uncompressed")
     count = triangle_count(path)
     if count is not None and count > limits.max_triangles:
         raise MeshProblem("too-large", f"mesh '{uri}' has {count} triangles, over the limit of "
@@ -167,6 +269,28 @@ def collada_unit(path: Path) -> float:
     return value if value > 0 and value == value and value != float("inf") else 1.0
 
 
+_SIDECARS = (".bin",)  # the files beside a mesh that hold geometry: glTF buffers
+
+
+def _geometry_resolver(path: Path, limits: MeshLimits):
+    """What trimesh may read beside the mesh: glTF buffers in the mesh's folder, regular
+    files under the size limit. Textures and materials are refused (urdftool reads geometry
+    only, and an image can be a decompression bomb); trimesh loads the mesh without them."""
+    from trimesh.resolvers import FilePathResolver
+
+    class GeometryResolver(FilePathResolver):
+        def get(self, name: str):
+            found = self.absolute(name)  # raises when it leaves the mesh's folder
+            if found.suffix.lower() not in _SIDECARS:
+                raise FileNotFoundError(f"{name}: not geometry, not read")
+            if not found.is_file() or found.stat().st_size > limits.max_bytes:
+                raise FileNotFoundError(f"{name}: not a regular file under the size limit")
+            with open(found, "rb") as handle:
+                return handle.read(limits.max_bytes + 1)
+
+    return GeometryResolver(str(path))
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     import trimesh
 
@@ -174,7 +298,8 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     # trimesh logs missing textures with tracebacks; a mesh's geometry is all urdftool reads
     logging.getLogger("trimesh").setLevel(logging.CRITICAL)
     try:
-        loaded = trimesh.load(str(path), force="mesh", process=True)
+        loaded = trimesh.load(str(path), force="mesh", process=True,
+                              resolver=_geometry_resolver(path, limits))
     except Exception as error:  # trimesh raises many types for a bad file
         raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {type(error).__name__}: "
                                      f"{error}") from None

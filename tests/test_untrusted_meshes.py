@@ -1,0 +1,167 @@
+"""Meshes written to exhaust memory: every limit holds before trimesh reads the file.
+
+Each bomb is made here, in tmp_path: a zipped COLLADA (ZAE) that inflates to hundreds of
+megabytes, an OBJ face with millions of corners, faces separated by tabs. Each must end in a
+located finding, with the peak memory of the process that met it bounded.
+"""
+
+from __future__ import annotations
+
+import io
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from urdftool import meshes
+from urdftool.meshes import triangle_count
+
+ROOT = Path(__file__).resolve().parent.parent
+# A process that imports trimesh and refuses a mesh peaks near 150 MB; the bombs below took
+# 450 MB (OBJ n-gon) and over 600 MB (ZAE) before their limits were checked ahead of loading.
+PEAK_LIMIT_MB = 300
+# Measures the peak memory of loading one mesh in a fresh process: (outcome, peak in MB).
+_MEASURE = """
+import resource, sys
+from urdftool.loader import load
+from urdftool.meshes import MeshProblem, load_mesh
+try:
+    outcome = "loaded %d" % len(load_mesh(load(sys.argv[1]), sys.argv[2]).faces)
+except MeshProblem as problem:
+    outcome = problem.kind
+try:  # the high-water mark of this process image: ru_maxrss would count the forked parent's
+    with open("/proc/self/status") as status:
+        peak = next(int(line.split()[1]) for line in status if line.startswith("VmHWM:"))
+except OSError:
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(outcome, peak // 1024)
+"""
+
+
+def _robot(folder: Path, mesh: str) -> Path:
+    (folder / ".git").mkdir(exist_ok=True)
+    path = folder / "r.urdf"
+    path.write_text('<robot name="r">\n  <link name="a">\n    <collision><geometry>\n'
+                    f'      <mesh filename="{mesh}"/>\n'
+                    '    </geometry></collision>\n  </link>\n</robot>\n')
+    return path
+
+
+def _peak(robot: Path, mesh: str) -> tuple[str, int]:
+    done = subprocess.run([sys.executable, "-c", _MEASURE, str(robot), mesh], cwd=ROOT,
+                          capture_output=True, text=True, timeout=300,
+                          env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert done.returncode == 0, done.stderr[-2000:]
+    outcome, peak = done.stdout.split()[-2:]
+    return outcome, int(peak)
+
+
+def _zae_bomb(path: Path, megabytes: int) -> None:
+    """A .dae that is a zip holding a COLLADA document of ``megabytes`` MiB (zeros after the
+    root tag): a few hundred kilobytes on disk."""
+    block = bytes(1 << 20)
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as archive:
+        with archive.open("model.dae", "w", force_zip64=True) as member:
+            member.write(b"<COLLADA>")
+            for _ in range(megabytes):
+                member.write(block)
+
+
+def _ngon(corners: int, separator: bytes = b" ") -> bytes:
+    """Three vertices and one face of ``corners`` corners (a fan of corners - 2 triangles)."""
+    indices = (separator.join((b"1", b"2", b"3", b"")) * (corners // 3 + 1))[:2 * corners - 1]
+    return b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf" + separator + indices + b"\n"
+
+
+def test_zipped_collada_is_refused_before_inflating(tmp_path, run_cli, monkeypatch):
+    _zae_bomb(tmp_path / "bomb.dae", 256)
+    robot = _robot(tmp_path, "bomb.dae")
+    inflated = []
+    monkeypatch.setattr(zipfile.ZipFile, "open", lambda *a, **k: inflated.append(a) or 1 / 0)
+    result = run_cli("check", robot, "--jobs", "1", "--timeout", "0")  # in this process
+    assert "r.urdf:4: warning U410" in result.output and "zip archive (ZAE)" in result.output
+    assert result.exit_code == 0 and not inflated
+
+
+def test_zipped_collada_bomb_stays_bounded(tmp_path):
+    _zae_bomb(tmp_path / "bomb.dae", 256)
+    outcome, peak = _peak(_robot(tmp_path, "bomb.dae"), "bomb.dae")
+    assert outcome == "format" and peak < PEAK_LIMIT_MB
+
+
+def test_collada_that_ends_like_a_zip_is_refused_too(tmp_path):
+    """pycollada treats any file zipfile can open as a ZAE, wherever the zip starts."""
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w") as archive:
+        archive.writestr("model.dae", "<COLLADA/>")
+    (tmp_path / "m.dae").write_bytes(b'<?xml version="1.0"?>\n<COLLADA/>\n' + buffer.getvalue())
+    outcome, _ = _peak(_robot(tmp_path, "m.dae"), "m.dae")
+    assert outcome == "format"
+
+
+def test_obj_ngon_counts_its_corners_before_loading(tmp_path, run_cli):
+    (tmp_path / "ngon.obj").write_bytes(_ngon(3_000_000))
+    robot = _robot(tmp_path, "ngon.obj")
+    assert triangle_count(tmp_path / "ngon.obj") == 1 + 2_999_998
+    outcome, peak = _peak(robot, "ngon.obj")
+    assert outcome == "too-large" and peak < PEAK_LIMIT_MB
+    result = run_cli("check", robot, "--jobs", "1")
+    assert "r.urdf:4: warning U411" in result.output
+    assert "2999999 triangles, over the limit of 2000000" in result.output
+
+
+def test_obj_ngon_separated_by_tabs_is_counted(tmp_path, run_cli):
+    (tmp_path / "tabs.obj").write_bytes(_ngon(3_000_000, b"\t"))
+    robot = _robot(tmp_path, "tabs.obj")
+    outcome, peak = _peak(robot, "tabs.obj")
+    assert outcome == "too-large" and peak < PEAK_LIMIT_MB
+    assert "r.urdf:4: warning U411" in run_cli("check", robot, "--jobs", "1").output
+
+
+@pytest.mark.parametrize(("text", "triangles"), [
+    (b"v 0 0 0\nf 1 2 3\nf 1 2 3 4\nf 1 2 3 4 5\n", 1 + 2 + 3),
+    (b"f\t1\t2\t3\nf\t1\t2\t3\t4\n", 1 + 2),
+    (b"f 1/1/1 2/2/2 3/3/3\r\nf 1//1 2//2 3//3 4//4\r\n", 1 + 2),
+    (b"f 1 2 \\\n3 4 5\n", 3),  # a backslash joins the next line to the face
+    (b"  f 1 2 3\nvf 1 2 3\n# f 1 2 3 4\n", 1),
+    ("f 1\u30002\u30003\u30004\n".encode(), 2),  # ideographic spaces separate corners
+    (b"f\nf 1\nf 1 2 3\n", 1),  # degenerate faces do not cancel triangles of others
+    (b"f 1 2 3", 1),  # no final newline
+])
+@pytest.mark.parametrize("chunk", [1, 3, 1 << 20])
+def test_obj_triangles_counted_as_trimesh_fans_them(tmp_path, monkeypatch, text, triangles,
+                                                   chunk):
+    monkeypatch.setattr(meshes, "_CHUNK", chunk)  # corners split between chunks count once
+    (tmp_path / "m.obj").write_bytes(text)
+    assert triangle_count(tmp_path / "m.obj") >= triangles
+    if text.isascii():  # each other byte may be a corner of its own: an upper bound
+        assert triangle_count(tmp_path / "m.obj") <= triangles + 1
+
+
+def test_ascii_stl_counts_its_vertices(tmp_path):
+    """trimesh reads every ``vertex`` word of an ASCII STL, however short the facets."""
+    (tmp_path / "m.stl").write_bytes(b"solid x\n" + b"vertex 0 0 0\n" * 3_000_000
+                                     + b"endsolid x\n")
+    assert triangle_count(tmp_path / "m.stl") == 1_000_000
+
+
+def test_textures_and_files_beside_a_mesh_are_not_read(tmp_path, monkeypatch):
+    """Only glTF buffers beside the mesh are read; an OBJ's material and its image are not."""
+    import builtins
+
+    from urdftool.loader import load
+    from urdftool.meshes import load_mesh
+
+    (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                    "usemtl skin\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+    (tmp_path / "m.mtl").write_text("newmtl skin\nmap_Kd skin.png\n")
+    (tmp_path / "skin.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+    robot = load(_robot(tmp_path, "m.obj"))
+    opened = []
+    real_open = builtins.open
+    monkeypatch.setattr(builtins, "open",
+                        lambda file, *a, **k: opened.append(str(file)) or real_open(file, *a, **k))
+    assert len(load_mesh(robot, "m.obj").faces) == 4
+    assert not [name for name in opened if name.endswith((".mtl", ".png"))]
