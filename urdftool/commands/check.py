@@ -73,8 +73,10 @@ def check(
     except UsageError as error:
         fail_usage(error)
     if verbose:
+        from ..report import printable  # a file name can hold a line break
+
         for path, reason in skipped.items():
-            typer.echo(f"skipped {path}: {reason}", err=True)
+            typer.echo(printable(f"skipped {path}: {reason}"), err=True)
     # --select replaces the settings' select; --ignore adds to their ignore.
     base_selection = Selection(tuple(_codes(select or config.select)),
                                tuple(_codes([*config.ignore, *ignore])))
@@ -158,7 +160,9 @@ def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
             targets, reason = explicit_targets(Path(path), includers[root], root)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
-                typer.echo(f"urdftool: {path}: {reason}", err=True)
+                from ..report import printable
+
+                typer.echo(printable(f"urdftool: {path}: {reason}"), err=True)
             continue
         found = robot_files(Path(path))
         top, skipped_here = split_top_level(found, resolver_for)
