@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 import sys
 from pathlib import Path
 
@@ -34,8 +35,12 @@ def check(
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
     verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
-    no_env: bool = typer.Option(False, "--no-env",
-                                help="Make $(env)/$(optenv) errors (for untrusted input)."),
+    allow_env: bool = typer.Option(
+        None, "--allow-env/--no-env", show_default=False,
+        help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
+             "xacro reads no file outside the repository and its packages. --allow-env: "
+             "both allowed. [default: --no-env when CI is set, as CI services do; else "
+             "--allow-env]"),
     max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
                                       help="Refuse input files larger than this [default: 16 MiB]."),
     controllers: list[Path] = typer.Option([], "--controllers", metavar="FILE",
@@ -82,7 +87,7 @@ def check(
                                tuple(_codes([*config.ignore, *ignore])))
     options = CheckOptions(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
-        allow_env=not no_env,
+        allow_env=env_allowed(allow_env),
         max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
         extras=extras,
     )
@@ -104,6 +109,19 @@ def check(
     summary = Summary.of(results)
     failed = summary.errors or ((strict or config.strict) and summary.warnings)
     raise typer.Exit(1 if failed else 0)
+
+
+def env_allowed(flag: bool | None) -> bool:
+    """``--allow-env``/``--no-env`` as given; unset, the safe mode when ``CI`` is set.
+
+    A CI job on a pull request checks files a stranger wrote, and its environment holds
+    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
+    them in the job's public log. GitHub Actions, GitLab CI and most other services set
+    ``CI=true``; on a developer's machine the files are their own.
+    """
+    if flag is not None:
+        return flag
+    return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
 
 
 def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None) -> dict:
