@@ -165,3 +165,52 @@ def test_textures_and_files_beside_a_mesh_are_not_read(tmp_path, monkeypatch):
                         lambda file, *a, **k: opened.append(str(file)) or real_open(file, *a, **k))
     assert len(load_mesh(robot, "m.obj").faces) == 4
     assert not [name for name in opened if name.endswith((".mtl", ".png"))]
+
+
+def _collada(nodes: str, library: str = "") -> str:
+    """A COLLADA document holding one 320-triangle sphere as geometry ``g``, with ``nodes`` in
+    its visual scene and ``library`` as its library_nodes."""
+    import re
+
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    text = trimesh.creation.icosphere(subdivisions=2).export(file_type="dae").decode()
+    geometry_id = re.search(r'<geometry[^>]*\bid="([^"]+)"', text).group(1)
+    text = re.sub(r"<visual_scene([^>]*)>.*</visual_scene>",
+                  lambda m: f"<visual_scene{m.group(1)}>{nodes}</visual_scene>", text, flags=re.S)
+    text = text.replace("<library_visual_scenes>",
+                        f"<library_nodes>{library}</library_nodes><library_visual_scenes>")
+    return text.replace('url="#g"', f'url="#{geometry_id}"')
+
+
+INSTANCE = '<instance_geometry url="#g"/>'
+
+
+def test_collada_instancing_one_mesh_many_times_is_counted_before_loading(tmp_path):
+    nodes = "".join(f'<node id="n{i}">{INSTANCE}</node>' for i in range(10_000))
+    (tmp_path / "many.dae").write_text(_collada(nodes))
+    assert triangle_count(tmp_path / "many.dae") == 320 * 10_000
+    outcome, peak = _peak(_robot(tmp_path, "many.dae"), "many.dae")
+    assert outcome == "too-large" and peak < PEAK_LIMIT_MB
+
+
+def test_collada_nested_instance_nodes_are_multiplied(tmp_path):
+    """Library nodes that each instance the one before ten times: 10**6 spheres from 1 KB."""
+    library = f'<node id="l0">{INSTANCE}</node>' + "".join(
+        f'<node id="l{level}">' + f'<instance_node url="#l{level - 1}"/>' * 10 + "</node>"
+        for level in range(1, 7))
+    (tmp_path / "nested.dae").write_text(_collada('<node id="top"><instance_node url="#l6"/>'
+                                                  "</node>", library))
+    assert triangle_count(tmp_path / "nested.dae") == 320 * 10 ** 6
+    cycle = '<node id="a"><instance_node url="#b"/></node><node id="b"><instance_node url="#a"/></node>'
+    (tmp_path / "cycle.dae").write_text(_collada('<node id="top"><instance_node url="#a"/></node>',
+                                                 cycle))
+    assert triangle_count(tmp_path / "cycle.dae") > meshes.MAX_TRIANGLES
+
+
+def test_collada_count_matches_trimesh_on_a_plain_mesh(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    (tmp_path / "m.dae").write_bytes(sphere.export(file_type="dae"))
+    assert triangle_count(tmp_path / "m.dae") == len(sphere.faces) == 1280

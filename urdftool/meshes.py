@@ -10,7 +10,8 @@ mesh goes through the same checks before trimesh touches it:
 - only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`);
 - the file size and the triangle count are bounded before trimesh reads a byte (the count is
   read from the header where the format has one, else counted over the file in chunks: an
-  OBJ face of k corners is k - 2 triangles), so a crafted file cannot exhaust memory;
+  OBJ face of k corners is k - 2 triangles; a COLLADA geometry counts once per instance in
+  its scenes), so a crafted file cannot exhaust memory;
 - a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
 - beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
   limit: no textures or material files;
@@ -200,6 +201,93 @@ def _stl_ascii_triangles(handle) -> int:
     return -(-(words + tail.count(b"vertex")) // 3)
 
 
+_COLLADA_PRIMITIVES = ("triangles", "polylist", "polygons", "trifans", "tristrips")
+_COLLADA_DEPTH = 200  # node nesting followed; deeper is refused as if over the limit
+
+
+def _numbers(text: str | None) -> int:
+    """How many numbers a COLLADA list holds, counted without splitting it."""
+    return len(_corners(text.encode("utf-8", "replace")).replace(b"\n", b"")) if text else 0
+
+
+def _tag(element) -> str:
+    """An element's tag without its namespace; "" for comments and processing instructions."""
+    return element.tag.rpartition("}")[2] if isinstance(element.tag, str) else ""
+
+
+def _primitive_triangles(primitive) -> int:
+    """Triangles pycollada and trimesh make of one ``<triangles>``/``<polylist>``/... element:
+    every ``<p>`` holds one index per input offset per corner; a polygon of k corners is k - 2."""
+    offsets = [int(c.get("offset", "0")) for c in primitive
+               if _tag(c) == "input" and c.get("offset", "0").isdigit()]
+    stride = max(offsets, default=0) + 1
+    corners = [_numbers(c.text) // stride for c in primitive if _tag(c) == "p"]
+    kind = _tag(primitive)
+    if kind == "triangles":
+        return sum(corners) // 3
+    if kind == "polylist":
+        polygons = sum(_numbers(c.text) for c in primitive if _tag(c) == "vcount")
+        return max(sum(corners) - 2 * polygons, 0)
+    return sum(max(k - 2, 0) for k in corners)
+
+
+def _collada_triangles(path: Path) -> int | None:
+    """Triangles of a COLLADA file as trimesh builds them: each geometry's triangles times
+    the times the scenes instance it (through nested nodes, ``<instance_node>`` and skin
+    controllers), so that a small file naming one mesh a million times is counted before
+    it is built. None when the file does not parse (trimesh then says why)."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=True)
+    try:
+        root = etree.parse(str(path), parser).getroot()
+    except (etree.LxmlError, OSError, ValueError):
+        return None
+    ids = {element.get("id"): element for element in root.iter() if element.get("id")}
+    geometry_triangles = {}
+
+    def geometry(url: str | None) -> int:
+        element = ids.get((url or "").lstrip("#"))
+        if element is None:
+            return 0
+        kind = _tag(element)
+        if kind == "controller":  # a skin or morph deforms a geometry named by its source
+            sources = [c.get("source") for c in element.iter("{*}skin", "{*}morph")]
+            return sum(geometry(source) for source in sources if source != url)
+        if kind != "geometry":
+            return 0
+        if element not in geometry_triangles:
+            geometry_triangles[element] = sum(
+                _primitive_triangles(p) for p in element.iter(
+                    *(f"{{*}}{name}" for name in _COLLADA_PRIMITIVES)))
+        return geometry_triangles[element]
+
+    node_triangles = {}
+
+    def node(element, depth: int) -> int:
+        if depth > _COLLADA_DEPTH:
+            return MAX_MESH_BYTES  # over any sensible limit
+        if element not in node_triangles:
+            node_triangles[element] = None  # a cycle counts as over the limit
+            total = 0
+            for child in element:
+                kind = _tag(child)
+                if kind in ("instance_geometry", "instance_controller"):
+                    total += geometry(child.get("url"))
+                elif kind == "node":
+                    total += node(child, depth + 1)
+                elif kind == "instance_node":
+                    target = ids.get((child.get("url") or "").lstrip("#"))
+                    total += node(target, depth + 1) if target is not None else 0
+            node_triangles[element] = total
+        found = node_triangles[element]
+        return MAX_MESH_BYTES if found is None else found
+
+    return sum(node(top, 0) for scene in root.iter("{*}visual_scene")
+               for top in scene if _tag(top) == "node")
+
+
 def triangle_count(path: Path) -> int | None:
     """The triangle count read without building the mesh, or None when unknown.
 
@@ -207,6 +295,8 @@ def triangle_count(path: Path) -> int | None:
     file in chunks (OBJ faces, ASCII STL vertices), in memory bounded by the chunk size.
     """
     suffix = path.suffix.lower()
+    if suffix == ".dae":
+        return _collada_triangles(path)
     try:
         with open(path, "rb") as handle:
             if suffix == ".stl":
