@@ -214,3 +214,42 @@ def test_collada_count_matches_trimesh_on_a_plain_mesh(tmp_path):
     sphere = trimesh.creation.icosphere(subdivisions=3)
     (tmp_path / "m.dae").write_bytes(sphere.export(file_type="dae"))
     assert triangle_count(tmp_path / "m.dae") == len(sphere.faces) == 1280
+
+
+def _glb_with_nodes(path: Path, extra_nodes: int) -> None:
+    """A GLB of one 320-triangle sphere that ``extra_nodes`` more nodes name again."""
+    import json
+    import struct
+
+    trimesh = pytest.importorskip("trimesh")
+    glb = trimesh.Scene(trimesh.creation.icosphere(subdivisions=2)).export(file_type="glb")
+    length = struct.unpack("<I", glb[12:16])[0]
+    header, binary = json.loads(glb[20:20 + length]), glb[20 + length:]
+    header["nodes"] += [{"mesh": 0} for _ in range(extra_nodes)]
+    header["scenes"][0]["nodes"] = list(range(len(header["nodes"])))
+    text = json.dumps(header).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<I", len(text)) + b"JSON" + text + binary
+    path.write_bytes(b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body)
+
+
+def test_gltf_nodes_naming_one_mesh_are_counted_before_loading(tmp_path):
+    _glb_with_nodes(tmp_path / "many.glb", 10_000)  # 200 KB
+    assert triangle_count(tmp_path / "many.glb") == 320 * 10_001
+    outcome, peak = _peak(_robot(tmp_path, "many.glb"), "many.glb")
+    assert outcome == "too-large" and peak < PEAK_LIMIT_MB
+
+
+def test_gltf_count_matches_trimesh_and_its_buffer_is_read(tmp_path):
+    """A .gltf's geometry is in a .bin beside it: the one file trimesh may read there."""
+    trimesh = pytest.importorskip("trimesh")
+    from urdftool.loader import load
+    from urdftool.meshes import load_mesh
+
+    files = trimesh.Scene(trimesh.creation.icosphere(subdivisions=3)).export(file_type="gltf")
+    for name, data in files.items():
+        (tmp_path / name).write_bytes(data)
+    _glb_with_nodes(tmp_path / "one.glb", 0)
+    gltf = next(name for name in files if name.endswith(".gltf"))
+    assert triangle_count(tmp_path / gltf) == 1280 and triangle_count(tmp_path / "one.glb") == 320
+    assert len(load_mesh(load(_robot(tmp_path, gltf)), gltf).faces) == 1280

@@ -10,8 +10,8 @@ mesh goes through the same checks before trimesh touches it:
 - only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`);
 - the file size and the triangle count are bounded before trimesh reads a byte (the count is
   read from the header where the format has one, else counted over the file in chunks: an
-  OBJ face of k corners is k - 2 triangles; a COLLADA geometry counts once per instance in
-  its scenes), so a crafted file cannot exhaust memory;
+  OBJ face of k corners is k - 2 triangles; a COLLADA or glTF mesh counts once per instance
+  in its scene), so a crafted file cannot exhaust memory;
 - a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
 - beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
   limit: no textures or material files;
@@ -288,6 +288,71 @@ def _collada_triangles(path: Path) -> int | None:
                for top in scene if _tag(top) == "node")
 
 
+def _gltf_header(path: Path) -> dict | None:
+    """The JSON of a ``.gltf``, or of a ``.glb``'s first chunk; None when there is none."""
+    import json
+
+    with open(path, "rb") as handle:
+        if path.suffix.lower() == ".glb":
+            head = handle.read(20)
+            if len(head) < 20 or head[:4] != b"glTF" or head[16:20] != b"JSON":
+                return None
+            data = handle.read(struct.unpack("<I", head[12:16])[0])
+        else:
+            data = handle.read()
+    try:
+        header = json.loads(data)
+    except (ValueError, RecursionError):
+        return None
+    return header if isinstance(header, dict) else None
+
+
+def _gltf_triangles(path: Path) -> int | None:
+    """Triangles of a glTF scene as trimesh builds it: every node the scene reaches adds its
+    mesh's triangles (accessor counts), so a file naming one mesh from a million nodes is
+    counted before it is built."""
+    header = _gltf_header(path)
+    if header is None:
+        return None
+
+    def listed(value) -> list:
+        return value if isinstance(value, list) else []
+
+    def entry(items, index) -> dict:
+        ok = isinstance(index, int) and 0 <= index < len(listed(items))
+        return items[index] if ok and isinstance(items[index], dict) else {}
+
+    def count(index) -> int:
+        value = entry(header.get("accessors"), index).get("count")
+        return value if isinstance(value, int) and value > 0 else 0
+
+    def mesh_triangles(mesh: dict) -> int:
+        total = 0
+        for primitive in listed(mesh.get("primitives")):
+            if not isinstance(primitive, dict):
+                continue
+            mode = primitive.get("mode", 4)
+            attributes = primitive.get("attributes")
+            corners = count(primitive["indices"]) if "indices" in primitive else \
+                count(attributes.get("POSITION")) if isinstance(attributes, dict) else 0
+            total += corners // 3 if mode == 4 else max(corners - 2, 0) if mode == 5 else 0
+        return total
+
+    nodes = listed(header.get("nodes"))
+    scene = entry(header.get("scenes"), header.get("scene", 0))
+    seen, queue, total = set(), list(listed(scene.get("nodes"))), 0
+    while queue:
+        index = queue.pop()
+        if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
+            continue
+        seen.add(index)
+        node = entry(nodes, index)
+        if "mesh" in node:
+            total += mesh_triangles(entry(header.get("meshes"), node["mesh"]))
+        queue.extend(listed(node.get("children")))
+    return total
+
+
 def triangle_count(path: Path) -> int | None:
     """The triangle count read without building the mesh, or None when unknown.
 
@@ -297,6 +362,11 @@ def triangle_count(path: Path) -> int | None:
     suffix = path.suffix.lower()
     if suffix == ".dae":
         return _collada_triangles(path)
+    if suffix in (".gltf", ".glb"):
+        try:
+            return _gltf_triangles(path)
+        except (OSError, struct.error):
+            return None
     try:
         with open(path, "rb") as handle:
             if suffix == ".stl":
