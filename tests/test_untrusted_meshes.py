@@ -253,3 +253,44 @@ def test_gltf_count_matches_trimesh_and_its_buffer_is_read(tmp_path):
     gltf = next(name for name in files if name.endswith(".gltf"))
     assert triangle_count(tmp_path / gltf) == 1280 and triangle_count(tmp_path / "one.glb") == 320
     assert len(load_mesh(load(_robot(tmp_path, gltf)), gltf).faces) == 1280
+
+
+PLY_HEAD = ("ply\nformat {form} 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face {faces}\nproperty list {count} int vertex_indices\n"
+            "end_header\n")
+
+
+def _ply_ngon(path: Path, corners: int, form: str) -> None:
+    """Three vertices and one face of ``corners`` corners, binary or ASCII."""
+    import struct
+
+    head = PLY_HEAD.format(form=form, faces=1, count="int" if form != "ascii" else "uchar")
+    if form == "ascii":
+        body = b"0 0 0\n1 0 0\n0 1 0\n%d " % corners + b"0 1 2 " * (corners // 3) + b"\n"
+    else:
+        body = (struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<i", corners)
+                + struct.pack("<3i", 0, 1, 2) * (corners // 3))
+    path.write_bytes(head.encode() + body)
+
+
+@pytest.mark.parametrize("form", ["binary_little_endian", "ascii"])
+def test_ply_ngon_counts_its_corners_before_loading(tmp_path, form):
+    _ply_ngon(tmp_path / "ngon.ply", 3_000_000, form)
+    assert triangle_count(tmp_path / "ngon.ply") == 2_999_998
+    outcome, peak = _peak(_robot(tmp_path, "ngon.ply"), "ngon.ply")
+    assert outcome == "too-large" and peak < PEAK_LIMIT_MB
+
+
+@pytest.mark.parametrize("encoding", ["binary", "ascii"])
+def test_ply_count_matches_trimesh(tmp_path, encoding):
+    trimesh = pytest.importorskip("trimesh")
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    (tmp_path / "m.ply").write_bytes(sphere.export(file_type="ply", encoding=encoding))
+    assert triangle_count(tmp_path / "m.ply") == len(sphere.faces) == 1280
+
+
+def test_ply_header_claiming_a_trillion_faces_is_read_quickly(tmp_path):
+    path = tmp_path / "m.ply"
+    path.write_bytes(PLY_HEAD.format(form="binary_little_endian", faces=10 ** 12,
+                                     count="uchar").encode() + bytes(36) + b"\x03" + bytes(12))
+    assert triangle_count(path) is None  # the faces run out: trimesh reports the file

@@ -10,7 +10,7 @@ mesh goes through the same checks before trimesh touches it:
 - only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`);
 - the file size and the triangle count are bounded before trimesh reads a byte (the count is
   read from the header where the format has one, else counted over the file in chunks: an
-  OBJ face of k corners is k - 2 triangles; a COLLADA or glTF mesh counts once per instance
+  OBJ or PLY face of k corners is k - 2 triangles; a COLLADA or glTF mesh counts once per instance
   in its scene), so a crafted file cannot exhaust memory;
 - a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
 - beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
@@ -353,6 +353,86 @@ def _gltf_triangles(path: Path) -> int | None:
     return total
 
 
+_PLY_SIZES = {"char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2,
+              "ushort": 2, "uint16": 2, "int": 4, "int32": 4, "uint": 4, "uint32": 4,
+              "float": 4, "float32": 4, "double": 8, "float64": 8}
+_PLY_COUNTS = {1: "B", 2: "H", 4: "I", 8: "Q"}
+
+
+def _ply_header(handle) -> tuple[str, list, int] | None:
+    """(format, [(element, count, properties)], header size) of a PLY file; a property is a
+    size, or (count size, item size) for a list."""
+    header = handle.read(65536)
+    end = header.find(b"end_header")
+    if not header.startswith(b"ply") or end < 0:
+        return None
+    size = header.find(b"\n", end) + 1 or len(header)
+    form, elements = "", []
+    for line in header[:end].decode("ascii", "replace").splitlines():
+        words = line.split()
+        if words[:1] == ["format"] and len(words) > 1:
+            form = words[1]
+        elif words[:1] == ["element"] and len(words) == 3 and words[2].isdigit():
+            elements.append((words[1], int(words[2]), []))
+        elif words[:1] == ["property"] and elements and len(words) >= 3:
+            sizes = [_PLY_SIZES.get(word) for word in words[2:4]]
+            elements[-1][2].append(tuple(sizes) if words[1] == "list" else _PLY_SIZES.get(words[1]))
+    return form, elements, size
+
+
+def _tokens(handle) -> int:
+    """How many white-space separated words the rest of a file holds, in chunks."""
+    total, joined = 0, False
+    for chunk in _chunks(handle):
+        classes = chunk.translate(_CORNER_CLASSES)
+        total += len(_corners(chunk).replace(b"\n", b"")) - (joined and classes.startswith(b"p"))
+        joined = classes.endswith(b"p")
+    return total
+
+
+def _ply_triangles(handle) -> int | None:
+    """Triangles trimesh makes of a PLY's faces: a face of k corners is k - 2 (a fan), so a
+    face list of millions of corners counts as what it is. Binary: each face's corner count
+    is read; ASCII: every number after the vertices is taken for a corner (an upper bound,
+    exact for faces that hold only their corner list)."""
+    parsed = _ply_header(handle)
+    if parsed is None:
+        return None
+    form, elements, start = parsed
+    names = [name for name, _, _ in elements]
+    if "face" not in names:
+        return 0
+    before, (_, faces, properties) = elements[:names.index("face")], elements[names.index("face")]
+    sizes = [size for _, _, props in elements[:names.index("face") + 1] for prop in props
+             for size in (prop if isinstance(prop, tuple) else (prop,))]
+    if None in sizes or not properties:
+        return None  # an unknown type or a face of nothing: trimesh refuses it too
+    handle.seek(start)
+    if form == "ascii":
+        words = sum(count * len(props) for _, count, props in before)  # lists: a lower bound
+        return max(_tokens(handle) - words - 3 * faces, 0)
+    if any(isinstance(prop, tuple) for _, _, props in before for prop in props):
+        return None  # lists before the faces: where faces start is unknown; trimesh says
+    handle.seek(start + sum(count * sum(props) for _, count, props in before))
+    data = handle.read()
+    if properties == [(properties[0][0], properties[0][1])] and \
+            len(data) == faces * (properties[0][0] + 3 * properties[0][1]):
+        return faces  # triangles only, nothing after them: the common case, without a walk
+    order = "<" if form == "binary_little_endian" else ">"
+    offset = total = 0
+    for _ in range(faces):  # every face takes at least one byte: bounded by the file
+        corners = None
+        for prop in properties:
+            if isinstance(prop, tuple):
+                (count,) = struct.unpack_from(order + _PLY_COUNTS[prop[0]], data, offset)
+                offset += prop[0] + count * prop[1]
+                corners = count if corners is None else corners
+            else:
+                offset += prop
+        total += max((corners or 0) - 2, 0)
+    return total
+
+
 def triangle_count(path: Path) -> int | None:
     """The triangle count read without building the mesh, or None when unknown.
 
@@ -381,9 +461,7 @@ def triangle_count(path: Path) -> int | None:
                 handle.seek(0)
                 return _stl_ascii_triangles(handle)
             if suffix == ".ply":
-                header = handle.read(4096)
-                match = re.search(rb"element\s+face\s+(\d+)", header)
-                return int(match.group(1)) if match else None
+                return _ply_triangles(handle)
             if suffix == ".off":
                 lines = [line for line in handle.read(4096).splitlines()
                          if line.strip() and not line.strip().startswith(b"#")]
