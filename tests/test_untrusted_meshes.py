@@ -294,3 +294,13 @@ def test_ply_header_claiming_a_trillion_faces_is_read_quickly(tmp_path):
     path.write_bytes(PLY_HEAD.format(form="binary_little_endian", faces=10 ** 12,
                                      count="uchar").encode() + bytes(36) + b"\x03" + bytes(12))
     assert triangle_count(path) is None  # the faces run out: trimesh reports the file
+
+
+def test_off_ngon_counts_its_corners(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    (tmp_path / "m.off").write_text(sphere.export(file_type="off"))
+    assert triangle_count(tmp_path / "m.off") == len(sphere.faces) == 1280
+    (tmp_path / "ngon.off").write_bytes(b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3000000 "
+                                        + b"0 1 2 " * 1_000_000 + b"\n")
+    assert triangle_count(tmp_path / "ngon.off") == 2_999_998

@@ -467,7 +467,12 @@ def triangle_count(path: Path) -> int | None:
                          if line.strip() and not line.strip().startswith(b"#")]
                 counts = lines[1].split() if len(lines) > 1 and lines[0].strip() == b"OFF" else \
                     lines[0].split()[1:] if lines else []
-                return int(counts[1]) if len(counts) > 1 and counts[1].isdigit() else None
+                if len(counts) < 2 or not (counts[0].isdigit() and counts[1].isdigit()):
+                    return None
+                # every number after the vertices is a corner (k - 2 triangles per face of k):
+                # OFF, the three counts, three coordinates a vertex, a count a face
+                handle.seek(0)
+                return max(_tokens(handle) - 4 - 3 * int(counts[0]) - 3 * int(counts[1]), 0)
             if suffix == ".obj":
                 return _obj_triangles(handle)
     except (OSError, struct.error, ValueError):
