@@ -284,8 +284,12 @@ def _collada_triangles(path: Path) -> int | None:
         found = node_triangles[element]
         return MAX_MESH_BYTES if found is None else found
 
-    return sum(node(top, 0) for scene in root.iter("{*}visual_scene")
-               for top in scene if _tag(top) == "node")
+    try:
+        return sum(node(top, 0) for scene in root.iter("{*}visual_scene")
+                   for top in scene if _tag(top) == "node")
+    finally:  # node() and geometry() refer to themselves: free the tree before trimesh reads
+        for table in (ids, geometry_triangles, node_triangles):
+            table.clear()
 
 
 def _gltf_header(path: Path) -> dict | None:
