@@ -202,7 +202,8 @@ def test_collada_nested_instance_nodes_are_multiplied(tmp_path):
     (tmp_path / "nested.dae").write_text(_collada('<node id="top"><instance_node url="#l6"/>'
                                                   "</node>", library))
     assert triangle_count(tmp_path / "nested.dae") == 320 * 10 ** 6
-    cycle = '<node id="a"><instance_node url="#b"/></node><node id="b"><instance_node url="#a"/></node>'
+    cycle = ('<node id="a"><instance_node url="#b"/></node>'
+             '<node id="b"><instance_node url="#a"/></node>')
     (tmp_path / "cycle.dae").write_text(_collada('<node id="top"><instance_node url="#a"/></node>',
                                                  cycle))
     assert triangle_count(tmp_path / "cycle.dae") > meshes.MAX_TRIANGLES
