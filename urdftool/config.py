@@ -3,7 +3,8 @@ the input.
 
 Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
 glob -> list), ``packages`` (a table of package name -> folder, relative to the settings file),
-``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``.
+``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
+``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``).
 Command-line options win over the file.
 """
 
@@ -17,7 +18,7 @@ from pathlib import Path
 from .errors import UsageError
 
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
-        "strict", "max-file-size"}
+        "strict", "max-file-size", "max-memory"}
 
 
 @dataclass
@@ -30,6 +31,7 @@ class Config:
     companions: dict[str, Path] = field(default_factory=dict)
     strict: bool = False
     max_file_size: int | None = None
+    max_memory: str | None = None  # as --max-memory takes it
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -91,7 +93,20 @@ def _parse(path: Path, table: dict) -> Config:
                                             (listed if isinstance(listed, list) else [listed])]
     config.strict = bool(table.get("strict", False))
     config.max_file_size = table.get("max-file-size")
+    if "max-memory" in table:
+        config.max_memory = _memory(path, table["max-memory"])
     return config
+
+
+def _memory(path: Path, value) -> str:
+    from .budget import parse_memory
+
+    try:
+        parse_memory(str(value))
+    except UsageError:
+        raise UsageError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
+                         f"(no limit), not {value!r}") from None
+    return str(value)
 
 
 def _strings(path: Path, table: dict, key: str) -> list[str]:

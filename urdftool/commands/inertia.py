@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, budgeted, fail_usage, single_robot
 from ..errors import UsageError
 
 
@@ -16,7 +16,7 @@ FORMATS = ("text", "json")
 
 def register(app: typer.Typer) -> None:
     app.command("inertia", help="Compare each link's inertial with its geometry's; fix them.")(
-        inertia)
+        budgeted(inertia))
 
 
 def inertia(

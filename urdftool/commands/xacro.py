@@ -6,12 +6,12 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, single_robot
+from ._common import PackageOption, XacroArgOption, budgeted, single_robot
 
 
 def register(app: typer.Typer) -> None:
     app.command("xacro", help="Expand a xacro file to URDF; $(find) and package:// resolve "
-                              "without ROS.")(xacro)
+                              "without ROS.")(budgeted(xacro))
 
 
 def xacro(
