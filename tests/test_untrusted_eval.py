@@ -222,7 +222,7 @@ MEMORY_ATTACKS = {  # expression: a word the message must contain (what was too 
     "${python.type(python.type(1))('X', (), python.dict())}": "new class",
     "${len([b.extend(b) for i in python.range(64)]) if (b := [0]) else 0}": "limit of",
     "${len(python.dict.fromkeys(python.range(10**6), 'a' * 999999))}": "limit of",
-    "${len([lambda: 0 for i in python.range(10**6)] * 10)}": "limit of",
+    "${len([lambda: 0 for i in python.range(10**6)])}": "limit of",
     "${len([-(10**20000) for i in python.range(10**6)])}": "limit of",
     "${len([xacro.warning('a' * 999999) for i in python.range(1000)])}": "limit of",
     "${len([b := [b] for i in python.range(10**5)]) if (b := [0]) else 0}": "nested deeper",
@@ -249,7 +249,8 @@ def test_many_large_values_in_one_attribute_are_refused(tmp_path):
     body = ("<xacro:property name=\"s\" value=\"${'a' * 499999}\"/>\n"
             "<xacro:property name=\"l\" value=\"${[s]}\"/>\n"
             '<link name="' + "${l}" * 200 + '"/>')
-    assert "in all" in _refused(tmp_path, body, 4).message
+    message = _refused(tmp_path, body, 4).message
+    assert message.startswith("expression produced") and "in all" in message
 
 
 def test_memory_error_in_an_expansion_is_a_located_finding(tmp_path, monkeypatch):
