@@ -269,12 +269,15 @@ class _BoundedText(io.StringIO):
 
 
 def _yaml_constructors():
-    """yaml.SafeLoader's own constructor table: xacro.load_yaml adds ``!degrees`` and the like,
-    evaluated with whatever ``xacro.safe_eval`` is at the time, to every later safe_load."""
+    """yaml.SafeLoader's own constructor table, to restore after the expansion without xacro's
+    unit tags: xacro.load_yaml adds ``!degrees`` and the like to every later safe_load,
+    evaluated with whatever ``xacro.safe_eval`` is at the time (xacro's own, outside)."""
+    import xacro
     import yaml
 
     own = yaml.SafeLoader.__dict__.get("yaml_constructors")
-    return None if own is None else dict(own)
+    units = {unit.value.tag for unit in xacro.ConstructUnits}
+    return None if own is None else {tag: make for tag, make in own.items() if tag not in units}
 
 
 def _restore_yaml_constructors(saved) -> None:
