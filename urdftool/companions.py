@@ -26,6 +26,7 @@ from lxml import etree
 
 from .diagnostics import Location, display_path
 from .loader.xmlparse import XmlProblem, start_tag_lines
+from .loader.yaml_limits import DepthLimit
 
 MAX_SIZE = 16 * 1024 * 1024
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
@@ -48,8 +49,9 @@ class YamlList(list):
     lines: list
 
 
-class _Loader(yaml.SafeLoader):
-    """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value."""
+class _Loader(DepthLimit, yaml.SafeLoader):
+    """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;
+    nesting past yaml_limits.MAX_DEPTH is a YAML error at its line."""
 
     def construct_yaml_map(self, node):
         data = YamlMap()

@@ -8,7 +8,9 @@ of one expansion:
   macro bodies, and ``check_attrs`` ignores ``xmlns:`` names, so the stamp survives expansion);
 - ``handle_macro_call`` lifts the stamp off the call and records it as a call site, and
   ``eval_all`` appends the active call sites to the elements a macro body produces;
-- ``substitution_args._eval_find`` resolves ``$(find pkg)`` through :class:`PackageResolver`.
+- ``substitution_args._eval_find`` resolves ``$(find pkg)`` through :class:`PackageResolver`;
+- ``safe_eval`` and ``substitution_args._eval`` (``$(eval ...)``) go through
+  :mod:`xacro_sandbox`, whose ``env``/``optenv``/``find`` are the session's own.
 
 When xacro raises, the element being processed is recovered from the traceback's frames, so the
 diagnostic points at the line that failed and not just at the file.
@@ -16,8 +18,10 @@ diagnostic points at the line that failed and not just at the file.
 
 from __future__ import annotations
 
+import builtins
 import contextlib
 import io
+import math
 import os
 import sys
 import xml.dom
@@ -43,6 +47,7 @@ MAX_ELEMENTS = 100_000  # elements xacro may evaluate in one expansion (macro bo
 MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
 MAX_OUTPUT_DEPTH = 1000  # element nesting of the expanded document
 MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion may produce
+MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
 _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 
 
@@ -196,7 +201,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     read_file = read_file or (lambda p: Path(p).read_bytes())
     session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
-    stderr = io.StringIO()
+    stderr = _BoundedText()
     originals = {
         (xacro, "parse"): xacro.parse,
         (xacro, "handle_macro_call"): xacro.handle_macro_call,
@@ -207,10 +212,12 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         (substitution_args, "_eval_optenv"): substitution_args._eval_optenv,
         (xacro, "safe_eval"): xacro.safe_eval,
         (xacro, "eval_text"): xacro.eval_text,
+        (xacro, "eval_extension"): xacro.eval_extension,
+        (substitution_args, "_eval"): substitution_args._eval,
     }
     replacements = _replacements(session, originals, xacro, substitution_args)
-    replacements[(xacro, "safe_eval")] = xacro_sandbox.safe_eval
     saved_limit = sys.getrecursionlimit()
+    saved_constructors = _yaml_constructors()
     saved_symbols = xacro_sandbox.harden_symbols(xacro._global_symbols)
     try:
         for (module, name), function in replacements.items():
@@ -239,6 +246,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
             setattr(module, name, function)
         del xacro.open
         xacro_sandbox.restore_symbols(saved_symbols)
+        _restore_yaml_constructors(saved_constructors)
         sys.setrecursionlimit(saved_limit)
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
@@ -256,10 +264,43 @@ def _yaml_opener(session: _Session):
         data = session.read_file(filename)
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
-        xacro_sandbox.refuse_yaml_bomb(text)
+        xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
         return io.StringIO(text)
 
     return open_yaml
+
+
+
+
+class _BoundedText(io.StringIO):
+    """xacro's stderr: keeps the first MAX_MESSAGES characters (``xacro.warning`` in a loop)."""
+
+    def write(self, text):
+        room = MAX_MESSAGES - self.tell()
+        if room > 0:
+            super().write(text[:room])
+        return len(text)
+
+
+def _yaml_constructors():
+    """yaml.SafeLoader's own constructor table, to restore after the expansion without xacro's
+    unit tags: xacro.load_yaml adds ``!degrees`` and the like to every later safe_load,
+    evaluated with whatever ``xacro.safe_eval`` is at the time (xacro's own, outside)."""
+    import xacro
+    import yaml
+
+    own = yaml.SafeLoader.__dict__.get("yaml_constructors")
+    units = {unit.value.tag for unit in xacro.ConstructUnits}
+    return None if own is None else {tag: make for tag, make in own.items() if tag not in units}
+
+
+def _restore_yaml_constructors(saved) -> None:
+    import yaml
+
+    if saved is not None:
+        yaml.SafeLoader.yaml_constructors = saved
+    elif "yaml_constructors" in yaml.SafeLoader.__dict__:
+        del yaml.SafeLoader.yaml_constructors
 
 
 def _replacements(session: _Session, originals, xacro, substitution_args):
@@ -269,6 +310,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     original_env = originals[(substitution_args, "_eval_env")]
     original_optenv = originals[(substitution_args, "_eval_optenv")]
     original_eval_text = originals[(xacro, "eval_text")]
+    original_eval_extension = originals[(xacro, "eval_extension")]
 
     def parse(inp, filename=None):
         if inp is not None:
@@ -343,13 +385,35 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
 
     def eval_text(text, symbols):
         result = original_eval_text(text, symbols)
+        return charge_text(result, "substitution") if isinstance(result, str) else result
+
+    def charge_text(result, what: str):
         if isinstance(result, str):
-            session.text += len(result)
-            if len(result) > xacro_sandbox.MAX_SEQUENCE or session.text > MAX_TEXT:
-                raise xacro_sandbox.SandboxViolation(
-                    f"substitution produced {len(result)} characters (limits: "
-                    f"{xacro_sandbox.MAX_SEQUENCE} per value, {MAX_TEXT} in all)")
+            size = len(result)
+        else:
+            size = xacro_sandbox.weight(result, MAX_TEXT)
+        session.text += size
+        if size > xacro_sandbox.MAX_SEQUENCE or session.text > MAX_TEXT:
+            raise xacro_sandbox.SandboxViolation(
+                f"{what} produced {size} characters (limits: "
+                f"{xacro_sandbox.MAX_SEQUENCE} per value, {MAX_TEXT} in all)")
         return result
+
+    def safe_eval(expression, symbols, locals=None):
+        return charge_text(xacro_sandbox.safe_eval(expression, symbols, locals), "expression")
+
+    def eval_extension(text):
+        return charge_text(original_eval_extension(text), "substitution")
+
+    def eval_substitution(expression, context):
+        args = context.setdefault("arg", {})
+        functions = dict(_EVAL_CONSTANTS)
+        functions.update(
+            arg=lambda name: substitution_args.convert_value(
+                substitution_args._eval_arg(name, args=args), "auto"),
+            dirname=lambda: substitution_args._eval_dirname(context.get("filename")),
+            env=eval_env, optenv=eval_optenv, find=eval_find)
+        return xacro_sandbox.eval_substitution(expression, functions, args)
 
     def eval_find(package):
         try:
@@ -377,10 +441,23 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         (xacro, "eval_all"): eval_all,
         (xacro, "check_attrs"): check_attrs,
         (xacro, "eval_text"): eval_text,
+        (xacro, "eval_extension"): eval_extension,
+        (xacro, "safe_eval"): safe_eval,
+        (substitution_args, "_eval"): eval_substitution,
         (substitution_args, "_eval_find"): eval_find,
         (substitution_args, "_eval_env"): eval_env,
         (substitution_args, "_eval_optenv"): eval_optenv,
     }
+
+
+# What $(eval ...) offers besides arg, dirname, env, optenv and find: xacro's substitution_args
+# names (math, true/false) and the built-ins it meant to allow, with ${}'s common ones.
+_EVAL_CONSTANTS = {
+    **{name: value for name, value in vars(math).items() if not name.startswith("_")},
+    "true": True, "false": False, "True": True, "False": False,
+    **{name: getattr(builtins, name) for name in (
+        "list", "dict", "map", "str", "float", "int", "len", "bool", "min", "max", "round", "abs")},
+}
 
 
 class _Outside(Exception):

@@ -132,13 +132,15 @@ def unsupported_version(robot):
 declare("U016", "unsafe-xacro", Severity.ERROR, """
     A xacro expression was refused: it reaches into Python internals or builds something huge.
 
-    xacro evaluates ``${...}`` as Python. urdftool evaluates it in a sandbox: no names or
-    attributes starting with ``_``, no frame, code or generator internals (``gi_frame``,
-    ``f_back``), no ``{0.__class__}`` format fields, no ``python.vars``, and limits on the size of
-    numbers, strings, lists and of the expansion itself (macro bombs). Real robot descriptions
-    never need any of these.
+    xacro evaluates ``${...}`` and ``$(eval ...)`` as Python. urdftool evaluates both in a
+    sandbox: no names or attributes starting with ``_``, no frame, code or generator internals
+    (``gi_frame``, ``f_back``), no ``{0.__class__}`` format fields, no ``python.vars``, no
+    ``exec``/``open``, and limits on the size of numbers, strings, lists (checked before they
+    are built: ``'%0999999999d' % 0``, ``'x'.ljust(10**9)``), of what one expression builds in
+    all, of YAML aliases and of the expansion itself (macro bombs). Real robot descriptions never
+    need any of these.
 
-    Bad: ``${(lambda: 0).__globals__}``, ``${'x' * 10**9}``
+    Bad: ``${(lambda: 0).__globals__}``, ``${'x' * 10**9}``, ``$(eval exec('...'))``
     Good: ``${radians(90)}``, ``${wheel_radius * 2}``
     """)
 
