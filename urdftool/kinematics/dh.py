@@ -312,8 +312,10 @@ def load_table(path: str) -> DHTable:
     """A table from JSON or YAML in ``dh``'s output format; DHError says where it is wrong."""
     import yaml
 
+    from ..files import read_regular
+
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = read_regular(path).decode("utf-8")
         data = yaml.safe_load(text)  # JSON is YAML
     except (OSError, UnicodeDecodeError) as error:
         raise DHError(f"cannot read D-H table: {error}", where=path) from None
