@@ -36,7 +36,7 @@ def run_cli():
     def run(*args, input=None):
         return runner.invoke(app, [str(a) for a in args], input=input,
                              env={"COLUMNS": "120", "NO_COLOR": "1", "TERM": "dumb",
-                                  "GITHUB_ACTIONS": ""})
+                                  "GITHUB_ACTIONS": "", "CI": ""})  # CI: the full mode
 
     return run
 

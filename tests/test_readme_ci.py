@@ -133,3 +133,84 @@ def test_make_and_pytest(run_cli, monkeypatch, workspaces, broken, integration):
     if integration == "pytest":  # the README's test asserts on the JSON report
         report = json.loads(result.stdout)
         assert [d["code"] for d in report["diagnostics"]] == (["U204"] if broken else [])
+
+
+# A robot that prints an environment variable into the report when $(env) is expanded: the
+# unconnected link's name is in U108's message.
+LEAK = """<robot name="leak" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base_link"/>
+  <link name="$(env URDFTOOL_SECRET)"/>
+</robot>
+"""
+SECRET = "hunter2-token"
+
+
+def invoke(argv: list[str], **env: str):
+    """The CLI with ``env`` set (CI unset unless given), as a CI job would run it."""
+    from typer.testing import CliRunner
+
+    from urdftool.cli import app
+
+    return CliRunner().invoke(app, [str(a) for a in argv], env={
+        "COLUMNS": "120", "NO_COLOR": "1", "TERM": "dumb", "GITHUB_ACTIONS": "", "CI": "",
+        "URDFTOOL_SECRET": SECRET, **env})
+
+
+@pytest.fixture
+def leaky(tmp_path, monkeypatch):
+    """A workspace whose robots/ holds the examples and the robot that reads $(env)."""
+    shutil.copytree(ROBOTS, tmp_path / "robots")
+    (tmp_path / "robots" / "leak.urdf.xacro").write_text(LEAK)
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def _report(workspace: Path, argv: list[str], result) -> str:
+    written = argv[argv.index("--output") + 1] if "--output" in argv else None
+    return result.output + ((workspace / written).read_text() if written else "")
+
+
+def hook_entry() -> list[str]:
+    import yaml
+
+    (hook,) = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
+    return shlex.split(hook["entry"])
+
+
+def test_ci_recipes_write_out_the_safe_mode():
+    commands = readme_commands()
+    for integration in ("github", "sarif", "junit"):
+        assert "--no-env" in commands[integration] and "--allow-env" not in commands[integration]
+    assert hook_entry() == ["urdftool", "check", "--no-env"]
+
+
+@pytest.mark.parametrize("integration", ["github", "sarif", "junit", "pre-commit"])
+def test_ci_recipes_do_not_leak_the_environment_even_without_ci(leaky, integration):
+    """The GitHub, GitLab and pre-commit recipes are safe on their own, CI set or not."""
+    argv = hook_entry()[1:] + ["robots/leak.urdf.xacro"] if integration == "pre-commit" \
+        else readme_commands()[integration]
+    result = invoke(argv)
+    report = _report(leaky, argv, result)
+    assert result.exit_code == 1 and "U005" in report and SECRET not in report
+
+
+@pytest.mark.parametrize("integration", ["make", "pytest"])
+def test_recipes_without_the_flag_are_safe_under_ci(leaky, integration):
+    argv = readme_commands()[integration]
+    result = invoke(argv, CI="true")
+    assert result.exit_code == 1 and "U005" in result.output and SECRET not in result.output
+
+
+@pytest.mark.parametrize(("ci", "flag", "leaks"), [
+    ("", None, True),            # a developer's machine: the full mode
+    ("false", None, True),
+    ("true", None, False),       # GitHub Actions, GitLab CI, ...: the safe mode
+    ("1", None, False),
+    ("true", "--allow-env", True),  # opted out
+    ("", "--no-env", False),
+])
+def test_ci_makes_the_safe_mode_the_default(leaky, ci, flag, leaks):
+    argv = ["check", "robots/leak.urdf.xacro", *([flag] if flag else [])]
+    output = invoke(argv, CI=ci).output
+    assert (SECRET in output) is leaks
+    assert ("U005" in output) is not leaks

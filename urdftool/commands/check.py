@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 import sys
 from pathlib import Path
 
@@ -35,8 +36,12 @@ def check(
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
     verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
-    no_env: bool = typer.Option(False, "--no-env",
-                                help="Make $(env)/$(optenv) errors (for untrusted input)."),
+    allow_env: bool = typer.Option(
+        None, "--allow-env/--no-env", show_default=False,
+        help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
+             "xacro reads no file outside the repository and its packages. --allow-env: "
+             "both allowed. [default: --no-env when CI is set, as CI services do; else "
+             "--allow-env]"),
     max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
                                       help="Refuse input files larger than this [default: 16 MiB]."),
     controllers: list[Path] = typer.Option([], "--controllers", metavar="FILE",
@@ -76,14 +81,16 @@ def check(
     except UsageError as error:
         fail_usage(error)
     if verbose:
+        from ..report import printable  # a file name can hold a line break
+
         for path, reason in skipped.items():
-            typer.echo(f"skipped {path}: {reason}", err=True)
+            typer.echo(printable(f"skipped {path}: {reason}"), err=True)
     # --select replaces the settings' select; --ignore adds to their ignore.
     base_selection = Selection(tuple(_codes(select or config.select)),
                                tuple(_codes([*config.ignore, *ignore])))
     options = CheckOptions(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
-        allow_env=not no_env,
+        allow_env=env_allowed(allow_env),
         max_file_size=limit,
         extras=extras,
     )
@@ -107,6 +114,19 @@ def check(
     summary = Summary.of(results)
     failed = summary.errors or ((strict or config.strict) and summary.warnings)
     raise typer.Exit(1 if failed else 0)
+
+
+def env_allowed(flag: bool | None) -> bool:
+    """``--allow-env``/``--no-env`` as given; unset, the safe mode when ``CI`` is set.
+
+    A CI job on a pull request checks files a stranger wrote, and its environment holds
+    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
+    them in the job's public log. GitHub Actions, GitLab CI and most other services set
+    ``CI=true``; on a developer's machine the files are their own.
+    """
+    if flag is not None:
+        return flag
+    return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
 
 
 def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None) -> dict:
@@ -164,7 +184,9 @@ def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[
             targets, reason = explicit_targets(Path(path), includers[root], root, max_file_size)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
-                typer.echo(f"urdftool: {path}: {reason}", err=True)
+                from ..report import printable
+
+                typer.echo(printable(f"urdftool: {path}: {reason}"), err=True)
             continue
         found = robot_files(Path(path))
         top, skipped_here = split_top_level(found, resolver_for, max_file_size)

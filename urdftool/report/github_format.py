@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
-from . import Summary, all_findings
+from . import Summary, all_findings, printable
 
 _LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
 
 
 def _escape_data(text: str) -> str:
-    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    """Workflow-command data: a line break is %0A (the message goes on in the annotation, it
+    cannot start a command), every other control character is written as an escape."""
+    return printable(text, keep="\r\n").replace("%", "%25").replace("\r", "%0D") \
+        .replace("\n", "%0A")
 
 
 def _escape_property(text: str) -> str:

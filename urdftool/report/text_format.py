@@ -10,13 +10,14 @@ from __future__ import annotations
 import os
 
 from ..diagnostics import display_path
-from . import STYLES, Summary
+from . import STYLES, Summary, printable
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 
 
 def lines(results) -> list[Line]:
-    """The report as lines of (text, style) spans."""
+    """The report as lines of (text, style) spans; names, paths and messages come from the
+    files checked, so their control characters are escaped (one finding, one line)."""
     out: list[Line] = []
     for result in results:
         if not result.findings:
@@ -36,7 +37,7 @@ def lines(results) -> list[Line]:
         else ", ".join([_count(summary.errors, "error"), _count(summary.warnings, "warning"),
                         _count(summary.infos, "note")])
     out.append([(f"{_count(summary.files, 'file')} checked: {verdict}", style)])
-    return out
+    return [[(printable(text), style) for text, style in line] for line in out]
 
 
 def render(results, stream) -> None:
