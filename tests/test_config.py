@@ -108,7 +108,8 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     real = parallel.check_file
     monkeypatch.setattr(parallel, "check_file",
                         lambda path, options: seen.append(options.extras) or real(path, options))
-    codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0")  # in this process
+    codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0",
+          "--max-memory", "0")  # no budget: in this process
     config = project / "config"
     companions = [{k: v for k, v in extras.items() if k in ("spec", "controllers", "srdf")}
                   for extras in seen]

@@ -1,11 +1,18 @@
-"""Worker processes: a time budget per file, stable order, crashes become findings."""
+"""Worker processes: a time and memory budget per file, stable order, crashes become findings,
+what workers print reaches this process."""
 
 from __future__ import annotations
 
+import signal
+import subprocess
+import sys
+import time
+
 import pytest
 
+from urdftool.budget import Budget
 from urdftool.engine import CheckOptions
-from urdftool.parallel import check_files
+from urdftool.parallel import check_files, run_budgeted
 
 GOOD = '<robot name="r"><link name="a"/></robot>\n'
 BAD = '<robot name="r"><link name="a"></robot>\n'
@@ -78,3 +85,88 @@ def test_cli_timeout_and_jobs(run_cli, tmp_path, robots):
 
 def test_negative_jobs_is_a_usage_error(run_cli, robots):
     assert run_cli("check", "--jobs", "-1", robots[0]).exit_code == 2
+
+
+def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, tmp_path):
+    from urdftool import budget, parallel
+    from urdftool.diagnostics import Location
+
+    files = []
+    for name in ("a.urdf", "b.urdf", "c.urdf"):
+        (tmp_path / name).write_text(GOOD)
+        files.append(str(tmp_path / name))
+    real = parallel.check_file
+
+    def hungry_b(path, options):
+        if path.endswith("b.urdf"):
+            budget.working_at(Location("b.urdf", 7, (Location("top.xacro", 2),)))
+            raise MemoryError
+        return real(path, options)
+
+    monkeypatch.setattr(parallel, "check_file", hungry_b)
+    for jobs, timeout, memory in ((1, 30, 2 * 1024 ** 3), (1, None, None)):  # worker, here
+        results = check_files(files, lambda p: CheckOptions(), jobs=jobs, timeout=timeout,
+                              memory=memory)
+        assert [[f.code for f in r.findings] for r in results] == [[], ["U018"], []]
+        finding = results[1].findings[0]
+        assert (finding.file, finding.line, finding.location.via) == (
+            "b.urdf", 7, (Location("top.xacro", 2),))
+
+
+def test_a_stopped_worker_takes_the_processes_it_started_along(tmp_path):
+    pid_file = tmp_path / "pid"
+
+    def work(_):
+        child = subprocess.Popen(["sleep", "60"])
+        pid_file.write_text(str(child.pid))
+        time.sleep(60)
+
+    [stop] = run_budgeted(1, work, Budget(1.0, None), lambda _, stop: stop)
+    assert stop.kind == "time"
+    pid = int(pid_file.read_text())
+    deadline = time.monotonic() + 5
+    while _running(pid) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not _running(pid)
+
+
+def _running(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def test_a_worker_ends_with_its_parent(tmp_path):
+    """Workers have a process group of their own, so a signal to the command's group misses
+    them; they die with the command instead of running on."""
+    (tmp_path / "fact.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="${factorial(10**7)}"/>\n</robot>\n')
+    command = subprocess.Popen([sys.executable, "-c", "from urdftool.cli import main; main()",
+                                "tree", "--timeout", "100", "fact.urdf.xacro"], cwd=tmp_path,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    children = f"/proc/{command.pid}/task/{command.pid}/children"
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline and not open(children).read().split():
+        time.sleep(0.05)
+    [worker] = map(int, open(children).read().split())
+    command.send_signal(signal.SIGTERM)
+    command.wait(10)
+    deadline = time.monotonic() + 5
+    while _running(worker) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not _running(worker)
+
+
+def test_what_a_worker_prints_reaches_this_process(capsys):
+    def talk(index):
+        print(f"out {index}")
+        print(f"err {index}", file=sys.stderr)
+        return index
+
+    assert run_budgeted(2, talk, Budget(30.0, None), None, jobs=2) == [0, 1]
+    captured = capsys.readouterr()  # streams without a file: passed on over the pipe
+    assert sorted(captured.out.split("\n")) == ["", "out 0", "out 1"]
+    assert sorted(captured.err.split("\n")) == ["", "err 0", "err 1"]

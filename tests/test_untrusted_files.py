@@ -2,7 +2,8 @@
 files outside it, nor make a folder walk take gigabytes.
 
 An audit hook on "open" records every file this process opens while a test asks it to; the
-checks run in this process (``--jobs 1 --timeout 0``) so that the hook sees them.
+commands run in this process (IN_PROCESS: no budget, so no forked worker) so that the hook sees
+them.
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ ROBOT = f"""<robot name="r">
     <axis xyz="1 0 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
+IN_PROCESS = ("--timeout", "0", "--max-memory", "0")
 MACROS = f'<robot {XACRO}><xacro:macro name="leg"><link name="leg"/></xacro:macro></robot>\n'
 
 # --- every file opened, while recording -----------------------------------------------------
@@ -111,7 +113,7 @@ def planted(tmp_path):
 
 
 def findings(run_cli, *args) -> tuple[int, list[tuple[str, int | None, str, str]]]:
-    result = run_cli("check", *args, "--jobs", "1", "--timeout", "0", "--format", "json")
+    result = run_cli("check", *args, "--jobs", "1", *IN_PROCESS, "--format", "json")
     assert result.exit_code in (0, 1), result.output
     return result.exit_code, sorted((Path(d["file"]).name, d["line"], d["code"], d["message"])
                                     for d in json.loads(result.stdout)["diagnostics"])
@@ -134,11 +136,12 @@ def test_every_file_opened_by_the_commands_is_inside_the_repository(run_cli, pla
     robots = planted / "robots"
     with opened_files() as opened:
         for path in ("link.urdf", "include.urdf.xacro", "find.urdf.xacro"):
-            run_cli("check", robots / path, "--jobs", "1", "--timeout", "0")
+            run_cli("check", robots / path, "--jobs", "1", *IN_PROCESS)
             for command in ("tree", "xacro", "fk", "inertia"):
-                result = run_cli(command, robots / path)
+                result = run_cli(command, robots / path, *IN_PROCESS)
                 assert result.exit_code == 1 and "Traceback" not in result.output, result.output
     assert not outside_opened(opened, planted)
+    assert str(robots / "find.urdf.xacro") in opened  # the hook saw the commands' reads
 
 
 def test_robot_file_linked_out_is_u017_in_every_command(run_cli, planted):
@@ -220,7 +223,7 @@ def project(tmp_path):
 def test_settings_naming_files_outside_are_a_usage_error(run_cli, project, setting):
     (project / "pyproject.toml").write_text(f"[tool.urdftool]\n{setting}\n")
     with opened_files() as opened:
-        result = run_cli("check", project / "robot.urdf", "--jobs", "1", "--timeout", "0")
+        result = run_cli("check", project / "robot.urdf", "--jobs", "1", *IN_PROCESS)
     assert result.exit_code == 2, result.output
     assert "leads outside the repository" in result.stderr
     assert len(result.stderr.strip().splitlines()) == 1
@@ -231,7 +234,7 @@ def test_settings_file_linked_out_is_a_usage_error(run_cli, project, tmp_path):
     (tmp_path / "elsewhere.toml").write_text('ignore = ["U"]\n')
     (project / "urdftool.toml").symlink_to(tmp_path / "elsewhere.toml")
     with opened_files() as opened:
-        result = run_cli("check", project / "robot.urdf", "--jobs", "1", "--timeout", "0")
+        result = run_cli("check", project / "robot.urdf", "--jobs", "1", *IN_PROCESS)
     assert result.exit_code == 2 and "leads outside the repository" in result.stderr
     assert not outside_opened(opened, project)
 
@@ -240,7 +243,7 @@ def test_settings_above_the_repository_are_not_read(run_cli, project, tmp_path):
     (tmp_path / "urdftool.toml").write_text('ignore = ["U"]\n')
     (project / "robot.urdf").write_text('<robot name="r"><link name="a"/><link name="a"/></robot>')
     with opened_files() as opened:
-        result = run_cli("check", project / "robot.urdf", "--jobs", "1", "--timeout", "0")
+        result = run_cli("check", project / "robot.urdf", "--jobs", "1", *IN_PROCESS)
     assert result.exit_code == 1 and "U101" in result.output
     assert not outside_opened(opened, project)
 
@@ -249,7 +252,7 @@ def test_settings_inside_the_repository_still_work(run_cli, project):
     (project / "config").mkdir()
     (project / "config" / "spec.yaml").write_text("unit: rad\njoints: {}\n")
     (project / "pyproject.toml").write_text('[tool.urdftool]\nspec = "config/spec.yaml"\n')
-    result = run_cli("check", project / "robot.urdf", "--jobs", "1", "--timeout", "0")
+    result = run_cli("check", project / "robot.urdf", "--jobs", "1", *IN_PROCESS)
     assert result.exit_code == 0, result.output
 
 

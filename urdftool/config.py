@@ -3,7 +3,8 @@ the input.
 
 Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
 glob -> list), ``packages`` (a table of package name -> folder, relative to the settings file),
-``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``.
+``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
+``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``).
 Command-line options win over the file.
 
 The settings file comes with the repository, so it is as untrusted as the robot files: it is
@@ -25,7 +26,7 @@ from .files import inside, read_regular
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
-        "strict", "max-file-size"}
+        "strict", "max-file-size", "max-memory"}
 
 
 @dataclass
@@ -38,6 +39,7 @@ class Config:
     companions: dict[str, Path] = field(default_factory=dict)
     strict: bool = False
     max_file_size: int | None = None
+    max_memory: str | None = None  # as --max-memory takes it
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -122,6 +124,8 @@ def _parse(path: Path, table: dict) -> Config:
                                             (listed if isinstance(listed, list) else [listed])]
     config.strict = bool(table.get("strict", False))
     config.max_file_size = table.get("max-file-size")
+    if "max-memory" in table:
+        config.max_memory = _memory(path, table["max-memory"])
     return config
 
 
@@ -133,6 +137,17 @@ def _inside_path(settings: Path, what: str, value) -> Path:
     path = settings.parent / value
     _refuse_outside(settings, path, what)
     return path
+
+
+def _memory(path: Path, value) -> str:
+    from .budget import parse_memory
+
+    try:
+        parse_memory(str(value))
+    except UsageError:
+        raise UsageError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
+                         f"(no limit), not {value!r}") from None
+    return str(value)
 
 
 def _strings(path: Path, table: dict, key: str) -> list[str]:

@@ -77,6 +77,8 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
         try:
             for where, message in rule.check(robot):
                 findings.append(stamp(rule, where, message, robot))
+        except MemoryError:
+            raise  # over the memory budget: the runner reports it (U018)
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
     findings = suppressions.apply(findings, robot.files, selection.allows)
@@ -94,7 +96,9 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, error.findings)
-    except Exception as error:  # a loader bug (RecursionError, MemoryError too): a finding, not a traceback
+    except MemoryError:
+        raise  # over the memory budget: the runner reports it where loading was (U018)
+    except Exception as error:  # a loader bug (RecursionError too): a finding, not a traceback
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.options.update(options.extras)

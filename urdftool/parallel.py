@@ -1,98 +1,293 @@
-"""Check many files in worker processes, each file within a time budget.
+"""Run work in forked worker processes, each piece within a time and memory budget.
 
-Each worker is a forked process that checks one file at a time and sends the findings back over
-a pipe. A worker that overruns the budget is killed (a hung xacro expression cannot be
-interrupted from inside) and replaced; its file gets a U015 finding and the run goes on.
-Results come back in the order the files were given, whatever order the workers finish in.
+Each worker is a forked process that does one piece of work at a time and sends the result back
+over a pipe. Its address space is capped (``--max-memory``), so an allocation over the budget
+raises MemoryError in the worker instead of taking the machine's memory. A worker that overruns
+the time budget is killed with every process it started (a hung xacro expression cannot be
+interrupted from inside) and replaced. Either way the piece ends with a :class:`Stop` that says
+where the work was (see :mod:`urdftool.budget`), and the run goes on. Results come back in the
+order given, whatever order the workers finish in. What a worker prints goes to this process's
+standard streams: directly when they are files, passed on over the pipe when they are not (under
+a test runner).
+
+``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files.
 """
 
 from __future__ import annotations
 
+import io
 import multiprocessing
 import os
+import signal
+import sys
 import time
+import traceback
+from dataclasses import dataclass
 from multiprocessing.connection import wait
 
+from . import budget as budgets
+from .budget import DEFAULT_TIMEOUT, Budget
 from .diagnostics import Finding, Location, display_path
 from .engine import CheckOptions, FileResult, check_file
-
-DEFAULT_TIMEOUT = 60.0  # [s] per file
 
 
 def default_jobs() -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
 
-def check_files(files: list[str], options_for, jobs: int | None = None,
-                timeout: float | None = DEFAULT_TIMEOUT) -> list[FileResult]:
-    """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
+@dataclass(frozen=True)
+class Stop:
+    """Why a piece of work ended without a result.
 
-    jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
-    None or 0 for none. Without a budget and with one job, files are checked in this process.
+    kind: 'time' (over the time budget), 'memory' (MemoryError, over the memory budget or out of
+        memory), 'died' (the worker process ended; ``detail`` says how) or 'crash' (an
+        exception; ``detail`` is its traceback)
+    where: the location the work had reached, when known
     """
-    jobs = max(1, jobs or default_jobs())
-    all_here = not timeout and jobs == 1 or "fork" not in multiprocessing.get_all_start_methods()
-    results: list[FileResult | None] = [None] * len(files)
-    queue = []
-    for index, path in enumerate(files):
-        if all_here or path == "-":  # stdin is only readable in this process
-            results[index] = _without_robot(check_file(path, options_for(path)))
-        else:
-            queue.append(index)
-    if queue:
-        _run_pool(files, queue, options_for, min(jobs, len(queue)), timeout or None, results)
+
+    kind: str
+    budget: Budget
+    detail: str = ""
+    where: Location | None = None
+
+
+def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> list:
+    """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
+    forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
+
+    Without a budget, with one job (or where processes cannot fork) the work is done in this
+    process, and only a MemoryError becomes a Stop.
+    """
+    if budget.unlimited and jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_here(index, work, budget, stopped) for index in range(count)]
+    results: list = [None] * count
+    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
     return results
 
 
-def _without_robot(result: FileResult) -> FileResult:
-    return FileResult(result.path, result.findings)
+def _here(index, work, budget, stopped):
+    budgets.working_at(None)
+    try:
+        return work(index)
+    except MemoryError:
+        return stopped(index, Stop("memory", budget, where=budgets.where()))
 
 
-def _worker(connection, files, options_for):
+def check_files(files: list[str], options_for, jobs: int | None = None,
+                timeout: float | None = DEFAULT_TIMEOUT,
+                memory: int | None = None) -> list[FileResult]:
+    """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
+
+    jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
+    memory: address space per worker in [bytes]; None or 0 for no limit. Without a budget and
+    with one job, files are checked in this process. Standard input ('-') is read here.
+    """
+    jobs = max(1, jobs or default_jobs())
+    budget = Budget(timeout or None, memory or None)
+    stdin = {}
+    if "-" in files:
+        stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
+
+    def work(index: int) -> list[Finding]:
+        path = files[index]
+        if path in stdin:
+            return check_file(path, options_for(path), data=stdin[path]).findings
+        return check_file(path, options_for(path)).findings
+
+    def stopped(index: int, stop: Stop) -> list[Finding]:
+        return [stop_finding(files[index], stop, "checking")]
+
+    findings = run_budgeted(len(files), work, budget, stopped, jobs)
+    return [FileResult(path, found) for path, found in zip(files, findings)]
+
+
+def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
+    """The finding for work on ``path`` that ``stop`` ended; ``doing``: what it was, e.g.
+    'checking'. Located where the work was, when known."""
+    shown = display_path(path) if path != "-" else "<stdin>"
+    where = stop.where or Location(shown)
+    if path == "-" and where.file.endswith("stdin.xacro"):
+        where = Location(shown, where.line, where.via)
+    if stop.kind == "time":
+        return _finding("U015", where, f"{doing} took longer than {stop.budget.seconds:g} s and "
+                                       "was stopped (raise the budget with --timeout)")
+    if stop.kind == "memory":
+        limit = stop.budget.memory
+        needed = (f"needed more than {budgets.format_memory(limit)} of memory"
+                  if limit else "ran out of memory")
+        return _finding("U018", where, f"{doing} {needed} and was stopped"
+                                       + (" (raise the budget with --max-memory)" if limit else ""))
+    detail = stop.detail.strip().splitlines()[-1] if stop.detail.strip() else stop.kind
+    if stop.kind == "died" and stop.budget.memory:  # C libraries may exit when malloc fails
+        detail += (f"; it may have run out of its {budgets.format_memory(stop.budget.memory)} "
+                   "of memory (--max-memory)")
+    return _finding("U900", where, f"internal error: {detail}")
+
+
+def _finding(code: str, where: Location, message: str) -> Finding:
+    from .rules import registered
+
+    return registered(code).finding(message, where)
+
+
+# ---- in the worker -------------------------------------------------------------------------
+
+class _Relay(io.RawIOBase):
+    """A stream of the worker whose bytes go over the pipe to the parent's stream."""
+
+    def __init__(self, connection, number: int):
+        self.connection, self.number = connection, number
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, data) -> int:
+        self.connection.send(("write", self.number, bytes(data)))
+        return len(data)
+
+
+def _has_file(stream) -> bool:
+    try:
+        return stream.fileno() >= 0
+    except (AttributeError, OSError, ValueError):
+        return False
+
+
+def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...]) -> None:
+    """The worker: do the piece of work it is sent, until told to stop."""
+    parent = os.getppid()
+    try:
+        os.setpgid(0, 0)  # its own process group: a kill reaches what it starts (dot, pools)
+    except OSError:
+        pass
+    _die_with(parent)
+    budgets.report_into(slot)
+    budgets.limit_memory(memory)
+    for number in relay:
+        setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
+            io.BufferedWriter(_Relay(connection, number)), encoding="utf-8",
+            errors="backslashreplace", line_buffering=True))
     while True:
-        index = connection.recv()
+        try:
+            index = connection.recv()
+        except (EOFError, OSError):
+            return
         if index is None:
             return
+        budgets.working_at(None)
         try:
-            result = check_file(files[index], options_for(files[index]))
-            connection.send((index, result.findings))
-        except BaseException as error:  # report, never die silently
-            connection.send((index, [_internal(files[index], f"{type(error).__name__}: {error}")]))
+            message = ("done", index, work(index))
+        except MemoryError:
+            message = ("stop", index, "memory", "")
+        except BaseException:  # report, never die silently
+            message = ("stop", index, "crash", traceback.format_exc())
+        for stream in (sys.stdout, sys.stderr):
+            stream.flush()
+        try:
+            connection.send(message)
+        except Exception as error:  # a result that does not pickle, or memory to pickle it
+            connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
 
+
+def _die_with(parent: int) -> None:
+    """Be killed when the parent process ends (Linux): in a process group of its own, a worker
+    no longer hears the terminal's or the CI runner's signals, and a hung one would run on."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:  # it ended before the request
+        os._exit(1)
+
+
+# ---- in the parent -------------------------------------------------------------------------
 
 class _Worker:
-    def __init__(self, context, files, options_for):
+    def __init__(self, context, work, memory):
         self.connection, child = context.Pipe()
-        self.process = context.Process(target=_worker, args=(child, files, options_for),
-                                       daemon=True)
+        self.slot = budgets.share_slot()
+        relay = tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
+        # not a daemon: a worker may start processes of its own (collisions --matrix)
+        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory, relay))
         self.process.start()
+        try:
+            os.setpgid(self.process.pid, self.process.pid)
+        except OSError:
+            pass  # already done by the worker, or it has ended
         child.close()
         self.index: int | None = None
         self.started = 0.0
 
     def give(self, index: int) -> None:
         self.index, self.started = index, time.monotonic()
+        self.slot[:4] = bytes(4)
         self.connection.send(index)
+
+    def kill(self) -> None:
+        try:
+            os.killpg(self.process.pid, signal.SIGKILL)
+        except OSError:
+            pass
+        self.process.kill()
 
     def stop(self, kill: bool = False) -> None:
         if kill:
-            self.process.kill()
+            self.kill()
         else:
             try:
                 self.connection.send(None)
             except OSError:
-                self.process.kill()
+                self.kill()
         self.process.join(5)
         if self.process.is_alive():
-            self.process.kill()
+            self.kill()
             self.process.join()
         self.connection.close()
+        self.slot.close()
 
 
-def _run_pool(files, queue, options_for, jobs, timeout, results) -> None:
+def _pass_on(number: int, data: bytes) -> None:
+    """Write what a worker printed to this process's stdout (1) or stderr (2)."""
+    stream = sys.stdout if number == 1 else sys.stderr
+    stream.flush()
+    if hasattr(stream, "buffer"):
+        stream.buffer.write(data)
+        stream.buffer.flush()
+    else:
+        stream.write(data.decode("utf-8", errors="replace"))
+        stream.flush()
+
+
+def _receive(worker: _Worker):
+    """The worker's next message, None at its end; output it sent is passed on, giving ()."""
+    try:
+        message = worker.connection.recv()
+    except (EOFError, OSError):
+        return None
+    if message[0] == "write":
+        _pass_on(*message[1:])
+        return ()
+    return message
+
+
+def _drain(worker: _Worker) -> None:
+    """Pass on what a worker that is being stopped printed before."""
+    try:
+        while worker.connection.poll():
+            message = worker.connection.recv()
+            if message[0] == "write":
+                _pass_on(*message[1:])
+    except (EOFError, OSError):
+        pass
+
+
+def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
     context = multiprocessing.get_context("fork")
+    timeout = budget.seconds
     pending = list(reversed(queue))
-    workers = [_Worker(context, files, options_for) for _ in range(jobs)]
+    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
     try:
         for worker in workers:
             if pending:
@@ -106,24 +301,33 @@ def _run_pool(files, queue, options_for, jobs, timeout, results) -> None:
             for position, worker in enumerate(workers):
                 if worker.index is None:
                     continue
-                failure = None  # the finding of a file whose worker is lost
+                stop = None  # why the worker's piece has no result
                 if worker.connection in ready:
-                    try:
-                        index, findings = worker.connection.recv()
-                    except (EOFError, OSError):
+                    message = _receive(worker)
+                    if message == ():
+                        continue
+                    if message is None:
                         worker.process.join(5)
-                        failure = _internal(files[worker.index], "worker process died "
-                                            f"(exit code {worker.process.exitcode})")
+                        stop = Stop("died", budget, "worker process died (exit code "
+                                                    f"{worker.process.exitcode})")
+                    elif message[0] == "stop":
+                        stop = Stop(message[2], budget, message[3])
                     else:
-                        results[index] = FileResult(files[index], findings)
+                        results[message[1]] = message[2]
                 elif timeout and time.monotonic() - worker.started >= timeout:
-                    failure = _timeout(files[worker.index], timeout)
+                    stop = Stop("time", budget)
                 else:
                     continue
-                if failure is not None:
-                    results[worker.index] = FileResult(files[worker.index], [failure])
-                    worker.stop(kill=True)
-                    workers[position] = worker = _Worker(context, files, options_for)
+                if stop is not None:
+                    if stop.kind != "crash":  # a worker out of time or memory starts afresh
+                        worker.kill()
+                    _drain(worker)
+                    where = budgets.read_slot(worker.slot)
+                    results[worker.index] = stopped(worker.index, Stop(
+                        stop.kind, budget, stop.detail, where))
+                    if stop.kind != "crash":
+                        worker.stop(kill=True)
+                        workers[position] = worker = _Worker(context, work, budget.memory)
                 worker.index = None
                 if pending:
                     worker.give(pending.pop())
@@ -132,19 +336,5 @@ def _run_pool(files, queue, options_for, jobs, timeout, results) -> None:
             worker.stop(kill=worker.index is not None)
 
 
-def _timeout(path: str, seconds: float) -> Finding:
-    return _finding("U015", path, f"checking took longer than {seconds:g} s and was stopped "
-                                  "(raise the budget with --timeout)")
-
-
-def _internal(path: str, message: str) -> Finding:
-    return _finding("U900", path, f"internal error: {message}")
-
-
-def _finding(code: str, path: str, message: str) -> Finding:
-    from .rules import registered
-
-    return registered(code).finding(message, Location(display_path(path)))
-
-
-__all__ = ["check_files", "default_jobs", "DEFAULT_TIMEOUT", "CheckOptions"]
+__all__ = ["Budget", "CheckOptions", "DEFAULT_TIMEOUT", "Stop", "check_files", "default_jobs",
+           "run_budgeted", "stop_finding"]

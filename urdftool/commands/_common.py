@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
 import sys
+import typing
 from pathlib import Path
 
 import typer
 
+from ..budget import DEFAULT_TIMEOUT
 from ..errors import UsageError
 
 ARG_HELP = "xacro argument NAME=VALUE (repeatable); NAME:=VALUE words after the file work too."
@@ -14,6 +18,12 @@ PACKAGE_HELP = "Where a ROS package is: NAME=PATH (repeatable)."
 
 XacroArgOption = typer.Option([], "--arg", metavar="NAME=VALUE", help=ARG_HELP)
 PackageOption = typer.Option([], "--package", "-p", metavar="NAME=PATH", help=PACKAGE_HELP)
+TimeoutOption = typer.Option(DEFAULT_TIMEOUT, "--timeout", metavar="SECONDS",
+                             help="Time budget (check: per file); 0 for none. Over it: U015, "
+                                  "exit 1.")
+MaxMemoryOption = typer.Option("2G", "--max-memory", metavar="SIZE",
+                               help="Memory (address space) the work may use, e.g. 2G, 512M; "
+                                    "0 for none. Over it: U018, exit 1.")
 
 
 def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
@@ -118,11 +128,72 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     try:
         return load(paths[0], xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
-        from ..engine import FileResult
-        from ..report import render
-
-        render("text", [FileResult(paths[0], error.findings)], sys.stderr)
+        report_findings(paths[0], error.findings)
         raise typer.Exit(1)
+
+
+def budgeted(command):
+    """``command`` with ``--timeout`` and ``--max-memory`` options, run within that budget in a
+    forked process (see urdftool.parallel): over it, a finding located where the work was (U015,
+    U018) and exit 1. The command's first word is the robot it is about."""
+    signature = inspect.signature(command, eval_str=True)
+    options = {"timeout": (float, TimeoutOption), "max_memory": (str, MaxMemoryOption)}
+
+    @functools.wraps(command)
+    def run(**kwargs):
+        from ..budget import Budget
+        from ..parallel import Stop, run_budgeted, stop_finding
+
+        try:
+            budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
+        except UsageError as error:
+            fail_usage(error)
+        path = next(iter(split_words(kwargs.get("words") or [])[0]), "-")
+        stdin = None
+        if path == "-" and not budget.unlimited:  # only this process can read it
+            from ..loader import DEFAULT_MAX_FILE_SIZE
+
+            stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
+
+        def work(_):
+            if stdin is not None:
+                sys.stdin = _bytes_stdin(stdin)
+            try:
+                command(**kwargs)
+            except typer.Exit as exit:
+                return exit.exit_code
+            return 0
+
+        [result] = run_budgeted(1, work, budget, lambda _, stop: stop)
+        if isinstance(result, Stop):
+            if result.kind == "crash":
+                sys.stderr.write(result.detail)
+            else:
+                report_findings(path, [stop_finding(path, result, f"urdftool {command.__name__}")])
+            raise typer.Exit(1)
+        raise typer.Exit(result)
+
+    run.__signature__ = signature.replace(parameters=[
+        *signature.parameters.values(),
+        *(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default,
+                            annotation=kind) for name, (kind, default) in options.items())])
+    run.__annotations__ = {**typing.get_type_hints(command),
+                           **{name: kind for name, (kind, _) in options.items()}}
+    return run
+
+
+def _bytes_stdin(data: bytes):
+    import io
+
+    return io.TextIOWrapper(io.BytesIO(data), encoding="utf-8")
+
+
+def report_findings(path: str, findings) -> None:
+    """Print findings about the robot at ``path`` to stderr as ``check`` would."""
+    from ..engine import FileResult
+    from ..report import render
+
+    render("text", [FileResult(path, findings)], sys.stderr)
 
 
 def wide_console():

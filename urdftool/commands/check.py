@@ -10,8 +10,8 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import (PackageOption, XacroArgOption, fail_usage, refuse_bad_outputs,
-                      robot_inputs, write_output)
+from ._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
+                      fail_usage, refuse_bad_outputs, robot_inputs, write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -54,19 +54,22 @@ def check(
                                    "robot, when it is a urdftool spec]."),
     max_triangles: int = typer.Option(2_000_000, "--max-triangles", metavar="N",
                                       help="Refuse meshes with more triangles than this."),
-    timeout: float = typer.Option(60.0, "--timeout", metavar="SECONDS",
-                                  help="Time budget per file; 0 for none."),
+    timeout: float = TimeoutOption,
+    max_memory: str = typer.Option(None, "--max-memory", metavar="SIZE",
+                                   help=f"{MaxMemoryOption.help} Per worker [default: 2G, or "
+                                        "max-memory in the settings]."),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
+    from ..budget import Budget
     from ..engine import CheckOptions, Selection
     from ..parallel import check_files
     from ..report import FORMATS, Summary, render
 
     try:
         paths, args, packages = robot_inputs(words, arg, package)
-        if timeout < 0 or jobs < 0:
-            raise UsageError("--timeout and --jobs must not be negative")
+        if jobs < 0:
+            raise UsageError("--jobs must not be negative")
         if not paths:
             raise UsageError("no PATH given")
         if format not in (*FORMATS, "auto"):
@@ -74,6 +77,7 @@ def check(
         refuse_bad_outputs(output)
         config = _config_for(paths[0])
         limit = max_file_size or config.max_file_size or CheckOptions.max_file_size
+        budget = Budget.of(timeout, max_memory if max_memory is not None else config.max_memory)
         files, skipped = _expand_paths(paths, packages, limit)
         # Command-line companions win over the settings file's.
         extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec),
@@ -102,7 +106,8 @@ def check(
         return dataclasses.replace(options, selection=Selection(
             base_selection.select, (*base_selection.ignore, *_codes(per_file))))
 
-    results = check_files(files, options_for, jobs=jobs or None, timeout=timeout or None)
+    results = check_files(files, options_for, jobs=jobs or None, timeout=budget.seconds,
+                          memory=budget.memory)
     if output:
         import io
 

@@ -9,8 +9,8 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import (PackageOption, XacroArgOption, fail_at, fail_usage, refuse_bad_outputs,
-                      single_robot)
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
+                      refuse_bad_outputs, single_robot)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -23,7 +23,7 @@ FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
-    app.command("collisions", help=HELP)(collisions)
+    app.command("collisions", help=HELP)(budgeted(collisions))
 
 
 def collisions(

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_at, fixed, single_robot, wide_console
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fixed, single_robot,
+                      wide_console)
 
 FORMATS = ("text", "json", "yaml")
 
 
 def register(app: typer.Typer) -> None:
-    app.command("dh", help="Extract the D-H table of the chain from --base to --tip.")(dh)
+    app.command("dh", help="Extract the D-H table of the chain from --base to --tip.")(budgeted(dh))
 
 
 def dh(

@@ -6,7 +6,7 @@ import json
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_at, fail_usage, single_robot
+from ._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
 from ..errors import UsageError
 
 
@@ -15,7 +15,7 @@ FORMATS = ("text", "json")
 
 def register(app: typer.Typer) -> None:
     app.command("dynamics", help="Mass, centre of mass, M(q), G(q), C(q,v), torques and "
-                                 "gravity margins against effort limits.")(dynamics)
+                                 "gravity margins against effort limits.")(budgeted(dynamics))
 
 
 def _values(robot, q: list[str], v: list[str], a: list[str], degrees: bool):

@@ -6,8 +6,8 @@ import sys
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, fail_at, fail_usage, fixed, single_robot,
-                      wide_console)
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
+                      single_robot, wide_console)
 from ..errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -16,7 +16,7 @@ VERIFY_DEFAULT_COUNT = 1000
 
 
 def register(app: typer.Typer) -> None:
-    app.command("fk", help="Forward kinematics: link poses for joint configurations.")(fk)
+    app.command("fk", help="Forward kinematics: link poses for joint configurations.")(budgeted(fk))
 
 
 def fk(

@@ -6,7 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_usage, refuse_bad_outputs, single_robot
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+                      refuse_bad_outputs, single_robot)
 from ..errors import UsageError
 
 
@@ -14,7 +15,7 @@ def register(app: typer.Typer) -> None:
     app.command("graph", help="Draw the kinematic tree as Graphviz DOT: links as boxes (red: "
                               "errors, orange: warnings), joints as edges labelled with type "
                               "and limits. --output x.svg/x.png renders it with Graphviz's "
-                              "dot.")(graph)
+                              "dot.")(budgeted(graph))
 
 
 def graph(

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, fail_usage, refuse_bad_outputs,
-                      single_robot, write_output)
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+                      refuse_bad_outputs, single_robot, write_output)
 from ..errors import UsageError
 
 
@@ -17,7 +17,7 @@ FORMATS = ("text", "json")
 
 def register(app: typer.Typer) -> None:
     app.command("inertia", help="Compare each link's inertial with its geometry's; fix them.")(
-        inertia)
+        budgeted(inertia))
 
 
 def inertia(

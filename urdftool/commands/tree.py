@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, fail_at, single_robot
+from ._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
 
 
 def register(app: typer.Typer) -> None:
-    app.command("tree", help="Print the kinematic tree in check_urdf's format.")(tree)
+    app.command("tree", help="Print the kinematic tree in check_urdf's format.")(budgeted(tree))
 
 
 def tree(

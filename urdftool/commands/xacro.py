@@ -6,13 +6,13 @@ from pathlib import Path
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, refuse_bad_outputs, single_robot,
-                      write_output)
+from ._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
+                      single_robot, write_output)
 
 
 def register(app: typer.Typer) -> None:
     app.command("xacro", help="Expand a xacro file to URDF; $(find) and package:// resolve "
-                              "without ROS.")(xacro)
+                              "without ROS.")(budgeted(xacro))
 
 
 def xacro(

@@ -29,6 +29,7 @@ from xml.parsers import expat
 
 from lxml import etree
 
+from .. import budget
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
 from ..files import read_regular
@@ -77,7 +78,8 @@ class _Session:
         self.allow_env = allow_env
         self.read_file = read_file
         self.roots = [os.path.realpath(root) for root in roots]
-        self.paths: list[str] = []
+        self.paths: list[str] = []  # only ever appended to: an index names one file
+        self.shown_paths: dict[int, str] = {}
         self.call_sites: list[str] = []
         self.warnings: list[tuple[Location, str]] = []
         self.detached: dict[int, str] = {}  # macro-call node id -> the stamp lifted off it
@@ -106,6 +108,17 @@ class _Session:
     def current_location(self) -> Location:
         return _failure_location(self, None, self.paths[0], frame=sys._getframe(1))
 
+    def shown(self, index: int) -> str:
+        """``paths[index]`` as the user reads it, worked out once (this runs for every element)."""
+        if index not in self.shown_paths:
+            self.shown_paths[index] = display_path(self.paths[index])
+        return self.shown_paths[index]
+
+    def reached(self, node) -> None:
+        """Tell a time or memory budget (urdftool.budget) the element expansion has reached."""
+        if node.nodeType == xml.dom.Node.ELEMENT_NODE and node.hasAttribute(STAMP):
+            budget.working_at(self.location(node.getAttribute(STAMP)))
+
     def file_index(self, path: str) -> int:
         self.paths.append(path)
         return len(self.paths) - 1
@@ -114,7 +127,7 @@ class _Session:
         places = []
         for part in stamp[len(_STAMP_PREFIX):].split(";"):
             index, _, line = part.partition(":")
-            places.append(Location(display_path(self.paths[int(index)]), int(line)))
+            places.append(Location(self.shown(int(index)), int(line)))
         return Location(places[0].file, places[0].line, tuple(places[1:]))
 
 
@@ -217,7 +230,11 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         where = _failure_location(session, sys.exc_info()[2], path)
         raise XacroFailure("xacro", "expansion nested too deeply (recursive macro or include?)",
                            where) from None
+    except MemoryError:
+        raise  # reported where expansion was (urdftool.budget), as over the memory budget
     except Exception as error:  # xacro raises many kinds; each becomes a located finding
+        if _caused_by(error, MemoryError):
+            raise MemoryError(str(error)) from None
         raise _as_failure(session, error, path) from None
     finally:
         for (module, name), function in originals.items():
@@ -227,6 +244,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         sys.setrecursionlimit(saved_limit)
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
+    budget.working_at(None)
     warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
                      session.outside)
@@ -308,6 +326,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             stamp = node.getAttribute(STAMP)
             if stamp and ";" not in stamp:
                 node.setAttribute(STAMP, ";".join([stamp, *reversed(session.call_sites)]))
+        session.reached(node)
         return original_eval_all(node, macros, symbols)
 
     def check_attrs(tag, required, optional):
@@ -416,6 +435,13 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
     if undefined:
         message += "; " + available("properties", undefined, _visible_properties(error))
     return XacroFailure("xacro", message, where)
+
+
+def _caused_by(error: BaseException, kind: type) -> bool:
+    """Whether ``error`` is, or wraps (xacro's ``exc``, or as context), an error of ``kind``."""
+    while error is not None and not isinstance(error, kind):
+        error = getattr(error, "exc", None) or error.__context__
+    return error is not None
 
 
 def _undefined_name(error: Exception) -> str | None:

@@ -176,7 +176,23 @@ declare("U015", "timeout", Severity.ERROR, """
 
     A robot description loads in well under a second; a file that takes this long is a
     pathological xacro (deep loops, huge numbers) or an attack on the CI runner. The other files
-    are still checked.
+    are still checked. Every command that reads a robot (``tree``, ``fk``, ``xacro``, ...) has
+    the same budget. The finding is at the element xacro was expanding when it was stopped.
+
+    Bad: ``<link name="${factorial(10**7)}"/>``
+    Good: ``<link name="${'link_%d' % index}"/>``
+    """)
+
+declare("U018", "out-of-memory", Severity.ERROR, """
+    Checking the file needed more memory than ``--max-memory`` (default 2 GiB) and was stopped.
+
+    Every worker and every command that reads a robot runs with its address space capped, so a
+    crafted file (an expression or YAML document that slips past xacro's size limits, a huge
+    mesh) ends here instead of taking the CI runner's memory. The finding is at the element xacro
+    was expanding when memory ran out; the other files are still checked.
+
+    Bad: ``<link name="${len([[0] * 10**6 for i in range(400)])}"/>``
+    Good: ``<link name="${'link_%d' % index}"/>``
     """)
 
 declare("U017", "symlink-outside-root", Severity.ERROR, """

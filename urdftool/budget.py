@@ -1,0 +1,152 @@
+"""Time and memory budgets: how much a piece of work may take, and where it was when stopped.
+
+A budgeted piece of work runs in a forked process (see :mod:`urdftool.parallel`) whose address
+space is capped with ``RLIMIT_AS``: an allocation over the cap raises MemoryError instead of
+taking the machine's memory. A process stopped for overrunning its time cannot say where it was,
+so the work tells as it goes: the xacro expander calls :func:`working_at` with the location of
+each element it reaches, and the process that stops a worker reads the last one from memory the
+two share. Imports stay light: every command imports this module, and the loader calls it for
+every element.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from typing import TYPE_CHECKING
+
+from .errors import UsageError
+
+if TYPE_CHECKING:
+    from .diagnostics import Location
+
+DEFAULT_TIMEOUT = 60.0  # [s] per file
+DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
+# numpy's OpenBLAS starts a thread per core and reserves address space for each (80 MiB per
+# thread measured): on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
+_ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+_UNITS = {"": 1, "K": 1024, "M": 1024 ** 2, "G": 1024 ** 3, "T": 1024 ** 4}
+_SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on
+
+
+@dataclass(frozen=True)
+class Budget:
+    """What one piece of work may use.
+
+    seconds: wall-clock time in [s], None for no limit
+    memory: address space of the process doing it in [bytes], None for no limit
+    """
+
+    seconds: float | None = DEFAULT_TIMEOUT
+    memory: int | None = DEFAULT_MEMORY
+
+    @classmethod
+    def of(cls, timeout: float, max_memory: str | None) -> "Budget":
+        """A budget from option values: ``--timeout`` in [s], ``--max-memory`` as
+        :func:`parse_memory` reads it (None: the default); 0 for no limit. UsageError when one
+        is malformed or negative."""
+        if timeout < 0:
+            raise UsageError(f"--timeout must not be negative, got {timeout:g}")
+        memory = DEFAULT_MEMORY if max_memory is None else parse_memory(max_memory)
+        return cls(timeout or None, memory)
+
+    @property
+    def unlimited(self) -> bool:
+        return self.seconds is None and self.memory is None
+
+
+def parse_memory(text: str) -> int | None:
+    """Bytes from ``2G``, ``512M``, ``1.5GiB``, ``800000`` (powers of 1024); None for ``0``."""
+    import re
+
+    match = re.fullmatch(r"\s*(\d+(?:\.\d+)?)\s*([KMGT]?)(?:I?B)?\s*", text.upper())
+    if not match:
+        raise UsageError(f"--max-memory must be a size such as 2G, 512M or 0 (no limit), "
+                         f"not '{text}'")
+    size = int(float(match[1]) * _UNITS[match[2]])
+    return size or None
+
+
+def format_memory(size: int) -> str:
+    """``2 GiB``, ``512 MiB``, ``1000 bytes``."""
+    for unit in ("T", "G", "M", "K"):
+        if size >= _UNITS[unit]:
+            return f"{size / _UNITS[unit]:.4g} {unit}iB"
+    return f"{size} bytes"
+
+
+def limit_memory(size: int | None) -> None:
+    """Cap this process's address space at ``size`` bytes (soft ``RLIMIT_AS``; never above a
+    hard limit already set), with one BLAS thread so that numpy fits in it. Call it in a worker,
+    before numpy is imported."""
+    for name in _ONE_THREAD:
+        os.environ.setdefault(name, "1")
+    if size is None:
+        return
+    import resource
+
+    _, hard = resource.getrlimit(resource.RLIMIT_AS)
+    if hard != resource.RLIM_INFINITY:
+        size = min(size, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (size, hard))
+
+
+# Where the work of this process is. The slot, when there is one, is memory shared with the
+# process that may stop this one; it holds the location after a 4-byte length.
+_here: Location | None = None
+_slot = None  # an mmap.mmap
+
+
+def share_slot():
+    """A new slot of shared memory (an anonymous shared ``mmap``); a process forked after this
+    reports into it (see :func:`report_into`)."""
+    import mmap
+
+    return mmap.mmap(-1, _SLOT_SIZE)
+
+
+def report_into(slot) -> None:
+    """From now on, :func:`working_at` also writes into ``slot`` (None: only remember)."""
+    global _slot
+    _slot = slot
+    working_at(None)
+
+
+def working_at(location: Location | None) -> None:
+    """The work has reached ``location`` (None: somewhere not in a file)."""
+    global _here
+    _here = location
+    if _slot is None:
+        return
+    # LINE:FILE for the place and each macro call site, NUL-separated (no path holds a NUL)
+    data = b"" if location is None else "\0".join(
+        f"{place.line}:{place.file}" for place in (location, *location.via)).encode(
+        "utf-8", "surrogateescape")
+    if len(data) + 4 <= _SLOT_SIZE:
+        _slot[4:4 + len(data)] = data
+        _slot[:4] = len(data).to_bytes(4, "little")
+
+
+def where() -> Location | None:
+    """The location this process last reached."""
+    return _here
+
+
+def read_slot(slot) -> Location | None:
+    """The location a (stopped) worker last wrote into ``slot``; None when it wrote none or the
+    slot does not hold one whole location."""
+    from .diagnostics import Location
+
+    size = int.from_bytes(slot[:4], "little")
+    if not 0 < size <= _SLOT_SIZE - 4:
+        return None
+    places = []
+    for entry in slot[4:4 + size].decode("utf-8", "surrogateescape").split("\0"):
+        line, _, file = entry.partition(":")
+        places.append(Location(file, int(line) if line.isdigit() else None))
+    return Location(places[0].file, places[0].line, tuple(places[1:]))
+
+
+__all__ = ["Budget", "DEFAULT_MEMORY", "DEFAULT_TIMEOUT", "format_memory", "limit_memory",
+           "parse_memory", "read_slot", "report_into", "share_slot", "where", "working_at"]
