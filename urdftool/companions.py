@@ -25,6 +25,7 @@ import yaml
 from lxml import etree
 
 from .diagnostics import Location, display_path
+from .files import TooLarge, read_regular
 from .loader.xmlparse import XmlProblem, start_tag_lines
 from .loader.yaml_limits import DepthLimit
 
@@ -160,14 +161,17 @@ def _start_tag_lines(root, text: str) -> None:
 
 
 def _read_text(path: Path, result) -> str | None:
+    """The file's text when it is a regular file of at most MAX_SIZE bytes; else None and
+    ``result.problem`` says why (nothing is read from a FIFO or a device)."""
     try:
-        if path.stat().st_size > MAX_SIZE:
-            result.problem = f"larger than {MAX_SIZE} bytes; not read"
-            return None
-        return path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
+        return read_regular(path, MAX_SIZE).decode("utf-8")
+    except TooLarge:
+        result.problem = f"larger than {MAX_SIZE} bytes; not read"
+    except OSError as error:
+        result.problem = f"cannot be read: {error.strerror}"
+    except UnicodeDecodeError as error:
         result.problem = f"cannot be read: {error}"
-        return None
+    return None
 
 
 # --- discovery --------------------------------------------------------------------------------

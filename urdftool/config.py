@@ -6,6 +6,12 @@ glob -> list), ``packages`` (a table of package name -> folder, relative to the 
 ``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
 ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``).
 Command-line options win over the file.
+
+The settings file comes with the repository, so it is as untrusted as the robot files: it is
+looked for up to the repository root (the nearest folder holding ``.git``) and no further, read
+only when it is a regular file of at most 1 MiB, and a path it names (``packages``, ``spec``,
+``srdf``, ``controllers``) that leads outside the repository, through ``..``, an absolute path or
+a symbolic link, is a usage error: nothing there is read.
 """
 
 from __future__ import annotations
@@ -16,7 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import UsageError
+from .files import inside, read_regular
 
+MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
         "strict", "max-file-size", "max-memory"}
 
@@ -51,11 +59,18 @@ class Config:
 
 
 def find_config(start: Path) -> Config:
-    """The nearest settings file above ``start`` (a file or folder); empty Config when none."""
+    """The nearest settings file above ``start`` (a file or folder), up to the repository root;
+    empty Config when none."""
+    from .loader.packages import repository_root
+
     folder = start.absolute()
     if not folder.is_dir():
         folder = folder.parent
-    for candidate in [folder, *folder.parents]:
+    chain = [folder, *folder.parents]
+    root = repository_root(folder)
+    if root is not None:
+        chain = chain[:chain.index(root) + 1]
+    for candidate in chain:
         dedicated = candidate / "urdftool.toml"
         if dedicated.is_file():
             return _parse(dedicated, _read(dedicated))
@@ -68,10 +83,25 @@ def find_config(start: Path) -> Config:
 
 
 def _read(path: Path) -> dict:
+    _refuse_outside(path, path, "the settings file itself")
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
+        return tomllib.loads(read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8"))
+    except OSError as error:
+        raise UsageError(f"cannot read settings in {path}: {error.strerror}") from None
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
         raise UsageError(f"cannot read settings in {path}: {error}") from None
+
+
+def _refuse_outside(settings: Path, path: Path, what: str) -> None:
+    """UsageError when ``path``, named by ``settings``, leads outside the settings file's
+    repository (nearest ``.git`` above it, else its own folder)."""
+    from .loader.packages import repository_root
+
+    root = repository_root(settings.parent) or settings.parent
+    if not inside(path, root):
+        raise UsageError(f"{settings}: {what} '{path}' leads outside the repository ({root}); "
+                         "settings may name only files inside it (give outside paths on the "
+                         "command line)")
 
 
 def _parse(path: Path, table: dict) -> Config:
@@ -79,23 +109,34 @@ def _parse(path: Path, table: dict) -> Config:
     if unknown:
         raise UsageError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
                          f"valid: {', '.join(sorted(KEYS))}")
-    base = path.parent
     config = Config(path=path)
     config.select = _strings(path, table, "select")
     config.ignore = _strings(path, table, "ignore")
     for pattern, codes in table.get("per-file-ignores", {}).items():
         config.per_file_ignores[pattern] = codes if isinstance(codes, list) else [codes]
-    config.packages = {name: base / folder for name, folder in table.get("packages", {}).items()}
-    config.companions = {key: base / table[key] for key in ("spec", "srdf") if key in table}
+    config.packages = {name: _inside_path(path, f"package {name}", folder)
+                       for name, folder in table.get("packages", {}).items()}
+    config.companions = {key: _inside_path(path, key, table[key]) for key in ("spec", "srdf")
+                         if key in table}
     if "controllers" in table:
         listed = table["controllers"]
-        config.companions["controllers"] = [base / p for p in
+        config.companions["controllers"] = [_inside_path(path, "controllers", p) for p in
                                             (listed if isinstance(listed, list) else [listed])]
     config.strict = bool(table.get("strict", False))
     config.max_file_size = table.get("max-file-size")
     if "max-memory" in table:
         config.max_memory = _memory(path, table["max-memory"])
     return config
+
+
+def _inside_path(settings: Path, what: str, value) -> Path:
+    """A path setting, relative to the settings file; UsageError when it is not a string or
+    leads outside the repository."""
+    if not isinstance(value, str) or "\0" in value:
+        raise UsageError(f"{settings}: {what} must be a path (a string), got {value!r}")
+    path = settings.parent / value
+    _refuse_outside(settings, path, what)
+    return path
 
 
 def _memory(path: Path, value) -> str:

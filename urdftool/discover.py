@@ -1,48 +1,75 @@
 """Which files ``urdftool check DIR`` checks: top-level robots, not the macro libraries they
-include."""
+include.
+
+Classifying a file reads it only when it is a regular file under the size limit and, links
+followed, inside its repository (see :func:`~urdftool.loader.packages.containment_root`); any
+other file is kept as a target, unread, so that checking it reports why (U017, U008, U001).
+Only what classification needs is kept per file, never its bytes.
+"""
 
 from __future__ import annotations
 
 import os
 import re
-import stat
+from dataclasses import dataclass
 from pathlib import Path
 
 from .diagnostics import display_path
-from .loader.packages import PackageResolver, repository_root
+from .files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from .loader.packages import PackageResolver, containment_root, repository_root
 
 SUFFIXES = (".urdf", ".xacro")
-_CLASSIFY_BYTES = 16 * 1024 * 1024  # read no more of a file to decide whether it is a robot
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
-_INCLUDE = re.compile(rb"<xacro:include\s[^>]*?filename\s*=\s*[\"']([^\"']+)[\"']", re.S)
+# [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
+# on files made of "<xacro:include " repeated).
+_INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
+_CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
 
 
 def robot_files(folder: Path) -> list[Path]:
-    """Every .urdf and .xacro file below ``folder``, sorted, skipping tool folders."""
+    """Every .urdf and .xacro file below ``folder``, sorted, skipping tool folders. Symbolic
+    links (to files or folders) leading outside the repository are listed too, not followed, so
+    that checking them reports it; a ``folder`` that is itself such a link is listed alone."""
+    if not _stays_inside(folder):
+        return [folder]
     found = []
     for current, dirs, files in os.walk(folder):
         dirs[:] = sorted(d for d in dirs if d not in _SKIP_DIRS and not d.startswith("."))
+        found.extend(Path(current) / d for d in dirs
+                     if os.path.islink(os.path.join(current, d))
+                     and not _stays_inside(Path(current) / d))
         found.extend(Path(current) / f for f in files if f.endswith(SUFFIXES))
     return sorted(found)
 
 
-def split_top_level(files: list[Path], resolver_for) -> tuple[list[Path], dict[Path, str]]:
-    """(top-level files, {skipped file: reason}) for a set of files found in a folder."""
+@dataclass
+class _Summary:
+    """What classifying one file needs: the files it includes, and whether it is a robot."""
+
+    includes: list[Path]
+    defines_robot: bool
+    named_robot: bool
+
+
+def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
+                    ) -> tuple[list[Path], dict[Path, str]]:
+    """(top-level files, {skipped file: reason}) for a set of files found in a folder.
+
+    max_file_size: files larger [bytes] are not read; they stay targets (U008 when checked)
+    """
     included: dict[Path, Path] = {}
-    contents = {}
-    for path in files:
-        contents[path] = _head(path)
-    for path, data in contents.items():
-        for target in _included_files(path, data, resolver_for(path)):
+    summaries = {path: _summary(path, resolver_for, max_file_size) for path in files}
+    for path, summary in summaries.items():
+        for target in summary.includes:
             included.setdefault(target, path)
     top, skipped = [], {}
     for path in files:
         key = resolved_path(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
-        elif path.name.endswith(".xacro") and not _defines_robot(contents[path]):
+        elif path.name.endswith(".xacro") and not summaries[path].defines_robot:
             skipped[path] = "defines only macros or properties (a macro library)"
         else:
             top.append(path)
@@ -56,35 +83,84 @@ def resolved_path(path: Path) -> Path:
         return path.absolute()
 
 
-def _head(path: Path) -> bytes:
-    """The start of a regular file (enough to classify it); nothing for FIFOs and devices."""
+def _stays_inside(path: Path) -> bool:
+    """Whether ``path``, links followed, stays in the repository holding it (as named)."""
+    return inside(path, containment_root(Path(os.path.abspath(path)).parent))
+
+
+def _summary(path: Path, resolver_for, limit: int) -> _Summary:
+    """Read ``path`` (when :func:`_head` may) and keep only what classification needs; the
+    includes only given ``resolver_for``."""
+    data = _head(path, limit)
+    if data is None:  # unread: a target, so that checking it says why
+        return _Summary([], True, True)
+    includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
+    return _Summary(includes, _defines_robot(data), bool(_NAMED_ROBOT.search(data)))
+
+
+def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
+    """A file's bytes; None, without opening it, for a link leading outside the repository, a
+    file over ``limit`` [bytes] or anything else :func:`~urdftool.files.read_regular` refuses."""
+    if not _stays_inside(path):
+        return None
     try:
-        if not stat.S_ISREG(path.stat().st_mode):
-            return b""
-        with open(path, "rb") as handle:
-            return handle.read(_CLASSIFY_BYTES)
+        return read_regular(path, limit)
     except (OSError, ValueError):
-        return b""
+        return None
 
 
 def _defines_robot(data: bytes) -> bool:
     """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
     definitions (properties, args, includes, macros). Unparsable files count, so that the parse
-    error is reported."""
+    error is reported. Parsed as a stream of start and end tags, no tree kept, stopping at the
+    first answer: memory stays small whatever the file holds."""
     from lxml import etree
 
+    # libxml2 recovers from each NUL byte slowly (1.4 s per 16 MiB); as spaces they cost
+    # nothing, and checking the file reports them (U003)
+    data = data.replace(b"\0", b" ")
+    target = _TopLevelTags()
+    parser = etree.XMLParser(target=target, resolve_entities=False, no_network=True,
+                             load_dtd=False, recover=True)
     try:
-        root = etree.fromstring(data, etree.XMLParser(resolve_entities=False, no_network=True,
-                                                      load_dtd=False, recover=True))
-    except etree.LxmlError:
+        for offset in range(0, len(data) or 1, _CHUNK):
+            parser.feed(data[offset:offset + _CHUNK])
+        parser.close()
+    except (_Answered, etree.LxmlError):
         return True
-    if root is None or etree.QName(root).localname != "robot":
-        return True
-    for child in root.iterchildren(etree.Element):
+    return not target.seen_robot
+
+
+class _Answered(Exception):
+    """The file is a robot (or not a xacro library at all): stop reading."""
+
+
+class _TopLevelTags:
+    """lxml parser target: raises _Answered at a root other than <robot> or at a child of
+    <robot> that is not a definition."""
+
+    def __init__(self):
+        self.depth, self.seen_robot = 0, False
+
+    def start(self, tag, attributes):
+        from lxml import etree
+
+        self.depth += 1
+        if self.depth > 2:
+            return
+        name = etree.QName(tag).localname
+        if self.depth == 1 and name != "robot":
+            raise _Answered
+        self.seen_robot = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
-        if etree.QName(child).localname not in _DEFINITIONS:
-            return True
-    return False
+        if self.depth == 2 and name not in _DEFINITIONS:
+            raise _Answered
+
+    def end(self, tag):
+        self.depth -= 1
+
+    def close(self):
+        return None
 
 
 def _included_files(path: Path, data: bytes, resolver: PackageResolver):
@@ -101,27 +177,31 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
         yield resolved_path(path.parent / spec)
 
 
-_NAMED_ROBOT = re.compile(rb"<robot\b[^>]*?\sname\s*=", re.S)
+_NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
 
 
 def project_root(path: Path) -> Path:
-    """The repository holding ``path`` (nearest folder with ``.git``), or its own folder."""
-    folder = resolved_path(path).parent
+    """The repository holding ``path`` as named (nearest folder with ``.git``; a link is not
+    followed), or its own folder."""
+    folder = Path(os.path.abspath(path)).parent
     return repository_root(folder) or folder
 
 
-def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path], str | None]:
+def explicit_targets(path: Path, includers: dict, root: Path,
+                     max_file_size: int = DEFAULT_MAX_FILE_SIZE) -> tuple[list[Path], str | None]:
     """What to check for a file named on the command line (as pre-commit does), and why.
 
     includers: :func:`includers_below` ``root``
     A robot of its own (a named ``<robot>`` with links, joints or macro calls) is checked as it
-    is. A file that is not (a macro library, a fragment) but that robots below ``root`` include,
-    directly or through other includes, is replaced by those top-level robots: a change to
-    ``leg.xacro`` checks the robot built from it. One nobody includes is checked as it is when it
+    is, and so is a file that is not read (a link leading outside the repository, a file over
+    the size limit, a FIFO): checking it reports why. A file that is not (a macro library, a
+    fragment) but that robots below ``root`` include, directly or through other includes, is
+    replaced by those top-level robots: a change to ``leg.xacro`` checks the robot built from
+    it. One nobody includes is checked as it is when it
     has content, and skipped when it only defines macros or properties.
     """
-    data = _head(path)
-    if _NAMED_ROBOT.search(data) and _defines_robot(data):
+    summary = _summary(path, None, max_file_size)
+    if summary.named_robot and summary.defines_robot:
         return [path], None
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
@@ -138,16 +218,17 @@ def explicit_targets(path: Path, includers: dict, root: Path) -> tuple[list[Path
     if tops:
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
-    if not _defines_robot(data) and path.name.endswith(".xacro"):
+    if not summary.defines_robot and path.name.endswith(".xacro"):
         return [], "defines only macros or properties, and no robot below " \
                    f"{root} includes it: nothing to check"
     return [path], None
 
 
-def includers_below(root: Path, resolver_for) -> dict[Path, list[Path]]:
+def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
+                    ) -> dict[Path, list[Path]]:
     """Included file (resolved) -> the files below ``root`` that include it."""
     includers: dict[Path, list[Path]] = {}
     for path in robot_files(root):
-        for target in _included_files(path, _head(path), resolver_for(path)):
+        for target in _summary(path, resolver_for, max_file_size).includes:
             includers.setdefault(target, []).append(path)
     return includers

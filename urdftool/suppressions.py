@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .diagnostics import Finding, Location, Severity
+from .files import read_regular
 from .rules import FAMILIES, REGISTRY, all_rules, declare, matches
 
 declare("U901", "unused-suppression", Severity.WARNING, """
@@ -94,8 +95,7 @@ def _next_content_line(lines: list[str], after: int) -> int:
 @lru_cache(maxsize=256)
 def _parse_file(path: str, stamp: tuple[int, int], shown: str) -> tuple[Suppression, ...]:
     try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read()
+        text = read_regular(path).decode("utf-8", errors="replace")
     except OSError:
         return ()
     if "urdftool:" not in text:

@@ -7,6 +7,7 @@ draws the same layout with Pillow when it is installed, which urdftool does not 
 
 from __future__ import annotations
 
+import io
 from html import escape
 from pathlib import Path
 
@@ -91,17 +92,20 @@ def svg(matrix, title: str) -> str:
 
 
 def write(matrix, path: Path, title: str) -> None:
-    """Write ``path`` as SVG or PNG (PNG needs Pillow); UsageError otherwise."""
+    """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.files.write_file`
+    (a link planted at ``path`` is replaced, never followed); UsageError otherwise."""
+    from ..files import write_file
+
     suffix = path.suffix.lower()
     if suffix == ".svg":
-        path.write_text(svg(matrix, title), encoding="utf-8")
+        write_file(path, svg(matrix, title))
     elif suffix == ".png":
-        _png(matrix, path, title)
+        write_file(path, _png(matrix, title))
     else:
         raise UsageError(f"--plot: '{path.name}' must end in .svg or .png")
 
 
-def _png(matrix, path: Path, title: str, scale: int = 2) -> None:
+def _png(matrix, title: str, scale: int = 2) -> bytes:
     """The same picture as :func:`svg`, drawn with Pillow at ``scale`` times the size."""
     try:
         from PIL import Image, ImageColor, ImageDraw, ImageFont
@@ -133,4 +137,6 @@ def _png(matrix, path: Path, title: str, scale: int = 2) -> None:
         ImageDraw.Draw(strip).text((0, 12 * scale), text, font=font, fill=255, anchor="ls")
         strip = strip.rotate(90, expand=True)
         image.paste((0, 0, 0), (int(x * scale - 12 * scale), int(y * scale - length)), strip)
-    image.save(path, format="PNG")
+    buffer = io.BytesIO()
+    image.save(buffer, format="PNG")
+    return buffer.getvalue()

@@ -9,6 +9,7 @@ from pathlib import Path
 from lxml import etree
 
 from ..diagnostics import Location, display_path
+from ..files import read_regular
 from ..loader.xmlparse import XmlProblem, parse
 from ..rules._names import available
 from .matrix import Matrix, pair_key
@@ -51,7 +52,7 @@ def beside(robot) -> Path | None:
 
 def _parse(path: Path):
     try:
-        return parse(path.read_bytes())
+        return parse(read_regular(path))
     except OSError as error:
         raise SrdfError(f"{display_path(path)}: cannot read: {error.strerror}") from None
     except XmlProblem as problem:
@@ -109,7 +110,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         element = etree.Element("disable_collisions", link1=a, link2=b, reason=reason)
         element.tail = indent if offset < len(merged) - 1 else last_tail
         parent.insert(index + offset, element)
-    data = existing.read_bytes()
+    data = read_regular(existing)
     start, end = _root_span(data)
     return (data[:start].decode("utf-8", "replace")
             + etree.tostring(root, encoding="unicode", with_tail=False)

@@ -65,6 +65,30 @@ def fail_usage(error: UsageError) -> None:
     raise typer.Exit(2)
 
 
+def refuse_bad_outputs(*paths) -> None:
+    """Exit 2 with one line when an output path given (None: not given) cannot be written: its
+    folder is missing or it is a folder. Call it before the work."""
+    from ..files import check_output
+
+    try:
+        for path in paths:
+            if path is not None:
+                check_output(path)
+    except UsageError as error:
+        fail_usage(error)
+
+
+def write_output(path, data: str | bytes) -> None:
+    """Write an output file with :func:`urdftool.files.write_file` (a symbolic link planted at
+    ``path`` is replaced, never followed); exit 2 with one line when it cannot be written."""
+    from ..files import write_file
+
+    try:
+        write_file(path, data)
+    except UsageError as error:
+        fail_usage(error)
+
+
 def fail_at(robot, error: Exception) -> None:
     """Print ``error`` where it is (its ``where``, else its ``element`` in ``robot``, else the
     robot's file) and exit 1."""

@@ -10,8 +10,8 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption, fail_usage,
-                      robot_inputs)
+from ._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
+                      fail_usage, refuse_bad_outputs, robot_inputs, write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -74,9 +74,11 @@ def check(
             raise UsageError("no PATH given")
         if format not in (*FORMATS, "auto"):
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
+        refuse_bad_outputs(output)
         config = _config_for(paths[0])
+        limit = max_file_size or config.max_file_size or CheckOptions.max_file_size
         budget = Budget.of(timeout, max_memory if max_memory is not None else config.max_memory)
-        files, skipped = _expand_paths(paths, packages)
+        files, skipped = _expand_paths(paths, packages, limit)
         # Command-line companions win over the settings file's.
         extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec),
                   "max_triangles": max_triangles}
@@ -93,7 +95,7 @@ def check(
     options = CheckOptions(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
         allow_env=env_allowed(allow_env),
-        max_file_size=max_file_size or config.max_file_size or CheckOptions.max_file_size,
+        max_file_size=limit,
         extras=extras,
     )
 
@@ -106,12 +108,14 @@ def check(
 
     results = check_files(files, options_for, jobs=jobs or None, timeout=budget.seconds,
                           memory=budget.memory)
-    stream = open(output, "w", encoding="utf-8") if output else sys.stdout
-    try:
-        render(format, results, stream)
-    finally:
-        if output:
-            stream.close()
+    if output:
+        import io
+
+        report = io.StringIO()
+        render(format, results, report)
+        write_output(output, report.getvalue())
+    else:
+        render(format, results, sys.stdout)
     summary = Summary.of(results)
     failed = summary.errors or ((strict or config.strict) and summary.warnings)
     raise typer.Exit(1 if failed else 0)
@@ -163,8 +167,9 @@ def _config_for(path: str):
     return find_config(Path.cwd() if path == "-" else Path(path))
 
 
-def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
-    """Files to check, in a stable order, and the files skipped in folders with the reason."""
+def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[str], dict]:
+    """Files to check, in a stable order, and the files skipped in folders with the reason.
+    Files over ``max_file_size`` [bytes] are not read to classify them."""
     from ..diagnostics import display_path
     from ..discover import (explicit_targets, includers_below, project_root, resolved_path,
                             robot_files, split_top_level)
@@ -180,8 +185,8 @@ def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
         if Path(path).is_file():
             root = project_root(Path(path))
             if root not in includers:
-                includers[root] = includers_below(root, resolver_for)
-            targets, reason = explicit_targets(Path(path), includers[root], root)
+                includers[root] = includers_below(root, resolver_for, max_file_size)
+            targets, reason = explicit_targets(Path(path), includers[root], root, max_file_size)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
                 from ..report import printable
@@ -189,7 +194,7 @@ def _expand_paths(paths: list[str], packages) -> tuple[list[str], dict]:
                 typer.echo(printable(f"urdftool: {path}: {reason}"), err=True)
             continue
         found = robot_files(Path(path))
-        top, skipped_here = split_top_level(found, resolver_for)
+        top, skipped_here = split_top_level(found, resolver_for, max_file_size)
         files.extend(str(p) for p in top)
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:

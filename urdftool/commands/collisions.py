@@ -9,7 +9,8 @@ from pathlib import Path
 import typer
 
 from ..errors import UsageError
-from ._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
+                      refuse_bad_outputs, single_robot)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -58,6 +59,7 @@ def collisions(
 ) -> None:
     from ..kinematics.fk import FKError
 
+    refuse_bad_outputs(write_srdf, plot)
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
         (not matrix and (write_srdf or check_srdf or plot or until_converged),
          "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),
@@ -198,10 +200,13 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
         entries, root = _srdf_entries(check_srdf)
         stale = srdf.stale(result, entries, robot.links, root)
     if write_srdf:
-        existing = write_srdf if write_srdf.is_file() else None
+        from ..files import write_file
+
+        # Merged only into a regular file: a link planted there is replaced, its target unread.
+        existing = write_srdf if write_srdf.is_file() and not write_srdf.is_symlink() else None
         if existing:
             _srdf_entries(existing)  # refuse a broken file before overwriting it
-        write_srdf.write_text(srdf.render(result, robot.name, existing), encoding="utf-8")
+        write_file(write_srdf, srdf.render(result, robot.name, existing))
     if plot:
         from ..collision import plot as plot_module
 

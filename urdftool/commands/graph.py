@@ -6,7 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, budgeted, fail_usage, single_robot
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+                      refuse_bad_outputs, single_robot)
 from ..errors import UsageError
 
 
@@ -28,6 +29,7 @@ def graph(
     from ..engine import check_robot
     from ..kinematics.graph import DotMissing, to_dot, write
 
+    refuse_bad_outputs(output)
     robot = single_robot("graph", words, arg, package)
     dot = to_dot(robot, check_robot(robot))
     if output is None:
@@ -41,6 +43,6 @@ def graph(
                    "(apt install graphviz, brew install graphviz) or render it with "
                    f"'dot -T{output.suffix[1:]} {missing} -o {output}'.", err=True)
         raise typer.Exit(1)
-    except (ValueError, OSError) as error:
+    except (ValueError, OSError, UsageError) as error:
         fail_usage(UsageError(str(error)))
     typer.echo(f"wrote {written}", err=True)

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, budgeted, fail_usage, single_robot
+from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+                      refuse_bad_outputs, single_robot, write_output)
 from ..errors import UsageError
 
 
@@ -38,6 +39,7 @@ def inertia(
 ) -> None:
     from ..inertia_compare import compare, corrected_urdf, inertial_xml
 
+    refuse_bad_outputs(write)
     robot = single_robot("inertia", words, arg, package, {"--format": (output_format, FORMATS)}, [
         (density is not None and density <= 0, "--density must be positive"),
         (write is not None and not (link or all_links),
@@ -63,7 +65,7 @@ def inertia(
                 typer.echo(f"<!-- link '{result.link}': {what} {where}{via} -->")
                 typer.echo(inertial_xml(result.computed))
         else:
-            write.write_text(corrected_urdf(robot, chosen))
+            write_output(write, corrected_urdf(robot, chosen))
             typer.echo(f"wrote {write} ({len(chosen)} inertials corrected)", err=True)
     elif output_format == "json":
         typer.echo(json.dumps({"links": [r.as_dict() for r in results]}, indent=2))

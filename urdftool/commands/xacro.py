@@ -6,7 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, budgeted, single_robot
+from ._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
+                      single_robot, write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -23,11 +24,12 @@ def xacro(
 ) -> None:
     from lxml import etree
 
+    refuse_bad_outputs(output)
     robot = single_robot("xacro", words, arg, package, allow_env=not no_env)
     etree.indent(robot.root, space="  ")
     text = etree.tostring(robot.root, encoding="unicode", xml_declaration=False)
     text = f'<?xml version="1.0" ?>\n{text}\n'
     if output:
-        output.write_text(text, encoding="utf-8")
+        write_output(output, text)
     else:
         typer.echo(text, nl=False)

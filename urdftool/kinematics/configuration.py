@@ -13,7 +13,6 @@ import io
 import json
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Collection
 
 import numpy as np
@@ -178,10 +177,15 @@ def from_words(variables: list[Variable], words: list[str], degrees: bool = Fals
 
 def from_file(variables: list[Variable], path: str, degrees: bool = False,
               mimics: dict[str, str] | None = None) -> Configurations:
-    """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file."""
+    """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file: a
+    regular file up to the size limit (urdftool.files.read_regular), else ConfigError."""
+    from ..files import read_regular
+
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
+        text = read_regular(path).decode("utf-8")
+    except OSError as error:
+        raise ConfigError(f"cannot read q-file: {error.strerror}", path) from None
+    except UnicodeDecodeError as error:
         raise ConfigError(f"cannot read q-file: {error}", path) from None
     is_json = path.endswith(".json") or text.lstrip().startswith(("[", "{"))
     fast = None if is_json else _plain_csv_table(text)

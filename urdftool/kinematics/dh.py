@@ -312,10 +312,11 @@ def load_table(path: str) -> DHTable:
     """A table from JSON or YAML in ``dh``'s output format; DHError says where it is wrong."""
     import yaml
 
+    from ..files import read_regular
     from ..loader.yaml_limits import BoundedLoader
 
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = read_regular(path).decode("utf-8")
         data = yaml.load(text, Loader=BoundedLoader)  # noqa: S506 - SafeLoader; JSON is YAML
     except (OSError, UnicodeDecodeError) as error:
         raise DHError(f"cannot read D-H table: {error}", where=path) from None

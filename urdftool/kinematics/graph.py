@@ -114,20 +114,25 @@ def _quote(text: str) -> str:
 def write(dot: str, output: Path) -> Path:
     """Write ``dot`` to ``output``: as is for ``.dot``/``.gv``, rendered by Graphviz's ``dot``
     for ``.svg``/``.png``/``.pdf``. Returns the file written; raises DotMissing (after writing
-    the DOT beside ``output``) when ``dot`` is not installed, ValueError for other suffixes."""
+    the DOT beside ``output``) when ``dot`` is not installed, ValueError for other suffixes.
+    Written with :func:`urdftool.files.write_file`: a link planted at the path is replaced,
+    never followed (``dot`` renders to a pipe, not to the path)."""
+    from ..files import write_file
+
     suffix = output.suffix.lower()
     if suffix in (".dot", ".gv"):
-        output.write_text(dot, encoding="utf-8")
+        write_file(output, dot)
         return output
     if suffix not in RENDERED:
         raise ValueError(f"cannot write '{output.name}': use .dot, .gv, {', '.join(RENDERED)}")
     program = shutil.which("dot")
     if program is None:
         fallback = output.with_suffix(".dot")
-        fallback.write_text(dot, encoding="utf-8")
+        write_file(fallback, dot)
         raise DotMissing(str(fallback))
-    done = subprocess.run([program, f"-T{suffix[1:]}", "-o", str(output)], input=dot.encode(),
+    done = subprocess.run([program, f"-T{suffix[1:]}"], input=dot.encode(),
                           capture_output=True, check=False)
     if done.returncode != 0:
         raise ValueError(f"dot failed: {done.stderr.decode(errors='replace').strip()}")
+    write_file(output, done.stdout)
     return output

@@ -7,7 +7,6 @@ the file and line where the problem is, so broken files go through the same repo
 from __future__ import annotations
 
 import os
-import stat
 import sys
 from pathlib import Path
 
@@ -15,11 +14,11 @@ from lxml import etree
 
 from ..diagnostics import Finding, Location, Severity, display_path
 from ..errors import LoadError
+from ..files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
 from .model import Robot
-from .packages import PackageResolver
+from .packages import PackageResolver, containment_root
 from .xmlparse import XmlProblem, parse, refuse_empty_or_binary
 
-DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024
 XACRO_SUFFIXES = (".xacro",)
 
 __all__ = ["Robot", "load", "first_xacro_use", "PackageResolver"]
@@ -48,6 +47,8 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     path = os.fspath(path)
     shown = display_path(path) if path != "-" else "<stdin>"
     start = Path.cwd() if path == "-" else _folder_of(path)
+    if data is None and path != "-":
+        _refuse_link_out(path, shown)
     resolver = PackageResolver(packages, start=start)
     if data is None:
         data = _read(path, shown, max_file_size)
@@ -73,12 +74,21 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
 
 
 def _folder_of(path) -> Path:
-    """The real folder holding ``path``; its plain absolute folder when it cannot be resolved
-    (a symbolic link loop: reading the file then reports it)."""
-    try:
-        return Path(path).resolve().parent
-    except (OSError, RuntimeError, ValueError):
-        return Path(os.path.abspath(path)).parent
+    """The folder holding ``path`` as named, links not followed: a robot file that is a link
+    elsewhere in the repository resolves its includes, packages and companions from where the
+    link is, as xacro does, and never from where a link leads."""
+    return Path(os.path.abspath(path)).parent
+
+
+def _refuse_link_out(path: str, shown: str) -> None:
+    """U017 when ``path`` is (or lies in a folder that is) a symbolic link leading outside the
+    repository holding it; the file is not opened."""
+    root = containment_root(_folder_of(path))
+    if not inside(path, root):
+        target = os.path.realpath(path)
+        raise LoadError([_finding("U017", Location(shown, None), (
+            f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
+            "not followed"))])
 
 
 def _read(path: str, shown: str, limit: int) -> bytes:
@@ -86,8 +96,8 @@ def _read(path: str, shown: str, limit: int) -> bytes:
         data = sys.stdin.buffer.read(limit + 1)
     else:
         try:
-            data = _read_regular(path, limit)
-        except _TooLarge as error:
+            data = read_regular(path, limit)
+        except TooLarge as error:
             raise LoadError([_finding("U008", Location(shown, None),
                                       f"{error.strerror} (raise it with --max-file-size)")]) from None
         except OSError as error:
@@ -98,22 +108,6 @@ def _read(path: str, shown: str, limit: int) -> bytes:
                                   f"input is over the limit of {limit} bytes "
                                   "(raise it with --max-file-size)")])
     return data
-
-
-class _TooLarge(OSError):
-    """A file over the size limit."""
-
-
-def _read_regular(name, limit: int) -> bytes:
-    """A regular file's bytes (at most ``limit + 1``); OSError for anything else, _TooLarge when
-    its size is over ``limit``."""
-    info = os.stat(name)
-    if not stat.S_ISREG(info.st_mode):
-        raise OSError(21, "not a regular file", name)
-    if info.st_size > limit:
-        raise _TooLarge(27, f"file is {info.st_size} bytes, over the limit of {limit}", name)
-    with open(name, "rb") as handle:
-        return handle.read(limit + 1)
 
 
 def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
@@ -159,13 +153,13 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=lambda name: _read_regular(name, limit),
+                           read_file=lambda name: read_regular(name, limit),
                            roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise LoadError([_problem_finding(problem, shown)]) from None
     except XacroFailure as failure:
         code = {"package": "U006", "syntax": "U001", "entity": "U009", "sandbox": "U016",
-                "outside": "U014"}.get(failure.kind, "U005")
+                "outside": "U014", "link": "U017"}.get(failure.kind, "U005")
         location = failure.location
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
@@ -179,15 +173,10 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
 
 
 def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
-    """Where included and YAML files may be: the repository (nearest ``.git`` above the input;
-    without one, the nearest package.xml folder, else the input's folder) and the files and
-    folders named by xacro arguments. Folders of packages ``$(find)`` resolves are added later."""
-    from .packages import repository_root
-
-    folder = _folder_of(source)
-    root = repository_root(folder) or next(
-        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
-    roots = [root]
+    """Where included and YAML files may be: the repository (see
+    :func:`~urdftool.loader.packages.containment_root`) and the files and folders named by xacro
+    arguments. Folders of packages ``$(find)`` resolves are added later."""
+    roots = [containment_root(_folder_of(source))]
     for value in args.values():
         try:
             if value and os.path.exists(value):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -45,7 +46,9 @@ class Robot:
 
     @property
     def base_dir(self) -> Path:
-        return Path(self.path).resolve().parent if self.path != "-" else Path.cwd()
+        """The folder holding the file as named (a link is not followed, so that companions and
+        relative paths are looked for where the link is, never where it leads)."""
+        return Path(os.path.abspath(self.path)).parent if self.path != "-" else Path.cwd()
 
     @property
     def name(self) -> str:

@@ -1,8 +1,11 @@
 """Find ROS packages without ROS, for ``$(find pkg)`` and ``package://pkg/...``.
 
 Search order: ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH (``share/NAME``),
-package.xml files walking up from the input (a folder that is the package, or has it as a child),
-then package.xml files below the repository root (the nearest folder holding ``.git``).
+package.xml files walking up from the input to the repository root (a folder that is the
+package, or has it as a child), then package.xml files below the repository root (the nearest
+folder holding ``.git``). A folder or package.xml in the repository that is a symbolic link
+leading outside it is not a package: it is not read, and the not-found message says so. Without
+a ``.git`` above the input there is no repository to keep to, and the walk goes up to ``/``.
 """
 
 from __future__ import annotations
@@ -12,19 +15,23 @@ import re
 from pathlib import Path
 
 from ..errors import PackageNotFound
+from ..files import inside, read_regular
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 _MAX_SCAN_DEPTH = 6
 _MAX_SCAN_DIRS = 20000
+_MAX_MANIFEST = 1024 * 1024  # [bytes]
 
 
-def package_name(folder: Path) -> str | None:
-    """The ``<name>`` a folder's package.xml declares, or None when it has none."""
+def package_name(folder: Path, root: Path | None = None) -> str | None:
+    """The ``<name>`` a folder's package.xml declares, or None when it has none (or, given
+    ``root``, when the package.xml leads outside ``root``: then it is not opened)."""
     manifest = folder / "package.xml"
+    if root is not None and not inside(manifest, root):
+        return None
     try:
-        with open(manifest, "rb") as handle:
-            head = handle.read(65536)
+        head = read_regular(manifest, _MAX_MANIFEST)
     except OSError:
         return None
     match = _NAME.search(head)
@@ -39,6 +46,15 @@ def repository_root(start: Path) -> Path | None:
     return None
 
 
+def containment_root(folder: Path) -> Path:
+    """The folder files read for a robot in ``folder`` must stay in: its repository (nearest
+    ``.git`` above); without one, the nearest folder above holding a package.xml; else
+    ``folder`` itself. ``folder`` is taken as named, symbolic links not followed."""
+    folder = Path(os.path.abspath(folder))
+    return repository_root(folder) or next(
+        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
+
+
 class PackageResolver:
     """Maps package names to folders; one instance serves xacro and mesh look-ups."""
 
@@ -49,6 +65,7 @@ class PackageResolver:
         self.environ = os.environ if environ is None else environ
         self._cache: dict[str, Path] = {}
         self._scanned: dict[str, Path] | None = None
+        self._links_out: list[Path] = []  # package folders leading outside the repository
 
     def find(self, name: str) -> Path:
         """The folder of package ``name``; raises PackageNotFound listing where it looked."""
@@ -73,27 +90,38 @@ class PackageResolver:
             yield (share if share.is_dir() else None), f"AMENT_PREFIX_PATH {share}"
         if self.start is None:
             return
-        yield self._walk_up(name), f"package.xml above {self.start}"
         root = repository_root(self.start)
+        above = f"package.xml above {self.start}" + (f" up to {root}" if root else "")
+        yield self._walk_up(name, root), above
         if root is not None:
             yield self._scan(root).get(name), f"package.xml below {root}"
+        for link in dict.fromkeys(self._links_out):
+            yield None, f"{link} (a symbolic link leading outside {root}; not followed)"
 
-    def _walk_up(self, name: str) -> Path | None:
-        for folder in [self.start, *self.start.parents]:
-            if package_name(folder) == name:
-                return folder
-            child = folder / name
-            if package_name(child) == name:
-                return child
+    def _walk_up(self, name: str, root: Path | None) -> Path | None:
+        chain = [self.start, *self.start.parents]
+        if root is not None:
+            chain = chain[:chain.index(root) + 1]
+        for folder in chain:
+            for candidate in (folder, folder / name):
+                if root is not None and not inside(candidate / "package.xml", root):
+                    if (candidate / "package.xml").exists():
+                        self._links_out.append(candidate)
+                    continue
+                if package_name(candidate) == name:
+                    return candidate
         return None
 
     def _scan(self, root: Path) -> dict[str, Path]:
         if self._scanned is None:
             self._scanned = {}
-            for folder in _walk_dirs(root):
-                name = package_name(folder)
+            links: list[Path] = []
+            for folder in _walk_dirs(root, links=links):
+                name = package_name(folder, root)
                 if name is not None:
                     self._scanned.setdefault(name, folder)
+            self._links_out += [link for link in links if not inside(link, root)
+                                and (link / "package.xml").exists()]
         return self._scanned
 
     def resolve_uri(self, uri: str, base_dir: Path) -> Path:
@@ -120,8 +148,9 @@ def _find_below(folder: Path, name: str, depth: int) -> Path | None:
     return None
 
 
-def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH):
-    """Folders below root, breadth first, bounded in depth and count, never following links."""
+def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None = None):
+    """Folders below root, breadth first, bounded in depth and count, never following links
+    (appended to ``links`` when given)."""
     frontier = [root]
     seen = 0
     for _ in range(max_depth + 1):
@@ -139,4 +168,6 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH):
                 Path(entry.path) for entry in entries
                 if entry.is_dir(follow_symlinks=False) and entry.name not in _SKIP_DIRS
             )
+            if links is not None:
+                links.extend(Path(entry.path) for entry in entries if entry.is_symlink())
         frontier = next_frontier

@@ -36,6 +36,7 @@ from lxml import etree
 from .. import budget
 from ..diagnostics import Location, display_path
 from ..errors import PackageNotFound
+from ..files import read_regular
 from ..rules._names import available
 from . import xacro_sandbox
 from .xmlparse import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
@@ -53,8 +54,9 @@ _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's pare
 
 @dataclass
 class XacroFailure(Exception):
-    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package', 'io', 'sandbox' or
-    'outside' (a file outside the allowed roots, refused)."""
+    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package', 'io', 'sandbox',
+    'outside' (a file outside the allowed roots, refused) or 'link' (a symbolic link in the
+    repository leading outside it, not followed)."""
 
     kind: str
     message: str
@@ -198,7 +200,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     import xacro
     from xacro import substitution_args
 
-    read_file = read_file or (lambda p: Path(p).read_bytes())
+    read_file = read_file or read_regular
     session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
@@ -319,6 +321,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if os.path.realpath(filename) in stack:
             chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
             raise xacro.XacroException(f"include cycle: {chain}")
+        _refuse_link_out(session, filename)
         session.check_inside(filename, "included file")
         try:
             data = session.read_file(filename)
@@ -458,6 +461,23 @@ _EVAL_CONSTANTS = {
     **{name: getattr(builtins, name) for name in (
         "list", "dict", "map", "str", "float", "int", "len", "bool", "min", "max", "round", "abs")},
 }
+
+
+def _refuse_link_out(session: _Session, filename: str) -> None:
+    """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
+    symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
+    from ..files import inside
+    from .packages import containment_root
+
+    root = containment_root(os.path.dirname(os.path.abspath(session.paths[0])))
+    named = os.path.abspath(filename)
+    lexically_inside = any(named.startswith(base.rstrip(os.sep) + os.sep)
+                           for base in (str(root), os.path.realpath(root)))
+    if lexically_inside and not inside(filename, root):
+        raise XacroFailure("link", (
+            f"included file '{display_path(filename)}' is a symbolic link to "
+            f"'{os.path.realpath(filename)}', outside the repository ({display_path(root)}); "
+            "not followed"), session.current_location())
 
 
 class _Outside(Exception):

@@ -196,3 +196,19 @@ declare("U018", "out-of-memory", Severity.ERROR, """
     Bad: ``<link name="${len([[0] * 10**6 for i in range(400)])}"/>``
     Good: ``<link name="${'link_%d' % index}"/>``
     """)
+
+declare("U017", "symlink-outside-root", Severity.ERROR, """
+    A symbolic link in the repository leads outside it; urdftool does not follow it.
+
+    A robot file, an included file or a folder that ``check DIR`` walks may be a link planted by
+    a pull request to read ``/etc/passwd``, a CI secret or ``/dev/zero``. The link is reported
+    and its target never opened, with or without ``--no-env``. (A package folder that is such a
+    link is not a package: U006 names it.) The repository
+    is the nearest folder above the link holding ``.git`` (without one, the nearest package.xml
+    folder, else the link's own folder). Files named with ``--package``, ROS_PACKAGE_PATH and
+    AMENT_PREFIX_PATH are not links in the repository and stay allowed.
+
+    Bad: ``urdf/arm.xacro -> /home/me/other_robot/arm.xacro``
+    Good: a copy of the file in the repository, or ``$(find other_robot)/urdf/arm.xacro``
+    with ``--package other_robot=PATH``
+    """)
