@@ -258,29 +258,25 @@ def _attr(text: str) -> str:
 PROPERTIES = ('\n  <xacro:property name="l" value="("/>\n  <xacro:property name="r" value=")"/>\n')
 
 
+# Where xacro evaluates a payload (PAYLOAD is replaced): a link name, a property used later, a
+# macro parameter default, xacro:element / xacro:attribute names, xacro:if, an arg default.
+PLACES = {
+    "link": '  <link name="PAYLOAD"/>\n',
+    "property": '  <xacro:property name="p" value="PAYLOAD"/>\n  <link name="${p}"/>\n',
+    "macro": ('  <xacro:macro name="m" params="a:=PAYLOAD"><link name="${a}"/></xacro:macro>\n'
+              '  <xacro:m/>\n'),
+    "element": '  <xacro:element xacro:name="PAYLOAD"/>\n',
+    "attribute": '  <link name="x"><xacro:attribute name="PAYLOAD" value="1"/></link>\n',
+    "if": '  <xacro:if value="PAYLOAD"><link name="y"/></xacro:if>\n',
+    "arg": '  <xacro:arg name="z" default="PAYLOAD"/>\n  <link name="$(arg z)"/>\n',
+}
+
+
 @st.composite
 def eval_text(draw, payloads: list[str]) -> str:
-    """A payload placed where xacro evaluates: a link name, a property used later, a macro
-    parameter default, ``xacro:element``/``xacro:attribute`` names, an ``xacro:if``."""
+    """One of ``payloads`` in one of PLACES, after the ``l`` and ``r`` properties."""
     payload = _attr(draw(st.sampled_from(payloads)))
-    where = draw(st.sampled_from(["link", "property", "macro", "element", "attribute", "if",
-                                  "arg"]))
-    if where == "link":
-        return f'{PROPERTIES}  <link name="{payload}"/>\n'
-    if where == "property":
-        return (f'{PROPERTIES}  <xacro:property name="p" value="{payload}"/>\n'
-                '  <link name="${p}"/>\n')
-    if where == "macro":
-        return (f'{PROPERTIES}  <xacro:macro name="m" params="a:={payload}"><link name="${{a}}"/>'
-                '</xacro:macro>\n  <xacro:m/>\n')
-    if where == "element":
-        return f'{PROPERTIES}  <xacro:element xacro:name="{payload}"/>\n'
-    if where == "attribute":
-        return (f'{PROPERTIES}  <link name="x"><xacro:attribute name="{payload}" value="1"/>'
-                '</link>\n')
-    if where == "if":
-        return f'{PROPERTIES}  <xacro:if value="{payload}"><link name="y"/></xacro:if>\n'
-    return f'{PROPERTIES}  <xacro:arg name="z" default="{payload}"/>\n  <link name="$(arg z)"/>\n'
+    return PROPERTIES + draw(st.sampled_from(sorted(PLACES.values()))).replace("PAYLOAD", payload)
 
 
 def _bomb_yaml(kind: str) -> bytes:

@@ -100,6 +100,7 @@ def _portable_text(text: str) -> str:
 
 MEMORY_LIMIT_KIB = int(2.5 * 1024 * 1024)  # peak RSS a case may reach in one command [KiB]
 NO_ENV_COMMANDS = {"check", "check-text", "check-walk", "xacro"}
+_NO_ENV_OUTPUTS = {"report.json", "robot.urdf"}  # what check and xacro write (with --no-env)
 _LEAKS = {"root:x:0:0": "/etc/passwd", SECRET_LINK: "a file outside the repository"}
 
 
@@ -190,8 +191,11 @@ def _after(layout) -> list[str]:
     for path in (layout.repo / "out").iterdir():
         if path.is_file() and not path.is_symlink() and path.stat().st_size < 50 << 20:
             data = path.read_bytes()
-            if SECRET_VALUE.encode() in data or b"root:x:0:0" in data:
-                found.append(f"leak: {path.name} holds a secret or /etc/passwd")
+            if b"root:x:0:0" in data:
+                found.append(f"leak: {path.name} holds /etc/passwd")
+            if SECRET_VALUE.encode() in data and path.name in _NO_ENV_OUTPUTS:
+                found.append(f"env: {path.name}, written with --no-env, holds an environment "
+                             "variable")
     return found
 
 
