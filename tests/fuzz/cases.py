@@ -15,7 +15,8 @@ file outside, a missing folder, a folder). :func:`case_strategy` draws them;
 
 A bundled robot (robots/NAME) is copied into ``repo/NAME``; a corpus robot is fed on stdin with
 its own folder as the working directory (so its includes resolve), and only the hostile
-additions that need no copy of its repository apply to it.
+additions that need no copy of its repository apply to it. The corpus is laid out as one ROS
+workspace (packages find their siblings), so for a corpus robot the whole corpus may be read.
 """
 
 from __future__ import annotations
@@ -150,8 +151,7 @@ def materialize(case: Case) -> Layout:
                         None, [])
     else:
         layout = Layout(top, repo, outside, scratch, case.seed.path.parent, "-", case.data,
-                        [_corpus_repository(case.seed.path)]
-                        + [Path(v) for v in case.seed.args.values() if os.path.isabs(v)])
+                        [CORPUS] + [Path(v) for v in case.seed.args.values() if os.path.isabs(v)])
     for relative, content in case.files.items():
         target = repo / relative
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -191,13 +191,6 @@ def _plant_outside(outside: Path) -> None:
     (outside / "evil_pkg" / "secret.xacro").write_text(secret)
     shutil.copy(MESHES / "box.stl", outside / "evil_pkg" / "box.stl")
     shutil.copy(MESHES / "box.stl", outside / "box.stl")
-
-
-def _corpus_repository(path: Path) -> Path:
-    try:
-        return CORPUS / path.resolve().relative_to(CORPUS.resolve()).parts[0]
-    except (ValueError, IndexError):
-        return path.parent
 
 
 def cleanup(layout: Layout) -> None:
