@@ -26,7 +26,8 @@ bench: $(INSTALLED)
 	$(PY) benchmarks/run.py
 
 fuzz: $(INSTALLED)
-	$(PY) -m tests.fuzz.run 10000
+	$(PY) -m tests.fuzz.run 10000 --in-process; status=$$?; \
+	$(PY) -m tests.fuzz.run 10000 && exit $$status
 
 clean:
 	rm -rf $(VENV) .pytest_cache build *.egg-info

@@ -1,21 +1,31 @@
-"""Run one fuzz case through the check engine in-process and list what went wrong.
+"""Run fuzz cases and list what went wrong.
 
-Invariants: no traceback escapes, no U900 (a crash inside urdftool), no hang, every file that
-fails to load has at least one error with a line, and nothing from /etc/passwd reaches output.
+:func:`problems` checks a mutated robot with the check engine in-process. Invariants: no
+traceback escapes, no U900 (a crash inside urdftool), no hang, every file that fails to load has
+at least one error with a line, and nothing from /etc/passwd reaches output.
+
+:func:`case_report` runs a whole hostile repository (cases.py) through every command, each in a
+forked child (child.py), and adds: exit status 0, 1 or 2, a time limit per command, peak memory,
+no file opened outside the repository, no code run, no write through a planted link.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import os
 import signal
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.engine import CheckOptions, check_file
 
+from .cases import SECRET_LINK, Case, cleanup, commands, materialize
+from .child import CANARY, SECRET_VALUE, Allow, run_all
 from .mutate import CORPUS, ROOT, Seed
 
-REGRESSIONS = Path(__file__).resolve().parent / "regressions"
+REGRESSIONS = Path(os.environ.get("URDFFUZZ_REGRESSIONS",
+                                  Path(__file__).resolve().parent / "regressions"))
 HANG_SECONDS = 60
 _UNLOCATED_OK = {"U008"}  # file-too-large is about the whole file
 
@@ -59,10 +69,10 @@ def problems(seed: Seed, data: bytes) -> list[str]:
     return found
 
 
-def save_regression(seed: Seed, data: bytes, why: list[str]) -> Path:
+def save_regression(seed: Seed, data: bytes, why: list[str], name: str | None = None) -> Path:
     """Keep a failing input as tests/fuzz/regressions/<hash>.bin plus a .json describing it."""
     REGRESSIONS.mkdir(exist_ok=True)
-    digest = hashlib.sha256(data).hexdigest()[:12]
+    digest = name or hashlib.sha256(data).hexdigest()[:12]
     path = REGRESSIONS / f"{digest}.bin"
     path.write_bytes(data)
     meta = {"seed": _portable(seed.path), "args": {k: _portable_text(v) for k, v in seed.args.items()},
@@ -84,3 +94,139 @@ def _portable(path: Path) -> str:
 
 def _portable_text(text: str) -> str:
     return text.replace(str(CORPUS), "<corpus>").replace(str(ROOT), "<root>")
+
+
+# ------------------------------------------------------------ every command, in forked children
+
+MEMORY_LIMIT_KIB = int(2.5 * 1024 * 1024)  # peak RSS a case may reach in one command [KiB]
+NO_ENV_COMMANDS = {"check", "check-text", "check-walk", "xacro"}
+_NO_ENV_OUTPUTS = {"report.json", "robot.urdf"}  # what check and xacro write (with --no-env)
+_LEAKS = {"root:x:0:0": "/etc/passwd", SECRET_LINK: "a file outside the repository"}
+
+
+@dataclass
+class CaseReport:
+    """What one case did: failures, and figures for the run's summary."""
+
+    failures: list[str] = field(default_factory=list)
+    failed_commands: list[str] = field(default_factory=list)
+    peak_kib: int = 0
+    outside: int = 0  # files opened outside the allowed folders
+    seconds: float = 0.0
+
+
+def case_report(case: Case, *, time_limit: float = 30.0, parallel: int = 2) -> CaseReport:
+    """Run ``case`` through its commands (each in a forked child, see child.py) and judge them.
+
+    A command fails on: exit status other than 0, 1, 2 (or a signal), a hang over
+    ``time_limit``, a Python traceback or U900 in its output, /etc/passwd or a file from outside
+    in its output or written files, the secret environment variable in the output of a command
+    run with ``--no-env``, peak RSS over MEMORY_LIMIT_KIB, a file opened outside the repository,
+    a program started, a ``PWNED`` canary touched, a write through a symbolic link planted at an
+    output path, or a text report saying "no problems found" while exiting 1.
+    """
+    layout = materialize(case)
+    report = CaseReport()
+    try:
+        allow = Allow.for_case(layout.repo, layout.scratch,
+                               extra_read=[str(p) for p in layout.reads])
+        table = commands(case, layout)
+        outcomes = run_all(list(table.values()), parallel=parallel, cwd=layout.cwd, allow=allow,
+                           scratch=layout.scratch, stdin=layout.stdin, time_limit=time_limit,
+                           memory_limit=_address_space_limit())
+        for name, outcome in zip(table, outcomes):
+            if outcome is None:  # not started after another command hung
+                continue
+            found = _judge(name, outcome, time_limit)
+            report.peak_kib = max(report.peak_kib, outcome.peak_kib)
+            report.outside += sum(e.startswith("outside:") for e in outcome.events)
+            report.seconds += outcome.seconds
+            if found:
+                report.failures.extend(found)
+                report.failed_commands.append(name)
+        report.failures.extend(_after(layout))
+    finally:
+        cleanup(layout)
+    return report
+
+
+def _judge(name: str, outcome, time_limit: float) -> list[str]:
+    found = []
+    text = outcome.output
+    if outcome.hung:
+        found.append(f"hang: {name} over {time_limit:.0f} s")
+    elif outcome.status not in (0, 1, 2):
+        found.append(f"exit status {outcome.status}: {name}")
+    if "Traceback (most recent call last)" in text:
+        last = [line for line in text.splitlines() if line and not line.startswith(" ")][-1:]
+        kind = "memory" if "MemoryError" in text else "traceback"
+        found.append(f"{kind}: {name}: {' '.join(last)[:200]}")
+    if "U900" in text:
+        found.append(f"U900: {name}: " + next(line for line in text.splitlines()
+                                              if "U900" in line)[:200])
+    for marker, what in _LEAKS.items():
+        if marker in text:
+            found.append(f"leak: {what} reached the output of {name}")
+    if name in NO_ENV_COMMANDS and SECRET_VALUE in text:
+        found.append(f"env: {name} --no-env printed an environment variable")
+    if name == "check-text" and (outcome.status == 1 and "no problems found" in text
+                                 or any(line.startswith("::") for line in text.splitlines())):
+        found.append(f"forged report: {name} printed a line its text format never writes")
+    if outcome.peak_kib > MEMORY_LIMIT_KIB:
+        found.append(f"memory: {name} peaked at {outcome.peak_kib // 1024} MiB")
+    for event in outcome.events:
+        kind = event.split(":", 1)[0]
+        label = {"outside": "outside", "exec": "code ran", "canary": "code ran"}.get(kind, kind)
+        found.append(f"{label}: {name}: {event[:240]}")
+    return found
+
+
+def _after(layout) -> list[str]:
+    found = []
+    if (layout.outside / "victim.txt").read_text() != "VICTIM\n" or \
+            (layout.outside / "nowhere").exists():
+        found.append("write through a symbolic link at an output path")
+    for path in layout.repo.rglob(f"{CANARY}*"):
+        found.append(f"code ran: {path.name} was created")
+    for path in (layout.repo / "out").iterdir():
+        if path.is_file() and not path.is_symlink() and path.stat().st_size < 50 << 20:
+            data = path.read_bytes()
+            if b"root:x:0:0" in data:
+                found.append(f"leak: {path.name} holds /etc/passwd")
+            if SECRET_VALUE.encode() in data and path.name in _NO_ENV_OUTPUTS:
+                found.append(f"env: {path.name}, written with --no-env, holds an environment "
+                             "variable")
+    return found
+
+
+def _address_space_limit() -> int:
+    """The parent's virtual size plus 3 GiB: children inherit the parent's mappings, and a
+    runaway allocation must stop before the machine's memory does."""
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024 + (3 << 30)
+    return 8 << 30
+
+
+def save_case_regression(case: Case, report: CaseReport) -> Path:
+    """Keep a failing case like save_regression does, with its repository and the commands that
+    failed (the replay runs only those)."""
+    kept = Case(case.seed, case.data, case.kind, case.files, case.sparse, case.links,
+                case.generated, case.output, tuple(report.failed_commands) or case.commands)
+    meta = kept.to_json()
+    digest = hashlib.sha256(case.data + json.dumps(meta, sort_keys=True).encode()).hexdigest()
+    path = save_regression(case.seed, case.data, report.failures, name=digest[:12])
+    stored = json.loads(path.with_suffix(".json").read_text())
+    stored["case"] = meta
+    path.with_suffix(".json").write_text(json.dumps(stored, indent=1) + "\n")
+    return path
+
+
+def replay(path: Path, time_limit: float = 30.0) -> list[str]:
+    """What a kept regression input violates today (empty when it behaves)."""
+    seed, data = load_regression(path)
+    meta = json.loads(path.with_suffix(".json").read_text())
+    if "case" not in meta:
+        return problems(seed, data)
+    return case_report(Case.from_json(seed, data, meta["case"]), time_limit=time_limit).failures

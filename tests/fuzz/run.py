@@ -1,6 +1,13 @@
-"""``make fuzz``: mutate real robots and check them, N cases (default 10,000).
+"""``make fuzz``: hostile repositories through every command, N cases (default 10,000).
 
-Usage: python -m tests.fuzz.run [N] [--seed S] [--max-seed-bytes B]
+Usage: python -m tests.fuzz.run [N] [--seed S] [--max-seed-bytes B] [--kinds K,K]
+                                [--time-limit SECONDS] [--parallel P] [--in-process]
+
+Each case (tests/fuzz/cases.py) is a mutated robot in a throw-away repository with hostile
+additions, run through check (in worker mode and as a folder walk), xacro, tree, graph, fk, dh,
+inertia, dynamics and collisions, each in a forked child with a time limit, its peak memory
+measured and every file it opens audited (harness.case_report). ``--in-process`` runs the older,
+faster mode instead: the check engine on mutated robots in this process (harness.problems).
 Every failing input is kept in tests/fuzz/regressions/ and the run goes on; exit 1 if any failed.
 """
 
@@ -9,22 +16,22 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from collections import Counter
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import seed as hypothesis_seed
 
-from .harness import problems, save_regression
+from .harness import case_report, problems, save_case_regression, save_regression
 from .mutate import mutant, seeds
 
 
 def run(count: int, seed: int = 0, max_seed_bytes: int | None = None) -> dict:
+    """The in-process mode: check_file on mutated robots."""
     seed_list = seeds(max_seed_bytes)
     stats = {"cases": 0, "failures": 0, "seeds": len(seed_list)}
     start = time.perf_counter()
 
-    @hypothesis_seed(seed)
-    @settings(max_examples=count, deadline=None, database=None, derandomize=False,
-              suppress_health_check=list(HealthCheck), phases=["generate"])
+    @_generate(seed, count)
     @given(mutant(seed_list))
     def case(pair):
         seed_file, data = pair
@@ -34,13 +41,67 @@ def run(count: int, seed: int = 0, max_seed_bytes: int | None = None) -> dict:
             stats["failures"] += 1
             path = save_regression(seed_file, data, found)
             print(f"FAIL {path.name} (seed {seed_file.path.name}): {found[0][:200]}", flush=True)
-        if stats["cases"] % 500 == 0:
-            print(f"{stats['cases']} cases, {stats['failures']} failures, "
-                  f"{time.perf_counter() - start:.0f} s", flush=True)
+        _progress(stats, start)
 
     case()
     stats["seconds"] = round(time.perf_counter() - start, 1)
     return stats
+
+
+def run_commands(count: int, seed: int = 0, max_seed_bytes: int | None = None,
+                 kinds: list[str] | None = None, time_limit: float = 30.0, parallel: int = 2,
+                 keep: bool = True) -> dict:
+    """Whole cases through every command (see the module docstring).
+
+    Returns figures: cases, failures, failure classes (the word before the first colon of
+    each failure), peak RSS over all commands [MiB], files opened outside, seconds.
+    keep: save failing cases to tests/fuzz/regressions.
+    """
+    from .cases import case_strategy
+    from .child import preload
+
+    preload()
+    seed_list = seeds(max_seed_bytes)
+    stats = {"cases": 0, "failures": 0, "seeds": len(seed_list), "peak_mib": 0, "outside": 0,
+             "classes": Counter(), "commands_seconds": 0.0, "failed": []}
+    start = time.perf_counter()
+
+    @_generate(seed, count)
+    @given(case_strategy(seed_list, kinds))
+    def case(one):
+        stats["cases"] += 1
+        report = case_report(one, time_limit=time_limit, parallel=parallel)
+        stats["peak_mib"] = max(stats["peak_mib"], report.peak_kib // 1024)
+        stats["outside"] += report.outside
+        stats["commands_seconds"] += report.seconds
+        if report.failures:
+            stats["failures"] += 1
+            classes = sorted({f.split(":", 1)[0] for f in report.failures})
+            stats["classes"].update(classes)
+            name = save_case_regression(one, report).name if keep else "-"
+            stats["failed"].append((name, one.kind, classes))
+            print(f"FAIL {name} ({one.kind}, seed {one.seed.path.name}, output {one.output}): "
+                  f"{', '.join(classes)}: {report.failures[0][:200]}", flush=True)
+        _progress(stats, start, every=50)
+
+    case()
+    stats["seconds"] = round(time.perf_counter() - start, 1)
+    return stats
+
+
+def _generate(seed: int, count: int):
+    def wrap(test):
+        return hypothesis_seed(seed)(settings(
+            max_examples=count, deadline=None, database=None, derandomize=False,
+            suppress_health_check=list(HealthCheck), phases=["generate"])(test))
+
+    return wrap
+
+
+def _progress(stats: dict, start: float, every: int = 500) -> None:
+    if stats["cases"] % every == 0:
+        print(f"{stats['cases']} cases, {stats['failures']} failures, "
+              f"{time.perf_counter() - start:.0f} s", flush=True)
 
 
 def main(argv=None) -> int:
@@ -48,10 +109,23 @@ def main(argv=None) -> int:
     parser.add_argument("count", type=int, nargs="?", default=10_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--max-seed-bytes", type=int, default=None)
+    parser.add_argument("--kinds", default=None, help="comma-separated case kinds (cases.py)")
+    parser.add_argument("--time-limit", type=float, default=30.0, help="per command [s]")
+    parser.add_argument("--parallel", type=int, default=2, help="commands at a time")
+    parser.add_argument("--in-process", action="store_true", help="check_file only, in-process")
     options = parser.parse_args(argv)
-    stats = run(options.count, options.seed, options.max_seed_bytes)
+    if options.in_process:
+        stats = run(options.count, options.seed, options.max_seed_bytes)
+        print(f"fuzz: {stats['cases']} cases from {stats['seeds']} seed robots, "
+              f"{stats['failures']} failures, {stats['seconds']} s")
+        return 1 if stats["failures"] else 0
+    stats = run_commands(options.count, options.seed, options.max_seed_bytes,
+                         options.kinds.split(",") if options.kinds else None,
+                         options.time_limit, options.parallel)
+    classes = ", ".join(f"{name} {n}" for name, n in stats["classes"].most_common()) or "none"
     print(f"fuzz: {stats['cases']} cases from {stats['seeds']} seed robots, "
-          f"{stats['failures']} failures, {stats['seconds']} s")
+          f"{stats['failures']} failing ({classes}); peak memory {stats['peak_mib']} MiB; "
+          f"files opened outside: {stats['outside']}; {stats['seconds']} s")
     return 1 if stats["failures"] else 0
 
 
