@@ -73,6 +73,20 @@ def test_max_file_size(run_cli, project):
     assert codes(run_cli, project / "robots") == (1, ["U008"])
 
 
+@pytest.mark.parametrize("value", ["100000000000000000000", "0", "-5", '"16M"', "true", "1.5"])
+def test_max_file_size_out_of_range_is_a_usage_error(run_cli, project, value):
+    """10**20 bytes overflowed a read (OverflowError traceback); a string or a bool slipped in."""
+    settings(project, f"max-file-size = {value}\n")
+    result = run_cli("check", project / "robots")
+    assert result.exit_code == 2 and "'max-file-size' must be a whole number" in result.stderr
+    assert "Traceback" not in result.output
+
+
+def test_max_file_size_option_out_of_range_is_a_usage_error(run_cli, project):
+    result = run_cli("check", "--max-file-size", str(10 ** 20), project / "robots")
+    assert result.exit_code == 2 and "--max-file-size must be a whole number" in result.stderr
+
+
 def test_urdftool_toml_wins_over_pyproject_in_the_same_folder(run_cli, project):
     settings(project, 'ignore = ["U204"]\n')
     settings(project, 'ignore = ["U206"]\n', "urdftool.toml")

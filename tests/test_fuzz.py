@@ -20,29 +20,7 @@ REGRESSION_FILES = sorted(REGRESSIONS.glob("*.bin"))
 CI_CASES = 100
 CI_COMMAND_CASES = 4
 REPLAY_SECONDS = 5  # per command; a fixed command ends well within it
-XFAIL: dict[str, str] = {  # kept input -> why it fails today (issue 12 class, what happens)
-    "598292138c37": "class 1 $(eval env()) reads the environment under --no-env",
-    "2fcf206bc21c": "class 1 $(eval open().read()) reads /etc/passwd",
-    "894d33262f62": "class 1 $(eval) runs code (the issue's exploit)",
-    "90d7dfc99836": "class 2 YAML anchors alias a long string",
-    "69fd8ce25939": "class 2 expression allocates gigabytes",
-    "94918d7a589c": "class 3 $(find) uses a package folder that is a symlink out",
-    "81226d077d6a": "class 3 settings max-file-size = 10**20 crashes (U900 OverflowError)",
-    "89359e6e1fd7": "class 3 package look-up opens package.xml in every folder above the "
-                    "repository, up to /",
-    "3d9908bac997": "class 3 fk --q-file reads /dev/zero",
-    "374d833327fb": "class 3 folder walk follows a symlink out",
-    "4aa6555149c4": "class 3 include through a symlink out",
-    "06735a031dc5": "class 3 settings spec names /dev/zero",
-    "ed488ace1754": "class 3 settings spec names /etc/passwd",
-    "b7ae61049ccf": "class 4 -o follows a symlink planted at the output path",
-    "1bcd687bb2ce": "class 4 -o naming a folder is a traceback",
-    "f9de7c6ebb21": "class 4 -o into a missing folder is a traceback",
-    "9adf5c7a6f89": "class 5 ZAE mesh inflates 1 GiB",
-    "59cee68e5577": "class 6 folder walk over 90 sparse 32 MiB files",
-    "3e353e092221": "class 7 tree has no time budget",
-    "dc0b903a3f65": "class 8 a link name forges report lines",
-}
+XFAIL: dict[str, str] = {}  # kept input -> why it fails today (issue class, what happens)
 
 
 def _param(path: Path):
@@ -106,24 +84,39 @@ def test_child_reports_exit_status_output_and_peak_memory(scratch_case, preloade
 
 
 def test_child_audit_sees_reads_outside_and_links_leading_out(scratch_case, preloaded):
+    """urdftool reads what the command line names, outside or not: a file outside and an
+    explicit --package whose folder is a link leading out are reads the audit must see."""
     from tests.fuzz.child import run
 
     repo, scratch, allow = scratch_case
-    (repo / "out.urdf").symlink_to(repo.parent / "elsewhere.urdf")
-    (repo.parent / "elsewhere.urdf").write_bytes(b'<robot name="o"><link name="a"/></robot>\n')
-    outcome = run(["check", "/etc/hostname", "out.urdf"], cwd=repo, allow=allow, scratch=scratch)
+    (repo.parent / "elsewhere").mkdir()
+    (repo.parent / "elsewhere" / "part.xacro").write_bytes(
+        b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>\n')
+    (repo.parent / "pkg").symlink_to(repo.parent / "elsewhere")
+    (repo / "r.urdf.xacro").write_bytes(
+        b'<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/>'
+        b'<xacro:include filename="$(find pkg)/part.xacro"/></robot>\n')
+    outcome = run(["check", "--allow-env", "-p", f"pkg={repo.parent / 'pkg'}", "/etc/hostname", "r.urdf.xacro"],
+                  cwd=repo, allow=allow, scratch=scratch)
     assert "outside: open read /etc/hostname" in outcome.events
-    assert any(e.endswith("out.urdf -> " + str(repo.parent / "elsewhere.urdf"))
-               for e in outcome.events)
+    assert any(e.endswith("part.xacro -> " + str(repo.parent / "elsewhere" / "part.xacro"))
+               for e in outcome.events), outcome.events
 
 
-def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, preloaded):
+def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, preloaded,
+                                                             monkeypatch):
     from tests.fuzz.child import run
 
     repo, scratch, allow = scratch_case
     victim = repo.parent / "victim.txt"
     victim.write_text("VICTIM\n")
     (repo / "report.json").symlink_to(victim)
+
+    def naive_write(path, data):  # what urdftool did before it wrote beside and replaced
+        with open(path, "w" if isinstance(data, str) else "wb") as handle:
+            handle.write(data)
+
+    monkeypatch.setattr("urdftool.files.write_file", naive_write)  # the child inherits it
     written = run(["check", "r.urdf", "-f", "json", "-o", "report.json"], cwd=repo, allow=allow,
                   scratch=scratch)
     assert victim.read_text() == "VICTIM\n"
@@ -132,7 +125,6 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
     assert slow.hung
 
 
-@pytest.mark.xfail(strict=True, reason="issue 12 class 1: $(eval) runs code")
 def test_case_report_judges_the_issue_exploit(preloaded):
     """The issue's $(eval) exploit, judged by the harness (fails today: class 1)."""
     from tests.fuzz.cases import Case
@@ -148,8 +140,6 @@ def test_case_report_judges_the_issue_exploit(preloaded):
     assert not any(f.startswith("code ran") for f in report.failures), report.failures
 
 
-@pytest.mark.xfail(strict=True, reason="issue 12 class 3: with this seed a settings file names "
-                   "a link to /etc/passwd and check reads it")
 def test_seeded_command_slice(preloaded):
     """A few whole hostile repositories through every command (tests/fuzz/cases.py)."""
     from tests.fuzz.run import run_commands

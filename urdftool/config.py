@@ -123,7 +123,8 @@ def _parse(path: Path, table: dict) -> Config:
         config.companions["controllers"] = [_inside_path(path, "controllers", p) for p in
                                             (listed if isinstance(listed, list) else [listed])]
     config.strict = bool(table.get("strict", False))
-    config.max_file_size = table.get("max-file-size")
+    if "max-file-size" in table:
+        config.max_file_size = checked_file_size(table["max-file-size"], f"{path}: 'max-file-size'")
     if "max-memory" in table:
         config.max_memory = _memory(path, table["max-memory"])
     return config
@@ -137,6 +138,18 @@ def _inside_path(settings: Path, what: str, value) -> Path:
     path = settings.parent / value
     _refuse_outside(settings, path, what)
     return path
+
+
+MAX_FILE_SIZE = 2 ** 40  # [bytes] the largest size limit that can be set (1 TiB)
+
+
+def checked_file_size(value, what: str) -> int:
+    """``value`` as a file size limit in [bytes]; UsageError naming ``what`` unless it is a whole
+    number from 1 to MAX_FILE_SIZE."""
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= MAX_FILE_SIZE:
+        raise UsageError(f"{what} must be a whole number of bytes from 1 to {MAX_FILE_SIZE}, "
+                         f"not {value!r}")
+    return value
 
 
 def _memory(path: Path, value) -> str:

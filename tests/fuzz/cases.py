@@ -206,22 +206,23 @@ def commands(case: Case, layout: Layout) -> dict[str, list[str]]:
     base, tip = (names[0].decode(), names[-1].decode()) if names else ("base_link", "tool0")
     joints = re.findall(rb'<joint\s+name="([A-Za-z0-9_]+)"', case.data)
     pose = [f"{joints[-1].decode()}=0.3"] if joints else []
+    limit = ("--timeout", "4")  # [s] per command: within the replay's time limit
     table = {
-        "check": ["check", *words, "--no-env", "-j", "2", "--timeout", "10", "-f", "json",
+        "check": ["check", *words, "--no-env", "-j", "2", *limit, "-f", "json",
                   "-o", layout.output(out, "report.json")],
-        "check-text": ["check", *words, "--no-env", "--timeout", "10", "-f", "text"],
-        "xacro": ["xacro", *words, "--no-env", "-o", layout.output(out, "robot.urdf")],
-        "tree": ["tree", *words],
-        "graph": ["graph", *words, "-o", layout.output(out, "graph.dot")],
-        "fk": ["fk", *words, "--random", "2"],
-        "dh": ["dh", *words, "--base", base, "--tip", tip],
-        "inertia": ["inertia", *words, "--write", layout.output(out, "inertia.urdf")],
-        "dynamics": ["dynamics", *words],
-        "collisions": ["collisions", *words, *(w for q in pose for w in ("--q", q))],
-        "fk-q": ["fk", *words, "--q-file", (layout.repo / "q_file").as_posix()],
+        "check-text": ["check", *words, "--no-env", *limit, "-f", "text"],
+        "xacro": ["xacro", *limit, *words, "--no-env", "-o", layout.output(out, "robot.urdf")],
+        "tree": ["tree", *limit, *words],
+        "graph": ["graph", *limit, *words, "-o", layout.output(out, "graph.dot")],
+        "fk": ["fk", *limit, *words, "--random", "2"],
+        "dh": ["dh", *limit, *words, "--base", base, "--tip", tip],
+        "inertia": ["inertia", *limit, *words, "--write", layout.output(out, "inertia.urdf")],
+        "dynamics": ["dynamics", *limit, *words],
+        "collisions": ["collisions", *limit, *words, *(w for q in pose for w in ("--q", q))],
+        "fk-q": ["fk", *limit, *words, "--q-file", (layout.repo / "q_file").as_posix()],
     }
     if case.bundled:
-        table["check-walk"] = ["check", ".", "--no-env", "-j", "2", "--timeout", "10"]
+        table["check-walk"] = ["check", ".", "--no-env", "-j", "2", *limit]
     chosen = case.commands or tuple(n for n in table if n != "fk-q")
     return {name: table[name] for name in chosen if name in table}
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import signal
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -150,6 +151,9 @@ def case_report(case: Case, *, time_limit: float = 30.0, parallel: int = 2) -> C
     return report
 
 
+_CLEAN_SUMMARY = re.compile(r"\d+ files? checked: no problems found")
+
+
 def _judge(name: str, outcome, time_limit: float) -> list[str]:
     found = []
     text = outcome.output
@@ -169,8 +173,9 @@ def _judge(name: str, outcome, time_limit: float) -> list[str]:
             found.append(f"leak: {what} reached the output of {name}")
     if name in NO_ENV_COMMANDS and SECRET_VALUE in text:
         found.append(f"env: {name} --no-env printed an environment variable")
-    if name == "check-text" and (outcome.status == 1 and "no problems found" in text
-                                 or any(line.startswith("::") for line in text.splitlines())):
+    lines = text.splitlines()
+    if name == "check-text" and (any(line.startswith("::") for line in lines) or outcome.status == 1
+                                 and any(_CLEAN_SUMMARY.match(line) for line in lines)):
         found.append(f"forged report: {name} printed a line its text format never writes")
     if outcome.peak_kib > MEMORY_LIMIT_KIB:
         found.append(f"memory: {name} peaked at {outcome.peak_kib // 1024} MiB")

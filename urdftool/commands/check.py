@@ -62,6 +62,7 @@ def check(
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
     from ..budget import Budget
+    from ..config import checked_file_size
     from ..engine import CheckOptions, Selection
     from ..parallel import check_files
     from ..report import FORMATS, Summary, render
@@ -76,6 +77,8 @@ def check(
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
         refuse_bad_outputs(output)
         config = _config_for(paths[0])
+        if max_file_size is not None:
+            checked_file_size(max_file_size, "--max-file-size")
         limit = max_file_size or config.max_file_size or CheckOptions.max_file_size
         budget = Budget.of(timeout, max_memory if max_memory is not None else config.max_memory)
         files, skipped = _expand_paths(paths, packages, limit)
