@@ -16,10 +16,10 @@ from dataclasses import dataclass
 
 from typing import TYPE_CHECKING
 
-from .errors import UsageError
+from urdftool.errors import UsageError
 
 if TYPE_CHECKING:
-    from .diagnostics import Location
+    from urdftool.diagnostics import Location
 
 DEFAULT_TIMEOUT = 60.0  # [s] per file
 DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
@@ -136,7 +136,7 @@ def where() -> Location | None:
 def read_slot(slot) -> Location | None:
     """The location a (stopped) worker last wrote into ``slot``; None when it wrote none or the
     slot does not hold one whole location."""
-    from .diagnostics import Location
+    from urdftool.diagnostics import Location
 
     size = int.from_bytes(slot[:4], "little")
     if not 0 < size <= _SLOT_SIZE - 4:

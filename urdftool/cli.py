@@ -11,7 +11,7 @@ import pkgutil
 
 import typer
 
-from . import commands
+from urdftool import commands
 
 app = typer.Typer(
     name="urdftool",
@@ -26,7 +26,7 @@ app = typer.Typer(
 
 def _version(value: bool):
     if value:
-        from . import __version__
+        from urdftool import __version__
 
         typer.echo(f"urdftool {__version__}")
         raise typer.Exit()

@@ -21,8 +21,8 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .errors import UsageError
-from .files import inside, read_regular
+from urdftool.errors import UsageError
+from urdftool.files import inside, read_regular
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
@@ -61,7 +61,7 @@ class Config:
 def find_config(start: Path) -> Config:
     """The nearest settings file above ``start`` (a file or folder), up to the repository root;
     empty Config when none."""
-    from .loader.packages import repository_root
+    from urdftool.loader.packages import repository_root
 
     folder = start.absolute()
     if not folder.is_dir():
@@ -95,7 +95,7 @@ def _read(path: Path) -> dict:
 def _refuse_outside(settings: Path, path: Path, what: str) -> None:
     """UsageError when ``path``, named by ``settings``, leads outside the settings file's
     repository (nearest ``.git`` above it, else its own folder)."""
-    from .loader.packages import repository_root
+    from urdftool.loader.packages import repository_root
 
     root = repository_root(settings.parent) or settings.parent
     if not inside(path, root):
@@ -153,7 +153,7 @@ def checked_file_size(value, what: str) -> int:
 
 
 def _memory(path: Path, value) -> str:
-    from .budget import parse_memory
+    from urdftool.budget import parse_memory
 
     try:
         parse_memory(str(value))

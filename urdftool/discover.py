@@ -14,9 +14,9 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from .diagnostics import display_path
-from .files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
-from .loader.packages import PackageResolver, containment_root, repository_root
+from urdftool.diagnostics import display_path
+from urdftool.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from urdftool.loader.packages import PackageResolver, containment_root, repository_root
 
 SUFFIXES = (".urdf", ".xacro")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}

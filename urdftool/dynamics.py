@@ -62,7 +62,7 @@ def build(robot) -> Model:
     """A fixed-base Pinocchio model of the robot (1-dof joints; planar/floating refused)."""
     import pinocchio as pin
 
-    from .kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
+    from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
 
     try:
         model = pin.buildModelFromXML(robot.urdf)
@@ -192,7 +192,7 @@ def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
     joints follow their variable)."""
     import pinocchio as pin
 
-    from .kinematics.configuration import random
+    from urdftool.kinematics.configuration import random
 
     m, d = model.model, model.data
     names = [variable.name for variable in model.variables]

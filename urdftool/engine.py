@@ -6,10 +6,10 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .diagnostics import Finding, Location, Severity, display_path
-from .errors import LoadError
-from .rules import REGISTRY, Rule, all_rules, declare, matches
-from . import suppressions
+from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.errors import LoadError
+from urdftool.rules import REGISTRY, Rule, all_rules, declare, matches
+from urdftool import suppressions
 
 declare("U900", "internal-error", Severity.ERROR, """
     A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
@@ -88,7 +88,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
 def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
     """Load and check one file (``data``: its content, when not to be read from ``path``);
     load failures are findings too."""
-    from .loader import load
+    from urdftool.loader import load
 
     try:
         robot = load(path, xacro_args=options.xacro_args, packages=options.packages,

@@ -15,7 +15,7 @@ import stat
 import tempfile
 from pathlib import Path
 
-from .errors import UsageError
+from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
 

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import mass_properties as pure
-from . import mat3
-from .mass_properties import INERTIA_ATTRIBUTES, relative_difference, triangle_violation
+from urdftool import mass_properties as pure
+from urdftool import mat3
+from urdftool.mass_properties import INERTIA_ATTRIBUTES, relative_difference, triangle_violation
 
 __all__ = ["INERTIA_ATTRIBUTES", "MassProperties", "box", "combine", "cylinder", "declared",
            "mesh_solid", "relative_difference", "sphere", "transformed", "triangle_violation"]

@@ -15,8 +15,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from . import mat3
-from .rules._values import parse_numbers
+from urdftool import mat3
+from urdftool.rules._values import parse_numbers
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 

@@ -25,10 +25,10 @@ import traceback
 from dataclasses import dataclass
 from multiprocessing.connection import wait
 
-from . import budget as budgets
-from .budget import DEFAULT_TIMEOUT, Budget
-from .diagnostics import Finding, Location, display_path
-from .engine import CheckOptions, FileResult, check_file
+from urdftool import budget as budgets
+from urdftool.budget import DEFAULT_TIMEOUT, Budget
+from urdftool.diagnostics import Finding, Location, display_path
+from urdftool.engine import CheckOptions, FileResult, check_file
 
 
 def default_jobs() -> int:
@@ -125,7 +125,7 @@ def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
 
 
 def _finding(code: str, where: Location, message: str) -> Finding:
-    from .rules import registered
+    from urdftool.rules import registered
 
     return registered(code).finding(message, where)
 

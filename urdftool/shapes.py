@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from . import mass_properties as mp
-from . import mat3
-from .rules._values import finite, parse_numbers
+from urdftool import mass_properties as mp
+from urdftool import mat3
+from urdftool.rules._values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
 
@@ -94,7 +94,7 @@ def _mesh_solid(robot, shape: Shape, problems: list):
 
 
 def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
-    from .meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
+    from urdftool.meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
 
     try:
         mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
@@ -112,7 +112,7 @@ def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
             return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
-    from .inertia import mesh_solid
+    from urdftool.inertia import mesh_solid
 
     solid = mesh_solid(body).body()
     if not solid.mass > 0:  # also NaN from a zero-volume mesh

@@ -20,9 +20,9 @@ import re
 from dataclasses import dataclass
 from functools import lru_cache
 
-from .diagnostics import Finding, Location, Severity
-from .files import read_regular
-from .rules import FAMILIES, REGISTRY, all_rules, declare, matches
+from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.files import read_regular
+from urdftool.rules import FAMILIES, REGISTRY, all_rules, declare, matches
 
 declare("U901", "unused-suppression", Severity.WARNING, """
     An ``<!-- urdftool: ignore ... -->`` comment silences nothing.

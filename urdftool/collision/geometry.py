@@ -14,9 +14,9 @@ from dataclasses import dataclass, field
 import fcl
 import numpy as np
 
-from ..diagnostics import Location
-from ..kinematics import transforms
-from ..rules._values import parse_numbers
+from urdftool.diagnostics import Location
+from urdftool.kinematics import transforms
+from urdftool.rules._values import parse_numbers
 
 
 @dataclass
@@ -146,7 +146,7 @@ def _load_mesh(robot, shape, cache):
     and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
     once per (file, scale).
     """
-    from ..meshes import MeshProblem, load_mesh
+    from urdftool.meshes import MeshProblem, load_mesh
 
     uri = shape.get("filename")
     if not uri:

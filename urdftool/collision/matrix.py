@@ -22,8 +22,8 @@ from typing import Callable
 
 import numpy as np
 
-from . import geometry as geometry_module
-from .pairs import PairChecker, Tally
+from urdftool.collision import geometry as geometry_module
+from urdftool.collision.pairs import PairChecker, Tally
 
 _MOVING = ("revolute", "continuous", "prismatic")
 CLASSES = ("Adjacent", "Default", "Always", "Never", "")
@@ -87,7 +87,7 @@ class Scene:
     """
 
     def __init__(self, robot, margin: float):
-        from ..kinematics.fk import KinematicModel
+        from urdftool.kinematics.fk import KinematicModel
 
         self.geometry = geometry_module.build(robot)
         self.kinematics = KinematicModel(robot)
@@ -104,13 +104,13 @@ class Scene:
 
     def default(self) -> np.ndarray:
         """MoveIt's default state: 0 where the limits allow it, else the middle of the range."""
-        from ..kinematics import configuration
+        from urdftool.kinematics import configuration
 
         return configuration.defaults(self.variables)
 
     def sample(self, seed, count: int) -> np.ndarray:
         """``count`` configurations drawn within the limits from the stream of ``seed``."""
-        from ..kinematics import configuration
+        from urdftool.kinematics import configuration
 
         return configuration.random(self.variables, count, seed, hold=self._held).values
 
@@ -129,7 +129,7 @@ def pair_key(one: str, two: str) -> tuple[str, str]:
 
 def adjacent_pairs(robot, with_geometry: set[str]) -> set[tuple[str, str]]:
     """Pairs joined by a joint, looking through links that have no geometry."""
-    from ..kinematics.tree import children_by_link
+    from urdftool.kinematics.tree import children_by_link
 
     neighbours: dict[str, set[str]] = {name: set() for name in robot.links}
     for parent, children in children_by_link(robot).items():

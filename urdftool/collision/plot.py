@@ -11,7 +11,7 @@ import io
 from html import escape
 from pathlib import Path
 
-from ..errors import UsageError
+from urdftool.errors import UsageError
 
 COLOURS = {"Adjacent": "#7f7f7f", "Default": "#ff7f0e", "Always": "#d62728",
            "Never": "#2ca02c", "": "#1f77b4"}
@@ -94,7 +94,7 @@ def svg(matrix, title: str) -> str:
 def write(matrix, path: Path, title: str) -> None:
     """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.files.write_file`
     (a link planted at ``path`` is replaced, never followed); UsageError otherwise."""
-    from ..files import write_file
+    from urdftool.files import write_file
 
     suffix = path.suffix.lower()
     if suffix == ".svg":

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import UsageError
+from urdftool.errors import UsageError
 
 
 @dataclass
@@ -42,7 +42,7 @@ def configuration(scene, words: list[str], degrees: bool = False):
     """Configurations (one row) from ``--q NAME=VALUE`` words over the default configuration
     (0, or mid-range when 0 is outside the limits), with out-of-limit warnings; bad input raises
     UsageError naming the valid joints."""
-    from ..kinematics import configuration as config
+    from urdftool.kinematics import configuration as config
 
     try:
         return config.from_words(scene.variables, words, degrees, scene.kinematics.mimics)

@@ -8,11 +8,11 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..diagnostics import Location, display_path
-from ..files import read_regular
-from ..loader.xmlparse import XmlProblem, parse
-from ..rules._names import available
-from .matrix import Matrix, pair_key
+from urdftool.diagnostics import Location, display_path
+from urdftool.files import read_regular
+from urdftool.loader.xmlparse import XmlProblem, parse
+from urdftool.rules._names import available
+from urdftool.collision.matrix import Matrix, pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
 

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import typer
 
-from ..budget import DEFAULT_TIMEOUT
-from ..errors import UsageError
+from urdftool.budget import DEFAULT_TIMEOUT
+from urdftool.errors import UsageError
 
 ARG_HELP = "xacro argument NAME=VALUE (repeatable); NAME:=VALUE words after the file work too."
 PACKAGE_HELP = "Where a ROS package is: NAME=PATH (repeatable)."
@@ -68,7 +68,7 @@ def fail_usage(error: UsageError) -> None:
 def refuse_bad_outputs(*paths) -> None:
     """Exit 2 with one line when an output path given (None: not given) cannot be written: its
     folder is missing or it is a folder. Call it before the work."""
-    from ..files import check_output
+    from urdftool.files import check_output
 
     try:
         for path in paths:
@@ -81,7 +81,7 @@ def refuse_bad_outputs(*paths) -> None:
 def write_output(path, data: str | bytes) -> None:
     """Write an output file with :func:`urdftool.files.write_file` (a symbolic link planted at
     ``path`` is replaced, never followed); exit 2 with one line when it cannot be written."""
-    from ..files import write_file
+    from urdftool.files import write_file
 
     try:
         write_file(path, data)
@@ -110,8 +110,8 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     problems: (is wrong, message) pairs for the command's own option checks
     load_options: passed to ``urdftool.loader.load`` (e.g. ``allow_env``)
     """
-    from ..errors import LoadError
-    from ..loader import load
+    from urdftool.errors import LoadError
+    from urdftool.loader import load
 
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
@@ -141,8 +141,8 @@ def budgeted(command):
 
     @functools.wraps(command)
     def run(**kwargs):
-        from ..budget import Budget
-        from ..parallel import Stop, run_budgeted, stop_finding
+        from urdftool.budget import Budget
+        from urdftool.parallel import Stop, run_budgeted, stop_finding
 
         try:
             budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
@@ -151,7 +151,7 @@ def budgeted(command):
         path = next(iter(split_words(kwargs.get("words") or [])[0]), "-")
         stdin = None
         if path == "-" and not budget.unlimited:  # only this process can read it
-            from ..loader import DEFAULT_MAX_FILE_SIZE
+            from urdftool.loader import DEFAULT_MAX_FILE_SIZE
 
             stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
 
@@ -190,8 +190,8 @@ def _bytes_stdin(data: bytes):
 
 def report_findings(path: str, findings) -> None:
     """Print findings about the robot at ``path`` to stderr as ``check`` would."""
-    from ..engine import FileResult
-    from ..report import render
+    from urdftool.engine import FileResult
+    from urdftool.report import render
 
     render("text", [FileResult(path, findings)], sys.stderr)
 

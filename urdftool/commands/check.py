@@ -9,8 +9,8 @@ from pathlib import Path
 
 import typer
 
-from ..errors import UsageError
-from ._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
+from urdftool.errors import UsageError
+from urdftool.commands._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
                       fail_usage, refuse_bad_outputs, robot_inputs, write_output)
 
 
@@ -61,11 +61,11 @@ def check(
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
-    from ..budget import Budget
-    from ..config import checked_file_size
-    from ..engine import CheckOptions, Selection
-    from ..parallel import check_files
-    from ..report import FORMATS, Summary, render
+    from urdftool.budget import Budget
+    from urdftool.config import checked_file_size
+    from urdftool.engine import CheckOptions, Selection
+    from urdftool.parallel import check_files
+    from urdftool.report import FORMATS, Summary, render
 
     try:
         paths, args, packages = robot_inputs(words, arg, package)
@@ -88,7 +88,7 @@ def check(
     except UsageError as error:
         fail_usage(error)
     if verbose:
-        from ..report import printable  # a file name can hold a line break
+        from urdftool.report import printable  # a file name can hold a line break
 
         for path, reason in skipped.items():
             typer.echo(printable(f"skipped {path}: {reason}"), err=True)
@@ -165,7 +165,7 @@ def _codes(values: list[str]) -> list[str]:
 
 
 def _config_for(path: str):
-    from ..config import find_config
+    from urdftool.config import find_config
 
     return find_config(Path.cwd() if path == "-" else Path(path))
 
@@ -173,10 +173,10 @@ def _config_for(path: str):
 def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[str], dict]:
     """Files to check, in a stable order, and the files skipped in folders with the reason.
     Files over ``max_file_size`` [bytes] are not read to classify them."""
-    from ..diagnostics import display_path
-    from ..discover import (explicit_targets, includers_below, project_root, resolved_path,
+    from urdftool.diagnostics import display_path
+    from urdftool.discover import (explicit_targets, includers_below, project_root, resolved_path,
                             robot_files, split_top_level)
-    from ..loader.packages import PackageResolver
+    from urdftool.loader.packages import PackageResolver
 
     resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
     includers = {}  # project root -> its include graph, built once
@@ -192,7 +192,7 @@ def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[
             targets, reason = explicit_targets(Path(path), includers[root], root, max_file_size)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
-                from ..report import printable
+                from urdftool.report import printable
 
                 typer.echo(printable(f"urdftool: {path}: {reason}"), err=True)
             continue

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import typer
 
-from ..errors import UsageError
-from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
+from urdftool.errors import UsageError
+from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
                       refuse_bad_outputs, single_robot)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
@@ -57,7 +57,7 @@ def collisions(
     all_pairs: bool = typer.Option(False, "--all", help="List every pair in text output."),
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
-    from ..kinematics.fk import FKError
+    from urdftool.kinematics.fk import FKError
 
     refuse_bad_outputs(write_srdf, plot)
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
@@ -82,13 +82,13 @@ def collisions(
 
 
 def _scene(robot, margin: float):
-    from ..collision.matrix import Scene
+    from urdftool.collision.matrix import Scene
 
     return Scene(robot, margin)
 
 
 def _srdf_entries(path: Path):
-    from ..collision import srdf as srdf_module
+    from urdftool.collision import srdf as srdf_module
 
     try:
         return srdf_module.read(path)
@@ -97,8 +97,8 @@ def _srdf_entries(path: Path):
 
 
 def _pose(robot, words, degrees, srdf_path, format) -> int:
-    from ..collision import pose, srdf
-    from ..diagnostics import display_path
+    from urdftool.collision import pose, srdf
+    from urdftool.diagnostics import display_path
 
     scene = _scene(robot, 0.0)
     configuration = pose.configuration(scene, words, degrees)
@@ -179,8 +179,8 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, \
         TimeElapsedColumn
 
-    from ..collision import matrix as matrix_module
-    from ..collision import srdf
+    from urdftool.collision import matrix as matrix_module
+    from urdftool.collision import srdf
 
     scene = _scene(robot, margin)
     err = Console(stderr=True)
@@ -200,7 +200,7 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
         entries, root = _srdf_entries(check_srdf)
         stale = srdf.stale(result, entries, robot.links, root)
     if write_srdf:
-        from ..files import write_file
+        from urdftool.files import write_file
 
         # Merged only into a regular file: a link planted there is replaced, its target unread.
         existing = write_srdf if write_srdf.is_file() and not write_srdf.is_symlink() else None
@@ -208,7 +208,7 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
             _srdf_entries(existing)  # refuse a broken file before overwriting it
         write_file(write_srdf, srdf.render(result, robot.name, existing))
     if plot:
-        from ..collision import plot as plot_module
+        from urdftool.collision import plot as plot_module
 
         plot_module.write(result, plot, f"{robot.name}: {result.samples} samples, seed {seed}")
     if format == "json":

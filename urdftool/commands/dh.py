@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fixed, single_robot,
+from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_at, fixed, single_robot,
                       wide_console)
 
 FORMATS = ("text", "json", "yaml")
@@ -24,7 +24,7 @@ def dh(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..kinematics.dh import CONVENTIONS, DHError, extract
+    from urdftool.kinematics.dh import CONVENTIONS, DHError, extract
 
     robot = single_robot(
         "dh", words, arg, package,
@@ -49,7 +49,7 @@ def _text(table) -> None:
     from rich.markup import escape
     from rich.table import Table
 
-    from ..kinematics.fk import pose_components
+    from urdftool.kinematics.fk import pose_components
 
     console = wide_console()
     modified = table.convention == "modified"

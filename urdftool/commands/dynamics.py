@@ -6,8 +6,8 @@ import json
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
-from ..errors import UsageError
+from urdftool.commands._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
+from urdftool.errors import UsageError
 
 
 FORMATS = ("text", "json")
@@ -22,7 +22,7 @@ def _values(robot, q: list[str], v: list[str], a: list[str], degrees: bool):
     """{joint: value} for --q, --v (None if not given), --a (None), and limit warnings for --q."""
     import numpy as np
 
-    from ..kinematics import configuration as config
+    from urdftool.kinematics import configuration as config
 
     variables, mimics = config.variables_of(robot), config.mimics_of(robot)
     try:
@@ -50,7 +50,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
+    from urdftool.dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
                          [(samples < 0, "--samples must be 0 or more")])

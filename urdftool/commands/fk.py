@@ -6,9 +6,9 @@ import sys
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
+from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
                       single_robot, wide_console)
-from ..errors import UsageError
+from urdftool.errors import UsageError
 
 FORMATS = ("text", "json", "csv")
 VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
@@ -40,9 +40,9 @@ def fk(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..kinematics import configuration as config
-    from ..kinematics.dh import DHError, load_table, table_forward
-    from ..kinematics.fk import FKError, KinematicModel, forward_kinematics
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.dh import DHError, load_table, table_forward
+    from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics
 
     robot = single_robot("fk", words, arg, package, {"--format": (output_format, FORMATS)}, (
         (sum(bool(x) for x in (q, q_file, random is not None and not verify)) > 1,
@@ -74,7 +74,7 @@ def fk(
 
 
 def _configurations(model, q, deg, q_file, random, seed):
-    from ..kinematics import configuration as config
+    from urdftool.kinematics import configuration as config
 
     if q_file:
         return config.from_file(model.variables, q_file, deg, model.mimics)
@@ -84,8 +84,8 @@ def _configurations(model, q, deg, q_file, random, seed):
 
 
 def _verify(table, model, count, seed, base, frame) -> None:
-    from ..kinematics import configuration as config
-    from ..kinematics.dh import verify
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.dh import verify
 
     configurations = config.random(model.variables, count, seed)
     position, rotation = verify(table, model, configurations, base, frame[0] if frame else None)
@@ -97,7 +97,7 @@ def _verify(table, model, count, seed, base, frame) -> None:
 
 
 def _render(result, output_format: str, matrix: bool, single: bool) -> None:
-    from ..kinematics.fk import pose_components
+    from urdftool.kinematics.fk import pose_components
 
     positions, rpys, quaternions = pose_components(result.matrices)
     if output_format == "json":

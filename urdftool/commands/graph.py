@@ -6,9 +6,9 @@ from pathlib import Path
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
                       refuse_bad_outputs, single_robot)
-from ..errors import UsageError
+from urdftool.errors import UsageError
 
 
 def register(app: typer.Typer) -> None:
@@ -26,8 +26,8 @@ def graph(
                                 help="Write to x.dot (or .gv), or render x.svg, x.png, x.pdf; "
                                      "default: DOT on stdout."),
 ) -> None:
-    from ..engine import check_robot
-    from ..kinematics.graph import DotMissing, to_dot, write
+    from urdftool.engine import check_robot
+    from urdftool.kinematics.graph import DotMissing, to_dot, write
 
     refuse_bad_outputs(output)
     robot = single_robot("graph", words, arg, package)

@@ -7,9 +7,9 @@ from pathlib import Path
 
 import typer
 
-from ._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
                       refuse_bad_outputs, single_robot, write_output)
-from ..errors import UsageError
+from urdftool.errors import UsageError
 
 
 FORMATS = ("text", "json")
@@ -37,7 +37,7 @@ def inertia(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..inertia_compare import compare, corrected_urdf, inertial_xml
+    from urdftool.inertia_compare import compare, corrected_urdf, inertial_xml
 
     refuse_bad_outputs(write)
     robot = single_robot("inertia", words, arg, package, {"--format": (output_format, FORMATS)}, [
@@ -46,7 +46,7 @@ def inertia(
          "--write needs --link NAME (repeatable) or --all")])
     unknown = [name for name in link if name not in robot.links]
     if unknown:
-        from ..rules._names import available
+        from urdftool.rules._names import available
 
         fail_usage(UsageError(f"link '{unknown[0]}' does not exist; "
                               f"{available('links', unknown[0], robot.links)}"))

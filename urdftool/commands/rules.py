@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from ._common import fail_usage
-from ..errors import UsageError
+from urdftool.commands._common import fail_usage
+from urdftool.errors import UsageError
 
 
 def register(app: typer.Typer) -> None:
@@ -17,11 +17,11 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
                                      help="A rule code (U204) or name (inverted-limits).")) -> None:
     from rich.console import Console
 
-    from ..rules import all_rules, find_rule
+    from urdftool.rules import all_rules, find_rule
 
     console = Console(highlight=False, soft_wrap=True)
     if code is None:
-        from ..report.rules_format import rules_table
+        from urdftool.report.rules_format import rules_table
 
         console.print(rules_table(all_rules()))
         return
@@ -29,6 +29,6 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
         found = find_rule(code)
     except UsageError as error:
         fail_usage(error)
-    from ..report.rules_format import rule_page
+    from urdftool.report.rules_format import rule_page
 
     console.print(rule_page(found))

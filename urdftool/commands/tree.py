@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
+from urdftool.commands._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
 
 
 def register(app: typer.Typer) -> None:
@@ -16,7 +16,7 @@ def tree(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from ..kinematics.tree import TreeError, format_tree
+    from urdftool.kinematics.tree import TreeError, format_tree
 
     robot = single_robot("tree", words, arg, package)
     try:

@@ -23,9 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..rules._names import available
-from ..rules._values import parse_numbers
-from . import transforms
+from urdftool.rules._names import available
+from urdftool.rules._values import parse_numbers
+from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
 _EPS = 1e-9
@@ -312,8 +312,8 @@ def load_table(path: str) -> DHTable:
     """A table from JSON or YAML in ``dh``'s output format; DHError says where it is wrong."""
     import yaml
 
-    from ..files import read_regular
-    from ..loader.yaml_limits import BoundedLoader
+    from urdftool.files import read_regular
+    from urdftool.loader.yaml_limits import BoundedLoader
 
     try:
         text = read_regular(path).decode("utf-8")
@@ -391,7 +391,7 @@ def table_links(table: DHTable, base: str | None, tip: str | None) -> tuple[str,
 
 def table_forward(table: DHTable, model, configurations, base=None, tip=None):
     """An FKResult for the chain's tip computed from the table."""
-    from .fk import FKResult
+    from urdftool.kinematics.fk import FKResult
 
     base, tip = table_links(table, base, tip)
     values = configurations.values[:, table_columns(table, model)]
@@ -400,7 +400,7 @@ def table_forward(table: DHTable, model, configurations, base=None, tip=None):
 
 def verify(table: DHTable, model, configurations, base=None, tip=None) -> tuple[float, float]:
     """Worst (position [m], orientation [rad]) difference between table FK and URDF FK."""
-    from .fk import forward_kinematics
+    from urdftool.kinematics.fk import forward_kinematics
 
     base, tip = table_links(table, base, tip)
     expected = forward_kinematics(model, configurations, [tip], base).matrices[:, 0]

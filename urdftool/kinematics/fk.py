@@ -14,9 +14,9 @@ from functools import cached_property
 
 import numpy as np
 
-from ..rules._names import available
-from . import transforms
-from .configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
+from urdftool.rules._names import available
+from urdftool.kinematics import transforms
+from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
@@ -232,7 +232,7 @@ class KinematicModel:
 
 def _axis(short: str, element) -> np.ndarray:
     """The unit joint axis: Pinocchio's X/Y/Z joints name it; unaligned ones take the URDF's."""
-    from ..rules._values import parse_numbers
+    from urdftool.rules._values import parse_numbers
 
     letter = short[-1]
     if short in ("JointModelR" + letter, "JointModelRUB" + letter, "JointModelP" + letter) \

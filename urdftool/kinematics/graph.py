@@ -7,7 +7,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from ..diagnostics import Severity
+from urdftool.diagnostics import Severity
 
 COLOURS = {  # severity -> (outline, fill)
     Severity.ERROR: ("#c62828", "#ffcdd2"),
@@ -117,7 +117,7 @@ def write(dot: str, output: Path) -> Path:
     the DOT beside ``output``) when ``dot`` is not installed, ValueError for other suffixes.
     Written with :func:`urdftool.files.write_file`: a link planted at the path is replaced,
     never followed (``dot`` renders to a pipe, not to the path)."""
-    from ..files import write_file
+    from urdftool.files import write_file
 
     suffix = output.suffix.lower()
     if suffix in (".dot", ".gv"):

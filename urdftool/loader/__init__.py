@@ -12,12 +12,12 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..diagnostics import Finding, Location, Severity, display_path
-from ..errors import LoadError
-from ..files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
-from .model import Robot
-from .packages import PackageResolver, containment_root
-from .xmlparse import XmlProblem, parse, refuse_empty_or_binary
+from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.errors import LoadError
+from urdftool.files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
+from urdftool.loader.model import Robot
+from urdftool.loader.packages import PackageResolver, containment_root
+from urdftool.loader.xmlparse import XmlProblem, parse, refuse_empty_or_binary
 
 XACRO_SUFFIXES = (".xacro",)
 
@@ -147,7 +147,7 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
 
 
 def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
-    from .xacro_expand import XacroFailure, expand
+    from urdftool.loader.xacro_expand import XacroFailure, expand
 
     try:
         refuse_empty_or_binary(data)
@@ -194,6 +194,6 @@ def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
 
 
 def _finding(code: str, location: Location, message: str) -> Finding:
-    from ..rules import registered
+    from urdftool.rules import registered
 
     return registered(code).finding(message, location)

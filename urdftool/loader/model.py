@@ -9,8 +9,8 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..diagnostics import Location
-from .packages import PackageResolver
+from urdftool.diagnostics import Location
+from urdftool.loader.packages import PackageResolver
 
 
 @dataclass

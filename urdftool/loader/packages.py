@@ -14,8 +14,8 @@ import os
 import re
 from pathlib import Path
 
-from ..errors import PackageNotFound
-from ..files import inside, read_regular
+from urdftool.errors import PackageNotFound
+from urdftool.files import inside, read_regular
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}

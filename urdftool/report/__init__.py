@@ -12,7 +12,7 @@ import os
 import re
 from dataclasses import dataclass
 
-from ..diagnostics import Finding, Severity
+from urdftool.diagnostics import Finding, Severity
 
 FORMATS = ("text", "json", "sarif", "junit", "github")
 STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}  # rich style per severity

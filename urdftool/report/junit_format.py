@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from lxml import etree
 
-from ..diagnostics import display_path
-from . import printable
+from urdftool.diagnostics import display_path
+from urdftool.report import printable
 
 
 def render(results, stream) -> None:

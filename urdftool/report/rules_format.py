@@ -6,7 +6,7 @@ from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
-from . import STYLES
+from urdftool.report import STYLES
 
 
 def _plain(text: str) -> str:

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from .. import __version__
-from ..rules import all_rules
-from . import all_findings, write_json
+from urdftool import __version__
+from urdftool.rules import all_rules
+from urdftool.report import all_findings, write_json
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 _LEVELS = {"error": "error", "warning": "warning", "info": "note"}

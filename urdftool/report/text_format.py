@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import os
 
-from ..diagnostics import display_path
-from . import STYLES, Summary, printable
+from urdftool.diagnostics import display_path
+from urdftool.report import STYLES, Summary, printable
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 

@@ -20,7 +20,7 @@ import pkgutil
 from dataclasses import dataclass
 from typing import Callable
 
-from ..diagnostics import Finding, Location, Severity
+from urdftool.diagnostics import Finding, Location, Severity
 
 __all__ = ["Rule", "REGISTRY", "Severity", "rule", "declare", "all_rules", "find_rule",
            "registered", "matches", "FAMILIES"]
@@ -124,7 +124,7 @@ def matches(code: str, selector: str) -> bool:
 
 def find_rule(wanted: str) -> Rule:
     """A rule by code (any case) or name; a UsageError listing the valid ones otherwise."""
-    from ..errors import UsageError
+    from urdftool.errors import UsageError
 
     rules = all_rules()
     for candidate in rules:

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..companions import YamlFile, YamlList, YamlMap, companions
-from . import Severity, rule
-from ._actuation import command_interfaces, interface_kind, transmission_joints, transmissions
-from ._names import available
+from urdftool.companions import YamlFile, YamlList, YamlMap, companions
+from urdftool.rules import Severity, rule
+from urdftool.rules._actuation import command_interfaces, interface_kind, transmission_joints, transmissions
+from urdftool.rules._names import available
 
 STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
 STATE_CLASSES = ("StateController", "StateBroadcaster")

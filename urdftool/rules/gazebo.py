@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import math
 
-from . import Severity, rule
-from .. import mat3
-from ._names import available
-from ._values import parse_numbers
+from urdftool.rules import Severity, rule
+from urdftool import mat3
+from urdftool.rules._names import available
+from urdftool.rules._values import parse_numbers
 
 DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
 WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")

@@ -5,8 +5,8 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.meshes` (once per 
 
 from __future__ import annotations
 
-from . import Severity, rule
-from ._values import finite, parse_numbers
+from urdftool.rules import Severity, rule
+from urdftool.rules._values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
 # (shape, attributes it needs, numbers in each); mesh filename is text
@@ -214,7 +214,7 @@ def undefined_material(robot):
             if _defines(material):
                 defined.add(name)
             elif name not in defined:
-                from ._names import available
+                from urdftool.rules._names import available
                 yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
                                  f"{available('materials', name, defined)}")
 
@@ -232,7 +232,7 @@ def _mesh_outcomes(robot):
     cached = robot.options.get("_mesh_outcomes")
     if cached is not None:
         return cached
-    from ..meshes import MeshProblem, load_mesh
+    from urdftool.meshes import MeshProblem, load_mesh
 
     outcomes = []
     for link, holder, shape in _mesh_elements(robot):

@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import math
 
-from . import Severity, rule
-from ._values import parse_numbers
-from .. import mat3
-from ..mass_properties import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from urdftool.rules import Severity, rule
+from urdftool.rules._values import parse_numbers
+from urdftool import mat3
+from urdftool.mass_properties import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -246,7 +246,7 @@ def _link_solids(robot):
     """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
     cached = robot.options.get("_link_solids")
     if cached is None:
-        from ..shapes import link_solid
+        from urdftool.shapes import link_solid
 
         cached = [(link, properties, link_solid(robot, link))
                   for link, properties in _valid(robot) if properties.mass > 0]
@@ -326,7 +326,7 @@ def inertia_unit_mistake(robot):
     Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
     Good: ``<inertia ixx="0.0012" .../>``
     """
-    from ..shapes import computed
+    from urdftool.shapes import computed
 
     for link, properties, solid in _link_solids(robot):
         if solid.problems or not solid.parts:

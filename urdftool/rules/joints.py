@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-from . import Severity, rule
-from ._names import available
-from ._values import finite, parse_numbers
+from urdftool.rules import Severity, rule
+from urdftool.rules._names import available
+from urdftool.rules._values import finite, parse_numbers
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 LIMITED_TYPES = ("revolute", "prismatic")

@@ -11,11 +11,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..companions import YamlMap, companions, is_spec
-from . import Severity, rule
-from ._actuation import moving_joints
-from ._names import available
-from ._values import parse_numbers
+from urdftool.companions import YamlMap, companions, is_spec
+from urdftool.rules import Severity, rule
+from urdftool.rules._actuation import moving_joints
+from urdftool.rules._names import available
+from urdftool.rules._values import parse_numbers
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
 TOP_KEYS = ("unit", "tolerance", "joints")

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from ..companions import companions
-from . import Severity, rule
-from ._names import available
-from ._values import parse_numbers
+from urdftool.companions import companions
+from urdftool.rules import Severity, rule
+from urdftool.rules._names import available
+from urdftool.rules._values import parse_numbers
 
 LIMIT_TOLERANCE = 1e-6
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from collections import Counter
 
-from . import Severity, rule
-from ._names import available
+from urdftool.rules import Severity, rule
+from urdftool.rules._names import available
 
 
 def _duplicates(robot, tag: str):
