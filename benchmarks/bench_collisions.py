@@ -42,7 +42,7 @@ def main() -> dict:
     import numpy as np
 
     from urdftool.collision import matrix
-    from urdftool.loader import load
+    from urdftool.description.load import load
 
     robot = load(str(ROOT / "robots" / "humanoid" / "humanoid.urdf.xacro"))
     scene = matrix.Scene(robot, 0.005)

@@ -35,7 +35,7 @@ def main() -> dict:
 
     from urdftool.kinematics import configuration as config
     from urdftool.kinematics.fk import KinematicModel, forward_kinematics
-    from urdftool.loader import load
+    from urdftool.description.load import load
 
     model = KinematicModel(load(ROOT / "robots" / "humanoid" / "humanoid.urdf.xacro"))
     values = config.random(model.variables, ROWS, seed=0).values

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import ROBOTS, corpus_or_skip
 from urdftool.collision import matrix, pose, srdf
-from urdftool.loader import load
+from urdftool.description.load import load
 
 HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
 

@@ -8,9 +8,9 @@ import textwrap
 import pytest
 
 from conftest import ROBOTS
-from urdftool.companions import companions, is_spec, looks_like_controllers, read_yaml
+from urdftool.description.companions import companions, is_spec, looks_like_controllers, read_yaml
 from urdftool.engine import CheckOptions, check_file
-from urdftool.loader import load
+from urdftool.description.load import load
 
 ROBOT = """<robot name="r">
   <link name="base_link"/><link name="head"/>
@@ -136,8 +136,8 @@ def test_links_leading_outside_the_robot_folder_are_not_followed(tmp_path):
 def test_nothing_is_discovered_for_stdin(tmp_path, monkeypatch):
     write(tmp_path, {"config/c.yaml": CONTROLLERS, "joint_limits.yaml": SPEC})
     monkeypatch.chdir(tmp_path)
-    from urdftool.loader.model import Robot
-    from urdftool.loader.packages import PackageResolver
+    from urdftool.description.robot import Robot
+    from urdftool.description.packages import PackageResolver
     from lxml import etree
 
     robot = Robot("-", "-", etree.fromstring(ROBOT), {}, PackageResolver({}))

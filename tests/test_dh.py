@@ -13,7 +13,7 @@ from conftest import ROBOTS, corpus_or_skip
 from urdftool.kinematics import configuration as config
 from urdftool.kinematics import dh
 from urdftool.kinematics.fk import KinematicModel
-from urdftool.loader import load
+from urdftool.description.load import load
 
 HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
 PI_2 = math.pi / 2

@@ -11,7 +11,7 @@ import pytest
 
 from conftest import ROBOTS
 from urdftool.dynamics import build, gravity_loads, gravity_variables, state
-from urdftool.loader import load
+from urdftool.description.load import load
 
 G0 = 9.81
 M1, M2, L1, L2 = 2.0, 1.0, 0.5, 0.4  # point-like masses at the link ends, arm in the x-z plane

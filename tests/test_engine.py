@@ -29,12 +29,12 @@ def test_a_crashing_rule_is_u900_and_the_other_rules_still_run(monkeypatch):
 
 
 def test_a_crashing_loader_is_u900_naming_the_file(monkeypatch):
-    import urdftool.loader
+    import urdftool.description.load
 
     def explode(*args, **kwargs):
         raise RecursionError("deep")
 
-    monkeypatch.setattr(urdftool.loader, "load", explode)
+    monkeypatch.setattr(urdftool.description.load, "load", explode)
     [finding] = check_file(str(ROBOT), CheckOptions()).findings
     assert finding.code == "U900" and finding.severity is Severity.ERROR
     assert finding.message.startswith("loading crashed: RecursionError: deep")

@@ -13,7 +13,7 @@ from urdftool.kinematics import configuration as config
 from urdftool import mat3
 from urdftool.kinematics import transforms
 from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics, pose_components
-from urdftool.loader import load
+from urdftool.description.load import load
 
 HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
 

@@ -116,7 +116,7 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
         with open(path, "w" if isinstance(data, str) else "wb") as handle:
             handle.write(data)
 
-    monkeypatch.setattr("urdftool.files.write_file", naive_write)  # the child inherits it
+    monkeypatch.setattr("urdftool.description.files.write_file", naive_write)  # the child inherits it
     written = run(["check", "r.urdf", "-f", "json", "-o", "report.json"], cwd=repo, allow=allow,
                   scratch=scratch)
     assert victim.read_text() == "VICTIM\n"

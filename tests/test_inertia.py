@@ -12,7 +12,7 @@ import pytest
 from conftest import ROBOTS
 from urdftool import inertia as mp
 from urdftool import mat3
-from urdftool.loader import load
+from urdftool.description.load import load
 
 
 def test_box_closed_form():

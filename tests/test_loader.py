@@ -10,7 +10,7 @@ import pytest
 
 from urdftool.diagnostics import Location
 from urdftool.errors import LoadError
-from urdftool.loader import load
+from urdftool.description.load import load
 
 
 def write(tmp_path, name, text):

@@ -9,8 +9,8 @@ import pytest
 
 from conftest import corpus_or_skip
 from urdftool.errors import LoadError
-from urdftool.loader import load
-from urdftool.meshes import MeshLimits, MeshProblem, load_mesh, resolve, triangle_count
+from urdftool.description.load import load
+from urdftool.description.meshes import MeshLimits, MeshProblem, load_mesh, resolve, triangle_count
 
 
 def _robot(tmp_path, filename="m.stl"):

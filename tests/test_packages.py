@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from urdftool.errors import PackageNotFound
-from urdftool.loader.packages import PackageResolver
+from urdftool.description.packages import PackageResolver
 
 
 def make_package(folder, name):

@@ -254,7 +254,7 @@ def test_many_large_values_in_one_attribute_are_refused(tmp_path):
 
 
 def test_memory_error_in_an_expansion_is_a_located_finding(tmp_path, monkeypatch):
-    from urdftool.loader import xacro_sandbox
+    from urdftool.description import xacro_sandbox
 
     def out_of_memory(*args):
         raise MemoryError

@@ -21,8 +21,8 @@ import pytest
 
 from conftest import ROOT
 from urdftool.errors import LoadError, PackageNotFound
-from urdftool.loader import load
-from urdftool.loader.packages import PackageResolver
+from urdftool.description.load import load
+from urdftool.description.packages import PackageResolver
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "symlink") or not hasattr(os, "mkfifo"),
                                 reason="needs symbolic links and FIFOs")
@@ -298,7 +298,7 @@ def test_companion_fifo_is_a_finding_not_a_hang(project):
 
 
 def test_one_bounded_reader():
-    """Every file urdftool reads goes through urdftool.files.read_regular."""
+    """Every file urdftool reads goes through urdftool.description.files.read_regular."""
     allowed = {
         "files.py": "the reader and the writer themselves",
         "docs.py": "regenerates the README table (a developer command)",
@@ -365,7 +365,7 @@ def test_output_in_a_missing_folder_or_onto_a_folder_is_a_usage_error(run_cli, t
 
 
 def test_write_keeps_the_permissions_of_a_file_it_replaces(tmp_path):
-    from urdftool.files import write_file
+    from urdftool.description.files import write_file
 
     out = tmp_path / "report.txt"
     out.write_text("old")
@@ -398,7 +398,7 @@ _MEASURE = """
 import os, resource, sys
 from pathlib import Path
 from urdftool.discover import robot_files, split_top_level
-from urdftool.loader.packages import PackageResolver
+from urdftool.description.packages import PackageResolver
 
 repo = Path(sys.argv[1])
 for index in range(int(sys.argv[2])):

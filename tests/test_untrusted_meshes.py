@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from urdftool import meshes
-from urdftool.meshes import triangle_count
+from urdftool.description import meshes
+from urdftool.description.meshes import triangle_count
 
 ROOT = Path(__file__).resolve().parent.parent
 # A process that imports trimesh and refuses a mesh peaks near 150 MB; the bombs below took
@@ -25,8 +25,8 @@ PEAK_LIMIT_MB = 300
 # Measures the peak memory of loading one mesh in a fresh process: (outcome, peak in MB).
 _MEASURE = """
 import resource, sys
-from urdftool.loader import load
-from urdftool.meshes import MeshProblem, load_mesh
+from urdftool.description.load import load
+from urdftool.description.meshes import MeshProblem, load_mesh
 try:
     outcome = "loaded %d" % len(load_mesh(load(sys.argv[1]), sys.argv[2]).faces)
 except MeshProblem as problem:
@@ -151,8 +151,8 @@ def test_textures_and_files_beside_a_mesh_are_not_read(tmp_path, monkeypatch):
     """Only glTF buffers beside the mesh are read; an OBJ's material and its image are not."""
     import builtins
 
-    from urdftool.loader import load
-    from urdftool.meshes import load_mesh
+    from urdftool.description.load import load
+    from urdftool.description.meshes import load_mesh
 
     (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
                                     "usemtl skin\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
@@ -244,8 +244,8 @@ def test_gltf_nodes_naming_one_mesh_are_counted_before_loading(tmp_path):
 def test_gltf_count_matches_trimesh_and_its_buffer_is_read(tmp_path):
     """A .gltf's geometry is in a .bin beside it: the one file trimesh may read there."""
     trimesh = pytest.importorskip("trimesh")
-    from urdftool.loader import load
-    from urdftool.meshes import load_mesh
+    from urdftool.description.load import load
+    from urdftool.description.meshes import load_mesh
 
     files = trimesh.Scene(trimesh.creation.icosphere(subdivisions=3)).export(file_type="gltf")
     for name, data in files.items():

@@ -9,8 +9,8 @@ import xml.dom.minidom
 import pytest
 
 from urdftool.errors import LoadError
-from urdftool.loader import load
-from urdftool.loader.packages import PackageResolver
+from urdftool.description.load import load
+from urdftool.description.packages import PackageResolver
 
 from conftest import CORPUS, corpus_or_skip
 
@@ -137,7 +137,7 @@ def test_property_billion_laughs_is_refused(tmp_path):
 
 @pytest.fixture
 def small_limits(monkeypatch):
-    from urdftool.loader import xacro_expand
+    from urdftool.description import xacro as xacro_expand
 
     monkeypatch.setattr(xacro_expand, "MAX_ELEMENTS", 2000)
     monkeypatch.setattr(xacro_expand, "MAX_MACRO_CALLS", 500)

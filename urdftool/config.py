@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.errors import UsageError
-from urdftool.files import inside, read_regular
+from urdftool.description.files import inside, read_regular
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
@@ -61,7 +61,7 @@ class Config:
 def find_config(start: Path) -> Config:
     """The nearest settings file above ``start`` (a file or folder), up to the repository root;
     empty Config when none."""
-    from urdftool.loader.packages import repository_root
+    from urdftool.description.packages import repository_root
 
     folder = start.absolute()
     if not folder.is_dir():
@@ -95,7 +95,7 @@ def _read(path: Path) -> dict:
 def _refuse_outside(settings: Path, path: Path, what: str) -> None:
     """UsageError when ``path``, named by ``settings``, leads outside the settings file's
     repository (nearest ``.git`` above it, else its own folder)."""
-    from urdftool.loader.packages import repository_root
+    from urdftool.description.packages import repository_root
 
     root = repository_root(settings.parent) or settings.parent
     if not inside(path, root):

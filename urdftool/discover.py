@@ -2,7 +2,7 @@
 include.
 
 Classifying a file reads it only when it is a regular file under the size limit and, links
-followed, inside its repository (see :func:`~urdftool.loader.packages.containment_root`); any
+followed, inside its repository (see :func:`~urdftool.description.packages.containment_root`); any
 other file is kept as a target, unread, so that checking it reports why (U017, U008, U001).
 Only what classification needs is kept per file, never its bytes.
 """
@@ -15,8 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
-from urdftool.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
-from urdftool.loader.packages import PackageResolver, containment_root, repository_root
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from urdftool.description.packages import PackageResolver, containment_root, repository_root
 
 SUFFIXES = (".urdf", ".xacro")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
@@ -100,7 +100,7 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
 
 def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
     """A file's bytes; None, without opening it, for a link leading outside the repository, a
-    file over ``limit`` [bytes] or anything else :func:`~urdftool.files.read_regular` refuses."""
+    file over ``limit`` [bytes] or anything else :func:`~urdftool.description.files.read_regular` refuses."""
     if not _stays_inside(path):
         return None
     try:

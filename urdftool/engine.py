@@ -88,7 +88,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
 def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
     """Load and check one file (``data``: its content, when not to be read from ``path``);
     load failures are findings too."""
-    from urdftool.loader import load
+    from urdftool.description.load import load
 
     try:
         robot = load(path, xacro_args=options.xacro_args, packages=options.packages,

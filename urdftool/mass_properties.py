@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 
 from urdftool import mat3
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 

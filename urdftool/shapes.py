@@ -1,7 +1,7 @@
 """A link's ``<collision>``/``<visual>`` geometry as solids: mass properties and bounds.
 
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
-:mod:`urdftool.meshes`, so both see the same shapes, scales and origins. Pure Python
+:mod:`urdftool.description.meshes`, so both see the same shapes, scales and origins. Pure Python
 (:mod:`urdftool.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
 """
 
@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from urdftool import mass_properties as mp
 from urdftool import mat3
-from urdftool.rules._values import finite, parse_numbers
+from urdftool.description.values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
 
@@ -94,7 +94,7 @@ def _mesh_solid(robot, shape: Shape, problems: list):
 
 
 def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
-    from urdftool.meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
+    from urdftool.description.meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
 
     try:
         mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from urdftool.diagnostics import Finding, Location, Severity
-from urdftool.files import read_regular
+from urdftool.description.files import read_regular
 from urdftool.rules import FAMILIES, REGISTRY, all_rules, declare, matches
 
 declare("U901", "unused-suppression", Severity.WARNING, """

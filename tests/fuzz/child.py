@@ -48,8 +48,8 @@ def preload() -> None:
     hook then sees the robot's files rather than Python's)."""
     import importlib
 
-    for name in ("urdftool.cli", "urdftool.engine", "urdftool.parallel", "urdftool.loader",
-                 "urdftool.meshes", "urdftool.dynamics", "urdftool.inertia",
+    for name in ("urdftool.cli", "urdftool.engine", "urdftool.parallel", "urdftool.description.load",
+                 "urdftool.description.meshes", "urdftool.dynamics", "urdftool.inertia",
                  "urdftool.collision.pairs", "urdftool.collision.srdf", "urdftool.kinematics.fk",
                  "urdftool.kinematics.dh", "urdftool.kinematics.graph", "urdftool.report",
                  "xacro", "yaml", "numpy", "trimesh", "trimesh.exchange.load", "fcl",

@@ -4,7 +4,7 @@ Boxes, cylinders and spheres become FCL primitives; meshes become BVH models, sc
 also carries an oriented bounding box (frame in the link, half extents) and a bounding sphere, the
 cheap tests the matrix runs across thousands of samples before asking FCL.
 
-Meshes are loaded through :mod:`urdftool.meshes`, with its safety limits and per-robot cache.
+Meshes are loaded through :mod:`urdftool.description.meshes`, with its safety limits and per-robot cache.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import numpy as np
 
 from urdftool.diagnostics import Location
 from urdftool.kinematics import transforms
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 
 
 @dataclass
@@ -142,11 +142,11 @@ def _refuse(problems, robot, shape, link: str, why: str) -> None:
 def _load_mesh(robot, shape, cache):
     """(BVH model, bounding box centre, half extents) or a message saying why not.
 
-    The mesh itself comes from :mod:`urdftool.meshes` (containment, extension whitelist, size
+    The mesh itself comes from :mod:`urdftool.description.meshes` (containment, extension whitelist, size
     and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
     once per (file, scale).
     """
-    from urdftool.meshes import MeshProblem, load_mesh
+    from urdftool.description.meshes import MeshProblem, load_mesh
 
     uri = shape.get("filename")
     if not uri:

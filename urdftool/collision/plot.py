@@ -92,9 +92,9 @@ def svg(matrix, title: str) -> str:
 
 
 def write(matrix, path: Path, title: str) -> None:
-    """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.files.write_file`
+    """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.description.files.write_file`
     (a link planted at ``path`` is replaced, never followed); UsageError otherwise."""
-    from urdftool.files import write_file
+    from urdftool.description.files import write_file
 
     suffix = path.suffix.lower()
     if suffix == ".svg":

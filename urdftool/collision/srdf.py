@@ -9,8 +9,8 @@ from pathlib import Path
 from lxml import etree
 
 from urdftool.diagnostics import Location, display_path
-from urdftool.files import read_regular
-from urdftool.loader.xmlparse import XmlProblem, parse
+from urdftool.description.files import read_regular
+from urdftool.description.xml import XmlProblem, parse
 from urdftool.rules._names import available
 from urdftool.collision.matrix import Matrix, pair_key
 

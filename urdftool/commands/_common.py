@@ -68,7 +68,7 @@ def fail_usage(error: UsageError) -> None:
 def refuse_bad_outputs(*paths) -> None:
     """Exit 2 with one line when an output path given (None: not given) cannot be written: its
     folder is missing or it is a folder. Call it before the work."""
-    from urdftool.files import check_output
+    from urdftool.description.files import check_output
 
     try:
         for path in paths:
@@ -79,9 +79,9 @@ def refuse_bad_outputs(*paths) -> None:
 
 
 def write_output(path, data: str | bytes) -> None:
-    """Write an output file with :func:`urdftool.files.write_file` (a symbolic link planted at
+    """Write an output file with :func:`urdftool.description.files.write_file` (a symbolic link planted at
     ``path`` is replaced, never followed); exit 2 with one line when it cannot be written."""
-    from urdftool.files import write_file
+    from urdftool.description.files import write_file
 
     try:
         write_file(path, data)
@@ -108,10 +108,10 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
     choices: {option: (value, allowed values)}, e.g. {"--format": (fmt, ("text", "json"))}
     problems: (is wrong, message) pairs for the command's own option checks
-    load_options: passed to ``urdftool.loader.load`` (e.g. ``allow_env``)
+    load_options: passed to ``urdftool.description.load.load`` (e.g. ``allow_env``)
     """
     from urdftool.errors import LoadError
-    from urdftool.loader import load
+    from urdftool.description.load import load
 
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
@@ -151,7 +151,7 @@ def budgeted(command):
         path = next(iter(split_words(kwargs.get("words") or [])[0]), "-")
         stdin = None
         if path == "-" and not budget.unlimited:  # only this process can read it
-            from urdftool.loader import DEFAULT_MAX_FILE_SIZE
+            from urdftool.description.load import DEFAULT_MAX_FILE_SIZE
 
             stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
 

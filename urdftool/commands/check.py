@@ -176,7 +176,7 @@ def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[
     from urdftool.diagnostics import display_path
     from urdftool.discover import (explicit_targets, includers_below, project_root, resolved_path,
                             robot_files, split_top_level)
-    from urdftool.loader.packages import PackageResolver
+    from urdftool.description.packages import PackageResolver
 
     resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
     includers = {}  # project root -> its include graph, built once

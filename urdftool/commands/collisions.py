@@ -200,7 +200,7 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
         entries, root = _srdf_entries(check_srdf)
         stale = srdf.stale(result, entries, robot.links, root)
     if write_srdf:
-        from urdftool.files import write_file
+        from urdftool.description.files import write_file
 
         # Merged only into a regular file: a link planted there is replaced, its target unread.
         existing = write_srdf if write_srdf.is_file() and not write_srdf.is_symlink() else None

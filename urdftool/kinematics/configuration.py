@@ -18,7 +18,7 @@ from typing import Collection
 import numpy as np
 
 from urdftool.rules._names import available
-from urdftool.rules._values import number, parse_numbers
+from urdftool.description.values import number, parse_numbers
 
 FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")
 PLANAR_COORDINATES = ("x", "y", "yaw")
@@ -178,8 +178,8 @@ def from_words(variables: list[Variable], words: list[str], degrees: bool = Fals
 def from_file(variables: list[Variable], path: str, degrees: bool = False,
               mimics: dict[str, str] | None = None) -> Configurations:
     """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file: a
-    regular file up to the size limit (urdftool.files.read_regular), else ConfigError."""
-    from urdftool.files import read_regular
+    regular file up to the size limit (urdftool.description.files.read_regular), else ConfigError."""
+    from urdftool.description.files import read_regular
 
     try:
         text = read_regular(path).decode("utf-8")

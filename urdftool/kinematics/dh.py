@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from urdftool.rules._names import available
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
@@ -312,8 +312,8 @@ def load_table(path: str) -> DHTable:
     """A table from JSON or YAML in ``dh``'s output format; DHError says where it is wrong."""
     import yaml
 
-    from urdftool.files import read_regular
-    from urdftool.loader.yaml_limits import BoundedLoader
+    from urdftool.description.files import read_regular
+    from urdftool.description.yaml_limits import BoundedLoader
 
     try:
         text = read_regular(path).decode("utf-8")

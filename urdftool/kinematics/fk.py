@@ -232,7 +232,7 @@ class KinematicModel:
 
 def _axis(short: str, element) -> np.ndarray:
     """The unit joint axis: Pinocchio's X/Y/Z joints name it; unaligned ones take the URDF's."""
-    from urdftool.rules._values import parse_numbers
+    from urdftool.description.values import parse_numbers
 
     letter = short[-1]
     if short in ("JointModelR" + letter, "JointModelRUB" + letter, "JointModelP" + letter) \

@@ -115,9 +115,9 @@ def write(dot: str, output: Path) -> Path:
     """Write ``dot`` to ``output``: as is for ``.dot``/``.gv``, rendered by Graphviz's ``dot``
     for ``.svg``/``.png``/``.pdf``. Returns the file written; raises DotMissing (after writing
     the DOT beside ``output``) when ``dot`` is not installed, ValueError for other suffixes.
-    Written with :func:`urdftool.files.write_file`: a link planted at the path is replaced,
+    Written with :func:`urdftool.description.files.write_file`: a link planted at the path is replaced,
     never followed (``dot`` renders to a pipe, not to the path)."""
-    from urdftool.files import write_file
+    from urdftool.description.files import write_file
 
     suffix = output.suffix.lower()
     if suffix in (".dot", ".gv"):

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from urdftool.companions import YamlFile, YamlList, YamlMap, companions
+from urdftool.description.companions import YamlFile, YamlList, YamlMap, companions
 from urdftool.rules import Severity, rule
-from urdftool.rules._actuation import command_interfaces, interface_kind, transmission_joints, transmissions
+from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
 from urdftool.rules._names import available
 
 STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")

@@ -7,7 +7,7 @@ import math
 from urdftool.rules import Severity, rule
 from urdftool import mat3
 from urdftool.rules._names import available
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 
 DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
 WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")

@@ -1,12 +1,12 @@
 """U4xx: geometry, materials and meshes of links (what urdfdom refuses, and what it misses).
 
-Mesh files are resolved, bounded and loaded by :mod:`urdftool.meshes` (once per run).
+Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes` (once per run).
 """
 
 from __future__ import annotations
 
 from urdftool.rules import Severity, rule
-from urdftool.rules._values import finite, parse_numbers
+from urdftool.description.values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
 # (shape, attributes it needs, numbers in each); mesh filename is text
@@ -232,7 +232,7 @@ def _mesh_outcomes(robot):
     cached = robot.options.get("_mesh_outcomes")
     if cached is not None:
         return cached
-    from urdftool.meshes import MeshProblem, load_mesh
+    from urdftool.description.meshes import MeshProblem, load_mesh
 
     outcomes = []
     for link, holder, shape in _mesh_elements(robot):

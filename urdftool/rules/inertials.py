@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.rules import Severity, rule
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 from urdftool import mat3
 from urdftool.mass_properties import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 

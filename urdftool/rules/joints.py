@@ -6,7 +6,7 @@ import math
 
 from urdftool.rules import Severity, rule
 from urdftool.rules._names import available
-from urdftool.rules._values import finite, parse_numbers
+from urdftool.description.values import finite, parse_numbers
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 LIMITED_TYPES = ("revolute", "prismatic")

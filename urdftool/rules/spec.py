@@ -11,11 +11,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from urdftool.companions import YamlMap, companions, is_spec
+from urdftool.description.companions import YamlMap, companions, is_spec
 from urdftool.rules import Severity, rule
-from urdftool.rules._actuation import moving_joints
+from urdftool.description.actuation import moving_joints
 from urdftool.rules._names import available
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
 TOP_KEYS = ("unit", "tolerance", "joints")

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from urdftool.companions import companions
+from urdftool.description.companions import companions
 from urdftool.rules import Severity, rule
 from urdftool.rules._names import available
-from urdftool.rules._values import parse_numbers
+from urdftool.description.values import parse_numbers
 
 LIMIT_TOLERANCE = 1e-6
 

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
-from urdftool.loader.packages import package_name, repository_root
+from urdftool.description.packages import package_name, repository_root
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000

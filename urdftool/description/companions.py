@@ -25,9 +25,9 @@ import yaml
 from lxml import etree
 
 from urdftool.diagnostics import Location, display_path
-from urdftool.files import TooLarge, read_regular
-from urdftool.loader.xmlparse import XmlProblem, start_tag_lines
-from urdftool.loader.yaml_limits import DepthLimit
+from urdftool.description.files import TooLarge, read_regular
+from urdftool.description.xml import XmlProblem, start_tag_lines
+from urdftool.description.yaml_limits import DepthLimit
 
 MAX_SIZE = 16 * 1024 * 1024
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")

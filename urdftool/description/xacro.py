@@ -36,10 +36,10 @@ from lxml import etree
 from urdftool import budget
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import PackageNotFound
-from urdftool.files import read_regular
+from urdftool.description.files import read_regular
 from urdftool.rules._names import available
-from urdftool.loader import xacro_sandbox
-from urdftool.loader.xmlparse import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
+from urdftool.description import xacro_sandbox
+from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
@@ -466,8 +466,8 @@ _EVAL_CONSTANTS = {
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
-    from urdftool.files import inside
-    from urdftool.loader.packages import containment_root
+    from urdftool.description.files import inside
+    from urdftool.description.packages import containment_root
 
     root = containment_root(os.path.dirname(os.path.abspath(session.paths[0])))
     named = os.path.abspath(filename)

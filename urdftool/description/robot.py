@@ -10,7 +10,7 @@ from pathlib import Path
 from lxml import etree
 
 from urdftool.diagnostics import Location
-from urdftool.loader.packages import PackageResolver
+from urdftool.description.packages import PackageResolver
 
 
 @dataclass

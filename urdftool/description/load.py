@@ -14,10 +14,10 @@ from lxml import etree
 
 from urdftool.diagnostics import Finding, Location, Severity, display_path
 from urdftool.errors import LoadError
-from urdftool.files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
-from urdftool.loader.model import Robot
-from urdftool.loader.packages import PackageResolver, containment_root
-from urdftool.loader.xmlparse import XmlProblem, parse, refuse_empty_or_binary
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
+from urdftool.description.robot import Robot
+from urdftool.description.packages import PackageResolver, containment_root
+from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
 
 XACRO_SUFFIXES = (".xacro",)
 
@@ -147,7 +147,7 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
 
 
 def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
-    from urdftool.loader.xacro_expand import XacroFailure, expand
+    from urdftool.description.xacro import XacroFailure, expand
 
     try:
         refuse_empty_or_binary(data)
@@ -174,7 +174,7 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
 
 def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
     """Where included and YAML files may be: the repository (see
-    :func:`~urdftool.loader.packages.containment_root`) and the files and folders named by xacro
+    :func:`~urdftool.description.packages.containment_root`) and the files and folders named by xacro
     arguments. Folders of packages ``$(find)`` resolves are added later."""
     roots = [containment_root(_folder_of(source))]
     for value in args.values():

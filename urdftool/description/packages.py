@@ -15,7 +15,7 @@ import re
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
-from urdftool.files import inside, read_regular
+from urdftool.description.files import inside, read_regular
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}

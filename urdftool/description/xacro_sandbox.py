@@ -728,7 +728,7 @@ def refuse_yaml_bomb(text: str, filename: str = "YAML file") -> None:
     full, and PyYAML would recurse until the stack runs out."""
     import yaml
 
-    from urdftool.loader.yaml_limits import BoundedLoader, expansion_problem
+    from urdftool.description.yaml_limits import BoundedLoader, expansion_problem
 
     try:
         documents = list(yaml.compose_all(text, Loader=BoundedLoader))
