@@ -11,7 +11,7 @@ from lxml import etree
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import read_regular
 from urdftool.description.xml import XmlProblem, parse
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.collision.matrix import Matrix, pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")

@@ -46,7 +46,7 @@ def inertia(
          "--write needs --link NAME (repeatable) or --all")])
     unknown = [name for name in link if name not in robot.links]
     if unknown:
-        from urdftool.rules._names import available
+        from urdftool.errors import available
 
         fail_usage(UsageError(f"link '{unknown[0]}' does not exist; "
                               f"{available('links', unknown[0], robot.links)}"))

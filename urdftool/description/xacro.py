@@ -37,7 +37,7 @@ from urdftool import budget
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import PackageNotFound
 from urdftool.description.files import read_regular
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description import xacro_sandbox
 from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
 

@@ -17,7 +17,7 @@ from typing import Collection
 
 import numpy as np
 
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import number, parse_numbers
 
 FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 from urdftool.kinematics import transforms
 

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.kinematics import transforms
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)

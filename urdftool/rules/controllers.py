@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from urdftool.description.companions import YamlFile, YamlList, YamlMap, companions
 from urdftool.rules import Severity, rule
 from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
-from urdftool.rules._names import available
+from urdftool.errors import available
 
 STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
 STATE_CLASSES = ("StateController", "StateBroadcaster")

@@ -6,7 +6,7 @@ import math
 
 from urdftool.rules import Severity, rule
 from urdftool import mat3
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
 DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")

@@ -214,7 +214,7 @@ def undefined_material(robot):
             if _defines(material):
                 defined.add(name)
             elif name not in defined:
-                from urdftool.rules._names import available
+                from urdftool.errors import available
                 yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
                                  f"{available('materials', name, defined)}")
 

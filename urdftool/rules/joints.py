@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.rules import Severity, rule
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import finite, parse_numbers
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")

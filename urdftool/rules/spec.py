@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from urdftool.description.companions import YamlMap, companions, is_spec
 from urdftool.rules import Severity, rule
 from urdftool.description.actuation import moving_joints
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}

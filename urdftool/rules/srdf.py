@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from urdftool.description.companions import companions
 from urdftool.rules import Severity, rule
-from urdftool.rules._names import available
+from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
 LIMIT_TOLERANCE = 1e-6

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 from urdftool.rules import Severity, rule
-from urdftool.rules._names import available
+from urdftool.errors import available
 
 
 def _duplicates(robot, tag: str):
