@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from conftest import ROBOTS
-from urdftool.dynamics import build, gravity_loads, gravity_variables, state
+from urdftool.physics.dynamics import build, gravity_loads, gravity_variables, state
 from urdftool.description.load import load
 
 G0 = 9.81

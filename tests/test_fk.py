@@ -10,7 +10,7 @@ import pytest
 
 from conftest import ROBOTS, corpus_or_skip
 from urdftool.kinematics import configuration as config
-from urdftool import mat3
+from urdftool.physics import mat3
 from urdftool.kinematics import transforms
 from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics, pose_components
 from urdftool.description.load import load

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from conftest import ROBOTS
-from urdftool import inertia as mp
-from urdftool import mat3
+from urdftool.physics import inertia as mp
+from urdftool.physics import mat3
 from urdftool.description.load import load
 
 
@@ -84,7 +84,7 @@ def test_mesh_link_with_scale_and_origin(tmp_path):
     robot = _robot('<link name="a"><collision><origin xyz="0 0 1"/><geometry>'
                    '<mesh filename="box_mm.stl" scale="0.001 0.001 0.001"/></geometry>'
                    '</collision></link>', tmp_path)
-    from urdftool.shapes import computed, link_solid
+    from urdftool.physics.solids import computed, link_solid
 
     result = computed(link_solid(robot, robot.links["a"]), mass=2.0)
     exact = mp.box((0.1, 0.2, 0.3)).scaled_to(2.0)
@@ -102,7 +102,7 @@ def test_mesh_without_volume_is_a_problem_not_a_qhull_crash(tmp_path, points):
                                        "endloop\nendfacet\nendsolid x\n")
     robot = _robot('<link name="a"><collision><geometry><mesh filename="flat.stl"/></geometry>'
                    '</collision></link>', tmp_path)
-    from urdftool.shapes import link_solid
+    from urdftool.physics.solids import link_solid
 
     solid = link_solid(robot, robot.links["a"])
     assert [message for _, message in solid.problems] == [

@@ -8,8 +8,8 @@ import sys
 import numpy as np
 
 from conftest import ROBOTS
-from urdftool import mass_properties as mp
-from urdftool import mat3
+from urdftool.physics import mass as mp
+from urdftool.physics import mat3
 
 RNG = np.random.default_rng(11)
 
@@ -40,7 +40,7 @@ def test_transformed_and_combined_match_numpy_parallel_axis():
 
 
 def test_primitives_bodies_are_what_inertia_wraps():
-    from urdftool import inertia
+    from urdftool.physics import inertia
 
     for pure, wrapped in [(mp.box((0.1, 0.2, 0.3)), inertia.box((0.1, 0.2, 0.3))),
                           (mp.cylinder(0.05, 0.2), inertia.cylinder(0.05, 0.2)),

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from urdftool import mat3
+from urdftool.physics import mat3
 
 RNG = np.random.default_rng(7)
 

@@ -81,7 +81,7 @@ def _corpus_entries(corpus):
 
 def test_missing_meshes_on_the_corpus_are_exactly_the_omitted_ones():
     corpus = corpus_or_skip()
-    from urdftool.shapes import SHAPES  # noqa: F401 (shapes and meshes share the resolver)
+    from urdftool.physics.solids import SHAPES  # noqa: F401 (shapes and meshes share the resolver)
 
     found = set()
     for path, args in _corpus_entries(corpus):

@@ -49,7 +49,7 @@ def preload() -> None:
     import importlib
 
     for name in ("urdftool.cli", "urdftool.engine", "urdftool.parallel", "urdftool.description.load",
-                 "urdftool.description.meshes", "urdftool.dynamics", "urdftool.inertia",
+                 "urdftool.description.meshes", "urdftool.physics.dynamics", "urdftool.physics.inertia",
                  "urdftool.collision.pairs", "urdftool.collision.srdf", "urdftool.kinematics.fk",
                  "urdftool.kinematics.dh", "urdftool.kinematics.graph", "urdftool.report",
                  "xacro", "yaml", "numpy", "trimesh", "trimesh.exchange.load", "fcl",

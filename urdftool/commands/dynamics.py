@@ -50,7 +50,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
+    from urdftool.physics.dynamics import DynamicsError, build, gravity_loads, gravity_variables, state
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
                          [(samples < 0, "--samples must be 0 or more")])

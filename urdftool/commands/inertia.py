@@ -37,7 +37,7 @@ def inertia(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.inertia_compare import compare, corrected_urdf, inertial_xml
+    from urdftool.physics.inertia_compare import compare, corrected_urdf, inertial_xml
 
     refuse_bad_outputs(write)
     robot = single_robot("inertia", words, arg, package, {"--format": (output_format, FORMATS)}, [

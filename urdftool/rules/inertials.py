@@ -19,8 +19,8 @@ import math
 
 from urdftool.rules import Severity, rule
 from urdftool.description.values import parse_numbers
-from urdftool import mat3
-from urdftool.mass_properties import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from urdftool.physics import mat3
+from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -246,7 +246,7 @@ def _link_solids(robot):
     """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
     cached = robot.options.get("_link_solids")
     if cached is None:
-        from urdftool.shapes import link_solid
+        from urdftool.physics.solids import link_solid
 
         cached = [(link, properties, link_solid(robot, link))
                   for link, properties in _valid(robot) if properties.mass > 0]
@@ -326,7 +326,7 @@ def inertia_unit_mistake(robot):
     Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
     Good: ``<inertia ixx="0.0012" .../>``
     """
-    from urdftool.shapes import computed
+    from urdftool.physics.solids import computed
 
     for link, properties, solid in _link_solids(robot):
         if solid.problems or not solid.parts:

@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urdftool.inertia import MassProperties, declared, relative_difference, triangle_violation
-from urdftool.shapes import computed, link_solid
+from urdftool.physics.inertia import MassProperties, declared, relative_difference, triangle_violation
+from urdftool.physics.solids import computed, link_solid
 
 AGREE_TOLERANCE = 0.1  # relative difference of tensor and com offset (vs link size) that agrees
 VERDICTS = ("agrees", "differs", "invalid", "unknown")

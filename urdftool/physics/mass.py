@@ -6,7 +6,7 @@ unless said otherwise, expressed in the link frame with axes parallel to the lin
 :func:`declared` rotates it into the link axes: ``I_link = R I R^T``.
 
 This is the one implementation of these formulas. The inertia rules use it directly (no numpy,
-so ``urdftool check`` starts fast); :mod:`urdftool.inertia` wraps it in numpy arrays for
+so ``urdftool check`` starts fast); :mod:`urdftool.physics.inertia` wraps it in numpy arrays for
 ``urdftool inertia`` and adds meshes.
 """
 
@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from urdftool import mat3
+from urdftool.physics import mat3
 from urdftool.description.values import parse_numbers
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")

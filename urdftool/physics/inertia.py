@@ -1,9 +1,9 @@
 """Mass properties as numpy arrays (``urdftool inertia``), and closed meshes as solids.
 
-The formulas live in :mod:`urdftool.mass_properties` (pure Python, used by the inertia rules);
+The formulas live in :mod:`urdftool.physics.mass` (pure Python, used by the inertia rules);
 this module gives them numpy arrays for the code that computes with numpy, and reads a
 trimesh mesh's volume, centre of mass and tensor. Conventions are those of
-:mod:`urdftool.mass_properties`.
+:mod:`urdftool.physics.mass`.
 """
 
 from __future__ import annotations
@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from urdftool import mass_properties as pure
-from urdftool import mat3
-from urdftool.mass_properties import INERTIA_ATTRIBUTES, relative_difference, triangle_violation
+from urdftool.physics import mass as pure
+from urdftool.physics import mat3
+from urdftool.physics.mass import INERTIA_ATTRIBUTES, relative_difference, triangle_violation
 
 __all__ = ["INERTIA_ATTRIBUTES", "MassProperties", "box", "combine", "cylinder", "declared",
            "mesh_solid", "relative_difference", "sphere", "transformed", "triangle_violation"]

@@ -2,15 +2,15 @@
 
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
 :mod:`urdftool.description.meshes`, so both see the same shapes, scales and origins. Pure Python
-(:mod:`urdftool.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
+(:mod:`urdftool.physics.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from urdftool import mass_properties as mp
-from urdftool import mat3
+from urdftool.physics import mass as mp
+from urdftool.physics import mat3
 from urdftool.description.values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
@@ -112,7 +112,7 @@ def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
             return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
                                         "(watertight); its convex hull was used"))
-    from urdftool.inertia import mesh_solid
+    from urdftool.physics.inertia import mesh_solid
 
     solid = mesh_solid(body).body()
     if not solid.mass > 0:  # also NaN from a zero-volume mesh
@@ -165,7 +165,7 @@ def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
 
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
-    """A :class:`~urdftool.mass_properties.Body` of the solids: with ``mass`` [kg] kept, or
+    """A :class:`~urdftool.physics.mass.Body` of the solids: with ``mass`` [kg] kept, or
     from ``density`` [kg/m^3]."""
     if not solid.parts:
         return None
