@@ -49,8 +49,8 @@ def _write_repo(folder: Path, count: int) -> list[str]:
 
 
 def main() -> dict:
-    from urdftool.engine import CheckOptions, check_file
-    from urdftool.parallel import check_files, default_jobs
+    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.runner import check_files, default_jobs
 
     with tempfile.TemporaryDirectory() as tmp:
         files = _write_repo(Path(tmp), COUNT)

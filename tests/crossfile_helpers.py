@@ -7,7 +7,7 @@ import textwrap
 from pathlib import Path
 
 from conftest import CASES, ROBOTS
-from urdftool.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, check_file
 
 HEAD_ROBOT = """<robot name="r">
   <link name="base_link"/><link name="head"/><link name="cam"/>

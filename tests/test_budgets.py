@@ -14,9 +14,9 @@ import pytest
 
 from conftest import ROOT
 from urdftool.budget import Budget, format_memory, parse_memory
-from urdftool.engine import CheckOptions
+from urdftool.lint.engine import CheckOptions
 from urdftool.errors import UsageError
-from urdftool.parallel import check_files
+from urdftool.lint.runner import check_files
 
 XACRO = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 # One C call: no signal handler can interrupt it, only killing the process stops it.

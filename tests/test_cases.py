@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 from conftest import CASES
-from urdftool.engine import CheckOptions, check_file
-from urdftool.rules import all_rules
+from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.rules import all_rules
 
 MARK = re.compile(r"expect:\s*((?:U\d{3}[\s,]*)+)(?:is reported )?(?:at\s+([\w.\-]+):(\d+))?")
 

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import ROBOTS
 from urdftool.description.companions import companions, is_spec, looks_like_controllers, read_yaml
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.description.load import load
 
 ROBOT = """<robot name="r">

@@ -6,8 +6,8 @@ import json
 
 import pytest
 
-from urdftool import parallel
-from urdftool.config import find_config
+from urdftool.lint import runner as parallel
+from urdftool.lint.settings import find_config
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>

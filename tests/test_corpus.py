@@ -8,7 +8,7 @@ import io
 import pytest
 
 from conftest import CORPUS, corpus_entry_points, entry_id
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 ENTRIES = corpus_entry_points()
 pytestmark = pytest.mark.skipif(not ENTRIES, reason="corpus not available")

@@ -13,7 +13,7 @@ from collections import Counter
 import pytest
 
 from conftest import CORPUS, corpus_or_skip
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 UR_ARGS = ("robot_model:={m} joint_limit_params:={c}/ur_description/config/{m}/joint_limits.yaml "
            "kinematics_params:={c}/ur_description/config/{m}/default_kinematics.yaml "

@@ -3,9 +3,9 @@
 import pytest
 
 from conftest import ROOT
-from urdftool import rules
+from urdftool.lint import rules
 from urdftool.docs import with_table
-from urdftool.rules import Severity, all_rules
+from urdftool.lint.rules import Severity, all_rules
 
 
 def test_readme_rules_table_is_current():

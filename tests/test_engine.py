@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from conftest import CASES
-from urdftool import engine
-from urdftool.engine import CheckOptions, Selection, check_file
-from urdftool.rules import REGISTRY, Rule, Severity, all_rules
+from urdftool.lint import engine
+from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.rules import REGISTRY, Rule, Severity, all_rules
 
 ROBOT = CASES / "U204_inverted_limits.urdf"
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 CHECK_URDF = Path(sys.executable).parent / "check_urdf"  # the venv's urdfdom binary
 I6 = 'ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"'

@@ -11,8 +11,8 @@ import time
 import pytest
 
 from urdftool.budget import Budget
-from urdftool.engine import CheckOptions
-from urdftool.parallel import check_files, run_budgeted
+from urdftool.lint.engine import CheckOptions
+from urdftool.lint.runner import check_files, run_budgeted
 
 GOOD = '<robot name="r"><link name="a"/></robot>\n'
 BAD = '<robot name="r"><link name="a"></robot>\n'
@@ -60,7 +60,7 @@ def test_a_file_over_the_budget_gets_a_finding_and_the_run_goes_on(tmp_path, rob
 def test_a_dying_worker_becomes_an_internal_error(robots, monkeypatch):
     import os
 
-    from urdftool import parallel
+    from urdftool.lint import runner as parallel
 
     real = parallel.check_file
 
@@ -88,7 +88,8 @@ def test_negative_jobs_is_a_usage_error(run_cli, robots):
 
 
 def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, tmp_path):
-    from urdftool import budget, parallel
+    from urdftool import budget
+    from urdftool.lint import runner as parallel
     from urdftool.diagnostics import Location
 
     files = []

@@ -12,7 +12,7 @@ import pytest
 
 from conftest import CASES, CORPUS, corpus_entry_points
 from test_cases import CASE_PATHS, case_robot
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \
     shutil.which("check_urdf")

@@ -11,7 +11,7 @@ from lxml import etree
 import sarif_schema
 
 from urdftool.diagnostics import Finding, Location, Severity
-from urdftool.engine import FileResult
+from urdftool.lint.engine import FileResult
 from urdftool.report import render
 
 RESULTS = [

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.rules import all_rules
+from urdftool.lint.rules import all_rules
 
 
 def test_list_has_every_rule(run_cli):

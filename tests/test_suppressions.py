@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from urdftool.diagnostics import Finding, Location, Severity
-from urdftool.engine import CheckOptions, Selection, check_file
-from urdftool.suppressions import apply, parse
+from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.suppressions import apply, parse
 
 TEXT = """<robot name="r">
   <!-- urdftool: ignore U206 -->

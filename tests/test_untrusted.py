@@ -10,7 +10,7 @@ import os
 
 import pytest
 
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 XACRO_NS = ' xmlns:xacro="http://www.ros.org/wiki/xacro"'
 LAUGHS = ('<!DOCTYPE robot [<!ENTITY lol "lol">'

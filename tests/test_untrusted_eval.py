@@ -16,7 +16,7 @@ import resource
 
 import pytest
 
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 HEADER = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
 # `$(` ends at the first `)`, so a property supplies the `)` that $(eval ...) calls need.
@@ -261,7 +261,7 @@ def test_memory_error_in_an_expansion_is_a_located_finding(tmp_path, monkeypatch
 
     monkeypatch.setattr(xacro_sandbox, "_guard_binop", out_of_memory)
     monkeypatch.setitem(xacro_sandbox._GUARDS, "__urdftool_binop__", out_of_memory)
-    from urdftool.parallel import check_files
+    from urdftool.lint.runner import check_files
 
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(HEADER + '<link name="l"/>\n<link name="${1 + 1}"/>' + "\n</robot>\n")

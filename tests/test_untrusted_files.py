@@ -384,7 +384,7 @@ def test_walk_does_not_open_files_over_the_size_limit(run_cli, tmp_path):
         path = repo / f"big{index}.urdf.xacro"
         path.write_text(f"<robot {XACRO}>")
         os.truncate(path, 32 << 20)  # sparse: no disk used
-    from urdftool.discover import robot_files, split_top_level
+    from urdftool.lint.targets import robot_files, split_top_level
 
     with opened_files() as opened:
         top, skipped = split_top_level(robot_files(repo), lambda p: PackageResolver(start=p))
@@ -397,7 +397,7 @@ def test_walk_does_not_open_files_over_the_size_limit(run_cli, tmp_path):
 _MEASURE = """
 import os, resource, sys
 from pathlib import Path
-from urdftool.discover import robot_files, split_top_level
+from urdftool.lint.targets import robot_files, split_top_level
 from urdftool.description.packages import PackageResolver
 
 repo = Path(sys.argv[1])

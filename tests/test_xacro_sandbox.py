@@ -183,7 +183,7 @@ def _outside_robot(tmp_path):
 
 
 def test_files_outside_the_repository_are_reported(tmp_path):
-    from urdftool.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, check_file
 
     result = check_file(str(_outside_robot(tmp_path)), CheckOptions())
     outside = sorted((f.code, f.line) for f in result.findings if f.code == "U013")
@@ -321,7 +321,7 @@ def test_xacro_helpers_stay_harmless(tmp_path, expression, code):
 
 
 def test_bare_range_keeps_xacro_deprecation_warning(tmp_path):
-    from urdftool.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, check_file
 
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(HEADER + '<link name="${len(range(3))}"/>\n</robot>\n')

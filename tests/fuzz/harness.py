@@ -19,7 +19,7 @@ import signal
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, check_file
 
 from .cases import SECRET_LINK, Case, cleanup, commands, materialize
 from .child import CANARY, SECRET_VALUE, Allow, run_all

@@ -134,7 +134,7 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
 def budgeted(command):
     """``command`` with ``--timeout`` and ``--max-memory`` options, run within that budget in a
-    forked process (see urdftool.parallel): over it, a finding located where the work was (U015,
+    forked process (see urdftool.lint.runner): over it, a finding located where the work was (U015,
     U018) and exit 1. The command's first word is the robot it is about."""
     signature = inspect.signature(command, eval_str=True)
     options = {"timeout": (float, TimeoutOption), "max_memory": (str, MaxMemoryOption)}
@@ -142,7 +142,7 @@ def budgeted(command):
     @functools.wraps(command)
     def run(**kwargs):
         from urdftool.budget import Budget
-        from urdftool.parallel import Stop, run_budgeted, stop_finding
+        from urdftool.lint.runner import Stop, run_budgeted, stop_finding
 
         try:
             budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
@@ -190,7 +190,7 @@ def _bytes_stdin(data: bytes):
 
 def report_findings(path: str, findings) -> None:
     """Print findings about the robot at ``path`` to stderr as ``check`` would."""
-    from urdftool.engine import FileResult
+    from urdftool.lint.engine import FileResult
     from urdftool.report import render
 
     render("text", [FileResult(path, findings)], sys.stderr)

@@ -62,9 +62,9 @@ def check(
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
     from urdftool.budget import Budget
-    from urdftool.config import checked_file_size
-    from urdftool.engine import CheckOptions, Selection
-    from urdftool.parallel import check_files
+    from urdftool.lint.settings import checked_file_size
+    from urdftool.lint.engine import CheckOptions, Selection
+    from urdftool.lint.runner import check_files
     from urdftool.report import FORMATS, Summary, render
 
     try:
@@ -165,7 +165,7 @@ def _codes(values: list[str]) -> list[str]:
 
 
 def _config_for(path: str):
-    from urdftool.config import find_config
+    from urdftool.lint.settings import find_config
 
     return find_config(Path.cwd() if path == "-" else Path(path))
 
@@ -174,7 +174,7 @@ def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[
     """Files to check, in a stable order, and the files skipped in folders with the reason.
     Files over ``max_file_size`` [bytes] are not read to classify them."""
     from urdftool.diagnostics import display_path
-    from urdftool.discover import (explicit_targets, includers_below, project_root, resolved_path,
+    from urdftool.lint.targets import (explicit_targets, includers_below, project_root, resolved_path,
                             robot_files, split_top_level)
     from urdftool.description.packages import PackageResolver
 

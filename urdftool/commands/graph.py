@@ -26,7 +26,7 @@ def graph(
                                 help="Write to x.dot (or .gv), or render x.svg, x.png, x.pdf; "
                                      "default: DOT on stdout."),
 ) -> None:
-    from urdftool.engine import check_robot
+    from urdftool.lint.engine import check_robot
     from urdftool.kinematics.graph import DotMissing, to_dot, write
 
     refuse_bad_outputs(output)

@@ -17,7 +17,7 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
                                      help="A rule code (U204) or name (inverted-limits).")) -> None:
     from rich.console import Console
 
-    from urdftool.rules import all_rules, find_rule
+    from urdftool.lint.rules import all_rules, find_rule
 
     console = Console(highlight=False, soft_wrap=True)
     if code is None:

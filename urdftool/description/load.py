@@ -194,6 +194,6 @@ def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
 
 
 def _finding(code: str, location: Location, message: str) -> Finding:
-    from urdftool.rules import registered
+    from urdftool.lint.rules import registered
 
     return registered(code).finding(message, location)

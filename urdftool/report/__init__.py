@@ -1,7 +1,7 @@
 """Reporters: every output format is fed from the same list of per-file results.
 
 A reporter is a function ``(results, stream) -> None``; ``results`` is a list of
-:class:`urdftool.engine.FileResult` in a stable order.
+:class:`urdftool.lint.engine.FileResult` in a stable order.
 """
 
 from __future__ import annotations

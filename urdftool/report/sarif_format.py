@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from urdftool import __version__
-from urdftool.rules import all_rules
+from urdftool.lint.rules import all_rules
 from urdftool.report import all_findings, write_json
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"

@@ -102,7 +102,7 @@ def all_rules() -> list[Rule]:
     if not _loaded:
         for module in rule_modules():
             importlib.import_module(f"{__name__}.{module}")
-        importlib.import_module("urdftool.engine")  # declares U900
+        importlib.import_module("urdftool.lint.engine")  # declares U900
         _loaded = True
     return [REGISTRY[code] for code in sorted(REGISTRY)]
 

@@ -8,8 +8,8 @@ from pathlib import Path
 
 from urdftool.diagnostics import Finding, Location, Severity, display_path
 from urdftool.errors import LoadError
-from urdftool.rules import REGISTRY, Rule, all_rules, declare, matches
-from urdftool import suppressions
+from urdftool.lint.rules import REGISTRY, Rule, all_rules, declare, matches
+from urdftool.lint import suppressions
 
 declare("U900", "internal-error", Severity.ERROR, """
     A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
@@ -68,7 +68,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     """Run every selected rule over a loaded robot; a crashing rule becomes U900.
 
     Inline ``<!-- urdftool: ignore ... -->`` comments then filter the findings (see
-    :mod:`urdftool.suppressions`); unused ones become U901.
+    :mod:`urdftool.lint.suppressions`); unused ones become U901.
     """
     findings = [f for f in robot.options.get("load_findings", []) if selection.allows(f.code)]
     for rule in all_rules():

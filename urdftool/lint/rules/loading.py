@@ -1,6 +1,6 @@
 """U0xx: reading the file, parsing XML and expanding xacro. Reported by the loader."""
 
-from urdftool.rules import Severity, declare, rule
+from urdftool.lint.rules import Severity, declare, rule
 
 declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.

@@ -22,7 +22,7 @@ from functools import lru_cache
 
 from urdftool.diagnostics import Finding, Location, Severity
 from urdftool.description.files import read_regular
-from urdftool.rules import FAMILIES, REGISTRY, all_rules, declare, matches
+from urdftool.lint.rules import FAMILIES, REGISTRY, all_rules, declare, matches
 
 declare("U901", "unused-suppression", Severity.WARNING, """
     An ``<!-- urdftool: ignore ... -->`` comment silences nothing.

@@ -28,7 +28,7 @@ from multiprocessing.connection import wait
 from urdftool import budget as budgets
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.diagnostics import Finding, Location, display_path
-from urdftool.engine import CheckOptions, FileResult, check_file
+from urdftool.lint.engine import CheckOptions, FileResult, check_file
 
 
 def default_jobs() -> int:
@@ -125,7 +125,7 @@ def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
 
 
 def _finding(code: str, where: Location, message: str) -> Finding:
-    from urdftool.rules import registered
+    from urdftool.lint.rules import registered
 
     return registered(code).finding(message, where)
 
