@@ -176,7 +176,7 @@ def test_check_srdf_locates_stale_entries_at_the_start_tag(humanoid_matrix, tmp_
 
 
 def test_plot_svg_has_a_cell_per_pair(humanoid_matrix, tmp_path):
-    from urdftool.collision import plot
+    from urdftool.report import plot
 
     _, result = humanoid_matrix
     out = tmp_path / "m.svg"
@@ -189,7 +189,7 @@ def test_plot_svg_has_a_cell_per_pair(humanoid_matrix, tmp_path):
 def test_plot_column_labels_stay_below_the_title_and_legend_matches_cells(humanoid_matrix):
     import re
 
-    from urdftool.collision import plot
+    from urdftool.report import plot
 
     _, result = humanoid_matrix
     text = plot.svg(result, "humanoid")
@@ -202,7 +202,7 @@ def test_plot_column_labels_stay_below_the_title_and_legend_matches_cells(humano
 
 def test_plot_png_draws_the_same_cells(humanoid_matrix, tmp_path):
     image_module = pytest.importorskip("PIL.Image")
-    from urdftool.collision import plot
+    from urdftool.report import plot
 
     _, result = humanoid_matrix
     plot.write(result, tmp_path / "m.png", "humanoid")

@@ -51,7 +51,7 @@ def preload() -> None:
     for name in ("urdftool.cli", "urdftool.lint.engine", "urdftool.lint.runner", "urdftool.description.load",
                  "urdftool.description.meshes", "urdftool.physics.dynamics", "urdftool.physics.inertia",
                  "urdftool.collision.pairs", "urdftool.collision.srdf", "urdftool.kinematics.fk",
-                 "urdftool.kinematics.dh", "urdftool.kinematics.graph", "urdftool.report",
+                 "urdftool.kinematics.dh", "urdftool.report.dot", "urdftool.report",
                  "xacro", "yaml", "numpy", "trimesh", "trimesh.exchange.load", "fcl",
                  "pinocchio", "rich.console", "rich.table", "rich.tree", "json", "csv",
                  "zipfile", "xml.etree.ElementTree"):

@@ -1,6 +1,6 @@
 """Declared inertials against those their geometry implies (``urdftool inertia``).
 
-Returns data only; :mod:`urdftool.commands.inertia` renders it.
+Returns data only; :mod:`urdftool.cli.inertia` renders it.
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
                       single_robot, write_output)
 
 

@@ -1,17 +1,17 @@
 """The ``urdftool`` command line: thin commands over core modules.
 
-Each command lives in ``urdftool/commands/<name>.py`` with a ``register(app)`` function; heavy
-libraries are imported inside the command that needs them, so ``urdftool --help`` stays fast.
+Each command lives in ``urdftool/cli/<name>.py`` with a ``register(app)`` function, listed in
+``COMMANDS``; heavy libraries are imported inside the command that needs them, so
+``urdftool --help`` stays fast.
 """
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
-
 import typer
 
-from urdftool import commands
+from urdftool.cli import check, collisions, dh, dynamics, fk, graph, inertia, rules, tree, xacro
+
+COMMANDS = (check, collisions, dh, dynamics, fk, graph, inertia, rules, tree, xacro)
 
 app = typer.Typer(
     name="urdftool",
@@ -38,9 +38,8 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
 
 
-for _module in sorted(m.name for m in pkgutil.iter_modules(commands.__path__)
-                      if not m.name.startswith("_")):
-    importlib.import_module(f"{commands.__name__}.{_module}").register(app)
+for _command in COMMANDS:
+    _command.register(app)
 
 
 def main() -> None:

@@ -10,7 +10,7 @@ from pathlib import Path
 import typer
 
 from urdftool.errors import UsageError
-from urdftool.commands._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
+from urdftool.cli._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
                       fail_usage, refuse_bad_outputs, robot_inputs, write_output)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.commands._common import fail_usage
+from urdftool.cli._common import fail_usage
 from urdftool.errors import UsageError
 
 
@@ -21,7 +21,7 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
 
     console = Console(highlight=False, soft_wrap=True)
     if code is None:
-        from urdftool.report.rules_format import rules_table
+        from urdftool.report.rules import rules_table
 
         console.print(rules_table(all_rules()))
         return
@@ -29,6 +29,6 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
         found = find_rule(code)
     except UsageError as error:
         fail_usage(error)
-    from urdftool.report.rules_format import rule_page
+    from urdftool.report.rules import rule_page
 
     console.print(rule_page(found))

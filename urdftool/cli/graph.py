@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
                       refuse_bad_outputs, single_robot)
 from urdftool.errors import UsageError
 
@@ -27,7 +27,7 @@ def graph(
                                      "default: DOT on stdout."),
 ) -> None:
     from urdftool.lint.engine import check_robot
-    from urdftool.kinematics.graph import DotMissing, to_dot, write
+    from urdftool.report.dot import DotMissing, to_dot, write
 
     refuse_bad_outputs(output)
     robot = single_robot("graph", words, arg, package)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.commands._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
+from urdftool.cli._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
 
 
 def register(app: typer.Typer) -> None:

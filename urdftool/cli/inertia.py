@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
                       refuse_bad_outputs, single_robot, write_output)
 from urdftool.errors import UsageError
 

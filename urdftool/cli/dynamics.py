@@ -6,7 +6,7 @@ import json
 
 import typer
 
-from urdftool.commands._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
+from urdftool.cli._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
 from urdftool.errors import UsageError
 
 

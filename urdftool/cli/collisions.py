@@ -9,7 +9,7 @@ from pathlib import Path
 import typer
 
 from urdftool.errors import UsageError
-from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
                       refuse_bad_outputs, single_robot)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
@@ -208,7 +208,7 @@ def _matrix(robot, samples, seed, min_fraction, margin, until_converged, max_sam
             _srdf_entries(existing)  # refuse a broken file before overwriting it
         write_file(write_srdf, srdf.render(result, robot.name, existing))
     if plot:
-        from urdftool.collision import plot as plot_module
+        from urdftool.report import plot as plot_module
 
         plot_module.write(result, plot, f"{robot.name}: {result.samples} samples, seed {seed}")
     if format == "json":

@@ -6,7 +6,7 @@ import sys
 
 import typer
 
-from urdftool.commands._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
                       single_robot, wide_console)
 from urdftool.errors import UsageError
 
