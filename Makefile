@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test bench fuzz clean
+.PHONY: demo test test-fast bench fuzz clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -21,6 +21,10 @@ demo: $(INSTALLED)
 
 test: $(INSTALLED)
 	$(PY) -m pytest
+
+# The inner loop: unit tests only, without the corpus, parity, fuzz and README runs.
+test-fast: $(INSTALLED)
+	$(PY) -m pytest -m "not integration and not network"
 
 bench: $(INSTALLED)
 	$(PY) benchmarks/run.py

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -67,3 +68,38 @@ def entry_id(entry) -> str:
     path, args = entry
     return path + ("[" + ",".join(f"{k}={Path(v).name}" for k, v in sorted(args.items())) + "]"
                    if args else "")
+
+
+# ---- case files (tests/cases): one per rule, offending lines marked `expect: CODE` ----------
+
+MARK = re.compile(r"expect:\s*((?:U\d{3}[\s,]*)+)(?:is reported )?(?:at\s+([\w.\-]+):(\d+))?")
+
+
+def case_robot(case: Path) -> Path:
+    if case.is_file():
+        return case
+    robots = sorted(p for p in case.iterdir() if p.name.endswith((".urdf", ".urdf.xacro")))
+    assert len(robots) == 1, f"{case} must hold exactly one .urdf or .urdf.xacro, has {robots}"
+    return robots[0]
+
+
+def expected_marks(case: Path) -> set[tuple[str, int, str]]:
+    files = [case] if case.is_file() else sorted(p for p in case.rglob("*") if p.is_file())
+    marks = set()
+    for path in files:
+        for number, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
+            for codes, elsewhere, at_line in MARK.findall(line):
+                where = (elsewhere, int(at_line)) if elsewhere else (path.name, number)
+                for code in re.findall(r"U\d{3}", codes):
+                    marks.add((*where, code))
+    return marks
+
+
+CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
+
+
+def pytest_collection_modifyitems(config, items):
+    """Everything under tests/integration/ is marked ``integration`` (``make test-fast`` skips it)."""
+    for item in items:
+        if "integration" in item.path.relative_to(ROOT).parts[:2]:
+            item.add_marker(pytest.mark.integration)

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from conftest import CASES, CORPUS, corpus_entry_points
-from test_cases import CASE_PATHS, case_robot
+from conftest import CASE_PATHS, case_robot
 from urdftool.lint.engine import CheckOptions, check_file
 
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \

@@ -10,40 +10,13 @@ other files (included xacro, controller YAML, SRDF, spec) are companions found b
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import pytest
 
-from conftest import CASES
+from conftest import CASE_PATHS, case_robot, expected_marks
 from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.lint.rules import all_rules
-
-MARK = re.compile(r"expect:\s*((?:U\d{3}[\s,]*)+)(?:is reported )?(?:at\s+([\w.\-]+):(\d+))?")
-
-
-def case_robot(case: Path) -> Path:
-    if case.is_file():
-        return case
-    robots = sorted(p for p in case.iterdir() if p.name.endswith((".urdf", ".urdf.xacro")))
-    assert len(robots) == 1, f"{case} must hold exactly one .urdf or .urdf.xacro, has {robots}"
-    return robots[0]
-
-
-def expected_marks(case: Path) -> set[tuple[str, int, str]]:
-    files = [case] if case.is_file() else sorted(p for p in case.rglob("*") if p.is_file())
-    marks = set()
-    for path in files:
-        for number, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
-            for codes, elsewhere, at_line in MARK.findall(line):
-                where = (elsewhere, int(at_line)) if elsewhere else (path.name, number)
-                for code in re.findall(r"U\d{3}", codes):
-                    marks.add((*where, code))
-    return marks
-
-
-CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
-
 
 @pytest.mark.parametrize("case", CASE_PATHS, ids=[p.name for p in CASE_PATHS])
 def test_case_findings_match_marks(case):
@@ -70,6 +43,6 @@ NO_CASE = {
     "U900",  # internal-error: needs a crashing rule; tested in test_engine.py
     "U008",  # file-too-large: would need a 16 MiB fixture; tested in test_loader.py
     "U014",  # file-outside-root-refused: needs --no-env; tested in test_xacro_sandbox.py
-    "U015",  # timeout: needs a file slower than the budget; tested in test_parallel.py
+    "U015",  # timeout: needs a file slower than the budget; tested in tests/lint/test_runner.py
     "U018",  # out-of-memory: needs a memory budget; tested in test_budgets.py
 }

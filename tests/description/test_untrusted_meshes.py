@@ -15,10 +15,11 @@ from pathlib import Path
 
 import pytest
 
+from conftest import ROOT
 from urdftool.description import meshes
 from urdftool.description.meshes import triangle_count
 
-ROOT = Path(__file__).resolve().parent.parent
+
 # A process that imports trimesh and refuses a mesh peaks near 150 MB; the bombs below took
 # 450 MB (OBJ n-gon) and over 600 MB (ZAE) before their limits were checked ahead of loading.
 PEAK_LIMIT_MB = 300
