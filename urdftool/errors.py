@@ -14,11 +14,21 @@ class UsageError(UrdftoolError):
 
 
 class LoadError(UrdftoolError):
-    """A robot description could not be loaded; ``findings`` say where and why."""
+    """A robot description could not be loaded.
 
-    def __init__(self, findings):
-        self.findings = list(findings)
-        super().__init__("; ".join(f.message for f in self.findings) or "load failed")
+    kind: why, one of 'read', 'too-large', 'empty', 'binary', 'syntax', 'entity', 'root',
+        'xacro', 'arg' (an undefined xacro argument, named by ``subject``), 'io', 'package'
+        (named by ``subject``), 'sandbox', 'outside' or 'link'
+    message: what went wrong, for people
+    location: the :class:`~urdftool.diagnostics.Location` of the problem
+    """
+
+    def __init__(self, kind: str, message: str, location, subject: str | None = None):
+        self.kind = kind
+        self.message = message
+        self.location = location
+        self.subject = subject
+        super().__init__(message)
 
 
 class PackageNotFound(UrdftoolError):
@@ -38,7 +48,7 @@ _LISTED = 12
 
 def available(kind: str, wanted: str, names) -> str:
     """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist."""
-    names = sorted({name for name in names if name})  # unnamed elements are U103's business
+    names = sorted({name for name in names if name})  # unnamed elements are another rule's business
     close = difflib.get_close_matches(wanted, names, n=1, cutoff=0.6)
     hint = f"did you mean '{close[0]}'? " if close else ""
     shown = ", ".join(names[:_LISTED]) + (f", ... ({len(names)} in all)" if len(names) > _LISTED else "")

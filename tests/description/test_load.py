@@ -20,8 +20,8 @@ def write(tmp_path, name, text):
     return path
 
 
-def codes(error: LoadError):
-    return [(f.code, f.line) for f in error.value.findings]
+def kinds(error) -> list[tuple[str, int | None]]:
+    return [(error.value.kind, error.value.location.line)]
 
 
 def test_start_tag_line_not_closing_bracket_line(tmp_path):
@@ -35,19 +35,19 @@ def test_undeclared_prefix_is_accepted_like_check_urdf(tmp_path):
     assert "a" in load(path).links
 
 
-@pytest.mark.parametrize("text, code", [
-    ("", "U002"), ("   \n", "U002"), ("\x00\x01binary", "U003"),
-    ("<robot name='r'><link name='a'></robot>", "U001"),
-    ("<sdf version='1.6'/>", "U004"),
-    ('<!DOCTYPE r [<!ENTITY a "aaaa">]><robot name="&a;"/>', "U009"),
+@pytest.mark.parametrize("text, kind", [
+    ("", "empty"), ("   \n", "empty"), ("\x00\x01binary", "binary"),
+    ("<robot name='r'><link name='a'></robot>", "syntax"),
+    ("<sdf version='1.6'/>", "root"),
+    ('<!DOCTYPE r [<!ENTITY a "aaaa">]><robot name="&a;"/>', "entity"),
 ])
-def test_bad_files_are_located_findings(tmp_path, text, code):
+def test_bad_files_are_located_errors(tmp_path, text, kind):
     path = tmp_path / "bad.urdf"
     path.write_bytes(text.encode())
     with pytest.raises(LoadError) as error:
         load(path)
-    assert error.value.findings[0].code == code
-    assert error.value.findings[0].line is not None
+    assert error.value.kind == kind
+    assert error.value.location.line is not None
 
 
 def test_entity_bomb_refused_quickly(tmp_path):
@@ -58,14 +58,15 @@ def test_entity_bomb_refused_quickly(tmp_path):
         path.write_text(bomb)
         with pytest.raises(LoadError) as error:
             load(path)
-        assert codes(error)[0][0] == "U009"
+        assert kinds(error)[0][0] == "entity"
 
 
 def test_file_size_limit(tmp_path):
     path = write(tmp_path, "big.urdf", "<robot name='r'>" + " " * 2000 + "<link name='a'/></robot>")
     with pytest.raises(LoadError) as error:
         load(path, max_file_size=1000)
-    assert codes(error) == [("U008", None)]
+    assert kinds(error) == [("too-large", None)]
+    assert error.value.message == "file is 2040 bytes, over the limit of 1000"  # no option named
 
 
 XACRO_PARTS = """<?xml version="1.0"?>
@@ -121,10 +122,9 @@ def test_xacro_failures_are_located(tmp_path, body, line, fragment):
                  f'<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n  {body}\n</robot>\n')
     with pytest.raises(LoadError) as error:
         load(path)
-    finding = error.value.findings[0]
-    assert finding.code == "U005"
-    assert finding.line == line
-    assert fragment in finding.message.lower()
+    assert error.value.kind == "xacro"
+    assert error.value.location.line == line
+    assert fragment in error.value.message.lower()
 
 
 def test_include_cycle_is_an_error_not_a_recursion(tmp_path):
@@ -133,7 +133,7 @@ def test_include_cycle_is_an_error_not_a_recursion(tmp_path):
     top = write(tmp_path, "top.urdf.xacro", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<xacro:include filename="a.xacro"/>\n</robot>')
     with pytest.raises(LoadError) as error:
         load(top)
-    assert "include cycle" in error.value.findings[0].message
+    assert "include cycle" in error.value.message
 
 
 def test_xacro_args_and_find(tmp_path):
@@ -155,9 +155,8 @@ def test_unresolved_package_names_it_and_where_it_looked(tmp_path):
                 '<xacro:include filename="$(find ghost_pkg)/x.xacro"/>\n</robot>')
     with pytest.raises(LoadError) as error:
         load(top)
-    finding = error.value.findings[0]
-    assert (finding.code, finding.line) == ("U006", 2)
-    assert "ghost_pkg" in finding.message and "--package ghost_pkg=PATH" in finding.message
+    assert kinds(error) == [("package", 2)] and error.value.subject == "ghost_pkg"
+    assert "ghost_pkg" in error.value.message and "--package ghost_pkg=PATH" in error.value.message
 
 
 def test_stdin(monkeypatch):
@@ -171,14 +170,14 @@ def test_disguised_xacro_is_expanded_and_reported(tmp_path):
                  '<xacro:property name="n" value="base"/>\n<link name="${n}"/>\n</robot>')
     robot = load(path)
     assert list(robot.links) == ["base"]
-    assert [(f.code, f.line) for f in robot.options["load_findings"]] == [("U007", 2)]
+    assert [(n.kind, n.location.line) for n in robot.notes] == [("xacro-in-urdf", 2)]
 
 
 def test_commented_xacro_in_generated_urdf_is_plain(tmp_path):
     path = write(tmp_path, "r.urdf", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
                  '<!-- <xacro:if value="${x}"> -->\n<link name="a"/>\n</robot>')
     robot = load(path)
-    assert not robot.from_xacro and robot.options["load_findings"] == []
+    assert not robot.from_xacro and robot.notes == []
 
 
 def test_misspelt_property_suggests_the_defined_one(tmp_path):
@@ -191,7 +190,30 @@ def test_misspelt_property_suggests_the_defined_one(tmp_path):
                  '  <xacro:wheel side="left"/>\n</robot>\n')
     with pytest.raises(LoadError) as error:
         load(path)
-    finding = error.value.findings[0]
-    assert (finding.code, finding.line) == ("U005", 4)
-    assert "did you mean 'wheel_radius'?" in finding.message
-    assert "side" in finding.message  # the macro's parameters are properties there too
+    assert kinds(error) == [("xacro", 4)]
+    assert "did you mean 'wheel_radius'?" in error.value.message
+    assert "side" in error.value.message  # the macro's parameters are properties there too
+
+
+def test_an_undefined_argument_is_named_and_no_option_is(tmp_path):
+    path = write(tmp_path, "r.urdf.xacro", '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                 '<link name="$(arg part)"/>\n</robot>')
+    with pytest.raises(LoadError) as error:
+        load(path)
+    assert kinds(error) == [("arg", 2)] and error.value.subject == "part"
+    assert error.value.message == "Undefined substitution argument part"
+
+
+def test_xacro_warnings_and_outside_files_are_notes(tmp_path):
+    (tmp_path / "robot").mkdir()
+    (tmp_path / "robot" / ".git").mkdir()
+    write(tmp_path, "elsewhere/part.xacro",
+          '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>')
+    top = write(tmp_path, "robot/r.urdf.xacro",
+                '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                f'<xacro:include filename="{tmp_path}/elsewhere/part.xacro"/>\n'
+                '<xacro:property name="p" value="1" bogus="2"/>\n<link name="a"/>\n</robot>')
+    robot = load(top)
+    assert sorted((n.kind, n.location.line) for n in robot.notes) == [
+        ("outside-file", 2), ("xacro-warning", 3)]
+    assert "part.xacro' is outside the repository" in robot.notes[-1].message

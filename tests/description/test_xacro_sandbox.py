@@ -9,6 +9,7 @@ import xml.dom.minidom
 import pytest
 
 from urdftool.errors import LoadError
+from urdftool.lint.engine import load_error_findings
 from urdftool.description.load import load
 from urdftool.description.packages import PackageResolver
 
@@ -26,7 +27,7 @@ def _load(tmp_path, body: str, name="robot.urdf.xacro", **kwargs):
 def _refused(tmp_path, body: str, **kwargs):
     with pytest.raises(LoadError) as caught:
         _load(tmp_path, body, **kwargs)
-    finding = caught.value.findings[0]
+    [finding] = load_error_findings(caught.value)
     assert finding.location.line is not None, finding
     return finding
 
@@ -193,7 +194,7 @@ def test_files_outside_the_repository_are_reported(tmp_path):
 def test_files_outside_the_repository_are_refused_without_env(tmp_path):
     with pytest.raises(LoadError) as caught:
         load(_outside_robot(tmp_path), allow_env=False)
-    finding = caught.value.findings[0]
+    [finding] = load_error_findings(caught.value)
     assert (finding.code, finding.line) == ("U014", 2)
     assert "hunter2" not in finding.message
 
@@ -207,7 +208,7 @@ def test_symlink_out_of_the_repository_is_outside(tmp_path):
     path.write_text(HEADER + '<link name="${xacro.load_yaml(\'link.yaml\').token}"/>\n</robot>')
     with pytest.raises(LoadError) as caught:
         load(path, allow_env=False)
-    assert caught.value.findings[0].code == "U014"
+    assert caught.value.kind == "outside"
 
 
 def test_special_files_are_not_read(tmp_path):
@@ -218,7 +219,7 @@ def test_special_files_are_not_read(tmp_path):
 def test_found_packages_are_allowed_roots(corpus):
     relative, args = next(row for row in _corpus_xacro_rows() if row[0].startswith("ur_gazebo"))
     robot = load(corpus / relative, xacro_args=_args(args), allow_env=False)
-    assert not robot.options["outside_files"]
+    assert not [note for note in robot.notes if note.kind == "outside-file"]
     assert any("ur_description" in f for f in robot.files)
 
 
@@ -288,7 +289,7 @@ def test_corpus_xacro_expands_as_with_plain_xacro(relative, args):
     path = corpus / relative
     robot = load(path, xacro_args=_args(args), allow_env=False)
     assert _signature_lxml(robot.root) == _signature_dom(_plain_xacro(path, _args(args)))
-    assert not robot.options["outside_files"]
+    assert not [note for note in robot.notes if note.kind == "outside-file"]
 
 
 def test_corpus_has_the_46_expanding_xacro_files(corpus):

@@ -1,11 +1,15 @@
-"""The README rules table is generated from the rule docstrings and must be current."""
+"""The catalogue: every code declared once, in order, and documented; the README table current."""
+
+import ast
+import re
+import types
 
 import pytest
 
 from conftest import ROOT
-from urdftool.lint import rules
 from urdftool.docs import with_table
-from urdftool.lint.rules import Severity, all_rules
+from urdftool.lint.catalogue import Catalogue, Severity, UnknownRule, declare, rule
+from urdftool.lint.rules import CATALOGUE, FAMILY_MODULES
 
 
 def test_readme_rules_table_is_current():
@@ -14,18 +18,101 @@ def test_readme_rules_table_is_current():
 
 
 def test_every_rule_is_documented():
-    for rule in all_rules():
-        assert rule.doc and rule.summary.endswith("."), f"{rule.code} needs a docstring summary"
-        assert rule.name == rule.name.lower() and " " not in rule.name
+    for found in CATALOGUE:
+        assert found.doc and found.summary.endswith("."), f"{found.code} needs a docstring summary"
+        assert found.name == found.name.lower() and " " not in found.name
 
 
-def test_registry_is_sorted_and_unique(monkeypatch):
-    codes = [r.code for r in all_rules()]
-    names = [r.name for r in all_rules()]
-    assert codes == sorted(set(codes))
-    assert len(names) == len(set(names))
-    # all_rules() lists a dict by sorted key, so uniqueness of codes rests on registration
-    monkeypatch.setattr(rules, "REGISTRY", dict(rules.REGISTRY))
-    for code in ("U204", "U2040", "X204", "U2x4"):  # taken, too long, no U, not digits
-        with pytest.raises(ValueError):
-            rules.declare(code, "some-name", Severity.ERROR, "Summary.")
+def _family(name: str, **values) -> types.ModuleType:
+    module = types.ModuleType(name)
+    for key, value in values.items():
+        if callable(value):
+            value.__module__ = name
+        setattr(module, key, value)
+    return module
+
+
+def _check(code: str, name: str):
+    @rule(code, name, Severity.ERROR)
+    def check(robot):
+        """Summary."""
+        yield from ()
+
+    return check
+
+
+def test_a_family_module_gives_its_rules_in_source_order_once():
+    shared = declare("U002", "two", Severity.ERROR, "Two.")
+    first = _family("fake.first", U001=declare("U001", "one", Severity.ERROR, "One."),
+                    U002=shared, again=shared, three=_check("U003", "three"))
+    second = _family("fake.second", borrowed=first.three, four=_check("U104", "four"))
+    catalogue = Catalogue.from_modules([first, second])
+    assert [r.code for r in catalogue.declared] == ["U001", "U002", "U003", "U104"]
+    assert catalogue.get("U003").check is first.three
+    assert catalogue.find("four").code == "U104"
+
+
+@pytest.mark.parametrize("values, complaint", [
+    ({"a": _check("U204", "a"), "b": _check("U204", "b")}, "U204 declared twice"),
+    ({"a": _check("U2040", "a")}, "not of the form"),
+    ({"a": _check("X204", "a")}, "not of the form"),
+    ({"a": _check("U2x4", "a")}, "not of the form"),
+    ({"a": _check("UA04", "a")}, "not of the form"),
+    ({"a": _check("U204", "same"), "b": _check("U205", "same")}, "name same declared twice"),
+    ({"a": _check("U205", "a"), "b": _check("U204", "b")}, "out of order"),
+], ids=["taken", "too-long", "no-U", "not-digits", "no-family", "repeated-name", "misordered"])
+def test_registration_refuses_a_bad_code_or_name(values, complaint):
+    with pytest.raises(ValueError, match=complaint):
+        Catalogue.from_modules([_family("fake.family", **values)])
+
+
+def test_a_code_taken_in_another_family_module_is_refused():
+    first = _family("fake.first", a=_check("U204", "a"))
+    second = _family("fake.second", b=_check("U204", "b"))
+    with pytest.raises(ValueError, match="U204 declared twice"):
+        Catalogue.from_modules([first, second])
+
+
+def _declared_in_source() -> list[str]:
+    """Every code a family module's source passes to rule() or declare(), read with ast."""
+    codes = []
+    for module in FAMILY_MODULES:
+        tree = ast.parse(open(module.__file__, encoding="utf-8").read())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call) and getattr(node.func, "id", None) in ("rule", "declare"):
+                codes.append(node.args[0].value)
+    return codes
+
+
+def test_the_catalogue_lists_every_declared_code_exactly_once():
+    in_source = _declared_in_source()
+    listed = [r.code for r in CATALOGUE.declared]
+    assert sorted(in_source) == sorted(listed)
+    assert len(listed) == len(set(listed)) == len(CATALOGUE.rules)
+    assert listed == sorted(listed), "declare each code in order (family modules too)"
+
+
+def test_the_catalogue_is_built_without_importing_the_engine():
+    import subprocess
+    import sys
+
+    code = ("import sys; from urdftool.lint.rules import CATALOGUE; "
+            "assert 'U900' in CATALOGUE and 'U901' in CATALOGUE; "
+            "assert 'urdftool.lint.engine' not in sys.modules, 'engine imported'; "
+            "assert 'urdftool.lint.suppressions' not in sys.modules, 'suppressions imported'")
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+
+
+def test_codes_are_emitted_by_modules_that_do_not_declare_them():
+    """Nothing declares a code where it is emitted: U900/U901 live in lint/rules/internal.py."""
+    for path in (ROOT / "urdftool" / "lint").glob("*.py"):
+        if path.name != "catalogue.py":
+            assert not re.search(r"\bdeclare\(", path.read_text(encoding="utf-8")), path
+
+
+def test_find_names_the_close_rules():
+    with pytest.raises(UnknownRule, match="did you mean U204 inverted-limits"):
+        CATALOGUE.find("inverted-limit")
+    with pytest.raises(UnknownRule, match="the rules starting with U7 are: U701"):
+        CATALOGUE.find("U7")
+    assert CATALOGUE.find("u204").name == "inverted-limits"

@@ -2,10 +2,18 @@
 
 from __future__ import annotations
 
+import re
+
+import pytest
+
 from conftest import CASES
+from urdftool.description.load import load
+from urdftool.errors import LoadError
 from urdftool.lint import engine
-from urdftool.lint.engine import CheckOptions, Selection, check_file
-from urdftool.lint.rules import REGISTRY, Rule, Severity, all_rules
+from urdftool.lint.engine import (LOAD_CODES, NOTE_CODES, CheckOptions, Selection, check_file,
+                                  load_error_findings)
+from urdftool.lint.catalogue import Catalogue, Rule, Severity
+from urdftool.lint.rules import CATALOGUE
 
 ROBOT = CASES / "U204_inverted_limits.urdf"
 
@@ -15,11 +23,10 @@ def test_a_crashing_rule_is_u900_and_the_other_rules_still_run(monkeypatch):
         yield robot.root, "about to fail"
         raise ZeroDivisionError("boom")
 
-    all_rules()  # load the catalogue before replacing one entry
-    original = REGISTRY["U204"]
-    monkeypatch.setitem(REGISTRY, "U204", Rule("U204", original.name, original.severity, broken,
-                                              original.doc))
-    monkeypatch.setattr(engine, "all_rules", lambda: [REGISTRY[c] for c in sorted(REGISTRY)])
+    original = CATALOGUE.get("U204")
+    crashing = Rule("U204", original.name, original.severity, broken, original.doc)
+    monkeypatch.setattr(engine, "CATALOGUE", Catalogue(
+        [crashing if r.code == "U204" else r for r in CATALOGUE.rules]))
     findings = check_file(str(ROBOT), CheckOptions()).findings
     crash = [f for f in findings if f.code == "U900"]
     assert len(crash) == 1
@@ -51,3 +58,60 @@ def test_selection_by_code_prefix_and_name():
     assert not Selection(select=("U2",)).allows("U101")
     assert not Selection(ignore=("inverted-limits",)).allows("U204")
     assert Selection(ignore=("inverted-limits",)).allows("U205")
+
+
+def _load_error(tmp_path, name: str, text: str, **options):
+    path = tmp_path / name
+    path.write_text(text)
+    with pytest.raises(LoadError) as caught:
+        load(path, **options)
+    return caught.value
+
+
+XACRO = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+
+
+def test_load_errors_become_their_rule_with_the_hint_on_what_to_pass(tmp_path):
+    big = _load_error(tmp_path, "big.urdf", "<robot name='r'>" + " " * 2000 + "</robot>",
+                      max_file_size=1000)
+    [finding] = load_error_findings(big)
+    assert (finding.code, finding.line) == ("U008", None)
+    assert finding.message == ("file is 2024 bytes, over the limit of 1000 "
+                               "(raise it with --max-file-size)")
+    argument = _load_error(tmp_path, "r.urdf.xacro", XACRO + '<link name="$(arg part)"/>\n</robot>')
+    [finding] = load_error_findings(argument)
+    assert (finding.code, finding.line) == ("U005", 2)
+    assert finding.message == ("Undefined substitution argument part; "
+                               "pass it as part:=VALUE (or --arg part=VALUE)")
+
+
+def test_every_kind_the_loader_raises_or_notes_has_a_code():
+    """The kinds listed in LoadError's and LoadNote's docstrings are the tables' keys."""
+    from urdftool.description.robot import LoadNote
+    from urdftool.errors import LoadError as Error
+
+    def listed(doc):
+        return set(re.findall(r"'([a-z-]+)'", doc.split("kind:")[1].split("message:")[0]))
+
+    assert listed(Error.__doc__) == set(LOAD_CODES)
+    assert listed(LoadNote.__doc__ + "message:") == set(NOTE_CODES)
+    assert all(code in CATALOGUE for code in [*LOAD_CODES.values(), *NOTE_CODES.values()])
+
+
+def test_a_disguised_xacro_that_does_not_expand_keeps_the_hint(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text(XACRO + '<link name="$(arg part)"/>\n</robot>')
+    [finding] = [f for f in check_file(str(path), CheckOptions()).findings if f.code == "U007"]
+    assert finding.line == 2
+    assert "which xacro cannot expand (Undefined substitution argument part; pass it as " \
+           "part:=VALUE (or --arg part=VALUE)) and URDF parsers ignore" in finding.message
+
+
+def test_notes_become_findings_that_the_selection_and_suppressions_filter(tmp_path):
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(XACRO + '<xacro:property name="p" value="1" bogus="2"/>\n<link name="a"/>\n'
+                    '</robot>')
+    codes = [f.code for f in check_file(str(path), CheckOptions()).findings]
+    assert codes.count("U010") == 1
+    ignoring = CheckOptions(selection=Selection(ignore=("xacro-warning",)))
+    assert "U010" not in [f.code for f in check_file(str(path), ignoring).findings]

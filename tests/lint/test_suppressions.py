@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from urdftool.diagnostics import Finding, Location, Severity
 from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.rules import CATALOGUE
 from urdftool.lint.suppressions import apply, parse
 
 TEXT = """<robot name="r">
@@ -43,16 +44,16 @@ def test_apply_silences_by_code_prefix_and_call_site(tmp_path):
     kept = apply([_finding("U206", str(macro), 2, (call,)),
                   _finding("U206", str(macro), 2, (Location(str(robot), 4),)),
                   _finding("U101", str(macro), 2, (call,))],
-                 [str(robot), str(macro)], lambda code: True)
+                 [str(robot), str(macro)], lambda code: True, CATALOGUE)
     assert [(f.code, f.location.via[0].line) for f in kept] == [("U206", 4), ("U101", 3)]
 
 
 def test_unused_is_reported_only_when_its_rules_ran(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text("<robot>\n<!-- urdftool: ignore U204 -->\n<joint/>\n</robot>\n")
-    assert [f.code for f in apply([], [str(path)], lambda code: True)] == ["U901"]
-    assert apply([], [str(path)], lambda code: code != "U204") == []
-    assert apply([], [str(path)], lambda code: code != "U901") == []
+    assert [f.code for f in apply([], [str(path)], lambda code: True, CATALOGUE)] == ["U901"]
+    assert apply([], [str(path)], lambda code: code != "U204", CATALOGUE) == []
+    assert apply([], [str(path)], lambda code: code != "U901", CATALOGUE) == []
 
 
 def test_check_file_applies_suppressions_and_selection(tmp_path):

@@ -21,6 +21,7 @@ import pytest
 
 from conftest import ROOT
 from urdftool.errors import LoadError, PackageNotFound
+from urdftool.lint.engine import load_error_findings
 from urdftool.description.load import load
 from urdftool.description.packages import PackageResolver
 
@@ -154,7 +155,7 @@ def test_robot_file_linked_out_is_u017_in_every_command(run_cli, planted):
 def test_include_linked_out_is_refused_even_with_environment_access(planted):
     with pytest.raises(LoadError) as caught:
         load(planted / "robots" / "include.urdf.xacro", allow_env=True)
-    finding = caught.value.findings[0]
+    [finding] = load_error_findings(caught.value)
     assert (finding.code, finding.line) == ("U017", 2) and "symbolic link" in finding.message
 
 
@@ -172,7 +173,7 @@ def test_links_inside_the_repository_still_work(tmp_path):
     assert list(robot.links) == ["leg"]
     with pytest.raises(LoadError) as caught:  # the alias includes leg.xacro beside itself
         load(repo / "alias.urdf.xacro")
-    assert caught.value.findings[0].code == "U005"
+    assert load_error_findings(caught.value)[0].code == "U005"
 
 
 def test_base_dir_is_where_the_link_is_not_where_it_leads(tmp_path):

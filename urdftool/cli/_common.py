@@ -128,7 +128,9 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     try:
         return load(paths[0], xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
-        report_findings(paths[0], error.findings)
+        from urdftool.lint.engine import load_error_findings
+
+        report_findings(paths[0], load_error_findings(error))
         raise typer.Exit(1)
 
 

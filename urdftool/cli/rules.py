@@ -17,16 +17,16 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
                                      help="A rule code (U204) or name (inverted-limits).")) -> None:
     from rich.console import Console
 
-    from urdftool.lint.rules import all_rules, find_rule
+    from urdftool.lint.rules import CATALOGUE
 
     console = Console(highlight=False, soft_wrap=True)
     if code is None:
         from urdftool.report.rules import rules_table
 
-        console.print(rules_table(all_rules()))
+        console.print(rules_table(CATALOGUE.rules))
         return
     try:
-        found = find_rule(code)
+        found = CATALOGUE.find(code)
     except UsageError as error:
         fail_usage(error)
     from urdftool.report.rules import rule_page

@@ -1,7 +1,8 @@
 """Load a robot description (URDF, xacro, or stdin) into a :class:`Robot` with source locations.
 
-Every failure is a :class:`~urdftool.errors.LoadError` whose findings carry a rule code and
-the file and line where the problem is, so broken files go through the same reporters.
+Every failure is a :class:`~urdftool.errors.LoadError` saying what kind of failure it is and
+the file and line where the problem is; what did not stop loading is a :class:`LoadNote` in
+``Robot.notes``. The linter turns both into findings.
 """
 
 from __future__ import annotations
@@ -12,16 +13,16 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Location, display_path
 from urdftool.errors import LoadError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
-from urdftool.description.robot import Robot
+from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
 
 XACRO_SUFFIXES = (".xacro",)
 
-__all__ = ["Robot", "load", "first_xacro_use", "PackageResolver"]
+__all__ = ["Robot", "LoadNote", "load", "first_xacro_use", "PackageResolver"]
 
 
 def first_xacro_use(root):
@@ -43,7 +44,7 @@ def _substitutes(text: str | None) -> bool:
 def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
          packages: dict[str, Path] | None = None, allow_env: bool = True,
          max_file_size: int = DEFAULT_MAX_FILE_SIZE, data: bytes | None = None) -> Robot:
-    """Load a robot from ``path`` (``-`` reads stdin); raises LoadError with located findings."""
+    """Load a robot from ``path`` (``-`` reads stdin); raises a located LoadError."""
     path = os.fspath(path)
     shown = display_path(path) if path != "-" else "<stdin>"
     start = Path.cwd() if path == "-" else _folder_of(path)
@@ -52,7 +53,6 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     resolver = PackageResolver(packages, start=start)
     if data is None:
         data = _read(path, shown, max_file_size)
-    extra_findings = []
     if path.endswith(XACRO_SUFFIXES):
         robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                             max_file_size)
@@ -63,13 +63,12 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
             robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                                 max_file_size)
         elif first is not None:
-            robot, finding = _load_disguised_xacro(robot, first, data, xacro_args or {},
-                                                   allow_env, max_file_size)
-            extra_findings.append(finding)
-    robot.options["load_findings"] = extra_findings
+            robot, note = _load_disguised_xacro(robot, first, data, xacro_args or {},
+                                                allow_env, max_file_size)
+            robot.notes.insert(0, note)
     if robot.root.tag != "robot":
-        raise LoadError([_finding("U004", robot.locate(robot.root),
-                                  f"root element is <{robot.root.tag}>, expected <robot>")])
+        raise LoadError("root", f"root element is <{robot.root.tag}>, expected <robot>",
+                        robot.locate(robot.root))
     return robot
 
 
@@ -81,14 +80,14 @@ def _folder_of(path) -> Path:
 
 
 def _refuse_link_out(path: str, shown: str) -> None:
-    """U017 when ``path`` is (or lies in a folder that is) a symbolic link leading outside the
-    repository holding it; the file is not opened."""
+    """A LoadError of kind 'link' when ``path`` is (or lies in a folder that is) a symbolic link
+    leading outside the repository holding it; the file is not opened."""
     root = containment_root(_folder_of(path))
     if not inside(path, root):
         target = os.path.realpath(path)
-        raise LoadError([_finding("U017", Location(shown, None), (
+        raise LoadError("link", (
             f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
-            "not followed"))])
+            "not followed"), Location(shown, None))
 
 
 def _read(path: str, shown: str, limit: int) -> bytes:
@@ -98,15 +97,13 @@ def _read(path: str, shown: str, limit: int) -> bytes:
         try:
             data = read_regular(path, limit)
         except TooLarge as error:
-            raise LoadError([_finding("U008", Location(shown, None),
-                                      f"{error.strerror} (raise it with --max-file-size)")]) from None
+            raise LoadError("too-large", error.strerror, Location(shown, None)) from None
         except OSError as error:
-            raise LoadError([_finding("U001", Location(shown, None),
-                                      f"cannot read file: {error.strerror}")]) from None
+            raise LoadError("read", f"cannot read file: {error.strerror}",
+                            Location(shown, None)) from None
     if len(data) > limit:
-        raise LoadError([_finding("U008", Location(shown, None),
-                                  f"input is over the limit of {limit} bytes "
-                                  "(raise it with --max-file-size)")])
+        raise LoadError("too-large", f"input is over the limit of {limit} bytes",
+                        Location(shown, None))
     return data
 
 
@@ -118,11 +115,11 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
                             limit)
     except LoadError as error:
-        reason = error.findings[0].message
-        return plain, _finding("U007", where, (
+        return plain, LoadNote("xacro-in-urdf", where, (
             f"file is {named} but contains xacro (<{_shown_tag(first)}>), which xacro cannot "
-            f"expand ({reason}) and URDF parsers ignore; remove it or rename the file .urdf.xacro"))
-    return robot, _finding("U007", where, (
+            f"expand ({error.message}) and URDF parsers ignore; remove it or rename the file "
+            ".urdf.xacro"), cause=error)
+    return robot, LoadNote("xacro-in-urdf", where, (
         f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); urdftool "
         "expanded it, but URDF parsers will not: rename it .urdf.xacro"))
 
@@ -140,7 +137,7 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
     try:
         root, lines = parse(data)
     except XmlProblem as problem:
-        raise LoadError([_problem_finding(problem, shown)]) from None
+        raise _problem_error(problem, shown) from None
     locations = {element: Location(shown, line) for element, line in lines.items()}
     return Robot(path=path, display=shown, root=root, locations=locations, resolver=resolver,
                  files=[shown])
@@ -156,19 +153,19 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
                            read_file=lambda name: read_regular(name, limit),
                            roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
-        raise LoadError([_problem_finding(problem, shown)]) from None
+        raise _problem_error(problem, shown) from None
     except XacroFailure as failure:
-        code = {"package": "U006", "syntax": "U001", "entity": "U009", "sandbox": "U016",
-                "outside": "U014", "link": "U017"}.get(failure.kind, "U005")
         location = failure.location
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
-        raise LoadError([_finding(code, location, failure.message)]) from None
+        raise LoadError(failure.kind, failure.message, location, failure.subject) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True)
-    robot.options["xacro_warnings"] = expansion.warnings
-    robot.options["outside_files"] = expansion.outside
+    robot.notes.extend(LoadNote("xacro-warning", where, message)
+                       for where, message in expansion.warnings)
+    robot.notes.extend(LoadNote("outside-file", where, message)
+                       for where, message in expansion.outside)
     return robot
 
 
@@ -186,14 +183,5 @@ def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
     return roots
 
 
-_PROBLEM_CODES = {"empty": "U002", "binary": "U003", "syntax": "U001", "entity": "U009"}
-
-
-def _problem_finding(problem: XmlProblem, shown: str) -> Finding:
-    return _finding(_PROBLEM_CODES[problem.kind], Location(shown, problem.line), problem.message)
-
-
-def _finding(code: str, location: Location, message: str) -> Finding:
-    from urdftool.lint.rules import registered
-
-    return registered(code).finding(message, location)
+def _problem_error(problem: XmlProblem, shown: str) -> LoadError:
+    return LoadError(problem.kind, problem.message, Location(shown, problem.line))

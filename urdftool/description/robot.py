@@ -13,6 +13,21 @@ from urdftool.diagnostics import Location
 from urdftool.description.packages import PackageResolver
 
 
+@dataclass(frozen=True)
+class LoadNote:
+    """Something the loader noticed that did not stop it.
+
+    kind: 'xacro-in-urdf' (a file not named .xacro that needs xacro; ``cause`` is the
+        :class:`~urdftool.errors.LoadError` when xacro could not expand it), 'xacro-warning'
+        (xacro printed a warning) or 'outside-file' (xacro read a file outside the repository)
+    """
+
+    kind: str
+    location: Location
+    message: str
+    cause: Exception | None = None
+
+
 @dataclass
 class Robot:
     """A robot description ready for rules and analysis.
@@ -22,6 +37,7 @@ class Robot:
     locations: where each element was written; see :meth:`locate`
     files: every file read to build it (the input first, then includes)
     from_xacro: whether the input went through xacro
+    notes: what the loader noticed that did not stop it, in the order it noticed
     """
 
     path: str
@@ -31,6 +47,7 @@ class Robot:
     resolver: PackageResolver
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
+    notes: list[LoadNote] = field(default_factory=list)
     options: dict = field(default_factory=dict)
 
     def locate(self, element) -> Location:

@@ -54,14 +54,15 @@ _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's pare
 
 @dataclass
 class XacroFailure(Exception):
-    """xacro stopped; ``kind`` is 'xacro', 'syntax', 'entity', 'package', 'io', 'sandbox',
-    'outside' (a file outside the allowed roots, refused) or 'link' (a symbolic link in the
-    repository leading outside it, not followed)."""
+    """xacro stopped; ``kind`` is 'xacro', 'arg' (an undefined argument, named by ``subject``),
+    'syntax', 'entity', 'package' (named by ``subject``), 'io', 'sandbox', 'outside' (a file
+    outside the allowed roots, refused) or 'link' (a symbolic link in the repository leading
+    outside it, not followed): the kinds of :class:`~urdftool.errors.LoadError`."""
 
     kind: str
     message: str
     location: Location
-    package: str | None = None
+    subject: str | None = None
 
 
 @dataclass
@@ -497,21 +498,21 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
                                                        xacro_sandbox.SandboxViolation)):
         cause = getattr(cause, "exc", None) or cause.__context__
     if isinstance(cause, _PackageFailure):
-        return XacroFailure("package", str(cause.error), where, package=cause.error.name)
+        return XacroFailure("package", str(cause.error), where, subject=cause.error.name)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):
         return XacroFailure("sandbox", str(cause), where)
     message = " ".join(str(error).split()) or type(error).__name__
-    if message.startswith("Undefined substitution argument"):
-        name = message.rsplit(" ", 1)[-1]
-        message += f"; pass it as {name}:=VALUE (or --arg {name}=VALUE)"
+    argument = None
+    if message.startswith("Undefined substitution argument"):  # the caller says how to pass it
+        argument = message.rsplit(" ", 1)[-1]
     if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
         message = f"{type(error).__name__}: {message}"
     undefined = _undefined_name(error)
     if undefined:
         message += "; " + available("properties", undefined, _visible_properties(error))
-    return XacroFailure("xacro", message, where)
+    return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
 
 
 def _caused_by(error: BaseException, kind: type) -> bool:

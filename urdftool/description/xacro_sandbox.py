@@ -28,7 +28,7 @@ Python built-in (``exec``, ``open``). This module replaces both for the length o
 - ``vars`` is gone, ``type`` only answers ``type(x)``, ``range`` is bounded, and names of Python
   built-ins that run code or open files (``exec``, ``open``) are refused by name.
 
-Anything refused raises :class:`SandboxViolation`, which the loader reports as U016.
+Anything refused raises :class:`SandboxViolation`, a load error of kind 'sandbox'.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ _FORBIDDEN_ATTRIBUTES = frozenset({
     "mro", "format_field", "get_field", "vformat",
 })
 # Names an expression might reach for to run code, import, or touch files; none is in xacro's
-# symbol table, so using one is an attack (U016), not a typo (U005).
+# symbol table, so using one is an attack (kind 'sandbox'), not a typo (kind 'xacro').
 _DANGEROUS_NAMES = frozenset({
     "exec", "eval", "compile", "open", "getattr", "setattr", "delattr", "globals", "locals",
     "vars", "breakpoint", "memoryview", "super", "importlib", "os", "sys", "subprocess",

@@ -6,17 +6,21 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError
-from urdftool.lint.rules import REGISTRY, Rule, all_rules, declare, matches
+from urdftool.lint.catalogue import Rule
+from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
 
-declare("U900", "internal-error", Severity.ERROR, """
-    A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
-
-    The run goes on with the other rules and files. Please report it with the file attached.
-    """)
-
+# What the loader's errors (LoadError.kind) and notes (LoadNote.kind) are reported as. The loader
+# knows no rule code and names no option: the hints on what to pass are added here.
+LOAD_CODES = {"read": "U001", "syntax": "U001", "empty": "U002", "binary": "U003", "root": "U004",
+              "xacro": "U005", "arg": "U005", "io": "U005", "package": "U006",
+              "too-large": "U008", "entity": "U009", "outside": "U014", "sandbox": "U016",
+              "link": "U017"}
+NOTE_CODES = {"xacro-in-urdf": "U007", "xacro-warning": "U010", "outside-file": "U013"}
+_HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
+          "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
 @dataclass(frozen=True)
 class Selection:
@@ -26,9 +30,9 @@ class Selection:
     ignore: tuple[str, ...] = ()
 
     def allows(self, code: str) -> bool:
-        if self.select and not any(matches(code, s) for s in self.select):
+        if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):
             return False
-        return not any(matches(code, s) for s in self.ignore)
+        return not any(CATALOGUE.matches(code, s) for s in self.ignore)
 
 
 @dataclass
@@ -60,8 +64,31 @@ def _crash(what: str, error: BaseException, location: Location) -> Finding:
     """U900 for a crash in urdftool itself, naming the code line that raised."""
     frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
-    return REGISTRY["U900"].finding(f"{what} crashed: {type(error).__name__}: {error}{where}",
-                                    location)
+    return CATALOGUE.get("U900").finding(
+        f"{what} crashed: {type(error).__name__}: {error}{where}", location)
+
+
+def load_error_message(error: LoadError) -> str:
+    """The message of a load error as reported, with the hint on how to get past it."""
+    hint = _HINTS.get(error.kind)
+    return error.message + (hint(error.subject) if hint else "")
+
+
+def load_error_findings(error: LoadError) -> list[Finding]:
+    """A file that did not load, as findings: one, of the rule its kind maps to."""
+    rule = CATALOGUE.get(LOAD_CODES[error.kind])
+    return [rule.finding(load_error_message(error), error.location)]
+
+
+def note_findings(robot) -> list[Finding]:
+    """What the loader noticed without stopping (``robot.notes``), as findings."""
+    findings = []
+    for note in robot.notes:
+        message = note.message
+        if note.cause is not None and load_error_message(note.cause) != note.cause.message:
+            message = message.replace(note.cause.message, load_error_message(note.cause), 1)
+        findings.append(CATALOGUE.get(NOTE_CODES[note.kind]).finding(message, note.location))
+    return findings
 
 
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
@@ -70,8 +97,8 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     Inline ``<!-- urdftool: ignore ... -->`` comments then filter the findings (see
     :mod:`urdftool.lint.suppressions`); unused ones become U901.
     """
-    findings = [f for f in robot.options.get("load_findings", []) if selection.allows(f.code)]
-    for rule in all_rules():
+    findings = [f for f in note_findings(robot) if selection.allows(f.code)]
+    for rule in CATALOGUE:
         if rule.check is None or not selection.allows(rule.code):
             continue
         try:
@@ -81,7 +108,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
             raise  # over the memory budget: the runner reports it (U018)
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
-    findings = suppressions.apply(findings, robot.files, selection.allows)
+    findings = suppressions.apply(findings, robot.files, selection.allows, CATALOGUE)
     return sorted(set(findings), key=Finding.sort_key)
 
 
@@ -95,7 +122,7 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
                      allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
-        return FileResult(path, error.findings)
+        return FileResult(path, load_error_findings(error))
     except MemoryError:
         raise  # over the memory budget: the runner reports it where loading was (U018)
     except Exception as error:  # a loader bug (RecursionError too): a finding, not a traceback

@@ -125,9 +125,9 @@ def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
 
 
 def _finding(code: str, where: Location, message: str) -> Finding:
-    from urdftool.lint.rules import registered
+    from urdftool.lint.rules import CATALOGUE
 
-    return registered(code).finding(message, where)
+    return CATALOGUE.get(code).finding(message, where)
 
 
 # ---- in the worker -------------------------------------------------------------------------

@@ -20,20 +20,9 @@ import re
 from dataclasses import dataclass
 from functools import lru_cache
 
-from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.diagnostics import Finding, Location
 from urdftool.description.files import read_regular
-from urdftool.lint.rules import FAMILIES, REGISTRY, all_rules, declare, matches
-
-declare("U901", "unused-suppression", Severity.WARNING, """
-    An ``<!-- urdftool: ignore ... -->`` comment silences nothing.
-
-    The problem it once hid is fixed, the comment drifted away from its element, or a code is
-    misspelled. A stale suppression will silently hide the next real problem at that place:
-    delete it, or move it to the line just above the element the finding points at.
-
-    Bad: ``<!-- urdftool: ignore U206 -->`` above a joint whose axis is a unit vector
-    Good: no comment (or the comment above the element that really has the finding)
-    """)
+from urdftool.lint.catalogue import FAMILIES, Catalogue
 
 _COMMENT = re.compile(r"<!--\s*urdftool:\s*(ignore-file|ignore)\b(.*?)-->", re.S)
 _ONLY_COMMENT = re.compile(r"^\s*<!--.*-->\s*$")
@@ -48,15 +37,16 @@ class Suppression:
     target: int | None
     selectors: tuple[str, ...]
 
-    def covers(self, finding: Finding, location: Location) -> bool:
+    def covers(self, finding: Finding, location: Location, catalogue: Catalogue) -> bool:
         if self.target is not None and location.line != self.target:
             return False
-        return any(matches(finding.code, selector) for selector in self.selectors)
+        return any(catalogue.matches(finding.code, selector) for selector in self.selectors)
 
 
-def _known(selector: str) -> bool:
+def _known(selector: str, catalogue: Catalogue) -> bool:
     family = selector.upper()
-    return family in FAMILIES or family == "U" or any(matches(c, selector) for c in REGISTRY)
+    return family in FAMILIES or family == "U" or \
+        any(catalogue.matches(r.code, selector) for r in catalogue)
 
 
 def parse(text: str, file: str) -> list[Suppression]:
@@ -114,17 +104,17 @@ def in_file(shown: str) -> tuple[Suppression, ...]:
     return _parse_file(os.path.abspath(shown), (status.st_mtime_ns, status.st_size), shown)
 
 
-def apply(findings: list[Finding], files: list[str], ran) -> list[Finding]:
+def apply(findings: list[Finding], files: list[str], ran, catalogue: Catalogue) -> list[Finding]:
     """``findings`` without the suppressed ones, plus U901 for suppressions that silenced nothing.
 
     files: every file the robot was built from (suppressions in them can be unused)
     ran: ``ran(code) -> bool``, whether a code's rule ran in this check
+    catalogue: the rules, to tell unknown codes from known ones
     """
     shown_files = list(dict.fromkeys([*files, *(f.file for f in findings)]))
     suppressions = [s for shown in shown_files for s in in_file(shown)]
     if not suppressions:
         return findings
-    all_rules()  # the whole catalogue, to tell unknown codes from known ones
     by_file: dict[str, list[Suppression]] = {}
     for suppression in suppressions:
         by_file.setdefault(suppression.file, []).append(suppression)
@@ -132,26 +122,27 @@ def apply(findings: list[Finding], files: list[str], ran) -> list[Finding]:
     kept = []
     for finding in findings:
         silenced_by = [s for location in (finding.location, *finding.location.via)
-                       for s in by_file.get(location.file, ()) if s.covers(finding, location)]
+                       for s in by_file.get(location.file, ()) if s.covers(finding, location, catalogue)]
         used.update(silenced_by)
         if not silenced_by:
             kept.append(finding)
     if ran("U901"):
-        kept.extend(_unused(s) for s in suppressions if s not in used and _checkable(s, ran))
+        kept.extend(_unused(s, catalogue) for s in suppressions
+                    if s not in used and _checkable(s, ran, catalogue))
     return kept
 
 
-def _checkable(suppression: Suppression, ran) -> bool:
+def _checkable(suppression: Suppression, ran, catalogue: Catalogue) -> bool:
     """Whether every code a suppression names ran, so that it can be known to be unused."""
     for selector in suppression.selectors:
-        codes = [code for code in REGISTRY if matches(code, selector)]
+        codes = [r.code for r in catalogue if catalogue.matches(r.code, selector)]
         if codes and not all(ran(code) for code in codes):
             return False
     return True
 
 
-def _unused(suppression: Suppression) -> Finding:
-    unknown = [s for s in suppression.selectors if not _known(s)]
+def _unused(suppression: Suppression, catalogue: Catalogue) -> Finding:
+    unknown = [s for s in suppression.selectors if not _known(s, catalogue)]
     if not suppression.selectors:
         message = "suppression names no rule; write e.g. <!-- urdftool: ignore U203 -->"
     elif unknown:
@@ -164,4 +155,4 @@ def _unused(suppression: Suppression) -> Finding:
         message = (f"suppression of {', '.join(suppression.selectors)} silences nothing on "
                    f"line {suppression.target}; delete it or move it just above the element "
                    "the finding points at")
-    return REGISTRY["U901"].finding(message, Location(suppression.file, suppression.line))
+    return catalogue.get("U901").finding(message, Location(suppression.file, suppression.line))

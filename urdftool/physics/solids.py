@@ -83,8 +83,8 @@ def shapes(link, tag: str) -> list[Shape]:
 def _mesh_solid(robot, shape: Shape, problems: list):
     """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem.
 
-    trimesh's numpy warnings on degenerate or absurdly scaled meshes are silenced: U413 and the
-    problems below say what is wrong with the mesh.
+    trimesh's numpy warnings on degenerate or absurdly scaled meshes are silenced: the
+    implausible-size rule and the problems below say what is wrong with the mesh.
     """
     import warnings
 

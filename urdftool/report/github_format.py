@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.report import Summary, all_findings, printable
+from urdftool.report.summary import Summary, all_findings, printable
 
 _LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
 

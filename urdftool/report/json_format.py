@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.report import Summary, all_findings, write_json
+from urdftool.report.summary import Summary, all_findings, write_json
 
 
 def as_dict(results) -> dict:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from lxml import etree
 
 from urdftool.diagnostics import display_path
-from urdftool.report import printable
+from urdftool.report.summary import printable
 
 
 def render(results, stream) -> None:

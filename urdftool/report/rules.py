@@ -6,7 +6,7 @@ from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
-from urdftool.report import STYLES
+from urdftool.report.summary import STYLES
 
 
 def _plain(text: str) -> str:

@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from urdftool import __version__
-from urdftool.lint.rules import all_rules
-from urdftool.report import all_findings, write_json
+from urdftool.report.summary import all_findings, write_json
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 _LEVELS = {"error": "error", "warning": "warning", "info": "note"}
@@ -30,7 +29,9 @@ def _location(location) -> dict:
 
 
 def as_dict(results) -> dict:
-    rules = all_rules()
+    from urdftool.lint.rules import CATALOGUE  # the rule families load only for sarif
+
+    rules = CATALOGUE.rules
     index = {rule.code: i for i, rule in enumerate(rules)}
     sarif_results = []
     for finding in all_findings(results):

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 
 from urdftool.diagnostics import display_path
-from urdftool.report import STYLES, Summary, printable
+from urdftool.report.summary import STYLES, Summary, printable
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 

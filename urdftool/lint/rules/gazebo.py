@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.physics import mat3
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers

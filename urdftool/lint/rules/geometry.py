@@ -5,7 +5,7 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes
 
 from __future__ import annotations
 
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.values import finite, parse_numbers
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation

@@ -1,8 +1,12 @@
-"""U0xx: reading the file, parsing XML and expanding xacro. Reported by the loader."""
+"""U0xx: reading the file, parsing XML and expanding xacro.
 
-from urdftool.lint.rules import Severity, declare, rule
+The loader raises errors and records notes tagged with a kind; the engine turns them into these
+codes (``urdftool.lint.engine.LOAD_CODES`` and ``NOTE_CODES``). U015 and U018 are the runner's.
+"""
 
-declare("U001", "malformed-xml", Severity.ERROR, """
+from urdftool.lint.catalogue import Severity, declare, rule
+
+U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
 
     Every tool that reads the robot (robot_state_publisher, Gazebo, MoveIt) stops here. The
@@ -12,20 +16,23 @@ declare("U001", "malformed-xml", Severity.ERROR, """
     Good: ``<link name="base"><visual/></link>``
     """)
 
-declare("U002", "empty-file", Severity.ERROR, """
+
+U002 = declare("U002", "empty-file", Severity.ERROR, """
     The file is empty or holds only white space.
 
     Bad: a zero-byte ``robot.urdf``.
     Good: ``<robot name="r"><link name="base"/></robot>``
     """)
 
-declare("U003", "binary-file", Severity.ERROR, """
+
+U003 = declare("U003", "binary-file", Severity.ERROR, """
     The file is binary, not XML text.
 
     Usually a mesh or an archive saved under a ``.urdf`` name.
     """)
 
-declare("U004", "root-not-robot", Severity.ERROR, """
+
+U004 = declare("U004", "root-not-robot", Severity.ERROR, """
     The root element is not ``<robot>``.
 
     URDF parsers look for ``<robot>`` at the top and find nothing else.
@@ -34,7 +41,8 @@ declare("U004", "root-not-robot", Severity.ERROR, """
     Good: ``<robot name="r">...</robot>``
     """)
 
-declare("U005", "xacro-error", Severity.ERROR, """
+
+U005 = declare("U005", "xacro-error", Severity.ERROR, """
     xacro could not expand the file.
 
     Undefined properties, bad expressions, missing includes, unknown macros, macro recursion and
@@ -45,7 +53,8 @@ declare("U005", "xacro-error", Severity.ERROR, """
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
     """)
 
-declare("U006", "unresolved-package", Severity.ERROR, """
+
+U006 = declare("U006", "unresolved-package", Severity.ERROR, """
     A ``$(find pkg)`` names a package that is nowhere on the search path.
 
     urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
@@ -55,7 +64,8 @@ declare("U006", "unresolved-package", Severity.ERROR, """
     Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
     """)
 
-declare("U007", "xacro-in-urdf", Severity.ERROR, """
+
+U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     A file named ``.urdf`` contains xacro.
 
     urdftool expands it (and checks the result), but robot_state_publisher, check_urdf and
@@ -66,13 +76,15 @@ declare("U007", "xacro-in-urdf", Severity.ERROR, """
     Good: rename it ``robot.urdf.xacro``
     """)
 
-declare("U008", "file-too-large", Severity.ERROR, """
+
+U008 = declare("U008", "file-too-large", Severity.ERROR, """
     The input file is larger than ``--max-file-size`` (default 16 MiB).
 
     Robot descriptions are small; a huge file is a mistake or an attack on the CI runner.
     """)
 
-declare("U009", "xml-entity", Severity.ERROR, """
+
+U009 = declare("U009", "xml-entity", Severity.ERROR, """
     The file declares XML entities or references an external DTD.
 
     Entity declarations are how XML bombs and ``file:///etc/passwd`` leaks are built, and an
@@ -85,18 +97,15 @@ declare("U009", "xml-entity", Severity.ERROR, """
     """)
 
 
-@rule("U010", "xacro-warning", Severity.WARNING)
-def xacro_warning(robot):
-    """xacro printed a warning while expanding the file.
+U010 = declare("U010", "xacro-warning", Severity.WARNING, """
+    xacro printed a warning while expanding the file.
 
     xacro warns about unknown attributes on its own tags, deprecated syntax and includes whose
     glob matched nothing; these are usually typos that change the result silently.
 
     Bad: ``<xacro:include filename="parts/*.xacro"/>`` matching no file
     Good: a pattern that matches the files meant
-    """
-    for location, message in robot.options.get("xacro_warnings", []):
-        yield location, message
+    """)
 
 
 @rule("U011", "robot-name-missing", Severity.ERROR)
@@ -129,7 +138,46 @@ def unsupported_version(robot):
         yield robot.root, f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"
 
 
-declare("U016", "unsafe-xacro", Severity.ERROR, """
+U013 = declare("U013", "file-outside-root", Severity.WARNING, """
+    xacro read an included or YAML file outside the repository and the packages it uses.
+
+    The repository is the nearest folder above the input holding ``.git`` (without one, the
+    nearest package.xml folder, else the input's folder); folders of packages found for
+    ``$(find pkg)`` and paths given as xacro arguments count too. A description that reads
+    ``/etc/...`` or ``~/...`` works only on one machine, or leaks a file into the output. Under
+    ``--no-env`` such files are not read at all (U014).
+
+    Bad: ``<xacro:include filename="/home/me/robot/arm.xacro"/>``
+    Good: ``<xacro:include filename="$(find my_robot)/urdf/arm.xacro"/>``
+    """)
+
+
+U014 = declare("U014", "file-outside-root-refused", Severity.ERROR, """
+    Under ``--no-env``, xacro tried to read a file outside the repository and its packages.
+
+    ``--no-env`` is for untrusted input (CI on pull requests): the file is not read, so a
+    crafted description cannot copy ``/etc/passwd`` or a CI secret into its output. See U013
+    for which folders are allowed.
+
+    Bad: ``${xacro.load_yaml('/etc/passwd')}``
+    Good: ``${xacro.load_yaml('$(find my_robot)/config/limits.yaml')}``
+    """)
+
+
+U015 = declare("U015", "timeout", Severity.ERROR, """
+    Checking the file took longer than ``--timeout`` seconds (default 60) and was stopped.
+
+    A robot description loads in well under a second; a file that takes this long is a
+    pathological xacro (deep loops, huge numbers) or an attack on the CI runner. The other files
+    are still checked. Every command that reads a robot (``tree``, ``fk``, ``xacro``, ...) has
+    the same budget. The finding is at the element xacro was expanding when it was stopped.
+
+    Bad: ``<link name="${factorial(10**7)}"/>``
+    Good: ``<link name="${'link_%d' % index}"/>``
+    """)
+
+
+U016 = declare("U016", "unsafe-xacro", Severity.ERROR, """
     A xacro expression was refused: it reaches into Python internals or builds something huge.
 
     xacro evaluates ``${...}`` and ``$(eval ...)`` as Python. urdftool evaluates both in a
@@ -145,59 +193,7 @@ declare("U016", "unsafe-xacro", Severity.ERROR, """
     """)
 
 
-@rule("U013", "file-outside-root", Severity.WARNING)
-def file_outside_root(robot):
-    """xacro read an included or YAML file outside the repository and the packages it uses.
-
-    The repository is the nearest folder above the input holding ``.git`` (without one, the
-    nearest package.xml folder, else the input's folder); folders of packages found for
-    ``$(find pkg)`` and paths given as xacro arguments count too. A description that reads
-    ``/etc/...`` or ``~/...`` works only on one machine, or leaks a file into the output. Under
-    ``--no-env`` such files are not read at all (U014).
-
-    Bad: ``<xacro:include filename="/home/me/robot/arm.xacro"/>``
-    Good: ``<xacro:include filename="$(find my_robot)/urdf/arm.xacro"/>``
-    """
-    for location, message in robot.options.get("outside_files", []):
-        yield location, message
-
-
-declare("U014", "file-outside-root-refused", Severity.ERROR, """
-    Under ``--no-env``, xacro tried to read a file outside the repository and its packages.
-
-    ``--no-env`` is for untrusted input (CI on pull requests): the file is not read, so a
-    crafted description cannot copy ``/etc/passwd`` or a CI secret into its output. See U013
-    for which folders are allowed.
-
-    Bad: ``${xacro.load_yaml('/etc/passwd')}``
-    Good: ``${xacro.load_yaml('$(find my_robot)/config/limits.yaml')}``
-    """)
-
-declare("U015", "timeout", Severity.ERROR, """
-    Checking the file took longer than ``--timeout`` seconds (default 60) and was stopped.
-
-    A robot description loads in well under a second; a file that takes this long is a
-    pathological xacro (deep loops, huge numbers) or an attack on the CI runner. The other files
-    are still checked. Every command that reads a robot (``tree``, ``fk``, ``xacro``, ...) has
-    the same budget. The finding is at the element xacro was expanding when it was stopped.
-
-    Bad: ``<link name="${factorial(10**7)}"/>``
-    Good: ``<link name="${'link_%d' % index}"/>``
-    """)
-
-declare("U018", "out-of-memory", Severity.ERROR, """
-    Checking the file needed more memory than ``--max-memory`` (default 2 GiB) and was stopped.
-
-    Every worker and every command that reads a robot runs with its address space capped, so a
-    crafted file (an expression or YAML document that slips past xacro's size limits, a huge
-    mesh) ends here instead of taking the CI runner's memory. The finding is at the element xacro
-    was expanding when memory ran out; the other files are still checked.
-
-    Bad: ``<link name="${len([[0] * 10**6 for i in range(400)])}"/>``
-    Good: ``<link name="${'link_%d' % index}"/>``
-    """)
-
-declare("U017", "symlink-outside-root", Severity.ERROR, """
+U017 = declare("U017", "symlink-outside-root", Severity.ERROR, """
     A symbolic link in the repository leads outside it; urdftool does not follow it.
 
     A robot file, an included file or a folder that ``check DIR`` walks may be a link planted by
@@ -211,4 +207,17 @@ declare("U017", "symlink-outside-root", Severity.ERROR, """
     Bad: ``urdf/arm.xacro -> /home/me/other_robot/arm.xacro``
     Good: a copy of the file in the repository, or ``$(find other_robot)/urdf/arm.xacro``
     with ``--package other_robot=PATH``
+    """)
+
+
+U018 = declare("U018", "out-of-memory", Severity.ERROR, """
+    Checking the file needed more memory than ``--max-memory`` (default 2 GiB) and was stopped.
+
+    Every worker and every command that reads a robot runs with its address space capped, so a
+    crafted file (an expression or YAML document that slips past xacro's size limits, a huge
+    mesh) ends here instead of taking the CI runner's memory. The finding is at the element xacro
+    was expanding when memory ran out; the other files are still checked.
+
+    Bad: ``<link name="${len([[0] * 10**6 for i in range(400)])}"/>``
+    Good: ``<link name="${'link_%d' % index}"/>``
     """)

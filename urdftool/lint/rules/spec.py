@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 
 from urdftool.description.companions import YamlMap, companions, is_spec
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from urdftool.description.companions import companions
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.lint.rules import Severity, rule
+from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
                          moving_joints, ros2_control_joints, transmission_joints, transmissions)
 from urdftool.errors import available

@@ -1,0 +1,176 @@
+"""The rule catalogue: what a rule is, the families, and the catalogue built from family modules.
+
+A rule is one function that yields ``(where, message)``: ``where`` is an lxml element of the
+robot, a :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
+The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
+its documentation: a first-line summary, then why it matters, then examples (the README table and
+``urdftool rules CODE`` are generated from it).
+
+``rule()`` marks a check with its code, name and severity and registers nothing. Codes that the
+engine or the runner report themselves are ``declare()``d as module-level constants.
+:meth:`Catalogue.from_modules` collects both from an explicit list of family modules
+(``urdftool.lint.rules.FAMILY_MODULES``), in source order, and refuses a malformed, taken or
+misordered code and a repeated name.
+
+Families: U0xx loading, U1xx kinematic tree, U2xx joints, U3xx inertials, U4xx geometry and
+meshes, U5xx transmissions and ros2_control, U6xx controllers and Gazebo, U7xx joint spec table,
+U8xx SRDF and collisions, U9xx urdftool itself.
+"""
+
+from __future__ import annotations
+
+import difflib
+import inspect
+import re
+from dataclasses import dataclass
+from typing import Callable
+
+from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.errors import UsageError
+
+__all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
+
+FAMILIES = {
+    "U0": "loading",
+    "U1": "kinematic tree",
+    "U2": "joints",
+    "U3": "inertials",
+    "U4": "geometry and meshes",
+    "U5": "transmissions and ros2_control",
+    "U6": "controllers and Gazebo",
+    "U7": "joint spec table",
+    "U8": "SRDF and collisions",
+    "U9": "urdftool",
+}
+_CODE = re.compile(r"U\d{3}")
+
+
+class UnknownRule(UsageError):
+    """No rule has the code or name asked for; the message lists the close ones."""
+
+
+@dataclass(frozen=True)
+class Rule:
+    code: str
+    name: str
+    severity: Severity
+    check: Callable | None
+    doc: str
+
+    @property
+    def summary(self) -> str:
+        return self.doc.strip().splitlines()[0].strip() if self.doc.strip() else self.name
+
+    @property
+    def family(self) -> str:
+        return FAMILIES[self.code[:2]]
+
+    def finding(self, message: str, location: Location) -> Finding:
+        """A finding of this rule at ``location``."""
+        return Finding(self.code, self.name, self.severity, message, location)
+
+
+def rule(code: str, name: str, severity: Severity):
+    """Mark a check: a generator function taking the robot and yielding (where, message).
+
+    The function gets a ``rule`` attribute and is returned unchanged; nothing is registered."""
+
+    def decorate(function):
+        function.rule = Rule(code, name, Severity(severity), function,
+                             inspect.cleandoc(function.__doc__ or ""))
+        return function
+
+    return decorate
+
+
+def declare(code: str, name: str, severity: Severity, doc: str) -> Rule:
+    """A code that the engine or the runner reports itself (no check function): keep the
+    returned value as a module-level constant of a family module."""
+    return Rule(code, name, Severity(severity), None, inspect.cleandoc(doc or ""))
+
+
+class Catalogue:
+    """Every rule, by code. ``declared`` keeps the order the rules were given in; ``rules`` is
+    sorted by code."""
+
+    def __init__(self, rules):
+        self.declared = tuple(rules)
+        self._by_code: dict[str, Rule] = {}
+        names: dict[str, str] = {}
+        for item in self.declared:
+            if not _CODE.fullmatch(item.code) or item.code[:2] not in FAMILIES:
+                raise ValueError(f"rule code {item.code} is not of the form U<family><nn>")
+            if item.code in self._by_code:
+                raise ValueError(f"rule code {item.code} declared twice")
+            if item.name in names:
+                raise ValueError(f"rule name {item.name} declared twice "
+                                 f"({names[item.name]} and {item.code})")
+            self._by_code[item.code] = item
+            names[item.name] = item.code
+        self.rules = tuple(self._by_code[code] for code in sorted(self._by_code))
+
+    @classmethod
+    def from_modules(cls, modules) -> Catalogue:
+        """The rules of ``modules``, each module's in source order: its ``rule()``-marked
+        functions and its module-level ``Rule`` constants, counting only functions defined in
+        that module and each constant once. A module whose codes are not ascending, or that
+        declares a code below the previous module's, is refused."""
+        found: list[Rule] = []
+        seen: set[int] = set()
+        for module in modules:
+            codes = []
+            for value in vars(module).values():
+                if isinstance(value, Rule):
+                    item = value
+                elif callable(value) and isinstance(getattr(value, "rule", None), Rule) \
+                        and getattr(value, "__module__", None) == module.__name__:
+                    item = value.rule
+                else:
+                    continue
+                if id(item) in seen:
+                    continue
+                seen.add(id(item))
+                found.append(item)
+                codes.append(item.code)
+            if codes != sorted(codes):
+                raise ValueError(f"{module.__name__}: rule codes out of order: {', '.join(codes)}")
+        return cls(found)
+
+    def __iter__(self):
+        return iter(self.rules)
+
+    def __len__(self) -> int:
+        return len(self.rules)
+
+    def __contains__(self, code: str) -> bool:
+        return code in self._by_code
+
+    def get(self, code: str) -> Rule:
+        """The rule of an exact code (KeyError when there is none)."""
+        return self._by_code[code]
+
+    def matches(self, code: str, selector: str) -> bool:
+        """Whether a selector (a code, a code prefix such as ``U2``, or a rule name) picks
+        ``code``."""
+        selector = selector.strip()
+        found = self._by_code.get(code)
+        return code.startswith(selector.upper()) or (found is not None and found.name == selector)
+
+    def find(self, wanted: str) -> Rule:
+        """A rule by code (any case) or name; :class:`UnknownRule` listing the close ones
+        otherwise."""
+        rules = self.rules
+        for candidate in rules:
+            if wanted.upper() == candidate.code or wanted == candidate.name:
+                return candidate
+        prefixed = [r for r in rules if r.code.startswith(wanted.upper())]
+        if prefixed:  # a family or part of one: U6, U60
+            listed = ", ".join(f"{r.code} {r.name}" for r in prefixed)
+            raise UnknownRule(
+                f"no rule '{wanted}'; the rules starting with {wanted.upper()} are: {listed}")
+        by_word = {r.code: r for r in rules} | {r.name: r for r in rules}
+        close = dict.fromkeys(by_word[word] for word in
+                              difflib.get_close_matches(wanted, list(by_word), n=3, cutoff=0.6))
+        hint = ("; did you mean " + " or ".join(f"{r.code} {r.name}" for r in close) + "?"
+                if close else ".")
+        raise UnknownRule(f"no rule '{wanted}'{hint} `urdftool rules` lists all {len(rules)} rules")

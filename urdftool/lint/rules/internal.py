@@ -1,0 +1,21 @@
+"""U9xx: urdftool itself. The engine reports U900 and the suppressions U901; both are declared
+here, with the other families, so that the catalogue is complete without importing either."""
+
+from urdftool.lint.catalogue import Severity, declare
+
+U900 = declare("U900", "internal-error", Severity.ERROR, """
+    A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
+
+    The run goes on with the other rules and files. Please report it with the file attached.
+    """)
+
+U901 = declare("U901", "unused-suppression", Severity.WARNING, """
+    An ``<!-- urdftool: ignore ... -->`` comment silences nothing.
+
+    The problem it once hid is fixed, the comment drifted away from its element, or a code is
+    misspelled. A stale suppression will silently hide the next real problem at that place:
+    delete it, or move it to the line just above the element the finding points at.
+
+    Bad: ``<!-- urdftool: ignore U206 -->`` above a joint whose axis is a unit vector
+    Good: no comment (or the comment above the element that really has the finding)
+    """)
