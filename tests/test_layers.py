@@ -41,10 +41,6 @@ ALLOWED: set[str] = {
     "urdftool.cli.dh -> rich",
     "urdftool.cli.fk -> rich",
     "urdftool.cli.rules -> rich",
-    "urdftool.description.load -> urdftool.lint.rules",
-    "urdftool.lint.rules -> <dynamic import>",
-    "urdftool.lint.rules -> urdftool.lint.engine",
-    "urdftool.report -> <dynamic import>",
 }
 
 
@@ -182,18 +178,12 @@ def test_allowed_exceptions_are_still_needed():
     assert not stale, f"remove from ALLOWED, they are fixed: {stale}"
 
 
-_STILL_CYCLIC = pytest.mark.xfail(strict=True, reason="issue 13: the rule registry cycle "
-                                   "(description.load -> lint.rules -> lint.engine) is next")
-
-
-@pytest.mark.parametrize("granularity", [
-    pytest.param(lambda m: m, id="modules", marks=_STILL_CYCLIC),
-    pytest.param(lambda m: ".".join(m.split(".")[:2]), id="packages", marks=_STILL_CYCLIC)])
+@pytest.mark.parametrize("granularity", [lambda m: m, lambda m: ".".join(m.split(".")[:2])],
+                         ids=["modules", "packages"])
 def test_no_import_cycles(granularity):
     assert _cycles(granularity) == []
 
 
-@pytest.mark.xfail(strict=True, reason="issue 13: the loader still makes U0xx findings")
 def test_only_the_linter_knows_rule_codes():
     below_lint = [p for name, p in MODULES.items() if (_rank(name, [x for _, x in LAYERS]) or 0) < 5]
     found = [f"{p.relative_to(PACKAGE.parent)}:{n}" for p in below_lint
