@@ -37,19 +37,6 @@ class Stale:
     message: str
 
 
-def beside(robot) -> Path | None:
-    """The SRDF next to the robot: same stem, or the only ``.srdf`` in the folder."""
-    if robot.path == "-":
-        return None
-    path = Path(robot.path)
-    stem = path.name.split(".")[0]
-    same = path.with_name(f"{stem}.srdf")
-    if same.is_file():
-        return same
-    found = sorted(path.parent.glob("*.srdf"))
-    return found[0] if len(found) == 1 else None
-
-
 def _parse(path: Path):
     try:
         return parse(read_regular(path))
