@@ -33,7 +33,8 @@ def collisions(
                                 help="Joint value in rad or m (repeatable); pose mode."),
     deg: bool = typer.Option(False, "--deg", help="--q angles are in degrees."),
     srdf: Path = typer.Option(None, "--srdf", help="SRDF whose disable_collisions allow pairs "
-                              "[default: the robot's .srdf, as check finds it]."),
+                              "[default: the robot's .srdf in its folder or config/, as check "
+                              "finds it]."),
     matrix: bool = typer.Option(False, "--matrix", help="Compute the collision matrix."),
     samples: int = typer.Option(10000, "--samples", min=2,
                                 help="Random configurations (rounded up to a multiple of 500)."),
@@ -93,42 +94,27 @@ def collisions(
 
 def _pose(robot, values, degrees, srdf, format) -> int:
     from urdftool.collision.pose import check_pose
-    from urdftool.report import collisions as render
+    from urdftool.report.collisions import write_pose
 
     report = check_pose(robot, values, degrees, srdf)
     warn(report.warnings)
-    if format == "json":
-        from urdftool.report.json_output import write_json
-
-        write_json(render.pose_json(robot.name, report), finite=True)
-    else:
-        render.pose_text(robot.name, report, custom=bool(values))
+    write_pose(robot.name, report, format, custom=bool(values))
     return 1 if report.forbidden else 0
 
 
 def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
-    from urdftool.collision import srdf
     from urdftool.collision.classify import classify
-    from urdftool.report import collisions as render
+    from urdftool.collision.srdf import updated
+    from urdftool.report import plot as plot_module
+    from urdftool.report.collisions import write_matrix
     from urdftool.report.progress import sampling_progress
 
     with sampling_progress(options.samples) as on_progress:
         outcome = classify(robot, options, on_progress)
-    result = outcome.matrix
     if write_srdf:
-        # Merged only into a regular file: a link planted there is replaced, its target unread.
-        existing = write_srdf if write_srdf.is_file() and not write_srdf.is_symlink() else None
-        write_output(write_srdf, srdf.render(result, robot.name, existing))
+        write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf))
     if plot:
-        from urdftool.report import plot as plot_module
-
-        plot_module.write(result, plot, f"{robot.name}: {result.samples} samples, "
-                                        f"seed {options.seed}")
-    if format == "json":
-        from urdftool.report.json_output import write_json
-
-        write_json(render.matrix_json(robot.name, result, outcome.stale), finite=True)
-    else:
-        render.matrix_text(robot.name, result, outcome.stale, all_pairs,
-                           [path for path in (write_srdf, plot) if path])
+        plot_module.write(outcome.matrix, plot, f"{robot.name}: {outcome.matrix.samples} "
+                                                f"samples, seed {options.seed}")
+    write_matrix(robot.name, outcome, format, all_pairs, [p for p in (write_srdf, plot) if p])
     return 1 if outcome.stale else 0

@@ -104,6 +104,13 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
             + data[end:].decode("utf-8", "replace"))
 
 
+def updated(matrix: Matrix, robot_name: str, path: Path) -> str:
+    """The SRDF text to write at ``path``: merged into what is there when it is a regular file
+    (see render), else a new document; a link planted at ``path`` is not read."""
+    existing = path if path.is_file() and not path.is_symlink() else None
+    return render(matrix, robot_name, existing)
+
+
 def _root_span(data: bytes) -> tuple[int, int]:
     """Byte offsets where the root element starts and just after it ends, so that the prolog
     (declaration, comments) and whatever follows are kept byte for byte."""

@@ -7,6 +7,27 @@ from collections import Counter
 from urdftool.report.console import plain_console
 
 
+def write_pose(robot_name: str, report, output_format: str, custom: bool, stream=None) -> None:
+    """A PoseReport as ``output_format`` (text or json); custom: the configuration was given"""
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(pose_json(robot_name, report), stream, finite=True)
+    else:
+        pose_text(robot_name, report, custom, stream)
+
+
+def write_matrix(robot_name: str, outcome, output_format: str, all_pairs: bool = False,
+                 written=(), stream=None) -> None:
+    """A MatrixOutcome as ``output_format`` (text or json); see matrix_text"""
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(matrix_json(robot_name, outcome.matrix, outcome.stale), stream, finite=True)
+    else:
+        matrix_text(robot_name, outcome.matrix, outcome.stale, all_pairs, written, stream)
+
+
 def _notes(console, geometry_problems, visual_only) -> None:
     from rich.markup import escape
 
