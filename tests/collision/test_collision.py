@@ -46,7 +46,7 @@ def robot_of(tmp_path, text: str):
 
 def pose_report(robot, **q):
     scene = matrix.Scene(robot, 0.0)
-    values = pose.configuration(scene, [f"{k}={v}" for k, v in q.items()]).values[0]
+    values = pose.configuration(scene, {k: str(v) for k, v in q.items()}).values[0]
     return pose.check(scene, values, {})
 
 
@@ -66,12 +66,42 @@ def test_two_boxes_apart_with_distance(tmp_path):
     assert nearest.distance == pytest.approx(0.4, abs=1e-6)
 
 
-def test_unknown_joint_in_q_names_the_joints(tmp_path):
-    from urdftool.errors import UsageError
+def test_unknown_joint_in_q_names_the_joints_but_no_option(tmp_path):
+    from urdftool.kinematics.configuration import ConfigError
 
-    scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
-    with pytest.raises(UsageError, match="did you mean 'slider'"):
-        pose.configuration(scene, ["slidr=1"])
+    with pytest.raises(ConfigError, match="^unknown joint 'slidr'; did you mean 'slider'"):
+        pose.check_pose(robot_of(tmp_path, two_boxes(0, 1)), {"slidr": "1"})
+
+
+def test_check_pose_reads_the_srdf_given_and_warns_outside_limits(tmp_path):
+    robot = robot_of(tmp_path, two_boxes(0, 1))
+    allowed = write(tmp_path, '<robot name="boxes"><disable_collisions link1="sliding_box" '
+                    'link2="fixed_box" reason="User"/></robot>', "allow.srdf")
+    report = pose.check_pose(robot, {"slider": "0.05"}, srdf=allowed)
+    assert [c.allowed for c in report.colliding] == ["User"] and not report.forbidden
+    assert report.srdf.endswith("allow.srdf") and report.warnings == []
+    beyond = pose.check_pose(robot, {"slider": "2"})
+    assert beyond.warnings == ["joint 'slider' = 2 is outside its limits [0, 1]; computed anyway"]
+
+
+def test_check_pose_refuses_a_broken_srdf(tmp_path):
+    broken = write(tmp_path, "<robot>", "broken.srdf")
+    with pytest.raises(srdf.SrdfError, match="broken.srdf:1"):
+        pose.check_pose(robot_of(tmp_path, two_boxes(0, 1)), {}, srdf=broken)
+
+
+def test_collisions_finds_the_srdf_in_config_as_check_does(run_cli, tmp_path, monkeypatch):
+    """One SRDF finder: config/<robot>.srdf is the robot's SRDF for collisions as for check
+    (collisions used to look only beside the file and printed 'SRDF: none')."""
+    path = write(tmp_path, two_boxes(0, 1))
+    (tmp_path / "config").mkdir()
+    write(tmp_path / "config", '<robot name="boxes"><disable_collisions link1="fixed_box" '
+          'link2="sliding_box" reason="User"/></robot>', "boxes.srdf")
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("collisions", "robot.urdf", "--q", "slider=0.05")
+    assert result.exit_code == 0, result.output
+    assert "SRDF: config/boxes.srdf" in result.output and "allowed (User)" in result.output
+    assert pose.check_pose(load(str(path)), {}).srdf == "config/boxes.srdf"
 
 
 def test_adjacency_looks_through_links_without_geometry(tmp_path):
@@ -238,7 +268,12 @@ def test_cli_pose_exit_codes_and_json(run_cli, tmp_path):
                     'link2="fixed_box" reason="User"/></robot>', "allow.srdf")
     result = run_cli("collisions", path, "--q", "slider=0.05", "--srdf", allowed)
     assert result.exit_code == 0 and "allowed (User)" in result.output
-    assert run_cli("collisions", path, "--q", "slidr=1").exit_code == 2
+    unknown = run_cli("collisions", path, "--q", "slidr=1")
+    assert unknown.exit_code == 2
+    assert unknown.stderr.startswith("urdftool: error: --q: unknown joint 'slidr'")
+    broken = write(tmp_path, "<robot>", "broken.srdf")
+    refused = run_cli("collisions", path, "--srdf", broken)
+    assert refused.exit_code == 2 and "broken.srdf:1" in refused.stderr
 
 
 def test_cli_matrix_json_and_write_srdf(run_cli, tmp_path):

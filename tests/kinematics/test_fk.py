@@ -100,7 +100,7 @@ def test_default_is_mid_range_when_zero_is_outside_limits(tiny):
 
 
 def test_floating_root_pose_and_base_option(tiny):
-    words = ["free.x=1", "free.yaw=90", "spin=0"]
+    words = {"free.x": "1", "free.yaw": "90", "spin": "0"}
     configurations = config.from_words(tiny.variables, words, degrees=True)
     assert configurations.values[0, 0] == 1.0  # metres are not scaled by --deg
     result = forward_kinematics(tiny, configurations, ["a"], None)
@@ -114,29 +114,31 @@ def test_floating_root_pose_and_base_option(tiny):
 
 
 def test_humanoid_leg_pose_by_hand(humanoid):
-    configurations = config.from_words(humanoid.variables, ["l_knee=90"], degrees=True)
+    configurations = config.from_words(humanoid.variables, {"l_knee": "90"}, degrees=True)
     pose = forward_kinematics(humanoid, configurations, ["l_foot_link"], "body_link").matrices[0, 0]
     # hip 0.122 below the body, thigh 0.093 down, then the shin points 0.093 backwards (-x)
     np.testing.assert_allclose(pose[:3, 3], [-0.093, 0.037, -0.122 - 0.093], atol=1e-12)
 
 
 def test_unknown_joint_lists_valid_names(humanoid):
-    with pytest.raises(config.ConfigError, match="did you mean 'l_knee'.*available joints"):
-        config.from_words(humanoid.variables, ["l_kne=1"])
+    with pytest.raises(config.ConfigError, match="^unknown joint 'l_kne'; did you mean 'l_knee'"
+                                                 ".*available joints"):  # no option named
+        config.from_words(humanoid.variables, {"l_kne": "1"})
 
 
 def test_setting_a_mimic_joint_names_its_master(tiny):
     with pytest.raises(config.ConfigError, match="'follow' mimics 'spin'"):
-        config.from_words(tiny.variables, ["follow=1"], mimics=tiny.mimics)
+        config.from_words(tiny.variables, {"follow": "1"}, mimics=tiny.mimics)
 
 
 def test_non_numeric_value(humanoid):
-    with pytest.raises(config.ConfigError, match="'abc' for joint 'l_knee' is not a number"):
-        config.from_words(humanoid.variables, ["l_knee=abc"])
+    with pytest.raises(config.ConfigError, match="^value 'abc' for joint 'l_knee' is not a "
+                                                 "number"):
+        config.from_words(humanoid.variables, {"l_knee": "abc"})
 
 
 def test_out_of_limits_warns_and_computes(humanoid):
-    configurations = config.from_words(humanoid.variables, ["l_knee=-1"])
+    configurations = config.from_words(humanoid.variables, {"l_knee": "-1"})
     assert configurations.warnings == [
         "joint 'l_knee' = -1 is outside its limits [0, 2.26893]; computed anyway"]
     assert configurations.values[0, [v.name for v in humanoid.variables].index("l_knee")] == -1
@@ -239,8 +241,12 @@ def test_cli_q_file_gives_one_document_per_row_and_csv(run_cli, tmp_path):
 def test_cli_bad_inputs(run_cli, tmp_path):
     result = run_cli("fk", HUMANOID, "--q", "l_kne=1")
     assert result.exit_code == 2 and "did you mean 'l_knee'" in result.stderr
+    assert result.stderr.startswith("urdftool: error: --q: unknown joint 'l_kne'")
     result = run_cli("fk", HUMANOID, "--q", "l_knee=one")
-    assert result.exit_code == 2 and "is not a number" in result.stderr
+    assert result.stderr == ("urdftool: error: --q: value 'one' for joint 'l_knee' is not a "
+                             "number\n") and result.exit_code == 2
+    result = run_cli("fk", HUMANOID, "--q", "l_knee")
+    assert result.stderr == "urdftool: error: --q must be NAME=VALUE, got 'l_knee'\n"
     result = run_cli("fk", HUMANOID, "--q", "l_knee=-0.5", "--frame", "l_foot_link")
     assert result.exit_code == 0
     assert "warning: joint 'l_knee' = -0.5 is outside its limits" in result.stderr
@@ -248,6 +254,7 @@ def test_cli_bad_inputs(run_cli, tmp_path):
     path.write_text("l_knee,l_el\n1,2,3\n")
     result = run_cli("fk", HUMANOID, "--q-file", path)
     assert result.exit_code == 2 and "q.csv:2: row has 3 values" in result.stderr
+    assert "--q" not in result.stderr  # a file's error names the file, not an option
     assert "Traceback" not in result.output
 
 
@@ -277,5 +284,5 @@ def test_floating_poses_are_relative_to_the_world_not_the_moving_root(run_cli):
 
 def _body_height() -> float:
     model = KinematicModel(load(HUMANOID))
-    result = forward_kinematics(model, config.from_words(model.variables, []), ["body_link"])
+    result = forward_kinematics(model, config.from_words(model.variables, {}), ["body_link"])
     return float(result.matrices[0, 0, 2, 3])

@@ -91,6 +91,35 @@ def test_humanoid_holds_itself_with_mx28(run_cli):
 def test_dynamics_unknown_joint_is_usage_error(run_cli):
     result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_kne=1")
     assert result.exit_code == 2 and "l_knee" in result.output
+    assert result.stderr.startswith("urdftool: error: --q: unknown joint 'l_kne'")
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--v", "l_el=x")
+    assert result.stderr == ("urdftool: error: --v: value 'x' for joint 'l_el' is not a "
+                             "number\n")
+
+
+def test_joint_values_say_which_input_is_wrong(tmp_path):
+    from urdftool.kinematics.configuration import ConfigError, joint_values
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    robot = load(path)
+    values = joint_values(robot, {"shoulder": "90"}, None, {"elbow": "1"}, degrees=True)
+    assert values.q == {"shoulder": pytest.approx(math.pi / 2)} and values.v is None
+    assert values.a == {"elbow": pytest.approx(math.radians(1))}
+    with pytest.raises(ConfigError, match="^unknown joint 'elbw'") as caught:
+        joint_values(robot, {}, {"elbw": "1"})
+    assert caught.value.argument == "v"
+
+
+def test_a_robot_without_mass_gets_a_warning(tmp_path):
+    from urdftool.physics.dynamics import build, state
+
+    path = tmp_path / "massless.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                    'type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+                    '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    result = state(build(load(str(path))), {})
+    assert result.warnings and result.warnings[0].startswith("no link has a mass")
 
 
 MIMIC_ARM = ARM.replace('<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>',

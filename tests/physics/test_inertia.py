@@ -163,3 +163,15 @@ def test_inertia_text_gives_a_frame_one_line(run_cli, tmp_path):
     assert result.output.splitlines() == [
         "base: unknown (a frame: no inertial, no geometry)",
         "tool0: unknown (a frame: no inertial, no geometry)", "2 unknown (2 links)"]
+
+
+def test_compare_refuses_an_unknown_link_and_lists_the_others(run_cli, humanoid):
+    from urdftool.physics.inertia_compare import UnknownLink, compare
+
+    robot = load(str(humanoid))
+    with pytest.raises(UnknownLink, match="^link 'body_lnk' does not exist; did you mean "
+                                          "'body_link'"):
+        compare(robot, links=["body_link", "body_lnk"])
+    result = run_cli("inertia", humanoid, "--link", "body_lnk")
+    assert result.exit_code == 2
+    assert result.stderr.startswith("urdftool: error: link 'body_lnk' does not exist;")

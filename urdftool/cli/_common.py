@@ -38,11 +38,16 @@ def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
     return paths, args
 
 
-def pairs(values: list[str], what: str, separator: str = "=") -> dict[str, str]:
-    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error."""
+def pairs(values: list[str], what: str, separator: str = "=",
+          strip: bool = False) -> dict[str, str]:
+    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error.
+
+    strip: remove blanks around each NAME (joint values: ``--q " elbow=1"``)
+    """
     result = {}
     for value in values:
         name, sep, rest = value.partition(separator)
+        name = name.strip() if strip else name
         if not sep or not name:
             raise UsageError(f"{what} must be NAME{separator}VALUE, got '{value}'")
         result[name] = rest
@@ -63,6 +68,25 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
 def fail_usage(error: UsageError) -> None:
     typer.echo(f"urdftool: error: {error}", err=True)
     raise typer.Exit(2)
+
+
+def fail_config(error, option: str) -> None:
+    """Exit 2 for a ConfigError about ``option``'s values, the option named first; an error about
+    a file (its ``where``) already says where it is."""
+    fail_usage(UsageError(str(error) if error.where else f"{option}: {error}"))
+
+
+def joint_words(values: list[str], option: str) -> dict[str, str]:
+    """``{joint: text}`` from an option's ``NAME=VALUE`` values; exit 2 when one is malformed."""
+    try:
+        return pairs(values, option, strip=True)
+    except UsageError as error:
+        fail_usage(error)
+
+
+def warn(warnings) -> None:
+    for warning in warnings:
+        typer.echo(f"urdftool: warning: {warning}", err=True)
 
 
 def refuse_bad_outputs(*paths) -> None:
@@ -196,18 +220,3 @@ def report_findings(path: str, findings) -> None:
     from urdftool.report import render
 
     render("text", [FileResult(path, findings)], sys.stderr)
-
-
-def wide_console():
-    """A rich console at least 150 columns wide: tables of poses are wide; do not squeeze them."""
-    from rich.console import Console
-
-    console = Console(highlight=False)
-    console.width = max(console.width, 150)
-    return console
-
-
-def fixed(value: float, places: int = 6) -> str:
-    """``value`` with ``places`` decimals, without the '-0.000000' that round-off leaves."""
-    text = f"{value:.{places}f}"
-    return text[1:] if text.startswith("-") and not text.strip("-0.") else text

@@ -38,10 +38,7 @@ def graph(
     try:
         written = write(dot, output)
     except DotMissing as missing:
-        typer.echo(f"urdftool: Graphviz's 'dot' program is not installed, so {output} was not "
-                   f"rendered; wrote the DOT source to {missing} instead. Install Graphviz "
-                   "(apt install graphviz, brew install graphviz) or render it with "
-                   f"'dot -T{output.suffix[1:]} {missing} -o {output}'.", err=True)
+        typer.echo(f"urdftool: {missing.advice(output)}", err=True)
         raise typer.Exit(1)
     except (ValueError, OSError, UsageError) as error:
         fail_usage(UsageError(str(error)))

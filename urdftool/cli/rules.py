@@ -15,20 +15,14 @@ def register(app: typer.Typer) -> None:
 
 def rules(code: str = typer.Argument(None, metavar="[CODE]",
                                      help="A rule code (U204) or name (inverted-limits).")) -> None:
-    from rich.console import Console
-
     from urdftool.lint.rules import CATALOGUE
+    from urdftool.report.rules import print_catalogue, print_rule
 
-    console = Console(highlight=False, soft_wrap=True)
     if code is None:
-        from urdftool.report.rules import rules_table
-
-        console.print(rules_table(CATALOGUE.rules))
+        print_catalogue(CATALOGUE.rules)
         return
     try:
         found = CATALOGUE.find(code)
     except UsageError as error:
         fail_usage(error)
-    from urdftool.report.rules import rule_page
-
-    console.print(rule_page(found))
+    print_rule(found)

@@ -16,10 +16,11 @@ def tree(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.kinematics.tree import TreeError, format_tree
+    from urdftool.kinematics.tree import TreeError
+    from urdftool.report.tree import tree_text
 
     robot = single_robot("tree", words, arg, package)
     try:
-        typer.echo(format_tree(robot), nl=False)
+        typer.echo(tree_text(robot), nl=False)
     except TreeError as error:
         fail_at(robot, error)

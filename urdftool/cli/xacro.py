@@ -22,13 +22,10 @@ def xacro(
     output: Path = typer.Option(None, "--output", "-o", help="Write the URDF here."),
     no_env: bool = typer.Option(False, "--no-env", help="Make $(env)/$(optenv) errors."),
 ) -> None:
-    from lxml import etree
+    from urdftool.report.urdf import expanded_urdf
 
     refuse_bad_outputs(output)
-    robot = single_robot("xacro", words, arg, package, allow_env=not no_env)
-    etree.indent(robot.root, space="  ")
-    text = etree.tostring(robot.root, encoding="unicode", xml_declaration=False)
-    text = f'<?xml version="1.0" ?>\n{text}\n'
+    text = expanded_urdf(single_robot("xacro", words, arg, package, allow_env=not no_env))
     if output:
         write_output(output, text)
     else:

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
-
-from urdftool.errors import UsageError
 
 
 @dataclass
@@ -32,22 +31,43 @@ class PoseReport:
     visual_only: list[str] = field(default_factory=list)
     problems: list = field(default_factory=list)
     srdf: str | None = None
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def forbidden(self) -> list[Contact]:
         return [contact for contact in self.colliding if not contact.allowed]
 
 
-def configuration(scene, words: list[str], degrees: bool = False):
-    """Configurations (one row) from ``--q NAME=VALUE`` words over the default configuration
-    (0, or mid-range when 0 is outside the limits), with out-of-limit warnings; bad input raises
-    UsageError naming the valid joints."""
+def check_pose(robot, values: dict[str, str], degrees: bool = False,
+               srdf: Path | None = None) -> PoseReport:
+    """Self-collision of ``robot`` at one configuration: ``values`` ({joint: text}) over the
+    default (0, or mid-range when 0 is outside the limits), pairs allowed by adjacency or by
+    the SRDF's disable_collisions. The SRDF is ``srdf``, else the one found beside the robot
+    (urdftool.description.companions.find_srdf), else none.
+
+    Raises ConfigError for a bad joint name or value, SrdfError for an SRDF that cannot be read.
+    """
+    from urdftool.collision import srdf as srdf_module
+    from urdftool.collision.matrix import Scene
+    from urdftool.description.companions import find_srdf
+    from urdftool.diagnostics import display_path
+
+    scene = Scene(robot, 0.0)
+    chosen = configuration(scene, values, degrees)
+    srdf = srdf or find_srdf(robot)
+    allowed = srdf_module.allowed_pairs(srdf_module.read(srdf)[0]) if srdf else {}
+    report = check(scene, chosen.values[0], allowed, srdf=display_path(srdf) if srdf else None)
+    report.warnings = chosen.warnings
+    return report
+
+
+def configuration(scene, values: dict[str, str], degrees: bool = False):
+    """Configurations (one row) from ``{joint: text}`` over the default configuration (0, or
+    mid-range when 0 is outside the limits), with out-of-limit warnings; bad input raises
+    ConfigError naming the valid joints."""
     from urdftool.kinematics import configuration as config
 
-    try:
-        return config.from_words(scene.variables, words, degrees, scene.kinematics.mimics)
-    except config.ConfigError as error:
-        raise UsageError(str(error)) from None
+    return config.from_words(scene.variables, values, degrees, scene.kinematics.mimics)
 
 
 def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: int = 5,

@@ -37,19 +37,6 @@ class Stale:
     message: str
 
 
-def beside(robot) -> Path | None:
-    """The SRDF next to the robot: same stem, or the only ``.srdf`` in the folder."""
-    if robot.path == "-":
-        return None
-    path = Path(robot.path)
-    stem = path.name.split(".")[0]
-    same = path.with_name(f"{stem}.srdf")
-    if same.is_file():
-        return same
-    found = sorted(path.parent.glob("*.srdf"))
-    return found[0] if len(found) == 1 else None
-
-
 def _parse(path: Path):
     try:
         return parse(read_regular(path))
@@ -115,6 +102,13 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
     return (data[:start].decode("utf-8", "replace")
             + etree.tostring(root, encoding="unicode", with_tail=False)
             + data[end:].decode("utf-8", "replace"))
+
+
+def updated(matrix: Matrix, robot_name: str, path: Path) -> str:
+    """The SRDF text to write at ``path``: merged into what is there when it is a regular file
+    (see render), else a new document; a link planted at ``path`` is not read."""
+    existing = path if path.is_file() and not path.is_symlink() else None
+    return render(matrix, robot_name, existing)
 
 
 def _root_span(data: bytes) -> tuple[int, int]:

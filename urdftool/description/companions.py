@@ -205,7 +205,7 @@ def _discover(robot) -> Companions:
     if options.get("srdf"):
         found.srdf = read_srdf(Path(options["srdf"]))
     else:
-        path = _auto_srdf(robot, folders)
+        path = find_srdf(robot)
         found.srdf = read_srdf(path) if path else None
     if options.get("spec"):
         found.spec = read_yaml(Path(options["spec"]))
@@ -252,8 +252,11 @@ def _auto_controllers(folders: list[Path]) -> list[YamlFile]:
     return files
 
 
-def _auto_srdf(robot, folders: list[Path]) -> Path | None:
-    paths = _candidates(folders, "*.srdf")
+def find_srdf(robot) -> Path | None:
+    """The robot's SRDF when none is given: in its folder or config/, named after the robot or
+    the file's stem, else the only one there; never a link out of the folder; None for stdin.
+    ``check`` and ``collisions`` both find it here."""
+    paths = _candidates(_folders(robot), "*.srdf")
     wanted = {robot.name, Path(robot.path).name.split(".")[0]}
     for path in paths:
         if path.name.split(".")[0] in wanted:

@@ -27,11 +27,14 @@ _RANDOM_SPAN = {"x": 1.0, "y": 1.0, "z": 1.0}  # [m] drawn for unbounded floatin
 
 
 class ConfigError(Exception):
-    """A configuration that cannot be used; ``where`` is a file (and row) when it came from one."""
+    """A configuration that cannot be used; ``where`` is a file (and row) when it came from one,
+    ``argument`` which of several inputs it came from (see joint_values), when known. The
+    message names no command-line option: the command adds it."""
 
     def __init__(self, message: str, where: str | None = None):
         super().__init__(f"{where}: {message}" if where else message)
         self.where = where
+        self.argument: str | None = None
 
 
 @dataclass(frozen=True)
@@ -142,37 +145,74 @@ def defaults(variables: list[Variable]) -> np.ndarray:
     return np.array([v.default for v in variables], dtype=float)
 
 
-def assignments(variables: list[Variable], words: list[str], option: str = "--q",
-                degrees: bool = False, mimics: dict[str, str] | None = None) -> dict[str, float]:
-    """``{variable: value}`` from ``NAME=VALUE`` words given to ``option`` (--q, --v, --a).
+def assignments(variables: list[Variable], values: dict[str, str], degrees: bool = False,
+                mimics: dict[str, str] | None = None) -> dict[str, float]:
+    """``{variable: value}`` from ``{name: text}`` (e.g. parsed ``NAME=VALUE`` words).
 
     Values are in [rad] or [m] (or per second, per second squared); with ``degrees`` angular
     variables are given in degrees. A continuous joint takes one value like any other.
     """
     index = {v.name: i for i, v in enumerate(variables)}
     result = {}
-    for word in words:
-        name, sep, text = word.partition("=")
-        name = name.strip()
-        if not sep or not name:
-            raise ConfigError(f"{option} must be NAME=VALUE, got '{word}'")
-        column = _column(index, name, mimics, option=option)
-        value = _to_float(text, f"{option}: value '{text}' for joint '{name}' is not a number")
+    for name, text in values.items():
+        column = _column(index, name, mimics)
+        value = _to_float(text, f"value '{text}' for joint '{name}' is not a number")
         result[name] = _scaled(value, variables[column], degrees)
     return result
 
 
-def from_words(variables: list[Variable], words: list[str], degrees: bool = False,
-               mimics: dict[str, str] | None = None, option: str = "--q",
+def from_words(variables: list[Variable], values: dict[str, str], degrees: bool = False,
+               mimics: dict[str, str] | None = None,
                default: float | None = None) -> Configurations:
-    """One configuration from ``NAME=VALUE`` words; unnamed variables take ``default``, or
-    when None their own default (0, or mid-range when 0 is outside the limits)."""
+    """One configuration from ``{name: text}``; unnamed variables take ``default``, or when
+    None their own default (0, or mid-range when 0 is outside the limits)."""
     index = {v.name: i for i, v in enumerate(variables)}
-    values = defaults(variables) if default is None else np.full(len(variables), float(default))
-    for name, value in assignments(variables, words, option, degrees, mimics).items():
-        values[index[name]] = value
-    values = values[None, :]
-    return Configurations(variables, values, limit_warnings(variables, values))
+    row = defaults(variables) if default is None else np.full(len(variables), float(default))
+    for name, value in assignments(variables, values, degrees, mimics).items():
+        row[index[name]] = value
+    row = row[None, :]
+    return Configurations(variables, row, limit_warnings(variables, row))
+
+
+def configurations(model, q: dict[str, str] | None = None, degrees: bool = False,
+                   q_file: str | None = None, count: int | None = None,
+                   seed=0) -> Configurations:
+    """The configurations of ``model`` (urdftool.kinematics.fk.KinematicModel) to compute: read
+    from ``q_file``, else ``count`` random ones drawn from ``seed``, else one from ``q``."""
+    if q_file:
+        return from_file(model.variables, q_file, degrees, model.mimics)
+    if count is not None:
+        return random(model.variables, count, seed)
+    return from_words(model.variables, q or {}, degrees, model.mimics)
+
+
+@dataclass
+class JointValues:
+    """Positions ``q`` (every variable named, others absent), velocities ``v`` and
+    accelerations ``a`` (None when not given), and warnings about positions outside limits."""
+
+    q: dict[str, float]
+    v: dict[str, float] | None
+    a: dict[str, float] | None
+    warnings: list[str]
+
+
+def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
+                 a: dict[str, str] | None = None, degrees: bool = False) -> JointValues:
+    """Positions, velocities and accelerations of ``robot``'s joints from ``{name: text}``;
+    a bad one raises ConfigError whose ``argument`` is 'q', 'v' or 'a'."""
+    variables, mimics = variables_of(robot), mimics_of(robot)
+    parsed = []
+    for argument, words in (("q", q), ("v", v), ("a", a)):
+        try:
+            parsed.append(assignments(variables, words, degrees, mimics)
+                          if words or argument == "q" else None)
+        except ConfigError as error:
+            error.argument = argument
+            raise
+    given = [variable for variable in variables if variable.name in parsed[0]]
+    row = np.array([[parsed[0][variable.name] for variable in given]])
+    return JointValues(*parsed, limit_warnings(given, row))
 
 
 def from_file(variables: list[Variable], path: str, degrees: bool = False,
@@ -287,16 +327,13 @@ def _located_floats(rows, names, path) -> np.ndarray:
     return table
 
 
-def _column(index: dict, name: str, mimics: dict | None, where: str | None = None,
-            option: str | None = None) -> int:
+def _column(index: dict, name: str, mimics: dict | None, where: str | None = None) -> int:
     if name in index:
         return index[name]
-    prefix = f"{option}: " if option else ""
     if mimics and name in mimics:
-        raise ConfigError(f"{prefix}joint '{name}' mimics '{mimics[name]}': set "
-                          f"'{mimics[name]}' instead", where)
-    raise ConfigError(f"{prefix}unknown joint '{name}'; {available('joints', name, index)}",
-                      where)
+        raise ConfigError(f"joint '{name}' mimics '{mimics[name]}': set '{mimics[name]}' "
+                          "instead", where)
+    raise ConfigError(f"unknown joint '{name}'; {available('joints', name, index)}", where)
 
 
 def _to_float(text: str, message: str, where: str | None = None) -> float:

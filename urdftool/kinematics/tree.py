@@ -32,19 +32,3 @@ def root_link(robot) -> str:
         raise TreeError(what, robot.root)
     return roots[0]
 
-
-def format_tree(robot) -> str:
-    """check_urdf's tree listing."""
-    root = root_link(robot)
-    children = children_by_link(robot)
-    lines = [f"robot name is: {robot.name}",
-             "---------- Successfully Parsed XML ---------------",
-             f"root Link: {root} has {len(children.get(root, []))} child(ren)"]
-
-    def walk(link: str, depth: int):
-        for index, (_, child) in enumerate(children.get(link, []), start=1):
-            lines.append("    " * depth + f"child({index}):  {child}")
-            walk(child, depth + 1)
-
-    walk(root, 1)
-    return "\n".join(lines) + "\n"

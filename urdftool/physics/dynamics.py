@@ -116,6 +116,7 @@ class State:
     C: np.ndarray | None = None
     tau: np.ndarray | None = None
     rnea_residual: float | None = None
+    warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
 
     def as_dict(self) -> dict:
         def listed(a):
@@ -130,7 +131,8 @@ class State:
 def state(model: Model, q_values: dict, v_values: dict | None = None,
           a_values: dict | None = None) -> State:
     """M(q) (crba), G(q) (computeGeneralizedGravity) and, given v or a, C(q, v) and
-    tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs difference)."""
+    tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs difference); a
+    robot without mass gets a warning."""
     import pinocchio as pin
 
     m, d = model.model, model.data
@@ -140,6 +142,10 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
                    mass_matrix.copy(), gravity)
+    if result.mass <= 0:
+        result.warnings.append("no link has a mass (no <inertial>): M(q) and every gravity "
+                               "torque are zero; check the description (xacro arguments?) with "
+                               "'urdftool check'")
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})
         a = model.velocity(a_values or {})

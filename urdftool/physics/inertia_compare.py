@@ -89,8 +89,22 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
                        link.find("inertial"))
 
 
+class UnknownLink(ValueError):
+    """A link asked for by name that the robot does not have; the message lists the others."""
+
+    def __init__(self, wanted: str, names):
+        from urdftool.errors import available
+
+        super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
+        self.wanted = wanted
+
+
 def compare(robot, density: float | None = None, links: list[str] | None = None):
-    """Every link (or the named ones) of a robot, in document order."""
+    """Every link (or the named ones) of a robot, in document order; UnknownLink when one of
+    ``links`` does not exist."""
+    unknown = [name for name in links or () if name not in robot.links]
+    if unknown:
+        raise UnknownLink(unknown[0], robot.links)
     chosen = robot.children("link")
     if links:
         chosen = [l for l in chosen if l.get("name") in links]

@@ -19,7 +19,14 @@ RENDERED = (".svg", ".png", ".pdf")
 
 
 class DotMissing(Exception):
-    """The ``dot`` program is not installed; the DOT file was written instead."""
+    """The ``dot`` program is not installed; the DOT file was written instead (the message)."""
+
+    def advice(self, output: Path) -> str:
+        """What happened to ``output`` and how to render it."""
+        return (f"Graphviz's 'dot' program is not installed, so {output} was not rendered; "
+                f"wrote the DOT source to {self} instead. Install Graphviz (apt install "
+                f"graphviz, brew install graphviz) or render it with "
+                f"'dot -T{output.suffix[1:]} {self} -o {output}'.")
 
 
 def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:

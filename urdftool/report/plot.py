@@ -11,7 +11,10 @@ import io
 from html import escape
 from pathlib import Path
 
-from urdftool.errors import UsageError
+
+class PlotError(ValueError):
+    """The picture cannot be written in the asked format; the caller names the option."""
+
 
 COLOURS = {"Adjacent": "#7f7f7f", "Default": "#ff7f0e", "Always": "#d62728",
            "Never": "#2ca02c", "": "#1f77b4"}
@@ -93,7 +96,7 @@ def svg(matrix, title: str) -> str:
 
 def write(matrix, path: Path, title: str) -> None:
     """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.description.files.write_file`
-    (a link planted at ``path`` is replaced, never followed); UsageError otherwise."""
+    (a link planted at ``path`` is replaced, never followed); PlotError for another suffix."""
     from urdftool.description.files import write_file
 
     suffix = path.suffix.lower()
@@ -102,7 +105,7 @@ def write(matrix, path: Path, title: str) -> None:
     elif suffix == ".png":
         write_file(path, _png(matrix, title))
     else:
-        raise UsageError(f"--plot: '{path.name}' must end in .svg or .png")
+        raise PlotError(f"'{path.name}' must end in .svg or .png")
 
 
 def _png(matrix, title: str, scale: int = 2) -> bytes:
@@ -110,7 +113,7 @@ def _png(matrix, title: str, scale: int = 2) -> bytes:
     try:
         from PIL import Image, ImageColor, ImageDraw, ImageFont
     except ImportError:
-        raise UsageError("--plot: PNG output needs Pillow (pip install pillow); an .svg needs "
+        raise PlotError("PNG output needs Pillow (pip install pillow); an .svg needs "
                          "nothing") from None
     width, height, items = _layout(matrix, title)
     image = Image.new("RGB", (width * scale, height * scale), "white")

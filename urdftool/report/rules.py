@@ -33,3 +33,17 @@ def rule_page(rule) -> str:
     heading = (f"[bold]{rule.code} {escape(rule.name)}[/] [{style}]({rule.severity.value})[/]"
                f" [dim]{escape(rule.family)}[/]")
     return f"{heading}\n\n{escape(_plain(rule.doc or rule.summary))}"
+
+
+def print_catalogue(rules, stream=None) -> None:
+    """The table of ``rules`` on ``stream`` (default: standard output)."""
+    from urdftool.report.console import plain_console
+
+    plain_console(stream).print(rules_table(rules))
+
+
+def print_rule(rule, stream=None) -> None:
+    """One rule's page on ``stream`` (default: standard output)."""
+    from urdftool.report.console import plain_console
+
+    plain_console(stream).print(rule_page(rule))

@@ -1,0 +1,32 @@
+"""``urdftool tree``'s listing, as check_urdf prints it."""
+
+from __future__ import annotations
+
+import pytest
+
+from urdftool.description.load import load
+from urdftool.kinematics.tree import TreeError
+from urdftool.report.tree import tree_text
+
+
+def _robot(tmp_path, joints: str):
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="base"/><link name="a"/><link name="b"/>'
+                    f'{joints}</robot>')
+    return load(str(path))
+
+
+def test_children_listed_by_joint_name_at_each_depth(tmp_path):
+    robot = _robot(tmp_path, '<joint name="z" type="fixed"><parent link="base"/>'
+                             '<child link="a"/></joint><joint name="y" type="fixed">'
+                             '<parent link="base"/><child link="b"/></joint>')
+    assert tree_text(robot) == ("robot name is: r\n"
+                                "---------- Successfully Parsed XML ---------------\n"
+                                "root Link: base has 2 child(ren)\n"
+                                "    child(1):  b\n"
+                                "    child(2):  a\n")
+
+
+def test_several_roots_are_a_tree_error(tmp_path):
+    with pytest.raises(TreeError, match="3 root links"):
+        tree_text(_robot(tmp_path, ""))

@@ -1,0 +1,150 @@
+"""``urdftool collisions`` for people (text) and programs (JSON): a pose, or the matrix."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from urdftool.report.console import plain_console
+
+
+def write_pose(robot_name: str, report, output_format: str, custom: bool, stream=None) -> None:
+    """A PoseReport as ``output_format`` (text or json); custom: the configuration was given"""
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(pose_json(robot_name, report), stream, finite=True)
+    else:
+        pose_text(robot_name, report, custom, stream)
+
+
+def write_matrix(robot_name: str, outcome, output_format: str, all_pairs: bool = False,
+                 written=(), stream=None) -> None:
+    """A MatrixOutcome as ``output_format`` (text or json); see matrix_text"""
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(matrix_json(robot_name, outcome.matrix, outcome.stale), stream, finite=True)
+    else:
+        matrix_text(robot_name, outcome.matrix, outcome.stale, all_pairs, written, stream)
+
+
+def _notes(console, geometry_problems, visual_only) -> None:
+    from rich.markup import escape
+
+    for problem in geometry_problems:
+        console.print(f"{escape(str(problem.location))}: [yellow]warning[/] "
+                      f"{escape(problem.message)}")
+    if visual_only:
+        console.print(f"[yellow]Links with a visual but no collision geometry[/] (they escape "
+                      f"every check): {', '.join(visual_only)}")
+
+
+def _problems(problems) -> list[dict]:
+    return [{"location": str(p.location), "message": p.message} for p in problems]
+
+
+def pose_json(robot_name: str, report) -> dict:
+    return {"robot": robot_name, "q": report.q, "srdf": report.srdf,
+            "colliding": [vars(c) for c in report.colliding],
+            "closest": [vars(c) for c in report.closest],
+            "visual_only": report.visual_only,
+            "problems": _problems(report.problems)}
+
+
+def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
+    """custom: the configuration was given (else it is the default one)"""
+    from rich.table import Table
+
+    console = plain_console(stream)
+    where = "the given configuration" if custom else "the default configuration"
+    console.print(f"[bold]{robot_name}[/] at {where} ({len(report.q)} joints), "
+                  f"SRDF: {report.srdf or 'none'}")
+    touching = [c for c in report.colliding if c.allowed == "Adjacent"]
+    listed = [c for c in report.colliding if c.allowed != "Adjacent"]
+    if listed:
+        table = Table("link 1", "link 2", "depth (mm)", "status", box=None, pad_edge=False)
+        for c in listed:
+            status = f"allowed ({c.allowed})" if c.allowed else "[bold red]COLLIDING[/]"
+            table.add_row(c.link1, c.link2, f"{c.depth * 1000:.2f}", status)
+        console.print(table)
+    if touching:
+        console.print(f"{len(touching)} adjacent pair(s) overlap at their joints (allowed): "
+                      + ", ".join(f"{c.link1}/{c.link2}" for c in touching))
+    if report.closest:
+        console.print("Closest pairs apart:")
+        table = Table("link 1", "link 2", "distance (mm)", "status", box=None, pad_edge=False)
+        for c in report.closest:
+            table.add_row(c.link1, c.link2, f"{c.distance * 1000:.2f}",
+                          f"disabled ({c.allowed})" if c.allowed else "")
+        console.print(table)
+    _notes(console, report.problems, report.visual_only)
+    bad = report.forbidden
+    if bad:
+        console.print(f"[bold red]{len(bad)} colliding pair(s) not allowed by adjacency or the "
+                      "SRDF[/]")
+    else:
+        allowed = len(report.colliding)
+        console.print(f"[bold green]no self-collision[/]"
+                      + (f" ({allowed} allowed contact(s))" if allowed else ""))
+
+
+def matrix_json(robot_name: str, result, stale) -> dict:
+    return {
+        "robot": robot_name, "samples": result.samples, "seed": result.seed,
+        "margin": result.margin, "min_fraction": result.min_fraction,
+        "converged": result.converged,
+        "rounds": [{"samples": n, "changed": c} for n, c in result.rounds],
+        "unsettled": [{"link1": a, "link2": b, "first_half": x, "all": y}
+                      for a, b, x, y in result.unsettled],
+        "pairs": [{"link1": p.link1, "link2": p.link2, "class": p.reason or "enabled",
+                   "collisions": p.collisions, "samples": p.samples,
+                   "fraction": p.fraction, "min_distance": p.min_distance}
+                  for p in result.pairs],
+        "visual_only": result.visual_only,
+        "problems": _problems(result.problems),
+        "stale": _problems(stale),
+    }
+
+
+def matrix_text(robot_name: str, result, stale, all_pairs: bool = False, written=(),
+                stream=None) -> None:
+    """all_pairs: list every pair, not only those a planner must check; written: files made"""
+    from rich.markup import escape
+    from rich.table import Table
+
+    console = plain_console(stream)
+    counts = Counter(p.reason for p in result.pairs)
+    console.print(f"[bold]{robot_name}[/]: {len(result.links)} links with geometry, "
+                  f"{len(result.pairs)} pairs, {result.samples} samples (seed {result.seed}, "
+                  f"margin {result.margin * 1000:g} mm)")
+    console.print("  " + ", ".join(f"{counts[c]} {c or 'enabled'}" for c in
+                                  ("Adjacent", "Default", "Always", "Never", "")))
+    shown = [p for p in result.pairs if all_pairs or p.reason in ("", "Default", "Always")]
+    near = [p for p in result.pairs if p.reason == "" and p.collisions == 0]
+    if shown:
+        table = Table("link 1", "link 2", "class", "collisions", "min distance (mm)", box=None,
+                      pad_edge=False)
+        for p in sorted(shown, key=lambda p: (-p.fraction, p.min_distance or 0)):
+            distance = "" if p.min_distance is None else f"{p.min_distance * 1000:.2f}"
+            count = f"{p.collisions}/{p.samples}" if p.samples else ""
+            table.add_row(p.link1, p.link2, p.reason or "enabled", count, distance)
+        console.print(table)
+    if near:
+        console.print(f"{len(near)} pair(s) never collided but came within the margin, so they "
+                      "stay enabled (MoveIt would disable them as Never): "
+                      + ", ".join(f"{p.link1}/{p.link2} ({p.min_distance * 1000:.1f} mm)"
+                                  for p in near))
+    for n, changed in result.rounds:
+        console.print(f"after {n} samples: {changed} pair(s) changed class in the second half")
+    if result.converged:
+        console.print("[green]converged[/]: no pair changed class in the second half")
+    else:
+        console.print("[yellow]not converged[/]: " + ", ".join(
+            f"{a}/{b} {x or 'enabled'} -> {y or 'enabled'}" for a, b, x, y in result.unsettled)
+            + f"; these pairs are rare events: more samples (--until-converged, --max-samples) "
+            "would settle them")
+    _notes(console, result.problems, result.visual_only)
+    for item in stale:
+        console.print(f"{escape(str(item.location))}: [bold red]stale[/] {escape(item.message)}")
+    for path in written:
+        console.print(f"wrote {path}")
