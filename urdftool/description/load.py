@@ -143,7 +143,7 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
         raise LoadError([_problem_finding(problem, shown)]) from None
     locations = {element: Location(shown, line) for element, line in lines.items()}
     return Robot(path=path, display=shown, root=root, locations=locations, resolver=resolver,
-                 files=[shown])
+                 files=[shown], sources={shown: data})
 
 
 def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
@@ -152,9 +152,14 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
     try:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
+        sources = {display_path(source_path): data}
+
+        def read_file(name) -> bytes:  # kept: suppressions are read from what was loaded
+            sources[display_path(name)] = read_regular(name, limit)
+            return sources[display_path(name)]
+
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=lambda name: read_regular(name, limit),
-                           roots=_allowed_roots(source_path, args))
+                           read_file=read_file, roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise LoadError([_problem_finding(problem, shown)]) from None
     except XacroFailure as failure:
@@ -166,7 +171,7 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         raise LoadError([_finding(code, location, failure.message)]) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
-                  from_xacro=True)
+                  from_xacro=True, sources=sources)
     robot.options["xacro_warnings"] = expansion.warnings
     robot.options["outside_files"] = expansion.outside
     return robot

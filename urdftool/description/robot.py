@@ -22,6 +22,8 @@ class Robot:
     locations: where each element was written; see :meth:`locate`
     files: every file read to build it (the input first, then includes)
     from_xacro: whether the input went through xacro
+    sources: the bytes of every file read to build it, as loaded (the input's ``data`` when
+        given), by the name findings give it: suppressions are read from these, not from disk
     """
 
     path: str
@@ -32,6 +34,7 @@ class Robot:
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
     options: dict = field(default_factory=dict)
+    sources: dict[str, bytes] = field(default_factory=dict)
 
     def locate(self, element) -> Location:
         """Where ``element`` was written; the file itself when it has no element."""
