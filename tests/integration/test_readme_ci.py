@@ -6,7 +6,6 @@ run through the CLI on a copy of robots/ (clean) and on the same copy plus one b
 
 from __future__ import annotations
 
-import ast
 import json
 import re
 import shlex
@@ -38,15 +37,14 @@ def ci_section() -> str:
     return text[start:end]
 
 
-def readme_commands() -> dict[str, list[str]]:
-    """{format: argv after 'urdftool'} for each ``urdftool check`` in the section's code blocks."""
+def readme_commands() -> dict:
+    """{format: argv after 'urdftool'} for each ``urdftool check`` in the section's code blocks,
+    and {"pytest": source} for its Python test file."""
     commands = {}
     for block in re.findall(r"```(\w+)\n(.*?)```", ci_section(), re.S):
         language, body = block
         if language == "python":
-            for literal in re.findall(r'\[("urdftool".*?)\]', body, re.S):
-                argv = ast.literal_eval(f"[{literal}]")
-                commands["pytest"] = argv[1:]
+            commands["pytest"] = body
             continue
         for line in body.splitlines():
             line = line.strip().removeprefix("- ").removeprefix("run: ")
@@ -128,11 +126,23 @@ def test_junit(run_cli, monkeypatch, workspaces, broken):
 @pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
 @pytest.mark.parametrize("integration", ["make", "pytest"])
 def test_make_and_pytest(run_cli, monkeypatch, workspaces, broken, integration):
+    if integration == "pytest":  # the README's test file, run as pytest would, in process
+        monkeypatch.chdir(workspaces[broken])
+        source = readme_commands()["pytest"]
+        assert "subprocess" not in source
+        namespace = {}
+        exec(compile(source, "README.md:tests/test_urdf.py", "exec"), namespace)
+        tests = [value for name, value in namespace.items() if name.startswith("test_")]
+        assert len(tests) == 1
+        if not broken:
+            tests[0]()
+            return
+        with pytest.raises(AssertionError) as failure:
+            tests[0]()
+        assert "robots/broken.urdf:6: U204 " in str(failure.value)
+        return
     result = run(run_cli, monkeypatch, workspaces[broken], readme_commands()[integration])
     assert result.exit_code == int(broken)
-    if integration == "pytest":  # the README's test asserts on the JSON report
-        report = json.loads(result.stdout)
-        assert [d["code"] for d in report["diagnostics"]] == (["U204"] if broken else [])
 
 
 # A robot that prints an environment variable into the report when $(env) is expanded: the
