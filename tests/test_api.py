@@ -1,4 +1,4 @@
-"""The public Python API: ``import urdftool`` is cheap, and what it offers does what `check` does."""
+"""The public Python API: `import urdftool` is cheap, and what it offers does what check does."""
 
 from __future__ import annotations
 
@@ -60,6 +60,7 @@ def test_check_paths_on_a_broken_copy(broken):
     found = [(f.code, str(f.location), f.severity) for r in run.results for f in r.findings]
     assert found == [("U204", "robots/broken.urdf:7", urdftool.Severity.ERROR)]
     assert urdftool.check_paths(["robots"], ignore=["U204"], jobs=1, timeout=None).exit_code == 0
+    assert urdftool.check_paths("robots/broken.urdf").results[0].path == "robots/broken.urdf"
 
 
 def test_check_file_of_an_unsaved_buffer(broken):

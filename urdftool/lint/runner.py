@@ -136,7 +136,7 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     replaced by the robots including it, and files are checked in worker processes within the
     time and memory budgets.
 
-    paths: files, folders or ``-`` (standard input)
+    paths: files, folders or ``-`` (standard input); one path alone works too
     request: a :class:`~urdftool.lint.settings.CheckRequest`, or its fields as keywords
         (``select``, ``ignore``, ``strict``, ``xacro_args``, ``packages``, ``companions``,
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
@@ -148,6 +148,8 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     elif options:
         raise TypeError("check_paths takes a CheckRequest or keyword options, not both")
     request.companions.check()
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]  # one path, not its characters
     targets = expand(list(paths), request)
     plans = [for_file(path, request) for path in targets.files]
     by_path = dict(zip(targets.files, plans))
