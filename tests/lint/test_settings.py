@@ -237,3 +237,14 @@ def test_command_line_companions_win_one_by_one(project):
                       CheckRequest(companions=given)).options.extras
     assert extras["controllers"] == [str(project / "config" / "d.yaml")]
     assert extras["srdf"] == str(project / "config" / "r.srdf")
+
+
+def test_size_limit_and_per_file_ignores_apply_per_target(two_projects):
+    from urdftool.lint.runner import check_paths
+
+    a, b = two_projects
+    (a / "urdftool.toml").write_text("max-file-size = 10\n")
+    (b / "urdftool.toml").write_text('[per-file-ignores]\n"arm.urdf" = ["U206"]\n')
+    for paths in ([a, b], [b, a]):
+        run = check_paths(paths, jobs=1, timeout=None)
+        assert _found(run.results) == [("a", "U008"), ("b", "U204")]
