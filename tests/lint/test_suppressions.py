@@ -125,3 +125,12 @@ def test_suppressions_in_included_files_come_from_the_bytes_loaded(tmp_path, mon
 
     monkeypatch.setattr(suppressions, "read_regular", no_disk)
     assert check_file(str(robot), CheckOptions()).findings == []
+
+
+def test_suppressions_in_standard_input_count():
+    """Read from the bytes loaded, a comment in piped input works like one in a file."""
+    data = LIMITS.format(comment=COMMENT).encode()
+    assert check_file("-", CheckOptions(), data=data).findings == []
+    unused = LIMITS.format(comment="").replace("<link", COMMENT + "<link", 1).encode()
+    assert [(f.code, f.file) for f in check_file("-", CheckOptions(), data=unused).findings] \
+        == [("U901", "<stdin>"), ("U204", "<stdin>")]
