@@ -13,6 +13,15 @@ class UsageError(UrdftoolError):
     """The command line asked for something impossible (exit code 2)."""
 
 
+class SettingsError(UrdftoolError):
+    """A settings file, or a setting passed to the API, is malformed or names a path it may
+    not."""
+
+
+class TargetError(UrdftoolError):
+    """A path to check does not exist or holds no robot description."""
+
+
 class LoadError(UrdftoolError):
     """A robot description could not be loaded.
 

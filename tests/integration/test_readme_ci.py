@@ -6,7 +6,6 @@ run through the CLI on a copy of robots/ (clean) and on the same copy plus one b
 
 from __future__ import annotations
 
-import ast
 import json
 import re
 import shlex
@@ -38,15 +37,14 @@ def ci_section() -> str:
     return text[start:end]
 
 
-def readme_commands() -> dict[str, list[str]]:
-    """{format: argv after 'urdftool'} for each ``urdftool check`` in the section's code blocks."""
+def readme_commands() -> dict:
+    """{format: argv after 'urdftool'} for each ``urdftool check`` in the section's code blocks,
+    and {"pytest": source} for its Python test file."""
     commands = {}
     for block in re.findall(r"```(\w+)\n(.*?)```", ci_section(), re.S):
         language, body = block
         if language == "python":
-            for literal in re.findall(r'\[("urdftool".*?)\]', body, re.S):
-                argv = ast.literal_eval(f"[{literal}]")
-                commands["pytest"] = argv[1:]
+            commands["pytest"] = body
             continue
         for line in body.splitlines():
             line = line.strip().removeprefix("- ").removeprefix("run: ")
@@ -70,6 +68,16 @@ def workspaces(tmp_path_factory):
         shutil.copytree(ROBOTS, target)
     (broken / "broken.urdf").write_text(BROKEN)
     return clean.parent, broken.parent
+
+
+def readme_test():
+    """The test function of the README's Python test file (it calls urdftool in process)."""
+    source = readme_commands()["pytest"]
+    assert "subprocess" not in source
+    namespace = {}
+    exec(compile(source, "README.md:tests/test_urdf.py", "exec"), namespace)
+    (test,) = [value for name, value in namespace.items() if name.startswith("test_")]
+    return test
 
 
 def run(run_cli, monkeypatch, workspace: Path, argv: list[str]):
@@ -128,11 +136,17 @@ def test_junit(run_cli, monkeypatch, workspaces, broken):
 @pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
 @pytest.mark.parametrize("integration", ["make", "pytest"])
 def test_make_and_pytest(run_cli, monkeypatch, workspaces, broken, integration):
+    if integration == "pytest":  # the README's test file, run as pytest would, in process
+        monkeypatch.chdir(workspaces[broken])
+        if not broken:
+            readme_test()()
+            return
+        with pytest.raises(AssertionError) as failure:
+            readme_test()()
+        assert "robots/broken.urdf:6: U204 " in str(failure.value)
+        return
     result = run(run_cli, monkeypatch, workspaces[broken], readme_commands()[integration])
     assert result.exit_code == int(broken)
-    if integration == "pytest":  # the README's test asserts on the JSON report
-        report = json.loads(result.stdout)
-        assert [d["code"] for d in report["diagnostics"]] == (["U204"] if broken else [])
 
 
 # A robot that prints an environment variable into the report when $(env) is expanded: the
@@ -194,11 +208,17 @@ def test_ci_recipes_do_not_leak_the_environment_even_without_ci(leaky, integrati
     assert result.exit_code == 1 and "U005" in report and SECRET not in report
 
 
-@pytest.mark.parametrize("integration", ["make", "pytest"])
-def test_recipes_without_the_flag_are_safe_under_ci(leaky, integration):
-    argv = readme_commands()[integration]
-    result = invoke(argv, CI="true")
+def test_recipes_without_the_flag_are_safe_under_ci(leaky):
+    result = invoke(readme_commands()["make"], CI="true")
     assert result.exit_code == 1 and "U005" in result.output and SECRET not in result.output
+
+
+def test_the_readme_pytest_is_safe_under_ci(leaky, monkeypatch):
+    monkeypatch.setenv("CI", "true")
+    monkeypatch.setenv("URDFTOOL_SECRET", SECRET)
+    with pytest.raises(AssertionError) as failure:
+        readme_test()()
+    assert "U005" in str(failure.value) and SECRET not in str(failure.value)
 
 
 @pytest.mark.parametrize(("ci", "flag", "leaks"), [

@@ -60,16 +60,16 @@ def test_a_file_over_the_budget_gets_a_finding_and_the_run_goes_on(tmp_path, rob
 def test_a_dying_worker_becomes_an_internal_error(robots, monkeypatch):
     import os
 
-    from urdftool.lint import runner as parallel
+    from urdftool.lint import engine
 
-    real = parallel.check_file
+    real = engine.check_file
 
-    def die_on_second(path, options):
+    def die_on_second(path, options, data=None):
         if path == robots[1]:
             os._exit(3)
-        return real(path, options)
+        return real(path, options, data)
 
-    monkeypatch.setattr(parallel, "check_file", die_on_second)
+    monkeypatch.setattr(engine, "check_file", die_on_second)
     results = check_files(robots, lambda p: CheckOptions(), jobs=2, timeout=30)
     assert _codes(results) == [[], ["U900"], [], ["U001"], []]
     assert "exit code 3" in results[1].findings[0].message
@@ -89,22 +89,22 @@ def test_negative_jobs_is_a_usage_error(run_cli, robots):
 
 def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, tmp_path):
     from urdftool import budget
-    from urdftool.lint import runner as parallel
+    from urdftool.lint import engine
     from urdftool.diagnostics import Location
 
     files = []
     for name in ("a.urdf", "b.urdf", "c.urdf"):
         (tmp_path / name).write_text(GOOD)
         files.append(str(tmp_path / name))
-    real = parallel.check_file
+    real = engine.check_file
 
-    def hungry_b(path, options):
+    def hungry_b(path, options, data=None):
         if path.endswith("b.urdf"):
             budget.working_at(Location("b.urdf", 7, (Location("top.xacro", 2),)))
             raise MemoryError
-        return real(path, options)
+        return real(path, options, data)
 
-    monkeypatch.setattr(parallel, "check_file", hungry_b)
+    monkeypatch.setattr(engine, "check_file", hungry_b)
     for jobs, timeout, memory in ((1, 30, 2 * 1024 ** 3), (1, None, None)):  # worker, here
         results = check_files(files, lambda p: CheckOptions(), jobs=jobs, timeout=timeout,
                               memory=memory)
@@ -171,3 +171,32 @@ def test_what_a_worker_prints_reaches_this_process(capsys):
     captured = capsys.readouterr()  # streams without a file: passed on over the pipe
     assert sorted(captured.out.split("\n")) == ["", "out 0", "out 1"]
     assert sorted(captured.err.split("\n")) == ["", "err 0", "err 1"]
+
+
+def test_check_paths_keeps_the_order_across_memory_budgets(tmp_path):
+    """Files whose settings give different max-memory go to different pools; the results still
+    come in the order of the targets."""
+    from urdftool.lint.runner import check_paths
+
+    for name, memory in (("a", '"1G"'), ("b", None), ("c", "0")):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "r.urdf").write_text(BAD if name == "b" else GOOD)
+        if memory:
+            (tmp_path / name / "urdftool.toml").write_text(f"max-memory = {memory}\n")
+    run = check_paths([tmp_path / "a", tmp_path / "b", tmp_path / "c"], jobs=2)
+    assert [r.path.split("/")[-2] for r in run.results] == ["a", "b", "c"]
+    assert _codes(run.results) == [[], ["U001"], []] and run.exit_code == 1
+
+
+def test_run_exit_code_is_strict_per_file():
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.lint.engine import FileResult
+    from urdftool.lint.runner import Run
+
+    warning = FileResult("w.urdf", [Finding("U206", "n", Severity.WARNING, "m", Location("w"))])
+    error = FileResult("e.urdf", [Finding("U204", "n", Severity.ERROR, "m", Location("e"))])
+    clean = FileResult("c.urdf", [])
+    assert Run([warning, clean], strict=[False, True]).exit_code == 0
+    assert Run([warning, clean], strict=[True, False]).exit_code == 1
+    assert Run([clean, error], strict=[False, False]).exit_code == 1
+    assert Run([]).exit_code == 0

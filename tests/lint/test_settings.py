@@ -6,8 +6,8 @@ import json
 
 import pytest
 
-from urdftool.lint import runner as parallel
-from urdftool.lint.settings import find_config
+from urdftool.lint import engine
+from urdftool.lint.settings import settings_for
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>
@@ -119,9 +119,9 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     settings(project, 'spec = "config/limits.yaml"\ncontrollers = "config/c.yaml"\n'
                       'srdf = "config/r.srdf"\n')
     seen = []
-    real = parallel.check_file
-    monkeypatch.setattr(parallel, "check_file",
-                        lambda path, options: seen.append(options.extras) or real(path, options))
+    real = engine.check_file
+    monkeypatch.setattr(engine, "check_file", lambda path, options, data=None:
+                        seen.append(options.extras) or real(path, options, data))
     codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0",
           "--max-memory", "0")  # no budget: in this process
     config = project / "config"
@@ -146,8 +146,105 @@ def test_readme_example_parses(project):
     section = text[text.index("## Using urdftool in CI"):]
     example = re.search(r"```toml\n(.*?)```", section, re.S).group(1)
     (project / "pyproject.toml").write_text(example)
-    config = find_config(project)
+    config = settings_for(project)
     assert config.select == ["U"] and config.ignore == ["U206", "axis-not-unit"]
     assert config.per_file_ignores == {"legacy/*.urdf": ["U3"]}
     assert config.packages == {"my_description": project / "src" / "my_description"}
     assert config.max_file_size == 16777216 and config.strict is False
+
+
+@pytest.fixture
+def two_projects(tmp_path):
+    """a/ ignores U204 in its urdftool.toml, b/ has no settings; both hold the same robot."""
+    for name in ("a", "b"):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "arm.urdf").write_text(ROBOT)
+    (tmp_path / "a" / "urdftool.toml").write_text('ignore = ["U204"]\nstrict = true\n')
+    return tmp_path / "a", tmp_path / "b"
+
+
+def _found(results):
+    return sorted((r.path.split("/")[-2], f.code) for r in results for f in r.findings)
+
+
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)], ids=["a-b", "b-a"])
+def test_settings_apply_per_target_in_either_order(two_projects, order):
+    """Bug: settings came from the first path only, so `check a b` and `check b a` differed."""
+    from urdftool.lint.runner import check_paths
+
+    run = check_paths([two_projects[i] for i in order], jobs=1, timeout=None)
+    assert _found(run.results) == [("a", "U206"), ("b", "U204"), ("b", "U206")]
+    assert run.strict == [order[i] == 0 for i in range(2)]  # a's strict = true, b's not
+    assert run.exit_code == 1
+
+
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)], ids=["a-b", "b-a"])
+def test_cli_settings_apply_per_target_in_either_order(run_cli, two_projects, order):
+    assert codes(run_cli, *[two_projects[i] for i in order]) == (1, ["U204", "U206", "U206"])
+
+
+def test_strict_settings_fail_only_their_own_files(two_projects):
+    """a's strict = true: its warning (U206) fails the run; b's warnings alone do not."""
+    from urdftool.lint.runner import check_paths
+
+    a, b = two_projects
+    (b / "arm.urdf").write_text(ROBOT.replace('lower="1" upper="-1"', 'lower="-1" upper="1"'))
+    assert check_paths([b], jobs=1, timeout=None).exit_code == 0
+    assert check_paths([b, a], jobs=1, timeout=None).exit_code == 1
+    assert check_paths([b, a], jobs=1, timeout=None, use_settings=False).exit_code == 1
+    (a / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    assert check_paths([b, a], jobs=1, timeout=None).exit_code == 0
+
+
+def test_settings_files_are_read_once_per_version(project, monkeypatch):
+    from urdftool.lint import settings as module
+
+    settings(project, 'ignore = ["U204"]\n', "urdftool.toml")
+    reads = []
+    real = module._read
+    monkeypatch.setattr(module, "_read", lambda path: reads.append(path) or real(path))
+    module._settings_file.cache_clear()
+    first = settings_for(project / "robots" / "arm.urdf")
+    assert settings_for(project / "robots") is first and len(reads) == 1
+    settings(project, 'ignore = ["U204", "U206"]\n', "urdftool.toml")
+    assert settings_for(project / "robots").ignore == ["U204", "U206"] and len(reads) == 2
+
+
+def test_core_errors_name_no_flag(project):
+    """The core raises SettingsError without a flag; the CLI prints it with exit 2."""
+    from urdftool.errors import SettingsError, UrdftoolError
+    from urdftool.lint.runner import check_paths
+
+    assert issubclass(SettingsError, UrdftoolError)
+    with pytest.raises(SettingsError, match="^max_file_size must be a whole number"):
+        check_paths([project], max_file_size=0)
+    with pytest.raises(SettingsError, match="companion file '.*nowhere.yaml' does not exist"):
+        check_paths([project], companions={"spec": project / "nowhere.yaml"})
+    settings(project, 'selct = ["U2"]\n')
+    with pytest.raises(SettingsError, match="unknown urdftool setting"):
+        check_paths([project / "robots"])
+
+
+def test_command_line_companions_win_one_by_one(project):
+    from urdftool.lint.settings import CheckRequest, Companions, for_file
+
+    (project / "config").mkdir()
+    for name in ("c.yaml", "d.yaml", "r.srdf"):
+        (project / "config" / name).write_text("")
+    settings(project, 'controllers = "config/c.yaml"\nsrdf = "config/r.srdf"\n')
+    given = Companions(controllers=[project / "config" / "d.yaml"])
+    extras = for_file(str(project / "robots" / "arm.urdf"),
+                      CheckRequest(companions=given)).options.extras
+    assert extras["controllers"] == [str(project / "config" / "d.yaml")]
+    assert extras["srdf"] == str(project / "config" / "r.srdf")
+
+
+def test_size_limit_and_per_file_ignores_apply_per_target(two_projects):
+    from urdftool.lint.runner import check_paths
+
+    a, b = two_projects
+    (a / "urdftool.toml").write_text("max-file-size = 10\n")
+    (b / "urdftool.toml").write_text('[per-file-ignores]\n"arm.urdf" = ["U206"]\n')
+    for paths in ([a, b], [b, a]):
+        run = check_paths(paths, jobs=1, timeout=None)
+        assert _found(run.results) == [("a", "U008"), ("b", "U204")]

@@ -36,6 +36,10 @@ def _finding(code, file, line, via=()):
     return Finding(code, "x", Severity.ERROR, "m", Location(file, line, via))
 
 
+def _sources(*paths):
+    return {str(path): path.read_bytes() for path in paths}
+
+
 def test_apply_silences_by_code_prefix_and_call_site(tmp_path):
     robot, macro = tmp_path / "robot.xacro", tmp_path / "macro.xacro"
     robot.write_text("<robot>\n<!-- urdftool: ignore U2 -->\n<xacro:wheel/>\n</robot>\n")
@@ -44,16 +48,16 @@ def test_apply_silences_by_code_prefix_and_call_site(tmp_path):
     kept = apply([_finding("U206", str(macro), 2, (call,)),
                   _finding("U206", str(macro), 2, (Location(str(robot), 4),)),
                   _finding("U101", str(macro), 2, (call,))],
-                 [str(robot), str(macro)], lambda code: True, CATALOGUE)
+                 _sources(robot, macro), lambda code: True, CATALOGUE)
     assert [(f.code, f.location.via[0].line) for f in kept] == [("U206", 4), ("U101", 3)]
 
 
 def test_unused_is_reported_only_when_its_rules_ran(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text("<robot>\n<!-- urdftool: ignore U204 -->\n<joint/>\n</robot>\n")
-    assert [f.code for f in apply([], [str(path)], lambda code: True, CATALOGUE)] == ["U901"]
-    assert apply([], [str(path)], lambda code: code != "U204", CATALOGUE) == []
-    assert apply([], [str(path)], lambda code: code != "U901", CATALOGUE) == []
+    assert [f.code for f in apply([], _sources(path), lambda code: True, CATALOGUE)] == ["U901"]
+    assert apply([], _sources(path), lambda code: code != "U204", CATALOGUE) == []
+    assert apply([], _sources(path), lambda code: code != "U901", CATALOGUE) == []
 
 
 def test_check_file_applies_suppressions_and_selection(tmp_path):
@@ -71,3 +75,63 @@ def test_check_file_applies_suppressions_and_selection(tmp_path):
     # U204 is located at <limit>: the trailing comment silences it, the one above <joint> is unused
     assert codes(CheckOptions()) == [("U901", 3)]
     assert codes(CheckOptions(selection=Selection(ignore=("U204",)))) == []
+
+
+LIMITS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="revolute">
+    <parent link="a"/><child link="b"/>
+    {comment}<limit lower="1" upper="-1" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+COMMENT = "<!-- urdftool: ignore U204 -->\n    "
+
+
+def test_suppression_only_in_the_data_given_is_honoured(tmp_path):
+    """An editor's unsaved buffer: the comment is in ``data``, not yet on disk."""
+    path = tmp_path / "r.urdf"
+    path.write_text(LIMITS.format(comment=""))
+    data = LIMITS.format(comment=COMMENT).encode()
+    result = check_file(str(path), CheckOptions(), data=data)
+    assert [(f.code, f.line) for f in result.findings] == []
+
+
+def test_suppression_only_on_disk_is_not_applied_to_the_data_given(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text(LIMITS.format(comment=COMMENT))
+    data = LIMITS.format(comment="").encode()
+    result = check_file(str(path), CheckOptions(), data=data)
+    assert [(f.code, f.line) for f in result.findings] == [("U204", 5)]
+
+
+def test_suppressions_in_included_files_come_from_the_bytes_loaded(tmp_path, monkeypatch):
+    """A xacro include is read once, by the loader; suppressions are not read again from disk
+    (the file changed on disk after loading is not what was checked)."""
+    (tmp_path / "joint.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <joint name="j" type="revolute">\n'
+        '    <parent link="a"/><child link="b"/>\n'
+        '    <!-- urdftool: ignore U204 -->\n'
+        '    <limit lower="1" upper="-1" effort="1" velocity="1"/>\n'
+        '  </joint>\n</robot>\n')
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                     '  <link name="a"/><link name="b"/>\n'
+                     '  <xacro:include filename="joint.xacro"/>\n</robot>\n')
+    from urdftool.lint import suppressions
+
+    def no_disk(name, *args, **kwargs):
+        raise AssertionError(f"suppressions re-read {name} from disk")
+
+    monkeypatch.setattr(suppressions, "read_regular", no_disk)
+    assert check_file(str(robot), CheckOptions()).findings == []
+
+
+def test_suppressions_in_standard_input_count():
+    """Read from the bytes loaded, a comment in piped input works like one in a file."""
+    data = LIMITS.format(comment=COMMENT).encode()
+    assert check_file("-", CheckOptions(), data=data).findings == []
+    unused = LIMITS.format(comment="").replace("<link", COMMENT + "<link", 1).encode()
+    assert [(f.code, f.file) for f in check_file("-", CheckOptions(), data=unused).findings] \
+        == [("U901", "<stdin>"), ("U204", "<stdin>")]

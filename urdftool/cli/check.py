@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
-import os
 import sys
 from pathlib import Path
 
@@ -62,10 +60,10 @@ def check(
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
     from urdftool.budget import Budget
-    from urdftool.lint.settings import checked_file_size
-    from urdftool.lint.engine import CheckOptions, Selection
-    from urdftool.lint.runner import check_files
-    from urdftool.report import FORMATS, Summary, render
+    from urdftool.errors import SettingsError, TargetError
+    from urdftool.lint.runner import check_paths
+    from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
+    from urdftool.report import FORMATS, printable, render
 
     try:
         paths, args, packages = robot_inputs(words, arg, package)
@@ -76,133 +74,27 @@ def check(
         if format not in (*FORMATS, "auto"):
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
         refuse_bad_outputs(output)
-        config = _config_for(paths[0])
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
-        limit = max_file_size or config.max_file_size or CheckOptions.max_file_size
-        budget = Budget.of(timeout, max_memory if max_memory is not None else config.max_memory)
-        files, skipped = _expand_paths(paths, packages, limit)
-        # Command-line companions win over the settings file's.
-        extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec),
-                  "max_triangles": max_triangles}
-    except UsageError as error:
+        Budget.of(timeout, max_memory)  # --timeout and --max-memory are well formed
+        run = check_paths(paths, CheckRequest(
+            select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
+            packages=packages, companions=Companions(controllers or None, srdf, spec),
+            allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
+            max_memory=max_memory, timeout=timeout, jobs=jobs or None))
+    except (UsageError, SettingsError, TargetError) as error:
         fail_usage(error)
-    if verbose:
-        from urdftool.report import printable  # a file name can hold a line break
-
-        for path, reason in skipped.items():
+    for note in run.notes:
+        typer.echo(printable(f"urdftool: {note}"), err=True)
+    if verbose:  # a file name can hold a line break: printable
+        for path, reason in run.skipped.items():
             typer.echo(printable(f"skipped {path}: {reason}"), err=True)
-    # --select replaces the settings' select; --ignore adds to their ignore.
-    base_selection = Selection(tuple(_codes(select or config.select)),
-                               tuple(_codes([*config.ignore, *ignore])))
-    options = CheckOptions(
-        xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
-        allow_env=env_allowed(allow_env),
-        max_file_size=limit,
-        extras=extras,
-    )
-
-    def options_for(path: str) -> CheckOptions:
-        per_file = config.ignores_for(path)
-        if not per_file:
-            return options
-        return dataclasses.replace(options, selection=Selection(
-            base_selection.select, (*base_selection.ignore, *_codes(per_file))))
-
-    results = check_files(files, options_for, jobs=jobs or None, timeout=budget.seconds,
-                          memory=budget.memory)
     if output:
         import io
 
         report = io.StringIO()
-        render(format, results, report)
+        render(format, run.results, report)
         write_output(output, report.getvalue())
     else:
-        render(format, results, sys.stdout)
-    summary = Summary.of(results)
-    failed = summary.errors or ((strict or config.strict) and summary.warnings)
-    raise typer.Exit(1 if failed else 0)
-
-
-def env_allowed(flag: bool | None) -> bool:
-    """``--allow-env``/``--no-env`` as given; unset, the safe mode when ``CI`` is set.
-
-    A CI job on a pull request checks files a stranger wrote, and its environment holds
-    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
-    them in the job's public log. GitHub Actions, GitLab CI and most other services set
-    ``CI=true``; on a developer's machine the files are their own.
-    """
-    if flag is not None:
-        return flag
-    return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
-
-
-def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None) -> dict:
-    """Companion files named on the command line, checked to exist (else a usage error)."""
-    for path in [*controllers, srdf, spec]:
-        if path is not None and not path.is_file():
-            raise UsageError(f"companion file '{path}' does not exist")
-    extras = {"controllers": [str(p) for p in controllers]} if controllers else {}
-    if srdf is not None:
-        extras["srdf"] = str(srdf)
-    if spec is not None:
-        extras["spec"] = str(spec)
-    return extras
-
-
-def _settings_companions(config) -> dict:
-    """``spec``/``controllers``/``srdf`` from the settings file, in the form the rules read."""
-    found = {key: str(path) for key, path in config.companions.items() if key != "controllers"}
-    controllers = config.companions.get("controllers")
-    if controllers is not None:
-        found["controllers"] = [str(p) for p in (controllers if isinstance(controllers, list)
-                                                 else [controllers])]
-    return found
-
-
-def _codes(values: list[str]) -> list[str]:
-    return [part.strip() for value in values for part in value.split(",") if part.strip()]
-
-
-def _config_for(path: str):
-    from urdftool.lint.settings import find_config
-
-    return find_config(Path.cwd() if path == "-" else Path(path))
-
-
-def _expand_paths(paths: list[str], packages, max_file_size: int) -> tuple[list[str], dict]:
-    """Files to check, in a stable order, and the files skipped in folders with the reason.
-    Files over ``max_file_size`` [bytes] are not read to classify them."""
-    from urdftool.diagnostics import display_path
-    from urdftool.lint.targets import (explicit_targets, includers_below, project_root, resolved_path,
-                            robot_files, split_top_level)
-    from urdftool.description.packages import PackageResolver
-
-    resolver_for = lambda p: PackageResolver(packages, start=p.parent)  # noqa: E731
-    includers = {}  # project root -> its include graph, built once
-    files, skipped = [], {}
-    for path in paths:
-        if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
-            files.append(path)
-            continue
-        if Path(path).is_file():
-            root = project_root(Path(path))
-            if root not in includers:
-                includers[root] = includers_below(root, resolver_for, max_file_size)
-            targets, reason = explicit_targets(Path(path), includers[root], root, max_file_size)
-            files.extend(display_path(p) if p != Path(path) else path for p in targets)
-            if reason:
-                from urdftool.report import printable
-
-                typer.echo(printable(f"urdftool: {path}: {reason}"), err=True)
-            continue
-        found = robot_files(Path(path))
-        top, skipped_here = split_top_level(found, resolver_for, max_file_size)
-        files.extend(str(p) for p in top)
-        skipped.update({str(p): reason for p, reason in skipped_here.items()})
-        if not found:
-            raise UsageError(f"no .urdf or .xacro files found in '{path}'")
-    unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
-    for file in files:
-        unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
-    return list(unique.values()), skipped
+        render(format, run.results, sys.stdout)
+    raise typer.Exit(run.exit_code)

@@ -140,7 +140,7 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
         raise _problem_error(problem, shown) from None
     locations = {element: Location(shown, line) for element, line in lines.items()}
     return Robot(path=path, display=shown, root=root, locations=locations, resolver=resolver,
-                 files=[shown])
+                 files=[shown], sources={shown: data})
 
 
 def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
@@ -149,9 +149,14 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
     try:
         refuse_empty_or_binary(data)
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
+        sources = {display_path(source_path): data}
+
+        def read_file(name) -> bytes:  # kept: suppressions are read from what was loaded
+            sources[display_path(name)] = read_regular(name, limit)
+            return sources[display_path(name)]
+
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
-                           read_file=lambda name: read_regular(name, limit),
-                           roots=_allowed_roots(source_path, args))
+                           read_file=read_file, roots=_allowed_roots(source_path, args))
     except XmlProblem as problem:
         raise _problem_error(problem, shown) from None
     except XacroFailure as failure:
@@ -161,7 +166,7 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         raise LoadError(failure.kind, failure.message, location, failure.subject) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
-                  from_xacro=True)
+                  from_xacro=True, sources=sources)
     robot.notes.extend(LoadNote("xacro-warning", where, message)
                        for where, message in expansion.warnings)
     robot.notes.extend(LoadNote("outside-file", where, message)

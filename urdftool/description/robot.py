@@ -38,6 +38,8 @@ class Robot:
     files: every file read to build it (the input first, then includes)
     from_xacro: whether the input went through xacro
     notes: what the loader noticed that did not stop it, in the order it noticed
+    sources: the bytes of every file read to build it, as loaded (the input's ``data`` when
+        given), by the name findings give it: suppressions are read from these, not from disk
     """
 
     path: str
@@ -49,6 +51,7 @@ class Robot:
     from_xacro: bool = False
     notes: list[LoadNote] = field(default_factory=list)
     options: dict = field(default_factory=dict)
+    sources: dict[str, bytes] = field(default_factory=dict)
 
     def locate(self, element) -> Location:
         """Where ``element`` was written; the file itself when it has no element."""

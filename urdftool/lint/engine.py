@@ -108,7 +108,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
             raise  # over the memory budget: the runner reports it (U018)
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
-    findings = suppressions.apply(findings, robot.files, selection.allows, CATALOGUE)
+    findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
     return sorted(set(findings), key=Finding.sort_key)
 
 

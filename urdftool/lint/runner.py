@@ -10,7 +10,9 @@ order given, whatever order the workers finish in. What a worker prints goes to 
 standard streams: directly when they are files, passed on over the pipe when they are not (under
 a test runner).
 
-``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files.
+``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files;
+``check_paths`` is ``urdftool check`` (settings, targets, budgets, exit code) and ``check_file``
+one file in this process, as an editor has it (both are the public API: ``urdftool.check_paths``).
 """
 
 from __future__ import annotations
@@ -22,13 +24,17 @@ import signal
 import sys
 import time
 import traceback
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from multiprocessing.connection import wait
 
 from urdftool import budget as budgets
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
-from urdftool.diagnostics import Finding, Location, display_path
-from urdftool.lint.engine import CheckOptions, FileResult, check_file
+from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.lint import engine
+from urdftool.lint.engine import CheckOptions, FileResult
+from urdftool.lint.settings import CheckRequest, Companions, for_file
+from urdftool.lint.targets import expand
 
 
 def default_jobs() -> int:
@@ -90,15 +96,94 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
 
     def work(index: int) -> list[Finding]:
         path = files[index]
-        if path in stdin:
-            return check_file(path, options_for(path), data=stdin[path]).findings
-        return check_file(path, options_for(path)).findings
+        return engine.check_file(path, options_for(path), data=stdin.get(path)).findings
 
     def stopped(index: int, stop: Stop) -> list[Finding]:
         return [stop_finding(files[index], stop, "checking")]
 
     findings = run_budgeted(len(files), work, budget, stopped, jobs)
     return [FileResult(path, found) for path, found in zip(files, findings)]
+
+
+@dataclass
+class Run:
+    """What checking some paths found.
+
+    results: one per file checked, in order
+    skipped: files found in folders and not checked -> why
+    notes: "PATH: what happened" for files named that were checked through others or not at all
+    strict: per result, whether a warning in it fails the run (its settings or the request)
+    """
+
+    results: list[FileResult]
+    skipped: dict[str, str] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    strict: list[bool] = field(default_factory=list)
+
+    @property
+    def exit_code(self) -> int:
+        """0 clean, 1 when a file has an error, or a warning and is checked strictly."""
+        for result, strict in zip(self.results, self.strict):
+            levels = {finding.severity for finding in result.findings}
+            if Severity.ERROR in levels or strict and Severity.WARNING in levels:
+                return 1
+        return 0
+
+
+def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run:
+    """Check files and folders as ``urdftool check PATH...`` does: the settings file above each
+    target applies to it, folders are walked for top-level robots, a macro library named is
+    replaced by the robots including it, and files are checked in worker processes within the
+    time and memory budgets.
+
+    paths: files, folders or ``-`` (standard input); one path alone works too
+    request: a :class:`~urdftool.lint.settings.CheckRequest`, or its fields as keywords
+        (``select``, ``ignore``, ``strict``, ``xacro_args``, ``packages``, ``companions``,
+        ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
+        ``jobs``, ``use_settings``); defaults as the command line's
+    Raises SettingsError or TargetError (both UrdftoolError) before anything is checked.
+    """
+    if request is None:
+        request = _request(options)
+    elif options:
+        raise TypeError("check_paths takes a CheckRequest or keyword options, not both")
+    request.companions.check()
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]  # one path, not its characters
+    targets = expand(list(paths), request)
+    plans = [for_file(path, request) for path in targets.files]
+    by_path = dict(zip(targets.files, plans))
+    results: list[FileResult | None] = [None] * len(targets.files)
+    for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
+        indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
+        found = check_files([targets.files[i] for i in indexes], lambda p: by_path[p].options,
+                            jobs=request.jobs, timeout=request.timeout, memory=memory)
+        for index, result in zip(indexes, found):
+            results[index] = result
+    return Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])
+
+
+def check_file(path, *, data: bytes | str | None = None, **options) -> FileResult:
+    """Check one file in this process, with no time budget, as an editor has it.
+
+    data: the file's content when it is not to be read from ``path`` (an unsaved buffer);
+        suppression comments are read from it too
+    options: as :func:`check_paths` (the settings file above ``path`` applies, per-file ignores
+        too, unless ``use_settings=False``); the result keeps the loaded ``robot``
+    """
+    path = os.fspath(path)
+    request = _request(options)
+    request.companions.check()
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    return engine.check_file(path, for_file(path, request).options, data=data)
+
+
+def _request(options: dict) -> CheckRequest:
+    companions = options.get("companions")
+    if isinstance(companions, Mapping):
+        options = {**options, "companions": Companions(**companions)}
+    return CheckRequest(**options)
 
 
 def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
@@ -336,5 +421,6 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
             worker.stop(kill=worker.index is not None)
 
 
-__all__ = ["Budget", "CheckOptions", "DEFAULT_TIMEOUT", "Stop", "check_files", "default_jobs",
-           "run_budgeted", "stop_finding"]
+__all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
+           "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
+           "stop_finding"]

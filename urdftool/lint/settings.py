@@ -1,5 +1,8 @@
 """Project settings: ``[tool.urdftool]`` in a pyproject.toml, or an ``urdftool.toml``, found above
-the input.
+each input, and their merge with what was asked for (:class:`CheckRequest`, the command line).
+
+Settings are resolved per target file (:func:`for_file`): checking ``a/`` and ``b/`` together
+applies ``a``'s settings to the files in ``a`` and ``b``'s to those in ``b``, in either order.
 
 Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
 glob -> list), ``packages`` (a table of package name -> folder, relative to the settings file),
@@ -11,18 +14,23 @@ The settings file comes with the repository, so it is as untrusted as the robot 
 looked for up to the repository root (the nearest folder holding ``.git``) and no further, read
 only when it is a regular file of at most 1 MiB, and a path it names (``packages``, ``spec``,
 ``srdf``, ``controllers``) that leads outside the repository, through ``..``, an absolute path or
-a symbolic link, is a usage error: nothing there is read.
+a symbolic link, is a :class:`~urdftool.errors.SettingsError`: nothing there is read.
 """
 
 from __future__ import annotations
 
 import fnmatch
+import os
 import tomllib
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
-from urdftool.errors import UsageError
+from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, parse_memory
+from urdftool.errors import SettingsError, UsageError
 from urdftool.description.files import inside, read_regular
+from urdftool.lint.engine import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
@@ -30,7 +38,10 @@ KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers
 
 
 @dataclass
-class Config:
+class Settings:
+    """One settings file as read (``path`` None: no settings file). Shared between the files
+    it applies to: do not change it."""
+
     path: Path | None = None
     select: list[str] = field(default_factory=list)
     ignore: list[str] = field(default_factory=list)
@@ -58,12 +69,13 @@ class Config:
         return found
 
 
-def find_config(start: Path) -> Config:
-    """The nearest settings file above ``start`` (a file or folder), up to the repository root;
-    empty Config when none."""
+def settings_for(path: str | os.PathLike) -> Settings:
+    """The settings that apply to ``path`` (a file or folder; ``-``, standard input: the working
+    folder): the nearest settings file above it, up to the repository root; empty Settings when
+    none. Each settings file is read once per version."""
     from urdftool.description.packages import repository_root
 
-    folder = start.absolute()
+    folder = Path.cwd() if os.fspath(path) == "-" else Path(path).absolute()
     if not folder.is_dir():
         folder = folder.parent
     chain = [folder, *folder.parents]
@@ -71,15 +83,23 @@ def find_config(start: Path) -> Config:
     if root is not None:
         chain = chain[:chain.index(root) + 1]
     for candidate in chain:
-        dedicated = candidate / "urdftool.toml"
-        if dedicated.is_file():
-            return _parse(dedicated, _read(dedicated))
-        pyproject = candidate / "pyproject.toml"
-        if pyproject.is_file():
-            table = _read(pyproject).get("tool", {}).get("urdftool")
-            if table is not None:
-                return _parse(pyproject, table)
-    return Config()
+        for name in ("urdftool.toml", "pyproject.toml"):
+            file = candidate / name
+            if file.is_file():
+                status = file.stat()
+                found = _settings_file(file, status.st_mtime_ns, status.st_size)
+                if found is not None:
+                    return found
+    return Settings()
+
+
+@lru_cache(maxsize=64)
+def _settings_file(file: Path, mtime: int, size: int) -> Settings | None:
+    """The settings in ``file``; None for a pyproject.toml without ``[tool.urdftool]``."""
+    if file.name == "urdftool.toml":
+        return _parse(file, _read(file))
+    table = _read(file).get("tool", {}).get("urdftool")
+    return None if table is None else _parse(file, table)
 
 
 def _read(path: Path) -> dict:
@@ -87,29 +107,29 @@ def _read(path: Path) -> dict:
     try:
         return tomllib.loads(read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8"))
     except OSError as error:
-        raise UsageError(f"cannot read settings in {path}: {error.strerror}") from None
+        raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
-        raise UsageError(f"cannot read settings in {path}: {error}") from None
+        raise SettingsError(f"cannot read settings in {path}: {error}") from None
 
 
 def _refuse_outside(settings: Path, path: Path, what: str) -> None:
-    """UsageError when ``path``, named by ``settings``, leads outside the settings file's
+    """SettingsError when ``path``, named by ``settings``, leads outside the settings file's
     repository (nearest ``.git`` above it, else its own folder)."""
     from urdftool.description.packages import repository_root
 
     root = repository_root(settings.parent) or settings.parent
     if not inside(path, root):
-        raise UsageError(f"{settings}: {what} '{path}' leads outside the repository ({root}); "
+        raise SettingsError(f"{settings}: {what} '{path}' leads outside the repository ({root}); "
                          "settings may name only files inside it (give outside paths on the "
                          "command line)")
 
 
-def _parse(path: Path, table: dict) -> Config:
+def _parse(path: Path, table: dict) -> Settings:
     unknown = sorted(set(table) - KEYS)
     if unknown:
-        raise UsageError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
+        raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
                          f"valid: {', '.join(sorted(KEYS))}")
-    config = Config(path=path)
+    config = Settings(path=path)
     config.select = _strings(path, table, "select")
     config.ignore = _strings(path, table, "ignore")
     for pattern, codes in table.get("per-file-ignores", {}).items():
@@ -131,10 +151,10 @@ def _parse(path: Path, table: dict) -> Config:
 
 
 def _inside_path(settings: Path, what: str, value) -> Path:
-    """A path setting, relative to the settings file; UsageError when it is not a string or
+    """A path setting, relative to the settings file; SettingsError when it is not a string or
     leads outside the repository."""
     if not isinstance(value, str) or "\0" in value:
-        raise UsageError(f"{settings}: {what} must be a path (a string), got {value!r}")
+        raise SettingsError(f"{settings}: {what} must be a path (a string), got {value!r}")
     path = settings.parent / value
     _refuse_outside(settings, path, what)
     return path
@@ -144,10 +164,10 @@ MAX_FILE_SIZE = 2 ** 40  # [bytes] the largest size limit that can be set (1 TiB
 
 
 def checked_file_size(value, what: str) -> int:
-    """``value`` as a file size limit in [bytes]; UsageError naming ``what`` unless it is a whole
+    """``value`` as a file size limit in [bytes]; SettingsError naming ``what`` unless it is a whole
     number from 1 to MAX_FILE_SIZE."""
     if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= MAX_FILE_SIZE:
-        raise UsageError(f"{what} must be a whole number of bytes from 1 to {MAX_FILE_SIZE}, "
+        raise SettingsError(f"{what} must be a whole number of bytes from 1 to {MAX_FILE_SIZE}, "
                          f"not {value!r}")
     return value
 
@@ -158,7 +178,7 @@ def _memory(path: Path, value) -> str:
     try:
         parse_memory(str(value))
     except UsageError:
-        raise UsageError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
+        raise SettingsError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
                          f"(no limit), not {value!r}") from None
     return str(value)
 
@@ -168,5 +188,142 @@ def _strings(path: Path, table: dict, key: str) -> list[str]:
     if isinstance(value, str):
         value = [value]
     if not all(isinstance(item, str) for item in value):
-        raise UsageError(f"{path}: '{key}' must be a list of rule codes or names")
+        raise SettingsError(f"{path}: '{key}' must be a list of rule codes or names")
     return value
+
+
+# ---- settings merged with a request ---------------------------------------------------------
+
+@dataclass(frozen=True)
+class Companions:
+    """Companion files named for every robot checked; None (or, for controllers, None) means
+    "look beside the robot". Given ones win, one kind at a time, over a settings file's."""
+
+    controllers: tuple[Path, ...] | None = None
+    srdf: Path | None = None
+    spec: Path | None = None
+
+    def __post_init__(self):
+        if self.controllers is not None:
+            object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers))
+        for kind in ("srdf", "spec"):
+            if getattr(self, kind) is not None:
+                object.__setattr__(self, kind, Path(getattr(self, kind)))
+
+    def check(self) -> None:
+        """SettingsError when a file named does not exist."""
+        for path in [*(self.controllers or ()), self.srdf, self.spec]:
+            if path is not None and not path.is_file():
+                raise SettingsError(f"companion file '{path}' does not exist")
+
+    def over(self, settings: Settings) -> dict:
+        """These companions over ``settings``' ones, in the form the rules read."""
+        found = {key: str(path) for key, path in settings.companions.items()
+                 if key != "controllers"}
+        listed = settings.companions.get("controllers")
+        if listed is not None:
+            found["controllers"] = [str(p) for p in (listed if isinstance(listed, list)
+                                                     else [listed])]
+        if self.controllers:
+            found["controllers"] = [str(p) for p in self.controllers]
+        found.update({kind: str(getattr(self, kind)) for kind in ("srdf", "spec")
+                      if getattr(self, kind) is not None})
+        return found
+
+
+@dataclass(frozen=True)
+class CheckRequest:
+    """What a check was asked to do (the command line's options, or the API's arguments);
+    the settings file above each target fills in what it leaves open.
+
+    select: codes, prefixes or names (comma-separated values are split); replaces the
+        settings' ``select`` when given
+    ignore: added to the settings' ``ignore``
+    strict: warnings fail the run too (as do the settings' ``strict``)
+    allow_env: ``$(env)`` and files outside the repository allowed; None: as :func:`env_allowed`
+    max_file_size: [bytes] None: the settings', else 16 MiB
+    max_memory: per worker, as ``parse_memory`` reads it; None: the settings', else 2 GiB
+    timeout: per file in [s]; None or 0 for none
+    jobs: worker processes; None: one per core
+    use_settings: whether settings files apply at all
+    """
+
+    select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+    strict: bool = False
+    xacro_args: Mapping[str, str] = field(default_factory=dict)
+    packages: Mapping[str, Path] = field(default_factory=dict)
+    companions: Companions = Companions()
+    allow_env: bool | None = None
+    max_file_size: int | None = None
+    max_triangles: int = 2_000_000
+    max_memory: str | None = None
+    timeout: float | None = DEFAULT_TIMEOUT
+    jobs: int | None = None
+    use_settings: bool = True
+
+    def __post_init__(self):
+        for name in ("select", "ignore"):
+            value = getattr(self, name)
+            object.__setattr__(self, name, (value,) if isinstance(value, str) else tuple(value))
+        object.__setattr__(self, "xacro_args", dict(self.xacro_args or {}))
+        object.__setattr__(self, "packages", {name: Path(folder) for name, folder
+                                              in (self.packages or {}).items()})
+        if self.companions is None:
+            object.__setattr__(self, "companions", Companions())
+        if self.max_file_size is not None:
+            checked_file_size(self.max_file_size, "max_file_size")
+
+
+@dataclass(frozen=True)
+class FileSettings:
+    """How one file is checked: its settings file merged with the request.
+
+    strict: whether a warning in it fails the run
+    memory: the address space a worker checking it may use in [bytes]; None for no limit
+    """
+
+    options: CheckOptions
+    strict: bool
+    memory: int | None
+
+
+def for_file(path: str, request: CheckRequest) -> FileSettings:
+    """The settings for checking ``path``: the settings file above it (unless the request
+    turns them off) under the request. Command-line values win: ``select`` replaces, ``ignore``
+    and per-file ignores add, companions and packages win one by one."""
+    settings = settings_for(path) if request.use_settings else Settings()
+    selection = Selection(tuple(_codes(request.select or settings.select)),
+                          tuple(_codes([*settings.ignore, *request.ignore,
+                                        *settings.ignores_for(path)])))
+    options = CheckOptions(
+        xacro_args=dict(request.xacro_args), packages={**settings.packages, **request.packages},
+        selection=selection, allow_env=env_allowed(request.allow_env),
+        max_file_size=request.max_file_size or settings.max_file_size
+        or CheckOptions.max_file_size,
+        extras={**request.companions.over(settings), "max_triangles": request.max_triangles})
+    memory = request.max_memory if request.max_memory is not None else settings.max_memory
+    try:
+        limit = DEFAULT_MEMORY if memory is None else parse_memory(memory)
+    except UsageError:
+        raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
+                            f"(no limit), not {memory!r}") from None
+    return FileSettings(options, request.strict or settings.strict, limit)
+
+
+def env_allowed(flag: bool | None) -> bool:
+    """``allow_env`` as given; unset, the safe mode when ``CI`` is set.
+
+    A CI job on a pull request checks files a stranger wrote, and its environment holds
+    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
+    them in the job's public log. GitHub Actions, GitLab CI and most other services set
+    ``CI=true``; on a developer's machine the files are their own.
+    """
+    if flag is not None:
+        return flag
+    return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
+
+
+def _codes(values: Iterable[str]) -> list[str]:
+    """Codes from values that may each hold several, comma-separated."""
+    return [part.strip() for value in values for part in value.split(",") if part.strip()]

@@ -15,10 +15,9 @@ A suppression that silences nothing is reported as U901, unless one of its codes
 
 from __future__ import annotations
 
-import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import lru_cache
 
 from urdftool.diagnostics import Finding, Location
 from urdftool.description.files import read_regular
@@ -82,37 +81,32 @@ def _next_content_line(lines: list[str], after: int) -> int:
     return after + 1
 
 
-@lru_cache(maxsize=256)
-def _parse_file(path: str, stamp: tuple[int, int], shown: str) -> tuple[Suppression, ...]:
-    try:
-        text = read_regular(path).decode("utf-8", errors="replace")
-    except OSError:
-        return ()
-    if "urdftool:" not in text:
-        return ()
-    return tuple(parse(text, shown))
+def _in_file(shown: str, sources: Mapping[str, bytes]) -> list[Suppression]:
+    """The suppressions in a file as findings name it: from the bytes loaded when the loader
+    read it, else (a companion YAML or SRDF a rule read) from disk."""
+    data = sources.get(shown)
+    if data is None:
+        if shown.startswith("<") or shown == "-":
+            return []
+        try:
+            data = read_regular(shown)
+        except OSError:
+            return []
+    text = data.decode("utf-8", errors="replace")
+    return parse(text, shown) if "urdftool:" in text else []
 
 
-def in_file(shown: str) -> tuple[Suppression, ...]:
-    """The suppressions in a file as findings name it; cached per file version."""
-    if shown.startswith("<") or shown == "-":
-        return ()
-    try:
-        status = os.stat(shown)
-    except OSError:
-        return ()
-    return _parse_file(os.path.abspath(shown), (status.st_mtime_ns, status.st_size), shown)
-
-
-def apply(findings: list[Finding], files: list[str], ran, catalogue: Catalogue) -> list[Finding]:
+def apply(findings: list[Finding], sources: Mapping[str, bytes], ran,
+          catalogue: Catalogue) -> list[Finding]:
     """``findings`` without the suppressed ones, plus U901 for suppressions that silenced nothing.
 
-    files: every file the robot was built from (suppressions in them can be unused)
+    sources: every file the robot was built from, with the bytes loaded (``Robot.sources``);
+        suppressions in them can be unused. Other files findings name are read from disk.
     ran: ``ran(code) -> bool``, whether a code's rule ran in this check
     catalogue: the rules, to tell unknown codes from known ones
     """
-    shown_files = list(dict.fromkeys([*files, *(f.file for f in findings)]))
-    suppressions = [s for shown in shown_files for s in in_file(shown)]
+    shown_files = list(dict.fromkeys([*sources, *(f.file for f in findings)]))
+    suppressions = [s for shown in shown_files for s in _in_file(shown, sources)]
     if not suppressions:
         return findings
     by_file: dict[str, list[Suppression]] = {}

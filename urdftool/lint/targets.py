@@ -232,3 +232,59 @@ def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_F
         for target in _summary(path, resolver_for, max_file_size).includes:
             includers.setdefault(target, []).append(path)
     return includers
+
+
+@dataclass
+class Targets:
+    """What checking some paths means.
+
+    files: the files to check, in a stable order, each once
+    skipped: files found in folders and not checked -> why (included by a robot, a macro library)
+    notes: "PATH: what happened" for files named that are checked through others or not at all
+    """
+
+    files: list[str]
+    skipped: dict[str, str]
+    notes: list[str]
+
+
+def expand(paths: list[str], request) -> Targets:
+    """The files ``urdftool check PATH...`` checks: folders walked for top-level robots, a macro
+    library named replaced by the robots that include it. Packages and the size limit come
+    from the settings above each path (:func:`~urdftool.lint.settings.for_file`) under
+    ``request``. Raises TargetError for a path that does not exist or a folder without robot
+    files."""
+    from urdftool.errors import TargetError
+    from urdftool.lint.settings import for_file
+
+    def resolver_for(path: Path) -> PackageResolver:
+        return PackageResolver(for_file(str(path), request).options.packages, start=path.parent)
+
+    includers = {}  # (project root, size limit) -> its include graph, built once
+    files, skipped, notes = [], {}, []
+    for path in map(os.fspath, paths):
+        if path != "-" and not os.path.lexists(path):
+            raise TargetError(f"path '{path}' does not exist")
+        if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
+            files.append(path)
+            continue
+        limit = for_file(path, request).options.max_file_size
+        if Path(path).is_file():
+            root = project_root(Path(path))
+            if (root, limit) not in includers:
+                includers[root, limit] = includers_below(root, resolver_for, limit)
+            targets, reason = explicit_targets(Path(path), includers[root, limit], root, limit)
+            files.extend(display_path(p) if p != Path(path) else path for p in targets)
+            if reason:
+                notes.append(f"{path}: {reason}")
+            continue
+        found = robot_files(Path(path))
+        top, skipped_here = split_top_level(found, resolver_for, limit)
+        files.extend(str(p) for p in top)
+        skipped.update({str(p): reason for p, reason in skipped_here.items()})
+        if not found:
+            raise TargetError(f"no .urdf or .xacro files found in '{path}'")
+    unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
+    for file in files:
+        unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
+    return Targets(list(unique.values()), skipped, notes)

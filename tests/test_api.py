@@ -1,0 +1,123 @@
+"""The public Python API: `import urdftool` is cheap, and what it offers does what check does."""
+
+from __future__ import annotations
+
+import importlib
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import urdftool
+from conftest import CASES, ROBOTS, ROOT
+
+BROKEN = (CASES / "U204_inverted_limits.urdf").read_text()  # U204 at line 7
+
+
+def test_import_loads_nothing_heavy():
+    """``import urdftool`` (what every console script does first) loads no library."""
+    code = ("import sys, urdftool; heavy = ('numpy', 'typer', 'click', 'rich', 'lxml', 'yaml', "
+            "'trimesh', 'xacro'); print(sorted({m.split('.')[0] for m in sys.modules} & "
+            "set(heavy)), sorted(m for m in sys.modules if m.startswith('urdftool')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True, cwd=ROOT)
+    assert done.stdout.split("\n")[0] == "[] ['urdftool']"
+
+
+def test_every_public_name_is_its_owners():
+    assert set(urdftool._LAZY) == set(urdftool.__all__) - {"__version__"}
+    for name, owner in urdftool._LAZY.items():
+        assert getattr(urdftool, name) is getattr(importlib.import_module(owner), name), name
+    assert urdftool.__version__ and "check_paths" in dir(urdftool)
+    with pytest.raises(AttributeError, match="no attribute 'nothing'"):
+        urdftool.nothing  # noqa: B018
+
+
+def test_check_paths_on_the_bundled_robots_is_clean(monkeypatch):
+    monkeypatch.chdir(ROOT)
+    run = urdftool.check_paths(["robots/"])
+    assert run.exit_code == 0
+    assert [r.path for r in run.results] == ["robots/diffbot/diffbot.urdf.xacro",
+                                             "robots/humanoid/humanoid.urdf.xacro",
+                                             "robots/r2d2/r2d2.urdf.xacro"]
+    assert all(r.findings == [] for r in run.results)
+    assert run.skipped["robots/diffbot/wheel.xacro"].startswith("included by")
+
+
+@pytest.fixture
+def broken(tmp_path, monkeypatch):
+    """A copy of robots/ plus robots/broken.urdf, whose limits are inverted (U204 at line 7)."""
+    shutil.copytree(ROBOTS, tmp_path / "robots")
+    (tmp_path / "robots" / "broken.urdf").write_text(BROKEN)
+    monkeypatch.chdir(tmp_path)
+    return tmp_path / "robots" / "broken.urdf"
+
+
+def test_check_paths_on_a_broken_copy(broken):
+    run = urdftool.check_paths(["robots"], jobs=1, timeout=None)
+    assert run.exit_code == 1
+    found = [(f.code, str(f.location), f.severity) for r in run.results for f in r.findings]
+    assert found == [("U204", "robots/broken.urdf:7", urdftool.Severity.ERROR)]
+    assert urdftool.check_paths(["robots"], ignore=["U204"], jobs=1, timeout=None).exit_code == 0
+    assert urdftool.check_paths("robots/broken.urdf").results[0].path == "robots/broken.urdf"
+
+
+def test_check_file_of_an_unsaved_buffer(broken):
+    """``data`` is what is checked (an editor's buffer), not the file on disk."""
+    assert [(f.code, f.line) for f in urdftool.check_file(broken).findings] == [("U204", 7)]
+    fixed = BROKEN.replace('lower="1.57"', 'lower="-1.57"').replace('upper="-1.57"', 'upper="1"')
+    result = urdftool.check_file(broken, data=fixed)
+    assert result.findings == [] and result.robot.joints["elbow"] is not None
+    assert [f.code for f in urdftool.check_file(broken, data=fixed.encode()[:-12]).findings] \
+        == ["U001"]
+    path = "robots/diffbot/diffbot.urdf.xacro"  # xacro: the buffer is expanded, includes read
+    text = (ROBOTS / "diffbot" / "diffbot.urdf.xacro").read_text()
+    assert urdftool.check_file(path, data=text.replace('name="diffbot"', 'name="d2"', 1)
+                               ).robot.name == "d2"
+
+
+def test_check_file_honours_a_suppression_only_in_the_buffer(tmp_path):
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(BROKEN)
+    assert [(f.code, f.line) for f in urdftool.check_file(robot).findings] == [("U204", 7)]
+    buffer = BROKEN.replace("    <limit", "    <!-- urdftool: ignore U204 -->\n    <limit")
+    assert urdftool.check_file(robot, data=buffer).findings == []
+
+
+def test_load_and_its_errors(tmp_path):
+    robot = urdftool.load(ROBOTS / "diffbot" / "diffbot.urdf.xacro")
+    assert isinstance(robot, urdftool.Robot) and robot.name == "diffbot"
+    assert robot.locate(robot.joints["left_wheel_joint"]).line == 25
+    (tmp_path / "bad.urdf").write_text("<robot>")
+    with pytest.raises(urdftool.LoadError) as error:
+        urdftool.load(tmp_path / "bad.urdf")
+    assert isinstance(error.value, urdftool.UrdftoolError)
+    assert error.value.kind == "syntax" and error.value.location.line == 1
+    assert "malformed XML" in error.value.message
+
+
+
+@pytest.mark.parametrize("order", [("a", "b"), ("b", "a")], ids=["a-b", "b-a"])
+def test_settings_apply_per_target(tmp_path, order):
+    for name in "ab":
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "arm.urdf").write_text(BROKEN)
+    (tmp_path / "a" / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    run = urdftool.check_paths([tmp_path / name for name in order])
+    assert [(r.path.split("/")[-2], [f.code for f in r.findings]) for r in run.results] == \
+        [(name, [] if name == "a" else ["U204"]) for name in order]
+    file = urdftool.check_file(tmp_path / "a" / "arm.urdf")
+    assert file.findings == []  # check_file applies the settings above the file too
+    assert [f.code for f in urdftool.check_file(tmp_path / "a" / "arm.urdf",
+                                                use_settings=False).findings] == ["U204"]
+
+
+def test_errors_are_urdftool_errors_without_flags(tmp_path):
+    with pytest.raises(urdftool.TargetError, match="^path '.*nowhere' does not exist$"):
+        urdftool.check_paths([tmp_path / "nowhere"])
+    (tmp_path / "urdftool.toml").write_text("strict = true\nbad = 1\n")
+    (tmp_path / "r.urdf").write_text(BROKEN)
+    with pytest.raises(urdftool.SettingsError) as error:
+        urdftool.check_file(tmp_path / "r.urdf")
+    assert "--" not in str(error.value) and isinstance(error.value, urdftool.UrdftoolError)
