@@ -16,6 +16,7 @@ import numpy as np
 
 from urdftool.diagnostics import Location
 from urdftool.kinematics import transforms
+from urdftool.description.urdf import ROUND
 from urdftool.description.values import parse_numbers
 
 
@@ -103,7 +104,7 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         if size is None or min(size) <= 0 or not np.all(np.isfinite(size)):
             return _refuse(problems, robot, shape, link, f"box size {problem or shape.get('size')}")
         geometry, center, half = fcl.Box(*size), np.zeros(3), np.array(size) / 2
-    elif kind in ("cylinder", "sphere"):
+    elif kind in ROUND:
         radius, length = _positive(shape, "radius"), _positive(shape, "length")
         if radius is None or (kind == "cylinder" and length is None):
             return _refuse(problems, robot, shape, link, f"{kind} needs positive finite "

@@ -18,11 +18,12 @@ from typing import Collection
 import numpy as np
 
 from urdftool.errors import available
+from urdftool.description.urdf import ANGULAR, VARIABLE
 from urdftool.description.values import number, parse_numbers
 
 FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")
 PLANAR_COORDINATES = ("x", "y", "yaw")
-_ANGULAR = {"revolute", "continuous", "roll", "pitch", "yaw"}
+_ANGULAR = {*ANGULAR, "roll", "pitch", "yaw"}
 _RANDOM_SPAN = {"x": 1.0, "y": 1.0, "z": 1.0}  # [m] drawn for unbounded floating positions
 
 
@@ -73,8 +74,7 @@ def variables_of(robot, floating_root: str | None = None) -> list[Variable]:
         result += _coordinates(floating_root, FLOATING_COORDINATES)
     for name, joint in robot.joints.items():
         kind = joint.get("type")
-        if joint.find("mimic") is not None or kind not in (
-                "revolute", "continuous", "prismatic", "floating", "planar"):
+        if joint.find("mimic") is not None or kind not in VARIABLE:
             continue
         if kind == "floating":
             result += _coordinates(name, FLOATING_COORDINATES)

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from urdftool.errors import available
+from urdftool.description.urdf import MOVING
 from urdftool.description.values import parse_numbers
 from urdftool.kinematics import transforms
 
@@ -151,7 +152,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         if joint.find("mimic") is not None:
             raise DHError(f"joint '{joint.get('name')}' mimics '{joint.find('mimic').get('joint')}'"
                           ": a D-H table has one independent variable per joint", joint)
-        if kind not in ("revolute", "continuous", "prismatic", "fixed"):
+        if kind not in MOVING + ("fixed",):
             raise DHError(f"joint '{joint.get('name')}' is {kind}: only revolute, continuous and "
                           "prismatic joints have a D-H form (one axis, one variable)", joint)
         pose = pose @ _origin(joint)

@@ -11,9 +11,8 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
+from urdftool.description.urdf import SHAPES
 from urdftool.description.values import finite, parse_numbers
-
-SHAPES = ("box", "cylinder", "sphere", "mesh")
 
 
 @dataclass

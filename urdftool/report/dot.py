@@ -7,6 +7,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from urdftool.description.urdf import UNITS
 from urdftool.diagnostics import Severity
 
 COLOURS = {  # severity -> (outline, fill)
@@ -14,7 +15,6 @@ COLOURS = {  # severity -> (outline, fill)
     Severity.WARNING: ("#ef6c00", "#ffe0b2"),
 }
 _RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
-_UNITS = {"revolute": "rad", "prismatic": "m"}
 RENDERED = (".svg", ".png", ".pdf")
 
 
@@ -74,9 +74,9 @@ def joint_label(joint) -> str:
     kind = joint.get("type", "?")
     label = f"{joint.get('name', '?')}\n{kind}"
     limit = joint.find("limit")
-    if kind in _UNITS and limit is not None:
+    if kind in UNITS and limit is not None:
         lower, upper = _short(limit.get("lower", "0")), _short(limit.get("upper", "0"))
-        label += f" [{lower}, {upper}] {_UNITS[kind]}"
+        label += f" [{lower}, {upper}] {UNITS[kind]}"
     return label
 
 

@@ -7,6 +7,7 @@ import math
 from urdftool.lint.rules import Severity, rule
 from urdftool.physics import mat3
 from urdftool.errors import available
+from urdftool.description.urdf import ROUND
 from urdftool.description.values import parse_numbers
 
 DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
@@ -144,7 +145,7 @@ def _wheel_diameter(robot, joint) -> float | None:
         return None
     for tag in ("collision", "visual"):
         for shape in link.iterfind(f"{tag}/geometry/*"):
-            if shape.tag in ("cylinder", "sphere"):
+            if shape.tag in ROUND:
                 values, _ = parse_numbers(shape.get("radius"), 1)
                 if values:
                     return 2 * values[0]

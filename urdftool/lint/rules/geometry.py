@@ -6,12 +6,9 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes
 from __future__ import annotations
 
 from urdftool.lint.rules import Severity, rule
+from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.values import finite, parse_numbers
 
-SHAPES = ("box", "cylinder", "sphere", "mesh")
-# (shape, attributes it needs, numbers in each); mesh filename is text
-SHAPE_ATTRIBUTES = {"box": (("size", 3),), "cylinder": (("radius", 1), ("length", 1)),
-                    "sphere": (("radius", 1),), "mesh": (("filename", None),)}
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
 

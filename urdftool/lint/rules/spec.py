@@ -15,6 +15,7 @@ from urdftool.description.companions import YamlMap, companions, is_spec
 from urdftool.lint.rules import Severity, rule
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
+from urdftool.description.urdf import MOVING
 from urdftool.description.values import parse_numbers
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
@@ -162,7 +163,7 @@ def limit_outside_spec(robot):
     scale = UNITS[unit]
     for entry in joints:
         joint = robot.joints.get(entry.name)
-        if joint is None or joint.get("type") not in ("revolute", "prismatic", "continuous"):
+        if joint is None or joint.get("type") not in MOVING:
             continue
         where = joint.find("limit") if joint.find("limit") is not None else joint
         if joint.get("type") == "continuous":
