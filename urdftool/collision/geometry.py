@@ -17,7 +17,7 @@ import numpy as np
 from urdftool.diagnostics import Location
 from urdftool.kinematics import transforms
 from urdftool.description.urdf import ROUND
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import origin as read_origin, parse_numbers
 
 
 @dataclass
@@ -61,16 +61,6 @@ class Geometry:
     @property
     def links(self) -> list[str]:
         return list(self.parts)
-
-
-def origin_matrix(element) -> np.ndarray:
-    """The 4x4 transform of an ``<origin xyz rpy>`` child of ``element`` (identity if none)."""
-    origin = element.find("origin") if element is not None else None
-    if origin is None:
-        return np.eye(4)
-    xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
-    rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
-    return transforms.from_xyz_rpy(xyz or (0.0, 0.0, 0.0), rpy or (0.0, 0.0, 0.0))
 
 
 def build(robot) -> Geometry:
@@ -121,7 +111,7 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         geometry, center, half = loaded
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
-    origin = origin_matrix(collision)
+    origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
     box = origin.copy()
     box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
     return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9))

@@ -25,7 +25,7 @@ import numpy as np
 
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import origin as read_origin, parse_numbers
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
@@ -280,14 +280,10 @@ def _frame(origin, x, z) -> np.ndarray:
 
 
 def _origin(joint) -> np.ndarray:
-    origin = joint.find("origin")
-    xyz = rpy = None
-    if origin is not None:
-        xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
-        rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
-        if xyz is None or rpy is None:
-            raise DHError(f"joint '{joint.get('name')}': malformed <origin>", origin)
-    return transforms.from_xyz_rpy(xyz or (0.0, 0.0, 0.0), rpy or (0.0, 0.0, 0.0))
+    found = read_origin(joint)
+    if found.problem:
+        raise DHError(f"joint '{joint.get('name')}': malformed <origin>", found.element)
+    return transforms.from_origin(found)
 
 
 def _unit_axis(joint) -> np.ndarray:
