@@ -34,7 +34,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
-from urdftool.description.packages import package_name, repository_root
+from urdftool.description.files import inside
+from urdftool.description.packages import containment_root
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
@@ -64,26 +65,6 @@ class MeshLimits:
     max_bytes: int = MAX_MESH_BYTES
 
 
-def containment_root(robot) -> Path:
-    """Where ``file://`` and relative mesh paths must stay: repository, package, or folder."""
-    start = robot.base_dir
-    root = repository_root(start)
-    if root is not None:
-        return root
-    for folder in [start, *start.parents]:
-        if package_name(folder) is not None:
-            return folder
-    return start
-
-
-def _inside(path: Path, folder: Path) -> bool:
-    try:
-        path.relative_to(folder)
-        return True
-    except ValueError:
-        return False
-
-
 def resolve(robot, uri: str) -> Path:
     """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used."""
     if uri.startswith("package://"):
@@ -93,7 +74,7 @@ def resolve(robot, uri: str) -> Path:
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
         path = robot.resolve_uri(uri).resolve()
-        if not _inside(path, folder):
+        if not inside(path, folder):
             raise MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' ({folder}); "
                                          "name a file inside the package")
     else:
@@ -101,8 +82,9 @@ def resolve(robot, uri: str) -> Path:
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
         path = robot.resolve_uri(uri).resolve()
-        root = containment_root(robot).resolve()
-        if not _inside(path, root):
+        # file:// and relative paths stay where the loader's files stay
+        root = containment_root(robot.base_dir).resolve()
+        if not inside(path, root):
             raise MeshProblem("outside", (
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
                 "outside the robot's repository: use package://PKG/... for files of another "
