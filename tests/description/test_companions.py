@@ -9,6 +9,7 @@ import pytest
 
 from conftest import ROBOTS
 from urdftool.description.companions import companions, is_spec, looks_like_controllers, read_yaml
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.description.load import load
 
@@ -101,7 +102,8 @@ def test_ros_joint_limits_yaml_beside_the_robot_is_ignored(tmp_path):
 
 def test_given_ros_joint_limits_yaml_as_spec_is_malformed(tmp_path):
     write(tmp_path, {"r.urdf": ROBOT, "x/limits.yaml": "joint_limits:\n  head_joint: {max_velocity: 1}\n"})
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(extras={"spec": str(tmp_path / "x/limits.yaml")}))
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(
+        companions=CompanionPaths(spec=tmp_path / "x/limits.yaml")))
     assert [(f.code, f.line) for f in result.findings] == [("U701", 1)]
     assert "ROS joint_limits.yaml" in result.findings[0].message
 

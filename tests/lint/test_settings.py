@@ -6,6 +6,7 @@ import json
 
 import pytest
 
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint import runner as parallel
 from urdftool.lint.settings import find_config
 
@@ -121,15 +122,11 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     seen = []
     real = parallel.check_file
     monkeypatch.setattr(parallel, "check_file",
-                        lambda path, options: seen.append(options.extras) or real(path, options))
+                        lambda path, options: seen.append(options.companions) or real(path, options))
     codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0",
           "--max-memory", "0")  # no budget: in this process
     config = project / "config"
-    companions = [{k: v for k, v in extras.items() if k in ("spec", "controllers", "srdf")}
-                  for extras in seen]
-    assert companions == [{"spec": str(config / "limits.yaml"),
-                           "controllers": [str(config / "c.yaml")],
-                           "srdf": str(config / "r.srdf")}]
+    assert seen == [CompanionPaths((config / "c.yaml",), config / "r.srdf", config / "limits.yaml")]
 
 
 def test_unknown_key_is_a_usage_error(run_cli, project):

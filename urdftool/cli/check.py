@@ -63,6 +63,7 @@ def check(
 ) -> None:
     from urdftool.budget import Budget
     from urdftool.lint.settings import checked_file_size
+    from urdftool.description.meshes import MeshLimits
     from urdftool.lint.engine import CheckOptions, Selection
     from urdftool.lint.runner import check_files
     from urdftool.report import FORMATS, Summary, render
@@ -83,8 +84,8 @@ def check(
         budget = Budget.of(timeout, max_memory if max_memory is not None else config.max_memory)
         files, skipped = _expand_paths(paths, packages, limit)
         # Command-line companions win over the settings file's.
-        extras = {**_settings_companions(config), **_companion_options(controllers, srdf, spec),
-                  "max_triangles": max_triangles}
+        companions = _settings_companions(config).overridden_by(
+            _companion_options(controllers, srdf, spec))
     except UsageError as error:
         fail_usage(error)
     if verbose:
@@ -99,7 +100,7 @@ def check(
         xacro_args=args, packages={**config.packages, **packages}, selection=base_selection,
         allow_env=env_allowed(allow_env),
         max_file_size=limit,
-        extras=extras,
+        companions=companions, mesh_limits=MeshLimits(max_triangles=max_triangles),
     )
 
     def options_for(path: str) -> CheckOptions:
@@ -137,27 +138,23 @@ def env_allowed(flag: bool | None) -> bool:
     return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
 
 
-def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None) -> dict:
+def _companion_options(controllers: list[Path], srdf: Path | None, spec: Path | None):
     """Companion files named on the command line, checked to exist (else a usage error)."""
+    from urdftool.description.robot import CompanionPaths
+
     for path in [*controllers, srdf, spec]:
         if path is not None and not path.is_file():
             raise UsageError(f"companion file '{path}' does not exist")
-    extras = {"controllers": [str(p) for p in controllers]} if controllers else {}
-    if srdf is not None:
-        extras["srdf"] = str(srdf)
-    if spec is not None:
-        extras["spec"] = str(spec)
-    return extras
+    return CompanionPaths(tuple(controllers), srdf, spec)
 
 
-def _settings_companions(config) -> dict:
-    """``spec``/``controllers``/``srdf`` from the settings file, in the form the rules read."""
-    found = {key: str(path) for key, path in config.companions.items() if key != "controllers"}
-    controllers = config.companions.get("controllers")
-    if controllers is not None:
-        found["controllers"] = [str(p) for p in (controllers if isinstance(controllers, list)
-                                                 else [controllers])]
-    return found
+def _settings_companions(config):
+    """``spec``/``controllers``/``srdf`` from the settings file."""
+    from urdftool.description.robot import CompanionPaths
+
+    controllers = config.companions.get("controllers") or []
+    return CompanionPaths(tuple(controllers if isinstance(controllers, list) else [controllers]),
+                          config.companions.get("srdf"), config.companions.get("spec"))
 
 
 def _codes(values: list[str]) -> list[str]:

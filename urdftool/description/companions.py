@@ -31,7 +31,6 @@ from urdftool.description.yaml_limits import DepthLimit
 
 MAX_SIZE = 16 * 1024 * 1024
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
-_CACHE = "_companions"
 
 
 # --- YAML that remembers where each key and item was written -------------------------------
@@ -187,28 +186,24 @@ class Companions:
 
 def companions(robot) -> Companions:
     """The robot's companion files, found and parsed on first use and then cached on it."""
-    cached = getattr(robot, _CACHE, None)
-    if cached is None:
-        cached = _discover(robot)
-        setattr(robot, _CACHE, cached)
-    return cached
+    return robot.memo(companions, lambda: _discover(robot))
 
 
 def _discover(robot) -> Companions:
-    options = robot.options
+    named = robot.companion_paths
     folders = _folders(robot)
     found = Companions()
-    if options.get("controllers"):
-        found.controllers = [read_yaml(Path(p)) for p in options["controllers"]]
+    if named.controllers:
+        found.controllers = [read_yaml(Path(p)) for p in named.controllers]
     else:
         found.controllers = _auto_controllers(folders)
-    if options.get("srdf"):
-        found.srdf = read_srdf(Path(options["srdf"]))
+    if named.srdf:
+        found.srdf = read_srdf(Path(named.srdf))
     else:
         path = _auto_srdf(robot, folders)
         found.srdf = read_srdf(path) if path else None
-    if options.get("spec"):
-        found.spec = read_yaml(Path(options["spec"]))
+    if named.spec:
+        found.spec = read_yaml(Path(named.spec))
     else:
         found.spec = _auto_spec(folders)
     return found

@@ -40,7 +40,6 @@ from urdftool.description.packages import containment_root
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
 MAX_MESH_BYTES = 128 * 1024 * 1024
-_CACHE_KEY = "_mesh_cache"
 
 
 @dataclass(frozen=True)
@@ -546,12 +545,11 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     """The mesh at ``uri`` scaled by ``scale`` (a trimesh.Trimesh; do not modify it).
 
     Loaded once per robot per (path, scale); problems are cached and raised again as
-    MeshProblem. The triangle limit is ``robot.options["max_triangles"]`` (``check
-    --max-triangles``) unless ``limits`` are given.
+    MeshProblem. The limits are ``robot.mesh_limits`` (``check --max-triangles``) unless
+    ``limits`` are given.
     """
-    limits = limits or MeshLimits(max_triangles=robot.options.get("max_triangles",
-                                                                  MAX_TRIANGLES))
-    cache = robot.options.setdefault(_CACHE_KEY, {})
+    limits = limits or robot.mesh_limits
+    cache = robot.memo(load_mesh, dict)
     path = resolve(robot, uri)
     scale = tuple(float(s) for s in scale)
     if not all(math.isfinite(s) for s in scale):

@@ -6,11 +6,30 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import Callable, TypeVar
 
 from lxml import etree
 
 from urdftool.diagnostics import Location
+from urdftool.description.meshes import MeshLimits
 from urdftool.description.packages import PackageResolver
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class CompanionPaths:
+    """Companion files named by the user (``check --controllers/--srdf/--spec`` or the settings
+    file); what is not named is discovered beside the robot (:mod:`.companions`)."""
+
+    controllers: tuple[Path, ...] = ()
+    srdf: Path | None = None
+    spec: Path | None = None
+
+    def overridden_by(self, other: "CompanionPaths") -> "CompanionPaths":
+        """These paths with every one ``other`` names replaced (the command line wins)."""
+        return CompanionPaths(other.controllers or self.controllers, other.srdf or self.srdf,
+                              other.spec or self.spec)
 
 
 @dataclass
@@ -22,6 +41,8 @@ class Robot:
     locations: where each element was written; see :meth:`locate`
     files: every file read to build it (the input first, then includes)
     from_xacro: whether the input went through xacro
+    companion_paths: companion files the user named (the rest are discovered)
+    mesh_limits: how large a mesh may be loaded
     """
 
     path: str
@@ -32,6 +53,17 @@ class Robot:
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
     options: dict = field(default_factory=dict)
+    companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
+    mesh_limits: MeshLimits = field(default_factory=MeshLimits)
+    _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def memo(self, key, compute: Callable[[], T]) -> T:
+        """``compute()`` once per robot for ``key`` (by convention the function that asks), then
+        the same value: what several rules derive from a robot (its companions, mesh outcomes,
+        link solids) is built once."""
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]
 
     def locate(self, element) -> Location:
         """Where ``element`` was written; the file itself when it has no element."""

@@ -226,12 +226,12 @@ def _mesh_elements(robot):
 
 def _mesh_outcomes(robot):
     """(link, holder, mesh element, trimesh or MeshProblem) per mesh element, once per robot."""
-    cached = robot.options.get("_mesh_outcomes")
-    if cached is not None:
-        return cached
+    return robot.memo(_mesh_outcomes, lambda: list(_load_meshes(robot)))
+
+
+def _load_meshes(robot):
     from urdftool.description.meshes import MeshProblem, load_mesh
 
-    outcomes = []
     for link, holder, shape in _mesh_elements(robot):
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         if not scale or not finite(scale):
@@ -240,9 +240,7 @@ def _mesh_outcomes(robot):
             outcome = load_mesh(robot, shape.get("filename"), scale)
         except MeshProblem as problem:
             outcome = problem
-        outcomes.append((link, holder, shape, outcome))
-    robot.options["_mesh_outcomes"] = outcomes
-    return outcomes
+        yield link, holder, shape, outcome
 
 
 def _problems(robot, kind: str):

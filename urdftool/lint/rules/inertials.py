@@ -245,14 +245,11 @@ def inertia_triangle_inequality(robot):
 
 def _link_solids(robot):
     """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
-    cached = robot.options.get("_link_solids")
-    if cached is None:
-        from urdftool.physics.solids import link_solid
+    from urdftool.physics.solids import link_solid
 
-        cached = [(link, properties, link_solid(robot, link))
-                  for link, properties in _valid(robot) if properties.mass > 0]
-        robot.options["_link_solids"] = cached
-    return cached
+    return robot.memo(_link_solids, lambda: [(link, properties, link_solid(robot, link))
+                                             for link, properties in _valid(robot)
+                                             if properties.mass > 0])
 
 
 def _extent(solid) -> float:

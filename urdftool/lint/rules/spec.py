@@ -34,11 +34,8 @@ class SpecJoint:
 
 def _spec(robot):
     """(file, problems, joints, unit, tolerance) of the robot's spec, or None without one."""
-    cached = getattr(robot, "_spec", None)
-    if cached is None:
-        cached = _parse(companions(robot).spec, robot.joints)
-        setattr(robot, "_spec", cached)
-    return cached if cached[0] is not None else None
+    parsed = robot.memo(_spec, lambda: _parse(companions(robot).spec, robot.joints))
+    return parsed if parsed[0] is not None else None
 
 
 def _parse(file, urdf_joints):
