@@ -11,14 +11,10 @@ from lxml import etree
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import read_regular
 from urdftool.description.xml import XmlProblem, parse
-from urdftool.errors import available
+from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix, pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
-
-
-class SrdfError(Exception):
-    """The SRDF cannot be read; the message says where and why."""
 
 
 @dataclass

@@ -33,29 +33,13 @@ import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from urdftool.errors import PackageNotFound
+from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description.files import inside
 from urdftool.description.packages import containment_root
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
 MAX_MESH_BYTES = 128 * 1024 * 1024
-
-
-@dataclass(frozen=True)
-class MeshProblem(Exception):
-    """Why a mesh cannot be used.
-
-    kind: ``package`` (unknown package), ``outside`` (escapes the root), ``missing``,
-    ``format`` (not a mesh extension), ``too-large`` (bytes or triangles), ``corrupt``
-    message: what a user should read, naming the file and the fix
-    """
-
-    kind: str
-    message: str
-
-    def __str__(self) -> str:
-        return self.message
 
 
 @dataclass(frozen=True)

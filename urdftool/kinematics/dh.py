@@ -23,22 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.errors import available
+from urdftool.errors import DHError, available
 from urdftool.description.urdf import MOVING
 from urdftool.description.values import origin as read_origin, parse_numbers
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
 _EPS = 1e-9
-
-
-class DHError(Exception):
-    """A chain that cannot be written in D-H form, or a table that cannot be read."""
-
-    def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(message)
-        self.element = element
-        self.where = where
 
 
 @dataclass

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from urdftool.description.urdf import UNITS
 from urdftool.diagnostics import Severity
+from urdftool.errors import DotMissing
 
 COLOURS = {  # severity -> (outline, fill)
     Severity.ERROR: ("#c62828", "#ffcdd2"),
@@ -16,10 +17,6 @@ COLOURS = {  # severity -> (outline, fill)
 }
 _RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
 RENDERED = (".svg", ".png", ".pdf")
-
-
-class DotMissing(Exception):
-    """The ``dot`` program is not installed; the DOT file was written instead."""
 
 
 def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:
