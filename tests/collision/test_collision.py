@@ -46,7 +46,7 @@ def robot_of(tmp_path, text: str):
 
 def pose_report(robot, **q):
     scene = matrix.Scene(robot, 0.0)
-    values = pose.configuration(scene, [f"{k}={v}" for k, v in q.items()]).values[0]
+    values = pose.configuration(scene, {k: str(v) for k, v in q.items()}).values[0]
     return pose.check(scene, values, {})
 
 
@@ -71,7 +71,7 @@ def test_unknown_joint_in_q_names_the_joints(tmp_path):
 
     scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
     with pytest.raises(UsageError, match="did you mean 'slider'"):
-        pose.configuration(scene, ["slidr=1"])
+        pose.configuration(scene, {"slidr": "1"})
 
 
 def test_adjacency_looks_through_links_without_geometry(tmp_path):

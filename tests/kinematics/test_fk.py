@@ -100,7 +100,7 @@ def test_default_is_mid_range_when_zero_is_outside_limits(tiny):
 
 
 def test_floating_root_pose_and_base_option(tiny):
-    words = ["free.x=1", "free.yaw=90", "spin=0"]
+    words = {"free.x": "1", "free.yaw": "90", "spin": "0"}
     configurations = config.from_words(tiny.variables, words, degrees=True)
     assert configurations.values[0, 0] == 1.0  # metres are not scaled by --deg
     result = forward_kinematics(tiny, configurations, ["a"], None)
@@ -114,7 +114,7 @@ def test_floating_root_pose_and_base_option(tiny):
 
 
 def test_humanoid_leg_pose_by_hand(humanoid):
-    configurations = config.from_words(humanoid.variables, ["l_knee=90"], degrees=True)
+    configurations = config.from_words(humanoid.variables, {"l_knee": "90"}, degrees=True)
     pose = forward_kinematics(humanoid, configurations, ["l_foot_link"], "body_link").matrices[0, 0]
     # hip 0.122 below the body, thigh 0.093 down, then the shin points 0.093 backwards (-x)
     np.testing.assert_allclose(pose[:3, 3], [-0.093, 0.037, -0.122 - 0.093], atol=1e-12)
@@ -122,21 +122,21 @@ def test_humanoid_leg_pose_by_hand(humanoid):
 
 def test_unknown_joint_lists_valid_names(humanoid):
     with pytest.raises(config.ConfigError, match="did you mean 'l_knee'.*available joints"):
-        config.from_words(humanoid.variables, ["l_kne=1"])
+        config.from_words(humanoid.variables, {"l_kne": "1"})
 
 
 def test_setting_a_mimic_joint_names_its_master(tiny):
     with pytest.raises(config.ConfigError, match="'follow' mimics 'spin'"):
-        config.from_words(tiny.variables, ["follow=1"], mimics=tiny.mimics)
+        config.from_words(tiny.variables, {"follow": "1"}, mimics=tiny.mimics)
 
 
 def test_non_numeric_value(humanoid):
     with pytest.raises(config.ConfigError, match="'abc' for joint 'l_knee' is not a number"):
-        config.from_words(humanoid.variables, ["l_knee=abc"])
+        config.from_words(humanoid.variables, {"l_knee": "abc"})
 
 
 def test_out_of_limits_warns_and_computes(humanoid):
-    configurations = config.from_words(humanoid.variables, ["l_knee=-1"])
+    configurations = config.from_words(humanoid.variables, {"l_knee": "-1"})
     assert configurations.warnings == [
         "joint 'l_knee' = -1 is outside its limits [0, 2.26893]; computed anyway"]
     assert configurations.values[0, [v.name for v in humanoid.variables].index("l_knee")] == -1
@@ -241,6 +241,13 @@ def test_cli_bad_inputs(run_cli, tmp_path):
     assert result.exit_code == 2 and "did you mean 'l_knee'" in result.stderr
     result = run_cli("fk", HUMANOID, "--q", "l_knee=one")
     assert result.exit_code == 2 and "is not a number" in result.stderr
+    # --q goes through the one NAME=VALUE parser (cli._common.pairs); blanks around names are
+    # dropped, as before
+    for word in ("l_knee", "=1", " =1"):
+        result = run_cli("fk", HUMANOID, "--q", word)
+        assert (result.exit_code, result.stderr) == (
+            2, f"urdftool: error: --q must be NAME=VALUE, got '{word}'\n")
+    assert run_cli("fk", HUMANOID, "--q", " l_knee =0.5", "--frame", "l_foot_link").exit_code == 0
     result = run_cli("fk", HUMANOID, "--q", "l_knee=-0.5", "--frame", "l_foot_link")
     assert result.exit_code == 0
     assert "warning: joint 'l_knee' = -0.5 is outside its limits" in result.stderr
@@ -277,5 +284,5 @@ def test_floating_poses_are_relative_to_the_world_not_the_moving_root(run_cli):
 
 def _body_height() -> float:
     model = KinematicModel(load(HUMANOID))
-    result = forward_kinematics(model, config.from_words(model.variables, []), ["body_link"])
+    result = forward_kinematics(model, config.from_words(model.variables, {}), ["body_link"])
     return float(result.matrices[0, 0, 2, 3])

@@ -91,6 +91,9 @@ def test_humanoid_holds_itself_with_mx28(run_cli):
 def test_dynamics_unknown_joint_is_usage_error(run_cli):
     result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_kne=1")
     assert result.exit_code == 2 and "l_knee" in result.output
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--v", "l_knee")
+    assert (result.exit_code, result.stderr) == (
+        2, "urdftool: error: --v must be NAME=VALUE, got 'l_knee'\n")
 
 
 MIMIC_ARM = ARM.replace('<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>',

@@ -38,11 +38,13 @@ def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
     return paths, args
 
 
-def pairs(values: list[str], what: str, separator: str = "=") -> dict[str, str]:
-    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error."""
+def pairs(values: list[str], what: str, separator: str = "=", strip: bool = False) -> dict[str, str]:
+    """``NAME=VALUE`` option values as a dict (``strip``: blanks around names do not count); a
+    malformed one is a usage error. The one NAME=VALUE parser: --arg, --package, --q, --v, --a."""
     result = {}
     for value in values:
         name, sep, rest = value.partition(separator)
+        name = name.strip() if strip else name
         if not sep or not name:
             raise UsageError(f"{what} must be NAME{separator}VALUE, got '{value}'")
         result[name] = rest

@@ -10,7 +10,7 @@ import typer
 
 from urdftool.errors import UsageError
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
-                      refuse_bad_outputs, single_robot)
+                      pairs, refuse_bad_outputs, single_robot)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -101,7 +101,7 @@ def _pose(robot, words, degrees, srdf_path, format) -> int:
     from urdftool.diagnostics import display_path
 
     scene = _scene(robot, 0.0)
-    configuration = pose.configuration(scene, words, degrees)
+    configuration = pose.configuration(scene, pairs(words, "--q", strip=True), degrees)
     for warning in configuration.warnings:
         typer.echo(f"urdftool: warning: {warning}", err=True)
     q = configuration.values[0]

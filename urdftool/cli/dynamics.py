@@ -6,7 +6,8 @@ import json
 
 import typer
 
-from urdftool.cli._common import PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, single_robot
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, pairs,
+                      single_robot)
 from urdftool.errors import UsageError
 
 
@@ -26,7 +27,8 @@ def _values(robot, q: list[str], v: list[str], a: list[str], degrees: bool):
 
     variables, mimics = config.variables_of(robot), config.mimics_of(robot)
     try:
-        values = [config.assignments(variables, words, option, degrees, mimics)
+        values = [config.assignments(variables, pairs(words, option, strip=True), option,
+                                     degrees, mimics)
                   if words or option == "--q" else None
                   for words, option in ((q, "--q"), (v, "--v"), (a, "--a"))]
     except config.ConfigError as error:

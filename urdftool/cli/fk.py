@@ -7,7 +7,7 @@ import sys
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage, fixed,
-                      single_robot, wide_console)
+                      pairs, single_robot, wide_console)
 from urdftool.errors import UsageError
 
 FORMATS = ("text", "json", "csv")
@@ -62,6 +62,8 @@ def fk(
             result = forward_kinematics(model, configurations, frame or None, base)
     except config.ConfigError as error:
         fail_usage(UsageError(str(error)))
+    except UsageError as error:
+        fail_usage(error)
     except DHError as error:
         if error.element is None and error.where is None and dh:
             error.where = dh  # about the table, not the robot
@@ -80,7 +82,7 @@ def _configurations(model, q, deg, q_file, random, seed):
         return config.from_file(model.variables, q_file, deg, model.mimics)
     if random is not None:
         return config.random(model.variables, random, seed)
-    return config.from_words(model.variables, q, deg, model.mimics)
+    return config.from_words(model.variables, pairs(q, "--q", strip=True), deg, model.mimics)
 
 
 def _verify(table, model, count, seed, base, frame) -> None:

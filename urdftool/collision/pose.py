@@ -38,14 +38,14 @@ class PoseReport:
         return [contact for contact in self.colliding if not contact.allowed]
 
 
-def configuration(scene, words: list[str], degrees: bool = False):
-    """Configurations (one row) from ``--q NAME=VALUE`` words over the default configuration
+def configuration(scene, values: dict[str, str], degrees: bool = False):
+    """Configurations (one row) from ``--q`` values (``{name: value text}``) over the default configuration
     (0, or mid-range when 0 is outside the limits), with out-of-limit warnings; bad input raises
     UsageError naming the valid joints."""
     from urdftool.kinematics import configuration as config
 
     try:
-        return config.from_words(scene.variables, words, degrees, scene.kinematics.mimics)
+        return config.from_words(scene.variables, values, degrees, scene.kinematics.mimics)
     except config.ConfigError as error:
         raise UsageError(str(error)) from None
 

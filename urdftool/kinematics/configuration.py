@@ -126,30 +126,27 @@ def defaults(variables: list[Variable]) -> np.ndarray:
     return np.array([v.default for v in variables], dtype=float)
 
 
-def assignments(variables: list[Variable], words: list[str], option: str = "--q",
+def assignments(variables: list[Variable], values: dict[str, str], option: str = "--q",
                 degrees: bool = False, mimics: dict[str, str] | None = None) -> dict[str, float]:
-    """``{variable: value}`` from ``NAME=VALUE`` words given to ``option`` (--q, --v, --a).
+    """``{variable: value}`` from ``{name: text}`` given to ``option`` (--q, --v, --a; the
+    command line splits its ``NAME=VALUE`` words with ``urdftool.cli._common.pairs``).
 
     Values are in [rad] or [m] (or per second, per second squared); with ``degrees`` angular
     variables are given in degrees. A continuous joint takes one value like any other.
     """
     index = {v.name: i for i, v in enumerate(variables)}
     result = {}
-    for word in words:
-        name, sep, text = word.partition("=")
-        name = name.strip()
-        if not sep or not name:
-            raise ConfigError(f"{option} must be NAME=VALUE, got '{word}'")
+    for name, text in values.items():
         column = _column(index, name, mimics, option=option)
         value = _to_float(text, f"{option}: value '{text}' for joint '{name}' is not a number")
         result[name] = _scaled(value, variables[column], degrees)
     return result
 
 
-def from_words(variables: list[Variable], words: list[str], degrees: bool = False,
+def from_words(variables: list[Variable], words: dict[str, str], degrees: bool = False,
                mimics: dict[str, str] | None = None, option: str = "--q",
                default: float | None = None) -> Configurations:
-    """One configuration from ``NAME=VALUE`` words; unnamed variables take ``default``, or
+    """One configuration from ``{name: value text}``; unnamed variables take ``default``, or
     when None their own default (0, or mid-range when 0 is outside the limits)."""
     index = {v.name: i for i, v in enumerate(variables)}
     values = defaults(variables) if default is None else np.full(len(variables), float(default))
