@@ -218,7 +218,10 @@ def _folders(robot) -> list[Path]:
 
 
 def _inside(path: Path, folders: list[Path]) -> bool:
-    """``path`` is a regular file whose real location is in the robot's folder (no escaping links)."""
+    """``path`` is a regular file whose real location is in the robot's folder (no escaping links).
+
+    Stricter on purpose than :func:`urdftool.description.packages.containment_root` (where files
+    a robot names may be): a file nobody named is picked up only beside the robot or in config/."""
     try:
         real = path.resolve(strict=True)
         base = folders[0].resolve(strict=True)
