@@ -8,7 +8,8 @@ import textwrap
 import pytest
 
 from conftest import ROBOTS
-from urdftool.description.companions import companions, is_spec, looks_like_controllers, read_yaml
+from urdftool.description.companions import companions, is_spec, looks_like_controllers
+from urdftool.description.documents import read_yaml
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.description.load import load

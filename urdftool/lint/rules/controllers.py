@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from urdftool.description.companions import YamlFile, YamlList, YamlMap, companions
+from urdftool.description.companions import companions
+from urdftool.description.documents import YamlFile, YamlList, YamlMap
 from urdftool.lint.rules import Severity, rule
 from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
 from urdftool.errors import available

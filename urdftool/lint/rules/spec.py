@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from urdftool.description.companions import YamlMap, companions, is_spec
+from urdftool.description.companions import companions, is_spec
+from urdftool.description.documents import YamlMap
 from urdftool.lint.rules import Severity, rule
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
