@@ -164,3 +164,25 @@ def test_cli_missing_companion_is_a_usage_error(run_cli, tmp_path):
     result = run_cli("check", tmp_path / "r.urdf", "--srdf", tmp_path / "nope.srdf")
     assert result.exit_code == 2 and "nope.srdf" in result.output
 
+
+
+def test_collisions_reads_the_srdf_as_check_does(tmp_path):
+    """One SRDF reader (description.documents.read_srdf): the same lines, the same refusals."""
+    from urdftool.collision import srdf
+    from urdftool.description.documents import read_srdf
+
+    path = tmp_path / "r.srdf"
+    path.write_text('<robot name="r">\n<disable_collisions\n  link1="a" link2="b" reason="Never"/>\n'
+                    "</robot>\n")
+    entries, root = srdf.read(path)
+    document = read_srdf(path)
+    assert [(e.link1, e.location.line) for e in entries] == [("a", 2)] == \
+        [(e.get("link1"), e.sourceline) for e in document.root.iter("disable_collisions")]
+    assert root.line == 1
+    path.write_text('<robot name="r">\n<group name="g">\n</robot>\n')
+    with pytest.raises(srdf.SrdfError, match="r.srdf:3: not well-formed XML: Opening and ending tag "
+                                             "mismatch: group line 2 and robot"):
+        srdf.read(path)
+    path.write_text('<robt name="r"/>\n')
+    with pytest.raises(srdf.SrdfError, match=r"r.srdf:1: root element is <robt>, not <robot>"):
+        srdf.read(path)
