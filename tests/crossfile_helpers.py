@@ -7,6 +7,7 @@ import textwrap
 from pathlib import Path
 
 from conftest import CASES, ROBOTS
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, Selection, check_file
 
 HEAD_ROBOT = """<robot name="r">
@@ -21,7 +22,8 @@ HEAD_ROBOT = """<robot name="r">
 """
 
 
-def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), **extras):
+def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), controllers=(),
+                 srdf=None, spec=None):
     """Write ``files`` (name -> text) into ``folder`` and check ``robot.urdf`` there.
 
     Returns [(file name, line, code)] of the selected findings, and the findings.
@@ -30,7 +32,8 @@ def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), **e
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(textwrap.dedent(text))
-    options = CheckOptions(selection=Selection(tuple(select)), extras=extras)
+    options = CheckOptions(selection=Selection(tuple(select)),
+                           companions=CompanionPaths(tuple(controllers), srdf, spec))
     result = check_file(str(folder / "robot.urdf"), options)
     return [(Path(f.file).name, f.line, f.code) for f in result.findings], result.findings
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+from dataclasses import dataclass
 
 
 class UrdftoolError(Exception):
@@ -62,3 +63,105 @@ def available(kind: str, wanted: str, names) -> str:
     hint = f"did you mean '{close[0]}'? " if close else ""
     shown = ", ".join(names[:_LISTED]) + (f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
     return f"{hint}available {kind}: {shown or '(none)'}"
+
+
+# --- Errors of the analyses (one hierarchy; each is re-exported by the module that raises it,
+# so ``except fk.FKError`` keeps working) ---------------------------------------------------
+
+
+class LocatedError(UrdftoolError):
+    """An error about a place in a robot description.
+
+    element: the robot's XML element it is about (``Robot.locate`` gives file and line), or None
+    location: a :class:`~urdftool.diagnostics.Location` when known without the robot, or None
+    """
+
+    element = None
+    location = None
+
+    def __init__(self, message: str, element=None, location=None):
+        super().__init__(message)
+        self.element = element
+        self.location = location
+
+
+@dataclass(frozen=True)
+class MeshProblem(LocatedError):
+    """Why a mesh cannot be used.
+
+    kind: ``package`` (unknown package), ``outside`` (escapes the root), ``missing``,
+    ``format`` (not a mesh extension), ``too-large`` (bytes or triangles), ``corrupt``
+    message: what a user should read, naming the file and the fix
+    """
+
+    kind: str
+    message: str
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class SrdfError(LocatedError):
+    """The SRDF cannot be read; the message says where and why."""
+
+
+class ConfigError(LocatedError):
+    """A configuration that cannot be used; ``where`` is a file (and row) when it came from one,
+    ``argument`` which of several inputs it came from (q, v or a), when known. The message names
+    no command-line option: the command adds it."""
+
+    def __init__(self, message: str, where: str | None = None):
+        super().__init__(f"{where}: {message}" if where else message)
+        self.where = where
+        self.argument: str | None = None
+
+
+class MimicError(LocatedError):
+    """A mimic joint whose value cannot be resolved; ``element`` is where."""
+
+
+class TreeError(LocatedError):
+    """The joints do not form one tree (no root, several roots, a cycle); ``element`` is where."""
+
+
+class FKError(LocatedError):
+    """The model cannot be built or asked for what it lacks; ``element`` locates it when known."""
+
+
+class DHError(LocatedError):
+    """A chain that cannot be written in D-H form, or a table that cannot be read; ``where`` is
+    the table file (and row) when it came from one."""
+
+    def __init__(self, message: str, element=None, where: str | None = None):
+        super().__init__(message, element)
+        self.where = where
+
+
+class DynamicsError(LocatedError):
+    """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
+
+
+class DotMissing(UrdftoolError):
+    """The ``dot`` program is not installed; the DOT file was written instead (the message is
+    its path)."""
+
+
+class UnknownName(UrdftoolError, ValueError):
+    """A name asked for (a link, a rule) that does not exist; the message lists the close and
+    the valid ones."""
+
+
+class UnknownLink(UnknownName):
+    """A link asked for by name that the robot does not have; the message lists the others."""
+
+    def __init__(self, wanted: str, names):
+        super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
+        self.wanted = wanted
+
+
+class UnknownRule(UnknownName):
+    """No rule has the code or name asked for; the message lists the close ones."""
+
+
+class PlotError(UrdftoolError, ValueError):
+    """A picture cannot be written in the asked format; the caller names the option."""

@@ -8,7 +8,9 @@ import textwrap
 import pytest
 
 from conftest import ROBOTS
-from urdftool.description.companions import companions, is_spec, looks_like_controllers, read_yaml
+from urdftool.description.companions import companions, is_spec, looks_like_controllers
+from urdftool.description.documents import read_yaml
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.description.load import load
 
@@ -101,7 +103,8 @@ def test_ros_joint_limits_yaml_beside_the_robot_is_ignored(tmp_path):
 
 def test_given_ros_joint_limits_yaml_as_spec_is_malformed(tmp_path):
     write(tmp_path, {"r.urdf": ROBOT, "x/limits.yaml": "joint_limits:\n  head_joint: {max_velocity: 1}\n"})
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(extras={"spec": str(tmp_path / "x/limits.yaml")}))
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(
+        companions=CompanionPaths(spec=tmp_path / "x/limits.yaml")))
     assert [(f.code, f.line) for f in result.findings] == [("U701", 1)]
     assert "ROS joint_limits.yaml" in result.findings[0].message
 
@@ -161,3 +164,25 @@ def test_cli_missing_companion_is_a_usage_error(run_cli, tmp_path):
     result = run_cli("check", tmp_path / "r.urdf", "--srdf", tmp_path / "nope.srdf")
     assert result.exit_code == 2 and "nope.srdf" in result.output
 
+
+
+def test_collisions_reads_the_srdf_as_check_does(tmp_path):
+    """One SRDF reader (description.documents.read_srdf): the same lines, the same refusals."""
+    from urdftool.collision import srdf
+    from urdftool.description.documents import read_srdf
+
+    path = tmp_path / "r.srdf"
+    path.write_text('<robot name="r">\n<disable_collisions\n  link1="a" link2="b" reason="Never"/>\n'
+                    "</robot>\n")
+    entries, root = srdf.read(path)
+    document = read_srdf(path)
+    assert [(e.link1, e.location.line) for e in entries] == [("a", 2)] == \
+        [(e.get("link1"), e.sourceline) for e in document.root.iter("disable_collisions")]
+    assert root.line == 1
+    path.write_text('<robot name="r">\n<group name="g">\n</robot>\n')
+    with pytest.raises(srdf.SrdfError, match="r.srdf:3: not well-formed XML: Opening and ending tag "
+                                             "mismatch: group line 2 and robot"):
+        srdf.read(path)
+    path.write_text('<robt name="r"/>\n')
+    with pytest.raises(srdf.SrdfError, match=r"r.srdf:1: root element is <robt>, not <robot>"):
+        srdf.read(path)

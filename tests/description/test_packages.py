@@ -53,3 +53,38 @@ def test_mesh_uris(tmp_path):
     assert resolver.resolve_uri("package://pkg/meshes/a.stl", tmp_path) == pkg / "meshes" / "a.stl"
     assert str(resolver.resolve_uri("file:///abs/b.stl", tmp_path)) == "/abs/b.stl"
     assert resolver.resolve_uri("meshes/c.stl", tmp_path) == tmp_path / "meshes" / "c.stl"
+
+
+def test_one_containment_root_for_loader_meshes_and_include_graph(tmp_path):
+    """Repository, else the nearest package, else the folder; ``check``'s include graph agrees
+    (a macro in a package without .git is looked for in the package's robots)."""
+    from urdftool.description.packages import containment_root
+    from urdftool.lint.targets import project_root
+
+    loose = tmp_path / "loose" / "urdf"
+    package = tmp_path / "pkg"
+    (package / "macros").mkdir(parents=True)
+    loose.mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>pkg</name></package>")
+    assert containment_root(loose) == loose
+    assert containment_root(package / "macros") == package
+    assert project_root(package / "macros" / "leg.xacro") == package
+    (tmp_path / ".git").mkdir()
+    assert containment_root(package / "macros") == tmp_path == containment_root(loose)
+    assert project_root(package / "macros" / "leg.xacro") == tmp_path
+
+
+def test_macro_in_a_package_without_a_repository_checks_its_robot(run_cli, tmp_path):
+    package = tmp_path / "pkg"
+    (package / "macros").mkdir(parents=True)
+    (package / "urdf").mkdir()
+    (package / "package.xml").write_text("<package><name>pkg</name></package>")
+    (package / "macros" / "leg.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:macro name="leg"><link name="leg"/></xacro:macro></robot>')
+    (package / "urdf" / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="../macros/leg.xacro"/><xacro:leg/></robot>')
+    result = run_cli("check", package / "macros" / "leg.xacro", "--format", "json")
+    assert "included by" in result.stderr and "robot.urdf.xacro" in result.stderr
+    assert '"files": 1' in result.stdout

@@ -16,6 +16,7 @@ import resource
 
 import pytest
 
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, check_file
 
 HEADER = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
@@ -38,13 +39,14 @@ def memory_cap():
     resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
-def _check(folder, body: str, files: dict[str, str] | None = None, allow_env=False, **extras):
+def _check(folder, body: str, files: dict[str, str] | None = None, allow_env=False,
+           companions=CompanionPaths()):
     for name, text in (files or {}).items():
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_text(text)
     path = folder / "robot.urdf.xacro"
     path.write_text(HEADER + body + "\n</robot>\n")
-    return check_file(str(path), CheckOptions(allow_env=allow_env, extras=extras))
+    return check_file(str(path), CheckOptions(allow_env=allow_env, companions=companions))
 
 
 def _refused(folder, body, line, files=None, **kwargs):
@@ -307,8 +309,9 @@ DEEP_SPEC = "unit: rad\njoints: " + "[" * DEPTH + "]" * DEPTH + "\n"
 @pytest.mark.parametrize("given", [False, True], ids=["found", "--controllers"])
 def test_deep_controller_yaml_is_located(tmp_path, style, given):
     files = {"config/controllers.yaml": DEEP_YAML[style]}
-    extras = {"controllers": [str(tmp_path / "config/controllers.yaml")]} if given else {}
-    result = _check(tmp_path, '<link name="l"/>', files, **extras)
+    named = CompanionPaths(controllers=(tmp_path / "config/controllers.yaml",)) if given else \
+        CompanionPaths()
+    result = _check(tmp_path, '<link name="l"/>', files, companions=named)
     found = [(f.code, f.line) for f in result.findings if f.code in ("U601", "U900")]
     assert found == [("U601", 3 if style == "block sequences" else 2)], result.findings
     assert "nested deeper" in next(f.message for f in result.findings if f.code == "U601")
@@ -317,8 +320,8 @@ def test_deep_controller_yaml_is_located(tmp_path, style, given):
 @pytest.mark.parametrize("given", [False, True], ids=["found", "--spec"])
 def test_deep_spec_yaml_is_located(tmp_path, given):
     files = {"joint_limits.yaml": DEEP_SPEC}
-    extras = {"spec": str(tmp_path / "joint_limits.yaml")} if given else {}
-    result = _check(tmp_path, '<link name="l"/>', files, **extras)
+    named = CompanionPaths(spec=tmp_path / "joint_limits.yaml") if given else CompanionPaths()
+    result = _check(tmp_path, '<link name="l"/>', files, companions=named)
     found = [(f.code, f.line) for f in result.findings if f.code in ("U701", "U900")]
     assert found == [("U701", 2)], result.findings
 

@@ -13,6 +13,7 @@ from collections import Counter
 import pytest
 
 from conftest import CORPUS, corpus_or_skip
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, check_file
 
 UR_ARGS = ("robot_model:={m} joint_limit_params:={c}/ur_description/config/{m}/joint_limits.yaml "
@@ -103,10 +104,9 @@ def check_entry(robot, args, controllers, srdf):
     corpus = corpus_or_skip()
     xacro_args = dict(pair.split(":=", 1) for pair in
                       args.replace("{corpus}", str(corpus)).split()) if args else {}
-    extras = {"controllers": [str(corpus / c) for c in controllers]} if controllers else {}
-    if srdf:
-        extras["srdf"] = str(corpus / srdf)
-    return check_file(str(corpus / robot), CheckOptions(xacro_args=xacro_args, extras=extras))
+    named = CompanionPaths(tuple(corpus / c for c in controllers or ()),
+                           corpus / srdf if srdf else None)
+    return check_file(str(corpus / robot), CheckOptions(xacro_args=xacro_args, companions=named))
 
 
 @pytest.mark.parametrize("entry", list(ENTRIES), ids=[f"{e[0]}+{len(e[2])}y+{bool(e[3])}s"

@@ -247,6 +247,13 @@ def test_cli_bad_inputs(run_cli, tmp_path):
                              "number\n") and result.exit_code == 2
     result = run_cli("fk", HUMANOID, "--q", "l_knee")
     assert result.stderr == "urdftool: error: --q must be NAME=VALUE, got 'l_knee'\n"
+    # --q goes through the one NAME=VALUE parser (cli._common.pairs); blanks around names are
+    # dropped, as before
+    for word in ("l_knee", "=1", " =1"):
+        result = run_cli("fk", HUMANOID, "--q", word)
+        assert (result.exit_code, result.stderr) == (
+            2, f"urdftool: error: --q must be NAME=VALUE, got '{word}'\n")
+    assert run_cli("fk", HUMANOID, "--q", " l_knee =0.5", "--frame", "l_foot_link").exit_code == 0
     result = run_cli("fk", HUMANOID, "--q", "l_knee=-0.5", "--frame", "l_foot_link")
     assert result.exit_code == 0
     assert "warning: joint 'l_knee' = -0.5 is outside its limits" in result.stderr

@@ -6,6 +6,7 @@ import json
 
 import pytest
 
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint import engine
 from urdftool.lint.settings import settings_for
 
@@ -121,15 +122,11 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     seen = []
     real = engine.check_file
     monkeypatch.setattr(engine, "check_file", lambda path, options, data=None:
-                        seen.append(options.extras) or real(path, options, data))
+                        seen.append(options.companions) or real(path, options, data))
     codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0",
           "--max-memory", "0")  # no budget: in this process
     config = project / "config"
-    companions = [{k: v for k, v in extras.items() if k in ("spec", "controllers", "srdf")}
-                  for extras in seen]
-    assert companions == [{"spec": str(config / "limits.yaml"),
-                           "controllers": [str(config / "c.yaml")],
-                           "srdf": str(config / "r.srdf")}]
+    assert seen == [CompanionPaths((config / "c.yaml",), config / "r.srdf", config / "limits.yaml")]
 
 
 def test_unknown_key_is_a_usage_error(run_cli, project):
@@ -233,10 +230,10 @@ def test_command_line_companions_win_one_by_one(project):
         (project / "config" / name).write_text("")
     settings(project, 'controllers = "config/c.yaml"\nsrdf = "config/r.srdf"\n')
     given = Companions(controllers=[project / "config" / "d.yaml"])
-    extras = for_file(str(project / "robots" / "arm.urdf"),
-                      CheckRequest(companions=given)).options.extras
-    assert extras["controllers"] == [str(project / "config" / "d.yaml")]
-    assert extras["srdf"] == str(project / "config" / "r.srdf")
+    companions = for_file(str(project / "robots" / "arm.urdf"),
+                          CheckRequest(companions=given)).options.companions
+    assert companions.controllers == (project / "config" / "d.yaml",)
+    assert companions.srdf == project / "config" / "r.srdf"
 
 
 def test_size_limit_and_per_file_ignores_apply_per_target(two_projects):

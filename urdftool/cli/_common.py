@@ -40,7 +40,8 @@ def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
 
 def pairs(values: list[str], what: str, separator: str = "=",
           strip: bool = False) -> dict[str, str]:
-    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error.
+    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error. The one
+    NAME=VALUE parser: --arg, --package, --q, --v, --a.
 
     strip: remove blanks around each NAME (joint values: ``--q " elbow=1"``)
     """

@@ -79,7 +79,7 @@ def check(
         Budget.of(timeout, max_memory)  # --timeout and --max-memory are well formed
         run = check_paths(paths, CheckRequest(
             select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
-            packages=packages, companions=Companions(controllers or None, srdf, spec),
+            packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None))
     except (UsageError, SettingsError, TargetError) as error:

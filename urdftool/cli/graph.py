@@ -27,7 +27,7 @@ def graph(
                                      "default: DOT on stdout."),
 ) -> None:
     from urdftool.lint.engine import check_robot
-    from urdftool.report.dot import DotMissing, to_dot, write
+    from urdftool.report.dot import DotMissing, dot_missing_advice, to_dot, write
 
     refuse_bad_outputs(output)
     robot = single_robot("graph", words, arg, package)
@@ -38,7 +38,7 @@ def graph(
     try:
         written = write(dot, output)
     except DotMissing as missing:
-        typer.echo(f"urdftool: {missing.advice(output)}", err=True)
+        typer.echo(f"urdftool: {dot_missing_advice(missing, output)}", err=True)
         raise typer.Exit(1)
     except (ValueError, OSError, UsageError) as error:
         fail_usage(UsageError(str(error)))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import fail_usage
-from urdftool.errors import UsageError
+from urdftool.errors import UnknownRule
 
 
 def register(app: typer.Typer) -> None:
@@ -23,6 +23,6 @@ def rules(code: str = typer.Argument(None, metavar="[CODE]",
         return
     try:
         found = CATALOGUE.find(code)
-    except UsageError as error:
+    except UnknownRule as error:
         fail_usage(error)
     print_rule(found)

@@ -16,7 +16,8 @@ import numpy as np
 
 from urdftool.diagnostics import Location
 from urdftool.kinematics import transforms
-from urdftool.description.values import parse_numbers
+from urdftool.description.urdf import ROUND
+from urdftool.description.values import origin as read_origin, parse_numbers
 
 
 @dataclass
@@ -62,16 +63,6 @@ class Geometry:
         return list(self.parts)
 
 
-def origin_matrix(element) -> np.ndarray:
-    """The 4x4 transform of an ``<origin xyz rpy>`` child of ``element`` (identity if none)."""
-    origin = element.find("origin") if element is not None else None
-    if origin is None:
-        return np.eye(4)
-    xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
-    rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
-    return transforms.from_xyz_rpy(xyz or (0.0, 0.0, 0.0), rpy or (0.0, 0.0, 0.0))
-
-
 def build(robot) -> Geometry:
     """Collision parts of every link of ``robot``; unusable ones become problems."""
     result = Geometry()
@@ -103,7 +94,7 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         if size is None or min(size) <= 0 or not np.all(np.isfinite(size)):
             return _refuse(problems, robot, shape, link, f"box size {problem or shape.get('size')}")
         geometry, center, half = fcl.Box(*size), np.zeros(3), np.array(size) / 2
-    elif kind in ("cylinder", "sphere"):
+    elif kind in ROUND:
         radius, length = _positive(shape, "radius"), _positive(shape, "length")
         if radius is None or (kind == "cylinder" and length is None):
             return _refuse(problems, robot, shape, link, f"{kind} needs positive finite "
@@ -120,7 +111,7 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         geometry, center, half = loaded
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
-    origin = origin_matrix(collision)
+    origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
     box = origin.copy()
     box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
     return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9))

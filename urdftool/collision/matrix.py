@@ -24,8 +24,8 @@ import numpy as np
 
 from urdftool.collision import geometry as geometry_module
 from urdftool.collision.pairs import PairChecker, Tally
+from urdftool.description.urdf import MOVING
 
-_MOVING = ("revolute", "continuous", "prismatic")
 CLASSES = ("Adjacent", "Default", "Always", "Never", "")
 BLOCK = 250
 
@@ -96,7 +96,7 @@ class Scene:
         links = [name for name in self.kinematics.links if name in self.geometry.parts]
         self.links = links
         self._link_indices = [self.kinematics.links.index(name) for name in links]
-        self._held = {v.name for v in self.variables if v.kind not in _MOVING}
+        self._held = {v.name for v in self.variables if v.kind not in MOVING}
         self.pairs = [pair_key(a, b) for i, a in enumerate(links) for b in links[i + 1:]]
         self.pairs.sort(key=lambda pair: (pair[0].encode(), pair[1].encode()))
         self.adjacent = adjacent_pairs(robot, set(links))

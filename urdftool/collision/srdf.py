@@ -8,17 +8,13 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdftool.diagnostics import Location, display_path
+from urdftool.diagnostics import Location
+from urdftool.description.documents import read_srdf
 from urdftool.description.files import read_regular
-from urdftool.description.xml import XmlProblem, parse
-from urdftool.errors import available
+from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix, pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
-
-
-class SrdfError(Exception):
-    """The SRDF cannot be read; the message says where and why."""
 
 
 @dataclass
@@ -37,23 +33,23 @@ class Stale:
     message: str
 
 
-def _parse(path: Path):
-    try:
-        return parse(read_regular(path))
-    except OSError as error:
-        raise SrdfError(f"{display_path(path)}: cannot read: {error.strerror}") from None
-    except XmlProblem as problem:
-        raise SrdfError(f"{display_path(path)}:{problem.line}: {problem.message}") from None
+def _document(path: Path):
+    """The SRDF as ``check`` reads it (:func:`urdftool.description.documents.read_srdf`: each
+    element's ``sourceline`` is its start tag); SrdfError saying where when it cannot be used."""
+    document = read_srdf(path)
+    if document.problem:
+        where = f"{document.display}:{document.line}" if document.line else document.display
+        raise SrdfError(f"{where}: {document.problem}", location=document.at(document.line))
+    return document
 
 
 def read(path: Path) -> tuple[list[Disabled], Location]:
     """The disable_collisions entries and where ``<robot>`` starts."""
-    root, lines = _parse(path)
-    shown = display_path(path)
+    document = _document(path)
     entries = [Disabled(el.get("link1", ""), el.get("link2", ""), el.get("reason", ""),
-                        Location(shown, lines.get(el)))
-               for el in root.iter("disable_collisions")]
-    return entries, Location(shown, lines.get(root))
+                        document.at(el.sourceline))
+               for el in document.root.iter("disable_collisions")]
+    return entries, document.at(document.root.sourceline)
 
 
 def allowed_pairs(entries: list[Disabled]) -> dict[tuple[str, str], str]:
@@ -74,7 +70,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         lines += [f'    <disable_collisions link1="{_attr(a)}" link2="{_attr(b)}" '
                   f'reason="{r}" />' for a, b, r in new]
         return "\n".join([*lines, "</robot>", ""])
-    root, _ = _parse(existing)
+    root = _document(existing).root
     old = list(root.iter("disable_collisions"))
     computed = {(a, b) for a, b, _ in new}
     kept = [(*pair_key(e.get("link1", ""), e.get("link2", "")), e.get("reason", ""))

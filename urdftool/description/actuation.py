@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from urdftool.description.urdf import MOVING
+
 # ROS 1 hardware interfaces (without the hardware_interface/ prefix) -> command interface, or
 # None for the read-only ones.
 HARDWARE_INTERFACES = {
@@ -19,7 +21,6 @@ HARDWARE_INTERFACES = {
     "ActuatorStateInterface": None,
 }
 PREFIXES = ("hardware_interface/", "hardware_interface::")
-MOVING_TYPES = ("revolute", "continuous", "prismatic")
 CONTROL_PLUGINS = ("gazebo_ros_control", "gazebo_ros2_control", "gz_ros2_control",
                    "ign_ros2_control")
 
@@ -123,4 +124,4 @@ def control_plugin(robot):
 def moving_joints(robot) -> dict:
     """Non-fixed joints that need a driver: revolute, continuous and prismatic, not mimic."""
     return {name: joint for name, joint in robot.joints.items()
-            if joint.get("type") in MOVING_TYPES and joint.find("mimic") is None}
+            if joint.get("type") in MOVING and joint.find("mimic") is None}

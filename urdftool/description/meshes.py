@@ -33,55 +33,19 @@ import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from urdftool.errors import PackageNotFound
-from urdftool.description.packages import package_name, repository_root
+from urdftool.errors import MeshProblem, PackageNotFound
+from urdftool.description.files import inside
+from urdftool.description.packages import containment_root
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
 MAX_MESH_BYTES = 128 * 1024 * 1024
-_CACHE_KEY = "_mesh_cache"
-
-
-@dataclass(frozen=True)
-class MeshProblem(Exception):
-    """Why a mesh cannot be used.
-
-    kind: ``package`` (unknown package), ``outside`` (escapes the root), ``missing``,
-    ``format`` (not a mesh extension), ``too-large`` (bytes or triangles), ``corrupt``
-    message: what a user should read, naming the file and the fix
-    """
-
-    kind: str
-    message: str
-
-    def __str__(self) -> str:
-        return self.message
 
 
 @dataclass(frozen=True)
 class MeshLimits:
     max_triangles: int = MAX_TRIANGLES
     max_bytes: int = MAX_MESH_BYTES
-
-
-def containment_root(robot) -> Path:
-    """Where ``file://`` and relative mesh paths must stay: repository, package, or folder."""
-    start = robot.base_dir
-    root = repository_root(start)
-    if root is not None:
-        return root
-    for folder in [start, *start.parents]:
-        if package_name(folder) is not None:
-            return folder
-    return start
-
-
-def _inside(path: Path, folder: Path) -> bool:
-    try:
-        path.relative_to(folder)
-        return True
-    except ValueError:
-        return False
 
 
 def resolve(robot, uri: str) -> Path:
@@ -93,7 +57,7 @@ def resolve(robot, uri: str) -> Path:
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
         path = robot.resolve_uri(uri).resolve()
-        if not _inside(path, folder):
+        if not inside(path, folder):
             raise MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' ({folder}); "
                                          "name a file inside the package")
     else:
@@ -101,8 +65,9 @@ def resolve(robot, uri: str) -> Path:
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
         path = robot.resolve_uri(uri).resolve()
-        root = containment_root(robot).resolve()
-        if not _inside(path, root):
+        # file:// and relative paths stay where the loader's files stay
+        root = containment_root(robot.base_dir).resolve()
+        if not inside(path, root):
             raise MeshProblem("outside", (
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
                 "outside the robot's repository: use package://PKG/... for files of another "
@@ -564,12 +529,11 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     """The mesh at ``uri`` scaled by ``scale`` (a trimesh.Trimesh; do not modify it).
 
     Loaded once per robot per (path, scale); problems are cached and raised again as
-    MeshProblem. The triangle limit is ``robot.options["max_triangles"]`` (``check
-    --max-triangles``) unless ``limits`` are given.
+    MeshProblem. The limits are ``robot.mesh_limits`` (``check --max-triangles``) unless
+    ``limits`` are given.
     """
-    limits = limits or MeshLimits(max_triangles=robot.options.get("max_triangles",
-                                                                  MAX_TRIANGLES))
-    cache = robot.options.setdefault(_CACHE_KEY, {})
+    limits = limits or robot.mesh_limits
+    cache = robot.memo(load_mesh, dict)
     path = resolve(robot, uri)
     scale = tuple(float(s) for s in scale)
     if not all(math.isfinite(s) for s in scale):

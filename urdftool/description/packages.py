@@ -18,7 +18,8 @@ from urdftool.errors import PackageNotFound
 from urdftool.description.files import inside, read_regular
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
-_SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
+SKIP_DIRS = {  # tool and build folders no walk enters
+    ".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 _MAX_SCAN_DEPTH = 6
 _MAX_SCAN_DIRS = 20000
 _MAX_MANIFEST = 1024 * 1024  # [bytes]
@@ -49,7 +50,11 @@ def repository_root(start: Path) -> Path | None:
 def containment_root(folder: Path) -> Path:
     """The folder files read for a robot in ``folder`` must stay in: its repository (nearest
     ``.git`` above); without one, the nearest folder above holding a package.xml; else
-    ``folder`` itself. ``folder`` is taken as named, symbolic links not followed."""
+    ``folder`` itself. ``folder`` is taken as named, symbolic links not followed.
+
+    The one "where may files be" rule: the loader's allowed roots, mesh paths and the include
+    graph of ``urdftool check`` use it. (Companion discovery is stricter on purpose: only the
+    robot's folder and its config/, see :mod:`urdftool.description.companions`.)"""
     folder = Path(os.path.abspath(folder))
     return repository_root(folder) or next(
         (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
@@ -166,7 +171,7 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None 
                 continue
             next_frontier.extend(
                 Path(entry.path) for entry in entries
-                if entry.is_dir(follow_symlinks=False) and entry.name not in _SKIP_DIRS
+                if entry.is_dir(follow_symlinks=False) and entry.name not in SKIP_DIRS
             )
             if links is not None:
                 links.extend(Path(entry.path) for entry in entries if entry.is_symlink())

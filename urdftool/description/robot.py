@@ -6,11 +6,40 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import Callable, TypeVar
 
 from lxml import etree
 
 from urdftool.diagnostics import Location
+from urdftool.description.meshes import MeshLimits
 from urdftool.description.packages import PackageResolver
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class CompanionPaths:
+    """Companion files named by the user (``check --controllers/--srdf/--spec`` or the settings
+    file); what is not named is discovered beside the robot (:mod:`.companions`)."""
+
+    controllers: tuple[Path, ...] = ()
+    srdf: Path | None = None
+    spec: Path | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers or ()))
+        for kind in ("srdf", "spec"):
+            if getattr(self, kind) is not None:
+                object.__setattr__(self, kind, Path(getattr(self, kind)))
+
+    def named(self) -> list[Path]:
+        """Every file named."""
+        return [*self.controllers, *(p for p in (self.srdf, self.spec) if p is not None)]
+
+    def overridden_by(self, other: "CompanionPaths") -> "CompanionPaths":
+        """These paths with every one ``other`` names replaced (the command line wins)."""
+        return CompanionPaths(other.controllers or self.controllers, other.srdf or self.srdf,
+                              other.spec or self.spec)
 
 
 @dataclass(frozen=True)
@@ -40,6 +69,8 @@ class Robot:
     notes: what the loader noticed that did not stop it, in the order it noticed
     sources: the bytes of every file read to build it, as loaded (the input's ``data`` when
         given), by the name findings give it: suppressions are read from these, not from disk
+    companion_paths: companion files the user named (the rest are discovered)
+    mesh_limits: how large a mesh may be loaded
     """
 
     path: str
@@ -52,6 +83,17 @@ class Robot:
     notes: list[LoadNote] = field(default_factory=list)
     options: dict = field(default_factory=dict)
     sources: dict[str, bytes] = field(default_factory=dict)
+    companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
+    mesh_limits: MeshLimits = field(default_factory=MeshLimits)
+    _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def memo(self, key, compute: Callable[[], T]) -> T:
+        """``compute()`` once per robot for ``key`` (by convention the function that asks), then
+        the same value: what several rules derive from a robot (its companions, mesh outcomes,
+        link solids) is built once."""
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]
 
     def locate(self, element) -> Location:
         """Where ``element`` was written; the file itself when it has no element."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 
 # What urdfdom's parser accepts as a double (no hex, no digit separators), plus the non-finite
 # spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
@@ -45,3 +46,30 @@ def number(element, attribute: str, default: float | None = None):
         return default
     values, problem = parse_numbers(text, 1)
     return values[0] if values else None
+
+
+@dataclass(frozen=True)
+class Origin:
+    """An element's ``<origin>``: xyz in [m], rpy in [rad] (URDF roll-pitch-yaw).
+
+    Identity when there is no ``<origin>``. A malformed ``xyz`` or ``rpy`` reads as zeros and sets
+    ``problem`` (the first one), so each caller chooses: count it as 0, or refuse it.
+    element: the ``<origin>`` element, None when absent
+    """
+
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    problem: str | None = None
+    element: object = None
+
+
+def origin(element) -> Origin:
+    """The ``<origin>`` child of ``element`` (which may be None) as an :class:`Origin`."""
+    found = element.find("origin") if element is not None else None
+    if found is None:
+        return Origin()
+    xyz, xyz_problem = parse_numbers(found.get("xyz", "0 0 0"), 3)
+    rpy, rpy_problem = parse_numbers(found.get("rpy", "0 0 0"), 3)
+    problem = f"xyz: {xyz_problem}" if xyz_problem else f"rpy: {rpy_problem}" if rpy_problem else None
+    return Origin(tuple(xyz) if xyz else Origin.xyz, tuple(rpy) if rpy else Origin.rpy, problem,
+                  found)

@@ -17,24 +17,14 @@ from typing import Collection
 
 import numpy as np
 
-from urdftool.errors import available
+from urdftool.errors import ConfigError, MimicError, available
+from urdftool.description.urdf import ANGULAR, VARIABLE
 from urdftool.description.values import number, parse_numbers
 
 FLOATING_COORDINATES = ("x", "y", "z", "roll", "pitch", "yaw")
 PLANAR_COORDINATES = ("x", "y", "yaw")
-_ANGULAR = {"revolute", "continuous", "roll", "pitch", "yaw"}
+_ANGULAR = {*ANGULAR, "roll", "pitch", "yaw"}
 _RANDOM_SPAN = {"x": 1.0, "y": 1.0, "z": 1.0}  # [m] drawn for unbounded floating positions
-
-
-class ConfigError(Exception):
-    """A configuration that cannot be used; ``where`` is a file (and row) when it came from one,
-    ``argument`` which of several inputs it came from (see joint_values), when known. The
-    message names no command-line option: the command adds it."""
-
-    def __init__(self, message: str, where: str | None = None):
-        super().__init__(f"{where}: {message}" if where else message)
-        self.where = where
-        self.argument: str | None = None
 
 
 @dataclass(frozen=True)
@@ -76,8 +66,7 @@ def variables_of(robot, floating_root: str | None = None) -> list[Variable]:
         result += _coordinates(floating_root, FLOATING_COORDINATES)
     for name, joint in robot.joints.items():
         kind = joint.get("type")
-        if joint.find("mimic") is not None or kind not in (
-                "revolute", "continuous", "prismatic", "floating", "planar"):
+        if joint.find("mimic") is not None or kind not in VARIABLE:
             continue
         if kind == "floating":
             result += _coordinates(name, FLOATING_COORDINATES)
@@ -117,14 +106,6 @@ def mimic_source(robot, name: str, variable_names: Collection[str], seen=()):
     offset = _attribute(mimic, "offset", 0.0)
     variable, m, o = mimic_source(robot, master, variable_names, seen + (name,))
     return variable, multiplier * m, multiplier * o + offset
-
-
-class MimicError(Exception):
-    """A mimic joint whose value cannot be resolved; ``element`` is where."""
-
-    def __init__(self, message: str, element=None):
-        super().__init__(message)
-        self.element = element
 
 
 def _coordinates(joint: str, names) -> list[Variable]:

@@ -23,21 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.errors import available
-from urdftool.description.values import parse_numbers
+from urdftool.errors import DHError, available
+from urdftool.description.urdf import MOVING
+from urdftool.description.values import origin as read_origin, parse_numbers
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
 _EPS = 1e-9
-
-
-class DHError(Exception):
-    """A chain that cannot be written in D-H form, or a table that cannot be read."""
-
-    def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(message)
-        self.element = element
-        self.where = where
 
 
 @dataclass
@@ -151,7 +143,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         if joint.find("mimic") is not None:
             raise DHError(f"joint '{joint.get('name')}' mimics '{joint.find('mimic').get('joint')}'"
                           ": a D-H table has one independent variable per joint", joint)
-        if kind not in ("revolute", "continuous", "prismatic", "fixed"):
+        if kind not in MOVING + ("fixed",):
             raise DHError(f"joint '{joint.get('name')}' is {kind}: only revolute, continuous and "
                           "prismatic joints have a D-H form (one axis, one variable)", joint)
         pose = pose @ _origin(joint)
@@ -279,14 +271,10 @@ def _frame(origin, x, z) -> np.ndarray:
 
 
 def _origin(joint) -> np.ndarray:
-    origin = joint.find("origin")
-    xyz = rpy = None
-    if origin is not None:
-        xyz, _ = parse_numbers(origin.get("xyz", "0 0 0"), 3)
-        rpy, _ = parse_numbers(origin.get("rpy", "0 0 0"), 3)
-        if xyz is None or rpy is None:
-            raise DHError(f"joint '{joint.get('name')}': malformed <origin>", origin)
-    return transforms.from_xyz_rpy(xyz or (0.0, 0.0, 0.0), rpy or (0.0, 0.0, 0.0))
+    found = read_origin(joint)
+    if found.problem:
+        raise DHError(f"joint '{joint.get('name')}': malformed <origin>", found.element)
+    return transforms.from_origin(found)
 
 
 def _unit_axis(joint) -> np.ndarray:

@@ -14,20 +14,12 @@ from functools import cached_property
 
 import numpy as np
 
-from urdftool.errors import available
+from urdftool.errors import FKError, available
 from urdftool.kinematics import transforms
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
 
 FLOATING_ROOT = "root_joint"
-
-
-class FKError(Exception):
-    """The model cannot be built or asked for what it lacks; ``element`` locates it when known."""
-
-    def __init__(self, message: str, element=None):
-        super().__init__(message)
-        self.element = element
 
 
 @dataclass

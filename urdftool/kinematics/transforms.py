@@ -17,6 +17,11 @@ def from_xyz_rpy(xyz, rpy) -> np.ndarray:
     return matrix
 
 
+def from_origin(origin) -> np.ndarray:
+    """The 4x4 transform of a :class:`urdftool.description.values.Origin`."""
+    return from_xyz_rpy(origin.xyz, origin.rpy)
+
+
 def rotation_from_rpy(rpy: np.ndarray) -> np.ndarray:
     """R = Rz(yaw) Ry(pitch) Rx(roll) for ``rpy[..., 3]``."""
     roll, pitch, yaw = rpy[..., 0], rpy[..., 1], rpy[..., 2]

@@ -2,11 +2,7 @@
 
 from __future__ import annotations
 
-
-class TreeError(Exception):
-    def __init__(self, message: str, element=None):
-        super().__init__(message)
-        self.element = element
+from urdftool.errors import TreeError
 
 
 def children_by_link(robot) -> dict[str, list[tuple[str, str]]]:

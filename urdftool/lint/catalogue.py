@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from urdftool.diagnostics import Finding, Location, Severity
-from urdftool.errors import UsageError
+from urdftool.errors import UnknownRule
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
 
@@ -43,10 +43,6 @@ FAMILIES = {
     "U9": "urdftool",
 }
 _CODE = re.compile(r"U\d{3}")
-
-
-class UnknownRule(UsageError):
-    """No rule has the code or name asked for; the message lists the close ones."""
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,8 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from urdftool.description.meshes import MeshLimits
+from urdftool.description.robot import CompanionPaths
 from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError
 from urdftool.lint.catalogue import Rule
@@ -44,7 +46,8 @@ class CheckOptions:
     selection: Selection = Selection()
     allow_env: bool = True
     max_file_size: int = 16 * 1024 * 1024
-    extras: dict = field(default_factory=dict)
+    companions: CompanionPaths = CompanionPaths()
+    mesh_limits: MeshLimits = MeshLimits()
 
 
 @dataclass
@@ -128,5 +131,5 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
     except Exception as error:  # a loader bug (RecursionError too): a finding, not a traceback
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
-    robot.options.update(options.extras)
+    robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
     return FileResult(path, check_robot(robot, options.selection), robot)

@@ -33,7 +33,7 @@ from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.diagnostics import Finding, Location, Severity, display_path
 from urdftool.lint import engine
 from urdftool.lint.engine import CheckOptions, FileResult
-from urdftool.lint.settings import CheckRequest, Companions, for_file
+from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
 from urdftool.lint.targets import expand
 
 
@@ -147,7 +147,7 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
         request = _request(options)
     elif options:
         raise TypeError("check_paths takes a CheckRequest or keyword options, not both")
-    request.companions.check()
+    check_companions(request.companions)
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     targets = expand(list(paths), request)
@@ -173,7 +173,7 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     """
     path = os.fspath(path)
     request = _request(options)
-    request.companions.check()
+    check_companions(request.companions)
     if isinstance(data, str):
         data = data.encode("utf-8")
     return engine.check_file(path, for_file(path, request).options, data=data)

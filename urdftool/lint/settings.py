@@ -30,6 +30,8 @@ from pathlib import Path
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, parse_memory
 from urdftool.errors import SettingsError, UsageError
 from urdftool.description.files import inside, read_regular
+from urdftool.description.meshes import MeshLimits
+from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
@@ -194,41 +196,20 @@ def _strings(path: Path, table: dict, key: str) -> list[str]:
 
 # ---- settings merged with a request ---------------------------------------------------------
 
-@dataclass(frozen=True)
-class Companions:
-    """Companion files named for every robot checked; None (or, for controllers, None) means
-    "look beside the robot". Given ones win, one kind at a time, over a settings file's."""
+Companions = CompanionPaths  # the API's name for the companion files a request names
 
-    controllers: tuple[Path, ...] | None = None
-    srdf: Path | None = None
-    spec: Path | None = None
 
-    def __post_init__(self):
-        if self.controllers is not None:
-            object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers))
-        for kind in ("srdf", "spec"):
-            if getattr(self, kind) is not None:
-                object.__setattr__(self, kind, Path(getattr(self, kind)))
+def check_companions(companions: CompanionPaths) -> None:
+    """SettingsError when a companion file named does not exist."""
+    for path in companions.named():
+        if not path.is_file():
+            raise SettingsError(f"companion file '{path}' does not exist")
 
-    def check(self) -> None:
-        """SettingsError when a file named does not exist."""
-        for path in [*(self.controllers or ()), self.srdf, self.spec]:
-            if path is not None and not path.is_file():
-                raise SettingsError(f"companion file '{path}' does not exist")
 
-    def over(self, settings: Settings) -> dict:
-        """These companions over ``settings``' ones, in the form the rules read."""
-        found = {key: str(path) for key, path in settings.companions.items()
-                 if key != "controllers"}
-        listed = settings.companions.get("controllers")
-        if listed is not None:
-            found["controllers"] = [str(p) for p in (listed if isinstance(listed, list)
-                                                     else [listed])]
-        if self.controllers:
-            found["controllers"] = [str(p) for p in self.controllers]
-        found.update({kind: str(getattr(self, kind)) for kind in ("srdf", "spec")
-                      if getattr(self, kind) is not None})
-        return found
+def _settings_companions(settings: Settings) -> CompanionPaths:
+    listed = settings.companions.get("controllers")
+    return CompanionPaths(tuple(listed if isinstance(listed, list) else [listed]) if listed
+                          else (), settings.companions.get("srdf"), settings.companions.get("spec"))
 
 
 @dataclass(frozen=True)
@@ -253,7 +234,7 @@ class CheckRequest:
     strict: bool = False
     xacro_args: Mapping[str, str] = field(default_factory=dict)
     packages: Mapping[str, Path] = field(default_factory=dict)
-    companions: Companions = Companions()
+    companions: CompanionPaths = CompanionPaths()
     allow_env: bool | None = None
     max_file_size: int | None = None
     max_triangles: int = 2_000_000
@@ -270,7 +251,7 @@ class CheckRequest:
         object.__setattr__(self, "packages", {name: Path(folder) for name, folder
                                               in (self.packages or {}).items()})
         if self.companions is None:
-            object.__setattr__(self, "companions", Companions())
+            object.__setattr__(self, "companions", CompanionPaths())
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
 
@@ -301,7 +282,8 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         selection=selection, allow_env=env_allowed(request.allow_env),
         max_file_size=request.max_file_size or settings.max_file_size
         or CheckOptions.max_file_size,
-        extras={**request.companions.over(settings), "max_triangles": request.max_triangles})
+        companions=_settings_companions(settings).overridden_by(request.companions),
+        mesh_limits=MeshLimits(max_triangles=request.max_triangles))
     memory = request.max_memory if request.max_memory is not None else settings.max_memory
     try:
         limit = DEFAULT_MEMORY if memory is None else parse_memory(memory)

@@ -16,10 +16,9 @@ from pathlib import Path
 
 from urdftool.diagnostics import display_path
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
-from urdftool.description.packages import PackageResolver, containment_root, repository_root
+from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 
 SUFFIXES = (".urdf", ".xacro")
-_SKIP_DIRS = {".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
 # on files made of "<xacro:include " repeated).
 _INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
@@ -36,7 +35,7 @@ def robot_files(folder: Path) -> list[Path]:
         return [folder]
     found = []
     for current, dirs, files in os.walk(folder):
-        dirs[:] = sorted(d for d in dirs if d not in _SKIP_DIRS and not d.startswith("."))
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("."))
         found.extend(Path(current) / d for d in dirs
                      if os.path.islink(os.path.join(current, d))
                      and not _stays_inside(Path(current) / d))
@@ -181,10 +180,10 @@ _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
 
 
 def project_root(path: Path) -> Path:
-    """The repository holding ``path`` as named (nearest folder with ``.git``; a link is not
-    followed), or its own folder."""
-    folder = Path(os.path.abspath(path)).parent
-    return repository_root(folder) or folder
+    """The folder whose robots may include ``path``: its
+    :func:`~urdftool.description.packages.containment_root` (repository, else package, else
+    its own folder; as named, a link is not followed)."""
+    return containment_root(Path(os.path.abspath(path)).parent)
 
 
 def explicit_targets(path: Path, includers: dict, root: Path,

@@ -12,12 +12,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.errors import DynamicsError
 
 _ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
-
-
-class DynamicsError(Exception):
-    """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 
 
 @dataclass

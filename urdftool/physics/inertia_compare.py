@@ -11,6 +11,7 @@ import numpy as np
 
 from urdftool.physics.inertia import MassProperties, declared, relative_difference, triangle_violation
 from urdftool.physics.solids import computed, link_solid
+from urdftool.errors import UnknownLink  # noqa: F401 - raised here, re-exported
 
 AGREE_TOLERANCE = 0.1  # relative difference of tensor and com offset (vs link size) that agrees
 VERDICTS = ("agrees", "differs", "invalid", "unknown")
@@ -87,16 +88,6 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
             verdict = "differs"
     return LinkInertia(name, mine, result, solid.source, verdict, differences, notes,
                        link.find("inertial"))
-
-
-class UnknownLink(ValueError):
-    """A link asked for by name that the robot does not have; the message lists the others."""
-
-    def __init__(self, wanted: str, names):
-        from urdftool.errors import available
-
-        super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
-        self.wanted = wanted
 
 
 def compare(robot, density: float | None = None, links: list[str] | None = None):

@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 
 from urdftool.physics import mat3
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import origin, parse_numbers
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -37,16 +37,6 @@ class Body:
         """The same shape with another mass: inertia scales linearly with mass."""
         factor = mass / self.mass if self.mass else 0.0
         return Body(mass, self.com, mat3.scaled(self.inertia, factor))
-
-
-def origin_of(element) -> tuple[mat3.Vector, mat3.Matrix]:
-    """(xyz, R) of an element's ``<origin>``; identity when absent. Malformed parts count as 0."""
-    origin = element.find("origin") if element is not None else None
-    xyz, rpy = [0.0] * 3, [0.0] * 3
-    if origin is not None:
-        xyz = parse_numbers(origin.get("xyz", "0 0 0"), 3)[0] or xyz
-        rpy = parse_numbers(origin.get("rpy", "0 0 0"), 3)[0] or rpy
-    return mat3.vector(xyz), mat3.rpy_matrix(rpy)
 
 
 def tensor(values: dict[str, float]) -> mat3.Matrix:
@@ -72,7 +62,7 @@ def declared(link) -> Body | None:
         values[name] = number[0]
     if mass is None:
         return None
-    xyz, rotation = origin_of(inertial)
+    xyz, rotation = mat3.placement(origin(inertial))  # a malformed part counts as 0
     return Body(mass[0], xyz, mat3.rotate(tensor(values), rotation))
 
 

@@ -16,6 +16,11 @@ IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 _THIRD_TURN = 2 * math.pi / 3
 
 
+def placement(origin) -> tuple[Vector, Matrix]:
+    """(xyz, R) of a :class:`urdftool.description.values.Origin`."""
+    return vector(origin.xyz), rpy_matrix(origin.rpy)
+
+
 def vector(values) -> Vector:
     return tuple(float(v) for v in values)
 

@@ -11,9 +11,8 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
-from urdftool.description.values import finite, parse_numbers
-
-SHAPES = ("box", "cylinder", "sphere", "mesh")
+from urdftool.description.urdf import SHAPES
+from urdftool.description.values import finite, origin, parse_numbers
 
 
 @dataclass
@@ -55,7 +54,7 @@ def shape_of(holder) -> Shape | None:
     if not children or children[0].tag not in SHAPES:
         return None
     element = children[0]
-    xyz, rotation = mp.origin_of(holder)
+    xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
     if element.tag == "box":
         size = parse_numbers(element.get("size"), 3)[0]
         params = {"size": size} if _positive(size) else None

@@ -7,26 +7,25 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from urdftool.description.urdf import UNITS
 from urdftool.diagnostics import Severity
+from urdftool.errors import DotMissing
 
 COLOURS = {  # severity -> (outline, fill)
     Severity.ERROR: ("#c62828", "#ffcdd2"),
     Severity.WARNING: ("#ef6c00", "#ffe0b2"),
 }
 _RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
-_UNITS = {"revolute": "rad", "prismatic": "m"}
 RENDERED = (".svg", ".png", ".pdf")
 
 
-class DotMissing(Exception):
-    """The ``dot`` program is not installed; the DOT file was written instead (the message)."""
-
-    def advice(self, output: Path) -> str:
-        """What happened to ``output`` and how to render it."""
-        return (f"Graphviz's 'dot' program is not installed, so {output} was not rendered; "
-                f"wrote the DOT source to {self} instead. Install Graphviz (apt install "
-                f"graphviz, brew install graphviz) or render it with "
-                f"'dot -T{output.suffix[1:]} {self} -o {output}'.")
+def dot_missing_advice(missing: DotMissing, output: Path) -> str:
+    """What happened to ``output`` when Graphviz is missing (``missing`` names the DOT file
+    written instead), and how to render it."""
+    return (f"Graphviz's 'dot' program is not installed, so {output} was not rendered; "
+            f"wrote the DOT source to {missing} instead. Install Graphviz (apt install "
+            f"graphviz, brew install graphviz) or render it with "
+            f"'dot -T{output.suffix[1:]} {missing} -o {output}'.")
 
 
 def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:
@@ -81,9 +80,9 @@ def joint_label(joint) -> str:
     kind = joint.get("type", "?")
     label = f"{joint.get('name', '?')}\n{kind}"
     limit = joint.find("limit")
-    if kind in _UNITS and limit is not None:
+    if kind in UNITS and limit is not None:
         lower, upper = _short(limit.get("lower", "0")), _short(limit.get("upper", "0"))
-        label += f" [{lower}, {upper}] {_UNITS[kind]}"
+        label += f" [{lower}, {upper}] {UNITS[kind]}"
     return label
 
 

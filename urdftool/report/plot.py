@@ -11,9 +11,7 @@ import io
 from html import escape
 from pathlib import Path
 
-
-class PlotError(ValueError):
-    """The picture cannot be written in the asked format; the caller names the option."""
+from urdftool.errors import PlotError
 
 
 COLOURS = {"Adjacent": "#7f7f7f", "Default": "#ff7f0e", "Always": "#d62728",

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from urdftool.description.companions import YamlFile, YamlList, YamlMap, companions
+from urdftool.description.companions import companions
+from urdftool.description.documents import YamlFile, YamlList, YamlMap
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
 from urdftool.errors import available
@@ -54,12 +55,8 @@ class Controller:
 
 def controllers(robot) -> list[Controller]:
     """Every controller in the robot's controller YAML files (parsed once per robot)."""
-    cached = getattr(robot, "_controllers", None)
-    if cached is None:
-        cached = [c for f in companions(robot).controllers if f.problem is None
-                  for c in _file_controllers(f)]
-        setattr(robot, "_controllers", cached)
-    return cached
+    return robot.memo(controllers, lambda: [c for f in companions(robot).controllers
+                                            if f.problem is None for c in _file_controllers(f)])
 
 
 def _file_controllers(file: YamlFile) -> list[Controller]:
@@ -140,7 +137,7 @@ def malformed_controllers_yaml(robot):
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
     """
-    explicit = bool(robot.options.get("controllers"))
+    explicit = bool(robot.companion_paths.controllers)
     for file in companions(robot).controllers:
         if file.problem:
             yield file.at(file.line), file.problem

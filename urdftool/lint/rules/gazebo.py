@@ -7,7 +7,8 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.physics import mat3
 from urdftool.errors import available
-from urdftool.description.values import parse_numbers
+from urdftool.description.urdf import ROUND
+from urdftool.description.values import origin, parse_numbers
 
 DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
 WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")
@@ -144,7 +145,7 @@ def _wheel_diameter(robot, joint) -> float | None:
         return None
     for tag in ("collision", "visual"):
         for shape in link.iterfind(f"{tag}/geometry/*"):
-            if shape.tag in ("cylinder", "sphere"):
+            if shape.tag in ROUND:
                 values, _ = parse_numbers(shape.get("radius"), 1)
                 if values:
                     return 2 * values[0]
@@ -164,10 +165,7 @@ def _joint_frames(robot) -> dict:
         name = joint.get("name")
         if name in frames:
             return frames[name]
-        origin = joint.find("origin")
-        xyz, _ = parse_numbers(origin.get("xyz", "0 0 0") if origin is not None else "0 0 0", 3)
-        rpy, _ = parse_numbers(origin.get("rpy", "0 0 0") if origin is not None else "0 0 0", 3)
-        local = (xyz or [0.0, 0.0, 0.0], mat3.rpy_matrix(rpy or [0.0, 0.0, 0.0]))
+        local = mat3.placement(origin(joint))  # a malformed part counts as 0
         parent = joint.find("parent")
         above = by_child.get(parent.get("link")) if parent is not None else None
         if above is None or depth > len(by_child):

@@ -6,12 +6,9 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.values import finite, parse_numbers
 
-SHAPES = ("box", "cylinder", "sphere", "mesh")
-# (shape, attributes it needs, numbers in each); mesh filename is text
-SHAPE_ATTRIBUTES = {"box": (("size", 3),), "cylinder": (("radius", 1), ("length", 1)),
-                    "sphere": (("radius", 1),), "mesh": (("filename", None),)}
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
 
@@ -229,12 +226,12 @@ def _mesh_elements(robot):
 
 def _mesh_outcomes(robot):
     """(link, holder, mesh element, trimesh or MeshProblem) per mesh element, once per robot."""
-    cached = robot.options.get("_mesh_outcomes")
-    if cached is not None:
-        return cached
+    return robot.memo(_mesh_outcomes, lambda: list(_load_meshes(robot)))
+
+
+def _load_meshes(robot):
     from urdftool.description.meshes import MeshProblem, load_mesh
 
-    outcomes = []
     for link, holder, shape in _mesh_elements(robot):
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         if not scale or not finite(scale):
@@ -243,9 +240,7 @@ def _mesh_outcomes(robot):
             outcome = load_mesh(robot, shape.get("filename"), scale)
         except MeshProblem as problem:
             outcome = problem
-        outcomes.append((link, holder, shape, outcome))
-    robot.options["_mesh_outcomes"] = outcomes
-    return outcomes
+        yield link, holder, shape, outcome
 
 
 def _problems(robot, kind: str):

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
@@ -75,7 +76,7 @@ def _judged(robot):
 def _moving(robot) -> dict:
     """Link name -> the joint that moves it, for links a non-fixed joint moves."""
     return {name: joint for name, joint in _joints_by_child(robot).items()
-            if joint.get("type") in ("revolute", "continuous", "prismatic", "planar", "floating")}
+            if joint.get("type") in VARIABLE}
 
 
 @rule("U301", "malformed-inertial", Severity.ERROR)
@@ -244,14 +245,11 @@ def inertia_triangle_inequality(robot):
 
 def _link_solids(robot):
     """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
-    cached = robot.options.get("_link_solids")
-    if cached is None:
-        from urdftool.physics.solids import link_solid
+    from urdftool.physics.solids import link_solid
 
-        cached = [(link, properties, link_solid(robot, link))
-                  for link, properties in _valid(robot) if properties.mass > 0]
-        robot.options["_link_solids"] = cached
-    return cached
+    return robot.memo(_link_solids, lambda: [(link, properties, link_solid(robot, link))
+                                             for link, properties in _valid(robot)
+                                             if properties.mass > 0])
 
 
 def _extent(solid) -> float:

@@ -6,11 +6,9 @@ import math
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
+from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
 from urdftool.description.values import finite, parse_numbers
 
-JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
-LIMITED_TYPES = ("revolute", "prismatic")
-AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")
 UNIT_TOLERANCE = 1e-6
 
 # (child tag, attribute, how many numbers) read as numbers in a joint
@@ -53,7 +51,7 @@ def missing_limit(robot):
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
     for joint in robot.children("joint"):
-        if joint.get("type") in LIMITED_TYPES and joint.find("limit") is None:
+        if joint.get("type") in LIMITED and joint.find("limit") is None:
             yield joint, (f"{joint.get('type')} joint '{_name(joint)}' has no <limit>; add "
                           "<limit lower=... upper=... effort=... velocity=.../>")
 
@@ -81,7 +79,7 @@ def _ranges(robot):
     missing bound is 0, as in urdfdom."""
     for joint in robot.children("joint"):
         limit = joint.find("limit")
-        if limit is None or joint.get("type") not in LIMITED_TYPES:
+        if limit is None or joint.get("type") not in LIMITED:
             continue
         lower, _ = parse_numbers(limit.get("lower", "0"), 1)
         upper, _ = parse_numbers(limit.get("upper", "0"), 1)
@@ -106,7 +104,7 @@ def inverted_limits(robot):
 
 def _axis(joint):
     axis = joint.find("axis")
-    if axis is None or joint.get("type") not in AXIS_TYPES:
+    if axis is None or joint.get("type") not in AXIS:
         return axis, None
     values, _ = parse_numbers(axis.get("xyz"), 3)
     return axis, values
@@ -254,7 +252,7 @@ def zero_effort_or_velocity(robot):
     """
     for joint in robot.children("joint"):
         limit = joint.find("limit")
-        if limit is None or joint.get("type") not in ("revolute", "prismatic", "continuous"):
+        if limit is None or joint.get("type") not in MOVING:
             continue
         for attribute in ("effort", "velocity"):
             values, _ = parse_numbers(limit.get(attribute), 1)

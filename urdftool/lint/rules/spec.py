@@ -11,10 +11,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from urdftool.description.companions import YamlMap, companions, is_spec
+from urdftool.description.companions import companions, is_spec
+from urdftool.description.documents import YamlMap
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
+from urdftool.description.urdf import MOVING
 from urdftool.description.values import parse_numbers
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
@@ -33,11 +35,8 @@ class SpecJoint:
 
 def _spec(robot):
     """(file, problems, joints, unit, tolerance) of the robot's spec, or None without one."""
-    cached = getattr(robot, "_spec", None)
-    if cached is None:
-        cached = _parse(companions(robot).spec, robot.joints)
-        setattr(robot, "_spec", cached)
-    return cached if cached[0] is not None else None
+    parsed = robot.memo(_spec, lambda: _parse(companions(robot).spec, robot.joints))
+    return parsed if parsed[0] is not None else None
 
 
 def _parse(file, urdf_joints):
@@ -162,7 +161,7 @@ def limit_outside_spec(robot):
     scale = UNITS[unit]
     for entry in joints:
         joint = robot.joints.get(entry.name)
-        if joint is None or joint.get("type") not in ("revolute", "prismatic", "continuous"):
+        if joint is None or joint.get("type") not in MOVING:
             continue
         where = joint.find("limit") if joint.find("limit") is not None else joint
         if joint.get("type") == "continuous":

@@ -5,6 +5,7 @@ from __future__ import annotations
 from urdftool.description.companions import companions
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
+from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
 
 LIMIT_TOLERANCE = 1e-6
@@ -144,7 +145,7 @@ def srdf_state_outside_limits(robot):
     for element in srdf.root.iterfind("group_state/joint"):
         joint = robot.joints.get(element.get("name"))
         limit = joint.find("limit") if joint is not None else None
-        if limit is None or joint.get("type") not in ("revolute", "prismatic"):
+        if limit is None or joint.get("type") not in LIMITED:
             continue
         values, problem = parse_numbers(element.get("value"), 1)
         lower, _ = parse_numbers(limit.get("lower", "0"), 1)

@@ -1,0 +1,65 @@
+"""The loaded Robot: typed companion paths and mesh limits, and one memo for derived values."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from urdftool.description.companions import companions
+from urdftool.description.load import load
+from urdftool.description.meshes import MeshLimits
+from urdftool.description.robot import CompanionPaths
+from urdftool.lint.engine import CheckOptions, Selection, check_file
+
+ROBOT = ('<robot name="r"><link name="a"><collision><geometry><mesh filename="ball.stl"/>'
+         '</geometry></collision><inertial><mass value="1"/>'
+         '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>')
+
+
+def _folder(tmp_path) -> Path:
+    import trimesh
+
+    (tmp_path / ".git").mkdir()
+    trimesh.creation.icosphere(subdivisions=3).export(tmp_path / "ball.stl")  # 1280 triangles
+    (tmp_path / "r.urdf").write_text(ROBOT)
+    (tmp_path / "joint_limits.yaml").write_text("joints: {}\n")
+    return tmp_path / "r.urdf"
+
+
+def test_memo_computes_once_per_key(tmp_path):
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    robot = load(tmp_path / "r.urdf")
+    calls = []
+    assert robot.memo(len, lambda: calls.append(1) or "x") == "x"
+    assert robot.memo(len, lambda: calls.append(2) or "y") == "x"
+    assert robot.memo(min, lambda: "z") == "z" and calls == [1]
+
+
+def test_rules_keep_what_they_derive_in_the_memo_not_on_the_robot(tmp_path):
+    robot = check_file(str(_folder(tmp_path)), CheckOptions()).robot
+    assert companions(robot) is companions(robot)
+    assert not {"_companions", "_spec", "_controllers"} & set(vars(robot))
+    assert not {"_mesh_cache", "_mesh_outcomes", "_link_solids", "max_triangles", "spec",
+                "srdf", "controllers"} & set(vars(robot).get("options", {}))
+    assert len(robot._memo) >= 4  # companions, spec, mesh outcomes, mesh cache, link solids
+
+
+def test_typed_options_reach_the_robot_and_the_rules(tmp_path):
+    path = _folder(tmp_path)
+    spec = tmp_path / "limits" / "head.yaml"
+    spec.parent.mkdir()
+    spec.write_text("joints: [\n")
+    options = CheckOptions(selection=Selection(("U411", "U701")), mesh_limits=MeshLimits(1000),
+                           companions=CompanionPaths(spec=spec))
+    result = check_file(str(path), options)
+    assert result.robot.mesh_limits.max_triangles == 1000
+    assert result.robot.companion_paths == CompanionPaths(spec=spec)
+    assert sorted(f.code for f in result.findings) == ["U411", "U701"]
+    assert "1280 triangles" in next(f.message for f in result.findings if f.code == "U411")
+    assert check_file(str(path), CheckOptions(selection=Selection(("U411",)))).findings == []
+
+
+def test_the_command_line_names_win_over_the_settings_file():
+    settings = CompanionPaths((Path("a.yaml"),), Path("r.srdf"), Path("s.yaml"))
+    assert settings.overridden_by(CompanionPaths(spec=Path("t.yaml"))) == \
+        CompanionPaths((Path("a.yaml"),), Path("r.srdf"), Path("t.yaml"))
+    assert settings.overridden_by(CompanionPaths()) == settings

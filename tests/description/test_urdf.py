@@ -1,0 +1,67 @@
+"""The URDF vocabulary has one owner (description/urdf.py) and matches urdfdom's."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from urdftool.description import urdf
+
+PACKAGE = Path(urdf.__file__).resolve().parents[1]
+CHECK_URDF = Path(sys.executable).parent / "check_urdf"
+
+
+def _check_urdf(tmp_path, kind: str, limit: bool) -> bool:
+    """Whether urdfdom accepts a two-link robot whose joint has this type."""
+    binary = CHECK_URDF if CHECK_URDF.exists() else shutil.which("check_urdf")
+    if not binary:
+        pytest.skip("check_urdf (urdfdom) is not installed")
+    text = (f'<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="{kind}">'
+            '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+            + ('<limit lower="-1" upper="1" effort="1" velocity="1"/>' if limit else "")
+            + "</joint></robot>")
+    path = tmp_path / f"{kind}.urdf"
+    path.write_text(text)
+    run = subprocess.run([str(binary), str(path)], capture_output=True, text=True)
+    return run.returncode == 0 and "Error" not in run.stdout + run.stderr
+
+
+@pytest.mark.parametrize("kind", urdf.JOINT_TYPES + ("hinge", "ball"))
+def test_joint_types_are_urdfdoms(kind, tmp_path):
+    assert _check_urdf(tmp_path, kind, limit=True) == (kind in urdf.JOINT_TYPES)
+    # urdfdom refuses exactly the LIMITED types without a <limit>
+    if kind in urdf.JOINT_TYPES:
+        assert _check_urdf(tmp_path, kind, limit=False) == (kind not in urdf.LIMITED)
+
+
+def test_the_sets_are_consistent():
+    assert set(urdf.MOVING) | {"fixed", "floating", "planar"} == set(urdf.JOINT_TYPES)
+    assert set(urdf.LIMITED) <= set(urdf.MOVING) <= set(urdf.AXIS) <= set(urdf.VARIABLE)
+    assert set(urdf.VARIABLE) == set(urdf.JOINT_TYPES) - {"fixed"}
+    assert set(urdf.ANGULAR) | {"prismatic"} == set(urdf.MOVING)
+    assert set(urdf.UNITS) == set(urdf.LIMITED)
+    assert set(urdf.SHAPE_ATTRIBUTES) == set(urdf.SHAPES) and set(urdf.ROUND) < set(urdf.SHAPES)
+
+
+_NAMES = "|".join(urdf.JOINT_TYPES + urdf.SHAPES)
+_LIST = re.compile(rf"""["']({_NAMES})["'](\s*,\s*["']({_NAMES})["']){{2,}}""")
+
+
+def test_no_second_copy_of_the_vocabulary():
+    """No module but description/urdf.py spells out three or more joint types or shapes."""
+    copies = [f"{path.relative_to(PACKAGE.parent)}:{number}"
+              for path in sorted(PACKAGE.rglob("*.py")) if path.name != "urdf.py"
+              for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+              if _LIST.search(line)]
+    assert not copies, copies
+
+
+def test_the_copy_finder_sees_a_copy():
+    assert _LIST.search('MOVE = ("revolute", "continuous", "prismatic")')
+    assert _LIST.search("if tag in ('box', 'cylinder', 'sphere'):")
+    assert not _LIST.search('kind in ("revolute", "prismatic")')

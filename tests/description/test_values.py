@@ -1,0 +1,63 @@
+"""Reading attribute values: the one ``<origin>`` reader and its converters."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from lxml import etree
+
+from urdftool.description.load import load
+from urdftool.description.values import Origin, origin
+from urdftool.kinematics import dh, transforms
+from urdftool.physics import mass, mat3
+
+
+def _element(text: str):
+    return etree.fromstring(text)
+
+
+def test_absent_origin_is_the_identity():
+    assert origin(_element("<joint/>")) == Origin((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), None, None)
+    assert origin(None) == Origin()
+    assert origin(_element('<joint><origin xyz="1 2 3"/></joint>')).rpy == (0.0, 0.0, 0.0)
+
+
+def test_a_malformed_part_reads_as_zero_and_says_why():
+    found = origin(_element('<joint><origin xyz="1 2 3" rpy="0 x 0"/></joint>'))
+    assert found.xyz == (1.0, 2.0, 3.0) and found.rpy == (0.0, 0.0, 0.0)
+    assert found.problem == "rpy: 'x' is not a number (in '0 x 0')"
+    assert found.element.tag == "origin"
+    assert origin(_element('<joint><origin xyz="1 2"/></joint>')).problem == \
+        "xyz: expected 3 numbers, found 2 in '1 2'"
+
+
+def test_the_converters_agree():
+    found = origin(_element('<joint><origin xyz="1 -2 0.5" rpy="0.3 -1.1 2.0"/></joint>'))
+    xyz, rotation = mat3.placement(found)
+    matrix = transforms.from_origin(found)
+    assert np.allclose(matrix[:3, :3], rotation) and np.allclose(matrix[:3, 3], xyz)
+
+
+ARM = """<robot name="r"><link name="a"/><link name="b"/>
+<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+<origin xyz="0 0 1" rpy="{rpy}"/><axis xyz="0 0 1"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
+
+
+def test_dh_refuses_a_malformed_origin_at_the_origin_element(tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM.format(rpy="0 0 nope"))
+    with pytest.raises(dh.DHError, match="joint 'j': malformed <origin>") as raised:
+        dh.extract(load(path), "a", "b")
+    assert raised.value.element.tag == "origin"
+
+
+def test_an_inertial_counts_a_malformed_part_as_zero():
+    link = _element('<link name="l"><inertial><origin xyz="0 0 1" rpy="a b c"/>'
+                    '<mass value="2"/><inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/>'
+                    "</inertial></link>")
+    body = mass.declared(link)
+    assert body.com == (0.0, 0.0, 1.0)
+    assert body.inertia == mat3.diagonal((1.0, 2.0, 3.0)) and not math.isnan(body.mass)

@@ -1,0 +1,66 @@
+"""One exception hierarchy: every public error is an UrdftoolError defined in urdftool.errors,
+and the module that raises it still exports it (``except fk.FKError`` keeps working)."""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import re
+from pathlib import Path
+
+import pytest
+
+from urdftool import errors
+
+EXPORTED = {
+    "urdftool.collision.srdf": ["SrdfError"],
+    "urdftool.description.meshes": ["MeshProblem"],
+    "urdftool.kinematics.configuration": ["ConfigError", "MimicError"],
+    "urdftool.kinematics.tree": ["TreeError"],
+    "urdftool.kinematics.fk": ["FKError", "MimicError"],
+    "urdftool.kinematics.dh": ["DHError"],
+    "urdftool.physics.dynamics": ["DynamicsError"],
+    "urdftool.report.dot": ["DotMissing"],
+}
+LOCATED = ["MeshProblem", "SrdfError", "ConfigError", "MimicError", "TreeError", "FKError",
+           "DHError", "DynamicsError"]
+
+
+@pytest.mark.parametrize("module", sorted(EXPORTED))
+def test_old_modules_re_export_the_one_class(module):
+    for name in EXPORTED[module]:
+        assert getattr(importlib.import_module(module), name) is getattr(errors, name)
+        assert issubclass(getattr(errors, name), errors.UrdftoolError)
+
+
+def test_located_errors_carry_element_and_location():
+    for name in LOCATED:
+        assert issubclass(getattr(errors, name), errors.LocatedError), name
+    element = object()
+    error = errors.DHError("bad row", element, where="table.yaml:3")
+    assert (str(error), error.element, error.where, error.location) == \
+        ("bad row", element, "table.yaml:3", None)
+    assert str(errors.ConfigError("too few values", "q.csv:2")) == "q.csv:2: too few values"
+    problem = errors.MeshProblem("missing", "mesh 'm.stl' not found")
+    assert (str(problem), problem.kind, problem.element) == ("mesh 'm.stl' not found", "missing",
+                                                              None)
+
+
+def test_no_public_exception_is_defined_outside_errors():
+    """A public class deriving from an exception anywhere but errors.py is a second hierarchy.
+    (Private control flow, ``_Name``, and the loader's XmlProblem/XacroFailure/SandboxViolation,
+    which become LoadError, are left out.)"""
+    package = Path(errors.__file__).parent
+    pattern = re.compile(r"^class ([A-Z]\w*)\((\w*(Exception|Error)|OSError)\)", re.M)
+    found = {f"{path.relative_to(package)}:{match[1]}"
+             for path in package.rglob("*.py") if path.name != "errors.py"
+             for match in pattern.finditer(path.read_text(encoding="utf-8"))}
+    assert found == {"description/xml.py:XmlProblem", "description/xacro.py:XacroFailure",
+                     "description/xacro_sandbox.py:SandboxViolation",
+                     "description/files.py:TooLarge"}, found
+
+
+def test_every_errors_class_is_an_urdftool_error():
+    for name, value in vars(errors).items():
+        if inspect.isclass(value) and issubclass(value, BaseException):
+            assert issubclass(value, errors.UrdftoolError), name

@@ -1,0 +1,160 @@
+"""Companion documents read with their lines: YAML (controllers, the joint spec) and SRDF.
+
+Reading only: which files a robot has is :mod:`urdftool.description.companions`' business, and
+what is wrong in them the rules' (U6xx-U8xx live in :mod:`urdftool.lint.rules`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+from lxml import etree
+
+from urdftool.diagnostics import Location, display_path
+from urdftool.description.files import TooLarge, read_regular
+from urdftool.description.xml import XmlProblem, start_tag_lines
+from urdftool.description.yaml_limits import DepthLimit
+
+MAX_SIZE = 16 * 1024 * 1024
+
+
+# --- YAML that remembers where each key and item was written -------------------------------
+
+class YamlMap(dict):
+    """A YAML mapping; ``line`` is where it starts, ``lines[key]`` where each key is (1-based)."""
+
+    line: int = 0
+    lines: dict
+
+
+class YamlList(list):
+    """A YAML sequence; ``line`` is where it starts, ``lines[i]`` where each item is (1-based)."""
+
+    line: int = 0
+    lines: list
+
+
+class _Loader(DepthLimit, yaml.SafeLoader):
+    """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;
+    nesting past yaml_limits.MAX_DEPTH is a YAML error at its line."""
+
+    def construct_yaml_map(self, node):
+        data = YamlMap()
+        data.line, data.lines = node.start_mark.line + 1, {}
+        yield data
+        for key_node, value_node in node.value:
+            key = self.construct_object(key_node, deep=True)
+            try:
+                hash(key)
+            except TypeError:
+                key = str(key)
+            data[key] = self.construct_object(value_node, deep=True)
+            data.lines[key] = key_node.start_mark.line + 1
+
+    def construct_yaml_seq(self, node):
+        data = YamlList()
+        data.line = node.start_mark.line + 1
+        data.lines = [item.start_mark.line + 1 for item in node.value]
+        yield data
+        data.extend(self.construct_object(item, deep=True) for item in node.value)
+
+    def construct_unknown(self, suffix, node):
+        if isinstance(node, yaml.ScalarNode):
+            return self.construct_scalar(node)
+        if isinstance(node, yaml.SequenceNode):
+            return next(self.construct_yaml_seq(node))
+        return next(self.construct_yaml_map(node))
+
+
+_Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
+_Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
+_Loader.add_multi_constructor("!", _Loader.construct_unknown)
+
+
+@dataclass
+class CompanionFile:
+    """A parsed companion: ``data`` (YAML: YamlMap/YamlList/scalar; SRDF: the ``<robot>``
+    element), or None with ``problem`` at ``line``."""
+
+    path: Path
+    display: str
+    data: object = None
+    problem: str | None = None
+    line: int | None = None
+
+    @property
+    def root(self):
+        return self.data
+
+    def at(self, line: int | None) -> Location:
+        return Location(self.display, line)
+
+
+YamlFile = SrdfFile = CompanionFile
+
+
+def read_yaml(path: Path) -> YamlFile:
+    """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports."""
+    result = YamlFile(path, display_path(path))
+    text = _read_text(path, result)
+    if text is None:
+        return result
+    try:
+        result.data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+    except yaml.MarkedYAMLError as error:
+        mark = error.problem_mark or error.context_mark
+        if error.context_mark is not None and (error.context or "").startswith("while parsing a flow"):
+            mark = error.context_mark  # an unclosed bracket: point where it opened
+        result.line = mark.line + 1 if mark else None
+        result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
+    except (yaml.YAMLError, RecursionError) as error:
+        result.problem = f"not valid YAML: {error}"
+    return result
+
+
+def read_srdf(path: Path) -> SrdfFile:
+    """Parse one SRDF; a syntax error becomes ``problem`` at its line."""
+    result = SrdfFile(path, display_path(path))
+    text = _read_text(path, result)
+    if text is None:
+        return result
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
+    try:
+        result.data = etree.fromstring(text.encode(), parser)
+    except etree.XMLSyntaxError as error:
+        result.problem, result.line = f"not well-formed XML: {error.msg}", error.lineno
+        return result
+    _start_tag_lines(result.data, text)
+    if result.data.tag != "robot":
+        result.problem, result.line = (f"root element is <{result.data.tag}>, not <robot>",
+                                       result.data.sourceline)
+        result.data = None
+    return result
+
+
+def _start_tag_lines(root, text: str) -> None:
+    """Give each element the line of its ``<`` (lxml keeps the line of the closing ``>``)."""
+    elements = list(root.iter(etree.Element))
+    try:
+        lines = start_tag_lines(text.encode())
+    except XmlProblem:  # libxml2 accepted what expat refuses (an entity): keep lxml's lines
+        return
+    if len(lines) == len(elements):
+        for element, line in zip(elements, lines):
+            element.sourceline = line
+
+
+def _read_text(path: Path, result) -> str | None:
+    """The file's text when it is a regular file of at most MAX_SIZE bytes; else None and
+    ``result.problem`` says why (nothing is read from a FIFO or a device)."""
+    try:
+        return read_regular(path, MAX_SIZE).decode("utf-8")
+    except TooLarge:
+        result.problem = f"larger than {MAX_SIZE} bytes; not read"
+    except OSError as error:
+        result.problem = f"cannot be read: {error.strerror}"
+    except UnicodeDecodeError as error:
+        result.problem = f"cannot be read: {error}"
+    return None
