@@ -169,6 +169,8 @@ def materialize(case: Case) -> Layout:
     for relative, target in case.links.items():
         where = repo / relative
         where.parent.mkdir(parents=True, exist_ok=True)
+        if where.is_symlink() or where.exists():  # the link replaces a file of the seed
+            where.unlink()
         os.symlink(target.replace(OUTSIDE, str(outside)), where)
     for name in ("report.json", "robot.urdf", "graph.dot", "inertia.urdf"):
         if case.output == "symlink":

@@ -290,6 +290,35 @@ def test_q_file_must_be_a_regular_file(project, special):
     assert "not a regular file" in done.stderr and "Traceback" not in done.stderr
 
 
+@pytest.mark.parametrize("command", [["fk", "robot.urdf", "--q-file", "q.csv"],
+                                     ["fk", "robot.urdf", "--dh", "q.csv"]], ids=["q-file", "dh"])
+def test_a_table_linked_out_of_the_repository_is_not_read(project, command):
+    """A q-file or D-H table named in the repository that is a planted link to a file outside:
+    not opened (its lines would be quoted in the parse error)."""
+    (project.parent / "victim.csv").write_text("SECRET,LINE\n1,2\n")
+    (project / "q.csv").symlink_to(project.parent / "victim.csv")
+    done = _run(*command, cwd=project)
+    assert done.returncode in (1, 2), done.stderr
+    assert "symbolic link" in done.stderr and "outside the repository" in done.stderr
+    assert "SECRET" not in done.stdout + done.stderr
+
+
+def test_a_binary_file_in_a_walk_is_a_target_without_parsing(tmp_path, monkeypatch):
+    """A file with NUL bytes is no xacro library: it is checked (U003 says why) without feeding
+    megabytes of it to the XML parser (90 sparse 15 MiB files took 18 s to classify)."""
+    from urdftool.lint import targets
+
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    path = repo / "big.urdf.xacro"
+    path.write_text(f"<robot {XACRO}>")
+    os.truncate(path, 1 << 20)
+    monkeypatch.setattr(targets, "_defines_robot", lambda data: pytest.fail("parsed"))
+    top, skipped = targets.split_top_level(targets.robot_files(repo),
+                                           lambda p: PackageResolver(start=p))
+    assert top == [path] and not skipped
+
+
 def test_companion_fifo_is_a_finding_not_a_hang(project):
     (project / "config").mkdir()
     os.mkfifo(project / "config" / "spec.yaml")

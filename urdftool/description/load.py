@@ -15,9 +15,9 @@ from lxml import etree
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import LoadError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, inside, read_regular
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, read_regular
 from urdftool.description.robot import LoadNote, Robot
-from urdftool.description.packages import PackageResolver, containment_root
+from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
 
 XACRO_SUFFIXES = (".xacro",)
@@ -82,9 +82,9 @@ def _folder_of(path) -> Path:
 def _refuse_link_out(path: str, shown: str) -> None:
     """A LoadError of kind 'link' when ``path`` is (or lies in a folder that is) a symbolic link
     leading outside the repository holding it; the file is not opened."""
-    root = containment_root(_folder_of(path))
-    if not inside(path, root):
-        target = os.path.realpath(path)
+    leads = link_out(path)
+    if leads:
+        target, root = leads
         raise LoadError("link", (
             f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
             "not followed"), Location(shown, None))

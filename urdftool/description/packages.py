@@ -60,6 +60,15 @@ def containment_root(folder: Path) -> Path:
         (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
 
 
+def link_out(path) -> tuple[str, Path] | None:
+    """(where it leads, the repository) when ``path`` is, or lies in a folder that is, a
+    symbolic link leading outside the repository that holds it as named; None otherwise. A
+    file named in a repository is read only when it stays there: a link planted in a pull
+    request cannot make urdftool read, and print parts of, a file elsewhere."""
+    root = containment_root(Path(os.path.abspath(path)).parent)
+    return None if inside(path, root) else (os.path.realpath(path), root)
+
+
 class PackageResolver:
     """Maps package names to folders; one instance serves xacro and mesh look-ups."""
 

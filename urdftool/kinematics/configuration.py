@@ -199,9 +199,15 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
 def from_file(variables: list[Variable], path: str, degrees: bool = False,
               mimics: dict[str, str] | None = None) -> Configurations:
     """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file: a
-    regular file up to the size limit (urdftool.description.files.read_regular), else ConfigError."""
+    regular file up to the size limit (urdftool.description.files.read_regular) that is not a
+    link leading out of its repository, else ConfigError."""
     from urdftool.description.files import read_regular
+    from urdftool.description.packages import link_out
 
+    leads = link_out(path)
+    if leads:
+        raise ConfigError(f"cannot read q-file: it is a symbolic link to '{leads[0]}', outside "
+                          f"the repository ({leads[1]}); not followed", path)
     try:
         text = read_regular(path).decode("utf-8")
     except OSError as error:

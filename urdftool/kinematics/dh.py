@@ -301,8 +301,13 @@ def load_table(path: str) -> DHTable:
     import yaml
 
     from urdftool.description.files import read_regular
+    from urdftool.description.packages import link_out
     from urdftool.description.yaml_limits import BoundedLoader
 
+    leads = link_out(path)
+    if leads:
+        raise DHError(f"cannot read D-H table: it is a symbolic link to '{leads[0]}', outside "
+                      f"the repository ({leads[1]}); not followed", where=path)
     try:
         text = read_regular(path).decode("utf-8")
         data = yaml.load(text, Loader=BoundedLoader)  # noqa: S506 - SafeLoader; JSON is YAML
