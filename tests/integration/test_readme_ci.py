@@ -234,3 +234,13 @@ def test_ci_makes_the_safe_mode_the_default(leaky, ci, flag, leaks):
     output = invoke(argv, CI=ci).output
     assert (SECRET in output) is leaks
     assert ("U005" in output) is not leaks
+
+
+@pytest.mark.parametrize("command", ["tree", "xacro", "fk", "graph"])
+def test_every_command_is_in_the_safe_mode_under_ci(leaky, command):
+    """Not only check: a CI job that runs tree, xacro or fk on a pull request's robot leaks no
+    secret either; off CI (or with --allow-env on check) the robot's $(env) expands."""
+    result = invoke([command, "--timeout", "0", "robots/leak.urdf.xacro"], CI="true")
+    assert result.exit_code == 1 and "U005" in result.output, result.output
+    assert SECRET not in result.output
+    assert SECRET in invoke(["xacro", "--timeout", "0", "robots/leak.urdf.xacro"]).output

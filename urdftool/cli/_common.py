@@ -133,10 +133,12 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
     choices: {option: (value, allowed values)}, e.g. {"--format": (fmt, ("text", "json"))}
     problems: (is wrong, message) pairs for the command's own option checks
-    load_options: passed to ``urdftool.description.load.load`` (e.g. ``allow_env``)
+    load_options: passed to ``urdftool.description.load.load`` (``allow_env``: None, the
+        default, is the safe mode when ``CI`` is set, see lint.settings.env_allowed)
     """
     from urdftool.errors import LoadError
     from urdftool.description.load import load
+    from urdftool.lint.settings import env_allowed
 
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
@@ -151,6 +153,8 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     except UsageError as error:
         fail_usage(error)
     try:
+        # Under CI the safe mode is the default for every command, as for check.
+        load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
         return load(paths[0], xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
         from urdftool.lint.engine import load_error_findings

@@ -25,7 +25,7 @@ def xacro(
     from urdftool.report.urdf import expanded_urdf
 
     refuse_bad_outputs(output)
-    text = expanded_urdf(single_robot("xacro", words, arg, package, allow_env=not no_env))
+    text = expanded_urdf(single_robot("xacro", words, arg, package, allow_env=False if no_env else None))
     if output:
         write_output(output, text)
     else:
