@@ -8,6 +8,7 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
 import pytest
@@ -96,12 +97,22 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
 
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \
     shutil.which("check_urdf")
+# pin's check_urdf is a Python wrapper (cmeel) that sets LD_LIBRARY_PATH and runs the binary in
+# its prefix: run the binary directly, saving a Python start-up (~0.3 s) per file.
+_CMEEL = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"
+if CHECK_URDF and (_CMEEL / "bin" / "check_urdf").is_file():
+    CHECK_URDF = str(_CMEEL / "bin" / "check_urdf")
+    _URDFDOM_ENV = {**os.environ, "LD_LIBRARY_PATH": os.pathsep.join(
+        filter(None, [str(_CMEEL / "lib"), os.environ.get("LD_LIBRARY_PATH")]))}
+else:
+    _URDFDOM_ENV = None
 
 
 @functools.cache
 def check_urdf(path: Path) -> subprocess.CompletedProcess:
     """check_urdf's verdict on ``path``, run once per path and session (files do not change)."""
-    return subprocess.run([CHECK_URDF, str(path)], capture_output=True, text=True, timeout=60)
+    return subprocess.run([CHECK_URDF, str(path)], capture_output=True, text=True, timeout=60,
+                          env=_URDFDOM_ENV)
 
 
 # ---- case files (tests/cases): one per rule, offending lines marked `expect: CODE` ----------
