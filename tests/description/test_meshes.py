@@ -1,14 +1,12 @@
-"""Mesh resolution, limits and cache; the corpus's missing meshes are exactly OMITTED.tsv."""
+"""Mesh resolution, limits and cache (the corpus's missing meshes are checked in
+tests/integration/test_corpus_meshes.py)."""
 
 from __future__ import annotations
 
-import csv
 import struct
 
 import pytest
 
-from conftest import corpus_or_skip
-from urdftool.errors import LoadError
 from urdftool.description.load import load
 from urdftool.description.meshes import MeshLimits, MeshProblem, load_mesh, resolve, triangle_count
 
@@ -65,47 +63,6 @@ def test_corrupt_mesh_is_a_problem_not_a_traceback(tmp_path):
     with pytest.raises(MeshProblem) as error:
         load_mesh(_robot(tmp_path), "m.stl", limits=MeshLimits())
     assert error.value.kind in ("corrupt", "too-large")
-
-
-def _corpus_entries(corpus):
-    seen = set()
-    with open(corpus / "CHECKS.tsv") as handle:
-        for row in csv.DictReader(handle, delimiter="\t"):
-            args = dict(word.split(":=", 1) for word in (row["xacro_args"] or "").split())
-            args = {k: v.replace("<corpus>", str(corpus)) for k, v in args.items()}
-            key = (row["path"], tuple(sorted(args.items())))
-            if key not in seen:
-                seen.add(key)
-                yield row["path"], args
-
-
-def test_missing_meshes_on_the_corpus_are_exactly_the_omitted_ones():
-    corpus = corpus_or_skip()
-    from urdftool.physics.solids import SHAPES  # noqa: F401 (shapes and meshes share the resolver)
-
-    found = set()
-    for path, args in _corpus_entries(corpus):
-        try:
-            robot = load(corpus / path, xacro_args=args)
-        except LoadError:
-            continue
-        for mesh in robot.root.iter("mesh"):
-            uri = mesh.get("filename")
-            try:
-                resolve(robot, uri)
-            except MeshProblem as problem:
-                if problem.kind == "missing":
-                    target = str(robot.resolve_uri(uri).resolve().relative_to(corpus.resolve()))
-                elif problem.kind in ("package", "outside"):
-                    target = uri
-                else:
-                    continue
-                found.add((target, path))
-    with open(corpus / "OMITTED.tsv") as handle:
-        omitted = {(row["referenced_path"], by.strip())
-                   for row in csv.DictReader(handle, delimiter="\t")
-                   for by in row["referenced_by"].split(",")}
-    assert found == omitted
 
 
 def test_collada_unit_is_applied(tmp_path):

@@ -1,19 +1,15 @@
-"""The xacro expression sandbox: attacks refused with a located finding, real robots unchanged."""
+"""The xacro expression sandbox: attacks refused with a located finding (real robots:
+tests/integration/test_corpus_xacro.py)."""
 
 from __future__ import annotations
 
-import csv
 import os
-import xml.dom.minidom
 
 import pytest
 
 from urdftool.errors import LoadError
 from urdftool.lint.engine import load_error_findings
 from urdftool.description.load import load
-from urdftool.description.packages import PackageResolver
-
-from conftest import CORPUS, corpus_or_skip
 
 HEADER = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
 
@@ -214,86 +210,6 @@ def test_symlink_out_of_the_repository_is_outside(tmp_path):
 def test_special_files_are_not_read(tmp_path):
     finding = _refused(tmp_path, '<link name="${xacro.load_yaml(\'/dev/zero\')}"/>')
     assert finding.code == "U005" and "regular file" in finding.message
-
-
-def test_found_packages_are_allowed_roots(corpus):
-    relative, args = next(row for row in _corpus_xacro_rows() if row[0].startswith("ur_gazebo"))
-    robot = load(corpus / relative, xacro_args=_args(args), allow_env=False)
-    assert not [note for note in robot.notes if note.kind == "outside-file"]
-    assert any("ur_description" in f for f in robot.files)
-
-
-# ---- real robots expand exactly as with plain xacro ----
-
-def _corpus_xacro_rows():
-    if not CORPUS.is_dir():
-        return []
-    with open(CORPUS / "CHECKS.tsv", newline="") as handle:
-        rows = list(csv.DictReader(handle, delimiter="\t"))
-    return [(row["path"], row["xacro_args"]) for row in rows
-            if row["kind"] == "xacro" and row["xacro_2.1.1_with_find_resolved"].startswith("ok")]
-
-
-def _args(text: str) -> dict[str, str]:
-    pairs = (word.partition(":=") for word in text.split())
-    return {name: value.replace("<corpus>", str(CORPUS)) for name, _, value in pairs}
-
-
-def _plain_xacro(path, args):
-    """What real xacro produces, with $(find) resolved like urdftool does."""
-    import xacro
-    from xacro import substitution_args
-
-    resolver = PackageResolver(start=path.parent)
-    saved = substitution_args._eval_find
-    substitution_args._eval_find = lambda package: str(resolver.find(package))
-    try:
-        xacro.init_stacks(str(path))
-        xacro.all_includes = []
-        doc = xml.dom.minidom.parseString(path.read_bytes())
-        xacro.process_doc(doc, mappings=dict(args), verbosity=0)
-    finally:
-        substitution_args._eval_find = saved
-        xacro.init_stacks(None)
-        xacro.substitution_args_context.clear()
-    return doc.documentElement
-
-
-def _signature_dom(node):
-    items = []
-    for element in node.getElementsByTagName("*"):
-        attributes = sorted((k, v) for k, v in element.attributes.items()
-                            if not k.startswith("xmlns"))
-        text = "".join(c.data for c in element.childNodes if c.nodeType == c.TEXT_NODE).strip()
-        items.append((element.tagName.split(":")[-1], tuple(attributes), text))
-    return items
-
-
-def _signature_lxml(root):
-    from lxml import etree
-
-    items = []
-    for element in root.iter(etree.Element):
-        if element is root:
-            continue
-        attributes = sorted((etree.QName(k).localname if k.startswith("{") else k, v)
-                            for k, v in element.attrib.items())
-        items.append((etree.QName(element).localname, tuple(attributes),
-                      (element.text or "").strip()))
-    return items
-
-
-@pytest.mark.parametrize("relative, args", _corpus_xacro_rows() or [("none", "")])
-def test_corpus_xacro_expands_as_with_plain_xacro(relative, args):
-    corpus = corpus_or_skip()
-    path = corpus / relative
-    robot = load(path, xacro_args=_args(args), allow_env=False)
-    assert _signature_lxml(robot.root) == _signature_dom(_plain_xacro(path, _args(args)))
-    assert not [note for note in robot.notes if note.kind == "outside-file"]
-
-
-def test_corpus_has_the_46_expanding_xacro_files(corpus):
-    assert len(_corpus_xacro_rows()) == 46
 
 
 def test_yaml_alias_bomb_is_refused(tmp_path):

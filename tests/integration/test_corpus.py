@@ -1,5 +1,6 @@
 """Every robot of the public corpus is checked: no crash, the real defects found, and whatever
-urdftool passes must load in Pinocchio and yourdfpy (otherwise urdftool missed something)."""
+urdftool passes must load in Pinocchio and yourdfpy (otherwise urdftool missed something).
+The findings come from the shared ``corpus_run`` (tests/conftest.py)."""
 
 from __future__ import annotations
 
@@ -7,8 +8,7 @@ import io
 
 import pytest
 
-from conftest import CORPUS, corpus_entry_points, entry_id
-from urdftool.lint.engine import CheckOptions, check_file
+from conftest import corpus_entry_points, entry_id
 
 ENTRIES = corpus_entry_points()
 pytestmark = pytest.mark.skipif(not ENTRIES, reason="corpus not available")
@@ -45,15 +45,9 @@ KNOWN = {
 FOUNDATION = ("U0", "U1", "U2", "U9")
 
 
-@pytest.fixture(scope="module")
-def results():
-    return {entry_id(e): (e, check_file(str(CORPUS / e[0]), CheckOptions(xacro_args=e[1])))
-            for e in ENTRIES}
-
-
 @pytest.mark.parametrize("entry", ENTRIES, ids=entry_id)
-def test_corpus_robot_findings(entry, results):
-    _, result = results[entry_id(entry)]
+def test_corpus_robot_findings(entry, corpus_run):
+    _, result = corpus_run[entry_id(entry)]
     assert not [f for f in result.findings if f.code == "U900"], result.findings
     codes = {f.code for f in result.findings if f.code.startswith(FOUNDATION)}
     path, args = entry
@@ -64,10 +58,10 @@ def test_corpus_robot_findings(entry, results):
 
 
 @pytest.mark.parametrize("entry", ENTRIES, ids=entry_id)
-def test_what_passes_loads_in_pinocchio_and_yourdfpy(entry, results):
+def test_what_passes_loads_in_pinocchio_and_yourdfpy(entry, corpus_run):
     pinocchio = pytest.importorskip("pinocchio")
     yourdfpy = pytest.importorskip("yourdfpy")
-    _, result = results[entry_id(entry)]
+    _, result = corpus_run[entry_id(entry)]
     if result.robot is None or any(f.severity.value == "error" for f in result.findings):
         pytest.skip("urdftool reports errors")
     model = pinocchio.buildModelFromXML(result.robot.urdf)

@@ -1,54 +1,86 @@
-"""Parity with urdfdom's check_urdf (shipped in the pin wheel): every file it rejects, urdftool
-rejects too, with at least one located error; `urdftool tree` prints what check_urdf prints."""
+"""Parity with urdfdom's check_urdf (shipped in the pin wheel), both ways: check_urdf refuses a
+file exactly when urdftool reports one of the errors urdfdom refuses for (URDFDOM), located;
+`urdftool tree` prints what check_urdf prints."""
 
 from __future__ import annotations
 
-import shutil
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
 
-from conftest import CASES, CORPUS, corpus_entry_points
+from conftest import CASES, CHECK_URDF, CORPUS, check_urdf, corpus_entry_points
 from conftest import CASE_PATHS, case_robot
 from urdftool.lint.engine import CheckOptions, check_file
 
-CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \
-    shutil.which("check_urdf")
 pytestmark = pytest.mark.skipif(CHECK_URDF is None, reason="check_urdf not installed")
 
-
-def check_urdf(path: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([CHECK_URDF, str(path)], capture_output=True, text=True, timeout=60)
-
-
-def urdf_for(robot_file: Path, tmp_path: Path) -> Path:
-    """The file check_urdf should read: the file itself, or urdftool's expansion of a xacro."""
-    if not robot_file.name.endswith(".xacro"):
-        return robot_file
-    result = check_file(str(robot_file), CheckOptions())
-    if result.robot is None:
-        pytest.skip("xacro does not expand; urdftool reports that itself")
-    expanded = tmp_path / "expanded.urdf"
-    expanded.write_text(result.robot.urdf)
-    return expanded
+# The errors for what urdfdom refuses too: the file does not parse, is not a <robot> of a
+# version it reads, or its tree, joint types, limits or joint numbers are broken. urdftool's
+# other errors (inertia, geometry, materials, spec, ...) are on files check_urdf accepts:
+# urdftool is stricter there, so they must not be in this set.
+URDFDOM = {"U001", "U002", "U003", "U004", "U011", "U012",
+           "U101", "U102", "U103", "U104", "U105", "U106", "U108", "U109", "U110",
+           "U201", "U202", "U203", "U207", "U208", "U213"}
+# U007 (a .urdf holding xacro) is on files check_urdf accepts (robotis_op: leftover
+# <xacro:grey/> elements) and on files it refuses (sam_bot: ${...} in numbers), so it
+# counts for a refusal but is not a refusal code itself.
+XACRO_IN_URDF = "U007"
 
 
-def assert_parity(robot_file: Path, urdf: Path, **options):
-    reference = check_urdf(urdf)
-    result = check_file(str(robot_file), CheckOptions(**options))
+def assert_parity(name: str, reference, result) -> None:
     errors = [f for f in result.findings if f.severity.value == "error"]
+    codes = {f.code for f in errors}
+    refused = codes & URDFDOM
+    said = reference.stdout + reference.stderr
     if reference.returncode != 0:
-        assert errors, f"check_urdf rejects {robot_file.name} but urdftool does not:\n" + \
-            reference.stdout + reference.stderr
+        assert refused or XACRO_IN_URDF in codes, \
+            f"check_urdf refuses {name} but urdftool reports none of {sorted(URDFDOM)} " \
+            f"(it reports {sorted(codes)}):\n{said}"
         assert any(f.line is not None for f in errors), "urdftool's errors are not located"
+    else:
+        assert not refused, f"check_urdf accepts {name} but urdftool refuses it " \
+            f"({[f'{f.location} {f.code} {f.message}' for f in errors if f.code in refused]})"
+
+
+def test_the_urdfdom_codes_are_the_case_files_check_urdf_refuses():
+    """URDFDOM is exactly the codes whose case files check_urdf refuses: it holds no code urdfdom
+    lets through, and a new rule whose case check_urdf refuses must join it."""
+    refused = {case.name[:4] for case in CASE_PATHS if not case_robot(case).name.endswith(".xacro")
+               and check_urdf(case_robot(case)).returncode != 0}
+    assert refused == URDFDOM, f"refused but not listed: {sorted(refused - URDFDOM)}; listed " \
+        f"but accepted: {sorted(URDFDOM - refused)}"
+
+
+def test_parity_fails_either_way():
+    """assert_parity fails when urdftool misses a refusal and when it invents one."""
+    from subprocess import CompletedProcess
+    from types import SimpleNamespace
+
+    from urdftool.diagnostics import Finding, Location, Severity
+
+    def result(code):
+        return SimpleNamespace(findings=[Finding(code, "name", Severity.ERROR, "message",
+                                                 Location("r.urdf", 3))])
+
+    refuses, accepts = CompletedProcess([], 255, "", "Error: ..."), CompletedProcess([], 0, "", "")
+    with pytest.raises(AssertionError, match="reports none of"):
+        assert_parity("r.urdf", refuses, result("U301"))  # stricter code, not a refusal
+    with pytest.raises(AssertionError, match="refuses it"):
+        assert_parity("r.urdf", accepts, result("U101"))
+    assert_parity("r.urdf", refuses, result("U101"))
+    assert_parity("r.urdf", accepts, result("U301"))
 
 
 @pytest.mark.parametrize("case", CASE_PATHS, ids=[p.name for p in CASE_PATHS])
 def test_parity_on_case_files(case, tmp_path):
+    """check_urdf reads the file itself, or urdftool's expansion of a xacro."""
     robot_file = case_robot(case)
-    assert_parity(robot_file, urdf_for(robot_file, tmp_path))
+    result = check_file(str(robot_file), CheckOptions())
+    urdf = robot_file
+    if robot_file.name.endswith(".xacro"):
+        if result.robot is None:
+            pytest.skip("xacro does not expand; urdftool reports that itself")
+        urdf = tmp_path / "expanded.urdf"
+        urdf.write_text(result.robot.urdf)
+    assert_parity(case.name, check_urdf(urdf), result)
 
 
 CORPUS_URDFS = [path for path, args in corpus_entry_points()
@@ -56,21 +88,22 @@ CORPUS_URDFS = [path for path, args in corpus_entry_points()
 
 
 @pytest.mark.parametrize("relative", CORPUS_URDFS)
-def test_parity_on_corpus_urdfs(relative):
-    assert_parity(CORPUS / relative, CORPUS / relative)
+def test_parity_on_corpus_urdfs(relative, corpus_run):
+    _, result = corpus_run[relative]
+    assert_parity(relative, check_urdf(CORPUS / relative), result)
 
 
-def _tree_cases():
-    plain = [CORPUS / p for p in CORPUS_URDFS]
-    return [p for p in plain if p.exists()] + sorted(CASES.glob("U*.urdf"))
-
-
-@pytest.mark.parametrize("path", _tree_cases(), ids=lambda p: p.name)
-def test_tree_matches_check_urdf(path, run_cli):
+@pytest.mark.parametrize("path", [CORPUS / p for p in CORPUS_URDFS] + sorted(CASES.glob("U*.urdf")),
+                         ids=lambda p: p.name)
+def test_tree_matches_check_urdf(path, run_cli, request):
     reference = check_urdf(path)
     if reference.returncode != 0:
         pytest.skip("check_urdf rejects the file")
-    if check_file(str(path), CheckOptions()).robot is None:
+    if path.is_relative_to(CORPUS):
+        robot = request.getfixturevalue("corpus_run")[str(path.relative_to(CORPUS))][1].robot
+    else:
+        robot = check_file(str(path), CheckOptions()).robot
+    if robot is None:
         pytest.skip("urdftool refuses to load it (e.g. entity declarations, U009)")
     result = run_cli("tree", path)
     assert result.exit_code == 0, result.output

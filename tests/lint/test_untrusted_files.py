@@ -459,9 +459,9 @@ def test_classifying_a_folder_keeps_one_file_in_memory(tmp_path, count, size):
 def test_classifying_tags_without_an_end_takes_linear_time(tmp_path, unit):
     (tmp_path / ".git").mkdir()
     (tmp_path / "r.urdf.xacro").write_text(unit * ((1 << 20) // len(unit)))
-    script = ("import sys; from pathlib import Path; from urdftool.lint import targets as discover; "
+    script = ("import sys; from pathlib import Path; from urdftool.lint import targets; "
               "p = Path(sys.argv[1]); "
-              "print(discover.explicit_targets(p, discover.includers_below(p.parent, "
+              "print(targets.explicit_targets(p, targets.includers_below(p.parent, "
               "lambda f: None), p.parent))")
     try:
         done = subprocess.run([sys.executable, "-c", script, str(tmp_path / "r.urdf.xacro")],
