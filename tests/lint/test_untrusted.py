@@ -119,7 +119,9 @@ def test_odd_files_in_a_folder_do_not_break_the_walk(run_cli, tmp_path):
     assert "Traceback" not in result.output and "U900" not in result.output
     assert "pipe.urdf: error U001 cannot read file: not a regular file" in result.output
     assert "loop.xacro: error U001" in result.output  # an unreadable file is reported, not skipped
-    assert "3 files checked" in result.output  # the FIFO, the loop and the robot with an odd name
+    # a NUL byte makes r.urdf.xacro binary, not an include-only library: checked, not skipped
+    assert "r.urdf.xacro:1: error U003" in result.output
+    assert "4 files checked" in result.output  # and the FIFO, the loop, the robot with an odd name
 
 
 def test_symlink_loop_input_is_a_finding(tmp_path):
