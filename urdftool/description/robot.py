@@ -81,7 +81,6 @@ class Robot:
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
     notes: list[LoadNote] = field(default_factory=list)
-    options: dict = field(default_factory=dict)
     sources: dict[str, bytes] = field(default_factory=dict)
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
