@@ -20,11 +20,11 @@ demo: $(INSTALLED)
 	@$(VENV)/bin/urdftool check tests/cases/U005_xacro_error/robot.urdf.xacro || true
 
 test: $(INSTALLED)
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto
 
 # The inner loop: unit tests only, without the corpus, parity, fuzz and README runs.
 test-fast: $(INSTALLED)
-	$(PY) -m pytest -m "not integration and not network"
+	$(PY) -m pytest -n auto -m "not integration and not network"
 
 bench: $(INSTALLED)
 	$(PY) benchmarks/run.py
