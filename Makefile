@@ -1,5 +1,5 @@
 # Everything a fresh machine needs: `make demo` and `make test` create .venv, install urdftool
-# (with uv, itself installed into the venv) and run.
+# (with uv, itself installed into the venv) with compiled bytecode, and run.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -10,7 +10,8 @@ INSTALLED := $(VENV)/.installed
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --disable-pip-version-check uv
-	$(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[test]'
+	$(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[test]'
+	$(PY) -m compileall -q urdftool  # PYTHONDONTWRITEBYTECODE machines would compile it every run
 	touch $(INSTALLED)
 
 demo: $(INSTALLED)
