@@ -238,9 +238,11 @@ def _has_file(stream) -> bool:
         return False
 
 
-def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...]) -> None:
-    """The worker: do the piece of work it is sent, until told to stop."""
-    parent = os.getppid()
+def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
+           parent: int) -> None:
+    """The worker: do the piece of work it is sent, until told to stop. ``parent``: the pid of
+    the process that started it, taken before the fork (read here, it could already be the
+    reaper's when the parent died first)."""
     try:
         os.setpgid(0, 0)  # its own process group: a kill reaches what it starts (dot, pools)
     except OSError:
@@ -295,7 +297,8 @@ class _Worker:
         self.slot = budgets.share_slot()
         relay = tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
         # not a daemon: a worker may start processes of its own (collisions --matrix)
-        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory, relay))
+        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory, relay,
+                                                            os.getpid()))
         self.process.start()
         try:
             os.setpgid(self.process.pid, self.process.pid)
