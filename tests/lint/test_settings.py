@@ -245,3 +245,33 @@ def test_size_limit_and_per_file_ignores_apply_per_target(two_projects):
     for paths in ([a, b], [b, a]):
         run = check_paths(paths, jobs=1, timeout=None)
         assert _found(run.results) == [("a", "U008"), ("b", "U204")]
+
+
+@pytest.mark.parametrize("words", [["--select", "U999"], ["--ignore", "inverted-limit"],
+                                   ["--select", "U2,X1"]])
+def test_a_selector_that_picks_no_rule_is_a_usage_error(run_cli, project, words):
+    result = run_cli("check", project / "robots", *words)
+    assert result.exit_code == 2 and "no rule" in result.stderr, result.output
+
+
+def test_the_api_refuses_a_selector_that_picks_no_rule():
+    from urdftool.errors import UnknownRule
+    from urdftool.lint.settings import CheckRequest
+
+    with pytest.raises(UnknownRule, match="did you mean U204 inverted-limits"):
+        CheckRequest(ignore=("inverted-limit",))
+    assert CheckRequest(select=("U2", "inverted-limits", "u20")).select  # prefixes, names, case
+
+
+@pytest.mark.parametrize("text, message", [
+    ('ignore = ["U99"]\n', "'ignore': no rule 'U99'"),
+    ('[tool.urdftool.per-file-ignores]\n"*.urdf" = ["nonsense"]\n',
+     "'per-file-ignores.*.urdf': no rule 'nonsense'"),
+    ('strict = "false"\n', "'strict' must be true or false"),
+    ('packages = "robots"\n', "'packages' must be a table"),
+    ('per-file-ignores = ["U2"]\n', "'per-file-ignores' must be a table"),
+])
+def test_setting_values_are_type_checked(run_cli, project, text, message):
+    settings(project, text)
+    result = run_cli("check", project / "robots")
+    assert result.exit_code == 2 and message in result.stderr, result.output

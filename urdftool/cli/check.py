@@ -60,7 +60,7 @@ def check(
                              help="Check files in N worker processes [default: number of cores]."),
 ) -> None:
     from urdftool.budget import Budget
-    from urdftool.errors import SettingsError, TargetError
+    from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
     from urdftool.report import FORMATS, printable, render
@@ -82,7 +82,7 @@ def check(
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None))
-    except (UsageError, SettingsError, TargetError) as error:
+    except (UsageError, SettingsError, TargetError, UnknownName) as error:
         fail_usage(error)
     for note in run.notes:
         typer.echo(printable(f"urdftool: {note}"), err=True)

@@ -152,6 +152,15 @@ class Catalogue:
         found = self._by_code.get(code)
         return code.startswith(selector.upper()) or (found is not None and found.name == selector)
 
+    def check_selector(self, selector: str) -> None:
+        """:class:`UnknownRule` unless ``selector`` (a code, a code prefix or a rule name, as
+        ``--select`` and ``--ignore`` take them) picks at least one rule: a misspelt selector
+        would otherwise select nothing, or ignore nothing, without a word."""
+        wanted = selector.strip()
+        if any(self.matches(item.code, wanted) for item in self.rules):
+            return
+        self.find(wanted)  # raises, with the close names
+
     def find(self, wanted: str) -> Rule:
         """A rule by code (any case) or name; :class:`UnknownRule` listing the close ones
         otherwise."""

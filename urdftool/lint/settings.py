@@ -28,11 +28,12 @@ from functools import lru_cache
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, parse_memory
-from urdftool.errors import SettingsError, UsageError
+from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import inside, read_regular
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, Selection
+from urdftool.lint.rules import CATALOGUE
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
@@ -132,19 +133,23 @@ def _parse(path: Path, table: dict) -> Settings:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
                          f"valid: {', '.join(sorted(KEYS))}")
     config = Settings(path=path)
-    config.select = _strings(path, table, "select")
-    config.ignore = _strings(path, table, "ignore")
-    for pattern, codes in table.get("per-file-ignores", {}).items():
-        config.per_file_ignores[pattern] = codes if isinstance(codes, list) else [codes]
+    config.select = _selectors(path, table, "select")
+    config.ignore = _selectors(path, table, "ignore")
+    for pattern in _table(path, table, "per-file-ignores"):
+        config.per_file_ignores[pattern] = _selectors(path, table["per-file-ignores"], pattern,
+                                                      f"per-file-ignores.{pattern}")
     config.packages = {name: _inside_path(path, f"package {name}", folder)
-                       for name, folder in table.get("packages", {}).items()}
+                       for name, folder in _table(path, table, "packages").items()}
     config.companions = {key: _inside_path(path, key, table[key]) for key in ("spec", "srdf")
                          if key in table}
     if "controllers" in table:
         listed = table["controllers"]
         config.companions["controllers"] = [_inside_path(path, "controllers", p) for p in
                                             (listed if isinstance(listed, list) else [listed])]
-    config.strict = bool(table.get("strict", False))
+    config.strict = table.get("strict", False)
+    if not isinstance(config.strict, bool):
+        raise SettingsError(f"{path}: 'strict' must be true or false (a TOML boolean, "
+                            f"unquoted), not {config.strict!r}")
     if "max-file-size" in table:
         config.max_file_size = checked_file_size(table["max-file-size"], f"{path}: 'max-file-size'")
     if "max-memory" in table:
@@ -185,13 +190,34 @@ def _memory(path: Path, value) -> str:
     return str(value)
 
 
-def _strings(path: Path, table: dict, key: str) -> list[str]:
+def _table(path: Path, table: dict, key: str) -> dict:
+    value = table.get(key, {})
+    if not isinstance(value, dict):
+        raise SettingsError(f"{path}: '{key}' must be a table, not {value!r}")
+    return value
+
+
+def _selectors(path: Path, table: dict, key: str, what: str | None = None) -> list[str]:
+    """A list of rule codes, prefixes or names; SettingsError when it is not one, or when an
+    entry picks no rule (a misspelt code would silently select or ignore nothing)."""
+    what = what or key
     value = table.get(key, [])
     if isinstance(value, str):
         value = [value]
-    if not all(isinstance(item, str) for item in value):
-        raise SettingsError(f"{path}: '{key}' must be a list of rule codes or names")
+    if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
+        raise SettingsError(f"{path}: '{what}' must be a list of rule codes or names")
+    for selector in _codes(value):
+        try:
+            check_selectors([selector])
+        except UnknownRule as error:
+            raise SettingsError(f"{path}: '{what}': {error}") from None
     return value
+
+
+def check_selectors(selectors: Iterable[str]) -> None:
+    """:class:`~urdftool.errors.UnknownRule` for the first selector that picks no rule."""
+    for selector in _codes(selectors):
+        CATALOGUE.check_selector(selector)
 
 
 # ---- settings merged with a request ---------------------------------------------------------
@@ -247,6 +273,7 @@ class CheckRequest:
         for name in ("select", "ignore"):
             value = getattr(self, name)
             object.__setattr__(self, name, (value,) if isinstance(value, str) else tuple(value))
+            check_selectors(getattr(self, name))
         object.__setattr__(self, "xacro_args", dict(self.xacro_args or {}))
         object.__setattr__(self, "packages", {name: Path(folder) for name, folder
                                               in (self.packages or {}).items()})
