@@ -20,11 +20,13 @@ class Location:
     file: path as shown to the user (relative to the working directory when inside it)
     line: 1-based line of the element's opening ``<``, or None when unknown
     via: for elements a xacro macro produced, the call sites, innermost first
+    column: 1-based column of the element's ``<`` (in characters), or None when unknown
     """
 
     file: str
     line: int | None = None
     via: tuple["Location", ...] = ()
+    column: int | None = None
 
     def __str__(self) -> str:
         return self.file if self.line is None else f"{self.file}:{self.line}"
@@ -45,6 +47,10 @@ class Finding:
     @property
     def line(self) -> int | None:
         return self.location.line
+
+    @property
+    def column(self) -> int | None:
+        return self.location.column
 
     def sort_key(self):
         return (self.file, self.line or 0, self.code, self.message)

@@ -24,7 +24,9 @@ def rules_table() -> str:
             family = rule.code[:2]
             lines.append(f"| **{family}xx** | **{FAMILIES[family]}** | | |")
         summary = rule.summary.replace("|", "\\|")
-        lines.append(f"| {rule.code} | {rule.name} | {rule.severity.value} | {summary} |")
+        # the anchor is what each rule's helpUri (SARIF) and code url (rdjson) point at
+        lines.append(f'| <a id="{rule.code.lower()}"></a>{rule.code} | {rule.name} | '
+                     f"{rule.severity.value} | {summary} |")
     return "\n".join(lines)
 
 

@@ -36,28 +36,129 @@ def test_json_is_exactly_the_documented_shape():
     assert data == {
         "version": 1,
         "diagnostics": [
-            {"file": "a.urdf", "line": 7, "code": "U204", "name": "inverted-limits",
-             "severity": "error", "message": "lower above upper, 100%"},
-            {"file": "parts.xacro", "line": 3, "code": "U206", "name": "axis-not-unit",
-             "severity": "warning", "message": "axis: length 2,\nnot 1"},
+            {"file": "a.urdf", "line": 7, "column": None, "code": "U204",
+             "name": "inverted-limits", "severity": "error",
+             "message": "lower above upper, 100%", "via": []},
+            {"file": "parts.xacro", "line": 3, "column": None, "code": "U206",
+             "name": "axis-not-unit", "severity": "warning", "message": "axis: length 2,\nnot 1",
+             "via": [{"file": "a.urdf", "line": 9, "column": None}]},
         ],
-        "summary": {"files": 2, "errors": 1, "warnings": 1},
+        "summary": {"files": 2, "errors": 1, "warnings": 1, "notes": 0},
     }
 
 
 def test_github_annotations_escape_data_and_properties():
     lines = rendered("github").splitlines()
     assert lines[0] == "::error file=a.urdf,line=7,title=U204 inverted-limits::lower above upper, 100%25"
-    assert lines[1] == "::warning file=parts.xacro,line=3,title=U206 axis-not-unit::axis: length 2,%0Anot 1"
+    assert lines[1] == ("::warning file=parts.xacro,line=3,title=U206 axis-not-unit::axis: length 2,"
+                        "%0Anot 1%0Aexpanded from macro call at a.urdf:9")
+    assert lines[2] == "urdftool: 2 files, 1 error, 1 warning, 0 notes"
 
 
-def test_junit_has_a_suite_per_file_and_a_failure_per_finding():
+def test_junit_has_a_suite_per_file_and_a_failure_per_failing_finding():
     root = etree.fromstring(rendered("junit").encode())
     suites = root.findall("testsuite")
     assert [s.get("name") for s in suites] == ["a.urdf", "b.urdf"]
-    assert len(suites[0].findall("testcase/failure")) == 2
+    [failure] = suites[0].findall("testcase/failure")  # the warning passes: the run exits 0 on it
+    assert failure.get("message") == "a.urdf:7: lower above upper, 100%"
+    assert suites[0].findall("testcase/system-out")[0].text.startswith(
+        "parts.xacro:3: warning U206 axis: length 2,\nnot 1\nexpanded from macro call at a.urdf:9")
     assert suites[1].findall("testcase/failure") == [] and len(suites[1].findall("testcase")) == 1
-    assert root.get("failures") == "2"
+    assert root.get("failures") == "1"
+
+
+def test_junit_fails_warnings_only_when_checked_strictly():
+    strict = [FileResult(r.path, r.findings, strict=True) for r in RESULTS]
+    stream = io.StringIO()
+    render("junit", strict, stream)
+    assert etree.fromstring(stream.getvalue().encode()).get("failures") == "2"
+    notes = [FileResult("n.urdf", [Finding("U999", "x", Severity.INFO, "m", Location("n.urdf"))],
+                        strict=True)]
+    stream = io.StringIO()
+    render("junit", notes, stream)
+    assert etree.fromstring(stream.getvalue().encode()).get("failures") == "0"
+
+
+@pytest.mark.parametrize("results", [RESULTS, [FileResult(r.path, r.findings, strict=True)
+                                               for r in RESULTS]])
+def test_junit_is_valid_against_junit_10(results):
+    from junit10 import validate
+
+    stream = io.StringIO()
+    render("junit", results, stream)
+    validate(stream.getvalue())
+
+
+def test_junit_10_validation_can_fail():
+    from junit10 import validate
+
+    document = rendered("junit").replace('<testcase name="U204', '<testcase file="a.urdf" name="U204')
+    with pytest.raises(AssertionError, match="file"):
+        validate(document)
+
+
+def test_concise_is_one_line_per_finding_with_line_and_column():
+    findings = [Finding("U204", "inverted-limits", Severity.ERROR, "swap, them\nnow",
+                        Location("a b.urdf", 7, column=5)),
+                Finding("U002", "empty-file", Severity.ERROR, "empty", Location("c.urdf"))]
+    stream = io.StringIO()
+    render("concise", [FileResult("a b.urdf", findings)], stream)
+    assert stream.getvalue().splitlines() == [
+        "a b.urdf:7:5: U204 [error] swap, them\\nnow", "c.urdf: U002 [error] empty"]
+    assert rendered("concise").splitlines()[1] == \
+        "parts.xacro:3: U206 [warning] axis: length 2,\\nnot 1"
+
+
+def test_json_lines_is_one_json_diagnostic_per_line():
+    lines = rendered("json-lines").splitlines()
+    assert [json.loads(line) for line in lines] == json.loads(rendered("json"))["diagnostics"]
+
+
+def test_gitlab_code_quality_has_stable_fingerprints():
+    issues = json.loads(rendered("gitlab"))
+    assert [i["severity"] for i in issues] == ["major", "minor"]
+    assert issues[1]["location"] == {"path": "parts.xacro", "lines": {"begin": 3}}
+    assert issues[0]["check_name"] == "U204 inverted-limits"
+    moved = [FileResult("a.urdf", [Finding(f.code, f.name, f.severity, f.message,
+                                           Location(f.file, (f.line or 0) + 40, f.location.via))
+                                   for f in RESULTS[0].findings]), RESULTS[1]]
+    stream = io.StringIO()
+    render("gitlab", moved, stream)
+    assert [i["fingerprint"] for i in json.loads(stream.getvalue())] == \
+        [i["fingerprint"] for i in issues]  # a finding moved by an edit above it is the same
+    twice = [FileResult("a.urdf", [RESULTS[0].findings[0]] * 2)]
+    stream = io.StringIO()
+    render("gitlab", twice, stream)
+    assert len({i["fingerprint"] for i in json.loads(stream.getvalue())}) == 2
+
+
+def test_gitlab_report_matches_the_code_quality_schema():
+    import jsonschema
+
+    schema = {"type": "array", "items": {
+        "type": "object", "required": ["description", "check_name", "fingerprint", "severity",
+                                       "location"],
+        "properties": {
+            "description": {"type": "string"}, "check_name": {"type": "string"},
+            "fingerprint": {"type": "string", "pattern": "^[0-9a-f]{64}$"},
+            "severity": {"enum": ["info", "minor", "major", "critical", "blocker"]},
+            "location": {"type": "object", "required": ["path", "lines"], "properties": {
+                "path": {"type": "string"},
+                "lines": {"type": "object", "required": ["begin"],
+                          "properties": {"begin": {"type": "integer", "minimum": 1}}}}}}}}
+    jsonschema.validate(json.loads(rendered("gitlab")), schema)
+
+
+def test_rdjson_carries_severity_code_url_and_macro_call_sites():
+    data = json.loads(rendered("rdjson"))
+    assert data["source"]["name"] == "urdftool"
+    first, second = data["diagnostics"]
+    assert first["severity"] == "ERROR" and first["code"]["value"] == "U204"
+    assert first["code"]["url"].endswith("#u204")
+    assert first["location"] == {"path": "a.urdf", "range": {"start": {"line": 7}}}
+    assert second["related_locations"] == [{"message": "expanded from this macro call",
+                                            "location": {"path": "a.urdf",
+                                                         "range": {"start": {"line": 9}}}}]
 
 
 def test_sarif_results_point_at_rules_and_macro_call_sites():
@@ -152,7 +253,7 @@ def test_text_escapes_on_a_terminal_too(monkeypatch):
 
 def test_github_commands_cannot_be_forged():
     lines = hostile("github").splitlines()
-    assert len(lines) == 2 and lines[1] == "urdftool: 1 files, 1 errors, 0 warnings"
+    assert len(lines) == 2 and lines[1] == "urdftool: 1 file, 1 error, 0 warnings, 0 notes"
     command, _, message = lines[0].partition("::")[2].partition("::")
     assert command == ("error file=x%0A%3A%3Awarning%3A%3Ay%2Cz.urdf,line=7,"
                        "title=U204 inverted-limits")
@@ -165,7 +266,7 @@ def test_junit_stays_valid_xml_with_control_characters():
     document = hostile("junit")
     root = etree.fromstring(document.encode())
     failure = root.find("testsuite/testcase/failure")
-    assert failure.get("message").startswith("joint 'j\\n::error file=a.urdf")
+    assert failure.get("message").startswith("x\\n::warning::y,z.urdf:7: joint 'j\\n::error file=")
     assert "\\x1b[8mhidden" in failure.get("message")
     assert root.find("testsuite").get("name") == "x\\n::warning::y,z.urdf"
     assert _control_characters(document) <= {"\n"}

@@ -26,8 +26,9 @@ def check(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
     format: str = typer.Option("auto", "--format", "-f",
-                               help="text, json, sarif, junit, github, or auto (github under "
-                                    "GitHub Actions, else text)."),
+                               help="text, concise, json, json-lines, sarif, junit, github, "
+                                    "gitlab, rdjson, or auto (github under GitHub Actions, "
+                                    "else text)."),
     output: Path = typer.Option(None, "--output", "-o", help="Write the report to this file."),
     select: list[str] = typer.Option([], "--select", help="Only these codes, prefixes or names "
                                      "(comma-separated, repeatable)."),

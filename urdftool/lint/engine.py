@@ -8,7 +8,7 @@ from pathlib import Path
 
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.robot import CompanionPaths
-from urdftool.diagnostics import Finding, Location, display_path
+from urdftool.diagnostics import Finding, Location, Severity, display_path
 from urdftool.errors import LoadError
 from urdftool.lint.catalogue import Rule
 from urdftool.lint.rules import CATALOGUE
@@ -52,9 +52,21 @@ class CheckOptions:
 
 @dataclass
 class FileResult:
+    """What checking one file found.
+
+    strict: whether a warning in it fails the check (its settings or the request)
+    """
+
     path: str
     findings: list[Finding]
     robot: object | None = None
+    strict: bool = False
+
+    @property
+    def failures(self) -> list[Finding]:
+        """The findings that fail the check: errors, and warnings when checked strictly."""
+        failing = {Severity.ERROR, Severity.WARNING} if self.strict else {Severity.ERROR}
+        return [finding for finding in self.findings if finding.severity in failing]
 
 
 def stamp(rule: Rule, where, message: str, robot) -> Finding:

@@ -120,14 +120,15 @@ class Run:
     notes: list[str] = field(default_factory=list)
     strict: list[bool] = field(default_factory=list)
 
+    def __post_init__(self):
+        for result, strict in zip(self.results, self.strict):
+            result.strict = strict
+        self.strict = [result.strict for result in self.results]
+
     @property
     def exit_code(self) -> int:
         """0 clean, 1 when a file has an error, or a warning and is checked strictly."""
-        for result, strict in zip(self.results, self.strict):
-            levels = {finding.severity for finding in result.findings}
-            if Severity.ERROR in levels or strict and Severity.WARNING in levels:
-                return 1
-        return 0
+        return 1 if any(result.failures for result in self.results) else 0
 
 
 def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run:

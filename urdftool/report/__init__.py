@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import os
 
-from urdftool.report import github_format, json_format, junit_format, sarif_format, text_format
+from urdftool.report import (concise_format, github_format, gitlab_format, json_format,
+                             json_lines_format, junit_format, rdjson_format, sarif_format,
+                             text_format)
 from urdftool.report.summary import STYLES, Summary, all_findings, printable, write_json
 
 __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render",
@@ -17,7 +19,9 @@ __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render"
 
 _RENDERERS = {"text": text_format.render, "json": json_format.render,
               "sarif": sarif_format.render, "junit": junit_format.render,
-              "github": github_format.render}
+              "github": github_format.render, "gitlab": gitlab_format.render,
+              "rdjson": rdjson_format.render, "concise": concise_format.render,
+              "json-lines": json_lines_format.render}
 FORMATS = tuple(_RENDERERS)
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.report.summary import Summary, all_findings, printable
+from urdftool.report.summary import Summary, all_findings, counted, printable, via_text
 
 _LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
 
@@ -23,9 +23,12 @@ def render(results, stream) -> None:
         properties = [f"file={_escape_property(finding.file)}"]
         if finding.line is not None:
             properties.append(f"line={finding.line}")
+            if finding.column is not None:
+                properties.append(f"col={finding.column}")
         properties.append(f"title={_escape_property(f'{finding.code} {finding.name}')}")
+        message = "\n".join([finding.message, *via_text(finding.location)])
         stream.write(f"::{_LEVELS[finding.severity.value]} {','.join(properties)}::"
-                     f"{_escape_data(finding.message)}\n")
+                     f"{_escape_data(message)}\n")
     summary = Summary.of(results)
-    stream.write(f"urdftool: {summary.files} files, {summary.errors} errors, "
-                 f"{summary.warnings} warnings\n")
+    stream.write(f"urdftool: {counted(summary.files, 'file')}, {counted(summary.errors, 'error')}, "
+                 f"{counted(summary.warnings, 'warning')}, {counted(summary.infos, 'note')}\n")

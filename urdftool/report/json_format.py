@@ -1,21 +1,25 @@
-"""``--format json``: the stable machine-readable form (version 1)."""
+"""``--format json``: the stable machine-readable form (version 1; keys are only ever added)."""
 
 from __future__ import annotations
 
-from urdftool.report.summary import Summary, all_findings, write_json
+from urdftool.report.summary import Summary, all_findings, location_dict, write_json
+
+
+def diagnostic(finding) -> dict:
+    """One finding as the json and json-lines formats write it."""
+    where = location_dict(finding.location)
+    return {"file": where["file"], "line": where["line"], "column": where["column"],
+            "code": finding.code, "name": finding.name, "severity": finding.severity.value,
+            "message": finding.message, "via": where["via"]}
 
 
 def as_dict(results) -> dict:
     summary = Summary.of(results)
     return {
         "version": 1,
-        "diagnostics": [
-            {"file": f.file, "line": f.line, "code": f.code, "name": f.name,
-             "severity": f.severity.value, "message": f.message}
-            for f in all_findings(results)
-        ],
+        "diagnostics": [diagnostic(f) for f in all_findings(results)],
         "summary": {"files": summary.files, "errors": summary.errors,
-                    "warnings": summary.warnings},
+                    "warnings": summary.warnings, "notes": summary.infos},
     }
 
 

@@ -1,34 +1,46 @@
-"""``--format junit``: one test suite per file, one failing test case per finding."""
+"""``--format junit``: one test suite per file, one test case per finding.
+
+Valid against the Jenkins xunit plugin's ``junit-10.xsd``, the strictest of the JUnit dialects
+CI services read: a ``<testcase>`` carries only a name and a class name (the file and line are
+in the failure's message), and the file goes on its ``<testsuite>``. A finding fails its test
+case only when it fails the check (an error, or a warning under ``strict``), so a run that exits
+0 reports no failure; the other findings pass, their text in ``<system-out>``.
+"""
 
 from __future__ import annotations
 
 from lxml import etree
 
 from urdftool.diagnostics import display_path
-from urdftool.report.summary import printable
+from urdftool.report.summary import printable, via_text
 
 
 def render(results, stream) -> None:
     """Every text is passed through :func:`printable`: XML 1.0 cannot hold most control
     characters (lxml refuses them), and CI pages show the message attribute as a line."""
     suites = etree.Element("testsuites", name="urdftool", tests=str(_tests(results)),
-                           failures=str(sum(len(r.findings) for r in results)))
+                           failures=str(sum(len(r.failures) for r in results)), errors="0")
     for result in results:
         shown = printable(display_path(result.path))
+        failing = {id(finding) for finding in result.failures}
         suite = etree.SubElement(suites, "testsuite", name=shown,
                                  tests=str(max(1, len(result.findings))),
-                                 failures=str(len(result.findings)), errors="0", skipped="0")
+                                 failures=str(len(failing)), errors="0", skipped="0", file=shown)
         if not result.findings:
             etree.SubElement(suite, "testcase", name="urdftool check", classname=shown)
         for finding in result.findings:
-            file, message = printable(finding.file), printable(finding.message)
             case = etree.SubElement(suite, "testcase", name=f"{finding.code} {finding.name}",
-                                    classname=file, file=file)
-            if finding.line is not None:
-                case.set("line", str(finding.line))
-            failure = etree.SubElement(case, "failure", message=message,
-                                       type=finding.severity.value)
-            failure.text = printable(f"{finding.location}: {finding.code} {finding.message}")
+                                    classname=shown)
+            text = printable("\n".join([f"{finding.location}: {finding.severity.value} "
+                                        f"{finding.code} {finding.message}",
+                                        *via_text(finding.location)]), keep="\n")
+            if id(finding) in failing:
+                failure = etree.SubElement(case, "failure", type=finding.severity.value,
+                                           message=printable(f"{finding.location}: "
+                                                             f"{finding.message}"))
+                failure.text = text
+            else:
+                etree.SubElement(case, "system-out").text = text
     stream.write(etree.tostring(suites, pretty_print=True, xml_declaration=True,
                                 encoding="UTF-8").decode())
 

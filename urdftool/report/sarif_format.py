@@ -1,12 +1,43 @@
-"""``--format sarif``: SARIF 2.1.0 for code scanning; each result links to its rule's help."""
+"""``--format sarif``: SARIF 2.1.0 for code scanning; each result links to its rule's help.
+
+Artifact locations are URI references (SARIF 3.10): a path below the working folder is a
+relative reference, percent-encoded, resolved against ``%SRCROOT%`` (the working folder, given
+in ``originalUriBaseIds``), which is what GitHub code scanning maps to the checkout; any other
+path is an absolute ``file://`` URI. Standard input, which has no path, is ``stdin`` under no
+base. Validated in the tests against the OASIS schema and the GitHub rules of Microsoft's SARIF
+validator (GH1001-GH1018, GH2012).
+"""
 
 from __future__ import annotations
+
+import os
+from pathlib import Path
+from urllib.parse import quote
 
 from urdftool import __version__
 from urdftool.report.summary import all_findings, write_json
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+HOME = "https://pypi.org/project/urdftool/"
 _LEVELS = {"error": "error", "warning": "warning", "info": "note"}
+SRCROOT = "%SRCROOT%"
+
+
+def help_uri(code: str | None) -> str:
+    """Where a rule is documented: the README's rules table, whose rows carry the code's
+    anchor; None: the project's page."""
+    return HOME if code is None else f"{HOME}#{code.lower()}"
+
+
+def artifact_location(file: str) -> dict:
+    """``{"uri": ..., "uriBaseId": ...}`` for a path as the reports show it."""
+    if file.startswith("<"):  # <stdin>
+        return {"uri": "stdin"}
+    if os.path.isabs(file):
+        return {"uri": Path(file).as_uri()}
+    # a name that is not UTF-8 (a lone surrogate here) is percent-encoded as its bytes
+    return {"uri": quote(Path(file).as_posix(), safe="/", errors="surrogateescape"),
+            "uriBaseId": SRCROOT}
 
 
 def _rule_descriptor(rule) -> dict:
@@ -16,15 +47,18 @@ def _rule_descriptor(rule) -> dict:
         "shortDescription": {"text": rule.summary},
         "fullDescription": {"text": rule.doc or rule.summary},
         "help": {"text": rule.doc or rule.summary, "markdown": rule.doc or rule.summary},
+        "helpUri": help_uri(rule.code),
         "defaultConfiguration": {"level": _LEVELS[rule.severity.value]},
         "properties": {"family": rule.family},
     }
 
 
 def _location(location) -> dict:
-    physical = {"artifactLocation": {"uri": location.file.replace("\\", "/")}}
-    if location.line is not None:
-        physical["region"] = {"startLine": location.line}
+    physical = {"artifactLocation": artifact_location(location.file)}
+    region = {"startLine": location.line or 1}  # a finding about a whole file: its first line
+    if location.column is not None:
+        region["startColumn"] = location.column
+    physical["region"] = region
     return {"physicalLocation": physical}
 
 
@@ -55,9 +89,11 @@ def as_dict(results) -> dict:
             "tool": {"driver": {
                 "name": "urdftool",
                 "version": __version__,
-                "informationUri": "https://pypi.org/project/urdftool/",
+                "informationUri": HOME,
+                "semanticVersion": __version__,
                 "rules": [_rule_descriptor(rule) for rule in rules],
             }},
+            "originalUriBaseIds": {SRCROOT: {"uri": Path.cwd().as_uri().rstrip("/") + "/"}},
             "results": sarif_results,
             "columnKind": "unicodeCodePoints",
         }],

@@ -50,6 +50,24 @@ def printable(text: str, keep: str = "") -> str:
     return _UNPRINTABLE.sub(lambda m: m.group() if m.group() in keep else _escaped(m), text)
 
 
+def via_text(location) -> list[str]:
+    """The macro call chain of a location as lines, innermost call first."""
+    return [f"expanded from macro call at {site}" for site in location.via]
+
+
+def location_dict(location) -> dict:
+    """A location as the JSON formats write it: file, line, column (null when unknown) and the
+    macro call sites it was expanded from (``via``, innermost first)."""
+    return {"file": location.file, "line": location.line, "column": location.column,
+            "via": [{"file": site.file, "line": site.line, "column": site.column}
+                    for site in location.via]}
+
+
+def counted(number: int, noun: str) -> str:
+    """``1 error``, ``2 errors``."""
+    return f"{number} {noun}" if number == 1 else f"{number} {noun}s"
+
+
 def all_findings(results) -> list[Finding]:
     return [finding for result in results for finding in result.findings]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 
 from urdftool.diagnostics import display_path
-from urdftool.report.summary import STYLES, Summary, printable
+from urdftool.report.summary import STYLES, Summary, counted, printable, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 
@@ -28,15 +28,14 @@ def lines(results) -> list[Line]:
                         (finding.severity.value, STYLES[finding.severity.value]),
                         (" ", ""), (finding.code, "bold"), (f" {finding.message} ", ""),
                         (f"({finding.name})", "dim")])
-            out.extend([(f"      expanded from macro call at {site}", "dim")]
-                       for site in finding.location.via)
+            out.extend([(f"      {line}", "dim")] for line in via_text(finding.location))
         out.append([])
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
-        else ", ".join([_count(summary.errors, "error"), _count(summary.warnings, "warning"),
-                        _count(summary.infos, "note")])
-    out.append([(f"{_count(summary.files, 'file')} checked: {verdict}", style)])
+        else ", ".join([counted(summary.errors, "error"), counted(summary.warnings, "warning"),
+                        counted(summary.infos, "note")])
+    out.append([(f"{counted(summary.files, 'file')} checked: {verdict}", style)])
     return [[(printable(text), style) for text, style in line] for line in out]
 
 
@@ -61,6 +60,3 @@ def _colour(stream) -> bool:
         return True
     return hasattr(stream, "isatty") and stream.isatty()
 
-
-def _count(number: int, noun: str) -> str:
-    return f"{number} {noun}" if number == 1 else f"{number} {noun}s"

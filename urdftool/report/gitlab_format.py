@@ -1,0 +1,39 @@
+"""``--format gitlab``: GitLab Code Quality, a JSON array of issues shown in merge requests.
+
+Each issue's ``fingerprint`` identifies it across pipelines, so GitLab can tell new findings
+from fixed ones: it hashes the file, the code, the message and the finding's rank among the
+identical ones in that file, never the line (an unrelated edit above it would turn every
+finding below into a new one).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+from urdftool.report.summary import all_findings
+
+# https://docs.gitlab.com/ci/testing/code_quality/#code-quality-report-format
+_SEVERITIES = {"error": "major", "warning": "minor", "info": "info"}
+
+
+def as_list(results) -> list[dict]:
+    issues, seen = [], {}
+    for finding in all_findings(results):
+        identity = (finding.file, finding.code, finding.message)
+        seen[identity] = seen.get(identity, -1) + 1
+        fingerprint = hashlib.sha256(
+            json.dumps([*identity, seen[identity]]).encode()).hexdigest()
+        issues.append({
+            "description": f"{finding.code} {finding.message}",
+            "check_name": f"{finding.code} {finding.name}",
+            "fingerprint": fingerprint,
+            "severity": _SEVERITIES[finding.severity.value],
+            "location": {"path": finding.file, "lines": {"begin": finding.line or 1}},
+        })
+    return issues
+
+
+def render(results, stream) -> None:
+    json.dump(as_list(results), stream, indent=2)
+    stream.write("\n")

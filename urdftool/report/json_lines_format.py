@@ -1,0 +1,15 @@
+"""``--format json-lines``: one JSON object per finding and line, as the json format's
+``diagnostics`` entries, for tools that stream (``jq -c``, log shippers). Nothing else is
+written: a clean run is an empty output."""
+
+from __future__ import annotations
+
+import json
+
+from urdftool.report.json_format import diagnostic
+from urdftool.report.summary import all_findings
+
+
+def render(results, stream) -> None:
+    for finding in all_findings(results):
+        stream.write(json.dumps(diagnostic(finding), ensure_ascii=False) + "\n")
