@@ -17,7 +17,7 @@ app = typer.Typer(
     name="urdftool",
     help="Validate and analyse URDF and xacro robot descriptions, without ROS.",
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,  # --install-completion / --show-completion for bash, zsh, fish
     pretty_exceptions_enable=False,
     rich_markup_mode=None,  # plain click help: rich formatting costs ~0.4 s of imports
     context_settings={"help_option_names": ["-h", "--help"]},
@@ -33,8 +33,8 @@ def _version(value: bool):
 
 
 @app.callback()
-def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                       help="Show the version and exit.")):
+def _root(version: bool = typer.Option(False, "--version", "-V", callback=_version,
+                                       is_eager=True, help="Show the version and exit.")):
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
 
 

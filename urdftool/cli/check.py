@@ -35,6 +35,23 @@ def check(
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
     verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
+    quiet: bool = typer.Option(False, "--quiet", "-q",
+                               help="Text format: print the findings only, no summary line."),
+    exit_zero: bool = typer.Option(False, "--exit-zero",
+                                   help="Exit 0 even when problems are found (usage errors "
+                                        "still exit 2)."),
+    statistics: bool = typer.Option(False, "--statistics",
+                                    help="Print how many times each rule fired, most first, "
+                                         "instead of the findings."),
+    config: Path = typer.Option(None, "--config", metavar="FILE",
+                                help="Use this settings file for every path instead of the "
+                                     "one found above each."),
+    isolated: bool = typer.Option(False, "--isolated",
+                                  help="Ignore every settings file."),
+    stdin_filename: str = typer.Option(None, "--stdin-filename", metavar="PATH",
+                                       help="The path standard input is checked as: its "
+                                            "includes, packages and settings are found from "
+                                            "there, and findings name it."),
     allow_env: bool = typer.Option(
         None, "--allow-env/--no-env", show_default=False,
         help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
@@ -72,6 +89,10 @@ def check(
             raise UsageError("--jobs must not be negative")
         if not paths:
             raise UsageError("no PATH given")
+        if stdin_filename is not None and "-" not in paths:
+            raise UsageError("--stdin-filename names standard input: give '-' as the PATH")
+        if config is not None and isolated:
+            raise UsageError("--config and --isolated exclude each other")
         if format not in (*FORMATS, "auto"):
             raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
         refuse_bad_outputs(output)
@@ -82,7 +103,8 @@ def check(
             select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
-            max_memory=max_memory, timeout=timeout, jobs=jobs or None))
+            max_memory=max_memory, timeout=timeout, jobs=jobs or None,
+            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:
         fail_usage(error)
     for note in run.notes:
@@ -90,12 +112,19 @@ def check(
     if verbose:  # a file name can hold a line break: printable
         for path, reason in run.skipped.items():
             typer.echo(printable(f"skipped {path}: {reason}"), err=True)
+    if statistics:
+        from urdftool.report.statistics import render as render_statistics
+
+        report = render_statistics
+    else:
+        def report(results, stream):
+            render(format, results, stream, quiet=quiet)
     if output:
         import io
 
-        report = io.StringIO()
-        render(format, run.results, report)
-        write_output(output, report.getvalue())
+        text = io.StringIO()
+        report(run.results, text)
+        write_output(output, text.getvalue())
     else:
-        render(format, run.results, sys.stdout)
-    raise typer.Exit(run.exit_code)
+        report(run.results, sys.stdout)
+    raise typer.Exit(0 if exit_zero else run.exit_code)

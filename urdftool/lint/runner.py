@@ -81,12 +81,14 @@ def _here(index, work, budget, stopped):
 
 def check_files(files: list[str], options_for, jobs: int | None = None,
                 timeout: float | None = DEFAULT_TIMEOUT,
-                memory: int | None = None) -> list[FileResult]:
+                memory: int | None = None, stdin_as: str | None = None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
     jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
     memory: address space per worker in [bytes]; None or 0 for no limit. Without a budget and
     with one job, files are checked in this process. Standard input ('-') is read here.
+    stdin_as: the path standard input is checked as (its includes and packages are found from
+        there, its findings name it), as an editor sends an unsaved buffer
     """
     jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
@@ -94,15 +96,17 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     if "-" in files:
         stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
 
+    named = [stdin_as if path == "-" and stdin_as else path for path in files]
+
     def work(index: int) -> list[Finding]:
         path = files[index]
-        return engine.check_file(path, options_for(path), data=stdin.get(path)).findings
+        return engine.check_file(named[index], options_for(path), data=stdin.get(path)).findings
 
     def stopped(index: int, stop: Stop) -> list[Finding]:
-        return [stop_finding(files[index], stop, "checking")]
+        return [stop_finding(named[index], stop, "checking")]
 
     findings = run_budgeted(len(files), work, budget, stopped, jobs)
-    return [FileResult(path, found) for path, found in zip(files, findings)]
+    return [FileResult(path, found) for path, found in zip(named, findings)]
 
 
 @dataclass
@@ -152,13 +156,15 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     targets = expand(list(paths), request)
-    plans = [for_file(path, request) for path in targets.files]
+    plans = [for_file(request.stdin_filename if path == "-" and request.stdin_filename else path,
+                      request) for path in targets.files]
     by_path = dict(zip(targets.files, plans))
     results: list[FileResult | None] = [None] * len(targets.files)
     for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
         indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
         found = check_files([targets.files[i] for i in indexes], lambda p: by_path[p].options,
-                            jobs=request.jobs, timeout=request.timeout, memory=memory)
+                            jobs=request.jobs, timeout=request.timeout, memory=memory,
+                            stdin_as=request.stdin_filename)
         for index, result in zip(indexes, found):
             results[index] = result
     return Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])

@@ -96,6 +96,19 @@ def settings_for(path: str | os.PathLike) -> Settings:
     return Settings()
 
 
+def settings_file(path: str | os.PathLike) -> Settings:
+    """The settings in one named file (``--config``): an ``urdftool.toml``, or any other TOML
+    file holding them at top level or under ``[tool.urdftool]``. It was named by whoever runs
+    the check, so the paths it names may lead anywhere its own folder's repository allows."""
+    path = Path(path).absolute()
+    if not path.is_file():
+        raise SettingsError(f"settings file '{path}' does not exist or is not a file")
+    table = _read(path)
+    if path.name != "urdftool.toml" and "tool" in table:
+        table = table["tool"].get("urdftool", {}) if isinstance(table["tool"], dict) else {}
+    return _parse(path, table)
+
+
 @lru_cache(maxsize=64)
 def _settings_file(file: Path, mtime: int, size: int) -> Settings | None:
     """The settings in ``file``; None for a pyproject.toml without ``[tool.urdftool]``."""
@@ -253,6 +266,9 @@ class CheckRequest:
     timeout: per file in [s]; None or 0 for none
     jobs: worker processes; None: one per core
     use_settings: whether settings files apply at all
+    stdin_filename: the path standard input ('-') is checked as: its settings, includes and
+        packages are found from there and its findings name it (an editor's unsaved buffer)
+    settings_file: this settings file for every target instead of the one above each
     """
 
     select: tuple[str, ...] = ()
@@ -268,6 +284,8 @@ class CheckRequest:
     timeout: float | None = DEFAULT_TIMEOUT
     jobs: int | None = None
     use_settings: bool = True
+    stdin_filename: str | None = None
+    settings_file: Path | None = None
 
     def __post_init__(self):
         for name in ("select", "ignore"):
@@ -300,7 +318,9 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
     """The settings for checking ``path``: the settings file above it (unless the request
     turns them off) under the request. Command-line values win: ``select`` replaces, ``ignore``
     and per-file ignores add, companions and packages win one by one."""
-    settings = settings_for(path) if request.use_settings else Settings()
+    settings = (Settings() if not request.use_settings else
+                settings_file(request.settings_file) if request.settings_file is not None else
+                settings_for(path))
     selection = Selection(tuple(_codes(request.select or settings.select)),
                           tuple(_codes([*settings.ignore, *request.ignore,
                                         *settings.ignores_for(path)])))

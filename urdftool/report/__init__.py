@@ -34,5 +34,10 @@ def resolve_format(name: str) -> str:
     return name
 
 
-def render(format_name: str, results, stream) -> None:
-    _RENDERERS[resolve_format(format_name)](results, stream)
+def render(format_name: str, results, stream, quiet: bool = False) -> None:
+    """Write ``results`` in a format; ``quiet``: the text format leaves out its summary line."""
+    name = resolve_format(format_name)
+    if name == "text":
+        text_format.render(results, stream, quiet=quiet)
+    else:
+        _RENDERERS[name](results, stream)

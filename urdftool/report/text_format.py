@@ -15,7 +15,7 @@ from urdftool.report.summary import STYLES, Summary, counted, printable, via_tex
 Line = list[tuple[str, str]]  # (text, rich style or "")
 
 
-def lines(results) -> list[Line]:
+def lines(results, quiet: bool = False) -> list[Line]:
     """The report as lines of (text, style) spans; names, paths and messages come from the
     files checked, so their control characters are escaped (one finding, one line)."""
     out: list[Line] = []
@@ -29,7 +29,10 @@ def lines(results) -> list[Line]:
                         (" ", ""), (finding.code, "bold"), (f" {finding.message} ", ""),
                         (f"({finding.name})", "dim")])
             out.extend([(f"      {line}", "dim")] for line in via_text(finding.location))
-        out.append([])
+        if not quiet:
+            out.append([])
+    if quiet:
+        return [[(printable(text), style) for text, style in line] for line in out]
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
@@ -39,8 +42,8 @@ def lines(results) -> list[Line]:
     return [[(printable(text), style) for text, style in line] for line in out]
 
 
-def render(results, stream) -> None:
-    report = lines(results)
+def render(results, stream, quiet: bool = False) -> None:
+    report = lines(results, quiet)
     if not _colour(stream):
         stream.write("".join("".join(text for text, _ in line) + "\n" for line in report))
         return

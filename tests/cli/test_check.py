@@ -1,0 +1,102 @@
+"""``urdftool check``'s options for CI and editors: exit codes, quiet, statistics, stdin
+filename, --config and --isolated."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+BROKEN = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <axis xyz="0 0 2"/><limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+@pytest.fixture
+def broken(tmp_path):
+    (tmp_path / "robots").mkdir()
+    path = tmp_path / "robots" / "arm.urdf"
+    path.write_text(BROKEN)
+    return path
+
+
+def test_exit_zero_reports_but_exits_0(run_cli, broken):
+    result = run_cli("check", broken, "--exit-zero")
+    assert result.exit_code == 0 and "U204" in result.stdout
+    assert run_cli("check", broken, "--exit-zero", "--select", "U999").exit_code == 2
+
+
+def test_quiet_prints_findings_without_the_summary(run_cli, broken):
+    result = run_cli("check", broken, "-q")
+    assert result.exit_code == 1
+    assert "U204" in result.stdout and "checked" not in result.stdout
+    assert run_cli("check", broken, "-q", "--select", "U1").stdout == ""
+
+
+def test_statistics_counts_each_rule_most_first(run_cli, broken, tmp_path):
+    second = tmp_path / "robots" / "leg.urdf"
+    second.write_text(BROKEN.replace('xyz="0 0 2"', 'xyz="0 0 1"'))
+    result = run_cli("check", tmp_path / "robots", "--statistics")
+    assert result.exit_code == 1
+    assert result.stdout.splitlines() == ["2  U204  error    inverted-limits",
+                                          "1  U206  warning  axis-not-unit"]
+
+
+def test_stdin_filename_names_the_input_and_finds_its_includes(run_cli, tmp_path):
+    (tmp_path / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="arm">'
+        '<link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<limit lower="1" upper="-1" effort="1" velocity="1"/></joint></xacro:macro></robot>')
+    text = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            '<xacro:include filename="parts.xacro"/>\n<link name="a"/>\n<xacro:arm/>\n</robot>\n')
+    name = str(tmp_path / "robot.urdf.xacro")
+    result = run_cli("check", "-", "--stdin-filename", name, "-f", "json", input=text)
+    data = json.loads(result.stdout)
+    assert result.exit_code == 1, result.output
+    [finding] = data["diagnostics"]
+    assert finding["code"] == "U204" and finding["file"].endswith("parts.xacro")
+    assert finding["via"][0]["file"] == finding["file"].replace("parts.xacro", "robot.urdf.xacro")
+    assert finding["via"][0]["line"] == 4
+
+
+def test_stdin_filename_without_stdin_is_a_usage_error(run_cli, broken):
+    result = run_cli("check", broken, "--stdin-filename", "x.urdf")
+    assert result.exit_code == 2 and "give '-'" in result.stderr
+
+
+def test_stdin_filename_applies_the_settings_there(run_cli, broken, tmp_path):
+    (tmp_path / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    result = run_cli("check", "-", "--stdin-filename", str(tmp_path / "robots" / "x.urdf"),
+                     "-f", "json", input=BROKEN)
+    assert [d["code"] for d in json.loads(result.stdout)["diagnostics"]] == ["U206"]
+
+
+def test_config_replaces_and_isolated_ignores_the_settings(run_cli, broken, tmp_path):
+    (tmp_path / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    other = tmp_path / "ci.toml"
+    other.write_text('[tool.urdftool]\nignore = ["U206"]\n')
+
+    def codes(*words):
+        result = run_cli("check", broken, "-f", "json", *words)
+        return [d["code"] for d in json.loads(result.stdout)["diagnostics"]]
+
+    assert codes() == ["U206"]
+    assert codes("--config", other) == ["U204"]
+    assert codes("--isolated") == ["U204", "U206"]
+    assert run_cli("check", broken, "--config", other, "--isolated").exit_code == 2
+    missing = run_cli("check", broken, "--config", tmp_path / "nope.toml")
+    assert missing.exit_code == 2 and "does not exist" in missing.stderr
+
+
+def test_version_short_flag(run_cli):
+    from urdftool import __version__
+
+    result = run_cli("-V")
+    assert result.exit_code == 0 and result.stdout.strip() == f"urdftool {__version__}"
+
+
+def test_shell_completion_is_offered(run_cli):
+    assert "--show-completion" in run_cli("--help").stdout
