@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from conftest import CASES, ROBOTS
 
 INVERTED = CASES / "U204_inverted_limits.urdf"
@@ -100,3 +102,17 @@ def test_tree_on_a_bundled_robot(run_cli):
     result = run_cli("tree", ROBOTS / "r2d2" / "r2d2.urdf.xacro")
     assert result.exit_code == 0
     assert result.stdout.splitlines()[2].startswith("root Link: base_footprint")
+
+
+@pytest.mark.parametrize("words", [
+    ["fk", "--frame", "nosuch"], ["fk", "--base", "nosuch"], ["fk", "--q", "nosuch=1"],
+    ["dh", "--base", "nosuch", "--tip", "head"], ["inertia", "--link", "nosuch"],
+    ["dynamics", "--q", "nosuch=1"], ["collisions", "--q", "nosuch=1"],
+])
+def test_an_unknown_name_on_the_command_line_is_exit_2_in_every_command(run_cli, words):
+    from conftest import ROBOTS
+
+    command, *options = words
+    result = run_cli(command, ROBOTS / "r2d2" / "r2d2.urdf.xacro", *options, "--timeout", "0")
+    assert result.exit_code == 2, result.output
+    assert "nosuch" in result.stderr and "available" in result.stderr

@@ -181,7 +181,9 @@ def test_random_configurations_stay_within_limits(humanoid):
 
 
 def test_unknown_frame_lists_links(humanoid):
-    with pytest.raises(FKError, match="did you mean 'l_foot_link'"):
+    from urdftool.errors import UnknownLink
+
+    with pytest.raises(UnknownLink, match="did you mean 'l_foot_link'"):
         forward_kinematics(humanoid, config.random(humanoid.variables, 1, 0), ["l_foot"])
 
 

@@ -116,7 +116,12 @@ def write_output(path, data: str | bytes) -> None:
 
 def fail_at(robot, error: Exception) -> None:
     """Print ``error`` where it is (its ``where``, else its ``element`` in ``robot``, else the
-    robot's file) and exit 1."""
+    robot's file) and exit 1; a name given on the command line that the robot does not have
+    (an :class:`~urdftool.errors.UnknownName`) is a usage error, exit 2, in every command."""
+    from urdftool.errors import UnknownName
+
+    if isinstance(error, UnknownName):
+        fail_usage(error)
     where = getattr(error, "where", None) or robot.locate(getattr(error, "element", None))
     typer.echo(f"{where}: error: {error}", err=True)
     raise typer.Exit(1)

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from urdftool.errors import UnknownName
+
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
                                   fail_usage, joint_words, refuse_bad_outputs, single_robot,
                                   warn, write_output)
@@ -87,7 +89,7 @@ def collisions(
         fail_usage(UsageError(f"--plot: {error}"))
     except UsageError as error:
         fail_usage(error)
-    except FKError as error:
+    except (FKError, UnknownName) as error:
         fail_at(robot, error)
     raise typer.Exit(code)
 

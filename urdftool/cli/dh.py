@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import typer
 
+from urdftool.errors import UnknownName
+
 from urdftool.cli._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
 
 FORMATS = ("text", "json", "yaml")
@@ -31,6 +33,6 @@ def dh(
         {"--format": (output_format, FORMATS), "--convention": (convention, CONVENTIONS)})
     try:
         table = extract(robot, base, tip, convention)
-    except DHError as error:
+    except (DHError, UnknownName) as error:
         fail_at(robot, error)
     write_table(table, output_format)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import typer
 
+from urdftool.errors import UnknownName
+
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
                                   joint_words, single_robot, warn)
 
@@ -70,7 +72,7 @@ def fk(
         if error.element is None and error.where is None and dh:
             error.where = dh  # about the table, not the robot
         fail_at(robot, error)
-    except FKError as error:
+    except (FKError, UnknownName) as error:
         fail_at(robot, error)
     warn(result.warnings)
     write_poses(result, output_format, matrix, single=not (q_file or random))

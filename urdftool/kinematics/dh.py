@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.errors import DHError, available
+from urdftool.errors import DHError, UnknownLink, available
 from urdftool.description.urdf import MOVING
 from urdftool.description.values import origin as read_origin, parse_numbers
 from urdftool.kinematics import transforms
@@ -103,7 +103,7 @@ def chain(robot, base: str, tip: str) -> list:
     """The joint elements from ``base`` down to ``tip``; DHError when tip is not below base."""
     for name in (base, tip):
         if name not in robot.links:
-            raise DHError(f"unknown link '{name}'; {available('links', name, robot.links)}")
+            raise UnknownLink(name, robot.links)
     parent_joint = {}
     for joint in robot.children("joint"):
         child = joint.find("child")

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from urdftool.errors import FKError, available
+from urdftool.errors import FKError, UnknownLink
 from urdftool.kinematics import transforms
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
@@ -242,7 +242,7 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
     index = {name: i for i, name in enumerate(model.links)}
     for name in (frames or []) + ([base] if base else []):
         if name not in index:
-            raise FKError(f"unknown link '{name}'; {available('links', name, model.links)}")
+            raise UnknownLink(name, model.links)
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
     if base:
         poses = model._frame_poses(configurations.values, chosen + [index[base]])
