@@ -137,6 +137,11 @@ class DHError(LocatedError):
         self.where = where
 
 
+class ModelBuildError(LocatedError):
+    """Pinocchio's URDF parser (urdfdom) refuses the robot; the message gives urdfdom's reasons.
+    The command line reports the linter's located findings instead, when it has some."""
+
+
 class DynamicsError(LocatedError):
     """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 

@@ -116,3 +116,33 @@ def test_an_unknown_name_on_the_command_line_is_exit_2_in_every_command(run_cli,
     result = run_cli(command, ROBOTS / "r2d2" / "r2d2.urdf.xacro", *options, "--timeout", "0")
     assert result.exit_code == 2, result.output
     assert "nosuch" in result.stderr and "available" in result.stderr
+
+
+@pytest.mark.parametrize("command", ["fk", "dynamics", "collisions"])
+def test_a_robot_pinocchio_refuses_is_reported_at_its_line_without_urdfdom_noise(
+        command, tmp_path, capfd):
+    import subprocess
+    import sys
+
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"/>\n<joint name="j" '
+                    'type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+                    '</joint>\n</robot>')
+    result = subprocess.run([sys.executable, "-m", "urdftool", command, str(path)],
+                            capture_output=True, text=True)
+    assert result.returncode == 1
+    assert "r.urdf:2: error U202 revolute joint 'j' has no <limit>" in result.stderr
+    assert "urdf_parser" not in result.stderr and "Error:" not in result.stderr
+
+
+@pytest.mark.parametrize("command", ["fk", "dynamics", "collisions"])
+def test_a_joint_axis_without_direction_fails_instead_of_nan_poses(command, tmp_path, run_cli):
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1"/>'
+                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>\n'
+                    '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+                    '<axis xyz="0 0 0"/><limit lower="0" upper="1" effort="1" velocity="1"/>'
+                    '</joint>\n</robot>')
+    result = run_cli(command, path, "--timeout", "0")
+    assert result.exit_code == 1 and "r.urdf:2: error: joint 'j'" in result.stderr, result.output
+    assert "has no direction" in result.stderr

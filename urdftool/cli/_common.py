@@ -127,6 +127,21 @@ def fail_at(robot, error: Exception) -> None:
     raise typer.Exit(1)
 
 
+def fail_unbuildable(error) -> int:
+    """Report why Pinocchio could not build the robot's model: the linter's errors, each at its
+    line (what urdfdom refused, in urdftool's words), else urdfdom's own reasons; returns 1."""
+    from urdftool.diagnostics import Severity
+    from urdftool.lint.engine import check_robot
+
+    robot = error.robot
+    errors = [f for f in check_robot(robot) if f.severity is Severity.ERROR]
+    if errors:
+        report_findings(robot.path, errors)
+    else:
+        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
+    return 1
+
+
 def single_robot(command: str, words: list[str], arg_options: list[str],
                  package_options: list[str], choices: dict[str, tuple] | None = None,
                  problems=(), **load_options):
@@ -192,12 +207,16 @@ def budgeted(command):
             stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
 
         def work(_):
+            from urdftool.errors import ModelBuildError
+
             if stdin is not None:
                 sys.stdin = _bytes_stdin(stdin)
             try:
                 command(**kwargs)
             except typer.Exit as exit:
                 return exit.exit_code
+            except ModelBuildError as error:
+                return fail_unbuildable(error)
             return 0
 
         [result] = run_budgeted(1, work, budget, lambda _, stop: stop)

@@ -78,15 +78,10 @@ class KinematicModel:
     def __init__(self, robot, floating: bool = False):
         import pinocchio
 
-        try:
-            if floating:
-                self.model = pinocchio.buildModelFromXML(
-                    robot.urdf, pinocchio.JointModelFreeFlyer(), FLOATING_ROOT)
-            else:
-                self.model = pinocchio.buildModelFromXML(robot.urdf)
-        except (ValueError, RuntimeError) as error:
-            raise FKError(f"Pinocchio cannot build a model ({str(error).strip().splitlines()[-1]});"
-                          " run 'urdftool check' for the cause", robot.root) from None
+        from urdftool.kinematics.native import build_model
+
+        root = (pinocchio.JointModelFreeFlyer(), FLOATING_ROOT) if floating else ()
+        self.model = build_model(robot, *root)
         self.robot = robot
         self.variables: list[Variable] = variables_of(robot, FLOATING_ROOT if floating else None)
         self.mimics = mimics_of(robot)
@@ -233,7 +228,11 @@ def _axis(short: str, element) -> np.ndarray:
     axis_element = element.find("axis") if element is not None else None
     values, _ = parse_numbers(axis_element.get("xyz") if axis_element is not None else "1 0 0", 3)
     axis = np.array(values or (1.0, 0.0, 0.0), dtype=float)
-    return axis / np.linalg.norm(axis)
+    length = np.linalg.norm(axis)
+    if not np.isfinite(length) or length == 0:  # urdfdom accepts it; every pose would be NaN
+        raise FKError(f"joint '{element.get('name')}': <axis xyz> '{axis_element.get('xyz')}' has "
+                      "no direction; give a unit vector such as '0 0 1'", element)
+    return axis / length
 
 
 def forward_kinematics(model: KinematicModel, configurations: Configurations,

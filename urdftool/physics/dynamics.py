@@ -60,13 +60,16 @@ def build(robot) -> Model:
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
+    from urdftool.kinematics.native import build_model
 
-    try:
-        model = pin.buildModelFromXML(robot.urdf)
-    except (RuntimeError, ValueError) as error:
-        raise DynamicsError(f"Pinocchio cannot build the model: {error}") from None
+    model = build_model(robot)
     joints = []
     for joint_id in range(1, model.njoints):
+        axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
+        if axis is not None and not np.linalg.norm(axis) > 0:
+            raise DynamicsError(f"joint '{model.names[joint_id]}': <axis> has no direction; give "
+                                "a unit vector such as '0 0 1'",
+                                robot.joints.get(model.names[joint_id]))
         if model.joints[joint_id].nv != 1:
             raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
                                 "degrees of freedom; only 1-dof joints are supported")
