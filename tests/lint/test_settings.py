@@ -275,3 +275,33 @@ def test_setting_values_are_type_checked(run_cli, project, text, message):
     settings(project, text)
     result = run_cli("check", project / "robots")
     assert result.exit_code == 2 and message in result.stderr, result.output
+
+
+XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="upper" default="1"/>
+  <link name="base_link"/><link name="arm"/>
+  <joint name="elbow" type="revolute"><parent link="base_link"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="0" upper="$(arg upper)" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def test_per_file_args_reach_the_expansion_and_the_command_line_wins(run_cli, project):
+    (project / "robots" / "arm.urdf").unlink()
+    (project / "robots" / "arm.urdf.xacro").write_text(XACRO)
+    settings(project, '[tool.urdftool.per-file-args]\n"robots/*.xacro" = { upper = -1 }\n'
+                      '"other.xacro" = { upper = 5 }\n')
+    assert codes(run_cli, project / "robots") == (1, ["U204"])
+    assert codes(run_cli, project / "robots", "upper:=2") == (0, [])
+
+
+@pytest.mark.parametrize("text, message", [
+    ('per-file-args = ["x"]\n', "'per-file-args' must be a table"),
+    ('[tool.urdftool.per-file-args]\n"*" = "upper:=1"\n', "must be a table of xacro arguments"),
+    ('[tool.urdftool.per-file-args]\n"*" = { upper = [1] }\n', "must be a string, number or bool"),
+])
+def test_per_file_args_are_type_checked(run_cli, project, text, message):
+    settings(project, text)
+    result = run_cli("check", project / "robots")
+    assert result.exit_code == 2 and message in result.stderr, result.output

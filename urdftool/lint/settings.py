@@ -5,7 +5,7 @@ Settings are resolved per target file (:func:`for_file`): checking ``a/`` and ``
 applies ``a``'s settings to the files in ``a`` and ``b``'s to those in ``b``, in either order.
 
 Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
-glob -> list), ``packages`` (a table of package name -> folder, relative to the settings file),
+glob -> list), ``per-file-args`` (a table of glob -> xacro arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
 ``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
 ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``).
 Command-line options win over the file.
@@ -36,8 +36,8 @@ from urdftool.lint.engine import CheckOptions, Selection
 from urdftool.lint.rules import CATALOGUE
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
-KEYS = {"select", "ignore", "per-file-ignores", "packages", "spec", "controllers", "srdf",
-        "strict", "max-file-size", "max-memory"}
+KEYS = {"select", "ignore", "per-file-ignores", "per-file-args", "packages", "spec",
+        "controllers", "srdf", "strict", "max-file-size", "max-memory"}
 
 
 @dataclass
@@ -49,6 +49,7 @@ class Settings:
     select: list[str] = field(default_factory=list)
     ignore: list[str] = field(default_factory=list)
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    per_file_args: dict[str, dict[str, str]] = field(default_factory=dict)
     packages: dict[str, Path] = field(default_factory=dict)
     companions: dict[str, Path] = field(default_factory=dict)
     strict: bool = False
@@ -57,7 +58,19 @@ class Settings:
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
-        if not self.per_file_ignores:
+        return [code for codes in self._matching(self.per_file_ignores, file) for code in codes]
+
+    def args_for(self, file: str) -> dict[str, str]:
+        """xacro arguments for one file by ``per-file-args`` globs, later globs winning."""
+        found: dict[str, str] = {}
+        for args in self._matching(self.per_file_args, file):
+            found.update(args)
+        return found
+
+    def _matching(self, table: dict, file: str) -> list:
+        """The values of ``table`` whose glob matches ``file``, relative to the settings file's
+        folder, or its name alone."""
+        if not table:
             return []
         target = Path(file).absolute()
         base = self.path.parent if self.path else Path.cwd()
@@ -65,11 +78,8 @@ class Settings:
             relative = target.relative_to(base).as_posix()
         except ValueError:
             relative = target.as_posix()
-        found = []
-        for pattern, codes in self.per_file_ignores.items():
-            if fnmatch.fnmatch(relative, pattern) or fnmatch.fnmatch(target.name, pattern):
-                found.extend(codes)
-        return found
+        return [value for pattern, value in table.items()
+                if fnmatch.fnmatch(relative, pattern) or fnmatch.fnmatch(target.name, pattern)]
 
 
 def settings_for(path: str | os.PathLike) -> Settings:
@@ -151,6 +161,8 @@ def _parse(path: Path, table: dict) -> Settings:
     for pattern in _table(path, table, "per-file-ignores"):
         config.per_file_ignores[pattern] = _selectors(path, table["per-file-ignores"], pattern,
                                                       f"per-file-ignores.{pattern}")
+    for pattern, args in _table(path, table, "per-file-args").items():
+        config.per_file_args[pattern] = _xacro_args(path, pattern, args)
     config.packages = {name: _inside_path(path, f"package {name}", folder)
                        for name, folder in _table(path, table, "packages").items()}
     config.companions = {key: _inside_path(path, key, table[key]) for key in ("spec", "srdf")
@@ -201,6 +213,25 @@ def _memory(path: Path, value) -> str:
         raise SettingsError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
                          f"(no limit), not {value!r}") from None
     return str(value)
+
+
+def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
+    """One ``per-file-args`` entry: a table of xacro argument name -> value (a string, number or
+    boolean, written as xacro reads it)."""
+    if not isinstance(args, dict):
+        raise SettingsError(f"{path}: 'per-file-args.{pattern}' must be a table of xacro "
+                            f"arguments (name = value), not {args!r}")
+    values = {}
+    for name, value in args.items():
+        if isinstance(value, bool):
+            value = "true" if value else "false"
+        elif isinstance(value, (int, float)):
+            value = repr(value)
+        if not isinstance(value, str):
+            raise SettingsError(f"{path}: 'per-file-args.{pattern}.{name}' must be a string, "
+                                f"number or boolean, not {value!r}")
+        values[name] = value
+    return values
 
 
 def _table(path: Path, table: dict, key: str) -> dict:
@@ -325,7 +356,7 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
                           tuple(_codes([*settings.ignore, *request.ignore,
                                         *settings.ignores_for(path)])))
     options = CheckOptions(
-        xacro_args=dict(request.xacro_args), packages={**settings.packages, **request.packages},
+        xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),
         max_file_size=request.max_file_size or settings.max_file_size
         or CheckOptions.max_file_size,
