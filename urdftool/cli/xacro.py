@@ -1,4 +1,5 @@
-"""``urdftool xacro``: expand xacro to URDF with ROS-free package resolution."""
+"""``urdftool xacro``: expand xacro to URDF with ROS-free package resolution; a drop-in for ROS
+``xacro`` (its banner, ``-o``, ``--deps``, ``-q``, and ``--inorder``/``--check-order`` as no-ops)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from pathlib import Path
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
-                      single_robot, write_output)
+                                  single_robot, write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -21,11 +22,23 @@ def xacro(
     package: list[str] = PackageOption,
     output: Path = typer.Option(None, "--output", "-o", help="Write the URDF here."),
     no_env: bool = typer.Option(False, "--no-env", help="Make $(env)/$(optenv) errors."),
+    deps: bool = typer.Option(False, "--deps", help="Print the files it includes, "
+                                                    "space-separated, instead of the URDF."),
+    quiet: bool = typer.Option(False, "-q", help="Do not print xacro's warnings."),
+    inorder: bool = typer.Option(False, "--inorder", "-i", hidden=True,
+                                 help="Accepted as ROS xacro does: in-order is the only order."),
+    check_order: bool = typer.Option(False, "--check-order", hidden=True,
+                                     help="Accepted for ROS 1 scripts; nothing to check."),
 ) -> None:
-    from urdftool.report.urdf import expanded_urdf
+    from urdftool.report.summary import printable
+    from urdftool.report.urdf import dependencies, expanded_urdf
 
     refuse_bad_outputs(output)
-    text = expanded_urdf(single_robot("xacro", words, arg, package, allow_env=False if no_env else None))
+    robot = single_robot("xacro", words, arg, package, allow_env=False if no_env else None)
+    if not quiet:
+        for note in robot.notes:
+            typer.echo(printable(f"{note.location}: warning: {note.message}"), err=True)
+    text = dependencies(robot) if deps else expanded_urdf(robot, robot.path)
     if output:
         write_output(output, text)
     else:
