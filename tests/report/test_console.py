@@ -27,3 +27,44 @@ def test_write_json_finite_writes_null_for_infinite_and_nan():
     write_json({"d": math.inf, "rows": [(1.0, math.nan)], "n": -math.inf}, stream, finite=True)
     assert json.loads(stream.getvalue()) == {"d": None, "rows": [[1.0, None]], "n": None}
     assert "Infinity" not in stream.getvalue()
+
+
+def _plain(text: str) -> str:
+    import re
+
+    return re.sub(r"\x1b\[[0-9;]*m", "", text)
+
+
+def _terminal(width: int):
+    import io
+
+    from rich.console import Console
+
+    return Console(file=io.StringIO(), width=width, force_terminal=True, no_color=True,
+                   highlight=False)
+
+
+HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]"]
+ROWS = [["base_link", "0.000000", "0.100000", "0.200000", "1.570796"],
+        ["a_much_longer_link_name", "1.000000", "-2.000000", "3.000000", "0.000000"]]
+
+
+def test_a_table_that_fits_the_terminal_is_printed_as_columns():
+    from urdftool.report.console import print_table
+
+    console = _terminal(120)
+    print_table(console, "poses", HEADERS, ROWS)
+    lines = _plain(console.file.getvalue()).splitlines()
+    assert any("roll [rad]" in line and "x [m]" in line for line in lines)
+    assert max(map(len, lines)) <= 120
+
+
+def test_a_table_wider_than_the_terminal_turns_vertical_with_units():
+    from urdftool.report.console import print_table
+
+    console = _terminal(40)
+    print_table(console, "poses", HEADERS, ROWS)
+    lines = _plain(console.file.getvalue()).splitlines()
+    assert max(map(len, lines)) <= 40
+    assert lines[:3] == ["poses", "base_link", "  x [m]           0.000000"]
+    assert "  roll [rad]      1.570796" in lines

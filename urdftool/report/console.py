@@ -6,12 +6,43 @@ import sys
 
 
 def wide_console():
-    """A rich console at least 150 columns wide: tables of poses are wide; do not squeeze them."""
+    """A rich console on standard output that never squeezes a table: off a terminal (a pipe, a
+    file) it is as wide as the widest table; on one, :func:`print_table` decides the layout."""
     from rich.console import Console
 
     console = Console(highlight=False)
-    console.width = max(console.width, 150)
+    if not console.is_terminal:
+        console.width = 10_000
     return console
+
+
+def print_table(console, title: str, headers: list[str], rows: list[list[str]],
+                left: int = 1) -> None:
+    """A table that fits the terminal: columns when they fit its width, else one block per row
+    (``header: value`` lines) that any width can show. Off a terminal, always columns.
+
+    left: how many leading columns are text (left-aligned); the others are numbers
+    """
+    from rich.markup import escape
+    from rich.table import Table
+
+    widths = [max([len(h), *(len(row[i]) for row in rows)]) for i, h in enumerate(headers)]
+    needed = sum(widths) + 3 * len(widths) + 1  # rich's borders and one space of padding
+    if not console.is_terminal or needed <= console.width:
+        table = Table(title=escape(title), title_justify="left")
+        for i, header in enumerate(headers):
+            table.add_column(escape(header), justify="left" if i < left else "right",
+                             no_wrap=True)
+        for row in rows:
+            table.add_row(*map(escape, row))
+        console.print(table)
+        return
+    console.print(escape(title))
+    label = max(len(h) for h in headers[left:]) if headers[left:] else 0
+    for row in rows:
+        console.print(escape("  ".join(row[:left])))
+        for header, value in zip(headers[left:], row[left:]):
+            console.print(escape(f"  {header:<{label}}  {value:>12}"))
 
 
 def plain_console(stream=None):

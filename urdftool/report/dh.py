@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from urdftool.report.console import fixed, wide_console
+from urdftool.report.console import fixed, print_table, wide_console
 
 
 def write_table(table, output_format: str, stream=None) -> None:
@@ -23,23 +23,17 @@ def write_table(table, output_format: str, stream=None) -> None:
 
 
 def text(table) -> None:
-    from rich.markup import escape
-    from rich.table import Table
-
     from urdftool.kinematics.fk import pose_components
 
     console = wide_console()
     modified = table.convention == "modified"
-    grid = Table(title=f"D-H parameters ({table.convention}), {table.base_link} -> "
-                       f"{table.tip_link}", title_justify="left")
-    for column in ("joint", "type", "theta [rad]", "d [m]",
-                   "a(i-1) [m]" if modified else "a [m]",
-                   "alpha(i-1) [rad]" if modified else "alpha [rad]"):
-        grid.add_column(escape(column), justify="left" if column in ("joint", "type") else "right")
-    for joint in table.joints:
-        grid.add_row(joint.joint, joint.type,
-                     *(fixed(v) for v in (joint.theta, joint.d, joint.a, joint.alpha)))
-    console.print(grid)
+    print_table(console, f"D-H parameters ({table.convention}), {table.base_link} -> "
+                         f"{table.tip_link}",
+                ["joint", "type", "theta [rad]", "d [m]", "a(i-1) [m]" if modified else "a [m]",
+                 "alpha(i-1) [rad]" if modified else "alpha [rad]"],
+                [[joint.joint, joint.type,
+                  *(fixed(v) for v in (joint.theta, joint.d, joint.a, joint.alpha))]
+                 for joint in table.joints], left=2)
     for name, matrix in (("base", table.base), ("tool", table.tool)):
         position, rpy, _ = pose_components(matrix)
         console.print(f"{name}: xyz {_triple(position)}  rpy {_triple(rpy)}")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from urdftool.report.console import fixed, wide_console
+from urdftool.report.console import fixed, print_table, wide_console
 
 
 def verify_line(count: int, seed, position: float, rotation: float, tolerance: float) -> str:
@@ -66,24 +66,22 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
             writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
 
 
+HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
+           "qx [-]", "qy [-]", "qz [-]", "qw [-]"]
+
+
 def _text(result, positions, rpys, quaternions, matrix) -> None:
     from rich.markup import escape
-    from rich.table import Table
 
     console = wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
-        table = Table(title=title, title_justify="left")
-        for column in ("frame", "x [m]", "y [m]", "z [m]", "roll", "pitch", "yaw",
-                       "qx", "qy", "qz", "qw"):
-            table.add_column(escape(column), justify="left" if column == "frame" else "right")
-        for k, name in enumerate(result.frames):
-            table.add_row(name, *(fixed(v) for v in
-                                  (*positions[row, k], *rpys[row, k], *quaternions[row, k])))
-        console.print(table)
+        print_table(console, title, HEADERS, [
+            [name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k], *quaternions[row, k]))]
+            for k, name in enumerate(result.frames)])
         if matrix:
             for k, name in enumerate(result.frames):
-                console.print(f"{name}:")
+                console.print(f"{escape(name)}:")
                 for line in result.matrices[row, k]:
                     console.print("  " + " ".join(f"{v: .6f}" for v in line))
