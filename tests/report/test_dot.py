@@ -87,3 +87,13 @@ def test_unknown_suffix_is_a_usage_error(run_cli, bad, tmp_path):
 
 def test_one_file_only(run_cli, bad):
     assert run_cli("graph", bad, bad).exit_code == 2
+
+
+def test_a_link_a_joint_names_but_nobody_defines_is_drawn_as_missing(run_cli, tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><joint name="j" type="fixed">'
+                    '<parent link="a"/><child link="ghost"/></joint></robot>')
+    dot = run_cli("graph", path, "--timeout", "0").stdout
+    [node] = [line for line in dot.splitlines() if line.strip().startswith('"ghost" [')]
+    assert 'style="dashed"' in node and 'label="ghost\\n(missing)"' in node
+    assert '"a" [' not in dot  # a defined link keeps the default style

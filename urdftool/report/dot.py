@@ -62,6 +62,15 @@ def to_dot(robot, findings=()) -> str:
     for name in robot.links:
         attributes = _colour(marked.get(("link", name)), "color", "fillcolor")
         lines.append(f"  {_quote(name)}{_attributes(attributes)};")
+    missing = []  # links joints name that the robot does not have: drawn as missing
+    for joint in robot.children("joint"):
+        for end in (joint.find("parent"), joint.find("child")):
+            name = end.get("link") if end is not None else None
+            if name and name not in robot.links and name not in missing:
+                missing.append(name)
+                attributes = {**MISSING, "label": f"{name}\n(missing)",
+                              "tooltip": f"no link named '{name}'"}
+                lines.append(f"  {_quote(name)}{_attributes(attributes)};")
     for joint in robot.children("joint"):
         parent, child = joint.find("parent"), joint.find("child")
         if parent is None or child is None or not parent.get("link") or not child.get("link"):
@@ -73,6 +82,9 @@ def to_dot(robot, findings=()) -> str:
                      f"{_attributes(attributes)};")
     lines.append("}")
     return "\n".join(lines) + "\n"
+
+
+MISSING = {"style": "dashed", "color": "#c62828", "fontcolor": "#c62828"}  # a link not defined
 
 
 def joint_label(joint) -> str:
