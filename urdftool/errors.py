@@ -170,3 +170,20 @@ class UnknownRule(UnknownName):
 
 class PlotError(UrdftoolError, ValueError):
     """A picture cannot be written in the asked format; the caller names the option."""
+
+
+# The libraries only the analysis commands and a few rules need, by import name; they come
+# with ``pip install 'urdftool[analysis]'`` (a lint-only install has none of them).
+ANALYSIS_MODULES = {"pinocchio": "pin", "fcl": "python-fcl", "yourdfpy": "yourdfpy",
+                    "PIL": "pillow"}
+
+
+def missing_extra(error: BaseException) -> str | None:
+    """For an ImportError of an analysis library, what to install; None for any other error."""
+    name = getattr(error, "name", None) or ""
+    top = name.split(".")[0]
+    if not isinstance(error, ImportError) or top not in ANALYSIS_MODULES:
+        return None
+    return (f"needs {ANALYSIS_MODULES[top]}, which a lint-only install leaves out: "
+            "pip install 'urdftool[analysis]'")
+

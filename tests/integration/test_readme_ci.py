@@ -56,7 +56,7 @@ def readme_commands() -> dict:
 
 
 def test_every_integration_has_a_command_line():
-    assert set(readme_commands()) == {"github", "sarif", "junit", "make", "pytest"}
+    assert set(readme_commands()) == {"github", "sarif", "gitlab", "junit", "make", "pytest"}
 
 
 @pytest.fixture(scope="module")
@@ -91,7 +91,8 @@ def test_github_annotations(run_cli, monkeypatch, workspaces, broken):
     result = run(run_cli, monkeypatch, workspaces[broken], readme_commands()["github"])
     assert result.exit_code == int(broken)
     lines = result.stdout.splitlines()
-    assert lines[-1] == f"urdftool: {3 + broken} files, {int(broken)} errors, 0 warnings"
+    errors = "1 error" if broken else "0 errors"
+    assert lines[-1] == f"urdftool: {3 + broken} files, {errors}, 0 warnings, 0 notes"
     annotations = lines[:-1]
     assert len(annotations) == int(broken)
     for line in annotations:
@@ -112,9 +113,19 @@ def test_sarif(run_cli, monkeypatch, workspaces, broken):
     for entry in results:
         rule = rules[entry["ruleIndex"]]
         assert rule["id"] == entry["ruleId"] and "Bad:" in rule["help"]["text"]
-        assert "helpUri" not in rule  # no stable docs host yet: none is invented
+        assert rule["helpUri"].endswith("#" + rule["id"].lower())  # the README table's anchor
         assert entry["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == \
             "robots/broken.urdf"
+
+
+@pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
+def test_gitlab_code_quality(run_cli, monkeypatch, workspaces, broken):
+    argv = readme_commands()["gitlab"]
+    result = run(run_cli, monkeypatch, workspaces[broken], argv)
+    assert result.exit_code == int(broken)  # the README tolerates 1, not 2
+    issues = json.loads((workspaces[broken] / argv[argv.index("--output") + 1]).read_text())
+    assert [(i["check_name"], i["location"]["path"]) for i in issues] == \
+        ([("U204 inverted-limits", "robots/broken.urdf")] if broken else [])
 
 
 @pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
@@ -193,7 +204,7 @@ def hook_entry() -> list[str]:
 
 def test_ci_recipes_write_out_the_safe_mode():
     commands = readme_commands()
-    for integration in ("github", "sarif", "junit"):
+    for integration in ("github", "sarif", "gitlab", "junit"):
         assert "--no-env" in commands[integration] and "--allow-env" not in commands[integration]
     assert hook_entry() == ["urdftool", "check", "--no-env"]
 

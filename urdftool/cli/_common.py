@@ -127,6 +127,18 @@ def fail_at(robot, error: Exception) -> None:
     raise typer.Exit(1)
 
 
+def missing_extra_exit(command: str, error: ImportError) -> int:
+    """Say which extra to install when a command needs an analysis library that a lint-only
+    install leaves out, and return the exit code, 2; any other ImportError is a bug: raised."""
+    from urdftool.errors import missing_extra
+
+    advice = missing_extra(error)
+    if advice is None:
+        raise error
+    typer.echo(f"urdftool: error: urdftool {command} {advice}", err=True)
+    return 2
+
+
 def fail_unbuildable(error) -> int:
     """Report why Pinocchio could not build the robot's model: the linter's errors, each at its
     line (what urdfdom refused, in urdftool's words), else urdfdom's own reasons; returns 1."""
@@ -217,6 +229,8 @@ def budgeted(command):
                 return exit.exit_code
             except ModelBuildError as error:
                 return fail_unbuildable(error)
+            except ImportError as error:
+                return missing_extra_exit(command.__name__, error)
             return 0
 
         [result] = run_budgeted(1, work, budget, lambda _, stop: stop)

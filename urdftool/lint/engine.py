@@ -9,7 +9,7 @@ from pathlib import Path
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.robot import CompanionPaths
 from urdftool.diagnostics import Finding, Location, Severity, display_path
-from urdftool.errors import LoadError
+from urdftool.errors import LoadError, missing_extra
 from urdftool.lint.catalogue import Rule
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
@@ -121,6 +121,13 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
                 findings.append(stamp(rule, where, message, robot))
         except MemoryError:
             raise  # over the memory budget: the runner reports it (U018)
+        except ImportError as error:  # a lint-only install: say what did not run, and why
+            if (advice := missing_extra(error)) is None:
+                findings.append(_crash(f"rule {rule.code} ({rule.name})", error,
+                                       robot.locate(None)))
+            else:
+                findings.append(CATALOGUE.get("U902").finding(
+                    f"rule {rule.code} ({rule.name}) did not run: it {advice}", robot.locate(None)))
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
     findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)

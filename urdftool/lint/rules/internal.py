@@ -19,3 +19,13 @@ U901 = declare("U901", "unused-suppression", Severity.WARNING, """
     Bad: ``<!-- urdftool: ignore U206 -->`` above a joint whose axis is a unit vector
     Good: no comment (or the comment above the element that really has the finding)
     """)
+
+U902 = declare("U902", "analysis-unavailable", Severity.INFO, """
+    A rule did not run because a library it needs is not installed.
+
+    A lint-only install (``pip install urdftool``, as the pre-commit hook uses) leaves out
+    Pinocchio, FCL and the other analysis libraries; the rules that pose the robot or test
+    collisions need them. The note names the library; ``pip install 'urdftool[analysis]'`` runs
+    them too. The other rules ran as usual.
+    """)
+

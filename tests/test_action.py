@@ -1,0 +1,71 @@
+"""``action.yml``, the GitHub Action: well formed, injection-safe, and its scripts work as
+written (run here with bash, urdftool on PATH, the action's environment variables set)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from conftest import ROBOTS, ROOT
+
+ACTION = yaml.safe_load((ROOT / "action.yml").read_text())
+STEPS = ACTION["runs"]["steps"]
+
+
+def step(name: str) -> dict:
+    return next(s for s in STEPS if s.get("name") == name)
+
+
+def test_composite_action_with_documented_inputs():
+    assert ACTION["runs"]["using"] == "composite"
+    assert set(ACTION["inputs"]) == {"paths", "args", "extras", "sarif", "python-version"}
+    assert all(value.get("description") for value in ACTION["inputs"].values())
+    for entry in STEPS:
+        if "run" in entry:
+            assert entry["shell"] == "bash"
+
+
+def test_inputs_reach_scripts_only_through_the_environment():
+    for entry in STEPS:
+        assert "${{" not in entry.get("run", ""), entry  # no expression pasted into a script
+
+
+def test_it_installs_this_checkout_and_uploads_sarif():
+    assert '"${GITHUB_ACTION_PATH}${EXTRAS:+[$EXTRAS]}"' in step("Install urdftool")["run"]
+    upload = next(s for s in STEPS if s.get("uses", "").startswith("github/codeql-action/upload"))
+    assert upload["with"]["sarif_file"].endswith("urdftool.sarif")
+
+
+def _run(script: str, tmp_path: Path, **env) -> subprocess.CompletedProcess:
+    bin_dir = str(Path(sys.executable).parent)
+    environment = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}",
+                   "RUNNER_TEMP": str(tmp_path), "CI": "true", **env}
+    return subprocess.run(["bash", "-e", "-c", script], cwd=ROOT, env=environment,
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.skipif(shutil.which("bash") is None, reason="needs bash")
+def test_the_check_and_sarif_scripts_run_as_written(tmp_path):
+    broken = tmp_path / "robots"
+    shutil.copytree(ROBOTS / "r2d2", broken)
+    urdf = broken / "bad.urdf"
+    urdf.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                    'type="revolute"><parent link="a"/><child link="b"/><limit lower="1" '
+                    'upper="-1" effort="1" velocity="1"/></joint></robot>')
+    env = {"PATHS": f"{ROBOTS} {urdf}", "ARGS": "--ignore U901"}
+    checked = _run(step("Check (annotations on the diff)")["run"], tmp_path, **env)
+    assert checked.returncode == 1
+    assert "::error file=" in checked.stdout and "U204" in checked.stdout
+    sarif = _run(step("SARIF")["run"], tmp_path, **env)
+    assert sarif.returncode == 0, sarif.stderr  # findings (exit 1) still upload
+    log = json.loads((tmp_path / "urdftool.sarif").read_text())
+    assert any(r["ruleId"] == "U204" for r in log["runs"][0]["results"])
+    usage = _run(step("SARIF")["run"], tmp_path, PATHS=str(urdf), ARGS="--select U999")
+    assert usage.returncode != 0  # a usage error is not hidden
