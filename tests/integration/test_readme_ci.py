@@ -44,7 +44,7 @@ def readme_commands() -> dict:
     for block in re.findall(r"```(\w+)\n(.*?)```", ci_section(), re.S):
         language, body = block
         if language == "python":
-            commands["pytest"] = body
+            commands.setdefault("pytest", body)  # the first: the make-and-pytest recipe
             continue
         for line in body.splitlines():
             line = line.strip().removeprefix("- ").removeprefix("run: ")

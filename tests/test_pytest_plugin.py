@@ -1,0 +1,76 @@
+"""``pytest --urdftool`` collects robots as items and fails them with located findings; the
+``urdftool_check`` fixture does the same for a team's own tests."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from conftest import ROBOTS
+
+pytest_plugins = ["pytester"]
+
+BROKEN = """<robot name="broken"><link name="a"/><link name="b"/>
+<joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>
+<limit lower="1" upper="-1" effort="1" velocity="1"/></joint></robot>
+"""
+
+
+@pytest.fixture
+def project(pytester):
+    shutil.copytree(ROBOTS / "humanoid", pytester.path / "robots" / "humanoid")
+    (pytester.path / "robots" / "broken.urdf").write_text(BROKEN)
+    return pytester
+
+
+def test_robots_become_items_and_a_broken_one_fails_with_its_findings(project):
+    result = project.runpytest_inprocess("--urdftool", "robots", "-p", "no:cacheprovider",
+                                         "-p", "no:xdist")
+    result.assert_outcomes(passed=1, failed=1)  # humanoid.urdf.xacro and broken.urdf only
+    text = result.stdout.str()
+    assert "robots/broken.urdf:3: error U204" in text
+    result.stdout.fnmatch_lines(["FAILED robots/broken.urdf::urdftool - robots/broken.urdf:3: "
+                                 "error U204*"])
+
+
+def test_macro_libraries_are_not_items(project):
+    result = project.runpytest_inprocess("--urdftool", "robots", "--collect-only", "-q",
+                                         "-p", "no:cacheprovider", "-p", "no:xdist")
+    collected = [line for line in result.stdout.lines if "::urdftool" in line]
+    assert sorted(collected) == ["robots/broken.urdf::urdftool",
+                                 "robots/humanoid/humanoid.urdf.xacro::urdftool"]
+
+
+def test_settings_apply_to_items(project):
+    (project.path / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    result = project.runpytest_inprocess("--urdftool", "robots", "-p", "no:cacheprovider",
+                                         "-p", "no:xdist")
+    result.assert_outcomes(passed=2)
+
+
+def test_without_the_option_nothing_is_collected(project):
+    result = project.runpytest_inprocess("robots", "-p", "no:cacheprovider", "-p", "no:xdist")
+    assert result.ret == pytest.ExitCode.NO_TESTS_COLLECTED
+
+
+def test_the_fixture_fails_a_test_with_the_findings(project):
+    project.makepyfile(test_robots="""
+        def test_clean(urdftool_check):
+            run = urdftool_check("robots/humanoid")
+            assert run.exit_code == 0
+
+        def test_broken(urdftool_check):
+            urdftool_check("robots/broken.urdf")
+        """)
+    result = project.runpytest_inprocess("test_robots.py", "-p", "no:cacheprovider",
+                                         "-p", "no:xdist")
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(["*robots/broken.urdf:3: error U204*"])
+
+
+def test_the_plugin_is_registered_for_pytest():
+    from importlib.metadata import entry_points
+
+    assert {e.value for e in entry_points(group="pytest11") if e.name == "urdftool"} == \
+        {"urdftool.pytest_plugin"}

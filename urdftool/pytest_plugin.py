@@ -1,0 +1,117 @@
+"""``pytest --urdftool``: robot descriptions as test items (a ``pytest11`` plugin).
+
+With ``--urdftool``, every top-level robot below the paths pytest collects (``.urdf`` and
+``.xacro`` files that are robots of their own, as ``urdftool check FOLDER`` finds them; macro
+libraries and included fragments are left out) becomes a test item that fails with its located
+findings when ``urdftool check`` would exit 1 on it, honouring the settings file above it. Each
+item checks one file, in this process, within the usual time budget.
+
+For tests of your own, the ``urdftool_check`` fixture checks paths and fails the test with the
+findings; ``urdftool.check_paths`` returns them for any other use. Without ``--urdftool`` the
+plugin only adds that fixture: it imports nothing of urdftool's until it is used, so it costs a
+pytest run in the same environment nothing.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+SUFFIXES = (".urdf", ".xacro")
+
+
+def pytest_addoption(parser):
+    group = parser.getgroup("urdftool")
+    group.addoption("--urdftool", action="store_true", default=False,
+                    help="check robot descriptions (.urdf, .xacro) with urdftool as test items")
+
+
+def pytest_collect_file(file_path: Path, parent):
+    if not parent.config.getoption("urdftool") or file_path.suffix not in SUFFIXES:
+        return None
+    if file_path.resolve() not in _top_level(parent.config, file_path.parent):
+        return None  # a macro library or a fragment another file includes: checked through it
+    return RobotFile.from_parent(parent, path=file_path)
+
+
+def _top_level(config, folder: Path) -> set[Path]:
+    """The top-level robot files directly in ``folder`` (cached per folder and session)."""
+    cache = config.stash.setdefault(_CACHE, {})
+    if folder not in cache:
+        from urdftool.lint.settings import CheckRequest
+        from urdftool.lint.targets import expand
+
+        try:
+            files = expand([str(folder)], CheckRequest()).files
+        except Exception:  # noqa: BLE001 - no robots here, or unreadable: nothing to collect
+            files = []
+        cache[folder] = {Path(file).resolve() for file in files
+                         if Path(file).resolve().parent == folder.resolve()}
+    return cache[folder]
+
+
+_CACHE = pytest.StashKey[dict]()
+
+
+class RobotFile(pytest.File):
+    def collect(self):
+        yield RobotItem.from_parent(self, name="urdftool")
+
+
+class FindingsFailure(Exception):
+    """``urdftool check`` fails on a robot; the text is its located findings."""
+
+
+class RobotItem(pytest.Item):
+    # Plugins that wrap every test call may read ``funcargs`` (pytest-lsp 1.0 stops the run
+    # with "did not yield" on an item without it); a robot takes no fixtures.
+    funcargs: dict = {}
+
+    def runtest(self):
+        run = _check([str(self.path)])
+        if run.exit_code:
+            raise FindingsFailure(_text(run))
+
+    def repr_failure(self, excinfo, style=None):
+        if isinstance(excinfo.value, FindingsFailure):
+            return str(excinfo.value)
+        return super().repr_failure(excinfo, style)
+
+    def reportinfo(self):
+        return self.path, None, f"urdftool check {self.path.name}"
+
+
+def _check(paths, **options):
+    from urdftool.lint.runner import check_paths
+
+    return check_paths(paths, jobs=1, **options)
+
+
+def _text(run) -> str:
+    """The findings that fail the check, one located line each (with the macro call chain), so
+    that pytest's short summary shows the first."""
+    from urdftool.report.summary import printable, via_text
+
+    lines = []
+    for result in run.results:
+        for finding in result.failures:
+            lines.append(printable(f"{finding.location}: {finding.severity.value} {finding.code} "
+                                   f"{finding.message} ({finding.name})"))
+            lines.extend(f"    {printable(line)}" for line in via_text(finding.location))
+    return "\n".join(lines)
+
+
+@pytest.fixture
+def urdftool_check():
+    """``urdftool_check(*paths, **options)``: check paths as ``urdftool check`` does (options as
+    :func:`urdftool.check_paths` takes them) and fail the test with the located findings when it
+    would exit 1; returns the :class:`urdftool.Run` otherwise."""
+
+    def check(*paths, **options):
+        run = _check([str(path) for path in paths], **options)
+        if run.exit_code:
+            pytest.fail(_text(run), pytrace=False)
+        return run
+
+    return check
