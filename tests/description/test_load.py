@@ -217,3 +217,14 @@ def test_xacro_warnings_and_outside_files_are_notes(tmp_path):
     assert sorted((n.kind, n.location.line) for n in robot.notes) == [
         ("outside-file", 2), ("xacro-warning", 3)]
     assert "part.xacro' is outside the repository" in robot.notes[-1].message
+
+
+def test_xacro_prefix_without_namespace_is_a_located_syntax_error(tmp_path):
+    # lxml keeps the undeclared "xacro:property" as a tag name; naming it used to raise
+    # ValueError (Invalid tag name). xacro says "unbound prefix" at the line: so do we.
+    path = write(tmp_path, "r.urdf", '<robot name="r">\n<link name="a"/>\n'
+                 '<xacro:property name="w" value="1"/>\n</robot>')
+    with pytest.raises(LoadError) as raised:
+        load(path)
+    assert (raised.value.kind, raised.value.location.line) == ("syntax", 3)
+    assert "unbound prefix" in raised.value.message

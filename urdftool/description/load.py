@@ -115,6 +115,8 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
                             limit)
     except LoadError as error:
+        if error.kind == "syntax":  # e.g. the xacro: prefix used without its xmlns: as xacro says
+            raise
         return plain, LoadNote("xacro-in-urdf", where, (
             f"file is {named} but contains xacro (<{_shown_tag(first)}>), which xacro cannot "
             f"expand ({error.message}) and URDF parsers ignore; remove it or rename the file "
@@ -125,6 +127,8 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
 
 
 def _shown_tag(element) -> str:
+    if not element.tag.startswith("{"):  # lxml in recover mode keeps an undeclared prefix
+        return element.tag
     local = etree.QName(element).localname
     return f"{element.prefix}:{local}" if element.prefix else local
 
