@@ -74,7 +74,9 @@ class PackageResolver:
 
     def __init__(self, explicit: dict[str, Path] | None = None, start: Path | None = None,
                  environ: dict[str, str] | None = None):
-        self.explicit = {name: Path(path) for name, path in (explicit or {}).items()}
+        # A relative folder is relative to the working directory (where the user typed it),
+        # never to the file that includes $(find NAME): made absolute here, once.
+        self.explicit = {name: Path(path).absolute() for name, path in (explicit or {}).items()}
         self.start = start.resolve() if start else None
         self.environ = os.environ if environ is None else environ
         self._cache: dict[str, Path] = {}
