@@ -127,3 +127,17 @@ def test_the_readme_package_example_runs_as_written(run_cli, tmp_path, monkeypat
     assert result.exit_code == 0, result.stdout
     result = run_cli(*[word if word != "robot.xacro" else "robots/robot.xacro" for word in words])
     assert result.exit_code == 0, result.stdout
+
+
+def test_an_empty_package_name_is_read_as_pinocchio_does(tmp_path):
+    """package:///NAME/PATH: Pinocchio appends the path after package:// to each package
+    directory, so NAME is the package folder."""
+    from urdftool.description.packages import package_uri_parts
+
+    (tmp_path / "talos_data" / "meshes").mkdir(parents=True)
+    (tmp_path / "talos_data" / "package.xml").write_text("<package><name>talos_data</name></package>")
+    assert package_uri_parts("package:///talos_data/meshes/a.stl") == ("talos_data", "meshes/a.stl")
+    assert package_uri_parts("package://talos_data/meshes/a.stl") == ("talos_data", "meshes/a.stl")
+    resolver = PackageResolver(start=tmp_path / "talos_data" / "meshes")
+    assert resolver.resolve_uri("package:///talos_data/meshes/a.stl", tmp_path) == \
+        tmp_path / "talos_data" / "meshes" / "a.stl"

@@ -35,7 +35,7 @@ from pathlib import Path
 
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description.files import inside
-from urdftool.description.packages import containment_root
+from urdftool.description.packages import containment_root, package_uri_parts
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
@@ -51,7 +51,7 @@ class MeshLimits:
 def resolve(robot, uri: str) -> Path:
     """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used."""
     if uri.startswith("package://"):
-        package = uri[len("package://"):].partition("/")[0]
+        package, _ = package_uri_parts(uri)
         try:
             folder = robot.resolver.find(package).resolve()
         except PackageNotFound as error:

@@ -373,3 +373,27 @@ def mesh_not_watertight(robot):
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
                           f"'{shape.get('filename')}' is not watertight; its inertia is taken "
                           "from its convex hull")
+
+
+@rule("U415", "empty-package-name", Severity.WARNING)
+def empty_package_name(robot):
+    """A mesh URI ``package:///NAME/...`` has an empty package name.
+
+    Pinocchio looks the path after ``package://`` up below each of its package directories, so
+    this form works there, and urdftool resolves it the same way (``NAME`` as the package). ROS's
+    resource_retriever, which RViz, Gazebo and MoveIt load meshes through, takes the empty text
+    before the third slash as the package name and fails.
+
+    Bad: ``<mesh filename="package:///talos_data/meshes/arm.stl"/>``
+    Good: ``<mesh filename="package://talos_data/meshes/arm.stl"/>``
+    """
+    from urdftool.description.packages import package_uri_parts
+
+    for link, holder, shape in _mesh_elements(robot):
+        uri = shape.get("filename")
+        if uri.startswith("package:///"):
+            name, tail = package_uri_parts(uri)
+            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an empty "
+                          f"package name; Pinocchio (and urdftool) read it as package '{name}', "
+                          "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "
+                          f"write 'package://{name}/{tail}'")
