@@ -397,3 +397,25 @@ def empty_package_name(robot):
                           f"package name; Pinocchio (and urdftool) read it as package '{name}', "
                           "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "
                           f"write 'package://{name}/{tail}'")
+
+
+@rule("U416", "mesh-not-well-formed", Severity.WARNING)
+def mesh_not_well_formed(robot):
+    """A COLLADA (``.dae``) mesh is not well-formed XML.
+
+    assimp, through which RViz, Gazebo and MoveIt load meshes, reads it anyway, and so does
+    urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that need
+    well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
+
+    Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value)
+    Good: ``<node id="STL_BINARY">``, or the file exported again
+    """
+    from urdftool.description.meshes import NOT_WELL_FORMED
+
+    for link, holder, shape, outcome in _mesh_outcomes(robot):
+        why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
+        if why:
+            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
+                          f"'{shape.get('filename')}' is not well-formed XML ({why}); read as "
+                          "repaired, as assimp reads it, but XML-strict readers (pycollada, "
+                          "trimesh) refuse it")
