@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from conftest import CASES, ROBOTS
 
 INVERTED = CASES / "U204_inverted_limits.urdf"
@@ -100,3 +102,24 @@ def test_tree_on_a_bundled_robot(run_cli):
     result = run_cli("tree", ROBOTS / "r2d2" / "r2d2.urdf.xacro")
     assert result.exit_code == 0
     assert result.stdout.splitlines()[2].startswith("root Link: base_footprint")
+
+
+TWO_LINKS = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
+
+
+@pytest.mark.parametrize("joint, code", [
+    ('<joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>', "U105"),
+    ('<joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint>', "U202"),
+    ('<joint name="j" type="hinge"><parent link="a"/><child link="b"/></joint>', "U201"),
+    ('<joint name="j" type="fixed"><origin xyz="1x 0 0"/><parent link="a"/><child link="b"/>'
+     '</joint>', "U207"),
+    # a .urdf holding xacro is read as check_urdf reads it, unexpanded: ${} is not a number
+    ('<joint name="j" type="fixed" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+     '<origin xyz="${1 + 1} 0 0"/><parent link="a"/><child link="b"/></joint>', "U207"),
+])
+def test_tree_fails_located_where_check_urdf_fails(run_cli, tmp_path, joint, code):
+    path = tmp_path / "r.urdf"
+    path.write_text(TWO_LINKS.format(joint=joint))
+    result = run_cli("tree", path)
+    assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
+    assert f"r.urdf:3: error {code}" in result.stderr

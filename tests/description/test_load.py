@@ -219,12 +219,15 @@ def test_xacro_warnings_and_outside_files_are_notes(tmp_path):
     assert "part.xacro' is outside the repository" in robot.notes[-1].message
 
 
-def test_xacro_prefix_without_namespace_is_a_located_syntax_error(tmp_path):
-    # lxml keeps the undeclared "xacro:property" as a tag name; naming it used to raise
-    # ValueError (Invalid tag name). xacro says "unbound prefix" at the line: so do we.
+def test_xacro_prefix_without_namespace_is_located_with_xacros_reason(tmp_path):
+    # lxml keeps the undeclared "xacro:property" as a tag name; naming it raised ValueError
+    # (Invalid tag name). xacro says "unbound prefix": the note says so, at the line.
     path = write(tmp_path, "r.urdf", '<robot name="r">\n<link name="a"/>\n'
                  '<xacro:property name="w" value="1"/>\n</robot>')
-    with pytest.raises(LoadError) as raised:
-        load(path)
+    [note] = load(path).notes
+    assert (note.kind, note.location.line) == ("xacro-in-urdf", 3)
+    assert "<xacro:property>" in note.message and "unbound prefix" in note.message
+    with pytest.raises(LoadError) as raised:  # named .xacro, it is xacro's error
+        load(write(tmp_path, "r.urdf.xacro", path.read_text()))
     assert (raised.value.kind, raised.value.location.line) == ("syntax", 3)
     assert "unbound prefix" in raised.value.message
