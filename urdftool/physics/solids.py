@@ -233,6 +233,11 @@ def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vect
     return robot.memo(_fixed_neighbours, build)
 
 
+def rigid_group(robot, name: str) -> list[str]:
+    """Link ``name`` and every link joined to it by fixed joints (either way): one body."""
+    return list(_rigid_frames(robot, name))
+
+
 def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]]:
     """Link ``name`` and every link joined to it by fixed joints -> (R, t) taking points of
     that link's frame into ``name``'s frame."""
