@@ -154,6 +154,7 @@ def test_a_folder_walk_classifies_a_file_by_what_its_includes_produce(tmp_path):
         f'<robot name="lib" {XACRO_NS}><xacro:include filename="more.xacro"/></robot>')
     (tmp_path / "more.xacro").write_text(
         f'<robot {XACRO_NS}><xacro:macro name="m"><link name="a"/></xacro:macro>'
+        '<macro name="old"><link name="b"/></macro>'  # pre-2019 xacro: no prefix
         '<xacro:property name="p" value="1"/></robot>')
     targets = expand([str(tmp_path)], CheckRequest())
     assert targets.files == [str(tmp_path / "robot.urdf.xacro")]

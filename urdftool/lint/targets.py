@@ -240,14 +240,14 @@ class _LinksOutsideMacros:
 
     def start(self, tag, attributes):
         name = _local_name(tag)
-        if _is_xacro(tag) and name == "macro":
+        if name == "macro":  # pre-2019 xacro wrote it without the xacro: prefix
             self.in_macro += 1
         elif not self.in_macro and (name in ("link", "joint") and not _is_xacro(tag)
                                     or _is_xacro(tag) and name not in _XACRO_DIRECTIVES):
             raise _Answered("links")
 
     def end(self, tag):
-        if _is_xacro(tag) and _local_name(tag) == "macro":
+        if _local_name(tag) == "macro":
             self.in_macro -= 1
 
     def close(self):
