@@ -146,3 +146,22 @@ def test_a_joint_axis_without_direction_fails_instead_of_nan_poses(command, tmp_
     result = run_cli(command, path, "--timeout", "0")
     assert result.exit_code == 1 and "r.urdf:2: error: joint 'j'" in result.stderr, result.output
     assert "has no direction" in result.stderr
+TWO_LINKS = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
+
+
+@pytest.mark.parametrize("joint, code", [
+    ('<joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>', "U105"),
+    ('<joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint>', "U202"),
+    ('<joint name="j" type="hinge"><parent link="a"/><child link="b"/></joint>', "U201"),
+    ('<joint name="j" type="fixed"><origin xyz="1x 0 0"/><parent link="a"/><child link="b"/>'
+     '</joint>', "U207"),
+    # a .urdf holding xacro is read as check_urdf reads it, unexpanded: ${} is not a number
+    ('<joint name="j" type="fixed" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+     '<origin xyz="${1 + 1} 0 0"/><parent link="a"/><child link="b"/></joint>', "U207"),
+])
+def test_tree_fails_located_where_check_urdf_fails(run_cli, tmp_path, joint, code):
+    path = tmp_path / "r.urdf"
+    path.write_text(TWO_LINKS.format(joint=joint))
+    result = run_cli("tree", path)
+    assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
+    assert f"r.urdf:3: error {code}" in result.stderr

@@ -346,3 +346,19 @@ def test_pose_q_in_degrees_and_out_of_limit_warning(run_cli):
     assert json.loads(result.stdout)["q"]["l_knee"] == pytest.approx(np.pi / 2)
     beyond = run_cli("collisions", HUMANOID, "--q", "l_knee=9", "--format", "json")
     assert "joint 'l_knee' = 9 is outside its limits" in beyond.stderr
+
+
+def test_a_pose_with_geometry_left_out_is_not_called_free_of_collision(run_cli, tmp_path):
+    """A collision mesh that does not resolve is left out: its link may collide unseen, so
+    'no self-collision' is not said and the exit code is 1."""
+    missing = ('<link name="arm"><collision><geometry><mesh filename="missing.stl"/></geometry>'
+               '</collision></link><joint name="j" type="fixed"><parent link="base"/>'
+               '<child link="arm"/></joint>')
+    path = write(tmp_path, two_boxes(0, 1, missing))
+    result = run_cli("collisions", path, "--q", "slider=0.5")
+    assert result.exit_code == 1, result.output
+    assert "no self-collision among the geometry checked" in result.stdout
+    assert "1 collision element(s) were left out" in result.stdout
+    assert "robot.urdf:" in result.stdout and "missing.stl" in result.stdout
+    clean = run_cli("collisions", write(tmp_path, two_boxes(0, 1)), "--q", "slider=0.5")
+    assert clean.exit_code == 0 and "no self-collision" in clean.stdout

@@ -217,3 +217,17 @@ def test_xacro_warnings_and_outside_files_are_notes(tmp_path):
     assert sorted((n.kind, n.location.line) for n in robot.notes) == [
         ("outside-file", 2), ("xacro-warning", 3)]
     assert "part.xacro' is outside the repository" in robot.notes[-1].message
+
+
+def test_xacro_prefix_without_namespace_is_located_with_xacros_reason(tmp_path):
+    # lxml keeps the undeclared "xacro:property" as a tag name; naming it raised ValueError
+    # (Invalid tag name). xacro says "unbound prefix": the note says so, at the line.
+    path = write(tmp_path, "r.urdf", '<robot name="r">\n<link name="a"/>\n'
+                 '<xacro:property name="w" value="1"/>\n</robot>')
+    [note] = load(path).notes
+    assert (note.kind, note.location.line) == ("xacro-in-urdf", 3)
+    assert "<xacro:property>" in note.message and "unbound prefix" in note.message
+    with pytest.raises(LoadError) as raised:  # named .xacro, it is xacro's error
+        load(write(tmp_path, "r.urdf.xacro", path.read_text()))
+    assert (raised.value.kind, raised.value.location.line) == ("syntax", 3)
+    assert "unbound prefix" in raised.value.message

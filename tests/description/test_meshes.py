@@ -91,3 +91,34 @@ def test_max_triangles_option_refuses_a_large_mesh(tmp_path, run_cli):
     assert "U411" not in run_cli("check", robot).output
     limited = run_cli("check", robot, "--max-triangles", "1000")
     assert "U411" in limited.output and "1280 triangles" in limited.output
+
+
+def _malformed_collada(folder, extents=(0.1, 0.2, 0.3)):
+    """A box exported to COLLADA, then broken as real exporters break it: a ``<`` inside an
+    attribute value (``<node id="<STL_BINARY>">``), which assimp reads and pycollada refuses."""
+    import re
+
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    text = trimesh.creation.box(extents=extents).export(file_type="dae").decode()
+    text, replaced = re.subn(r'<node id="[^"]*"', '<node id="<STL_BINARY>"', text, count=1)
+    assert replaced == 1
+    (folder / "m.dae").write_text(text)
+    return folder / "m.dae"
+
+
+def test_collada_that_is_not_well_formed_loads_as_recovered(tmp_path):
+    from urdftool.description.meshes import NOT_WELL_FORMED
+
+    _malformed_collada(tmp_path)
+    mesh = load_mesh(_robot(tmp_path, "m.dae"), "m.dae", scale=(2, 2, 2))
+    assert sorted(mesh.extents) == pytest.approx([0.2, 0.4, 0.6])
+    assert "line " in mesh.metadata[NOT_WELL_FORMED] and "'<'" in mesh.metadata[NOT_WELL_FORMED]
+
+
+def test_collada_that_is_not_well_formed_is_still_counted_before_loading(tmp_path):
+    path = _malformed_collada(tmp_path)
+    assert triangle_count(path) == 12
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path, "m.dae"), "m.dae", limits=MeshLimits(max_triangles=11))
+    assert error.value.kind == "too-large"

@@ -88,3 +88,56 @@ def test_macro_in_a_package_without_a_repository_checks_its_robot(run_cli, tmp_p
     result = run_cli("check", package / "macros" / "leg.xacro", "--format", "json")
     assert "included by" in result.stderr and "robot.urdf.xacro" in result.stderr
     assert '"files": 1' in result.stdout
+
+
+def _workspace(folder):
+    """src/my_description with a macro; robot.xacro including it through $(find)."""
+    (folder / "src" / "my_description" / "urdf").mkdir(parents=True)
+    (folder / "src" / "my_description" / "urdf" / "arm.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="arm"/>'
+        '<joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint></robot>')
+    robot = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/>'
+             '<xacro:include filename="$(find my_description)/urdf/arm.xacro"/></robot>')
+    (folder / "robot.xacro").write_text(robot)
+    (folder / "robots").mkdir()
+    (folder / "robots" / "robot.xacro").write_text(robot)
+
+
+def test_a_relative_package_folder_is_relative_to_the_working_directory(tmp_path, monkeypatch):
+    _workspace(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    resolver = PackageResolver({"my_description": "src/my_description"},
+                               start=tmp_path / "robots")
+    assert resolver.find("my_description") == tmp_path / "src" / "my_description"
+
+
+def test_the_readme_package_example_runs_as_written(run_cli, tmp_path, monkeypatch):
+    """The README's line, word for word; then the same robot from another folder, whose
+    includes once resolved the package against robots/ instead of the working directory."""
+    import shlex
+    from pathlib import Path
+
+    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    [line] = [line for line in readme.splitlines() if "--package my_description=" in line
+              and line.startswith("urdftool check")]
+    words = shlex.split(line.split("#")[0])[1:]
+    _workspace(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    result = run_cli(*words)
+    assert result.exit_code == 0, result.stdout
+    result = run_cli(*[word if word != "robot.xacro" else "robots/robot.xacro" for word in words])
+    assert result.exit_code == 0, result.stdout
+
+
+def test_an_empty_package_name_is_read_as_pinocchio_does(tmp_path):
+    """package:///NAME/PATH: Pinocchio appends the path after package:// to each package
+    directory, so NAME is the package folder."""
+    from urdftool.description.packages import package_uri_parts
+
+    (tmp_path / "talos_data" / "meshes").mkdir(parents=True)
+    (tmp_path / "talos_data" / "package.xml").write_text("<package><name>talos_data</name></package>")
+    assert package_uri_parts("package:///talos_data/meshes/a.stl") == ("talos_data", "meshes/a.stl")
+    assert package_uri_parts("package://talos_data/meshes/a.stl") == ("talos_data", "meshes/a.stl")
+    resolver = PackageResolver(start=tmp_path / "talos_data" / "meshes")
+    assert resolver.resolve_uri("package:///talos_data/meshes/a.stl", tmp_path) == \
+        tmp_path / "talos_data" / "meshes" / "a.stl"

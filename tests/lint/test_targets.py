@@ -83,3 +83,85 @@ def test_packages_of_the_settings_file_resolve_includes_when_walking(tmp_path):
     targets = expand([str(tmp_path)], CheckRequest())
     assert targets.files == [str(tmp_path / "robot.urdf.xacro")]
     assert list(targets.skipped) == [str(tmp_path / "pkg" / "arm.xacro")]
+
+
+XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+
+
+def _srdf_sources(folder):
+    """A MoveIt 2 config: an .srdf.xacro calling a macro, a plain-named one holding <group>."""
+    (folder / ".git").mkdir()
+    config = folder / "config"
+    config.mkdir()
+    (config / "arm.srdf.xacro").write_text(
+        f'<robot name="arm" {XACRO_NS}><xacro:arg name="prefix" default=""/>'
+        '<xacro:include filename="arm_macro.xacro"/><xacro:arm_srdf prefix="$(arg prefix)"/>'
+        '</robot>')
+    (config / "arm_macro.xacro").write_text(
+        f'<robot {XACRO_NS}><xacro:macro name="arm_srdf" params="prefix">'
+        '<group name="${prefix}arm"/></xacro:macro></robot>')
+    (config / "semantic.xacro").write_text(
+        f'<robot name="arm" {XACRO_NS}><xacro:arg name="n" default=""/>'
+        '<group name="arm"><chain base_link="base" tip_link="tool0"/></group></robot>')
+    (folder / "arm.urdf").write_text('<robot name="arm"><link name="base"/></robot>')
+    return config
+
+
+def test_srdf_sources_are_not_robots_in_a_folder_walk(tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import SRDF_SOURCE, expand
+
+    config = _srdf_sources(tmp_path)
+    targets = expand([str(tmp_path)], CheckRequest())
+    assert targets.files == [str(tmp_path / "arm.urdf")]
+    assert targets.skipped == {str(config / "arm.srdf.xacro"): SRDF_SOURCE,
+                               str(config / "semantic.xacro"): SRDF_SOURCE,
+                               str(config / "arm_macro.xacro"):
+                                   f"included by {config / 'arm.srdf.xacro'}"}
+
+
+def test_an_srdf_source_named_is_not_checked_as_a_robot(run_cli, tmp_path):
+    config = _srdf_sources(tmp_path)
+    result = run_cli("check", config / "arm.srdf.xacro", "--format", "json")
+    assert result.exit_code == 0 and '"files": 0' in result.stdout
+    assert "SRDF source" in result.stderr and "U106" not in result.stdout
+
+
+def _robot_built_by_includes(folder, include="core.xacro"):
+    (folder / ".git").mkdir()
+    (folder / "robot.urdf.xacro").write_text(
+        f'<robot name="r" {XACRO_NS}>\n<xacro:include filename="{include}"/>\n</robot>')
+    (folder / "parts.xacro").write_text(
+        f'<robot {XACRO_NS}><xacro:include filename="core.xacro"/></robot>')
+    (folder / "core.xacro").write_text(
+        f'<robot {XACRO_NS}>\n<link name="base"/>\n<joint name="j" type="hinge">'
+        '<parent link="base"/><child link="arm"/></joint>\n<link name="arm"/>\n</robot>')
+    return folder / "robot.urdf.xacro"
+
+
+def test_a_robot_named_whose_body_is_only_includes_is_checked(run_cli, tmp_path):
+    robot = _robot_built_by_includes(tmp_path, include="parts.xacro")
+    result = run_cli("check", robot)
+    assert result.exit_code == 1 and "core.xacro:3" in result.stdout and "U201" in result.stdout
+
+
+def test_a_folder_walk_classifies_a_file_by_what_its_includes_produce(tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    _robot_built_by_includes(tmp_path, include="parts.xacro")
+    (tmp_path / "macros.xacro").write_text(  # a macro library including a macro library
+        f'<robot name="lib" {XACRO_NS}><xacro:include filename="more.xacro"/></robot>')
+    (tmp_path / "more.xacro").write_text(
+        f'<robot {XACRO_NS}><xacro:macro name="m"><link name="a"/></xacro:macro>'
+        '<macro name="old"><link name="b"/></macro>'  # pre-2019 xacro: no prefix
+        '<xacro:property name="p" value="1"/></robot>')
+    targets = expand([str(tmp_path)], CheckRequest())
+    assert targets.files == [str(tmp_path / "robot.urdf.xacro")]
+    assert targets.skipped[str(tmp_path / "macros.xacro")].startswith("defines only macros")
+
+
+def test_a_robot_named_whose_includes_cannot_be_followed_is_checked(run_cli, tmp_path):
+    robot = _robot_built_by_includes(tmp_path, include="$(find nowhere_pkg)/core.xacro")
+    result = run_cli("check", robot)
+    assert result.exit_code == 1 and "U006" in result.stdout

@@ -198,3 +198,32 @@ def test_coriolis_matrix_matches_the_two_link_closed_form(arm, q2, v1, v2):
     h = -M2 * L1 * L2 * math.sin(q2)
     np.testing.assert_allclose(result.C, [[h * v2, h * (v1 + v2)], [-h * v1, 0.0]], atol=1e-6)
     np.testing.assert_allclose(result.tau - result.G, result.C @ [v1, v2], atol=1e-12)
+
+
+UNLIMITED = """<robot name="arm">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l1"><inertial><origin xyz="0.2 0 0"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="l2"><inertial><origin xyz="0.2 0 0"/><mass value="0.1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="l1"/><axis xyz="0 1 0"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0.4 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="100" velocity="1"/></joint>
+</robot>"""
+
+
+def test_a_joint_without_an_effort_limit_is_not_the_smallest_margin(run_cli, tmp_path):
+    """j1 (continuous, no <limit>) has effort inf: its margin is not computed (it was picked as
+    the smallest margin, 'inf of inf'), and the joints that have a limit are judged."""
+    from urdftool.physics.dynamics import JointLoad
+    from urdftool.report.dynamics import weakest
+
+    (tmp_path / "arm.urdf").write_text(UNLIMITED)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10")
+    assert result.exit_code == 0, result.output
+    assert "smallest margin: j2 (" in result.stdout and "inf" not in result.stdout
+    assert "not judged (no effort limit in the URDF, so no margin): j1" in result.stdout
+    assert "every joint with an effort limit holds" in result.stdout
+    assert weakest([JointLoad("j", math.inf, 2.0)]) is None
+    data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
+                              "--format", "json").stdout)
+    [j1] = [load for load in data["gravity_loads"] if load["joint"] == "j1"]
+    assert (j1["effort"], j1["margin"], j1["holds"]) == (None, None, None)

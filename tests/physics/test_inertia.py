@@ -175,3 +175,33 @@ def test_compare_refuses_an_unknown_link_and_lists_the_others(run_cli, humanoid)
     result = run_cli("inertia", humanoid, "--link", "body_lnk")
     assert result.exit_code == 2
     assert result.stderr.startswith("urdftool: error: link 'body_lnk' does not exist;")
+
+
+MOVING_WITHOUT_INERTIAL = """<robot name="arm">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <link name="arm"><collision><origin xyz="0.2 0 0"/><geometry><box size="0.4 0.05 0.05"/></geometry></collision></link>
+  <link name="tool"/>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+  <joint name="t" type="fixed"><parent link="arm"/><child link="tool"/></joint>
+</robot>"""
+
+
+def test_inertia_of_a_link_without_inertial_is_missing_not_agrees(run_cli, tmp_path):
+    """Nothing declared: no agreement. A moving body with no mass anywhere fails (exit 1); mass
+    on a link fixed to it, or a robot that declares no inertial at all, does not."""
+    path = tmp_path / "arm.urdf"
+    path.write_text(MOVING_WITHOUT_INERTIAL)
+    result = run_cli("inertia", path, "--link", "arm")
+    assert result.exit_code == 1 and result.stdout.startswith("arm: missing")
+    assert "nothing declared to compare" in result.stdout and "moved by joint 'j'" in result.stdout
+    path.write_text(MOVING_WITHOUT_INERTIAL.replace(
+        '<link name="tool"/>', '<link name="tool"><inertial><mass value="0.5"/><inertia ixx="0.01"'
+        ' ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>'))
+    result = run_cli("inertia", path, "--link", "arm")
+    assert result.exit_code == 0 and result.stdout.startswith("arm: missing")
+    assert "moved by joint" not in result.stdout
+    path.write_text(MOVING_WITHOUT_INERTIAL.replace(
+        MOVING_WITHOUT_INERTIAL.split("\n")[1], '<link name="base"/>'))
+    result = run_cli("inertia", path, "--link", "arm")
+    assert result.exit_code == 0 and result.stdout.startswith("arm: missing")

@@ -101,7 +101,7 @@ def _pose(robot, values, degrees, srdf, format) -> int:
     report = check_pose(robot, values, degrees, srdf)
     warn(report.warnings)
     write_pose(robot.name, report, format, custom=bool(values))
-    return 1 if report.forbidden else 0
+    return 1 if report.forbidden or report.problems else 0  # left out: not established
 
 
 def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:

@@ -56,7 +56,8 @@ def dynamics(
         write_json(render.json_document(result, loads))
     else:
         # --samples alone asks for gravity margins: M and G at the zero pose would be noise
-        relevant = gravity_variables(model, render.weakest(loads).joint) if loads else set()
+        least = render.weakest(loads)
+        relevant = gravity_variables(model, least.joint) if least is not None else set()
         typer.echo(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
                                relevant=relevant), nl=False)
-    raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
+    raise typer.Exit(1 if any(load.holds is False for load in loads) else 0)

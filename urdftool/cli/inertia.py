@@ -63,4 +63,4 @@ def inertia(
         write_json({"links": [r.as_dict() for r in results]})
     else:
         typer.echo(render.text(results), nl=False)
-    raise typer.Exit(1 if any(r.verdict == "invalid" for r in results) else 0)
+    raise typer.Exit(1 if any(r.fails for r in results) else 0)

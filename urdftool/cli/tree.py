@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli._common import PackageOption, XacroArgOption, budgeted, fail_at, single_robot
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at,
+                                  report_findings, single_robot)
 
 
 def register(app: typer.Typer) -> None:
@@ -17,9 +18,16 @@ def tree(
     package: list[str] = PackageOption,
 ) -> None:
     from urdftool.kinematics.tree import TreeError
+    from urdftool.lint.engine import urdfdom_refusals
     from urdftool.report.tree import tree_text
 
     robot = single_robot("tree", words, arg, package)
+    if any(note.kind == "xacro-in-urdf" for note in robot.notes):
+        robot = single_robot("tree", words, arg, package, as_written=True)  # as check_urdf
+    refusals = urdfdom_refusals(robot)  # check_urdf prints no tree of such a file
+    if refusals:
+        report_findings(robot.path, refusals)
+        raise typer.Exit(1)
     try:
         typer.echo(tree_text(robot), nl=False)
     except TreeError as error:

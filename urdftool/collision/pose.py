@@ -25,6 +25,10 @@ class Contact:
 
 @dataclass
 class PoseReport:
+    """What was found at one configuration. problems: collision elements left out (a mesh
+    that does not resolve or load, an unusable shape): with any, "no self-collision" is not
+    established."""
+
     q: dict[str, float]
     colliding: list[Contact]
     closest: list[Contact]

@@ -43,8 +43,12 @@ def _substitutes(text: str | None) -> bool:
 
 def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
          packages: dict[str, Path] | None = None, allow_env: bool = True,
-         max_file_size: int = DEFAULT_MAX_FILE_SIZE, data: bytes | None = None) -> Robot:
-    """Load a robot from ``path`` (``-`` reads stdin); raises a located LoadError."""
+         max_file_size: int = DEFAULT_MAX_FILE_SIZE, data: bytes | None = None,
+         as_written: bool = False) -> Robot:
+    """Load a robot from ``path`` (``-`` reads stdin); raises a located LoadError.
+
+    as_written: read a file not named .xacro as plain URDF even when it holds xacro, as
+    urdfdom (check_urdf) reads it; by default such a file is expanded, with a note."""
     path = os.fspath(path)
     shown = display_path(path) if path != "-" else "<stdin>"
     start = Path.cwd() if path == "-" else _folder_of(path)
@@ -58,7 +62,7 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
                             max_file_size)
     else:
         robot = _load_urdf(path, shown, data, resolver)
-        first = first_xacro_use(robot.root)
+        first = None if as_written else first_xacro_use(robot.root)
         if first is not None and path == "-":
             robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                                 max_file_size)
@@ -125,6 +129,8 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
 
 
 def _shown_tag(element) -> str:
+    if not element.tag.startswith("{"):  # lxml in recover mode keeps an undeclared prefix
+        return element.tag
     local = etree.QName(element).localname
     return f"{element.prefix}:{local}" if element.prefix else local
 

@@ -15,7 +15,10 @@ mesh goes through the same checks before trimesh touches it:
 - a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
 - beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
   limit: no textures or material files;
-- a file that does not parse is a :class:`MeshProblem`, never a traceback.
+- a file that does not parse is a :class:`MeshProblem`, never a traceback;
+- a COLLADA file that is not well-formed XML is read as libxml2's recover mode reads it (assimp,
+  which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
+  ``metadata[NOT_WELL_FORMED]``.
 
 Meshes are cached per robot, keyed by resolved path and scale. trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
@@ -23,6 +26,7 @@ COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazeb
 
 from __future__ import annotations
 
+import io
 import logging
 import math
 import os
@@ -35,7 +39,7 @@ from pathlib import Path
 
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description.files import inside
-from urdftool.description.packages import containment_root
+from urdftool.description.packages import containment_root, package_uri_parts
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 MAX_TRIANGLES = 2_000_000
@@ -51,7 +55,7 @@ class MeshLimits:
 def resolve(robot, uri: str) -> Path:
     """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used."""
     if uri.startswith("package://"):
-        package = uri[len("package://"):].partition("/")[0]
+        package, _ = package_uri_parts(uri)
         try:
             folder = robot.resolver.find(package).resolve()
         except PackageNotFound as error:
@@ -200,14 +204,12 @@ def _collada_triangles(path: Path) -> int | None:
     """Triangles of a COLLADA file as trimesh builds them: each geometry's triangles times
     the times the scenes instance it (through nested nodes, ``<instance_node>`` and skin
     controllers), so that a small file naming one mesh a million times is counted before
-    it is built. None when the file does not parse (trimesh then says why)."""
-    from lxml import etree
-
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                             huge_tree=True)
-    try:
-        root = etree.parse(str(path), parser).getroot()
-    except (etree.LxmlError, OSError, ValueError):
+    it is built; a file that is not well-formed is counted as recovered. None when even
+    recovery finds no document (trimesh then says why)."""
+    root = _collada_root(path, recover=False)
+    if root is None:
+        root = _collada_root(path, recover=True)
+    if root is None:
         return None
     ids = {element.get("id"): element for element in root.iter() if element.get("id")}
     geometry_triangles = {}
@@ -255,6 +257,44 @@ def _collada_triangles(path: Path) -> int | None:
     finally:  # node() and geometry() refer to themselves: free the tree before trimesh reads
         for table in (ids, geometry_triangles, node_triangles):
             table.clear()
+
+
+def _collada_parser(recover: bool):
+    from lxml import etree
+
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                           huge_tree=True, recover=recover)
+
+
+def _collada_root(path: Path, recover: bool):
+    """The root element of a COLLADA file, or None when it does not parse (strictly, or even
+    in libxml2's recover mode)."""
+    from lxml import etree
+
+    try:
+        return etree.parse(str(path), _collada_parser(recover)).getroot()
+    except (etree.LxmlError, OSError, ValueError):
+        return None
+
+
+NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
+
+
+def _recovered_collada(path: Path) -> tuple[bytes, str] | None:
+    """(the document libxml2's recover mode makes of a COLLADA file that is not well-formed
+    XML, the first error with its line), or None when it makes none."""
+    from lxml import etree
+
+    parser = _collada_parser(recover=True)
+    try:
+        root = etree.parse(str(path), parser).getroot()
+    except (etree.LxmlError, OSError, ValueError):
+        return None
+    if root is None:
+        return None
+    errors = [e for e in parser.error_log if e.level >= etree.ErrorLevels.ERROR]
+    first = f"line {errors[0].line}: {errors[0].message}" if errors else "not well-formed"
+    return etree.tostring(root), first
 
 
 def _gltf_header(path: Path) -> dict | None:
@@ -509,9 +549,19 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     _check_size(path, uri, limits)
     # trimesh logs missing textures with tracebacks; a mesh's geometry is all urdftool reads
     logging.getLogger("trimesh").setLevel(logging.CRITICAL)
+    malformed = None
     try:
-        loaded = trimesh.load(str(path), force="mesh", process=True,
-                              resolver=_geometry_resolver(path, limits))
+        try:
+            loaded = trimesh.load(str(path), force="mesh", process=True,
+                                  resolver=_geometry_resolver(path, limits))
+        except Exception as error:  # pycollada refuses XML that is not well-formed
+            recovered = _recovered_collada(path) if path.suffix.lower() == ".dae" and \
+                "XML Parsing Error" in str(error) else None
+            if recovered is None:
+                raise
+            data, malformed = recovered
+            loaded = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh",
+                                  process=True, resolver=_geometry_resolver(path, limits))
     except Exception as error:  # trimesh raises many types for a bad file
         raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {type(error).__name__}: "
                                      f"{error}") from None
@@ -522,6 +572,8 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
                                        f"the limit of {limits.max_triangles}; decimate it")
     if path.suffix.lower() == ".dae" and collada_unit(path) != 1.0:
         loaded.apply_scale(collada_unit(path))
+    if malformed:
+        loaded.metadata[NOT_WELL_FORMED] = malformed
     return loaded
 
 

@@ -74,7 +74,9 @@ class PackageResolver:
 
     def __init__(self, explicit: dict[str, Path] | None = None, start: Path | None = None,
                  environ: dict[str, str] | None = None):
-        self.explicit = {name: Path(path) for name, path in (explicit or {}).items()}
+        # A relative folder is relative to the working directory (where the user typed it),
+        # never to the file that includes $(find NAME): made absolute here, once.
+        self.explicit = {name: Path(path).absolute() for name, path in (explicit or {}).items()}
         self.start = start.resolve() if start else None
         self.environ = os.environ if environ is None else environ
         self._cache: dict[str, Path] = {}
@@ -141,12 +143,24 @@ class PackageResolver:
     def resolve_uri(self, uri: str, base_dir: Path) -> Path:
         """A mesh or include URI as a path: package://, file:// or relative to ``base_dir``."""
         if uri.startswith("package://"):
-            rest = uri[len("package://"):]
-            name, _, tail = rest.partition("/")
+            name, tail = package_uri_parts(uri)
             return self.find(name) / tail
         if uri.startswith("file://"):
             return Path(uri[len("file://"):])
         return base_dir / uri
+
+
+def package_uri_parts(uri: str) -> tuple[str, str]:
+    """(package name, path inside it) of a ``package://NAME/PATH`` URI.
+
+    ``package:///NAME/PATH`` (an empty package name, as Pinocchio users write) is read the way
+    Pinocchio's ``retrieveResourcePath`` reads it: the path after ``package://`` is looked up
+    below each package directory, so its first folder is the package (ROS's resource_retriever
+    cannot resolve it; the linter warns)."""
+    name, _, tail = uri[len("package://"):].partition("/")
+    if not name:
+        name, _, tail = tail.lstrip("/").partition("/")
+    return name, tail
 
 
 def _split_path(value: str) -> list[str]:

@@ -21,6 +21,13 @@ LOAD_CODES = {"read": "U001", "syntax": "U001", "empty": "U002", "binary": "U003
               "too-large": "U008", "entity": "U009", "outside": "U014", "sandbox": "U016",
               "link": "U017"}
 NOTE_CODES = {"xacro-in-urdf": "U007", "xacro-warning": "U010", "outside-file": "U013"}
+# The errors for what urdfdom's parser (check_urdf, robot_state_publisher) refuses: the file does
+# not parse, is not a <robot> of a version it reads, or its tree, joint types, limits or joint
+# numbers are broken. urdftool's other errors are on files urdfdom accepts (it is stricter
+# there). tests/integration/test_parity.py holds this set to check_urdf's verdicts.
+URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
+                             "U101", "U102", "U103", "U104", "U105", "U106", "U108", "U109",
+                             "U110", "U201", "U202", "U203", "U207", "U208", "U213"})
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
@@ -113,8 +120,15 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     :mod:`urdftool.lint.suppressions`); unused ones become U901.
     """
     findings = [f for f in note_findings(robot) if selection.allows(f.code)]
+    findings += _run_rules(robot, selection.allows)
+    findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
+    return sorted(set(findings), key=Finding.sort_key)
+
+
+def _run_rules(robot, allows) -> list[Finding]:
+    findings = []
     for rule in CATALOGUE:
-        if rule.check is None or not selection.allows(rule.code):
+        if rule.check is None or not allows(rule.code):
             continue
         try:
             for where, message in rule.check(robot):
@@ -130,8 +144,15 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
                     f"rule {rule.code} ({rule.name}) did not run: it {advice}", robot.locate(None)))
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
-    findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
-    return sorted(set(findings), key=Finding.sort_key)
+    return findings
+
+
+def urdfdom_refusals(robot) -> list[Finding]:
+    """Why urdfdom (check_urdf, robot_state_publisher) would refuse a loaded robot: the errors
+    of :data:`URDFDOM_REFUSES`, located, sorted; empty when it would parse it. Inline
+    suppressions do not apply: they cannot make urdfdom accept a file."""
+    found = _run_rules(robot, URDFDOM_REFUSES.__contains__)
+    return sorted({f for f in found if f.severity.value == "error"}, key=Finding.sort_key)
 
 
 def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:

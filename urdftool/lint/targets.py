@@ -25,6 +25,14 @@ _INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
+# xacro's own elements: everything else in its namespace is a macro call
+_XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
+                                    "call", "load_yaml"}
+# Elements only MoveIt's semantic description (SRDF) has below its <robot> root
+_SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_joint",
+              "disable_collisions", "disable_default_collisions", "enable_collisions",
+              "link_sphere_approximation"}
+SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
 
 
 def robot_files(folder: Path) -> list[Path]:
@@ -50,6 +58,8 @@ class _Summary:
     includes: list[Path]
     defines_robot: bool
     named_robot: bool
+    srdf: bool = False
+    unfollowed: bool = False  # it includes files whose path is only known when expanding
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -68,7 +78,10 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
         key = resolved_path(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
-        elif path.name.endswith(".xacro") and not summaries[path].defines_robot:
+        elif summaries[path].srdf:
+            skipped[path] = SRDF_SOURCE
+        elif path.name.endswith(".xacro") and not summaries[path].defines_robot and \
+                _includes_yield_links(summaries[path], resolver_for, max_file_size) is not True:
             skipped[path] = "defines only macros or properties (a macro library)"
         else:
             top.append(path)
@@ -94,7 +107,34 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
     if data is None or b"\0" in data:  # unread, or binary: a target, so checking says why
         return _Summary([], True, True)
     includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
-    return _Summary(includes, _defines_robot(data), bool(_NAMED_ROBOT.search(data)))
+    answer = _top_level_answer(data)
+    return _Summary(includes, answer != "definitions", bool(_NAMED_ROBOT.search(data)),
+                    answer == "srdf" or path.name.endswith(".srdf.xacro"),
+                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes))
+
+
+def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool | None:
+    """Whether the files ``summary``'s file includes, followed through their own includes,
+    produce links (see :func:`_yields_links`): a robot built by its includes is a robot. None
+    when they do not as far as they could be followed, but some could not (a missing file, an
+    include whose path needs an argument or a package not found)."""
+    seen, pending, unknown = set(), list(summary.includes), summary.unfollowed
+    while pending:
+        target = pending.pop()
+        if target in seen:
+            continue
+        seen.add(target)
+        data = _head(target, limit)
+        if data is None or b"\0" in data:  # missing or refused: checking the includer says why
+            unknown = True
+            continue
+        if _yields_links(data):
+            return True
+        if resolver_for:
+            included = list(_included_files(target, data, resolver_for(target)))
+            unknown = unknown or len(_INCLUDE.findall(data)) > len(included)
+            pending.extend(included)
+    return None if unknown else False
 
 
 def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
@@ -111,52 +151,110 @@ def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
 def _defines_robot(data: bytes) -> bool:
     """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
     definitions (properties, args, includes, macros). Unparsable files count, so that the parse
-    error is reported. Parsed as a stream of start and end tags, no tree kept, stopping at the
-    first answer: memory stays small whatever the file holds."""
+    error is reported."""
+    return _top_level_answer(data) != "definitions"
+
+
+def _stream(data: bytes, target) -> str:
+    """Feed ``data`` to an lxml parser ``target`` as a stream of start and end tags, no tree
+    kept, stopping at the first answer (raised as _Answered): memory stays small whatever the
+    file holds. An unparsable file answers 'robot', so that the parse error is reported."""
     from lxml import etree
 
-    target = _TopLevelTags()
     parser = etree.XMLParser(target=target, resolve_entities=False, no_network=True,
                              load_dtd=False, recover=True)
     try:
         for offset in range(0, len(data) or 1, _CHUNK):
             parser.feed(data[offset:offset + _CHUNK])
         parser.close()
-    except (_Answered, etree.LxmlError):
-        return True
-    return not target.seen_robot
+    except _Answered as answered:
+        return answered.args[0]
+    except etree.LxmlError:
+        return "robot"
+    return target.default()
+
+
+def _top_level_answer(data: bytes) -> str:
+    """'robot' (content of its own, or not a xacro library at all), 'srdf' (a semantic
+    description) or 'definitions' (only properties, args, includes, macros)."""
+    return _stream(data, _TopLevelTags())
+
+
+def _yields_links(data: bytes) -> bool:
+    """Whether a file, included, produces links: a <link> or <joint>, or a macro call, outside
+    its macro definitions (inside <xacro:if> too)."""
+    return _stream(data, _LinksOutsideMacros()) == "links"
+
+
+def _local_name(tag) -> str:
+    """A tag's name without namespace or prefix (lxml in recover mode keeps an undeclared
+    ``xacro:`` prefix in the name)."""
+    return tag.rpartition("}")[2].rpartition(":")[2] if isinstance(tag, str) else ""
+
+
+def _is_xacro(tag) -> bool:
+    return isinstance(tag, str) and ("ros.org/wiki/xacro}" in tag or tag.startswith("xacro:"))
 
 
 class _Answered(Exception):
-    """The file is a robot (or not a xacro library at all): stop reading."""
+    """The question is answered (its answer is the argument): stop reading."""
 
 
 class _TopLevelTags:
-    """lxml parser target: raises _Answered at a root other than <robot> or at a child of
-    <robot> that is not a definition."""
+    """lxml parser target: answers 'robot' at a root other than <robot> or at a child of
+    <robot> that is not a definition, 'srdf' at a child only an SRDF has."""
 
     def __init__(self):
         self.depth, self.seen_robot = 0, False
 
     def start(self, tag, attributes):
-        from lxml import etree
-
         self.depth += 1
         if self.depth > 2:
             return
-        name = etree.QName(tag).localname
+        name = _local_name(tag)
         if self.depth == 1 and name != "robot":
-            raise _Answered
+            raise _Answered("robot")
         self.seen_robot = True
+        if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
+            raise _Answered("srdf")
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
         if self.depth == 2 and name not in _DEFINITIONS:
-            raise _Answered
+            raise _Answered("robot")
 
     def end(self, tag):
         self.depth -= 1
 
     def close(self):
         return None
+
+    def default(self) -> str:
+        return "definitions" if self.seen_robot else "robot"
+
+
+class _LinksOutsideMacros:
+    """lxml parser target: answers 'links' at a <link>, <joint> or macro call that is not
+    inside a <xacro:macro>."""
+
+    def __init__(self):
+        self.in_macro = 0
+
+    def start(self, tag, attributes):
+        name = _local_name(tag)
+        if name == "macro":  # pre-2019 xacro wrote it without the xacro: prefix
+            self.in_macro += 1
+        elif not self.in_macro and (name in ("link", "joint") and not _is_xacro(tag)
+                                    or _is_xacro(tag) and name not in _XACRO_DIRECTIVES):
+            raise _Answered("links")
+
+    def end(self, tag):
+        if _local_name(tag) == "macro":
+            self.in_macro -= 1
+
+    def close(self):
+        return None
+
+    def default(self) -> str:
+        return "none"
 
 
 def _included_files(path: Path, data: bytes, resolver: PackageResolver):
@@ -184,7 +282,8 @@ def project_root(path: Path) -> Path:
 
 
 def explicit_targets(path: Path, includers: dict, root: Path,
-                     max_file_size: int = DEFAULT_MAX_FILE_SIZE) -> tuple[list[Path], str | None]:
+                     max_file_size: int = DEFAULT_MAX_FILE_SIZE, resolver_for=None
+                     ) -> tuple[list[Path], str | None]:
     """What to check for a file named on the command line (as pre-commit does), and why.
 
     includers: :func:`includers_below` ``root``
@@ -194,10 +293,16 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     fragment) but that robots below ``root`` include, directly or through other includes, is
     replaced by those top-level robots: a change to ``leg.xacro`` checks the robot built from
     it. One nobody includes is checked as it is when it
-    has content, and skipped when it only defines macros or properties.
+    has content or its includes produce links, and skipped when it only defines macros or
+    properties, or is an SRDF source.
+    resolver_for: path -> its PackageResolver, to follow ``$(find)`` includes
     """
-    summary = _summary(path, None, max_file_size)
-    if summary.named_robot and summary.defines_robot:
+    summary = _summary(path, resolver_for, max_file_size)
+    if summary.srdf:
+        return [], f"{SRDF_SOURCE}: nothing to check"
+    yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
+                                                                       max_file_size)
+    if summary.named_robot and (summary.defines_robot or yields):
         return [path], None
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
@@ -214,7 +319,9 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     if tops:
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
-    if not summary.defines_robot and path.name.endswith(".xacro"):
+    # A named <robot> whose includes could not all be followed is checked: expanding it says
+    if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
+            not (yields is None and summary.named_robot):
         return [], "defines only macros or properties, and no robot below " \
                    f"{root} includes it: nothing to check"
     return [path], None
@@ -269,7 +376,8 @@ def expand(paths: list[str], request) -> Targets:
             root = project_root(Path(path))
             if (root, limit) not in includers:
                 includers[root, limit] = includers_below(root, resolver_for, limit)
-            targets, reason = explicit_targets(Path(path), includers[root, limit], root, limit)
+            targets, reason = explicit_targets(Path(path), includers[root, limit], root, limit,
+                                               resolver_for)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
                 notes.append(f"{path}: {reason}")

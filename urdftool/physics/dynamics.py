@@ -158,7 +158,10 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
 
 @dataclass
 class JointLoad:
-    """Worst static gravity torque of one joint over the sampled poses, against its limit."""
+    """Worst static gravity torque of one joint over the sampled poses, against its limit.
+
+    A joint without an effort limit (``effort`` inf: no ``<limit effort>``, a continuous joint
+    without ``<limit>``) has no margin (None) and is not judged (``holds`` None)."""
 
     joint: str
     effort: float
@@ -167,15 +170,20 @@ class JointLoad:
     zero_pose: float = 0.0
 
     @property
-    def margin(self) -> float:
-        return self.effort - self.worst
+    def limited(self) -> bool:
+        return bool(np.isfinite(self.effort))
 
     @property
-    def holds(self) -> bool:
-        return self.worst <= self.effort
+    def margin(self) -> float | None:
+        return self.effort - self.worst if self.limited else None
+
+    @property
+    def holds(self) -> bool | None:
+        return self.worst <= self.effort if self.limited else None
 
     def as_dict(self) -> dict:
-        return {"joint": self.joint, "effort": self.effort, "worst": self.worst,
+        return {"joint": self.joint, "effort": self.effort if self.limited else None,
+                "worst": self.worst,
                 "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
 

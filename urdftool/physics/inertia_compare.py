@@ -10,11 +10,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.physics.inertia import MassProperties, declared, relative_difference, triangle_violation
-from urdftool.physics.solids import computed, link_solid
+from urdftool.description.urdf import VARIABLE
+from urdftool.physics.solids import computed, link_solid, rigid_group
 from urdftool.errors import UnknownLink  # noqa: F401 - raised here, re-exported
 
 AGREE_TOLERANCE = 0.1  # relative difference of tensor and com offset (vs link size) that agrees
-VERDICTS = ("agrees", "differs", "invalid", "unknown")
+VERDICTS = ("agrees", "differs", "invalid", "missing", "unknown")
 
 
 @dataclass
@@ -23,7 +24,10 @@ class LinkInertia:
 
     source: which geometry the computed values come from (collision, visual, none)
     verdict: agrees, differs, invalid (the declared values are physically impossible or
-    malformed), unknown (no geometry to compare with)
+    malformed), missing (no ``<inertial>``: nothing declared to compare), unknown (no
+    geometry to compare with)
+    fails: the link makes the robot wrong to simulate (invalid values, or a moving body that
+    has no mass at all)
     """
 
     link: str
@@ -34,13 +38,14 @@ class LinkInertia:
     differences: dict = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     element: object = None
+    fails: bool = False
 
     def as_dict(self) -> dict:
         return {"link": self.link,
                 "declared": self.declared.as_dict() if self.declared else None,
                 "computed": self.computed.as_dict() if self.computed else None,
                 "source": self.source, "verdict": self.verdict,
-                "differences": self.differences, "notes": self.notes}
+                "differences": self.differences, "notes": self.notes, "fails": self.fails}
 
 
 def _invalid(properties: MassProperties) -> str | None:
@@ -69,7 +74,11 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
         notes.append("no declared mass: computed with 1000 kg/m^3 (pass --density)")
     body = computed(solid, mass=keep, density=density)
     result = MassProperties.of(body) if body is not None else None
-    if link.find("inertial") is not None and mine is None:
+    if link.find("inertial") is None and result is not None:
+        verdict = "missing"
+        notes.append("no <inertial>: nothing declared to compare with; computed is what its "
+                     "geometry implies")
+    elif link.find("inertial") is not None and mine is None:
         verdict, notes = "invalid", notes + ["<inertial> is malformed"]
     elif mine is not None and (invalid := _invalid(mine)):
         verdict, notes = "invalid", notes + [f"declared inertia {invalid}"]
@@ -86,8 +95,29 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
                        "inertia": relative_difference(mine.inertia, result.inertia)}
         if verdict == "agrees" and max(differences.values()) > AGREE_TOLERANCE:
             verdict = "differs"
+    mover = _massless_moving_body(robot, name) if link.find("inertial") is None else None
+    if mover is not None:
+        notes.append(f"moved by joint '{mover}', and neither it nor a link fixed to it has "
+                     "mass: Gazebo drops it, Pinocchio and MuJoCo refuse or go singular")
     return LinkInertia(name, mine, result, solid.source, verdict, differences, notes,
-                       link.find("inertial"))
+                       link.find("inertial"), fails=verdict == "invalid" or mover is not None)
+
+
+def _massless_moving_body(robot, name: str) -> str | None:
+    """The joint moving link ``name`` when no link of its rigid body declares a positive
+    mass; None when it is not moved or carries mass, or when the robot declares no
+    ``<inertial>`` at all (a kinematic model, not meant to be simulated)."""
+    if not any(link.find("inertial") is not None for link in robot.children("link")):
+        return None
+    mover = next((j for j in robot.children("joint") if j.get("type") in VARIABLE
+                  and j.find("child") is not None and j.find("child").get("link") == name), None)
+    if mover is None:
+        return None
+    for member in rigid_group(robot, name):
+        properties = declared(robot.links[member])
+        if properties is not None and properties.mass > 0:
+            return None
+    return mover.get("name", "?")
 
 
 def compare(robot, density: float | None = None, links: list[str] | None = None):

@@ -163,6 +163,97 @@ def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
     return result
 
 
+@dataclass
+class RigidBounds:
+    """The bounding box [m] of everything rigidly one with a link, in the link frame.
+
+    links: the link and those fixed to it (through fixed joints, either way), in the order
+    reached; complete: False when some of their geometry could not be measured (a mesh that
+    does not resolve or load), so the box may be too small; bounds: None without geometry.
+    """
+
+    links: list[str]
+    complete: bool = True
+    bounds: tuple[mat3.Vector, mat3.Vector] | None = None
+
+
+def rigid_bounds(robot, link) -> RigidBounds:
+    """The box of a link's visual and collision geometry and of the links fixed to it."""
+    frames = _rigid_frames(robot, link.get("name"))
+    result, corners = RigidBounds(list(frames)), []
+    for name, (rotation, xyz) in frames.items():
+        member = robot.links.get(name)
+        for shape in shapes(member, "visual") + shapes(member, "collision"):
+            local = _local_bounds(robot, shape)
+            if local is None:
+                result.complete = False
+                continue
+            corners.extend(mat3.add(xyz, mat3.apply(rotation, mat3.add(
+                shape.xyz, mat3.apply(shape.rotation, c)))) for c in _corners(local))
+        result.complete = result.complete and len(shapes(member, "visual")) == len(
+            member.findall("visual")) and len(shapes(member, "collision")) == len(
+            member.findall("collision"))
+    if corners:
+        result.bounds = (tuple(min(c[i] for c in corners) for i in range(3)),
+                         tuple(max(c[i] for c in corners) for i in range(3)))
+    return result
+
+
+def _local_bounds(robot, shape: Shape):
+    """A shape's box in its own frame, or None for a mesh that does not resolve or load."""
+    if shape.kind != "mesh":
+        return _local(shape)[1]
+    from urdftool.description.meshes import MeshProblem, load_mesh
+
+    try:
+        mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
+    except MeshProblem:
+        return None
+    return tuple(mat3.vector(corner) for corner in mesh.bounds)
+
+
+def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vector]]]:
+    """Link -> (link fixed to it, R, t taking points of that link's frame into this one's)."""
+    def build():
+        neighbours = {}
+        for joint in robot.children("joint"):
+            parent, child = joint.find("parent"), joint.find("child")
+            if joint.get("type") != "fixed" or parent is None or child is None:
+                continue
+            parent, child = parent.get("link"), child.get("link")
+            if parent not in robot.links or child not in robot.links:
+                continue
+            xyz, rotation = mat3.placement(origin(joint))  # p_parent = xyz + rotation p_child
+            back = mat3.transpose(rotation)  # p_child = back p_parent - back xyz
+            neighbours.setdefault(parent, []).append((child, rotation, xyz))
+            neighbours.setdefault(child, []).append(
+                (parent, back, tuple(-v for v in mat3.apply(back, xyz))))
+        return neighbours
+
+    return robot.memo(_fixed_neighbours, build)
+
+
+def rigid_group(robot, name: str) -> list[str]:
+    """Link ``name`` and every link joined to it by fixed joints (either way): one body."""
+    return list(_rigid_frames(robot, name))
+
+
+def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]]:
+    """Link ``name`` and every link joined to it by fixed joints -> (R, t) taking points of
+    that link's frame into ``name``'s frame."""
+    neighbours = _fixed_neighbours(robot)
+    frames = {name: (mat3.IDENTITY, (0.0, 0.0, 0.0))}
+    pending = [name]
+    while pending:
+        current = pending.pop(0)
+        r, t = frames[current]
+        for other, rotation, xyz in neighbours.get(current, ()):
+            if other not in frames:
+                frames[other] = (mat3.multiply(r, rotation), mat3.add(t, mat3.apply(r, xyz)))
+                pending.append(other)
+    return frames
+
+
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
     """A :class:`~urdftool.physics.mass.Body` of the solids: with ``mass`` [kg] kept, or
     from ``density`` [kg/m^3]."""

@@ -82,6 +82,10 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
     if bad:
         console.print(f"[bold red]{len(bad)} colliding pair(s) not allowed by adjacency or the "
                       "SRDF[/]")
+    elif report.problems:
+        console.print(f"[bold red]not established[/]: no self-collision among the geometry "
+                      f"checked, but {len(report.problems)} collision element(s) were left out "
+                      "(above), and they may collide")
     else:
         allowed = len(report.colliding)
         console.print(f"[bold green]no self-collision[/]"

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 
 def weakest(loads):
-    """The joint load with the smallest margin relative to its effort limit."""
-    return min(loads, key=lambda load: load.margin / load.effort if load.effort else 0)
+    """The joint load with the smallest margin relative to its effort limit; None when no joint
+    has an effort limit."""
+    limited = [load for load in loads if load.limited]
+    return min(limited, key=lambda load: load.margin / load.effort if load.effort else 0) \
+        if limited else None
 
 
 def json_document(result, loads) -> dict:
@@ -39,17 +42,26 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
                   f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
                   f"{'margin':>10s}"]
         for load in loads:
-            flag = "" if load.holds else "  ERROR: cannot hold itself against gravity"
-            lines.append(f"  {load.joint:{width}s} {load.effort:8.4g} {load.zero_pose:10.4g} "
-                         f"{load.worst:10.4g} {load.margin:10.4g}{flag}")
+            flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
+            effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
+                else (f"{'none':>8s}", f"{'-':>10s}")
+            lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
+                         f"{load.worst:10.4g} {margin}{flag}")
         least = weakest(loads)
-        # only the joints that change its load: the others' values are noise
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
-                         if v and k in relevant)
-        lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
-                     f"{least.effort:.3g}) at {pose or 'the zero pose'}")
-        failing = [load.joint for load in loads if not load.holds]
+        if least is not None:
+            # only the joints that change its load: the others' values are noise
+            pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
+                             if v and k in relevant)
+            lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
+                         f"{least.effort:.3g}) at {pose or 'the zero pose'}")
+        unlimited = [load.joint for load in loads if not load.limited]
+        if unlimited:
+            lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
+                         f"{', '.join(unlimited)}")
+        failing = [load.joint for load in loads if load.holds is False]
+        every = "every joint with an effort limit" if unlimited else "every joint"
         lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
                      f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
-                     if failing else "  every joint holds the robot against gravity")
+                     if failing else f"  {every} holds the robot against gravity"
+                     if least is not None else "  no joint has an effort limit: nothing judged")
     return "\n".join(lines) + "\n"

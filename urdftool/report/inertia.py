@@ -45,8 +45,9 @@ def text(results) -> str:
             diff = ", ".join(f"{k} {v:.1%}" for k, v in result.differences.items())
             lines.append(f"  difference {diff}")
         lines.extend(f"  note: {note}" for note in result.notes)
-    counts = {v: sum(r.verdict == v for r in results) for v in ("agrees", "differs", "invalid",
-                                                                "unknown")}
+    from urdftool.physics.inertia_compare import VERDICTS
+
+    counts = {v: sum(r.verdict == v for r in results) for v in VERDICTS}
     plural = "" if len(results) == 1 else "s"
     lines.append(", ".join(f"{n} {v}" for v, n in counts.items() if n) +
                  f" ({len(results)} link{plural})")

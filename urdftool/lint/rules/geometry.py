@@ -373,3 +373,49 @@ def mesh_not_watertight(robot):
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
                           f"'{shape.get('filename')}' is not watertight; its inertia is taken "
                           "from its convex hull")
+
+
+@rule("U415", "empty-package-name", Severity.WARNING)
+def empty_package_name(robot):
+    """A mesh URI ``package:///NAME/...`` has an empty package name.
+
+    Pinocchio looks the path after ``package://`` up below each of its package directories, so
+    this form works there, and urdftool resolves it the same way (``NAME`` as the package). ROS's
+    resource_retriever, which RViz, Gazebo and MoveIt load meshes through, takes the empty text
+    before the third slash as the package name and fails.
+
+    Bad: ``<mesh filename="package:///talos_data/meshes/arm.stl"/>``
+    Good: ``<mesh filename="package://talos_data/meshes/arm.stl"/>``
+    """
+    from urdftool.description.packages import package_uri_parts
+
+    for link, holder, shape in _mesh_elements(robot):
+        uri = shape.get("filename")
+        if uri.startswith("package:///"):
+            name, tail = package_uri_parts(uri)
+            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an empty "
+                          f"package name; Pinocchio (and urdftool) read it as package '{name}', "
+                          "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "
+                          f"write 'package://{name}/{tail}'")
+
+
+@rule("U416", "mesh-not-well-formed", Severity.WARNING)
+def mesh_not_well_formed(robot):
+    """A COLLADA (``.dae``) mesh is not well-formed XML.
+
+    assimp, through which RViz, Gazebo and MoveIt load meshes, reads it anyway, and so does
+    urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that need
+    well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
+
+    Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value)
+    Good: ``<node id="STL_BINARY">``, or the file exported again
+    """
+    from urdftool.description.meshes import NOT_WELL_FORMED
+
+    for link, holder, shape, outcome in _mesh_outcomes(robot):
+        why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
+        if why:
+            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
+                          f"'{shape.get('filename')}' is not well-formed XML ({why}); read as "
+                          "repaired, as assimp reads it, but XML-strict readers (pycollada, "
+                          "trimesh) refuse it")

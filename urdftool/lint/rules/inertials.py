@@ -267,25 +267,36 @@ def _rounded(values) -> list[float]:
 def com_outside_geometry(robot):
     """A link's centre of mass is far outside the bounding box of its geometry.
 
-    "Far" is farther beyond the box than the geometry's largest extent (and over 5 cm): the
-    inertial origin was probably written in another frame (the joint's, or the CAD part's).
+    The box holds the link's visual and collision geometry and that of the links fixed to it
+    (through fixed joints, either way): a body split into a massless-geometry link and an
+    inertial link is one rigid body. "Far" is farther beyond the box than its largest extent
+    (and over 5 cm): the inertial origin was probably written in another frame (the joint's,
+    or the CAD part's). Skipped when some of that geometry cannot be measured (a mesh that
+    does not resolve or load: U407, U408, U412 say why).
 
     Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
     Good: the centre of mass inside or near the link's shape
     """
-    for link, properties, solid in _link_solids(robot):
-        if solid.bounds is None or solid.problems and not solid.parts:
+    from urdftool.physics.solids import rigid_bounds
+
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
             continue
-        low, high = solid.bounds
+        rigid = rigid_bounds(robot, link)
+        if rigid.bounds is None or not rigid.complete:
+            continue
+        low, high = rigid.bounds
         outside = [max(l - c, c - h, 0.0) for l, c, h in zip(low, properties.com, high)]
         distance = math.sqrt(sum(v * v for v in outside))
-        margin = max(COM_MARGIN_FRACTION * _extent(solid), COM_MARGIN_MIN)
-        if distance > margin:
+        extent = max(h - l for l, h in zip(low, high))
+        if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
             com = " ".join(f"{v:.4g}" for v in properties.com)
+            fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
+                if len(rigid.links) > 1 else ""
             yield link.find("inertial"), (
                 f"link '{_name(link)}': centre of mass ({com}) is {distance:.3g} m outside its "
-                f"{solid.source} geometry (box {_rounded(low)} to {_rounded(high)}); check the "
-                "inertial origin's frame")
+                f"visual and collision geometry{fixed} (box {_rounded(low)} to "
+                f"{_rounded(high)}); check the inertial origin's frame")
 
 
 @rule("U308", "root-link-inertia", Severity.INFO)
