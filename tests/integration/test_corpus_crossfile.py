@@ -64,8 +64,10 @@ ENTRIES = {
      f"{ERD}/anymal_c_simple_description/srdf/anymal.srdf"): {},
     # bolt.srdf says robot name "finger_edu" (copied), finger_edu.srdf "finger_edu" for "fingeredu".
     (f"{ERD}/bolt_description/robots/bolt.urdf", "", (), f"{ERD}/bolt_description/srdf/bolt.srdf"): {"U802": 1},
+    # finger_edu.srdf's state "hanging" of group "leg" sets base_to_finger, the fixed joint above
+    # the chain's base link (not in the group; a 7-value free-flyer value on a fixed joint) (U808).
     (f"{ERD}/finger_edu_description/robots/finger_edu.urdf", "", (),
-     f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1},
+     f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1, "U808": 1},
     # hyq.srdf: groups all_legs, r_legs, ... use subgroups lf, rf, lh, rh; the groups are lf_leg, ...
     (f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf", "", (), f"{ERD}/hyq_description/srdf/hyq.srdf"):
         {"U805": 16},

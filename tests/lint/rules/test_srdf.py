@@ -58,3 +58,39 @@ def test_a_tag_written_across_lines_is_located_where_it_begins(tmp_path):
     reason="Never"/>"""
     found, _ = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
     assert found == [("robot.srdf", 2, "U804")]
+
+
+ARM = """<robot name="r">
+  <link name="base_link"/><link name="shoulder"/><link name="upper"/><link name="hand"/><link name="cam"/>
+  <joint name="pan" type="revolute"><parent link="base_link"/><child link="shoulder"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="lift" type="revolute"><parent link="shoulder"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="wrist" type="revolute"><parent link="upper"/><child link="hand"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="cam_joint" type="fixed"><parent link="base_link"/><child link="cam"/></joint>
+</robot>
+"""
+
+
+def test_group_membership_follows_moveit(tmp_path):
+    # a link implies its parent joint; a subgroup brings its joints; a chain brings the joints
+    # from its tip up to (not above) its base
+    body = """<group name="by_links"><link name="upper"/><link name="hand"/></group>
+<group name="chain"><chain base_link="shoulder" tip_link="hand"/></group>
+<group name="all"><group name="chain"/><joint name="pan"/></group>
+<group_state name="a" group="by_links"><joint name="lift" value="0"/><joint name="wrist" value="0"/></group_state>
+<group_state name="b" group="all"><joint name="pan" value="0"/><joint name="lift" value="0"/></group_state>
+<group_state name="c" group="chain"><joint name="pan" value="0"/></group_state>
+<end_effector name="e" parent_link="hand" parent_group="by_links" group="chain"/>
+<end_effector name="f" parent_link="shoulder" parent_group="chain" group="all"/>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 7, "U808"), ("robot.srdf", 9, "U809")]
+    assert "not part of group 'chain' (its joints: lift, wrist)" in findings[0].message
+    assert "parent_link 'shoulder'" in findings[1].message
+
+
+def test_duplicate_group_points_at_the_second_definition(tmp_path):
+    body = '<group name="g"><joint name="pan"/></group>\n<group name="h"/>\n<group name="g"><joint name="lift"/></group>'
+    found, findings = check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 4, "U807")] and "first at line 2" in findings[0].message

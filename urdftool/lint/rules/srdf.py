@@ -157,3 +157,95 @@ def srdf_state_outside_limits(robot):
             yield srdf.at(element.sourceline), (
                 f"SRDF group state '{state}' sets joint '{element.get('name')}' to {values[0]:g}, "
                 f"outside its URDF limits [{lower[0]:g}, {upper[0]:g}]")
+
+
+@rule("U807", "srdf-duplicate-group", Severity.ERROR)
+def srdf_duplicate_group(robot):
+    """Two SRDF groups have the same name.
+
+    MoveIt keeps the first and drops the other ("A group named 'arm' already exists"), so the
+    joints of the second definition are never planned for.
+
+    Bad: ``<group name="arm"><chain .../></group> <group name="arm"><joint .../></group>``
+    Good: one ``<group name="arm">`` holding both, or two names
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    first: dict[str, int] = {}
+    for element in srdf.root.iterfind("group"):
+        name = element.get("name")
+        if name in first:
+            yield srdf.at(element.sourceline), (
+                f"SRDF group '{name}' is defined again (first at line {first[name]}); MoveIt "
+                "keeps the first definition and drops this one")
+        else:
+            first[name] = element.sourceline
+
+
+def _groups(robot, srdf):
+    from urdftool.kinematics.groups import groups, tree
+
+    return tree(robot, srdf.root), groups(robot, srdf.root)
+
+
+@rule("U808", "srdf-state-foreign-joint", Severity.ERROR)
+def srdf_state_foreign_joint(robot):
+    """An SRDF group state sets a joint that is not in its group.
+
+    MoveIt drops the value ("Group state 'home' specifies value for joint 'x', but that joint
+    is not part of group 'arm'"): the named pose is not the one written. A group's joints are
+    its ``<joint>`` elements, the parent joints of its ``<link>`` elements, the joints along its
+    ``<chain>`` (not the base link's parent joint) and its subgroups' joints. Pinocchio's
+    ``root_joint`` (not a URDF joint) is accepted: Pinocchio reads group states without groups.
+    A group with an unknown member is left to U803-U805.
+
+    Bad: ``<group_state name="home" group="left_arm"> <joint name="r_elbow" value="0"/>``
+    Good: the joint in the group, or the value in a state of the group that has it
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    model, groups = _groups(robot, srdf)
+    for state in srdf.root.iterfind("group_state"):
+        group = groups.get(state.get("group"))
+        if group is None or not group.complete:
+            continue  # an unknown group or member is U803-U805's
+        for element in state.iterfind("joint"):
+            name = element.get("name")
+            if name in group.joints or name not in model.joints:
+                continue  # an unknown joint is U803's
+            yield srdf.at(element.sourceline), (
+                f"SRDF group state '{state.get('name')}' sets joint '{name}', which is not part "
+                f"of group '{group.name}' (its joints: {', '.join(sorted(group.joints)) or 'none'}); "
+                "MoveIt ignores the value")
+
+
+@rule("U809", "srdf-end-effector-parent", Severity.ERROR)
+def srdf_end_effector_parent(robot):
+    """An SRDF end effector's ``parent_link`` is not a link of its ``parent_group``.
+
+    MoveIt refuses the parent group ("Group 'arm' was specified as parent group for
+    end-effector 'hand' but it does not include the parent link 'x'"), so the end effector is
+    not attached to the arm that carries it. A group's links are the child links of its joints:
+    a chain's base link is not one of them.
+
+    Bad: ``<end_effector name="hand" parent_link="base_link" parent_group="arm" group="gripper"/>``
+    Good: ``parent_link="wrist_link"``, the arm's last link
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    from urdftool.kinematics.groups import links_of
+
+    model, groups = _groups(robot, srdf)
+    for element in srdf.root.iterfind("end_effector"):
+        link, group = element.get("parent_link"), groups.get(element.get("parent_group"))
+        if group is None or not group.complete or link not in robot.links:
+            continue  # no parent group, or an unknown one (U805) or an unknown link (U804)
+        links = links_of(model, group)
+        if link not in links:
+            yield srdf.at(element.sourceline), (
+                f"SRDF end effector '{element.get('name')}' has parent_link '{link}', which is "
+                f"not a link of its parent_group '{group.name}'; "
+                f"{available('links of the group', link, links)}")
