@@ -58,7 +58,10 @@ ENTRIES = {
     **{("ur_gazebo/urdf/ur.xacro", UR_ARGS.format(m=model, c="{corpus}"),
         (f"ur_gazebo/config/{model}_controllers.yaml",
          f"{model}_moveit_config/config/ros_controllers.yaml"),
-        f"{model}_moveit_config/config/{model}.srdf"): {"U611": 1}  # <gazebo reference="ee_link">
+        f"{model}_moveit_config/config/{model}.srdf"): {"U611": 1, "U817": 1}
+       # U611: <gazebo reference="ee_link">. U817: the MoveIt config's controller_list names the
+       # real driver's scaled_pos_joint_traj_controller; ur_gazebo's YAML declares
+       # eff_joint_traj_controller (upstream's MoveIt launch file remaps the action for sim).
        for model in ("ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30")},
     (f"{ERD}/anymal_c_simple_description/urdf/anymal.urdf", "", (),
      f"{ERD}/anymal_c_simple_description/srdf/anymal.srdf"): {},
