@@ -346,3 +346,23 @@ def test_pose_q_in_degrees_and_out_of_limit_warning(run_cli):
     assert json.loads(result.stdout)["q"]["l_knee"] == pytest.approx(np.pi / 2)
     beyond = run_cli("collisions", HUMANOID, "--q", "l_knee=9", "--format", "json")
     assert "joint 'l_knee' = 9 is outside its limits" in beyond.stderr
+
+
+def test_srdf_poses_are_the_default_and_each_group_state(tmp_path):
+    from lxml import etree
+
+    from conftest import CASES
+
+    path = tmp_path / "r.urdf"
+    path.write_text((CASES / "U810_srdf_disabled_pair_collides" / "robot.urdf").read_text())
+    root = etree.fromstring(
+        '<robot name="r"><group_state name="hug" group="arms"><joint name="l_sho" value="0.7"/>'
+        '<joint name="r_sho" value="-0.7"/><joint name="root_joint" value="0 0 0 0 0 0 1"/></group_state>'
+        '<group_state name="odd" group="arms"><joint name="nope" value="1"/></group_state></robot>')
+    robot = load(str(path))
+    poses = srdf.named_poses(matrix.Scene(robot, 0.0), root)
+    assert [label for label, _, _ in poses] == ["the default configuration", "group state 'hug' of 'arms'"]
+    found = srdf.overlaps(robot, root)
+    assert list(found) == [("l_hand", "r_hand")]
+    assert found[("l_hand", "r_hand")].poses[0][0] == "group state 'hug' of 'arms'"
+    assert found[("l_hand", "r_hand")].depth > 0.05

@@ -74,10 +74,14 @@ ENTRIES = {
     # hyq.srdf: groups all_legs, r_legs, ... use subgroups lf, rf, lh, rh; the groups are lf_leg, ...
     (f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf", "", (), f"{ERD}/hyq_description/srdf/hyq.srdf"):
         {"U805": 16},
-    # icub.srdf is for robot "icub", the URDF is "iCub".
-    (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"): {"U802": 1},
+    # icub.srdf is for robot "icub", the URDF is "iCub". U811: at the zero configuration (and
+    # half_sitting) 16 non-adjacent pairs of collision meshes intersect with no disable_collisions
+    # entry (forearms in the torso, feet and lower legs in each other; checked independently with
+    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull).
+    (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
+        {"U802": 1, "U811": 16},
     (f"{ERD}/icub_description/robots/icub_reduced.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1},
+        {"U802": 1, "U811": 16},
     # This pr2.urdf made the caster and gripper joints fixed but kept their transmissions (U502),
     # and its gazebo references double_stereo_double_stereo_link and sensor_mount_sensor_link (U611).
     (f"{ERD}/pr2_description/urdf/pr2.urdf", "", (), f"{ERD}/pr2_description/srdf/pr2.srdf"):
@@ -96,7 +100,13 @@ ENTRIES = {
         {"U803": 12, "U804": 8, "U805": 16},
     (f"{ERD}/solo_description/robots/solo12.urdf", "", (), f"{ERD}/solo_description/srdf/solo.srdf"):
         {"U805": 16},
-    (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"): {},
+    # talos_reduced at zero: the grippers and wrists hang inside the thighs (leg_*_3_link) with no
+    # entry (U811, 12 pairs; trimesh: 68 of the gripper motor mesh's 101 vertices inside hip_y),
+    # and the knee and ankle meshes (leg_*_4/leg_*_6), disabled as Never, intersect (U810; 7 knee
+    # vertices inside the watertight ankle mesh). talos_full_v2's meshes use package:/// (no
+    # package), so its legs have no collision geometry to check.
+    (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
+        {"U810": 2, "U811": 12},
     (f"{ERD}/talos_data/robots/talos_full_v2.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"): {},
 }
 
