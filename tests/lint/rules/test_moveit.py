@@ -82,3 +82,25 @@ def test_humanoid_arm_chain_across_to_the_other_arm(tmp_path):
     _, findings = humanoid_with_kdl(tmp_path, '<chain base_link="body_link" tip_link="l_forearm_link"/>',
                                     '<chain base_link="r_forearm_link" tip_link="l_forearm_link"/>')
     assert [f.code for f in findings] == ["U814"] and "at link 'body_link'" in findings[0].message
+
+
+def test_broken_moveit_yaml_is_located_inside_the_file(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "kinematics.yaml": f"head:\n  kinematics_solver: {KDL}\n  kinematics_solver_timeout: [0.005\n",
+             "moveit_controllers.yaml": "moveit_simple_controller_manager:\n  controller_names: 'head\n"}
+    found, _ = check_folder(tmp_path, files, select=("U81",))
+    assert found == [("kinematics.yaml", 3, "U812"), ("moveit_controllers.yaml", 2, "U812")]
+
+
+def test_moveit_files_are_not_read_through_a_link_out_of_the_srdf_folder(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "kinematics.yaml").write_text(f"nope:\n  kinematics_solver: {KDL}\n")
+    robot = tmp_path / "robot"
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF}
+    robot.mkdir()
+    (robot / "kinematics.yaml").symlink_to(outside / "kinematics.yaml")
+    assert check_folder(robot, files, select=("U81",))[0] == []
+    (robot / "kinematics.yaml").unlink()
+    (robot / "kinematics.yaml").write_text(f"nope:\n  kinematics_solver: {KDL}\n")
+    assert check_folder(robot, files, select=("U81",))[0] == [("kinematics.yaml", 1, "U813")]
