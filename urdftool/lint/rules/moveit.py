@@ -118,7 +118,9 @@ def kinematics_group_not_chain(robot):
       joint: at the group's kinematics.yaml entry (pick another solver, or split the group).
 
     A link in a group stands for its parent joint, a chain for the joints from its tip up to
-    its base, a subgroup for its joints (as MoveIt builds groups).
+    its base, a subgroup for its joints (as MoveIt builds groups). A group with an unknown
+    member is left to U803-U805; a group without ``kinematics_solver`` has no solver in MoveIt
+    and is not checked.
 
     Bad: ``<chain base_link="tool0" tip_link="base_link"/>`` with KDL
     Good: ``<chain base_link="base_link" tip_link="tool0"/>``
