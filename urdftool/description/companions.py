@@ -10,7 +10,9 @@ Which files (first match wins, per kind):
 - MoveIt's ``kinematics.yaml``, ``joint_limits.yaml`` (unless it is a urdftool spec) and controller
   list (``moveit_controllers.yaml``, ``simple_moveit_controllers.yaml``, ``ros_controllers.yaml``,
   ``controllers.yaml`` with a ``controller_list`` or ``moveit_simple_controller_manager``): in the
-  SRDF's own folder (a moveit_config package's ``config/``), when there is an SRDF.
+  SRDF's own folder (a moveit_config package's ``config/``), when there is an SRDF; a
+  ``kinematics.yaml`` also beside the robot or in its ``config/`` folder. (A ``joint_limits.yaml``
+  beside the robot is often the input of its xacro, not MoveIt's: only the SRDF's folder counts.)
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml`` beside the robot or in
   its ``config/`` folder, when it is a urdftool spec (top-level ``unit:`` and ``joints:``; a ROS
   ``joint_limits.yaml`` has a top-level ``joint_limits:`` and is left alone) or is not valid YAML.
@@ -67,6 +69,9 @@ def _discover(robot) -> Companions:
         found.srdf = read_srdf(path) if path else None
     if found.srdf is not None:
         _beside_srdf(found, found.srdf.path)
+        if found.kinematics is None:
+            path = next(iter(_candidates(folders, "kinematics.yaml")), None)
+            found.kinematics = read_yaml(path) if path else None
     if named.spec:
         found.spec = read_yaml(Path(named.spec))
     else:

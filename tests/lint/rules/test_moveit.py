@@ -104,3 +104,12 @@ def test_moveit_files_are_not_read_through_a_link_out_of_the_srdf_folder(tmp_pat
     (robot / "kinematics.yaml").unlink()
     (robot / "kinematics.yaml").write_text(f"nope:\n  kinematics_solver: {KDL}\n")
     assert check_folder(robot, files, select=("U81",))[0] == [("kinematics.yaml", 1, "U813")]
+
+
+def test_kinematics_yaml_in_the_robots_config_folder_with_the_srdf_beside_the_robot(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF.replace("<chain base_link=\"base_link\" tip_link=\"head\"/>",
+                                                             "<chain base_link=\"cam\" tip_link=\"base_link\"/>"),
+             "config/kinematics.yaml": f"head:\n  kinematics_solver: {KDL}\n",
+             "config/joint_limits.yaml": "joint_limits:\n  nope: {has_velocity_limits: true}\n"}
+    # the backwards chain is found; a joint_limits.yaml outside the SRDF's folder is not MoveIt's
+    assert check_folder(tmp_path, files, select=("U81",))[0] == [("robot.srdf", 3, "U814")]
