@@ -362,3 +362,21 @@ def test_a_pose_with_geometry_left_out_is_not_called_free_of_collision(run_cli, 
     assert "robot.urdf:" in result.stdout and "missing.stl" in result.stdout
     clean = run_cli("collisions", write(tmp_path, two_boxes(0, 1)), "--q", "slider=0.5")
     assert clean.exit_code == 0 and "no self-collision" in clean.stdout
+def test_srdf_poses_are_the_default_and_each_group_state(tmp_path):
+    from lxml import etree
+
+    from conftest import CASES
+
+    path = tmp_path / "r.urdf"
+    path.write_text((CASES / "U810_srdf_disabled_pair_collides" / "robot.urdf").read_text())
+    root = etree.fromstring(
+        '<robot name="r"><group_state name="hug" group="arms"><joint name="l_sho" value="0.7"/>'
+        '<joint name="r_sho" value="-0.7"/><joint name="root_joint" value="0 0 0 0 0 0 1"/></group_state>'
+        '<group_state name="odd" group="arms"><joint name="nope" value="1"/></group_state></robot>')
+    robot = load(str(path))
+    poses = srdf.named_poses(matrix.Scene(robot, 0.0), root)
+    assert [label for label, _, _ in poses] == ["the default configuration", "group state 'hug' of 'arms'"]
+    found = srdf.overlaps(robot, root)
+    assert list(found) == [("l_hand", "r_hand")]
+    assert found[("l_hand", "r_hand")].poses[0][0] == "group state 'hug' of 'arms'"
+    assert found[("l_hand", "r_hand")].depth > 0.05

@@ -58,21 +58,30 @@ ENTRIES = {
     **{("ur_gazebo/urdf/ur.xacro", UR_ARGS.format(m=model, c="{corpus}"),
         (f"ur_gazebo/config/{model}_controllers.yaml",
          f"{model}_moveit_config/config/ros_controllers.yaml"),
-        f"{model}_moveit_config/config/{model}.srdf"): {"U611": 1}  # <gazebo reference="ee_link">
+        f"{model}_moveit_config/config/{model}.srdf"): {"U611": 1, "U817": 1}
+       # U611: <gazebo reference="ee_link">. U817: the MoveIt config's controller_list names the
+       # real driver's scaled_pos_joint_traj_controller; ur_gazebo's YAML declares
+       # eff_joint_traj_controller (upstream's MoveIt launch file remaps the action for sim).
        for model in ("ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30")},
     (f"{ERD}/anymal_c_simple_description/urdf/anymal.urdf", "", (),
      f"{ERD}/anymal_c_simple_description/srdf/anymal.srdf"): {},
     # bolt.srdf says robot name "finger_edu" (copied), finger_edu.srdf "finger_edu" for "fingeredu".
     (f"{ERD}/bolt_description/robots/bolt.urdf", "", (), f"{ERD}/bolt_description/srdf/bolt.srdf"): {"U802": 1},
+    # finger_edu.srdf's state "hanging" of group "leg" sets base_to_finger, the fixed joint above
+    # the chain's base link (not in the group; a 7-value free-flyer value on a fixed joint) (U808).
     (f"{ERD}/finger_edu_description/robots/finger_edu.urdf", "", (),
-     f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1},
+     f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1, "U808": 1},
     # hyq.srdf: groups all_legs, r_legs, ... use subgroups lf, rf, lh, rh; the groups are lf_leg, ...
     (f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf", "", (), f"{ERD}/hyq_description/srdf/hyq.srdf"):
         {"U805": 16},
-    # icub.srdf is for robot "icub", the URDF is "iCub".
-    (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"): {"U802": 1},
+    # icub.srdf is for robot "icub", the URDF is "iCub". U811: at the zero configuration (and
+    # half_sitting) 16 non-adjacent pairs of collision meshes intersect with no disable_collisions
+    # entry (forearms in the torso, feet and lower legs in each other; checked independently with
+    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull).
+    (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
+        {"U802": 1, "U811": 16},
     (f"{ERD}/icub_description/robots/icub_reduced.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1},
+        {"U802": 1, "U811": 16},
     # This pr2.urdf made the caster and gripper joints fixed but kept their transmissions (U502),
     # and its gazebo references double_stereo_double_stereo_link and sensor_mount_sensor_link (U611).
     (f"{ERD}/pr2_description/urdf/pr2.urdf", "", (), f"{ERD}/pr2_description/srdf/pr2.srdf"):
@@ -91,7 +100,13 @@ ENTRIES = {
         {"U803": 12, "U804": 8, "U805": 16},
     (f"{ERD}/solo_description/robots/solo12.urdf", "", (), f"{ERD}/solo_description/srdf/solo.srdf"):
         {"U805": 16},
-    (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"): {},
+    # talos_reduced at zero: the grippers and wrists hang inside the thighs (leg_*_3_link) with no
+    # entry (U811, 12 pairs; trimesh: 68 of the gripper motor mesh's 101 vertices inside hip_y),
+    # and the knee and ankle meshes (leg_*_4/leg_*_6), disabled as Never, intersect (U810; 7 knee
+    # vertices inside the watertight ankle mesh). talos_full_v2's meshes use package:/// (no
+    # package), so its legs have no collision geometry to check.
+    (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
+        {"U810": 2, "U811": 12},
     (f"{ERD}/talos_data/robots/talos_full_v2.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"): {},
 }
 

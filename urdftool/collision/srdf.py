@@ -3,7 +3,7 @@ which entries a fresh matrix shows to be stale."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
@@ -180,3 +180,65 @@ def stale(matrix: Matrix, entries: list[Disabled], robot_links, root: Location) 
                                   f"disabled; add <disable_collisions link1=\"{pair.link1}\" "
                                   f"link2=\"{pair.link2}\" reason=\"{pair.reason}\"/>"))
     return problems
+
+
+# --- the SRDF's poses checked once each ---------------------------------------------------------
+
+# Reasons under which a disabled pair may touch: joined by a joint, in contact in the default
+# pose, in contact nearly always. Any other reason ("Never", "User", none) claims it does not.
+MAY_TOUCH = ("Adjacent", "Default", "Always")
+
+
+@dataclass
+class Overlap:
+    """Two links in contact at some of the SRDF's poses: the deepest ``depth`` [m] and the poses
+    as (label, group_state element or None for the default configuration)."""
+
+    link1: str
+    link2: str
+    depth: float = 0.0
+    poses: list = field(default_factory=list)
+
+
+def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
+    """(label, configuration, element): the default configuration (0, or mid-range where 0 is
+    outside the limits; element None), then each ``<group_state>`` over it. Values the scene
+    cannot take (multi-variable joints such as a floating root, unknown names, text) are left
+    out; a state with none left is skipped."""
+    from urdftool.errors import UrdftoolError
+    from urdftool.kinematics import configuration
+
+    poses = [("the default configuration", scene.default(), None)]
+    names = {variable.name for variable in scene.variables}
+    for state in srdf_root.iterfind("group_state"):
+        values = {j.get("name"): j.get("value", "") for j in state.iterfind("joint")
+                  if j.get("name") in names and len(j.get("value", "").split()) == 1}
+        if not values:
+            continue
+        try:
+            chosen = configuration.from_words(scene.variables, values, False, scene.kinematics.mimics)
+        except UrdftoolError:
+            continue
+        poses.append((f"group state '{state.get('name')}' of '{state.get('group')}'",
+                      chosen.values[0], state))
+    return poses
+
+
+def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
+    """Pairs of links (not adjacent) in contact at the default configuration or at a group
+    state of the SRDF: one FCL check of every pair per pose, as in
+    :func:`urdftool.collision.matrix.default_collisions`."""
+    from urdftool.collision.matrix import Scene, default_collisions
+
+    scene = Scene(robot, 0.0)
+    found: dict[tuple[str, str], Overlap] = {}
+    index = {pair: i for i, pair in enumerate(scene.pairs)}
+    for label, q, element in named_poses(scene, srdf_root):
+        poses = None
+        for pair in sorted(default_collisions(scene, q) - scene.adjacent):
+            poses = scene.at(q) if poses is None else poses
+            depth = scene.checker.exact(poses, index[pair], contacts=True)[2]
+            overlap = found.setdefault(pair, Overlap(*pair))
+            overlap.depth = max(overlap.depth, depth)
+            overlap.poses.append((label, element))
+    return found

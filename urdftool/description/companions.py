@@ -7,6 +7,12 @@ Which files (first match wins, per kind):
   ``type: package/Class`` entry, or a ``controller_manager`` key).
 - SRDF: ``--srdf FILE``; else the ``*.srdf`` beside the robot or in its ``config/`` folder whose
   name matches the robot name or the robot file name, or the only one there.
+- MoveIt's ``kinematics.yaml``, ``joint_limits.yaml`` (unless it is a urdftool spec) and controller
+  list (``moveit_controllers.yaml``, ``simple_moveit_controllers.yaml``, ``ros_controllers.yaml``,
+  ``controllers.yaml`` with a ``controller_list`` or ``moveit_simple_controller_manager``): in the
+  SRDF's own folder (a moveit_config package's ``config/``), when there is an SRDF; a
+  ``kinematics.yaml`` also beside the robot or in its ``config/`` folder. (A ``joint_limits.yaml``
+  beside the robot is often the input of its xacro, not MoveIt's: only the SRDF's folder counts.)
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml`` beside the robot or in
   its ``config/`` folder, when it is a urdftool spec (top-level ``unit:`` and ``joints:``; a ROS
   ``joint_limits.yaml`` has a top-level ``joint_limits:`` and is left alone) or is not valid YAML.
@@ -25,6 +31,8 @@ from pathlib import Path
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
+MOVEIT_CONTROLLER_NAMES = ("moveit_controllers.yaml", "simple_moveit_controllers.yaml",
+                           "ros_controllers.yaml", "controllers.yaml")
 
 
 # --- discovery --------------------------------------------------------------------------------
@@ -36,6 +44,9 @@ class Companions:
     controllers: list[YamlFile] = field(default_factory=list)
     srdf: SrdfFile | None = None
     spec: YamlFile | None = None
+    kinematics: YamlFile | None = None  # MoveIt's, beside the SRDF
+    planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml, beside the SRDF
+    moveit_controllers: list[YamlFile] = field(default_factory=list)  # beside the SRDF
 
 
 def companions(robot) -> Companions:
@@ -56,6 +67,11 @@ def _discover(robot) -> Companions:
     else:
         path = find_srdf(robot)
         found.srdf = read_srdf(path) if path else None
+    if found.srdf is not None:
+        _beside_srdf(found, found.srdf.path)
+        if found.kinematics is None:
+            path = next(iter(_candidates(folders, "kinematics.yaml")), None)
+            found.kinematics = read_yaml(path) if path else None
     if named.spec:
         found.spec = read_yaml(Path(named.spec))
     else:
@@ -102,6 +118,47 @@ def _auto_controllers(folders: list[Path]) -> list[YamlFile]:
         if looks_like_controllers(parsed.data) or (in_config and parsed.problem):
             files.append(parsed)
     return files
+
+
+def _beside_srdf(found: Companions, srdf: Path) -> None:
+    """MoveIt's YAML files in the SRDF's folder (regular files there, no link leading out)."""
+    try:
+        folder = srdf.resolve(strict=True).parent
+    except OSError:
+        return
+
+    def here(name: str) -> Path | None:
+        path = folder / name
+        try:
+            real = path.resolve(strict=True)
+        except OSError:
+            return None
+        return path if real.is_file() and real.parent == folder else None
+
+    path = here("kinematics.yaml")
+    found.kinematics = read_yaml(path) if path else None
+    path = here("joint_limits.yaml")
+    limits = read_yaml(path) if path else None
+    found.planning_limits = limits if limits is not None and not is_spec(limits.data) else None
+    known = {f.path.resolve() for f in found.controllers if f.path.exists()}
+    for name in MOVEIT_CONTROLLER_NAMES:
+        path = here(name)
+        if path is None or path.resolve() in known:
+            continue
+        parsed = read_yaml(path)
+        if parsed.problem or is_moveit_controllers(parsed.data):
+            found.moveit_controllers.append(parsed)
+
+
+def is_moveit_controllers(data) -> bool:
+    """MoveIt's controller list: ``controller_list`` (MoveIt 1) or
+    ``moveit_simple_controller_manager`` (MoveIt 2), at the top or under ``ros__parameters``."""
+    if not isinstance(data, dict):
+        return False
+    if "controller_list" in data or "moveit_simple_controller_manager" in data:
+        return True
+    return any(is_moveit_controllers(value.get("ros__parameters")) for value in data.values()
+               if isinstance(value, dict))
 
 
 def find_srdf(robot) -> Path | None:

@@ -6,6 +6,7 @@ what is wrong in them the rules' (U6xx-U8xx live in :mod:`urdftool.lint.rules`).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -104,14 +105,28 @@ def read_yaml(path: Path) -> YamlFile:
     try:
         result.data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
     except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        if error.context_mark is not None and (error.context or "").startswith("while parsing a flow"):
-            mark = error.context_mark  # an unclosed bracket: point where it opened
-        result.line = mark.line + 1 if mark else None
+        result.line = _error_line(error, text)
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
     except (yaml.YAMLError, RecursionError) as error:
         result.problem = f"not valid YAML: {error}"
     return result
+
+
+def _error_line(error: yaml.MarkedYAMLError, text: str) -> int | None:
+    """The line (1-based) to report a YAML syntax error at: where an unclosed bracket or quote
+    opened when PyYAML's context says so, or when it only noticed at the end of the file; never
+    past the file's last non-blank line (PyYAML puts the end of the stream on the line after
+    the final newline)."""
+    problem, context = error.problem_mark, error.context_mark
+    at_end = problem is not None and problem.index >= len(text.rstrip())
+    opened = (error.context or "").startswith(("while parsing a flow", "while scanning a quoted"))
+    mark = problem or context
+    if context is not None and (opened or at_end) and context.index < len(text.rstrip()):
+        mark = context
+    if mark is None:
+        return None
+    last = max(1, len(text.rstrip().splitlines()))
+    return min(mark.line + 1, last)
 
 
 def read_srdf(path: Path) -> SrdfFile:
@@ -124,7 +139,7 @@ def read_srdf(path: Path) -> SrdfFile:
     try:
         result.data = etree.fromstring(text.encode(), parser)
     except etree.XMLSyntaxError as error:
-        result.problem, result.line = f"not well-formed XML: {error.msg}", error.lineno
+        result.problem, result.line = f"not well-formed XML: {error.msg}", _xml_error_line(error, text)
         return result
     _start_tag_lines(result.data, text)
     if result.data.tag != "robot":
@@ -132,6 +147,14 @@ def read_srdf(path: Path) -> SrdfFile:
                                        result.data.sourceline)
         result.data = None
     return result
+
+
+def _xml_error_line(error: etree.XMLSyntaxError, text: str) -> int | None:
+    """libxml2's line, except that an element left open is reported where it opened ("Premature
+    end of data in tag group line 2"), not on the line after the end of the file."""
+    opened = re.search(r"Premature end of data in tag \S+ line (\d+)", error.msg or "")
+    line = int(opened.group(1)) if opened else error.lineno
+    return min(line, max(1, len(text.rstrip().splitlines()))) if line else line
 
 
 def _start_tag_lines(root, text: str) -> None:

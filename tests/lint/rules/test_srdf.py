@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from conftest import CASES
 from crossfile_helpers import HEAD_ROBOT, broken_copy, check_folder
 
 ROBOT = HEAD_ROBOT.format(body="")
@@ -58,3 +59,71 @@ def test_a_tag_written_across_lines_is_located_where_it_begins(tmp_path):
     reason="Never"/>"""
     found, _ = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
     assert found == [("robot.srdf", 2, "U804")]
+
+
+ARM = """<robot name="r">
+  <link name="base_link"/><link name="shoulder"/><link name="upper"/><link name="hand"/><link name="cam"/>
+  <joint name="pan" type="revolute"><parent link="base_link"/><child link="shoulder"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="lift" type="revolute"><parent link="shoulder"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="wrist" type="revolute"><parent link="upper"/><child link="hand"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="cam_joint" type="fixed"><parent link="base_link"/><child link="cam"/></joint>
+</robot>
+"""
+
+
+def test_group_membership_follows_moveit(tmp_path):
+    # a link implies its parent joint; a subgroup brings its joints; a chain brings the joints
+    # from its tip up to (not above) its base
+    body = """<group name="by_links"><link name="upper"/><link name="hand"/></group>
+<group name="chain"><chain base_link="shoulder" tip_link="hand"/></group>
+<group name="all"><group name="chain"/><joint name="pan"/></group>
+<group_state name="a" group="by_links"><joint name="lift" value="0"/><joint name="wrist" value="0"/></group_state>
+<group_state name="b" group="all"><joint name="pan" value="0"/><joint name="lift" value="0"/></group_state>
+<group_state name="c" group="chain"><joint name="pan" value="0"/></group_state>
+<end_effector name="e" parent_link="hand" parent_group="by_links" group="chain"/>
+<end_effector name="f" parent_link="shoulder" parent_group="chain" group="all"/>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 7, "U808"), ("robot.srdf", 9, "U809")]
+    assert "not part of group 'chain' (its joints: lift, wrist)" in findings[0].message
+    assert "parent_link 'shoulder'" in findings[1].message
+
+
+def test_duplicate_group_points_at_the_second_definition(tmp_path):
+    body = '<group name="g"><joint name="pan"/></group>\n<group name="h"/>\n<group name="g"><joint name="lift"/></group>'
+    found, findings = check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 4, "U807")] and "first at line 2" in findings[0].message
+
+
+# two arms from base_link; the hands (fixed to the upper arms) meet when the arms swing in
+BOXES = (CASES / "U810_srdf_disabled_pair_collides" / "robot.urdf").read_text()
+ARMS = '<group name="arms"><joint name="l_sho"/><joint name="r_sho"/></group>\n'
+HUG = ('<group_state name="hug" group="arms"><joint name="l_sho" value="0.7"/>'
+       '<joint name="r_sho" value="-0.7"/><joint name="root_joint" value="0 0 0 0 0 0 1"/></group_state>\n')
+
+
+def test_which_disable_reasons_may_hide_a_collision(tmp_path):
+    for reason, expected in (("Never", ["U810"]), ("User", ["U810"]), ("", ["U810"]),
+                             ("Default", []), ("Always", []), ("Adjacent", [])):
+        body = ARMS + HUG + f'<disable_collisions link1="r_hand" link2="l_hand" reason="{reason}"/>'
+        found, findings = check_folder(tmp_path, {"robot.urdf": BOXES, "robot.srdf": srdf(body)},
+                                       select=("U810", "U811"))
+        assert [code for _, _, code in found] == expected, reason
+        if expected:
+            assert found[0][1] == 4 and "at group state 'hug' of 'arms'" in findings[0].message
+
+
+def test_an_overlap_at_the_default_pose_is_reported_at_robot(tmp_path):
+    near = BOXES.replace('xyz="0 0.3 0"', 'xyz="0 0.04 0"').replace('xyz="0 -0.3 0"', 'xyz="0 -0.04 0"')
+    found, findings = check_folder(tmp_path, {"robot.urdf": near, "robot.srdf": srdf(ARMS)},
+                                   select=("U810", "U811"))
+    # the hands overlap; base_link touches the upper arms, but they are adjacent: not reported
+    assert found == [("robot.srdf", 1, "U811")] and "l_hand and r_hand collide" in findings[0].message
+    assert "at the default configuration" in findings[0].message and 'reason="Default"' in findings[0].message
+
+
+def test_no_pose_check_without_an_srdf_or_geometry(tmp_path):
+    assert check_folder(tmp_path, {"robot.urdf": BOXES}, select=("U810", "U811"))[0] == []
+    assert check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf("")}, select=("U810", "U811"))[0] == []

@@ -8,10 +8,11 @@ from __future__ import annotations
 
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
-                                 loading, spec, srdf, transmissions, tree)
+                                 loading, moveit, spec, srdf, transmissions,
+                                 tree)
 
 FAMILY_MODULES = (loading, tree, joints, inertials, geometry, transmissions, controllers, gazebo,
-                  spec, srdf, internal)
+                  spec, srdf, moveit, internal)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
 __all__ = ["CATALOGUE", "FAMILY_MODULES"]

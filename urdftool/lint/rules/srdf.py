@@ -157,3 +157,192 @@ def srdf_state_outside_limits(robot):
             yield srdf.at(element.sourceline), (
                 f"SRDF group state '{state}' sets joint '{element.get('name')}' to {values[0]:g}, "
                 f"outside its URDF limits [{lower[0]:g}, {upper[0]:g}]")
+
+
+@rule("U807", "srdf-duplicate-group", Severity.ERROR)
+def srdf_duplicate_group(robot):
+    """Two SRDF groups have the same name.
+
+    MoveIt keeps the first and drops the other ("A group named 'arm' already exists"), so the
+    joints of the second definition are never planned for.
+
+    Bad: ``<group name="arm"><chain .../></group> <group name="arm"><joint .../></group>``
+    Good: one ``<group name="arm">`` holding both, or two names
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    first: dict[str, int] = {}
+    for element in srdf.root.iterfind("group"):
+        name = element.get("name")
+        if name in first:
+            yield srdf.at(element.sourceline), (
+                f"SRDF group '{name}' is defined again (first at line {first[name]}); MoveIt "
+                "keeps the first definition and drops this one")
+        else:
+            first[name] = element.sourceline
+
+
+def _groups(robot, srdf):
+    from urdftool.kinematics.groups import groups, tree
+
+    return tree(robot, srdf.root), groups(robot, srdf.root)
+
+
+@rule("U808", "srdf-state-foreign-joint", Severity.ERROR)
+def srdf_state_foreign_joint(robot):
+    """An SRDF group state sets a joint that is not in its group.
+
+    MoveIt drops the value ("Group state 'home' specifies value for joint 'x', but that joint
+    is not part of group 'arm'"): the named pose is not the one written. A group's joints are
+    its ``<joint>`` elements, the parent joints of its ``<link>`` elements, the joints along its
+    ``<chain>`` (not the base link's parent joint) and its subgroups' joints. Pinocchio's
+    ``root_joint`` (not a URDF joint) is accepted: Pinocchio reads group states without groups.
+    A group with an unknown member is left to U803-U805.
+
+    Bad: ``<group_state name="home" group="left_arm"> <joint name="r_elbow" value="0"/>``
+    Good: the joint in the group, or the value in a state of the group that has it
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    model, groups = _groups(robot, srdf)
+    for state in srdf.root.iterfind("group_state"):
+        group = groups.get(state.get("group"))
+        if group is None or not group.complete:
+            continue  # an unknown group or member is U803-U805's
+        for element in state.iterfind("joint"):
+            name = element.get("name")
+            if name in group.joints or name not in model.joints:
+                continue  # an unknown joint is U803's
+            yield srdf.at(element.sourceline), (
+                f"SRDF group state '{state.get('name')}' sets joint '{name}', which is not part "
+                f"of group '{group.name}' (its joints: {', '.join(sorted(group.joints)) or 'none'}); "
+                "MoveIt ignores the value")
+
+
+@rule("U809", "srdf-end-effector-parent", Severity.ERROR)
+def srdf_end_effector_parent(robot):
+    """An SRDF end effector's ``parent_link`` is not a link of its ``parent_group``.
+
+    MoveIt refuses the parent group ("Group 'arm' was specified as parent group for
+    end-effector 'hand' but it does not include the parent link 'x'"), so the end effector is
+    not attached to the arm that carries it. A group's links are the child links of its joints:
+    a chain's base link is not one of them.
+
+    Bad: ``<end_effector name="hand" parent_link="base_link" parent_group="arm" group="gripper"/>``
+    Good: ``parent_link="wrist_link"``, the arm's last link
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    from urdftool.kinematics.groups import links_of
+
+    model, groups = _groups(robot, srdf)
+    for element in srdf.root.iterfind("end_effector"):
+        link, group = element.get("parent_link"), groups.get(element.get("parent_group"))
+        if group is None or not group.complete or link not in robot.links:
+            continue  # no parent group, or an unknown one (U805) or an unknown link (U804)
+        links = links_of(model, group)
+        if link not in links:
+            yield srdf.at(element.sourceline), (
+                f"SRDF end effector '{element.get('name')}' has parent_link '{link}', which is "
+                f"not a link of its parent_group '{group.name}'; "
+                f"{available('links of the group', link, links)}")
+
+
+def _overlaps(robot, srdf):
+    """Pairs in contact at the SRDF's poses (one FCL check per pose), once per robot; None when
+    the robot cannot be posed (its tree or geometry is another rule's finding)."""
+    def compute():
+        from urdftool.collision.srdf import overlaps
+        from urdftool.errors import UrdftoolError
+
+        try:
+            return overlaps(robot, srdf.root)
+        except UrdftoolError:
+            return None
+    return robot.memo(_overlaps, compute)
+
+
+def _at_default(overlap) -> bool:
+    return any(element is None for _, element in overlap.poses)
+
+
+def _where(overlap) -> str:
+    labels = [label for label, _ in overlap.poses]
+    shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
+    return f"collide (FCL penetration depth {overlap.depth * 1000:.1f} mm) at {shown}"
+
+
+@rule("U810", "srdf-disabled-pair-collides", Severity.ERROR)
+def srdf_disabled_pair_collides(robot):
+    """A pair disabled as "Never" (or "User") collides at the default pose or a group state.
+
+    ``<disable_collisions>`` tells MoveIt never to check the pair, so a real collision between
+    them is planned through. The reason says why the pair was disabled; they are read so:
+
+    - ``Adjacent`` (joined by a joint), ``Default`` (in contact at the default pose, which is
+      why the Setup Assistant disabled it) and ``Always`` (in contact in nearly every sampled
+      pose): contact is expected, never reported;
+    - ``Never`` (the Setup Assistant saw no contact in any sample), ``User`` (disabled by hand)
+      and any other reason: a claim that the links do not touch, reported when they do.
+
+    Each pose is checked once with FCL: the default configuration (0, or mid-range where 0 is
+    outside the limits) and each SRDF group state over it. The sampled check is
+    ``urdftool collisions --check-srdf``.
+
+    Bad: ``<disable_collisions link1="l_hand" link2="r_hand" reason="Never"/>`` for hands that
+    touch in the "home" state
+    Good: no entry (MoveIt then checks the pair), or ``reason="Default"`` if they touch by design
+    """
+    from urdftool.collision.srdf import MAY_TOUCH
+
+    srdf = _srdf(robot)
+    entries = list(srdf.root.iter("disable_collisions")) if srdf is not None else []
+    claims = [e for e in entries if e.get("reason") not in MAY_TOUCH]
+    found = _overlaps(robot, srdf) if claims else None
+    for element in claims if found else ():
+        pair = tuple(sorted((element.get("link1", ""), element.get("link2", "")),
+                            key=str.encode))
+        overlap = found.get(pair)
+        if overlap is not None:
+            yield srdf.at(element.sourceline), (
+                f"{pair[0]} and {pair[1]} are disabled as '{element.get('reason', '')}' but "
+                f"{_where(overlap)}: MoveIt will not see that collision; remove the entry"
+                + (", or give the reason Default if they touch by design" if _at_default(overlap)
+                   else ""))
+
+
+@rule("U811", "srdf-collision-not-disabled", Severity.WARNING)
+def srdf_collision_not_disabled(robot):
+    """Two links overlap at the default pose or a group state, and the SRDF does not disable them.
+
+    The links are not adjacent, and the SRDF has no ``<disable_collisions>`` for them.
+
+    MoveIt finds the robot in collision in that pose ("Start state appears to be in
+    collision") and refuses to plan from it: either the geometry or the pose is wrong (e.g.
+    both arms mounted on the same side), or the pair touches by design and needs
+    ``reason="Default"``. Links joined by a joint (directly or through links without collision
+    geometry) are not reported; ``urdftool collisions --check-srdf`` lists missing Adjacent
+    entries. Checked only when the robot has an SRDF. Reported at the group state, or at
+    ``<robot>`` for the default configuration.
+
+    Bad: ``l_hand`` and ``r_hand`` inside each other in the "home" state, with no entry
+    Good: a "home" where they are apart
+    """
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    found = _overlaps(robot, srdf)
+    listed = {tuple(sorted((e.get("link1", ""), e.get("link2", "")), key=str.encode))
+              for e in srdf.root.iter("disable_collisions")}
+    for pair, overlap in sorted((found or {}).items()):
+        if pair in listed:
+            continue
+        element = overlap.poses[0][1]
+        yield srdf.at(element.sourceline if element is not None else srdf.root.sourceline), (
+            f"{pair[0]} and {pair[1]} {_where(overlap)}, and the SRDF does not disable the pair: "
+            "MoveIt reports the robot in collision there; fix the geometry or the pose"
+            + (f", or add <disable_collisions link1=\"{pair[0]}\" link2=\"{pair[1]}\" "
+               "reason=\"Default\"/> if they touch by design" if _at_default(overlap) else ""))

@@ -1,0 +1,40 @@
+"""Companion documents read with their lines: where a YAML syntax error is reported."""
+
+from __future__ import annotations
+
+import pytest
+
+from urdftool.description.documents import read_srdf, read_yaml
+
+CONTROLLERS_7_LINES = """\
+humanoid_robot:
+  head_controller:
+    type: position_controllers/JointTrajectoryController
+    joints: [head_pan, head_tilt]
+    constraints:
+      goal_time: 0.6
+      head_pan: {trajectory: 0.1, goal: "0.1}
+"""
+
+
+@pytest.mark.parametrize("text, line", [
+    (CONTROLLERS_7_LINES, 7),                   # unclosed quote: where it opened, not line 8
+    ("a: 1\nb: [\n", 2),                        # the stream ends inside a bracket
+    ("a: {b: 1\n\n\n", 1),                      # where the brace opened
+    ("a:\n  b: 'x\n  c: 1\n", 2),               # where the quote opened
+    ("a:\n  b: 1\n c: 2\n", 3),                 # a misindented key: its own line
+    ("a: 1\nb: [1, 2\nc: 3\n", 2),
+])
+def test_a_yaml_error_is_located_on_a_line_of_the_file(tmp_path, text, line):
+    path = tmp_path / "c.yaml"
+    path.write_text(text)
+    parsed = read_yaml(path)
+    assert parsed.data is None and parsed.problem
+    assert parsed.line == line and 1 <= parsed.line <= len(text.splitlines())
+
+
+def test_an_srdf_left_open_is_located_where_the_open_tag_is(tmp_path):
+    path = tmp_path / "r.srdf"
+    path.write_text('<robot name="r">\n  <group name="a">\n')
+    parsed = read_srdf(path)
+    assert parsed.data is None and "Premature end" in parsed.problem and parsed.line == 2

@@ -1,0 +1,115 @@
+"""U812-U818: MoveIt's kinematics.yaml, joint_limits.yaml and controller list."""
+
+from __future__ import annotations
+
+import shutil
+
+from conftest import ROBOTS
+from crossfile_helpers import HEAD_ROBOT, check_folder, line_of
+from urdftool.lint.engine import CheckOptions, check_file
+
+ROBOT = HEAD_ROBOT.format(body="")
+SRDF = '<robot name="r">\n<group name="head">\n<chain base_link="base_link" tip_link="head"/>\n</group>\n</robot>\n'
+KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+
+
+def test_moveit_files_are_found_beside_an_srdf_in_another_package(tmp_path):
+    files = {"robot.urdf": ROBOT, "r_moveit_config/config/r.srdf": SRDF,
+             "r_moveit_config/config/kinematics.yaml": f"heda:\n  kinematics_solver: {KDL}\n",
+             "r_moveit_config/config/joint_limits.yaml":
+                 "joint_limits:\n  head_joint:\n    has_velocity_limits: true\n    max_velocity: 1.5\n"}
+    found, findings = check_folder(tmp_path, files, srdf=str(tmp_path / "r_moveit_config/config/r.srdf"))
+    assert found == [("joint_limits.yaml", 4, "U816"), ("kinematics.yaml", 1, "U813")]
+    assert "did you mean 'head'?" in findings[1].message
+
+
+def test_moveit2_layouts_under_ros_parameters(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "kinematics.yaml": f"/**:\n  ros__parameters:\n    robot_description_kinematics:\n"
+                                f"      head:\n        kinematics_solver: {KDL}\n"
+                                f"        kinematics_solver_timeout: -1\n",
+             "joint_limits.yaml": "robot_description_planning:\n  joint_limits:\n    head_joint:\n"
+                                  "      has_position_limits: true\n      max_position: !degrees 360\n"
+                                  "      min_position: -2\n",
+             "config/ros2_controllers.yaml":
+                 "controller_manager:\n  ros__parameters:\n    head_controller:\n"
+                 "      type: joint_trajectory_controller/JointTrajectoryController\n"
+                 "head_controller:\n  ros__parameters:\n    joints: [head_joint]\n",
+             "moveit_controllers.yaml":
+                 "moveit_simple_controller_manager:\n  controller_names: [head_controller, neck]\n"
+                 "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"}
+    found, findings = check_folder(tmp_path, files, select=("U81",))
+    # the timeout, min_position (a tagged max_position has no known unit: not compared), the
+    # neck controller without a block, and cam_joint that ros_control does not drive
+    assert found == [("joint_limits.yaml", 6, "U816"), ("kinematics.yaml", 6, "U812"),
+                     ("moveit_controllers.yaml", 2, "U812"), ("moveit_controllers.yaml", 5, "U818")]
+    assert "adds cam_joint" in findings[3].message
+
+
+def test_a_gripper_command_controller_may_list_the_mimicking_finger(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "config/c.yaml": "grip:\n  type: position_controllers/GripperActionController\n  joint: head_joint\n",
+             "ros_controllers.yaml": "controller_list:\n  - name: grip\n    type: GripperCommand\n"
+                                     "    joints: [head_joint, cam_joint]\n"}
+    assert check_folder(tmp_path, files, select=("U81",))[0] == []
+
+
+def humanoid_with_kdl(tmp_path, srdf_old=None, srdf_new=None):
+    folder = tmp_path / "humanoid"
+    shutil.copytree(ROBOTS / "humanoid", folder)
+    (folder / "kinematics.yaml").write_text("".join(
+        f"{group}:\n  kinematics_solver: {KDL}\n  kinematics_solver_timeout: 0.005\n"
+        for group in ("left_arm", "left_leg")))
+    if srdf_old:
+        srdf = folder / "humanoid.srdf"
+        srdf.write_text(srdf.read_text().replace(srdf_old, srdf_new))
+    findings = check_file(str(folder / "humanoid.urdf.xacro"), CheckOptions()).findings
+    return folder, [f for f in findings if f.code.startswith("U81")]
+
+
+def test_humanoid_left_arm_and_leg_solved_by_kdl(tmp_path):
+    assert humanoid_with_kdl(tmp_path)[1] == []
+
+
+def test_humanoid_leg_chain_written_backwards(tmp_path):
+    folder, findings = humanoid_with_kdl(tmp_path, '<chain base_link="body_link" tip_link="l_foot_link"/>',
+                                         '<chain base_link="l_foot_link" tip_link="body_link"/>')
+    assert [(f.code, f.line) for f in findings] == [("U814", line_of(folder / "humanoid.srdf", "l_foot_link"))]
+    assert "base_link 'l_foot_link' is below tip_link 'body_link'" in findings[0].message
+
+
+def test_humanoid_arm_chain_across_to_the_other_arm(tmp_path):
+    _, findings = humanoid_with_kdl(tmp_path, '<chain base_link="body_link" tip_link="l_forearm_link"/>',
+                                    '<chain base_link="r_forearm_link" tip_link="l_forearm_link"/>')
+    assert [f.code for f in findings] == ["U814"] and "at link 'body_link'" in findings[0].message
+
+
+def test_broken_moveit_yaml_is_located_inside_the_file(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "kinematics.yaml": f"head:\n  kinematics_solver: {KDL}\n  kinematics_solver_timeout: [0.005\n",
+             "moveit_controllers.yaml": "moveit_simple_controller_manager:\n  controller_names: 'head\n"}
+    found, _ = check_folder(tmp_path, files, select=("U81",))
+    assert found == [("kinematics.yaml", 3, "U812"), ("moveit_controllers.yaml", 2, "U812")]
+
+
+def test_moveit_files_are_not_read_through_a_link_out_of_the_srdf_folder(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "kinematics.yaml").write_text(f"nope:\n  kinematics_solver: {KDL}\n")
+    robot = tmp_path / "robot"
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF}
+    robot.mkdir()
+    (robot / "kinematics.yaml").symlink_to(outside / "kinematics.yaml")
+    assert check_folder(robot, files, select=("U81",))[0] == []
+    (robot / "kinematics.yaml").unlink()
+    (robot / "kinematics.yaml").write_text(f"nope:\n  kinematics_solver: {KDL}\n")
+    assert check_folder(robot, files, select=("U81",))[0] == [("kinematics.yaml", 1, "U813")]
+
+
+def test_kinematics_yaml_in_the_robots_config_folder_with_the_srdf_beside_the_robot(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF.replace("<chain base_link=\"base_link\" tip_link=\"head\"/>",
+                                                             "<chain base_link=\"cam\" tip_link=\"base_link\"/>"),
+             "config/kinematics.yaml": f"head:\n  kinematics_solver: {KDL}\n",
+             "config/joint_limits.yaml": "joint_limits:\n  nope: {has_velocity_limits: true}\n"}
+    # the backwards chain is found; a joint_limits.yaml outside the SRDF's folder is not MoveIt's
+    assert check_folder(tmp_path, files, select=("U81",))[0] == [("robot.srdf", 3, "U814")]

@@ -1,0 +1,258 @@
+"""U812-U818: MoveIt's YAML beside the SRDF (kinematics.yaml, joint_limits.yaml, the controller
+list) against the SRDF, the URDF and the ros_control controllers.
+
+The files are found in the SRDF's folder (see :mod:`urdftool.description.companions`); MoveIt's
+controller list is also read from the controller YAML the robot is checked with.
+"""
+
+from __future__ import annotations
+
+from urdftool.description import moveit_config as moveit
+from urdftool.description.companions import companions
+from urdftool.description.urdf import LIMITED, MOVING
+from urdftool.description.values import parse_numbers
+from urdftool.errors import available
+from urdftool.lint.catalogue import Severity, rule
+
+TOLERANCE = 1e-9  # relative, so that a value copied from the URDF with all its digits passes
+
+
+def _kinematics(robot):
+    """(kinematics.yaml, its entries, its problems), read once per robot."""
+    file = companions(robot).kinematics
+    return robot.memo(_kinematics, lambda: (file, *moveit.kinematics(file)) if file is not None
+                      else (None, [], []))
+
+
+def _limits(robot):
+    """(MoveIt's joint_limits.yaml, its entries, its problems), read once per robot."""
+    file = companions(robot).planning_limits
+    return robot.memo(_limits, lambda: (file, *moveit.planning_limits(file)) if file is not None
+                      else (None, [], []))
+
+
+def _controller_files(robot):
+    found = companions(robot)
+    return [*found.controllers, *found.moveit_controllers]
+
+
+def _moveit_controllers(robot):
+    def read():
+        entries, problems = [], []
+        for file in _controller_files(robot):
+            listed, bad = moveit.moveit_controllers(file)
+            entries += listed
+            problems += [(file, line, message) for line, message in bad]
+        return entries, problems
+    return robot.memo(_moveit_controllers, read)
+
+
+def _srdf_groups(robot):
+    srdf = companions(robot).srdf
+    if srdf is None or srdf.root is None:
+        return None
+    from urdftool.kinematics.groups import groups, tree
+
+    return srdf, tree(robot, srdf.root), groups(robot, srdf.root)
+
+
+@rule("U812", "malformed-moveit-config", Severity.ERROR)
+def malformed_moveit_config(robot):
+    """MoveIt's kinematics.yaml, joint_limits.yaml or controller list is malformed.
+
+    A YAML syntax error, a wrong layout, a misspelt key or a value of the wrong kind: MoveIt
+    cannot read the file as meant.
+
+    Reported at the line of the key (or where YAML failed). MoveIt ignores a key it does not
+    know (``max_velocty``), and with ``has_velocity_limits: true`` and no ``max_velocity`` it
+    plans without the limit the file meant to set.
+
+    Bad: ``kinematics_solver_timeout: fast``; ``max_velocty: 1.0``;
+    ``controller_names: [arm_controller]`` without an ``arm_controller:`` block
+    Good: ``kinematics_solver_timeout: 0.005``; ``max_velocity: 1.0``
+    """
+    for file, _, problems in (_kinematics(robot), _limits(robot)):
+        for line, message in problems:
+            yield file.at(line), message
+    for file, line, message in _moveit_controllers(robot)[1]:
+        yield file.at(line), message
+    for file in companions(robot).moveit_controllers:
+        if file.problem:
+            yield file.at(file.line), file.problem
+
+
+@rule("U813", "kinematics-unknown-group", Severity.ERROR)
+def kinematics_unknown_group(robot):
+    """kinematics.yaml configures a group that the SRDF does not define.
+
+    MoveIt looks up a solver for each SRDF group by name and ignores other entries: the group
+    meant (often a misspelt name) gets no IK solver and cannot be planned to a pose.
+
+    Bad: ``left_am: {kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin}``
+    Good: ``left_arm:``, the SRDF's ``<group name="left_arm">``
+    """
+    file, entries, _ = _kinematics(robot)
+    found = _srdf_groups(robot)
+    if file is None or found is None:
+        return
+    names = {element.get("name") for element in found[0].root.iterfind("group")}
+    for entry in entries:
+        if entry.group not in names:
+            yield file.at(entry.line), (f"kinematics.yaml configures group '{entry.group}', which "
+                                        f"the SRDF does not define; {available('groups', entry.group, names)}")
+
+
+@rule("U814", "kinematics-group-not-chain", Severity.ERROR)
+def kinematics_group_not_chain(robot):
+    """A group solved by KDL (or LMA) is not one serial chain.
+
+    MoveIt's KDL plugin (``kdl_kinematics_plugin/KDLKinematicsPlugin``, the Setup Assistant's
+    default) solves only a group whose joints form one unbranched path down the tree, each with
+    one variable; otherwise it refuses the group ("Group 'x' is not a chain") or solves the
+    wrong chain. Reported, naming the links involved:
+
+    - a chain written backwards (its base below its tip) or across two branches (the tip does
+      not descend from the base): at the ``<chain>``;
+    - a gap (a moving joint of the path left out of a joint or link list): at the ``<group>``;
+    - a tree (the group branches, e.g. both arms), a floating or planar joint, or no moving
+      joint: at the group's kinematics.yaml entry (pick another solver, or split the group).
+
+    A link in a group stands for its parent joint, a chain for the joints from its tip up to
+    its base, a subgroup for its joints (as MoveIt builds groups). A group with an unknown
+    member is left to U803-U805; a group without ``kinematics_solver`` has no solver in MoveIt
+    and is not checked.
+
+    Bad: ``<chain base_link="tool0" tip_link="base_link"/>`` with KDL
+    Good: ``<chain base_link="base_link" tip_link="tool0"/>``
+    """
+    file, entries, _ = _kinematics(robot)
+    found = _srdf_groups(robot)
+    if file is None or found is None:
+        return
+    from urdftool.kinematics.groups import serial_problems
+
+    srdf, model, groups = found
+    for entry in entries:
+        group = groups.get(entry.group)
+        if entry.solver not in moveit.CHAIN_SOLVERS or group is None or not group.complete:
+            continue
+        solver = entry.solver.split("/")[-1]
+        for shape in serial_problems(model, group, robot.links):
+            where = (file.at(entry.solver_line) if shape.kind in ("tree", "multi-dof", "empty")
+                     else srdf.at(shape.element.sourceline))
+            yield where, (f"group '{group.name}' is solved by {solver} (kinematics.yaml line "
+                          f"{entry.solver_line}) but is not one serial chain: {shape.message}")
+
+
+@rule("U815", "moveit-limits-unknown-joint", Severity.WARNING)
+def moveit_limits_unknown_joint(robot):
+    """MoveIt's joint_limits.yaml sets limits for a joint the URDF does not have.
+
+    MoveIt reads limits only for the robot's joints: the entry (often a misspelt or renamed
+    joint) is ignored and the joint meant keeps the URDF's limits.
+
+    Bad: ``joint_limits: {elbw: {has_velocity_limits: true, max_velocity: 1.0}}``
+    Good: ``elbow:``
+    """
+    file, entries, _ = _limits(robot)
+    for entry in entries:
+        if entry.joint not in robot.joints:
+            yield file.at(entry.line), (f"joint_limits.yaml sets limits for joint '{entry.joint}', "
+                                        f"which is not in the URDF; {available('joints', entry.joint, robot.joints)}")
+
+
+def _urdf_limit(joint, key: str) -> float | None:
+    limit = joint.find("limit")
+    if limit is None or limit.get(key) is None:
+        return None
+    values, problem = parse_numbers(limit.get(key), 1)
+    return None if problem else values[0]
+
+
+@rule("U816", "moveit-limits-exceed-urdf", Severity.ERROR)
+def moveit_limits_exceed_urdf(robot):
+    """MoveIt's joint_limits.yaml allows more than the URDF's ``<limit>``.
+
+    A higher ``max_velocity`` or ``max_effort``, or a position range beyond ``lower``/``upper``.
+
+    MoveIt plans with the YAML's limits, so it produces trajectories the controllers and the
+    hardware reject (or that drive the joint into its stop). The YAML may only tighten the
+    URDF's limits. Only limits switched on (``has_velocity_limits: true``, ...) count.
+
+    Bad: ``max_velocity: 3.0`` for a joint with ``<limit velocity="2.0" .../>``
+    Good: ``max_velocity: 2.0`` or less
+    """
+    file, entries, _ = _limits(robot)
+    for entry in entries:
+        joint = robot.joints.get(entry.joint)
+        if joint is None or joint.get("type") not in MOVING:
+            continue
+        checks = [("max_velocity", "velocity", 1), ("max_effort", "effort", 1)]
+        if joint.get("type") in LIMITED:
+            checks += [("max_position", "upper", 1), ("min_position", "lower", -1)]
+        for key, attribute, sign in checks:
+            mine, urdf = entry.values.get(key), _urdf_limit(joint, attribute)
+            if mine is None or urdf is None:
+                continue
+            if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)):
+                what, bound = ("above", "at most") if sign > 0 else ("below", "at least")
+                yield file.at(entry.lines[key]), (
+                    f"joint '{entry.joint}': MoveIt's {key} {mine:g} is {what} the URDF's "
+                    f"<limit {attribute}=\"{urdf:g}\">, so MoveIt would plan beyond what the "
+                    f"joint allows; use {bound} {urdf:g}")
+
+
+def _ros_control(robot) -> dict[str, set[str]]:
+    return robot.memo(_ros_control, lambda: moveit.ros_control_controllers(_controller_files(robot)))
+
+
+@rule("U817", "moveit-controller-unknown", Severity.ERROR)
+def moveit_controller_unknown(robot):
+    """MoveIt's controller list names a controller that ros_control does not declare.
+
+    MoveIt sends each trajectory to ``<name>/<action_ns>``; with no such controller running,
+    execution fails ("Action client not connected"). Checked only when ros_control controllers
+    are declared in the YAML the robot is checked with (a namespace before the name is ignored).
+
+    Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
+    ``arm_trajectory_controller``
+    Good: the same name in both
+    """
+    declared = _ros_control(robot)
+    if not declared:
+        return
+    for entry in _moveit_controllers(robot)[0]:
+        name = entry.name.strip("/").split("/")[-1]
+        if name not in declared:
+            yield entry.file.at(entry.line), (
+                f"MoveIt controller '{entry.name}' is not a ros_control controller of this robot; "
+                f"{available('controllers', name, declared)}")
+
+
+@rule("U818", "moveit-controller-joints", Severity.ERROR)
+def moveit_controller_joints(robot):
+    """A MoveIt controller lists other joints than the ros_control controller of that name.
+
+    MoveIt splits a trajectory by the joints it believes each controller has; the controller
+    rejects a goal naming joints it does not control, and joints it controls but MoveIt does not
+    list are never commanded. For a ``GripperCommand`` controller (gripper_action_controller
+    takes one ``joint:``) the ros_control joint need only be among MoveIt's.
+
+    Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
+    Good: the same joints (in any order)
+    """
+    declared = _ros_control(robot)
+    for entry in _moveit_controllers(robot)[0]:
+        theirs = declared.get(entry.name.strip("/").split("/")[-1])
+        if not theirs:
+            continue
+        mine = {name for name, _ in entry.joints}
+        gripper = entry.type == "GripperCommand"
+        if (theirs <= mine) if gripper else (theirs == mine):
+            continue
+        missing, extra = sorted(theirs - mine), sorted(mine - theirs)
+        parts = ([f"lacks {', '.join(missing)}"] if missing else []) + \
+                ([f"adds {', '.join(extra)}"] if extra and not gripper else [])
+        yield entry.file.at(entry.joints_line), (
+            f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the ros_control "
+            f"controller's joints ({', '.join(sorted(theirs))})")
