@@ -102,9 +102,18 @@ def command_interfaces(robot) -> dict[str, set]:
                 _, kind = interface_kind(interface.text)
                 if kind:
                     kinds.add(kind)
+    for name, kinds in ros2_command_interfaces(robot).items():
+        offered.setdefault(name, set()).update(kinds)
+    return offered
+
+
+def ros2_command_interfaces(robot) -> dict[str, set]:
+    """Joint name -> command interfaces its ``<ros2_control>`` entries offer: all a ROS 2
+    controller can claim (ros2_control reads no transmission outside ``<ros2_control>``)."""
+    offered: dict[str, set] = {}
     for _, joint in ros2_control_joints(robot):
-        kinds = offered.setdefault(joint.get("name"), set())
-        kinds.update(c.get("name") for c in joint.findall("command_interface") if c.get("name"))
+        offered.setdefault(joint.get("name"), set()).update(
+            c.get("name") for c in joint.findall("command_interface") if c.get("name"))
     return offered
 
 

@@ -130,11 +130,16 @@ def is_spec(data) -> bool:
     return isinstance(data, dict) and "unit" in data and "joints" in data
 
 
+_CONTROLLER_KEYS = ("controller_manager", "controller_list", "controller_names",
+                    "moveit_simple_controller_manager")
+
+
 def looks_like_controllers(data, depth: int = 0) -> bool:
-    """A controller configuration: ``type: pkg/Class`` in some mapping, or ``controller_manager``."""
+    """A controller configuration: ``type: pkg/Class`` in some mapping, a ``controller_manager``,
+    or MoveIt's ``controller_list``/``controller_names``/``moveit_simple_controller_manager``."""
     if not isinstance(data, dict) or depth > 6:
         return False
-    if "controller_manager" in data or "controller_list" in data:
+    if any(key in data for key in _CONTROLLER_KEYS):
         return True
     kind = data.get("type")
     if isinstance(kind, str) and "/" in kind:

@@ -125,9 +125,14 @@ def test_r2d2_joint_renamed_in_controller_yaml(tmp_path):
 
 
 def test_r2d2_ros2_control_and_transmission_swapped_to_velocity(tmp_path):
+    # the ROS 1 transmission still offers position, but ros2_control reads only <ros2_control>
     findings = broken_copy(tmp_path, "r2d2", "r2d2.urdf.xacro",
                            '<command_interface name="position"/>', '<command_interface name="velocity"/>')
-    assert findings == []  # the ROS 1 transmission still offers position
+    assert [(f.code, f.line) for f in findings] == [
+        ("U604", line_of(ROBOTS / "r2d2/config/head_controller.yaml", "- head_joint"))]
+    assert findings[0].message.endswith(
+        "offers velocity; use velocity_controllers/JointGroupVelocityController, or make the joint "
+        "offer position (a position command interface in its <ros2_control> joint)")
     findings = broken_copy(tmp_path / "2", "r2d2", "r2d2.urdf.xacro",
                            'actuator="head_motor" interface="Position"', 'actuator="head_motor" interface="Velocity"')
     assert findings == []  # ros2_control still offers position

@@ -2,119 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
+from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
+                                            transmission_joints, transmissions)
 from urdftool.description.companions import companions
-from urdftool.description.documents import YamlFile, YamlList, YamlMap
-from urdftool.lint.catalogue import Severity, rule
-from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
+from urdftool.description.controller_classes import classes, lookup
+from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
 from urdftool.errors import available
-
-STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
-STATE_CLASSES = ("StateController", "StateBroadcaster")
-JOINT_KEYS = ("joints", "joint", "joint_names", "left_wheel", "right_wheel", "left_wheel_names",
-              "right_wheel_names")
-SINGLE_INTERFACE = {
-    "position_controllers": "position", "velocity_controllers": "velocity",
-    "effort_controllers": "effort", "pos_vel_controllers": "position",
-    "pos_vel_acc_controllers": "position", "diff_drive_controller": "velocity",
-}
-
-
-@dataclass
-class Controller:
-    """One controller of a YAML file: where its ``type`` is, its joints and their lines."""
-
-    file: YamlFile
-    name: str
-    type: str
-    line: int
-    joints: list = field(default_factory=list)  # (name, line)
-    settings: dict = field(default_factory=dict)
-
-    @property
-    def package(self) -> str:
-        return self.type.split("/")[0]
-
-    @property
-    def is_state(self) -> bool:
-        return self.package in STATE_PACKAGES or self.type.endswith(STATE_CLASSES)
-
-    def interfaces(self) -> list[str] | None:
-        """Command interfaces it claims on each joint, or None when the type is not known."""
-        if self.package in SINGLE_INTERFACE:
-            return [SINGLE_INTERFACE[self.package]]
-        if self.package == "joint_trajectory_controller":
-            claimed = self.settings.get("command_interfaces")
-            return [str(c) for c in claimed] if isinstance(claimed, list) else None
-        if self.package == "forward_command_controller":
-            claimed = self.settings.get("interface_name")
-            return [claimed] if isinstance(claimed, str) else None
-        return None
-
-
-def controllers(robot) -> list[Controller]:
-    """Every controller in the robot's controller YAML files (parsed once per robot)."""
-    return robot.memo(controllers, lambda: [c for f in companions(robot).controllers
-                                            if f.problem is None for c in _file_controllers(f)])
-
-
-def _file_controllers(file: YamlFile) -> list[Controller]:
-    declared, parameters = [], {}
-    seen: set[int] = set()
-
-    def walk(node):
-        if not isinstance(node, dict) or id(node) in seen:
-            return
-        seen.add(id(node))
-        for key, value in node.items():
-            if not isinstance(value, dict):
-                continue
-            kind = value.get("type")
-            if isinstance(kind, str) and "/" in kind:
-                declared.append((str(key), value, node.lines.get(key, node.line)))
-            if isinstance(value.get("ros__parameters"), dict):
-                parameters[str(key).split("/")[-1]] = value["ros__parameters"]
-            walk(value)
-
-    if isinstance(file.data, dict) and isinstance(file.data.get("type"), str) and "/" in file.data["type"]:
-        declared.append((file.path.name.split(".")[0], file.data, file.data.lines["type"]))
-    walk(file.data)
-    found = _moveit_controllers(file)
-    for name, declaration, line in declared:
-        settings = {**declaration, **parameters.get(name, {})}
-        source = parameters.get(name, declaration)
-        controller = Controller(file, name, declaration["type"], line, settings=settings)
-        for key in JOINT_KEYS:
-            holder = source if key in source else declaration
-            controller.joints.extend(_names_at(holder, key))
-        found.append(controller)
-    return found
-
-
-def _moveit_controllers(file: YamlFile) -> list[Controller]:
-    """MoveIt's ``controller_list`` (moveit_config/config/ros_controllers.yaml): names and joints."""
-    listed = file.data.get("controller_list") if isinstance(file.data, dict) else None
-    if not isinstance(listed, YamlList):
-        return []
-    found = []
-    for entry, line in zip(listed, listed.lines):
-        if isinstance(entry, YamlMap) and "joints" in entry:
-            controller = Controller(file, str(entry.get("name", "?")),
-                                    f"moveit/{entry.get('type', '?')}", line)
-            controller.joints = _names_at(entry, "joints")
-            found.append(controller)
-    return found
-
-
-def _names_at(mapping, key) -> list[tuple[str, int]]:
-    value = mapping.get(key) if isinstance(mapping, dict) else None
-    line = mapping.lines.get(key, mapping.line) if isinstance(mapping, YamlMap) else None
-    if isinstance(value, str):
-        return [(value, line)]
-    if isinstance(value, YamlList):
-        return [(str(item), at) for item, at in zip(value, value.lines) if isinstance(item, str)]
-    return []
+from urdftool.lint.catalogue import Severity, rule
 
 
 def _substituted(name: str) -> bool:
@@ -123,7 +18,17 @@ def _substituted(name: str) -> bool:
 
 
 def _label(controller: Controller) -> str:
-    return f"controller '{controller.name}' ({controller.type})"
+    return f"controller '{controller.name}' ({controller.type or 'no type'})"
+
+
+def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
+    """The names a controller holds that are meant as URDF joints: all of them for a known
+    class; for a class nothing is known about (a vendor's), only when some of them are URDF
+    joints (its ``joint: tcp`` may be a hardware interface prefix, not a joint)."""
+    refs = [ref for ref in controller.joints() if not _substituted(ref.name)]
+    if controller.known or any(ref.name in robot.joints for ref in refs):
+        return refs
+    return []
 
 
 @rule("U601", "malformed-controllers-yaml", Severity.ERROR)
@@ -132,7 +37,9 @@ def malformed_controllers_yaml(robot):
 
     The controller manager cannot load its parameters, so no controller starts. Files given
     with ``--controllers`` must hold at least one controller (a mapping with
-    ``type: package/Class``) or a ``controller_manager`` section.
+    ``type: package/Class``), a ``controller_manager`` section, or MoveIt's
+    ``controller_list``/``controller_names``; a name MoveIt's ``controller_names`` lists needs
+    its own mapping (``type``, ``action_ns``, ``joints``) beside the list.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
@@ -141,27 +48,42 @@ def malformed_controllers_yaml(robot):
     for file in companions(robot).controllers:
         if file.problem:
             yield file.at(file.line), file.problem
-        elif explicit and not _file_controllers(file) and not (
-                isinstance(file.data, dict) and "controller_manager" in file.data):
+    for read in controller_files(robot):
+        file = read.file
+        for controller in read.controllers:
+            if controller.layout == "moveit" and controller.params is None:
+                yield file.at(controller.line), (
+                    f"MoveIt's controller_names lists '{controller.name}', but there is no "
+                    f"'{controller.name}:' mapping beside the list (with type, action_ns and joints)")
+        if explicit and not read.controllers and not _has_manager(read):
             yield file.at(1), (f"{file.display} names no controller (a mapping with "
                                "'type: package/Class', e.g. joint_state_broadcaster/JointStateBroadcaster)")
+
+
+def _has_manager(read) -> bool:
+    return (isinstance(read.file.data, dict) and "controller_manager" in read.file.data) or any(
+        block.name == "controller_manager" for block in read.blocks)
 
 
 @rule("U602", "controller-unknown-joint", Severity.ERROR)
 def controller_unknown_joint(robot):
     """A controller names a joint that is not in the URDF.
 
-    The controller fails to configure ("Could not find resource 'X'").
+    The controller fails to configure ("Could not find resource 'X'"). Joints are read from the
+    parameters the controller's class reads (``joints``, ``joint``, ``left_wheel_names``, ...; see
+    the class table). A class nothing is known about (a vendor's) is checked only when some of
+    its ``joint``/``joints``/``joint_names`` are URDF joints: its ``joint: tcp`` may name a
+    hardware interface prefix, not a joint.
 
     Bad: ``joints: [head_jont]``
     Good: ``joints: [head_joint]``
     """
     for controller in controllers(robot):
-        for name, line in controller.joints:
-            if name not in robot.joints and not _substituted(name):
-                yield controller.file.at(line), (
-                    f"{_label(controller)} names joint '{name}', which is not in the URDF; "
-                    f"{available('joints', name, robot.joints)}")
+        for ref in _urdf_joints(robot, controller):
+            if ref.name not in robot.joints:
+                yield controller.file.at(ref.line), (
+                    f"{_label(controller)} names joint '{ref.name}', which is not in the URDF; "
+                    f"{available('joints', ref.name, robot.joints)}")
 
 
 @rule("U603", "controller-joint-not-actuated", Severity.ERROR)
@@ -180,14 +102,14 @@ def controller_joint_not_actuated(robot):
     for controller in controllers(robot):
         if controller.is_state:
             continue
-        for name, line in controller.joints:
-            joint = robot.joints.get(name)
-            if joint is None or name in offered:
+        for ref in _urdf_joints(robot, controller):
+            joint = robot.joints.get(ref.name)
+            if joint is None or ref.name in offered:
                 continue
             what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
                     else "has no transmission or ros2_control joint; add one for it, or remove "
                          "it from the controller")
-            yield controller.file.at(line), f"{_label(controller)}: joint '{name}' {what}"
+            yield controller.file.at(ref.line), f"{_label(controller)}: joint '{ref.name}' {what}"
 
 
 @rule("U604", "controller-interface-mismatch", Severity.ERROR)
@@ -196,7 +118,10 @@ def controller_interface_mismatch(robot):
 
     position_controllers/* need a PositionJointInterface (or a ``position`` command interface),
     velocity_controllers/* a velocity one, effort_controllers/* an effort one;
-    joint_trajectory_controller uses its ``command_interfaces``.
+    joint_trajectory_controller uses its ``command_interfaces``, forward_command_controller its
+    ``interface_name``, diff_drive_controller velocity on its wheels. A ROS 2 controller gets
+    only what the joint's ``<ros2_control>`` entry offers (ros2_control does not read
+    transmissions outside ``<ros2_control>``).
 
     Bad: ``position_controllers/JointTrajectoryController`` on a joint with
     ``hardware_interface/VelocityJointInterface``
@@ -204,43 +129,69 @@ def controller_interface_mismatch(robot):
     ``hardware_interface/PositionJointInterface`` in its transmission
     """
     offered = command_interfaces(robot)
+    ros2 = ros2_command_interfaces(robot)
     unknown = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)
                if any(not interface_kind(i.text)[0] for i in joint.interfaces)}  # U503
     for controller in controllers(robot):
         claimed = controller.interfaces()
         if not claimed or controller.is_state:
             continue
-        for name, line in controller.joints:
-            if name not in offered or name not in robot.joints or name in unknown:
+        for ref in _urdf_joints(robot, controller):
+            name = ref.name
+            if controller.ros == 2 and name in ros2:
+                has_set = ros2[name]
+            elif name in offered and name not in unknown:
+                has_set = offered[name]
+            else:
                 continue
-            missing = [c for c in claimed if c not in offered[name]]
+            if name not in robot.joints:
+                continue
+            missing = [c for c in claimed if c not in has_set]
             if missing:
-                has = ", ".join(sorted(offered[name])) or "no command interface (read-only)"
-                yield controller.file.at(line), (
+                has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
+                yield controller.file.at(ref.line), (
                     f"{_label(controller)} commands {'/'.join(missing)} on joint '{name}', which "
-                    f"offers {has}; {_interface_fix(controller, offered[name], missing)}")
-
-
-# Controller classes that position_, velocity_ and effort_controllers all provide (ROS 1).
-_IN_EVERY_PACKAGE = ("JointPositionController", "JointTrajectoryController")
+                    f"offers {has}; {_interface_fix(controller, has_set, missing)}")
 
 
 def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> str:
     """What would be right: a controller for what the joint offers, or the joint offering more."""
     kinds = sorted(offered & {"position", "velocity", "effort"})
-    if controller.package == "joint_trajectory_controller" and kinds:
-        use = f"set command_interfaces to [{', '.join(kinds)}]"
-    elif controller.package == "forward_command_controller" and kinds:
-        use = f"set interface_name to {kinds[0]}"
-    elif controller.package in SINGLE_INTERFACE and kinds:
-        kind_class = controller.type.split("/")[-1]
-        shown = kind_class if kind_class in _IN_EVERY_PACKAGE else "..."
-        use = "use " + " or ".join(f"{kind}_controllers/{shown}" for kind in kinds)
+    known = controller.cls
+    wanted = missing[0]
+    param = known.commands[1:] if known and known.commands and known.commands.startswith("@") else None
+    if param and kinds:
+        use = (f"set {param} to [{', '.join(kinds)}]" if param.endswith("s")
+               else f"set {param} to {kinds[0]}")
+    elif known and kinds and _alternatives(controller, kinds):
+        use = "use " + " or ".join(_alternatives(controller, kinds))
+    elif known and known.package == "diff_drive_controller":
+        use = "drive the wheels through velocity"
     else:
         use = "change the controller"
-    wanted = missing[0]
-    return (f"{use}, or make the joint offer {wanted} ({wanted.capitalize()}JointInterface in its "
-            f"transmission, or a {wanted} command interface in <ros2_control>)")
+    if controller.ros == 2:
+        offer = f"a {wanted} command interface in its <ros2_control> joint"
+    else:
+        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or a {wanted} command "
+                 "interface in <ros2_control>")
+    return f"{use}, or make the joint offer {wanted} ({offer})"
+
+
+def _alternatives(controller: Controller, kinds: list[str]) -> list[str]:
+    """Classes of the controller's ROS version doing the same job through ``kinds``:
+    ``velocity_controllers/JointTrajectoryController`` for ROS 1's position one,
+    ``velocity_controllers/JointGroupVelocityController`` for ROS 2's JointGroupPositionController."""
+    table = classes(controller.ros)
+    claimed = controller.cls.commands or ""
+    shown = controller.type.split("/")[-1]
+    found = []
+    for kind in kinds:
+        for name in (f"{kind}_controllers/{shown}",
+                     f"{kind}_controllers/{shown.replace(claimed.capitalize(), kind.capitalize())}"):
+            if name in table and table[name].commands == kind and name not in found:
+                found.append(name)
+                break
+    return found
 
 
 @rule("U605", "no-joint-state-controller", Severity.WARNING)
@@ -248,12 +199,13 @@ def no_joint_state_controller(robot):
     """The controller configuration has no joint state broadcaster or controller.
 
     Without joint_state_broadcaster (ROS 2) or joint_state_controller (ROS 1) nothing publishes
-    /joint_states, so robot_state_publisher and RViz show the robot frozen.
+    /joint_states, so robot_state_publisher and RViz show the robot frozen. MoveIt's controller
+    lists are not counted: MoveIt does not publish joint states.
 
     Bad: only ``head_controller`` in the YAML
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
-    found = [c for c in controllers(robot) if c.package != "moveit"]
+    found = [c for c in controllers(robot) if c.layout != "moveit"]
     if found and not any(c.is_state for c in found):
         first = found[0]
         yield first.file.at(first.line), (
