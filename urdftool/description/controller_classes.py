@@ -180,6 +180,23 @@ CLASSES: tuple[ControllerClass, ...] = (
 # their ``joints`` are URDF joints (moveit_simple_controller_manager, MoveIt 1 and 2).
 MOVEIT_TYPES = ("FollowJointTrajectory", "GripperCommand")
 
+# What replaces a class in the other ROS version (name in ROS x -> the class ROS y has).
+COUNTERPARTS = {
+    (1, "effort_controllers/JointEffortController"): "effort_controllers/JointGroupEffortController",
+    (1, "effort_controllers/JointTrajectoryController"):
+        "joint_trajectory_controller/JointTrajectoryController (command_interfaces: [effort])",
+    (1, "joint_state_controller/JointStateController"): "joint_state_broadcaster/JointStateBroadcaster",
+    (1, "position_controllers/JointPositionController"): "position_controllers/JointGroupPositionController",
+    (1, "position_controllers/JointTrajectoryController"):
+        "joint_trajectory_controller/JointTrajectoryController (command_interfaces: [position])",
+    (1, "velocity_controllers/JointTrajectoryController"):
+        "joint_trajectory_controller/JointTrajectoryController (command_interfaces: [velocity])",
+    (1, "velocity_controllers/JointVelocityController"): "velocity_controllers/JointGroupVelocityController",
+    (2, "joint_state_broadcaster/JointStateBroadcaster"): "joint_state_controller/JointStateController",
+    (2, "joint_trajectory_controller/JointTrajectoryController"):
+        "position_controllers/JointTrajectoryController (or velocity_/effort_controllers/...)",
+}
+
 _BY_VERSION = {ros: {c.name: c for c in CLASSES if c.ros == ros} for ros in (1, 2)}
 PACKAGES = {ros: {c.package for c in CLASSES if c.ros == ros} for ros in (1, 2)}
 

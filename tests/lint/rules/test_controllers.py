@@ -26,6 +26,7 @@ ROS2_YAML = """\
           - head_joint
         command_interfaces: [{claim}]
         interface_name: {claim}
+        state_interfaces: [position]
     """
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
                                             transmission_joints, transmissions)
 from urdftool.description.companions import companions
-from urdftool.description.controller_classes import classes, lookup
+from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
 from urdftool.errors import available
 from urdftool.lint.catalogue import Severity, rule
@@ -212,3 +212,122 @@ def no_joint_state_controller(robot):
             f"no joint state broadcaster/controller among {len(found)} controllers in "
             f"{', '.join(sorted({c.file.display for c in found}))}; add joint_state_broadcaster/"
             "JointStateBroadcaster (ROS 2) or joint_state_controller/JointStateController (ROS 1)")
+
+
+_ROS = {1: "ROS 1 (ros_control)", 2: "ROS 2 (ros2_control)"}
+
+
+def _version_reason(controller: Controller) -> str:
+    return ("the file has ros__parameters, so it is a ROS 2 parameter file" if controller.ros == 2
+            else "the file has no ros__parameters, so it is a ROS 1 (rosparam) file")
+
+
+@rule("U606", "controller-unknown-class", Severity.ERROR)
+def controller_unknown_class(robot):
+    """A controller's ``type`` is not a class of its controller manager's ROS version.
+
+    The controller manager cannot load it ("Loader for controller 'x' not found").
+    A file with ``ros__parameters`` is read by ROS 2's controller_manager, any other by ROS 1's
+    ros_control; each has its own classes (ROS 1's
+    ``position_controllers/JointPositionController`` is ROS 2's
+    ``position_controllers/JointGroupPositionController``). Classes are checked for the packages
+    of ros_controllers and ros2_controllers (see the class table,
+    ``urdftool/description/controller_classes.py``, with the plugin XML of each); a vendor's
+    package is not. MoveIt's simple controller manager knows ``FollowJointTrajectory`` and
+    ``GripperCommand``.
+
+    Bad: ``type: position_controllers/JointPositionController`` under ``ros__parameters``
+    Good: ``type: position_controllers/JointGroupPositionController``
+    """
+    for controller in controllers(robot):
+        if controller.layout == "moveit":
+            if controller.params is not None and controller.type not in MOVEIT_TYPES:
+                yield controller.file.at(controller.where("type")), (
+                    f"MoveIt controller '{controller.name}' has type '{controller.type}'; MoveIt's "
+                    f"simple controller manager knows {' and '.join(MOVEIT_TYPES)}")
+            continue
+        if controller.cls is not None or not known_package(controller.type):
+            continue
+        other = 3 - controller.ros
+        if lookup(controller.type, other) is not None:
+            instead = COUNTERPARTS.get((other, controller.type))
+            yield controller.file.at(controller.line), (
+                f"{controller.type} is a {_ROS[other]} class, and {_version_reason(controller)}; "
+                + (f"{_ROS[controller.ros]} has {instead}" if instead
+                   else f"{available('classes', controller.type, classes(controller.ros))}"))
+        else:
+            yield controller.file.at(controller.line), (
+                f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
+                f"{available('classes', controller.type, classes(controller.ros))}")
+
+
+@rule("U607", "controller-missing-parameter", Severity.ERROR)
+def controller_missing_parameter(robot):
+    """A controller lacks a parameter its class needs, or writes it under the other ROS's key.
+
+    ROS 2 controllers read their parameters from their own ``NAME: ros__parameters:`` block
+    (or a ``/**`` block); a controller declared in the controller_manager without one has
+    none. ROS 2's classes read ``joints:`` (a list) where ROS 1's single-joint controllers read
+    ``joint:`` (ROS 1's ``position_controllers/JointPositionController`` ignores a ``joints:``
+    list); joint_trajectory_controller needs ``joints``, ``command_interfaces`` and
+    ``state_interfaces``; diff_drive_controller its wheel names, ``wheel_separation`` and
+    ``wheel_radius``.
+
+    Bad: ``head_controller: {type: position_controllers/JointPositionController, joints: [head]}``
+    Good: ``joint: head``
+    """
+    blocks = {block.name for read in controller_files(robot) for block in read.blocks}
+    for controller in controllers(robot):
+        known = controller.cls
+        if known is None:
+            continue
+        params = controller.params or {}
+        if controller.layout == "ros2" and controller.block_line is None and controller.name not in blocks:
+            if known.required:
+                yield controller.file.at(controller.line), (
+                    f"{_label(controller)} is declared but has no '{controller.name}: "
+                    f"ros__parameters:' block, and {known.name.split('/')[-1]} needs "
+                    f"{', '.join(known.required)}; add the block")
+            continue
+        misplaced = set()
+        for key, shape in known.joints.items():
+            other = {"joints": "joint", "joint": "joints"}.get(key)
+            if key not in params and other in params and other not in known.joints:
+                misplaced.add(key)
+                reads = ("joints: (a list)" if key == "joints" else "joint: (one name)")
+                yield controller.file.at(controller.where(other)), (
+                    f"{_label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
+                    f"its {other}: is ignored; write {key}: instead")
+        missing = [key for key in known.required if key not in params and key not in misplaced]
+        if missing:
+            yield controller.file.at(controller.block_line or controller.line), (
+                f"{_label(controller)} has no {', '.join(missing)}; {known.name} does not "
+                "configure without " + ("it" if len(missing) == 1 else "them"))
+
+
+_CONTROLLER_PARAMETERS = ("joints", "joint", "interface_name", "command_interfaces",
+                          "left_wheel_names", "right_wheel_names")
+
+
+@rule("U608", "controller-parameters-not-declared", Severity.WARNING)
+def controller_parameters_not_declared(robot):
+    """A ROS 2 controller's parameter block names no controller the controller_manager declares.
+
+    ``arm_controler: ros__parameters: {joints: ...}`` beside a controller_manager that declares
+    ``arm_controller`` configures nothing: the controller starts without its joints. Checked
+    when one of the robot's controller files declares controllers in a controller_manager.
+
+    Bad: ``head_controler: ros__parameters:`` when the manager declares ``head_controller``
+    Good: the same name in both places
+    """
+    declared = {c.name for c in controllers(robot) if c.layout == "ros2"}
+    if not declared:
+        return
+    for read in controller_files(robot):
+        for block in read.blocks:
+            if block.name in declared or block.name in ("*", "**", "controller_manager"):
+                continue
+            if any(key in block.params for key in _CONTROLLER_PARAMETERS):
+                yield read.file.at(block.line), (
+                    f"'{block.name}: ros__parameters:' configures a controller no controller_manager "
+                    f"declares; {available('controllers', block.name, declared)}")
