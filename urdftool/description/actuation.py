@@ -117,6 +117,15 @@ def ros2_command_interfaces(robot) -> dict[str, set]:
     return offered
 
 
+def ros2_state_interfaces(robot) -> dict[str, set]:
+    """Joint name -> state interfaces its ``<ros2_control>`` entries offer."""
+    offered: dict[str, set] = {}
+    for _, joint in ros2_control_joints(robot):
+        offered.setdefault(joint.get("name"), set()).update(
+            c.get("name") for c in joint.findall("state_interface") if c.get("name"))
+    return offered
+
+
 def control_plugin(robot):
     """The element that makes a simulator or ros2_control read the transmissions, or None."""
     blocks = robot.children("ros2_control")
@@ -128,6 +137,30 @@ def control_plugin(robot):
             if any(name in text for name in CONTROL_PLUGINS):
                 return plugin
     return None
+
+
+DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
+WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")
+
+
+def gazebo_plugins(robot):
+    """Every ``<plugin>`` inside a ``<gazebo>`` block."""
+    for gazebo in robot.children("gazebo"):
+        yield from gazebo.iter("plugin")
+
+
+def diff_drive_plugins(robot):
+    """The Gazebo diff-drive plugins (gazebo_ros_diff_drive, gz-sim-diff-drive-system, ...)."""
+    for plugin in gazebo_plugins(robot):
+        text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+        if any(word in text for word in DIFF_DRIVE):
+            yield plugin
+
+
+def diff_drive_wheels(robot) -> set:
+    """Names of the joints a Gazebo diff-drive plugin drives (its left and right joints)."""
+    return {(element.text or "").strip() for plugin in diff_drive_plugins(robot)
+            for tag in WHEEL_JOINT_TAGS for element in plugin.findall(tag)}
 
 
 def moving_joints(robot) -> dict:

@@ -113,7 +113,8 @@ def test_yaml_alias_bomb_is_walked_once(tmp_path):
 def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
     findings = broken_copy(tmp_path, "humanoid", file, old, new)
     yaml = ROBOTS / "humanoid/config/controllers.yaml"
-    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings] == [
+    # (renaming a joint in joints: also leaves its constraints naming the old one: U609)
+    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings if f.code != "U609"] == [
         (code, True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
     assert message in findings[0].message
 

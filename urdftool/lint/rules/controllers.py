@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
-                                            transmission_joints, transmissions)
+                                            ros2_state_interfaces, transmission_joints, transmissions)
 from urdftool.description.companions import companions
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
@@ -331,3 +331,71 @@ def controller_parameters_not_declared(robot):
                 yield read.file.at(block.line), (
                     f"'{block.name}: ros__parameters:' configures a controller no controller_manager "
                     f"declares; {available('controllers', block.name, declared)}")
+
+
+_CONSTRAINT_SETTINGS = ("goal_time", "stopped_velocity_tolerance")
+_RATES = ("state_publish_rate", "action_monitor_rate")
+
+
+@rule("U609", "trajectory-controller-settings", Severity.ERROR)
+def trajectory_controller_settings(robot):
+    """A joint trajectory controller's settings contradict its joints or themselves.
+
+    Checked for joint_trajectory_controller (ROS 2) and ``*_controllers/JointTrajectoryController``
+    (ROS 1): a joint listed twice; ``constraints`` naming a joint the controller does not
+    command (its tolerance is never applied); ``constraints.goal_time`` below 0;
+    ``state_publish_rate`` or ``action_monitor_rate`` not above 0 (the controller refuses to
+    configure); a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry does not
+    offer.
+
+    Bad: ``constraints: {elbw: {goal: 0.1}}`` for ``joints: [shoulder, elbow]``
+    Good: ``constraints: {elbow: {goal: 0.1}}``
+    """
+    states = ros2_state_interfaces(robot)
+    for controller in controllers(robot):
+        if controller.cls is None or not controller.type.endswith("/JointTrajectoryController"):
+            continue
+        params, at = controller.params or {}, controller.file.at
+        joints = [ref for ref in controller.joints() if ref.key == "joints"]
+        names = [ref.name for ref in joints]
+        for index, ref in enumerate(joints):
+            if ref.name in names[:index]:
+                yield at(ref.line), f"{_label(controller)} lists joint '{ref.name}' twice; keep one"
+        constraints = params.get("constraints")
+        if isinstance(constraints, dict):
+            for key, value in constraints.items():
+                where = at(constraints.lines.get(key, controller.line))
+                if key == "goal_time":
+                    if _number(value) is not None and _number(value) < 0:
+                        yield where, (f"{_label(controller)}: constraints.goal_time is {value}; it "
+                                      "must be 0 or more (0: no limit)")
+                elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
+                        and not _substituted(str(key)):
+                    yield where, (f"{_label(controller)}: constraints name '{key}', which is not one "
+                                  f"of its joints; {available('joints', str(key), names)}")
+        for key in _RATES:
+            value = _number(params.get(key))
+            if value is not None and value <= 0:
+                yield at(controller.where(key)), (f"{_label(controller)}: {key} is {params[key]}; "
+                                                   "it must be above 0 [Hz]")
+        claimed = params.get("state_interfaces")
+        if controller.ros == 2 and isinstance(claimed, list):
+            for interface in dict.fromkeys(str(c) for c in claimed):
+                lacking = [name for name in dict.fromkeys(names)
+                           if name in states and interface not in states[name]]
+                if lacking:
+                    yield at(controller.where("state_interfaces")), (
+                        f"{_label(controller)} reads state interface {interface} of "
+                        f"{', '.join(lacking)}, which <ros2_control> does not offer there; add "
+                        f"<state_interface name=\"{interface}\"/> to "
+                        f"{'that joint' if len(lacking) == 1 else 'those joints'} or drop it "
+                        "from state_interfaces")
+
+
+def _number(value) -> float | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        return None

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
-                         moving_joints, ros2_control_joints, transmission_joints, transmissions)
+from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
+                                            interface_kind, is_ros2_form, moving_joints,
+                                            ros2_control_joints, transmission_joints, transmissions)
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
@@ -64,27 +65,34 @@ def unknown_hardware_interface(robot):
 
     ``hardware_interface/`` may be omitted (old Gazebo form). Vendor interfaces written
     ``package/Name`` (franka_hw/FrankaStateInterface) are accepted. Transmissions inside
-    ``<ros2_control>`` take their interfaces from the ros2_control joint instead.
+    ``<ros2_control>`` take their interfaces from the ros2_control joint instead. On a robot
+    with ``<ros2_control>``, ros2_control never reads this transmission (only ROS 1's
+    gazebo_ros_control does): the message says where the joint's ROS 2 interfaces are.
 
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
+    ros2 = {joint.get("name") for _, joint in ros2_control_joints(robot)}
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
             continue
         for joint in transmission_joints(transmission):
+            note = (f" (ros2_control does not read this ROS 1 transmission: joint '{joint.name}' "
+                    "takes its ROS 2 interfaces from its <ros2_control> <command_interface>s)"
+                    if joint.name in ros2 else "")
             if not joint.interfaces:
                 yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
                                       "<hardwareInterface>; e.g. hardware_interface/"
-                                      "PositionJointInterface")
+                                      f"PositionJointInterface{note}")
             for interface in joint.interfaces:
                 known, _ = interface_kind(interface.text)
                 if not known:
                     text = (interface.text or "").strip()
                     bare = text.split("/")[-1].split("::")[-1]
                     yield interface, (f"{_label(transmission)}: unknown hardware interface "
-                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}")
+                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}"
+                                      f"{note}")
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
@@ -164,7 +172,8 @@ def unactuated_joint(robot):
 
     With gazebo_ros_control or ``<ros2_control>``, only actuated joints are simulated as
     actuated and published: the joint never appears in /joint_states and falls limp.
-    Mimic joints are exempt.
+    Mimic joints are exempt, and so are the wheels a Gazebo diff-drive plugin drives (it
+    turns them and publishes their states itself).
 
     Bad: ``<ros2_control>`` lists head_joint but not the wheel joints
     Good: a transmission or a ros2_control ``<joint>`` for every revolute, continuous and
@@ -175,6 +184,7 @@ def unactuated_joint(robot):
         return
     actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
     actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
+    actuated.update(diff_drive_wheels(robot))
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
