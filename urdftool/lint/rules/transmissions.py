@@ -261,3 +261,69 @@ def ros2_control_no_plugin(robot):
             yield (hardware if hardware is not None else block), (
                 f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>; e.g. "
                 "gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem")
+
+
+_LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}
+_LIMIT_SLACK = 1e-6  # [rad, m, rad/s, N, ...] rounding in values a xacro computed
+
+
+@rule("U515", "ros2-control-limits", Severity.WARNING)
+def ros2_control_limits(robot):
+    """A ros2_control command interface's ``min``/``max`` goes beyond the joint's ``<limit>``.
+
+    ros2_control (and the hardware driver reading these parameters) lets commands through up
+    to ``min``/``max``, while the URDF, MoveIt and the joint limiters stop at ``<limit>``: a
+    position command the planner never produces is accepted, or a real arm is driven past
+    the range its description promises. Position is compared with ``lower``/``upper``
+    (not for continuous joints), velocity and effort with ``velocity``/``effort`` (a range
+    of ``-limit`` to ``limit``); ``min`` above ``max`` is reported too.
+
+    Bad: ``<param name="max">2.41</param>`` on a position interface of a joint with
+    ``upper="2.24"``
+    Good: ``<param name="max">2.24</param>``, or the same xacro property in both places
+    """
+    for _, joint in ros2_control_joints(robot):
+        target = robot.joints.get(joint.get("name"))
+        if target is None:
+            continue
+        limit = target.find("limit")
+        for interface in joint.findall("command_interface"):
+            kind = interface.get("name")
+            bounds = {p.get("name"): p for p in interface.findall("param") if p.get("name") in ("min", "max")}
+            values = {}
+            for name, element in bounds.items():
+                numbers, problem = parse_numbers(element.text, 1)
+                if not problem:
+                    values[name] = numbers[0]
+            if "min" in values and "max" in values and values["min"] > values["max"]:
+                yield bounds["min"], (f"ros2_control joint '{joint.get('name')}' {kind}: min "
+                                      f"{values['min']:g} is above max {values['max']:g}; swap them")
+                continue
+            allowed = _allowed_range(target, limit, kind)
+            if allowed is None:
+                continue
+            for name, value in values.items():
+                low, high = allowed
+                if (name == "min" and value < low - _LIMIT_SLACK) or (name == "max" and value > high + _LIMIT_SLACK):
+                    edge = low if name == "min" else high
+                    yield bounds[name], (
+                        f"ros2_control joint '{joint.get('name')}' {kind} {name} is {value:g}, beyond "
+                        f"the URDF <limit> ({edge:g}); commands up to {value:g} pass ros2_control "
+                        f"but exceed the description: use {edge:g}, or widen <limit> if the joint "
+                        "really moves that far")
+
+
+def _allowed_range(joint, limit, kind) -> tuple[float, float] | None:
+    """(low, high) the URDF allows for command interface ``kind``, or None when it says nothing."""
+    if limit is None:
+        return None
+    if kind == "position":
+        if joint.get("type") == "continuous":
+            return None
+        low, bad_low = parse_numbers(limit.get("lower", "0"), 1)
+        high, bad_high = parse_numbers(limit.get("upper", "0"), 1)
+        return None if bad_low or bad_high or low[0] >= high[0] else (low[0], high[0])
+    if kind in _LIMIT_ATTRIBUTE and limit.get(_LIMIT_ATTRIBUTE[kind]) is not None:
+        value, bad = parse_numbers(limit.get(_LIMIT_ATTRIBUTE[kind]), 1)
+        return None if bad or value[0] <= 0 else (-abs(value[0]), abs(value[0]))
+    return None
