@@ -33,7 +33,8 @@ def check(
                                      "(comma-separated, repeatable)."),
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
-    verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
+    verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped, "
+                                 "and which companion files each robot was checked with."),
     allow_env: bool = typer.Option(
         None, "--allow-env/--no-env", show_default=False,
         help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
@@ -89,6 +90,9 @@ def check(
     if verbose:  # a file name can hold a line break: printable
         for path, reason in run.skipped.items():
             typer.echo(printable(f"skipped {path}: {reason}"), err=True)
+        for result in run.results:
+            for line in result.companions:
+                typer.echo(printable(f"companion of {result.path}: {line}"), err=True)
     if output:
         import io
 

@@ -94,15 +94,16 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     if "-" in files:
         stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
 
-    def work(index: int) -> list[Finding]:
+    def work(index: int) -> tuple[list[Finding], list[str]]:
         path = files[index]
-        return engine.check_file(path, options_for(path), data=stdin.get(path)).findings
+        result = engine.check_file(path, options_for(path), data=stdin.get(path))
+        return result.findings, result.companions
 
-    def stopped(index: int, stop: Stop) -> list[Finding]:
-        return [stop_finding(files[index], stop, "checking")]
+    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
+        return [stop_finding(files[index], stop, "checking")], []
 
-    findings = run_budgeted(len(files), work, budget, stopped, jobs)
-    return [FileResult(path, found) for path, found in zip(files, findings)]
+    outcomes = run_budgeted(len(files), work, budget, stopped, jobs)
+    return [FileResult(path, found, companions=lines) for path, (found, lines) in zip(files, outcomes)]
 
 
 @dataclass
