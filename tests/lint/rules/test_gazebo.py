@@ -109,3 +109,14 @@ def test_diff_drive_plugin_wheels_count_as_actuated(tmp_path):
                     '<child link="h"/></joint>\n</robot>')
     found, _ = check_folder(tmp_path, {"robot.urdf": robot})
     assert found == [("robot.urdf", 13, "U507")]  # hj only
+
+
+def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):
+    robot = WHEELS.format(filename="libgazebo_ros_control.so", tags="").replace("</robot>", """
+      <ros2_control name="s" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>
+        <joint name="lj"><command_interface name="velocity"/></joint>
+        <joint name="rj"><command_interface name="velocity"/></joint></ros2_control>
+    </robot>""")
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 9, "U618")]
+    assert "use libgazebo_ros2_control.so" in findings[0].message

@@ -396,3 +396,72 @@ def _link_frames(robot) -> dict:
     if root is not None:
         frames[root] = ([0.0, 0.0, 0.0], mat3.rpy_matrix([0.0, 0.0, 0.0]))
     return frames
+
+
+# Plugin libraries of gazebo_ros_pkgs (ros-simulation/gazebo_ros_pkgs, gazebo_plugins/CMakeLists.txt
+# of the noetic-devel and ros2 branches; older PR2-era ones kept), of gazebo_ros_control
+# (ROS 1) and of gazebo_ros2_control (ROS 2).
+ROS1_CONTROL, ROS2_CONTROL = "libgazebo_ros_control.so", "libgazebo_ros2_control.so"
+GAZEBO_LIBRARIES = frozenset({
+    "libgazebo_ros_ackermann_drive.so", "libgazebo_ros_api_plugin.so", "libgazebo_ros_block_laser.so",
+    "libgazebo_ros_bumper.so", "libgazebo_ros_camera.so", "libgazebo_ros_controller_manager.so",
+    "libgazebo_ros_depth_camera.so", "libgazebo_ros_diff_drive.so", "libgazebo_ros_elevator.so",
+    "libgazebo_ros_f3d.so", "libgazebo_ros_factory.so", "libgazebo_ros_force.so",
+    "libgazebo_ros_force_system.so", "libgazebo_ros_ft_sensor.so", "libgazebo_ros_gps.so",
+    "libgazebo_ros_gps_sensor.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_hand_of_god.so",
+    "libgazebo_ros_harness.so", "libgazebo_ros_imu.so", "libgazebo_ros_imu_sensor.so",
+    "libgazebo_ros_init.so", "libgazebo_ros_joint_pose_trajectory.so",
+    "libgazebo_ros_joint_state_publisher.so", "libgazebo_ros_joint_trajectory.so",
+    "libgazebo_ros_laser.so", "libgazebo_ros_multicamera.so", "libgazebo_ros_openni_kinect.so",
+    "libgazebo_ros_p3d.so", "libgazebo_ros_paths_plugin.so", "libgazebo_ros_planar_move.so",
+    "libgazebo_ros_power_monitor.so", "libgazebo_ros_projector.so", "libgazebo_ros_properties.so",
+    "libgazebo_ros_prosilica.so", "libgazebo_ros_range.so", "libgazebo_ros_ray_sensor.so",
+    "libgazebo_ros_skid_steer_drive.so", "libgazebo_ros_srp.so", "libgazebo_ros_state.so",
+    "libgazebo_ros_template.so", "libgazebo_ros_tricycle_drive.so",
+    "libgazebo_ros_triggered_camera.so", "libgazebo_ros_triggered_multicamera.so",
+    "libgazebo_ros_vacuum_gripper.so", "libgazebo_ros_video.so", "libgazebo_ros_wheel_slip.so",
+    ROS1_CONTROL, ROS2_CONTROL,
+})
+_TYPO = 0.9  # difflib ratio above which an unknown library name is a misspelt known one
+
+
+@rule("U618", "gazebo-plugin-library", Severity.ERROR)
+def gazebo_plugin_library(robot):
+    """A Gazebo plugin library is misspelt, of the other ROS, or in another namespace.
+
+    Gazebo prints "Failed to load plugin" and goes on without it. A ``filename`` close to one
+    of gazebo_ros_pkgs' libraries but not one of them is a typo (``libgazebo_ros_diffdrive.so``);
+    ROS 1's ``libgazebo_ros_control.so`` in a robot with ``<ros2_control>`` does nothing (ROS 2
+    uses ``libgazebo_ros2_control.so``, or gz_ros2_control on Gazebo Sim), and
+    ``libgazebo_ros2_control.so`` without ``<ros2_control>`` has nothing to load; a
+    gazebo_ros_control ``<robotNamespace>`` other than the namespace of the ROS 1 controller
+    YAML (``humanoid_robot:`` above the controllers) finds no controller parameters.
+
+    Bad: ``<plugin filename="libgazebo_ros_control.so">`` beside ``<ros2_control>``
+    Good: ``<plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">``
+    """
+    import difflib
+
+    ros2 = bool(robot.children("ros2_control"))
+    namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"}
+    for plugin in gazebo_plugins(robot):
+        library = (plugin.get("filename") or "").strip()
+        if library == ROS1_CONTROL and ros2:
+            yield plugin, (f"{library} is ROS 1's gazebo_ros_control, but the robot describes its "
+                           f"hardware in <ros2_control> (ROS 2): use {ROS2_CONTROL} "
+                           "(gz_ros2_control-system on Gazebo Sim)")
+        elif library == ROS2_CONTROL and not ros2:
+            yield plugin, (f"{library} (gazebo_ros2_control) reads the robot's <ros2_control>, and "
+                           "it has none: add one, or use ROS 1's "
+                           f"{ROS1_CONTROL} with transmissions")
+        elif library.startswith("libgazebo_ros") and library not in GAZEBO_LIBRARIES:
+            close = difflib.get_close_matches(library, sorted(GAZEBO_LIBRARIES), n=1, cutoff=_TYPO)
+            if close:
+                yield plugin, f"plugin library '{library}' does not exist; did you mean '{close[0]}'?"
+        if library == ROS1_CONTROL and len(namespaces) == 1:
+            [namespace] = namespaces
+            element = plugin.find("robotNamespace")
+            given = (element.text or "").strip().strip("/") if element is not None else None
+            if given is not None and namespace and given != namespace:
+                yield element, (f"gazebo_ros_control looks for controllers in /{given}, but the "
+                                f"controller YAML puts them in /{namespace}; make them the same")

@@ -327,3 +327,35 @@ def _allowed_range(joint, limit, kind) -> tuple[float, float] | None:
         value, bad = parse_numbers(limit.get(_LIMIT_ATTRIBUTE[kind]), 1)
         return None if bad or value[0] <= 0 else (-abs(value[0]), abs(value[0]))
     return None
+
+
+# Hardware plugins of the simulators and of ros2_control's mock components
+# (ros-controls/gazebo_ros2_control, gz_ros2_control; ros2_control/hardware_interface).
+KNOWN_HARDWARE = {
+    "gazebo_ros2_control": ("gazebo_ros2_control/GazeboSystem",),
+    "gz_ros2_control": ("gz_ros2_control/GazeboSimSystem",),
+    "ign_ros2_control": ("ign_ros2_control/IgnitionSystem",),
+    "mock_components": ("mock_components/GenericSystem",),
+    "fake_components": ("fake_components/GenericSystem",),
+}
+
+
+@rule("U516", "ros2-control-hardware-plugin", Severity.ERROR)
+def ros2_control_hardware_plugin(robot):
+    """A ``<ros2_control>`` hardware plugin of a simulator or of mock_components is misspelt.
+
+    The resource manager cannot load it ("According to the loaded plugin descriptions the class
+    ... does not exist"). Checked for the packages whose classes are known:
+    gazebo_ros2_control, gz_ros2_control, ign_ros2_control, mock_components and
+    fake_components; a vendor's driver is not.
+
+    Bad: ``<plugin>gazebo_ros2_control/GazeboSytem</plugin>``
+    Good: ``<plugin>gazebo_ros2_control/GazeboSystem</plugin>``
+    """
+    for block in robot.children("ros2_control"):
+        for element in block.iterfind("hardware/plugin"):
+            name = (element.text or "").strip()
+            known = KNOWN_HARDWARE.get(name.split("/")[0])
+            if known and name not in known:
+                yield element, (f"hardware plugin '{name}' does not exist; "
+                                f"{available('plugins', name, [p for ps in KNOWN_HARDWARE.values() for p in ps])}")
