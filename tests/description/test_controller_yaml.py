@@ -81,3 +81,20 @@ def test_class_table_is_sorted_unique_and_sourced():
     assert lookup("position_controllers/JointPositionController", 1).joints == {"joint": "name"}
     assert lookup("joint_trajectory_controller/JointTrajectoryController", 2).required == (
         "joints", "command_interfaces", "state_interfaces")
+
+
+def test_dotted_parameter_names_are_the_nested_ones(tmp_path):
+    [arm] = read(tmp_path, """\
+        controller_manager:
+          ros__parameters:
+            arm.type: joint_trajectory_controller/JointTrajectoryController
+        arm:
+          ros__parameters:
+            joints: [a]
+            constraints.goal_time: 0.5
+            constraints:
+              a.goal: 0.1
+        """).controllers
+    assert (arm.name, arm.line) == ("arm", 3)
+    assert arm.params["constraints"] == {"goal_time": 0.5, "a": {"goal": 0.1}}
+    assert arm.params["constraints"].lines["goal_time"] == 7

@@ -188,12 +188,37 @@ def parameter_blocks(data) -> list[ParameterBlock]:
                 if isinstance(value, YamlMap):
                     parts = [p for part in path for p in str(part).split("/") if p]
                     blocks.append(ParameterBlock(parts[-1] if parts else "",
-                                                 "/".join(parts[:-1]), value, line or value.line))
+                                                 "/".join(parts[:-1]), nested(value), line or value.line))
             else:
                 walk(value, (*path, key), node.lines.get(key), depth + 1)
 
     walk(data, (), None, 0)
     return blocks
+
+
+def nested(params: YamlMap, depth: int = 0) -> YamlMap:
+    """``params`` with dotted names unfolded (``constraints.goal_time: 1`` as ``constraints:
+    {goal_time: 1}``): ROS 2 names a parameter by the path of keys to it, written either way."""
+    if depth > _MAX_DEPTH or not any(isinstance(k, str) and "." in k or isinstance(v, YamlMap)
+                                     for k, v in params.items()):
+        return params
+    result = YamlMap()
+    result.line, result.lines = params.line, {}
+    for key, value in params.items():
+        line = params.lines.get(key, params.line)
+        if isinstance(value, YamlMap):
+            value = nested(value, depth + 1)
+        if isinstance(key, str) and "." in key.strip("."):
+            head, _, rest = key.partition(".")
+            inner = YamlMap({rest: value})
+            inner.line, inner.lines = line, {rest: line}
+            value, key = nested(inner, depth + 1), head
+        if key in result:
+            value = merged(result[key], value)
+        else:
+            result.lines[key] = line
+        result[key] = value
+    return result
 
 
 def _ros2(file: YamlFile, found: ControllerFile) -> None:

@@ -399,3 +399,34 @@ def _number(value) -> float | None:
         return float(value)
     except ValueError:
         return None
+
+
+@rule("U610", "joint-commanded-twice", Severity.INFO)
+def joint_commanded_twice(robot):
+    """Two controllers command the same interface of one joint.
+
+    The controller manager activates only one of them at a time (ROS 2: "resource conflict";
+    ROS 1: a claimed resource): a configuration may offer both (a trajectory controller and a
+    forward command controller on the arm) and start one. Which are started is up to the
+    launch files, so this is a note: make sure the two are never spawned active together.
+
+    Bad: ``arm_controller`` and ``arm_position_controller`` both active on ``joints: [shoulder]``
+    Good: spawn one active and the other ``--inactive``
+    """
+    first: dict[tuple, Controller] = {}
+    for controller in controllers(robot):
+        claimed = controller.interfaces()
+        if controller.layout == "moveit" or controller.is_state or not claimed:
+            continue
+        shared: dict[int, tuple] = {}  # the earlier controller -> (it, first line, joints shared)
+        for ref in _urdf_joints(robot, controller):
+            for interface in claimed:
+                other = first.setdefault((ref.name, interface), controller)
+                if other is not controller:
+                    entry = shared.setdefault(id(other), (other, ref.line, []))
+                    if ref.name not in entry[2]:
+                        entry[2].append(ref.name)
+        for other, line, joints in shared.values():
+            yield controller.file.at(line), (
+                f"{_label(controller)} commands {', '.join(joints)} through the same interfaces as "
+                f"{_label(other)}; only one of them can be active at a time")
