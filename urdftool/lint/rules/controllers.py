@@ -165,8 +165,6 @@ def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> 
                else f"set {param} to {kinds[0]}")
     elif known and kinds and _alternatives(controller, kinds):
         use = "use " + " or ".join(_alternatives(controller, kinds))
-    elif known and known.package == "diff_drive_controller":
-        use = "drive the wheels through velocity"
     else:
         use = "change the controller"
     if controller.ros == 2:
@@ -174,6 +172,8 @@ def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> 
     else:
         offer = (f"{wanted.capitalize()}JointInterface in its transmission, or a {wanted} command "
                  "interface in <ros2_control>")
+    if known and known.package == "diff_drive_controller":
+        return f"diff_drive_controller turns its wheels by {wanted}: make the joint offer {wanted} ({offer})"
     return f"{use}, or make the joint offer {wanted} ({offer})"
 
 
