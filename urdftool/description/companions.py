@@ -8,7 +8,7 @@ Where they are looked for (:func:`search_folders`), only inside the robot's repo
   folder above a ``urdf/``, ``xacro/``, ``robots/``, ``description/`` or ``models/`` folder, or
   the nearest folder above holding a package.xml);
 - the sibling MoveIt package ``NAME_moveit_config/config/`` beside the package, for NAME the
-  package name without ``_description``, the robot's name or its file's stem.
+  package name without ``_description`` or the robot file's stem.
 
 Which files belong to the robot (an option always wins; a file named in the URDF too):
 
