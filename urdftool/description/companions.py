@@ -42,6 +42,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside
 from urdftool.description.packages import containment_root
@@ -51,7 +52,6 @@ SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
 COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
 URDF_FOLDERS = ("urdf", "urdfs", "xacro", "robots", "robot", "description", "models", "model")
 ROBOT_SUFFIXES = (".urdf", ".urdf.xacro")
-CONTROL_PLUGINS = ("gazebo_ros2_control", "gz_ros2_control", "ign_ros2_control")
 
 
 # --- discovery --------------------------------------------------------------------------------
@@ -247,16 +247,15 @@ def parameter_files(robot) -> list[Path]:
     root = containment_root(base)
     package = _package(base, root)
     found = []
-    for gazebo in robot.children("gazebo"):
-        for plugin in gazebo.iter("plugin"):
-            text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
-            if not any(name in text for name in CONTROL_PLUGINS):
-                continue
-            for element in plugin.iter("parameters"):
-                value = (element.text or "").strip()
-                path = _parameter_path(robot, value, base, package)
-                if path is not None and inside(path, root) and path.is_file() and path not in found:
-                    found.append(path)
+    for plugin in gazebo_plugins(robot):
+        text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+        if not any(name in text for name in CONTROL_PLUGINS):
+            continue
+        for element in plugin.iter("parameters"):
+            value = (element.text or "").strip()
+            path = _parameter_path(robot, value, base, package)
+            if path is not None and inside(path, root) and path.is_file() and path not in found:
+                found.append(path)
     return found
 
 
