@@ -186,3 +186,70 @@ def test_collisions_reads_the_srdf_as_check_does(tmp_path):
     path.write_text('<robt name="r"/>\n')
     with pytest.raises(srdf.SrdfError, match=r"r.srdf:1: root element is <robt>, not <robot>"):
         srdf.read(path)
+
+
+# --- where companions are found: ROS package layouts, shared folders, the URDF's own pointers ----
+
+HEAD_YAML = ("controller_manager:\n  ros__parameters:\n    jsb: {type: joint_state_broadcaster/JointStateBroadcaster}\n"
+             "    head: {type: position_controllers/JointGroupPositionController}\n"
+             "head:\n  ros__parameters: {joints: [head_joint]}\n")
+
+
+def test_ros_package_layout_and_sibling_moveit_package(tmp_path):
+    (tmp_path / ".git").mkdir()
+    write(tmp_path, {"r_description/package.xml": "<package/>", "r_description/urdf/r.urdf": ROBOT,
+                     "r_description/config/c.yaml": HEAD_YAML,
+                     "r_moveit_config/config/r.srdf": "<robot name='r'/>",
+                     "r_moveit_config/config/kinematics.yaml": "head: {kinematics_solver: kdl}\n",
+                     "r_moveit_config/config/joint_limits.yaml": "joint_limits:\n  head_joint: {max_velocity: 1}\n",
+                     "r_moveit_config/config/moveit_controllers.yaml":
+                         "controller_names: [head]\nhead: {type: FollowJointTrajectory, joints: [head_joint]}\n"})
+    found = companions(load(str(tmp_path / "r_description/urdf/r.urdf")))
+    assert sorted(f.path.name for f in found.controllers) == ["c.yaml", "moveit_controllers.yaml"]
+    assert found.srdf.path.parent.parent.name == "r_moveit_config"
+    assert found.kinematics.path.name == "kinematics.yaml"
+    assert found.planning_limits.path.name == "joint_limits.yaml" and found.spec is None
+
+
+def test_sibling_packages_outside_the_repository_are_not_searched(tmp_path):
+    (tmp_path / "r_description/.git").mkdir(parents=True)
+    write(tmp_path, {"r_description/urdf/r.urdf": ROBOT, "r_moveit_config/config/r.srdf": "<robot name='r'/>"})
+    assert companions(load(str(tmp_path / "r_description/urdf/r.urdf"))).srdf is None
+
+
+def test_a_folder_holding_two_robots_gives_each_only_its_own(tmp_path):
+    other = ROBOT.replace('name="r"', 'name="b"').replace("head_joint", "neck_joint")
+    write(tmp_path, {"r.urdf": ROBOT, "b.urdf": other,
+                     "config/r_controllers.yaml": HEAD_YAML,
+                     "config/b_controllers.yaml": HEAD_YAML.replace("head_joint", "neck_joint"),
+                     "config/controllers.yaml": HEAD_YAML, "joint_limits.yaml": SPEC,
+                     "one.srdf": "<robot name='r'/>", "two.srdf": "<robot name='b'/>"})
+    mine = companions(load(str(tmp_path / "r.urdf")))
+    assert [f.path.name for f in mine.controllers] == ["r_controllers.yaml"]
+    assert mine.srdf.path.name == "one.srdf" and mine.spec is None
+    theirs = companions(load(str(tmp_path / "b.urdf")))
+    assert [f.path.name for f in theirs.controllers] == ["b_controllers.yaml"]
+    assert theirs.srdf.path.name == "two.srdf"
+    lines = mine.describe()
+    assert "controllers: config/r_controllers.yaml (named after the robot)" in [
+        line.replace(str(tmp_path) + "/", "") for line in lines]
+    assert any(line.startswith("not used:") and "controllers.yaml (2 robots share its folder"
+               in line for line in lines)
+    # no finding from the neighbour's files
+    assert check_file(str(tmp_path / "r.urdf"), CheckOptions()).findings == []
+
+
+def test_gazebo_ros2_control_parameters_are_followed_inside_the_repository(tmp_path):
+    (tmp_path / ".git").mkdir()
+    plugin = ('<gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">'
+              "<parameters>{}</parameters></plugin></gazebo>\n</robot>")
+    write(tmp_path, {"pkg/urdf/r.urdf": ROBOT.replace("</robot>", plugin.format("params/head.yaml")),
+                     "pkg/package.xml": "<package/>", "pkg/params/head.yaml": HEAD_YAML})
+    found = companions(load(str(tmp_path / "pkg/urdf/r.urdf")))
+    assert [f.path.name for f in found.controllers] == ["head.yaml"]
+    assert found.used[found.controllers[0].path] == "named by the URDF's <parameters>"
+    outside = tmp_path.parent / f"{tmp_path.name}_outside.yaml"
+    outside.write_text(HEAD_YAML)
+    write(tmp_path, {"pkg/urdf/r.urdf": ROBOT.replace("</robot>", plugin.format(outside))})
+    assert companions(load(str(tmp_path / "pkg/urdf/r.urdf"))).controllers == []
+    outside.unlink()

@@ -14,6 +14,7 @@ import pytest
 
 from conftest import CORPUS, corpus_or_skip
 from urdftool.description.robot import CompanionPaths
+from urdftool.diagnostics import Severity
 from urdftool.lint.engine import CheckOptions, check_file
 
 UR_ARGS = ("robot_model:={m} joint_limit_params:={c}/ur_description/config/{m}/joint_limits.yaml "
@@ -103,11 +104,13 @@ ENTRIES = {
     # talos_reduced at zero: the grippers and wrists hang inside the thighs (leg_*_3_link) with no
     # entry (U811, 12 pairs; trimesh: 68 of the gripper motor mesh's 101 vertices inside hip_y),
     # and the knee and ankle meshes (leg_*_4/leg_*_6), disabled as Never, intersect (U810; 7 knee
-    # vertices inside the watertight ankle mesh). talos_full_v2's meshes use package:/// (no
-    # package), so its legs have no collision geometry to check.
+    # vertices inside the watertight ankle mesh). talos_full_v2's meshes use package:/// (an empty
+    # package name, resolved as Pinocchio does since issue 14): the same knee and ankle meshes
+    # intersect there (U810, 2 pairs).
     (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
         {"U810": 2, "U811": 12},
-    (f"{ERD}/talos_data/robots/talos_full_v2.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"): {},
+    (f"{ERD}/talos_data/robots/talos_full_v2.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
+        {"U810": 2},
 }
 
 
@@ -130,6 +133,8 @@ def test_corpus_crossfile_findings(entry):
     result = check_entry(*entry)
     assert result.robot is not None, [f"{f.location}: {f.code} {f.message}" for f in result.findings]
     assert not [f for f in result.findings if f.code == "U900"]
-    found = Counter(f.code for f in result.findings if crossfile(f.code))
-    assert dict(found) == ENTRIES[entry], "\n".join(
-        f"{f.location}: {f.code} {f.message}" for f in result.findings if crossfile(f.code))
+    # Notes (U610: ur_gazebo's joint_group_eff_controller and eff_joint_traj_controller share
+    # the arm's joints, as alternatives are meant to) are not mismatches.
+    shown = [f for f in result.findings if crossfile(f.code) and f.severity != Severity.INFO]
+    found = Counter(f.code for f in shown)
+    assert dict(found) == ENTRIES[entry], "\n".join(f"{f.location}: {f.code} {f.message}" for f in shown)

@@ -165,3 +165,43 @@ def test_a_robot_named_whose_includes_cannot_be_followed_is_checked(run_cli, tmp
     robot = _robot_built_by_includes(tmp_path, include="$(find nowhere_pkg)/core.xacro")
     result = run_cli("check", robot)
     assert result.exit_code == 1 and "U006" in result.stdout
+def _two_robots(tmp_path):
+    """A repository with robots a and b in urdf/, each with its controller YAML, and a CI file."""
+    (tmp_path / ".git").mkdir()
+    robot = ('<robot name="{n}"><link name="base"/><link name="l"/><joint name="{n}_j" type="continuous">'
+             '<parent link="base"/><child link="l"/></joint></robot>')
+    yaml = ("{n}_c:\n  type: position_controllers/JointGroupPositionController\n  joints: [{j}]\n"
+            "jsc: {{type: joint_state_controller/JointStateController}}\n")
+    for name, text in {"pkg/urdf/a.urdf": robot.format(n="a"), "pkg/urdf/b.urdf": robot.format(n="b"),
+                       "pkg/config/a_controllers.yaml": yaml.format(n="a", j="a_j"),
+                       "pkg/config/b_controllers.yaml": yaml.format(n="b", j="b_jnt"),
+                       ".github/ci.yml": "on: push\n"}.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    return tmp_path
+
+
+def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
+    root = _two_robots(tmp_path)
+    result = run_cli("check", root / "pkg/config/b_controllers.yaml", "-v")
+    assert result.exit_code == 1 and "b_controllers.yaml:3" in result.stdout and "U602" in result.stdout
+    assert "a companion of" in result.stderr and "b.urdf" in result.stderr and "a.urdf:" not in result.stdout
+    assert "companion of " in result.stderr and "controllers: " in result.stderr
+    clean = run_cli("check", root / "pkg/config/a_controllers.yaml", "--format", "json")
+    assert clean.exit_code == 0 and '"files": 1' in clean.stdout
+
+
+def test_a_yaml_no_robot_uses_checks_nothing(run_cli, tmp_path):
+    root = _two_robots(tmp_path)
+    result = run_cli("check", root / ".github/ci.yml", "--format", "json")
+    assert result.exit_code == 0 and '"files": 0' in result.stdout
+    assert "nothing to check" in result.stderr
+
+
+def test_the_pre_commit_hook_passes_companion_files():
+    import re
+
+    from conftest import ROOT
+
+    pattern = re.search(r"files: (\S+)", (ROOT / ".pre-commit-hooks.yaml").read_text()).group(1)
+    assert all(re.search(pattern, name) for name in ("r.urdf", "r.xacro", "config/c.yaml", "c.yml", "r.srdf"))

@@ -34,7 +34,8 @@ def check(
                                      "(comma-separated, repeatable)."),
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
-    verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped."),
+    verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped, "
+                                 "and which companion files each robot was checked with."),
     quiet: bool = typer.Option(False, "--quiet", "-q",
                                help="Text format: print the findings only, no summary line."),
     exit_zero: bool = typer.Option(False, "--exit-zero",
@@ -112,6 +113,9 @@ def check(
     if verbose:  # a file name can hold a line break: printable
         for path, reason in run.skipped.items():
             typer.echo(printable(f"skipped {path}: {reason}"), err=True)
+        for result in run.results:
+            for line in result.companions:
+                typer.echo(printable(f"companion of {result.path}: {line}"), err=True)
     if statistics:
         from urdftool.report.statistics import render as render_statistics
 

@@ -102,9 +102,27 @@ def command_interfaces(robot) -> dict[str, set]:
                 _, kind = interface_kind(interface.text)
                 if kind:
                     kinds.add(kind)
+    for name, kinds in ros2_command_interfaces(robot).items():
+        offered.setdefault(name, set()).update(kinds)
+    return offered
+
+
+def ros2_command_interfaces(robot) -> dict[str, set]:
+    """Joint name -> command interfaces its ``<ros2_control>`` entries offer: all a ROS 2
+    controller can claim (ros2_control reads no transmission outside ``<ros2_control>``)."""
+    offered: dict[str, set] = {}
     for _, joint in ros2_control_joints(robot):
-        kinds = offered.setdefault(joint.get("name"), set())
-        kinds.update(c.get("name") for c in joint.findall("command_interface") if c.get("name"))
+        offered.setdefault(joint.get("name"), set()).update(
+            c.get("name") for c in joint.findall("command_interface") if c.get("name"))
+    return offered
+
+
+def ros2_state_interfaces(robot) -> dict[str, set]:
+    """Joint name -> state interfaces its ``<ros2_control>`` entries offer."""
+    offered: dict[str, set] = {}
+    for _, joint in ros2_control_joints(robot):
+        offered.setdefault(joint.get("name"), set()).update(
+            c.get("name") for c in joint.findall("state_interface") if c.get("name"))
     return offered
 
 
@@ -119,6 +137,30 @@ def control_plugin(robot):
             if any(name in text for name in CONTROL_PLUGINS):
                 return plugin
     return None
+
+
+DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
+WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")
+
+
+def gazebo_plugins(robot):
+    """Every ``<plugin>`` inside a ``<gazebo>`` block."""
+    for gazebo in robot.children("gazebo"):
+        yield from gazebo.iter("plugin")
+
+
+def diff_drive_plugins(robot):
+    """The Gazebo diff-drive plugins (gazebo_ros_diff_drive, gz-sim-diff-drive-system, ...)."""
+    for plugin in gazebo_plugins(robot):
+        text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+        if any(word in text for word in DIFF_DRIVE):
+            yield plugin
+
+
+def diff_drive_wheels(robot) -> set:
+    """Names of the joints a Gazebo diff-drive plugin drives (its left and right joints)."""
+    return {(element.text or "").strip() for plugin in diff_drive_plugins(robot)
+            for tag in WHEEL_JOINT_TAGS for element in plugin.findall(tag)}
 
 
 def moving_joints(robot) -> dict:

@@ -1,52 +1,95 @@
-"""Files that describe a robot beside its URDF: controller YAML, SRDF and the joint spec table.
+"""Files that describe a robot beside its URDF: controller YAML, SRDF, the joint spec table, and
+MoveIt's kinematics.yaml and joint_limits.yaml.
 
-Which files (first match wins, per kind):
+Where they are looked for (:func:`search_folders`), only inside the robot's repository:
 
-- controllers: every ``--controllers FILE``; else every ``config/*.yaml`` beside the robot and
-  every ``*.yaml`` beside it that looks like a controller configuration (a mapping with a
-  ``type: package/Class`` entry, or a ``controller_manager`` key).
-- SRDF: ``--srdf FILE``; else the ``*.srdf`` beside the robot or in its ``config/`` folder whose
-  name matches the robot name or the robot file name, or the only one there.
-- MoveIt's ``kinematics.yaml``, ``joint_limits.yaml`` (unless it is a urdftool spec) and controller
-  list (``moveit_controllers.yaml``, ``simple_moveit_controllers.yaml``, ``ros_controllers.yaml``,
-  ``controllers.yaml`` with a ``controller_list`` or ``moveit_simple_controller_manager``): in the
-  SRDF's own folder (a moveit_config package's ``config/``), when there is an SRDF; a
-  ``kinematics.yaml`` also beside the robot or in its ``config/`` folder. (A ``joint_limits.yaml``
-  beside the robot is often the input of its xacro, not MoveIt's: only the SRDF's folder counts.)
-- spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml`` beside the robot or in
-  its ``config/`` folder, when it is a urdftool spec (top-level ``unit:`` and ``joints:``; a ROS
-  ``joint_limits.yaml`` has a top-level ``joint_limits:`` and is left alone) or is not valid YAML.
+- the robot's folder and its ``config/``;
+- the ROS package layout ``pkg/urdf/robot.urdf.xacro``: ``pkg/config/`` (the package is the
+  folder above a ``urdf/``, ``xacro/``, ``robots/``, ``description/`` or ``models/`` folder, or
+  the nearest folder above holding a package.xml);
+- the sibling MoveIt package ``NAME_moveit_config/config/`` beside the package, for NAME the
+  package name without ``_description`` or the robot file's stem.
 
-Files found automatically come only from the robot's folder and its ``config/`` subfolder, and
-never through a symbolic link leading elsewhere: robot files may come from untrusted pull
-requests. Each file is read (by :mod:`urdftool.description.documents`) and parsed once per
-robot (kept in ``Robot.memo``).
+Which files belong to the robot (an option always wins; a file named in the URDF too):
+
+- controllers: every ``--controllers FILE``; else each YAML file the URDF's
+  ``gazebo_ros2_control``/``gz_ros2_control`` ``<parameters>`` names (inside the repository),
+  and the YAML files found that look like a controller configuration (a mapping with a ``type:
+  package/Class`` entry, a ``controller_manager`` key, or MoveIt's ``controller_list``/
+  ``controller_names``; in a ``config/`` folder a file that is not valid YAML counts, so that
+  it is reported).
+- SRDF: ``--srdf FILE``; else the ``*.srdf`` found whose file name matches the robot, else the
+  one whose ``<robot name>`` is the robot's, else the only one.
+- spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml``, when it is a
+  urdftool spec (top-level ``unit:`` and ``joints:``; a ROS ``joint_limits.yaml`` has a top-level
+  ``joint_limits:`` and is left alone) or is not valid YAML.
+- MoveIt: ``kinematics.yaml``, and the ROS ``joint_limits.yaml`` (top-level ``joint_limits:``) in
+  the MoveIt package (one beside the robot is often its xacro's input, not MoveIt's); when none
+  is found there, those in the SRDF's own folder (a moveit_config package's
+  ``config/``), with MoveIt's controller list (``moveit_controllers.yaml``,
+  ``simple_moveit_controllers.yaml``, ``ros_controllers.yaml``, ``controllers.yaml`` holding a
+  ``controller_list`` or ``moveit_simple_controller_manager``) when it is not already among the
+  controllers.
+
+A folder holding several robots (``.urdf``/``.urdf.xacro`` files) shares its files only by
+name: a file whose name starts with a robot's file stem or name (``arm_controllers.yaml`` for
+``arm.urdf``; the longest match wins) belongs to that robot, an SRDF also by its ``<robot
+name>``; any other file found there belongs to none of them (``used`` says why). A robot alone in
+its folder gets every file found.
+
+Files found automatically are never read through a symbolic link leading elsewhere: robot
+files may come from untrusted pull requests. Each file is read (by
+:mod:`urdftool.description.documents`) and parsed once per robot (kept in ``Robot.memo``).
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
+from urdftool.description.files import inside
+from urdftool.description.packages import containment_root
+from urdftool.diagnostics import display_path
 
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
 MOVEIT_CONTROLLER_NAMES = ("moveit_controllers.yaml", "simple_moveit_controllers.yaml",
                            "ros_controllers.yaml", "controllers.yaml")
+COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
+URDF_FOLDERS = ("urdf", "urdfs", "xacro", "robots", "robot", "description", "models", "model")
+ROBOT_SUFFIXES = (".urdf", ".urdf.xacro")
 
 
 # --- discovery --------------------------------------------------------------------------------
 
 @dataclass
 class Companions:
-    """The companion files of one robot, parsed."""
+    """The companion files of one robot, parsed.
+
+    used: path -> why it is this robot's; unused: path found but not this robot's -> why
+    """
 
     controllers: list[YamlFile] = field(default_factory=list)
     srdf: SrdfFile | None = None
     spec: YamlFile | None = None
-    kinematics: YamlFile | None = None  # MoveIt's, beside the SRDF
-    planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml, beside the SRDF
+    kinematics: YamlFile | None = None  # MoveIt's
+    planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml
     moveit_controllers: list[YamlFile] = field(default_factory=list)  # beside the SRDF
+    used: dict[Path, str] = field(default_factory=dict)
+    unused: dict[Path, str] = field(default_factory=dict)
+
+    def describe(self) -> list[str]:
+        """One line per file found: what it is used as and why, or why it is not used."""
+        kinds = [("controllers", f) for f in self.controllers] + [
+            (kind, getattr(self, kind)) for kind in ("srdf", "spec", "kinematics",
+                                                     "planning_limits")
+            if getattr(self, kind) is not None] + [
+            ("MoveIt controllers", f) for f in self.moveit_controllers]
+        lines = [f"{kind}: {file.display} ({self.used.get(file.path, 'named')})" for kind, file in kinds]
+        lines += [f"not used: {display_path(path)} ({why})" for path, why in self.unused.items()]
+        return lines
 
 
 def companions(robot) -> Companions:
@@ -56,72 +99,38 @@ def companions(robot) -> Companions:
 
 def _discover(robot) -> Companions:
     named = robot.companion_paths
-    folders = _folders(robot)
     found = Companions()
+    folders = search_folders(Path(robot.path)) if robot.path != "-" else []
+    owner = _Owner(robot, folders)
     if named.controllers:
         found.controllers = [read_yaml(Path(p)) for p in named.controllers]
     else:
-        found.controllers = _auto_controllers(folders)
+        found.controllers = _auto_controllers(robot, folders, owner, found)
     if named.srdf:
         found.srdf = read_srdf(Path(named.srdf))
     else:
-        path = find_srdf(robot)
+        path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
-    if found.srdf is not None:
-        _beside_srdf(found, found.srdf.path)
-        if found.kinematics is None:
-            path = next(iter(_candidates(folders, "kinematics.yaml")), None)
-            found.kinematics = read_yaml(path) if path else None
     if named.spec:
         found.spec = read_yaml(Path(named.spec))
     else:
-        found.spec = _auto_spec(folders)
+        found.spec = _auto_yaml(folders, SPEC_NAMES, owner, found, lambda p: is_spec(p.data) or p.problem,
+                                "a urdftool joint spec")
+    found.kinematics = _auto_yaml(folders, ("kinematics.yaml",), owner, found,
+                                  lambda p: p.problem is None and isinstance(p.data, dict), "MoveIt kinematics")
+    # a joint_limits.yaml beside the robot is often its xacro's input: MoveIt's is in its package
+    moveit_folders = [f for f in folders if f.parent.name.endswith("_moveit_config")]
+    found.planning_limits = _auto_yaml(moveit_folders, ("joint_limits.yaml",), owner, found,
+                                       lambda p: isinstance(p.data, dict)
+                                       and "joint_limits" in p.data, "MoveIt/ROS joint limits")
+    if found.srdf is not None:
+        _beside_srdf(found, found.srdf.path)
     return found
 
 
-def _folders(robot) -> list[Path]:
-    """The robot's folder and its config/ subfolder; none for stdin."""
-    if robot.path == "-":
-        return []
-    base = robot.base_dir
-    return [base, base / "config"]
-
-
-def _inside(path: Path, folders: list[Path]) -> bool:
-    """``path`` is a regular file whose real location is in the robot's folder (no escaping links).
-
-    Stricter on purpose than :func:`urdftool.description.packages.containment_root` (where files
-    a robot names may be): a file nobody named is picked up only beside the robot or in config/."""
-    try:
-        real = path.resolve(strict=True)
-        base = folders[0].resolve(strict=True)
-    except OSError:
-        return False
-    return real.is_file() and (real.parent == base or real.parent == base / "config")
-
-
-def _candidates(folders: list[Path], pattern: str) -> list[Path]:
-    paths = []
-    for folder in folders:
-        if folder.is_dir() and not folder.is_symlink():
-            paths.extend(p for p in sorted(folder.glob(pattern)) if _inside(p, folders))
-    return paths
-
-
-def _auto_controllers(folders: list[Path]) -> list[YamlFile]:
-    files = []
-    for path in _candidates(folders, "*.yaml"):
-        if path.name in SPEC_NAMES:
-            continue
-        parsed = read_yaml(path)
-        in_config = path.parent.name == "config"
-        if looks_like_controllers(parsed.data) or (in_config and parsed.problem):
-            files.append(parsed)
-    return files
-
-
 def _beside_srdf(found: Companions, srdf: Path) -> None:
-    """MoveIt's YAML files in the SRDF's folder (regular files there, no link leading out)."""
+    """MoveIt's YAML files in the SRDF's folder, for the kinds not found yet (regular files
+    there, no link leading out)."""
     try:
         folder = srdf.resolve(strict=True).parent
     except OSError:
@@ -135,11 +144,14 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
             return None
         return path if real.is_file() and real.parent == folder else None
 
-    path = here("kinematics.yaml")
-    found.kinematics = read_yaml(path) if path else None
-    path = here("joint_limits.yaml")
-    limits = read_yaml(path) if path else None
-    found.planning_limits = limits if limits is not None and not is_spec(limits.data) else None
+    if found.kinematics is None and (path := here("kinematics.yaml")):
+        found.kinematics = read_yaml(path)
+        found.used[path] = "beside the SRDF"
+    if found.planning_limits is None and (path := here("joint_limits.yaml")):
+        limits = read_yaml(path)
+        if not is_spec(limits.data):
+            found.planning_limits = limits
+            found.used[path] = "beside the SRDF"
     known = {f.path.resolve() for f in found.controllers if f.path.exists()}
     for name in MOVEIT_CONTROLLER_NAMES:
         path = here(name)
@@ -148,6 +160,7 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
         parsed = read_yaml(path)
         if parsed.problem or is_moveit_controllers(parsed.data):
             found.moveit_controllers.append(parsed)
+            found.used[path] = "beside the SRDF"
 
 
 def is_moveit_controllers(data) -> bool:
@@ -161,24 +174,217 @@ def is_moveit_controllers(data) -> bool:
                if isinstance(value, dict))
 
 
-def find_srdf(robot) -> Path | None:
-    """The robot's SRDF when none is given: in its folder or config/, named after the robot or
-    the file's stem, else the only one there; never a link out of the folder; None for stdin.
-    ``check`` and ``collisions`` both find it here."""
-    paths = _candidates(_folders(robot), "*.srdf")
-    wanted = {robot.name, Path(robot.path).name.split(".")[0]}
+def search_folders(robot_path: Path) -> list[Path]:
+    """The folders companions of the robot file ``robot_path`` are looked for in, as named
+    (links not followed), each a folder inside the robot's repository: see the module doc."""
+    base = Path(os.path.abspath(robot_path)).parent
+    root = containment_root(base)
+    folders = [base, base / "config"]
+    package = _package(base, root)
+    if package is not None and package != base:
+        folders.append(package / "config")
+    home = package or base
+    stems = {home.name.removesuffix("_description"), robot_path.name.split(".")[0]}
+    for stem in sorted(stems):
+        folders.append(home.parent / f"{stem}_moveit_config" / "config")
+    unique = []
+    for folder in dict.fromkeys(folders):
+        if folder.is_dir() and not folder.is_symlink() and inside(folder, root):
+            unique.append(folder)
+    return unique
+
+
+def _package(base: Path, root: Path) -> Path | None:
+    """The ROS package holding a robot in ``base``: the folder above a urdf/-like folder, else the
+    nearest folder at or above ``base`` holding a package.xml (inside ``root``)."""
+    if base.name in URDF_FOLDERS and base != root and inside(base.parent, root):
+        return base.parent
+    for folder in [base, *base.parents]:
+        if not inside(folder, root):
+            return None
+        if (folder / "package.xml").is_file():
+            return folder
+        if folder == root:
+            return None
+    return None
+
+
+def _candidates(folders: list[Path], pattern: str) -> list[Path]:
+    """Regular files matching ``pattern`` in ``folders`` whose real location is that folder
+    (no link leading elsewhere)."""
+    paths = []
+    for folder in folders:
+        try:
+            real_folder = folder.resolve(strict=True)
+        except OSError:
+            continue
+        for path in sorted(folder.glob(pattern)):
+            try:
+                real = path.resolve(strict=True)
+            except OSError:
+                continue
+            if real.is_file() and real.parent == real_folder:
+                paths.append(path)
+    return paths
+
+
+class _Owner:
+    """Which robot of a shared folder a file found there belongs to."""
+
+    def __init__(self, robot, folders: list[Path]):
+        self.robot = robot
+        self.path = Path(os.path.abspath(robot.path)) if robot.path != "-" else None
+        self.keys = {k for k in (robot.name, self.path.name.split(".")[0] if self.path else "") if k}
+        self.neighbours = _robots_beside(self.path) if self.path else []
+
+    @property
+    def alone(self) -> bool:
+        return not self.neighbours
+
+    def matches(self, path: Path) -> bool:
+        """``path``'s name starts with this robot's key (at a separator), and with no
+        neighbour's longer key."""
+        return _match_length(path, self.keys) > max(
+            (_match_length(path, {n.name.split(".")[0]}) for n in self.neighbours), default=0)
+
+    def claims(self, path: Path) -> tuple[bool, str]:
+        """(whether ``path``, found automatically, is this robot's, why / why not)."""
+        if self.matches(path):
+            return True, "named after the robot"
+        if self.alone:
+            return True, "found beside the robot"
+        return False, (f"{len(self.neighbours) + 1} robots share its folder and it is not named "
+                       "after this one (ROBOT_...); --controllers/--srdf/--spec name it")
+
+
+def _match_length(path: Path, keys) -> int:
+    stem = path.name.split(".")[0].lower()
+    best = 0
+    for key in keys:
+        key = key.lower()
+        if stem == key or (stem.startswith(key) and stem[len(key)] in "_-."):
+            best = max(best, len(key))
+    return best
+
+
+def _robots_beside(path: Path) -> list[Path]:
+    """Other robot files (``.urdf``, ``.urdf.xacro``) in the folder of ``path``."""
+    try:
+        return sorted(p for p in path.parent.iterdir()
+                      if p.name.endswith(ROBOT_SUFFIXES) and p.name != path.name and p.is_file())
+    except OSError:
+        return []
+
+
+def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:
+    files, seen = [], set()
+    for path in parameter_files(robot):
+        seen.add(path.resolve())
+        files.append(read_yaml(path))
+        found.used[files[-1].path] = "named by the URDF's <parameters>"
+    for path in _candidates(folders, "*.yaml"):
+        if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or path.resolve() in seen:
+            continue
+        parsed = read_yaml(path)
+        in_config = path.parent.name == "config"
+        if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)):
+            continue
+        mine, why = owner.claims(path)
+        if mine:
+            files.append(parsed)
+            found.used[path] = why
+        else:
+            found.unused[path] = why
+    return files
+
+
+def parameter_files(robot) -> list[Path]:
+    """The YAML files a ``gazebo_ros2_control``/``gz_ros2_control`` plugin's ``<parameters>``
+    names, resolved (absolute, ``package://``, ``$(find)`` already expanded, or relative to the
+    robot's folder or its package), that are regular files inside the robot's repository."""
+    if robot.path == "-":
+        return []
+    base = robot.base_dir
+    root = containment_root(base)
+    package = _package(base, root)
+    found = []
+    for plugin in gazebo_plugins(robot):
+        text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+        if not any(name in text for name in CONTROL_PLUGINS):
+            continue
+        for element in plugin.iter("parameters"):
+            value = (element.text or "").strip()
+            path = _parameter_path(robot, value, base, package)
+            if path is not None and inside(path, root) and path.is_file() and path not in found:
+                found.append(path)
+    return found
+
+
+def _parameter_path(robot, value: str, base: Path, package: Path | None) -> Path | None:
+    if not value or "\0" in value or "$(" in value:
+        return None
+    if value.startswith(("package://", "file://")):
+        try:
+            return robot.resolver.resolve_uri(value, base)
+        except Exception:  # an unknown package: nothing to follow
+            return None
+    path = Path(value)
+    if path.is_absolute():
+        return path
+    for folder in (base, package):
+        if folder is not None and (folder / path).is_file():
+            return folder / path
+    return None
+
+
+def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
+    paths = _candidates(folders, "*.srdf")
+    named = [p for p in paths if owner.matches(p)]
+    if named:
+        chosen, why = named[0], "named after the robot"
+    else:
+        by_name = [p for p in paths if _srdf_robot_name(p) == robot.name and robot.name]
+        if by_name:
+            chosen, why = by_name[0], f"its <robot name> is '{robot.name}'"
+        elif len(paths) == 1 and owner.alone:
+            chosen, why = paths[0], "the only SRDF found"
+        else:
+            chosen, why = None, ""
     for path in paths:
-        if path.name.split(".")[0] in wanted:
-            return path
-    return paths[0] if len(paths) == 1 else None
+        if path == chosen:
+            found.used[path] = why
+        else:
+            found.unused[path] = ("another SRDF was chosen" if chosen else
+                                  "neither its name nor its <robot name> matches the robot, and "
+                                  "it is not the only SRDF of a robot alone in its folder")
+    return chosen
 
 
-def _auto_spec(folders: list[Path]) -> YamlFile | None:
-    for name in SPEC_NAMES:
+def find_srdf(robot) -> Path | None:
+    """The robot's SRDF when none is given (see the module doc); None for stdin. ``check`` and
+    ``collisions`` both find it here."""
+    if robot.path == "-":
+        return None
+    folders = search_folders(Path(robot.path))
+    return _pick_srdf(robot, folders, _Owner(robot, folders), Companions())
+
+
+def _srdf_robot_name(path: Path) -> str | None:
+    parsed = read_srdf(path)
+    return parsed.data.get("name") if parsed.data is not None else None
+
+
+def _auto_yaml(folders, names, owner: _Owner, found: Companions, wanted, what: str):
+    for name in names:
         for path in _candidates(folders, name):
             parsed = read_yaml(path)
-            if is_spec(parsed.data) or parsed.problem:  # a broken file is reported, not skipped
+            if not wanted(parsed):
+                continue
+            mine, why = owner.claims(path)
+            if mine or path.parent.name == "config" and path.parent.parent.name.endswith("_moveit_config"):
+                found.used[path] = why if mine else "in the robot's MoveIt package"
                 return parsed
+            found.unused[path] = why
     return None
 
 
@@ -187,13 +393,38 @@ def is_spec(data) -> bool:
     return isinstance(data, dict) and "unit" in data and "joints" in data
 
 
+_CONTROLLER_KEYS = ("controller_manager", "controller_list", "controller_names",
+                    "moveit_simple_controller_manager")
+
+
 def looks_like_controllers(data, depth: int = 0) -> bool:
-    """A controller configuration: ``type: pkg/Class`` in some mapping, or ``controller_manager``."""
+    """A controller configuration: ``type: pkg/Class`` in some mapping, a ``controller_manager``,
+    or MoveIt's ``controller_list``/``controller_names``/``moveit_simple_controller_manager``."""
     if not isinstance(data, dict) or depth > 6:
         return False
-    if "controller_manager" in data or "controller_list" in data:
+    if any(key in data for key in _CONTROLLER_KEYS):
         return True
     kind = data.get("type")
     if isinstance(kind, str) and "/" in kind:
         return True
     return any(looks_like_controllers(value, depth + 1) for value in data.values())
+
+
+
+
+def may_use(robot_path: Path, companion: Path, text: bytes = b"") -> bool:
+    """Whether the robot in file ``robot_path`` (not loaded; ``text``: its bytes) may be checked
+    with ``companion`` when discovery runs: the file is in one of its search folders and the
+    robot is alone there or the file is named after it (an SRDF may also match by its
+    ``<robot name>``, known only once the robot is loaded), or the robot's file names it (a
+    ``<parameters>`` path). Errs on the side of yes: the check itself decides exactly."""
+    if companion.name.encode() in text:
+        return True
+    real = companion.resolve()
+    if not any(real.parent == folder.resolve() for folder in search_folders(robot_path)):
+        return False
+    stem = robot_path.name.split(".")[0]
+    beside = _robots_beside(Path(os.path.abspath(robot_path)))
+    return (not beside or companion.suffix == ".srdf"
+            or _match_length(companion, {stem}) > max(
+                (_match_length(companion, {p.name.split(".")[0]}) for p in beside), default=0))

@@ -39,7 +39,15 @@ class YamlList(list):
 
 class _Loader(DepthLimit, yaml.SafeLoader):
     """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;
-    nesting past yaml_limits.MAX_DEPTH is a YAML error at its line."""
+    nesting past yaml_limits.MAX_DEPTH is a YAML error at its line.
+
+    merge_repeated: a key written twice in one mapping, both times holding a mapping, holds
+    both merged (the later value wins key by key), as ROS 2's parameter parser reads a
+    parameter file (rcl_yaml_param_parser adds each node-name block and each nested parameter
+    name to what it has: two ``/**:`` blocks both apply). Off, the later value replaces the
+    earlier one, as PyYAML (and so rosparam, ROS 1) does."""
+
+    merge_repeated = False
 
     def construct_yaml_map(self, node):
         data = YamlMap()
@@ -51,7 +59,11 @@ class _Loader(DepthLimit, yaml.SafeLoader):
                 hash(key)
             except TypeError:
                 key = str(key)
-            data[key] = self.construct_object(value_node, deep=True)
+            value = self.construct_object(value_node, deep=True)
+            if self.merge_repeated and isinstance(data.get(key), YamlMap) and isinstance(value, YamlMap):
+                data[key] = merged(data[key], value)  # keeps the line it was first written at
+                continue
+            data[key] = value
             data.lines[key] = key_node.start_mark.line + 1
 
     def construct_yaml_seq(self, node):
@@ -69,6 +81,29 @@ class _Loader(DepthLimit, yaml.SafeLoader):
         return next(self.construct_yaml_map(node))
 
 
+def merged(first, second):
+    """``second`` merged into a copy of ``first`` when both are mappings (recursively, the
+    later value winning key by key; lines kept from where each key was first written); else
+    ``second``. Neither is changed: an alias may share them."""
+    if not (isinstance(first, YamlMap) and isinstance(second, YamlMap)):
+        return second
+    result = YamlMap(first)
+    result.line, result.lines = first.line, dict(first.lines)
+    for key, value in second.items():
+        result[key] = merged(first[key], value) if key in first else value
+        result.lines.setdefault(key, second.lines.get(key, second.line))
+    return result
+
+
+# A ROS 2 parameter file: some node's parameters are under ``ros__parameters:``.
+_ROS2_PARAMETERS = re.compile(r"^[ \t]*(?:-[ \t]+)?[\"']?ros__parameters[\"']?[ \t]*:", re.M)
+
+
+def is_ros2_parameters(text: str) -> bool:
+    """Whether ``text`` is a ROS 2 parameter file (it has a ``ros__parameters:`` key)."""
+    return bool(_ROS2_PARAMETERS.search(text))
+
+
 _Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
 _Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
 _Loader.add_multi_constructor("!", _Loader.construct_unknown)
@@ -84,6 +119,7 @@ class CompanionFile:
     data: object = None
     problem: str | None = None
     line: int | None = None
+    ros2: bool = False  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
 
     @property
     def root(self):
@@ -102,13 +138,17 @@ def read_yaml(path: Path) -> YamlFile:
     text = _read_text(path, result)
     if text is None:
         return result
+    loader = _Loader(text)
+    loader.merge_repeated = result.ros2 = is_ros2_parameters(text)
     try:
-        result.data = yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+        result.data = loader.get_single_data()
     except yaml.MarkedYAMLError as error:
         result.line = _error_line(error, text)
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
     except (yaml.YAMLError, RecursionError) as error:
         result.problem = f"not valid YAML: {error}"
+    finally:
+        loader.dispose()
     return result
 
 

@@ -53,8 +53,8 @@ def containment_root(folder: Path) -> Path:
     ``folder`` itself. ``folder`` is taken as named, symbolic links not followed.
 
     The one "where may files be" rule: the loader's allowed roots, mesh paths and the include
-    graph of ``urdftool check`` use it. (Companion discovery is stricter on purpose: only the
-    robot's folder and its config/, see :mod:`urdftool.description.companions`.)"""
+    graph of ``urdftool check`` use it. (Companion discovery is stricter on purpose: only a few
+    folders beside the robot, see :mod:`urdftool.description.companions`.)"""
     folder = Path(os.path.abspath(folder))
     return repository_root(folder) or next(
         (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)

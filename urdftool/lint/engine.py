@@ -62,12 +62,15 @@ class FileResult:
     """What checking one file found.
 
     strict: whether a warning in it fails the check (its settings or the request)
+    companions: one line per companion file found for the robot, what it was used as and why,
+        or why not (``check -v`` lists them)
     """
 
     path: str
     findings: list[Finding]
     robot: object | None = None
     strict: bool = False
+    companions: list[str] = field(default_factory=list)
 
     @property
     def failures(self) -> list[Finding]:
@@ -172,4 +175,14 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
-    return FileResult(path, check_robot(robot, options.selection), robot)
+    findings = check_robot(robot, options.selection)
+    return FileResult(path, findings, robot, companions=_companion_lines(robot))
+
+
+def _companion_lines(robot) -> list[str]:
+    from urdftool.description.companions import companions
+
+    try:
+        return companions(robot).describe()
+    except Exception as error:  # noqa: BLE001 - the rules already reported what broke
+        return [f"companions not found: {type(error).__name__}: {error}"]

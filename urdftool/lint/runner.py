@@ -98,15 +98,17 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
 
     named = [stdin_as if path == "-" and stdin_as else path for path in files]
 
-    def work(index: int) -> list[Finding]:
+    def work(index: int) -> tuple[list[Finding], list[str]]:
         path = files[index]
-        return engine.check_file(named[index], options_for(path), data=stdin.get(path)).findings
+        result = engine.check_file(named[index], options_for(path), data=stdin.get(path))
+        return result.findings, result.companions
 
-    def stopped(index: int, stop: Stop) -> list[Finding]:
-        return [stop_finding(named[index], stop, "checking")]
+    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
+        return [stop_finding(named[index], stop, "checking")], []
 
-    findings = run_budgeted(len(files), work, budget, stopped, jobs)
-    return [FileResult(path, found) for path, found in zip(named, findings)]
+    outcomes = run_budgeted(len(files), work, budget, stopped, jobs)
+    return [FileResult(path, found, companions=lines)
+            for path, (found, lines) in zip(named, outcomes)]
 
 
 @dataclass

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
+from urdftool.description.companions import COMPANION_SUFFIXES, may_use
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 
@@ -274,6 +275,14 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
 
 
+def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE
+                    ) -> list[Path]:
+    """The robots (top-level robot files) that may be checked with ``companion`` (a controller
+    YAML, an SRDF, a spec): see :func:`~urdftool.description.companions.may_use`."""
+    return [robot for robot in robots
+            if may_use(robot, companion, _head(robot, limit) or b"")]
+
+
 def project_root(path: Path) -> Path:
     """The folder whose robots may include ``path``: its
     :func:`~urdftool.description.packages.containment_root` (repository, else package, else
@@ -364,6 +373,7 @@ def expand(paths: list[str], request) -> Targets:
         return PackageResolver(for_file(str(path), request).options.packages, start=path.parent)
 
     includers = {}  # (project root, size limit) -> its include graph, built once
+    robots = {}  # (project root, size limit) -> its top-level robots, found once
     files, skipped, notes = [], {}, []
     for path in map(os.fspath, paths):
         if path != "-" and not os.path.lexists(path):
@@ -372,6 +382,17 @@ def expand(paths: list[str], request) -> Targets:
             files.append(path)
             continue
         limit = for_file(path, request).options.max_file_size
+        if Path(path).is_file() and path.endswith(COMPANION_SUFFIXES):
+            root = project_root(Path(path))
+            if (root, limit) not in robots:
+                robots[root, limit] = split_top_level(robot_files(root), resolver_for, limit)[0]
+            users = companion_users(Path(path), robots[root, limit], limit)
+            files.extend(display_path(p) for p in users)
+            notes.append(f"{path}: " + (
+                f"a companion of {', '.join(display_path(p) for p in users)}: checking "
+                f"{'that' if len(users) == 1 else 'those'}" if users else
+                f"no robot below {root} is checked with it: nothing to check"))
+            continue
         if Path(path).is_file():
             root = project_root(Path(path))
             if (root, limit) not in includers:

@@ -26,6 +26,7 @@ ROS2_YAML = """\
           - head_joint
         command_interfaces: [{claim}]
         interface_name: {claim}
+        state_interfaces: [position]
     """
 
 
@@ -112,7 +113,8 @@ def test_yaml_alias_bomb_is_walked_once(tmp_path):
 def test_humanoid_broken_is_located_in_the_controller_yaml(tmp_path, file, old, new, code, message):
     findings = broken_copy(tmp_path, "humanoid", file, old, new)
     yaml = ROBOTS / "humanoid/config/controllers.yaml"
-    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings] == [
+    # (renaming a joint in joints: also leaves its constraints naming the old one: U609)
+    assert [(f.code, f.file.endswith("controllers.yaml"), f.line) for f in findings if f.code != "U609"] == [
         (code, True, line_of(yaml, "joints: [head_pan, head_tilt]"))]
     assert message in findings[0].message
 
@@ -125,9 +127,14 @@ def test_r2d2_joint_renamed_in_controller_yaml(tmp_path):
 
 
 def test_r2d2_ros2_control_and_transmission_swapped_to_velocity(tmp_path):
+    # the ROS 1 transmission still offers position, but ros2_control reads only <ros2_control>
     findings = broken_copy(tmp_path, "r2d2", "r2d2.urdf.xacro",
                            '<command_interface name="position"/>', '<command_interface name="velocity"/>')
-    assert findings == []  # the ROS 1 transmission still offers position
+    assert [(f.code, f.line) for f in findings] == [
+        ("U604", line_of(ROBOTS / "r2d2/config/head_controller.yaml", "- head_joint"))]
+    assert findings[0].message.endswith(
+        "offers velocity; use velocity_controllers/JointGroupVelocityController, or make the joint "
+        "offer position (a position command interface in its <ros2_control> joint)")
     findings = broken_copy(tmp_path / "2", "r2d2", "r2d2.urdf.xacro",
                            'actuator="head_motor" interface="Position"', 'actuator="head_motor" interface="Velocity"')
     assert findings == []  # ros2_control still offers position
@@ -142,3 +149,32 @@ def test_r2d2_without_joint_state_broadcaster(tmp_path):
 def test_unactuated_controller_joint_says_what_would_be_right():
     messages = case_messages("U603_controller_joint_not_actuated", "U603")
     assert messages and all("add one for it, or remove it from the controller" in m for m in messages)
+
+
+def test_diff_drive_controller_on_position_wheels_says_what_ros2_needs(tmp_path):
+    robot = HEAD_ROBOT.format(body=ROS2.format(iface="position")).replace(
+        'type="revolute"', 'type="continuous"')
+    yaml = """\
+        controller_manager:
+          ros__parameters:
+            jsb: {type: joint_state_broadcaster/JointStateBroadcaster}
+            base: {type: diff_drive_controller/DiffDriveController}
+        base:
+          ros__parameters:
+            left_wheel_names: [head_joint]
+            right_wheel_names: [head_joint]
+            wheel_separation: 0.1
+            wheel_radius: 0.05
+        """
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml}, select=("U604",))
+    assert found == [("c.yaml", 7, "U604"), ("c.yaml", 8, "U604")]
+    assert findings[0].message.endswith(
+        "which offers position; diff_drive_controller turns its wheels by velocity: make the joint "
+        "offer velocity (a velocity command interface in its <ros2_control> joint)")
+
+
+def test_a_ros1_class_in_a_ros2_file_names_the_ros2_class():
+    messages = case_messages("U606_controller_unknown_class", "U606")
+    assert ("position_controllers/JointPositionController is a ROS 1 (ros_control) class, and the "
+            "file has ros__parameters, so it is a ROS 2 parameter file; ROS 2 (ros2_control) has "
+            "position_controllers/JointGroupPositionController") in messages

@@ -71,3 +71,52 @@ def test_unknown_frame_name_suggests_the_sensor_link():
     messages = case_messages("U615_sensor_unknown_link.urdf", "U615")
     assert "<frame_name> 'cam_optical' is not a link, so TF cannot place the data stamped with it; " \
            "use 'cam', the link it sits on, or add a link 'cam_optical'" in messages
+
+
+def test_vertical_wheel_axis_is_reported_and_separation_still_measured(tmp_path):
+    # issue 14: a wheel whose axis is vertical made the separation along it 0 and the check skip
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(
+        "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"
+        "<wheel_separation>0.3</wheel_separation>")).replace('<axis xyz="1 0 0"/>', '<axis xyz="0 0 1"/>')
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert ("robot.urdf", 11, "U614") in found
+    assert [f.message for f in findings if f.code == "U617" and "not a horizontal axis" in f.message]
+
+
+def test_left_wheel_on_the_right_side(tmp_path):
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so",
+                          tags="<left_joint>rj</left_joint><right_joint>lj</right_joint>")
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 10, "U617")]
+    assert "left wheel 'rj' is on the right (y = -0.1 m" in findings[0].message
+
+
+def test_plugin_base_frame_must_be_a_link(tmp_path):
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(
+        "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"
+        "<robot_base_frame>base_footprint</robot_base_frame><odometry_frame>odom</odometry_frame>"))
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 11, "U616")]
+
+
+def test_diff_drive_plugin_wheels_count_as_actuated(tmp_path):
+    # gazebo_ros_control is loaded and only the head has a transmission: the wheels the
+    # diff-drive plugin turns are driven, not limp (U507 used to list them)
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so",
+                          tags="<left_joint>lj</left_joint><right_joint>rj</right_joint>").replace(
+        "</robot>", '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>\n'
+                    '<link name="h"/><joint name="hj" type="continuous"><parent link="base_link"/>'
+                    '<child link="h"/></joint>\n</robot>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 13, "U507")]  # hj only
+
+
+def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):
+    robot = WHEELS.format(filename="libgazebo_ros_control.so", tags="").replace("</robot>", """
+      <ros2_control name="s" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>
+        <joint name="lj"><command_interface name="velocity"/></joint>
+        <joint name="rj"><command_interface name="velocity"/></joint></ros2_control>
+    </robot>""")
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 9, "U618")]
+    assert "use libgazebo_ros2_control.so" in findings[0].message

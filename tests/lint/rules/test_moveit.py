@@ -38,11 +38,12 @@ def test_moveit2_layouts_under_ros_parameters(tmp_path):
              "moveit_controllers.yaml":
                  "moveit_simple_controller_manager:\n  controller_names: [head_controller, neck]\n"
                  "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"}
-    found, findings = check_folder(tmp_path, files, select=("U81",))
+    found, findings = check_folder(tmp_path, files, select=("U81", "U601"))
     # the timeout, min_position (a tagged max_position has no known unit: not compared), the
-    # neck controller without a block, and cam_joint that ros_control does not drive
+    # neck controller without a block (the controllers family's U601: the file is among the
+    # robot's controller files), and cam_joint that ros_control does not drive
     assert found == [("joint_limits.yaml", 6, "U816"), ("kinematics.yaml", 6, "U812"),
-                     ("moveit_controllers.yaml", 2, "U812"), ("moveit_controllers.yaml", 5, "U818")]
+                     ("moveit_controllers.yaml", 2, "U601"), ("moveit_controllers.yaml", 5, "U818")]
     assert "adds cam_joint" in findings[3].message
 
 

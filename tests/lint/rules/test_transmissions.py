@@ -78,3 +78,15 @@ def test_humanoid_unknown_hardware_interface(tmp_path):
 def test_message_says_what_would_be_right(case, code, fix):
     messages = case_messages(case, code)
     assert messages and all(fix in m for m in messages)
+
+
+def test_unknown_interface_on_a_ros2_robot_says_ros2_control_does_not_read_it(tmp_path):
+    robot = HEAD_ROBOT.format(body="""
+      <transmission name="t"><type>transmission_interface/SimpleTransmission</type>
+        <joint name="head_joint"><hardwareInterface>hardware_interface/PositionInterface</hardwareInterface></joint>
+        <actuator name="m"/></transmission>
+      <ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="head_joint"><command_interface name="position"/></joint></ros2_control>""")
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U503",))
+    assert [f.code for f in findings] == ["U503"]
+    assert "ros2_control does not read this ROS 1 transmission" in findings[0].message

@@ -2,119 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
+from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
+                                            ros2_state_interfaces, transmission_joints, transmissions)
 from urdftool.description.companions import companions
-from urdftool.description.documents import YamlFile, YamlList, YamlMap
-from urdftool.lint.catalogue import Severity, rule
-from urdftool.description.actuation import command_interfaces, interface_kind, transmission_joints, transmissions
+from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
+from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
 from urdftool.errors import available
-
-STATE_PACKAGES = ("joint_state_controller", "joint_state_broadcaster")
-STATE_CLASSES = ("StateController", "StateBroadcaster")
-JOINT_KEYS = ("joints", "joint", "joint_names", "left_wheel", "right_wheel", "left_wheel_names",
-              "right_wheel_names")
-SINGLE_INTERFACE = {
-    "position_controllers": "position", "velocity_controllers": "velocity",
-    "effort_controllers": "effort", "pos_vel_controllers": "position",
-    "pos_vel_acc_controllers": "position", "diff_drive_controller": "velocity",
-}
-
-
-@dataclass
-class Controller:
-    """One controller of a YAML file: where its ``type`` is, its joints and their lines."""
-
-    file: YamlFile
-    name: str
-    type: str
-    line: int
-    joints: list = field(default_factory=list)  # (name, line)
-    settings: dict = field(default_factory=dict)
-
-    @property
-    def package(self) -> str:
-        return self.type.split("/")[0]
-
-    @property
-    def is_state(self) -> bool:
-        return self.package in STATE_PACKAGES or self.type.endswith(STATE_CLASSES)
-
-    def interfaces(self) -> list[str] | None:
-        """Command interfaces it claims on each joint, or None when the type is not known."""
-        if self.package in SINGLE_INTERFACE:
-            return [SINGLE_INTERFACE[self.package]]
-        if self.package == "joint_trajectory_controller":
-            claimed = self.settings.get("command_interfaces")
-            return [str(c) for c in claimed] if isinstance(claimed, list) else None
-        if self.package == "forward_command_controller":
-            claimed = self.settings.get("interface_name")
-            return [claimed] if isinstance(claimed, str) else None
-        return None
-
-
-def controllers(robot) -> list[Controller]:
-    """Every controller in the robot's controller YAML files (parsed once per robot)."""
-    return robot.memo(controllers, lambda: [c for f in companions(robot).controllers
-                                            if f.problem is None for c in _file_controllers(f)])
-
-
-def _file_controllers(file: YamlFile) -> list[Controller]:
-    declared, parameters = [], {}
-    seen: set[int] = set()
-
-    def walk(node):
-        if not isinstance(node, dict) or id(node) in seen:
-            return
-        seen.add(id(node))
-        for key, value in node.items():
-            if not isinstance(value, dict):
-                continue
-            kind = value.get("type")
-            if isinstance(kind, str) and "/" in kind:
-                declared.append((str(key), value, node.lines.get(key, node.line)))
-            if isinstance(value.get("ros__parameters"), dict):
-                parameters[str(key).split("/")[-1]] = value["ros__parameters"]
-            walk(value)
-
-    if isinstance(file.data, dict) and isinstance(file.data.get("type"), str) and "/" in file.data["type"]:
-        declared.append((file.path.name.split(".")[0], file.data, file.data.lines["type"]))
-    walk(file.data)
-    found = _moveit_controllers(file)
-    for name, declaration, line in declared:
-        settings = {**declaration, **parameters.get(name, {})}
-        source = parameters.get(name, declaration)
-        controller = Controller(file, name, declaration["type"], line, settings=settings)
-        for key in JOINT_KEYS:
-            holder = source if key in source else declaration
-            controller.joints.extend(_names_at(holder, key))
-        found.append(controller)
-    return found
-
-
-def _moveit_controllers(file: YamlFile) -> list[Controller]:
-    """MoveIt's ``controller_list`` (moveit_config/config/ros_controllers.yaml): names and joints."""
-    listed = file.data.get("controller_list") if isinstance(file.data, dict) else None
-    if not isinstance(listed, YamlList):
-        return []
-    found = []
-    for entry, line in zip(listed, listed.lines):
-        if isinstance(entry, YamlMap) and "joints" in entry:
-            controller = Controller(file, str(entry.get("name", "?")),
-                                    f"moveit/{entry.get('type', '?')}", line)
-            controller.joints = _names_at(entry, "joints")
-            found.append(controller)
-    return found
-
-
-def _names_at(mapping, key) -> list[tuple[str, int]]:
-    value = mapping.get(key) if isinstance(mapping, dict) else None
-    line = mapping.lines.get(key, mapping.line) if isinstance(mapping, YamlMap) else None
-    if isinstance(value, str):
-        return [(value, line)]
-    if isinstance(value, YamlList):
-        return [(str(item), at) for item, at in zip(value, value.lines) if isinstance(item, str)]
-    return []
+from urdftool.lint.catalogue import Severity, rule
 
 
 def _substituted(name: str) -> bool:
@@ -123,7 +18,17 @@ def _substituted(name: str) -> bool:
 
 
 def _label(controller: Controller) -> str:
-    return f"controller '{controller.name}' ({controller.type})"
+    return f"controller '{controller.name}' ({controller.type or 'no type'})"
+
+
+def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
+    """The names a controller holds that are meant as URDF joints: all of them for a known
+    class; for a class nothing is known about (a vendor's), only when some of them are URDF
+    joints (its ``joint: tcp`` may be a hardware interface prefix, not a joint)."""
+    refs = [ref for ref in controller.joints() if not _substituted(ref.name)]
+    if controller.known or any(ref.name in robot.joints for ref in refs):
+        return refs
+    return []
 
 
 @rule("U601", "malformed-controllers-yaml", Severity.ERROR)
@@ -132,7 +37,9 @@ def malformed_controllers_yaml(robot):
 
     The controller manager cannot load its parameters, so no controller starts. Files given
     with ``--controllers`` must hold at least one controller (a mapping with
-    ``type: package/Class``) or a ``controller_manager`` section.
+    ``type: package/Class``), a ``controller_manager`` section, or MoveIt's
+    ``controller_list``/``controller_names``; a name MoveIt's ``controller_names`` lists needs
+    its own mapping (``type``, ``action_ns``, ``joints``) beside the list.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
@@ -141,27 +48,42 @@ def malformed_controllers_yaml(robot):
     for file in companions(robot).controllers:
         if file.problem:
             yield file.at(file.line), file.problem
-        elif explicit and not _file_controllers(file) and not (
-                isinstance(file.data, dict) and "controller_manager" in file.data):
+    for read in controller_files(robot):
+        file = read.file
+        for controller in read.controllers:
+            if controller.layout == "moveit" and controller.params is None:
+                yield file.at(controller.line), (
+                    f"MoveIt's controller_names lists '{controller.name}', but there is no "
+                    f"'{controller.name}:' mapping beside the list (with type, action_ns and joints)")
+        if explicit and not read.controllers and not _has_manager(read):
             yield file.at(1), (f"{file.display} names no controller (a mapping with "
                                "'type: package/Class', e.g. joint_state_broadcaster/JointStateBroadcaster)")
+
+
+def _has_manager(read) -> bool:
+    return (isinstance(read.file.data, dict) and "controller_manager" in read.file.data) or any(
+        block.name == "controller_manager" for block in read.blocks)
 
 
 @rule("U602", "controller-unknown-joint", Severity.ERROR)
 def controller_unknown_joint(robot):
     """A controller names a joint that is not in the URDF.
 
-    The controller fails to configure ("Could not find resource 'X'").
+    The controller fails to configure ("Could not find resource 'X'"). Joints are read from the
+    parameters the controller's class reads (``joints``, ``joint``, ``left_wheel_names``, ...; see
+    the class table). A class nothing is known about (a vendor's) is checked only when some of
+    its ``joint``/``joints``/``joint_names`` are URDF joints: its ``joint: tcp`` may name a
+    hardware interface prefix, not a joint.
 
     Bad: ``joints: [head_jont]``
     Good: ``joints: [head_joint]``
     """
     for controller in controllers(robot):
-        for name, line in controller.joints:
-            if name not in robot.joints and not _substituted(name):
-                yield controller.file.at(line), (
-                    f"{_label(controller)} names joint '{name}', which is not in the URDF; "
-                    f"{available('joints', name, robot.joints)}")
+        for ref in _urdf_joints(robot, controller):
+            if ref.name not in robot.joints:
+                yield controller.file.at(ref.line), (
+                    f"{_label(controller)} names joint '{ref.name}', which is not in the URDF; "
+                    f"{available('joints', ref.name, robot.joints)}")
 
 
 @rule("U603", "controller-joint-not-actuated", Severity.ERROR)
@@ -180,14 +102,14 @@ def controller_joint_not_actuated(robot):
     for controller in controllers(robot):
         if controller.is_state:
             continue
-        for name, line in controller.joints:
-            joint = robot.joints.get(name)
-            if joint is None or name in offered:
+        for ref in _urdf_joints(robot, controller):
+            joint = robot.joints.get(ref.name)
+            if joint is None or ref.name in offered:
                 continue
             what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
                     else "has no transmission or ros2_control joint; add one for it, or remove "
                          "it from the controller")
-            yield controller.file.at(line), f"{_label(controller)}: joint '{name}' {what}"
+            yield controller.file.at(ref.line), f"{_label(controller)}: joint '{ref.name}' {what}"
 
 
 @rule("U604", "controller-interface-mismatch", Severity.ERROR)
@@ -196,7 +118,10 @@ def controller_interface_mismatch(robot):
 
     position_controllers/* need a PositionJointInterface (or a ``position`` command interface),
     velocity_controllers/* a velocity one, effort_controllers/* an effort one;
-    joint_trajectory_controller uses its ``command_interfaces``.
+    joint_trajectory_controller uses its ``command_interfaces``, forward_command_controller its
+    ``interface_name``, diff_drive_controller velocity on its wheels. A ROS 2 controller gets
+    only what the joint's ``<ros2_control>`` entry offers (ros2_control does not read
+    transmissions outside ``<ros2_control>``).
 
     Bad: ``position_controllers/JointTrajectoryController`` on a joint with
     ``hardware_interface/VelocityJointInterface``
@@ -204,43 +129,69 @@ def controller_interface_mismatch(robot):
     ``hardware_interface/PositionJointInterface`` in its transmission
     """
     offered = command_interfaces(robot)
+    ros2 = ros2_command_interfaces(robot)
     unknown = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)
                if any(not interface_kind(i.text)[0] for i in joint.interfaces)}  # U503
     for controller in controllers(robot):
         claimed = controller.interfaces()
         if not claimed or controller.is_state:
             continue
-        for name, line in controller.joints:
-            if name not in offered or name not in robot.joints or name in unknown:
+        for ref in _urdf_joints(robot, controller):
+            name = ref.name
+            if controller.ros == 2 and name in ros2:
+                has_set = ros2[name]
+            elif name in offered and name not in unknown:
+                has_set = offered[name]
+            else:
                 continue
-            missing = [c for c in claimed if c not in offered[name]]
+            if name not in robot.joints:
+                continue
+            missing = [c for c in claimed if c not in has_set]
             if missing:
-                has = ", ".join(sorted(offered[name])) or "no command interface (read-only)"
-                yield controller.file.at(line), (
+                has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
+                yield controller.file.at(ref.line), (
                     f"{_label(controller)} commands {'/'.join(missing)} on joint '{name}', which "
-                    f"offers {has}; {_interface_fix(controller, offered[name], missing)}")
-
-
-# Controller classes that position_, velocity_ and effort_controllers all provide (ROS 1).
-_IN_EVERY_PACKAGE = ("JointPositionController", "JointTrajectoryController")
+                    f"offers {has}; {_interface_fix(controller, has_set, missing)}")
 
 
 def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> str:
     """What would be right: a controller for what the joint offers, or the joint offering more."""
     kinds = sorted(offered & {"position", "velocity", "effort"})
-    if controller.package == "joint_trajectory_controller" and kinds:
-        use = f"set command_interfaces to [{', '.join(kinds)}]"
-    elif controller.package == "forward_command_controller" and kinds:
-        use = f"set interface_name to {kinds[0]}"
-    elif controller.package in SINGLE_INTERFACE and kinds:
-        kind_class = controller.type.split("/")[-1]
-        shown = kind_class if kind_class in _IN_EVERY_PACKAGE else "..."
-        use = "use " + " or ".join(f"{kind}_controllers/{shown}" for kind in kinds)
+    known = controller.cls
+    wanted = missing[0]
+    param = known.commands[1:] if known and known.commands and known.commands.startswith("@") else None
+    if param and kinds:
+        use = (f"set {param} to [{', '.join(kinds)}]" if param.endswith("s")
+               else f"set {param} to {kinds[0]}")
+    elif known and kinds and _alternatives(controller, kinds):
+        use = "use " + " or ".join(_alternatives(controller, kinds))
     else:
         use = "change the controller"
-    wanted = missing[0]
-    return (f"{use}, or make the joint offer {wanted} ({wanted.capitalize()}JointInterface in its "
-            f"transmission, or a {wanted} command interface in <ros2_control>)")
+    if controller.ros == 2:
+        offer = f"a {wanted} command interface in its <ros2_control> joint"
+    else:
+        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or a {wanted} command "
+                 "interface in <ros2_control>")
+    if known and known.package == "diff_drive_controller":
+        return f"diff_drive_controller turns its wheels by {wanted}: make the joint offer {wanted} ({offer})"
+    return f"{use}, or make the joint offer {wanted} ({offer})"
+
+
+def _alternatives(controller: Controller, kinds: list[str]) -> list[str]:
+    """Classes of the controller's ROS version doing the same job through ``kinds``:
+    ``velocity_controllers/JointTrajectoryController`` for ROS 1's position one,
+    ``velocity_controllers/JointGroupVelocityController`` for ROS 2's JointGroupPositionController."""
+    table = classes(controller.ros)
+    claimed = controller.cls.commands or ""
+    shown = controller.type.split("/")[-1]
+    found = []
+    for kind in kinds:
+        for name in (f"{kind}_controllers/{shown}",
+                     f"{kind}_controllers/{shown.replace(claimed.capitalize(), kind.capitalize())}"):
+            if name in table and table[name].commands == kind and name not in found:
+                found.append(name)
+                break
+    return found
 
 
 @rule("U605", "no-joint-state-controller", Severity.WARNING)
@@ -248,15 +199,234 @@ def no_joint_state_controller(robot):
     """The controller configuration has no joint state broadcaster or controller.
 
     Without joint_state_broadcaster (ROS 2) or joint_state_controller (ROS 1) nothing publishes
-    /joint_states, so robot_state_publisher and RViz show the robot frozen.
+    /joint_states, so robot_state_publisher and RViz show the robot frozen. MoveIt's controller
+    lists are not counted: MoveIt does not publish joint states.
 
     Bad: only ``head_controller`` in the YAML
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
-    found = [c for c in controllers(robot) if c.package != "moveit"]
+    found = [c for c in controllers(robot) if c.layout != "moveit"]
     if found and not any(c.is_state for c in found):
         first = found[0]
         yield first.file.at(first.line), (
             f"no joint state broadcaster/controller among {len(found)} controllers in "
             f"{', '.join(sorted({c.file.display for c in found}))}; add joint_state_broadcaster/"
             "JointStateBroadcaster (ROS 2) or joint_state_controller/JointStateController (ROS 1)")
+
+
+_ROS = {1: "ROS 1 (ros_control)", 2: "ROS 2 (ros2_control)"}
+
+
+def _version_reason(controller: Controller) -> str:
+    return ("the file has ros__parameters, so it is a ROS 2 parameter file" if controller.ros == 2
+            else "the file has no ros__parameters, so it is a ROS 1 (rosparam) file")
+
+
+@rule("U606", "controller-unknown-class", Severity.ERROR)
+def controller_unknown_class(robot):
+    """A controller's ``type`` is not a class of its controller manager's ROS version.
+
+    The controller manager cannot load it ("Loader for controller 'x' not found").
+    A file with ``ros__parameters`` is read by ROS 2's controller_manager, any other by ROS 1's
+    ros_control; each has its own classes (ROS 1's
+    ``position_controllers/JointPositionController`` is ROS 2's
+    ``position_controllers/JointGroupPositionController``). Classes are checked for the packages
+    of ros_controllers and ros2_controllers (see the class table,
+    ``urdftool/description/controller_classes.py``, with the plugin XML of each); a vendor's
+    package is not. MoveIt's simple controller manager knows ``FollowJointTrajectory`` and
+    ``GripperCommand``.
+
+    Bad: ``type: position_controllers/JointPositionController`` under ``ros__parameters``
+    Good: ``type: position_controllers/JointGroupPositionController``
+    """
+    for controller in controllers(robot):
+        if controller.layout == "moveit":
+            if controller.params is not None and controller.type not in MOVEIT_TYPES:
+                yield controller.file.at(controller.where("type")), (
+                    f"MoveIt controller '{controller.name}' has type '{controller.type}'; MoveIt's "
+                    f"simple controller manager knows {' and '.join(MOVEIT_TYPES)}")
+            continue
+        if controller.cls is not None or not known_package(controller.type):
+            continue
+        other = 3 - controller.ros
+        if lookup(controller.type, other) is not None:
+            instead = COUNTERPARTS.get((other, controller.type))
+            yield controller.file.at(controller.line), (
+                f"{controller.type} is a {_ROS[other]} class, and {_version_reason(controller)}; "
+                + (f"{_ROS[controller.ros]} has {instead}" if instead
+                   else f"{available('classes', controller.type, classes(controller.ros))}"))
+        else:
+            yield controller.file.at(controller.line), (
+                f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
+                f"{available('classes', controller.type, classes(controller.ros))}")
+
+
+@rule("U607", "controller-missing-parameter", Severity.ERROR)
+def controller_missing_parameter(robot):
+    """A controller lacks a parameter its class needs, or writes it under the other ROS's key.
+
+    ROS 2 controllers read their parameters from their own ``NAME: ros__parameters:`` block
+    (or a ``/**`` block); a controller declared in the controller_manager without one has
+    none. ROS 2's classes read ``joints:`` (a list) where ROS 1's single-joint controllers read
+    ``joint:`` (ROS 1's ``position_controllers/JointPositionController`` ignores a ``joints:``
+    list); joint_trajectory_controller needs ``joints``, ``command_interfaces`` and
+    ``state_interfaces``; diff_drive_controller its wheel names, ``wheel_separation`` and
+    ``wheel_radius``.
+
+    Bad: ``head_controller: {type: position_controllers/JointPositionController, joints: [head]}``
+    Good: ``joint: head``
+    """
+    blocks = {block.name for read in controller_files(robot) for block in read.blocks}
+    for controller in controllers(robot):
+        known = controller.cls
+        if known is None:
+            continue
+        params = controller.params or {}
+        if controller.layout == "ros2" and controller.block_line is None and controller.name not in blocks:
+            if known.required:
+                yield controller.file.at(controller.line), (
+                    f"{_label(controller)} is declared but has no '{controller.name}: "
+                    f"ros__parameters:' block, and {known.name.split('/')[-1]} needs "
+                    f"{', '.join(known.required)}; add the block")
+            continue
+        misplaced = set()
+        for key, shape in known.joints.items():
+            other = {"joints": "joint", "joint": "joints"}.get(key)
+            if key not in params and other in params and other not in known.joints:
+                misplaced.add(key)
+                reads = ("joints: (a list)" if key == "joints" else "joint: (one name)")
+                yield controller.file.at(controller.where(other)), (
+                    f"{_label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
+                    f"its {other}: is ignored; write {key}: instead")
+        missing = [key for key in known.required if key not in params and key not in misplaced]
+        if missing:
+            yield controller.file.at(controller.block_line or controller.line), (
+                f"{_label(controller)} has no {', '.join(missing)}; {known.name} does not "
+                "configure without " + ("it" if len(missing) == 1 else "them"))
+
+
+_CONTROLLER_PARAMETERS = ("joints", "joint", "interface_name", "command_interfaces",
+                          "left_wheel_names", "right_wheel_names")
+
+
+@rule("U608", "controller-parameters-not-declared", Severity.WARNING)
+def controller_parameters_not_declared(robot):
+    """A ROS 2 controller's parameter block names no controller the controller_manager declares.
+
+    ``arm_controler: ros__parameters: {joints: ...}`` beside a controller_manager that declares
+    ``arm_controller`` configures nothing: the controller starts without its joints. Checked
+    when one of the robot's controller files declares controllers in a controller_manager.
+
+    Bad: ``head_controler: ros__parameters:`` when the manager declares ``head_controller``
+    Good: the same name in both places
+    """
+    declared = {c.name for c in controllers(robot) if c.layout == "ros2"}
+    if not declared:
+        return
+    for read in controller_files(robot):
+        for block in read.blocks:
+            if block.name in declared or block.name in ("*", "**", "controller_manager"):
+                continue
+            if any(key in block.params for key in _CONTROLLER_PARAMETERS):
+                yield read.file.at(block.line), (
+                    f"'{block.name}: ros__parameters:' configures a controller no controller_manager "
+                    f"declares; {available('controllers', block.name, declared)}")
+
+
+_CONSTRAINT_SETTINGS = ("goal_time", "stopped_velocity_tolerance")
+_RATES = ("state_publish_rate", "action_monitor_rate")
+
+
+@rule("U609", "trajectory-controller-settings", Severity.ERROR)
+def trajectory_controller_settings(robot):
+    """A joint trajectory controller's settings contradict its joints or themselves.
+
+    Checked for joint_trajectory_controller (ROS 2) and ``*_controllers/JointTrajectoryController``
+    (ROS 1): a joint listed twice; ``constraints`` naming a joint the controller does not
+    command (its tolerance is never applied); ``constraints.goal_time`` below 0;
+    ``state_publish_rate`` or ``action_monitor_rate`` not above 0 (the controller refuses to
+    configure); a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry does not
+    offer.
+
+    Bad: ``constraints: {elbw: {goal: 0.1}}`` for ``joints: [shoulder, elbow]``
+    Good: ``constraints: {elbow: {goal: 0.1}}``
+    """
+    states = ros2_state_interfaces(robot)
+    for controller in controllers(robot):
+        if controller.cls is None or not controller.type.endswith("/JointTrajectoryController"):
+            continue
+        params, at = controller.params or {}, controller.file.at
+        joints = [ref for ref in controller.joints() if ref.key == "joints"]
+        names = [ref.name for ref in joints]
+        for index, ref in enumerate(joints):
+            if ref.name in names[:index]:
+                yield at(ref.line), f"{_label(controller)} lists joint '{ref.name}' twice; keep one"
+        constraints = params.get("constraints")
+        if isinstance(constraints, dict):
+            for key, value in constraints.items():
+                where = at(constraints.lines.get(key, controller.line))
+                if key == "goal_time":
+                    if _number(value) is not None and _number(value) < 0:
+                        yield where, (f"{_label(controller)}: constraints.goal_time is {value}; it "
+                                      "must be 0 or more (0: no limit)")
+                elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
+                        and not _substituted(str(key)):
+                    yield where, (f"{_label(controller)}: constraints name '{key}', which is not one "
+                                  f"of its joints; {available('joints', str(key), names)}")
+        for key in _RATES:
+            value = _number(params.get(key))
+            if value is not None and value <= 0:
+                yield at(controller.where(key)), (f"{_label(controller)}: {key} is {params[key]}; "
+                                                   "it must be above 0 [Hz]")
+        claimed = params.get("state_interfaces")
+        if controller.ros == 2 and isinstance(claimed, list):
+            for interface in dict.fromkeys(str(c) for c in claimed):
+                lacking = [name for name in dict.fromkeys(names)
+                           if name in states and interface not in states[name]]
+                if lacking:
+                    yield at(controller.where("state_interfaces")), (
+                        f"{_label(controller)} reads state interface {interface} of "
+                        f"{', '.join(lacking)}, which <ros2_control> does not offer there; add "
+                        f"<state_interface name=\"{interface}\"/> to "
+                        f"{'that joint' if len(lacking) == 1 else 'those joints'} or drop it "
+                        "from state_interfaces")
+
+
+def _number(value) -> float | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        return None
+
+
+@rule("U610", "joint-commanded-twice", Severity.INFO)
+def joint_commanded_twice(robot):
+    """Two controllers command the same interface of one joint.
+
+    The controller manager activates only one of them at a time (ROS 2: "resource conflict";
+    ROS 1: a claimed resource): a configuration may offer both (a trajectory controller and a
+    forward command controller on the arm) and start one. Which are started is up to the
+    launch files, so this is a note: make sure the two are never spawned active together.
+
+    Bad: ``arm_controller`` and ``arm_position_controller`` both active on ``joints: [shoulder]``
+    Good: spawn one active and the other ``--inactive``
+    """
+    first: dict[tuple, Controller] = {}
+    for controller in controllers(robot):
+        claimed = controller.interfaces()
+        if controller.layout == "moveit" or controller.is_state or not claimed:
+            continue
+        shared: dict[int, tuple] = {}  # the earlier controller -> (it, first line, joints shared)
+        for ref in _urdf_joints(robot, controller):
+            for interface in claimed:
+                other = first.setdefault((ref.name, interface), controller)
+                if other is not controller:
+                    entry = shared.setdefault(id(other), (other, ref.line, []))
+                    if ref.name not in entry[2]:
+                        entry[2].append(ref.name)
+        for other, line, joints in shared.values():
+            yield controller.file.at(line), (
+                f"{_label(controller)} commands {', '.join(joints)} through the same interfaces as "
+                f"{_label(other)}; only one of them can be active at a time")

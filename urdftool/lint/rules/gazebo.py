@@ -4,28 +4,87 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
-from urdftool.physics import mat3
-from urdftool.errors import available
+from dataclasses import dataclass, field
+
+from urdftool.description.actuation import WHEEL_JOINT_TAGS, diff_drive_plugins, gazebo_plugins
+from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
+from urdftool.errors import available
+from urdftool.lint.catalogue import Severity, rule
+from urdftool.physics import mat3
 
-DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
-WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")
 GEOMETRY_TOLERANCE = 0.05
 FRAME_TAGS = ("frame_name", "frameName", "bodyName", "body_name")
 
 
-def _gazebo_plugins(robot):
-    for gazebo in robot.children("gazebo"):
-        yield from gazebo.iter("plugin")
+@dataclass
+class _Drive:
+    """A differential drive, as a Gazebo plugin or a diff_drive_controller describes it.
+
+    wheels: (side, joint name, where) for each wheel it names
+    numbers: (parameter, value text, where) for wheel_separation/wheel_diameter/wheel_radius
+    frames: (parameter, frame name, where, whether it must be a link of the robot)
+    """
+
+    label: str
+    wheels: list = field(default_factory=list)
+    numbers: list = field(default_factory=list)
+    frames: list = field(default_factory=list)
+
+    def side(self, robot, side: str):
+        """The first joint of the robot on ``side`` ("left"/"right"), or None."""
+        return next((robot.joints[name] for s, name, _ in self.wheels
+                     if s == side and name in robot.joints), None)
 
 
-def _diff_drives(robot):
-    for plugin in _gazebo_plugins(robot):
-        text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
-        if any(word in text for word in DIFF_DRIVE):
-            yield plugin
+_PLUGIN_NUMBERS = ("wheel_separation", "wheelSeparation", "wheel_diameter", "wheelDiameter",
+                   "wheel_radius")
+_PLUGIN_FRAMES = (("robot_base_frame", True), ("robotBaseFrame", True),
+                  ("odometry_frame", False), ("odometryFrame", False))
+_CONTROLLER_WHEELS = {"left_wheel_names": "left", "right_wheel_names": "right",
+                      "left_wheel": "left", "right_wheel": "right"}
+_CONTROLLER_FRAMES = (("base_frame_id", True), ("odom_frame_id", False))
+
+
+def _drives(robot) -> list[_Drive]:
+    """Every diff drive of the robot: Gazebo plugins, then diff_drive_controller controllers."""
+    return robot.memo(_drives, lambda: [*_plugin_drives(robot), *_controller_drives(robot)])
+
+
+def _plugin_drives(robot):
+    for plugin in diff_drive_plugins(robot):
+        drive = _Drive(f"diff-drive plugin '{plugin.get('name') or plugin.get('filename')}'")
+        for tag in WHEEL_JOINT_TAGS:
+            for element in plugin.findall(tag):
+                drive.wheels.append(("left" if tag.startswith("left") else "right",
+                                     (element.text or "").strip(), element))
+        for tag in _PLUGIN_NUMBERS:
+            element = plugin.find(tag)
+            if element is not None:
+                drive.numbers.append((tag, element.text, element))
+        for tag, link in _PLUGIN_FRAMES:
+            element = plugin.find(tag)
+            if element is not None and (element.text or "").strip():
+                drive.frames.append((tag, element.text.strip(), element, link))
+        yield drive
+
+
+def _controller_drives(robot):
+    for controller in controllers(robot):
+        if controller.cls is None or controller.cls.package != "diff_drive_controller":
+            continue
+        drive = _Drive(f"controller '{controller.name}' ({controller.type})")
+        at, params = controller.file.at, controller.params or {}
+        for key, side in _CONTROLLER_WHEELS.items():
+            drive.wheels.extend((side, name, at(line)) for name, line in names_at(params, key))
+        for key in ("wheel_separation", "wheel_radius"):
+            if key in params:
+                drive.numbers.append((key, str(params[key]), at(controller.where(key))))
+        for key, link in _CONTROLLER_FRAMES:
+            if isinstance(params.get(key), str) and params[key].strip():
+                drive.frames.append((key, params[key].strip(), at(controller.where(key)), link))
+        yield drive
 
 
 @rule("U611", "gazebo-unknown-reference", Severity.ERROR)
@@ -53,7 +112,7 @@ def diff_drive_unknown_joint(robot):
     Bad: ``<left_joint>left_wheel</left_joint>`` when the joint is ``left_wheel_joint``
     Good: ``<left_joint>left_wheel_joint</left_joint>``
     """
-    for plugin in _diff_drives(robot):
+    for plugin in diff_drive_plugins(robot):
         for tag in WHEEL_JOINT_TAGS:
             for element in plugin.findall(tag):
                 name = (element.text or "").strip()
@@ -66,76 +125,82 @@ def diff_drive_unknown_joint(robot):
 def diff_drive_joint_not_continuous(robot):
     """A diff-drive wheel joint is not continuous.
 
-    A revolute wheel stops at its limit; a fixed one never turns.
+    A revolute wheel stops at its limit; a fixed one never turns. Checked for the Gazebo
+    diff-drive plugins' wheel joints and diff_drive_controller's ``left_wheel_names`` and
+    ``right_wheel_names`` (ROS 1: ``left_wheel``, ``right_wheel``).
 
     Bad: ``<joint name="left_wheel_joint" type="revolute">``
     Good: ``type="continuous"``
     """
-    for plugin in _diff_drives(robot):
-        for tag in WHEEL_JOINT_TAGS:
-            for element in plugin.findall(tag):
-                joint = robot.joints.get((element.text or "").strip())
-                if joint is not None and joint.get("type") != "continuous":
-                    yield element, (f"diff-drive wheel joint '{joint.get('name')}' is "
-                                    f"{joint.get('type')}, not continuous; make it "
-                                    "type=\"continuous\" (a wheel turns without limit)")
+    for drive in _drives(robot):
+        for _, name, where in drive.wheels:
+            joint = robot.joints.get(name)
+            if joint is not None and joint.get("type") != "continuous":
+                yield where, (f"diff-drive wheel joint '{name}' is {joint.get('type')}, not "
+                              "continuous; make it type=\"continuous\" (a wheel turns without limit)")
 
 
 @rule("U614", "diff-drive-geometry", Severity.WARNING)
 def diff_drive_geometry(robot):
-    """A diff-drive plugin's wheel separation or diameter disagrees with the URDF by more than 5 %.
+    """A diff drive's wheel separation or diameter disagrees with the URDF by more than 5 %.
 
-    Odometry then drifts: the plugin turns the wheels by the numbers it was given, not by the
-    wheels the robot has. Separation is measured between the wheel joint origins along the
-    wheel axis; the diameter is the wheel link's cylinder or sphere.
+    Odometry then drifts: the plugin or controller turns the wheels by the numbers it was
+    given, not by the wheels the robot has. Checked for the Gazebo diff-drive plugins and
+    diff_drive_controller (``wheel_separation``, ``wheel_radius``). Separation is measured
+    between the wheel joint origins along the wheel axis (across the robot when the axis is
+    not horizontal, which U617 reports); the diameter is the wheel link's cylinder or sphere.
 
     Bad: ``<wheel_separation>0.3</wheel_separation>`` for wheels 0.26 m apart
     Good: ``<wheel_separation>${wheel_separation}</wheel_separation>`` from the same property
     """
-    for plugin in _diff_drives(robot):
-        left, right = _wheel_joint(robot, plugin, "left"), _wheel_joint(robot, plugin, "right")
+    scales = {"wheel_separation": 1.0, "wheelSeparation": 1.0, "wheel_diameter": 1.0,
+              "wheelDiameter": 1.0, "wheel_radius": 0.5}
+    for drive in _drives(robot):
+        left, right = drive.side(robot, "left"), drive.side(robot, "right")
         if left is None or right is None:
             continue
         separation = _separation(robot, left, right)
         diameter = _wheel_diameter(robot, left)
-        checks = [(("wheel_separation", "wheelSeparation"), separation, 1.0),
-                  (("wheel_diameter", "wheelDiameter"), diameter, 1.0),
-                  (("wheel_radius",), diameter, 0.5)]
-        for tags, actual, scale in checks:
-            for tag in tags:
-                element = plugin.find(tag)
-                if element is None or actual is None:
-                    continue
-                values, _ = parse_numbers(element.text, 1)
-                expected = actual * scale
-                if values and expected > 0 and abs(values[0] - expected) > GEOMETRY_TOLERANCE * expected:
-                    off = 100 * (values[0] - expected) / expected
-                    yield element, (f"diff-drive <{tag}> is {values[0]:g} m but the URDF gives "
-                                    f"{expected:.4g} m ({off:+.1f} %)")
+        for tag, text, where in drive.numbers:
+            actual = separation if "eparation" in tag else diameter
+            values, _ = parse_numbers(text, 1)
+            if actual is None or not values:
+                continue
+            expected = actual * scales[tag]
+            if expected > 0 and abs(values[0] - expected) > GEOMETRY_TOLERANCE * expected:
+                off = 100 * (values[0] - expected) / expected
+                yield where, (f"{drive.label}: {tag} is {values[0]:g} m but the URDF gives "
+                              f"{expected:.4g} m ({off:+.1f} %)")
 
 
-def _wheel_joint(robot, plugin, side):
-    for tag in (f"{side}Joint", f"{side}_joint"):
-        name = plugin.findtext(tag)
-        if name and name.strip() in robot.joints:
-            return robot.joints[name.strip()]
-    return None
+HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg is horizontal
 
 
 def _separation(robot, left, right) -> float | None:
-    """Distance between the two wheel joint origins along the left wheel axis (zero pose)."""
+    """Distance between the two wheel joint origins along the left wheel axis (zero pose);
+    across the robot (horizontally) when that axis is not horizontal."""
     poses = _joint_frames(robot)
     if left.get("name") not in poses or right.get("name") not in poses:
         return None
-    (left_position, left_rotation) = poses[left.get("name")]
-    right_position, _ = poses[right.get("name")]
-    axis, _ = parse_numbers((left.find("axis").get("xyz") if left.find("axis") is not None
-                             else "1 0 0"), 3)
+    left_position, right_position = poses[left.get("name")][0], poses[right.get("name")][0]
     delta = [a - b for a, b in zip(left_position, right_position)]
-    if not axis or math.hypot(*axis) == 0:
-        return math.hypot(*delta)
-    world_axis = mat3.apply(left_rotation, [a / math.hypot(*axis) for a in axis])
-    return abs(sum(d * a for d, a in zip(delta, world_axis)))
+    axis = _world_axis(robot, left)
+    if axis is None or abs(axis[2]) > HORIZONTAL:
+        return math.hypot(delta[0], delta[1])
+    return abs(sum(d * a for d, a in zip(delta, axis)))
+
+
+def _world_axis(robot, joint):
+    """The joint's unit axis in the root frame at the zero pose, or None (zero or unreadable)."""
+    poses = _joint_frames(robot)
+    if joint.get("name") not in poses:
+        return None
+    element = joint.find("axis")
+    axis, problem = parse_numbers(element.get("xyz") if element is not None else "1 0 0", 3)
+    if problem or not axis or math.hypot(*axis) == 0:
+        return None
+    norm = math.hypot(*axis)
+    return mat3.apply(poses[joint.get("name")][1], [a / norm for a in axis])
 
 
 def _wheel_diameter(robot, joint) -> float | None:
@@ -154,6 +219,10 @@ def _wheel_diameter(robot, joint) -> float | None:
 
 def _joint_frames(robot) -> dict:
     """Joint name -> (position, rotation) of its frame in the root frame at the zero pose."""
+    return robot.memo(_joint_frames, lambda: _frames(robot))
+
+
+def _frames(robot) -> dict:
     by_child = {}
     for joint in robot.children("joint"):
         child = joint.find("child")
@@ -216,3 +285,183 @@ def sensor_unknown_link(robot):
                            if reference in robot.links else available("links", name, robot.links))
                     yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
                                     f"stamped with it; {own}")
+
+
+@rule("U616", "diff-drive-frame", Severity.ERROR)
+def diff_drive_frame(robot):
+    """A diff drive's base frame is not a link of the robot, or its odometry frame is one.
+
+    The plugin or controller publishes the transform odometry frame -> base frame. The base
+    frame must be a link (diff_drive_controller's ``base_frame_id``, the plugin's
+    ``robot_base_frame``/``robotBaseFrame``), or the robot hangs off a frame TF does not
+    connect; the odometry frame (``odom_frame_id``, ``odometry_frame``/``odometryFrame``) must
+    not be one, or the link gets a second parent and TF breaks.
+
+    Bad: ``base_frame_id: base`` when the robot's root link is ``base_link``
+    Good: ``base_frame_id: base_link``, ``odom_frame_id: odom``
+    """
+    for drive in _drives(robot):
+        for tag, name, where, must_be_link in drive.frames:
+            if must_be_link and name not in robot.links:
+                yield where, (f"{drive.label}: {tag} '{name}' is not a link of the robot; "
+                              f"{available('links', name, robot.links)}")
+            elif not must_be_link and name in robot.links:
+                yield where, (f"{drive.label}: {tag} '{name}' is a link of the robot; the "
+                              "odometry frame is published as its parent, so use a frame outside "
+                              "the URDF (odom)")
+
+
+CASTER_CLEARANCE = 0.005  # [m] a caster this far below the wheels' contact plane lifts a wheel
+
+
+@rule("U617", "diff-drive-wheel-layout", Severity.WARNING)
+def diff_drive_wheel_layout(robot):
+    """A diff drive's wheels are laid out in a way it cannot drive.
+
+    Checked at the zero pose, in the robot's root frame (REP-103: x forward, y left, z up):
+    the left wheel must be on the +y side of the right one (else the robot turns the wrong
+    way); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
+    ground, and the separation measured along it is 0) and parallel to the other wheel's;
+    each wheel link needs collision geometry (Gazebo's wheels touch nothing without it); a
+    caster (a link named ``*caster*`` with a sphere) must not reach below the wheels' contact
+    plane, or it lifts the drive wheels.
+
+    Bad: ``<axis xyz="0 0 1"/>`` on a wheel joint whose origin has no rotation
+    Good: ``<axis xyz="0 1 0"/>``
+    """
+    for drive in _drives(robot):
+        left, right = drive.side(robot, "left"), drive.side(robot, "right")
+        where = {name: place for _, name, place in drive.wheels}
+        poses = _joint_frames(robot)
+        for joint in (left, right):
+            if joint is None:
+                continue
+            name = joint.get("name")
+            axis = _world_axis(robot, joint)
+            if axis is not None and abs(axis[2]) > HORIZONTAL:
+                yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
+                                    f"({axis[0]:.3g}, {axis[1]:.3g}, {axis[2]:.3g}) in the root frame, "
+                                    "not a horizontal axis; the wheel would spin flat on the ground "
+                                    "(set its axis or origin rpy so the axis points sideways)")
+            link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
+            if link is not None and link.find("collision") is None:
+                yield where[name], (f"{drive.label}: wheel link '{link.get('name')}' has no "
+                                    "<collision>; the simulated wheel touches nothing")
+        if left is None or right is None:
+            continue
+        names = left.get("name"), right.get("name")
+        if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
+            yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
+                                    f"(y = {poses[names[0]][0][1]:.3g} m, right wheel at y = "
+                                    f"{poses[names[1]][0][1]:.3g} m; REP-103: +y is left); swap them")
+        axes = _world_axis(robot, left), _world_axis(robot, right)
+        if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
+            yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
+                                    "are not parallel; both wheels must turn about the same line")
+        yield from _caster_below(robot, drive, left, where[names[0]])
+
+
+def _caster_below(robot, drive, wheel, where):
+    """A caster sphere reaching below the contact plane of ``wheel`` (zero pose)."""
+    diameter = _wheel_diameter(robot, wheel)
+    frames = _link_frames(robot)
+    child = wheel.find("child")
+    if diameter is None or child is None or child.get("link") not in frames:
+        return
+    ground = frames[child.get("link")][0][2] - diameter / 2
+    for name, (position, rotation) in frames.items():
+        if "caster" not in name.lower():
+            continue
+        for collision in robot.links[name].findall("collision"):
+            sphere = collision.find("geometry/sphere")
+            values, _ = parse_numbers(sphere.get("radius") if sphere is not None else None, 1)
+            if not values:
+                continue
+            offset, _ = mat3.placement(origin(collision))
+            bottom = (position[2] + mat3.apply(rotation, offset)[2]) - values[0]
+            if bottom < ground - CASTER_CLEARANCE:
+                yield where, (f"{drive.label}: caster '{name}' reaches {1000 * (ground - bottom):.0f} mm "
+                              f"below the drive wheels' contact plane (z = {ground:.3g} m); the "
+                              "wheels would hang in the air: raise the caster or shrink it")
+
+
+def _link_frames(robot) -> dict:
+    """Link name -> (position, rotation) in the root frame at the zero pose."""
+    frames = {}
+    for joint in robot.children("joint"):
+        child = joint.find("child")
+        if child is not None and child.get("link") and joint.get("name") in _joint_frames(robot):
+            frames.setdefault(child.get("link"), _joint_frames(robot)[joint.get("name")])
+    root = next((name for name in robot.links if name not in frames), None)
+    if root is not None:
+        frames[root] = ([0.0, 0.0, 0.0], mat3.rpy_matrix([0.0, 0.0, 0.0]))
+    return frames
+
+
+# Plugin libraries of gazebo_ros_pkgs (ros-simulation/gazebo_ros_pkgs, gazebo_plugins/CMakeLists.txt
+# of the noetic-devel and ros2 branches; older PR2-era ones kept), of gazebo_ros_control
+# (ROS 1) and of gazebo_ros2_control (ROS 2).
+ROS1_CONTROL, ROS2_CONTROL = "libgazebo_ros_control.so", "libgazebo_ros2_control.so"
+GAZEBO_LIBRARIES = frozenset({
+    "libgazebo_ros_ackermann_drive.so", "libgazebo_ros_api_plugin.so", "libgazebo_ros_block_laser.so",
+    "libgazebo_ros_bumper.so", "libgazebo_ros_camera.so", "libgazebo_ros_controller_manager.so",
+    "libgazebo_ros_depth_camera.so", "libgazebo_ros_diff_drive.so", "libgazebo_ros_elevator.so",
+    "libgazebo_ros_f3d.so", "libgazebo_ros_factory.so", "libgazebo_ros_force.so",
+    "libgazebo_ros_force_system.so", "libgazebo_ros_ft_sensor.so", "libgazebo_ros_gps.so",
+    "libgazebo_ros_gps_sensor.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_hand_of_god.so",
+    "libgazebo_ros_harness.so", "libgazebo_ros_imu.so", "libgazebo_ros_imu_sensor.so",
+    "libgazebo_ros_init.so", "libgazebo_ros_joint_pose_trajectory.so",
+    "libgazebo_ros_joint_state_publisher.so", "libgazebo_ros_joint_trajectory.so",
+    "libgazebo_ros_laser.so", "libgazebo_ros_multicamera.so", "libgazebo_ros_openni_kinect.so",
+    "libgazebo_ros_p3d.so", "libgazebo_ros_paths_plugin.so", "libgazebo_ros_planar_move.so",
+    "libgazebo_ros_power_monitor.so", "libgazebo_ros_projector.so", "libgazebo_ros_properties.so",
+    "libgazebo_ros_prosilica.so", "libgazebo_ros_range.so", "libgazebo_ros_ray_sensor.so",
+    "libgazebo_ros_skid_steer_drive.so", "libgazebo_ros_srp.so", "libgazebo_ros_state.so",
+    "libgazebo_ros_template.so", "libgazebo_ros_tricycle_drive.so",
+    "libgazebo_ros_triggered_camera.so", "libgazebo_ros_triggered_multicamera.so",
+    "libgazebo_ros_vacuum_gripper.so", "libgazebo_ros_video.so", "libgazebo_ros_wheel_slip.so",
+    ROS1_CONTROL, ROS2_CONTROL,
+})
+_TYPO = 0.9  # difflib ratio above which an unknown library name is a misspelt known one
+
+
+@rule("U618", "gazebo-plugin-library", Severity.ERROR)
+def gazebo_plugin_library(robot):
+    """A Gazebo plugin library is misspelt, of the other ROS, or in another namespace.
+
+    Gazebo prints "Failed to load plugin" and goes on without it. A ``filename`` close to one
+    of gazebo_ros_pkgs' libraries but not one of them is a typo (``libgazebo_ros_diffdrive.so``);
+    ROS 1's ``libgazebo_ros_control.so`` in a robot with ``<ros2_control>`` does nothing (ROS 2
+    uses ``libgazebo_ros2_control.so``, or gz_ros2_control on Gazebo Sim), and
+    ``libgazebo_ros2_control.so`` without ``<ros2_control>`` has nothing to load; a
+    gazebo_ros_control ``<robotNamespace>`` other than the namespace of the ROS 1 controller
+    YAML (``humanoid_robot:`` above the controllers) finds no controller parameters.
+
+    Bad: ``<plugin filename="libgazebo_ros_control.so">`` beside ``<ros2_control>``
+    Good: ``<plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">``
+    """
+    import difflib
+
+    ros2 = bool(robot.children("ros2_control"))
+    namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"}
+    for plugin in gazebo_plugins(robot):
+        library = (plugin.get("filename") or "").strip()
+        if library == ROS1_CONTROL and ros2:
+            yield plugin, (f"{library} is ROS 1's gazebo_ros_control, but the robot describes its "
+                           f"hardware in <ros2_control> (ROS 2): use {ROS2_CONTROL} "
+                           "(gz_ros2_control-system on Gazebo Sim)")
+        elif library == ROS2_CONTROL and not ros2:
+            yield plugin, (f"{library} (gazebo_ros2_control) reads the robot's <ros2_control>, and "
+                           "it has none: add one, or use ROS 1's "
+                           f"{ROS1_CONTROL} with transmissions")
+        elif library.startswith("libgazebo_ros") and library not in GAZEBO_LIBRARIES:
+            close = difflib.get_close_matches(library, sorted(GAZEBO_LIBRARIES), n=1, cutoff=_TYPO)
+            if close:
+                yield plugin, f"plugin library '{library}' does not exist; did you mean '{close[0]}'?"
+        if library == ROS1_CONTROL and len(namespaces) == 1:
+            [namespace] = namespaces
+            element = plugin.find("robotNamespace")
+            given = (element.text or "").strip().strip("/") if element is not None else None
+            if given is not None and namespace and given != namespace:
+                yield element, (f"gazebo_ros_control looks for controllers in /{given}, but the "
+                                f"controller YAML puts them in /{namespace}; make them the same")

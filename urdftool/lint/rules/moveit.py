@@ -74,9 +74,11 @@ def malformed_moveit_config(robot):
     for file, _, problems in (_kinematics(robot), _limits(robot)):
         for line, message in problems:
             yield file.at(line), message
+    beside_srdf = companions(robot).moveit_controllers
     for file, line, message in _moveit_controllers(robot)[1]:
-        yield file.at(line), message
-    for file in companions(robot).moveit_controllers:
+        if any(file is other for other in beside_srdf):  # the others: U601 (controllers family)
+            yield file.at(line), message
+    for file in beside_srdf:
         if file.problem:
             yield file.at(file.line), file.problem
 

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
-                         moving_joints, ros2_control_joints, transmission_joints, transmissions)
+from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
+                                            interface_kind, is_ros2_form, moving_joints,
+                                            ros2_control_joints, transmission_joints, transmissions)
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
@@ -64,27 +65,34 @@ def unknown_hardware_interface(robot):
 
     ``hardware_interface/`` may be omitted (old Gazebo form). Vendor interfaces written
     ``package/Name`` (franka_hw/FrankaStateInterface) are accepted. Transmissions inside
-    ``<ros2_control>`` take their interfaces from the ros2_control joint instead.
+    ``<ros2_control>`` take their interfaces from the ros2_control joint instead. On a robot
+    with ``<ros2_control>``, ros2_control never reads this transmission (only ROS 1's
+    gazebo_ros_control does): the message says where the joint's ROS 2 interfaces are.
 
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
+    ros2 = {joint.get("name") for _, joint in ros2_control_joints(robot)}
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
             continue
         for joint in transmission_joints(transmission):
+            note = (f" (ros2_control does not read this ROS 1 transmission: joint '{joint.name}' "
+                    "takes its ROS 2 interfaces from its <ros2_control> <command_interface>s)"
+                    if joint.name in ros2 else "")
             if not joint.interfaces:
                 yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
                                       "<hardwareInterface>; e.g. hardware_interface/"
-                                      "PositionJointInterface")
+                                      f"PositionJointInterface{note}")
             for interface in joint.interfaces:
                 known, _ = interface_kind(interface.text)
                 if not known:
                     text = (interface.text or "").strip()
                     bare = text.split("/")[-1].split("::")[-1]
                     yield interface, (f"{_label(transmission)}: unknown hardware interface "
-                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}")
+                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}"
+                                      f"{note}")
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
@@ -164,7 +172,8 @@ def unactuated_joint(robot):
 
     With gazebo_ros_control or ``<ros2_control>``, only actuated joints are simulated as
     actuated and published: the joint never appears in /joint_states and falls limp.
-    Mimic joints are exempt.
+    Mimic joints are exempt, and so are the wheels a Gazebo diff-drive plugin drives (it
+    turns them and publishes their states itself).
 
     Bad: ``<ros2_control>`` lists head_joint but not the wheel joints
     Good: a transmission or a ros2_control ``<joint>`` for every revolute, continuous and
@@ -175,6 +184,7 @@ def unactuated_joint(robot):
         return
     actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
     actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
+    actuated.update(diff_drive_wheels(robot))
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
@@ -251,3 +261,101 @@ def ros2_control_no_plugin(robot):
             yield (hardware if hardware is not None else block), (
                 f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>; e.g. "
                 "gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem")
+
+
+_LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}
+_LIMIT_SLACK = 1e-6  # [rad, m, rad/s, N, ...] rounding in values a xacro computed
+
+
+@rule("U515", "ros2-control-limits", Severity.WARNING)
+def ros2_control_limits(robot):
+    """A ros2_control command interface's ``min``/``max`` goes beyond the joint's ``<limit>``.
+
+    ros2_control (and the hardware driver reading these parameters) lets commands through up
+    to ``min``/``max``, while the URDF, MoveIt and the joint limiters stop at ``<limit>``: a
+    position command the planner never produces is accepted, or a real arm is driven past
+    the range its description promises. Position is compared with ``lower``/``upper``
+    (not for continuous joints), velocity and effort with ``velocity``/``effort`` (a range
+    of ``-limit`` to ``limit``); ``min`` above ``max`` is reported too.
+
+    Bad: ``<param name="max">2.41</param>`` on a position interface of a joint with
+    ``upper="2.24"``
+    Good: ``<param name="max">2.24</param>``, or the same xacro property in both places
+    """
+    for _, joint in ros2_control_joints(robot):
+        target = robot.joints.get(joint.get("name"))
+        if target is None:
+            continue
+        limit = target.find("limit")
+        for interface in joint.findall("command_interface"):
+            kind = interface.get("name")
+            bounds = {p.get("name"): p for p in interface.findall("param") if p.get("name") in ("min", "max")}
+            values = {}
+            for name, element in bounds.items():
+                numbers, problem = parse_numbers(element.text, 1)
+                if not problem:
+                    values[name] = numbers[0]
+            if "min" in values and "max" in values and values["min"] > values["max"]:
+                yield bounds["min"], (f"ros2_control joint '{joint.get('name')}' {kind}: min "
+                                      f"{values['min']:g} is above max {values['max']:g}; swap them")
+                continue
+            allowed = _allowed_range(target, limit, kind)
+            if allowed is None:
+                continue
+            for name, value in values.items():
+                low, high = allowed
+                if (name == "min" and value < low - _LIMIT_SLACK) or (name == "max" and value > high + _LIMIT_SLACK):
+                    edge = low if name == "min" else high
+                    yield bounds[name], (
+                        f"ros2_control joint '{joint.get('name')}' {kind} {name} is {value:g}, beyond "
+                        f"the URDF <limit> ({edge:g}); commands up to {value:g} pass ros2_control "
+                        f"but exceed the description: use {edge:g}, or widen <limit> if the joint "
+                        "really moves that far")
+
+
+def _allowed_range(joint, limit, kind) -> tuple[float, float] | None:
+    """(low, high) the URDF allows for command interface ``kind``, or None when it says nothing."""
+    if limit is None:
+        return None
+    if kind == "position":
+        if joint.get("type") == "continuous":
+            return None
+        low, bad_low = parse_numbers(limit.get("lower", "0"), 1)
+        high, bad_high = parse_numbers(limit.get("upper", "0"), 1)
+        return None if bad_low or bad_high or low[0] >= high[0] else (low[0], high[0])
+    if kind in _LIMIT_ATTRIBUTE and limit.get(_LIMIT_ATTRIBUTE[kind]) is not None:
+        value, bad = parse_numbers(limit.get(_LIMIT_ATTRIBUTE[kind]), 1)
+        return None if bad or value[0] <= 0 else (-abs(value[0]), abs(value[0]))
+    return None
+
+
+# Hardware plugins of the simulators and of ros2_control's mock components
+# (ros-controls/gazebo_ros2_control, gz_ros2_control; ros2_control/hardware_interface).
+KNOWN_HARDWARE = {
+    "gazebo_ros2_control": ("gazebo_ros2_control/GazeboSystem",),
+    "gz_ros2_control": ("gz_ros2_control/GazeboSimSystem",),
+    "ign_ros2_control": ("ign_ros2_control/IgnitionSystem",),
+    "mock_components": ("mock_components/GenericSystem",),
+    "fake_components": ("fake_components/GenericSystem",),
+}
+
+
+@rule("U516", "ros2-control-hardware-plugin", Severity.ERROR)
+def ros2_control_hardware_plugin(robot):
+    """A ``<ros2_control>`` hardware plugin of a simulator or of mock_components is misspelt.
+
+    The resource manager cannot load it ("According to the loaded plugin descriptions the class
+    ... does not exist"). Checked for the packages whose classes are known:
+    gazebo_ros2_control, gz_ros2_control, ign_ros2_control, mock_components and
+    fake_components; a vendor's driver is not.
+
+    Bad: ``<plugin>gazebo_ros2_control/GazeboSytem</plugin>``
+    Good: ``<plugin>gazebo_ros2_control/GazeboSystem</plugin>``
+    """
+    for block in robot.children("ros2_control"):
+        for element in block.iterfind("hardware/plugin"):
+            name = (element.text or "").strip()
+            known = KNOWN_HARDWARE.get(name.split("/")[0])
+            if known and name not in known:
+                yield element, (f"hardware plugin '{name}' does not exist; "
+                                f"{available('plugins', name, [p for ps in KNOWN_HARDWARE.values() for p in ps])}")

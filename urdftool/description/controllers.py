@@ -1,0 +1,323 @@
+"""The controllers a robot's controller YAML declares, read the way each controller manager does.
+
+Layouts read (a file may hold several):
+
+- **ROS 2** (``ros2``; a file with ``ros__parameters``, read as rcl_yaml_param_parser does:
+  repeated keys merge, see :mod:`urdftool.description.documents`): node blocks
+  ``[/namespace/]node: ros__parameters: {...}``, nested node-name keys (``/**: node:
+  ros__parameters:``) and the wildcards ``/**`` and ``/*`` (their parameters apply to every
+  node). A controller is declared by ``NAME: {type: pkg/Class}`` in a node's parameters (the
+  controller_manager's), or by ``type:`` in its own block (the spawner's ``--param-file``
+  form); it reads the parameters of the wildcard blocks and of its own ``NAME:
+  ros__parameters:`` block.
+- **ROS 1** (``ros1``; rosparam): any mapping ``NAME: {type: pkg/Class, ...}`` at any depth
+  (the keys above it are its namespace), or a file that is one controller (top-level
+  ``type:``; named after the file).
+- **MoveIt** (``moveit``): MoveIt 1's ``controller_list: [{name, type, joints}]``; MoveIt 2's
+  moveit_simple_controller_manager ``controller_names: [...]`` beside one mapping per listed
+  controller (``{type: FollowJointTrajectory, action_ns, default, joints}``), at the top of
+  the file (launch files pass it as the ``moveit_simple_controller_manager`` namespace), under
+  ``moveit_simple_controller_manager:``, or inside a node's ``ros__parameters``.
+
+Reading only: whether a name is a URDF joint or a class exists is the rules' business.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from urdftool.description.companions import companions
+from urdftool.description.controller_classes import MOVEIT_TYPES, ControllerClass, lookup
+from urdftool.description.documents import YamlFile, YamlList, YamlMap, merged
+
+WILDCARDS = ("*", "**")
+# Keys that name joints in classes nothing is known about (vendor controllers).
+GUESSED_JOINT_KEYS = ("joints", "joint", "joint_names")
+_MAX_DEPTH = 12
+
+
+@dataclass
+class JointRef:
+    """A joint name a controller's parameters hold: ``key`` is the parameter it is under."""
+
+    name: str
+    line: int | None
+    key: str
+
+
+@dataclass
+class Controller:
+    """One controller of a YAML file.
+
+    layout: "ros1", "ros2" or "moveit"
+    line: where its ``type`` is (or its entry, for MoveIt)
+    params: the parameters it reads (ROS 2: the wildcard blocks' merged with its own block;
+        ROS 1 and MoveIt: its mapping); None for a name MoveIt lists with no mapping
+    block_line: ROS 2: the line of its own ``NAME: ros__parameters:`` block, None without one
+    namespace: the keys above it ("/"-joined; ROS 2: its node's namespace)
+    """
+
+    file: YamlFile
+    name: str
+    type: str
+    line: int
+    layout: str
+    params: YamlMap | None = None
+    block_line: int | None = None
+    namespace: str = ""
+
+    @property
+    def package(self) -> str:
+        return self.type.split("/")[0]
+
+    @property
+    def ros(self) -> int:
+        return 2 if self.file.ros2 else 1
+
+    @property
+    def cls(self) -> ControllerClass | None:
+        """Its class in the table for its file's ROS version; None when unknown (or MoveIt)."""
+        return None if self.layout == "moveit" else lookup(self.type, self.ros)
+
+    @property
+    def is_state(self) -> bool:
+        known = self.cls
+        if known is not None:
+            return known.state
+        return self.type.endswith(("StateController", "StateBroadcaster"))
+
+    @property
+    def known(self) -> bool:
+        """Whether what its parameters mean is known (a class in the table, or a MoveIt
+        FollowJointTrajectory/GripperCommand controller)."""
+        return self.cls is not None or (self.layout == "moveit" and self.type in MOVEIT_TYPES)
+
+    def joint_keys(self) -> dict[str, str]:
+        """Parameter -> "list"/"name"/"any": the parameters naming URDF joints."""
+        if self.cls is not None:
+            return self.cls.joints
+        if self.layout == "moveit":
+            return {"joints": "list"}
+        return {key: "any" for key in GUESSED_JOINT_KEYS}
+
+    def joints(self) -> list[JointRef]:
+        """The joint names under its joint parameters (for a class nothing is known about, under
+        ``joints``/``joint``/``joint_names``, which may name something else)."""
+        found = []
+        for key in self.joint_keys():
+            found.extend(JointRef(name, line, key) for name, line in names_at(self.params, key))
+        return found
+
+    def interfaces(self) -> list[str] | None:
+        """The command interfaces it claims on each joint, or None when not known."""
+        known = self.cls
+        if known is None or known.commands is None:
+            return None
+        if not known.commands.startswith("@"):
+            return [known.commands]
+        value = (self.params or {}).get(known.commands[1:])
+        if isinstance(value, str):
+            return [value]
+        if isinstance(value, list) and all(isinstance(v, str) for v in value):
+            return list(value)
+        return None
+
+    def where(self, key: str) -> int:
+        """The line of parameter ``key``, else of its block, else of its type."""
+        if isinstance(self.params, YamlMap) and key in self.params.lines:
+            return self.params.lines[key]
+        return self.block_line or self.line
+
+
+@dataclass
+class ParameterBlock:
+    """A ROS 2 node's ``NAME: ros__parameters:`` block."""
+
+    name: str
+    namespace: str
+    params: YamlMap
+    line: int
+
+
+@dataclass
+class ControllerFile:
+    """What one YAML file declares."""
+
+    file: YamlFile
+    controllers: list[Controller] = field(default_factory=list)
+    blocks: list[ParameterBlock] = field(default_factory=list)  # ROS 2 node blocks
+
+
+def controllers(robot) -> list[Controller]:
+    """Every controller in the robot's controller YAML files (read once per robot)."""
+    return [c for f in controller_files(robot) for c in f.controllers]
+
+
+def controller_files(robot) -> list[ControllerFile]:
+    """Each valid controller YAML file of the robot, read (once per robot)."""
+    return robot.memo(controller_files, lambda: [read_controllers(f) for f in companions(robot).controllers
+                                                 if f.problem is None])
+
+
+def read_controllers(file: YamlFile) -> ControllerFile:
+    """The controllers ``file`` declares, in all the layouts it holds."""
+    found = ControllerFile(file)
+    if not isinstance(file.data, dict):
+        return found
+    moveit_maps: set[int] = set()
+    found.controllers.extend(_moveit(file, moveit_maps))
+    if file.ros2:
+        _ros2(file, found)
+    else:
+        found.controllers.extend(_ros1(file, moveit_maps))
+    return found
+
+
+# --- ROS 2 --------------------------------------------------------------------------------
+
+def parameter_blocks(data) -> list[ParameterBlock]:
+    """Every ``ros__parameters`` block: the node path above it split into namespace and name."""
+    blocks, seen = [], set()
+
+    def walk(node, path, line, depth):
+        if not isinstance(node, YamlMap) or id(node) in seen or depth > _MAX_DEPTH:
+            return
+        seen.add(id(node))
+        for key, value in node.items():
+            if key == "ros__parameters":
+                if isinstance(value, YamlMap):
+                    parts = [p for part in path for p in str(part).split("/") if p]
+                    blocks.append(ParameterBlock(parts[-1] if parts else "",
+                                                 "/".join(parts[:-1]), nested(value), line or value.line))
+            else:
+                walk(value, (*path, key), node.lines.get(key), depth + 1)
+
+    walk(data, (), None, 0)
+    return blocks
+
+
+def nested(params: YamlMap, depth: int = 0) -> YamlMap:
+    """``params`` with dotted names unfolded (``constraints.goal_time: 1`` as ``constraints:
+    {goal_time: 1}``): ROS 2 names a parameter by the path of keys to it, written either way."""
+    if depth > _MAX_DEPTH or not any(isinstance(k, str) and "." in k or isinstance(v, YamlMap)
+                                     for k, v in params.items()):
+        return params
+    result = YamlMap()
+    result.line, result.lines = params.line, {}
+    for key, value in params.items():
+        line = params.lines.get(key, params.line)
+        if isinstance(value, YamlMap):
+            value = nested(value, depth + 1)
+        if isinstance(key, str) and "." in key.strip("."):
+            head, _, rest = key.partition(".")
+            inner = YamlMap({rest: value})
+            inner.line, inner.lines = line, {rest: line}
+            value, key = nested(inner, depth + 1), head
+        if key in result:
+            value = merged(result[key], value)
+        else:
+            result.lines[key] = line
+        result[key] = value
+    return result
+
+
+def _ros2(file: YamlFile, found: ControllerFile) -> None:
+    found.blocks = parameter_blocks(file.data)
+    wildcard = YamlMap()
+    wildcard.line, wildcard.lines = 0, {}
+    for block in found.blocks:
+        if block.name in WILDCARDS:
+            wildcard = merged(wildcard, block.params)
+    own = {}
+    for block in found.blocks:
+        if block.name not in WILDCARDS:
+            own.setdefault(block.name, block)
+    declared: dict[str, Controller] = {}
+    for block in found.blocks:
+        for key, value in block.params.items():
+            kind = value.get("type") if isinstance(value, dict) else None
+            if isinstance(kind, str) and "/" in kind and str(key) not in declared:
+                declared[str(key)] = Controller(file, str(key), kind, value.lines.get("type", value.line),
+                                                "ros2", namespace=block.namespace)
+    for block in own.values():
+        kind = block.params.get("type")
+        if isinstance(kind, str) and "/" in kind and block.name not in declared:
+            declared[block.name] = Controller(file, block.name, kind, block.params.lines["type"], "ros2",
+                                              namespace=block.namespace)
+    for name, controller in declared.items():
+        block = own.get(name)
+        controller.params = merged(wildcard, block.params) if block else wildcard
+        controller.block_line = block.line if block else None
+    found.controllers.extend(declared.values())
+
+
+# --- ROS 1 --------------------------------------------------------------------------------
+
+def _ros1(file: YamlFile, skip: set[int]) -> list[Controller]:
+    data, found, seen = file.data, [], set(skip)
+    kind = data.get("type")
+    if isinstance(kind, str) and "/" in kind:
+        found.append(Controller(file, file.path.name.split(".")[0], kind, data.lines["type"], "ros1",
+                                params=data))
+
+    def walk(node, path, depth):
+        if not isinstance(node, YamlMap) or id(node) in seen or depth > _MAX_DEPTH:
+            return
+        seen.add(id(node))
+        for key, value in node.items():
+            if not isinstance(value, YamlMap) or id(value) in skip:
+                continue
+            kind = value.get("type")
+            if isinstance(kind, str) and "/" in kind:
+                found.append(Controller(file, str(key), kind, node.lines.get(key, node.line), "ros1",
+                                        params=value, namespace="/".join(path)))
+            walk(value, (*path, str(key)), depth + 1)
+
+    walk(data, (), 0)
+    return found
+
+
+# --- MoveIt -------------------------------------------------------------------------------
+
+def _moveit(file: YamlFile, entries: set[int]) -> list[Controller]:
+    """MoveIt's controller_list and controller_names layouts, wherever in the file they are;
+    the id of each entry's mapping is added to ``entries``."""
+    found, seen = [], set()
+
+    def walk(node, depth):
+        if not isinstance(node, YamlMap) or id(node) in seen or depth > _MAX_DEPTH:
+            return
+        seen.add(id(node))
+        listed = node.get("controller_list")
+        if isinstance(listed, YamlList):
+            for entry, line in zip(listed, listed.lines):
+                if isinstance(entry, YamlMap):
+                    entries.add(id(entry))
+                    found.append(Controller(file, str(entry.get("name", "?")), str(entry.get("type", "")),
+                                            line, "moveit", params=entry))
+        names = node.get("controller_names")
+        if isinstance(names, YamlList):
+            for name, line in zip(names, names.lines):
+                entry = node.get(name) if isinstance(name, str) else None
+                if isinstance(entry, YamlMap):
+                    entries.add(id(entry))
+                    found.append(Controller(file, name, str(entry.get("type", "")),
+                                            node.lines.get(name, line), "moveit", params=entry))
+                else:
+                    found.append(Controller(file, str(name), "", line, "moveit"))
+        for value in node.values():
+            walk(value, depth + 1)
+
+    walk(file.data, 0)
+    return found
+
+
+def names_at(mapping, key) -> list[tuple[str, int | None]]:
+    """(name, line) of each name ``mapping[key]`` holds (one string, or a list of them)."""
+    value = mapping.get(key) if isinstance(mapping, dict) else None
+    line = mapping.lines.get(key, mapping.line) if isinstance(mapping, YamlMap) else None
+    if isinstance(value, str):
+        return [(value, line)]
+    if isinstance(value, YamlList):
+        return [(str(item), at) for item, at in zip(value, value.lines) if isinstance(item, str)]
+    return []
