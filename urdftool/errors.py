@@ -137,6 +137,15 @@ class DHError(LocatedError):
         self.where = where
 
 
+class IKError(LocatedError):
+    """A chain or target that inverse kinematics cannot work with (an unknown link, a target
+    file that cannot be read); ``where`` is the target file (and row) when it came from one."""
+
+    def __init__(self, message: str, element=None, where: str | None = None):
+        super().__init__(f"{where}: {message}" if where else message, element)
+        self.where = where
+
+
 class DynamicsError(LocatedError):
     """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 

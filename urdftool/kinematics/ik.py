@@ -1,0 +1,415 @@
+"""Inverse kinematics of a limb (kinematics.chain.Chain): numeric, and closed form where exact.
+
+Numeric: Levenberg-Marquardt (damped least squares) on Pinocchio's frame Jacobian. With an
+orientation the error is ``log6(pose^-1 target)`` in the tip frame and the Jacobian is the LOCAL
+frame Jacobian through ``Jlog6`` (Pinocchio's CLIK example); position only, the error is the
+tip's position in the base frame and the Jacobian its LOCAL_WORLD_ALIGNED rows. The damping is
+``e.e + 1e-9`` (Sugihara 2011: large far away, vanishing near a solution, so the last steps are
+Gauss-Newton); after each step joints are clamped into their limits and continuous joints wrapped
+to (-pi, pi]. Several seeds: the given configuration first, then random in-limit ones.
+
+Closed form: a limb of two or three revolute joints with parallel axes (a planar limb: hip
+pitch, knee, ankle pitch) is solved in the plane of motion (law of cosines, both elbow branches),
+and the branch within limits nearest the seed is taken; where it does not apply or lands outside
+the limits the numeric solver runs.
+
+Units: positions [m], angles [rad]; residuals are the position distance [m] and the rotation
+angle [rad] between the pose reached and the target.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from urdftool.errors import ConfigError, available
+from urdftool.kinematics.chain import Chain
+
+TOLERANCE = 1e-6  # [m] and [rad]
+MAX_ITERATIONS = 100  # per seed
+_DAMPING_FLOOR = 1e-9
+_AT_LIMIT = 1e-9  # [rad or m]
+
+
+@dataclass
+class Target:
+    """A pose of the tip in the base frame: ``position`` [m], ``rotation`` (3x3) or None for
+    position only; ``name`` labels a target read from a file."""
+
+    position: np.ndarray
+    rotation: np.ndarray | None = None
+    name: str = ""
+
+    def se3(self):
+        import pinocchio as pin
+
+        return pin.SE3(np.eye(3) if self.rotation is None else self.rotation,
+                       np.asarray(self.position, dtype=float))
+
+
+@dataclass
+class Solution:
+    """What the solver reached for one target.
+
+    x: the limb's values (Chain.variables order); row: the full variable row
+    pose: base^-1 tip reached (4x4); position_error [m], rotation_error [rad] (0 position only)
+    iterations: summed over the seeds tried; seeds: how many were tried
+    at_limits: (variable, "lower"|"upper") of the limb's joints that end at a limit
+    method: "numeric" or "closed form"; reason: why it is not solved (None when solved)
+    """
+
+    target: Target
+    solved: bool
+    x: np.ndarray
+    row: np.ndarray
+    pose: np.ndarray
+    position_error: float
+    rotation_error: float
+    iterations: int
+    seeds: int
+    method: str
+    at_limits: list = field(default_factory=list)
+    reason: str | None = None
+
+
+_POSITION = ("x", "y", "z")
+_RPY = ("roll", "pitch", "yaw")
+_QUATERNION = ("qx", "qy", "qz", "qw")
+
+
+def target(xyz, rpy=None, quaternion=None, degrees: bool = False, name: str = "") -> Target:
+    """A Target from a position [m] and an optional orientation as roll, pitch, yaw (fixed
+    axes X, Y, Z as in URDF; [rad], or degrees) or a quaternion x, y, z, w (normalised)."""
+    from urdftool.kinematics import transforms
+
+    rotation = None
+    if rpy is not None:
+        angles = np.radians(rpy) if degrees else np.asarray(rpy, dtype=float)
+        rotation = transforms.rotation_from_rpy(np.asarray(angles, dtype=float)[None])[0]
+    elif quaternion is not None:
+        import pinocchio as pin
+
+        x, y, z, w = (float(v) for v in quaternion)
+        norm = math.sqrt(x * x + y * y + z * z + w * w)
+        if norm < 1e-12:
+            raise ConfigError("a quaternion of length 0 is no rotation")
+        rotation = pin.Quaternion(w / norm, x / norm, y / norm, z / norm).matrix()
+    return Target(np.asarray(xyz, dtype=float), rotation, name)
+
+
+def read_targets(path: str, degrees: bool = False) -> list[Target]:
+    """Targets from a CSV (header x, y, z and optionally roll, pitch, yaw or qx, qy, qz, qw) or
+    JSON file (a list of such objects); ConfigError, located, for anything else."""
+    from urdftool.kinematics.configuration import read_table
+
+    known = _POSITION + _RPY + _QUATERNION
+
+    def check(names):
+        for name in names:
+            if name not in known:
+                raise ConfigError(f"unknown column '{name}'; {available('columns', name, known)}",
+                                  f"{path}: header")
+        given = set(names)
+        for group in (_POSITION, _RPY, _QUATERNION):
+            if given & set(group) and not set(group) <= given:
+                raise ConfigError(f"give all of {', '.join(group)} or none", f"{path}: header")
+        if not set(_POSITION) <= given:
+            raise ConfigError("the header must name x, y and z", f"{path}: header")
+        if set(_RPY) <= given and set(_QUATERNION) <= given:
+            raise ConfigError("give roll, pitch, yaw or qx, qy, qz, qw, not both", f"{path}: header")
+
+    names, table = read_table(path, "target file", "column", check)
+    index = {name: k for k, name in enumerate(names)}
+
+    def take(row, group):
+        return [row[index[name]] for name in group] if group[0] in index else None
+
+    targets = []
+    for number, row in enumerate(table, start=1):
+        try:
+            targets.append(target(take(row, _POSITION), take(row, _RPY), take(row, _QUATERNION),
+                                  degrees, f"target {number}"))
+        except ConfigError as error:
+            raise ConfigError(str(error), f"{path}: row {number}") from None
+    return targets
+
+
+def residuals(chain: Chain, x: np.ndarray, target: Target) -> tuple[np.ndarray, float, float]:
+    """(pose reached as 4x4, position error [m], rotation error [rad]) of ``x`` for ``target``."""
+    import pinocchio as pin
+
+    pose = chain.pose(x)
+    position = float(np.linalg.norm(pose.translation - target.position))
+    rotation = 0.0 if target.rotation is None else float(
+        np.linalg.norm(pin.log3(pose.rotation.T @ target.rotation)))
+    return pose.homogeneous, position, rotation
+
+
+def _wrap(chain: Chain, x: np.ndarray, continuous: np.ndarray) -> np.ndarray:
+    np.clip(x, chain.lower, chain.upper, out=x)
+    if continuous.any():
+        x[continuous] = np.mod(x[continuous] + math.pi, 2 * math.pi) - math.pi
+    return x
+
+
+def _linearised(chain: Chain, x: np.ndarray, target: Target, goal):
+    """(error e, Jacobian de/dx, squared position error [m^2], squared rotation error) at x:
+    position only, e is the tip's offset from the goal in the base frame; else
+    ``-log6(pose^-1 goal)`` in the tip frame (Pinocchio's CLIK form, through Jlog6)."""
+    import pinocchio as pin
+
+    position_only = target.rotation is None
+    pose, jacobian = chain.pose_and_jacobian(x, local=not position_only)
+    translation = pose.translation - goal.translation
+    if position_only:
+        return translation, jacobian[:3], translation @ translation, 0.0
+    difference = pose.actInv(goal)
+    twist = pin.log6(difference).vector
+    rotation = twist[3:]
+    return (-twist, pin.Jlog6(difference.inverse()) @ jacobian, translation @ translation,
+            rotation @ rotation)
+
+
+def _step(error: np.ndarray, jacobian: np.ndarray, squared: float) -> np.ndarray:
+    """The Levenberg-Marquardt step with Sugihara's damping e.e + floor."""
+    hessian = jacobian.T @ jacobian
+    hessian[np.diag_indices_from(hessian)] += squared + _DAMPING_FLOOR
+    return -np.linalg.solve(hessian, jacobian.T @ error)
+
+
+def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float,
+             iterations: int, continuous: np.ndarray):
+    """Levenberg-Marquardt from ``x``: (x, iterations used, solved, squared error)."""
+    tolerance2 = tolerance * tolerance
+    best, best_x = math.inf, x
+    polished = False
+    for iteration in range(iterations + 1):
+        error, jacobian, position2, rotation2 = _linearised(chain, x, target, goal)
+        done = position2 <= tolerance2 and rotation2 <= tolerance2
+        squared = float(error @ error)
+        if squared < best:
+            best, best_x = squared, x
+        if done and polished:
+            return x, iteration, True, squared
+        if iteration == iterations:
+            return best_x, iteration, False, best
+        polished = done  # within tolerance: one more Newton step, nearly free, for digits
+        step = _step(error, jacobian, squared)
+        x = _wrap(chain, x + step, continuous)
+        if step @ step < 1e-28:  # stuck (against a limit, or a local minimum)
+            return best_x, iteration + 1, False, best
+    raise AssertionError("unreachable")
+
+
+def blocking_limits(chain: Chain, x: np.ndarray, target: Target) -> list[tuple[str, str]]:
+    """(variable, "lower"|"upper") of the joints at a limit that the next step would push
+    past: the limits that hold the limb back, not those it merely rests on."""
+    error, jacobian, _, _ = _linearised(chain, x, target, target.se3())
+    step = _step(error, jacobian, float(error @ error))
+    scale = 1e-3 * float(np.abs(step).max(initial=0.0))
+    blocked = []
+    for variable, value, move in zip(chain.variables, x, step):
+        if math.isfinite(variable.lower) and value - variable.lower <= _AT_LIMIT \
+                and move < -scale:
+            blocked.append((variable.name, "lower"))
+        elif math.isfinite(variable.upper) and variable.upper - value <= _AT_LIMIT \
+                and move > scale:
+            blocked.append((variable.name, "upper"))
+    return blocked
+
+
+def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) -> np.ndarray:
+    """``count`` starting points ``[count, len(x)]``: ``first`` (default: the limb's values in
+    the chain's row), then random ones within the limits (continuous joints over a turn)."""
+    first = chain.x_of(chain.row) if first is None else np.asarray(first, dtype=float)
+    first = _wrap(chain, first.copy(), chain.continuous)
+    if count <= 1:
+        return first[None, :]
+    generator = np.random.default_rng(seed)
+    lower = np.where(np.isfinite(chain.lower), chain.lower, -math.pi)
+    upper = np.where(np.isfinite(chain.upper), chain.upper, math.pi)
+    return np.vstack([first, generator.uniform(lower, upper, size=(count - 1, len(first)))])
+
+
+def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,
+          tolerance: float = TOLERANCE, iterations: int = MAX_ITERATIONS,
+          method: str = "auto") -> Solution:
+    """Joint values that put ``chain.tip`` at ``target`` (in the base frame).
+
+    starts: seeds ``[k, len(x)]`` tried in order until one converges (default: ``seeds(chain,
+    8, 0)``); method: "auto" (closed form where it applies, else numeric), "numeric" or
+    "closed form" (numeric when the closed form does not apply)
+    """
+    starts = seeds(chain, 8, 0) if starts is None else np.atleast_2d(starts)
+    if method != "numeric":
+        closed = closed_form(chain, target, starts[0], tolerance)
+        if closed is not None and closed.solved:
+            return closed
+    goal = target.se3()
+    continuous = chain.continuous
+    used, best = 0, None
+    for number, start in enumerate(starts, start=1):
+        x, count, done, squared = _descend(chain, _wrap(chain, np.array(start, dtype=float),
+                                                        continuous),
+                                           target, goal, tolerance, iterations, continuous)
+        used += count
+        if best is None or squared < best[1]:
+            best = (x, squared)
+        if done:
+            break
+    return _solution(chain, target, best[0], used, number, "numeric", tolerance)
+
+
+def _solution(chain, target, x, iterations, tried, method, tolerance) -> Solution:
+    pose, position, rotation = residuals(chain, x, target)
+    solved = position <= tolerance and rotation <= tolerance
+    at_limits = [(v.name, side) for v, value in zip(chain.variables, x)
+                 for side, limit in (("lower", v.lower), ("upper", v.upper))
+                 if math.isfinite(limit) and abs(value - limit) <= _AT_LIMIT]
+    result = Solution(target, solved, x, chain.row_of(x), pose, position, rotation, iterations,
+                      tried, method, at_limits)
+    if not solved:
+        result.reason = why_unreachable(chain, target, result)
+    return result
+
+
+def reach(chain: Chain) -> tuple[np.ndarray, float]:
+    """(centre [m] in the base frame, radius [m]): every tip position lies within ``radius`` of
+    the first moving joint's origin, the sum of the distances between consecutive joint origins
+    and to the tip (prismatic travel added at its largest)."""
+    import pinocchio as pin
+
+    m, d = chain.model, chain.data
+    pin.framesForwardKinematics(m, d, chain.q(chain.x_of(chain.row)))
+    base = d.oMf[chain.base_frame]
+    points = [d.oMi[j].translation for j in range(1, m.njoints)]
+    points.append(d.oMf[chain.tip_frame].translation)
+    radius = sum(float(np.linalg.norm(b - a)) for a, b in zip(points, points[1:]))
+    for variable in chain.variables:
+        if variable.kind == "prismatic":
+            radius += max(abs(variable.lower), abs(variable.upper))
+    if chain.base_moves:  # the path turns at a common ancestor: measure from the base
+        radius += float(np.linalg.norm(points[0] - base.translation))
+        return np.zeros(3), radius
+    return base.actInv(points[0]), radius
+
+
+def why_unreachable(chain: Chain, target: Target, result: Solution) -> str:
+    """What stops the limb: the reach, the limits it ends against, or the orientation a limb
+    with fewer than six joints cannot take."""
+    centre, radius = reach(chain)
+    distance = float(np.linalg.norm(target.position - centre))
+    if distance > radius + 1e-9:
+        return (f"out of reach: the target is {distance:.4g} m from the limb's first joint, "
+                f"beyond its reach of {radius:.4g} m")
+    reasons = []
+    blocked = blocking_limits(chain, result.x, target)
+    if blocked:
+        reasons.append("held back by the limits of " + ", ".join(
+            f"{name} ({side})" for name, side in blocked))
+    if target.rotation is not None and len(chain.variables) < 6 and result.rotation_error > 1e-6:
+        reasons.append(f"a limb of {len(chain.variables)} joints cannot take every orientation")
+    return "; ".join(reasons) or ("no seed found it: the target lies within the reach of the "
+                                  "links but likely outside what the limits allow together "
+                                  "(more --seeds may find it)")
+
+
+# -- closed form ------------------------------------------------------------------------------
+
+
+def planar(chain: Chain):
+    """The plane of a 2- or 3-joint revolute limb with parallel axes, or None: (axis a, signs of
+    each joint's axis along a, joint origins [k, 3], tip origin, tip rotation at x = 0), all
+    in the model's world frame at x = 0."""
+    import pinocchio as pin
+
+    n = len(chain.variables)
+    kinds = {v.kind for v in chain.variables}
+    if n not in (2, 3) or chain.base_moves or not kinds <= {"revolute", "continuous"} \
+            or len(chain._slots) != n \
+            or any((m, o) != (1.0, 0.0) for _, _, _, m, o, _ in chain._slots):
+        return None
+    m, d = chain.model, chain.data
+    zero = np.zeros(n)
+    q = chain.q(zero)
+    pin.computeJointJacobians(m, d, q)
+    pin.framesForwardKinematics(m, d, q)
+    # joints in the reduced model's order: base side first (one branch, as the base is fixed)
+    axes = [d.J[3:, idx_v] for _, idx_v, _, _, _, _ in chain._slots]
+    axis = axes[0] / np.linalg.norm(axes[0])
+    signs = []
+    for a in axes:
+        if np.linalg.norm(np.cross(a, axis)) > 1e-9:
+            return None
+        signs.append(1.0 if a @ axis > 0 else -1.0)
+    joints = np.array([d.oMi[j].translation for j in range(1, m.njoints)])
+    columns = [column for _, _, column, _, _, _ in chain._slots]
+    tip = d.oMf[chain.tip_frame]
+    return axis, np.array(signs), joints, columns, tip.translation.copy(), tip.rotation.copy()
+
+
+def _in_plane(vector, u, w) -> complex:
+    return complex(vector @ u, vector @ w)
+
+
+def closed_form(chain: Chain, target: Target, start: np.ndarray,
+                tolerance: float = TOLERANCE) -> Solution | None:
+    """The closed-form solution of a planar 2- or 3-joint limb (3 joints need an orientation),
+    the in-limit branch nearest ``start``; None when the limb is not planar."""
+    plane = planar(chain)
+    if plane is None:
+        return None
+    axis, signs, joints, columns, tip, tip_rotation = plane
+    n = len(columns)
+    if n == 3 and target.rotation is None:
+        return None
+    base = chain.data.oMf[chain.base_frame]
+    goal = base.act(np.asarray(target.position, dtype=float))
+    u = np.cross(axis, [1.0, 0.0, 0.0])
+    if np.linalg.norm(u) < 0.5:
+        u = np.cross(axis, [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    w = np.cross(axis, u)
+    wanted = _in_plane(goal - joints[0], u, w)
+    links = [_in_plane(b - a, u, w) for a, b in zip(joints, list(joints[1:]) + [tip])]
+    total = None
+    if n == 3:
+        turn = base.rotation @ target.rotation @ tip_rotation.T  # Rot(axis, total), if planar
+        total = math.atan2(axis @ np.cross(u, turn @ u), u @ turn @ u)
+        wanted -= complex(math.cos(total), math.sin(total)) * links[2]
+    first, second = links[0], links[1]
+    r1, r2 = abs(first), abs(second)
+    if r1 < 1e-12 or r2 < 1e-12:
+        return None
+    cosine = (abs(wanted) ** 2 - r1 * r1 - r2 * r2) / (2 * r1 * r2)
+    beta = math.acos(max(-1.0, min(1.0, cosine)))
+    alpha1 = math.atan2(first.imag, first.real)
+    alpha2 = math.atan2(second.imag, second.real) - alpha1
+    candidates = []
+    for branch in (beta, -beta):
+        theta2 = branch - alpha2
+        inner = r1 + r2 * complex(math.cos(branch), math.sin(branch))
+        theta1 = math.atan2(wanted.imag, wanted.real) - alpha1 - math.atan2(inner.imag,
+                                                                             inner.real)
+        thetas = [theta1, theta2] + ([total - theta1 - theta2] if n == 3 else [])
+        x = np.zeros(n)
+        for column, sign, theta in zip(columns, signs, thetas):
+            x[column] = _within(sign * theta, chain.variables[column])
+        candidates.append(x)
+    inside = [x for x in candidates if np.all(x >= chain.lower - 1e-12)
+              and np.all(x <= chain.upper + 1e-12)]
+    if not inside:
+        return None
+    x = min(inside, key=lambda x: float(np.sum((x - start) ** 2)))
+    return _solution(chain, target, x, 0, 1, "closed form", tolerance)
+
+
+def _within(angle: float, variable) -> float:
+    """``angle`` or a turn away from it, inside the variable's limits when one is."""
+    angle = math.remainder(angle, 2 * math.pi)
+    for candidate in (angle, angle + 2 * math.pi, angle - 2 * math.pi):
+        if variable.lower - 1e-12 <= candidate <= variable.upper + 1e-12:
+            return candidate
+    return angle
