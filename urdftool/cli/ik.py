@@ -9,6 +9,7 @@ from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_
 
 FORMATS = ("text", "json", "csv")
 METHODS = ("auto", "numeric", "closed-form")
+SEEDS = 16  # as urdftool.kinematics.ik.SEEDS (not imported here: it loads numpy)
 
 
 def register(app: typer.Typer) -> None:
@@ -45,7 +46,7 @@ def ik(
                                 help="Joint value (repeatable): the first seed, and where the "
                                      "joints off the limb stay."),
     deg: bool = typer.Option(False, "--deg", help="Angles (--q, --rpy, files) in degrees."),
-    seeds: int = typer.Option(8, "--seeds", metavar="N",
+    seeds: int = typer.Option(SEEDS, "--seeds", metavar="N",
                               help="Starting points: --q, then N-1 random ones in limits."),
     seed: int = typer.Option(0, "--seed", help="Seed of the random starting points."),
     tol: float = typer.Option(1e-6, "--tol", help="Solved within this [m] and [rad]."),

@@ -47,7 +47,8 @@ class Chain:
     tip_frame: int
     base_moves: bool
     _slots: list  # per reduced joint: (idx_q, idx_v, x column, multiplier, offset, unbounded)
-    _selection: np.ndarray  # [nv, len(x)]: d(v)/d(x)
+    _selection: np.ndarray | None  # [nv, len(x)]: d(v)/d(x); None when q = v = x
+    _base_placement: object = None  # the base's pose when no limb joint moves it
 
     @property
     def continuous(self) -> np.ndarray:
@@ -66,6 +67,8 @@ class Chain:
 
     def q(self, x: np.ndarray) -> np.ndarray:
         """Pinocchio's configuration of the reduced model for ``x``."""
+        if self._selection is None:
+            return x
         q = np.empty(self.model.nq)
         for idx_q, _, column, multiplier, offset, unbounded in self._slots:
             value = multiplier * x[column] + offset
@@ -92,12 +95,14 @@ class Chain:
         pin.computeJointJacobians(m, d, q)  # and the joint placements
         jacobian = pin.getFrameJacobian(m, d, self.tip_frame, pin.LOCAL)
         tip = pin.updateFramePlacement(m, d, self.tip_frame)
-        base = pin.updateFramePlacement(m, d, self.base_frame)
-        relative = base.actInv(tip)
-        if self.base_moves:
+        if self._base_placement is not None:
+            relative = self._base_placement.actInv(tip)
+        else:
+            relative = pin.updateFramePlacement(m, d, self.base_frame).actInv(tip)
             base_jacobian = pin.getFrameJacobian(m, d, self.base_frame, pin.LOCAL)
             jacobian = jacobian - relative.inverse().action @ base_jacobian
-        jacobian = jacobian @ self._selection
+        if self._selection is not None:
+            jacobian = jacobian @ self._selection
         if not local:
             rotation = relative.rotation
             jacobian = np.vstack([rotation @ jacobian[:3], rotation @ jacobian[3:]])
@@ -142,8 +147,16 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
         selection[joint.idx_v, position[column]] += multiplier
     variables = [kinematics.variables[c] for c in columns]
     base_id = model.getFrameId(base, pin.FrameType.BODY)
-    moving = set(model.supports[model.frames[base_id].parentJoint]) - {0}
+    moving = bool(set(model.supports[model.frames[base_id].parentJoint]) - {0})
+    plain = model.nq == model.nv == len(columns) and all(
+        (idx_q, idx_v, column, multiplier, offset, unbounded) == (k, k, k, 1.0, 0.0, False)
+        for k, (idx_q, idx_v, column, multiplier, offset, unbounded) in enumerate(slots))
+    data = model.createData()
+    placement = None
+    if not moving:
+        pin.framesForwardKinematics(model, data, pin.neutral(model))
+        placement = data.oMf[base_id].copy()
     return Chain(kinematics, base, tip, row, variables, columns, joints,
                  np.array([v.lower for v in variables]), np.array([v.upper for v in variables]),
-                 model, model.createData(), base_id,
-                 model.getFrameId(tip, pin.FrameType.BODY), bool(moving), slots, selection)
+                 model, data, base_id, model.getFrameId(tip, pin.FrameType.BODY), moving, slots,
+                 None if plain else selection, placement)

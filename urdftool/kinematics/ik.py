@@ -1,12 +1,13 @@
 """Inverse kinematics of a limb (kinematics.chain.Chain): numeric, and closed form where exact.
 
-Numeric: Levenberg-Marquardt (damped least squares) on Pinocchio's frame Jacobian. With an
-orientation the error is ``log6(pose^-1 target)`` in the tip frame and the Jacobian is the LOCAL
-frame Jacobian through ``Jlog6`` (Pinocchio's CLIK example); position only, the error is the
-tip's position in the base frame and the Jacobian its LOCAL_WORLD_ALIGNED rows. The damping is
-``e.e + 1e-9`` (Sugihara 2011: large far away, vanishing near a solution, so the last steps are
-Gauss-Newton); after each step joints are clamped into their limits and continuous joints wrapped
-to (-pi, pi]. Several seeds: the given configuration first, then random in-limit ones.
+Numeric: damped least squares (Gauss-Newton with Levenberg's damping) on Pinocchio's frame
+Jacobian. With an orientation the error is ``log6(pose^-1 target)`` in the tip frame and the
+Jacobian is the LOCAL frame Jacobian through ``Jlog6`` (Pinocchio's CLIK example); position only,
+the error is the tip's position in the base frame and the Jacobian its LOCAL_WORLD_ALIGNED rows.
+Each step is bounded (to a length of 1 rad or m: near a singularity the raw step is
+huge), then joints are clamped into their limits and continuous joints wrapped to (-pi, pi].
+Several seeds: the given configuration first, then random in-limit ones; a seed that stops
+making progress is left for the next.
 
 Closed form: a limb of two or three revolute joints with parallel axes (a planar limb: hip
 pitch, knee, ankle pitch) is solved in the plane of motion (law of cosines, both elbow branches),
@@ -29,7 +30,10 @@ from urdftool.kinematics.chain import Chain
 
 TOLERANCE = 1e-6  # [m] and [rad]
 MAX_ITERATIONS = 100  # per seed
-_DAMPING_FLOOR = 1e-9
+SEEDS = 16  # starting points: the given one and 15 random ones
+_DAMPING = 1e-12  # as Pinocchio's CLIK example: the step bound does the rest
+_MAX_STEP = 1.0  # [rad or m]: the longest step (its 2-norm)
+_STALL = 15  # iterations without progress before the next seed
 _AT_LIMIT = 1e-9  # [rad or m]
 
 
@@ -147,9 +151,10 @@ def residuals(chain: Chain, x: np.ndarray, target: Target) -> tuple[np.ndarray, 
     return pose.homogeneous, position, rotation
 
 
-def _wrap(chain: Chain, x: np.ndarray, continuous: np.ndarray) -> np.ndarray:
-    np.clip(x, chain.lower, chain.upper, out=x)
-    if continuous.any():
+def _wrap(chain: Chain, x: np.ndarray, continuous: np.ndarray | None) -> np.ndarray:
+    """``x`` clamped into the limits and, where ``continuous`` (None: no such joint), wrapped."""
+    x = np.minimum(np.maximum(x, chain.lower), chain.upper)
+    if continuous is not None:
         x[continuous] = np.mod(x[continuous] + math.pi, 2 * math.pi) - math.pi
     return x
 
@@ -172,42 +177,106 @@ def _linearised(chain: Chain, x: np.ndarray, target: Target, goal):
             rotation @ rotation)
 
 
-def _step(error: np.ndarray, jacobian: np.ndarray, squared: float) -> np.ndarray:
-    """The Levenberg-Marquardt step with Sugihara's damping e.e + floor."""
+def _solver():
+    """numpy's solve without its Python wrapper (errstate, checks: 4x the time of a 6x6
+    solve, the cost of an iteration); the public function when the private one moved."""
+    try:
+        from numpy.linalg import _umath_linalg
+
+        return _umath_linalg.solve1
+    except (ImportError, AttributeError):  # pragma: no cover - another numpy
+        return np.linalg.solve
+
+
+_solve = _solver()
+
+
+def _step(error: np.ndarray, jacobian: np.ndarray, damping: float) -> np.ndarray:
+    """The Levenberg-Marquardt step ``-(J^T J + damping I)^-1 J^T e``."""
     hessian = jacobian.T @ jacobian
-    hessian[np.diag_indices_from(hessian)] += squared + _DAMPING_FLOOR
-    return -np.linalg.solve(hessian, jacobian.T @ error)
+    hessian.flat[::len(hessian) + 1] += damping
+    return -_solve(hessian, jacobian.T @ error)
 
 
 def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float,
-             iterations: int, continuous: np.ndarray):
-    """Levenberg-Marquardt from ``x``: (x, iterations used, solved, squared error)."""
+             iterations: int, continuous: np.ndarray | None):
+    """Damped least squares from ``x``: (x, iterations used, solved, squared error).
+
+    Each step is Gauss-Newton's, lightly damped, shortened to a length of ``_MAX_STEP`` (near a
+    singularity the raw step is huge and lands anywhere), then clamped into the limits; the
+    joints a step pushes against their limit are left out of it. A seed that has not lowered
+    its error for ``_STALL`` iterations is given up. Within the tolerance, one more step is
+    taken for the last digits. The loop is written out for speed: an iteration costs little
+    more than Pinocchio's own calls."""
+    import pinocchio as pin
+
+    m, d, tip = chain.model, chain.data, chain.tip_frame
+    position_only = target.rotation is None
+    direct = chain._selection is None and chain._base_placement is not None
+    if direct:  # q is x and the base stands still: work in the model's world frame
+        goal = chain._base_placement * goal
+    reference = pin.LOCAL_WORLD_ALIGNED if position_only else pin.LOCAL
+    log6, jlog6, solve = pin.log6, pin.Jlog6, _solve
+    lower, upper = chain.lower, chain.upper
+    damping = _DAMPING * np.eye(len(x))
+    target_position = goal.translation
     tolerance2 = tolerance * tolerance
-    best, best_x = math.inf, x
-    polished = False
+    best, best_x, since = math.inf, x, 0
+    polished, limited = False, True
     for iteration in range(iterations + 1):
-        error, jacobian, position2, rotation2 = _linearised(chain, x, target, goal)
-        done = position2 <= tolerance2 and rotation2 <= tolerance2
-        squared = float(error @ error)
-        if squared < best:
-            best, best_x = squared, x
+        if direct:
+            pin.computeJointJacobians(m, d, x)
+            jacobian = pin.getFrameJacobian(m, d, tip, reference)
+            pose = pin.updateFramePlacement(m, d, tip)
+        else:
+            pose, jacobian = chain.pose_and_jacobian(x, local=not position_only)
+        # the residual, sign flipped: the step is +H^-1 J^T residual
+        if position_only:
+            residual = target_position - pose.translation
+            jacobian = jacobian[:3]
+        else:
+            difference = pose.actInv(goal)
+            residual = log6(difference).vector
+            jacobian = jlog6(difference.inverse()) @ jacobian
+        squared = float(residual @ residual)
+        done = squared <= tolerance2
         if done and polished:
             return x, iteration, True, squared
-        if iteration == iterations:
+        if squared < best * 0.999:
+            best, best_x, since = squared, x, 0
+        else:
+            since += 1
+        if not done and (iteration == iterations or since > _STALL):
             return best_x, iteration, False, best
-        polished = done  # within tolerance: one more Newton step, nearly free, for digits
-        step = _step(error, jacobian, squared)
-        x = _wrap(chain, x + step, continuous)
-        if step @ step < 1e-28:  # stuck (against a limit, or a local minimum)
-            return best_x, iteration + 1, False, best
-    raise AssertionError("unreachable")
+        polished = done
+        transposed = jacobian.T
+        hessian = transposed @ jacobian + damping
+        gradient = transposed @ residual
+        step = solve(hessian, gradient)
+        if limited:  # some joint is at a limit: the others' step without those it pushes
+            pushed = ((x <= lower) & (step < 0)) | ((x >= upper) & (step > 0))
+            if pushed.any():
+                hessian[pushed, :] = 0.0
+                hessian[:, pushed] = 0.0
+                hessian[pushed, pushed] = 1.0
+                gradient[pushed] = 0.0
+                step = solve(hessian, gradient)
+        length2 = float(step @ step)
+        if length2 > _MAX_STEP * _MAX_STEP:
+            step *= _MAX_STEP / math.sqrt(length2)
+        moved = x + step
+        x = np.minimum(np.maximum(moved, lower), upper)
+        limited = bool((x != moved).any())
+        if continuous is not None:
+            x[continuous] = np.mod(x[continuous] + math.pi, 2 * math.pi) - math.pi
+    return x, iterations, True, squared
 
 
 def blocking_limits(chain: Chain, x: np.ndarray, target: Target) -> list[tuple[str, str]]:
     """(variable, "lower"|"upper") of the joints at a limit that the next step would push
     past: the limits that hold the limb back, not those it merely rests on."""
     error, jacobian, _, _ = _linearised(chain, x, target, target.se3())
-    step = _step(error, jacobian, float(error @ error))
+    step = _step(error, jacobian, _DAMPING)
     scale = 1e-3 * float(np.abs(step).max(initial=0.0))
     blocked = []
     for variable, value, move in zip(chain.variables, x, step):
@@ -224,7 +293,7 @@ def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) 
     """``count`` starting points ``[count, len(x)]``: ``first`` (default: the limb's values in
     the chain's row), then random ones within the limits (continuous joints over a turn)."""
     first = chain.x_of(chain.row) if first is None else np.asarray(first, dtype=float)
-    first = _wrap(chain, first.copy(), chain.continuous)
+    first = _wrap(chain, first, chain.continuous)
     if count <= 1:
         return first[None, :]
     generator = np.random.default_rng(seed)
@@ -239,16 +308,16 @@ def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,
     """Joint values that put ``chain.tip`` at ``target`` (in the base frame).
 
     starts: seeds ``[k, len(x)]`` tried in order until one converges (default: ``seeds(chain,
-    8, 0)``); method: "auto" (closed form where it applies, else numeric), "numeric" or
+    SEEDS, 0)``); method: "auto" (closed form where it applies, else numeric), "numeric" or
     "closed form" (numeric when the closed form does not apply)
     """
-    starts = seeds(chain, 8, 0) if starts is None else np.atleast_2d(starts)
+    starts = seeds(chain, SEEDS, 0) if starts is None else np.atleast_2d(starts)
     if method != "numeric":
         closed = closed_form(chain, target, starts[0], tolerance)
         if closed is not None and closed.solved:
             return closed
     goal = target.se3()
-    continuous = chain.continuous
+    continuous = chain.continuous if chain.continuous.any() else None
     used, best = 0, None
     for number, start in enumerate(starts, start=1):
         x, count, done, squared = _descend(chain, _wrap(chain, np.array(start, dtype=float),
