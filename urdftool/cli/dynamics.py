@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, single_robot, warn)
+                                  joint_words, refuse_bad_outputs, single_robot, warn)
 
 
 FORMATS = ("text", "json")
@@ -26,6 +26,14 @@ def dynamics(
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
                                 "joint over N random poses within limits (and the zero pose)."),
     seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
+    support: list[str] = typer.Option([], "--support", metavar="LINK",
+                                      help="Standing on this link (repeatable: feet, wheels): "
+                                           "torques with the ground carrying the robot, centre "
+                                           "of mass against the support polygon; exit 1 when "
+                                           "it tips over or a joint cannot hold."),
+    plot: str = typer.Option(None, "--plot", metavar="FILE",
+                             help="With --support: the support polygon and centre of mass seen "
+                                  "from above, as .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
@@ -36,7 +44,11 @@ def dynamics(
     from urdftool.report import dynamics as render
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
-                         [(samples < 0, "--samples must be 0 or more")])
+                         [(samples < 0, "--samples must be 0 or more"),
+                          (plot is not None and not support, "--plot needs --support"),
+                          (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
+                           "--plot must end in .svg or .png")])
+    refuse_bad_outputs(plot)
     try:
         model = build(robot)
     except DynamicsError as error:
@@ -47,6 +59,8 @@ def dynamics(
         values = joint_values(robot, **given, degrees=deg)
     except ConfigError as error:
         fail_config(error, f"--{error.argument}")
+    if support:
+        _standing(robot, support, values, samples, seed, output_format, plot)
     result = state(model, values.q, values.v, values.a)
     warn(values.warnings + result.warnings)
     loads = gravity_loads(model, samples, seed) if samples else []
@@ -60,3 +74,32 @@ def dynamics(
         typer.echo(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
                                relevant=relevant), nl=False)
     raise typer.Exit(1 if any(not load.holds for load in loads) else 0)
+
+
+def _standing(robot, supports, values, samples, seed, output_format, plot) -> None:
+    """``--support``: the robot standing on ``supports``; exits."""
+    from urdftool.physics.statics import DynamicsError, build_standing, stand, standing_loads
+    from urdftool.report import dynamics as render
+
+    try:
+        standing = build_standing(robot, supports)
+    except DynamicsError as error:
+        fail_at(robot, error)
+    stance = stand(standing, values.q)
+    warn(values.warnings + stance.warnings)
+    loads = standing_loads(standing, samples, seed) if samples else []
+    if plot:
+        from urdftool.report.plot import write_items
+
+        write_items(plot, *render.stance_picture(stance, f"{robot.name} standing on "
+                                                         f"{', '.join(supports)}"))
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        document = stance.as_dict()
+        document["gravity_loads"] = [load.as_dict() for load in loads]
+        write_json(document)
+    else:
+        typer.echo(render.stance_text(stance, loads, samples), nl=False)
+    holds = stance.holds and all(load.holds for load in loads)
+    raise typer.Exit(0 if stance.stands and holds else 1)

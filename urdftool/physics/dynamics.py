@@ -189,10 +189,11 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
-    joints follow their variable)."""
+    joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
+    ``model.joints`` order (a standing robot's, urdftool.physics.statics)."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -205,10 +206,15 @@ def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
     ids = [m.getJointId(name) for name in model.joints]
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
              for name, i in zip(model.joints, ids)]
+    if torques is None:
+        rows = [m.joints[joint_id].idx_v for joint_id in ids]
+
+        def torques(pose):
+            return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
+
     for number, pose in enumerate(poses):
-        gravity = pin.computeGeneralizedGravity(m, d, model.configuration(pose))
-        for load, joint_id in zip(loads, ids):
-            torque = abs(float(gravity[m.joints[joint_id].idx_v]))
+        for load, torque in zip(loads, np.abs(torques(pose))):
+            torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
             if number == 0:
                 load.zero_pose = torque
