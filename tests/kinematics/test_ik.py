@@ -330,3 +330,15 @@ def test_cli_csv(run_cli):
     header, row = result.output.splitlines()
     assert header.endswith("l_hip_pitch,l_knee,l_ank_pitch")
     assert float(row.split(",")[-2]) == pytest.approx(1.0)
+
+
+def test_a_point_on_the_tip_is_placed(humanoid):
+    point = np.array([0.0, 0.0, -0.07])
+    chain = build_chain(humanoid, "body_link", "l_forearm_link", point=point)
+    x = np.array([0.3, 0.4, -0.9])
+    pose = _fk_pose(chain, chain.row_of(x))
+    hand = pose[:3, 3] + pose[:3, :3] @ point
+    solution = ik.solve(chain, ik.Target(hand), ik.seeds(chain, 8, 0))
+    assert solution.solved
+    reached = _fk_pose(chain, solution.row)
+    assert np.linalg.norm(reached[:3, 3] + reached[:3, :3] @ point - hand) <= 1e-6

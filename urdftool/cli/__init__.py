@@ -10,9 +10,10 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli import (check, collisions, dh, dynamics, fk, graph, ik, inertia, rules, tree,
-                          xacro)
+                          workspace, xacro)
 
-COMMANDS = (check, collisions, dh, dynamics, fk, graph, ik, inertia, rules, tree, xacro)
+COMMANDS = (check, collisions, dh, dynamics, fk, graph, ik, inertia, rules, tree, workspace,
+            xacro)
 
 app = typer.Typer(
     name="urdftool",

@@ -26,6 +26,9 @@ def ik(
     tip: str = typer.Option(..., "--tip", metavar="LINK", help="The link to place."),
     base: str = typer.Option(None, "--base", metavar="LINK",
                              help="Target poses are relative to this link (default: the root)."),
+    point: Triple = typer.Option(None, "--point", metavar="X Y Z",
+                                 help="The point [m] in --tip's frame to place (default: its "
+                                      "origin)."),
     xyz: Triple = typer.Option(None, "--xyz", metavar="X Y Z", help="Target position [m]."),
     rpy: Triple = typer.Option(None, "--rpy", metavar="R P Y",
                                help="Target orientation (fixed X, Y, Z as in URDF) [rad]; "
@@ -82,7 +85,7 @@ def ik(
     try:
         kinematics = KinematicModel(robot)
         start = config.from_words(kinematics.variables, given, deg, kinematics.mimics)
-        chain = build_chain(robot, base, tip, start.values[0], kinematics)
+        chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
         if xyz is not None:
             option = "--quat"
             wanted = [solver.target(xyz, rpy, quat, deg)]
@@ -91,6 +94,8 @@ def ik(
             other = config.from_words(kinematics.variables, joint_words(target_q, option), deg,
                                       kinematics.mimics)
             pose = forward_kinematics(kinematics, other, [target_frame], chain.base).matrices[0, 0]
+            if point is not None:  # the same point on the target frame
+                pose[:3, 3] += pose[:3, :3] @ point
             wanted = [solver.Target(pose[:3, 3], pose[:3, :3], f"{target_frame} at --target-q")]
         else:
             option = "--targets" if targets else "--check-reach"

@@ -110,10 +110,11 @@ class Chain:
 
 
 def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None,
-                kinematics: KinematicModel | None = None) -> Chain:
+                kinematics: KinematicModel | None = None, point=None) -> Chain:
     """The limb from ``base`` (default: the root link) to ``tip``; the variables off the limb
-    stay at ``row`` (default: each variable's default). IKError for an unknown link or a limb
-    without a moving joint."""
+    stay at ``row`` (default: each variable's default); ``point`` [m] in the tip's frame is the
+    point placed instead of the tip's origin (a hand's palm on a forearm link). IKError for an
+    unknown link or a limb without a moving joint."""
     import pinocchio as pin
 
     kinematics = kinematics or KinematicModel(robot)
@@ -147,6 +148,12 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
         selection[joint.idx_v, position[column]] += multiplier
     variables = [kinematics.variables[c] for c in columns]
     base_id = model.getFrameId(base, pin.FrameType.BODY)
+    tip_id = model.getFrameId(tip, pin.FrameType.BODY)
+    if point is not None:
+        frame = model.frames[tip_id]
+        offset = frame.placement * pin.SE3(np.eye(3), np.asarray(point, dtype=float))
+        tip_id = model.addFrame(pin.Frame(f"{tip}+point", frame.parentJoint, tip_id, offset,
+                                          pin.FrameType.OP_FRAME))
     moving = bool(set(model.supports[model.frames[base_id].parentJoint]) - {0})
     plain = model.nq == model.nv == len(columns) and all(
         (idx_q, idx_v, column, multiplier, offset, unbounded) == (k, k, k, 1.0, 0.0, False)
@@ -158,5 +165,5 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
         placement = data.oMf[base_id].copy()
     return Chain(kinematics, base, tip, row, variables, columns, joints,
                  np.array([v.lower for v in variables]), np.array([v.upper for v in variables]),
-                 model, data, base_id, model.getFrameId(tip, pin.FrameType.BODY), moving, slots,
+                 model, data, base_id, tip_id, moving, slots,
                  None if plain else selection, placement)
