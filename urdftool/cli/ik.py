@@ -19,16 +19,19 @@ def register(app: typer.Typer) -> None:
 
 
 Triple = tuple[float, float, float]
+# the limb, as ik and workspace name it
+TipOption = typer.Option(..., "--tip", metavar="LINK", help="The end of the limb.")
+BaseOption = typer.Option(None, "--base", metavar="LINK",
+                          help="Poses are relative to this link (default: the root).")
+PointOption = typer.Option(None, "--point", metavar="X Y Z",
+                           help="The point [m] in --tip's frame to place (default: its origin).")
 
 
 def ik(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
-    tip: str = typer.Option(..., "--tip", metavar="LINK", help="The link to place."),
-    base: str = typer.Option(None, "--base", metavar="LINK",
-                             help="Target poses are relative to this link (default: the root)."),
-    point: Triple = typer.Option(None, "--point", metavar="X Y Z",
-                                 help="The point [m] in --tip's frame to place (default: its "
-                                      "origin)."),
+    tip: str = TipOption,
+    base: str = BaseOption,
+    point: Triple = PointOption,
     xyz: Triple = typer.Option(None, "--xyz", metavar="X Y Z", help="Target position [m]."),
     rpy: Triple = typer.Option(None, "--rpy", metavar="R P Y",
                                help="Target orientation (fixed X, Y, Z as in URDF) [rad]; "

@@ -6,9 +6,9 @@ import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
                                   joint_words, refuse_bad_outputs, single_robot, warn)
+from urdftool.cli.ik import BaseOption, PointOption, TipOption, Triple
 
 FORMATS = ("text", "json")
-Triple = tuple[float, float, float]
 
 
 def register(app: typer.Typer) -> None:
@@ -18,12 +18,9 @@ def register(app: typer.Typer) -> None:
 
 def workspace(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
-    tip: str = typer.Option(..., "--tip", metavar="LINK", help="The end of the limb."),
-    base: str = typer.Option(None, "--base", metavar="LINK",
-                             help="Positions relative to this link (default: the root)."),
-    point: Triple = typer.Option(None, "--point", metavar="X Y Z",
-                                 help="The point [m] in --tip's frame to place (default: its "
-                                      "origin)."),
+    tip: str = TipOption,
+    base: str = BaseOption,
+    point: Triple = PointOption,
     samples: int = typer.Option(2000, "--samples", metavar="N", help="Configurations drawn."),
     seed: int = typer.Option(0, "--seed", help="Random seed."),
     q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
