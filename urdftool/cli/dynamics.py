@@ -12,7 +12,8 @@ FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
-    app.command("dynamics", help="Mass, centre of mass, M(q), G(q), C(q,v), torques and "
+    app.command("dynamics", help="Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), "
+                                 "torques with damping and friction, standing on --support, and "
                                  "gravity margins against effort limits.")(budgeted(dynamics))
 
 
@@ -20,7 +21,8 @@ def dynamics(
     words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
                                 "(repeatable); others are 0."),
-    v: list[str] = typer.Option([], "--v", metavar="JOINT=VALUE", help="Joint velocity."),
+    v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
+                                help="Joint velocity (for C, tau and the kinetic energy K)."),
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "

@@ -33,9 +33,17 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
-        lines += ["", "tau = M(q) a + C(q, v) v + G(q)"]
-        lines += [f"  {name:{width}s} {t:10.4g}" for name, t in zip(result.joints, result.tau)]
-        lines.append(f"  (matches rnea to {result.rnea_residual:.2g})")
+        lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
+                      "+ damping v + friction sign(v)"]
+        lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
+                     f"{'total':>10s}")
+        lines += [f"  {name:{width}s} {t:10.4g} {b:10.4g} {f:10.4g} {total:10.4g}"
+                  for name, t, b, f, total in zip(result.joints, result.tau, result.damping,
+                                                  result.friction, result.total)]
+        lines.append(f"  (tau matches rnea to {result.rnea_residual:.2g})")
+    if matrices or result.C is not None:
+        lines += ["", f"energy: K = {result.kinetic:.6g} J, P = {result.potential:.6g} J "
+                      f"(m g z of the centre of mass), L = K - P = {result.lagrangian:.6g} J"]
     if loads:
         lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
                                           "random poses:", relevant)
