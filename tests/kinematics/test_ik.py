@@ -227,6 +227,21 @@ def test_orientation_a_short_limb_cannot_take(humanoid):
     assert "cannot take every orientation" in solution.reason
 
 
+def test_limbs_ik_cannot_work_on(tmp_path):
+    from test_fk import TINY
+
+    robot = _robot(tmp_path, TINY)
+    with pytest.raises(IKError, match="joint 'free' between 'world' and 'd' is floating"):
+        build_chain(robot, "world", "d")
+    with pytest.raises(IKError, match="no joint moves 'a' relative to 'a'"):
+        build_chain(robot, "a", "a")
+    # below the floating joint: a continuous joint, a mimic of it and a prismatic one
+    chain = build_chain(robot, "a", "d")
+    assert [v.name for v in chain.variables] == ["spin", "slide"]
+    for x, target in _reachable(chain, 5, 1):
+        _check(chain, ik.solve(chain, target, ik.seeds(chain, 8, 0)), target)
+
+
 def test_unknown_link_lists_the_links(humanoid):
     with pytest.raises(IKError, match="did you mean 'l_foot_link'"):
         build_chain(humanoid, "body_link", "l_fot_link")

@@ -131,6 +131,13 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     path = supports[base] ^ supports[tip]
     if not path:
         raise IKError(f"no joint moves '{tip}' relative to '{base}'")
+    for joint in sorted(path):
+        if full.joints[joint].nv != 1:
+            name = full.names[joint]
+            raise IKError(f"joint '{name}' between '{base}' and '{tip}' is "
+                          f"{robot.joints[name].get('type')}: a limb is made of revolute, "
+                          "continuous and prismatic joints (choose a --base below it)",
+                          robot.joints.get(name))
     locked = [j for j in range(1, full.njoints) if j not in path]
     reference = kinematics.pinocchio_q(row)[0]
     model = pin.buildReducedModel(full, locked, reference) if locked else full.copy()
