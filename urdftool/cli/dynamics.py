@@ -89,7 +89,8 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
         fail_at(robot, error)
     stance = stand(standing, values.q)
     warn(values.warnings + stance.warnings)
-    loads = standing_loads(standing, samples, seed) if samples else []
+    standing_load = standing_loads(standing, samples, seed) if samples else None
+    loads = standing_load.loads if standing_load else []
     if plot:
         from urdftool.report.plot import write_items
 
@@ -100,8 +101,11 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
 
         document = stance.as_dict()
         document["gravity_loads"] = [load.as_dict() for load in loads]
+        if standing_load:
+            document["poses_standing"] = standing_load.stable
+            document["poses_drawn"] = standing_load.poses
         write_json(document)
     else:
-        typer.echo(render.stance_text(stance, loads, samples), nl=False)
+        typer.echo(render.stance_text(stance, standing_load), nl=False)
     holds = stance.holds and all(load.holds for load in loads)
     raise typer.Exit(0 if stance.stands and holds else 1)

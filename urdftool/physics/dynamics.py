@@ -217,7 +217,8 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
-    ``model.joints`` order (a standing robot's, urdftool.physics.statics)."""
+    ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
+    pose out."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -237,7 +238,10 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
             return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
 
     for number, pose in enumerate(poses):
-        for load, torque in zip(loads, np.abs(torques(pose))):
+        values = torques(pose)
+        if values is None:  # a pose the caller leaves out
+            continue
+        for load, torque in zip(loads, np.abs(values)):
             torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
             if number == 0:

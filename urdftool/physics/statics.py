@@ -197,11 +197,34 @@ def _fixed_base(standing: Standing, q_values: dict) -> np.ndarray:
                                          fixed.configuration(q_values)).copy()
 
 
-def standing_loads(standing: Standing, samples: int, seed: int = 0) -> list[JointLoad]:
+@dataclass
+class StandingLoads:
+    """Worst standing loads per joint over the poses in which the robot stands (every support
+    on the ground, the centre of mass over the support polygon): ``stable`` of the ``poses`` drawn (the zero pose and the
+    random ones); ``zero_stands``: whether the zero pose is one of them."""
+
+    loads: list[JointLoad]
+    poses: int
+    stable: int
+    zero_stands: bool
+
+
+def standing_loads(standing: Standing, samples: int, seed: int = 0) -> StandingLoads:
     """Per joint, the largest standing |torque| over the zero pose and ``samples`` random poses
-    within the limits (as urdftool.physics.dynamics.gravity_loads), against its effort limit."""
-    return gravity_loads(standing.model, samples, seed,
-                         lambda pose: stand(standing, pose, polygon=False).torques)
+    within the limits (as urdftool.physics.dynamics.gravity_loads) in which the robot stands,
+    against its effort limit; the poses in which it tips over or lifts a support are left
+    out."""
+    stable = []
+
+    def torques(pose):
+        stance = stand(standing, pose)
+        stable.append(stance.stands and not any(stance.lifted.values()))
+        return stance.torques if stable[-1] else None
+
+    loads = gravity_loads(standing.model, samples, seed, torques)
+    if not any(stable):
+        loads = []
+    return StandingLoads(loads, len(stable), sum(stable), bool(stable and stable[0]))
 
 
 def convex_hull(points: np.ndarray) -> np.ndarray:

@@ -77,7 +77,7 @@ def _vector(values) -> str:
     return " ".join(f"{v if abs(v) > 1e-12 else 0.0:.4g}" for v in values)
 
 
-def stance_text(stance, loads=(), samples: int = 0) -> str:
+def stance_text(stance, standing_load=None) -> str:
     """The robot standing: centre of mass, support polygon and margin, each joint's torque
     standing and with the root fixed against its effort limit, the ground's wrenches."""
     supports = ", ".join(stance.supports)
@@ -101,10 +101,18 @@ def stance_text(stance, loads=(), samples: int = 0) -> str:
     lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
     for name, wrench in stance.wrenches.items():
         lines.append(f"  {name}: force ({_vector(wrench[:3])}), torque ({_vector(wrench[3:])})")
-    if loads:
-        lines += [""] + load_lines(loads, f"standing gravity load over the zero pose and "
-                                          f"{samples} random poses:",
-                                   relevant={load.joint for load in loads})
+    if standing_load is not None:
+        tipped = standing_load.poses - standing_load.stable
+        which = "the zero pose and " if standing_load.zero_stands else ""
+        title = (f"standing gravity load over {which}{standing_load.stable - bool(which)} "
+                 f"random poses in which it stands ({tipped} of {standing_load.poses} poses "
+                 "tip over or lift a support and are left out):")
+        if standing_load.loads:
+            lines += [""] + load_lines(standing_load.loads, title,
+                                       relevant={load.joint for load in standing_load.loads})
+        else:
+            lines += ["", f"no pose drawn stands: all {standing_load.poses} tip over or lift a "
+                          "support (more --samples, or --q for a pose that stands)"]
     return "\n".join(lines) + "\n"
 
 
