@@ -357,3 +357,49 @@ def test_a_point_on_the_tip_is_placed(humanoid):
     assert solution.solved
     reached = _fk_pose(chain, solution.row)
     assert np.linalg.norm(reached[:3, 3] + reached[:3, :3] @ point - hand) <= 1e-6
+
+
+def _revolute(name, parent, child, xyz, axis, limit=3.0):
+    return (f'<joint name="{name}" type="revolute"><parent link="{parent}"/>'
+            f'<child link="{child}"/><origin xyz="{xyz}"/><axis xyz="{axis}"/>'
+            f'<limit lower="{-limit}" upper="{limit}" effort="1" velocity="1"/></joint>')
+
+
+# a PUMA-like arm: a vertical waist, shoulder and elbow about y (the shoulder axis offset along
+# itself, still meeting the waist's), a wrist of three axes meeting in one point, a tool offset
+PUMA = ("<robot name='puma'>" + "".join(f'<link name="{n}"/>' for n in (
+    "base", "waist", "upper", "fore", "wrist1", "wrist2", "flange", "tool")) + "".join((
+        _revolute("j1", "base", "waist", "0 0 0.3", "0 0 1"),
+        _revolute("j2", "waist", "upper", "0 0.1 0", "0 1 0"),
+        _revolute("j3", "upper", "fore", "0.4 0 0", "0 1 0"),
+        _revolute("j4", "fore", "wrist1", "0.1 0 0.05", "1 0 0"),
+        _revolute("j5", "wrist1", "wrist2", "0.3 0 0", "0 1 0"),
+        _revolute("j6", "wrist2", "flange", "0 0 0", "1 0 0"),
+        '<joint name="t" type="fixed"><parent link="flange"/><child link="tool"/>'
+        '<origin xyz="0.08 0 0.01"/></joint>')) + "</robot>").encode()
+
+
+def test_spherical_wrist_closed_form_agrees_with_numeric(tmp_path):
+    chain = build_chain(_robot(tmp_path, PUMA), "base", "tool")
+    assert ik.spherical(chain) is not None
+    starts = ik.seeds(chain, 16, 0)
+    for x, target in _reachable(chain, 25, 9):
+        closed = ik.closed_form(chain, target, x)
+        _check(chain, closed, target, 1e-9)
+        assert closed.method == "closed form"
+        # the generating configuration is one of the branches: seeded there, it is found
+        assert np.allclose(closed.x, x, atol=1e-7)
+        numeric = ik.solve(chain, target, starts, method="numeric")
+        _check(chain, numeric, target)
+        assert ik.solve(chain, target, starts).method == "closed form"  # auto takes it
+
+
+def test_spherical_wrist_needs_meeting_axes(tmp_path):
+    offset = PUMA.replace(b'<origin xyz="0 0 0"/><axis xyz="1 0 0"/>',
+                          b'<origin xyz="0 0.02 0"/><axis xyz="1 0 0"/>')
+    assert offset != PUMA
+    chain = build_chain(_robot(tmp_path, offset), "base", "tool")
+    assert ik.spherical(chain) is None  # the sixth axis passes 2 cm beside the wrist centre
+    ur5 = build_chain(load(str(corpus_or_skip() / "ur_description" / "urdf" / "ur5.xacro")),
+                      "base_link", "tool0")
+    assert ik.spherical(ur5) is None  # UR's wrist axes do not meet

@@ -10,9 +10,11 @@ Several seeds: the given configuration first, then random in-limit ones; a seed 
 making progress is left for the next.
 
 Closed form: a limb of two or three revolute joints with parallel axes (a planar limb: hip
-pitch, knee, ankle pitch) is solved in the plane of motion (law of cosines, both elbow branches),
-and the branch within limits nearest the seed is taken; where it does not apply or lands outside
-the limits the numeric solver runs.
+pitch, knee, ankle pitch) is solved in the plane of motion (law of cosines, both elbow branches);
+a six-joint arm whose first two axes meet and whose last three meet in one point (a spherical
+wrist, PUMA-like) by Paden-Kahan subproblems on the product of exponentials (up to eight
+branches). The branch within limits that reaches the target nearest the seed is taken; where no
+closed form applies or none lands within the limits the numeric solver runs.
 
 Units: positions [m], angles [rad]; residuals are the position distance [m] and the rotation
 angle [rad] between the pose reached and the target.
@@ -425,8 +427,28 @@ def _in_plane(vector, u, w) -> complex:
 
 def closed_form(chain: Chain, target: Target, start: np.ndarray,
                 tolerance: float = TOLERANCE) -> Solution | None:
-    """The closed-form solution of a planar 2- or 3-joint limb (3 joints need an orientation),
-    the in-limit branch nearest ``start``; None when the limb is not planar."""
+    """The closed-form solution of a planar 2- or 3-joint limb (3 joints need an orientation)
+    or of a 6-joint arm with a spherical wrist (an orientation needed): of the branches within
+    the limits, one that reaches the target, nearest ``start``; None when neither applies."""
+    candidates = _planar_branches(chain, target)
+    if candidates is None:
+        candidates = _spherical_branches(chain, target)
+    if candidates is None:
+        return None
+    inside = [x for x in candidates if np.all(x >= chain.lower - 1e-12)
+              and np.all(x <= chain.upper + 1e-12)]
+    if not inside:
+        return None
+
+    def rank(x):
+        _, position, rotation = residuals(chain, x, target)
+        return (position > tolerance or rotation > tolerance, float(np.sum((x - start) ** 2)))
+
+    return _solution(chain, target, min(inside, key=rank), 0, 1, "closed form", tolerance)
+
+
+def _planar_branches(chain: Chain, target: Target) -> list[np.ndarray] | None:
+    """Both elbow branches of a planar 2- or 3-joint limb, or None when it is not one."""
     plane = planar(chain)
     if plane is None:
         return None
@@ -467,12 +489,136 @@ def closed_form(chain: Chain, target: Target, start: np.ndarray,
         for column, sign, theta in zip(columns, signs, thetas):
             x[column] = _within(sign * theta, chain.variables[column])
         candidates.append(x)
-    inside = [x for x in candidates if np.all(x >= chain.lower - 1e-12)
-              and np.all(x <= chain.upper + 1e-12)]
-    if not inside:
+    return candidates
+
+
+# -- a 6-joint arm with a spherical wrist: Paden-Kahan subproblems on the product of exponentials
+
+
+def _turn(axis, point, angle, p):
+    """``p`` turned by ``angle`` about the line through ``point`` along the unit ``axis``."""
+    cross = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    rotation = np.eye(3) + math.sin(angle) * cross + (1 - math.cos(angle)) * cross @ cross
+    return point + rotation @ (p - point), rotation
+
+
+def _motion(axis, point, angle) -> np.ndarray:
+    """The 4x4 rigid motion of turning about a line."""
+    moved, rotation = _turn(axis, point, angle, np.zeros(3))
+    motion = np.eye(4)
+    motion[:3, :3], motion[:3, 3] = rotation, moved
+    return motion
+
+
+def _flat(axis, vector):
+    return vector - axis * (axis @ vector)
+
+
+def _subproblem1(axis, point, p, q) -> float:
+    """The angle about the line that takes ``p`` to ``q`` (Paden-Kahan 1)."""
+    u, v = _flat(axis, p - point), _flat(axis, q - point)
+    return math.atan2(axis @ np.cross(u, v), u @ v)
+
+
+def _subproblem2(axis1, axis2, point, p, q) -> list[tuple[float, float]]:
+    """(angle1, angle2) with turn(axis1, angle1) turn(axis2, angle2) p = q, both lines through
+    ``point`` (Paden-Kahan 2): none, one or two pairs."""
+    u, v = p - point, q - point
+    c = axis1 @ axis2
+    alpha = (c * (axis2 @ u) - axis1 @ v) / (c * c - 1)
+    beta = (c * (axis1 @ v) - axis2 @ u) / (c * c - 1)
+    normal = np.cross(axis1, axis2)
+    gamma2 = (u @ u - alpha ** 2 - beta ** 2 - 2 * alpha * beta * c) / (normal @ normal)
+    if gamma2 < -1e-12:
+        return []
+    pairs = []
+    for sign in ((1.0, -1.0) if gamma2 > 1e-12 else (1.0,)):
+        middle = point + alpha * axis1 + beta * axis2 + sign * math.sqrt(max(gamma2, 0.0)) * normal
+        pairs.append((_subproblem1(axis1, point, middle, q), _subproblem1(axis2, point, p, middle)))
+    return pairs
+
+
+def _subproblem3(axis, point, p, q, distance) -> list[float]:
+    """The angles about the line that put ``p`` at ``distance`` from ``q`` (Paden-Kahan 3)."""
+    u, v = _flat(axis, p - point), _flat(axis, q - point)
+    flat2 = distance ** 2 - (axis @ (p - q)) ** 2
+    nu, nv = np.linalg.norm(u), np.linalg.norm(v)
+    if nu < 1e-12 or nv < 1e-12:
+        return []
+    cosine = (nu ** 2 + nv ** 2 - flat2) / (2 * nu * nv)
+    if abs(cosine) > 1 + 1e-9:
+        return []
+    base = math.atan2(axis @ np.cross(u, v), u @ v)
+    spread = math.acos(max(-1.0, min(1.0, cosine)))
+    return [base - spread, base + spread] if spread > 1e-12 else [base]
+
+
+def _meeting(point1, axis1, point2, axis2) -> np.ndarray | None:
+    """Where two lines meet, or None when they are parallel or pass each other."""
+    normal = np.cross(axis1, axis2)
+    if normal @ normal < 1e-18:
         return None
-    x = min(inside, key=lambda x: float(np.sum((x - start) ** 2)))
-    return _solution(chain, target, x, 0, 1, "closed form", tolerance)
+    between = point2 - point1
+    if abs(between @ normal) / math.sqrt(normal @ normal) > 1e-9:
+        return None
+    t = np.cross(between, axis2) @ normal / (normal @ normal)
+    return point1 + t * axis1
+
+
+def spherical(chain: Chain):
+    """The screws of a 6-joint revolute arm whose first two axes meet and whose last three meet
+    in one point (the spherical wrist), or None: (axes [6, 3], points [6, 3], shoulder point,
+    wrist centre, tip pose at x = 0) in the model's world frame."""
+    import pinocchio as pin
+
+    if len(chain.variables) != 6 or chain._selection is not None or chain.base_moves \
+            or any(v.kind not in ("revolute", "continuous") for v in chain.variables):
+        return None
+    m, d = chain.model, chain.data
+    zero = np.zeros(6)
+    pin.computeJointJacobians(m, d, zero)
+    tip = pin.updateFramePlacement(m, d, chain.tip_frame).homogeneous.copy()
+    axes = np.array([d.J[3:, k] / np.linalg.norm(d.J[3:, k]) for k in range(6)])
+    points = np.array([d.oMi[j].translation for j in range(1, 7)])
+    shoulder = _meeting(points[0], axes[0], points[1], axes[1])
+    wrist = _meeting(points[3], axes[3], points[4], axes[4])
+    if shoulder is None or wrist is None:
+        return None
+    on_sixth = _flat(axes[5], wrist - points[5])
+    if on_sixth @ on_sixth > 1e-18 or abs(axes[3] @ axes[4]) > 1 - 1e-9 \
+            or abs(axes[4] @ axes[5]) > 1 - 1e-9:
+        return None
+    return axes, points, shoulder, wrist, tip
+
+
+def _spherical_branches(chain: Chain, target: Target) -> list[np.ndarray] | None:
+    """The up to eight solutions of a spherical-wrist arm (shoulder, elbow and wrist branches),
+    or None when the arm is not one or the target has no orientation."""
+    screws = spherical(chain)
+    if screws is None or target.rotation is None:
+        return None
+    axes, points, shoulder, wrist, tip = screws
+    goal = (chain._base_placement * target.se3()).homogeneous
+    motion = goal @ np.linalg.inv(tip)  # = e1 e2 ... e6
+    centre = motion[:3, :3] @ wrist + motion[:3, 3]
+    along = wrist + axes[5]  # a point of the sixth axis, off the fourth and fifth
+    across = wrist + np.cross(axes[5], axes[4] if abs(axes[4] @ axes[5]) < 0.9 else axes[3])
+    branches = []
+    for t3 in _subproblem3(axes[2], points[2], wrist, shoulder,
+                           float(np.linalg.norm(centre - shoulder))):
+        elbow, _ = _turn(axes[2], points[2], t3, wrist)
+        for t1, t2 in _subproblem2(axes[0], axes[1], shoulder, elbow, centre):
+            arm = (_motion(axes[0], points[0], t1) @ _motion(axes[1], points[1], t2)
+                   @ _motion(axes[2], points[2], t3))
+            rest = np.linalg.inv(arm) @ motion  # = e4 e5 e6
+            seen = rest[:3, :3] @ along + rest[:3, 3]
+            for t4, t5 in _subproblem2(axes[3], axes[4], wrist, along, seen):
+                wrist_motion = _motion(axes[3], points[3], t4) @ _motion(axes[4], points[4], t5)
+                last = np.linalg.inv(wrist_motion) @ rest
+                t6 = _subproblem1(axes[5], wrist, across, last[:3, :3] @ across + last[:3, 3])
+                x = np.array([t1, t2, t3, t4, t5, t6])
+                branches.append(np.array([_within(t, v) for t, v in zip(x, chain.variables)]))
+    return branches
 
 
 def _within(angle: float, variable) -> float:
