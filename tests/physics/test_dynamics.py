@@ -227,3 +227,65 @@ def test_a_joint_without_an_effort_limit_is_not_the_smallest_margin(run_cli, tmp
                               "--format", "json").stdout)
     [j1] = [load for load in data["gravity_loads"] if load["joint"] == "j1"]
     assert (j1["effort"], j1["margin"], j1["holds"]) == (None, None, None)
+# a pendulum hanging from a joint 1 m up, with <dynamics damping friction>; the root's own
+# 3 kg sit 0.5 m up
+PM, PL, PI, PB, PF, H = 1.5, 0.4, 0.02, 0.3, 0.05, 1.0
+PENDULUM = f"""<robot name="pendulum">
+  <link name="root"><inertial><origin xyz="0 0 0.5"/><mass value="3"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial></link>
+  <joint name="swing" type="revolute"><parent link="root"/><child link="bob"/>
+    <origin xyz="0 0 {H}"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="20" velocity="9"/>
+    <dynamics damping="{PB}" friction="{PF}"/></joint>
+  <link name="bob"><inertial><origin xyz="0 0 {-PL}"/><mass value="{PM}"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="{PI}" iyz="0" izz="1e-3"/></inertial></link>
+</robot>"""
+
+
+@pytest.mark.parametrize("q,qd,qdd", [(0.3, 1.2, -0.5), (-1.0, -0.7, 2.0), (0.5, 0.0, 0.0)])
+def test_energies_and_joint_damping_friction_by_hand(tmp_path, q, qd, qdd):
+    path = tmp_path / "pendulum.urdf"
+    path.write_text(PENDULUM)
+    result = state(build(load(path)), {"swing": q}, {"swing": qd}, {"swing": qdd})
+    inertia = PI + PM * PL ** 2  # about the joint axis
+    assert result.kinetic == pytest.approx(0.5 * inertia * qd ** 2, abs=1e-12)
+    # the bob at (-PL sin q, 0, H - PL cos q), the root's mass at 0.5 m
+    assert result.potential == pytest.approx(G0 * (PM * (H - PL * math.cos(q)) + 3 * 0.5),
+                                             abs=1e-12)
+    assert result.lagrangian == pytest.approx(result.kinetic - result.potential)
+    assert result.tau[0] == pytest.approx(inertia * qdd + PM * G0 * PL * math.sin(q), abs=1e-12)
+    assert result.damping[0] == pytest.approx(PB * qd)
+    assert result.friction[0] == pytest.approx(PF * np.sign(qd))
+    assert result.total[0] == pytest.approx(result.tau[0] + PB * qd + PF * np.sign(qd))
+
+
+def test_energies_agree_with_pinocchio_on_the_humanoid():
+    import pinocchio as pin
+
+    model = build(load(ROBOTS / "humanoid" / "humanoid.urdf.xacro"))
+    q = {"l_knee": 0.7, "r_hip_pitch": -0.4, "head_tilt": 0.2}
+    v = {"l_knee": 1.1, "l_hip_pitch": -0.6, "r_el": 0.9}
+    result = state(model, q, v)
+    pq, pv = model.configuration(q), model.velocity(v)
+    data = model.model.createData()
+    assert result.kinetic == pytest.approx(pin.computeKineticEnergy(model.model, data, pq, pv),
+                                           rel=1e-12)
+    root = model.model.inertias[0]  # the fixed root's mass, which Pinocchio's energy leaves out
+    fixed = root.mass * G0 * root.lever[2]
+    assert result.potential == pytest.approx(
+        pin.computePotentialEnergy(model.model, data, pq) + fixed, rel=1e-12)
+    assert np.allclose(result.damping, 0.1 * pv)  # every servo: damping 0.1
+
+
+def test_cli_energies_and_damping(run_cli):
+    result = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q", "l_knee=0.5",
+                     "--qd", "l_knee=1", "-f", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.output)
+    assert document["lagrangian"] == pytest.approx(document["kinetic_energy"]
+                                                   - document["potential_energy"])
+    knee = document["joints"].index("l_knee")
+    assert document["damping_torque"][knee] == pytest.approx(0.1)
+    assert document["tau_total"][knee] == pytest.approx(document["tau"][knee] + 0.1)
+    text = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--qd", "l_knee=1")
+    assert re.search(r"energy: K = \S+ J, P = \S+ J .*, L = K - P = \S+ J", text.output)

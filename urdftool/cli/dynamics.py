@@ -5,14 +5,15 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, single_robot, warn)
+                                  joint_words, refuse_bad_outputs, single_robot, warn)
 
 
 FORMATS = ("text", "json")
 
 
 def register(app: typer.Typer) -> None:
-    app.command("dynamics", help="Mass, centre of mass, M(q), G(q), C(q,v), torques and "
+    app.command("dynamics", help="Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), "
+                                 "torques with damping and friction, standing on --support, and "
                                  "gravity margins against effort limits.")(budgeted(dynamics))
 
 
@@ -20,12 +21,21 @@ def dynamics(
     words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
                                 "(repeatable); others are 0."),
-    v: list[str] = typer.Option([], "--v", metavar="JOINT=VALUE", help="Joint velocity."),
+    v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
+                                help="Joint velocity (for C, tau and the kinetic energy K)."),
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
                                 "joint over N random poses within limits (and the zero pose)."),
     seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
+    support: list[str] = typer.Option([], "--support", metavar="LINK",
+                                      help="Standing on this link (repeatable: feet, wheels): "
+                                           "torques with the ground carrying the robot, centre "
+                                           "of mass against the support polygon; exit 1 when "
+                                           "it tips over or a joint cannot hold."),
+    plot: str = typer.Option(None, "--plot", metavar="FILE",
+                             help="With --support: the support polygon and centre of mass seen "
+                                  "from above, as .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
@@ -36,7 +46,11 @@ def dynamics(
     from urdftool.report import dynamics as render
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
-                         [(samples < 0, "--samples must be 0 or more")])
+                         [(samples < 0, "--samples must be 0 or more"),
+                          (plot is not None and not support, "--plot needs --support"),
+                          (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
+                           "--plot must end in .svg or .png")])
+    refuse_bad_outputs(plot)
     try:
         model = build(robot)
     except DynamicsError as error:
@@ -47,6 +61,8 @@ def dynamics(
         values = joint_values(robot, **given, degrees=deg)
     except ConfigError as error:
         fail_config(error, f"--{error.argument}")
+    if support:
+        _standing(robot, support, values, samples, seed, output_format, plot)
     result = state(model, values.q, values.v, values.a)
     warn(values.warnings + result.warnings)
     loads = gravity_loads(model, samples, seed) if samples else []
@@ -61,3 +77,36 @@ def dynamics(
         typer.echo(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
                                relevant=relevant), nl=False)
     raise typer.Exit(1 if any(load.holds is False for load in loads) else 0)
+
+
+def _standing(robot, supports, values, samples, seed, output_format, plot) -> None:
+    """``--support``: the robot standing on ``supports``; exits."""
+    from urdftool.physics.statics import DynamicsError, build_standing, stand, standing_loads
+    from urdftool.report import dynamics as render
+
+    try:
+        standing = build_standing(robot, supports)
+    except DynamicsError as error:
+        fail_at(robot, error)
+    stance = stand(standing, values.q)
+    warn(values.warnings + stance.warnings)
+    standing_load = standing_loads(standing, samples, seed) if samples else None
+    loads = standing_load.loads if standing_load else []
+    if plot:
+        from urdftool.report.plot import write_items
+
+        write_items(plot, *render.stance_picture(stance, f"{robot.name} standing on "
+                                                         f"{', '.join(supports)}"))
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        document = stance.as_dict()
+        document["gravity_loads"] = [load.as_dict() for load in loads]
+        if standing_load:
+            document["poses_standing"] = standing_load.stable
+            document["poses_drawn"] = standing_load.poses
+        write_json(document)
+    else:
+        typer.echo(render.stance_text(stance, standing_load), nl=False)
+    holds = stance.holds and all(load.holds is not False for load in loads)
+    raise typer.Exit(0 if stance.stands and holds else 1)

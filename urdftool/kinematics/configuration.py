@@ -201,29 +201,38 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
     """Configurations from a CSV (header = names) or JSON (a list of {name: value}) file: a
     regular file up to the size limit (urdftool.description.files.read_regular) that is not a
     link leading out of its repository, else ConfigError."""
-    from urdftool.description.files import read_regular
-    from urdftool.description.packages import link_out
+    index = {v.name: i for i, v in enumerate(variables)}
 
-    leads = link_out(path)
-    if leads:
-        raise ConfigError(f"cannot read q-file: it is a symbolic link to '{leads[0]}', outside "
-                          f"the repository ({leads[1]}); not followed", path)
-    try:
-        text = read_regular(path).decode("utf-8")
-    except OSError as error:
-        raise ConfigError(f"cannot read q-file: {error.strerror}", path) from None
-    except UnicodeDecodeError as error:
-        raise ConfigError(f"cannot read q-file: {error}", path) from None
+    def check(names):
+        columns = [_column(index, name, mimics, where=f"{path}: header") for name in names]
+        if len(set(columns)) != len(columns):
+            raise ConfigError("a joint is named twice in the header", path)
+
+    names, table = read_table(path, "q-file", "joint", check)
+    columns = [index[name] for name in names]
+    values = np.tile(defaults(variables), (len(table), 1))
+    if columns:
+        scale = np.array([math.pi / 180.0 if degrees and variables[c].angular else 1.0
+                          for c in columns])
+        values[:, columns] = table * scale
+    return Configurations(variables, values, limit_warnings(variables, values))
+
+
+def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str], np.ndarray]:
+    """(column names, values ``[rows, columns]``) of a CSV file (header = names) or a JSON file
+    (a list of objects {name: value}) of numbers, read with :func:`read_text`; ``what`` names
+    the file, ``named`` what its columns are ("joint"), ``check(names)`` may refuse the header
+    before the values are read. ConfigError, located, for anything wrong."""
+    text = read_text(path, what)
     is_json = path.endswith(".json") or text.lstrip().startswith(("[", "{"))
     fast = None if is_json else _plain_csv_table(text)
     if fast is not None:
         names, table = fast
     else:
-        names, rows = _json_rows(text, path) if is_json else _csv_rows(text, path)
-    index = {v.name: i for i, v in enumerate(variables)}
-    columns = [_column(index, name, mimics, where=f"{path}: header") for name in names]
-    if len(set(columns)) != len(columns):
-        raise ConfigError("a joint is named twice in the header", path)
+        names, rows = _json_rows(text, path, named) if is_json else \
+            _csv_rows(text, path, what, named)
+    if check is not None:
+        check(names)
     if fast is None:
         try:
             table = np.array([float(cell) for row in rows for cell in row],
@@ -231,13 +240,26 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
             if not np.all(np.isfinite(table)):
                 raise ValueError
         except (ValueError, TypeError):
-            table = _located_floats(rows, names, path)
-    values = np.tile(defaults(variables), (len(table), 1))
-    if columns:
-        scale = np.array([math.pi / 180.0 if degrees and variables[c].angular else 1.0
-                          for c in columns])
-        values[:, columns] = table * scale
-    return Configurations(variables, values, limit_warnings(variables, values))
+            table = _located_floats(rows, names, path, named)
+    return names, table
+
+
+def read_text(path: str, what: str) -> str:
+    """The text of a file of numbers the user names (``what``: "q-file"): a regular file up to
+    the size limit that is not a link leading out of its repository, else ConfigError."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.packages import link_out
+
+    leads = link_out(path)
+    if leads:
+        raise ConfigError(f"cannot read {what}: it is a symbolic link to '{leads[0]}', outside "
+                          f"the repository ({leads[1]}); not followed", path)
+    try:
+        return read_regular(path).decode("utf-8")
+    except OSError as error:
+        raise ConfigError(f"cannot read {what}: {error.strerror}", path) from None
+    except UnicodeDecodeError as error:
+        raise ConfigError(f"cannot read {what}: {error}", path) from None
 
 
 def _plain_csv_table(text: str):
@@ -258,7 +280,7 @@ def _plain_csv_table(text: str):
     return names, table.reshape(len(lines) - 1, len(names))
 
 
-def _csv_rows(text: str, path: str) -> tuple[list[str], list[list[str]]]:
+def _csv_rows(text: str, path: str, what: str, named: str) -> tuple[list[str], list[list[str]]]:
     if '"' in text:
         lines = list(csv.reader(io.StringIO(text)))
     else:  # no quoting: splitting is csv's answer, ten times faster on 10,000 rows
@@ -266,19 +288,19 @@ def _csv_rows(text: str, path: str) -> tuple[list[str], list[list[str]]]:
     numbered = [(n, line) for n, line in enumerate(lines, start=1)
                 if line and any(cell.strip() for cell in line)]
     if not numbered:
-        raise ConfigError("empty q-file: expected a header of joint names", path)
+        raise ConfigError(f"empty {what}: expected a header of {named} names", path)
     (_, header), body = numbered[0], numbered[1:]
     names = [cell.strip() for cell in header]
     for line_number, line in body:
         if len(line) != len(names):
             raise ConfigError(f"row has {len(line)} values but the header names {len(names)} "
-                              "joints", f"{path}:{line_number}")
+                              f"{named}s", f"{path}:{line_number}")
     if not body:
-        raise ConfigError("q-file has a header but no rows", path)
+        raise ConfigError(f"{what} has a header but no rows", path)
     return names, [line for _, line in body]
 
 
-def _json_rows(text: str, path: str) -> tuple[list[str], list[list]]:
+def _json_rows(text: str, path: str, named: str) -> tuple[list[str], list[list]]:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as error:
@@ -286,28 +308,29 @@ def _json_rows(text: str, path: str) -> tuple[list[str], list[list]]:
     if isinstance(data, dict):
         data = [data]
     if not isinstance(data, list) or not data:
-        raise ConfigError("expected a JSON list of objects {joint name: value}", path)
+        raise ConfigError(f"expected a JSON list of objects {{{named} name: value}}", path)
     names: list[str] = []
     for number, row in enumerate(data, start=1):
         if not isinstance(row, dict):
-            raise ConfigError("expected an object {joint name: value}", f"{path}: row {number}")
+            raise ConfigError(f"expected an object {{{named} name: value}}",
+                              f"{path}: row {number}")
         names += [name for name in row if name not in names]
     rows = []
     for number, row in enumerate(data, start=1):
         missing = [name for name in names if name not in row]
         if missing:
             raise ConfigError(f"row lacks {', '.join(missing)} (every row must name the same "
-                              "joints)", f"{path}: row {number}")
+                              f"{named}s)", f"{path}: row {number}")
         rows.append([row[name] for name in names])
     return names, rows
 
 
-def _located_floats(rows, names, path) -> np.ndarray:
+def _located_floats(rows, names, path, named: str) -> np.ndarray:
     table = np.empty((len(rows), len(names)))
     for number, row in enumerate(rows, start=1):
         for column, cell in enumerate(row):
             where = f"{path}: row {number}"
-            message = f"value '{cell}' for joint '{names[column]}' is not a number"
+            message = f"value '{cell}' for {named} '{names[column]}' is not a number"
             if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
                 raise ConfigError(message, where)
             table[number - 1, column] = _to_float(str(cell), message, where)

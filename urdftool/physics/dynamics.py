@@ -116,7 +116,21 @@ class State:
     C: np.ndarray | None = None
     tau: np.ndarray | None = None
     rnea_residual: float | None = None
+    kinetic: float = 0.0  # K = v^T M v / 2 [J]
+    potential: float = 0.0  # P = m g z of the centre of mass, root frame [J]
+    damping: np.ndarray | None = None  # <dynamics damping> * v [N m or N]
+    friction: np.ndarray | None = None  # <dynamics friction> * sign(v)
     warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
+
+    @property
+    def lagrangian(self) -> float:
+        """L = K - P [J]."""
+        return self.kinetic - self.potential
+
+    @property
+    def total(self) -> np.ndarray | None:
+        """tau with the joints' damping and friction: what the actuators supply [N m or N]."""
+        return None if self.tau is None else self.tau + self.damping + self.friction
 
     def as_dict(self) -> dict:
         def listed(a):
@@ -125,13 +139,19 @@ class State:
         return {"joints": self.joints, "q": self.q, "total_mass": self.mass,
                 "com": listed(self.com), "M": listed(self.M), "G": listed(self.G),
                 "C": listed(self.C), "tau": listed(self.tau),
-                "rnea_residual": self.rnea_residual}
+                "rnea_residual": self.rnea_residual, "kinetic_energy": self.kinetic,
+                "potential_energy": self.potential, "lagrangian": self.lagrangian,
+                "damping_torque": listed(self.damping), "friction_torque": listed(self.friction),
+                "tau_total": listed(self.total)}
 
 
 def state(model: Model, q_values: dict, v_values: dict | None = None,
           a_values: dict | None = None) -> State:
-    """M(q) (crba), G(q) (computeGeneralizedGravity) and, given v or a, C(q, v) and
-    tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs difference); a
+    """M(q) (crba), G(q) (computeGeneralizedGravity), the energies K = v^T M v / 2 and
+    P = m g z_com (the fixed root's own mass included, so P is the whole robot's), and, given v
+    or a, C(q, v) and tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs
+    difference), and the URDF's ``<dynamics damping friction>`` torques ``damping v`` and
+    ``friction sign(v)`` that the actuators supply on top (Pinocchio's rnea has neither); a
     robot without mass gets a warning."""
     import pinocchio as pin
 
@@ -153,6 +173,10 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         tau = mass_matrix @ a + coriolis @ v + gravity
         result.C, result.tau = coriolis, tau
         result.rnea_residual = float(np.max(np.abs(pin.rnea(m, d, q, v, a) - tau), initial=0.0))
+        result.kinetic = float(0.5 * v @ mass_matrix @ v)
+        result.damping = np.asarray(m.damping) * v
+        result.friction = np.asarray(m.friction) * np.sign(v) + 0.0  # no -0
+    result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
 
 
@@ -200,10 +224,12 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
-    joints follow their variable)."""
+    joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
+    ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
+    pose out."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -216,10 +242,18 @@ def gravity_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
     ids = [m.getJointId(name) for name in model.joints]
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
              for name, i in zip(model.joints, ids)]
+    if torques is None:
+        rows = [m.joints[joint_id].idx_v for joint_id in ids]
+
+        def torques(pose):
+            return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
+
     for number, pose in enumerate(poses):
-        gravity = pin.computeGeneralizedGravity(m, d, model.configuration(pose))
-        for load, joint_id in zip(loads, ids):
-            torque = abs(float(gravity[m.joints[joint_id].idx_v]))
+        values = torques(pose)
+        if values is None:  # a pose the caller leaves out
+            continue
+        for load, torque in zip(loads, np.abs(values)):
+            torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
             if number == 0:
                 load.zero_pose = torque

@@ -263,3 +263,42 @@ def computed(solid: LinkSolid, mass: float | None = None, density: float | None 
     if mass is not None:
         return unit.scaled_to(mass)
     return unit.scaled_to(unit.mass * (density if density is not None else 1000.0))
+
+
+_ROUND = 48  # points on a cylinder's rim or a sphere's circles
+
+
+def surface_points(robot, link) -> tuple:
+    """(points ``[k, 3]`` [m] in the link frame, problems): points of the link's collision
+    geometry (visual when it has none) among which any lowest point lies: a box's corners, a
+    cylinder's rims, a sphere's points on a fine grid, a mesh's vertices. numpy, for statics."""
+    import numpy as np
+
+    collision = shapes(link, "collision")
+    chosen = collision or shapes(link, "visual")
+    points, problems = [], []
+    for shape in chosen:
+        p = shape.params
+        if shape.kind == "mesh":
+            from urdftool.description.meshes import MeshProblem, load_mesh
+
+            try:
+                local = np.asarray(load_mesh(robot, p["filename"], p["scale"]).vertices)
+            except MeshProblem as problem:
+                problems.append((shape.element, str(problem)))
+                continue
+        elif shape.kind == "box":
+            local = np.array(_corners(_local(shape)[1]))
+        elif shape.kind == "cylinder":
+            angles = np.linspace(0.0, 2 * np.pi, _ROUND, endpoint=False)
+            ring = np.stack([p["radius"] * np.cos(angles), p["radius"] * np.sin(angles)], -1)
+            half = p["length"] / 2
+            local = np.vstack([np.column_stack([ring, np.full(_ROUND, z)]) for z in (-half, half)])
+        else:
+            polar, azimuth = np.meshgrid(np.linspace(0, np.pi, _ROUND // 2 + 1),
+                                         np.linspace(0, 2 * np.pi, _ROUND, endpoint=False))
+            local = p["radius"] * np.stack([np.sin(polar) * np.cos(azimuth),
+                                            np.sin(polar) * np.sin(azimuth),
+                                            np.cos(polar)], -1).reshape(-1, 3)
+        points.append(local @ np.array(shape.rotation).T + np.array(shape.xyz))
+    return (np.vstack(points) if points else np.zeros((0, 3))), problems

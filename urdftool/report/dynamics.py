@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 
 def weakest(loads):
     """The joint load with the smallest margin relative to its effort limit; None when no joint
@@ -34,34 +36,139 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
-        lines += ["", "tau = M(q) a + C(q, v) v + G(q)"]
-        lines += [f"  {name:{width}s} {t:10.4g}" for name, t in zip(result.joints, result.tau)]
-        lines.append(f"  (matches rnea to {result.rnea_residual:.2g})")
+        lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
+                      "+ damping v + friction sign(v)"]
+        lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
+                     f"{'total':>10s}")
+        lines += [f"  {name:{width}s} {t:10.4g} {b:10.4g} {f:10.4g} {total:10.4g}"
+                  for name, t, b, f, total in zip(result.joints, result.tau, result.damping,
+                                                  result.friction, result.total)]
+        lines.append(f"  (tau matches rnea to {result.rnea_residual:.2g})")
+    if matrices or result.C is not None:
+        lines += ["", f"energy: K = {result.kinetic:.6g} J, P = {result.potential:.6g} J "
+                      f"(m g z of the centre of mass), L = K - P = {result.lagrangian:.6g} J"]
     if loads:
-        lines += ["", f"static gravity load over the zero pose and {samples} random poses:",
-                  f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
-                  f"{'margin':>10s}"]
-        for load in loads:
-            flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
-            effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
-                else (f"{'none':>8s}", f"{'-':>10s}")
-            lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
-                         f"{load.worst:10.4g} {margin}{flag}")
-        least = weakest(loads)
-        if least is not None:
-            # only the joints that change its load: the others' values are noise
-            pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
-                             if v and k in relevant)
-            lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
-                         f"{least.effort:.3g}) at {pose or 'the zero pose'}")
-        unlimited = [load.joint for load in loads if not load.limited]
-        if unlimited:
-            lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
-                         f"{', '.join(unlimited)}")
-        failing = [load.joint for load in loads if load.holds is False]
-        every = "every joint with an effort limit" if unlimited else "every joint"
-        lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
-                     f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
-                     if failing else f"  {every} holds the robot against gravity"
-                     if least is not None else "  no joint has an effort limit: nothing judged")
+        lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
+                                          "random poses:", relevant)
     return "\n".join(lines) + "\n"
+
+
+def load_lines(loads, title: str, relevant=()) -> list[str]:
+    """Each joint's worst gravity load against its effort limit, the smallest margin, and
+    whether every joint holds; relevant: joints whose values in the worst pose matter. A joint
+    without an effort limit has no margin and is listed as not judged."""
+    width = max((len(load.joint) for load in loads), default=5)
+    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
+                    f"{'margin':>10s}"]
+    for load in loads:
+        flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
+        effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
+            else (f"{'none':>8s}", f"{'-':>10s}")
+        lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
+                     f"{load.worst:10.4g} {margin}{flag}")
+    least = weakest(loads)
+    if least is not None:
+        # only the joints that change its load: the others' values are noise
+        pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
+                         if v and k in relevant)
+        lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
+                     f"{least.effort:.3g}) at {pose or 'the zero pose'}")
+    unlimited = [load.joint for load in loads if not load.limited]
+    if unlimited:
+        lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
+                     f"{', '.join(unlimited)}")
+    failing = [load.joint for load in loads if load.holds is False]
+    every = "every joint with an effort limit" if unlimited else "every joint"
+    lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
+                 f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
+                 if failing else f"  {every} holds the robot against gravity"
+                 if least is not None else "  no joint has an effort limit: nothing judged")
+    return lines
+
+
+def _vector(values) -> str:
+    return " ".join(f"{v if abs(v) > 1e-12 else 0.0:.4g}" for v in values)
+
+
+def stance_text(stance, standing_load=None) -> str:
+    """The robot standing: centre of mass, support polygon and margin, each joint's torque
+    standing and with the root fixed against its effort limit, the ground's wrenches."""
+    supports = ", ".join(stance.supports)
+    lines = [f"standing on {supports} (ground frame: {stance.supports[0]}'s, level, on its "
+             "lowest point)",
+             f"total mass {stance.mass:.4g} kg, centre of mass ({_vector(stance.com)}) m"]
+    where = "inside" if stance.stands else "OUTSIDE"
+    lines.append(f"support polygon: {len(stance.polygon)} corners from the supports' geometry; "
+                 f"the centre of mass is {abs(stance.margin) * 1000:.1f} mm {where} its nearest "
+                 "edge" + ("" if stance.stands else " (it tips over)"))
+    if stance.assumption:
+        lines.append(f"assumption: {stance.assumption}")
+    width = max(len(j) for j in stance.joints)
+    lines += ["", "joint torque holding the robot [N m or N]:",
+              f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
+    for joint, standing, fixed, effort in zip(stance.joints, stance.torques, stance.fixed_base,
+                                              stance.efforts):
+        flag = "  ERROR: beyond its effort limit" if abs(standing) > effort else ""
+        lines.append(f"  {joint:{width}s} {_clean(standing):10.4g} {_clean(fixed):10.4g} "
+                     f"{effort:8.4g}{flag}")
+    lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
+    for name, wrench in stance.wrenches.items():
+        lines.append(f"  {name}: force ({_vector(wrench[:3])}), torque ({_vector(wrench[3:])})")
+    if standing_load is not None:
+        tipped = standing_load.poses - standing_load.stable
+        which = "the zero pose and " if standing_load.zero_stands else ""
+        title = (f"standing gravity load over {which}{standing_load.stable - bool(which)} "
+                 f"random poses in which it stands ({tipped} of {standing_load.poses} poses "
+                 "tip over or lift a support and are left out):")
+        if standing_load.loads:
+            lines += [""] + load_lines(standing_load.loads, title,
+                                       relevant={load.joint for load in standing_load.loads})
+        else:
+            lines += ["", f"no pose drawn stands: all {standing_load.poses} tip over or lift a "
+                          "support (more --samples, or --q for a pose that stands)"]
+    return "\n".join(lines) + "\n"
+
+
+def _clean(value: float) -> float:
+    return 0.0 if abs(value) < 1e-12 else float(value)
+
+
+def stance_picture(stance, title: str, size: int = 420):
+    """The support polygon, its contact points and the centre of mass seen from above, as
+    primitives for urdftool.report.plot.write_items: (width, height, items)."""
+    import numpy as np
+
+    points = np.vstack([stance.polygon.reshape(-1, 2), stance.contacts[:, :2],
+                        stance.com[None, :2]])
+    low, high = points.min(axis=0), points.max(axis=0)
+    span = float(max(high - low)) or 0.1
+    pad, top = 40, 50
+    scale = (size - 2 * pad) / (1.3 * span)
+    centre = (low + high) / 2
+
+    def at(x, y):  # x to the right, y up
+        return size / 2 + (x - centre[0]) * scale, top + size / 2 - (y - centre[1]) * scale
+
+    items = [("text", 8, 18, title, 13, "start", False)]
+    where = "inside" if stance.stands else "OUTSIDE"
+    items.append(("text", 8, 36, f"centre of mass {abs(stance.margin) * 1000:.1f} mm {where} "
+                                 "the support polygon", 11, "start", False))
+    if len(stance.polygon) >= 3:
+        items.append(("polygon", [at(*p) for p in stance.polygon], "#2ca02c", 0.3, "#2ca02c"))
+    elif len(stance.polygon) == 2:
+        items.append(("line", *at(*stance.polygon[0]), *at(*stance.polygon[1]), "#2ca02c"))
+    for x, y in stance.contacts[:, :2]:
+        items.append(("circle", *at(x, y), 2, "#2ca02c", 1.0))
+    colour = "#1f77b4" if stance.stands else "#d62728"
+    cx, cy = at(*stance.com[:2])
+    items.append(("line", cx - 8, cy, cx + 8, cy, colour))
+    items.append(("line", cx, cy - 8, cx, cy + 8, colour))
+    items.append(("circle", cx, cy, 4, colour, 1.0))
+    items.append(("text", cx + 8, cy - 8, "COM", 11, "start", False))
+    bar = 10 ** math.floor(math.log10(span / 2))
+    x0, y0 = pad, size + top - 20
+    items.append(("line", x0, y0, x0 + bar * scale, y0, "#000000"))
+    items.append(("text", x0, y0 - 4, f"{bar * 1000:g} mm", 11, "start", False))
+    items.append(("text", size - 8, size + top - 8, "seen from above: x right, y up", 11, "end",
+                  False))
+    return size, size + top, items

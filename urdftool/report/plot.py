@@ -1,8 +1,9 @@
-"""The collision matrix as a picture: links on both axes, each cell coloured by class and shaded
-by how often the pair collided.
+"""Pictures: the collision matrix (links on both axes, each cell coloured by class and shaded
+by how often the pair collided), and the drawing of any picture laid out as primitives
+(rectangles, polygons, circles, lines, text) as SVG or PNG.
 
-SVG is written directly (no plotting dependency: a matrix of coloured squares needs none). PNG
-draws the same layout with Pillow when it is installed, which urdftool does not require.
+SVG is written directly (no plotting dependency: coloured shapes need none). PNG draws the same
+layout with Pillow.
 """
 
 from __future__ import annotations
@@ -70,7 +71,13 @@ def _layout(matrix, title: str):
 
 
 def svg(matrix, title: str) -> str:
-    width, height, items = _layout(matrix, title)
+    return svg_of(*_layout(matrix, title))
+
+
+def svg_of(width: int, height: int, items) -> str:
+    """SVG of primitives: ``("rect", x, y, w, h, colour, opacity, tooltip)``, ``("text", x, y,
+    text, size, anchor, vertical)``, ``("polygon", [(x, y)...], fill, opacity, stroke)``,
+    ``("circle", x, y, radius, colour, opacity)`` and ``("line", x1, y1, x2, y2, colour)``."""
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>']
@@ -81,6 +88,19 @@ def svg(matrix, title: str) -> str:
             body = f"<title>{escape(tip)}</title></rect>" if tip else "</rect>"
             out.append(f'<rect x="{x}" y="{y}" width="{w}" height="{h}" fill="{colour}"'
                        f'{shade}>{body}')
+        elif item[0] == "polygon":
+            _, points, fill, opacity, stroke = item
+            corners = " ".join(f"{x:.1f},{y:.1f}" for x, y in points)
+            out.append(f'<polygon points="{corners}" fill="{fill}" fill-opacity="{opacity:.2f}" '
+                       f'stroke="{stroke}"/>')
+        elif item[0] == "circle":
+            _, x, y, radius, colour, opacity = item
+            out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{radius}" fill="{colour}" '
+                       f'fill-opacity="{opacity:.2f}"/>')
+        elif item[0] == "line":
+            _, x1, y1, x2, y2, colour = item
+            out.append(f'<line x1="{x1:.1f}" y1="{y1:.1f}" x2="{x2:.1f}" y2="{y2:.1f}" '
+                       f'stroke="{colour}"/>')
         else:
             _, x, y, text, size, anchor, vertical = item
             style = (f' font-size="{size}"' if size != 11 else "") + \
@@ -95,35 +115,56 @@ def svg(matrix, title: str) -> str:
 def write(matrix, path: Path, title: str) -> None:
     """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.description.files.write_file`
     (a link planted at ``path`` is replaced, never followed); PlotError for another suffix."""
+    write_items(path, *_layout(matrix, title))
+
+
+def write_items(path: Path, width: int, height: int, items) -> None:
+    """Write primitives (see :func:`svg_of`) to ``path``, an .svg or a .png (Pillow)."""
     from urdftool.description.files import write_file
 
-    suffix = path.suffix.lower()
+    suffix = Path(path).suffix.lower()
     if suffix == ".svg":
-        write_file(path, svg(matrix, title))
+        write_file(path, svg_of(width, height, items))
     elif suffix == ".png":
-        write_file(path, _png(matrix, title))
+        write_file(path, png_of(width, height, items))
     else:
-        raise PlotError(f"'{path.name}' must end in .svg or .png")
+        raise PlotError(f"'{Path(path).name}' must end in .svg or .png")
 
 
-def _png(matrix, title: str, scale: int = 2) -> bytes:
-    """The same picture as :func:`svg`, drawn with Pillow at ``scale`` times the size."""
+def png_of(width: int, height: int, items, scale: int = 2) -> bytes:
+    """The same picture as :func:`svg_of`, drawn with Pillow at ``scale`` times the size."""
     try:
         from PIL import Image, ImageColor, ImageDraw, ImageFont
     except ImportError:
         raise PlotError("PNG output needs Pillow (pip install pillow); an .svg needs "
                          "nothing") from None
-    width, height, items = _layout(matrix, title)
     image = Image.new("RGB", (width * scale, height * scale), "white")
     draw = ImageDraw.Draw(image)
     fonts = {}
+
+    def shaded(colour, opacity):
+        return tuple(round(255 * (1 - opacity) + c * opacity) for c in ImageColor.getrgb(colour))
+
     for item in items:
         if item[0] == "rect":
             _, x, y, w, h, colour, opacity, _tip = item
-            rgb = tuple(round(255 * (1 - opacity) + c * opacity)
-                        for c in ImageColor.getrgb(colour))
             draw.rectangle([x * scale, y * scale, (x + w) * scale - 1, (y + h) * scale - 1],
-                           fill=rgb)
+                           fill=shaded(colour, opacity))
+            continue
+        if item[0] == "polygon":
+            _, points, fill, opacity, stroke = item
+            draw.polygon([(x * scale, y * scale) for x, y in points],
+                         fill=shaded(fill, opacity), outline=stroke)
+            continue
+        if item[0] == "circle":
+            _, x, y, radius, colour, opacity = item
+            r = radius * scale
+            draw.ellipse([x * scale - r, y * scale - r, x * scale + r, y * scale + r],
+                         fill=shaded(colour, opacity))
+            continue
+        if item[0] == "line":
+            _, x1, y1, x2, y2, colour = item
+            draw.line([x1 * scale, y1 * scale, x2 * scale, y2 * scale], fill=colour)
             continue
         _, x, y, text, size, anchor, vertical = item
         if size not in fonts:
@@ -131,7 +172,7 @@ def _png(matrix, title: str, scale: int = 2) -> bytes:
         font = fonts[size]
         if not vertical:
             draw.text((x * scale, y * scale), text, font=font, fill="black",
-                      anchor="rs" if anchor == "end" else "ls")
+                      anchor="rs" if anchor == "end" else ("ms" if anchor == "middle" else "ls"))
             continue
         length = int(draw.textlength(text, font=font)) + 2
         strip = Image.new("L", (length, 16 * scale), 0)

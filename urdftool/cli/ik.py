@@ -1,0 +1,125 @@
+"""``urdftool ik``: joint values that put a link at a pose, and which targets a limb reaches."""
+
+from __future__ import annotations
+
+import typer
+
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
+                                  joint_words, single_robot, warn)
+
+FORMATS = ("text", "json", "csv")
+METHODS = ("auto", "numeric", "closed-form")
+SEEDS = 16  # as urdftool.kinematics.ik.SEEDS (not imported here: it loads numpy)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("ik", help="Inverse kinematics: joint values that put --tip at a pose relative "
+                           "to --base; --check-reach FILE: which targets the limb reaches."
+                )(budgeted(ik))
+
+
+Triple = tuple[float, float, float]
+# the limb, as ik and workspace name it
+TipOption = typer.Option(..., "--tip", metavar="LINK", help="The end of the limb.")
+BaseOption = typer.Option(None, "--base", metavar="LINK",
+                          help="Poses are relative to this link (default: the root).")
+PointOption = typer.Option(None, "--point", metavar="X Y Z",
+                           help="The point [m] in --tip's frame to place (default: its origin).")
+
+
+def ik(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    tip: str = TipOption,
+    base: str = BaseOption,
+    point: Triple = PointOption,
+    xyz: Triple = typer.Option(None, "--xyz", metavar="X Y Z", help="Target position [m]."),
+    rpy: Triple = typer.Option(None, "--rpy", metavar="R P Y",
+                               help="Target orientation (fixed X, Y, Z as in URDF) [rad]; "
+                                    "without --rpy or --quat: position only."),
+    quat: tuple[float, float, float, float] = typer.Option(
+        None, "--quat", metavar="X Y Z W", help="Target orientation as a quaternion."),
+    target_frame: str = typer.Option(None, "--target-frame", metavar="LINK",
+                                     help="Target: the pose of LINK at --target-q."),
+    target_q: list[str] = typer.Option([], "--target-q", metavar="NAME=VALUE",
+                                       help="With --target-frame: the configuration it is at."),
+    targets: str = typer.Option(None, "--targets", metavar="FILE",
+                                help="Many targets: CSV or JSON with x, y, z and optionally "
+                                     "roll, pitch, yaw or qx, qy, qz, qw."),
+    check_reach: str = typer.Option(None, "--check-reach", metavar="FILE",
+                                    help="Which targets of FILE (as --targets) are reachable; "
+                                         "exit 1 if one is not."),
+    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+                                help="Joint value (repeatable): the first seed, and where the "
+                                     "joints off the limb stay."),
+    deg: bool = typer.Option(False, "--deg", help="Angles (--q, --rpy, files) in degrees."),
+    seeds: int = typer.Option(SEEDS, "--seeds", metavar="N",
+                              help="Starting points: --q, then N-1 random ones in limits."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the random starting points."),
+    tol: float = typer.Option(1e-6, "--tol", help="Solved within this [m] and [rad]."),
+    iterations: int = typer.Option(100, "--iterations", metavar="N",
+                                   help="Iterations per starting point."),
+    method: str = typer.Option("auto", "--method",
+                               help="auto (closed form for planar 2-3 joint limbs, else "
+                                    "numeric), numeric or closed-form."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text, json or csv."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from urdftool.errors import ConfigError, FKError, IKError
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics import ik as solver
+    from urdftool.kinematics.chain import build_chain
+    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+    from urdftool.report import ik as render
+
+    sources = [xyz is not None, target_frame is not None, targets is not None,
+               check_reach is not None]
+    robot = single_robot("ik", words, arg, package, {"--format": (output_format, FORMATS),
+                                                     "--method": (method, METHODS)}, (
+        (sum(sources) != 1, "give one target: --xyz, --target-frame, --targets or --check-reach"),
+        (rpy is not None and quat is not None, "give --rpy or --quat, not both"),
+        ((rpy is not None or quat is not None) and xyz is None, "--rpy and --quat need --xyz"),
+        (bool(target_q) and target_frame is None, "--target-q needs --target-frame"),
+        (seeds < 1, "--seeds must be at least 1"),
+        (iterations < 1, "--iterations must be at least 1"),
+        (not tol > 0, "--tol must be more than 0")))
+    given = joint_words(q, "--q")
+    option = "--q"
+    try:
+        kinematics = KinematicModel(robot)
+        start = config.from_words(kinematics.variables, given, deg, kinematics.mimics)
+        chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
+        if xyz is not None:
+            option = "--quat"
+            wanted = [solver.target(xyz, rpy, quat, deg)]
+        elif target_frame is not None:
+            option = "--target-q"
+            other = config.from_words(kinematics.variables, joint_words(target_q, option), deg,
+                                      kinematics.mimics)
+            pose = forward_kinematics(kinematics, other, [target_frame], chain.base).matrices[0, 0]
+            if point is not None:  # the same point on the target frame
+                pose[:3, 3] += pose[:3, :3] @ point
+            wanted = [solver.Target(pose[:3, 3], pose[:3, :3], f"{target_frame} at --target-q")]
+        else:
+            option = "--targets" if targets else "--check-reach"
+            wanted = solver.read_targets(targets or check_reach, deg)
+    except ConfigError as error:
+        fail_config(error, option)
+    except (FKError, IKError) as error:
+        fail_at(robot, error)
+    warn(start.warnings)
+    starts = solver.seeds(chain, seeds, seed)
+    solutions = [solver.solve(chain, goal, starts, tol, iterations,
+                              method.replace("-", " ")) for goal in wanted]
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        documents = [render.as_dict(chain, s, given) for s in solutions]
+        write_json(documents[0] if xyz is not None or target_frame else documents)
+    elif output_format == "csv":
+        typer.echo(render.csv_text(chain, solutions), nl=False)
+    elif check_reach:
+        typer.echo(render.reach_text(chain, solutions, tol), nl=False)
+    else:
+        typer.echo(render.text(chain, solutions, given), nl=False)
+    raise typer.Exit(0 if all(s.solved for s in solutions) else 1)

@@ -1,0 +1,68 @@
+"""``urdftool workspace``: where a limb's tip can go, from sampled in-limit configurations."""
+
+from __future__ import annotations
+
+import typer
+
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
+                                  joint_words, refuse_bad_outputs, single_robot, warn)
+from urdftool.cli.ik import BaseOption, PointOption, TipOption, Triple
+
+FORMATS = ("text", "json")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("workspace", help="Reach envelope of --tip relative to --base from sampled "
+                                  "configurations, with a picture.")(budgeted(workspace))
+
+
+def workspace(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    tip: str = TipOption,
+    base: str = BaseOption,
+    point: Triple = PointOption,
+    samples: int = typer.Option(2000, "--samples", metavar="N", help="Configurations drawn."),
+    seed: int = typer.Option(0, "--seed", help="Random seed."),
+    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+                                help="Value of a joint off the limb (repeatable)."),
+    deg: bool = typer.Option(False, "--deg", help="--q angles in degrees."),
+    plot: str = typer.Option(None, "--plot", metavar="FILE",
+                             help="Top and side views shaded by manipulability, .svg or .png."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from urdftool.errors import ConfigError, FKError, IKError
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.chain import build_chain
+    from urdftool.kinematics.fk import KinematicModel
+    from urdftool.kinematics.workspace import sample
+    from urdftool.report import workspace as render
+
+    robot = single_robot("workspace", words, arg, package, {"--format": (output_format, FORMATS)},
+                         ((samples < 1, "--samples must be at least 1"),
+                          (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
+                           "--plot must end in .svg or .png")))
+    refuse_bad_outputs(plot)
+    try:
+        kinematics = KinematicModel(robot)
+        start = config.from_words(kinematics.variables, joint_words(q, "--q"), deg,
+                                  kinematics.mimics)
+        chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
+    except ConfigError as error:
+        fail_config(error, "--q")
+    except (FKError, IKError) as error:
+        fail_at(robot, error)
+    warn(start.warnings)
+    space = sample(chain, samples, seed)
+    if plot:
+        from urdftool.report.plot import write_items
+
+        write_items(plot, *render.picture(space, f"{robot.name}: {chain.tip} relative to "
+                                                 f"{chain.base}"))
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(space.as_dict())
+    else:
+        typer.echo(render.text(space), nl=False)

@@ -1,0 +1,106 @@
+"""``urdftool ik``: joint values, residuals and verdicts as text, JSON or CSV."""
+
+from __future__ import annotations
+
+import math
+
+
+def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
+    """``--q NAME=VALUE`` words for ``urdftool fk``: the limb's values [rad or m] and the other
+    joints the user set (``given``: {name: text as typed})."""
+    limb = {v.name: f"{value if abs(value) > 1e-12 else 0.0:.12g}"
+            for v, value in zip(chain.variables, solution.x)}
+    others = {name: text for name, text in (given or {}).items() if name not in limb}
+    return " ".join(f"--q {name}={value}" for name, value in {**limb, **others}.items())
+
+
+def _pose(matrix) -> str:
+    from urdftool.kinematics.fk import pose_components
+
+    position, rpy, _ = pose_components(matrix[None])
+    return (f"xyz ({' '.join(f'{v:.6g}' for v in position[0])}) m, "
+            f"rpy ({' '.join(f'{v:.6g}' for v in rpy[0])}) rad")
+
+
+def _verdict(solution) -> str:
+    residual = f"position {solution.position_error:.2g} m"
+    if solution.target.rotation is not None:
+        residual += f", orientation {solution.rotation_error:.2g} rad"
+    return residual
+
+
+def as_dict(chain, solution, given=None) -> dict:
+    target = solution.target
+    return {"target": target.name or None, "position": target.position.tolist(),
+            "rotation": None if target.rotation is None else target.rotation.tolist(),
+            "solved": bool(solution.solved), "method": solution.method,
+            "joints": {v.name: float(value) for v, value in zip(chain.variables, solution.x)},
+            "position_error": solution.position_error,
+            "rotation_error": solution.rotation_error, "iterations": solution.iterations,
+            "seeds": solution.seeds,
+            "at_limits": [{"joint": name, "limit": side} for name, side in solution.at_limits],
+            "pose": solution.pose.tolist(), "reason": solution.reason,
+            "q_words": q_words(chain, solution, given)}
+
+
+def text(chain, solutions, given=None) -> str:
+    """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
+    width = max(len(v.name) for v in chain.variables)
+    lines = []
+    for solution in solutions:
+        head = f"{solution.target.name}: " if solution.target.name else ""
+        mode = "position only" if solution.target.rotation is None else "position and orientation"
+        lines.append(f"{head}{chain.tip} relative to {chain.base} ({mode}, {solution.method}): "
+                     + ("solved" if solution.solved else "UNREACHABLE"))
+        lines.append(f"  {'joint':{width}s} {'value':>12s} {'[deg]':>9s} {'lower':>9s} "
+                     f"{'upper':>9s}")
+        for variable, value in zip(chain.variables, solution.x):
+            degrees = f"{math.degrees(value):9.3f}" if variable.angular else " " * 9
+            lines.append(f"  {variable.name:{width}s} {value:12.6f} {degrees} "
+                         f"{variable.lower:9.4g} {variable.upper:9.4g}")
+        lines.append(f"  residual: {_verdict(solution)}; {solution.iterations} iterations, "
+                     f"{solution.seeds} seed{'s' if solution.seeds != 1 else ''}")
+        if solution.at_limits:
+            lines.append("  at a limit: " + ", ".join(f"{name} ({side})"
+                                                       for name, side in solution.at_limits))
+        if not solution.solved:
+            lines.append(f"  closest pose reached: {_pose(solution.pose)}")
+            lines.append(f"  why: {solution.reason}")
+        lines.append(f"  fk: {q_words(chain, solution, given)}")
+        lines.append("")
+    solved = sum(s.solved for s in solutions)
+    if len(solutions) > 1:
+        lines.append(f"{solved} of {len(solutions)} targets solved")
+    return "\n".join(lines).rstrip("\n") + "\n"
+
+
+def csv_text(chain, solutions) -> str:
+    import csv
+    import io
+
+    stream = io.StringIO()
+    writer = csv.writer(stream, lineterminator="\n")
+    writer.writerow(["target", "solved", "position_error", "rotation_error", "iterations",
+                     *(v.name for v in chain.variables)])
+    for number, solution in enumerate(solutions, start=1):
+        writer.writerow([solution.target.name or number, int(solution.solved),
+                         repr(solution.position_error), repr(solution.rotation_error),
+                         solution.iterations, *(repr(float(v)) for v in solution.x)])
+    return stream.getvalue()
+
+
+def reach_text(chain, solutions, tolerance: float) -> str:
+    """``--check-reach``: one line per target, reachable or not, with its residual."""
+    lines = [f"reach of {chain.tip} relative to {chain.base} ({len(chain.variables)} joints), "
+             f"tolerance {tolerance:g}:"]
+    for solution in solutions:
+        x, y, z = solution.target.position
+        verdict = "reachable" if solution.solved else "UNREACHABLE"
+        line = (f"  {solution.target.name:12s} ({x:.4g} {y:.4g} {z:.4g}) {verdict:11s} "
+                f"{_verdict(solution)}")
+        if not solution.solved:
+            line += f"; {solution.reason}"
+        lines.append(line)
+    reached = sum(s.solved for s in solutions)
+    lines.append(f"{reached} of {len(solutions)} targets reachable")
+    return "\n".join(lines) + "\n"

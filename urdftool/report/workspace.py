@@ -1,0 +1,73 @@
+"""``urdftool workspace``: the reach envelope as text, JSON and a picture (top and side views,
+points shaded by manipulability)."""
+
+from __future__ import annotations
+
+# viridis at five stops: low manipulability light, high dark
+_RAMP = ((253, 231, 37), (94, 201, 98), (33, 145, 140), (59, 82, 139), (68, 1, 84))
+PANEL = 360  # [px] each view
+TOP = 56  # [px] title rows
+
+
+def text(space) -> str:
+    lower, upper = space.lower, space.upper
+    m = space.manipulability
+    lines = [f"workspace of {space.tip} relative to {space.base} ({len(space.joints)} joints: "
+             f"{', '.join(space.joints)}), {space.samples} samples (seed {space.seed})",
+             f"  max reach {space.reach:.4g} m from the first joint at "
+             f"({' '.join(f'{v:.4g}' for v in space.centre)}); horizontal "
+             f"{space.horizontal_reach:.4g} m",
+             f"  x from {lower[0]:.4g} to {upper[0]:.4g} m, y from {lower[1]:.4g} to "
+             f"{upper[1]:.4g} m, z from {lower[2]:.4g} to {upper[2]:.4g} m (vertical extent "
+             f"{upper[2] - lower[2]:.4g} m)",
+             f"  manipulability: min {m.min():.3g}, mean {m.mean():.3g}, max {m.max():.3g}"]
+    return "\n".join(lines) + "\n"
+
+
+def _colour(value: float) -> str:
+    value = min(1.0, max(0.0, value)) * (len(_RAMP) - 1)
+    k = min(int(value), len(_RAMP) - 2)
+    t = value - k
+    rgb = (round(a + (b - a) * t) for a, b in zip(_RAMP[k], _RAMP[k + 1]))
+    return "#" + "".join(f"{c:02x}" for c in rgb)
+
+
+def picture(space, title: str):
+    """(width, height, items) for urdftool.report.plot.write_items: the top view (x right,
+    y up) and the side view (x right, z up) side by side, on one scale."""
+    import numpy as np
+
+    points, centre = space.points, space.centre
+    low = np.minimum(points.min(axis=0), centre)
+    high = np.maximum(points.max(axis=0), centre)
+    span = float(max(high - low)) or 0.1
+    pad = 24
+    scale = (PANEL - 2 * pad) / span
+    middle = (low + high) / 2
+    peak = float(space.manipulability.max()) or 1.0
+    items = [("text", 8, 18, title, 13, "start", False),
+             ("text", 8, 36, f"max reach {space.reach:.3g} m, {space.samples} samples; colour: "
+                             "manipulability (light low, dark high)", 11, "start", False)]
+    order = np.argsort(space.manipulability)  # dark, well-conditioned points on top
+    for panel, (axis, name) in enumerate(((1, "top view: x right, y up"),
+                                          (2, "side view: x right, z up"))):
+        left = panel * PANEL
+
+        def at(x, v, left=left, axis=axis):
+            return (left + PANEL / 2 + (x - middle[0]) * scale,
+                    TOP + PANEL / 2 - (v - middle[axis]) * scale)
+
+        items.append(("rect", left + 4, TOP, PANEL - 8, PANEL, "#f4f4f4", 1.0, None))
+        items.append(("text", left + 10, TOP + 16, name, 11, "start", False))
+        for k in order:
+            x, v = at(points[k, 0], points[k, axis])
+            items.append(("circle", x, v, 1.6, _colour(space.manipulability[k] / peak), 0.8))
+        cx, cy = at(centre[0], centre[axis])
+        items.append(("line", cx - 7, cy, cx + 7, cy, "#d62728"))
+        items.append(("line", cx, cy - 7, cx, cy + 7, "#d62728"))
+    bar = 10 ** np.floor(np.log10(span / 2))
+    y = TOP + PANEL + 20
+    items.append(("line", 10, y, 10 + bar * scale, y, "#000000"))
+    items.append(("text", 14 + bar * scale, y + 4, f"{bar:g} m; + first joint", 11, "start",
+                  False))
+    return 2 * PANEL, TOP + PANEL + 32, items
