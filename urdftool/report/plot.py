@@ -93,17 +93,11 @@ def svg(matrix, title: str) -> str:
 
 
 def write(matrix, path: Path, title: str) -> None:
-    """Write ``path`` as SVG or PNG (PNG needs Pillow) with :func:`urdftool.description.files.write_file`
-    (a link planted at ``path`` is replaced, never followed); PlotError for another suffix."""
-    from urdftool.description.files import write_file
+    """Write ``path`` as SVG or PNG (PNG needs Pillow), a link planted at ``path`` replaced,
+    never followed; PlotError for another suffix."""
+    from urdftool.report.picture import write_by_suffix
 
-    suffix = path.suffix.lower()
-    if suffix == ".svg":
-        write_file(path, svg(matrix, title))
-    elif suffix == ".png":
-        write_file(path, _png(matrix, title))
-    else:
-        raise PlotError(f"'{path.name}' must end in .svg or .png")
+    write_by_suffix(path, {".svg": lambda: svg(matrix, title), ".png": lambda: _png(matrix, title)})
 
 
 def _png(matrix, title: str, scale: int = 2) -> bytes:
