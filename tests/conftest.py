@@ -30,7 +30,7 @@ def load_text(folder: Path, text: str, name: str = "robot.urdf"):
     meshes may be) and loaded."""
     from urdftool.description.load import load
 
-    (folder / ".git").mkdir(exist_ok=True)
+    (folder / ".git").mkdir(parents=True, exist_ok=True)
     (folder / name).write_text(text)
     return load(folder / name)
 

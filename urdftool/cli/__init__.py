@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli import (check, collisions, dh, dynamics, fk, graph, inertia, render, rules, tree,
-                          xacro)
+from urdftool.cli import (check, collisions, dh, diff, dynamics, fk, graph, inertia, render, rules,
+                          tree, xacro)
 
-COMMANDS = (check, collisions, dh, dynamics, fk, graph, inertia, render, rules, tree, xacro)
+COMMANDS = (check, collisions, dh, diff, dynamics, fk, graph, inertia, render, rules, tree, xacro)
 
 app = typer.Typer(
     name="urdftool",

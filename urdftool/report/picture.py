@@ -8,8 +8,8 @@ algorithm), with Pillow's C polygon filler for PNG (~300,000 triangles a second 
 core) and as polygons for SVG.
 
 A picture is made of layers (:class:`Layer`): one scene in its own colours, a scene with some
-links painted (colliding pairs), or, for a comparison, two scenes tinted in two colours and
-blended where they cover the same pixels, so what moved shows in one colour alone.
+links painted (colliding pairs), or, for a comparison, two scenes tinted in two colours, grey
+where both cover the same pixels, so that what moved shows in one colour alone.
 """
 
 from __future__ import annotations
@@ -213,7 +213,7 @@ def _painted(drawn: _Drawn, width: int, height: int):
 
 
 def rasterise(layers: list[Layer], options: PictureOptions = PictureOptions()):
-    """The picture as a Pillow RGB image; several layers are blended where they overlap."""
+    """The picture as a Pillow RGB image; where several layers overlap it is grey."""
     import numpy as np
     from PIL import Image, ImageDraw
 
@@ -223,13 +223,16 @@ def rasterise(layers: list[Layer], options: PictureOptions = PictureOptions()):
               for layer in layers]
     if len(images) == 1:
         image = images[0]
-    else:  # each covered pixel is the mean of the layers covering it
+    else:  # what several layers cover is grey (their mean brightness): the rest stands out
         white = np.array(BACKGROUND, dtype=np.float32)
         arrays = [np.asarray(image, dtype=np.float32) for image in images]
         covered = [np.any(array != white, axis=-1) for array in arrays]
         count = np.sum(covered, axis=0)
         total = np.sum([np.where(c[..., None], a, 0) for c, a in zip(covered, arrays)], axis=0)
         pixels = np.where(count[..., None] > 0, total / np.maximum(count, 1)[..., None], white)
+        # the tints are about half as bright as white: the grey is lifted back
+        grey = np.repeat(np.clip(pixels.mean(axis=-1, keepdims=True) * 1.6, 0, 235), 3, axis=-1)
+        pixels = np.where(count[..., None] > 1, grey, pixels)
         image = Image.fromarray(pixels.astype(np.uint8), "RGB")
     draw = ImageDraw.Draw(image)
     for start, end, colour, line_width in _overlays(layers, camera, options):

@@ -1,0 +1,57 @@
+"""``diff``: the structural changes between two robots and their effects, as one result."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from urdftool.compare.effect import Effects
+from urdftool.compare.structure import Change, Renames
+
+
+@dataclass(frozen=True)
+class DiffOptions:
+    """tolerance: numbers closer than this are equal (in their own unit: m, rad, kg, ...)
+    samples: configurations drawn within the common limits (plus the zero one)
+    seed: the random stream of the samples
+    chains: (base, tip) link pairs (new names) whose reach is compared
+    collisions: compare self-collisions over the samples (FCL)
+    """
+
+    tolerance: float = 1e-9
+    samples: int = 200
+    seed: int = 0
+    chains: tuple[tuple[str, str], ...] = ()
+    collisions: bool = True
+
+
+@dataclass
+class Diff:
+    old: str
+    new: str
+    changes: list[Change]
+    renames: Renames
+    effects: Effects | None
+    companions: list[Change] = field(default_factory=list)
+
+    @property
+    def equivalent(self) -> bool:
+        """No change in structure or companions: the two describe the same robot."""
+        return not self.changes and not self.companions
+
+
+def diff(old, new, options: DiffOptions = DiffOptions(), companions=None) -> Diff:
+    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects). ``companions`` is an
+    optional pair of (old, new) :class:`urdftool.compare.companions.Documents`."""
+    from urdftool.compare.effect import effects
+    from urdftool.compare.structure import structure
+
+    changes, found = structure(old, new, options.tolerance)
+    result = Diff(old.display, new.display, changes, found, None)
+    if changes:
+        result.effects = effects(old, new, found, options.samples, options.seed,
+                                 list(options.chains), options.tolerance, options.collisions)
+    if companions is not None:
+        from urdftool.compare.companions import compare
+
+        result.companions = compare(*companions, found)
+    return result
