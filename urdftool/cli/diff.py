@@ -15,7 +15,8 @@ HELP = ("Compare two robot descriptions (OLD NEW, or --rev REV FILE: FILE as it 
         "revision REV, includes from the same revision): links and joints added, removed or "
         "renamed, changed joints, inertials, geometry and materials; then the effect: how far "
         "every frame moves at zero and over sampled configurations, mass and centre of mass, "
-        "reach of --chain, pairs that newly collide or no longer do. Exit 0 equivalent, 1 "
+        "reach of --chain, pairs that newly collide or no longer do; the SRDF's groups and "
+        "disabled pairs and the controller YAML beside each. Exit 0 equivalent, 1 "
         "different. Formatting, comments and attribute order are no change.")
 FORMATS = ("text", "json", "markdown")
 
@@ -37,6 +38,9 @@ def diff(
                                     help="Compare the reach of this chain (repeatable)."),
     no_collisions: bool = typer.Option(False, "--no-collisions",
                                        help="Do not compare self-collisions."),
+    no_companions: bool = typer.Option(False, "--no-companions",
+                                       help="Do not compare the SRDF and controller YAML "
+                                            "found beside each side (as check finds them)."),
     render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
                                 help="Draw old and new overlaid in two colours where they "
                                      "differ most."),
@@ -62,7 +66,8 @@ def diff(
         chains = tuple(_chain(text) for text in chain)
     except UsageError as error:
         fail_usage(error)
-    options = DiffOptions(tolerance, samples, seed, chains, not no_collisions)
+    options = DiffOptions(tolerance, samples, seed, chains, not no_collisions,
+                          not no_companions)
     if rev:
         from urdftool.description.revision import checkout
 

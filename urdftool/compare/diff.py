@@ -15,6 +15,7 @@ class DiffOptions:
     seed: the random stream of the samples
     chains: (base, tip) link pairs (new names) whose reach is compared
     collisions: compare self-collisions over the samples (FCL)
+    companions: compare the SRDF and controller YAML each side has (as ``check`` finds them)
     """
 
     tolerance: float = 1e-9
@@ -22,6 +23,7 @@ class DiffOptions:
     seed: int = 0
     chains: tuple[tuple[str, str], ...] = ()
     collisions: bool = True
+    companions: bool = True
 
 
 @dataclass
@@ -39,9 +41,8 @@ class Diff:
         return not self.changes and not self.companions
 
 
-def diff(old, new, options: DiffOptions = DiffOptions(), companions=None) -> Diff:
-    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects). ``companions`` is an
-    optional pair of (old, new) :class:`urdftool.compare.companions.Documents`."""
+def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
+    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects)."""
     from urdftool.compare.effect import effects
     from urdftool.compare.structure import structure
 
@@ -50,8 +51,8 @@ def diff(old, new, options: DiffOptions = DiffOptions(), companions=None) -> Dif
     if changes:
         result.effects = effects(old, new, found, options.samples, options.seed,
                                  list(options.chains), options.tolerance, options.collisions)
-    if companions is not None:
+    if options.companions:
         from urdftool.compare.companions import compare
 
-        result.companions = compare(*companions, found)
+        result.companions = compare(old, new, found)
     return result
