@@ -163,3 +163,12 @@ def test_the_worst_configuration_is_where_frames_differ_most(tmp_path):
     assert abs(result.effects.worst["elbow"]) > 1.0
     assert math.isclose(result.effects.frames[0].max_position,
                         max(f.max_position for f in result.effects.frames))
+
+
+def test_a_side_without_a_kinematic_model_still_gets_its_structure(tmp_path):
+    broken = ARM.replace('<parent link="fore"/><child link="hand"/>',
+                         '<parent link="nowhere"/><child link="hand"/>')
+    result = compare(tmp_path, broken)
+    assert ("changed", "joint", "wrist", "parent") in _fields(result)
+    assert result.effects is None
+    assert result.warnings and result.warnings[0].startswith("effects not computed:")

@@ -81,3 +81,13 @@ def test_the_tree_is_bounded_in_size(repo):
     with pytest.raises(UsageError, match="over 100 bytes"):
         with checkout(repo / "robot.urdf.xacro", "HEAD", max_bytes=100):
             pass
+
+
+def test_a_link_leading_out_of_the_tree_is_left_out(repo):
+    (repo / "escape").symlink_to("/etc")
+    for args in (["add", "escape"], ["commit", "-qm", "link"]):
+        subprocess.run(["git", "-C", str(repo), "-c", "user.email=t@t", "-c", "user.name=t",
+                        *args], check=True, capture_output=True)
+    with checkout(repo / "robot.urdf.xacro", "HEAD") as (tree, path):
+        assert path.is_file() and not (tree / "escape").exists()
+        assert not (tree / "escape").is_symlink()

@@ -122,8 +122,7 @@ def _compare(old, new, options, output_format, output, render) -> int:
         fail_usage(UsageError(f"--chain: {error}"))
     except (FKError, SceneError) as error:
         fail_at(new, error)
-    if result.effects is not None:
-        warn(result.effects.warnings)
+    warn(result.warnings + (result.effects.warnings if result.effects is not None else []))
     if output is None:
         write(result, output_format)
     else:

@@ -34,6 +34,7 @@ class Diff:
     renames: Renames
     effects: Effects | None
     companions: list[Change] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def equivalent(self) -> bool:
@@ -42,15 +43,22 @@ class Diff:
 
 
 def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
-    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects)."""
+    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects). When a side cannot
+    be built into a kinematic model, the effects are left out with a warning saying why;
+    UnknownLink for a ``chains`` link that a side does not have."""
     from urdftool.compare.effect import effects
     from urdftool.compare.structure import structure
 
     changes, found = structure(old, new, options.tolerance)
     result = Diff(old.display, new.display, changes, found, None)
     if changes:
-        result.effects = effects(old, new, found, options.samples, options.seed,
-                                 list(options.chains), options.tolerance, options.collisions)
+        from urdftool.errors import FKError
+
+        try:
+            result.effects = effects(old, new, found, options.samples, options.seed,
+                                     list(options.chains), options.tolerance, options.collisions)
+        except FKError as error:  # the structure is still worth reporting
+            result.warnings.append(f"effects not computed: {error}")
     if options.companions:
         from urdftool.compare.companions import compare
 

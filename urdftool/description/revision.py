@@ -46,6 +46,15 @@ def repository_of(path) -> tuple[Path, str]:
     return root, (relative / Path(path).name).as_posix()
 
 
+def _safe_member(member, destination):
+    """tarfile's ``data`` filter, member by member: what it refuses (a link leading out of the
+    tree, a device file) is left out instead of stopping the whole unpacking."""
+    try:
+        return tarfile.data_filter(member, destination)
+    except tarfile.FilterError:
+        return None
+
+
 @contextmanager
 def checkout(path, revision: str, max_bytes: int = MAX_ARCHIVE_BYTES):
     """Yield (the root of the repository at ``revision`` in a temporary folder, the path of
@@ -85,6 +94,6 @@ def checkout(path, revision: str, max_bytes: int = MAX_ARCHIVE_BYTES):
         tree = Path(folder) / "tree"
         tree.mkdir()
         with tarfile.open(archive) as tar:
-            tar.extractall(tree, filter="data")
+            tar.extractall(tree, filter=_safe_member)
         archive.unlink()
         yield tree, tree / relative
