@@ -94,3 +94,23 @@ def test_what_yourdfpy_cannot_read_is_a_scene_error(tmp_path):
                                  '</visual></link></robot>')
     with pytest.raises(SceneError, match="yourdfpy cannot build the scene"):
         posed(robot)
+
+
+@pytest.mark.parametrize("scale", ["1 1 1", "-1 1 1"])
+def test_closed_surfaces_know_which_way_they_face(tmp_path, scale):
+    _stl(tmp_path / "box.stl")
+    text = MESH.format(uri="box.stl").replace('scale="2 2 2"', f'scale="{scale}"')
+    scene, _ = posed(load_text(tmp_path, text))
+    assert set(scene.facing.tolist()) <= {-1, 1} and len(set(scene.facing.tolist())) == 1
+    normals = np.cross(scene.triangles[:, 1] - scene.triangles[:, 0],
+                       scene.triangles[:, 2] - scene.triangles[:, 0])
+    outward = scene.triangles.mean(axis=1) - scene.triangles.reshape(-1, 3).mean(axis=0)
+    assert np.all(np.einsum("ij,ij->i", normals * scene.facing[:, None], outward) > 0)
+
+
+def test_an_open_surface_faces_nowhere(tmp_path):
+    import trimesh
+
+    trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).export(tmp_path / "tri.stl")
+    scene, _ = posed(load_text(tmp_path, MESH.format(uri="tri.stl")))
+    assert scene.facing.tolist() == [0]

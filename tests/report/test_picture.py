@@ -142,3 +142,17 @@ def test_svg_names_links_on_hover_and_draws_frames(tmp_path):
 def test_write_refuses_other_suffixes(tmp_path):
     with pytest.raises(picture.PlotError, match=r"\.png or \.svg"):
         picture.write(tmp_path / "x.jpg", [Layer(scene_of(tmp_path, ROBOT))])
+
+
+def test_faces_turned_away_are_left_out_without_changing_the_picture(tmp_path):
+    import dataclasses
+
+    scene = scene_of(tmp_path, ROBOT, {"j1": "0.6"})
+    unknown = dataclasses.replace(scene, facing=None)
+    camera = picture._camera([Layer(scene)], "iso", 96, 96)
+    assert len(picture._project(Layer(scene), camera).colours) < \
+        0.7 * len(picture._project(Layer(unknown), camera).colours)
+    # the same but along edges, where a hidden face's border pixels showed through
+    difference = np.abs(pixels(picture.png([Layer(scene)], SMALL))
+                        - pixels(picture.png([Layer(unknown)], SMALL)))
+    assert difference.mean() < 1.0 and (difference.max(axis=-1) > 0).mean() < 0.02

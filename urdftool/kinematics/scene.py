@@ -31,6 +31,8 @@ class PosedScene:
     triangles: ``[n, 3, 3]`` corner positions in [m]
     owners: ``[n]`` the link each triangle belongs to
     colours: ``[n, 3]`` rgb in [0, 1] (the URDF material, else a neutral grey)
+    facing: ``[n]`` +1 where the corners' order (right hand) gives the outward normal of a
+        closed surface, -1 where it gives the inward one, 0 for an open surface (unknown)
     frames: every link's pose (4x4) in the root frame
     axes: (joint, point [m], unit direction) of each moving joint, in the root frame
     q: the joint values drawn, by variable name, in [rad] or [m]
@@ -43,6 +45,7 @@ class PosedScene:
     colours: np.ndarray
     frames: dict[str, np.ndarray]
     axes: list[tuple[str, np.ndarray, np.ndarray]]
+    facing: np.ndarray | None = None
     q: dict[str, float] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
 
@@ -67,6 +70,10 @@ class SceneModel:
         self._nodes = [(node, self.scene.graph.transforms.parents[node])
                        for node in self.scene.graph.nodes_geometry]
         self.links = list(dict.fromkeys(link for _, link in self._nodes))
+        # closed, consistently wound surfaces: their faces turned away can be left undrawn
+        self._closed = {node: bool(self._geometry(node).is_watertight
+                                   and self._geometry(node).is_winding_consistent)
+                        for node, _ in self._nodes}
 
     @property
     def triangle_count(self) -> int:
@@ -130,16 +137,19 @@ class SceneModel:
         frames = {link.name: graph.get(link.name)[0] for link in self.urdf.robot.links
                   if link.name in graph.nodes}
         index = {link: i for i, link in enumerate(self.links)}
-        triangles, owners, colours = [], [], []
+        triangles, owners, colours, facing = [], [], [], []
         for node, link in self._nodes:
             transform, name = graph.get(node)
             geometry = self.scene.geometry[name]
             vertices = np.asarray(geometry.vertices, dtype=float) @ transform[:3, :3].T \
                 + transform[:3, 3]
             faces = np.asarray(geometry.faces, dtype=np.int64)
-            triangles.append(vertices[faces])
+            posed = vertices[faces]
+            triangles.append(posed)
             owners.append(np.full(len(faces), index[link]))
             colours.append(np.tile(self._colour(node, geometry), (len(faces), 1)))
+            facing.append(np.full(len(faces), _orientation(posed) if self._closed[node] else 0,
+                                  dtype=np.int8))
         axes = []
         for joint in self.urdf.robot.joints:
             if joint.type in ("revolute", "continuous", "prismatic") and joint.parent in frames:
@@ -155,7 +165,20 @@ class SceneModel:
             np.concatenate(triangles) if triangles else np.zeros((0, 3, 3)),
             np.concatenate(owners) if owners else np.zeros(0, dtype=np.int64),
             np.concatenate(colours) if colours else empty,
-            frames, axes, values, list(self.problems))
+            frames, axes, np.concatenate(facing) if facing else np.zeros(0, dtype=np.int8),
+            values, list(self.problems))
+
+
+def _orientation(triangles) -> int:
+    """+1 when a closed surface's triangles wind outward (positive enclosed volume, the sum of
+    the corners' triple products), -1 inward (a mirroring scale turns them), 0 when flat."""
+    import numpy as np
+
+    volume = np.einsum("ij,ij->", triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2]))
+    extent = np.ptp(triangles.reshape(-1, 3), axis=0).max() if len(triangles) else 0.0
+    if abs(volume) <= 1e-12 * max(extent, 1e-12) ** 3:
+        return 0
+    return 1 if volume > 0 else -1
 
 
 def _yourdfpy(robot, collision: bool):

@@ -3,7 +3,8 @@ no display, no OpenGL.
 
 An orthographic camera looks along one of :data:`VIEWS`. Each triangle is shaded flat (Lambert,
 a fixed light over the viewer's shoulder, lit on both sides so that meshes wound either way
-look the same). Triangles are drawn far to near by their mean depth (the painter's
+look the same); faces of closed surfaces turned away from the viewer are left out (hidden
+anyway). Triangles are drawn far to near by their mean depth (the painter's
 algorithm), with Pillow's C polygon filler for PNG (~300,000 triangles a second on one
 core) and as polygons for SVG.
 
@@ -131,6 +132,8 @@ def _project(layer: Layer, camera: _Camera, ordered: bool = False) -> _Drawn:
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     lengths = np.linalg.norm(normals, axis=1)
     keep = lengths > 0
+    if scene.facing is not None:  # faces of closed surfaces turned away: hidden anyway
+        keep &= scene.facing * (normals @ camera.rotation[2]) >= 0
     triangles, normals, lengths = triangles[keep], normals[keep], lengths[keep]
     intensity = AMBIENT + (1 - AMBIENT) * np.abs(normals @ camera.light) / lengths
     if layer.tint is not None:
