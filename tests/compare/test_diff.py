@@ -172,3 +172,11 @@ def test_a_side_without_a_kinematic_model_still_gets_its_structure(tmp_path):
     assert ("changed", "joint", "wrist", "parent") in _fields(result)
     assert result.effects is None
     assert result.warnings and result.warnings[0].startswith("effects not computed:")
+
+
+def test_an_appearance_change_has_no_effects_to_compute(tmp_path):
+    recoloured = ARM.replace('rgba="0.5 0.5 0.5 1"', 'rgba="0.2 0.5 0.5 1"')
+    result = compare(tmp_path, recoloured)
+    assert _fields(result) == {("changed", "link", "base", "visual[0].colour"),
+                               ("changed", "material", "grey", "color")}
+    assert result.effects is None and not result.equivalent

@@ -43,7 +43,8 @@ class Diff:
 
 
 def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
-    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects). When a side cannot
+    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects); the effects only when
+    something other than appearance changed. When a side cannot
     be built into a kinematic model, the effects are left out with a warning saying why;
     UnknownLink for a ``chains`` link that a side does not have."""
     from urdftool.compare.effect import effects
@@ -51,7 +52,7 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
 
     changes, found = structure(old, new, options.tolerance)
     result = Diff(old.display, new.display, changes, found, None)
-    if changes:
+    if any(_physical(change) for change in changes):
         from urdftool.errors import FKError
 
         try:
@@ -64,3 +65,12 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
 
         result.companions = compare(old, new, found)
     return result
+
+
+def _physical(change: Change) -> bool:
+    """Whether a change can move a frame, the mass or a collision (a visual or a material
+    cannot: the effects are not computed for them)."""
+    if change.element == "material":
+        return False
+    return not (change.element == "link" and change.kind == "changed"
+                and change.field.startswith("visual["))
