@@ -103,3 +103,12 @@ def test_rev_compares_with_the_committed_file(run_cli, tmp_path):
     assert "HEAD:arm.urdf ->" in result.output
     assert "renamed link 'fore' -> 'forearm'" in result.output
     assert run_cli("diff", "--rev", "nope", robot).exit_code == 2
+
+
+def test_a_side_yourdfpy_cannot_draw_is_located_in_its_own_file(run_cli, pair, tmp_path):
+    nameless = tmp_path / "nameless.urdf"
+    nameless.write_text(ARM.replace('<link name="hand"/>', '<link name="hand"/><link/>'))
+    result = run_cli("diff", nameless, pair[1], "--render", tmp_path / "d.png")
+    assert result.exit_code == 1
+    assert "nameless.urdf: error: yourdfpy cannot build the scene" in result.output
+    assert "change(s)" in result.output  # the report came first

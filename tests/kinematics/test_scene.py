@@ -114,3 +114,9 @@ def test_an_open_surface_faces_nowhere(tmp_path):
     trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).export(tmp_path / "tri.stl")
     scene, _ = posed(load_text(tmp_path, MESH.format(uri="tri.stl")))
     assert scene.facing.tolist() == [0]
+
+
+def test_a_missing_attribute_yourdfpy_needs_is_named(tmp_path):
+    robot = load_text(tmp_path, '<robot name="r"><link name="a"/><link/></robot>')
+    with pytest.raises(SceneError, match="an element lacks its 'name' attribute"):
+        posed(robot)

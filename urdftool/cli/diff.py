@@ -111,16 +111,14 @@ def _compare(old, new, options, output_format, output, render) -> int:
     import io
 
     from urdftool.compare.diff import diff as compare
-    from urdftool.errors import FKError, SceneError, UnknownName
+    from urdftool.errors import FKError, UnknownName
     from urdftool.report.diff import write
 
     try:
         result = compare(old, new, options)
-        if render is not None:
-            _render(old, new, result, render)
     except UnknownName as error:
         fail_usage(UsageError(f"--chain: {error}"))
-    except (FKError, SceneError) as error:
+    except FKError as error:
         fail_at(new, error)
     warn(result.warnings + (result.effects.warnings if result.effects is not None else []))
     if output is None:
@@ -129,11 +127,15 @@ def _compare(old, new, options, output_format, output, render) -> int:
         buffer = io.StringIO()
         write(result, output_format, buffer)
         write_output(output, buffer.getvalue())
+    if render is not None:
+        _render(old, new, result, render)
     return 0 if result.equivalent else 1
 
 
 def _render(old, new, result, path) -> None:
-    """Old and new tinted and blended, at the configuration where they differ most."""
+    """Old and new tinted, at the configuration where they differ most; a side yourdfpy
+    cannot read exits 1, located in that side's file."""
+    from urdftool.errors import SceneError
     from urdftool.kinematics.scene import scene_model
     from urdftool.report.picture import NEW, OLD, Layer, write
 
@@ -141,8 +143,12 @@ def _render(old, new, result, path) -> None:
     back = {new_name: old_name for old_name, new_name in result.renames.joints.items()}
     old_q = {back.get(name.partition(".")[0], name.partition(".")[0])
              + name[len(name.partition(".")[0]):]: value for name, value in worst.items()}
-    old_scene = scene_model(old).pose(old_q)
-    new_scene = scene_model(new).pose(worst)
-    warn(old_scene.problems + new_scene.problems)
-    write(path, [Layer(old_scene, tint=OLD, label=f"old: {result.old}"),
-                 Layer(new_scene, tint=NEW, label=f"new: {result.new}")])
+    scenes = []
+    for robot, q in ((old, old_q), (new, worst)):
+        try:
+            scenes.append(scene_model(robot).pose(q))
+        except SceneError as error:
+            fail_at(robot, error)
+    warn(scenes[0].problems + scenes[1].problems)
+    write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
+                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")])

@@ -197,7 +197,10 @@ def _yourdfpy(robot, collision: bool):
                              build_collision_scene_graph=collision, load_meshes=False,
                              load_collision_meshes=False,
                              filename_handler=lambda fname: _contained(robot, fname))
-    except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, KeyError...)
+    except KeyError as error:  # yourdfpy reads required attributes as attrib[name]
+        raise SceneError(f"yourdfpy cannot build the scene: an element lacks its "
+                         f"'{error.args[0]}' attribute; run 'urdftool check' for where") from None
+    except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
         raise SceneError(f"yourdfpy cannot build the scene ({type(error).__name__}: {error}); "
                          "run 'urdftool check' for the cause") from None
 
