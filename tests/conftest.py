@@ -25,6 +25,16 @@ def corpus_or_skip() -> Path:
     return CORPUS
 
 
+def load_text(folder: Path, text: str, name: str = "robot.urdf"):
+    """The robot ``text`` written to ``folder`` (made the root of a repository, where relative
+    meshes may be) and loaded."""
+    from urdftool.description.load import load
+
+    (folder / ".git").mkdir(parents=True, exist_ok=True)
+    (folder / name).write_text(text)
+    return load(folder / name)
+
+
 @pytest.fixture
 def corpus() -> Path:
     return corpus_or_skip()

@@ -23,6 +23,7 @@ LAYERS = [
     ("kinematics", ("urdftool.kinematics",)),
     ("physics", ("urdftool.physics",)),
     ("collision", ("urdftool.collision",)),
+    ("compare", ("urdftool.compare",)),
     ("lint", ("urdftool.lint",)),
     ("report", ("urdftool.report",)),
     ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin")),

@@ -153,6 +153,10 @@ class DynamicsError(LocatedError):
     """The robot cannot be turned into a dynamic model (Pinocchio's reason, made readable)."""
 
 
+class SceneError(LocatedError):
+    """The robot cannot be built into a scene to draw (yourdfpy's reason, made readable)."""
+
+
 class DotMissing(UrdftoolError):
     """The ``dot`` program is not installed; the DOT file was written instead (the message is
     its path)."""

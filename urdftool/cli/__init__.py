@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli import (check, collisions, dh, dynamics, fk, graph, ik, inertia, rules, tree,
-                          workspace, xacro)
+from urdftool.cli import (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render,
+                          rules, tree, workspace, xacro)
 
-COMMANDS = (check, collisions, dh, dynamics, fk, graph, ik, inertia, rules, tree, workspace,
-            xacro)
+COMMANDS = (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render, rules, tree,
+            workspace, xacro)
 
 app = typer.Typer(
     name="urdftool",

@@ -168,10 +168,6 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     load_options: passed to ``urdftool.description.load.load`` (``allow_env``: None, the
         default, is the safe mode when ``CI`` is set, see lint.settings.env_allowed)
     """
-    from urdftool.errors import LoadError
-    from urdftool.description.load import load
-    from urdftool.lint.settings import env_allowed
-
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
         if len(paths) != 1:
@@ -184,14 +180,24 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
                 raise UsageError(message)
     except UsageError as error:
         fail_usage(error)
+    return load_robot(paths[0], args, packages, **load_options)
+
+
+def load_robot(path: str, args: dict[str, str], packages, **load_options):
+    """The robot at ``path`` loaded; one that does not load prints as located diagnostics
+    and exits 1."""
+    from urdftool.errors import LoadError
+    from urdftool.description.load import load
+    from urdftool.lint.settings import env_allowed
+
     try:
         # Under CI the safe mode is the default for every command, as for check.
         load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
-        return load(paths[0], xacro_args=args, packages=packages, **load_options)
+        return load(path, xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
         from urdftool.lint.engine import load_error_findings
 
-        report_findings(paths[0], load_error_findings(error))
+        report_findings(path, load_error_findings(error))
         raise typer.Exit(1)
 
 

@@ -56,20 +56,28 @@ def collisions(
     check_srdf: Path = typer.Option(None, "--check-srdf", metavar="FILE",
                                     help="Report stale disable_collisions in FILE (exit 1)."),
     plot: Path = typer.Option(None, "--plot", metavar="FILE.svg|png", help="Draw the matrix."),
+    render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
+                                help="Pose mode: draw the collision geometry at the pose, the "
+                                     "links of colliding pairs that are not allowed in red."),
     all_pairs: bool = typer.Option(False, "--all", help="List every pair in text output."),
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
     from urdftool.collision.srdf import SrdfError
+    from urdftool.errors import SceneError
     from urdftool.kinematics.configuration import ConfigError
     from urdftool.kinematics.fk import FKError
     from urdftool.report.plot import PlotError
 
-    refuse_bad_outputs(write_srdf, plot)
+    refuse_bad_outputs(write_srdf, plot, render)
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
         (not matrix and (write_srdf or check_srdf or plot or until_converged),
          "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),
         (matrix and deg, "--deg goes with --q, not with --matrix"),
         (matrix and q, "--q sets the pose of a single check; it does not go with --matrix"),
+        (matrix and render, "--render draws one pose; it does not go with --matrix (--plot "
+                            "draws the matrix)"),
+        (render is not None and render.suffix.lower() not in (".png", ".svg"),
+         f"--render: '{render.name if render else ''}' must end in .png or .svg"),
         *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
           for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
@@ -80,7 +88,7 @@ def collisions(
                                     max_samples, workers, check_srdf)
             code = _matrix(robot, options, write_srdf, plot, all_pairs, format)
         else:
-            code = _pose(robot, joint_words(q, "--q"), deg, srdf, format)
+            code = _pose(robot, joint_words(q, "--q"), deg, srdf, format, render)
     except ConfigError as error:
         fail_config(error, "--q")
     except SrdfError as error:
@@ -89,17 +97,25 @@ def collisions(
         fail_usage(UsageError(f"--plot: {error}"))
     except UsageError as error:
         fail_usage(error)
-    except (FKError, UnknownName) as error:
+    except (FKError, SceneError, UnknownName) as error:
         fail_at(robot, error)
     raise typer.Exit(code)
 
 
-def _pose(robot, values, degrees, srdf, format) -> int:
+def _pose(robot, values, degrees, srdf, format, render) -> int:
     from urdftool.collision.pose import check_pose
     from urdftool.report.collisions import write_pose
 
     report = check_pose(robot, values, degrees, srdf)
     warn(report.warnings)
+    if render:
+        from urdftool.kinematics.scene import scene_model
+        from urdftool.report.picture import Layer, write
+
+        scene = scene_model(robot, collision=True).pose(report.q)
+        warn(scene.problems)
+        colliding = {name for c in report.forbidden for name in (c.link1, c.link2)}
+        write(render, [Layer(scene, highlight=colliding, label=robot.name)])
     write_pose(robot.name, report, format, custom=bool(values))
     return 1 if report.forbidden or report.problems else 0  # left out: not established
 

@@ -120,15 +120,10 @@ def write(matrix, path: Path, title: str) -> None:
 
 def write_items(path: Path, width: int, height: int, items) -> None:
     """Write primitives (see :func:`svg_of`) to ``path``, an .svg or a .png (Pillow)."""
-    from urdftool.description.files import write_file
+    from urdftool.report.picture import write_by_suffix
 
-    suffix = Path(path).suffix.lower()
-    if suffix == ".svg":
-        write_file(path, svg_of(width, height, items))
-    elif suffix == ".png":
-        write_file(path, png_of(width, height, items))
-    else:
-        raise PlotError(f"'{Path(path).name}' must end in .svg or .png")
+    write_by_suffix(path, {".svg": lambda: svg_of(width, height, items),
+                           ".png": lambda: png_of(width, height, items)})
 
 
 def png_of(width: int, height: int, items, scale: int = 2) -> bytes:

@@ -1,0 +1,70 @@
+"""``urdftool render`` and ``collisions --render``: pictures from the command line."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS
+
+HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
+
+
+def _image(path):
+    from PIL import Image
+
+    return np.asarray(Image.open(path).convert("RGB"), dtype=float)
+
+
+def test_render_writes_a_png_of_the_posed_robot(tmp_path, run_cli):
+    straight, bent = tmp_path / "straight.png", tmp_path / "bent.png"
+    result = run_cli("render", HUMANOID, "-o", straight, "--size", "200x160", "--view", "side")
+    assert result.exit_code == 0, result.output
+    assert "wrote" in result.output
+    result = run_cli("render", HUMANOID, "-o", bent, "--size", "200x160", "--view", "side",
+                     "--q", "l_hip_pitch=-60", "--q", "r_hip_pitch=-60", "--deg", "--frames")
+    assert result.exit_code == 0, result.output
+    one, two = _image(straight), _image(bent)
+    assert one.shape == (160, 200, 3)
+    assert np.abs(one - two).mean() > 1.0
+
+
+def test_render_svg_names_each_link(tmp_path, run_cli):
+    out = tmp_path / "robot.svg"
+    assert run_cli("render", HUMANOID, "-o", out, "--collision").exit_code == 0
+    text = out.read_text()
+    assert "<title>l_thigh_link</title>" in text and "<title>head_link</title>" in text
+
+
+@pytest.mark.parametrize("args, message", [
+    (["-o", "{tmp}/x.jpg"], "must end in .png or .svg"),
+    (["-o", "{tmp}/x.png", "--view", "back"], "--view must be one of"),
+    (["-o", "{tmp}/x.png", "--size", "600"], "--size must be WIDTHxHEIGHT"),
+    (["-o", "{tmp}/x.png", "--q", "elbw=1"], "--q: unknown joint 'elbw'"),
+    (["-o", "{tmp}/missing/x.png"], "does not exist"),
+])
+def test_render_usage_errors_exit_2(tmp_path, run_cli, args, message):
+    result = run_cli("render", HUMANOID, *(a.format(tmp=tmp_path) for a in args))
+    assert result.exit_code == 2 and message in result.output
+
+
+def test_render_a_robot_yourdfpy_cannot_read_exits_1_located(tmp_path, run_cli):
+    path = tmp_path / "bad.urdf"
+    path.write_text('<robot name="r"><link name="a"><visual><geometry/></visual></link></robot>')
+    result = run_cli("render", path, "-o", tmp_path / "x.png")
+    assert result.exit_code == 1 and "bad.urdf" in result.output and "yourdfpy" in result.output
+
+
+def test_collisions_render_paints_colliding_links_red(tmp_path, run_cli):
+    crossed, apart = tmp_path / "crossed.png", tmp_path / "apart.png"
+    result = run_cli("collisions", HUMANOID, "--q", "l_hip_roll=-0.5", "--q", "r_hip_roll=0.5",
+                     "--render", crossed)
+    assert result.exit_code == 1, result.output  # the thighs collide
+    assert run_cli("collisions", HUMANOID, "--render", apart).exit_code == 0
+
+    def red(path):
+        image = _image(path)
+        return ((image[..., 0] > 150) & (image[..., 1] < 80) & (image[..., 2] < 80)).sum()
+
+    assert red(crossed) > 200 and red(apart) == 0
+    assert run_cli("collisions", HUMANOID, "--matrix", "--render", apart).exit_code == 2

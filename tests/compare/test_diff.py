@@ -1,0 +1,182 @@
+"""``diff``: planted changes and the effects reported for them."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from conftest import load_text
+from urdftool.compare.diff import DiffOptions, diff
+
+ARM = """<?xml version="1.0"?>
+<robot name="arm">
+  <!-- a three-link arm -->
+  <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+  <link name="base">
+    <inertial><mass value="2.0"/><origin xyz="0 0 0.05"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry><material name="grey"/></visual>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="upper">
+    <inertial><mass value="1.0"/><origin xyz="0 0 0.2"/>
+      <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"/></inertial>
+    <visual><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.04" length="0.3"/></geometry>
+    </visual>
+    <collision><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.04" length="0.3"/>
+    </geometry></collision>
+  </link>
+  <link name="fore">
+    <inertial><mass value="0.5"/><origin xyz="0 0 0.15"/>
+      <inertia ixx="0.005" ixy="0" ixz="0" iyy="0.005" iyz="0" izz="0.0005"/></inertial>
+    <collision><origin xyz="0 0 0.15"/><geometry><box size="0.05 0.05 0.25"/></geometry>
+    </collision>
+  </link>
+  <link name="hand"/>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
+  </joint>
+  <joint name="elbow" type="revolute">
+    <parent link="upper"/><child link="fore"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
+    <limit lower="-2.0" upper="2.0" effort="5" velocity="1"/>
+  </joint>
+  <joint name="wrist" type="fixed">
+    <parent link="fore"/><child link="hand"/><origin xyz="0 0 0.3"/>
+  </joint>
+</robot>
+"""
+
+
+def compare(tmp_path, new_text, old_text=ARM, **options):
+    old, new = load_text(tmp_path / "old", old_text), load_text(tmp_path / "new", new_text)
+    return diff(old, new, DiffOptions(**options))
+
+
+def _fields(result):
+    return {(c.kind, c.element, c.name, c.field) for c in result.changes}
+
+
+def test_formatting_comments_attribute_order_and_defaults_are_no_change(tmp_path):
+    reformatted = (ARM.replace("<!-- a three-link arm -->", "<!-- reworded -->")
+                   .replace('<limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>',
+                            '<limit  velocity="1.0" effort="10.00"\n upper="1.5" lower="-1.50"/>')
+                   .replace('<parent link="fore"/><child link="hand"/><origin xyz="0 0 0.3"/>',
+                            '<parent link="fore"/><child link="hand"/>'
+                            '<origin rpy="0 0 0" xyz="0 0 0.30"/>'))
+    result = compare(tmp_path, reformatted)
+    assert result.equivalent and result.changes == [] and result.effects is None
+
+
+def test_an_origin_moved_3_mm_moves_every_frame_below_it_3_mm(tmp_path):
+    result = compare(tmp_path, ARM.replace('<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.403"/>'))
+    [change] = result.changes
+    assert (change.element, change.name, change.field) == ("joint", "elbow", "origin.xyz")
+    assert change.delta == pytest.approx(0.003) and change.unit == "m"
+    moved = {frame.link: frame for frame in result.effects.frames}
+    assert set(moved) == {"fore", "hand"}  # base and upper stay
+    assert moved["hand"].zero_position == pytest.approx(0.003, abs=1e-9)
+    assert moved["hand"].max_position == pytest.approx(0.003, abs=1e-9)
+    assert moved["hand"].max_rotation == pytest.approx(0.0, abs=1e-9)
+    assert not result.equivalent
+
+
+def test_a_changed_mass_is_reported_in_percent_with_the_total_and_com(tmp_path):
+    result = compare(tmp_path, ARM.replace('<mass value="1.0"/>', '<mass value="1.25"/>'))
+    [change] = result.changes
+    assert (change.name, change.field, change.percent) == ("upper", "inertial.mass", 25.0)
+    effects = result.effects
+    assert effects.frames == []
+    assert (effects.old_mass, effects.new_mass) == (3.5, 3.75)
+    # com z: (2 * 0.05 + m * 0.25 + 0.5 * 0.6) / total, upper's com at 0.05 + 0.2
+    assert effects.old_com[2] == pytest.approx((0.1 + 0.25 + 0.3) / 3.5)
+    assert effects.new_com[2] == pytest.approx((0.1 + 1.25 * 0.25 + 0.3) / 3.75)
+
+
+def test_a_renamed_link_is_a_rename_not_a_removal_and_an_addition(tmp_path):
+    renamed = ARM.replace('"fore"', '"forearm"')
+    result = compare(tmp_path, renamed)
+    assert _fields(result) == {("renamed", "link", "forearm", "")}
+    assert result.changes[0].old_name == "fore"
+    assert result.renames.links == {"fore": "forearm"}
+    assert result.effects.frames == []  # the renamed link is the same frame
+
+
+def test_a_renamed_joint_and_its_child_are_both_renames(tmp_path):
+    renamed = ARM.replace('"elbow"', '"elbow_joint"').replace('"hand"', '"tool"')
+    result = compare(tmp_path, renamed)
+    assert {(c.kind, c.old_name, c.name) for c in result.changes} == {
+        ("renamed", "elbow", "elbow_joint"), ("renamed", "hand", "tool")}
+
+
+def test_a_widened_limit_is_a_change_that_moves_no_frame_in_the_common_range(tmp_path):
+    result = compare(tmp_path, ARM.replace('lower="-2.0" upper="2.0"', 'lower="-2.0" upper="2.5"'))
+    [change] = result.changes
+    assert (change.field, change.old, change.new, change.unit) == ("limit.upper", 2.0, 2.5,
+                                                                   "rad")
+    assert result.effects.frames == []
+    assert result.effects.samples == 200
+
+
+def test_added_and_removed_links_joints_and_geometry(tmp_path):
+    extra = ARM.replace('  <link name="hand"/>', '  <link name="hand"/>\n  <link name="camera"/>')\
+        .replace("</robot>", '<joint name="cam" type="fixed"><parent link="hand"/>'
+                             '<child link="camera"/></joint></robot>')\
+        .replace('<cylinder radius="0.04" length="0.3"/></geometry>\n    </visual>',
+                 '<cylinder radius="0.05" length="0.3"/></geometry>\n    </visual>')
+    result = compare(tmp_path, extra)
+    assert _fields(result) == {("added", "link", "camera", ""), ("added", "joint", "cam", ""),
+                               ("changed", "link", "upper", "visual[0].radius")}
+    removed = compare(tmp_path / "r", ARM, old_text=extra)
+    assert ("removed", "link", "camera", "") in _fields(removed)
+
+
+def test_tolerance_hides_numeric_noise(tmp_path):
+    noisy = ARM.replace('<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.4000001"/>')
+    assert not compare(tmp_path / "x", noisy).equivalent
+    assert compare(tmp_path / "y", noisy, tolerance=1e-6).equivalent
+
+
+def test_a_pair_that_newly_collides(tmp_path):
+    # the forearm folded back into the base: the elbow's range now reaches it
+    crashing = ARM.replace('<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.12"/>')
+    result = compare(tmp_path, crashing, samples=300)
+    pairs = {(c.link1, c.link2): c for c in result.effects.collisions}
+    assert ("base", "fore") in pairs
+    assert pairs[("base", "fore")].old_count == 0 < pairs[("base", "fore")].new_count
+
+
+def test_chain_reach(tmp_path):
+    longer = ARM.replace('<origin xyz="0 0 0.3"/>', '<origin xyz="0 0 0.35"/>')
+    result = compare(tmp_path, longer, chains=(("base", "hand"),))
+    [chain] = result.effects.chains
+    assert chain.old_zero == pytest.approx(0.75) and chain.new_zero == pytest.approx(0.8)
+    assert chain.new_reach - chain.old_reach == pytest.approx(0.05, abs=1e-3)
+
+
+def test_the_worst_configuration_is_where_frames_differ_most(tmp_path):
+    turned = ARM.replace('<axis xyz="0 1 0"/>\n    <limit lower="-2.0"',
+                         '<axis xyz="1 0 0"/>\n    <limit lower="-2.0"')
+    result = compare(tmp_path, turned)
+    # the elbow turns about x instead of y: the forearm moves most at a large elbow angle
+    assert abs(result.effects.worst["elbow"]) > 1.0
+    assert math.isclose(result.effects.frames[0].max_position,
+                        max(f.max_position for f in result.effects.frames))
+
+
+def test_a_side_without_a_kinematic_model_still_gets_its_structure(tmp_path):
+    broken = ARM.replace('<parent link="fore"/><child link="hand"/>',
+                         '<parent link="nowhere"/><child link="hand"/>')
+    result = compare(tmp_path, broken)
+    assert ("changed", "joint", "wrist", "parent") in _fields(result)
+    assert result.effects is None
+    assert result.warnings and result.warnings[0].startswith("effects not computed:")
+
+
+def test_an_appearance_change_has_no_effects_to_compute(tmp_path):
+    recoloured = ARM.replace('rgba="0.5 0.5 0.5 1"', 'rgba="0.2 0.5 0.5 1"')
+    result = compare(tmp_path, recoloured)
+    assert _fields(result) == {("changed", "link", "base", "visual[0].colour"),
+                               ("changed", "material", "grey", "color")}
+    assert result.effects is None and not result.equivalent

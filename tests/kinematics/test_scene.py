@@ -1,0 +1,122 @@
+"""The posed scene: yourdfpy's scene graph, meshes only through urdftool's resolver."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import ROBOTS, load_text
+from urdftool.description.load import load
+from urdftool.errors import SceneError
+from urdftool.kinematics.scene import posed, scene_model
+
+ARM = """<robot name="arm">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="base"><visual><geometry><box size="0.2 0.2 0.1"/></geometry>
+    <material name="red"/></visual></link>
+  <link name="upper"><visual><origin xyz="0 0 0.25"/><geometry>
+    <cylinder radius="0.05" length="0.5"/></geometry>
+    <material name="blue"><color rgba="0 0 1 1"/></material></visual></link>
+  <link name="finger"><visual><geometry><sphere radius="0.03"/></geometry></visual></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="wrist" type="revolute"><parent link="upper"/><child link="finger"/>
+    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/>
+    <mimic joint="shoulder" multiplier="2"/></joint>
+</robot>"""
+
+
+def test_yourdfpy_poses_match_urdftool_fk():
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+
+    robot = load(ROBOTS / "humanoid" / "humanoid.urdf.xacro")
+    model = KinematicModel(robot)
+    chosen = config.random(model.variables, 1, seed=3)
+    q = {v.name: float(x) for v, x in zip(model.variables, chosen.values[0])}
+    scene = scene_model(robot).pose(q)
+    fk = forward_kinematics(model, chosen)
+    for link, pose in zip(fk.frames, fk.matrices[0]):
+        np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
+
+
+def test_triangles_are_posed_coloured_and_owned(tmp_path):
+    robot = load_text(tmp_path, ARM)
+    scene, warnings = posed(robot, {"shoulder": "90"}, degrees=True)
+    assert warnings == [] and scene.problems == []
+    assert scene.links == ["base", "upper", "finger"]
+    upper = scene.triangles[scene.owners == 1].reshape(-1, 3)
+    # the cylinder turned about y by 90 degrees lies along +x, from 0 to 0.5 m
+    assert upper[:, 0].max() == pytest.approx(0.5) and upper[:, 2].max() == pytest.approx(0.1)
+    np.testing.assert_allclose(scene.colours[scene.owners == 0][0], (1, 0, 0))  # named
+    np.testing.assert_allclose(scene.colours[scene.owners == 1][0], (0, 0, 1))  # inline
+    # the finger at the cylinder's tip, turned 90 + 2 * 90 degrees about y (the mimic wrist)
+    assert scene.frames["finger"][:3, 3] == pytest.approx([0.5, 0, 0.05])
+    np.testing.assert_allclose(scene.frames["finger"][:3, :3],
+                               [[0, 0, -1], [0, 1, 0], [1, 0, 0]], atol=1e-9)
+    assert [name for name, _, _ in scene.axes] == ["shoulder", "wrist"]
+
+
+MESH = """<robot name="m"><link name="a"><visual><geometry>
+  <mesh filename="{uri}" scale="2 2 2"/></geometry></visual></link></robot>"""
+
+
+def _stl(path):
+    import trimesh
+
+    trimesh.creation.box(extents=(0.1, 0.1, 0.1)).export(path)
+
+
+def test_meshes_load_through_urdftools_resolver(tmp_path):
+    _stl(tmp_path / "box.stl")
+    scene, _ = posed(load_text(tmp_path, MESH.format(uri="box.stl")))
+    assert len(scene.triangles) == 12
+    assert scene.triangles.reshape(-1, 3).max() == pytest.approx(0.1)  # scaled 2x
+
+
+def test_a_mesh_outside_the_repository_is_not_opened(tmp_path):
+    outside = tmp_path / "outside.stl"
+    _stl(outside)
+    inner = tmp_path / "repo"
+    inner.mkdir()
+    robot = load_text(inner, MESH.format(uri=f"file://{outside}"))
+    scene, _ = posed(robot)
+    assert len(scene.triangles) == 0
+    assert "outside" in scene.problems[0] and "not drawn" in scene.problems[0]
+    # yourdfpy's own filename handler is urdftool's resolver: nothing outside resolves
+    assert scene_model(robot).urdf._filename_handler(f"file://{outside}") == ""
+
+
+def test_what_yourdfpy_cannot_read_is_a_scene_error(tmp_path):
+    robot = load_text(tmp_path, '<robot name="r"><link name="a"><visual><geometry/>'
+                                 '</visual></link></robot>')
+    with pytest.raises(SceneError, match="yourdfpy cannot build the scene"):
+        posed(robot)
+
+
+@pytest.mark.parametrize("scale", ["1 1 1", "-1 1 1"])
+def test_closed_surfaces_know_which_way_they_face(tmp_path, scale):
+    _stl(tmp_path / "box.stl")
+    text = MESH.format(uri="box.stl").replace('scale="2 2 2"', f'scale="{scale}"')
+    scene, _ = posed(load_text(tmp_path, text))
+    assert set(scene.facing.tolist()) <= {-1, 1} and len(set(scene.facing.tolist())) == 1
+    normals = np.cross(scene.triangles[:, 1] - scene.triangles[:, 0],
+                       scene.triangles[:, 2] - scene.triangles[:, 0])
+    outward = scene.triangles.mean(axis=1) - scene.triangles.reshape(-1, 3).mean(axis=0)
+    assert np.all(np.einsum("ij,ij->i", normals * scene.facing[:, None], outward) > 0)
+
+
+def test_an_open_surface_faces_nowhere(tmp_path):
+    import trimesh
+
+    trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]]).export(tmp_path / "tri.stl")
+    scene, _ = posed(load_text(tmp_path, MESH.format(uri="tri.stl")))
+    assert scene.facing.tolist() == [0]
+
+
+def test_a_missing_attribute_yourdfpy_needs_is_named(tmp_path):
+    robot = load_text(tmp_path, '<robot name="r"><link name="a"/><link/></robot>')
+    with pytest.raises(SceneError, match="an element lacks its 'name' attribute"):
+        posed(robot)

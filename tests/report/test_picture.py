@@ -1,0 +1,158 @@
+"""Pictures: projection, flat shading, depth order, SVG titles, overlays, a golden image."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import load_text
+from urdftool.kinematics.scene import posed
+from urdftool.report import picture
+from urdftool.report.picture import Layer, PictureOptions
+
+GOLDEN = Path(__file__).parent / "golden" / "render_iso.png"
+SMALL = PictureOptions("iso", (96, 96))
+
+ROBOT = """<robot name="toy">
+  <link name="base"><visual><geometry><box size="0.4 0.3 0.1"/></geometry>
+    <material name="red"><color rgba="0.9 0.1 0.1 1"/></material></visual></link>
+  <link name="arm"><visual><origin xyz="0 0 0.2"/><geometry>
+    <cylinder radius="0.05" length="0.4"/></geometry>
+    <material name="blue"><color rgba="0.1 0.2 0.9 1"/></material></visual></link>
+  <link name="head"><visual><geometry><sphere radius="0.08"/></geometry></visual></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="fixed"><parent link="arm"/><child link="head"/>
+    <origin xyz="0 0 0.45"/></joint>
+</robot>"""
+
+def scene_of(tmp_path, text: str, q=None):
+    return posed(load_text(tmp_path, text), q or {})[0]
+
+
+def pixels(data: bytes) -> np.ndarray:
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(data)).convert("RGB"), dtype=float)
+
+
+def test_golden_image(tmp_path):
+    """The toy robot at 96x96, iso: within a small mean difference of the stored picture
+    (compared 4x downsampled, so that a pixel's worth of rasterisation does not count)."""
+    from PIL import Image
+
+    drawn = pixels(picture.png([Layer(scene_of(tmp_path, ROBOT, {"j1": "0.6"}))], SMALL))
+    golden = np.asarray(Image.open(GOLDEN).convert("RGB"), dtype=float)
+    assert drawn.shape == golden.shape
+
+    def down(image):
+        return image.reshape(24, 4, 24, 4, 3).mean(axis=(1, 3))
+
+    assert np.abs(down(drawn) - down(golden)).mean() < 2.0
+
+
+def test_the_golden_comparison_can_fail(tmp_path):
+    from PIL import Image
+
+    other = pixels(picture.png([Layer(scene_of(tmp_path, ROBOT, {"j1": "-0.6"}))], SMALL))
+    golden = np.asarray(Image.open(GOLDEN).convert("RGB"), dtype=float)
+    assert np.abs(other - golden).reshape(24, 4, 24, 4, 3).mean(axis=(1, 3)).mean() > 2.0
+
+
+def _boxes(first_colour, second_colour):
+    return f"""<robot name="two">
+  <link name="back"><visual><geometry><box size="0.2 0.2 0.2"/></geometry>
+    <material name="b"><color rgba="{second_colour} 1"/></material></visual></link>
+  <link name="front"><visual><geometry><box size="0.2 0.2 0.2"/></geometry>
+    <material name="f"><color rgba="{first_colour} 1"/></material></visual></link>
+  <joint name="j" type="fixed"><parent link="back"/><child link="front"/>
+    <origin xyz="0.5 0 0"/></joint></robot>"""
+
+
+@pytest.mark.parametrize("view, expected", [("front", "front"), ("side", "both")])
+def test_the_nearer_shape_hides_the_farther(tmp_path, view, expected):
+    scene = scene_of(tmp_path, _boxes("0 1 0", "1 0 1"))  # front green, back magenta
+    image = pixels(picture.png([Layer(scene)], PictureOptions(view, (64, 64))))
+    green = (image[..., 1] > 100) & (image[..., 0] < 60)
+    magenta = (image[..., 0] > 100) & (image[..., 1] < 60)
+    if expected == "front":  # looking along -x: the front box covers the back one
+        assert green.sum() > 500 and magenta.sum() == 0
+    else:  # from the side both show, apart
+        assert green.sum() > 100 and magenta.sum() > 100
+
+
+def test_flat_shading_lights_faces_differently(tmp_path):
+    scene = scene_of(tmp_path, _boxes("0.8 0.8 0.8", "0.8 0.8 0.8"))
+    image = pixels(picture.png([Layer(scene)], PictureOptions("iso", (64, 64))))
+    shades = {tuple(p) for p in image.reshape(-1, 3) if tuple(p) != (255, 255, 255)}
+    assert len(shades) >= 3  # three visible faces, three intensities, all grey
+    assert all(r == g == b for r, g, b in shades)
+
+
+def test_views_project_along_their_axes(tmp_path):
+    scene = scene_of(tmp_path, ROBOT)  # taller (z) than deep (x) or wide (y)
+
+    def extent(view):
+        image = pixels(picture.png([Layer(scene)], PictureOptions(view, (100, 100))))
+        rows, columns = np.nonzero((image != 255).any(axis=-1))
+        return np.ptp(columns) + 1, np.ptp(rows) + 1
+
+    width, height = extent("front")
+    assert height > width  # upright
+    width, height = extent("top")  # x up the screen, y across: 0.4 m by 0.3 m
+    assert height > width
+
+
+def test_highlighted_links_are_red(tmp_path):
+    scene = scene_of(tmp_path, ROBOT)
+    plain = pixels(picture.png([Layer(scene)], SMALL))
+    painted = pixels(picture.png([Layer(scene, highlight={"arm"})], SMALL))
+    def red(image):
+        return ((image[..., 0] > 120) & (image[..., 1] < 60) & (image[..., 2] < 60)).sum()
+    blue_before = ((plain[..., 2] > 120) & (plain[..., 0] < 60)).sum()
+    assert blue_before > 50 and red(painted) > red(plain) + 50
+
+
+def test_two_layers_blend_where_they_overlap(tmp_path):
+    old = scene_of(tmp_path, ROBOT)
+    new = scene_of(tmp_path, ROBOT, {"j1": "1.2"})
+    image = pixels(picture.png([Layer(old, tint=picture.OLD, label="old"),
+                                Layer(new, tint=picture.NEW, label="new")],
+                               PictureOptions("front", (120, 120))))
+    blue = (image[..., 2] > image[..., 0] + 60)  # the old arm alone
+    orange = (image[..., 0] > image[..., 2] + 60) & (image[..., 1] < 160)  # the new arm alone
+    assert blue.sum() > 30 and orange.sum() > 30
+
+
+def test_svg_names_links_on_hover_and_draws_frames(tmp_path):
+    text = picture.svg([Layer(scene_of(tmp_path, ROBOT), label="toy")],
+                       PictureOptions("iso", (200, 200), frames=True, axes=True))
+    assert text.startswith("<svg") and text.rstrip().endswith("</svg>")
+    for link in ("base", "arm", "head"):
+        assert f"<g><title>{link}</title>" in text
+    assert text.count("<polygon") > 50
+    # three lines per link frame, one per moving joint axis
+    assert text.count("<line") == 3 * 3 + 1
+
+
+def test_write_refuses_other_suffixes(tmp_path):
+    with pytest.raises(picture.PlotError, match=r"\.png or \.svg"):
+        picture.write(tmp_path / "x.jpg", [Layer(scene_of(tmp_path, ROBOT))])
+
+
+def test_faces_turned_away_are_left_out_without_changing_the_picture(tmp_path):
+    import dataclasses
+
+    scene = scene_of(tmp_path, ROBOT, {"j1": "0.6"})
+    unknown = dataclasses.replace(scene, facing=None)
+    camera = picture._camera([Layer(scene)], "iso", 96, 96)
+    assert len(picture._project(Layer(scene), camera).colours) < \
+        0.7 * len(picture._project(Layer(unknown), camera).colours)
+    # the same but along edges, where a hidden face's border pixels showed through
+    difference = np.abs(pixels(picture.png([Layer(scene)], SMALL))
+                        - pixels(picture.png([Layer(unknown)], SMALL)))
+    assert difference.mean() < 1.0 and (difference.max(axis=-1) > 0).mean() < 0.02

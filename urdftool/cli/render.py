@@ -1,0 +1,73 @@
+"""``urdftool render``: a picture of the robot at a configuration, PNG or SVG, headless."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
+                                  fail_usage, joint_words, refuse_bad_outputs, single_robot,
+                                  warn)
+from urdftool.errors import UsageError
+
+HELP = ("Draw the robot's visual (or --collision) geometry posed at a configuration (default: "
+        "0, or mid-range when 0 is outside the limits) as PNG or SVG: flat shading, no GPU, "
+        "no display. In SVG each link is named on hover.")
+VIEWS = ("front", "side", "top", "iso")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("render", help=HELP)(budgeted(render))
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``WIDTHxHEIGHT`` (each 16 to 8192 pixels) as a pair; UsageError otherwise."""
+    width, _, height = text.lower().partition("x")
+    if not (width.isdigit() and height.isdigit()) or not (
+            16 <= int(width) <= 8192 and 16 <= int(height) <= 8192):
+        raise UsageError(f"--size must be WIDTHxHEIGHT in pixels, each 16 to 8192, not '{text}'")
+    return int(width), int(height)
+
+
+def render(
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
+    output: Path = typer.Option(..., "--output", "-o", metavar="FILE.png|svg",
+                                help="The picture to write (.png or .svg)."),
+    q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
+                                help="Joint value in rad or m (repeatable)."),
+    deg: bool = typer.Option(False, "--deg", help="--q angles are in degrees."),
+    view: str = typer.Option("iso", "--view", help="front, side, top or iso."),
+    collision: bool = typer.Option(False, "--collision",
+                                   help="Draw the collision geometry instead of the visual."),
+    frames: bool = typer.Option(False, "--frames", help="Draw every link frame (x y z: red "
+                                                        "green blue)."),
+    axes: bool = typer.Option(False, "--axes", help="Draw every moving joint's axis."),
+    size: str = typer.Option("600x600", "--size", metavar="WxH", help="Picture size in pixels."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+) -> None:
+    from urdftool.errors import ConfigError, PlotError, SceneError
+    from urdftool.kinematics.scene import posed
+    from urdftool.report.picture import Layer, PictureOptions, write
+
+    refuse_bad_outputs(output)
+    try:
+        dimensions = parse_size(size)
+    except UsageError as error:
+        fail_usage(error)
+    robot = single_robot("render", words, arg, package, {"--view": (view, VIEWS)}, [
+        (output.suffix.lower() not in (".png", ".svg"),
+         f"--output: '{output.name}' must end in .png or .svg")])
+    try:
+        scene, warnings = posed(robot, joint_words(q, "--q"), deg, collision)
+        warn(warnings + scene.problems)
+        write(output, [Layer(scene, label=robot.name)],
+              PictureOptions(view, dimensions, frames, axes))
+    except ConfigError as error:
+        fail_config(error, "--q")
+    except (PlotError, UsageError) as error:
+        fail_usage(UsageError(str(error)))
+    except SceneError as error:
+        fail_at(robot, error)
+    typer.echo(f"wrote {output} ({len(scene.triangles)} triangles)", err=True)

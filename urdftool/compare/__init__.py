@@ -1,0 +1,1 @@
+"""Comparing two robot descriptions: what changed (structure) and what it does (effect)."""

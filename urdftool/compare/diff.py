@@ -1,0 +1,76 @@
+"""``diff``: the structural changes between two robots and their effects, as one result."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from urdftool.compare.effect import Effects
+from urdftool.compare.structure import Change, Renames
+
+
+@dataclass(frozen=True)
+class DiffOptions:
+    """tolerance: numbers closer than this are equal (in their own unit: m, rad, kg, ...)
+    samples: configurations drawn within the common limits (plus the zero one)
+    seed: the random stream of the samples
+    chains: (base, tip) link pairs (new names) whose reach is compared
+    collisions: compare self-collisions over the samples (FCL)
+    companions: compare the SRDF and controller YAML each side has (as ``check`` finds them)
+    """
+
+    tolerance: float = 1e-9
+    samples: int = 200
+    seed: int = 0
+    chains: tuple[tuple[str, str], ...] = ()
+    collisions: bool = True
+    companions: bool = True
+
+
+@dataclass
+class Diff:
+    old: str
+    new: str
+    changes: list[Change]
+    renames: Renames
+    effects: Effects | None
+    companions: list[Change] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def equivalent(self) -> bool:
+        """No change in structure or companions: the two describe the same robot."""
+        return not self.changes and not self.companions
+
+
+def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
+    """Compare robot ``old`` with robot ``new`` (urdftool Robot objects); the effects only when
+    something other than appearance changed. When a side cannot
+    be built into a kinematic model, the effects are left out with a warning saying why;
+    UnknownLink for a ``chains`` link that a side does not have."""
+    from urdftool.compare.effect import effects
+    from urdftool.compare.structure import structure
+
+    changes, found = structure(old, new, options.tolerance)
+    result = Diff(old.display, new.display, changes, found, None)
+    if any(_physical(change) for change in changes):
+        from urdftool.errors import FKError, ModelBuildError
+
+        try:
+            result.effects = effects(old, new, found, options.samples, options.seed,
+                                     list(options.chains), options.tolerance, options.collisions)
+        except (FKError, ModelBuildError) as error:  # the structure is still worth reporting
+            result.warnings.append(f"effects not computed: {error}")
+    if options.companions:
+        from urdftool.compare.companions import compare
+
+        result.companions = compare(old, new, found)
+    return result
+
+
+def _physical(change: Change) -> bool:
+    """Whether a change can move a frame, the mass or a collision (a visual or a material
+    cannot: the effects are not computed for them)."""
+    if change.element == "material":
+        return False
+    return not (change.element == "link" and change.kind == "changed"
+                and change.field.startswith("visual["))

@@ -1,0 +1,308 @@
+"""What changed between two robot descriptions, element by element, as data.
+
+Each link, joint and robot-level material is read into a flat table of fields (``origin.xyz``,
+``limit.upper``, ``inertial.mass``, ``visual[0].size``, ...) holding numbers or words, with the
+URDF defaults filled in. Two descriptions are compared field by field, so formatting, comments,
+attribute order, ``0.10`` against ``0.1`` and an ``<origin>`` written as its default are no
+change. Renamed links and joints are recognised by their place in the tree (the same parent
+and a joint at the same origin, or the same children), not reported as removed and added.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from urdftool.description.values import parse_numbers
+
+# what a field's numbers are measured in, by the last part of its name
+UNITS = {"xyz": "m", "rpy": "rad", "mass": "kg", "ixx": "kg m^2", "ixy": "kg m^2",
+         "ixz": "kg m^2", "iyy": "kg m^2", "iyz": "kg m^2", "izz": "kg m^2", "size": "m",
+         "radius": "m", "length": "m"}
+RELATIVE = ("mass", "ixx", "ixy", "ixz", "iyy", "iyz", "izz")  # reported in percent too
+
+
+@dataclass
+class Change:
+    """One difference.
+
+    kind: 'added', 'removed', 'renamed' or 'changed'
+    element: 'link', 'joint' or 'material' (companions: 'controller', 'group',
+        'disable_collisions')
+    name: its name in the new description (the old one when removed)
+    field: what changed ('' for a whole element), e.g. 'origin.xyz', 'inertial.mass'
+    old, new: the values (numbers as floats or tuples of floats, words as text; None: absent)
+    old_name: the old name of a renamed element
+    delta: how far apart numeric values are (the norm of the difference), in ``unit``
+    percent: the relative change of a mass or an inertia entry, in %
+    """
+
+    kind: str
+    element: str
+    name: str
+    field: str = ""
+    old: object = None
+    new: object = None
+    old_name: str | None = None
+    delta: float | None = None
+    percent: float | None = None
+    unit: str = ""
+
+
+@dataclass
+class Renames:
+    """Old name -> new name of renamed links and joints (unchanged names are not listed)."""
+
+    links: dict[str, str] = field(default_factory=dict)
+    joints: dict[str, str] = field(default_factory=dict)
+
+    def link(self, name):
+        return self.links.get(name, name)
+
+    def joint(self, name):
+        return self.joints.get(name, name)
+
+
+def _numbers(text, count=None, default=None):
+    if text is None:
+        return default
+    values, _ = parse_numbers(text, count)
+    if values is None:
+        return text.strip()  # unreadable: compared as written, after trimming
+    return tuple(values) if len(values) != 1 or count == 3 else values[0]
+
+
+def _origin(fields: dict, prefix: str, element) -> None:
+    found = element.find("origin") if element is not None else None
+    fields[f"{prefix}origin.xyz"] = _numbers(found.get("xyz") if found is not None else None,
+                                             3, (0.0, 0.0, 0.0))
+    fields[f"{prefix}origin.rpy"] = _numbers(found.get("rpy") if found is not None else None,
+                                             3, (0.0, 0.0, 0.0))
+
+
+def joint_fields(joint, renames: Renames | None = None) -> dict:
+    """A ``<joint>`` as {field: value}; parent and child through ``renames`` (old names -> new)."""
+    renames = renames or Renames()
+    fields = {"type": joint.get("type")}
+    for end in ("parent", "child"):
+        element = joint.find(end)
+        fields[end] = renames.link(element.get("link")) if element is not None else None
+    _origin(fields, "", joint)
+    axis = joint.find("axis")
+    if joint.get("type") not in ("fixed", "floating"):
+        fields["axis"] = _numbers(axis.get("xyz") if axis is not None else None, 3,
+                                  (1.0, 0.0, 0.0))
+    for tag, attributes, defaults in (
+            ("limit", ("lower", "upper", "effort", "velocity"), (0.0, 0.0, None, None)),
+            ("mimic", ("joint", "multiplier", "offset"), (None, 1.0, 0.0)),
+            ("dynamics", ("damping", "friction"), (0.0, 0.0)),
+            ("safety_controller", ("soft_lower_limit", "soft_upper_limit", "k_position",
+                                   "k_velocity"), (0.0, 0.0, 0.0, None)),
+            ("calibration", ("rising", "falling"), (None, None))):
+        element = joint.find(tag)
+        if element is None:
+            continue
+        for attribute, default in zip(attributes, defaults):
+            if attribute == "joint":
+                fields["mimic.joint"] = renames.joint(element.get("joint"))
+            else:
+                fields[f"{tag}.{attribute}"] = _numbers(element.get(attribute), None, default)
+    return fields
+
+
+def _colours(robot) -> dict[str, object]:
+    """Robot-level materials: name -> rgba (or texture file name)."""
+    found = {}
+    for material in robot.children("material"):
+        found.setdefault(material.get("name"), _material_value(material))
+    return found
+
+
+def _material_value(material):
+    colour = material.find("color")
+    if colour is not None:
+        return _numbers(colour.get("rgba"), 4)
+    texture = material.find("texture")
+    return texture.get("filename") if texture is not None else None
+
+
+def link_fields(link, colours: dict) -> dict:
+    """A ``<link>`` as {field: value}: its inertial, and each visual and collision in order
+    (shape, sizes, mesh file and scale, origin; a visual's material name and its colour)."""
+    fields = {}
+    inertial = link.find("inertial")
+    if inertial is not None:
+        mass = inertial.find("mass")
+        fields["inertial.mass"] = _numbers(mass.get("value") if mass is not None else None, 1)
+        _origin(fields, "inertial.", inertial)
+        inertia = inertial.find("inertia")
+        for name in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+            fields[f"inertial.{name}"] = _numbers(
+                inertia.get(name) if inertia is not None else None, 1)
+    for kind in ("visual", "collision"):
+        for index, element in enumerate(link.findall(kind)):
+            prefix = f"{kind}[{index}]."
+            _origin(fields, prefix, element)
+            geometry = element.find("geometry")
+            shape = next((child for child in geometry if isinstance(child.tag, str)), None) \
+                if geometry is not None else None
+            fields[prefix + "shape"] = shape.tag if shape is not None else None
+            if shape is not None:
+                for attribute, count in (("size", 3), ("radius", 1), ("length", 1),
+                                         ("filename", None), ("scale", 3)):
+                    if attribute == "filename":
+                        if shape.get("filename") is not None:
+                            fields[prefix + "filename"] = shape.get("filename")
+                    elif shape.get(attribute) is not None or (
+                            attribute == "scale" and shape.tag == "mesh"):
+                        fields[prefix + attribute] = _numbers(shape.get(attribute), count,
+                                                              (1.0, 1.0, 1.0))
+            material = element.find("material") if kind == "visual" else None
+            if material is not None:
+                fields[prefix + "material"] = material.get("name")
+                own = _material_value(material)
+                fields[prefix + "colour"] = own if own is not None else \
+                    colours.get(material.get("name"))
+    return fields
+
+
+def _equal(old, new, tolerance: float) -> bool:
+    if isinstance(old, float) and isinstance(new, float):
+        return abs(old - new) <= tolerance or old == new
+    if isinstance(old, tuple) and isinstance(new, tuple) and len(old) == len(new) and \
+            all(isinstance(x, float) for x in old + new):
+        return all(abs(a - b) <= tolerance or a == b for a, b in zip(old, new))
+    return old == new
+
+
+def _numeric_change(change: Change) -> Change:
+    old, new = change.old, change.new
+    last = change.field.rpartition(".")[2]
+    change.unit = UNITS.get(last, "")
+    if isinstance(old, float) and isinstance(new, float):
+        change.delta = new - old
+        if last in RELATIVE and old:
+            change.percent = 100.0 * (new - old) / abs(old)
+    elif isinstance(old, tuple) and isinstance(new, tuple) and len(old) == len(new) and \
+            all(isinstance(x, float) for x in old + new):
+        change.delta = math.sqrt(sum((a - b) ** 2 for a, b in zip(old, new)))
+    return change
+
+
+def compare_fields(element: str, name: str, old: dict, new: dict, tolerance: float,
+                   old_name: str | None = None) -> list[Change]:
+    changes = []
+    for key in list(old) + [k for k in new if k not in old]:
+        a, b = old.get(key), new.get(key)
+        if not _equal(a, b, tolerance):
+            changes.append(_numeric_change(Change("changed", element, name, key, a, b,
+                                                  old_name)))
+    return changes
+
+
+def _parent_joints(robot) -> dict[str, object]:
+    """Child link -> the joint whose child it is (the first)."""
+    found = {}
+    for joint in robot.joints.values():
+        child = joint.find("child")
+        if child is not None:
+            found.setdefault(child.get("link"), joint)
+    return found
+
+
+def _children(robot) -> dict[str, set]:
+    found: dict[str, set] = {}
+    for joint in robot.joints.values():
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is not None and child is not None:
+            found.setdefault(parent.get("link"), set()).add(child.get("link"))
+    return found
+
+
+def renames(old, new, tolerance: float = 1e-9) -> Renames:
+    """Links and joints of ``old`` that ``new`` has under another name, matched by position in
+    the tree: a removed link and an added one hanging from the same (renamed) parent through
+    a joint at the same origin of the same type, or with the same children; a removed joint and
+    an added one joining the same links."""
+    result = Renames()
+    old_parents, new_parents = _parent_joints(old), _parent_joints(new)
+    old_children, new_children = _children(old), _children(new)
+    progress = True
+    while progress:
+        progress = False
+        removed = [n for n in old.links if n not in new.links and n not in result.links]
+        added = [n for n in new.links if n not in old.links and n not in result.links.values()]
+        for name in removed:
+            joint = old_parents.get(name)
+            candidates = []
+            for other in added:
+                twin = new_parents.get(other)
+                if joint is None or twin is None:
+                    if joint is None and twin is None:  # both roots
+                        candidates.append(other)
+                    continue
+                a, b = joint_fields(joint, result), joint_fields(twin)
+                same_place = a["parent"] == b["parent"] and a["type"] == b["type"] and \
+                    _equal(a["origin.xyz"], b["origin.xyz"], 1e-6)
+                same_children = {result.link(c) for c in old_children.get(name, ())} == \
+                    new_children.get(other, set()) != set()
+                if same_place or same_children:
+                    candidates.append(other)
+            if len(candidates) == 1:
+                result.links[name] = candidates[0]
+                progress = True
+                break
+    added_joints = [n for n in new.joints if n not in old.joints]
+    for name, joint in old.joints.items():
+        if name in new.joints:
+            continue
+        ends = joint_fields(joint, result)
+        matches = [other for other in added_joints
+                   if (joint_fields(new.joints[other])["parent"],
+                       joint_fields(new.joints[other])["child"]) == (ends["parent"], ends["child"])
+                   and other not in result.joints.values()]
+        if len(matches) == 1:
+            result.joints[name] = matches[0]
+    return result
+
+
+def structure(old, new, tolerance: float = 1e-9) -> tuple[list[Change], Renames]:
+    """Every difference between robots ``old`` and ``new`` (urdftool Robot objects), and the
+    renames found."""
+    found = renames(old, new, tolerance)
+    changes: list[Change] = []
+    old_colours, new_colours = _colours(old), _colours(new)
+    for element, old_items, new_items, mapping, read in (
+            ("link", old.links, new.links, found.links,
+             lambda e, side: link_fields(e, old_colours if side == "old" else new_colours)),
+            ("joint", old.joints, new.joints, found.joints,
+             lambda e, side: joint_fields(e, found if side == "old" else None))):
+        for name, item in old_items.items():
+            target = mapping.get(name, name)
+            if target not in new_items:
+                changes.append(Change("removed", element, name))
+                continue
+            if target != name:
+                changes.append(Change("renamed", element, target, old_name=name))
+            found_changes = compare_fields(element, target, read(item, "old"),
+                                           read(new_items[target], "new"), tolerance,
+                                           name if target != name else None)
+            if element == "joint":  # limits are angles or lengths by the joint's type
+                unit = "m" if new_items[target].get("type") == "prismatic" else "rad"
+                for change in found_changes:
+                    if change.field.endswith(("lower", "upper", "_limit")):
+                        change.unit = unit
+            changes += found_changes
+        renamed_to = set(mapping.values())
+        for name in new_items:
+            if name not in old_items and name not in renamed_to:
+                changes.append(Change("added", element, name))
+    for name in list(old_colours) + [n for n in new_colours if n not in old_colours]:
+        if name not in new_colours:
+            changes.append(Change("removed", "material", name))
+        elif name not in old_colours:
+            changes.append(Change("added", "material", name))
+        elif not _equal(old_colours[name], new_colours[name], tolerance):
+            changes.append(Change("changed", "material", name, "color", old_colours[name],
+                                  new_colours[name]))
+    return changes, found

@@ -1,0 +1,233 @@
+"""A robot's geometry posed at a configuration, as triangles: what a picture is drawn from.
+
+The scene is yourdfpy's scene graph (a trimesh scene with one node per link, joints as edges,
+``update_cfg`` for the forward kinematics). yourdfpy gets the already expanded URDF text and
+never opens a file itself: it is built with ``load_meshes=False`` (it makes the boxes, cylinders
+and spheres), and every mesh is loaded by :func:`urdftool.description.meshes.load_mesh` (the
+containment, size and triangle limits, no textures) and added to the link's node here. Its
+``filename_handler`` is urdftool's resolver too, so nothing yourdfpy might still ask for
+leads outside the robot's repository or packages.
+
+Joint values are urdftool's variables (:mod:`urdftool.kinematics.configuration`): revolute,
+continuous and prismatic joints, mimic joints following theirs. yourdfpy draws floating and
+planar joints at their origin.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+
+from urdftool.errors import MeshProblem, SceneError
+from urdftool.description.urdf import MOVING
+
+DEFAULT_COLOUR = (0.62, 0.64, 0.68)  # [0, 1] rgb of geometry without a material colour
+
+
+@dataclass
+class PosedScene:
+    """Triangles of a robot's geometry in its root frame at one configuration.
+
+    links: names of the links that have geometry; ``owners`` index into it
+    triangles: ``[n, 3, 3]`` corner positions in [m]
+    owners: ``[n]`` the link each triangle belongs to
+    colours: ``[n, 3]`` rgb in [0, 1] (the URDF material, else a neutral grey)
+    facing: ``[n]`` +1 where the corners' order (right hand) gives the outward normal of a
+        closed surface, -1 where it gives the inward one, 0 for an open surface (unknown)
+    frames: every link's pose (4x4) in the root frame
+    axes: (joint, point [m], unit direction) of each moving joint, in the root frame
+    q: the joint values drawn, by variable name, in [rad] or [m]
+    problems: geometry left out, and why (a mesh that may not or cannot be loaded)
+    """
+
+    links: list[str]
+    triangles: np.ndarray
+    owners: np.ndarray
+    colours: np.ndarray
+    frames: dict[str, np.ndarray]
+    axes: list[tuple[str, np.ndarray, np.ndarray]]
+    facing: np.ndarray | None = None
+    q: dict[str, float] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+
+
+class SceneModel:
+    """A robot's visual (or collision) geometry in yourdfpy's scene graph, posed on demand."""
+
+    def __init__(self, robot, collision: bool = False):
+        from urdftool.kinematics.configuration import mimics_of, variables_of
+
+        self.robot = robot
+        self.collision = collision
+        self.urdf = _yourdfpy(robot, collision)
+        self.scene = self.urdf.collision_scene if collision else self.urdf.scene
+        self.problems: list[str] = []
+        self._colours: dict[str, tuple] = {}
+        self._add_meshes()
+        self.variables = [v for v in variables_of(robot)
+                          if v.kind in MOVING]
+        self.all_variables = variables_of(robot)
+        self.mimics = mimics_of(robot)
+        self._nodes = [(node, self.scene.graph.transforms.parents[node])
+                       for node in self.scene.graph.nodes_geometry]
+        self.links = list(dict.fromkeys(link for _, link in self._nodes))
+        # closed, consistently wound surfaces: their faces turned away can be left undrawn
+        self._closed = {node: bool(self._geometry(node).is_watertight
+                                   and self._geometry(node).is_winding_consistent)
+                        for node, _ in self._nodes}
+
+    @property
+    def triangle_count(self) -> int:
+        return sum(len(self._geometry(node).faces) for node, _ in self._nodes)
+
+    def _geometry(self, node: str):
+        return self.scene.geometry[self.scene.graph[node][1]]
+
+    def _add_meshes(self) -> None:
+        """Every ``<mesh>`` of every link, loaded safely and hung from its link's node."""
+        import numpy as np
+
+        from urdftool.description.meshes import load_mesh
+
+        for link in self.urdf.robot.links:
+            for element in (link.collisions if self.collision else link.visuals):
+                mesh = element.geometry.mesh if element.geometry is not None else None
+                if mesh is None:
+                    continue
+                scale = mesh.scale if mesh.scale is not None else 1.0
+                scale = np.broadcast_to(np.asarray(scale, dtype=float), (3,))
+                try:
+                    loaded = load_mesh(self.robot, mesh.filename or "", tuple(scale))
+                except MeshProblem as problem:
+                    self.problems.append(f"link '{link.name}': {problem}; not drawn")
+                    continue
+                origin = element.origin if element.origin is not None else np.eye(4)
+                node = self.scene.add_geometry(loaded, parent_node_name=link.name,
+                                               transform=origin)
+                self._colours[node] = self._material_colour(element)
+
+    def _material_colour(self, element) -> tuple | None:
+        """The rgb of a ``<visual>``'s material, looked up as yourdfpy does; None when none."""
+        material = getattr(element, "material", None)
+        if material is None:
+            return None
+        colour = material.color
+        if colour is None and material.name in self.urdf._material_map:
+            colour = self.urdf._material_map[material.name].color
+        return tuple(float(c) for c in colour.rgba[:3]) if colour is not None else None
+
+    def _colour(self, node: str, geometry) -> tuple:
+        if node in self._colours:
+            return self._colours[node] or DEFAULT_COLOUR
+        visual = getattr(geometry, "visual", None)
+        if self.collision or getattr(visual, "kind", None) != "face":
+            return DEFAULT_COLOUR
+        return tuple(float(c) / 255 for c in visual.face_colors[0][:3])
+
+    def pose(self, q: dict[str, float] | None = None) -> PosedScene:
+        """The triangles at joint values ``q`` ({variable: value} in [rad] or [m]; others 0,
+        or mid-range when 0 is outside the limits)."""
+        import numpy as np
+
+        values = {v.name: v.default for v in self.variables}
+        values.update({name: float(value) for name, value in (q or {}).items()
+                       if name in values})
+        if values:
+            self.urdf.update_cfg(values)
+        graph = self.scene.graph
+        frames = {link.name: graph.get(link.name)[0] for link in self.urdf.robot.links
+                  if link.name in graph.nodes}
+        index = {link: i for i, link in enumerate(self.links)}
+        triangles, owners, colours, facing = [], [], [], []
+        for node, link in self._nodes:
+            transform, name = graph.get(node)
+            geometry = self.scene.geometry[name]
+            vertices = np.asarray(geometry.vertices, dtype=float) @ transform[:3, :3].T \
+                + transform[:3, 3]
+            faces = np.asarray(geometry.faces, dtype=np.int64)
+            posed = vertices[faces]
+            triangles.append(posed)
+            owners.append(np.full(len(faces), index[link]))
+            colours.append(np.tile(self._colour(node, geometry), (len(faces), 1)))
+            facing.append(np.full(len(faces), _orientation(posed) if self._closed[node] else 0,
+                                  dtype=np.int8))
+        axes = []
+        for joint in self.urdf.robot.joints:
+            if joint.type in MOVING and joint.parent in frames:
+                origin = joint.origin if joint.origin is not None else np.eye(4)
+                placed = frames[joint.parent] @ origin
+                direction = placed[:3, :3] @ np.asarray(joint.axis, dtype=float)
+                norm = np.linalg.norm(direction)
+                if norm > 0:
+                    axes.append((joint.name, placed[:3, 3].copy(), direction / norm))
+        empty = np.zeros((0, 3))
+        return PosedScene(
+            list(self.links),
+            np.concatenate(triangles) if triangles else np.zeros((0, 3, 3)),
+            np.concatenate(owners) if owners else np.zeros(0, dtype=np.int64),
+            np.concatenate(colours) if colours else empty,
+            frames, axes, np.concatenate(facing) if facing else np.zeros(0, dtype=np.int8),
+            values, list(self.problems))
+
+
+def _orientation(triangles) -> int:
+    """+1 when a closed surface's triangles wind outward (positive enclosed volume, the sum of
+    the corners' triple products), -1 inward (a mirroring scale turns them), 0 when flat."""
+    import numpy as np
+
+    volume = np.einsum("ij,ij->", triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2]))
+    extent = np.ptp(triangles.reshape(-1, 3), axis=0).max() if len(triangles) else 0.0
+    if abs(volume) <= 1e-12 * max(extent, 1e-12) ** 3:
+        return 0
+    return 1 if volume > 0 else -1
+
+
+def _yourdfpy(robot, collision: bool):
+    """yourdfpy's model of ``robot`` from its expanded URDF text, meshes not loaded; SceneError
+    (with the element when known) for what yourdfpy cannot read."""
+    import yourdfpy
+    from lxml import etree
+
+    logging.getLogger("yourdfpy").setLevel(logging.CRITICAL)  # its warnings are rule findings
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             remove_comments=True, remove_blank_text=True)
+    root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
+    try:
+        model = yourdfpy.URDF._parse_robot(root)
+        return yourdfpy.URDF(model, build_scene_graph=not collision,
+                             build_collision_scene_graph=collision, load_meshes=False,
+                             load_collision_meshes=False,
+                             filename_handler=lambda fname: _contained(robot, fname))
+    except KeyError as error:  # yourdfpy reads required attributes as attrib[name]
+        raise SceneError(f"yourdfpy cannot build the scene: an element lacks its "
+                         f"'{error.args[0]}' attribute; run 'urdftool check' for where") from None
+    except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
+        raise SceneError(f"yourdfpy cannot build the scene ({type(error).__name__}: {error}); "
+                         "run 'urdftool check' for the cause") from None
+
+
+def _contained(robot, fname: str) -> str:
+    """yourdfpy's filename handler: the path urdftool's resolver allows, else '' (no file)."""
+    from urdftool.description.meshes import resolve
+
+    try:
+        return str(resolve(robot, fname))
+    except MeshProblem:
+        return ""
+
+
+def scene_model(robot, collision: bool = False) -> SceneModel:
+    """The robot's scene model, built once per robot and kind of geometry."""
+    return robot.memo((scene_model, collision), lambda: SceneModel(robot, collision))
+
+
+def posed(robot, words: dict[str, str] | None = None, degrees: bool = False,
+          collision: bool = False):
+    """(PosedScene, warnings) of ``robot`` at ``words`` ({joint: text}) over the default
+    configuration; ConfigError for a bad joint name or value."""
+    from urdftool.kinematics import configuration as config
+
+    model = scene_model(robot, collision)
+    chosen = config.from_words(model.all_variables, words or {}, degrees, model.mimics)
+    q = {v.name: float(x) for v, x in zip(model.all_variables, chosen.values[0])}
+    return model.pose(q), chosen.warnings

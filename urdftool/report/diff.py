@@ -1,0 +1,207 @@
+"""``urdftool diff`` as text, JSON, or Markdown (a pull-request comment or a GitHub job summary)."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+FRAMES_SHOWN = 15  # rows of the moved-frames table in text and Markdown
+JOINTS_SHOWN = 6  # joint values shown for "where" (JSON gives all)
+
+
+def _value(value) -> str:
+    if value is None:
+        return "(none)"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, tuple):
+        return "(" + ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v)
+                               for v in value) + ")"
+    return str(value)
+
+
+def _amount(change) -> str:
+    """How much, in the unit people read: mm for lengths, degrees for angles, % for masses."""
+    parts = []
+    if change.delta is not None:
+        vector = isinstance(change.old, tuple)
+        if change.unit == "m":
+            parts.append(f"{'moved ' if vector else ''}{change.delta * 1000:+.4g} mm"
+                         .replace("moved +", "moved "))
+        elif change.unit == "rad":
+            parts.append(f"{'turned ' if vector else ''}{math.degrees(change.delta):+.4g} deg"
+                         .replace("turned +", "turned "))
+        elif not vector:
+            parts.append(f"{change.delta:+.4g}{' ' + change.unit if change.unit else ''}")
+    if change.percent is not None:
+        parts.append(f"{change.percent:+.3g} %")
+    return ", ".join(parts)
+
+
+def _quoted(name) -> str:
+    return f"'{name}'"
+
+
+def _code(name) -> str:
+    return f"`{name}`"
+
+
+def change_line(change, quote=_quoted) -> str:
+    """One change as a sentence; ``quote`` marks names (quotes in text, code in Markdown)."""
+    if change.kind == "renamed":
+        return f"renamed {change.element} {quote(change.old_name)} -> {quote(change.name)}"
+    if change.kind in ("added", "removed"):
+        return f"{change.kind} {change.element} {quote(change.name)}"
+    line = (f"{change.element} {quote(change.name)}: {change.field} "
+            f"{_value(change.old)} -> {_value(change.new)}"
+            + (f" {change.unit}" if change.unit and change.delta is not None else ""))
+    amount = _amount(change)
+    return line + (f" ({amount})" if amount else "")
+
+
+def _where(at: dict, limit: int = JOINTS_SHOWN) -> str:
+    moved = [(name, value) for name, value in at.items() if abs(value) > 1e-12]
+    shown = ", ".join(f"{name}={value:.3g}" for name, value in moved[:limit])
+    return (shown + (f", ... ({len(moved)} joints)" if len(moved) > limit else "")) or "zero"
+
+
+def _frame_cells(frame) -> tuple[str, str, str, str, str]:
+    """A moved frame's numbers as people read them: at zero (mm, deg), at most (mm, deg),
+    and where it moved most."""
+    return (f"{frame.zero_position * 1000:.3g}", f"{math.degrees(frame.zero_rotation):.3g}",
+            f"{frame.max_position * 1000:.3g}", f"{math.degrees(frame.max_rotation):.3g}",
+            _where(frame.at))
+
+
+def _effect_lines(effects) -> list[str]:
+    lines = [f"Effect over {effects.samples + 1} configurations (zero + {effects.samples} "
+             "within the limits both allow):"]
+    if effects.frames:
+        lines.append(f"  {len(effects.frames)} frame(s) moved; most:")
+        for frame in effects.frames[:FRAMES_SHOWN]:
+            zero_mm, zero_deg, max_mm, max_deg, where = _frame_cells(frame)
+            lines.append(f"    {frame.link}: at zero {zero_mm} mm {zero_deg} deg; at most "
+                         f"{max_mm} mm {max_deg} deg (at {where})")
+        if len(effects.frames) > FRAMES_SHOWN:
+            lines.append(f"    ... {len(effects.frames) - FRAMES_SHOWN} more (--format json)")
+    else:
+        lines.append("  no frame moved")
+    lines.append("  " + _mass_line(effects))
+    for chain in effects.chains:
+        lines.append(f"  reach {chain.base} -> {chain.tip}: {chain.old_reach * 1000:.4g} -> "
+                     f"{chain.new_reach * 1000:.4g} mm "
+                     f"({(chain.new_reach - chain.old_reach) * 1000:+.3g} mm; at zero "
+                     f"{(chain.new_zero - chain.old_zero) * 1000:+.3g} mm)")
+    for collision in effects.collisions:
+        verb = "newly collides" if collision.new_count else "no longer collides"
+        lines.append(f"  {collision.link1} / {collision.link2} {verb}: in "
+                     f"{collision.old_count} -> {collision.new_count} of "
+                     f"{effects.samples + 1} configurations")
+    return lines
+
+
+def _mass_line(effects) -> str:
+    com = math.dist(effects.old_com, effects.new_com) * 1000
+    moved = f"centre of mass at zero moved {com:.3g} mm" if com else "centre of mass unchanged"
+    if effects.old_mass == effects.new_mass:
+        return f"total mass {effects.new_mass:.6g} kg unchanged; {moved}"
+    change = effects.new_mass - effects.old_mass
+    percent = f", {100 * change / effects.old_mass:+.3g} %" if effects.old_mass else ""
+    return (f"total mass {effects.old_mass:.6g} -> {effects.new_mass:.6g} kg "
+            f"({change:+.4g} kg{percent}); {moved}")
+
+
+def text(result) -> str:
+    changes = result.changes + result.companions
+    if result.equivalent:
+        return f"{result.old} and {result.new}: equivalent (no change)\n"
+    lines = [f"{result.old} -> {result.new}: {len(changes)} change(s)"]
+    lines += ["  " + change_line(change) for change in changes]
+    if result.effects is not None:
+        lines += _effect_lines(result.effects)
+        lines += [f"warning: {warning}" for warning in result.effects.warnings]
+    return "\n".join(lines) + "\n"
+
+
+def markdown(result) -> str:
+    """For a pull-request comment or ``$GITHUB_STEP_SUMMARY``: a heading, the changes as a
+    list, the effects as tables."""
+    changes = result.changes + result.companions
+    title = f"### Robot description: `{result.old}` → `{result.new}`"
+    if result.equivalent:
+        return f"{title}\n\nNo change: the two describe the same robot.\n"
+    out = [title, "", f"**{len(changes)} change(s)**", ""]
+    out += [f"- {change_line(change, _code)}" for change in changes]
+    effects = result.effects
+    if effects is not None:
+        out += ["", f"**Effect** over {effects.samples + 1} configurations (zero + "
+                    f"{effects.samples} within the limits both allow)", ""]
+        if effects.frames:
+            out += ["| link | at zero (mm) | at zero (deg) | at most (mm) | at most (deg) | "
+                    "where |", "|---|---:|---:|---:|---:|---|"]
+            for frame in effects.frames[:FRAMES_SHOWN]:
+                out.append(f"| `{frame.link}` | " + " | ".join(map(_md, _frame_cells(frame)))
+                           + " |")
+            if len(effects.frames) > FRAMES_SHOWN:
+                out.append(f"\n… and {len(effects.frames) - FRAMES_SHOWN} more frame(s)")
+        else:
+            out.append("No frame moved.")
+        out += ["", f"- {_mass_line(effects)}"]
+        out += [f"- {line.strip()}" for line in _effect_lines(effects)
+                if line.startswith("  reach") or "collides" in line]
+    return "\n".join(out) + "\n"
+
+
+def _md(text: str) -> str:
+    """Text for a Markdown table cell."""
+    return text.replace("|", "\\|")
+
+
+def as_json(result) -> dict:
+    def change(c) -> dict:
+        data = {"kind": c.kind, "element": c.element, "name": c.name}
+        if c.old_name:
+            data["old_name"] = c.old_name
+        if c.kind == "changed":
+            data.update({"field": c.field, "old": c.old, "new": c.new})
+            for key in ("delta", "percent"):
+                if getattr(c, key) is not None:
+                    data[key] = getattr(c, key)
+            if c.unit:
+                data["unit"] = c.unit
+        return data
+
+    data = {"version": 1, "old": result.old, "new": result.new,
+            "equivalent": result.equivalent,
+            "changes": [change(c) for c in result.changes + result.companions]}
+    effects = result.effects
+    if effects is not None:
+        data["effects"] = {
+            "configurations": effects.samples + 1,
+            "frames": [{"link": f.link, "zero_position_m": f.zero_position,
+                        "zero_rotation_rad": f.zero_rotation, "max_position_m": f.max_position,
+                        "max_rotation_rad": f.max_rotation, "at": f.at}
+                       for f in effects.frames],
+            "mass_kg": {"old": effects.old_mass, "new": effects.new_mass},
+            "com_m": {"old": list(effects.old_com), "new": list(effects.new_com)},
+            "chains": [{"base": c.base, "tip": c.tip, "old_reach_m": c.old_reach,
+                        "new_reach_m": c.new_reach, "old_zero_m": c.old_zero,
+                        "new_zero_m": c.new_zero} for c in effects.chains],
+            "collisions": [{"link1": c.link1, "link2": c.link2, "old_count": c.old_count,
+                            "new_count": c.new_count} for c in effects.collisions],
+            "worst_configuration": effects.worst,
+            "warnings": effects.warnings}
+    return data
+
+
+def write(result, output_format: str, stream=None) -> None:
+    """``result`` (urdftool.compare.diff.Diff) as text, json or markdown on ``stream``."""
+    stream = stream or sys.stdout
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(as_json(result), stream, finite=True)
+    elif output_format == "markdown":
+        stream.write(markdown(result))
+    else:
+        stream.write(text(result))
