@@ -25,7 +25,7 @@ LAYERS = [
     ("collision", ("urdftool.collision",)),
     ("lint", ("urdftool.lint",)),
     ("report", ("urdftool.report",)),
-    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs")),
+    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.server")),
     ("api", ("urdftool",)),
 ]
 # Inside lint, lowest first (the same rule applies).

@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli import check, collisions, dh, dynamics, fk, graph, inertia, rules, tree, xacro
+from urdftool.cli import (check, collisions, dh, dynamics, fk, graph, inertia, rules, server, tree,
+                          xacro)
 
-COMMANDS = (check, collisions, dh, dynamics, fk, graph, inertia, rules, tree, xacro)
+COMMANDS = (check, collisions, dh, dynamics, fk, graph, inertia, rules, server, tree, xacro)
 
 app = typer.Typer(
     name="urdftool",
