@@ -282,3 +282,16 @@ def test_ranges_count_in_the_clients_units():
     assert (utf32.start.character, utf32.end.character) == (12, 29)
     unknown = _range(Location("r.urdf", 2), text, PositionCodec())
     assert unknown.start.character == 2
+
+
+def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
+    import re
+
+    from conftest import ROOT
+    from urdftool.server import COMPANION_SUFFIXES, ROBOT_SUFFIXES
+
+    source = (ROOT / "editors" / "vscode" / "extension.js").read_text()
+    assert '{ command: "urdftool", args: ["server"] }' in source
+    patterns = re.findall(r'pattern: "\*\*/\*\.\{([^}]*)\}"', source)
+    suffixes = {suffix for pattern in patterns for suffix in pattern.split(",")}
+    assert suffixes == {s.lstrip(".") for s in (*ROBOT_SUFFIXES, *COMPANION_SUFFIXES)}
