@@ -240,6 +240,19 @@ async def test_a_check_that_raises_is_reported_and_the_server_goes_on(client: La
     assert bad.as_uri() not in client.diagnostics  # nothing published for it
 
 
+@pytest.mark.asyncio
+async def test_saving_a_settings_file_rechecks_the_robots_under_it(client: LanguageClient,
+                                                                   tmp_path):
+    uri = open_document(client, write_robot(tmp_path / "bot"))
+    await wait_until(lambda: codes(client, uri))
+    settings = tmp_path / "bot" / "urdftool.toml"
+    settings.write_text('ignore = ["inverted-limits"]\n')
+    client.text_document_did_save(types.DidSaveTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=settings.as_uri())))
+    await wait_until(lambda: codes(client, uri) == [])
+    assert codes(client, (tmp_path / "bot" / "arm.xacro").as_uri()) == []
+
+
 def test_a_crash_in_the_check_becomes_an_error_not_an_exception(monkeypatch, tmp_path):
     from urdftool import server
     from urdftool.lint import runner

@@ -361,19 +361,16 @@ class UrdftoolServer(LanguageServer):
             else:
                 targets = None if retarget else self.targets.get(path)
                 also = [robot for robot, read in self.uses.items() if path in read]
-            loop = asyncio.get_running_loop()
-            try:
-                targets, outcomes = await loop.run_in_executor(
-                    self.checks, _work, path, kind, targets, also, buffers,
-                    self.workspace.position_codec)
-            except Exception:
-                self._log(types.MessageType.Error, f"checking {path} failed:\n"
-                                                   f"{traceback.format_exc()}")
-                return
+            targets, outcomes = await asyncio.get_running_loop().run_in_executor(
+                self.checks, _work, path, kind, targets, also, buffers,
+                self.workspace.position_codec)
             if kind != "settings":
                 self.targets[path] = targets
             for outcome in outcomes:
                 self._publish(outcome, ticket)
+        except Exception:  # a bug here: logged, and the server goes on
+            self._log(types.MessageType.Error,
+                      f"checking {display_path(path)} failed:\n{traceback.format_exc()}")
         finally:
             if self.pending.get(path) is asyncio.current_task():
                 del self.pending[path]
