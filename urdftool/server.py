@@ -89,7 +89,8 @@ class Outcome:
     version: of its open document whose text was checked; None when read from disk
     by_path: diagnostics per file (absolute path); the robot's own file always has an entry
     uses: the files the check read (the robot, its includes, its companions)
-    error: why the check raised (a settings file in error, or a bug), instead of findings
+    error: why the check raised, instead of findings: a UrdftoolError's message (a settings
+        file in error: ``user_error``) or a traceback (a bug)
     """
 
     robot: str
