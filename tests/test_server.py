@@ -308,3 +308,39 @@ def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
     patterns = re.findall(r'pattern: "\*\*/\*\.\{([^}]*)\}"', source)
     suffixes = {suffix for pattern in patterns for suffix in pattern.split(",")}
     assert suffixes == {s.lstrip(".") for s in (*ROBOT_SUFFIXES, *COMPANION_SUFFIXES)}
+
+
+@pytest.fixture
+def offline_server(monkeypatch, tmp_path):
+    """A server with a workspace and no client: what it would publish is recorded."""
+    from pygls.workspace import Workspace
+
+    from urdftool.server import UrdftoolServer
+
+    server = UrdftoolServer()
+    server.protocol._workspace = Workspace(tmp_path.as_uri())
+    sent = []
+    monkeypatch.setattr(server, "text_document_publish_diagnostics",
+                        lambda params: sent.append((params.uri, len(params.diagnostics))))
+    monkeypatch.setattr(server, "window_log_message", lambda params: None)
+    return server, sent
+
+
+def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offline_server,
+                                                                            tmp_path):
+    from urdftool.server import Outcome
+
+    server, sent = offline_server
+    robot = str(tmp_path / "robot.urdf")
+    uri = Path(robot).as_uri()
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=3, text="<robot/>"))
+    server.open[robot] = uri
+    diagnostic = types.Diagnostic(range=types.Range(start=types.Position(0, 0),
+                                                    end=types.Position(0, 8)), message="m")
+
+    server._publish(Outcome(robot, 2, {robot: [(diagnostic, None)]}), ticket=5)
+    assert sent == []  # checked version 2, the editor has version 3
+    server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
+    server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
+    assert sent == [(uri, 0)]  # the check that started later wins
