@@ -26,7 +26,8 @@ LAYERS = [
     ("compare", ("urdftool.compare",)),
     ("lint", ("urdftool.lint",)),
     ("report", ("urdftool.report",)),
-    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin")),
+    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin",
+             "urdftool.server")),
     ("api", ("urdftool",)),
 ]
 # Inside lint, lowest first (the same rule applies).

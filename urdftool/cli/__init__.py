@@ -10,10 +10,10 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli import (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render,
-                          rules, tree, workspace, xacro)
+                          rules, server, tree, workspace, xacro)
 
-COMMANDS = (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render, rules, tree,
-            workspace, xacro)
+COMMANDS = (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render, rules, server,
+            tree, workspace, xacro)
 
 app = typer.Typer(
     name="urdftool",

@@ -1,0 +1,346 @@
+"""``urdftool server`` driven by a real LSP client over stdio (pytest-lsp): diagnostics on open,
+on change (debounced) and on save, on the macro file and the companion a finding is in; hover;
+the suppression quick fix; a check that raises does not stop the server."""
+
+from __future__ import annotations
+
+import asyncio
+import shutil
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+pytest_lsp = pytest.importorskip("pytest_lsp")
+from lsprotocol import types  # noqa: E402
+from pytest_lsp import ClientServerConfig, LanguageClient, client_capabilities  # noqa: E402
+
+from conftest import CASES  # noqa: E402
+
+MACRO = """\
+<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="prefix lower upper">
+    <link name="${prefix}_link"/>
+    <joint name="${prefix}_joint" type="revolute">
+      <parent link="base_link"/><child link="${prefix}_link"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="${lower}" upper="${upper}" effort="5" velocity="1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+ROBOT = """\
+<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="arm.xacro"/>
+  <link name="base_link"/>
+  <xacro:arm prefix="left" lower="{lower}" upper="{upper}"/>
+</robot>
+"""
+BROKEN, FIXED = ROBOT.format(lower=1, upper=-1), ROBOT.format(lower=-1, upper=1)
+LIMIT_LINE, CALL_LINE = 7, 4  # 0-based: the <limit> in arm.xacro, the macro call in the robot
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdftool", "server"]))
+async def client(lsp_client: LanguageClient):
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=client_capabilities("visual-studio-code")))
+    yield
+    await lsp_client.shutdown_session()
+
+
+async def wait_until(condition, seconds: float = 60.0):
+    """Poll ``condition()`` until it is true (a check takes about a second the first time)."""
+    for _ in range(int(seconds / 0.05)):
+        if condition():
+            return
+        await asyncio.sleep(0.05)
+    raise AssertionError("timed out waiting for the server")
+
+
+def open_document(client: LanguageClient, path: Path, text: str | None = None,
+                  language: str = "xml") -> str:
+    uri = path.as_uri()
+    client.text_document_did_open(types.DidOpenTextDocumentParams(
+        text_document=types.TextDocumentItem(uri=uri, language_id=language, version=1,
+                                             text=path.read_text() if text is None else text)))
+    return uri
+
+
+def change_document(client: LanguageClient, uri: str, version: int, text: str) -> None:
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+        content_changes=[types.TextDocumentContentChangeWholeDocument(text=text)]))
+
+
+def codes(client: LanguageClient, uri: str) -> list[tuple[int, str]]:
+    return [(d.range.start.line, d.code) for d in client.diagnostics.get(uri, [])]
+
+
+def checked(client: LanguageClient, name: str) -> list[str]:
+    return [m.message for m in client.log_messages if m.message.startswith(f"checked ")
+            and name in m.message]
+
+
+def write_robot(folder: Path, robot: str = BROKEN) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "arm.xacro").write_text(MACRO)
+    path = folder / "robot.urdf.xacro"
+    path.write_text(robot)
+    return path
+
+
+@pytest.mark.asyncio
+async def test_a_finding_in_an_included_macro_is_published_there_and_cleared_when_fixed(
+        client: LanguageClient, tmp_path):
+    robot = write_robot(tmp_path / "bot")
+    macro_uri = (tmp_path / "bot" / "arm.xacro").as_uri()
+    uri = open_document(client, robot)
+    await wait_until(lambda: macro_uri in client.diagnostics and uri in client.diagnostics)
+
+    [on_macro] = client.diagnostics[macro_uri]
+    assert (on_macro.range.start.line, on_macro.code, on_macro.source) == \
+        (LIMIT_LINE, "U204", "urdftool")
+    assert on_macro.severity == types.DiagnosticSeverity.Error
+    assert "lower limit 1 is above upper limit -1" in on_macro.message
+    assert on_macro.code_description.href.endswith("#u204")
+    assert [(r.location.uri, r.location.range.start.line) for r in on_macro.related_information] \
+        == [(uri, CALL_LINE)]
+    [at_call] = client.diagnostics[uri]
+    assert (at_call.range.start.line, at_call.code) == (CALL_LINE, "U204")
+    assert at_call.range.start.character == 2  # the element, not its indentation
+    assert [(r.location.uri, r.location.range.start.line) for r in at_call.related_information] \
+        == [(macro_uri, LIMIT_LINE)]
+
+    change_document(client, uri, 2, FIXED)  # fixed in the buffer, not on disk
+    await wait_until(lambda: codes(client, uri) == [] and codes(client, macro_uri) == [])
+    assert robot.read_text() == BROKEN
+
+
+@pytest.mark.asyncio
+async def test_quick_changes_are_checked_once_at_their_last_version(client: LanguageClient,
+                                                                     tmp_path):
+    robot = write_robot(tmp_path / "bot", FIXED)
+    uri = open_document(client, robot)
+    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    assert codes(client, uri) == []
+
+    for version in range(2, 7):  # well within the debounce time; only the last one is broken
+        change_document(client, uri, version, BROKEN if version == 6 else FIXED + " " * version)
+    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) > 1)
+    await asyncio.sleep(1.0)  # a check of an older version would have been logged by now
+
+    assert len(checked(client, "robot.urdf.xacro")) == 2
+    assert "(version 6)" in checked(client, "robot.urdf.xacro")[-1]
+    assert codes(client, uri) == [(CALL_LINE, "U204")]
+
+
+@pytest.mark.asyncio
+async def test_hover_on_a_rule_code_shows_its_documentation(client: LanguageClient, tmp_path):
+    from urdftool.lint.rules import CATALOGUE
+
+    text = FIXED.replace("  <link name=\"base_link\"/>",
+                         "  <!-- urdftool: ignore U204, unused-suppression -->\n"
+                         "  <link name=\"base_link\"/>")
+    uri = open_document(client, write_robot(tmp_path / "bot", text))
+    line = text.splitlines().index("  <!-- urdftool: ignore U204, unused-suppression -->")
+
+    hover = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(line, text.splitlines()[line].index("U204") + 2)))
+    assert "**U204 inverted-limits**" in hover.contents.value
+    assert CATALOGUE.get("U204").summary in hover.contents.value
+    by_name = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(line, text.splitlines()[line].index("unused-suppression") + 3)))
+    assert "**U901 unused-suppression**" in by_name.contents.value
+    nothing = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(0, 3)))
+    assert nothing is None
+
+
+def apply(text: str, edits: list[types.TextEdit]) -> str:
+    lines = text.splitlines(keepends=True)
+    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character),
+                       reverse=True):
+        start = sum(map(len, lines[:edit.range.start.line])) + edit.range.start.character
+        end = sum(map(len, lines[:edit.range.end.line])) + edit.range.end.character
+        text = text[:start] + edit.new_text + text[end:]
+        lines = text.splitlines(keepends=True)
+    return text
+
+
+@pytest.mark.asyncio
+async def test_the_quick_fix_inserts_a_suppression_that_silences_the_finding(
+        client: LanguageClient, tmp_path):
+    path = tmp_path / "robot.urdf"
+    text = (CASES / "U204_inverted_limits.urdf").read_text()
+    path.write_text(text)
+    uri = open_document(client, path)
+    await wait_until(lambda: client.diagnostics.get(uri))
+    [diagnostic] = client.diagnostics[uri]
+
+    actions = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=diagnostic.range,
+        context=types.CodeActionContext(diagnostics=[diagnostic])))
+    titles = [action.title for action in actions]
+    assert titles == ["Ignore U204 (inverted-limits) here",
+                      "Ignore U204 (inverted-limits) in this file"]
+    [preferred] = [action for action in actions if action.is_preferred]
+    fixed = apply(text, preferred.edit.changes[uri])
+    limit = diagnostic.range.start.line
+    assert fixed.splitlines()[limit] == "    <!-- urdftool: ignore U204 -->"
+    assert fixed.splitlines()[limit + 1] == text.splitlines()[limit]
+
+    change_document(client, uri, 2, fixed)
+    await wait_until(lambda: len(checked(client, "robot.urdf")) == 2)
+    assert codes(client, uri) == []  # silenced, and the suppression is used (no U901)
+
+
+@pytest.mark.asyncio
+async def test_a_companion_file_gets_its_findings_and_a_macro_library_its_robots(
+        client: LanguageClient, tmp_path):
+    folder = tmp_path / "ctl"
+    shutil.copytree(CASES / "U602_controller_unknown_joint", folder)
+    controllers = folder / "config" / "controllers.yaml"
+    uri = open_document(client, controllers, language="yaml")
+    await wait_until(lambda: uri in client.diagnostics)
+    line = controllers.read_text().splitlines().index("      - head_jnt  # expect: U602")
+    assert (line, "U602") in codes(client, uri)
+
+    fixed = controllers.read_text().replace("      - head_jnt  # expect: U602\n", "")
+    controllers.write_text(fixed)
+    client.text_document_did_save(types.DidSaveTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=uri)))
+    await wait_until(lambda: (line, "U602") not in codes(client, uri))
+
+    write_robot(tmp_path / "bot")
+    macro_uri = open_document(client, tmp_path / "bot" / "arm.xacro")  # a library: its robot
+    await wait_until(lambda: macro_uri in client.diagnostics)
+    assert codes(client, macro_uri) == [(LIMIT_LINE, "U204")]
+
+
+@pytest.mark.asyncio
+async def test_a_check_that_raises_is_reported_and_the_server_goes_on(client: LanguageClient,
+                                                                      tmp_path):
+    bad = write_robot(tmp_path / "bad")
+    (tmp_path / "bad" / "urdftool.toml").write_text('select = ["U999"]\n')
+    open_document(client, bad)
+    await wait_until(lambda: client.messages)
+    [message] = client.messages
+    assert message.type == types.MessageType.Error
+    assert "no rule 'U999'" in message.message
+
+    uri = open_document(client, write_robot(tmp_path / "good"))
+    await wait_until(lambda: uri in client.diagnostics)
+    assert codes(client, uri) == [(CALL_LINE, "U204")]
+    assert bad.as_uri() not in client.diagnostics  # nothing published for it
+
+
+@pytest.mark.asyncio
+async def test_saving_a_settings_file_rechecks_the_robots_under_it(client: LanguageClient,
+                                                                   tmp_path):
+    uri = open_document(client, write_robot(tmp_path / "bot"))
+    await wait_until(lambda: codes(client, uri))
+    settings = tmp_path / "bot" / "urdftool.toml"
+    settings.write_text('ignore = ["inverted-limits"]\n')
+    client.text_document_did_save(types.DidSaveTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=settings.as_uri())))
+    await wait_until(lambda: codes(client, uri) == [])
+    assert codes(client, (tmp_path / "bot" / "arm.xacro").as_uri()) == []
+
+
+def test_a_crash_in_the_check_becomes_an_error_not_an_exception(monkeypatch, tmp_path):
+    from urdftool import server
+    from urdftool.lint import runner
+
+    def crash(path, data=None):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(runner, "check_file", crash)
+    outcome = server.check_robot(str(write_robot(tmp_path)), {}, None)
+    assert outcome.by_path == {} and not outcome.user_error
+    assert "RuntimeError: boom" in outcome.error
+
+
+def test_without_pygls_the_command_says_which_extra_to_install():
+    import subprocess
+
+    hide = ("import sys; sys.modules.update(pygls=None, lsprotocol=None); "
+            "sys.argv = ['urdftool', 'server']; from urdftool.cli import main; main()")
+    result = subprocess.run([sys.executable, "-c", hide], capture_output=True, text=True,
+                            timeout=120)
+    assert result.returncode == 2
+    assert "pip install 'urdftool[lsp]'" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_ranges_count_in_the_clients_units():
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool.diagnostics import Location
+    from urdftool.server import _range
+
+    text = textwrap.dedent("""\
+        <robot name="é">
+          <!-- 𝜃 --><joint name="j"/>
+        </robot>
+        """)
+    utf16 = _range(Location("r.urdf", 2, column=13), text, PositionCodec())
+    assert (utf16.start.line, utf16.start.character, utf16.end.character) == (1, 13, 30)
+    utf32 = _range(Location("r.urdf", 2, column=13),
+                   text, PositionCodec(types.PositionEncodingKind.Utf32))
+    assert (utf32.start.character, utf32.end.character) == (12, 29)
+    unknown = _range(Location("r.urdf", 2), text, PositionCodec())
+    assert unknown.start.character == 2
+
+
+def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
+    import re
+
+    from conftest import ROOT
+    from urdftool.server import COMPANION_SUFFIXES, ROBOT_SUFFIXES
+
+    source = (ROOT / "editors" / "vscode" / "extension.js").read_text()
+    assert '{ command: "urdftool", args: ["server"] }' in source
+    patterns = re.findall(r'pattern: "\*\*/\*\.\{([^}]*)\}"', source)
+    suffixes = {suffix for pattern in patterns for suffix in pattern.split(",")}
+    assert suffixes == {s.lstrip(".") for s in (*ROBOT_SUFFIXES, *COMPANION_SUFFIXES)}
+
+
+@pytest.fixture
+def offline_server(monkeypatch, tmp_path):
+    """A server with a workspace and no client: what it would publish is recorded."""
+    from pygls.workspace import Workspace
+
+    from urdftool.server import UrdftoolServer
+
+    server = UrdftoolServer()
+    server.protocol._workspace = Workspace(tmp_path.as_uri())
+    sent = []
+    monkeypatch.setattr(server, "text_document_publish_diagnostics",
+                        lambda params: sent.append((params.uri, len(params.diagnostics))))
+    monkeypatch.setattr(server, "window_log_message", lambda params: None)
+    return server, sent
+
+
+def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offline_server,
+                                                                            tmp_path):
+    from urdftool.server import Outcome
+
+    server, sent = offline_server
+    robot = str(tmp_path / "robot.urdf")
+    uri = Path(robot).as_uri()
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=3, text="<robot/>"))
+    server.open[robot] = uri
+    diagnostic = types.Diagnostic(range=types.Range(start=types.Position(0, 0),
+                                                    end=types.Position(0, 8)), message="m")
+
+    server._publish(Outcome(robot, 2, {robot: [(diagnostic, None)]}), ticket=5)
+    assert sent == []  # checked version 2, the editor has version 3
+    server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
+    server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
+    assert sent == [(uri, 0)]  # the check that started later wins

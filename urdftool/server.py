@@ -1,0 +1,584 @@
+"""``urdftool server``: a language server (LSP over stdio) for editors, built on pygls.
+
+- **Diagnostics** for ``.urdf`` and ``.xacro`` documents on open, on change (the unsaved buffer,
+  debounced by :data:`DEBOUNCE`: the newest version wins, a result for an older version is never
+  published) and on save. Each is checked by :func:`urdftool.check_file`, in this process, with
+  the settings file above it (``urdftool.toml`` or ``[tool.urdftool]``), as ``urdftool check``
+  would check it.
+- A macro library (a ``.xacro`` that only defines macros) is checked through the robots that
+  include it, and a companion file (controllers ``.yaml``, ``.srdf``) through the robots beside it
+  and the robots whose last check read it; both on open and on save, since the robot reads them
+  from disk.
+- A finding is published on the file it is located in, whichever document was checked: one in an
+  included macro file appears on that file, and at each macro call site (with related
+  information pointing at the other). Each robot's diagnostics are kept per file, so a re-check
+  that no longer finds something clears it on every file it was shown on.
+- **Hover** on a rule code (``U204``, or a rule name in an ``urdftool:`` comment) shows the
+  rule's documentation; **code actions** offer the ``<!-- urdftool: ignore CODE -->``
+  suppressions (:data:`ACTION_PROVIDERS`: a provider maps a finding to code actions).
+
+Checks run one at a time in a worker thread (xacro keeps state in module globals), so the server
+answers hovers and code actions while a robot is being checked. A check that raises is logged
+(``window/logMessage``) and shown once (``window/showMessage``); nothing new is published for it
+and the server goes on.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import logging
+import os
+import re
+import sys
+import time
+import traceback
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+
+from lsprotocol import types
+from pygls.lsp.server import LanguageServer
+from pygls.uris import from_fs_path, to_fs_path
+
+from urdftool.diagnostics import Finding, Location, Severity, display_path
+
+ROBOT_SUFFIXES = (".urdf", ".xacro")
+COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
+SETTINGS_NAMES = ("urdftool.toml", "pyproject.toml")
+DEBOUNCE = 0.3  # [s] quiet time after the last change before the buffer is checked
+SOURCE = "urdftool"
+
+_SEVERITIES = {Severity.ERROR: types.DiagnosticSeverity.Error,
+               Severity.WARNING: types.DiagnosticSeverity.Warning,
+               Severity.INFO: types.DiagnosticSeverity.Information}
+_WORD = re.compile(r"[A-Za-z0-9_-]*$"), re.compile(r"^[A-Za-z0-9_-]*")
+_CODE = re.compile(r"[Uu]\d{3}")
+_IGNORE_LINE = re.compile(r"^(\s*)<!--\s*urdftool:\s*ignore\s+(.*?)\s*-->\s*$")
+
+logger = logging.getLogger(__name__)
+
+
+def kind_of(path: str) -> str | None:
+    """'robot', 'companion', 'settings', or None for a file the server leaves alone."""
+    name = os.path.basename(path)
+    if name.endswith(ROBOT_SUFFIXES):
+        return "robot"
+    if name.endswith(COMPANION_SUFFIXES):
+        return "companion"
+    return "settings" if name in SETTINGS_NAMES else None
+
+
+# ---- in the worker thread: checking, and findings -> diagnostics ------------------------------
+
+@dataclass(frozen=True)
+class Buffer:
+    """An open document as it was when a check started."""
+
+    uri: str
+    text: str
+    version: int | None
+
+
+Shown = tuple[types.Diagnostic, Finding]  # a diagnostic and the finding it shows
+
+
+@dataclass
+class Outcome:
+    """One robot checked.
+
+    version: of its open document whose text was checked; None when read from disk
+    by_path: diagnostics per file (absolute path); the robot's own file always has an entry
+    uses: the files the check read (the robot, its includes, its companions)
+    error: why the check raised, instead of findings: a UrdftoolError's message (a settings
+        file in error: ``user_error``) or a traceback (a bug)
+    """
+
+    robot: str
+    version: int | None
+    by_path: dict[str, list[Shown]] = field(default_factory=dict)
+    uses: set[str] = field(default_factory=set)
+    error: str | None = None
+    user_error: bool = False
+    seconds: float = 0.0
+
+
+def robots_for(path: str, kind: str) -> list[str]:
+    """The robots to check for a change to ``path`` (absolute), as ``urdftool check PATH``
+    finds them: the robot itself, or the robots including a macro library; for a companion, the
+    robots in its folder (or in the folder above its ``config/``)."""
+    from urdftool.errors import UrdftoolError
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    if kind == "robot":
+        if not os.path.isfile(path):  # not saved yet: its buffer alone
+            return [path]
+        candidates = [path]
+    elif kind == "companion":
+        folder = os.path.dirname(path)
+        folders = [folder] + ([os.path.dirname(folder)]
+                              if os.path.basename(folder) == "config" else [])
+        candidates = sorted(file for f in folders for file in _robot_files_in(f))
+    else:
+        return []
+    if not candidates:
+        return []
+    try:
+        return [os.path.abspath(file) for file in expand(candidates, CheckRequest()).files]
+    except UrdftoolError:  # a settings file in error: checking the robot says so
+        return [path] if kind == "robot" else []
+
+
+def _robot_files_in(folder: str) -> list[str]:
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return []
+    return [os.path.join(folder, name) for name in names if name.endswith(ROBOT_SUFFIXES)
+            and os.path.isfile(os.path.join(folder, name))]
+
+
+def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
+    """Check ``robot`` (its open buffer when it has one, else the file) and turn its findings
+    into diagnostics per file; an exception becomes ``Outcome.error``."""
+    from urdftool.errors import UrdftoolError
+    from urdftool.lint.runner import check_file
+
+    buffer = buffers.get(robot)
+    outcome = Outcome(robot, buffer.version if buffer else None)
+    started = time.monotonic()
+    try:
+        result = check_file(robot, data=buffer.text if buffer else None)
+    except UrdftoolError as error:
+        outcome.error, outcome.user_error = str(error), True
+        return outcome
+    except Exception:
+        outcome.error = traceback.format_exc()
+        return outcome
+    finally:
+        outcome.seconds = time.monotonic() - started
+    sources = {}
+    if result.robot is not None:
+        sources = {os.path.abspath(name): data.decode("utf-8", "replace")
+                   for name, data in result.robot.sources.items()}
+        outcome.uses = set(sources) | _companions_read(result.robot)
+    texts = _Texts(sources, buffers)
+    outcome.by_path = diagnostics_by_path(result.findings, texts, codec, uri_of=texts.uri)
+    outcome.by_path.setdefault(robot, [])
+    return outcome
+
+
+def _companions_read(robot) -> set[str]:
+    from urdftool.description.companions import companions
+
+    try:
+        found = companions(robot)
+    except Exception:  # discovery is the rules' business: they report what went wrong
+        return set()
+    files = [*found.controllers, found.srdf, found.spec]
+    return {os.path.abspath(file.path) for file in files if file is not None}
+
+
+class _Texts:
+    """The text of each file findings are located in: as the check read it (the robot's
+    sources), else as open in the editor, else from disk."""
+
+    def __init__(self, sources: dict[str, str], buffers: dict[str, Buffer]):
+        self.sources, self.buffers = sources, buffers
+
+    def __call__(self, path: str) -> str:
+        if path in self.sources:
+            return self.sources[path]
+        if path in self.buffers:
+            return self.buffers[path].text
+        from urdftool.description.files import read_regular
+
+        try:
+            text = read_regular(path, 16 * 1024 * 1024).decode("utf-8", "replace")
+        except (OSError, ValueError):
+            text = ""
+        self.sources[path] = text
+        return text
+
+    def uri(self, path: str) -> str:
+        return self.buffers[path].uri if path in self.buffers else from_fs_path(path) or path
+
+
+def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_path
+                        ) -> dict[str, list[Shown]]:
+    """Each finding as a diagnostic on the file it is located in and one at each macro call site
+    that produced it (in the robot, or an intermediate macro), keyed by absolute path; each
+    points at the others as related information. Findings about standard input are left out."""
+    from urdftool.report.sarif_format import help_uri
+
+    by_path: dict[str, list[Shown]] = {}
+    for finding in findings:
+        places = [place for place in (finding.location, *finding.location.via)
+                  if not place.file.startswith("<")]
+        ranges = [_range(place, text_of(os.path.abspath(place.file)), codec) for place in places]
+        where = [types.Location(uri=uri_of(os.path.abspath(place.file)), range=span)
+                 for place, span in zip(places, ranges)]
+        seen = set()
+        for index, (place, span) in enumerate(zip(places, ranges)):
+            path = os.path.abspath(place.file)
+            if (path, span.start.line) in seen:
+                continue
+            seen.add((path, span.start.line))
+            message = finding.message if index == 0 else \
+                f"{finding.message} (at {finding.location}, from this macro call)"
+            related = [types.DiagnosticRelatedInformation(
+                location=other, message="written here" if other_index == 0 else "macro call")
+                for other_index, other in enumerate(where) if other_index != index]
+            diagnostic = types.Diagnostic(
+                range=span, message=message, severity=_SEVERITIES[finding.severity],
+                code=finding.code, source=SOURCE,
+                code_description=types.CodeDescription(href=help_uri(finding.code)),
+                related_information=related or None)
+            by_path.setdefault(path, []).append((diagnostic, finding))
+    return by_path
+
+
+def _range(place: Location, text: str, codec) -> types.Range:
+    """The element's start on ``place.line`` (its column when known, else the first non-blank
+    character) to the end of that line, in the client's position units."""
+    lines = text.splitlines() or [""]
+    number = min(max((place.line or 1) - 1, 0), len(lines) - 1)
+    line = lines[number]
+    if place.column is not None:
+        start = min(place.column - 1, len(line))
+    else:
+        start = len(line) - len(line.lstrip())
+    end = codec.client_num_units(line)
+    start = codec.client_num_units(line[:start])
+    return types.Range(start=types.Position(number, start if start < end else 0),
+                       end=types.Position(number, end))
+
+
+def _work(path: str, kind: str, targets: list[str] | None, also: list[str],
+          buffers: dict[str, Buffer], codec) -> tuple[list[str], list[Outcome]]:
+    """What a job does off the event loop: which robots (``targets`` when known), then each."""
+    if targets is None:
+        targets = robots_for(path, kind)
+    robots = list(dict.fromkeys([*targets, *also]))
+    return targets, [check_robot(robot, buffers, codec) for robot in robots]
+
+
+# ---- on the event loop: documents, jobs, publishing -------------------------------------------
+
+@dataclass
+class _Published:
+    """A robot's last published check: its ticket (later checks have larger ones) and its
+    diagnostics per file."""
+
+    ticket: int
+    by_path: dict[str, list[Shown]]
+
+
+class UrdftoolServer(LanguageServer):
+    """The document state, the debounced jobs and what each robot published."""
+
+    def __init__(self, debounce: float = DEBOUNCE):
+        from urdftool import __version__
+
+        super().__init__("urdftool", __version__)
+        self.debounce = debounce
+        self.checks = ThreadPoolExecutor(max_workers=1, thread_name_prefix="urdftool-check")
+        self.open: dict[str, str] = {}  # path -> the URI the editor named it by
+        self.targets: dict[str, list[str]] = {}  # document path -> the robots it means
+        self.published: dict[str, _Published] = {}  # robot path -> its diagnostics
+        self.uses: dict[str, set[str]] = {}  # robot path -> the files its last check read
+        self.pending: dict[str, asyncio.Task] = {}
+        self.tickets = itertools.count(1)
+        self.errors_shown: set[str] = set()
+
+    # -- documents
+
+    def path_of(self, uri: str) -> str | None:
+        path = to_fs_path(uri)
+        return os.path.abspath(path) if path else None
+
+    def uri_of(self, path: str) -> str:
+        return self.open.get(path) or from_fs_path(path) or path
+
+    def opened(self, uri: str) -> None:
+        path = self.path_of(uri)
+        if path and kind_of(path) in ("robot", "companion"):
+            self.open[path] = uri
+            self.schedule(path, 0.0, retarget=True)
+
+    def changed(self, uri: str) -> None:
+        path = self.path_of(uri)
+        # Included files and companions are read from disk by the robots: checked on save.
+        if path and kind_of(path) == "robot" and path in self.targets.get(path, [path]):
+            self.schedule(path, self.debounce)
+
+    def saved(self, uri: str) -> None:
+        path = self.path_of(uri)
+        if path:
+            self.schedule(path, 0.0, retarget=True)
+
+    def closed(self, uri: str) -> None:
+        """Forget the document; what its robot check published is cleared."""
+        path = self.path_of(uri)
+        if not path:
+            return
+        self.open.pop(path, None)
+        task = self.pending.pop(path, None)
+        if task:
+            task.cancel()
+        self.targets.pop(path, None)
+        self.uses.pop(path, None)
+        previous = self.published.pop(path, None)
+        for shown in previous.by_path if previous else ():
+            self._send(shown)
+
+    def _buffers(self) -> dict[str, Buffer]:
+        buffers = {}
+        for path, uri in self.open.items():
+            document = self.workspace.get_text_document(uri)
+            buffers[path] = Buffer(uri, document.source, document.version)
+        return buffers
+
+    # -- jobs
+
+    def schedule(self, path: str, delay: float, retarget: bool = False) -> None:
+        """Check what ``path`` means after ``delay`` [s]; a job already waiting or running for
+        it is cancelled (its result, if it comes, is dropped)."""
+        kind = kind_of(path)
+        if kind is None:
+            return
+        task = self.pending.pop(path, None)
+        if task:
+            task.cancel()
+        self.pending[path] = asyncio.ensure_future(self._job(path, kind, delay, retarget))
+
+    async def _job(self, path: str, kind: str, delay: float, retarget: bool) -> None:
+        try:
+            await asyncio.sleep(delay)
+            ticket = next(self.tickets)
+            buffers = self._buffers()
+            if kind == "settings":  # a settings file saved: every robot checked so far
+                targets, also = [], list(self.published)
+            else:
+                targets = None if retarget else self.targets.get(path)
+                also = [robot for robot, read in self.uses.items() if path in read]
+            targets, outcomes = await asyncio.get_running_loop().run_in_executor(
+                self.checks, _work, path, kind, targets, also, buffers,
+                self.workspace.position_codec)
+            if kind != "settings":
+                self.targets[path] = targets
+            for outcome in outcomes:
+                self._publish(outcome, ticket)
+        except Exception:  # a bug here: logged, and the server goes on
+            self._log(types.MessageType.Error,
+                      f"checking {display_path(path)} failed:\n{traceback.format_exc()}")
+        finally:
+            if self.pending.get(path) is asyncio.current_task():
+                del self.pending[path]
+
+    # -- publishing
+
+    def _publish(self, outcome: Outcome, ticket: int) -> None:
+        robot = outcome.robot
+        shown = display_path(robot)
+        if outcome.error is not None:
+            what = "cannot check" if outcome.user_error else "internal error checking"
+            self._log(types.MessageType.Error, f"{what} {shown}: {outcome.error}")
+            headline = outcome.error.strip().splitlines()[-1] if outcome.error.strip() else ""
+            if headline not in self.errors_shown:
+                self.errors_shown.add(headline)
+                self.window_show_message(types.ShowMessageParams(
+                    type=types.MessageType.Error, message=f"urdftool: {what} {shown}: {headline}"))
+            return
+        if robot in self.open or outcome.version is not None:
+            buffer = self._buffers().get(robot)
+            if buffer is None or buffer.version != outcome.version:
+                return  # checked an older version: the newer one's job publishes
+        previous = self.published.get(robot)
+        if previous is not None and previous.ticket > ticket:
+            return
+        self.published[robot] = _Published(ticket, outcome.by_path)
+        self.uses[robot] = outcome.uses
+        count = sum(len(v) for v in outcome.by_path.values())
+        version = "" if outcome.version is None else f" (version {outcome.version})"
+        self._log(types.MessageType.Log, f"checked {shown}{version}: {count} diagnostic(s) "
+                                         f"in {outcome.seconds:.2f} s")
+        for path in {*outcome.by_path, *(previous.by_path if previous else ())}:
+            self._send(path)
+
+    def _send(self, path: str) -> None:
+        """Publish on ``path`` what every robot's last check found there."""
+        seen, diagnostics = set(), []
+        for published in self.published.values():
+            for diagnostic, _ in published.by_path.get(path, ()):
+                key = (diagnostic.range.start.line, diagnostic.range.start.character,
+                       diagnostic.code, diagnostic.message)
+                if key not in seen:
+                    seen.add(key)
+                    diagnostics.append(diagnostic)
+        self.text_document_publish_diagnostics(
+            types.PublishDiagnosticsParams(uri=self.uri_of(path), diagnostics=diagnostics))
+
+    def _log(self, kind: types.MessageType, message: str) -> None:
+        logger.log(logging.ERROR if kind == types.MessageType.Error else logging.INFO, message)
+        self.window_log_message(types.LogMessageParams(type=kind, message=message))
+
+    def finding_for(self, path: str, diagnostic: types.Diagnostic) -> Finding | None:
+        """The finding a diagnostic the editor sends back (code actions) shows."""
+        for published in self.published.values():
+            for shown, finding in published.by_path.get(path, ()):
+                if (shown.range.start.line, shown.code, shown.message) == \
+                        (diagnostic.range.start.line, diagnostic.code, diagnostic.message):
+                    return finding
+        return None
+
+    # -- hover and code actions
+
+    def hover(self, params: types.HoverParams) -> types.Hover | None:
+        document = self.workspace.get_text_document(params.text_document.uri)
+        word = document.word_at_position(params.position, *_WORD)
+        line = document.lines[params.position.line] if params.position.line < len(
+            document.lines) else ""
+        found = rule_named(word, in_comment="urdftool:" in line)
+        if found is None:
+            return None
+        return types.Hover(contents=types.MarkupContent(kind=types.MarkupKind.Markdown,
+                                                        value=rule_markdown(found)))
+
+    def code_actions(self, params: types.CodeActionParams) -> list[types.CodeAction] | None:
+        path = self.path_of(params.text_document.uri)
+        if not path or kind_of(path) != "robot":
+            return None
+        lines = list(self.workspace.get_text_document(params.text_document.uri).lines)
+        actions = []
+        for diagnostic in params.context.diagnostics:
+            if diagnostic.source != SOURCE or not isinstance(diagnostic.code, str):
+                continue
+            finding = self.finding_for(path, diagnostic)
+            for provider in ACTION_PROVIDERS:
+                actions.extend(provider(params.text_document.uri, lines, diagnostic, finding,
+                                        self.workspace.position_codec))
+        return actions or None
+
+
+def rule_named(word: str, in_comment: bool = False):
+    """The rule a word names: a code anywhere, a rule name in an ``urdftool:`` comment."""
+    from urdftool.lint.rules import CATALOGUE
+
+    if _CODE.fullmatch(word) and word.upper() in CATALOGUE:
+        return CATALOGUE.get(word.upper())
+    if in_comment and "-" in word:
+        return next((rule for rule in CATALOGUE if rule.name == word), None)
+    return None
+
+
+def rule_markdown(rule) -> str:
+    from urdftool.report.sarif_format import help_uri
+
+    return (f"**{rule.code} {rule.name}** ({rule.severity.value}, {rule.family})\n\n"
+            f"{rule.doc or rule.summary}\n\n[{rule.code} in the documentation]"
+            f"({help_uri(rule.code)})")
+
+
+# ---- code actions: a provider maps (document, diagnostic, finding) to code actions ------------
+
+def _line_ending(lines: list[str]) -> str:
+    return "\r\n" if lines and lines[0].endswith("\r\n") else "\n"
+
+
+def _title(diagnostic: types.Diagnostic, finding: Finding | None) -> str:
+    return f"{diagnostic.code} ({finding.name})" if finding else str(diagnostic.code)
+
+
+def _action(title: str, uri: str, diagnostic: types.Diagnostic, edit: types.TextEdit,
+            preferred: bool = False) -> types.CodeAction:
+    return types.CodeAction(title=title, kind=types.CodeActionKind.QuickFix,
+                            diagnostics=[diagnostic], is_preferred=preferred or None,
+                            edit=types.WorkspaceEdit(changes={uri: [edit]}))
+
+
+def suppress_on_line(uri: str, lines: list[str], diagnostic: types.Diagnostic,
+                     finding: Finding | None, codec) -> list[types.CodeAction]:
+    """``<!-- urdftool: ignore CODE -->`` on the line above the element, indented as it is; the
+    code added to such a comment when the line above already is one."""
+    code, number = str(diagnostic.code), diagnostic.range.start.line
+    line = lines[number] if number < len(lines) else ""
+    title = f"Ignore {_title(diagnostic, finding)} here"
+    above = _IGNORE_LINE.match(lines[number - 1].rstrip("\r\n")) if 0 < number <= len(lines) \
+        else None
+    if above:
+        if code in re.split(r"[\s,]+", above.group(2)):
+            return []
+        previous = lines[number - 1].rstrip("\r\n")
+        edit = types.TextEdit(
+            range=types.Range(start=types.Position(number - 1, 0),
+                              end=types.Position(number - 1, codec.client_num_units(previous))),
+            new_text=f"{above.group(1)}<!-- urdftool: ignore {above.group(2)}, {code} -->")
+        return [_action(title, uri, diagnostic, edit)]
+    indent = line[:len(line) - len(line.lstrip())]
+    edit = types.TextEdit(range=types.Range(start=types.Position(number, 0),
+                                            end=types.Position(number, 0)),
+                          new_text=f"{indent}<!-- urdftool: ignore {code} -->{_line_ending(lines)}")
+    return [_action(title, uri, diagnostic, edit, preferred=True)]
+
+
+def suppress_in_file(uri: str, lines: list[str], diagnostic: types.Diagnostic,
+                     finding: Finding | None, codec) -> list[types.CodeAction]:
+    """``<!-- urdftool: ignore-file CODE -->`` at the top (after the XML declaration)."""
+    number = 1 if lines and lines[0].lstrip().startswith("<?xml") else 0
+    edit = types.TextEdit(range=types.Range(start=types.Position(number, 0),
+                                            end=types.Position(number, 0)),
+                          new_text=f"<!-- urdftool: ignore-file {diagnostic.code} -->"
+                                   f"{_line_ending(lines)}")
+    return [_action(f"Ignore {_title(diagnostic, finding)} in this file", uri, diagnostic, edit)]
+
+
+# Each provider: (uri, document lines, diagnostic, finding or None, position codec) -> actions.
+ACTION_PROVIDERS = (suppress_on_line, suppress_in_file)
+
+
+# ---- the server -------------------------------------------------------------------------------
+
+_DOCUMENT_EVENTS = {types.TEXT_DOCUMENT_DID_OPEN: "opened",
+                    types.TEXT_DOCUMENT_DID_CHANGE: "changed",
+                    types.TEXT_DOCUMENT_DID_SAVE: "saved",
+                    types.TEXT_DOCUMENT_DID_CLOSE: "closed"}
+
+
+def _on_document(event: str):
+    """A notification handler calling ``UrdftoolServer.<event>(uri)``."""
+
+    def handler(ls: UrdftoolServer, params) -> None:
+        getattr(ls, event)(params.text_document.uri)
+
+    return handler
+
+
+def make_server(debounce: float = DEBOUNCE) -> UrdftoolServer:
+    server = UrdftoolServer(debounce)
+    for method, event in _DOCUMENT_EVENTS.items():
+        server.feature(method)(_on_document(event))
+
+    @server.feature(types.TEXT_DOCUMENT_HOVER)
+    def hover(ls: UrdftoolServer, params: types.HoverParams):
+        return ls.hover(params)
+
+    @server.feature(types.TEXT_DOCUMENT_CODE_ACTION,
+                    types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix]))
+    def code_action(ls: UrdftoolServer, params: types.CodeActionParams):
+        return ls.code_actions(params)
+
+    return server
+
+
+def serve(log_file: str | None = None) -> None:
+    """Run the server on standard input and output until the editor ends it."""
+    if log_file:
+        logging.basicConfig(filename=log_file, level=logging.DEBUG,
+                            format="%(asctime)s %(name)s %(levelname)s %(message)s")
+    # The protocol writes to its own copy of standard output; anything else written there (a
+    # library's print, C code) goes to standard error instead of corrupting the messages.
+    protocol_out = os.fdopen(os.dup(sys.stdout.fileno()), "wb")
+    os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
+    sys.stdout = sys.stderr
+    make_server().start_io(sys.stdin.buffer, protocol_out)
