@@ -57,10 +57,10 @@ class FileResult:
     robot: object | None = None
 
 
-def stamp(rule: Rule, where, message: str, robot) -> Finding:
-    """A finding for ``rule`` at ``where`` (element, Location or None)."""
+def stamp(rule: Rule, where, message: str, robot, fix=None) -> Finding:
+    """A finding for ``rule`` at ``where`` (element, Location or None), with its fix if any."""
     location = where if isinstance(where, Location) else robot.locate(where)
-    return rule.finding(message, location)
+    return rule.finding(message, location, fix)
 
 
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
@@ -105,8 +105,8 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
         if rule.check is None or not selection.allows(rule.code):
             continue
         try:
-            for where, message in rule.check(robot):
-                findings.append(stamp(rule, where, message, robot))
+            for where, message, *fix in rule.check(robot):
+                findings.append(stamp(rule, where, message, robot, *fix))
         except MemoryError:
             raise  # over the memory budget: the runner reports it (U018)
         except Exception as error:  # a bug in a rule must not hide the other findings

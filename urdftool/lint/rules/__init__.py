@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
-                                 loading, spec, srdf, transmissions, tree)
+                                 loading, spec, srdf, transmissions, tree,
+                                 vocabulary)
 
-FAMILY_MODULES = (loading, tree, joints, inertials, geometry, transmissions, controllers, gazebo,
+FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions, controllers, gazebo,
                   spec, srdf, internal)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 

@@ -1,0 +1,321 @@
+"""Fixes: edits of the files the user wrote that remove a finding, and applying them.
+
+A rule builds the fix of a finding with the helpers here, from the robot element it reports. The
+edit lands in the file where that element was written, at its start tag (for xacro, through
+includes and macros: :meth:`Robot.locate` keeps where each expanded element came from), at the
+literal that produced the value. Text spans are replaced; the XML is never re-serialised, so
+formatting, comments and attribute order stay as they were.
+
+When the value came from an expression or a macro argument (``${...}``, ``$(arg ...)``) there is
+no edit: the helper returns :class:`Unfixable`, whose reason says where the value came from, and
+the rule adds it to its message (:func:`offer`).
+
+:func:`plan` gathers the fixes of checked files (safe ones, or all with ``unsafe``), refuses
+edits of files outside the checked robot's containment root and edits whose text is no longer
+what was read, and gives the new contents; :func:`write` writes them atomically.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from xml.parsers import expat
+
+from urdftool.diagnostics import Edit, Fix
+
+_ATTRIBUTE = re.compile(rb"""(\s+)([^\s/>=]+)(\s*=\s*)("([^"]*)"|'([^']*)')""")
+_TAG_END = re.compile(rb"\s*(/?)>")
+_NAME = re.compile(rb"<([^\s/>]+)")
+EXPRESSION = re.compile(r"\$\{|\$\(")
+
+
+@dataclass(frozen=True)
+class Unfixable:
+    """Why a finding has no fix: ``reason`` reads as the end of a sentence."""
+
+    reason: str
+
+
+@dataclass
+class _Tag:
+    """A start tag in a source file: byte offsets of its parts."""
+
+    start: int
+    end: int  # after the '>'
+    line: int
+    name: str
+    name_span: tuple[int, int]
+    attributes: dict[str, tuple[tuple[int, int], tuple[int, int], str]] = field(default_factory=dict)
+    self_closing: bool = False
+    close_name: tuple[int, int] | None = None  # the name in the end tag
+
+
+@dataclass
+class Source:
+    """One file as read, with its start tags."""
+
+    file: str
+    data: bytes
+    tags: list[_Tag]
+
+    def position(self, offset: int) -> tuple[int, int]:
+        """1-based line and 0-based column (in characters) of a byte offset."""
+        line_start = self.data.rfind(b"\n", 0, offset) + 1
+        column = len(self.data[line_start:offset].decode("utf-8", errors="replace"))
+        return self.data.count(b"\n", 0, offset) + 1, column
+
+    def edit(self, start: int, end: int, text: str) -> Edit:
+        line, column = self.position(start)
+        old = self.data[start:end].decode("utf-8", errors="replace")
+        return Edit(self.file, start, end, text, old, line, column)
+
+
+def parse_source(file: str, data: bytes) -> Source | None:
+    """The start tags of ``data``; None when it is not well-formed XML."""
+    tags: list[_Tag] = []
+    stack: list[_Tag] = []
+    parser = expat.ParserCreate()
+
+    def on_start(name, attributes):
+        tag = _read_tag(data, parser.CurrentByteIndex, parser.CurrentLineNumber)
+        tags.append(tag)
+        stack.append(tag)
+
+    def on_end(name):
+        tag = stack.pop()
+        at = parser.CurrentByteIndex
+        if not tag.self_closing and data[at:at + 2] == b"</":
+            tag.close_name = (at + 2, at + 2 + len(name.encode("utf-8")))
+
+    parser.StartElementHandler = on_start
+    parser.EndElementHandler = on_end
+    try:
+        parser.Parse(data, True)
+    except (expat.ExpatError, ValueError, LookupError):
+        return None
+    return Source(file, data, tags)
+
+
+def _read_tag(data: bytes, start: int, line: int) -> _Tag:
+    name = _NAME.match(data, start)
+    tag = _Tag(start, start, line, name.group(1).decode("utf-8"), name.span(1))
+    at = name.end()
+    while True:
+        match = _ATTRIBUTE.match(data, at)
+        if match is None:
+            break
+        quoted = match.span(4)
+        tag.attributes[match.group(2).decode("utf-8")] = (
+            match.span(2), (quoted[0] + 1, quoted[1] - 1),
+            (match.group(5) if match.group(5) is not None else match.group(6)).decode("utf-8"))
+        at = match.end()
+    end = _TAG_END.match(data, at)
+    tag.self_closing = bool(end and end.group(1))
+    tag.end = end.end() if end else at
+    return tag
+
+
+def source(robot, file: str) -> Source | None:
+    """The source of one file the robot was built from (parsed once per robot)."""
+    def read():
+        data = robot.sources.get(file)
+        return parse_source(file, data) if data is not None else None
+    return robot.memo(("fixes.source", file), read)
+
+
+def _local(name: str) -> str:
+    return name.rsplit("}", 1)[-1].rsplit(":", 1)[-1]
+
+
+def source_tag(robot, element) -> tuple[Source, _Tag] | Unfixable:
+    """The start tag where ``element`` of the robot was written."""
+    location = robot.locations.get(element)
+    if location is None or location.line is None:
+        return Unfixable("urdftool does not know where this element was written")
+    found = source(robot, location.file)
+    if found is None:
+        return Unfixable(f"{location.file} was not read as XML")
+    if not robot.from_xacro:  # one file, parsed as loaded: elements and tags in the same order
+        order = robot.memo("fixes.order", lambda: {e: i for i, e in enumerate(
+            e for e in robot.root.iter() if isinstance(e.tag, str))})
+        index = order.get(element)
+        if index is not None and index < len(found.tags) and \
+                _local(found.tags[index].name) == _local(element.tag):
+            return found, found.tags[index]
+        return Unfixable("its start tag was not found")
+    candidates = [t for t in found.tags if t.line == location.line
+                  and _local(t.name) == _local(element.tag)]
+    if len(candidates) > 1:  # several on one line: the one whose literals match
+        candidates = [t for t in candidates if all(
+            element.get(name) == raw for name, (_, _, raw) in t.attributes.items()
+            if not EXPRESSION.search(raw) and not name.startswith(("xmlns", "xacro:")))]
+    if len(candidates) != 1:
+        return Unfixable(f"its start tag at {location} is not the only <{_local(element.tag)}> "
+                         "there")
+    return found, candidates[0]
+
+
+def _escape(value: str) -> str:
+    return value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+
+
+def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixable:
+    """Edits giving ``element``'s attribute ``name`` the value ``value``: the literal replaced,
+    or the attribute added after the last one; Unfixable when the value came from an
+    expression."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if name in tag.attributes:
+        _, (start, end), raw = tag.attributes[name]
+        if EXPRESSION.search(raw):
+            line, _ = text.position(start)
+            return Unfixable(f"{name} comes from the expression \"{raw}\" at {text.file}:{line}; "
+                             "change it there or where its parts are defined")
+        quote = text.data[start - 1:start]
+        escaped = _escape(value) if quote == b'"' else _escape(value).replace("'", "&apos;")
+        return [text.edit(start, end, escaped)]
+    if element.get(name) is not None:
+        return Unfixable(f"{name} is not written at {text.file}:{tag.line} (set by xacro)")
+    closing = text.data.rfind(b"/>" if tag.self_closing else b">", tag.start, tag.end)
+    at = closing
+    while at > tag.start and text.data[at - 1:at].isspace():
+        at -= 1
+    return [text.edit(at, at, f' {name}="{_escape(value)}"')]
+
+
+def swap_attributes(robot, element, first: str, second: str,
+                    default: str | None = None) -> list[Edit] | Unfixable:
+    """Edits exchanging the values of two attributes of ``element`` (``default``: the value an
+    absent one stands for)."""
+    values = [element.get(name, default) for name in (first, second)]
+    if None in values:
+        return Unfixable(f"{first} or {second} is missing")
+    edits = []
+    for name, value in ((first, values[1]), (second, values[0])):
+        found = set_attribute(robot, element, name, value)
+        if isinstance(found, Unfixable):
+            return found
+        edits.extend(found)
+    return edits
+
+
+def rename_attribute(robot, element, old: str, new: str) -> list[Edit] | Unfixable:
+    """Edits renaming attribute ``old`` of ``element`` to ``new`` where it was written."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if old not in tag.attributes:
+        return Unfixable(f"attribute {old} is not written at {text.file}:{tag.line}")
+    start, end = tag.attributes[old][0]
+    return [text.edit(start, end, new)]
+
+
+def rename_element(robot, element, new: str) -> list[Edit] | Unfixable:
+    """Edits renaming ``element`` to ``new`` in its start tag and its end tag."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if ":" in tag.name:
+        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} is not a plain element")
+    edits = [text.edit(*tag.name_span, new)]
+    if tag.close_name is not None:
+        edits.append(text.edit(*tag.close_name, new))
+    return edits
+
+
+def offer(where, message: str, description: str, edits, safe: bool = True):
+    """What a rule yields for a finding with a possible fix: ``(where, message, fix)``, or,
+    when ``edits`` is :class:`Unfixable`, the message with why there is no fix."""
+    if isinstance(edits, Unfixable):
+        return where, f"{message} (no automatic fix: {edits.reason})", None
+    return where, message, Fix(description, tuple(edits), safe)
+
+
+# --- applying ---------------------------------------------------------------------------------
+
+
+@dataclass
+class Plan:
+    """What applying the fixes would do.
+
+    changed: file (as findings name it) -> (bytes now, bytes after)
+    applied: the fixes taken; skipped: (fix, why) of those left out
+    """
+
+    changed: dict[str, tuple[bytes, bytes]] = field(default_factory=dict)
+    applied: list[Fix] = field(default_factory=list)
+    skipped: list[tuple[Fix, str]] = field(default_factory=list)
+
+
+def plan(results, unsafe: bool = False, read=None) -> Plan:
+    """The fixes of ``results`` (FileResults) that apply: safe ones, unsafe ones too with
+    ``unsafe``. A fix is taken whole or not at all; it is left out when one of its edits is
+    outside the checked robot's containment root, when the file no longer holds the text
+    the edit replaces, or when it overlaps an edit already taken."""
+    from urdftool.description.files import inside, read_regular
+    from urdftool.description.packages import containment_root
+
+    read = read or read_regular
+    result = Plan()
+    current: dict[str, bytes] = {}
+    taken: dict[str, list[Edit]] = {}
+    for checked in results:
+        if checked is None or checked.path == "-":
+            continue
+        root = containment_root(os.path.dirname(os.path.abspath(checked.path)))
+        for finding in checked.findings:
+            fix = finding.fix
+            if fix is None or not (fix.safe or unsafe) or fix in result.applied:
+                continue
+            why = _refusal(fix, root, current, taken, read, inside)
+            if why == "":
+                continue  # the same edits, already taken for another finding
+            if why:
+                result.skipped.append((fix, why))
+                continue
+            for edit in fix.edits:
+                if edit not in taken.get(edit.file, ()):
+                    taken.setdefault(edit.file, []).append(edit)
+            result.applied.append(fix)
+    for file, edits in taken.items():
+        data = current[file]
+        after = data
+        for edit in sorted(edits, key=lambda e: (e.start, e.end), reverse=True):
+            after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
+        result.changed[file] = (data, after)
+    return result
+
+
+def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
+    """Why ``fix`` cannot be taken; "" when all its edits are taken already; None: take it."""
+    if all(edit in taken.get(edit.file, ()) for edit in fix.edits):
+        return ""
+    for edit in fix.edits:
+        if not inside(edit.file, root):
+            return f"{edit.file} is outside the repository ({root})"
+        if edit.file not in current:
+            try:
+                current[edit.file] = read(edit.file)
+            except OSError as error:
+                return f"{edit.file} cannot be read: {error.strerror}"
+        data = current[edit.file]
+        if data[edit.start:edit.end].decode("utf-8", errors="replace") != edit.old:
+            return f"{edit.file} changed since it was checked"
+        for other in taken.get(edit.file, ()):
+            if other != edit and other.start < max(edit.end, edit.start + 1) and \
+                    edit.start < max(other.end, other.start + 1):
+                return f"it overlaps another fix in {edit.file}"
+    return None
+
+
+def write(changes: Plan) -> None:
+    """Write the changed files, each atomically (a temporary file replaces it)."""
+    from urdftool.description.files import write_file
+
+    for file, (_, after) in changes.changed.items():
+        write_file(file, after)
