@@ -172,8 +172,7 @@ def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixab
         _, (start, end), raw = tag.attributes[name]
         if EXPRESSION.search(raw):
             line, _ = text.position(start)
-            return Unfixable(f"{name} comes from the expression \"{raw}\" at {text.file}:{line}; "
-                             "change it there or where its parts are defined")
+            return Unfixable(_origin(robot, element, name, raw, f"{text.file}:{line}"))
         quote = text.data[start - 1:start]
         escaped = _escape(value) if quote == b'"' else _escape(value).replace("'", "&apos;")
         return [text.edit(start, end, escaped)]
@@ -184,6 +183,28 @@ def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixab
     while at > tag.start and text.data[at - 1:at].isspace():
         at -= 1
     return [text.edit(at, at, f' {name}="{_escape(value)}"')]
+
+
+_ARGUMENT = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
+
+
+def _origin(robot, element, name: str, raw: str, where: str) -> str:
+    """Where an attribute value written as an expression came from: the macro argument of the
+    call that produced the element when the expression is one (``${axis}``), else the
+    expression itself."""
+    argument = _ARGUMENT.fullmatch(raw.strip())
+    location = robot.locations.get(element)
+    if argument and location is not None:
+        for site in location.via:
+            text = source(robot, site.file)
+            calls = [t for t in (text.tags if text else ()) if t.line == site.line
+                     and t.name.startswith("xacro:") and argument.group(1) in t.attributes]
+            if len(calls) == 1:
+                value = calls[0].attributes[argument.group(1)][2]
+                return (f"{name} is the macro argument {argument.group(1)}=\"{value}\" of the "
+                        f"call at {site}; change it there")
+    return (f"{name} comes from the expression \"{raw}\" at {where}; change it there or where "
+            "its parts are defined")
 
 
 def swap_attributes(robot, element, first: str, second: str,
@@ -200,6 +221,19 @@ def swap_attributes(robot, element, first: str, second: str,
             return found
         edits.extend(found)
     return edits
+
+
+def insert_before(robot, element, xml: str) -> list[Edit] | Unfixable:
+    """An edit writing the element ``xml`` just before ``element``'s start tag, on a line of
+    its own with the same indentation when ``element`` starts its line."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    line_start = text.data.rfind(b"\n", 0, tag.start) + 1
+    indent = text.data[line_start:tag.start]
+    separator = "\n" + indent.decode("utf-8") if not indent.strip() else " "
+    return [text.edit(tag.start, tag.start, xml + separator)]
 
 
 def rename_attribute(robot, element, old: str, new: str) -> list[Edit] | Unfixable:
@@ -228,9 +262,31 @@ def rename_element(robot, element, new: str) -> list[Edit] | Unfixable:
     return edits
 
 
+def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
+    """Edits turning ``<parent><name>text</name></parent>`` into ``<parent name="text">``: the
+    attribute set on the parent, the element (and the blanks before it on its line) deleted."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if tag.close_name is None:
+        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} holds no value")
+    end = text.data.find(b">", tag.close_name[1]) + 1
+    value = text.data[tag.end:tag.close_name[0] - 2].decode("utf-8", errors="replace")
+    if "<" in value or EXPRESSION.search(value) or not value.strip():
+        return Unfixable(f"the value of <{tag.name}> at {text.file}:{tag.line} is not a plain "
+                         "literal")
+    attribute = set_attribute(robot, element.getparent(), _local(element.tag), value.strip())
+    if isinstance(attribute, Unfixable):
+        return attribute
+    return attribute + [text.edit(tag.start, end, "")]
+
+
 def offer(where, message: str, description: str, edits, safe: bool = True):
-    """What a rule yields for a finding with a possible fix: ``(where, message, fix)``, or,
-    when ``edits`` is :class:`Unfixable`, the message with why there is no fix."""
+    """What a rule yields for a finding with a possible fix: ``(where, message, fix)``; when
+    ``edits`` is :class:`Unfixable`, the message with why there is no fix; None: no fix."""
+    if edits is None:
+        return where, message, None
     if isinstance(edits, Unfixable):
         return where, f"{message} (no automatic fix: {edits.reason})", None
     return where, message, Fix(description, tuple(edits), safe)
@@ -311,6 +367,28 @@ def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
                     edit.start < max(other.end, other.start + 1):
                 return f"it overlaps another fix in {edit.file}"
     return None
+
+
+MAX_PASSES = 10  # a fix can make another finding (an unused suppression) and its fix appear
+
+
+def apply(results, recheck, unsafe: bool = False):
+    """Apply fixes and check again until nothing more is fixed (at most MAX_PASSES times).
+
+    recheck: ``() -> results`` checks the same targets again
+    Returns (the results of the last check, fixes applied, files changed, skipped fixes).
+    """
+    applied, changed, skipped = 0, set(), []
+    for _ in range(MAX_PASSES):
+        changes = plan(results, unsafe=unsafe)
+        skipped = changes.skipped
+        if not changes.changed:
+            break
+        write(changes)
+        applied += len(changes.applied)
+        changed.update(changes.changed)
+        results = recheck()
+    return results, applied, changed, skipped
 
 
 def write(changes: Plan) -> None:

@@ -11,12 +11,21 @@ def as_dict(results) -> dict:
         "version": 1,
         "diagnostics": [
             {"file": f.file, "line": f.line, "code": f.code, "name": f.name,
-             "severity": f.severity.value, "message": f.message}
+             "severity": f.severity.value, "message": f.message,
+             **({"fix": _fix(f.fix)} if f.fix is not None else {})}
             for f in all_findings(results)
         ],
         "summary": {"files": summary.files, "errors": summary.errors,
                     "warnings": summary.warnings},
     }
+
+
+def _fix(fix) -> dict:
+    """A fix as data: what it does, whether --fix applies it (safe) or only --unsafe-fixes,
+    and its edits (byte offsets and 1-based line, 0-based column of where each starts)."""
+    return {"description": fix.description, "safe": fix.safe, "edits": [
+        {"file": e.file, "line": e.line, "column": e.column, "start": e.start, "end": e.end,
+         "old": e.old, "new": e.text} for e in fix.edits]}
 
 
 def render(results, stream) -> None:

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import Unfixable, insert_before, offer, set_attribute
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
@@ -71,6 +72,50 @@ def _judged(robot):
     for link, properties in _valid(robot):
         if properties.mass >= PLACEHOLDER_MASS:
             yield link, properties
+
+
+def _from_geometry(robot, link, mass: float):
+    """Edits replacing a link's inertial origin and inertia with those its geometry gives at
+    the declared ``mass`` (link axes, origin at the centre of mass); None without usable
+    geometry, Unfixable when a value comes from an expression."""
+    from urdftool.physics.solids import computed, link_solid
+
+    solid = link_solid(robot, link)
+    if not solid.parts or solid.problems:
+        return None  # nothing to compute it from (a missing mesh is reported on its own)
+    body = computed(solid, mass=mass)
+    inertial = link.find("inertial")
+    edits = []
+    origin = inertial.find("origin")
+    com = " ".join(f"{v:.6g}" for v in body.com)
+    if origin is not None:
+        changes = [("xyz", com)] + ([("rpy", "0 0 0")] if origin.get("rpy") is not None else [])
+        for name, value in changes:
+            edits.append(set_attribute(robot, origin, name, value))
+    elif any(abs(v) > 1e-9 for v in body.com):
+        edits.append(insert_before(robot, inertial.find("mass"), f'<origin xyz="{com}"/>'))
+    tensor = body.inertia
+    for name, (row, column) in zip(INERTIA_ATTRIBUTES, _TERMS):
+        edits.append(set_attribute(robot, inertial.find("inertia"), name,
+                                   f"{tensor[row][column]:.6g}"))
+    unfixable = next((e for e in edits if isinstance(e, Unfixable)), None)
+    return unfixable or [edit for group in edits for edit in group]
+
+
+_TERMS = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+
+
+def _recomputed(robot, link, properties, message: str):
+    """The finding on ``link``'s <inertia>, with the inertia from geometry as its unsafe fix."""
+    return offer(link.find("inertial").find("inertia"), message,
+                 f"replace link '{_name(link)}' inertia with its {_solid_source(robot, link)} "
+                 "geometry's", _from_geometry(robot, link, properties.mass), safe=False)
+
+
+def _solid_source(robot, link) -> str:
+    from urdftool.physics.solids import link_solid
+
+    return link_solid(robot, link).source
 
 
 def _moving(robot) -> dict:
@@ -183,21 +228,25 @@ def inertia_not_positive_definite(robot):
     A body with mass but no rotational inertia cannot be simulated: MuJoCo refuses it, and
     Gazebo/ODE produce an explosion. Zero mass with zero inertia (a massless frame) is fine.
 
+    Fix (unsafe): the inertia (and inertial origin) computed from the link's geometry at its
+    declared mass; a person should confirm the geometry stands for the body.
+
     Bad: ``<mass value="0.5"/><inertia ixx="0" ... iyy="0" ... izz="0"/>`` on a revolute link
     Good: the inertia of the link's shape, e.g. ``urdftool inertia ROBOT``
     """
     moving = _moving(robot)
     for link, properties in _judged(robot):
         diagonal = _diagonal(properties)
-        inertia = link.find("inertial").find("inertia")
         if any(v < -NEGATIVE_FLOOR for v in diagonal):
             names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
-            yield inertia, (f"link '{_name(link)}': {', '.join(names)} negative; moments of "
-                            "inertia are positive")
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
+                "positive"))
         elif _name(link) in moving and all(abs(v) < ZERO_INERTIA
                                            for row in properties.inertia for v in row):
-            yield inertia, (f"link '{_name(link)}' has mass {properties.mass:g} kg but zero "
-                            "inertia and is moved by a joint; give the inertia of its shape")
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
+                "moved by a joint; give the inertia of its shape"))
 
 
 @rule("U305", "inertia-indefinite", Severity.ERROR)
@@ -207,6 +256,8 @@ def inertia_indefinite(robot):
     A principal moment is negative although every diagonal moment is positive. No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
     reporting products of inertia with the opposite sign convention).
 
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
+
     Bad: ``ixx="1" iyy="1" izz="1" ixy="2"`` (principal moments -1, 1, 3)
     Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
     """
@@ -215,10 +266,10 @@ def inertia_indefinite(robot):
             continue
         moments, largest = _principal(properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
-            yield link.find("inertial").find("inertia"), (
+            yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
                 f"{', '.join(f'{m:.4g}' for m in moments)} include a negative one; check the "
-                "signs of ixy, ixz, iyz")
+                "signs of ixy, ixz, iyz"))
 
 
 @rule("U306", "inertia-triangle-inequality", Severity.ERROR)
@@ -227,6 +278,8 @@ def inertia_triangle_inequality(robot):
 
     MuJoCo refuses the model; Gazebo and PyBullet simulate physically impossible motion.
     Allows a relative slack of 1e-3 for printed rounding.
+
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
 
     Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5)
     Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
@@ -238,9 +291,9 @@ def inertia_triangle_inequality(robot):
             continue
         broken = triangle_violation(moments, TRIANGLE_TOLERANCE)
         if broken:
-            yield link.find("inertial").find("inertia"), (
+            yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments violate the triangle inequality "
-                f"({broken}); recompute with `urdftool inertia`")
+                f"({broken}); recompute with `urdftool inertia`"))
 
 
 def _link_solids(robot):
@@ -321,6 +374,8 @@ def inertia_unit_mistake(robot):
     kilograms (g·m^2), 10^6 at millimetres vs metres (kg·mm^2). Skipped when a mesh is missing
     or has an implausible size (then the mesh is suspect, see U413).
 
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
+
     Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
     Good: ``<inertia ixx="0.0012" .../>``
     """
@@ -345,8 +400,8 @@ def inertia_unit_mistake(robot):
             if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
                     rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
                 direction = "larger" if power > 0 else "smaller"
-                yield link.find("inertial").find("inertia"), (
+                yield _recomputed(robot, link, properties, (
                     f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
                     f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
-                    "`urdftool inertia` computes the right values")
+                    "`urdftool inertia` computes the right values"))
                 break

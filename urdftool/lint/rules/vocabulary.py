@@ -18,7 +18,7 @@ from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABUL
                                        is_namespaced, is_xacro, where_valid)
 from urdftool.description.values import parse_numbers
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.lint.fixes import offer, rename_attribute, rename_element
+from urdftool.lint.fixes import element_to_attribute, offer, rename_attribute, rename_element
 
 CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a known one
 
@@ -153,7 +153,8 @@ def misspelt_element(robot):
     ``<sensor>``, namespaced ``drake:`` tags) are left alone; in ``<transmission>`` and
     ``<ros2_control>`` only their known names are compared.
 
-    Fix (safe): the element renamed, when exactly one known name is close.
+    Fix (safe): the element renamed, when exactly one known name is close; an element written
+    for an attribute of its parent becomes that attribute.
 
     Bad: ``<joint ...><orgin xyz="0 0 1"/>``, ``<dynamics><damping>100</damping></dynamics>``
     Good: ``<origin xyz="0 0 1"/>``, ``<dynamics damping="100"/>``
@@ -187,6 +188,11 @@ def misspelt_attribute(robot):
 def _renamed(robot, unknown: _Unknown, message: str):
     """The finding, with the rename to the one close name as its fix (when the name is one of
     the same kind: an element for an element, an attribute for an attribute)."""
+    if unknown.attribute is None and unknown.close == [unknown.name] and \
+            unknown.name in _attributes(unknown.place) and \
+            unknown.element.getparent().get(unknown.name) is None:
+        return offer(unknown.element, message, f"write <{unknown.name}> as an attribute",
+                     element_to_attribute(robot, unknown.element))
     kind = _attributes(unknown.place) if unknown.attribute is not None else _children(unknown)
     close = [name for name in unknown.close if name in kind]
     if len(close) != 1 or len(unknown.close) != 1 or \
