@@ -27,6 +27,8 @@ CASES_FIXED = [
     (CASES / "U206_axis_not_unit.urdf", "U206", False, {("axis", "xyz")}),
     (CASES / "U413_mesh_implausible_size", "U413", False, {("mesh", "scale")}),
     (CASES / "U901_unused_suppression", "U901", False, {("axis", "xyz")}),
+    (CASES / "U508_hardware_interface_prefix.urdf", "U508", False,
+     {("hardwareInterface", "#text")}),
     (CASES / "U309_inertia_unit_mistake.urdf", "U309", True, {("inertia", a) for a in (
         "ixx", "iyy", "izz")}),
     (FIXES / "U305_inertia_indefinite.urdf", "U305", True, {("inertia", a) for a in (

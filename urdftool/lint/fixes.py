@@ -282,6 +282,22 @@ def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
     return attribute + [text.edit(tag.start, end, "")]
 
 
+def prefix_text(robot, element, prefix: str) -> list[Edit] | Unfixable:
+    """An edit writing ``prefix`` before the text of ``element`` (after leading blanks)."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if tag.close_name is None:
+        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} has no text")
+    value = text.data[tag.end:tag.close_name[0] - 2]
+    at = tag.end + len(value) - len(value.lstrip())
+    if EXPRESSION.search(value.decode("utf-8", errors="replace")) or b"<" in value:
+        return Unfixable(f"the text of <{tag.name}> at {text.file}:{tag.line} is not a plain "
+                         "literal")
+    return [text.edit(at, at, prefix)]
+
+
 def offer(where, message: str, description: str, edits, safe: bool = True):
     """What a rule yields for a finding with a possible fix: ``(where, message, fix)``; when
     ``edits`` is :class:`Unfixable`, the message with why there is no fix; None: no fix."""
@@ -320,24 +336,27 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
     result = Plan()
     current: dict[str, bytes] = {}
     taken: dict[str, list[Edit]] = {}
+    candidates = []
     for checked in results:
         if checked is None or checked.path == "-":
             continue
         root = containment_root(os.path.dirname(os.path.abspath(checked.path)))
-        for finding in checked.findings:
-            fix = finding.fix
-            if fix is None or not (fix.safe or unsafe) or fix in result.applied:
-                continue
-            why = _refusal(fix, root, current, taken, read, inside)
-            if why == "":
-                continue  # the same edits, already taken for another finding
-            if why:
-                result.skipped.append((fix, why))
-                continue
-            for edit in fix.edits:
-                if edit not in taken.get(edit.file, ()):
-                    taken.setdefault(edit.file, []).append(edit)
-            result.applied.append(fix)
+        candidates.extend((finding.fix, root) for finding in checked.findings
+                          if finding.fix is not None and (finding.fix.safe or unsafe))
+    disputed = _disputed([fix for fix, _ in candidates])
+    for fix, root in candidates:
+        if fix in result.applied or any(fix is other for other, _ in result.skipped):
+            continue
+        why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside)
+        if why == "":
+            continue  # the same edits, already taken for another finding
+        if why:
+            result.skipped.append((fix, why))
+            continue
+        for edit in fix.edits:
+            if edit not in taken.get(edit.file, ()):
+                taken.setdefault(edit.file, []).append(edit)
+        result.applied.append(fix)
     for file, edits in taken.items():
         data = current[file]
         after = data
@@ -345,6 +364,33 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
             after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
         result.changed[file] = (data, after)
     return result
+
+
+def _disputed(candidates: list[Fix]) -> dict[int, str]:
+    """Fixes (by id) whose edits overlap a different edit of another fix: a literal in a macro
+    that serves several elements needing different values. None of them is taken."""
+    spans: dict[str, list[tuple[Edit, int]]] = {}
+    for fix in candidates:
+        for edit in fix.edits:
+            spans.setdefault(edit.file, []).append((edit, id(fix)))
+    disputed: dict[int, str] = {}
+    for edits in spans.values():
+        edits.sort(key=lambda pair: (pair[0].start, pair[0].end))
+        cluster: list[tuple[Edit, int]] = []
+        end = -1
+        for edit, owner in [*edits, (None, None)]:
+            if edit is not None and cluster and edit.start < end:
+                cluster.append((edit, owner))
+                end = max(end, edit.end, edit.start + 1)
+                continue
+            if len({e for e, _ in cluster}) > 1:
+                first = cluster[0][0]
+                why = (f"the text at {first.file}:{first.line} would need different values for "
+                       "different elements (a macro used more than once?)")
+                disputed.update((fix, why) for _, fix in cluster)
+            cluster = [(edit, owner)]
+            end = max(edit.end, edit.start + 1) if edit is not None else -1
+    return disputed
 
 
 def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:

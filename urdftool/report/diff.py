@@ -16,6 +16,6 @@ def unified(changed: dict[str, tuple[bytes, bytes]]) -> str:
         for line in difflib.unified_diff(
                 before.decode("utf-8", errors="replace").splitlines(keepends=True),
                 after.decode("utf-8", errors="replace").splitlines(keepends=True),
-                f"a/{shown}", f"b/{shown}"):
+                *((shown, shown) if shown.startswith("/") else (f"a/{shown}", f"b/{shown}"))):
             out.append(line if line.endswith("\n") else line + "\n\\ No newline at end of file\n")
     return "".join(out)

@@ -94,7 +94,8 @@ def _from_geometry(robot, link, mass: float):
             edits.append(set_attribute(robot, origin, name, value))
     elif any(abs(v) > 1e-9 for v in body.com):
         edits.append(insert_before(robot, inertial.find("mass"), f'<origin xyz="{com}"/>'))
-    tensor = body.inertia
+    largest = max(abs(v) for row in body.inertia for v in row)
+    tensor = [[v if abs(v) > 1e-9 * largest else 0.0 for v in row] for row in body.inertia]
     for name, (row, column) in zip(INERTIA_ATTRIBUTES, _TERMS):
         edits.append(set_attribute(robot, inertial.find("inertia"), name,
                                    f"{tensor[row][column]:.6g}"))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import offer, prefix_text
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
                          moving_joints, ros2_control_joints, transmission_joints, transmissions)
 from urdftool.errors import available
@@ -180,6 +181,38 @@ def unactuated_joint(robot):
         if name not in actuated:
             yield joint, (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control "
                           f"joint although the robot loads {loader}; it will not be in /joint_states")
+
+
+# The bare names gazebo_ros_control (DefaultRobotHWSim) warns about: "Deprecated syntax, please
+# prepend 'hardware_interface/' to 'EffortJointInterface' within the <hardwareInterface> tag".
+_DEPRECATED_BARE = ("EffortJointInterface", "PositionJointInterface", "VelocityJointInterface")
+
+
+@rule("U508", "hardware-interface-prefix", Severity.WARNING)
+def hardware_interface_prefix(robot):
+    """A ROS 1 transmission joint names its interface without ``hardware_interface/``.
+
+    gazebo_ros_control still accepts the old form but warns on every start ("Deprecated syntax,
+    please prepend 'hardware_interface/' ..."), and ros_control's transmission loader expects
+    the full name.
+
+    Fix (safe): ``hardware_interface/`` written before the name.
+
+    Bad: ``<hardwareInterface>EffortJointInterface</hardwareInterface>``
+    Good: ``<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>``
+    """
+    for transmission in transmissions(robot):
+        if is_ros2_form(transmission):
+            continue
+        for joint in transmission_joints(transmission):
+            for interface in joint.interfaces:
+                text = (interface.text or "").strip()
+                if text in _DEPRECATED_BARE:
+                    yield offer(interface, (
+                        f"{_label(transmission)}: joint '{joint.name}' names '{text}' without "
+                        f"hardware_interface/; write hardware_interface/{text}"),
+                        "prepend hardware_interface/", prefix_text(robot, interface,
+                                                                    "hardware_interface/"))
 
 
 @rule("U511", "ros2-control-unknown-joint", Severity.ERROR)
