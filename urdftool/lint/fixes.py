@@ -262,20 +262,29 @@ def rename_element(robot, element, new: str) -> list[Edit] | Unfixable:
     return edits
 
 
-def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
-    """Edits turning ``<parent><name>text</name></parent>`` into ``<parent name="text">``: the
-    attribute set on the parent, the element (and the blanks before it on its line) deleted."""
+def _plain_text(robot, element):
+    """(source, tag, text, offset of the text) of an element holding plain literal text;
+    Unfixable when its text is absent, holds elements or an expression."""
     found = source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
     text, tag = found
-    if tag.close_name is None:
-        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} holds no value")
-    end = text.data.find(b">", tag.close_name[1]) + 1
-    value = text.data[tag.end:tag.close_name[0] - 2].decode("utf-8", errors="replace")
-    if "<" in value or EXPRESSION.search(value) or not value.strip():
-        return Unfixable(f"the value of <{tag.name}> at {text.file}:{tag.line} is not a plain "
+    value = text.data[tag.end:tag.close_name[0] - 2] if tag.close_name is not None else b""
+    decoded = value.decode("utf-8", errors="replace")
+    if not decoded.strip() or "<" in decoded or EXPRESSION.search(decoded):
+        return Unfixable(f"the text of <{tag.name}> at {text.file}:{tag.line} is not a plain "
                          "literal")
+    return text, tag, decoded, tag.end + len(value) - len(value.lstrip())
+
+
+def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
+    """Edits turning ``<parent><name>text</name></parent>`` into ``<parent name="text">``: the
+    attribute set on the parent, the element deleted."""
+    found = _plain_text(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag, value, _ = found
+    end = text.data.find(b">", tag.close_name[1]) + 1
     attribute = set_attribute(robot, element.getparent(), _local(element.tag), value.strip())
     if isinstance(attribute, Unfixable):
         return attribute
@@ -284,17 +293,10 @@ def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
 
 def prefix_text(robot, element, prefix: str) -> list[Edit] | Unfixable:
     """An edit writing ``prefix`` before the text of ``element`` (after leading blanks)."""
-    found = source_tag(robot, element)
+    found = _plain_text(robot, element)
     if isinstance(found, Unfixable):
         return found
-    text, tag = found
-    if tag.close_name is None:
-        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} has no text")
-    value = text.data[tag.end:tag.close_name[0] - 2]
-    at = tag.end + len(value) - len(value.lstrip())
-    if EXPRESSION.search(value.decode("utf-8", errors="replace")) or b"<" in value:
-        return Unfixable(f"the text of <{tag.name}> at {text.file}:{tag.line} is not a plain "
-                         "literal")
+    text, _, _, at = found
     return [text.edit(at, at, prefix)]
 
 
