@@ -201,3 +201,40 @@ def test_json_carries_the_fix_as_data(tmp_path, run_cli):
     assert diagnostic["fix"]["safe"] is True
     [edit] = diagnostic["fix"]["edits"]
     assert (edit["old"], edit["new"], edit["line"]) == ("uper", "upper", 6)
+
+
+def test_a_massless_root_is_added_before_a_root_with_mass(tmp_path):
+    robot = _copy(CASES / "U308_root_link_inertia.urdf", tmp_path)
+    before = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in before.findings if f.code == "U308"]
+    assert finding.fix is not None and not finding.fix.safe
+    [after], applied, _, _ = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied == 1 and "U308" not in {f.code for f in after.findings}
+    fixed = load(str(robot))
+    assert fixed.joints["base_footprint_joint"].find("child").get("link") == "base"
+    for added in (fixed.links["base_footprint"], fixed.joints["base_footprint_joint"]):
+        fixed.root.remove(added)
+    assert _differences(before.robot.root, fixed.root) == set()
+
+
+def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
+    (tmp_path / "robot.urdf.xacro").write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="part" params="name size">
+    <link name="${name}">
+      <inertial><mass value="1"/>
+        <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3"/></inertial>
+      <collision><geometry><box size="${size}"/></geometry></collision>
+    </link>
+  </xacro:macro>
+  <link name="base_link"/>
+  <xacro:part name="a" size="0.1 0.1 0.1"/>
+  <xacro:part name="b" size="0.1 0.2 0.3"/>
+  <joint name="ja" type="fixed"><parent link="base_link"/><child link="a"/></joint>
+  <joint name="jb" type="fixed"><parent link="base_link"/><child link="b"/></joint>
+</robot>""")
+    result = check_file(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    assert [f.code for f in result.findings if f.fix is not None] == ["U306", "U306"]
+    changes = fixes.plan([result], unsafe=True)
+    assert not changes.changed and len(changes.skipped) == 2
+    assert "would need different values for different elements" in changes.skipped[0][1]

@@ -223,9 +223,9 @@ def swap_attributes(robot, element, first: str, second: str,
     return edits
 
 
-def insert_before(robot, element, xml: str) -> list[Edit] | Unfixable:
-    """An edit writing the element ``xml`` just before ``element``'s start tag, on a line of
-    its own with the same indentation when ``element`` starts its line."""
+def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
+    """An edit writing the elements ``xml`` just before ``element``'s start tag, each on a line
+    of its own with the same indentation when ``element`` starts its line."""
     found = source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
@@ -233,7 +233,7 @@ def insert_before(robot, element, xml: str) -> list[Edit] | Unfixable:
     line_start = text.data.rfind(b"\n", 0, tag.start) + 1
     indent = text.data[line_start:tag.start]
     separator = "\n" + indent.decode("utf-8") if not indent.strip() else " "
-    return [text.edit(tag.start, tag.start, xml + separator)]
+    return [text.edit(tag.start, tag.start, "".join(part + separator for part in xml))]
 
 
 def rename_attribute(robot, element, old: str, new: str) -> list[Edit] | Unfixable:

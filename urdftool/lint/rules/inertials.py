@@ -349,6 +349,9 @@ def root_link_inertia(robot):
     KDL prints "The root link has an inertia specified in the URDF, but KDL does not support a
     root link with an inertia". Add a massless root (e.g. ``base_footprint``) fixed to it.
 
+    Fix (unsafe: the robot's root frame changes name): a massless ``base_footprint`` link
+    (another name when taken) and a fixed joint to the old root, written before the old root.
+
     Bad: ``base_link`` (root) with ``<mass value="5"/>``
     Good: a massless ``base_footprint`` root with ``base_link`` fixed below it
 
@@ -359,9 +362,19 @@ def root_link_inertia(robot):
     masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
     if len(roots) == 1 and masses.get(roots[0], 0) > 0:
-        yield robot.links[roots[0]].find("inertial"), (
+        root = robot.links[roots[0]]
+        name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
+                    if n not in robot.links and f"{n}_joint" not in robot.joints)
+        location = robot.locations.get(root)
+        edits = Unfixable(f"'{roots[0]}' is written in a macro (called at {location.via[0]}); "
+                          "add the link beside the call") if location and location.via else \
+            insert_before(robot, root, f'<link name="{name}"/>',
+                          f'<joint name="{name}_joint" type="fixed"><parent link="{name}"/>'
+                          f'<child link="{roots[0]}"/></joint>')
+        yield offer(root.find("inertial"), (
             f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
-            "massless root link fixed to it")
+            "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
+            safe=False)
 
 
 @rule("U309", "inertia-unit-mistake", Severity.WARNING)
