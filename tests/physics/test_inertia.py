@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -175,3 +176,31 @@ def test_compare_refuses_an_unknown_link_and_lists_the_others(run_cli, humanoid)
     result = run_cli("inertia", humanoid, "--link", "body_lnk")
     assert result.exit_code == 2
     assert result.stderr.startswith("urdftool: error: link 'body_lnk' does not exist;")
+
+
+def test_inertia_write_edits_the_text_keeping_comments_and_layout(run_cli, tmp_path):
+    source = tmp_path / "r.urdf"
+    text = ('<robot name="r">\n  <!-- hand-written -->\n  <link name="a">\n    <inertial>'
+            '<mass value="2"/>\n      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+            '</inertial>\n    <collision><geometry><box size="0.1 0.2 0.3"/></geometry>'
+            '</collision>\n  </link>\n</robot>\n')
+    source.write_text(text)
+    out = tmp_path / "fixed.urdf"
+    assert run_cli("inertia", source, "--write", out, "--link", "a").exit_code == 0
+    written = out.read_text()
+    assert written.startswith('<robot name="r">\n  <!-- hand-written -->\n  <link name="a">\n')
+    assert written.count("\n") == text.count("\n")
+    assert 'ixx="0.0216667"' in written and '<mass value="2"/>' in written
+
+
+def test_inertia_write_xacro_is_a_diff_of_the_macro_file(run_cli, tmp_path):
+    import shutil
+
+    shutil.copytree(Path(__file__).parent.parent / "fixes" / "xacro_macro", tmp_path / "r")
+    out = tmp_path / "inertia.patch"
+    result = run_cli("inertia", tmp_path / "r" / "robot.urdf.xacro", "--write", out,
+                     "--link", "left_upper")
+    assert result.exit_code == 0, result.output
+    patch = out.read_text()
+    assert patch.splitlines()[0].endswith("r/arm.xacro")
+    assert '-        <inertia ixx="1666.7"' in patch and 'ixx="0.00166667"' in patch

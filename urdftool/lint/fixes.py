@@ -300,6 +300,67 @@ def prefix_text(robot, element, prefix: str) -> list[Edit] | Unfixable:
     return [text.edit(at, at, prefix)]
 
 
+_INERTIA_TERMS = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("iyz", 1, 2),
+                  ("izz", 2, 2))
+
+
+def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
+    """Edits making ``link``'s ``<inertial>`` say ``body`` (mass [kg], com [m] and inertia
+    [kg m^2] about the com in link axes): mass, origin (at the com, rpy zero) and the six
+    terms; a whole block written when the link has none."""
+    largest = max(abs(float(v)) for row in body.inertia for v in row) or 1.0
+    terms = {name: _number(float(body.inertia[row][column]), largest)
+             for name, row, column in _INERTIA_TERMS}
+    com = " ".join(_number(float(v), 1.0) for v in body.com)
+    mass = f"{float(body.mass):.6g}"
+    inertial = link.find("inertial")
+    if inertial is None:
+        return _new_inertial(robot, link, mass, com, terms)
+    edits = []
+    if inertial.find("mass") is not None and inertial.find("mass").get("value") is not None:
+        declared = float(inertial.find("mass").get("value", "nan") or "nan")
+        if not abs(declared - float(body.mass)) <= 1e-9 * max(abs(declared), 1.0):
+            edits.append(set_attribute(robot, inertial.find("mass"), "value", mass))
+    origin = inertial.find("origin")
+    if origin is not None:
+        edits.append(set_attribute(robot, origin, "xyz", com))
+        if origin.get("rpy") is not None:
+            edits.append(set_attribute(robot, origin, "rpy", "0 0 0"))
+    elif any(abs(float(v)) > 1e-12 for v in body.com):
+        first = next((c for c in inertial if isinstance(c.tag, str)), None)
+        if first is None:
+            return Unfixable("its <inertial> is empty")
+        edits.append(insert_before(robot, first, f'<origin xyz="{com}" rpy="0 0 0"/>'))
+    if inertial.find("inertia") is None:
+        return Unfixable("its <inertial> has no <inertia>")
+    for name, value in terms.items():
+        edits.append(set_attribute(robot, inertial.find("inertia"), name, value))
+    unfixable = next((e for e in edits if isinstance(e, Unfixable)), None)
+    return unfixable or [edit for group in edits for edit in group]
+
+
+def _number(value: float, scale: float) -> str:
+    """``value`` with 6 significant digits, 0 when it is rounding noise next to ``scale``."""
+    return "0" if abs(value) <= 1e-9 * scale else f"{value:.6g}"
+
+
+def _new_inertial(robot, link, mass: str, com: str, terms: dict) -> list[Edit] | Unfixable:
+    """An edit writing a whole ``<inertial>`` as the link's first child."""
+    block = (f'<inertial><origin xyz="{com}" rpy="0 0 0"/><mass value="{mass}"/><inertia '
+             + " ".join(f'{name}="{value}"' for name, value in terms.items()) + "/></inertial>")
+    first = next((c for c in link if isinstance(c.tag, str)), None)
+    if first is not None:
+        return insert_before(robot, first, block)
+    found = source_tag(robot, link)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if not tag.self_closing:
+        return Unfixable(f"<link> at {text.file}:{tag.line} holds no element to write it before")
+    closing = text.data.rfind(b"/>", tag.start, tag.end)
+    return [text.edit(closing, tag.end, f"><{block[1:]}</link>")]
+
+
 def offer(where, message: str, description: str, edits, safe: bool = True):
     """What a rule yields for a finding with a possible fix: ``(where, message, fix)``; when
     ``edits`` is :class:`Unfixable`, the message with why there is no fix; None: no fix."""
@@ -331,13 +392,9 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
     ``unsafe``. A fix is taken whole or not at all; it is left out when one of its edits is
     outside the checked robot's containment root, when the file no longer holds the text
     the edit replaces, or when it overlaps an edit already taken."""
-    from urdftool.description.files import inside, read_regular
+    from urdftool.description.files import read_regular
     from urdftool.description.packages import containment_root
 
-    read = read or read_regular
-    result = Plan()
-    current: dict[str, bytes] = {}
-    taken: dict[str, list[Edit]] = {}
     candidates = []
     for checked in results:
         if checked is None or checked.path == "-":
@@ -345,6 +402,16 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
         root = containment_root(os.path.dirname(os.path.abspath(checked.path)))
         candidates.extend((finding.fix, root) for finding in checked.findings
                           if finding.fix is not None and (finding.fix.safe or unsafe))
+    return _take(candidates, read or read_regular)
+
+
+def _take(candidates, read) -> Plan:
+    """The plan of ``candidates``: (fix, containment root) pairs, in order."""
+    from urdftool.description.files import inside
+
+    result = Plan()
+    current: dict[str, bytes] = {}
+    taken: dict[str, list[Edit]] = {}
     disputed = _disputed([fix for fix, _ in candidates])
     for fix, root in candidates:
         if fix in result.applied or any(fix is other for other, _ in result.skipped):
@@ -366,6 +433,27 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
             after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
         result.changed[file] = (data, after)
     return result
+
+
+def inertia_rewrite(robot, results) -> tuple[Plan, list[tuple[str, str]]]:
+    """``urdftool inertia --write``: the edits giving each link of ``results`` (LinkInertia
+    with a computed inertial) that inertial, in the files the robot was written in; and (link,
+    why) for the links whose inertial cannot be edited (values from expressions)."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.packages import containment_root
+
+    root = containment_root(robot.base_dir)
+    candidates, unfixable = [], []
+    for result in results:
+        edits = inertial_edits(robot, robot.links[result.link], result.computed)
+        if isinstance(edits, Unfixable):
+            unfixable.append((result.link, edits.reason))
+        else:
+            fix = Fix(f"link '{result.link}' inertial from its geometry", tuple(edits), False)
+            candidates.append((fix, root))
+    changes = _take(candidates, read_regular)
+    unfixable.extend((fix.description, why) for fix, why in changes.skipped)
+    return changes, unfixable
 
 
 def _disputed(candidates: list[Fix]) -> dict[int, str]:

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.lint.fixes import Unfixable, insert_before, offer, set_attribute
+from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
@@ -75,35 +75,14 @@ def _judged(robot):
 
 
 def _from_geometry(robot, link, mass: float):
-    """Edits replacing a link's inertial origin and inertia with those its geometry gives at
-    the declared ``mass`` (link axes, origin at the centre of mass); None without usable
-    geometry, Unfixable when a value comes from an expression."""
+    """Edits replacing a link's inertial with the one its geometry gives at the declared
+    ``mass``; None without usable geometry, Unfixable when a value comes from an expression."""
     from urdftool.physics.solids import computed, link_solid
 
     solid = link_solid(robot, link)
     if not solid.parts or solid.problems:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
-    body = computed(solid, mass=mass)
-    inertial = link.find("inertial")
-    edits = []
-    origin = inertial.find("origin")
-    com = " ".join(f"{v:.6g}" for v in body.com)
-    if origin is not None:
-        changes = [("xyz", com)] + ([("rpy", "0 0 0")] if origin.get("rpy") is not None else [])
-        for name, value in changes:
-            edits.append(set_attribute(robot, origin, name, value))
-    elif any(abs(v) > 1e-9 for v in body.com):
-        edits.append(insert_before(robot, inertial.find("mass"), f'<origin xyz="{com}"/>'))
-    largest = max(abs(v) for row in body.inertia for v in row)
-    tensor = [[v if abs(v) > 1e-9 * largest else 0.0 for v in row] for row in body.inertia]
-    for name, (row, column) in zip(INERTIA_ATTRIBUTES, _TERMS):
-        edits.append(set_attribute(robot, inertial.find("inertia"), name,
-                                   f"{tensor[row][column]:.6g}"))
-    unfixable = next((e for e in edits if isinstance(e, Unfixable)), None)
-    return unfixable or [edit for group in edits for edit in group]
-
-
-_TERMS = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    return inertial_edits(robot, link, computed(solid, mass=mass))
 
 
 def _recomputed(robot, link, properties, message: str):
