@@ -29,6 +29,8 @@ CASES_FIXED = [
     (CASES / "U901_unused_suppression", "U901", False, {("axis", "xyz")}),
     (CASES / "U508_hardware_interface_prefix.urdf", "U508", False,
      {("hardwareInterface", "#text")}),
+    (CASES / "U507_unactuated_joint.urdf", "U507", True, {("robot", "#children")}),
+    (FIXES / "U507_ros2_control.urdf", "U507", True, {("ros2_control", "#children")}),
     (CASES / "U309_inertia_unit_mistake.urdf", "U309", True, {("inertia", a) for a in (
         "ixx", "iyy", "izz")}),
     (FIXES / "U305_inertia_indefinite.urdf", "U305", True, {("inertia", a) for a in (

@@ -236,6 +236,25 @@ def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
     return [text.edit(tag.start, tag.start, "".join(part + separator for part in xml))]
 
 
+def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
+    """An edit writing ``xml`` (lines of an element) as the last child of ``element``, indented
+    one step (two spaces) deeper than ``element`` when its end tag starts a line."""
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable):
+        return found
+    text, tag = found
+    if tag.close_name is None:
+        return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} is empty-element tag")
+    close = tag.close_name[0] - 2
+    line_start = text.data.rfind(b"\n", 0, close) + 1
+    before = text.data[line_start:close]
+    if before.strip():
+        return [text.edit(close, close, xml)]
+    indent = before.decode("utf-8") + "  "
+    lines = "".join(indent + line + "\n" for line in xml.splitlines())
+    return [text.edit(line_start, line_start, lines)]
+
+
 def rename_attribute(robot, element, old: str, new: str) -> list[Edit] | Unfixable:
     """Edits renaming attribute ``old`` of ``element`` to ``new`` where it was written."""
     found = source_tag(robot, element)
@@ -429,7 +448,10 @@ def _take(candidates, read) -> Plan:
     for file, edits in taken.items():
         data = current[file]
         after = data
-        for edit in sorted(edits, key=lambda e: (e.start, e.end), reverse=True):
+        # from the end, so offsets stay true; of insertions at one point, the first taken
+        # ends up first
+        order = sorted(range(len(edits)), key=lambda i: (edits[i].start, edits[i].end, i))
+        for edit in (edits[i] for i in reversed(order)):
             after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
         result.changed[file] = (data, after)
     return result
@@ -456,6 +478,20 @@ def inertia_rewrite(robot, results) -> tuple[Plan, list[tuple[str, str]]]:
     return changes, unfixable
 
 
+def _overlap(one: Edit, other: Edit) -> bool:
+    """Whether two different edits touch the same text. Insertions at one point do not: they
+    are written one after the other."""
+    if one == other:
+        return False
+    if one.start == one.end and other.start == other.end:
+        return False
+    if one.start == one.end:
+        return other.start < one.start < other.end
+    if other.start == other.end:
+        return one.start < other.start < one.end
+    return one.start < other.end and other.start < one.end
+
+
 def _disputed(candidates: list[Fix]) -> dict[int, str]:
     """Fixes (by id) whose edits overlap a different edit of another fix: a literal in a macro
     that serves several elements needing different values. None of them is taken."""
@@ -466,20 +502,14 @@ def _disputed(candidates: list[Fix]) -> dict[int, str]:
     disputed: dict[int, str] = {}
     for edits in spans.values():
         edits.sort(key=lambda pair: (pair[0].start, pair[0].end))
-        cluster: list[tuple[Edit, int]] = []
-        end = -1
-        for edit, owner in [*edits, (None, None)]:
-            if edit is not None and cluster and edit.start < end:
-                cluster.append((edit, owner))
-                end = max(end, edit.end, edit.start + 1)
-                continue
-            if len({e for e, _ in cluster}) > 1:
-                first = cluster[0][0]
-                why = (f"the text at {first.file}:{first.line} would need different values for "
-                       "different elements (a macro used more than once?)")
-                disputed.update((fix, why) for _, fix in cluster)
-            cluster = [(edit, owner)]
-            end = max(edit.end, edit.start + 1) if edit is not None else -1
+        for index, (edit, owner) in enumerate(edits):
+            for other, second in edits[index + 1:]:
+                if other.start > edit.end:
+                    break
+                if owner != second and _overlap(edit, other):
+                    why = (f"the text at {edit.file}:{edit.line} would need different values "
+                           "for different elements (a macro used more than once?)")
+                    disputed[owner] = disputed[second] = why
     return disputed
 
 
@@ -498,10 +528,8 @@ def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
         data = current[edit.file]
         if data[edit.start:edit.end].decode("utf-8", errors="replace") != edit.old:
             return f"{edit.file} changed since it was checked"
-        for other in taken.get(edit.file, ()):
-            if other != edit and other.start < max(edit.end, edit.start + 1) and \
-                    edit.start < max(other.end, other.start + 1):
-                return f"it overlaps another fix in {edit.file}"
+        if any(_overlap(edit, other) for other in taken.get(edit.file, ())):
+            return f"it overlaps another fix in {edit.file}"
     return None
 
 

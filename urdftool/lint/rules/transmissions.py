@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.lint.fixes import offer, prefix_text
+from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, interface_kind, is_ros2_form,
                          moving_joints, ros2_control_joints, transmission_joints, transmissions)
 from urdftool.errors import available
@@ -167,6 +167,10 @@ def unactuated_joint(robot):
     actuated and published: the joint never appears in /joint_states and falls limp.
     Mimic joints are exempt.
 
+    Fix (unsafe: the interface is a guess): a ros2_control ``<joint>`` with the interfaces of
+    the block's first joint, or a ROS 1 SimpleTransmission with the interface most of the
+    robot's transmissions use (effort when none), added at the end of the block or robot.
+
     Bad: ``<ros2_control>`` lists head_joint but not the wheel joints
     Good: a transmission or a ros2_control ``<joint>`` for every revolute, continuous and
     prismatic joint
@@ -179,8 +183,39 @@ def unactuated_joint(robot):
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
-            yield joint, (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control "
-                          f"joint although the robot loads {loader}; it will not be in /joint_states")
+            yield offer(joint, (
+                f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
+                f"although the robot loads {loader}; it will not be in /joint_states"),
+                f"actuate joint '{name}'", _actuation(robot, plugin, name), safe=False)
+
+
+def _actuation(robot, plugin, name: str):
+    """Edits adding joint ``name`` to the robot's ros2_control block (with the interfaces of
+    the block's first joint), or a ROS 1 transmission (with the interface most transmissions
+    use) at the end of the robot."""
+    if plugin.tag == "ros2_control":
+        location = robot.locations.get(plugin)
+        if location is not None and location.via:
+            return Unfixable(f"the <ros2_control> block is written in a macro (called at "
+                             f"{location.via[0]}); add the joint there")
+        model = plugin.find("joint")
+        kinds = [(child.tag, child.get("name")) for child in (model if model is not None else ())
+                 if child.tag in ("command_interface", "state_interface") and child.get("name")]
+        kinds = kinds or [("command_interface", "position"), ("state_interface", "position"),
+                          ("state_interface", "velocity")]
+        lines = [f'<joint name="{name}">', *(f'  <{tag} name="{kind}"/>' for tag, kind in kinds),
+                 "</joint>"]
+        return append_child(robot, plugin, "\n".join(lines))
+    used = [(interface.text or "").strip() for t in transmissions(robot)
+            for joint in transmission_joints(t) for interface in joint.interfaces]
+    interface = max(set(used), key=used.count) if used else \
+        "hardware_interface/EffortJointInterface"
+    lines = [f'<transmission name="{name}_transmission">',
+             "  <type>transmission_interface/SimpleTransmission</type>",
+             f'  <joint name="{name}"><hardwareInterface>{interface}</hardwareInterface></joint>',
+             f'  <actuator name="{name}_motor"><mechanicalReduction>1</mechanicalReduction>'
+             "</actuator>", "</transmission>"]
+    return append_child(robot, robot.root, "\n".join(lines))
 
 
 # The bare names gazebo_ros_control (DefaultRobotHWSim) warns about: "Deprecated syntax, please
