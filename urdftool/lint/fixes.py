@@ -51,13 +51,39 @@ class _Tag:
     close_name: tuple[int, int] | None = None  # the name in the end tag
 
 
-@dataclass
 class Source:
-    """One file as read, with its start tags."""
+    """One file as read: where each start tag is (read from the file as expat finds it), and
+    each tag's parts, read only for the tags a fix asks for."""
 
-    file: str
-    data: bytes
-    tags: list[_Tag]
+    def __init__(self, file: str, data: bytes, starts: list[tuple[int, int, str]],
+                 ends: dict[int, int]):
+        self.file, self.data = file, data
+        self._starts = starts  # (offset of '<', line, name) in document order
+        self._ends = ends  # tag index -> offset where its end tag (or what follows it) is
+        self._read: dict[int, _Tag] = {}
+        self._lines: dict[int, list[int]] | None = None
+
+    def __len__(self) -> int:
+        return len(self._starts)
+
+    def tag(self, index: int) -> _Tag:
+        """The ``index``-th start tag of the file, its attributes and end tag read."""
+        if index not in self._read:
+            start, line, name = self._starts[index]
+            tag = _read_tag(self.data, start, line)
+            at = self._ends.get(index)
+            if not tag.self_closing and at is not None and self.data[at:at + 2] == b"</":
+                tag.close_name = (at + 2, at + 2 + len(name.encode("utf-8")))
+            self._read[index] = tag
+        return self._read[index]
+
+    def on_line(self, line: int) -> list[_Tag]:
+        """The start tags whose ``<`` is on ``line``."""
+        if self._lines is None:
+            self._lines = {}
+            for index, (_, number, _) in enumerate(self._starts):
+                self._lines.setdefault(number, []).append(index)
+        return [self.tag(index) for index in self._lines.get(line, ())]
 
     def position(self, offset: int) -> tuple[int, int]:
         """1-based line and 0-based column (in characters) of a byte offset."""
@@ -72,21 +98,18 @@ class Source:
 
 
 def parse_source(file: str, data: bytes) -> Source | None:
-    """The start tags of ``data``; None when it is not well-formed XML."""
-    tags: list[_Tag] = []
-    stack: list[_Tag] = []
+    """Where the start tags of ``data`` are; None when it is not well-formed XML."""
+    starts: list[tuple[int, int, str]] = []
+    ends: dict[int, int] = {}
+    stack: list[int] = []
     parser = expat.ParserCreate()
 
     def on_start(name, attributes):
-        tag = _read_tag(data, parser.CurrentByteIndex, parser.CurrentLineNumber)
-        tags.append(tag)
-        stack.append(tag)
+        stack.append(len(starts))
+        starts.append((parser.CurrentByteIndex, parser.CurrentLineNumber, name))
 
     def on_end(name):
-        tag = stack.pop()
-        at = parser.CurrentByteIndex
-        if not tag.self_closing and data[at:at + 2] == b"</":
-            tag.close_name = (at + 2, at + 2 + len(name.encode("utf-8")))
+        ends[stack.pop()] = parser.CurrentByteIndex
 
     parser.StartElementHandler = on_start
     parser.EndElementHandler = on_end
@@ -94,7 +117,7 @@ def parse_source(file: str, data: bytes) -> Source | None:
         parser.Parse(data, True)
     except (expat.ExpatError, ValueError, LookupError):
         return None
-    return Source(file, data, tags)
+    return Source(file, data, starts, ends)
 
 
 def _read_tag(data: bytes, start: int, line: int) -> _Tag:
@@ -140,12 +163,11 @@ def source_tag(robot, element) -> tuple[Source, _Tag] | Unfixable:
         order = robot.memo("fixes.order", lambda: {e: i for i, e in enumerate(
             e for e in robot.root.iter() if isinstance(e.tag, str))})
         index = order.get(element)
-        if index is not None and index < len(found.tags) and \
-                _local(found.tags[index].name) == _local(element.tag):
-            return found, found.tags[index]
+        if index is not None and index < len(found) and \
+                _local(found.tag(index).name) == _local(element.tag):
+            return found, found.tag(index)
         return Unfixable("its start tag was not found")
-    candidates = [t for t in found.tags if t.line == location.line
-                  and _local(t.name) == _local(element.tag)]
+    candidates = [t for t in found.on_line(location.line) if _local(t.name) == _local(element.tag)]
     if len(candidates) > 1:  # several on one line: the one whose literals match
         candidates = [t for t in candidates if all(
             element.get(name) == raw for name, (_, _, raw) in t.attributes.items()
@@ -197,8 +219,8 @@ def _origin(robot, element, name: str, raw: str, where: str) -> str:
     if argument and location is not None:
         for site in location.via:
             text = source(robot, site.file)
-            calls = [t for t in (text.tags if text else ()) if t.line == site.line
-                     and t.name.startswith("xacro:") and argument.group(1) in t.attributes]
+            calls = [t for t in (text.on_line(site.line) if text else ())
+                     if t.name.startswith("xacro:") and argument.group(1) in t.attributes]
             if len(calls) == 1:
                 value = calls[0].attributes[argument.group(1)][2]
                 return (f"{name} is the macro argument {argument.group(1)}=\"{value}\" of the "

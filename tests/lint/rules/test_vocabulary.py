@@ -100,3 +100,10 @@ def test_the_vocabulary_is_consistent_data():
         assert not set(place.ignored) & set(place.names()), name
     assert where_valid("limit") == ["joint"]
     assert not set(EXTENSIONS) & set(VOCABULARY["robot"].children)
+
+
+def test_xacro_left_in_a_urdf_is_u007s_not_the_vocabulary(tmp_path):
+    found, _ = check_folder(tmp_path, {"robot.urdf": """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:property name="w" value="1"/>
+      <link name="a"><xacro:grey/></link></robot>"""}, select=("U0",))
+    assert {code for _, _, code in found} == {"U007"}

@@ -77,12 +77,19 @@ def _judged(robot):
 def _from_geometry(robot, link, mass: float):
     """Edits replacing a link's inertial with the one its geometry gives at the declared
     ``mass``; None without usable geometry, Unfixable when a value comes from an expression."""
-    from urdftool.physics.solids import computed, link_solid
+    from urdftool.physics.solids import computed
 
-    solid = link_solid(robot, link)
+    solid = _solid(robot, link)
     if not solid.parts or solid.problems:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
     return inertial_edits(robot, link, computed(solid, mass=mass))
+
+
+def _solid(robot, link):
+    """The link's solids (physics.solids.link_solid), built once per robot and link."""
+    from urdftool.physics.solids import link_solid
+
+    return robot.memo((_solid, link), lambda: link_solid(robot, link))
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -93,9 +100,7 @@ def _recomputed(robot, link, properties, message: str):
 
 
 def _solid_source(robot, link) -> str:
-    from urdftool.physics.solids import link_solid
-
-    return link_solid(robot, link).source
+    return _solid(robot, link).source
 
 
 def _moving(robot) -> dict:
