@@ -37,6 +37,7 @@ class Edit:
     file: path as findings name it (see :class:`Location`)
     start, end: byte offsets [start, end) in the file as it was read; ``old`` is what they hold
     line, column: where ``start`` is: 1-based line, 0-based column in characters
+    end_line, end_column: where ``end`` is, the same way (an editor's range is line/column)
     """
 
     file: str
@@ -46,6 +47,8 @@ class Edit:
     old: str
     line: int
     column: int
+    end_line: int = 0
+    end_column: int = 0
 
 
 @dataclass(frozen=True)

@@ -240,3 +240,26 @@ def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
     changes = fixes.plan([result], unsafe=True)
     assert not changes.changed and len(changes.skipped) == 2
     assert "would need different values for different elements" in changes.skipped[0][1]
+
+
+def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_bytes(b'<robot name="r">\r\n  <link name="base">\r\n    <inertial>\r\n'
+                      b'      <mass value="1"/>\r\n      <inertia ixx="0.01" ixy="0" ixz="0" '
+                      b'iyy="0.01" iyz="0" izz="0.01"/>\r\n    </inertial>\r\n  </link>\r\n'
+                      b'</robot>\r\n')
+    result = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U308"]
+    [edit] = finding.fix.edits
+    assert (edit.line, edit.column, edit.end_line, edit.end_column) == (2, 2, 2, 2)
+    fixes.write(fixes.plan([result], unsafe=True))
+    assert b'<link name="base_footprint"/>\r\n  <joint name="base_footprint_joint"' in \
+        robot.read_bytes()
+    assert b"\n" not in robot.read_bytes().replace(b"\r\n", b"")
+    other = tmp_path / "u.urdf"
+    other.write_text('<robot name="r"><link name="a"/><link name="b"/>\n<joint name="j" '
+                     'type="revolute"><parent link="a"/><child link="b"/>\n  <limit lower="-1" '
+                     'uper="1" effort="1" velocity="1"/></joint></robot>')
+    [rename] = [f for f in check_file(str(other), CheckOptions()).findings if f.code == "U021"]
+    [edit] = rename.fix.edits
+    assert (edit.line, edit.column, edit.end_line, edit.end_column) == (3, 20, 3, 24)

@@ -86,15 +86,28 @@ class Source:
         return [self.tag(index) for index in self._lines.get(line, ())]
 
     def position(self, offset: int) -> tuple[int, int]:
-        """1-based line and 0-based column (in characters) of a byte offset."""
-        line_start = self.data.rfind(b"\n", 0, offset) + 1
-        column = len(self.data[line_start:offset].decode("utf-8", errors="replace"))
-        return self.data.count(b"\n", 0, offset) + 1, column
+        return _position(self.data, offset)
+
+    @property
+    def newline(self) -> str:
+        """The file's line ending (CRLF when it has any)."""
+        return "\r\n" if b"\r\n" in self.data else "\n"
 
     def edit(self, start: int, end: int, text: str) -> Edit:
-        line, column = self.position(start)
-        old = self.data[start:end].decode("utf-8", errors="replace")
-        return Edit(self.file, start, end, text, old, line, column)
+        return edit_of(self.file, self.data, start, end, text)
+
+
+def _position(data: bytes, offset: int) -> tuple[int, int]:
+    """1-based line and 0-based column (in characters) of a byte offset."""
+    line_start = data.rfind(b"\n", 0, offset) + 1
+    column = len(data[line_start:offset].decode("utf-8", errors="replace"))
+    return data.count(b"\n", 0, offset) + 1, column
+
+
+def edit_of(file: str, data: bytes, start: int, end: int, text: str) -> Edit:
+    """An edit replacing bytes [start, end) of ``data`` (the contents of ``file``)."""
+    old = data[start:end].decode("utf-8", errors="replace")
+    return Edit(file, start, end, text, old, *_position(data, start), *_position(data, end))
 
 
 def parse_source(file: str, data: bytes) -> Source | None:
@@ -254,7 +267,7 @@ def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
     text, tag = found
     line_start = text.data.rfind(b"\n", 0, tag.start) + 1
     indent = text.data[line_start:tag.start]
-    separator = "\n" + indent.decode("utf-8") if not indent.strip() else " "
+    separator = text.newline + indent.decode("utf-8") if not indent.strip() else " "
     return [text.edit(tag.start, tag.start, "".join(part + separator for part in xml))]
 
 
@@ -273,7 +286,7 @@ def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     if before.strip():
         return [text.edit(close, close, xml)]
     indent = before.decode("utf-8") + "  "
-    lines = "".join(indent + line + "\n" for line in xml.splitlines())
+    lines = "".join(indent + line + text.newline for line in xml.splitlines())
     return [text.edit(line_start, line_start, lines)]
 
 

@@ -19,7 +19,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from urdftool.diagnostics import Edit, Finding, Fix, Location
+from urdftool.diagnostics import Finding, Fix, Location
+from urdftool.lint.fixes import edit_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 
@@ -159,11 +160,8 @@ def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | No
         while start > line_start and text[start - 1] in " \t":
             start -= 1
     offset = len(text[:start].encode("utf-8"))
-    removed = text[start:end]
-    column = start - line_start
-    return Fix("delete the unused suppression", (Edit(
-        suppression.file, offset, offset + len(removed.encode("utf-8")), "", removed,
-        text.count("\n", 0, start) + 1, column),))
+    return Fix("delete the unused suppression", (edit_of(
+        suppression.file, data, offset, offset + len(text[start:end].encode("utf-8")), ""),))
 
 
 def _unused(suppression: Suppression, catalogue: Catalogue,

@@ -22,10 +22,11 @@ def as_dict(results) -> dict:
 
 def _fix(fix) -> dict:
     """A fix as data: what it does, whether --fix applies it (safe) or only --unsafe-fixes,
-    and its edits (byte offsets and 1-based line, 0-based column of where each starts)."""
+    and its edits (byte offsets; 1-based lines and 0-based columns in characters)."""
     return {"description": fix.description, "safe": fix.safe, "edits": [
-        {"file": e.file, "line": e.line, "column": e.column, "start": e.start, "end": e.end,
-         "old": e.old, "new": e.text} for e in fix.edits]}
+        {"file": e.file, "line": e.line, "column": e.column, "end_line": e.end_line,
+         "end_column": e.end_column, "start": e.start, "end": e.end, "old": e.old,
+         "new": e.text} for e in fix.edits]}
 
 
 def render(results, stream) -> None:
