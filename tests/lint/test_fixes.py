@@ -263,3 +263,21 @@ def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path)
     [rename] = [f for f in check_file(str(other), CheckOptions()).findings if f.code == "U021"]
     [edit] = rename.fix.edits
     assert (edit.line, edit.column, edit.end_line, edit.end_column) == (3, 20, 3, 24)
+
+
+def test_the_issue_example_is_fixed_to_what_urdfdom_reads(tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/>\n'
+                     '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+                     '  <orgin xyz="0 0 1"/>\n'
+                     '  <limit lower="-1" uper="1" effort="1" velocity="1"/>\n'
+                     '  <dynamics><damping>100</damping></dynamics>\n</joint>\n</robot>\n')
+    [after], applied, _, _ = fixes.apply([check_file(str(robot), CheckOptions())],
+                                         lambda: [check_file(str(robot), CheckOptions())])
+    assert applied == 3 and not [f for f in after.findings if f.code.startswith("U02")]
+    assert robot.read_text() == (
+        '<robot name="r"><link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+        '  <origin xyz="0 0 1"/>\n'
+        '  <limit lower="-1" upper="1" effort="1" velocity="1"/>\n'
+        '  <dynamics damping="100"/>\n</joint>\n</robot>\n')

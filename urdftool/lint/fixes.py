@@ -342,6 +342,13 @@ def element_to_attribute(robot, element) -> list[Edit] | Unfixable:
     attribute = set_attribute(robot, element.getparent(), _local(element.tag), value.strip())
     if isinstance(attribute, Unfixable):
         return attribute
+    parent = source_tag(robot, element.getparent())
+    if not isinstance(parent, Unfixable) and parent[0] is text and parent[1].close_name:
+        holder = parent[1]
+        close_end = text.data.find(b">", holder.close_name[1]) + 1
+        rest = text.data[holder.end:tag.start] + text.data[end:holder.close_name[0] - 2]
+        if not rest.strip():  # nothing else inside: the parent becomes an empty-element tag
+            return attribute + [text.edit(holder.end - 1, close_end, "/>")]
     return attribute + [text.edit(tag.start, end, "")]
 
 
