@@ -138,11 +138,15 @@ def test_inertia_write_corrects_selected_link(run_cli, tmp_path):
                        mp.box((0.1, 0.2, 0.3)).scaled_to(2.0).inertia, rtol=1e-5)
 
 
-def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid):
-    result = run_cli("inertia", humanoid, "--write", "unused.urdf", "--link", "head_link")
+def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid, tmp_path):
+    # head_link's inertial comes from macro arguments: printed with where it goes, not edited
+    result = run_cli("inertia", humanoid, "--write", tmp_path / "inertia.patch",
+                     "--link", "head_link")
     assert result.exit_code == 0, result.output
     assert "replaces the <inertial> at" in result.output and "inertial.xacro:" in result.output
     assert "<mass value=\"0.16\"/>" in result.output
+    assert "head_link: not written: xyz is the macro argument" in result.output
+    assert (tmp_path / "inertia.patch").read_text() == ""
 
 
 def test_inertia_write_needs_a_selection(run_cli, humanoid):
