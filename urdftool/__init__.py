@@ -20,7 +20,8 @@ _LAZY = {
     "CheckRequest": "urdftool.lint.settings", "Companions": "urdftool.lint.settings",
     "Settings": "urdftool.lint.settings",
     "Finding": "urdftool.diagnostics", "Location": "urdftool.diagnostics",
-    "Severity": "urdftool.diagnostics",
+    "Severity": "urdftool.diagnostics", "Fix": "urdftool.diagnostics",
+    "Edit": "urdftool.diagnostics",
     "UrdftoolError": "urdftool.errors", "LoadError": "urdftool.errors",
     "SettingsError": "urdftool.errors", "TargetError": "urdftool.errors",
 }
@@ -39,7 +40,7 @@ def __getattr__(name: str):
         from urdftool.lint import engine as module
     elif name in ("CheckRequest", "Companions", "Settings"):
         from urdftool.lint import settings as module
-    elif name in ("Finding", "Location", "Severity"):
+    elif name in ("Finding", "Location", "Severity", "Fix", "Edit"):
         from urdftool import diagnostics as module
     elif name in ("UrdftoolError", "LoadError", "SettingsError", "TargetError"):
         from urdftool import errors as module

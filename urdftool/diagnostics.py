@@ -33,12 +33,47 @@ class Location:
 
 
 @dataclass(frozen=True)
+class Edit:
+    """Replace bytes ``start``..``end`` of a file the user wrote with ``text``.
+
+    file: path as findings name it (see :class:`Location`)
+    start, end: byte offsets [start, end) in the file as it was read; ``old`` is what they hold
+    line, column: where ``start`` is: 1-based line, 0-based column in characters
+    end_line, end_column: where ``end`` is, the same way (an editor's range is line/column)
+    """
+
+    file: str
+    start: int
+    end: int
+    text: str
+    old: str
+    line: int
+    column: int
+    end_line: int = 0
+    end_column: int = 0
+
+
+@dataclass(frozen=True)
+class Fix:
+    """What would make a finding go away, as edits of the files the user wrote.
+
+    safe: whether applying it keeps what the description means apart from the defect (``check
+        --fix``); an unsafe fix changes a value a person should look at (``--unsafe-fixes``)
+    """
+
+    description: str
+    edits: tuple[Edit, ...]
+    safe: bool = True
+
+
+@dataclass(frozen=True)
 class Finding:
     code: str
     name: str
     severity: Severity
     message: str
     location: Location
+    fix: Fix | None = None
 
     @property
     def file(self) -> str:

@@ -42,14 +42,17 @@ ENTRIES = {
     (f"{SIM2}/urdf/13-diffdrive.urdf.xacro", "", (f"{SIM2}/config/diffdrive.yaml",), None): {},
     # The camera plugin's <frameName>camera_link</frameName> is not a link (U615); the
     # position_position config puts position_controllers on joints whose transmissions offer
-    # EffortJointInterface only (U604, 24 joints).
+    # EffortJointInterface only (U604, 24 joints). Every transmission joint names the bare
+    # EffortJointInterface, which gazebo_ros_control warns is deprecated (U508, 24 joints).
     ("robotis_op_description/robots/robotis_op.urdf", "",
-     ("robotis_op_simulation_control/config/robotis_op_effort_position_control.yaml",), None): {"U615": 1},
+     ("robotis_op_simulation_control/config/robotis_op_effort_position_control.yaml",), None):
+        {"U508": 24, "U615": 1},
     ("robotis_op_description/robots/robotis_op.urdf", "",
      ("robotis_op_simulation_control/config/robotis_op_position_position_control.yaml",), None):
-        {"U604": 24, "U615": 1},
+        {"U508": 24, "U604": 24, "U615": 1},
     ("robotis_op_description/robots/robotis_op.urdf", "",
-     ("robotis_op_simulation_control/config/robotis_op_trajectory_control.yaml",), None): {"U615": 1},
+     ("robotis_op_simulation_control/config/robotis_op_trajectory_control.yaml",), None):
+        {"U508": 24, "U615": 1},
     ("op3_description/urdf/robotis_op3.urdf.xacro", "",
      ("op3_gazebo/config/position_controller.yaml",), None): {},
     ("franka_description/robots/panda/panda.urdf.xacro", "hand:=true gazebo:=true arm_id:=panda",
@@ -73,8 +76,9 @@ ENTRIES = {
     (f"{ERD}/finger_edu_description/robots/finger_edu.urdf", "", (),
      f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1, "U808": 1},
     # hyq.srdf: groups all_legs, r_legs, ... use subgroups lf, rf, lh, rh; the groups are lf_leg, ...
+    # Its 12 transmissions name the bare EffortJointInterface (U508).
     (f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf", "", (), f"{ERD}/hyq_description/srdf/hyq.srdf"):
-        {"U805": 16},
+        {"U508": 12, "U805": 16},
     # icub.srdf is for robot "icub", the URDF is "iCub". U811: at the zero configuration (and
     # half_sitting) 16 non-adjacent pairs of collision meshes intersect with no disable_collisions
     # entry (forearms in the torso, feet and lower legs in each other; checked independently with

@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -137,11 +138,15 @@ def test_inertia_write_corrects_selected_link(run_cli, tmp_path):
                        mp.box((0.1, 0.2, 0.3)).scaled_to(2.0).inertia, rtol=1e-5)
 
 
-def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid):
-    result = run_cli("inertia", humanoid, "--write", "unused.urdf", "--link", "head_link")
+def test_inertia_write_xacro_prints_blocks_with_source_line(run_cli, humanoid, tmp_path):
+    # head_link's inertial comes from macro arguments: printed with where it goes, not edited
+    result = run_cli("inertia", humanoid, "--write", tmp_path / "inertia.patch",
+                     "--link", "head_link")
     assert result.exit_code == 0, result.output
     assert "replaces the <inertial> at" in result.output and "inertial.xacro:" in result.output
     assert "<mass value=\"0.16\"/>" in result.output
+    assert "head_link: not written: xyz is the macro argument" in result.output
+    assert (tmp_path / "inertia.patch").read_text() == ""
 
 
 def test_inertia_write_needs_a_selection(run_cli, humanoid):
@@ -205,3 +210,29 @@ def test_inertia_of_a_link_without_inertial_is_missing_not_agrees(run_cli, tmp_p
         MOVING_WITHOUT_INERTIAL.split("\n")[1], '<link name="base"/>'))
     result = run_cli("inertia", path, "--link", "arm")
     assert result.exit_code == 0 and result.stdout.startswith("arm: missing")
+def test_inertia_write_edits_the_text_keeping_comments_and_layout(run_cli, tmp_path):
+    source = tmp_path / "r.urdf"
+    text = ('<robot name="r">\n  <!-- hand-written -->\n  <link name="a">\n    <inertial>'
+            '<mass value="2"/>\n      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+            '</inertial>\n    <collision><geometry><box size="0.1 0.2 0.3"/></geometry>'
+            '</collision>\n  </link>\n</robot>\n')
+    source.write_text(text)
+    out = tmp_path / "fixed.urdf"
+    assert run_cli("inertia", source, "--write", out, "--link", "a").exit_code == 0
+    written = out.read_text()
+    assert written.startswith('<robot name="r">\n  <!-- hand-written -->\n  <link name="a">\n')
+    assert written.count("\n") == text.count("\n")
+    assert 'ixx="0.0216667"' in written and '<mass value="2"/>' in written
+
+
+def test_inertia_write_xacro_is_a_diff_of_the_macro_file(run_cli, tmp_path):
+    import shutil
+
+    shutil.copytree(Path(__file__).parent.parent / "fixes" / "xacro_macro", tmp_path / "r")
+    out = tmp_path / "inertia.patch"
+    result = run_cli("inertia", tmp_path / "r" / "robot.urdf.xacro", "--write", out,
+                     "--link", "left_upper")
+    assert result.exit_code == 0, result.output
+    patch = out.read_text()
+    assert patch.splitlines()[0].endswith("r/arm.xacro")
+    assert '-        <inertia ixx="1666.7"' in patch and 'ixx="0.00166667"' in patch

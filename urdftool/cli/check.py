@@ -77,6 +77,12 @@ def check(
                                         "max-memory in the settings]."),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
                              help="Check files in N worker processes [default: number of cores]."),
+    fix: bool = typer.Option(False, "--fix", help="Apply the safe fixes ([*] in the report) to "
+                             "the files (inside the repository), then report what remains."),
+    unsafe_fixes: bool = typer.Option(False, "--unsafe-fixes",
+                                      help="With --fix or --diff: the unsafe fixes ([~]) too."),
+    diff: bool = typer.Option(False, "--diff", help="Print the fixes as a unified diff and "
+                              "write nothing; exit 1 when there is something to fix."),
 ) -> None:
     from urdftool.budget import Budget
     from urdftool.errors import SettingsError, TargetError, UnknownName
@@ -100,12 +106,17 @@ def check(
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
         Budget.of(timeout, max_memory)  # --timeout and --max-memory are well formed
-        run = check_paths(paths, CheckRequest(
+        if unsafe_fixes and not (fix or diff):
+            raise UsageError("--unsafe-fixes applies with --fix or --diff")
+        request = CheckRequest(
             select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None,
-            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename))
+            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename)
+        run = check_paths(paths, request)
+        if fix or diff:
+            run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:
         fail_usage(error)
     for note in run.notes:
@@ -132,3 +143,40 @@ def check(
     else:
         report(run.results, sys.stdout)
     raise typer.Exit(0 if exit_zero else run.exit_code)
+
+
+def _apply_fixes(run, diff: bool, unsafe: bool, recheck):
+    """--diff: print the fixes as a diff and exit; --fix: write them and check again."""
+    from urdftool.lint import fixes
+
+    if diff:
+        from urdftool.report.unified import unified
+
+        changes = fixes.plan(run.results, unsafe=unsafe)
+        _skipped(changes.skipped)
+        sys.stdout.write(unified(changes.changed))
+        typer.echo(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
+                   "file(s) would be applied", err=True)
+        raise typer.Exit(1 if changes.changed else 0)
+    rerun = []
+
+    def again():
+        rerun.append(recheck())
+        return rerun[-1].results
+
+    _, applied, changed, skipped = fixes.apply(run.results, again, unsafe=unsafe)
+    _skipped(skipped)
+    if applied:
+        typer.echo(f"urdftool: applied {_fixes(applied)} in {len(changed)} file(s)", err=True)
+    return rerun[-1] if rerun else run
+
+
+def _skipped(skipped) -> None:
+    from urdftool.report import printable
+
+    for fix, why in skipped:
+        typer.echo(printable(f"urdftool: not fixed ({fix.description}): {why}"), err=True)
+
+
+def _fixes(count: int) -> str:
+    return f"{count} fix" if count == 1 else f"{count} fixes"

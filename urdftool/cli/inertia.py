@@ -30,13 +30,15 @@ def inertia(
     link: list[str] = typer.Option([], "--link", help="Only this link (repeatable)."),
     all_links: bool = typer.Option(False, "--all", help="With --write: correct every link."),
     write: Path = typer.Option(None, "--write", metavar="OUT",
-                               help="Write a URDF with corrected <inertial> blocks for the "
-                                    "--link selection or --all (xacro input: print them)."),
+                               help="Write the URDF with the <inertial> blocks of the --link "
+                                    "selection or --all computed from geometry, as edits of "
+                                    "the file (formatting kept); xacro input: a unified diff "
+                                    "of the xacro files."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.physics.inertia_compare import UnknownLink, compare, corrected_urdf
+    from urdftool.physics.inertia_compare import UnknownLink, compare
     from urdftool.report import inertia as render
 
     refuse_bad_outputs(write)
@@ -51,12 +53,25 @@ def inertia(
     except UnknownLink as error:
         fail_usage(UsageError(str(error)))
     if write is not None:
+        from urdftool.lint.fixes import inertia_rewrite
+        from urdftool.report.unified import unified
+
         chosen = [r for r in results if r.computed is not None]
-        if robot.from_xacro:
-            typer.echo(render.xacro_blocks(robot, chosen), nl=False)
+        changes, unwritten = inertia_rewrite(robot, chosen)
+        if robot.from_xacro:  # the edits land in the xacro files: written as a patch of them
+            write_output(write, unified(changes.changed))
+            typer.echo(f"wrote {write}: a unified diff of the xacro files ({len(changes.applied)} "
+                       "inertials corrected; `urdftool check --fix --unsafe-fixes` applies "
+                       "such edits in place)", err=True)
+            shown = {link for link, _ in unwritten}
+            typer.echo(render.xacro_blocks(robot, [r for r in chosen if r.link in shown]),
+                       nl=False)
         else:
-            write_output(write, corrected_urdf(robot, chosen))
-            typer.echo(f"wrote {write} ({len(chosen)} inertials corrected)", err=True)
+            data = changes.changed.get(robot.display, (robot.sources[robot.display],) * 2)[1]
+            write_output(write, data.decode("utf-8"))
+            typer.echo(f"wrote {write} ({len(changes.applied)} inertials corrected)", err=True)
+        for link, why in unwritten:
+            typer.echo(f"urdftool: {link}: not written: {why}", err=True)
     elif output_format == "json":
         from urdftool.report.json_output import write_json
 

@@ -19,6 +19,7 @@ from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, read_reg
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
+from urdftool.description.urdf import is_xacro
 
 XACRO_SUFFIXES = (".xacro",)
 
@@ -29,7 +30,7 @@ def first_xacro_use(root):
     """The first element that needs xacro (a xacro: tag, or a ``${}``/``$()`` in an attribute or
     text), or None. Comments do not count: generated URDFs often keep commented-out xacro."""
     for element in root.iter(etree.Element):
-        if _is_xacro_tag(element.tag):
+        if is_xacro(element.tag):
             return element
         if any(_substitutes(value) for value in element.attrib.values()) or \
                 _substitutes(element.text):
@@ -134,9 +135,6 @@ def _shown_tag(element) -> str:
     local = etree.QName(element).localname
     return f"{element.prefix}:{local}" if element.prefix else local
 
-
-def _is_xacro_tag(tag) -> bool:
-    return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag)
 
 
 def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) -> Robot:

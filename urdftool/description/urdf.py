@@ -20,3 +20,164 @@ SHAPES = ("box", "cylinder", "sphere", "mesh")
 SHAPE_ATTRIBUTES = {"box": (("size", 3),), "cylinder": (("radius", 1), ("length", 1)),
                     "sphere": (("radius", 1),), "mesh": (("filename", None),)}
 ROUND = ("cylinder", "sphere")  # the shapes with a radius
+
+# ---------------------------------------------------------------------------------------------
+# The vocabulary: every element and attribute urdfdom reads, where, and which it requires.
+#
+# Sources (the first that reads a name is cited in ``source``):
+#   urdfdom  urdf_parser/src/model.cpp (parseURDF), link.cpp (parseLink, parseInertial,
+#            parseVisual, parseCollision, parseGeometry, parseMaterial, parse<Shape>), joint.cpp
+#            (parseJoint, parseJointLimits/Dynamics/Safety/Calibration/Mimic), pose.cpp
+#            (parsePose), sensor_parser.cpp (<sensor>)
+#   spec     the URDF XML pages of the ROS wiki (urdf/XML/robot, link, joint, ...)
+#   xsd      urdfdom's xsd/urdf.xsd (names it lists that urdfdom does not read: link type,
+#            collision verbose, calibration reference_position, origin quat_xyzw)
+# ---------------------------------------------------------------------------------------------
+
+
+class Place:
+    """What urdfdom reads of an element at one place in the tree.
+
+    attributes: the attributes read there; required: those it refuses the element without
+    children: child tag -> the name of its :data:`VOCABULARY` entry
+    ignored: known names urdfdom reads nothing from here, with why (a warning: no effect)
+    extensions: child elements urdfdom skips here that another program reads (left alone)
+    source: where the names come from
+    """
+
+    __slots__ = ("attributes", "required", "children", "ignored", "extensions", "source")
+
+    def __init__(self, attributes=(), required=(), children=None, ignored=None, source="",
+                 extensions=None):
+        self.extensions = dict(extensions or {})
+        self.attributes = tuple(attributes)
+        self.required = tuple(required)
+        self.children = dict(children or {})
+        self.ignored = dict(ignored or {})
+        self.source = source
+
+    def names(self) -> tuple[str, ...]:
+        """Every name valid at this place, children and attributes."""
+        return (*self.children, *self.attributes)
+
+
+# Elements inside a <link> that urdfdom skips and another program reads: left alone.
+LINK_EXTENSIONS = {
+    "contact": "PyBullet (lateral_friction, rolling_friction, restitution, ...)",
+    "self_filter": "robot_self_filter (ROS 1)",
+    "collision_checking": "arm_navigation collision checking (ROS 1)",
+}
+
+_POSE = "origin"
+VOCABULARY: dict[str, Place] = {
+    "robot": Place(("name", "version"), ("name",),
+                   {"link": "link", "joint": "joint", "material": "material_global"},
+                   source="urdfdom model.cpp parseURDF; version: urdfdom >= 1.0, spec robot"),
+    "link": Place(("name", "type"), ("name",),
+                  {"inertial": "inertial", "visual": "visual", "collision": "collision"},
+                  extensions=LINK_EXTENSIONS,
+                  source="urdfdom link.cpp parseLink; type: xsd (PR2)"),
+    "inertial": Place((), (), {"origin": _POSE, "mass": "mass", "inertia": "inertia"},
+                      source="urdfdom link.cpp parseInertial"),
+    "origin": Place(("xyz", "rpy", "quat_xyzw"), (),
+                    source="urdfdom pose.cpp parsePose; quat_xyzw: xsd"),
+    "mass": Place(("value",), ("value",), source="urdfdom link.cpp parseInertial"),
+    "inertia": Place(("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
+                     ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
+                     source="urdfdom link.cpp parseInertial"),
+    "visual": Place(("name", "group"), (),
+                    {"origin": _POSE, "geometry": "geometry", "material": "material"},
+                    source="urdfdom link.cpp parseVisual; name: urdfdom >= 1.0; group: urdfdom < 1.0"),
+    "collision": Place(("name", "group"), (),
+                       {"origin": _POSE, "geometry": "geometry", "verbose": "verbose"},
+                       ignored={"material": "urdfdom reads <material> only in <visual>; a "
+                                            "collision has no colour"},
+                       source="urdfdom link.cpp parseCollision; verbose: xsd"),
+    "verbose": Place(("value",), source="xsd collision"),
+    "geometry": Place((), (), {shape: shape for shape in SHAPES},
+                      source="urdfdom link.cpp parseGeometry"),
+    "box": Place(("size",), ("size",), source="urdfdom link.cpp parseBox"),
+    "cylinder": Place(("radius", "length"), ("radius", "length"),
+                      source="urdfdom link.cpp parseCylinder"),
+    "sphere": Place(("radius",), ("radius",), source="urdfdom link.cpp parseSphere"),
+    "mesh": Place(("filename", "scale"), ("filename",), source="urdfdom link.cpp parseMesh"),
+    "material": Place(("name",), ("name",), {"color": "color", "texture": "texture"},
+                      source="urdfdom link.cpp parseVisual, parseMaterial"),
+    "material_global": Place(("name",), ("name",), {"color": "color", "texture": "texture"},
+                             source="urdfdom model.cpp parseURDF, link.cpp parseMaterial"),
+    "color": Place(("rgba",), ("rgba",), source="urdfdom link.cpp parseMaterial"),
+    "texture": Place(("filename",), (), source="urdfdom link.cpp parseMaterial"),
+    "joint": Place(("name", "type"), ("name", "type"),
+                   {"origin": _POSE, "parent": "parent", "child": "child", "axis": "axis",
+                    "calibration": "calibration", "dynamics": "dynamics", "limit": "limit",
+                    "safety_controller": "safety_controller", "mimic": "mimic"},
+                   source="urdfdom joint.cpp parseJoint"),
+    "parent": Place(("link",), ("link",), source="urdfdom joint.cpp parseJoint"),
+    "child": Place(("link",), ("link",), source="urdfdom joint.cpp parseJoint"),
+    "axis": Place(("xyz",), (), ignored={
+        "rpy": "urdfdom reads only xyz of <axis>: the axis is a direction in the joint frame; "
+               "rotate the frame with the joint's <origin rpy>"},
+                  source="urdfdom joint.cpp parseJoint"),
+    "calibration": Place(("rising", "falling", "reference_position"), (),
+                         source="urdfdom joint.cpp parseJointCalibration; reference_position: xsd"),
+    "dynamics": Place(("damping", "friction"), (), source="urdfdom joint.cpp parseJointDynamics"),
+    "limit": Place(("lower", "upper", "effort", "velocity"), ("effort", "velocity"),
+                   source="urdfdom joint.cpp parseJointLimits"),
+    "safety_controller": Place(("soft_lower_limit", "soft_upper_limit", "k_position",
+                                "k_velocity"), ("k_velocity",),
+                               source="urdfdom joint.cpp parseJointSafety"),
+    "mimic": Place(("joint", "multiplier", "offset"), ("joint",),
+                   source="urdfdom joint.cpp parseJointMimic"),
+}
+
+# Blocks at the top level that urdfdom skips and other programs read. Their content is theirs:
+# only what ``EXTENSION_VOCABULARY`` knows of one is checked (for misspellings, never for
+# "no effect", since the reader may take more than is listed).
+EXTENSIONS = {
+    "gazebo": "Gazebo (gazebo_ros, gz-sim): any content, passed to SDFormat",
+    "transmission": "ros_control / ros2_control transmissions (ROS 1, PR2 and ros2_control forms)",
+    "ros2_control": "ros2_control hardware description",
+    "sensor": "urdfdom sensor_parser (camera, ray) and ROS 2 sensors",
+    "mujoco": "MuJoCo's URDF compiler options (<mujoco><compiler .../></mujoco>)",
+    "plugin": "legacy Gazebo / Webots plugins at the top level",
+    "webots": "Webots' urdf2webots extensions",
+}
+# element path inside an extension block -> the children and attributes known there
+EXTENSION_VOCABULARY: dict[str, tuple[str, ...]] = {
+    # transmission_interface (ROS 1) TransmissionParser; ros2_control transmission parser
+    "transmission": ("name", "type", "joint", "actuator", "plugin", "leftActuator",
+                     "rightActuator", "flexJoint", "rollJoint", "gap_joint", "passive_joint",
+                     "use_simulated_gripper_joint", "mechanicalReduction", "compensator",
+                     "simulated_actuated_joint", "param"),
+    "transmission/joint": ("name", "hardwareInterface", "role", "mechanicalReduction",
+                           "mechanical_reduction", "offset", "state_interface",
+                           "command_interface"),
+    "transmission/actuator": ("name", "hardwareInterface", "role", "mechanicalReduction",
+                              "mechanical_reduction", "offset", "motorTorqueConstant",
+                              "pulsesPerRevolution"),
+    # ros2_control's hardware_interface component_parser
+    "ros2_control": ("name", "type", "is_async", "rw_rate", "hardware", "joint", "sensor", "gpio",
+                     "transmission"),
+    "ros2_control/hardware": ("plugin", "param", "classType"),
+    "ros2_control/joint": ("name", "is_mimic", "command_interface", "state_interface", "param"),
+    "ros2_control/sensor": ("name", "state_interface", "param", "command_interface"),
+    "ros2_control/gpio": ("name", "command_interface", "state_interface", "param"),
+}
+
+
+
+def is_xacro(tag) -> bool:
+    """Whether an element tag (lxml: ``{uri}local``, or a raw ``xacro:`` name) is xacro's."""
+    return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag
+                                     or tag.startswith("{urn:undeclared:xacro}"))
+
+
+def is_namespaced(name) -> bool:
+    """Whether an lxml tag or attribute name has a namespace (``drake:``, ``xacro:``, ...):
+    such names belong to another reader, never to urdfdom."""
+    return isinstance(name, str) and (name.startswith("{") or ":" in name)
+
+
+def where_valid(name: str) -> list[str]:
+    """The vocabulary places where ``name`` is a child element."""
+    return [place for place, entry in VOCABULARY.items() if name in entry.children]

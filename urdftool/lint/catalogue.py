@@ -1,7 +1,9 @@
 """The rule catalogue: what a rule is, the families, and the catalogue built from family modules.
 
-A rule is one function that yields ``(where, message)``: ``where`` is an lxml element of the
-robot, a :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
+A rule is one function that yields ``(where, message)``, or ``(where, message, fix)`` when it
+can say how to remove the finding (a :class:`~urdftool.diagnostics.Fix`, built with
+:mod:`urdftool.lint.fixes`): ``where`` is an lxml element of the robot, a
+:class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
 The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
 its documentation: a first-line summary, then why it matters, then examples (the README table and
 ``urdftool rules CODE`` are generated from it).
@@ -12,7 +14,7 @@ engine or the runner report themselves are ``declare()``d as module-level consta
 (``urdftool.lint.rules.FAMILY_MODULES``), in source order, and refuses a malformed, taken or
 misordered code and a repeated name.
 
-Families: U0xx loading, U1xx kinematic tree, U2xx joints, U3xx inertials, U4xx geometry and
+Families: U0xx loading (U02x the URDF vocabulary), U1xx kinematic tree, U2xx joints, U3xx inertials, U4xx geometry and
 meshes, U5xx transmissions and ros2_control, U6xx controllers and Gazebo, U7xx joint spec table,
 U8xx SRDF and collisions, U9xx urdftool itself.
 """
@@ -25,13 +27,13 @@ import re
 from dataclasses import dataclass
 from typing import Callable
 
-from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
 
 FAMILIES = {
-    "U0": "loading",
+    "U0": "loading and the URDF vocabulary",
     "U1": "kinematic tree",
     "U2": "joints",
     "U3": "inertials",
@@ -61,9 +63,9 @@ class Rule:
     def family(self) -> str:
         return FAMILIES[self.code[:2]]
 
-    def finding(self, message: str, location: Location) -> Finding:
-        """A finding of this rule at ``location``."""
-        return Finding(self.code, self.name, self.severity, message, location)
+    def finding(self, message: str, location: Location, fix: Fix | None = None) -> Finding:
+        """A finding of this rule at ``location``, with the fix that would remove it if any."""
+        return Finding(self.code, self.name, self.severity, message, location, fix)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -79,10 +79,10 @@ class FileResult:
         return [finding for finding in self.findings if finding.severity in failing]
 
 
-def stamp(rule: Rule, where, message: str, robot) -> Finding:
-    """A finding for ``rule`` at ``where`` (element, Location or None)."""
+def stamp(rule: Rule, where, message: str, robot, fix=None) -> Finding:
+    """A finding for ``rule`` at ``where`` (element, Location or None), with its fix if any."""
     location = where if isinstance(where, Location) else robot.locate(where)
-    return rule.finding(message, location)
+    return rule.finding(message, location, fix)
 
 
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
@@ -134,8 +134,8 @@ def _run_rules(robot, allows) -> list[Finding]:
         if rule.check is None or not allows(rule.code):
             continue
         try:
-            for where, message in rule.check(robot):
-                findings.append(stamp(rule, where, message, robot))
+            for where, message, *fix in rule.check(robot):
+                findings.append(stamp(rule, where, message, robot, *fix))
         except MemoryError:
             raise  # over the memory budget: the runner reports it (U018)
         except ImportError as error:  # a lint-only install: say what did not run, and why

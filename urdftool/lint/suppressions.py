@@ -19,7 +19,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from urdftool.diagnostics import Finding, Location
+from urdftool.diagnostics import Finding, Fix, Location
+from urdftool.lint.fixes import edit_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 
@@ -35,6 +36,7 @@ class Suppression:
     line: int
     target: int | None
     selectors: tuple[str, ...]
+    span: tuple[int, int] = (0, 0)  # [characters] of the comment in the file's text
 
     def covers(self, finding: Finding, location: Location, catalogue: Catalogue) -> bool:
         if self.target is not None and location.line != self.target:
@@ -62,7 +64,7 @@ def parse(text: str, file: str) -> list[Suppression]:
             target = start
         else:
             target = _next_content_line(lines, end)
-        found.append(Suppression(file, start, target, selectors))
+        found.append(Suppression(file, start, target, selectors, match.span()))
     return found
 
 
@@ -121,7 +123,7 @@ def apply(findings: list[Finding], sources: Mapping[str, bytes], ran,
         if not silenced_by:
             kept.append(finding)
     if ran("U901"):
-        kept.extend(_unused(s, catalogue) for s in suppressions
+        kept.extend(_unused(s, catalogue, sources) for s in suppressions
                     if s not in used and _checkable(s, ran, catalogue))
     return kept
 
@@ -135,7 +137,35 @@ def _checkable(suppression: Suppression, ran, catalogue: Catalogue) -> bool:
     return True
 
 
-def _unused(suppression: Suppression, catalogue: Catalogue) -> Finding:
+def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | None:
+    """The edit deleting an unused suppression: its line when the comment is alone on it,
+    else the comment and the blanks before it."""
+    data = sources.get(suppression.file)
+    if data is None:
+        try:
+            data = read_regular(suppression.file)
+        except OSError:
+            return None
+    text = data.decode("utf-8", errors="replace")
+    start, end = suppression.span
+    line_start = text.rfind("\n", 0, start) + 1
+    line_end = text.find("\n", end)
+    line_end = len(text) if line_end < 0 else line_end + 1
+    if not text[line_start:start].strip() and not text[end:line_end].strip():
+        start, end = line_start, line_end
+    elif not text[line_start:start].strip():  # other content follows on the line
+        while end < line_end and text[end] in " \t":
+            end += 1
+    else:
+        while start > line_start and text[start - 1] in " \t":
+            start -= 1
+    offset = len(text[:start].encode("utf-8"))
+    return Fix("delete the unused suppression", (edit_of(
+        suppression.file, data, offset, offset + len(text[start:end].encode("utf-8")), ""),))
+
+
+def _unused(suppression: Suppression, catalogue: Catalogue,
+            sources: Mapping[str, bytes]) -> Finding:
     unknown = [s for s in suppression.selectors if not _known(s, catalogue)]
     if not suppression.selectors:
         message = "suppression names no rule; write e.g. <!-- urdftool: ignore U203 -->"
@@ -149,4 +179,6 @@ def _unused(suppression: Suppression, catalogue: Catalogue) -> Finding:
         message = (f"suppression of {', '.join(suppression.selectors)} silences nothing on "
                    f"line {suppression.target}; delete it or move it just above the element "
                    "the finding points at")
-    return catalogue.get("U901").finding(message, Location(suppression.file, suppression.line))
+    fix = _removal(suppression, sources) if suppression.selectors and not unknown else None
+    return catalogue.get("U901").finding(message, Location(suppression.file, suppression.line),
+                                         fix)

@@ -143,24 +143,3 @@ def inertial_xml(properties: MassProperties, indent: str = "  ") -> str:
             f"ixz=\"{i[0, 2]:.6g}\" iyy=\"{i[1, 1]:.6g}\" iyz=\"{i[1, 2]:.6g}\" "
             f"izz=\"{i[2, 2]:.6g}\"/>\n"
             f"{indent}</inertial>")
-
-
-def corrected_urdf(robot, results: list[LinkInertia]) -> str:
-    """The robot's URDF with each result's computed ``<inertial>`` in place of the declared."""
-    from copy import deepcopy
-
-    from lxml import etree
-
-    root = deepcopy(robot.root)
-    by_name = {link.get("name"): link for link in root if link.tag == "link"}
-    for result in results:
-        link = by_name.get(result.link)
-        if link is None or result.computed is None:
-            continue
-        block = etree.fromstring(inertial_xml(result.computed, ""))
-        old = link.find("inertial")
-        if old is not None:
-            old.getparent().replace(old, block)
-        else:
-            link.insert(0, block)
-    return etree.tostring(root, encoding="unicode", pretty_print=True)

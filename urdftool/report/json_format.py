@@ -10,7 +10,8 @@ def diagnostic(finding) -> dict:
     where = location_dict(finding.location)
     return {"file": where["file"], "line": where["line"], "column": where["column"],
             "code": finding.code, "name": finding.name, "severity": finding.severity.value,
-            "message": finding.message, "via": where["via"]}
+            "message": finding.message, "via": where["via"],
+            **({"fix": _fix(finding.fix)} if finding.fix is not None else {})}
 
 
 def as_dict(results) -> dict:
@@ -21,6 +22,15 @@ def as_dict(results) -> dict:
         "summary": {"files": summary.files, "errors": summary.errors,
                     "warnings": summary.warnings, "notes": summary.infos},
     }
+
+
+def _fix(fix) -> dict:
+    """A fix as data: what it does, whether --fix applies it (safe) or only --unsafe-fixes,
+    and its edits (byte offsets; 1-based lines and 0-based columns in characters)."""
+    return {"description": fix.description, "safe": fix.safe, "edits": [
+        {"file": e.file, "line": e.line, "column": e.column, "end_line": e.end_line,
+         "end_column": e.end_column, "start": e.start, "end": e.end, "old": e.old,
+         "new": e.text} for e in fix.edits]}
 
 
 def render(results, stream) -> None:

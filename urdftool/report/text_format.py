@@ -26,7 +26,8 @@ def lines(results, quiet: bool = False) -> list[Line]:
         for finding in result.findings:
             out.append([(f"  {finding.location}: ", ""),
                         (finding.severity.value, STYLES[finding.severity.value]),
-                        (" ", ""), (finding.code, "bold"), (f" {finding.message} ", ""),
+                        (" ", ""), *_marker(finding), (finding.code, "bold"),
+                        (f" {finding.message} ", ""),
                         (f"({finding.name})", "dim")])
             out.extend([(f"      {line}", "dim")] for line in via_text(finding.location))
         if not quiet:
@@ -39,7 +40,21 @@ def lines(results, quiet: bool = False) -> list[Line]:
         else ", ".join([counted(summary.errors, "error"), counted(summary.warnings, "warning"),
                         counted(summary.infos, "note")])
     out.append([(f"{counted(summary.files, 'file')} checked: {verdict}", style)])
+    fixable = [f.fix.safe for result in results for f in result.findings if f.fix is not None]
+    if fixable:
+        safe, unsafe = fixable.count(True), fixable.count(False)
+        parts = [f"[*] {safe} fixable with --fix"] if safe else []
+        parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
+        out.append([("; ".join(parts), "")])
     return [[(printable(text), style) for text, style in line] for line in out]
+
+
+def _marker(finding) -> Line:
+    """``[*]`` before the code of a finding that ``--fix`` removes, ``[~]`` for one only
+    ``--unsafe-fixes`` removes (as ruff marks them)."""
+    if finding.fix is None:
+        return []
+    return [("[*] " if finding.fix.safe else "[~] ", "bold cyan")]
 
 
 def render(results, stream, quiet: bool = False) -> None:

@@ -57,7 +57,8 @@ def test_ros1_namespaced_layout_and_prefixless_interface(tmp_path):
             joint: cam_joint
         """
     found, _ = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
-    assert found == [("c.yaml", 8, "U603")]
+    # the bare name still offers effort (U508 only asks for the prefix)
+    assert found == [("c.yaml", 8, "U603"), ("robot.urdf", 9, "U508")]
 
 
 def test_moveit_controller_list_joints_are_checked(tmp_path):

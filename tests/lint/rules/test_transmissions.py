@@ -31,7 +31,7 @@ def test_different_interfaces_in_separate_transmissions_are_allowed(tmp_path):
     body = tx(name="a") + tx(name="b", iface="hardware_interface/EffortJointInterface") + tx(
         name="c", iface="franka_hw/FrankaStateInterface")
     assert codes(tmp_path, body) == []
-    assert codes(tmp_path / "2", body + tx(name="d", iface="EffortJointInterface")) == ["U506"]
+    assert codes(tmp_path / "2", body + tx(name="d", iface="EffortJointInterface")) == ["U506", "U508"]
 
 
 def test_read_only_transmission_may_name_a_fixed_joint(tmp_path):

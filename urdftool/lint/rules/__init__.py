@@ -9,10 +9,10 @@ from __future__ import annotations
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
                                  loading, moveit, spec, srdf, transmissions,
-                                 tree)
+                                 tree, vocabulary)
 
-FAMILY_MODULES = (loading, tree, joints, inertials, geometry, transmissions, controllers, gazebo,
-                  spec, srdf, moveit, internal)
+FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions,
+                  controllers, gazebo, spec, srdf, moveit, internal)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
 __all__ = ["CATALOGUE", "FAMILY_MODULES"]

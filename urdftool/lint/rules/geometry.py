@@ -6,6 +6,7 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.values import finite, parse_numbers
 
@@ -333,6 +334,9 @@ def mesh_implausible_size(robot):
     CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
     too big, and any inertia computed from the mesh is 10^6 too big.
 
+    Fix (safe): the ``scale`` that brings it to a plausible size (x 0.001 or 0.01 for a mesh
+    too large, x 1000 or 100 for one too small), written or multiplied into the one there.
+
     Bad: ``<mesh filename="base.stl"/>`` for a file in millimetres (extent 350 m)
     Good: ``<mesh filename="base.stl" scale="0.001 0.001 0.001"/>``
     """
@@ -353,8 +357,9 @@ def mesh_implausible_size(robot):
             yield shape, f"{where} is {extent:.4g} m across; check its unit"
             continue
         fixed = " ".join(f"{s * factor:g}" for s in scale)
-        yield shape, (f"{where} is {extent:.4g} m across, which suggests the wrong unit; "
-                      f"scale=\"{fixed}\" would make it {extent * factor:.4g} m")
+        yield offer(shape, (f"{where} is {extent:.4g} m across, which suggests the wrong unit; "
+                            f"scale=\"{fixed}\" would make it {extent * factor:.4g} m"),
+                    f"scale the mesh by {factor:g}", set_attribute(robot, shape, "scale", fixed))
 
 
 @rule("U414", "mesh-not-watertight", Severity.INFO)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
@@ -71,6 +72,35 @@ def _judged(robot):
     for link, properties in _valid(robot):
         if properties.mass >= PLACEHOLDER_MASS:
             yield link, properties
+
+
+def _from_geometry(robot, link, mass: float):
+    """Edits replacing a link's inertial with the one its geometry gives at the declared
+    ``mass``; None without usable geometry, Unfixable when a value comes from an expression."""
+    from urdftool.physics.solids import computed
+
+    solid = _solid(robot, link)
+    if not solid.parts or solid.problems:
+        return None  # nothing to compute it from (a missing mesh is reported on its own)
+    return inertial_edits(robot, link, computed(solid, mass=mass))
+
+
+def _solid(robot, link):
+    """The link's solids (physics.solids.link_solid), built once per robot and link."""
+    from urdftool.physics.solids import link_solid
+
+    return robot.memo((_solid, link), lambda: link_solid(robot, link))
+
+
+def _recomputed(robot, link, properties, message: str):
+    """The finding on ``link``'s <inertia>, with the inertia from geometry as its unsafe fix."""
+    return offer(link.find("inertial").find("inertia"), message,
+                 f"replace link '{_name(link)}' inertia with its {_solid_source(robot, link)} "
+                 "geometry's", _from_geometry(robot, link, properties.mass), safe=False)
+
+
+def _solid_source(robot, link) -> str:
+    return _solid(robot, link).source
 
 
 def _moving(robot) -> dict:
@@ -183,21 +213,25 @@ def inertia_not_positive_definite(robot):
     A body with mass but no rotational inertia cannot be simulated: MuJoCo refuses it, and
     Gazebo/ODE produce an explosion. Zero mass with zero inertia (a massless frame) is fine.
 
+    Fix (unsafe): the inertia (and inertial origin) computed from the link's geometry at its
+    declared mass; a person should confirm the geometry stands for the body.
+
     Bad: ``<mass value="0.5"/><inertia ixx="0" ... iyy="0" ... izz="0"/>`` on a revolute link
     Good: the inertia of the link's shape, e.g. ``urdftool inertia ROBOT``
     """
     moving = _moving(robot)
     for link, properties in _judged(robot):
         diagonal = _diagonal(properties)
-        inertia = link.find("inertial").find("inertia")
         if any(v < -NEGATIVE_FLOOR for v in diagonal):
             names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
-            yield inertia, (f"link '{_name(link)}': {', '.join(names)} negative; moments of "
-                            "inertia are positive")
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
+                "positive"))
         elif _name(link) in moving and all(abs(v) < ZERO_INERTIA
                                            for row in properties.inertia for v in row):
-            yield inertia, (f"link '{_name(link)}' has mass {properties.mass:g} kg but zero "
-                            "inertia and is moved by a joint; give the inertia of its shape")
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
+                "moved by a joint; give the inertia of its shape"))
 
 
 @rule("U305", "inertia-indefinite", Severity.ERROR)
@@ -207,6 +241,8 @@ def inertia_indefinite(robot):
     A principal moment is negative although every diagonal moment is positive. No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
     reporting products of inertia with the opposite sign convention).
 
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
+
     Bad: ``ixx="1" iyy="1" izz="1" ixy="2"`` (principal moments -1, 1, 3)
     Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
     """
@@ -215,10 +251,10 @@ def inertia_indefinite(robot):
             continue
         moments, largest = _principal(properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
-            yield link.find("inertial").find("inertia"), (
+            yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
                 f"{', '.join(f'{m:.4g}' for m in moments)} include a negative one; check the "
-                "signs of ixy, ixz, iyz")
+                "signs of ixy, ixz, iyz"))
 
 
 @rule("U306", "inertia-triangle-inequality", Severity.ERROR)
@@ -227,6 +263,8 @@ def inertia_triangle_inequality(robot):
 
     MuJoCo refuses the model; Gazebo and PyBullet simulate physically impossible motion.
     Allows a relative slack of 1e-3 for printed rounding.
+
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
 
     Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5)
     Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
@@ -238,9 +276,9 @@ def inertia_triangle_inequality(robot):
             continue
         broken = triangle_violation(moments, TRIANGLE_TOLERANCE)
         if broken:
-            yield link.find("inertial").find("inertia"), (
+            yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments violate the triangle inequality "
-                f"({broken}); recompute with `urdftool inertia`")
+                f"({broken}); recompute with `urdftool inertia`"))
 
 
 def _link_solids(robot):
@@ -306,6 +344,9 @@ def root_link_inertia(robot):
     KDL prints "The root link has an inertia specified in the URDF, but KDL does not support a
     root link with an inertia". Add a massless root (e.g. ``base_footprint``) fixed to it.
 
+    Fix (unsafe: the robot's root frame changes name): a massless ``base_footprint`` link
+    (another name when taken) and a fixed joint to the old root, written before the old root.
+
     Bad: ``base_link`` (root) with ``<mass value="5"/>``
     Good: a massless ``base_footprint`` root with ``base_link`` fixed below it
 
@@ -316,9 +357,19 @@ def root_link_inertia(robot):
     masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
     if len(roots) == 1 and masses.get(roots[0], 0) > 0:
-        yield robot.links[roots[0]].find("inertial"), (
+        root = robot.links[roots[0]]
+        name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
+                    if n not in robot.links and f"{n}_joint" not in robot.joints)
+        location = robot.locations.get(root)
+        edits = Unfixable(f"'{roots[0]}' is written in a macro (called at {location.via[0]}); "
+                          "add the link beside the call") if location and location.via else \
+            insert_before(robot, root, f'<link name="{name}"/>',
+                          f'<joint name="{name}_joint" type="fixed"><parent link="{name}"/>'
+                          f'<child link="{roots[0]}"/></joint>')
+        yield offer(root.find("inertial"), (
             f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
-            "massless root link fixed to it")
+            "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
+            safe=False)
 
 
 @rule("U309", "inertia-unit-mistake", Severity.WARNING)
@@ -331,6 +382,8 @@ def inertia_unit_mistake(robot):
     values such as ``ixx="1e-3"`` on every link are not mistaken for unit errors). 10^3 points at grams vs
     kilograms (g·m^2), 10^6 at millimetres vs metres (kg·mm^2). Skipped when a mesh is missing
     or has an implausible size (then the mesh is suspect, see U413).
+
+    Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
 
     Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
     Good: ``<inertia ixx="0.0012" .../>``
@@ -356,8 +409,8 @@ def inertia_unit_mistake(robot):
             if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
                     rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
                 direction = "larger" if power > 0 else "smaller"
-                yield link.find("inertial").find("inertia"), (
+                yield _recomputed(robot, link, properties, (
                     f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
                     f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
-                    "`urdftool inertia` computes the right values")
+                    "`urdftool inertia` computes the right values"))
                 break

@@ -16,6 +16,9 @@ U901 = declare("U901", "unused-suppression", Severity.WARNING, """
     misspelled. A stale suppression will silently hide the next real problem at that place:
     delete it, or move it to the line just above the element the finding points at.
 
+    Fix (safe): the comment deleted (its line, when nothing else is on it), unless it names an
+    unknown code (a misspelling to correct by hand).
+
     Bad: ``<!-- urdftool: ignore U206 -->`` above a joint whose axis is a unit vector
     Good: no comment (or the comment above the element that really has the finding)
     """)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
 from urdftool.description.values import finite, parse_numbers
@@ -93,13 +94,16 @@ def inverted_limits(robot):
 
     The joint can reach no position: planners fail and controllers clamp to nonsense.
 
+    Fix (safe): the two values swapped where they are written.
+
     Bad: ``<limit lower="1.57" upper="-1.57" .../>``
     Good: ``<limit lower="-1.57" upper="1.57" .../>``
     """
     for joint, limit, lower, upper in _ranges(robot):
         if lower > upper:
-            yield limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper limit "
-                          f"{upper:g}; swap them")
+            yield offer(limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper "
+                                f"limit {upper:g}; swap them"), "swap lower and upper",
+                        swap_attributes(robot, limit, "lower", "upper", default="0"))
 
 
 def _axis(joint):
@@ -132,6 +136,9 @@ def axis_not_unit(robot):
     Some parsers normalise it and some do not, so the same joint value moves the robot by
     different amounts in different tools.
 
+    Fix (safe): the axis divided by its length, written with as many digits as make it a unit
+    vector to 1e-6.
+
     Bad: ``<axis xyz="0 0 2"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
@@ -141,9 +148,20 @@ def axis_not_unit(robot):
             continue
         norm = math.hypot(*values)
         if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE:
-            unit = " ".join(f"{v / norm:.6g}" for v in values)
-            yield axis, (f"joint '{_name(joint)}' axis has length {norm:.6g}, not 1; "
-                         f"write xyz=\"{unit}\"")
+            unit = _unit_text(values, norm)
+            yield offer(axis, (f"joint '{_name(joint)}' axis has length {norm:.6g}, not 1; "
+                               f"write xyz=\"{unit}\""), f"normalise the axis to {unit}",
+                        set_attribute(robot, axis, "xyz", unit))
+
+
+def _unit_text(values, norm: float) -> str:
+    """The unit vector of ``values`` as text: the fewest digits (6 or more) that keep its
+    length within UNIT_TOLERANCE of 1."""
+    for digits in (6, 9, 12, 17):
+        text = " ".join(f"{v / norm:.{digits}g}" for v in values)
+        if abs(math.hypot(*(float(part) for part in text.split())) - 1) <= UNIT_TOLERANCE / 10:
+            return text
+    return text
 
 
 def _numeric_problems(robot):

@@ -6,6 +6,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
                                             interface_kind, is_ros2_form, moving_joints,
                                             ros2_control_joints, transmission_joints, transmissions)
+from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 
@@ -175,6 +176,10 @@ def unactuated_joint(robot):
     Mimic joints are exempt, and so are the wheels a Gazebo diff-drive plugin drives (it
     turns them and publishes their states itself).
 
+    Fix (unsafe: the interface is a guess): a ros2_control ``<joint>`` with the interfaces of
+    the block's first joint, or a ROS 1 SimpleTransmission with the interface most of the
+    robot's transmissions use (effort when none), added at the end of the block or robot.
+
     Bad: ``<ros2_control>`` lists head_joint but not the wheel joints
     Good: a transmission or a ros2_control ``<joint>`` for every revolute, continuous and
     prismatic joint
@@ -188,8 +193,71 @@ def unactuated_joint(robot):
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
-            yield joint, (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control "
-                          f"joint although the robot loads {loader}; it will not be in /joint_states")
+            yield offer(joint, (
+                f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
+                f"although the robot loads {loader}; it will not be in /joint_states"),
+                f"actuate joint '{name}'", _actuation(robot, plugin, name), safe=False)
+
+
+def _actuation(robot, plugin, name: str):
+    """Edits adding joint ``name`` to the robot's ros2_control block (with the interfaces of
+    the block's first joint), or a ROS 1 transmission (with the interface most transmissions
+    use) at the end of the robot."""
+    if plugin.tag == "ros2_control":
+        location = robot.locations.get(plugin)
+        if location is not None and location.via:
+            return Unfixable(f"the <ros2_control> block is written in a macro (called at "
+                             f"{location.via[0]}); add the joint there")
+        model = plugin.find("joint")
+        kinds = [(child.tag, child.get("name")) for child in (model if model is not None else ())
+                 if child.tag in ("command_interface", "state_interface") and child.get("name")]
+        kinds = kinds or [("command_interface", "position"), ("state_interface", "position"),
+                          ("state_interface", "velocity")]
+        lines = [f'<joint name="{name}">', *(f'  <{tag} name="{kind}"/>' for tag, kind in kinds),
+                 "</joint>"]
+        return append_child(robot, plugin, "\n".join(lines))
+    used = [(interface.text or "").strip() for t in transmissions(robot)
+            for joint in transmission_joints(t) for interface in joint.interfaces]
+    interface = max(set(used), key=used.count) if used else \
+        "hardware_interface/EffortJointInterface"
+    lines = [f'<transmission name="{name}_transmission">',
+             "  <type>transmission_interface/SimpleTransmission</type>",
+             f'  <joint name="{name}"><hardwareInterface>{interface}</hardwareInterface></joint>',
+             f'  <actuator name="{name}_motor"><mechanicalReduction>1</mechanicalReduction>'
+             "</actuator>", "</transmission>"]
+    return append_child(robot, robot.root, "\n".join(lines))
+
+
+# The bare names gazebo_ros_control (DefaultRobotHWSim) warns about: "Deprecated syntax, please
+# prepend 'hardware_interface/' to 'EffortJointInterface' within the <hardwareInterface> tag".
+_DEPRECATED_BARE = ("EffortJointInterface", "PositionJointInterface", "VelocityJointInterface")
+
+
+@rule("U508", "hardware-interface-prefix", Severity.WARNING)
+def hardware_interface_prefix(robot):
+    """A ROS 1 transmission joint names its interface without ``hardware_interface/``.
+
+    gazebo_ros_control still accepts the old form but warns on every start ("Deprecated syntax,
+    please prepend 'hardware_interface/' ..."), and ros_control's transmission loader expects
+    the full name.
+
+    Fix (safe): ``hardware_interface/`` written before the name.
+
+    Bad: ``<hardwareInterface>EffortJointInterface</hardwareInterface>``
+    Good: ``<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>``
+    """
+    for transmission in transmissions(robot):
+        if is_ros2_form(transmission):
+            continue
+        for joint in transmission_joints(transmission):
+            for interface in joint.interfaces:
+                text = (interface.text or "").strip()
+                if text in _DEPRECATED_BARE:
+                    yield offer(interface, (
+                        f"{_label(transmission)}: joint '{joint.name}' names '{text}' without "
+                        f"hardware_interface/; write hardware_interface/{text}"),
+                        "prepend hardware_interface/", prefix_text(robot, interface,
+                                                                    "hardware_interface/"))
 
 
 @rule("U511", "ros2-control-unknown-joint", Severity.ERROR)

@@ -1,0 +1,109 @@
+"""U02x: the URDF vocabulary (misspelt elements and attributes, content urdfdom ignores)."""
+
+from __future__ import annotations
+
+import pytest
+
+from crossfile_helpers import check_folder
+from urdftool.description.urdf import EXTENSIONS, VOCABULARY, where_valid
+
+ISSUE_EXAMPLE = """<robot name="r"><link name="a"/><link name="b"/>
+<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+  <orgin xyz="0 0 1"/>
+  <limit lower="-1" uper="1" effort="1" velocity="1"/>
+  <dynamics><damping>100</damping></dynamics>
+</joint>
+</robot>
+"""
+
+
+def _check(tmp_path, text):
+    return check_folder(tmp_path, {"robot.urdf": text}, select=("U02",))
+
+
+def test_the_issue_example_names_each_misspelling_at_its_line(tmp_path):
+    found, findings = _check(tmp_path, ISSUE_EXAMPLE)
+    assert found == [("robot.urdf", 3, "U020"), ("robot.urdf", 4, "U021"),
+                     ("robot.urdf", 5, "U020")]
+    messages = [f.message for f in findings]
+    assert "did you mean 'origin'?" in messages[0]
+    assert "did you mean 'upper'?" in messages[1]
+    assert 'reads damping as an attribute: <dynamics damping="100"/>' in messages[2]
+
+
+def test_an_attribute_written_for_an_element_says_so(tmp_path):
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="fixed" child="b"><parent link="a"/><child link="b"/></joint></robot>""")
+    assert [c for _, _, c in found] == ["U021"]
+    assert "reads child as an element" in findings[0].message
+
+
+@pytest.mark.parametrize("body", [
+    '<gazebo reference="a"><mu1>1</mu1><material>Gazebo/Red</material><whatever x="1"/></gazebo>',
+    '<sensor name="cam" update_rate="30"><parent link="a"/><camera><image width="640"/></camera></sensor>',
+    '<mujoco><compiler meshdir="meshes" balanceinertia="true"/></mujoco>',
+    '<drake:collision_filter_group name="g"><drake:member link="a"/></drake:collision_filter_group>',
+    '<ros2_control name="s" type="system"><hardware><plugin>p</plugin></hardware></ros2_control>',
+])
+def test_extension_blocks_are_left_alone(tmp_path, body):
+    found, _ = _check(tmp_path, f'<robot name="r" xmlns:drake="http://drake.mit.edu">'
+                                f'<link name="a"/>{body}</robot>')
+    assert found == []
+
+
+def test_a_misspelling_in_a_known_extension_vocabulary_is_reported(tmp_path):
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"/>
+      <ros2_control name="s" type="system"><hardware><plugin>p</plugin></hardware>
+        <joint name="j"><comand_interface name="position"/></joint></ros2_control></robot>""")
+    assert [c for _, _, c in found] == ["U020"]
+    assert "did you mean 'command_interface'?" in findings[0].message
+
+
+def test_a_zero_axis_rpy_misleads_nobody_and_is_not_reported(tmp_path):
+    joint = ('<joint name="j" type="continuous"><parent link="a"/><child link="b"/>'
+             '<axis xyz="0 0 1" rpy="{rpy}"/></joint>')
+    robot = '<robot name="r"><link name="a"/><link name="b"/>{joint}</robot>'
+    assert _check(tmp_path, robot.format(joint=joint.format(rpy="0 0 0")))[0] == []
+    found, findings = _check(tmp_path, robot.format(joint=joint.format(rpy="0 1.57 0")))
+    assert [c for _, _, c in found] == ["U022"]
+    assert "rotate the frame with the joint's <origin rpy>" in findings[0].message
+
+
+def test_unread_attributes_of_one_element_are_one_finding(tmp_path):
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"><inertial><mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyx="0" iyy="1" iyz="0" izx="0" izy="0" izz="1"/>
+      </inertial></link></robot>""")
+    assert [c for _, _, c in found] == ["U022"]
+    assert "attributes 'iyx', 'izx', 'izy' have no effect" in findings[0].message
+
+
+def test_an_element_in_the_wrong_place_says_where_it_belongs(tmp_path):
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a">
+      <limit lower="0" upper="1" effort="1" velocity="1"/></link></robot>""")
+    assert [c for _, _, c in found] == ["U022"]
+    assert "urdfdom reads it only in <joint>" in findings[0].message
+
+
+def test_only_the_first_shape_of_a_geometry_is_read(tmp_path):
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"><visual><geometry>
+      <box size="1 1 1"/>
+      <sphere radius="1"/></geometry></visual></link></robot>""")
+    assert found == [("robot.urdf", 3, "U022")]
+    assert "only the first shape" in findings[0].message
+
+
+def test_the_vocabulary_is_consistent_data():
+    for name, place in VOCABULARY.items():
+        assert place.source, f"{name} has no source"
+        assert set(place.required) <= set(place.attributes), name
+        assert all(child in VOCABULARY for child in place.children.values()), name
+        assert not set(place.ignored) & set(place.names()), name
+    assert where_valid("limit") == ["joint"]
+    assert not set(EXTENSIONS) & set(VOCABULARY["robot"].children)
+
+
+def test_xacro_left_in_a_urdf_is_u007s_not_the_vocabulary(tmp_path):
+    found, _ = check_folder(tmp_path, {"robot.urdf": """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:property name="w" value="1"/>
+      <link name="a"><xacro:grey/></link></robot>"""}, select=("U0",))
+    assert {code for _, _, code in found} == {"U007"}

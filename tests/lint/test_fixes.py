@@ -1,0 +1,283 @@
+"""Fixes (``check --fix / --unsafe-fixes / --diff``): each fix removes its finding, edits only
+the text it must (the fixed file expands to the same URDF but for the fixed values), lands in the
+file the user wrote (a xacro macro file too), and never in a file outside the repository."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from conftest import CASES
+from urdftool.description.load import load
+from urdftool.lint import fixes
+from urdftool.lint.engine import CheckOptions, check_file
+
+FIXES = Path(__file__).parent.parent / "fixes"
+
+# case (in tests/cases, or tests/fixes), code fixed, unsafe?, what may differ in the expansion:
+# {(tag, attribute)} (attribute None: the element's tag itself)
+CASES_FIXED = [
+    (CASES / "U020_misspelt_element.urdf", "U020", False, {
+        ("orgin", None), ("hardwareInterfce", None), ("dynamics", "damping"),
+        ("dynamics", "#children")}),
+    (CASES / "U021_misspelt_attribute.urdf", "U021", False, {("limit", "uper"), ("limit", "upper")}),
+    (CASES / "U204_inverted_limits.urdf", "U204", False, {("limit", "lower"), ("limit", "upper")}),
+    (CASES / "U206_axis_not_unit.urdf", "U206", False, {("axis", "xyz")}),
+    (CASES / "U413_mesh_implausible_size", "U413", False, {("mesh", "scale")}),
+    (CASES / "U901_unused_suppression", "U901", False, {("axis", "xyz")}),
+    (CASES / "U508_hardware_interface_prefix.urdf", "U508", False,
+     {("hardwareInterface", "#text")}),
+    (CASES / "U507_unactuated_joint.urdf", "U507", True, {("robot", "#children")}),
+    (FIXES / "U507_ros2_control.urdf", "U507", True, {("ros2_control", "#children")}),
+    (CASES / "U309_inertia_unit_mistake.urdf", "U309", True, {("inertia", a) for a in (
+        "ixx", "iyy", "izz")}),
+    (FIXES / "U305_inertia_indefinite.urdf", "U305", True, {("inertia", a) for a in (
+        "ixx", "ixy", "iyy", "izz")} | {("origin", "xyz"), ("origin", "rpy")}),
+]
+
+
+def _copy(case: Path, folder: Path) -> Path:
+    """The case copied into ``folder``; its robot file."""
+    if case.is_dir():
+        shutil.copytree(case, folder / case.name)
+        robots = sorted(p for p in (folder / case.name).iterdir()
+                        if p.name.endswith((".urdf", ".urdf.xacro")))
+        return robots[0]
+    shutil.copy(case, folder / case.name)
+    return folder / case.name
+
+
+def _differences(before, after) -> set:
+    """(tag, attribute) pairs where two expanded trees differ (attribute None: the tag)."""
+    found = set()
+    if before.tag != after.tag:
+        found.add((before.tag, None))
+    for name in set(before.attrib) | set(after.attrib):
+        if before.get(name) != after.get(name):
+            found.add((before.tag, name))
+    if (before.text or "").strip() != (after.text or "").strip():
+        found.add((before.tag, "#text"))
+    elements = lambda e: [c for c in e if isinstance(c.tag, str)]  # noqa: E731
+    old, new = elements(before), elements(after)
+    if len(old) != len(new):
+        found.add((before.tag, "#children"))
+    for a, b in zip(old, new):
+        found |= _differences(a, b)
+    return found
+
+
+@pytest.mark.parametrize("case, code, unsafe, allowed", CASES_FIXED,
+                         ids=[c[0].name for c in CASES_FIXED])
+def test_a_fix_removes_its_finding_and_changes_nothing_else(tmp_path, case, code, unsafe, allowed):
+    robot = _copy(case, tmp_path)
+    before = check_file(str(robot), CheckOptions())
+    fixed = [f for f in before.findings if f.code == code and f.fix is not None]
+    assert fixed and all(f.fix.safe is not unsafe for f in fixed)
+    # U901's case also names an unknown code: a misspelling to correct by hand, kept
+    kept = [f.message for f in before.findings if f.code == code and f.fix is None]
+    assert bool(fixes.plan([before]).changed) is not unsafe  # unsafe: only --unsafe-fixes
+    [after], applied, _, skipped = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied and not skipped
+    assert [f.message for f in after.findings if f.code == code] == kept
+    assert {f.code for f in after.findings} <= {f.code for f in before.findings}
+    differences = _differences(before.robot.root, load(str(robot)).root)
+    assert differences and differences <= allowed
+
+
+def test_fixes_keep_comments_formatting_and_attribute_order(tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r">\n  <link name="a"/>  <!-- keep me -->\n  <link name="b"/>\n'
+                     "  <joint name='j'   type='revolute'><parent link='a'/><child link='b'/>\n"
+                     "    <limit effort='1'  uper='1'\n           lower='-1' velocity='1'/>\n"
+                     "  </joint>\n</robot>")
+    result = check_file(str(robot), CheckOptions())
+    fixes.write(fixes.plan([result]))
+    assert robot.read_text() == robot.read_text().replace("uper=", "upper=")
+    assert robot.read_text() == ('<robot name="r">\n  <link name="a"/>  <!-- keep me -->\n'
+                                 '  <link name="b"/>\n'
+                                 "  <joint name='j'   type='revolute'><parent link='a'/>"
+                                 "<child link='b'/>\n"
+                                 "    <limit effort='1'  upper='1'\n           lower='-1' "
+                                 "velocity='1'/>\n  </joint>\n</robot>")
+
+
+def test_a_value_from_a_macro_argument_is_not_edited_and_the_finding_says_where(tmp_path):
+    robot = _copy(FIXES / "xacro_macro", tmp_path)
+    result = check_file(str(robot), CheckOptions())
+    [argument] = [f for f in result.findings if f.code == "U206" and f.fix is None]
+    assert "xyz is the macro argument axis=\"0 3 0\" of the call at " in argument.message
+    assert argument.message.endswith("robot.urdf.xacro:7; change it there)")
+
+
+def test_an_edit_outside_the_repository_or_of_a_changed_file_is_refused(tmp_path):
+    repository = tmp_path / "repo"
+    (repository / ".git").mkdir(parents=True)
+    outside = tmp_path / "elsewhere.urdf"
+    outside.write_text(shutil.os.linesep.join(["x"] * 3))
+    robot = _copy(CASES / "U204_inverted_limits.urdf", repository)
+    result = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U204"]
+    edit = finding.fix.edits[0]
+    moved = type(finding.fix)(finding.fix.description, (
+        type(edit)(str(outside), 0, 1, "y", "x", 1, 0),), True)
+    result.findings[result.findings.index(finding)] = type(finding)(
+        finding.code, finding.name, finding.severity, finding.message, finding.location, moved)
+    changes = fixes.plan([result])
+    assert not changes.changed and "outside the repository" in changes.skipped[0][1]
+    robot.write_text(robot.read_text().replace('lower="1.57"', 'lower="1.5"'))
+    changes = fixes.plan([check_file(str(robot), CheckOptions())])
+    assert changes.changed  # checked again: applies
+    stale = check_file(str(robot), CheckOptions())
+    robot.write_text(robot.read_text().replace('lower="1.5"', 'lower="1.4"'))
+    changes = fixes.plan([stale])
+    assert not changes.changed and "changed since it was checked" in changes.skipped[0][1]
+
+
+XACRO_DIFF = """\
+--- a/{arm}
++++ b/{arm}
+@@ -11,14 +11,14 @@
+     <link name="${{prefix}}_lower"/>
+     <joint name="${{prefix}}_shoulder" type="revolute">
+       <parent link="base_link"/><child link="${{prefix}}_upper"/>
+-      <orgin xyz="0 0 0.1"/>
+-      <axis xyz="0 0 2"/>
+-      <limit lower="1.5" upper="-1.5" effort="10" velocity="1"/>
++      <origin xyz="0 0 0.1"/>
++      <axis xyz="0 0 1"/>
++      <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
+     </joint>
+     <joint name="${{prefix}}_elbow" type="revolute">
+       <parent link="${{prefix}}_upper"/><child link="${{prefix}}_lower"/>
+       <axis xyz="${{axis}}"/>
+-      <limit lower="-1" uper="1" effort="10" velocity="1"/>
++      <limit lower="-1" upper="1" effort="10" velocity="1"/>
+     </joint>
+   </xacro:macro>
+ </robot>
+"""
+
+
+def test_fix_diff_on_a_xacro_robot_edits_the_included_macro_file(tmp_path, run_cli, monkeypatch):
+    """The issue's proof: ``check --fix --diff`` on a xacro robot whose findings are in an
+    included macro file: the diff is of that file, at the literals, once for both macro
+    calls; nothing is written."""
+    robot = _copy(FIXES / "xacro_macro", tmp_path)
+    monkeypatch.chdir(tmp_path)
+    before = {p.name: p.read_bytes() for p in robot.parent.iterdir()}
+    result = run_cli("check", "--fix", "--diff", "-j1", robot.relative_to(tmp_path))
+    assert result.exit_code == 1
+    assert result.stdout == XACRO_DIFF.format(arm="xacro_macro/arm.xacro")
+    assert {p.name: p.read_bytes() for p in robot.parent.iterdir()} == before
+    result = run_cli("check", "--fix", "-j1", robot.relative_to(tmp_path))
+    assert result.exit_code == 1  # what remains: U303, U309 (unsafe) and the argument's U206
+    remaining = {line.split()[2 if "[" not in line.split()[2] else 3]
+                 for line in result.stdout.splitlines() if ": error " in line or ": warning " in line}
+    assert remaining == {"U303", "U309", "U206"}
+    assert "[~] 2 more with --unsafe-fixes" in result.stdout
+
+
+def test_exit_code_after_fix_reflects_what_remains(tmp_path, run_cli):
+    robot = _copy(CASES / "U204_inverted_limits.urdf", tmp_path)
+    assert run_cli("check", "-j1", robot).exit_code == 1
+    result = run_cli("check", "--fix", "-j1", robot)
+    assert result.exit_code == 0, result.stdout
+    assert "no problems found" in result.stdout
+    assert 'lower="-1.57"' in robot.read_text()
+
+
+def test_unsafe_fixes_alone_is_a_usage_error(tmp_path, run_cli):
+    robot = _copy(CASES / "U204_inverted_limits.urdf", tmp_path)
+    assert run_cli("check", "--unsafe-fixes", robot).exit_code == 2
+
+
+def test_json_carries_the_fix_as_data(tmp_path, run_cli):
+    import json
+
+    robot = _copy(CASES / "U021_misspelt_attribute.urdf", tmp_path)
+    data = json.loads(run_cli("check", "-f", "json", "-j1", robot).stdout)
+    [diagnostic] = data["diagnostics"]
+    assert diagnostic["fix"]["safe"] is True
+    [edit] = diagnostic["fix"]["edits"]
+    assert (edit["old"], edit["new"], edit["line"]) == ("uper", "upper", 6)
+
+
+def test_a_massless_root_is_added_before_a_root_with_mass(tmp_path):
+    robot = _copy(CASES / "U308_root_link_inertia.urdf", tmp_path)
+    before = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in before.findings if f.code == "U308"]
+    assert finding.fix is not None and not finding.fix.safe
+    [after], applied, _, _ = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied == 1 and "U308" not in {f.code for f in after.findings}
+    fixed = load(str(robot))
+    assert fixed.joints["base_footprint_joint"].find("child").get("link") == "base"
+    for added in (fixed.links["base_footprint"], fixed.joints["base_footprint_joint"]):
+        fixed.root.remove(added)
+    assert _differences(before.robot.root, fixed.root) == set()
+
+
+def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
+    (tmp_path / "robot.urdf.xacro").write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="part" params="name size">
+    <link name="${name}">
+      <inertial><mass value="1"/>
+        <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="3"/></inertial>
+      <collision><geometry><box size="${size}"/></geometry></collision>
+    </link>
+  </xacro:macro>
+  <link name="base_link"/>
+  <xacro:part name="a" size="0.1 0.1 0.1"/>
+  <xacro:part name="b" size="0.1 0.2 0.3"/>
+  <joint name="ja" type="fixed"><parent link="base_link"/><child link="a"/></joint>
+  <joint name="jb" type="fixed"><parent link="base_link"/><child link="b"/></joint>
+</robot>""")
+    result = check_file(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    assert [f.code for f in result.findings if f.fix is not None] == ["U306", "U306"]
+    changes = fixes.plan([result], unsafe=True)
+    assert not changes.changed and len(changes.skipped) == 2
+    assert "would need different values for different elements" in changes.skipped[0][1]
+
+
+def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_bytes(b'<robot name="r">\r\n  <link name="base">\r\n    <inertial>\r\n'
+                      b'      <mass value="1"/>\r\n      <inertia ixx="0.01" ixy="0" ixz="0" '
+                      b'iyy="0.01" iyz="0" izz="0.01"/>\r\n    </inertial>\r\n  </link>\r\n'
+                      b'</robot>\r\n')
+    result = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U308"]
+    [edit] = finding.fix.edits
+    assert (edit.line, edit.column, edit.end_line, edit.end_column) == (2, 2, 2, 2)
+    fixes.write(fixes.plan([result], unsafe=True))
+    assert b'<link name="base_footprint"/>\r\n  <joint name="base_footprint_joint"' in \
+        robot.read_bytes()
+    assert b"\n" not in robot.read_bytes().replace(b"\r\n", b"")
+    other = tmp_path / "u.urdf"
+    other.write_text('<robot name="r"><link name="a"/><link name="b"/>\n<joint name="j" '
+                     'type="revolute"><parent link="a"/><child link="b"/>\n  <limit lower="-1" '
+                     'uper="1" effort="1" velocity="1"/></joint></robot>')
+    [rename] = [f for f in check_file(str(other), CheckOptions()).findings if f.code == "U021"]
+    [edit] = rename.fix.edits
+    assert (edit.line, edit.column, edit.end_line, edit.end_column) == (3, 20, 3, 24)
+
+
+def test_the_issue_example_is_fixed_to_what_urdfdom_reads(tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/>\n'
+                     '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+                     '  <orgin xyz="0 0 1"/>\n'
+                     '  <limit lower="-1" uper="1" effort="1" velocity="1"/>\n'
+                     '  <dynamics><damping>100</damping></dynamics>\n</joint>\n</robot>\n')
+    [after], applied, _, _ = fixes.apply([check_file(str(robot), CheckOptions())],
+                                         lambda: [check_file(str(robot), CheckOptions())])
+    assert applied == 3 and not [f for f in after.findings if f.code.startswith("U02")]
+    assert robot.read_text() == (
+        '<robot name="r"><link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+        '  <origin xyz="0 0 1"/>\n'
+        '  <limit lower="-1" upper="1" effort="1" velocity="1"/>\n'
+        '  <dynamics damping="100"/>\n</joint>\n</robot>\n')

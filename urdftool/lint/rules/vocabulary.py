@@ -1,0 +1,268 @@
+"""U02x: the URDF vocabulary. Misspelt elements and attributes, and content urdfdom ignores.
+
+urdfdom asks for each element and attribute it knows by name and never looks at the rest: an
+``<orgin>`` leaves the joint at the identity, an ``uper`` leaves the limit at 0, both without a
+word. The names it reads, where, and which it requires are the data of
+:data:`urdftool.description.urdf.VOCABULARY` (with their sources). Namespaced content
+(``drake:``, ``xacro:``) and the blocks other programs read (``<gazebo>``, ``<transmission>``,
+``<ros2_control>``, ``<sensor>``, ``<mujoco>``: :data:`~urdftool.description.urdf.EXTENSIONS`)
+are left alone, except for the parts of transmissions and ros2_control whose names are known,
+where a close misspelling is reported.
+"""
+
+from __future__ import annotations
+
+import difflib
+
+from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
+                                       is_namespaced, is_xacro, where_valid)
+from urdftool.description.values import parse_numbers
+from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import element_to_attribute, offer, rename_attribute, rename_element
+
+CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a known one
+
+
+def _close(name: str, valid) -> list[str]:
+    valid = list(dict.fromkeys(valid))
+    same_case = [v for v in valid if v.lower() == name.lower()]
+    return same_case or difflib.get_close_matches(name, valid, n=3, cutoff=CUTOFF)
+
+
+class _Unknown:
+    """One unknown name: ``element`` holds it (the unknown element itself, or the element with
+    the unknown ``attribute``); ``close`` the known names it is close to; ``why``: when known
+    but read nowhere here, the reason."""
+
+    __slots__ = ("element", "attribute", "place", "close", "why", "extension")
+
+    def __init__(self, element, attribute, place, close, why=None, extension=False):
+        self.element, self.attribute, self.place = element, attribute, place
+        self.close, self.why, self.extension = close, why, extension
+
+    @property
+    def name(self) -> str:
+        return self.attribute if self.attribute is not None else self.element.tag
+
+    @property
+    def holder(self) -> str:
+        parent = self.element if self.attribute is not None else self.element.getparent()
+        return parent.tag if parent is not None else "?"
+
+
+def _unknowns(robot) -> list[_Unknown]:
+    return robot.memo(_unknowns, lambda: list(_walk(robot.root, "robot", VOCABULARY["robot"])))
+
+
+def _skipped(tag) -> bool:
+    return not isinstance(tag, str) or is_namespaced(tag) or is_xacro(tag)
+
+
+def _walk(element, key: str, place: Place):
+    for attribute in element.attrib:
+        if is_namespaced(attribute) or attribute in place.attributes:
+            continue
+        if key == "axis" and attribute == "rpy" and _zero(element.get(attribute)):
+            continue  # misleads nobody: the axis is where its author meant it
+        if attribute in place.ignored:
+            yield _Unknown(element, attribute, key, [], place.ignored[attribute])
+        else:
+            yield _Unknown(element, attribute, key, _close(attribute, place.names()))
+    shapes = 0
+    for child in element:
+        if _skipped(child.tag):
+            continue
+        if key == "geometry":
+            shapes += 1
+            if shapes == 1 and child.tag not in place.children:
+                continue  # an unknown shape is U401's
+            if shapes > 1:
+                yield _Unknown(child, None, key, [], "urdfdom reads only the first shape of "
+                               "<geometry>; give each shape its own <visual>/<collision>")
+                continue
+        if child.tag in place.children:
+            name = place.children[child.tag]
+            yield from _walk(child, name, VOCABULARY[name])
+        elif key == "robot" and child.tag in EXTENSIONS:
+            yield from _extension(child, child.tag)
+        elif child.tag in place.extensions:
+            continue
+        elif child.tag in place.ignored:
+            yield _Unknown(child, None, key, [], place.ignored[child.tag])
+        else:
+            yield _Unknown(child, None, key, _close(child.tag, place.names()))
+
+
+def _zero(text) -> bool:
+    values, problem = parse_numbers(text, 3)
+    return not problem and not any(values)
+
+
+def _extension(element, key: str):
+    known = EXTENSION_VOCABULARY.get(key)
+    if known is None:
+        return
+    for attribute in element.attrib:
+        if not is_namespaced(attribute) and attribute not in known:
+            close = _close(attribute, known)
+            if close:
+                yield _Unknown(element, attribute, key, close, extension=True)
+    for child in element:
+        if _skipped(child.tag):
+            continue
+        if child.tag in known:
+            yield from _extension(child, f"{key}/{child.tag}")
+            continue
+        close = _close(child.tag, known)
+        if close:
+            yield _Unknown(child, None, key, close, extension=True)
+
+
+def _attributes(key: str) -> tuple[str, ...]:
+    place = VOCABULARY.get(key)
+    return place.attributes if place is not None else ()
+
+
+def _suggestion(unknown: _Unknown) -> str:
+    close = unknown.close
+    if unknown.attribute is None:
+        as_attribute = [name for name in close if name in _attributes(unknown.place)]
+        if as_attribute and as_attribute[0] == unknown.name:
+            text = (unknown.element.text or "").strip() or "..."
+            return (f"urdfdom reads {unknown.name} as an attribute: "
+                    f"<{unknown.holder} {unknown.name}=\"{text}\"/>")
+    elif unknown.attribute in close and unknown.attribute not in _attributes(unknown.place):
+        return (f"urdfdom reads {unknown.attribute} as an element: "
+                f"<{unknown.attribute} .../> inside <{unknown.holder}>")
+    shown = " or ".join(f"'{name}'" for name in close)
+    return f"did you mean {shown}?"
+
+
+def _what(unknown: _Unknown) -> str:
+    if unknown.attribute is not None:
+        return f"<{unknown.holder}> attribute '{unknown.attribute}'"
+    return f"<{unknown.name}> in <{unknown.holder}>"
+
+
+@rule("U020", "misspelt-element", Severity.ERROR)
+def misspelt_element(robot):
+    """An element urdfdom does not know, spelt close to one it reads there.
+
+    urdfdom asks for its elements by name and ignores the rest without a word: the joint keeps
+    an identity origin, the link no inertia. Known blocks of other readers (``<gazebo>``,
+    ``<sensor>``, namespaced ``drake:`` tags) are left alone; in ``<transmission>`` and
+    ``<ros2_control>`` only their known names are compared.
+
+    Fix (safe): the element renamed, when exactly one known name is close; an element written
+    for an attribute of its parent becomes that attribute.
+
+    Bad: ``<joint ...><orgin xyz="0 0 1"/>``, ``<dynamics><damping>100</damping></dynamics>``
+    Good: ``<origin xyz="0 0 1"/>``, ``<dynamics damping="100"/>``
+    """
+    for unknown in _unknowns(robot):
+        if unknown.attribute is None and unknown.close:
+            message = (f"unknown element {_what(unknown)}, which {_reader(unknown)} ignores; "
+                       f"{_suggestion(unknown)}")
+            yield _renamed(robot, unknown, message)
+
+
+@rule("U021", "misspelt-attribute", Severity.ERROR)
+def misspelt_attribute(robot):
+    """An attribute urdfdom does not know, spelt close to one it reads there.
+
+    urdfdom then uses that attribute's default (``upper`` 0, ``multiplier`` 1) silently.
+
+    Fix (safe): the attribute renamed, when exactly one known name is close and the element
+    does not already have it.
+
+    Bad: ``<limit lower="-1" uper="1" effort="1" velocity="1"/>``
+    Good: ``<limit lower="-1" upper="1" effort="1" velocity="1"/>``
+    """
+    for unknown in _unknowns(robot):
+        if unknown.attribute is not None and unknown.close:
+            message = (f"unknown {_what(unknown)}, which {_reader(unknown)} ignores; "
+                       f"{_suggestion(unknown)}")
+            yield _renamed(robot, unknown, message)
+
+
+def _renamed(robot, unknown: _Unknown, message: str):
+    """The finding, with the rename to the one close name as its fix (when the name is one of
+    the same kind: an element for an element, an attribute for an attribute)."""
+    if unknown.attribute is None and unknown.close == [unknown.name] and \
+            unknown.name in _attributes(unknown.place) and \
+            unknown.element.getparent().get(unknown.name) is None:
+        return offer(unknown.element, message, f"write <{unknown.name}> as an attribute",
+                     element_to_attribute(robot, unknown.element))
+    kind = _attributes(unknown.place) if unknown.attribute is not None else _children(unknown)
+    close = [name for name in unknown.close if name in kind]
+    if len(close) != 1 or len(unknown.close) != 1 or \
+            (unknown.attribute is not None and close[0] in unknown.element.attrib):
+        return unknown.element, message
+    if unknown.attribute is not None:
+        edits = rename_attribute(robot, unknown.element, unknown.attribute, close[0])
+    else:
+        edits = rename_element(robot, unknown.element, close[0])
+    return offer(unknown.element, message, f"rename {unknown.name} to {close[0]}", edits)
+
+
+def _children(unknown: _Unknown) -> tuple[str, ...]:
+    place = VOCABULARY.get(unknown.place)
+    if place is not None:
+        return tuple(place.children)
+    return EXTENSION_VOCABULARY.get(unknown.place, ())
+
+
+@rule("U022", "no-effect", Severity.WARNING)
+def no_effect(robot):
+    """Content that urdfdom reads nothing from, and that is no misspelling of what it reads.
+
+    It looks meaningful and changes nothing: an ``rpy`` on an ``<axis>`` does not turn the
+    axis, a ``<material>`` in a ``<collision>`` colours nothing. Where a name is valid elsewhere
+    the message says where.
+
+    Bad: ``<axis xyz="0 0 1" rpy="0 1.57 0"/>``, ``<collision><material name="red"/>...``
+    Good: ``<axis xyz="1 0 0"/>`` (turn the joint frame with ``<origin rpy>`` instead)
+    """
+    unread: dict = {}  # element -> its unknown attributes without a close name, in order
+    for unknown in _unknowns(robot):
+        if unknown.close or unknown.extension:
+            continue
+        if unknown.why:
+            yield unknown.element, f"{_what(unknown)} has no effect: {unknown.why}"
+        elif unknown.attribute is not None:
+            unread.setdefault(unknown.element, []).append(unknown.attribute)
+        else:
+            places = [p for p in where_valid(unknown.name) if p != unknown.place]
+            hint = ("; urdfdom reads it only in " + ", ".join(f"<{_tag(p)}>" for p in places)
+                    if places else "")
+            yield unknown.element, f"{_what(unknown)} has no effect: {_unread(1)}{hint}"
+    for element, names in unread.items():
+        listed = ", ".join(f"'{name}'" for name in names)
+        noun = "attribute" if len(names) == 1 else "attributes"
+        yield element, (f"<{element.tag}> {noun} {listed} {'has' if len(names) == 1 else 'have'} "
+                        f"no effect: {_unread(len(names))}; it reads {', '.join(_attributes(_key(element)))}")
+
+
+def _unread(count: int) -> str:
+    it = "it" if count == 1 else "them"
+    return (f"urdfdom does not read {it}, nor do the tools that load URDF through it (KDL, "
+            "robot_state_publisher, MoveIt)")
+
+
+def _key(element) -> str:
+    """The vocabulary place of an element of the robot (its tag, or material_global)."""
+    if element.tag == "material" and element.getparent() is not None \
+            and element.getparent().tag == "robot":
+        return "material_global"
+    return element.tag
+
+
+def _tag(place: str) -> str:
+    return "robot" if place == "robot" else place.split("_global")[0]
+
+
+def _reader(unknown: _Unknown) -> str:
+    if unknown.extension:
+        return "ros2_control" if unknown.place.startswith("ros2_control") else \
+            "the transmission parser"
+    return "urdfdom"
