@@ -410,7 +410,7 @@ def inertia_far_from_geometry(robot):
     Good: ``ixx="1.5e-5" iyy="9.1e-5" izz="9.1e-5"`` (``urdftool inertia`` computes them)
     """
     for link, properties, solid, expected, ratio in _inertia_ratios(robot):
-        if properties.mass < PLACEHOLDER_MASS or not _body_sized(solid):
+        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
             continue
         trace = mat3.trace(properties.inertia)
         larger = ratio > FAR_RATIO and trace > _largest_trace(properties, solid)
@@ -454,7 +454,7 @@ def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
     return (volume(solid) if _trustworthy(solid) else 0.0), max(volumes)
 
 
-@rule("U311", "implausible-density", Severity.ERROR)
+@rule("U311", "implausible-density", Severity.WARNING)
 def implausible_density(robot):
     """A link's mass is impossible for the volume of its geometry: a mass or units slip.
 
@@ -467,15 +467,18 @@ def implausible_density(robot):
     or wrong geometry (a mesh scaled twice). Light links are not judged from hulls or
     envelopes: a hollow shell's envelope legitimately holds mostly air (a 2 kg robot torso of
     20 litres is 100 kg/m^3), so only primitives and closed meshes lighter than aerogel count,
-    and then as a sign of geometry in millimetres or a mass in tonnes. Links lighter than 0.1 g,
-    geometry of 1 cm or less (a frame's marker box, not its body) and geometry that did not load
-    are skipped.
+    and then as a sign of geometry in millimetres or a mass in tonnes. Links of 0.1 g or less
+    (placeholders), geometry of 1 cm or less (a frame's marker box, not its body) and geometry
+    that did not load are skipped.
+
+    A warning, not an error: simulation models sometimes mean it (a 1000 kg support anchoring a
+    pendulum, 10 g on a hand's virtual link drawn as a 7 mm marker), and only the author knows.
 
     Bad: ``<mass value="54"/>`` on a 30 x 20 x 1 cm plate (90,000 kg/m^3)
     Good: ``<mass value="1.6"/>`` (aluminium)
     """
     for link, properties, solid in _link_solids(robot):
-        if properties.mass < PLACEHOLDER_MASS or not _body_sized(solid):
+        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
             continue
         bounds = _volume_bounds(robot, link, solid)
         if bounds is None or bounds[1] <= 0:
