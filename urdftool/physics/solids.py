@@ -15,6 +15,9 @@ from urdftool.description.urdf import SHAPES
 from urdftool.description.values import finite, origin, parse_numbers
 
 
+HULL_USED = "its convex hull was used"  # the problem of an open mesh that still counts
+
+
 @dataclass
 class Shape:
     """One geometry: ``kind`` in SHAPES, ``params`` (size / radius, length / filename, scale),
@@ -110,7 +113,7 @@ def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
                                             "single point: it encloses no volume"))
             return None, bounds
         problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
-                                        "(watertight); its convex hull was used"))
+                                        f"(watertight); {HULL_USED}"))
     from urdftool.physics.inertia import mesh_solid
 
     solid = mesh_solid(body).body()
@@ -137,10 +140,12 @@ def _corners(bounds) -> list[mat3.Vector]:
             for i in (0, 1) for j in (0, 1) for k in (0, 1)]
 
 
-def link_solid(robot, link, load_meshes: bool = True) -> LinkSolid:
-    """The solids of a link's collision geometry, or its visual geometry when it has none."""
-    collision = shapes(link, "collision")
-    chosen, source = (collision, "collision") if collision else (shapes(link, "visual"), "visual")
+def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) -> LinkSolid:
+    """The solids of a link's collision geometry, or its visual geometry when it has none;
+    ``tag`` ("collision" or "visual") takes that geometry only."""
+    collision = shapes(link, "collision") if tag in (None, "collision") else []
+    chosen, source = (collision, "collision") if collision or tag == "collision" else \
+        (shapes(link, "visual"), "visual")
     if not chosen:
         return LinkSolid("none")
     result = LinkSolid(source)
@@ -252,6 +257,11 @@ def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]
                 frames[other] = (mat3.multiply(r, rotation), mat3.add(t, mat3.apply(r, xyz)))
                 pending.append(other)
     return frames
+
+
+def volume(solid: LinkSolid) -> float:
+    """The summed volume of a solid's parts [m^3] (overlaps count twice; 0 without parts)."""
+    return sum(part.mass for part in solid.parts)  # the parts have unit density
 
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):

@@ -92,3 +92,15 @@ def test_revolute_joint_in_the_spec_needs_a_range(tmp_path):
 def test_joint_not_in_spec_says_what_to_add():
     messages = case_messages("U704_joint_not_in_spec", "U704")
     assert messages and all(m.endswith("; add it with its servo_id and range") for m in messages)
+
+
+@pytest.mark.parametrize("spec, reported", [
+    ("unit: rad\njoints:\n  head_joint: {lower: -57.3, upper: 57.3}\n", True),   # degrees as rad
+    ("unit: deg\njoints:\n  head_joint: {lower: -3283, upper: 3283}\n", True),   # URDF converted twice
+    ("unit: rad\njoints:\n  head_joint: {lower: -2, upper: 2}\n", False),        # a safety margin
+    ("unit: rad\njoints:\n  head_joint: {lower: -57.3, upper: 80}\n", False),    # upper is not x pi/180
+])
+def test_urdf_range_is_the_spec_range_times_pi_over_180(tmp_path, spec, reported):
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec},
+                                   select=("U706",))
+    assert bool(found) == reported, [f.message for f in findings]

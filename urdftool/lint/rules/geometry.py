@@ -96,17 +96,23 @@ def non_positive_dimension(robot):
     urdfdom accepts it, but collision checkers build a degenerate or inside-out shape and the
     geometry's volume (and so any inertia computed from it) is zero or negative.
 
-    A negative mesh scale mirrors the mesh and is allowed; a zero scale is not.
+    A negative mesh scale mirrors the mesh and is allowed; a zero scale is not. A ``<visual>``
+    whose every dimension is zero (``<box size="0 0 0"/>``, ``<sphere radius="0"/>``) is an
+    invisible marker of a virtual link, drawn as nothing and never collided with: not reported.
 
-    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``
+    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``, a
+    ``<collision>`` with ``<sphere radius="0"/>``
     Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
     """
     for link, holder, shape in _shapes(robot):
         fields = [(a, c) for a, c in SHAPE_ATTRIBUTES[shape.tag] if c is not None]
         if shape.tag == "mesh" and shape.get("scale") is not None:
             fields = [("scale", 3)]
-        for attribute, count in fields:
-            values, problem = parse_numbers(shape.get(attribute), count)
+        numbers = [parse_numbers(shape.get(attribute), count)[0] for attribute, count in fields]
+        if holder.tag == "visual" and shape.tag != "mesh" and all(
+                values and all(v == 0 for v in values) for values in numbers):
+            continue  # a virtual link's invisible marker
+        for (attribute, _), values in zip(fields, numbers):
             mirrored = attribute == "scale" and all(v != 0 for v in values or [0])
             if values and finite(values) and any(v <= 0 for v in values) and not mirrored:
                 yield shape, (f"link '{link.get('name')}': <{shape.tag} {attribute}="

@@ -388,29 +388,173 @@ def inertia_unit_mistake(robot):
     Bad: ``<inertia ixx="1200" .../>`` from a CAD tool's kg·mm^2 output
     Good: ``<inertia ixx="0.0012" .../>``
     """
+    for link, properties, solid, expected, ratio in _inertia_ratios(robot):
+        factor = _unit_factor(properties, expected, ratio)
+        if factor is not None:
+            direction = "larger" if ratio > 1 else "smaller"
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
+                f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
+                "`urdftool inertia` computes the right values"))
+
+
+MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm box), not a body
+
+
+def _trustworthy(solid) -> bool:
+    """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
+    plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
+    return not solid.problems and bool(solid.parts) and 0.001 <= _extent(solid) <= 5.0
+
+
+def _body_sized(solid) -> bool:
+    """Bigger than a frame marker (over 1 cm) and at most 5 m."""
+    return solid.bounds is not None and MARKER_EXTENT * 1.01 < _extent(solid) <= 5.0
+
+
+def _inertia_ratios(robot):
+    """(link, declared, solid, computed, ratio of traces) for links whose geometry is
+    trustworthy: the computed tensor is ``urdftool inertia``'s, a uniform solid of the
+    declared mass."""
     from urdftool.physics.solids import computed
 
     for link, properties, solid in _link_solids(robot):
-        if solid.problems or not solid.parts:
-            continue
-        extent = _extent(solid)
-        if not 0.001 <= extent <= 5.0:
+        if not _trustworthy(solid):
             continue
         expected = computed(solid, mass=properties.mass)
         if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding either
             continue
         ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
-        if ratio <= 0:
+        if ratio > 0:
+            yield link, properties, solid, expected, ratio
+
+
+def _unit_factor(properties, expected, ratio) -> int | None:
+    """3 or 6 when the declared tensor is the computed one times 10^+-3 or 10^+-6."""
+    power = math.log10(ratio)
+    for factor in UNIT_FACTORS:
+        divisor = 10.0 ** math.copysign(factor, power)
+        rescaled = [[v / divisor for v in row] for row in properties.inertia]
+        if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
+                rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
+            return factor
+    return None
+
+
+FAR_RATIO = 10.0  # declared vs computed trace: beyond this, no mass distribution explains it
+
+
+def _largest_trace(properties, solid) -> float:
+    """The largest trace any mass distribution inside the geometry's bounding box can have
+    about the declared centre of mass: 2 m R^2, R the box corner farthest from it [kg m^2]."""
+    low, high = solid.bounds
+    reach = sum(max(abs(l - c), abs(h - c)) ** 2 for l, c, h in zip(low, properties.com, high))
+    return 2 * properties.mass * reach
+
+
+@rule("U310", "inertia-far-from-geometry", Severity.WARNING)
+def inertia_far_from_geometry(robot):
+    """The declared inertia is 10 times off from its geometry's, beyond any mass distribution.
+
+    The computed tensor is what ``urdftool inertia`` reports: the link's collision geometry
+    (visual if none) as a solid of uniform density carrying the declared mass. Real links are
+    not uniform (motors, hollow shells), and that moves the trace by a factor of 2 or 3, not 10.
+    Larger: reported when the trace is over 10 times the computed one *and* over 2 m R^2 (R the
+    distance from the declared centre of mass to the farthest corner of the geometry's bounding
+    box), which no distribution of the mass inside the geometry reaches, hollow or not.
+    Smaller: over 10 times below the uniform solid (most mass within a third of the size around
+    the centre of mass). Either way the tensor belongs to another part, another mass or a
+    placeholder (``ixx="1e-3"`` copied onto every link). Only judged when the geometry is
+    trustworthy: primitives and closed (watertight) meshes, all loaded, over 1 cm (smaller
+    boxes mark sensor frames) and up to 5 m in size; a convex hull of an open or hollow mesh is
+    not (see U414). Unit slips of 10^3 and 10^6 are U309.
+
+    Bad: a 0.1 kg, 10 x 3 x 3 cm camera with ``ixx="0.0016" iyy="0.0016" izz="0.0016"``
+    (24 times its box's)
+    Good: ``ixx="1.5e-5" iyy="9.1e-5" izz="9.1e-5"`` (``urdftool inertia`` computes them)
+    """
+    for link, properties, solid, expected, ratio in _inertia_ratios(robot):
+        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
             continue
-        power = math.log10(ratio)
-        for factor in UNIT_FACTORS:
-            divisor = 10.0 ** math.copysign(factor, power)
-            rescaled = [[v / divisor for v in row] for row in properties.inertia]
-            if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
-                    rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
-                direction = "larger" if power > 0 else "smaller"
-                yield _recomputed(robot, link, properties, (
-                    f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
-                    f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
-                    "`urdftool inertia` computes the right values"))
-                break
+        trace = mat3.trace(properties.inertia)
+        larger = ratio > FAR_RATIO and trace > _largest_trace(properties, solid)
+        if not (larger or ratio < 1 / FAR_RATIO):
+            continue
+        if _unit_factor(properties, expected, ratio) is not None:
+            continue  # U309 says it
+        beyond = (f", more than any distribution of that mass inside it can have "
+                  f"({_largest_trace(properties, solid):.3g})") if larger else ""
+        yield link.find("inertial").find("inertia"), (
+            f"link '{_name(link)}': declared inertia (trace {trace:.3g} kg m^2) is "
+            f"{ratio:.3g} times that of its {solid.source} geometry as a uniform solid of the "
+            f"declared {properties.mass:g} kg (trace {mat3.trace(expected.inertia):.3g}){beyond}; "
+            f"`urdftool inertia --link {_name(link)}` computes it")
+
+
+DENSEST = 22_590.0  # [kg/m^3]: osmium, the densest element (CRC Handbook of Chemistry and Physics)
+LIGHTEST = 0.16  # [kg/m^3]: graphene aerogel, the lightest solid made (Sun et al., Adv. Mater. 2013)
+
+
+def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
+    """(smallest, largest) volume the link's drawn body can have [m^3], or None when some
+    geometry did not load. The largest takes the bigger of its collision and visual
+    geometry with open meshes as their convex hulls (a hull holds the part): dividing the mass
+    by it gives the least density the link can have. The smallest counts only when the
+    geometry is trustworthy (no hull); a hollow shell's envelope makes it too large, so it
+    only bounds the density from below loosely."""
+    from urdftool.physics.solids import HULL_USED, link_solid, volume
+
+    def loaded(s):
+        return s.parts and all(HULL_USED in message for _, message in s.problems)
+
+    if not loaded(solid):
+        return None
+    other = "visual" if solid.source == "collision" else "collision"
+    volumes = [volume(solid)]
+    if link.find(other) is not None:
+        second = link_solid(robot, link, tag=other)
+        if loaded(second):
+            volumes.append(volume(second))
+    return (volume(solid) if _trustworthy(solid) else 0.0), max(volumes)
+
+
+@rule("U311", "implausible-density", Severity.WARNING)
+def implausible_density(robot):
+    """A link's mass is impossible for the volume of its geometry: a mass or units slip.
+
+    The implied density is the declared mass over the volume of the link's geometry. No
+    material is denser than osmium (22,590 kg/m^3; steel is 7,850, aluminium 2,700) and no solid
+    lighter than graphene aerogel (0.16 kg/m^3). The volume used for the upper bound is the
+    largest the body can have: the bigger of the collision and visual geometry, open meshes
+    counting as their convex hulls; so a link heavier than solid osmium filling that volume has
+    a wrong mass (a box's mass computed with one dimension missing, grams typed as kilograms)
+    or wrong geometry (a mesh scaled twice). Light links are not judged from hulls or
+    envelopes: a hollow shell's envelope legitimately holds mostly air (a 2 kg robot torso of
+    20 litres is 100 kg/m^3), so only primitives and closed meshes lighter than aerogel count,
+    and then as a sign of geometry in millimetres or a mass in tonnes. Links of 0.1 g or less
+    (placeholders), geometry of 1 cm or less (a frame's marker box, not its body) and geometry
+    that did not load are skipped.
+
+    A warning, not an error: simulation models sometimes mean it (a 1000 kg support anchoring a
+    pendulum, 10 g on a hand's virtual link drawn as a 7 mm marker), and only the author knows.
+
+    Bad: ``<mass value="54"/>`` on a 30 x 20 x 1 cm plate (90,000 kg/m^3)
+    Good: ``<mass value="1.6"/>`` (aluminium)
+    """
+    for link, properties, solid in _link_solids(robot):
+        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
+            continue
+        bounds = _volume_bounds(robot, link, solid)
+        if bounds is None or bounds[1] <= 0:
+            continue
+        least = properties.mass / bounds[1]
+        if least > DENSEST:
+            yield link.find("inertial").find("mass"), (
+                f"link '{_name(link)}': {properties.mass:g} kg in at most {bounds[1]:.3g} m^3 "
+                f"of geometry is at least {least:,.0f} kg/m^3, denser than osmium "
+                f"({DENSEST:,.0f}); a wrong mass or geometry scale")
+        elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
+            yield link.find("inertial").find("mass"), (
+                f"link '{_name(link)}': {properties.mass:g} kg in {bounds[0]:.3g} m^3 of "
+                f"{solid.source} geometry is {properties.mass / bounds[0]:.3g} kg/m^3, lighter "
+                f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")

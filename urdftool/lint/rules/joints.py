@@ -75,17 +75,23 @@ def limit_missing_effort_velocity(robot):
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
+def _bounds(joint) -> tuple[float, float] | None:
+    """(lower, upper) of a revolute or prismatic joint whose range parses; a missing bound is
+    0, as in urdfdom."""
+    limit = joint.find("limit")
+    if limit is None or joint.get("type") not in LIMITED:
+        return None
+    lower, _ = parse_numbers(limit.get("lower", "0"), 1)
+    upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+    return (lower[0], upper[0]) if lower and upper else None
+
+
 def _ranges(robot):
-    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; a
-    missing bound is 0, as in urdfdom."""
+    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses."""
     for joint in robot.children("joint"):
-        limit = joint.find("limit")
-        if limit is None or joint.get("type") not in LIMITED:
-            continue
-        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
-        if lower and upper:
-            yield joint, limit, lower[0], upper[0]
+        bounds = _bounds(joint)
+        if bounds is not None:
+            yield joint, joint.find("limit"), *bounds
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -334,3 +340,73 @@ def zero_range(robot):
             yield limit, (f"{joint.get('type')} joint '{_name(joint)}' has lower = upper = "
                           f"{lower:g}{defaulted}: it cannot move; give its range, or make it "
                           "fixed or continuous")
+
+
+MIMIC_SLACK = 1e-3  # relative to the mimic joint's span: printed rounding of limits
+
+
+def _range(joint) -> tuple[float, float] | None:
+    """Finite, ordered (lower, upper) of a revolute or prismatic joint, else None."""
+    bounds = _bounds(joint)
+    return bounds if bounds is not None and finite(bounds) and bounds[0] <= bounds[1] else None
+
+
+@rule("U216", "mimic-outside-limits", Severity.ERROR)
+def mimic_outside_limits(robot):
+    """A mimic joint is driven outside its own limits.
+
+    A mimic joint's position is ``multiplier * driver + offset``: over the driver's range
+    ``[lower, upper]`` that sweeps ``multiplier * [lower, upper] + offset``, which must lie
+    within the mimic joint's own ``<limit>`` (slack: 0.1 % of its span). Otherwise simulators
+    hold the mimic joint at its limit against the constraint (the gripper does not close) and
+    MoveIt reports states with the driver inside its bounds as out of bounds. Checked when
+    both joints are revolute or prismatic; the multiplier defaults to 1 and the offset to 0.
+
+    Bad: driver ``<limit lower="0" upper="0.8"/>``, mimic ``<mimic joint="finger"
+    multiplier="-1"/>`` with ``<limit lower="0" upper="0.88"/>`` (it would go to -0.8)
+    Good: the mimic joint's ``<limit lower="-0.88" upper="0"/>``, or ``multiplier="1"``
+    """
+    for joint, mimic, target in _mimics(robot):
+        driver = robot.joints.get(target) if target else None
+        own, driven = _range(joint), _range(driver) if driver is not None else None
+        if own is None or driven is None or driver is joint:
+            continue
+        multiplier, _ = parse_numbers(mimic.get("multiplier", "1"), 1)
+        offset, _ = parse_numbers(mimic.get("offset", "0"), 1)
+        if not multiplier or not offset or not finite(multiplier + offset):
+            continue
+        ends = sorted(multiplier[0] * q + offset[0] for q in driven)
+        slack = MIMIC_SLACK * max(own[1] - own[0], 1e-9)
+        if ends[0] < own[0] - slack or ends[1] > own[1] + slack:
+            yield mimic, (f"joint '{_name(joint)}' mimics '{target}' ({multiplier[0]:g} x "
+                          f"[{driven[0]:g}, {driven[1]:g}] + {offset[0]:g}), so it goes over "
+                          f"[{ends[0]:.4g}, {ends[1]:.4g}], outside its own limits "
+                          f"[{own[0]:g}, {own[1]:g}]; fix the multiplier's sign or the limits")
+
+
+MULTI_TURN = 7 * math.pi  # [rad]: revolute limits up to +-6 pi (three turns) are real
+DEGREE_LIKE = 720.0  # beyond two turns in degrees, a bound is an "unlimited" stand-in (1e10)
+
+
+@rule("U217", "revolute-range-in-degrees", Severity.WARNING)
+def revolute_range_in_degrees(robot):
+    """A revolute joint's limit is far beyond any turn count: degrees written as radians.
+
+    URDF revolute limits are radians. A bound beyond 7 pi rad (3.5 turns) and at most 720 reads
+    as degrees: ``upper="250"`` is 250 degrees (4.36 rad), not 40 turns. Planners sample the whole
+    range and controllers let the joint wind up. Joints that really turn several times
+    (``+-2 pi``, ``+-4 pi``, ``+-6 pi`` on wrists and turntables) stay below 7 pi; huge stand-ins
+    for "unlimited" (``1e10``) are not degrees and are left alone (``continuous`` says it better).
+
+    Bad: ``<limit lower="-250" upper="250" .../>`` on a revolute joint
+    Good: ``<limit lower="-4.3633" upper="4.3633" .../>``
+    """
+    for joint, limit, lower, upper in _ranges(robot):
+        if joint.get("type") != "revolute" or not finite((lower, upper)):
+            continue
+        largest = max(abs(lower), abs(upper))
+        if MULTI_TURN < largest <= DEGREE_LIKE:
+            yield limit, (f"revolute joint '{_name(joint)}' has limits [{lower:g}, {upper:g}] "
+                          f"rad ({largest / (2 * math.pi):.1f} turns): degrees written as radians? "
+                          f"In radians: lower=\"{math.radians(lower):.4g}\" "
+                          f"upper=\"{math.radians(upper):.4g}\"")

@@ -227,3 +227,45 @@ def duplicate_servo_id(robot):
                 f"joint '{joint.name}' has servo_id {servo}, already used by '{owner[servo]}'")
         else:
             owner[servo] = joint.name
+
+
+DEGREE = math.pi / 180
+DEGREE_MATCH = 0.05  # relative to the span: how closely the URDF must match spec x pi/180
+
+
+@rule("U706", "limit-spec-degree-slip", Severity.WARNING)
+def limit_spec_degree_slip(robot):
+    """A revolute joint's URDF range is the spec's range times pi/180: a degrees slip.
+
+    The URDF and the spec agree only after one of them is scaled by pi/180 once more: the spec
+    says ``unit: rad`` over values typed in degrees, or the URDF limits were converted from
+    degrees twice. U703 cannot see it (the URDF is inside the spec, just 57 times narrower),
+    and the joint would stop at a 57th of its travel. Each URDF bound must match the spec
+    bound times pi/180 within 5 % of the span; a URDF merely narrower than its spec (a safety
+    margin) is not reported.
+
+    Bad: ``unit: rad`` with ``head_pan: {lower: -90, upper: 90}`` for a URDF ``-1.5708 .. 1.5708``
+    Good: ``unit: deg`` (or the spec in radians: ``lower: -1.5708, upper: 1.5708``)
+    """
+    spec = _spec(robot)
+    if spec is None or spec[3] is None:
+        return
+    _, _, joints, unit, _ = spec
+    for entry in joints:
+        joint = robot.joints.get(entry.name)
+        if joint is None or joint.get("type") != "revolute":
+            continue
+        bounds = [_limit(joint, key) for key in ("lower", "upper")]
+        if None in bounds:
+            continue
+        urdf = [value / UNITS[unit] for value in bounds]  # in the spec's unit
+        table = [entry.entry["lower"], entry.entry["upper"]]
+        span = (table[1] - table[0]) * DEGREE
+        if span <= 0 or urdf[1] - urdf[0] <= 0:
+            continue
+        if all(abs(u - t * DEGREE) <= DEGREE_MATCH * span for u, t in zip(urdf, table)):
+            yield joint.find("limit"), (
+                f"joint '{entry.name}': URDF range {urdf[0]:.4g} .. {urdf[1]:.4g} {unit} is the "
+                f"spec's {table[0]:g} .. {table[1]:g} {unit} times pi/180: the spec's values "
+                f"look like degrees{' under unit: rad' if unit == 'rad' else ''}, or the URDF "
+                "was converted from degrees twice")

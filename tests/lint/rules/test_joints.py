@@ -1,0 +1,60 @@
+"""U2xx joint rules added for issue 14: mimic joints driven outside their limits (U216) and
+revolute ranges written in degrees (U217)."""
+
+from __future__ import annotations
+
+import pytest
+
+from crossfile_helpers import check_folder
+
+MIMIC = """<robot name="r">
+  <link name="base_link"/><link name="a"/><link name="b"/>
+  <joint name="driver" type="{driver_type}"><parent link="base_link"/><child link="a"/>
+    <axis xyz="0 0 1"/><limit lower="0" upper="0.8" effort="1" velocity="1"/></joint>
+  <joint name="follower" type="revolute"><parent link="base_link"/><child link="b"/>
+    <axis xyz="0 0 1"/><limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/>
+    <mimic joint="driver" {mimic}/></joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("driver_type, lower, upper, mimic, reported", [
+    ("revolute", 0, 0.88, 'multiplier="-1"', True),     # the shipped gripper: goes to -0.8
+    ("revolute", -0.88, 0, 'multiplier="-1"', False),
+    ("revolute", 0, 0.88, "", False),                     # multiplier 1, offset 0 by default
+    ("revolute", 0, 0.88, 'multiplier="1" offset="0.1"', True),   # up to 0.9
+    ("revolute", 0, 0.8, 'multiplier="1" offset="0.0005"', False),  # within 0.1 % of the span
+    ("revolute", 0, 0.4, 'multiplier="0.5"', False),
+    ("continuous", 0, 0.88, 'multiplier="-1"', False),  # no range to sweep: not judged
+    ("revolute", 0, 0.88, 'multiplier="x"', False),       # U207 says it
+])
+def test_mimic_range_must_fit_the_mimic_joint_limits(tmp_path, driver_type, lower, upper,
+                                                      mimic, reported):
+    text = MIMIC.format(driver_type=driver_type, lower=lower, upper=upper, mimic=mimic)
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U216",))
+    assert bool(found) == reported, [f.message for f in findings]
+
+
+REVOLUTE = """<robot name="r">
+  <link name="base_link"/><link name="a"/>
+  <joint name="j" type="{kind}"><parent link="base_link"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("kind, lower, upper, reported", [
+    ("revolute", -250, 250, True),
+    ("revolute", 0, 30, True),                   # 30 degrees
+    ("revolute", -720, 720, True),
+    ("revolute", -6.2832, 6.2832, False),        # +-2 pi: a wrist that turns
+    ("revolute", -18.85, 18.85, False),          # +-6 pi: three turns each way
+    ("revolute", -1e10, 1e10, False),            # a stand-in for unlimited, not degrees
+    ("prismatic", 0, 250, False),                # metres: another matter
+])
+def test_revolute_range_in_degrees(tmp_path, kind, lower, upper, reported):
+    text = REVOLUTE.format(kind=kind, lower=lower, upper=upper)
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U217",))
+    assert bool(found) == reported, [f.message for f in findings]
+    if reported:
+        assert "degrees written as radians" in findings[0].message
