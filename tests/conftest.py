@@ -93,6 +93,18 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
             for entry in corpus_entry_points()}
 
 
+# ---- synthetic robots of any size (benchmarks/generate.py, the one generator) ------------
+
+def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
+    """A ``shape`` ('chain' or 'star') URDF of ``links`` links written into ``folder``."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("generate", ROOT / "benchmarks" / "generate.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.write(folder, links, shape)
+
+
 # ---- urdfdom's check_urdf (shipped in the pin wheel), the reference parser -----------------
 
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \

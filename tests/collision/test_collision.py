@@ -346,3 +346,19 @@ def test_pose_q_in_degrees_and_out_of_limit_warning(run_cli):
     assert json.loads(result.stdout)["q"]["l_knee"] == pytest.approx(np.pi / 2)
     beyond = run_cli("collisions", HUMANOID, "--q", "l_knee=9", "--format", "json")
     assert "joint 'l_knee' = 9 is outside its limits" in beyond.stderr
+
+
+def test_pair_checks_work_in_slices_of_bounded_size(monkeypatch):
+    # a 1,500-link robot has 1.1 million pairs: 250 samples of all of them at once were 2 GB
+    from urdftool.collision import pairs
+
+    robot = load(str(HUMANOID))
+    whole = matrix.compute(robot, samples=500, seed=3, workers=1)
+    sizes = []
+    real = pairs.separated
+    monkeypatch.setattr(pairs, "CHUNK", 1000)
+    monkeypatch.setattr(pairs, "separated", lambda a, *rest: sizes.append(a.shape[0]) or real(a, *rest))
+    sliced = matrix.compute(robot, samples=500, seed=3, workers=1)
+    assert [(p.reason, p.collisions, p.min_distance) for p in sliced.pairs] == \
+        [(p.reason, p.collisions, p.min_distance) for p in whole.pairs]
+    assert sizes and max(sizes) <= 1000

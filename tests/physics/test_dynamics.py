@@ -198,3 +198,17 @@ def test_coriolis_matrix_matches_the_two_link_closed_form(arm, q2, v1, v2):
     h = -M2 * L1 * L2 * math.sin(q2)
     np.testing.assert_allclose(result.C, [[h * v2, h * (v1 + v2)], [-h * v1, 0.0]], atol=1e-6)
     np.testing.assert_allclose(result.tau - result.G, result.C @ [v1, v2], atol=1e-12)
+
+
+def test_a_robot_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tmp_path,
+                                                                              monkeypatch):
+    # Pinocchio's Data holds nv^3 tensors: 300 joints ~1.7 GB; with 1 GiB allowed it is refused
+    import resource
+
+    from conftest import synthetic_robot
+    from urdftool.errors import DynamicsError
+
+    robot = load(str(synthetic_robot(tmp_path, 301)))
+    monkeypatch.setattr(resource, "getrlimit", lambda _: (1024 ** 3, resource.RLIM_INFINITY))
+    with pytest.raises(DynamicsError, match="300 joint variables.*cube of the joints"):
+        build(robot)

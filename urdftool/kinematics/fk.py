@@ -78,12 +78,13 @@ class KinematicModel:
     def __init__(self, robot, floating: bool = False):
         import pinocchio
 
+        from urdftool.kinematics.model import build_model
+
         try:
             if floating:
-                self.model = pinocchio.buildModelFromXML(
-                    robot.urdf, pinocchio.JointModelFreeFlyer(), FLOATING_ROOT)
+                self.model = build_model(robot, pinocchio.JointModelFreeFlyer(), FLOATING_ROOT)
             else:
-                self.model = pinocchio.buildModelFromXML(robot.urdf)
+                self.model = build_model(robot)
         except (ValueError, RuntimeError) as error:
             raise FKError(f"Pinocchio cannot build a model ({str(error).strip().splitlines()[-1]});"
                           " run 'urdftool check' for the cause", robot.root) from None
