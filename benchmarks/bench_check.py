@@ -1,9 +1,10 @@
 """Start-up and `check` speed, against references timed in the same run.
 
-- `urdftool --help` against a bare `python -c pass` start-up (target: under 0.3 s absolute).
-- `urdftool check` on one robot, including Python start-up (target: under 0.5 s absolute).
+- `urdftool --help` against a bare `python -c pass` start-up (target: under 0.1 s absolute).
+- `urdftool check` on one robot, including Python start-up (target: under 0.25 s absolute).
 - `check` over every corpus URDF in one process against a shell loop of urdfdom's `check_urdf`
-  over the same files (target: within 2x). The reference is the ELF binary shipped in the pin
+  over the same files (target: within 5x), first without the result cache, then again with it
+  on an unchanged corpus (target: within 1x). The reference is the ELF binary shipped in the pin
   wheel (``cmeel.prefix/bin/check_urdf`` with its ``lib/``), not ``.venv/bin/check_urdf``: that
   one is a Python wrapper that starts an interpreter per file (~87 ms), a flattering reference.
 """
@@ -60,9 +61,9 @@ def main() -> list[dict]:
     one = timed([urdftool, "check", str(robot)])
     results = [
         {"name": f"urdftool --help [{help_time:.3f} s] vs python start-up [{python_start:.3f} s]",
-         "ratio": help_time / python_start, "target": "< 0.3 s", "ok": help_time < 0.3},
+         "ratio": help_time / python_start, "target": "< 0.1 s", "ok": help_time < 0.1},
         {"name": f"urdftool check r2d2 [{one:.3f} s] vs python start-up",
-         "ratio": one / python_start, "target": "< 0.5 s", "ok": one < 0.5},
+         "ratio": one / python_start, "target": "< 0.25 s", "ok": one < 0.25},
     ]
     files = corpus_urdfs()
     if files:
@@ -76,7 +77,7 @@ def main() -> list[dict]:
         results.append({
             "name": f"check {len(files)} corpus URDFs [{ours:.2f} s] vs urdfdom check_urdf loop "
                     f"[{reference:.2f} s]",
-            "ratio": ours / reference, "target": "<= 2x", "ok": ours <= 2 * reference})
+            "ratio": ours / reference, "target": "<= 5x", "ok": ours <= 5 * reference})
     for result in results:
         print(result["name"], f"ratio {result['ratio']:.2f}")
     return results
