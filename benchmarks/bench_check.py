@@ -16,6 +16,7 @@ import statistics
 import subprocess
 import sys
 import sysconfig
+import tempfile
 import time
 from pathlib import Path
 
@@ -58,7 +59,7 @@ def main() -> list[dict]:
     python_start = timed([sys.executable, "-c", "pass"])
     help_time = timed([urdftool, "--help"])
     robot = ROOT / "robots" / "r2d2" / "r2d2.urdf.xacro"
-    one = timed([urdftool, "check", str(robot)])
+    one = timed([urdftool, "check", "--no-cache", str(robot)])
     results = [
         {"name": f"urdftool --help [{help_time:.3f} s] vs python start-up [{python_start:.3f} s]",
          "ratio": help_time / python_start, "target": "< 0.1 s", "ok": help_time < 0.1},
@@ -72,12 +73,21 @@ def main() -> list[dict]:
         reference = timed(["bash", "-c", loop, check_urdf, *map(str, files)], repeat=3,
                           env=environment)
         # one process, as the target says: no worker processes, no per-file time budget
-        ours = timed([urdftool, "check", "--jobs", "1", "--timeout", "0", "--format", "json",
-                      *map(str, files)], repeat=3)
+        command = [urdftool, "check", "--jobs", "1", "--timeout", "0", "--max-memory", "0",
+                   "--format", "json"]
+        ours = timed([*command, "--no-cache", *map(str, files)], repeat=3)
         results.append({
             "name": f"check {len(files)} corpus URDFs [{ours:.2f} s] vs urdfdom check_urdf loop "
                     f"[{reference:.2f} s]",
             "ratio": ours / reference, "target": "<= 5x", "ok": ours <= 5 * reference})
+        with tempfile.TemporaryDirectory() as folder:
+            cached = [*command, "--cache-dir", folder, *map(str, files)]
+            timed(cached, repeat=1)  # fills the cache
+            again = timed(cached, repeat=3)
+        results.append({
+            "name": f"re-check {len(files)} unchanged corpus URDFs, cached [{again:.2f} s] vs "
+                    f"urdfdom check_urdf loop [{reference:.2f} s]",
+            "ratio": again / reference, "target": "<= 1x", "ok": again <= reference})
     for result in results:
         print(result["name"], f"ratio {result['ratio']:.2f}")
     return results

@@ -17,6 +17,9 @@ ROOT = Path(__file__).resolve().parent.parent
 ROBOTS = ROOT / "robots"
 CASES = Path(__file__).resolve().parent / "cases"
 CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
+# `urdftool check` keeps results in .urdftool_cache by default; a test that patches urdftool's
+# internals must see them run, so the tests use the cache only where they name --cache-dir.
+os.environ["URDFTOOL_NO_CACHE"] = "1"
 
 
 def corpus_or_skip() -> Path:

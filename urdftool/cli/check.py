@@ -58,9 +58,14 @@ def check(
                                         "max-memory in the settings]."),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
                              help="Check files in N worker processes [default: number of cores]."),
+    no_cache: bool = typer.Option(False, "--no-cache", help="Neither read nor keep results."),
+    cache_dir: Path = typer.Option(None, "--cache-dir", metavar="DIR",
+                                   help="Keep results here between runs [default: "
+                                        ".urdftool_cache; none when CI is set]."),
 ) -> None:
     from urdftool.budget import Budget
     from urdftool.errors import SettingsError, TargetError, UnknownName
+    from urdftool.lint.cache import default_folder
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
     from urdftool.report import FORMATS, printable, render
@@ -81,7 +86,8 @@ def check(
             select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
-            max_memory=max_memory, timeout=timeout, jobs=jobs or None))
+            max_memory=max_memory, timeout=timeout, jobs=jobs or None,
+            cache_dir=None if no_cache else cache_dir or default_folder()))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:
         fail_usage(error)
     for note in run.notes:

@@ -81,28 +81,37 @@ def _here(index, work, budget, stopped):
 
 def check_files(files: list[str], options_for, jobs: int | None = None,
                 timeout: float | None = DEFAULT_TIMEOUT,
-                memory: int | None = None) -> list[FileResult]:
+                memory: int | None = None, cache=None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
     jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
     memory: address space per worker in [bytes]; None or 0 for no limit. Without a budget and
     with one job, files are checked in this process. Standard input ('-') is read here.
+    cache: a :class:`~urdftool.lint.cache.Cache`: files whose result it holds are not checked
+    again (looked up here, before any worker starts), the others' results are kept in it.
     """
     jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
     stdin = {}
     if "-" in files:
         stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
+    kept = [cache.get(path, options_for(path)) if cache else None for path in files]
+    todo = [index for index, found in enumerate(kept) if found is None]
 
     def work(index: int) -> list[Finding]:
-        path = files[index]
-        return engine.check_file(path, options_for(path), data=stdin.get(path)).findings
+        path = files[todo[index]]
+        options = options_for(path)
+        result = engine.check_file(path, options, data=stdin.get(path))
+        if cache:
+            cache.put(path, options, result)
+        return result.findings
 
     def stopped(index: int, stop: Stop) -> list[Finding]:
-        return [stop_finding(files[index], stop, "checking")]
+        return [stop_finding(files[todo[index]], stop, "checking")]
 
-    findings = run_budgeted(len(files), work, budget, stopped, jobs)
-    return [FileResult(path, found) for path, found in zip(files, findings)]
+    for index, found in zip(todo, run_budgeted(len(todo), work, budget, stopped, jobs)):
+        kept[index] = found
+    return [FileResult(path, found) for path, found in zip(files, kept)]
 
 
 @dataclass
@@ -140,7 +149,8 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     request: a :class:`~urdftool.lint.settings.CheckRequest`, or its fields as keywords
         (``select``, ``ignore``, ``strict``, ``xacro_args``, ``packages``, ``companions``,
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
-        ``jobs``, ``use_settings``); defaults as the command line's
+        ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
+        that results are kept between runs only with ``cache_dir``
     Raises SettingsError or TargetError (both UrdftoolError) before anything is checked.
     """
     if request is None:
@@ -151,13 +161,19 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     targets = expand(list(paths), request)
+    cache = None
+    if request.cache_dir is not None:
+        from urdftool.lint.cache import Cache
+
+        cache = Cache(request.cache_dir)
     plans = [for_file(path, request) for path in targets.files]
     by_path = dict(zip(targets.files, plans))
     results: list[FileResult | None] = [None] * len(targets.files)
     for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
         indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
         found = check_files([targets.files[i] for i in indexes], lambda p: by_path[p].options,
-                            jobs=request.jobs, timeout=request.timeout, memory=memory)
+                            jobs=request.jobs, timeout=request.timeout, memory=memory,
+                            cache=cache)
         for index, result in zip(indexes, found):
             results[index] = result
     return Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])

@@ -253,6 +253,8 @@ class CheckRequest:
     timeout: per file in [s]; None or 0 for none
     jobs: worker processes; None: one per core
     use_settings: whether settings files apply at all
+    cache_dir: where results are kept between runs (:mod:`urdftool.lint.cache`); None: not kept
+        (``urdftool check`` keeps them in ``.urdftool_cache`` unless --no-cache or CI)
     """
 
     select: tuple[str, ...] = ()
@@ -268,6 +270,7 @@ class CheckRequest:
     timeout: float | None = DEFAULT_TIMEOUT
     jobs: int | None = None
     use_settings: bool = True
+    cache_dir: Path | None = None
 
     def __post_init__(self):
         for name in ("select", "ignore"):
