@@ -45,3 +45,57 @@ def write(folder: Path, links: int, shape: str) -> Path:
 if __name__ == "__main__":
     # python benchmarks/generate.py FOLDER N chain|star
     print(write(Path(sys.argv[1]), int(sys.argv[2]), sys.argv[3]))
+
+
+_XACRO_HEAD = """<?xml version="1.0"?>
+<robot name="xbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="width" value="0.04"/>
+  <xacro:property name="density" value="2700"/>
+  <xacro:property name="limits" value="${dict(lower=-pi/2, upper=pi/2, effort=30, velocity=2)}"/>
+  <xacro:macro name="box_inertia" params="m x y z">
+    <inertia ixx="${m*(y*y+z*z)/12}" ixy="0" ixz="0" iyy="${m*(x*x+z*z)/12}" iyz="0"
+             izz="${m*(x*x+y*y)/12}"/>
+  </xacro:macro>
+  <xacro:macro name="segment" params="name parent length:=0.1 *joint_origin flip:=false">
+    <xacro:property name="mass" value="${density * width * width * length}"/>
+    <link name="${name}">
+      <inertial>
+        <origin xyz="0 0 ${length/2}" rpy="0 0 0"/>
+        <mass value="${mass}"/>
+        <xacro:box_inertia m="${mass}" x="${width}" y="${width}" z="${length}"/>
+      </inertial>
+      <visual>
+        <origin xyz="0 0 ${length/2}" rpy="0 0 ${pi if flip else 0}"/>
+        <geometry><box size="${width} ${width} ${length}"/></geometry>
+        <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+      </visual>
+      <collision>
+        <origin xyz="0 0 ${length/2}" rpy="0 0 0"/>
+        <geometry><box size="${width} ${width} ${length}"/></geometry>
+      </collision>
+    </link>
+    <joint name="${name}_joint" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${name}"/>
+      <xacro:insert_block name="joint_origin"/>
+      <xacro:if value="${flip}"><axis xyz="1 0 0"/></xacro:if>
+      <xacro:unless value="${flip}"><axis xyz="0 1 0"/></xacro:unless>
+      <limit lower="${limits['lower']}" upper="${limits['upper']}" effort="${limits['effort']}"
+             velocity="${limits['velocity']}"/>
+      <dynamics damping="0.1" friction="0.01"/>
+    </joint>
+  </xacro:macro>
+  <link name="s0"/>
+"""
+_XACRO_CALL = """  <xacro:segment name="s{i}" parent="s{parent}" length="${{0.05 + {i} % 7 * 0.01}}"
+                 flip="${{{i} % 2 == 0}}">
+    <origin xyz="0 0 ${{0.05 + {parent} % 7 * 0.01}}" rpy="0 0 0"/>
+  </xacro:segment>
+"""
+
+
+def xacro_robot(segments: int) -> str:
+    """A xacro chain of ``segments`` macro calls (properties, math, nested macros, blocks,
+    conditionals): about 1.1 kB of URDF a segment."""
+    calls = "".join(_XACRO_CALL.format(i=i, parent=i - 1) for i in range(1, segments + 1))
+    return _XACRO_HEAD + calls + "</robot>\n"
