@@ -17,6 +17,9 @@ ROOT = Path(__file__).resolve().parent.parent
 ROBOTS = ROOT / "robots"
 CASES = Path(__file__).resolve().parent / "cases"
 CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
+# `urdftool check` keeps results in .urdftool_cache by default; a test that patches urdftool's
+# internals must see them run, so the tests use the cache only where they name --cache-dir.
+os.environ["URDFTOOL_NO_CACHE"] = "1"
 
 
 def corpus_or_skip() -> Path:
@@ -101,6 +104,18 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
     return {entry_id(entry): (entry, check_file(str(CORPUS / entry[0]),
                                                 CheckOptions(xacro_args=entry[1])))
             for entry in corpus_entry_points()}
+
+
+# ---- synthetic robots of any size (benchmarks/generate.py, the one generator) ------------
+
+def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
+    """A ``shape`` ('chain' or 'star') URDF of ``links`` links written into ``folder``."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("generate", ROOT / "benchmarks" / "generate.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.write(folder, links, shape)
 
 
 # ---- urdfdom's check_urdf (shipped in the pin wheel), the reference parser -----------------

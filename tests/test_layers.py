@@ -33,7 +33,7 @@ LAYERS = [
 # Inside lint, lowest first (the same rule applies).
 LINT = ["urdftool.lint.catalogue", "urdftool.lint.rules", "urdftool.lint.suppressions",
         "urdftool.lint.engine", "urdftool.lint.settings", "urdftool.lint.targets",
-        "urdftool.lint.runner"]
+        "urdftool.lint.cache", "urdftool.lint.runner"]
 ONLY_IN = {"rich": "urdftool.report", "typer": "urdftool.cli", "click": "urdftool.cli"}
 # Temporary exceptions while the migration runs: "importer -> imported". Each must still exist
 # (the test fails on a stale entry), so this list can only shrink. Empty at the end.

@@ -146,6 +146,8 @@ def test_a_joint_axis_without_direction_fails_instead_of_nan_poses(command, tmp_
     result = run_cli(command, path, "--timeout", "0")
     assert result.exit_code == 1 and "r.urdf:2: error: joint 'j'" in result.stderr, result.output
     assert "has no direction" in result.stderr
+
+
 TWO_LINKS = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
 
 

@@ -362,6 +362,8 @@ def test_a_pose_with_geometry_left_out_is_not_called_free_of_collision(run_cli, 
     assert "robot.urdf:" in result.stdout and "missing.stl" in result.stdout
     clean = run_cli("collisions", write(tmp_path, two_boxes(0, 1)), "--q", "slider=0.5")
     assert clean.exit_code == 0 and "no self-collision" in clean.stdout
+
+
 def test_srdf_poses_are_the_default_and_each_group_state(tmp_path):
     from lxml import etree
 
@@ -380,3 +382,19 @@ def test_srdf_poses_are_the_default_and_each_group_state(tmp_path):
     assert list(found) == [("l_hand", "r_hand")]
     assert found[("l_hand", "r_hand")].poses[0][0] == "group state 'hug' of 'arms'"
     assert found[("l_hand", "r_hand")].depth > 0.05
+
+
+def test_pair_checks_work_in_slices_of_bounded_size(monkeypatch):
+    # a 1,500-link robot has 1.1 million pairs: 250 samples of all of them at once were 2 GB
+    from urdftool.collision import pairs
+
+    robot = load(str(HUMANOID))
+    whole = matrix.compute(robot, samples=500, seed=3, workers=1)
+    sizes = []
+    real = pairs.separated
+    monkeypatch.setattr(pairs, "CHUNK", 1000)
+    monkeypatch.setattr(pairs, "separated", lambda a, *rest: sizes.append(a.shape[0]) or real(a, *rest))
+    sliced = matrix.compute(robot, samples=500, seed=3, workers=1)
+    assert [(p.reason, p.collisions, p.min_distance) for p in sliced.pairs] == \
+        [(p.reason, p.collisions, p.min_distance) for p in whole.pairs]
+    assert sizes and max(sizes) <= 1000

@@ -122,3 +122,58 @@ def test_collada_that_is_not_well_formed_is_still_counted_before_loading(tmp_pat
     with pytest.raises(MeshProblem) as error:
         load_mesh(_robot(tmp_path, "m.dae"), "m.dae", limits=MeshLimits(max_triangles=11))
     assert error.value.kind == "too-large"
+
+
+def _count_reads(monkeypatch) -> list:
+    from urdftool.description import meshes
+
+    reads = []
+    real = meshes._read_mesh
+    monkeypatch.setattr(meshes, "_read_mesh", lambda path, *rest: reads.append(path) or
+                        real(path, *rest))
+    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    return reads
+
+
+def _mesh_robot(folder, name: str, mesh: str, links: int = 3) -> str:
+    body = "".join(f'<link name="l{i}"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" '
+                   'ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial><visual><geometry>'
+                   f'<mesh filename="{mesh}"/></geometry></visual><collision><geometry>'
+                   f'<mesh filename="{mesh}"/></geometry></collision></link>'
+                   for i in range(links))
+    body += "".join(f'<joint name="j{i}" type="fixed"><parent link="l0"/><child link="l{i}"/>'
+                    '</joint>' for i in range(1, links))
+    path = folder / name
+    path.write_text(f'<robot name="{name}">{body}</robot>')
+    return str(path)
+
+
+def test_a_mesh_is_read_once_per_run_across_links_rules_and_robots(tmp_path, monkeypatch):
+    import trimesh
+
+    from urdftool.lint.engine import CheckOptions, check_file
+
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
+    reads = _count_reads(monkeypatch)
+    options = CheckOptions()
+    for name in ("one.urdf", "two.urdf"):
+        check_file(_mesh_robot(tmp_path, name, "part.stl"), options)
+    assert [p.name for p in reads] == ["part.stl"]
+
+
+def test_a_changed_mesh_is_read_again(tmp_path, monkeypatch):
+    import os
+
+    import trimesh
+
+    from urdftool.description.meshes import load_mesh
+
+    mesh = tmp_path / "part.stl"
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(mesh)
+    reads = _count_reads(monkeypatch)
+    path = _mesh_robot(tmp_path, "r.urdf", "part.stl")
+    assert load_mesh(load(path), "part.stl").extents[0] == pytest.approx(0.1)
+    trimesh.creation.box((0.3, 0.1, 0.1)).export(mesh)
+    os.utime(mesh, ns=(1, 1))  # even with an old modification time: the size differs
+    assert load_mesh(load(path), "part.stl").extents[0] == pytest.approx(0.3)
+    assert len(reads) == 2

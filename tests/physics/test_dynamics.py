@@ -227,6 +227,8 @@ def test_a_joint_without_an_effort_limit_is_not_the_smallest_margin(run_cli, tmp
                               "--format", "json").stdout)
     [j1] = [load for load in data["gravity_loads"] if load["joint"] == "j1"]
     assert (j1["effort"], j1["margin"], j1["holds"]) == (None, None, None)
+
+
 # a pendulum hanging from a joint 1 m up, with <dynamics damping friction>; the root's own
 # 3 kg sit 0.5 m up
 PM, PL, PI, PB, PF, H = 1.5, 0.4, 0.02, 0.3, 0.05, 1.0
@@ -289,3 +291,17 @@ def test_cli_energies_and_damping(run_cli):
     assert document["tau_total"][knee] == pytest.approx(document["tau"][knee] + 0.1)
     text = run_cli("dynamics", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--qd", "l_knee=1")
     assert re.search(r"energy: K = \S+ J, P = \S+ J .*, L = K - P = \S+ J", text.output)
+
+
+def test_a_robot_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tmp_path,
+                                                                              monkeypatch):
+    # Pinocchio's Data holds nv^3 tensors: 300 joints ~1.7 GB; with 1 GiB allowed it is refused
+    import resource
+
+    from conftest import synthetic_robot
+    from urdftool.errors import DynamicsError
+
+    robot = load(str(synthetic_robot(tmp_path, 301)))
+    monkeypatch.setattr(resource, "getrlimit", lambda _: (1024 ** 3, resource.RLIM_INFINITY))
+    with pytest.raises(DynamicsError, match="300 joint variables.*cube of the joints"):
+        build(robot)

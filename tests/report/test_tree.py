@@ -30,3 +30,21 @@ def test_children_listed_by_joint_name_at_each_depth(tmp_path):
 def test_several_roots_are_a_tree_error(tmp_path):
     with pytest.raises(TreeError, match="3 root links"):
         tree_text(_robot(tmp_path, ""))
+
+
+def test_a_3000_link_chain_is_listed_without_recursion(tmp_path):
+    from conftest import synthetic_robot
+
+    robot = load(str(synthetic_robot(tmp_path, 3000)))
+    lines = tree_text(robot).splitlines()
+    assert len(lines) == 3 + 2999
+    assert lines[-1] == "    " * 2999 + "child(1):  l2999"
+
+
+def test_a_cycle_below_the_root_is_listed_once(tmp_path):
+    robot = _robot(tmp_path, '<joint name="j1" type="fixed"><parent link="base"/><child link="a"/>'
+                             '</joint><joint name="j2" type="fixed"><parent link="a"/>'
+                             '<child link="b"/></joint><joint name="j3" type="fixed">'
+                             '<parent link="b"/><child link="a"/></joint>')
+    assert tree_text(robot).splitlines()[3:] == ["    child(1):  a", "        child(1):  b",
+                                                 "            child(1):  a"]

@@ -83,9 +83,14 @@ def check(
                                       help="With --fix or --diff: the unsafe fixes ([~]) too."),
     diff: bool = typer.Option(False, "--diff", help="Print the fixes as a unified diff and "
                               "write nothing; exit 1 when there is something to fix."),
+    no_cache: bool = typer.Option(False, "--no-cache", help="Neither read nor keep results."),
+    cache_dir: Path = typer.Option(None, "--cache-dir", metavar="DIR",
+                                   help="Keep results here between runs [default: "
+                                        ".urdftool_cache; none when CI is set]."),
 ) -> None:
     from urdftool.budget import Budget
     from urdftool.errors import SettingsError, TargetError, UnknownName
+    from urdftool.lint.cache import default_folder
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
     from urdftool.report import FORMATS, printable, render
@@ -113,7 +118,8 @@ def check(
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None,
-            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename)
+            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
+            cache_dir=None if no_cache else cache_dir or default_folder())
         run = check_paths(paths, request)
         if fix or diff:
             run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))

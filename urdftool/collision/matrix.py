@@ -260,14 +260,17 @@ def _classify(tally: Tally, min_fraction: float, margin: float) -> list[str]:
 
 def _distances(scene: Scene, checker: PairChecker, tally: Tally, seed) -> list[float]:
     """Exact distances where known; for pairs FCL never saw, the distance at the sample where
-    the bounding spheres came closest (an upper bound of the smallest distance)."""
-    result = []
-    for i, distance in enumerate(tally.min_distance):
-        if np.isfinite(distance):
-            result.append(float(distance))
-            continue
-        sample = int(tally.bound_sample[i])
-        block, offset = divmod(sample, BLOCK)
-        q = scene.sample([seed, block], BLOCK)[offset]
-        result.append(float(checker.exact(scene.at(q), i)[1]))
+    the bounding spheres came closest (an upper bound of the smallest distance). Each block of
+    samples is drawn and posed once, not once per pair (a large robot has a million such
+    pairs)."""
+    result = [float(distance) for distance in tally.min_distance]
+    unseen = np.nonzero(~np.isfinite(tally.min_distance))[0]
+    order = unseen[np.argsort(tally.bound_sample[unseen], kind="stable")]
+    block_poses = (None, None)
+    for i in order:
+        block, offset = divmod(int(tally.bound_sample[i]), BLOCK)
+        if block_poses[0] != block:
+            block_poses = (block, checker.part_poses(scene.poses(scene.sample([seed, block],
+                                                                              BLOCK))))
+        result[i] = float(checker.exact(None, int(i), part_poses=block_poses[1][offset])[1])
     return result

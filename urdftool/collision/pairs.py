@@ -11,9 +11,12 @@ stays at the identity, the second moves), with a distance query when they do not
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import fcl
 import numpy as np
+
+CHUNK = 1 << 19  # (sample, part pair) cells worked on at once: ~12 MB a float array of centres
 
 
 @dataclass
@@ -77,57 +80,87 @@ class PairChecker:
         self._distance_request = fcl.DistanceRequest()
 
     def tally(self, link_poses: np.ndarray, first_sample: int = 0) -> Tally:
-        """Collision counts and distances over a block of configurations' link poses."""
+        """Collision counts and distances over a block of configurations' link poses.
+
+        The part pairs are taken in slices of whole link pairs, each at most ``CHUNK`` (sample,
+        part pair) cells, so the working arrays stay the same size however many links the robot
+        has (a 1,500-link robot has 1.1 million pairs: 250 samples of them at once were 2 GB a
+        array)."""
         count, pairs = len(link_poses), len(self.link_pairs)
         result = Tally.empty(pairs)
         result.samples = count
         if not len(self.pa) or not count:
             return result
         boxes = link_poses[:, self.part_link] @ self.boxes
+        step = max(1, CHUNK // count)
+        row = 0
+        while row < len(self.pa):
+            first_pair = self.pair_of[row]
+            # end on a link-pair boundary: the rows of one pair are contiguous
+            last_pair = self.pair_of[min(row + step, len(self.pa)) - 1] + 1
+            end = int(np.searchsorted(self.pair_of, last_pair))
+            self._tally_rows(link_poses, boxes, slice(row, end),
+                             slice(int(first_pair), int(last_pair)), first_sample, result)
+            row = end
+        result.min_distance[result.collisions > 0] = 0.0
+        return result
+
+    def _tally_rows(self, link_poses, boxes, rows_slice: slice, pairs_slice: slice,
+                    first_sample: int, result: Tally) -> None:
+        """:meth:`tally` for the part pairs ``rows_slice``, which make the link pairs
+        ``pairs_slice``; writes into ``result``'s entries of those pairs."""
+        count = len(link_poses)
+        pa, pb = self.pa[rows_slice], self.pb[rows_slice]
+        pair_of = self.pair_of[rows_slice] - pairs_slice.start
+        pairs = pairs_slice.stop - pairs_slice.start
         centers = boxes[..., :3, 3]
-        gap = (np.linalg.norm(centers[:, self.pa] - centers[:, self.pb], axis=-1)
-               - self.radius[self.pa] - self.radius[self.pb])
-        self._bounds(result, gap, first_sample)
+        gap = (np.linalg.norm(centers[:, pa] - centers[:, pb], axis=-1)
+               - self.radius[pa] - self.radius[pb])
+        self._bounds(result, gap, pair_of, pairs_slice, first_sample)
         samples, rows = np.nonzero(gap < self.margin)
+        del gap
         grow = self.margin / 2
-        near = ~separated(boxes[samples, self.pa[rows]], self.half[self.pa[rows]] + grow,
-                          boxes[samples, self.pb[rows]], self.half[self.pb[rows]] + grow)
+        near = ~separated(boxes[samples, pa[rows]], self.half[pa[rows]] + grow,
+                          boxes[samples, pb[rows]], self.half[pb[rows]] + grow)
         samples, rows = samples[near], rows[near]
         collided = np.zeros((count, pairs), dtype=bool)
         # For two boxes the separating-axis test is exact: no FCL call needed to know they touch.
-        boxed = self.is_box[self.pa[rows]] & self.is_box[self.pb[rows]]
+        boxed = self.is_box[pa[rows]] & self.is_box[pb[rows]]
         touching = np.zeros(len(rows), dtype=bool)
         touching[boxed] = ~separated(
-            boxes[samples[boxed], self.pa[rows[boxed]]], self.half[self.pa[rows[boxed]]],
-            boxes[samples[boxed], self.pb[rows[boxed]]], self.half[self.pb[rows[boxed]]])
-        collided[samples[touching], self.pair_of[rows[touching]]] = True
+            boxes[samples[boxed], pa[rows[boxed]]], self.half[pa[rows[boxed]]],
+            boxes[samples[boxed], pb[rows[boxed]]], self.half[pb[rows[boxed]]])
+        collided[samples[touching], pair_of[rows[touching]]] = True
         samples, rows, boxed = samples[~touching], rows[~touching], boxed[~touching]
+        distance = result.min_distance[pairs_slice]  # a view: _narrow writes through it
         if len(samples):
-            ends = np.stack([self.pa[rows], self.pb[rows]], axis=1)
+            ends = np.stack([pa[rows], pb[rows]], axis=1)
             parts = link_poses[samples[:, None], self.part_link[ends]] @ self.origins[ends]
             rotation = np.swapaxes(parts[:, 0, :3, :3], 1, 2) @ parts[:, 1, :3, :3]
             translation = np.einsum("nji,nj->ni", parts[:, 0, :3, :3],
                                     parts[:, 1, :3, 3] - parts[:, 0, :3, 3])
-            self._narrow(samples, rows, rotation, translation, ~boxed, collided, result)
-        result.collisions = collided.sum(axis=0)
-        result.min_distance[result.collisions > 0] = 0.0
-        return result
+            self._narrow(samples, rows, rotation, translation, ~boxed, collided, distance,
+                         pa, pb, pair_of)
+        result.collisions[pairs_slice] = collided.sum(axis=0)
 
-    def _bounds(self, result: Tally, gap: np.ndarray, first_sample: int) -> None:
-        if len(self.pair_of) == len(self.link_pairs):  # one part per link: rows are pairs
+    def _bounds(self, result: Tally, gap: np.ndarray, pair_of: np.ndarray,
+                pairs_slice: slice, first_sample: int) -> None:
+        pairs = pairs_slice.stop - pairs_slice.start
+        if len(pair_of) == pairs:  # one part per link: rows are pairs
             per_pair = gap
         else:
-            per_pair = np.full((len(gap), len(self.link_pairs)), np.inf)
-            np.minimum.at(per_pair, (slice(None), self.pair_of), gap)
+            per_pair = np.full((len(gap), pairs), np.inf)
+            np.minimum.at(per_pair, (slice(None), pair_of), gap)
         best = np.argmin(per_pair, axis=0)
-        result.bound = per_pair[best, np.arange(len(self.link_pairs))]
-        result.bound_sample = best + first_sample
+        result.bound[pairs_slice] = per_pair[best, np.arange(pairs)]
+        result.bound_sample[pairs_slice] = best + first_sample
 
-    def _narrow(self, samples, rows, rotation, translation, ask, collided, result) -> None:
+    def _narrow(self, samples, rows, rotation, translation, ask, collided, distance,
+                pa, pb, pair_of) -> None:
         """Collision for the candidates where ``ask`` (the others are known apart), then distance
         only for candidates of pairs that never collided in this block (a pair that collided is
         at distance 0 whatever else happens)."""
-        fixed, moving, pa, pb, pair_of = self.fixed, self.moving, self.pa, self.pb, self.pair_of
+        fixed, moving = self.fixed, self.moving
         apart = []
         for n in range(len(samples)):
             sample, row = samples[n], rows[n]
@@ -143,7 +176,6 @@ class PairChecker:
             else:
                 apart.append(n)
         hit = collided.any(axis=0)
-        distance = result.min_distance
         for n in apart:
             row = rows[n]
             pair = pair_of[row]
@@ -155,13 +187,19 @@ class PairChecker:
             if gap < distance[pair]:
                 distance[pair] = gap
 
-    def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False):
-        """(colliding, distance [m], penetration depth [m]) of one link pair at one pose."""
+    def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False,
+              part_poses: np.ndarray | None = None):
+        """(colliding, distance [m], penetration depth [m]) of one link pair at one pose.
+
+        part_poses: :meth:`part_poses` of ``link_poses`` when the caller asks about many pairs
+        at the same pose (then ``link_poses`` is not read)."""
         depth, nearest, hit = 0.0, np.inf, False
         request = fcl.CollisionRequest(num_max_contacts=16, enable_contact=True) if contacts \
             else self._request
-        for row in np.nonzero(self.pair_of == pair)[0]:
-            one, two = self._place(link_poses, self.pa[row]), self._place(link_poses, self.pb[row])
+        if part_poses is None:
+            part_poses = self.part_poses(link_poses)
+        for row in range(self._first_row[pair], self._first_row[pair + 1]):
+            one, two = self._place(part_poses, self.pa[row]), self._place(part_poses, self.pb[row])
             result = fcl.CollisionResult()
             if fcl.collide(one, two, request, result):
                 hit = True
@@ -171,8 +209,17 @@ class PairChecker:
                                                     fcl.DistanceResult()))
         return hit, (0.0 if hit else nearest), depth
 
-    def _place(self, link_poses, part: int):
-        pose = link_poses[self.part_link[part]] @ self.origins[part]
+    def part_poses(self, link_poses: np.ndarray) -> np.ndarray:
+        """World poses ``[..., parts, 4, 4]`` of every part for link poses ``[..., links, 4, 4]``."""
+        return link_poses[..., self.part_link, :, :] @ self.origins
+
+    @cached_property
+    def _first_row(self) -> list[int]:
+        """Row where each pair's part pairs begin (they are contiguous), and the row count."""
+        return np.searchsorted(self.pair_of, np.arange(len(self.link_pairs) + 1)).tolist()
+
+    def _place(self, part_poses, part: int):
+        pose = part_poses[part]
         self.moving[part].setTransform(fcl.Transform(pose[:3, :3], pose[:3, 3]))
         return self.moving[part]
 

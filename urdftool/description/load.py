@@ -38,6 +38,15 @@ def first_xacro_use(root):
     return None
 
 
+def _may_use_xacro(data: bytes) -> bool:
+    """False when the bytes alone show that no element needs xacro (no ``${``, ``$(`` or
+    ``xacro`` in an ASCII-compatible file without character references), sparing a walk of every
+    element of a large URDF."""
+    if b"\x00" in data[:4] or b"&#" in data:
+        return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
+    return b"${" in data or b"$(" in data or b"xacro" in data
+
+
 def _substitutes(text: str | None) -> bool:
     return bool(text) and ("${" in text or "$(" in text)
 
@@ -63,7 +72,7 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
                             max_file_size)
     else:
         robot = _load_urdf(path, shown, data, resolver)
-        first = None if as_written else first_xacro_use(robot.root)
+        first = None if as_written or not _may_use_xacro(data) else first_xacro_use(robot.root)
         if first is not None and path == "-":
             robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                                 max_file_size)

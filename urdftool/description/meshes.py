@@ -20,7 +20,8 @@ mesh goes through the same checks before trimesh touches it:
   which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
   ``metadata[NOT_WELL_FORMED]``.
 
-Meshes are cached per robot, keyed by resolved path and scale. trimesh is imported lazily.
+Meshes are read once per run (process), keyed by resolved path, file identity and modification
+and the limits, and cached per robot by scale. trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
 
@@ -577,6 +578,40 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     return loaded
 
 
+RUN_CACHE_BYTES = 512 * 1024 * 1024  # [bytes] of mesh files kept loaded between robots
+
+# Meshes read in this process, shared by every robot checked in it (a run of robots of one
+# package reads each mesh once, not once per robot): key -> (file size, trimesh or MeshProblem).
+# A worker process per file has its own; it dies with its file.
+_RUN_CACHE: dict = {}
+
+
+def _read_once(path: Path, uri: str, limits: MeshLimits):
+    """``_read_mesh`` once per run for a file as it is now: keyed by the resolved path, its
+    identity and modification (device, inode, size, mtime in ns) and the limits; a problem also
+    by the URI its message names. Returns the mesh or the MeshProblem."""
+    try:
+        status = path.stat()
+    except OSError:
+        status = None
+    stamp = (status.st_dev, status.st_ino, status.st_size, status.st_mtime_ns) if status else None
+    key = (str(path), stamp, limits)
+    for known in (key, (*key, uri)):
+        if known in _RUN_CACHE:
+            _RUN_CACHE[known] = entry = _RUN_CACHE.pop(known)  # most recently used last
+            return entry[1]
+    try:
+        outcome = _read_mesh(path, uri, limits)
+    except MeshProblem as problem:
+        outcome = problem
+    size = status.st_size if status and not isinstance(outcome, MeshProblem) else 0
+    if stamp is not None:
+        _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome)
+        while sum(entry[0] for entry in _RUN_CACHE.values()) > RUN_CACHE_BYTES:
+            _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
+    return outcome
+
+
 def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None = None):
     """The mesh at ``uri`` scaled by ``scale`` (a trimesh.Trimesh; do not modify it).
 
@@ -594,10 +629,7 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     if key not in cache:
         raw_key = (path, (1.0, 1.0, 1.0))
         if raw_key not in cache:
-            try:
-                cache[raw_key] = _read_mesh(path, uri, limits)
-            except MeshProblem as problem:
-                cache[raw_key] = problem
+            cache[raw_key] = _read_once(path, uri, limits)
         raw = cache[raw_key]
         if isinstance(raw, MeshProblem) or key == raw_key:
             cache[key] = raw

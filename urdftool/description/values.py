@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -21,6 +22,14 @@ def to_float(text: str) -> float:
 
 def parse_numbers(text: str | None, count: int | None = None):
     """(values, problem): values is None when ``text`` is not ``count`` finite-or-not numbers."""
+    values, problem = _parsed(text, count)
+    return (list(values) if values is not None else None), problem
+
+
+@functools.lru_cache(maxsize=65536)
+def _parsed(text: str | None, count: int | None):
+    """:func:`parse_numbers` once per distinct text: every rule family reads the same origins,
+    limits and inertias, and real robots repeat their values."""
     if text is None:
         return None, "missing"
     parts = text.split()
@@ -32,7 +41,7 @@ def parse_numbers(text: str | None, count: int | None = None):
             values.append(to_float(part))
         except ValueError:
             return None, f"'{part}' is not a number (in '{text}')"
-    return values, None
+    return tuple(values), None
 
 
 def finite(values) -> bool:

@@ -86,6 +86,7 @@ class _Session:
         self.roots = [os.path.realpath(root) for root in roots]
         self.paths: list[str] = []  # only ever appended to: an index names one file
         self.shown_paths: dict[int, str] = {}
+        self.locations: dict[str, Location] = {}  # stamp -> where it was written
         self.call_sites: list[str] = []
         self.warnings: list[tuple[Location, str]] = []
         self.detached: dict[int, str] = {}  # macro-call node id -> the stamp lifted off it
@@ -130,6 +131,14 @@ class _Session:
         return len(self.paths) - 1
 
     def location(self, stamp: str) -> Location:
+        """Where the element stamped ``stamp`` was written; worked out once per stamp (an
+        element of a macro is reached again at every call)."""
+        found = self.locations.get(stamp)
+        if found is None:
+            found = self.locations[stamp] = self._location(stamp)
+        return found
+
+    def _location(self, stamp: str) -> Location:
         places = []
         for part in stamp[len(_STAMP_PREFIX):].split(";"):
             index, _, line = part.partition(":")
@@ -388,6 +397,8 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         return original_check_attrs(tag, required, optional)
 
     def eval_text(text, symbols):
+        if text.startswith(_STAMP_PREFIX):  # a location stamp: nothing to substitute, no lexing
+            return text
         result = original_eval_text(text, symbols)
         return charge_text(result, "substitution") if isinstance(result, str) else result
 

@@ -52,13 +52,14 @@ def urdfdom_messages(text: str) -> list[str]:
 
 
 def build_model(robot, *root_joint):
-    """``pinocchio.buildModelFromXML(robot.urdf, *root_joint)``, quietly; ModelBuildError (at the
-    robot's root element) with urdfdom's reasons when it refuses the robot."""
-    import pinocchio
+    """``pinocchio.buildModelFromXML(robot.urdf, *root_joint)`` on a stack deep enough for the
+    robot (:mod:`urdftool.kinematics.model`), quietly; ModelBuildError (at the robot's root
+    element) with urdfdom's reasons when it refuses the robot."""
+    from urdftool.kinematics.model import build_model as parse
 
     with captured_stderr() as noise:
         try:
-            return pinocchio.buildModelFromXML(robot.urdf, *root_joint)
+            return parse(robot, *root_joint)
         except (ValueError, RuntimeError) as error:
             failure = error
     reasons = urdfdom_messages(noise[0]) or [str(failure).strip().splitlines()[-1]]

@@ -81,7 +81,8 @@ def _here(index, work, budget, stopped):
 
 def check_files(files: list[str], options_for, jobs: int | None = None,
                 timeout: float | None = DEFAULT_TIMEOUT,
-                memory: int | None = None, stdin_as: str | None = None) -> list[FileResult]:
+                memory: int | None = None, stdin_as: str | None = None,
+                cache=None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
     jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
@@ -89,26 +90,40 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     with one job, files are checked in this process. Standard input ('-') is read here.
     stdin_as: the path standard input is checked as (its includes and packages are found from
         there, its findings name it), as an editor sends an unsaved buffer
+    cache: a :class:`~urdftool.lint.cache.Cache`: files whose result it holds are not checked
+        again (looked up here, before any worker starts), the others' results are kept in it;
+        standard input is never cached
     """
     jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
     stdin = {}
     if "-" in files:
         stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
+    kept = [cache.get(path, options_for(path)) if cache else None for path in files]
+    todo = [index for index, found in enumerate(kept) if found is None]
 
     named = [stdin_as if path == "-" and stdin_as else path for path in files]
+    kept = [cache.get(path, options_for(path)) if cache and path != "-" else None
+            for path in files]
+    todo = [index for index, found in enumerate(kept) if found is None]
 
     def work(index: int) -> tuple[list[Finding], list[str]]:
-        path = files[index]
-        result = engine.check_file(named[index], options_for(path), data=stdin.get(path))
+        path = files[todo[index]]
+        options = options_for(path)
+        result = engine.check_file(named[todo[index]], options, data=stdin.get(path))
+        if cache and path != "-":
+            cache.put(path, options, result)
         return result.findings, result.companions
 
     def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
-        return [stop_finding(named[index], stop, "checking")], []
+        return [stop_finding(named[todo[index]], stop, "checking")], []
 
-    outcomes = run_budgeted(len(files), work, budget, stopped, jobs)
-    return [FileResult(path, found, companions=lines)
-            for path, (found, lines) in zip(named, outcomes)]
+    lines: list[list[str]] = [[] for _ in files]
+    for index, (found, companions) in zip(todo, run_budgeted(len(todo), work, budget, stopped,
+                                                             jobs)):
+        kept[index], lines[index] = found, companions
+    return [FileResult(path, found, companions=companions)
+            for path, found, companions in zip(named, kept, lines)]
 
 
 @dataclass
@@ -147,7 +162,8 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     request: a :class:`~urdftool.lint.settings.CheckRequest`, or its fields as keywords
         (``select``, ``ignore``, ``strict``, ``xacro_args``, ``packages``, ``companions``,
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
-        ``jobs``, ``use_settings``); defaults as the command line's
+        ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
+        that results are kept between runs only with ``cache_dir``
     Raises SettingsError or TargetError (both UrdftoolError) before anything is checked.
     """
     if request is None:
@@ -158,6 +174,11 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     targets = expand(list(paths), request)
+    cache = None
+    if request.cache_dir is not None:
+        from urdftool.lint.cache import Cache
+
+        cache = Cache(request.cache_dir)
     plans = [for_file(request.stdin_filename if path == "-" and request.stdin_filename else path,
                       request) for path in targets.files]
     by_path = dict(zip(targets.files, plans))
@@ -166,7 +187,7 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
         indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
         found = check_files([targets.files[i] for i in indexes], lambda p: by_path[p].options,
                             jobs=request.jobs, timeout=request.timeout, memory=memory,
-                            stdin_as=request.stdin_filename)
+                            stdin_as=request.stdin_filename, cache=cache)
         for index, result in zip(indexes, found):
             results[index] = result
     return Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])

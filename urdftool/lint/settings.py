@@ -300,6 +300,8 @@ class CheckRequest:
     stdin_filename: the path standard input ('-') is checked as: its settings, includes and
         packages are found from there and its findings name it (an editor's unsaved buffer)
     settings_file: this settings file for every target instead of the one above each
+    cache_dir: where results are kept between runs (:mod:`urdftool.lint.cache`); None: not kept
+        (``urdftool check`` keeps them in ``.urdftool_cache`` unless --no-cache or CI)
     """
 
     select: tuple[str, ...] = ()
@@ -317,6 +319,7 @@ class CheckRequest:
     use_settings: bool = True
     stdin_filename: str | None = None
     settings_file: Path | None = None
+    cache_dir: Path | None = None
 
     def __post_init__(self):
         for name in ("select", "ignore"):

@@ -295,7 +295,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
                      ) -> tuple[list[Path], str | None]:
     """What to check for a file named on the command line (as pre-commit does), and why.
 
-    includers: :func:`includers_below` ``root``
+    includers: :func:`includers_below` ``root``, or a function returning it, called only when
+        the file is not a robot of its own (walking a repository costs more than checking a robot)
     A robot of its own (a named ``<robot>`` with links, joints or macro calls) is checked as it
     is, and so is a file that is not read (a link leading outside the repository, a file over
     the size limit, a FIFO): checking it reports why. A file that is not (a macro library, a
@@ -313,6 +314,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
                                                                        max_file_size)
     if summary.named_robot and (summary.defines_robot or yields):
         return [path], None
+    includers = includers() if callable(includers) else includers
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
     while pending:
@@ -395,10 +397,13 @@ def expand(paths: list[str], request) -> Targets:
             continue
         if Path(path).is_file():
             root = project_root(Path(path))
-            if (root, limit) not in includers:
-                includers[root, limit] = includers_below(root, resolver_for, limit)
-            targets, reason = explicit_targets(Path(path), includers[root, limit], root, limit,
-                                               resolver_for)
+
+            def graph(root=root, limit=limit):
+                if (root, limit) not in includers:
+                    includers[root, limit] = includers_below(root, resolver_for, limit)
+                return includers[root, limit]
+
+            targets, reason = explicit_targets(Path(path), graph, root, limit, resolver_for)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
                 notes.append(f"{path}: {reason}")

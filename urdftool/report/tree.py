@@ -13,10 +13,16 @@ def tree_text(robot) -> str:
              "---------- Successfully Parsed XML ---------------",
              f"root Link: {root} has {len(children.get(root, []))} child(ren)"]
 
-    def walk(link: str, depth: int):
-        for index, (_, child) in enumerate(children.get(link, []), start=1):
-            lines.append("    " * depth + f"child({index}):  {child}")
-            walk(child, depth + 1)
-
-    walk(root, 1)
+    # depth first with a stack of our own, not recursion: a 1,500-link chain is 1,500 deep
+    stack = [(child, index, 1) for index, (_, child) in reversed(
+        list(enumerate(children.get(root, []), start=1)))]
+    seen = {root}
+    while stack:
+        link, index, depth = stack.pop()
+        lines.append("    " * depth + f"child({index}):  {link}")
+        if link in seen:
+            continue  # a cycle below the root: listed once, not followed
+        seen.add(link)
+        stack.extend((child, number, depth + 1) for number, (_, child) in reversed(
+            list(enumerate(children.get(link, []), start=1))))
     return "\n".join(lines) + "\n"

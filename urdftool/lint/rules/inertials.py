@@ -58,13 +58,13 @@ def _fixed_children(robot) -> dict[str, list[str]]:
     return children
 
 
-def _valid(robot):
-    """(link, MassProperties) of every link whose inertial fully parses."""
-    for link in robot.children("link"):
-        properties = declared(link)
-        if properties is not None and math.isfinite(properties.mass) \
-                and all(math.isfinite(v) for row in properties.inertia for v in row):
-            yield link, properties
+def _valid(robot) -> list:
+    """(link, MassProperties) of every link whose inertial fully parses; computed once per robot
+    (every inertia rule asks)."""
+    return robot.memo(_valid, lambda: [
+        (link, properties) for link in robot.children("link")
+        if (properties := declared(link)) is not None and math.isfinite(properties.mass)
+        and all(math.isfinite(v) for row in properties.inertia for v in row)])
 
 
 def _judged(robot):

@@ -170,15 +170,25 @@ def _unit_text(values, norm: float) -> str:
     return text
 
 
-def _numeric_problems(robot):
+def _numeric_problems(robot) -> list:
+    """(joint, element, attribute, values, problem) of every joint number; once per robot."""
+    return robot.memo(_numeric_problems, lambda: list(_numeric_fields(robot)))
+
+
+def _numeric_fields(robot):
     for joint in robot.children("joint"):
-        for tag, attribute, count in NUMERIC_FIELDS:
-            for element in joint.findall(tag):
+        for element in joint:  # one pass over the children, not a findall per field
+            for attribute, count in _FIELDS_BY_TAG.get(element.tag, ()):
                 text = element.get(attribute)
                 if text is None:
                     continue
                 values, problem = parse_numbers(text, count)
                 yield joint, element, attribute, values, problem
+
+
+_FIELDS_BY_TAG: dict[str, list[tuple[str, int]]] = {}
+for _tag, _attribute, _count in NUMERIC_FIELDS:
+    _FIELDS_BY_TAG.setdefault(_tag, []).append((_attribute, _count))
 
 
 @rule("U207", "malformed-number", Severity.ERROR)

@@ -106,7 +106,12 @@ def no_links(robot):
 
 
 def parent_map(robot) -> dict[str, list]:
-    """Child link name -> joints that name it as child (only links that exist)."""
+    """Child link name -> joints that name it as child (only links that exist); built once per
+    robot (several rules ask)."""
+    return robot.memo(parent_map, lambda: _parent_map(robot))
+
+
+def _parent_map(robot) -> dict[str, list]:
     parents: dict[str, list] = {}
     for joint in robot.children("joint"):
         _, child = _endpoint(joint, "child")
@@ -171,17 +176,20 @@ def kinematic_cycle(robot):
     """
     parents = parent_map(robot)
     reported: set[str] = set()
+    done: set[str] = set()  # links whose way up is walked: each link is walked once, O(n)
     for start in robot.links:
-        path, link = [], start
-        while link in parents and link not in path:
+        path, position, link = [], {}, start
+        while link in parents and link not in position and link not in done:
+            position[link] = len(path)
             path.append(link)
             link = parents[link][0].find("parent").get("link")
-        if link in path and link not in reported:
-            cycle = path[path.index(link):]
+        if link in position and link not in reported:
+            cycle = path[position[link]:]
             reported.update(cycle)
             joint = parents[link][0]
             yield joint, "joints form a cycle through links " + " -> ".join(
                 [*reversed(cycle), cycle[-1]])
+        done.update(path)
 
 
 @rule("U110", "self-joint", Severity.ERROR)

@@ -1,0 +1,55 @@
+"""The tree rules' cost: each link's way to the root is walked once (U109), not once per link
+below it, and what several rules derive (the parent map) is built once per robot."""
+
+from __future__ import annotations
+
+from conftest import synthetic_robot
+from urdftool.description.load import load
+from urdftool.lint.rules import tree
+
+
+class _CountingParents(dict):
+    """A parent map that counts how often a link's parents are looked up."""
+
+    lookups = 0
+
+    def __contains__(self, key):
+        type(self).lookups += 1
+        return super().__contains__(key)
+
+    def __getitem__(self, key):
+        type(self).lookups += 1
+        return super().__getitem__(key)
+
+
+def test_kinematic_cycle_walks_each_link_once(tmp_path, monkeypatch):
+    robot = load(str(synthetic_robot(tmp_path, 2000)))
+    parents = _CountingParents(tree.parent_map(robot))
+    monkeypatch.setattr(tree, "parent_map", lambda _: parents)
+    _CountingParents.lookups = 0
+    assert list(tree.kinematic_cycle(robot)) == []
+    # two lookups per link walked and one to stop per start: O(n), where walking every link
+    # to the root was n^2 / 2 = 2,000,000
+    assert _CountingParents.lookups <= 3 * 2000 + 10
+
+
+def test_a_cycle_is_still_found_after_the_acyclic_links(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="base"/><link name="a"/><link name="b"/>'
+                    '<link name="c"/><joint name="j0" type="fixed"><parent link="base"/>'
+                    '<child link="c"/></joint><joint name="j1" type="fixed"><parent link="a"/>'
+                    '<child link="b"/></joint><joint name="j2" type="fixed"><parent link="b"/>'
+                    '<child link="a"/></joint></robot>')
+    robot = load(str(path))
+    [(joint, message)] = tree.kinematic_cycle(robot)
+    assert message == "joints form a cycle through links b -> a -> b"
+
+
+def test_the_parent_map_is_built_once_per_robot(tmp_path, monkeypatch):
+    robot = load(str(synthetic_robot(tmp_path, 10)))
+    built = []
+    original = tree._parent_map
+    monkeypatch.setattr(tree, "_parent_map", lambda r: built.append(r) or original(r))
+    for check in (tree.multiple_parents, tree.multiple_roots, tree.kinematic_cycle):
+        list(check(robot))
+    assert len(built) == 1

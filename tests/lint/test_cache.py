@@ -1,0 +1,177 @@
+"""The result cache: never stale, never trusting a cache folder it did not write."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+from urdftool.lint import cache as cache_module
+from urdftool.lint import engine
+from urdftool.lint.runner import check_paths
+
+ROBOT = """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="base"/>
+  <xacro:part name="arm"/>
+  <joint name="arm_joint" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+PARTS = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="part" params="name">
+    <link name="${{name}}">
+      <inertial><mass value="{mass}"/>
+        <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+      <visual><geometry><mesh filename="part.stl"/></geometry></visual>
+    </link>
+  </xacro:macro>
+</robot>
+"""
+CONTROLLERS = """arm_controller:
+  type: position_controllers/JointGroupPositionController
+  joints: [{joint}]
+"""
+
+
+@pytest.fixture(autouse=True)
+def _own_key(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "home-cache"))
+
+
+def _write_mesh(path, size: float) -> None:
+    import trimesh
+
+    trimesh.creation.box((size, size, size)).export(path)
+
+
+@pytest.fixture
+def robot(tmp_path):
+    folder = tmp_path / "bot"
+    (folder / "config").mkdir(parents=True)
+    (folder / "bot.urdf.xacro").write_text(ROBOT)
+    (folder / "parts.xacro").write_text(PARTS.format(mass=-1))
+    (folder / "config" / "controllers.yaml").write_text(CONTROLLERS.format(joint="elbow"))
+    _write_mesh(folder / "part.stl", 0.1)
+    return folder
+
+
+def _messages(folder, cache_dir) -> set[tuple[str, str]]:
+    run = check_paths([str(folder / "bot.urdf.xacro")], cache_dir=cache_dir, timeout=0,
+                      max_memory="0", jobs=1)
+    return {(f.code, f.message) for f in run.results[0].findings}
+
+
+def _counting_checks(monkeypatch) -> list:
+    checked = []
+    real = engine.check_file
+    monkeypatch.setattr(engine, "check_file", lambda path, *rest, **kw: checked.append(path)
+                        or real(path, *rest, **kw))
+    return checked
+
+
+def test_an_unchanged_robot_is_not_checked_again(robot, tmp_path, monkeypatch):
+    cache_dir = tmp_path / "cache"
+    first = _messages(robot, cache_dir)
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, cache_dir) == first
+    assert checked == []
+    assert (cache_dir / "CACHEDIR.TAG").read_text().startswith("Signature: 8a477f597d28d172")
+    assert (cache_dir / ".gitignore").read_text().splitlines()[-1] == "*"
+
+
+def test_an_edited_macro_file_mesh_or_companion_changes_the_findings(robot, tmp_path):
+    cache_dir = tmp_path / "cache"
+    before = _messages(robot, cache_dir)
+    assert any(code == "U302" and "-1 kg" in message for code, message in before)
+    assert any(code == "U602" and "'elbow'" in message for code, message in before)
+    assert not any(code == "U410" for code, _ in before)
+
+    (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
+    after_macro = _messages(robot, cache_dir)
+    assert any(code == "U302" and "-2 kg" in message for code, message in after_macro)
+
+    _write_mesh(robot / "part.stl", 80.0)  # 80 m: an implausible size
+    after_mesh = _messages(robot, cache_dir)
+    assert after_mesh - after_macro and all(code != "U302" or "-2 kg" in message
+                                            for code, message in after_mesh)
+
+    (robot / "config" / "controllers.yaml").write_text(CONTROLLERS.format(joint="wrist"))
+    after_yaml = _messages(robot, cache_dir)
+    assert any(code == "U602" and "'wrist'" in message for code, message in after_yaml)
+    assert not any("'elbow'" in message for _, message in after_yaml)
+
+
+def test_a_new_companion_file_is_seen(robot, tmp_path):
+    cache_dir = tmp_path / "cache"
+    (robot / "config" / "controllers.yaml").unlink()
+    assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "config" / "more.yaml").write_text(CONTROLLERS.format(joint="elbow"))
+    assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
+
+
+def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch):
+    cache_dir = tmp_path / "cache"
+    honest = _messages(robot, cache_dir)
+    [entry] = (cache_dir / "v1").iterdir()
+    document = json.loads(entry.read_text())
+    body = json.loads(document["body"])
+    body["findings"] = []  # "no problems": what an attacker would plant
+    document["body"] = json.dumps(body)
+    entry.write_text(json.dumps(document))
+    assert _messages(robot, cache_dir) == honest
+    # signed with a key of its own (written by another machine): a miss as well
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "other-home"))
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, cache_dir) == honest
+    assert len(checked) == 1
+
+
+@pytest.mark.parametrize("garbage", [b"", b"{", b"[]", b'{"body": "{}", "mac": 1}', b"\xff" * 10])
+def test_a_corrupt_entry_is_a_miss(robot, tmp_path, garbage):
+    cache_dir = tmp_path / "cache"
+    honest = _messages(robot, cache_dir)
+    [entry] = (cache_dir / "v1").iterdir()
+    entry.write_bytes(garbage)
+    assert _messages(robot, cache_dir) == honest
+
+
+def test_a_cache_folder_that_is_a_link_is_not_followed(robot, tmp_path, monkeypatch):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    link = tmp_path / "cache"
+    link.symlink_to(elsewhere)
+    honest = _messages(robot, link)
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, link) == honest
+    assert checked and list(elsewhere.iterdir()) == []
+
+
+def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path):
+    cache_dir = tmp_path / "cache"
+    honest = _messages(robot, cache_dir)
+    [entry] = (cache_dir / "v1").iterdir()
+    target = tmp_path / "secret.txt"
+    target.write_text(entry.read_text())
+    entry.unlink()
+    entry.symlink_to(target)
+    assert _messages(robot, cache_dir) == honest
+    assert not entry.is_symlink()  # replaced by a fresh entry, the target left alone
+    assert target.read_text().startswith('{"body"')
+
+
+def test_the_default_is_off_under_ci():
+    assert cache_module.default_folder({"CI": "true"}) is None
+    assert cache_module.default_folder({}) == cache_module.Path(".urdftool_cache")
+
+
+def test_check_no_cache_writes_nothing(robot, tmp_path, run_cli, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("URDFTOOL_NO_CACHE")
+    monkeypatch.delenv("CI", raising=False)
+    run_cli("check", "--no-cache", str(robot / "bot.urdf.xacro"))
+    assert not (tmp_path / ".urdftool_cache").exists()
+    run_cli("check", str(robot / "bot.urdf.xacro"))
+    assert len(list((tmp_path / ".urdftool_cache" / "v1").iterdir())) == 1

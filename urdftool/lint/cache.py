@@ -1,0 +1,330 @@
+"""The result cache, as ruff has one: a file's findings are kept and given again while nothing
+they depend on has changed.
+
+An entry is keyed by the file (its absolute path), the options it is checked with (settings,
+selection, xacro arguments, packages, companions, limits), the working directory (findings name
+files relative to it), the package search variables of the environment, and urdftool itself
+(the modification of its source files, ``__version__`` among them, so that a development checkout never
+reads results of other code). The entry lists what the result was built from, each with a hash
+of its content, and is a hit only when every one is unchanged:
+
+- every file read to build the robot: the file, its xacro includes and YAML;
+- the companion files it could pick up: the ``*.yaml`` and ``*.srdf`` in its folder and its
+  ``config/`` folder (which exist, and their content) and the companions named;
+- every mesh it names: where the URI resolved, and the mesh's content. While that file is
+  there unchanged, the URI is not resolved again: a package of the same name that appears
+  earlier on the search path later is not noticed (the package variables are in the key);
+- the environment, whole, when a source uses ``$(env`` or ``$(optenv``.
+
+Files are compared by their stamp (device, inode, size, modification and change times, as
+git's index does) and, when it differs, by their content.
+
+A file that failed to load is not kept (it fails fast anyway), nor a result with a crash, a
+budget stop or stdin.
+
+The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
+``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``. Robot files and even the cache folder may come
+from a stranger (a pull request can commit a ``.urdftool_cache`` with entries saying "no
+findings"), so:
+
+- each entry is signed (HMAC-SHA256) with a key kept outside the repository, in
+  ``$XDG_CACHE_HOME/urdftool/key`` (``~/.cache``), made on first use in a folder only its
+  owner may enter: an entry this machine did not write is a miss;
+- a cache folder, entry or key that is a symbolic link, not a regular file, too large, not
+  JSON of the expected shape or of another schema is a miss (and is overwritten, never
+  followed);
+- under CI (the ``CI`` variable set) the cache is off unless ``--cache-dir`` is given: a CI
+  checkout is fresh and is the untrusted input itself. ``URDFTOOL_NO_CACHE`` turns the default
+  off too.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+import json
+import os
+import stat
+from pathlib import Path
+
+from urdftool.description.files import TooLarge, read_regular, write_file
+from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.errors import UsageError
+
+SCHEMA = 1
+FOLDER = ".urdftool_cache"
+MAX_ENTRY_BYTES = 16 * 1024 * 1024
+HASHED_BYTES = 512 * 1024 * 1024  # [bytes]: larger files are known by size and time
+_ENVIRONMENT = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH", "COLCON_PREFIX_PATH")
+_NOT_KEPT = ("U015", "U018", "U900")  # a budget stop or a crash: worth trying again
+_TAG = ("Signature: 8a477f597d28d172789f06886806bc55\n"
+        "# This file is a cache directory tag created by urdftool.\n"
+        "# For information about cache directory tags see https://bford.info/cachedir/\n")
+
+
+def default_folder(environ=os.environ) -> Path | None:
+    """``.urdftool_cache`` in the working directory; None under CI (see the module docstring)
+    or with ``URDFTOOL_NO_CACHE`` set (as the test suite does)."""
+    return None if environ.get("CI") or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
+
+
+class Cache:
+    """Results of files checked, in ``folder``; every problem with the folder is a miss."""
+
+    def __init__(self, folder: Path | str):
+        self.folder = Path(os.path.abspath(folder))
+        self._key = _secret()
+        self._source = _source_stamp()
+        self._resolvers: dict = {}
+
+    # -- the key ---------------------------------------------------------------------------
+
+    def _entry_path(self, path: str, options) -> Path:
+        key = json.dumps([SCHEMA, self._source, os.getcwd(), os.path.abspath(path),
+                          repr(options), [os.environ.get(name) for name in _ENVIRONMENT]])
+        return self.folder / f"v{SCHEMA}" / (hashlib.sha256(key.encode()).hexdigest() + ".json")
+
+    # -- reading ---------------------------------------------------------------------------
+
+    def get(self, path: str, options) -> list[Finding] | None:
+        """The findings kept for ``path`` checked with ``options``, or None (a miss)."""
+        if self._key is None or path == "-" or not self._usable_folder():
+            return None
+        entry = _read_entry(self._entry_path(path, options))
+        if entry is None:
+            return None
+        try:
+            document = json.loads(entry)
+            body, signature = document["body"], document["mac"]
+            if not hmac.compare_digest(signature, self._sign(body)):
+                return None
+            content = json.loads(body)
+            if content["schema"] != SCHEMA:
+                return None
+            dependencies = self._dependencies(path, options)
+            for kind, name, quick, full in content["depends"]:
+                if not dependencies.unchanged(kind, name, quick, full):
+                    return None
+            return [_finding(item) for item in content["findings"]]
+        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
+            return None
+
+    # -- writing ---------------------------------------------------------------------------
+
+    def put(self, path: str, options, result) -> None:
+        """Keep ``result`` (an engine FileResult with its robot) for ``path``, when it may be."""
+        robot = result.robot
+        if self._key is None or path == "-" or robot is None or \
+                any(f.code in _NOT_KEPT for f in result.findings):
+            return
+        depends = self._dependencies(path, options).of(robot)
+        body = json.dumps({"schema": SCHEMA, "depends": depends,
+                           "findings": [_record(f) for f in result.findings]})
+        try:
+            if not self._usable_folder(create=True):
+                return
+            target = self._entry_path(path, options)
+            _write(target, json.dumps({"body": body, "mac": self._sign(body)}))
+        except OSError:
+            return
+
+    def _dependencies(self, path: str, options) -> _Dependencies:
+        return _Dependencies(path, options, self._resolvers)
+
+    def _sign(self, body: str) -> str:
+        return hmac.new(self._key, body.encode(), hashlib.sha256).hexdigest()
+
+    def _usable_folder(self, create: bool = False) -> bool:
+        """The folder (and its ``v1``) exist as real folders, never links; made when asked."""
+        for folder in (self.folder, self.folder / f"v{SCHEMA}"):
+            try:
+                mode = os.lstat(folder).st_mode
+            except FileNotFoundError:
+                if not create:
+                    return False
+                os.makedirs(folder, mode=0o700, exist_ok=True)
+                mode = os.lstat(folder).st_mode
+                if folder == self.folder:
+                    _write(folder / "CACHEDIR.TAG", _TAG)
+                    _write(folder / ".gitignore", "# created by urdftool\n*\n")
+            except OSError:
+                return False
+            if not stat.S_ISDIR(mode):
+                return False  # a link (to anywhere) or a file: not used
+        return True
+
+
+def _hash_file(path: str) -> str | None:
+    """blake2b of a regular file's content; None when there is none, its size and time when it
+    is over :data:`HASHED_BYTES`."""
+    try:
+        return hashlib.blake2b(read_regular(path, HASHED_BYTES), digest_size=20).hexdigest()
+    except TooLarge:
+        status = os.stat(path)
+        return f"large:{status.st_size}:{status.st_mtime_ns}"
+    except OSError as error:
+        return None if isinstance(error, FileNotFoundError) else f"unreadable:{error.strerror}"
+
+
+def _stamp(path: str) -> str | None:
+    """A file's identity and change times, as git's index keeps them: while they are the same
+    the content is taken to be (the change time cannot be set back by a user)."""
+    try:
+        status = os.stat(path)
+    except OSError:
+        return None
+    return f"{status.st_dev}:{status.st_ino}:{status.st_size}:{status.st_mtime_ns}:" \
+           f"{status.st_ctime_ns}"
+
+
+def _companion_folders(path: str) -> list[str]:
+    base = os.path.dirname(os.path.abspath(path))
+    return [base, os.path.join(base, "config")]
+
+
+def _listing(folder: str, measure) -> str:
+    """The companion candidates in ``folder``: names, each with ``measure(path)``."""
+    try:
+        names = sorted(n for n in os.listdir(folder) if n.endswith((".yaml", ".srdf")))
+    except OSError:
+        return "[]"
+    return json.dumps([f"{name}:{measure(os.path.join(folder, name))}" for name in names])
+
+
+class _Dependencies:
+    """What a result depends on, each as (quick, full): the quick state (stamps) is compared
+    first, and the full state (content hashes) only when the quick one differs."""
+
+    def __init__(self, path: str, options, resolvers: dict):
+        """resolvers: package resolvers by (folder, packages), shared by every file of a run"""
+        self.path, self.options = path, options
+        self._resolvers = resolvers
+
+    def _resolved(self, uri: str) -> tuple[str | None, str]:
+        from urdftool.description.packages import PackageResolver
+        from urdftool.errors import UrdftoolError
+
+        folder = Path(os.path.dirname(os.path.abspath(self.path)))
+        key = (folder, tuple(sorted((k, str(v)) for k, v in self.options.packages.items())))
+        if key not in self._resolvers:
+            self._resolvers[key] = PackageResolver(self.options.packages, start=folder)
+        try:
+            resolved = self._resolvers[key].resolve_uri(uri, folder)
+        except (UrdftoolError, OSError, ValueError) as error:
+            return None, f"unresolved:{type(error).__name__}:{error}"
+        return os.path.abspath(resolved), ""
+
+    def quick(self, kind: str, name: str) -> str | None:
+        if kind == "file":
+            return _stamp(name)
+        if kind == "folder":
+            return _listing(name, _stamp)
+        if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
+            resolved = name.split("\0")[-1]
+            return f"{resolved}:{_stamp(resolved)}" if os.path.isabs(resolved) else None
+        return self.full(kind, name)
+
+    def full(self, kind: str, name: str) -> str | None:
+        if kind == "file":
+            return _hash_file(name)
+        if kind == "folder":
+            return _listing(name, _hash_file)
+        if kind == "mesh":
+            resolved, problem = self._resolved(name.split("\0")[0])
+            return f"{resolved}:{_hash_file(resolved)}" if resolved else problem
+        if kind == "environment":
+            return hashlib.sha256(json.dumps(sorted(os.environ.items())).encode()).hexdigest()
+        raise ValueError(kind)
+
+    def unchanged(self, kind: str, name: str, quick: str | None, full: str | None) -> bool:
+        now = self.quick(kind, name)
+        return (now == quick and now is not None) or self.full(kind, name) == full
+
+    def of(self, robot) -> list[list]:
+        """[kind, name, quick, full] of everything ``robot``'s result was built from."""
+        entries = []
+        files = [os.path.abspath(self.path),
+                 *(os.path.abspath(f) for f in robot.files if f != "-"),
+                 *(os.path.abspath(p) for p in self.options.companions.named())]
+        entries += [("file", file) for file in dict.fromkeys(files)]
+        entries += [("folder", folder) for folder in _companion_folders(self.path)]
+        uris = {element.get("filename") for element in robot.root.iter("mesh")} - {None}
+        # a mesh is named by its URI and where it resolved: "uri\0path"
+        entries += [("mesh", f"{uri}\0{self._resolved(uri)[0] or ''}") for uri in sorted(uris)]
+        if any(b"$(env" in data or b"$(optenv" in data for data in robot.sources.values()):
+            entries.append(("environment", ""))
+        return [[kind, name, self.quick(kind, name), self.full(kind, name)]
+                for kind, name in entries]
+
+
+def _record(finding: Finding) -> dict:
+    return {"code": finding.code, "name": finding.name, "severity": finding.severity.value,
+            "message": finding.message, "location": _location_record(finding.location)}
+
+
+def _location_record(location: Location) -> list:
+    return [location.file, location.line, [_location_record(v) for v in location.via]]
+
+
+def _location(record) -> Location:
+    file, line, via = record
+    if not isinstance(file, str) or not (line is None or isinstance(line, int)):
+        raise TypeError("malformed location")
+    return Location(file, line, tuple(_location(v) for v in via))
+
+
+def _finding(record: dict) -> Finding:
+    fields = (record["code"], record["name"], record["message"])
+    if not all(isinstance(value, str) for value in fields):
+        raise TypeError("malformed finding")
+    return Finding(record["code"], record["name"], Severity(record["severity"]),
+                   record["message"], _location(record["location"]))
+
+
+def _read_entry(path: Path, limit: int = MAX_ENTRY_BYTES) -> bytes | None:
+    """A regular file's bytes, not through a link, under ``limit``; else None."""
+    try:
+        if stat.S_ISLNK(os.lstat(path).st_mode):
+            return None
+        return read_regular(path, limit)
+    except OSError:
+        return None
+
+
+def _write(path: Path, text: str) -> None:
+    """:func:`~urdftool.description.files.write_file` (a link at ``path`` is replaced, not
+    followed); OSError when it cannot."""
+    try:
+        write_file(path, text)
+    except UsageError as error:
+        raise OSError(str(error)) from None
+
+
+def _secret() -> bytes | None:
+    """This user's signing key, made on first use; None (no cache) when it cannot be had."""
+    home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    folder = Path(home) / "urdftool"
+    path = folder / "key"
+    key = _read_entry(path, 1024)
+    if key is not None and len(key) >= 32:
+        return key
+    try:
+        os.makedirs(folder, mode=0o700, exist_ok=True)
+        _write(path, os.urandom(32).hex())
+    except OSError:
+        return None
+    key = _read_entry(path, 1024)
+    return key if key is not None and len(key) >= 32 else None
+
+
+def _source_stamp() -> str:
+    """The count and newest modification of urdftool's source files (``__version__`` among
+    them): a result is never read by other code than wrote it."""
+    root = Path(__file__).resolve().parent.parent
+    newest, count = 0, 0
+    for folder, _, names in os.walk(root):
+        for name in names:
+            if name.endswith(".py"):
+                count += 1
+                newest = max(newest, os.stat(os.path.join(folder, name)).st_mtime_ns)
+    return f"{root}:{count}:{newest}"
