@@ -68,4 +68,8 @@ def test_changed_macro_fails_through_its_robot_and_clean_files_pass(hook):
     clean = hook("robots/humanoid/leg.xacro", "robots/r2d2/r2d2.urdf.xacro",
                  "robots/humanoid/joint_limits.yaml")
     assert clean.returncode == 0, clean.stdout + clean.stderr
-    assert "2 files checked: no problems found" in clean.stdout
+    # pre-commit installs the lint-only urdftool: the humanoid's SRDF pose checks need FCL and
+    # say so (U902 notes), nothing else is found
+    assert "2 files checked: 0 errors, 0 warnings, 3 notes" in clean.stdout
+    notes = [line for line in clean.stdout.splitlines() if " info " in line]
+    assert len(notes) == 3 and all("U902" in line for line in notes), clean.stdout
