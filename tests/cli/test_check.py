@@ -100,3 +100,24 @@ def test_version_short_flag(run_cli):
 
 def test_shell_completion_is_offered(run_cli):
     assert "--show-completion" in run_cli("--help").stdout
+
+
+def test_a_symlinked_folder_and_its_includes_are_shown_the_same_way(run_cli, tmp_path,
+                                                                     monkeypatch):
+    real = tmp_path / "real"
+    real.mkdir()
+    (tmp_path / ".git").mkdir()
+    (real / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:include filename="arm.xacro"/>\n<link name="a"/>\n<xacro:arm/>\n</robot>\n')
+    (real / "arm.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="arm">\n'
+        '<link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+        '<limit lower="1" upper="-1" effort="1" velocity="1"/></joint>\n'
+        '</xacro:macro></robot>\n')
+    (tmp_path / "alias").symlink_to(real)
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("check", "alias/robot.urdf.xacro", "-f", "json", "--no-cache")
+    [finding] = json.loads(result.stdout)["diagnostics"]
+    assert finding["file"] == "alias/arm.xacro"
+    assert finding["via"][0]["file"] == "alias/robot.urdf.xacro"

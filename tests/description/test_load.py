@@ -231,3 +231,23 @@ def test_xacro_prefix_without_namespace_is_located_with_xacros_reason(tmp_path):
         load(write(tmp_path, "r.urdf.xacro", path.read_text()))
     assert (raised.value.kind, raised.value.location.line) == ("syntax", 3)
     assert "unbound prefix" in raised.value.message
+
+
+def test_locations_carry_the_column_of_the_start_tag(tmp_path):
+    """Findings carry a column where the element starts (its ``<``), in plain URDF and through
+    xacro macros (the call sites too)."""
+    from urdftool.description.load import load
+
+    plain = tmp_path / "r.urdf"
+    plain.write_text('<robot name="r">\n  <link name="a"/>  <link name="b"/>\n</robot>\n')
+    robot = load(str(plain))
+    assert [(robot.locate(link).line, robot.locate(link).column)
+            for link in robot.root.iter("link")] == [(2, 3), (2, 21)]
+    xacro = tmp_path / "r.urdf.xacro"
+    xacro.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                     '  <xacro:macro name="m" params="n">\n      <link name="${n}"/>\n'
+                     '  </xacro:macro>\n    <xacro:m n="a"/>\n</robot>\n')
+    robot = load(str(xacro))
+    where = robot.locate(robot.links["a"])
+    assert (where.line, where.column) == (3, 7)
+    assert [(site.line, site.column) for site in where.via] == [(5, 5)]

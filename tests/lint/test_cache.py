@@ -175,3 +175,20 @@ def test_check_no_cache_writes_nothing(robot, tmp_path, run_cli, monkeypatch):
     assert not (tmp_path / ".urdftool_cache").exists()
     run_cli("check", str(robot / "bot.urdf.xacro"))
     assert len(list((tmp_path / ".urdftool_cache" / "v1").iterdir())) == 1
+
+
+def test_a_cached_result_keeps_columns_call_sites_and_fixes(tmp_path, monkeypatch):
+    """A hit gives back the findings as checked: --fix and the editors need all of it."""
+    (tmp_path / ".git").mkdir()
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"/>\n  <joint name="j" '
+                    'type="revolute"><parent link="a"/><child link="b"/>\n    <limit lower="1" '
+                    'upper="-1" effort="1" velocity="1"/></joint></robot>\n')
+    cache_dir = tmp_path / "cache"
+    [first] = check_paths([str(path)], jobs=1, timeout=0, cache_dir=cache_dir).results
+    checked = _counting_checks(monkeypatch)
+    [again] = check_paths([str(path)], jobs=1, timeout=0, cache_dir=cache_dir).results
+    assert checked == []  # a hit
+    assert again.findings == first.findings
+    [finding] = [f for f in again.findings if f.code == "U204"]
+    assert finding.location.column == 5 and finding.fix is not None and finding.fix.safe

@@ -151,7 +151,8 @@ def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) ->
         root, lines = parse(data)
     except XmlProblem as problem:
         raise _problem_error(problem, shown) from None
-    locations = {element: Location(shown, line) for element, line in lines.items()}
+    locations = {element: Location(shown, line, column=column)
+                 for element, (line, column) in lines.items()}
     return Robot(path=path, display=shown, root=root, locations=locations, resolver=resolver,
                  files=[shown], sources={shown: data})
 

@@ -141,9 +141,10 @@ class _Session:
     def _location(self, stamp: str) -> Location:
         places = []
         for part in stamp[len(_STAMP_PREFIX):].split(";"):
-            index, _, line = part.partition(":")
-            places.append(Location(self.shown(int(index)), int(line)))
-        return Location(places[0].file, places[0].line, tuple(places[1:]))
+            index, line, column = (part.split(":") + [""])[:3]
+            places.append(Location(self.shown(int(index)), int(line),
+                                   column=int(column) if column else None))
+        return Location(places[0].file, places[0].line, tuple(places[1:]), places[0].column)
 
 
 class _StampingBuilder(ExpatBuilderNS):
@@ -172,7 +173,7 @@ class _StampingBuilder(ExpatBuilderNS):
         parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
 
     def start_element_handler(self, name, attributes):
-        line = self._parser.CurrentLineNumber
+        line, column = self._parser.CurrentLineNumber, self._parser.CurrentColumnNumber + 1
         self._depth = getattr(self, "_depth", 0) + 1
         if self._depth > MAX_DEPTH:
             raise XmlProblem("syntax", too_deep_message(), line)
@@ -182,7 +183,7 @@ class _StampingBuilder(ExpatBuilderNS):
         # attributes onto the include's parent, so only the top file's root is stamped.
         is_root = node.parentNode is self.document
         if (not is_root or self._index == 0) and node.tagName not in _UNSTAMPED:
-            node.setAttribute(STAMP, f"{_STAMP_PREFIX}{self._index}:{line}")
+            node.setAttribute(STAMP, f"{_STAMP_PREFIX}{self._index}:{line}:{column}")
 
 
 def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom.Document:

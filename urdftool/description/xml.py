@@ -56,14 +56,20 @@ def refuse_empty_or_binary(data: bytes) -> None:
 
 def start_tag_lines(data: bytes) -> list[int]:
     """Line of each element's ``<`` in document order; raises XmlProblem when not well formed."""
+    return [line for line, _ in start_tag_positions(data)]
+
+
+def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
+    """(line, 1-based column) of each element's ``<`` in document order; raises XmlProblem
+    when not well formed."""
     refuse_empty_or_binary(data)
     parser = expat.ParserCreate()
-    lines: list[int] = []
+    lines: list[tuple[int, int]] = []
     refused: list[str] = []
     depth = [0]
 
     def on_start(name, attributes):
-        lines.append(parser.CurrentLineNumber)
+        lines.append((parser.CurrentLineNumber, parser.CurrentColumnNumber + 1))
         depth[0] += 1
         if depth[0] > MAX_DEPTH:
             raise _TooDeep()
@@ -111,13 +117,13 @@ _LXML_PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=Fa
                             huge_tree=False, recover=True, collect_ids=False)
 
 
-def parse(data: bytes) -> tuple[etree._Element, dict[etree._Element, int]]:
-    """Parse ``data``; return the root and each element's start-tag line."""
-    lines = start_tag_lines(data)
+def parse(data: bytes) -> tuple[etree._Element, dict[etree._Element, tuple[int, int | None]]]:
+    """Parse ``data``; return the root and each element's start-tag (line, column)."""
+    lines = start_tag_positions(data)
     # expat has accepted the document; recover=True only lets lxml keep prefixed names whose
     # namespace was never declared (check_urdf accepts those, so must we).
     root = etree.fromstring(data, etree.XMLParser(**_LXML_PARSER_OPTIONS))
     elements = list(root.iter(etree.Element))
     if len(elements) != len(lines):  # cannot happen for a document expat accepted; be safe
-        return root, {element: element.sourceline for element in elements}
+        return root, {element: (element.sourceline, None) for element in elements}
     return root, dict(zip(elements, lines))

@@ -40,6 +40,7 @@ findings"), so:
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import hmac
 import json
@@ -48,7 +49,7 @@ import stat
 from pathlib import Path
 
 from urdftool.description.files import TooLarge, read_regular, write_file
-from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
 from urdftool.errors import UsageError
 
 SCHEMA = 1
@@ -258,19 +259,39 @@ class _Dependencies:
 
 
 def _record(finding: Finding) -> dict:
-    return {"code": finding.code, "name": finding.name, "severity": finding.severity.value,
-            "message": finding.message, "location": _location_record(finding.location)}
+    """A finding as kept: everything a report or ``--fix`` uses of it (its fix too)."""
+    record = {"code": finding.code, "name": finding.name, "severity": finding.severity.value,
+              "message": finding.message, "location": _location_record(finding.location)}
+    if finding.fix is not None:
+        record["fix"] = {"description": finding.fix.description, "safe": finding.fix.safe,
+                         "edits": [dataclasses.astuple(edit) for edit in finding.fix.edits]}
+    return record
 
 
 def _location_record(location: Location) -> list:
-    return [location.file, location.line, [_location_record(v) for v in location.via]]
+    return [location.file, location.line, [_location_record(v) for v in location.via],
+            location.column]
 
 
 def _location(record) -> Location:
-    file, line, via = record
-    if not isinstance(file, str) or not (line is None or isinstance(line, int)):
+    file, line, via, column = record
+    if not isinstance(file, str) or not all(value is None or isinstance(value, int)
+                                            for value in (line, column)):
         raise TypeError("malformed location")
-    return Location(file, line, tuple(_location(v) for v in via))
+    return Location(file, line, tuple(_location(v) for v in via), column)
+
+
+def _fix(record) -> Fix | None:
+    if record is None:
+        return None
+    edits = tuple(Edit(*fields) for fields in record["edits"])
+    if not isinstance(record["description"], str) or not isinstance(record["safe"], bool) or \
+            not all(isinstance(e.file, str) and isinstance(e.text, str) and isinstance(e.old, str)
+                    and all(isinstance(v, int) for v in (e.start, e.end, e.line, e.column,
+                                                           e.end_line, e.end_column))
+                    for e in edits):
+        raise TypeError("malformed fix")
+    return Fix(record["description"], edits, record["safe"])
 
 
 def _finding(record: dict) -> Finding:
@@ -278,7 +299,7 @@ def _finding(record: dict) -> Finding:
     if not all(isinstance(value, str) for value in fields):
         raise TypeError("malformed finding")
     return Finding(record["code"], record["name"], Severity(record["severity"]),
-                   record["message"], _location(record["location"]))
+                   record["message"], _location(record["location"]), _fix(record.get("fix")))
 
 
 def _read_entry(path: Path, limit: int = MAX_ENTRY_BYTES) -> bytes | None:
