@@ -59,7 +59,7 @@ class RobotFile(pytest.File):
         yield RobotItem.from_parent(self, name="urdftool")
 
 
-class FindingsFailure(Exception):
+class _FindingsFailure(Exception):
     """``urdftool check`` fails on a robot; the text is its located findings."""
 
 
@@ -71,10 +71,10 @@ class RobotItem(pytest.Item):
     def runtest(self):
         run = _check([str(self.path)])
         if run.exit_code:
-            raise FindingsFailure(_text(run))
+            raise _FindingsFailure(_text(run))
 
     def repr_failure(self, excinfo, style=None):
-        if isinstance(excinfo.value, FindingsFailure):
+        if isinstance(excinfo.value, _FindingsFailure):
             return str(excinfo.value)
         return super().repr_failure(excinfo, style)
 

@@ -106,7 +106,7 @@ def test_xacro_locations_through_includes_and_nested_macros(tmp_path):
             zip(a_joint.via, ["parts.xacro", "top.urdf.xacro"])] == [(True, 12), (True, 5)]
     b_joint = robot.locate(robot.joints["b_joint"])
     assert b_joint.line == 5 and [s.line for s in b_joint.via] == [6]
-    assert robot.locate(robot.links["base"]) == Location(robot.display, 4)
+    assert robot.locate(robot.links["base"]) == Location(robot.display, 4, column=3)
     assert any(f.endswith("parts.xacro") for f in robot.files) and parts
 
 

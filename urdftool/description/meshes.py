@@ -578,7 +578,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     return loaded
 
 
-RUN_CACHE_BYTES = 512 * 1024 * 1024  # [bytes] of mesh files kept loaded between robots
+RUN_CACHE_BYTES = 128 * 1024 * 1024  # [bytes] of mesh files kept loaded between robots (a worker has 2 GiB of address space in all)
 
 # Meshes read in this process, shared by every robot checked in it (a run of robots of one
 # package reads each mesh once, not once per robot): key -> (file size, trimesh or MeshProblem).

@@ -107,3 +107,14 @@ def test_xacro_left_in_a_urdf_is_u007s_not_the_vocabulary(tmp_path):
       <xacro:property name="w" value="1"/>
       <link name="a"><xacro:grey/></link></robot>"""}, select=("U0",))
     assert {code for _, _, code in found} == {"U007"}
+
+
+def test_a_known_name_with_a_word_added_is_an_extension_not_a_misspelling(tmp_path):
+    """ANYmal-Kinova writes <limit gear_velocity=...> on purpose: it has no effect (a warning),
+    it is not 'velocity' misspelt (an error); 'uper' still is."""
+    robot = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+             '<parent link="a"/><child link="b"/><limit lower="-1" uper="1" effort="1" '
+             'velocity="1" gear_velocity="3"/></joint></robot>')
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U02",))
+    assert [f.code for f in findings] == ["U021", "U022"]
+    assert "'uper'" in findings[0].message and "'gear_velocity'" in findings[1].message
