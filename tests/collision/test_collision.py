@@ -398,3 +398,24 @@ def test_pair_checks_work_in_slices_of_bounded_size(monkeypatch):
     assert [(p.reason, p.collisions, p.min_distance) for p in sliced.pairs] == \
         [(p.reason, p.collisions, p.min_distance) for p in whole.pairs]
     assert sizes and max(sizes) <= 1000
+
+
+@pytest.mark.parametrize("gap, reported", [(-0.0005, False), (-0.005, True), (0.01, False)])
+def test_srdf_overlaps_leave_out_surfaces_that_only_touch(tmp_path, gap, reported):
+    """Two 10 cm cubes, not adjacent, 10 cm + gap apart: half a millimetre of overlap is a
+    seam (a lift resting on its base), 5 mm is a collision."""
+    from lxml import etree
+
+    text = ('<robot name="r"><link name="a"><collision><geometry><box size="0.1 0.1 0.1"/>'
+            '</geometry></collision></link><link name="m"><collision><origin xyz="0 1 0"/>'
+            '<geometry><sphere radius="0.01"/></geometry></collision></link>'
+            '<link name="b"><collision><origin '
+            f'xyz="{0.1 + gap} 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+            '</link><joint name="j1" type="revolute"><parent link="a"/><child link="m"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+            '<joint name="j2" type="revolute"><parent link="m"/><child link="b"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    path = tmp_path / "r.urdf"
+    path.write_text(text)
+    found = srdf.overlaps(load(str(path)), etree.fromstring('<robot name="r"/>'))
+    assert bool(found) == reported, found

@@ -96,7 +96,7 @@ def test_github_annotations(run_cli, monkeypatch, workspaces, broken):
     annotations = lines[:-1]
     assert len(annotations) == int(broken)
     for line in annotations:
-        assert re.fullmatch(r"::error file=robots/broken\.urdf,line=6,"
+        assert re.fullmatch(r"::error file=robots/broken\.urdf,line=6,col=5,"
                             r"title=U204 inverted-limits::joint 'elbow'.*", line)
 
 

@@ -224,10 +224,14 @@ def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
     return poses
 
 
+TOUCHING = 0.001  # [m]: meshes that overlap less than this touch by design (seams, contacts)
+
+
 def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
-    """Pairs of links (not adjacent) in contact at the default configuration or at a group
-    state of the SRDF: one FCL check of every pair per pose, as in
-    :func:`urdftool.collision.matrix.default_collisions`."""
+    """Pairs of links (not adjacent) that overlap by more than :data:`TOUCHING` at the default
+    configuration or at a group state of the SRDF: one FCL check of every pair per pose, as in
+    :func:`urdftool.collision.matrix.default_collisions`. Surfaces that only touch (a lift on
+    its base, meshes exported to share a face) are not reported."""
     from urdftool.collision.matrix import Scene, default_collisions
 
     scene = Scene(robot, 0.0)
@@ -241,4 +245,4 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
             overlap = found.setdefault(pair, Overlap(*pair))
             overlap.depth = max(overlap.depth, depth)
             overlap.poses.append((label, element))
-    return found
+    return {pair: overlap for pair, overlap in found.items() if overlap.depth > TOUCHING}

@@ -118,3 +118,14 @@ def test_a_known_name_with_a_word_added_is_an_extension_not_a_misspelling(tmp_pa
     found, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U02",))
     assert [f.code for f in findings] == ["U021", "U022"]
     assert "'uper'" in findings[0].message and "'gear_velocity'" in findings[1].message
+
+
+def test_a_word_of_a_known_name_is_not_its_misspelling(tmp_path):
+    """franka's fr3 writes <joint mimic="..."> in <ros2_control>, beside the known is_mimic:
+    another version's name, not a misspelling (was U021, found by the sweep)."""
+    robot = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+             '<parent link="a"/><child link="b"/><limit lower="-1" upper="1" effort="1" '
+             'velocity="1"/></joint><ros2_control name="s" type="system"><hardware><plugin>'
+             'mock_components/GenericSystem</plugin></hardware><joint name="j" mimic="true">'
+             '<command_interface name="position"/></joint></ros2_control></robot>')
+    assert check_folder(tmp_path, {"robot.urdf": robot}, select=("U021",))[0] == []

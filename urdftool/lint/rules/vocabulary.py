@@ -26,12 +26,16 @@ CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a
 def _close(name: str, valid) -> list[str]:
     """The known names ``name`` is a misspelling of. A known name with a word added before or
     after it (``gear_velocity``, ``velocity_max``) is a tool's own extension written on
-    purpose, not a misspelling of ``velocity``: not close."""
+    purpose, not a misspelling of ``velocity``, and a word of a known name (``mimic`` beside
+    ros2_control's ``is_mimic``) is another version's name for it: neither is close."""
     valid = list(dict.fromkeys(valid))
     same_case = [v for v in valid if v.lower() == name.lower()]
-    words = set(name.lower().replace("-", "_").split("_"))
+    def words(text: str) -> set[str]:
+        return set(text.lower().replace("-", "_").split("_"))
+
     return same_case or [v for v in difflib.get_close_matches(name, valid, n=3, cutoff=CUTOFF)
-                         if not (len(words) > 1 and v.lower() in words)]
+                         if not (len(words(name)) > 1 and v.lower() in words(name))
+                         and not (len(words(v)) > 1 and name.lower() in words(v))]
 
 
 class _Unknown:
