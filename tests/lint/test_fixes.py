@@ -281,3 +281,50 @@ def test_the_issue_example_is_fixed_to_what_urdfdom_reads(tmp_path):
         '  <origin xyz="0 0 1"/>\n'
         '  <limit lower="-1" upper="1" effort="1" velocity="1"/>\n'
         '  <dynamics damping="100"/>\n</joint>\n</robot>\n')
+
+
+def test_a_never_pair_that_collides_loses_its_entry(tmp_path):
+    """U810's unsafe fix removes the stale <disable_collisions>: MoveIt then checks the pair."""
+    robot = _copy(CASES / "U810_srdf_disabled_pair_collides", tmp_path)
+    srdf = robot.parent / "robot.srdf"
+    urdf_before = robot.read_bytes()
+    before = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in before.findings if f.code == "U810"]
+    assert finding.fix is not None and not finding.fix.safe
+    assert not fixes.plan([before]).changed  # only with --unsafe-fixes
+    [after], applied, _, skipped = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied and not skipped
+    assert "U810" not in {f.code for f in after.findings}
+    assert 'link1="l_hand" link2="r_hand" reason="Never"' not in srdf.read_text()
+    assert 'link1="base_link" link2="l_hand" reason="Never"' in srdf.read_text()  # the others
+    assert robot.read_bytes() == urdf_before
+
+
+OVERLAPPING = ('<robot name="r"><link name="a"><collision><geometry><box size="0.1 0.1 0.1"/>'
+               '</geometry></collision></link><link name="m"><collision><origin xyz="0 1 0"/>'
+               '<geometry><sphere radius="0.01"/></geometry></collision></link><link name="b">'
+               '<collision><origin xyz="0.09 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>'
+               '</collision></link><joint name="j1" type="revolute"><parent link="a"/>'
+               '<child link="m"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+               '<joint name="j2" type="revolute"><parent link="m"/><child link="b"/>'
+               '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+
+
+def test_a_pair_in_contact_at_the_default_pose_is_disabled_as_default(tmp_path):
+    """U811's unsafe fix writes what MoveIt's Setup Assistant writes for a pair in contact at the
+    default pose, indented as the file's other entries, before </robot>."""
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(OVERLAPPING)
+    srdf = tmp_path / "robot.srdf"
+    srdf.write_text('<?xml version="1.0"?>\n<robot name="r">\n    <disable_collisions link1="a" '
+                    'link2="m" reason="Adjacent"/>\n</robot>\n')
+    before = check_file(str(robot), CheckOptions())
+    [finding] = [f for f in before.findings if f.code == "U811"]
+    assert finding.fix is not None and not finding.fix.safe
+    [after], applied, _, _ = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied and not {"U810", "U811"} & {f.code for f in after.findings}
+    assert srdf.read_text().endswith('    <disable_collisions link1="a" link2="b" '
+                                     'reason="Default"/>\n</robot>\n')

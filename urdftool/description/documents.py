@@ -120,6 +120,7 @@ class CompanionFile:
     problem: str | None = None
     line: int | None = None
     ros2: bool = False  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
+    text: str | None = None  # an SRDF's text as read, for the fixes that edit it
 
     @property
     def root(self):
@@ -176,6 +177,7 @@ def read_srdf(path: Path) -> SrdfFile:
     if text is None:
         return result
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
+    result.text = text
     try:
         result.data = etree.fromstring(text.encode(), parser)
     except etree.XMLSyntaxError as error:

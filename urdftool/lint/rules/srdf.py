@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from urdftool.description.companions import companions
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.fixes import offer
 from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
@@ -292,6 +293,9 @@ def srdf_disabled_pair_collides(robot):
     outside the limits) and each SRDF group state over it. The sampled check is
     ``urdftool collisions --check-srdf``.
 
+    Fix (unsafe): remove the entry, as a fresh collision matrix would not list the pair as
+    Never; whether they touch by design (then ``reason="Default"``) only the author knows.
+
     Bad: ``<disable_collisions link1="l_hand" link2="r_hand" reason="Never"/>`` for hands that
     touch in the "home" state
     Good: no entry (MoveIt then checks the pair), or ``reason="Default"`` if they touch by design
@@ -307,11 +311,12 @@ def srdf_disabled_pair_collides(robot):
                             key=str.encode))
         overlap = found.get(pair)
         if overlap is not None:
-            yield srdf.at(element.sourceline), (
+            yield offer(srdf.at(element.sourceline), (
                 f"{pair[0]} and {pair[1]} are disabled as '{element.get('reason', '')}' but "
                 f"{_where(overlap)}: MoveIt will not see that collision; remove the entry"
                 + (", or give the reason Default if they touch by design" if _at_default(overlap)
-                   else ""))
+                   else "")), f"remove the <disable_collisions> of {pair[0]} and {pair[1]}",
+                _remove_entry(srdf, element), safe=False)
 
 
 @rule("U811", "srdf-collision-not-disabled", Severity.WARNING)
@@ -328,6 +333,10 @@ def srdf_collision_not_disabled(robot):
     entries. Checked only when the robot has an SRDF. Reported at the group state, or at
     ``<robot>`` for the default configuration.
 
+    Fix (unsafe), for a pair in contact at the default pose: add the entry MoveIt's Setup
+    Assistant writes for it, ``reason="Default"``, before ``</robot>``; the pair touches by
+    design only if the author says so.
+
     Bad: ``l_hand`` and ``r_hand`` inside each other in the "home" state, with no entry
     Good: a "home" where they are apart
     """
@@ -341,8 +350,67 @@ def srdf_collision_not_disabled(robot):
         if pair in listed:
             continue
         element = overlap.poses[0][1]
-        yield srdf.at(element.sourceline if element is not None else srdf.root.sourceline), (
-            f"{pair[0]} and {pair[1]} {_where(overlap)}, and the SRDF does not disable the pair: "
-            "MoveIt reports the robot in collision there; fix the geometry or the pose"
-            + (f", or add <disable_collisions link1=\"{pair[0]}\" link2=\"{pair[1]}\" "
-               "reason=\"Default\"/> if they touch by design" if _at_default(overlap) else ""))
+        yield offer(
+            srdf.at(element.sourceline if element is not None else srdf.root.sourceline), (
+                f"{pair[0]} and {pair[1]} {_where(overlap)}, and the SRDF does not disable the "
+                "pair: MoveIt reports the robot in collision there; fix the geometry or the pose"
+                + (f", or add <disable_collisions link1=\"{pair[0]}\" link2=\"{pair[1]}\" "
+                   "reason=\"Default\"/> if they touch by design" if _at_default(overlap)
+                   else "")),
+            f"disable {pair[0]} and {pair[1]} as Default (in contact at the default pose)",
+            _add_default_entry(srdf, pair) if _at_default(overlap) else None, safe=False)
+
+
+# --- fixes: what a fresh collision matrix says of the pairs checked at the SRDF's poses -------
+
+def _srdf_source(srdf):
+    from urdftool.lint.fixes import parse_source
+
+    return parse_source(srdf.display, srdf.text.encode("utf-8")) if srdf.text else None
+
+
+def _remove_entry(srdf, element):
+    """The edit deleting one ``<disable_collisions/>`` (its whole line when it stands alone)."""
+    from urdftool.lint.fixes import Unfixable
+
+    source = _srdf_source(srdf)
+    tags = [t for t in (source.on_line(element.sourceline) if source else ())
+            if t.name == "disable_collisions" and t.self_closing
+            and {t.attributes.get(k, (0, 0, None))[2] for k in ("link1", "link2")}
+            == {element.get("link1"), element.get("link2")}]
+    if len(tags) != 1:
+        return Unfixable(f"the entry at {srdf.display}:{element.sourceline} is not one "
+                         "<disable_collisions .../> tag on its line")
+    data, (start, end) = source.data, (tags[0].start, tags[0].end)
+    line_start = data.rfind(b"\n", 0, start) + 1
+    line_end = data.find(b"\n", end)
+    line_end = len(data) if line_end < 0 else line_end + 1
+    if not data[line_start:start].strip() and not data[end:line_end].strip():
+        start, end = line_start, line_end
+    return [source.edit(start, end, "")]
+
+
+def _add_default_entry(srdf, pair):
+    """The edit adding ``<disable_collisions ... reason="Default"/>`` on a line of its own before
+    ``</robot>``, indented as the file's other entries (or by two spaces)."""
+    from urdftool.lint.fixes import Unfixable
+
+    source = _srdf_source(srdf)
+    root = source.tag(0) if source is not None and len(source) else None
+    if root is None or root.close_name is None:
+        return Unfixable(f"{srdf.display} has no </robot> to write before")
+    data = source.data
+    close = root.close_name[0] - 2  # the '<' of '</robot>'
+    line_start = data.rfind(b"\n", 0, close) + 1
+    if data[line_start:close].strip():
+        return Unfixable(f"</robot> in {srdf.display} does not start its line")
+    entries = [t for t in (source.tag(i) for i in range(len(source)))
+               if t.name == "disable_collisions"]
+    if entries:
+        first = entries[0].start
+        indent = data[data.rfind(b"\n", 0, first) + 1:first].decode("utf-8", "replace")
+    else:
+        indent = "  "
+    line = (f'{indent}<disable_collisions link1="{pair[0]}" link2="{pair[1]}" '
+            f'reason="Default"/>{source.newline}')
+    return [source.edit(line_start, line_start, line)]
