@@ -253,3 +253,13 @@ def test_gazebo_ros2_control_parameters_are_followed_inside_the_repository(tmp_p
     write(tmp_path, {"pkg/urdf/r.urdf": ROBOT.replace("</robot>", plugin.format(outside))})
     assert companions(load(str(tmp_path / "pkg/urdf/r.urdf"))).controllers == []
     outside.unlink()
+
+
+def test_an_srdf_named_after_a_neighbour_is_not_claimed_by_robot_name(tmp_path):
+    """Dexmate ships vega_1.urdf, vega_1.srdf and vega_1_collision_spheres.collision.urdf, all
+    with <robot name="vega_1">: the SRDF is vega_1.urdf's, not the spheres model's (whose
+    spheres overlap where the meshes do not: false U810 on the sweep)."""
+    write(tmp_path, {"vega_1.urdf": ROBOT, "vega_1_spheres.urdf": ROBOT,
+                     "vega_1.srdf": "<robot name='r'/>"})
+    assert companions(load(str(tmp_path / "vega_1.urdf"))).srdf.path.name == "vega_1.srdf"
+    assert companions(load(str(tmp_path / "vega_1_spheres.urdf"))).srdf is None

@@ -247,6 +247,10 @@ class _Owner:
         return _match_length(path, self.keys) > max(
             (_match_length(path, {n.name.split(".")[0]}) for n in self.neighbours), default=0)
 
+    def named_after_neighbour(self, path: Path) -> bool:
+        """``path``'s name starts with another robot file's stem of the folder."""
+        return any(_match_length(path, {n.name.split(".")[0]}) for n in self.neighbours)
+
     def claims(self, path: Path) -> tuple[bool, str]:
         """(whether ``path``, found automatically, is this robot's, why / why not)."""
         if self.matches(path):
@@ -343,7 +347,10 @@ def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
     if named:
         chosen, why = named[0], "named after the robot"
     else:
-        by_name = [p for p in paths if _srdf_robot_name(p) == robot.name and robot.name]
+        # by <robot name>, unless the file is named after another robot of the folder: it is
+        # that robot's (a collision-spheres variant shares the robot name, not its SRDF)
+        by_name = [p for p in paths if _srdf_robot_name(p) == robot.name and robot.name
+                   and not owner.named_after_neighbour(p)]
         if by_name:
             chosen, why = by_name[0], f"its <robot name> is '{robot.name}'"
         elif len(paths) == 1 and owner.alone:

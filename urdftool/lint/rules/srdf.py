@@ -276,7 +276,7 @@ def _where(overlap) -> str:
     return f"collide (FCL penetration depth {overlap.depth * 1000:.1f} mm) at {shown}"
 
 
-@rule("U810", "srdf-disabled-pair-collides", Severity.ERROR)
+@rule("U810", "srdf-disabled-pair-collides", Severity.WARNING)
 def srdf_disabled_pair_collides(robot):
     """A pair disabled as "Never" (or "User") collides at the default pose or a group state.
 
@@ -292,6 +292,9 @@ def srdf_disabled_pair_collides(robot):
     Each pose is checked once with FCL: the default configuration (0, or mid-range where 0 is
     outside the limits) and each SRDF group state over it. The sampled check is
     ``urdftool collisions --check-srdf``.
+
+    A warning, not an error: parts that overlap by design (nested telescoping segments, a
+    gripper's fingers) are disabled on purpose, only under the wrong reason.
 
     Fix (unsafe): remove the entry, as a fresh collision matrix would not list the pair as
     Never; whether they touch by design (then ``reason="Default"``) only the author knows.
