@@ -367,9 +367,12 @@ def srdf_collision_not_disabled(robot):
 # --- fixes: what a fresh collision matrix says of the pairs checked at the SRDF's poses -------
 
 def _srdf_source(srdf):
+    """Where the SRDF's start tags are, parsed once per file (each finding's fix asks)."""
     from urdftool.lint.fixes import parse_source
 
-    return parse_source(srdf.display, srdf.text.encode("utf-8")) if srdf.text else None
+    if "_source" not in vars(srdf):
+        srdf._source = parse_source(srdf.display, srdf.text.encode("utf-8")) if srdf.text else None
+    return srdf._source
 
 
 def _remove_entry(srdf, element):
