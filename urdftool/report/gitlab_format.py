@@ -11,7 +11,7 @@ from __future__ import annotations
 import hashlib
 import json
 
-from urdftool.report.summary import all_findings
+from urdftool.report.summary import all_findings, write_json
 
 # https://docs.gitlab.com/ci/testing/code_quality/#code-quality-report-format
 _SEVERITIES = {"error": "major", "warning": "minor", "info": "info"}
@@ -35,5 +35,4 @@ def as_list(results) -> list[dict]:
 
 
 def render(results, stream) -> None:
-    json.dump(as_list(results), stream, indent=2)
-    stream.write("\n")
+    write_json(as_list(results), stream)

@@ -74,5 +74,4 @@ def all_findings(results) -> list[Finding]:
 
 def write_json(document: dict, stream) -> None:
     """A JSON document as the json and sarif formats write it: indented, ending in a newline."""
-    json.dump(document, stream, indent=2)
-    stream.write("\n")
+    stream.write(json.dumps(document, indent=2) + "\n")  # one write: json.dump writes per token
