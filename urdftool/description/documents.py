@@ -6,12 +6,10 @@ what is wrong in them the rules' (U6xx-U8xx live in :mod:`urdftool.lint.rules`).
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 from pathlib import Path
-
-import yaml
-from lxml import etree
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import TooLarge, read_regular
@@ -37,48 +35,59 @@ class YamlList(list):
     lines: list
 
 
-class _Loader(DepthLimit, yaml.SafeLoader):
-    """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;
-    nesting past yaml_limits.MAX_DEPTH is a YAML error at its line.
+@functools.lru_cache(maxsize=None)
+def _loader():
+    """The YAML loader class (PyYAML is imported on first use: a run served from the result
+    cache reads no YAML)."""
+    import yaml
 
-    merge_repeated: a key written twice in one mapping, both times holding a mapping, holds
-    both merged (the later value wins key by key), as ROS 2's parameter parser reads a
-    parameter file (rcl_yaml_param_parser adds each node-name block and each nested parameter
-    name to what it has: two ``/**:`` blocks both apply). Off, the later value replaces the
-    earlier one, as PyYAML (and so rosparam, ROS 1) does."""
+    class _Loader(DepthLimit, yaml.SafeLoader):
+        """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;
+        nesting past yaml_limits.MAX_DEPTH is a YAML error at its line.
 
-    merge_repeated = False
+        merge_repeated: a key written twice in one mapping, both times holding a mapping, holds
+        both merged (the later value wins key by key), as ROS 2's parameter parser reads a
+        parameter file (rcl_yaml_param_parser adds each node-name block and each nested parameter
+        name to what it has: two ``/**:`` blocks both apply). Off, the later value replaces the
+        earlier one, as PyYAML (and so rosparam, ROS 1) does."""
 
-    def construct_yaml_map(self, node):
-        data = YamlMap()
-        data.line, data.lines = node.start_mark.line + 1, {}
-        yield data
-        for key_node, value_node in node.value:
-            key = self.construct_object(key_node, deep=True)
-            try:
-                hash(key)
-            except TypeError:
-                key = str(key)
-            value = self.construct_object(value_node, deep=True)
-            if self.merge_repeated and isinstance(data.get(key), YamlMap) and isinstance(value, YamlMap):
-                data[key] = merged(data[key], value)  # keeps the line it was first written at
-                continue
-            data[key] = value
-            data.lines[key] = key_node.start_mark.line + 1
+        merge_repeated = False
 
-    def construct_yaml_seq(self, node):
-        data = YamlList()
-        data.line = node.start_mark.line + 1
-        data.lines = [item.start_mark.line + 1 for item in node.value]
-        yield data
-        data.extend(self.construct_object(item, deep=True) for item in node.value)
+        def construct_yaml_map(self, node):
+            data = YamlMap()
+            data.line, data.lines = node.start_mark.line + 1, {}
+            yield data
+            for key_node, value_node in node.value:
+                key = self.construct_object(key_node, deep=True)
+                try:
+                    hash(key)
+                except TypeError:
+                    key = str(key)
+                value = self.construct_object(value_node, deep=True)
+                if self.merge_repeated and isinstance(data.get(key), YamlMap) and isinstance(value, YamlMap):
+                    data[key] = merged(data[key], value)  # keeps the line it was first written at
+                    continue
+                data[key] = value
+                data.lines[key] = key_node.start_mark.line + 1
 
-    def construct_unknown(self, suffix, node):
-        if isinstance(node, yaml.ScalarNode):
-            return self.construct_scalar(node)
-        if isinstance(node, yaml.SequenceNode):
-            return next(self.construct_yaml_seq(node))
-        return next(self.construct_yaml_map(node))
+        def construct_yaml_seq(self, node):
+            data = YamlList()
+            data.line = node.start_mark.line + 1
+            data.lines = [item.start_mark.line + 1 for item in node.value]
+            yield data
+            data.extend(self.construct_object(item, deep=True) for item in node.value)
+
+        def construct_unknown(self, suffix, node):
+            if isinstance(node, yaml.ScalarNode):
+                return self.construct_scalar(node)
+            if isinstance(node, yaml.SequenceNode):
+                return next(self.construct_yaml_seq(node))
+            return next(self.construct_yaml_map(node))
+
+    _Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
+    _Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
+    _Loader.add_multi_constructor("!", _Loader.construct_unknown)
+    return _Loader
 
 
 def merged(first, second):
@@ -103,10 +112,6 @@ def is_ros2_parameters(text: str) -> bool:
     """Whether ``text`` is a ROS 2 parameter file (it has a ``ros__parameters:`` key)."""
     return bool(_ROS2_PARAMETERS.search(text))
 
-
-_Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
-_Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
-_Loader.add_multi_constructor("!", _Loader.construct_unknown)
 
 
 @dataclass
@@ -139,7 +144,9 @@ def read_yaml(path: Path) -> YamlFile:
     text = _read_text(path, result)
     if text is None:
         return result
-    loader = _Loader(text)
+    import yaml
+
+    loader = _loader()(text)
     loader.merge_repeated = result.ros2 = is_ros2_parameters(text)
     try:
         result.data = loader.get_single_data()
@@ -153,7 +160,7 @@ def read_yaml(path: Path) -> YamlFile:
     return result
 
 
-def _error_line(error: yaml.MarkedYAMLError, text: str) -> int | None:
+def _error_line(error, text: str) -> int | None:
     """The line (1-based) to report a YAML syntax error at: where an unclosed bracket or quote
     opened when PyYAML's context says so, or when it only noticed at the end of the file; never
     past the file's last non-blank line (PyYAML puts the end of the stream on the line after
@@ -176,6 +183,8 @@ def read_srdf(path: Path) -> SrdfFile:
     text = _read_text(path, result)
     if text is None:
         return result
+    from lxml import etree
+
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     result.text = text
     try:
@@ -191,7 +200,7 @@ def read_srdf(path: Path) -> SrdfFile:
     return result
 
 
-def _xml_error_line(error: etree.XMLSyntaxError, text: str) -> int | None:
+def _xml_error_line(error, text: str) -> int | None:
     """libxml2's line, except that an element left open is reported where it opened ("Premature
     end of data in tag group line 2"), not on the line after the end of the file."""
     opened = re.search(r"Premature end of data in tag \S+ line (\d+)", error.msg or "")
@@ -201,6 +210,8 @@ def _xml_error_line(error: etree.XMLSyntaxError, text: str) -> int | None:
 
 def _start_tag_lines(root, text: str) -> None:
     """Give each element the line of its ``<`` (lxml keeps the line of the closing ``>``)."""
+    from lxml import etree
+
     elements = list(root.iter(etree.Element))
     try:
         lines = start_tag_lines(text.encode())

@@ -8,8 +8,6 @@ from functools import cached_property
 from pathlib import Path
 from typing import Callable, TypeVar
 
-from lxml import etree
-
 from urdftool.diagnostics import Location
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.packages import PackageResolver
@@ -75,7 +73,7 @@ class Robot:
 
     path: str
     display: str
-    root: etree._Element
+    root: object  # the lxml <robot> element
     locations: dict
     resolver: PackageResolver
     files: list[str] = field(default_factory=list)
@@ -120,18 +118,20 @@ class Robot:
         return [child for child in self.root if child.tag == tag]
 
     @cached_property
-    def links(self) -> dict[str, etree._Element]:
+    def links(self) -> dict[str, object]:
         """Link elements by name; the first of duplicates wins."""
         return _by_name(self.children("link"))
 
     @cached_property
-    def joints(self) -> dict[str, etree._Element]:
+    def joints(self) -> dict[str, object]:
         """Joint elements by name; the first of duplicates wins."""
         return _by_name(self.children("joint"))
 
     @cached_property
     def urdf(self) -> str:
         """The expanded URDF as text, for yourdfpy, Pinocchio and ``urdftool xacro``."""
+        from lxml import etree
+
         return etree.tostring(self.root, encoding="unicode", pretty_print=False)
 
     def resolve_uri(self, uri: str) -> Path:

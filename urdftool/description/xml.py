@@ -12,8 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from xml.parsers import expat
 
-from lxml import etree
-
 BINARY_SNIFF_BYTES = 8192
 MAX_DEPTH = 256  # element nesting libxml2 accepts without its "huge" option
 
@@ -117,8 +115,11 @@ _LXML_PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=Fa
                             huge_tree=False, recover=True, collect_ids=False)
 
 
-def parse(data: bytes) -> tuple[etree._Element, dict[etree._Element, tuple[int, int | None]]]:
-    """Parse ``data``; return the root and each element's start-tag (line, column)."""
+def parse(data: bytes) -> tuple:
+    """Parse ``data``; return the root (an lxml element) and each element's start-tag (line,
+    column)."""
+    from lxml import etree
+
     lines = start_tag_positions(data)
     # expat has accepted the document; recover=True only lets lxml keep prefixed names whose
     # namespace was never declared (check_urdf accepts those, so must we).

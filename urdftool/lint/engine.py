@@ -3,16 +3,16 @@
 from __future__ import annotations
 
 import traceback
-from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.meshes import MeshLimits
-from urdftool.description.robot import CompanionPaths
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError, missing_extra
 from urdftool.lint.catalogue import Rule
+from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
+
+__all__ = ["CheckOptions", "FileResult", "Selection", "check_file", "check_robot"]
 
 # What the loader's errors (LoadError.kind) and notes (LoadNote.kind) are reported as. The loader
 # knows no rule code and names no option: the hints on what to pass are added here.
@@ -30,54 +30,6 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U110", "U201", "U202", "U203", "U207", "U208", "U213"})
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
-
-@dataclass(frozen=True)
-class Selection:
-    """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``)."""
-
-    select: tuple[str, ...] = ()
-    ignore: tuple[str, ...] = ()
-
-    def allows(self, code: str) -> bool:
-        if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):
-            return False
-        return not any(CATALOGUE.matches(code, s) for s in self.ignore)
-
-
-@dataclass
-class CheckOptions:
-    """How to load and check each file."""
-
-    xacro_args: dict[str, str] = field(default_factory=dict)
-    packages: dict[str, Path] = field(default_factory=dict)
-    selection: Selection = Selection()
-    allow_env: bool = True
-    max_file_size: int = 16 * 1024 * 1024
-    companions: CompanionPaths = CompanionPaths()
-    mesh_limits: MeshLimits = MeshLimits()
-
-
-@dataclass
-class FileResult:
-    """What checking one file found.
-
-    strict: whether a warning in it fails the check (its settings or the request)
-    companions: one line per companion file found for the robot, what it was used as and why,
-        or why not (``check -v`` lists them)
-    """
-
-    path: str
-    findings: list[Finding]
-    robot: object | None = None
-    strict: bool = False
-    companions: list[str] = field(default_factory=list)
-
-    @property
-    def failures(self) -> list[Finding]:
-        """The findings that fail the check: errors, and warnings when checked strictly."""
-        failing = {Severity.ERROR, Severity.WARNING} if self.strict else {Severity.ERROR}
-        return [finding for finding in self.findings if finding.severity in failing]
-
 
 def stamp(rule: Rule, where, message: str, robot, fix=None) -> Finding:
     """A finding for ``rule`` at ``where`` (element, Location or None), with its fix if any."""

@@ -18,7 +18,6 @@ one file in this process, as an editor has it (both are the public API: ``urdfto
 from __future__ import annotations
 
 import io
-import multiprocessing
 import os
 import signal
 import sys
@@ -26,13 +25,12 @@ import time
 import traceback
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from multiprocessing.connection import wait
 
 from urdftool import budget as budgets
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
+from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding, Location, Severity, display_path
-from urdftool.lint import engine
-from urdftool.lint.engine import CheckOptions, FileResult
+from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
 from urdftool.lint.targets import expand
 
@@ -64,7 +62,7 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> li
     Without a budget, with one job (or where processes cannot fork) the work is done in this
     process, and only a MemoryError becomes a Stop.
     """
-    if budget.unlimited and jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
+    if budget.unlimited and jobs == 1 or count == 0 or not hasattr(os, "fork"):
         return [_here(index, work, budget, stopped) for index in range(count)]
     results: list = [None] * count
     _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
@@ -99,9 +97,6 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     stdin = {}
     if "-" in files:
         stdin["-"] = sys.stdin.buffer.read(options_for("-").max_file_size + 1)
-    kept = [cache.get(path, options_for(path)) if cache else None for path in files]
-    todo = [index for index, found in enumerate(kept) if found is None]
-
     named = [stdin_as if path == "-" and stdin_as else path for path in files]
     kept = [cache.get(path, options_for(path)) if cache and path != "-" else None
             for path in files]
@@ -110,6 +105,8 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     def work(index: int) -> tuple[list[Finding], list[str]]:
         path = files[todo[index]]
         options = options_for(path)
+        from urdftool.lint import engine  # every rule: imported only when a file is checked
+
         result = engine.check_file(named[todo[index]], options, data=stdin.get(path))
         if cache and path != "-":
             cache.put(path, options, result)
@@ -173,7 +170,12 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     check_companions(request.companions)
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
-    targets = expand(list(paths), request)
+    with one_run():  # one view of the file system: roots and settings looked up once
+        return _check_paths(list(paths), request)
+
+
+def _check_paths(paths: list, request: CheckRequest) -> Run:
+    targets = expand(paths, request)
     cache = None
     if request.cache_dir is not None:
         from urdftool.lint.cache import Cache
@@ -206,6 +208,8 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     check_companions(request.companions)
     if isinstance(data, str):
         data = data.encode("utf-8")
+    from urdftool.lint import engine
+
     return engine.check_file(path, for_file(path, request).options, data=data)
 
 
@@ -402,6 +406,9 @@ def _drain(worker: _Worker) -> None:
 
 
 def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
+    import multiprocessing
+    from multiprocessing.connection import wait
+
     context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))

@@ -32,8 +32,8 @@ from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import inside, read_regular
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.robot import CompanionPaths
-from urdftool.lint.engine import CheckOptions, Selection
-from urdftool.lint.rules import CATALOGUE
+from urdftool.description.run_memo import per_run
+from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "per-file-args", "packages", "spec",
@@ -86,11 +86,16 @@ def settings_for(path: str | os.PathLike) -> Settings:
     """The settings that apply to ``path`` (a file or folder; ``-``, standard input: the working
     folder): the nearest settings file above it, up to the repository root; empty Settings when
     none. Each settings file is read once per version."""
-    from urdftool.description.packages import repository_root
-
     folder = Path.cwd() if os.fspath(path) == "-" else Path(path).absolute()
     if not folder.is_dir():
         folder = folder.parent
+    return _settings_in(folder)
+
+
+@per_run
+def _settings_in(folder: Path) -> Settings:
+    from urdftool.description.packages import repository_root
+
     chain = [folder, *folder.parents]
     root = repository_root(folder)
     if root is not None:
@@ -260,8 +265,12 @@ def _selectors(path: Path, table: dict, key: str, what: str | None = None) -> li
 
 def check_selectors(selectors: Iterable[str]) -> None:
     """:class:`~urdftool.errors.UnknownRule` for the first selector that picks no rule."""
-    for selector in _codes(selectors):
-        CATALOGUE.check_selector(selector)
+    selectors = list(_codes(selectors))
+    if selectors:  # the catalogue imports every rule: only when there is something to check
+        from urdftool.lint.rules import CATALOGUE
+
+        for selector in selectors:
+            CATALOGUE.check_selector(selector)
 
 
 # ---- settings merged with a request ---------------------------------------------------------

@@ -1,0 +1,62 @@
+"""What the engine takes and gives: the options a file is checked with and its result, apart
+from the rules themselves, so that settings, the result cache and the runner can handle them
+without importing every rule (a re-run served from the cache never does)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from urdftool.description.meshes import MeshLimits
+from urdftool.description.robot import CompanionPaths
+from urdftool.diagnostics import Finding, Severity
+
+
+@dataclass(frozen=True)
+class Selection:
+    """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``)."""
+
+    select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+
+    def allows(self, code: str) -> bool:
+        from urdftool.lint.rules import CATALOGUE
+
+        if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):
+            return False
+        return not any(CATALOGUE.matches(code, s) for s in self.ignore)
+
+
+@dataclass
+class CheckOptions:
+    """How to load and check each file."""
+
+    xacro_args: dict[str, str] = field(default_factory=dict)
+    packages: dict[str, Path] = field(default_factory=dict)
+    selection: Selection = Selection()
+    allow_env: bool = True
+    max_file_size: int = 16 * 1024 * 1024
+    companions: CompanionPaths = CompanionPaths()
+    mesh_limits: MeshLimits = MeshLimits()
+
+
+@dataclass
+class FileResult:
+    """What checking one file found.
+
+    strict: whether a warning in it fails the check (its settings or the request)
+    companions: one line per companion file found for the robot, what it was used as and why,
+        or why not (``check -v`` lists them)
+    """
+
+    path: str
+    findings: list[Finding]
+    robot: object | None = None
+    strict: bool = False
+    companions: list[str] = field(default_factory=list)
+
+    @property
+    def failures(self) -> list[Finding]:
+        """The findings that fail the check: errors, and warnings when checked strictly."""
+        failing = {Severity.ERROR, Severity.WARNING} if self.strict else {Severity.ERROR}
+        return [finding for finding in self.findings if finding.severity in failing]
