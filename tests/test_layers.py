@@ -80,8 +80,19 @@ def _imports(name: str, path: Path):
             argument = node.args[0] if node.args else None
             if isinstance(argument, ast.Constant) and isinstance(argument.value, str):
                 yield argument.value, node.lineno
+            elif isinstance(argument, ast.JoinedStr) and _package_prefix(argument):
+                yield _package_prefix(argument), node.lineno  # f"urdftool.cli.{name}": in there
             else:
                 yield "<dynamic import>", node.lineno
+
+
+def _package_prefix(text: ast.JoinedStr) -> str | None:
+    """``urdftool.cli`` for ``f"urdftool.cli.{name}"``: a module of that package, whichever."""
+    head = text.values[0] if text.values else None
+    if isinstance(head, ast.Constant) and isinstance(head.value, str) and \
+            head.value.endswith(".") and head.value.count(".") >= 2:
+        return head.value.rstrip(".")
+    return None
 
 
 EDGES = [(name, target, line) for name, path in MODULES.items()

@@ -1,22 +1,85 @@
 """The ``urdftool`` command line: thin commands over core modules.
 
-Each command lives in ``urdftool/cli/<name>.py`` with a ``register(app)`` function, listed in
-``COMMANDS``; heavy libraries are imported inside the command that needs them, so
-``urdftool --help`` stays fast.
+Each command lives in ``urdftool/cli/<name>.py`` with a ``register(app)`` function. The modules
+are imported only when their command runs (click's lazily loaded subcommands): ``urdftool
+--help`` lists them from :data:`COMMANDS`, and ``urdftool check`` imports only ``check``. Heavy
+libraries are imported inside the command that needs them, so start-up stays fast.
 """
 
 from __future__ import annotations
 
+import importlib
+
 import typer
+from typer.core import TyperGroup
 
-from urdftool.cli import (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render,
-                          rules, server, tree, workspace, xacro)
+# name -> the first sentence of its help (the module's own help starts with it: tested), shown
+# by ``urdftool --help`` without importing the command
+COMMANDS = {
+    "check": "Check robot descriptions (files or folders) and report problems.",
+    "collisions": "Self-collision with FCL.",
+    "dh": "Extract the D-H table of the chain from --base to --tip.",
+    "diff": "Compare two robot descriptions (OLD NEW, or --rev REV FILE: FILE as it was at git "
+            "revision REV, includes from the same revision): links and joints added, removed or "
+            "renamed, changed joints, inertials, geometry and materials; then the effect: how "
+            "far every frame moves at zero and over sampled configurations, mass and centre of "
+            "mass, reach of --chain, pairs that newly collide or no longer do; the SRDF's "
+            "groups and disabled pairs and the controller YAML beside each.",
+    "dynamics": "Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), torques with "
+                "damping and friction, standing on --support, and gravity margins against "
+                "effort limits.",
+    "fk": "Forward kinematics: link poses for joint configurations.",
+    "graph": "Draw the kinematic tree as Graphviz DOT: links as boxes (red: errors, orange: "
+             "warnings), joints as edges labelled with type and limits.",
+    "ik": "Inverse kinematics: joint values that put --tip at a pose relative to --base; "
+          "--check-reach FILE: which targets the limb reaches.",
+    "inertia": "Compare each link's inertial with its geometry's; fix them.",
+    "render": "Draw the robot's visual (or --collision) geometry posed at a configuration "
+              "(default: 0, or mid-range when 0 is outside the limits) as PNG or SVG: flat "
+              "shading, no GPU, no display.",
+    "rules": "List every rule, or show one rule's documentation (CODE or name).",
+    "server": "Run the language server (LSP) on standard input and output, for editors: "
+              "diagnostics as you type, rule documentation on hover, quick fixes.",
+    "tree": "Print the kinematic tree in check_urdf's format.",
+    "workspace": "Reach envelope of --tip relative to --base from sampled configurations, with "
+                 "a picture.",
+    "xacro": "Expand a xacro file to URDF; $(find) and package:// resolve without ROS.",
+}
 
-COMMANDS = (check, collisions, dh, diff, dynamics, fk, graph, ik, inertia, render, rules, server,
-            tree, workspace, xacro)
+
+class LazyGroup(TyperGroup):
+    """The command group that imports a command's module the first time it is asked for."""
+
+    def list_commands(self, ctx) -> list[str]:
+        return sorted({*COMMANDS, *self.commands})
+
+    def get_command(self, ctx, name: str):
+        if name not in self.commands and name in COMMANDS:
+            self.add_command(command(name), name)
+        return super().get_command(ctx, name)
+
+    def format_commands(self, ctx, formatter) -> None:
+        """The commands and their summaries, as click writes them, without importing them."""
+        from typer._click.utils import make_default_short_help
+
+        names = self.list_commands(ctx)
+        limit = formatter.width - 6 - max(map(len, names))
+        rows = [(name, make_default_short_help(COMMANDS[name], limit) if name in COMMANDS
+                 else self.commands[name].get_short_help_str(limit)) for name in names]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+def command(name: str):
+    """The click command ``name`` (a key of :data:`COMMANDS`), its module imported now."""
+    single = typer.Typer(rich_markup_mode=None, pretty_exceptions_enable=False)
+    importlib.import_module(f"urdftool.cli.{name}").register(single)
+    return typer.main.get_command(single)
+
 
 app = typer.Typer(
     name="urdftool",
+    cls=LazyGroup,
     help="Validate and analyse URDF and xacro robot descriptions, without ROS.",
     no_args_is_help=True,
     add_completion=True,  # --install-completion / --show-completion for bash, zsh, fish
@@ -38,10 +101,6 @@ def _version(value: bool):
 def _root(version: bool = typer.Option(False, "--version", "-V", callback=_version,
                                        is_eager=True, help="Show the version and exit.")):
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
-
-
-for _command in COMMANDS:
-    _command.register(app)
 
 
 def main() -> None:
