@@ -15,6 +15,7 @@ import stat
 import tempfile
 from pathlib import Path
 
+from urdftool.description.run_memo import per_run
 from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
@@ -47,11 +48,14 @@ def inside(path, folder) -> bool:
     """Whether ``path``, every symbolic link followed, is ``folder`` or below it (itself with
     links followed)."""
     try:
-        real = os.path.realpath(path)
-        base = os.path.realpath(folder)
+        real = _real_path(os.fspath(path))
+        base = _real_path(os.fspath(folder))
     except (OSError, ValueError):
         return False
     return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
+
+
+_real_path = per_run(os.path.realpath)
 
 
 def check_output(path) -> None:

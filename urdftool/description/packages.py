@@ -16,6 +16,7 @@ from pathlib import Path
 
 from urdftool.errors import PackageNotFound
 from urdftool.description.files import inside, read_regular
+from urdftool.description.run_memo import per_run
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SKIP_DIRS = {  # tool and build folders no walk enters
@@ -39,6 +40,7 @@ def package_name(folder: Path, root: Path | None = None) -> str | None:
     return match.group(1).decode("utf-8", "replace") if match else folder.name
 
 
+@per_run
 def repository_root(start: Path) -> Path | None:
     """The nearest ancestor of ``start`` holding a ``.git`` entry."""
     for folder in [start, *start.parents]:
@@ -47,6 +49,7 @@ def repository_root(start: Path) -> Path | None:
     return None
 
 
+@per_run
 def containment_root(folder: Path) -> Path:
     """The folder files read for a robot in ``folder`` must stay in: its repository (nearest
     ``.git`` above); without one, the nearest folder above holding a package.xml; else
