@@ -14,7 +14,6 @@ from pathlib import Path
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import TooLarge, read_regular
 from urdftool.description.xml import XmlProblem, start_tag_lines
-from urdftool.description.yaml_limits import DepthLimit
 
 MAX_SIZE = 16 * 1024 * 1024
 
@@ -40,6 +39,8 @@ def _loader():
     """The YAML loader class (PyYAML is imported on first use: a run served from the result
     cache reads no YAML)."""
     import yaml
+
+    from urdftool.description.yaml_limits import DepthLimit
 
     class _Loader(DepthLimit, yaml.SafeLoader):
         """SafeLoader keeping line numbers; unknown tags (``!degrees 90``) load as their plain value;

@@ -7,22 +7,20 @@ share from :mod:`urdftool.report.summary`, never this package.
 
 from __future__ import annotations
 
+import importlib
 import os
 
-from urdftool.report import (concise_format, github_format, gitlab_format, json_format,
-                             json_lines_format, junit_format, rdjson_format, sarif_format,
-                             text_format)
 from urdftool.report.summary import STYLES, Summary, all_findings, printable, write_json
 
 __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render",
            "resolve_format", "write_json"]
 
-_RENDERERS = {"text": text_format.render, "json": json_format.render,
-              "sarif": sarif_format.render, "junit": junit_format.render,
-              "github": github_format.render, "gitlab": gitlab_format.render,
-              "rdjson": rdjson_format.render, "concise": concise_format.render,
-              "json-lines": json_lines_format.render}
-FORMATS = tuple(_RENDERERS)
+# format -> its module, imported when used (junit's needs lxml)
+_MODULES = {"text": "text_format", "json": "json_format", "sarif": "sarif_format",
+            "junit": "junit_format", "github": "github_format", "gitlab": "gitlab_format",
+            "rdjson": "rdjson_format", "concise": "concise_format",
+            "json-lines": "json_lines_format"}
+FORMATS = tuple(_MODULES)
 
 
 def resolve_format(name: str) -> str:
@@ -37,7 +35,8 @@ def resolve_format(name: str) -> str:
 def render(format_name: str, results, stream, quiet: bool = False) -> None:
     """Write ``results`` in a format; ``quiet``: the text format leaves out its summary line."""
     name = resolve_format(format_name)
+    module = importlib.import_module(f"urdftool.report.{_MODULES[name]}")
     if name == "text":
-        text_format.render(results, stream, quiet=quiet)
+        module.render(results, stream, quiet=quiet)
     else:
-        _RENDERERS[name](results, stream)
+        module.render(results, stream)

@@ -303,10 +303,12 @@ def srdf_disabled_pair_collides(robot):
     touch in the "home" state
     Good: no entry (MoveIt then checks the pair), or ``reason="Default"`` if they touch by design
     """
-    from urdftool.collision.srdf import MAY_TOUCH
-
     srdf = _srdf(robot)
     entries = list(srdf.root.iter("disable_collisions")) if srdf is not None else []
+    if not entries:
+        return
+    from urdftool.collision.srdf import MAY_TOUCH  # NumPy and FCL: only for an SRDF's entries
+
     claims = [e for e in entries if e.get("reason") not in MAY_TOUCH]
     found = _overlaps(robot, srdf) if claims else None
     for element in claims if found else ():
