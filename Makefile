@@ -28,6 +28,7 @@ test-fast: $(INSTALLED)
 	$(PY) -m pytest -n auto -m "not integration and not network"
 
 bench: $(INSTALLED)
+	$(PY) -m compileall -q urdftool  # sources edited since the install would compile every run
 	$(PY) benchmarks/run.py
 
 fuzz: $(INSTALLED)

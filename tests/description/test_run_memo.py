@@ -48,3 +48,22 @@ def test_settings_changed_between_two_checks_apply_to_the_second(tmp_path, monke
     (tmp_path / "urdftool.toml").write_text('ignore = ["U204"]\n')
     second = check_paths([str(robot)])
     assert "U204" not in {f.code for f in second.results[0].findings}
+
+
+def test_companion_folders_are_listed_once_per_run(tmp_path, monkeypatch):
+    from urdftool.description import companions
+
+    for name in ("a", "b"):
+        (tmp_path / f"{name}.urdf").write_text("<robot name='x'/>")
+    listed = []
+    original = companions._robot_files.__wrapped__
+
+    def counting(folder):
+        listed.append(folder)
+        return original(folder)
+
+    monkeypatch.setattr(companions, "_robot_files", companions.per_run(counting))
+    with one_run():
+        assert companions._robots_beside(tmp_path / "a.urdf") == [tmp_path / "b.urdf"]
+        assert companions._robots_beside(tmp_path / "b.urdf") == [tmp_path / "a.urdf"]
+    assert listed == [tmp_path]

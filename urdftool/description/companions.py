@@ -52,6 +52,7 @@ from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside
 from urdftool.description.packages import containment_root
+from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
@@ -177,7 +178,12 @@ def is_moveit_controllers(data) -> bool:
 def search_folders(robot_path: Path) -> list[Path]:
     """The folders companions of the robot file ``robot_path`` are looked for in, as named
     (links not followed), each a folder inside the robot's repository: see the module doc."""
-    base = Path(os.path.abspath(robot_path)).parent
+    return list(_search_folders(Path(os.path.abspath(robot_path))))
+
+
+@per_run
+def _search_folders(robot_path: Path) -> tuple[Path, ...]:
+    base = robot_path.parent
     root = containment_root(base)
     folders = [base, base / "config"]
     package = _package(base, root)
@@ -191,7 +197,7 @@ def search_folders(robot_path: Path) -> list[Path]:
     for folder in dict.fromkeys(folders):
         if folder.is_dir() and not folder.is_symlink() and inside(folder, root):
             unique.append(folder)
-    return unique
+    return tuple(unique)
 
 
 def _package(base: Path, root: Path) -> Path | None:
@@ -212,20 +218,24 @@ def _package(base: Path, root: Path) -> Path | None:
 def _candidates(folders: list[Path], pattern: str) -> list[Path]:
     """Regular files matching ``pattern`` in ``folders`` whose real location is that folder
     (no link leading elsewhere)."""
+    return [path for folder in folders for path in _candidates_in(folder, pattern)]
+
+
+@per_run
+def _candidates_in(folder: Path, pattern: str) -> tuple[Path, ...]:
+    try:
+        real_folder = folder.resolve(strict=True)
+    except OSError:
+        return ()
     paths = []
-    for folder in folders:
+    for path in sorted(folder.glob(pattern)):
         try:
-            real_folder = folder.resolve(strict=True)
+            real = path.resolve(strict=True)
         except OSError:
             continue
-        for path in sorted(folder.glob(pattern)):
-            try:
-                real = path.resolve(strict=True)
-            except OSError:
-                continue
-            if real.is_file() and real.parent == real_folder:
-                paths.append(path)
-    return paths
+        if real.is_file() and real.parent == real_folder:
+            paths.append(path)
+    return tuple(paths)
 
 
 class _Owner:
@@ -273,11 +283,16 @@ def _match_length(path: Path, keys) -> int:
 
 def _robots_beside(path: Path) -> list[Path]:
     """Other robot files (``.urdf``, ``.urdf.xacro``) in the folder of ``path``."""
+    return [p for p in _robot_files(path.parent) if p.name != path.name]
+
+
+@per_run
+def _robot_files(folder: Path) -> tuple[Path, ...]:
     try:
-        return sorted(p for p in path.parent.iterdir()
-                      if p.name.endswith(ROBOT_SUFFIXES) and p.name != path.name and p.is_file())
+        return tuple(sorted(p for p in folder.iterdir()
+                            if p.name.endswith(ROBOT_SUFFIXES) and p.is_file()))
     except OSError:
-        return []
+        return ()
 
 
 def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:

@@ -20,6 +20,8 @@ class Selection:
     ignore: tuple[str, ...] = ()
 
     def allows(self, code: str) -> bool:
+        if not self.select and not self.ignore:
+            return True
         from urdftool.lint.rules import CATALOGUE
 
         if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):

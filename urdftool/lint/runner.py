@@ -92,6 +92,11 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
         again (looked up here, before any worker starts), the others' results are kept in it;
         standard input is never cached
     """
+    with one_run():  # one view of the file system for the files (the workers inherit it)
+        return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache)
+
+
+def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> list[FileResult]:
     jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
     stdin = {}
