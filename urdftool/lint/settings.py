@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import fnmatch
 import os
-import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -134,6 +133,8 @@ def _settings_file(file: Path, mtime: int, size: int) -> Settings | None:
 
 
 def _read(path: Path) -> dict:
+    import tomllib  # only where a settings file is
+
     _refuse_outside(path, path, "the settings file itself")
     try:
         return tomllib.loads(read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8"))
