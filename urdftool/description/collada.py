@@ -204,6 +204,7 @@ class _Document:
                 self.ids.setdefault(element.get("id"), element)
         self.max_triangles = max_triangles
         self.geometries = {}
+        self.positions = {}
 
     def target(self, element, kinds: tuple[str, ...]):
         """The element a ``url``/``source`` attribute ("#id") of ``element`` names."""
@@ -296,7 +297,8 @@ class _Document:
                 raise _corrupt(f"<polylist> (line {line}) has no <vcount>")
             counts = _numbers(vcount, "int64", "<polylist><vcount>")
             corners = indices[0] if indices else np.zeros(0, dtype=np.int64)
-            if np.any(counts < 0) or int(counts.sum()) * stride != len(corners):
+            if np.any(counts < 0) or np.any(counts > len(corners) // stride) or \
+                    int(counts.sum()) * stride != len(corners):
                 raise _corrupt(f"<polylist> (line {line}): <vcount> counts {int(counts.sum())} "
                                f"corners, <p> holds {len(corners) // stride}")
         else:
@@ -319,7 +321,9 @@ class _Document:
             step = np.arange(triangles) - np.repeat(np.cumsum(fans) - fans, fans) + 1
             corners = np.stack([corners[first], corners[first + step],
                                 corners[first + step + 1]], axis=1).ravel()
-        positions = self._positions(vertices, local)
+        if vertices not in self.positions:
+            self.positions[vertices] = self._positions(vertices, local)
+        positions = self.positions[vertices]
         if len(corners) and (corners.min() < 0 or corners.max() >= len(positions)):
             raise _corrupt(f"<{kind}> (line {line}) has a vertex index out of range: "
                            f"{int(corners.min())}..{int(corners.max())}, but its positions "
@@ -346,7 +350,11 @@ class _Document:
                 raise ColladaProblem("too-large", f"the scene instances over {MAX_NODE_VISITS} "
                                                   f"nodes or nests them over {MAX_NODE_DEPTH} "
                                                   "deep")
-            matrix = np.dot(parent, _node_matrix(node))
+            with np.errstate(all="ignore"):
+                matrix = np.dot(parent, _node_matrix(node))
+            if not np.all(np.isfinite(matrix)):
+                raise _corrupt(f"<node> (line {node.sourceline}): its transforms compose "
+                               "beyond floating point range")
             for child in node:
                 kind = _tag(child)
                 if kind == "instance_geometry":
@@ -394,6 +402,10 @@ def read_collada(data: bytes, *, max_triangles: int):
     if root is None or _tag(root) != "COLLADA":
         raise _corrupt(f"the root element is <{_tag(root) if root is not None else ''}>, "
                        "not <COLLADA>")
+    entity = next(root.iter(etree.Entity), None)
+    if entity is not None:
+        raise _corrupt(f"entity reference {entity.text} (line {entity.sourceline}): entities "
+                       "are not expanded, so the numbers it stands for cannot be read")
     document = _Document(root, max_triangles)
     try:
         placed = document.instances(_scene(root, document))
