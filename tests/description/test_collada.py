@@ -58,6 +58,12 @@ def _soup(data: bytes, **kwargs) -> np.ndarray:
 
 
 PLACED = '<instance_geometry url="#g"/>'
+NODE = f'<node id="n">{PLACED}</node>'
+
+
+def _placed(**geometry) -> bytes:
+    """A document whose one node places geometry "g", made by ``_geometry(**geometry)``."""
+    return _dae(NODE, _geometry(**geometry))
 
 
 def test_one_triangle_in_the_document_unit():
@@ -110,11 +116,10 @@ def test_polylist_with_normals_and_texcoords_at_other_offsets():
                   '<input semantic="VERTEX" source="#g-v" offset="1"/>'
                   '<input semantic="TEXCOORD" source="#g-t" offset="2" set="0"/>'
                   f'<vcount>4 3</vcount><p>{quad} {triangle}</p></polylist>')
-    positions = "9 9 9  0 0 0  1 0 0  1 1 0  0 1 0"  # the first is used by no triangle
+    positions = "9 9 9  0 0 0  1 0 0  1 1 0  0 1 0  5 5 5"  # the last is used by no triangle
     extra = _source("g-n", "0 0 1") + _source("g-t", "0 0 1 0 1 1 0 1", "ST")
-    vertices, faces = _read(_dae(f'<node id="n">{PLACED}</node>',
-                                 _geometry(positions=positions, primitives=primitives,
-                                           extra_sources=extra)))
+    vertices, faces = _read(_placed(positions=positions, primitives=primitives,
+                                    extra_sources=extra))
     assert len(vertices) == 5  # every position a triangle uses, the unused one dropped
     np.testing.assert_array_equal(vertices[faces], [
         [[0, 0, 0], [1, 0, 0], [1, 1, 0]],  # the quad fanned from its first corner
@@ -131,8 +136,7 @@ def test_polygons_fan_and_several_primitives_in_one_geometry():
                   '<p>0 1</p></lines>'  # lines make no triangles, as in trimesh
                   '<triangles count="1"><input semantic="VERTEX" source="#g-v" offset="0"/>'
                   '<p>4 3 2</p></triangles>')
-    vertices, faces = _read(_dae(f'<node id="n">{PLACED}</node>',
-                                 _geometry(positions=positions, primitives=primitives)))
+    vertices, faces = _read(_placed(positions=positions, primitives=primitives))
     np.testing.assert_array_equal(vertices[faces][:, :, :2], [
         [[0, 0], [1, 0], [2, 1]], [[0, 0], [2, 1], [1, 2]], [[0, 0], [1, 2], [0, 1]],
         [[0, 1], [1, 2], [2, 1]]])
@@ -149,7 +153,7 @@ TETRAHEDRON = _geometry(positions="0 0 0  1 0 0  0 1 0  0 0 1", primitives=(
 
 
 def test_a_mirroring_transform_keeps_the_volume_positive():
-    plain = _read(_dae(f'<node id="n">{PLACED}</node>', TETRAHEDRON))
+    plain = _read(_dae(NODE, TETRAHEDRON))
     mirrored = _read(_dae(f'<node id="n"><scale>-1 1 1</scale>{PLACED}</node>', TETRAHEDRON))
     assert _volume(*plain) == pytest.approx(1 / 6)
     assert _volume(*mirrored) == pytest.approx(1 / 6)
@@ -177,63 +181,46 @@ def _triangles(p: str, count: int | None = 1, inputs: str = "") -> str:
             f"<p>{p}</p></triangles>")
 
 
+def _polylist(vcount: str | None, p: str) -> str:
+    counts = "" if vcount is None else f"<vcount>{vcount}</vcount>"
+    return (f'<polylist count="{len((vcount or "").split())}"><input semantic="VERTEX" '
+            f'source="#g-v" offset="0"/>{counts}<p>{p}</p></polylist>')
+
+
 MALFORMED = {
     "not XML": b"<COLLADA><library_geometries>",
     "not COLLADA": b"<robot name='r'/>",
     "no visual scene": _dae("", scenes="", scene=""),
-    "scene names nothing": _dae(f'<node id="n">{PLACED}</node>',
-                                scene='<scene><instance_visual_scene url="#nothing"/></scene>'),
+    "scene names nothing": _dae(NODE, scene='<scene><instance_visual_scene url="#nothing"/>'
+                                            "</scene>"),
     "geometry named nothing": _dae('<node id="n"><instance_geometry url="#missing"/></node>'),
     "instance_node named nothing": _dae('<node id="n"><instance_node url="#missing"/></node>'),
     "instance_node cycle": _dae('<node id="n"><instance_node url="#lib"/></node>',
                                 library_nodes='<node id="lib"><instance_node url="#lib"/></node>'),
-    "vertices named nothing": _dae(f'<node id="n">{PLACED}</node>', _geometry(primitives=(
-        '<triangles count="1"><input semantic="VERTEX" source="#other" offset="0"/>'
-        "<p>0 1 2</p></triangles>"))),
-    "no VERTEX input": _dae(f'<node id="n">{PLACED}</node>', _geometry(primitives=(
-        '<triangles count="1"><input semantic="NORMAL" source="#g-pos" offset="0"/>'
-        "<p>0 1 2</p></triangles>"))),
-    "no POSITION input": _dae(f'<node id="n">{PLACED}</node>', _geometry().replace(
-        'semantic="POSITION"', 'semantic="NORMAL"')),
-    "index out of range": _dae(f'<node id="n">{PLACED}</node>',
-                               _geometry(primitives=_triangles("0 1 3"))),
-    "negative index": _dae(f'<node id="n">{PLACED}</node>',
-                           _geometry(primitives=_triangles("0 -1 2"))),
-    "index not a whole number": _dae(f'<node id="n">{PLACED}</node>',
-                                     _geometry(primitives=_triangles("0 1.5 2"))),
-    "index beyond int64": _dae(f'<node id="n">{PLACED}</node>',
-                               _geometry(primitives=_triangles("0 1 99999999999999999999999"))),
-    "corners not a multiple of three": _dae(f'<node id="n">{PLACED}</node>',
-                                            _geometry(primitives=_triangles("0 1 2 0", None))),
-    "indices not a multiple of the inputs": _dae(f'<node id="n">{PLACED}</node>', _geometry(
-        primitives=_triangles("0 0 1 1 2", None, '<input semantic="NORMAL" source="#g-pos" '
-                                                 'offset="1"/>'))),
-    "triangle count does not match": _dae(f'<node id="n">{PLACED}</node>',
-                                          _geometry(primitives=_triangles("0 1 2", 2))),
-    "vcount does not match p": _dae(f'<node id="n">{PLACED}</node>', _geometry(primitives=(
-        '<polylist count="1"><input semantic="VERTEX" source="#g-v" offset="0"/>'
-        "<vcount>4</vcount><p>0 1 2</p></polylist>"))),
+    "vertices named nothing": _placed(primitives=_triangles("0 1 2").replace("#g-v", "#other")),
+    "no VERTEX input": _placed(primitives=_triangles("0 1 2").replace("VERTEX", "NORMAL")),
+    "no POSITION input": _dae(NODE, _geometry().replace("POSITION", "NORMAL")),
+    "index out of range": _placed(primitives=_triangles("0 1 3")),
+    "negative index": _placed(primitives=_triangles("0 -1 2")),
+    "index not a whole number": _placed(primitives=_triangles("0 1.5 2")),
+    "index beyond int64": _placed(primitives=_triangles("0 1 99999999999999999999999")),
+    "corners not a multiple of three": _placed(primitives=_triangles("0 1 2 0", None)),
+    "indices not a multiple of the inputs": _placed(primitives=_triangles(
+        "0 0 1 1 2", None, '<input semantic="NORMAL" source="#g-pos" offset="1"/>')),
+    "triangle count does not match": _placed(primitives=_triangles("0 1 2", 2)),
+    "vcount does not match p": _placed(primitives=_polylist("4", "0 1 2")),
     # 3 * 2**62 + (2**62 + 3) wraps around int64 to the 3 corners <p> holds
-    "vcounts summing past int64": _dae(f'<node id="n">{PLACED}</node>', _geometry(primitives=(
-        '<polylist count="4"><input semantic="VERTEX" source="#g-v" offset="0"/>'
-        f"<vcount>{' '.join([str(2 ** 62)] * 3)} {2 ** 62 + 3}</vcount><p>0 1 2</p></polylist>"))),
-    "polylist without vcount": _dae(f'<node id="n">{PLACED}</node>', _geometry(primitives=(
-        '<polylist count="1"><input semantic="VERTEX" source="#g-v" offset="0"/>'
-        "<p>0 1 2</p></polylist>"))),
-    "offset not a number": _dae(f'<node id="n">{PLACED}</node>', _geometry().replace(
-        'offset="0"', 'offset="x"')),
-    "float_array count does not match": _dae(f'<node id="n">{PLACED}</node>',
-                                             _geometry().replace('count="9"', 'count="12"')),
-    "positions not in threes": _dae(f'<node id="n">{PLACED}</node>',
-                                    _geometry(positions="0 0 0 1 0 0 0 1 0 5")),
-    "a position is NaN": _dae(f'<node id="n">{PLACED}</node>',
-                              _geometry(positions="0 0 0 1 nan 0 0 1 0")),
-    "a position is infinite": _dae(f'<node id="n">{PLACED}</node>',
-                                   _geometry(positions="0 0 0 1 inf 0 0 1 0")),
-    "a position beyond float32": _dae(f'<node id="n">{PLACED}</node>',
-                                      _geometry(positions="0 0 0 1 1e39 0 0 1 0")),
-    "a position is text": _dae(f'<node id="n">{PLACED}</node>',
-                               _geometry(positions="0 0 0 1 zero 0 0 1 0")),
+    "vcounts summing past int64": _placed(primitives=_polylist(
+        f"{' '.join([str(2 ** 62)] * 3)} {2 ** 62 + 3}", "0 1 2")),
+    "polylist without vcount": _placed(primitives=_polylist(None, "0 1 2")),
+    "offset not a number": _dae(NODE, _geometry().replace('offset="0"', 'offset="x"')),
+    "float_array count does not match": _dae(NODE, _geometry().replace('count="9"',
+                                                                       'count="12"')),
+    "positions not in threes": _placed(positions="0 0 0 1 0 0 0 1 0 5"),
+    "a position is NaN": _placed(positions="0 0 0 1 nan 0 0 1 0"),
+    "a position is infinite": _placed(positions="0 0 0 1 inf 0 0 1 0"),
+    "a position beyond float32": _placed(positions="0 0 0 1 1e39 0 0 1 0"),
+    "a position is text": _placed(positions="0 0 0 1 zero 0 0 1 0"),
     "a transform is NaN": _dae(f'<node id="n"><translate>0 nan 0</translate>{PLACED}</node>'),
     "a transform has too few numbers": _dae(f'<node id="n"><rotate>0 0 1</rotate>{PLACED}</node>'),
     "a transform moves beyond float range": _dae(
@@ -241,8 +228,7 @@ MALFORMED = {
     "a degenerate lookat": _dae(f'<node id="n"><lookat>0 0 0 0 0 0 0 1 0</lookat>{PLACED}'
                                 "</node>"),
     "an entity reference": (b'<?xml version="1.0"?><!DOCTYPE COLLADA [<!ENTITY e "0 1 2">]>'
-                            + _dae(f'<node id="n">{PLACED}</node>', _geometry(
-                                primitives=_triangles("&e;"))).split(b"?>", 1)[1]),
+                            + _placed(primitives=_triangles("&e;")).split(b"?>", 1)[1]),
 }
 
 
@@ -254,7 +240,7 @@ def test_malformed_documents_raise_collada_problem(name):
 
 
 def test_the_triangle_limit_holds_per_geometry_and_per_scene():
-    one_geometry = _dae(f'<node id="n">{PLACED}</node>', TETRAHEDRON)
+    one_geometry = _dae(NODE, TETRAHEDRON)
     with pytest.raises(ColladaProblem) as raised:
         _read(one_geometry, max_triangles=3)
     assert raised.value.kind == "too-large"
@@ -265,12 +251,17 @@ def test_the_triangle_limit_holds_per_geometry_and_per_scene():
     assert raised.value.kind == "too-large"
 
 
-def test_an_instancing_bomb_is_refused_before_it_is_built():
-    # ten instances of a node that instances the one before ten times, nine deep: 10**10
-    # triangles from a file of a few kilobytes
-    library = f'<node id="l0">{PLACED}</node>' + "".join(
+def _fan_library(leaf: str) -> str:
+    """Nodes l0 (holding ``leaf``) to l9, each instancing the one before ten times: l9 is
+    10**9 instances of l0."""
+    return f'<node id="l0">{leaf}</node>' + "".join(
         f'<node id="l{i}">' + f'<instance_node url="#l{i - 1}"/>' * 10 + "</node>"
         for i in range(1, 10))
+
+
+def test_an_instancing_bomb_is_refused_before_it_is_built():
+    # 10**9 triangles from a file of a few kilobytes
+    library = _fan_library(PLACED)
     with pytest.raises(ColladaProblem) as raised:
         _read(_dae('<node id="n"><instance_node url="#l9"/></node>', library_nodes=library),
               max_triangles=2_000_000)
@@ -279,9 +270,7 @@ def test_an_instancing_bomb_is_refused_before_it_is_built():
 
 def test_a_walk_of_empty_nodes_is_bounded():
     # no triangles at all, but 10**9 node instances to walk
-    library = '<node id="l0"/>' + "".join(
-        f'<node id="l{i}">' + f'<instance_node url="#l{i - 1}"/>' * 10 + "</node>"
-        for i in range(1, 10))
+    library = _fan_library("")
     with pytest.raises(ColladaProblem) as raised:
         _read(_dae('<node id="n"><instance_node url="#l9"/></node>', library_nodes=library))
     assert raised.value.kind == "too-large"
