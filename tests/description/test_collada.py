@@ -237,6 +237,7 @@ def test_malformed_documents_raise_collada_problem(name):
     with pytest.raises(ColladaProblem) as raised:
         _read(MALFORMED[name])
     assert raised.value.kind == "corrupt" and str(raised.value)
+    assert raised.value.not_well_formed == (name == "not XML")
 
 
 def test_the_triangle_limit_holds_per_geometry_and_per_scene():

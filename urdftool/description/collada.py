@@ -43,10 +43,13 @@ MAX_NODE_DEPTH = 256  # <instance_node> nesting, as deep as libxml2 nests elemen
 @dataclass
 class ColladaProblem(Exception):
     """Why a COLLADA document gives no triangles: ``kind`` is 'corrupt' or 'too-large' (the
-    kinds of :class:`urdftool.errors.MeshProblem`); ``message`` says what is wrong."""
+    kinds of :class:`urdftool.errors.MeshProblem`); ``message`` says what is wrong;
+    ``not_well_formed`` when the XML itself is broken (a caller may read what libxml2's
+    recover mode makes of it, as viewers do)."""
 
     kind: str
     message: str
+    not_well_formed: bool = False
 
     def __str__(self) -> str:
         return self.message
@@ -398,7 +401,7 @@ def read_collada(data: bytes, *, max_triangles: int):
     try:
         root = etree.fromstring(data, parser())
     except (etree.LxmlError, ValueError) as error:
-        raise _corrupt(f"not well-formed XML: {error}") from None
+        raise ColladaProblem("corrupt", f"not well-formed XML: {error}", True) from None
     if root is None or _tag(root) != "COLLADA":
         raise _corrupt(f"the root element is <{_tag(root) if root is not None else ''}>, "
                        "not <COLLADA>")
