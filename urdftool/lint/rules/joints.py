@@ -326,8 +326,12 @@ def repeated_joint_element(robot):
     Good: one ``<origin>``
     """
     for joint in robot.children("joint"):
+        written: dict[str, list] = {}
+        for child in joint:  # one pass over the children, not a findall per tag
+            if child.tag in SINGLE_CHILDREN:
+                written.setdefault(child.tag, []).append(child)
         for tag in SINGLE_CHILDREN:
-            repeats = joint.findall(tag)
+            repeats = written.get(tag, ())
             for extra in repeats[1:]:
                 yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
                               f"only the first (at {robot.locate(repeats[0])}) is used")
