@@ -6,7 +6,7 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Callable, TypeVar
+from typing import Callable, Mapping, TypeVar
 
 from lxml import etree
 
@@ -76,7 +76,7 @@ class Robot:
     path: str
     display: str
     root: etree._Element
-    locations: dict
+    locations: Mapping  # element -> Location (a dict, or made when asked)
     resolver: PackageResolver
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
