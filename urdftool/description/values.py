@@ -7,7 +7,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from urdftool.description.xml import child
+from urdftool.description.xml import first_child
 
 # What urdfdom's parser accepts as a double (no hex, no digit separators), plus the non-finite
 # spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
@@ -76,7 +76,7 @@ class Origin:
 
 def origin(element) -> Origin:
     """The ``<origin>`` child of ``element`` (which may be None) as an :class:`Origin`."""
-    found = child(element, "origin") if element is not None else None
+    found = first_child(element, "origin") if element is not None else None
     if found is None:
         return _NO_ORIGIN
     xyz, xyz_problem = _parsed(found.get("xyz", "0 0 0"), 3)  # tuples, as an Origin holds

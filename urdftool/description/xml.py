@@ -113,7 +113,7 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
     return lines
 
 
-def child(element, tag: str):
+def first_child(element, tag: str):
     """``element.find(tag)`` for a plain tag (the first direct child so named, or None), a
     third of its cost: lxml's ``find`` parses its path on each call, and the rules ask for
     origins, inertials and geometry hundreds of thousands of times on a large robot."""

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from urdftool.physics import mat3
 from urdftool.description.values import origin, parse_numbers
-from urdftool.description.xml import child
+from urdftool.description.xml import first_child
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -48,10 +48,10 @@ def tensor(values: dict[str, float]) -> mat3.Matrix:
 
 def declared(link) -> Body | None:
     """A link's ``<inertial>`` in link axes, or None when absent or not fully numeric."""
-    inertial = child(link, "inertial")
+    inertial = first_child(link, "inertial")
     if inertial is None:
         return None
-    mass_el, inertia_el = child(inertial, "mass"), child(inertial, "inertia")
+    mass_el, inertia_el = first_child(inertial, "mass"), first_child(inertial, "inertia")
     if mass_el is None or inertia_el is None:
         return None
     mass = parse_numbers(mass_el.get("value"), 1)[0]
