@@ -47,7 +47,7 @@ def _parsed(text: str | None, count: int | None):
 
 
 def finite(values) -> bool:
-    return all(math.isfinite(v) for v in values)
+    return all(map(math.isfinite, values))
 
 
 def number(element, attribute: str, default: float | None = None):

@@ -106,12 +106,12 @@ def combine(parts: list[Body]) -> Body:
     com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
     inertia = [[0.0] * 3 for _ in range(3)]
     for part in parts:
-        d = [part.com[i] - com[i] for i in range(3)]
+        m, c = part.mass, part.com
+        d = (c[0] - com[0], c[1] - com[1], c[2] - com[2])
         squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-        for i in range(3):
+        for i, (row, own, di) in enumerate(zip(inertia, part.inertia, d)):
             for j in range(3):
-                shift = part.mass * ((squared if i == j else 0.0) - d[i] * d[j])
-                inertia[i][j] += part.inertia[i][j] + shift
+                row[j] += own[j] + m * ((squared if i == j else 0.0) - di * d[j])
     return Body(mass, com, mat3.matrix(inertia))
 
 
