@@ -58,6 +58,16 @@ def test_two_boxes_collide_with_depth(tmp_path):
     assert report.forbidden == [contact]
 
 
+def test_a_pose_check_places_the_parts_once_for_all_pairs(tmp_path, monkeypatch):
+    scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
+    placed = []
+    part_poses = scene.checker.part_poses
+    monkeypatch.setattr(scene.checker, "part_poses", lambda p: placed.append(1) or part_poses(p))
+    report = pose.check(scene, pose.configuration(scene, {"slider": "0.06"}).values[0], {})
+    assert len(scene.pairs) == 3 and len(placed) == 1  # was once per pair
+    assert [(c.link1, c.link2) for c in report.colliding] == [("fixed_box", "sliding_box")]
+
+
 def test_two_boxes_apart_with_distance(tmp_path):
     report = pose_report(robot_of(tmp_path, two_boxes(0, 1)), slider=0.5)
     assert not report.colliding

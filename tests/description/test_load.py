@@ -251,3 +251,15 @@ def test_locations_carry_the_column_of_the_start_tag(tmp_path):
     where = robot.locate(robot.links["a"])
     assert (where.line, where.column) == (3, 7)
     assert [(site.line, site.column) for site in where.via] == [(5, 5)]
+
+
+def test_a_urdfs_locations_are_a_mapping_of_every_element(tmp_path):
+    (tmp_path / "r.urdf").write_text('<robot name="r">\n  <link name="a">\n    <visual/>\n'
+                                     '  </link>\n</robot>\n')
+    robot = load(tmp_path / "r.urdf")
+    visual = robot.root.find("link/visual")
+    assert robot.locations.get(visual) == robot.locations[visual] == Location(
+        robot.display, 3, column=5)
+    assert len(robot.locations) == 3 and set(robot.locations) == set(robot.root.iter())
+    assert robot.locations.get(robot.root.makeelement("link")) is None
+    assert robot.locate(visual).line == 3

@@ -63,3 +63,16 @@ def test_the_command_line_names_win_over_the_settings_file():
     assert settings.overridden_by(CompanionPaths(spec=Path("t.yaml"))) == \
         CompanionPaths((Path("a.yaml"),), Path("r.srdf"), Path("t.yaml"))
     assert settings.overridden_by(CompanionPaths()) == settings
+
+
+def test_children_by_tag_in_document_order_and_a_list_of_ones_own(tmp_path):
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/>'
+        '<child link="b"/></joint><!-- c --><link name="b"/><material name="m"/></robot>')
+    robot = load(tmp_path / "r.urdf")
+    links = robot.children("link")
+    assert [link.get("name") for link in links] == ["a", "b"]
+    links.clear()  # the caller's list: the robot's grouping is not changed by it
+    assert [link.get("name") for link in robot.children("link")] == ["a", "b"]
+    assert [j.get("name") for j in robot.children("joint")] == ["j"]
+    assert robot.children("transmission") == []

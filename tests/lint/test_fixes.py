@@ -328,3 +328,22 @@ def test_a_pair_in_contact_at_the_default_pose_is_disabled_as_default(tmp_path):
     assert applied and not {"U810", "U811"} & {f.code for f in after.findings}
     assert srdf.read_text().endswith('    <disable_collisions link1="a" link2="b" '
                                      'reason="Default"/>\n</robot>\n')
+
+
+def test_a_source_is_read_as_far_as_the_tags_asked_for():
+    # 40,000 tags (over 1 MB) behind the root link, then text no XML parser accepts: the root
+    # link's tag is found from the first chunks, so the broken tail is never reached (a source
+    # used to be parsed whole first, and then this one was refused).
+    links = "".join(f'\n  <link name="l{i}"/>' for i in range(1, 40_000))
+    data = (f'<robot name="r">\n  <link name="l0">\n    <inertial/>\n  </link>{links}\n'
+            '</robot>\n<<broken').encode()
+    source = fixes.parse_source("big.urdf", data)
+    first = source.tag(1)
+    assert (first.name, first.line, first.attributes["name"][2]) == ("link", 2, "l0")
+    assert data[first.close_name[0]:first.close_name[1]] == b"link"
+    assert [t.attributes["name"][2] for t in source.on_line(5)] == ["l1"]
+    assert source._fed < len(data) // 4
+    far = source.tag(39_001)  # tags: robot, l0, inertial, l1, ...; later chunks parsed now
+    assert far.attributes["name"][2] == "l38999" and far.self_closing
+    assert source.tag(50_000) is None  # past the tags there are (and the broken tail)
+    assert fixes.parse_source("bad.urdf", b"<robot><link></robot>") is None

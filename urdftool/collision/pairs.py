@@ -188,18 +188,23 @@ class PairChecker:
                 distance[pair] = gap
 
     def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False,
-              part_poses: np.ndarray | None = None):
+              part_poses: np.ndarray | None = None, placed: bool = False):
         """(colliding, distance [m], penetration depth [m]) of one link pair at one pose.
 
         part_poses: :meth:`part_poses` of ``link_poses`` when the caller asks about many pairs
-        at the same pose (then ``link_poses`` is not read)."""
+        at the same pose (then ``link_poses`` is not read); placed: :meth:`place` has put
+        every part there already (each part is then not placed again for each pair)."""
         depth, nearest, hit = 0.0, np.inf, False
         request = fcl.CollisionRequest(num_max_contacts=16, enable_contact=True) if contacts \
             else self._request
         if part_poses is None:
             part_poses = self.part_poses(link_poses)
         for row in range(self._first_row[pair], self._first_row[pair + 1]):
-            one, two = self._place(part_poses, self.pa[row]), self._place(part_poses, self.pb[row])
+            if placed:
+                one, two = self.moving[self.pa[row]], self.moving[self.pb[row]]
+            else:
+                one, two = (self._place(part_poses, self.pa[row]),
+                            self._place(part_poses, self.pb[row]))
             result = fcl.CollisionResult()
             if fcl.collide(one, two, request, result):
                 hit = True
@@ -217,6 +222,11 @@ class PairChecker:
     def _first_row(self) -> list[int]:
         """Row where each pair's part pairs begin (they are contiguous), and the row count."""
         return np.searchsorted(self.pair_of, np.arange(len(self.link_pairs) + 1)).tolist()
+
+    def place(self, part_poses: np.ndarray) -> None:
+        """Put every part at its pose in ``part_poses``, for :meth:`exact` with ``placed``."""
+        for part in range(len(self.moving)):
+            self._place(part_poses, part)
 
     def _place(self, part_poses, part: int):
         pose = part_poses[part]

@@ -78,9 +78,12 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
           srdf: str | None = None) -> PoseReport:
     """Every pair of links with geometry at configuration ``q``."""
     poses = scene.at(q)
+    # Parts placed once, not once per pair (that was n^3 at 1,500 links)
+    scene.checker.place(parts := scene.checker.part_poses(poses))
     contacts = []
     for index, pair in enumerate(scene.pairs):
-        hit, distance, depth = scene.checker.exact(poses, index, contacts=True)
+        hit, distance, depth = scene.checker.exact(poses, index, contacts=True, part_poses=parts,
+                                                   placed=True)
         reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "")
         contacts.append(Contact(*pair, hit, distance, depth, reason))
     colliding = sorted((c for c in contacts if c.colliding), key=lambda c: -c.depth)

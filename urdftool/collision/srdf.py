@@ -238,10 +238,10 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
     found: dict[tuple[str, str], Overlap] = {}
     index = {pair: i for i, pair in enumerate(scene.pairs)}
     for label, q, element in named_poses(scene, srdf_root):
-        poses = None
+        parts = None
         for pair in sorted(default_collisions(scene, q) - scene.adjacent):
-            poses = scene.at(q) if poses is None else poses
-            depth = scene.checker.exact(poses, index[pair], contacts=True)[2]
+            parts = scene.checker.part_poses(scene.at(q)) if parts is None else parts
+            depth = scene.checker.exact(None, index[pair], contacts=True, part_poses=parts)[2]
             overlap = found.setdefault(pair, Overlap(*pair))
             overlap.depth = max(overlap.depth, depth)
             overlap.poses.append((label, element))

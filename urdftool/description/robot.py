@@ -6,7 +6,7 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Callable, TypeVar
+from typing import Callable, Mapping, TypeVar
 
 from urdftool.diagnostics import Location
 from urdftool.description.meshes import MeshLimits
@@ -74,7 +74,7 @@ class Robot:
     path: str
     display: str
     root: object  # the lxml <robot> element
-    locations: dict
+    locations: Mapping  # element -> Location (a dict, or made when asked)
     resolver: PackageResolver
     files: list[str] = field(default_factory=list)
     from_xacro: bool = False
@@ -114,8 +114,9 @@ class Robot:
         return self.root.get("name", "")
 
     def children(self, tag: str) -> list:
-        """Direct children of ``<robot>`` with this tag, in document order."""
-        return [child for child in self.root if child.tag == tag]
+        """Direct children of ``<robot>`` with this tag, in document order (a new list: the
+        children are grouped by tag once per robot, as every rule asks)."""
+        return list(self.memo(Robot.children, lambda: _by_tag(self.root)).get(tag, ()))
 
     @cached_property
     def links(self) -> dict[str, object]:
@@ -137,6 +138,13 @@ class Robot:
     def resolve_uri(self, uri: str) -> Path:
         """A mesh URI as a path; raises PackageNotFound for an unknown package."""
         return self.resolver.resolve_uri(uri, self.base_dir)
+
+
+def _by_tag(root) -> dict[str, list]:
+    grouped: dict[str, list] = {}
+    for child in root:
+        grouped.setdefault(child.tag, []).append(child)
+    return grouped
 
 
 def _by_name(elements) -> dict:

@@ -7,6 +7,8 @@ import math
 import re
 from dataclasses import dataclass
 
+from urdftool.description.xml import first_child
+
 # What urdfdom's parser accepts as a double (no hex, no digit separators), plus the non-finite
 # spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
 _DECIMAL = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
@@ -45,7 +47,7 @@ def _parsed(text: str | None, count: int | None):
 
 
 def finite(values) -> bool:
-    return all(math.isfinite(v) for v in values)
+    return all(map(math.isfinite, values))
 
 
 def number(element, attribute: str, default: float | None = None):
@@ -74,11 +76,13 @@ class Origin:
 
 def origin(element) -> Origin:
     """The ``<origin>`` child of ``element`` (which may be None) as an :class:`Origin`."""
-    found = element.find("origin") if element is not None else None
+    found = first_child(element, "origin") if element is not None else None
     if found is None:
-        return Origin()
-    xyz, xyz_problem = parse_numbers(found.get("xyz", "0 0 0"), 3)
-    rpy, rpy_problem = parse_numbers(found.get("rpy", "0 0 0"), 3)
+        return _NO_ORIGIN
+    xyz, xyz_problem = _parsed(found.get("xyz", "0 0 0"), 3)  # tuples, as an Origin holds
+    rpy, rpy_problem = _parsed(found.get("rpy", "0 0 0"), 3)
     problem = f"xyz: {xyz_problem}" if xyz_problem else f"rpy: {rpy_problem}" if rpy_problem else None
-    return Origin(tuple(xyz) if xyz else Origin.xyz, tuple(rpy) if rpy else Origin.rpy, problem,
-                  found)
+    return Origin(xyz or Origin.xyz, rpy or Origin.rpy, problem, found)
+
+
+_NO_ORIGIN = Origin()

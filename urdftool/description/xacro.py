@@ -87,6 +87,7 @@ class _Session:
         self.paths: list[str] = []  # only ever appended to: an index names one file
         self.shown_paths: dict[int, str] = {}
         self.locations: dict[str, Location] = {}  # stamp -> where it was written
+        self.places: dict[str, Location] = {}  # one part of a stamp -> its place
         self.call_sites: list[str] = []
         self.warnings: list[tuple[Location, str]] = []
         self.detached: dict[int, str] = {}  # macro-call node id -> the stamp lifted off it
@@ -121,11 +122,6 @@ class _Session:
             self.shown_paths[index] = display_path(self.paths[index])
         return self.shown_paths[index]
 
-    def reached(self, node) -> None:
-        """Tell a time or memory budget (urdftool.budget) the element expansion has reached."""
-        if node.nodeType == xml.dom.Node.ELEMENT_NODE and node.hasAttribute(STAMP):
-            budget.working_at(self.location(node.getAttribute(STAMP)))
-
     def file_index(self, path: str) -> int:
         self.paths.append(path)
         return len(self.paths) - 1
@@ -139,18 +135,26 @@ class _Session:
         return found
 
     def _location(self, stamp: str) -> Location:
-        places = []
-        for part in stamp[len(_STAMP_PREFIX):].split(";"):
-            index, line, column = (part.split(":") + [""])[:3]
-            places.append(Location(self.shown(int(index)), int(line),
-                                   column=int(column) if column else None))
+        places = [self._place(part) for part in stamp[len(_STAMP_PREFIX):].split(";")]
+        if len(places) == 1:
+            return places[0]
         return Location(places[0].file, places[0].line, tuple(places[1:]), places[0].column)
+
+    def _place(self, part: str) -> Location:
+        """One ``file-index:line[:column]`` of a stamp; a call site is in many stamps."""
+        found = self.places.get(part)
+        if found is None:
+            index, line, column = (part.split(":") + [""])[:3]
+            found = self.places[part] = Location(self.shown(int(index)), int(line),
+                                                 column=int(column) if column else None)
+        return found
 
 
 class _StampingBuilder(ExpatBuilderNS):
     def __init__(self, index: int):
         super().__init__()
         self._index = index
+        self._depth = 0
 
     def start_doctype_decl_handler(self, name, system_id, public_id, has_internal_subset):
         if system_id or public_id:
@@ -174,7 +178,7 @@ class _StampingBuilder(ExpatBuilderNS):
 
     def start_element_handler(self, name, attributes):
         line, column = self._parser.CurrentLineNumber, self._parser.CurrentColumnNumber + 1
-        self._depth = getattr(self, "_depth", 0) + 1
+        self._depth += 1
         if self._depth > MAX_DEPTH:
             raise XmlProblem("syntax", too_deep_message(), line)
         super().start_element_handler(name, attributes)
@@ -375,11 +379,13 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if session.elements > MAX_ELEMENTS:
             raise xacro_sandbox.SandboxViolation(
                 f"expansion produced over {MAX_ELEMENTS} elements (a macro bomb?)")
-        if session.call_sites and node.nodeType == xml.dom.Node.ELEMENT_NODE:
-            stamp = node.getAttribute(STAMP)
-            if stamp and ";" not in stamp:
-                node.setAttribute(STAMP, ";".join([stamp, *reversed(session.call_sites)]))
-        session.reached(node)
+        stamp = node.getAttribute(STAMP) if node.nodeType == xml.dom.Node.ELEMENT_NODE else ""
+        if stamp:
+            if session.call_sites and ";" not in stamp:
+                stamp = ";".join([stamp, *reversed(session.call_sites)])
+                node.setAttribute(STAMP, stamp)
+            # where a time or memory budget (urdftool.budget) finds the expansion if it stops
+            budget.working_at(session.location(stamp))
         return original_eval_all(node, macros, symbols)
 
     def check_attrs(tag, required, optional):
@@ -400,7 +406,8 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     def eval_text(text, symbols):
         if text.startswith(_STAMP_PREFIX):  # a location stamp: nothing to substitute, no lexing
             return text
-        result = original_eval_text(text, symbols)
+        # Without a '$', xacro's lexer finds one text token and returns the text as it is.
+        result = original_eval_text(text, symbols) if "$" in text else text
         return charge_text(result, "substitution") if isinstance(result, str) else result
 
     def charge_text(result, what: str):
@@ -632,8 +639,7 @@ def _make_element(parent, node):
     nsmap = {}
     tag = _qualified(node, nsmap)
     attributes = {}
-    for index in range(node.attributes.length):
-        attribute = node.attributes.item(index)
+    for attribute in node.attributes.values():  # item(i) lists the names on every call
         if attribute.name == STAMP or attribute.name.startswith("xmlns"):
             continue
         attributes[_qualified(attribute, nsmap)] = attribute.value

@@ -111,6 +111,16 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
     return lines
 
 
+def first_child(element, tag: str):
+    """``element.find(tag)`` for a plain tag (the first direct child so named, or None), a
+    third of its cost: lxml's ``find`` parses its path on each call, and the rules ask for
+    origins, inertials and geometry hundreds of thousands of times on a large robot."""
+    for candidate in element:
+        if candidate.tag == tag:
+            return candidate
+    return None
+
+
 _LXML_PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=False,
                             huge_tree=False, recover=True, collect_ids=False)
 

@@ -53,22 +53,65 @@ class _Tag:
 
 class Source:
     """One file as read: where each start tag is (read from the file as expat finds it), and
-    each tag's parts, read only for the tags a fix asks for."""
+    each tag's parts, read only for the tags a fix asks for.
 
-    def __init__(self, file: str, data: bytes, starts: list[tuple[int, int, str]],
-                 ends: dict[int, int]):
+    The file is parsed as far as the tags asked for, a chunk at a time: a fix near the top of a
+    large file (the root link's) does not pay for the rest. A file that turns out not to be
+    well formed has the tags before the error (the loader has refused such files already).
+    """
+
+    _CHUNK = 64 * 1024  # [bytes] parsed at a time
+
+    def __init__(self, file: str, data: bytes):
         self.file, self.data = file, data
-        self._starts = starts  # (offset of '<', line, name) in document order
-        self._ends = ends  # tag index -> offset where its end tag (or what follows it) is
+        self._starts: list[tuple[int, int, str]] = []  # (offset of '<', line, name) in order
+        self._ends: dict[int, int] = {}  # tag index -> offset where its end tag (or what
+        # follows it) is
+        self._lines: dict[int, list[int]] = {}  # line -> indexes of the tags starting on it
         self._read: dict[int, _Tag] = {}
-        self._lines: dict[int, list[int]] | None = None
+        self._fed, self._well_formed = 0, True
+        stack: list[int] = []
+        parser = self._parser = expat.ParserCreate()
+
+        def on_start(name, attributes):
+            stack.append(len(self._starts))
+            line = parser.CurrentLineNumber
+            self._lines.setdefault(line, []).append(len(self._starts))
+            self._starts.append((parser.CurrentByteIndex, line, name))
+
+        def on_end(name):
+            self._ends[stack.pop()] = parser.CurrentByteIndex
+
+        parser.StartElementHandler = on_start
+        parser.EndElementHandler = on_end
 
     def __len__(self) -> int:
+        """How many start tags the file has (parsing all of it)."""
+        self.parse_until(lambda: False)
         return len(self._starts)
 
-    def tag(self, index: int) -> _Tag:
-        """The ``index``-th start tag of the file, its attributes and end tag read."""
+    def parse_until(self, done) -> bool:
+        """Parse on until ``done()`` or the end of the file; False when the file is not well
+        formed as far as it was parsed."""
+        while self._parser is not None and not done():
+            chunk = self.data[self._fed:self._fed + self._CHUNK]
+            self._fed += len(chunk)
+            final = self._fed >= len(self.data)
+            try:
+                self._parser.Parse(chunk, final)
+            except (expat.ExpatError, ValueError, LookupError):
+                self._well_formed, final = False, True
+            if final:
+                self._parser = None
+        return self._well_formed
+
+    def tag(self, index: int) -> _Tag | None:
+        """The ``index``-th start tag of the file, its attributes and end tag read; None when
+        the file has fewer."""
         if index not in self._read:
+            self.parse_until(lambda: index in self._ends)
+            if index >= len(self._starts):
+                return None
             start, line, name = self._starts[index]
             tag = _read_tag(self.data, start, line)
             at = self._ends.get(index)
@@ -79,10 +122,7 @@ class Source:
 
     def on_line(self, line: int) -> list[_Tag]:
         """The start tags whose ``<`` is on ``line``."""
-        if self._lines is None:
-            self._lines = {}
-            for index, (_, number, _) in enumerate(self._starts):
-                self._lines.setdefault(number, []).append(index)
+        self.parse_until(lambda: bool(self._starts) and self._starts[-1][1] > line)
         return [self.tag(index) for index in self._lines.get(line, ())]
 
     def position(self, offset: int) -> tuple[int, int]:
@@ -111,26 +151,10 @@ def edit_of(file: str, data: bytes, start: int, end: int, text: str) -> Edit:
 
 
 def parse_source(file: str, data: bytes) -> Source | None:
-    """Where the start tags of ``data`` are; None when it is not well-formed XML."""
-    starts: list[tuple[int, int, str]] = []
-    ends: dict[int, int] = {}
-    stack: list[int] = []
-    parser = expat.ParserCreate()
-
-    def on_start(name, attributes):
-        stack.append(len(starts))
-        starts.append((parser.CurrentByteIndex, parser.CurrentLineNumber, name))
-
-    def on_end(name):
-        ends[stack.pop()] = parser.CurrentByteIndex
-
-    parser.StartElementHandler = on_start
-    parser.EndElementHandler = on_end
-    try:
-        parser.Parse(data, True)
-    except (expat.ExpatError, ValueError, LookupError):
-        return None
-    return Source(file, data, starts, ends)
+    """Where the start tags of ``data`` are (found as they are asked for); None when it does
+    not begin as well-formed XML."""
+    source = Source(file, data)
+    return source if source.parse_until(lambda: len(source._starts) > 0) else None
 
 
 def _read_tag(data: bytes, start: int, line: int) -> _Tag:
@@ -176,9 +200,9 @@ def source_tag(robot, element) -> tuple[Source, _Tag] | Unfixable:
         order = robot.memo("fixes.order", lambda: {e: i for i, e in enumerate(
             e for e in robot.root.iter() if isinstance(e.tag, str))})
         index = order.get(element)
-        if index is not None and index < len(found) and \
-                _local(found.tag(index).name) == _local(element.tag):
-            return found, found.tag(index)
+        tag = found.tag(index) if index is not None else None
+        if tag is not None and _local(tag.name) == _local(element.tag):
+            return found, tag
         return Unfixable("its start tag was not found")
     candidates = [t for t in found.on_line(location.line) if _local(t.name) == _local(element.tag)]
     if len(candidates) > 1:  # several on one line: the one whose literals match

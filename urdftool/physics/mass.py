@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 from urdftool.physics import mat3
 from urdftool.description.values import origin, parse_numbers
+from urdftool.description.xml import first_child
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -47,10 +48,10 @@ def tensor(values: dict[str, float]) -> mat3.Matrix:
 
 def declared(link) -> Body | None:
     """A link's ``<inertial>`` in link axes, or None when absent or not fully numeric."""
-    inertial = link.find("inertial")
+    inertial = first_child(link, "inertial")
     if inertial is None:
         return None
-    mass_el, inertia_el = inertial.find("mass"), inertial.find("inertia")
+    mass_el, inertia_el = first_child(inertial, "mass"), first_child(inertial, "inertia")
     if mass_el is None or inertia_el is None:
         return None
     mass = parse_numbers(mass_el.get("value"), 1)[0]
@@ -105,12 +106,12 @@ def combine(parts: list[Body]) -> Body:
     com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
     inertia = [[0.0] * 3 for _ in range(3)]
     for part in parts:
-        d = [part.com[i] - com[i] for i in range(3)]
+        m, c = part.mass, part.com
+        d = (c[0] - com[0], c[1] - com[1], c[2] - com[2])
         squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-        for i in range(3):
+        for i, (row, own, di) in enumerate(zip(inertia, part.inertia, d)):
             for j in range(3):
-                shift = part.mass * ((squared if i == j else 0.0) - d[i] * d[j])
-                inertia[i][j] += part.inertia[i][j] + shift
+                row[j] += own[j] + m * ((squared if i == j else 0.0) - di * d[j])
     return Body(mass, com, mat3.matrix(inertia))
 
 

@@ -7,6 +7,7 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
+from urdftool.description.xml import first_child
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
 from urdftool.description.values import finite, parse_numbers
 
@@ -52,7 +53,7 @@ def missing_limit(robot):
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
     for joint in robot.children("joint"):
-        if joint.get("type") in LIMITED and joint.find("limit") is None:
+        if joint.get("type") in LIMITED and first_child(joint, "limit") is None:
             yield joint, (f"{joint.get('type')} joint '{_name(joint)}' has no <limit>; add "
                           "<limit lower=... upper=... effort=... velocity=.../>")
 
@@ -67,7 +68,7 @@ def limit_missing_effort_velocity(robot):
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
     """
     for joint in robot.children("joint"):
-        limit = joint.find("limit")
+        limit = first_child(joint, "limit")
         if limit is None:
             continue
         missing = [a for a in ("effort", "velocity") if limit.get(a) is None]
@@ -78,7 +79,7 @@ def limit_missing_effort_velocity(robot):
 def _bounds(joint) -> tuple[float, float] | None:
     """(lower, upper) of a revolute or prismatic joint whose range parses; a missing bound is
     0, as in urdfdom."""
-    limit = joint.find("limit")
+    limit = first_child(joint, "limit")
     if limit is None or joint.get("type") not in LIMITED:
         return None
     lower, _ = parse_numbers(limit.get("lower", "0"), 1)
@@ -91,7 +92,7 @@ def _ranges(robot):
     for joint in robot.children("joint"):
         bounds = _bounds(joint)
         if bounds is not None:
-            yield joint, joint.find("limit"), *bounds
+            yield joint, first_child(joint, "limit"), *bounds
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -113,7 +114,7 @@ def inverted_limits(robot):
 
 
 def _axis(joint):
-    axis = joint.find("axis")
+    axis = first_child(joint, "axis")
     if axis is None or joint.get("type") not in AXIS:
         return axis, None
     values, _ = parse_numbers(axis.get("xyz"), 3)
@@ -220,7 +221,7 @@ def non_finite_number(robot):
 
 def _mimics(robot):
     for joint in robot.children("joint"):
-        mimic = joint.find("mimic")
+        mimic = first_child(joint, "mimic")
         if mimic is not None:
             yield joint, mimic, mimic.get("joint")
 
@@ -285,7 +286,7 @@ def zero_effort_or_velocity(robot):
     Good: the actuator's real stall torque and no-load speed
     """
     for joint in robot.children("joint"):
-        limit = joint.find("limit")
+        limit = first_child(joint, "limit")
         if limit is None or joint.get("type") not in MOVING:
             continue
         for attribute in ("effort", "velocity"):
@@ -326,8 +327,12 @@ def repeated_joint_element(robot):
     Good: one ``<origin>``
     """
     for joint in robot.children("joint"):
+        written: dict[str, list] = {}
+        for child in joint:  # one pass over the children, not a findall per tag
+            if child.tag in SINGLE_CHILDREN:
+                written.setdefault(child.tag, []).append(child)
         for tag in SINGLE_CHILDREN:
-            repeats = joint.findall(tag)
+            repeats = written.get(tag, ())
             for extra in repeats[1:]:
                 yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
                               f"only the first (at {robot.locate(repeats[0])}) is used")

@@ -6,6 +6,7 @@ from collections import Counter
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
+from urdftool.description.xml import first_child
 
 
 def _duplicates(robot, tag: str):
@@ -59,7 +60,7 @@ def missing_name(robot):
 
 
 def _endpoint(joint, side: str):
-    element = joint.find(side)
+    element = first_child(joint, side)
     return element, (element.get("link") if element is not None else None)
 
 

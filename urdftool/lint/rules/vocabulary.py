@@ -69,7 +69,7 @@ def _skipped(tag) -> bool:
 
 def _walk(element, key: str, place: Place):
     for attribute in element.attrib:
-        if is_namespaced(attribute) or attribute in place.attributes:
+        if attribute in place.attributes or is_namespaced(attribute):
             continue
         if key == "axis" and attribute == "rpy" and _zero(element.get(attribute)):
             continue  # misleads nobody: the axis is where its author meant it
@@ -79,6 +79,10 @@ def _walk(element, key: str, place: Place):
             yield _Unknown(element, attribute, key, _close(attribute, place.names()))
     shapes = 0
     for child in element:
+        if key != "geometry" and child.tag in place.children:  # a known element: most are
+            name = place.children[child.tag]
+            yield from _walk(child, name, VOCABULARY[name])
+            continue
         if _skipped(child.tag):
             continue
         if key == "geometry":

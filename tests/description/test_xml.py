@@ -1,0 +1,16 @@
+"""description.xml helpers."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from urdftool.description.xml import first_child
+
+
+def test_child_is_find_for_a_plain_tag():
+    root = etree.fromstring(b'<link><!-- a comment --><visual n="1"/><origin/><visual n="2"/>'
+                            b'<geometry><origin n="deep"/></geometry></link>')
+    for tag in ("visual", "origin", "geometry", "collision", "box"):
+        assert first_child(root, tag) is root.find(tag)
+    assert first_child(root, "visual").get("n") == "1"  # the first of several
+    assert first_child(root.find("geometry"), "origin").get("n") == "deep"
