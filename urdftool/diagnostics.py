@@ -88,7 +88,10 @@ class Finding:
         return self.location.column
 
     def sort_key(self):
-        return (self.file, self.line or 0, self.code, self.message)
+        """Line order, then a total order: findings that differ only in their column or macro
+        call sites come out the same way in every run."""
+        return (self.file, self.line or 0, self.code, self.message, self.location.column or 0,
+                [(site.file, site.line or 0, site.column or 0) for site in self.location.via])
 
 
 def display_path(path: str | os.PathLike) -> str:
