@@ -1,0 +1,131 @@
+"""STL read and measured without trimesh: the arrays and numbers trimesh gives (the whole public
+corpus is compared in tests/integration/test_corpus_meshes.py)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from urdftool.description import mesh_arrays
+
+
+def _trimesh_of(path):
+    import trimesh
+
+    return trimesh.load(str(path), force="mesh", process=True)
+
+
+def _box(tmp_path, name="box.stl", ascii=False, open_=False):
+    import trimesh
+
+    mesh = trimesh.creation.box((0.1, 0.2, 0.3))
+    mesh.apply_translation((0.5, -1.0, 0.25))
+    if open_:
+        mesh.update_faces(np.arange(len(mesh.faces)) != 0)
+    path = tmp_path / name
+    data = trimesh.exchange.stl.export_stl_ascii(mesh).encode() if ascii else \
+        trimesh.exchange.stl.export_stl(mesh)
+    path.write_bytes(data)
+    return path
+
+
+@pytest.mark.parametrize("ascii", [False, True])
+@pytest.mark.parametrize("open_", [False, True])
+def test_stl_arrays_and_measures_are_trimeshs(tmp_path, ascii, open_):
+    path = _box(tmp_path, ascii=ascii, open_=open_)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert np.array_equal(vertices, mesh.vertices) and np.array_equal(faces, mesh.faces)
+    assert np.array_equal(np.array(mesh_arrays.bounds(vertices, faces)), mesh.bounds)
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight == (not open_)
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == pytest.approx(theirs["volume"], rel=1e-12)
+    if not open_:
+        assert ours["volume"] == pytest.approx(0.006)
+        assert np.allclose(ours["center_mass"], (0.5, -1.0, 0.25))
+        assert np.allclose(ours["inertia"], theirs["inertia"], rtol=1e-12, atol=0)
+
+
+def test_a_mirroring_scale_turns_the_faces_over_as_trimesh_does(tmp_path):
+    path = _box(tmp_path)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    mesh.apply_scale((0.001, -0.001, 0.001))
+    moved, turned = mesh_arrays.scaled(vertices, faces, (0.001, -0.001, 0.001))
+    assert np.array_equal(moved, mesh.vertices) and np.array_equal(turned, mesh.faces)
+    assert mesh_arrays.mass_properties(moved, turned)["volume"] == pytest.approx(6e-12)
+
+
+def test_scale_within_1e_8_of_one_changes_nothing_as_in_trimesh(tmp_path):
+    path = _box(tmp_path)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    moved, _ = mesh_arrays.scaled(vertices, faces, (1 + 1e-9, 1, 1))
+    assert moved is vertices
+
+
+def test_corners_that_differ_by_sign_are_not_merged():
+    """Rows (a, b, c) and (a, -b, -c) once hashed alike with a weaker hash: the grouping is
+    checked against the rows, and the hash keeps them apart."""
+    corners = np.array([[-0.000525, 0.0122, 0.013], [-0.000525, -0.0122, -0.013],
+                        [0.1, 0.0, 0.0]] * 2)
+    vertices, faces = mesh_arrays._merged(corners)
+    assert len(vertices) == 3 and faces.tolist() == [[0, 1, 2], [0, 1, 2]]
+
+
+def test_rows_sharing_a_hash_are_still_told_apart(monkeypatch):
+    keys = np.array([[1, 2, 3], [4, 5, 6], [1, 2, 3]], dtype=np.int64)
+    real = np.unique
+
+    def colliding(values, **options):  # every row hashes alike: only the check can tell
+        if values.dtype == np.uint64:
+            values = np.zeros_like(values)
+        return real(values, **options)
+
+    monkeypatch.setattr(np, "unique", colliding)
+    first, inverse = mesh_arrays._unique_rows(keys)
+    assert sorted(first.tolist()) == [0, 1] and inverse[0] == inverse[2] != inverse[1]
+
+
+@pytest.mark.parametrize("data", [
+    b"\0" * 80 + (3).to_bytes(4, "little") + b"\0" * 70,  # truncated binary
+    b"\0" * 80 + (0).to_bytes(4, "little"),  # no triangles
+    b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+    b"endloop\nendfacet\nendsolid a\nsolid b\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+    b"vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid b\n",  # two solids: a scene
+    b"solid a\nvertex 0 0 0\nvertex 1 0\nendsolid a\n",  # not whole triangles
+    b"solid \xff\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendsolid\n",  # not UTF-8
+    b"solid a\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\nendsolid a\n",  # not finite
+])
+def test_what_trimesh_should_judge_is_not_read_light(tmp_path, data):
+    path = tmp_path / "m.stl"
+    path.write_bytes(data)
+    assert mesh_arrays.read(path, data) is None
+
+
+def test_other_formats_are_left_to_trimesh(tmp_path):
+    path = tmp_path / "m.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+def test_checking_a_robot_of_closed_stl_meshes_does_not_import_trimesh(tmp_path):
+    """A size, a box, a count, a volume: all read without loading trimesh (its import alone
+    costs more than checking a small robot)."""
+    _box(tmp_path, "part.stl")
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1e-5" ixy="0" '
+        'ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial><visual><geometry><mesh '
+        'filename="part.stl"/></geometry></visual><collision><geometry><mesh '
+        'filename="part.stl" scale="2 2 2"/></geometry></collision></link></robot>')
+    script = ("import sys\nfrom urdftool.lint.engine import CheckOptions, check_file\n"
+              f"result = check_file({str(robot)!r}, CheckOptions())\n"
+              "assert 'trimesh' not in sys.modules, 'trimesh imported'\n"
+              "print(sorted(f.code for f in result.findings))\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "U310" in done.stdout  # the inertia was compared with the box's: measured

@@ -1,0 +1,192 @@
+"""Meshes as numpy arrays, read and measured without trimesh where the format allows.
+
+A binary STL is an 84-byte header and 50-byte records, an ASCII STL a list of ``vertex``
+lines: both are read here straight into the vertex and face arrays that ``trimesh.load(...,
+process=True)`` builds of them (vertices merged to 1e-8 as trimesh merges them, the first of
+equal ones kept, in order of first use). What the rules need of a mesh is then measured the way
+trimesh measures it (bounds, watertightness, volume, centre of mass and inertia of a closed
+mesh), so a robot whose meshes are STL never imports trimesh for its checks; tests compare
+every measure with trimesh's on the public corpus.
+
+:func:`read` returns None for anything it is not sure to read as trimesh would (another
+format, several solids, text that is not UTF-8, non-finite coordinates, a length that does not
+match the header, no triangles): trimesh then reads the file and says what is wrong with it.
+numpy is imported inside the functions.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+_HEADER = 84  # [bytes]: 80 of text, the triangle count
+_RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
+_MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
+
+
+def read(path: Path, data: bytes):
+    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL file as trimesh processes it,
+    or None when trimesh should read it. ``data``: the file's bytes (read by the caller, under
+    the mesh size limit)."""
+    if path.suffix.lower() != ".stl":
+        return None
+    raw = _stl_binary(data)
+    if raw is None and len(data) != _HEADER + _RECORD * _count(data):
+        raw = _stl_ascii(data)  # trimesh's order: binary when the length fits, else ASCII
+    if raw is None:
+        return None
+    import numpy as np
+
+    if not np.isfinite(raw).all():
+        return None  # trimesh drops the faces of such vertices: let it
+    return _merged(raw)
+
+
+def _count(data: bytes) -> int:
+    return int.from_bytes(data[80:84], "little") if len(data) >= _HEADER else -1
+
+
+def _stl_binary(data: bytes):
+    import numpy as np
+
+    count = _count(data)
+    if count <= 0 or len(data) != _HEADER + _RECORD * count:
+        return None
+    records = np.frombuffer(data, dtype=np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)),
+                                                  ("attribute", "<u2")]), offset=_HEADER)
+    return records["vertices"].reshape(-1, 3).astype(np.float64)
+
+
+def _stl_ascii(data: bytes):
+    """The vertices of an ASCII STL of one solid, split and parsed as trimesh does."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8").strip().lower()
+    except UnicodeDecodeError:
+        return None
+    start, end = text.find("solid"), text.find("endsolid")
+    if start < 0 or end < 0 or start > end or text.find("solid", end + 8) >= 0:
+        return None  # none, or several solids: trimesh's scene of them
+    pieces = text[start:end].split("vertex")[1:]
+    vertices = np.fromstring(" ".join(line[:line.find("\n")] for line in pieces), sep=" ",
+                             dtype=np.float64) if pieces else np.zeros(0)
+    if len(vertices) < 9 or len(vertices) % 9:
+        return None
+    return vertices.reshape(-1, 3)
+
+
+def _merged(corners):
+    """Triangle corners (3m, 3) -> (vertices, faces) as trimesh's merge_vertices makes them:
+    corners equal when rounded to 1e-8 are one vertex, with the coordinates of the first."""
+    import numpy as np
+
+    keys = (corners * 10 ** _MERGE_DIGITS).round().astype(np.int64)
+    first, inverse = _unique_rows(keys)
+    order = np.argsort(first)  # trimesh keeps the vertices in order of first use
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    return corners[first[order]], rank[inverse].reshape(-1, 3)
+
+
+def _unique_rows(keys):
+    """(index of the first of each distinct row, row -> its distinct row) of an (n, 3) int64
+    array: rows are hashed to one integer to sort fast, and the grouping is then checked
+    against the rows themselves (on a collision, rows are compared whole)."""
+    import numpy as np
+
+    words = np.ascontiguousarray(keys).view(np.uint64)
+    hashed = np.zeros(len(keys), dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for column, factor in enumerate((0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9,
+                                         0x94D049BB133111EB)):  # splitmix64's mixing
+            hashed = (hashed + words[:, column]) * np.uint64(factor)
+            hashed ^= hashed >> np.uint64(31)
+    _, first, inverse = np.unique(hashed, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    if not (keys[first][inverse] == keys).all():  # two rows share a hash
+        rows = np.ascontiguousarray(keys).view(np.dtype((np.void, 24))).ravel()
+        _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
+        inverse = inverse.ravel()
+    return first, inverse
+
+
+def scaled(vertices, faces, scale):
+    """(vertices, faces) after trimesh's ``apply_scale(scale)``: nothing for a scale within
+    1e-8 of one, and faces turned over when the scale mirrors (so the volume stays positive)."""
+    import numpy as np
+
+    matrix = np.eye(4)
+    matrix[:3, :3] *= np.asarray(scale, dtype=np.float64)
+    if np.abs(matrix - np.eye(4)).max() < 1e-8:
+        return vertices, faces
+    stacked = np.column_stack((vertices, np.ones(len(vertices))))
+    moved = np.dot(matrix, stacked.T).T[:, :3]
+    turned = np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
+        np.linalg.det(matrix[:3, :3]) < 0.0
+    return moved, (np.ascontiguousarray(np.fliplr(faces)) if turned else faces)
+
+
+def bounds(vertices, faces):
+    """(min corner, max corner) of the vertices the faces use, or None."""
+    import numpy as np
+
+    used = np.zeros(len(vertices), dtype=bool)
+    used[faces] = True
+    inside = vertices if used.all() else vertices[used]
+    if not len(inside):
+        return None
+    return inside.min(axis=0), inside.max(axis=0)
+
+
+def is_watertight(faces) -> bool:
+    """trimesh's test: every edge (sorted pair of vertices) is shared by exactly two faces."""
+    import numpy as np
+
+    if not len(faces):
+        return False
+    edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    keys = np.sort(edges[:, 0] * np.int64(int(faces.max()) + 1) + edges[:, 1])
+    pairs, seconds = keys[0::2], keys[1::2]
+    # sorted, every value exactly twice: equal pairs, each pair below the next
+    return len(keys) % 2 == 0 and bool((pairs == seconds).all()) and \
+        bool((seconds[:-1] < pairs[1:]).all())
+
+
+def mass_properties(vertices, faces) -> dict:
+    """Volume, centre of mass and inertia about it (density 1) of a closed triangle mesh, by
+    trimesh's integration (Eberly, "Polyhedral Mass Properties"), term for term, so the numbers
+    are trimesh's: keys ``mass`` (= volume), ``volume``, ``center_mass``, ``inertia``."""
+    import numpy as np
+
+    triangles = vertices[faces]
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    t0, t1, t2 = triangles[:, 0, :], triangles[:, 1, :], triangles[:, 2, :]
+    f1 = t0 + t1 + t2
+    f2 = t0 ** 2 + t1 ** 2 + t0 * t1 + t2 * f1
+    f3 = t0 ** 3 + (t0 ** 2) * t1 + t0 * (t1 ** 2) + t1 ** 3 + t2 * f2
+    g0 = f2 + (t0 + f1) * t0
+    g1 = f2 + (t1 + f1) * t1
+    g2 = f2 + (t2 + f1) * t2
+    integral = np.zeros((10, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integral[4:7] = (crosses * f3).T
+    for i in range(3):
+        j = (i + 1) % 3
+        integral[i + 7] = crosses[:, i] * (t0[:, j] * g0[:, i] + t1[:, j] * g1[:, i]
+                                           + t2[:, j] * g2[:, i])
+    integrated = integral.sum(axis=1) / np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120],
+                                                 dtype=np.float64)
+    volume = integrated[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        center = integrated[1:4] / volume
+    inertia = np.zeros((3, 3))
+    inertia[0, 0] = integrated[5] + integrated[6] - volume * (center[[1, 2]] ** 2).sum()
+    inertia[1, 1] = integrated[4] + integrated[6] - volume * (center[[0, 2]] ** 2).sum()
+    inertia[2, 2] = integrated[4] + integrated[5] - volume * (center[[0, 1]] ** 2).sum()
+    inertia[0, 1] = -(integrated[7] - volume * np.prod(center[[0, 1]]))
+    inertia[1, 2] = -(integrated[8] - volume * np.prod(center[[1, 2]]))
+    inertia[0, 2] = -(integrated[9] - volume * np.prod(center[[0, 2]]))
+    inertia[2, 0], inertia[2, 1], inertia[1, 0] = inertia[0, 2], inertia[1, 2], inertia[0, 1]
+    return {"mass": volume, "volume": volume, "center_mass": center, "inertia": inertia}
