@@ -80,12 +80,20 @@ def _merged(corners):
     corners equal when rounded to 1e-8 are one vertex, with the coordinates of the first."""
     import numpy as np
 
-    keys = (corners * 10 ** _MERGE_DIGITS).round().astype(np.int64)
+    return _merge(corners, np.arange(len(corners)).reshape(-1, 3))
+
+
+def _merge(vertices, faces):
+    """(vertices, faces) with the vertices equal to 1e-8 merged as trimesh's merge_vertices
+    merges them: the first of equal ones kept, in order of first appearance."""
+    import numpy as np
+
+    keys = (vertices * 10 ** _MERGE_DIGITS).round().astype(np.int64)
     first, inverse = _unique_rows(keys)
-    order = np.argsort(first)  # trimesh keeps the vertices in order of first use
+    order = np.argsort(first)
     rank = np.empty(len(order), dtype=np.int64)
     rank[order] = np.arange(len(order))
-    return corners[first[order]], rank[inverse].reshape(-1, 3)
+    return vertices[first[order]], rank[inverse][faces]
 
 
 def _unique_rows(keys):
@@ -150,6 +158,56 @@ def is_watertight(faces) -> bool:
     # sorted, every value exactly twice: equal pairs, each pair below the next
     return len(keys) % 2 == 0 and bool((pairs == seconds).all()) and \
         bool((seconds[:-1] < pairs[1:]).all())
+
+
+def _winding_consistent(faces) -> bool:
+    """Every edge shared by two faces is walked in opposite directions (trimesh's test)."""
+    import numpy as np
+
+    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    size = np.int64(int(faces.max()) + 1)
+    forward = np.sort(edges[:, 0] * size + edges[:, 1])
+    return bool((np.diff(forward) != 0).all())  # no directed edge twice: each pair reversed
+
+
+def convex_hull(vertices):
+    """(vertices, faces) of the convex hull of ``vertices`` as ``trimesh.convex.convex_hull``
+    builds it (qhull with "QbB Pp Qt", again with "QJ" on failure; faces of no area dropped and
+    turned outward; vertices merged to 1e-8), without trimesh; None when trimesh would still
+    repair it (a hull that is not closed or not consistently wound), for trimesh to build.
+    Raises qhull's error (a RuntimeError) when even a joggled hull fails: a flat mesh."""
+    import numpy as np
+    from scipy.spatial import ConvexHull, QhullError
+
+    points = np.asarray(vertices, dtype=np.float64)
+    try:
+        hull = ConvexHull(points, qhull_options="QbB Pp Qt")
+    except QhullError:
+        hull = ConvexHull(points, qhull_options="QJ")
+    used = np.sort(hull.vertices)
+    index = np.zeros(len(hull.points), dtype=np.int64)
+    index[used] = np.arange(len(used))
+    faces, points = index[hull.simplices].copy(), hull.points[used].copy()
+    corners = points[faces]
+    vectors = corners[:, 1:, :] - corners[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    norms = np.sqrt(np.dot(crosses * crosses, [1.0, 1.0, 1.0]))
+    valid = norms > float(np.finfo(np.float64).resolution * 100)
+    faces, crosses, norms = faces[valid], crosses[valid], norms[valid]
+    centers = points[faces].mean(axis=1)
+    areas = np.sqrt((crosses ** 2).sum(axis=1)) / 2.0
+    try:
+        centroid = np.average(centers, weights=areas, axis=0)
+    except ZeroDivisionError:
+        centroid = points.mean(axis=0) if len(points) else np.zeros(3)
+    backwards = ((crosses / norms.reshape(-1, 1)) * (centers - centroid)).sum(axis=1) < 0.0
+    faces[backwards] = np.fliplr(faces[backwards])
+    points, faces = _merge(points, faces)
+    if not len(faces) or not is_watertight(faces) or not _winding_consistent(faces):
+        return None
+    if mass_properties(points, faces)["volume"] < 0.0:
+        faces = np.ascontiguousarray(np.fliplr(faces))
+    return points, faces
 
 
 def mass_properties(vertices, faces) -> dict:

@@ -20,8 +20,12 @@ mesh goes through the same checks before trimesh touches it:
   which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
   ``metadata[NOT_WELL_FORMED]``.
 
-Meshes are read once per run (process), keyed by resolved path, file identity and modification
-and the limits, and cached per robot by scale. trimesh is imported lazily.
+A URI is resolved and checked once per robot. Meshes are read once per run (process), keyed by
+resolved path, file identity and modification and the limits, and cached per robot by scale.
+What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
+centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL
+files are read and measured without trimesh (:mod:`.mesh_arrays`), other formats through it.
+trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
 
@@ -690,8 +694,8 @@ class MeshFacts:
 
     faces: the triangle count; bounds: (2, 3) min and max corner; extents; is_watertight;
     metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; mass_properties (density
-    1, of the mesh as it is) and convex_hull (a trimesh; qhull's RuntimeError for a flat mesh)
-    are computed when first asked.
+    1, of the mesh as it is) and convex_hull (its measures, as trimesh's hull has them; qhull's
+    RuntimeError for a flat mesh) are computed when first asked.
     """
 
     def __init__(self, vertices, faces, metadata: dict):
@@ -718,9 +722,13 @@ class MeshFacts:
     @property
     def convex_hull(self):
         if self._hull is None:
-            from trimesh.convex import convex_hull
+            hull = mesh_arrays.convex_hull(self._vertices)
+            if hull is None:  # one trimesh repairs
+                from trimesh.convex import convex_hull
 
-            self._hull = convex_hull(self._vertices)
+                self._hull = convex_hull(self._vertices)
+            else:
+                self._hull = MeshFacts(*hull, {})
         return self._hull
 
 
