@@ -134,7 +134,7 @@ def test_convex_hulls_without_trimesh_measure_as_trimeshs_on_every_corpus_stl(co
         if hull is None:
             continue
         built += 1
-        ours = mesh_arrays.mass_properties(*hull)
+        ours = hull[2]
         assert abs(ours["volume"] - theirs["volume"]) <= 1e-9 * abs(theirs["volume"]), path
         size = float(np.abs(arrays[0]).max())
         assert np.allclose(ours["center_mass"], theirs["center_mass"], rtol=1e-9,

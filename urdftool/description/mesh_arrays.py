@@ -171,9 +171,10 @@ def _winding_consistent(faces) -> bool:
 
 
 def convex_hull(vertices):
-    """(vertices, faces) of the convex hull of ``vertices`` as ``trimesh.convex.convex_hull``
-    builds it (qhull with "QbB Pp Qt", again with "QJ" on failure; faces of no area dropped and
-    turned outward; vertices merged to 1e-8), without trimesh; None when trimesh would still
+    """(vertices, faces, mass properties) of the convex hull of ``vertices`` as
+    ``trimesh.convex.convex_hull`` builds and measures it (qhull with "QbB Pp Qt", again with
+    "QJ" on failure; faces of no area dropped and turned outward; vertices merged to 1e-8),
+    without trimesh; None when trimesh would still
     repair it (a hull that is not closed or not consistently wound), for trimesh to build.
     Raises qhull's error (a RuntimeError) when even a joggled hull fails: a flat mesh."""
     import numpy as np
@@ -205,9 +206,11 @@ def convex_hull(vertices):
     points, faces = _merge(points, faces)
     if not len(faces) or not is_watertight(faces) or not _winding_consistent(faces):
         return None
-    if mass_properties(points, faces)["volume"] < 0.0:
+    properties = mass_properties(points, faces)
+    if properties["volume"] < 0.0:  # inside out: turned over, and measured again
         faces = np.ascontiguousarray(np.fliplr(faces))
-    return points, faces
+        properties = mass_properties(points, faces)
+    return points, faces, properties
 
 
 def mass_properties(vertices, faces) -> dict:

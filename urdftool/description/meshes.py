@@ -599,7 +599,8 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     return loaded
 
 
-RUN_CACHE_BYTES = 128 * 1024 * 1024  # [bytes] of meshes kept between robots (a worker has 2 GiB of address space in all)
+# [bytes] of meshes kept between robots (a worker has 2 GiB of address space in all)
+RUN_CACHE_BYTES = 128 * 1024 * 1024
 
 # Meshes read in this process, shared by every robot checked in it (a run of robots of one
 # package reads each mesh once, not once per robot): key -> (bytes held, outcome), least
@@ -646,8 +647,9 @@ def _read_once(path: Path, uri: str, limits: MeshLimits):
 
 
 def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
-    """(vertices, faces, metadata) of the mesh as trimesh loads it, once per run: read by
-    :mod:`.mesh_arrays` where the format allows (STL), else by trimesh (:func:`_read_once`)."""
+    """(vertices, faces, metadata, watertight) of the mesh as trimesh loads it, once per run:
+    read by :mod:`.mesh_arrays` where the format allows (STL), else by trimesh
+    (:func:`_read_once`)."""
     def compute():
         arrays = None
         if path.suffix.lower() == ".stl":
@@ -665,12 +667,14 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
             vertices = np.asarray(loaded.vertices, dtype=np.float64)
             faces = np.asarray(loaded.faces, dtype=np.int64)
             # counted again though they share the trimesh's memory: either may be dropped first
-            return (vertices, faces, dict(loaded.metadata)), vertices.nbytes + faces.nbytes
+            return (vertices, faces, dict(loaded.metadata), mesh_arrays.is_watertight(faces)), \
+                vertices.nbytes + faces.nbytes
         vertices, faces = arrays
         if len(faces) > limits.max_triangles:
             raise MeshProblem("too-large", f"mesh '{uri}' has {len(faces)} triangles, over "
                                            f"the limit of {limits.max_triangles}; decimate it")
-        return (vertices, faces, {}), vertices.nbytes + faces.nbytes
+        return (vertices, faces, {}, mesh_arrays.is_watertight(faces)), \
+            vertices.nbytes + faces.nbytes
 
     return _once((str(path), stamp, limits, "arrays"), uri, compute)
 
@@ -698,16 +702,17 @@ class MeshFacts:
     RuntimeError for a flat mesh) are computed when first asked.
     """
 
-    def __init__(self, vertices, faces, metadata: dict):
+    def __init__(self, vertices, faces, metadata: dict, watertight: bool | None = None,
+                 properties: dict | None = None):
         import numpy as np
 
         self._vertices, self._faces = vertices, faces
         self.faces = len(faces)
         self.bounds = np.array(mesh_arrays.bounds(vertices, faces))
         self.extents = self.bounds[1] - self.bounds[0]
-        self.is_watertight = mesh_arrays.is_watertight(faces)
+        self.is_watertight = mesh_arrays.is_watertight(faces) if watertight is None else watertight
         self.metadata = metadata
-        self._properties = self._hull = None
+        self._properties, self._hull = properties, None
 
     @property
     def nbytes(self) -> int:
@@ -728,7 +733,8 @@ class MeshFacts:
 
                 self._hull = convex_hull(self._vertices)
             else:
-                self._hull = MeshFacts(*hull, {})
+                points, faces, properties = hull
+                self._hull = MeshFacts(points, faces, {}, watertight=True, properties=properties)
         return self._hull
 
 
@@ -757,7 +763,7 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
         arrays = _arrays_once(path, uri, limits, stamp)
         if isinstance(arrays, MeshProblem):
             raise arrays
-        vertices, faces, metadata = arrays
+        vertices, faces, metadata, watertight = arrays  # a scale keeps it: a mirror turns all
         if scale != (1.0, 1.0, 1.0):
             import numpy as np
 
@@ -765,7 +771,7 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
                 vertices, faces = mesh_arrays.scaled(vertices, faces, scale)
             if not np.isfinite(vertices).all():
                 raise _beyond_range(uri, scale)
-        facts = MeshFacts(vertices, faces, metadata)
+        facts = MeshFacts(vertices, faces, metadata, watertight=watertight)
         return facts, facts.nbytes  # unscaled, the arrays' bytes: counted twice, an upper bound
 
     return _once((str(path), stamp, limits, "facts", scale), uri, compute)

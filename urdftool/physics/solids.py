@@ -1,8 +1,9 @@
 """A link's ``<collision>``/``<visual>`` geometry as solids: mass properties and bounds.
 
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
-:mod:`urdftool.description.meshes`, so both see the same shapes, scales and origins. Pure Python
-(:mod:`urdftool.physics.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
+:mod:`urdftool.description.meshes` (their measures, once per run: ``mesh_facts``), so both see
+the same shapes, scales and origins. Pure Python (:mod:`urdftool.physics.mat3` tuples): numpy is
+imported only when a mesh is measured, trimesh only for formats other than STL.
 """
 
 from __future__ import annotations
@@ -96,7 +97,7 @@ def _mesh_solid(robot, shape: Shape, problems: list):
 
 
 def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
-    from urdftool.description.meshes import MeshProblem, mesh_facts  # only robots with meshes pay for it
+    from urdftool.description.meshes import MeshProblem, mesh_facts  # only robots with meshes
 
     try:
         mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
