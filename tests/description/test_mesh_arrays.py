@@ -111,18 +111,27 @@ def test_other_formats_are_left_to_trimesh(tmp_path):
     assert mesh_arrays.read(path, path.read_bytes()) is None
 
 
-@pytest.mark.parametrize("open_", [False, True])
-def test_checking_a_robot_of_stl_meshes_does_not_import_trimesh(tmp_path, open_):
+@pytest.mark.parametrize("name, open_", [("part.stl", False), ("part.stl", True),
+                                         ("part.dae", False)])
+def test_checking_a_robot_of_stl_or_collada_meshes_does_not_import_trimesh(tmp_path, name,
+                                                                          open_):
     """A size, a box, a count, a volume, an open mesh's hull: all measured without loading
     trimesh (its import alone costs more than checking a small robot)."""
-    _box(tmp_path, "part.stl", open_=open_)
+    import trimesh
+
+    if name.endswith(".dae"):
+        box = trimesh.creation.box((0.1, 0.2, 0.3))
+        box.apply_translation((0.5, -1.0, 0.25))
+        box.export(tmp_path / name)
+    else:
+        _box(tmp_path, name, open_=open_)
     (tmp_path / ".git").mkdir()
     robot = tmp_path / "r.urdf"
     robot.write_text(
         '<robot name="r"><link name="a"><inertial><mass value="2000"/><inertia ixx="1e-5" ixy="0" '
         'ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial><visual><geometry><mesh '
-        'filename="part.stl"/></geometry></visual><collision><geometry><mesh '
-        'filename="part.stl" scale="2 2 2"/></geometry></collision></link></robot>')
+        f'filename="{name}"/></geometry></visual><collision><geometry><mesh '
+        f'filename="{name}" scale="2 2 2"/></geometry></collision></link></robot>')
     script = ("import sys\nfrom urdftool.lint.engine import CheckOptions, check_file\n"
               f"result = check_file({str(robot)!r}, CheckOptions())\n"
               "assert 'trimesh' not in sys.modules, 'trimesh imported'\n"
@@ -132,3 +141,65 @@ def test_checking_a_robot_of_stl_meshes_does_not_import_trimesh(tmp_path, open_)
     # 2000 kg in 0.048 m^3 (the hull's volume, for the open box) is denser than osmium
     assert "U311" in done.stdout
     assert ("U414" if open_ else "U310") in done.stdout  # U310: compared with the box's inertia
+
+
+_COLLADA = """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1"/><up_axis>Z_UP</up_axis></asset>
+  <library_materials><material id="m" name="m"><instance_effect url="#e"/></material>
+  </library_materials>
+  <library_effects><effect id="e"><profile_COMMON><technique sid="t"><phong><diffuse>
+    <color>0.5 0.5 0.5 1</color></diffuse></phong></technique></profile_COMMON></effect>
+  </library_effects>
+  <library_geometries><geometry id="g"><mesh>
+    <source id="p"><float_array id="pa" count="24">0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1
+      </float_array><technique_common><accessor source="#pa" count="8" stride="3">
+      <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <source id="n"><float_array id="na" count="6">0 0 1 0 0 -1</float_array><technique_common>
+      <accessor source="#na" count="2" stride="3"><param name="X" type="float"/>
+      <param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common>
+    </source>
+    <source id="u"><float_array id="ua" count="4">0 0 1 1</float_array><technique_common>
+      <accessor source="#ua" count="2" stride="2"><param name="S" type="float"/>
+      <param name="T" type="float"/></accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <polylist material="s" count="6">
+      <input semantic="VERTEX" source="#v" offset="0"/>
+      <input semantic="NORMAL" source="#n" offset="1"/>
+      <input semantic="TEXCOORD" source="#u" offset="2" set="0"/>
+      <vcount>4 4 4 4 4 4</vcount>
+      <p>0 1 0 3 1 0 2 1 1 1 1 1  4 0 0 5 0 1 6 0 0 7 0 1  0 1 0 1 1 1 5 1 0 4 1 1
+         1 1 0 2 1 1 6 1 0 5 1 1  2 1 0 3 1 1 7 1 0 6 1 1  3 1 0 0 1 1 4 1 0 7 1 1</p>
+    </polylist></mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s">
+    <node id="a"><translate>0.5 0 0</translate><rotate>0 0 1 30</rotate>
+      <instance_geometry url="#g"><bind_material><technique_common>
+        <instance_material symbol="s" target="#m"/></technique_common></bind_material>
+      </instance_geometry></node>
+    <node id="b"><scale>1 -2 1</scale><node id="c"><matrix>1 0 0 0 0 1 0 3 0 0 1 0 0 0 0 1
+      </matrix><instance_geometry url="#g"/></node></node>
+  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
+
+
+def test_collada_arrays_are_trimeshs_through_nodes_mirrors_and_seams(tmp_path):
+    """A cube as quads with normals and texture coordinates, instanced twice: rotated and
+    moved, and mirrored inside a nested node. trimesh splits corners where the normal or (with
+    a bound material) the texture coordinate differs; so do the arrays."""
+    path = tmp_path / "m.dae"
+    path.write_text(_COLLADA)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert np.array_equal(vertices, mesh.vertices) and np.array_equal(faces, mesh.faces)
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == pytest.approx(theirs["volume"], rel=1e-12)
+
+
+def test_collada_that_pycollada_refuses_is_left_to_trimesh(tmp_path):
+    path = tmp_path / "m.dae"
+    path.write_text(_COLLADA.replace('<node id="a">', '<node id="<a>">'))
+    assert mesh_arrays.read(path, path.read_bytes()) is None

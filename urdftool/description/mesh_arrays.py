@@ -24,10 +24,16 @@ _MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
 
 
 def read(path: Path, data: bytes):
-    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL file as trimesh processes it,
-    or None when trimesh should read it. ``data``: the file's bytes (read by the caller, under
-    the mesh size limit)."""
-    if path.suffix.lower() != ".stl":
+    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL or COLLADA file as trimesh
+    processes it, or None when trimesh should read it. ``data``: the file's bytes (read by the
+    caller, under the mesh size limit)."""
+    suffix = path.suffix.lower()
+    if suffix == ".dae":
+        try:
+            return _collada(data)
+        except Exception:  # pycollada's many errors: trimesh reads it and says what is wrong
+            return None
+    if suffix != ".stl":
         return None
     raw = _stl_binary(data)
     if raw is None and len(data) != _HEADER + _RECORD * _count(data):
@@ -75,6 +81,84 @@ def _stl_ascii(data: bytes):
     return vertices.reshape(-1, 3)
 
 
+def _collada(data: bytes):
+    """A COLLADA document's geometry as ``trimesh.load(force="mesh")`` builds it, read by
+    pycollada as trimesh reads it: each instanced triangle set a mesh whose corners are merged
+    where position, normal (to 1e-2) and texture coordinate (to 1e-4, when its material is
+    bound) agree, moved by its node's transform, all appended in scene order. None for what
+    trimesh would build otherwise (no geometry, coordinates that are not finite)."""
+    import io
+
+    import collada
+    import numpy as np
+
+    document = collada.Collada(io.BytesIO(data), ignore=[
+        collada.common.DaeError, collada.common.DaeIncompleteError,
+        collada.common.DaeMalformedError, collada.common.DaeBrokenRefError,
+        collada.common.DaeUnsupportedError])
+    if document.scene is None:
+        return None
+    parts = []
+
+    def visit(node, matrix):
+        if isinstance(node, collada.scene.GeometryNode):
+            bound = {material.symbol for material in node.materials}
+            for primitive in node.geometry.primitives:
+                if isinstance(primitive, collada.polylist.Polylist):
+                    primitive = primitive.triangleset()
+                if not isinstance(primitive, collada.triangleset.TriangleSet) or \
+                        primitive.vertex is None:
+                    continue
+                index = primitive.vertex_index
+                columns = [primitive.vertex[index].reshape(len(index) * 3, 3) * 1e8]
+                if primitive.material in bound and len(primitive.texcoordset) > 0:
+                    uv = primitive.texcoordset[0][primitive.texcoord_indexset[0]]
+                    columns.append(uv.reshape(len(index) * 3, 2) * 1e4)
+                if primitive.normal is not None:
+                    normals = primitive.normal[primitive.normal_index]
+                    columns.append(normals.reshape(len(index) * 3, 3) * 1e2)
+                parts.append((primitive.vertex[index].reshape(len(index) * 3, 3),
+                              np.column_stack(columns), matrix))
+        elif isinstance(node, collada.scene.Node) and node.children is not None:
+            for child in node.children:
+                visit(child, np.dot(matrix, node.matrix))
+
+    for node in document.scene.nodes:
+        visit(node, np.eye(4))
+    vertices, faces, offset = [], [], 0
+    for corners, keys, matrix in parts:
+        corners = np.asarray(corners, dtype=np.float64)
+        if not len(corners) or not np.isfinite(keys).all():
+            return None
+        matrix = _rigid(np.array(matrix, dtype=np.float64))
+        if matrix is None:
+            return None
+        merged = _merge(corners, np.arange(len(corners)).reshape(-1, 3), keys)
+        moved, turned = _transformed(*merged, matrix)
+        vertices.append(moved)
+        faces.append(turned + offset)
+        offset += len(moved)
+    if not faces:
+        return None
+    return np.vstack(vertices), np.vstack(faces)
+
+
+def _rigid(matrix):
+    """A node's transform as trimesh's scene graph hands it out (``fix_rigid``): a rotation
+    off by more than rounding but under 1e-5 is made orthonormal again (SVD). None where
+    trimesh's own check of that repair would fail."""
+    import numpy as np
+
+    off = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - np.eye(3)).max()
+    if not 1e-13 < off < 1e-5:
+        return matrix
+    left, _, right = np.linalg.svd(matrix[:3, :3])
+    repaired = np.eye(4)
+    repaired[:3, :3] = np.dot(left, right)
+    repaired[:3, 3] = matrix[:3, 3]
+    return repaired if np.allclose(repaired, matrix, atol=1e-5) else None
+
+
 def _merged(corners):
     """Triangle corners (3m, 3) -> (vertices, faces) as trimesh's merge_vertices makes them:
     corners equal when rounded to 1e-8 are one vertex, with the coordinates of the first."""
@@ -83,13 +167,15 @@ def _merged(corners):
     return _merge(corners, np.arange(len(corners)).reshape(-1, 3))
 
 
-def _merge(vertices, faces):
+def _merge(vertices, faces, keys=None):
     """(vertices, faces) with the vertices equal to 1e-8 merged as trimesh's merge_vertices
-    merges them: the first of equal ones kept, in order of first appearance."""
+    merges them: the first of equal ones kept, in order of first appearance. ``keys``: the
+    scaled columns to compare instead (positions, normals, texture coordinates)."""
     import numpy as np
 
-    keys = (vertices * 10 ** _MERGE_DIGITS).round().astype(np.int64)
-    first, inverse = _unique_rows(keys)
+    if keys is None:
+        keys = vertices * 10 ** _MERGE_DIGITS
+    first, inverse = _unique_rows(keys.round().astype(np.int64))
     order = np.argsort(first)
     rank = np.empty(len(order), dtype=np.int64)
     rank[order] = np.arange(len(order))
@@ -104,15 +190,15 @@ def _unique_rows(keys):
 
     words = np.ascontiguousarray(keys).view(np.uint64)
     hashed = np.zeros(len(keys), dtype=np.uint64)
+    factors = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB)  # splitmix64's
     with np.errstate(over="ignore"):
-        for column, factor in enumerate((0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9,
-                                         0x94D049BB133111EB)):  # splitmix64's mixing
-            hashed = (hashed + words[:, column]) * np.uint64(factor)
+        for column in range(keys.shape[1]):
+            hashed = (hashed + words[:, column]) * np.uint64(factors[column % 3])
             hashed ^= hashed >> np.uint64(31)
     _, first, inverse = np.unique(hashed, return_index=True, return_inverse=True)
     inverse = inverse.ravel()
     if not (keys[first][inverse] == keys).all():  # two rows share a hash
-        rows = np.ascontiguousarray(keys).view(np.dtype((np.void, 24))).ravel()
+        rows = np.ascontiguousarray(keys).view(np.dtype((np.void, 8 * keys.shape[1]))).ravel()
         _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
         inverse = inverse.ravel()
     return first, inverse
@@ -125,6 +211,13 @@ def scaled(vertices, faces, scale):
 
     matrix = np.eye(4)
     matrix[:3, :3] *= np.asarray(scale, dtype=np.float64)
+    return _transformed(vertices, faces, matrix)
+
+
+def _transformed(vertices, faces, matrix):
+    """(vertices, faces) after trimesh's ``apply_transform(matrix)`` (4 x 4)."""
+    import numpy as np
+
     if np.abs(matrix - np.eye(4)).max() < 1e-8:
         return vertices, faces
     stacked = np.column_stack((vertices, np.ones(len(vertices))))

@@ -24,7 +24,8 @@ A URI is resolved and checked once per robot. Meshes are read once per run (proc
 resolved path, file identity and modification and the limits, and cached per robot by scale.
 What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
 centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL
-files are read and measured without trimesh (:mod:`.mesh_arrays`), other formats through it.
+and COLLADA files are read and measured without trimesh (:mod:`.mesh_arrays`; COLLADA through
+pycollada as trimesh reads it), other formats through it.
 trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
@@ -648,16 +649,20 @@ def _read_once(path: Path, uri: str, limits: MeshLimits):
 
 def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
     """(vertices, faces, metadata, watertight) of the mesh as trimesh loads it, once per run:
-    read by :mod:`.mesh_arrays` where the format allows (STL), else by trimesh
-    (:func:`_read_once`)."""
+    read by :mod:`.mesh_arrays` where the format allows (STL, well-formed COLLADA), else by
+    trimesh (:func:`_read_once`)."""
     def compute():
         arrays = None
-        if path.suffix.lower() == ".stl":
+        if path.suffix.lower() in (".stl", ".dae"):
             _check_size(path, uri, limits)
             try:
                 arrays = mesh_arrays.read(path, read_regular(path, limits.max_bytes))
             except OSError:  # trimesh reads it and says what is wrong
                 arrays = None
+            if arrays is not None and path.suffix.lower() == ".dae":
+                unit = collada_unit(path)  # as _read_mesh applies it
+                if unit != 1.0:
+                    arrays = mesh_arrays.scaled(*arrays, (unit, unit, unit))
         if arrays is None:
             loaded = _read_once(path, uri, limits)
             if isinstance(loaded, MeshProblem):
