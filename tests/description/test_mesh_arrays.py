@@ -106,8 +106,10 @@ def test_what_trimesh_should_judge_is_not_read_light(tmp_path, data):
 
 
 def test_other_formats_are_left_to_trimesh(tmp_path):
-    path = tmp_path / "m.obj"
-    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    path = tmp_path / "m.ply"
+    path.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
     assert mesh_arrays.read(path, path.read_bytes()) is None
 
 
@@ -202,4 +204,55 @@ def test_collada_arrays_are_trimeshs_through_nodes_mirrors_and_seams(tmp_path):
 def test_collada_that_pycollada_refuses_is_left_to_trimesh(tmp_path):
     path = tmp_path / "m.dae"
     path.write_text(_COLLADA.replace('<node id="a">', '<node id="<a>">'))
+    assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+_OBJ_CUBE_V = "".join(f"v {x} {y} {z}\n" for x in (0, 1) for y in (0, 2) for z in (0, 3))
+_OBJ_CUBE_F = [(1, 3, 2), (2, 3, 4), (5, 6, 7), (6, 8, 7), (1, 2, 5), (2, 6, 5),
+               (3, 7, 4), (4, 7, 8), (1, 5, 3), (3, 5, 7), (2, 4, 6), (4, 8, 6)]
+
+
+def _obj_text(form: str) -> str:
+    """The cube in one corner form; texture coordinates and normals split it along seams."""
+    text = "# a cube\no Cube\n" + _OBJ_CUBE_V
+    text += "vt 0 0\nvt 1 0\nvt 0 1\n" + "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\n"
+    lines = []
+    for number, face in enumerate(_OBJ_CUBE_F):
+        corners = []
+        for k, v in enumerate(face):
+            t, n = (number + k) % 3 + 1, number // 4 + 1
+            corners.append(form.format(v=v, t=t, n=n))
+        lines.append("f " + " ".join(corners))
+    return text + "s off\n" + "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("form", ["{v}", "{v}/{t}", "{v}//{n}", "{v}/{t}/{n}"])
+def test_obj_triangles_are_trimeshs(tmp_path, form):
+    """Every corner form: the same triangles (coordinates), count, split along the same seams
+    (watertightness) and so the same volume as trimesh loads."""
+    path = tmp_path / "m.obj"
+    path.write_text(_obj_text(form))
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert len(vertices) == len(mesh.vertices)
+    assert np.array_equal(vertices[faces], mesh.vertices[mesh.faces])
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
+    if form in ("{v}", "{v}/{t}/{n}"):  # closed; cut open along its seams
+        assert mesh_arrays.is_watertight(faces) == (form == "{v}")
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == theirs["volume"] and abs(ours["volume"]) == pytest.approx(6.0)
+
+
+@pytest.mark.parametrize("change", [
+    lambda t: "mtllib m.mtl\n" + t,  # materials
+    lambda t: t.replace("o Cube", "g part"),  # groups
+    lambda t: t.replace("f 1 3 2", "f 1 3 2 4"),  # a polygon
+    lambda t: t.replace("f 1 3 2", "f -8 -6 -7"),  # relative indices
+    lambda t: t.replace("v 0 0 0", "v 0 0 0 1 0 0"),  # a colour
+    lambda t: t.replace("f 1 3 2", "  f 1 3 2"),  # indented
+    lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
+])
+def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
+    path = tmp_path / "m.obj"
+    path.write_text(change(_obj_text("{v}")))
     assert mesh_arrays.read(path, path.read_bytes()) is None

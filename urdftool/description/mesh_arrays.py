@@ -3,15 +3,19 @@
 A binary STL is an 84-byte header and 50-byte records, an ASCII STL a list of ``vertex``
 lines: both are read here straight into the vertex and face arrays that ``trimesh.load(...,
 process=True)`` builds of them (vertices merged to 1e-8 as trimesh merges them, the first of
-equal ones kept, in order of first use). What the rules need of a mesh is then measured the way
-trimesh measures it (bounds, watertightness, volume, centre of mass and inertia of a closed
-mesh), so a robot whose meshes are STL never imports trimesh for its checks; tests compare
-every measure with trimesh's on the public corpus.
+equal ones kept, in order of first use). A COLLADA file is read by pycollada as trimesh reads
+it, and a plain OBJ (vertices, texture coordinates, normals, triangles) directly; both keep
+corners apart where trimesh does (a normal or texture coordinate that differs: a seam). What
+the rules need of a mesh is then measured the way trimesh measures it (bounds, watertightness,
+volume, centre of mass and inertia of a closed mesh, the convex hull of an open one), so that
+checking a robot imports neither trimesh nor its scene machinery; tests compare every measure
+with trimesh's on the public corpus.
 
 :func:`read` returns None for anything it is not sure to read as trimesh would (another
 format, several solids, text that is not UTF-8, non-finite coordinates, a length that does not
-match the header, no triangles): trimesh then reads the file and says what is wrong with it.
-numpy is imported inside the functions.
+match the header, no triangles, OBJ materials or polygons, XML pycollada refuses): trimesh then
+reads the file and says what is wrong with it. numpy, scipy and pycollada are imported inside
+the functions.
 """
 
 from __future__ import annotations
@@ -24,14 +28,19 @@ _MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
 
 
 def read(path: Path, data: bytes):
-    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL or COLLADA file as trimesh
-    processes it, or None when trimesh should read it. ``data``: the file's bytes (read by the
-    caller, under the mesh size limit)."""
+    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL, COLLADA or plain OBJ file as
+    trimesh processes it, or None when trimesh should read it. ``data``: the file's bytes
+    (read by the caller, under the mesh size limit)."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
         try:
             return _collada(data)
         except Exception:  # pycollada's many errors: trimesh reads it and says what is wrong
+            return None
+    if suffix == ".obj":
+        try:
+            return _obj(data)
+        except (ValueError, IndexError):  # trimesh reads it and says what is wrong
             return None
     if suffix != ".stl":
         return None
@@ -141,6 +150,74 @@ def _collada(data: bytes):
     if not faces:
         return None
     return np.vstack(vertices), np.vstack(faces)
+
+
+def _obj(data: bytes):
+    """A plain OBJ's triangles as trimesh loads them: ``v`` (3 numbers), ``vt`` (2), ``vn``
+    (3) and triangular ``f`` lines of one corner form (``v``, ``v/t``, ``v//n``, ``v/t/n``,
+    positive indices), at most ``o`` and ``s`` besides. A corner is split from another at
+    the same position where its texture coordinate (to 1e-4) or normal (to 1e-2) differs, as
+    trimesh's processing keeps them apart; the merged positions are trimesh's (its vertex order
+    may differ among corners of one ``v``). None for anything else (materials, groups,
+    polygons, colours, negative indices...)."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    text = "\n{}\n".format(text.strip().replace("\r\n", "\n")).replace("\\\n", "")
+    if "+e" in text or "-e" in text:
+        return None  # trimesh rewrites these before parsing
+    rows = {"v": [], "vt": [], "vn": []}
+    corners, form = [], None
+    for line in text.split("\n"):
+        words = line.split()
+        if not words or words[0].startswith("#") or (words[0] in ("o", "s") and line[0] != " "):
+            continue
+        if line[0] in " \t":
+            return None
+        key = words[0]
+        if key in rows:
+            if len(words) != {"v": 4, "vt": 3, "vn": 4}[key]:
+                return None
+            rows[key].append(" ".join(words[1:]))
+        elif key == "f" and len(words) == 4:
+            parts = [word.split("/") for word in words[1:]]
+            count = len(parts[0])
+            shape = None if count > 3 else count - 1 if count < 3 else 2 if parts[0][1] == "" \
+                else 3
+            if shape is None or form not in (None, shape):
+                return None
+            form = shape
+            for part in parts:
+                if len(part) != len(parts[0]) or (shape == 2 and part[1] != "") or not all(
+                        piece.isdigit() and piece != "0" for piece in part if piece != ""):
+                    return None
+                corners.append([int(piece) - 1 for piece in part if piece != ""])
+        else:
+            return None
+    if not corners or not rows["v"]:
+        return None
+    arrays = {key: np.fromstring(" ".join(lines), sep=" ", dtype=np.float64).reshape(
+        -1, len(lines[0].split())) if lines else None for key, lines in rows.items()}
+    index = np.array(corners, dtype=np.int64)
+    columns = [("v", 0)] + {0: [], 1: [("vt", 1)], 2: [("vn", 1)],
+                            3: [("vt", 1), ("vn", 2)]}[form]
+    for key, column in columns:
+        if arrays[key] is None or index[:, column].max() >= len(arrays[key]) or \
+                not np.isfinite(arrays[key]).all():
+            return None
+    scales = {"v": 1e8, "vt": 1e4, "vn": 1e2}  # trimesh's merge: 1e-8, uv 1e-4, normals 1e-2
+    keys = np.column_stack([arrays[key][index[:, column]] * scales[key]
+                            for key, column in columns])
+    # corners in the order of their vertex in the file, as trimesh keeps them, then merged
+    order = np.argsort(index[:, 0], kind="stable")
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    positions = arrays["v"][index[order, 0]]
+    merged, faces = _merge(positions, rank.reshape(-1, 3), keys[order])
+    return merged, faces
 
 
 def _rigid(matrix):

@@ -23,9 +23,9 @@ mesh goes through the same checks before trimesh touches it:
 A URI is resolved and checked once per robot. Meshes are read once per run (process), keyed by
 resolved path, file identity and modification and the limits, and cached per robot by scale.
 What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
-centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL
-and COLLADA files are read and measured without trimesh (:mod:`.mesh_arrays`; COLLADA through
-pycollada as trimesh reads it), other formats through it.
+centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL,
+COLLADA and plain OBJ files are read and measured without trimesh (:mod:`.mesh_arrays`;
+COLLADA through pycollada as trimesh reads it), other formats through it.
 trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
@@ -649,11 +649,11 @@ def _read_once(path: Path, uri: str, limits: MeshLimits):
 
 def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
     """(vertices, faces, metadata, watertight) of the mesh as trimesh loads it, once per run:
-    read by :mod:`.mesh_arrays` where the format allows (STL, well-formed COLLADA), else by
-    trimesh (:func:`_read_once`)."""
+    read by :mod:`.mesh_arrays` where the format allows (STL, well-formed COLLADA, plain OBJ),
+    else by trimesh (:func:`_read_once`)."""
     def compute():
         arrays = None
-        if path.suffix.lower() in (".stl", ".dae"):
+        if path.suffix.lower() in (".stl", ".dae", ".obj"):
             _check_size(path, uri, limits)
             try:
                 arrays = mesh_arrays.read(path, read_regular(path, limits.max_bytes))
