@@ -331,21 +331,26 @@ def is_watertight(faces) -> bool:
 
 
 def _winding_consistent(faces) -> bool:
-    """Every edge shared by two faces is walked in opposite directions (trimesh's test)."""
+    """trimesh's test: every edge that exactly two faces share is walked in opposite
+    directions by them (the second starts where the first ends)."""
     import numpy as np
 
     edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     size = np.int64(int(faces.max()) + 1)
-    forward = np.sort(edges[:, 0] * size + edges[:, 1])
-    return bool((np.diff(forward) != 0).all())  # no directed edge twice: each pair reversed
+    undirected = np.sort(edges, axis=1)
+    order = np.argsort(undirected[:, 0] * size + undirected[:, 1], kind="stable")
+    keys = (undirected[:, 0] * size + undirected[:, 1])[order]
+    starts = np.flatnonzero(np.r_[True, keys[1:] != keys[:-1]])
+    pairs = starts[np.diff(np.r_[starts, len(keys)]) == 2]
+    return bool((edges[order[pairs], 1] == edges[order[pairs + 1], 0]).all())
 
 
 def convex_hull(vertices):
     """(vertices, faces, mass properties) of the convex hull of ``vertices`` as
     ``trimesh.convex.convex_hull`` builds and measures it (qhull with "QbB Pp Qt", again with
     "QJ" on failure; faces of no area dropped and turned outward; vertices merged to 1e-8),
-    without trimesh; None when trimesh would still
-    repair it (a hull that is not closed or not consistently wound), for trimesh to build.
+    without trimesh; a closed hull inside out is turned over. None when trimesh would repair
+    its winding (faces not consistently wound), for trimesh to build.
     Raises qhull's error (a RuntimeError) when even a joggled hull fails: a flat mesh."""
     import numpy as np
     from scipy.spatial import ConvexHull, QhullError
@@ -374,10 +379,10 @@ def convex_hull(vertices):
     backwards = ((crosses / norms.reshape(-1, 1)) * (centers - centroid)).sum(axis=1) < 0.0
     faces[backwards] = np.fliplr(faces[backwards])
     points, faces = _merge(points, faces)
-    if not len(faces) or not is_watertight(faces) or not _winding_consistent(faces):
-        return None
+    if not len(faces) or not _winding_consistent(faces):
+        return None  # trimesh turns faces over along its face graph
     properties = mass_properties(points, faces)
-    if properties["volume"] < 0.0:  # inside out: turned over, and measured again
+    if properties["volume"] < 0.0 and is_watertight(faces):  # inside out: turned over
         faces = np.ascontiguousarray(np.fliplr(faces))
         properties = mass_properties(points, faces)
     return points, faces, properties
