@@ -20,6 +20,7 @@ the functions.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 _HEADER = 84  # [bytes]: 80 of text, the triangle count
@@ -169,39 +170,32 @@ def _obj(data: bytes):
     text = "\n{}\n".format(text.strip().replace("\r\n", "\n")).replace("\\\n", "")
     if "+e" in text or "-e" in text:
         return None  # trimesh rewrites these before parsing
-    rows = {"v": [], "vt": [], "vn": []}
-    corners, form = [], None
+    rows = {"v": [], "vt": [], "vn": [], "f": [], "o": [], "s": []}
     for line in text.split("\n"):
-        words = line.split()
-        if not words or words[0].startswith("#") or (words[0] in ("o", "s") and line[0] != " "):
-            continue
-        if line[0] in " \t":
-            return None
-        key = words[0]
-        if key in rows:
-            if len(words) != {"v": 4, "vt": 3, "vn": 4}[key]:
-                return None
-            rows[key].append(" ".join(words[1:]))
-        elif key == "f" and len(words) == 4:
-            parts = [word.split("/") for word in words[1:]]
-            count = len(parts[0])
-            shape = None if count > 3 else count - 1 if count < 3 else 2 if parts[0][1] == "" \
-                else 3
-            if shape is None or form not in (None, shape):
-                return None
-            form = shape
-            for part in parts:
-                if len(part) != len(parts[0]) or (shape == 2 and part[1] != "") or not all(
-                        piece.isdigit() and piece != "0" for piece in part if piece != ""):
-                    return None
-                corners.append([int(piece) - 1 for piece in part if piece != ""])
-        else:
-            return None
-    if not corners or not rows["v"]:
+        head, space, rest = line.partition(" ")
+        found = rows.get(head) if space else None
+        if found is not None:
+            found.append(rest)
+        elif line.strip() and not line.startswith("#"):
+            return None  # materials, groups, lines, indented or unknown statements
+    if not rows["v"] or not rows["f"]:
         return None
-    arrays = {key: np.fromstring(" ".join(lines), sep=" ", dtype=np.float64).reshape(
-        -1, len(lines[0].split())) if lines else None for key, lines in rows.items()}
-    index = np.array(corners, dtype=np.int64)
+    for key, count in (("v", 3), ("vt", 2), ("vn", 3)):
+        if any(len(line.split()) != count for line in rows[key]):
+            return None  # colours, 3D texture coordinates...
+    sample = rows["f"][0].split()[0]
+    form = {0: 0, 1: 1, 2: 2 if "//" in sample else 3}.get(sample.count("/"))
+    corner = (r"\d+", r"\d+/\d+", r"\d+//\d+", r"\d+/\d+/\d+")[form or 0]
+    pattern = re.compile(rf"\s*{corner}\s+{corner}\s+{corner}\s*")
+    if form is None or not all(pattern.fullmatch(line) for line in rows["f"]):
+        return None  # polygons, mixed corner forms, negative indices
+    arrays = {key: np.fromstring(" ".join(rows[key]), sep=" ", dtype=np.float64).reshape(
+        -1, 2 if key == "vt" else 3) if rows[key] else None for key in ("v", "vt", "vn")}
+    index = np.fromstring(" ".join(rows["f"]).replace("/", " "), sep=" ", dtype=np.int64)
+    width = (1, 2, 2, 3)[form]
+    index = index.reshape(-1, width) - 1
+    if (index < 0).any():
+        return None  # index 0 does not exist; trimesh reads what it makes of it
     columns = [("v", 0)] + {0: [], 1: [("vt", 1)], 2: [("vn", 1)],
                             3: [("vt", 1), ("vn", 2)]}[form]
     for key, column in columns:
