@@ -125,12 +125,15 @@ def test_collada_that_is_not_well_formed_is_still_counted_before_loading(tmp_pat
 
 
 def _count_reads(monkeypatch) -> list:
-    from urdftool.description import meshes
+    """The paths of every mesh file read from now on, by trimesh or without it."""
+    from urdftool.description import mesh_arrays, meshes
 
     reads = []
-    real = meshes._read_mesh
+    real, light = meshes._read_mesh, mesh_arrays.read
     monkeypatch.setattr(meshes, "_read_mesh", lambda path, *rest: reads.append(path) or
                         real(path, *rest))
+    monkeypatch.setattr(mesh_arrays, "read", lambda path, *rest: reads.append(path) or
+                        light(path, *rest))
     monkeypatch.setattr(meshes, "_RUN_CACHE", {})
     return reads
 
@@ -177,3 +180,68 @@ def test_a_changed_mesh_is_read_again(tmp_path, monkeypatch):
     os.utime(mesh, ns=(1, 1))  # even with an old modification time: the size differs
     assert load_mesh(load(path), "part.stl").extents[0] == pytest.approx(0.3)
     assert len(reads) == 2
+
+
+def test_a_uri_is_resolved_and_checked_once_per_robot(tmp_path, monkeypatch):
+    import trimesh
+
+    from urdftool.description import meshes
+    from urdftool.lint.engine import CheckOptions, check_file
+
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
+    calls = []
+    real = meshes._resolve
+    monkeypatch.setattr(meshes, "_resolve", lambda robot, uri: calls.append(uri) or
+                        real(robot, uri))
+    check_file(_mesh_robot(tmp_path, "one.urdf", "part.stl", links=5), CheckOptions())
+    assert calls == ["part.stl"]
+
+
+@pytest.mark.parametrize("name", ["m.dae", "m.stl"])
+def test_mesh_facts_measure_what_load_mesh_loads(tmp_path, name):
+    import numpy as np
+    import trimesh
+
+    from urdftool.description.meshes import mesh_facts
+
+    mesh = trimesh.creation.icosphere(subdivisions=2, radius=0.1)
+    mesh.apply_translation((0.3, 0.0, -0.2))
+    mesh.export(tmp_path / name)
+    robot = _robot(tmp_path, name)
+    for scale in ((1.0, 1.0, 1.0), (2.0, -1.0, 0.5)):
+        loaded, facts = load_mesh(robot, name, scale), mesh_facts(robot, name, scale)
+        assert np.allclose(facts.bounds, loaded.bounds, rtol=1e-12, atol=0)
+        assert np.allclose(facts.extents, loaded.extents, rtol=1e-12, atol=0)
+        assert facts.faces == len(loaded.faces) and facts.is_watertight == loaded.is_watertight
+        assert facts.mass_properties["volume"] == pytest.approx(loaded.volume, rel=1e-12)
+        assert facts.convex_hull.mass_properties["volume"] == pytest.approx(
+            loaded.convex_hull.volume, rel=1e-12)
+
+
+@pytest.mark.parametrize("data", [b"\0" * 80 + struct.pack("<I", 3) + b"\0" * 70, b""])
+def test_a_bad_stl_is_the_same_problem_measured_or_loaded(tmp_path, data):
+    from urdftool.description import meshes
+
+    (tmp_path / "m.stl").write_bytes(data)
+    robot = _robot(tmp_path)
+    with pytest.raises(MeshProblem) as loaded:
+        load_mesh(robot, "m.stl")
+    meshes._RUN_CACHE.clear()
+    with pytest.raises(MeshProblem) as measured:
+        meshes.mesh_facts(_robot(tmp_path), "m.stl")
+    assert (measured.value.kind, str(measured.value)) == (loaded.value.kind, str(loaded.value))
+    assert loaded.value.kind == "corrupt"
+
+
+def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
+    import trimesh
+
+    from urdftool.description import meshes
+
+    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "RUN_CACHE_BYTES", 2000)
+    for index in range(4):  # arrays and scaled facts: 480 bytes each
+        trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
+        meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
+    held = sum(size for size, _ in meshes._RUN_CACHE.values())
+    assert 0 < held <= 2000 and len(meshes._RUN_CACHE) < 8

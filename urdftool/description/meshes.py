@@ -20,8 +20,13 @@ mesh goes through the same checks before trimesh touches it:
   which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
   ``metadata[NOT_WELL_FORMED]``.
 
-Meshes are read once per run (process), keyed by resolved path, file identity and modification
-and the limits, and cached per robot by scale. trimesh is imported lazily.
+A URI is resolved and checked once per robot. Meshes are read once per run (process), keyed by
+resolved path, file identity and modification and the limits, and cached per robot by scale.
+What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
+centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL,
+COLLADA and plain OBJ files are read and measured without trimesh (:mod:`.mesh_arrays`;
+COLLADA through pycollada as trimesh reads it), other formats through it.
+trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
 
@@ -39,7 +44,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.errors import MeshProblem, PackageNotFound
-from urdftool.description.files import inside
+from urdftool.description import mesh_arrays
+from urdftool.description.files import inside, read_regular
 from urdftool.description.packages import containment_root, package_uri_parts
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
@@ -54,7 +60,23 @@ class MeshLimits:
 
 
 def resolve(robot, uri: str) -> Path:
-    """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used."""
+    """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used.
+
+    Resolved and checked once per robot and URI (every rule, link and solid asks again)."""
+    found = robot.memo((resolve, uri), lambda: _resolved(robot, uri))
+    if isinstance(found, MeshProblem):
+        raise found
+    return found
+
+
+def _resolved(robot, uri: str) -> Path | MeshProblem:
+    try:
+        return _resolve(robot, uri)
+    except MeshProblem as problem:
+        return problem
+
+
+def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
         package, _ = package_uri_parts(uri)
         try:
@@ -578,38 +600,186 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     return loaded
 
 
-RUN_CACHE_BYTES = 128 * 1024 * 1024  # [bytes] of mesh files kept loaded between robots (a worker has 2 GiB of address space in all)
+# [bytes] of meshes kept between robots (a worker has 2 GiB of address space in all)
+RUN_CACHE_BYTES = 128 * 1024 * 1024
 
 # Meshes read in this process, shared by every robot checked in it (a run of robots of one
-# package reads each mesh once, not once per robot): key -> (file size, trimesh or MeshProblem).
-# A worker process per file has its own; it dies with its file.
+# package reads each mesh once, not once per robot): key -> (bytes held, outcome), least
+# recently used first. Outcomes: a trimesh (counted as its file's size), a mesh's arrays and
+# their measures (counted as the arrays' bytes), or a MeshProblem. A worker process per file
+# has its own; it dies with its file.
 _RUN_CACHE: dict = {}
 
 
-def _read_once(path: Path, uri: str, limits: MeshLimits):
-    """``_read_mesh`` once per run for a file as it is now: keyed by the resolved path, its
-    identity and modification (device, inode, size, mtime in ns) and the limits; a problem also
-    by the URI its message names. Returns the mesh or the MeshProblem."""
+def _stamp(path: Path):
+    """A file's identity and modification (device, inode, size, mtime in ns), or None."""
     try:
         status = path.stat()
     except OSError:
-        status = None
-    stamp = (status.st_dev, status.st_ino, status.st_size, status.st_mtime_ns) if status else None
-    key = (str(path), stamp, limits)
+        return None
+    return status.st_dev, status.st_ino, status.st_size, status.st_mtime_ns
+
+
+def _once(key: tuple, uri: str, compute):
+    """``compute()`` -> (outcome, bytes held) once per run for ``key`` (which starts with the
+    path and its :func:`_stamp`: a changed file is read again); a MeshProblem is kept under the
+    URI its message names too. Returns the outcome or the MeshProblem."""
     for known in (key, (*key, uri)):
         if known in _RUN_CACHE:
             _RUN_CACHE[known] = entry = _RUN_CACHE.pop(known)  # most recently used last
             return entry[1]
     try:
-        outcome = _read_mesh(path, uri, limits)
+        outcome, size = compute()
     except MeshProblem as problem:
-        outcome = problem
-    size = status.st_size if status and not isinstance(outcome, MeshProblem) else 0
-    if stamp is not None:
+        outcome, size = problem, 0
+    if key[1] is not None:
         _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome)
         while sum(entry[0] for entry in _RUN_CACHE.values()) > RUN_CACHE_BYTES:
             _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
     return outcome
+
+
+def _read_once(path: Path, uri: str, limits: MeshLimits):
+    """``_read_mesh`` once per run for a file as it is now (keyed by the resolved path, its
+    :func:`_stamp` and the limits). Returns the mesh or the MeshProblem."""
+    stamp = _stamp(path)
+    return _once((str(path), stamp, limits), uri,
+                 lambda: (_read_mesh(path, uri, limits), stamp[2] if stamp else 0))
+
+
+def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
+    """(vertices, faces, metadata, watertight) of the mesh as trimesh loads it, once per run:
+    read by :mod:`.mesh_arrays` where the format allows (STL, well-formed COLLADA, plain OBJ),
+    else by trimesh (:func:`_read_once`)."""
+    def compute():
+        arrays = None
+        if path.suffix.lower() in (".stl", ".dae", ".obj"):
+            _check_size(path, uri, limits)
+            try:
+                arrays = mesh_arrays.read(path, read_regular(path, limits.max_bytes))
+            except OSError:  # trimesh reads it and says what is wrong
+                arrays = None
+            if arrays is not None and path.suffix.lower() == ".dae":
+                unit = collada_unit(path)  # as _read_mesh applies it
+                if unit != 1.0:
+                    arrays = mesh_arrays.scaled(*arrays, (unit, unit, unit))
+        if arrays is None:
+            loaded = _read_once(path, uri, limits)
+            if isinstance(loaded, MeshProblem):
+                raise loaded
+            import numpy as np
+
+            vertices = np.asarray(loaded.vertices, dtype=np.float64)
+            faces = np.asarray(loaded.faces, dtype=np.int64)
+            # counted again though they share the trimesh's memory: either may be dropped first
+            return (vertices, faces, dict(loaded.metadata), mesh_arrays.is_watertight(faces)), \
+                vertices.nbytes + faces.nbytes
+        vertices, faces = arrays
+        if len(faces) > limits.max_triangles:
+            raise MeshProblem("too-large", f"mesh '{uri}' has {len(faces)} triangles, over "
+                                           f"the limit of {limits.max_triangles}; decimate it")
+        return (vertices, faces, {}, mesh_arrays.is_watertight(faces)), \
+            vertices.nbytes + faces.nbytes
+
+    return _once((str(path), stamp, limits, "arrays"), uri, compute)
+
+
+def _finite_scale(uri: str, scale) -> tuple[float, float, float]:
+    scale = tuple(float(s) for s in scale)
+    if not all(math.isfinite(s) for s in scale):
+        raise MeshProblem("corrupt", f"mesh '{uri}' has a non-finite scale {scale}; not loaded")
+    return scale
+
+
+def _beyond_range(uri: str, scale) -> MeshProblem:
+    return MeshProblem("corrupt", f"mesh '{uri}' scaled by {scale} has coordinates beyond "
+                                  "floating point range; not loaded")
+
+
+class MeshFacts:
+    """What the checks measure of a mesh at a scale, under trimesh's names, so that rules and
+    solids read it as they would read the ``trimesh.Trimesh`` that :func:`load_mesh` gives
+    (same numbers: :mod:`.mesh_arrays` measures as trimesh does).
+
+    faces: the triangle count; bounds: (2, 3) min and max corner; extents; is_watertight;
+    metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; mass_properties (density
+    1, of the mesh as it is) and convex_hull (its measures, as trimesh's hull has them; qhull's
+    RuntimeError for a flat mesh) are computed when first asked.
+    """
+
+    def __init__(self, vertices, faces, metadata: dict, watertight: bool | None = None,
+                 properties: dict | None = None):
+        import numpy as np
+
+        self._vertices, self._faces = vertices, faces
+        self.faces = len(faces)
+        self.bounds = np.array(mesh_arrays.bounds(vertices, faces))
+        self.extents = self.bounds[1] - self.bounds[0]
+        self.is_watertight = mesh_arrays.is_watertight(faces) if watertight is None else watertight
+        self.metadata = metadata
+        self._properties, self._hull = properties, None
+
+    @property
+    def nbytes(self) -> int:
+        return self._vertices.nbytes + self._faces.nbytes
+
+    @property
+    def mass_properties(self) -> dict:
+        if self._properties is None:
+            self._properties = mesh_arrays.mass_properties(self._vertices, self._faces)
+        return self._properties
+
+    @property
+    def convex_hull(self):
+        if self._hull is None:
+            hull = mesh_arrays.convex_hull(self._vertices)
+            if hull is None:  # one trimesh repairs
+                from trimesh.convex import convex_hull
+
+                self._hull = convex_hull(self._vertices)
+            else:
+                points, faces, properties = hull
+                self._hull = MeshFacts(points, faces, {}, watertight=True, properties=properties)
+        return self._hull
+
+
+def mesh_facts(robot, uri: str, scale=(1.0, 1.0, 1.0),
+               limits: MeshLimits | None = None) -> MeshFacts:
+    """The :class:`MeshFacts` of the mesh at ``uri`` scaled by ``scale``; raises MeshProblem
+    as :func:`load_mesh` does. Each file is read once per run and measured once per scale: STL
+    files without trimesh, other formats through it."""
+    limits = limits or robot.mesh_limits
+    key = (mesh_facts, uri, tuple(scale), limits)
+    found = robot.memo(key, lambda: _facts_outcome(robot, uri, scale, limits))
+    if isinstance(found, MeshProblem):
+        raise found
+    return found
+
+
+def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
+    try:
+        path = resolve(robot, uri)
+        scale = _finite_scale(uri, scale)
+    except MeshProblem as problem:
+        return problem
+    stamp = _stamp(path)
+
+    def compute():
+        arrays = _arrays_once(path, uri, limits, stamp)
+        if isinstance(arrays, MeshProblem):
+            raise arrays
+        vertices, faces, metadata, watertight = arrays  # a scale keeps it: a mirror turns all
+        if scale != (1.0, 1.0, 1.0):
+            import numpy as np
+
+            with np.errstate(all="ignore"):  # overflow is reported below
+                vertices, faces = mesh_arrays.scaled(vertices, faces, scale)
+            if not np.isfinite(vertices).all():
+                raise _beyond_range(uri, scale)
+        facts = MeshFacts(vertices, faces, metadata, watertight=watertight)
+        return facts, facts.nbytes  # unscaled, the arrays' bytes: counted twice, an upper bound
+
+    return _once((str(path), stamp, limits, "facts", scale), uri, compute)
 
 
 def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None = None):
@@ -617,14 +787,12 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
 
     Loaded once per robot per (path, scale); problems are cached and raised again as
     MeshProblem. The limits are ``robot.mesh_limits`` (``check --max-triangles``) unless
-    ``limits`` are given.
+    ``limits`` are given. Checks that need only measures ask :func:`mesh_facts`.
     """
     limits = limits or robot.mesh_limits
     cache = robot.memo(load_mesh, dict)
     path = resolve(robot, uri)
-    scale = tuple(float(s) for s in scale)
-    if not all(math.isfinite(s) for s in scale):
-        raise MeshProblem("corrupt", f"mesh '{uri}' has a non-finite scale {scale}; not loaded")
+    scale = _finite_scale(uri, scale)
     key = (path, scale)
     if key not in cache:
         raw_key = (path, (1.0, 1.0, 1.0))
@@ -639,9 +807,7 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
                 warnings.simplefilter("ignore", RuntimeWarning)  # overflow is reported below
                 scaled.apply_scale(scale)
             finite_vertices = all(math.isfinite(v) for v in scaled.bounds.ravel())
-            cache[key] = scaled if finite_vertices else MeshProblem(
-                "corrupt", f"mesh '{uri}' scaled by {scale} has coordinates beyond floating "
-                           "point range; not loaded")
+            cache[key] = scaled if finite_vertices else _beyond_range(uri, scale)
     found = cache[key]
     if isinstance(found, MeshProblem):
         raise found

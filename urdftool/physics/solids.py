@@ -1,8 +1,9 @@
 """A link's ``<collision>``/``<visual>`` geometry as solids: mass properties and bounds.
 
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
-:mod:`urdftool.description.meshes`, so both see the same shapes, scales and origins. Pure Python
-(:mod:`urdftool.physics.mat3` tuples): numpy and trimesh are imported only when a mesh is loaded.
+:mod:`urdftool.description.meshes` (their measures, once per run: ``mesh_facts``), so both see
+the same shapes, scales and origins. Pure Python (:mod:`urdftool.physics.mat3` tuples): numpy is
+imported only when a mesh is measured, trimesh only for formats other than STL.
 """
 
 from __future__ import annotations
@@ -96,10 +97,10 @@ def _mesh_solid(robot, shape: Shape, problems: list):
 
 
 def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
-    from urdftool.description.meshes import MeshProblem, load_mesh  # only robots with meshes pay for it
+    from urdftool.description.meshes import MeshProblem, mesh_facts  # only robots with meshes
 
     try:
-        mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
+        mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem as problem:
         problems.append((shape.element, str(problem)))
         return None, None
@@ -187,31 +188,43 @@ def rigid_bounds(robot, link) -> RigidBounds:
     frames = _rigid_frames(robot, link.get("name"))
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        member = robot.links.get(name)
-        for shape in shapes(member, "visual") + shapes(member, "collision"):
-            local = _local_bounds(robot, shape)
-            if local is None:
-                result.complete = False
-                continue
-            corners.extend(mat3.add(xyz, mat3.apply(rotation, mat3.add(
-                shape.xyz, mat3.apply(shape.rotation, c)))) for c in _corners(local))
-        result.complete = result.complete and len(shapes(member, "visual")) == len(
-            member.findall("visual")) and len(shapes(member, "collision")) == len(
-            member.findall("collision"))
+        local, complete = _placed_corners(robot, robot.links.get(name))
+        corners.extend(mat3.add(xyz, mat3.apply(rotation, c)) for c in local)
+        result.complete = result.complete and complete
     if corners:
         result.bounds = (tuple(min(c[i] for c in corners) for i in range(3)),
                          tuple(max(c[i] for c in corners) for i in range(3)))
     return result
 
 
+def _placed_corners(robot, member) -> tuple[list[mat3.Vector], bool]:
+    """(the corners of the boxes of a link's visual and collision shapes, in the link frame;
+    whether every shape was measured), once per robot and link: every link fixed to it asks."""
+    def build():
+        corners, complete = [], True
+        for shape in shapes(member, "visual") + shapes(member, "collision"):
+            local = _local_bounds(robot, shape)
+            if local is None:
+                complete = False
+                continue
+            corners.extend(mat3.add(shape.xyz, mat3.apply(shape.rotation, c))
+                           for c in _corners(local))
+        complete = complete and len(shapes(member, "visual")) == len(
+            member.findall("visual")) and len(shapes(member, "collision")) == len(
+            member.findall("collision"))
+        return corners, complete
+
+    return robot.memo((_placed_corners, member), build)
+
+
 def _local_bounds(robot, shape: Shape):
     """A shape's box in its own frame, or None for a mesh that does not resolve or load."""
     if shape.kind != "mesh":
         return _local(shape)[1]
-    from urdftool.description.meshes import MeshProblem, load_mesh
+    from urdftool.description.meshes import MeshProblem, mesh_facts
 
     try:
-        mesh = load_mesh(robot, shape.params["filename"], shape.params["scale"])
+        mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem:
         return None
     return tuple(mat3.vector(corner) for corner in mesh.bounds)

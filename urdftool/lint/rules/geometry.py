@@ -232,19 +232,19 @@ def _mesh_elements(robot):
 
 
 def _mesh_outcomes(robot):
-    """(link, holder, mesh element, trimesh or MeshProblem) per mesh element, once per robot."""
+    """(link, holder, mesh element, MeshFacts or MeshProblem) per mesh element, once per robot."""
     return robot.memo(_mesh_outcomes, lambda: list(_load_meshes(robot)))
 
 
 def _load_meshes(robot):
-    from urdftool.description.meshes import MeshProblem, load_mesh
+    from urdftool.description.meshes import MeshProblem, mesh_facts
 
     for link, holder, shape in _mesh_elements(robot):
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         if not scale or not finite(scale):
             continue
         try:
-            outcome = load_mesh(robot, shape.get("filename"), scale)
+            outcome = mesh_facts(robot, shape.get("filename"), scale)
         except MeshProblem as problem:
             outcome = problem
         yield link, holder, shape, outcome

@@ -85,11 +85,12 @@ def _from_geometry(robot, link, mass: float):
     return inertial_edits(robot, link, computed(solid, mass=mass))
 
 
-def _solid(robot, link):
-    """The link's solids (physics.solids.link_solid), built once per robot and link."""
+def _solid(robot, link, tag: str | None = None):
+    """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
+    per robot, link and tag: several rules ask."""
     from urdftool.physics.solids import link_solid
 
-    return robot.memo((_solid, link), lambda: link_solid(robot, link))
+    return robot.memo((_solid, link, tag), lambda: link_solid(robot, link, tag=tag))
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -283,9 +284,7 @@ def inertia_triangle_inequality(robot):
 
 def _link_solids(robot):
     """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
-    from urdftool.physics.solids import link_solid
-
-    return robot.memo(_link_solids, lambda: [(link, properties, link_solid(robot, link))
+    return robot.memo(_link_solids, lambda: [(link, properties, _solid(robot, link))
                                              for link, properties in _valid(robot)
                                              if properties.mass > 0])
 
@@ -502,7 +501,7 @@ def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
     by it gives the least density the link can have. The smallest counts only when the
     geometry is trustworthy (no hull); a hollow shell's envelope makes it too large, so it
     only bounds the density from below loosely."""
-    from urdftool.physics.solids import HULL_USED, link_solid, volume
+    from urdftool.physics.solids import HULL_USED, volume
 
     def loaded(s):
         return s.parts and all(HULL_USED in message for _, message in s.problems)
@@ -512,7 +511,7 @@ def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
     other = "visual" if solid.source == "collision" else "collision"
     volumes = [volume(solid)]
     if link.find(other) is not None:
-        second = link_solid(robot, link, tag=other)
+        second = _solid(robot, link, other)
         if loaded(second):
             volumes.append(volume(second))
     return (volume(solid) if _trustworthy(solid) else 0.0), max(volumes)

@@ -1,0 +1,258 @@
+"""STL read and measured without trimesh: the arrays and numbers trimesh gives (the whole public
+corpus is compared in tests/integration/test_corpus_meshes.py)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from urdftool.description import mesh_arrays
+
+
+def _trimesh_of(path):
+    import trimesh
+
+    return trimesh.load(str(path), force="mesh", process=True)
+
+
+def _box(tmp_path, name="box.stl", ascii=False, open_=False):
+    import trimesh
+
+    mesh = trimesh.creation.box((0.1, 0.2, 0.3))
+    mesh.apply_translation((0.5, -1.0, 0.25))
+    if open_:
+        mesh.update_faces(np.arange(len(mesh.faces)) != 0)
+    path = tmp_path / name
+    data = trimesh.exchange.stl.export_stl_ascii(mesh).encode() if ascii else \
+        trimesh.exchange.stl.export_stl(mesh)
+    path.write_bytes(data)
+    return path
+
+
+@pytest.mark.parametrize("ascii", [False, True])
+@pytest.mark.parametrize("open_", [False, True])
+def test_stl_arrays_and_measures_are_trimeshs(tmp_path, ascii, open_):
+    path = _box(tmp_path, ascii=ascii, open_=open_)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert np.array_equal(vertices, mesh.vertices) and np.array_equal(faces, mesh.faces)
+    assert np.array_equal(np.array(mesh_arrays.bounds(vertices, faces)), mesh.bounds)
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight == (not open_)
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == pytest.approx(theirs["volume"], rel=1e-12)
+    if not open_:
+        assert ours["volume"] == pytest.approx(0.006)
+        assert np.allclose(ours["center_mass"], (0.5, -1.0, 0.25))
+        assert np.allclose(ours["inertia"], theirs["inertia"], rtol=1e-12, atol=0)
+
+
+def test_a_mirroring_scale_turns_the_faces_over_as_trimesh_does(tmp_path):
+    path = _box(tmp_path)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    mesh.apply_scale((0.001, -0.001, 0.001))
+    moved, turned = mesh_arrays.scaled(vertices, faces, (0.001, -0.001, 0.001))
+    assert np.array_equal(moved, mesh.vertices) and np.array_equal(turned, mesh.faces)
+    assert mesh_arrays.mass_properties(moved, turned)["volume"] == pytest.approx(6e-12)
+
+
+def test_scale_within_1e_8_of_one_changes_nothing_as_in_trimesh(tmp_path):
+    path = _box(tmp_path)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    moved, _ = mesh_arrays.scaled(vertices, faces, (1 + 1e-9, 1, 1))
+    assert moved is vertices
+
+
+def test_corners_that_differ_by_sign_are_not_merged():
+    """Rows (a, b, c) and (a, -b, -c) once hashed alike with a weaker hash: the grouping is
+    checked against the rows, and the hash keeps them apart."""
+    corners = np.array([[-0.000525, 0.0122, 0.013], [-0.000525, -0.0122, -0.013],
+                        [0.1, 0.0, 0.0]] * 2)
+    vertices, faces = mesh_arrays._merged(corners)
+    assert len(vertices) == 3 and faces.tolist() == [[0, 1, 2], [0, 1, 2]]
+
+
+def test_rows_sharing_a_hash_are_still_told_apart(monkeypatch):
+    keys = np.array([[1, 2, 3], [4, 5, 6], [1, 2, 3]], dtype=np.int64)
+    real = np.unique
+
+    def colliding(values, **options):  # every row hashes alike: only the check can tell
+        if values.dtype == np.uint64:
+            values = np.zeros_like(values)
+        return real(values, **options)
+
+    monkeypatch.setattr(np, "unique", colliding)
+    first, inverse = mesh_arrays._unique_rows(keys)
+    assert sorted(first.tolist()) == [0, 1] and inverse[0] == inverse[2] != inverse[1]
+
+
+@pytest.mark.parametrize("data", [
+    b"\0" * 80 + (3).to_bytes(4, "little") + b"\0" * 70,  # truncated binary
+    b"\0" * 80 + (0).to_bytes(4, "little"),  # no triangles
+    b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+    b"endloop\nendfacet\nendsolid a\nsolid b\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+    b"vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid b\n",  # two solids: a scene
+    b"solid a\nvertex 0 0 0\nvertex 1 0\nendsolid a\n",  # not whole triangles
+    b"solid \xff\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendsolid\n",  # not UTF-8
+    b"solid a\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\nendsolid a\n",  # not finite
+])
+def test_what_trimesh_should_judge_is_not_read_light(tmp_path, data):
+    path = tmp_path / "m.stl"
+    path.write_bytes(data)
+    assert mesh_arrays.read(path, data) is None
+
+
+def test_other_formats_are_left_to_trimesh(tmp_path):
+    path = tmp_path / "m.ply"
+    path.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+@pytest.mark.parametrize("name, open_", [("part.stl", False), ("part.stl", True),
+                                         ("part.dae", False)])
+def test_checking_a_robot_of_stl_or_collada_meshes_does_not_import_trimesh(tmp_path, name,
+                                                                          open_):
+    """A size, a box, a count, a volume, an open mesh's hull: all measured without loading
+    trimesh (its import alone costs more than checking a small robot)."""
+    import trimesh
+
+    if name.endswith(".dae"):
+        box = trimesh.creation.box((0.1, 0.2, 0.3))
+        box.apply_translation((0.5, -1.0, 0.25))
+        box.export(tmp_path / name)
+    else:
+        _box(tmp_path, name, open_=open_)
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><inertial><mass value="2000"/><inertia ixx="1e-5" ixy="0" '
+        'ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial><visual><geometry><mesh '
+        f'filename="{name}"/></geometry></visual><collision><geometry><mesh '
+        f'filename="{name}" scale="2 2 2"/></geometry></collision></link></robot>')
+    script = ("import sys\nfrom urdftool.lint.engine import CheckOptions, check_file\n"
+              f"result = check_file({str(robot)!r}, CheckOptions())\n"
+              "assert 'trimesh' not in sys.modules, 'trimesh imported'\n"
+              "print(sorted(f.code for f in result.findings))\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    # 2000 kg in 0.048 m^3 (the hull's volume, for the open box) is denser than osmium
+    assert "U311" in done.stdout
+    assert ("U414" if open_ else "U310") in done.stdout  # U310: compared with the box's inertia
+
+
+_COLLADA = """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1"/><up_axis>Z_UP</up_axis></asset>
+  <library_materials><material id="m" name="m"><instance_effect url="#e"/></material>
+  </library_materials>
+  <library_effects><effect id="e"><profile_COMMON><technique sid="t"><phong><diffuse>
+    <color>0.5 0.5 0.5 1</color></diffuse></phong></technique></profile_COMMON></effect>
+  </library_effects>
+  <library_geometries><geometry id="g"><mesh>
+    <source id="p"><float_array id="pa" count="24">0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1
+      </float_array><technique_common><accessor source="#pa" count="8" stride="3">
+      <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <source id="n"><float_array id="na" count="6">0 0 1 0 0 -1</float_array><technique_common>
+      <accessor source="#na" count="2" stride="3"><param name="X" type="float"/>
+      <param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common>
+    </source>
+    <source id="u"><float_array id="ua" count="4">0 0 1 1</float_array><technique_common>
+      <accessor source="#ua" count="2" stride="2"><param name="S" type="float"/>
+      <param name="T" type="float"/></accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <polylist material="s" count="6">
+      <input semantic="VERTEX" source="#v" offset="0"/>
+      <input semantic="NORMAL" source="#n" offset="1"/>
+      <input semantic="TEXCOORD" source="#u" offset="2" set="0"/>
+      <vcount>4 4 4 4 4 4</vcount>
+      <p>0 1 0 3 1 0 2 1 1 1 1 1  4 0 0 5 0 1 6 0 0 7 0 1  0 1 0 1 1 1 5 1 0 4 1 1
+         1 1 0 2 1 1 6 1 0 5 1 1  2 1 0 3 1 1 7 1 0 6 1 1  3 1 0 0 1 1 4 1 0 7 1 1</p>
+    </polylist></mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s">
+    <node id="a"><translate>0.5 0 0</translate><rotate>0 0 1 30</rotate>
+      <instance_geometry url="#g"><bind_material><technique_common>
+        <instance_material symbol="s" target="#m"/></technique_common></bind_material>
+      </instance_geometry></node>
+    <node id="b"><scale>1 -2 1</scale><node id="c"><matrix>1 0 0 0 0 1 0 3 0 0 1 0 0 0 0 1
+      </matrix><instance_geometry url="#g"/></node></node>
+  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
+
+
+def test_collada_arrays_are_trimeshs_through_nodes_mirrors_and_seams(tmp_path):
+    """A cube as quads with normals and texture coordinates, instanced twice: rotated and
+    moved, and mirrored inside a nested node. trimesh splits corners where the normal or (with
+    a bound material) the texture coordinate differs; so do the arrays."""
+    path = tmp_path / "m.dae"
+    path.write_text(_COLLADA)
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert np.array_equal(vertices, mesh.vertices) and np.array_equal(faces, mesh.faces)
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == pytest.approx(theirs["volume"], rel=1e-12)
+
+
+def test_collada_that_pycollada_refuses_is_left_to_trimesh(tmp_path):
+    path = tmp_path / "m.dae"
+    path.write_text(_COLLADA.replace('<node id="a">', '<node id="<a>">'))
+    assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+_OBJ_CUBE_V = "".join(f"v {x} {y} {z}\n" for x in (0, 1) for y in (0, 2) for z in (0, 3))
+_OBJ_CUBE_F = [(1, 3, 2), (2, 3, 4), (5, 6, 7), (6, 8, 7), (1, 2, 5), (2, 6, 5),
+               (3, 7, 4), (4, 7, 8), (1, 5, 3), (3, 5, 7), (2, 4, 6), (4, 8, 6)]
+
+
+def _obj_text(form: str) -> str:
+    """The cube in one corner form; texture coordinates and normals split it along seams."""
+    text = "# a cube\no Cube\n" + _OBJ_CUBE_V
+    text += "vt 0 0\nvt 1 0\nvt 0 1\n" + "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\n"
+    lines = []
+    for number, face in enumerate(_OBJ_CUBE_F):
+        corners = []
+        for k, v in enumerate(face):
+            t, n = (number + k) % 3 + 1, number // 4 + 1
+            corners.append(form.format(v=v, t=t, n=n))
+        lines.append("f " + " ".join(corners))
+    return text + "s off\n" + "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("form", ["{v}", "{v}/{t}", "{v}//{n}", "{v}/{t}/{n}"])
+def test_obj_triangles_are_trimeshs(tmp_path, form):
+    """Every corner form: the same triangles (coordinates), count, split along the same seams
+    (watertightness) and so the same volume as trimesh loads."""
+    path = tmp_path / "m.obj"
+    path.write_text(_obj_text(form))
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    mesh = _trimesh_of(path)
+    assert len(vertices) == len(mesh.vertices)
+    assert np.array_equal(vertices[faces], mesh.vertices[mesh.faces])
+    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
+    if form in ("{v}", "{v}/{t}/{n}"):  # closed; cut open along its seams
+        assert mesh_arrays.is_watertight(faces) == (form == "{v}")
+    ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
+    assert ours["volume"] == theirs["volume"] and abs(ours["volume"]) == pytest.approx(6.0)
+
+
+@pytest.mark.parametrize("change", [
+    lambda t: "mtllib m.mtl\n" + t,  # materials
+    lambda t: t.replace("o Cube", "g part"),  # groups
+    lambda t: t.replace("f 1 3 2", "f 1 3 2 4"),  # a polygon
+    lambda t: t.replace("f 1 3 2", "f -8 -6 -7"),  # relative indices
+    lambda t: t.replace("v 0 0 0", "v 0 0 0 1 0 0"),  # a colour
+    lambda t: t.replace("f 1 3 2", "  f 1 3 2"),  # indented
+    lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
+])
+def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
+    path = tmp_path / "m.obj"
+    path.write_text(change(_obj_text("{v}")))
+    assert mesh_arrays.read(path, path.read_bytes()) is None

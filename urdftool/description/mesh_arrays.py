@@ -1,0 +1,422 @@
+"""Meshes as numpy arrays, read and measured without trimesh where the format allows.
+
+A binary STL is an 84-byte header and 50-byte records, an ASCII STL a list of ``vertex``
+lines: both are read here straight into the vertex and face arrays that ``trimesh.load(...,
+process=True)`` builds of them (vertices merged to 1e-8 as trimesh merges them, the first of
+equal ones kept, in order of first use). A COLLADA file is read by pycollada as trimesh reads
+it, and a plain OBJ (vertices, texture coordinates, normals, triangles) directly; both keep
+corners apart where trimesh does (a normal or texture coordinate that differs: a seam). What
+the rules need of a mesh is then measured the way trimesh measures it (bounds, watertightness,
+volume, centre of mass and inertia of a closed mesh, the convex hull of an open one), so that
+checking a robot imports neither trimesh nor its scene machinery; tests compare every measure
+with trimesh's on the public corpus.
+
+:func:`read` returns None for anything it is not sure to read as trimesh would (another
+format, several solids, text that is not UTF-8, non-finite coordinates, a length that does not
+match the header, no triangles, OBJ materials or polygons, XML pycollada refuses): trimesh then
+reads the file and says what is wrong with it. numpy, scipy and pycollada are imported inside
+the functions.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+_HEADER = 84  # [bytes]: 80 of text, the triangle count
+_RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
+_MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
+
+
+def read(path: Path, data: bytes):
+    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL, COLLADA or plain OBJ file as
+    trimesh processes it, or None when trimesh should read it. ``data``: the file's bytes
+    (read by the caller, under the mesh size limit)."""
+    suffix = path.suffix.lower()
+    if suffix == ".dae":
+        try:
+            return _collada(data)
+        except Exception:  # pycollada's many errors: trimesh reads it and says what is wrong
+            return None
+    if suffix == ".obj":
+        try:
+            return _obj(data)
+        except (ValueError, IndexError):  # trimesh reads it and says what is wrong
+            return None
+    if suffix != ".stl":
+        return None
+    raw = _stl_binary(data)
+    if raw is None and len(data) != _HEADER + _RECORD * _count(data):
+        raw = _stl_ascii(data)  # trimesh's order: binary when the length fits, else ASCII
+    if raw is None:
+        return None
+    import numpy as np
+
+    if not np.isfinite(raw).all():
+        return None  # trimesh drops the faces of such vertices: let it
+    return _merged(raw)
+
+
+def _count(data: bytes) -> int:
+    return int.from_bytes(data[80:84], "little") if len(data) >= _HEADER else -1
+
+
+def _stl_binary(data: bytes):
+    import numpy as np
+
+    count = _count(data)
+    if count <= 0 or len(data) != _HEADER + _RECORD * count:
+        return None
+    records = np.frombuffer(data, dtype=np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)),
+                                                  ("attribute", "<u2")]), offset=_HEADER)
+    return records["vertices"].reshape(-1, 3).astype(np.float64)
+
+
+def _stl_ascii(data: bytes):
+    """The vertices of an ASCII STL of one solid, split and parsed as trimesh does."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8").strip().lower()
+    except UnicodeDecodeError:
+        return None
+    start, end = text.find("solid"), text.find("endsolid")
+    if start < 0 or end < 0 or start > end or text.find("solid", end + 8) >= 0:
+        return None  # none, or several solids: trimesh's scene of them
+    pieces = text[start:end].split("vertex")[1:]
+    vertices = np.fromstring(" ".join(line[:line.find("\n")] for line in pieces), sep=" ",
+                             dtype=np.float64) if pieces else np.zeros(0)
+    if len(vertices) < 9 or len(vertices) % 9:
+        return None
+    return vertices.reshape(-1, 3)
+
+
+def _collada(data: bytes):
+    """A COLLADA document's geometry as ``trimesh.load(force="mesh")`` builds it, read by
+    pycollada as trimesh reads it: each instanced triangle set a mesh whose corners are merged
+    where position, normal (to 1e-2) and texture coordinate (to 1e-4, when its material is
+    bound) agree, moved by its node's transform, all appended in scene order. None for what
+    trimesh would build otherwise (no geometry, coordinates that are not finite)."""
+    import io
+
+    import collada
+    import numpy as np
+
+    document = collada.Collada(io.BytesIO(data), ignore=[
+        collada.common.DaeError, collada.common.DaeIncompleteError,
+        collada.common.DaeMalformedError, collada.common.DaeBrokenRefError,
+        collada.common.DaeUnsupportedError])
+    if document.scene is None:
+        return None
+    parts = []
+
+    def visit(node, matrix):
+        if isinstance(node, collada.scene.GeometryNode):
+            bound = {material.symbol for material in node.materials}
+            for primitive in node.geometry.primitives:
+                if isinstance(primitive, collada.polylist.Polylist):
+                    primitive = primitive.triangleset()
+                if not isinstance(primitive, collada.triangleset.TriangleSet) or \
+                        primitive.vertex is None:
+                    continue
+                index = primitive.vertex_index
+                columns = [primitive.vertex[index].reshape(len(index) * 3, 3) * 1e8]
+                if primitive.material in bound and len(primitive.texcoordset) > 0:
+                    uv = primitive.texcoordset[0][primitive.texcoord_indexset[0]]
+                    columns.append(uv.reshape(len(index) * 3, 2) * 1e4)
+                if primitive.normal is not None:
+                    normals = primitive.normal[primitive.normal_index]
+                    columns.append(normals.reshape(len(index) * 3, 3) * 1e2)
+                parts.append((primitive.vertex[index].reshape(len(index) * 3, 3),
+                              np.column_stack(columns), matrix))
+        elif isinstance(node, collada.scene.Node) and node.children is not None:
+            for child in node.children:
+                visit(child, np.dot(matrix, node.matrix))
+
+    for node in document.scene.nodes:
+        visit(node, np.eye(4))
+    vertices, faces, offset = [], [], 0
+    for corners, keys, matrix in parts:
+        corners = np.asarray(corners, dtype=np.float64)
+        if not len(corners) or not np.isfinite(keys).all():
+            return None
+        matrix = _rigid(np.array(matrix, dtype=np.float64))
+        if matrix is None:
+            return None
+        merged = _merge(corners, np.arange(len(corners)).reshape(-1, 3), keys)
+        moved, turned = _transformed(*merged, matrix)
+        vertices.append(moved)
+        faces.append(turned + offset)
+        offset += len(moved)
+    if not faces:
+        return None
+    return np.vstack(vertices), np.vstack(faces)
+
+
+def _obj(data: bytes):
+    """A plain OBJ's triangles as trimesh loads them: ``v`` (3 numbers), ``vt`` (2), ``vn``
+    (3) and triangular ``f`` lines of one corner form (``v``, ``v/t``, ``v//n``, ``v/t/n``,
+    positive indices), at most ``o`` and ``s`` besides. A corner is split from another at
+    the same position where its texture coordinate (to 1e-4) or normal (to 1e-2) differs, as
+    trimesh's processing keeps them apart; the merged positions are trimesh's (its vertex order
+    may differ among corners of one ``v``). None for anything else (materials, groups,
+    polygons, colours, negative indices...)."""
+    import numpy as np
+
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    text = "\n{}\n".format(text.strip().replace("\r\n", "\n")).replace("\\\n", "")
+    if "+e" in text or "-e" in text:
+        return None  # trimesh rewrites these before parsing
+    rows = {"v": [], "vt": [], "vn": [], "f": [], "o": [], "s": []}
+    for line in text.split("\n"):
+        head, space, rest = line.partition(" ")
+        found = rows.get(head) if space else None
+        if found is not None:
+            found.append(rest)
+        elif line.strip() and not line.startswith("#"):
+            return None  # materials, groups, lines, indented or unknown statements
+    if not rows["v"] or not rows["f"]:
+        return None
+    for key, count in (("v", 3), ("vt", 2), ("vn", 3)):
+        if any(len(line.split()) != count for line in rows[key]):
+            return None  # colours, 3D texture coordinates...
+    sample = rows["f"][0].split()[0]
+    form = {0: 0, 1: 1, 2: 2 if "//" in sample else 3}.get(sample.count("/"))
+    corner = (r"\d+", r"\d+/\d+", r"\d+//\d+", r"\d+/\d+/\d+")[form or 0]
+    pattern = re.compile(rf"\s*{corner}\s+{corner}\s+{corner}\s*")
+    if form is None or not all(pattern.fullmatch(line) for line in rows["f"]):
+        return None  # polygons, mixed corner forms, negative indices
+    arrays = {key: np.fromstring(" ".join(rows[key]), sep=" ", dtype=np.float64).reshape(
+        -1, 2 if key == "vt" else 3) if rows[key] else None for key in ("v", "vt", "vn")}
+    index = np.fromstring(" ".join(rows["f"]).replace("/", " "), sep=" ", dtype=np.int64)
+    width = (1, 2, 2, 3)[form]
+    index = index.reshape(-1, width) - 1
+    if (index < 0).any():
+        return None  # index 0 does not exist; trimesh reads what it makes of it
+    columns = [("v", 0)] + {0: [], 1: [("vt", 1)], 2: [("vn", 1)],
+                            3: [("vt", 1), ("vn", 2)]}[form]
+    for key, column in columns:
+        if arrays[key] is None or index[:, column].max() >= len(arrays[key]) or \
+                not np.isfinite(arrays[key]).all():
+            return None
+    scales = {"v": 1e8, "vt": 1e4, "vn": 1e2}  # trimesh's merge: 1e-8, uv 1e-4, normals 1e-2
+    keys = np.column_stack([arrays[key][index[:, column]] * scales[key]
+                            for key, column in columns])
+    # corners in the order of their vertex in the file, as trimesh keeps them, then merged
+    order = np.argsort(index[:, 0], kind="stable")
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    positions = arrays["v"][index[order, 0]]
+    merged, faces = _merge(positions, rank.reshape(-1, 3), keys[order])
+    return merged, faces
+
+
+def _rigid(matrix):
+    """A node's transform as trimesh's scene graph hands it out (``fix_rigid``): a rotation
+    off by more than rounding but under 1e-5 is made orthonormal again (SVD). None where
+    trimesh's own check of that repair would fail."""
+    import numpy as np
+
+    off = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - np.eye(3)).max()
+    if not 1e-13 < off < 1e-5:
+        return matrix
+    left, _, right = np.linalg.svd(matrix[:3, :3])
+    repaired = np.eye(4)
+    repaired[:3, :3] = np.dot(left, right)
+    repaired[:3, 3] = matrix[:3, 3]
+    return repaired if np.allclose(repaired, matrix, atol=1e-5) else None
+
+
+def _merged(corners):
+    """Triangle corners (3m, 3) -> (vertices, faces) as trimesh's merge_vertices makes them:
+    corners equal when rounded to 1e-8 are one vertex, with the coordinates of the first."""
+    import numpy as np
+
+    return _merge(corners, np.arange(len(corners)).reshape(-1, 3))
+
+
+def _merge(vertices, faces, keys=None):
+    """(vertices, faces) with the vertices equal to 1e-8 merged as trimesh's merge_vertices
+    merges them: the first of equal ones kept, in order of first appearance. ``keys``: the
+    scaled columns to compare instead (positions, normals, texture coordinates)."""
+    import numpy as np
+
+    if keys is None:
+        keys = vertices * 10 ** _MERGE_DIGITS
+    first, inverse = _unique_rows(keys.round().astype(np.int64))
+    order = np.argsort(first)
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    return vertices[first[order]], rank[inverse][faces]
+
+
+def _unique_rows(keys):
+    """(index of the first of each distinct row, row -> its distinct row) of an (n, 3) int64
+    array: rows are hashed to one integer to sort fast, and the grouping is then checked
+    against the rows themselves (on a collision, rows are compared whole)."""
+    import numpy as np
+
+    words = np.ascontiguousarray(keys).view(np.uint64)
+    hashed = np.zeros(len(keys), dtype=np.uint64)
+    factors = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB)  # splitmix64's
+    with np.errstate(over="ignore"):
+        for column in range(keys.shape[1]):
+            hashed = (hashed + words[:, column]) * np.uint64(factors[column % 3])
+            hashed ^= hashed >> np.uint64(31)
+    _, first, inverse = np.unique(hashed, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    if not (keys[first][inverse] == keys).all():  # two rows share a hash
+        rows = np.ascontiguousarray(keys).view(np.dtype((np.void, 8 * keys.shape[1]))).ravel()
+        _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
+        inverse = inverse.ravel()
+    return first, inverse
+
+
+def scaled(vertices, faces, scale):
+    """(vertices, faces) after trimesh's ``apply_scale(scale)``: nothing for a scale within
+    1e-8 of one, and faces turned over when the scale mirrors (so the volume stays positive)."""
+    import numpy as np
+
+    matrix = np.eye(4)
+    matrix[:3, :3] *= np.asarray(scale, dtype=np.float64)
+    return _transformed(vertices, faces, matrix)
+
+
+def _transformed(vertices, faces, matrix):
+    """(vertices, faces) after trimesh's ``apply_transform(matrix)`` (4 x 4)."""
+    import numpy as np
+
+    if np.abs(matrix - np.eye(4)).max() < 1e-8:
+        return vertices, faces
+    stacked = np.column_stack((vertices, np.ones(len(vertices))))
+    moved = np.dot(matrix, stacked.T).T[:, :3]
+    turned = np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
+        np.linalg.det(matrix[:3, :3]) < 0.0
+    return moved, (np.ascontiguousarray(np.fliplr(faces)) if turned else faces)
+
+
+def bounds(vertices, faces):
+    """(min corner, max corner) of the vertices the faces use, or None."""
+    import numpy as np
+
+    used = np.zeros(len(vertices), dtype=bool)
+    used[faces] = True
+    inside = vertices if used.all() else vertices[used]
+    if not len(inside):
+        return None
+    return inside.min(axis=0), inside.max(axis=0)
+
+
+def is_watertight(faces) -> bool:
+    """trimesh's test: every edge (sorted pair of vertices) is shared by exactly two faces."""
+    import numpy as np
+
+    if not len(faces):
+        return False
+    edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    keys = np.sort(edges[:, 0] * np.int64(int(faces.max()) + 1) + edges[:, 1])
+    pairs, seconds = keys[0::2], keys[1::2]
+    # sorted, every value exactly twice: equal pairs, each pair below the next
+    return len(keys) % 2 == 0 and bool((pairs == seconds).all()) and \
+        bool((seconds[:-1] < pairs[1:]).all())
+
+
+def _winding_consistent(faces) -> bool:
+    """trimesh's test: every edge that exactly two faces share is walked in opposite
+    directions by them (the second starts where the first ends)."""
+    import numpy as np
+
+    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    size = np.int64(int(faces.max()) + 1)
+    undirected = np.sort(edges, axis=1)
+    order = np.argsort(undirected[:, 0] * size + undirected[:, 1], kind="stable")
+    keys = (undirected[:, 0] * size + undirected[:, 1])[order]
+    starts = np.flatnonzero(np.r_[True, keys[1:] != keys[:-1]])
+    pairs = starts[np.diff(np.r_[starts, len(keys)]) == 2]
+    return bool((edges[order[pairs], 1] == edges[order[pairs + 1], 0]).all())
+
+
+def convex_hull(vertices):
+    """(vertices, faces, mass properties) of the convex hull of ``vertices`` as
+    ``trimesh.convex.convex_hull`` builds and measures it (qhull with "QbB Pp Qt", again with
+    "QJ" on failure; faces of no area dropped and turned outward; vertices merged to 1e-8),
+    without trimesh; a closed hull inside out is turned over. None when trimesh would repair
+    its winding (faces not consistently wound), for trimesh to build.
+    Raises qhull's error (a RuntimeError) when even a joggled hull fails: a flat mesh."""
+    import numpy as np
+    from scipy.spatial import ConvexHull, QhullError
+
+    points = np.asarray(vertices, dtype=np.float64)
+    try:
+        hull = ConvexHull(points, qhull_options="QbB Pp Qt")
+    except QhullError:
+        hull = ConvexHull(points, qhull_options="QJ")
+    used = np.sort(hull.vertices)
+    index = np.zeros(len(hull.points), dtype=np.int64)
+    index[used] = np.arange(len(used))
+    faces, points = index[hull.simplices].copy(), hull.points[used].copy()
+    corners = points[faces]
+    vectors = corners[:, 1:, :] - corners[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    norms = np.sqrt(np.dot(crosses * crosses, [1.0, 1.0, 1.0]))
+    valid = norms > float(np.finfo(np.float64).resolution * 100)
+    faces, crosses, norms = faces[valid], crosses[valid], norms[valid]
+    centers = points[faces].mean(axis=1)
+    areas = np.sqrt((crosses ** 2).sum(axis=1)) / 2.0
+    try:
+        centroid = np.average(centers, weights=areas, axis=0)
+    except ZeroDivisionError:
+        centroid = points.mean(axis=0) if len(points) else np.zeros(3)
+    backwards = ((crosses / norms.reshape(-1, 1)) * (centers - centroid)).sum(axis=1) < 0.0
+    faces[backwards] = np.fliplr(faces[backwards])
+    points, faces = _merge(points, faces)
+    if not len(faces) or not _winding_consistent(faces):
+        return None  # trimesh turns faces over along its face graph
+    properties = mass_properties(points, faces)
+    if properties["volume"] < 0.0 and is_watertight(faces):  # inside out: turned over
+        faces = np.ascontiguousarray(np.fliplr(faces))
+        properties = mass_properties(points, faces)
+    return points, faces, properties
+
+
+def mass_properties(vertices, faces) -> dict:
+    """Volume, centre of mass and inertia about it (density 1) of a closed triangle mesh, by
+    trimesh's integration (Eberly, "Polyhedral Mass Properties"), term for term, so the numbers
+    are trimesh's: keys ``mass`` (= volume), ``volume``, ``center_mass``, ``inertia``."""
+    import numpy as np
+
+    triangles = vertices[faces]
+    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    t0, t1, t2 = triangles[:, 0, :], triangles[:, 1, :], triangles[:, 2, :]
+    f1 = t0 + t1 + t2
+    f2 = t0 ** 2 + t1 ** 2 + t0 * t1 + t2 * f1
+    f3 = t0 ** 3 + (t0 ** 2) * t1 + t0 * (t1 ** 2) + t1 ** 3 + t2 * f2
+    g0 = f2 + (t0 + f1) * t0
+    g1 = f2 + (t1 + f1) * t1
+    g2 = f2 + (t2 + f1) * t2
+    integral = np.zeros((10, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integral[4:7] = (crosses * f3).T
+    for i in range(3):
+        j = (i + 1) % 3
+        integral[i + 7] = crosses[:, i] * (t0[:, j] * g0[:, i] + t1[:, j] * g1[:, i]
+                                           + t2[:, j] * g2[:, i])
+    integrated = integral.sum(axis=1) / np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120],
+                                                 dtype=np.float64)
+    volume = integrated[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        center = integrated[1:4] / volume
+    inertia = np.zeros((3, 3))
+    inertia[0, 0] = integrated[5] + integrated[6] - volume * (center[[1, 2]] ** 2).sum()
+    inertia[1, 1] = integrated[4] + integrated[6] - volume * (center[[0, 2]] ** 2).sum()
+    inertia[2, 2] = integrated[4] + integrated[5] - volume * (center[[0, 1]] ** 2).sum()
+    inertia[0, 1] = -(integrated[7] - volume * np.prod(center[[0, 1]]))
+    inertia[1, 2] = -(integrated[8] - volume * np.prod(center[[1, 2]]))
+    inertia[0, 2] = -(integrated[9] - volume * np.prod(center[[0, 2]]))
+    inertia[2, 0], inertia[2, 1], inertia[1, 0] = inertia[0, 2], inertia[1, 2], inertia[0, 1]
+    return {"mass": volume, "volume": volume, "center_mass": center, "inertia": inertia}
