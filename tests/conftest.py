@@ -106,6 +106,16 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
             for entry in corpus_entry_points()}
 
 
+def without_heavy_imports(code: str) -> str:
+    """The output of ``code`` run in a fresh interpreter that then asserts neither trimesh nor
+    pycollada was imported (what checking without them promises)."""
+    script = (f"import sys\n{code}\nassert 'trimesh' not in sys.modules, 'trimesh imported'\n"
+              "assert 'collada' not in sys.modules, 'pycollada imported'\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
 # ---- synthetic robots of any size (benchmarks/generate.py, the one generator) ------------
 
 def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:

@@ -1,14 +1,12 @@
-"""STL read and measured without trimesh: the arrays and numbers trimesh gives (the whole public
-corpus is compared in tests/integration/test_corpus_meshes.py)."""
+"""Meshes read and measured without trimesh: the arrays and numbers trimesh gives, corners merged
+by position (the whole public corpus is compared in tests/integration/test_corpus_meshes.py)."""
 
 from __future__ import annotations
-
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
+from conftest import without_heavy_imports
 from urdftool.description import mesh_arrays
 
 
@@ -16,6 +14,14 @@ def _trimesh_of(path):
     import trimesh
 
     return trimesh.load(str(path), force="mesh", process=True)
+
+
+def _trimesh_by_position(path):
+    """trimesh's mesh with its corners merged by position alone (normals and texture
+    coordinates ignored): what the arrays of a COLLADA or OBJ file are."""
+    mesh = _trimesh_of(path)
+    mesh.merge_vertices(merge_tex=True, merge_norm=True)
+    return mesh
 
 
 def _box(tmp_path, name="box.stl", ascii=False, open_=False):
@@ -71,7 +77,7 @@ def test_corners_that_differ_by_sign_are_not_merged():
     checked against the rows, and the hash keeps them apart."""
     corners = np.array([[-0.000525, 0.0122, 0.013], [-0.000525, -0.0122, -0.013],
                         [0.1, 0.0, 0.0]] * 2)
-    vertices, faces = mesh_arrays._merged(corners)
+    vertices, faces = mesh_arrays.merged(corners, np.arange(6).reshape(2, 3))
     assert len(vertices) == 3 and faces.tolist() == [[0, 1, 2], [0, 1, 2]]
 
 
@@ -134,15 +140,12 @@ def test_checking_a_robot_of_stl_or_collada_meshes_does_not_import_trimesh(tmp_p
         'ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial><visual><geometry><mesh '
         f'filename="{name}"/></geometry></visual><collision><geometry><mesh '
         f'filename="{name}" scale="2 2 2"/></geometry></collision></link></robot>')
-    script = ("import sys\nfrom urdftool.lint.engine import CheckOptions, check_file\n"
-              f"result = check_file({str(robot)!r}, CheckOptions())\n"
-              "assert 'trimesh' not in sys.modules, 'trimesh imported'\n"
-              "print(sorted(f.code for f in result.findings))\n")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
-    assert done.returncode == 0, done.stderr
+    output = without_heavy_imports(
+        "from urdftool.lint.engine import CheckOptions, check_file\n"
+        f"print(sorted(f.code for f in check_file({str(robot)!r}, CheckOptions()).findings))")
     # 2000 kg in 0.048 m^3 (the hull's volume, for the open box) is denser than osmium
-    assert "U311" in done.stdout
-    assert ("U414" if open_ else "U310") in done.stdout  # U310: compared with the box's inertia
+    assert "U311" in output
+    assert ("U414" if open_ else "U310") in output  # U310: compared with the box's inertia
 
 
 _COLLADA = """<?xml version="1.0" encoding="utf-8"?>
@@ -190,21 +193,80 @@ _COLLADA = """<?xml version="1.0" encoding="utf-8"?>
 def test_collada_arrays_are_trimeshs_through_nodes_mirrors_and_seams(tmp_path):
     """A cube as quads with normals and texture coordinates, instanced twice: rotated and
     moved, and mirrored inside a nested node. trimesh splits corners where the normal or (with
-    a bound material) the texture coordinate differs; so do the arrays."""
+    a bound material) the texture coordinate differs, and so calls the cubes open; merged by
+    position they are trimesh's triangles, closed, of trimesh's volume."""
     path = tmp_path / "m.dae"
     path.write_text(_COLLADA)
     vertices, faces = mesh_arrays.read(path, path.read_bytes())
-    mesh = _trimesh_of(path)
-    assert np.array_equal(vertices, mesh.vertices) and np.array_equal(faces, mesh.faces)
-    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
+    assert not _trimesh_of(path).is_watertight  # the seams
+    mesh = _trimesh_by_position(path)
+    assert len(vertices) == len(mesh.vertices) == 16
+    assert np.array_equal(np.sort(vertices[faces].reshape(-1, 9), axis=0),
+                          np.sort(mesh.vertices[mesh.faces].reshape(-1, 9), axis=0))
+    assert mesh_arrays.is_watertight(faces) and mesh.is_watertight
     ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
     assert ours["volume"] == pytest.approx(theirs["volume"], rel=1e-12)
+    assert ours["volume"] == pytest.approx(3.0, rel=1e-6)  # 1 + 2: the second is scaled by 2
 
 
-def test_collada_that_pycollada_refuses_is_left_to_trimesh(tmp_path):
+def _cube_with_split_normals() -> str:
+    """A unit cube as 12 triangles with one normal per face: 24 corners at 8 positions."""
+    corners = [(0, 2, 6, 4), (1, 5, 7, 3), (0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6)]
+    positions = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    normals = [(-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (0, 0, -1), (0, 0, 1)]
+    points, indices = [], []
+    for face, quad in enumerate(corners):  # every face its own four corners
+        points += [positions[k] for k in quad]
+        for a, b, c in ((0, 1, 2), (0, 2, 3)):
+            indices += [f"{4 * face + a} {face}", f"{4 * face + b} {face}",
+                        f"{4 * face + c} {face}"]
+    floats = " ".join(f"{v}" for point in points for v in point)
+    normal_floats = " ".join(f"{v}" for normal in normals for v in normal)
+    xyz = '<param name="X" type="float"/><param name="Y" type="float"/>' \
+          '<param name="Z" type="float"/>'
+    return f"""<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <library_geometries><geometry id="g"><mesh>
+    <source id="p"><float_array id="pa" count="72">{floats}</float_array><technique_common>
+      <accessor source="#pa" count="24" stride="3">{xyz}</accessor></technique_common></source>
+    <source id="n"><float_array id="na" count="18">{normal_floats}</float_array>
+      <technique_common><accessor source="#na" count="6" stride="3">{xyz}</accessor>
+      </technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="12"><input semantic="VERTEX" source="#v" offset="0"/>
+      <input semantic="NORMAL" source="#n" offset="1"/><p>{" ".join(indices)}</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="a"><instance_geometry url="#g"/>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
+
+
+def test_a_collada_cube_with_split_normals_is_watertight_with_the_cubes_volume(tmp_path):
+    """24 corners (one normal per face) at 8 positions: trimesh keeps the faces apart and calls
+    the cube open; by position it is closed, its volume and inertia the cube's."""
+    path = tmp_path / "cube.dae"
+    path.write_text(_cube_with_split_normals())
+    vertices, faces = mesh_arrays.read(path, path.read_bytes())
+    assert len(_trimesh_of(path).vertices) == 24 and not _trimesh_of(path).is_watertight
+    assert len(vertices) == 8 and len(faces) == 12
+    assert mesh_arrays.is_watertight(faces)
+    properties = mesh_arrays.mass_properties(vertices, faces)
+    assert properties["volume"] == pytest.approx(1.0, rel=1e-12)
+    assert np.allclose(properties["center_mass"], 0.5)
+    assert np.allclose(properties["inertia"], np.eye(3) / 6.0)  # m (a^2 + a^2) / 12, m = 1
+
+
+def test_collada_that_is_not_well_formed_raises_for_its_recovery(tmp_path):
+    """The caller (meshes) reads what libxml2's recover mode makes of it (U416)."""
+    from urdftool.description.collada import ColladaProblem
+
     path = tmp_path / "m.dae"
     path.write_text(_COLLADA.replace('<node id="a">', '<node id="<a>">'))
-    assert mesh_arrays.read(path, path.read_bytes()) is None
+    with pytest.raises(ColladaProblem) as raised:
+        mesh_arrays.read(path, path.read_bytes())
+    assert raised.value.not_well_formed
 
 
 _OBJ_CUBE_V = "".join(f"v {x} {y} {z}\n" for x in (0, 1) for y in (0, 2) for z in (0, 3))
@@ -228,17 +290,18 @@ def _obj_text(form: str) -> str:
 
 @pytest.mark.parametrize("form", ["{v}", "{v}/{t}", "{v}//{n}", "{v}/{t}/{n}"])
 def test_obj_triangles_are_trimeshs(tmp_path, form):
-    """Every corner form: the same triangles (coordinates), count, split along the same seams
-    (watertightness) and so the same volume as trimesh loads."""
+    """Every corner form: the same triangles (coordinates), count and volume as trimesh
+    loads; trimesh cuts the cube open along its seams where texture coordinates or normals
+    differ, and merged by position it is closed (watertight), as trimesh says once merged."""
     path = tmp_path / "m.obj"
     path.write_text(_obj_text(form))
     vertices, faces = mesh_arrays.read(path, path.read_bytes())
-    mesh = _trimesh_of(path)
-    assert len(vertices) == len(mesh.vertices)
+    if form == "{v}/{t}/{n}":
+        assert not _trimesh_of(path).is_watertight  # the seams
+    mesh = _trimesh_by_position(path)
+    assert len(vertices) == len(mesh.vertices) == 8
     assert np.array_equal(vertices[faces], mesh.vertices[mesh.faces])
-    assert mesh_arrays.is_watertight(faces) == mesh.is_watertight
-    if form in ("{v}", "{v}/{t}/{n}"):  # closed; cut open along its seams
-        assert mesh_arrays.is_watertight(faces) == (form == "{v}")
+    assert mesh_arrays.is_watertight(faces) and mesh.is_watertight
     ours, theirs = mesh_arrays.mass_properties(vertices, faces), mesh.mass_properties
     assert ours["volume"] == theirs["volume"] and abs(ours["volume"]) == pytest.approx(6.0)
 

@@ -124,6 +124,34 @@ def test_collada_that_is_not_well_formed_is_still_counted_before_loading(tmp_pat
     assert error.value.kind == "too-large"
 
 
+def test_collada_that_is_not_well_formed_is_measured_as_recovered_without_trimesh(tmp_path):
+    """mesh_facts reads the recovered document with lxml (read_collada), as load_mesh reads
+    it with trimesh: the same box, marked as repaired (U416); neither trimesh nor pycollada
+    is imported."""
+    from conftest import without_heavy_imports
+
+    _malformed_collada(tmp_path)
+    _robot(tmp_path, "m.dae")
+    output = without_heavy_imports(
+        "from urdftool.description.load import load\n"
+        "from urdftool.description.meshes import NOT_WELL_FORMED, mesh_facts\n"
+        f"facts = mesh_facts(load({str(tmp_path / 'r.urdf')!r}), 'm.dae', (2, 2, 2))\n"
+        "print(sorted(round(float(e), 6) for e in facts.extents), facts.is_watertight,\n"
+        "      facts.metadata[NOT_WELL_FORMED])")
+    assert output.startswith("[0.2, 0.4, 0.6] True line ") and "'<'" in output
+
+
+def test_collada_over_the_triangle_limit_is_refused_when_measured(tmp_path):
+    from urdftool.description import meshes
+
+    _malformed_collada(tmp_path)
+    meshes._RUN_CACHE.clear()
+    with pytest.raises(MeshProblem) as error:
+        meshes.mesh_facts(_robot(tmp_path, "m.dae"), "m.dae",
+                          limits=MeshLimits(max_triangles=11))
+    assert error.value.kind == "too-large" and "11 triangles" in str(error.value)
+
+
 def _count_reads(monkeypatch) -> list:
     """The paths of every mesh file read from now on, by trimesh or without it."""
     from urdftool.description import mesh_arrays, meshes

@@ -60,25 +60,27 @@ def _corrupt(message: str) -> ColladaProblem:
 
 
 def parser(recover: bool = False):
-    """The lxml parser for COLLADA: no entities expanded, no DTD, no network, no huge text
-    nodes (libxml2 then refuses a text node over 10 MB)."""
+    """The lxml parser for COLLADA: no entities expanded, no DTD, no network. Text nodes over
+    10 MB are read, as pycollada reads them (a float array of a large mesh is one): the
+    caller bounds the document's size. ``recover``: libxml2's recover mode, which reads what
+    it can of XML that is not well-formed."""
     from lxml import etree
 
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                           huge_tree=False, recover=recover)
+                           huge_tree=True, recover=recover)
 
 
-def _tag(element) -> str:
+def tag(element) -> str:
     """An element's tag without its namespace; "" for comments and processing instructions."""
     return element.tag.rpartition("}")[2] if isinstance(element.tag, str) else ""
 
 
 def _children(element, name: str) -> list:
-    return [child for child in element if _tag(child) == name]
+    return [child for child in element if tag(child) == name]
 
 
 def _child(element, name: str):
-    return next((child for child in element if _tag(child) == name), None)
+    return next((child for child in element if tag(child) == name), None)
 
 
 def _numbers(element, dtype, what: str):
@@ -115,10 +117,10 @@ def _int_attribute(element, name: str, default: int | None = None) -> int:
     try:
         number = int(value)
     except (TypeError, ValueError):
-        raise _corrupt(f"<{_tag(element)}> (line {element.sourceline}) has {name}="
+        raise _corrupt(f"<{tag(element)}> (line {element.sourceline}) has {name}="
                        f"{value!r}, not a whole number") from None
     if number < 0:
-        raise _corrupt(f"<{_tag(element)}> (line {element.sourceline}) has a negative {name}")
+        raise _corrupt(f"<{tag(element)}> (line {element.sourceline}) has a negative {name}")
     return number
 
 
@@ -127,7 +129,7 @@ def _transform(element):
     makes it (``<lookat>`` as the specification and assimp make it)."""
     import numpy as np
 
-    kind = _tag(element)
+    kind = tag(element)
     sizes = {"matrix": 16, "translate": 3, "rotate": 4, "scale": 3, "lookat": 9}
     values = _floats32(element, f"<{kind}>", sizes[kind])
     if not np.all(np.isfinite(values)):
@@ -166,7 +168,7 @@ def _node_matrix(node):
     """A node's own transforms composed in document order, in float32 as pycollada does."""
     import numpy as np
 
-    transforms = [_transform(child) for child in node if _tag(child) in _TRANSFORMS]
+    transforms = [_transform(child) for child in node if tag(child) in _TRANSFORMS]
     if not transforms:
         return np.identity(4, dtype=np.float32)
     matrix = transforms[0]
@@ -213,8 +215,8 @@ class _Document:
         """The element a ``url``/``source`` attribute ("#id") of ``element`` names."""
         url = element.get("url", element.get("source"))
         found = self.ids.get(url[1:]) if url and url.startswith("#") else None
-        if found is None or _tag(found) not in kinds:
-            raise _corrupt(f"<{_tag(element)}> (line {element.sourceline}) names {url!r}, "
+        if found is None or tag(found) not in kinds:
+            raise _corrupt(f"<{tag(element)}> (line {element.sourceline}) names {url!r}, "
                            f"which is no <{'> or <'.join(kinds)}> of this file")
         return found
 
@@ -228,7 +230,7 @@ class _Document:
                 local = {e.get("id"): e for e in mesh if e.get("id") is not None}
                 total = 0
                 for primitive in mesh:
-                    if _tag(primitive) in _PRIMITIVES:
+                    if tag(primitive) in _PRIMITIVES:
                         piece = self._primitive(primitive, local, total)
                         total += len(piece[1])
                         if len(piece[1]):
@@ -239,7 +241,7 @@ class _Document:
     def _source(self, element, local: dict, semantic: str, kind: str):
         url = element.get("source") or ""
         found = local.get(url[1:]) if url.startswith("#") else None
-        if found is None or _tag(found) != kind:
+        if found is None or tag(found) != kind:
             raise _corrupt(f"<input semantic=\"{semantic}\"> (line {element.sourceline}) names "
                            f"{url!r}, which is no <{kind}> of its <mesh>")
         return found
@@ -271,7 +273,7 @@ class _Document:
     def _primitive(self, primitive, local: dict, before: int):
         import numpy as np
 
-        kind, line = _tag(primitive), primitive.sourceline
+        kind, line = tag(primitive), primitive.sourceline
         inputs = _children(primitive, "input")
         offsets = [_int_attribute(i, "offset") for i in inputs]
         vertex = [(i, o) for i, o in zip(inputs, offsets) if i.get("semantic") == "VERTEX"]
@@ -359,7 +361,7 @@ class _Document:
                 raise _corrupt(f"<node> (line {node.sourceline}): its transforms compose "
                                "beyond floating point range")
             for child in node:
-                kind = _tag(child)
+                kind = tag(child)
                 if kind == "instance_geometry":
                     geometry = self.target(child, ("geometry",))
                     triangles[0] += sum(len(faces) for _, faces in self.geometry(geometry))
@@ -402,8 +404,8 @@ def read_collada(data: bytes, *, max_triangles: int):
         root = etree.fromstring(data, parser())
     except (etree.LxmlError, ValueError) as error:
         raise ColladaProblem("corrupt", f"not well-formed XML: {error}", True) from None
-    if root is None or _tag(root) != "COLLADA":
-        raise _corrupt(f"the root element is <{_tag(root) if root is not None else ''}>, "
+    if root is None or tag(root) != "COLLADA":
+        raise _corrupt(f"the root element is <{tag(root) if root is not None else ''}>, "
                        "not <COLLADA>")
     entity = next(root.iter(etree.Entity), None)
     if entity is not None:

@@ -3,19 +3,20 @@
 A binary STL is an 84-byte header and 50-byte records, an ASCII STL a list of ``vertex``
 lines: both are read here straight into the vertex and face arrays that ``trimesh.load(...,
 process=True)`` builds of them (vertices merged to 1e-8 as trimesh merges them, the first of
-equal ones kept, in order of first use). A COLLADA file is read by pycollada as trimesh reads
-it, and a plain OBJ (vertices, texture coordinates, normals, triangles) directly; both keep
-corners apart where trimesh does (a normal or texture coordinate that differs: a seam). What
-the rules need of a mesh is then measured the way trimesh measures it (bounds, watertightness,
-volume, centre of mass and inertia of a closed mesh, the convex hull of an open one), so that
-checking a robot imports neither trimesh nor its scene machinery; tests compare every measure
-with trimesh's on the public corpus.
+equal ones kept, in order of first use). A COLLADA file gives trimesh's triangles through
+:func:`.collada.read_collada` (lxml), and a plain OBJ (vertices, texture coordinates, normals,
+triangles) is read directly. Their corners are merged by position as an STL's are, where
+trimesh keeps apart corners whose normal or texture coordinate differs: such a seam is no
+hole, and a closed mesh with seams is watertight here (trimesh calls it open). What the rules
+need of a mesh is then measured the way trimesh measures it (bounds, watertightness, volume,
+centre of mass and inertia of a closed mesh, the convex hull of an open one), so that checking
+a robot imports neither trimesh nor pycollada; tests compare every measure with trimesh's on
+the public corpus.
 
 :func:`read` returns None for anything it is not sure to read as trimesh would (another
 format, several solids, text that is not UTF-8, non-finite coordinates, a length that does not
-match the header, no triangles, OBJ materials or polygons, XML pycollada refuses): trimesh then
-reads the file and says what is wrong with it. numpy, scipy and pycollada are imported inside
-the functions.
+match the header, no triangles, OBJ materials or polygons): trimesh then reads the file and
+says what is wrong with it. numpy, scipy and lxml are imported inside the functions.
 """
 
 from __future__ import annotations
@@ -28,16 +29,15 @@ _RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attrib
 _MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
 
 
-def read(path: Path, data: bytes):
-    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL, COLLADA or plain OBJ file as
-    trimesh processes it, or None when trimesh should read it. ``data``: the file's bytes
-    (read by the caller, under the mesh size limit)."""
+def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
+    """(vertices (n, 3) float64, faces (m, 3) int64) of an STL, COLLADA or plain OBJ file:
+    trimesh's triangles, corners merged by position (see the module docstring), or None when
+    trimesh should read it. ``data``: the file's bytes (read by the caller, under the mesh
+    size limit). Raises :class:`.collada.ColladaProblem` for a COLLADA file that is malformed
+    (``not_well_formed`` when its XML is) or holds over ``max_triangles`` triangles."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
-        try:
-            return _collada(data)
-        except Exception:  # pycollada's many errors: trimesh reads it and says what is wrong
-            return None
+        return _collada(data, max_triangles)
     if suffix == ".obj":
         try:
             return _obj(data)
@@ -54,7 +54,7 @@ def read(path: Path, data: bytes):
 
     if not np.isfinite(raw).all():
         return None  # trimesh drops the faces of such vertices: let it
-    return _merged(raw)
+    return merged(raw, np.arange(len(raw)).reshape(-1, 3))
 
 
 def _count(data: bytes) -> int:
@@ -91,76 +91,23 @@ def _stl_ascii(data: bytes):
     return vertices.reshape(-1, 3)
 
 
-def _collada(data: bytes):
-    """A COLLADA document's geometry as ``trimesh.load(force="mesh")`` builds it, read by
-    pycollada as trimesh reads it: each instanced triangle set a mesh whose corners are merged
-    where position, normal (to 1e-2) and texture coordinate (to 1e-4, when its material is
-    bound) agree, moved by its node's transform, all appended in scene order. None for what
-    trimesh would build otherwise (no geometry, coordinates that are not finite)."""
-    import io
+def _collada(data: bytes, max_triangles: int):
+    """A COLLADA document's triangles as :func:`.collada.read_collada` reads them (trimesh's
+    triangles, in the file's unit), their corners merged by position. None when it holds no
+    triangles; :class:`.collada.ColladaProblem` when it is malformed or too large."""
+    from urdftool.description.collada import read_collada
 
-    import collada
-    import numpy as np
-
-    document = collada.Collada(io.BytesIO(data), ignore=[
-        collada.common.DaeError, collada.common.DaeIncompleteError,
-        collada.common.DaeMalformedError, collada.common.DaeBrokenRefError,
-        collada.common.DaeUnsupportedError])
-    if document.scene is None:
-        return None
-    parts = []
-
-    def visit(node, matrix):
-        if isinstance(node, collada.scene.GeometryNode):
-            bound = {material.symbol for material in node.materials}
-            for primitive in node.geometry.primitives:
-                if isinstance(primitive, collada.polylist.Polylist):
-                    primitive = primitive.triangleset()
-                if not isinstance(primitive, collada.triangleset.TriangleSet) or \
-                        primitive.vertex is None:
-                    continue
-                index = primitive.vertex_index
-                columns = [primitive.vertex[index].reshape(len(index) * 3, 3) * 1e8]
-                if primitive.material in bound and len(primitive.texcoordset) > 0:
-                    uv = primitive.texcoordset[0][primitive.texcoord_indexset[0]]
-                    columns.append(uv.reshape(len(index) * 3, 2) * 1e4)
-                if primitive.normal is not None:
-                    normals = primitive.normal[primitive.normal_index]
-                    columns.append(normals.reshape(len(index) * 3, 3) * 1e2)
-                parts.append((primitive.vertex[index].reshape(len(index) * 3, 3),
-                              np.column_stack(columns), matrix))
-        elif isinstance(node, collada.scene.Node) and node.children is not None:
-            for child in node.children:
-                visit(child, np.dot(matrix, node.matrix))
-
-    for node in document.scene.nodes:
-        visit(node, np.eye(4))
-    vertices, faces, offset = [], [], 0
-    for corners, keys, matrix in parts:
-        corners = np.asarray(corners, dtype=np.float64)
-        if not len(corners) or not np.isfinite(keys).all():
-            return None
-        matrix = _rigid(np.array(matrix, dtype=np.float64))
-        if matrix is None:
-            return None
-        merged = _merge(corners, np.arange(len(corners)).reshape(-1, 3), keys)
-        moved, turned = _transformed(*merged, matrix)
-        vertices.append(moved)
-        faces.append(turned + offset)
-        offset += len(moved)
-    if not faces:
-        return None
-    return np.vstack(vertices), np.vstack(faces)
+    vertices, faces = read_collada(data, max_triangles=max_triangles)
+    return merged(vertices, faces) if len(faces) else None
 
 
 def _obj(data: bytes):
     """A plain OBJ's triangles as trimesh loads them: ``v`` (3 numbers), ``vt`` (2), ``vn``
     (3) and triangular ``f`` lines of one corner form (``v``, ``v/t``, ``v//n``, ``v/t/n``,
-    positive indices), at most ``o`` and ``s`` besides. A corner is split from another at
-    the same position where its texture coordinate (to 1e-4) or normal (to 1e-2) differs, as
-    trimesh's processing keeps them apart; the merged positions are trimesh's (its vertex order
-    may differ among corners of one ``v``). None for anything else (materials, groups,
-    polygons, colours, negative indices...)."""
+    positive indices), at most ``o`` and ``s`` besides; corners merged by position (trimesh
+    keeps apart those whose texture coordinate or normal differs: a seam, no hole). None for
+    anything else (materials, groups, polygons, colours, negative indices...), and for indices
+    out of range and coordinates that are not finite."""
     import numpy as np
 
     try:
@@ -202,50 +149,19 @@ def _obj(data: bytes):
         if arrays[key] is None or index[:, column].max() >= len(arrays[key]) or \
                 not np.isfinite(arrays[key]).all():
             return None
-    scales = {"v": 1e8, "vt": 1e4, "vn": 1e2}  # trimesh's merge: 1e-8, uv 1e-4, normals 1e-2
-    keys = np.column_stack([arrays[key][index[:, column]] * scales[key]
-                            for key, column in columns])
-    # corners in the order of their vertex in the file, as trimesh keeps them, then merged
-    order = np.argsort(index[:, 0], kind="stable")
-    rank = np.empty(len(order), dtype=np.int64)
-    rank[order] = np.arange(len(order))
-    positions = arrays["v"][index[order, 0]]
-    merged, faces = _merge(positions, rank.reshape(-1, 3), keys[order])
-    return merged, faces
+    corners = arrays["v"][index[:, 0]]
+    return merged(corners, np.arange(len(corners)).reshape(-1, 3))
 
 
-def _rigid(matrix):
-    """A node's transform as trimesh's scene graph hands it out (``fix_rigid``): a rotation
-    off by more than rounding but under 1e-5 is made orthonormal again (SVD). None where
-    trimesh's own check of that repair would fail."""
-    import numpy as np
-
-    off = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - np.eye(3)).max()
-    if not 1e-13 < off < 1e-5:
-        return matrix
-    left, _, right = np.linalg.svd(matrix[:3, :3])
-    repaired = np.eye(4)
-    repaired[:3, :3] = np.dot(left, right)
-    repaired[:3, 3] = matrix[:3, 3]
-    return repaired if np.allclose(repaired, matrix, atol=1e-5) else None
-
-
-def _merged(corners):
-    """Triangle corners (3m, 3) -> (vertices, faces) as trimesh's merge_vertices makes them:
-    corners equal when rounded to 1e-8 are one vertex, with the coordinates of the first."""
-    import numpy as np
-
-    return _merge(corners, np.arange(len(corners)).reshape(-1, 3))
-
-
-def _merge(vertices, faces, keys=None):
+def merged(vertices, faces):
     """(vertices, faces) with the vertices equal to 1e-8 merged as trimesh's merge_vertices
-    merges them: the first of equal ones kept, in order of first appearance. ``keys``: the
-    scaled columns to compare instead (positions, normals, texture coordinates)."""
+    merges an STL's: the first of equal ones kept, in order of first appearance. Normals and
+    texture coordinates play no part: a seam, where a COLLADA or OBJ file keeps corners apart
+    because their normals or texture coordinates differ, is no hole, so watertightness is
+    judged on these."""
     import numpy as np
 
-    if keys is None:
-        keys = vertices * 10 ** _MERGE_DIGITS
+    keys = vertices * 10 ** _MERGE_DIGITS
     first, inverse = _unique_rows(keys.round().astype(np.int64))
     order = np.argsort(first)
     rank = np.empty(len(order), dtype=np.int64)
@@ -372,7 +288,7 @@ def convex_hull(vertices):
         centroid = points.mean(axis=0) if len(points) else np.zeros(3)
     backwards = ((crosses / norms.reshape(-1, 1)) * (centers - centroid)).sum(axis=1) < 0.0
     faces[backwards] = np.fliplr(faces[backwards])
-    points, faces = _merge(points, faces)
+    points, faces = merged(points, faces)
     if not len(faces) or not _winding_consistent(faces):
         return None  # trimesh turns faces over along its face graph
     properties = mass_properties(points, faces)

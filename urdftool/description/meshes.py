@@ -23,9 +23,10 @@ mesh goes through the same checks before trimesh touches it:
 A URI is resolved and checked once per robot. Meshes are read once per run (process), keyed by
 resolved path, file identity and modification and the limits, and cached per robot by scale.
 What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
-centre of mass, inertia, the convex hull's) is measured once per file and scale per run; STL,
-COLLADA and plain OBJ files are read and measured without trimesh (:mod:`.mesh_arrays`;
-COLLADA through pycollada as trimesh reads it), other formats through it.
+centre of mass, inertia, the convex hull's) is measured once per file and scale per run, on
+the mesh's corners merged by position (a seam of normals or texture coordinates is no hole);
+STL, COLLADA and plain OBJ files are read and measured without trimesh or pycollada
+(:mod:`.mesh_arrays`, COLLADA through :mod:`.collada`), other formats through trimesh.
 trimesh is imported lazily.
 COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazebo do.
 """
@@ -45,6 +46,7 @@ from pathlib import Path
 
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description import mesh_arrays
+from urdftool.description.collada import ColladaProblem, parser, tag
 from urdftool.description.files import inside, read_regular
 from urdftool.description.packages import containment_root, package_uri_parts
 
@@ -202,23 +204,18 @@ def _numbers(text: str | None) -> int:
     return len(_corners(text.encode("utf-8", "replace")).replace(b"\n", b"")) if text else 0
 
 
-def _tag(element) -> str:
-    """An element's tag without its namespace; "" for comments and processing instructions."""
-    return element.tag.rpartition("}")[2] if isinstance(element.tag, str) else ""
-
-
 def _primitive_triangles(primitive) -> int:
     """Triangles pycollada and trimesh make of one ``<triangles>``/``<polylist>``/... element:
     every ``<p>`` holds one index per input offset per corner; a polygon of k corners is k - 2."""
     offsets = [int(c.get("offset", "0")) for c in primitive
-               if _tag(c) == "input" and c.get("offset", "0").isdigit()]
+               if tag(c) == "input" and c.get("offset", "0").isdigit()]
     stride = max(offsets, default=0) + 1
-    corners = [_numbers(c.text) // stride for c in primitive if _tag(c) == "p"]
-    kind = _tag(primitive)
+    corners = [_numbers(c.text) // stride for c in primitive if tag(c) == "p"]
+    kind = tag(primitive)
     if kind == "triangles":
         return sum(corners) // 3
     if kind == "polylist":
-        polygons = sum(_numbers(c.text) for c in primitive if _tag(c) == "vcount")
+        polygons = sum(_numbers(c.text) for c in primitive if tag(c) == "vcount")
         return max(sum(corners) - 2 * polygons, 0)
     return sum(max(k - 2, 0) for k in corners)
 
@@ -241,7 +238,7 @@ def _collada_triangles(path: Path) -> int | None:
         element = ids.get((url or "").lstrip("#"))
         if element is None:
             return 0
-        kind = _tag(element)
+        kind = tag(element)
         if kind == "controller":  # a skin or morph deforms a geometry named by its source
             sources = [c.get("source") for c in element.iter("{*}skin", "{*}morph")]
             return sum(geometry(source) for source in sources if source != url)
@@ -262,7 +259,7 @@ def _collada_triangles(path: Path) -> int | None:
             node_triangles[element] = None  # a cycle counts as over the limit
             total = 0
             for child in element:
-                kind = _tag(child)
+                kind = tag(child)
                 if kind in ("instance_geometry", "instance_controller"):
                     total += geometry(child.get("url"))
                 elif kind == "node":
@@ -276,17 +273,10 @@ def _collada_triangles(path: Path) -> int | None:
 
     try:
         return sum(node(top, 0) for scene in root.iter("{*}visual_scene")
-                   for top in scene if _tag(top) == "node")
+                   for top in scene if tag(top) == "node")
     finally:  # node() and geometry() refer to themselves: free the tree before trimesh reads
         for table in (ids, geometry_triangles, node_triangles):
             table.clear()
-
-
-def _collada_parser(recover: bool):
-    from lxml import etree
-
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                           huge_tree=True, recover=recover)
 
 
 def _collada_root(path: Path, recover: bool):
@@ -295,7 +285,7 @@ def _collada_root(path: Path, recover: bool):
     from lxml import etree
 
     try:
-        return etree.parse(str(path), _collada_parser(recover)).getroot()
+        return etree.parse(str(path), parser(recover)).getroot()
     except (etree.LxmlError, OSError, ValueError):
         return None
 
@@ -308,14 +298,14 @@ def _recovered_collada(path: Path) -> tuple[bytes, str] | None:
     XML, the first error with its line), or None when it makes none."""
     from lxml import etree
 
-    parser = _collada_parser(recover=True)
+    lenient = parser(recover=True)
     try:
-        root = etree.parse(str(path), parser).getroot()
+        root = etree.parse(str(path), lenient).getroot()
     except (etree.LxmlError, OSError, ValueError):
         return None
     if root is None:
         return None
-    errors = [e for e in parser.error_log if e.level >= etree.ErrorLevels.ERROR]
+    errors = [e for e in lenient.error_log if e.level >= etree.ErrorLevels.ERROR]
     first = f"line {errors[0].line}: {errors[0].message}" if errors else "not well-formed"
     return etree.tostring(root), first
 
@@ -512,8 +502,9 @@ def triangle_count(path: Path) -> int | None:
     return None
 
 
-def _check_size(path: Path, uri: str, limits: MeshLimits) -> None:
-    """Every limit, checked before trimesh reads a byte: size, archive, triangles."""
+def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True) -> None:
+    """Every limit, checked before trimesh reads a byte: size, archive, triangles (unless
+    ``count`` is false: the reader counts them before it builds them)."""
     size = path.stat().st_size
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
@@ -523,10 +514,10 @@ def _check_size(path: Path, uri: str, limits: MeshLimits) -> None:
         raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
                                     "document; urdftool does not inflate archives: store "
                                     "the .dae uncompressed")
-    count = triangle_count(path)
-    if count is not None and count > limits.max_triangles:
-        raise MeshProblem("too-large", f"mesh '{uri}' has {count} triangles, over the limit of "
-                                       f"{limits.max_triangles}; decimate it")
+    triangles = triangle_count(path) if count else None
+    if triangles is not None and triangles > limits.max_triangles:
+        raise MeshProblem("too-large", f"mesh '{uri}' has {triangles} triangles, over the "
+                                       f"limit of {limits.max_triangles}; decimate it")
 
 
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
@@ -648,40 +639,65 @@ def _read_once(path: Path, uri: str, limits: MeshLimits):
 
 
 def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
-    """(vertices, faces, metadata, watertight) of the mesh as trimesh loads it, once per run:
-    read by :mod:`.mesh_arrays` where the format allows (STL, well-formed COLLADA, plain OBJ),
-    else by trimesh (:func:`_read_once`)."""
+    """(vertices, faces, metadata, watertight) of the mesh's triangles, corners merged by
+    position (:func:`.mesh_arrays.merged`), once per run: read by :mod:`.mesh_arrays` where the
+    format allows (STL, COLLADA, plain OBJ), else by trimesh (:func:`_read_once`)."""
     def compute():
-        arrays = None
-        if path.suffix.lower() in (".stl", ".dae", ".obj"):
-            _check_size(path, uri, limits)
+        arrays, metadata = None, {}
+        suffix = path.suffix.lower()
+        if suffix in (".stl", ".dae", ".obj"):
+            # a COLLADA file's triangles are counted as they are read, before they are built
+            _check_size(path, uri, limits, count=suffix != ".dae")
             try:
-                arrays = mesh_arrays.read(path, read_regular(path, limits.max_bytes))
+                data = read_regular(path, limits.max_bytes)
             except OSError:  # trimesh reads it and says what is wrong
-                arrays = None
-            if arrays is not None and path.suffix.lower() == ".dae":
-                unit = collada_unit(path)  # as _read_mesh applies it
-                if unit != 1.0:
-                    arrays = mesh_arrays.scaled(*arrays, (unit, unit, unit))
+                data = None
+            if suffix == ".dae" and data is not None:
+                arrays, metadata = _collada_arrays(path, uri, data, limits)
+            elif data is not None:
+                arrays = mesh_arrays.read(path, data)
         if arrays is None:
             loaded = _read_once(path, uri, limits)
             if isinstance(loaded, MeshProblem):
                 raise loaded
             import numpy as np
 
-            vertices = np.asarray(loaded.vertices, dtype=np.float64)
-            faces = np.asarray(loaded.faces, dtype=np.int64)
-            # counted again though they share the trimesh's memory: either may be dropped first
-            return (vertices, faces, dict(loaded.metadata), mesh_arrays.is_watertight(faces)), \
-                vertices.nbytes + faces.nbytes
+            metadata = dict(loaded.metadata)
+            arrays = mesh_arrays.merged(np.asarray(loaded.vertices, dtype=np.float64),
+                                        np.asarray(loaded.faces, dtype=np.int64))
         vertices, faces = arrays
         if len(faces) > limits.max_triangles:
             raise MeshProblem("too-large", f"mesh '{uri}' has {len(faces)} triangles, over "
                                            f"the limit of {limits.max_triangles}; decimate it")
-        return (vertices, faces, {}, mesh_arrays.is_watertight(faces)), \
+        return (vertices, faces, metadata, mesh_arrays.is_watertight(faces)), \
             vertices.nbytes + faces.nbytes
 
     return _once((str(path), stamp, limits, "arrays"), uri, compute)
+
+
+def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
+    """(arrays or None, metadata) of a COLLADA file read by :mod:`.mesh_arrays`, scaled by its
+    unit as :func:`_read_mesh` scales it; XML that is not well-formed is read as recovered
+    (metadata :data:`NOT_WELL_FORMED`), as :func:`_read_mesh` reads it. None for a document
+    trimesh should judge (no triangles, or malformed: it says what is wrong)."""
+    metadata = {}
+    try:
+        try:
+            arrays = mesh_arrays.read(path, data, limits.max_triangles)
+        except ColladaProblem as problem:
+            recovered = _recovered_collada(path) if problem.not_well_formed else None
+            if recovered is None:
+                raise
+            arrays = mesh_arrays.read(path, recovered[0], limits.max_triangles)
+            metadata = {NOT_WELL_FORMED: recovered[1]}
+    except ColladaProblem as problem:
+        if problem.kind == "too-large":
+            raise MeshProblem("too-large", f"mesh '{uri}': {problem}; not loaded") from None
+        return None, {}
+    unit = collada_unit(path)
+    if arrays is not None and unit != 1.0:
+        arrays = mesh_arrays.scaled(*arrays, (unit, unit, unit))
+    return arrays, metadata
 
 
 def _finite_scale(uri: str, scale) -> tuple[float, float, float]:

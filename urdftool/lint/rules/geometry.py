@@ -373,7 +373,10 @@ def mesh_not_watertight(robot):
     """A mesh that defines a link's inertia is not closed (watertight).
 
     That is the link's collision mesh, or its visual mesh when it has no collision. An open mesh has no well-defined volume, so ``urdftool inertia`` uses its convex hull; the
-    mesh is fine for display and usually for collision.
+    mesh is fine for display and usually for collision. Closed means every edge joins exactly
+    two triangles once corners at one position (to 1e-8) are one vertex: a seam, where a
+    COLLADA or OBJ file keeps corners apart because their normals or texture coordinates
+    differ, is no hole (trimesh alone calls such meshes open).
 
     Bad: an STL with holes as the only collision geometry of a link
     Good: a closed (watertight) collision mesh
