@@ -243,9 +243,12 @@ def _vertex_polytope_volume(points, enough: float = math.inf) -> float:
     directions = np.vstack([np.column_stack([ring * np.cos(golden * k),
                                              ring * np.sin(golden * k), z]),
                             np.eye(3), -np.eye(3)])
-    points = points[np.unique(np.argmax(points @ directions.T, axis=0))]
     extents = points.max(axis=0) - points.min(axis=0)
-    if len(points) < 4 or not float(extents.max()) > 0:
+    if not float(extents.max()) > 0:
+        return 0.0
+    stretch = np.where(extents > 0, extents, float(extents.max()))  # directions as if a cube
+    points = points[np.unique(np.argmax(points @ (directions / stretch).T, axis=0))]
+    if len(points) < 4:
         return 0.0
     axis = int(np.argmax(extents))
     a, b = points[np.argmin(points[:, axis])], points[np.argmax(points[:, axis])]
