@@ -31,7 +31,9 @@ class Shape:
     xyz: mat3.Vector
     rotation: mat3.Matrix
     element: object
-    placed: list | None = field(default=None, repr=False)  # see _placed_shape_corners
+    placed: tuple | None = field(default=None, repr=False)  # see _placed_shape_corners
+    box: tuple | None = field(default=None, repr=False)  # their min and max corner
+    finite: bool = field(default=False, repr=False)  # every coordinate of them finite
 
 
 class LinkSolid:
@@ -349,7 +351,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
     if not chosen:
         return LinkSolid("none")
     result = LinkSolid(source)
-    corners = []
+    boxes = []
     for shape in chosen:
         if shape.kind == "mesh":
             if not load_meshes:
@@ -358,8 +360,9 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
         else:
             result._entries.append(_Entry(shape, mp.transformed(_local(shape)[0], shape.xyz,
                                                                 shape.rotation)))
-        corners.extend(_placed_shape_corners(robot, shape))
-    result.bounds = _box(corners)
+        if _placed_shape_corners(robot, shape):
+            boxes.append(shape.box)
+    result.bounds = _joined(boxes)
     return result
 
 
@@ -396,8 +399,18 @@ def _box(corners) -> tuple[mat3.Vector, mat3.Vector] | None:
     """(min corner, max corner) of points, None without any."""
     if not corners:
         return None
-    axes = tuple(zip(*corners))
-    return tuple(min(values) for values in axes), tuple(max(values) for values in axes)
+    xs, ys, zs = zip(*corners)
+    return (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
+
+
+def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
+    """The box of boxes: what :func:`_box` gives for all their points (the same numbers: the
+    least of the least, the first of equals first)."""
+    if not boxes:
+        return None
+    if len(boxes) == 1:
+        return boxes[0]
+    return _box([low for low, _ in boxes])[0], _box([high for _, high in boxes])[1]
 
 
 def _placed_corners(robot, member) -> tuple[list[mat3.Vector], tuple | None, bool]:
@@ -407,16 +420,14 @@ def _placed_corners(robot, member) -> tuple[list[mat3.Vector], tuple | None, boo
     asks."""
     def build():
         found = _link_shapes(robot, member)
-        corners = [c for tag in ("visual", "collision") for shape in found[tag][0]
-                   for c in _placed_shape_corners(robot, shape)]
-        complete = all(shape.placed for tag in ("visual", "collision")
-                       for shape in found[tag][0]) \
-            and all(len(kept) == count for kept, count in found.values())
+        members = [shape for tag in ("visual", "collision") for shape in found[tag][0]
+                   if _placed_shape_corners(robot, shape)]
+        corners = [c for shape in members for c in shape.placed]
+        complete = len(members) == sum(count for _, count in found.values())
         box = None
-        if corners:
-            axes = tuple(zip(*corners))
-            if all(all(map(math.isfinite, values)) for values in axes):
-                box = [tuple(pick(values) + 0.0 for values in axes) for pick in (min, max)]
+        if members and all(shape.finite for shape in members):
+            box = [tuple(v + 0.0 for v in corner) for corner in
+                   _joined([shape.box for shape in members])]
         return corners, box, complete
 
     return robot.memo((_placed_corners, member), build)
@@ -429,6 +440,9 @@ def _placed_shape_corners(robot, shape: Shape) -> tuple:
         local = _local_bounds(robot, shape)
         shape.placed = () if local is None else _placed(shape.xyz, shape.rotation,
                                                         _corners(local))
+        if shape.placed:
+            shape.box = _box(shape.placed)
+            shape.finite = all(map(math.isfinite, (v for c in shape.placed for v in c)))
     return shape.placed
 
 
