@@ -50,7 +50,7 @@ def test_rigid_bounds_say_when_a_mesh_could_not_be_measured(tmp_path):
 def test_rigid_bounds_equal_the_placed_corners_exactly(tmp_path):
     # the link's own box is taken whole: the same numbers as moving each corner by 0 + I c
     from urdftool.physics import mat3
-    from urdftool.physics.solids import _corners, _local, shapes
+    from urdftool.physics.solids import _corners, _local_box, shapes
 
     text = RIGID.replace('<box size="0.01 0.01 0.01"/></geometry>',
                          '<box size="0.01 0.01 0.01"/></geometry></collision><collision>'
@@ -61,7 +61,7 @@ def test_rigid_bounds_equal_the_placed_corners_exactly(tmp_path):
     robot.links = {"base": link}  # nothing fixed to it
     corners = [mat3.add((0.0, 0.0, 0.0), mat3.apply(mat3.IDENTITY, mat3.add(
         s.xyz, mat3.apply(s.rotation, c)))) for s in shapes(robot, link, "collision")
-        for c in _corners(_local(s)[1])]
+        for c in _corners(_local_box(s))]
     expected = (tuple(min(c[i] for c in corners) for i in range(3)),
                 tuple(max(c[i] for c in corners) for i in range(3)))
     assert rigid_bounds(robot, link).bounds == expected

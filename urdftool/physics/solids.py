@@ -33,7 +33,7 @@ class Shape:
     element: object
     placed: tuple | None = field(default=None, repr=False)  # see _placed_shape_corners
     box: tuple | None = field(default=None, repr=False)  # their min and max corner
-    finite: bool = field(default=False, repr=False)  # every coordinate of them finite
+    finite: bool = field(default=False, repr=False)  # True: every coordinate of them finite
 
 
 class LinkSolid:
@@ -326,15 +326,26 @@ class _Tetrahedra:
 
 
 def _local(shape: Shape):
+    """(unit-density solid, box) of a primitive in its own frame."""
+    p = shape.params
+    if shape.kind == "box":
+        return mp.box(p["size"]), _local_box(shape)
+    if shape.kind == "cylinder":
+        return mp.cylinder(p["radius"], p["length"]), _local_box(shape)
+    return mp.sphere(p["radius"]), _local_box(shape)
+
+
+def _local_box(shape: Shape):
+    """A primitive's box in its own frame: (min corner, max corner)."""
     p = shape.params
     if shape.kind == "box":
         half = tuple(v / 2 for v in p["size"])
-        return mp.box(p["size"]), (tuple(-v for v in half), half)
+        return tuple(-v for v in half), half
     if shape.kind == "cylinder":
         r, h = p["radius"], p["length"] / 2
-        return mp.cylinder(p["radius"], p["length"]), ((-r, -r, -h), (r, r, h))
+        return (-r, -r, -h), (r, r, h)
     r = p["radius"]
-    return mp.sphere(r), ((-r,) * 3, (r,) * 3)
+    return (-r,) * 3, (r,) * 3
 
 
 def _corners(bounds) -> list[mat3.Vector]:
@@ -358,8 +369,8 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
                 continue
             result._entries.append(_quietly(_mesh_entry, robot, shape))
         else:
-            result._entries.append(_Entry(shape, mp.transformed(_local(shape)[0], shape.xyz,
-                                                                shape.rotation)))
+            solid, _ = _local(shape)
+            result._entries.append(_Entry(shape, mp.transformed(solid, shape.xyz, shape.rotation)))
         if _placed_shape_corners(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
@@ -442,7 +453,7 @@ def _placed_shape_corners(robot, shape: Shape) -> tuple:
                                                         _corners(local))
         if shape.placed:
             shape.box = _box(shape.placed)
-            shape.finite = all(map(math.isfinite, (v for c in shape.placed for v in c)))
+            shape.finite = math.isfinite(sum(map(sum, shape.placed)))  # False on overflow too
     return shape.placed
 
 
@@ -457,7 +468,7 @@ def _placed(xyz, rotation, points) -> tuple:
 def _local_bounds(robot, shape: Shape):
     """A shape's box in its own frame, or None for a mesh that does not resolve or load."""
     if shape.kind != "mesh":
-        return _local(shape)[1]
+        return _local_box(shape)
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
     try:
@@ -548,7 +559,7 @@ def surface_points(robot, link) -> tuple:
                 problems.append((shape.element, str(problem)))
                 continue
         elif shape.kind == "box":
-            local = np.array(_corners(_local(shape)[1]))
+            local = np.array(_corners(_local_box(shape)))
         elif shape.kind == "cylinder":
             angles = np.linspace(0.0, 2 * np.pi, _ROUND, endpoint=False)
             ring = np.stack([p["radius"] * np.cos(angles), p["radius"] * np.sin(angles)], -1)
