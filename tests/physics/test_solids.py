@@ -45,3 +45,90 @@ def test_rigid_bounds_say_when_a_mesh_could_not_be_measured(tmp_path):
                                            '<mesh filename="missing.stl"/>'))
     base = rigid_bounds(robot, robot.links["base"])
     assert not base.complete and base.bounds[1] == pytest.approx((0.005,) * 3)
+
+
+def test_rigid_bounds_equal_the_placed_corners_exactly(tmp_path):
+    # the link's own box is taken whole: the same numbers as moving each corner by 0 + I c
+    from urdftool.physics import mat3
+    from urdftool.physics.solids import _corners, _local_box, shapes
+
+    text = RIGID.replace('<box size="0.01 0.01 0.01"/></geometry>',
+                         '<box size="0.01 0.01 0.01"/></geometry></collision><collision>'
+                         '<origin xyz="0.3 -0.1 0" rpy="0.1 0.2 0.3"/><geometry>'
+                         '<cylinder radius="0.07" length="0.3"/></geometry>')
+    robot = _robot(tmp_path, text)
+    link = robot.links["base"]
+    robot.links = {"base": link}  # nothing fixed to it
+    corners = [mat3.add((0.0, 0.0, 0.0), mat3.apply(mat3.IDENTITY, mat3.add(
+        s.xyz, mat3.apply(s.rotation, c)))) for s in shapes(robot, link, "collision")
+        for c in _corners(_local_box(s))]
+    expected = (tuple(min(c[i] for c in corners) for i in range(3)),
+                tuple(max(c[i] for c in corners) for i in range(3)))
+    assert rigid_bounds(robot, link).bounds == expected
+
+
+def test_a_links_shapes_are_read_once_per_robot(tmp_path, monkeypatch):
+    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.physics import solids
+
+    read, shape_of = [], solids.shape_of
+    monkeypatch.setattr(solids, "shape_of", lambda holder: read.append(holder) or shape_of(holder))
+    (tmp_path / "r.urdf").write_text(RIGID.replace(
+        '<link name="tip"/>', '<link name="tip"><inertial><mass value="1"/><inertia ixx="1" '
+        'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>').replace(
+        '<link name="arm">', '<link name="arm"><inertial><mass value="1"/><inertia ixx="0.1" '
+        'ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'))
+    check_file(str(tmp_path / "r.urdf"), CheckOptions())
+    assert len(read) == len(set(read)) == 3  # base's collision, sensor's and arm's visuals
+
+
+def _open_box(tmp_path):
+    """A 10 x 20 x 30 cm box without its top (its hull: the box, 6e-3 m^3), on link 'a'."""
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box(extents=(0.1, 0.2, 0.3))
+    box.update_faces(box.face_normals[:, 2] < 0.5)
+    box.export(tmp_path / "open.stl")
+    return _robot(tmp_path, '<robot name="r"><link name="a"><collision><geometry>'
+                            '<mesh filename="open.stl"/></geometry></collision></link></robot>')
+
+
+def test_an_open_meshs_hull_is_built_when_its_parts_are_read(tmp_path, monkeypatch):
+    from urdftool.description import mesh_arrays
+    from urdftool.physics.solids import HULL_USED, link_solid, volume
+
+    built, hull = [], mesh_arrays.convex_hull
+    monkeypatch.setattr(mesh_arrays, "convex_hull", lambda v: built.append(1) or hull(v))
+    robot = _open_box(tmp_path)
+    solid = link_solid(robot, robot.links["a"])
+    assert not solid.sound and solid.bounds is not None and not built
+    floor = solid.volume_floor()
+    assert not built and 0.9 * 6e-3 < floor <= 6e-3
+    assert HULL_USED in solid.problems[0][1] and built == [1]
+    assert volume(solid) == pytest.approx(6e-3) and floor <= volume(solid)
+
+
+@pytest.mark.parametrize("shape", ["sphere", "cylinder", "normal", "uniform", "flat"])
+def test_hull_floor_is_below_the_hull_and_near_it(shape):
+    np = pytest.importorskip("numpy")
+    trimesh = pytest.importorskip("trimesh")
+    from scipy.spatial import ConvexHull, QhullError
+
+    from urdftool.physics.solids import _hull_floor
+
+    rng = np.random.default_rng(7)
+    points = {"sphere": lambda: trimesh.creation.icosphere(3).vertices,
+              "cylinder": lambda: trimesh.creation.cylinder(0.1, 1.0).vertices,
+              "normal": lambda: rng.normal(size=(500, 3)) * (1.0, 0.1, 0.01),
+              "uniform": lambda: rng.uniform(size=(3000, 3)),
+              "flat": lambda: np.c_[rng.uniform(size=(100, 2)), np.zeros(100)]}[shape]()
+
+    class Mesh:
+        vertices = np.asarray(points, dtype=float)
+
+    try:
+        hull = ConvexHull(Mesh.vertices).volume
+    except QhullError:
+        hull = 0.0
+    floor = _hull_floor(Mesh)
+    assert floor <= hull and (floor >= 0.5 * hull if hull else floor == 0.0)
+    assert _hull_floor(Mesh, enough=0.1 * hull) <= floor  # stops growing once enough

@@ -8,12 +8,14 @@ imported only when a mesh is measured, trimesh only for formats other than STL.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
 from urdftool.description.urdf import SHAPES
 from urdftool.description.values import finite, origin, parse_numbers
+from urdftool.description.xml import first_child
 
 
 HULL_USED = "its convex hull was used"  # the problem of an open mesh that still counts
@@ -29,20 +31,69 @@ class Shape:
     xyz: mat3.Vector
     rotation: mat3.Matrix
     element: object
+    placed: tuple | None = field(default=None, repr=False)  # see _placed_shape_corners
+    box: tuple | None = field(default=None, repr=False)  # their min and max corner
+    finite: bool = field(default=False, repr=False)  # True: every coordinate of them finite
 
 
-@dataclass
 class LinkSolid:
     """What a link's geometry implies: ``source`` is collision, visual or none.
 
     parts: unit-density solids in the link frame; problems: (element, message) for geometry
-    that could not count (missing mesh, open mesh replaced by its hull...)
+    that could not count (missing mesh, open mesh replaced by its hull...). An open mesh's
+    convex hull (and with it scipy) is built only when ``parts`` or ``problems`` is first read:
+    ``sound`` and ``volume_floor`` answer without it.
     """
 
-    source: str
-    parts: list = field(default_factory=list)
+    def __init__(self, source: str):
+        self.source = source
+        self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
+        self._entries: list[_Entry] = []  # one per shape counted, in order
+        self._built: tuple[list, list] | None = None
+
+    @property
+    def parts(self) -> list:
+        return self._build()[0]
+
+    @property
+    def problems(self) -> list:
+        return self._build()[1]
+
+    @property
+    def sound(self) -> bool:
+        """No problems: every shape counted as it is (an open mesh always has one, its hull)."""
+        return not any(entry.open_mesh is not None for entry in self._entries) \
+            and not self.problems
+
+    def volume_floor(self, enough: float = math.inf) -> float:
+        """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open
+        meshes): an open mesh counts with a polytope on its vertices, which its hull holds,
+        grown only until the bound reaches ``enough``."""
+        floor = sum(entry.solid.mass for entry in self._entries if entry.solid is not None)
+        for entry in self._entries:
+            if entry.open_mesh is not None:
+                floor += _hull_floor(entry.open_mesh, enough - floor)
+        return floor
+
+    def _build(self) -> tuple[list, list]:
+        if self._built is None:
+            for entry in self._entries:
+                if entry.open_mesh is not None:
+                    _quietly(_hull_entry, entry)
+            self._built = ([entry.solid for entry in self._entries if entry.solid is not None],
+                           [p for entry in self._entries for p in entry.problems])
+        return self._built
+
+
+@dataclass
+class _Entry:
+    """One shape of a :class:`LinkSolid`: its solid placed in the link frame (None when it does
+    not count), its problems, and the open mesh whose hull is to stand for it (until built)."""
+
+    shape: Shape
+    solid: object = None
     problems: list = field(default_factory=list)
-    bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min and max corner, link frame
+    open_mesh: object = None
 
 
 def _positive(values) -> bool:
@@ -51,13 +102,12 @@ def _positive(values) -> bool:
 
 def shape_of(holder) -> Shape | None:
     """The shape of a ``<visual>``/``<collision>``, or None when malformed (rules say why)."""
-    geometry = holder.find("geometry")
+    geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    children = [c for c in geometry if isinstance(c.tag, str)]
-    if not children or children[0].tag not in SHAPES:
+    element = next((c for c in geometry if isinstance(c.tag, str)), None)
+    if element is None or element.tag not in SHAPES:
         return None
-    element = children[0]
     xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
     if element.tag == "box":
         size = parse_numbers(element.get("size"), 3)[0]
@@ -79,61 +129,223 @@ def shape_of(holder) -> Shape | None:
     return Shape(element.tag, params, xyz, rotation, element)
 
 
-def shapes(link, tag: str) -> list[Shape]:
-    return [s for s in (shape_of(h) for h in link.findall(tag)) if s is not None]
+def shapes(robot, link, tag: str) -> list[Shape]:
+    """The well-formed shapes of a link's ``tag`` (visual or collision) elements, in order;
+    read once per robot, link and tag (the solids, bounds and inertia rules all ask)."""
+    return _link_shapes(robot, link)[tag][0]
 
 
-def _mesh_solid(robot, shape: Shape, problems: list):
-    """(unit-density solid, local bounds) of a mesh shape, or (None, None) with a problem.
+def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
+    """tag -> (well-formed shapes, number of elements) for a link's visual and collision."""
+    def build():
+        found = {"visual": [], "collision": []}
+        counts = dict.fromkeys(found, 0)
+        for holder in link:
+            if holder.tag in found:
+                counts[holder.tag] += 1
+                shape = shape_of(holder)
+                if shape is not None:
+                    found[holder.tag].append(shape)
+        return {tag: (kept, counts[tag]) for tag, kept in found.items()}
 
-    trimesh's numpy warnings on degenerate or absurdly scaled meshes are silenced: the
-    implausible-size rule and the problems below say what is wrong with the mesh.
-    """
+    return robot.memo((_link_shapes, link), build)
+
+
+def _quietly(compute, *args):
+    """``compute(*args)`` with trimesh's and numpy's warnings on degenerate or absurdly scaled
+    meshes silenced: the implausible-size rule and the problems say what is wrong."""
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        return _mesh_solid_unchecked(robot, shape, problems)
+        return compute(*args)
 
 
-def _mesh_solid_unchecked(robot, shape: Shape, problems: list):
+def _mesh_entry(robot, shape: Shape) -> _Entry:
+    """A mesh shape's entry: its solid when closed, else the open mesh (its hull is built only
+    when asked), or a problem when it does not resolve or load."""
     from urdftool.description.meshes import MeshProblem, mesh_facts  # only robots with meshes
 
+    entry = _Entry(shape)
     try:
         mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem as problem:
-        problems.append((shape.element, str(problem)))
-        return None, None
-    body = mesh
-    bounds = tuple(mat3.vector(corner) for corner in mesh.bounds)
-    if not mesh.is_watertight:
-        try:
-            body = mesh.convex_hull
-        except RuntimeError:  # qhull: the vertices are one point, a line or (unjoggled) a plane
-            problems.append((shape.element, f"mesh '{shape.params['filename']}' is flat or a "
-                                            "single point: it encloses no volume"))
-            return None, bounds
-        problems.append((shape.element, f"mesh '{shape.params['filename']}' is not closed "
-                                        f"(watertight); {HULL_USED}"))
+        entry.problems.append((shape.element, str(problem)))
+        return entry
+    if mesh.is_watertight:
+        _set_solid(entry, mesh)
+    else:
+        entry.open_mesh = mesh
+    return entry
+
+
+def _hull_entry(entry: _Entry) -> None:
+    """Build the hull standing for an entry's open mesh, and its solid or problem."""
+    mesh, entry.open_mesh = entry.open_mesh, None
+    filename = entry.shape.params["filename"]
+    try:
+        body = mesh.convex_hull
+    except RuntimeError:  # qhull: the vertices are one point, a line or (unjoggled) a plane
+        entry.problems.append((entry.shape.element, f"mesh '{filename}' is flat or a single "
+                                                    "point: it encloses no volume"))
+        return
+    entry.problems.append((entry.shape.element, f"mesh '{filename}' is not closed "
+                                                f"(watertight); {HULL_USED}"))
+    _set_solid(entry, body)
+
+
+def _set_solid(entry: _Entry, body) -> None:
     from urdftool.physics.inertia import mesh_solid
 
     solid = mesh_solid(body).body()
     if not solid.mass > 0:  # also NaN from a zero-volume mesh
-        problems.append((shape.element, f"mesh '{shape.params['filename']}' encloses no volume"))
-        return None, bounds
-    return solid, bounds
+        entry.problems.append((entry.shape.element,
+                               f"mesh '{entry.shape.params['filename']}' encloses no volume"))
+        return
+    entry.solid = mp.transformed(solid, entry.shape.xyz, entry.shape.rotation)
+
+
+def _hull_floor(mesh, enough: float = math.inf) -> float:
+    """A lower bound of the volume of the convex hull of a mesh's vertices [m^3], without
+    building it (nor importing scipy): solids with disjoint insides spanned by vertices, which
+    the hull holds. 0 when the vertices are not at hand; shaved by 1e-6 for rounding (and
+    qhull's joggle of a degenerate hull)."""
+    import numpy as np
+
+    vertices = getattr(mesh, "vertices", None)
+    if vertices is None:
+        vertices = getattr(mesh, "_vertices", None)  # MeshFacts keeps them private
+    if vertices is None or len(vertices) < 4:
+        return 0.0
+    with np.errstate(all="ignore"):
+        floor = _vertex_polytope_volume(np.asarray(vertices, dtype=np.float64),
+                                        enough / (1 - 1e-6))
+    return floor * (1 - 1e-6) if math.isfinite(floor) and floor > 0 else 0.0
+
+
+_DIRECTIONS = 64  # the hull's vertices farthest along this many directions span the polytope
+_ROUNDS, _TRIES = 6, 4  # growth rounds; candidates tried per face and round
+
+
+def _vertex_polytope_volume(points, enough: float = math.inf) -> float:
+    """The volume of a polytope inside the hull of ``points`` [k, 3], grown as quickhull grows
+    a hull but keeping only what is certain without one. From the points farthest along many
+    directions (vertices of the hull): a tetrahedron or two (a, b farthest apart along the
+    longest side of the box, c farthest from line ab, the farthest on either side of plane
+    abc); then, round by round, on each outer face the farthest point beyond it whose
+    tetrahedron with the face is separated from every tetrahedron kept (all four corners on
+    or beyond one of that one's face planes). The tetrahedra lie in the hull, apart. Stops
+    growing once the volume reaches ``enough`` [m^3]."""
+    import numpy as np
+
+    golden = np.pi * (3.0 - np.sqrt(5.0))
+    k = np.arange(_DIRECTIONS)
+    z = 1.0 - 2.0 * (k + 0.5) / _DIRECTIONS
+    ring = np.sqrt(1.0 - z * z)
+    directions = np.vstack([np.column_stack([ring * np.cos(golden * k),
+                                             ring * np.sin(golden * k), z]),
+                            np.eye(3), -np.eye(3)])
+    extents = points.max(axis=0) - points.min(axis=0)
+    if not float(extents.max()) > 0:
+        return 0.0
+    stretch = np.where(extents > 0, extents, float(extents.max()))  # directions as if a cube
+    points = points[np.unique(np.argmax(points @ (directions / stretch).T, axis=0))]
+    if len(points) < 4:
+        return 0.0
+    axis = int(np.argmax(extents))
+    a, b = points[np.argmin(points[:, axis])], points[np.argmax(points[:, axis])]
+    line = b - a
+    offsets = points - a
+    across = offsets - np.outer(offsets @ line / np.dot(line, line), line)
+    c = points[np.argmax((across * across).sum(axis=1))]
+    heights = offsets @ np.cross(line, c - a)
+    top, bottom = int(np.argmax(heights)), int(np.argmin(heights))
+    apexes = ([points[top]] if heights[top] > 0 else []) + \
+        ([points[bottom]] if heights[bottom] < 0 else [])
+    slack = 1e-12 * float(extents.max())
+    kept = _Tetrahedra()
+    for d in apexes:
+        kept.add(np.array([a, b, c, d]), shared=len(apexes) == 2)
+    for _ in range(_ROUNDS):
+        if kept.volume >= enough:
+            break
+        outer, kept.faces = kept.faces, []
+        for corners, normal in outer:
+            if not kept.grow(points, (points - corners[0]) @ normal, corners, slack):
+                kept.faces.append((corners, normal))
+        if len(kept.faces) == len(outer) and all(f[0] is o[0] for f, o in zip(kept.faces,
+                                                                                outer)):
+            break  # nothing grew
+    return kept.volume
+
+
+_FACES = ((0, 1, 2, 3), (0, 1, 3, 2), (1, 2, 3, 0), (2, 0, 3, 1))  # corners, then the one left
+
+
+class _Tetrahedra:
+    """Tetrahedra with disjoint insides: their summed volume, their face planes (outward unit
+    normals [t, 4, 3], levels [t, 4]) and the faces of their outer surface."""
+
+    def __init__(self):
+        import numpy as np
+
+        self.volume, self.faces = 0.0, []
+        self.normals, self.levels = np.zeros((0, 4, 3)), np.zeros((0, 4))
+
+    def add(self, corners, shared: bool) -> None:
+        """Keep tetrahedron ``corners`` [4, 3]; ``shared``: its first face (the one it was
+        built on) is not on the outer surface."""
+        import numpy as np
+
+        order = np.array(_FACES)
+        triangles, others = corners[order[:, :3]], corners[order[:, 3]]
+        normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+        normals /= np.linalg.norm(normals, axis=1)[:, None]
+        normals[((others - triangles[:, 0]) * normals).sum(axis=1) > 0] *= -1.0
+        self.volume += abs(float(np.linalg.det(corners[1:] - corners[0]))) / 6.0
+        self.normals = np.concatenate([self.normals, normals[None]])
+        self.levels = np.concatenate([self.levels,
+                                      (normals * triangles[:, 0]).sum(axis=1)[None]])
+        self.faces.extend((triangles[i], normals[i]) for i in range(1 if shared else 0, 4))
+
+    def grow(self, points, beyond, corners, slack: float) -> bool:
+        """Build a tetrahedron on outer face ``corners`` [3, 3] with the farthest of
+        ``points`` beyond it (``beyond``: their heights over it) apart from every one kept:
+        all its corners on or beyond one face plane of each."""
+        import numpy as np
+
+        for index in np.argsort(-beyond)[:_TRIES]:
+            if not beyond[index] > slack:
+                return False
+            tetrahedron = np.vstack([corners, points[index]])
+            reach = np.einsum("tfk,ck->tfc", self.normals, tetrahedron) - self.levels[:, :, None]
+            if (reach >= -slack).all(axis=2).any(axis=1).all():
+                self.add(tetrahedron, shared=True)
+                return True
+        return False
 
 
 def _local(shape: Shape):
+    """(unit-density solid, box) of a primitive in its own frame."""
+    p = shape.params
+    if shape.kind == "box":
+        return mp.box(p["size"]), _local_box(shape)
+    if shape.kind == "cylinder":
+        return mp.cylinder(p["radius"], p["length"]), _local_box(shape)
+    return mp.sphere(p["radius"]), _local_box(shape)
+
+
+def _local_box(shape: Shape):
+    """A primitive's box in its own frame: (min corner, max corner)."""
     p = shape.params
     if shape.kind == "box":
         half = tuple(v / 2 for v in p["size"])
-        return mp.box(p["size"]), (tuple(-v for v in half), half)
+        return tuple(-v for v in half), half
     if shape.kind == "cylinder":
         r, h = p["radius"], p["length"] / 2
-        return mp.cylinder(p["radius"], p["length"]), ((-r, -r, -h), (r, r, h))
+        return (-r, -r, -h), (r, r, h)
     r = p["radius"]
-    return mp.sphere(r), ((-r,) * 3, (r,) * 3)
+    return (-r,) * 3, (r,) * 3
 
 
 def _corners(bounds) -> list[mat3.Vector]:
@@ -144,28 +356,24 @@ def _corners(bounds) -> list[mat3.Vector]:
 def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) -> LinkSolid:
     """The solids of a link's collision geometry, or its visual geometry when it has none;
     ``tag`` ("collision" or "visual") takes that geometry only."""
-    collision = shapes(link, "collision") if tag in (None, "collision") else []
+    collision = shapes(robot, link, "collision") if tag in (None, "collision") else []
     chosen, source = (collision, "collision") if collision or tag == "collision" else \
-        (shapes(link, "visual"), "visual")
+        (shapes(robot, link, "visual"), "visual")
     if not chosen:
         return LinkSolid("none")
     result = LinkSolid(source)
-    corners = []
+    boxes = []
     for shape in chosen:
         if shape.kind == "mesh":
             if not load_meshes:
                 continue
-            solid, local_bounds = _mesh_solid(robot, shape, result.problems)
+            result._entries.append(_quietly(_mesh_entry, robot, shape))
         else:
-            solid, local_bounds = _local(shape)
-        if local_bounds is not None:
-            corners.extend(mat3.add(shape.xyz, mat3.apply(shape.rotation, c))
-                           for c in _corners(local_bounds))
-        if solid is not None:
-            result.parts.append(mp.transformed(solid, shape.xyz, shape.rotation))
-    if corners:
-        result.bounds = (tuple(min(c[i] for c in corners) for i in range(3)),
-                         tuple(max(c[i] for c in corners) for i in range(3)))
+            solid, _ = _local(shape)
+            result._entries.append(_Entry(shape, mp.transformed(solid, shape.xyz, shape.rotation)))
+        if _placed_shape_corners(robot, shape):
+            boxes.append(shape.box)
+    result.bounds = _joined(boxes)
     return result
 
 
@@ -188,39 +396,79 @@ def rigid_bounds(robot, link) -> RigidBounds:
     frames = _rigid_frames(robot, link.get("name"))
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        local, complete = _placed_corners(robot, robot.links.get(name))
-        corners.extend(mat3.add(xyz, mat3.apply(rotation, c)) for c in local)
+        local, box, complete = _placed_corners(robot, robot.links.get(name))
+        if rotation is mat3.IDENTITY and box is not None:  # the link itself: its own box
+            corners.extend(box)  # (as min and max of the corners moved by 0 + I c would be)
+        else:
+            corners.extend(_placed(xyz, rotation, local))
         result.complete = result.complete and complete
-    if corners:
-        result.bounds = (tuple(min(c[i] for c in corners) for i in range(3)),
-                         tuple(max(c[i] for c in corners) for i in range(3)))
+    result.bounds = _box(corners)
     return result
 
 
-def _placed_corners(robot, member) -> tuple[list[mat3.Vector], bool]:
+def _box(corners) -> tuple[mat3.Vector, mat3.Vector] | None:
+    """(min corner, max corner) of points, None without any."""
+    if not corners:
+        return None
+    xs, ys, zs = zip(*corners)
+    return (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
+
+
+def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
+    """The box of boxes: what :func:`_box` gives for all their points (the same numbers: the
+    least of the least, the first of equals first)."""
+    if not boxes:
+        return None
+    if len(boxes) == 1:
+        return boxes[0]
+    return _box([low for low, _ in boxes])[0], _box([high for _, high in boxes])[1]
+
+
+def _placed_corners(robot, member) -> tuple[list[mat3.Vector], tuple | None, bool]:
     """(the corners of the boxes of a link's visual and collision shapes, in the link frame;
-    whether every shape was measured), once per robot and link: every link fixed to it asks."""
+    their box as its two corners when every coordinate is finite, a zero of either sign as
+    +0; whether every shape was measured), once per robot and link: every link fixed to it
+    asks."""
     def build():
-        corners, complete = [], True
-        for shape in shapes(member, "visual") + shapes(member, "collision"):
-            local = _local_bounds(robot, shape)
-            if local is None:
-                complete = False
-                continue
-            corners.extend(mat3.add(shape.xyz, mat3.apply(shape.rotation, c))
-                           for c in _corners(local))
-        complete = complete and len(shapes(member, "visual")) == len(
-            member.findall("visual")) and len(shapes(member, "collision")) == len(
-            member.findall("collision"))
-        return corners, complete
+        found = _link_shapes(robot, member)
+        members = [shape for tag in ("visual", "collision") for shape in found[tag][0]
+                   if _placed_shape_corners(robot, shape)]
+        corners = [c for shape in members for c in shape.placed]
+        complete = len(members) == sum(count for _, count in found.values())
+        box = None
+        if members and all(shape.finite for shape in members):
+            box = [tuple(v + 0.0 for v in corner) for corner in
+                   _joined([shape.box for shape in members])]
+        return corners, box, complete
 
     return robot.memo((_placed_corners, member), build)
+
+
+def _placed_shape_corners(robot, shape: Shape) -> tuple:
+    """The corners of a shape's box placed in the link frame, () for a mesh that does not
+    resolve or load; once per shape (the solids and the rigid bounds both ask)."""
+    if shape.placed is None:
+        local = _local_bounds(robot, shape)
+        shape.placed = () if local is None else _placed(shape.xyz, shape.rotation,
+                                                        _corners(local))
+        if shape.placed:
+            shape.box = _box(shape.placed)
+            shape.finite = math.isfinite(sum(map(sum, shape.placed)))  # False on overflow too
+    return shape.placed
+
+
+def _placed(xyz, rotation, points) -> tuple:
+    """``mat3.add(xyz, mat3.apply(rotation, p))`` for each point, the same sums in one loop."""
+    (a, b, c), (d, e, f), (g, h, i) = rotation
+    tx, ty, tz = xyz
+    return tuple((tx + (a * x + b * y + c * z), ty + (d * x + e * y + f * z),
+                  tz + (g * x + h * y + i * z)) for x, y, z in points)
 
 
 def _local_bounds(robot, shape: Shape):
     """A shape's box in its own frame, or None for a mesh that does not resolve or load."""
     if shape.kind != "mesh":
-        return _local(shape)[1]
+        return _local_box(shape)
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
     try:
@@ -235,7 +483,7 @@ def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vect
     def build():
         neighbours = {}
         for joint in robot.children("joint"):
-            parent, child = joint.find("parent"), joint.find("child")
+            parent, child = first_child(joint, "parent"), first_child(joint, "child")
             if joint.get("type") != "fixed" or parent is None or child is None:
                 continue
             parent, child = parent.get("link"), child.get("link")
@@ -297,8 +545,8 @@ def surface_points(robot, link) -> tuple:
     cylinder's rims, a sphere's points on a fine grid, a mesh's vertices. numpy, for statics."""
     import numpy as np
 
-    collision = shapes(link, "collision")
-    chosen = collision or shapes(link, "visual")
+    collision = shapes(robot, link, "collision")
+    chosen = collision or shapes(robot, link, "visual")
     points, problems = [], []
     for shape in chosen:
         p = shape.params
@@ -311,7 +559,7 @@ def surface_points(robot, link) -> tuple:
                 problems.append((shape.element, str(problem)))
                 continue
         elif shape.kind == "box":
-            local = np.array(_corners(_local(shape)[1]))
+            local = np.array(_corners(_local_box(shape)))
         elif shape.kind == "cylinder":
             angles = np.linspace(0.0, 2 * np.pi, _ROUND, endpoint=False)
             ring = np.stack([p["radius"] * np.cos(angles), p["radius"] * np.sin(angles)], -1)

@@ -103,3 +103,50 @@ def test_inertia_far_from_an_open_mesh_is_not_judged(tmp_path):
 def test_implausible_density(tmp_path, mass, geometry, visual, reported):
     found, findings = _check(tmp_path, "U311", mass, 1e-3, geometry, visual=visual)
     assert bool(found) == reported, [f.message for f in findings]
+
+
+def _open_box(tmp_path, name="open.stl"):
+    """A 10 x 20 x 30 cm box without its top: open, its hull the whole box (6e-3 m^3)."""
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box(extents=(0.1, 0.2, 0.3))
+    box.update_faces(box.face_normals[:, 2] < 0.5)
+    box.export(tmp_path / name)
+    return f'<mesh filename="{name}"/>'
+
+
+@pytest.fixture()
+def hulls_built(monkeypatch):
+    """The convex hulls built (qhull calls) during a test."""
+    from urdftool.description import mesh_arrays
+
+    built, hull = [], mesh_arrays.convex_hull
+    monkeypatch.setattr(mesh_arrays, "convex_hull", lambda v: built.append(len(v)) or hull(v))
+    return built
+
+
+@pytest.mark.parametrize("mass, reported", [(10.0, False), (200.0, True)])
+def test_implausible_density_builds_an_open_mesh_hull_only_when_it_decides(
+        tmp_path, hulls_built, mass, reported):
+    # 10 kg in the 6 litres of the hull: 1,667 kg/m^3, told by tetrahedra on the vertices;
+    # 200 kg: 33,333 kg/m^3, reported with the hull's volume, which only the hull gives
+    found, findings = _check(tmp_path, "U311", mass, 1e-3, _open_box(tmp_path))
+    assert bool(found) == reported, [f.message for f in findings]
+    assert len(hulls_built) == int(reported)
+    if reported:
+        assert "in at most 0.006 m^3 of geometry is at least 33,333 kg/m^3" in findings[0].message
+
+
+def test_implausible_density_asks_the_visual_only_when_the_collision_is_too_small(
+        tmp_path, monkeypatch):
+    from urdftool.physics import solids
+
+    asked, solid = [], solids.link_solid
+    monkeypatch.setattr(solids, "link_solid",
+                        lambda robot, link, *a, tag=None, **k: asked.append(tag)
+                        or solid(robot, link, *a, tag=tag, **k))
+    visual = '<visual><geometry><box size="0.3 0.3 0.3"/></geometry></visual>'
+    found, _ = _check(tmp_path, "U311", 1.0, 1e-3, '<box size="0.1 0.1 0.1"/>', visual=visual)
+    assert not found and asked == [None]  # 1,000 kg/m^3 in the collision box alone
+    found, _ = _check(tmp_path / "dense", "U311", 30.0, 1e-3, '<box size="0.1 0.1 0.1"/>',
+                      visual=visual)  # 30,000 in the collision box, 1,111 in the visual one
+    assert not found and asked == [None, None, "visual"]

@@ -8,6 +8,7 @@ from __future__ import annotations
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
+from urdftool.description.xml import first_child
 from urdftool.description.values import finite, parse_numbers
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
@@ -27,11 +28,10 @@ def _holders(robot, tags=("visual", "collision")):
 
 
 def _shape(holder):
-    geometry = holder.find("geometry")
+    geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    children = [c for c in geometry if isinstance(c.tag, str)]
-    return children[0] if children else None
+    return next((c for c in geometry if isinstance(c.tag, str)), None)
 
 
 @rule("U401", "missing-geometry", Severity.ERROR)
@@ -44,7 +44,7 @@ def missing_geometry(robot):
     Good: ``<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>``
     """
     for link, holder in _holders(robot):
-        geometry = holder.find("geometry")
+        geometry = first_child(holder, "geometry")
         shape = _shape(holder)
         where = f"link '{link.get('name')}': <{holder.tag}>"
         if geometry is None:
@@ -56,11 +56,12 @@ def missing_geometry(robot):
                           f"{', '.join(SHAPES)}")
 
 
-def _shapes(robot):
-    for link, holder in _holders(robot):
-        shape = _shape(holder)
-        if shape is not None and shape.tag in SHAPES:
-            yield link, holder, shape
+def _shapes(robot) -> list:
+    """(link, holder, shape element) of every known shape, found once per robot (four rules
+    ask)."""
+    return robot.memo(_shapes, lambda: [
+        (link, holder, shape) for link, holder in _holders(robot)
+        if (shape := _shape(holder)) is not None and shape.tag in SHAPES])
 
 
 @rule("U402", "geometry-attribute", Severity.ERROR)
@@ -162,7 +163,8 @@ def _rgba_problem(color) -> str | None:
 
 
 def _defines(material) -> bool:
-    return material.find("color") is not None or material.find("texture") is not None
+    return first_child(material, "color") is not None \
+        or first_child(material, "texture") is not None
 
 
 @rule("U405", "malformed-material", Severity.ERROR)
@@ -382,7 +384,7 @@ def mesh_not_watertight(robot):
     Good: a closed (watertight) collision mesh
     """
     for link, holder, shape, outcome in _mesh_outcomes(robot):
-        feeds = holder.tag == "collision" or link.find("collision") is None
+        feeds = holder.tag == "collision" or first_child(link, "collision") is None
         if feeds and hasattr(outcome, "is_watertight") and not outcome.is_watertight:
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
                           f"'{shape.get('filename')}' is not watertight; its inertia is taken "

@@ -20,6 +20,7 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
+from urdftool.description.xml import first_child
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
@@ -40,10 +41,15 @@ def _name(link) -> str:
     return link.get("name") or "?"
 
 
+def _inertial_part(link, tag: str):
+    """The ``tag`` child (mass or inertia) of the link's ``<inertial>``, which it has."""
+    return first_child(first_child(link, "inertial"), tag)
+
+
 def _joints_by_child(robot) -> dict:
     found = {}
     for joint in robot.children("joint"):
-        child = joint.find("child")
+        child = first_child(joint, "child")
         if child is not None and child.get("link") not in found:
             found[child.get("link")] = joint
     return found
@@ -52,7 +58,7 @@ def _joints_by_child(robot) -> dict:
 def _fixed_children(robot) -> dict[str, list[str]]:
     children: dict[str, list[str]] = {}
     for joint in robot.children("joint"):
-        parent, child = joint.find("parent"), joint.find("child")
+        parent, child = first_child(joint, "parent"), first_child(joint, "child")
         if joint.get("type") == "fixed" and parent is not None and child is not None:
             children.setdefault(parent.get("link"), []).append(child.get("link"))
     return children
@@ -80,7 +86,7 @@ def _from_geometry(robot, link, mass: float):
     from urdftool.physics.solids import computed
 
     solid = _solid(robot, link)
-    if not solid.parts or solid.problems:
+    if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
     return inertial_edits(robot, link, computed(solid, mass=mass))
 
@@ -95,7 +101,7 @@ def _solid(robot, link, tag: str | None = None):
 
 def _recomputed(robot, link, properties, message: str):
     """The finding on ``link``'s <inertia>, with the inertia from geometry as its unsafe fix."""
-    return offer(link.find("inertial").find("inertia"), message,
+    return offer(_inertial_part(link, "inertia"), message,
                  f"replace link '{_name(link)}' inertia with its {_solid_source(robot, link)} "
                  "geometry's", _from_geometry(robot, link, properties.mass), safe=False)
 
@@ -123,7 +129,7 @@ def malformed_inertial(robot):
     for link in robot.children("link"):
         for inertial in link.findall("inertial"):
             prefix = f"link '{_name(link)}': <inertial>"
-            mass = inertial.find("mass")
+            mass = first_child(inertial, "mass")
             if mass is None:
                 yield inertial, f"{prefix} has no <mass value=...>"
             elif mass.get("value") is None:
@@ -132,7 +138,7 @@ def malformed_inertial(robot):
                 values, problem = parse_numbers(mass.get("value"), 1)
                 if problem or not math.isfinite(values[0]):
                     yield mass, f"{prefix} mass '{mass.get('value')}' is not a finite number"
-            inertia = inertial.find("inertia")
+            inertia = first_child(inertial, "inertia")
             if inertia is None:
                 yield inertial, (f"{prefix} has no <inertia>; give all six of "
                                  f"{', '.join(INERTIA_ATTRIBUTES)}")
@@ -158,7 +164,7 @@ def negative_mass(robot):
     """
     for link, properties in _valid(robot):
         if properties.mass < 0:
-            yield link.find("inertial").find("mass"), (
+            yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}' has negative mass {properties.mass:g} kg")
 
 
@@ -175,7 +181,7 @@ def moving_link_without_mass(robot):
     Bad: ``<joint type="revolute">`` whose child link has no ``<inertial>``
     Good: the child link has ``<inertial>`` with its real mass, or a link fixed to it has
     """
-    if not any(link.find("inertial") is not None for link in robot.children("link")):
+    if not any(first_child(link, "inertial") is not None for link in robot.children("link")):
         return
     moving = _moving(robot)
     masses = {link.get("name"): p.mass for link, p in _valid(robot)}
@@ -190,9 +196,10 @@ def moving_link_without_mass(robot):
             total += max(masses.get(current, 0.0), 0.0)
             stack.extend(fixed.get(current, []))
         link = robot.links[name]
-        if total <= 0 and not any(l.find("inertial") is not None and _name(l) not in masses
+        if total <= 0 and not any(first_child(l, "inertial") is not None
+                                  and _name(l) not in masses
                                   for l in (robot.links.get(b) for b in body) if l is not None):
-            what = "no <inertial>" if link.find("inertial") is None else "zero mass"
+            what = "no <inertial>" if first_child(link, "inertial") is None else "zero mass"
             yield link, (f"link '{name}' is moved by joint "
                          f"'{moving[name].get('name')}' but has {what} (nor "
                          "does any link fixed to it); give it its real mass and inertia")
@@ -330,7 +337,7 @@ def com_outside_geometry(robot):
             com = " ".join(f"{v:.4g}" for v in properties.com)
             fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
                 if len(rigid.links) > 1 else ""
-            yield link.find("inertial"), (
+            yield first_child(link, "inertial"), (
                 f"link '{_name(link)}': centre of mass ({com}) is {distance:.3g} m outside its "
                 f"visual and collision geometry{fixed} (box {_rounded(low)} to "
                 f"{_rounded(high)}); check the inertial origin's frame")
@@ -365,7 +372,7 @@ def root_link_inertia(robot):
             insert_before(robot, root, f'<link name="{name}"/>',
                           f'<joint name="{name}_joint" type="fixed"><parent link="{name}"/>'
                           f'<child link="{roots[0]}"/></joint>')
-        yield offer(root.find("inertial"), (
+        yield offer(first_child(root, "inertial"), (
             f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
             "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
             safe=False)
@@ -403,7 +410,7 @@ MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm 
 def _trustworthy(solid) -> bool:
     """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
     plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
-    return not solid.problems and bool(solid.parts) and 0.001 <= _extent(solid) <= 5.0
+    return solid.sound and bool(solid.parts) and 0.001 <= _extent(solid) <= 5.0
 
 
 def _body_sized(solid) -> bool:
@@ -411,21 +418,26 @@ def _body_sized(solid) -> bool:
     return solid.bounds is not None and MARKER_EXTENT * 1.01 < _extent(solid) <= 5.0
 
 
-def _inertia_ratios(robot):
+def _inertia_ratios(robot) -> list:
     """(link, declared, solid, computed, ratio of traces) for links whose geometry is
     trustworthy: the computed tensor is ``urdftool inertia``'s, a uniform solid of the
-    declared mass."""
+    declared mass. Once per robot (U309 and U310 ask)."""
     from urdftool.physics.solids import computed
 
-    for link, properties, solid in _link_solids(robot):
-        if not _trustworthy(solid):
-            continue
-        expected = computed(solid, mass=properties.mass)
-        if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding either
-            continue
-        ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
-        if ratio > 0:
-            yield link, properties, solid, expected, ratio
+    def build():
+        found = []
+        for link, properties, solid in _link_solids(robot):
+            if not _trustworthy(solid):
+                continue
+            expected = computed(solid, mass=properties.mass)
+            if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
+                continue
+            ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
+            if ratio > 0:
+                found.append((link, properties, solid, expected, ratio))
+        return found
+
+    return robot.memo(_inertia_ratios, build)
 
 
 def _unit_factor(properties, expected, ratio) -> int | None:
@@ -483,7 +495,7 @@ def inertia_far_from_geometry(robot):
             continue  # U309 says it
         beyond = (f", more than any distribution of that mass inside it can have "
                   f"({_largest_trace(properties, solid):.3g})") if larger else ""
-        yield link.find("inertial").find("inertia"), (
+        yield _inertial_part(link, "inertia"), (
             f"link '{_name(link)}': declared inertia (trace {trace:.3g} kg m^2) is "
             f"{ratio:.3g} times that of its {solid.source} geometry as a uniform solid of the "
             f"declared {properties.mass:g} kg (trace {mat3.trace(expected.inertia):.3g}){beyond}; "
@@ -494,14 +506,22 @@ DENSEST = 22_590.0  # [kg/m^3]: osmium, the densest element (CRC Handbook of Che
 LIGHTEST = 0.16  # [kg/m^3]: graphene aerogel, the lightest solid made (Sun et al., Adv. Mater. 2013)
 
 
-def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
+def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None] | None:
     """(smallest, largest) volume the link's drawn body can have [m^3], or None when some
     geometry did not load. The largest takes the bigger of its collision and visual
     geometry with open meshes as their convex hulls (a hull holds the part): dividing the mass
     by it gives the least density the link can have. The smallest counts only when the
     geometry is trustworthy (no hull); a hollow shell's envelope makes it too large, so it
-    only bounds the density from below loosely."""
+    only bounds the density from below loosely.
+
+    The largest is None when it cannot matter: when ``mass`` [kg] in a lower bound of the
+    solid's own volume (found without convex hulls, exact without open meshes) is no denser
+    than osmium, no larger volume makes it denser, and no hull or other geometry is built."""
     from urdftool.physics.solids import HULL_USED, volume
+
+    floor = solid.volume_floor(enough=mass / DENSEST)
+    if floor > 0 and mass / floor <= DENSEST:
+        return (volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):
         return s.parts and all(HULL_USED in message for _, message in s.problems)
@@ -510,7 +530,7 @@ def _volume_bounds(robot, link, solid) -> tuple[float, float] | None:
         return None
     other = "visual" if solid.source == "collision" else "collision"
     volumes = [volume(solid)]
-    if link.find(other) is not None:
+    if first_child(link, other) is not None:
         second = _solid(robot, link, other)
         if loaded(second):
             volumes.append(volume(second))
@@ -543,17 +563,17 @@ def implausible_density(robot):
     for link, properties, solid in _link_solids(robot):
         if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
             continue
-        bounds = _volume_bounds(robot, link, solid)
-        if bounds is None or bounds[1] <= 0:
+        bounds = _volume_bounds(robot, link, solid, properties.mass)
+        if bounds is None or bounds[1] is not None and bounds[1] <= 0:
             continue
-        least = properties.mass / bounds[1]
+        least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
         if least > DENSEST:
-            yield link.find("inertial").find("mass"), (
+            yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in at most {bounds[1]:.3g} m^3 "
                 f"of geometry is at least {least:,.0f} kg/m^3, denser than osmium "
                 f"({DENSEST:,.0f}); a wrong mass or geometry scale")
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
-            yield link.find("inertial").find("mass"), (
+            yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {bounds[0]:.3g} m^3 of "
                 f"{solid.source} geometry is {properties.mass / bounds[0]:.3g} kg/m^3, lighter "
                 f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")
