@@ -126,10 +126,6 @@ NUMBERS = [
          "09-publishjoints", "10-firsttransmission", "11-limittransmission", "12-gripper",
          "13-diffdrive")], "U310", ("gripper_pole", "head") + TUTORIAL_GRIPPER,
      "ixx = iyy = izz = 1 on a 50 g pole, 50 g fingers and a 2 kg head: " + PLACEHOLDER),
-    ([f"example-robot-data/robots/icub_description/robots/{n}.urdf" for n in (
-        "icub", "icub_reduced")], "U310", ("r_ankle_1",),
-     "a 0.746 kg ankle with a 1e-20 kg m^2 tensor (U304 calls it zero; its mirror l_ankle_1 "
-     "has 6e-4), compared with its closed collision mesh"),
     (["example-robot-data/robots/pr2_description/urdf/pr2.urdf"], "U310",
      PR2_CASTERS + PR2_ARMS + ("double_stereo_link", "high_def_frame", "high_def_optical_frame"),
      "0.01-0.03 kg m^2 on 0.1-0.44 kg wheels, roll links and camera boxes: " + PLACEHOLDER),

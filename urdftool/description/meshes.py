@@ -736,6 +736,11 @@ class MeshFacts:
         self._properties, self._hull = properties, None
 
     @property
+    def vertices(self):
+        """The (n, 3) vertex array, as trimesh's ``vertices`` (read only: shared by every user)."""
+        return self._vertices
+
+    @property
     def nbytes(self) -> int:
         return self._vertices.nbytes + self._faces.nbytes
 

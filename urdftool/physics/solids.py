@@ -212,9 +212,7 @@ def _hull_floor(mesh, enough: float = math.inf) -> float:
     qhull's joggle of a degenerate hull)."""
     import numpy as np
 
-    vertices = getattr(mesh, "vertices", None)
-    if vertices is None:
-        vertices = getattr(mesh, "_vertices", None)  # MeshFacts keeps them private
+    vertices = getattr(mesh, "vertices", None)  # MeshFacts' or a trimesh's
     if vertices is None or len(vertices) < 4:
         return 0.0
     with np.errstate(all="ignore"):

@@ -150,3 +150,11 @@ def test_implausible_density_asks_the_visual_only_when_the_collision_is_too_smal
     found, _ = _check(tmp_path / "dense", "U311", 30.0, 1e-3, '<box size="0.1 0.1 0.1"/>',
                       visual=visual)  # 30,000 in the collision box, 1,111 in the visual one
     assert not found and asked == [None, None, "visual"]
+
+
+def test_a_zero_tensor_is_u304s_not_also_far_from_its_geometry(tmp_path):
+    """icub's r_ankle_1: 0.746 kg with a 1e-20 kg m^2 tensor is zero inertia (U304), not a
+    second finding that it is far from its mesh (U310)."""
+    text = LINK.format(mass=0.746, i=1e-20, geometry=CUBE, com="0 0 0", visual="")
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304", "U310"))
+    assert [f.code for f in findings] == ["U304"], [f.message for f in findings]

@@ -427,8 +427,9 @@ def _inertia_ratios(robot) -> list:
     def build():
         found = []
         for link, properties, solid in _link_solids(robot):
-            if not _trustworthy(solid):
-                continue
+            if not _trustworthy(solid) or all(abs(v) < ZERO_INERTIA for row in properties.inertia
+                                               for v in row):
+                continue  # a zero tensor is U304's finding, not a ratio to judge
             expected = computed(solid, mass=properties.mass)
             if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
                 continue
