@@ -833,17 +833,3 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     if isinstance(found, MeshProblem):
         raise found
     return found
-
-
-def unit_hint(extent: float) -> str | None:
-    """A sentence naming the scale that would make a mesh of ``extent`` [m] plausible."""
-    if extent > 5.0:
-        for factor, unit in ((0.001, "millimetres"), (0.01, "centimetres")):
-            if extent * factor <= 5.0:
-                return (f"extent {extent:.4g} m looks like {unit}: "
-                        f"scale=\"{factor:g} {factor:g} {factor:g}\" would fix it")
-        return f"extent {extent:.4g} m is over 5 m"
-    if 0 < extent < 0.001:
-        return (f"extent {extent:.3g} m is under 1 mm; if the file is in metres but the scale "
-                f"assumes millimetres, scale=\"1 1 1\" would make it {extent * 1000:.4g} m")
-    return None
