@@ -167,3 +167,20 @@ def test_tree_fails_located_where_check_urdf_fails(run_cli, tmp_path, joint, cod
     result = run_cli("tree", path)
     assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
     assert f"r.urdf:3: error {code}" in result.stderr
+
+
+def test_a_reader_that_leaves_early_gets_no_traceback():
+    """``urdftool collisions --matrix ... | head -1``: the rest of the output meets a closed pipe
+    in the worker; the command stops quietly with exit code 1."""
+    import subprocess
+    import sys
+
+    process = subprocess.Popen(
+        [sys.executable, "-m", "urdftool", "collisions", str(ROBOTS / "humanoid" /
+                                                             "humanoid.urdf.xacro"),
+         "--matrix", "--samples", "500"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    first = process.stdout.readline()
+    process.stdout.close()  # as head does after its line; the matrix is written after this
+    _, errors = process.communicate(timeout=300)
+    assert first.startswith(b"humanoid_robot:")
+    assert b"Traceback" not in errors and process.returncode == 1, errors.decode()

@@ -233,6 +233,12 @@ def budgeted(command):
                 command(**kwargs)
             except typer.Exit as exit:
                 return exit.exit_code
+            except BrokenPipeError:  # the reader left (``| head``): stop quietly
+                return _output_closed()
+            except SystemExit as exit:  # rich's console ends so on a broken pipe
+                if isinstance(exit.__context__, BrokenPipeError):
+                    return _output_closed()
+                raise
             except ModelBuildError as error:
                 return fail_unbuildable(error)
             except ImportError as error:
@@ -255,6 +261,17 @@ def budgeted(command):
     run.__annotations__ = {**typing.get_type_hints(command),
                            **{name: kind for name, (kind, _) in options.items()}}
     return run
+
+
+def _output_closed() -> int:
+    """Exit code 1 for a command whose reader closed its output, with standard output sent to
+    /dev/null so that nothing more is written there (Python flushes it at exit)."""
+    import os
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return 1
 
 
 def _bytes_stdin(data: bytes):
