@@ -767,8 +767,8 @@ class MeshFacts:
 def mesh_facts(robot, uri: str, scale=(1.0, 1.0, 1.0),
                limits: MeshLimits | None = None) -> MeshFacts:
     """The :class:`MeshFacts` of the mesh at ``uri`` scaled by ``scale``; raises MeshProblem
-    as :func:`load_mesh` does. Each file is read once per run and measured once per scale: STL
-    files without trimesh, other formats through it."""
+    as :func:`load_mesh` does. Each file is read once per run and measured once per scale: STL,
+    COLLADA and plain OBJ files without trimesh, other formats through it."""
     limits = limits or robot.mesh_limits
     key = (mesh_facts, uri, tuple(scale), limits)
     found = robot.memo(key, lambda: _facts_outcome(robot, uri, scale, limits))

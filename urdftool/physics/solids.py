@@ -3,7 +3,8 @@
 The inertia rules and ``urdftool inertia`` read geometry through here, and meshes through
 :mod:`urdftool.description.meshes` (their measures, once per run: ``mesh_facts``), so both see
 the same shapes, scales and origins. Pure Python (:mod:`urdftool.physics.mat3` tuples): numpy is
-imported only when a mesh is measured, trimesh only for formats other than STL.
+imported only when a mesh is measured, trimesh only for formats other than STL, COLLADA and
+plain OBJ, scipy only when an open mesh's convex hull decides a result.
 """
 
 from __future__ import annotations
@@ -324,13 +325,13 @@ class _Tetrahedra:
 
 
 def _local(shape: Shape):
-    """(unit-density solid, box) of a primitive in its own frame."""
+    """The unit-density solid of a primitive in its own frame."""
     p = shape.params
     if shape.kind == "box":
-        return mp.box(p["size"]), _local_box(shape)
+        return mp.box(p["size"])
     if shape.kind == "cylinder":
-        return mp.cylinder(p["radius"], p["length"]), _local_box(shape)
-    return mp.sphere(p["radius"]), _local_box(shape)
+        return mp.cylinder(p["radius"], p["length"])
+    return mp.sphere(p["radius"])
 
 
 def _local_box(shape: Shape):
@@ -367,8 +368,8 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
                 continue
             result._entries.append(_quietly(_mesh_entry, robot, shape))
         else:
-            solid, _ = _local(shape)
-            result._entries.append(_Entry(shape, mp.transformed(solid, shape.xyz, shape.rotation)))
+            result._entries.append(_Entry(shape, mp.transformed(_local(shape), shape.xyz,
+                                                                 shape.rotation)))
         if _placed_shape_corners(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
