@@ -10,7 +10,8 @@ from __future__ import annotations
 import importlib
 import os
 
-from urdftool.report.summary import STYLES, Summary, all_findings, printable, write_json
+from urdftool.report.json_output import write_json
+from urdftool.report.summary import STYLES, Summary, all_findings, printable
 
 __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render",
            "resolve_format", "write_json"]

@@ -11,7 +11,8 @@ from __future__ import annotations
 import hashlib
 import json
 
-from urdftool.report.summary import all_findings, write_json
+from urdftool.report.json_output import write_json
+from urdftool.report.summary import all_findings
 
 # https://docs.gitlab.com/ci/testing/code_quality/#code-quality-report-format
 _SEVERITIES = {"error": "major", "warning": "minor", "info": "info"}

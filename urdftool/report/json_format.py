@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from urdftool.report.summary import Summary, all_findings, location_dict, write_json
+from urdftool.report.json_output import write_json
+from urdftool.report.summary import Summary, all_findings, location_dict
 
 
 def diagnostic(finding) -> dict:

@@ -6,7 +6,8 @@ https://github.com/reviewdog/reviewdog/tree/master/proto/rdf
 
 from __future__ import annotations
 
-from urdftool.report.summary import all_findings, write_json
+from urdftool.report.json_output import write_json
+from urdftool.report.summary import all_findings
 
 _SEVERITIES = {"error": "ERROR", "warning": "WARNING", "info": "INFO"}
 

@@ -15,7 +15,8 @@ from pathlib import Path
 from urllib.parse import quote
 
 from urdftool import __version__
-from urdftool.report.summary import all_findings, write_json
+from urdftool.report.json_output import write_json
+from urdftool.report.summary import all_findings
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 HOME = "https://pypi.org/project/urdftool/"

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass
 
@@ -72,6 +71,3 @@ def all_findings(results) -> list[Finding]:
     return [finding for result in results for finding in result.findings]
 
 
-def write_json(document: dict, stream) -> None:
-    """A JSON document as the json and sarif formats write it: indented, ending in a newline."""
-    stream.write(json.dumps(document, indent=2) + "\n")  # one write: json.dump writes per token

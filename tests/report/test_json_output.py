@@ -1,0 +1,53 @@
+"""The JSON writer of every JSON format and analysis command."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+
+from urdftool.report.json_output import RECORD, WIDTH, dumps, write_json
+
+
+def test_a_value_that_fits_stays_on_one_line_and_a_long_one_has_an_item_a_line():
+    long = "x" * WIDTH
+    text = dumps({"short": [1, 2.5], "long": [long, {"a": None}], "empty": {}})
+    assert text == ('{\n  "short": [1, 2.5],\n  "long": [\n    "' + long + '",\n    {"a": null}\n'
+                    '  ],\n  "empty": {}\n}')
+
+
+def test_dumps_reads_back_as_what_json_reads_including_keys_json_converts():
+    document = {"diagnostics": [{"message": "m" * 200, "via": [], "line": 3}] * 3, 1.5: [],
+                True: None, 2: (1, 2), "nested": [[["deep" * 30]]]}
+    assert json.loads(dumps(document)) == json.loads(json.dumps(document))
+    assert all(len(line) <= WIDTH or '"m' in line or '"deep' in line
+               for line in dumps(document).splitlines())
+
+
+def test_write_json_ends_with_a_newline():
+    stream = io.StringIO()
+    write_json({"a": [1, 2.5]}, stream)
+    assert stream.getvalue() == '{"a": [1, 2.5]}\n'
+
+
+def test_write_json_finite_writes_null_for_infinite_and_nan():
+    stream = io.StringIO()
+    write_json({"d": math.inf, "rows": [(1.0, math.nan)], "n": -math.inf}, stream, finite=True)
+    assert json.loads(stream.getvalue()) == {"d": None, "rows": [[1.0, None]], "n": None}
+    assert "Infinity" not in stream.getvalue()
+
+
+def test_an_object_in_a_list_is_a_line_of_its_own_up_to_a_record_long():
+    record = {"message": "m" * (WIDTH * 2), "line": 1}
+    huge = {"message": "m" * RECORD}
+    lines = dumps({"diagnostics": [record, huge]}).splitlines()
+    assert lines[2] == "    " + json.dumps(record) + ","
+    assert lines[3] == "    {"
+
+
+def test_the_least_length_is_never_more_than_the_length():
+    from urdftool.report.json_output import _least_length
+
+    for value in ([], [1], [1, 22, "abc"], {}, {"a": 1}, {"a": [1, {"bb": "c"}], 2: None},
+                  ["é" * 5, [[]], {"": ""}]):
+        assert _least_length(value, 10 ** 6) <= len(json.dumps(value))
