@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT
-from urdftool.description import meshes
+from urdftool.description import inputs, meshes
 from urdftool.description.meshes import triangle_count
 
 
@@ -207,7 +207,7 @@ def test_collada_nested_instance_nodes_are_multiplied(tmp_path):
              '<node id="b"><instance_node url="#a"/></node>')
     (tmp_path / "cycle.dae").write_text(_collada('<node id="top"><instance_node url="#a"/></node>',
                                                  cycle))
-    assert triangle_count(tmp_path / "cycle.dae") > meshes.MAX_TRIANGLES
+    assert triangle_count(tmp_path / "cycle.dae") > inputs.MAX_TRIANGLES
 
 
 def test_collada_count_matches_trimesh_on_a_plain_mesh(tmp_path):

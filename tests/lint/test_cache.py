@@ -64,6 +64,12 @@ def _messages(folder, cache_dir) -> set[tuple[str, str]]:
     return {(f.code, f.message) for f in run.results[0].findings}
 
 
+def _entries(cache_dir, kind: str = "file") -> list:
+    """The entries of one file's results ('file') or of whole runs ('run')."""
+    return [entry for entry in (cache_dir / "v1").iterdir()
+            if entry.name.endswith("-run.json") == (kind == "run")]
+
+
 def _counting_checks(monkeypatch) -> list:
     checked = []
     real = engine.check_file
@@ -104,6 +110,37 @@ def test_an_edited_macro_file_mesh_or_companion_changes_the_findings(robot, tmp_
     assert not any("'elbow'" in message for _, message in after_yaml)
 
 
+def test_a_rerun_of_the_same_paths_is_served_whole(robot, tmp_path, monkeypatch):
+    from urdftool.lint import targets
+
+    cache_dir = tmp_path / "cache"
+    first = _messages(robot, cache_dir)
+    assert len(_entries(cache_dir, "run")) == 1
+
+    def refused(*args):
+        raise AssertionError("targets expanded on a re-run")
+
+    monkeypatch.setattr(targets, "expand", refused)
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, cache_dir) == first
+    assert checked == []
+
+
+@pytest.mark.parametrize("settings", ["pyproject.toml", "urdftool.toml", "../pyproject.toml"])
+def test_a_new_settings_file_above_the_robot_is_seen(robot, tmp_path, settings):
+    cache_dir = tmp_path / "cache"
+    assert any(code == "U302" for code, _ in _messages(robot, cache_dir))
+    table = "" if settings == "urdftool.toml" else "[tool.urdftool]\n"
+    (robot / settings).write_text(table + 'ignore = ["U302"]\n')
+    assert not any(code == "U302" for code, _ in _messages(robot, cache_dir))
+
+
+def test_a_run_through_a_folder_is_not_kept_whole(robot, tmp_path):
+    cache_dir = tmp_path / "cache"
+    check_paths([str(robot)], cache_dir=cache_dir, timeout=0, max_memory="0", jobs=1)
+    assert _entries(cache_dir, "file") and not _entries(cache_dir, "run")
+
+
 def test_a_new_companion_file_is_seen(robot, tmp_path):
     cache_dir = tmp_path / "cache"
     (robot / "config" / "controllers.yaml").unlink()
@@ -112,15 +149,17 @@ def test_a_new_companion_file_is_seen(robot, tmp_path):
     assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
 
 
-def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch):
+@pytest.mark.parametrize("kind", ["file", "run"])
+def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch, kind):
     cache_dir = tmp_path / "cache"
     honest = _messages(robot, cache_dir)
-    [entry] = (cache_dir / "v1").iterdir()
-    document = json.loads(entry.read_text())
-    body = json.loads(document["body"])
-    body["findings"] = []  # "no problems": what an attacker would plant
-    document["body"] = json.dumps(body)
-    entry.write_text(json.dumps(document))
+    for entry in _entries(cache_dir, kind):
+        document = json.loads(entry.read_text())
+        body = json.loads(document["body"])
+        for result in body.get("results", [body]):
+            result["findings"] = []  # "no problems": what an attacker would plant
+        document["body"] = json.dumps(body)
+        entry.write_text(json.dumps(document))
     assert _messages(robot, cache_dir) == honest
     # signed with a key of its own (written by another machine): a miss as well
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "other-home"))
@@ -129,11 +168,12 @@ def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch):
     assert len(checked) == 1
 
 
+@pytest.mark.parametrize("kind", ["file", "run"])
 @pytest.mark.parametrize("garbage", [b"", b"{", b"[]", b'{"body": "{}", "mac": 1}', b"\xff" * 10])
-def test_a_corrupt_entry_is_a_miss(robot, tmp_path, garbage):
+def test_a_corrupt_entry_is_a_miss(robot, tmp_path, garbage, kind):
     cache_dir = tmp_path / "cache"
     honest = _messages(robot, cache_dir)
-    [entry] = (cache_dir / "v1").iterdir()
+    [entry] = _entries(cache_dir, kind)
     entry.write_bytes(garbage)
     assert _messages(robot, cache_dir) == honest
 
@@ -149,10 +189,14 @@ def test_a_cache_folder_that_is_a_link_is_not_followed(robot, tmp_path, monkeypa
     assert checked and list(elsewhere.iterdir()) == []
 
 
-def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path):
+@pytest.mark.parametrize("kind", ["file", "run"])
+def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path, kind):
     cache_dir = tmp_path / "cache"
     honest = _messages(robot, cache_dir)
-    [entry] = (cache_dir / "v1").iterdir()
+    if kind == "file":  # the run's entry would serve the run without reading the file's
+        [run] = _entries(cache_dir, "run")
+        run.unlink()
+    [entry] = _entries(cache_dir, kind)
     target = tmp_path / "secret.txt"
     target.write_text(entry.read_text())
     entry.unlink()
@@ -174,7 +218,7 @@ def test_check_no_cache_writes_nothing(robot, tmp_path, run_cli, monkeypatch):
     run_cli("check", "--no-cache", str(robot / "bot.urdf.xacro"))
     assert not (tmp_path / ".urdftool_cache").exists()
     run_cli("check", str(robot / "bot.urdf.xacro"))
-    assert len(list((tmp_path / ".urdftool_cache" / "v1").iterdir())) == 1
+    assert len(_entries(tmp_path / ".urdftool_cache")) == 1
 
 
 def test_a_cached_result_keeps_columns_call_sites_and_fixes(tmp_path, monkeypatch):

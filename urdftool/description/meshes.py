@@ -48,18 +48,10 @@ from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem, parser, tag
 from urdftool.description.files import inside, read_regular
+from urdftool.description.inputs import MAX_MESH_BYTES, MeshLimits
 from urdftool.description.packages import containment_root, package_uri_parts
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
-MAX_TRIANGLES = 2_000_000
-MAX_MESH_BYTES = 128 * 1024 * 1024
-
-
-@dataclass(frozen=True)
-class MeshLimits:
-    max_triangles: int = MAX_TRIANGLES
-    max_bytes: int = MAX_MESH_BYTES
-
 
 def resolve(robot, uri: str) -> Path:
     """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used.

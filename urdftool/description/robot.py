@@ -9,35 +9,10 @@ from pathlib import Path
 from typing import Callable, Mapping, TypeVar
 
 from urdftool.diagnostics import Location
-from urdftool.description.meshes import MeshLimits
+from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.packages import PackageResolver
 
 T = TypeVar("T")
-
-
-@dataclass(frozen=True)
-class CompanionPaths:
-    """Companion files named by the user (``check --controllers/--srdf/--spec`` or the settings
-    file); what is not named is discovered beside the robot (:mod:`.companions`)."""
-
-    controllers: tuple[Path, ...] = ()
-    srdf: Path | None = None
-    spec: Path | None = None
-
-    def __post_init__(self):
-        object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers or ()))
-        for kind in ("srdf", "spec"):
-            if getattr(self, kind) is not None:
-                object.__setattr__(self, kind, Path(getattr(self, kind)))
-
-    def named(self) -> list[Path]:
-        """Every file named."""
-        return [*self.controllers, *(p for p in (self.srdf, self.spec) if p is not None)]
-
-    def overridden_by(self, other: "CompanionPaths") -> "CompanionPaths":
-        """These paths with every one ``other`` names replaced (the command line wins)."""
-        return CompanionPaths(other.controllers or self.controllers, other.srdf or self.srdf,
-                              other.spec or self.spec)
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,12 @@ git's index does) and, when it differs, by their content.
 A file that failed to load is not kept (it fails fast anyway), nor a result with a crash, a
 budget stop or stdin.
 
+A whole run is kept too, when each path named was checked as itself (the case of pre-commit
+and of editors): keyed by the paths and the request, it lists the stamps of everything its
+files' entries list, and of the settings files, package.xml and ``.git`` (present or not) in
+every folder above each path. A re-run whose stamps are all the same is served from it without
+looking for settings or classifying the paths; any difference and the run goes file by file.
+
 The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
 ``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``. Robot files and even the cache folder may come
 from a stranger (a pull request can commit a ``.urdftool_cache`` with entries saying "no
@@ -77,21 +83,74 @@ class Cache:
         self._key = _secret()
         self._source = _source_stamp()
         self._resolvers: dict = {}
+        self._verified: dict = {}  # (path, options) -> [kind, name, quick] of a hit or a put
 
     # -- the key ---------------------------------------------------------------------------
 
     def _entry_path(self, path: str, options) -> Path:
-        key = json.dumps([SCHEMA, self._source, os.getcwd(), os.path.abspath(path),
-                          repr(options), [os.environ.get(name) for name in _ENVIRONMENT]])
-        return self.folder / f"v{SCHEMA}" / (hashlib.sha256(key.encode()).hexdigest() + ".json")
+        return self._keyed(os.path.abspath(path), repr(options))
+
+    def _run_path(self, paths: list[str], request) -> Path:
+        """Where a whole run is kept: keyed by the paths as given (reports show them so), the
+        request but its cache folder, and ``CI`` (which sets ``allow_env``'s default)."""
+        return self._keyed("run", [os.path.abspath(path) for path in paths], list(paths),
+                           repr(dataclasses.replace(request, cache_dir=None)),
+                           os.environ.get("CI"), suffix="-run")
+
+    def _keyed(self, *parts, suffix: str = "") -> Path:
+        key = json.dumps([SCHEMA, self._source, os.getcwd(), *parts,
+                          [os.environ.get(name) for name in _ENVIRONMENT]])
+        return self.folder / f"v{SCHEMA}" / (hashlib.sha256(key.encode()).hexdigest() + suffix
+                                             + ".json")
 
     # -- reading ---------------------------------------------------------------------------
 
     def get(self, path: str, options) -> list[Finding] | None:
         """The findings kept for ``path`` checked with ``options``, or None (a miss)."""
-        if self._key is None or path == "-" or not self._usable_folder():
+        if path == "-" or (content := self._content(self._entry_path(path, options))) is None:
             return None
-        entry = _read_entry(self._entry_path(path, options))
+        try:
+            dependencies, current = self._dependencies(path, options), []
+            for kind, name, quick, full in content["depends"]:
+                now = dependencies.quick(kind, name)
+                if not (now == quick and now is not None or dependencies.full(kind, name) == full):
+                    return None
+                current.append([kind, name, now])
+            findings = [_finding(item) for item in content["findings"]]
+        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
+            return None
+        self._verified[path, repr(options)] = current
+        return findings
+
+    def get_run(self, paths: list[str], request) -> tuple[list, list[bool]] | None:
+        """The results (FileResult) and their strictness kept for checking ``paths`` with
+        ``request``, or None. A run is kept only when each path was checked as itself (no
+        folder, macro library or companion named), and is a hit only while every stamp it lists
+        is the same: the quick state of what each file's result was built from, and the
+        settings files, package manifests and repository markers above each path (present or
+        not). Any difference is a miss, and the files are looked up one by one."""
+        if "-" in paths or (content := self._content(self._run_path(paths, request))) is None:
+            return None
+        from urdftool.lint.options import FileResult
+
+        try:
+            dependencies = _Dependencies(paths[0], None, self._resolvers)
+            if any(dependencies.quick(kind, name) != quick or quick is None and kind == "mesh"
+                   for kind, name, quick in content["depends"]):  # unresolved: resolve again
+                return None
+            results = [FileResult(item["path"], [_finding(f) for f in item["findings"]],
+                                  companions=[str(line) for line in item["companions"]])
+                       for item in content["results"]]
+            return results, [bool(strict) for strict in content["strict"]]
+        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
+            return None
+
+    def _content(self, entry_path: Path) -> dict | None:
+        """The body of the entry at ``entry_path`` when this machine signed it for this schema;
+        None when there is none, or it is a link, malformed or not signed here."""
+        if self._key is None or not self._usable_folder():
+            return None
+        entry = _read_entry(entry_path)
         if entry is None:
             return None
         try:
@@ -100,15 +159,30 @@ class Cache:
             if not hmac.compare_digest(signature, self._sign(body)):
                 return None
             content = json.loads(body)
-            if content["schema"] != SCHEMA:
-                return None
-            dependencies = self._dependencies(path, options)
-            for kind, name, quick, full in content["depends"]:
-                if not dependencies.unchanged(kind, name, quick, full):
-                    return None
-            return [_finding(item) for item in content["findings"]]
-        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
+            return content if content["schema"] == SCHEMA else None
+        except (ValueError, KeyError, TypeError, IndexError, AttributeError):
             return None
+
+    def put_run(self, paths: list[str], request, run, options_for) -> None:
+        """Keep ``run`` for :meth:`get_run`, when every path was checked as itself and every
+        result was kept (see :meth:`put`); ``options_for``: path -> its CheckOptions."""
+        if self._key is None or "-" in paths or run.skipped or run.notes or \
+                [result.path for result in run.results] != list(paths):
+            return
+        depends = []
+        for path in paths:
+            options = options_for(path)
+            if (path, repr(options)) not in self._verified and self.get(path, options) is None:
+                return  # not kept: a crash, a budget stop, a file that did not load
+            depends += self._verified[path, repr(options)]
+        dependencies = _Dependencies(paths[0], None, self._resolvers)
+        depends += [[kind, name, dependencies.quick(kind, name)]
+                    for kind, name in _surroundings(paths, request)]
+        body = json.dumps({"schema": SCHEMA, "depends": depends, "strict": run.strict,
+                           "results": [{"path": result.path, "companions": result.companions,
+                                        "findings": [_record(f) for f in result.findings]}
+                                       for result in run.results]})
+        self._keep(self._run_path(paths, request), body)
 
     # -- writing ---------------------------------------------------------------------------
 
@@ -121,11 +195,13 @@ class Cache:
         depends = self._dependencies(path, options).of(robot)
         body = json.dumps({"schema": SCHEMA, "depends": depends,
                            "findings": [_record(f) for f in result.findings]})
+        self._keep(self._entry_path(path, options), body)
+
+    def _keep(self, entry_path: Path, body: str) -> None:
+        """Write ``body``, signed, at ``entry_path``; nothing when the folder is unusable."""
         try:
-            if not self._usable_folder(create=True):
-                return
-            target = self._entry_path(path, options)
-            _write(target, json.dumps({"body": body, "mac": self._sign(body)}))
+            if self._usable_folder(create=True):
+                _write(entry_path, json.dumps({"body": body, "mac": self._sign(body)}))
         except OSError:
             return
 
@@ -192,6 +268,27 @@ def _listing(folder: str, measure) -> str:
     return json.dumps([f"{name}:{measure(os.path.join(folder, name))}" for name in names])
 
 
+_SETTINGS_AND_MANIFESTS = ("urdftool.toml", "pyproject.toml", "package.xml")
+
+
+def _surroundings(paths: list[str], request) -> list[tuple[str, str]]:
+    """What finding and reading a path's settings and packages looks at above it: in every
+    folder up to ``/``, the settings files and package.xml (their stamps; None while absent)
+    and ``.git`` (whether present: it bounds the repository); and a ``--config`` file."""
+    folders: dict[str, None] = {}
+    for path in paths:
+        folder = os.path.dirname(os.path.abspath(path))
+        while folder not in folders:
+            folders[folder] = None
+            folder = os.path.dirname(folder)
+    found = [("exists", os.path.join(folder, ".git")) for folder in folders]
+    found += [("file", os.path.join(folder, name)) for folder in folders
+              for name in _SETTINGS_AND_MANIFESTS]
+    if request.settings_file is not None:
+        found.append(("file", os.path.abspath(request.settings_file)))
+    return found
+
+
 class _Dependencies:
     """What a result depends on, each as (quick, full): the quick state (stamps) is compared
     first, and the full state (content hashes) only when the quick one differs."""
@@ -216,6 +313,8 @@ class _Dependencies:
         return os.path.abspath(resolved), ""
 
     def quick(self, kind: str, name: str) -> str | None:
+        if kind == "exists":  # a marker whose presence alone matters (.git)
+            return "folder" if os.path.isdir(name) else "file" if os.path.lexists(name) else ""
         if kind == "file":
             return _stamp(name)
         if kind == "folder":
@@ -236,10 +335,6 @@ class _Dependencies:
         if kind == "environment":
             return hashlib.sha256(json.dumps(sorted(os.environ.items())).encode()).hexdigest()
         raise ValueError(kind)
-
-    def unchanged(self, kind: str, name: str, quick: str | None, full: str | None) -> bool:
-        now = self.quick(kind, name)
-        return (now == quick and now is not None) or self.full(kind, name) == full
 
     def of(self, robot) -> list[list]:
         """[kind, name, quick, full] of everything ``robot``'s result was built from."""

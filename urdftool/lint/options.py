@@ -7,8 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.meshes import MeshLimits
-from urdftool.description.robot import CompanionPaths
+from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.diagnostics import Finding, Severity
 
 

@@ -32,7 +32,6 @@ from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding, Location, Severity, display_path
 from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
-from urdftool.lint.targets import expand
 
 
 def default_jobs() -> int:
@@ -180,12 +179,17 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
 
 
 def _check_paths(paths: list, request: CheckRequest) -> Run:
-    targets = expand(paths, request)
     cache = None
     if request.cache_dir is not None:
         from urdftool.lint.cache import Cache
 
         cache = Cache(request.cache_dir)
+        kept = cache.get_run(paths, request)
+        if kept is not None:
+            return Run(kept[0], strict=kept[1])
+    from urdftool.lint.targets import expand  # not on a re-run served whole from the cache
+
+    targets = expand(paths, request)
     plans = [for_file(request.stdin_filename if path == "-" and request.stdin_filename else path,
                       request) for path in targets.files]
     by_path = dict(zip(targets.files, plans))
@@ -197,7 +201,10 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
                             stdin_as=request.stdin_filename, cache=cache)
         for index, result in zip(indexes, found):
             results[index] = result
-    return Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])
+    run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])
+    if cache is not None:
+        cache.put_run(paths, request, run, lambda path: by_path[path].options)
+    return run
 
 
 def check_file(path, *, data: bytes | str | None = None, **options) -> FileResult:

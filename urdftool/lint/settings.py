@@ -29,8 +29,7 @@ from pathlib import Path
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import inside, read_regular
-from urdftool.description.meshes import MeshLimits
-from urdftool.description.robot import CompanionPaths
+from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
 

@@ -1,0 +1,42 @@
+"""What loading a robot takes besides its file: the companion files the user named and the
+limits on its meshes. Kept apart from the loader so that the settings, the runner and the
+result cache handle them without importing it (a re-run served from the cache never does)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+MAX_TRIANGLES = 2_000_000
+MAX_MESH_BYTES = 128 * 1024 * 1024
+
+
+@dataclass(frozen=True)
+class MeshLimits:
+    max_triangles: int = MAX_TRIANGLES
+    max_bytes: int = MAX_MESH_BYTES
+
+
+@dataclass(frozen=True)
+class CompanionPaths:
+    """Companion files named by the user (``check --controllers/--srdf/--spec`` or the settings
+    file); what is not named is discovered beside the robot (:mod:`.companions`)."""
+
+    controllers: tuple[Path, ...] = ()
+    srdf: Path | None = None
+    spec: Path | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers or ()))
+        for kind in ("srdf", "spec"):
+            if getattr(self, kind) is not None:
+                object.__setattr__(self, kind, Path(getattr(self, kind)))
+
+    def named(self) -> list[Path]:
+        """Every file named."""
+        return [*self.controllers, *(p for p in (self.srdf, self.spec) if p is not None)]
+
+    def overridden_by(self, other: "CompanionPaths") -> "CompanionPaths":
+        """These paths with every one ``other`` names replaced (the command line wins)."""
+        return CompanionPaths(other.controllers or self.controllers, other.srdf or self.srdf,
+                              other.spec or self.spec)
