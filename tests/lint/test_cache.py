@@ -66,7 +66,7 @@ def _messages(folder, cache_dir) -> set[tuple[str, str]]:
 
 def _entries(cache_dir, kind: str = "file") -> list:
     """The entries of one file's results ('file') or of whole runs ('run')."""
-    return [entry for entry in (cache_dir / "v1").iterdir()
+    return [entry for entry in (cache_dir / f"v{cache_module.SCHEMA}").iterdir()
             if entry.name.endswith("-run.json") == (kind == "run")]
 
 
@@ -154,12 +154,11 @@ def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch, kind):
     cache_dir = tmp_path / "cache"
     honest = _messages(robot, cache_dir)
     for entry in _entries(cache_dir, kind):
-        document = json.loads(entry.read_text())
-        body = json.loads(document["body"])
+        signature, body = entry.read_text().split("\n", 1)
+        body = json.loads(body)
         for result in body.get("results", [body]):
             result["findings"] = []  # "no problems": what an attacker would plant
-        document["body"] = json.dumps(body)
-        entry.write_text(json.dumps(document))
+        entry.write_text(signature + "\n" + json.dumps(body))
     assert _messages(robot, cache_dir) == honest
     # signed with a key of its own (written by another machine): a miss as well
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "other-home"))
@@ -169,7 +168,7 @@ def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch, kind):
 
 
 @pytest.mark.parametrize("kind", ["file", "run"])
-@pytest.mark.parametrize("garbage", [b"", b"{", b"[]", b'{"body": "{}", "mac": 1}', b"\xff" * 10])
+@pytest.mark.parametrize("garbage", [b"", b"{", b"[]", b'{"body": "{}", "mac": 1}', b"0" * 64 + b"\n{}", b"\xff" * 10])
 def test_a_corrupt_entry_is_a_miss(robot, tmp_path, garbage, kind):
     cache_dir = tmp_path / "cache"
     honest = _messages(robot, cache_dir)
@@ -203,7 +202,7 @@ def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path, kind):
     entry.symlink_to(target)
     assert _messages(robot, cache_dir) == honest
     assert not entry.is_symlink()  # replaced by a fresh entry, the target left alone
-    assert target.read_text().startswith('{"body"')
+    assert target.read_text().split("\n", 1)[1].startswith('{"schema"')
 
 
 def test_the_default_is_off_under_ci():

@@ -58,7 +58,7 @@ from urdftool.description.files import TooLarge, read_regular, write_file
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
 from urdftool.errors import UsageError
 
-SCHEMA = 1
+SCHEMA = 2  # 2: an entry is its signature, a line break and its body
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 HASHED_BYTES = 512 * 1024 * 1024  # [bytes]: larger files are known by size and time
@@ -154,8 +154,7 @@ class Cache:
         if entry is None:
             return None
         try:
-            document = json.loads(entry)
-            body, signature = document["body"], document["mac"]
+            signature, _, body = entry.decode("utf-8").partition("\n")
             if not hmac.compare_digest(signature, self._sign(body)):
                 return None
             content = json.loads(body)
@@ -201,7 +200,7 @@ class Cache:
         """Write ``body``, signed, at ``entry_path``; nothing when the folder is unusable."""
         try:
             if self._usable_folder(create=True):
-                _write(entry_path, json.dumps({"body": body, "mac": self._sign(body)}))
+                _write(entry_path, f"{self._sign(body)}\n{body}")
         except OSError:
             return
 
@@ -212,7 +211,7 @@ class Cache:
         return hmac.new(self._key, body.encode(), hashlib.sha256).hexdigest()
 
     def _usable_folder(self, create: bool = False) -> bool:
-        """The folder (and its ``v1``) exist as real folders, never links; made when asked."""
+        """The folder (and its ``v<SCHEMA>``) exist as real folders, never links; made when asked."""
         for folder in (self.folder, self.folder / f"v{SCHEMA}"):
             try:
                 mode = os.lstat(folder).st_mode
@@ -370,10 +369,10 @@ def _location_record(location: Location) -> list:
 
 def _location(record) -> Location:
     file, line, via, column = record
-    if not isinstance(file, str) or not all(value is None or isinstance(value, int)
-                                            for value in (line, column)):
+    if type(file) is not str or line is not None and type(line) is not int or \
+            column is not None and type(column) is not int:
         raise TypeError("malformed location")
-    return Location(file, line, tuple(_location(v) for v in via), column)
+    return Location(file, line, tuple(map(_location, via)) if via else (), column)
 
 
 def _fix(record) -> Fix | None:
@@ -389,12 +388,16 @@ def _fix(record) -> Fix | None:
     return Fix(record["description"], edits, record["safe"])
 
 
+_SEVERITIES = {severity.value: severity for severity in Severity}
+
+
 def _finding(record: dict) -> Finding:
-    fields = (record["code"], record["name"], record["message"])
-    if not all(isinstance(value, str) for value in fields):
+    code, name, message = record["code"], record["name"], record["message"]
+    if type(code) is not str or type(name) is not str or type(message) is not str:
         raise TypeError("malformed finding")
-    return Finding(record["code"], record["name"], Severity(record["severity"]),
-                   record["message"], _location(record["location"]), _fix(record.get("fix")))
+    fix = record.get("fix")
+    return Finding(code, name, _SEVERITIES[record["severity"]], message,
+                   _location(record["location"]), None if fix is None else _fix(fix))
 
 
 def _read_entry(path: Path, limit: int = MAX_ENTRY_BYTES) -> bytes | None:
