@@ -177,7 +177,9 @@ class Cache:
         dependencies = _Dependencies(paths[0], None, self._resolvers)
         depends += [[kind, name, dependencies.quick(kind, name)]
                     for kind, name in _surroundings(paths, request)]
-        body = json.dumps({"schema": SCHEMA, "depends": depends, "strict": run.strict,
+        unique = {(kind, name): quick for kind, name, quick in depends}  # robots share meshes
+        body = json.dumps({"schema": SCHEMA, "strict": run.strict, "depends": [
+                               [kind, name, quick] for (kind, name), quick in unique.items()],
                            "results": [{"path": result.path, "companions": result.companions,
                                         "findings": [_record(f) for f in result.findings]}
                                        for result in run.results]})
