@@ -273,3 +273,27 @@ def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
         meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
     held = sum(size for size, _ in meshes._RUN_CACHE.values())
     assert 0 < held <= 2000 and len(meshes._RUN_CACHE) < 8
+
+
+def test_a_mesh_path_in_a_symbolic_link_loop_is_a_missing_mesh(tmp_path):
+    (tmp_path / "loop.stl").symlink_to(tmp_path / "loop.stl")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "loop.stl"), "loop.stl")
+    assert error.value.kind == "missing"  # Path.resolve raised OSError (ELOOP): a crash, U900
+
+
+def test_symbolic_links_are_followed_once_per_run(tmp_path, monkeypatch):
+    import os
+
+    from urdftool.description.run_memo import one_run
+
+    mesh = tmp_path / "m.stl"
+    mesh.write_text("solid x\nendsolid x\n")
+    robots = [_robot(tmp_path) for _ in range(3)]  # each resolves the URI itself
+    looked = []
+    real = os.lstat
+    monkeypatch.setattr(os, "lstat", lambda p, *a, **k: looked.append(str(p)) or real(p, *a, **k))
+    with one_run():
+        for robot in robots:
+            assert resolve(robot, "m.stl") == mesh
+    assert looked.count(str(mesh)) == 1

@@ -47,7 +47,7 @@ from pathlib import Path
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem, parser, tag
-from urdftool.description.files import inside, read_regular
+from urdftool.description.files import inside, read_regular, real_path
 from urdftool.description.inputs import MAX_MESH_BYTES, MeshLimits
 from urdftool.description.packages import containment_root, package_uri_parts
 
@@ -74,10 +74,10 @@ def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
         package, _ = package_uri_parts(uri)
         try:
-            folder = robot.resolver.find(package).resolve()
+            folder = _real(robot.resolver.find(package))
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
-        path = robot.resolve_uri(uri).resolve()
+        path = _real(robot.resolve_uri(uri))
         if not inside(path, folder):
             raise MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' ({folder}); "
                                          "name a file inside the package")
@@ -85,9 +85,9 @@ def _resolve(robot, uri: str) -> Path:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
-        path = robot.resolve_uri(uri).resolve()
+        path = _real(robot.resolve_uri(uri))
         # file:// and relative paths stay where the loader's files stay
-        root = containment_root(robot.base_dir).resolve()
+        root = _real(containment_root(robot.base_dir))
         if not inside(path, root):
             raise MeshProblem("outside", (
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
@@ -99,6 +99,12 @@ def _resolve(robot, uri: str) -> Path:
         raise MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _real(path: Path) -> Path:
+    """``path`` with every symbolic link followed (once per run; a loop is left as it is, and
+    is then no file)."""
+    return Path(real_path(os.fspath(path)))
 
 
 _CHUNK = 1 << 20
