@@ -321,3 +321,39 @@ def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
     path.write_text(change(_obj_text("{v}")))
     assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+def _merged_then_bounds(vertices, scale=None):
+    merged_vertices, faces = mesh_arrays.merged(vertices, np.arange(len(vertices)).reshape(-1, 3))
+    if scale is not None:
+        merged_vertices, faces = mesh_arrays.scaled(merged_vertices, faces, scale)
+    return mesh_arrays.bounds(merged_vertices, faces)
+
+
+def test_merged_bounds_are_those_of_the_merged_vertices_or_none():
+    rng = np.random.default_rng(5)
+    decided = 0
+    for _ in range(200):
+        grid = rng.integers(-3, 4, size=(30, 3)) * 0.25  # many equal, some equal to 1e-8
+        jitter = rng.choice([0.0, 0.0, 3e-9, -3e-9, 0.25], size=(30, 3))
+        corners = np.vstack([grid, grid[rng.permutation(30)] + jitter])
+        scale = tuple(rng.choice([1.0, 0.001, -2.0], size=3))
+        moved, _ = mesh_arrays.scaled(corners, np.arange(60).reshape(-1, 3), scale)
+        found = mesh_arrays.merged_bounds(moved, corners)
+        decided += found is not None
+        if found is not None:
+            expected = _merged_then_bounds(corners, scale)
+            assert all(np.array_equal(a, b) and (np.signbit(a) == np.signbit(b)).all()
+                       for a, b in zip(found, expected))
+    assert 10 < decided < 200  # both outcomes are exercised
+
+
+def test_merged_bounds_leave_to_merging_what_they_cannot_tell():
+    # the greatest x (row 2) merges into row 0, which merging keeps
+    merges_into_an_earlier = np.array([[0.5, 0, 0], [0, 0, 1], [0.5 + 4e-9, 0, 0]])
+    assert mesh_arrays.merged_bounds(merges_into_an_earlier, merges_into_an_earlier) is None
+    assert _merged_then_bounds(merges_into_an_earlier)[1][0] == 0.5
+    signed_zeros = np.array([[0.0, 1, 1], [-0.0, 2, 2], [1, 0, 1]])
+    assert mesh_arrays.merged_bounds(signed_zeros, signed_zeros) is None
+    huge = np.array([[1e11, 0, 0], [0, 1, 0], [0, 0, 1]])
+    assert mesh_arrays.merged_bounds(huge, huge) is None  # merge keys overflow there

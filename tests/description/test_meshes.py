@@ -157,10 +157,10 @@ def _count_reads(monkeypatch) -> list:
     from urdftool.description import mesh_arrays, meshes
 
     reads = []
-    real, light = meshes._read_mesh, mesh_arrays.read
+    real, light = meshes._read_mesh, mesh_arrays.read_unmerged
     monkeypatch.setattr(meshes, "_read_mesh", lambda path, *rest: reads.append(path) or
                         real(path, *rest))
-    monkeypatch.setattr(mesh_arrays, "read", lambda path, *rest: reads.append(path) or
+    monkeypatch.setattr(mesh_arrays, "read_unmerged", lambda path, *rest: reads.append(path) or
                         light(path, *rest))
     monkeypatch.setattr(meshes, "_RUN_CACHE", {})
     return reads
@@ -297,3 +297,22 @@ def test_symbolic_links_are_followed_once_per_run(tmp_path, monkeypatch):
         for robot in robots:
             assert resolve(robot, "m.stl") == mesh
     assert looked.count(str(mesh)) == 1
+
+
+@pytest.mark.parametrize("scale", [(1.0, 1.0, 1.0), (0.5, -2.0, 1.0)])
+def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, scale):
+    import trimesh
+
+    from urdftool.description import mesh_arrays, meshes
+
+    trimesh.creation.icosphere(2).export(tmp_path / "m.stl")
+    merges = []
+    real = mesh_arrays.merged
+    monkeypatch.setattr(mesh_arrays, "merged", lambda *a: merges.append(1) or real(*a))
+    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
+    assert facts.faces == 320 and not merges
+    loaded = load_mesh(_robot(tmp_path), "m.stl", scale)
+    assert facts.bounds.tolist() == loaded.bounds.tolist()
+    assert facts.is_watertight and len(merges) == 1
+    assert facts.vertices.tolist() == loaded.vertices.tolist()

@@ -35,6 +35,13 @@ def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
     trimesh should read it. ``data``: the file's bytes (read by the caller, under the mesh
     size limit). Raises :class:`.collada.ColladaProblem` for a COLLADA file that is malformed
     (``not_well_formed`` when its XML is) or holds over ``max_triangles`` triangles."""
+    found = read_unmerged(path, data, max_triangles)
+    return None if found is None else merged(*found)
+
+
+def read_unmerged(path: Path, data: bytes, max_triangles: int = 2_000_000):
+    """What :func:`read` gives before :func:`merged`: the triangles' corners as the file
+    holds them (every vertex used by a face), or None; raises as :func:`read` does."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
         return _collada(data, max_triangles)
@@ -54,7 +61,7 @@ def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
 
     if not np.isfinite(raw).all():
         return None  # trimesh drops the faces of such vertices: let it
-    return merged(raw, np.arange(len(raw)).reshape(-1, 3))
+    return raw, np.arange(len(raw)).reshape(-1, 3)
 
 
 def _count(data: bytes) -> int:
@@ -93,12 +100,12 @@ def _stl_ascii(data: bytes):
 
 def _collada(data: bytes, max_triangles: int):
     """A COLLADA document's triangles as :func:`.collada.read_collada` reads them (trimesh's
-    triangles, in the file's unit), their corners merged by position. None when it holds no
-    triangles; :class:`.collada.ColladaProblem` when it is malformed or too large."""
+    triangles, in the file's unit). None when it holds no triangles;
+    :class:`.collada.ColladaProblem` when it is malformed or too large."""
     from urdftool.description.collada import read_collada
 
     vertices, faces = read_collada(data, max_triangles=max_triangles)
-    return merged(vertices, faces) if len(faces) else None
+    return (vertices, faces) if len(faces) else None
 
 
 def _obj(data: bytes):
@@ -150,7 +157,7 @@ def _obj(data: bytes):
                 not np.isfinite(arrays[key]).all():
             return None
     corners = arrays["v"][index[:, 0]]
-    return merged(corners, np.arange(len(corners)).reshape(-1, 3))
+    return corners, np.arange(len(corners)).reshape(-1, 3)
 
 
 def merged(vertices, faces):
@@ -168,6 +175,50 @@ def _merge_keys(vertices):
     import numpy as np
 
     return (vertices * 10 ** _MERGE_DIGITS).round().astype(np.int64)
+
+
+def merged_bounds(vertices, unmerged):
+    """``bounds(*merged(unmerged, faces))``, with every vertex moved as ``vertices`` moves it
+    (``vertices`` is ``unmerged`` scaled, or itself), without merging: a mesh's least and
+    greatest coordinate are a merged vertex's when the first vertex to have it is the first
+    of those that merge with it (the one merging keeps). Every vertex must be used by a face.
+    None when that does not decide it (the first to have it merges into an earlier one, the
+    coordinate is a zero found with either sign, or a coordinate is too large for a merge
+    key): merge then."""
+    import numpy as np
+
+    extremes = [vertices.argmin(axis=0), vertices.argmax(axis=0)]  # far faster than min()
+    ends = extremes if unmerged is vertices else \
+        [unmerged.argmin(axis=0), unmerged.argmax(axis=0)]
+    if not all(np.abs(unmerged[rows, [0, 1, 2]]).max() < _KEY_RANGE for rows in ends):
+        return None
+    corners = []
+    for first in extremes:
+        for axis, row in enumerate(first.tolist()):
+            if vertices[row, axis] == 0:  # which zero min() and max() return depends on order
+                zeros = np.signbit(vertices[vertices[:, axis] == 0, axis])
+                if zeros.any() != zeros.all():
+                    return None
+            if row and _merges_earlier(unmerged, row, axis):
+                return None
+        corners.append(vertices[first, [0, 1, 2]])
+    return corners[0], corners[1]
+
+
+_KEY_RANGE = 2.0 ** 62 / 10 ** _MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
+
+
+def _merges_earlier(vertices, row: int, axis: int) -> bool:
+    """Whether a vertex before ``row`` merges with it: only those within 1e-8 of it along
+    ``axis`` can (the margin covers rounding), and their keys are compared whole."""
+    import numpy as np
+
+    value = vertices[row, axis]
+    near = np.flatnonzero(np.abs(vertices[:row, axis] - value) <= 1e-7 + 1e-12 * abs(value))
+    if not len(near):
+        return False
+    return bool((_merge_keys(vertices[near]) == _merge_keys(vertices[row:row + 1])).all(
+        axis=1).any())
 
 
 def _unique_rows(keys):
