@@ -287,7 +287,8 @@ def _vertex_polytope_volumes(points):
         yield 0.0
         return
     stretch = np.where(extents > 0, extents, float(extents.max()))  # directions as if a cube
-    points = points[np.unique(np.argmax(points @ (directions / stretch).T, axis=0))]
+    farthest = np.argmax(points @ (directions / stretch).T, axis=0)
+    points = points[sorted(set(farthest.tolist()))]  # as np.unique, which imports np.ma
     if len(points) < 4:
         yield 0.0
         return
