@@ -316,11 +316,23 @@ def test_obj_triangles_are_trimeshs(tmp_path, form):
     lambda t: t.replace("v 0 0 0", "v 0 0 0 1 0 0"),  # a colour
     lambda t: t.replace("f 1 3 2", "  f 1 3 2"),  # indented
     lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
+    lambda t: t.replace("f 1 3 2", "f 1//1 3 2"),  # mixed corner forms
+    lambda t: t.replace("v 0 0 0", "v 0 0"),  # too few coordinates
 ])
 def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
     path.write_text(change(_obj_text("{v}")))
     assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+def test_obj_white_space_within_a_line_is_white_space(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}"))
+    spaced = tmp_path / "spaced.obj"
+    spaced.write_text(_obj_text("{v}").replace("f 1 3 2", "f \t1\t3  2 \t").replace(
+        "v 0 0 0", "v  0\t0 0 "))
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (spaced, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
 
 
 def _merged_then_bounds(vertices, scale=None):

@@ -21,6 +21,7 @@ says what is wrong with it. numpy, scipy and lxml are imported inside the functi
 
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -135,13 +136,13 @@ def _obj(data: bytes):
     if not rows["v"] or not rows["f"]:
         return None
     for key, count in (("v", 3), ("vt", 2), ("vn", 3)):
-        if any(len(line.split()) != count for line in rows[key]):
+        if not _obj_rows(r"\S+", count).fullmatch("".join(f"{row}\n" for row in rows[key])):
             return None  # colours, 3D texture coordinates...
     sample = rows["f"][0].split()[0]
     form = {0: 0, 1: 1, 2: 2 if "//" in sample else 3}.get(sample.count("/"))
     corner = (r"\d+", r"\d+/\d+", r"\d+//\d+", r"\d+/\d+/\d+")[form or 0]
-    pattern = re.compile(rf"\s*{corner}\s+{corner}\s+{corner}\s*")
-    if form is None or not all(pattern.fullmatch(line) for line in rows["f"]):
+    if form is None or \
+            not _obj_rows(corner, 3).fullmatch("".join(f"{row}\n" for row in rows["f"])):
         return None  # polygons, mixed corner forms, negative indices
     arrays = {key: np.fromstring(" ".join(rows[key]), sep=" ", dtype=np.float64).reshape(
         -1, 2 if key == "vt" else 3) if rows[key] else None for key in ("v", "vt", "vn")}
@@ -158,6 +159,15 @@ def _obj(data: bytes):
             return None
     corners = arrays["v"][index[:, 0]]
     return corners, np.arange(len(corners)).reshape(-1, 3)
+
+
+@functools.lru_cache(maxsize=None)
+def _obj_rows(item: str, count: int):
+    """Rows, each ended by a newline, of exactly ``count`` items (each matching ``item``)
+    with only white space apart and around them (``str.split()``'s white space): checked in
+    one match over all rows, not one per row."""
+    space = r"[^\S\n]"
+    return re.compile(rf"(?:{space}*{f'{space}+'.join([item] * count)}{space}*\n)*")
 
 
 def merged(vertices, faces):
