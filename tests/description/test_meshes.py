@@ -162,7 +162,7 @@ def _count_reads(monkeypatch) -> list:
                         real(path, *rest))
     monkeypatch.setattr(mesh_arrays, "read_unmerged", lambda path, *rest: reads.append(path) or
                         light(path, *rest))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
     return reads
 
 
@@ -266,13 +266,13 @@ def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
 
     from urdftool.description import meshes
 
-    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
     monkeypatch.setattr(meshes, "RUN_CACHE_BYTES", 2000)
     for index in range(4):  # arrays and scaled facts: 480 bytes each
         trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
         meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
     held = sum(size for size, _ in meshes._RUN_CACHE.values())
-    assert 0 < held <= 2000 and len(meshes._RUN_CACHE) < 8
+    assert 0 < held == meshes._RUN_CACHE.held <= 2000 and len(meshes._RUN_CACHE) < 8
 
 
 def test_a_mesh_path_in_a_symbolic_link_loop_is_a_missing_mesh(tmp_path):
@@ -309,7 +309,7 @@ def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, s
     merges = []
     real = mesh_arrays.merged
     monkeypatch.setattr(mesh_arrays, "merged", lambda *a: merges.append(1) or real(*a))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
     facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
     assert facts.faces == 320 and not merges
     loaded = load_mesh(_robot(tmp_path), "m.stl", scale)

@@ -598,7 +598,27 @@ RUN_CACHE_BYTES = 128 * 1024 * 1024
 # recently used first. Outcomes: a trimesh (counted as its file's size), a mesh's arrays and
 # their measures (counted as the arrays' bytes), or a MeshProblem. A worker process per file
 # has its own; it dies with its file.
-_RUN_CACHE: dict = {}
+class _RunCache(dict):
+    """key -> (bytes held, outcome), with ``held``: the bytes of all entries (kept as entries
+    come and go, not summed again at each insertion)."""
+
+    held = 0
+
+    def __setitem__(self, key, entry) -> None:
+        self.held += entry[0] - (self[key][0] if key in self else 0)
+        super().__setitem__(key, entry)
+
+    def pop(self, key, *default):
+        if key in self:
+            self.held -= self[key][0]
+        return super().pop(key, *default)
+
+    def clear(self) -> None:
+        self.held = 0
+        super().clear()
+
+
+_RUN_CACHE = _RunCache()
 
 
 def _stamp(path: Path):
@@ -624,7 +644,7 @@ def _once(key: tuple, uri: str, compute):
         outcome, size = problem, 0
     if key[1] is not None:
         _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome)
-        while sum(entry[0] for entry in _RUN_CACHE.values()) > RUN_CACHE_BYTES:
+        while _RUN_CACHE.held > RUN_CACHE_BYTES:
             _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
     return outcome
 
