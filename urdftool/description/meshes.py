@@ -522,12 +522,14 @@ def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True) ->
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
-def collada_unit(path: Path) -> float:
+def collada_unit(path: Path, data: bytes | None = None) -> float:
     """The ``<unit meter=...>`` a COLLADA file declares (1 when none): viewers apply it, and
-    trimesh does not, so :func:`load_mesh` does."""
+    trimesh does not, so :func:`load_mesh` does. ``data``: the file's bytes, when read."""
     try:
-        with open(path, "rb") as handle:
-            match = _DAE_UNIT.search(handle.read(65536))
+        if data is None:
+            with open(path, "rb") as handle:
+                data = handle.read(65536)
+        match = _DAE_UNIT.search(data, 0, 65536)
         value = float(match.group(1)) if match else 1.0
     except (OSError, ValueError):
         return 1.0
@@ -672,7 +674,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
                 data = None
             if suffix == ".dae" and data is not None:
                 arrays, metadata = _collada_arrays(path, uri, data, limits)
-                unit = collada_unit(path)
+                unit = collada_unit(path, data)
             elif data is not None:
                 arrays = mesh_arrays.read_unmerged(path, data)
         if arrays is None:
