@@ -316,3 +316,22 @@ def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, s
     assert facts.bounds.tolist() == loaded.bounds.tolist()
     assert facts.is_watertight and len(merges) == 1
     assert facts.vertices.tolist() == loaded.vertices.tolist()
+
+
+def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, monkeypatch):
+    from urdftool.description import meshes
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
+    robots = [_robot(tmp_path) for _ in range(3)]
+    looked = []
+    real = meshes.inside
+    monkeypatch.setattr(meshes, "inside", lambda *a: looked.append(a) or real(*a))
+    with one_run():
+        assert {resolve(robot, "m.stl") for robot in robots} == {tmp_path / "m.stl"}
+        with pytest.raises(MeshProblem) as first:
+            resolve(robots[0], "gone.stl")
+        with pytest.raises(MeshProblem) as second:
+            resolve(robots[1], "gone.stl")
+    assert len(looked) == 2 and first.value is not second.value
+    assert (first.value.kind, str(first.value)) == (second.value.kind, str(second.value))

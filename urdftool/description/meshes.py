@@ -51,6 +51,7 @@ from urdftool.description.collada import ColladaProblem, parser, tag
 from urdftool.description.files import inside, read_regular, real_path
 from urdftool.description.inputs import MAX_MESH_BYTES, MeshLimits
 from urdftool.description.packages import containment_root, package_uri_parts
+from urdftool.description.run_memo import per_run
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -75,30 +76,46 @@ def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
         package, _ = package_uri_parts(uri)
         try:
-            folder = _real(robot.resolver.find(package))
+            folder = robot.resolver.find(package)
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
-        path = _real(robot.resolve_uri(uri))
-        if not inside(path, folder):
-            raise MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' ({folder}); "
-                                         "name a file inside the package")
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(folder), package)
     else:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
-        path = _real(robot.resolve_uri(uri))
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(robot.base_dir),
+                         None)
+    if isinstance(found, MeshProblem):
+        raise MeshProblem(found.kind, found.message)  # a new one: raised once per robot
+    return found
+
+
+@per_run
+def _checked(uri: str, named: str, base: str, package: str | None) -> Path | MeshProblem:
+    """The path ``named`` for mesh ``uri`` with its links followed, when it stays in package
+    ``package``'s folder ``base`` (or, for ``package`` None, in the containment root of the
+    robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
+    Once per run: robots of one package name the same meshes."""
+    path = _real(Path(named))
+    if package is not None:
+        folder = _real(Path(base))
+        if not inside(path, folder):
+            return MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' "
+                                          f"({folder}); name a file inside the package")
+    else:
         # file:// and relative paths stay where the loader's files stay
-        root = _real(containment_root(robot.base_dir))
+        root = _real(containment_root(Path(base)))
         if not inside(path, root):
-            raise MeshProblem("outside", (
+            return MeshProblem("outside", (
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
                 "outside the robot's repository: use package://PKG/... for files of another "
                 "package"))
     if not path.is_file():
-        raise MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
+        return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
-        raise MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
-                                     f"{', '.join(MESH_EXTENSIONS)}; not opened"))
+        return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
+                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
 
 
