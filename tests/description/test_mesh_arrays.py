@@ -82,17 +82,19 @@ def test_corners_that_differ_by_sign_are_not_merged():
 
 
 def test_rows_sharing_a_hash_are_still_told_apart(monkeypatch):
-    keys = np.array([[1, 2, 3], [4, 5, 6], [1, 2, 3]], dtype=np.int64)
-    real = np.unique
-
-    def colliding(values, **options):  # every row hashes alike: only the check can tell
-        if values.dtype == np.uint64:
-            values = np.zeros_like(values)
-        return real(values, **options)
-
-    monkeypatch.setattr(np, "unique", colliding)
+    keys = np.array([[1, 2, 3], [4, 5, 6], [1, 2, 3], [4, 5, 6]], dtype=np.int64)
+    # every row hashes alike: only the check against the rows can tell them apart
+    monkeypatch.setattr(mesh_arrays, "_row_hash", lambda rows: np.zeros(len(rows), np.uint64))
     first, inverse = mesh_arrays._unique_rows(keys)
-    assert sorted(first.tolist()) == [0, 1] and inverse[0] == inverse[2] != inverse[1]
+    assert first.tolist() == [0, 1] and inverse.tolist() == [0, 1, 0, 1]
+
+
+def test_merged_keeps_the_first_of_equal_vertices_in_order_of_first_use():
+    corners = np.array([[0.5, 0, 0], [0, 0, 0], [0.5 + 1e-10, 0, 0], [1, 1, 1], [0, 0, 0],
+                        [1, 1, 1]])
+    vertices, faces = mesh_arrays.merged(corners, np.arange(6).reshape(2, 3))
+    assert vertices.tolist() == [[0.5, 0, 0], [0, 0, 0], [1, 1, 1]]
+    assert faces.tolist() == [[0, 1, 0], [2, 1, 2]]
 
 
 @pytest.mark.parametrize("data", [
@@ -314,8 +316,56 @@ def test_obj_triangles_are_trimeshs(tmp_path, form):
     lambda t: t.replace("v 0 0 0", "v 0 0 0 1 0 0"),  # a colour
     lambda t: t.replace("f 1 3 2", "  f 1 3 2"),  # indented
     lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
+    lambda t: t.replace("f 1 3 2", "f 1//1 3 2"),  # mixed corner forms
+    lambda t: t.replace("v 0 0 0", "v 0 0"),  # too few coordinates
 ])
 def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
     path.write_text(change(_obj_text("{v}")))
     assert mesh_arrays.read(path, path.read_bytes()) is None
+
+
+def test_obj_white_space_within_a_line_is_white_space(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}"))
+    spaced = tmp_path / "spaced.obj"
+    spaced.write_text(_obj_text("{v}").replace("f 1 3 2", "f \t1\t3  2 \t").replace(
+        "v 0 0 0", "v  0\t0 0 "))
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (spaced, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+def _merged_then_bounds(vertices, scale=None):
+    merged_vertices, faces = mesh_arrays.merged(vertices, np.arange(len(vertices)).reshape(-1, 3))
+    if scale is not None:
+        merged_vertices, faces = mesh_arrays.scaled(merged_vertices, faces, scale)
+    return mesh_arrays.bounds(merged_vertices, faces)
+
+
+def test_merged_bounds_are_those_of_the_merged_vertices_or_none():
+    rng = np.random.default_rng(5)
+    decided = 0
+    for _ in range(200):
+        grid = rng.integers(-3, 4, size=(30, 3)) * 0.25  # many equal, some equal to 1e-8
+        jitter = rng.choice([0.0, 0.0, 3e-9, -3e-9, 0.25], size=(30, 3))
+        corners = np.vstack([grid, grid[rng.permutation(30)] + jitter])
+        scale = tuple(rng.choice([1.0, 0.001, -2.0], size=3))
+        moved, _ = mesh_arrays.scaled(corners, np.arange(60).reshape(-1, 3), scale)
+        found = mesh_arrays.merged_bounds(moved, corners)
+        decided += found is not None
+        if found is not None:
+            expected = _merged_then_bounds(corners, scale)
+            assert all(np.array_equal(a, b) and (np.signbit(a) == np.signbit(b)).all()
+                       for a, b in zip(found, expected))
+    assert 10 < decided < 200  # both outcomes are exercised
+
+
+def test_merged_bounds_leave_to_merging_what_they_cannot_tell():
+    # the greatest x (row 2) merges into row 0, which merging keeps
+    merges_into_an_earlier = np.array([[0.5, 0, 0], [0, 0, 1], [0.5 + 4e-9, 0, 0]])
+    assert mesh_arrays.merged_bounds(merges_into_an_earlier, merges_into_an_earlier) is None
+    assert _merged_then_bounds(merges_into_an_earlier)[1][0] == 0.5
+    signed_zeros = np.array([[0.0, 1, 1], [-0.0, 2, 2], [1, 0, 1]])
+    assert mesh_arrays.merged_bounds(signed_zeros, signed_zeros) is None
+    huge = np.array([[1e11, 0, 0], [0, 1, 0], [0, 0, 1]])
+    assert mesh_arrays.merged_bounds(huge, huge) is None  # merge keys overflow there

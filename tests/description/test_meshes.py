@@ -157,12 +157,12 @@ def _count_reads(monkeypatch) -> list:
     from urdftool.description import mesh_arrays, meshes
 
     reads = []
-    real, light = meshes._read_mesh, mesh_arrays.read
+    real, light = meshes._read_mesh, mesh_arrays.read_unmerged
     monkeypatch.setattr(meshes, "_read_mesh", lambda path, *rest: reads.append(path) or
                         real(path, *rest))
-    monkeypatch.setattr(mesh_arrays, "read", lambda path, *rest: reads.append(path) or
+    monkeypatch.setattr(mesh_arrays, "read_unmerged", lambda path, *rest: reads.append(path) or
                         light(path, *rest))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
     return reads
 
 
@@ -266,10 +266,72 @@ def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
 
     from urdftool.description import meshes
 
-    monkeypatch.setattr(meshes, "_RUN_CACHE", {})
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
     monkeypatch.setattr(meshes, "RUN_CACHE_BYTES", 2000)
     for index in range(4):  # arrays and scaled facts: 480 bytes each
         trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
         meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
     held = sum(size for size, _ in meshes._RUN_CACHE.values())
-    assert 0 < held <= 2000 and len(meshes._RUN_CACHE) < 8
+    assert 0 < held == meshes._RUN_CACHE.held <= 2000 and len(meshes._RUN_CACHE) < 8
+
+
+def test_a_mesh_path_in_a_symbolic_link_loop_is_a_missing_mesh(tmp_path):
+    (tmp_path / "loop.stl").symlink_to(tmp_path / "loop.stl")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "loop.stl"), "loop.stl")
+    assert error.value.kind == "missing"  # Path.resolve raised OSError (ELOOP): a crash, U900
+
+
+def test_symbolic_links_are_followed_once_per_run(tmp_path, monkeypatch):
+    import os
+
+    from urdftool.description.run_memo import one_run
+
+    mesh = tmp_path / "m.stl"
+    mesh.write_text("solid x\nendsolid x\n")
+    robots = [_robot(tmp_path) for _ in range(3)]  # each resolves the URI itself
+    looked = []
+    real = os.lstat
+    monkeypatch.setattr(os, "lstat", lambda p, *a, **k: looked.append(str(p)) or real(p, *a, **k))
+    with one_run():
+        for robot in robots:
+            assert resolve(robot, "m.stl") == mesh
+    assert looked.count(str(mesh)) == 1
+
+
+@pytest.mark.parametrize("scale", [(1.0, 1.0, 1.0), (0.5, -2.0, 1.0)])
+def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, scale):
+    import trimesh
+
+    from urdftool.description import mesh_arrays, meshes
+
+    trimesh.creation.icosphere(2).export(tmp_path / "m.stl")
+    merges = []
+    real = mesh_arrays.merged
+    monkeypatch.setattr(mesh_arrays, "merged", lambda *a: merges.append(1) or real(*a))
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
+    facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
+    assert facts.faces == 320 and not merges
+    loaded = load_mesh(_robot(tmp_path), "m.stl", scale)
+    assert facts.bounds.tolist() == loaded.bounds.tolist()
+    assert facts.is_watertight and len(merges) == 1
+    assert facts.vertices.tolist() == loaded.vertices.tolist()
+
+
+def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, monkeypatch):
+    from urdftool.description import meshes
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
+    robots = [_robot(tmp_path) for _ in range(3)]
+    looked = []
+    real = meshes.inside
+    monkeypatch.setattr(meshes, "inside", lambda *a: looked.append(a) or real(*a))
+    with one_run():
+        assert {resolve(robot, "m.stl") for robot in robots} == {tmp_path / "m.stl"}
+        with pytest.raises(MeshProblem) as first:
+            resolve(robots[0], "gone.stl")
+        with pytest.raises(MeshProblem) as second:
+            resolve(robots[1], "gone.stl")
+    assert len(looked) == 2 and first.value is not second.value
+    assert (first.value.kind, str(first.value)) == (second.value.kind, str(second.value))

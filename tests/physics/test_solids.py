@@ -132,3 +132,27 @@ def test_hull_floor_is_below_the_hull_and_near_it(shape):
     floor = _hull_floor(Mesh)
     assert floor <= hull and (floor >= 0.5 * hull if hull else floor == 0.0)
     assert _hull_floor(Mesh, enough=0.1 * hull) <= floor  # stops growing once enough
+
+
+def test_a_meshs_hull_floor_grows_once_whatever_is_enough(monkeypatch):
+    """Later calls continue the growth where it stopped, and give what a fresh one would."""
+    np = pytest.importorskip("numpy")
+    from urdftool.description.meshes import MeshFacts
+    from urdftool.physics import solids
+
+    points = np.random.default_rng(3).normal(size=(400, 3))
+    faces = np.arange(399).reshape(-1, 3)
+
+    def fresh(enough):
+        return solids._hull_floor(MeshFacts(points, faces, {}), enough)
+
+    expected = {enough: fresh(enough) for enough in (0.0, 1.0, 3.0, float("inf"))}
+    added = []
+    real = solids._Tetrahedra.add
+    monkeypatch.setattr(solids._Tetrahedra, "add", lambda *a, **k: added.append(1) or real(*a, **k))
+    fresh(float("inf"))
+    once = len(added)
+    mesh, added[:] = MeshFacts(points, faces, {}), []
+    for enough in (1.0, 0.0, float("inf"), 3.0, 1.0):
+        assert solids._hull_floor(mesh, enough) == expected[enough]
+    assert len(added) == once

@@ -47,14 +47,15 @@ def inside(path, folder) -> bool:
     """Whether ``path``, every symbolic link followed, is ``folder`` or below it (itself with
     links followed)."""
     try:
-        real = _real_path(os.fspath(path))
-        base = _real_path(os.fspath(folder))
+        real = real_path(os.fspath(path))
+        base = real_path(os.fspath(folder))
     except (OSError, ValueError):
         return False
     return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
 
 
-_real_path = per_run(os.path.realpath)
+# os.path.realpath, answered once per run (see :mod:`.run_memo`)
+real_path = per_run(os.path.realpath)
 
 
 def check_output(path) -> None:

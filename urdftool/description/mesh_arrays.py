@@ -21,6 +21,7 @@ says what is wrong with it. numpy, scipy and lxml are imported inside the functi
 
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -35,6 +36,13 @@ def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
     trimesh should read it. ``data``: the file's bytes (read by the caller, under the mesh
     size limit). Raises :class:`.collada.ColladaProblem` for a COLLADA file that is malformed
     (``not_well_formed`` when its XML is) or holds over ``max_triangles`` triangles."""
+    found = read_unmerged(path, data, max_triangles)
+    return None if found is None else merged(*found)
+
+
+def read_unmerged(path: Path, data: bytes, max_triangles: int = 2_000_000):
+    """What :func:`read` gives before :func:`merged`: the triangles' corners as the file
+    holds them (every vertex used by a face), or None; raises as :func:`read` does."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
         return _collada(data, max_triangles)
@@ -54,7 +62,7 @@ def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
 
     if not np.isfinite(raw).all():
         return None  # trimesh drops the faces of such vertices: let it
-    return merged(raw, np.arange(len(raw)).reshape(-1, 3))
+    return raw, np.arange(len(raw)).reshape(-1, 3)
 
 
 def _count(data: bytes) -> int:
@@ -93,12 +101,12 @@ def _stl_ascii(data: bytes):
 
 def _collada(data: bytes, max_triangles: int):
     """A COLLADA document's triangles as :func:`.collada.read_collada` reads them (trimesh's
-    triangles, in the file's unit), their corners merged by position. None when it holds no
-    triangles; :class:`.collada.ColladaProblem` when it is malformed or too large."""
+    triangles, in the file's unit). None when it holds no triangles;
+    :class:`.collada.ColladaProblem` when it is malformed or too large."""
     from urdftool.description.collada import read_collada
 
     vertices, faces = read_collada(data, max_triangles=max_triangles)
-    return merged(vertices, faces) if len(faces) else None
+    return (vertices, faces) if len(faces) else None
 
 
 def _obj(data: bytes):
@@ -128,13 +136,13 @@ def _obj(data: bytes):
     if not rows["v"] or not rows["f"]:
         return None
     for key, count in (("v", 3), ("vt", 2), ("vn", 3)):
-        if any(len(line.split()) != count for line in rows[key]):
+        if not _obj_rows(r"\S+", count).fullmatch("".join(f"{row}\n" for row in rows[key])):
             return None  # colours, 3D texture coordinates...
     sample = rows["f"][0].split()[0]
     form = {0: 0, 1: 1, 2: 2 if "//" in sample else 3}.get(sample.count("/"))
     corner = (r"\d+", r"\d+/\d+", r"\d+//\d+", r"\d+/\d+/\d+")[form or 0]
-    pattern = re.compile(rf"\s*{corner}\s+{corner}\s+{corner}\s*")
-    if form is None or not all(pattern.fullmatch(line) for line in rows["f"]):
+    if form is None or \
+            not _obj_rows(corner, 3).fullmatch("".join(f"{row}\n" for row in rows["f"])):
         return None  # polygons, mixed corner forms, negative indices
     arrays = {key: np.fromstring(" ".join(rows[key]), sep=" ", dtype=np.float64).reshape(
         -1, 2 if key == "vt" else 3) if rows[key] else None for key in ("v", "vt", "vn")}
@@ -150,7 +158,16 @@ def _obj(data: bytes):
                 not np.isfinite(arrays[key]).all():
             return None
     corners = arrays["v"][index[:, 0]]
-    return merged(corners, np.arange(len(corners)).reshape(-1, 3))
+    return corners, np.arange(len(corners)).reshape(-1, 3)
+
+
+@functools.lru_cache(maxsize=None)
+def _obj_rows(item: str, count: int):
+    """Rows, each ended by a newline, of exactly ``count`` items (each matching ``item``)
+    with only white space apart and around them (``str.split()``'s white space): checked in
+    one match over all rows, not one per row."""
+    space = r"[^\S\n]"
+    return re.compile(rf"(?:{space}*{f'{space}+'.join([item] * count)}{space}*\n)*")
 
 
 def merged(vertices, faces):
@@ -159,36 +176,115 @@ def merged(vertices, faces):
     texture coordinates play no part: a seam, where a COLLADA or OBJ file keeps corners apart
     because their normals or texture coordinates differ, is no hole, so watertightness is
     judged on these."""
+    first, inverse = _unique_rows(_merge_keys(vertices))
+    return vertices[first], inverse[faces]
+
+
+def _merge_keys(vertices):
+    """The (n, 3) int64 keys by which vertices merge: their coordinates in units of 1e-8."""
     import numpy as np
 
-    keys = vertices * 10 ** _MERGE_DIGITS
-    first, inverse = _unique_rows(keys.round().astype(np.int64))
-    order = np.argsort(first)
-    rank = np.empty(len(order), dtype=np.int64)
-    rank[order] = np.arange(len(order))
-    return vertices[first[order]], rank[inverse][faces]
+    return (vertices * 10 ** _MERGE_DIGITS).round().astype(np.int64)
+
+
+def merged_bounds(vertices, unmerged):
+    """``bounds(*merged(unmerged, faces))``, with every vertex moved as ``vertices`` moves it
+    (``vertices`` is ``unmerged`` scaled, or itself), without merging: a mesh's least and
+    greatest coordinate are a merged vertex's when the first vertex to have it is the first
+    of those that merge with it (the one merging keeps). Every vertex must be used by a face.
+    None when that does not decide it (the first to have it merges into an earlier one, the
+    coordinate is a zero found with either sign, or a coordinate is too large for a merge
+    key): merge then."""
+    import numpy as np
+
+    extremes = [vertices.argmin(axis=0), vertices.argmax(axis=0)]  # far faster than min()
+    ends = extremes if unmerged is vertices else \
+        [unmerged.argmin(axis=0), unmerged.argmax(axis=0)]
+    if not all(np.abs(unmerged[rows, [0, 1, 2]]).max() < _KEY_RANGE for rows in ends):
+        return None
+    corners = []
+    for first in extremes:
+        for axis, row in enumerate(first.tolist()):
+            if vertices[row, axis] == 0:  # which zero min() and max() return depends on order
+                zeros = np.signbit(vertices[vertices[:, axis] == 0, axis])
+                if zeros.any() != zeros.all():
+                    return None
+            if row and _merges_earlier(unmerged, row, axis):
+                return None
+        corners.append(vertices[first, [0, 1, 2]])
+    return corners[0], corners[1]
+
+
+_KEY_RANGE = 2.0 ** 62 / 10 ** _MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
+
+
+def _merges_earlier(vertices, row: int, axis: int) -> bool:
+    """Whether a vertex before ``row`` merges with it: only those within 1e-8 of it along
+    ``axis`` can (the margin covers rounding), and their keys are compared whole."""
+    import numpy as np
+
+    value = vertices[row, axis]
+    near = np.flatnonzero(np.abs(vertices[:row, axis] - value) <= 1e-7 + 1e-12 * abs(value))
+    if not len(near):
+        return False
+    return bool((_merge_keys(vertices[near]) == _merge_keys(vertices[row:row + 1])).all(
+        axis=1).any())
 
 
 def _unique_rows(keys):
-    """(index of the first of each distinct row, row -> its distinct row) of an (n, 3) int64
-    array: rows are hashed to one integer to sort fast, and the grouping is then checked
-    against the rows themselves (on a collision, rows are compared whole)."""
+    """(index of the first of each distinct row, ascending; row -> its place in that list) of
+    an (n, 3) int64 array. Rows are hashed to one integer whose top bits, above the row's
+    index, are sorted in one pass (the first row of each group comes first); the grouping is
+    then checked against the rows themselves (on a collision, rows are compared whole)."""
+    import numpy as np
+
+    count = len(keys)
+    if not count:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    bits = np.uint64(max(int(count - 1).bit_length(), 1))
+    packed = _row_hash(keys)
+    packed >>= bits
+    packed <<= bits
+    packed |= np.arange(count, dtype=np.uint64)
+    packed.sort()
+    index = (packed & np.uint64((1 << int(bits)) - 1)).astype(np.int64)
+    packed >>= bits
+    new = np.empty(count, dtype=bool)
+    new[0] = True
+    np.not_equal(packed[1:], packed[:-1], out=new[1:])
+    rows = np.take(keys, index, axis=0)  # sorted: a group's rows are neighbours
+    if not ((rows[1:] == rows[:-1]).all(axis=1) | new[1:]).all():  # two rows share a hash
+        whole = np.ascontiguousarray(keys).view(np.dtype((np.void, 8 * keys.shape[1]))).ravel()
+        _, starts, inverse = np.unique(whole, return_index=True, return_inverse=True)
+        order = np.argsort(starts)
+        rank = np.empty(len(order), dtype=np.int64)
+        rank[order] = np.arange(len(order))
+        return starts[order], rank[inverse.ravel()]
+    group = np.cumsum(new) - 1  # of each sorted row
+    starts = index[new]  # the first row of each group
+    first = np.zeros(count, dtype=bool)
+    first[starts] = True
+    rank = np.cumsum(first) - 1  # a first row's place among the first rows
+    inverse = np.empty(count, dtype=np.int64)
+    inverse[index] = rank[starts][group]
+    return np.flatnonzero(first), inverse
+
+
+def _row_hash(keys):
+    """One uint64 per row of an (n, k) int64 array (splitmix64's mixing, column by column)."""
     import numpy as np
 
     words = np.ascontiguousarray(keys).view(np.uint64)
     hashed = np.zeros(len(keys), dtype=np.uint64)
-    factors = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB)  # splitmix64's
+    shifted = np.empty_like(hashed)
+    factors = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB)
     with np.errstate(over="ignore"):
         for column in range(keys.shape[1]):
-            hashed = (hashed + words[:, column]) * np.uint64(factors[column % 3])
-            hashed ^= hashed >> np.uint64(31)
-    _, first, inverse = np.unique(hashed, return_index=True, return_inverse=True)
-    inverse = inverse.ravel()
-    if not (keys[first][inverse] == keys).all():  # two rows share a hash
-        rows = np.ascontiguousarray(keys).view(np.dtype((np.void, 8 * keys.shape[1]))).ravel()
-        _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
-        inverse = inverse.ravel()
-    return first, inverse
+            hashed += words[:, column]
+            hashed *= np.uint64(factors[column % 3])
+            np.right_shift(hashed, np.uint64(31), out=shifted)
+            hashed ^= shifted
+    return hashed
 
 
 def scaled(vertices, faces, scale):
@@ -232,8 +328,11 @@ def is_watertight(faces) -> bool:
 
     if not len(faces):
         return False
-    edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
-    keys = np.sort(edges[:, 0] * np.int64(int(faces.max()) + 1) + edges[:, 1])
+    ends = np.empty_like(faces)  # each corner's edge runs to the next corner
+    ends[:, :2], ends[:, 2] = faces[:, 1:], faces[:, 0]
+    starts, ends = faces.ravel(), ends.ravel()
+    keys = np.minimum(starts, ends) * np.int64(int(faces.max()) + 1) + np.maximum(starts, ends)
+    keys.sort()
     pairs, seconds = keys[0::2], keys[1::2]
     # sorted, every value exactly twice: equal pairs, each pair below the next
     return len(keys) % 2 == 0 and bool((pairs == seconds).all()) and \
@@ -304,24 +403,31 @@ def mass_properties(vertices, faces) -> dict:
     are trimesh's: keys ``mass`` (= volume), ``volume``, ``center_mass``, ``inertia``."""
     import numpy as np
 
-    triangles = vertices[faces]
-    vectors = triangles[:, 1:, :] - triangles[:, :2, :]
-    crosses = np.cross(vectors[:, 0], vectors[:, 1])
-    t0, t1, t2 = triangles[:, 0, :], triangles[:, 1, :], triangles[:, 2, :]
+    # coordinate-major (3, m) arrays: each product below is the one trimesh takes, elementwise
+    columns = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).T)
+    t0, t1, t2 = (np.take(columns, faces[:, corner], axis=1) for corner in range(3))
+    # powers per vertex, not per corner: the same numbers, a quarter of the (slow) pow calls
+    squares, cubes = columns ** 2, columns ** 3
+    s0, s1, c0, c1 = (np.take(power, faces[:, corner], axis=1)
+                      for power in (squares, cubes) for corner in (0, 1))
+    a, b = t1 - t0, t2 - t1
+    crosses = np.empty_like(t0)  # numpy's cross of a and b, product for product
+    crosses[0] = a[1] * b[2] - a[2] * b[1]
+    crosses[1] = a[2] * b[0] - a[0] * b[2]
+    crosses[2] = a[0] * b[1] - a[1] * b[0]
     f1 = t0 + t1 + t2
-    f2 = t0 ** 2 + t1 ** 2 + t0 * t1 + t2 * f1
-    f3 = t0 ** 3 + (t0 ** 2) * t1 + t0 * (t1 ** 2) + t1 ** 3 + t2 * f2
+    f2 = s0 + s1 + t0 * t1 + t2 * f1  # t0 ** 2 + t1 ** 2 + ...
+    f3 = c0 + s0 * t1 + t0 * s1 + c1 + t2 * f2  # t0 ** 3 + (t0 ** 2) * t1 + ...
     g0 = f2 + (t0 + f1) * t0
     g1 = f2 + (t1 + f1) * t1
     g2 = f2 + (t2 + f1) * t2
-    integral = np.zeros((10, len(f1)))
-    integral[0] = crosses[:, 0] * f1[:, 0]
-    integral[1:4] = (crosses * f2).T
-    integral[4:7] = (crosses * f3).T
+    integral = np.empty((10, t0.shape[1]))
+    integral[0] = crosses[0] * f1[0]
+    integral[1:4] = crosses * f2
+    integral[4:7] = crosses * f3
     for i in range(3):
         j = (i + 1) % 3
-        integral[i + 7] = crosses[:, i] * (t0[:, j] * g0[:, i] + t1[:, j] * g1[:, i]
-                                           + t2[:, j] * g2[:, i])
+        integral[i + 7] = crosses[i] * (t0[j] * g0[i] + t1[j] * g1[i] + t2[j] * g2[i])
     integrated = integral.sum(axis=1) / np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120],
                                                  dtype=np.float64)
     volume = integrated[0]

@@ -24,7 +24,8 @@ A URI is resolved and checked once per robot. Meshes are read once per run (proc
 resolved path, file identity and modification and the limits, and cached per robot by scale.
 What the checks measure (:func:`mesh_facts`: bounds, triangle count, watertightness, volume,
 centre of mass, inertia, the convex hull's) is measured once per file and scale per run, on
-the mesh's corners merged by position (a seam of normals or texture coordinates is no hole);
+the mesh's corners merged by position (a seam of normals or texture coordinates is no hole),
+merged only when something beyond the bounds and triangle count is asked;
 STL, COLLADA and plain OBJ files are read and measured without trimesh or pycollada
 (:mod:`.mesh_arrays`, COLLADA through :mod:`.collada`), other formats through trimesh.
 trimesh is imported lazily.
@@ -47,9 +48,10 @@ from pathlib import Path
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem, parser, tag
-from urdftool.description.files import inside, read_regular
+from urdftool.description.files import inside, read_regular, real_path
 from urdftool.description.inputs import MAX_MESH_BYTES, MeshLimits
 from urdftool.description.packages import containment_root, package_uri_parts
+from urdftool.description.run_memo import per_run
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -74,31 +76,53 @@ def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
         package, _ = package_uri_parts(uri)
         try:
-            folder = robot.resolver.find(package).resolve()
+            folder = robot.resolver.find(package)
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
-        path = robot.resolve_uri(uri).resolve()
-        if not inside(path, folder):
-            raise MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' ({folder}); "
-                                         "name a file inside the package")
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(folder), package)
     else:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
-        path = robot.resolve_uri(uri).resolve()
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(robot.base_dir),
+                         None)
+    if isinstance(found, MeshProblem):
+        raise MeshProblem(found.kind, found.message)  # a new one: raised once per robot
+    return found
+
+
+@per_run
+def _checked(uri: str, named: str, base: str, package: str | None) -> Path | MeshProblem:
+    """The path ``named`` for mesh ``uri`` with its links followed, when it stays in package
+    ``package``'s folder ``base`` (or, for ``package`` None, in the containment root of the
+    robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
+    Once per run: robots of one package name the same meshes."""
+    path = _real(Path(named))
+    if package is not None:
+        folder = _real(Path(base))
+        if not inside(path, folder):
+            return MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' "
+                                          f"({folder}); name a file inside the package")
+    else:
         # file:// and relative paths stay where the loader's files stay
-        root = containment_root(robot.base_dir).resolve()
+        root = _real(containment_root(Path(base)))
         if not inside(path, root):
-            raise MeshProblem("outside", (
+            return MeshProblem("outside", (
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
                 "outside the robot's repository: use package://PKG/... for files of another "
                 "package"))
     if not path.is_file():
-        raise MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
+        return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
-        raise MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
-                                     f"{', '.join(MESH_EXTENSIONS)}; not opened"))
+        return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
+                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _real(path: Path) -> Path:
+    """``path`` with every symbolic link followed (once per run; a loop is left as it is, and
+    is then no file)."""
+    return Path(real_path(os.fspath(path)))
 
 
 _CHUNK = 1 << 20
@@ -515,12 +539,14 @@ def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True) ->
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
-def collada_unit(path: Path) -> float:
+def collada_unit(path: Path, data: bytes | None = None) -> float:
     """The ``<unit meter=...>`` a COLLADA file declares (1 when none): viewers apply it, and
-    trimesh does not, so :func:`load_mesh` does."""
+    trimesh does not, so :func:`load_mesh` does. ``data``: the file's bytes, when read."""
     try:
-        with open(path, "rb") as handle:
-            match = _DAE_UNIT.search(handle.read(65536))
+        if data is None:
+            with open(path, "rb") as handle:
+                data = handle.read(65536)
+        match = _DAE_UNIT.search(data, 0, 65536)
         value = float(match.group(1)) if match else 1.0
     except (OSError, ValueError):
         return 1.0
@@ -591,7 +617,27 @@ RUN_CACHE_BYTES = 128 * 1024 * 1024
 # recently used first. Outcomes: a trimesh (counted as its file's size), a mesh's arrays and
 # their measures (counted as the arrays' bytes), or a MeshProblem. A worker process per file
 # has its own; it dies with its file.
-_RUN_CACHE: dict = {}
+class _RunCache(dict):
+    """key -> (bytes held, outcome), with ``held``: the bytes of all entries (kept as entries
+    come and go, not summed again at each insertion)."""
+
+    held = 0
+
+    def __setitem__(self, key, entry) -> None:
+        self.held += entry[0] - (self[key][0] if key in self else 0)
+        super().__setitem__(key, entry)
+
+    def pop(self, key, *default):
+        if key in self:
+            self.held -= self[key][0]
+        return super().pop(key, *default)
+
+    def clear(self) -> None:
+        self.held = 0
+        super().clear()
+
+
+_RUN_CACHE = _RunCache()
 
 
 def _stamp(path: Path):
@@ -617,7 +663,7 @@ def _once(key: tuple, uri: str, compute):
         outcome, size = problem, 0
     if key[1] is not None:
         _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome)
-        while sum(entry[0] for entry in _RUN_CACHE.values()) > RUN_CACHE_BYTES:
+        while _RUN_CACHE.held > RUN_CACHE_BYTES:
             _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
     return outcome
 
@@ -631,11 +677,10 @@ def _read_once(path: Path, uri: str, limits: MeshLimits):
 
 
 def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
-    """(vertices, faces, metadata, watertight) of the mesh's triangles, corners merged by
-    position (:func:`.mesh_arrays.merged`), once per run: read by :mod:`.mesh_arrays` where the
-    format allows (STL, COLLADA, plain OBJ), else by trimesh (:func:`_read_once`)."""
+    """The mesh's :class:`_Arrays`, once per run: read by :mod:`.mesh_arrays` where the format
+    allows (STL, COLLADA, plain OBJ), else by trimesh (:func:`_read_once`)."""
     def compute():
-        arrays, metadata = None, {}
+        arrays, metadata, unit = None, {}, 1.0
         suffix = path.suffix.lower()
         if suffix in (".stl", ".dae", ".obj"):
             # a COLLADA file's triangles are counted as they are read, before they are built
@@ -646,50 +691,91 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
                 data = None
             if suffix == ".dae" and data is not None:
                 arrays, metadata = _collada_arrays(path, uri, data, limits)
+                unit = collada_unit(path, data)
             elif data is not None:
-                arrays = mesh_arrays.read(path, data)
+                arrays = mesh_arrays.read_unmerged(path, data)
         if arrays is None:
             loaded = _read_once(path, uri, limits)
             if isinstance(loaded, MeshProblem):
                 raise loaded
             import numpy as np
 
-            metadata = dict(loaded.metadata)
             arrays = mesh_arrays.merged(np.asarray(loaded.vertices, dtype=np.float64),
                                         np.asarray(loaded.faces, dtype=np.int64))
-        vertices, faces = arrays
-        if len(faces) > limits.max_triangles:
-            raise MeshProblem("too-large", f"mesh '{uri}' has {len(faces)} triangles, over "
-                                           f"the limit of {limits.max_triangles}; decimate it")
-        return (vertices, faces, metadata, mesh_arrays.is_watertight(faces)), \
-            vertices.nbytes + faces.nbytes
+            found = _Arrays(*arrays, dict(loaded.metadata), merged=True)
+        else:
+            found = _Arrays(*arrays, metadata, unit=unit)
+        if found.triangles > limits.max_triangles:
+            raise MeshProblem("too-large", f"mesh '{uri}' has {found.triangles} triangles, "
+                                           f"over the limit of {limits.max_triangles}; "
+                                           "decimate it")
+        return found, found.nbytes
 
     return _once((str(path), stamp, limits, "arrays"), uri, compute)
 
 
 def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
-    """(arrays or None, metadata) of a COLLADA file read by :mod:`.mesh_arrays`, scaled by its
-    unit as :func:`_read_mesh` scales it; XML that is not well-formed is read as recovered
+    """(arrays or None, metadata) of a COLLADA file read by :mod:`.mesh_arrays`, unmerged, in
+    its own unit (:class:`_Arrays` applies it as :func:`_read_mesh` does); XML that is not well-formed is read as recovered
     (metadata :data:`NOT_WELL_FORMED`), as :func:`_read_mesh` reads it. None for a document
     trimesh should judge (no triangles, or malformed: it says what is wrong)."""
     metadata = {}
     try:
         try:
-            arrays = mesh_arrays.read(path, data, limits.max_triangles)
+            arrays = mesh_arrays.read_unmerged(path, data, limits.max_triangles)
         except ColladaProblem as problem:
             recovered = _recovered_collada(path) if problem.not_well_formed else None
             if recovered is None:
                 raise
-            arrays = mesh_arrays.read(path, recovered[0], limits.max_triangles)
+            arrays = mesh_arrays.read_unmerged(path, recovered[0], limits.max_triangles)
             metadata = {NOT_WELL_FORMED: recovered[1]}
     except ColladaProblem as problem:
         if problem.kind == "too-large":
             raise MeshProblem("too-large", f"mesh '{uri}': {problem}; not loaded") from None
         return None, {}
-    unit = collada_unit(path)
-    if arrays is not None and unit != 1.0:
-        arrays = mesh_arrays.scaled(*arrays, (unit, unit, unit))
     return arrays, metadata
+
+
+class _Arrays:
+    """A mesh file's triangles: as read (every vertex used by a face, in the file's unit)
+    until something needs them merged by position (:func:`.mesh_arrays.merged`, then scaled by
+    a COLLADA file's ``unit``, as trimesh's are). Bounds need no merging
+    (:func:`.mesh_arrays.merged_bounds`): a mesh that only has to fit in a box is not merged.
+    ``merged=True``: the arrays given are merged already (and in metres)."""
+
+    def __init__(self, vertices, faces, metadata: dict, unit: float = 1.0, merged: bool = False):
+        self.metadata, self.triangles = metadata, len(faces)
+        self.nbytes = vertices.nbytes + faces.nbytes  # merged, they are no larger
+        self._read = None if merged else (vertices, faces)
+        self._unit = unit
+        self._merged = (vertices, faces, mesh_arrays.is_watertight(faces)) if merged else None
+
+    def merged(self):
+        """(vertices, faces, watertight) merged by position; the arrays read are let go."""
+        if self._merged is None:
+            vertices, faces = mesh_arrays.merged(*self._read)
+            if self._unit != 1.0:
+                vertices, faces = mesh_arrays.scaled(vertices, faces, (self._unit,) * 3)
+            self._merged, self._read = (vertices, faces, mesh_arrays.is_watertight(faces)), None
+        return self._merged
+
+    def bounds(self, scale: tuple[float, float, float]):
+        """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
+        them; None when that cannot be decided so (see :func:`.mesh_arrays.merged_bounds`)."""
+        if self._read is None:
+            return None
+        import numpy as np
+
+        vertices, faces = self._read
+        moved = vertices
+        with np.errstate(all="ignore"):  # a vertex beyond range: merged, it is reported
+            for factors in ((self._unit,) * 3, scale):
+                if factors != (1.0, 1.0, 1.0):
+                    moved, _ = mesh_arrays.scaled(moved, faces, factors)
+        if not np.isfinite(moved).all():
+            return None
+        found = mesh_arrays.merged_bounds(moved, vertices)
+        return None if found is None else np.array(found)
 
 
 def _finite_scale(uri: str, scale) -> tuple[float, float, float]:
@@ -710,46 +796,70 @@ class MeshFacts:
     (same numbers: :mod:`.mesh_arrays` measures as trimesh does).
 
     faces: the triangle count; bounds: (2, 3) min and max corner; extents; is_watertight;
-    metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; mass_properties (density
-    1, of the mesh as it is) and convex_hull (its measures, as trimesh's hull has them; qhull's
-    RuntimeError for a flat mesh) are computed when first asked.
+    metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; vertices (merged by
+    position), is_watertight, mass_properties (density 1, of the mesh as it is) and
+    convex_hull (its measures, as trimesh's hull has them; qhull's RuntimeError for a flat
+    mesh) are computed when first asked: the merging too, when bounds were found without it.
     """
 
     def __init__(self, vertices, faces, metadata: dict, watertight: bool | None = None,
                  properties: dict | None = None):
         import numpy as np
 
-        self._vertices, self._faces = vertices, faces
-        self.faces = len(faces)
-        self.bounds = np.array(mesh_arrays.bounds(vertices, faces))
+        self._start(len(faces), np.array(mesh_arrays.bounds(vertices, faces)), metadata,
+                    vertices.nbytes + faces.nbytes)
+        self._vertices, self._faces, self._watertight = vertices, faces, watertight
+        self._properties = properties
+
+    @classmethod
+    def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge):
+        """Facts whose bounds are known and whose arrays ``merge()`` builds when first
+        needed: (vertices, faces, watertight), merged and scaled."""
+        facts = cls.__new__(cls)
+        facts._start(triangles, bounds, metadata, nbytes)
+        facts._merge = merge
+        return facts
+
+    def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
+        self.faces, self.bounds, self.metadata, self.nbytes = triangles, bounds, metadata, nbytes
         self.extents = self.bounds[1] - self.bounds[0]
-        self.is_watertight = mesh_arrays.is_watertight(faces) if watertight is None else watertight
-        self.metadata = metadata
-        self._properties, self._hull = properties, None
+        self._vertices = self._faces = self._watertight = self._merge = None
+        self._properties, self._hull = None, None
+
+    def _arrays(self):
+        if self._merge is not None:
+            self._vertices, self._faces, watertight = self._merge()
+            self._watertight = watertight if self._watertight is None else self._watertight
+            self._merge = None
+        return self._vertices, self._faces
 
     @property
     def vertices(self):
         """The (n, 3) vertex array, as trimesh's ``vertices`` (read only: shared by every user)."""
-        return self._vertices
+        return self._arrays()[0]
 
     @property
-    def nbytes(self) -> int:
-        return self._vertices.nbytes + self._faces.nbytes
+    def is_watertight(self) -> bool:
+        if self._watertight is None:
+            faces = self._arrays()[1]
+            if self._watertight is None:
+                self._watertight = mesh_arrays.is_watertight(faces)
+        return self._watertight
 
     @property
     def mass_properties(self) -> dict:
         if self._properties is None:
-            self._properties = mesh_arrays.mass_properties(self._vertices, self._faces)
+            self._properties = mesh_arrays.mass_properties(*self._arrays())
         return self._properties
 
     @property
     def convex_hull(self):
         if self._hull is None:
-            hull = mesh_arrays.convex_hull(self._vertices)
+            hull = mesh_arrays.convex_hull(self.vertices)
             if hull is None:  # one trimesh repairs
                 from trimesh.convex import convex_hull
 
-                self._hull = convex_hull(self._vertices)
+                self._hull = convex_hull(self.vertices)
             else:
                 points, faces, properties = hull
                 self._hull = MeshFacts(points, faces, {}, watertight=True, properties=properties)
@@ -781,18 +891,32 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
         arrays = _arrays_once(path, uri, limits, stamp)
         if isinstance(arrays, MeshProblem):
             raise arrays
-        vertices, faces, metadata, watertight = arrays  # a scale keeps it: a mirror turns all
-        if scale != (1.0, 1.0, 1.0):
+        bounds = arrays.bounds(scale)
+        if bounds is not None:
+            facts = MeshFacts.unmerged(arrays.triangles, bounds, arrays.metadata, arrays.nbytes,
+                                       lambda: _merged_scaled(arrays, scale))
+        else:
             import numpy as np
 
-            with np.errstate(all="ignore"):  # overflow is reported below
-                vertices, faces = mesh_arrays.scaled(vertices, faces, scale)
-            if not np.isfinite(vertices).all():
+            vertices, faces, watertight = _merged_scaled(arrays, scale)
+            if scale != (1.0, 1.0, 1.0) and not np.isfinite(vertices).all():
                 raise _beyond_range(uri, scale)
-        facts = MeshFacts(vertices, faces, metadata, watertight=watertight)
+            facts = MeshFacts(vertices, faces, arrays.metadata, watertight=watertight)
         return facts, facts.nbytes  # unscaled, the arrays' bytes: counted twice, an upper bound
 
     return _once((str(path), stamp, limits, "facts", scale), uri, compute)
+
+
+def _merged_scaled(arrays: _Arrays, scale):
+    """(vertices, faces, watertight) of ``arrays`` merged, then scaled (a scale keeps
+    watertightness: a mirror turns every face)."""
+    vertices, faces, watertight = arrays.merged()
+    if scale != (1.0, 1.0, 1.0):
+        import numpy as np
+
+        with np.errstate(all="ignore"):  # overflow is reported by the caller
+            vertices, faces = mesh_arrays.scaled(vertices, faces, scale)
+    return vertices, faces, watertight
 
 
 def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None = None):

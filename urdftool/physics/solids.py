@@ -10,6 +10,7 @@ plain OBJ, scipy only when an open mesh's convex hull decides a result.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
@@ -210,31 +211,68 @@ def _hull_floor(mesh, enough: float = math.inf) -> float:
     """A lower bound of the volume of the convex hull of a mesh's vertices [m^3], without
     building it (nor importing scipy): solids with disjoint insides spanned by vertices, which
     the hull holds. 0 when the vertices are not at hand; shaved by 1e-6 for rounding (and
-    qhull's joggle of a degenerate hull)."""
+    qhull's joggle of a degenerate hull). The polytope grows the same way whatever
+    ``enough`` is, so it is grown once per mesh and run: a later call with a larger
+    ``enough`` continues where the last one stopped."""
     import numpy as np
 
     vertices = getattr(mesh, "vertices", None)  # MeshFacts' or a trimesh's
     if vertices is None or len(vertices) < 4:
         return 0.0
+    growth = _GROWTHS.get(mesh) if _remembered(mesh) else None
+    if growth is None:
+        growth = _Growth(_vertex_polytope_volumes(np.asarray(vertices, dtype=np.float64)))
+        if _remembered(mesh):
+            _GROWTHS[mesh] = growth
     with np.errstate(all="ignore"):
-        floor = _vertex_polytope_volume(np.asarray(vertices, dtype=np.float64),
-                                        enough / (1 - 1e-6))
+        floor = growth.volume(enough / (1 - 1e-6))
     return floor * (1 - 1e-6) if math.isfinite(floor) and floor > 0 else 0.0
+
+
+# the growth of each mesh's polytope, kept as long as the mesh (MeshFacts: shared by a run)
+_GROWTHS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _remembered(mesh) -> bool:
+    from urdftool.description.meshes import MeshFacts
+
+    return isinstance(mesh, MeshFacts)
+
+
+class _Growth:
+    """The volumes a polytope passes through as it grows (:func:`_vertex_polytope_volumes`),
+    computed as far as asked."""
+
+    def __init__(self, volumes):
+        self._volumes, self._seen = volumes, []
+
+    def volume(self, enough: float) -> float:
+        """The first volume that reaches ``enough``, else the last one."""
+        for seen in self._seen:
+            if seen >= enough:
+                return seen
+        for volume in self._volumes:
+            self._seen.append(volume)
+            if volume >= enough:
+                return volume
+        return self._seen[-1]
 
 
 _DIRECTIONS = 64  # the hull's vertices farthest along this many directions span the polytope
 _ROUNDS, _TRIES = 6, 4  # growth rounds; candidates tried per face and round
 
 
-def _vertex_polytope_volume(points, enough: float = math.inf) -> float:
+def _vertex_polytope_volumes(points):
     """The volume of a polytope inside the hull of ``points`` [k, 3], grown as quickhull grows
     a hull but keeping only what is certain without one. From the points farthest along many
     directions (vertices of the hull): a tetrahedron or two (a, b farthest apart along the
     longest side of the box, c farthest from line ab, the farthest on either side of plane
     abc); then, round by round, on each outer face the farthest point beyond it whose
     tetrahedron with the face is separated from every tetrahedron kept (all four corners on
-    or beyond one of that one's face planes). The tetrahedra lie in the hull, apart. Stops
-    growing once the volume reaches ``enough`` [m^3]."""
+    or beyond one of that one's face planes). The tetrahedra lie in the hull, apart. Yields
+    the volume [m^3] before the first round and after each one (its last when nothing grew):
+    a caller stops once it is enough. numpy's floating point errors are the caller's to
+    silence, around each step."""
     import numpy as np
 
     golden = np.pi * (3.0 - np.sqrt(5.0))
@@ -246,11 +284,14 @@ def _vertex_polytope_volume(points, enough: float = math.inf) -> float:
                             np.eye(3), -np.eye(3)])
     extents = points.max(axis=0) - points.min(axis=0)
     if not float(extents.max()) > 0:
-        return 0.0
+        yield 0.0
+        return
     stretch = np.where(extents > 0, extents, float(extents.max()))  # directions as if a cube
-    points = points[np.unique(np.argmax(points @ (directions / stretch).T, axis=0))]
+    farthest = np.argmax(points @ (directions / stretch).T, axis=0)
+    points = points[sorted(set(farthest.tolist()))]  # as np.unique, which imports np.ma
     if len(points) < 4:
-        return 0.0
+        yield 0.0
+        return
     axis = int(np.argmax(extents))
     a, b = points[np.argmin(points[:, axis])], points[np.argmax(points[:, axis])]
     line = b - a
@@ -265,17 +306,17 @@ def _vertex_polytope_volume(points, enough: float = math.inf) -> float:
     kept = _Tetrahedra()
     for d in apexes:
         kept.add(np.array([a, b, c, d]), shared=len(apexes) == 2)
+    yield kept.volume
     for _ in range(_ROUNDS):
-        if kept.volume >= enough:
-            break
         outer, kept.faces = kept.faces, []
         for corners, normal in outer:
             if not kept.grow(points, (points - corners[0]) @ normal, corners, slack):
                 kept.faces.append((corners, normal))
-        if len(kept.faces) == len(outer) and all(f[0] is o[0] for f, o in zip(kept.faces,
-                                                                                outer)):
-            break  # nothing grew
-    return kept.volume
+        grew = len(kept.faces) != len(outer) or any(f[0] is not o[0] for f, o in
+                                                    zip(kept.faces, outer))
+        yield kept.volume
+        if not grew:
+            return
 
 
 _FACES = ((0, 1, 2, 3), (0, 1, 3, 2), (1, 2, 3, 0), (2, 0, 3, 1))  # corners, then the one left
