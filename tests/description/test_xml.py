@@ -14,3 +14,5 @@ def test_child_is_find_for_a_plain_tag():
         assert first_child(root, tag) is root.find(tag)
     assert first_child(root, "visual").get("n") == "1"  # the first of several
     assert first_child(root.find("geometry"), "origin").get("n") == "deep"
+    assert first_child(root.find("origin"), "origin") is None  # a leaf has no children
+    assert first_child(etree.Comment("c"), "origin") is None
