@@ -106,19 +106,24 @@ def shape_of(holder) -> Shape | None:
     geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    element = next((c for c in geometry if isinstance(c.tag, str)), None)
-    if element is None or element.tag not in SHAPES:
+    for element in geometry:
+        kind = element.tag
+        if isinstance(kind, str):
+            break
+    else:
+        return None
+    if kind not in SHAPES:
         return None
     xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    if element.tag == "box":
+    if kind == "box":
         size = parse_numbers(element.get("size"), 3)[0]
         params = {"size": size} if _positive(size) else None
-    elif element.tag == "cylinder":
+    elif kind == "cylinder":
         radius = parse_numbers(element.get("radius"), 1)[0]
         length = parse_numbers(element.get("length"), 1)[0]
         params = {"radius": radius[0], "length": length[0]} \
             if _positive(radius) and _positive(length) else None
-    elif element.tag == "sphere":
+    elif kind == "sphere":
         radius = parse_numbers(element.get("radius"), 1)[0]
         params = {"radius": radius[0]} if _positive(radius) else None
     else:
@@ -127,7 +132,7 @@ def shape_of(holder) -> Shape | None:
             if element.get("filename") and scale and finite(scale) else None
     if params is None:
         return None
-    return Shape(element.tag, params, xyz, rotation, element)
+    return Shape(kind, params, xyz, rotation, element)
 
 
 def shapes(robot, link, tag: str) -> list[Shape]:
@@ -338,8 +343,9 @@ def _local_box(shape: Shape):
     """A primitive's box in its own frame: (min corner, max corner)."""
     p = shape.params
     if shape.kind == "box":
-        half = tuple(v / 2 for v in p["size"])
-        return tuple(-v for v in half), half
+        x, y, z = p["size"]
+        x, y, z = x / 2, y / 2, z / 2
+        return (-x, -y, -z), (x, y, z)
     if shape.kind == "cylinder":
         r, h = p["radius"], p["length"] / 2
         return (-r, -r, -h), (r, r, h)
@@ -395,11 +401,15 @@ def rigid_bounds(robot, link) -> RigidBounds:
     frames = _rigid_frames(robot, link.get("name"))
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        local, box, complete = _placed_corners(robot, robot.links.get(name))
+        members, box, complete = _placed_corners(robot, robot.links.get(name))
         if rotation is mat3.IDENTITY and box is not None:  # the link itself: its own box
+            if len(frames) == 1:  # and nothing else: the box is its own min and max
+                result.complete, result.bounds = complete, box
+                return result
             corners.extend(box)  # (as min and max of the corners moved by 0 + I c would be)
         else:
-            corners.extend(_placed(xyz, rotation, local))
+            corners.extend(_placed(xyz, rotation, [c for shape in members
+                                                   for c in shape.placed]))
         result.complete = result.complete and complete
     result.bounds = _box(corners)
     return result
@@ -423,22 +433,27 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
     return _box([low for low, _ in boxes])[0], _box([high for _, high in boxes])[1]
 
 
-def _placed_corners(robot, member) -> tuple[list[mat3.Vector], tuple | None, bool]:
-    """(the corners of the boxes of a link's visual and collision shapes, in the link frame;
-    their box as its two corners when every coordinate is finite, a zero of either sign as
-    +0; whether every shape was measured), once per robot and link: every link fixed to it
-    asks."""
+def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
+    """(a link's visual and collision shapes whose box corners are placed in the link frame
+    (``shape.placed``); their box as (min corner, max corner) when every coordinate is finite,
+    a zero of either sign as +0; whether every shape was measured), once per robot and link:
+    every link fixed to it asks."""
     def build():
         found = _link_shapes(robot, member)
-        members = [shape for tag in ("visual", "collision") for shape in found[tag][0]
-                   if _placed_shape_corners(robot, shape)]
-        corners = [c for shape in members for c in shape.placed]
-        complete = len(members) == sum(count for _, count in found.values())
+        members, finite, elements = [], True, 0
+        for tag in ("visual", "collision"):
+            kept, count = found[tag]
+            elements += count
+            for shape in kept:
+                if _placed_shape_corners(robot, shape):
+                    members.append(shape)
+                    finite = finite and shape.finite
         box = None
-        if members and all(shape.finite for shape in members):
-            box = [tuple(v + 0.0 for v in corner) for corner in
-                   _joined([shape.box for shape in members])]
-        return corners, box, complete
+        if members and finite:
+            low, high = _joined([shape.box for shape in members])
+            box = ((low[0] + 0.0, low[1] + 0.0, low[2] + 0.0),
+                   (high[0] + 0.0, high[1] + 0.0, high[2] + 0.0))
+        return members, box, len(members) == elements
 
     return robot.memo((_placed_corners, member), build)
 
@@ -448,12 +463,29 @@ def _placed_shape_corners(robot, shape: Shape) -> tuple:
     resolve or load; once per shape (the solids and the rigid bounds both ask)."""
     if shape.placed is None:
         local = _local_bounds(robot, shape)
-        shape.placed = () if local is None else _placed(shape.xyz, shape.rotation,
-                                                        _corners(local))
-        if shape.placed:
+        if local is None:
+            shape.placed = ()
+        elif shape.rotation is mat3.NO_TURN and _kept_by_no_turn(local):
+            (lx, ly, lz), (hx, hy, hz) = local
+            tx, ty, tz = shape.xyz
+            xs, ys, zs = (tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)
+            shape.placed = tuple((x, y, z) for x in xs for y in ys for z in zs)  # _corners' order
+            shape.box = (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
+        else:
+            shape.placed = _placed(shape.xyz, shape.rotation, _corners(local))
             shape.box = _box(shape.placed)
+        if shape.placed:
             shape.finite = math.isfinite(sum(map(sum, shape.placed)))  # False on overflow too
     return shape.placed
+
+
+def _kept_by_no_turn(bounds) -> bool:
+    """Whether :data:`mat3.NO_TURN` (entries 1.0 and zeros of either sign) moves the corners
+    of ``bounds`` to themselves to the bit: every coordinate finite (0 * inf is nan) and none
+    zero (-0.0 + 0.0 is 0.0); :func:`_placed` then adds only zeros to each."""
+    (lx, ly, lz), (hx, hy, hz) = bounds
+    return math.isfinite(lx + ly + lz + hx + hy + hz) and \
+        0.0 not in (lx, ly, lz, hx, hy, hz)
 
 
 def _placed(xyz, rotation, points) -> tuple:
