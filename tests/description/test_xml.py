@@ -16,3 +16,13 @@ def test_child_is_find_for_a_plain_tag():
     assert first_child(root.find("geometry"), "origin").get("n") == "deep"
     assert first_child(root.find("origin"), "origin") is None  # a leaf has no children
     assert first_child(etree.Comment("c"), "origin") is None
+
+
+def test_children_named_is_findall_for_a_plain_tag():
+    from urdftool.description.xml import children_named
+
+    root = etree.fromstring(b'<joint><child link="a"/><!-- c --><origin/><child link="b"/>'
+                            b'<x><child link="deep"/></x></joint>')
+    for tag in ("child", "origin", "limit"):
+        assert children_named(root, tag) == root.findall(tag)
+    assert [c.get("link") for c in children_named(root, "child")] == ["a", "b"]

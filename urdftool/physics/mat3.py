@@ -110,7 +110,9 @@ def add(a, b) -> Vector:
 
 
 def scaled(m, factor: float) -> Matrix:
-    return tuple(tuple(v * factor for v in row) for row in m)
+    (a, b, c), (d, e, f), (g, h, i) = m
+    return ((a * factor, b * factor, c * factor), (d * factor, e * factor, f * factor),
+            (g * factor, h * factor, i * factor))
 
 
 def trace(m) -> float:

@@ -20,7 +20,7 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.xml import first_child
+from urdftool.description.xml import children_named, first_child
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
@@ -70,7 +70,14 @@ def _valid(robot) -> list:
     return robot.memo(_valid, lambda: [
         (link, properties) for link in robot.children("link")
         if (properties := declared(link)) is not None and math.isfinite(properties.mass)
-        and all(math.isfinite(v) for row in properties.inertia for v in row)])
+        and _finite_tensor(properties.inertia)])
+
+
+def _finite_tensor(m) -> bool:
+    (a, b, c), (d, e, f), (g, h, i) = m
+    if math.isfinite(a + b + c + d + e + f + g + h + i):  # else: overflow, or one is not
+        return True
+    return all(math.isfinite(v) for row in m for v in row)
 
 
 def _judged(robot):
@@ -127,7 +134,7 @@ def malformed_inertial(robot):
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
     """
     for link in robot.children("link"):
-        for inertial in link.findall("inertial"):
+        for inertial in children_named(link, "inertial"):
             prefix = f"link '{_name(link)}': <inertial>"
             mass = first_child(inertial, "mass")
             if mass is None:
@@ -143,16 +150,17 @@ def malformed_inertial(robot):
                 yield inertial, (f"{prefix} has no <inertia>; give all six of "
                                  f"{', '.join(INERTIA_ATTRIBUTES)}")
                 continue
-            missing = [a for a in INERTIA_ATTRIBUTES if inertia.get(a) is None]
-            if missing:
+            texts = [inertia.get(a) for a in INERTIA_ATTRIBUTES]
+            if None in texts:
+                missing = [a for a, text in zip(INERTIA_ATTRIBUTES, texts) if text is None]
                 yield inertia, (f"{prefix} <inertia> lacks {', '.join(missing)} (urdfdom needs "
                                 "all six; write 0 for products of inertia that vanish)")
-            for attribute in INERTIA_ATTRIBUTES:
-                values, problem = parse_numbers(inertia.get(attribute), 1)
-                if inertia.get(attribute) is not None and (problem or
-                                                           not math.isfinite(values[0])):
-                    yield inertia, (f"{prefix} {attribute}='{inertia.get(attribute)}' is not a "
-                                    "finite number")
+            for attribute, text in zip(INERTIA_ATTRIBUTES, texts):
+                if text is None:
+                    continue
+                values, problem = parse_numbers(text, 1)
+                if problem or not math.isfinite(values[0]):
+                    yield inertia, f"{prefix} {attribute}='{text}' is not a finite number"
 
 
 @rule("U302", "negative-mass", Severity.ERROR)
@@ -359,7 +367,8 @@ def root_link_inertia(robot):
     A note, not a warning: floating-base robots used with Pinocchio or MuJoCo are right to carry
     mass in their root.
     """
-    children = {c.get("link") for j in robot.children("joint") for c in j.findall("child")}
+    children = {c.get("link") for j in robot.children("joint")
+                for c in children_named(j, "child")}
     masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
     if len(roots) == 1 and masses.get(roots[0], 0) > 0:
@@ -530,12 +539,13 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     if not loaded(solid):
         return None
     other = "visual" if solid.source == "collision" else "collision"
-    volumes = [volume(solid)]
+    own = volume(solid)
+    volumes = [own]
     if first_child(link, other) is not None:
         second = _solid(robot, link, other)
         if loaded(second):
             volumes.append(volume(second))
-    return (volume(solid) if _trustworthy(solid) else 0.0), max(volumes)
+    return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
 @rule("U311", "implausible-density", Severity.WARNING)
