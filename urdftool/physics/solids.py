@@ -63,8 +63,10 @@ class LinkSolid:
     @property
     def sound(self) -> bool:
         """No problems: every shape counted as it is (an open mesh always has one, its hull)."""
-        return not any(entry.open_mesh is not None for entry in self._entries) \
-            and not self.problems
+        for entry in self._entries:
+            if entry.open_mesh is not None:
+                return False
+        return not self.problems
 
     def volume_floor(self, enough: float = math.inf) -> float:
         """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open

@@ -306,8 +306,8 @@ def _link_solids(robot):
 
 def _extent(solid) -> float:
     """The largest side of a solid's bounding box [m]."""
-    low, high = solid.bounds
-    return max(h - l for l, h in zip(low, high))
+    (lx, ly, lz), (hx, hy, hz) = solid.bounds
+    return max(hx - lx, hy - ly, hz - lz)
 
 
 def _rounded(values) -> list[float]:
