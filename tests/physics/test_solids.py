@@ -138,16 +138,20 @@ def test_hull_floor_is_below_the_hull_and_near_it(shape):
 @pytest.mark.parametrize("size", ["0.02 0.02 0.1", "5e-324 1 1", "1e308 1e308 1e308", "3 0.5 7"])
 def test_unturned_shapes_are_placed_as_the_rotation_would_place_them(tmp_path, xyz, size):
     # rpy 0 0 0 moves the corners without products; the same numbers, box and finiteness
+    import math
+
     from urdftool.physics import mat3
-    from urdftool.physics.solids import _box, _corners, _local_box, _placed, \
-        _placed_shape_corners, shapes
+    from urdftool.physics.solids import _box, _corners, _local_box, _measured, _placed, \
+        _shape_corners, shapes
 
     robot = _robot(tmp_path, f'<robot name="r"><link name="a"><visual><origin xyz="{xyz}"/>'
                              f'<geometry><box size="{size}"/></geometry></visual></link></robot>')
     [shape] = shapes(robot, robot.links["a"], "visual")
     assert shape.rotation is mat3.NO_TURN
     placed = _placed(shape.xyz, shape.rotation, _corners(_local_box(shape)))
-    assert [[float(v).hex() for v in c] for c in _placed_shape_corners(robot, shape)] == \
-        [[float(v).hex() for v in c] for c in placed]
+    assert _measured(robot, shape)
+    assert shape.finite == math.isfinite(sum(map(sum, placed)))
     assert [[float(v).hex() for v in c] for c in shape.box] == \
         [[float(v).hex() for v in c] for c in _box(placed)]
+    assert [[float(v).hex() for v in c] for c in _shape_corners(shape)] == \
+        [[float(v).hex() for v in c] for c in placed]

@@ -32,7 +32,8 @@ class Shape:
     xyz: mat3.Vector
     rotation: mat3.Matrix
     element: object
-    placed: tuple | None = field(default=None, repr=False)  # see _placed_shape_corners
+    placed: tuple | None = field(default=None, repr=False)  # see _measured, _shape_corners
+    axes: tuple | None = field(default=None, repr=False)  # their coordinates, if unturned
     box: tuple | None = field(default=None, repr=False)  # their min and max corner
     finite: bool = field(default=False, repr=False)  # True: every coordinate of them finite
 
@@ -378,7 +379,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
         else:
             result._entries.append(_Entry(shape, mp.transformed(_local(shape), shape.xyz,
                                                                  shape.rotation)))
-        if _placed_shape_corners(robot, shape):
+        if _measured(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
     return result
@@ -411,7 +412,7 @@ def rigid_bounds(robot, link) -> RigidBounds:
             corners.extend(box)  # (as min and max of the corners moved by 0 + I c would be)
         else:
             corners.extend(_placed(xyz, rotation, [c for shape in members
-                                                   for c in shape.placed]))
+                                                   for c in _shape_corners(shape)]))
         result.complete = result.complete and complete
     result.bounds = _box(corners)
     return result
@@ -437,7 +438,7 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
 
 def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
     """(a link's visual and collision shapes whose box corners are placed in the link frame
-    (``shape.placed``); their box as (min corner, max corner) when every coordinate is finite,
+    (:func:`_shape_corners`); their box as (min corner, max corner) when every coordinate is finite,
     a zero of either sign as +0; whether every shape was measured), once per robot and link:
     every link fixed to it asks."""
     def build():
@@ -447,7 +448,7 @@ def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
             kept, count = found[tag]
             elements += count
             for shape in kept:
-                if _placed_shape_corners(robot, shape):
+                if _measured(robot, shape):
                     members.append(shape)
                     finite = finite and shape.finite
         box = None
@@ -460,24 +461,39 @@ def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
     return robot.memo((_placed_corners, member), build)
 
 
-def _placed_shape_corners(robot, shape: Shape) -> tuple:
-    """The corners of a shape's box placed in the link frame, () for a mesh that does not
-    resolve or load; once per shape (the solids and the rigid bounds both ask)."""
-    if shape.placed is None:
+def _measured(robot, shape: Shape) -> bool:
+    """Place the corners of a shape's box in the link frame, once per shape (the solids and
+    the rigid bounds both ask): their box (``shape.box``) and whether all are finite
+    (``shape.finite``); False for a mesh that does not resolve or load. Unturned corners
+    (rpy 0 0 0, see :func:`_kept_by_no_turn`) are kept as their coordinates on each axis, and
+    made points only when a link fixed to this one asks (:func:`_shape_corners`)."""
+    if shape.placed is None and shape.axes is None:
         local = _local_bounds(robot, shape)
         if local is None:
             shape.placed = ()
         elif shape.rotation is mat3.NO_TURN and _kept_by_no_turn(local):
             (lx, ly, lz), (hx, hy, hz) = local
             tx, ty, tz = shape.xyz
-            xs, ys, zs = (tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)
-            shape.placed = tuple((x, y, z) for x in xs for y in ys for z in zs)  # _corners' order
+            xs, ys, zs = shape.axes = (tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)
             shape.box = (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
+            total = 0  # sum(map(sum, corners)) below, the same additions in the same order
+            for x in xs:
+                for y in ys:
+                    for z in zs:
+                        total += 0 + x + y + z
+            shape.finite = math.isfinite(total)  # False on overflow too
         else:
             shape.placed = _placed(shape.xyz, shape.rotation, _corners(local))
             shape.box = _box(shape.placed)
-        if shape.placed:
             shape.finite = math.isfinite(sum(map(sum, shape.placed)))  # False on overflow too
+    return shape.axes is not None or bool(shape.placed)
+
+
+def _shape_corners(shape: Shape) -> tuple:
+    """The corners of a measured shape's box in the link frame, in :func:`_corners`' order."""
+    if shape.placed is None:
+        xs, ys, zs = shape.axes
+        shape.placed = tuple((x, y, z) for x in xs for y in ys for z in zs)
     return shape.placed
 
 

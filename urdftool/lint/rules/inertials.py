@@ -24,6 +24,7 @@ from urdftool.description.xml import children_named, first_child
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from urdftool.physics import solids
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -90,20 +91,16 @@ def _judged(robot):
 def _from_geometry(robot, link, mass: float):
     """Edits replacing a link's inertial with the one its geometry gives at the declared
     ``mass``; None without usable geometry, Unfixable when a value comes from an expression."""
-    from urdftool.physics.solids import computed
-
     solid = _solid(robot, link)
     if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
-    return inertial_edits(robot, link, computed(solid, mass=mass))
+    return inertial_edits(robot, link, solids.computed(solid, mass=mass))
 
 
 def _solid(robot, link, tag: str | None = None):
     """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
     per robot, link and tag: several rules ask."""
-    from urdftool.physics.solids import link_solid
-
-    return robot.memo((_solid, link, tag), lambda: link_solid(robot, link, tag=tag))
+    return robot.memo((_solid, link, tag), lambda: solids.link_solid(robot, link, tag=tag))
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -329,12 +326,10 @@ def com_outside_geometry(robot):
     Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
     Good: the centre of mass inside or near the link's shape
     """
-    from urdftool.physics.solids import rigid_bounds
-
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        rigid = rigid_bounds(robot, link)
+        rigid = solids.rigid_bounds(robot, link)
         if rigid.bounds is None or not rigid.complete:
             continue
         low, high = rigid.bounds
@@ -431,15 +426,13 @@ def _inertia_ratios(robot) -> list:
     """(link, declared, solid, computed, ratio of traces) for links whose geometry is
     trustworthy: the computed tensor is ``urdftool inertia``'s, a uniform solid of the
     declared mass. Once per robot (U309 and U310 ask)."""
-    from urdftool.physics.solids import computed
-
     def build():
         found = []
         for link, properties, solid in _link_solids(robot):
             if not _trustworthy(solid) or all(abs(v) < ZERO_INERTIA for row in properties.inertia
                                                for v in row):
                 continue  # a zero tensor is U304's finding, not a ratio to judge
-            expected = computed(solid, mass=properties.mass)
+            expected = solids.computed(solid, mass=properties.mass)
             if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
                 continue
             ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
@@ -527,24 +520,22 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     The largest is None when it cannot matter: when ``mass`` [kg] in a lower bound of the
     solid's own volume (found without convex hulls, exact without open meshes) is no denser
     than osmium, no larger volume makes it denser, and no hull or other geometry is built."""
-    from urdftool.physics.solids import HULL_USED, volume
-
     floor = solid.volume_floor(enough=mass / DENSEST)
     if floor > 0 and mass / floor <= DENSEST:
-        return (volume(solid) if _trustworthy(solid) else 0.0), None
+        return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):
-        return s.parts and all(HULL_USED in message for _, message in s.problems)
+        return s.parts and all(solids.HULL_USED in message for _, message in s.problems)
 
     if not loaded(solid):
         return None
     other = "visual" if solid.source == "collision" else "collision"
-    own = volume(solid)
+    own = solids.volume(solid)
     volumes = [own]
     if first_child(link, other) is not None:
         second = _solid(robot, link, other)
         if loaded(second):
-            volumes.append(volume(second))
+            volumes.append(solids.volume(second))
     return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
