@@ -8,6 +8,7 @@ three row tuples; any sequence of sequences (a numpy array too) is accepted as i
 from __future__ import annotations
 
 import math
+import struct
 
 Vector = tuple[float, float, float]
 Matrix = tuple[Vector, Vector, Vector]
@@ -64,10 +65,12 @@ def _kept_by_no_turn(m) -> bool:
     (a, b, c), (d, e, f), (g, h, i) = m
     if not math.isfinite(a + b + c + d + e + f + g + h + i):  # overflow: just not taken
         return False
-    for v in (a, b, c, d, e, f, g, h, i):
-        if v == 0.0 and math.copysign(1.0, v) < 0:
-            return False
-    return True
+    # -0.0's eight bytes anywhere (also across two numbers: then the products are just made)
+    return _NEGATIVE_ZERO not in _NINE.pack(a, b, c, d, e, f, g, h, i)
+
+
+_NINE = struct.Struct("<9d")
+_NEGATIVE_ZERO = struct.pack("<d", -0.0)
 
 
 # Written out term by term (no generators): rules call these hundreds of thousands of times on

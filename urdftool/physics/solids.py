@@ -433,7 +433,9 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
         return None
     if len(boxes) == 1:
         return boxes[0]
-    return _box([low for low, _ in boxes])[0], _box([high for _, high in boxes])[1]
+    lows, highs = zip(*boxes)
+    (lx, ly, lz), (hx, hy, hz) = zip(*lows), zip(*highs)
+    return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))
 
 
 def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:

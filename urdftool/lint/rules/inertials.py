@@ -115,9 +115,11 @@ def _solid_source(robot, link) -> str:
 
 
 def _moving(robot) -> dict:
-    """Link name -> the joint that moves it, for links a non-fixed joint moves."""
-    return {name: joint for name, joint in _joints_by_child(robot).items()
-            if joint.get("type") in VARIABLE}
+    """Link name -> the joint that moves it, for links a non-fixed joint moves; once per robot
+    (U303 and U304 ask)."""
+    return robot.memo(_moving, lambda: {name: joint for name, joint in
+                                        _joints_by_child(robot).items()
+                                        if joint.get("type") in VARIABLE})
 
 
 @rule("U301", "malformed-inertial", Severity.ERROR)
@@ -447,10 +449,11 @@ def _unit_factor(properties, expected, ratio) -> int | None:
     """3 or 6 when the declared tensor is the computed one times 10^+-3 or 10^+-6."""
     power = math.log10(ratio)
     for factor in UNIT_FACTORS:
+        if abs(abs(power) - factor) > UNIT_POWER_SLACK:
+            continue  # the tensors are compared only at a power near the factor
         divisor = 10.0 ** math.copysign(factor, power)
         rescaled = [[v / divisor for v in row] for row in properties.inertia]
-        if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
-                rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
+        if relative_difference(rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
             return factor
     return None
 
