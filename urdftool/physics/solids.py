@@ -101,7 +101,13 @@ class _Entry:
 
 
 def _positive(values) -> bool:
-    return values is not None and finite(values) and all(v > 0 for v in values)
+    """Every value finite and above 0 (None: not)."""
+    if values is None:
+        return False
+    for v in values:
+        if not (v > 0 and math.isfinite(v)):
+            return False
+    return True
 
 
 def shape_of(holder) -> Shape | None:
@@ -477,7 +483,9 @@ def _measured(robot, shape: Shape) -> bool:
             (lx, ly, lz), (hx, hy, hz) = local
             tx, ty, tz = shape.xyz
             xs, ys, zs = shape.axes = (tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)
-            shape.box = (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
+            (x0, x1), (y0, y1), (z0, z1) = xs, ys, zs  # min and max as the builtins choose
+            shape.box = ((x1 if x1 < x0 else x0, y1 if y1 < y0 else y0, z1 if z1 < z0 else z0),
+                         (x1 if x1 > x0 else x0, y1 if y1 > y0 else y0, z1 if z1 > z0 else z0))
             total = 0  # sum(map(sum, corners)) below, the same additions in the same order
             for x in xs:
                 for y in ys:
