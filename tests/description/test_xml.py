@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from lxml import etree
 
 from urdftool.description.xml import first_child
@@ -14,3 +15,50 @@ def test_child_is_find_for_a_plain_tag():
         assert first_child(root, tag) is root.find(tag)
     assert first_child(root, "visual").get("n") == "1"  # the first of several
     assert first_child(root.find("geometry"), "origin").get("n") == "deep"
+    assert first_child(root.find("origin"), "origin") is None  # a leaf has no children
+    assert first_child(etree.Comment("c"), "origin") is None
+
+
+def test_children_named_is_findall_for_a_plain_tag():
+    from urdftool.description.xml import children_named
+
+    root = etree.fromstring(b'<joint><child link="a"/><!-- c --><origin/><child link="b"/>'
+                            b'<x><child link="deep"/></x></joint>')
+    for tag in ("child", "origin", "limit"):
+        assert children_named(root, tag) == root.findall(tag)
+    assert [c.get("link") for c in children_named(root, "child")] == ["a", "b"]
+
+
+def test_start_tags_found_by_scanning_are_where_expat_puts_them():
+    from urdftool.description.xml import _StartOffsets, parse, start_tag_positions
+
+    data = (b'<?xml version="1.0"?>\n<!-- <link name="commented"/> -->\n<robot name="r">\n'
+            b'  <link\n     name="a" note="x > y"><?pi <b/> ?><visual/></link>\n'
+            b'<![CDATA[ <joint/> ]]>\n\t<joint name="j"><parent link="a"/></joint></robot>\n')
+    for document in (data, data.replace(b"<!-- <link name=\"commented\"/> -->", b"")
+                     .replace(b"<?pi <b/> ?>", b"").replace(b"<![CDATA[ <joint/> ]]>", b"")):
+        root, positions = parse(document)
+        assert isinstance(positions, _StartOffsets)  # the scan, not a handler per element
+        assert [positions[e] for e in root.iter(etree.Element)] == \
+            start_tag_positions(document)
+        assert positions[root.find("link")] == (4, 3)  # its "<", not its ">" (line 5)
+
+
+def test_documents_the_scan_is_not_sure_of_take_the_full_pass():
+    from urdftool.description.xml import _StartOffsets, parse
+
+    for document in ('<robot name="r">\r\n<link name="a"/></robot>'.encode(),
+                     '<robot name="\u00e9">\n<link name="a"/></robot>'.encode()):
+        root, positions = parse(document)
+        assert not isinstance(positions, _StartOffsets)
+        assert positions[root.find("link")] == (2, 1)
+
+
+def test_too_deep_a_plain_document_is_refused_where_expat_says():
+    from urdftool.description.xml import MAX_DEPTH, XmlProblem, parse
+
+    document = b"<robot>\n" + b"<a>" * MAX_DEPTH + b"</a>" * MAX_DEPTH + b"\n</robot>"
+    with pytest.raises(XmlProblem) as refused:
+        parse(document)
+    assert refused.value.kind == "syntax" and "deeper than" in refused.value.message
+    assert refused.value.line == 2

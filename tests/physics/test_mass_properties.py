@@ -69,3 +69,30 @@ def test_check_without_meshes_never_imports_numpy():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             cwd=ROBOTS.parent)
     assert result.returncode == 0, result.stderr
+
+
+def test_combine_is_the_parallel_axis_sum_to_the_bit():
+    # the written-out sums are the loop they replaced: same terms, same order, same zeros
+    def by_loop(parts):
+        mass = sum(p.mass for p in parts)
+        com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
+        inertia = [[0.0] * 3 for _ in range(3)]
+        for part in parts:
+            m, c = part.mass, part.com
+            d = (c[0] - com[0], c[1] - com[1], c[2] - com[2])
+            squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+            for i, (row, own, di) in enumerate(zip(inertia, part.inertia, d)):
+                for j in range(3):
+                    row[j] += own[j] + m * ((squared if i == j else 0.0) - di * d[j])
+        return mp.Body(mass, com, mat3.matrix(inertia))
+
+    rng = np.random.default_rng(3)
+    for count in (1, 2, 5):
+        for _ in range(50):
+            parts = [mp.transformed(mp.box(rng.uniform(0.01, 1, 3)), rng.choice([0.0, -0.0, 0.3],
+                                                                                 3),
+                                    mat3.rpy_matrix(rng.choice([0.0, 0.7], 3)))
+                     for _ in range(count)]
+            ours, loop = mp.combine(parts), by_loop(parts)
+            assert [float(v).hex() for v in (ours.mass, *ours.com, *np.ravel(ours.inertia))] == \
+                [float(v).hex() for v in (loop.mass, *loop.com, *np.ravel(loop.inertia))]

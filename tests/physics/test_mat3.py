@@ -63,3 +63,31 @@ def test_rpy_products_and_rotation_match_numpy():
         _close(mat3.multiply(r, tensor), np.array(r) @ tensor, 10.0)
         _close(mat3.apply(r, v), np.array(r) @ v, 10.0)
         assert mat3.trace(tensor) == pytest.approx(np.trace(tensor), rel=1e-12, abs=1e-12)
+
+
+def _bits(m) -> list[str]:
+    """Each entry as its exact float text (tells -0.0 from 0.0, keeps nan)."""
+    return [float(v).hex() for row in m for v in row]
+
+
+SPECIAL = [0.0, -0.0, 1e-3, -2.5, 5e-324, -5e-324, 1e308, math.inf, -math.inf, math.nan]
+
+
+def test_rpy_zero_is_the_one_no_turn_and_its_value():
+    assert mat3.rpy_matrix((0.0, 0.0, 0.0)) is mat3.NO_TURN
+    assert _bits(mat3.NO_TURN) == _bits(mat3._rpy_matrix(0.0, 0.0, 0.0))
+    for rpy in [(-0.0, 0.0, 0.0), (0.0, -0.0, 0.0), (0.0, 0.0, -0.0), (0.0, 0.0, 1e-300)]:
+        turned = mat3.rpy_matrix(rpy)  # -0.0 turns some zeros' signs: computed, not shared
+        assert turned is not mat3.NO_TURN and _bits(turned) == _bits(mat3._rpy_matrix(*rpy))
+
+
+def test_rotate_by_no_turn_is_the_product_to_the_bit():
+    # the shortcut for rpy 0 0 0 gives what R T R^T gives, for -0.0, subnormals, inf and nan
+    rng = np.random.default_rng(7)
+    for _ in range(400):
+        values = [float(v) for v in rng.choice(SPECIAL, 6)]
+        tensor = ((values[0], values[1], values[2]), (values[1], values[3], values[4]),
+                  (values[2], values[4], values[5]))
+        product = mat3.multiply(mat3.multiply(mat3.NO_TURN, tensor),
+                                mat3.transpose(mat3.NO_TURN))
+        assert _bits(mat3.rotate(tensor, mat3.NO_TURN)) == _bits(product)

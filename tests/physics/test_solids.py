@@ -156,3 +156,26 @@ def test_a_meshs_hull_floor_grows_once_whatever_is_enough(monkeypatch):
     for enough in (1.0, 0.0, float("inf"), 3.0, 1.0):
         assert solids._hull_floor(mesh, enough) == expected[enough]
     assert len(added) == once
+
+
+@pytest.mark.parametrize("xyz", ["0 0 0", "-0 0.3 -0", "1e308 -1e308 0.05", "inf 0 nan"])
+@pytest.mark.parametrize("size", ["0.02 0.02 0.1", "5e-324 1 1", "1e308 1e308 1e308", "3 0.5 7"])
+def test_unturned_shapes_are_placed_as_the_rotation_would_place_them(tmp_path, xyz, size):
+    # rpy 0 0 0 moves the corners without products; the same numbers, box and finiteness
+    import math
+
+    from urdftool.physics import mat3
+    from urdftool.physics.solids import _box, _corners, _local_box, _measured, _placed, \
+        _shape_corners, shapes
+
+    robot = _robot(tmp_path, f'<robot name="r"><link name="a"><visual><origin xyz="{xyz}"/>'
+                             f'<geometry><box size="{size}"/></geometry></visual></link></robot>')
+    [shape] = shapes(robot, robot.links["a"], "visual")
+    assert shape.rotation is mat3.NO_TURN
+    placed = _placed(shape.xyz, shape.rotation, _corners(_local_box(shape)))
+    assert _measured(robot, shape)
+    assert shape.finite == math.isfinite(sum(map(sum, placed)))
+    assert [[float(v).hex() for v in c] for c in shape.box] == \
+        [[float(v).hex() for v in c] for c in _box(placed)]
+    assert [[float(v).hex() for v in c] for c in _shape_corners(shape)] == \
+        [[float(v).hex() for v in c] for c in placed]

@@ -8,6 +8,7 @@ three row tuples; any sequence of sequences (a numpy array too) is accepted as i
 from __future__ import annotations
 
 import math
+import struct
 
 Vector = tuple[float, float, float]
 Matrix = tuple[Vector, Vector, Vector]
@@ -37,13 +38,39 @@ def diagonal(values) -> Matrix:
 
 
 def rpy_matrix(rpy) -> Matrix:
-    """Rotation matrix of URDF roll-pitch-yaw (fixed axes x, y, z): Rz(y) Ry(p) Rx(r)."""
+    """Rotation matrix of URDF roll-pitch-yaw (fixed axes x, y, z): Rz(y) Ry(p) Rx(r).
+    An ``rpy`` of three +0.0 (absent, or written as zeros) gives the one :data:`NO_TURN`."""
     r, p, y = rpy
+    if r == 0.0 and p == 0.0 and y == 0.0 and math.copysign(1.0, r) > 0 \
+            and math.copysign(1.0, p) > 0 and math.copysign(1.0, y) > 0:
+        return NO_TURN
+    return _rpy_matrix(r, p, y)
+
+
+def _rpy_matrix(r, p, y) -> Matrix:
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), \
         math.cos(y), math.sin(y)
     return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
             (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
             (-sp, cp * sr, cp * cr))
+
+
+NO_TURN: Matrix = _rpy_matrix(0.0, 0.0, 0.0)  # rpy 0 0 0: IDENTITY's values, one of them -0.0
+
+
+def _kept_by_no_turn(m) -> bool:
+    """Whether ``R m R^T`` for R = NO_TURN (entries 1.0 and zeros of either sign) is ``m`` to
+    the bit: every entry finite (0 * inf is nan) and none -0.0 (-0.0 + 0.0 is 0.0); each
+    product and sum then adds zeros to a number that is not -0.0."""
+    (a, b, c), (d, e, f), (g, h, i) = m
+    if not math.isfinite(a + b + c + d + e + f + g + h + i):  # overflow: just not taken
+        return False
+    # -0.0's eight bytes anywhere (also across two numbers: then the products are just made)
+    return _NEGATIVE_ZERO not in _NINE.pack(a, b, c, d, e, f, g, h, i)
+
+
+_NINE = struct.Struct("<9d")
+_NEGATIVE_ZERO = struct.pack("<d", -0.0)
 
 
 # Written out term by term (no generators): rules call these hundreds of thousands of times on
@@ -74,7 +101,10 @@ def transpose(m) -> Matrix:
 
 
 def rotate(tensor, rotation) -> Matrix:
-    """A tensor expressed in a frame rotated by ``rotation``: ``R T R^T``."""
+    """A tensor expressed in a frame rotated by ``rotation``: ``R T R^T`` (without the
+    products for :data:`NO_TURN` where they give ``T`` back to the bit)."""
+    if rotation is NO_TURN and _kept_by_no_turn(tensor):
+        return matrix(tensor)
     return multiply(multiply(rotation, tensor), transpose(rotation))
 
 
@@ -83,7 +113,9 @@ def add(a, b) -> Vector:
 
 
 def scaled(m, factor: float) -> Matrix:
-    return tuple(tuple(v * factor for v in row) for row in m)
+    (a, b, c), (d, e, f), (g, h, i) = m
+    return ((a * factor, b * factor, c * factor), (d * factor, e * factor, f * factor),
+            (g * factor, h * factor, i * factor))
 
 
 def trace(m) -> float:

@@ -33,7 +33,8 @@ class Shape:
     xyz: mat3.Vector
     rotation: mat3.Matrix
     element: object
-    placed: tuple | None = field(default=None, repr=False)  # see _placed_shape_corners
+    placed: tuple | None = field(default=None, repr=False)  # see _measured, _shape_corners
+    axes: tuple | None = field(default=None, repr=False)  # their coordinates, if unturned
     box: tuple | None = field(default=None, repr=False)  # their min and max corner
     finite: bool = field(default=False, repr=False)  # True: every coordinate of them finite
 
@@ -64,8 +65,10 @@ class LinkSolid:
     @property
     def sound(self) -> bool:
         """No problems: every shape counted as it is (an open mesh always has one, its hull)."""
-        return not any(entry.open_mesh is not None for entry in self._entries) \
-            and not self.problems
+        for entry in self._entries:
+            if entry.open_mesh is not None:
+                return False
+        return not self.problems
 
     def volume_floor(self, enough: float = math.inf) -> float:
         """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open
@@ -99,7 +102,13 @@ class _Entry:
 
 
 def _positive(values) -> bool:
-    return values is not None and finite(values) and all(v > 0 for v in values)
+    """Every value finite and above 0 (None: not)."""
+    if values is None:
+        return False
+    for v in values:
+        if not (v > 0 and math.isfinite(v)):
+            return False
+    return True
 
 
 def shape_of(holder) -> Shape | None:
@@ -107,19 +116,24 @@ def shape_of(holder) -> Shape | None:
     geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    element = next((c for c in geometry if isinstance(c.tag, str)), None)
-    if element is None or element.tag not in SHAPES:
+    for element in geometry:
+        kind = element.tag
+        if isinstance(kind, str):
+            break
+    else:
+        return None
+    if kind not in SHAPES:
         return None
     xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    if element.tag == "box":
+    if kind == "box":
         size = parse_numbers(element.get("size"), 3)[0]
         params = {"size": size} if _positive(size) else None
-    elif element.tag == "cylinder":
+    elif kind == "cylinder":
         radius = parse_numbers(element.get("radius"), 1)[0]
         length = parse_numbers(element.get("length"), 1)[0]
         params = {"radius": radius[0], "length": length[0]} \
             if _positive(radius) and _positive(length) else None
-    elif element.tag == "sphere":
+    elif kind == "sphere":
         radius = parse_numbers(element.get("radius"), 1)[0]
         params = {"radius": radius[0]} if _positive(radius) else None
     else:
@@ -128,7 +142,7 @@ def shape_of(holder) -> Shape | None:
             if element.get("filename") and scale and finite(scale) else None
     if params is None:
         return None
-    return Shape(element.tag, params, xyz, rotation, element)
+    return Shape(kind, params, xyz, rotation, element)
 
 
 def shapes(robot, link, tag: str) -> list[Shape]:
@@ -379,8 +393,9 @@ def _local_box(shape: Shape):
     """A primitive's box in its own frame: (min corner, max corner)."""
     p = shape.params
     if shape.kind == "box":
-        half = tuple(v / 2 for v in p["size"])
-        return tuple(-v for v in half), half
+        x, y, z = p["size"]
+        x, y, z = x / 2, y / 2, z / 2
+        return (-x, -y, -z), (x, y, z)
     if shape.kind == "cylinder":
         r, h = p["radius"], p["length"] / 2
         return (-r, -r, -h), (r, r, h)
@@ -411,7 +426,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
         else:
             result._entries.append(_Entry(shape, mp.transformed(_local(shape), shape.xyz,
                                                                  shape.rotation)))
-        if _placed_shape_corners(robot, shape):
+        if _measured(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
     return result
@@ -436,11 +451,15 @@ def rigid_bounds(robot, link) -> RigidBounds:
     frames = _rigid_frames(robot, link.get("name"))
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        local, box, complete = _placed_corners(robot, robot.links.get(name))
+        members, box, complete = _placed_corners(robot, robot.links.get(name))
         if rotation is mat3.IDENTITY and box is not None:  # the link itself: its own box
+            if len(frames) == 1:  # and nothing else: the box is its own min and max
+                result.complete, result.bounds = complete, box
+                return result
             corners.extend(box)  # (as min and max of the corners moved by 0 + I c would be)
         else:
-            corners.extend(_placed(xyz, rotation, local))
+            corners.extend(_placed(xyz, rotation, [c for shape in members
+                                                   for c in _shape_corners(shape)]))
         result.complete = result.complete and complete
     result.bounds = _box(corners)
     return result
@@ -461,40 +480,81 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
         return None
     if len(boxes) == 1:
         return boxes[0]
-    return _box([low for low, _ in boxes])[0], _box([high for _, high in boxes])[1]
+    lows, highs = zip(*boxes)
+    (lx, ly, lz), (hx, hy, hz) = zip(*lows), zip(*highs)
+    return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))
 
 
-def _placed_corners(robot, member) -> tuple[list[mat3.Vector], tuple | None, bool]:
-    """(the corners of the boxes of a link's visual and collision shapes, in the link frame;
-    their box as its two corners when every coordinate is finite, a zero of either sign as
-    +0; whether every shape was measured), once per robot and link: every link fixed to it
-    asks."""
+def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
+    """(a link's visual and collision shapes whose box corners are placed in the link frame
+    (:func:`_shape_corners`); their box as (min corner, max corner) when every coordinate is finite,
+    a zero of either sign as +0; whether every shape was measured), once per robot and link:
+    every link fixed to it asks."""
     def build():
         found = _link_shapes(robot, member)
-        members = [shape for tag in ("visual", "collision") for shape in found[tag][0]
-                   if _placed_shape_corners(robot, shape)]
-        corners = [c for shape in members for c in shape.placed]
-        complete = len(members) == sum(count for _, count in found.values())
+        members, finite, elements = [], True, 0
+        for tag in ("visual", "collision"):
+            kept, count = found[tag]
+            elements += count
+            for shape in kept:
+                if _measured(robot, shape):
+                    members.append(shape)
+                    finite = finite and shape.finite
         box = None
-        if members and all(shape.finite for shape in members):
-            box = [tuple(v + 0.0 for v in corner) for corner in
-                   _joined([shape.box for shape in members])]
-        return corners, box, complete
+        if members and finite:
+            low, high = _joined([shape.box for shape in members])
+            box = ((low[0] + 0.0, low[1] + 0.0, low[2] + 0.0),
+                   (high[0] + 0.0, high[1] + 0.0, high[2] + 0.0))
+        return members, box, len(members) == elements
 
     return robot.memo((_placed_corners, member), build)
 
 
-def _placed_shape_corners(robot, shape: Shape) -> tuple:
-    """The corners of a shape's box placed in the link frame, () for a mesh that does not
-    resolve or load; once per shape (the solids and the rigid bounds both ask)."""
-    if shape.placed is None:
+def _measured(robot, shape: Shape) -> bool:
+    """Place the corners of a shape's box in the link frame, once per shape (the solids and
+    the rigid bounds both ask): their box (``shape.box``) and whether all are finite
+    (``shape.finite``); False for a mesh that does not resolve or load. Unturned corners
+    (rpy 0 0 0, see :func:`_kept_by_no_turn`) are kept as their coordinates on each axis, and
+    made points only when a link fixed to this one asks (:func:`_shape_corners`)."""
+    if shape.placed is None and shape.axes is None:
         local = _local_bounds(robot, shape)
-        shape.placed = () if local is None else _placed(shape.xyz, shape.rotation,
-                                                        _corners(local))
-        if shape.placed:
+        if local is None:
+            shape.placed = ()
+        elif shape.rotation is mat3.NO_TURN and _kept_by_no_turn(local):
+            (lx, ly, lz), (hx, hy, hz) = local
+            tx, ty, tz = shape.xyz
+            xs, ys, zs = shape.axes = (tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)
+            (x0, x1), (y0, y1), (z0, z1) = xs, ys, zs  # min and max as the builtins choose
+            shape.box = ((x1 if x1 < x0 else x0, y1 if y1 < y0 else y0, z1 if z1 < z0 else z0),
+                         (x1 if x1 > x0 else x0, y1 if y1 > y0 else y0, z1 if z1 > z0 else z0))
+            total = 0  # sum(map(sum, corners)) below, the same additions in the same order
+            for x in xs:
+                for y in ys:
+                    for z in zs:
+                        total += 0 + x + y + z
+            shape.finite = math.isfinite(total)  # False on overflow too
+        else:
+            shape.placed = _placed(shape.xyz, shape.rotation, _corners(local))
             shape.box = _box(shape.placed)
             shape.finite = math.isfinite(sum(map(sum, shape.placed)))  # False on overflow too
+    return shape.axes is not None or bool(shape.placed)
+
+
+def _shape_corners(shape: Shape) -> tuple:
+    """The corners of a measured shape's box in the link frame, in :func:`_corners`' order."""
+    if shape.placed is None:
+        xs, ys, zs = shape.axes
+        shape.placed = tuple((x, y, z) for x in xs for y in ys for z in zs)
     return shape.placed
+
+
+def _kept_by_no_turn(bounds) -> bool:
+    """Whether :data:`mat3.NO_TURN` (entries 1.0 and zeros of either sign) moves the corners
+    of ``bounds`` to themselves to the bit: every coordinate finite (0 * inf is nan) and none
+    zero (-0.0 + 0.0 is 0.0); :func:`_placed` then adds only zeros to each."""
+    (lx, ly, lz), (hx, hy, hz) = bounds
+    return math.isfinite(lx + ly + lz + hx + hy + hz) and \
+        0.0 not in (lx, ly, lz, hx, hy, hz)
 
 
 def _placed(xyz, rotation, points) -> tuple:

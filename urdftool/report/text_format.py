@@ -33,7 +33,7 @@ def lines(results, quiet: bool = False) -> list[Line]:
         if not quiet:
             out.append([])
     if quiet:
-        return [[(printable(text), style) for text, style in line] for line in out]
+        return [_printable(line) for line in out]
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
@@ -46,7 +46,17 @@ def lines(results, quiet: bool = False) -> list[Line]:
         parts = [f"[*] {safe} fixable with --fix"] if safe else []
         parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
         out.append([("; ".join(parts), "")])
-    return [[(printable(text), style) for text, style in line] for line in out]
+    return [_printable(line) for line in out]
+
+
+def _printable(line: Line) -> Line:
+    """The line with each span :func:`printable`; one look at the whole line first (escaping
+    is per character, so a line that needs none is kept as it is: 10,000 findings are 60,000
+    spans)."""
+    whole = "".join(text for text, _ in line)
+    if printable(whole) == whole:
+        return line
+    return [(printable(text), style) for text, style in line]
 
 
 def _marker(finding) -> Line:

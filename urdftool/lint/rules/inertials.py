@@ -20,10 +20,11 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.xml import first_child
+from urdftool.description.xml import children_named, first_child
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from urdftool.physics import solids
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -70,7 +71,14 @@ def _valid(robot) -> list:
     return robot.memo(_valid, lambda: [
         (link, properties) for link in robot.children("link")
         if (properties := declared(link)) is not None and math.isfinite(properties.mass)
-        and all(math.isfinite(v) for row in properties.inertia for v in row)])
+        and _finite_tensor(properties.inertia)])
+
+
+def _finite_tensor(m) -> bool:
+    (a, b, c), (d, e, f), (g, h, i) = m
+    if math.isfinite(a + b + c + d + e + f + g + h + i):  # else: overflow, or one is not
+        return True
+    return all(math.isfinite(v) for row in m for v in row)
 
 
 def _judged(robot):
@@ -83,20 +91,16 @@ def _judged(robot):
 def _from_geometry(robot, link, mass: float):
     """Edits replacing a link's inertial with the one its geometry gives at the declared
     ``mass``; None without usable geometry, Unfixable when a value comes from an expression."""
-    from urdftool.physics.solids import computed
-
     solid = _solid(robot, link)
     if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
-    return inertial_edits(robot, link, computed(solid, mass=mass))
+    return inertial_edits(robot, link, solids.computed(solid, mass=mass))
 
 
 def _solid(robot, link, tag: str | None = None):
     """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
     per robot, link and tag: several rules ask."""
-    from urdftool.physics.solids import link_solid
-
-    return robot.memo((_solid, link, tag), lambda: link_solid(robot, link, tag=tag))
+    return robot.memo((_solid, link, tag), lambda: solids.link_solid(robot, link, tag=tag))
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -111,9 +115,11 @@ def _solid_source(robot, link) -> str:
 
 
 def _moving(robot) -> dict:
-    """Link name -> the joint that moves it, for links a non-fixed joint moves."""
-    return {name: joint for name, joint in _joints_by_child(robot).items()
-            if joint.get("type") in VARIABLE}
+    """Link name -> the joint that moves it, for links a non-fixed joint moves; once per robot
+    (U303 and U304 ask)."""
+    return robot.memo(_moving, lambda: {name: joint for name, joint in
+                                        _joints_by_child(robot).items()
+                                        if joint.get("type") in VARIABLE})
 
 
 @rule("U301", "malformed-inertial", Severity.ERROR)
@@ -127,7 +133,7 @@ def malformed_inertial(robot):
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
     """
     for link in robot.children("link"):
-        for inertial in link.findall("inertial"):
+        for inertial in children_named(link, "inertial"):
             prefix = f"link '{_name(link)}': <inertial>"
             mass = first_child(inertial, "mass")
             if mass is None:
@@ -143,16 +149,17 @@ def malformed_inertial(robot):
                 yield inertial, (f"{prefix} has no <inertia>; give all six of "
                                  f"{', '.join(INERTIA_ATTRIBUTES)}")
                 continue
-            missing = [a for a in INERTIA_ATTRIBUTES if inertia.get(a) is None]
-            if missing:
+            texts = [inertia.get(a) for a in INERTIA_ATTRIBUTES]
+            if None in texts:
+                missing = [a for a, text in zip(INERTIA_ATTRIBUTES, texts) if text is None]
                 yield inertia, (f"{prefix} <inertia> lacks {', '.join(missing)} (urdfdom needs "
                                 "all six; write 0 for products of inertia that vanish)")
-            for attribute in INERTIA_ATTRIBUTES:
-                values, problem = parse_numbers(inertia.get(attribute), 1)
-                if inertia.get(attribute) is not None and (problem or
-                                                           not math.isfinite(values[0])):
-                    yield inertia, (f"{prefix} {attribute}='{inertia.get(attribute)}' is not a "
-                                    "finite number")
+            for attribute, text in zip(INERTIA_ATTRIBUTES, texts):
+                if text is None:
+                    continue
+                values, problem = parse_numbers(text, 1)
+                if problem or not math.isfinite(values[0]):
+                    yield inertia, f"{prefix} {attribute}='{text}' is not a finite number"
 
 
 @rule("U302", "negative-mass", Severity.ERROR)
@@ -298,8 +305,8 @@ def _link_solids(robot):
 
 def _extent(solid) -> float:
     """The largest side of a solid's bounding box [m]."""
-    low, high = solid.bounds
-    return max(h - l for l, h in zip(low, high))
+    (lx, ly, lz), (hx, hy, hz) = solid.bounds
+    return max(hx - lx, hy - ly, hz - lz)
 
 
 def _rounded(values) -> list[float]:
@@ -321,12 +328,10 @@ def com_outside_geometry(robot):
     Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
     Good: the centre of mass inside or near the link's shape
     """
-    from urdftool.physics.solids import rigid_bounds
-
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        rigid = rigid_bounds(robot, link)
+        rigid = solids.rigid_bounds(robot, link)
         if rigid.bounds is None or not rigid.complete:
             continue
         low, high = rigid.bounds
@@ -359,7 +364,8 @@ def root_link_inertia(robot):
     A note, not a warning: floating-base robots used with Pinocchio or MuJoCo are right to carry
     mass in their root.
     """
-    children = {c.get("link") for j in robot.children("joint") for c in j.findall("child")}
+    children = {c.get("link") for j in robot.children("joint")
+                for c in children_named(j, "child")}
     masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
     if len(roots) == 1 and masses.get(roots[0], 0) > 0:
@@ -422,15 +428,13 @@ def _inertia_ratios(robot) -> list:
     """(link, declared, solid, computed, ratio of traces) for links whose geometry is
     trustworthy: the computed tensor is ``urdftool inertia``'s, a uniform solid of the
     declared mass. Once per robot (U309 and U310 ask)."""
-    from urdftool.physics.solids import computed
-
     def build():
         found = []
         for link, properties, solid in _link_solids(robot):
             if not _trustworthy(solid) or all(abs(v) < ZERO_INERTIA for row in properties.inertia
                                                for v in row):
                 continue  # a zero tensor is U304's finding, not a ratio to judge
-            expected = computed(solid, mass=properties.mass)
+            expected = solids.computed(solid, mass=properties.mass)
             if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
                 continue
             ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
@@ -445,10 +449,11 @@ def _unit_factor(properties, expected, ratio) -> int | None:
     """3 or 6 when the declared tensor is the computed one times 10^+-3 or 10^+-6."""
     power = math.log10(ratio)
     for factor in UNIT_FACTORS:
+        if abs(abs(power) - factor) > UNIT_POWER_SLACK:
+            continue  # the tensors are compared only at a power near the factor
         divisor = 10.0 ** math.copysign(factor, power)
         rescaled = [[v / divisor for v in row] for row in properties.inertia]
-        if abs(abs(power) - factor) <= UNIT_POWER_SLACK and relative_difference(
-                rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
+        if relative_difference(rescaled, expected.inertia) <= UNIT_SHAPE_SLACK:
             return factor
     return None
 
@@ -518,24 +523,23 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     The largest is None when it cannot matter: when ``mass`` [kg] in a lower bound of the
     solid's own volume (found without convex hulls, exact without open meshes) is no denser
     than osmium, no larger volume makes it denser, and no hull or other geometry is built."""
-    from urdftool.physics.solids import HULL_USED, volume
-
     floor = solid.volume_floor(enough=mass / DENSEST)
     if floor > 0 and mass / floor <= DENSEST:
-        return (volume(solid) if _trustworthy(solid) else 0.0), None
+        return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):
-        return s.parts and all(HULL_USED in message for _, message in s.problems)
+        return s.parts and all(solids.HULL_USED in message for _, message in s.problems)
 
     if not loaded(solid):
         return None
     other = "visual" if solid.source == "collision" else "collision"
-    volumes = [volume(solid)]
+    own = solids.volume(solid)
+    volumes = [own]
     if first_child(link, other) is not None:
         second = _solid(robot, link, other)
         if loaded(second):
-            volumes.append(volume(second))
-    return (volume(solid) if _trustworthy(solid) else 0.0), max(volumes)
+            volumes.append(solids.volume(second))
+    return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
 @rule("U311", "implausible-density", Severity.WARNING)
