@@ -115,3 +115,18 @@ def test_notes_become_findings_that_the_selection_and_suppressions_filter(tmp_pa
     assert codes.count("U010") == 1
     ignoring = CheckOptions(selection=Selection(ignore=("xacro-warning",)))
     assert "U010" not in [f.code for f in check_file(str(path), ignoring).findings]
+
+
+def test_a_check_collects_garbage_less_often_and_restores_the_threshold(monkeypatch, tmp_path):
+    import gc
+
+    seen = []
+    real = engine.check_robot
+    monkeypatch.setattr(engine, "check_robot", lambda *a: seen.append(gc.get_threshold()) or
+                        real(*a))
+    before = gc.get_threshold()
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    check_file(str(robot), CheckOptions())
+    assert seen[0][0] >= 100_000 and seen[0][1:] == before[1:]
+    assert gc.get_threshold() == before

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import gc
 import traceback
+from contextlib import contextmanager
 from pathlib import Path
 
 from urdftool.diagnostics import Finding, Location, display_path
@@ -113,6 +115,24 @@ def urdfdom_refusals(robot) -> list[Finding]:
 def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
     """Load and check one file (``data``: its content, when not to be read from ``path``);
     load failures are findings too."""
+    with _fewer_collections():
+        return _check_file(path, options, data)
+
+
+@contextmanager
+def _fewer_collections(young: int = 100_000):
+    """Run the cyclic garbage collector after ``young`` new objects rather than Python's 700:
+    checking allocates millions of short-lived tuples that are freed by reference counting,
+    and on a 10,000-link robot the collections cost a tenth of the run (6.0 -> 5.4 s)."""
+    threshold = gc.get_threshold()
+    gc.set_threshold(max(young, threshold[0]), *threshold[1:])
+    try:
+        yield
+    finally:
+        gc.set_threshold(*threshold)
+
+
+def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
     from urdftool.description.load import load
 
     try:
