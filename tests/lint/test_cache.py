@@ -113,6 +113,7 @@ def test_an_edited_macro_file_mesh_or_companion_changes_the_findings(robot, tmp_
 def test_a_rerun_of_the_same_paths_is_served_whole(robot, tmp_path, monkeypatch):
     from urdftool.lint import targets
 
+    monkeypatch.setattr(cache_module, "RACY_NS", 0)  # files written just now: trust stamps
     cache_dir = tmp_path / "cache"
     first = _messages(robot, cache_dir)
     assert len(_entries(cache_dir, "run")) == 1
@@ -139,6 +140,22 @@ def test_a_run_through_a_folder_is_not_kept_whole(robot, tmp_path):
     cache_dir = tmp_path / "cache"
     check_paths([str(robot)], cache_dir=cache_dir, timeout=0, max_memory="0", jobs=1)
     assert _entries(cache_dir, "file") and not _entries(cache_dir, "run")
+
+
+def test_a_file_rewritten_within_its_clock_tick_is_seen(robot, tmp_path, monkeypatch):
+    # a coarse file clock: the macro file rewritten keeps its size and every time stamp
+    import types
+
+    parts = str(robot / "parts.xacro")
+    frozen = os.stat(parts)
+    real_os = types.SimpleNamespace(**vars(os))
+    real_os.stat = lambda path, *a, **k: frozen if os.fspath(path) == parts else os.stat(
+        path, *a, **k)
+    monkeypatch.setattr(cache_module, "os", real_os)
+    cache_dir = tmp_path / "cache"
+    assert any("-1 kg" in message for _, message in _messages(robot, cache_dir))
+    (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
+    assert any("-2 kg" in message for _, message in _messages(robot, cache_dir))
 
 
 def test_a_new_companion_file_is_seen(robot, tmp_path):

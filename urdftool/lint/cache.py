@@ -17,7 +17,9 @@ of its content, and is a hit only when every one is unchanged:
 - the environment, whole, when a source uses ``$(env`` or ``$(optenv``.
 
 Files are compared by their stamp (device, inode, size, modification and change times, as
-git's index does) and, when it differs, by their content.
+git's index does) and, when it differs, by their content. A stamp taken less than 2 s after
+the file changed is not trusted (file times tick coarsely: a file written again within the same
+tick would keep them): the next run compares its content.
 
 A file that failed to load is not kept (it fails fast anyway), nor a result with a crash, a
 budget stop or stdin.
@@ -52,6 +54,7 @@ import hmac
 import json
 import os
 import stat
+import time
 from pathlib import Path
 
 from urdftool.description.files import TooLarge, read_regular, write_file
@@ -135,8 +138,9 @@ class Cache:
 
         try:
             dependencies = _Dependencies(paths[0], None, self._resolvers)
-            if any(dependencies.quick(kind, name) != quick or quick is None and kind == "mesh"
-                   for kind, name, quick in content["depends"]):  # unresolved: resolve again
+            # None: a stamp not to be trusted (racy), or a mesh that did not resolve
+            if any(quick is None or dependencies.quick(kind, name) != quick
+                   for kind, name, quick in content["depends"]):
                 return None
             results = [FileResult(item["path"], [_finding(f) for f in item["findings"]],
                                   companions=[str(line) for line in item["companions"]])
@@ -244,12 +248,23 @@ def _hash_file(path: str) -> str | None:
         return None if isinstance(error, FileNotFoundError) else f"unreadable:{error.strerror}"
 
 
+RACY_NS = 2_000_000_000  # [ns] a file changed this recently may change again unseen
+
+
 def _stamp(path: str) -> str | None:
     """A file's identity and change times, as git's index keeps them: while they are the same
-    the content is taken to be (the change time cannot be set back by a user)."""
+    the content is taken to be (the change time cannot be set back by a user). "" for a file
+    that is not there. None when it cannot be trusted: unreadable, or changed in the last
+    :data:`RACY_NS` (file times tick coarsely, by milliseconds to seconds, so a file written
+    again within the same tick keeps its times: git calls it racily clean); its content is
+    compared instead."""
     try:
         status = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return ""
     except OSError:
+        return None
+    if time.time_ns() - max(status.st_mtime_ns, status.st_ctime_ns) < RACY_NS:
         return None
     return f"{status.st_dev}:{status.st_ino}:{status.st_size}:{status.st_mtime_ns}:" \
            f"{status.st_ctime_ns}"
@@ -260,13 +275,17 @@ def _companion_folders(path: str) -> list[str]:
     return [base, os.path.join(base, "config")]
 
 
-def _listing(folder: str, measure) -> str:
-    """The companion candidates in ``folder``: names, each with ``measure(path)``."""
+def _listing(folder: str, measure) -> str | None:
+    """The companion candidates in ``folder``: names, each with ``measure(path)``; None when
+    a measure is None (see :func:`_stamp`)."""
     try:
         names = sorted(n for n in os.listdir(folder) if n.endswith((".yaml", ".srdf")))
     except OSError:
         return "[]"
-    return json.dumps([f"{name}:{measure(os.path.join(folder, name))}" for name in names])
+    measures = [measure(os.path.join(folder, name)) for name in names]
+    if measure is _stamp and None in measures:
+        return None
+    return json.dumps([f"{name}:{value}" for name, value in zip(names, measures)])
 
 
 _SETTINGS_AND_MANIFESTS = ("urdftool.toml", "pyproject.toml", "package.xml")
@@ -274,7 +293,7 @@ _SETTINGS_AND_MANIFESTS = ("urdftool.toml", "pyproject.toml", "package.xml")
 
 def _surroundings(paths: list[str], request) -> list[tuple[str, str]]:
     """What finding and reading a path's settings and packages looks at above it: in every
-    folder up to ``/``, the settings files and package.xml (their stamps; None while absent)
+    folder up to ``/``, the settings files and package.xml (their stamps; "" while absent)
     and ``.git`` (whether present: it bounds the repository); and a ``--config`` file."""
     folders: dict[str, None] = {}
     for path in paths:
@@ -322,7 +341,8 @@ class _Dependencies:
             return _listing(name, _stamp)
         if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
             resolved = name.split("\0")[-1]
-            return f"{resolved}:{_stamp(resolved)}" if os.path.isabs(resolved) else None
+            stamp = _stamp(resolved) if os.path.isabs(resolved) else None
+            return None if stamp is None else f"{resolved}:{stamp}"
         return self.full(kind, name)
 
     def full(self, kind: str, name: str) -> str | None:
