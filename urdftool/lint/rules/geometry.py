@@ -20,15 +20,44 @@ def _link_name(element) -> str:
     return element.get("name", "?") if element is not None else "?"
 
 
-def _holders(robot, tags=("visual", "collision")):
+def _parts(robot) -> list:
+    """(link, holder, tag, origins, shape) of each ``<visual>``, ``<collision>`` and
+    ``<inertial>`` of every link, in document order, walked once per robot: most rules of this
+    family read them, and each walk over lxml elements (a proxy object made for each child
+    visited) costs 0.1-0.3 s on a 10,000-link robot.
+
+    tag: the holder's tag; origins: its ``<origin>`` children; shape: the first element inside
+    its first ``<geometry>`` (None for an inertial, when there is no geometry or it is empty).
+    """
+    return robot.memo(_parts, lambda: list(_walk_parts(robot)))
+
+
+def _walk_parts(robot):
     for link in robot.children("link"):
         for holder in link:
-            if holder.tag in tags:
-                yield link, holder
+            tag = holder.tag
+            if tag not in ("visual", "collision", "inertial"):
+                continue
+            origins = []
+            geometry = None
+            for child in holder:  # one pass: the origins and the first geometry
+                child_tag = child.tag
+                if child_tag == "origin":
+                    origins.append(child)
+                elif child_tag == "geometry" and geometry is None:
+                    geometry = child
+            shape = _first_element(geometry) if tag != "inertial" else None
+            yield link, holder, tag, origins, shape
 
 
-def _shape(holder):
-    geometry = first_child(holder, "geometry")
+def _holders(robot, tags=("visual", "collision")):
+    for link, holder, tag, _, _ in _parts(robot):
+        if tag in tags:
+            yield link, holder
+
+
+def _first_element(geometry):
+    """The shape inside a ``<geometry>``: its first child that is an element (not a comment)."""
     if geometry is None:
         return None
     return next((c for c in geometry if isinstance(c.tag, str)), None)
@@ -43,25 +72,25 @@ def missing_geometry(robot):
     Bad: ``<collision><origin xyz="0 0 0.1"/></collision>``, ``<geometry><cone .../></geometry>``
     Good: ``<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>``
     """
-    for link, holder in _holders(robot):
-        geometry = first_child(holder, "geometry")
-        shape = _shape(holder)
-        where = f"link '{link.get('name')}': <{holder.tag}>"
-        if geometry is None:
-            yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
-        elif shape is None:
-            yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"
-        elif shape.tag not in SHAPES:
+    for link, holder, tag, _, shape in _parts(robot):
+        if tag == "inertial" or (shape is not None and shape.tag in SHAPES):
+            continue
+        where = f"link '{link.get('name')}': <{tag}>"
+        if shape is not None:
             yield shape, (f"{where} has unknown geometry <{shape.tag}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
+        elif (geometry := first_child(holder, "geometry")) is None:
+            yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
+        else:
+            yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"
 
 
 def _shapes(robot) -> list:
     """(link, holder, shape element) of every known shape, found once per robot (four rules
     ask)."""
     return robot.memo(_shapes, lambda: [
-        (link, holder, shape) for link, holder in _holders(robot)
-        if (shape := _shape(holder)) is not None and shape.tag in SHAPES])
+        (link, holder, shape) for link, holder, _, _, shape in _parts(robot)
+        if shape is not None and shape.tag in SHAPES])
 
 
 @rule("U402", "geometry-attribute", Severity.ERROR)
@@ -122,17 +151,13 @@ def non_positive_dimension(robot):
 
 
 def _origin_fields(robot):
-    for link in robot.children("link"):
-        for holder in link:
-            if holder.tag not in ("visual", "collision", "inertial"):
-                continue
-            for origin in holder.findall("origin"):
-                for attribute in ("xyz", "rpy"):
-                    if origin.get(attribute) is not None:
-                        yield link, holder, origin, attribute, 3
-            shape = _shape(holder) if holder.tag != "inertial" else None
-            if shape is not None and shape.tag == "mesh" and shape.get("scale") is not None:
-                yield link, holder, shape, "scale", 3
+    for link, holder, _, origins, shape in _parts(robot):
+        for origin in origins:
+            for attribute in ("xyz", "rpy"):
+                if origin.get(attribute) is not None:
+                    yield link, holder, origin, attribute, 3
+        if shape is not None and shape.tag == "mesh" and shape.get("scale") is not None:
+            yield link, holder, shape, "scale", 3
 
 
 @rule("U404", "malformed-link-number", Severity.ERROR)
