@@ -6,7 +6,6 @@ from collections import Counter
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
-from urdftool.description.xml import first_child
 
 
 def _duplicates(robot, tag: str):
@@ -59,8 +58,8 @@ def missing_name(robot):
                 yield element, f"<{tag}> has no name attribute"
 
 
-def _endpoint(joint, side: str):
-    element = first_child(joint, side)
+def _endpoint(robot, joint, side: str):
+    element = robot.child(joint, side)
     return element, (element.get("link") if element is not None else None)
 
 
@@ -73,7 +72,7 @@ def joint_missing_endpoint(robot):
     """
     for joint in robot.children("joint"):
         for side in ("parent", "child"):
-            element, link = _endpoint(joint, side)
+            element, link = _endpoint(robot, joint, side)
             if element is None:
                 yield joint, f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
             elif not link:
@@ -89,7 +88,7 @@ def unknown_link(robot):
     """
     for joint in robot.children("joint"):
         for side in ("parent", "child"):
-            element, link = _endpoint(joint, side)
+            element, link = _endpoint(robot, joint, side)
             if link and link not in robot.links:
                 yield element, (f"joint '{joint.get('name')}' names {side} link '{link}', "
                                 f"which does not exist; {available('links', link, robot.links)}")
@@ -115,8 +114,8 @@ def parent_map(robot) -> dict[str, list]:
 def _parent_map(robot) -> dict[str, list]:
     parents: dict[str, list] = {}
     for joint in robot.children("joint"):
-        _, child = _endpoint(joint, "child")
-        _, parent = _endpoint(joint, "parent")
+        _, child = _endpoint(robot, joint, "child")
+        _, parent = _endpoint(robot, joint, "parent")
         if child in robot.links and parent in robot.links:
             parents.setdefault(child, []).append(joint)
     return parents
@@ -164,7 +163,7 @@ def multiple_roots(robot):
 
 def _all_joints_wired(robot) -> bool:
     """Whether every joint names an existing parent and child (else U104/U105 explain roots)."""
-    return all(_endpoint(joint, side)[1] in robot.links
+    return all(_endpoint(robot, joint, side)[1] in robot.links
                for joint in robot.children("joint") for side in ("parent", "child"))
 
 
@@ -201,7 +200,7 @@ def self_joint(robot):
     Good: two different links
     """
     for joint in robot.children("joint"):
-        _, parent = _endpoint(joint, "parent")
-        _, child = _endpoint(joint, "child")
+        _, parent = _endpoint(robot, joint, "parent")
+        _, child = _endpoint(robot, joint, "child")
         if parent and parent == child:
             yield joint, f"joint '{joint.get('name')}' connects link '{parent}' to itself"
