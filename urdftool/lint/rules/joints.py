@@ -86,12 +86,12 @@ def _bounds(robot, joint) -> tuple[float, float] | None:
     return (lower[0], upper[0]) if lower and upper else None
 
 
-def _ranges(robot):
-    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses."""
-    for joint in robot.children("joint"):
-        bounds = _bounds(robot, joint)
-        if bounds is not None:
-            yield joint, robot.child(joint, "limit"), *bounds
+def _ranges(robot) -> list:
+    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; once
+    per robot (three rules ask)."""
+    return robot.memo(_ranges, lambda: [
+        (joint, robot.child(joint, "limit"), *bounds) for joint in robot.children("joint")
+        if (bounds := _bounds(robot, joint)) is not None])
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)

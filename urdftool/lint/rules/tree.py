@@ -59,8 +59,19 @@ def missing_name(robot):
 
 
 def _endpoint(robot, joint, side: str):
-    element = robot.child(joint, side)
-    return element, (element.get("link") if element is not None else None)
+    """(the ``<parent>`` or ``<child>`` element of ``joint``, the link it names): each is read
+    once per robot (:func:`_endpoints`), as five rules ask for both ends of every joint."""
+    return _endpoints(robot)[joint, side]
+
+
+def _endpoints(robot) -> dict:
+    def read(joint, side):
+        element = robot.child(joint, side)
+        return element, (element.get("link") if element is not None else None)
+
+    return robot.memo(_endpoints, lambda: {
+        (joint, side): read(joint, side)
+        for joint in robot.children("joint") for side in ("parent", "child")})
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
