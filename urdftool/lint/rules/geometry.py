@@ -9,7 +9,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import first_child
-from urdftool.description.values import finite, parse_numbers
+from urdftool.description.values import finite, number_tuple, parse_numbers
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
@@ -112,11 +112,15 @@ def geometry_attribute(robot):
                 continue
             if count is None:
                 continue
-            values, problem = parse_numbers(text, count)
+            values, problem = number_tuple(text, count)
             if problem:
                 yield shape, f"{prefix} {attribute}: {problem}"
             elif not finite(values):
                 yield shape, f"{prefix} {attribute}=\"{text}\" is not finite"
+
+
+_DIMENSIONS = {tag: tuple((a, c) for a, c in fields if c is not None)
+               for tag, fields in SHAPE_ATTRIBUTES.items()}  # the numbers of each shape
 
 
 @rule("U403", "non-positive-dimension", Severity.ERROR)
@@ -135,10 +139,12 @@ def non_positive_dimension(robot):
     Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
     """
     for link, holder, shape in _shapes(robot):
-        fields = [(a, c) for a, c in SHAPE_ATTRIBUTES[shape.tag] if c is not None]
+        fields = _DIMENSIONS[shape.tag]
         if shape.tag == "mesh" and shape.get("scale") is not None:
-            fields = [("scale", 3)]
-        numbers = [parse_numbers(shape.get(attribute), count)[0] for attribute, count in fields]
+            fields = (("scale", 3),)
+        numbers = [number_tuple(shape.get(attribute), count)[0] for attribute, count in fields]
+        if all(values and all(v > 0 for v in values) for values in numbers):
+            continue  # every number positive, as in most shapes: nothing to report
         if holder.tag == "visual" and shape.tag != "mesh" and all(
                 values and all(v == 0 for v in values) for values in numbers):
             continue  # a virtual link's invisible marker
@@ -170,7 +176,7 @@ def malformed_link_number(robot):
     Good: ``<origin xyz="0 0.1 0"/>``, ``<mesh filename="a.stl" scale="0.001 0.001 0.001"/>``
     """
     for link, holder, element, attribute, count in _origin_fields(robot):
-        values, problem = parse_numbers(element.get(attribute), count)
+        values, problem = number_tuple(element.get(attribute), count)
         if problem is None and not finite(values):
             problem = f"'{element.get(attribute)}' is not finite"
         if problem:

@@ -8,7 +8,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
-from urdftool.description.values import finite, parse_numbers
+from urdftool.description.values import finite, number_tuple, parse_numbers
 
 UNIT_TOLERANCE = 1e-6
 
@@ -81,8 +81,8 @@ def _bounds(robot, joint) -> tuple[float, float] | None:
     limit = robot.child(joint, "limit")
     if limit is None or joint.get("type") not in LIMITED:
         return None
-    lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-    upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+    lower, _ = number_tuple(limit.get("lower", "0"), 1)
+    upper, _ = number_tuple(limit.get("upper", "0"), 1)
     return (lower[0], upper[0]) if lower and upper else None
 
 
@@ -116,7 +116,7 @@ def _axis(robot, joint):
     axis = robot.child(joint, "axis")
     if axis is None or joint.get("type") not in AXIS:
         return axis, None
-    values, _ = parse_numbers(axis.get("xyz"), 3)
+    values, _ = number_tuple(axis.get("xyz"), 3)
     return axis, values
 
 
@@ -183,7 +183,7 @@ def _numeric_fields(robot):
                     text = element.get(attribute)
                     if text is None:
                         continue
-                    values, problem = parse_numbers(text, count)
+                    values, problem = number_tuple(text, count)
                     yield joint, element, attribute, values, problem
 
 
@@ -290,7 +290,7 @@ def zero_effort_or_velocity(robot):
         if limit is None or joint.get("type") not in MOVING:
             continue
         for attribute in ("effort", "velocity"):
-            values, _ = parse_numbers(limit.get(attribute), 1)
+            values, _ = number_tuple(limit.get(attribute), 1)
             if values and values[0] <= 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
                               "the joint cannot move")
