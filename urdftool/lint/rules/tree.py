@@ -58,20 +58,17 @@ def missing_name(robot):
                 yield element, f"<{tag}> has no name attribute"
 
 
-def _endpoint(robot, joint, side: str):
-    """(the ``<parent>`` or ``<child>`` element of ``joint``, the link it names): each is read
-    once per robot (:func:`_endpoints`), as five rules ask for both ends of every joint."""
-    return _endpoints(robot)[joint, side]
-
-
-def _endpoints(robot) -> dict:
+def _ends(robot) -> dict:
+    """Joint -> {"parent": (element, link it names), "child": (element, link)}, in document
+    order; read once per robot, as five rules ask for both ends of every joint. A missing
+    ``<parent>`` or ``<child>`` is (None, None)."""
     def read(joint, side):
         element = robot.child(joint, side)
         return element, (element.get("link") if element is not None else None)
 
-    return robot.memo(_endpoints, lambda: {
-        (joint, side): read(joint, side)
-        for joint in robot.children("joint") for side in ("parent", "child")})
+    return robot.memo(_ends, lambda: {
+        joint: {side: read(joint, side) for side in ("parent", "child")}
+        for joint in robot.children("joint")})
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
@@ -81,9 +78,9 @@ def joint_missing_endpoint(robot):
     Bad: ``<joint name="j" type="fixed"><parent link="a"/></joint>``
     Good: ``<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>``
     """
-    for joint in robot.children("joint"):
+    for joint, ends in _ends(robot).items():
         for side in ("parent", "child"):
-            element, link = _endpoint(robot, joint, side)
+            element, link = ends[side]
             if element is None:
                 yield joint, f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
             elif not link:
@@ -97,9 +94,9 @@ def unknown_link(robot):
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
     """
-    for joint in robot.children("joint"):
+    for joint, ends in _ends(robot).items():
         for side in ("parent", "child"):
-            element, link = _endpoint(robot, joint, side)
+            element, link = ends[side]
             if link and link not in robot.links:
                 yield element, (f"joint '{joint.get('name')}' names {side} link '{link}', "
                                 f"which does not exist; {available('links', link, robot.links)}")
@@ -124,9 +121,9 @@ def parent_map(robot) -> dict[str, list]:
 
 def _parent_map(robot) -> dict[str, list]:
     parents: dict[str, list] = {}
-    for joint in robot.children("joint"):
-        _, child = _endpoint(robot, joint, "child")
-        _, parent = _endpoint(robot, joint, "parent")
+    for joint, ends in _ends(robot).items():
+        _, child = ends["child"]
+        _, parent = ends["parent"]
         if child in robot.links and parent in robot.links:
             parents.setdefault(child, []).append(joint)
     return parents
@@ -174,8 +171,8 @@ def multiple_roots(robot):
 
 def _all_joints_wired(robot) -> bool:
     """Whether every joint names an existing parent and child (else U104/U105 explain roots)."""
-    return all(_endpoint(robot, joint, side)[1] in robot.links
-               for joint in robot.children("joint") for side in ("parent", "child"))
+    return all(ends[side][1] in robot.links
+               for ends in _ends(robot).values() for side in ("parent", "child"))
 
 
 @rule("U109", "kinematic-cycle", Severity.ERROR)
@@ -185,7 +182,7 @@ def kinematic_cycle(robot):
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
     """
-    parents = parent_map(robot)
+    parents, ends = parent_map(robot), _ends(robot)
     reported: set[str] = set()
     done: set[str] = set()  # links whose way up is walked: each link is walked once, O(n)
     for start in robot.links:
@@ -193,7 +190,7 @@ def kinematic_cycle(robot):
         while link in parents and link not in position and link not in done:
             position[link] = len(path)
             path.append(link)
-            link = parents[link][0].find("parent").get("link")
+            link = ends[parents[link][0]]["parent"][1]
         if link in position and link not in reported:
             cycle = path[position[link]:]
             reported.update(cycle)
@@ -210,8 +207,8 @@ def self_joint(robot):
     Bad: ``<parent link="a"/><child link="a"/>``
     Good: two different links
     """
-    for joint in robot.children("joint"):
-        _, parent = _endpoint(robot, joint, "parent")
-        _, child = _endpoint(robot, joint, "child")
+    for joint, ends in _ends(robot).items():
+        _, parent = ends["parent"]
+        _, child = ends["child"]
         if parent and parent == child:
             yield joint, f"joint '{joint.get('name')}' connects link '{parent}' to itself"
