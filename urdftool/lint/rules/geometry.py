@@ -38,16 +38,10 @@ def _walk_parts(robot):
             tag = holder.tag
             if tag not in ("visual", "collision", "inertial"):
                 continue
-            origins = []
-            geometry = None
-            for child in holder:  # one pass: the origins and the first geometry
-                child_tag = child.tag
-                if child_tag == "origin":
-                    origins.append(child)
-                elif child_tag == "geometry" and geometry is None:
-                    geometry = child
+            children = robot.grouped(holder)  # one pass over its children, kept for U405/U406
+            geometry = children["geometry"][0] if "geometry" in children else None
             shape = _first_element(geometry) if tag != "inertial" else None
-            yield link, holder, tag, origins, shape
+            yield link, holder, tag, children.get("origin", ()), shape
 
 
 def _holders(robot, tags=("visual", "collision")):
@@ -221,7 +215,8 @@ def malformed_material(robot):
             yield material, (f"top-level material '{name}' has neither <color rgba=...> nor "
                              "<texture filename=...>")
     materials = robot.children("material") + [
-        m for _, holder in _holders(robot, ("visual",)) for m in holder.findall("material")]
+        m for _, holder in _holders(robot, ("visual",))
+        for m in robot.grouped(holder).get("material", ())]
     for material in materials:
         parent = material.getparent()
         if parent.tag == "visual" and material.get("name") is None:
@@ -244,7 +239,7 @@ def undefined_material(robot):
     """
     defined = {m.get("name") for m in robot.children("material") if _defines(m)}
     for link, holder in _holders(robot, ("visual",)):
-        for material in holder.findall("material"):
+        for material in robot.grouped(holder).get("material", ()):
             name = material.get("name")
             if name is None:
                 continue
