@@ -112,12 +112,21 @@ def inverted_limits(robot):
                         swap_attributes(robot, limit, "lower", "upper", default="0"))
 
 
-def _axis(robot, joint):
-    axis = robot.child(joint, "axis")
-    if axis is None or joint.get("type") not in AXIS:
-        return axis, None
-    values, _ = number_tuple(axis.get("xyz"), 3)
-    return axis, values
+def _axes(robot) -> list:
+    """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
+    per robot (U205 and U206 ask)."""
+    def read():
+        found = []
+        for joint in robot.children("joint"):
+            axis = robot.child(joint, "axis")
+            if axis is None or joint.get("type") not in AXIS:
+                continue
+            values, _ = number_tuple(axis.get("xyz"), 3)
+            if values is not None and finite(values):
+                found.append((joint, axis, values, math.hypot(*values)))
+        return found
+
+    return robot.memo(_axes, read)
 
 
 @rule("U205", "zero-axis", Severity.ERROR)
@@ -129,9 +138,8 @@ def zero_axis(robot):
     Bad: ``<axis xyz="0 0 0"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint in robot.children("joint"):
-        axis, values = _axis(robot, joint)
-        if values is not None and finite(values) and math.hypot(*values) == 0:
+    for joint, axis, _, length in _axes(robot):
+        if length == 0:
             yield axis, f"joint '{_name(joint)}' has a zero-length axis; give a unit vector"
 
 
@@ -148,11 +156,7 @@ def axis_not_unit(robot):
     Bad: ``<axis xyz="0 0 2"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint in robot.children("joint"):
-        axis, values = _axis(robot, joint)
-        if values is None or not finite(values):
-            continue
-        norm = math.hypot(*values)
+    for joint, axis, values, norm in _axes(robot):
         if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE:
             unit = _unit_text(values, norm)
             yield offer(axis, (f"joint '{_name(joint)}' axis has length {norm:.6g}, not 1; "

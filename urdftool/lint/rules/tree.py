@@ -9,10 +9,11 @@ from urdftool.errors import available
 
 
 def _duplicates(robot, tag: str):
-    counts = Counter(e.get("name") for e in robot.children(tag) if e.get("name"))
+    elements = robot.children(tag)
+    names = [element.get("name") for element in elements]  # each read once
+    counts = Counter(name for name in names if name)
     seen: set[str] = set()
-    for element in robot.children(tag):
-        name = element.get("name")
+    for element, name in zip(elements, names):
         if name is None:
             continue  # a missing name is U103's finding
         if name in seen:
