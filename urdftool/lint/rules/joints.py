@@ -42,6 +42,13 @@ def unknown_joint_type(robot):
             yield joint, f"joint '{_name(joint)}' has {what}; valid types: {', '.join(JOINT_TYPES)}"
 
 
+def _limits(robot) -> list:
+    """(joint, its type, its first ``<limit>`` or None) of every joint; once per robot (three
+    rules ask)."""
+    return robot.memo(_limits, lambda: [(joint, joint.get("type"), robot.child(joint, "limit"))
+                                        for joint in robot.children("joint")])
+
+
 @rule("U202", "missing-limit", Severity.ERROR)
 def missing_limit(robot):
     """A revolute or prismatic joint has no ``<limit>``.
@@ -51,9 +58,9 @@ def missing_limit(robot):
     Bad: ``<joint name="elbow" type="revolute">`` without ``<limit>``
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
-    for joint in robot.children("joint"):
-        if joint.get("type") in LIMITED and robot.child(joint, "limit") is None:
-            yield joint, (f"{joint.get('type')} joint '{_name(joint)}' has no <limit>; add "
+    for joint, kind, limit in _limits(robot):
+        if kind in LIMITED and limit is None:
+            yield joint, (f"{kind} joint '{_name(joint)}' has no <limit>; add "
                           "<limit lower=... upper=... effort=... velocity=.../>")
 
 
@@ -66,8 +73,7 @@ def limit_missing_effort_velocity(robot):
     Bad: ``<limit lower="0" upper="1"/>``
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
     """
-    for joint in robot.children("joint"):
-        limit = robot.child(joint, "limit")
+    for joint, _, limit in _limits(robot):
         if limit is None:
             continue
         missing = [a for a in ("effort", "velocity") if limit.get(a) is None]
@@ -289,9 +295,8 @@ def zero_effort_or_velocity(robot):
     Bad: ``<limit lower="-1" upper="1" effort="0" velocity="0"/>``
     Good: the actuator's real stall torque and no-load speed
     """
-    for joint in robot.children("joint"):
-        limit = robot.child(joint, "limit")
-        if limit is None or joint.get("type") not in MOVING:
+    for joint, kind, limit in _limits(robot):
+        if limit is None or kind not in MOVING:
             continue
         for attribute in ("effort", "velocity"):
             values, _ = number_tuple(limit.get(attribute), 1)
