@@ -76,3 +76,18 @@ def test_children_by_tag_in_document_order_and_a_list_of_ones_own(tmp_path):
     assert [link.get("name") for link in robot.children("link")] == ["a", "b"]
     assert [j.get("name") for j in robot.children("joint")] == ["j"]
     assert robot.children("transmission") == []
+
+
+def test_an_elements_children_grouped_by_tag_once_comments_left_out(tmp_path):
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+        '<!-- limit --><limit effort="1" velocity="1"/><parent link="a"/><child link="b"/>'
+        '<limit effort="2" velocity="2"/></joint></robot>')
+    robot = load(tmp_path / "r.urdf")
+    joint = robot.joints["j"]
+    groups = robot.grouped(joint)
+    assert list(groups) == ["limit", "parent", "child"]
+    assert [limit.get("effort") for limit in groups["limit"]] == ["1", "2"]
+    assert robot.grouped(joint) is groups  # grouped once
+    assert robot.child(joint, "limit").get("effort") == "1"
+    assert robot.child(joint, "axis") is None

@@ -9,7 +9,7 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import Origin, origin
+from urdftool.description.values import Origin, number_tuple, origin, parse_numbers
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -61,3 +61,12 @@ def test_an_inertial_counts_a_malformed_part_as_zero():
     body = mass.declared(link)
     assert body.com == (0.0, 0.0, 1.0)
     assert body.inertia == mat3.diagonal((1.0, 2.0, 3.0)) and not math.isnan(body.mass)
+
+
+def test_number_tuple_is_the_shared_reading_and_parse_numbers_a_fresh_list():
+    assert number_tuple("1 2.5 -3", 3) == ((1.0, 2.5, -3.0), None)
+    assert number_tuple("1 2", 3) == (None, "expected 3 numbers, found 2 in '1 2'")
+    first, _ = parse_numbers("4 5 6", 3)
+    first.append(7.0)  # a caller's own list: the cached reading is not changed by it
+    assert parse_numbers("4 5 6", 3) == ([4.0, 5.0, 6.0], None)
+    assert number_tuple("4 5 6", 3)[0] == (4.0, 5.0, 6.0)

@@ -58,6 +58,7 @@ class Robot:
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def memo(self, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot for ``key`` (by convention the function that asks), then
@@ -93,6 +94,23 @@ class Robot:
         children are grouped by tag once per robot, as every rule asks)."""
         return list(self.memo(Robot.children, lambda: _by_tag(self.root)).get(tag, ()))
 
+    def grouped(self, element) -> dict[str, list]:
+        """The element children of ``element`` (one of this robot's) by tag, each list in
+        document order; grouped once per robot and element. Rules ask each joint for its
+        limit, axis, origin, parent and child about fifteen times: one pass over its children
+        replaces as many walks of lxml siblings (2 us each, 0.3 s on a 10,000-joint robot).
+        The dict is shared: read it, never change it."""
+        groups = self._groups.get(element)
+        if groups is None:
+            groups = self._groups[element] = _by_tag(element, elements_only=True)
+        return groups
+
+    def child(self, element, tag: str):
+        """The first direct child of ``element`` with this tag, or None
+        (:func:`~urdftool.description.xml.first_child`, remembered: see :meth:`grouped`)."""
+        found = self.grouped(element).get(tag)
+        return found[0] if found else None
+
     @cached_property
     def links(self) -> dict[str, object]:
         """Link elements by name; the first of duplicates wins."""
@@ -115,10 +133,13 @@ class Robot:
         return self.resolver.resolve_uri(uri, self.base_dir)
 
 
-def _by_tag(root) -> dict[str, list]:
+def _by_tag(root, elements_only: bool = False) -> dict[str, list]:
     grouped: dict[str, list] = {}
     for child in root:
-        grouped.setdefault(child.tag, []).append(child)
+        tag = child.tag
+        if elements_only and not isinstance(tag, str):
+            continue  # a comment, processing instruction or entity
+        grouped.setdefault(tag, []).append(child)
     return grouped
 
 

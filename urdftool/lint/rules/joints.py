@@ -7,9 +7,8 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
-from urdftool.description.xml import first_child
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
-from urdftool.description.values import finite, parse_numbers
+from urdftool.description.values import finite, number_tuple, parse_numbers
 
 UNIT_TOLERANCE = 1e-6
 
@@ -43,6 +42,13 @@ def unknown_joint_type(robot):
             yield joint, f"joint '{_name(joint)}' has {what}; valid types: {', '.join(JOINT_TYPES)}"
 
 
+def _limits(robot) -> list:
+    """(joint, its type, its first ``<limit>`` or None) of every joint; once per robot (three
+    rules ask)."""
+    return robot.memo(_limits, lambda: [(joint, joint.get("type"), robot.child(joint, "limit"))
+                                        for joint in robot.children("joint")])
+
+
 @rule("U202", "missing-limit", Severity.ERROR)
 def missing_limit(robot):
     """A revolute or prismatic joint has no ``<limit>``.
@@ -52,9 +58,9 @@ def missing_limit(robot):
     Bad: ``<joint name="elbow" type="revolute">`` without ``<limit>``
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
-    for joint in robot.children("joint"):
-        if joint.get("type") in LIMITED and first_child(joint, "limit") is None:
-            yield joint, (f"{joint.get('type')} joint '{_name(joint)}' has no <limit>; add "
+    for joint, kind, limit in _limits(robot):
+        if kind in LIMITED and limit is None:
+            yield joint, (f"{kind} joint '{_name(joint)}' has no <limit>; add "
                           "<limit lower=... upper=... effort=... velocity=.../>")
 
 
@@ -67,8 +73,7 @@ def limit_missing_effort_velocity(robot):
     Bad: ``<limit lower="0" upper="1"/>``
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
     """
-    for joint in robot.children("joint"):
-        limit = first_child(joint, "limit")
+    for joint, _, limit in _limits(robot):
         if limit is None:
             continue
         missing = [a for a in ("effort", "velocity") if limit.get(a) is None]
@@ -76,23 +81,23 @@ def limit_missing_effort_velocity(robot):
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
-def _bounds(joint) -> tuple[float, float] | None:
+def _bounds(robot, joint) -> tuple[float, float] | None:
     """(lower, upper) of a revolute or prismatic joint whose range parses; a missing bound is
     0, as in urdfdom."""
-    limit = first_child(joint, "limit")
+    limit = robot.child(joint, "limit")
     if limit is None or joint.get("type") not in LIMITED:
         return None
-    lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-    upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+    lower, _ = number_tuple(limit.get("lower", "0"), 1)
+    upper, _ = number_tuple(limit.get("upper", "0"), 1)
     return (lower[0], upper[0]) if lower and upper else None
 
 
-def _ranges(robot):
-    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses."""
-    for joint in robot.children("joint"):
-        bounds = _bounds(joint)
-        if bounds is not None:
-            yield joint, first_child(joint, "limit"), *bounds
+def _ranges(robot) -> list:
+    """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; once
+    per robot (three rules ask)."""
+    return robot.memo(_ranges, lambda: [
+        (joint, robot.child(joint, "limit"), *bounds) for joint in robot.children("joint")
+        if (bounds := _bounds(robot, joint)) is not None])
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -113,12 +118,21 @@ def inverted_limits(robot):
                         swap_attributes(robot, limit, "lower", "upper", default="0"))
 
 
-def _axis(joint):
-    axis = first_child(joint, "axis")
-    if axis is None or joint.get("type") not in AXIS:
-        return axis, None
-    values, _ = parse_numbers(axis.get("xyz"), 3)
-    return axis, values
+def _axes(robot) -> list:
+    """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
+    per robot (U205 and U206 ask)."""
+    def read():
+        found = []
+        for joint in robot.children("joint"):
+            axis = robot.child(joint, "axis")
+            if axis is None or joint.get("type") not in AXIS:
+                continue
+            values, _ = number_tuple(axis.get("xyz"), 3)
+            if values is not None and finite(values):
+                found.append((joint, axis, values, math.hypot(*values)))
+        return found
+
+    return robot.memo(_axes, read)
 
 
 @rule("U205", "zero-axis", Severity.ERROR)
@@ -130,9 +144,8 @@ def zero_axis(robot):
     Bad: ``<axis xyz="0 0 0"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint in robot.children("joint"):
-        axis, values = _axis(joint)
-        if values is not None and finite(values) and math.hypot(*values) == 0:
+    for joint, axis, _, length in _axes(robot):
+        if length == 0:
             yield axis, f"joint '{_name(joint)}' has a zero-length axis; give a unit vector"
 
 
@@ -149,11 +162,7 @@ def axis_not_unit(robot):
     Bad: ``<axis xyz="0 0 2"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint in robot.children("joint"):
-        axis, values = _axis(joint)
-        if values is None or not finite(values):
-            continue
-        norm = math.hypot(*values)
+    for joint, axis, values, norm in _axes(robot):
         if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE:
             unit = _unit_text(values, norm)
             yield offer(axis, (f"joint '{_name(joint)}' axis has length {norm:.6g}, not 1; "
@@ -178,13 +187,14 @@ def _numeric_problems(robot) -> list:
 
 def _numeric_fields(robot):
     for joint in robot.children("joint"):
-        for element in joint:  # one pass over the children, not a findall per field
-            for attribute, count in _FIELDS_BY_TAG.get(element.tag, ()):
-                text = element.get(attribute)
-                if text is None:
-                    continue
-                values, problem = parse_numbers(text, count)
-                yield joint, element, attribute, values, problem
+        for tag, elements in robot.grouped(joint).items():
+            for attribute, count in _FIELDS_BY_TAG.get(tag, ()):
+                for element in elements:
+                    text = element.get(attribute)
+                    if text is None:
+                        continue
+                    values, problem = number_tuple(text, count)
+                    yield joint, element, attribute, values, problem
 
 
 _FIELDS_BY_TAG: dict[str, list[tuple[str, int]]] = {}
@@ -221,7 +231,7 @@ def non_finite_number(robot):
 
 def _mimics(robot):
     for joint in robot.children("joint"):
-        mimic = first_child(joint, "mimic")
+        mimic = robot.child(joint, "mimic")
         if mimic is not None:
             yield joint, mimic, mimic.get("joint")
 
@@ -285,12 +295,11 @@ def zero_effort_or_velocity(robot):
     Bad: ``<limit lower="-1" upper="1" effort="0" velocity="0"/>``
     Good: the actuator's real stall torque and no-load speed
     """
-    for joint in robot.children("joint"):
-        limit = first_child(joint, "limit")
-        if limit is None or joint.get("type") not in MOVING:
+    for joint, kind, limit in _limits(robot):
+        if limit is None or kind not in MOVING:
             continue
         for attribute in ("effort", "velocity"):
-            values, _ = parse_numbers(limit.get(attribute), 1)
+            values, _ = number_tuple(limit.get(attribute), 1)
             if values and values[0] <= 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
                               "the joint cannot move")
@@ -307,7 +316,7 @@ def safety_controller_incomplete(robot):
     Good: ``<safety_controller k_velocity="10" k_position="100" .../>``
     """
     for joint in robot.children("joint"):
-        for safety in joint.findall("safety_controller"):
+        for safety in robot.grouped(joint).get("safety_controller", ()):
             if safety.get("k_velocity") is None:
                 yield safety, f"joint '{_name(joint)}': <safety_controller> has no k_velocity"
 
@@ -327,10 +336,7 @@ def repeated_joint_element(robot):
     Good: one ``<origin>``
     """
     for joint in robot.children("joint"):
-        written: dict[str, list] = {}
-        for child in joint:  # one pass over the children, not a findall per tag
-            if child.tag in SINGLE_CHILDREN:
-                written.setdefault(child.tag, []).append(child)
+        written = robot.grouped(joint)
         for tag in SINGLE_CHILDREN:
             repeats = written.get(tag, ())
             for extra in repeats[1:]:
@@ -360,9 +366,9 @@ def zero_range(robot):
 MIMIC_SLACK = 1e-3  # relative to the mimic joint's span: printed rounding of limits
 
 
-def _range(joint) -> tuple[float, float] | None:
+def _range(robot, joint) -> tuple[float, float] | None:
     """Finite, ordered (lower, upper) of a revolute or prismatic joint, else None."""
-    bounds = _bounds(joint)
+    bounds = _bounds(robot, joint)
     return bounds if bounds is not None and finite(bounds) and bounds[0] <= bounds[1] else None
 
 
@@ -383,7 +389,7 @@ def mimic_outside_limits(robot):
     """
     for joint, mimic, target in _mimics(robot):
         driver = robot.joints.get(target) if target else None
-        own, driven = _range(joint), _range(driver) if driver is not None else None
+        own, driven = _range(robot, joint), _range(robot, driver) if driver is not None else None
         if own is None or driven is None or driver is joint:
             continue
         multiplier, _ = parse_numbers(mimic.get("multiplier", "1"), 1)

@@ -6,14 +6,14 @@ from collections import Counter
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.errors import available
-from urdftool.description.xml import first_child
 
 
 def _duplicates(robot, tag: str):
-    counts = Counter(e.get("name") for e in robot.children(tag) if e.get("name"))
+    elements = robot.children(tag)
+    names = [element.get("name") for element in elements]  # each read once
+    counts = Counter(name for name in names if name)
     seen: set[str] = set()
-    for element in robot.children(tag):
-        name = element.get("name")
+    for element, name in zip(elements, names):
         if name is None:
             continue  # a missing name is U103's finding
         if name in seen:
@@ -59,9 +59,17 @@ def missing_name(robot):
                 yield element, f"<{tag}> has no name attribute"
 
 
-def _endpoint(joint, side: str):
-    element = first_child(joint, side)
-    return element, (element.get("link") if element is not None else None)
+def _ends(robot) -> dict:
+    """Joint -> {"parent": (element, link it names), "child": (element, link)}, in document
+    order; read once per robot, as five rules ask for both ends of every joint. A missing
+    ``<parent>`` or ``<child>`` is (None, None)."""
+    def read(joint, side):
+        element = robot.child(joint, side)
+        return element, (element.get("link") if element is not None else None)
+
+    return robot.memo(_ends, lambda: {
+        joint: {side: read(joint, side) for side in ("parent", "child")}
+        for joint in robot.children("joint")})
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
@@ -71,9 +79,9 @@ def joint_missing_endpoint(robot):
     Bad: ``<joint name="j" type="fixed"><parent link="a"/></joint>``
     Good: ``<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>``
     """
-    for joint in robot.children("joint"):
+    for joint, ends in _ends(robot).items():
         for side in ("parent", "child"):
-            element, link = _endpoint(joint, side)
+            element, link = ends[side]
             if element is None:
                 yield joint, f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
             elif not link:
@@ -87,9 +95,9 @@ def unknown_link(robot):
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
     """
-    for joint in robot.children("joint"):
+    for joint, ends in _ends(robot).items():
         for side in ("parent", "child"):
-            element, link = _endpoint(joint, side)
+            element, link = ends[side]
             if link and link not in robot.links:
                 yield element, (f"joint '{joint.get('name')}' names {side} link '{link}', "
                                 f"which does not exist; {available('links', link, robot.links)}")
@@ -114,9 +122,9 @@ def parent_map(robot) -> dict[str, list]:
 
 def _parent_map(robot) -> dict[str, list]:
     parents: dict[str, list] = {}
-    for joint in robot.children("joint"):
-        _, child = _endpoint(joint, "child")
-        _, parent = _endpoint(joint, "parent")
+    for joint, ends in _ends(robot).items():
+        _, child = ends["child"]
+        _, parent = ends["parent"]
         if child in robot.links and parent in robot.links:
             parents.setdefault(child, []).append(joint)
     return parents
@@ -164,8 +172,8 @@ def multiple_roots(robot):
 
 def _all_joints_wired(robot) -> bool:
     """Whether every joint names an existing parent and child (else U104/U105 explain roots)."""
-    return all(_endpoint(joint, side)[1] in robot.links
-               for joint in robot.children("joint") for side in ("parent", "child"))
+    return all(ends[side][1] in robot.links
+               for ends in _ends(robot).values() for side in ("parent", "child"))
 
 
 @rule("U109", "kinematic-cycle", Severity.ERROR)
@@ -175,7 +183,7 @@ def kinematic_cycle(robot):
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
     """
-    parents = parent_map(robot)
+    parents, ends = parent_map(robot), _ends(robot)
     reported: set[str] = set()
     done: set[str] = set()  # links whose way up is walked: each link is walked once, O(n)
     for start in robot.links:
@@ -183,7 +191,7 @@ def kinematic_cycle(robot):
         while link in parents and link not in position and link not in done:
             position[link] = len(path)
             path.append(link)
-            link = parents[link][0].find("parent").get("link")
+            link = ends[parents[link][0]]["parent"][1]
         if link in position and link not in reported:
             cycle = path[position[link]:]
             reported.update(cycle)
@@ -200,8 +208,8 @@ def self_joint(robot):
     Bad: ``<parent link="a"/><child link="a"/>``
     Good: two different links
     """
-    for joint in robot.children("joint"):
-        _, parent = _endpoint(joint, "parent")
-        _, child = _endpoint(joint, "child")
+    for joint, ends in _ends(robot).items():
+        _, parent = ends["parent"]
+        _, child = ends["child"]
         if parent and parent == child:
             yield joint, f"joint '{joint.get('name')}' connects link '{parent}' to itself"
