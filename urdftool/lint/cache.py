@@ -4,9 +4,9 @@ they depend on has changed.
 An entry is keyed by the file (its absolute path), the options it is checked with (settings,
 selection, xacro arguments, packages, companions, limits), the working directory (findings name
 files relative to it), the package search variables of the environment, and urdftool itself
-(the modification of its source files, ``__version__`` among them, so that a development checkout never
-reads results of other code). The entry lists what the result was built from, each with a hash
-of its content, and is a hit only when every one is unchanged:
+(the modification of its source files, ``__version__`` among them, so that a development
+checkout never reads results of other code). The entry lists what the result was built from,
+each with a hash of its content, and is a hit only when every one is unchanged:
 
 - every file read to build the robot: the file, its xacro includes and YAML;
 - the companion files it could pick up: the ``*.yaml`` and ``*.srdf`` in its folder and its
@@ -115,7 +115,7 @@ class Cache:
         try:
             dependencies, current = self._dependencies(path, options), []
             for kind, name, quick, full in content["depends"]:
-                now = dependencies.quick(kind, name)
+                now = _quick(kind, name)
                 if not (now == quick and now is not None or dependencies.full(kind, name) == full):
                     return None
                 current.append([kind, name, now])
@@ -137,9 +137,8 @@ class Cache:
         from urdftool.lint.options import FileResult
 
         try:
-            dependencies = _Dependencies(paths[0], None, self._resolvers)
             # None: a stamp not to be trusted (racy), or a mesh that did not resolve
-            if any(quick is None or dependencies.quick(kind, name) != quick
+            if any(quick is None or _quick(kind, name) != quick
                    for kind, name, quick in content["depends"]):
                 return None
             results = [FileResult(item["path"], [_finding(f) for f in item["findings"]],
@@ -178,8 +177,7 @@ class Cache:
             if (path, repr(options)) not in self._verified and self.get(path, options) is None:
                 return  # not kept: a crash, a budget stop, a file that did not load
             depends += self._verified[path, repr(options)]
-        dependencies = _Dependencies(paths[0], None, self._resolvers)
-        depends += [[kind, name, dependencies.quick(kind, name)]
+        depends += [[kind, name, _quick(kind, name)]
                     for kind, name in _surroundings(paths, request)]
         unique = {(kind, name): quick for kind, name, quick in depends}  # robots share meshes
         body = json.dumps({"schema": SCHEMA, "strict": run.strict, "depends": [
@@ -217,7 +215,8 @@ class Cache:
         return hmac.new(self._key, body.encode(), hashlib.sha256).hexdigest()
 
     def _usable_folder(self, create: bool = False) -> bool:
-        """The folder (and its ``v<SCHEMA>``) exist as real folders, never links; made when asked."""
+        """The folder (and its ``v<SCHEMA>``) exist as real folders, never links; made when
+        asked."""
         for folder in (self.folder, self.folder / f"v{SCHEMA}"):
             try:
                 mode = os.lstat(folder).st_mode
@@ -309,6 +308,28 @@ def _surroundings(paths: list[str], request) -> list[tuple[str, str]]:
     return found
 
 
+def _quick(kind: str, name: str) -> str | None:
+    """The quick state of a dependency: stamps, compared before content (see
+    :class:`_Dependencies`); needs neither the file depending on it nor its options."""
+    if kind == "exists":  # a marker whose presence alone matters (.git)
+        return "folder" if os.path.isdir(name) else "file" if os.path.lexists(name) else ""
+    if kind == "file":
+        return _stamp(name)
+    if kind == "folder":
+        return _listing(name, _stamp)
+    if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
+        resolved = name.split("\0")[-1]
+        stamp = _stamp(resolved) if os.path.isabs(resolved) else None
+        return None if stamp is None else f"{resolved}:{stamp}"
+    if kind == "environment":
+        return _environment()
+    raise ValueError(kind)
+
+
+def _environment() -> str:
+    return hashlib.sha256(json.dumps(sorted(os.environ.items())).encode()).hexdigest()
+
+
 class _Dependencies:
     """What a result depends on, each as (quick, full): the quick state (stamps) is compared
     first, and the full state (content hashes) only when the quick one differs."""
@@ -332,19 +353,6 @@ class _Dependencies:
             return None, f"unresolved:{type(error).__name__}:{error}"
         return os.path.abspath(resolved), ""
 
-    def quick(self, kind: str, name: str) -> str | None:
-        if kind == "exists":  # a marker whose presence alone matters (.git)
-            return "folder" if os.path.isdir(name) else "file" if os.path.lexists(name) else ""
-        if kind == "file":
-            return _stamp(name)
-        if kind == "folder":
-            return _listing(name, _stamp)
-        if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
-            resolved = name.split("\0")[-1]
-            stamp = _stamp(resolved) if os.path.isabs(resolved) else None
-            return None if stamp is None else f"{resolved}:{stamp}"
-        return self.full(kind, name)
-
     def full(self, kind: str, name: str) -> str | None:
         if kind == "file":
             return _hash_file(name)
@@ -354,7 +362,7 @@ class _Dependencies:
             resolved, problem = self._resolved(name.split("\0")[0])
             return f"{resolved}:{_hash_file(resolved)}" if resolved else problem
         if kind == "environment":
-            return hashlib.sha256(json.dumps(sorted(os.environ.items())).encode()).hexdigest()
+            return _environment()
         raise ValueError(kind)
 
     def of(self, robot) -> list[list]:
@@ -370,7 +378,7 @@ class _Dependencies:
         entries += [("mesh", f"{uri}\0{self._resolved(uri)[0] or ''}") for uri in sorted(uris)]
         if any(b"$(env" in data or b"$(optenv" in data for data in robot.sources.values()):
             entries.append(("environment", ""))
-        return [[kind, name, self.quick(kind, name), self.full(kind, name)]
+        return [[kind, name, _quick(kind, name), self.full(kind, name)]
                 for kind, name in entries]
 
 
