@@ -92,7 +92,7 @@ class Robot:
     def children(self, tag: str) -> list:
         """Direct children of ``<robot>`` with this tag, in document order (a new list: the
         children are grouped by tag once per robot, as every rule asks)."""
-        return list(self.memo(Robot.children, lambda: _by_tag(self.root)).get(tag, ()))
+        return list(self.grouped(self.root).get(tag, ()))
 
     def grouped(self, element) -> dict[str, list]:
         """The element children of ``element`` (one of this robot's) by tag, each list in
@@ -102,7 +102,7 @@ class Robot:
         The dict is shared: read it, never change it."""
         groups = self._groups.get(element)
         if groups is None:
-            groups = self._groups[element] = _by_tag(element, elements_only=True)
+            groups = self._groups[element] = _by_tag(element)
         return groups
 
     def child(self, element, tag: str):
@@ -133,11 +133,11 @@ class Robot:
         return self.resolver.resolve_uri(uri, self.base_dir)
 
 
-def _by_tag(root, elements_only: bool = False) -> dict[str, list]:
+def _by_tag(root) -> dict[str, list]:
     grouped: dict[str, list] = {}
     for child in root:
         tag = child.tag
-        if elements_only and not isinstance(tag, str):
+        if not isinstance(tag, str):
             continue  # a comment, processing instruction or entity
         grouped.setdefault(tag, []).append(child)
     return grouped
