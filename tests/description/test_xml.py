@@ -19,16 +19,6 @@ def test_child_is_find_for_a_plain_tag():
     assert first_child(etree.Comment("c"), "origin") is None
 
 
-def test_children_named_is_findall_for_a_plain_tag():
-    from urdftool.description.xml import children_named
-
-    root = etree.fromstring(b'<joint><child link="a"/><!-- c --><origin/><child link="b"/>'
-                            b'<x><child link="deep"/></x></joint>')
-    for tag in ("child", "origin", "limit"):
-        assert children_named(root, tag) == root.findall(tag)
-    assert [c.get("link") for c in children_named(root, "child")] == ["a", "b"]
-
-
 def test_start_tags_found_by_scanning_are_where_expat_puts_them():
     from urdftool.description.xml import _StartOffsets, parse, start_tag_positions
 

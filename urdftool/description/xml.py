@@ -199,12 +199,6 @@ def first_child(element, tag: str):
     return None
 
 
-def children_named(element, tag: str) -> list:
-    """``element.findall(tag)`` for a plain tag (every direct child so named, in order),
-    without lxml's path parser."""
-    return [child for child in element if child.tag == tag]
-
-
 _LXML_PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=False,
                             huge_tree=False, recover=True, collect_ids=False)
 

@@ -73,7 +73,7 @@ def missing_geometry(robot):
         if shape is not None:
             yield shape, (f"{where} has unknown geometry <{shape.tag}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
-        elif (geometry := first_child(holder, "geometry")) is None:
+        elif (geometry := robot.child(holder, "geometry")) is None:
             yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
         else:
             yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"

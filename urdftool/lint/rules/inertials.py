@@ -20,7 +20,7 @@ import math
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.xml import children_named, first_child
+from urdftool.description.xml import first_child
 from urdftool.description.values import parse_numbers
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
@@ -81,6 +81,11 @@ def _finite_tensor(m) -> bool:
     return all(math.isfinite(v) for row in m for v in row)
 
 
+def _zero_tensor(m) -> bool:
+    """Whether every entry of a tensor is zero (below :data:`ZERO_INERTIA`)."""
+    return all(abs(v) < ZERO_INERTIA for row in m for v in row)
+
+
 def _judged(robot):
     """(link, MassProperties) of links heavy enough for their tensor to matter."""
     for link, properties in _valid(robot):
@@ -133,7 +138,7 @@ def malformed_inertial(robot):
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
     """
     for link in robot.children("link"):
-        for inertial in children_named(link, "inertial"):
+        for inertial in robot.grouped(link).get("inertial", ()):
             prefix = f"link '{_name(link)}': <inertial>"
             mass = first_child(inertial, "mass")
             if mass is None:
@@ -242,8 +247,7 @@ def inertia_not_positive_definite(robot):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
                 "positive"))
-        elif _name(link) in moving and all(abs(v) < ZERO_INERTIA
-                                           for row in properties.inertia for v in row):
+        elif _name(link) in moving and _zero_tensor(properties.inertia):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
                 "moved by a joint; give the inertia of its shape"))
@@ -365,7 +369,7 @@ def root_link_inertia(robot):
     mass in their root.
     """
     children = {c.get("link") for j in robot.children("joint")
-                for c in children_named(j, "child")}
+                for c in robot.grouped(j).get("child", ())}
     masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
     if len(roots) == 1 and masses.get(roots[0], 0) > 0:
@@ -431,8 +435,7 @@ def _inertia_ratios(robot) -> list:
     def build():
         found = []
         for link, properties, solid in _link_solids(robot):
-            if not _trustworthy(solid) or all(abs(v) < ZERO_INERTIA for row in properties.inertia
-                                               for v in row):
+            if not _trustworthy(solid) or _zero_tensor(properties.inertia):
                 continue  # a zero tensor is U304's finding, not a ratio to judge
             expected = solids.computed(solid, mass=properties.mass)
             if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
