@@ -25,12 +25,14 @@ import functools
 import re
 from pathlib import Path
 
+from urdftool.description.inputs import MAX_TRIANGLES
+
 _HEADER = 84  # [bytes]: 80 of text, the triangle count
 _RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
 _MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
 
 
-def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
+def read(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
     """(vertices (n, 3) float64, faces (m, 3) int64) of an STL, COLLADA or plain OBJ file:
     trimesh's triangles, corners merged by position (see the module docstring), or None when
     trimesh should read it. ``data``: the file's bytes (read by the caller, under the mesh
@@ -40,7 +42,7 @@ def read(path: Path, data: bytes, max_triangles: int = 2_000_000):
     return None if found is None else merged(*found)
 
 
-def read_unmerged(path: Path, data: bytes, max_triangles: int = 2_000_000):
+def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
     """What :func:`read` gives before :func:`merged`: the triangles' corners as the file
     holds them (every vertex used by a face), or None; raises as :func:`read` does."""
     suffix = path.suffix.lower()

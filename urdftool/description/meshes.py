@@ -309,14 +309,16 @@ def _collada_root(path: Path, recover: bool):
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 
 
-def _recovered_collada(path: Path) -> tuple[bytes, str] | None:
+def _recovered_collada(path: Path, data: bytes | None = None) -> tuple[bytes, str] | None:
     """(the document libxml2's recover mode makes of a COLLADA file that is not well-formed
-    XML, the first error with its line), or None when it makes none."""
+    XML, the first error with its line), or None when it makes none. ``data``: the file's
+    bytes, when read."""
     from lxml import etree
 
     lenient = parser(recover=True)
     try:
-        root = etree.parse(str(path), lenient).getroot()
+        root = (etree.parse(str(path), lenient) if data is None else
+                etree.ElementTree(etree.fromstring(data, lenient))).getroot()
     except (etree.LxmlError, OSError, ValueError):
         return None
     if root is None:
@@ -531,7 +533,12 @@ def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True) ->
                                     "document; urdftool does not inflate archives: store "
                                     "the .dae uncompressed")
     triangles = triangle_count(path) if count else None
-    if triangles is not None and triangles > limits.max_triangles:
+    if triangles is not None:
+        _refuse_too_many(uri, triangles, limits)
+
+
+def _refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
+    if triangles > limits.max_triangles:
         raise MeshProblem("too-large", f"mesh '{uri}' has {triangles} triangles, over the "
                                        f"limit of {limits.max_triangles}; decimate it")
 
@@ -599,11 +606,10 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
                                      f"{error}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles")
-    if len(loaded.faces) > limits.max_triangles:
-        raise MeshProblem("too-large", f"mesh '{uri}' has {len(loaded.faces)} triangles, over "
-                                       f"the limit of {limits.max_triangles}; decimate it")
-    if path.suffix.lower() == ".dae" and collada_unit(path) != 1.0:
-        loaded.apply_scale(collada_unit(path))
+    _refuse_too_many(uri, len(loaded.faces), limits)
+    unit = collada_unit(path) if path.suffix.lower() == ".dae" else 1.0
+    if unit != 1.0:
+        loaded.apply_scale(unit)
     if malformed:
         loaded.metadata[NOT_WELL_FORMED] = malformed
     return loaded
@@ -705,10 +711,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
             found = _Arrays(*arrays, dict(loaded.metadata), merged=True)
         else:
             found = _Arrays(*arrays, metadata, unit=unit)
-        if found.triangles > limits.max_triangles:
-            raise MeshProblem("too-large", f"mesh '{uri}' has {found.triangles} triangles, "
-                                           f"over the limit of {limits.max_triangles}; "
-                                           "decimate it")
+        _refuse_too_many(uri, found.triangles, limits)
         return found, found.nbytes
 
     return _once((str(path), stamp, limits, "arrays"), uri, compute)
@@ -724,7 +727,7 @@ def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
         try:
             arrays = mesh_arrays.read_unmerged(path, data, limits.max_triangles)
         except ColladaProblem as problem:
-            recovered = _recovered_collada(path) if problem.not_well_formed else None
+            recovered = _recovered_collada(path, data) if problem.not_well_formed else None
             if recovered is None:
                 raise
             arrays = mesh_arrays.read_unmerged(path, recovered[0], limits.max_triangles)
