@@ -111,6 +111,18 @@ class Robot:
         found = self.grouped(element).get(tag)
         return found[0] if found else None
 
+    def ends(self) -> dict:
+        """Joint -> {"parent": (element, link it names), "child": (element, link)}, in document
+        order; read once per robot (the tree rules, the inertial rules and the rigid bodies of
+        the solids all ask). A missing ``<parent>`` or ``<child>`` is (None, None)."""
+        def read(joint, side):
+            element = self.child(joint, side)
+            return element, (element.get("link") if element is not None else None)
+
+        return self.memo(Robot.ends, lambda: {
+            joint: {side: read(joint, side) for side in ("parent", "child")}
+            for joint in self.children("joint")})
+
     @cached_property
     def links(self) -> dict[str, object]:
         """Link elements by name; the first of duplicates wins."""

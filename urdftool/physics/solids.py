@@ -582,11 +582,10 @@ def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vect
     """Link -> (link fixed to it, R, t taking points of that link's frame into this one's)."""
     def build():
         neighbours = {}
-        for joint in robot.children("joint"):
-            parent, child = first_child(joint, "parent"), first_child(joint, "child")
-            if joint.get("type") != "fixed" or parent is None or child is None:
+        for joint, ends in robot.ends().items():
+            (parent_element, parent), (child_element, child) = ends["parent"], ends["child"]
+            if joint.get("type") != "fixed" or parent_element is None or child_element is None:
                 continue
-            parent, child = parent.get("link"), child.get("link")
             if parent not in robot.links or child not in robot.links:
                 continue
             xyz, rotation = mat3.placement(origin(joint))  # p_parent = xyz + rotation p_child

@@ -49,19 +49,19 @@ def _inertial_part(link, tag: str):
 
 def _joints_by_child(robot) -> dict:
     found = {}
-    for joint in robot.children("joint"):
-        child = first_child(joint, "child")
-        if child is not None and child.get("link") not in found:
-            found[child.get("link")] = joint
+    for joint, ends in robot.ends().items():
+        child = ends["child"][1]
+        if ends["child"][0] is not None and child not in found:
+            found[child] = joint
     return found
 
 
 def _fixed_children(robot) -> dict[str, list[str]]:
     children: dict[str, list[str]] = {}
-    for joint in robot.children("joint"):
-        parent, child = first_child(joint, "parent"), first_child(joint, "child")
+    for joint, ends in robot.ends().items():
+        (parent, parent_link), (child, child_link) = ends["parent"], ends["child"]
         if joint.get("type") == "fixed" and parent is not None and child is not None:
-            children.setdefault(parent.get("link"), []).append(child.get("link"))
+            children.setdefault(parent_link, []).append(child_link)
     return children
 
 

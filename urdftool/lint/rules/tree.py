@@ -59,19 +59,6 @@ def missing_name(robot):
                 yield element, f"<{tag}> has no name attribute"
 
 
-def _ends(robot) -> dict:
-    """Joint -> {"parent": (element, link it names), "child": (element, link)}, in document
-    order; read once per robot, as five rules ask for both ends of every joint. A missing
-    ``<parent>`` or ``<child>`` is (None, None)."""
-    def read(joint, side):
-        element = robot.child(joint, side)
-        return element, (element.get("link") if element is not None else None)
-
-    return robot.memo(_ends, lambda: {
-        joint: {side: read(joint, side) for side in ("parent", "child")}
-        for joint in robot.children("joint")})
-
-
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
 def joint_missing_endpoint(robot):
     """A joint has no ``<parent link=...>`` or ``<child link=...>``.
@@ -79,7 +66,7 @@ def joint_missing_endpoint(robot):
     Bad: ``<joint name="j" type="fixed"><parent link="a"/></joint>``
     Good: ``<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>``
     """
-    for joint, ends in _ends(robot).items():
+    for joint, ends in robot.ends().items():
         for side in ("parent", "child"):
             element, link = ends[side]
             if element is None:
@@ -95,7 +82,7 @@ def unknown_link(robot):
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
     """
-    for joint, ends in _ends(robot).items():
+    for joint, ends in robot.ends().items():
         for side in ("parent", "child"):
             element, link = ends[side]
             if link and link not in robot.links:
@@ -122,7 +109,7 @@ def parent_map(robot) -> dict[str, list]:
 
 def _parent_map(robot) -> dict[str, list]:
     parents: dict[str, list] = {}
-    for joint, ends in _ends(robot).items():
+    for joint, ends in robot.ends().items():
         _, child = ends["child"]
         _, parent = ends["parent"]
         if child in robot.links and parent in robot.links:
@@ -144,7 +131,8 @@ def multiple_parents(robot):
         if len(joints) > 1:
             names = ", ".join(f"'{j.get('name')}'" for j in joints)
             for joint in joints[1:]:
-                yield joint.find("child"), f"link '{child}' has {len(joints)} parent joints ({names})"
+                yield robot.ends()[joint]["child"][0], \
+                    f"link '{child}' has {len(joints)} parent joints ({names})"
 
 
 def roots(robot) -> list[str]:
@@ -173,7 +161,7 @@ def multiple_roots(robot):
 def _all_joints_wired(robot) -> bool:
     """Whether every joint names an existing parent and child (else U104/U105 explain roots)."""
     return all(ends[side][1] in robot.links
-               for ends in _ends(robot).values() for side in ("parent", "child"))
+               for ends in robot.ends().values() for side in ("parent", "child"))
 
 
 @rule("U109", "kinematic-cycle", Severity.ERROR)
@@ -183,7 +171,7 @@ def kinematic_cycle(robot):
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
     """
-    parents, ends = parent_map(robot), _ends(robot)
+    parents, ends = parent_map(robot), robot.ends()
     reported: set[str] = set()
     done: set[str] = set()  # links whose way up is walked: each link is walked once, O(n)
     for start in robot.links:
@@ -208,7 +196,7 @@ def self_joint(robot):
     Bad: ``<parent link="a"/><child link="a"/>``
     Good: two different links
     """
-    for joint, ends in _ends(robot).items():
+    for joint, ends in robot.ends().items():
         _, parent = ends["parent"]
         _, child = ends["child"]
         if parent and parent == child:
