@@ -81,11 +81,10 @@ def limit_missing_effort_velocity(robot):
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
-def _bounds(robot, joint) -> tuple[float, float] | None:
-    """(lower, upper) of a revolute or prismatic joint whose range parses; a missing bound is
-    0, as in urdfdom."""
-    limit = robot.child(joint, "limit")
-    if limit is None or joint.get("type") not in LIMITED:
+def _bounds(kind: str | None, limit) -> tuple[float, float] | None:
+    """(lower, upper) of a revolute or prismatic joint (``kind``) whose ``<limit>`` range
+    parses; a missing bound is 0, as in urdfdom."""
+    if limit is None or kind not in LIMITED:
         return None
     lower, _ = number_tuple(limit.get("lower", "0"), 1)
     upper, _ = number_tuple(limit.get("upper", "0"), 1)
@@ -96,8 +95,8 @@ def _ranges(robot) -> list:
     """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; once
     per robot (three rules ask)."""
     return robot.memo(_ranges, lambda: [
-        (joint, robot.child(joint, "limit"), *bounds) for joint in robot.children("joint")
-        if (bounds := _bounds(robot, joint)) is not None])
+        (joint, limit, *bounds) for joint, kind, limit in _limits(robot)
+        if (bounds := _bounds(kind, limit)) is not None])
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -368,7 +367,7 @@ MIMIC_SLACK = 1e-3  # relative to the mimic joint's span: printed rounding of li
 
 def _range(robot, joint) -> tuple[float, float] | None:
     """Finite, ordered (lower, upper) of a revolute or prismatic joint, else None."""
-    bounds = _bounds(robot, joint)
+    bounds = _bounds(joint.get("type"), robot.child(joint, "limit"))
     return bounds if bounds is not None and finite(bounds) and bounds[0] <= bounds[1] else None
 
 
