@@ -240,8 +240,10 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
     for label, q, element in named_poses(scene, srdf_root):
         parts = None
         for pair in sorted(default_collisions(scene, q) - scene.adjacent):
-            parts = scene.checker.part_poses(scene.at(q)) if parts is None else parts
-            depth = scene.checker.exact(None, index[pair], contacts=True, part_poses=parts)[2]
+            if parts is None:  # every part placed once for the pairs at this pose (as pose.py)
+                scene.checker.place(parts := scene.checker.part_poses(scene.at(q)))
+            depth = scene.checker.exact(None, index[pair], contacts=True, part_poses=parts,
+                                        placed=True)[2]
             overlap = found.setdefault(pair, Overlap(*pair))
             overlap.depth = max(overlap.depth, depth)
             overlap.poses.append((label, element))
