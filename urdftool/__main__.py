@@ -1,5 +1,56 @@
-"""``python -m urdftool``: the command line."""
+"""``urdftool`` and ``python -m urdftool``: the command line.
 
-from urdftool.cli import app
+``urdftool check`` run again with the same words, in the same folder and environment, while
+none of the files its findings came from changed, prints what it printed before from the result
+cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
+run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
+"""
 
-app(prog_name="urdftool")
+from __future__ import annotations
+
+import sys
+
+
+def main() -> None:
+    words = sys.argv[1:]
+    if words[:1] == ["check"]:
+        _replay(words)
+    from urdftool.cli import main as run
+
+    run()
+
+
+def _replay(words: list[str]) -> None:
+    """Exit with the output kept for ``words``, when there is one; else return.
+
+    The cache folder is read off the words without parsing them as the command does: where
+    that reading is wrong, it looks in a folder the command never kept these words in (each
+    entry is keyed by the words), and the command runs."""
+    from urdftool.lint.cache import Cache, default_folder
+
+    if "--no-cache" in words:
+        return
+    folder = default_folder()
+    for word, after in zip(words, [*words[1:], None]):
+        if word == "--cache-dir" and after is not None:
+            folder = after
+        elif word.startswith("--cache-dir="):
+            folder = word.partition("=")[2]
+    if folder is None or (kept := Cache(folder).get_output(words)) is None:
+        return
+    stdout, stderr, code = kept
+    try:
+        sys.stderr.write(stderr)
+        sys.stdout.write(stdout)
+        sys.stdout.flush()
+    except BrokenPipeError:  # the reader left (``| head``): stop quietly, as click does
+        import os
+
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        code = 1
+    raise SystemExit(code)
+
+
+if __name__ == "__main__":
+    main()

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import json
+import os
 import subprocess
 import sys
+
+import pytest
 
 from conftest import ROOT
 
@@ -19,3 +23,91 @@ def test_python_m_urdftool_runs_the_command_line():
     assert "Usage: urdftool" in _module("--help").stdout
     broken = _module("check", "--timeout", "0", "tests/cases/U204_inverted_limits.urdf")
     assert broken.returncode == 1 and "U204" in broken.stdout, broken.stdout + broken.stderr
+
+
+# ``urdftool check`` run again with the same words is answered from the output kept beside the
+# result cache, before Typer is imported
+ROBOT = """<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="body"><inertial><mass value="${mass}"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+</robot>
+"""
+PARTS = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="mass" value="{mass}"/>
+</robot>
+"""
+# the program as the urdftool script starts it, trusting the stamps of files written just now,
+# and saying at exit whether Typer was imported
+PROGRAM = ("import atexit, sys; import urdftool.lint.cache as cache; cache.RACY_NS = 0; "
+           "atexit.register(lambda: sys.stderr.write('[typer]' * ('typer' in sys.modules))); "
+           "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.__main__ import main; main()")
+
+
+def _program(tmp_path, *args: str) -> subprocess.CompletedProcess:
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "home-cache")}
+    return subprocess.run([sys.executable, "-c", PROGRAM, *args], capture_output=True,
+                          text=True, cwd=tmp_path, env=env, timeout=120)
+
+
+@pytest.fixture
+def bot(tmp_path):
+    (tmp_path / "bot.urdf.xacro").write_text(ROBOT)
+    (tmp_path / "parts.xacro").write_text(PARTS.format(mass=-1))
+    return tmp_path
+
+
+def test_the_same_check_again_prints_the_kept_output_without_typer(bot):
+    words = ["check", "--cache-dir", "cache", "--timeout", "0", "bot.urdf.xacro"]
+    first = _program(bot, *words)
+    assert first.returncode == 1 and "U302" in first.stdout and "[typer]" in first.stderr
+    again = _program(bot, *words)
+    assert (again.returncode, again.stdout) == (1, first.stdout)
+    assert "[typer]" not in again.stderr
+    # other words run the command, from the same cache
+    as_json = _program(bot, *words[:-1], "--format=json", "bot.urdf.xacro")
+    assert as_json.returncode == 1 and '"code": "U302"' in as_json.stdout
+    assert "[typer]" in as_json.stderr
+
+
+def test_an_edited_included_file_is_seen_by_the_same_words(bot):
+    words = ["check", "--cache-dir", "cache", "--timeout", "0", "bot.urdf.xacro"]
+    _program(bot, *words)
+    assert "-1 kg" in _program(bot, *words).stdout
+    (bot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
+    edited = _program(bot, *words)
+    assert "-2.5 kg" in edited.stdout and "-1 kg" not in edited.stdout
+    assert "[typer]" in edited.stderr
+
+
+def test_a_planted_output_is_not_printed(bot):
+    words = ["check", "--cache-dir", "cache", "--timeout", "0", "bot.urdf.xacro"]
+    honest = _program(bot, *words).stdout
+    [entry] = (bot / "cache").glob("v*/*-output.json")
+    signature, body = entry.read_text().split("\n", 1)
+    body = json.loads(body)
+    body.update(stdout="All checks passed\n", code=0)  # what an attacker would plant
+    entry.write_text(signature + "\n" + json.dumps(body))
+    planted = _program(bot, *words)
+    assert (planted.returncode, planted.stdout) == (1, honest)
+
+
+@pytest.mark.parametrize("words", [["--no-cache", "--cache-dir", "cache"],
+                                   ["--cache-dir", "cache", "--output", "report.txt"]])
+def test_no_output_is_kept_without_the_cache_or_for_a_report_file(bot, words):
+    for _ in range(2):
+        result = _program(bot, "check", "--timeout", "0", *words, "bot.urdf.xacro")
+        assert result.returncode == 1 and "[typer]" in result.stderr
+    assert not list(bot.glob("cache/v*/*-output.json"))
+
+
+def test_a_reader_that_leaves_ends_the_replay_quietly(bot):
+    words = ["check", "--cache-dir", "cache", "--timeout", "0", "bot.urdf.xacro"]
+    _program(bot, *words)
+    env = {**os.environ, "XDG_CACHE_HOME": str(bot / "home-cache")}
+    reader = subprocess.Popen([sys.executable, "-c", PROGRAM, *words], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, cwd=bot, env=env)
+    reader.stdout.close()  # before anything is read
+    assert reader.wait(timeout=120) == 1
+    error = reader.stderr.read().decode()
+    assert "Traceback" not in error and "[typer]" not in error

@@ -65,9 +65,12 @@ def _messages(folder, cache_dir) -> set[tuple[str, str]]:
 
 
 def _entries(cache_dir, kind: str = "file") -> list:
-    """The entries of one file's results ('file') or of whole runs ('run')."""
+    """The entries of one file's results ('file'), of whole runs ('run') or of a command's
+    output ('output')."""
+    suffix = {"run": "-run.json", "output": "-output.json"}
     return [entry for entry in (cache_dir / f"v{cache_module.SCHEMA}").iterdir()
-            if entry.name.endswith("-run.json") == (kind == "run")]
+            if entry.name.endswith(suffix.get(kind, ".json"))
+            and (kind in suffix or not entry.name.endswith(tuple(suffix.values())))]
 
 
 def _counting_checks(monkeypatch) -> list:
@@ -252,3 +255,53 @@ def test_a_cached_result_keeps_columns_call_sites_and_fixes(tmp_path, monkeypatc
     assert again.findings == first.findings
     [finding] = [f for f in again.findings if f.code == "U204"]
     assert finding.location.column == 5 and finding.fix is not None and finding.fix.safe
+
+
+def _kept_run(robot, cache_dir):
+    return check_paths([str(robot / "bot.urdf.xacro")], cache_dir=cache_dir, timeout=0,
+                       max_memory="0", jobs=1)
+
+
+def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, monkeypatch):
+    monkeypatch.setattr(cache_module, "RACY_NS", 0)  # files written just now: trust stamps
+    cache_dir = tmp_path / "cache"
+    run = _kept_run(robot, cache_dir)
+    assert run.depends and _kept_run(robot, cache_dir).depends == run.depends  # as served
+    words = ["check", str(robot / "bot.urdf.xacro")]
+    cache = cache_module.Cache(cache_dir)
+    cache.put_output(words, run.depends, "the report\n", "a note\n", 1)
+    assert cache.get_output(words) == ("the report\n", "a note\n", 1)
+    assert cache.get_output([*words, "--strict"]) is None  # other words
+    monkeypatch.setenv("SOME_VARIABLE", "set")
+    assert cache.get_output(words) is None  # another environment
+    monkeypatch.delenv("SOME_VARIABLE")
+    (robot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
+    assert cache.get_output(words) is None
+
+
+def test_a_run_with_a_racy_stamp_keeps_no_servable_output(robot, tmp_path):
+    cache_dir = tmp_path / "cache"
+    run = _kept_run(robot, cache_dir)  # files written just now: their stamps are not trusted
+    cache = cache_module.Cache(cache_dir)
+    cache.put_output(["check"], run.depends, "", "", 0)
+    assert cache.get_output(["check"]) is None
+
+
+@pytest.mark.parametrize("change", [
+    {"stdout": None}, {"code": "1"}, {"depends": [["file", "/nowhere", None]]},
+    {"depends": "x"}, {"stderr": 3}])
+def test_a_malformed_output_entry_is_a_miss(tmp_path, change):
+    cache = cache_module.Cache(tmp_path / "cache")
+    body = {"schema": cache_module.SCHEMA, "depends": [], "stdout": "", "stderr": "", "code": 0,
+            **change}
+    cache._keep(cache._output_path(["check"]), json.dumps(body))
+    assert cache.get_output(["check"]) is None
+
+
+def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
+    monkeypatch.setattr(cache_module, "MAX_ENTRY_BYTES", 1000)
+    cache = cache_module.Cache(tmp_path / "cache")
+    cache.put_output(["check"], [], "x" * 2000, "", 0)
+    assert cache.get_output(["check"]) is None
+    cache.put_output(["check"], [], "x" * 200, "", 0)
+    assert cache.get_output(["check"]) == ("x" * 200, "", 0)

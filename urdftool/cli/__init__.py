@@ -9,6 +9,7 @@ libraries are imported inside the command that needs them, so start-up stays fas
 from __future__ import annotations
 
 import importlib
+import sys
 
 import typer
 from typer.core import TyperGroup
@@ -103,8 +104,14 @@ def _root(version: bool = typer.Option(False, "--version", "-V", callback=_versi
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
 
 
+COMMAND_LINE: list[str] | None = None  # the words the program runs (check keeps its output)
+
+
 def main() -> None:
-    app()
+    """The ``urdftool`` program, on the words of ``sys.argv``."""
+    global COMMAND_LINE
+    COMMAND_LINE = sys.argv[1:]
+    app(prog_name="urdftool")
 
 
 if __name__ == "__main__":

@@ -125,14 +125,14 @@ def check(
             run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:
         fail_usage(error)
-    for note in run.notes:
-        typer.echo(printable(f"urdftool: {note}"), err=True)
-    if verbose:  # a file name can hold a line break: printable
-        for path, reason in run.skipped.items():
-            typer.echo(printable(f"skipped {path}: {reason}"), err=True)
-        for result in run.results:
-            for line in result.companions:
-                typer.echo(printable(f"companion of {result.path}: {line}"), err=True)
+    messages = [f"urdftool: {note}" for note in run.notes]
+    if verbose:
+        messages += [f"skipped {path}: {reason}" for path, reason in run.skipped.items()]
+        messages += [f"companion of {result.path}: {line}" for result in run.results
+                     for line in result.companions]
+    messages = [printable(message) for message in messages]  # a file name can hold a line break
+    for message in messages:
+        typer.echo(message, err=True)
     if statistics:
         from urdftool.report.statistics import render as render_statistics
 
@@ -140,15 +140,40 @@ def check(
     else:
         def report(results, stream):
             render(format, results, stream, quiet=quiet)
-    if output:
+    code = 0 if exit_zero else run.exit_code
+    keep = output is None and not (fix or diff) and _keeps_output(request, run)
+    if output or keep:
         import io
 
         text = io.StringIO()
         report(run.results, text)
-        write_output(output, text.getvalue())
+        if output:
+            write_output(output, text.getvalue())
+        else:
+            sys.stdout.write(text.getvalue())
+            _keep_output(request, run, text.getvalue(), "".join(m + "\n" for m in messages),
+                         code)
     else:
         report(run.results, sys.stdout)
-    raise typer.Exit(0 if exit_zero else run.exit_code)
+    raise typer.Exit(code)
+
+
+def _keeps_output(request, run) -> bool:
+    """Whether this run's output is kept for ``urdftool check`` run again with the same words
+    (see ``urdftool/__main__.py``): a run the result cache kept whole, started as the program
+    (not through the Python API), printing to a file or pipe (a terminal's colours are not
+    kept)."""
+    from urdftool.cli import COMMAND_LINE
+
+    return COMMAND_LINE is not None and request.cache_dir is not None and \
+        run.depends is not None and not sys.stdout.isatty()
+
+
+def _keep_output(request, run, stdout: str, stderr: str, code: int) -> None:
+    from urdftool.cli import COMMAND_LINE
+    from urdftool.lint.cache import Cache
+
+    Cache(request.cache_dir).put_output(COMMAND_LINE, run.depends, stdout, stderr, code)
 
 
 def _apply_fixes(run, diff: bool, unsafe: bool, recheck):

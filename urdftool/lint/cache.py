@@ -29,6 +29,10 @@ and of editors): keyed by the paths and the request, it lists the stamps of ever
 files' entries list, and of the settings files, package.xml and ``.git`` (present or not) in
 every folder above each path. A re-run whose stamps are all the same is served from it without
 looking for settings or classifying the paths; any difference and the run goes file by file.
+The output of such a run (``urdftool check`` printing to a file or pipe) is kept beside it,
+keyed by the command's words, the working directory, the whole environment and which standard
+streams are terminals, and printed again for the same words while the run's stamps are the
+same (``urdftool/__main__.py``, before the command line is even parsed).
 
 The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
 ``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``. Robot files and even the cache folder may come
@@ -54,6 +58,7 @@ import hmac
 import json
 import os
 import stat
+import sys
 import time
 from pathlib import Path
 
@@ -125,9 +130,9 @@ class Cache:
         self._verified[path, repr(options)] = current
         return findings
 
-    def get_run(self, paths: list[str], request) -> tuple[list, list[bool]] | None:
-        """The results (FileResult) and their strictness kept for checking ``paths`` with
-        ``request``, or None. A run is kept only when each path was checked as itself (no
+    def get_run(self, paths: list[str], request) -> tuple[list, list[bool], list] | None:
+        """The results (FileResult), their strictness and the stamps they depend on (for
+        :meth:`put_output`) kept for checking ``paths`` with ``request``, or None. A run is kept only when each path was checked as itself (no
         folder, macro library or companion named), and is a hit only while every stamp it lists
         is the same: the quick state of what each file's result was built from, and the
         settings files, package manifests and repository markers above each path (present or
@@ -137,14 +142,12 @@ class Cache:
         from urdftool.lint.options import FileResult
 
         try:
-            # None: a stamp not to be trusted (racy), or a mesh that did not resolve
-            if any(quick is None or _quick(kind, name) != quick
-                   for kind, name, quick in content["depends"]):
+            if not _unchanged(content["depends"]):
                 return None
             results = [FileResult(item["path"], [_finding(f) for f in item["findings"]],
                                   companions=[str(line) for line in item["companions"]])
                        for item in content["results"]]
-            return results, [bool(strict) for strict in content["strict"]]
+            return results, [bool(strict) for strict in content["strict"]], content["depends"]
         except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
             return None
 
@@ -165,27 +168,62 @@ class Cache:
         except (ValueError, KeyError, TypeError, IndexError, AttributeError):
             return None
 
-    def put_run(self, paths: list[str], request, run, options_for) -> None:
+    def put_run(self, paths: list[str], request, run, options_for) -> list | None:
         """Keep ``run`` for :meth:`get_run`, when every path was checked as itself and every
-        result was kept (see :meth:`put`); ``options_for``: path -> its CheckOptions."""
+        result was kept (see :meth:`put`); ``options_for``: path -> its CheckOptions. Returns
+        the stamps the run depends on (for :meth:`put_output`) when it was kept, else None."""
         if self._key is None or "-" in paths or run.skipped or run.notes or \
                 [result.path for result in run.results] != list(paths):
-            return
+            return None
         depends = []
         for path in paths:
             options = options_for(path)
             if (path, repr(options)) not in self._verified and self.get(path, options) is None:
-                return  # not kept: a crash, a budget stop, a file that did not load
+                return None  # not kept: a crash, a budget stop, a file that did not load
             depends += self._verified[path, repr(options)]
         depends += [[kind, name, _quick(kind, name)]
                     for kind, name in _surroundings(paths, request)]
         unique = {(kind, name): quick for kind, name, quick in depends}  # robots share meshes
-        body = json.dumps({"schema": SCHEMA, "strict": run.strict, "depends": [
-                               [kind, name, quick] for (kind, name), quick in unique.items()],
+        depends = [[kind, name, quick] for (kind, name), quick in unique.items()]
+        body = json.dumps({"schema": SCHEMA, "strict": run.strict, "depends": depends,
                            "results": [{"path": result.path, "companions": result.companions,
                                         "findings": [_record(f) for f in result.findings]}
                                        for result in run.results]})
-        self._keep(self._run_path(paths, request), body)
+        return depends if self._keep(self._run_path(paths, request), body) else None
+
+    # -- a command's output ----------------------------------------------------------------
+
+    def get_output(self, command_line: list[str]) -> tuple[str, str, int] | None:
+        """(standard output, standard error, exit code) of ``command_line`` as
+        :meth:`put_output` kept them, while every stamp its run depended on is the same;
+        else None."""
+        content = self._content(self._output_path(command_line))
+        if content is None:
+            return None
+        try:
+            stdout, stderr, code = content["stdout"], content["stderr"], content["code"]
+            if type(stdout) is not str or type(stderr) is not str or type(code) is not int \
+                    or not _unchanged(content["depends"]):
+                return None
+        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
+            return None
+        return stdout, stderr, code
+
+    def put_output(self, command_line: list[str], depends: list, stdout: str, stderr: str,
+                   code: int) -> None:
+        """Keep what ``command_line`` printed and its exit code, for a run kept whole whose
+        stamps are ``depends`` (from :meth:`get_run` or :meth:`put_run`)."""
+        body = json.dumps({"schema": SCHEMA, "depends": depends, "stdout": stdout,
+                           "stderr": stderr, "code": code})
+        if len(body) < MAX_ENTRY_BYTES - 100:  # the signature and line break fit too
+            self._keep(self._output_path(command_line), body)
+
+    def _output_path(self, command_line: list[str]) -> Path:
+        """Where a command line's output is kept: keyed by its words as given, the whole
+        environment (formats, colours, encodings and defaults follow variables), the Python
+        and which standard streams are terminals."""
+        return self._keyed("output", list(command_line), _environment(), sys.version,
+                           [os.isatty(fd) for fd in (0, 1, 2)], suffix="-output")
 
     # -- writing ---------------------------------------------------------------------------
 
@@ -200,13 +238,16 @@ class Cache:
                            "findings": [_record(f) for f in result.findings]})
         self._keep(self._entry_path(path, options), body)
 
-    def _keep(self, entry_path: Path, body: str) -> None:
-        """Write ``body``, signed, at ``entry_path``; nothing when the folder is unusable."""
+    def _keep(self, entry_path: Path, body: str) -> bool:
+        """Write ``body``, signed, at ``entry_path``; False when it could not be (an unusable
+        folder)."""
         try:
             if self._usable_folder(create=True):
                 _write(entry_path, f"{self._sign(body)}\n{body}")
+                return True
         except OSError:
-            return
+            pass
+        return False
 
     def _dependencies(self, path: str, options) -> _Dependencies:
         return _Dependencies(path, options, self._resolvers)
@@ -306,6 +347,13 @@ def _surroundings(paths: list[str], request) -> list[tuple[str, str]]:
     if request.settings_file is not None:
         found.append(("file", os.path.abspath(request.settings_file)))
     return found
+
+
+def _unchanged(depends: list) -> bool:
+    """Whether every [kind, name, quick] stamp in ``depends`` is still the same; a None stamp
+    (racy, or a mesh that did not resolve) never is."""
+    return all(quick is not None and _quick(kind, name) == quick
+               for kind, name, quick in depends)
 
 
 def _quick(kind: str, name: str) -> str | None:

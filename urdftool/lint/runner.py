@@ -135,12 +135,15 @@ class Run:
     skipped: files found in folders and not checked -> why
     notes: "PATH: what happened" for files named that were checked through others or not at all
     strict: per result, whether a warning in it fails the run (its settings or the request)
+    depends: for a run the result cache keeps whole, the stamps of what it was built from
+        (see :mod:`urdftool.lint.cache`); None for any other
     """
 
     results: list[FileResult]
     skipped: dict[str, str] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     strict: list[bool] = field(default_factory=list)
+    depends: list | None = field(default=None, repr=False)
 
     def __post_init__(self):
         for result, strict in zip(self.results, self.strict):
@@ -186,7 +189,7 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
         cache = Cache(request.cache_dir)
         kept = cache.get_run(paths, request)
         if kept is not None:
-            return Run(kept[0], strict=kept[1])
+            return Run(kept[0], strict=kept[1], depends=kept[2])
     from urdftool.lint.targets import expand  # not on a re-run served whole from the cache
 
     targets = expand(paths, request)
@@ -203,7 +206,7 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
             results[index] = result
     run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])
     if cache is not None:
-        cache.put_run(paths, request, run, lambda path: by_path[path].options)
+        run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options)
     return run
 
 
