@@ -305,3 +305,20 @@ def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
     assert cache.get_output(["check"]) is None
     cache.put_output(["check"], [], "x" * 200, "", 0)
     assert cache.get_output(["check"]) == ("x" * 200, "", 0)
+
+
+def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeypatch):
+    # an editor saves the macro file while the check runs: the findings come from the old
+    # content, the file's stamps and content are the new ones
+    real = engine.check_file
+
+    def saved_meanwhile(path, *rest, **kw):
+        result = real(path, *rest, **kw)
+        (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
+        return result
+
+    monkeypatch.setattr(engine, "check_file", saved_meanwhile)
+    cache_dir = tmp_path / "cache"
+    assert any("-1 kg" in message for _, message in _messages(robot, cache_dir))
+    monkeypatch.setattr(engine, "check_file", real)
+    assert any("-2 kg" in message for _, message in _messages(robot, cache_dir))

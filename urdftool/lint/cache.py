@@ -234,6 +234,8 @@ class Cache:
                 any(f.code in _NOT_KEPT for f in result.findings):
             return
         depends = self._dependencies(path, options).of(robot)
+        if depends is None:
+            return
         body = json.dumps({"schema": SCHEMA, "depends": depends,
                            "findings": [_record(f) for f in result.findings]})
         self._keep(self._entry_path(path, options), body)
@@ -280,12 +282,16 @@ def _hash_file(path: str) -> str | None:
     """blake2b of a regular file's content; None when there is none, its size and time when it
     is over :data:`HASHED_BYTES`."""
     try:
-        return hashlib.blake2b(read_regular(path, HASHED_BYTES), digest_size=20).hexdigest()
+        return _digest(read_regular(path, HASHED_BYTES))
     except TooLarge:
         status = os.stat(path)
         return f"large:{status.st_size}:{status.st_mtime_ns}"
     except OSError as error:
         return None if isinstance(error, FileNotFoundError) else f"unreadable:{error.strerror}"
+
+
+def _digest(data: bytes) -> str:
+    return hashlib.blake2b(data, digest_size=20).hexdigest()
 
 
 RACY_NS = 2_000_000_000  # [ns] a file changed this recently may change again unseen
@@ -413,8 +419,10 @@ class _Dependencies:
             return _environment()
         raise ValueError(kind)
 
-    def of(self, robot) -> list[list]:
-        """[kind, name, quick, full] of everything ``robot``'s result was built from."""
+    def of(self, robot) -> list[list] | None:
+        """[kind, name, quick, full] of everything ``robot``'s result was built from; None
+        when a file it read has changed since (during the check: the stamps and content now
+        would describe a file the findings did not come from)."""
         entries = []
         files = [os.path.abspath(self.path),
                  *(os.path.abspath(f) for f in robot.files if f != "-"),
@@ -426,8 +434,14 @@ class _Dependencies:
         entries += [("mesh", f"{uri}\0{self._resolved(uri)[0] or ''}") for uri in sorted(uris)]
         if any(b"$(env" in data or b"$(optenv" in data for data in robot.sources.values()):
             entries.append(("environment", ""))
-        return [[kind, name, _quick(kind, name), self.full(kind, name)]
-                for kind, name in entries]
+        depends = [[kind, name, _quick(kind, name), self.full(kind, name)]
+                   for kind, name in entries]
+        read = {os.path.abspath(name): data for name, data in robot.sources.items()
+                if name != "-"}
+        if any(kind == "file" and name in read and full != _digest(read[name])
+               for kind, name, _, full in depends):
+            return None
+        return depends
 
 
 def _record(finding: Finding) -> dict:
