@@ -318,6 +318,8 @@ def test_obj_triangles_are_trimeshs(tmp_path, form):
     lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
     lambda t: t.replace("f 1 3 2", "f 1//1 3 2"),  # mixed corner forms
     lambda t: t.replace("v 0 0 0", "v 0 0"),  # too few coordinates
+    lambda t: t.replace("s off", "v zero 0 0\ns off"),  # a word that is no number
+    lambda t: t.replace("f 1 3 2", "f 1 3 2\u00a0"),  # other white space than ASCII's
 ])
 def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
@@ -369,3 +371,47 @@ def test_merged_bounds_leave_to_merging_what_they_cannot_tell():
     assert mesh_arrays.merged_bounds(signed_zeros, signed_zeros) is None
     huge = np.array([[1e11, 0, 0], [0, 1, 0], [0, 0, 1]])
     assert mesh_arrays.merged_bounds(huge, huge) is None  # merge keys overflow there
+
+
+def test_obj_comments_and_names_may_hold_any_text(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}"))
+    named = tmp_path / "named.obj"
+    named.write_text("# caf\u00e9\n" + _obj_text("{v}").replace("o Cube", "o W\u00fcrfel"),
+                     encoding="utf-8")
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (named, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+def test_obj_lines_joined_by_a_backslash_and_crlf_are_read_as_trimesh_joins_them(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}/{t}"))
+    joined = tmp_path / "joined.obj"
+    joined.write_bytes(_obj_text("{v}/{t}").replace("f 1/1 3/2", "f 1/1 \\\n3/2").replace(
+        "\n", "\r\n").encode() + b"\\")
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (joined, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+@pytest.mark.parametrize("text", [
+    " ".join(["0.5 -1e-3 +2.25E+2 .5 5. -0 1e999"] * 1000),
+    "\n".join(["1.0\t2.0\r3.0\x0b4\x0c5"] * 1000),
+    " ".join(["1.0 2.0 nan"] * 1000),  # fromstring reads what loadtxt does not
+    " ".join(["1.0 2.0 1e"] * 1000),  # no number: fromstring says how far it reads
+    " ".join(["1.0 2.0 1-2"] * 1000),
+    "1.0 2.0",  # short: fromstring
+])
+def test_plain_floats_are_fromstrings_numbers_or_none(text):
+    """Where fromstring stops early (warns or raises), plain_floats says None."""
+    import warnings
+
+    found = mesh_arrays.plain_floats(text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            expected = np.fromstring(text, sep=" ")
+        except (ValueError, DeprecationWarning):
+            expected = None
+    if found is not None:
+        assert found.dtype == np.float64 and found.tobytes() == expected.tobytes()
+    assert (found is None) == (expected is None or len(text) < 4096 or "nan" in text)

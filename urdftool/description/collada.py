@@ -88,6 +88,12 @@ def _numbers(element, dtype, what: str):
     import numpy as np
 
     text = element.text or ""
+    if dtype == "float64":
+        from urdftool.description.mesh_arrays import plain_floats
+
+        values = plain_floats(text)
+        if values is not None:
+            return values
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # numpy warns, and stops, at text that is no number
         try:
