@@ -48,7 +48,7 @@ def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
         return _collada(data, max_triangles)
     if suffix == ".obj":
         try:
-            return _obj(data)
+            return _obj(data, max_triangles)
         except (ValueError, IndexError):  # trimesh reads it and says what is wrong
             return None
     if suffix != ".stl":
@@ -139,14 +139,15 @@ _OBJ_KINDS = (b"v ", b"vt ", b"vn ", b"f ", b"o ", b"s ")  # the statements of a
 _OBJ_ITEMS = {b"v ": 3, b"vt ": 2, b"vn ": 3, b"f ": 3}  # the words each row holds
 
 
-def _obj(data: bytes):
+def _obj(data: bytes, max_triangles: int = MAX_TRIANGLES):
     """A plain OBJ's triangles as trimesh loads them: ``v`` (3 numbers), ``vt`` (2), ``vn``
     (3) and triangular ``f`` lines of one corner form (``v``, ``v/t``, ``v//n``, ``v/t/n``,
     positive indices), at most ``o`` and ``s`` besides, and comments; corners merged by position
     (trimesh keeps apart those whose texture coordinate or normal differs: a seam, no hole).
     None for anything else (materials, groups, polygons, colours, negative indices, a word
     that is no number, text other than ASCII outside comments, ``o`` and ``s``...), and for
-    indices out of range and coordinates that are not finite.
+    indices out of range and coordinates that are not finite, and for over ``max_triangles``
+    triangles (trimesh's reading counts them first, and refuses).
 
     Read over whole columns (numpy over the bytes), not line by line: each line's kind from
     its first bytes, its words from where white space ends, and the numbers of each kind of row
@@ -183,7 +184,7 @@ def _obj(data: bytes):
         if (counts[lines] != _OBJ_ITEMS[head] + 1).any():
             return None  # colours, 3D texture coordinates, polygons...
         rows[head] = (starts[lines] + len(head), ends[lines])
-    if not len(rows[b"v "][0]) or not len(rows[b"f "][0]):
+    if not len(rows[b"v "][0]) or not 0 < len(rows[b"f "][0]) <= max_triangles:
         return None
     corners = _obj_corners(_row_text(chars, *rows[b"f "]))
     if corners is None:
