@@ -314,19 +314,24 @@ def merged_bounds(vertices, unmerged):
     key): merge then."""
     import numpy as np
 
-    extremes = [vertices.argmin(axis=0), vertices.argmax(axis=0)]  # far faster than min()
-    ends = extremes if unmerged is vertices else \
-        [unmerged.argmin(axis=0), unmerged.argmax(axis=0)]
+    # coordinate by coordinate: argmin along rows of three copies the array for each call
+    columns = np.ascontiguousarray(vertices.T)
+    extremes = [columns.argmin(axis=1), columns.argmax(axis=1)]  # far faster than min()
+    plain, ends = (columns, extremes) if unmerged is vertices else \
+        (np.ascontiguousarray(unmerged.T), None)
+    if ends is None:
+        ends = [plain.argmin(axis=1), plain.argmax(axis=1)]
     if not all(np.abs(unmerged[rows, [0, 1, 2]]).max() < _KEY_RANGE for rows in ends):
         return None
     corners = []
     for first in extremes:
         for axis, row in enumerate(first.tolist()):
-            if vertices[row, axis] == 0:  # which zero min() and max() return depends on order
-                zeros = np.signbit(vertices[vertices[:, axis] == 0, axis])
+            column = columns[axis]
+            if column[row] == 0:  # which zero min() and max() return depends on order
+                zeros = np.signbit(column[column == 0])
                 if zeros.any() != zeros.all():
                     return None
-            if row and _merges_earlier(unmerged, row, axis):
+            if row and _merges_earlier(unmerged, plain[axis], row):
                 return None
         corners.append(vertices[first, [0, 1, 2]])
     return corners[0], corners[1]
@@ -335,13 +340,14 @@ def merged_bounds(vertices, unmerged):
 _KEY_RANGE = 2.0 ** 62 / 10 ** _MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
 
 
-def _merges_earlier(vertices, row: int, axis: int) -> bool:
+def _merges_earlier(vertices, column, row: int) -> bool:
     """Whether a vertex before ``row`` merges with it: only those within 1e-8 of it along
-    ``axis`` can (the margin covers rounding), and their keys are compared whole."""
+    ``column`` (one coordinate of every vertex) can (the margin covers rounding), and their
+    keys are compared whole."""
     import numpy as np
 
-    value = vertices[row, axis]
-    near = np.flatnonzero(np.abs(vertices[:row, axis] - value) <= 1e-7 + 1e-12 * abs(value))
+    value = column[row]
+    near = np.flatnonzero(np.abs(column[:row] - value) <= 1e-7 + 1e-12 * abs(value))
     if not len(near):
         return False
     return bool((_merge_keys(vertices[near]) == _merge_keys(vertices[row:row + 1])).all(
@@ -370,7 +376,10 @@ def _unique_rows(keys):
     new[0] = True
     np.not_equal(packed[1:], packed[:-1], out=new[1:])
     rows = np.take(keys, index, axis=0)  # sorted: a group's rows are neighbours
-    if not ((rows[1:] == rows[:-1]).all(axis=1) | new[1:]).all():  # two rows share a hash
+    same = ~new[1:]  # rows that must equal the one before them (column by column: an
+    for column in rows.T:  # .all(axis=1) over rows of three costs a call a row)
+        same &= column[1:] == column[:-1]
+    if not (same | new[1:]).all():  # two rows share a hash
         whole = np.ascontiguousarray(keys).view(np.dtype((np.void, 8 * keys.shape[1]))).ravel()
         _, starts, inverse = np.unique(whole, return_index=True, return_inverse=True)
         order = np.argsort(starts)
