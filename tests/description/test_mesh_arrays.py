@@ -415,3 +415,22 @@ def test_plain_floats_are_fromstrings_numbers_or_none(text):
     if found is not None:
         assert found.dtype == np.float64 and found.tobytes() == expected.tobytes()
     assert (found is None) == (expected is None or len(text) < 4096 or "nan" in text)
+
+
+@pytest.mark.parametrize("scale", [(0.001, 0.001, 0.001), (-1.0, 1.0, 1.0), (2.0, 2.0, -3.0),
+                                   (1e300, 1e-300, 2.0), (1e-320, 1.0, 1.0)])
+def test_a_scale_is_the_transforms_product_to_the_bit_without_blas(scale, monkeypatch):
+    """Each coordinate times its factor, a zero of either sign +0.0 and an overflow inf, as
+    np.dot of the 4 x 4 transform makes them; no BLAS call (whose threads spin on after it)."""
+    rng = np.random.default_rng(7)
+    vertices = rng.normal(size=(40000, 3)) * 10.0 ** rng.uniform(-300, 300, size=(40000, 3))
+    vertices[::7], vertices[::11, 1] = 0.0, -0.0
+    faces = np.arange(len(vertices) - 1).reshape(-1, 3)
+    matrix = np.eye(4)
+    matrix[:3, :3] *= np.asarray(scale)
+    with np.errstate(all="ignore"):
+        expected = np.dot(matrix, np.column_stack((vertices, np.ones(len(vertices)))).T).T[:, :3]
+        monkeypatch.setattr(np, "dot", None)
+        moved, turned = mesh_arrays.scaled(vertices, faces, scale)
+    assert np.ascontiguousarray(moved).tobytes() == np.ascontiguousarray(expected).tobytes()
+    assert np.array_equal(turned, faces[:, ::-1] if np.prod(np.sign(scale)) < 0 else faces)
