@@ -393,30 +393,6 @@ def test_obj_lines_joined_by_a_backslash_and_crlf_are_read_as_trimesh_joins_them
     assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
 
 
-@pytest.mark.parametrize("text", [
-    " ".join(["0.5 -1e-3 +2.25E+2 .5 5. -0 1e999"] * 1000),
-    "\n".join(["1.0\t2.0\r3.0\x0b4\x0c5"] * 1000),
-    " ".join(["1.0 2.0 nan"] * 1000),  # fromstring reads what loadtxt does not
-    " ".join(["1.0 2.0 1e"] * 1000),  # no number: fromstring says how far it reads
-    " ".join(["1.0 2.0 1-2"] * 1000),
-    "1.0 2.0",  # short: fromstring
-])
-def test_plain_floats_are_fromstrings_numbers_or_none(text):
-    """Where fromstring stops early (warns or raises), plain_floats says None."""
-    import warnings
-
-    found = mesh_arrays.plain_floats(text)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            expected = np.fromstring(text, sep=" ")
-        except (ValueError, DeprecationWarning):
-            expected = None
-    if found is not None:
-        assert found.dtype == np.float64 and found.tobytes() == expected.tobytes()
-    assert (found is None) == (expected is None or len(text) < 4096 or "nan" in text)
-
-
 @pytest.mark.parametrize("scale", [(0.001, 0.001, 0.001), (-1.0, 1.0, 1.0), (2.0, 2.0, -3.0),
                                    (1e300, 1e-300, 2.0), (1e-320, 1.0, 1.0)])
 def test_a_scale_is_the_transforms_product_to_the_bit_without_blas(scale, monkeypatch):

@@ -99,30 +99,6 @@ def _stl_ascii(data: bytes):
     return vertices.reshape(-1, 3)
 
 
-_LOADTXT_FROM = 4096  # [characters]: in shorter texts, loadtxt's set-up costs more than it saves
-_NOT_NUMBERS = b"0123456789.eE+- \t\n\r\x0b\x0c"  # what a plain list of numbers is made of
-_LINE_ENDS = str.maketrans("\r\n", "  ")
-
-
-def plain_floats(text: str):
-    """The numbers of ``text`` as float64, as ``np.fromstring(text, sep=" ")`` reads them, for
-    a long text of plain numbers (digits, sign, point, exponent) apart by white space; None for
-    any other text (short, empty, with ``nan``, ``inf`` or other characters, or a word that is
-    no number): the caller asks fromstring, which says how far it reads. numpy's ``loadtxt``
-    parses each word whole with the function fromstring parses it with (Python's
-    ``PyOS_string_to_double``), in half the time; on these characters both split words alike."""
-    if len(text) < _LOADTXT_FROM or not text.isascii() or \
-            text.encode("ascii").translate(None, _NOT_NUMBERS) or not text.strip():
-        return None
-    import numpy as np
-
-    try:
-        return np.loadtxt([text.translate(_LINE_ENDS)], dtype=np.float64, comments=None,
-                          ndmin=1).reshape(-1)
-    except ValueError:  # a word that is no number: fromstring says how far it reads
-        return None
-
-
 def _collada(data: bytes, max_triangles: int):
     """A COLLADA document's triangles as :func:`.collada.read_collada` reads them (trimesh's
     triangles, in the file's unit). None when it holds no triangles;
@@ -227,6 +203,8 @@ def _row_floats(chars, starts, ends):
     import warnings
 
     import numpy as np
+
+    from urdftool.description.collada import plain_floats
 
     text = _row_text(chars, starts, ends).decode("ascii")
     numbers = plain_floats(text)
