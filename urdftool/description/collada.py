@@ -232,9 +232,8 @@ class _Document:
 
     def __init__(self, root, max_triangles: int):
         self.ids = {}
-        for element in root.iter():
-            if isinstance(element.tag, str) and element.get("id") is not None:
-                self.ids.setdefault(element.get("id"), element)
+        for element in root.xpath("//*[@id]"):  # elements, in document order: the first wins
+            self.ids.setdefault(element.get("id"), element)
         self.max_triangles = max_triangles
         self.geometries = {}
         self.positions = {}
@@ -348,6 +347,8 @@ class _Document:
             raise ColladaProblem("too-large", f"a geometry has over {self.max_triangles} "
                                               "triangles")
         corners = corners.reshape(-1, stride)[:, offset]
+        if counts is not None and len(counts) and counts.min() == counts.max() == 3:
+            counts = None  # triangles only: each its own fan
         if counts is not None:  # fans: (first, j, j + 1) for each polygon of k >= 3 corners
             fans = np.maximum(counts - 2, 0)
             first = np.repeat(np.cumsum(counts) - counts, fans)
@@ -363,11 +364,13 @@ class _Document:
                            f"number {len(positions)}")
         used = np.zeros(len(positions), dtype=bool)
         used[corners] = True
-        renumber = np.cumsum(used) - 1
-        kept = positions[used].astype(np.float64)
+        if used.all():  # the common case: no renumbering
+            kept, corners = positions.astype(np.float64), np.array(corners, dtype=np.int64)
+        else:
+            kept, corners = positions[used].astype(np.float64), (np.cumsum(used) - 1)[corners]
         if not np.all(np.isfinite(kept)):
             raise _corrupt(f"<{kind}> (line {line}) uses a position that is not finite")
-        return kept, renumber[corners].reshape(-1, 3)
+        return kept, corners.reshape(-1, 3)
 
     def instances(self, scene) -> list:
         """[(world matrix (4, 4) float64, <geometry>)] of every geometry the scene places."""
