@@ -318,6 +318,8 @@ def test_obj_triangles_are_trimeshs(tmp_path, form):
     lambda t: t.replace("f 1 3 2", "f 1 3 99"),  # no such vertex
     lambda t: t.replace("f 1 3 2", "f 1//1 3 2"),  # mixed corner forms
     lambda t: t.replace("v 0 0 0", "v 0 0"),  # too few coordinates
+    lambda t: t.replace("s off", "v zero 0 0\ns off"),  # a word that is no number
+    lambda t: t.replace("f 1 3 2", "f 1 3 2\u00a0"),  # other white space than ASCII's
 ])
 def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
@@ -369,3 +371,42 @@ def test_merged_bounds_leave_to_merging_what_they_cannot_tell():
     assert mesh_arrays.merged_bounds(signed_zeros, signed_zeros) is None
     huge = np.array([[1e11, 0, 0], [0, 1, 0], [0, 0, 1]])
     assert mesh_arrays.merged_bounds(huge, huge) is None  # merge keys overflow there
+
+
+def test_obj_comments_and_names_may_hold_any_text(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}"))
+    named = tmp_path / "named.obj"
+    named.write_text("# caf\u00e9\n" + _obj_text("{v}").replace("o Cube", "o W\u00fcrfel"),
+                     encoding="utf-8")
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (named, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+def test_obj_lines_joined_by_a_backslash_and_crlf_are_read_as_trimesh_joins_them(tmp_path):
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}/{t}"))
+    joined = tmp_path / "joined.obj"
+    joined.write_bytes(_obj_text("{v}/{t}").replace("f 1/1 3/2", "f 1/1 \\\n3/2").replace(
+        "\n", "\r\n").encode() + b"\\")
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (joined, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+@pytest.mark.parametrize("scale", [(0.001, 0.001, 0.001), (-1.0, 1.0, 1.0), (2.0, 2.0, -3.0),
+                                   (1e300, 1e-300, 2.0), (1e-320, 1.0, 1.0)])
+def test_a_scale_is_the_transforms_product_to_the_bit_without_blas(scale, monkeypatch):
+    """Each coordinate times its factor, a zero of either sign +0.0 and an overflow inf, as
+    np.dot of the 4 x 4 transform makes them; no BLAS call (whose threads spin on after it)."""
+    rng = np.random.default_rng(7)
+    vertices = rng.normal(size=(40000, 3)) * 10.0 ** rng.uniform(-300, 300, size=(40000, 3))
+    vertices[::7], vertices[::11, 1] = 0.0, -0.0
+    faces = np.arange(len(vertices) - 1).reshape(-1, 3)
+    matrix = np.eye(4)
+    matrix[:3, :3] *= np.asarray(scale)
+    with np.errstate(all="ignore"):
+        expected = np.dot(matrix, np.column_stack((vertices, np.ones(len(vertices)))).T).T[:, :3]
+        monkeypatch.setattr(np, "dot", None)
+        moved, turned = mesh_arrays.scaled(vertices, faces, scale)
+    assert np.ascontiguousarray(moved).tobytes() == np.ascontiguousarray(expected).tobytes()
+    assert np.array_equal(turned, faces[:, ::-1] if np.prod(np.sign(scale)) < 0 else faces)

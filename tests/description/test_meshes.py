@@ -192,6 +192,55 @@ def test_a_mesh_is_read_once_per_run_across_links_rules_and_robots(tmp_path, mon
     assert [p.name for p in reads] == ["part.stl"]
 
 
+@pytest.mark.parametrize("name", ["part.stl", "part.obj", "part.dae"])
+def test_a_mesh_file_is_opened_once_when_measured(tmp_path, monkeypatch, name):
+    """Its size, archive and triangle limits are checked in the bytes read for its arrays."""
+    import builtins
+    import io
+    import os
+
+    import trimesh
+
+    from urdftool.description import meshes
+
+    trimesh.creation.box((0.1, 0.2, 0.3)).export(tmp_path / name)
+    robot = _robot(tmp_path, name)
+    resolve(robot, name)
+    opened = []
+    real_open, real_io_open, real_os_open = builtins.open, io.open, os.open
+    for module, attribute, real in ((builtins, "open", real_open), (io, "open", real_io_open),
+                                    (os, "open", real_os_open)):
+        monkeypatch.setattr(module, attribute, lambda file, *rest, real=real, **named: (
+            opened.append(os.fspath(file)) if isinstance(file, (str, os.PathLike)) else None)
+            or real(file, *rest, **named))
+    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
+    facts = meshes.mesh_facts(robot, name)
+    assert facts.faces == 12 and facts.is_watertight
+    assert [os.path.basename(path) for path in opened] == [name]
+
+
+@pytest.mark.parametrize("joined", [False, True])
+def test_a_plain_obj_over_the_triangle_limit_is_refused_with_its_count(tmp_path, joined):
+    """Counted exactly, also when backslashes join lines into more "f " rows than it shows."""
+    import trimesh
+
+    from urdftool.description import meshes
+
+    text = trimesh.exchange.obj.export_obj(trimesh.creation.box((0.1, 0.2, 0.3)))
+    if joined:
+        text = text.replace("\nf ", "\nf\\\n ")
+    (tmp_path / "m.obj").write_text(text)
+    meshes._RUN_CACHE.clear()
+    for limit, refused in ((11, True), (12, False)):
+        try:
+            meshes.mesh_facts(_robot(tmp_path, "m.obj"), "m.obj",
+                              limits=MeshLimits(max_triangles=limit))
+        except MeshProblem as error:
+            assert refused and error.kind == "too-large" and "has 12 triangles" in str(error)
+        else:
+            assert not refused
+
+
 def test_a_changed_mesh_is_read_again(tmp_path, monkeypatch):
     import os
 

@@ -179,3 +179,16 @@ def test_unturned_shapes_are_placed_as_the_rotation_would_place_them(tmp_path, x
         [[float(v).hex() for v in c] for c in _box(placed)]
     assert [[float(v).hex() for v in c] for c in _shape_corners(shape)] == \
         [[float(v).hex() for v in c] for c in placed]
+
+
+@pytest.mark.parametrize("rows", [1, 2, 1023, 1024, 1025, 2049, 5000])
+def test_rows_times_is_the_whole_product_to_the_bit(rows):
+    """The hull floor's projections, computed in blocks small enough for one BLAS thread."""
+    import numpy as np
+
+    from urdftool.physics.solids import _rows_times
+
+    rng = np.random.default_rng(rows)
+    points = rng.normal(size=(rows, 3)) * 10.0 ** rng.uniform(-6, 6, size=(rows, 1))
+    matrix = rng.normal(size=(70, 3)).T
+    assert _rows_times(points, matrix).tobytes() == (points @ matrix).tobytes()

@@ -473,11 +473,12 @@ def _ply_triangles(handle) -> int | None:
     return total
 
 
-def triangle_count(path: Path) -> int | None:
+def triangle_count(path: Path, data: bytes | None = None) -> int | None:
     """The triangle count read without building the mesh, or None when unknown.
 
     From the header where the format has one (binary STL, PLY, OFF), else counted over the
     file in chunks (OBJ faces, ASCII STL vertices), in memory bounded by the chunk size.
+    ``data``: the file's bytes, when read (STL, OBJ, PLY, OFF: counted in them).
     """
     suffix = path.suffix.lower()
     if suffix == ".dae":
@@ -488,12 +489,12 @@ def triangle_count(path: Path) -> int | None:
         except (OSError, struct.error):
             return None
     try:
-        with open(path, "rb") as handle:
+        with (open(path, "rb") if data is None else io.BytesIO(data)) as handle:
             if suffix == ".stl":
                 head = handle.read(84)
                 if len(head) == 84 and not head.lstrip().lower().startswith(b"solid"):
                     return struct.unpack("<I", head[80:84])[0]
-                size = os.path.getsize(path)
+                size = os.path.getsize(path) if data is None else len(data)
                 if len(head) == 84:
                     count = struct.unpack("<I", head[80:84])[0]
                     if 84 + 50 * count == size:  # binary STL whose header starts with "solid"
@@ -520,19 +521,22 @@ def triangle_count(path: Path) -> int | None:
     return None
 
 
-def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True) -> None:
+def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True,
+                data: bytes | None = None) -> None:
     """Every limit, checked before trimesh reads a byte: size, archive, triangles (unless
-    ``count`` is false: the reader counts them before it builds them)."""
-    size = path.stat().st_size
+    ``count`` is false: the reader counts them before it builds them). ``data``: the file's
+    bytes, when read (under the size limit): checked in them, the file is not opened again."""
+    size = path.stat().st_size if data is None else len(data)
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
                                        f"{limits.max_bytes}; not opened")
-    if path.suffix.lower() == ".dae" and zipfile.is_zipfile(path):
+    if path.suffix.lower() == ".dae" and \
+            zipfile.is_zipfile(path if data is None else io.BytesIO(data)):
         # pycollada inflates a zipped .dae (ZAE) whole, whatever its name says
         raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
                                     "document; urdftool does not inflate archives: store "
                                     "the .dae uncompressed")
-    triangles = triangle_count(path) if count else None
+    triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         _refuse_too_many(uri, triangles, limits)
 
@@ -689,12 +693,15 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
         arrays, metadata, unit = None, {}, 1.0
         suffix = path.suffix.lower()
         if suffix in (".stl", ".dae", ".obj"):
-            # a COLLADA file's triangles are counted as they are read, before they are built
-            _check_size(path, uri, limits, count=suffix != ".dae")
-            try:
+            try:  # read once: the limits are checked in these bytes
                 data = read_regular(path, limits.max_bytes)
-            except OSError:  # trimesh reads it and says what is wrong
+            except OSError:  # trimesh reads it and says what is wrong (or the size is)
                 data = None
+            # a COLLADA file's triangles are counted as they are read, before they are built;
+            # an OBJ's only when its "f " may make too many (a plain one has one a row;
+            # the arrays read are counted below, any other is counted before trimesh reads it)
+            _check_size(path, uri, limits, data=data, count=suffix == ".stl" or (
+                suffix == ".obj" and (data is None or data.count(b"f ") > limits.max_triangles)))
             if suffix == ".dae" and data is not None:
                 arrays, metadata = _collada_arrays(path, uri, data, limits)
                 unit = collada_unit(path, data)
