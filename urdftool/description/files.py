@@ -37,8 +37,11 @@ def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes:
     with open(descriptor, "rb") as handle:
         if not stat.S_ISREG(os.fstat(descriptor).st_mode):
             raise OSError(21, "not a regular file", str(name))
-        data = handle.read(limit + 1)
-    if len(data) > limit:  # grew since the stat
+        # the size it has (a read of limit + 1 bytes allocates that much first), then any more
+        data = handle.read(info.st_size + 1)
+        if len(data) > info.st_size:  # grew since the stat
+            data += handle.read(limit + 1 - len(data))
+    if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name))
     return data
 
@@ -54,8 +57,21 @@ def inside(path, folder) -> bool:
     return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
 
 
-# os.path.realpath, answered once per run (see :mod:`.run_memo`)
-real_path = per_run(os.path.realpath)
+@per_run
+def real_path(path: str) -> str:
+    """``os.path.realpath(path)``, answered once per run (see :mod:`.run_memo`). A file that
+    is not a link is its folder's real path (itself answered once per run) and its name: the
+    meshes of a package share a few folders, and realpath would walk every component of each
+    (2,500 ``lstat`` calls for the corpus's 347 meshes, where 350 do)."""
+    folder, name = os.path.split(path)
+    if not folder or name in ("", ".", ".."):
+        return os.path.realpath(path)
+    try:
+        if stat.S_ISLNK(os.lstat(path).st_mode):
+            return os.path.realpath(path)
+    except OSError:  # missing, or not reachable: realpath's own answer
+        return os.path.realpath(path)
+    return os.path.join(real_path(folder), name)
 
 
 def check_output(path) -> None:
