@@ -88,7 +88,7 @@ def check(
                                    help="Keep results here between runs [default: "
                                         ".urdftool_cache; none when CI is set]."),
 ) -> None:
-    from urdftool.budget import Budget
+    from urdftool.budget import Budget, one_blas_thread
     from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.cache import default_folder
     from urdftool.lint.runner import check_paths
@@ -120,6 +120,7 @@ def check(
             max_memory=max_memory, timeout=timeout, jobs=jobs or None,
             use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
             cache_dir=None if no_cache else cache_dir or default_folder())
+        one_blas_thread()  # files checked in this process too (--jobs 1 without budgets)
         run = check_paths(paths, request)
         if fix or diff:
             run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
