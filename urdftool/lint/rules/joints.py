@@ -228,11 +228,12 @@ def non_finite_number(robot):
                             f"\"{element.get(attribute)}\"> is not finite")
 
 
-def _mimics(robot):
-    for joint in robot.children("joint"):
-        mimic = robot.child(joint, "mimic")
-        if mimic is not None:
-            yield joint, mimic, mimic.get("joint")
+def _mimics(robot) -> list:
+    """(joint, its first ``<mimic>``, the joint it names) of every mimic joint; once per robot
+    (four rules ask, and most joints mimic none)."""
+    return robot.memo(_mimics, lambda: [
+        (joint, mimic, mimic.get("joint")) for joint in robot.children("joint")
+        if (mimic := robot.child(joint, "mimic")) is not None])
 
 
 @rule("U209", "mimic-unknown-joint", Severity.ERROR)
