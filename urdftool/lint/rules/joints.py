@@ -336,12 +336,12 @@ def repeated_joint_element(robot):
     Good: one ``<origin>``
     """
     for joint in robot.children("joint"):
-        written = robot.grouped(joint)
-        for tag in SINGLE_CHILDREN:
-            repeats = written.get(tag, ())
-            for extra in repeats[1:]:
-                yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
-                              f"only the first (at {robot.locate(repeats[0])}) is used")
+        for tag, repeats in robot.grouped(joint).items():
+            if len(repeats) > 1 and tag in SINGLE_CHILDREN:
+                for extra in repeats[1:]:
+                    yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> "
+                                  f"elements; only the first (at {robot.locate(repeats[0])}) "
+                                  "is used")
 
 
 @rule("U215", "zero-range", Severity.WARNING)
