@@ -52,3 +52,18 @@ def test_too_deep_a_plain_document_is_refused_where_expat_says():
         parse(document)
     assert refused.value.kind == "syntax" and "deeper than" in refused.value.message
     assert refused.value.line == 2
+
+
+def test_a_too_deep_plain_document_is_refused_whether_or_not_lxml_builds_it(monkeypatch):
+    from lxml import etree
+
+    from urdftool.description import xml
+
+    document = b"<robot>\n" + b"<a>" * xml.MAX_DEPTH + b"</a>" * xml.MAX_DEPTH + b"\n</robot>"
+    if not xml._lxml_builds_too_deep():  # what parse counts on to skip the search
+        root = etree.fromstring(document, etree.XMLParser(**xml._LXML_PARSER_OPTIONS))
+        assert sum(1 for _ in root.iter()) < len(xml._plain_start_tags(document))
+    for builds in {True, xml._lxml_builds_too_deep()}:  # searched, and as this lxml parses
+        monkeypatch.setattr(xml, "_lxml_builds_too_deep", lambda: builds)
+        with pytest.raises(xml.XmlProblem, match="deeper than"):
+            xml.parse(document)

@@ -130,3 +130,57 @@ def test_a_check_collects_garbage_less_often_and_restores_the_threshold(monkeypa
     check_file(str(robot), CheckOptions())
     assert seen[0][0] >= 100_000 and seen[0][1:] == before[1:]
     assert gc.get_threshold() == before
+
+
+def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(monkeypatch, tmp_path):
+    import gc
+    import weakref
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    seen, left = [], []
+    real = engine.check_robot
+
+    def rules(*args):
+        seen.append(gc.isenabled())
+        left.append(weakref.ref(_Cycle()))  # garbage only the cyclic collector frees
+        return real(*args)
+
+    monkeypatch.setattr(engine, "check_robot", rules)
+    check_file(str(robot), CheckOptions())
+    assert seen == [False]  # paused while the rules ran
+    assert gc.isenabled() and gc.get_freeze_count() == 0
+    gc.collect()
+    assert left[0]() is None  # what the rules left is still collected
+
+
+def test_a_callers_frozen_objects_stay_frozen(tmp_path):
+    import gc
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        check_file(str(robot), CheckOptions())
+        assert gc.get_freeze_count() == frozen
+    finally:
+        gc.unfreeze()
+
+
+def test_a_full_collection_runs_once_enough_objects_went_unexamined(monkeypatch, tmp_path):
+    import gc
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    full = []
+    real = gc.collect
+    monkeypatch.setattr(gc, "collect", lambda *a: full.append(a) or real(*a))
+    monkeypatch.setitem(engine._PROMOTED, "objects", engine.FULL_COLLECTION_AFTER + 1)
+    check_file(str(robot), CheckOptions())
+    assert full == [()] and engine._PROMOTED["objects"] < engine.FULL_COLLECTION_AFTER
+
+
+class _Cycle:
+    def __init__(self):
+        self.me = self

@@ -58,3 +58,15 @@ def test_revolute_range_in_degrees(tmp_path, kind, lower, upper, reported):
     assert bool(found) == reported, [f.message for f in findings]
     if reported:
         assert "degrees written as radians" in findings[0].message
+
+
+def test_the_mimic_joints_are_read_once_per_robot(tmp_path):
+    from urdftool.description.load import load
+    from urdftool.lint.rules.joints import _mimics
+
+    path = tmp_path / "r.urdf"
+    path.write_text(MIMIC.format(driver_type="revolute", lower=0, upper=1, mimic=""))
+    robot = load(str(path))
+    found = _mimics(robot)
+    assert [(joint.get("name"), target) for joint, _, target in found] == [("follower", "driver")]
+    assert _mimics(robot) is found  # the four mimic rules share one reading

@@ -228,11 +228,12 @@ def non_finite_number(robot):
                             f"\"{element.get(attribute)}\"> is not finite")
 
 
-def _mimics(robot):
-    for joint in robot.children("joint"):
-        mimic = robot.child(joint, "mimic")
-        if mimic is not None:
-            yield joint, mimic, mimic.get("joint")
+def _mimics(robot) -> list:
+    """(joint, its first ``<mimic>``, the joint it names) of every mimic joint; once per robot
+    (four rules ask, and most joints mimic none)."""
+    return robot.memo(_mimics, lambda: [
+        (joint, mimic, mimic.get("joint")) for joint in robot.children("joint")
+        if (mimic := robot.child(joint, "mimic")) is not None])
 
 
 @rule("U209", "mimic-unknown-joint", Severity.ERROR)
@@ -335,12 +336,12 @@ def repeated_joint_element(robot):
     Good: one ``<origin>``
     """
     for joint in robot.children("joint"):
-        written = robot.grouped(joint)
-        for tag in SINGLE_CHILDREN:
-            repeats = written.get(tag, ())
-            for extra in repeats[1:]:
-                yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> elements; "
-                              f"only the first (at {robot.locate(repeats[0])}) is used")
+        for tag, repeats in robot.grouped(joint).items():
+            if len(repeats) > 1 and tag in SINGLE_CHILDREN:
+                for extra in repeats[1:]:
+                    yield extra, (f"joint '{_name(joint)}' has {len(repeats)} <{tag}> "
+                                  f"elements; only the first (at {robot.locate(repeats[0])}) "
+                                  "is used")
 
 
 @rule("U215", "zero-range", Severity.WARNING)
