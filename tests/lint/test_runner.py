@@ -200,3 +200,12 @@ def test_run_exit_code_is_strict_per_file():
     assert Run([warning, clean], strict=[True, False]).exit_code == 1
     assert Run([clean, error], strict=[False, False]).exit_code == 1
     assert Run([]).exit_code == 0
+
+
+def test_one_call_without_a_budget_runs_in_this_process():
+    import os
+
+    unlimited = Budget(None, None)
+    assert run_budgeted(1, lambda _: os.getpid(), unlimited, None, jobs=2) == [os.getpid()]
+    # two calls on two jobs are spread over workers
+    assert os.getpid() not in run_budgeted(2, lambda _: os.getpid(), unlimited, None, jobs=2)

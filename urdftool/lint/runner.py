@@ -58,10 +58,10 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> li
     """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
     forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
 
-    Without a budget, with one job (or where processes cannot fork) the work is done in this
-    process, and only a MemoryError becomes a Stop.
+    Without a budget, with one job or one call (or where processes cannot fork) the work is
+    done in this process, and only a MemoryError becomes a Stop.
     """
-    if budget.unlimited and jobs == 1 or count == 0 or not hasattr(os, "fork"):
+    if budget.unlimited and min(jobs, count) == 1 or count == 0 or not hasattr(os, "fork"):
         return [_here(index, work, budget, stopped) for index in range(count)]
     results: list = [None] * count
     _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
