@@ -78,3 +78,18 @@ def test_real_path_is_realpaths_answer_within_a_run_and_without(tmp_path, monkey
     with one_run():
         assert [files.real_path(name) for name in names] == expected
         assert [files.real_path(name) for name in reversed(names)] == expected[::-1]
+
+
+def test_reads_are_noted_only_inside_a_block_the_last_read_of_each(tmp_path):
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(b"one")
+    files.read_regular(path)
+    assert files.noted_reads() == {}
+    with files.noting_reads(len) as notes:
+        files.read_regular(path)
+        assert notes == {str(path): 3}
+        path.write_bytes(b"three")
+        with files.noting_reads(bytes.upper) as inner:  # shares the outer block's notes
+            files.read_regular(tmp_path / "." / "robot.urdf")
+        assert inner is notes and files.noted_reads() is notes and notes == {str(path): 5}
+    assert files.noted_reads() == {}

@@ -307,18 +307,29 @@ def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
     assert cache.get_output(["check"]) == ("x" * 200, "", 0)
 
 
-def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeypatch):
-    # an editor saves the macro file while the check runs: the findings come from the old
-    # content, the file's stamps and content are the new ones
+@pytest.mark.parametrize("saved", ["macro", "mesh", "companion"])
+def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeypatch, saved):
+    # an editor saves a file while the check runs: the findings come from the old content, the
+    # file's stamps and content are the new ones
     real = engine.check_file
+
+    def save():
+        if saved == "macro":
+            (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
+        elif saved == "mesh":
+            _write_mesh(robot / "part.stl", 80.0)  # 80 m: an implausible size
+        else:
+            (robot / "config" / "controllers.yaml").write_text(CONTROLLERS.format(joint="wrist"))
 
     def saved_meanwhile(path, *rest, **kw):
         result = real(path, *rest, **kw)
-        (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
+        save()
         return result
 
     monkeypatch.setattr(engine, "check_file", saved_meanwhile)
     cache_dir = tmp_path / "cache"
-    assert any("-1 kg" in message for _, message in _messages(robot, cache_dir))
+    before = _messages(robot, cache_dir)
     monkeypatch.setattr(engine, "check_file", real)
-    assert any("-2 kg" in message for _, message in _messages(robot, cache_dir))
+    after = _messages(robot, cache_dir)
+    assert after != before
+    assert after == _messages(robot, tmp_path / "another-cache")  # as checked afresh

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import os
 import stat
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from urdftool.description.run_memo import per_run
@@ -22,6 +24,33 @@ DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
 
 class TooLarge(OSError):
     """A file over the size limit (not read)."""
+
+
+# (digest function, {absolute path: digest of the bytes last read}) while noting_reads runs
+_NOTES: ContextVar[tuple | None] = ContextVar("urdftool_read_notes", default=None)
+
+
+@contextmanager
+def noting_reads(digest):
+    """Note ``digest(data)`` of every file :func:`read_regular` reads while the block runs, by
+    absolute path (the last read of each), in the dict it yields; a nested block shares the
+    outer one's notes. The result cache compares them with the files when it keeps a result:
+    a file that changed after it was read is not kept."""
+    if (outer := _NOTES.get()) is not None:
+        yield outer[1]
+        return
+    notes: dict[str, str] = {}
+    token = _NOTES.set((digest, notes))
+    try:
+        yield notes
+    finally:
+        _NOTES.reset(token)
+
+
+def noted_reads() -> dict[str, str]:
+    """The notes of the :func:`noting_reads` block running, or an empty dict."""
+    found = _NOTES.get()
+    return found[1] if found is not None else {}
 
 
 def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes:
@@ -43,6 +72,8 @@ def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes:
             data += handle.read(limit + 1 - len(data))
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name))
+    if (noting := _NOTES.get()) is not None:
+        noting[1][os.path.abspath(name)] = noting[0](data)
     return data
 
 

@@ -19,7 +19,9 @@ each with a hash of its content, and is a hit only when every one is unchanged:
 Files are compared by their stamp (device, inode, size, modification and change times, as
 git's index does) and, when it differs, by their content. A stamp taken less than 2 s after
 the file changed is not trusted (file times tick coarsely: a file written again within the same
-tick would keep them): the next run compares its content.
+tick would keep them): the next run compares its content. Every file read while a run checks
+is noted with a hash of the bytes read, and a result whose dependencies differ from what was
+read of them when it is kept (an editor saved one while it was checked) is not kept.
 
 A file that failed to load is not kept (it fails fast anyway), nor a result with a crash, a
 budget stop or stdin.
@@ -62,7 +64,8 @@ import sys
 import time
 from pathlib import Path
 
-from urdftool.description.files import TooLarge, read_regular, write_file
+from urdftool.description.files import TooLarge, noted_reads, noting_reads, read_regular, \
+    write_file
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
 from urdftool.errors import UsageError
 
@@ -251,6 +254,12 @@ class Cache:
             pass
         return False
 
+    def noting_reads(self):
+        """A block in which every file read is noted with the digest of its bytes: a result
+        kept (:meth:`put`) while a file it depends on differs from what was read of it (an
+        editor saved it while it was checked) is not kept."""
+        return noting_reads(_digest)
+
     def _dependencies(self, path: str, options) -> _Dependencies:
         return _Dependencies(path, options, self._resolvers)
 
@@ -392,6 +401,14 @@ class _Dependencies:
         """resolvers: package resolvers by (folder, packages), shared by every file of a run"""
         self.path, self.options = path, options
         self._resolvers = resolvers
+        self.changed = False  # a file hashed differs from what the run read of it
+
+    def _hash(self, path: str) -> str | None:
+        read = noted_reads().get(os.path.abspath(path))  # before reading it again notes it anew
+        now = _hash_file(path)
+        if read is not None and read != now:
+            self.changed = True
+        return now
 
     def _resolved(self, uri: str) -> tuple[str | None, str]:
         from urdftool.description.packages import PackageResolver
@@ -409,20 +426,20 @@ class _Dependencies:
 
     def full(self, kind: str, name: str) -> str | None:
         if kind == "file":
-            return _hash_file(name)
+            return self._hash(name)
         if kind == "folder":
-            return _listing(name, _hash_file)
+            return _listing(name, self._hash)
         if kind == "mesh":
             resolved, problem = self._resolved(name.split("\0")[0])
-            return f"{resolved}:{_hash_file(resolved)}" if resolved else problem
+            return f"{resolved}:{self._hash(resolved)}" if resolved else problem
         if kind == "environment":
             return _environment()
         raise ValueError(kind)
 
     def of(self, robot) -> list[list] | None:
         """[kind, name, quick, full] of everything ``robot``'s result was built from; None
-        when a file it read has changed since (during the check: the stamps and content now
-        would describe a file the findings did not come from)."""
+        when a file read during the run has changed since (see :meth:`Cache.noting_reads`):
+        the stamps and content now would describe a file the findings did not come from."""
         entries = []
         files = [os.path.abspath(self.path),
                  *(os.path.abspath(f) for f in robot.files if f != "-"),
@@ -434,14 +451,10 @@ class _Dependencies:
         entries += [("mesh", f"{uri}\0{self._resolved(uri)[0] or ''}") for uri in sorted(uris)]
         if any(b"$(env" in data or b"$(optenv" in data for data in robot.sources.values()):
             entries.append(("environment", ""))
+        self.changed = False
         depends = [[kind, name, _quick(kind, name), self.full(kind, name)]
                    for kind, name in entries]
-        read = {os.path.abspath(name): data for name, data in robot.sources.items()
-                if name != "-"}
-        if any(kind == "file" and name in read and full != _digest(read[name])
-               for kind, name, _, full in depends):
-            return None
-        return depends
+        return None if self.changed else depends
 
 
 def _record(finding: Finding) -> dict:

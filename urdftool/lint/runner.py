@@ -24,6 +24,7 @@ import sys
 import time
 import traceback
 from collections.abc import Mapping
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 
 from urdftool import budget as budgets
@@ -91,7 +92,9 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
         again (looked up here, before any worker starts), the others' results are kept in it;
         standard input is never cached
     """
-    with one_run():  # one view of the file system for the files (the workers inherit it)
+    # one view of the file system for the files (the workers inherit it); with a cache, what
+    # was read of each file is noted, so that a file changed while it was checked is not kept
+    with one_run(), cache.noting_reads() if cache else nullcontext():
         return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache)
 
 
