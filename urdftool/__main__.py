@@ -26,10 +26,10 @@ def _replay(words: list[str]) -> None:
     The cache folder is read off the words without parsing them as the command does: where
     that reading is wrong, it looks in a folder the command never kept these words in (each
     entry is keyed by the words), and the command runs."""
-    from urdftool.lint.cache import Cache, default_folder
-
     if "--no-cache" in words:
         return
+    from urdftool.lint.cache import Cache, default_folder
+
     folder = default_folder()
     for word, after in zip(words, [*words[1:], None]):
         if word == "--cache-dir" and after is not None:

@@ -269,11 +269,12 @@ def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, 
     assert run.depends and _kept_run(robot, cache_dir).depends == run.depends  # as served
     words = ["check", str(robot / "bot.urdf.xacro")]
     cache = cache_module.Cache(cache_dir)
-    cache.put_output(words, run.depends, "the report\n", "a note\n", 1)
+    cache.put_output(words, dict(os.environ), run.depends, "the report\n", "a note\n", 1)
     assert cache.get_output(words) == ("the report\n", "a note\n", 1)
     assert cache.get_output([*words, "--strict"]) is None  # other words
     monkeypatch.setenv("SOME_VARIABLE", "set")
     assert cache.get_output(words) is None  # another environment
+    assert cache.get_output(words, {**os.environ, "SOME_VARIABLE": "other"}) is None
     monkeypatch.delenv("SOME_VARIABLE")
     (robot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
     assert cache.get_output(words) is None
@@ -283,7 +284,7 @@ def test_a_run_with_a_racy_stamp_keeps_no_servable_output(robot, tmp_path):
     cache_dir = tmp_path / "cache"
     run = _kept_run(robot, cache_dir)  # files written just now: their stamps are not trusted
     cache = cache_module.Cache(cache_dir)
-    cache.put_output(["check"], run.depends, "", "", 0)
+    cache.put_output(["check"], os.environ, run.depends, "", "", 0)
     assert cache.get_output(["check"]) is None
 
 
@@ -294,16 +295,16 @@ def test_a_malformed_output_entry_is_a_miss(tmp_path, change):
     cache = cache_module.Cache(tmp_path / "cache")
     body = {"schema": cache_module.SCHEMA, "depends": [], "stdout": "", "stderr": "", "code": 0,
             **change}
-    cache._keep(cache._output_path(["check"]), json.dumps(body))
+    cache._keep(cache._output_path(["check"], os.environ), json.dumps(body))
     assert cache.get_output(["check"]) is None
 
 
 def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
     monkeypatch.setattr(cache_module, "MAX_ENTRY_BYTES", 1000)
     cache = cache_module.Cache(tmp_path / "cache")
-    cache.put_output(["check"], [], "x" * 2000, "", 0)
+    cache.put_output(["check"], os.environ, [], "x" * 2000, "", 0)
     assert cache.get_output(["check"]) is None
-    cache.put_output(["check"], [], "x" * 200, "", 0)
+    cache.put_output(["check"], os.environ, [], "x" * 200, "", 0)
     assert cache.get_output(["check"]) == ("x" * 200, "", 0)
 
 

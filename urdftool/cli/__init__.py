@@ -9,6 +9,7 @@ libraries are imported inside the command that needs them, so start-up stays fas
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 
 import typer
@@ -104,13 +105,14 @@ def _root(version: bool = typer.Option(False, "--version", "-V", callback=_versi
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
 
 
-COMMAND_LINE: list[str] | None = None  # the words the program runs (check keeps its output)
+# the words and the environment the program started with: check keeps its output under them
+COMMAND_LINE: tuple[list[str], dict[str, str]] | None = None
 
 
 def main() -> None:
     """The ``urdftool`` program, on the words of ``sys.argv``."""
     global COMMAND_LINE
-    COMMAND_LINE = sys.argv[1:]
+    COMMAND_LINE = sys.argv[1:], dict(os.environ)
     app(prog_name="urdftool")
 
 

@@ -90,7 +90,6 @@ def check(
 ) -> None:
     from urdftool.budget import Budget, one_blas_thread
     from urdftool.errors import SettingsError, TargetError, UnknownName
-    from urdftool.lint.cache import default_folder
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
     from urdftool.report import FORMATS, printable, render
@@ -119,7 +118,7 @@ def check(
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None,
             use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
-            cache_dir=None if no_cache else cache_dir or default_folder())
+            cache_dir=None if no_cache else cache_dir or _default_cache())
         one_blas_thread()  # files checked in this process too (--jobs 1 without budgets)
         run = check_paths(paths, request)
         if fix or diff:
@@ -159,6 +158,12 @@ def check(
     raise typer.Exit(code)
 
 
+def _default_cache():
+    from urdftool.lint.cache import default_folder  # not imported by a run without the cache
+
+    return default_folder()
+
+
 def _keeps_output(request, run) -> bool:
     """Whether this run's output is kept for ``urdftool check`` run again with the same words
     (see ``urdftool/__main__.py``): a run the result cache kept whole, started as the program
@@ -174,7 +179,8 @@ def _keep_output(request, run, stdout: str, stderr: str, code: int) -> None:
     from urdftool.cli import COMMAND_LINE
     from urdftool.lint.cache import Cache
 
-    Cache(request.cache_dir).put_output(COMMAND_LINE, run.depends, stdout, stderr, code)
+    words, environment = COMMAND_LINE  # before check set any variable (one_blas_thread)
+    Cache(request.cache_dir).put_output(words, environment, run.depends, stdout, stderr, code)
 
 
 def _apply_fixes(run, diff: bool, unsafe: bool, recheck):

@@ -135,9 +135,9 @@ class Cache:
 
     def get_run(self, paths: list[str], request) -> tuple[list, list[bool], list] | None:
         """The results (FileResult), their strictness and the stamps they depend on (for
-        :meth:`put_output`) kept for checking ``paths`` with ``request``, or None. A run is kept only when each path was checked as itself (no
-        folder, macro library or companion named), and is a hit only while every stamp it lists
-        is the same: the quick state of what each file's result was built from, and the
+        :meth:`put_output`) kept for checking ``paths`` with ``request``, or None. A run is
+        kept only when each path was checked as itself (no folder, macro library or companion
+        named), and is a hit only while every stamp it lists is the same: the quick state of what each file's result was built from, and the
         settings files, package manifests and repository markers above each path (present or
         not). Any difference is a miss, and the files are looked up one by one."""
         if "-" in paths or (content := self._content(self._run_path(paths, request))) is None:
@@ -196,11 +196,12 @@ class Cache:
 
     # -- a command's output ----------------------------------------------------------------
 
-    def get_output(self, command_line: list[str]) -> tuple[str, str, int] | None:
-        """(standard output, standard error, exit code) of ``command_line`` as
-        :meth:`put_output` kept them, while every stamp its run depended on is the same;
-        else None."""
-        content = self._content(self._output_path(command_line))
+    def get_output(self, command_line: list[str], environment=os.environ
+                   ) -> tuple[str, str, int] | None:
+        """(standard output, standard error, exit code) of ``command_line`` started in
+        ``environment``, as :meth:`put_output` kept them, while every stamp its run depended
+        on is the same; else None."""
+        content = self._content(self._output_path(command_line, environment))
         if content is None:
             return None
         try:
@@ -212,20 +213,21 @@ class Cache:
             return None
         return stdout, stderr, code
 
-    def put_output(self, command_line: list[str], depends: list, stdout: str, stderr: str,
-                   code: int) -> None:
-        """Keep what ``command_line`` printed and its exit code, for a run kept whole whose
-        stamps are ``depends`` (from :meth:`get_run` or :meth:`put_run`)."""
+    def put_output(self, command_line: list[str], environment, depends: list, stdout: str,
+                   stderr: str, code: int) -> None:
+        """Keep what ``command_line`` started in ``environment`` printed and its exit code,
+        for a run kept whole whose stamps are ``depends`` (from :meth:`get_run` or
+        :meth:`put_run`)."""
         body = json.dumps({"schema": SCHEMA, "depends": depends, "stdout": stdout,
                            "stderr": stderr, "code": code})
         if len(body) < MAX_ENTRY_BYTES - 100:  # the signature and line break fit too
-            self._keep(self._output_path(command_line), body)
+            self._keep(self._output_path(command_line, environment), body)
 
-    def _output_path(self, command_line: list[str]) -> Path:
+    def _output_path(self, command_line: list[str], environment) -> Path:
         """Where a command line's output is kept: keyed by its words as given, the whole
         environment (formats, colours, encodings and defaults follow variables), the Python
         and which standard streams are terminals."""
-        return self._keyed("output", list(command_line), _environment(), sys.version,
+        return self._keyed("output", list(command_line), _environment(environment), sys.version,
                            [os.isatty(fd) for fd in (0, 1, 2)], suffix="-output")
 
     # -- writing ---------------------------------------------------------------------------
@@ -389,8 +391,8 @@ def _quick(kind: str, name: str) -> str | None:
     raise ValueError(kind)
 
 
-def _environment() -> str:
-    return hashlib.sha256(json.dumps(sorted(os.environ.items())).encode()).hexdigest()
+def _environment(environment=os.environ) -> str:
+    return hashlib.sha256(json.dumps(sorted(environment.items())).encode()).hexdigest()
 
 
 class _Dependencies:
