@@ -137,9 +137,10 @@ class Cache:
         """The results (FileResult), their strictness and the stamps they depend on (for
         :meth:`put_output`) kept for checking ``paths`` with ``request``, or None. A run is
         kept only when each path was checked as itself (no folder, macro library or companion
-        named), and is a hit only while every stamp it lists is the same: the quick state of what each file's result was built from, and the
-        settings files, package manifests and repository markers above each path (present or
-        not). Any difference is a miss, and the files are looked up one by one."""
+        named), and is a hit only while every stamp it lists is the same: the quick state of
+        what each file's result was built from, and the settings files, package manifests and
+        repository markers above each path (present or not). Any difference is a miss, and the
+        files are looked up one by one."""
         if "-" in paths or (content := self._content(self._run_path(paths, request))) is None:
             return None
         from urdftool.lint.options import FileResult
