@@ -21,7 +21,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import first_child
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import number_tuple
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 from urdftool.physics import solids
@@ -146,7 +146,7 @@ def malformed_inertial(robot):
             elif mass.get("value") is None:
                 yield mass, f"{prefix} <mass> has no value attribute"
             else:
-                values, problem = parse_numbers(mass.get("value"), 1)
+                values, problem = number_tuple(mass.get("value"), 1)
                 if problem or not math.isfinite(values[0]):
                     yield mass, f"{prefix} mass '{mass.get('value')}' is not a finite number"
             inertia = first_child(inertial, "inertia")
@@ -162,7 +162,7 @@ def malformed_inertial(robot):
             for attribute, text in zip(INERTIA_ATTRIBUTES, texts):
                 if text is None:
                     continue
-                values, problem = parse_numbers(text, 1)
+                values, problem = number_tuple(text, 1)
                 if problem or not math.isfinite(values[0]):
                     yield inertia, f"{prefix} {attribute}='{text}' is not a finite number"
 
