@@ -15,8 +15,7 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
-from urdftool.description.urdf import SHAPES
-from urdftool.description.values import finite, origin, parse_numbers
+from urdftool.description.values import finite, number_tuple, origin
 from urdftool.description.xml import first_child
 
 
@@ -25,7 +24,7 @@ HULL_USED = "its convex hull was used"  # the problem of an open mesh that still
 
 @dataclass
 class Shape:
-    """One geometry: ``kind`` in SHAPES, ``params`` (size / radius, length / filename, scale),
+    """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size / radius, length / filename, scale),
     placed by ``xyz`` and ``rotation`` in the link frame; ``element`` is the geometry child."""
 
     kind: str
@@ -122,26 +121,32 @@ def shape_of(holder) -> Shape | None:
             break
     else:
         return None
-    if kind not in SHAPES:
+    # the parsed tuples as they are (number_tuple: no list copy), judged before the placement
+    if kind == "box":
+        size = number_tuple(element.get("size"), 3)[0]
+        if not _positive(size):
+            return None
+        params = {"size": size}
+    elif kind == "cylinder":
+        radius = number_tuple(element.get("radius"), 1)[0]
+        length = number_tuple(element.get("length"), 1)[0]
+        if not (_positive(radius) and _positive(length)):
+            return None
+        params = {"radius": radius[0], "length": length[0]}
+    elif kind == "sphere":
+        radius = number_tuple(element.get("radius"), 1)[0]
+        if not _positive(radius):
+            return None
+        params = {"radius": radius[0]}
+    elif kind == "mesh":
+        scale = number_tuple(element.get("scale", "1 1 1"), 3)[0]
+        filename = element.get("filename")
+        if not (filename and scale and finite(scale)):
+            return None
+        params = {"filename": filename, "scale": scale}
+    else:
         return None
     xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    if kind == "box":
-        size = parse_numbers(element.get("size"), 3)[0]
-        params = {"size": size} if _positive(size) else None
-    elif kind == "cylinder":
-        radius = parse_numbers(element.get("radius"), 1)[0]
-        length = parse_numbers(element.get("length"), 1)[0]
-        params = {"radius": radius[0], "length": length[0]} \
-            if _positive(radius) and _positive(length) else None
-    elif kind == "sphere":
-        radius = parse_numbers(element.get("radius"), 1)[0]
-        params = {"radius": radius[0]} if _positive(radius) else None
-    else:
-        scale = parse_numbers(element.get("scale", "1 1 1"), 3)[0]
-        params = {"filename": element.get("filename"), "scale": tuple(scale)} \
-            if element.get("filename") and scale and finite(scale) else None
-    if params is None:
-        return None
     return Shape(kind, params, xyz, rotation, element)
 
 
@@ -153,16 +158,19 @@ def shapes(robot, link, tag: str) -> list[Shape]:
 
 def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
     """tag -> (well-formed shapes, number of elements) for a link's visual and collision."""
-    def build():
-        found = {"visual": [], "collision": []}
-        counts = dict.fromkeys(found, 0)
-        for holder in link:
-            if holder.tag in found:
-                counts[holder.tag] += 1
+    def build():  # from the link's children grouped by tag (each in document order), which
+        # the rules group anyway, instead of a second walk of lxml's
+        grouped = robot.grouped(link)
+        found = {}
+        for tag in ("visual", "collision"):
+            holders = grouped.get(tag, ())
+            kept = []
+            for holder in holders:
                 shape = shape_of(holder)
                 if shape is not None:
-                    found[holder.tag].append(shape)
-        return {tag: (kept, counts[tag]) for tag, kept in found.items()}
+                    kept.append(shape)
+            found[tag] = (kept, len(holders))
+        return found
 
     return robot.memo((_link_shapes, link), build)
 
@@ -545,11 +553,16 @@ def _measured(robot, shape: Shape) -> bool:
             (x0, x1), (y0, y1), (z0, z1) = xs, ys, zs  # min and max as the builtins choose
             shape.box = ((x1 if x1 < x0 else x0, y1 if y1 < y0 else y0, z1 if z1 < z0 else z0),
                          (x1 if x1 > x0 else x0, y1 if y1 > y0 else y0, z1 if z1 > z0 else z0))
-            total = 0  # sum(map(sum, corners)) below, the same additions in the same order
-            for x in xs:
-                for y in ys:
-                    for z in zs:
-                        total += 0 + x + y + z
+            # sum(map(sum, corners)) below, the same additions in the same order (corners
+            # x0 y0 z0, x0 y0 z1, x0 y1 z0, ...), written out
+            total = 0 + (0 + x0 + y0 + z0)
+            total += 0 + x0 + y0 + z1
+            total += 0 + x0 + y1 + z0
+            total += 0 + x0 + y1 + z1
+            total += 0 + x1 + y0 + z0
+            total += 0 + x1 + y0 + z1
+            total += 0 + x1 + y1 + z0
+            total += 0 + x1 + y1 + z1
             shape.finite = math.isfinite(total)  # False on overflow too
         else:
             shape.placed = _placed(shape.xyz, shape.rotation, _corners(local))
