@@ -98,10 +98,17 @@ def transformed(solid: Body, xyz, rotation) -> Body:
 
 def combine(parts: list[Body]) -> Body:
     """Several bodies as one, by the parallel-axis theorem about the common centre of mass."""
-    mass = sum(p.mass for p in parts)
-    if mass <= 0:
-        raise ValueError("bodies without mass cannot be combined")
-    com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
+    if len(parts) == 1:  # most links: what the sums below give for one part (0 + each term)
+        m, (cx, cy, cz) = parts[0].mass, parts[0].com
+        mass = 0 + m
+        if mass <= 0:
+            raise ValueError("bodies without mass cannot be combined")
+        com = ((0 + m * cx) / mass, (0 + m * cy) / mass, (0 + m * cz) / mass)
+    else:
+        mass = sum(p.mass for p in parts)
+        if mass <= 0:
+            raise ValueError("bodies without mass cannot be combined")
+        com = tuple(sum(p.mass * p.com[i] for p in parts) / mass for i in range(3))
     x, y, z = com
     # Written out (20,000 combinations on a 10,000-link robot): the same sums, in the same order
     t00 = t01 = t02 = t10 = t11 = t12 = t20 = t21 = t22 = 0.0
