@@ -44,22 +44,32 @@ class LinkSolid:
     parts: unit-density solids in the link frame; problems: (element, message) for geometry
     that could not count (missing mesh, open mesh replaced by its hull...). An open mesh's
     convex hull (and with it scipy) is built only when ``parts`` or ``problems`` is first read:
-    ``sound`` and ``volume_floor`` answer without it.
+    ``sound`` and ``volume_floor`` answer without it. A primitive is placed in the link frame
+    only when ``parts`` is first read: ``counts``, :func:`volume` and ``volume_floor`` need
+    only its volume, which placing keeps.
     """
 
     def __init__(self, source: str):
         self.source = source
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
         self._entries: list[_Entry] = []  # one per shape counted, in order
-        self._built: tuple[list, list] | None = None
+        self._built: tuple[list, list] | None = None  # entries that count, problems
+        self._parts: list | None = None
 
     @property
     def parts(self) -> list:
-        return self._build()[0]
+        if self._parts is None:
+            self._parts = [_placed_solid(entry) for entry in self._build()[0]]
+        return self._parts
 
     @property
     def problems(self) -> list:
         return self._build()[1]
+
+    @property
+    def counts(self) -> bool:
+        """Whether ``parts`` is not empty (without placing them)."""
+        return bool(self._build()[0])
 
     @property
     def sound(self) -> bool:
@@ -73,7 +83,8 @@ class LinkSolid:
         """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open
         meshes): an open mesh counts with a polytope on its vertices, which its hull holds,
         grown only until the bound reaches ``enough``."""
-        floor = sum(entry.solid.mass for entry in self._entries if entry.solid is not None)
+        floor = sum(_unit_volume(entry) for entry in self._entries
+                    if entry.solid is not None or entry.local is not None)
         for entry in self._entries:
             if entry.open_mesh is not None:
                 floor += _hull_floor(entry.open_mesh, enough - floor)
@@ -84,7 +95,8 @@ class LinkSolid:
             for entry in self._entries:
                 if entry.open_mesh is not None:
                     _quietly(_hull_entry, entry)
-            self._built = ([entry.solid for entry in self._entries if entry.solid is not None],
+            self._built = ([entry for entry in self._entries
+                            if entry.solid is not None or entry.local is not None],
                            [p for entry in self._entries for p in entry.problems])
         return self._built
 
@@ -92,12 +104,28 @@ class LinkSolid:
 @dataclass
 class _Entry:
     """One shape of a :class:`LinkSolid`: its solid placed in the link frame (None when it does
-    not count), its problems, and the open mesh whose hull is to stand for it (until built)."""
+    not count, or until a primitive's ``local`` solid is placed), its problems, and the open
+    mesh whose hull is to stand for it (until built)."""
 
     shape: Shape
     solid: object = None
     problems: list = field(default_factory=list)
     open_mesh: object = None
+    local: object = None  # a primitive's unit-density solid in its own frame, until placed
+
+
+def _placed_solid(entry: _Entry):
+    """An entry's solid in the link frame, a primitive's placed the first time it is asked."""
+    if entry.local is not None:
+        entry.solid = mp.transformed(entry.local, entry.shape.xyz, entry.shape.rotation)
+        entry.local = None
+    return entry.solid
+
+
+def _unit_volume(entry: _Entry) -> float:
+    """The volume of an entry that counts [m^3]: its mass at unit density, placed or not
+    (:func:`~urdftool.physics.mass.transformed` keeps the mass)."""
+    return (entry.solid if entry.solid is not None else entry.local).mass
 
 
 def _positive(values) -> bool:
@@ -450,8 +478,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
                 continue
             result._entries.append(_quietly(_mesh_entry, robot, shape))
         else:
-            result._entries.append(_Entry(shape, mp.transformed(_local(shape), shape.xyz,
-                                                                 shape.rotation)))
+            result._entries.append(_Entry(shape, local=_local(shape)))
         if _measured(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
@@ -652,7 +679,8 @@ def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]
 
 def volume(solid: LinkSolid) -> float:
     """The summed volume of a solid's parts [m^3] (overlaps count twice; 0 without parts)."""
-    return sum(part.mass for part in solid.parts)  # the parts have unit density
+    # the parts' masses (unit density), in their order, without placing them
+    return sum(_unit_volume(entry) for entry in solid._build()[0])
 
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):

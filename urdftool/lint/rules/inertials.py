@@ -423,7 +423,7 @@ MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm 
 def _trustworthy(solid) -> bool:
     """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
     plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
-    return solid.sound and bool(solid.parts) and 0.001 <= _extent(solid) <= 5.0
+    return solid.sound and solid.counts and 0.001 <= _extent(solid) <= 5.0
 
 
 def _body_sized(solid) -> bool:
@@ -534,7 +534,7 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
         return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):
-        return s.parts and all(solids.HULL_USED in message for _, message in s.problems)
+        return s.counts and all(solids.HULL_USED in message for _, message in s.problems)
 
     if not loaded(solid):
         return None
