@@ -83,7 +83,10 @@ def _finite_tensor(m) -> bool:
 
 def _zero_tensor(m) -> bool:
     """Whether every entry of a tensor is zero (below :data:`ZERO_INERTIA`)."""
-    return all(abs(v) < ZERO_INERTIA for row in m for v in row)
+    (a, b, c), (d, e, f), (g, h, i) = m  # written out (10,000 links, twice): in row order
+    return abs(a) < ZERO_INERTIA and abs(b) < ZERO_INERTIA and abs(c) < ZERO_INERTIA \
+        and abs(d) < ZERO_INERTIA and abs(e) < ZERO_INERTIA and abs(f) < ZERO_INERTIA \
+        and abs(g) < ZERO_INERTIA and abs(h) < ZERO_INERTIA and abs(i) < ZERO_INERTIA
 
 
 def _judged(robot):
@@ -217,9 +220,15 @@ def moving_link_without_mass(robot):
                          "does any link fixed to it); give it its real mass and inertia")
 
 
-def _principal(properties):
-    moments = properties.principal_moments()
-    return moments, max(max(abs(m) for m in moments), 1e-300)
+def _principal(robot, link, properties):
+    """(principal moments, the largest magnitude) of a link's declared inertial (from
+    :func:`_valid`), once per robot and link (U305 and U306 ask)."""
+    known = robot.memo(_principal, dict)
+    found = known.get(link)
+    if found is None:
+        moments = properties.principal_moments()
+        found = known[link] = moments, max(max(abs(m) for m in moments), 1e-300)
+    return found
 
 
 def _diagonal(properties) -> list[float]:
@@ -268,7 +277,7 @@ def inertia_indefinite(robot):
     for link, properties in _judged(robot):
         if any(v < -NEGATIVE_FLOOR for v in _diagonal(properties)):
             continue
-        moments, largest = _principal(properties)
+        moments, largest = _principal(robot, link, properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
@@ -289,7 +298,7 @@ def inertia_triangle_inequality(robot):
     Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
     """
     for link, properties in _judged(robot):
-        moments, largest = _principal(properties)
+        moments, largest = _principal(robot, link, properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) \
                 or moments[-1] < ZERO_INERTIA:
             continue
