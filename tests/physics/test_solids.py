@@ -82,6 +82,20 @@ def test_a_links_shapes_are_read_once_per_robot(tmp_path, monkeypatch):
     assert len(read) == len(set(read)) == 3  # base's collision, sensor's and arm's visuals
 
 
+def test_primitives_are_placed_only_when_the_parts_are_read(tmp_path, monkeypatch):
+    from urdftool.physics import mass, solids
+
+    placed, transformed = [], mass.transformed
+    monkeypatch.setattr(mass, "transformed", lambda *a: placed.append(1) or transformed(*a))
+    robot = _robot(tmp_path)
+    solid = solids.link_solid(robot, robot.links["sensor"])  # a 10 x 20 x 30 cm box
+    volume = solids.volume(solid)
+    assert solid.counts and solid.volume_floor() == volume and not placed
+    assert volume == sum(part.mass for part in solid.parts) == pytest.approx(6e-3)
+    assert placed == [1] and solid.parts[0].com == pytest.approx((0.1, 0.0, 0.0))
+    assert not solids.link_solid(robot, robot.links["tip"]).counts
+
+
 def _open_box(tmp_path):
     """A 10 x 20 x 30 cm box without its top (its hull: the box, 6e-3 m^3), on link 'a'."""
     trimesh = pytest.importorskip("trimesh")

@@ -18,8 +18,9 @@ _THIRD_TURN = 2 * math.pi / 3
 
 
 def placement(origin) -> tuple[Vector, Matrix]:
-    """(xyz, R) of a :class:`urdftool.description.values.Origin`."""
-    return vector(origin.xyz), rpy_matrix(origin.rpy)
+    """(xyz, R) of a :class:`urdftool.description.values.Origin`: its ``xyz`` as it is, a tuple
+    of three floats (:func:`~urdftool.description.values.origin` reads it so)."""
+    return origin.xyz, rpy_matrix(origin.rpy)
 
 
 def vector(values) -> Vector:
@@ -28,8 +29,9 @@ def vector(values) -> Vector:
 
 
 def matrix(rows) -> Matrix:
-    a, b, c = rows
-    return (vector(a), vector(b), vector(c))
+    (a, b, c), (d, e, f), (g, h, i) = rows
+    return ((float(a), float(b), float(c)), (float(d), float(e), float(f)),
+            (float(g), float(h), float(i)))
 
 
 def diagonal(values) -> Matrix:

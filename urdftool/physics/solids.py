@@ -15,8 +15,7 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
-from urdftool.description.urdf import SHAPES
-from urdftool.description.values import finite, origin, parse_numbers
+from urdftool.description.values import finite, number_tuple, origin
 from urdftool.description.xml import first_child
 
 
@@ -25,7 +24,7 @@ HULL_USED = "its convex hull was used"  # the problem of an open mesh that still
 
 @dataclass
 class Shape:
-    """One geometry: ``kind`` in SHAPES, ``params`` (size / radius, length / filename, scale),
+    """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size / radius, length / filename, scale),
     placed by ``xyz`` and ``rotation`` in the link frame; ``element`` is the geometry child."""
 
     kind: str
@@ -45,22 +44,32 @@ class LinkSolid:
     parts: unit-density solids in the link frame; problems: (element, message) for geometry
     that could not count (missing mesh, open mesh replaced by its hull...). An open mesh's
     convex hull (and with it scipy) is built only when ``parts`` or ``problems`` is first read:
-    ``sound`` and ``volume_floor`` answer without it.
+    ``sound`` and ``volume_floor`` answer without it. A primitive is placed in the link frame
+    only when ``parts`` is first read: ``counts``, :func:`volume` and ``volume_floor`` need
+    only its volume, which placing keeps.
     """
 
     def __init__(self, source: str):
         self.source = source
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
         self._entries: list[_Entry] = []  # one per shape counted, in order
-        self._built: tuple[list, list] | None = None
+        self._built: tuple[list, list] | None = None  # entries that count, problems
+        self._parts: list | None = None
 
     @property
     def parts(self) -> list:
-        return self._build()[0]
+        if self._parts is None:
+            self._parts = [_placed_solid(entry) for entry in self._build()[0]]
+        return self._parts
 
     @property
     def problems(self) -> list:
         return self._build()[1]
+
+    @property
+    def counts(self) -> bool:
+        """Whether ``parts`` is not empty (without placing them)."""
+        return bool(self._build()[0])
 
     @property
     def sound(self) -> bool:
@@ -74,7 +83,8 @@ class LinkSolid:
         """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open
         meshes): an open mesh counts with a polytope on its vertices, which its hull holds,
         grown only until the bound reaches ``enough``."""
-        floor = sum(entry.solid.mass for entry in self._entries if entry.solid is not None)
+        floor = sum(_unit_volume(entry) for entry in self._entries
+                    if entry.solid is not None or entry.local is not None)
         for entry in self._entries:
             if entry.open_mesh is not None:
                 floor += _hull_floor(entry.open_mesh, enough - floor)
@@ -85,7 +95,8 @@ class LinkSolid:
             for entry in self._entries:
                 if entry.open_mesh is not None:
                     _quietly(_hull_entry, entry)
-            self._built = ([entry.solid for entry in self._entries if entry.solid is not None],
+            self._built = ([entry for entry in self._entries
+                            if entry.solid is not None or entry.local is not None],
                            [p for entry in self._entries for p in entry.problems])
         return self._built
 
@@ -93,12 +104,28 @@ class LinkSolid:
 @dataclass
 class _Entry:
     """One shape of a :class:`LinkSolid`: its solid placed in the link frame (None when it does
-    not count), its problems, and the open mesh whose hull is to stand for it (until built)."""
+    not count, or until a primitive's ``local`` solid is placed), its problems, and the open
+    mesh whose hull is to stand for it (until built)."""
 
     shape: Shape
     solid: object = None
     problems: list = field(default_factory=list)
     open_mesh: object = None
+    local: object = None  # a primitive's unit-density solid in its own frame, until placed
+
+
+def _placed_solid(entry: _Entry):
+    """An entry's solid in the link frame, a primitive's placed the first time it is asked."""
+    if entry.local is not None:
+        entry.solid = mp.transformed(entry.local, entry.shape.xyz, entry.shape.rotation)
+        entry.local = None
+    return entry.solid
+
+
+def _unit_volume(entry: _Entry) -> float:
+    """The volume of an entry that counts [m^3]: its mass at unit density, placed or not
+    (:func:`~urdftool.physics.mass.transformed` keeps the mass)."""
+    return (entry.solid if entry.solid is not None else entry.local).mass
 
 
 def _positive(values) -> bool:
@@ -122,26 +149,32 @@ def shape_of(holder) -> Shape | None:
             break
     else:
         return None
-    if kind not in SHAPES:
+    # the parsed tuples as they are (number_tuple: no list copy), judged before the placement
+    if kind == "box":
+        size = number_tuple(element.get("size"), 3)[0]
+        if not _positive(size):
+            return None
+        params = {"size": size}
+    elif kind == "cylinder":
+        radius = number_tuple(element.get("radius"), 1)[0]
+        length = number_tuple(element.get("length"), 1)[0]
+        if not (_positive(radius) and _positive(length)):
+            return None
+        params = {"radius": radius[0], "length": length[0]}
+    elif kind == "sphere":
+        radius = number_tuple(element.get("radius"), 1)[0]
+        if not _positive(radius):
+            return None
+        params = {"radius": radius[0]}
+    elif kind == "mesh":
+        scale = number_tuple(element.get("scale", "1 1 1"), 3)[0]
+        filename = element.get("filename")
+        if not (filename and scale and finite(scale)):
+            return None
+        params = {"filename": filename, "scale": scale}
+    else:
         return None
     xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    if kind == "box":
-        size = parse_numbers(element.get("size"), 3)[0]
-        params = {"size": size} if _positive(size) else None
-    elif kind == "cylinder":
-        radius = parse_numbers(element.get("radius"), 1)[0]
-        length = parse_numbers(element.get("length"), 1)[0]
-        params = {"radius": radius[0], "length": length[0]} \
-            if _positive(radius) and _positive(length) else None
-    elif kind == "sphere":
-        radius = parse_numbers(element.get("radius"), 1)[0]
-        params = {"radius": radius[0]} if _positive(radius) else None
-    else:
-        scale = parse_numbers(element.get("scale", "1 1 1"), 3)[0]
-        params = {"filename": element.get("filename"), "scale": tuple(scale)} \
-            if element.get("filename") and scale and finite(scale) else None
-    if params is None:
-        return None
     return Shape(kind, params, xyz, rotation, element)
 
 
@@ -153,16 +186,19 @@ def shapes(robot, link, tag: str) -> list[Shape]:
 
 def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
     """tag -> (well-formed shapes, number of elements) for a link's visual and collision."""
-    def build():
-        found = {"visual": [], "collision": []}
-        counts = dict.fromkeys(found, 0)
-        for holder in link:
-            if holder.tag in found:
-                counts[holder.tag] += 1
+    def build():  # from the link's children grouped by tag (each in document order), which
+        # the rules group anyway, instead of a second walk of lxml's
+        grouped = robot.grouped(link)
+        found = {}
+        for tag in ("visual", "collision"):
+            holders = grouped.get(tag, ())
+            kept = []
+            for holder in holders:
                 shape = shape_of(holder)
                 if shape is not None:
-                    found[holder.tag].append(shape)
-        return {tag: (kept, counts[tag]) for tag, kept in found.items()}
+                    kept.append(shape)
+            found[tag] = (kept, len(holders))
+        return found
 
     return robot.memo((_link_shapes, link), build)
 
@@ -442,8 +478,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
                 continue
             result._entries.append(_quietly(_mesh_entry, robot, shape))
         else:
-            result._entries.append(_Entry(shape, mp.transformed(_local(shape), shape.xyz,
-                                                                 shape.rotation)))
+            result._entries.append(_Entry(shape, local=_local(shape)))
         if _measured(robot, shape):
             boxes.append(shape.box)
     result.bounds = _joined(boxes)
@@ -545,11 +580,16 @@ def _measured(robot, shape: Shape) -> bool:
             (x0, x1), (y0, y1), (z0, z1) = xs, ys, zs  # min and max as the builtins choose
             shape.box = ((x1 if x1 < x0 else x0, y1 if y1 < y0 else y0, z1 if z1 < z0 else z0),
                          (x1 if x1 > x0 else x0, y1 if y1 > y0 else y0, z1 if z1 > z0 else z0))
-            total = 0  # sum(map(sum, corners)) below, the same additions in the same order
-            for x in xs:
-                for y in ys:
-                    for z in zs:
-                        total += 0 + x + y + z
+            # sum(map(sum, corners)) below, the same additions in the same order (corners
+            # x0 y0 z0, x0 y0 z1, x0 y1 z0, ...), written out
+            total = 0 + (0 + x0 + y0 + z0)
+            total += 0 + x0 + y0 + z1
+            total += 0 + x0 + y1 + z0
+            total += 0 + x0 + y1 + z1
+            total += 0 + x1 + y0 + z0
+            total += 0 + x1 + y0 + z1
+            total += 0 + x1 + y1 + z0
+            total += 0 + x1 + y1 + z1
             shape.finite = math.isfinite(total)  # False on overflow too
         else:
             shape.placed = _placed(shape.xyz, shape.rotation, _corners(local))
@@ -639,7 +679,8 @@ def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]
 
 def volume(solid: LinkSolid) -> float:
     """The summed volume of a solid's parts [m^3] (overlaps count twice; 0 without parts)."""
-    return sum(part.mass for part in solid.parts)  # the parts have unit density
+    # the parts' masses (unit density), in their order, without placing them
+    return sum(_unit_volume(entry) for entry in solid._build()[0])
 
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):

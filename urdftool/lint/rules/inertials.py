@@ -21,7 +21,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import first_child
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import number_tuple
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 from urdftool.physics import solids
@@ -83,7 +83,10 @@ def _finite_tensor(m) -> bool:
 
 def _zero_tensor(m) -> bool:
     """Whether every entry of a tensor is zero (below :data:`ZERO_INERTIA`)."""
-    return all(abs(v) < ZERO_INERTIA for row in m for v in row)
+    (a, b, c), (d, e, f), (g, h, i) = m  # written out (10,000 links, twice): in row order
+    return abs(a) < ZERO_INERTIA and abs(b) < ZERO_INERTIA and abs(c) < ZERO_INERTIA \
+        and abs(d) < ZERO_INERTIA and abs(e) < ZERO_INERTIA and abs(f) < ZERO_INERTIA \
+        and abs(g) < ZERO_INERTIA and abs(h) < ZERO_INERTIA and abs(i) < ZERO_INERTIA
 
 
 def _judged(robot):
@@ -146,7 +149,7 @@ def malformed_inertial(robot):
             elif mass.get("value") is None:
                 yield mass, f"{prefix} <mass> has no value attribute"
             else:
-                values, problem = parse_numbers(mass.get("value"), 1)
+                values, problem = number_tuple(mass.get("value"), 1)
                 if problem or not math.isfinite(values[0]):
                     yield mass, f"{prefix} mass '{mass.get('value')}' is not a finite number"
             inertia = first_child(inertial, "inertia")
@@ -162,7 +165,7 @@ def malformed_inertial(robot):
             for attribute, text in zip(INERTIA_ATTRIBUTES, texts):
                 if text is None:
                     continue
-                values, problem = parse_numbers(text, 1)
+                values, problem = number_tuple(text, 1)
                 if problem or not math.isfinite(values[0]):
                     yield inertia, f"{prefix} {attribute}='{text}' is not a finite number"
 
@@ -217,9 +220,15 @@ def moving_link_without_mass(robot):
                          "does any link fixed to it); give it its real mass and inertia")
 
 
-def _principal(properties):
-    moments = properties.principal_moments()
-    return moments, max(max(abs(m) for m in moments), 1e-300)
+def _principal(robot, link, properties):
+    """(principal moments, the largest magnitude) of a link's declared inertial (from
+    :func:`_valid`), once per robot and link (U305 and U306 ask)."""
+    known = robot.memo(_principal, dict)
+    found = known.get(link)
+    if found is None:
+        moments = properties.principal_moments()
+        found = known[link] = moments, max(max(abs(m) for m in moments), 1e-300)
+    return found
 
 
 def _diagonal(properties) -> list[float]:
@@ -268,7 +277,7 @@ def inertia_indefinite(robot):
     for link, properties in _judged(robot):
         if any(v < -NEGATIVE_FLOOR for v in _diagonal(properties)):
             continue
-        moments, largest = _principal(properties)
+        moments, largest = _principal(robot, link, properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
@@ -289,7 +298,7 @@ def inertia_triangle_inequality(robot):
     Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
     """
     for link, properties in _judged(robot):
-        moments, largest = _principal(properties)
+        moments, largest = _principal(robot, link, properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) \
                 or moments[-1] < ZERO_INERTIA:
             continue
@@ -339,9 +348,12 @@ def com_outside_geometry(robot):
         if rigid.bounds is None or not rigid.complete:
             continue
         low, high = rigid.bounds
-        outside = [max(l - c, c - h, 0.0) for l, c, h in zip(low, properties.com, high)]
-        distance = math.sqrt(sum(v * v for v in outside))
-        extent = max(h - l for l, h in zip(low, high))
+        (lx, ly, lz), (hx, hy, hz), (cx, cy, cz) = low, high, properties.com
+        # per axis, written out (10,000 links): the same maxima and the same sum
+        ox, oy, oz = max(lx - cx, cx - hx, 0.0), max(ly - cy, cy - hy, 0.0), \
+            max(lz - cz, cz - hz, 0.0)
+        distance = math.sqrt(sum((ox * ox, oy * oy, oz * oz)))
+        extent = max(hx - lx, hy - ly, hz - lz)
         if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
             com = " ".join(f"{v:.4g}" for v in properties.com)
             fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
@@ -420,7 +432,7 @@ MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm 
 def _trustworthy(solid) -> bool:
     """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
     plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
-    return solid.sound and bool(solid.parts) and 0.001 <= _extent(solid) <= 5.0
+    return solid.sound and solid.counts and 0.001 <= _extent(solid) <= 5.0
 
 
 def _body_sized(solid) -> bool:
@@ -531,14 +543,14 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
         return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):
-        return s.parts and all(solids.HULL_USED in message for _, message in s.problems)
+        return s.counts and all(solids.HULL_USED in message for _, message in s.problems)
 
     if not loaded(solid):
         return None
     other = "visual" if solid.source == "collision" else "collision"
     own = solids.volume(solid)
     volumes = [own]
-    if first_child(link, other) is not None:
+    if robot.grouped(link).get(other):
         second = _solid(robot, link, other)
         if loaded(second):
             volumes.append(solids.volume(second))
