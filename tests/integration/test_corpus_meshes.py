@@ -19,8 +19,6 @@ def _checks_rows(corpus) -> set[tuple[str, tuple]]:
 
 
 def test_missing_meshes_on_the_corpus_are_exactly_the_omitted_ones(corpus, corpus_run):
-    from urdftool.physics.solids import SHAPES  # noqa: F401 (shapes and meshes share the resolver)
-
     # the shared run covers every robot CHECKS.tsv lists, and nothing else
     assert _checks_rows(corpus) == {(path, tuple(sorted(args.items())))
                                     for path, args in corpus_entry_points()}

@@ -132,7 +132,21 @@ def test_a_check_collects_garbage_less_often_and_restores_the_threshold(monkeypa
     assert gc.get_threshold() == before
 
 
-def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(monkeypatch, tmp_path):
+@pytest.fixture
+def _nothing_frozen():
+    """No object frozen while the test runs (a test before it in this process may have frozen
+    its own, as the fuzz harness's parent does): they are frozen again afterwards."""
+    import gc
+
+    frozen = gc.get_freeze_count()
+    gc.unfreeze()
+    yield
+    if frozen:
+        gc.freeze()
+
+
+def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(monkeypatch, tmp_path,
+                                                                    _nothing_frozen):
     import gc
     import weakref
 

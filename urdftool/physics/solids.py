@@ -24,8 +24,9 @@ HULL_USED = "its convex hull was used"  # the problem of an open mesh that still
 
 @dataclass
 class Shape:
-    """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size / radius, length / filename, scale),
-    placed by ``xyz`` and ``rotation`` in the link frame; ``element`` is the geometry child."""
+    """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size /
+    radius, length / filename, scale), placed by ``xyz`` and ``rotation`` in the link frame;
+    ``element`` is the geometry child."""
 
     kind: str
     params: dict
