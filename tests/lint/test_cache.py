@@ -272,6 +272,7 @@ def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, 
     cache.put_output(words, dict(os.environ), run.depends, "the report\n", "a note\n", 1)
     assert cache.get_output(words) == ("the report\n", "a note\n", 1)
     assert cache.get_output([*words, "--strict"]) is None  # other words
+    assert cache.get_output(words, {**os.environ, "_": "/usr/bin/time"})  # the shell's "_"
     monkeypatch.setenv("SOME_VARIABLE", "set")
     assert cache.get_output(words) is None  # another environment
     assert cache.get_output(words, {**os.environ, "SOME_VARIABLE": "other"}) is None

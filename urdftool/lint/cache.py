@@ -226,8 +226,10 @@ class Cache:
 
     def _output_path(self, command_line: list[str], environment) -> Path:
         """Where a command line's output is kept: keyed by its words as given, the whole
-        environment (formats, colours, encodings and defaults follow variables), the Python
-        and which standard streams are terminals."""
+        environment (formats, colours, encodings and defaults follow variables) but ``_``
+        (which the shell sets to the program it started: ``time urdftool`` is the same
+        command), the Python and which standard streams are terminals."""
+        environment = {name: value for name, value in environment.items() if name != "_"}
         return self._keyed("output", list(command_line), _environment(environment), sys.version,
                            [os.isatty(fd) for fd in (0, 1, 2)], suffix="-output")
 
