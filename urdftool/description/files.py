@@ -93,7 +93,7 @@ def real_path(path: str) -> str:
     """``os.path.realpath(path)``, answered once per run (see :mod:`.run_memo`). A file that
     is not a link is its folder's real path (itself answered once per run) and its name: the
     meshes of a package share a few folders, and realpath would walk every component of each
-    (2,500 ``lstat`` calls for the corpus's 347 meshes, where 350 do)."""
+    (``lstat`` calls in a check of the corpus's 46 URDFs: 4,240 before, 2,034 so)."""
     folder, name = os.path.split(path)
     if not folder or name in ("", ".", ".."):
         return os.path.realpath(path)
