@@ -222,6 +222,18 @@ def test_core_errors_name_no_flag(project):
         check_paths([project / "robots"])
 
 
+def test_max_memory_through_the_api_in_bytes_or_as_the_flag_takes_it(project):
+    from urdftool.errors import SettingsError
+    from urdftool.lint.settings import CheckRequest, for_file
+
+    robot = project / "robots" / "arm.urdf"
+    for given, limit in ((0, None), ("0", None), (1 << 30, 1 << 30), ("512M", 512 << 20)):
+        assert for_file(robot, CheckRequest(max_memory=given)).memory == limit
+    for wrong in (True, [1], "lots"):
+        with pytest.raises(SettingsError, match="^max_memory must be a size"):
+            for_file(robot, CheckRequest(max_memory=wrong))
+
+
 def test_command_line_companions_win_one_by_one(project):
     from urdftool.lint.settings import CheckRequest, Companions, for_file
 

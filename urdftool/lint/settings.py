@@ -302,7 +302,8 @@ class CheckRequest:
     strict: warnings fail the run too (as do the settings' ``strict``)
     allow_env: ``$(env)`` and files outside the repository allowed; None: as :func:`env_allowed`
     max_file_size: [bytes] None: the settings', else 16 MiB
-    max_memory: per worker, as ``parse_memory`` reads it; None: the settings', else 2 GiB
+    max_memory: per worker, as ``parse_memory`` reads it ("2G", "0" for none) or in bytes;
+        None: the settings', else 2 GiB
     timeout: per file in [s]; None or 0 for none
     jobs: worker processes; None: one per core
     use_settings: whether settings files apply at all
@@ -322,7 +323,7 @@ class CheckRequest:
     allow_env: bool | None = None
     max_file_size: int | None = None
     max_triangles: int = 2_000_000
-    max_memory: str | None = None
+    max_memory: str | int | None = None
     timeout: float | None = DEFAULT_TIMEOUT
     jobs: int | None = None
     use_settings: bool = True
@@ -376,7 +377,7 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         mesh_limits=MeshLimits(max_triangles=request.max_triangles))
     memory = request.max_memory if request.max_memory is not None else settings.max_memory
     try:
-        limit = DEFAULT_MEMORY if memory is None else parse_memory(memory)
+        limit = DEFAULT_MEMORY if memory is None else parse_memory(str(memory))  # or bytes
     except UsageError:
         raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
                             f"(no limit), not {memory!r}") from None
