@@ -15,6 +15,9 @@ def main() -> None:
     words = sys.argv[1:]
     if words[:1] == ["check"]:
         _replay(words)
+        from urdftool.lint.runner import fork_spare
+
+        fork_spare()  # the rules are imported on another core while Typer is imported here
     from urdftool.cli import main as run
 
     run()

@@ -111,3 +111,17 @@ def test_a_reader_that_leaves_ends_the_replay_quietly(bot):
     assert reader.wait(timeout=120) == 1
     error = reader.stderr.read().decode()
     assert "Traceback" not in error and "[typer]" not in error
+
+
+def test_a_check_through_the_spare_worker_prints_what_one_process_prints():
+    """``urdftool check`` forks a spare worker before it reads its words (with two cores or
+    more; see runner.fork_spare), which takes the file, or standard input, with its budget."""
+    case = "tests/cases/U204_inverted_limits.urdf"
+    alone = ["--timeout", "0", "--max-memory", "0", "--jobs", "1"]
+    for words in (["--no-cache", case], ["--no-cache", "--stdin-filename", case, "-"]):
+        stdin = (ROOT / case).read_text() if "-" in words else None
+        spare, here = (subprocess.run([sys.executable, "-m", "urdftool", "check", *extra, *words],
+                                      capture_output=True, text=True, cwd=ROOT, timeout=120,
+                                      input=stdin) for extra in ([], alone))
+        assert spare.returncode == here.returncode == 1 and "U204" in spare.stdout, spare.stderr
+        assert (spare.stdout, spare.stderr) == (here.stdout, here.stderr)

@@ -8,7 +8,8 @@ interrupted from inside) and replaced. Either way the piece ends with a :class:`
 where the work was (see :mod:`urdftool.budget`), and the run goes on. Results come back in the
 order given, whatever order the workers finish in. What a worker prints goes to this process's
 standard streams: directly when they are files, passed on over the pipe when they are not (under
-a test runner).
+a test runner). ``urdftool check`` forks one worker at start-up, before its command line is read
+(:func:`fork_spare`), so that the rules are imported on another core meanwhile.
 
 ``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files;
 ``check_paths`` is ``urdftool check`` (settings, targets, budgets, exit code) and ``check_file``
@@ -109,15 +110,8 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
             for path in files]
     todo = [index for index, found in enumerate(kept) if found is None]
 
-    def work(index: int) -> tuple[list[Finding], list[str]]:
-        path = files[todo[index]]
-        options = options_for(path)
-        from urdftool.lint import engine  # every rule: imported only when a file is checked
-
-        result = engine.check_file(named[todo[index]], options, data=stdin.get(path))
-        if cache and path != "-":
-            cache.put(path, options, result)
-        return result.findings, result.companions
+    work = _Checking([files[i] for i in todo], [named[i] for i in todo],
+                     [options_for(files[i]) for i in todo], stdin, cache)
 
     def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
         return [stop_finding(named[todo[index]], stop, "checking")], []
@@ -128,6 +122,30 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
         kept[index], lines[index] = found, companions
     return [FileResult(path, found, companions=companions)
             for path, found, companions in zip(named, kept, lines)]
+
+
+@dataclass
+class _Checking:
+    """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``: it
+    pickles, so that a spare worker forked before it was made can take it (:func:`fork_spare`).
+    stdin: the bytes read for '-'; cache: where results are kept, or None."""
+
+    paths: list[str]
+    named: list[str]
+    options: list[CheckOptions]
+    stdin: dict[str, bytes]
+    cache: object = None
+
+    def __call__(self, index: int) -> tuple[list[Finding], list[str]]:
+        path, options = self.paths[index], self.options[index]
+        from urdftool.lint import engine  # every rule: imported only when a file is checked
+
+        # in a worker forked by check_files, the blocks it entered (nested blocks share them)
+        with self.cache.noting_reads() if self.cache else nullcontext():
+            result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
+            if self.cache and path != "-":
+                self.cache.put(path, options, result)
+        return result.findings, result.companions
 
 
 @dataclass
@@ -301,11 +319,24 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         pass
     _die_with(parent)
     budgets.report_into(slot)
+    if work is None:  # a spare: ready while the parent reads its command line, then its work
+        _ready()
+        try:
+            work, memory = connection.recv() or (None, None)
+        except (EOFError, OSError):
+            return
+        if work is None:
+            return
     budgets.limit_memory(memory)
     for number in relay:
         setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
             io.BufferedWriter(_Relay(connection, number)), encoding="utf-8",
             errors="backslashreplace", line_buffering=True))
+    with one_run():  # a forked worker's is the parent's block; a spare's, its own
+        _serve_pieces(connection, work)
+
+
+def _serve_pieces(connection, work) -> None:
     while True:
         try:
             index = connection.recv()
@@ -328,6 +359,15 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
 
 
+def _ready() -> None:
+    """Import what checking a robot needs: the rules, lxml, and xacro with PyYAML."""
+    try:
+        from urdftool.description import xacro  # noqa: F401
+        from urdftool.lint import engine  # noqa: F401
+    except Exception:  # the same import in the work says what failed, as a finding
+        pass
+
+
 def _die_with(parent: int) -> None:
     """Be killed when the parent process ends (Linux): in a process group of its own, a worker
     no longer hears the terminal's or the CI runner's signals, and a hung one would run on."""
@@ -347,10 +387,10 @@ class _Worker:
     def __init__(self, context, work, memory):
         self.connection, child = context.Pipe()
         self.slot = budgets.share_slot()
-        relay = tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
+        self.relay = _relayed()
         # not a daemon: a worker may start processes of its own (collisions --matrix)
-        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory, relay,
-                                                            os.getpid()))
+        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory,
+                                                            self.relay, os.getpid()))
         self.process.start()
         try:
             os.setpgid(self.process.pid, self.process.pid)
@@ -386,6 +426,55 @@ class _Worker:
             self.process.join()
         self.connection.close()
         self.slot.close()
+
+
+def _relayed() -> tuple[int, ...]:
+    """The standard streams (1, 2) a worker sends over its pipe: those that are not files."""
+    return tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
+
+
+# A worker forked at start-up, before any work is known (see fork_spare), until a pool takes it.
+_spare: _Worker | None = None
+
+
+def fork_spare() -> None:
+    """Fork a spare worker now, before the command line is read: it imports the rules, lxml,
+    xacro and PyYAML (0.1 s) on another core while this process imports Typer and finds its
+    targets and settings, and the first pool of :func:`run_budgeted` takes it, with its work
+    (which must pickle, as :class:`_Checking` does) and budget. Not with a single core, where
+    the two would take turns; a spare no pool takes is killed when this process exits."""
+    global _spare
+    if _spare is not None or not hasattr(os, "fork") or default_jobs() < 2:
+        return
+    import atexit
+    import multiprocessing
+
+    _spare = _Worker(multiprocessing.get_context("fork"), None, None)
+    atexit.register(_drop_spare)
+
+
+def _adopted(work, memory: int | None) -> _Worker | None:
+    """The spare worker, sent ``work`` and ``memory``; None without one, or when it cannot
+    take them (it relays other streams than a worker forked now would, or it died)."""
+    global _spare
+    spare, _spare = _spare, None
+    if spare is None:
+        return None
+    if spare.relay == _relayed() and spare.process.is_alive():
+        try:
+            spare.connection.send((work, memory))
+            return spare
+        except Exception:  # work that does not pickle (a closure), or the pipe closed
+            pass
+    spare.stop(kill=True)
+    return None
+
+
+def _drop_spare() -> None:
+    global _spare
+    spare, _spare = _spare, None
+    if spare is not None:
+        spare.stop(kill=True)
 
 
 def _pass_on(number: int, data: bytes) -> None:
@@ -430,7 +519,8 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
     context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))
-    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
+    workers = [_adopted(work, budget.memory) or _Worker(context, work, budget.memory)
+               for _ in range(jobs)]
     try:
         for worker in workers:
             if pending:
@@ -480,5 +570,5 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
-           "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
-           "stop_finding"]
+           "check_file", "check_files", "check_paths", "default_jobs", "fork_spare",
+           "run_budgeted", "stop_finding"]
