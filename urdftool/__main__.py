@@ -4,6 +4,9 @@
 none of the files its findings came from changed, prints what it printed before from the result
 cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
 run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
+
+Otherwise ``check`` forks a spare worker first (:func:`urdftool.lint.runner.fork_spare`), and
+ends without tearing the interpreter down (:func:`_end`).
 """
 
 from __future__ import annotations
@@ -13,14 +16,47 @@ import sys
 
 def main() -> None:
     words = sys.argv[1:]
-    if words[:1] == ["check"]:
+    check = words[:1] == ["check"]
+    if check:
         _replay(words)
         from urdftool.lint.runner import fork_spare
 
         fork_spare()  # the rules are imported on another core while Typer is imported here
     from urdftool.cli import main as run
 
-    run()
+    try:
+        run()
+    except SystemExit as done:
+        if check:
+            _end(done.code)
+        raise
+
+
+def _end(code) -> None:
+    """End a check as ``SystemExit(code)`` ends Python, but without tearing the interpreter
+    down: the message of a text ``code``, the exit functions, the standard streams flushed,
+    then the process ends, not freeing the rules', the robot's and the libraries' objects one
+    by one (some 20 ms of a 0.27 s check; the system frees the memory at once). Files are
+    closed by then (the cache and ``--output`` write within ``with``). Returns, for Python's
+    own ending, while another thread runs (Python waits for it first)."""
+    import atexit
+    import os
+    import threading
+
+    if threading.active_count() > 1:
+        return
+    if code is None or isinstance(code, int):
+        status = code or 0
+    else:
+        print(code, file=sys.stderr)
+        status = 1
+    atexit._run_exitfuncs()  # as Python's ending runs them, last registered first, once
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            status = status or 120  # what Python's ending gives when flushing fails
+    os._exit(status)
 
 
 def _replay(words: list[str]) -> None:

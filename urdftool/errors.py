@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass
 
 
@@ -58,6 +57,8 @@ _LISTED = 12
 
 def available(kind: str, wanted: str, names) -> str:
     """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist."""
+    import difflib
+
     names = sorted({name for name in names if name})  # unnamed elements are another rule's business
     close = difflib.get_close_matches(wanted, names, n=1, cutoff=0.6)
     hint = f"did you mean '{close[0]}'? " if close else ""

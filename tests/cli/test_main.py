@@ -125,3 +125,26 @@ def test_a_check_through_the_spare_worker_prints_what_one_process_prints():
                                       input=stdin) for extra in ([], alone))
         assert spare.returncode == here.returncode == 1 and "U204" in spare.stdout, spare.stderr
         assert (spare.stdout, spare.stderr) == (here.stdout, here.stderr)
+
+
+def test_a_check_ends_without_teardown_yet_says_all_and_exits_as_the_command_does(tmp_path):
+    """``__main__._end``: the exit status, a long report through a pipe, and the exit
+    functions of a check run as through ``urdftool.cli.main`` (which tears down as usual)."""
+    links = "".join(f'<link name="l{i}"/><joint name="j{i}" type="revolute"><parent link="l0"/>'
+                    f'<child link="l{i}"/><limit lower="1" upper="-1" effort="1" velocity="1"/>'
+                    "</joint>\n" for i in range(1, 400))
+    (tmp_path / "many.urdf").write_text(f'<robot name="r"><link name="l0"/>\n{links}</robot>\n')
+    (tmp_path / "clean.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, sys; atexit.register(lambda: print('[exit functions ran]', "
+               "file=sys.stderr)); sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.{} "
+               "import main; main()")
+    for words, status in ((["many.urdf"], 1), (["clean.urdf"], 0), (["--format", "nope", "x"], 2),
+                          (["many.urdf", "--format", "json", "--exit-zero"], 0)):
+        ended, usual = (subprocess.run([sys.executable, "-c", program.format(module), "check",
+                                        "--no-cache", *words], capture_output=True, text=True,
+                                       cwd=tmp_path, timeout=120)
+                        for module in ("__main__", "cli"))
+        assert ended.returncode == usual.returncode == status, ended.stderr
+        assert (ended.stdout, ended.stderr) == (usual.stdout, usual.stderr)
+        assert ended.stderr.endswith("[exit functions ran]\n")
+    assert ended.stdout.count('"U204"') == 399

@@ -35,13 +35,11 @@ COLLADA files are scaled by the ``<unit meter>`` they declare, as RViz and Gazeb
 from __future__ import annotations
 
 import io
-import logging
 import math
 import os
 import re
 import struct
 import warnings
-import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -530,8 +528,7 @@ def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True,
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
                                        f"{limits.max_bytes}; not opened")
-    if path.suffix.lower() == ".dae" and \
-            zipfile.is_zipfile(path if data is None else io.BytesIO(data)):
+    if path.suffix.lower() == ".dae" and _zipped(path, data):
         # pycollada inflates a zipped .dae (ZAE) whole, whatever its name says
         raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
                                     "document; urdftool does not inflate archives: store "
@@ -586,7 +583,15 @@ def _geometry_resolver(path: Path, limits: MeshLimits):
     return GeometryResolver(str(path))
 
 
+def _zipped(path: Path, data: bytes | None) -> bool:
+    import zipfile  # only for COLLADA files (4 ms of every check's start-up otherwise)
+
+    return zipfile.is_zipfile(path if data is None else io.BytesIO(data))
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
+    import logging
+
     import trimesh
 
     _check_size(path, uri, limits)

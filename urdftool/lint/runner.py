@@ -23,7 +23,6 @@ import os
 import signal
 import sys
 import time
-import traceback
 from collections.abc import Mapping
 from contextlib import nullcontext
 from dataclasses import dataclass, field
@@ -350,6 +349,8 @@ def _serve_pieces(connection, work) -> None:
         except MemoryError:
             message = ("stop", index, "memory", "")
         except BaseException:  # report, never die silently
+            import traceback
+
             message = ("stop", index, "crash", traceback.format_exc())
         for stream in (sys.stdout, sys.stderr):
             stream.flush()
@@ -362,7 +363,9 @@ def _serve_pieces(connection, work) -> None:
 def _ready() -> None:
     """Import what checking a robot needs: the rules, lxml, and xacro with PyYAML."""
     try:
-        from urdftool.description import xacro  # noqa: F401
+        import xacro.substitution_args  # noqa: F401  (and PyYAML)
+
+        from urdftool.description import load, meshes, xacro as expander, yaml_limits  # noqa: F401
         from urdftool.lint import engine  # noqa: F401
     except Exception:  # the same import in the work says what failed, as a finding
         pass
