@@ -183,6 +183,14 @@ def _refusing(parser, on_doctype, on_entity) -> None:
     parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
 
 
+def child_list(element) -> list:
+    """The children of ``element`` as iterating it gives them (elements, comments and
+    processing instructions, in order), as one list built by lxml (``element[:]``): its child
+    iterator costs about 1 us a child, the slice a fifth of that, and the rules walk 190,000
+    elements of a 10,000-link robot."""
+    return element[:]
+
+
 def first_child(element, tag: str):
     """``element.find(tag)`` for a plain tag (the first direct child so named, or None), a
     tenth of its cost: lxml's ``find`` parses its path on each call, and the rules ask for

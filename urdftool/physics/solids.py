@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
 from urdftool.description.values import finite, number_tuple, origin
-from urdftool.description.xml import first_child
+from urdftool.description.xml import child_list, first_child
 
 
 HULL_USED = "its convex hull was used"  # the problem of an open mesh that still counts
@@ -144,7 +144,7 @@ def shape_of(holder) -> Shape | None:
     geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    for element in geometry:
+    for element in child_list(geometry):
         kind = element.tag
         if isinstance(kind, str):
             break

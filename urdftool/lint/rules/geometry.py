@@ -8,7 +8,7 @@ from __future__ import annotations
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
-from urdftool.description.xml import first_child
+from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, parse_numbers
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
@@ -34,7 +34,7 @@ def _parts(robot) -> list:
 
 def _walk_parts(robot):
     for link in robot.children("link"):
-        for holder in link:
+        for holder in child_list(link):
             tag = holder.tag
             if tag not in ("visual", "collision", "inertial"):
                 continue
