@@ -22,7 +22,7 @@ from urdftool.description.xml import child_list, first_child
 HULL_USED = "its convex hull was used"  # the problem of an open mesh that still counts
 
 
-@dataclass
+@dataclass(slots=True)
 class Shape:
     """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size /
     radius, length / filename, scale), placed by ``xyz`` and ``rotation`` in the link frame;
@@ -102,7 +102,7 @@ class LinkSolid:
         return self._built
 
 
-@dataclass
+@dataclass(slots=True)
 class _Entry:
     """One shape of a :class:`LinkSolid`: its solid placed in the link frame (None when it does
     not count, or until a primitive's ``local`` solid is placed), its problems, and the open
@@ -486,7 +486,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
     return result
 
 
-@dataclass
+@dataclass(slots=True)
 class RigidBounds:
     """The bounding box [m] of everything rigidly one with a link, in the link frame.
 
