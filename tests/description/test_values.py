@@ -70,3 +70,13 @@ def test_number_tuple_is_the_shared_reading_and_parse_numbers_a_fresh_list():
     first.append(7.0)  # a caller's own list: the cached reading is not changed by it
     assert parse_numbers("4 5 6", 3) == ([4.0, 5.0, 6.0], None)
     assert number_tuple("4 5 6", 3)[0] == (4.0, 5.0, 6.0)
+
+
+def test_finite_looks_at_each_value_when_the_sum_is_not_finite():
+    from urdftool.description.values import finite
+
+    assert finite((1e308, 1e308, 1e308))  # the sum overflows; each value is finite
+    assert finite(()) and finite((0.0, -2.5))
+    for bad in (float("inf"), float("-inf"), float("nan")):
+        assert not finite((1.0, bad, 2.0)) and not finite([bad])
+    assert not finite((float("inf"), float("-inf")))  # the sum is nan

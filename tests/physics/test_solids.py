@@ -40,6 +40,27 @@ def test_rigid_bounds_join_links_fixed_either_way_in_the_link_frame(tmp_path):
     assert tip.bounds[1] == pytest.approx((0.15, 1.005, 0.15))
 
 
+def test_rigid_bounds_of_a_link_without_a_name_are_its_own_box(tmp_path):
+    # no joint can name it, so nothing is fixed to it: its own geometry (U307 crashed on it)
+    robot = _robot(tmp_path, RIGID.replace('<link name="arm">', '<link>'))
+    nameless = next(link for link in robot.children("link") if link.get("name") is None)
+    bounds = rigid_bounds(robot, nameless)
+    assert bounds.links == [None] and bounds.complete
+    assert bounds.bounds == ((-5.0, -5.0, -5.0), (5.0, 5.0, 5.0))
+
+
+def test_rigid_bounds_of_a_link_alone_are_what_its_frames_give(tmp_path):
+    # the shortcut for a link nothing is fixed to gives what walking its one frame gives
+    from urdftool.physics import solids
+
+    robot = _robot(tmp_path)
+    arm = robot.links["arm"]
+    frames = solids._rigid_frames(robot, "arm")
+    members, box, complete = solids._placed_corners(robot, arm)
+    assert list(frames) == ["arm"]
+    assert rigid_bounds(robot, arm) == solids.RigidBounds(["arm"], complete, box)
+
+
 def test_rigid_bounds_say_when_a_mesh_could_not_be_measured(tmp_path):
     robot = _robot(tmp_path, RIGID.replace('<box size="0.1 0.2 0.3"/>',
                                            '<mesh filename="missing.stl"/>'))

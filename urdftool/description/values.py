@@ -50,7 +50,9 @@ def number_tuple(text: str | None, count: int | None = None):
 
 
 def finite(values) -> bool:
-    return all(map(math.isfinite, values))
+    """Whether every value is finite: their sum is, unless one is not (inf or nan makes the
+    sum inf or nan) or the sum overflows (then each is looked at)."""
+    return math.isfinite(sum(values)) or all(map(math.isfinite, values))
 
 
 def number(element, attribute: str, default: float | None = None):

@@ -50,6 +50,8 @@ class LinkSolid:
     only its volume, which placing keeps.
     """
 
+    __slots__ = ("source", "bounds", "_entries", "_built", "_parts")
+
     def __init__(self, source: str):
         self.source = source
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
@@ -201,7 +203,11 @@ def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
             found[tag] = (kept, len(holders))
         return found
 
-    return robot.memo((_link_shapes, link), build)
+    known = robot.memo(_link_shapes, dict)  # link -> its shapes: one dict per robot
+    found = known.get(link)
+    if found is None:
+        found = known[link] = build()
+    return found
 
 
 def _quietly(compute, *args):
@@ -502,10 +508,16 @@ class RigidBounds:
 
 def rigid_bounds(robot, link) -> RigidBounds:
     """The box of a link's visual and collision geometry and of the links fixed to it."""
-    frames = _rigid_frames(robot, link.get("name"))
+    name = link.get("name")
+    if name not in _fixed_neighbours(robot):  # nothing fixed to it (most links): its own box
+        members, box, complete = _placed_corners(robot, robot.links.get(name, link))
+        if box is not None:
+            return RigidBounds([name], complete, box)
+    frames = _rigid_frames(robot, name)
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        members, box, complete = _placed_corners(robot, robot.links.get(name))
+        # a link without a name is in no joint: only the link itself may not be in links
+        members, box, complete = _placed_corners(robot, robot.links.get(name, link))
         if rotation is mat3.IDENTITY and box is not None:  # the link itself: its own box
             if len(frames) == 1:  # and nothing else: the box is its own min and max
                 result.complete, result.bounds = complete, box
@@ -561,7 +573,11 @@ def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
                    (high[0] + 0.0, high[1] + 0.0, high[2] + 0.0))
         return members, box, len(members) == elements
 
-    return robot.memo((_placed_corners, member), build)
+    known = robot.memo(_placed_corners, dict)  # link -> the above: one dict per robot
+    found = known.get(member)
+    if found is None:
+        found = known[member] = build()
+    return found
 
 
 def _measured(robot, shape: Shape) -> bool:

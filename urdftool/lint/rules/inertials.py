@@ -108,7 +108,11 @@ def _from_geometry(robot, link, mass: float):
 def _solid(robot, link, tag: str | None = None):
     """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
     per robot, link and tag: several rules ask."""
-    return robot.memo((_solid, link, tag), lambda: solids.link_solid(robot, link, tag=tag))
+    known = robot.memo((_solid, tag), dict)  # link -> its solids: one dict per robot and tag
+    found = known.get(link)
+    if found is None:
+        found = known[link] = solids.link_solid(robot, link, tag=tag)
+    return found
 
 
 def _recomputed(robot, link, properties, message: str):
