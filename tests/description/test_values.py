@@ -9,7 +9,8 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import Origin, number_tuple, origin, parse_numbers
+from urdftool.description.values import (Origin, number_tuple, origin, origin_pose,
+                                         parse_numbers)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -22,6 +23,19 @@ def test_absent_origin_is_the_identity():
     assert origin(_element("<joint/>")) == Origin((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), None, None)
     assert origin(None) == Origin()
     assert origin(_element('<joint><origin xyz="1 2 3"/></joint>')).rpy == (0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("text", [
+    "<joint/>", '<joint><origin xyz="1 2 3"/></joint>', '<joint><origin rpy="0 0.5 -1"/></joint>',
+    '<joint><origin xyz="1 2" rpy="0 x 0"/></joint>', '<joint><!-- c --><origin xyz="inf 0 0"/>'
+    '<origin xyz="9 9 9"/></joint>', '<joint><origin xyz="-0.0 0 1e400"/></joint>'])
+def test_origin_pose_is_what_origin_reads(text):
+    element = _element(text)
+    found = origin(element)
+    xyz, rpy = origin_pose(element)
+    assert (xyz, rpy) == (found.xyz, found.rpy)
+    assert [math.copysign(1, v) for v in xyz] == [math.copysign(1, v) for v in found.xyz]
+    assert origin_pose(None) == (origin(None).xyz, origin(None).rpy)
 
 
 def test_a_malformed_part_reads_as_zero_and_says_why():

@@ -16,7 +16,7 @@ import math
 from typing import NamedTuple
 
 from urdftool.physics import mat3
-from urdftool.description.values import number_tuple, origin
+from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import first_child
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
@@ -63,8 +63,9 @@ def declared(link) -> Body | None:
     if mass is None:
         return None
     xx, xy, xz, yy, yz, zz = xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]
-    xyz, rotation = mat3.placement(origin(inertial))  # a malformed part counts as 0
-    return Body(mass[0], xyz, mat3.rotate(((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)), rotation))
+    xyz, rpy = origin_pose(inertial)  # a malformed part counts as 0
+    return Body(mass[0], xyz, mat3.rotate(((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)),
+                                          mat3.rpy_matrix(rpy)))
 
 
 # Solids: mass properties per unit density, about their own centre, in their own frame.

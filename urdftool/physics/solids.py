@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
-from urdftool.description.values import finite, number_tuple, origin
+from urdftool.description.values import finite, number_tuple, origin, origin_pose
 from urdftool.description.xml import child_list, first_child
 
 
@@ -177,8 +177,8 @@ def shape_of(holder) -> Shape | None:
         params = {"filename": filename, "scale": scale}
     else:
         return None
-    xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    return Shape(kind, params, xyz, rotation, element)
+    xyz, rpy = origin_pose(holder)  # a malformed part counts as 0
+    return Shape(kind, params, xyz, mat3.rpy_matrix(rpy), element)
 
 
 def shapes(robot, link, tag: str) -> list[Shape]:
