@@ -160,7 +160,14 @@ class _StartOffsets(Mapping):
         self._data, self._newlines = data, None
 
     def __getitem__(self, element) -> tuple[int, int]:
-        offset = self._offsets[element]
+        return self._position(self._offsets[element])
+
+    def get(self, element, default=None):
+        """As Mapping's, without its exception for an element not found (every finding asks)."""
+        offset = self._offsets.get(element)
+        return default if offset is None else self._position(offset)
+
+    def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
             self._newlines = [match.start() for match in _NEWLINE.finditer(self._data)]
         before = bisect.bisect_left(self._newlines, offset)  # newlines before the "<"
