@@ -148,8 +148,12 @@ def malformed_inertial(robot):
     Bad: ``<inertia ixx="0.01" iyy="0.01" izz="0.01"/>``
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
     """
+    # a link's first <inertial> whose mass and six terms parse as finite numbers (_valid: its
+    # tensor in link axes is finite, which no inf or nan among them leaves) has nothing to say
+    sound = {link for link, _ in _valid(robot)}
     for link in robot.children("link"):
-        for inertial in robot.grouped(link).get("inertial", ()):
+        inertials = robot.grouped(link).get("inertial", ())
+        for inertial in inertials[1:] if link in sound else inertials:
             mass = first_child(inertial, "mass")
             if mass is None:
                 yield inertial, f"{_prefix(link)} has no <mass value=...>"
