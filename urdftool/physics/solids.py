@@ -50,11 +50,12 @@ class LinkSolid:
     only its volume, which placing keeps.
     """
 
-    __slots__ = ("source", "bounds", "_entries", "_built", "_parts")
+    __slots__ = ("source", "bounds", "_entries", "_built", "_parts", "_extent")
 
     def __init__(self, source: str):
         self.source = source
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
+        self._extent: float | None = None
         self._entries: list[_Entry] = []  # one per shape counted, in order
         self._built: tuple[list, list] | None = None  # entries that count, problems
         self._parts: list | None = None
@@ -68,6 +69,15 @@ class LinkSolid:
     @property
     def problems(self) -> list:
         return self._build()[1]
+
+    @property
+    def extent(self) -> float:
+        """The largest side of ``bounds`` [m] (which it has), worked out once: the inertia rules
+        ask up to four times a link."""
+        if self._extent is None:
+            (lx, ly, lz), (hx, hy, hz) = self.bounds
+            self._extent = max(hx - lx, hy - ly, hz - lz)
+        return self._extent
 
     @property
     def counts(self) -> bool:
@@ -546,6 +556,10 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
         return None
     if len(boxes) == 1:
         return boxes[0]
+    if len(boxes) == 2:  # a visual and a collision (most links): min and max written out,
+        ((ax, ay, az), (bx, by, bz)), ((cx, cy, cz), (dx, dy, dz)) = boxes  # as they choose
+        return ((cx if cx < ax else ax, cy if cy < ay else ay, cz if cz < az else az),
+                (dx if dx > bx else bx, dy if dy > by else by, dz if dz > bz else bz))
     lows, highs = zip(*boxes)
     (lx, ly, lz), (hx, hy, hz) = zip(*lows), zip(*highs)
     return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))

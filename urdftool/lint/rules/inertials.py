@@ -335,12 +335,6 @@ def _link_solids(robot):
                                              if properties.mass > 0])
 
 
-def _extent(solid) -> float:
-    """The largest side of a solid's bounding box [m]."""
-    (lx, ly, lz), (hx, hy, hz) = solid.bounds
-    return max(hx - lx, hy - ly, hz - lz)
-
-
 def _rounded(values) -> list[float]:
     """Values rounded to 4 decimals as numpy rounds them (round half to even of x * 1e4)."""
     return [math.copysign(round(v * 1e4) / 1e4, v) for v in values]
@@ -451,12 +445,12 @@ MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm 
 def _trustworthy(solid) -> bool:
     """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
     plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
-    return solid.sound and solid.counts and 0.001 <= _extent(solid) <= 5.0
+    return solid.sound and solid.counts and 0.001 <= solid.extent <= 5.0
 
 
 def _body_sized(solid) -> bool:
     """Bigger than a frame marker (over 1 cm) and at most 5 m."""
-    return solid.bounds is not None and MARKER_EXTENT * 1.01 < _extent(solid) <= 5.0
+    return solid.bounds is not None and MARKER_EXTENT * 1.01 < solid.extent <= 5.0
 
 
 def _inertia_ratios(robot) -> list:
