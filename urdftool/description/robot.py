@@ -150,9 +150,11 @@ def _by_tag(root) -> dict[str, list]:
     grouped: dict[str, list] = {}
     for child in child_list(root):  # one list from lxml, not its iterator
         tag = child.tag
-        if not isinstance(tag, str):
-            continue  # a comment, processing instruction or entity
-        grouped.setdefault(tag, []).append(child)
+        group = grouped.get(tag)
+        if group is not None:
+            group.append(child)
+        elif isinstance(tag, str):  # not a comment, processing instruction or entity
+            grouped[tag] = [child]  # (no list made and dropped for each child, as setdefault)
     return grouped
 
 
