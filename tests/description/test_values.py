@@ -9,7 +9,8 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import Origin, number_tuple, origin, parse_numbers
+from urdftool.description.values import (Origin, number_tuple, origin, origin_pose,
+                                         parse_numbers)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -22,6 +23,19 @@ def test_absent_origin_is_the_identity():
     assert origin(_element("<joint/>")) == Origin((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), None, None)
     assert origin(None) == Origin()
     assert origin(_element('<joint><origin xyz="1 2 3"/></joint>')).rpy == (0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("text", [
+    "<joint/>", '<joint><origin xyz="1 2 3"/></joint>', '<joint><origin rpy="0 0.5 -1"/></joint>',
+    '<joint><origin xyz="1 2" rpy="0 x 0"/></joint>', '<joint><!-- c --><origin xyz="inf 0 0"/>'
+    '<origin xyz="9 9 9"/></joint>', '<joint><origin xyz="-0.0 0 1e400"/></joint>'])
+def test_origin_pose_is_what_origin_reads(text):
+    element = _element(text)
+    found = origin(element)
+    xyz, rpy = origin_pose(element)
+    assert (xyz, rpy) == (found.xyz, found.rpy)
+    assert [math.copysign(1, v) for v in xyz] == [math.copysign(1, v) for v in found.xyz]
+    assert origin_pose(None) == (origin(None).xyz, origin(None).rpy)
 
 
 def test_a_malformed_part_reads_as_zero_and_says_why():
@@ -70,3 +84,13 @@ def test_number_tuple_is_the_shared_reading_and_parse_numbers_a_fresh_list():
     first.append(7.0)  # a caller's own list: the cached reading is not changed by it
     assert parse_numbers("4 5 6", 3) == ([4.0, 5.0, 6.0], None)
     assert number_tuple("4 5 6", 3)[0] == (4.0, 5.0, 6.0)
+
+
+def test_finite_looks_at_each_value_when_the_sum_is_not_finite():
+    from urdftool.description.values import finite
+
+    assert finite((1e308, 1e308, 1e308))  # the sum overflows; each value is finite
+    assert finite(()) and finite((0.0, -2.5))
+    for bad in (float("inf"), float("-inf"), float("nan")):
+        assert not finite((1.0, bad, 2.0)) and not finite([bad])
+    assert not finite((float("inf"), float("-inf")))  # the sum is nan

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from lxml import etree
 
-from urdftool.description.xml import first_child
+from urdftool.description.xml import child_list, first_child
 
 
 def test_child_is_find_for_a_plain_tag():
@@ -17,6 +17,14 @@ def test_child_is_find_for_a_plain_tag():
     assert first_child(root.find("geometry"), "origin").get("n") == "deep"
     assert first_child(root.find("origin"), "origin") is None  # a leaf has no children
     assert first_child(etree.Comment("c"), "origin") is None
+
+
+def test_child_list_is_what_iterating_gives():
+    root = etree.fromstring(b'<link>text<!-- c --><visual/>tail<?pi x?><origin><box/></origin>'
+                            b'<!-- d --></link>')
+    for element in (root, root.find("origin"), root.find("visual")):
+        assert child_list(element) == list(element)  # comments and instructions too, in order
+    assert [getattr(c, "tag", None) for c in child_list(root)][1::2] == ["visual", "origin"]
 
 
 def test_start_tags_found_by_scanning_are_where_expat_puts_them():

@@ -91,3 +91,11 @@ def test_rotate_by_no_turn_is_the_product_to_the_bit():
         product = mat3.multiply(mat3.multiply(mat3.NO_TURN, tensor),
                                 mat3.transpose(mat3.NO_TURN))
         assert _bits(mat3.rotate(tensor, mat3.NO_TURN)) == _bits(product)
+
+
+def test_an_infinite_angle_turns_into_nan_not_an_error():
+    # math.cos(inf) raises ValueError: every inertial rule crashed on <origin rpy="inf 0 0">
+    for rpy in ((math.inf, 0.0, 0.0), (0.0, -math.inf, 0.0), (0.1, 0.2, math.inf)):
+        assert all(math.isnan(v) for row in mat3.rpy_matrix(rpy) for v in row)
+    turned = mat3.rpy_matrix((math.nan, 0.0, 0.0))  # nan angles as before: cos(nan) is nan
+    assert turned[0][0] == 1.0 and math.isnan(turned[0][1])

@@ -40,6 +40,27 @@ def test_rigid_bounds_join_links_fixed_either_way_in_the_link_frame(tmp_path):
     assert tip.bounds[1] == pytest.approx((0.15, 1.005, 0.15))
 
 
+def test_rigid_bounds_of_a_link_without_a_name_are_its_own_box(tmp_path):
+    # no joint can name it, so nothing is fixed to it: its own geometry (U307 crashed on it)
+    robot = _robot(tmp_path, RIGID.replace('<link name="arm">', '<link>'))
+    nameless = next(link for link in robot.children("link") if link.get("name") is None)
+    bounds = rigid_bounds(robot, nameless)
+    assert bounds.links == [None] and bounds.complete
+    assert bounds.bounds == ((-5.0, -5.0, -5.0), (5.0, 5.0, 5.0))
+
+
+def test_rigid_bounds_of_a_link_alone_are_what_its_frames_give(tmp_path):
+    # the shortcut for a link nothing is fixed to gives what walking its one frame gives
+    from urdftool.physics import solids
+
+    robot = _robot(tmp_path)
+    arm = robot.links["arm"]
+    frames = solids._rigid_frames(robot, "arm")
+    members, box, complete = solids._placed_corners(robot, arm)
+    assert list(frames) == ["arm"]
+    assert rigid_bounds(robot, arm) == solids.RigidBounds(["arm"], complete, box)
+
+
 def test_rigid_bounds_say_when_a_mesh_could_not_be_measured(tmp_path):
     robot = _robot(tmp_path, RIGID.replace('<box size="0.1 0.2 0.3"/>',
                                            '<mesh filename="missing.stl"/>'))
@@ -206,3 +227,31 @@ def test_rows_times_is_the_whole_product_to_the_bit(rows):
     points = rng.normal(size=(rows, 3)) * 10.0 ** rng.uniform(-6, 6, size=(rows, 1))
     matrix = rng.normal(size=(70, 3)).T
     assert _rows_times(points, matrix).tobytes() == (points @ matrix).tobytes()
+
+
+def test_two_boxes_join_as_min_and_max_choose_to_the_bit():
+    # two boxes (a visual and a collision) are joined written out: the same numbers as the
+    # builtins, which keep the first of equals (0.0 before -0.0) and a nan only when first
+    import itertools
+    import math
+
+    from urdftool.physics.solids import _joined
+
+    values = (0.0, -0.0, 1.0, -2.5, math.inf, -math.inf, math.nan)
+    for a, b in itertools.product(values, repeat=2):
+        first, second = ((a, b, a), (b, a, b)), ((b, a, 1.0), (a, b, -1.0))
+        low, high = _joined([first, second])
+        expected = (tuple(min(x, y) for x, y in zip(first[0], second[0])),
+                    tuple(max(x, y) for x, y in zip(first[1], second[1])))
+        assert [v.hex() for v in low + high] == [v.hex() for v in expected[0] + expected[1]]
+
+
+def test_a_solid_measures_its_extent_once(tmp_path):
+    from urdftool.physics.solids import link_solid
+
+    robot = _robot(tmp_path)
+    solid = link_solid(robot, robot.links["sensor"])
+    (lx, ly, lz), (hx, hy, hz) = solid.bounds
+    assert solid.extent == max(hx - lx, hy - ly, hz - lz) == pytest.approx(0.3)
+    solid.bounds = ((0.0, 0.0, 0.0), (9.0, 9.0, 9.0))  # kept: not measured again
+    assert solid.extent == pytest.approx(0.3)

@@ -298,6 +298,18 @@ def test_printable_escapes_every_control_format_and_separator_character():
     assert printable("naïve 机器人 ✓") == "naïve 机器人 ✓"
 
 
+def test_printable_escapes_each_ascii_control_character_alone_and_in_text():
+    from urdftool.report import printable
+
+    # plain ASCII text is returned as it is without the regular expression: each C0 character
+    # and DEL, alone or among printable ones, must still be escaped
+    for code in [*range(0x20), 0x7f]:
+        escaped = printable(f"link{chr(code)}x")
+        assert chr(code) not in escaped and escaped.startswith("link\\") and escaped.endswith("x")
+    text = "".join(chr(c) for c in range(0x20, 0x7f))
+    assert printable(text) is text
+
+
 def test_a_joint_name_cannot_forge_the_report(tmp_path, run_cli):
     robot = tmp_path / "r.urdf"
     robot.write_text(

@@ -11,6 +11,7 @@ from typing import Callable, Mapping, TypeVar
 from urdftool.diagnostics import Location
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.packages import PackageResolver
+from urdftool.description.xml import child_list
 
 T = TypeVar("T")
 
@@ -147,11 +148,13 @@ class Robot:
 
 def _by_tag(root) -> dict[str, list]:
     grouped: dict[str, list] = {}
-    for child in root:
+    for child in child_list(root):  # one list from lxml, not its iterator
         tag = child.tag
-        if not isinstance(tag, str):
-            continue  # a comment, processing instruction or entity
-        grouped.setdefault(tag, []).append(child)
+        group = grouped.get(tag)
+        if group is not None:
+            group.append(child)
+        elif isinstance(tag, str):  # not a comment, processing instruction or entity
+            grouped[tag] = [child]  # (no list made and dropped for each child, as setdefault)
     return grouped
 
 

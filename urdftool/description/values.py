@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import re
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from urdftool.description.xml import first_child
 
@@ -50,7 +50,9 @@ def number_tuple(text: str | None, count: int | None = None):
 
 
 def finite(values) -> bool:
-    return all(map(math.isfinite, values))
+    """Whether every value is finite: their sum is, unless one is not (inf or nan makes the
+    sum inf or nan) or the sum overflows (then each is looked at)."""
+    return math.isfinite(sum(values)) or all(map(math.isfinite, values))
 
 
 def number(element, attribute: str, default: float | None = None):
@@ -62,13 +64,15 @@ def number(element, attribute: str, default: float | None = None):
     return values[0] if values else None
 
 
-@dataclass(frozen=True)
-class Origin:
+class Origin(NamedTuple):
     """An element's ``<origin>``: xyz in [m], rpy in [rad] (URDF roll-pitch-yaw).
 
     Identity when there is no ``<origin>``. A malformed ``xyz`` or ``rpy`` reads as zeros and sets
     ``problem`` (the first one), so each caller chooses: count it as 0, or refuse it.
     element: the ``<origin>`` element, None when absent
+
+    A named tuple, immutable: a third of a frozen dataclass's cost to make (a 10,000-link
+    robot's inertials and shapes read 30,000).
     """
 
     xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -85,7 +89,20 @@ def origin(element) -> Origin:
     xyz, xyz_problem = number_tuple(found.get("xyz", "0 0 0"), 3)  # tuples, as an Origin holds
     rpy, rpy_problem = number_tuple(found.get("rpy", "0 0 0"), 3)
     problem = f"xyz: {xyz_problem}" if xyz_problem else f"rpy: {rpy_problem}" if rpy_problem else None
-    return Origin(xyz or Origin.xyz, rpy or Origin.rpy, problem, found)
+    return Origin(xyz or _ZEROS, rpy or _ZEROS, problem, found)
 
 
+def origin_pose(element) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """(xyz, rpy) of :func:`origin` (zeros for a malformed part), without the rest: the solids
+    and inertials place 30,000 shapes and inertials of a 10,000-link robot, and count a
+    malformed part as 0 (the rules that judge it read :func:`origin`)."""
+    found = first_child(element, "origin") if element is not None else None
+    if found is None:
+        return _ZEROS, _ZEROS
+    get = found.get
+    return number_tuple(get("xyz", "0 0 0"), 3)[0] or _ZEROS, \
+        number_tuple(get("rpy", "0 0 0"), 3)[0] or _ZEROS
+
+
+_ZEROS = (0.0, 0.0, 0.0)
 _NO_ORIGIN = Origin()

@@ -160,7 +160,14 @@ class _StartOffsets(Mapping):
         self._data, self._newlines = data, None
 
     def __getitem__(self, element) -> tuple[int, int]:
-        offset = self._offsets[element]
+        return self._position(self._offsets[element])
+
+    def get(self, element, default=None):
+        """As Mapping's, without its exception for an element not found (every finding asks)."""
+        offset = self._offsets.get(element)
+        return default if offset is None else self._position(offset)
+
+    def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
             self._newlines = [match.start() for match in _NEWLINE.finditer(self._data)]
         before = bisect.bisect_left(self._newlines, offset)  # newlines before the "<"
@@ -181,6 +188,14 @@ def _refusing(parser, on_doctype, on_entity) -> None:
     parser.EntityDeclHandler = on_entity
     parser.ExternalEntityRefHandler = lambda *args: 0
     parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+
+
+def child_list(element) -> list:
+    """The children of ``element`` as iterating it gives them (elements, comments and
+    processing instructions, in order), as one list built by lxml (``element[:]``): its child
+    iterator costs about 1 us a child, the slice a fifth of that, and the rules walk 190,000
+    elements of a 10,000-link robot."""
+    return element[:]
 
 
 def first_child(element, tag: str):

@@ -50,6 +50,8 @@ def rpy_matrix(rpy) -> Matrix:
 
 
 def _rpy_matrix(r, p, y) -> Matrix:
+    if math.isinf(r) or math.isinf(p) or math.isinf(y):
+        return _UNDEFINED  # math.cos(inf) raises (a nan angle gives nan, as before)
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), \
         math.cos(y), math.sin(y)
     return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
@@ -57,6 +59,7 @@ def _rpy_matrix(r, p, y) -> Matrix:
             (-sp, cp * sr, cp * cr))
 
 
+_UNDEFINED: Matrix = ((math.nan,) * 3,) * 3  # the rotation of an infinite angle: unknown
 NO_TURN: Matrix = _rpy_matrix(0.0, 0.0, 0.0)  # rpy 0 0 0: IDENTITY's values, one of them -0.0
 
 

@@ -15,14 +15,14 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
 from urdftool.physics import mat3
-from urdftool.description.values import finite, number_tuple, origin
-from urdftool.description.xml import first_child
+from urdftool.description.values import finite, number_tuple, origin, origin_pose
+from urdftool.description.xml import child_list, first_child
 
 
 HULL_USED = "its convex hull was used"  # the problem of an open mesh that still counts
 
 
-@dataclass
+@dataclass(slots=True)
 class Shape:
     """One geometry: ``kind`` in :data:`~urdftool.description.urdf.SHAPES`, ``params`` (size /
     radius, length / filename, scale), placed by ``xyz`` and ``rotation`` in the link frame;
@@ -50,9 +50,12 @@ class LinkSolid:
     only its volume, which placing keeps.
     """
 
+    __slots__ = ("source", "bounds", "_entries", "_built", "_parts", "_extent")
+
     def __init__(self, source: str):
         self.source = source
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
+        self._extent: float | None = None
         self._entries: list[_Entry] = []  # one per shape counted, in order
         self._built: tuple[list, list] | None = None  # entries that count, problems
         self._parts: list | None = None
@@ -66,6 +69,15 @@ class LinkSolid:
     @property
     def problems(self) -> list:
         return self._build()[1]
+
+    @property
+    def extent(self) -> float:
+        """The largest side of ``bounds`` [m] (which it has), worked out once: the inertia rules
+        ask up to four times a link."""
+        if self._extent is None:
+            (lx, ly, lz), (hx, hy, hz) = self.bounds
+            self._extent = max(hx - lx, hy - ly, hz - lz)
+        return self._extent
 
     @property
     def counts(self) -> bool:
@@ -102,7 +114,7 @@ class LinkSolid:
         return self._built
 
 
-@dataclass
+@dataclass(slots=True)
 class _Entry:
     """One shape of a :class:`LinkSolid`: its solid placed in the link frame (None when it does
     not count, or until a primitive's ``local`` solid is placed), its problems, and the open
@@ -144,7 +156,7 @@ def shape_of(holder) -> Shape | None:
     geometry = first_child(holder, "geometry")
     if geometry is None:
         return None
-    for element in geometry:
+    for element in child_list(geometry):
         kind = element.tag
         if isinstance(kind, str):
             break
@@ -175,8 +187,8 @@ def shape_of(holder) -> Shape | None:
         params = {"filename": filename, "scale": scale}
     else:
         return None
-    xyz, rotation = mat3.placement(origin(holder))  # a malformed part counts as 0
-    return Shape(kind, params, xyz, rotation, element)
+    xyz, rpy = origin_pose(holder)  # a malformed part counts as 0
+    return Shape(kind, params, xyz, mat3.rpy_matrix(rpy), element)
 
 
 def shapes(robot, link, tag: str) -> list[Shape]:
@@ -201,7 +213,11 @@ def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
             found[tag] = (kept, len(holders))
         return found
 
-    return robot.memo((_link_shapes, link), build)
+    known = robot.memo(_link_shapes, dict)  # link -> its shapes: one dict per robot
+    found = known.get(link)
+    if found is None:
+        found = known[link] = build()
+    return found
 
 
 def _quietly(compute, *args):
@@ -486,7 +502,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
     return result
 
 
-@dataclass
+@dataclass(slots=True)
 class RigidBounds:
     """The bounding box [m] of everything rigidly one with a link, in the link frame.
 
@@ -502,10 +518,16 @@ class RigidBounds:
 
 def rigid_bounds(robot, link) -> RigidBounds:
     """The box of a link's visual and collision geometry and of the links fixed to it."""
-    frames = _rigid_frames(robot, link.get("name"))
+    name = link.get("name")
+    if name not in _fixed_neighbours(robot):  # nothing fixed to it (most links): its own box
+        members, box, complete = _placed_corners(robot, robot.links.get(name, link))
+        if box is not None:
+            return RigidBounds([name], complete, box)
+    frames = _rigid_frames(robot, name)
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
-        members, box, complete = _placed_corners(robot, robot.links.get(name))
+        # a link without a name is in no joint: only the link itself may not be in links
+        members, box, complete = _placed_corners(robot, robot.links.get(name, link))
         if rotation is mat3.IDENTITY and box is not None:  # the link itself: its own box
             if len(frames) == 1:  # and nothing else: the box is its own min and max
                 result.complete, result.bounds = complete, box
@@ -534,6 +556,10 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
         return None
     if len(boxes) == 1:
         return boxes[0]
+    if len(boxes) == 2:  # a visual and a collision (most links): min and max written out,
+        ((ax, ay, az), (bx, by, bz)), ((cx, cy, cz), (dx, dy, dz)) = boxes  # as they choose
+        return ((cx if cx < ax else ax, cy if cy < ay else ay, cz if cz < az else az),
+                (dx if dx > bx else bx, dy if dy > by else by, dz if dz > bz else bz))
     lows, highs = zip(*boxes)
     (lx, ly, lz), (hx, hy, hz) = zip(*lows), zip(*highs)
     return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))
@@ -561,7 +587,11 @@ def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
                    (high[0] + 0.0, high[1] + 0.0, high[2] + 0.0))
         return members, box, len(members) == elements
 
-    return robot.memo((_placed_corners, member), build)
+    known = robot.memo(_placed_corners, dict)  # link -> the above: one dict per robot
+    found = known.get(member)
+    if found is None:
+        found = known[member] = build()
+    return found
 
 
 def _measured(robot, shape: Shape) -> bool:

@@ -24,12 +24,13 @@ def lines(results, quiet: bool = False) -> list[Line]:
             continue
         out.append([(display_path(result.path), "bold underline")])
         for finding in result.findings:
-            out.append([(f"  {finding.location}: ", ""),
-                        (finding.severity.value, STYLES[finding.severity.value]),
+            location, severity = finding.location, finding.severity.value
+            out.append([(f"  {location}: ", ""), (severity, STYLES[severity]),
                         (" ", ""), *_marker(finding), (finding.code, "bold"),
                         (f" {finding.message} ", ""),
                         (f"({finding.name})", "dim")])
-            out.extend([(f"      {line}", "dim")] for line in via_text(finding.location))
+            if location.via:  # a macro's: its call sites (10,000 findings may have none)
+                out.extend([(f"      {line}", "dim")] for line in via_text(location))
         if not quiet:
             out.append([])
     if quiet:
@@ -53,7 +54,7 @@ def _printable(line: Line) -> Line:
     """The line with each span :func:`printable`; one look at the whole line first (escaping
     is per character, so a line that needs none is kept as it is: 10,000 findings are 60,000
     spans)."""
-    whole = "".join(text for text, _ in line)
+    whole = "".join([text for text, _ in line])
     if printable(whole) == whole:
         return line
     return [(printable(text), style) for text, style in line]

@@ -158,3 +158,28 @@ def test_a_zero_tensor_is_u304s_not_also_far_from_its_geometry(tmp_path):
     text = LINK.format(mass=0.746, i=1e-20, geometry=CUBE, com="0 0 0", visual="")
     found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304", "U310"))
     assert [f.code for f in findings] == ["U304"], [f.message for f in findings]
+
+
+def _found(tmp_path, text, codes=("U3",)):
+    (tmp_path / "r.urdf").write_text(text)
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
+    return [(f.code, f.message) for f in result.findings]
+
+
+def test_u301_judges_every_inertial_of_a_link_whose_first_one_is_sound(tmp_path):
+    # the first inertial parses (so the link's declared inertial is valid); the second does not
+    found = _found(tmp_path, '<robot name="r"><link name="a">' + INERTIAL.format(com="0 0 0") +
+                   '<inertial><mass value="heavy"/><inertia ixx="1" iyy="1" izz="1"/>'
+                   '</inertial></link></robot>', ("U301",))
+    assert [code for code, _ in found] == ["U301", "U301"]
+    assert "mass 'heavy'" in found[0][1] + found[1][1]
+    assert "lacks ixy, ixz, iyz" in found[0][1] + found[1][1]
+
+
+def test_an_infinite_inertial_angle_is_reported_not_a_crash(tmp_path):
+    # U302-U311 crashed (U900: math.cos(inf)); U301 says what is not finite, U404 the angle
+    found = _found(tmp_path, '<robot name="r"><link name="a"><inertial><origin rpy="inf 0 0"/>'
+                   '<mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" '
+                   'izz="inf"/></inertial></link></robot>', ("U3", "U404", "U900"))
+    assert [code for code, _ in found] == ["U301", "U404"]
+    assert "izz='inf' is not a finite number" in found[0][1]

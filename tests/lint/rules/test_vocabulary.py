@@ -31,6 +31,21 @@ def test_the_issue_example_names_each_misspelling_at_its_line(tmp_path):
     assert 'reads damping as an attribute: <dynamics damping="100"/>' in messages[2]
 
 
+def test_unknown_names_deep_in_known_elements_are_found_in_document_order(tmp_path):
+    # leaves judged in their parent's loop, attributes compared as a set first: an unknown
+    # one among known ones, on a leaf and on an element with children, is still each reported
+    found, findings = _check(tmp_path, """<robot name="r">
+      <link name="a"><visual><origin xyz="0 0 0" rpi="0 0 0"/>
+        <geometry><box size="1 1 1" sise="1"/></geometry></visual>
+        <inertial><mas value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+        </inertial></link>
+      <link name="b" typ="x"/></robot>""")
+    assert [(line, code) for _, line, code in found] == [(2, "U022"), (3, "U021"),
+                                                         (4, "U020"), (6, "U021")]
+    assert ["'rpi' has no effect" in findings[0].message, "'size'" in findings[1].message,
+            "'mass'" in findings[2].message, "'type'" in findings[3].message] == [True] * 4
+
+
 def test_an_attribute_written_for_an_element_says_so(tmp_path):
     found, findings = _check(tmp_path, """<robot name="r"><link name="a"/><link name="b"/>
       <joint name="j" type="fixed" child="b"><parent link="a"/><child link="b"/></joint></robot>""")

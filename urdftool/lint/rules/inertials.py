@@ -108,7 +108,11 @@ def _from_geometry(robot, link, mass: float):
 def _solid(robot, link, tag: str | None = None):
     """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
     per robot, link and tag: several rules ask."""
-    return robot.memo((_solid, link, tag), lambda: solids.link_solid(robot, link, tag=tag))
+    known = robot.memo((_solid, tag), dict)  # link -> its solids: one dict per robot and tag
+    found = known.get(link)
+    if found is None:
+        found = known[link] = solids.link_solid(robot, link, tag=tag)
+    return found
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -130,6 +134,10 @@ def _moving(robot) -> dict:
                                         if joint.get("type") in VARIABLE})
 
 
+def _prefix(link) -> str:
+    return f"link '{_name(link)}': <inertial>"
+
+
 @rule("U301", "malformed-inertial", Severity.ERROR)
 def malformed_inertial(robot):
     """An ``<inertial>`` lacks its mass or one of the six inertia terms, or one is not a number.
@@ -140,34 +148,38 @@ def malformed_inertial(robot):
     Bad: ``<inertia ixx="0.01" iyy="0.01" izz="0.01"/>``
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
     """
+    # a link's first <inertial> whose mass and six terms parse as finite numbers (_valid: its
+    # tensor in link axes is finite, which no inf or nan among them leaves) has nothing to say
+    sound = {link for link, _ in _valid(robot)}
     for link in robot.children("link"):
-        for inertial in robot.grouped(link).get("inertial", ()):
-            prefix = f"link '{_name(link)}': <inertial>"
+        inertials = robot.grouped(link).get("inertial", ())
+        for inertial in inertials[1:] if link in sound else inertials:
             mass = first_child(inertial, "mass")
             if mass is None:
-                yield inertial, f"{prefix} has no <mass value=...>"
+                yield inertial, f"{_prefix(link)} has no <mass value=...>"
             elif mass.get("value") is None:
-                yield mass, f"{prefix} <mass> has no value attribute"
+                yield mass, f"{_prefix(link)} <mass> has no value attribute"
             else:
                 values, problem = number_tuple(mass.get("value"), 1)
                 if problem or not math.isfinite(values[0]):
-                    yield mass, f"{prefix} mass '{mass.get('value')}' is not a finite number"
+                    yield mass, f"{_prefix(link)} mass '{mass.get('value')}' is not a finite number"
             inertia = first_child(inertial, "inertia")
             if inertia is None:
-                yield inertial, (f"{prefix} has no <inertia>; give all six of "
+                yield inertial, (f"{_prefix(link)} has no <inertia>; give all six of "
                                  f"{', '.join(INERTIA_ATTRIBUTES)}")
                 continue
             texts = [inertia.get(a) for a in INERTIA_ATTRIBUTES]
             if None in texts:
                 missing = [a for a, text in zip(INERTIA_ATTRIBUTES, texts) if text is None]
-                yield inertia, (f"{prefix} <inertia> lacks {', '.join(missing)} (urdfdom needs "
-                                "all six; write 0 for products of inertia that vanish)")
+                yield inertia, (f"{_prefix(link)} <inertia> lacks {', '.join(missing)} "
+                                "(urdfdom needs all six; write 0 for products of inertia that "
+                                "vanish)")
             for attribute, text in zip(INERTIA_ATTRIBUTES, texts):
                 if text is None:
                     continue
                 values, problem = number_tuple(text, 1)
                 if problem or not math.isfinite(values[0]):
-                    yield inertia, f"{prefix} {attribute}='{text}' is not a finite number"
+                    yield inertia, f"{_prefix(link)} {attribute}='{text}' is not a finite number"
 
 
 @rule("U302", "negative-mass", Severity.ERROR)
@@ -235,6 +247,13 @@ def _diagonal(properties) -> list[float]:
     return [properties.inertia[i][i] for i in range(3)]
 
 
+def _negative_moment(properties) -> bool:
+    """Whether a diagonal moment is negative (below -NEGATIVE_FLOOR); written out: U304 and
+    U305 ask for every link."""
+    (xx, _, _), (_, yy, _), (_, _, zz) = properties.inertia
+    return xx < -NEGATIVE_FLOOR or yy < -NEGATIVE_FLOOR or zz < -NEGATIVE_FLOOR
+
+
 @rule("U304", "inertia-not-positive-definite", Severity.ERROR)
 def inertia_not_positive_definite(robot):
     """A diagonal moment of inertia is negative, or a moving link with mass has zero inertia.
@@ -250,9 +269,9 @@ def inertia_not_positive_definite(robot):
     """
     moving = _moving(robot)
     for link, properties in _judged(robot):
-        diagonal = _diagonal(properties)
-        if any(v < -NEGATIVE_FLOOR for v in diagonal):
-            names = [a for a, v in zip(("ixx", "iyy", "izz"), diagonal) if v < -NEGATIVE_FLOOR]
+        if _negative_moment(properties):
+            names = [a for a, v in zip(("ixx", "iyy", "izz"), _diagonal(properties))
+                     if v < -NEGATIVE_FLOOR]
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
                 "positive"))
@@ -275,7 +294,7 @@ def inertia_indefinite(robot):
     Good: ``ixx="1" iyy="1" izz="1" ixy="0.2"``
     """
     for link, properties in _judged(robot):
-        if any(v < -NEGATIVE_FLOOR for v in _diagonal(properties)):
+        if _negative_moment(properties):
             continue
         moments, largest = _principal(robot, link, properties)
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
@@ -314,12 +333,6 @@ def _link_solids(robot):
     return robot.memo(_link_solids, lambda: [(link, properties, _solid(robot, link))
                                              for link, properties in _valid(robot)
                                              if properties.mass > 0])
-
-
-def _extent(solid) -> float:
-    """The largest side of a solid's bounding box [m]."""
-    (lx, ly, lz), (hx, hy, hz) = solid.bounds
-    return max(hx - lx, hy - ly, hz - lz)
 
 
 def _rounded(values) -> list[float]:
@@ -432,12 +445,12 @@ MARKER_EXTENT = 0.01  # [m]: geometry this small marks a frame (a sensor's 1 cm 
 def _trustworthy(solid) -> bool:
     """Geometry that stands for the body: primitives and closed meshes, all loaded, of a
     plausible size (1 mm to 5 m; else the mesh is suspect, see U413)."""
-    return solid.sound and solid.counts and 0.001 <= _extent(solid) <= 5.0
+    return solid.sound and solid.counts and 0.001 <= solid.extent <= 5.0
 
 
 def _body_sized(solid) -> bool:
     """Bigger than a frame marker (over 1 cm) and at most 5 m."""
-    return solid.bounds is not None and MARKER_EXTENT * 1.01 < _extent(solid) <= 5.0
+    return solid.bounds is not None and MARKER_EXTENT * 1.01 < solid.extent <= 5.0
 
 
 def _inertia_ratios(robot) -> list:

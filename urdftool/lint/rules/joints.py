@@ -180,20 +180,27 @@ def _unit_text(values, norm: float) -> str:
 
 
 def _numeric_problems(robot) -> list:
-    """(joint, element, attribute, values, problem) of every joint number; once per robot."""
-    return robot.memo(_numeric_problems, lambda: list(_numeric_fields(robot)))
+    """(joint, element, attribute, values, problem) of every joint number that does not parse
+    (``problem``) or is not finite, in document order; once per robot (U207 and U208 ask). The
+    numbers that are fine are not kept: most are, and a 10,000-joint robot has 60,000."""
+    return robot.memo(_numeric_problems, lambda: _numeric_fields(robot))
 
 
-def _numeric_fields(robot):
+def _numeric_fields(robot) -> list:
+    found = []
     for joint in robot.children("joint"):
         for tag, elements in robot.grouped(joint).items():
-            for attribute, count in _FIELDS_BY_TAG.get(tag, ()):
+            fields = _FIELDS_BY_TAG.get(tag)
+            if fields is None:
+                continue  # parent, child: no numbers
+            for attribute, count in fields:
                 for element in elements:
                     text = element.get(attribute)
-                    if text is None:
-                        continue
-                    values, problem = number_tuple(text, count)
-                    yield joint, element, attribute, values, problem
+                    if text is not None:
+                        values, problem = number_tuple(text, count)
+                        if problem or not finite(values):
+                            found.append((joint, element, attribute, values, problem))
+    return found
 
 
 _FIELDS_BY_TAG: dict[str, list[tuple[str, int]]] = {}

@@ -17,6 +17,7 @@ import difflib
 from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
                                        is_namespaced, is_xacro, where_valid)
 from urdftool.description.values import parse_numbers
+from urdftool.description.xml import child_list
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import element_to_attribute, offer, rename_attribute, rename_element
 
@@ -70,9 +71,21 @@ def _skipped(tag) -> bool:
 def _walk(element, key: str, place: Place, found: list) -> list[_Unknown]:
     """Append the unknowns of ``element`` and below to ``found``, in document order; return it.
     Calls, not nested generators, and leaves not iterated: a 10,000-link robot has 190,000
-    elements."""
+    elements. Each element's attributes are first compared as a whole with the names known
+    there (one set operation; the names one by one only when some is not known), and a known
+    child that is a leaf is judged in its parent's loop, without a call of its own."""
+    keys = element.keys()
+    if keys and not _KNOWN[key].issuperset(keys):
+        _unknown_attributes(element, key, place, keys, found)
+    if len(element):
+        _walk_children(element, key, place, found)
+    return found
+
+
+def _unknown_attributes(element, key: str, place: Place, keys, found: list) -> None:
+    """Append the unknown attributes among ``keys`` (``element``'s, in order) to ``found``."""
     known = place.attributes
-    for attribute in element.keys():
+    for attribute in keys:
         if attribute in known or is_namespaced(attribute):
             continue
         if key == "axis" and attribute == "rpy" and _zero(element.get(attribute)):
@@ -81,14 +94,22 @@ def _walk(element, key: str, place: Place, found: list) -> list[_Unknown]:
             found.append(_Unknown(element, attribute, key, [], place.ignored[attribute]))
         else:
             found.append(_Unknown(element, attribute, key, _close(attribute, place.names())))
-    if not len(element):
-        return found
+
+
+def _walk_children(element, key: str, place: Place, found: list) -> None:
+    """Append the unknowns below ``element`` (which has children) to ``found``, in order."""
     children, shapes = place.children, 0
-    for child in element:
+    known_children = _KNOWN_CHILDREN[key] if key != "geometry" else {}
+    for child in child_list(element):
         tag = child.tag
-        if key != "geometry" and tag in children:  # a known element: most are
-            name = children[tag]
-            _walk(child, name, VOCABULARY[name], found)
+        entry = known_children.get(tag)
+        if entry is not None:  # a known element (not a shape): most are; as _walk(child, ...)
+            name, child_place, child_known = entry
+            keys = child.keys()
+            if keys and not child_known.issuperset(keys):
+                _unknown_attributes(child, name, child_place, keys, found)
+            if len(child):
+                _walk_children(child, name, child_place, found)
             continue
         if _skipped(tag):
             continue
@@ -112,7 +133,14 @@ def _walk(element, key: str, place: Place, found: list) -> list[_Unknown]:
             found.append(_Unknown(child, None, key, [], place.ignored[tag]))
         else:
             found.append(_Unknown(child, None, key, _close(tag, place.names())))
-    return found
+
+
+# Per place of the vocabulary: the attribute names known there (a set, compared with each
+# element's at once), and each known child tag -> (its place's name, place, known attributes)
+_KNOWN = {key: frozenset(place.attributes) for key, place in VOCABULARY.items()}
+_KNOWN_CHILDREN = {key: {tag: (name, VOCABULARY[name], _KNOWN[name])
+                         for tag, name in place.children.items()}
+                   for key, place in VOCABULARY.items()}
 
 
 def _zero(text) -> bool:
