@@ -21,7 +21,6 @@ U8xx SRDF and collisions, U9xx urdftool itself.
 
 from __future__ import annotations
 
-import difflib
 import inspect
 import re
 from dataclasses import dataclass
@@ -175,6 +174,8 @@ class Catalogue:
             listed = ", ".join(f"{r.code} {r.name}" for r in prefixed)
             raise UnknownRule(
                 f"no rule '{wanted}'; the rules starting with {wanted.upper()} are: {listed}")
+        import difflib  # only for a name that is no rule's
+
         by_word = {r.code: r for r in rules} | {r.name: r for r in rules}
         close = dict.fromkeys(by_word[word] for word in
                               difflib.get_close_matches(wanted, list(by_word), n=3, cutoff=0.6))

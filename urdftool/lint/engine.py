@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import gc
-import traceback
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -41,6 +40,8 @@ def stamp(rule: Rule, where, message: str, robot, fix=None) -> Finding:
 
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
     """U900 for a crash in urdftool itself, naming the code line that raised."""
+    import traceback  # only for a crash
+
     frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
     return CATALOGUE.get("U900").finding(

@@ -12,7 +12,6 @@ where a close misspelling is reported.
 
 from __future__ import annotations
 
-import difflib
 
 from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
                                        is_namespaced, is_xacro, where_valid)
@@ -29,6 +28,8 @@ def _close(name: str, valid) -> list[str]:
     after it (``gear_velocity``, ``velocity_max``) is a tool's own extension written on
     purpose, not a misspelling of ``velocity``, and a word of a known name (``mimic`` beside
     ros2_control's ``is_mimic``) is another version's name for it: neither is close."""
+    import difflib  # only for an unknown name
+
     valid = list(dict.fromkeys(valid))
     same_case = [v for v in valid if v.lower() == name.lower()]
     def words(text: str) -> set[str]:
