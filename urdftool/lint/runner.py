@@ -139,7 +139,8 @@ class _Checking:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
-        # in a worker forked by check_files, the blocks it entered (nested blocks share them)
+        # in check_files' block (in this process, or inherited by a forked worker) this nests
+        # and shares its notes; in a spare, it notes this piece's reads
         with self.cache.noting_reads() if self.cache else nullcontext():
             result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
             if self.cache and path != "-":
@@ -331,7 +332,8 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
             io.BufferedWriter(_Relay(connection, number)), encoding="utf-8",
             errors="backslashreplace", line_buffering=True))
-    with one_run():  # a forked worker's is the parent's block; a spare's, its own
+    with one_run():  # one view of the file system for its pieces (a forked worker's: the block
+        # it was forked in, when there was one)
         _serve_pieces(connection, work)
 
 
