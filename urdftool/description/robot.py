@@ -69,6 +69,18 @@ class Robot:
             self._memo[key] = compute()
         return self._memo[key]
 
+    def memo_for(self, kind, key, compute: Callable[[], T]) -> T:
+        """``compute()`` once per robot, ``kind`` and ``key`` (a link, say), then the same
+        value, as :meth:`memo` keyed by ``(kind, key)`` but with one dict per kind: no key
+        tuple is made for each of a 10,000-link robot's links. ``compute`` may not return None."""
+        known = self._memo.get(kind)
+        if known is None:
+            known = self._memo[kind] = {}
+        found = known.get(key)
+        if found is None:
+            found = known[key] = compute()
+        return found
+
     def locate(self, element) -> Location:
         """Where ``element`` was written; the file itself when it has no element."""
         if element is None:

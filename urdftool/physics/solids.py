@@ -213,11 +213,7 @@ def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
             found[tag] = (kept, len(holders))
         return found
 
-    known = robot.memo(_link_shapes, dict)  # link -> its shapes: one dict per robot
-    found = known.get(link)
-    if found is None:
-        found = known[link] = build()
-    return found
+    return robot.memo_for(_link_shapes, link, build)
 
 
 def _quietly(compute, *args):
@@ -587,11 +583,7 @@ def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
                    (high[0] + 0.0, high[1] + 0.0, high[2] + 0.0))
         return members, box, len(members) == elements
 
-    known = robot.memo(_placed_corners, dict)  # link -> the above: one dict per robot
-    found = known.get(member)
-    if found is None:
-        found = known[member] = build()
-    return found
+    return robot.memo_for(_placed_corners, member, build)
 
 
 def _measured(robot, shape: Shape) -> bool:

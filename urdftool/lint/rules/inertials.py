@@ -108,11 +108,7 @@ def _from_geometry(robot, link, mass: float):
 def _solid(robot, link, tag: str | None = None):
     """The link's solids (physics.solids.link_solid, of ``tag`` only when given), built once
     per robot, link and tag: several rules ask."""
-    known = robot.memo((_solid, tag), dict)  # link -> its solids: one dict per robot and tag
-    found = known.get(link)
-    if found is None:
-        found = known[link] = solids.link_solid(robot, link, tag=tag)
-    return found
+    return robot.memo_for((_solid, tag), link, lambda: solids.link_solid(robot, link, tag=tag))
 
 
 def _recomputed(robot, link, properties, message: str):
@@ -235,12 +231,11 @@ def moving_link_without_mass(robot):
 def _principal(robot, link, properties):
     """(principal moments, the largest magnitude) of a link's declared inertial (from
     :func:`_valid`), once per robot and link (U305 and U306 ask)."""
-    known = robot.memo(_principal, dict)
-    found = known.get(link)
-    if found is None:
+    def compute():
         moments = properties.principal_moments()
-        found = known[link] = moments, max(max(abs(m) for m in moments), 1e-300)
-    return found
+        return moments, max(max(abs(m) for m in moments), 1e-300)
+
+    return robot.memo_for(_principal, link, compute)
 
 
 def _diagonal(properties) -> list[float]:
