@@ -2,36 +2,30 @@
 10,000 links.
 
 - ``urdftool check`` on the 10,000-link chain and star against urdfdom's ``check_urdf`` binary
-  on the same file (target: <= 5x).
+  on the same file (target: <= 5x), the medians of three alternating runs of each (the host's
+  speed drifts within minutes: see ``bench_check.paired``).
 - t(10k) / t(1k) for ``check`` (chain and star), ``tree``, ``graph`` and ``inertia`` (star:
   ``tree`` prints check_urdf's format, indented by depth, so its output on a chain is quadratic
-  in the links, as check_urdf's is) (target: <= 12).
-- ``fk``, ``dynamics`` and ``collisions`` are not run at 10,000 links: Pinocchio's own
-  ``buildModelFromXML`` takes ~56 s (star) and ~116 s (chain, 3 GB) there, and its Data grows
-  with nv^3 (``dynamics`` refuses beyond the memory budget), so their ratio is reported MISSED
-  with Pinocchio's own parse ratio measured on 1,000 and 3,000 links as the reason.
+  in the links, as check_urdf's is) (target: <= 12), medians of three runs.
+- ``fk``, ``dynamics`` and ``collisions`` are not run at 10,000 links: Pinocchio builds its model
+  in quadratic time (its own ``buildModelFromXML``, measured on 2026-11-28: 9.9 s for the star
+  and 30 s for the chain, against 0.12 s and 0.18 s at 1,000 links; ``urdftool fk`` then took 21 s
+  and 35 s, 3.4 GB for the chain), and its Data grows with nv^3 (``dynamics`` refuses beyond the
+  memory budget), so their ratio is reported MISSED with Pinocchio's own parse ratio measured
+  on 1,000 and 3,000 links as the reason (linear would be 3, quadratic 9).
 """
 
 from __future__ import annotations
 
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import generate  # noqa: E402
-from bench_check import BIN, urdfdom_check_urdf  # noqa: E402
-
-
-def _timed(command, **kwargs) -> float:
-    import subprocess
-
-    start = time.perf_counter()
-    subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **kwargs)
-    return time.perf_counter() - start
+from bench_check import BIN, paired, timed, urdfdom_check_urdf  # noqa: E402
 
 
 def _pinocchio_parse(path: Path) -> float:
@@ -53,18 +47,20 @@ def main() -> list[dict]:
         check = [urdftool, "check", "--timeout", "0", "--max-memory", "0", "--no-cache"]
         times = {}
         for shape in ("chain", "star"):
-            for n in (1000, 10000):
-                times["check", shape, n] = _timed([*check, str(files[shape, n])])
-            reference = _timed([check_urdf, str(files[shape, 10000])], env=environment)
-            ours = times["check", shape, 10000]
+            times["check", shape, 1000] = timed([*check, str(files[shape, 1000])], repeat=3)
+            ours, reference, samples = paired([*check, str(files[shape, 10000])],
+                                              [check_urdf, str(files[shape, 10000])],
+                                              repeat=3, reference_env=environment)
+            times["check", shape, 10000] = ours
             results.append({"name": f"check {shape} 10k [{ours:.2f} s] vs check_urdf "
-                                    f"[{reference:.2f} s]",
+                                    f"[{reference:.2f} s] (medians: {samples})",
                             "ratio": ours / reference, "target": "<= 5x",
                             "ok": ours <= 5 * reference})
         for command in ("tree", "graph", "inertia"):
             for n in (1000, 10000):
-                times[command, "star", n] = _timed([urdftool, command, "--timeout", "0",
-                                                    "--max-memory", "0", str(files["star", n])])
+                times[command, "star", n] = timed([urdftool, command, "--timeout", "0",
+                                                   "--max-memory", "0", str(files["star", n])],
+                                                  repeat=3)
         for command, shape in [("check", "chain"), ("check", "star"), ("tree", "star"),
                                ("graph", "star"), ("inertia", "star")]:
             small, large = times[command, shape, 1000], times[command, shape, 10000]
@@ -74,7 +70,8 @@ def main() -> list[dict]:
         three = generate.write(Path(folder), 3000, "chain")
         pin_small, pin_large = _pinocchio_parse(files["chain", 1000]), _pinocchio_parse(three)
         results.append({"name": f"fk/dynamics/collisions: not run at 10k; raw Pinocchio parse "
-                                f"chain t(3k)/t(1k) [{pin_large:.2f}/{pin_small:.2f} s]",
+                                f"chain t(3k)/t(1k) [{pin_large:.2f}/{pin_small:.2f} s] "
+                                "(linear: 3, quadratic: 9)",
                         "ratio": pin_large / pin_small, "target": "<= 3.6", "ok": False})
     for result in results:
         print(result["name"], f"ratio {result['ratio']:.2f}")
