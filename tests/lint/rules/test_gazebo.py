@@ -120,3 +120,14 @@ def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):
     found, findings = check_folder(tmp_path, {"robot.urdf": robot})
     assert found == [("robot.urdf", 9, "U618")]
     assert "use libgazebo_ros2_control.so" in findings[0].message
+
+
+def test_caster_joint_naming_a_missing_link_is_not_a_crash(tmp_path):
+    # found by make fuzz (tests/fuzz/regressions/120a502091a0): a joint whose child link does not
+    # exist, named like a caster, crashed U617's caster check (KeyError, a U900)
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(
+        "<left_joint>lj</left_joint><right_joint>rj</right_joint>")).replace(
+        "</robot>", '<joint name="cj" type="fixed"><parent link="base_link"/>'
+                    '<child link="front_caster"/></joint>\n</robot>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U1", "U6", "U9"))
+    assert found == [("robot.urdf", 12, "U105")]

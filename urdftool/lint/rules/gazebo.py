@@ -370,9 +370,10 @@ def _caster_below(robot, drive, wheel, where):
         return
     ground = frames[child.get("link")][0][2] - diameter / 2
     for name, (position, rotation) in frames.items():
-        if "caster" not in name.lower():
+        link = robot.links.get(name)  # a joint may name a link that is not there (U102 says so)
+        if link is None or "caster" not in name.lower():
             continue
-        for collision in robot.links[name].findall("collision"):
+        for collision in link.findall("collision"):
             sphere = collision.find("geometry/sphere")
             values, _ = parse_numbers(sphere.get("radius") if sphere is not None else None, 1)
             if not values:
