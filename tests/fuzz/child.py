@@ -245,7 +245,11 @@ def _child(argv, cwd, allow, scratch, out_fd, log_fd, stdin_path, memory_limit, 
         sys.stderr = io.TextIOWrapper(io.FileIO(2, "w", closefd=False), write_through=True)
         os.environ.update({"TMPDIR": str(scratch), "COLUMNS": "150", "NO_COLOR": "1",
                            "TERM": "dumb", "GITHUB_ACTIONS": "", "CI": "", SECRET_NAME:
-                           SECRET_VALUE, "MPLCONFIGDIR": str(scratch), **env})
+                           SECRET_VALUE, "MPLCONFIGDIR": str(scratch),
+                           # the result cache on, as users have it (the test suite turns it
+                           # off for itself), its signing key ($XDG_CACHE_HOME/urdftool/key)
+                           # made in the case's scratch folder, not read from the user's home
+                           "URDFTOOL_NO_CACHE": "", "XDG_CACHE_HOME": str(scratch), **env})
         tempfile.tempdir = str(scratch)
         if memory_limit:
             resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
