@@ -335,3 +335,36 @@ def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeyp
     after = _messages(robot, cache_dir)
     assert after != before
     assert after == _messages(robot, tmp_path / "another-cache")  # as checked afresh
+
+
+def test_links_leading_out_of_the_repository_are_neither_read_nor_stamped(robot, tmp_path,
+                                                                          monkeypatch):
+    # found by make fuzz with the cache on: to tell a kept result stale, the cache hashed every
+    # .yaml and .srdf beside the robot and in config/, and every mesh, following links that the
+    # loader refuses to follow (limits.yaml -> /etc/passwd was opened, its hash kept in the
+    # repository's cache)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    secret = outside / "secret.yaml"
+    secret.write_text("password: hunter2\n")
+    _write_mesh(outside / "part.stl", 0.1)
+    (robot / "limits.yaml").symlink_to(secret)
+    (robot / "config" / "leak.yaml").symlink_to(secret)
+    (robot / "part.stl").unlink()
+    (robot / "part.stl").symlink_to(outside / "part.stl")
+    read = []
+    real_read = cache_module.read_regular
+    monkeypatch.setattr(cache_module, "read_regular",
+                        lambda path, *rest: read.append(os.path.realpath(path))
+                        or real_read(path, *rest))
+    cache_dir = tmp_path / "cache"
+    first = _messages(robot, cache_dir)
+    assert not [path for path in read if path.startswith(str(outside))]
+    kept = "".join(entry.read_text() for kind in ("file", "run")
+                   for entry in _entries(cache_dir, kind))
+    status = os.stat(secret)
+    assert f"{status.st_dev}:{status.st_ino}:" not in kept
+    assert cache_module._digest(secret.read_bytes()) not in kept
+    assert f"outside:{secret}" in kept and f"outside:{outside / 'part.stl'}" in kept
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, cache_dir) == first and checked == []  # still served

@@ -65,7 +65,8 @@ import time
 from pathlib import Path
 
 from urdftool.description.files import TooLarge, noted_reads, noting_reads, read_regular, \
-    write_file
+    real_path, write_file
+from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
 from urdftool.errors import UsageError
 
@@ -292,6 +293,25 @@ class Cache:
         return True
 
 
+def _outside(path: str) -> str | None:
+    """What is kept of ``path`` instead of its stamps or content when it is, or lies in a
+    folder that is, a symbolic link leading outside its repository: where it leads. The loader
+    never reads such a file (:func:`~urdftool.description.packages.link_out`), so no result
+    depends on what is there, and the cache must not read it either: a link planted in a pull
+    request (``config/limits.yaml -> /etc/passwd``) would have it opened, and its hash, size
+    and times kept in the repository's cache. None for any other path.
+
+    A path with no link on the way (its real path is itself: one ``lstat`` per new folder in a
+    run) is inside whatever folder holds it; only the others are judged by the loader's rule."""
+    named = os.path.abspath(path)
+    if real_path(named) == named:
+        return None
+    from urdftool.description.packages import link_out
+
+    out = link_out(named)
+    return None if out is None else f"outside:{out[0]}"
+
+
 def _hash_file(path: str) -> str | None:
     """blake2b of a regular file's content; None when there is none, its size and time when it
     is over :data:`HASHED_BYTES`."""
@@ -317,7 +337,9 @@ def _stamp(path: str) -> str | None:
     that is not there. None when it cannot be trusted: unreadable, or changed in the last
     :data:`RACY_NS` (file times tick coarsely, by milliseconds to seconds, so a file written
     again within the same tick keeps its times: git calls it racily clean); its content is
-    compared instead."""
+    compared instead. A link leading outside the repository is where it leads (:func:`_outside`)."""
+    if (outside := _outside(path)) is not None:
+        return outside
     try:
         status = os.stat(path)
     except (FileNotFoundError, NotADirectoryError):
@@ -337,7 +359,10 @@ def _companion_folders(path: str) -> list[str]:
 
 def _listing(folder: str, measure) -> str | None:
     """The companion candidates in ``folder``: names, each with ``measure(path)``; None when
-    a measure is None (see :func:`_stamp`)."""
+    a measure is None (see :func:`_stamp`). A folder leading outside the repository is not
+    listed: it is where it leads (:func:`_outside`)."""
+    if (outside := _outside(folder)) is not None:
+        return outside
     try:
         names = sorted(n for n in os.listdir(folder) if n.endswith((".yaml", ".srdf")))
     except OSError:
@@ -372,8 +397,9 @@ def _surroundings(paths: list[str], request) -> list[tuple[str, str]]:
 def _unchanged(depends: list) -> bool:
     """Whether every [kind, name, quick] stamp in ``depends`` is still the same; a None stamp
     (racy, or a mesh that did not resolve) never is."""
-    return all(quick is not None and _quick(kind, name) == quick
-               for kind, name, quick in depends)
+    with one_run():  # outside a run (the replay before Typer): each folder looked up once
+        return all(quick is not None and _quick(kind, name) == quick
+                   for kind, name, quick in depends)
 
 
 def _quick(kind: str, name: str) -> str | None:
@@ -409,6 +435,8 @@ class _Dependencies:
         self.changed = False  # a file hashed differs from what the run read of it
 
     def _hash(self, path: str) -> str | None:
+        if (outside := _outside(path)) is not None:
+            return outside  # never read (nor did the run read it)
         read = noted_reads().get(os.path.abspath(path))  # before reading it again notes it anew
         now = _hash_file(path)
         if read is not None and read != now:
