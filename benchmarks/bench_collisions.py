@@ -3,7 +3,9 @@
 The reference checks the same link pairs (those the matrix samples: not Adjacent, not Default)
 with ``fcl.collide`` one by one, after setting every link's transform, for every sample, with the
 link poses handed to it for free. It runs on a tenth of the samples and is scaled up (its cost
-per sample is constant). Targets: at least 3x faster, and under 1 s on 2 cores.
+per sample is constant). Targets: at least 3x faster, and under 1 s on 2 cores. Medians of three
+rounds, each timing ours (one worker, then two) and the reference: the first round's warm-up
+counts for neither side, and a drift of the host's speed for both.
 
 Memory: the peak memory numpy allocates (tracemalloc) while one block of 16 samples is checked
 on a 300-link and a 1,200-link chain (16x the pairs: 44,850 and 719,400): the pairs are checked
@@ -12,12 +14,14 @@ in slices of bounded size, so only the per-pair result grows. Target: <= 2x.
 
 from __future__ import annotations
 
+import statistics
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 SAMPLES = 10000
+REPEATS = 3
 
 
 def naive(scene, sampled, q) -> tuple[float, float]:
@@ -71,17 +75,25 @@ def main() -> list[dict]:
 
     robot = load(str(ROOT / "robots" / "humanoid" / "humanoid.urdf.xacro"))
     scene = matrix.Scene(robot, 0.005)
-    timings = {}
-    for workers in (1, 2):
-        start, cpu = time.perf_counter(), time.process_time()
-        result = matrix.compute(robot, samples=SAMPLES, seed=0, workers=workers, scene=scene)
-        timings[workers] = time.perf_counter() - start
-        if workers == 1:
-            cpu = time.process_time() - cpu  # the machine may be shared: CPU time tells both
-    sampled = [(p.link1, p.link2) for p in result.pairs if p.reason not in ("Adjacent", "Default")]
+    # ours and the reference alternately, medians of each: the host's speed drifts within
+    # minutes (the naive loop took 2.4 to 4.4 s in one afternoon, one side timed after the other)
+    timings, cpus, references, reference_cpus = {1: [], 2: []}, [], [], []
     q = scene.sample(0, SAMPLES // 10)
-    reference, reference_cpu = (10 * t for t in naive(scene, sampled, q))
-    ours = timings[2]
+    for _ in range(REPEATS):
+        for workers in (1, 2):
+            start, cpu = time.perf_counter(), time.process_time()
+            result = matrix.compute(robot, samples=SAMPLES, seed=0, workers=workers, scene=scene)
+            timings[workers].append(time.perf_counter() - start)
+            if workers == 1:  # the machine may be shared: CPU time tells both
+                cpus.append(time.process_time() - cpu)
+        sampled = [(p.link1, p.link2) for p in result.pairs
+                   if p.reason not in ("Adjacent", "Default")]
+        wall, cpu = naive(scene, sampled, q)
+        references.append(10 * wall)
+        reference_cpus.append(10 * cpu)
+    median = statistics.median
+    ours, reference, reference_cpu = median(timings[2]), median(references), median(reference_cpus)
+    cpu, timings = median(cpus), {workers: median(t) for workers, t in timings.items()}
     ratio = reference / ours
     name = (f"collision matrix humanoid {SAMPLES} samples [{ours:.2f} s on 2 workers, "
             f"{timings[1]:.2f} s ({cpu:.2f} s CPU) on 1] vs naive fcl loop [{reference:.2f} s, "
