@@ -368,3 +368,27 @@ def test_links_leading_out_of_the_repository_are_neither_read_nor_stamped(robot,
     assert f"outside:{secret}" in kept and f"outside:{outside / 'part.stl'}" in kept
     checked = _counting_checks(monkeypatch)
     assert _messages(robot, cache_dir) == first and checked == []  # still served
+
+
+def test_a_companion_named_on_the_command_line_is_followed_wherever_it_leads(robot, tmp_path):
+    # the check reads a companion the user names (--controllers) even through a link leading
+    # out of the repository, so the cache must see its target change (it kept only where the
+    # link led, and served the old findings)
+    from urdftool.description.inputs import CompanionPaths
+
+    (robot / "config" / "controllers.yaml").unlink()
+    target = tmp_path / "outside" / "controllers.yaml"
+    target.parent.mkdir()
+    target.write_text(CONTROLLERS.format(joint="arm_joint"))
+    link = robot / "named.yaml"
+    link.symlink_to(target)
+    cache_dir = tmp_path / "cache"
+
+    def codes():
+        run = check_paths([str(robot / "bot.urdf.xacro")], cache_dir=cache_dir, timeout=0,
+                          max_memory="0", jobs=1, companions=CompanionPaths((str(link),)))
+        return {f.code for f in run.results[0].findings}
+
+    assert "U602" not in codes()
+    target.write_text(CONTROLLERS.format(joint="elbow"))
+    assert "U602" in codes()

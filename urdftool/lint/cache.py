@@ -16,6 +16,11 @@ each with a hash of its content, and is a hit only when every one is unchanged:
   earlier on the search path later is not noticed (the package variables are in the key);
 - the environment, whole, when a source uses ``$(env`` or ``$(optenv``.
 
+What the check never reads, the cache never reads either: a file or folder that is, or lies
+in, a symbolic link leading outside its repository (the loader's rule) is kept as where it
+leads, neither opened nor stamped. A companion named on the command line is the exception, as
+it is for the check: it is read wherever it leads, so its content is compared.
+
 Files are compared by their stamp (device, inode, size, modification and change times, as
 git's index does) and, when it differs, by their content. A stamp taken less than 2 s after
 the file changed is not trusted (file times tick coarsely: a file written again within the same
@@ -331,14 +336,16 @@ def _digest(data: bytes) -> str:
 RACY_NS = 2_000_000_000  # [ns] a file changed this recently may change again unseen
 
 
-def _stamp(path: str) -> str | None:
+def _stamp(path: str, named: bool = False) -> str | None:
     """A file's identity and change times, as git's index keeps them: while they are the same
     the content is taken to be (the change time cannot be set back by a user). "" for a file
     that is not there. None when it cannot be trusted: unreadable, or changed in the last
     :data:`RACY_NS` (file times tick coarsely, by milliseconds to seconds, so a file written
     again within the same tick keeps its times: git calls it racily clean); its content is
-    compared instead. A link leading outside the repository is where it leads (:func:`_outside`)."""
-    if (outside := _outside(path)) is not None:
+    compared instead. A link leading outside the repository is where it leads (:func:`_outside`),
+    unless the file was ``named`` on the command line (a companion given with ``--controllers``,
+    ``--srdf`` or ``--spec``: the user asked for it, and the check reads it wherever it is)."""
+    if not named and (outside := _outside(path)) is not None:
         return outside
     try:
         status = os.stat(path)
@@ -407,8 +414,8 @@ def _quick(kind: str, name: str) -> str | None:
     :class:`_Dependencies`); needs neither the file depending on it nor its options."""
     if kind == "exists":  # a marker whose presence alone matters (.git)
         return "folder" if os.path.isdir(name) else "file" if os.path.lexists(name) else ""
-    if kind == "file":
-        return _stamp(name)
+    if kind in ("file", "named"):
+        return _stamp(name, named=kind == "named")
     if kind == "folder":
         return _listing(name, _stamp)
     if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
@@ -434,8 +441,8 @@ class _Dependencies:
         self._resolvers = resolvers
         self.changed = False  # a file hashed differs from what the run read of it
 
-    def _hash(self, path: str) -> str | None:
-        if (outside := _outside(path)) is not None:
+    def _hash(self, path: str, named: bool = False) -> str | None:
+        if not named and (outside := _outside(path)) is not None:
             return outside  # never read (nor did the run read it)
         read = noted_reads().get(os.path.abspath(path))  # before reading it again notes it anew
         now = _hash_file(path)
@@ -458,8 +465,8 @@ class _Dependencies:
         return os.path.abspath(resolved), ""
 
     def full(self, kind: str, name: str) -> str | None:
-        if kind == "file":
-            return self._hash(name)
+        if kind in ("file", "named"):
+            return self._hash(name, named=kind == "named")
         if kind == "folder":
             return _listing(name, self._hash)
         if kind == "mesh":
@@ -475,9 +482,11 @@ class _Dependencies:
         the stamps and content now would describe a file the findings did not come from."""
         entries = []
         files = [os.path.abspath(self.path),
-                 *(os.path.abspath(f) for f in robot.files if f != "-"),
-                 *(os.path.abspath(p) for p in self.options.companions.named())]
+                 *(os.path.abspath(f) for f in robot.files if f != "-")]
         entries += [("file", file) for file in dict.fromkeys(files)]
+        # companions named on the command line are read wherever they lead
+        entries += [("named", named) for named in dict.fromkeys(
+            os.path.abspath(p) for p in self.options.companions.named()) if named not in files]
         entries += [("folder", folder) for folder in _companion_folders(self.path)]
         uris = {element.get("filename") for element in robot.root.iter("mesh")} - {None}
         # a mesh is named by its URI and where it resolved: "uri\0path"
