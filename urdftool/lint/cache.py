@@ -308,12 +308,12 @@ def _outside(path: str) -> str | None:
 
     A path with no link on the way (its real path is itself: one ``lstat`` per new folder in a
     run) is inside whatever folder holds it; only the others are judged by the loader's rule."""
-    named = os.path.abspath(path)
-    if real_path(named) == named:
+    absolute = os.path.abspath(path)
+    if real_path(absolute) == absolute:
         return None
     from urdftool.description.packages import link_out
 
-    out = link_out(named)
+    out = link_out(absolute)
     return None if out is None else f"outside:{out[0]}"
 
 

@@ -370,7 +370,7 @@ def _caster_below(robot, drive, wheel, where):
         return
     ground = frames[child.get("link")][0][2] - diameter / 2
     for name, (position, rotation) in frames.items():
-        link = robot.links.get(name)  # a joint may name a link that is not there (U102 says so)
+        link = robot.links.get(name)  # a joint may name a link that is not there (U105 says so)
         if link is None or "caster" not in name.lower():
             continue
         for collision in link.findall("collision"):
