@@ -163,6 +163,21 @@ def diff_drive_wheels(robot) -> set:
             for tag in WHEEL_JOINT_TAGS for element in plugin.findall(tag)}
 
 
+STATE_PLUGIN = "joint_state_publisher"  # libgazebo_ros_joint_state_publisher.so, ROS 1 and 2
+
+
+def published_by_gazebo(robot) -> set:
+    """Names of the joints a Gazebo joint state publisher plugin publishes: ROS 1's
+    ``<jointName>a, b</jointName>``, ROS 2's ``<joint_name>`` (one per element)."""
+    found = set()
+    for plugin in gazebo_plugins(robot):
+        if STATE_PLUGIN not in (plugin.get("filename") or ""):
+            continue
+        for element in [*plugin.iter("jointName"), *plugin.iter("joint_name")]:
+            found.update(name.strip() for name in (element.text or "").split(",") if name.strip())
+    return found
+
+
 def moving_joints(robot) -> dict:
     """Non-fixed joints that need a driver: revolute, continuous and prismatic, not mimic."""
     return {name: joint for name, joint in robot.joints.items()

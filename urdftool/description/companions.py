@@ -14,10 +14,16 @@ Which files belong to the robot (an option always wins; a file named in the URDF
 
 - controllers: every ``--controllers FILE``; else each YAML file the URDF's
   ``gazebo_ros2_control``/``gz_ros2_control`` ``<parameters>`` names (inside the repository),
-  and the YAML files found that look like a controller configuration (a mapping with a ``type:
-  package/Class`` entry, a ``controller_manager`` key, or MoveIt's ``controller_list``/
-  ``controller_names``; in a ``config/`` folder a file that is not valid YAML counts, so that
-  it is reported).
+  and each controller YAML the robot's launch files load (:mod:`urdftool.description.runtime`:
+  the configurations that describe the robot's file); else, or when a launch file loads a file
+  urdftool cannot resolve, the YAML files found that look like a controller configuration (a
+  mapping with a ``type: package/Class`` entry, a ``controller_manager`` key, or MoveIt's
+  ``controller_list``/``controller_names``; in a ``config/`` folder a file that is not valid
+  YAML counts, so that it is reported). A file the URDF's ``<parameters>`` or a launch file
+  names is the robot's controller file: a sibling demo's file in the same folder is not
+  (MoveIt's controller lists found there still are). A controller YAML is read as its launch
+  files load it: with ``subst_value``/``allow_substs``, its ``$(arg)``/``$(var)`` take the
+  launch arguments' values.
 - SRDF: ``--srdf FILE``; else the ``*.srdf`` found whose file name matches the robot, else the
   one whose ``<robot name>`` is the robot's, else the only one.
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml``, when it is a
@@ -49,6 +55,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
+from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside
 from urdftool.description.packages import containment_root
@@ -90,7 +97,9 @@ class Companions:
             ("MoveIt controllers", f) for f in self.moveit_controllers]
         lines = [f"{kind}: {file.display} ({self.used.get(file.path, 'named')})" for kind, file in kinds]
         lines += [f"not used: {display_path(path)} ({why})" for path, why in self.unused.items()]
-        return lines
+        return lines + self.launch
+
+    launch: list[str] = field(default_factory=list)  # what the robot's launch files told
 
 
 def companions(robot) -> Companions:
@@ -103,8 +112,10 @@ def _discover(robot) -> Companions:
     found = Companions()
     folders = search_folders(Path(robot.path)) if robot.path != "-" else []
     owner = _Owner(robot, folders)
+    if robot.path != "-":
+        found.launch = launched.runtime(robot).describe()
     if named.controllers:
-        found.controllers = [read_yaml(Path(p)) for p in named.controllers]
+        found.controllers = [controller_yaml(robot, Path(p)) for p in named.controllers]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
     if named.srdf:
@@ -297,16 +308,38 @@ def _robot_files(folder: Path) -> tuple[Path, ...]:
 
 def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:
     files, seen = [], set()
-    for path in parameter_files(robot):
+    named = parameter_files(robot)
+    for path in named:
         seen.add(path.resolve())
-        files.append(read_yaml(path))
+        files.append(controller_yaml(robot, path))
         found.used[files[-1].path] = "named by the URDF's <parameters>"
+    facts = launched.runtime(robot) if robot.path != "-" else None
+    loaded = facts.loaded_files() if facts is not None else []
+    for path in loaded:
+        if path.resolve() in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
+            continue
+        parsed = controller_yaml(robot, path)
+        if not looks_like_controllers(parsed.data) and not parsed.problem:
+            continue
+        seen.add(path.resolve())
+        files.append(parsed)
+        launches = sorted({load.launch for load in facts.loads(path)})
+        found.used[path] = f"loaded by {', '.join(launches[:3])}"
+    chosen = named or ([f for f in files if f.path not in named] if loaded else [])
+    # A launch file loading a file urdftool cannot resolve may load any of those found
+    decided = bool(named) or (bool(chosen) and not facts.unresolved_loads())
     for path in _candidates(folders, "*.yaml"):
         if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or path.resolve() in seen:
             continue
-        parsed = read_yaml(path)
+        parsed = controller_yaml(robot, path)
         in_config = path.parent.name == "config"
         if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)):
+            continue
+        if decided and not is_moveit_controllers(parsed.data):
+            found.unused[path] = (
+                f"the URDF's <parameters> names the robot's controller file ({display_path(named[0])})"
+                if named else "no launch file of the robot loads it (they load "
+                f"{', '.join(display_path(f.path) for f in chosen[:3])})")
             continue
         mine, why = owner.claims(path)
         if mine:
@@ -315,6 +348,28 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         else:
             found.unused[path] = why
     return files
+
+
+def controller_yaml(robot, path: Path) -> YamlFile:
+    """A controller YAML read as the robot's launch files load it (with or without
+    substitution of its ``$(arg)``/``$(var)``; see ``CompanionFile.substituted``)."""
+    if robot.path == "-":
+        return read_yaml(path)
+    loads = launched.runtime(robot).loads(path)
+    if not loads:
+        return read_yaml(path)
+    if not any(load.substitute for load in loads):
+        return read_yaml(path, substituted=False)
+    if not all(load.substitute for load in loads):
+        return read_yaml(path)
+    values: dict[str, str | None] = {}
+    for load in loads:
+        for name, value in load.args.items():
+            text = launched.shown_text(value)
+            if values.setdefault(name, text) != text:
+                values[name] = None  # loaded with different values: not known
+    return read_yaml(path, substituted=True,
+                     substitutions={k: v for k, v in values.items() if v is not None})
 
 
 def parameter_files(robot) -> list[Path]:

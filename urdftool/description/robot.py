@@ -45,6 +45,7 @@ class Robot:
         given), by the name findings give it: suppressions are read from these, not from disk
     companion_paths: companion files the user named (the rest are discovered)
     mesh_limits: how large a mesh may be loaded
+    xacro_args: the xacro arguments it was checked with (the rest took their defaults)
     """
 
     path: str
@@ -58,6 +59,7 @@ class Robot:
     sources: dict[str, bytes] = field(default_factory=dict)
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
+    xacro_args: Mapping = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 

@@ -8,6 +8,12 @@ The engine, not the rule, stamps the code, name, severity and location. The rule
 its documentation: a first-line summary, then why it matters, then examples (the README table and
 ``urdftool rules CODE`` are generated from it).
 
+A rule's severity is for a defect that holds in every configuration the robot's consumers can
+run (docs/certainty.md). A finding that holds only in some (a controller a launch file may or
+may not start, a ROS version that may read the element) is yielded with its message wrapped in
+:class:`Conditional`, which names the condition: the engine reports it as a warning or a note,
+never above the rule's own severity.
+
 ``rule()`` marks a check with its code, name and severity and registers nothing. Codes that the
 engine or the runner report themselves are ``declare()``d as module-level constants.
 :meth:`Catalogue.from_modules` collects both from an explicit list of family modules
@@ -29,7 +35,8 @@ from typing import Callable
 from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule
 
-__all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
+__all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
+           "Conditional"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -44,6 +51,20 @@ FAMILIES = {
     "U9": "urdftool",
 }
 _CODE = re.compile(r"U\d{3}")
+_RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
+
+
+class Conditional(str):
+    """A finding's message when the defect holds only in some configurations the robot's
+    consumers can run; the text names the condition ("if controller 'x' is started ...").
+    Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower."""
+
+    severity: Severity
+
+    def __new__(cls, text: str, severity: Severity = Severity.WARNING):
+        made = super().__new__(cls, text)
+        made.severity = Severity(severity)
+        return made
 
 
 @dataclass(frozen=True)
@@ -63,8 +84,12 @@ class Rule:
         return FAMILIES[self.code[:2]]
 
     def finding(self, message: str, location: Location, fix: Fix | None = None) -> Finding:
-        """A finding of this rule at ``location``, with the fix that would remove it if any."""
-        return Finding(self.code, self.name, self.severity, message, location, fix)
+        """A finding of this rule at ``location``, with the fix that would remove it if any; a
+        :class:`Conditional` message at its own severity when that is below the rule's."""
+        severity = self.severity
+        if isinstance(message, Conditional):
+            severity = max(severity, message.severity, key=_RANK.__getitem__)
+        return Finding(self.code, self.name, severity, str(message), location, fix)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -184,6 +184,7 @@ def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileRes
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
+    robot.xacro_args = dict(options.xacro_args or {})
     with _unexamined():
         findings = check_robot(robot, options.selection)
     return FileResult(path, findings, robot, companions=_companion_lines(robot))

@@ -12,7 +12,8 @@ from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
 from urdftool.errors import available
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.runtime import moveit_served_by_ros_control
+from urdftool.lint.catalogue import Conditional, Severity, rule
 
 TOLERANCE = 1e-9  # relative, so that a value copied from the URDF with all its digits passes
 
@@ -216,6 +217,13 @@ def moveit_controller_unknown(robot):
     execution fails ("Action client not connected"). Checked only when ros_control controllers
     are declared in the YAML the robot is checked with (a namespace before the name is ignored).
 
+    A MoveIt configuration is often written for the real robot, whose driver serves the
+    trajectory action itself (ur_robot_driver's scaled_pos_joint_traj_controller, kortex_driver's
+    own action server), while the ros_control YAML beside it is the simulation's. So this is an
+    error only when a launch file of the robot starts MoveIt with this list and ros_control with
+    those controllers, and nothing else that could serve the action (a node of another package
+    than ROS's own); a warning naming the condition otherwise.
+
     Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
     ``arm_trajectory_controller``
     Good: the same name in both
@@ -226,9 +234,17 @@ def moveit_controller_unknown(robot):
     for entry in _moveit_controllers(robot)[0]:
         name = entry.name.strip("/").split("/")[-1]
         if name not in declared:
-            yield entry.file.at(entry.line), (
-                f"MoveIt controller '{entry.name}' is not a ros_control controller of this robot; "
-                f"{available('controllers', name, declared)}")
+            message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
+                       f"robot; {available('controllers', name, declared)}")
+            served = moveit_served_by_ros_control(robot, entry.file.path)
+            if served is None:
+                message = Conditional(
+                    f"if MoveIt executes through the ros_control controllers the robot is checked "
+                    f"with (a driver may serve '{entry.name}' with its own action server; no "
+                    f"launch file of the robot starts MoveIt with them alone): {message}")
+            else:
+                message = f"{served} starts MoveIt with this list and ros_control: {message}"
+            yield entry.file.at(entry.line), message
 
 
 @rule("U818", "moveit-controller-joints", Severity.ERROR)
