@@ -191,11 +191,108 @@ def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
     assert clean.exit_code == 0 and '"files": 1' in clean.stdout
 
 
-def test_a_yaml_no_robot_uses_checks_nothing(run_cli, tmp_path):
+def test_a_yaml_no_robot_uses_checks_nothing_quietly(run_cli, tmp_path):
+    # issue 30 class 9: pre-commit passes every staged YAML (launch, navigation, CI settings)
     root = _two_robots(tmp_path)
     result = run_cli("check", root / ".github/ci.yml", "--format", "json")
     assert result.exit_code == 0 and '"files": 0' in result.stdout
-    assert "nothing to check" in result.stderr
+    assert result.stderr == ""
+    verbose = run_cli("check", root / ".github/ci.yml", "--format", "json", "-v")
+    assert "nothing to check" in verbose.stderr
+
+
+GAZEBO_FRAGMENT = """<?xml version="1.0"?>
+<robot name="bot_sim" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="laser_visual" default="false"/>
+  <gazebo reference="base_link"><material>Gazebo/DarkGrey</material></gazebo>
+  <gazebo reference="wheel_link"><mu1>0.1</mu1></gazebo>
+  <gazebo>
+    <plugin name="bot_controller" filename="libgazebo_ros_diff_drive.so">
+      <leftJoint>wheel_joint</leftJoint><rightJoint>wheel_joint</rightJoint>
+      <robotBaseFrame>base_link</robotBaseFrame>
+    </plugin>
+  </gazebo>
+  <transmission name="wheel_transmission">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="wheel_joint"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint>
+    <actuator name="wheel_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+ROBOT_WITH_FRAGMENT = """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find bot_description)/urdf/bot.gazebo.xacro"/>
+  <link name="base_link"/>
+  <link name="wheel_link"/>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"""
+
+
+def _fragment_package(root):
+    """The X.urdf.xacro beside X.gazebo.xacro layout (turtlebot3's), in a repository."""
+    (root / ".git").mkdir(parents=True)
+    urdf = root / "bot_description" / "urdf"
+    urdf.mkdir(parents=True)
+    (root / "bot_description" / "package.xml").write_text(
+        "<package format='2'><name>bot_description</name></package>")
+    (urdf / "bot.urdf.xacro").write_text(ROBOT_WITH_FRAGMENT)
+    (urdf / "bot.gazebo.xacro").write_text(GAZEBO_FRAGMENT)
+    (urdf / "unused.gazebo.xacro").write_text(GAZEBO_FRAGMENT)
+    return urdf
+
+
+def test_a_gazebo_fragment_named_is_checked_through_the_robot_including_it(run_cli, tmp_path):
+    # issue 30 class 9: pre-commit passes bot.gazebo.xacro by name; alone it has no links
+    # (U106) and every reference misses (U611, U612): 89 false errors on turtlebot3
+    urdf = _fragment_package(tmp_path)
+    result = run_cli("check", urdf / "bot.gazebo.xacro", "--format", "json")
+    assert '"files": 1' in result.stdout and "U106" not in result.stdout, result.stdout
+    assert "U611" not in result.stdout and "included by" in result.stderr
+    assert "bot.urdf.xacro" in result.stderr
+    both = run_cli("check", urdf / "bot.gazebo.xacro", urdf / "bot.urdf.xacro", "--format", "json")
+    assert '"files": 1' in both.stdout
+
+
+def test_a_fragment_nobody_includes_is_skipped_named_or_walked(run_cli, tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import FRAGMENT, expand
+
+    urdf = _fragment_package(tmp_path)
+    named = run_cli("check", urdf / "unused.gazebo.xacro", "--format", "json")
+    assert named.exit_code == 0 and '"files": 0' in named.stdout
+    assert FRAGMENT in named.stderr and "nothing to check" in named.stderr
+    walked = expand([str(tmp_path)], CheckRequest())
+    assert [p.rsplit("/", 1)[-1] for p in walked.files] == ["bot.urdf.xacro"]
+    assert walked.skipped[str(urdf / "unused.gazebo.xacro")] == FRAGMENT
+
+
+UNBOUND_PREFIX = """<?xml version="1.0"?>
+<robot name="arm">
+  <xacro:macro name="arm" params="prefix">
+    <link name="${prefix}base"/>
+  </xacro:macro>
+</robot>
+"""
+
+
+def test_a_malformed_xacro_file_is_reported_walked_or_named(run_cli, tmp_path):
+    # issue 30 class 10: the xacro: prefix without xmlns:xacro made a folder walk skip the file
+    # as a macro library (lxml's recovering parser kept going), and nothing reported it
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "arm_macro.xacro").write_text(UNBOUND_PREFIX)
+    (tmp_path / "lib.xacro").write_text(UNBOUND_PREFIX.replace(
+        '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'))
+    for target in (tmp_path, tmp_path / "arm_macro.xacro"):
+        result = run_cli("check", target, "--format", "json")
+        assert result.exit_code == 1 and '"files": 1' in result.stdout, result.stdout
+        assert "U001" in result.stdout and "arm_macro.xacro" in result.stdout
+    broken = tmp_path / "broken.xacro"
+    broken.write_text('<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="m">')
+    result = run_cli("check", tmp_path, "--format", "json")
+    assert '"files": 2' in result.stdout and "broken.xacro" in result.stdout
 
 
 def test_the_pre_commit_hook_passes_companion_files():

@@ -26,6 +26,8 @@ _INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
+# What a fragment of a robot defined elsewhere holds besides definitions: X.gazebo.xacro
+_EXTENSIONS = {"gazebo", "transmission", "ros2_control"}
 # xacro's own elements: everything else in its namespace is a macro call
 _XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
                                     "call", "load_yaml"}
@@ -34,6 +36,8 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
+FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission> or "
+            "<ros2_control> blocks besides definitions)")
 
 
 def robot_files(folder: Path) -> list[Path]:
@@ -61,6 +65,7 @@ class _Summary:
     named_robot: bool
     srdf: bool = False
     unfollowed: bool = False  # it includes files whose path is only known when expanding
+    fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -83,7 +88,8 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
             skipped[path] = SRDF_SOURCE
         elif path.name.endswith(".xacro") and not summaries[path].defines_robot and \
                 _includes_yield_links(summaries[path], resolver_for, max_file_size) is not True:
-            skipped[path] = "defines only macros or properties (a macro library)"
+            skipped[path] = (FRAGMENT if summaries[path].fragment else
+                             "defines only macros or properties (a macro library)")
         else:
             top.append(path)
     return top, skipped
@@ -109,9 +115,29 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
         return _Summary([], True, True)
     includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
     answer = _top_level_answer(data)
-    return _Summary(includes, answer != "definitions", bool(_NAMED_ROBOT.search(data)),
+    if answer in ("definitions", "fragment") and path.name.endswith(".xacro") and \
+            not _well_formed_for_xacro(data):
+        answer = "robot"  # not a library: checking it reports why xacro cannot read it
+    return _Summary(includes, answer not in ("definitions", "fragment"),
+                    bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
-                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes))
+                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
+                    answer == "fragment")
+
+
+def _well_formed_for_xacro(data: bytes) -> bool:
+    """Whether xacro can parse ``data``: well-formed XML with its namespaces declared (xacro's
+    parser refuses a ``xacro:`` prefix used without ``xmlns:xacro``; lxml's recovering parser,
+    which classifies files, would not say)."""
+    from xml.parsers import expat
+
+    parser = expat.ParserCreate(namespace_separator=" ")
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    try:
+        parser.Parse(data, True)
+    except Exception:  # noqa: BLE001 - malformed (the check says how), or an unknown encoding
+        return False
+    return True
 
 
 def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool | None:
@@ -151,9 +177,9 @@ def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
 
 def _defines_robot(data: bytes) -> bool:
     """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
-    definitions (properties, args, includes, macros). Unparsable files count, so that the parse
-    error is reported."""
-    return _top_level_answer(data) != "definitions"
+    definitions (properties, args, includes, macros) and extension blocks (a fragment).
+    Unparsable files count, so that the parse error is reported."""
+    return _top_level_answer(data) not in ("definitions", "fragment")
 
 
 def _stream(data: bytes, target) -> str:
@@ -177,7 +203,9 @@ def _stream(data: bytes, target) -> str:
 
 def _top_level_answer(data: bytes) -> str:
     """'robot' (content of its own, or not a xacro library at all), 'srdf' (a semantic
-    description) or 'definitions' (only properties, args, includes, macros)."""
+    description), 'fragment' (<gazebo>, <transmission>, <ros2_control> blocks and definitions:
+    part of a robot defined elsewhere) or 'definitions' (only properties, args, includes,
+    macros)."""
     return _stream(data, _TopLevelTags())
 
 
@@ -203,10 +231,12 @@ class _Answered(Exception):
 
 class _TopLevelTags:
     """lxml parser target: answers 'robot' at a root other than <robot> or at a child of
-    <robot> that is not a definition, 'srdf' at a child only an SRDF has."""
+    <robot> that is neither a definition nor an extension block (<gazebo>, ...), 'srdf' at a
+    child only an SRDF has; at the end, 'fragment' when it saw extension blocks, else
+    'definitions'."""
 
     def __init__(self):
-        self.depth, self.seen_robot = 0, False
+        self.depth, self.seen_robot, self.extensions = 0, False, False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -218,8 +248,10 @@ class _TopLevelTags:
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
+        if self.depth == 2 and name in _EXTENSIONS and not _is_xacro(tag):
+            self.extensions = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
-        if self.depth == 2 and name not in _DEFINITIONS:
+        elif self.depth == 2 and name not in _DEFINITIONS:
             raise _Answered("robot")
 
     def end(self, tag):
@@ -229,7 +261,9 @@ class _TopLevelTags:
         return None
 
     def default(self) -> str:
-        return "definitions" if self.seen_robot else "robot"
+        if not self.seen_robot:
+            return "robot"
+        return "fragment" if self.extensions else "definitions"
 
 
 class _LinksOutsideMacros:
@@ -333,8 +367,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     # A named <robot> whose includes could not all be followed is checked: expanding it says
     if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
             not (yields is None and summary.named_robot):
-        return [], "defines only macros or properties, and no robot below " \
-                   f"{root} includes it: nothing to check"
+        what = FRAGMENT if summary.fragment else "defines only macros or properties"
+        return [], f"{what}, and no robot below {root} includes it: nothing to check"
     return [path], None
 
 
@@ -353,7 +387,8 @@ class Targets:
     """What checking some paths means.
 
     files: the files to check, in a stable order, each once
-    skipped: files found in folders and not checked -> why (included by a robot, a macro library)
+    skipped: files found in folders and not checked -> why (included by a robot, a macro library),
+        and companion files named that no robot is checked with (said only with -v)
     notes: "PATH: what happened" for files named that are checked through others or not at all
     """
 
@@ -390,10 +425,11 @@ def expand(paths: list[str], request) -> Targets:
                 robots[root, limit] = split_top_level(robot_files(root), resolver_for, limit)[0]
             users = companion_users(Path(path), robots[root, limit], limit)
             files.extend(display_path(p) for p in users)
-            notes.append(f"{path}: " + (
-                f"a companion of {', '.join(display_path(p) for p in users)}: checking "
-                f"{'that' if len(users) == 1 else 'those'}" if users else
-                f"no robot below {root} is checked with it: nothing to check"))
+            if users:
+                notes.append(f"{path}: a companion of {', '.join(display_path(p) for p in users)}: "
+                             f"checking {'that' if len(users) == 1 else 'those'}")
+            else:  # any YAML a hook passes (launch, navigation, CI settings): said with -v only
+                skipped[path] = f"no robot below {root} is checked with it: nothing to check"
             continue
         if Path(path).is_file():
             root = project_root(Path(path))
