@@ -186,6 +186,21 @@ def is_moveit_controllers(data) -> bool:
                if isinstance(value, dict))
 
 
+_FAKE_TYPES = ("", "interpolate", "last point", "via points")
+
+
+def is_fake_controller_list(data) -> bool:
+    """MoveIt's fake controller manager's list (``fake_controllers.yaml``): a
+    ``controller_list`` whose entries name no ``action_ns`` and no simple controller manager
+    type (``interpolate``, ``via points`` or none), and nothing else; no controller runs it."""
+    if not isinstance(data, dict) or set(data) - {"controller_list", "initial"}:
+        return False
+    entries = data.get("controller_list")
+    return isinstance(entries, list) and all(
+        isinstance(e, dict) and "action_ns" not in e and str(e.get("type", "")) in _FAKE_TYPES
+        for e in entries)
+
+
 def search_folders(robot_path: Path) -> list[Path]:
     """The folders companions of the robot file ``robot_path`` are looked for in, as named
     (links not followed), each a folder inside the robot's repository: see the module doc."""
@@ -319,7 +334,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         if path.resolve() in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
             continue
         parsed = controller_yaml(robot, path)
-        if not looks_like_controllers(parsed.data) and not parsed.problem:
+        if not looks_like_controllers(parsed.data) and not parsed.problem or is_fake_controller_list(parsed.data):
             continue
         seen.add(path.resolve())
         files.append(parsed)
@@ -333,7 +348,8 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
             continue
         parsed = controller_yaml(robot, path)
         in_config = path.parent.name == "config"
-        if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)):
+        if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)) or \
+                is_fake_controller_list(parsed.data):
             continue
         if decided and not is_moveit_controllers(parsed.data):
             found.unused[path] = (

@@ -406,6 +406,10 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch)
                           for f in action.files)
             arguments = tuple(resolve(word, scope) for value in action.arguments for word in words(value))
+            if launch.ros == 1:  # roslaunch splits args= after substituting: $(arg controllers)
+                arguments = tuple(Resolved(text, word.free) if word.text is not None else word
+                                  for word in arguments
+                                  for text in (word.text.split() if word.text is not None else [None]))
             package, executable = resolve(action.package, scope), resolve(action.executable, scope)
             if package.free or executable.free:
                 when = when.also(When(True, package.free | executable.free, ()))

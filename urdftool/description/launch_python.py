@@ -86,8 +86,16 @@ class _Reader:
         self.block(self.tree.body, module_env, (), 0, top=True)
         entry = self.functions.get("generate_launch_description")
         order = [entry] if entry is not None else []
-        order += [f for name, f in self.functions.items() if f is not entry]
-        for function in order:  # every function at least once: an OpaqueFunction's too
+        # then the functions handed over rather than called (OpaqueFunction(function=f)): a
+        # helper the others call is walked where it is called, with its arguments
+        called, handed = set(), set()
+        for node in ast.walk(self.tree):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+                called.add(node.func.id)
+                handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
+                              if isinstance(a, ast.Name))
+        order += [f for name, f in self.functions.items() if f is not entry and name in handed]
+        for function in order:
             if function.name not in self.walked:
                 self.call_function(function, [], {}, module_env, (), 0)
 
@@ -169,7 +177,11 @@ class _Reader:
         for name, value in zip(names, args):
             local[name] = value
         for name in names[len(args):]:
-            local.setdefault(name, keywords.get(name, unknown(name)))
+            local[name] = keywords.get(name, unknown(name))
+        if function.args.vararg is not None:
+            local[function.args.vararg.arg] = list(args[len(names):])
+        for argument in function.args.kwonlyargs:
+            local[argument.arg] = keywords.get(argument.arg, unknown(argument.arg))
         return self.block(function.body, local, when, depth + 1)
 
     # --- conditions -----------------------------------------------------------------------

@@ -312,6 +312,8 @@ def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
     one, two = runs(robot, first, parameter_files), runs(robot, second, parameter_files)
     if "unknown" in (one.state, two.state):
         return "unknown", ""
+    if "never" in (one.state, two.state):
+        return "apart", ""
     best = None
     for a in one.spawns:
         for b in two.spawns:
@@ -325,7 +327,7 @@ def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
                         + " and ".join(dict.fromkeys(words)))
     if best is not None:
         return best
-    if "conditional" in (one.state, two.state) and not (one.spawns and two.spawns):
+    if not (one.spawns and two.spawns):  # started by a spawner whose names were not read
         return "unknown", ""
     return "apart", ""
 
