@@ -24,8 +24,9 @@ Which files belong to the robot (an option always wins; a file named in the URDF
   (MoveIt's controller lists found there still are). A controller YAML is read as its launch
   files load it: with ``subst_value``/``allow_substs``, its ``$(arg)``/``$(var)`` take the
   launch arguments' values.
-- SRDF: ``--srdf FILE``; else the ``*.srdf`` found whose file name matches the robot, else the
-  one whose ``<robot name>`` is the robot's, else the only one.
+- SRDF: ``--srdf FILE``; else the SRDF a launch file of the robot gives MoveIt
+  (``robot_description_semantic``); else the ``*.srdf`` found whose file name matches the
+  robot, else the one whose ``<robot name>`` is the robot's, else the only one.
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml``, when it is a
   urdftool spec (top-level ``unit:`` and ``joints:``; a ROS ``joint_limits.yaml`` has a top-level
   ``joint_limits:`` and is left alone) or is not valid YAML.
@@ -118,8 +119,13 @@ def _discover(robot) -> Companions:
         found.controllers = [controller_yaml(robot, Path(p)) for p in named.controllers]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
+    launched_srdf = launched.semantic_files(robot) if robot.path != "-" else []
     if named.srdf:
         found.srdf = read_srdf(Path(named.srdf))
+    elif launched_srdf:
+        path, configuration, _ = launched_srdf[0]
+        found.srdf = read_srdf(path)
+        found.used[path] = f"given to MoveIt by {configuration.display}"
     else:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None

@@ -340,7 +340,7 @@ class _Reader:
             return unknown(_source(node))
         if method in ("robot_description", "robot_description_semantic") and isinstance(owner, _Builder):
             path = keywords.get("file_path") or (args[0] if args else None)
-            if method == "robot_description" and isinstance(path, Value):
+            if isinstance(path, Value):
                 self.acts.append(_Act("description", when, node.lineno,
                                       file=_in_package(owner.package, path),
                                       args=_pairs(keywords.get("mappings"))))

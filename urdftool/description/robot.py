@@ -71,6 +71,11 @@ class Robot:
             self._memo[key] = compute()
         return self._memo[key]
 
+    def memoized(self, key) -> bool:
+        """Whether :meth:`memo` has computed ``key`` (a result cache lists what it was built
+        from only when it was)."""
+        return key in self._memo
+
     def memo_for(self, kind, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot, ``kind`` and ``key`` (a link, say), then the same
         value, as :meth:`memo` keyed by ``(kind, key)`` but with one dict per kind: no key

@@ -72,6 +72,7 @@ class Runtime:
     configurations: list = field(default_factory=list)
     spawns: list = field(default_factory=list)
     unread_spawners: list = field(default_factory=list)  # (configuration, start) with names not read
+    read: list = field(default_factory=list)  # every launch file read to tell it (the index's)
 
     @property
     def described(self) -> list[Configuration]:
@@ -126,6 +127,11 @@ def runtime(robot) -> Runtime:
     return robot.memo(runtime, lambda: _runtime(robot))
 
 
+def launch_files_read(robot) -> list[Path]:
+    """The launch files the robot's findings were told by: none when no rule asked."""
+    return runtime(robot).read if robot.memoized(runtime) else []
+
+
 def _runtime(robot) -> Runtime:
     found = Runtime()
     if robot.path == "-":
@@ -133,6 +139,7 @@ def _runtime(robot) -> Runtime:
     path = Path(os.path.abspath(robot.path))
     root = containment_root(path.parent)
     index = launch_index(root)
+    found.read = [launch.path for launch in index.files.values()]
     real = os.path.realpath(path)
     mine = None
     for configuration in index.configurations:
@@ -361,6 +368,33 @@ def moveit_served_by_ros_control(robot, moveit_file: Path) -> str | None:
         if lists and group and spawns and not others:
             return configuration.display
     return None
+
+
+def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:
+    """(SRDF, configuration, how it describes the robot) for each SRDF the robot's
+    configurations give MoveIt (``robot_description_semantic``), the robot as checked first."""
+    found = []
+    for configuration, relation in runtime(robot).configurations:
+        if not relation:
+            continue
+        for described in configuration.described:
+            if described.path is not None and described.path.name.endswith(".srdf"):
+                found.append((described.path, configuration, relation))
+    return sorted(found, key=lambda item: item[2] != "as checked")
+
+
+def moveit_with(robot, srdf: Path) -> tuple[str, str]:
+    """Whether MoveIt runs with the SRDF ``srdf`` and the robot as checked: ("certain", "") when
+    a launch file gives MoveIt both; ("conditional", why) when launch files give it that SRDF
+    only with the robot built with other xacro arguments; ("unknown", "") when none gives it."""
+    key = os.path.realpath(srdf)
+    loads = [(c, r) for path, c, r in semantic_files(robot) if os.path.realpath(path) == key]
+    if not loads:
+        return "unknown", ""
+    if any(relation == "as checked" for _, relation in loads):
+        return "certain", ""
+    configuration, relation = loads[0]
+    return "conditional", f"{configuration.display} gives MoveIt this SRDF with the robot {relation}"
 
 
 def state_publishers(robot) -> list[tuple[Configuration, Started]]:

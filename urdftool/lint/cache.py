@@ -11,6 +11,8 @@ each with a hash of its content, and is a hit only when every one is unchanged:
 - every file read to build the robot: the file, its xacro includes and YAML;
 - the companion files it could pick up: the ``*.yaml`` and ``*.srdf`` in its folder and its
   ``config/`` folder (which exist, and their content) and the companions named;
+- when a rule asked what the robot's launch files start: every launch file read, and the
+  launch files in each folder holding one (which exist, and their content);
 - every mesh it names: where the URI resolved, and the mesh's content. While that file is
   there unchanged, the URI is not resolved again: a package of the same name that appears
   earlier on the search path later is not noticed (the package variables are in the key);
@@ -364,14 +366,18 @@ def _companion_folders(path: str) -> list[str]:
     return [base, os.path.join(base, "config")]
 
 
-def _listing(folder: str, measure) -> str | None:
-    """The companion candidates in ``folder``: names, each with ``measure(path)``; None when
-    a measure is None (see :func:`_stamp`). A folder leading outside the repository is not
-    listed: it is where it leads (:func:`_outside`)."""
+_COMPANION_NAMES = (".yaml", ".srdf")
+_LAUNCH_NAMES = (".launch", ".xml", ".py", ".yaml", ".yml")
+
+
+def _listing(folder: str, measure, suffixes=_COMPANION_NAMES) -> str | None:
+    """The companion candidates (or launch files) in ``folder``: names, each with
+    ``measure(path)``; None when a measure is None (see :func:`_stamp`). A folder leading
+    outside the repository is not listed: it is where it leads (:func:`_outside`)."""
     if (outside := _outside(folder)) is not None:
         return outside
     try:
-        names = sorted(n for n in os.listdir(folder) if n.endswith((".yaml", ".srdf")))
+        names = sorted(n for n in os.listdir(folder) if n.endswith(suffixes))
     except OSError:
         return "[]"
     measures = [measure(os.path.join(folder, name)) for name in names]
@@ -418,6 +424,8 @@ def _quick(kind: str, name: str) -> str | None:
         return _stamp(name, named=kind == "named")
     if kind == "folder":
         return _listing(name, _stamp)
+    if kind == "launch-folder":
+        return _listing(name, _stamp, _LAUNCH_NAMES)
     if kind == "mesh":  # the file it resolved to, unchanged (see the module docstring)
         resolved = name.split("\0")[-1]
         stamp = _stamp(resolved) if os.path.isabs(resolved) else None
@@ -469,6 +477,8 @@ class _Dependencies:
             return self._hash(name, named=kind == "named")
         if kind == "folder":
             return _listing(name, self._hash)
+        if kind == "launch-folder":
+            return _listing(name, self._hash, _LAUNCH_NAMES)
         if kind == "mesh":
             resolved, problem = self._resolved(name.split("\0")[0])
             return f"{resolved}:{self._hash(resolved)}" if resolved else problem
@@ -488,6 +498,13 @@ class _Dependencies:
         entries += [("named", named) for named in dict.fromkeys(
             os.path.abspath(p) for p in self.options.companions.named()) if named not in files]
         entries += [("folder", folder) for folder in _companion_folders(self.path)]
+        # the launch files that told which controllers run (description/runtime.py), and the
+        # folders holding them (a launch file added there changes what runs)
+        from urdftool.description.runtime import launch_files_read
+
+        launched = [os.path.abspath(p) for p in launch_files_read(robot)]
+        entries += [("file", path) for path in dict.fromkeys(launched) if path not in files]
+        entries += [("launch-folder", folder) for folder in dict.fromkeys(map(os.path.dirname, launched))]
         uris = {element.get("filename") for element in robot.root.iter("mesh")} - {None}
         # a mesh is named by its URI and where it resolved: "uri\0path"
         entries += [("mesh", f"{uri}\0{self._resolved(uri)[0] or ''}") for uri in sorted(uris)]

@@ -81,6 +81,12 @@ def _plugin_drives(robot):
         yield drive
 
 
+def _said(robot, drive: _Drive, message: str):
+    """``message`` as the rule yields it for ``drive``: a controller's is hedged by whether its
+    launch files start it (:func:`~urdftool.lint.rules.controllers.hedged`)."""
+    return hedged(robot, drive.controller, message) if drive.controller is not None else message
+
+
 def _controller_drives(robot):
     for controller in controllers(robot):
         if controller.cls is None or controller.cls.package != "diff_drive_controller":
@@ -151,8 +157,9 @@ def diff_drive_joint_not_continuous(robot):
         for _, name, where in drive.wheels:
             joint = robot.joints.get(name)
             if joint is not None and joint.get("type") != "continuous":
-                yield where, (f"diff-drive wheel joint '{name}' is {joint.get('type')}, not "
-                              "continuous; make it type=\"continuous\" (a wheel turns without limit)")
+                yield where, _said(robot, drive, (
+                    f"diff-drive wheel joint '{name}' is {joint.get('type')}, not continuous; make "
+                    "it type=\"continuous\" (a wheel turns without limit)"))
 
 
 @rule("U614", "diff-drive-geometry", Severity.WARNING)
@@ -184,8 +191,8 @@ def diff_drive_geometry(robot):
             expected = actual * scales[tag]
             if expected > 0 and abs(values[0] - expected) > GEOMETRY_TOLERANCE * expected:
                 off = 100 * (values[0] - expected) / expected
-                yield where, (f"{drive.label}: {tag} is {values[0]:g} m but the URDF gives "
-                              f"{expected:.4g} m ({off:+.1f} %)")
+                yield where, _said(robot, drive, (f"{drive.label}: {tag} is {values[0]:g} m but the "
+                                                  f"URDF gives {expected:.4g} m ({off:+.1f} %)"))
 
 
 HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg is horizontal
@@ -328,8 +335,7 @@ def diff_drive_frame(robot):
                            "the URDF (odom)")
             else:
                 continue
-            if drive.controller is not None:
-                message = hedged(robot, drive.controller, message)
+            message = _said(robot, drive, message)
             if message is not None:
                 yield where, message
 
@@ -353,35 +359,41 @@ def diff_drive_wheel_layout(robot):
     Good: ``<axis xyz="0 1 0"/>``
     """
     for drive in _drives(robot):
-        left, right = drive.side(robot, "left"), drive.side(robot, "right")
-        where = {name: place for _, name, place in drive.wheels}
-        poses = _joint_frames(robot)
-        for joint in (left, right):
-            if joint is None:
-                continue
-            name = joint.get("name")
-            axis = _world_axis(robot, joint)
-            if axis is not None and abs(axis[2]) > HORIZONTAL:
-                yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
-                                    f"({axis[0]:.3g}, {axis[1]:.3g}, {axis[2]:.3g}) in the root frame, "
-                                    "not a horizontal axis; the wheel would spin flat on the ground "
-                                    "(set its axis or origin rpy so the axis points sideways)")
-            link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
-            if link is not None and link.find("collision") is None:
-                yield where[name], (f"{drive.label}: wheel link '{link.get('name')}' has no "
-                                    "<collision>; the simulated wheel touches nothing")
-        if left is None or right is None:
+        for where, message in _layout_problems(robot, drive):
+            yield where, _said(robot, drive, message)
+
+
+def _layout_problems(robot, drive: _Drive):
+    """(where, message) for each way ``drive``'s wheels cannot drive (see U617)."""
+    left, right = drive.side(robot, "left"), drive.side(robot, "right")
+    where = {name: place for _, name, place in drive.wheels}
+    poses = _joint_frames(robot)
+    for joint in (left, right):
+        if joint is None:
             continue
-        names = left.get("name"), right.get("name")
-        if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
-            yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
-                                    f"(y = {poses[names[0]][0][1]:.3g} m, right wheel at y = "
-                                    f"{poses[names[1]][0][1]:.3g} m; REP-103: +y is left); swap them")
-        axes = _world_axis(robot, left), _world_axis(robot, right)
-        if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
-            yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
-                                    "are not parallel; both wheels must turn about the same line")
-        yield from _caster_below(robot, drive, left, where[names[0]])
+        name = joint.get("name")
+        axis = _world_axis(robot, joint)
+        if axis is not None and abs(axis[2]) > HORIZONTAL:
+            yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
+                                f"({axis[0]:.3g}, {axis[1]:.3g}, {axis[2]:.3g}) in the root frame, "
+                                "not a horizontal axis; the wheel would spin flat on the ground "
+                                "(set its axis or origin rpy so the axis points sideways)")
+        link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
+        if link is not None and link.find("collision") is None:
+            yield where[name], (f"{drive.label}: wheel link '{link.get('name')}' has no "
+                                "<collision>; the simulated wheel touches nothing")
+    if left is None or right is None:
+        return
+    names = left.get("name"), right.get("name")
+    if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
+        yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
+                                f"(y = {poses[names[0]][0][1]:.3g} m, right wheel at y = "
+                                f"{poses[names[1]][0][1]:.3g} m; REP-103: +y is left); swap them")
+    axes = _world_axis(robot, left), _world_axis(robot, right)
+    if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
+        yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
+                                "are not parallel; both wheels must turn about the same line")
+    yield from _caster_below(robot, drive, left, where[names[0]])
 
 
 def _caster_below(robot, drive, wheel, where):

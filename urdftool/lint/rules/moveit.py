@@ -14,6 +14,7 @@ from urdftool.description.values import parse_numbers
 from urdftool.errors import available
 from urdftool.description.runtime import moveit_served_by_ros_control
 from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.rules.srdf import as_moveit_runs
 
 TOLERANCE = 1e-9  # relative, so that a value copied from the URDF with all its digits passes
 
@@ -58,6 +59,7 @@ def _srdf_groups(robot):
 
 
 @rule("U812", "malformed-moveit-config", Severity.ERROR)
+@as_moveit_runs
 def malformed_moveit_config(robot):
     """MoveIt's kinematics.yaml, joint_limits.yaml or controller list is malformed.
 
@@ -85,6 +87,7 @@ def malformed_moveit_config(robot):
 
 
 @rule("U813", "kinematics-unknown-group", Severity.ERROR)
+@as_moveit_runs
 def kinematics_unknown_group(robot):
     """kinematics.yaml configures a group that the SRDF does not define.
 
@@ -106,6 +109,7 @@ def kinematics_unknown_group(robot):
 
 
 @rule("U814", "kinematics-group-not-chain", Severity.ERROR)
+@as_moveit_runs
 def kinematics_group_not_chain(robot):
     """A group solved by KDL (or LMA) is not one serial chain.
 
@@ -148,6 +152,7 @@ def kinematics_group_not_chain(robot):
 
 
 @rule("U815", "moveit-limits-unknown-joint", Severity.WARNING)
+@as_moveit_runs
 def moveit_limits_unknown_joint(robot):
     """MoveIt's joint_limits.yaml sets limits for a joint the URDF does not have.
 
@@ -173,6 +178,7 @@ def _urdf_limit(joint, key: str) -> float | None:
 
 
 @rule("U816", "moveit-limits-exceed-urdf", Severity.ERROR)
+@as_moveit_runs
 def moveit_limits_exceed_urdf(robot):
     """MoveIt's joint_limits.yaml allows more than the URDF's ``<limit>``.
 
@@ -248,6 +254,7 @@ def moveit_controller_unknown(robot):
 
 
 @rule("U818", "moveit-controller-joints", Severity.ERROR)
+@as_moveit_runs
 def moveit_controller_joints(robot):
     """A MoveIt controller lists other joints than the ros_control controller of that name.
 
@@ -255,6 +262,10 @@ def moveit_controller_joints(robot):
     rejects a goal naming joints it does not control, and joints it controls but MoveIt does not
     list are never commanded. For a ``GripperCommand`` controller (gripper_action_controller
     takes one ``joint:``) the ros_control joint need only be among MoveIt's.
+
+    An error when a launch file of the robot starts MoveIt with this list and ros_control
+    with that controller (and nothing else that could serve the action, as for U817); a
+    warning naming the condition otherwise.
 
     Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
     Good: the same joints (in any order)
@@ -271,6 +282,10 @@ def moveit_controller_joints(robot):
         missing, extra = sorted(theirs - mine), sorted(mine - theirs)
         parts = ([f"lacks {', '.join(missing)}"] if missing else []) + \
                 ([f"adds {', '.join(extra)}"] if extra and not gripper else [])
-        yield entry.file.at(entry.joints_line), (
-            f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the ros_control "
-            f"controller's joints ({', '.join(sorted(theirs))})")
+        message = (f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the "
+                   f"ros_control controller's joints ({', '.join(sorted(theirs))})")
+        if moveit_served_by_ros_control(robot, entry.file.path) is None:
+            message = Conditional(f"if MoveIt executes through the ros_control controller of that "
+                                  f"name the robot is checked with (a driver may serve "
+                                  f"'{entry.name}' itself): {message}")
+        yield entry.file.at(entry.joints_line), message
