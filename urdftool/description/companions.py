@@ -181,6 +181,13 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
             found.used[path] = "beside the SRDF"
 
 
+def is_moveit_execution(data) -> bool:
+    """MoveIt's execution settings: its controller list, or the file choosing its controller
+    manager (``moveit_controller_manager``, ``trajectory_execution``)."""
+    return is_moveit_controllers(data) or isinstance(data, dict) and any(
+        key in data for key in ("moveit_controller_manager", "trajectory_execution"))
+
+
 def is_moveit_controllers(data) -> bool:
     """MoveIt's controller list: ``controller_list`` (MoveIt 1) or
     ``moveit_simple_controller_manager`` (MoveIt 2), at the top or under ``ros__parameters``."""
@@ -192,7 +199,7 @@ def is_moveit_controllers(data) -> bool:
                if isinstance(value, dict))
 
 
-_FAKE_TYPES = ("", "interpolate", "last point", "via points")
+_FAKE_TYPES = ("", "interpolate", "last point", "via points")  # or a $(arg ...) set at launch
 
 
 def is_fake_controller_list(data) -> bool:
@@ -203,7 +210,8 @@ def is_fake_controller_list(data) -> bool:
         return False
     entries = data.get("controller_list")
     return isinstance(entries, list) and all(
-        isinstance(e, dict) and "action_ns" not in e and str(e.get("type", "")) in _FAKE_TYPES
+        isinstance(e, dict) and "action_ns" not in e
+        and (str(e.get("type", "")) in _FAKE_TYPES or "$(" in str(e.get("type", "")))
         for e in entries)
 
 
@@ -336,10 +344,13 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         found.used[files[-1].path] = "named by the URDF's <parameters>"
     facts = launched.runtime(robot) if robot.path != "-" else None
     loaded = facts.loaded_files() if facts is not None else []
+    moveit_given = []  # MoveIt execution settings a launch file loads: it picks MoveIt's list
     for path in loaded:
         if path.resolve() in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
             continue
         parsed = controller_yaml(robot, path)
+        if is_moveit_execution(parsed.data):
+            moveit_given.append(path)
         if not looks_like_controllers(parsed.data) and not parsed.problem or is_fake_controller_list(parsed.data):
             continue
         seen.add(path.resolve())
@@ -362,6 +373,10 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
                 f"the URDF's <parameters> names the robot's controller file ({display_path(named[0])})"
                 if named else "no launch file of the robot loads it (they load "
                 f"{', '.join(display_path(f.path) for f in chosen[:3])})")
+            continue
+        if moveit_given and is_moveit_controllers(parsed.data) and not facts.unresolved_loads():
+            found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
+                                  f"{', '.join(display_path(p) for p in moveit_given[:2])})")
             continue
         mine, why = owner.claims(path)
         if mine:

@@ -3,7 +3,8 @@
 Every launch file of the robot's repository (:func:`launch_index`: files named ``*.launch``,
 ``*.launch.xml|py|yaml``, or ``.py``/``.xml``/``.yaml`` in a ``launch/`` folder; bounded in
 number and size, links leading outside not followed) is read
-(:mod:`urdftool.description.launch`) and expanded as a configuration: its includes followed
+(:mod:`urdftool.description.launch`), and each one no other includes (what a user runs) is
+expanded as a configuration: its includes followed
 (``$(find pkg)``, ``FindPackageShare``: only packages inside the repository; an installed
 ``share/`` path is mapped back to the package's source folder), its arguments at their defaults.
 A configuration *describes* the robot when one of its robot descriptions is the robot's file;
@@ -315,6 +316,7 @@ class Configuration:
     started: list = field(default_factory=list)
     described: list = field(default_factory=list)
     files: list = field(default_factory=list)  # display names of the launch files it read
+    included: set = field(default_factory=set)  # the real paths of the files it includes
     incomplete: bool = False  # an include could not be followed, or a bound was reached
 
     @property
@@ -370,8 +372,11 @@ def launch_index(root: Path) -> LaunchIndex:
             files[_key(path)] = launch
     packages = packages_below(root)
     index = LaunchIndex(root, files, [], truncated)
-    for launch in files.values():
-        index.configurations.append(_expand_top(index, launch, packages))
+    expanded = [_expand_top(index, launch, packages) for launch in files.values()]
+    # what a user runs is a launch file no other includes: an included one (a controllers-only
+    # launch file, planning_context.launch) runs as part of those including it
+    included = {key for configuration in expanded for key in configuration.included}
+    index.configurations = [c for c in expanded if _key(c.top.path) not in included]
     return index
 
 
@@ -444,6 +449,7 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
     if target is None or depth >= MAX_INCLUDE_DEPTH or target.display in via:
         configuration.incomplete = True
         return
+    configuration.included.add(_key(path))
     given = dict(scope.args) if (action.every or target.ros == 2) else {}
     for name, value in action.args:
         given[name] = resolve(value, scope)

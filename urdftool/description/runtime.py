@@ -31,7 +31,7 @@ from pathlib import Path
 from urdftool.description.files import inside, read_regular
 from urdftool.description.launch_configs import (Configuration, Described, Loaded, Resolved, Started,
                                                  launch_index, shown)
-from urdftool.description.packages import containment_root
+from urdftool.description.packages import containment_root, packages_below
 from urdftool.diagnostics import display_path
 
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -105,9 +105,7 @@ class Runtime:
     def describe(self) -> list[str]:
         """One line per configuration of the robot, for ``check -v``."""
         lines = []
-        for configuration, relation in self.configurations[:12]:
-            if not relation:
-                continue
+        for configuration, relation in [(c, r) for c, r in self.configurations if r][:12]:
             spawned = [s for s in self.spawns if s.configuration is configuration]
             parts = [f"describes the robot {relation}"]
             files = list(dict.fromkeys(loaded.written for loaded in configuration.loaded
@@ -148,7 +146,7 @@ def _runtime(robot) -> Runtime:
         for description in described:
             if os.path.realpath(description.path) == real:
                 mine = mine if mine is not None else _robot_args(robot)
-                relation = _relation(description, mine, relation)
+                relation = _relation(description, mine, relation, packages_below(root))
         if relation or not described:
             found.configurations.append((configuration, relation))
     for configuration, relation in found.configurations:
@@ -156,7 +154,7 @@ def _runtime(robot) -> Runtime:
     return found
 
 
-def _relation(description: Described, mine: dict, before: str) -> str:
+def _relation(description: Described, mine: dict, before: str, packages: dict) -> str:
     """How ``description`` gives the robot: "as checked" or "with other xacro arguments
     (...)"; the better of it and ``before``."""
     if before == "as checked":
@@ -165,13 +163,16 @@ def _relation(description: Described, mine: dict, before: str) -> str:
     for name, value in description.args.items():
         if name not in mine:
             continue
-        if value.text is None:
+        given = _as_given(value, packages)
+        if given is None:
             other.append(f"{name} unknown")
-        elif _normal(value.text) != _normal(mine[name]):
-            other.append(f"{name}:={value.text}")
-    if not other and description.when.truth is not False:
+        elif _normal(given) != _normal(mine[name]):
+            other.append(f"{name}:={shown_text(value)}")
+    if other:
+        return before or f"with other xacro arguments ({', '.join(other[:4])})"
+    if description.when.truth is True:
         return "as checked"
-    return before or f"with other xacro arguments ({', '.join(other[:4])})"
+    return before or f"only {description.when.text() or 'under a condition'}"
 
 
 def _normal(text: str) -> str:
@@ -256,11 +257,46 @@ def _spawned(start: Started):
     return active, listed
 
 
+def _as_given(value: Resolved, packages: dict) -> str | None:
+    """A launch argument's value as xacro gets it: a package's place as its folder."""
+    if value.text is None:
+        return None
+    parts = value.text.split("\0")
+    if len(parts) % 2 == 0:
+        return None
+    return "".join(str(packages[p]) if i % 2 else p for i, p in enumerate(parts))
+
+
 def shown_text(value: Resolved) -> str | None:
     """A launch argument's value as substituted into a file (a package folder as the path)."""
     if value.text is None:
         return None
     return shown(value) if "\0" in value.text else value.text
+
+
+def launch_xacro_args(path: str) -> list[tuple[str, dict]]:
+    """(launch file, xacro arguments) for each launch file a user runs that builds the robot
+    file ``path`` with arguments all known (at their launch defaults); the same arguments once.
+    What to build a robot with when it needs an argument that has no default."""
+    if path == "-":
+        return []
+    absolute = Path(os.path.abspath(path))
+    root = containment_root(absolute.parent)
+    index, packages = launch_index(root), packages_below(root)
+    real, found, seen = os.path.realpath(absolute), [], set()
+    for configuration in index.configurations:
+        for described in configuration.described:
+            if described.path is None or os.path.realpath(described.path) != real \
+                    or not described.when.truth:
+                continue
+            texts = {name: _as_given(value, packages) for name, value in described.args.items()}
+            if any(text is None for text in texts.values()):
+                continue
+            key = tuple(sorted(texts.items()))
+            if key not in seen:
+                seen.add(key)
+                found.append((configuration.display, texts))
+    return found
 
 
 # --- the questions rules ask --------------------------------------------------------------------
@@ -384,15 +420,17 @@ def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:
 
 
 def moveit_with(robot, srdf: Path) -> tuple[str, str]:
-    """Whether MoveIt runs with the SRDF ``srdf`` and the robot as checked: ("certain", "") when
-    a launch file gives MoveIt both; ("conditional", why) when launch files give it that SRDF
-    only with the robot built with other xacro arguments; ("unknown", "") when none gives it."""
+    """Whether MoveIt runs with the SRDF ``srdf`` and the robot as checked: ("certain", which
+    launch file) when a launch file gives MoveIt both; ("conditional", why) when launch files give
+    it that SRDF only with the robot built with other xacro arguments; ("unknown", "") when none
+    gives it."""
     key = os.path.realpath(srdf)
     loads = [(c, r) for path, c, r in semantic_files(robot) if os.path.realpath(path) == key]
     if not loads:
         return "unknown", ""
-    if any(relation == "as checked" for _, relation in loads):
-        return "certain", ""
+    certain = [c for c, relation in loads if relation == "as checked"]
+    if certain:
+        return "certain", f"{certain[0].display} gives MoveIt this SRDF with the robot as checked"
     configuration, relation = loads[0]
     return "conditional", f"{configuration.display} gives MoveIt this SRDF with the robot {relation}"
 

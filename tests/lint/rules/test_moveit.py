@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import shutil
 
+import pytest
+
 from conftest import ROBOTS
 from crossfile_helpers import HEAD_ROBOT, check_folder, line_of
 from urdftool.lint.engine import CheckOptions, check_file
@@ -114,3 +116,14 @@ def test_kinematics_yaml_in_the_robots_config_folder_with_the_srdf_beside_the_ro
              "config/joint_limits.yaml": "joint_limits:\n  nope: {has_velocity_limits: true}\n"}
     # the backwards chain is found; a joint_limits.yaml outside the SRDF's folder is not MoveIt's
     assert check_folder(tmp_path, files, select=("U81",))[0] == [("robot.srdf", 3, "U814")]
+
+
+@pytest.mark.parametrize("written, reported", [(2.53073, False), (9.6, False), (2.5308, True),
+                                               (7.85, True)])
+def test_a_limit_rounded_from_the_urdfs_is_the_same_limit(written, reported):
+    # MoveIt Setup Assistant writes the URDF's limit rounded: 2.53073 for ${radians(145)}, 9.6
+    # for 9.59931 (motoman, fanuc); the same limit, not one above it
+    from urdftool.lint.rules.moveit import TOLERANCE, _rounded
+
+    urdf = {2.53073: 2.5307274153917776, 9.6: 9.59931, 2.5308: 2.5307274153917776, 7.85: 6.45772}[written]
+    assert (written - urdf > TOLERANCE and not _rounded(written, urdf)) is reported

@@ -15,7 +15,7 @@ from urdftool.description.actuation import (command_interfaces, interface_kind, 
 from urdftool.description.companions import companions, parameter_files
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
-from urdftool.description.runtime import Runs, runs, runtime, together
+from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runs, runtime, together
 from urdftool.errors import available
 from urdftool.lint.catalogue import Conditional, Severity, rule
 
@@ -300,15 +300,19 @@ def no_joint_state_controller(robot):
     Without joint_state_broadcaster (ROS 2) or joint_state_controller (ROS 1) nothing publishes
     /joint_states, so robot_state_publisher and RViz show the robot frozen. MoveIt's controller
     lists are not counted: MoveIt does not publish joint states. A launch file of the robot
-    that starts one (from a file of another package) counts.
+    that starts one (from a file of another package), or that starts joint_state_publisher,
+    counts; a controller no launch file of the robot starts is not counted.
 
     Bad: only ``head_controller`` in the YAML
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
-    found = [c for c in controllers(robot) if c.layout != "moveit"]
-    spawned = {spawn.name.strip("/").split("/")[-1] for spawn in runtime(robot).spawns}
-    if any("joint_state" in name for name in spawned):
+    found = [c for c in controllers(robot) if c.layout != "moveit"
+             and started(robot, c).state != "never"]
+    facts = runtime(robot)
+    if any("joint_state" in spawn.name for spawn in facts.spawns):
         return  # a launch file starts one, from a file the robot is not checked with
+    if any(start.package in STATE_PUBLISHERS for c in facts.described for start in c.started):
+        return  # a launch file of the robot publishes the joint states itself
     if found and not any(c.is_state for c in found):
         first = found[0]
         yield first.file.at(first.line), (
@@ -540,6 +544,10 @@ def joint_commanded_twice(robot):
             f"{label(other)}; only one of them can be active at a time")
 
 
+def _short(controller: Controller) -> str:
+    return controller.name.strip("/").split("/")[-1]
+
+
 def shared_commands(robot, by_interface: bool):
     """(controller, an earlier one, the line of the first joint shared, the joints shared) for
     each two controllers commanding one joint: through the same interface (``by_interface``),
@@ -554,7 +562,9 @@ def shared_commands(robot, by_interface: bool):
         for ref in _urdf_joints(robot, controller):
             for interface in (claimed if by_interface else ["*"]):
                 other = first.setdefault((ref.name, interface), controller)
-                if other is not controller:
+                # one name is one controller: a second file's mapping of it is merged into
+                # the same parameters (ROS 1), or is the same controller's (ROS 2)
+                if other is not controller and _short(other) != _short(controller):
                     entry = shared.setdefault(id(other), (other, ref.line, []))
                     if ref.name not in entry[2]:
                         entry[2].append(ref.name)

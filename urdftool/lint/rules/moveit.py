@@ -188,6 +188,9 @@ def moveit_limits_exceed_urdf(robot):
     hardware reject (or that drive the joint into its stop). The YAML may only tighten the
     URDF's limits. Only limits switched on (``has_velocity_limits: true``, ...) count.
 
+    A value that is the URDF's rounded to the decimals it is written with (2.53073 for
+    2.5307274) is the same limit.
+
     Bad: ``max_velocity: 3.0`` for a joint with ``<limit velocity="2.0" .../>``
     Good: ``max_velocity: 2.0`` or less
     """
@@ -203,12 +206,21 @@ def moveit_limits_exceed_urdf(robot):
             mine, urdf = entry.values.get(key), _urdf_limit(joint, attribute)
             if mine is None or urdf is None:
                 continue
-            if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)):
+            if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)) and not _rounded(mine, urdf):
                 what, bound = ("above", "at most") if sign > 0 else ("below", "at least")
                 yield file.at(entry.lines[key]), (
                     f"joint '{entry.joint}': MoveIt's {key} {mine:g} is {what} the URDF's "
                     f"<limit {attribute}=\"{urdf:g}\">, so MoveIt would plan beyond what the "
                     f"joint allows; use {bound} {urdf:g}")
+
+
+def _rounded(written: float, urdf: float) -> bool:
+    """Whether ``written`` is ``urdf`` rounded to the decimals it is written with: MoveIt's
+    Setup Assistant writes 2.53073 for a URDF's ${radians(145)} (2.5307274...)."""
+    text = repr(written)
+    if "e" in text or "." not in text:
+        return False
+    return round(urdf, len(text.split(".")[1])) == written
 
 
 def _ros_control(robot) -> dict[str, set[str]]:

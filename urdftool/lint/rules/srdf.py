@@ -28,8 +28,11 @@ def as_moveit_runs(check):
         srdf = companions(robot).srdf
         state, why = moveit_with(robot, srdf.path) if srdf is not None else ("unknown", "")
         for where, message, *fix in check(robot):
-            yield (where, Conditional(f"if MoveIt runs with the robot as checked ({why}): "
-                                      f"{message}") if state == "conditional" else message, *fix)
+            if state == "conditional":
+                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}")
+            elif state == "certain":
+                message = f"{why}: {message}"
+            yield (where, message, *fix)
     return judged
 
 
