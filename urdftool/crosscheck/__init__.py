@@ -54,6 +54,7 @@ class LoaderResult:
     frames: list = field(default_factory=list)
     inertia: dict = field(default_factory=dict)
     output: str = ""
+    details: dict = field(default_factory=dict)  # joints' limits, constraints, geoms: as read
 
     def as_dict(self) -> dict:
         from urdftool.diagnostics import display_path
@@ -64,7 +65,7 @@ class LoaderResult:
                 "error": self.error, "location": where, "mass": self.mass, "dof": self.dof,
                 "floating_base": self.floating_base, "links": self.links,
                 "dropped_links": self.dropped_links, "frames": self.frames,
-                "inertia": self.inertia}
+                "inertia": self.inertia, **self.details}
 
 
 @dataclass
@@ -164,7 +165,11 @@ def _urdf_file(robot, folder: str) -> tuple[str, dict]:
     from lxml import etree
 
     if not robot.from_xacro and robot.path != "-":
-        return os.path.abspath(robot.path), {}
+        lines: dict = {}
+        for element in robot.root.iter():
+            if isinstance(element.tag, str):
+                lines.setdefault(robot.locate(element).line, element)
+        return os.path.abspath(robot.path), lines
     text = etree.tostring(robot.root, pretty_print=True, encoding="unicode")
     target = Path(folder) / (Path(robot.display).name.removesuffix(".xacro") or "robot.urdf")
     if not target.name.endswith(".urdf"):
@@ -239,7 +244,9 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
                           mass=raw.get("mass"), dof=raw.get("dof"),
                           floating_base=raw.get("floating_base"), links=raw.get("links") or [],
                           frames=raw.get("frames") or [], inertia=raw.get("inertia") or {},
-                          output=raw.get("output") or "")
+                          output=raw.get("output") or "",
+                          details={key: raw[key] for key in ("joints", "constraints", "geoms")
+                                   if key in raw})
     if result.links:
         result.dropped_links = [link for link in robot.links if link not in set(result.links)]
     if not result.loaded:
@@ -254,13 +261,11 @@ def _located(robot, lines: dict, error: str, output: str, urdf: str):
     for pattern in _LINE:
         for match in pattern.finditer(text):
             line = int(match.group(1))
-            if not lines:
-                from urdftool.diagnostics import Location, display_path
-
-                return Location(display_path(urdf), line)
-            element = lines.get(line)
-            if element is not None:
-                return robot.locate(element)
+            # the element starting on that line of the file the loader read, else the last
+            # one before it (a loader may count the line where a tag ends)
+            starts = [number for number in lines if number is not None and number <= line]
+            if starts and line <= max(number for number in lines if number is not None) + 50:
+                return robot.locate(lines[max(starts)])
     for pattern in _FILE:
         for match in pattern.finditer(text):
             named = _normalized(match.group(1))

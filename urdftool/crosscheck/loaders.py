@@ -246,7 +246,10 @@ def load_mujoco(job: Job) -> dict:
     return {
         "loaded": True, "error": None, "mass": float(sum(model.body_mass)),
         "dof": int(model.nv), "floating_base": bool(free), "links": names[1:],
-        "frames": frames, "constraints": int(model.neq),
+        "frames": frames, "constraints": int(model.neq), "geoms": int(model.ngeom),
+        "joints": {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, i):
+                   (_rounded(model.jnt_range[i]) if model.jnt_limited[i] else None)
+                   for i in range(model.njnt)},
         "inertia": {names[i]: {"mass": float(model.body_mass[i]),
                                "inertia": _rounded(model.body_inertia[i])}
                     for i in range(1, model.nbody)},
@@ -301,7 +304,9 @@ def _pybullet_model(pybullet, client, body, job: Job) -> dict:
         frames.append(found)
     return {"loaded": True, "error": None, "mass": float(sum(masses)), "dof": len(movable) + (
         6 if masses[0] > 0 else 0), "floating_base": masses[0] > 0, "links": links,
-        "frames": frames,
+        "frames": frames, "constraints": pybullet.getNumConstraints(physicsClientId=client),
+        "joints": {entry[1].decode(): [float(entry[8]), float(entry[9])] for entry in info
+                   if entry[2] != pybullet.JOINT_FIXED},
         "inertia": {name: {"mass": float(m), "inertia": _rounded(i)}
                     for name, m, i in zip(links, masses, inertias)}}
 

@@ -103,6 +103,10 @@ def model_summary(text: str, configurations) -> dict:
             return placed[name]
 
         frames.append({name: list(place(name)[1]) for name in links})
-    return {"loaded": True, "error": None, "mass": mass,
+    limits = {}
+    for joint in movable:
+        lower, upper = joint.findtext("axis/limit/lower"), joint.findtext("axis/limit/upper")
+        limits[joint.get("name")] = [float(lower), float(upper)] if lower and upper else None
+    return {"loaded": True, "error": None, "mass": mass, "joints": limits,
             "dof": len(movable) + (6 if floating else 0), "floating_base": floating,
             "links": list(links), "frames": frames, "inertia": inertia}

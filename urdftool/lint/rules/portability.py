@@ -719,25 +719,34 @@ def pybullet_long_line(robot):
     for number, line in enumerate(data.split(b"\n"), 1):
         if len(line) > facts.PYBULLET_LINE_BUFFER:
             cuts = [cut for cut in range(facts.PYBULLET_LINE_BUFFER, len(line),
-                                         facts.PYBULLET_LINE_BUFFER) if _in_tag(line, cut)]
+                                         facts.PYBULLET_LINE_BUFFER) if _cuts_a_name(line, cut)]
             if cuts:
                 from urdftool.diagnostics import Location, display_path
 
                 yield Location(display_path(robot.files[0]), number, column=cuts[0] + 1), (
                     f"line {number} is {len(line)} bytes long: {_as_of(robot, 'pybullet')} "
                     f"cuts it every {facts.PYBULLET_LINE_BUFFER} bytes, and the cut at byte "
-                    f"{cuts[0]} is inside a tag: the load fails")
+                    f"{cuts[0]} splits a tag or attribute name: the load fails")
         start += len(line) + 1
 
 
-def _in_tag(line: bytes, cut: int) -> bool:
-    """Whether byte ``cut`` of ``line`` is inside markup (after a ``<`` not closed yet), out of
-    comments."""
+def _cuts_a_name(line: bytes, cut: int) -> bool:
+    """Whether a line break inserted before byte ``cut`` of ``line`` splits the name of an
+    element or attribute: inside markup (after a ``<`` not closed yet, out of comments and
+    quoted values) between two characters that are not white space. A break between
+    attributes is white space XML allows; one in a quoted value changes the value but not the
+    parse (not certain to fail: not reported)."""
     before = line[:cut]
-    comment = before.rfind(b"<!--")
-    if comment > before.rfind(b"-->"):
+    if before.rfind(b"<!--") > before.rfind(b"-->"):
         return False
-    return before.rfind(b"<") > before.rfind(b">")
+    start = before.rfind(b"<")
+    if start <= before.rfind(b">"):
+        return False
+    inside = before[start:]
+    if (inside.count(b'"') % 2) or (inside.count(b"'") % 2):
+        return False
+    return not line[cut - 1:cut].isspace() and not line[cut:cut + 1].isspace() and \
+        line[cut - 1:cut] not in (b"=", b'"', b"'") and line[cut:cut + 1] not in (b"=", b'"', b"'")
 
 
 @rule("U934", "pybullet-default-mass", Severity.WARNING)
