@@ -853,14 +853,20 @@ def drake_file_not_found(robot):
     """Drake does not find a mesh or texture file: the load fails.
 
     Drake resolves every ``<mesh>`` (visual too) and every ``<texture>`` of a material, and
-    stops at the first that does not exist ("URI ... which does not exist").
+    stops at the first that does not exist ("URI ... which does not exist") or names a package
+    it cannot know (``package:///...``, an empty name: "refers to unknown package ''").
 
     Bad: ``<material name="wood"><texture filename="textures/wood.png"/></material>`` without
     the file
     Good: the file, or no ``<texture>``
     """
     for link, holder, mesh, filename in _meshes(robot):
-        if _exists(robot, filename) is None and "://" not in filename.replace("package://", ""):
+        if filename.startswith("package:///"):
+            yield mesh, (f"{_where(link, holder)}: mesh '{filename}' names an empty package: "
+                         f"{_as_of(robot, 'drake')} refuses it (\"refers to unknown package "
+                         "''\") and fails the load")
+        elif _exists(robot, filename) is None and "://" not in filename.replace("package://",
+                                                                                ""):
             yield mesh, (f"{_where(link, holder)}: mesh '{filename}' does not exist: "
                          f"{_as_of(robot, 'drake')} fails the load")
     for texture in robot.root.iter("texture"):
