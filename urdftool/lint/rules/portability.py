@@ -153,24 +153,29 @@ def _mass_of(link) -> float | None:
 
 # ---- frames other files and blocks refer to --------------------------------------------------
 
-PLUGIN_LINK_TAGS = ("bodyName", "body_name", "frameName", "frame_name", "link_name", "linkName")
+# Gazebo plugin parameters that Gazebo looks up as a link of the model (p3d, force, planar
+# move): a frame_name/frameName is only written into messages, for TF, which has every link.
+PLUGIN_LINK_TAGS = ("bodyName", "body_name", "link_name", "linkName")
 
 
-def _references(robot) -> list:
-    """(frame name, where, what refers to it) for each reference to a link by name from a
-    ``<gazebo>`` block (its ``reference`` and its plugins' link parameters), a
-    ``<ros2_control>`` sensor's ``frame_id``, and the SRDF (groups' links and chains, end
-    effectors' parent links)."""
-    return robot.memo(_references, lambda: list(_read_references(robot)))
+def _references(robot, simulator: str) -> list:
+    """(frame name, where, what refers to it) for each reference to a link by name that looks
+    the link up in ``simulator``'s model: for Gazebo (``gz``, ``gazebo``), its plugins' link
+    parameters (a ``<gazebo reference>`` block and its sensors move with a lumped link); for
+    MuJoCo, a ``<ros2_control>`` sensor's ``frame_id`` and the SRDF (chains, groups' links, end
+    effectors' parent links), read by controllers and planners that run on its model."""
+    return robot.memo((_references, simulator),
+                      lambda: list(_read_references(robot, simulator)))
 
 
-def _read_references(robot):
-    for gazebo in robot.children("gazebo"):
-        if gazebo.get("reference"):
-            yield gazebo.get("reference"), gazebo, "a <gazebo> block"
-        for element in gazebo.iter(*PLUGIN_LINK_TAGS):
-            if element.text and element.text.strip():
-                yield element.text.strip(), element, f"Gazebo plugin parameter <{element.tag}>"
+def _read_references(robot, simulator: str):
+    if simulator in ("gz", "gazebo"):
+        for gazebo in robot.children("gazebo"):
+            for element in gazebo.iter(*PLUGIN_LINK_TAGS):
+                if element.text and element.text.strip():
+                    yield (element.text.strip(), element,
+                           f"Gazebo plugin parameter <{element.tag}>")
+        return
     for control in robot.children("ros2_control"):
         for param in control.iterfind("sensor/param"):
             if param.get("name") == "frame_id" and param.text and param.text.strip():
@@ -192,10 +197,10 @@ def _read_references(robot):
                 yield element.get(attribute), srdf.at(element.sourceline), what
 
 
-def _referenced_removals(robot, removed: dict):
-    """(where, message part) for each reference to a frame in ``removed`` (link -> where it
-    went)."""
-    for name, where, what in _references(robot):
+def _referenced_removals(robot, removed: dict, simulator: str):
+    """(where, name, what refers to it, where it went) for each reference to a frame in
+    ``removed`` (link -> the link it went into)."""
+    for name, where, what in _references(robot, simulator):
         if name in removed and name in robot.links:
             yield where, name, what, removed[name]
 
@@ -553,8 +558,9 @@ def mujoco_fused_frame(robot):
 
     MuJoCo fuses each link on a fixed joint into its parent, and the root into the world
     (``fusestatic`` is "true" for URDF): the link's name and frame are not in MuJoCo's model.
-    A Gazebo block, a plugin, a ros2_control sensor or the SRDF that names it finds nothing
-    there.
+    A ros2_control sensor's ``frame_id``, or an SRDF chain, group or end effector that names it
+    (read by controllers and planners working on MuJoCo's model: mujoco_ros2_control, mink)
+    finds no body of that name there.
 
     Fix (unsafe): ``<mujoco><compiler fusestatic="false"/></mujoco>``, which keeps every link
     a body of its own.
@@ -565,7 +571,7 @@ def mujoco_fused_frame(robot):
     if not _mujoco_setting(robot, "fusestatic", True):
         return
     first = True
-    for where, name, what, into in _referenced_removals(robot, _fused(robot)):
+    for where, name, what, into in _referenced_removals(robot, _fused(robot), "mujoco"):
         message = (f"{what} refers to link '{name}', which {_as_of(robot, 'mujoco')} fuses into "
                    f"'{into}': no body of that name in MuJoCo's model")
         if first:
@@ -1149,7 +1155,7 @@ def _lumped_frames(robot, target: str):
     lumped = _lumped(robot, target)
     removed = {name: owner for name, owner in lumped.owner.items() if owner != name}
     first = True
-    for where, name, what, into in _referenced_removals(robot, removed):
+    for where, name, what, into in _referenced_removals(robot, removed, target):
         joint = _tree(robot).parent[name][0]
         message = (f"{what} refers to link '{name}', which {_sdf_title(robot, target)} lumps "
                    f"into '{into}' (fixed joint '{_name(joint)}'): no link or frame of that "
@@ -1215,12 +1221,13 @@ _SDF_DOCS = {
     Bad: ``<inertia ixx="0.001" iyy="0.001" izz="0.01" .../>``
     Good: a tensor of a real body (``urdftool inertia``)
     """,
-    "frame": """Something refers to a link that {title} lumps away.
+    "frame": """A Gazebo plugin looks up a link that {title} lumps away.
 
-    A link on a fixed joint is lumped into its parent: its name and frame are not in the
-    simulation, and a plugin's ``bodyName``/``frame_name``, a ros2_control sensor's frame or
-    the SRDF that names it finds nothing there (its ``<gazebo>`` blocks and sensors move to the
-    parent).
+    A link on a fixed joint is lumped into its parent: its name is not in the simulation, and a
+    plugin parameter that Gazebo looks up as a link (``bodyName``, ``body_name``,
+    ``link_name``) finds nothing there. (The link's own ``<gazebo>`` blocks and sensors move to
+    the parent with their poses, and a ``frame_name`` is only a TF frame id: both keep
+    working.)
 
     Fix (unsafe): ``<gazebo reference="JOINT"><preserveFixedJoint>true</preserveFixedJoint>
     </gazebo>`` for the fixed joint.
