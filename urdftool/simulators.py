@@ -55,8 +55,8 @@ VERIFIED = {
     "pybullet": "3.2.7",
     "drake": "1.51.1",
     "gz": "12.3.0",  # sdformat, through `ign sdf` (Debian's libsdformat12 + ignition-tools)
-    "gazebo": "9.10.1",  # sdformat 9, read in its parser_urdf.cc: the same code as 12 here
-    "isaac": "2.0",  # the importer's name rule, read in its source and checked with usd-core
+    "gazebo": "9.10",  # sdformat 9, read in its parser_urdf.cc: the same code as 12 here
+    "isaac": None,  # the importer's name rule, read in its source (UrdfParser.cpp)
     "pinocchio": "4.1.0",
 }
 
@@ -207,8 +207,9 @@ SDFORMAT_DROPS_LUMPED = {"gz": Since(True, (((13, 0, 0), False),)),
 # is a free joint of its own (observed 4.1.0).
 
 
-def version_text(version: tuple[int, ...] | None, name: str) -> str:
-    """The version facts apply to, as messages say it: the asked one, or the verified one."""
+def version_text(version: tuple[int, ...] | None, name: str) -> str | None:
+    """The version facts apply to, as messages say it: the asked one, or the verified one
+    (None: facts read in a source that has no version)."""
     return ".".join(map(str, version)) if version is not None else VERIFIED[name]
 
 

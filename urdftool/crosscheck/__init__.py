@@ -135,12 +135,13 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
 def joint_configurations(robot) -> list[dict]:
     """The zero configuration and :data:`CONFIGURATIONS` more, each joint inside its limits
     (the same for every loader): deterministic, different for each joint."""
+    from urdftool.description.urdf import MOVING
     from urdftool.description.values import number_tuple
     from urdftool.description.xml import first_child
 
     configurations = [{}]
     movable = [j for j in robot.children("joint")
-               if j.get("type") in ("revolute", "continuous", "prismatic")]
+               if j.get("type") in MOVING]
     for index in range(CONFIGURATIONS):
         configuration = {}
         for position, joint in enumerate(movable):

@@ -13,6 +13,8 @@ import math
 
 from lxml import etree
 
+from urdftool.description.urdf import MOVING  # SDFormat names these joint types as URDF does
+
 
 def _pose(element):
     """(xyz, rpy, relative_to) of an element's <pose>; zeros when it has none."""
@@ -73,8 +75,7 @@ def model_summary(text: str, configurations) -> dict:
         inertia[name] = {"mass": value, "inertia": moments}
         mass += value
     parent_of = {j.findtext("child"): j for j in joints.values()}
-    movable = [j for j in joints.values() if j.get("type") in ("revolute", "prismatic",
-                                                                 "continuous")]
+    movable = [j for j in joints.values() if j.get("type") in MOVING]
     floating = not any(j.findtext("parent") == "world" for j in joints.values())
     frames = []
     for configuration in configurations:
@@ -95,7 +96,7 @@ def model_summary(text: str, configurations) -> dict:
             jxyz, jrpy, _ = _pose(joint)
             frame = _compose(parent, _matrix(jxyz, jrpy))
             kind = joint.get("type")
-            if kind in ("revolute", "prismatic", "continuous"):
+            if kind in MOVING:
                 axis = [float(v) for v in (joint.findtext("axis/xyz") or "1 0 0").split()]
                 frame = _compose(frame, _axis_motion(kind, axis,
                                                      configuration.get(joint.get("name"), 0.0)))

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool import simulators as facts
-from urdftool.description.urdf import VARIABLE
+from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import child_list, first_child
 from urdftool.lint.catalogue import Severity, rule
@@ -93,7 +93,10 @@ def _version(robot, target: str):
 def _as_of(robot, target: str) -> str:
     """``MuJoCo 4.0.0``: the program and the version a message speaks of."""
     title = facts.SIMULATORS[target].title
-    return f"{title} {facts.version_text(_version(robot, target), target)}"
+    version = facts.version_text(_version(robot, target), target)
+    if target in ("gz", "gazebo"):
+        return f"{title} (sdformat {version})"
+    return f"{title} {version}" if version else title
 
 
 def _meshes(robot):
@@ -516,7 +519,7 @@ def _limit_change(joint):
             return (f"continuous joint '{_name(joint)}': MuJoCo limits it to [{lower}, {upper}] "
                     "(urdfdom ignores the range of a continuous joint)")
         return None
-    if kind not in ("revolute", "prismatic"):
+    if kind not in LIMITED:
         return None
     if (lower is None) != (upper is None):
         return (f"joint '{_name(joint)}': only {'lower' if lower is not None else 'upper'} is "
@@ -804,7 +807,7 @@ def pybullet_limit_dropped(robot):
     """
     for joint in robot.children("joint"):
         limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in ("revolute", "prismatic"):
+        if limit is None or _type(joint) not in LIMITED:
             continue
         low = number_tuple(limit.get("lower", "0"), 1)[0]
         high = number_tuple(limit.get("upper", "0"), 1)[0]
@@ -889,8 +892,8 @@ def _texture_missing(robot, filename: str) -> bool:
         return True
 
 
-@rule("U942", "drake-inverted-limits", Severity.ERROR)
-def drake_inverted_limits(robot):
+@rule("U942", "drake-lower-above-upper", Severity.ERROR)
+def drake_lower_above_upper(robot):
     """Drake stops on a joint whose lower limit is above its upper one.
 
     Drake checks ``lower <= upper`` when it makes the joint, and the load stops there ("condition
@@ -901,7 +904,7 @@ def drake_inverted_limits(robot):
     """
     for joint in robot.children("joint"):
         limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in ("revolute", "prismatic"):
+        if limit is None or _type(joint) not in LIMITED:
             continue
         low = number_tuple(limit.get("lower", "0"), 1)[0]
         high = number_tuple(limit.get("upper", "0"), 1)[0]
@@ -910,8 +913,8 @@ def drake_inverted_limits(robot):
                           f"{_as_of(robot, 'drake')} stops the load")
 
 
-DEGREES = {"revolute": 1, "continuous": 1, "prismatic": 1, "fixed": 0, "floating": 6,
-           "planar": 3}
+DEGREES = {**dict.fromkeys(MOVING, 1), "fixed": 0,
+           "floating": 6, "planar": 3}
 
 
 @rule("U943", "drake-mimic-dof", Severity.ERROR)
@@ -1079,8 +1082,7 @@ def _lump(robot, target: str) -> _Lumped:
 
 
 def _sdf_title(robot, target: str) -> str:
-    return f"{_as_of(robot, target)} (sdformat)" if target == "gazebo" else \
-        f"Gazebo (sdformat {facts.version_text(_version(robot, target), target)})"
+    return _as_of(robot, target)
 
 
 def _massless(robot, target: str, root: bool):
@@ -1174,7 +1176,7 @@ def _lumped_frames(robot, target: str):
 def _swapped(robot, target: str):
     for joint in robot.children("joint"):
         limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in ("revolute", "prismatic"):
+        if limit is None or _type(joint) not in LIMITED:
             continue
         low = number_tuple(limit.get("lower", "0"), 1)[0]
         high = number_tuple(limit.get("upper", "0"), 1)[0]
@@ -1184,8 +1186,7 @@ def _swapped(robot, target: str):
 
 
 _SDF_DOCS = {
-    "massless": """A link without mass (after lumping) is left out of the {title} model, with
-    everything below it.
+    "massless": """A link left without mass by lumping is not in the {title} model, nor below.
 
     sdformat first lumps each link on a fixed joint into its parent; then a link (not named
     "world") with no ``<inertial>``, or mass {zero}, is "not modeled in sdf": its joint and
@@ -1212,7 +1213,7 @@ _SDF_DOCS = {
     Bad: ``<link name="camera"><inertial><mass value="0"/>...`` fixed to a massless ``base``
     Good: no ``<inertial>`` for a frame, or real masses
     """,
-    "inertia": """{title}'s validity check refuses this (lumped) inertia.
+    "inertia": """The validity check of {title} refuses this (lumped) inertia.
 
     After lumping, each link's tensor must have non-negative principal moments that satisfy
     the triangle inequality; ``gz sdf -k`` reports "A link named ... has invalid inertia" and
@@ -1246,41 +1247,49 @@ _SDF_DOCS = {
 }
 
 
-def _sdf_rule(code: str, name: str, severity: Severity, target: str, kind: str, check):
+def _sdf_check(target: str, kind: str, check):
+    """The check of one sdformat fact for ``target``, its docstring that fact's, told for it."""
     zero = "<= 0" if target == "gz" else "0"
     warns = (" (a warning since sdformat 13; silently in 12)" if target == "gz"
              else " (silently; a warning from 9.10 on)")
-    title = facts.SIMULATORS[target].title
 
     def run(robot):
         yield from check(robot, target)
 
-    run.__doc__ = _SDF_DOCS[kind].format(title=title, zero=zero, warns=warns)
-    run.__name__ = run.__qualname__ = name.replace("-", "_")
-    return rule(code, name, severity)(run)
+    run.__doc__ = _SDF_DOCS[kind].format(title=facts.SIMULATORS[target].title, zero=zero,
+                                         warns=warns)
+    return run
 
 
-gz_massless_link = _sdf_rule("U950", "gz-massless-link", Severity.WARNING, "gz", "massless",
-                             lambda robot, target: _massless(robot, target, False))
-gz_massless_root = _sdf_rule("U951", "gz-massless-root", Severity.ERROR, "gz", "root",
-                             lambda robot, target: _massless(robot, target, True))
-gz_lumped_nan = _sdf_rule("U952", "gz-lumped-nan", Severity.ERROR, "gz", "nan", _nan)
-gz_invalid_inertia = _sdf_rule("U953", "gz-invalid-inertia", Severity.ERROR, "gz", "inertia",
-                               _invalid_inertia)
-gz_lumped_frame = _sdf_rule("U954", "gz-lumped-frame", Severity.WARNING, "gz", "frame",
-                            _lumped_frames)
-gz_swapped_limits = _sdf_rule("U955", "gz-swapped-limits", Severity.WARNING, "gz", "swap",
-                              _swapped)
-gazebo_massless_link = _sdf_rule("U960", "gazebo-massless-link", Severity.WARNING, "gazebo",
-                                 "massless", lambda robot, target: _massless(robot, target,
-                                                                             False))
-gazebo_massless_root = _sdf_rule("U961", "gazebo-massless-root", Severity.ERROR, "gazebo",
-                                 "root", lambda robot, target: _massless(robot, target, True))
-gazebo_lumped_nan = _sdf_rule("U962", "gazebo-lumped-nan", Severity.ERROR, "gazebo", "nan", _nan)
-gazebo_lumped_frame = _sdf_rule("U964", "gazebo-lumped-frame", Severity.WARNING, "gazebo",
-                                "frame", _lumped_frames)
-gazebo_swapped_limits = _sdf_rule("U965", "gazebo-swapped-limits", Severity.WARNING, "gazebo",
-                                  "swap", _swapped)
+def _massless_links(robot, target):
+    return _massless(robot, target, False)
+
+
+def _massless_root(robot, target):
+    return _massless(robot, target, True)
+
+
+gz_massless_link = rule("U950", "gz-massless-link", Severity.WARNING)(
+    _sdf_check("gz", "massless", _massless_links))
+gz_massless_root = rule("U951", "gz-massless-root", Severity.ERROR)(
+    _sdf_check("gz", "root", _massless_root))
+gz_lumped_nan = rule("U952", "gz-lumped-nan", Severity.ERROR)(_sdf_check("gz", "nan", _nan))
+gz_invalid_inertia = rule("U953", "gz-invalid-inertia", Severity.ERROR)(
+    _sdf_check("gz", "inertia", _invalid_inertia))
+gz_lumped_frame = rule("U954", "gz-lumped-frame", Severity.WARNING)(
+    _sdf_check("gz", "frame", _lumped_frames))
+gz_swapped_limits = rule("U955", "gz-swapped-limits", Severity.WARNING)(
+    _sdf_check("gz", "swap", _swapped))
+gazebo_massless_link = rule("U960", "gazebo-massless-link", Severity.WARNING)(
+    _sdf_check("gazebo", "massless", _massless_links))
+gazebo_massless_root = rule("U961", "gazebo-massless-root", Severity.ERROR)(
+    _sdf_check("gazebo", "root", _massless_root))
+gazebo_lumped_nan = rule("U962", "gazebo-lumped-nan", Severity.ERROR)(
+    _sdf_check("gazebo", "nan", _nan))
+gazebo_lumped_frame = rule("U964", "gazebo-lumped-frame", Severity.WARNING)(
+    _sdf_check("gazebo", "frame", _lumped_frames))
+gazebo_swapped_limits = rule("U965", "gazebo-swapped-limits", Severity.WARNING)(
+    _sdf_check("gazebo", "swap", _swapped))
 
 
 # ==== Isaac Sim (U97x) ========================================================================
