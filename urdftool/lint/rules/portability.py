@@ -208,6 +208,19 @@ def _referenced_removals(robot, removed: dict, simulator: str):
             yield where, name, what, removed[name]
 
 
+def _inverted(robot):
+    """(joint, its <limit>, lower, upper) of each revolute or prismatic joint whose lower limit
+    is above its upper one (urdfdom's reading: a missing bound is 0)."""
+    for joint in robot.children("joint"):
+        limit = first_child(joint, "limit")
+        if limit is None or _type(joint) not in LIMITED:
+            continue
+        low = number_tuple(limit.get("lower", "0"), 1)[0]
+        high = number_tuple(limit.get("upper", "0"), 1)[0]
+        if low and high and low[0] > high[0]:
+            yield joint, limit, low[0], high[0]
+
+
 # ==== MuJoCo (U92x) ===========================================================================
 
 def _mujoco_compiler(robot):
@@ -805,16 +818,9 @@ def pybullet_limit_dropped(robot):
     Bad: ``<limit lower="1" upper="-1" .../>`` (the joint turns freely in PyBullet)
     Good: ``<limit lower="-1" upper="1" .../>``
     """
-    for joint in robot.children("joint"):
-        limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in LIMITED:
-            continue
-        low = number_tuple(limit.get("lower", "0"), 1)[0]
-        high = number_tuple(limit.get("upper", "0"), 1)[0]
-        if low and high and low[0] > high[0]:
-            yield limit, (f"joint '{_name(joint)}': lower {low[0]:g} > upper {high[0]:g}: "
-                          f"{_as_of(robot, 'pybullet')} applies no limit, the joint moves "
-                          "freely")
+    for joint, limit, low, high in _inverted(robot):
+        yield limit, (f"joint '{_name(joint)}': lower {low:g} > upper {high:g}: "
+                      f"{_as_of(robot, 'pybullet')} applies no limit, the joint moves freely")
 
 
 @rule("U937", "pybullet-mimic-ignored", Severity.WARNING)
@@ -902,15 +908,9 @@ def drake_lower_above_upper(robot):
     Bad: ``<limit lower="1" upper="-1" .../>``
     Good: ``<limit lower="-1" upper="1" .../>``
     """
-    for joint in robot.children("joint"):
-        limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in LIMITED:
-            continue
-        low = number_tuple(limit.get("lower", "0"), 1)[0]
-        high = number_tuple(limit.get("upper", "0"), 1)[0]
-        if low and high and low[0] > high[0]:
-            yield limit, (f"joint '{_name(joint)}': lower {low[0]:g} > upper {high[0]:g}: "
-                          f"{_as_of(robot, 'drake')} stops the load")
+    for joint, limit, low, high in _inverted(robot):
+        yield limit, (f"joint '{_name(joint)}': lower {low:g} > upper {high:g}: "
+                      f"{_as_of(robot, 'drake')} stops the load")
 
 
 DEGREES = {**dict.fromkeys(MOVING, 1), "fixed": 0,
@@ -1174,15 +1174,9 @@ def _lumped_frames(robot, target: str):
 
 
 def _swapped(robot, target: str):
-    for joint in robot.children("joint"):
-        limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in LIMITED:
-            continue
-        low = number_tuple(limit.get("lower", "0"), 1)[0]
-        high = number_tuple(limit.get("upper", "0"), 1)[0]
-        if low and high and low[0] > high[0]:
-            yield limit, (f"joint '{_name(joint)}': lower {low[0]:g} > upper {high[0]:g}: "
-                          f"{_sdf_title(robot, target)} swaps them (\"switching the two\")")
+    for joint, limit, low, high in _inverted(robot):
+        yield limit, (f"joint '{_name(joint)}': lower {low:g} > upper {high:g}: "
+                      f"{_sdf_title(robot, target)} swaps them (\"switching the two\")")
 
 
 _SDF_DOCS = {
