@@ -46,6 +46,8 @@ class Robot:
     companion_paths: companion files the user named (the rest are discovered)
     mesh_limits: how large a mesh may be loaded
     xacro_args: the xacro arguments it was checked with (the rest took their defaults)
+    targets: the simulators the robot is checked for (``check --target``): name -> the version
+        whose behaviour to predict (a tuple of numbers), or None for the newest known
     """
 
     path: str
@@ -60,6 +62,7 @@ class Robot:
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
     xacro_args: Mapping = field(default_factory=dict)
+    targets: dict = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
