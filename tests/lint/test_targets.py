@@ -183,7 +183,7 @@ def _two_robots(tmp_path):
 
 def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
     root = _two_robots(tmp_path)
-    result = run_cli("check", root / "pkg/config/b_controllers.yaml", "-v")
+    result = run_cli("check", root / "pkg/config/b_controllers.yaml", "-v", "--strict")
     assert result.exit_code == 1 and "b_controllers.yaml:3" in result.stdout and "U602" in result.stdout
     assert "a companion of" in result.stderr and "b.urdf" in result.stderr and "a.urdf:" not in result.stdout
     assert "companion of " in result.stderr and "controllers: " in result.stderr

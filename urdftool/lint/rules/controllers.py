@@ -1,10 +1,10 @@
 """U60x: controller configuration YAML (ROS 1 ros_control and ROS 2 ros2_control layouts).
 
 Which controllers run is the launch files' choice (:mod:`urdftool.description.runtime`): a
-finding on a controller that only some configurations start is a warning naming when
-(docs/certainty.md), and a controller no launch file of the robot starts is not judged. Without
-launch files, the file's controllers are taken as started together, except the alternatives a
-file offers for the same joints (a menu: see U604).
+finding on a controller is an error when a launch file of the robot as checked starts it, active
+and unconditionally; a warning naming when it holds when a launch file starts it only under a
+condition or no launch file says (a controller file is often a menu from which a launch file
+starts a few); nothing when the robot's launch files start it nowhere (docs/certainty.md).
 """
 
 from __future__ import annotations
@@ -14,8 +14,9 @@ from urdftool.description.actuation import (command_interfaces, interface_kind, 
                                             ros2_state_interfaces, transmission_joints, transmissions)
 from urdftool.description.companions import companions, parameter_files
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
-from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
-from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runs, runtime, together
+from urdftool.description.controllers import (Controller, JointRef, controller_files, controllers,
+                                              runs_of)
+from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runtime, together
 from urdftool.errors import available
 from urdftool.lint.catalogue import Conditional, Severity, rule
 
@@ -31,25 +32,30 @@ def label(controller: Controller) -> str:
     return f"controller '{controller.name}' ({controller.type or 'no type'})"
 
 
-def started(robot, controller: Controller) -> Runs:
-    """Whether the robot's launch files start ``controller`` (once per controller)."""
-    return robot.memo_for(started, id(controller),
-                          lambda: runs(robot, controller, parameter_files(robot)))
-
-
 def hedged(robot, controller: Controller, message: str):
-    """``message`` as a rule yields it for ``controller``: None when no launch file of the
-    robot starts it, a :class:`Conditional` naming when one does, else as it is."""
-    verdict = started(robot, controller)
+    """``message`` as a rule yields it for ``controller``: as it is when a launch file of the
+    robot as checked starts it (the defect holds whenever the robot runs); None when the
+    robot's launch files start it nowhere; else a :class:`Conditional` naming when it holds
+    (a launch file starts it only under a condition, or no launch file says: a controller file
+    is often a menu from which a launch file starts a few)."""
+    verdict = runs_of(robot, controller)
     if verdict.state == "never":
         return None
-    if verdict.state == "conditional":
-        named = label(controller)
-        rest = (message[len(named) + 2:] if message.startswith(named + ": ") else
-                "it" + message[len(named):] if message.startswith(named) else message)
-        return Conditional(f"if {named} is started against this robot as checked "
-                           f"({verdict.condition}): {rest}")
-    return message
+    if verdict.state == "certain":
+        return message
+    return Conditional(f"{_if_started(controller, verdict)}: {_after(controller, message)}")
+
+
+def _if_started(controller: Controller, verdict: Runs) -> str:
+    why = verdict.condition or "no launch file of the robot says whether it is"
+    return f"if {label(controller)} is started against this robot as checked ({why})"
+
+
+def _after(controller: Controller, message: str) -> str:
+    """``message`` without the controller's label it starts with (the condition names it)."""
+    named = label(controller)
+    return (message[len(named) + 2:] if message.startswith(named + ": ") else
+            "it" + message[len(named):] if message.startswith(named) else message)
 
 
 def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
@@ -163,11 +169,11 @@ def controller_interface_mismatch(robot):
     A controller file is often a menu: effort, position and velocity variants for the same joints,
     of which a launch argument starts one (and the robot's xacro arguments choose the interfaces
     its transmissions offer). So this is an error only for a controller that runs with the robot
-    as checked (a launch file starts it unconditionally, or no launch file says and the file
-    offers no alternative for its joints); a warning naming the condition when a launch
-    file starts it only under an argument, or when the file offers alternatives for its joints
-    and none fits; nothing when an alternative fits (it is the one for this configuration) or
-    no launch file of the robot starts it.
+    as checked (a launch file starts it, active, unconditionally); a warning naming the
+    condition when a launch file starts it only under an argument or no launch file says; and
+    when no launch file says and the file offers alternatives for its joints, nothing when one
+    of them fits the robot as checked (it is the one for this configuration), one warning per
+    controller when none does. Nothing for a controller no launch file of the robot starts.
 
     Bad: ``position_controllers/JointTrajectoryController`` on a joint with
     ``hardware_interface/VelocityJointInterface``
@@ -178,33 +184,30 @@ def controller_interface_mismatch(robot):
         mismatches = _mismatches(robot, controller)
         if not mismatches:
             continue
-        verdict = started(robot, controller)
+        verdict = runs_of(robot, controller)
         if verdict.state == "never":
             continue
-        condition = verdict.condition if verdict.state == "conditional" else None
-        if verdict.state == "unknown":
-            rivals = _rivals(robot, controller)
-            if any(not _mismatches(robot, rival) for rival in rivals):
-                continue  # one of the file's alternatives fits the robot as checked
-            if rivals:
-                condition = (f"it is one of {len(rivals) + 1} controllers for these joints "
-                             f"({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
-                             "launch file of the robot says which starts; none fits the robot "
-                             "as checked")
-        if condition is None:
-            for ref, missing, has_set in mismatches:
+        rivals = _rivals(robot, controller)
+        if verdict.state == "certain" or verdict.state == "unknown" and not rivals:
+            for ref, missing, has_set in mismatches:  # each joint where it was written
                 has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
-                yield controller.file.at(ref.line), (
+                yield controller.file.at(ref.line), hedged(robot, controller, (
                     f"{label(controller)} commands {'/'.join(missing)} on joint '{ref.name}', "
-                    f"which offers {has}; {_interface_fix(controller, has_set, missing)}")
+                    f"which offers {has}; {_interface_fix(controller, has_set, missing)}"))
             continue
+        if verdict.state == "unknown" and any(not _mismatches(robot, rival) for rival in rivals):
+            continue  # one of the file's alternatives fits the robot as checked: it is the one
+        if verdict.state == "unknown" and rivals:
+            verdict = Runs("unknown", f"it is one of {len(rivals) + 1} controllers for these joints "
+                                      f"({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
+                                      "launch file of the robot says which starts; none fits the "
+                                      "robot as checked")
         joints = ", ".join(dict.fromkeys(ref.name for ref, _, _ in mismatches))
         ref, missing, has_set = mismatches[0]
         has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
         yield controller.file.at(controller.line), Conditional(
-            f"if {label(controller)} is started against this robot as checked ({condition}): it "
-            f"commands {'/'.join(missing)} on {joints}, where {ref.name} offers {has}; "
-            f"{_interface_fix(controller, has_set, missing)}")
+            f"{_if_started(controller, verdict)}: it commands {'/'.join(missing)} on {joints}, "
+            f"where {ref.name} offers {has}; {_interface_fix(controller, has_set, missing)}")
 
 
 def _offers(robot, controller: Controller, name: str) -> set | None:
@@ -307,7 +310,7 @@ def no_joint_state_controller(robot):
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
     found = [c for c in controllers(robot) if c.layout != "moveit"
-             and started(robot, c).state != "never"]
+             and runs_of(robot, c).state != "never"]
     facts = runtime(robot)
     if any("joint_state" in spawn.name for spawn in facts.spawns):
         return  # a launch file starts one, from a file the robot is not checked with
@@ -393,7 +396,7 @@ def controller_missing_parameter(robot):
         if known is None:
             continue
         params = controller.params or {}
-        if started(robot, controller).state == "never":
+        if runs_of(robot, controller).state == "never":
             continue
         if controller.layout == "ros2" and controller.block_line is None and controller.name not in blocks:
             if known.required:

@@ -13,7 +13,8 @@ from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
 from urdftool.description.runtime import ros_versions, runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
-from urdftool.lint.rules.controllers import hedged, started
+from urdftool.description.controllers import runs_of
+from urdftool.lint.rules.controllers import hedged
 from urdftool.physics import mat3
 
 GEOMETRY_TOLERANCE = 0.05
@@ -91,7 +92,7 @@ def _controller_drives(robot):
     for controller in controllers(robot):
         if controller.cls is None or controller.cls.package != "diff_drive_controller":
             continue
-        if started(robot, controller).state == "never":
+        if runs_of(robot, controller).state == "never":
             continue
         drive = _Drive(f"controller '{controller.name}' ({controller.type})", controller=controller)
         at, params = controller.file.at, controller.params or {}
