@@ -264,7 +264,9 @@ def _as_given(value: Resolved, packages: dict) -> str | None:
     parts = value.text.split("\0")
     if len(parts) % 2 == 0:
         return None
-    return "".join(str(packages[p]) if i % 2 else p for i, p in enumerate(parts))
+    text = "".join(str(packages[p]) if i % 2 else p for i, p in enumerate(parts))
+    # the command line is split as a shell splits it: prefix:='""' gives an empty prefix
+    return text[1:-1] if len(text) >= 2 and text[0] == text[-1] and text[0] in "'\"" else text
 
 
 def shown_text(value: Resolved) -> str | None:

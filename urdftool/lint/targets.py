@@ -66,6 +66,7 @@ class _Summary:
     srdf: bool = False
     unfollowed: bool = False  # it includes files whose path is only known when expanding
     fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
+    macros: bool = False  # it defines xacro macros
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -122,7 +123,7 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
                     resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
-                    answer == "fragment")
+                    answer == "fragment", bool(_MACRO.search(data)))
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -209,6 +210,15 @@ def _top_level_answer(data: bytes) -> str:
     return _stream(data, _TopLevelTags())
 
 
+def _has_own_links(path: Path, limit: int) -> bool:
+    """Whether the file at ``path`` writes ``<link>`` or ``<joint>`` elements of its own under
+    ``<robot>`` (inside ``xacro:if``/``unless`` too): a robot, not a part that only calls
+    macros (``niryo_ned.transmission.xacro``: transmissions through macro calls). A file that
+    is not read counts (checking it says why)."""
+    data = _head(path, limit)
+    return data is None or b"\0" in data or _stream(data, _OwnLinks()) == "own"
+
+
 def _yields_links(data: bytes) -> bool:
     """Whether a file, included, produces links: a <link> or <joint>, or a macro call, outside
     its macro definitions (inside <xacro:if> too)."""
@@ -266,6 +276,31 @@ class _TopLevelTags:
         return "fragment" if self.extensions else "definitions"
 
 
+class _OwnLinks:
+    """lxml parser target: answers 'own' at a <link> or <joint> child of <robot>, or of a
+    ``xacro:if``/``unless`` there."""
+
+    def __init__(self):
+        self.path: list[str] = []
+
+    def start(self, tag, attributes):
+        name = _local_name(tag)
+        if name in ("link", "joint") and not _is_xacro(tag) and len(self.path) >= 1 and \
+                all(part in ("if", "unless") for part in self.path[1:]):
+            raise _Answered("own")
+        self.path.append(name if _is_xacro(tag) or not self.path else "?")
+
+    def end(self, tag):
+        if self.path:
+            self.path.pop()
+
+    def close(self):
+        return None
+
+    def default(self) -> str:
+        return "none"
+
+
 class _LinksOutsideMacros:
     """lxml parser target: answers 'links' at a <link>, <joint> or macro call that is not
     inside a <xacro:macro>."""
@@ -307,6 +342,7 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
 
 
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
+_MACRO = re.compile(rb"<(?:xacro:)?macro\s")
 
 
 def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE
@@ -344,10 +380,10 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     summary = _summary(path, resolver_for, max_file_size)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
+    if summary.named_robot and _has_own_links(path, max_file_size):
+        return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
-    if summary.named_robot and (summary.defines_robot or yields):
-        return [path], None
     includers = includers() if callable(includers) else includers
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
@@ -364,9 +400,13 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     if tops:
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
-    # A named <robot> whose includes could not all be followed is checked: expanding it says
+    if summary.named_robot and (summary.defines_robot or yields):
+        return [path], None
+    # A named <robot> whose includes could not all be followed is checked (expanding it says),
+    # unless it defines macros of its own: then it is a macro library including others, as the
+    # folder walk takes it (kortex's gen3_macro.xacro, named by pre-commit)
     if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
-            not (yields is None and summary.named_robot):
+            not (yields is None and summary.named_robot and not summary.macros):
         what = FRAGMENT if summary.fragment else "defines only macros or properties"
         return [], f"{what}, and no robot below {root} includes it: nothing to check"
     return [path], None
