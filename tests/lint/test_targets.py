@@ -316,3 +316,38 @@ def test_a_robot_named_on_the_command_line_does_not_walk_its_repository(monkeypa
     monkeypatch.setattr(targets, "includers_below", walk)
     found = targets.expand([str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")], CheckRequest())
     assert found.files == [str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")]
+
+
+def test_a_part_that_only_calls_macros_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # niryo's niryo_ned.transmission.xacro: a named <robot> whose content is transmissions made
+    # by macro calls; alone it has no link (U106) and no joint its transmissions name (U501)
+    urdf = _fragment_package(tmp_path)
+    part = urdf / "bot.transmission.xacro"
+    part.write_text("""<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="trans" params="joint">
+    <transmission name="${joint}_t"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="${joint}"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="${joint}_m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
+  </xacro:macro>
+  <xacro:trans joint="wheel_joint"/>
+</robot>""")
+    robot = urdf / "bot.urdf.xacro"
+    robot.write_text(robot.read_text().replace(
+        "</robot>", '<xacro:include filename="$(find bot_description)/urdf/bot.transmission.xacro"/>\n</robot>'))
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U106" not in result.stdout and "U501" not in result.stdout
+    assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
+
+
+def test_a_macro_library_named_whose_includes_cannot_be_followed_is_a_library(run_cli, tmp_path):
+    # kortex's gen3_macro.xacro, named by pre-commit: a named <robot> defining a macro and
+    # including files by ${...} paths; the walk skips it, and so does naming it
+    (tmp_path / ".git").mkdir()
+    library = tmp_path / "arm_macro.xacro"
+    library.write_text("""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="dof" value="6"/>
+  <xacro:include filename="$(find arm)/${dof}dof/parts.xacro"/>
+  <xacro:macro name="load_arm" params="prefix"><link name="${prefix}base"/></xacro:macro>
+</robot>""")
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 0' in named.stdout and "defines only macros" in named.stderr
