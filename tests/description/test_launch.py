@@ -244,3 +244,34 @@ def test_resolve_keeps_what_is_not_known_unknown(tmp_path):
     assert resolve(substituted("$(arg b)"), scope).text is None
     assert resolve(substituted("$(env HOME)"), scope).text is None  # the environment is not read
     assert resolve(substituted("$(optenv ROBOT arm)"), scope).text == "arm"
+
+
+def test_only_the_parameters_consumers_read_describe_the_robot(tmp_path):
+    # niryo: robot_description_tf2 holds another build beside robot_description; it is not
+    # what MoveIt and robot_state_publisher read
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/a.urdf.xacro": "<robot name='a'/>", "p/b.urdf.xacro": "<robot name='b'/>",
+                            "p/launch/x.launch": """<launch>
+      <param name="robot_description" command="xacro $(find p)/a.urdf.xacro"/>
+      <param name="robot_description_tf2" command="xacro $(find p)/b.urdf.xacro"/>
+      <param name="robot_description_semantic" textfile="$(find p)/a.srdf"/>
+    </launch>""", "p/a.srdf": "<robot name='a'/>"})
+    [configuration] = launch_index(root).configurations
+    assert [d.path.name for d in configuration.described] == ["a.urdf.xacro", "a.srdf"]
+
+
+def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
+    # kinova-movo: $(optenv MOVO_HAS_KINOVA_ARM false) decides whether the robot has arms
+    from urdftool.description.runtime import runtime
+    from urdftool.lint.engine import CheckOptions, check_file
+
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/r.urdf.xacro": """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/>
+  <xacro:if value="$(optenv HAS_ARM false)"><link name="arm"/></xacro:if>
+</robot>""", "p/launch/x.launch": """<launch>
+      <param name="robot_description" command="xacro $(find p)/r.urdf.xacro"/>
+    </launch>"""})
+    robot = check_file(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
+    [(configuration, relation)] = [c for c in runtime(robot).configurations if c[1]]
+    assert relation == "as the environment builds it (HAS_ARM)"

@@ -257,6 +257,7 @@ class Description:
     args: tuple = ()  # ((name, Value), ...)
     when: tuple = ()
     line: int | None = None
+    parameter: str = ""  # the parameter it is loaded into, as written ("" when not said)
 
 
 @dataclass
@@ -402,13 +403,14 @@ def _xml_node(element, when, launch, line) -> None:
 def _xml_param(element, when, launch, line) -> None:
     """A ``<param>`` holding a description: ``command=`` (xacro) or ``textfile=`` (a URDF)."""
     command, textfile = element.get("command"), element.get("textfile")
+    name = element.get("name") or ""
     if command and ("xacro" in command or ".urdf" in command):
-        launch.actions.append(Description(substituted(command), None, (), when, line(element)))
+        launch.actions.append(Description(substituted(command), None, (), when, line(element), name))
     elif textfile:
-        launch.actions.append(Description(None, substituted(textfile), (), when, line(element)))
+        launch.actions.append(Description(None, substituted(textfile), (), when, line(element), name))
     value = element.get("value") or ""
     if value.startswith("$(command") and "xacro" in value:  # ROS 2 XML: value="$(command 'xacro ...')"
-        launch.actions.append(Description(substituted(value), None, (), when, line(element)))
+        launch.actions.append(Description(substituted(value), None, (), when, line(element), name))
 
 
 def _rosparam(element, when, line) -> ParamFile | None:

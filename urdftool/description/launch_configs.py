@@ -26,6 +26,7 @@ outside the repository) is unknown, never guessed.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -421,7 +422,7 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             configuration.started.append(Started(package.text, executable.text, arguments, files, when,
                                                  launch.display, action.line))
             configuration.loaded.extend(files)
-        elif isinstance(action, Description):
+        elif isinstance(action, Description) and _describes(action.parameter):
             configuration.described.append(_described(action, scope, when, launch))
 
 
@@ -462,6 +463,16 @@ def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile) -> 
         when = when.also(When(True, resolved.free, ()))
     return Loaded(path, shown(resolved) or action.path.text, action.substitute,
                   dict(scope.args) if action.substitute else {}, when, launch.display, action.line)
+
+
+_DESCRIPTION_PARAMETER = re.compile(r"robot_description\)?(_semantic)?$")
+
+
+def _describes(parameter: str) -> bool:
+    """Whether a description loaded into ``parameter`` is what the robot's consumers read:
+    ``robot_description`` (or ``..._semantic``, or a name that says nothing of it), not
+    ``robot_description_tf2`` or another copy beside it."""
+    return "robot_description" not in parameter or bool(_DESCRIPTION_PARAMETER.search(parameter.strip()))
 
 
 def _described(action: Description, scope: Scope, when: When, launch: LaunchFile) -> Described:

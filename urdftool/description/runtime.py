@@ -140,6 +140,7 @@ def _runtime(robot) -> Runtime:
     found.read = [launch.path for launch in index.files.values()]
     real = os.path.realpath(path)
     mine = None
+    environment = _environment_names(robot)
     for configuration in index.configurations:
         described = [d for d in configuration.described if d.path is not None]
         relation = ""
@@ -147,11 +148,25 @@ def _runtime(robot) -> Runtime:
             if os.path.realpath(description.path) == real:
                 mine = mine if mine is not None else _robot_args(robot)
                 relation = _relation(description, mine, relation, packages_below(root))
+        if relation == "as checked" and environment:
+            # the robot as checked is one build: what the environment says at launch decides it
+            relation = f"as the environment builds it ({', '.join(environment[:4])})"
         if relation or not described:
             found.configurations.append((configuration, relation))
     for configuration, relation in found.configurations:
         _spawns(configuration, relation, found)
     return found
+
+
+_ENVIRONMENT = re.compile(rb"\$\((?:opt)?env\s+([A-Za-z_][A-Za-z0-9_]*)")
+
+
+def _environment_names(robot) -> list[str]:
+    """The environment variables the robot's files read (``$(optenv MOVO_HAS_ARM false)``)."""
+    found = []
+    for data in robot.sources.values():
+        found.extend(name.decode() for name in _ENVIRONMENT.findall(data))
+    return list(dict.fromkeys(found))
 
 
 def _relation(description: Described, mine: dict, before: str, packages: dict) -> str:

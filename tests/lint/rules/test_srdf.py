@@ -161,7 +161,7 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
         (tmp_path / name).write_text(text)
     result = check_file(str(tmp_path / "arm.urdf.xacro"), CheckOptions())
     found = [(f.file.rsplit("/", 2)[-2:], f.code, f.severity) for f in result.findings if f.code.startswith("U8")]
-    assert found == [(["config", "arm.srdf"], "U803", Severity.WARNING)], result.findings
+    assert found == [(["config", "arm.srdf"], "U803", Severity.INFO)], result.findings
     assert "launch/planning_context.launch gives MoveIt this SRDF with the robot with other xacro " \
            "arguments (gripper:=true)" in result.findings[0].message
     assert any("srdf: " in line and "given to MoveIt by" in line for line in result.companions)

@@ -1,8 +1,9 @@
 """U80x: the SRDF (MoveIt semantic description) against the URDF.
 
 MoveIt reads the SRDF with the robot a launch file builds: when the robot's launch files give
-MoveIt this SRDF only with the robot built from other xacro arguments (a gripper, a prefix), a
-mismatch with the robot as checked is a warning naming them (docs/certainty.md).
+MoveIt this SRDF only with the robot built otherwise (other xacro arguments: a gripper, a
+prefix; or environment variables the robot reads), a mismatch with the robot as checked is a
+note naming them (docs/certainty.md): the MoveIt configuration is another build's.
 """
 
 from __future__ import annotations
@@ -28,8 +29,9 @@ def as_moveit_runs(check):
         srdf = companions(robot).srdf
         state, why = moveit_with(robot, srdf.path) if srdf is not None else ("unknown", "")
         for where, message, *fix in check(robot):
-            if state == "conditional":
-                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}")
+            if state == "conditional":  # the MoveIt configuration of another build: a note
+                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}",
+                                      Severity.INFO)
             elif state == "certain":
                 message = f"{why}: {message}"
             yield (where, message, *fix)
