@@ -351,3 +351,21 @@ def test_a_macro_library_named_whose_includes_cannot_be_followed_is_a_library(ru
 </robot>""")
     named = run_cli("check", library, "--format", "json")
     assert '"files": 0' in named.stdout and "defines only macros" in named.stderr
+
+
+def test_a_urdf_holding_only_plugin_blocks_is_a_fragment_walked_or_named(run_cli, tmp_path):
+    # webots_ros2's resource/*_webots.urdf: a <robot> of <webots> and <ros2_control> blocks that
+    # the driver reads beside the real robot description; alone it has no link (U106, U511)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robot.urdf").write_text(
+        '<robot name="r"><link name="base"/><link name="wheel"/><joint name="j" type="continuous">'
+        '<parent link="base"/><child link="wheel"/></joint></robot>')
+    (tmp_path / "robot_webots.urdf").write_text(
+        '<robot name="r"><webots><plugin type="webots_ros2_control::Ros2Control"/></webots>'
+        '<ros2_control name="w" type="system"><hardware><plugin>webots_ros2_control::Ros2ControlSystem'
+        '</plugin></hardware><joint name="j"><command_interface name="velocity"/></joint>'
+        '</ros2_control></robot>')
+    walked = run_cli("check", tmp_path, "--format", "json")
+    assert '"files": 1' in walked.stdout and "U106" not in walked.stdout
+    named = run_cli("check", tmp_path / "robot_webots.urdf", "--format", "json")
+    assert '"files": 0' in named.stdout and "fragment" in named.stderr

@@ -27,7 +27,7 @@ _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
 # What a fragment of a robot defined elsewhere holds besides definitions: X.gazebo.xacro
-_EXTENSIONS = {"gazebo", "transmission", "ros2_control"}
+_EXTENSIONS = {"gazebo", "transmission", "ros2_control", "webots"}
 # xacro's own elements: everything else in its namespace is a macro call
 _XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
                                     "call", "load_yaml"}
@@ -36,8 +36,8 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
-FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission> or "
-            "<ros2_control> blocks besides definitions)")
+FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
+            "<ros2_control> or <webots> blocks besides definitions)")
 
 
 def robot_files(folder: Path) -> list[Path]:
@@ -91,6 +91,8 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
                 _includes_yield_links(summaries[path], resolver_for, max_file_size) is not True:
             skipped[path] = (FRAGMENT if summaries[path].fragment else
                              "defines only macros or properties (a macro library)")
+        elif path.name.endswith(".urdf") and summaries[path].fragment:
+            skipped[path] = FRAGMENT
         else:
             top.append(path)
     return top, skipped
@@ -116,10 +118,10 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
         return _Summary([], True, True)
     includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
     answer = _top_level_answer(data)
-    if answer in ("definitions", "fragment") and path.name.endswith(".xacro") and \
+    if answer in ("definitions", "fragment", "empty") and path.name.endswith(".xacro") and \
             not _well_formed_for_xacro(data):
         answer = "robot"  # not a library: checking it reports why xacro cannot read it
-    return _Summary(includes, answer not in ("definitions", "fragment"),
+    return _Summary(includes, answer not in ("definitions", "fragment", "empty"),
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
                     resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
@@ -180,7 +182,7 @@ def _defines_robot(data: bytes) -> bool:
     """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
     definitions (properties, args, includes, macros) and extension blocks (a fragment).
     Unparsable files count, so that the parse error is reported."""
-    return _top_level_answer(data) not in ("definitions", "fragment")
+    return _top_level_answer(data) not in ("definitions", "fragment", "empty")
 
 
 def _stream(data: bytes, target) -> str:
@@ -246,7 +248,7 @@ class _TopLevelTags:
     'definitions'."""
 
     def __init__(self):
-        self.depth, self.seen_robot, self.extensions = 0, False, False
+        self.depth, self.seen_robot, self.extensions, self.children = 0, False, False, False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -258,6 +260,7 @@ class _TopLevelTags:
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
+        self.children = self.children or self.depth == 2
         if self.depth == 2 and name in _EXTENSIONS and not _is_xacro(tag):
             self.extensions = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
@@ -273,7 +276,7 @@ class _TopLevelTags:
     def default(self) -> str:
         if not self.seen_robot:
             return "robot"
-        return "fragment" if self.extensions else "definitions"
+        return "fragment" if self.extensions else "definitions" if self.children else "empty"
 
 
 class _OwnLinks:
@@ -400,6 +403,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     if tops:
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
+    if path.name.endswith(".urdf") and summary.fragment:
+        return [], f"{FRAGMENT}, and no robot below {root} includes it: nothing to check"
     if summary.named_robot and (summary.defines_robot or yields):
         return [path], None
     # A named <robot> whose includes could not all be followed is checked (expanding it says),

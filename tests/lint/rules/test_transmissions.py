@@ -121,3 +121,17 @@ def test_unknown_interface_when_ros1_may_read_it_too_is_a_warning_naming_it(tmp_
     assert findings[0].message.startswith("if ROS 1 reads this transmission (the URDF loads "
                                           "gazebo_ros_control; ros2_control ignores it: the URDF "
                                           "has <ros2_control>)")
+
+
+@pytest.mark.parametrize("plugin, reported", [
+    ('<plugin name="c" filename="libgazebo_ros_control.so"/>', True),
+    # a vendor's control plugin (HSR's) may publish every joint: not known, not judged
+    ('<plugin name="c" filename="libhsrb_gazebo_ros_control.so"/>', False),
+    # Gazebo Sim's joint state publisher publishes every joint unless it names some
+    ('<plugin name="c" filename="libgazebo_ros_control.so"/>'
+     '<plugin filename="gz-sim-joint-state-publisher-system" name="gz::sim::systems::JointStatePublisher"/>', False),
+])
+def test_a_passive_joint_is_judged_only_with_a_known_control_plugin(tmp_path, plugin, reported):
+    robot = HEAD_ROBOT.format(body=f"<gazebo>{plugin}</gazebo>")
+    marks, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507",))
+    assert bool(marks) is reported

@@ -228,6 +228,9 @@ def unactuated_joint(robot):
     a Gazebo joint state publisher plugin naming them, or a joint_state_publisher every launch
     file starting the robot's controllers starts (passive joints: casters, sprung wheel-drop
     joints). When only some of those launch files start one, this is a note naming the others.
+    Checked for ``<ros2_control>`` and the control plugins whose behaviour is known
+    (gazebo_ros_control, gazebo_ros2_control, gz_ros2_control, ign_ros2_control); a vendor's
+    (``libhsrb_gazebo_ros_control.so``) may publish every joint.
 
     Fix (unsafe: the interface is a guess): a ros2_control ``<joint>`` with the interfaces of
     the block's first joint, or a ROS 1 SimpleTransmission with the interface most of the
@@ -238,8 +241,8 @@ def unactuated_joint(robot):
     prismatic joint
     """
     plugin = control_plugin(robot)
-    if plugin is None:
-        return
+    if plugin is None or plugin.tag != "ros2_control" and not _known_loader(plugin):
+        return  # a vendor's control plugin (libhsrb_gazebo_ros_control.so) may publish them all
     actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
     actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
     actuated.update(diff_drive_wheels(robot))
@@ -259,6 +262,16 @@ def unactuated_joint(robot):
                     f"{publishing[0]} does): {message}", Severity.INFO)
             yield offer(joint, message, f"actuate joint '{name}'", _actuation(robot, plugin, name),
                         safe=False)
+
+
+# The control plugins whose behaviour is known: they publish only the joints they actuate
+KNOWN_LOADERS = ("libgazebo_ros_control.so", "libgazebo_ros2_control.so", "gz_ros2_control-system",
+                 "libgz_ros2_control-system.so", "ign_ros2_control-system",
+                 "libign_ros2_control-system.so")
+
+
+def _known_loader(plugin) -> bool:
+    return (plugin.get("filename") or "").strip() in KNOWN_LOADERS
 
 
 def _state_publishers(robot) -> tuple[list[str], list[str]]:
