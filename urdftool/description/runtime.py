@@ -402,25 +402,37 @@ _ROS_OWN = ("controller_manager", "robot_state_publisher", "joint_state_publishe
             "nodelet", "image_proc", "depth_image_proc", "twist_mux", "robot_localization")
 
 
-def moveit_served_by_ros_control(robot, moveit_file: Path) -> str | None:
-    """The launch file of the robot (as checked) that starts MoveIt (move_group) with the
-    controller list ``moveit_file``, spawns ros_control controllers, and starts no node that
-    could serve a trajectory action itself (one of a package other than ROS's own); None when
-    no launch file of the robot does so unconditionally."""
+def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
+    """Who serves the trajectories MoveIt sends through the controller list ``moveit_file``, as
+    the robot's launch files that start MoveIt with it tell: ("ros_control", launch file) when
+    one starts MoveIt with it, spawns ros_control controllers, and starts no node that could
+    serve a trajectory action itself (a node of a package other than ROS's own), all
+    unconditionally, with the robot as checked; ("other", launch file) when every one starting
+    MoveIt with it also starts such a node (a driver: aubo_driver, kortex_driver); ("unknown",
+    "") otherwise."""
     key = os.path.realpath(moveit_file)
     facts = runtime(robot)
+    starting, served = [], []
     for configuration, relation in facts.configurations:
-        if relation != "as checked":
+        if not relation:
             continue
-        lists = any(loaded.path is not None and os.path.realpath(loaded.path) == key
-                    and loaded.when.certain for loaded in configuration.loaded)
-        group = [s for s in configuration.started if s.package == "moveit_ros_move_group"
-                 and s.when.certain]
-        spawns = [s for s in facts.spawns if s.configuration is configuration and s.certain]
+        lists = [loaded for loaded in configuration.loaded
+                 if loaded.path is not None and os.path.realpath(loaded.path) == key]
+        group = [s for s in configuration.started if s.package == "moveit_ros_move_group"]
+        if not (lists and group):
+            continue
+        starting.append(configuration)
         others = [s for s in configuration.started if s.package not in _ROS_OWN]
-        if lists and group and spawns and not others:
-            return configuration.display
-    return None
+        spawns = [s for s in facts.spawns if s.configuration is configuration and s.certain]
+        certain = relation == "as checked" and all(x.when.certain for x in [*lists, *group])
+        if certain and spawns and not others:
+            return "ros_control", configuration.display
+        if others:
+            served.append((configuration, others[0]))
+    if starting and len(served) == len(starting):
+        configuration, node = served[0]
+        return "other", f"{configuration.display} starts {node.package}/{node.executable} with it"
+    return "unknown", ""
 
 
 def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:

@@ -12,7 +12,7 @@ from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
 from urdftool.errors import available
-from urdftool.description.runtime import moveit_served_by_ros_control
+from urdftool.description.runtime import moveit_execution
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.lint.rules.srdf import as_moveit_runs
 
@@ -240,7 +240,8 @@ def moveit_controller_unknown(robot):
     own action server), while the ros_control YAML beside it is the simulation's. So this is an
     error only when a launch file of the robot starts MoveIt with this list and ros_control with
     those controllers, and nothing else that could serve the action (a node of another package
-    than ROS's own); a warning naming the condition otherwise.
+    than ROS's own); nothing when every launch file starting MoveIt with this list starts such a
+    node beside it (aubo_driver's trajectory action); a warning naming the condition otherwise.
 
     Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
     ``arm_trajectory_controller``
@@ -254,14 +255,16 @@ def moveit_controller_unknown(robot):
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
                        f"robot; {available('controllers', name, declared)}")
-            served = moveit_served_by_ros_control(robot, entry.file.path)
-            if served is None:
+            who, where = moveit_execution(robot, entry.file.path)
+            if who == "other":
+                continue  # a launch file starts MoveIt with it beside the driver serving it
+            if who == "unknown":
                 message = Conditional(
                     f"if MoveIt executes through the ros_control controllers the robot is checked "
                     f"with (a driver may serve '{entry.name}' with its own action server; no "
                     f"launch file of the robot starts MoveIt with them alone): {message}")
             else:
-                message = f"{served} starts MoveIt with this list and ros_control: {message}"
+                message = f"{where} starts MoveIt with this list and ros_control: {message}"
             yield entry.file.at(entry.line), message
 
 
@@ -296,7 +299,10 @@ def moveit_controller_joints(robot):
                 ([f"adds {', '.join(extra)}"] if extra and not gripper else [])
         message = (f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the "
                    f"ros_control controller's joints ({', '.join(sorted(theirs))})")
-        if moveit_served_by_ros_control(robot, entry.file.path) is None:
+        who, _ = moveit_execution(robot, entry.file.path)
+        if who == "other":
+            continue
+        if who == "unknown":
             message = Conditional(f"if MoveIt executes through the ros_control controller of that "
                                   f"name the robot is checked with (a driver may serve "
                                   f"'{entry.name}' itself): {message}")
