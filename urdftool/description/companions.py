@@ -86,6 +86,7 @@ class Companions:
     kinematics: YamlFile | None = None  # MoveIt's
     planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml
     moveit_controllers: list[YamlFile] = field(default_factory=list)  # beside the SRDF
+    moveit_given: list[Path] = field(default_factory=list)  # MoveIt settings launch files load
     used: dict[Path, str] = field(default_factory=dict)
     unused: dict[Path, str] = field(default_factory=dict)
 
@@ -173,9 +174,14 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
     known = {f.path.resolve() for f in found.controllers if f.path.exists()}
     for name in MOVEIT_CONTROLLER_NAMES:
         path = here(name)
-        if path is None or path.resolve() in known:
-            continue
+        if path is None or path.resolve() in known or path in found.unused:
+            continue  # (a list the launch files do not give MoveIt is not used: _auto_controllers)
         parsed = read_yaml(path)
+        if found.moveit_given and not parsed.problem and \
+                path.resolve() not in {p.resolve() for p in found.moveit_given}:
+            found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
+                                  f"{', '.join(display_path(p) for p in found.moveit_given[:2])})")
+            continue
         if parsed.problem or is_moveit_controllers(parsed.data):
             found.moveit_controllers.append(parsed)
             found.used[path] = "beside the SRDF"
@@ -344,7 +350,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         found.used[files[-1].path] = "named by the URDF's <parameters>"
     facts = launched.runtime(robot) if robot.path != "-" else None
     loaded = facts.loaded_files() if facts is not None else []
-    moveit_given = []  # MoveIt execution settings a launch file loads: it picks MoveIt's list
+    moveit_given = found.moveit_given  # MoveIt settings a launch file loads: it picks MoveIt's list
     for path in loaded:
         if path.resolve() in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
             continue
