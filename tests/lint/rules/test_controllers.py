@@ -284,3 +284,20 @@ def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_pat
     [finding] = [f for f in result.findings if f.code == "U602"]
     assert finding.severity == Severity.WARNING
     assert "against the robot with other xacro arguments (gripper:=true)" in finding.message
+
+
+def test_a_file_naming_only_another_builds_joints_is_one_note(tmp_path):
+    # a sibling build's file (every joint prefixed, as a dual-arm robot's left_ arm): not one
+    # warning per joint, one note at its first controller; a file naming one missing joint alone
+    # may hold a slip and is judged as before
+    other = ("arm: {type: position_controllers/JointGroupPositionController,\n"
+             "      joints: [left_head_joint, left_neck_joint]}\n"
+             "grip: {type: position_controllers/JointPositionController, joint: left_finger}\n")
+    marks, findings = check_folder(tmp_path / "other", {"robot.urdf": HEAD_ROBOT.format(body=""),
+                                                       "config/c.yaml": other}, select=("U602",))
+    assert marks == [("c.yaml", 1, "U602")] and findings[0].severity == Severity.INFO
+    assert "none of the 3 joints" in findings[0].message and "another build" in findings[0].message
+    slip = "grip: {type: position_controllers/JointPositionController, joint: hed_joint}\n"
+    marks, findings = check_folder(tmp_path / "slip", {"robot.urdf": HEAD_ROBOT.format(body=""),
+                                                      "config/c.yaml": slip}, select=("U602",))
+    assert marks == [("c.yaml", 1, "U602")] and findings[0].severity == Severity.WARNING

@@ -112,10 +112,26 @@ def controller_unknown_joint(robot):
     its ``joint``/``joints``/``joint_names`` are URDF joints: its ``joint: tcp`` may name a
     hardware interface prefix, not a joint.
 
+    A file whose controllers name two or more joints, none of them in the robot (no launch file
+    of the robot starting any of them for certain), is another build's (a prefix, other xacro
+    arguments, a sibling robot's file): one note says so, at its first controller. One name
+    alone that is missing may be a slip, and is judged as any other.
+
     Bad: ``joints: [head_jont]``
     Good: ``joints: [head_joint]``
     """
+    foreign = _foreign_files(robot)
+    for read in controller_files(robot):
+        if read.file.path in foreign:
+            first, names = foreign[read.file.path]
+            yield first.file.at(first.line), Conditional(
+                f"none of the {len(names)} joints {read.file.display}'s controllers name is in the "
+                f"robot as checked ({', '.join(names[:4])}{', ...' if len(names) > 4 else ''}): "
+                "the file is for another build of the robot (a prefix, other xacro arguments) "
+                "or another robot; check the robot as that build with --arg", Severity.INFO)
     for controller in controllers(robot):
+        if controller.file.path in foreign:
+            continue
         for ref in _urdf_joints(robot, controller):
             if ref.name not in robot.joints:
                 literal = (" (every launch file of the robot loads the file without substitution, "
@@ -125,6 +141,19 @@ def controller_unknown_joint(robot):
                     f"{literal}; {available('joints', ref.name, robot.joints)}"))
                 if message is not None:
                     yield controller.file.at(ref.line), message
+
+
+def _foreign_files(robot) -> dict:
+    """Controller file -> (its first controller, the joints named) for each file whose
+    controllers name two or more joints and none of the robot's, none started for certain."""
+    found = {}
+    for read in controller_files(robot):
+        mine = [c for c in read.controllers if c.layout != "moveit"]
+        names = list(dict.fromkeys(ref.name for c in mine for ref in _urdf_joints(robot, c)))
+        if len(names) > 1 and not any(name in robot.joints for name in names) and \
+                not any(runs_of(robot, c).state == "certain" for c in mine):
+            found[read.file.path] = (mine[0], names)
+    return found
 
 
 @rule("U603", "controller-joint-not-actuated", Severity.ERROR)
