@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.numbers import number
 from urdftool.errors import DynamicsError, available
 from urdftool.physics.dynamics import JointLoad, Model, gravity_loads
 
@@ -178,7 +179,8 @@ def stand(standing: Standing, q_values: dict, polygon: bool = True) -> Stance:
                     contacts, _efforts(model), SHARED_LOAD if len(jacobians) > 1 else None)
     for name, height in lifted.items():
         if height > CONTACT:
-            stance.warnings.append(f"support '{name}' is {height * 1000:.1f} mm above the "
+            stance.warnings.append(f"support '{name}' is {number(height * 1000, places=1)} mm "
+                                   "above the "
                                    "ground: it cannot carry the share it is given")
     return stance
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import sys
 
+from urdftool.numbers import number, numbers
+
 FRAMES_SHOWN = 15  # rows of the moved-frames table in text and Markdown
 JOINTS_SHOWN = 6  # joint values shown for "where" (JSON gives all)
 
@@ -13,9 +15,11 @@ def _value(value) -> str:
     if value is None:
         return "(none)"
     if isinstance(value, float):
-        return f"{value:.6g}"
+        return number(value, 6)
     if isinstance(value, tuple):
-        return "(" + ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v)
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+            return "(" + numbers(value, 6, ", ") + ")"
+        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else str(v)
                                for v in value) + ")"
     return str(value)
 
@@ -26,15 +30,16 @@ def _amount(change) -> str:
     if change.delta is not None:
         vector = isinstance(change.old, tuple)
         if change.unit == "m":
-            parts.append(f"{'moved ' if vector else ''}{change.delta * 1000:+.4g} mm"
-                         .replace("moved +", "moved "))
+            parts.append(f"moved {number(change.delta * 1000)} mm" if vector else
+                         f"{number(change.delta * 1000, plus=True)} mm")
         elif change.unit == "rad":
-            parts.append(f"{'turned ' if vector else ''}{math.degrees(change.delta):+.4g} deg"
-                         .replace("turned +", "turned "))
+            parts.append(f"turned {number(math.degrees(change.delta))} deg" if vector else
+                         f"{number(math.degrees(change.delta), plus=True)} deg")
         elif not vector:
-            parts.append(f"{change.delta:+.4g}{' ' + change.unit if change.unit else ''}")
+            parts.append(f"{number(change.delta, plus=True)}"
+                         f"{' ' + change.unit if change.unit else ''}")
     if change.percent is not None:
-        parts.append(f"{change.percent:+.3g} %")
+        parts.append(f"{number(change.percent, 3, plus=True)} %")
     return ", ".join(parts)
 
 
@@ -61,15 +66,15 @@ def change_line(change, quote=_quoted) -> str:
 
 def _where(at: dict, limit: int = JOINTS_SHOWN) -> str:
     moved = [(name, value) for name, value in at.items() if abs(value) > 1e-12]
-    shown = ", ".join(f"{name}={value:.3g}" for name, value in moved[:limit])
+    shown = ", ".join(f"{name}={number(value, 3)}" for name, value in moved[:limit])
     return (shown + (f", ... ({len(moved)} joints)" if len(moved) > limit else "")) or "zero"
 
 
 def _frame_cells(frame) -> tuple[str, str, str, str, str]:
     """A moved frame's numbers as people read them: at zero (mm, deg), at most (mm, deg),
     and where it moved most."""
-    return (f"{frame.zero_position * 1000:.3g}", f"{math.degrees(frame.zero_rotation):.3g}",
-            f"{frame.max_position * 1000:.3g}", f"{math.degrees(frame.max_rotation):.3g}",
+    return (number(frame.zero_position * 1000, 3), number(math.degrees(frame.zero_rotation), 3),
+            number(frame.max_position * 1000, 3), number(math.degrees(frame.max_rotation), 3),
             _where(frame.at))
 
 
@@ -88,10 +93,11 @@ def _effect_lines(effects) -> list[str]:
         lines.append("  no frame moved")
     lines.append("  " + _mass_line(effects))
     for chain in effects.chains:
-        lines.append(f"  reach {chain.base} -> {chain.tip}: {chain.old_reach * 1000:.4g} -> "
-                     f"{chain.new_reach * 1000:.4g} mm "
-                     f"({(chain.new_reach - chain.old_reach) * 1000:+.3g} mm; at zero "
-                     f"{(chain.new_zero - chain.old_zero) * 1000:+.3g} mm)")
+        lines.append(f"  reach {chain.base} -> {chain.tip}: {number(chain.old_reach * 1000)} "
+                     f"-> {number(chain.new_reach * 1000)} mm "
+                     f"({number((chain.new_reach - chain.old_reach) * 1000, 3, plus=True)} mm; "
+                     f"at zero {number((chain.new_zero - chain.old_zero) * 1000, 3, plus=True)}"
+                     " mm)")
     for collision in effects.collisions:
         verb = "newly collides" if collision.new_count else "no longer collides"
         lines.append(f"  {collision.link1} / {collision.link2} {verb}: in "
@@ -101,14 +107,16 @@ def _effect_lines(effects) -> list[str]:
 
 
 def _mass_line(effects) -> str:
-    com = math.dist(effects.old_com, effects.new_com) * 1000
-    moved = f"centre of mass at zero moved {com:.3g} mm" if com else "centre of mass unchanged"
+    com = math.dist(effects.old_com, effects.new_com) * 1000  # [mm]; below 1 nm: round-off
+    moved = f"centre of mass at zero moved {number(com, 3)} mm" if com >= 1e-6 else \
+        "centre of mass unchanged"
     if effects.old_mass == effects.new_mass:
-        return f"total mass {effects.new_mass:.6g} kg unchanged; {moved}"
+        return f"total mass {number(effects.new_mass, 6)} kg unchanged; {moved}"
     change = effects.new_mass - effects.old_mass
-    percent = f", {100 * change / effects.old_mass:+.3g} %" if effects.old_mass else ""
-    return (f"total mass {effects.old_mass:.6g} -> {effects.new_mass:.6g} kg "
-            f"({change:+.4g} kg{percent}); {moved}")
+    percent = f", {number(100 * change / effects.old_mass, 3, plus=True)} %" \
+        if effects.old_mass else ""
+    return (f"total mass {number(effects.old_mass, 6)} -> {number(effects.new_mass, 6)} kg "
+            f"({number(change, plus=True)} kg{percent}); {moved}")
 
 
 def text(result) -> str:
