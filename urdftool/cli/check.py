@@ -8,8 +8,9 @@ from pathlib import Path
 import typer
 
 from urdftool.errors import UsageError
-from urdftool.cli._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
-                      fail_usage, refuse_bad_outputs, robot_inputs, write_output)
+from urdftool.cli._common import (PackageOption, XacroArgOption, fail_usage, max_memory_option,
+                                  refuse_bad_outputs, robot_inputs, timeout_option,
+                                  write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -30,9 +31,11 @@ def check(
                                     "gitlab, rdjson, or auto (github under GitHub Actions, "
                                     "else text)."),
     output: Path = typer.Option(None, "--output", "-o", help="Write the report to this file."),
-    select: list[str] = typer.Option([], "--select", help="Only these codes, prefixes or names "
-                                     "(comma-separated, repeatable)."),
-    ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
+    select: list[str] = typer.Option([], "--select", metavar="CODES",
+                                     help="Only these codes, prefixes or names "
+                                          "(comma-separated, repeatable)."),
+    ignore: list[str] = typer.Option([], "--ignore", metavar="CODES",
+                                     help="Skip these codes, prefixes or names."),
     target: list[str] = typer.Option([], "--target", "-t", metavar="NAME",
                                      help="Also check what this simulator refuses or changes "
                                           "(repeatable): gazebo, gz, mujoco, drake, pybullet, "
@@ -76,10 +79,11 @@ def check(
                                    "robot, when it is a urdftool spec]."),
     max_triangles: int = typer.Option(2_000_000, "--max-triangles", metavar="N",
                                       help="Refuse meshes with more triangles than this."),
-    timeout: float = TimeoutOption,
-    max_memory: str = typer.Option(None, "--max-memory", metavar="SIZE",
-                                   help=f"{MaxMemoryOption.help} Per worker [default: 2G, or "
-                                        "max-memory in the settings]."),
+    timeout: float = timeout_option("each file", "the file is stopped and reported as U015, "
+                                                 "exit 1"),
+    max_memory: str = max_memory_option("each worker", "its file is stopped and reported as "
+                                        "U018, exit 1", default=None,
+                                        note=" [default: 2G, or max-memory in the settings]"),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
                              help="Check files in N worker processes [default: number of cores]."),
     fix: bool = typer.Option(False, "--fix", help="Apply the safe fixes ([*] in the report) to "

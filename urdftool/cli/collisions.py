@@ -50,12 +50,12 @@ def collisions(
                                               "in the second half."),
     max_samples: int = typer.Option(160000, "--max-samples", help="Limit for --until-converged."),
     workers: int = typer.Option(2, "--workers", min=1, help="Worker processes."),
-    write_srdf: Path = typer.Option(None, "--write-srdf", metavar="OUT",
+    write_srdf: Path = typer.Option(None, "--write-srdf", metavar="FILE",
                                     help="Write disable_collisions here; an existing SRDF keeps "
                                          "its other content."),
     check_srdf: Path = typer.Option(None, "--check-srdf", metavar="FILE",
                                     help="Report stale disable_collisions in FILE (exit 1)."),
-    plot: Path = typer.Option(None, "--plot", metavar="FILE.svg|png", help="Draw the matrix."),
+    plot: Path = typer.Option(None, "--plot", metavar="FILE.png|svg", help="Draw the matrix."),
     render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
                                 help="Pose mode: draw the collision geometry at the pose, the "
                                      "links of colliding pairs that are not allowed in red."),

@@ -18,7 +18,7 @@ def register(app: typer.Typer) -> None:
 
 
 def dynamics(
-    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
                                 "(repeatable); others are 0."),
     v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
@@ -33,7 +33,7 @@ def dynamics(
                                            "torques with the ground carrying the robot, centre "
                                            "of mass against the support polygon; exit 1 when "
                                            "it tips over or a joint cannot hold."),
-    plot: str = typer.Option(None, "--plot", metavar="FILE",
+    plot: str = typer.Option(None, "--plot", metavar="FILE.png|svg",
                              help="With --support: the support polygon and centre of mass seen "
                                   "from above, as .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
