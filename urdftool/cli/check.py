@@ -46,6 +46,11 @@ def check(
                                  "and which companion files each robot was checked with."),
     quiet: bool = typer.Option(False, "--quiet", "-q",
                                help="Text format: print the findings only, no summary line."),
+    notes: bool = typer.Option(None, "--notes/--no-notes", show_default=False,
+                               help="Text format: show the notes (severity info: what a check "
+                                    "assumed or could not do, not problems); the other formats "
+                                    "always include them [default: --no-notes, or notes in "
+                                    "the settings]."),
     exit_zero: bool = typer.Option(False, "--exit-zero",
                                    help="Exit 0 even when problems are found (usage errors "
                                         "still exit 2)."),
@@ -100,7 +105,8 @@ def check(
     from urdftool.budget import Budget, one_blas_thread
     from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.runner import check_paths
-    from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
+    from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
+                                        notes_shown)
     from urdftool.report import FORMATS, printable, render
 
     try:
@@ -149,7 +155,8 @@ def check(
         report = render_statistics
     else:
         def report(results, stream):
-            render(format, results, stream, quiet=quiet)
+            render(format, results, stream, quiet=quiet,
+                   notes=lambda result: notes_shown(result.path, notes, request))
     code = 0 if exit_zero else run.exit_code
     keep = output is None and not (fix or diff) and _keeps_output(request, run)
     if output or keep:

@@ -8,7 +8,8 @@ Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ign
 glob -> list), ``per-file-args`` (a table of glob -> xacro arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
 ``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
 ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``),
-``targets`` (simulators to check portability to, as ``--target``: ``["mujoco", "gz"]``).
+``targets`` (simulators to check portability to, as ``--target``: ``["mujoco", "gz"]``),
+``notes`` (whether the text report shows notes, as ``--notes``; false by default).
 Command-line options win over the file.
 
 The settings file comes with the repository, so it is as untrusted as the robot files: it is
@@ -36,7 +37,7 @@ from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "per-file-args", "packages", "spec",
-        "controllers", "srdf", "strict", "max-file-size", "max-memory", "targets"}
+        "controllers", "srdf", "strict", "max-file-size", "max-memory", "targets", "notes"}
 
 
 @dataclass
@@ -55,6 +56,7 @@ class Settings:
     max_file_size: int | None = None
     max_memory: str | None = None  # as --max-memory takes it
     targets: list[str] = field(default_factory=list)  # as --target takes them
+    notes: bool = False  # the text report shows notes (severity info)
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -182,6 +184,10 @@ def _parse(path: Path, table: dict) -> Settings:
     if not isinstance(config.strict, bool):
         raise SettingsError(f"{path}: 'strict' must be true or false (a TOML boolean, "
                             f"unquoted), not {config.strict!r}")
+    config.notes = table.get("notes", False)
+    if not isinstance(config.notes, bool):
+        raise SettingsError(f"{path}: 'notes' must be true or false (a TOML boolean, "
+                            f"unquoted), not {config.notes!r}")
     if "max-file-size" in table:
         config.max_file_size = checked_file_size(table["max-file-size"], f"{path}: 'max-file-size'")
     if "max-memory" in table:
@@ -391,13 +397,29 @@ class FileSettings:
     memory: int | None
 
 
+def _applying(path: str, request: CheckRequest) -> Settings:
+    """The settings file that applies to ``path`` under the request (none, ``--config``'s, or
+    the one above it)."""
+    return (Settings() if not request.use_settings else
+            settings_file(request.settings_file) if request.settings_file is not None else
+            settings_for(path))
+
+
+def notes_shown(path: str, asked: bool | None, request: CheckRequest) -> bool:
+    """Whether the text report shows the notes about ``path``: ``asked`` (``--notes`` or
+    ``--no-notes``) when given, else the ``notes`` setting that applies to it, else no."""
+    if asked is not None:
+        return asked
+    if path == "-" and request.stdin_filename:
+        path = request.stdin_filename
+    return _applying(path, request).notes
+
+
 def for_file(path: str, request: CheckRequest) -> FileSettings:
     """The settings for checking ``path``: the settings file above it (unless the request
     turns them off) under the request. Command-line values win: ``select`` replaces, ``ignore``
     and per-file ignores add, companions and packages win one by one."""
-    settings = (Settings() if not request.use_settings else
-                settings_file(request.settings_file) if request.settings_file is not None else
-                settings_for(path))
+    settings = _applying(path, request)
     selection = Selection(tuple(_codes(request.select or settings.select)),
                           tuple(_codes([*settings.ignore, *request.ignore,
                                         *settings.ignores_for(path)])),
