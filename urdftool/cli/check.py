@@ -136,7 +136,12 @@ def check(
             use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
             cache_dir=None if no_cache else cache_dir or _default_cache())
         one_blas_thread()  # files checked in this process too (--jobs 1 without budgets)
-        run = check_paths(paths, request)
+        from urdftool.report import resolve_format
+        from urdftool.report.progress import progress
+
+        machine = not statistics and resolve_format(format) != "text"  # for a program
+        with progress("checking", "files", 0, machine=machine) as moved:
+            run = check_paths(paths, request, progress=moved)
         if fix or diff:
             run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:

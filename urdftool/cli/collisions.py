@@ -127,7 +127,7 @@ def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
     from urdftool.report.collisions import write_matrix
     from urdftool.report.progress import sampling_progress
 
-    with sampling_progress(options.samples) as on_progress:
+    with sampling_progress(options.samples, machine=format != "text") as on_progress:
         outcome = classify(robot, options, on_progress)
     if write_srdf:
         write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf))

@@ -65,7 +65,12 @@ def dynamics(
         _standing(robot, support, values, samples, seed, output_format, plot)
     result = state(model, values.q, values.v, values.a)
     warn(values.warnings + result.warnings)
-    loads = gravity_loads(model, samples, seed) if samples else []
+    loads = []
+    if samples:
+        from urdftool.report.progress import sampling_progress
+
+        with sampling_progress(samples + 1, machine=output_format != "text") as moved:
+            loads = gravity_loads(model, samples, seed, progress=moved)
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
@@ -90,7 +95,12 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
         fail_at(robot, error)
     stance = stand(standing, values.q)
     warn(values.warnings + stance.warnings)
-    standing_load = standing_loads(standing, samples, seed) if samples else None
+    standing_load = None
+    if samples:
+        from urdftool.report.progress import sampling_progress
+
+        with sampling_progress(samples + 1, machine=output_format != "text") as moved:
+            standing_load = standing_loads(standing, samples, seed, moved)
     loads = standing_load.loads if standing_load else []
     if plot:
         from urdftool.report.plot import write_items

@@ -54,7 +54,10 @@ def workspace(
     except (FKError, IKError) as error:
         fail_at(robot, error)
     warn(start.warnings)
-    space = sample(chain, samples, seed)
+    from urdftool.report.progress import sampling_progress
+
+    with sampling_progress(samples, machine=output_format != "text") as moved:
+        space = sample(chain, samples, seed, moved)
     if plot:
         from urdftool.report.plot import write_items
 

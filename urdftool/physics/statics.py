@@ -211,7 +211,8 @@ class StandingLoads:
     zero_stands: bool
 
 
-def standing_loads(standing: Standing, samples: int, seed: int = 0) -> StandingLoads:
+def standing_loads(standing: Standing, samples: int, seed: int = 0,
+                   progress=None) -> StandingLoads:
     """Per joint, the largest standing |torque| over the zero pose and ``samples`` random poses
     within the limits (as urdftool.physics.dynamics.gravity_loads) in which the robot stands,
     against its effort limit; the poses in which it tips over or lifts a support are left
@@ -223,7 +224,7 @@ def standing_loads(standing: Standing, samples: int, seed: int = 0) -> StandingL
         stable.append(stance.stands and not any(stance.lifted.values()))
         return stance.torques if stable[-1] else None
 
-    loads = gravity_loads(standing.model, samples, seed, torques)
+    loads = gravity_loads(standing.model, samples, seed, torques, progress)
     if not any(stable):
         loads = []
     return StandingLoads(loads, len(stable), sum(stable), bool(stable and stable[0]))
