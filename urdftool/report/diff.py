@@ -8,7 +8,7 @@ import sys
 from urdftool.numbers import number, numbers
 
 FRAMES_SHOWN = 15  # rows of the moved-frames table in text and Markdown
-JOINTS_SHOWN = 6  # joint values shown for "where" (JSON gives all)
+JOINTS_SHOWN = 8  # joint values shown for "where" (JSON gives all)
 
 
 def _value(value) -> str:
@@ -64,18 +64,29 @@ def change_line(change, quote=_quoted) -> str:
     return line + (f" ({amount})" if amount else "")
 
 
-def _where(at: dict, limit: int = JOINTS_SHOWN) -> str:
-    moved = [(name, value) for name, value in at.items() if abs(value) > 1e-12]
-    shown = ", ".join(f"{name}={number(value, 3)}" for name, value in moved[:limit])
-    return (shown + (f", ... ({len(moved)} joints)" if len(moved) > limit else "")) or "zero"
+def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN) -> str:
+    """The values in ``at`` of ``joints``, the joints that move what changed (the other
+    joints' values change nothing there), named even at zero; with none, the change is the
+    same in every configuration."""
+    if not joints:
+        return "every configuration alike"
+    shown = ", ".join(f"{name}={number(at.get(name, 0.0), 3)}" for name in joints[:limit])
+    return shown + (f", ... ({len(joints)} joints)" if len(joints) > limit else "")
 
 
 def _frame_cells(frame) -> tuple[str, str, str, str, str]:
     """A moved frame's numbers as people read them: at zero (mm, deg), at most (mm, deg),
-    and where it moved most."""
+    and where it moved most (the joints that move it)."""
     return (number(frame.zero_position * 1000, 3), number(math.degrees(frame.zero_rotation), 3),
             number(frame.max_position * 1000, 3), number(math.degrees(frame.max_rotation), 3),
-            _where(frame.at))
+            _where(frame.at, frame.joints))
+
+
+def _worst_line(effects) -> str:
+    """The configuration where the frames moved most (``diff --render`` draws it): the joints
+    that move the changed frames, with their values."""
+    return (f"largest change at {_where(effects.worst, effects.moving)} (the joints that move "
+            "the changed frames; --render draws this configuration)")
 
 
 def _effect_lines(effects) -> list[str]:
@@ -89,6 +100,7 @@ def _effect_lines(effects) -> list[str]:
                          f"{max_mm} mm {max_deg} deg (at {where})")
         if len(effects.frames) > FRAMES_SHOWN:
             lines.append(f"    ... {len(effects.frames) - FRAMES_SHOWN} more (--format json)")
+        lines.append(f"  {_worst_line(effects)}")
     else:
         lines.append("  no frame moved")
     lines.append("  " + _mass_line(effects))
@@ -152,6 +164,7 @@ def markdown(result) -> str:
                            + " |")
             if len(effects.frames) > FRAMES_SHOWN:
                 out.append(f"\n… and {len(effects.frames) - FRAMES_SHOWN} more frame(s)")
+            out += ["", f"{_worst_line(effects)}."]
         else:
             out.append("No frame moved.")
         out += ["", f"- {_mass_line(effects)}"]
@@ -163,6 +176,22 @@ def markdown(result) -> str:
 def _md(text: str) -> str:
     """Text for a Markdown table cell."""
     return text.replace("|", "\\|")
+
+
+def change_detail(result):
+    """What ``diff --render`` magnifies: the frame that moved most, how far at the drawn
+    configuration's scale, as a :class:`~urdftool.report.picture.Detail`; None when no frame
+    moved."""
+    from urdftool.report.picture import Detail
+
+    effects = result.effects
+    if effects is None or not effects.frames:
+        return None
+    frame = effects.frames[0]
+    moved = (f"{frame.link} moved {number(frame.max_position * 1000, 3)} mm"
+             if frame.max_position else
+             f"{frame.link} turned {number(math.degrees(frame.max_rotation), 3)} deg")
+    return Detail(frame.max_position, moved)
 
 
 def as_json(result) -> dict:
@@ -188,7 +217,7 @@ def as_json(result) -> dict:
             "configurations": effects.samples + 1,
             "frames": [{"link": f.link, "zero_position_m": f.zero_position,
                         "zero_rotation_rad": f.zero_rotation, "max_position_m": f.max_position,
-                        "max_rotation_rad": f.max_rotation, "at": f.at}
+                        "max_rotation_rad": f.max_rotation, "at": f.at, "joints": f.joints}
                        for f in effects.frames],
             "mass_kg": {"old": effects.old_mass, "new": effects.new_mass},
             "com_m": {"old": list(effects.old_com), "new": list(effects.new_com)},
@@ -198,6 +227,7 @@ def as_json(result) -> dict:
             "collisions": [{"link1": c.link1, "link2": c.link2, "old_count": c.old_count,
                             "new_count": c.new_count} for c in effects.collisions],
             "worst_configuration": effects.worst,
+            "worst_joints": effects.moving,
             "warnings": effects.warnings}
     return data
 

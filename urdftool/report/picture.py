@@ -42,14 +42,35 @@ SVG_MIN_AREA = 0.05  # [px^2] triangles smaller than this are left out of an SVG
 
 
 @dataclass(frozen=True)
+class Detail:
+    """For a comparison whose change is too small to see at the picture's scale: a magnified
+    inset of where the layers differ most, in a corner, its place in the picture outlined.
+
+    size: how far the change moves things in [m] (the inset magnifies it to about VISIBLE
+        pixels); 0 when unknown (then measured on the picture: the width of what differs)
+    label: what changed, written in the inset (``l_forearm_link moved 4 mm``)
+    """
+
+    size: float = 0.0
+    label: str = ""
+
+
+VISIBLE = 24.0  # [px] a change is shown at least this wide, magnified when smaller
+MAX_ZOOM = 16.0
+INSET = 0.42  # the inset's side, of the picture's smaller side
+
+
+@dataclass(frozen=True)
 class PictureOptions:
     """How to draw: ``view`` one of VIEWS, ``size`` (width, height) in pixels, link frames
-    (x red, y green, z blue) and joint axes (magenta) drawn over the geometry or not."""
+    (x red, y green, z blue) and joint axes (magenta) drawn over the geometry or not, and for a
+    comparison the ``detail`` (:class:`Detail`) to magnify, if any."""
 
     view: str = "iso"
     size: tuple[int, int] = (600, 600)
     frames: bool = False
     axes: bool = False
+    detail: Detail | None = None
 
 
 @dataclass
@@ -115,6 +136,20 @@ class _Camera:
     def pixels(self, points):
         """Pixel coordinates ``[..., 2]`` of points ``[..., 3]`` (y down)."""
         return self.screen(points)[..., :2]
+
+    def zoomed(self, x: float, y: float, factor: float, side: int) -> "_Camera":
+        """A camera ``factor`` times closer, ``side`` pixels square, centred on this one's
+        pixel (x, y)."""
+        import copy
+
+        import numpy as np
+
+        other = copy.copy(self)
+        other.centre = np.array([self.centre[0] + (x - self.width / 2) / self.scale,
+                                 self.centre[1] - (y - self.height / 2) / self.scale])
+        other.scale = self.scale * factor
+        other.width = other.height = side
+        return other
 
 
 def _camera(layers: list[Layer], view: str, width: int, height: int) -> _Camera:
@@ -323,34 +358,130 @@ def _overlays(layers: list[Layer], camera: _Camera, options: PictureOptions) -> 
             for a, b, c, w in lines]
 
 
-def rasterise(layers: list[Layer], options: PictureOptions = PictureOptions()):
-    """The picture as a Pillow RGB image; where several layers overlap it is grey."""
+def _composite(layers: list[Layer], camera: _Camera):
+    """The layers' pixels ``[height, width, 3]`` (uint8) seen by ``camera``, and how many
+    layers cover each pixel: what several layers cover is grey (their mean brightness), so
+    that what only one covers stands out in its colour."""
     import numpy as np
+
+    width, height = camera.width, camera.height
+    arrays, covered = [], []
+    for layer in layers:
+        drawn = _project(layer, camera)
+        shown = zbuffer(drawn.corners, drawn.depths, width, height)
+        arrays.append(_colour_image(drawn, shown).astype(np.float32))
+        covered.append(shown >= 0)
+    count = np.sum(covered, axis=0)
+    if len(layers) == 1:
+        return arrays[0].astype(np.uint8), count
+    white = np.array(BACKGROUND, dtype=np.float32)
+    total = np.sum([np.where(c[..., None], a, 0) for c, a in zip(covered, arrays)], axis=0)
+    pixels = np.where(count[..., None] > 0, total / np.maximum(count, 1)[..., None], white)
+    # the tints are about half as bright as white: the grey is lifted back
+    grey = np.repeat(np.clip(pixels.mean(axis=-1, keepdims=True) * 1.6, 0, 235), 3, axis=-1)
+    pixels = np.where(count[..., None] > 1, grey, pixels)
+    return pixels.astype(np.uint8), count
+
+
+@dataclass
+class _Inset:
+    """Where a detail is magnified: the window (x, y, side) of the picture, in pixels, shown
+    ``zoom`` times larger in the square at (left, top) of ``side`` pixels."""
+
+    x: float
+    y: float
+    window: float
+    zoom: float
+    left: int
+    top: int
+    side: int
+    camera: _Camera
+    label: str
+
+
+def _inset(layers: list[Layer], camera: _Camera, count, detail: Detail | None):
+    """The inset that shows a comparison's small change, or None: no detail asked for, no
+    difference, or one already large enough to see."""
+    import numpy as np
+
+    if detail is None or len(layers) < 2:
+        return None
+    differs = count == 1  # covered by one side only: what moved
+    if not differs.any():
+        return None
+    rows, columns = np.nonzero(differs)
+    if detail.size > 0:
+        band = detail.size * camera.scale  # [px]
+    else:  # a band's width: its area over its length
+        band = differs.sum() / max(np.ptp(rows) + 1, np.ptp(columns) + 1)
+    zoom = min(MAX_ZOOM, VISIBLE / max(band, 0.25))
+    if zoom < 2:
+        return None
+    side = int(INSET * min(camera.width, camera.height))
+    window = side / zoom
+    # the window that holds the most of the difference (a box sum over the picture)
+    step = max(1, int(window))
+    sums = np.pad(differs.astype(np.int64).cumsum(0).cumsum(1), ((1, 0), (1, 0)))
+    height, width_px = differs.shape
+    top = np.clip(np.arange(height) - step // 2, 0, max(0, height - step))
+    left = np.clip(np.arange(width_px) - step // 2, 0, max(0, width_px - step))
+    bottom, right = np.minimum(top + step, height), np.minimum(left + step, width_px)
+    boxes = (sums[bottom][:, right] - sums[top][:, right] - sums[bottom][:, left]
+             + sums[top][:, left])
+    y, x = np.unravel_index(int(np.argmax(boxes)), boxes.shape)
+    x, y = float(left[x] + step / 2), float(top[y] + step / 2)
+    # the corner where the inset hides least of the robot and not the window (the legend
+    # takes the top left's first rows)
+    margin, legend = 6, 6 + 16 * sum(1 for layer in layers if layer.tint is not None
+                                     and layer.label)
+    corners = [(camera.width - side - margin, camera.height - side - margin),
+               (margin, camera.height - side - margin),
+               (camera.width - side - margin, margin), (margin, legend + margin)]
+
+    def cost(corner):
+        left_, top_ = (max(0, int(v)) for v in corner)
+        over = (left_ < x + window / 2 and x - window / 2 < left_ + side
+                and top_ < y + window / 2 and y - window / 2 < top_ + side)
+        return over, int((count[top_:top_ + side, left_:left_ + side] > 0).sum())
+
+    corner = min(corners, key=cost)
+    return _Inset(x, y, window, zoom, int(corner[0]), int(corner[1]), side,
+                  camera.zoomed(x, y, zoom, side), detail.label)
+
+
+def _inset_words(inset: _Inset) -> list[str]:
+    from urdftool.numbers import number
+
+    return [f"magnified {number(inset.zoom, 2)}x", *([inset.label] if inset.label else [])]
+
+
+def rasterise(layers: list[Layer], options: PictureOptions = PictureOptions()):
+    """The picture as a Pillow RGB image; where several layers overlap it is grey; a small
+    change of a comparison magnified in an inset (``options.detail``)."""
     from PIL import Image, ImageDraw
 
     width, height = options.size
     camera = _camera(layers, options.view, width, height)
-    images = []
-    for layer in layers:
-        drawn = _project(layer, camera)
-        shown = zbuffer(drawn.corners, drawn.depths, width, height)
-        images.append(Image.fromarray(_colour_image(drawn, shown), "RGB"))
-    if len(images) == 1:
-        image = images[0]
-    else:  # what several layers cover is grey (their mean brightness): the rest stands out
-        white = np.array(BACKGROUND, dtype=np.float32)
-        arrays = [np.asarray(image, dtype=np.float32) for image in images]
-        covered = [np.any(array != white, axis=-1) for array in arrays]
-        count = np.sum(covered, axis=0)
-        total = np.sum([np.where(c[..., None], a, 0) for c, a in zip(covered, arrays)], axis=0)
-        pixels = np.where(count[..., None] > 0, total / np.maximum(count, 1)[..., None], white)
-        # the tints are about half as bright as white: the grey is lifted back
-        grey = np.repeat(np.clip(pixels.mean(axis=-1, keepdims=True) * 1.6, 0, 235), 3, axis=-1)
-        pixels = np.where(count[..., None] > 1, grey, pixels)
-        image = Image.fromarray(pixels.astype(np.uint8), "RGB")
+    pixels, count = _composite(layers, camera)
+    image = Image.fromarray(pixels, "RGB")
     draw = ImageDraw.Draw(image)
     for start, end, colour, line_width in _overlays(layers, camera, options):
         draw.line([tuple(start), tuple(end)], fill=colour, width=line_width)
+    inset = _inset(layers, camera, count, options.detail)
+    if inset is not None:
+        magnified, _ = _composite(layers, inset.camera)
+        image.paste(Image.fromarray(magnified, "RGB"), (inset.left, inset.top))
+        half = inset.window / 2
+        draw.rectangle([inset.x - half, inset.y - half, inset.x + half, inset.y + half],
+                       outline=(0, 0, 0))
+        draw.line([(inset.x, inset.y + half if inset.top > inset.y else inset.y - half),
+                   (inset.left + inset.side / 2,
+                    inset.top if inset.top > inset.y else inset.top + inset.side)],
+                  fill=(0, 0, 0))
+        draw.rectangle([inset.left, inset.top, inset.left + inset.side - 1,
+                        inset.top + inset.side - 1], outline=(0, 0, 0))
+        for row, words in enumerate(_inset_words(inset)):
+            draw.text((inset.left + 4, inset.top + 3 + 12 * row), words, fill=(0, 0, 0))
     _legend(draw, layers)
     return image
 
@@ -381,12 +512,28 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>']
-    for layer in layers:
-        opacity = f' opacity="{1 / len(layers):.2f}"' if len(layers) > 1 else ""
-        title = f"<title>{escape(layer.label)}</title>" if layer.label else ""
-        out.append(f"<g{opacity}>{title}")
-        out += _svg_layer(_project(layer, camera), width, height)
-        out.append("</g>")
+    out += _svg_layers(layers, camera)
+    inset = None
+    if options.detail is not None and len(layers) > 1:
+        inset = _inset(layers, camera, _composite(layers, camera)[1], options.detail)
+    if inset is not None:
+        half, side = inset.window / 2, inset.side
+        out.append(f'<rect x="{inset.x - half:.1f}" y="{inset.y - half:.1f}" '
+                   f'width="{2 * half:.1f}" height="{2 * half:.1f}" fill="none" '
+                   'stroke="black"/>')
+        below = inset.top > inset.y
+        out.append(f'<line x1="{inset.x:.1f}" y1="{inset.y + (half if below else -half):.1f}" '
+                   f'x2="{inset.left + side / 2:.1f}" '
+                   f'y2="{inset.top if below else inset.top + side:.1f}" stroke="black"/>')
+        out.append(f'<svg x="{inset.left}" y="{inset.top}" width="{side}" height="{side}" '
+                   f'viewBox="0 0 {side} {side}">')
+        out.append(f'<rect width="{side}" height="{side}" fill="white"/>')
+        out += _svg_layers(layers, inset.camera)
+        out.append(f'<rect x="0.5" y="0.5" width="{side - 1}" height="{side - 1}" '
+                   'fill="none" stroke="black"/>')
+        out += [f'<text x="4" y="{13 + 12 * row}">{escape(words)}</text>'
+                for row, words in enumerate(_inset_words(inset))]
+        out.append("</svg>")
     for start, end, colour, line_width in _overlays(layers, camera, options):
         out.append(f'<line x1="{start[0]:.1f}" y1="{start[1]:.1f}" x2="{end[0]:.1f}" '
                    f'y2="{end[1]:.1f}" stroke="#%02x%02x%02x" stroke-width="{line_width}"/>'
@@ -397,6 +544,18 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
         out.append(f'<text x="24" y="{16 + 16 * row}">{escape(layer.label)}</text>')
     out.append("</svg>")
     return "\n".join(out) + "\n"
+
+
+def _svg_layers(layers: list[Layer], camera: _Camera) -> list[str]:
+    """Each layer's SVG group as ``camera`` sees it (see :func:`_svg_layer`)."""
+    out = []
+    for layer in layers:
+        opacity = f' opacity="{1 / len(layers):.2f}"' if len(layers) > 1 else ""
+        title = f"<title>{escape(layer.label)}</title>" if layer.label else ""
+        out.append(f"<g{opacity}>{title}")
+        out += _svg_layer(_project(layer, camera), camera.width, camera.height)
+        out.append("</g>")
+    return out
 
 
 def _svg_layer(drawn: _Drawn, width: int, height: int) -> list[str]:
