@@ -37,8 +37,10 @@ def with_table(text: str) -> str:
 
 
 def main(argv: list[str]) -> int:
+    from urdftool.description.files import write_file
+
     path = Path(argv[0] if argv else "README.md")
-    path.write_text(with_table(path.read_text(encoding="utf-8")), encoding="utf-8")
+    write_file(path, with_table(path.read_text(encoding="utf-8")))
     return 0
 
 

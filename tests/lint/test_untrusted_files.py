@@ -359,10 +359,19 @@ def _commands(robot: Path, out: Path):
                                     "--workers", "1", "--write-srdf", out],
         "collisions --plot": ["collisions", robot, "--matrix", "--samples", "500",
                               "--workers", "1", "--plot", out],
+        "collisions --render": ["collisions", robot, "--render", out],
+        "diff -o": ["diff", robot, robot, "-o", out, "--samples", "2"],
+        "diff --render": ["diff", robot, robot, "--render", out, "--samples", "2"],
+        "render -o": ["render", robot, "-o", out],
+        "dynamics --plot": ["dynamics", robot, "--support", "base", "--plot", out],
+        "workspace --plot": ["workspace", robot, "--tip", "arm", "--samples", "20",
+                             "--plot", out],
     }
 
 
-SUFFIX = {"graph -o": ".dot", "collisions --plot": ".svg", "collisions --write-srdf": ".srdf"}
+SUFFIX = {"graph -o": ".dot", "collisions --plot": ".svg", "collisions --write-srdf": ".srdf",
+          "collisions --render": ".svg", "diff --render": ".svg", "render -o": ".svg",
+          "dynamics --plot": ".svg", "workspace --plot": ".svg"}
 WRITERS = list(_commands(Path(), Path()))
 
 
@@ -392,7 +401,61 @@ def test_output_in_a_missing_folder_or_onto_a_folder_is_a_usage_error(run_cli, t
     assert result.exit_code == 2, result.output
     assert "Traceback" not in result.output and isinstance(result.exception, SystemExit)
     assert len(result.stderr.strip().splitlines()) == 1, result.stderr
-    assert "cannot write" in result.stderr
+    assert "cannot write" in result.stderr or (  # a folder's name has no picture suffix
+        where == "a folder" and writer in SUFFIX and "must end in" in result.stderr)
+
+
+@pytest.mark.parametrize("writer", WRITERS)
+@pytest.mark.parametrize("how", ["reports", "reports/sub", "reports/sub/.."])
+def test_output_never_goes_through_a_folder_linked_outside(run_cli, tmp_path, writer, how):
+    """Issue 29, class 3: ``reports`` is a symbolic link committed in the repository, leading
+    to a folder outside it; the output path names it, or a folder below it, or goes up from
+    one (``reports/sub/..`` is the outside folder, as the system resolves it). Every command
+    refuses before its work (exit 2, one line naming the link, not where it leads) and
+    nothing is written outside."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    outside = tmp_path / "outside"
+    (outside / "sub").mkdir(parents=True)
+    (repo / "reports").symlink_to(outside, target_is_directory=True)
+    out = repo / how / f"out{SUFFIX.get(writer, '.txt')}"
+    result = run_cli(*_commands(robot, out)[writer])
+    assert result.exit_code == 2, result.output
+    assert "symbolic link" in result.stderr and str(outside) not in result.stderr
+    assert sorted(p.name for p in outside.rglob("*")) == ["sub"]
+    assert sorted(p.name for p in repo.iterdir()) == [".git", "reports", "robot.urdf"]
+
+
+def test_output_through_links_that_stay_inside_or_are_the_users_own(run_cli, tmp_path):
+    """A link inside the repository to another folder of it is followed; so is a link outside
+    any repository (the user's own: /tmp -> /private/tmp)."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "real").mkdir()
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    (repo / "reports").symlink_to(repo / "real", target_is_directory=True)
+    assert run_cli("xacro", robot, "-o", repo / "reports" / "a.urdf").exit_code == 0
+    assert (repo / "real" / "a.urdf").is_file()
+    mine = tmp_path / "mine"
+    mine.symlink_to(repo / "real", target_is_directory=True)
+    assert run_cli("xacro", robot, "-o", mine / "b.urdf").exit_code == 0
+    assert (repo / "real" / "b.urdf").is_file()
+
+
+def test_cache_folders_are_not_made_through_a_folder_linked_outside(run_cli, tmp_path):
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (repo / "reports").symlink_to(outside, target_is_directory=True)
+    result = run_cli("check", robot, "--cache-dir", repo / "reports" / "cache", "--jobs", "1")
+    assert result.exit_code in (0, 1), result.output
+    assert list(outside.iterdir()) == []
 
 
 def test_write_keeps_the_permissions_of_a_file_it_replaces(tmp_path):
