@@ -140,7 +140,7 @@ def check(
     else:
         def report(results, stream):
             render(format, results, stream, quiet=quiet)
-    code = 0 if exit_zero else run.exit_code
+    code = 2 if run.errors else 0 if exit_zero else run.exit_code
     keep = output is None and not (fix or diff) and _keeps_output(request, run)
     if output or keep:
         import io
@@ -155,6 +155,8 @@ def check(
                          code)
     else:
         report(run.results, sys.stdout)
+    for error in run.errors:  # settings broken for some files; the others were checked
+        typer.echo(printable(f"urdftool: error: {error}"), err=True)
     raise typer.Exit(code)
 
 
