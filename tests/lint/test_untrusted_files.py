@@ -48,7 +48,9 @@ _OPENED: list[str] | None = None
 
 
 def _audit(event, args):
-    if event == "open" and _OPENED is not None and isinstance(args[0], (str, bytes, Path)):
+    """Files opened, and folders listed (os.scandir, os.listdir: what glob uses)."""
+    if event in ("open", "os.scandir", "os.listdir") and _OPENED is not None and args \
+            and isinstance(args[0], (str, bytes, Path)):
         _OPENED.append(os.path.abspath(os.fsdecode(args[0])))
 
 
@@ -72,10 +74,11 @@ def _python_file(path: str) -> bool:
 
 
 def outside_opened(opened: list[str], repo: Path) -> list[str]:
+    """What was opened or listed outside ``repo`` (the repository folder itself is inside)."""
     real_repo = os.path.realpath(repo)
     return sorted({path for path in opened if not _python_file(path)
-                   and not os.path.realpath(path).startswith(real_repo + os.sep)
-                   and not path.startswith(str(repo) + os.sep)})
+                   and not (os.path.realpath(path) + os.sep).startswith(real_repo + os.sep)
+                   and not (path + os.sep).startswith(str(repo) + os.sep)})
 
 
 # --- a repository with links leading out --------------------------------------------------
@@ -534,3 +537,95 @@ def test_classifying_tags_without_an_end_takes_linear_time(tmp_path, unit):
     except subprocess.TimeoutExpired:
         pytest.fail("classifying 1 MiB took over a minute")
     assert done.returncode == 0, done.stderr
+
+
+# --- include patterns: containment before expansion (issue 29, class 4) ---------------------
+
+PATTERN = f"""<robot name="r" {XACRO}>
+  <xacro:include filename="{{pattern}}"/>
+  <link name="base"/>
+</robot>
+"""
+
+
+@pytest.fixture
+def patterns(tmp_path):
+    """repo/parts/good/ok.xacro; repo/parts/evil and repo/linked lead to outside/, which holds
+    secret_name.xacro."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret_name.xacro").write_text(MACROS)
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "parts" / "good").mkdir(parents=True)
+    (repo / "parts" / "good" / "ok.xacro").write_text(MACROS)
+    (repo / "parts" / "evil").symlink_to(outside, target_is_directory=True)
+    (repo / "linked").symlink_to(outside, target_is_directory=True)
+    return repo, outside
+
+
+def _expand(run_cli, repo, pattern, *mode):
+    (repo / "robot.urdf.xacro").write_text(PATTERN.format(pattern=pattern))
+    with opened_files() as opened:
+        result = run_cli("check", *mode, "--format", "json", repo / "robot.urdf.xacro",
+                         *IN_PROCESS, "--jobs", "1")
+    found = json.loads(result.stdout)["diagnostics"] if result.stdout.strip() else []
+    return result, found, opened
+
+
+@pytest.mark.parametrize("pattern, code", [
+    ("{outside}/*.xacro", "U014"),
+    ("{outside}/secret_*", "U014"),
+    ("linked/*.xacro", "U017"),
+    ("parts/*/../../linked/*.xacro", "U016"),
+])
+def test_a_pattern_is_refused_before_anything_is_listed(run_cli, patterns, pattern, code):
+    """Before: glob.glob listed the outside folder, and the refusal named the file it found
+    there ('secret_name.xacro'). Now the pattern's fixed folder is judged first: nothing
+    outside is listed or opened, and no message names what is there."""
+    repo, outside = patterns
+    result, found, opened = _expand(run_cli, repo, pattern.format(outside=outside), "--no-env")
+    assert [d["code"] for d in found] == [code], result.output
+    assert "secret_name" not in result.output
+    assert not outside_opened(opened, repo), outside_opened(opened, repo)
+
+
+def test_a_pattern_never_enters_a_linked_folder_leading_out(run_cli, patterns):
+    repo, _ = patterns
+    for mode in ("--no-env", "--allow-env"):
+        result, found, opened = _expand(run_cli, repo, "parts/*/*.xacro", mode)
+        assert found == [] and result.exit_code == 0, result.output  # parts/good/ok.xacro
+        assert not outside_opened(opened, repo)
+
+
+def test_a_pattern_expands_as_glob_does(patterns, tmp_path):
+    """The same files, in the same order, as xacro's sorted(glob.glob(spec)), hidden files,
+    character classes and ** (one level, not recursive) included."""
+    import glob
+
+    from urdftool.description.xacro import _expand_pattern, _Session
+
+    repo, _ = patterns
+    for name in ("a1.xacro", "a2.xacro", "b.xacro", ".hidden.xacro", "sub/c.xacro",
+                 "sub/deeper/d.xacro", "sub/.e.xacro", "x.txt"):
+        (repo / "tree" / name).parent.mkdir(parents=True, exist_ok=True)
+        (repo / "tree" / name).write_text(MACROS)
+    session = _Session(None, True, None, [repo])
+    session.file_index(str(repo / "robot.urdf.xacro"))
+    for spec in ("tree/*.xacro", "tree/a[12].xacro", "tree/?.xacro", "tree/**/*.xacro",
+                 "tree/*/*.xacro", "tree/.*", "tree/sub/*", "tree/*/deeper/*.xacro",
+                 "tree/nothing*", "tree/s?b/c.xacro"):
+        spec = f"{repo}/{spec}"
+        assert _expand_pattern(session, spec) == sorted(glob.glob(spec)), spec
+
+
+def test_a_pattern_looks_at_a_bounded_number_of_files(run_cli, patterns, monkeypatch):
+    from urdftool.description import xacro
+
+    repo, _ = patterns
+    monkeypatch.setattr(xacro, "MAX_PATTERN_ENTRIES", 50)
+    (repo / "many").mkdir()
+    for index in range(60):
+        (repo / "many" / f"{index}.txt").write_text("")
+    result, found, _ = _expand(run_cli, repo, "many/*.xacro")
+    assert [d["code"] for d in found] == ["U016"] and "over 50 files" in found[0]["message"]

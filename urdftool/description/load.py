@@ -100,9 +100,8 @@ def _refuse_link_out(path: str, shown: str) -> None:
     leading outside the repository holding it; the file is not opened."""
     leads = link_out(path)
     if leads:
-        target, root = leads
-        raise LoadError("link", (
-            f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
+        raise LoadError("link", (  # where it leads is not said: that is outside
+            f"is a symbolic link leading outside the repository ({display_path(leads[1])}); "
             "not followed"), Location(shown, None))
 
 
