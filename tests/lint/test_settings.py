@@ -405,10 +405,14 @@ def test_settings_may_lower_a_limit_but_never_raise_it(run_cli, repo_project, te
     settings(repo_project, text)
     result = run_cli("check", repo_project / "robots")
     assert result.exit_code == 2 and "raise it with --max-" in result.stderr, result.output
+
+
+def test_the_command_line_may_raise_a_limit(run_cli, repo_project):
     big = repo_project / "robots" / "big.urdf"
     big.write_text(ROBOT + " " * (17 << 20))
-    (repo_project / "pyproject.toml").unlink()
-    assert run_cli("check", "--max-file-size", str(32 << 20), big).exit_code == 1  # the CLI may
+    assert run_cli("check", big).exit_code == 1  # U008, over the built-in 16 MiB
+    assert run_cli("check", "--max-file-size", str(32 << 20), big, "--format", "json",
+                   "--select", "U008").exit_code == 0
 
 
 @pytest.mark.parametrize("text", ["max-file-size = 1024\n", 'max-memory = "1G"\n',
