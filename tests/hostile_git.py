@@ -86,6 +86,11 @@ def config(markers: Path) -> str:
 """
 
 
+def including(path: Path) -> str:
+    """Config lines that include ``path`` (git reads it as configuration, wherever it is)."""
+    return f"[include]\n\tpath = {path}\n"
+
+
 def hooks(markers: Path) -> None:
     """A hooks folder (``core.hooksPath``) whose every hook writes its marker."""
     folder = markers.parent / "hooks"

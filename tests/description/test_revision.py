@@ -233,3 +233,34 @@ def test_git_runs_in_one_module_only():
                 starting.add(module.relative_to(package).as_posix())
     assert starting == {"description/revision.py", "report/dot.py"}
     assert "git" not in (package / "report" / "dot.py").read_text().replace("digit", "")
+
+
+@pytest.mark.parametrize("section", ["[include]\n\tpath = {outside}\n",
+                                     '[includeIf "gitdir:/"]\n\tpath = {outside}\n',
+                                     "  [INCLUDE]\n  path = {outside}\n"])
+def test_a_configuration_including_other_files_is_refused(hostile, section):
+    """No command line turns git's config includes off: a repository (an unpacked archive's)
+    whose config includes a file outside would have git read it. Refused before git runs."""
+    root, markers = hostile
+    outside = markers.parent / "outside.gitconfig"
+    outside.write_text(f"[core]\n\tfsmonitor = touch {markers}/included\n")
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write(section.format(outside=outside))
+    with pytest.raises(UsageError, match="includes other files"):
+        with checkout(root / "robot" / "robot.urdf", "HEAD"):
+            pass
+    assert markers_found(markers) == []
+
+
+def test_a_worktree_reads_its_common_configuration(hostile, tmp_path):
+    """A linked worktree's .git is a file naming its git folder; the common folder's config is
+    the one looked at (and used)."""
+    root, _ = hostile
+    git(root, "worktree", "add", "-q", str(tmp_path / "linked"))
+    with checkout(tmp_path / "linked" / "robot" / "robot.urdf", "HEAD") as (_, path):
+        assert path.is_file()
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write("[include]\n\tpath = /dev/null\n")
+    with pytest.raises(UsageError, match="includes other files"):
+        with checkout(tmp_path / "linked" / "robot" / "robot.urdf", "HEAD"):
+            pass

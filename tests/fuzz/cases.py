@@ -114,7 +114,7 @@ GLOB_PATTERNS = [OUTSIDE + "/*.xacro", OUTSIDE + "/*", "linkdir/*.xacro", "linkd
                  "../../*/*.xacro", "../*/../../outside/*", "../../outside/*.xacro",
                  "$(find evil_pkg)/*.xacro",
                  "/etc/*", "/*/*.xacro", "parts/[ge]*/*.xacro"]
-GIT_VARIANTS = ["embedded", "config", "partial", "environment", "gitfile"]
+GIT_VARIANTS = ["embedded", "config", "partial", "environment", "gitfile", "include"]
 OUTPUT_MODES = ["plain", "symlink", "missing", "folder", "dangling", "linked_folder",
                 "linked_dotdot"]
 CORPUS_KINDS = ["plain", "eval", "expression", "output", "forge"]
@@ -243,7 +243,8 @@ exec strace -f -qq -e trace=openat,open,creat,execve,rename,unlink,mkdir \\
 def _make_git(case: Case, layout: Layout) -> None:
     """Make the case's repository a real one (everything committed), then plant what the
     variant says; git as urdftool starts it goes through scratch/bin/git, traced by strace."""
-    from tests.hostile_git import config, embed_bare_repository, git, hooks, make_partial
+    from tests.hostile_git import (config, embed_bare_repository, git, hooks, including,
+                                   make_partial)
 
     markers = layout.scratch / "markers"
     markers.mkdir()
@@ -270,6 +271,10 @@ def _make_git(case: Case, layout: Layout) -> None:
         git(layout.repo, "add", "other.urdf")
         git(layout.repo, "commit", "-qm", "another")
         make_partial(layout.repo, "other.urdf")
+    if case.git == "include":  # the config includes a file outside: git would read it
+        (layout.outside / "outside.gitconfig").write_text(config(markers))
+        with open(layout.repo / ".git" / "config", "a") as handle:
+            handle.write(including(layout.outside / "outside.gitconfig"))
     if case.git in ("config", "partial", "environment"):
         text = config(markers)
         if case.git != "partial":

@@ -13,7 +13,8 @@ caller is dropped, and the repository's own configuration (itself a stranger's i
 archive) is overridden on the command line for every key that names a program git may run on
 its own: fsmonitor, hooks, pager, editor, external diff, ssh and proxy commands, askpass and
 credential helpers, gpg; transports are off, so that a missing object is never fetched (a
-partial clone's lazy fetch runs the remote's transport). Only ``rev-parse``, ``ls-tree`` and
+partial clone's lazy fetch runs the remote's transport). A configuration that includes other
+files (``include.path``: no option turns includes off) is refused before git runs. Only ``rev-parse``, ``ls-tree`` and
 ``cat-file`` (blobs as stored: no ``--filters``, no ``--textconv``) run: nothing reads the
 index, checks out, archives or diffs, so no filter, textconv or diff driver is ever looked up.
 
@@ -29,12 +30,13 @@ there goes through the same reader as any robot (containment, size limits).
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 from contextlib import contextmanager
 from pathlib import Path
 
-from urdftool.description.files import (link_new, remove_links_out, repository_root,
-                                        temporary_folder, write_new)
+from urdftool.description.files import (link_new, read_regular, remove_links_out,
+                                        repository_root, temporary_folder, write_new)
 from urdftool.errors import UsageError
 
 MAX_ARCHIVE_BYTES = 512 * 1024 * 1024  # [bytes] the blobs of the tree at a revision
@@ -101,6 +103,38 @@ def _git_process(root: Path, *args: str, stdin: bool = False) -> subprocess.Pope
         raise UsageError(f"git failed: {error}") from None
 
 
+_INCLUDE = re.compile(rb"^[ \t]*\[[ \t]*include(if)?\b", re.I | re.M)
+MAX_CONFIG = 1024 * 1024  # [bytes] of a repository's config read to look for includes
+
+
+def _refuse_includes(root: Path) -> None:
+    """UsageError when the repository's own configuration includes other files
+    (``include.path``, ``includeIf``): git would read them, wherever they are, and no command
+    line can turn that off. A clone's config is the user's; an unpacked archive's is the
+    stranger's. Looked for in ``config`` and ``config.worktree`` of the git folder ``.git``
+    names (a worktree's or submodule's ``.git`` file) and of its common folder."""
+    git_dir = root / ".git"
+    try:
+        if git_dir.is_file():
+            pointer = read_regular(git_dir, 4096).decode("utf-8", "replace").strip()
+            if pointer.startswith("gitdir:"):
+                git_dir = (root / pointer[len("gitdir:"):].strip()).resolve()
+        folders = [git_dir]
+        if (git_dir / "commondir").is_file():
+            common = read_regular(git_dir / "commondir", 4096).decode("utf-8", "replace")
+            folders.append((git_dir / common.strip()).resolve())
+        for folder in folders:
+            for name in ("config", "config.worktree"):
+                if (folder / name).is_file() and \
+                        _INCLUDE.search(read_regular(folder / name, MAX_CONFIG)):
+                    raise UsageError(f"the git configuration of {root} includes other files "
+                                     "(include.path, includeIf); diff --rev does not run git "
+                                     "on it")
+    except OSError as error:
+        raise UsageError(f"cannot read the git configuration of {root}: "
+                         f"{error.strerror}") from None
+
+
 def repository_of(path) -> tuple[Path, str]:
     """(repository root, the path of ``path`` relative to it, with / separators); UsageError
     when ``path`` is not in a git repository (no folder above it holds ``.git``)."""
@@ -152,6 +186,7 @@ def checkout(path, revision: str, max_bytes: int = MAX_ARCHIVE_BYTES):
     if revision.startswith("-"):
         raise UsageError(f"revision '{revision}' may not start with '-'")
     root, relative = repository_of(path)
+    _refuse_includes(root)
     try:
         commit = _git(root, "rev-parse", "--verify", "--quiet", "--end-of-options",
                       f"{revision}^{{commit}}") if revision else ""
