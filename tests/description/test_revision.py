@@ -264,3 +264,18 @@ def test_a_worktree_reads_its_common_configuration(hostile, tmp_path):
     with pytest.raises(UsageError, match="includes other files"):
         with checkout(tmp_path / "linked" / "robot" / "robot.urdf", "HEAD"):
             pass
+
+
+def test_a_blob_no_reader_takes_is_left_out(repo, monkeypatch):
+    """A file over the largest any reader takes is read past, not kept; the files after it in
+    the tree still come (the stream stays in step)."""
+    from urdftool.description import revision
+
+    (repo / "a_big.bin").write_bytes(b"x" * 5000)
+    (repo / "z_after.xacro").write_text(PART)
+    git(repo, "add", "a_big.bin", "z_after.xacro")
+    git(repo, "commit", "-qm", "big")
+    monkeypatch.setattr(revision, "MAX_BLOB", 1000)
+    with checkout(repo / "robot.urdf.xacro", "HEAD") as (tree, path):
+        assert not (tree / "a_big.bin").exists()
+        assert (tree / "z_after.xacro").read_text() == PART and path.is_file()

@@ -37,10 +37,12 @@ from pathlib import Path
 
 from urdftool.description.files import (link_new, read_regular, remove_links_out,
                                         repository_root, temporary_folder, write_new)
+from urdftool.description.inputs import MAX_MESH_BYTES
 from urdftool.errors import UsageError
 
 MAX_ARCHIVE_BYTES = 512 * 1024 * 1024  # [bytes] the blobs of the tree at a revision
 MAX_ENTRIES = 200_000  # files in the tree at a revision
+MAX_BLOB = MAX_MESH_BYTES  # [bytes] a larger file is left out of the tree (nothing reads it)
 MAX_LISTING = 64 * 1024 * 1024  # [bytes] of ls-tree's output
 GIT_TIMEOUT = 60  # [s]
 
@@ -229,6 +231,11 @@ def _write_tree(root: Path, tree: Path, blobs, max_bytes: int) -> None:
             written += size
             if written > max_bytes:
                 raise UsageError(f"the repository is over {max_bytes} bytes; not unpacked")
+            if size > MAX_BLOB:  # no reader takes it (meshes stop at 128 MiB): not kept
+                left = size + 1  # and the newline after it
+                while left > 0 and (chunk := process.stdout.read(min(left, 1 << 20))):
+                    left -= len(chunk)
+                continue
             data = process.stdout.read(size)
             process.stdout.read(1)  # the newline after the content
             try:
