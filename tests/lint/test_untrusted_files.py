@@ -629,3 +629,22 @@ def test_a_pattern_looks_at_a_bounded_number_of_files(run_cli, patterns, monkeyp
         (repo / "many" / f"{index}.txt").write_text("")
     result, found, _ = _expand(run_cli, repo, "many/*.xacro")
     assert [d["code"] for d in found] == ["U016"] and "over 50 files" in found[0]["message"]
+
+
+def test_a_mesh_linked_out_is_refused_without_saying_where_it_leads(tmp_path):
+    """Issue 29, class 4: a refusal names what the repository holds, never what exists
+    outside (realpath follows links there: /etc/alternatives/... would be named)."""
+    from urdftool.description.meshes import MeshProblem, load_mesh
+
+    outside = tmp_path / "outside"
+    (outside / "real").mkdir(parents=True)
+    (outside / "real" / "hidden_name.stl").write_bytes(b"solid x\nendsolid x\n")
+    (outside / "alias").symlink_to(outside / "real", target_is_directory=True)
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "m.stl").symlink_to(outside / "alias" / "hidden_name.stl")
+    (repo / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    with pytest.raises(MeshProblem) as refused:
+        load_mesh(load(repo / "r.urdf"), "m.stl")
+    assert "symbolic link" in str(refused.value) and "hidden_name" not in str(refused.value)
+    assert str(outside) not in str(refused.value)
