@@ -193,6 +193,7 @@ COUNTERPARTS = {
         "joint_trajectory_controller/JointTrajectoryController (command_interfaces: [velocity])",
     (1, "velocity_controllers/JointVelocityController"): "velocity_controllers/JointGroupVelocityController",
     (2, "joint_state_broadcaster/JointStateBroadcaster"): "joint_state_controller/JointStateController",
+    (2, "joint_state_controller/JointStateController"): "joint_state_broadcaster/JointStateBroadcaster",
     (2, "joint_trajectory_controller/JointTrajectoryController"):
         "position_controllers/JointTrajectoryController (or velocity_/effort_controllers/...)",
 }

@@ -248,6 +248,10 @@ def controller_unknown_class(robot):
     """A controller's ``type`` is not a class of its controller manager's ROS version.
 
     The controller manager cannot load it ("Loader for controller 'x' not found").
+    A class only ROS 2 distributions past their end of life export
+    (``joint_state_controller/JointStateController``, Foxy's name of the joint state broadcaster
+    and ROS 1's class) is a warning: it loads on Foxy only. Which distribution exports which
+    class is read from ros2_controllers' plugin files (``urdftool/data/ros2_controllers.json``).
     A file with ``ros__parameters`` is read by ROS 2's controller_manager, any other by ROS 1's
     ros_control; each has its own classes (ROS 1's
     ``position_controllers/JointPositionController`` is ROS 2's
@@ -267,7 +271,12 @@ def controller_unknown_class(robot):
                     f"MoveIt controller '{controller.name}' has type '{controller.type}'; MoveIt's "
                     f"simple controller manager knows {' and '.join(MOVEIT_TYPES)}")
             continue
-        if controller.cls is not None or not known_package(controller.type):
+        if controller.cls is not None:
+            retired = _end_of_life(controller)
+            if retired:
+                yield controller.file.at(controller.line), retired, None, Severity.WARNING
+            continue
+        if not known_package(controller.type):
             continue
         other = 3 - controller.ros
         if lookup(controller.type, other) is not None:
@@ -280,6 +289,23 @@ def controller_unknown_class(robot):
             yield controller.file.at(controller.line), (
                 f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
                 f"{available('classes', controller.type, classes(controller.ros))}")
+
+
+def _end_of_life(controller: Controller) -> str | None:
+    """Why a ROS 2 class only distributions past their end of life export is a problem."""
+    from urdftool.description import controller_parameters as schema
+
+    if controller.ros != 2:
+        return None
+    found = schema.ros2_class_distributions(controller.type)
+    if not found or any(d not in schema.END_OF_LIFE for d in found):
+        return None
+    instead = COUNTERPARTS.get((2, controller.type))
+    also = (f"; ROS 1 has a class of that name, and it is not ROS 2's" if lookup(controller.type, 1)
+            else "")
+    return (f"{controller.type} is a class of ROS 2 {' and '.join(d.capitalize() for d in found)} only "
+            f"(end of life){also}: the controller manager of later distributions cannot load it"
+            + (f"; use {instead}" if instead else ""))
 
 
 @rule("U607", "controller-missing-parameter", Severity.ERROR)
