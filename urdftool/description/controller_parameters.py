@@ -20,11 +20,11 @@ judges nothing: that is the rules' business.
 from __future__ import annotations
 
 import functools
-import json
 import math
 import re
 from dataclasses import dataclass, field
-from importlib import resources
+
+from urdftool.description import data
 
 # Distributions past their end of life: what only they have is reported as such.
 END_OF_LIFE = ("foxy", "galactic", "iron")
@@ -97,10 +97,8 @@ def _matches(pattern: list[str], parts: list[str], subtree: bool) -> bool:
 
 # --- the data files ------------------------------------------------------------------------
 
-@functools.lru_cache(maxsize=None)
 def _data(name: str) -> dict:
-    text = resources.files("urdftool").joinpath("data", name).read_text(encoding="utf-8")
-    return json.loads(text)
+    return data.load(name)
 
 
 def _parameter(name: str, facts: dict, source: str) -> Parameter:
