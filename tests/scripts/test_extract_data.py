@@ -1,8 +1,9 @@
-"""The controllers' parameter data: well-formed, with its sources, and reproduced by its scripts.
+"""urdftool's data files: well-formed, with their sources, and reproduced by their scripts.
 
-``urdftool/data/ros2_controllers.json`` and ``ros_controllers.json`` are generated once by
-``scripts/extract_controller_parameters.py`` and ``scripts/extract_ros1_controller_parameters.py``
-from the upstream repositories and committed. The fixtures under ``fixtures/`` hold a few of
+``urdftool/data/ros2_controllers.json``, ``ros_controllers.json`` and ``gazebo_plugins.json`` are
+generated once by ``scripts/extract_controller_parameters.py``,
+``scripts/extract_ros1_controller_parameters.py`` and ``scripts/extract_gazebo_plugins.py`` from
+the upstream repositories and committed. The fixtures under ``fixtures/`` hold a few of
 the same facts (names, types, defaults: no upstream text) laid out as the repositories lay
 them out; the scripts must read them into exactly what the committed data says of them.
 """
@@ -148,3 +149,28 @@ def test_the_reader_answers_from_the_data():
         "left_wheel_names", "right_wheel_names", "wheel_radius", "wheel_separation"}
     assert schema.required("joint_state_controller/JointStateController", 1)["publish_rate"].source.endswith(
         "(678b92adfd92)")
+
+
+def test_gazebo_script_reproduces_the_committed_vocabulary_from_a_fixture(tmp_path):
+    script = _script("extract_gazebo_plugins")
+    output = tmp_path / "out.json"
+    assert script.main([f"--tree=gazebo_ros_pkgs@noetic-devel={FIXTURES / 'gazebo_ros_pkgs'}",
+                        "-o", str(output)]) == 0
+    made = json.loads(output.read_text())["plugins"]["gazebo_ros_diff_drive"]["versions"]["ros1"]
+    committed = _load("gazebo_plugins.json")["plugins"]["gazebo_ros_diff_drive"]["versions"]["ros1"]
+    assert made["tags"] == committed["tags"]  # the helper's header and linked library included
+    assert made["read"][0]["paths"] == committed["read"][0]["paths"]
+
+
+def test_gazebo_data_is_well_formed():
+    data = _load("gazebo_plugins.json")
+    assert set(data["licence"]["licences"]) == {s["repository"] for s in data["sources"].values()}
+    for source in data["sources"].values():
+        assert len(source["commit"]) == 40
+    for key, plugin in data["plugins"].items():
+        assert plugin["family"] in ("classic", "gz")
+        for version, entry in plugin["versions"].items():
+            assert entry["tags"] == sorted(set(entry["tags"])) and entry["tags"], key
+            assert all(r["source"] in data["sources"] and r["paths"] for r in entry["read"])
+    assert data["plugins"]["gazebo_ros_diff_drive"]["versions"].keys() == {"ros1", "ros2"}
+    assert "gz_ros2_control/GazeboSimSystem" in data["plugins"]["gz_ros2_control-system"]["hardware"]
