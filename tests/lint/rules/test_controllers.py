@@ -184,3 +184,19 @@ def test_a_ros1_class_in_a_ros2_file_names_the_ros2_class():
     assert ("position_controllers/JointPositionController is a ROS 1 (ros_control) class, and the "
             "file has ros__parameters, so it is a ROS 2 parameter file; ROS 2 (ros2_control) has "
             "position_controllers/JointGroupPositionController") in messages
+
+
+def test_moveit2_parallel_gripper_command_is_a_moveit_type(tmp_path):
+    # moveit_simple_controller_manager (moveit2 main) knows ParallelGripperCommand
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = """\
+        moveit_simple_controller_manager:
+          controller_names: [gripper]
+          gripper:
+            type: ParallelGripperCommand
+            action_ns: gripper_cmd
+            joints: [head_joint]
+        """
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "other/c.yaml": yaml},
+                            controllers=[str(tmp_path / "other/c.yaml")], select=("U606",))
+    assert found == []
