@@ -21,8 +21,8 @@ WRITER = "description/files.py"
 _OS = {"replace", "rename", "renames", "makedirs", "mkdir", "mkfifo", "mknod", "symlink", "link",
        "remove", "unlink", "rmdir", "removedirs", "truncate", "chmod", "chown", "utime"}
 _PATH_METHODS = {"write_text", "write_bytes", "touch", "mkdir", "symlink_to", "hardlink_to",
-                 "unlink", "rmdir", "rename", "chmod", "savefig", "export", "extractall",
-                 "to_csv", "tofile"}
+                 "unlink", "rmdir", "rename", "chmod", "savefig", "extractall", "to_csv",
+                 "tofile"}
 _WRITE_FLAGS = {"O_WRONLY", "O_RDWR", "O_CREAT", "O_APPEND", "O_TRUNC"}
 
 
@@ -67,7 +67,10 @@ def writes(source: str) -> list[tuple[int, str]]:
                 devnull = isinstance(target, ast.Attribute) and target.attr == "devnull"
                 if not devnull and len(node.args) > 1 and _names(node.args[1]) & _WRITE_FLAGS:
                     found.append((node.lineno, "os.open for writing"))
-            elif function.attr in _PATH_METHODS or function.attr == "extract" and node.args:
+            elif function.attr in _PATH_METHODS or function.attr == "extract" and node.args \
+                    or function.attr == "export" and (node.args or any(
+                        k.arg in ("file_obj", "path") for k in node.keywords)):
+                # trimesh's export() without a file returns the bytes: that is no write
                 found.append((node.lineno, f".{function.attr}()"))
             elif function.attr in ("replace", "rename") and len(node.args) == 1 \
                     and not node.keywords:  # Path.replace(target); str.replace takes two
@@ -103,6 +106,8 @@ def test_the_scan_sees_each_way_of_writing():
         "os.open(os.devnull, os.O_WRONLY)": 0, "os.open(p, os.O_RDONLY)": 0,
         "image.save('x.png')": 1, "image.save(buffer, format='PNG')": 0,
         "tar.extractall(d)": 1, "os.symlink(a, b)": 1, "os.chmod(p, 0o600)": 1,
+        "mesh.export('x.obj')": 1, "mesh.export(file_obj=f)": 1,
+        "mesh.export(file_type='obj')": 0,
     }
     for source, expected in samples.items():
         assert len(writes(source)) == expected, source

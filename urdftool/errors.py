@@ -73,6 +73,16 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
                                      cutoff=cutoff)
 
 
+def similarity(one: str, two: str) -> float:
+    """difflib's ratio of two names, 0.0 when either is over MAX_SIMILAR_NAME characters (see
+    :func:`close_names`)."""
+    import difflib
+
+    if len(one) > MAX_SIMILAR_NAME or len(two) > MAX_SIMILAR_NAME:
+        return 0.0
+    return difflib.SequenceMatcher(None, one, two).ratio()
+
+
 def _shown(name: str) -> str:
     return name if len(name) <= _SHOWN_NAME else f"{name[:_SHOWN_NAME]}... ({len(name)} characters)"
 

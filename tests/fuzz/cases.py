@@ -95,7 +95,7 @@ SETTINGS_ANY_KEY = {
     "packages": '[packages]\nevil_pkg = "{v}"\n', "spec": 'spec = "{v}"\n',
     "srdf": 'srdf = "{v}"\n', "controllers": 'controllers = ["{v}"]\n',
     "strict": '"{v}" = true\n', "max-file-size": 'max-file-size = "{v}"\n',
-    "max-memory": 'max-memory = "{v}"\n',
+    "max-memory": 'max-memory = "{v}"\n', "targets": 'targets = ["{v}"]\n',
 }
 RAISED_LIMITS = ["max-file-size = 16777217", "max-file-size = 1099511627776",
                  'max-memory = "0"', "max-memory = 0", 'max-memory = "64G"',

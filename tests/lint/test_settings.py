@@ -333,6 +333,7 @@ OUTSIDE_IN = {  # every key, with a value naming a path outside the repository
     "strict": '"/etc/passwd" = true\n',  # a key that is itself a path: unknown, and outside
     "max-file-size": 'max-file-size = "C:\\\\Windows"\n',
     "max-memory": 'max-memory = "/dev/zero"\n',
+    "targets": 'targets = ["~/mujoco"]\n',
 }
 
 
