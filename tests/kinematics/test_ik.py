@@ -452,14 +452,16 @@ def test_a_limb_that_cannot_move_is_a_located_error(run_cli, tmp_path, kinds):
     assert "no joint moves" in result.output
 
 
-@pytest.mark.parametrize("command", [
-    ["workspace", "{path}", "--tip", "l0", "--samples", "10"],
-    ["dynamics", "{path}", "--support", "base"],
-    ["dh", "{path}", "--base", "base", "--tip", "l0"],
-    ["fk", "{path}"],
-], ids=lambda words: words[0])
-@pytest.mark.parametrize("kinds", [["continuous"], ["revolute"], ["fixed"], []],
-                         ids=["continuous", "revolute", "fixed", "no joint"])
+@pytest.mark.parametrize("command, kinds", [
+    (["workspace", "{path}", "--tip", "l0", "--samples", "10"], ["continuous"]),
+    (["workspace", "{path}", "--tip", "l0", "--samples", "10"], ["revolute"]),
+    (["dynamics", "{path}", "--support", "base"], ["fixed"]),
+    (["dynamics", "{path}", "--support", "base"], []),
+    (["dh", "{path}", "--base", "base", "--tip", "l0"], ["prismatic"]),
+    (["dh", "{path}", "--base", "base", "--tip", "l0"], []),
+    (["fk", "{path}"], []),
+], ids=["workspace-continuous", "workspace-revolute", "dynamics-fixed", "dynamics-no-joint",
+        "dh-prismatic", "dh-no-joint", "fk-no-joint"])
 def test_the_other_analyses_take_degenerate_limbs(run_cli, tmp_path, command, kinds):
     """The neighbours of the ik crash: workspace on one continuous joint (the same Jacobian),
     dynamics --support of a robot with no moving joint (max() of nothing)."""
