@@ -60,8 +60,9 @@ def check(
                                             "there, and findings name it."),
     allow_env: bool = typer.Option(
         None, "--allow-env/--no-env", show_default=False,
-        help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
-             "xacro reads no file outside the repository and its packages. --allow-env: "
+        help="--no-env, the safe mode for untrusted input: the environment is never read "
+             "($(env) is an error, $(optenv NAME DEFAULT) its default) and xacro reads no "
+             "file outside the repository and its packages. --allow-env: "
              "both allowed. [default: --no-env when CI is set, as CI services do; else "
              "--allow-env]"),
     max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
