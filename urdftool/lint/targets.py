@@ -202,11 +202,14 @@ class _Answered(Exception):
 
 
 class _TopLevelTags:
-    """lxml parser target: answers 'robot' at a root other than <robot> or at a child of
-    <robot> that is not a definition, 'srdf' at a child only an SRDF has."""
+    """lxml parser target: answers 'robot' at a child of the root that is not a definition,
+    'srdf' at a child only an SRDF has. A root other than <robot> holding only definitions
+    is a macro library too: xacro's includes ignore the root element, and pre-Groovy macro
+    files were written ``<root xmlns:xacro=...>`` (mas-group/youbot_description's sensors);
+    with anything else, or nothing, it is checked (and its root reported)."""
 
     def __init__(self):
-        self.depth, self.seen_robot = 0, False
+        self.depth, self.seen_robot, self.other_root = 0, False, False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -214,7 +217,8 @@ class _TopLevelTags:
             return
         name = _local_name(tag)
         if self.depth == 1 and name != "robot":
-            raise _Answered("robot")
+            self.other_root = True
+            return
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
@@ -368,11 +372,22 @@ def expand(paths: list[str], request) -> Targets:
     from the settings above each path (:func:`~urdftool.lint.settings.for_file`) under
     ``request``. Raises TargetError for a path that does not exist or a folder without robot
     files."""
-    from urdftool.errors import TargetError
+    import dataclasses
+
+    from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
 
+    def options_for(path):
+        """The options ``path`` is checked with; when the settings that apply to it are broken,
+        the request's alone: a settings file in another folder never stops this walk (checking
+        a file it applies to says what is wrong with it)."""
+        try:
+            return for_file(str(path), request).options
+        except SettingsError:
+            return for_file(str(path), dataclasses.replace(request, use_settings=False)).options
+
     def resolver_for(path: Path) -> PackageResolver:
-        return PackageResolver(for_file(str(path), request).options.packages, start=path.parent)
+        return PackageResolver(options_for(path).packages, start=path.parent)
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
@@ -383,7 +398,7 @@ def expand(paths: list[str], request) -> Targets:
         if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
             files.append(path)
             continue
-        limit = for_file(path, request).options.max_file_size
+        limit = options_for(path).max_file_size
         if Path(path).is_file() and path.endswith(COMPANION_SUFFIXES):
             root = project_root(Path(path))
             if (root, limit) not in robots:
