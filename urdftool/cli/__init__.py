@@ -68,10 +68,9 @@ class LazyGroup(TyperGroup):
         try:
             return super().resolve_command(ctx, args)
         except UsageError as error:
-            import difflib
+            from urdftool.errors import close_names
 
-            close = difflib.get_close_matches(args[0], self.list_commands(ctx), n=1,
-                                              cutoff=0.6) if args else []
+            close = close_names(args[0], self.list_commands(ctx), n=1) if args else []
             if close and "did you mean" not in error.message.lower():
                 error.message = f"{error.message.rstrip('.')}; did you mean '{close[0]}'?"
             raise
