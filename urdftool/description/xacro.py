@@ -36,7 +36,7 @@ from lxml import etree
 from urdftool import budget
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import PackageNotFound
-from urdftool.description.files import read_regular
+from urdftool.description import files
 from urdftool.errors import available
 from urdftool.description import xacro_sandbox
 from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
@@ -83,7 +83,7 @@ class _Session:
         self.resolver = resolver
         self.allow_env = allow_env
         self.read_file = read_file
-        self.roots = [os.path.realpath(root) for root in roots]
+        self.roots = [files.real_path(root) for root in roots]
         self.paths: list[str] = []  # only ever appended to: an index names one file
         self.shown_paths: dict[int, str] = {}
         self.locations: dict[str, Location] = {}  # stamp -> where it was written
@@ -97,11 +97,11 @@ class _Session:
         self.text = 0
 
     def allow_root(self, folder) -> None:
-        self.roots.append(os.path.realpath(folder))
+        self.roots.append(files.real_path(folder))
 
     def check_inside(self, filename: str, what: str) -> None:
         """Record (or, without environment access, refuse) a file outside the allowed roots."""
-        real = os.path.realpath(filename)
+        real = files.real_path(filename)
         if not self.roots or any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
                                  for root in self.roots):
             return
@@ -215,7 +215,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     import xacro
     from xacro import substitution_args
 
-    read_file = read_file or read_regular
+    read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
@@ -236,10 +236,12 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     saved_limit = sys.getrecursionlimit()
     saved_constructors = _yaml_constructors()
     saved_symbols = xacro_sandbox.harden_symbols(xacro._global_symbols)
+    originals_glob = xacro.glob
     try:
         for (module, name), function in replacements.items():
             setattr(module, name, function)
         xacro.open = _yaml_opener(session)  # load_yaml's open(); shadows the builtin in xacro
+        xacro.glob = _Glob  # an include's pattern, listed through the one door
         sys.setrecursionlimit(max(saved_limit, 20000))
         xacro.init_stacks(str(path))
         xacro.all_includes = []
@@ -262,6 +264,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         for (module, name), function in originals.items():
             setattr(module, name, function)
         del xacro.open
+        xacro.glob = originals_glob
         xacro_sandbox.restore_symbols(saved_symbols)
         _restore_yaml_constructors(saved_constructors)
         sys.setrecursionlimit(saved_limit)
@@ -273,12 +276,19 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
                      session.outside)
 
 
+class _Glob:
+    """What xacro sees as the ``glob`` module while it expands: an include's pattern is listed
+    by :func:`urdftool.description.files.glob` (recorded: a file matching it later is seen)."""
+
+    glob = staticmethod(files.glob)
+
+
 def _yaml_opener(session: _Session):
     """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
 
     def open_yaml(filename, *args, **kwargs):
         session.check_inside(filename, "YAML file")
-        data = session.read_file(filename)
+        data = session.read_file(filename, "yaml")
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -324,16 +334,14 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     original_macro_call = originals[(xacro, "handle_macro_call")]
     original_eval_all = originals[(xacro, "eval_all")]
     original_check_attrs = originals[(xacro, "check_attrs")]
-    original_env = originals[(substitution_args, "_eval_env")]
-    original_optenv = originals[(substitution_args, "_eval_optenv")]
     original_eval_text = originals[(xacro, "eval_text")]
     original_eval_extension = originals[(xacro, "eval_extension")]
 
     def parse(inp, filename=None):
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
-        stack = [os.path.realpath(f) for f in xacro.filestack[:-1] if f]
-        if os.path.realpath(filename) in stack:
+        stack = [files.real_path(f) for f in xacro.filestack[:-1] if f]
+        if files.real_path(filename) in stack:
             chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
             raise xacro.XacroException(f"include cycle: {chain}")
         _refuse_link_out(session, filename)
@@ -450,13 +458,18 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if not session.allow_env:
             raise substitution_args.SubstitutionException(
                 f"$(env {name}) is disabled by --no-env")
-        return original_env(name)
+        value = files.environ(name)  # as xacro's own, recorded
+        if value is None:
+            raise substitution_args.SubstitutionException(
+                f"environment variable '{name}' is not set")
+        return value
 
     def eval_optenv(name, default=""):
         if not session.allow_env:
             raise substitution_args.SubstitutionException(
                 f"$(optenv {name}) is disabled by --no-env")
-        return original_optenv(name, default)
+        value = files.environ(name)
+        return default if value is None else value
 
     return {
         (xacro, "parse"): parse,
@@ -486,17 +499,16 @@ _EVAL_CONSTANTS = {
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
-    from urdftool.description.files import inside
     from urdftool.description.packages import containment_root
 
     root = containment_root(os.path.dirname(os.path.abspath(session.paths[0])))
     named = os.path.abspath(filename)
     lexically_inside = any(named.startswith(base.rstrip(os.sep) + os.sep)
-                           for base in (str(root), os.path.realpath(root)))
-    if lexically_inside and not inside(filename, root):
+                           for base in (str(root), files.real_path(root)))
+    if lexically_inside and not files.inside(filename, root):
         raise XacroFailure("link", (
             f"included file '{display_path(filename)}' is a symbolic link to "
-            f"'{os.path.realpath(filename)}', outside the repository ({display_path(root)}); "
+            f"'{files.real_path(filename)}', outside the repository ({display_path(root)}); "
             "not followed"), session.current_location())
 
 
