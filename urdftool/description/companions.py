@@ -171,6 +171,16 @@ def is_moveit_controllers(data) -> bool:
                if isinstance(value, dict))
 
 
+def users_below(companion: Path) -> Path:
+    """The folder below which lie all the robots whose :func:`search_folders` may hold
+    ``companion`` (the inverse of the search): the repository or package holding it (see
+    :func:`~urdftool.description.packages.containment_root`); without either, the folder above
+    a ``config/`` folder (a robot finds its own ``config/``), else the companion's folder."""
+    folder = Path(os.path.abspath(companion)).parent
+    root = containment_root(folder)
+    return folder.parent if root == folder and folder.name == "config" else root
+
+
 def search_folders(robot_path: Path) -> list[Path]:
     """The folders companions of the robot file ``robot_path`` are looked for in, as named
     (links not followed), each a folder inside the robot's repository: see the module doc."""

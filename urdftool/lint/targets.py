@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
-from urdftool.description.companions import COMPANION_SUFFIXES, may_use
+from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
@@ -394,7 +394,7 @@ def expand(paths: list[str], request) -> Targets:
             continue
         limit = for_file(path, request).options.max_file_size
         if kind == "file" and path.endswith(COMPANION_SUFFIXES):
-            root = project_root(Path(path))
+            root = users_below(Path(path))
             if (root, limit) not in robots:
                 robots[root, limit] = split_top_level(robot_files(root), resolver_for, limit)[0]
             users = companion_users(Path(path), robots[root, limit], limit)
