@@ -174,3 +174,21 @@ def test_a_folder_changed_concerns_what_was_read_below_it_and_a_new_file_no_fold
     assert record.concerns(tmp_path / "pkg")
     assert record.concerns(tmp_path / "new-folder")  # gone or a folder: it may be one
     assert not record.concerns(_write(tmp_path / "notes.txt", "a file, no folder\n"))
+
+
+def test_an_include_pattern_is_a_search_a_new_match_changes(tmp_path):
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "a.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>')
+    robot = _write(tmp_path / "r.urdf.xacro",
+                   '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:include filename="parts/*.xacro"/></robot>')
+    record = check_file(str(robot), CheckOptions()).record
+    assert record.read_as("include") == [str(tmp_path / "parts" / "a.xacro")]
+    assert record.concerns(tmp_path / "parts" / "b.xacro")
+    entries = record.dump()
+    assert files.unchanged(entries)
+    (tmp_path / "parts" / "b.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>')
+    assert not files.unchanged(entries)

@@ -234,7 +234,9 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     data: the file's content when it is not to be read from ``path`` (an unsaved buffer);
         suppression comments are read from it too
     options: as :func:`check_paths` (the settings file above ``path`` applies, per-file ignores
-        too, unless ``use_settings=False``); the result keeps the loaded ``robot``
+        too, unless ``use_settings=False``); the result keeps the loaded ``robot`` and the
+        ``record`` of what the check read, searched and followed, the settings looked for
+        included (:mod:`urdftool.description.record`)
     """
     path = os.fspath(path)
     request = _request(options)
