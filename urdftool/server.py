@@ -309,8 +309,11 @@ class UrdftoolServer(LanguageServer):
         """The robots checked so far whose last check a change at ``path`` may change: their
         record says the check read, searched, probed or followed it (see
         :meth:`~urdftool.description.record.Record.concerns`)."""
+        from urdftool.description.files import kind_of as found_at
+
+        file = found_at(path, follow=False) == "file"
         return [robot for robot, record in self.records.items()
-                if record is not None and record.concerns(path)]
+                if record is not None and record.concerns(path, file)]
 
     def closed(self, uri: str) -> None:
         """Forget the document; what its robot check published is cleared."""

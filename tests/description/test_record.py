@@ -173,7 +173,7 @@ def test_a_folder_changed_concerns_what_was_read_below_it_and_a_new_file_no_fold
     assert record.concerns(tmp_path / "pkg" / "meshes")  # removed, or made a link
     assert record.concerns(tmp_path / "pkg")
     assert record.concerns(tmp_path / "new-folder")  # gone or a folder: it may be one
-    assert not record.concerns(_write(tmp_path / "notes.txt", "a file, no folder\n"))
+    assert not record.concerns(_write(tmp_path / "notes.txt", "a file, no folder\n"), file=True)
 
 
 def test_an_include_pattern_is_a_search_a_new_match_changes(tmp_path):

@@ -101,11 +101,13 @@ class Record:
         """The paths read as ``label`` (a mesh, a companion, settings, ...)."""
         return [path for path, labels in self.labels.items() if label in labels]
 
-    def concerns(self, path) -> bool:
+    def concerns(self, path, file: bool = False) -> bool:
         """Whether a change at ``path`` (written, created, removed, made a link) may change
         what the check found: a file it read, a path it probed or followed, or a folder above
         one; an entry of a folder it listed that matches what it looked for (the path itself
-        or a folder above it); a path below a place that held no folder when it looked."""
+        or a folder above it); a path below a place that held no folder when it looked.
+        ``file``: ``path`` is now a regular file (a search for folders does not match it;
+        else what it is, or was, is not known)."""
         paths, patterns, globs, not_folders = self._indexed()
         path = os.path.abspath(path)
         below = path.rstrip(os.sep) + os.sep
@@ -116,7 +118,7 @@ class Record:
         while True:
             folder = os.path.dirname(child)
             name = os.path.basename(child)
-            if any(_matches(name, pattern, child != path or _not_a_file(path))
+            if any(_matches(name, pattern, child != path or not file)
                    for pattern in patterns.get(folder, ())):
                 return True
             if folder in not_folders:  # it was nothing, or a file: now it holds ``child``
@@ -149,7 +151,8 @@ class Record:
     # -- as kept by the result cache
 
     def dump(self) -> list[list]:
-        """The entries as JSON-ready lists (see :func:`urdftool.description.files.holds`)."""
+        """The entries as JSON-ready lists, which :func:`urdftool.description.files.holds`
+        compares with the disk."""
         return [_dumped(kind, key, answer, sorted(self.labels.get(key, ())) if kind == READ
                         else None)
                 for (kind, key), answer in self.entries.items()]
@@ -178,15 +181,6 @@ def _matches(name: str, pattern: str, folder: bool) -> bool:
     ``pattern``; ``folder`` false: it is a file (a folder-only alternative does not match)."""
     return any(fnmatch.fnmatchcase(name, alternative.rstrip("/"))
                for alternative in pattern.split("|") if folder or not alternative.endswith("/"))
-
-
-def _not_a_file(path: str) -> bool:
-    """Whether ``path`` is now anything but a regular file (a folder, a link, or gone: then
-    what it was is not known)."""
-    from urdftool.description.files import kind_of
-
-    with unrecorded():
-        return kind_of(path, follow=False) != "file"
 
 
 def matches(name: str, kind: str, pattern: str) -> bool:
