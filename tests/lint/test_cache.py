@@ -180,6 +180,8 @@ def test_a_file_rewritten_within_its_clock_tick_is_seen(robot, tmp_path, monkeyp
     real_os.stat = lambda path, *a, **k: frozen if os.fspath(path) == parts else os.stat(
         path, *a, **k)
     monkeypatch.setattr(files_module, "os", real_os)
+    # the check reads the file within the tick it was written in, however loaded the host
+    monkeypatch.setattr(files_module, "RACY_NS", 600 * 10 ** 9)
     cache_dir = tmp_path / "cache"
     assert any("-1 kg" in message for _, message in _messages(robot, cache_dir))
     (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
@@ -493,3 +495,23 @@ def test_a_mesh_outside_the_repository_is_never_opened_by_the_cache(tmp_path, ur
     assert files_module.digest((outside / "part.stl").read_bytes()) not in kept
     status = os.stat(outside / "part.stl")
     assert f"{status.st_dev}:{status.st_ino}:" not in kept
+
+
+def test_the_cache_folder_made_in_the_repository_is_no_change(tmp_path, monkeypatch):
+    # a package found by scanning the repository: the scan lists its folders, and the cache's
+    # own folder, made by the first run, is one of them; hidden folders are not scanned (as
+    # catkin and colcon crawl), so the second run is served
+    monkeypatch.setattr(files_module, "RACY_NS", 0)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robots").mkdir()
+    (tmp_path / "other" / "pkg_b" / "meshes").mkdir(parents=True)
+    (tmp_path / "other" / "pkg_b" / "package.xml").write_text("<package><name>pkg_b</name></package>")
+    _write_mesh(tmp_path / "other" / "pkg_b" / "meshes" / "m.stl", 0.1)
+    (tmp_path / "robots" / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry>'
+        '<mesh filename="package://pkg_b/meshes/m.stl"/></geometry></visual></link></robot>\n')
+    first = _codes(tmp_path / "robots" / "r.urdf", cache_module.FOLDER)
+    checked = _counting_checks(monkeypatch)
+    assert _codes(tmp_path / "robots" / "r.urdf", cache_module.FOLDER) == first
+    assert checked == []

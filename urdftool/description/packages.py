@@ -184,7 +184,9 @@ def _find_below(folder: Path, name: str, depth: int) -> Path | None:
 
 def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None = None):
     """Folders below root, breadth first, bounded in depth and count, never following links
-    (appended to ``links`` when given)."""
+    (appended to ``links`` when given), never entering a hidden folder (as catkin's and
+    colcon's package crawlers do; ``.urdftool_cache`` among them: the result cache appearing
+    beside the packages is no change to where they are)."""
     frontier = [root]
     seen = 0
     for _ in range(max_depth + 1):
@@ -194,7 +196,7 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None 
             seen += 1
             if seen > _MAX_SCAN_DIRS:
                 return
-            entries = listing(folder, "*/")  # subfolders and links, sorted by name
+            entries = listing(folder, "[!.]*/")  # subfolders and links, sorted, not hidden
             next_frontier.extend(folder / name for name, kind in entries
                                  if kind == "folder" and name not in SKIP_DIRS)
             if links is not None:
