@@ -515,3 +515,26 @@ def test_the_cache_folder_made_in_the_repository_is_no_change(tmp_path, monkeypa
     checked = _counting_checks(monkeypatch)
     assert _codes(tmp_path / "robots" / "r.urdf", cache_module.FOLDER) == first
     assert checked == []
+
+
+def test_a_file_a_rule_looked_for_made_later_is_seen(package, tmp_path):
+    # rules ask the door too: MuJoCo looks for meshes in its meshdir (U922 until the file is
+    # there), which is no folder the loader or discovery reads
+    _write_mesh(package / "urdf" / "base.stl", 0.1)
+    robot_file = package / "urdf" / "bot.urdf"
+    robot_file.write_text(robot_file.read_text().replace(
+        '<link name="base"/>', '<mujoco><compiler meshdir="../assets"/></mujoco><link '
+        'name="base"><collision><geometry><mesh filename="base.stl"/></geometry></collision>'
+        '</link>'))
+
+    def codes(cache_dir):
+        run = check_paths([str(robot_file)], cache_dir=cache_dir, timeout=0, max_memory="0",
+                          jobs=1, targets=["mujoco"])
+        return {f.code for f in run.results[0].findings}
+
+    cache_dir = tmp_path / "cache"
+    assert "U922" in codes(cache_dir)
+    (package / "assets").mkdir()
+    _write_mesh(package / "assets" / "base.stl", 0.1)
+    assert "U922" not in codes(tmp_path / "fresh-cache")
+    assert "U922" not in codes(cache_dir)
