@@ -346,13 +346,13 @@ def make_folders(folder) -> None:
 
 
 def tree_stamp(root) -> str:
-    """The count and newest modification of the ``.py`` files below ``root`` (urdftool's own
-    source), the folder's real path first."""
+    """The count and newest modification of the ``.py`` and ``.json`` files below ``root``
+    (urdftool's own source and data), the folder's real path first."""
     root = os.path.realpath(root)
     newest, count = 0, 0
     for folder, _, names in os.walk(root):
         for name in names:
-            if name.endswith(".py"):
+            if name.endswith((".py", ".json")):
                 count += 1
                 newest = max(newest, os.stat(os.path.join(folder, name)).st_mtime_ns)
     return f"{root}:{count}:{newest}"

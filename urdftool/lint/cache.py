@@ -4,7 +4,8 @@ they depend on has changed.
 An entry is keyed by the file (its absolute path), the options it is checked with (settings,
 selection, xacro arguments, packages, companions, limits), the working directory (findings name
 files relative to it) and urdftool itself (the modification of its source files,
-``__version__`` among them, so that a development checkout never reads results of other code).
+``__version__`` among them, and of its data files, so that a development checkout never reads
+results of other code).
 What the result depends on is the record of its check (:mod:`urdftool.description.record`),
 made by the loader, discovery and the rules as they read: every file read (with a stamp and a
 digest of the bytes read), every folder searched for companions or packages (found empty too:
@@ -360,6 +361,6 @@ def _secret() -> bytes | None:
 
 
 def _source_stamp() -> str:
-    """The count and newest modification of urdftool's source files (``__version__`` among
-    them): a result is never read by other code than wrote it."""
+    """The count and newest modification of urdftool's source and data files
+    (``__version__`` among them): a result is never read by other code than wrote it."""
     return tree_stamp(os.path.dirname(os.path.dirname(__file__)))
