@@ -115,7 +115,7 @@ _PATH_METHODS = {"glob", "rglob", "iterdir", "is_file", "is_dir", "is_symlink", 
                  "read_text", "write_bytes", "write_text", "open", "samefile", "readlink",
                  "is_mount", "touch", "mkdir", "unlink", "rmdir", "lstat", "walk"}
 _PATH_METHODS_WITHOUT_ARGUMENTS = {"resolve", "exists", "stat"}
-_DOOR_NAMES = {"files"}  # ``files.glob(...)``: the door's own functions
+_DOOR_NAMES = {"files"}  # ``files.listing(...)``: the door's own functions
 
 
 def _dotted(node) -> str | None:
@@ -199,7 +199,7 @@ def test_the_scan_sees_each_way_of_touching_files(source):
 
 @pytest.mark.parametrize("source", [
     "files.read_regular(p)", "meshes.resolve(robot, uri)", "robot.resolve_uri(uri)",
-    "trimesh.load(io.BytesIO(data), file_type='stl')", "files.glob(pattern)", "d.get(k)",
+    "trimesh.load(io.BytesIO(data), file_type='stl')", "files.walk(folder)", "d.get(k)",
     "zipfile.is_zipfile(io.BytesIO(data))", "text.replace('a', 'b')", "match.group(1)",
     "np.loadtxt([text])"])
 def test_the_scan_lets_the_door_and_bytes_through(source):

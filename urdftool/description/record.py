@@ -108,11 +108,10 @@ class Record:
         or a folder above it); a path below a place that held no folder when it looked.
         ``file``: ``path`` is now a regular file (a search for folders does not match it;
         else what it is, or was, is not known)."""
-        paths, patterns, globs, not_folders = self._indexed()
+        paths, patterns, not_folders = self._indexed()
         path = os.path.abspath(path)
         below = path.rstrip(os.sep) + os.sep
-        if path in paths or any(fnmatch.fnmatchcase(path, glob) for glob in globs) or \
-                any(known.startswith(below) for known in paths):
+        if path in paths or any(known.startswith(below) for known in paths):
             return True
         child = path
         while True:
@@ -129,7 +128,7 @@ class Record:
 
     def _indexed(self):
         if self._index is None:
-            paths, patterns, globs, not_folders = set(), {}, [], set()
+            paths, patterns, not_folders = set(), {}, set()
             for (kind, key), answer in self.entries.items():
                 if kind in (READ, REAL):
                     paths.add(key)
@@ -139,13 +138,10 @@ class Record:
                         not_folders.add(key[0])
                 elif kind == SEARCH:
                     folder, pattern = key
-                    if folder:
-                        patterns.setdefault(folder, []).append(pattern)
-                        if answer[1] is None:
-                            not_folders.add(folder)
-                    else:
-                        globs.append(pattern)
-            self._index = paths, patterns, globs, not_folders
+                    patterns.setdefault(folder, []).append(pattern)
+                    if answer[1] is None:
+                        not_folders.add(folder)
+            self._index = paths, patterns, not_folders
         return self._index
 
     # -- as kept by the result cache

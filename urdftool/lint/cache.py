@@ -352,9 +352,9 @@ def _secret() -> bytes | None:
     if key is not None and len(key) >= 32:
         return key
     try:
-        make_folders(folder)
+        make_folders(folder, 0o700)
         _write(path, os.urandom(32).hex())
-    except OSError:
+    except (OSError, UsageError):
         return None
     key = read_own(path, 1024)
     return key if key is not None and len(key) >= 32 else None
