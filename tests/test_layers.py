@@ -18,7 +18,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "urdftool"  # tests/test_layers.
 
 # Lowest first. A module may import modules of its own layer or of a lower one.
 LAYERS = [
-    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget",
+    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget", "urdftool.numbers",
               "urdftool.simulators")),
     ("description", ("urdftool.description",)),
     ("kinematics", ("urdftool.kinematics",)),

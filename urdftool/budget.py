@@ -70,7 +70,9 @@ def format_memory(size: int) -> str:
     """``2 GiB``, ``512 MiB``, ``1000 bytes``."""
     for unit in ("T", "G", "M", "K"):
         if size >= _UNITS[unit]:
-            return f"{size / _UNITS[unit]:.4g} {unit}iB"
+            from urdftool.numbers import number
+
+            return f"{number(size / _UNITS[unit])} {unit}iB"
     return f"{size} bytes"
 
 

@@ -331,6 +331,7 @@ OUTSIDE_IN = {  # every key, with a value naming a path outside the repository
     "srdf": 'srdf = "file:///etc/passwd"\n',
     "controllers": 'controllers = ["robots/../../outside/c.yaml"]\n',
     "strict": '"/etc/passwd" = true\n',  # a key that is itself a path: unknown, and outside
+    "notes": 'notes = "/etc/passwd"\n',
     "max-file-size": 'max-file-size = "C:\\\\Windows"\n',
     "max-memory": 'max-memory = "/dev/zero"\n',
     "targets": 'targets = ["~/mujoco"]\n',

@@ -55,17 +55,24 @@ class Stop:
     where: Location | None = None
 
 
-def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> list:
+def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
+                 finished=None) -> list:
     """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
     forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
 
     Without a budget, with one job or one call (or where processes cannot fork) the work is
     done in this process, and only a MemoryError becomes a Stop.
+    finished: called in this process with how many calls have ended, as each ends (progress)
     """
+    finished = finished or (lambda done: None)
     if budget.unlimited and min(jobs, count) == 1 or count == 0 or not hasattr(os, "fork"):
-        return [_here(index, work, budget, stopped) for index in range(count)]
+        results = []
+        for index in range(count):
+            results.append(_here(index, work, budget, stopped))
+            finished(index + 1)
+        return results
     results: list = [None] * count
-    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
+    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, finished)
     return results
 
 
@@ -80,7 +87,7 @@ def _here(index, work, budget, stopped):
 def check_files(files: list[str], options_for, jobs: int | None = None,
                 timeout: float | None = DEFAULT_TIMEOUT,
                 memory: int | None = None, stdin_as: str | None = None,
-                cache=None) -> list[FileResult]:
+                cache=None, finished=None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
     jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
@@ -91,12 +98,16 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     cache: a :class:`~urdftool.lint.cache.Cache`: files whose result it holds are not checked
         again (looked up here, before any worker starts), the others' results are kept in it;
         standard input is never cached
+    finished: called with how many of ``files`` are done (found in the cache or checked), as
+        each is (progress)
     """
     with one_run():  # one view of the file system for the files (the workers inherit it)
-        return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache)
+        return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
+                            finished or (lambda done: None))
 
 
-def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> list[FileResult]:
+def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
+                 finished) -> list[FileResult]:
     jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
     stdin = {}
@@ -106,6 +117,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
     kept = [cache.get(path, options_for(path)) if cache and path != "-" else None
             for path in files]
     todo = [index for index, found in enumerate(kept) if found is None]
+    finished(len(files) - len(todo))
 
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
@@ -114,8 +126,9 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
         return [stop_finding(named[todo[index]], stop, "checking")], []
 
     lines: list[list[str]] = [[] for _ in files]
-    for index, (found, companions) in zip(todo, run_budgeted(len(todo), work, budget, stopped,
-                                                             jobs)):
+    checked = run_budgeted(len(todo), work, budget, stopped, jobs,
+                           lambda done: finished(len(files) - len(todo) + done))
+    for index, (found, companions) in zip(todo, checked):
         kept[index], lines[index] = found, companions
     return [FileResult(path, found, companions=companions)
             for path, found, companions in zip(named, kept, lines)]
@@ -178,7 +191,8 @@ class Run:
         return 1 if any(result.failures for result in self.results) else 0
 
 
-def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run:
+def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
+                **options) -> Run:
     """Check files and folders as ``urdftool check PATH...`` does: the settings file above each
     target applies to it, folders are walked for top-level robots, a macro library named is
     replaced by the robots including it, and files are checked in worker processes within the
@@ -190,6 +204,7 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
         ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
         that results are kept between runs only with ``cache_dir``
+    progress: called with (files done, files to check) as the files are checked
     Raises TargetError (an UrdftoolError) before anything is checked, and SettingsError when
     the settings of every file to check are broken; broken settings that apply to some files
     only are the run's ``errors``, and the other files are checked.
@@ -202,10 +217,10 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     with one_run():  # one view of the file system: roots and settings looked up once
-        return _check_paths(list(paths), request)
+        return _check_paths(list(paths), request, progress or (lambda done, planned: None))
 
 
-def _check_paths(paths: list, request: CheckRequest) -> Run:
+def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
     cache = None
     if request.cache_dir is not None:
         from urdftool.lint.cache import Cache
@@ -232,11 +247,14 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
     files = [path for path in targets.files if path in by_path]
     plans = [by_path[path] for path in files]
     results: list[FileResult | None] = [None] * len(files)
+    before = 0  # files of the pools already run
     for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
         indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
         found = check_files([files[i] for i in indexes], lambda p: by_path[p].options,
                             jobs=request.jobs, timeout=request.timeout, memory=memory,
-                            stdin_as=request.stdin_filename, cache=cache)
+                            stdin_as=request.stdin_filename, cache=cache,
+                            finished=lambda done: progress(before + done, len(files)))
+        before += len(indexes)
         for index, result in zip(indexes, found):
             results[index] = result
     run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
@@ -539,13 +557,14 @@ def _drain(worker: _Worker) -> None:
         pass
 
 
-def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
+def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished) -> None:
     import multiprocessing
     from multiprocessing.connection import wait
 
     context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))
+    ended = 0
     workers = [_adopted(work, budget.memory) or _Worker(context, work, budget.memory)
                for _ in range(jobs)]
     try:
@@ -589,6 +608,8 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
                         worker.stop(kill=True)
                         workers[position] = worker = _Worker(context, work, budget.memory)
                 worker.index = None
+                ended += 1
+                finished(ended)
                 if pending:
                     worker.give(pending.pop())
     finally:

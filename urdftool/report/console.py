@@ -1,4 +1,5 @@
-"""Terminal output shared by the command renderers: rich consoles and fixed-point numbers."""
+"""Terminal output shared by the command renderers: rich consoles and fixed-point numbers
+(:mod:`urdftool.numbers` formats them)."""
 
 from __future__ import annotations
 
@@ -54,5 +55,6 @@ def plain_console(stream=None):
 
 def fixed(value: float, places: int = 6) -> str:
     """``value`` with ``places`` decimals, without the '-0.000000' that round-off leaves."""
-    text = f"{value:.{places}f}"
-    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
+    from urdftool.numbers import number
+
+    return number(value, places=places)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 
+from urdftool.numbers import number
 from urdftool.report.console import fixed, print_table, wide_console
 
 
@@ -37,7 +38,8 @@ def text(table) -> None:
     for name, matrix in (("base", table.base), ("tool", table.tool)):
         position, rpy, _ = pose_components(matrix)
         console.print(f"{name}: xyz {_triple(position)}  rpy {_triple(rpy)}")
-    console.print(f"base * D-H chain * tool reproduces the URDF chain to {table.residual:.1g}")
+    console.print("base * D-H chain * tool reproduces the URDF chain to "
+                  f"{number(table.residual, 1)}")
 
 
 def _triple(values) -> str:

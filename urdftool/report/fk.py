@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 
+from urdftool.numbers import number
 from urdftool.report.console import fixed, print_table, wide_console
 
 
@@ -11,8 +12,8 @@ def verify_line(count: int, seed, position: float, rotation: float, tolerance: f
     """The verdict of comparing D-H and URDF forward kinematics; errors in [m] and [rad]."""
     ok = position <= tolerance and rotation <= tolerance
     return (f"D-H vs URDF over {count} random configurations (seed {seed}): worst position "
-            f"error {position:.3g} m, worst orientation error {rotation:.3g} rad: "
-            f"{'agree' if ok else 'DISAGREE'} (tolerance {tolerance:g})")
+            f"error {number(position, 3)} m, worst orientation error {number(rotation, 3)} rad: "
+            f"{'agree' if ok else 'DISAGREE'} (tolerance {number(tolerance, 6)})")
 
 
 def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None) -> None:
@@ -84,4 +85,4 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
             for k, name in enumerate(result.frames):
                 console.print(f"{escape(name)}:")
                 for line in result.matrices[row, k]:
-                    console.print("  " + " ".join(f"{v: .6f}" for v in line))
+                    console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))

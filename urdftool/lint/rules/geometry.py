@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import number
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import child_list, first_child
@@ -426,11 +427,11 @@ def mesh_implausible_size(robot):
             continue
         where = f"link '{link.get('name')}' <{holder.tag}>: mesh '{shape.get('filename')}'"
         if factor is None:
-            yield shape, f"{where} is {extent:.4g} m across; check its unit"
+            yield shape, f"{where} is {number(extent)} m across; check its unit"
             continue
         fixed = " ".join(f"{s * factor:g}" for s in scale)
-        yield offer(shape, (f"{where} is {extent:.4g} m across, which suggests the wrong unit; "
-                            f"scale=\"{fixed}\" would make it {extent * factor:.4g} m"),
+        yield offer(shape, (f"{where} is {number(extent)} m across, which suggests the wrong "
+                            f"unit; scale=\"{fixed}\" would make it {number(extent * factor)} m"),
                     f"scale the mesh by {factor:g}", set_attribute(robot, shape, "scale", fixed))
 
 
