@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test test-fast bench fuzz sweep-setup real-sweep-setup real-sweep clean
+.PHONY: demo test test-fast docs examples bench fuzz sweep-setup real-sweep-setup real-sweep clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -27,6 +27,11 @@ test: $(INSTALLED)
 # The inner loop: unit tests only, without the corpus, parity, fuzz and README runs.
 test-fast: $(INSTALLED)
 	$(PY) -m pytest -n auto -m "not integration and not network"
+
+# The documentation generated from the rules (docs/rules/, the table in docs/targets.md): run it
+# after adding or changing a rule, or after a merge; `make test` fails while a page is stale.
+docs: $(INSTALLED)
+	$(PY) -m urdftool.docs
 
 bench: $(INSTALLED)
 	$(PY) -m compileall -q urdftool  # sources edited since the install would compile every run

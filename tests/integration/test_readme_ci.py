@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 import sarif_schema
+from rule_links import assert_rule_page
 from lxml import etree
 
 from conftest import ROBOTS, ROOT
@@ -113,7 +114,7 @@ def test_sarif(run_cli, monkeypatch, workspaces, broken):
     for entry in results:
         rule = rules[entry["ruleIndex"]]
         assert rule["id"] == entry["ruleId"] and "Bad:" in rule["help"]["text"]
-        assert rule["helpUri"].endswith("#" + rule["id"].lower())  # the README table's anchor
+        assert_rule_page(rule["helpUri"], rule["id"])
         assert entry["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == \
             "robots/broken.urdf"
 
