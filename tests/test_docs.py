@@ -84,3 +84,60 @@ def test_case_files_are_shown_except_links_binaries_and_long_lines():
     assert "not shown" in (ROOT / "docs/rules/U003.md").read_text()  # binary
     long_line = (ROOT / "docs/rules/U933.md").read_text()
     assert re.search(r"… \(\d+ characters\)", long_line)
+
+
+# ---- the hand-written pages: size, links, index -------------------------------------------------
+
+README_LIMIT = 15_000  # [bytes]: what it is, the two commands, the five things, links
+
+
+def test_the_readme_stays_short():
+    size = len((ROOT / "README.md").read_bytes())
+    assert size <= README_LIMIT, (f"README.md is {size} bytes, over {README_LIMIT}: move the "
+                                  "detail into a page under docs/ and link it")
+
+
+def _pages():
+    return [ROOT / "README.md", ROOT / "CHANGELOG.md", *sorted((ROOT / "docs").rglob("*.md"))]
+
+
+def _slug(heading: str) -> str:
+    """GitHub's anchor of a heading: lower case, punctuation but ``-`` and ``_`` dropped, spaces
+    made ``-``."""
+    text = re.sub(r"`|\*\*|\[([^]]*)\]\([^)]*\)", r"\1", heading.strip()).lower()
+    return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
+
+
+def _anchors(path) -> set[str]:
+    text = re.sub(r"```.*?```", "", path.read_text(encoding="utf-8"), flags=re.S)
+    anchors, seen = set(), {}
+    for heading in re.findall(r"^#{1,6} (.+)$", text, re.M):
+        slug = _slug(heading)
+        anchors.add(slug if slug not in seen else f"{slug}-{seen[slug]}")
+        seen[slug] = seen.get(slug, 0) + 1
+    return anchors | set(re.findall(r'<a id="([^"]+)"', text))
+
+
+def test_every_relative_link_and_anchor_resolves():
+    broken = []
+    for page in _pages():
+        text = re.sub(r"```.*?```", "", page.read_text(encoding="utf-8"), flags=re.S)
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if re.match(r"[a-z]+:", target):
+                continue  # an address elsewhere
+            path, _, anchor = target.partition("#")
+            resolved = (page.parent / path).resolve() if path else page
+            if not resolved.exists():
+                broken.append(f"{page.relative_to(ROOT)}: {target} (no such file)")
+            elif anchor and resolved.suffix == ".md" and anchor not in _anchors(resolved):
+                broken.append(f"{page.relative_to(ROOT)}: {target} (no such heading)")
+    assert not broken, "\n".join(broken)
+
+
+def test_every_page_is_in_the_index():
+    """docs/README.md lists every page under docs/ (the rule pages through their own index)."""
+    index = (ROOT / "docs" / "README.md").read_text(encoding="utf-8")
+    linked = set(re.findall(r"\]\(([^)#\s]+)", index))
+    missing = [p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").glob("*.md")
+               if p.name != "README.md" and p.relative_to(ROOT / "docs").as_posix() not in linked]
+    assert not missing, f"pages not linked from docs/README.md: {missing}"

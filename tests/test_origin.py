@@ -127,7 +127,7 @@ def test_this_checkout_is_where_the_tests_run_from():
      "pip install '/src/my tools/urdftool[analysis]'"),
     (Origin(url="https://github.com/you/urdftool", commit="0123abc"),
      "pip install 'urdftool[analysis] @ git+https://github.com/you/urdftool@0123abc'"),
-    (Origin(), "pip install '/path/to/urdftool[analysis]'  (a clone of urdftool's repository)"),
+    (Origin(), "pip install '/path/to/urdftool[analysis]'  (in a clone of the urdftool repository)"),
 ])
 def test_install_commands_name_the_source_urdftool_came_from(came_from, where, expected):
     came_from(where)

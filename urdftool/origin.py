@@ -84,7 +84,7 @@ def install_command(extra: str | None = None) -> str:
         at = f"@{where.commit}" if where.commit else ""
         return f"pip install {shlex.quote(f'urdftool{extras} @ git+{where.url}{at}')}"
     return (f"pip install {shlex.quote(f'{PLACEHOLDER}{extras}')}  "
-            "(a clone of urdftool's repository)")
+            "(in a clone of the urdftool repository)")
 
 
 def docs_base() -> str | None:

@@ -305,7 +305,7 @@ def test_a_table_linked_out_of_the_repository_is_not_read(project, command):
 
 def test_a_binary_file_in_a_walk_is_a_target_without_parsing(tmp_path, monkeypatch):
     """A file with NUL bytes is no xacro library: it is checked (U003 says why) without feeding
-    megabytes of it to the XML parser (90 sparse 15 MiB files took 18 s to classify)."""
+    megabytes of it to the XML parser (a folder of large sparse files took seconds each)."""
     from urdftool.lint import targets
 
     repo = tmp_path / "repo"

@@ -584,7 +584,7 @@ def _geometry_resolver(path: Path, limits: MeshLimits):
 
 
 def _zipped(path: Path, data: bytes | None) -> bool:
-    import zipfile  # only for COLLADA files (4 ms of every check's start-up otherwise)
+    import zipfile  # only for COLLADA files, not on every check's start-up
 
     return zipfile.is_zipfile(path if data is None else io.BytesIO(data))
 
