@@ -274,13 +274,15 @@ def stale(root: Path) -> list[str]:
 
 def write(root: Path) -> list[str]:
     """Write every generated file that changed and remove leftovers; what changed."""
+    from urdftool.description.files import write_file
+
     files = generated(root)
     changed = []
     (root / RULE_PAGES).mkdir(parents=True, exist_ok=True)
     for name, text in files.items():
         path = root / name
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
-            path.write_text(text, encoding="utf-8")
+            write_file(path, text)
             changed.append(name)
     for name in leftovers(root, files):
         path = root / name
