@@ -31,7 +31,7 @@ def _commands_in(text: str) -> list[str]:
     for block in re.findall(r"```[^\n]*\n(.*?)```", text, re.S):
         found += [line for line in block.splitlines() if "pip install" in line]
     prose = re.sub(r"```.*?```", "", text, flags=re.S)
-    found += [span for span in re.findall(r"`([^`\n]*pip install[^`\n]*)`", prose)]
+    found += [" ".join(span.split()) for span in re.findall(r"`([^`]*pip\s+install[^`]*)`", prose)]
     commands = []
     for line in found:
         start = line.index("pip install")
