@@ -39,7 +39,7 @@ PARTS = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
 """
 # the program as the urdftool script starts it, trusting the stamps of files written just now,
 # and saying at exit whether Typer was imported
-PROGRAM = ("import atexit, sys; import urdftool.lint.cache as cache; cache.RACY_NS = 0; "
+PROGRAM = ("import atexit, sys; import urdftool.description.files as files; files.RACY_NS = 0; "
            "atexit.register(lambda: sys.stderr.write('[typer]' * ('typer' in sys.modules))); "
            "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.__main__ import main; main()")
 

@@ -199,7 +199,7 @@ def test_settings_files_are_read_once_per_version(project, monkeypatch):
     reads = []
     real = module._read
     monkeypatch.setattr(module, "_read", lambda path: reads.append(path) or real(path))
-    module._settings_file.cache_clear()
+    module._READ_SETTINGS.clear()
     first = settings_for(project / "robots" / "arm.urdf")
     assert settings_for(project / "robots") is first and len(reads) == 1
     settings(project, 'ignore = ["U204", "U206"]\n', "urdftool.toml")

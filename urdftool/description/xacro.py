@@ -41,7 +41,7 @@ from lxml import etree
 from urdftool import budget
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import PackageNotFound
-from urdftool.description.files import read_regular
+from urdftool.description import files
 from urdftool.errors import available
 from urdftool.description import xacro_sandbox
 from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
@@ -90,7 +90,7 @@ class _Session:
         self.resolver = resolver
         self.allow_env = allow_env
         self.read_file = read_file
-        self.roots = [os.path.realpath(root) for root in roots]
+        self.roots = [files.real_path(root) for root in roots]
         self.paths: list[str] = []  # only ever appended to: an index names one file
         self.shown_paths: dict[int, str] = {}
         self.locations: dict[str, Location] = {}  # stamp -> where it was written
@@ -104,11 +104,11 @@ class _Session:
         self.text = 0
 
     def allow_root(self, folder) -> None:
-        self.roots.append(os.path.realpath(folder))
+        self.roots.append(files.real_path(folder))
 
     def within_roots(self, filename: str) -> bool:
         """Whether ``filename``, links followed, is in an allowed root (or there are none)."""
-        real = os.path.realpath(filename)
+        real = files.real_path(filename)
         return not self.roots or any(
             real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in self.roots)
 
@@ -226,7 +226,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     import xacro
     from xacro import substitution_args
 
-    read_file = read_file or read_regular
+    read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
@@ -290,7 +290,7 @@ def _yaml_opener(session: _Session):
 
     def open_yaml(filename, *args, **kwargs):
         session.check_inside(filename, "YAML file")
-        data = session.read_file(filename)
+        data = session.read_file(filename, "yaml")
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -336,16 +336,14 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     original_macro_call = originals[(xacro, "handle_macro_call")]
     original_eval_all = originals[(xacro, "eval_all")]
     original_check_attrs = originals[(xacro, "check_attrs")]
-    original_env = originals[(substitution_args, "_eval_env")]
-    original_optenv = originals[(substitution_args, "_eval_optenv")]
     original_eval_text = originals[(xacro, "eval_text")]
     original_eval_extension = originals[(xacro, "eval_extension")]
 
     def parse(inp, filename=None):
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
-        stack = [os.path.realpath(f) for f in xacro.filestack[:-1] if f]
-        if os.path.realpath(filename) in stack:
+        stack = [files.real_path(f) for f in xacro.filestack[:-1] if f]
+        if files.real_path(filename) in stack:
             chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
             raise xacro.XacroException(f"include cycle: {chain}")
         _refuse_link_out(session, filename)
@@ -480,12 +478,17 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if not session.allow_env:
             raise substitution_args.SubstitutionException(
                 f"$(env {name}) is disabled by --no-env")
-        return original_env(name)
+        value = files.environ(name)  # as xacro's own, recorded
+        if value is None:
+            raise substitution_args.SubstitutionException(
+                f"environment variable '{name}' is not set")
+        return value
 
     def eval_optenv(name, default=""):
         if not session.allow_env:  # the robot as an environment without NAME makes it: the
             return default  # default, the environment never read (an error was a false one)
-        return original_optenv(name, default)
+        value = files.environ(name)  # recorded
+        return default if value is None else value
 
     return {
         (xacro, "parse"): parse,
@@ -516,14 +519,13 @@ _EVAL_CONSTANTS = {
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
-    from urdftool.description.files import inside
     from urdftool.description.packages import containment_root
 
     root = containment_root(os.path.dirname(os.path.abspath(session.paths[0])))
     named = os.path.abspath(filename)
     lexically_inside = any(named.startswith(base.rstrip(os.sep) + os.sep)
-                           for base in (str(root), os.path.realpath(root)))
-    if lexically_inside and not inside(filename, root):
+                           for base in (str(root), files.real_path(root)))
+    if lexically_inside and not files.inside(filename, root):
         raise XacroFailure("link", (
             f"included file '{display_path(filename)}' is a symbolic link leading outside "
             f"the repository ({display_path(root)}); not followed"), session.current_location())
@@ -556,26 +558,25 @@ def _expand_pattern(session: _Session, spec: str) -> list[str]:
             here = folder or "."
             if not _MAGIC.search(part):
                 candidate = os.path.join(folder, part) if folder else part
-                if os.path.lexists(candidate) if last else os.path.isdir(candidate):
+                if files.kind_of(candidate, follow=False) if last else \
+                        files.kind_of(candidate) == "folder":
                     found.append(candidate)
                 continue
-            try:
-                entries = sorted(os.scandir(here), key=lambda entry: entry.name)
-            except OSError:
-                continue
+            entries = files.listing(here)  # (name, kind as lstat says), sorted; recorded
             seen += len(entries)
             if seen > MAX_PATTERN_ENTRIES:
                 raise xacro_sandbox.SandboxViolation(
                     f"include pattern '{spec}' looked at over {MAX_PATTERN_ENTRIES} files; "
                     "not expanded")
-            for entry in entries:
-                if entry.name.startswith(".") and not part.startswith("."):
+            for name, kind in entries:
+                if name.startswith(".") and not part.startswith("."):
                     continue
-                if not fnmatch.fnmatchcase(entry.name, part):
+                if not fnmatch.fnmatchcase(name, part):
                     continue
-                path = os.path.join(folder, entry.name) if folder else entry.name
-                if not last and not (entry.is_dir() and (
-                        anywhere or not entry.is_symlink() or session.within_roots(path))):
+                path = os.path.join(folder, name) if folder else name
+                is_dir = kind == "folder" or kind == "link" and files.kind_of(path) == "folder"
+                if not last and not (is_dir and (
+                        anywhere or kind != "link" or session.within_roots(path))):
                     continue  # a file, or a linked folder leading out: never listed
                 found.append(path)
         folders = found

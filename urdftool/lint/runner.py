@@ -24,7 +24,6 @@ import signal
 import sys
 import time
 from collections.abc import Mapping
-from contextlib import nullcontext
 from dataclasses import dataclass, field
 
 from urdftool import budget as budgets
@@ -93,9 +92,7 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
         again (looked up here, before any worker starts), the others' results are kept in it;
         standard input is never cached
     """
-    # one view of the file system for the files (the workers inherit it); with a cache, what
-    # was read of each file is noted, so that a file changed while it was checked is not kept
-    with one_run(), cache.noting_reads() if cache else nullcontext():
+    with one_run():  # one view of the file system for the files (the workers inherit it)
         return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache)
 
 
@@ -140,12 +137,9 @@ class _Checking:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
-        # in check_files' block (in this process, or inherited by a forked worker) this nests
-        # and shares its notes; in a spare, it notes this piece's reads
-        with self.cache.noting_reads() if self.cache else nullcontext():
-            result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
-            if self.cache and path != "-":
-                self.cache.put(path, options, result)
+        result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
+        if self.cache and path != "-":
+            self.cache.put(path, options, result)  # with the record of what its check read
         return result.findings, result.companions
 
 
@@ -220,16 +214,18 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
         kept = cache.get_run(paths, request)
         if kept is not None:
             return Run(kept[0], strict=kept[1], depends=kept[2])
+    from urdftool.description.record import recording
     from urdftool.lint.targets import expand  # not on a re-run served whole from the cache
 
-    targets = expand(paths, request)
-    by_path, errors = {}, []
-    for path in targets.files:  # broken settings stop the files they apply to, no others
-        try:
-            by_path[path] = for_file(request.stdin_filename if path == "-" and
-                                     request.stdin_filename else path, request)
-        except SettingsError as error:
-            errors.append(str(error))
+    with recording() as surroundings:  # what finding targets and settings read: a run kept
+        targets = expand(paths, request)  # whole depends on it
+        by_path, errors = {}, []
+        for path in targets.files:  # broken settings stop the files they apply to, no others
+            try:
+                by_path[path] = for_file(request.stdin_filename if path == "-" and
+                                         request.stdin_filename else path, request)
+            except SettingsError as error:
+                errors.append(str(error))
     errors = list(dict.fromkeys(errors))
     if errors and not by_path:
         raise SettingsError(errors[0])
@@ -246,7 +242,8 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
     run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
               errors=errors)
     if cache is not None and not errors:
-        run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options)
+        run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options,
+                                    surroundings)
     return run
 
 
@@ -256,16 +253,22 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     data: the file's content when it is not to be read from ``path`` (an unsaved buffer);
         suppression comments are read from it too
     options: as :func:`check_paths` (the settings file above ``path`` applies, per-file ignores
-        too, unless ``use_settings=False``); the result keeps the loaded ``robot``
+        too, unless ``use_settings=False``); the result keeps the loaded ``robot`` and the
+        ``record`` of what the check read, searched and followed, the settings looked for
+        included (:mod:`urdftool.description.record`)
     """
     path = os.fspath(path)
     request = _request(options)
-    check_companions(request.companions)
     if isinstance(data, str):
         data = data.encode("utf-8")
+    from urdftool.description.record import recording
     from urdftool.lint import engine
 
-    return engine.check_file(path, for_file(path, request).options, data=data)
+    with recording() as record:  # the settings found, and the check's own record
+        check_companions(request.companions)
+        result = engine.check_file(path, for_file(path, request).options, data=data)
+    result.record = record
+    return result
 
 
 def _request(options: dict) -> CheckRequest:

@@ -36,13 +36,14 @@ import os
 import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity, inside, kind_of, \
+    read_regular
 from urdftool.description.inputs import CompanionPaths, MeshLimits, SettingValue
+from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
 
@@ -98,7 +99,7 @@ def settings_for(path: str | os.PathLike) -> Settings:
     folder): the nearest settings file above it, up to the repository root; empty Settings when
     none. Each settings file is read once per version."""
     folder = Path.cwd() if os.fspath(path) == "-" else Path(path).absolute()
-    if not folder.is_dir():
+    if kind_of(folder) != "folder":
         folder = folder.parent
     return _settings_in(folder)
 
@@ -114,9 +115,8 @@ def _settings_in(folder: Path) -> Settings:
     for candidate in chain:
         for name in ("urdftool.toml", "pyproject.toml"):
             file = candidate / name
-            if file.is_file():
-                status = file.stat()
-                found = _settings_file(file, status.st_mtime_ns, status.st_size)
+            if (known := identity(file)) is not None:
+                found = _settings_file(file, known)
                 if found is not None:
                     return found
     return Settings()
@@ -128,7 +128,7 @@ def settings_file(path: str | os.PathLike) -> Settings:
     same rules as a settings file found in a repository (it may well be one: naming it does
     not make what a stranger wrote in it the user's)."""
     path = Path(path).absolute()
-    if not path.is_file():
+    if kind_of(path) != "file":
         raise SettingsError(f"settings file '{path}' does not exist or is not a file")
     table = _read(path)
     if path.name != "urdftool.toml" and "tool" in table:
@@ -136,8 +136,18 @@ def settings_file(path: str | os.PathLike) -> Settings:
     return _parse(path, table)
 
 
-@lru_cache(maxsize=64)
-def _settings_file(file: Path, mtime: int, size: int) -> Settings | None:
+_READ_SETTINGS: dict = {}  # (file, its identity) -> (settings, what reading them recorded)
+
+
+def _settings_file(file: Path, known: tuple) -> Settings | None:
+    """The settings in ``file`` (whose :func:`~urdftool.description.files.identity` is
+    ``known``), read once per version of it, what reading it recorded replayed each time."""
+    if len(_READ_SETTINGS) > 64:
+        _READ_SETTINGS.clear()
+    return remembered(_READ_SETTINGS, (file, known), lambda: _settings_in_file(file))
+
+
+def _settings_in_file(file: Path) -> Settings | None:
     """The settings in ``file``; None for a pyproject.toml without ``[tool.urdftool]``."""
     if file.name == "urdftool.toml":
         return _parse(file, _read(file))
@@ -151,7 +161,7 @@ def _read(path: Path) -> dict:
 
     _refuse_outside(path, path, "the settings file itself")
     try:
-        text = read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8")
+        text = read_regular(path, MAX_SETTINGS_SIZE, as_="settings").decode("utf-8")
     except OSError as error:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
     except UnicodeDecodeError as error:
@@ -486,7 +496,7 @@ Companions = CompanionPaths  # the API's name for the companion files a request 
 def check_companions(companions: CompanionPaths) -> None:
     """SettingsError when a companion file named does not exist."""
     for path in companions.named():
-        if not path.is_file():
+        if kind_of(path) != "file":
             raise SettingsError(f"companion file '{path}' does not exist")
 
 

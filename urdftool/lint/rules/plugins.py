@@ -184,7 +184,7 @@ def gazebo_control_parameters_path(robot):
     Bad: ``<parameters>config/controllers.yaml</parameters>``
     Good: ``<parameters>$(find my_robot)/config/controllers.yaml</parameters>``
     """
-    from urdftool.description.files import inside
+    from urdftool.description.files import inside, kind_of
     from urdftool.description.packages import containment_root
 
     root = containment_root(Path(robot.path).parent) if robot.path != "-" else None
@@ -203,6 +203,7 @@ def gazebo_control_parameters_path(robot):
                 yield child, (f"<parameters> '{value}' is a relative path, resolved against the working "
                               "directory of whoever launches Gazebo; write $(find PACKAGE)/"
                               f"{value}"), None, Severity.WARNING
-            elif root is not None and inside(Path(value).parent, root) and not Path(value).is_file():
+            elif root is not None and inside(Path(value).parent, root) and \
+                    kind_of(value) != "file":
                 yield child, (f"<parameters> '{value}' does not exist: the controller manager starts "
                               "without the controllers' parameters")
