@@ -17,6 +17,9 @@ def test_the_example_prints_what_it_shows(example, tmp_path):
     printed = examples.outputs(example, examples.workspace(tmp_path))
     problem = examples.report(example, printed)
     assert problem is None, problem
+    # an example shows the robot as it can be: no joint posed outside its limits
+    outside = [line for lines in printed for line in lines if "outside its limits" in line]
+    assert not outside, outside
 
 
 def test_the_readme_has_examples_and_each_runs_urdftool():
