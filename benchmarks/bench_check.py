@@ -10,7 +10,7 @@
   beside the cache's results, before Typer is imported: see ``urdftool/__main__.py``; other
   words are shown too, their findings from the cache and rendered). The reference is the ELF binary shipped in the pin
   wheel (``cmeel.prefix/bin/check_urdf`` with its ``lib/``), not ``.venv/bin/check_urdf``: that
-  one is a Python wrapper that starts an interpreter per file (~87 ms), a flattering reference.
+  one is a Python wrapper that starts an interpreter per file, a flattering reference.
 """
 
 from __future__ import annotations
@@ -42,11 +42,9 @@ def timed(command: list[str], repeat: int = 7, **kwargs) -> float:
 def paired(ours: list[str], reference: list[str], repeat: int = 3,
            reference_env: dict | None = None) -> tuple[float, float, str]:
     """Median wall times [s] of ``ours`` and ``reference``, timed alternately ``repeat`` times
-    each, and the samples as text for the report. The host is a shared virtual machine whose
-    speed drifts by a third within minutes (the 10,000-link star: 3.2 to 4.7 s, check_urdf 0.46
-    to 0.77 s, in one quarter of an hour), so a sample of each taken a minute apart compares two
-    hosts: one sample of each read 5.3x where five alternating pairs read 5.8x. Both sides get
-    the same statistic."""
+    each, and the samples as text for the report. On a shared virtual machine the speed drifts
+    by a third within minutes, so a sample of each taken a minute apart compares two hosts
+    (CHANGELOG.md, issue 20 round 5, has what that read). Both sides get the same statistic."""
     mine, theirs = [], []
     for _ in range(repeat):
         mine.append(timed(ours, repeat=1))

@@ -133,7 +133,7 @@ def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \
     shutil.which("check_urdf")
 # pin's check_urdf is a Python wrapper (cmeel) that sets LD_LIBRARY_PATH and runs the binary in
-# its prefix: run the binary directly, saving a Python start-up (~0.3 s) per file.
+# its prefix: run the binary directly, saving a Python start-up per file.
 _CMEEL = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"
 if CHECK_URDF and (_CMEEL / "bin" / "check_urdf").is_file():
     CHECK_URDF = str(_CMEEL / "bin" / "check_urdf")

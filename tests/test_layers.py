@@ -19,7 +19,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "urdftool"  # tests/test_layers.
 # Lowest first. A module may import modules of its own layer or of a lower one.
 LAYERS = [
     ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget", "urdftool.numbers",
-              "urdftool.simulators")),
+              "urdftool.simulators", "urdftool.origin")),
     ("description", ("urdftool.description",)),
     ("kinematics", ("urdftool.kinematics",)),
     ("physics", ("urdftool.physics",)),

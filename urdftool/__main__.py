@@ -36,7 +36,7 @@ def _end(code) -> None:
     """End a check as ``SystemExit(code)`` ends Python, but without tearing the interpreter
     down: the message of a text ``code``, the exit functions, the standard streams flushed,
     then the process ends, not freeing the rules', the robot's and the libraries' objects one
-    by one (some 20 ms of a 0.27 s check; the system frees the memory at once). Files are
+    by one (a noticeable part of a short check; the system frees the memory at once). Files are
     closed by then (the cache and ``--output`` write within ``with``). Returns, for Python's
     own ending, while another thread runs (Python waits for it first)."""
     import atexit

@@ -133,7 +133,7 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=True,  # --install-completion / --show-completion for bash, zsh, fish
     pretty_exceptions_enable=False,
-    rich_markup_mode=None,  # plain click help: rich formatting costs ~0.4 s of imports
+    rich_markup_mode=None,  # plain click help: rich formatting would import rich for --help
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 

@@ -138,7 +138,7 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
 def _fewer_collections(young: int = 100_000):
     """Run the cyclic garbage collector after ``young`` new objects rather than Python's 700:
     loading allocates millions of short-lived tuples that are freed by reference counting,
-    and on a 10,000-link robot the collections cost a tenth of the run (6.0 -> 5.4 s)."""
+    and on a robot of thousands of links the collections cost a tenth of the run."""
     threshold = gc.get_threshold()
     gc.set_threshold(max(young, threshold[0]), *threshold[1:])
     try:
@@ -148,9 +148,9 @@ def _fewer_collections(young: int = 100_000):
 
 
 # Objects the rules kept that were moved to the oldest generation unexamined since the last full
-# collection (see _unexamined), and how many may be before the next check starts with one: the
-# 46 corpus URDFs move 190,000 in all, a 10,000-link robot 900,000; a full collection between
-# two checks costs 20-50 ms, as the robot checked before is gone by then.
+# collection (see _unexamined), and how many may be before the next check starts with one: a
+# robot of thousands of links moves hundreds of thousands; a full collection between two checks
+# is cheap, as the robot checked before is gone by then.
 _PROMOTED = {"objects": 0}
 FULL_COLLECTION_AFTER = 250_000
 
@@ -162,7 +162,7 @@ def _unexamined():
 
     What the rules build (groupings, parsed numbers, solids: a million objects on a 10,000-link
     robot) lives as long as the robot, and the collector examined all of it twice (young, then
-    middle generation) to find a few cycles: 0.37 of 5.8 s. The cycles rules leave (trimesh's,
+    middle generation) to find a few cycles. The cycles rules leave (trimesh's,
     a few MB per robot) are freed by the next full collection, which is forced before a check
     once FULL_COLLECTION_AFTER objects were moved so (a server checking edit after edit never
     grows without bound). Left to Python's collector when it is off or objects are frozen (a

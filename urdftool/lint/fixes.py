@@ -192,7 +192,7 @@ def _local(name: str) -> str:
 class _DocumentOrder:
     """Each element's place among the document's elements (comments left out), learnt only as
     far as asked: a fix is usually wanted for a few elements near the top (the root link), and
-    numbering all 190,000 elements of a 10,000-link robot for it cost 0.2 s. The walk resumes
+    numbering every element of a large robot for it costs more than the fix. The walk resumes
     where the last question left it, so many questions still cost one walk in all."""
 
     def __init__(self, root):

@@ -484,7 +484,7 @@ _spare: _Worker | None = None
 
 def fork_spare() -> None:
     """Fork a spare worker now, before the command line is read: it imports the rules, lxml,
-    xacro and PyYAML (0.1 s) on another core while this process imports Typer and finds its
+    xacro and PyYAML on another core while this process imports Typer and finds its
     targets and settings, and the first pool of :func:`run_budgeted` takes it, with its work
     (which must pickle, as :class:`_Checking` does) and budget. Not with a single core, where
     the two would take turns; a spare no pool takes is killed when this process exits."""

@@ -132,8 +132,10 @@ def png_of(width: int, height: int, items, scale: int = 2) -> bytes:
     try:
         from PIL import Image, ImageColor, ImageDraw, ImageFont
     except ImportError:
-        raise PlotError("PNG output needs Pillow (pip install pillow); an .svg needs "
-                         "nothing") from None
+        from urdftool.origin import install_command
+
+        raise PlotError(f"PNG output needs Pillow ({install_command('analysis')}); an .svg "
+                        "needs nothing") from None
     image = Image.new("RGB", (width * scale, height * scale), "white")
     draw = ImageDraw.Draw(image)
     fonts = {}

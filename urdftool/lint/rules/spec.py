@@ -110,7 +110,7 @@ def malformed_spec(robot):
     """The joint spec file is not valid YAML or not in the spec format.
 
     A spec that does not parse checks nothing, so it is an error rather than silence.
-    See the README for the format (``unit``, ``tolerance``, ``joints``).
+    See docs/companions.md for the format (``unit``, ``tolerance``, ``joints``).
 
     Bad: ``head_pan: {servo_id: 19, lower: -90, uper: 90}``
     Good: ``head_pan: {servo_id: 19, lower: -90, upper: 90}``
