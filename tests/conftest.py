@@ -205,7 +205,10 @@ def case_targets(case: Path) -> tuple[str, ...]:
 
 def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
-    skips it)."""
+    skips it). The tests that read the corpus run share one xdist worker (``make test`` runs
+    ``--dist loadgroup``), so the corpus is checked once per session, not once per worker."""
     for item in items:
         if "integration" in item.path.relative_to(ROOT).parts[:2]:
             item.add_marker(pytest.mark.integration)
+        if "corpus_run" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.xdist_group("corpus"))
