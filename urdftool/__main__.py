@@ -14,14 +14,16 @@ none of the files its findings came from changed, prints what it printed before 
 cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
 run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
 
-Otherwise ``check`` forks a spare worker first (:func:`urdftool.lint.runner.fork_spare`), and
-ends without tearing the interpreter down (:func:`_end`).
+``check`` runs the cyclic garbage collector less often around each robot (:func:`_collect_less`,
+installed into the engine) and ends without tearing the interpreter down (:func:`_end`): each
+saves over 50 ms of a check of the corpus (``make bench``).
 """
 
 from __future__ import annotations
 
 import os
 import sys
+from contextlib import contextmanager
 
 
 def main() -> None:
@@ -30,9 +32,7 @@ def main() -> None:
     check = words[:1] == ["check"]
     if check:
         _replay(words)
-        from urdftool.lint.runner import fork_spare
-
-        fork_spare()  # the rules are imported on another core while Typer is imported here
+        _collect_less()
     from urdftool.cli import main as run
 
     try:
@@ -41,6 +41,59 @@ def main() -> None:
         if check:
             _end(done.code)
         raise
+
+
+def _collect_less() -> None:
+    """Install into the engine (:data:`urdftool.lint.engine.COLLECTION`) the collector's
+    rhythm for a check: the cyclic collector runs after 100,000 new objects rather than
+    Python's 700 while a robot loads (millions of short-lived tuples, freed by reference
+    counting: a tenth of a 10,000-link robot's check), and what the rules build and keep for
+    as long as the robot lives is moved to the oldest generation unexamined (the collector
+    examined all of it twice, young then middle, to find a few cycles). The cycles left
+    (trimesh's, a few MB per robot) are freed by a full collection before the check that
+    follows 250,000 objects moved so."""
+    from urdftool.lint import engine  # the rules: the workers that check are forked after it
+
+    engine.COLLECTION = (_fewer_collections, _unexamined)
+
+
+_PROMOTED = {"objects": 0}  # moved to the oldest generation since the last full collection
+FULL_COLLECTION_AFTER = 250_000
+
+
+@contextmanager
+def _fewer_collections(young: int = 100_000):
+    import gc
+
+    threshold = gc.get_threshold()
+    gc.set_threshold(max(young, threshold[0]), *threshold[1:])
+    try:
+        yield
+    finally:
+        gc.set_threshold(*threshold)
+
+
+@contextmanager
+def _unexamined():
+    """The rules run with the collector paused; what they kept is then moved to the oldest
+    generation (``gc.freeze()`` then ``gc.unfreeze()``). Left to Python's collector when it
+    is off or objects are frozen (a forking parent's own ``gc.freeze()`` must stay)."""
+    import gc
+
+    if not gc.isenabled() or gc.get_freeze_count():
+        yield
+        return
+    if _PROMOTED["objects"] > FULL_COLLECTION_AFTER:
+        gc.collect()
+        _PROMOTED["objects"] = 0
+    gc.disable()
+    try:
+        yield
+    finally:
+        _PROMOTED["objects"] += gc.get_count()[0]
+        gc.freeze()
+        gc.unfreeze()
+        gc.enable()
 
 
 def _end(code) -> None:

@@ -8,8 +8,8 @@ interrupted from inside) and replaced. Either way the piece ends with a :class:`
 where the work was (see :mod:`urdftool.budget`), and the run goes on. Results come back in the
 order given, whatever order the workers finish in. What a worker prints goes to this process's
 standard streams: directly when they are files, passed on over the pipe when they are not (under
-a test runner). ``urdftool check`` forks one worker at start-up, before its command line is read
-(:func:`fork_spare`), so that the rules are imported on another core meanwhile.
+a test runner). The rules are imported before the workers that check files are forked, so that
+each inherits them rather than importing them again.
 
 ``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files;
 ``check_paths`` is ``urdftool check`` (settings, targets, budgets, exit code) and ``check_file``
@@ -109,6 +109,8 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
             for path in files]
     todo = [index for index, found in enumerate(kept) if found is None]
 
+    if todo:
+        from urdftool.lint import engine  # noqa: F401  (before the workers fork: they inherit it)
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
@@ -125,8 +127,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
 
 @dataclass
 class _Checking:
-    """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``: it
-    pickles, so that a spare worker forked before it was made can take it (:func:`fork_spare`).
+    """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``.
     stdin: the bytes read for '-'; cache: where results are kept, or None."""
 
     paths: list[str]
@@ -140,7 +141,7 @@ class _Checking:
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
         # in check_files' block (in this process, or inherited by a forked worker) this nests
-        # and shares its notes; in a spare, it notes this piece's reads
+        # and shares its notes
         with self.cache.noting_reads() if self.cache else nullcontext():
             result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
             if self.cache and path != "-":
@@ -319,14 +320,6 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         pass
     _die_with(parent)
     budgets.report_into(slot)
-    if work is None:  # a spare: ready while the parent reads its command line, then its work
-        _ready()
-        try:
-            work, memory = connection.recv() or (None, None)
-        except (EOFError, OSError):
-            return
-        if work is None:
-            return
     budgets.limit_memory(memory)
     for number in relay:
         setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
@@ -360,17 +353,6 @@ def _serve_pieces(connection, work) -> None:
             connection.send(message)
         except Exception as error:  # a result that does not pickle, or memory to pickle it
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
-
-
-def _ready() -> None:
-    """Import what checking a robot needs: the rules, lxml, and xacro with PyYAML."""
-    try:
-        import xacro.substitution_args  # noqa: F401  (and PyYAML)
-
-        from urdftool.description import load, meshes, xacro as expander, yaml_limits  # noqa: F401
-        from urdftool.lint import engine  # noqa: F401
-    except Exception:  # the same import in the work says what failed, as a finding
-        pass
 
 
 def _die_with(parent: int) -> None:
@@ -438,50 +420,6 @@ def _relayed() -> tuple[int, ...]:
     return tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
 
 
-# A worker forked at start-up, before any work is known (see fork_spare), until a pool takes it.
-_spare: _Worker | None = None
-
-
-def fork_spare() -> None:
-    """Fork a spare worker now, before the command line is read: it imports the rules, lxml,
-    xacro and PyYAML (0.1 s) on another core while this process imports Typer and finds its
-    targets and settings, and the first pool of :func:`run_budgeted` takes it, with its work
-    (which must pickle, as :class:`_Checking` does) and budget. Not with a single core, where
-    the two would take turns; a spare no pool takes is killed when this process exits."""
-    global _spare
-    if _spare is not None or not hasattr(os, "fork") or default_jobs() < 2:
-        return
-    import atexit
-    import multiprocessing
-
-    _spare = _Worker(multiprocessing.get_context("fork"), None, None)
-    atexit.register(_drop_spare)
-
-
-def _adopted(work, memory: int | None) -> _Worker | None:
-    """The spare worker, sent ``work`` and ``memory``; None without one, or when it cannot
-    take them (it relays other streams than a worker forked now would, or it died)."""
-    global _spare
-    spare, _spare = _spare, None
-    if spare is None:
-        return None
-    if spare.relay == _relayed() and spare.process.is_alive():
-        try:
-            spare.connection.send((work, memory))
-            return spare
-        except Exception:  # work that does not pickle (a closure), or the pipe closed
-            pass
-    spare.stop(kill=True)
-    return None
-
-
-def _drop_spare() -> None:
-    global _spare
-    spare, _spare = _spare, None
-    if spare is not None:
-        spare.stop(kill=True)
-
-
 def _pass_on(number: int, data: bytes) -> None:
     """Write what a worker printed to this process's stdout (1) or stderr (2)."""
     stream = sys.stdout if number == 1 else sys.stderr
@@ -524,8 +462,7 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
     context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))
-    workers = [_adopted(work, budget.memory) or _Worker(context, work, budget.memory)
-               for _ in range(jobs)]
+    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
     try:
         for worker in workers:
             if pending:
@@ -575,5 +512,5 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
-           "check_file", "check_files", "check_paths", "default_jobs", "fork_spare",
-           "run_budgeted", "stop_finding"]
+           "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
+           "stop_finding"]
