@@ -213,3 +213,16 @@ def test_one_call_without_a_budget_runs_in_this_process():
     assert os.getpid() not in run_budgeted(2, lambda _: os.getpid(), unlimited, None, jobs=2)
 
 
+
+
+@pytest.mark.parametrize("cores, load, files, jobs", [
+    (2, 0.3, 46, 2),  # an idle second core: two workers
+    (2, 12.0, 46, 1),  # a busy machine: two workers would cost more CPU for nothing
+    (8, 5.2, 46, 3),  # the idle cores only
+    (2, 0.0, 5, 1),  # too few files to pay a second worker's imports and reads
+    (2, 0.0, 1, 1),
+])
+def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, load, files, jobs):
+    monkeypatch.setattr(runner, "default_jobs", lambda: cores)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert runner.auto_jobs(files) == jobs

@@ -36,7 +36,24 @@ from urdftool.lint.settings import CheckRequest, Companions, check_companions, f
 
 
 def default_jobs() -> int:
+    """The number of cores this process may run on."""
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+FILES_PER_WORKER = 4  # a worker pays for its own lazy imports (numpy) and mesh reads
+
+
+def auto_jobs(files: int) -> int:
+    """How many workers check ``files`` files when ``--jobs`` is not given: one per core that
+    is idle now (the cores less the load average), and at most one per FILES_PER_WORKER files.
+    Two workers cost more CPU than one (each imports and reads again what the other did), so
+    they finish sooner only on a core nobody else uses: on a busy machine, one."""
+    try:
+        busy = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        busy = 0.0
+    idle = max(1, round(default_jobs() - busy))
+    return max(1, min(idle, files // FILES_PER_WORKER))
 
 
 @dataclass(frozen=True)
@@ -83,7 +100,7 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
                 cache=None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
-    jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
+    jobs: worker processes [default: :func:`auto_jobs`]; timeout: budget per file in [s],
     memory: address space per worker in [bytes]; None or 0 for no limit. Without a budget and
     with one job, files are checked in this process. Standard input ('-') is read here.
     stdin_as: the path standard input is checked as (its includes and packages are found from
@@ -99,7 +116,6 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
 
 
 def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> list[FileResult]:
-    jobs = max(1, jobs or default_jobs())
     budget = Budget(timeout or None, memory or None)
     stdin = {}
     if "-" in files:
@@ -108,6 +124,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
     kept = [cache.get(path, options_for(path)) if cache and path != "-" else None
             for path in files]
     todo = [index for index, found in enumerate(kept) if found is None]
+    jobs = max(1, jobs or auto_jobs(len(todo)))
 
     if todo:
         from urdftool.lint import engine  # noqa: F401  (before the workers fork: they inherit it)
@@ -512,5 +529,5 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
-           "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
+           "auto_jobs", "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
            "stop_finding"]
