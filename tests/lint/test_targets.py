@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import shutil
 
-from conftest import ROBOTS
+from conftest import CASES, ROBOTS
 
 
 def test_macro_file_checks_the_robot_that_includes_it(run_cli):
@@ -203,6 +203,16 @@ def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
     assert "companion of " in result.stderr and "controllers: " in result.stderr
     clean = run_cli("check", root / "pkg/config/a_controllers.yaml", "--format", "json")
     assert clean.exit_code == 0 and '"files": 1' in clean.stdout
+
+
+def test_a_companion_in_the_config_folder_of_a_robot_outside_any_repository(run_cli, tmp_path):
+    # discovery finds config/ beside a robot wherever it is; naming the companion found nothing
+    # to check when no repository or package held them (the robots were looked for below
+    # config/ only)
+    shutil.copytree(CASES / "U602_controller_unknown_joint", tmp_path / "ctl")
+    result = run_cli("check", tmp_path / "ctl" / "config" / "controllers.yaml")
+    assert result.exit_code == 1 and "U602" in result.stdout
+    assert "a companion of" in result.stderr and "robot.urdf" in result.stderr
 
 
 def test_a_yaml_no_robot_uses_checks_nothing(run_cli, tmp_path):

@@ -50,7 +50,7 @@ from pathlib import Path
 
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
-from urdftool.description.files import inside
+from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.packages import containment_root
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -104,16 +104,16 @@ def _discover(robot) -> Companions:
     folders = search_folders(Path(robot.path)) if robot.path != "-" else []
     owner = _Owner(robot, folders)
     if named.controllers:
-        found.controllers = [read_yaml(Path(p)) for p in named.controllers]
+        found.controllers = [read_yaml(Path(p), "named controllers") for p in named.controllers]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
     if named.srdf:
-        found.srdf = read_srdf(Path(named.srdf))
+        found.srdf = read_srdf(Path(named.srdf), "named SRDF")
     else:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
     if named.spec:
-        found.spec = read_yaml(Path(named.spec))
+        found.spec = read_yaml(Path(named.spec), "named spec")
     else:
         found.spec = _auto_yaml(folders, SPEC_NAMES, owner, found, lambda p: is_spec(p.data) or p.problem,
                                 "a urdftool joint spec")
@@ -132,18 +132,14 @@ def _discover(robot) -> Companions:
 def _beside_srdf(found: Companions, srdf: Path) -> None:
     """MoveIt's YAML files in the SRDF's folder, for the kinds not found yet (regular files
     there, no link leading out)."""
-    try:
-        folder = srdf.resolve(strict=True).parent
-    except OSError:
+    if not kind_of(srdf):
         return
+    folder = Path(real_path(srdf)).parent
 
     def here(name: str) -> Path | None:
         path = folder / name
-        try:
-            real = path.resolve(strict=True)
-        except OSError:
-            return None
-        return path if real.is_file() and real.parent == folder else None
+        real = Path(real_path(path))
+        return path if kind_of(real) == "file" and real.parent == folder else None
 
     if found.kinematics is None and (path := here("kinematics.yaml")):
         found.kinematics = read_yaml(path)
@@ -153,10 +149,10 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
         if not is_spec(limits.data):
             found.planning_limits = limits
             found.used[path] = "beside the SRDF"
-    known = {f.path.resolve() for f in found.controllers if f.path.exists()}
+    known = {real_path(f.path) for f in found.controllers if kind_of(f.path)}
     for name in MOVEIT_CONTROLLER_NAMES:
         path = here(name)
-        if path is None or path.resolve() in known:
+        if path is None or real_path(path) in known:
             continue
         parsed = read_yaml(path)
         if parsed.problem or is_moveit_controllers(parsed.data):
@@ -173,6 +169,16 @@ def is_moveit_controllers(data) -> bool:
         return True
     return any(is_moveit_controllers(value.get("ros__parameters")) for value in data.values()
                if isinstance(value, dict))
+
+
+def users_below(companion: Path) -> Path:
+    """The folder below which lie all the robots whose :func:`search_folders` may hold
+    ``companion`` (the inverse of the search): the repository or package holding it (see
+    :func:`~urdftool.description.packages.containment_root`); without either, the folder above
+    a ``config/`` folder (a robot finds its own ``config/``), else the companion's folder."""
+    folder = Path(os.path.abspath(companion)).parent
+    root = containment_root(folder)
+    return folder.parent if root == folder and folder.name == "config" else root
 
 
 def search_folders(robot_path: Path) -> list[Path]:
@@ -195,7 +201,7 @@ def _search_folders(robot_path: Path) -> tuple[Path, ...]:
         folders.append(home.parent / f"{stem}_moveit_config" / "config")
     unique = []
     for folder in dict.fromkeys(folders):
-        if folder.is_dir() and not folder.is_symlink() and inside(folder, root):
+        if kind_of(folder, follow=False) == "folder" and inside(folder, root):
             unique.append(folder)
     return tuple(unique)
 
@@ -208,7 +214,7 @@ def _package(base: Path, root: Path) -> Path | None:
     for folder in [base, *base.parents]:
         if not inside(folder, root):
             return None
-        if (folder / "package.xml").is_file():
+        if kind_of(folder / "package.xml") == "file":
             return folder
         if folder == root:
             return None
@@ -223,17 +229,12 @@ def _candidates(folders: list[Path], pattern: str) -> list[Path]:
 
 @per_run
 def _candidates_in(folder: Path, pattern: str) -> tuple[Path, ...]:
-    try:
-        real_folder = folder.resolve(strict=True)
-    except OSError:
-        return ()
+    real_folder = Path(real_path(folder))
     paths = []
-    for path in sorted(folder.glob(pattern)):
-        try:
-            real = path.resolve(strict=True)
-        except OSError:
-            continue
-        if real.is_file() and real.parent == real_folder:
+    for name, kind in listing(folder, pattern):
+        path = folder / name
+        if kind == "file" or kind == "link" and Path(real_path(path)).parent == real_folder \
+                and kind_of(path) == "file":  # where a link leads is looked at only inside
             paths.append(path)
     return tuple(paths)
 
@@ -288,21 +289,19 @@ def _robots_beside(path: Path) -> list[Path]:
 
 @per_run
 def _robot_files(folder: Path) -> tuple[Path, ...]:
-    try:
-        return tuple(sorted(p for p in folder.iterdir()
-                            if p.name.endswith(ROBOT_SUFFIXES) and p.is_file()))
-    except OSError:
-        return ()
+    return tuple(folder / name for name, kind in listing(
+        folder, "|".join(f"*{suffix}" for suffix in ROBOT_SUFFIXES))
+                 if kind == "file" or kind == "link" and kind_of(folder / name) == "file")
 
 
 def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:
     files, seen = [], set()
     for path in parameter_files(robot):
-        seen.add(path.resolve())
-        files.append(read_yaml(path))
+        seen.add(real_path(path))
+        files.append(read_yaml(path, "controllers named by the URDF"))
         found.used[files[-1].path] = "named by the URDF's <parameters>"
     for path in _candidates(folders, "*.yaml"):
-        if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or path.resolve() in seen:
+        if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or real_path(path) in seen:
             continue
         parsed = read_yaml(path)
         in_config = path.parent.name == "config"
@@ -334,7 +333,8 @@ def parameter_files(robot) -> list[Path]:
         for element in plugin.iter("parameters"):
             value = (element.text or "").strip()
             path = _parameter_path(robot, value, base, package)
-            if path is not None and inside(path, root) and path.is_file() and path not in found:
+            if path is not None and inside(path, root) and kind_of(path) == "file" and \
+                    path not in found:
                 found.append(path)
     return found
 
@@ -351,7 +351,7 @@ def _parameter_path(robot, value: str, base: Path, package: Path | None) -> Path
     if path.is_absolute():
         return path
     for folder in (base, package):
-        if folder is not None and (folder / path).is_file():
+        if folder is not None and kind_of(folder / path) == "file":
             return folder / path
     return None
 
@@ -442,8 +442,8 @@ def may_use(robot_path: Path, companion: Path, text: bytes = b"") -> bool:
     ``<parameters>`` path). Errs on the side of yes: the check itself decides exactly."""
     if companion.name.encode() in text:
         return True
-    real = companion.resolve()
-    if not any(real.parent == folder.resolve() for folder in search_folders(robot_path)):
+    real = Path(real_path(companion))
+    if not any(real.parent == Path(real_path(folder)) for folder in search_folders(robot_path)):
         return False
     stem = robot_path.name.split(".")[0]
     beside = _robots_beside(Path(os.path.abspath(robot_path)))

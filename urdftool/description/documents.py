@@ -139,10 +139,11 @@ class CompanionFile:
 YamlFile = SrdfFile = CompanionFile
 
 
-def read_yaml(path: Path) -> YamlFile:
-    """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports."""
+def read_yaml(path: Path, as_: str = "companion YAML") -> YamlFile:
+    """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports.
+    as_: what it is read as, for the record (:mod:`.record`)."""
     result = YamlFile(path, display_path(path))
-    text = _read_text(path, result)
+    text = _read_text(path, result, as_)
     if text is None:
         return result
     import yaml
@@ -178,10 +179,10 @@ def _error_line(error, text: str) -> int | None:
     return min(mark.line + 1, last)
 
 
-def read_srdf(path: Path) -> SrdfFile:
+def read_srdf(path: Path, as_: str = "companion SRDF") -> SrdfFile:
     """Parse one SRDF; a syntax error becomes ``problem`` at its line."""
     result = SrdfFile(path, display_path(path))
-    text = _read_text(path, result)
+    text = _read_text(path, result, as_)
     if text is None:
         return result
     from lxml import etree
@@ -223,11 +224,11 @@ def _start_tag_lines(root, text: str) -> None:
             element.sourceline = line
 
 
-def _read_text(path: Path, result) -> str | None:
+def _read_text(path: Path, result, as_: str) -> str | None:
     """The file's text when it is a regular file of at most MAX_SIZE bytes; else None and
     ``result.problem`` says why (nothing is read from a FIFO or a device)."""
     try:
-        return read_regular(path, MAX_SIZE).decode("utf-8")
+        return read_regular(path, MAX_SIZE, as_).decode("utf-8")
     except TooLarge:
         result.problem = f"larger than {MAX_SIZE} bytes; not read"
     except OSError as error:

@@ -19,7 +19,7 @@ import re
 from pathlib import Path
 
 from urdftool.description.actuation import gazebo_plugins
-from urdftool.description.files import read_regular
+from urdftool.description.files import kind_of, read_regular
 from urdftool.description.packages import containment_root
 
 _BUILD_TOOL = re.compile(rb"<buildtool_depend>\s*(catkin|ament_cmake|ament_python)\s*</buildtool_depend>")
@@ -65,9 +65,10 @@ def _package_build_tool(robot) -> tuple[int, str] | None:
     root = containment_root(start)
     for folder in [start, *start.parents]:
         manifest = folder / "package.xml"
-        if manifest.is_file():
+        if kind_of(manifest) == "file":
             try:
-                match = _BUILD_TOOL.search(read_regular(manifest, 1024 * 1024))
+                match = _BUILD_TOOL.search(read_regular(manifest, 1024 * 1024,
+                                                        as_="package manifest"))
             except OSError:
                 return None
             if match is None:

@@ -140,6 +140,18 @@ def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> F
 
 
 def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
+    """Load and check, everything read, searched and resolved noted in the result's record
+    (:mod:`urdftool.description.record`): the loader, discovery and every rule read through
+    the one door, so the record is complete; the result cache and the language server read it."""
+    from urdftool.description.record import recording
+
+    with recording() as record:
+        result = _load_and_check(path, options, data)
+    result.record = record
+    return result
+
+
+def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
     from urdftool.description.load import load
 
     try:

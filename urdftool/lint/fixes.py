@@ -22,6 +22,7 @@ import re
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from urdftool.description.files import kind_of
 from urdftool.diagnostics import Edit, Fix
 
 _ATTRIBUTE = re.compile(rb"""(\s+)([^\s/>=]+)(\s*=\s*)("([^"]*)"|'([^']*)')""")
@@ -492,7 +493,7 @@ def converted_mesh(robot, mesh, source, suffix: str):
         return Unfixable(f"mesh '{filename}' has no extension to replace"), ()
     edits = set_attribute(robot, mesh, "filename", filename[:-len(old_suffix)] + suffix)
     target = Path(source).with_suffix(suffix)
-    if isinstance(edits, Unfixable) or target.exists():
+    if isinstance(edits, Unfixable) or kind_of(target):
         return edits, ()
     return edits, (Derived(display_path(target), display_path(source), suffix[1:]),)
 
@@ -576,7 +577,7 @@ def _creation_refusal(fix: Fix, root, created: dict, inside) -> str | None:
             continue
         if not inside(derived.file, root) or not inside(derived.source, root):
             return f"{derived.file} is outside the repository ({root})"
-        if os.path.lexists(derived.file):
+        if kind_of(derived.file, follow=False):
             return f"{derived.file} exists already"
         from urdftool.description.meshes import converted
         from urdftool.errors import MeshProblem

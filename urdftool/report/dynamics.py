@@ -103,7 +103,7 @@ def stance_text(stance, standing_load=None) -> str:
                  "edge" + ("" if stance.stands else " (it tips over)"))
     if stance.assumption:
         lines.append(f"assumption: {stance.assumption}")
-    width = max(len(j) for j in stance.joints)
+    width = max((len(j) for j in stance.joints), default=5)
     lines += ["", "joint torque holding the robot [N m or N]:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
     for joint, standing, fixed, effort in zip(stance.joints, stance.torques, stance.fixed_base,

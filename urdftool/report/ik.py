@@ -45,7 +45,7 @@ def as_dict(chain, solution, given=None) -> dict:
 
 def text(chain, solutions, given=None) -> str:
     """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
-    width = max(len(v.name) for v in chain.variables)
+    width = max((len(v.name) for v in chain.variables), default=5)
     lines = []
     for solution in solutions:
         head = f"{solution.target.name}: " if solution.target.name else ""

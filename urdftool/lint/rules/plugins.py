@@ -90,7 +90,7 @@ def gazebo_plugin_unknown_parameter(robot):
     Bad: ``<wheel_diameter>0.2</wheel_diameter>`` in ``gz-sim-diff-drive-system``
     Good: ``<wheel_radius>0.1</wheel_radius>``
     """
-    import difflib
+    from urdftool.errors import close_names
 
     version, _ = ros_version(robot)
     for element in gazebo_plugins(robot):
@@ -116,7 +116,7 @@ def gazebo_plugin_unknown_parameter(robot):
                     f"{_tag(right)}{'' if len(close) == 1 and not mine else ' (' + ', '.join(_VERSION.get(v, v) for v in vs) + ')'}"
                     for right, vs in close.items()) + "?"
             else:
-                guess = difflib.get_close_matches(child.tag, sorted(names), n=1, cutoff=0.6)
+                guess = close_names(child.tag, sorted(names), n=1, cutoff=0.6)
                 hint = ("it is Gazebo Classic's name" + (f"; the new Gazebo's plugin reads <{guess[0]}>"
                                                           if guess else "") + " (see the system's documentation)")
             yield child, (f"{_label(element, found)} does not read <{child.tag}>, so it is ignored; {hint}")
@@ -184,7 +184,7 @@ def gazebo_control_parameters_path(robot):
     Bad: ``<parameters>config/controllers.yaml</parameters>``
     Good: ``<parameters>$(find my_robot)/config/controllers.yaml</parameters>``
     """
-    from urdftool.description.files import inside
+    from urdftool.description.files import inside, kind_of
     from urdftool.description.packages import containment_root
 
     root = containment_root(Path(robot.path).parent) if robot.path != "-" else None
@@ -203,6 +203,7 @@ def gazebo_control_parameters_path(robot):
                 yield child, (f"<parameters> '{value}' is a relative path, resolved against the working "
                               "directory of whoever launches Gazebo; write $(find PACKAGE)/"
                               f"{value}"), None, Severity.WARNING
-            elif root is not None and inside(Path(value).parent, root) and not Path(value).is_file():
+            elif root is not None and inside(Path(value).parent, root) and \
+                    kind_of(value) != "file":
                 yield child, (f"<parameters> '{value}' does not exist: the controller manager starts "
                               "without the controllers' parameters")

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool import simulators as facts
+from urdftool.description.files import kind_of
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import child_list, first_child
@@ -126,7 +127,7 @@ def _exists(robot, filename: str) -> Path | None:
         if problem.kind == "format":  # a file with an extension urdftool does not open
             try:
                 found = robot.resolve_uri(filename)
-                return found if found.is_file() else None
+                return found if kind_of(found) == "file" else None
             except Exception:  # noqa: BLE001 - an unknown package: not found
                 return None
         return None
@@ -384,7 +385,7 @@ def mujoco_mesh_not_found(robot):
             continue  # U920
         name = filename.replace("\\", "/").rsplit("/", 1)[-1] if strips else filename
         path = Path(name) if Path(name).is_absolute() else folder / name
-        if not path.is_file():
+        if kind_of(path) != "file":
             yield mesh, (f"{_where(link, holder)}: {_as_of(robot, 'mujoco')} looks for mesh "
                          f"'{filename}' at {path}, which does not exist: the load fails")
 
@@ -677,7 +678,7 @@ def _pybullet_finds(robot, filename: str) -> bool | None:
     urdf = os.path.abspath(robot.files[0] if robot.files else robot.path)
     attempts = [name] if os.path.isabs(name) else []
     attempts += [urdf[:at] + "/" + name for at, char in enumerate(urdf) if char == "/"]
-    if any(os.path.isfile(attempt) for attempt in attempts):
+    if any(kind_of(attempt) == "file" for attempt in attempts):
         return True
     return None if _exists(robot, filename) is not None else False
 
@@ -893,7 +894,7 @@ def drake_file_not_found(robot):
 
 def _texture_missing(robot, filename: str) -> bool:
     try:
-        return not robot.resolve_uri(filename).is_file()
+        return kind_of(robot.resolve_uri(filename)) != "file"
     except Exception:  # noqa: BLE001 - an unknown package: Drake cannot find it either
         return True
 
