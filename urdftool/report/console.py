@@ -63,11 +63,13 @@ def plain_tables(rows: int, stream=None) -> bool:
 def write_table(stream, title: str, headers: list[str], rows: list[list[str]],
                 left: int = 1) -> None:
     """A table as plain text: its title, then the headers and the rows in columns two spaces
-    apart, the ``left`` leading (text) columns left-aligned, the numbers right-aligned. Every
-    cell is made printable (a name cannot start a line of its own)."""
+    apart, the ``left`` leading (text) columns left-aligned, the numbers right-aligned. The
+    title, the headers and the text cells are made printable (a name cannot start a line of
+    its own); the numbers are this program's."""
     from urdftool.report.summary import printable
 
-    cells = [[printable(cell) for cell in line] for line in [headers, *rows]]
+    cells = [[printable(cell) for cell in headers]]
+    cells += [[*map(printable, row[:left]), *row[left:]] for row in rows]
     widths = [max(len(line[i]) for line in cells) for i in range(len(headers))]
     out = [printable(title)]
     for line in cells:
