@@ -22,11 +22,11 @@ demo: $(INSTALLED)
 
 # The sweeps (marked slow: minutes) run by their own targets, not here.
 test: $(INSTALLED)
-	$(PY) -m pytest -n auto -m "not slow"
+	$(PY) -m pytest -n auto --dist loadgroup -m "not slow"
 
 # The inner loop: unit tests only, without the corpus, parity, fuzz and documentation runs.
 test-fast: $(INSTALLED)
-	$(PY) -m pytest -n auto -m "not integration and not network"
+	$(PY) -m pytest -n auto --dist loadgroup -m "not integration and not network"
 
 # The documentation generated from the rules (docs/rules/, the table in docs/targets.md): run it
 # after adding or changing a rule, or after a merge; `make test` fails while a page is stale.

@@ -28,7 +28,8 @@ LAYERS = [
     ("lint", ("urdftool.lint",)),
     ("crosscheck", ("urdftool.crosscheck",)),
     ("report", ("urdftool.report",)),
-    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin",
+    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.help_text",
+             "urdftool.pytest_plugin",
              "urdftool.server")),
     ("api", ("urdftool",)),
 ]

@@ -91,7 +91,8 @@ def check(
                                         "U018, exit 1", default=None,
                                         note=" [default: 2G, or max-memory in the settings]"),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
-                             help="Check files in N worker processes [default: number of cores]."),
+                             help="Check files in N worker processes [default: one per idle core, "
+                                  "at most one per 4 files]."),
     fix: bool = typer.Option(False, "--fix", help="Apply the safe fixes ([*] in the report) to "
                              "the files (inside the repository), then report what remains."),
     unsafe_fixes: bool = typer.Option(False, "--unsafe-fixes",

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from urdftool.numbers import number
-from urdftool.report.console import fixed, print_table, wide_console
+from urdftool.report.console import fixed, plain_tables, print_table, wide_console, write_table
 
 
 def verify_line(count: int, seed, position: float, rotation: float, tolerance: float) -> str:
@@ -72,17 +72,34 @@ HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
-    from rich.markup import escape
-
-    console = wide_console()
+    plain = plain_tables(len(result.frames))
+    console = None if plain else wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
-        print_table(console, title, HEADERS, [
-            [name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k], *quaternions[row, k]))]
-            for k, name in enumerate(result.frames)])
+        rows = [[name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k],
+                                            *quaternions[row, k]))]
+                for k, name in enumerate(result.frames)]
+        if plain:
+            write_table(sys.stdout, title, HEADERS, rows)
+            if matrix:
+                _plain_matrices(result, row)
+            continue
+        print_table(console, title, HEADERS, rows)
         if matrix:
+            from rich.markup import escape
+
             for k, name in enumerate(result.frames):
                 console.print(f"{escape(name)}:")
                 for line in result.matrices[row, k]:
                     console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))
+
+
+def _plain_matrices(result, row: int) -> None:
+    from urdftool.report.summary import printable
+
+    lines = []
+    for k, name in enumerate(result.frames):
+        lines.append(f"{printable(name)}:")
+        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line) for line in result.matrices[row, k]]
+    sys.stdout.write("\n".join(lines) + "\n")
