@@ -17,6 +17,7 @@ from lsprotocol import types  # noqa: E402
 from pytest_lsp import ClientServerConfig, LanguageClient, client_capabilities  # noqa: E402
 
 from conftest import CASES  # noqa: E402
+from rule_links import assert_rule_page  # noqa: E402
 
 MACRO = """\
 <?xml version="1.0"?>
@@ -46,6 +47,12 @@ LIMIT_LINE, CALL_LINE = 7, 4  # 0-based: the <limit> in arm.xacro, the macro cal
 @pytest_lsp.fixture(config=ClientServerConfig(
     server_command=[sys.executable, "-m", "urdftool", "server"]))
 async def client(lsp_client: LanguageClient):
+    lsp_client.registrations = []
+
+    @lsp_client.feature(types.CLIENT_REGISTER_CAPABILITY)
+    def register(params: types.RegistrationParams):  # as an editor does: it watches the files
+        lsp_client.registrations.extend(params.registrations)
+
     await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities("visual-studio-code")))
     yield
@@ -106,7 +113,7 @@ async def test_a_finding_in_an_included_macro_is_published_there_and_cleared_whe
         (LIMIT_LINE, "U204", "urdftool")
     assert on_macro.severity == types.DiagnosticSeverity.Error
     assert "lower limit 1 is above upper limit -1" in on_macro.message
-    assert on_macro.code_description.href.endswith("#u204")
+    assert_rule_page(on_macro.code_description.href, "U204")
     assert [(r.location.uri, r.location.range.start.line) for r in on_macro.related_information] \
         == [(uri, CALL_LINE)]
     [at_call] = client.diagnostics[uri]
@@ -274,7 +281,9 @@ def test_without_pygls_the_command_says_which_extra_to_install():
     result = subprocess.run([sys.executable, "-c", hide], capture_output=True, text=True,
                             timeout=120)
     assert result.returncode == 2
-    assert "pip install 'urdftool[lsp]'" in result.stderr and "Traceback" not in result.stderr
+    from urdftool.origin import install_command
+
+    assert install_command("lsp") in result.stderr and "Traceback" not in result.stderr
 
 
 def test_ranges_count_in_the_clients_units():
@@ -344,3 +353,78 @@ def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offl
     server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
     server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
     assert sent == [(uri, 0)]  # the check that started later wins
+
+
+PACKAGE_ROBOT = """\
+<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="arm.xacro"/>
+  <link name="base_link"><visual><geometry><mesh filename="package://pkg/meshes/base.stl"/>
+  </geometry></visual></link>
+  <xacro:arm prefix="left" lower="-1" upper="1"/>
+</robot>
+"""
+CONTROLLERS = """\
+arm_controller:
+  type: position_controllers/JointGroupPositionController
+  joints: [elbow]
+"""
+
+
+def _package(root: Path) -> Path:
+    """A repository holding package pkg: the robot in urdf/ including a macro file, a mesh in
+    meshes/, no config/ yet. Returns the robot file."""
+    (root / ".git").mkdir()
+    package = root / "pkg"
+    (package / "package.xml").parent.mkdir()
+    (package / "package.xml").write_text("<package><name>pkg</name></package>\n")
+    write_robot(package / "urdf", PACKAGE_ROBOT)
+    (package / "meshes").mkdir()
+    import trimesh
+
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "base.stl")
+    return package / "urdf" / "robot.urdf.xacro"
+
+
+def test_the_record_of_a_check_says_which_changes_concern_a_robot(offline_server, tmp_path):
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    robot = str(_package(tmp_path))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    package = tmp_path / "pkg"
+    for concerned in ["urdf/arm.xacro", "urdf/robot.urdf.xacro", "meshes/base.stl",
+                      "package.xml", "config/controllers.yaml", "urdf/controllers.yaml",
+                      "urdf/config/robot.srdf", "urdf/urdftool.toml", "pyproject.toml"]:
+        assert server.concerned(str(package / concerned)) == [robot], concerned
+    # (a file in config/, which is not there yet, concerns it: config/ would be searched)
+    for unconcerned in ["README.md", "urdf/notes.txt", "meshes/other.stl", "launch/x.py"]:
+        assert server.concerned(str(package / unconcerned)) == [], unconcerned
+
+
+@pytest.mark.asyncio
+async def test_a_file_created_outside_the_editor_rechecks_the_robots_that_searched_for_it(
+        client: LanguageClient, tmp_path):
+    robot = _package(tmp_path)
+    uri = open_document(client, robot)
+    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    assert codes(client, uri) == []
+    assert [r.method for r in client.registrations] == ["workspace/didChangeWatchedFiles"]
+
+    controllers = tmp_path / "pkg" / "config" / "controllers.yaml"  # config/ made too
+    controllers.parent.mkdir()
+    controllers.write_text(CONTROLLERS)
+    client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
+        types.FileEvent(uri=controllers.as_uri(), type=types.FileChangeType.Created)]))
+    await wait_until(lambda: ("U602" in [code for _, code in codes(client, controllers.as_uri())]))
+
+    controllers.write_text(CONTROLLERS.replace("elbow", "left_joint"))  # changed, then fixed
+    client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
+        types.FileEvent(uri=controllers.as_uri(), type=types.FileChangeType.Changed)]))
+    await wait_until(lambda: "U602" not in [c for _, c in codes(client, controllers.as_uri())])
+
+    macro = robot.parent / "arm.xacro"  # an included file changed (a checkout, another editor)
+    macro.write_text(MACRO.replace("lower=\"${lower}\"", "lower=\"2\""))
+    client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
+        types.FileEvent(uri=macro.as_uri(), type=types.FileChangeType.Changed)]))
+    await wait_until(lambda: codes(client, macro.as_uri()) == [(LIMIT_LINE, "U204")])

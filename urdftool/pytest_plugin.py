@@ -93,7 +93,7 @@ def _text(run) -> str:
     that pytest's short summary shows the first."""
     from urdftool.report.summary import printable, via_text
 
-    lines = []
+    lines = [printable(f"urdftool: error: {error}") for error in run.errors]  # settings
     for result in run.results:
         for finding in result.failures:
             lines.append(printable(f"{finding.location}: {finding.severity.value} {finding.code} "

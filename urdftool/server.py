@@ -6,9 +6,17 @@
   the settings file above it (``urdftool.toml`` or ``[tool.urdftool]``), as ``urdftool check``
   would check it.
 - A macro library (a ``.xacro`` that only defines macros) is checked through the robots that
-  include it, and a companion file (controllers ``.yaml``, ``.srdf``) through the robots beside it
-  and the robots whose last check read it; both on open and on save, since the robot reads them
+  include it, and a companion file (controllers ``.yaml``, ``.srdf``) through the robots
+  ``urdftool check`` would check with it; both on open and on save, since the robot reads them
   from disk.
+- Which robots a file saved, created, changed or removed concerns is asked of each robot's
+  record (:mod:`urdftool.description.record`): the record of its last check, made by the
+  loader and discovery as they read, names every file read, folder searched (found empty too),
+  path probed and link followed. A saved include, companion, mesh or settings file, and a new
+  file in a folder discovery searched (a ``config/controllers.yaml`` made beside a robot that
+  had none) re-check the robots concerned. Changes made outside the editor arrive as
+  ``workspace/didChangeWatchedFiles``, for which the server asks the client to watch every file
+  of the workspace when the client can.
 - A finding is published on the file it is located in, whichever document was checked: one in an
   included macro file appears on that file, and at each macro call site (with related
   information pointing at the other). Each robot's diagnostics are kept per file, so a re-check
@@ -44,7 +52,6 @@ from urdftool.diagnostics import Finding, Location, Severity, display_path
 
 ROBOT_SUFFIXES = (".urdf", ".xacro")
 COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
-SETTINGS_NAMES = ("urdftool.toml", "pyproject.toml")
 DEBOUNCE = 0.3  # [s] quiet time after the last change before the buffer is checked
 SOURCE = "urdftool"
 
@@ -59,13 +66,12 @@ logger = logging.getLogger(__name__)
 
 
 def kind_of(path: str) -> str | None:
-    """'robot', 'companion', 'settings', or None for a file the server leaves alone."""
+    """'robot', 'companion', or None for a file the server shows no diagnostics of its own
+    for (a settings file, a mesh: saving one re-checks the robots whose record names it)."""
     name = os.path.basename(path)
     if name.endswith(ROBOT_SUFFIXES):
         return "robot"
-    if name.endswith(COMPANION_SUFFIXES):
-        return "companion"
-    return "settings" if name in SETTINGS_NAMES else None
+    return "companion" if name.endswith(COMPANION_SUFFIXES) else None
 
 
 # ---- in the worker thread: checking, and findings -> diagnostics ------------------------------
@@ -88,7 +94,8 @@ class Outcome:
 
     version: of its open document whose text was checked; None when read from disk
     by_path: diagnostics per file (absolute path); the robot's own file always has an entry
-    uses: the files the check read (the robot, its includes, its companions)
+    record: what the check read, searched, probed and followed
+        (:class:`~urdftool.description.record.Record`), None when it raised
     error: why the check raised, instead of findings: a UrdftoolError's message (a settings
         file in error: ``user_error``) or a traceback (a bug)
     """
@@ -96,51 +103,35 @@ class Outcome:
     robot: str
     version: int | None
     by_path: dict[str, list[Shown]] = field(default_factory=dict)
-    uses: set[str] = field(default_factory=set)
+    record: object | None = None
     error: str | None = None
     user_error: bool = False
     seconds: float = 0.0
 
 
-def robots_for(path: str, kind: str) -> list[str]:
-    """The robots to check for a change to ``path`` (absolute), as ``urdftool check PATH``
-    finds them: the robot itself, or the robots including a macro library; for a companion, the
-    robots in its folder (or in the folder above its ``config/``)."""
+def robots_for(path: str, kind: str | None) -> list[str]:
+    """The robots to check for ``path`` (absolute) opened or saved, as ``urdftool check PATH``
+    finds them (:func:`urdftool.lint.targets.expand`): the robot itself, the robots including
+    a macro library, the robots checked with a companion file."""
+    from urdftool.description.files import kind_of as found_at
     from urdftool.errors import UrdftoolError
     from urdftool.lint.settings import CheckRequest
     from urdftool.lint.targets import expand
 
-    if kind == "robot":
-        if not os.path.isfile(path):  # not saved yet: its buffer alone
-            return [path]
-        candidates = [path]
-    elif kind == "companion":
-        folder = os.path.dirname(path)
-        folders = [folder] + ([os.path.dirname(folder)]
-                              if os.path.basename(folder) == "config" else [])
-        candidates = sorted(file for f in folders for file in _robot_files_in(f))
-    else:
+    if kind not in ("robot", "companion"):
         return []
-    if not candidates:
-        return []
+    if found_at(path) != "file":
+        return [path] if kind == "robot" else []  # not saved yet: a robot's buffer alone
     try:
-        return [os.path.abspath(file) for file in expand(candidates, CheckRequest()).files]
+        return [os.path.abspath(file) for file in expand([path], CheckRequest()).files]
     except UrdftoolError:  # a settings file in error: checking the robot says so
         return [path] if kind == "robot" else []
-
-
-def _robot_files_in(folder: str) -> list[str]:
-    try:
-        names = os.listdir(folder)
-    except OSError:
-        return []
-    return [os.path.join(folder, name) for name in names if name.endswith(ROBOT_SUFFIXES)
-            and os.path.isfile(os.path.join(folder, name))]
 
 
 def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     """Check ``robot`` (its open buffer when it has one, else the file) and turn its findings
     into diagnostics per file; an exception becomes ``Outcome.error``."""
+    from urdftool.description.record import recording
     from urdftool.errors import UrdftoolError
     from urdftool.lint.runner import check_file
 
@@ -148,8 +139,9 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     outcome = Outcome(robot, buffer.version if buffer else None)
     started = time.monotonic()
     try:
-        result = check_file(robot, data=buffer.text if buffer else None)
-    except UrdftoolError as error:
+        with recording() as outcome.record:  # kept when the check raises: fixing a settings
+            result = check_file(robot, data=buffer.text if buffer else None)  # file it read
+    except UrdftoolError as error:  # re-checks it
         outcome.error, outcome.user_error = str(error), True
         return outcome
     except Exception:
@@ -161,22 +153,10 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     if result.robot is not None:
         sources = {os.path.abspath(name): data.decode("utf-8", "replace")
                    for name, data in result.robot.sources.items()}
-        outcome.uses = set(sources) | _companions_read(result.robot)
     texts = _Texts(sources, buffers)
     outcome.by_path = diagnostics_by_path(result.findings, texts, codec, uri_of=texts.uri)
     outcome.by_path.setdefault(robot, [])
     return outcome
-
-
-def _companions_read(robot) -> set[str]:
-    from urdftool.description.companions import companions
-
-    try:
-        found = companions(robot)
-    except Exception:  # discovery is the rules' business: they report what went wrong
-        return set()
-    files = [*found.controllers, found.srdf, found.spec]
-    return {os.path.abspath(file.path) for file in files if file is not None}
 
 
 class _Texts:
@@ -209,7 +189,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_
     """Each finding as a diagnostic on the file it is located in and one at each macro call site
     that produced it (in the robot, or an intermediate macro), keyed by absolute path; each
     points at the others as related information. Findings about standard input are left out."""
-    from urdftool.report.sarif_format import help_uri
+    from urdftool.origin import rule_url
 
     by_path: dict[str, list[Shown]] = {}
     for finding in findings:
@@ -232,7 +212,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_
             diagnostic = types.Diagnostic(
                 range=span, message=message, severity=_SEVERITIES[finding.severity],
                 code=finding.code, source=SOURCE,
-                code_description=types.CodeDescription(href=help_uri(finding.code)),
+                code_description=_code_description(rule_url(finding.code)),
                 related_information=related or None)
             by_path.setdefault(path, []).append((diagnostic, finding))
     return by_path
@@ -286,7 +266,7 @@ class UrdftoolServer(LanguageServer):
         self.open: dict[str, str] = {}  # path -> the URI the editor named it by
         self.targets: dict[str, list[str]] = {}  # document path -> the robots it means
         self.published: dict[str, _Published] = {}  # robot path -> its diagnostics
-        self.uses: dict[str, set[str]] = {}  # robot path -> the files its last check read
+        self.records: dict = {}  # robot path -> the record of its last check
         self.pending: dict[str, asyncio.Task] = {}
         self.tickets = itertools.count(1)
         self.errors_shown: set[str] = set()
@@ -317,6 +297,24 @@ class UrdftoolServer(LanguageServer):
         if path:
             self.schedule(path, 0.0, retarget=True)
 
+    def watched(self, uris: list[str]) -> None:
+        """Files created, changed or removed outside the editor: the robots whose record they
+        concern are checked again (a document open in the editor is left to its own events)."""
+        for uri in uris:
+            path = self.path_of(uri)
+            if path and path not in self.open and self.concerned(path):
+                self.schedule(path, self.debounce, concerned_only=True)
+
+    def concerned(self, path: str) -> list[str]:
+        """The robots checked so far whose last check a change at ``path`` may change: their
+        record says the check read, searched, probed or followed it (see
+        :meth:`~urdftool.description.record.Record.concerns`)."""
+        from urdftool.description.files import kind_of as found_at
+
+        file = found_at(path, follow=False) == "file"
+        return [robot for robot, record in self.records.items()
+                if record is not None and record.concerns(path, file)]
+
     def closed(self, uri: str) -> None:
         """Forget the document; what its robot check published is cleared."""
         path = self.path_of(uri)
@@ -327,10 +325,24 @@ class UrdftoolServer(LanguageServer):
         if task:
             task.cancel()
         self.targets.pop(path, None)
-        self.uses.pop(path, None)
+        self.records.pop(path, None)
         previous = self.published.pop(path, None)
         for shown in previous.by_path if previous else ():
             self._send(shown)
+
+    def watch_files(self) -> None:
+        """Ask the client to report every file of the workspace created, changed or removed
+        (``workspace/didChangeWatchedFiles``), when it can register that dynamically: a
+        record names meshes, package manifests and settings files as well as robots."""
+        capabilities = self.client_capabilities.workspace
+        watched = capabilities.did_change_watched_files if capabilities else None
+        if not (watched and watched.dynamic_registration):
+            return
+        self.client_register_capability(types.RegistrationParams(registrations=[
+            types.Registration(
+                id="urdftool-watch", method=types.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+                register_options=types.DidChangeWatchedFilesRegistrationOptions(
+                    watchers=[types.FileSystemWatcher(glob_pattern="**/*")]))]))
 
     def _buffers(self) -> dict[str, Buffer]:
         buffers = {}
@@ -341,31 +353,30 @@ class UrdftoolServer(LanguageServer):
 
     # -- jobs
 
-    def schedule(self, path: str, delay: float, retarget: bool = False) -> None:
-        """Check what ``path`` means after ``delay`` [s]; a job already waiting or running for
-        it is cancelled (its result, if it comes, is dropped)."""
-        kind = kind_of(path)
-        if kind is None:
-            return
+    def schedule(self, path: str, delay: float, retarget: bool = False,
+                 concerned_only: bool = False) -> None:
+        """Check what ``path`` means (unless ``concerned_only``), and the robots it concerns,
+        after ``delay`` [s]; a job already waiting or running for it is cancelled (its result,
+        if it comes, is dropped)."""
+        kind = None if concerned_only else kind_of(path)
         task = self.pending.pop(path, None)
         if task:
             task.cancel()
         self.pending[path] = asyncio.ensure_future(self._job(path, kind, delay, retarget))
 
-    async def _job(self, path: str, kind: str, delay: float, retarget: bool) -> None:
+    async def _job(self, path: str, kind: str | None, delay: float, retarget: bool) -> None:
         try:
             await asyncio.sleep(delay)
             ticket = next(self.tickets)
             buffers = self._buffers()
-            if kind == "settings":  # a settings file saved: every robot checked so far
-                targets, also = [], list(self.published)
-            else:
-                targets = None if retarget else self.targets.get(path)
-                also = [robot for robot, read in self.uses.items() if path in read]
+            targets = None if retarget or kind is None else self.targets.get(path)
+            also = self.concerned(path)
+            if kind is None and not also:
+                return  # a file no robot checked so far read, searched or followed
             targets, outcomes = await asyncio.get_running_loop().run_in_executor(
                 self.checks, _work, path, kind, targets, also, buffers,
                 self.workspace.position_codec)
-            if kind != "settings":
+            if kind is not None:
                 self.targets[path] = targets
             for outcome in outcomes:
                 self._publish(outcome, ticket)
@@ -381,6 +392,8 @@ class UrdftoolServer(LanguageServer):
     def _publish(self, outcome: Outcome, ticket: int) -> None:
         robot = outcome.robot
         shown = display_path(robot)
+        if outcome.user_error and outcome.record is not None:
+            self.records[robot] = outcome.record  # what it read before it stopped
         if outcome.error is not None:
             what = "cannot check" if outcome.user_error else "internal error checking"
             self._log(types.MessageType.Error, f"{what} {shown}: {outcome.error}")
@@ -398,13 +411,13 @@ class UrdftoolServer(LanguageServer):
         if previous is not None and previous.ticket > ticket:
             return
         self.published[robot] = _Published(ticket, outcome.by_path)
-        self.uses[robot] = outcome.uses
+        self.records[robot] = outcome.record
+        for path in {*outcome.by_path, *(previous.by_path if previous else ())}:
+            self._send(path)
         count = sum(len(v) for v in outcome.by_path.values())
         version = "" if outcome.version is None else f" (version {outcome.version})"
         self._log(types.MessageType.Log, f"checked {shown}{version}: {count} diagnostic(s) "
-                                         f"in {outcome.seconds:.2f} s")
-        for path in {*outcome.by_path, *(previous.by_path if previous else ())}:
-            self._send(path)
+                                         f"in {outcome.seconds:.2f} s")  # after: it is done
 
     def _send(self, path: str) -> None:
         """Publish on ``path`` what every robot's last check found there."""
@@ -472,12 +485,18 @@ def rule_named(word: str, in_comment: bool = False):
     return None
 
 
-def rule_markdown(rule) -> str:
-    from urdftool.report.sarif_format import help_uri
+def _code_description(url: str | None):
+    """The link to a rule's page (urdftool.origin), None when nothing says where it is."""
+    return None if url is None else types.CodeDescription(href=url)
 
+
+def rule_markdown(rule) -> str:
+    from urdftool.origin import rule_url
+
+    url = rule_url(rule.code)
+    link = f"\n\n[{rule.code} in the documentation]({url})" if url else ""
     return (f"**{rule.code} {rule.name}** ({rule.severity.value}, {rule.family})\n\n"
-            f"{rule.doc or rule.summary}\n\n[{rule.code} in the documentation]"
-            f"({help_uri(rule.code)})")
+            f"{rule.doc or rule.summary}{link}")
 
 
 # ---- code actions: a provider maps (document, diagnostic, finding) to code actions ------------
@@ -558,6 +577,14 @@ def make_server(debounce: float = DEBOUNCE) -> UrdftoolServer:
     server = UrdftoolServer(debounce)
     for method, event in _DOCUMENT_EVENTS.items():
         server.feature(method)(_on_document(event))
+
+    @server.feature(types.INITIALIZED)
+    def initialized(ls: UrdftoolServer, params: types.InitializedParams):
+        ls.watch_files()
+
+    @server.feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+    def watched(ls: UrdftoolServer, params: types.DidChangeWatchedFilesParams):
+        ls.watched([change.uri for change in params.changes])
 
     @server.feature(types.TEXT_DOCUMENT_HOVER)
     def hover(ls: UrdftoolServer, params: types.HoverParams):

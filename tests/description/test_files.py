@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import ast
 import os
+from pathlib import Path
 
 import pytest
 
@@ -80,16 +82,125 @@ def test_real_path_is_realpaths_answer_within_a_run_and_without(tmp_path, monkey
         assert [files.real_path(name) for name in reversed(names)] == expected[::-1]
 
 
-def test_reads_are_noted_only_inside_a_block_the_last_read_of_each(tmp_path):
-    path = tmp_path / "robot.urdf"
-    path.write_bytes(b"one")
-    files.read_regular(path)
-    assert files.noted_reads() == {}
-    with files.noting_reads(len) as notes:
-        files.read_regular(path)
-        assert notes == {str(path): 3}
-        path.write_bytes(b"three")
-        with files.noting_reads(bytes.upper) as inner:  # shares the outer block's notes
-            files.read_regular(tmp_path / "." / "robot.urdf")
-        assert inner is notes and files.noted_reads() is notes and notes == {str(path): 5}
-    assert files.noted_reads() == {}
+# ---- the one door: nothing under description/ or lint/ touches the file system itself ----------
+
+PACKAGE = Path(__file__).resolve().parents[2] / "urdftool"
+DOOR = "description/files.py"
+# Modules that still reach the file system themselves, each with why; the test fails on an
+# entry no longer needed, so the list only shrinks.
+ELSEWHERE = {
+    "description/revision.py": "runs git to unpack an old revision into a temporary folder "
+                               "(git's objects, not the work tree a check's record describes)",
+}
+# Calls that open, stat, list, glob, follow links or write, by the dotted name they are made
+# through (a module's function) ...
+_MODULE_CALLS = {
+    "open", "io.open", "os.open", "os.stat", "os.lstat", "os.listdir", "os.scandir", "os.walk",
+    "os.fwalk", "os.readlink", "os.access", "os.path.exists", "os.path.lexists",
+    "os.path.isfile", "os.path.isdir", "os.path.islink", "os.path.ismount", "os.path.getsize",
+    "os.path.getmtime", "os.path.getctime", "os.path.getatime", "os.path.realpath",
+    "os.path.samefile", "os.makedirs", "os.mkdir", "os.remove", "os.unlink", "os.rename",
+    "os.replace", "os.chmod", "os.rmdir", "glob.glob", "glob.iglob", "tomllib.load",
+    "np.load", "np.fromfile", "numpy.load", "numpy.fromfile",
+}
+# ... library functions that take a path or a file object: only what is in memory (bytes read
+# through the door in ``io.BytesIO(data)``, a list of lines) may be given ...
+_PATH_OR_FILE = {"etree.parse", "lxml.etree.parse", "ElementTree.parse", "trimesh.load",
+                 "trimesh.load_mesh", "zipfile.is_zipfile", "zipfile.ZipFile", "tarfile.open",
+                 "Image.open", "PIL.Image.open", "shutil.copy", "shutil.copyfile", "np.loadtxt",
+                 "numpy.loadtxt", "np.genfromtxt"}
+# ... and pathlib's methods (any receiver; ``resolve``, ``exists`` and ``stat`` without
+# arguments, so that ``meshes.resolve(robot, uri)`` is not one).
+_PATH_METHODS = {"glob", "rglob", "iterdir", "is_file", "is_dir", "is_symlink", "read_bytes",
+                 "read_text", "write_bytes", "write_text", "open", "samefile", "readlink",
+                 "is_mount", "touch", "mkdir", "unlink", "rmdir", "lstat", "walk"}
+_PATH_METHODS_WITHOUT_ARGUMENTS = {"resolve", "exists", "stat"}
+_DOOR_NAMES = {"files"}  # ``files.listing(...)``: the door's own functions
+
+
+def _dotted(node) -> str | None:
+    parts = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    if isinstance(node, ast.Name):
+        return ".".join([node.id, *reversed(parts)])
+    return None
+
+
+def _in_memory(node) -> bool:
+    return isinstance(node, (ast.List, ast.ListComp)) or isinstance(node, ast.Call) and \
+        _dotted(node.func) in ("io.BytesIO", "BytesIO", "io.StringIO", "StringIO")
+
+
+def file_system_calls(source: str) -> list[tuple[int, str]]:
+    """(line, call) of every place ``source`` touches the file system itself."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom) and node.module in ("os", "os.path", "glob",
+                                                                 "shutil", "pathlib"):
+            for alias in node.names:
+                if f"{node.module}.{alias.name}" in _MODULE_CALLS or node.module in (
+                        "glob", "shutil"):
+                    found.append((node.lineno, f"from {node.module} import {alias.name}"))
+        if not isinstance(node, ast.Call):
+            continue
+        name = _dotted(node.func)
+        if name in _MODULE_CALLS:
+            found.append((node.lineno, name))
+        elif name in _PATH_OR_FILE:
+            if not (node.args and _in_memory(node.args[0])):
+                found.append((node.lineno, name))
+        elif isinstance(node.func, ast.Attribute):
+            method, receiver = node.func.attr, _dotted(node.func.value)
+            if receiver in _DOOR_NAMES:
+                continue
+            if method in _PATH_METHODS or method in _PATH_METHODS_WITHOUT_ARGUMENTS and \
+                    not node.args:
+                found.append((node.lineno, f".{method}()"))
+    return found
+
+
+def _modules_below_the_door() -> dict[str, Path]:
+    return {path.relative_to(PACKAGE).as_posix(): path
+            for folder in ("description", "lint") for path in sorted(
+                (PACKAGE / folder).rglob("*.py"))}
+
+
+def test_only_the_door_opens_stats_lists_or_globs_files():
+    """Every read of the description and the linter goes through description/files.py, which
+    records it: a reader cannot forget to record what it read, because it cannot read."""
+    offenders = [f"urdftool/{name}:{line}: {call}"
+                 for name, path in _modules_below_the_door().items()
+                 if name != DOOR and name not in ELSEWHERE
+                 for line, call in file_system_calls(path.read_text())]
+    assert offenders == [], (
+        "these touch the file system themselves; use urdftool.description.files "
+        "(read_regular, kind_of, identity, listing, glob, real_path, inside; read_own for "
+        "urdftool's own files), so that the check's record (description/record.py) sees it:\n"
+        + "\n".join(offenders))
+
+
+def test_every_exception_is_still_needed():
+    modules = _modules_below_the_door()
+    assert [name for name in ELSEWHERE if name in modules and
+            file_system_calls(modules[name].read_text())] == list(ELSEWHERE)
+
+
+@pytest.mark.parametrize("source", [
+    "open('x')", "os.stat(p)", "os.path.exists(p)", "os.listdir(p)", "os.scandir(p)",
+    "Path(p).glob('*.yaml')", "p.iterdir()", "p.is_file()", "p.resolve()", "p.exists()",
+    "p.stat()", "etree.parse(str(p))", "trimesh.load(str(p))", "zipfile.is_zipfile(p)",
+    "glob.glob(p)", "os.walk(p)", "from os.path import isfile", "os.path.realpath(p)",
+    "p.read_bytes()", "tomllib.load(handle)", "np.loadtxt(path)"])
+def test_the_scan_sees_each_way_of_touching_files(source):
+    assert file_system_calls(source)
+
+
+@pytest.mark.parametrize("source", [
+    "files.read_regular(p)", "meshes.resolve(robot, uri)", "robot.resolve_uri(uri)",
+    "trimesh.load(io.BytesIO(data), file_type='stl')", "files.walk(folder)", "d.get(k)",
+    "zipfile.is_zipfile(io.BytesIO(data))", "text.replace('a', 'b')", "match.group(1)",
+    "np.loadtxt([text])"])
+def test_the_scan_lets_the_door_and_bytes_through(source):
+    assert file_system_calls(source) == []

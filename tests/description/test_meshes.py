@@ -320,7 +320,7 @@ def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
     for index in range(4):  # arrays and scaled facts: 480 bytes each
         trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
         meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
-    held = sum(size for size, _ in meshes._RUN_CACHE.values())
+    held = sum(entry[0] for entry in meshes._RUN_CACHE.values())
     assert 0 < held == meshes._RUN_CACHE.held <= 2000 and len(meshes._RUN_CACHE) < 8
 
 

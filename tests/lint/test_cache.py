@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+import sys
 
 import pytest
 
+from urdftool.description import files as files_module
 from urdftool.lint import cache as cache_module
 from urdftool.lint import engine
 from urdftool.lint.runner import check_paths
@@ -39,6 +42,28 @@ CONTROLLERS = """arm_controller:
 @pytest.fixture(autouse=True)
 def _own_key(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "home-cache"))
+
+
+@contextlib.contextmanager
+def _opened_below(folder):
+    """The paths below ``folder`` opened or listed while the block runs (an audit hook: it
+    sees every open of Python and of the C libraries it calls through Python)."""
+    opened, watching = [], [True]
+    prefix = str(folder)
+
+    def hook(event, args):
+        if watching[0] and event in ("open", "os.listdir", "os.scandir") and args and \
+                isinstance(args[0], (str, bytes, os.PathLike)):
+            name = os.fsdecode(args[0]) if not isinstance(args[0], os.PathLike) \
+                else os.fspath(args[0])
+            if os.path.realpath(name).startswith(prefix):
+                opened.append(name)
+
+    sys.addaudithook(hook)  # hooks cannot be removed: this one is turned off at the end
+    try:
+        yield opened
+    finally:
+        watching[0] = False
 
 
 def _write_mesh(path, size: float) -> None:
@@ -116,7 +141,7 @@ def test_an_edited_macro_file_mesh_or_companion_changes_the_findings(robot, tmp_
 def test_a_rerun_of_the_same_paths_is_served_whole(robot, tmp_path, monkeypatch):
     from urdftool.lint import targets
 
-    monkeypatch.setattr(cache_module, "RACY_NS", 0)  # files written just now: trust stamps
+    monkeypatch.setattr(files_module, "RACY_NS", 0)  # files written just now: trust stamps
     cache_dir = tmp_path / "cache"
     first = _messages(robot, cache_dir)
     assert len(_entries(cache_dir, "run")) == 1
@@ -154,7 +179,9 @@ def test_a_file_rewritten_within_its_clock_tick_is_seen(robot, tmp_path, monkeyp
     real_os = types.SimpleNamespace(**vars(os))
     real_os.stat = lambda path, *a, **k: frozen if os.fspath(path) == parts else os.stat(
         path, *a, **k)
-    monkeypatch.setattr(cache_module, "os", real_os)
+    monkeypatch.setattr(files_module, "os", real_os)
+    # the check reads the file within the tick it was written in, however loaded the host
+    monkeypatch.setattr(files_module, "RACY_NS", 600 * 10 ** 9)
     cache_dir = tmp_path / "cache"
     assert any("-1 kg" in message for _, message in _messages(robot, cache_dir))
     (robot / "parts.xacro").write_text(PARTS.format(mass=-2))
@@ -263,7 +290,7 @@ def _kept_run(robot, cache_dir):
 
 
 def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, monkeypatch):
-    monkeypatch.setattr(cache_module, "RACY_NS", 0)  # files written just now: trust stamps
+    monkeypatch.setattr(files_module, "RACY_NS", 0)  # files written just now: trust stamps
     cache_dir = tmp_path / "cache"
     run = _kept_run(robot, cache_dir)
     assert run.depends and _kept_run(robot, cache_dir).depends == run.depends  # as served
@@ -337,8 +364,7 @@ def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeyp
     assert after == _messages(robot, tmp_path / "another-cache")  # as checked afresh
 
 
-def test_links_leading_out_of_the_repository_are_neither_read_nor_stamped(robot, tmp_path,
-                                                                          monkeypatch):
+def test_links_leading_out_of_the_repository_are_neither_read_nor_stamped(robot, tmp_path):
     # found by make fuzz with the cache on: to tell a kept result stale, the cache hashed every
     # .yaml and .srdf beside the robot and in config/, and every mesh, following links that the
     # loader refuses to follow (limits.yaml -> /etc/passwd was opened, its hash kept in the
@@ -352,22 +378,20 @@ def test_links_leading_out_of_the_repository_are_neither_read_nor_stamped(robot,
     (robot / "config" / "leak.yaml").symlink_to(secret)
     (robot / "part.stl").unlink()
     (robot / "part.stl").symlink_to(outside / "part.stl")
-    read = []
-    real_read = cache_module.read_regular
-    monkeypatch.setattr(cache_module, "read_regular",
-                        lambda path, *rest: read.append(os.path.realpath(path))
-                        or real_read(path, *rest))
     cache_dir = tmp_path / "cache"
-    first = _messages(robot, cache_dir)
-    assert not [path for path in read if path.startswith(str(outside))]
+    with _opened_below(outside) as opened:
+        first = _messages(robot, cache_dir)
+        checked = []
+        with pytest.MonkeyPatch.context() as patch:
+            checked = _counting_checks(patch)
+            assert _messages(robot, cache_dir) == first and checked == []  # still served
+    assert opened == []
     kept = "".join(entry.read_text() for kind in ("file", "run")
                    for entry in _entries(cache_dir, kind))
     status = os.stat(secret)
     assert f"{status.st_dev}:{status.st_ino}:" not in kept
-    assert cache_module._digest(secret.read_bytes()) not in kept
-    assert f"outside:{secret}" in kept and f"outside:{outside / 'part.stl'}" in kept
-    checked = _counting_checks(monkeypatch)
-    assert _messages(robot, cache_dir) == first and checked == []  # still served
+    assert files_module.digest(secret.read_bytes()) not in kept
+    assert str(secret) in kept and str(outside / "part.stl") in kept  # where the links lead
 
 
 def test_a_companion_named_on_the_command_line_is_followed_wherever_it_leads(robot, tmp_path):
@@ -415,3 +439,125 @@ def test_an_edited_or_new_launch_file_changes_the_findings(robot, tmp_path):
     assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
     (robot / "launch" / "more.launch").write_text(LAUNCH.format(spawned="arm_controller"))
     assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
+
+
+@pytest.fixture
+def package(tmp_path):
+    """A ROS package whose robot is in urdf/ and whose controllers go in the package's
+    config/, which does not exist yet."""
+    (tmp_path / ".git").mkdir()
+    folder = tmp_path / "pkg"
+    (folder / "urdf").mkdir(parents=True)
+    (folder / "package.xml").write_text("<package><name>pkg</name></package>\n")
+    (folder / "urdf" / "bot.urdf").write_text(
+        '<robot name="bot"><link name="base"/><link name="arm"/>\n'
+        '<joint name="arm_joint" type="revolute"><parent link="base"/><child link="arm"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        '</robot>\n')
+    return folder
+
+
+def _codes(robot_file, cache_dir) -> set[str]:
+    run = check_paths([str(robot_file)], cache_dir=cache_dir, timeout=0, max_memory="0",
+                      jobs=1)
+    return {f.code for f in run.results[0].findings}
+
+
+@pytest.mark.parametrize("config", ["created later", "there, empty"])
+def test_a_companion_added_to_the_package_of_a_robot_checked_clean_is_seen(package, tmp_path,
+                                                                          config):
+    # issue 31: the cache kept its own list of companion folders (the robot's and its config/),
+    # not discovery's (the package's config/ too): adding pkg/config/controllers.yaml went
+    # unnoticed by a cached run while --no-cache reported U602
+    robot_file = package / "urdf" / "bot.urdf"
+    if config == "there, empty":
+        (package / "config").mkdir()
+    cache_dir = tmp_path / "cache"
+    assert "U602" not in _codes(robot_file, cache_dir)
+    (package / "config").mkdir(exist_ok=True)
+    (package / "config" / "controllers.yaml").write_text(CONTROLLERS.format(joint="elbow"))
+    uncached = _codes(robot_file, tmp_path / "fresh-cache")
+    assert "U602" in uncached
+    assert _codes(robot_file, cache_dir) == uncached
+
+
+def test_a_settings_file_or_package_manifest_made_later_is_seen(package, tmp_path, monkeypatch):
+    # what finding the settings and the package probed, found missing, is in the record too
+    monkeypatch.setattr(files_module, "RACY_NS", 0)
+    robot_file = package / "urdf" / "bot.urdf"
+    cache_dir = tmp_path / "cache"
+    (package / "urdf" / "bot.urdf").write_text(
+        robot_file.read_text().replace('upper="1"', 'upper="-2"'))
+    assert "U204" in _codes(robot_file, cache_dir)
+    (package / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    assert "U204" not in _codes(robot_file, cache_dir)
+
+
+@pytest.mark.parametrize("uri", ["file://{outside}/part.stl", "../../outside/part.stl"])
+def test_a_mesh_outside_the_repository_is_never_opened_by_the_cache(tmp_path, uri):
+    # issue 29, item 5: the loader refuses such a mesh (U409), and the cache resolved the URI
+    # itself, opened the file and kept its hash
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    _write_mesh(outside / "part.stl", 0.1)
+    repository = tmp_path / "repo"
+    (repository / ".git").mkdir(parents=True)
+    (repository / "urdf").mkdir()
+    robot_file = repository / "urdf" / "bot.urdf"
+    robot_file.write_text(
+        '<robot name="bot"><link name="base"><visual><geometry><mesh filename="'
+        f'{uri.format(outside=outside)}"/></geometry></visual></link></robot>\n')
+    cache_dir = tmp_path / "cache"
+    with _opened_below(outside) as opened:
+        first = _codes(robot_file, cache_dir)
+        assert "U409" in first
+        assert _codes(robot_file, cache_dir) == first
+    assert opened == []
+    kept = "".join(entry.read_text() for kind in ("file", "run")
+                   for entry in _entries(cache_dir, kind))
+    assert files_module.digest((outside / "part.stl").read_bytes()) not in kept
+    status = os.stat(outside / "part.stl")
+    assert f"{status.st_dev}:{status.st_ino}:" not in kept
+
+
+def test_the_cache_folder_made_in_the_repository_is_no_change(tmp_path, monkeypatch):
+    # a package found by scanning the repository: the scan lists its folders, and the cache's
+    # own folder, made by the first run, is one of them; hidden folders are not scanned (as
+    # catkin and colcon crawl), so the second run is served
+    monkeypatch.setattr(files_module, "RACY_NS", 0)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robots").mkdir()
+    (tmp_path / "other" / "pkg_b" / "meshes").mkdir(parents=True)
+    (tmp_path / "other" / "pkg_b" / "package.xml").write_text("<package><name>pkg_b</name></package>")
+    _write_mesh(tmp_path / "other" / "pkg_b" / "meshes" / "m.stl", 0.1)
+    (tmp_path / "robots" / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry>'
+        '<mesh filename="package://pkg_b/meshes/m.stl"/></geometry></visual></link></robot>\n')
+    first = _codes(tmp_path / "robots" / "r.urdf", cache_module.FOLDER)
+    checked = _counting_checks(monkeypatch)
+    assert _codes(tmp_path / "robots" / "r.urdf", cache_module.FOLDER) == first
+    assert checked == []
+
+
+def test_a_file_a_rule_looked_for_made_later_is_seen(package, tmp_path):
+    # rules ask the door too: MuJoCo looks for meshes in its meshdir (U922 until the file is
+    # there), which is no folder the loader or discovery reads
+    _write_mesh(package / "urdf" / "base.stl", 0.1)
+    robot_file = package / "urdf" / "bot.urdf"
+    robot_file.write_text(robot_file.read_text().replace(
+        '<link name="base"/>', '<mujoco><compiler meshdir="../assets"/></mujoco><link '
+        'name="base"><collision><geometry><mesh filename="base.stl"/></geometry></collision>'
+        '</link>'))
+
+    def codes(cache_dir):
+        run = check_paths([str(robot_file)], cache_dir=cache_dir, timeout=0, max_memory="0",
+                          jobs=1, targets=["mujoco"])
+        return {f.code for f in run.results[0].findings}
+
+    cache_dir = tmp_path / "cache"
+    assert "U922" in codes(cache_dir)
+    (package / "assets").mkdir()
+    _write_mesh(package / "assets" / "base.stl", 0.1)
+    assert "U922" not in codes(tmp_path / "fresh-cache")
+    assert "U922" not in codes(cache_dir)

@@ -1,4 +1,5 @@
-"""The catalogue: every code declared once, in order, and documented; the README table current."""
+"""The catalogue: every code declared once, in order, and documented (the pages generated from
+it: tests/test_docs.py)."""
 
 import ast
 import re
@@ -7,14 +8,8 @@ import types
 import pytest
 
 from conftest import ROOT
-from urdftool.docs import with_table
 from urdftool.lint.catalogue import Catalogue, Severity, UnknownRule, declare, rule
 from urdftool.lint.rules import CATALOGUE, FAMILY_MODULES
-
-
-def test_readme_rules_table_is_current():
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    assert text == with_table(text), "README rules table is stale: run python -m urdftool.docs README.md"
 
 
 def test_every_rule_is_documented():
@@ -116,3 +111,33 @@ def test_find_names_the_close_rules():
     with pytest.raises(UnknownRule, match="the rules starting with U7 are: U701"):
         CATALOGUE.find("U7")
     assert CATALOGUE.find("u204").name == "inverted-limits"
+
+
+def test_a_finding_may_be_less_severe_than_its_rule_never_more():
+    from urdftool.diagnostics import Location
+
+    @rule("U999", "conditional", Severity.WARNING)
+    def conditional(robot):
+        """A defect that holds under a condition."""
+        yield None, "x"
+
+    where = Location("r.urdf", 1)
+    assert conditional.rule.finding("m", where).severity == Severity.WARNING
+    assert conditional.rule.finding("m", where, None, Severity.INFO).severity == Severity.INFO
+    with pytest.raises(ValueError, match="cannot be more severe"):
+        conditional.rule.finding("m", where, None, Severity.ERROR)
+
+
+def test_the_engine_stamps_a_findings_own_severity(tmp_path):
+    from urdftool.lint.engine import stamp
+
+    @rule("U998", "graded", Severity.ERROR)
+    def graded(robot):
+        """A rule whose findings may be conditional."""
+        yield None, "x"
+
+    robot = types.SimpleNamespace(locate=lambda where: None)
+    from urdftool.diagnostics import Location
+    at = Location("r.urdf", 3)
+    assert stamp(graded.rule, at, "m", robot).severity == Severity.ERROR
+    assert stamp(graded.rule, at, "m", robot, None, Severity.WARNING).severity == Severity.WARNING

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import shutil
 
-from conftest import ROBOTS
+from conftest import CASES, ROBOTS
 
 
 def test_macro_file_checks_the_robot_that_includes_it(run_cli):
@@ -28,6 +28,20 @@ def test_unused_macro_library_is_skipped(run_cli, tmp_path):
     result = run_cli("check", lib, "--format", "json")
     assert result.exit_code == 0 and '"files": 0' in result.stdout
     assert "nothing to check" in result.stderr
+
+
+def test_a_macro_library_with_another_root_is_skipped_and_other_roots_are_reported(run_cli,
+                                                                                   tmp_path):
+    """Pre-Groovy macro files are ``<root xmlns:xacro=...>`` (mas-group/youbot_description's
+    sensors): a macro library all the same. A non-robot root with content stays U004."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "sensor.urdf.xacro").write_text(
+        '<root xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:property name="w" value="1"/>'
+        '<xacro:macro name="m" params="parent"><link name="a"/></xacro:macro></root>')
+    (tmp_path / "world.urdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    result = run_cli("check", tmp_path, "--format", "json")
+    assert '"code": "U004"' in result.stdout and "world.urdf" in result.stdout
+    assert "sensor.urdf.xacro" not in result.stdout and '"files": 1' in result.stdout
 
 
 def test_finding_in_macro_is_reported_through_its_robot(run_cli, tmp_path):
@@ -191,6 +205,17 @@ def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
     assert clean.exit_code == 0 and '"files": 1' in clean.stdout
 
 
+def test_a_companion_in_the_config_folder_of_a_robot_outside_any_repository(run_cli, tmp_path):
+    # discovery finds config/ beside a robot wherever it is; naming the companion found nothing
+    # to check when no repository or package held them (the robots were looked for below
+    # config/ only)
+    shutil.copytree(CASES / "U602_controller_unknown_joint", tmp_path / "ctl")
+    # (a warning: no launch file says whether the controller is started; --strict fails on it)
+    result = run_cli("check", tmp_path / "ctl" / "config" / "controllers.yaml", "--strict")
+    assert result.exit_code == 1 and "U602" in result.stdout
+    assert "a companion of" in result.stderr and "robot.urdf" in result.stderr
+
+
 def test_a_yaml_no_robot_uses_checks_nothing_quietly(run_cli, tmp_path):
     # issue 30 class 9: pre-commit passes every staged YAML (launch, navigation, CI settings)
     root = _two_robots(tmp_path)
@@ -305,8 +330,8 @@ def test_the_pre_commit_hook_passes_companion_files():
 
 
 def test_a_robot_named_on_the_command_line_does_not_walk_its_repository(monkeypatch):
-    # the include graph is for macro libraries named; walking this repository for r2d2 cost
-    # more than checking it (0.5 s of a 1.2 s `urdftool check r2d2`)
+    # the include graph is for macro libraries named; walking this repository for r2d2 costs
+    # more than checking it
     from urdftool.lint import targets
     from urdftool.lint.settings import CheckRequest
 

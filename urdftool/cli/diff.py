@@ -137,7 +137,8 @@ def _render(old, new, result, path) -> None:
     cannot read exits 1, located in that side's file."""
     from urdftool.errors import SceneError
     from urdftool.kinematics.scene import scene_model
-    from urdftool.report.picture import NEW, OLD, Layer, write
+    from urdftool.report.diff import change_detail
+    from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
 
     worst = result.effects.worst if result.effects is not None else {}
     back = {new_name: old_name for old_name, new_name in result.renames.joints.items()}
@@ -151,4 +152,5 @@ def _render(old, new, result, path) -> None:
             fail_at(robot, error)
     warn(scenes[0].problems + scenes[1].problems)
     write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
-                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")])
+                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")],
+          PictureOptions(detail=change_detail(result)))

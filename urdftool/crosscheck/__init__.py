@@ -22,11 +22,11 @@ from __future__ import annotations
 import math
 import os
 import re
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.budget import Budget
+from urdftool.numbers import number
 from urdftool.crosscheck.loaders import LOADERS, Job, available, version
 
 TOLERANCE = 1e-9  # [m]: frame positions of two loaders that keep a frame must agree within it
@@ -121,7 +121,9 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     present = [name for name in names if available(name)]
     missing = {name: LOADERS[name].install for name in names if name not in present}
     configurations = joint_configurations(robot)
-    with tempfile.TemporaryDirectory(prefix="urdftool-crosscheck-") as folder:
+    from urdftool.description.files import temporary_folder
+
+    with temporary_folder("urdftool-crosscheck-") as folder:
         urdf, lines = _urdf_file(robot, folder)
         job = Job(urdf, _packages(robot), tuple(configurations))
         raw = _run(present, job, budget)
@@ -175,7 +177,9 @@ def _urdf_file(robot, folder: str) -> tuple[str, dict]:
     target = Path(folder) / (Path(robot.display).name.removesuffix(".xacro") or "robot.urdf")
     if not target.name.endswith(".urdf"):
         target = target.with_suffix(".urdf")
-    target.write_text(text, encoding="utf-8")
+    from urdftool.description.files import write_new
+
+    write_new(Path(folder), target.name, text.encode("utf-8"))
     reread = etree.fromstring(text.encode("utf-8"))
     lines = {}
     for mine, theirs in zip(robot.root.iter(), reread.iter()):
@@ -323,7 +327,7 @@ def _compare(report: Crosscheck, robot) -> None:
                 if where is not None and not worst <= tolerance:
                     at = "the zero configuration" if index == 0 else f"configuration {index}"
                     report.disagreements.append(
-                        f"{first.name} and {second.name} place link '{where}' {worst:.3g} m "
+                        f"{first.name} and {second.name} place link '{where}' {number(worst, 3)} m "
                         f"apart at {at}")
     for label, key in (("total mass [kg]", "mass"), ("degrees of freedom", "dof"),
                        ("floating base", "floating_base")):
@@ -331,7 +335,7 @@ def _compare(report: Crosscheck, robot) -> None:
         shown = {v if not isinstance(v, float) else round(v, 9) for v in values.values()}
         if len(shown) > 1:
             report.differences.append(f"{label}: " + ", ".join(
-                f"{name} {value:.6g}" if isinstance(value, float) else f"{name} {value}"
+                f"{name} {number(value, 6)}" if isinstance(value, float) else f"{name} {value}"
                 for name, value in values.items()))
     for result in report.loaders:
         if result.loaded and result.dropped_links:

@@ -58,7 +58,7 @@ from pathlib import Path
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
-from urdftool.description.files import inside
+from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.packages import containment_root
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -117,12 +117,12 @@ def _discover(robot) -> Companions:
     if robot.path != "-":
         found.launch = launched.runtime(robot).describe()
     if named.controllers:
-        found.controllers = [controller_yaml(robot, Path(p)) for p in named.controllers]
+        found.controllers = [controller_yaml(robot, Path(p), "named controllers") for p in named.controllers]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
     launched_srdf = launched.semantic_files(robot) if robot.path != "-" else []
     if named.srdf:
-        found.srdf = read_srdf(Path(named.srdf))
+        found.srdf = read_srdf(Path(named.srdf), "named SRDF")
     elif launched_srdf:
         path, configuration, _ = launched_srdf[0]
         found.srdf = read_srdf(path)
@@ -131,7 +131,7 @@ def _discover(robot) -> Companions:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
     if named.spec:
-        found.spec = read_yaml(Path(named.spec))
+        found.spec = read_yaml(Path(named.spec), "named spec")
     else:
         found.spec = _auto_yaml(folders, SPEC_NAMES, owner, found, lambda p: is_spec(p.data) or p.problem,
                                 "a urdftool joint spec")
@@ -150,18 +150,14 @@ def _discover(robot) -> Companions:
 def _beside_srdf(found: Companions, srdf: Path) -> None:
     """MoveIt's YAML files in the SRDF's folder, for the kinds not found yet (regular files
     there, no link leading out)."""
-    try:
-        folder = srdf.resolve(strict=True).parent
-    except OSError:
+    if not kind_of(srdf):
         return
+    folder = Path(real_path(srdf)).parent
 
     def here(name: str) -> Path | None:
         path = folder / name
-        try:
-            real = path.resolve(strict=True)
-        except OSError:
-            return None
-        return path if real.is_file() and real.parent == folder else None
+        real = Path(real_path(path))
+        return path if kind_of(real) == "file" and real.parent == folder else None
 
     if found.kinematics is None and (path := here("kinematics.yaml")):
         found.kinematics = read_yaml(path)
@@ -171,14 +167,14 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
         if not is_spec(limits.data):
             found.planning_limits = limits
             found.used[path] = "beside the SRDF"
-    known = {f.path.resolve() for f in found.controllers if f.path.exists()}
+    known = {real_path(f.path) for f in found.controllers if kind_of(f.path)}
     for name in MOVEIT_CONTROLLER_NAMES:
         path = here(name)
-        if path is None or path.resolve() in known or path in found.unused:
+        if path is None or real_path(path) in known or path in found.unused:
             continue  # (a list the launch files do not give MoveIt is not used: _auto_controllers)
         parsed = read_yaml(path)
         if found.moveit_given and not parsed.problem and \
-                path.resolve() not in {p.resolve() for p in found.moveit_given}:
+                real_path(path) not in {real_path(p) for p in found.moveit_given}:
             found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
                                   f"{', '.join(display_path(p) for p in found.moveit_given[:2])})")
             continue
@@ -221,6 +217,16 @@ def is_fake_controller_list(data) -> bool:
         for e in entries)
 
 
+def users_below(companion: Path) -> Path:
+    """The folder below which lie all the robots whose :func:`search_folders` may hold
+    ``companion`` (the inverse of the search): the repository or package holding it (see
+    :func:`~urdftool.description.packages.containment_root`); without either, the folder above
+    a ``config/`` folder (a robot finds its own ``config/``), else the companion's folder."""
+    folder = Path(os.path.abspath(companion)).parent
+    root = containment_root(folder)
+    return folder.parent if root == folder and folder.name == "config" else root
+
+
 def search_folders(robot_path: Path) -> list[Path]:
     """The folders companions of the robot file ``robot_path`` are looked for in, as named
     (links not followed), each a folder inside the robot's repository: see the module doc."""
@@ -241,7 +247,7 @@ def _search_folders(robot_path: Path) -> tuple[Path, ...]:
         folders.append(home.parent / f"{stem}_moveit_config" / "config")
     unique = []
     for folder in dict.fromkeys(folders):
-        if folder.is_dir() and not folder.is_symlink() and inside(folder, root):
+        if kind_of(folder, follow=False) == "folder" and inside(folder, root):
             unique.append(folder)
     return tuple(unique)
 
@@ -254,7 +260,7 @@ def _package(base: Path, root: Path) -> Path | None:
     for folder in [base, *base.parents]:
         if not inside(folder, root):
             return None
-        if (folder / "package.xml").is_file():
+        if kind_of(folder / "package.xml") == "file":
             return folder
         if folder == root:
             return None
@@ -269,17 +275,12 @@ def _candidates(folders: list[Path], pattern: str) -> list[Path]:
 
 @per_run
 def _candidates_in(folder: Path, pattern: str) -> tuple[Path, ...]:
-    try:
-        real_folder = folder.resolve(strict=True)
-    except OSError:
-        return ()
+    real_folder = Path(real_path(folder))
     paths = []
-    for path in sorted(folder.glob(pattern)):
-        try:
-            real = path.resolve(strict=True)
-        except OSError:
-            continue
-        if real.is_file() and real.parent == real_folder:
+    for name, kind in listing(folder, pattern):
+        path = folder / name
+        if kind == "file" or kind == "link" and Path(real_path(path)).parent == real_folder \
+                and kind_of(path) == "file":  # where a link leads is looked at only inside
             paths.append(path)
     return tuple(paths)
 
@@ -334,32 +335,30 @@ def _robots_beside(path: Path) -> list[Path]:
 
 @per_run
 def _robot_files(folder: Path) -> tuple[Path, ...]:
-    try:
-        return tuple(sorted(p for p in folder.iterdir()
-                            if p.name.endswith(ROBOT_SUFFIXES) and p.is_file()))
-    except OSError:
-        return ()
+    return tuple(folder / name for name, kind in listing(
+        folder, "|".join(f"*{suffix}" for suffix in ROBOT_SUFFIXES))
+                 if kind == "file" or kind == "link" and kind_of(folder / name) == "file")
 
 
 def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:
     files, seen = [], set()
     named = parameter_files(robot)
     for path in named:
-        seen.add(path.resolve())
-        files.append(controller_yaml(robot, path))
+        seen.add(real_path(path))
+        files.append(controller_yaml(robot, path, "controllers named by the URDF"))
         found.used[files[-1].path] = "named by the URDF's <parameters>"
     facts = launched.runtime(robot) if robot.path != "-" else None
     loaded = facts.loaded_files() if facts is not None else []
     moveit_given = found.moveit_given  # MoveIt settings a launch file loads: it picks MoveIt's list
     for path in loaded:
-        if path.resolve() in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
+        if real_path(path) in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
             continue
         parsed = controller_yaml(robot, path)
         if is_moveit_execution(parsed.data):
             moveit_given.append(path)
         if not looks_like_controllers(parsed.data) and not parsed.problem or is_fake_controller_list(parsed.data):
             continue
-        seen.add(path.resolve())
+        seen.add(real_path(path))
         files.append(parsed)
         launches = sorted({load.launch for load in facts.loads(path)})
         found.used[path] = f"loaded by {', '.join(launches[:3])}"
@@ -367,7 +366,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
     # A launch file loading a file urdftool cannot resolve may load any of those found
     decided = bool(named) or (bool(chosen) and not facts.unresolved_loads())
     for path in _candidates(folders, "*.yaml"):
-        if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or path.resolve() in seen:
+        if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or real_path(path) in seen:
             continue
         parsed = controller_yaml(robot, path)
         in_config = path.parent.name == "config"
@@ -393,25 +392,26 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
     return files
 
 
-def controller_yaml(robot, path: Path) -> YamlFile:
+def controller_yaml(robot, path: Path, as_: str = "companion YAML") -> YamlFile:
     """A controller YAML read as the robot's launch files load it (with or without
-    substitution of its ``$(arg)``/``$(var)``; see ``CompanionFile.substituted``)."""
+    substitution of its ``$(arg)``/``$(var)``; see ``CompanionFile.substituted``); as_: what
+    it is read as, for the record."""
     if robot.path == "-":
-        return read_yaml(path)
+        return read_yaml(path, as_)
     loads = launched.runtime(robot).loads(path)
     if not loads:
-        return read_yaml(path)
+        return read_yaml(path, as_)
     if not any(load.substitute for load in loads):
-        return read_yaml(path, substituted=False)
+        return read_yaml(path, as_, substituted=False)
     if not all(load.substitute for load in loads):
-        return read_yaml(path)
+        return read_yaml(path, as_)
     values: dict[str, str | None] = {}
     for load in loads:
         for name, value in load.args.items():
             text = launched.shown_text(value)
             if values.setdefault(name, text) != text:
                 values[name] = None  # loaded with different values: not known
-    return read_yaml(path, substituted=True,
+    return read_yaml(path, as_, substituted=True,
                      substitutions={k: v for k, v in values.items() if v is not None})
 
 
@@ -432,7 +432,8 @@ def parameter_files(robot) -> list[Path]:
         for element in plugin.iter("parameters"):
             value = (element.text or "").strip()
             path = _parameter_path(robot, value, base, package)
-            if path is not None and inside(path, root) and path.is_file() and path not in found:
+            if path is not None and inside(path, root) and kind_of(path) == "file" and \
+                    path not in found:
                 found.append(path)
     return found
 
@@ -449,7 +450,7 @@ def _parameter_path(robot, value: str, base: Path, package: Path | None) -> Path
     if path.is_absolute():
         return path
     for folder in (base, package):
-        if folder is not None and (folder / path).is_file():
+        if folder is not None and kind_of(folder / path) == "file":
             return folder / path
     return None
 
@@ -540,8 +541,8 @@ def may_use(robot_path: Path, companion: Path, text: bytes = b"") -> bool:
     ``<parameters>`` path). Errs on the side of yes: the check itself decides exactly."""
     if companion.name.encode() in text:
         return True
-    real = companion.resolve()
-    if not any(real.parent == folder.resolve() for folder in search_folders(robot_path)):
+    real = Path(real_path(companion))
+    if not any(real.parent == Path(real_path(folder)) for folder in search_folders(robot_path)):
         return False
     stem = robot_path.name.split(".")[0]
     beside = _robots_beside(Path(os.path.abspath(robot_path)))

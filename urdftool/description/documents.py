@@ -146,16 +146,17 @@ YamlFile = SrdfFile = CompanionFile
 _SUBSTITUTION = re.compile(r"\$\((?:arg|var)\s+([A-Za-z0-9_./-]+)\s*\)")
 
 
-def read_yaml(path: Path, substituted: bool | None = None,
+def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None = None,
               substitutions: dict[str, str] | None = None) -> YamlFile:
     """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports.
+    as_: what it is read as, for the record (:mod:`.record`).
 
     substituted, substitutions: how launch files load it (see ``CompanionFile.substituted``):
     with substitution, each ``$(arg NAME)``/``$(var NAME)`` whose NAME ``substitutions`` holds
     is replaced in the text before it is parsed, as roslaunch and ROS 2's ``allow_substs`` do
     (a value holding a line break is not: lines stay where they were written)."""
     result = YamlFile(path, display_path(path), substituted=substituted)
-    text = _read_text(path, result)
+    text = _read_text(path, result, as_)
     if text is None:
         return result
     if substituted and substitutions:
@@ -194,10 +195,10 @@ def _error_line(error, text: str) -> int | None:
     return min(mark.line + 1, last)
 
 
-def read_srdf(path: Path) -> SrdfFile:
+def read_srdf(path: Path, as_: str = "companion SRDF") -> SrdfFile:
     """Parse one SRDF; a syntax error becomes ``problem`` at its line."""
     result = SrdfFile(path, display_path(path))
-    text = _read_text(path, result)
+    text = _read_text(path, result, as_)
     if text is None:
         return result
     from lxml import etree
@@ -239,19 +240,19 @@ def _start_tag_lines(root, text: str) -> None:
             element.sourceline = line
 
 
-def read_text(path: Path, limit: int = MAX_SIZE) -> CompanionFile:
+def read_text(path: Path, limit: int = MAX_SIZE, as_: str = "launch file") -> CompanionFile:
     """One text file (a launch file) read as companions are: ``text`` when it is a regular file
     of at most ``limit`` bytes in UTF-8, else ``problem`` says why."""
     result = CompanionFile(path, display_path(path))
-    result.text = _read_text(path, result, limit)
+    result.text = _read_text(path, result, as_, limit)
     return result
 
 
-def _read_text(path: Path, result, limit: int = MAX_SIZE) -> str | None:
+def _read_text(path: Path, result, as_: str, limit: int = MAX_SIZE) -> str | None:
     """The file's text when it is a regular file of at most ``limit`` bytes; else None and
     ``result.problem`` says why (nothing is read from a FIFO or a device)."""
     try:
-        return read_regular(path, limit).decode("utf-8")
+        return read_regular(path, limit, as_).decode("utf-8")
     except TooLarge:
         result.problem = f"larger than {limit} bytes; not read"
     except OSError as error:

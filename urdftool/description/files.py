@@ -1,80 +1,213 @@
-"""Reading and writing files that a stranger's repository may have planted.
+"""The one door to the file system: reading a stranger's repository, recording what was read,
+and writing.
 
-Every file urdftool reads goes through :func:`read_regular`: only a regular file, only when it is
-not over a size limit (a FIFO, ``/dev/zero`` or a sparse 100 GB file is refused before it is
-read). :func:`inside` tells whether a path, links followed, stays in a folder. Every file
-urdftool writes goes through :func:`write_file`: the data goes to a temporary file beside the
-target, which then replaces it, so a symbolic link planted at the output path is replaced, never
-followed.
+Every question the description layer and the linter ask of the file system goes through
+this module, and each function notes its question and answer in the record of the block
+running (:mod:`.record`): what a check read, searched, probed and followed is known because
+there is no other way to read. ``tests/description/test_files.py`` fails when a module under
+``urdftool/description`` or ``urdftool/lint`` opens, stats, lists or globs files itself.
+
+- :func:`read_regular`: a file's bytes, only a regular file, only when it is not over a size
+  limit (a FIFO, ``/dev/zero`` or a sparse 100 GB file is refused before it is read), with
+  what it was read as;
+- :func:`kind_of` and :func:`identity`: what is at a path;
+- :func:`listing`: the entries of a folder (an include's pattern is expanded with it);
+- :func:`real_path` and :func:`inside`: where links lead, whether a path stays in a folder;
+  :func:`repository_root` and :func:`enclosing_root` say which folder that is;
+- :func:`environ`: an environment variable.
+
+:func:`holds` compares an entry of a record with the disk, by the same functions, unrecorded:
+the result cache asks it, and reads nothing else of a robot's. urdftool's own files (the
+cache's entries, its key, urdftool's source and data) are read by :func:`read_own`,
+:func:`own_folder` and :func:`tree_stamp`, never recorded.
+
+This module is the only writer (``tests/test_writer.py`` fails on any other module that opens a
+file for writing, renames, makes or removes one): :func:`write_file` for every output a command
+writes, :func:`make_folders` for the folders of the result cache, :func:`temporary_folder` and
+:func:`write_new` for a tree urdftool builds itself (a git revision), :func:`scratch_file` for
+what a C library prints. An output goes to a
+temporary file beside the target, which then replaces it, so a symbolic link planted at the output
+path is replaced, never followed; and no output, nor any folder made, is reached through a
+symbolic link in a repository that leads outside it (:func:`real_folder`). Writing records
+nothing.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import stat
+import time
 from contextlib import contextmanager
-from contextvars import ContextVar
 from pathlib import Path
 
+from urdftool.description import record as records
+from urdftool.description.record import ENV, PROBE, READ, REAL, RESOLVED, SEARCH, Read
 from urdftool.description.run_memo import per_run
 from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
+RACY_NS = 2_000_000_000  # [ns] a file changed this recently may change again unseen
 
 
 class TooLarge(OSError):
-    """A file over the size limit (not read)."""
+    """A file over the size limit (not read); ``size``: its size [bytes], as far as known."""
+
+    def __init__(self, *args, size: int | None = None):
+        super().__init__(*args)
+        self.size = size
 
 
-# (digest function, {absolute path: digest of the bytes last read}) while noting_reads runs
-_NOTES: ContextVar[tuple | None] = ContextVar("urdftool_read_notes", default=None)
-
-
-@contextmanager
-def noting_reads(digest):
-    """Note ``digest(data)`` of every file :func:`read_regular` reads while the block runs, by
-    absolute path (the last read of each), in the dict it yields; a nested block shares the
-    outer one's notes. The result cache compares them with the files when it keeps a result:
-    a file that changed after it was read is not kept."""
-    if (outer := _NOTES.get()) is not None:
-        yield outer[1]
-        return
-    notes: dict[str, str] = {}
-    token = _NOTES.set((digest, notes))
-    try:
-        yield notes
-    finally:
-        _NOTES.reset(token)
-
-
-def noted_reads() -> dict[str, str]:
-    """The notes of the :func:`noting_reads` block running, or an empty dict."""
-    found = _NOTES.get()
-    return found[1] if found is not None else {}
-
-
-def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes:
+def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE, as_: str = "file") -> bytes:
     """A regular file's bytes; OSError for anything else (strerror says why), TooLarge when its
-    size is over ``limit`` [bytes]."""
-    info = os.stat(name)
+    size is over ``limit`` [bytes]. Recorded as read as ``as_`` (robot, include, mesh, ...)."""
+    try:
+        info = os.stat(name)
+    except OSError as error:
+        _note_read(name, as_, None, None, error.strerror or type(error).__name__)
+        raise
+    try:
+        data, info = _read(name, info, limit)
+    except OSError as error:
+        _note_read(name, as_, info, None, error.strerror or type(error).__name__)
+        raise
+    _note_read(name, as_, info, data, None)
+    return data
+
+
+def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
     if not stat.S_ISREG(info.st_mode):
         raise OSError(21, "not a regular file", str(name))
     if info.st_size > limit:
-        raise TooLarge(27, f"file is {info.st_size} bytes, over the limit of {limit}", str(name))
+        raise TooLarge(27, f"file is {info.st_size} bytes, over the limit of {limit}", str(name),
+                       size=info.st_size)
     # O_NONBLOCK: should the file be swapped for a FIFO after the stat, opening does not hang.
     descriptor = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     with open(descriptor, "rb") as handle:
-        if not stat.S_ISREG(os.fstat(descriptor).st_mode):
+        info = os.fstat(descriptor)  # the file read, whatever the name leads to now
+        if not stat.S_ISREG(info.st_mode):
             raise OSError(21, "not a regular file", str(name))
         # the size it has (a read of limit + 1 bytes allocates that much first), then any more
         data = handle.read(info.st_size + 1)
         if len(data) > info.st_size:  # grew since the stat
             data += handle.read(limit + 1 - len(data))
     if len(data) > limit:
-        raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name))
-    if (noting := _NOTES.get()) is not None:
-        noting[1][os.path.abspath(name)] = noting[0](data)
-    return data
+        raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
+    return data, info
+
+
+def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) -> None:
+    if records.active() is None:
+        return
+    path = os.path.abspath(name)
+    stamp = "" if info is None else _stamp(info)
+    records.note(READ, path, Read(_real_path(path), stamp, None if info is None else (
+        info.st_size if data is None else len(data)), None if data is None else digest(data),
+        failure), as_)
+
+
+def digest(data: bytes) -> str:
+    """The digest records keep of the bytes read."""
+    return hashlib.blake2b(data, digest_size=20).hexdigest()
+
+
+def _stamp(info: os.stat_result) -> str | None:
+    """A file's identity and change times, as git's index keeps them: while they are the same
+    the content is taken to be (the change time cannot be set back by a user). None when it
+    changed in the last :data:`RACY_NS` (file times tick coarsely, by milliseconds to
+    seconds, so a file written again within the same tick keeps its times: git calls it
+    racily clean); its content must be compared instead."""
+    if time.time_ns() - max(info.st_mtime_ns, info.st_ctime_ns) < RACY_NS:
+        return None
+    return f"{info.st_dev}:{info.st_ino}:{info.st_size}:{info.st_mtime_ns}:{info.st_ctime_ns}"
+
+
+def _stamp_at(path: str) -> str | None:
+    """:func:`_stamp` of what is at ``path`` now; '' when nothing is."""
+    try:
+        return _stamp(os.stat(path))
+    except (OSError, ValueError):
+        return ""
+
+
+def kind_of(path, follow: bool = True) -> str:
+    """What is at ``path``: 'file' (a regular file), 'folder', 'other', or '' for nothing
+    (or nothing reachable); with ``follow`` false a symbolic link is 'link', not where it
+    leads."""
+    found = _kind(os.fspath(path), follow)
+    records.note(PROBE, (os.path.abspath(path), follow), found)
+    return found
+
+
+def _kind(path: str, follow: bool) -> str:
+    try:
+        mode = (os.stat if follow else os.lstat)(path).st_mode
+    except (OSError, ValueError):
+        return ""
+    return _kind_of_mode(mode)
+
+
+def _kind_of_mode(mode: int) -> str:
+    if stat.S_ISREG(mode):
+        return "file"
+    if stat.S_ISDIR(mode):
+        return "folder"
+    return "link" if stat.S_ISLNK(mode) else "other"
+
+
+def identity(path) -> tuple | None:
+    """(device, inode, size, modification time [ns]) of the regular file at ``path``, links
+    followed, for keys of what is remembered of it; None when there is none. Recorded as
+    :func:`kind_of` (its content is recorded by whoever reads it)."""
+    try:
+        info = os.stat(path)
+    except (OSError, ValueError):
+        info = None
+    kind = "" if info is None else _kind_of_mode(info.st_mode)
+    records.note(PROBE, (os.path.abspath(path), True), kind)
+    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns) if kind == "file" else None
+
+
+def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
+    """(name, kind) of the entries of ``folder`` whose name matches ``pattern``, sorted by
+    name: alternatives separated by ``|``, each an fnmatch pattern (case-sensitive), one ending
+    in ``/`` matching only folders and links. kind as ``lstat`` says ('file', 'folder',
+    'link', 'other'): links are not followed. Empty when ``folder`` is no readable folder;
+    recorded as such (a file appearing there later changes the answer)."""
+    folder = os.path.abspath(folder)
+    found = _listing(folder, pattern)
+    records.note(SEARCH, (folder, pattern), (_real_path(folder), found))
+    return list(found or ())
+
+
+def _listing(folder: str, pattern: str) -> tuple | None:
+    try:
+        with os.scandir(folder) as entries:
+            found = []
+            for entry in entries:
+                kind = "link" if entry.is_symlink() else "folder" if entry.is_dir(
+                    follow_symlinks=False) else "file" if entry.is_file(
+                    follow_symlinks=False) else "other"
+                if records.matches(entry.name, kind, pattern):
+                    found.append((entry.name, kind))
+    except (OSError, ValueError):
+        return None
+    return tuple(sorted(found))
+
+
+def environ(name: str, variables=None) -> str | None:
+    """The environment variable ``name``, or None when unset; recorded when read from this
+    process's environment (``variables`` None), not from a mapping given."""
+    value = (os.environ if variables is None else variables).get(name)
+    if variables is None:
+        records.note(ENV, name, value)
+    return value
+
+
+def resolved(what: str, outcome) -> None:
+    """Record what the loader made of what it read: ``what`` ('package NAME', 'mesh URI')
+    resolved to ``outcome`` (a path, or why not)."""
+    records.note(RESOLVED, what, os.fspath(outcome) if isinstance(outcome, Path) else outcome)
 
 
 def inside(path, folder) -> bool:
@@ -88,8 +221,17 @@ def inside(path, folder) -> bool:
     return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
 
 
+def real_path(path) -> str:
+    """``os.path.realpath(path)``, recorded (a link made or changed later changes what every
+    containment decision said)."""
+    path = os.fspath(path)
+    found = _real_path(path)
+    records.note(REAL, os.path.abspath(path), found)
+    return found
+
+
 @per_run
-def real_path(path: str) -> str:
+def _real_path(path: str) -> str:
     """``os.path.realpath(path)``, answered once per run (see :mod:`.run_memo`). A file that
     is not a link is its folder's real path (itself answered once per run) and its name: the
     meshes of a package share a few folders, and realpath would walk every component of each
@@ -102,31 +244,200 @@ def real_path(path: str) -> str:
             return os.path.realpath(path)
     except OSError:  # missing, or not reachable: realpath's own answer
         return os.path.realpath(path)
-    return os.path.join(real_path(folder), name)
+    return os.path.join(_real_path(folder), name)
 
 
-def check_output(path) -> None:
-    """UsageError when ``path`` cannot be an output file: its folder is missing, or it is a
-    folder. Commands call it before their work, so that a typo costs no time."""
+@per_run
+def repository_root(start: Path) -> Path | None:
+    """The nearest ancestor of ``start`` (itself included) holding a ``.git`` entry: the
+    repository, by urdftool's own rule (git's discovery is never asked). Each ``.git`` looked
+    for is recorded (one made later changes the answer)."""
+    start = Path(start)
+    for folder in [start, *start.parents]:
+        if kind_of(folder / ".git"):
+            return folder
+    return None
+
+
+@per_run
+def enclosing_root(folder: Path) -> Path | None:
+    """The folder whose files a stranger may have written, holding ``folder``: its repository
+    (:func:`repository_root`); without one, the nearest folder above holding a package.xml;
+    None when there is neither (the user's own folders)."""
+    folder = Path(os.path.abspath(folder))
+    return repository_root(folder) or next(
+        (f for f in [folder, *folder.parents] if kind_of(f / "package.xml") == "file"), None)
+
+
+# ---- a record compared with the disk ----------------------------------------------------
+
+def holds(entry: list, quick: bool = False) -> bool:
+    """Whether an entry of a record (:meth:`.record.Record.dump`) is still the answer: the same
+    question asked again, unrecorded, by the functions above. A file read is compared by where
+    its links lead (a path that now leads elsewhere is not read), then its stamp, then (unless
+    ``quick``) its content, read only when its size is the same. ValueError for an entry of
+    no known kind."""
+    kind = entry[0]
+    with records.unrecorded():
+        if kind == READ:
+            return _read_holds(*entry[1:6], quick)
+        if kind == SEARCH:
+            folder, pattern, real, found = entry[1:5]
+            if _real_path(folder) != real:
+                return False
+            now = _listing(folder, pattern)
+            return (None if now is None else [list(e) for e in now]) == found
+        if kind == PROBE:
+            return _kind(entry[1], entry[2]) == entry[3]
+        if kind == REAL:
+            return _real_path(entry[1]) == entry[2]
+        if kind == ENV:
+            return os.environ.get(entry[1]) == entry[2]
+        if kind == RESOLVED:
+            return True  # made from the other entries
+    raise ValueError(f"no entry of kind {kind!r}")
+
+
+def _read_holds(path: str, real: str, stamp: str | None, size: int | None,
+                digested: str | None, quick: bool) -> bool:
+    now = _real_path(path)
+    if now != real:
+        return False  # a link made or changed: what it leads to now is not read
+    if stamp is not None and _stamp_at(now) == stamp:
+        return True
+    if quick or digested is None or size is None:
+        return False
+    try:
+        data, _ = _read(now, os.stat(now), size)
+    except OSError:
+        return False
+    return digest(data) == digested
+
+
+def unchanged(entries: list, quick: bool = False) -> bool:
+    """Whether every entry still :func:`holds`: the places first (where links lead, what is
+    at a path, folders), then the files, so that no file is read once a link on its way
+    changed. False for a malformed entry."""
+    from urdftool.description.run_memo import one_run
+
+    try:
+        with one_run():
+            return all(holds(entry, quick) for entry in entries if entry[0] != READ) and \
+                all(holds(entry, quick) for entry in entries if entry[0] == READ)
+    except (ValueError, TypeError, IndexError, KeyError):
+        return False
+
+
+# ---- urdftool's own files: never a robot's, never recorded ------------------------------
+
+def read_own(path, limit: int) -> bytes | None:
+    """One of urdftool's own files (a result cache entry, its signing key): its bytes when it
+    is a regular file, not a symbolic link, of at most ``limit`` bytes; else None."""
+    with records.unrecorded():
+        try:
+            if stat.S_ISLNK(os.lstat(path).st_mode):
+                return None
+            return read_regular(path, limit)
+        except (OSError, ValueError):
+            return None
+
+
+def own_folder(folder, create: bool = False) -> str:
+    """'there' when ``folder`` is a real folder (never a link), 'made' when ``create`` made it
+    (mode 0o700, parents too), '' otherwise."""
+    try:
+        mode = os.lstat(folder).st_mode
+    except FileNotFoundError:
+        if not create:
+            return ""
+        try:
+            make_folders(folder, 0o700)  # never through a link leading out of a repository
+            mode = os.lstat(folder).st_mode
+        except (OSError, UsageError):
+            return ""
+        return "made" if stat.S_ISDIR(mode) else ""
+    except OSError:
+        return ""
+    return "there" if stat.S_ISDIR(mode) else ""
+
+
+def tree_stamp(root) -> str:
+    """The count and newest modification of the ``.py`` and ``.json`` files below ``root``
+    (urdftool's own source and data), the folder's real path first."""
+    root = os.path.realpath(root)
+    newest, count = 0, 0
+    for folder, _, names in os.walk(root):
+        for name in names:
+            if name.endswith((".py", ".json")):
+                count += 1
+                newest = max(newest, os.stat(os.path.join(folder, name)).st_mtime_ns)
+    return f"{root}:{count}:{newest}"
+
+
+# ---- writing: never recorded ----------------------------------------------------------
+
+def real_folder(folder) -> str:
+    """The folder ``folder`` names, its symbolic links resolved one by one as the system
+    resolves them (a ``..`` after a link goes up from where the link leads). UsageError when
+    one of them lies in a repository (or package, see :func:`enclosing_root`) and leads
+    outside it: a link committed in a pull request (``reports -> /home/runner``) cannot make
+    urdftool write, or make folders, elsewhere. Links outside any repository are the user's
+    own and followed. The message names the link, never where it leads. Nothing is recorded
+    (where urdftool writes is no part of what a check read)."""
+    with records.unrecorded():
+        return _real_folder(folder)
+
+
+def _real_folder(folder) -> str:
+    named = os.fspath(folder)
+    current = os.path.abspath(os.sep)
+    for part in os.path.join(os.getcwd(), named).split(os.sep):
+        if part in ("", "."):
+            continue
+        if part == "..":
+            current = os.path.dirname(current)
+            continue
+        candidate = os.path.join(current, part)
+        if not os.path.islink(candidate):
+            current = candidate
+            continue
+        target = os.path.realpath(candidate)
+        root = enclosing_root(Path(current))
+        if root is not None and not inside(target, root):
+            raise UsageError(f"cannot write in '{named}': '{candidate}' is a symbolic link "
+                             f"leading outside the repository ({root}); not followed")
+        current = target
+    return current
+
+
+def check_output(path) -> str:
+    """The real folder an output file ``path`` goes to (:func:`real_folder`); UsageError when
+    it cannot be an output file: its folder is missing, leads outside its repository through a
+    symbolic link, or it is a folder. Commands call it before their work, so that a typo or a
+    planted link costs no time."""
     path = Path(path)
     folder = path.parent
     if not folder.is_dir():
         raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
+    real = real_folder(folder)
     if path.is_dir() and not path.is_symlink():
         raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+    return real
 
 
 def write_file(path, data: str | bytes) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
-    A regular file keeps its permissions. UsageError when the folder is missing, ``path`` is a
-    folder, or the system refuses."""
-    check_output(path)
+    A regular file keeps its permissions. UsageError when the folder is missing or reached
+    through a link leading outside its repository, ``path`` is a folder, or the system
+    refuses."""
+    folder = check_output(path)
     path = Path(path)
+    target = os.path.join(folder, path.name)
     if isinstance(data, str):
         data = data.encode("utf-8")
     try:
-        existing = os.lstat(path)
+        existing = os.lstat(target)
     except OSError:
         existing = None
     if existing is not None and stat.S_ISREG(existing.st_mode):
@@ -139,14 +450,96 @@ def write_file(path, data: str | bytes) -> None:
 
     try:
         descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp",
-                                                 dir=path.parent)
+                                                 dir=folder)
     except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     try:
         with open(descriptor, "wb") as handle:
             handle.write(data)
         os.chmod(temporary, mode)
-        os.replace(temporary, path)
+        os.replace(temporary, target)
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def make_folders(folder, mode: int = 0o777) -> None:
+    """``os.makedirs(folder, mode, exist_ok=True)`` in the folder :func:`real_folder` finds;
+    UsageError when a link on the way leads outside its repository; OSError when the system
+    refuses."""
+    os.makedirs(real_folder(folder), mode=mode, exist_ok=True)
+
+
+@contextmanager
+def temporary_folder(prefix: str):
+    """A new private folder in the system's temporary folder, removed with everything in it
+    when the block ends."""
+    import shutil
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix=prefix)
+    try:
+        yield Path(folder)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def scratch_file():
+    """A new file without a name (removed as soon as it is made), open for reading and
+    writing: where a C library's messages to file descriptor 2 are caught."""
+    import tempfile
+
+    return tempfile.TemporaryFile()
+
+
+def _new_path(root: Path, relative: str) -> str:
+    """``root/relative`` for a relative path of plain names (no ``..``, ``.``, empty or
+    absolute part, no NUL): ValueError otherwise. Its folders are made below ``root``."""
+    parts = relative.split("/")
+    if not relative or "\0" in relative or any(p in ("", ".", "..") for p in parts):
+        raise ValueError(f"not a plain relative path: {relative!r}")
+    folder = os.path.join(root, *parts[:-1])
+    os.makedirs(folder, mode=0o700, exist_ok=True)
+    if os.path.realpath(folder) != os.path.join(os.path.realpath(root), *parts[:-1]):
+        raise ValueError(f"a folder of {relative!r} is a link")
+    return os.path.join(folder, parts[-1])
+
+
+def write_new(root: Path, relative: str, data: bytes) -> None:
+    """Create the file ``relative`` (``/``-separated plain names) below ``root``, a folder
+    made by :func:`temporary_folder`, with ``data``; never through a link, never over an
+    existing file. ValueError for a name that is not plain; OSError when the system refuses."""
+    target = _new_path(root, relative)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    with open(os.open(target, flags, 0o600), "wb") as handle:
+        handle.write(data)
+
+
+def link_new(root: Path, relative: str, points_to: str) -> bool:
+    """Create the symbolic link ``relative`` below ``root`` (as :func:`write_new`) pointing to
+    ``points_to`` when that, read as written, stays below ``root``; False, and nothing made,
+    otherwise. Links made together can still combine to lead out (``s -> .`` and
+    ``t -> s/s/..``): :func:`remove_links_out` once they are all made."""
+    target = _new_path(root, relative)
+    if os.path.isabs(points_to) or "\0" in points_to:
+        return False
+    leads = os.path.normpath(os.path.join(os.path.dirname(target), points_to))
+    if not (leads + os.sep).startswith(os.path.normpath(root) + os.sep):
+        return False
+    os.symlink(points_to, target)
+    return True
+
+
+def remove_links_out(root: Path, relatives: list[str]) -> list[str]:
+    """Remove those of the links ``relatives`` below ``root`` that, every link followed, lead
+    outside it (until none does: a removal can change where others lead); the ones left."""
+    base = os.path.realpath(root) + os.sep
+    left = list(relatives)
+    while True:  # realpath itself, not the per-run memo of inside(): the links change here
+        out = [r for r in left
+               if not os.path.realpath(os.path.join(root, *r.split("/"))).startswith(base)]
+        if not out:
+            return left
+        for relative in out:
+            os.unlink(os.path.join(root, *relative.split("/")))
+        left = [r for r in left if r not in out]

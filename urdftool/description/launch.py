@@ -424,7 +424,7 @@ def _rosparam(element, when, line) -> ParamFile | None:
 # --- YAML (ROS 2) -------------------------------------------------------------------------------
 
 def _read_yaml_launch(path: Path) -> LaunchFile:
-    document = read_yaml(path)
+    document = read_yaml(path, "launch file")
     launch = LaunchFile(path, document.display, "ros2-yaml")
     if document.problem:
         launch.problem = document.problem

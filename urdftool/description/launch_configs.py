@@ -30,7 +30,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.files import inside
+from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.launch import (Arg, Condition, Description, Include, LaunchFile, ParamFile,
                                          Start, Value, is_launch_file, read_launch_text)
 from urdftool.description.launch_python import read_python_launch
@@ -142,10 +142,7 @@ def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
 
 
 def _regular_inside(path: Path, root: Path) -> bool:
-    try:
-        return path.is_file() and inside(path, root)
-    except OSError:
-        return False
+    return kind_of(path) == "file" and inside(path, root)
 
 
 def _in_package(folder: Path, rest: str, root: Path) -> Path | None:
@@ -164,14 +161,26 @@ def _in_package(folder: Path, rest: str, root: Path) -> Path | None:
 @per_run
 def _package_files(folder: Path) -> tuple[Path, ...]:
     found = []
-    for current, dirs, files in os.walk(folder):
-        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("."))
-        if len(Path(current).relative_to(folder).parts) > 6:
-            dirs[:] = []
-        found.extend(Path(current) / f for f in sorted(files))
+    for current, files in _walk(folder, 8):
+        found.extend(current / f for f in files)
         if len(found) > MAX_PACKAGE_FILES:
             break
     return tuple(found)
+
+
+def _walk(root: Path, depth: int, pattern: str = "*"):
+    """(folder, its file names matching ``pattern``) for ``root`` and the folders below it,
+    ``depth`` levels at most, in sorted order, through the recorded listing
+    (:func:`~urdftool.description.files.listing`): folders that are links, hidden or build
+    output (SKIP_DIRS) are not entered."""
+    pending = [(root, 0)]
+    while pending:
+        current, level = pending.pop()
+        entries = listing(current, pattern + "|[!.]*/")  # hidden folders: not entered, not listed
+        yield current, [name for name, kind in entries if kind == "file"]
+        if level + 1 < depth:
+            pending.extend((current / name, level + 1) for name, kind in reversed(entries)
+                           if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."))
 
 
 def words(value: Value | None) -> list[Value]:
@@ -335,17 +344,16 @@ class LaunchIndex:
     truncated: bool = False
 
 
+_LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take
+
+
 def launch_files(root: Path) -> tuple[list[Path], bool]:
     """The launch files below ``root`` (sorted, bounded; folders that are links not entered,
     files leading outside ``root`` left out), and whether the bound was reached."""
     found = []
-    for current, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith(".")
-                         and not os.path.islink(os.path.join(current, d)))
-        if len(Path(current).relative_to(root).parts) >= MAX_WALK_DEPTH:
-            dirs[:] = []
-        for name in sorted(files):
-            path = Path(current) / name
+    for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+        for name in files:
+            path = current / name
             if is_launch_file(path, root) and inside(path, root):
                 found.append(path)
                 if len(found) >= MAX_LAUNCH_FILES:
@@ -382,7 +390,7 @@ def launch_index(root: Path) -> LaunchIndex:
 
 
 def _key(path: Path) -> str:
-    return os.path.realpath(path)
+    return real_path(path)
 
 
 def _expand_top(index: LaunchIndex, launch: LaunchFile, packages: dict) -> Configuration:

@@ -25,6 +25,7 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
+from ast import walk as syntax_nodes
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -89,7 +90,7 @@ class _Reader:
         # then the functions handed over rather than called (OpaqueFunction(function=f)): a
         # helper the others call is walked where it is called, with its arguments
         called, handed = set(), set()
-        for node in ast.walk(self.tree):
+        for node in syntax_nodes(self.tree):
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
                 called.add(node.func.id)
                 handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]

@@ -16,7 +16,8 @@ from lxml import etree
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import LoadError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, read_regular
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of, read_regular
+from urdftool.description.inputs import SettingValue
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
@@ -99,9 +100,8 @@ def _refuse_link_out(path: str, shown: str) -> None:
     leading outside the repository holding it; the file is not opened."""
     leads = link_out(path)
     if leads:
-        target, root = leads
-        raise LoadError("link", (
-            f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
+        raise LoadError("link", (  # where it leads is not said: that is outside
+            f"is a symbolic link leading outside the repository ({display_path(leads[1])}); "
             "not followed"), Location(shown, None))
 
 
@@ -110,7 +110,7 @@ def _read(path: str, shown: str, limit: int) -> bytes:
         data = sys.stdin.buffer.read(limit + 1)
     else:
         try:
-            data = read_regular(path, limit)
+            data = read_regular(path, limit, as_="robot")
         except TooLarge as error:
             raise LoadError("too-large", error.strerror, Location(shown, None)) from None
         except OSError as error:
@@ -186,8 +186,8 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         source_path = Path(path) if path != "-" else Path.cwd() / "stdin.xacro"
         sources = {display_path(source_path): data}
 
-        def read_file(name) -> bytes:  # kept: suppressions are read from what was loaded
-            sources[display_path(name)] = read_regular(name, limit)
+        def read_file(name, as_: str = "include") -> bytes:  # kept: suppressions are read
+            sources[display_path(name)] = read_regular(name, limit, as_)  # from what was loaded
             return sources[display_path(name)]
 
         expansion = expand(source_path, data, args=args, resolver=resolver, allow_env=allow_env,
@@ -212,11 +212,15 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
 def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
     """Where included and YAML files may be: the repository (see
     :func:`~urdftool.description.packages.containment_root`) and the files and folders named by xacro
-    arguments. Folders of packages ``$(find)`` resolves are added later."""
+    arguments given by whoever runs the check, not by a settings file (a
+    :class:`~urdftool.description.inputs.SettingValue`: the repository's own data). Folders of
+    packages ``$(find)`` resolves are added later."""
     roots = [containment_root(_folder_of(source))]
     for value in args.values():
+        if isinstance(value, SettingValue):
+            continue
         try:
-            if value and os.path.exists(value):
+            if value and kind_of(value):
                 roots.append(Path(value))
         except (OSError, ValueError):
             continue

@@ -46,9 +46,11 @@ from pathlib import Path
 from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem, parser, tag
-from urdftool.description.files import inside, read_regular, real_path
+from urdftool.description.files import TooLarge, identity, inside, kind_of, read_regular, \
+    real_path, resolved
 from urdftool.description.inputs import MAX_MESH_BYTES, MeshLimits
 from urdftool.description.packages import containment_root, package_uri_parts
+from urdftool.description.record import captured, replay
 from urdftool.description.run_memo import per_run
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
@@ -65,9 +67,12 @@ def resolve(robot, uri: str) -> Path:
 
 def _resolved(robot, uri: str) -> Path | MeshProblem:
     try:
-        return _resolve(robot, uri)
+        found = _resolve(robot, uri)
     except MeshProblem as problem:
+        resolved(f"mesh {uri}", f"{problem.kind}: {problem}")
         return problem
+    resolved(f"mesh {uri}", found)
+    return found
 
 
 def _resolve(robot, uri: str) -> Path:
@@ -105,11 +110,15 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         # file:// and relative paths stay where the loader's files stay
         root = _real(containment_root(Path(base)))
         if not inside(path, root):
+            # as written, never where links lead: that would name what exists outside
+            written = os.path.normpath(os.path.join(base, named))
+            how = (f"is a symbolic link (or lies in one) leading outside {root}"
+                   if written.startswith(str(containment_root(Path(base))) + os.sep)
+                   else f"resolves to {written}, outside {root}")
             return MeshProblem("outside", (
-                f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
-                "outside the robot's repository: use package://PKG/... for files of another "
-                "package"))
-    if not path.is_file():
+                f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
+                "repository: use package://PKG/... for files of another package"))
+    if kind_of(path) != "file":
         return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
@@ -234,15 +243,15 @@ def _primitive_triangles(primitive) -> int:
     return sum(max(k - 2, 0) for k in corners)
 
 
-def _collada_triangles(path: Path) -> int | None:
+def _collada_triangles(data: bytes) -> int | None:
     """Triangles of a COLLADA file as trimesh builds them: each geometry's triangles times
     the times the scenes instance it (through nested nodes, ``<instance_node>`` and skin
     controllers), so that a small file naming one mesh a million times is counted before
     it is built; a file that is not well-formed is counted as recovered. None when even
     recovery finds no document (trimesh then says why)."""
-    root = _collada_root(path, recover=False)
+    root = _collada_root(data, recover=False)
     if root is None:
-        root = _collada_root(path, recover=True)
+        root = _collada_root(data, recover=True)
     if root is None:
         return None
     ids = {element.get("id"): element for element in root.iter() if element.get("id")}
@@ -293,31 +302,29 @@ def _collada_triangles(path: Path) -> int | None:
             table.clear()
 
 
-def _collada_root(path: Path, recover: bool):
-    """The root element of a COLLADA file, or None when it does not parse (strictly, or even
-    in libxml2's recover mode)."""
+def _collada_root(data: bytes, recover: bool):
+    """The root element of a COLLADA document, or None when it does not parse (strictly, or
+    even in libxml2's recover mode)."""
     from lxml import etree
 
     try:
-        return etree.parse(str(path), parser(recover)).getroot()
-    except (etree.LxmlError, OSError, ValueError):
+        return etree.fromstring(data, parser(recover))
+    except (etree.LxmlError, ValueError):
         return None
 
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 
 
-def _recovered_collada(path: Path, data: bytes | None = None) -> tuple[bytes, str] | None:
+def _recovered_collada(data: bytes) -> tuple[bytes, str] | None:
     """(the document libxml2's recover mode makes of a COLLADA file that is not well-formed
-    XML, the first error with its line), or None when it makes none. ``data``: the file's
-    bytes, when read."""
+    XML, the first error with its line), or None when it makes none."""
     from lxml import etree
 
     lenient = parser(recover=True)
     try:
-        root = (etree.parse(str(path), lenient) if data is None else
-                etree.ElementTree(etree.fromstring(data, lenient))).getroot()
-    except (etree.LxmlError, OSError, ValueError):
+        root = etree.fromstring(data, lenient)
+    except (etree.LxmlError, ValueError):
         return None
     if root is None:
         return None
@@ -326,18 +333,15 @@ def _recovered_collada(path: Path, data: bytes | None = None) -> tuple[bytes, st
     return etree.tostring(root), first
 
 
-def _gltf_header(path: Path) -> dict | None:
+def _gltf_header(path: Path, data: bytes) -> dict | None:
     """The JSON of a ``.gltf``, or of a ``.glb``'s first chunk; None when there is none."""
     import json
 
-    with open(path, "rb") as handle:
-        if path.suffix.lower() == ".glb":
-            head = handle.read(20)
-            if len(head) < 20 or head[:4] != b"glTF" or head[16:20] != b"JSON":
-                return None
-            data = handle.read(struct.unpack("<I", head[12:16])[0])
-        else:
-            data = handle.read()
+    if path.suffix.lower() == ".glb":
+        head = data[:20]
+        if len(head) < 20 or head[:4] != b"glTF" or head[16:20] != b"JSON":
+            return None
+        data = data[20:20 + struct.unpack("<I", head[12:16])[0]]
     try:
         header = json.loads(data)
     except (ValueError, RecursionError):
@@ -345,11 +349,11 @@ def _gltf_header(path: Path) -> dict | None:
     return header if isinstance(header, dict) else None
 
 
-def _gltf_triangles(path: Path) -> int | None:
+def _gltf_triangles(path: Path, data: bytes) -> int | None:
     """Triangles of a glTF scene as trimesh builds it: every node the scene reaches adds its
     mesh's triangles (accessor counts), so a file naming one mesh from a million nodes is
     counted before it is built."""
-    header = _gltf_header(path)
+    header = _gltf_header(path, data)
     if header is None:
         return None
 
@@ -472,27 +476,30 @@ def _ply_triangles(handle) -> int | None:
 
 
 def triangle_count(path: Path, data: bytes | None = None) -> int | None:
-    """The triangle count read without building the mesh, or None when unknown.
-
-    From the header where the format has one (binary STL, PLY, OFF), else counted over the
-    file in chunks (OBJ faces, ASCII STL vertices), in memory bounded by the chunk size.
-    ``data``: the file's bytes, when read (STL, OBJ, PLY, OFF: counted in them).
-    """
+    """The triangle count of the mesh file ``path`` (``data``: its bytes, when read), read
+    without building the mesh, or None when unknown: from the header where the format has one
+    (binary STL, PLY, OFF), else counted in chunks (OBJ faces, ASCII STL vertices), in memory
+    bounded by the chunk size."""
+    if data is None:
+        try:
+            data = read_regular(path, MAX_MESH_BYTES, as_="mesh")
+        except OSError:
+            return None
     suffix = path.suffix.lower()
     if suffix == ".dae":
-        return _collada_triangles(path)
+        return _collada_triangles(data)
     if suffix in (".gltf", ".glb"):
         try:
-            return _gltf_triangles(path)
-        except (OSError, struct.error):
+            return _gltf_triangles(path, data)
+        except struct.error:
             return None
     try:
-        with (open(path, "rb") if data is None else io.BytesIO(data)) as handle:
+        with io.BytesIO(data) as handle:
             if suffix == ".stl":
                 head = handle.read(84)
                 if len(head) == 84 and not head.lstrip().lower().startswith(b"solid"):
                     return struct.unpack("<I", head[80:84])[0]
-                size = os.path.getsize(path) if data is None else len(data)
+                size = len(data)
                 if len(head) == 84:
                     count = struct.unpack("<I", head[80:84])[0]
                     if 84 + 50 * count == size:  # binary STL whose header starts with "solid"
@@ -519,16 +526,27 @@ def triangle_count(path: Path, data: bytes | None = None) -> int | None:
     return None
 
 
-def _check_size(path: Path, uri: str, limits: MeshLimits, count: bool = True,
-                data: bytes | None = None) -> None:
-    """Every limit, checked before trimesh reads a byte: size, archive, triangles (unless
-    ``count`` is false: the reader counts them before it builds them). ``data``: the file's
-    bytes, when read (under the size limit): checked in them, the file is not opened again."""
-    size = path.stat().st_size if data is None else len(data)
+def _mesh_bytes(path: Path, uri: str, limits: MeshLimits) -> bytes:
+    """The mesh file's bytes, read once (recorded as a mesh): MeshProblem when it is over the
+    size limit (not opened) or cannot be read."""
+    try:
+        return read_regular(path, limits.max_bytes, as_="mesh")
+    except TooLarge as error:
+        raise MeshProblem("too-large", f"mesh '{uri}' is {error.size} bytes, over the limit "
+                                       f"of {limits.max_bytes}; not opened") from None
+    except OSError as error:
+        raise MeshProblem("corrupt", f"mesh '{uri}' cannot be read: {error.strerror}") from None
+
+
+def _check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
+                count: bool = True) -> None:
+    """Every limit, checked in the file's bytes before trimesh reads them: size, archive,
+    triangles (unless ``count`` is false: the reader counts them before it builds them)."""
+    size = len(data)
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
                                        f"{limits.max_bytes}; not opened")
-    if path.suffix.lower() == ".dae" and _zipped(path, data):
+    if path.suffix.lower() == ".dae" and _zipped(data):
         # pycollada inflates a zipped .dae (ZAE) whole, whatever its name says
         raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
                                     "document; urdftool does not inflate archives: store "
@@ -547,13 +565,10 @@ def _refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
-def collada_unit(path: Path, data: bytes | None = None) -> float:
-    """The ``<unit meter=...>`` a COLLADA file declares (1 when none): viewers apply it, and
-    trimesh does not, so :func:`load_mesh` does. ``data``: the file's bytes, when read."""
+def collada_unit(data: bytes) -> float:
+    """The ``<unit meter=...>`` a COLLADA document declares (1 when none): viewers apply it,
+    and trimesh does not, so :func:`load_mesh` does."""
     try:
-        if data is None:
-            with open(path, "rb") as handle:
-                data = handle.read(65536)
         match = _DAE_UNIT.search(data, 0, 65536)
         value = float(match.group(1)) if match else 1.0
     except (OSError, ValueError):
@@ -565,28 +580,49 @@ _SIDECARS = (".bin",)  # the files beside a mesh that hold geometry: glTF buffer
 
 
 def _geometry_resolver(path: Path, limits: MeshLimits):
-    """What trimesh may read beside the mesh: glTF buffers in the mesh's folder, regular
-    files under the size limit. Textures and materials are refused (urdftool reads geometry
-    only, and an image can be a decompression bomb); trimesh loads the mesh without them."""
-    from trimesh.resolvers import FilePathResolver
+    """What trimesh may read beside the mesh: glTF buffers in the mesh's folder (or below it),
+    regular files under the size limit, read through the one door (recorded). Textures and
+    materials are refused (urdftool reads geometry only, and an image can be a decompression
+    bomb); trimesh loads the mesh without them."""
+    from trimesh.resolvers import Resolver
 
-    class GeometryResolver(FilePathResolver):
+    folder = path.parent
+
+    class GeometryResolver(Resolver):
+        def __init__(self):
+            pass
+
         def get(self, name: str):
-            found = self.absolute(name)  # raises when it leaves the mesh's folder
-            if found.suffix.lower() not in _SIDECARS:
-                raise FileNotFoundError(f"{name}: not geometry, not read")
-            if not found.is_file() or found.stat().st_size > limits.max_bytes:
-                raise FileNotFoundError(f"{name}: not a regular file under the size limit")
-            with open(found, "rb") as handle:
-                return handle.read(limits.max_bytes + 1)
+            name = name.strip()
+            for candidate in (name, name.lstrip("/"), os.path.split(name)[-1]):
+                found = folder / candidate
+                if found.suffix.lower() not in _SIDECARS:
+                    raise FileNotFoundError(f"{name}: not geometry, not read")
+                if not inside(found, folder):
+                    continue  # it leaves the mesh's folder
+                try:
+                    return read_regular(found, limits.max_bytes, as_="mesh buffer")
+                except OSError:
+                    continue
+            raise FileNotFoundError(f"{name}: not a regular file under the size limit in the "
+                                    "mesh's folder")
 
-    return GeometryResolver(str(path))
+        def write(self, name, data):
+            raise NotImplementedError("urdftool writes no mesh files")
+
+        def namespaced(self, namespace):
+            raise NotImplementedError("a mesh's buffers are beside it")
+
+        def keys(self):
+            return iter(())  # nothing is listed
+
+    return GeometryResolver()
 
 
-def _zipped(path: Path, data: bytes | None) -> bool:
-    import zipfile  # only for COLLADA files (4 ms of every check's start-up otherwise)
+def _zipped(data: bytes) -> bool:
+    import zipfile  # only for COLLADA files, not on every check's start-up
 
-    return zipfile.is_zipfile(path if data is None else io.BytesIO(data))
+    return zipfile.is_zipfile(io.BytesIO(data))
 
 
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
@@ -594,16 +630,18 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
 
     import trimesh
 
-    _check_size(path, uri, limits)
+    data = _mesh_bytes(path, uri, limits)
+    _check_size(path, uri, limits, data)
     # trimesh logs missing textures with tracebacks; a mesh's geometry is all urdftool reads
     logging.getLogger("trimesh").setLevel(logging.CRITICAL)
     malformed = None
+    suffix = path.suffix.lower()
     try:
         try:
-            loaded = trimesh.load(str(path), force="mesh", process=True,
-                                  resolver=_geometry_resolver(path, limits))
+            loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
+                                  process=True, resolver=_geometry_resolver(path, limits))
         except Exception as error:  # pycollada refuses XML that is not well-formed
-            recovered = _recovered_collada(path) if path.suffix.lower() == ".dae" and \
+            recovered = _recovered_collada(data) if suffix == ".dae" and \
                 "XML Parsing Error" in str(error) else None
             if recovered is None:
                 raise
@@ -616,7 +654,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles")
     _refuse_too_many(uri, len(loaded.faces), limits)
-    unit = collada_unit(path) if path.suffix.lower() == ".dae" else 1.0
+    unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:
         loaded.apply_scale(unit)
     if malformed:
@@ -628,13 +666,13 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
 RUN_CACHE_BYTES = 128 * 1024 * 1024
 
 # Meshes read in this process, shared by every robot checked in it (a run of robots of one
-# package reads each mesh once, not once per robot): key -> (bytes held, outcome), least
-# recently used first. Outcomes: a trimesh (counted as its file's size), a mesh's arrays and
-# their measures (counted as the arrays' bytes), or a MeshProblem. A worker process per file
-# has its own; it dies with its file.
+# package reads each mesh once, not once per robot): key -> (bytes held, outcome, what
+# computing it recorded), least recently used first. Outcomes: a trimesh (counted as its file's
+# size), a mesh's arrays and their measures (counted as the arrays' bytes), or a MeshProblem.
+# A worker process per file has its own; it dies with its file.
 class _RunCache(dict):
-    """key -> (bytes held, outcome), with ``held``: the bytes of all entries (kept as entries
-    come and go, not summed again at each insertion)."""
+    """key -> (bytes held, outcome, record), with ``held``: the bytes of all entries (kept as
+    entries come and go, not summed again at each insertion)."""
 
     held = 0
 
@@ -657,27 +695,30 @@ _RUN_CACHE = _RunCache()
 
 def _stamp(path: Path):
     """A file's identity and modification (device, inode, size, mtime in ns), or None."""
-    try:
-        status = path.stat()
-    except OSError:
-        return None
-    return status.st_dev, status.st_ino, status.st_size, status.st_mtime_ns
+    return identity(path)
 
 
 def _once(key: tuple, uri: str, compute):
     """``compute()`` -> (outcome, bytes held) once per run for ``key`` (which starts with the
     path and its :func:`_stamp`: a changed file is read again); a MeshProblem is kept under the
-    URI its message names too. Returns the outcome or the MeshProblem."""
+    URI its message names too. What computing it recorded (the mesh read, :mod:`.record`) is
+    replayed into the record of each later caller. Returns the outcome or the MeshProblem."""
     for known in (key, (*key, uri)):
         if known in _RUN_CACHE:
             _RUN_CACHE[known] = entry = _RUN_CACHE.pop(known)  # most recently used last
+            replay(entry[2])
             return entry[1]
-    try:
-        outcome, size = compute()
-    except MeshProblem as problem:
-        outcome, size = problem, 0
+
+    def outcome_of():
+        try:
+            return compute()
+        except MeshProblem as problem:
+            return problem, 0
+
+    (outcome, size), events = captured(outcome_of)
     if key[1] is not None:
-        _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome)
+        _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome,
+                                                                               events)
         while _RUN_CACHE.held > RUN_CACHE_BYTES:
             _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
     return outcome
@@ -698,19 +739,16 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
         arrays, metadata, unit = None, {}, 1.0
         suffix = path.suffix.lower()
         if suffix in (".stl", ".dae", ".obj"):
-            try:  # read once: the limits are checked in these bytes
-                data = read_regular(path, limits.max_bytes)
-            except OSError:  # trimesh reads it and says what is wrong (or the size is)
-                data = None
+            data = _mesh_bytes(path, uri, limits)  # read once: the limits are checked in it
             # a COLLADA file's triangles are counted as they are read, before they are built;
             # an OBJ's only when its "f " may make too many (a plain one has one a row;
             # the arrays read are counted below, any other is counted before trimesh reads it)
-            _check_size(path, uri, limits, data=data, count=suffix == ".stl" or (
-                suffix == ".obj" and (data is None or data.count(b"f ") > limits.max_triangles)))
-            if suffix == ".dae" and data is not None:
+            _check_size(path, uri, limits, data, count=suffix == ".stl" or (
+                suffix == ".obj" and data.count(b"f ") > limits.max_triangles))
+            if suffix == ".dae":
                 arrays, metadata = _collada_arrays(path, uri, data, limits)
-                unit = collada_unit(path, data)
-            elif data is not None:
+                unit = collada_unit(data)
+            else:
                 arrays = mesh_arrays.read_unmerged(path, data)
         if arrays is None:
             loaded = _read_once(path, uri, limits)
@@ -739,7 +777,7 @@ def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
         try:
             arrays = mesh_arrays.read_unmerged(path, data, limits.max_triangles)
         except ColladaProblem as problem:
-            recovered = _recovered_collada(path, data) if problem.not_well_formed else None
+            recovered = _recovered_collada(data) if problem.not_well_formed else None
             if recovered is None:
                 raise
             arrays = mesh_arrays.read_unmerged(path, recovered[0], limits.max_triangles)

@@ -15,7 +15,8 @@ import re
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
-from urdftool.description.files import inside, read_regular
+from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
+    read_regular, real_path, repository_root, resolved
 from urdftool.description.run_memo import per_run
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -33,20 +34,11 @@ def package_name(folder: Path, root: Path | None = None) -> str | None:
     if root is not None and not inside(manifest, root):
         return None
     try:
-        head = read_regular(manifest, _MAX_MANIFEST)
+        head = read_regular(manifest, _MAX_MANIFEST, as_="package manifest")
     except OSError:
         return None
     match = _NAME.search(head)
     return match.group(1).decode("utf-8", "replace") if match else folder.name
-
-
-@per_run
-def repository_root(start: Path) -> Path | None:
-    """The nearest ancestor of ``start`` holding a ``.git`` entry."""
-    for folder in [start, *start.parents]:
-        if (folder / ".git").exists():
-            return folder
-    return None
 
 
 @per_run
@@ -59,8 +51,7 @@ def containment_root(folder: Path) -> Path:
     graph of ``urdftool check`` use it. (Companion discovery is stricter on purpose: only a few
     folders beside the robot, see :mod:`urdftool.description.companions`.)"""
     folder = Path(os.path.abspath(folder))
-    return repository_root(folder) or next(
-        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
+    return enclosing_root(folder) or folder
 
 
 def link_out(path) -> tuple[str, Path] | None:
@@ -69,7 +60,7 @@ def link_out(path) -> tuple[str, Path] | None:
     file named in a repository is read only when it stays there: a link planted in a pull
     request cannot make urdftool read, and print parts of, a file elsewhere."""
     root = containment_root(Path(os.path.abspath(path)).parent)
-    return None if inside(path, root) else (os.path.realpath(path), root)
+    return None if inside(path, root) else (real_path(path), root)
 
 
 class PackageResolver:
@@ -80,8 +71,8 @@ class PackageResolver:
         # A relative folder is relative to the working directory (where the user typed it),
         # never to the file that includes $(find NAME): made absolute here, once.
         self.explicit = {name: Path(path).absolute() for name, path in (explicit or {}).items()}
-        self.start = start.resolve() if start else None
-        self.environ = os.environ if environ is None else environ
+        self.start = Path(real_path(start)) if start else None
+        self.environ = environ  # None: this process's, each variable read recorded
         self._cache: dict[str, Path] = {}
         self._scanned: dict[str, Path] | None = None
         self._links_out: list[Path] = []  # package folders leading outside the repository
@@ -95,18 +86,20 @@ class PackageResolver:
             searched.append(where)
             if candidate is not None:
                 self._cache[name] = candidate
+                resolved(f"package {name}", candidate)
                 return candidate
+        resolved(f"package {name}", "not found")
         raise PackageNotFound(name, searched)
 
     def _candidates(self, name: str):
         if name in self.explicit:
             path = self.explicit[name]
-            yield (path if path.is_dir() else None), f"--package {name}={path}"
-        for entry in _split_path(self.environ.get("ROS_PACKAGE_PATH", "")):
+            yield (path if kind_of(path) == "folder" else None), f"--package {name}={path}"
+        for entry in _split_path(environ("ROS_PACKAGE_PATH", self.environ) or ""):
             yield _find_below(Path(entry), name, depth=3), f"ROS_PACKAGE_PATH entry {entry}"
-        for prefix in _split_path(self.environ.get("AMENT_PREFIX_PATH", "")):
+        for prefix in _split_path(environ("AMENT_PREFIX_PATH", self.environ) or ""):
             share = Path(prefix) / "share" / name
-            yield (share if share.is_dir() else None), f"AMENT_PREFIX_PATH {share}"
+            yield (share if kind_of(share) == "folder" else None), f"AMENT_PREFIX_PATH {share}"
         if self.start is None:
             return
         root = repository_root(self.start)
@@ -124,7 +117,7 @@ class PackageResolver:
         for folder in chain:
             for candidate in (folder, folder / name):
                 if root is not None and not inside(candidate / "package.xml", root):
-                    if (candidate / "package.xml").exists():
+                    if kind_of(candidate / "package.xml"):
                         self._links_out.append(candidate)
                     continue
                 if package_name(candidate) == name:
@@ -140,7 +133,7 @@ class PackageResolver:
                 if name is not None:
                     self._scanned.setdefault(name, folder)
             self._links_out += [link for link in links if not inside(link, root)
-                                and (link / "package.xml").exists()]
+                                and kind_of(link / "package.xml")]
         return self._scanned
 
     def resolve_uri(self, uri: str, base_dir: Path) -> Path:
@@ -174,7 +167,7 @@ def packages_below(root: Path) -> dict[str, Path]:
     found: dict[str, Path] = {}
     for folder in _walk_dirs(root):
         name = package_name(folder, root)
-        if name is not None and (folder / "package.xml").is_file():
+        if name is not None and kind_of(folder / "package.xml") == "file":
             found.setdefault(name, folder)
     return found
 
@@ -194,7 +187,9 @@ def _find_below(folder: Path, name: str, depth: int) -> Path | None:
 
 def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None = None):
     """Folders below root, breadth first, bounded in depth and count, never following links
-    (appended to ``links`` when given)."""
+    (appended to ``links`` when given), never entering a hidden folder (as catkin's and
+    colcon's package crawlers do; ``.urdftool_cache`` among them: the result cache appearing
+    beside the packages is no change to where they are)."""
     frontier = [root]
     seen = 0
     for _ in range(max_depth + 1):
@@ -204,14 +199,9 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None 
             seen += 1
             if seen > _MAX_SCAN_DIRS:
                 return
-            try:
-                entries = sorted(os.scandir(folder), key=lambda e: e.name)
-            except OSError:
-                continue
-            next_frontier.extend(
-                Path(entry.path) for entry in entries
-                if entry.is_dir(follow_symlinks=False) and entry.name not in SKIP_DIRS
-            )
+            entries = listing(folder, "[!.]*/")  # subfolders and links, sorted, not hidden
+            next_frontier.extend(folder / name for name, kind in entries
+                                 if kind == "folder" and name not in SKIP_DIRS)
             if links is not None:
-                links.extend(Path(entry.path) for entry in entries if entry.is_symlink())
+                links.extend(folder / name for name, kind in entries if kind == "link")
         frontier = next_frontier

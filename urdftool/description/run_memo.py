@@ -14,6 +14,8 @@ import functools
 from contextlib import contextmanager
 from contextvars import ContextVar
 
+from urdftool.description.record import remembered
+
 _MEMO: ContextVar[dict | None] = ContextVar("urdftool_run_memo", default=None)
 
 
@@ -32,18 +34,14 @@ def one_run():
 
 
 def per_run(function):
-    """``function`` (of hashable positional arguments) answered once per :func:`one_run`."""
+    """``function`` (of hashable positional arguments) answered once per :func:`one_run`; what
+    it recorded (:mod:`.record`) is replayed into the record of each later caller."""
 
     @functools.wraps(function)
-    def remembered(*args):
+    def answered(*args):
         memo = _MEMO.get()
         if memo is None:
             return function(*args)
-        key = (function, *args)
-        try:
-            return memo[key]
-        except KeyError:
-            memo[key] = answer = function(*args)
-            return answer
+        return remembered(memo, (function, *args), lambda: function(*args))
 
-    return remembered
+    return answered

@@ -28,7 +28,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.files import inside, read_regular
+from urdftool.description.files import inside, kind_of, read_regular, real_path
 from urdftool.description.launch_configs import (Configuration, Described, Loaded, Resolved, Started,
                                                  launch_index, shown)
 from urdftool.description.packages import containment_root, packages_below
@@ -80,9 +80,9 @@ class Runtime:
 
     def loads(self, path: Path) -> list[Loaded]:
         """Every load of the parameter file ``path`` by the robot's configurations."""
-        key = os.path.realpath(path)
+        key = real_path(path)
         return [loaded for c, relation in self.configurations if relation for loaded in c.loaded
-                if loaded.path is not None and os.path.realpath(loaded.path) == key]
+                if loaded.path is not None and real_path(loaded.path) == key]
 
     def loaded_files(self) -> list[Path]:
         """The parameter files the robot's configurations load (resolved, once each)."""
@@ -91,7 +91,7 @@ class Runtime:
             if relation:
                 for loaded in configuration.loaded:
                     if loaded.path is not None:
-                        found.setdefault(os.path.realpath(loaded.path), loaded.path)
+                        found.setdefault(real_path(loaded.path), loaded.path)
         return list(found.values())
 
     def unresolved_loads(self) -> list[Loaded]:
@@ -138,14 +138,14 @@ def _runtime(robot) -> Runtime:
     root = containment_root(path.parent)
     index = launch_index(root)
     found.read = [launch.path for launch in index.files.values()]
-    real = os.path.realpath(path)
+    real = real_path(path)
     mine = None
     environment = _environment_names(robot)
     for configuration in index.configurations:
         described = [d for d in configuration.described if d.path is not None]
         relation = ""
         for description in described:
-            if os.path.realpath(description.path) == real:
+            if real_path(description.path) == real:
                 mine = mine if mine is not None else _robot_args(robot)
                 relation = _relation(description, mine, relation, packages_below(root))
         if relation == "as checked" and environment:
@@ -300,10 +300,10 @@ def launch_xacro_args(path: str) -> list[tuple[str, dict]]:
     absolute = Path(os.path.abspath(path))
     root = containment_root(absolute.parent)
     index, packages = launch_index(root), packages_below(root)
-    real, found, seen = os.path.realpath(absolute), [], set()
+    real, found, seen = real_path(absolute), [], set()
     for configuration in index.configurations:
         for described in configuration.described:
-            if described.path is None or os.path.realpath(described.path) != real \
+            if described.path is None or real_path(described.path) != real \
                     or not described.when.truth:
                 continue
             texts = {name: _as_given(value, packages) for name, value in described.args.items()}
@@ -333,13 +333,13 @@ def runs(robot, controller, parameter_files=()) -> Runs:
     as its launch files tell; ``parameter_files``: the files the URDF's ``<parameters>`` names
     (loaded wherever the robot runs in Gazebo)."""
     facts = runtime(robot)
-    file = os.path.realpath(controller.file.path)
-    named = {os.path.realpath(p) for p in parameter_files}
+    file = real_path(controller.file.path)
+    named = {real_path(p) for p in parameter_files}
     short = controller.name.strip("/").split("/")[-1]
     relevant, loading = [], []
     for configuration, relation in facts.configurations:
         # a configuration describing no robot urdftool can tell counts when it loads the file
-        loads = any(loaded.path is not None and os.path.realpath(loaded.path) == file
+        loads = any(loaded.path is not None and real_path(loaded.path) == file
                     for loaded in configuration.loaded) or (bool(relation) and file in named)
         if relation and loads:
             loading.append(configuration)
@@ -410,14 +410,14 @@ def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
     unconditionally, with the robot as checked; ("other", launch file) when every one starting
     MoveIt with it also starts such a node (a driver: aubo_driver, kortex_driver); ("unknown",
     "") otherwise."""
-    key = os.path.realpath(moveit_file)
+    key = real_path(moveit_file)
     facts = runtime(robot)
     starting, served = [], []
     for configuration, relation in facts.configurations:
         if not relation:
             continue
         lists = [loaded for loaded in configuration.loaded
-                 if loaded.path is not None and os.path.realpath(loaded.path) == key]
+                 if loaded.path is not None and real_path(loaded.path) == key]
         group = [s for s in configuration.started if s.package == "moveit_ros_move_group"]
         if not (lists and group):
             continue
@@ -453,8 +453,8 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     launch file) when a launch file gives MoveIt both; ("conditional", why) when launch files give
     it that SRDF only with the robot built with other xacro arguments; ("unknown", "") when none
     gives it."""
-    key = os.path.realpath(srdf)
-    loads = [(c, r) for path, c, r in semantic_files(robot) if os.path.realpath(path) == key]
+    key = real_path(srdf)
+    loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
     if not loads:
         return "unknown", ""
     certain = [c for c, relation in loads if relation == "as checked"]
@@ -529,7 +529,7 @@ def _manifest(robot):
     root = containment_root(folder)
     for candidate in [folder, *folder.parents]:
         manifest = candidate / "package.xml"
-        if manifest.is_file() and inside(manifest, root):
+        if kind_of(manifest) == "file" and inside(manifest, root):
             try:
                 return read_regular(manifest, 1024 * 1024), display_path(manifest)
             except OSError:

@@ -9,6 +9,9 @@ of one expansion:
 - ``handle_macro_call`` lifts the stamp off the call and records it as a call site, and
   ``eval_all`` appends the active call sites to the elements a macro body produces;
 - ``substitution_args._eval_find`` resolves ``$(find pkg)`` through :class:`PackageResolver`;
+- ``get_include_files`` expands an include's glob pattern (``robots/*.xacro``) itself
+  (:func:`_expand_pattern`): where the pattern may look is decided before anything is listed,
+  and no folder outside the repository and the packages is listed, nor named in a message;
 - ``safe_eval`` and ``substitution_args._eval`` (``$(eval ...)``) go through
   :mod:`xacro_sandbox`, whose ``env``/``optenv``/``find`` are the session's own.
 
@@ -21,8 +24,10 @@ from __future__ import annotations
 import builtins
 import contextlib
 import io
+import fnmatch
 import math
 import os
+import re
 import sys
 import xml.dom
 import xml.dom.minidom
@@ -36,7 +41,7 @@ from lxml import etree
 from urdftool import budget
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import PackageNotFound
-from urdftool.description.files import read_regular
+from urdftool.description import files
 from urdftool.errors import available
 from urdftool.description import xacro_sandbox
 from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
@@ -49,6 +54,8 @@ MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
 MAX_OUTPUT_DEPTH = 1000  # element nesting of the expanded document
 MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion may produce
 MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
+MAX_PATTERN_ENTRIES = 20_000  # folder entries one include pattern may look at
+_MAGIC = re.compile(r"[*?[]")  # what makes xacro glob an include's filename
 _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 
 
@@ -83,7 +90,7 @@ class _Session:
         self.resolver = resolver
         self.allow_env = allow_env
         self.read_file = read_file
-        self.roots = [os.path.realpath(root) for root in roots]
+        self.roots = [files.real_path(root) for root in roots]
         self.paths: list[str] = []  # only ever appended to: an index names one file
         self.shown_paths: dict[int, str] = {}
         self.locations: dict[str, Location] = {}  # stamp -> where it was written
@@ -97,13 +104,17 @@ class _Session:
         self.text = 0
 
     def allow_root(self, folder) -> None:
-        self.roots.append(os.path.realpath(folder))
+        self.roots.append(files.real_path(folder))
+
+    def within_roots(self, filename: str) -> bool:
+        """Whether ``filename``, links followed, is in an allowed root (or there are none)."""
+        real = files.real_path(filename)
+        return not self.roots or any(
+            real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in self.roots)
 
     def check_inside(self, filename: str, what: str) -> None:
         """Record (or, without environment access, refuse) a file outside the allowed roots."""
-        real = os.path.realpath(filename)
-        if not self.roots or any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
-                                 for root in self.roots):
+        if self.within_roots(filename):
             return
         where = self.current_location()
         shown = ", ".join(display_path(root) for root in self.roots)
@@ -215,7 +226,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     import xacro
     from xacro import substitution_args
 
-    read_file = read_file or read_regular
+    read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
@@ -230,6 +241,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         (xacro, "safe_eval"): xacro.safe_eval,
         (xacro, "eval_text"): xacro.eval_text,
         (xacro, "eval_extension"): xacro.eval_extension,
+        (xacro, "get_include_files"): xacro.get_include_files,
         (substitution_args, "_eval"): substitution_args._eval,
     }
     replacements = _replacements(session, originals, xacro, substitution_args)
@@ -278,7 +290,7 @@ def _yaml_opener(session: _Session):
 
     def open_yaml(filename, *args, **kwargs):
         session.check_inside(filename, "YAML file")
-        data = session.read_file(filename)
+        data = session.read_file(filename, "yaml")
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -324,16 +336,14 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     original_macro_call = originals[(xacro, "handle_macro_call")]
     original_eval_all = originals[(xacro, "eval_all")]
     original_check_attrs = originals[(xacro, "check_attrs")]
-    original_env = originals[(substitution_args, "_eval_env")]
-    original_optenv = originals[(substitution_args, "_eval_optenv")]
     original_eval_text = originals[(xacro, "eval_text")]
     original_eval_extension = originals[(xacro, "eval_extension")]
 
     def parse(inp, filename=None):
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
-        stack = [os.path.realpath(f) for f in xacro.filestack[:-1] if f]
-        if os.path.realpath(filename) in stack:
+        stack = [files.real_path(f) for f in xacro.filestack[:-1] if f]
+        if files.real_path(filename) in stack:
             chain = " -> ".join(display_path(f) for f in [*xacro.filestack])
             raise xacro.XacroException(f"include cycle: {chain}")
         _refuse_link_out(session, filename)
@@ -428,6 +438,24 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     def eval_extension(text):
         return charge_text(original_eval_extension(text), "substitution")
 
+    def get_include_files(filename_spec, symbols):
+        # xacro's own, but a pattern is expanded by _expand_pattern instead of glob.glob
+        try:
+            spec = xacro.abs_filename_spec(xacro.eval_text(filename_spec, symbols))
+        except xacro.XacroException as error:
+            if error.exc and isinstance(error.exc, NameError) and symbols is None:
+                raise xacro.XacroException(
+                    "variable filename is supported with in-order option only") from None
+            raise
+        filenames = [spec]
+        if _MAGIC.search(spec):
+            filenames = _expand_pattern(session, spec)
+            if not filenames:
+                xacro.warning(xacro.include_no_matches_msg.format(spec))
+        for filename in filenames:
+            xacro.all_includes.append(filename)
+            yield filename
+
     def eval_substitution(expression, context):
         args = context.setdefault("arg", {})
         functions = dict(_EVAL_CONSTANTS)
@@ -450,13 +478,17 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         if not session.allow_env:
             raise substitution_args.SubstitutionException(
                 f"$(env {name}) is disabled by --no-env")
-        return original_env(name)
+        value = files.environ(name)  # as xacro's own, recorded
+        if value is None:
+            raise substitution_args.SubstitutionException(
+                f"environment variable '{name}' is not set")
+        return value
 
     def eval_optenv(name, default=""):
-        if not session.allow_env:
-            raise substitution_args.SubstitutionException(
-                f"$(optenv {name}) is disabled by --no-env")
-        return original_optenv(name, default)
+        if not session.allow_env:  # the robot as an environment without NAME makes it: the
+            return default  # default, the environment never read (an error was a false one)
+        value = files.environ(name)  # recorded
+        return default if value is None else value
 
     return {
         (xacro, "parse"): parse,
@@ -465,6 +497,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         (xacro, "check_attrs"): check_attrs,
         (xacro, "eval_text"): eval_text,
         (xacro, "eval_extension"): eval_extension,
+        (xacro, "get_include_files"): get_include_files,
         (xacro, "safe_eval"): safe_eval,
         (substitution_args, "_eval"): eval_substitution,
         (substitution_args, "_eval_find"): eval_find,
@@ -486,18 +519,68 @@ _EVAL_CONSTANTS = {
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
-    from urdftool.description.files import inside
     from urdftool.description.packages import containment_root
 
     root = containment_root(os.path.dirname(os.path.abspath(session.paths[0])))
     named = os.path.abspath(filename)
     lexically_inside = any(named.startswith(base.rstrip(os.sep) + os.sep)
-                           for base in (str(root), os.path.realpath(root)))
-    if lexically_inside and not inside(filename, root):
+                           for base in (str(root), files.real_path(root)))
+    if lexically_inside and not files.inside(filename, root):
         raise XacroFailure("link", (
-            f"included file '{display_path(filename)}' is a symbolic link to "
-            f"'{os.path.realpath(filename)}', outside the repository ({display_path(root)}); "
-            "not followed"), session.current_location())
+            f"included file '{display_path(filename)}' is a symbolic link leading outside "
+            f"the repository ({display_path(root)}); not followed"), session.current_location())
+
+
+def _expand_pattern(session: _Session, spec: str) -> list[str]:
+    """The files an include's glob pattern names, as ``sorted(glob.glob(spec))`` finds them
+    (``*``, ``?``, ``[...]`` in any part; a name starting with ``.`` only for a part that does;
+    ``**`` is ``*``), decided before anything is listed: the folder before the first wildcard
+    must be in the repository or a package used (:meth:`_Session.check_inside`: refused under
+    --no-env, else a warning), not reached through a link in the repository leading outside
+    it, and no ``..`` may follow a wildcard. The walk never enters a linked folder that leads
+    outside the allowed roots, looks at MAX_PATTERN_ENTRIES entries at most, and no message
+    names what it found outside (a matched link leading out is refused when it is read,
+    without saying where it leads)."""
+    parts = spec.split("/")
+    first = next(i for i, part in enumerate(parts) if _MAGIC.search(part))
+    if ".." in parts[first:]:
+        raise xacro_sandbox.SandboxViolation(
+            f"include pattern '{spec}' climbs ('..') after a wildcard; not expanded")
+    base = "/".join(parts[:first]) or ("/" if spec.startswith("/") else ".")
+    _refuse_link_out(session, base)
+    session.check_inside(base, "include pattern folder")
+    anywhere = not session.within_roots(base)  # --allow-env, outside: already reported
+    folders, seen = [base if first else ""], 0
+    for index, part in enumerate(parts[first:], start=first):
+        last = index == len(parts) - 1
+        found = []
+        for folder in folders:
+            here = folder or "."
+            if not _MAGIC.search(part):
+                candidate = os.path.join(folder, part) if folder else part
+                if files.kind_of(candidate, follow=False) if last else \
+                        files.kind_of(candidate) == "folder":
+                    found.append(candidate)
+                continue
+            entries = files.listing(here)  # (name, kind as lstat says), sorted; recorded
+            seen += len(entries)
+            if seen > MAX_PATTERN_ENTRIES:
+                raise xacro_sandbox.SandboxViolation(
+                    f"include pattern '{spec}' looked at over {MAX_PATTERN_ENTRIES} files; "
+                    "not expanded")
+            for name, kind in entries:
+                if name.startswith(".") and not part.startswith("."):
+                    continue
+                if not fnmatch.fnmatchcase(name, part):
+                    continue
+                path = os.path.join(folder, name) if folder else name
+                is_dir = kind == "folder" or kind == "link" and files.kind_of(path) == "folder"
+                if not last and not (is_dir and (
+                        anywhere or kind != "link" or session.within_roots(path))):
+                    continue  # a file, or a linked folder leading out: never listed
+                found.append(path)
+        folders = found
+    return sorted(folders)
 
 
 class _Outside(Exception):
@@ -616,21 +699,38 @@ def _to_lxml(session: _Session, doc, root_location: Location):
         else:
             locations[element] = root_location
         last = None
+        texts = 0  # text nodes before the first child (lxml joins them; minidom does not)
         for child in node.childNodes:
             if child.nodeType == xml.dom.Node.ELEMENT_NODE:
                 last = build(child, element, depth + 1)
             elif child.nodeType in (xml.dom.Node.TEXT_NODE, xml.dom.Node.CDATA_SECTION_NODE):
                 if last is None:
                     element.text = (element.text or "") + child.data
+                    texts += 1
                 else:
                     last.tail = (last.tail or "") + child.data
             elif child.nodeType == xml.dom.Node.COMMENT_NODE:
                 comment = etree.Comment(child.data.replace("--", "- -"))
                 element.append(comment)
                 last = comment
+        if last is None and texts > 1 and not (element.text or "").strip():
+            # content that all expanded away (an <xacro:if> that was false): the blank xacro
+            # prints for it, so that `urdftool xacro` writes what ROS xacro writes
+            element.text = "\n" + "  " * depth
         return element
 
     root = build(source, None)
+    # the comments around the root element (a title above <robot>) stay where they were
+    for node in doc.childNodes:
+        if node is source:
+            break
+        if node.nodeType == xml.dom.Node.COMMENT_NODE:
+            root.addprevious(etree.Comment(node.data.replace("--", "- -")))
+    for node in reversed(doc.childNodes):
+        if node is source:
+            break
+        if node.nodeType == xml.dom.Node.COMMENT_NODE:
+            root.addnext(etree.Comment(node.data.replace("--", "- -")))
     return root, locations
 
 

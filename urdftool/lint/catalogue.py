@@ -5,14 +5,14 @@ can say how to remove the finding (a :class:`~urdftool.diagnostics.Fix`, built w
 :mod:`urdftool.lint.fixes`): ``where`` is an lxml element of the robot, a
 :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
 The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
-its documentation: a first-line summary, then why it matters, then examples (the README table and
+its documentation: a first-line summary, then why it matters, then examples (the pages of docs/rules/ and
 ``urdftool rules CODE`` are generated from it).
 
 A rule's severity is for a defect that holds in every configuration the robot's consumers can
 run (docs/certainty.md). A finding that holds only in some (a controller a launch file may or
-may not start, a ROS version that may read the element) is yielded with its message wrapped in
-:class:`Conditional`, which names the condition: the engine reports it as a warning or a note,
-never above the rule's own severity.
+may not start, a ROS version that may read the element) names the condition in its message and
+is reported lower: yielded as ``(where, message, fix, severity)``, or with its message wrapped in
+:class:`Conditional` (a warning unless it says otherwise); never above the rule's own severity.
 
 ``rule()`` marks a check with its code, name and severity and registers nothing. Codes that the
 engine or the runner report themselves are ``declare()``d as module-level constants.
@@ -59,7 +59,7 @@ FAMILIES = {
 TARGET_DECADES = {"U92": "mujoco", "U93": "pybullet", "U94": "drake", "U95": "gz",
                   "U96": "gazebo", "U97": "isaac", "U98": "pinocchio"}
 _CODE = re.compile(r"U\d{3}")
-_RANK = {Severity.ERROR: 0, Severity.WARNING: 1, Severity.INFO: 2}
+_RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 
 class Conditional(str):
@@ -99,13 +99,19 @@ class Rule:
         """The target (``check --target``) this rule is about, or None for a rule of every run."""
         return TARGET_DECADES.get(self.code[:3])
 
-    def finding(self, message: str, location: Location, fix: Fix | None = None) -> Finding:
-        """A finding of this rule at ``location``, with the fix that would remove it if any; a
-        :class:`Conditional` message at its own severity when that is below the rule's."""
-        severity = self.severity
-        if isinstance(message, Conditional):
-            severity = max(severity, message.severity, key=_RANK.__getitem__)
-        return Finding(self.code, self.name, severity, str(message), location, fix, self.target)
+    def finding(self, message: str, location: Location, fix: Fix | None = None,
+                severity: Severity | None = None) -> Finding:
+        """A finding of this rule at ``location``, with the fix that would remove it if any;
+        ``severity`` lowers the rule's for a finding that holds only under a condition (it is
+        never raised: ValueError); a :class:`Conditional` message is reported at its own
+        severity when that is below the rule's."""
+        if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
+            raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
+                             f"more severe ({Severity(severity).value})")
+        if severity is None and isinstance(message, Conditional):
+            severity = min(self.severity, message.severity, key=_RANK.__getitem__)
+        return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
+                       location, fix, self.target)
 
 
 def rule(code: str, name: str, severity: Severity):
@@ -215,11 +221,11 @@ class Catalogue:
             listed = ", ".join(f"{r.code} {r.name}" for r in prefixed)
             raise UnknownRule(
                 f"no rule '{wanted}'; the rules starting with {wanted.upper()} are: {listed}")
-        import difflib  # only for a name that is no rule's
+        from urdftool.errors import close_names  # only for a name that is no rule's
 
         by_word = {r.code: r for r in rules} | {r.name: r for r in rules}
         close = dict.fromkeys(by_word[word] for word in
-                              difflib.get_close_matches(wanted, list(by_word), n=3, cutoff=0.6))
+                              close_names(wanted, list(by_word), n=3, cutoff=0.6))
         hint = ("; did you mean " + " or ".join(f"{r.code} {r.name}" for r in close) + "?"
                 if close else ".")
         raise UnknownRule(f"no rule '{wanted}'{hint} `urdftool rules` lists all {len(rules)} rules")

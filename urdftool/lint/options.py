@@ -63,6 +63,8 @@ class FileResult:
     strict: whether a warning in it fails the check (its settings or the request)
     companions: one line per companion file found for the robot, what it was used as and why,
         or why not (``check -v`` lists them)
+    record: what the check read, searched and resolved
+        (:class:`~urdftool.description.record.Record`), when it was checked here
     """
 
     path: str
@@ -70,6 +72,7 @@ class FileResult:
     robot: object | None = None
     strict: bool = False
     companions: list[str] = field(default_factory=list)
+    record: object | None = field(default=None, repr=False)
 
     @property
     def failures(self) -> list[Finding]:

@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
-from urdftool.description.companions import COMPANION_SUFFIXES, may_use
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
+    read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 
 SUFFIXES = (".urdf", ".xacro")
@@ -46,13 +47,20 @@ def robot_files(folder: Path) -> list[Path]:
     that checking them reports it; a ``folder`` that is itself such a link is listed alone."""
     if not _stays_inside(folder):
         return [folder]
-    found = []
-    for current, dirs, files in os.walk(folder):
-        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith("."))
-        found.extend(Path(current) / d for d in dirs
-                     if os.path.islink(os.path.join(current, d))
-                     and not _stays_inside(Path(current) / d))
-        found.extend(Path(current) / f for f in files if f.endswith(SUFFIXES))
+    found, pending = [], [Path(folder)]
+    pattern = "|".join(["*/", *(f"*{suffix}" for suffix in SUFFIXES)])
+    while pending:
+        current = pending.pop()
+        for name, kind in listing(current, pattern):
+            path = current / name
+            if kind == "link" and kind_of(path) == "folder":
+                if name not in SKIP_DIRS and not name.startswith(".") and not _stays_inside(path):
+                    found.append(path)
+            elif kind == "folder":
+                if name not in SKIP_DIRS and not name.startswith("."):
+                    pending.append(path)
+            elif name.endswith(SUFFIXES):
+                found.append(path)
     return sorted(found)
 
 
@@ -100,8 +108,8 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
 
 def resolved_path(path: Path) -> Path:
     try:
-        return path.resolve()
-    except (OSError, ValueError, RuntimeError):  # NUL in a name, a symlink loop
+        return Path(real_path(path))
+    except (OSError, ValueError):  # NUL in a name
         return path.absolute()
 
 
@@ -173,7 +181,7 @@ def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
     if not _stays_inside(path):
         return None
     try:
-        return read_regular(path, limit)
+        return read_regular(path, limit, as_="target")
     except (OSError, ValueError):
         return None
 
@@ -242,13 +250,17 @@ class _Answered(Exception):
 
 
 class _TopLevelTags:
-    """lxml parser target: answers 'robot' at a root other than <robot> or at a child of
-    <robot> that is neither a definition nor an extension block (<gazebo>, ...), 'srdf' at a
-    child only an SRDF has; at the end, 'fragment' when it saw extension blocks, else
-    'definitions'."""
+    """lxml parser target: answers 'robot' at a child of the root that is neither a definition
+    nor an extension block (<gazebo>, ...), 'srdf' at a child only an SRDF has; at the end,
+    'fragment' when it saw extension blocks, else 'definitions' ('empty' for a <robot> with no
+    child). A root other than <robot> holding only definitions is a macro library too: xacro's
+    includes ignore the root element, and pre-Groovy macro files were written ``<root
+    xmlns:xacro=...>`` (mas-group/youbot_description's sensors); with anything else, or
+    nothing, it is checked (and its root reported)."""
 
     def __init__(self):
-        self.depth, self.seen_robot, self.extensions, self.children = 0, False, False, False
+        self.depth, self.seen_robot, self.other_root = 0, False, False
+        self.extensions = self.children = False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -256,7 +268,8 @@ class _TopLevelTags:
             return
         name = _local_name(tag)
         if self.depth == 1 and name != "robot":
-            raise _Answered("robot")
+            self.other_root = True
+            return
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
@@ -448,24 +461,36 @@ def expand(paths: list[str], request) -> Targets:
     from the settings above each path (:func:`~urdftool.lint.settings.for_file`) under
     ``request``. Raises TargetError for a path that does not exist or a folder without robot
     files."""
-    from urdftool.errors import TargetError
+    import dataclasses
+
+    from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
 
+    def options_for(path):
+        """The options ``path`` is checked with; when the settings that apply to it are broken,
+        the request's alone: a settings file in another folder never stops this walk (checking
+        a file it applies to says what is wrong with it)."""
+        try:
+            return for_file(str(path), request).options
+        except SettingsError:
+            return for_file(str(path), dataclasses.replace(request, use_settings=False)).options
+
     def resolver_for(path: Path) -> PackageResolver:
-        return PackageResolver(for_file(str(path), request).options.packages, start=path.parent)
+        return PackageResolver(options_for(path).packages, start=path.parent)
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
     files, skipped, notes = [], {}, []
     for path in map(os.fspath, paths):
-        if path != "-" and not os.path.lexists(path):
+        if path != "-" and not kind_of(path, follow=False):
             raise TargetError(f"path '{path}' does not exist")
-        if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
+        kind = kind_of(path) if path != "-" else ""
+        if kind not in ("file", "folder"):
             files.append(path)
             continue
-        limit = for_file(path, request).options.max_file_size
-        if Path(path).is_file() and path.endswith(COMPANION_SUFFIXES):
-            root = project_root(Path(path))
+        limit = options_for(path).max_file_size
+        if kind == "file" and path.endswith(COMPANION_SUFFIXES):
+            root = users_below(Path(path))
             if (root, limit) not in robots:
                 robots[root, limit] = split_top_level(robot_files(root), resolver_for, limit)[0]
             users = companion_users(Path(path), robots[root, limit], limit)
@@ -476,7 +501,7 @@ def expand(paths: list[str], request) -> Targets:
             else:  # any YAML a hook passes (launch, navigation, CI settings): said with -v only
                 skipped[path] = f"no robot below {root} is checked with it: nothing to check"
             continue
-        if Path(path).is_file():
+        if kind == "file":
             root = project_root(Path(path))
 
             def graph(root=root, limit=limit):

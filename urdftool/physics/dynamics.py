@@ -175,6 +175,9 @@ class State:
                 "tau_total": listed(self.total)}
 
 
+MAX_MATRIX_SIZE = 1000  # rows of M(q): 8 MB each matrix, 11 MB of text; 10,000 were 0.8 GB
+
+
 def state(model: Model, q_values: dict, v_values: dict | None = None,
           a_values: dict | None = None) -> State:
     """M(q) (crba), G(q) (computeGeneralizedGravity), the energies K = v^T M v / 2 and
@@ -182,10 +185,16 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     or a, C(q, v) and tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs
     difference), and the URDF's ``<dynamics damping friction>`` torques ``damping v`` and
     ``friction sign(v)`` that the actuators supply on top (Pinocchio's rnea has neither); a
-    robot without mass gets a warning."""
+    robot without mass gets a warning. OverLimit, before any is computed, when M(q) and
+    C(q, v) would be over MAX_MATRIX_SIZE rows (their memory and text grow with the square)."""
     import pinocchio as pin
 
+    from urdftool.errors import OverLimit
+
     m, d = model.model, model.data
+    if m.nv > MAX_MATRIX_SIZE:
+        raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv,
+                        MAX_MATRIX_SIZE, "rows")
     q = model.configuration(q_values)
     mass_matrix = pin.crba(m, d, q)
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
@@ -254,12 +263,13 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
+                  progress=None) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
     ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
-    pose out."""
+    pose out. ``progress``: called with (poses done, poses) as they are."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -289,4 +299,6 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
                 load.zero_pose = torque
             if torque > load.worst or number == 0:
                 load.worst, load.worst_pose = torque, pose
+        if progress is not None:
+            progress(number + 1, len(poses))
     return loads

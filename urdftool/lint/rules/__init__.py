@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
-                                 loading, moveit, portability, running, spec, srdf,
-                                 transmissions, tree, vocabulary)
+                                 loading, moveit, parameters, plugins, portability, ros2_control,
+                                 running, spec, srdf, transmissions, tree, vocabulary)
 
-FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions,
-                  controllers, gazebo, running, spec, srdf, moveit, internal, portability)
+FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions, ros2_control,
+                  controllers, gazebo, running, parameters, plugins, spec, srdf, moveit, internal,
+                  portability)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
 __all__ = ["CATALOGUE", "FAMILY_MODULES"]

@@ -32,6 +32,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool import simulators as facts
+from urdftool.description.files import kind_of
+from urdftool.numbers import number
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import child_list, first_child
@@ -126,7 +128,7 @@ def _exists(robot, filename: str) -> Path | None:
         if problem.kind == "format":  # a file with an extension urdftool does not open
             try:
                 found = robot.resolve_uri(filename)
-                return found if found.is_file() else None
+                return found if kind_of(found) == "file" else None
             except Exception:  # noqa: BLE001 - an unknown package: not found
                 return None
         return None
@@ -384,7 +386,7 @@ def mujoco_mesh_not_found(robot):
             continue  # U920
         name = filename.replace("\\", "/").rsplit("/", 1)[-1] if strips else filename
         path = Path(name) if Path(name).is_absolute() else folder / name
-        if not path.is_file():
+        if kind_of(path) != "file":
             yield mesh, (f"{_where(link, holder)}: {_as_of(robot, 'mujoco')} looks for mesh "
                          f"'{filename}' at {path}, which does not exist: the load fails")
 
@@ -449,7 +451,7 @@ def mujoco_inertia_refused(robot):
             continue
         where = first_child(first_child(link, "inertial"), "inertia")
         message = (f"link '{_name(link)}': {_as_of(robot, 'mujoco')} refuses its inertia "
-                   f"(principal moments {a:.4g}, {b:.4g}, {c:.4g}): \"{why}\"")
+                   f"(principal moments {', '.join(number(m) for m in (a, b, c))}): \"{why}\"")
         if first and why.endswith("A + B >= C"):
             yield _compiler_fix(robot, where, message, {"balanceinertia": "true"},
                                 "add <mujoco><compiler balanceinertia=\"true\"/>")
@@ -677,7 +679,7 @@ def _pybullet_finds(robot, filename: str) -> bool | None:
     urdf = os.path.abspath(robot.files[0] if robot.files else robot.path)
     attempts = [name] if os.path.isabs(name) else []
     attempts += [urdf[:at] + "/" + name for at, char in enumerate(urdf) if char == "/"]
-    if any(os.path.isfile(attempt) for attempt in attempts):
+    if any(kind_of(attempt) == "file" for attempt in attempts):
         return True
     return None if _exists(robot, filename) is not None else False
 
@@ -893,7 +895,7 @@ def drake_file_not_found(robot):
 
 def _texture_missing(robot, filename: str) -> bool:
     try:
-        return not robot.resolve_uri(filename).is_file()
+        return kind_of(robot.resolve_uri(filename)) != "file"
     except Exception:  # noqa: BLE001 - an unknown package: Drake cannot find it either
         return True
 
@@ -1148,7 +1150,8 @@ def _invalid_inertia(robot, target: str):
             also = f" (with {', '.join(lumped_in)} lumped into it)" if lumped_in else ""
             where = first_child(link, "inertial")
             yield where if where is not None else link, (
-                f"link '{name}'{also}: principal moments {a:.4g}, {b:.4g}, {c:.4g} break the "
+                f"link '{name}'{also}: principal moments {', '.join(number(m) for m in (a, b, c))} "
+                "break the "
                 f"triangle inequality: {_sdf_title(robot, target)} reports \"has invalid "
                 "inertia\" and its validity check (gz sdf -k) fails")
 

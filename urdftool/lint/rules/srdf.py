@@ -13,6 +13,7 @@ import functools
 from urdftool.description.companions import companions
 from urdftool.description.runtime import moveit_with
 from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.numbers import number
 from urdftool.lint.fixes import offer
 from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
@@ -307,7 +308,8 @@ def _at_default(overlap) -> bool:
 def _where(overlap) -> str:
     labels = [label for label, _ in overlap.poses]
     shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
-    return f"collide (FCL penetration depth {overlap.depth * 1000:.1f} mm) at {shown}"
+    return (f"collide (FCL penetration depth {number(overlap.depth * 1000, places=1)} mm) at "
+            f"{shown}")
 
 
 @rule("U810", "srdf-disabled-pair-collides", Severity.WARNING)
@@ -350,7 +352,7 @@ def srdf_disabled_pair_collides(robot):
         pair = tuple(sorted((element.get("link1", ""), element.get("link2", "")),
                             key=str.encode))
         overlap = found.get(pair)
-        if overlap is not None:
+        if overlap is not None and not overlap.adjacent:
             yield offer(srdf.at(element.sourceline), (
                 f"{pair[0]} and {pair[1]} are disabled as '{element.get('reason', '')}' but "
                 f"{_where(overlap)}: MoveIt will not see that collision; remove the entry"
@@ -388,7 +390,7 @@ def srdf_collision_not_disabled(robot):
     listed = {tuple(sorted((e.get("link1", ""), e.get("link2", "")), key=str.encode))
               for e in srdf.root.iter("disable_collisions")}
     for pair, overlap in sorted((found or {}).items()):
-        if pair in listed:
+        if pair in listed or overlap.adjacent:  # adjacent: U823
             continue
         element = overlap.poses[0][1]
         yield offer(
@@ -435,7 +437,11 @@ def _remove_entry(srdf, element):
 
 
 def _add_default_entry(srdf, pair):
-    """The edit adding ``<disable_collisions ... reason="Default"/>`` on a line of its own before
+    return _add_entry(srdf, pair, "Default")
+
+
+def _add_entry(srdf, pair, reason: str):
+    """The edit adding ``<disable_collisions ... reason="REASON"/>`` on a line of its own before
     ``</robot>``, indented as the file's other entries (or by two spaces)."""
     from urdftool.lint.fixes import Unfixable
 
@@ -456,5 +462,5 @@ def _add_default_entry(srdf, pair):
     else:
         indent = "  "
     line = (f'{indent}<disable_collisions link1="{pair[0]}" link2="{pair[1]}" '
-            f'reason="Default"/>{source.newline}')
+            f'reason="{reason}"/>{source.newline}')
     return [source.edit(line_start, line_start, line)]

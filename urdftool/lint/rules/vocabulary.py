@@ -14,7 +14,7 @@ from __future__ import annotations
 
 
 from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
-                                       is_namespaced, is_xacro, where_valid)
+                                       is_namespaced, is_xacro, version_problem, where_valid)
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import child_list
 from urdftool.lint.catalogue import Severity, rule
@@ -28,14 +28,14 @@ def _close(name: str, valid) -> list[str]:
     after it (``gear_velocity``, ``velocity_max``) is a tool's own extension written on
     purpose, not a misspelling of ``velocity``, and a word of a known name (``mimic`` beside
     ros2_control's ``is_mimic``) is another version's name for it: neither is close."""
-    import difflib  # only for an unknown name
+    from urdftool.errors import close_names  # only for an unknown name
 
     valid = list(dict.fromkeys(valid))
     same_case = [v for v in valid if v.lower() == name.lower()]
     def words(text: str) -> set[str]:
         return set(text.lower().replace("-", "_").split("_"))
 
-    return same_case or [v for v in difflib.get_close_matches(name, valid, n=3, cutoff=CUTOFF)
+    return same_case or [v for v in close_names(name, valid, n=3, cutoff=CUTOFF)
                          if not (len(words(name)) > 1 and v.lower() in words(name))
                          and not (len(words(v)) > 1 and name.lower() in words(v))]
 
@@ -133,7 +133,8 @@ def _walk_children(element, key: str, place: Place, found: list) -> None:
         elif tag in place.ignored:
             found.append(_Unknown(child, None, key, [], place.ignored[tag]))
         else:
-            found.append(_Unknown(child, None, key, _close(tag, place.names())))
+            close = [] if _metadata(child, key) else _close(tag, place.names())
+            found.append(_Unknown(child, None, key, close))
 
 
 # Per place of the vocabulary: the attribute names known there (a set, compared with each
@@ -142,6 +143,15 @@ _KNOWN = {key: frozenset(place.attributes) for key, place in VOCABULARY.items()}
 _KNOWN_CHILDREN = {key: {tag: (name, VOCABULARY[name], _KNOWN[name])
                          for tag, name in place.children.items()}
                    for key, place in VOCABULARY.items()}
+
+
+def _metadata(element, key: str) -> bool:
+    """Whether an element named like an attribute of its holder holds what that attribute
+    cannot: ``<version>2025-09-17_13-38-40</version>`` in ``<robot>`` (kroshu's KUKA robots) is
+    a build stamp, not a slip for ``version="1.0"``, so no effect (U022) rather than a
+    misspelling whose fix would make urdfdom refuse the robot."""
+    return key == "robot" and element.tag == "version" and \
+        version_problem(element.text or "") is not None
 
 
 def _zero(text) -> bool:

@@ -1,0 +1,267 @@
+"""One record of what a check read: made by the loader and discovery as they work, read by
+the result cache (is a kept result stale?) and the language server (which robots does a
+changed file concern?).
+
+Nobody writes to a record by hand. Every question the description layer and the linter ask of
+the file system goes through :mod:`urdftool.description.files` (a test fails on any other
+open, stat, listing or glob under ``urdftool/description`` and ``urdftool/lint``), and each
+of those functions notes its question and its answer in the record of the block running
+(:func:`recording`). What a record holds, each entry (kind, key) -> what was found (the
+first answer, when the same question is asked twice):
+
+- ``read``: a file's bytes, by absolute path as named -> :class:`Read` (where its links led,
+  its stamp and size, a digest of the bytes read; or that it could not be read), and
+  ``labels[path]``: what it was read as (robot, include, yaml, companion, mesh, manifest,
+  settings, ...);
+- ``search``: a folder listed, (folder, pattern) -> where the folder led and the entries
+  matching (name, kind), or None when there was no folder: a file appearing there later, or
+  the folder itself, changes the answer;
+- ``probe``: what is at a path, (path, links followed) -> 'file', 'folder', 'link', 'other'
+  or '' (nothing);
+- ``real``: where a path's symbolic links lead (every containment decision asks it);
+- ``env``: an environment variable -> its value, or None when unset;
+- ``resolved``: what the loader made of the answers, for people and the language server: a
+  package -> its folder, a mesh URI -> its file, or why not. Never compared: the entries it
+  was made from are.
+
+Answers remembered between robots (``per_run``, the mesh cache of a process, the settings
+cache) keep what their first computation recorded and replay it into the record of every
+later caller (:func:`remembered`), so a record is complete however much of it was computed
+once for another robot.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import threading
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+
+READ, SEARCH, PROBE, REAL, ENV, RESOLVED = "read", "search", "probe", "real", "env", "resolved"
+
+
+@dataclass(frozen=True)
+class Read:
+    """A file read. real: where the path led, links followed; stamp: device, inode, size,
+    modification and change times as git's index keeps them (None when the file had changed
+    too recently to trust them, '' when nothing was there); size [bytes] (None when nothing
+    was there); digest: of the bytes read (None when none were: ``failure`` says why)."""
+
+    real: str
+    stamp: str | None
+    size: int | None
+    digest: str | None
+    failure: str | None = None
+
+
+@dataclass
+class Record:
+    """What one check (or one block of work) asked of the file system, and the answers."""
+
+    entries: dict = field(default_factory=dict)  # (kind, key) -> answer
+    labels: dict = field(default_factory=dict)  # path read -> what it was read as
+    parent: "Record | None" = field(default=None, repr=False, compare=False)
+    _index: tuple | None = field(default=None, repr=False, compare=False)
+
+    def note(self, kind: str, key, answer, label: str | None = None) -> None:
+        """Keep ``answer`` to (``kind``, ``key``) unless an earlier one is kept, and pass it
+        to the enclosing record."""
+        record = self
+        while record is not None:
+            record.entries.setdefault((kind, key), answer)
+            if label is not None:
+                record.labels.setdefault(key, set()).add(label)
+            record._index = None
+            record = record.parent
+
+    def merge(self, other: "Record") -> None:
+        """Note every entry of ``other`` here (and in the enclosing records)."""
+        for (kind, key), answer in other.entries.items():
+            self.note(kind, key, answer)
+        for key, labels in other.labels.items():
+            for label in labels:
+                self.note(READ, key, other.entries[READ, key], label)
+
+    # -- what it holds
+
+    def reads(self) -> dict[str, Read]:
+        """Path -> :class:`Read`, for every file read (or tried)."""
+        return {key: answer for (kind, key), answer in self.entries.items() if kind == READ}
+
+    def searched(self) -> dict[tuple[str, str], tuple | None]:
+        """(folder, pattern) -> the entries found ((name, kind) pairs), None: no folder."""
+        return {key: answer[1] for (kind, key), answer in self.entries.items()
+                if kind == SEARCH}
+
+    def resolutions(self) -> dict[str, str]:
+        return {key: answer for (kind, key), answer in self.entries.items() if kind == RESOLVED}
+
+    def read_as(self, label: str) -> list[str]:
+        """The paths read as ``label`` (a mesh, a companion, settings, ...)."""
+        return [path for path, labels in self.labels.items() if label in labels]
+
+    def concerns(self, path, file: bool = False) -> bool:
+        """Whether a change at ``path`` (written, created, removed, made a link) may change
+        what the check found: a file it read, a path it probed or followed, or a folder above
+        one; an entry of a folder it listed that matches what it looked for (the path itself
+        or a folder above it); a path below a place that held no folder when it looked.
+        ``file``: ``path`` is now a regular file (a search for folders does not match it;
+        else what it is, or was, is not known)."""
+        paths, patterns, not_folders = self._indexed()
+        path = os.path.abspath(path)
+        below = path.rstrip(os.sep) + os.sep
+        if path in paths or any(known.startswith(below) for known in paths):
+            return True
+        child = path
+        while True:
+            folder = os.path.dirname(child)
+            name = os.path.basename(child)
+            if any(_matches(name, pattern, child != path or not file)
+                   for pattern in patterns.get(folder, ())):
+                return True
+            if folder in not_folders:  # it was nothing, or a file: now it holds ``child``
+                return True
+            if folder == child or not name:
+                return False
+            child = folder
+
+    def _indexed(self):
+        if self._index is None:
+            paths, patterns, not_folders = set(), {}, set()
+            for (kind, key), answer in self.entries.items():
+                if kind in (READ, REAL):
+                    paths.add(key)
+                elif kind == PROBE:
+                    paths.add(key[0])
+                    if answer != "folder":
+                        not_folders.add(key[0])
+                elif kind == SEARCH:
+                    folder, pattern = key
+                    patterns.setdefault(folder, []).append(pattern)
+                    if answer[1] is None:
+                        not_folders.add(folder)
+            self._index = paths, patterns, not_folders
+        return self._index
+
+    # -- as kept by the result cache
+
+    def dump(self) -> list[list]:
+        """The entries as JSON-ready lists, which :func:`urdftool.description.files.holds`
+        compares with the disk."""
+        return [_dumped(kind, key, answer, sorted(self.labels.get(key, ())) if kind == READ
+                        else None)
+                for (kind, key), answer in self.entries.items()]
+
+
+def entry_key(entry: list) -> tuple:
+    """The question a dumped entry answers (its kind and key), to merge records: an entry's
+    key is its path, or (folder, pattern) for a search, (path, links followed) for a probe."""
+    return tuple(entry[:3] if entry[0] in (SEARCH, PROBE) else entry[:2])
+
+
+def _dumped(kind: str, key, answer, labels) -> list:
+    if kind == READ:
+        return [READ, key, answer.real, answer.stamp, answer.size, answer.digest, labels]
+    if kind == SEARCH:
+        real, found = answer
+        return [SEARCH, key[0], key[1], real,
+                None if found is None else [list(entry) for entry in found]]
+    if kind == PROBE:
+        return [PROBE, key[0], key[1], answer]
+    return [kind, key, answer]
+
+
+def _matches(name: str, pattern: str, folder: bool) -> bool:
+    """Whether a changed path called ``name`` matches some alternative of a listing's
+    ``pattern``; ``folder`` false: it is a file (a folder-only alternative does not match)."""
+    return any(fnmatch.fnmatchcase(name, alternative.rstrip("/"))
+               for alternative in pattern.split("|") if folder or not alternative.endswith("/"))
+
+
+def matches(name: str, kind: str, pattern: str) -> bool:
+    """Whether a folder entry ``name`` of ``kind`` (as ``lstat`` says: 'file', 'folder',
+    'link', 'other') matches a listing's ``pattern``: alternatives separated by ``|``, each an
+    fnmatch pattern (case-sensitive); one ending in ``/`` matches only folders and links."""
+    for alternative in pattern.split("|"):
+        if alternative.endswith("/"):
+            if kind in ("folder", "link") and fnmatch.fnmatchcase(name, alternative[:-1]):
+                return True
+        elif fnmatch.fnmatchcase(name, alternative):
+            return True
+    return False
+
+
+# ---- the record being made ------------------------------------------------------------------
+
+class _Active(threading.local):
+    """The record of the block running in this thread (a check runs in one thread: the
+    language server's worker, a worker process's main thread)."""
+
+    record: Record | None = None
+
+
+_ACTIVE = _Active()
+
+
+def active() -> Record | None:
+    """The record of the block running, or None (nothing is recorded)."""
+    return _ACTIVE.record
+
+
+def note(kind: str, key, answer, label: str | None = None) -> None:
+    """Note an answer in the record of the block running, if any."""
+    record = _ACTIVE.record
+    if record is not None:
+        record.note(kind, key, answer, label)
+
+
+@contextmanager
+def recording(record: Record | None = None):
+    """Note what the block asks of the file system in ``record`` (a new one by default),
+    which it yields; what is noted reaches the records of enclosing blocks too."""
+    record = Record() if record is None else record
+    record.parent = outer = _ACTIVE.record
+    _ACTIVE.record = record
+    try:
+        yield record
+    finally:
+        _ACTIVE.record = outer
+        record.parent = None
+
+
+@contextmanager
+def unrecorded():
+    """Nothing the block asks is recorded: urdftool's own files, and the comparison of a
+    record with the disk (:func:`urdftool.description.files.holds`)."""
+    outer, _ACTIVE.record = _ACTIVE.record, None
+    try:
+        yield
+    finally:
+        _ACTIVE.record = outer
+
+
+def captured(compute):
+    """(``compute()``, what it recorded, or None for nothing), the entries noted in the
+    enclosing record as well. An exception passes through, its entries noted."""
+    with recording() as record:
+        value = compute()
+    return value, (record if record.entries else None)
+
+
+def replay(events: Record | None) -> None:
+    """Note in the record of the block running what a remembered computation recorded."""
+    if events is not None and (record := _ACTIVE.record) is not None:
+        record.merge(events)
+
+
+def remembered(memo: dict, key, compute):
+    """``compute()`` once per ``key`` in ``memo``; a later call gets the same answer and its
+    recorded entries replayed (see the module doc)."""
+    try:
+        value, events = memo[key]
+    except KeyError:
+        memo[key] = (value, events) = captured(compute)
+        return value
+    replay(events)
+    return value
