@@ -364,6 +364,23 @@ def test_a_part_that_only_calls_macros_named_is_checked_through_its_robot(run_cl
     assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
 
 
+def test_a_part_hanging_on_its_robots_link_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # baxter's pedestal.xacro: a named <robot> with links and joints of its own, one joint on
+    # the 'torso' of the robot that includes it; alone it is U105 (the walk skips it as included)
+    urdf = _fragment_package(tmp_path)
+    part = urdf / "bot_pedestal.xacro"
+    part.write_text("""<robot name="pedestal" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="pedestal"/>
+  <joint name="pedestal_fixed" type="fixed"><parent link="base_link"/><child link="pedestal"/></joint>
+</robot>""")
+    robot = urdf / "bot.urdf.xacro"
+    robot.write_text(robot.read_text().replace(
+        "</robot>", '<xacro:include filename="$(find bot_description)/urdf/bot_pedestal.xacro"/>\n</robot>'))
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U105" not in result.stdout
+    assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
+
+
 def test_a_macro_library_named_whose_includes_cannot_be_followed_is_a_library(run_cli, tmp_path):
     # kortex's gen3_macro.xacro, named by pre-commit: a named <robot> defining a macro and
     # including files by ${...} paths; the walk skips it, and so does naming it

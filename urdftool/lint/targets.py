@@ -229,6 +229,22 @@ def _has_own_links(path: Path, limit: int) -> bool:
     return data is None or b"\0" in data or _stream(data, _OwnLinks()) == "own"
 
 
+_LINK_NAME = re.compile(rb"<link\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+_JOINT_END = re.compile(rb"<(?:parent|child)\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+
+
+def _self_contained(path: Path, limit: int) -> bool:
+    """Whether every link the file's joints name as parent or child is a link the file
+    writes (names compared as written): a robot of its own. A file whose joints hang on links
+    it does not write (baxter's pedestal.xacro on the 'torso' of the robot including it) is a
+    part, checked through what includes it. A file that is not read counts (checking it says
+    why)."""
+    data = _head(path, limit)
+    if data is None or b"\0" in data:
+        return True
+    return set(_JOINT_END.findall(data)) <= set(_LINK_NAME.findall(data))
+
+
 def _yields_links(data: bytes) -> bool:
     """Whether a file, included, produces links: a <link> or <joint>, or a macro call, outside
     its macro definitions (inside <xacro:if> too)."""
@@ -396,7 +412,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     summary = _summary(path, resolver_for, max_file_size)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
-    if summary.named_robot and _has_own_links(path, max_file_size):
+    if summary.named_robot and _has_own_links(path, max_file_size) and \
+            _self_contained(path, max_file_size):
         return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
@@ -413,9 +430,11 @@ def explicit_targets(path: Path, includers: dict, root: Path,
             pending.append(resolved)
             if resolved not in includers:
                 tops.append(parent)
-    if tops:
+    if tops:  # as the folder walk takes it, a robot of its own too (baxter's pedestal.xacro)
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
+    if summary.named_robot and _has_own_links(path, max_file_size):
+        return [path], None  # a robot of its own, hanging on links nobody here writes
     if path.name.endswith(".urdf") and summary.fragment:
         return [], f"{FRAGMENT}, and no robot below {root} includes it: nothing to check"
     if summary.named_robot and (summary.defines_robot or yields):
