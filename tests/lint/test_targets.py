@@ -381,6 +381,26 @@ def test_a_part_hanging_on_its_robots_link_named_is_checked_through_its_robot(ru
     assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
 
 
+def test_a_library_named_including_a_package_found_nowhere_is_checked(run_cli, tmp_path):
+    # doosan-robot2's macro.*mobile.xacro: $(find dsr_description), ROS 1's name of the ROS 2
+    # package dsr_description2; naming it says so (U006), as it did before libraries whose
+    # includes cannot be followed were skipped; one inside a macro body is not (kortex's grippers)
+    (tmp_path / ".git").mkdir()
+    library = tmp_path / "mobile_macro.xacro"
+    library.write_text("""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find no_such_description)/xacro/base.xacro"/>
+  <xacro:macro name="mobile" params="prefix"><link name="${prefix}base"/></xacro:macro>
+</robot>""")
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 1' in named.stdout and "U006" in named.stdout
+    library.write_text(library.read_text().replace(
+        '<xacro:include filename="$(find no_such_description)/xacro/base.xacro"/>', "").replace(
+        '<link name="${prefix}base"/>',
+        '<xacro:include filename="$(find no_such_description)/xacro/base.xacro"/><link name="${prefix}base"/>'))
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 0' in named.stdout
+
+
 def test_a_macro_library_named_whose_includes_cannot_be_followed_is_a_library(run_cli, tmp_path):
     # kortex's gen3_macro.xacro, named by pre-commit: a named <robot> defining a macro and
     # including files by ${...} paths; the walk skips it, and so does naming it

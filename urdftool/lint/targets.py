@@ -75,6 +75,7 @@ class _Summary:
     unfollowed: bool = False  # it includes files whose path is only known when expanding
     fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
     macros: bool = False  # it defines xacro macros
+    missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -133,7 +134,8 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
                     resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
-                    answer == "fragment", bool(_MACRO.search(data)))
+                    answer == "fragment", bool(_MACRO.search(data)),
+                    resolver_for is not None and _misses_a_package(data, resolver_for(path)))
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -373,8 +375,24 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
         yield resolved_path(path.parent / spec)
 
 
+def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
+    """Whether an include names, through ``$(find PKG)``, a package that cannot be found (a
+    defect expanding the file reports, U006), rather than a path only known when expanding.
+    Includes inside a macro definition are left out: they are expanded only where it is called."""
+    for match in _INCLUDE.finditer(_MACRO_BODY.sub(b"", data)):
+        spec = match.group(1).decode("utf-8", "replace")
+        find = _FIND.search(spec)
+        if find and "$" not in spec.replace(find.group(0), ""):  # the rest is written out
+            try:
+                resolver.find(find.group(1))
+            except Exception:  # noqa: BLE001 - not found, whatever the resolver says
+                return True
+    return False
+
+
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
 _MACRO = re.compile(rb"<(?:xacro:)?macro\s")
+_MACRO_BODY = re.compile(rb"<(?:xacro:)?macro\s.*?</(?:xacro:)?macro\s*>", re.S)
 
 
 def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE
@@ -442,8 +460,10 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     # A named <robot> whose includes could not all be followed is checked (expanding it says),
     # unless it defines macros of its own: then it is a macro library including others, as the
     # folder walk takes it (kortex's gen3_macro.xacro, named by pre-commit)
+    # (one whose include names a package found nowhere is checked: expanding it says so, U006)
     if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
-            not (yields is None and summary.named_robot and not summary.macros):
+            not (yields is None and summary.named_robot and not summary.macros) and \
+            not (yields is None and summary.missing_package):
         what = FRAGMENT if summary.fragment else "defines only macros or properties"
         return [], f"{what}, and no robot below {root} includes it: nothing to check"
     return [path], None
