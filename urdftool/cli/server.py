@@ -22,8 +22,10 @@ def server(log_file: Path = typer.Option(None, "--log-file", metavar="FILE",
         import lsprotocol  # noqa: F401
         import pygls  # noqa: F401
     except ImportError:
-        typer.echo("urdftool: error: the language server needs pygls: "
-                   "pip install 'urdftool[lsp]'", err=True)
+        from urdftool.cli._common import say
+
+        say("urdftool: error: the language server needs pygls: pip install 'urdftool[lsp]'",
+            err=True)
         raise typer.Exit(2)
     from urdftool.server import serve
 

@@ -398,5 +398,7 @@ def random(variables: list[Variable], count: int, seed=None,
             span = _RANDOM_SPAN.get(v.kind, math.pi)
             lower.append(-span)
             upper.append(span)
-    values = generator.uniform(lower, upper, size=(count, len(variables)))
+    # limits written the wrong way round are a range all the same (numpy refuses them)
+    values = generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
+                               size=(count, len(variables)))
     return Configurations(variables, values, [])

@@ -22,6 +22,7 @@ import re
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from urdftool.description.xml import attribute
 from urdftool.diagnostics import Edit, Fix
 
 _ATTRIBUTE = re.compile(rb"""(\s+)([^\s/>=]+)(\s*=\s*)("([^"]*)"|'([^']*)')""")
@@ -235,10 +236,6 @@ def source_tag(robot, element) -> tuple[Source, _Tag] | Unfixable:
     return found, candidates[0]
 
 
-def _escape(value: str) -> str:
-    return value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
-
-
 def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixable:
     """Edits giving ``element``'s attribute ``name`` the value ``value``: the literal replaced,
     or the attribute added after the last one; Unfixable when the value came from an
@@ -253,15 +250,14 @@ def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixab
             line, _ = text.position(start)
             return Unfixable(_origin(robot, element, name, raw, f"{text.file}:{line}"))
         quote = text.data[start - 1:start]
-        escaped = _escape(value) if quote == b'"' else _escape(value).replace("'", "&apos;")
-        return [text.edit(start, end, escaped)]
+        return [text.edit(start, end, attribute(value))]
     if element.get(name) is not None:
         return Unfixable(f"{name} is not written at {text.file}:{tag.line} (set by xacro)")
     closing = text.data.rfind(b"/>" if tag.self_closing else b">", tag.start, tag.end)
     at = closing
     while at > tag.start and text.data[at - 1:at].isspace():
         at -= 1
-    return [text.edit(at, at, f' {name}="{_escape(value)}"')]
+    return [text.edit(at, at, f' {name}="{attribute(value)}"')]
 
 
 _ARGUMENT = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
@@ -330,7 +326,7 @@ def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     if before.strip():
         return [text.edit(close, close, xml)]
     indent = before.decode("utf-8") + "  "
-    lines = "".join(indent + line + text.newline for line in xml.splitlines())
+    lines = "".join(indent + line + text.newline for line in xml.split("\n"))
     return [text.edit(line_start, line_start, lines)]
 
 

@@ -15,9 +15,9 @@ def write_table(table, output_format: str, stream=None) -> None:
 
         write_json(table.as_dict(), stream)
     elif output_format == "yaml":
-        import yaml
+        from urdftool.report.escape import yaml_text
 
-        stream.write(yaml.safe_dump(table.as_dict(), sort_keys=False))
+        stream.write(yaml_text(table.as_dict()))
     else:
         text(table)
 

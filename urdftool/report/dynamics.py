@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from urdftool.report.escape import text as _text
+
 
 def weakest(loads):
     """The joint load with the smallest margin relative to its effort limit; None when no joint
@@ -25,23 +27,24 @@ def _row(values) -> str:
 
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
-    width = max((len(j) for j in result.joints), default=5)
+    joints = [_text(j) for j in result.joints]
+    width = max((len(j) for j in joints), default=5)
     com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
     lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame"]
     if matrices:
         lines += ["", "G(q): gravity torque per joint [N m or N]"]
-        lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
+        lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(joints, result.G)]
         lines += ["", "M(q): joint-space mass matrix"]
-        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
+        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(joints, result.M)]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
-        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
+        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(joints, result.C)]
         lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
                       "+ damping v + friction sign(v)"]
         lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
                      f"{'total':>10s}")
         lines += [f"  {name:{width}s} {t:10.4g} {b:10.4g} {f:10.4g} {total:10.4g}"
-                  for name, t, b, f, total in zip(result.joints, result.tau, result.damping,
+                  for name, t, b, f, total in zip(joints, result.tau, result.damping,
                                                   result.friction, result.total)]
         lines.append(f"  (tau matches rnea to {result.rnea_residual:.2g})")
     if matrices or result.C is not None:
@@ -57,27 +60,27 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     """Each joint's worst gravity load against its effort limit, the smallest margin, and
     whether every joint holds; relevant: joints whose values in the worst pose matter. A joint
     without an effort limit has no margin and is listed as not judged."""
-    width = max((len(load.joint) for load in loads), default=5)
+    width = max((len(_text(load.joint)) for load in loads), default=5)
     lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
                     f"{'margin':>10s}"]
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
         effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
             else (f"{'none':>8s}", f"{'-':>10s}")
-        lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
+        lines.append(f"  {_text(load.joint):{width}s} {effort} {load.zero_pose:10.4g} "
                      f"{load.worst:10.4g} {margin}{flag}")
     least = weakest(loads)
     if least is not None:
         # only the joints that change its load: the others' values are noise
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
+        pose = ", ".join(f"{_text(k)}={v:.3f}" for k, v in least.worst_pose.items()
                          if v and k in relevant)
-        lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
+        lines.append(f"  smallest margin: {_text(least.joint)} ({least.margin:.3g} of "
                      f"{least.effort:.3g}) at {pose or 'the zero pose'}")
-    unlimited = [load.joint for load in loads if not load.limited]
+    unlimited = [_text(load.joint) for load in loads if not load.limited]
     if unlimited:
         lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
                      f"{', '.join(unlimited)}")
-    failing = [load.joint for load in loads if load.holds is False]
+    failing = [_text(load.joint) for load in loads if load.holds is False]
     every = "every joint with an effort limit" if unlimited else "every joint"
     lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
                  f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
@@ -93,27 +96,29 @@ def _vector(values) -> str:
 def stance_text(stance, standing_load=None) -> str:
     """The robot standing: centre of mass, support polygon and margin, each joint's torque
     standing and with the root fixed against its effort limit, the ground's wrenches."""
-    supports = ", ".join(stance.supports)
-    lines = [f"standing on {supports} (ground frame: {stance.supports[0]}'s, level, on its "
-             "lowest point)",
+    supports = ", ".join(map(_text, stance.supports))
+    lines = [f"standing on {supports} (ground frame: {_text(stance.supports[0])}'s, level, on "
+             "its lowest point)",
              f"total mass {stance.mass:.4g} kg, centre of mass ({_vector(stance.com)}) m"]
     where = "inside" if stance.stands else "OUTSIDE"
     lines.append(f"support polygon: {len(stance.polygon)} corners from the supports' geometry; "
                  f"the centre of mass is {abs(stance.margin) * 1000:.1f} mm {where} its nearest "
                  "edge" + ("" if stance.stands else " (it tips over)"))
     if stance.assumption:
-        lines.append(f"assumption: {stance.assumption}")
-    width = max(len(j) for j in stance.joints)
+        lines.append(f"assumption: {_text(stance.assumption)}")
+    joints = [_text(j) for j in stance.joints]
+    width = max(len(j) for j in joints)
     lines += ["", "joint torque holding the robot [N m or N]:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
-    for joint, standing, fixed, effort in zip(stance.joints, stance.torques, stance.fixed_base,
+    for joint, standing, fixed, effort in zip(joints, stance.torques, stance.fixed_base,
                                               stance.efforts):
         flag = "  ERROR: beyond its effort limit" if abs(standing) > effort else ""
         lines.append(f"  {joint:{width}s} {_clean(standing):10.4g} {_clean(fixed):10.4g} "
                      f"{effort:8.4g}{flag}")
     lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
     for name, wrench in stance.wrenches.items():
-        lines.append(f"  {name}: force ({_vector(wrench[:3])}), torque ({_vector(wrench[3:])})")
+        lines.append(f"  {_text(name)}: force ({_vector(wrench[:3])}), "
+                     f"torque ({_vector(wrench[3:])})")
     if standing_load is not None:
         tipped = standing_load.poses - standing_load.stable
         which = "the zero pose and " if standing_load.zero_stands else ""

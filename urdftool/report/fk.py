@@ -51,6 +51,8 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
 
     import numpy as np
 
+    from urdftool.report.escape import csv_cell
+
     header = ["row", "base", "frame", "x", "y", "z", "roll", "pitch", "yaw",
               "qx", "qy", "qz", "qw"]
     if matrix:
@@ -63,7 +65,8 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
             numbers.shape[:2] + (12,))], axis=-1)
     for row in range(len(numbers)):
         for k, name in enumerate(result.frames):
-            writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
+            writer.writerow([row + 1, csv_cell(result.base), csv_cell(name),
+                             *(repr(float(v)) for v in numbers[row, k])])
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
@@ -71,7 +74,7 @@ HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
-    from rich.markup import escape
+    from urdftool.report.escape import markup
 
     console = wide_console()
     for row in range(len(positions)):
@@ -82,6 +85,6 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
             for k, name in enumerate(result.frames)])
         if matrix:
             for k, name in enumerate(result.frames):
-                console.print(f"{escape(name)}:")
+                console.print(f"{markup(name)}:")
                 for line in result.matrices[row, k]:
                     console.print("  " + " ".join(f"{v: .6f}" for v in line))

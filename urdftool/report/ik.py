@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from urdftool.report.escape import csv_cell, text as _text
+
 
 def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
     """``--q NAME=VALUE`` words for ``urdftool fk``: the limb's values [rad or m] and the other
@@ -11,7 +13,8 @@ def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
     limb = {v.name: f"{value if abs(value) > 1e-12 else 0.0:.12g}"
             for v, value in zip(chain.variables, solution.x)}
     others = {name: text for name, text in (given or {}).items() if name not in limb}
-    return " ".join(f"--q {name}={value}" for name, value in {**limb, **others}.items())
+    return " ".join(f"--q {_text(name)}={_text(value)}"
+                    for name, value in {**limb, **others}.items())
 
 
 def _pose(matrix) -> str:
@@ -45,27 +48,28 @@ def as_dict(chain, solution, given=None) -> dict:
 
 def text(chain, solutions, given=None) -> str:
     """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
-    width = max(len(v.name) for v in chain.variables)
+    width = max(len(_text(v.name)) for v in chain.variables)
+    tip, base = _text(chain.tip), _text(chain.base)
     lines = []
     for solution in solutions:
-        head = f"{solution.target.name}: " if solution.target.name else ""
+        head = f"{_text(solution.target.name)}: " if solution.target.name else ""
         mode = "position only" if solution.target.rotation is None else "position and orientation"
-        lines.append(f"{head}{chain.tip} relative to {chain.base} ({mode}, {solution.method}): "
+        lines.append(f"{head}{tip} relative to {base} ({mode}, {solution.method}): "
                      + ("solved" if solution.solved else "UNREACHABLE"))
         lines.append(f"  {'joint':{width}s} {'value':>12s} {'[deg]':>9s} {'lower':>9s} "
                      f"{'upper':>9s}")
         for variable, value in zip(chain.variables, solution.x):
             degrees = f"{math.degrees(value):9.3f}" if variable.angular else " " * 9
-            lines.append(f"  {variable.name:{width}s} {value:12.6f} {degrees} "
+            lines.append(f"  {_text(variable.name):{width}s} {value:12.6f} {degrees} "
                          f"{variable.lower:9.4g} {variable.upper:9.4g}")
         lines.append(f"  residual: {_verdict(solution)}; {solution.iterations} iterations, "
                      f"{solution.seeds} seed{'s' if solution.seeds != 1 else ''}")
         if solution.at_limits:
-            lines.append("  at a limit: " + ", ".join(f"{name} ({side})"
+            lines.append("  at a limit: " + ", ".join(f"{_text(name)} ({side})"
                                                        for name, side in solution.at_limits))
         if not solution.solved:
             lines.append(f"  closest pose reached: {_pose(solution.pose)}")
-            lines.append(f"  why: {solution.reason}")
+            lines.append(f"  why: {_text(solution.reason)}")
         lines.append(f"  fk: {q_words(chain, solution, given)}")
         lines.append("")
     solved = sum(s.solved for s in solutions)
@@ -81,9 +85,10 @@ def csv_text(chain, solutions) -> str:
     stream = io.StringIO()
     writer = csv.writer(stream, lineterminator="\n")
     writer.writerow(["target", "solved", "position_error", "rotation_error", "iterations",
-                     *(v.name for v in chain.variables)])
+                     *(csv_cell(v.name) for v in chain.variables)])
     for number, solution in enumerate(solutions, start=1):
-        writer.writerow([solution.target.name or number, int(solution.solved),
+        writer.writerow([csv_cell(solution.target.name) if solution.target.name else number,
+                         int(solution.solved),
                          repr(solution.position_error), repr(solution.rotation_error),
                          solution.iterations, *(repr(float(v)) for v in solution.x)])
     return stream.getvalue()
@@ -91,15 +96,16 @@ def csv_text(chain, solutions) -> str:
 
 def reach_text(chain, solutions, tolerance: float) -> str:
     """``--check-reach``: one line per target, reachable or not, with its residual."""
-    lines = [f"reach of {chain.tip} relative to {chain.base} ({len(chain.variables)} joints), "
+    lines = [f"reach of {_text(chain.tip)} relative to {_text(chain.base)} "
+             f"({len(chain.variables)} joints), "
              f"tolerance {tolerance:g}:"]
     for solution in solutions:
         x, y, z = solution.target.position
         verdict = "reachable" if solution.solved else "UNREACHABLE"
-        line = (f"  {solution.target.name:12s} ({x:.4g} {y:.4g} {z:.4g}) {verdict:11s} "
+        line = (f"  {_text(solution.target.name):12s} ({x:.4g} {y:.4g} {z:.4g}) {verdict:11s} "
                 f"{_verdict(solution)}")
         if not solution.solved:
-            line += f"; {solution.reason}"
+            line += f"; {_text(solution.reason)}"
         lines.append(line)
     reached = sum(s.solved for s in solutions)
     lines.append(f"{reached} of {len(solutions)} targets reachable")

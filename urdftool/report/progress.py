@@ -13,7 +13,7 @@ def sampling_progress(total: int) -> Iterator[Callable[[int, int], None]]:
     from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn,
                                TimeElapsedColumn)
 
-    err = Console(stderr=True)
+    err = Console(stderr=True, emoji=False)
     progress = Progress(TextColumn("sampling"), BarColumn(), MofNCompleteColumn(),
                         TextColumn("configurations"), TimeElapsedColumn(), console=err,
                         transient=True, disable=not err.is_terminal)

@@ -10,14 +10,16 @@ from __future__ import annotations
 import os
 
 from urdftool.diagnostics import display_path
-from urdftool.report.summary import STYLES, Summary, counted, printable, via_text
+from urdftool.report.escape import text as escaped
+from urdftool.report.summary import STYLES, Summary, counted, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 
 
 def lines(results, quiet: bool = False) -> list[Line]:
     """The report as lines of (text, style) spans; names, paths and messages come from the
-    files checked, so their control characters are escaped (one finding, one line)."""
+    files checked, so each line is terminal text (urdftool.report.escape.text: one finding,
+    one line, none a workflow command)."""
     out: list[Line] = []
     for result in results:
         if not result.findings:
@@ -34,7 +36,7 @@ def lines(results, quiet: bool = False) -> list[Line]:
         if not quiet:
             out.append([])
     if quiet:
-        return [_printable(line) for line in out]
+        return [_escaped(line) for line in out]
     summary = Summary.of(results)
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
     verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
@@ -47,17 +49,17 @@ def lines(results, quiet: bool = False) -> list[Line]:
         parts = [f"[*] {safe} fixable with --fix"] if safe else []
         parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
         out.append([("; ".join(parts), "")])
-    return [_printable(line) for line in out]
+    return [_escaped(line) for line in out]
 
 
-def _printable(line: Line) -> Line:
-    """The line with each span :func:`printable`; one look at the whole line first (escaping
-    is per character, so a line that needs none is kept as it is: 10,000 findings are 60,000
-    spans)."""
+def _escaped(line: Line) -> Line:
+    """The line with each span escaped as terminal text; one look at the whole line first
+    (escaping is per character, so a line that needs none is kept as it is: 10,000 findings
+    are 60,000 spans)."""
     whole = "".join([text for text, _ in line])
-    if printable(whole) == whole:
+    if escaped(whole) == whole:
         return line
-    return [(printable(text), style) for text, style in line]
+    return [(escaped(text), style) for text, style in line]
 
 
 def _marker(finding) -> Line:
@@ -73,11 +75,12 @@ def render(results, stream, quiet: bool = False) -> None:
     if not _colour(stream):
         stream.write("".join("".join(text for text, _ in line) + "\n" for line in report))
         return
-    from rich.console import Console
     from rich.text import Text
 
+    from urdftool.report.console import plain_console
+
     # emoji=False, highlight=False, Text spans: messages are printed exactly as written
-    console = Console(file=stream, highlight=False, soft_wrap=True, emoji=False)
+    console = plain_console(stream)
     for line in report:
         console.print(Text.assemble(*line))
 

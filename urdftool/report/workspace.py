@@ -12,8 +12,11 @@ TOP = 56  # [px] title rows
 def text(space) -> str:
     lower, upper = space.lower, space.upper
     m = space.manipulability
-    lines = [f"workspace of {space.tip} relative to {space.base} ({len(space.joints)} joints: "
-             f"{', '.join(space.joints)}), {space.samples} samples (seed {space.seed})",
+    from urdftool.report.escape import text
+
+    lines = [f"workspace of {text(space.tip)} relative to {text(space.base)} "
+             f"({len(space.joints)} joints: {', '.join(map(text, space.joints))}), "
+             f"{space.samples} samples (seed {space.seed})",
              f"  max reach {space.reach:.4g} m from the first joint at "
              f"({' '.join(f'{v:.4g}' for v in space.centre)}); horizontal "
              f"{space.horizontal_reach:.4g} m",
