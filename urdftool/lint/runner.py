@@ -44,8 +44,8 @@ class Stop:
     """Why a piece of work ended without a result.
 
     kind: 'time' (over the time budget), 'memory' (MemoryError, over the memory budget or out of
-        memory), 'died' (the worker process ended; ``detail`` says how) or 'crash' (an
-        exception; ``detail`` is its traceback)
+        memory), 'died' (the worker process ended; ``detail`` says how), 'crash' (an
+        exception; ``detail`` is its traceback) or 'cancelled' (the caller no longer wanted it)
     where: the location the work had reached, when known
     """
 
@@ -55,18 +55,28 @@ class Stop:
     where: Location | None = None
 
 
-def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> list:
+def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
+                 cancel=None) -> list:
     """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
     forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
 
     Without a budget, with one job or one call (or where processes cannot fork) the work is
     done in this process, and only a MemoryError becomes a Stop.
+
+    cancel: a ``threading.Event`` another thread sets when it no longer wants the results (a
+        language server's document changed again): the workers are killed within
+        :data:`CANCEL_POLL` and every call not done gives ``stopped(i, Stop('cancelled'))``.
+        With it, the work is always done in a worker (only a worker can be stopped).
     """
-    if budget.unlimited and min(jobs, count) == 1 or count == 0 or not hasattr(os, "fork"):
+    if count == 0 or not hasattr(os, "fork") or \
+            cancel is None and budget.unlimited and min(jobs, count) == 1:
         return [_here(index, work, budget, stopped) for index in range(count)]
     results: list = [None] * count
-    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
+    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, cancel)
     return results
+
+
+CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
 
 
 def _here(index, work, budget, stopped):
@@ -517,7 +527,7 @@ def _drain(worker: _Worker) -> None:
         pass
 
 
-def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
+def _run_pool(work, queue, jobs, budget: Budget, stopped, results, cancel=None) -> None:
     import multiprocessing
     from multiprocessing.connection import wait
 
@@ -535,6 +545,11 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
             wait_for = None
             if timeout:
                 wait_for = max(0.0, min(w.started + timeout for w in busy) - time.monotonic())
+            if cancel is not None:
+                if cancel.is_set():
+                    _cancel(workers, pending, budget, stopped, results)
+                    return
+                wait_for = CANCEL_POLL if wait_for is None else min(wait_for, CANCEL_POLL)
             ready = wait([w.connection for w in busy], wait_for)
             for position, worker in enumerate(workers):
                 if worker.index is None:
@@ -572,6 +587,17 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
     finally:
         for worker in workers:
             worker.stop(kill=worker.index is not None)
+
+
+def _cancel(workers, pending, budget, stopped, results) -> None:
+    """Kill the busy workers at once; every piece not done gives a 'cancelled' Stop."""
+    for worker in workers:
+        if worker.index is not None:
+            worker.kill()
+            results[worker.index] = stopped(worker.index, Stop("cancelled", budget))
+    for index in pending:
+        results[index] = stopped(index, Stop("cancelled", budget))
+    pending.clear()
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
