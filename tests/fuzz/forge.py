@@ -681,6 +681,19 @@ def file_written(path: Path) -> list[str]:
     return terminal(data.decode("utf-8", "replace"), where)
 
 
+def _exact(data, where: str) -> list[str]:
+    """JSON keeps the names exact: a string holding a payload holds it as it was, not escaped
+    for a terminal (``\\n`` for a line break)."""
+    if isinstance(data, dict):
+        return [problem for item in data.items() for part in item for problem in
+                _exact(part, where)]
+    if isinstance(data, list):
+        return [problem for item in data for problem in _exact(item, where)]
+    if isinstance(data, str) and "\\n::add-mask::SECRET" in data:
+        return [f"{where}: a name escaped in JSON (it stays exact): {data[:80]!r}"]
+    return []
+
+
 def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:
     """What is forged in a command's standard output (of ``kind``) and standard error."""
     found = terminal(stderr, f"{where} (stderr)")
@@ -688,7 +701,7 @@ def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:
     if kind in ("json", "json-lines"):
         for document in ([stdout] if kind == "json" and stdout else stdout.splitlines()):
             try:
-                json.loads(document)
+                found += _exact(json.loads(document), out)
             except ValueError as error:
                 found.append(f"{out}: not JSON: {error}")
         found += terminal(stdout, out)

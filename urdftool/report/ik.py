@@ -13,8 +13,7 @@ def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
     limb = {v.name: f"{value if abs(value) > 1e-12 else 0.0:.12g}"
             for v, value in zip(chain.variables, solution.x)}
     others = {name: text for name, text in (given or {}).items() if name not in limb}
-    return " ".join(f"--q {_text(name)}={_text(value)}"
-                    for name, value in {**limb, **others}.items())
+    return " ".join(f"--q {name}={value}" for name, value in {**limb, **others}.items())
 
 
 def _pose(matrix) -> str:
@@ -70,7 +69,7 @@ def text(chain, solutions, given=None) -> str:
         if not solution.solved:
             lines.append(f"  closest pose reached: {_pose(solution.pose)}")
             lines.append(f"  why: {_text(solution.reason)}")
-        lines.append(f"  fk: {q_words(chain, solution, given)}")
+        lines.append(f"  fk: {_text(q_words(chain, solution, given))}")
         lines.append("")
     solved = sum(s.solved for s in solutions)
     if len(solutions) > 1:
