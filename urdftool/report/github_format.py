@@ -15,7 +15,9 @@ def render(results, stream) -> None:
             properties.append(f"line={finding.line}")
             if finding.column is not None:
                 properties.append(f"col={finding.column}")
-        properties.append(f"title={workflow(f'{finding.code} {finding.name}', property=True)}")
+        title = f"{finding.code} {finding.name}" + (f" ({finding.target})" if finding.target
+                                                    else "")
+        properties.append(f"title={workflow(title, property=True)}")
         # the message's own line breaks escaped; %0A only between the message and its call sites
         message = "\n".join(map(printable, [finding.message, *via_text(finding.location)]))
         stream.write(f"::{_LEVELS[finding.severity.value]} {','.join(properties)}::"
