@@ -42,6 +42,7 @@ def test_text_is_one_line_with_nothing_a_terminal_or_a_runner_acts_on():
 def test_lines_keeps_a_renderers_lines_and_guards_each():
     block = "first\n" + "::error::x\n  \x1b[31mred\n"
     assert escape.lines(block) == "first\n\\x3a:error::x\n  \\x1b[31mred\n"
+    assert escape.lines("\t<link/>\n\t::x\x1b", keep="\t") == "\t<link/>\n\t\\x3a:x\\x1b"
 
 
 def test_the_lines_stream_guards_every_line_a_library_writes():

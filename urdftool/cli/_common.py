@@ -76,13 +76,14 @@ def say(message: object, err: bool = False) -> None:
     typer.echo(text(message), err=err)
 
 
-def show(block: str, err: bool = False, nl: bool = True) -> None:
+def show(block: str, err: bool = False, nl: bool = True, keep: str = "") -> None:
     """Print the lines a renderer built (its values escaped as terminal text), each line through
     :func:`urdftool.report.escape.text` once more: whatever reached it, no line it prints is a
-    workflow command or holds an escape sequence."""
+    workflow command or holds an escape sequence. ``keep``: characters left as they are (tabs
+    of lines copied from a file)."""
     from urdftool.report.escape import lines
 
-    typer.echo(lines(block), err=err, nl=nl)
+    typer.echo(lines(block, keep), err=err, nl=nl)
 
 
 def document(data: str) -> None:

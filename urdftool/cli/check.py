@@ -204,7 +204,8 @@ def _apply_fixes(run, diff: bool, unsafe: bool, recheck):
 
         changes = fixes.plan(run.results, unsafe=unsafe)
         _skipped(changes.skipped)
-        show(unified(changes.changed), nl=False)  # the files' own lines, as terminal text
+        # the files' own lines, as terminal text (their tabs kept)
+        show(unified(changes.changed), nl=False, keep="\t")
         say(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
                    "file(s) would be applied", err=True)
         raise typer.Exit(1 if changes.changed else 0)

@@ -72,11 +72,12 @@ def printable(value, keep: str = "") -> str:
     return _UNPRINTABLE.sub(lambda m: m.group() if m.group() in keep else _escaped(m), value)
 
 
-def text(value) -> str:
+def text(value, keep: str = "") -> str:
     """Terminal text: :func:`printable`, and a ``:`` that would start the line (after blanks,
     which GitHub's runner strips) written ``\\x3a``, so that no line of output is a workflow
-    command. Idempotent: a line already escaped comes back as it is."""
-    value = printable(value)
+    command. Idempotent: a line already escaped comes back as it is. ``keep``: characters left
+    as they are (a file's own tabs, in lines copied from it)."""
+    value = printable(value, keep)
     stripped = value.lstrip()
     if stripped.startswith(":"):
         at = len(value) - len(stripped)
@@ -84,11 +85,11 @@ def text(value) -> str:
     return value
 
 
-def lines(block: str) -> str:
+def lines(block: str, keep: str = "") -> str:
     """A block of terminal text (lines a renderer built, or a message) with :func:`text`
     applied to each line: whatever a value in it held, each of its lines stays one line that
     starts as the renderer wrote it."""
-    return "\n".join(text(line) for line in block.split("\n"))
+    return "\n".join(text(line, keep) for line in block.split("\n"))
 
 
 class Lines:
