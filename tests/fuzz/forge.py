@@ -663,10 +663,12 @@ def csv_text(text: str, where: str) -> list[str]:
     return found
 
 
-def file_written(path: Path) -> list[str]:
+def file_written(path: Path, code: int = 0) -> list[str]:
+    """What is forged in a file a command wrote; ``code``: its exit status (2, a usage error:
+    a name the command line could not give, nothing to write)."""
     where = path.name
     if not path.exists():
-        return [f"{where}: was not written"]
+        return [] if code == 2 else [f"{where}: was not written"]
     data = path.read_bytes()
     suffix = path.suffix.lower()
     if suffix == ".svg":

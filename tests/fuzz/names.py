@@ -65,7 +65,7 @@ def run_case(payloads: dict, chosen=None, argv_kept=None) -> tuple[list[str], li
             if code not in (0, 1, 2) or "Traceback (most recent call last)" in stderr:
                 found.append(f"{where}: exit {code}: {stderr[-300:]}")
             for path in [*run.writes, *run.checks]:
-                found += [f"{where}: {p}" for p in forge.file_written(path)]
+                found += [f"{where}: {p}" for p in forge.file_written(path, code)]
             if found:
                 problems += found
                 failed.append([word.replace(str(root), "<root>") for word in run.argv])
