@@ -112,11 +112,12 @@ def _revolute(name, parent, child, xyz, axis, lower, upper) -> str:
 
 
 def robot_urdf(n: Names, *, inverted: bool = True, renamed: bool = False,
-               broken: bool = False, mesh: bool = False) -> str:
+               broken: bool = False, mesh: bool = False, massless_root: bool = False) -> str:
     """A three-link arm with a tool frame, every name hostile. inverted: the second joint's
     limits are swapped (an error naming it); renamed: the tip has another name and the first
     joint another limit (for diff); broken: a joint names a link that does not exist; mesh: the
-    tip's visual is a missing mesh whose file name is hostile."""
+    tip's visual is a missing mesh whose file name is hostile; massless_root: the root link has no
+    inertial (the fixes of the simulator targets write its name)."""
     a = {key: _attr(value) for key, value in vars(n).items()}
     tip = _attr(hostile("T2")) if renamed else a["tip"]
     upper = "1.5" if renamed else "1"
@@ -128,7 +129,7 @@ def robot_urdf(n: Names, *, inverted: bool = True, renamed: bool = False,
 <robot name="{a['robot']}">
   <material name="{a['material']}"><color rgba="1 0 0 1"/></material>
   <link name="{a['base']}">
-    {_inertial(1.0)}
+    {"" if massless_root else _inertial(1.0)}
     <visual><geometry><box size="0.1 0.1 0.1"/></geometry><material name="{a['material']}"/></visual>
     <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
   </link>
@@ -242,6 +243,7 @@ class Repository:
     robot: Path  # the hostile robot, in a hostile folder, under a hostile file name
     plain: Path  # the same robot as robot.urdf (commands that need a companion beside it)
     fixed: Path  # a copy that check --fix rewrites
+    fixed_targets: Path  # another, rewritten by the fixes of every simulator target
     old: Path  # diff's old side (plain's folder)
     broken: Path  # a joint naming a missing link
     meshed: Path  # a missing mesh with a hostile file name
@@ -300,9 +302,10 @@ def repository(root: Path, payloads=None) -> Repository:
     dh_table.write_text(dh_yaml(n))
     out = root / "out"
     out.mkdir(exist_ok=True)
-    fixed = root / "fixed.urdf"
+    fixed, fixed_targets = root / "fixed.urdf", root / "fixed-targets.urdf"
     fixed.write_text(robot_urdf(n))
-    return Repository(root, robot, plain, fixed, old / "robot.urdf", broken, meshed, xacro,
+    fixed_targets.write_text(robot_urdf(n, massless_root=True))
+    return Repository(root, robot, plain, fixed, fixed_targets, old / "robot.urdf", broken, meshed, xacro,
                       broken_xacro, q_file,
                       targets, dh_table, n, out)
 
@@ -431,6 +434,9 @@ def invocations(repo: Repository) -> list[Invocation]:
         (["check", robot, "--format", "sarif", "-o", str(out / "report.sarif")], "text",
          [out / "report.sarif"]),
         (["check", str(repo.fixed), "--format", "text", "--fix", "--unsafe-fixes"], "text", []),
+        (["check", str(repo.fixed_targets), "--fix", "--unsafe-fixes",
+          *(w for t in ("gazebo", "mujoco", "drake", "pybullet", "isaac") for w in ("--target", t))],
+         "text", []),
         (["xacro", str(repo.xacro)], "text", []),
         (["xacro", robot, "-o", str(out / "expanded.urdf")], "text", [out / "expanded.urdf"]),
         (["xacro", str(repo.xacro), "--deps", "-o", str(out / "deps.txt")], "text",
@@ -501,7 +507,7 @@ def invocations(repo: Repository) -> list[Invocation]:
     runs += [Invocation([*argv, *limit], kind, writes) for argv, kind, writes in variants]
     for run in runs:
         if "--fix" in run.argv:
-            run.checks.append(repo.fixed)
+            run.checks.append(Path(run.argv[1]))
     return runs
 
 
@@ -703,6 +709,20 @@ def _exact(data, where: str) -> list[str]:
     if isinstance(data, str) and "\\n::add-mask::SECRET" in data:
         return [f"{where}: a name escaped in JSON (it stays exact): {data[:80]!r}"]
     return []
+
+
+def names_kept(path: Path, n: Names) -> list[str]:
+    """A robot file a fix rewrote: still well formed, every hostile link name in it as it was
+    (a name a fix wrote unescaped breaks the file or becomes another name)."""
+    from lxml import etree
+
+    try:
+        root = etree.fromstring(path.read_bytes())
+    except etree.XMLSyntaxError as error:
+        return [f"{path.name}: a fix left it malformed: {error}"]
+    links = {link.get("name") for link in root.iter("link")}
+    lost = [name[:20] for name in (n.base, n.link, n.tip, n.frame) if name not in links]
+    return [f"{path.name}: a fix changed link names {lost!r}"] if lost else []
 
 
 def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:

@@ -66,6 +66,8 @@ def run_case(payloads: dict, chosen=None, argv_kept=None) -> tuple[list[str], li
                 found.append(f"{where}: exit {code}: {stderr[-300:]}")
             for path in [*run.writes, *run.checks]:
                 found += [f"{where}: {p}" for p in forge.file_written(path, code)]
+            for path in run.checks:
+                found += [f"{where}: {p}" for p in forge.names_kept(path, repo.names)]
             if found:
                 problems += found
                 failed.append([word.replace(str(root), "<root>") for word in run.argv])

@@ -41,6 +41,8 @@ def test_no_name_forges_output_in_any_command_or_format(hostile_repository):
         found += forge.judge(run.kind, stdout, stderr, where)
         for path in [*run.writes, *run.checks]:
             found += [f"{where}: {problem}" for problem in forge.file_written(path)]
+        for path in run.checks:
+            found += [f"{where}: {problem}" for problem in forge.names_kept(path, repo.names)]
     assert found == []
 
 

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
-                                 loading, moveit, portability, spec, srdf, transmissions,
-                                 tree, vocabulary)
+                                 loading, moveit, parameters, plugins, portability, ros2_control,
+                                 spec, srdf, transmissions, tree, vocabulary)
 
-FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions,
-                  controllers, gazebo, spec, srdf, moveit, internal, portability)
+FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions, ros2_control,
+                  controllers, gazebo, parameters, plugins, spec, srdf, moveit, internal, portability)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
 __all__ = ["CATALOGUE", "FAMILY_MODULES"]
