@@ -254,6 +254,21 @@ def test_a_fix_writes_a_hostile_name_back_exactly_and_injects_nothing(tmp_path):
     assert transmission.find("joint").get("name") == INJECTED
 
 
+def test_a_fix_that_would_write_anything_but_one_element_is_refused(tmp_path):
+    """The inserting functions' own guard: a name written without attribute() (in a fix to
+    come) would end the attribute or add an element; such an edit is never made."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robot.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    robot = load(str(tmp_path / "robot.urdf"))
+    link = robot.links["a"]
+    injected = '<link name="b"/><link name="injected"/>'
+    for edits in (fixes.insert_before(robot, link, injected),
+                  fixes.insert_before(robot, link, '<link name="a"b"/>'),
+                  fixes.append_child(robot, robot.root, '<link name="<"/>')):
+        assert isinstance(edits, fixes.Unfixable), edits
+    assert not isinstance(fixes.insert_before(robot, link, '<link name="b"/>'), fixes.Unfixable)
+
+
 def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
     (tmp_path / "robot.urdf.xacro").write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:macro name="part" params="name size">

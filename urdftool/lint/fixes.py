@@ -298,10 +298,35 @@ def swap_attributes(robot, element, first: str, second: str,
     return edits
 
 
+def _not_one_element(xml: tuple[str, ...]) -> Unfixable | None:
+    """Unfixable when a fragment a fix would write is not exactly one well-formed element: a
+    name from the robot written into it without :func:`~urdftool.description.xml.attribute`
+    would break the file or add an element of the attacker's (``"/><link name="x``)."""
+    for fragment in xml:
+        parser, depth, tops = expat.ParserCreate(), [0], [0]
+
+        def start(name, attributes, depth=depth, tops=tops):
+            tops[0] += depth[0] == 1  # a child of <_>: an element of the fragment's top level
+            depth[0] += 1
+
+        def end(name, depth=depth):
+            depth[0] -= 1
+
+        parser.StartElementHandler, parser.EndElementHandler = start, end
+        try:
+            parser.Parse(f"<_>{fragment}</_>", True)
+        except expat.ExpatError:
+            tops[0] = 0
+        if tops[0] != 1:
+            return Unfixable("the element it would write is not well formed (a name in it?)")
+    return None
+
+
 def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
     """An edit writing the elements ``xml`` just before ``element``'s start tag, each on a line
-    of its own with the same indentation when ``element`` starts its line."""
-    found = source_tag(robot, element)
+    of its own with the same indentation when ``element`` starts its line; Unfixable when one
+    is not exactly one well-formed element."""
+    found = _not_one_element(xml) or source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
     text, tag = found
@@ -313,8 +338,9 @@ def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
 
 def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     """An edit writing ``xml`` (lines of an element) as the last child of ``element``, indented
-    one step (two spaces) deeper than ``element`` when its end tag starts a line."""
-    found = source_tag(robot, element)
+    one step (two spaces) deeper than ``element`` when its end tag starts a line; Unfixable when
+    it is not exactly one well-formed element."""
+    found = _not_one_element((xml,)) or source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
     text, tag = found
