@@ -32,6 +32,7 @@ the while. A check that raises is logged (``window/logMessage``) and shown once
 from __future__ import annotations
 
 import asyncio
+import io
 import itertools
 import logging
 import os
@@ -702,6 +703,6 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> None:
     sys.stdout = sys.stderr
     # A worker (forked by run_budgeted) closes sys.stdin as it starts: not the protocol's, whose
     # lock pygls's reader thread holds while it waits for a message (the worker would wait for
-    # it forever). ``protocol_in`` keeps the original open.
-    protocol_in, sys.stdin = sys.stdin, open(os.devnull)
+    # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
+    protocol_in, sys.stdin = sys.stdin, io.StringIO()
     make_server(limits=limits).start_io(protocol_in.buffer, protocol_out)
