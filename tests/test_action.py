@@ -43,11 +43,12 @@ def test_it_installs_this_checkout_and_uploads_sarif():
     assert upload["with"]["sarif_file"].endswith("urdftool.sarif")
 
 
-def _run(script: str, tmp_path: Path, **env) -> subprocess.CompletedProcess:
+def _run(script: str, tmp_path: Path, cwd: Path = ROOT, **env) -> subprocess.CompletedProcess:
     bin_dir = str(Path(sys.executable).parent)
     environment = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}",
-                   "RUNNER_TEMP": str(tmp_path), "CI": "true", **env}
-    return subprocess.run(["bash", "-e", "-c", script], cwd=ROOT, env=environment,
+                   "RUNNER_TEMP": str(tmp_path), "CI": "true", "GITHUB_ACTION_PATH": str(ROOT),
+                   **env}
+    return subprocess.run(["bash", "-e", "-c", script], cwd=cwd, env=environment,
                           capture_output=True, text=True, timeout=300)
 
 
@@ -69,3 +70,56 @@ def test_the_check_and_sarif_scripts_run_as_written(tmp_path):
     assert any(r["ruleId"] == "U204" for r in log["runs"][0]["results"])
     usage = _run(step("SARIF")["run"], tmp_path, PATHS=str(urdf), ARGS="--select U999")
     assert usage.returncode != 0  # a usage error is not hidden
+
+
+GOOD = '<robot name="r"><link name="a"/></robot>\n'
+BAD = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+       '<parent link="a"/><child link="b"/><limit lower="1" upper="-1" effort="1" '
+       'velocity="1"/></joint></robot>\n')
+
+
+@pytest.mark.skipif(shutil.which("bash") is None, reason="needs bash")
+@pytest.mark.parametrize("name", ["--output=report.urdf", "-o report.urdf", "--select=U9.urdf",
+                                  "--format=json.urdf", "-"])
+def test_a_file_name_is_never_an_option(tmp_path, name):
+    """Issue 29, class 8: with ``paths: '*.urdf'``, a file of the pull request named
+    ``--output=report.urdf`` became an option (the report went to report.urdf, the file was
+    not checked). Every path now comes after ``--``: the file is checked, nothing written."""
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / f"{name}.urdf" if name == "-" else work / name).write_text(BAD)
+    (work / "ok.urdf").write_text(GOOD)
+    checked = _run(step("Check (annotations on the diff)")["run"], tmp_path, cwd=work,
+                   PATHS="*.urdf", ARGS="")
+    assert checked.returncode == 1, checked.stderr
+    assert checked.stdout.count("::error file=") == 1 and "U204" in checked.stdout
+    assert sorted(p.name for p in work.iterdir()) == sorted(
+        [f"{name}.urdf" if name == "-" else name, "ok.urdf"])
+
+
+@pytest.mark.skipif(shutil.which("bash") is None, reason="needs bash")
+def test_paths_split_at_white_space_and_lines_and_matches_stay_one_word(tmp_path):
+    work = tmp_path / "work"
+    (work / "with space").mkdir(parents=True)
+    (work / "with space" / "a b.urdf").write_text(BAD)
+    (work / "ok.urdf").write_text(GOOD)
+    (work / "$(id>pwned).urdf").write_text(GOOD)
+    checked = _run(step("SARIF")["run"], tmp_path, cwd=work,
+                   PATHS="ok.urdf\n  with*/*.urdf  $(id>pwned).urdf", ARGS="--strict")
+    assert checked.returncode == 0, checked.stderr
+    log = json.loads((tmp_path / "urdftool.sarif").read_text())
+    assert {r["ruleId"] for r in log["runs"][0]["results"]} == {"U204"}
+    assert not (work / "pwned").exists()
+
+
+@pytest.mark.skipif(shutil.which("bash") is None, reason="needs bash")
+def test_args_are_words_without_expansion(tmp_path):
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / "ok.urdf").write_text(GOOD)
+    (work / "a.xyz").write_text(GOOD)  # an unquoted $ARGS would have matched it
+    for words, literal in (("--strict *.xyz", "*.xyz"), ("--strict $HOME", "$HOME")):
+        checked = _run(step("Check (annotations on the diff)")["run"], tmp_path, cwd=work,
+                       PATHS="ok.urdf", ARGS=words)
+        assert checked.returncode == 2, checked.stderr
+        assert f"path '{literal}' does not exist" in checked.stderr

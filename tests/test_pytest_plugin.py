@@ -74,3 +74,23 @@ def test_the_plugin_is_registered_for_pytest():
 
     assert {e.value for e in entry_points(group="pytest11") if e.name == "urdftool"} == \
         {"urdftool.pytest_plugin"}
+
+
+def test_the_fixture_fails_with_broken_settings_that_stop_some_files(tmp_path):
+    """A settings file that is broken stops only the files it applies to (issue 29, class 2):
+    the run checks the others and the fixture fails, saying why."""
+    import pytest as _pytest
+
+    from urdftool.pytest_plugin import _check, _text
+
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / "r.urdf").write_text('<robot name="r"><link name="x"/></robot>')
+    (tmp_path / "b" / "urdftool.toml").write_text("bogus = 1\n")
+    run = _check([str(tmp_path / "a"), str(tmp_path / "b")])
+    assert run.exit_code == 2 and len(run.results) == 1
+    assert "unknown urdftool setting(s) bogus" in _text(run)
+    from urdftool.errors import SettingsError
+
+    with _pytest.raises(SettingsError):  # nothing could be checked
+        _check([str(tmp_path / "b")])

@@ -53,17 +53,58 @@ class PackageNotFound(UrdftoolError):
         )
 
 _LISTED = 12
+MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested
+MAX_SIMILAR_CANDIDATES = 5000  # names compared with one that is not known
+_SHOWN_NAME = 64  # [characters] of a name listed among the available ones
+
+
+def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str]:
+    """``difflib.get_close_matches`` bounded before the work: the one similarity search of
+    urdftool (a test holds it so). A ratio costs the product of the two lengths, and a robot
+    file can hold a 6 MB name (8 s of `check` on one): nothing is suggested for a name over
+    MAX_SIMILAR_NAME characters, longer candidates are skipped, and at most
+    MAX_SIMILAR_CANDIDATES are compared."""
+    import difflib
+
+    if len(wanted) > MAX_SIMILAR_NAME:
+        return []
+    candidates = [name for name in names if len(name) <= MAX_SIMILAR_NAME]
+    return difflib.get_close_matches(wanted, candidates[:MAX_SIMILAR_CANDIDATES], n=n,
+                                     cutoff=cutoff)
+
+
+def similarity(one: str, two: str) -> float:
+    """difflib's ratio of two names, 0.0 when either is over MAX_SIMILAR_NAME characters (see
+    :func:`close_names`)."""
+    import difflib
+
+    if len(one) > MAX_SIMILAR_NAME or len(two) > MAX_SIMILAR_NAME:
+        return 0.0
+    return difflib.SequenceMatcher(None, one, two).ratio()
+
+
+def _shown(name: str) -> str:
+    return name if len(name) <= _SHOWN_NAME else f"{name[:_SHOWN_NAME]}... ({len(name)} characters)"
 
 
 def available(kind: str, wanted: str, names) -> str:
     """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist."""
-    import difflib
-
     names = sorted({name for name in names if name})  # unnamed elements are another rule's business
-    close = difflib.get_close_matches(wanted, names, n=1, cutoff=0.6)
+    close = close_names(wanted, names, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
-    shown = ", ".join(names[:_LISTED]) + (f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
+    shown = ", ".join(map(_shown, names[:_LISTED])) + (
+        f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
     return f"{hint}available {kind}: {shown or '(none)'}"
+
+
+class OverLimit(UrdftoolError):
+    """An input over a size limit checked before the work it would cost (``what`` is over
+    ``limit``; ``value`` is how much it is): the work is not started. The command line says
+    which option raises the limit."""
+
+    def __init__(self, what: str, value: int, limit: int, unit: str):
+        self.what, self.value, self.limit = what, value, limit
+        super().__init__(f"{what}: {value} {unit}, over the limit of {limit}; not computed")
 
 
 # --- Errors of the analyses (one hierarchy; each is re-exported by the module that raises it,

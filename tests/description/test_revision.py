@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 
 import pytest
+from hostile_git import (config, embed_bare_repository, git, has_git, make_partial,
+                         markers_found, repository)
 
 from urdftool.description.revision import checkout
 from urdftool.errors import UsageError
@@ -91,3 +94,191 @@ def test_a_link_leading_out_of_the_tree_is_left_out(repo):
     with checkout(repo / "robot.urdf.xacro", "HEAD") as (tree, path):
         assert path.is_file() and not (tree / "escape").exists()
         assert not (tree / "escape").is_symlink()
+
+
+# ---- git is told its repository, and runs nothing a repository's configuration names -------
+
+
+
+@pytest.fixture
+def hostile(tmp_path):
+    """A repository with robot/robot.urdf, a marker folder outside it, and a hooks folder."""
+    if not has_git():
+        pytest.skip("git is not installed")
+    markers = tmp_path / "markers"
+    return repository(tmp_path / "repo", markers), markers
+
+
+def test_an_embedded_bare_repository_is_never_taken_for_the_repository(hostile):
+    """A pull request commits HEAD, config, objects/ and refs/ into the robot's folder: git's
+    own discovery from that folder takes it for a repository and runs the filter its config
+    names (the positive control); urdftool names the repository itself and reads the real
+    one's commit, and nothing the planted config names runs."""
+    root, markers = hostile
+    embed_bare_repository(root / "robot", markers)
+    git(root, "add", "-f", "robot")
+    git(root, "commit", "-qm", "a repository inside the robot's folder")
+    control = subprocess.run(["git", "-C", str(root / "robot"), "archive", "HEAD"],
+                             capture_output=True, env={"PATH": "/usr/bin:/bin",
+                                                       "GIT_CONFIG_NOSYSTEM": "1"})
+    assert "filter.process" in markers_found(markers), control.stderr
+    for marker in markers.iterdir():
+        marker.unlink()
+    with checkout(root / "robot" / "robot.urdf", "HEAD") as (tree, path):
+        assert path == tree / "robot" / "robot.urdf"  # the real repository's layout
+        assert (tree / "robot" / "config").is_file()  # the planted files are data
+    assert markers_found(markers) == []
+
+
+def test_the_repository_configuration_runs_nothing(hostile, monkeypatch):
+    """The repository's own config (a stranger's, in an unpacked archive) names a program for
+    every key that can run one, the tree names the filter and diff driver, the blob of the
+    robot is missing as in a partial clone, and the caller's environment points git
+    elsewhere: a plain ``git cat-file`` runs the remote's ssh command (the positive
+    control); urdftool reads what is there and runs nothing."""
+    root, markers = hostile
+    (root / "robot" / "other.urdf").write_text("<robot name='o'/>\n")
+    git(root, "add", ".")
+    git(root, "commit", "-qm", "another robot")
+    make_partial(root, "robot/other.urdf")
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write(config(markers))
+    control = subprocess.run(["git", "-C", str(root), "cat-file", "-p", "HEAD:robot/other.urdf"],
+                             capture_output=True, env={"PATH": "/usr/bin:/bin",
+                                                       "GIT_CONFIG_NOSYSTEM": "1"})
+    assert control.returncode != 0 and "core.sshCommand" in markers_found(markers)
+    for marker in markers.iterdir():
+        marker.unlink()
+    elsewhere = root.parent / "elsewhere"
+    elsewhere.mkdir()
+    for name, value in {"GIT_DIR": str(elsewhere), "GIT_WORK_TREE": str(elsewhere),
+                        "GIT_EXTERNAL_DIFF": f"touch {markers}/GIT_EXTERNAL_DIFF",
+                        "GIT_SSH_COMMAND": f"touch {markers}/GIT_SSH_COMMAND",
+                        "GIT_PAGER": f"touch {markers}/GIT_PAGER",
+                        "GIT_CONFIG_PARAMETERS": "'core.fsmonitor'='touch /dev/null'"}.items():
+        monkeypatch.setenv(name, value)
+    with checkout(root / "robot" / "robot.urdf", "HEAD") as (tree, path):
+        assert path.read_text() == (root / "robot" / "robot.urdf").read_text()
+        assert not (tree / "robot" / "other.urdf").exists()  # missing, never fetched
+    with pytest.raises(UsageError, match="not in the repository's object store"):
+        with checkout(root / "robot" / "other.urdf", "HEAD"):
+            pass
+    assert markers_found(markers) == []
+
+
+def test_diff_rev_through_the_command_line_runs_nothing(hostile, run_cli):
+    root, markers = hostile
+    embed_bare_repository(root / "robot", markers)
+    git(root, "add", "-f", "robot")
+    git(root, "commit", "-qm", "planted")
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write(config(markers).replace("[extensions]\n\tpartialClone = origin\n", ""))
+    result = run_cli("diff", "--rev", "HEAD", root / "robot" / "robot.urdf")
+    assert result.exit_code == 0, result.output
+    assert "HEAD:robot/robot.urdf" in result.output
+    assert markers_found(markers) == []
+
+
+def test_names_in_the_tree_that_are_not_plain_are_left_out(repo):
+    """A tree object can hold any name (one fetched without fsck): '..' and the like never
+    become a path out of the temporary folder; links leading out are not made."""
+    (repo / "inside").symlink_to("parts")
+    (repo / "loop").symlink_to("loop2")
+    (repo / "loop2").symlink_to("./loop")
+    git(repo, "add", "inside", "loop", "loop2")
+    git(repo, "commit", "-qm", "links")
+    tree_id = git(repo, "rev-parse", "HEAD^{tree}")
+    blob = git(repo, "rev-parse", "HEAD:robot.urdf.xacro")
+    listing = git(repo, "ls-tree", tree_id)
+    crafted = subprocess.run(
+        ["git", "-C", str(repo), "mktree", "--missing"], check=True, capture_output=True,
+        text=True, input=listing + f"\n100644 blob {blob}\t..\n100644 blob {blob}\t.git\n"
+    ).stdout.strip()
+    commit = git(repo, "commit-tree", crafted, "-m", "crafted")
+    with checkout(repo / "robot.urdf.xacro", commit) as (tree, path):
+        assert path.is_file() and (tree / "inside" / "link.xacro").is_file()
+        assert not (tree / "loop").exists() or (tree / "loop").resolve().is_relative_to(tree)
+        assert sorted(p.name for p in tree.parent.iterdir()) == ["tree"]
+
+
+def test_the_size_of_the_tree_is_known_before_any_blob_is_read(repo, monkeypatch):
+    from urdftool.description import revision
+
+    read = []
+    monkeypatch.setattr(revision, "_write_tree", lambda *args: read.append(args))
+    with pytest.raises(UsageError, match="over 100 bytes"):
+        with checkout(repo / "robot.urdf.xacro", "HEAD", max_bytes=100):
+            pass
+    assert read == []
+
+
+def test_git_runs_in_one_module_only():
+    """Only description/revision.py starts git; report/dot.py starts Graphviz's dot and
+    crosscheck/loaders.py sdformat's `gz sdf` (docs/security.md, "programs started"); no other
+    module imports subprocess, and neither of those names git."""
+    import ast
+    from pathlib import Path
+
+    import urdftool
+
+    package = Path(urdftool.__file__).parent
+    starting = set()
+    for module in package.rglob("*.py"):
+        tree = ast.parse(module.read_text())
+        for node in ast.walk(tree):
+            names = ([alias.name for alias in node.names] if isinstance(node, ast.Import) else
+                     [node.module] if isinstance(node, ast.ImportFrom) else [])
+            if any(name and name.split(".")[0] in ("subprocess", "pty") for name in names) or (
+                    isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                    and node.value.id == "os" and node.attr.startswith(("system", "popen",
+                                                                        "exec", "spawn"))):
+                starting.add(module.relative_to(package).as_posix())
+    assert starting == {"description/revision.py", "report/dot.py", "crosscheck/loaders.py"}
+    for other in ("report/dot.py", "crosscheck/loaders.py"):
+        assert not re.search(r"\bgit\b", (package / other).read_text()), other
+
+
+@pytest.mark.parametrize("section", ["[include]\n\tpath = {outside}\n",
+                                     '[includeIf "gitdir:/"]\n\tpath = {outside}\n',
+                                     "  [INCLUDE]\n  path = {outside}\n"])
+def test_a_configuration_including_other_files_is_refused(hostile, section):
+    """No command line turns git's config includes off: a repository (an unpacked archive's)
+    whose config includes a file outside would have git read it. Refused before git runs."""
+    root, markers = hostile
+    outside = markers.parent / "outside.gitconfig"
+    outside.write_text(f"[core]\n\tfsmonitor = touch {markers}/included\n")
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write(section.format(outside=outside))
+    with pytest.raises(UsageError, match="includes other files"):
+        with checkout(root / "robot" / "robot.urdf", "HEAD"):
+            pass
+    assert markers_found(markers) == []
+
+
+def test_a_worktree_reads_its_common_configuration(hostile, tmp_path):
+    """A linked worktree's .git is a file naming its git folder; the common folder's config is
+    the one looked at (and used)."""
+    root, _ = hostile
+    git(root, "worktree", "add", "-q", str(tmp_path / "linked"))
+    with checkout(tmp_path / "linked" / "robot" / "robot.urdf", "HEAD") as (_, path):
+        assert path.is_file()
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write("[include]\n\tpath = /dev/null\n")
+    with pytest.raises(UsageError, match="includes other files"):
+        with checkout(tmp_path / "linked" / "robot" / "robot.urdf", "HEAD"):
+            pass
+
+
+def test_a_blob_no_reader_takes_is_left_out(repo, monkeypatch):
+    """A file over the largest any reader takes is read past, not kept; the files after it in
+    the tree still come (the stream stays in step)."""
+    from urdftool.description import revision
+
+    (repo / "a_big.bin").write_bytes(b"x" * 5000)
+    (repo / "z_after.xacro").write_text(PART)
+    git(repo, "add", "a_big.bin", "z_after.xacro")
+    git(repo, "commit", "-qm", "big")
+    monkeypatch.setattr(revision, "MAX_BLOB", 1000)
+    with checkout(repo / "robot.urdf.xacro", "HEAD") as (tree, path):
+        assert not (tree / "a_big.bin").exists()
+        assert (tree / "z_after.xacro").read_text() == PART and path.is_file()

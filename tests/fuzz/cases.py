@@ -5,13 +5,17 @@ A :class:`Case` is a seed robot, the bytes that replace it, and what else the ho
 holds: extra files (YAML bombs, crafted meshes, sparse giant files for the folder walk), symbolic
 links (out of the repository: in the walk, as a package folder for ``$(find)``, as an include,
 as a mesh, at an output path), a settings file (``urdftool.toml`` or ``[tool.urdftool]`` naming
-/etc/passwd, /dev/zero, ``../..``), and how output paths are given (plain, a symbolic link to a
-file outside, a missing folder, a folder). :func:`case_strategy` draws them;
-:func:`materialize` writes one under a temporary folder::
+/etc/passwd, /dev/zero, ``../..``; every key of the settings, limits raised, nesting too deep),
+include patterns reaching outside, a real git repository with a bare repository committed in the
+robot's folder or a hostile ``.git/config`` (``diff --rev``; git is traced with strace), and how
+output paths are given (plain, a symbolic link to a file outside, a missing folder, a folder, a
+folder that is a link leading outside, ``..`` after such a link). :func:`case_strategy` draws
+them; :func:`materialize` writes one under a temporary folder::
 
     <tmp>/repo/       the case's repository (has .git): the robot, settings, links
     <tmp>/outside/    files the repository must not reach: secret.xacro, evil_pkg/, victim.txt
-    <tmp>/scratch/    the children's temporary files and output captures
+    <tmp>/scratch/    the children's temporary files and output captures; markers/ (what a
+                      planted git config runs writes there), bin/git (git under strace)
 
 A bundled robot (robots/NAME) is copied into ``repo/NAME``; a corpus robot is fed on stdin with
 its own folder as the working directory (so its includes resolve), and only the hostile
@@ -80,9 +84,41 @@ SETTINGS_VALUES = ["/etc/passwd", "/dev/zero", "../../../../../../../../etc/pass
                    OUTSIDE + "/limits.yaml", "zero_link", "passwd_link", "/proc/self/environ",
                    "", ".", ".."]
 SETTINGS_KEYS = ["spec", "srdf", "controllers", "packages"]
-OUTPUT_MODES = ["plain", "symlink", "missing", "folder", "dangling"]
+# every key of the settings (urdftool.lint.settings.KEYS) with values naming outside paths,
+# limits raised above the built-in ones, and nesting past the depth read
+OUTSIDE_TEXTS = ["/etc/passwd", OUTSIDE + "/secret.xacro", "../../../../../../etc/passwd",
+                 "~/.ssh/id_rsa", "file:///etc/passwd", "C:\\Windows", "..", "a/../../.."]
+SETTINGS_ANY_KEY = {
+    "select": 'select = ["{v}"]\n', "ignore": 'ignore = ["{v}"]\n',
+    "per-file-ignores": '[per-file-ignores]\n"{v}" = ["U2"]\n',
+    "per-file-args": '[per-file-args]\n"*" = {{ cfg = "{v}", inc = "{v}" }}\n',
+    "packages": '[packages]\nevil_pkg = "{v}"\n', "spec": 'spec = "{v}"\n',
+    "srdf": 'srdf = "{v}"\n', "controllers": 'controllers = ["{v}"]\n',
+    "strict": '"{v}" = true\n', "max-file-size": 'max-file-size = "{v}"\n',
+    "max-memory": 'max-memory = "{v}"\n', "targets": 'targets = ["{v}"]\n',
+}
+RAISED_LIMITS = ["max-file-size = 16777217", "max-file-size = 1099511627776",
+                 'max-memory = "0"', "max-memory = 0", 'max-memory = "64G"',
+                 'max-memory = "2049M"']
+DEEP_SETTINGS = ["a = " + "[" * 3000 + "]" * 3000, "a" + ".a" * 100_000 + " = 1",
+                 "[" + "a." * 50_000 + "a]", "x = " + "{a = " * 2000 + "1" + "}" * 2000]
+# the robot reads what per-file-args name (an include and a YAML), so an argument that became
+# a readable root would show the outside file's content
+ARG_READER = ('\n  <xacro:arg name="cfg" default="none.yaml"/><xacro:arg name="inc" '
+              'default="none.xacro"/>\n  <xacro:include filename="$(arg inc)" optional="true"/>'
+              '\n  <xacro:property name="y" value="${xacro.load_yaml(\'$(arg cfg)\')}"/>\n')
+# include patterns that reach outside: directly, through a linked folder, climbing after a
+# wildcard, through a package that is a link; "linkdir" and "parts/evil" lead to <outside>
+GLOB_PATTERNS = [OUTSIDE + "/*.xacro", OUTSIDE + "/*", "linkdir/*.xacro", "linkdir/*",
+                 "parts/*/*.xacro", "parts/*/*", "parts/*/../../linkdir/*.xacro",
+                 "../../*/*.xacro", "../*/../../outside/*", "../../outside/*.xacro",
+                 "$(find evil_pkg)/*.xacro",
+                 "/etc/*", "/*/*.xacro", "parts/[ge]*/*.xacro"]
+GIT_VARIANTS = ["embedded", "config", "partial", "environment", "gitfile", "include"]
+OUTPUT_MODES = ["plain", "symlink", "missing", "folder", "dangling", "linked_folder",
+                "linked_dotdot"]
 CORPUS_KINDS = ["plain", "eval", "expression", "output", "forge"]
-REPO_KINDS = CORPUS_KINDS + ["settings", "symlink", "walk", "yaml", "mesh_bomb"]
+REPO_KINDS = CORPUS_KINDS + ["settings", "symlink", "walk", "yaml", "mesh_bomb", "git", "glob"]
 
 
 @dataclass
@@ -96,6 +132,9 @@ class Case:
     generated: dict[str, str] = field(default_factory=dict)  # repo-relative path -> GENERATORS key
     output: str = "plain"
     commands: tuple[str, ...] | None = None  # None: all
+    git: str = ""  # a GIT_VARIANTS entry: the repository is a real one (diff --rev)
+    forbidden: tuple[str, ...] = ()  # text no command may print (names found outside)
+    expect: str = ""  # text every check command must print (a settings file refused)
 
     @property
     def bundled(self) -> bool:
@@ -104,14 +143,17 @@ class Case:
     def to_json(self) -> dict:
         return {"kind": self.kind, "output": self.output, "commands": self.commands,
                 "files": {k: base64.b64encode(v).decode() for k, v in self.files.items()},
-                "sparse": self.sparse, "links": self.links, "generated": self.generated}
+                "sparse": self.sparse, "links": self.links, "generated": self.generated,
+                "git": self.git, "forbidden": list(self.forbidden), "expect": self.expect}
 
     @classmethod
     def from_json(cls, seed: Seed, data: bytes, meta: dict) -> "Case":
         return cls(seed, data, meta["kind"], {k: base64.b64decode(v) for k, v in
                                               meta["files"].items()},
                    meta["sparse"], meta["links"], meta.get("generated", {}), meta["output"],
-                   tuple(meta["commands"]) if meta.get("commands") else None)
+                   tuple(meta["commands"]) if meta.get("commands") else None,
+                   meta.get("git", ""), tuple(meta.get("forbidden", ())),
+                   meta.get("expect", ""))
 
 
 @dataclass
@@ -130,10 +172,12 @@ class Layout:
     def output(self, mode: str, name: str) -> str:
         """An output path in ``mode`` (planted by :func:`materialize`)."""
         folder = self.repo / "out"
+        if mode == "linked_dotdot":  # out/linked leads outside: out/linked/sub/.. is there
+            return f"{(folder / 'linked' / 'sub').as_posix()}/../{name}"
         return {"plain": folder / name, "symlink": folder / f"link-{name}",
                 "dangling": folder / f"dangling-{name}",
                 "missing": self.repo / "no" / "such" / name,
-                "folder": folder}[mode].as_posix()
+                "folder": folder, "linked_folder": folder / "linked" / name}[mode].as_posix()
 
 
 def materialize(case: Case) -> Layout:
@@ -146,7 +190,7 @@ def materialize(case: Case) -> Layout:
         name = case.seed.path.parent.name
         shutil.copytree(case.seed.path.parent, repo / name)
         robot_file = repo / name / case.seed.path.name
-        robot_file.write_bytes(case.data)
+        robot_file.write_bytes(case.data.replace(OUTSIDE.encode(), str(outside).encode()))
         layout = Layout(top, repo, outside, scratch, repo, robot_file.relative_to(repo).as_posix(),
                         None, [])
     else:
@@ -155,7 +199,7 @@ def materialize(case: Case) -> Layout:
     for relative, content in case.files.items():
         target = repo / relative
         target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_bytes(content)
+        target.write_bytes(content.replace(OUTSIDE.encode(), str(outside).encode()))
     for relative, recipe in case.generated.items():
         target = repo / relative
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -172,12 +216,90 @@ def materialize(case: Case) -> Layout:
         if where.is_symlink() or where.exists():  # the link replaces a file of the seed
             where.unlink()
         os.symlink(target.replace(OUTSIDE, str(outside)), where)
-    for name in ("report.json", "robot.urdf", "graph.dot", "inertia.urdf"):
+    for name in OUTPUT_NAMES:
         if case.output == "symlink":
             os.symlink(outside / "victim.txt", repo / "out" / f"link-{name}")
         elif case.output == "dangling":
             os.symlink(outside / "nowhere" / name, repo / "out" / f"dangling-{name}")
+    if case.output in ("linked_folder", "linked_dotdot"):
+        (outside / "outdir" / "sub").mkdir(parents=True)
+        os.symlink(outside / "outdir", repo / "out" / "linked")
+    if case.git:
+        _make_git(case, layout)
     return layout
+
+
+OUTPUT_NAMES = ("report.json", "robot.urdf", "graph.dot", "inertia.urdf", "diff.json",
+                "render.svg")
+GIT_WRAPPER = """#!/bin/sh
+# git as urdftool starts it, traced: every file it opens and every program it starts (without
+# strace, untraced: the markers a planted configuration writes still tell what ran)
+command -v strace >/dev/null || exec {git} "$@"
+exec strace -f -qq -e trace=openat,open,creat,execve,rename,unlink,mkdir \\
+    -o "$URDFFUZZ_STRACE.$$" {git} "$@"
+"""
+
+
+def _make_git(case: Case, layout: Layout) -> None:
+    """Make the case's repository a real one (everything committed), then plant what the
+    variant says; git as urdftool starts it goes through scratch/bin/git, traced by strace."""
+    from tests.hostile_git import (config, embed_bare_repository, git, hooks, including,
+                                   make_partial)
+
+    markers = layout.scratch / "markers"
+    markers.mkdir()
+    hooks(markers)
+    shutil.rmtree(layout.repo / ".git")
+    (layout.repo / ".gitattributes").write_text("* filter=evil diff=evil merge=evil\n")
+    git(layout.repo, "init", "-q")
+    git(layout.repo, "add", "-A")
+    git(layout.repo, "commit", "-qm", "robot")
+    robot_dir = layout.repo / Path(layout.robot).parent
+    variant = case.git
+    if variant in ("embedded", "environment") and (robot_dir / "config").exists():
+        variant = "gitfile"  # the robot's folder has a config/ of its own
+    if variant in ("embedded", "environment"):
+        embed_bare_repository(robot_dir, markers)
+        git(layout.repo, "add", "-f", "-A")
+        git(layout.repo, "commit", "-qm", "a repository in the robot's folder")
+    if variant == "gitfile":  # an unpacked archive: a .git file in the robot's folder naming
+        (layout.repo / "hostile.git").mkdir()  # a hostile repository (git refuses to commit it)
+        embed_bare_repository(layout.repo / "hostile.git", markers)
+        (robot_dir / ".git").write_text("gitdir: ../hostile.git\n")
+    if case.git == "partial":  # committed before the config below names its filter
+        (layout.repo / "other.urdf").write_text("<robot name='o'/>\n")
+        git(layout.repo, "add", "other.urdf")
+        git(layout.repo, "commit", "-qm", "another")
+        make_partial(layout.repo, "other.urdf")
+    if case.git == "include":  # the config includes a file outside: git would read it
+        (layout.outside / "outside.gitconfig").write_text(config(markers))
+        with open(layout.repo / ".git" / "config", "a") as handle:
+            handle.write(including(layout.outside / "outside.gitconfig"))
+    if case.git in ("config", "partial", "environment"):
+        text = config(markers)
+        if case.git != "partial":
+            text = text.replace("[extensions]\n\tpartialClone = origin\n", "")
+        with open(layout.repo / ".git" / "config", "a") as handle:
+            handle.write(text)
+    wrapper = layout.scratch / "bin" / "git"
+    wrapper.parent.mkdir()
+    wrapper.write_text(GIT_WRAPPER.format(git=shutil.which("git") or "/usr/bin/git"))
+    wrapper.chmod(0o755)
+
+
+def git_environment(case: Case, layout: Layout) -> dict[str, str]:
+    """What the children's environment needs for a git case: the traced git first on PATH,
+    and (the "environment" variant) the caller's GIT_* variables pointing git elsewhere."""
+    if not case.git:
+        return {}
+    found = {"PATH": f"{layout.scratch / 'bin'}{os.pathsep}{os.environ.get('PATH', '')}",
+             "URDFFUZZ_STRACE": str(layout.scratch / "strace")}
+    if case.git == "environment":
+        robot_dir = layout.repo / Path(layout.robot).parent
+        found.update(GIT_DIR=str(robot_dir), GIT_WORK_TREE=str(robot_dir),
+                     GIT_EXTERNAL_DIFF=f"touch {layout.scratch / 'markers'}/GIT_EXTERNAL_DIFF",
+                     GIT_CONFIG_PARAMETERS="'core.fsmonitor'='touch /dev/null'")
+    return found
 
 
 def _plant_outside(outside: Path) -> None:
@@ -222,10 +344,14 @@ def commands(case: Case, layout: Layout) -> dict[str, list[str]]:
         "dynamics": ["dynamics", *limit, *words],
         "collisions": ["collisions", *limit, *words, *(w for q in pose for w in ("--q", q))],
         "fk-q": ["fk", *limit, *words, "--q-file", (layout.repo / "q_file").as_posix()],
+        "diff-rev": ["diff", *limit, "--rev", "HEAD", *words, "--samples", "2",
+                     "--no-collisions", "-f", "json", "-o", layout.output(out, "diff.json")],
+        "render": ["render", *limit, *words, "-o", layout.output(out, "render.svg")],
     }
     if case.bundled:
         table["check-walk"] = ["check", ".", "--no-env", "-j", "2", *limit]
-    chosen = case.commands or tuple(n for n in table if n != "fk-q")
+    chosen = case.commands or tuple(n for n in table if n not in ("fk-q", "diff-rev",
+                                                                  "render"))
     return {name: table[name] for name in chosen if name in table}
 
 
@@ -319,6 +445,30 @@ def _mesh_link(filename: str) -> str:
             'iyz="0"/></inertial></link>\n')
 
 
+def _hostile_settings(draw, case: Case, data: bytes) -> None:
+    """A settings file every check must refuse: any key naming a path outside, a limit raised
+    above the built-in one, or nesting past what is read; the robot reads what per-file-args
+    would give it."""
+    how = draw(st.sampled_from(["outside", "raised", "deep"]))
+    if how == "outside":
+        key = draw(st.sampled_from(sorted(SETTINGS_ANY_KEY)))
+        body = SETTINGS_ANY_KEY[key].format(v=draw(st.sampled_from(OUTSIDE_TEXTS)))
+        if key == "per-file-args":
+            case.data = _insert_after_root(data, ARG_READER)
+    else:
+        body = draw(st.sampled_from(RAISED_LIMITS if how == "raised" else DEEP_SETTINGS)) + "\n"
+    if draw(st.booleans()):
+        case.files["urdftool.toml"] = body.encode()
+    else:
+        body = body.replace("[per-file-ignores]", "[tool.urdftool.per-file-ignores]") \
+            .replace("[per-file-args]", "[tool.urdftool.per-file-args]") \
+            .replace("[packages]", "[tool.urdftool.packages]")
+        if not body.startswith("[tool"):
+            body = "[tool.urdftool]\n" + body
+        case.files["pyproject.toml"] = body.encode()
+    case.expect = "urdftool: error: "
+
+
 @st.composite
 def case_strategy(draw, seed_list: list[Seed], kinds: list[str] | None = None):
     """A :class:`Case` (see the module docstring)."""
@@ -347,6 +497,8 @@ def case_strategy(draw, seed_list: list[Seed], kinds: list[str] | None = None):
         case.data = _insert_after_root(data, f'\n  <link name="{name}"/>\n  <joint name="{name}" '
                                              'type="fixed"><parent link="nowhere"/>'
                                              '<child link="nowhere2"/></joint>\n', False)
+    elif kind == "settings" and draw(st.booleans()):
+        _hostile_settings(draw, case, data)
     elif kind == "settings":
         key = draw(st.sampled_from(SETTINGS_KEYS + ["max-file-size"]))
         value = draw(st.sampled_from(SETTINGS_VALUES))
@@ -433,9 +585,22 @@ def case_strategy(draw, seed_list: list[Seed], kinds: list[str] | None = None):
             case.files[f"{robot_dir}/fan.obj"] = _obj_fan(corners, "\t" if bomb == "obj_tabs"
                                                           else " ")
             case.data = _insert_after_root(data, _mesh_link("fan.obj"))
+    elif kind == "git":
+        case.git = draw(st.sampled_from(GIT_VARIANTS))
+        case.commands = ("diff-rev",)
+    elif kind == "glob":
+        pattern = draw(st.sampled_from(GLOB_PATTERNS))
+        case.links.update({f"{robot_dir}/linkdir": OUTSIDE, f"{robot_dir}/parts/evil": OUTSIDE,
+                           "evil_pkg": OUTSIDE + "/evil_pkg"})
+        case.files[f"{robot_dir}/parts/good/ok.xacro"] = (
+            f'<robot xmlns:xacro="{XACRO_NS}"><xacro:macro name="ok"/></robot>\n').encode()
+        case.data = _insert_after_root(data, f'\n  <xacro:include filename="{_attr(pattern)}"/>\n')
+        case.forbidden = ("secret.xacro", "secret.urdf", "victim.txt", "limits.yaml",
+                          "box.stl")
+        case.commands = ("check", "check-text", "xacro")  # --no-env: outside is refused
     elif kind == "output":
         case.output = draw(st.sampled_from(OUTPUT_MODES[1:]))
-        case.commands = ("check", "xacro", "graph", "inertia")
+        case.commands = ("check", "xacro", "graph", "inertia", "render")
     if kind != "output" and draw(st.integers(0, 4)) == 0:
         case.output = draw(st.sampled_from(OUTPUT_MODES))
     return case

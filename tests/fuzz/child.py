@@ -78,9 +78,10 @@ class Allow:
     read: list[str] = field(default_factory=list)
     write: list[str] = field(default_factory=list)
     listable: set[str] = field(default_factory=set)  # sys.path folders (the import system lists)
+    programs: set[str] = field(default_factory=set)  # what may be started (``git`` for diff --rev)
 
     @classmethod
-    def for_case(cls, repo: Path, scratch: Path, extra_read=()) -> "Allow":
+    def for_case(cls, repo: Path, scratch: Path, extra_read=(), programs=()) -> "Allow":
         python = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix}
         python |= {p for p in sys.path if "-packages" in p}
         import urdftool
@@ -90,7 +91,8 @@ class Allow:
         read = [_real(p) for p in (*python, *extra_read) if p]
         write = [_real(repo), _real(scratch)]
         listable = {_real(p or ".") for p in sys.path}
-        return cls(read=sorted(set(read + write)), write=write, listable=listable)
+        return cls(read=sorted(set(read + write)), write=write, listable=listable,
+                   programs=set(programs))
 
     def reads(self, path: str) -> bool:
         return _under(path, self.read)
@@ -278,6 +280,13 @@ def _child(argv, cwd, allow, scratch, out_fd, log_fd, stdin_path, memory_limit, 
         os._exit(code)
 
 
+def _program(args) -> str | None:
+    """The program name a ``subprocess.Popen`` audit event starts (executable or argv[0])."""
+    executable, argv = (tuple(args) + (None, None))[:2]
+    first = executable or (argv[0] if isinstance(argv, (list, tuple)) and argv else argv)
+    return os.path.basename(os.fsdecode(first)) if isinstance(first, (str, bytes)) else None
+
+
 def _auditor(allow: Allow, log_fd: int):
     busy = [False]
 
@@ -301,6 +310,8 @@ def _auditor(allow: Allow, log_fd: int):
         elif event in _EXEC_EVENTS:
             if event == "os.fork":
                 return  # check's own worker processes
+            if event == "subprocess.Popen" and _program(args) in allow.programs:
+                return  # git for diff --rev: what it opens and starts is traced (strace)
             note(f"exec: {event} {args!r}"[:300])
             raise PermissionError(f"fuzz harness: {event} refused")
         else:

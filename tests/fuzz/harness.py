@@ -11,6 +11,7 @@ no file opened outside the repository, no code run, no write through a planted l
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import os
@@ -21,7 +22,7 @@ from pathlib import Path
 
 from urdftool.lint.engine import CheckOptions, check_file
 
-from .cases import SECRET_LINK, Case, cleanup, commands, materialize
+from .cases import SECRET_LINK, Case, cleanup, commands, git_environment, materialize
 from .child import CANARY, SECRET_VALUE, Allow, run_all
 from .mutate import CORPUS, ROOT, Seed
 
@@ -130,15 +131,17 @@ def case_report(case: Case, *, time_limit: float = 30.0, parallel: int = 2) -> C
     report = CaseReport()
     try:
         allow = Allow.for_case(layout.repo, layout.scratch,
-                               extra_read=[str(p) for p in layout.reads])
+                               extra_read=[str(p) for p in layout.reads],
+                               programs=("git",) if case.git else ())
         table = commands(case, layout)
         outcomes = run_all(list(table.values()), parallel=parallel, cwd=layout.cwd, allow=allow,
                            scratch=layout.scratch, stdin=layout.stdin, time_limit=time_limit,
-                           memory_limit=_address_space_limit())
+                           memory_limit=_address_space_limit(),
+                           env=git_environment(case, layout))
         for name, outcome in zip(table, outcomes):
             if outcome is None:  # not started after another command hung
                 continue
-            found = _judge(name, outcome, time_limit)
+            found = _judge(name, outcome, time_limit) + _expected(case, name, outcome)
             report.peak_kib = max(report.peak_kib, outcome.peak_kib)
             report.outside += sum(e.startswith("outside:") for e in outcome.events)
             report.seconds += outcome.seconds
@@ -146,9 +149,62 @@ def case_report(case: Case, *, time_limit: float = 30.0, parallel: int = 2) -> C
                 report.failures.extend(found)
                 report.failed_commands.append(name)
         report.failures.extend(_after(layout))
+        traced = _git_traced(layout)
+        report.outside += sum(found.startswith("outside") for found in traced)
+        report.failures.extend(traced)
     finally:
         cleanup(layout)
     return report
+
+
+_CHECKS = {"check", "check-text", "check-walk"}
+
+
+def _expected(case: Case, name: str, outcome) -> list[str]:
+    """What the case itself asks: names found outside never printed (include patterns), a
+    hostile settings file refused by every check (exit 2, said why)."""
+    found = [f"leak: {name} printed '{text}', a name from outside the repository"
+             for text in case.forbidden if text in outcome.output]
+    if case.expect and name in _CHECKS and (outcome.status != 2
+                                            or case.expect not in outcome.output):
+        found.append(f"settings: {name} did not refuse the settings (exit {outcome.status})")
+    return found
+
+
+# what git may open: the repository (its .git), the scratch folder, its own installation
+_GIT_READS = ("/etc/ld.so.cache", "/lib/", "/lib64/", "/usr/lib/", "/usr/lib64/",
+              "/usr/share/locale/", "/usr/share/git-core/", "/dev/null", "/proc/self/",
+              "/etc/localtime")
+_TRACED = re.compile(r'^\d+\s+(openat|open|creat|execve|rename|unlink|mkdir)\((?:AT_FDCWD, )?'
+                     r'"([^"]*)"(.*)= (-?\d+)')
+
+
+def _git_traced(layout) -> list[str]:
+    """Every file git opened outside the repository, its scratch folder and its own
+    installation, every program it started but itself, and every marker a planted git
+    configuration wrote (scratch/markers): strace's logs of scratch/bin/git."""
+    found = []
+    markers = layout.scratch / "markers"
+    if markers.is_dir():
+        found += [f"code ran: git ran what a planted config names ({path.name})"
+                  for path in sorted(markers.iterdir())]
+    allowed = (os.path.realpath(layout.repo), os.path.realpath(layout.scratch))
+    for log in sorted(layout.scratch.glob("strace.*")):
+        for line in log.read_text(errors="replace").splitlines():
+            match = _TRACED.match(line)
+            if not match or int(match.group(4)) < 0:
+                continue
+            call, path = match.group(1), match.group(2)
+            if call == "execve":
+                if not os.path.basename(path).startswith("git"):
+                    found.append(f"code ran: git started {path}")
+                continue
+            absolute = path if path.startswith("/") else None
+            if absolute is None or any((os.path.realpath(absolute) + "/").startswith(a + "/")
+                                       for a in allowed) or absolute.startswith(_GIT_READS):
+                continue
+            found.append(f"outside: git {call} {absolute}")
+    return found
 
 
 _CLEAN_SUMMARY = re.compile(r"\d+ files? checked: no problems found")
@@ -191,6 +247,10 @@ def _after(layout) -> list[str]:
     if (layout.outside / "victim.txt").read_text() != "VICTIM\n" or \
             (layout.outside / "nowhere").exists():
         found.append("write through a symbolic link at an output path")
+    linked = layout.outside / "outdir"
+    if linked.is_dir() and sorted(p.name for p in linked.rglob("*")) != ["sub"]:
+        found.append("write through a folder linked outside: "
+                     + ", ".join(sorted(p.name for p in linked.rglob("*"))))
     for path in layout.repo.rglob(f"{CANARY}*"):
         found.append(f"code ran: {path.name} was created")
     for path in (layout.repo / "out").iterdir():
@@ -217,8 +277,7 @@ def _address_space_limit() -> int:
 def save_case_regression(case: Case, report: CaseReport) -> Path:
     """Keep a failing case like save_regression does, with its repository and the commands that
     failed (the replay runs only those)."""
-    kept = Case(case.seed, case.data, case.kind, case.files, case.sparse, case.links,
-                case.generated, case.output, tuple(report.failed_commands) or case.commands)
+    kept = dataclasses.replace(case, commands=tuple(report.failed_commands) or case.commands)
     meta = kept.to_json()
     digest = hashlib.sha256(case.data + json.dumps(meta, sort_keys=True).encode()).hexdigest()
     path = save_regression(case.seed, case.data, report.failures, name=digest[:12])

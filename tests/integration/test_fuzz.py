@@ -148,3 +148,29 @@ def test_seeded_command_slice(preloaded):
                          keep=False)
     assert stats["cases"] == CI_COMMAND_CASES
     assert stats["outside"] == 0 and stats["failures"] == 0, json.dumps(stats["failed"])
+
+
+def test_git_trace_judges_what_git_opens_and_starts(tmp_path):
+    """strace's log of the traced git (cases.GIT_WRAPPER): a program other than git started, a
+    file opened outside the repository, its scratch folder and git's installation, and a
+    marker a planted configuration wrote are failures; git's own reads are not."""
+    from types import SimpleNamespace
+
+    from tests.fuzz.harness import _git_traced
+
+    repo, scratch = tmp_path / "repo", tmp_path / "scratch"
+    (repo / ".git").mkdir(parents=True)
+    (scratch / "markers").mkdir(parents=True)
+    (scratch / "strace.1").write_text(
+        f'1 execve("/usr/bin/git", ["git"], 0x0 /* 3 vars */) = 0\n'
+        f'1 openat(AT_FDCWD, "/etc/ld.so.cache", O_RDONLY|O_CLOEXEC) = 3\n'
+        f'1 openat(AT_FDCWD, "{repo}/.git/config", O_RDONLY) = 3\n'
+        f'1 openat(AT_FDCWD, "/root/.gitconfig", O_RDONLY) = -1 ENOENT (No such file)\n'
+        f'2 execve("/bin/sh", ["sh", "-c", "touch x"], 0x0 /* 3 vars */) = 0\n'
+        f'2 openat(AT_FDCWD, "/etc/passwd", O_RDONLY) = 4\n')
+    layout = SimpleNamespace(repo=repo, scratch=scratch)
+    assert _git_traced(layout) == ["code ran: git started /bin/sh",
+                                   "outside: git openat /etc/passwd"]
+    (scratch / "markers" / "filter.smudge").write_text("")
+    assert _git_traced(layout)[0] == "code ran: git ran what a planted config names " \
+                                     "(filter.smudge)"

@@ -403,3 +403,88 @@ def test_spherical_wrist_needs_meeting_axes(tmp_path):
     ur5 = build_chain(load(str(corpus_or_skip() / "ur_description" / "urdf" / "ur5.xacro")),
                       "base_link", "tool0")
     assert ik.spherical(ur5) is None  # UR's wrist axes do not meet
+
+
+# ---- issue 29, class 10: degenerate limbs ----------------------------------------------------
+
+_BODY = ('<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" '
+         'iyz="0"/></inertial><collision><geometry><box size="0.05 0.05 0.05"/></geometry>'
+         '</collision>')
+
+
+def _limb(kinds: list[str]) -> str:
+    """A robot whose limb from 'base' to the last link is the joints ``kinds``, in turn."""
+    links = ["base", *(f"l{i}" for i in range(len(kinds)))]
+    text = ['<robot name="limb">', *(f'<link name="{name}">{_BODY}</link>' for name in links)]
+    for i, kind in enumerate(kinds):
+        limit = {"revolute": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
+                 "prismatic": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
+                 "continuous": '<limit effort="1" velocity="1"/>'}.get(kind, "")
+        text.append(f'<joint name="j{i}" type="{kind}"><parent link="{links[i]}"/>'
+                    f'<child link="{links[i + 1]}"/><origin xyz="0 0 0.1"/>'
+                    f'<axis xyz="0 1 0"/>{limit}</joint>')
+    return "\n".join([*text, "</robot>"])
+
+
+@pytest.mark.parametrize("kinds", [["revolute"], ["prismatic"], ["continuous"],
+                                   ["fixed", "revolute"], ["prismatic", "prismatic"]],
+                         ids=lambda kinds: "+".join(kinds))
+@pytest.mark.parametrize("orientation", [(), ("--rpy", "0", "0", "0")], ids=["xyz", "pose"])
+def test_a_limb_of_one_joint_is_solved(run_cli, tmp_path, kinds, orientation):
+    """Pinocchio hands back the Jacobian of a one-velocity limb as a vector of 6: ik raised
+    ValueError (solve1: not enough dimensions) on one revolute, prismatic or continuous joint."""
+    path = tmp_path / "limb.urdf"
+    path.write_text(_limb(kinds))
+    tip = f"l{len(kinds) - 1}"
+    result = run_cli("ik", path, "--tip", tip, "--xyz", "0", "0", 0.1 * len(kinds),
+                     *orientation, "--format", "json", "--timeout", "0", "--max-memory", "0")
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["solved"] is True
+
+
+@pytest.mark.parametrize("kinds", [[], ["fixed", "fixed"]], ids=["no joint", "fixed only"])
+def test_a_limb_that_cannot_move_is_a_located_error(run_cli, tmp_path, kinds):
+    path = tmp_path / "limb.urdf"
+    path.write_text(_limb(kinds))
+    result = run_cli("ik", path, "--tip", f"l{len(kinds) - 1}" if kinds else "base",
+                     "--xyz", "0", "0", "0.1", "--timeout", "0", "--max-memory", "0")
+    assert result.exit_code in (1, 2) and "Traceback" not in result.output
+    assert "no joint moves" in result.output
+
+
+@pytest.mark.parametrize("command, kinds", [
+    (["workspace", "{path}", "--tip", "l0", "--samples", "10"], ["continuous"]),
+    (["workspace", "{path}", "--tip", "l0", "--samples", "10"], ["revolute"]),
+    (["dynamics", "{path}", "--support", "base"], ["fixed"]),
+    (["dynamics", "{path}", "--support", "base"], []),
+    (["dh", "{path}", "--base", "base", "--tip", "l0"], ["prismatic"]),
+    (["dh", "{path}", "--base", "base", "--tip", "l0"], []),
+    (["fk", "{path}"], []),
+], ids=["workspace-continuous", "workspace-revolute", "dynamics-fixed", "dynamics-no-joint",
+        "dh-prismatic", "dh-no-joint", "fk-no-joint"])
+def test_the_other_analyses_take_degenerate_limbs(run_cli, tmp_path, command, kinds):
+    """The neighbours of the ik crash: workspace on one continuous joint (the same Jacobian),
+    dynamics --support of a robot with no moving joint (max() of nothing)."""
+    path = tmp_path / "limb.urdf"
+    path.write_text(_limb(kinds))
+    words = [word.replace("{path}", str(path)) for word in command]
+    if not kinds:
+        words = [word if word != "l0" else "base" for word in words]
+    result = run_cli(*words, "--timeout", "0", "--max-memory", "0")
+    assert result.exit_code in (0, 1, 2) and result.exception is None or \
+        isinstance(result.exception, SystemExit), result.output
+    assert "Traceback" not in result.output
+
+
+def test_pinocchio_frame_jacobians_come_from_one_function():
+    """getFrameJacobian is called in kinematics/chain.py's frame_jacobian alone, which makes
+    its answer [6, nv] whatever nv is."""
+    from pathlib import Path
+
+    import urdftool
+
+    package = Path(urdftool.__file__).parent
+    callers = sorted(path.relative_to(package).as_posix() for path in package.rglob("*.py")
+                     if "getFrameJacobian(" in path.read_text())
+    assert callers == ["kinematics/chain.py"]
+    assert (package / "kinematics" / "chain.py").read_text().count("getFrameJacobian(") == 1

@@ -180,7 +180,7 @@ def test_check_paths_keeps_the_order_across_memory_budgets(tmp_path):
     come in the order of the targets."""
     from urdftool.lint.runner import check_paths
 
-    for name, memory in (("a", '"1G"'), ("b", None), ("c", "0")):
+    for name, memory in (("a", '"1G"'), ("b", None), ("c", '"1500M"')):
         (tmp_path / name).mkdir()
         (tmp_path / name / "r.urdf").write_text(BAD if name == "b" else GOOD)
         if memory:

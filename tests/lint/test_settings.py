@@ -317,3 +317,156 @@ def test_per_file_args_are_type_checked(run_cli, project, text, message):
     settings(project, text)
     result = run_cli("check", project / "robots")
     assert result.exit_code == 2 and message in result.stderr, result.output
+
+
+# ---- issue 29, class 2: the repository's settings are the attacker's data -------------------
+
+OUTSIDE_IN = {  # every key, with a value naming a path outside the repository
+    "select": 'select = ["/etc/passwd"]\n',
+    "ignore": 'ignore = ["../../../etc"]\n',
+    "per-file-ignores": '[tool.urdftool.per-file-ignores]\n"/etc/*" = ["U2"]\n',
+    "per-file-args": '[tool.urdftool.per-file-args]\n"*" = { cfg = "{outside}/secret.yaml" }\n',
+    "packages": '[tool.urdftool.packages]\nsecret = "../outside"\n',
+    "spec": 'spec = "~/.ssh/id_rsa"\n',
+    "srdf": 'srdf = "file:///etc/passwd"\n',
+    "controllers": 'controllers = ["robots/../../outside/c.yaml"]\n',
+    "strict": '"/etc/passwd" = true\n',  # a key that is itself a path: unknown, and outside
+    "max-file-size": 'max-file-size = "C:\\\\Windows"\n',
+    "max-memory": 'max-memory = "/dev/zero"\n',
+    "targets": 'targets = ["~/mujoco"]\n',
+}
+
+
+@pytest.fixture
+def repo_project(project):
+    (project / ".git").mkdir()
+    outside = project.parent / "outside"
+    outside.mkdir(exist_ok=True)
+    (outside / "secret.yaml").write_text("password: hunter2\n")
+    return project
+
+
+def test_every_key_has_an_outside_path_case():
+    from urdftool.lint.settings import KEYS
+
+    assert set(OUTSIDE_IN) == set(KEYS)  # a new key gets a case here
+
+
+@pytest.mark.parametrize("key", sorted(OUTSIDE_IN))
+def test_no_key_names_a_path_outside_the_repository(run_cli, repo_project, key):
+    settings(repo_project, OUTSIDE_IN[key].replace("{outside}", str(repo_project.parent /
+                                                                   "outside")))
+    result = run_cli("check", repo_project / "robots")
+    assert result.exit_code == 2, result.output
+    assert "outside the repository" in result.stderr or "unknown urdftool setting" in \
+        result.stderr, result.stderr
+    assert "hunter2" not in result.output
+
+
+PEEK = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="cfg" default="none"/>
+  <xacro:property name="c" value="${xacro.load_yaml('$(arg cfg)')}"/>
+  <link name="${c['password']}"/>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("mode", ["--no-env", "--allow-env"])
+def test_per_file_args_cannot_make_an_outside_file_readable(run_cli, repo_project, mode):
+    """The issue's case: an absolute path given as a xacro argument by the settings was an
+    allowed root, so load_yaml read it and its content reached the report."""
+    (repo_project / "robots" / "arm.urdf").unlink()
+    (repo_project / "robots" / "peek.urdf.xacro").write_text(PEEK)
+    settings(repo_project, OUTSIDE_IN["per-file-args"].replace(
+        "{outside}", str(repo_project.parent / "outside")))
+    result = run_cli("check", mode, repo_project / "robots")
+    assert result.exit_code == 2 and "hunter2" not in result.output, result.output
+
+
+def test_a_settings_argument_is_never_an_allowed_root(run_cli, repo_project, monkeypatch):
+    """A relative value (``.``) passes the text check, and was taken from the working folder
+    as a root: a robot file reading a file there must still be refused under --no-env (U014),
+    never read."""
+    (repo_project / "robots" / "arm.urdf").unlink()
+    (repo_project / "robots" / "peek.urdf.xacro").write_text(
+        PEEK.replace("$(arg cfg)", "../../outside/secret.yaml"))
+    settings(repo_project, '[tool.urdftool.per-file-args]\n"*" = { cfg = "." }\n')
+    monkeypatch.chdir(repo_project.parent / "outside")
+    result = run_cli("check", "--no-env", "--format", "json", repo_project / "robots")
+    assert "hunter2" not in result.output
+    assert [d["code"] for d in json.loads(result.stdout)["diagnostics"]] == ["U014"]
+    given = run_cli("check", "--no-env", repo_project / "robots", "cfg:=.")  # the user's word
+    assert given.exit_code == 0 and "U014" not in given.output
+
+
+@pytest.mark.parametrize("text", [
+    "max-file-size = 16777217\n", "max-file-size = 1099511627776\n", 'max-memory = "4G"\n',
+    'max-memory = "0"\n', "max-memory = 0\n", 'max-memory = "2049M"\n'])
+def test_settings_may_lower_a_limit_but_never_raise_it(run_cli, repo_project, text):
+    settings(repo_project, text)
+    result = run_cli("check", repo_project / "robots")
+    assert result.exit_code == 2 and "raise it with --max-" in result.stderr, result.output
+
+
+def test_the_command_line_may_raise_a_limit(run_cli, repo_project):
+    big = repo_project / "robots" / "big.urdf"
+    big.write_text(ROBOT + " " * (17 << 20))
+    assert run_cli("check", big).exit_code == 1  # U008, over the built-in 16 MiB
+    assert run_cli("check", "--max-file-size", str(32 << 20), big, "--format", "json",
+                   "--select", "U008").exit_code == 0
+
+
+@pytest.mark.parametrize("text", ["max-file-size = 1024\n", 'max-memory = "1G"\n',
+                                  'max-memory = "2G"\n', "max-file-size = 16777216\n"])
+def test_lowering_a_limit_or_keeping_it_is_fine(run_cli, repo_project, text):
+    settings(repo_project, text)
+    assert run_cli("check", repo_project / "robots").exit_code == 1
+
+
+@pytest.mark.parametrize("text, line", [
+    ("a = " + "[" * 5000 + "]" * 5000 + "\n", 1),
+    ("x = 1\na = " + "{b = " * 3000 + "1" + "}" * 3000 + "\n", 2),
+    ("a" + ".a" * 200_000 + " = 1\n", 1),  # tomllib: quadratic, minutes and tens of GB
+    ("[" + "a." * 100_000 + "a]\n", 1),
+])
+def test_deep_settings_are_a_located_usage_error(run_cli, repo_project, text, line):
+    import time
+
+    (repo_project / "urdftool.toml").write_text(text)
+    start = time.perf_counter()
+    result = run_cli("check", repo_project / "robots")
+    assert time.perf_counter() - start < 5
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert f"urdftool.toml:{line}: settings nest deeper than 32 levels" in result.stderr
+
+
+@pytest.mark.parametrize("text", [
+    'x = "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[["\n',
+    "# [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[\n",
+    "x = '''\n" + "a." * 100 + "\n'''\n",
+    "x = [" + ", ".join(["1.5"] * 100) + "]\n",
+])
+def test_brackets_and_dots_in_strings_comments_and_numbers_are_not_nesting(text):
+    from urdftool.lint.settings import too_deep
+
+    assert too_deep(text) is None
+
+
+def test_broken_settings_elsewhere_never_stop_another_file(run_cli, tmp_path):
+    """Issue 29: a settings file in an unrelated folder made the whole run exit 2 when the
+    file named (an empty xacro, replaced by the robots including it) made urdftool walk the
+    repository. Now the walk goes on; a file the broken settings apply to is not checked and
+    the run says why (exit 2), the others are checked."""
+    (tmp_path / ".git").mkdir()
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+    (tmp_path / "a" / "arm.urdf").write_text(ROBOT)
+    (tmp_path / "a" / "empty.urdf.xacro").write_text("")
+    (tmp_path / "b" / "urdftool.toml").write_text("bogus = 1\n")
+    (tmp_path / "b" / "arm.urdf").write_text(ROBOT)
+    result = run_cli("check", tmp_path / "a" / "empty.urdf.xacro")
+    assert result.exit_code == 1 and "U002" in result.stdout, result.output
+    result = run_cli("check", "--format", "json", tmp_path / "a", tmp_path / "b")
+    assert result.exit_code == 2
+    assert {d["code"] for d in json.loads(result.stdout)["diagnostics"]} >= {"U204"}
+    assert "b/urdftool.toml: unknown urdftool setting(s) bogus" in result.stderr

@@ -48,7 +48,9 @@ _OPENED: list[str] | None = None
 
 
 def _audit(event, args):
-    if event == "open" and _OPENED is not None and isinstance(args[0], (str, bytes, Path)):
+    """Files opened, and folders listed (os.scandir, os.listdir: what glob uses)."""
+    if event in ("open", "os.scandir", "os.listdir") and _OPENED is not None and args \
+            and isinstance(args[0], (str, bytes, Path)):
         _OPENED.append(os.path.abspath(os.fsdecode(args[0])))
 
 
@@ -72,10 +74,11 @@ def _python_file(path: str) -> bool:
 
 
 def outside_opened(opened: list[str], repo: Path) -> list[str]:
+    """What was opened or listed outside ``repo`` (the repository folder itself is inside)."""
     real_repo = os.path.realpath(repo)
     return sorted({path for path in opened if not _python_file(path)
-                   and not os.path.realpath(path).startswith(real_repo + os.sep)
-                   and not path.startswith(str(repo) + os.sep)})
+                   and not (os.path.realpath(path) + os.sep).startswith(real_repo + os.sep)
+                   and not (path + os.sep).startswith(str(repo) + os.sep)})
 
 
 # --- a repository with links leading out --------------------------------------------------
@@ -359,10 +362,19 @@ def _commands(robot: Path, out: Path):
                                     "--workers", "1", "--write-srdf", out],
         "collisions --plot": ["collisions", robot, "--matrix", "--samples", "500",
                               "--workers", "1", "--plot", out],
+        "collisions --render": ["collisions", robot, "--render", out],
+        "diff -o": ["diff", robot, robot, "-o", out, "--samples", "2"],
+        "diff --render": ["diff", robot, robot, "--render", out, "--samples", "2"],
+        "render -o": ["render", robot, "-o", out],
+        "dynamics --plot": ["dynamics", robot, "--support", "base", "--plot", out],
+        "workspace --plot": ["workspace", robot, "--tip", "arm", "--samples", "20",
+                             "--plot", out],
     }
 
 
-SUFFIX = {"graph -o": ".dot", "collisions --plot": ".svg", "collisions --write-srdf": ".srdf"}
+SUFFIX = {"graph -o": ".dot", "collisions --plot": ".svg", "collisions --write-srdf": ".srdf",
+          "collisions --render": ".svg", "diff --render": ".svg", "render -o": ".svg",
+          "dynamics --plot": ".svg", "workspace --plot": ".svg"}
 WRITERS = list(_commands(Path(), Path()))
 
 
@@ -392,7 +404,61 @@ def test_output_in_a_missing_folder_or_onto_a_folder_is_a_usage_error(run_cli, t
     assert result.exit_code == 2, result.output
     assert "Traceback" not in result.output and isinstance(result.exception, SystemExit)
     assert len(result.stderr.strip().splitlines()) == 1, result.stderr
-    assert "cannot write" in result.stderr
+    assert "cannot write" in result.stderr or (  # a folder's name has no picture suffix
+        where == "a folder" and writer in SUFFIX and "must end in" in result.stderr)
+
+
+@pytest.mark.parametrize("writer", WRITERS)
+@pytest.mark.parametrize("how", ["reports", "reports/sub", "reports/sub/.."])
+def test_output_never_goes_through_a_folder_linked_outside(run_cli, tmp_path, writer, how):
+    """Issue 29, class 3: ``reports`` is a symbolic link committed in the repository, leading
+    to a folder outside it; the output path names it, or a folder below it, or goes up from
+    one (``reports/sub/..`` is the outside folder, as the system resolves it). Every command
+    refuses before its work (exit 2, one line naming the link, not where it leads) and
+    nothing is written outside."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    outside = tmp_path / "outside"
+    (outside / "sub").mkdir(parents=True)
+    (repo / "reports").symlink_to(outside, target_is_directory=True)
+    out = repo / how / f"out{SUFFIX.get(writer, '.txt')}"
+    result = run_cli(*_commands(robot, out)[writer])
+    assert result.exit_code == 2, result.output
+    assert "symbolic link" in result.stderr and str(outside) not in result.stderr
+    assert sorted(p.name for p in outside.rglob("*")) == ["sub"]
+    assert sorted(p.name for p in repo.iterdir()) == [".git", "reports", "robot.urdf"]
+
+
+def test_output_through_links_that_stay_inside_or_are_the_users_own(run_cli, tmp_path):
+    """A link inside the repository to another folder of it is followed; so is a link outside
+    any repository (the user's own: /tmp -> /private/tmp)."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "real").mkdir()
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    (repo / "reports").symlink_to(repo / "real", target_is_directory=True)
+    assert run_cli("xacro", robot, "-o", repo / "reports" / "a.urdf").exit_code == 0
+    assert (repo / "real" / "a.urdf").is_file()
+    mine = tmp_path / "mine"
+    mine.symlink_to(repo / "real", target_is_directory=True)
+    assert run_cli("xacro", robot, "-o", mine / "b.urdf").exit_code == 0
+    assert (repo / "real" / "b.urdf").is_file()
+
+
+def test_cache_folders_are_not_made_through_a_folder_linked_outside(run_cli, tmp_path):
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    robot = repo / "robot.urdf"
+    robot.write_text(ROBOT)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (repo / "reports").symlink_to(outside, target_is_directory=True)
+    result = run_cli("check", robot, "--cache-dir", repo / "reports" / "cache", "--jobs", "1")
+    assert result.exit_code in (0, 1), result.output
+    assert list(outside.iterdir()) == []
 
 
 def test_write_keeps_the_permissions_of_a_file_it_replaces(tmp_path):
@@ -471,3 +537,114 @@ def test_classifying_tags_without_an_end_takes_linear_time(tmp_path, unit):
     except subprocess.TimeoutExpired:
         pytest.fail("classifying 1 MiB took over a minute")
     assert done.returncode == 0, done.stderr
+
+
+# --- include patterns: containment before expansion (issue 29, class 4) ---------------------
+
+PATTERN = f"""<robot name="r" {XACRO}>
+  <xacro:include filename="{{pattern}}"/>
+  <link name="base"/>
+</robot>
+"""
+
+
+@pytest.fixture
+def patterns(tmp_path):
+    """repo/parts/good/ok.xacro; repo/parts/evil and repo/linked lead to outside/, which holds
+    secret_name.xacro."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret_name.xacro").write_text(MACROS)
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "parts" / "good").mkdir(parents=True)
+    (repo / "parts" / "good" / "ok.xacro").write_text(MACROS)
+    (repo / "parts" / "evil").symlink_to(outside, target_is_directory=True)
+    (repo / "linked").symlink_to(outside, target_is_directory=True)
+    return repo, outside
+
+
+def _expand(run_cli, repo, pattern, *mode):
+    (repo / "robot.urdf.xacro").write_text(PATTERN.format(pattern=pattern))
+    with opened_files() as opened:
+        result = run_cli("check", *mode, "--format", "json", repo / "robot.urdf.xacro",
+                         *IN_PROCESS, "--jobs", "1")
+    found = json.loads(result.stdout)["diagnostics"] if result.stdout.strip() else []
+    return result, found, opened
+
+
+@pytest.mark.parametrize("pattern, code", [
+    ("{outside}/*.xacro", "U014"),
+    ("{outside}/secret_*", "U014"),
+    ("linked/*.xacro", "U017"),
+    ("parts/*/../../linked/*.xacro", "U016"),
+])
+def test_a_pattern_is_refused_before_anything_is_listed(run_cli, patterns, pattern, code):
+    """Before: glob.glob listed the outside folder, and the refusal named the file it found
+    there ('secret_name.xacro'). Now the pattern's fixed folder is judged first: nothing
+    outside is listed or opened, and no message names what is there."""
+    repo, outside = patterns
+    result, found, opened = _expand(run_cli, repo, pattern.format(outside=outside), "--no-env")
+    assert [d["code"] for d in found] == [code], result.output
+    assert "secret_name" not in result.output
+    assert not outside_opened(opened, repo), outside_opened(opened, repo)
+
+
+def test_a_pattern_never_enters_a_linked_folder_leading_out(run_cli, patterns):
+    repo, _ = patterns
+    for mode in ("--no-env", "--allow-env"):
+        result, found, opened = _expand(run_cli, repo, "parts/*/*.xacro", mode)
+        assert found == [] and result.exit_code == 0, result.output  # parts/good/ok.xacro
+        assert not outside_opened(opened, repo)
+
+
+def test_a_pattern_expands_as_glob_does(patterns, tmp_path):
+    """The same files, in the same order, as xacro's sorted(glob.glob(spec)), hidden files,
+    character classes and ** (one level, not recursive) included."""
+    import glob
+
+    from urdftool.description.xacro import _expand_pattern, _Session
+
+    repo, _ = patterns
+    for name in ("a1.xacro", "a2.xacro", "b.xacro", ".hidden.xacro", "sub/c.xacro",
+                 "sub/deeper/d.xacro", "sub/.e.xacro", "x.txt"):
+        (repo / "tree" / name).parent.mkdir(parents=True, exist_ok=True)
+        (repo / "tree" / name).write_text(MACROS)
+    session = _Session(None, True, None, [repo])
+    session.file_index(str(repo / "robot.urdf.xacro"))
+    for spec in ("tree/*.xacro", "tree/a[12].xacro", "tree/?.xacro", "tree/**/*.xacro",
+                 "tree/*/*.xacro", "tree/.*", "tree/sub/*", "tree/*/deeper/*.xacro",
+                 "tree/nothing*", "tree/s?b/c.xacro"):
+        spec = f"{repo}/{spec}"
+        assert _expand_pattern(session, spec) == sorted(glob.glob(spec)), spec
+
+
+def test_a_pattern_looks_at_a_bounded_number_of_files(run_cli, patterns, monkeypatch):
+    from urdftool.description import xacro
+
+    repo, _ = patterns
+    monkeypatch.setattr(xacro, "MAX_PATTERN_ENTRIES", 50)
+    (repo / "many").mkdir()
+    for index in range(60):
+        (repo / "many" / f"{index}.txt").write_text("")
+    result, found, _ = _expand(run_cli, repo, "many/*.xacro")
+    assert [d["code"] for d in found] == ["U016"] and "over 50 files" in found[0]["message"]
+
+
+def test_a_mesh_linked_out_is_refused_without_saying_where_it_leads(tmp_path):
+    """Issue 29, class 4: a refusal names what the repository holds, never what exists
+    outside (realpath follows links there: /etc/alternatives/... would be named)."""
+    from urdftool.description.meshes import MeshProblem, load_mesh
+
+    outside = tmp_path / "outside"
+    (outside / "real").mkdir(parents=True)
+    (outside / "real" / "hidden_name.stl").write_bytes(b"solid x\nendsolid x\n")
+    (outside / "alias").symlink_to(outside / "real", target_is_directory=True)
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "m.stl").symlink_to(outside / "alias" / "hidden_name.stl")
+    (repo / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    with pytest.raises(MeshProblem) as refused:
+        load_mesh(load(repo / "r.urdf"), "m.stl")
+    assert "symbolic link" in str(refused.value) and "hidden_name" not in str(refused.value)
+    assert str(outside) not in str(refused.value)

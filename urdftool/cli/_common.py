@@ -252,7 +252,7 @@ def budgeted(command):
             stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
 
         def work(_):
-            from urdftool.errors import ModelBuildError
+            from urdftool.errors import ModelBuildError, OverLimit
 
             if stdin is not None:
                 sys.stdin = _bytes_stdin(stdin)
@@ -268,6 +268,9 @@ def budgeted(command):
                 raise
             except ModelBuildError as error:
                 return fail_unbuildable(error)
+            except OverLimit as error:  # a size limit checked before the work: a usage error
+                say(f"urdftool: error: {error}", err=True)
+                return 2
             except ImportError as error:
                 return missing_extra_exit(command.__name__, error)
             return 0

@@ -64,8 +64,9 @@ def check(
                                             "there, and findings name it."),
     allow_env: bool = typer.Option(
         None, "--allow-env/--no-env", show_default=False,
-        help="--no-env, the safe mode for untrusted input: $(env)/$(optenv) are errors and "
-             "xacro reads no file outside the repository and its packages. --allow-env: "
+        help="--no-env, the safe mode for untrusted input: the environment is never read "
+             "($(env) is an error, $(optenv NAME DEFAULT) its default) and xacro reads no "
+             "file outside the repository and its packages. --allow-env: "
              "both allowed. [default: --no-env when CI is set, as CI services do; else "
              "--allow-env]"),
     max_file_size: int = typer.Option(None, "--max-file-size", metavar="BYTES",
@@ -152,7 +153,7 @@ def check(
     else:
         def report(results, stream):
             render(format, results, stream, quiet=quiet)
-    code = 0 if exit_zero else run.exit_code
+    code = 2 if run.errors else 0 if exit_zero else run.exit_code
     keep = output is None and not (fix or diff) and _keeps_output(request, run)
     if output or keep:
         import io
@@ -167,6 +168,8 @@ def check(
                          code)
     else:
         report(run.results, sys.stdout)
+    for error in run.errors:  # settings broken for some files; the others were checked
+        say(f"urdftool: error: {error}", err=True)
     raise typer.Exit(code)
 
 

@@ -6,12 +6,14 @@ from pathlib import Path
 
 import typer
 
-from urdftool.errors import UnknownName
+from urdftool.errors import OverLimit, UnknownName
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
                                   fail_usage, joint_words, refuse_bad_outputs, single_robot,
                                   warn, write_output)
 from urdftool.errors import UsageError
+
+MAX_PAIRS = 250_000  # urdftool.collision.matrix.MAX_PAIRS (not imported: numpy, FCL)
 
 HELP = ("Self-collision with FCL. Without --matrix: colliding link pairs at one configuration "
         "(default: 0, or mid-range when 0 is outside the limits), exit 1 when a pair collides "
@@ -49,6 +51,10 @@ def collisions(
                                          help="Double the samples until no pair changes class "
                                               "in the second half."),
     max_samples: int = typer.Option(160000, "--max-samples", help="Limit for --until-converged."),
+    max_pairs: int = typer.Option(MAX_PAIRS, "--max-pairs", min=0, metavar="N",
+                                  help="Refuse, before any work, a robot whose links with "
+                                       "collision geometry make more pairs (memory and time "
+                                       "grow with them); 0 for no limit."),
     workers: int = typer.Option(2, "--workers", min=1, help="Worker processes."),
     write_srdf: Path = typer.Option(None, "--write-srdf", metavar="OUT",
                                     help="Write disable_collisions here; an existing SRDF keeps "
@@ -85,10 +91,11 @@ def collisions(
             from urdftool.collision.classify import MatrixOptions
 
             options = MatrixOptions(samples, seed, min_fraction, margin, until_converged,
-                                    max_samples, workers, check_srdf)
+                                    max_samples, workers, check_srdf, max_pairs or None)
             code = _matrix(robot, options, write_srdf, plot, all_pairs, format)
         else:
-            code = _pose(robot, joint_words(q, "--q"), deg, srdf, format, render)
+            code = _pose(robot, joint_words(q, "--q"), deg, srdf, format, render,
+                         max_pairs or None)
     except ConfigError as error:
         fail_config(error, "--q")
     except SrdfError as error:
@@ -97,16 +104,18 @@ def collisions(
         fail_usage(UsageError(f"--plot: {error}"))
     except UsageError as error:
         fail_usage(error)
+    except OverLimit as error:
+        fail_usage(UsageError(f"{error} (raise it with --max-pairs)"))
     except (FKError, SceneError, UnknownName) as error:
         fail_at(robot, error)
     raise typer.Exit(code)
 
 
-def _pose(robot, values, degrees, srdf, format, render) -> int:
+def _pose(robot, values, degrees, srdf, format, render, max_pairs) -> int:
     from urdftool.collision.pose import check_pose
     from urdftool.report.collisions import write_pose
 
-    report = check_pose(robot, values, degrees, srdf)
+    report = check_pose(robot, values, degrees, srdf, max_pairs)
     warn(report.warnings)
     if render:
         from urdftool.kinematics.scene import scene_model

@@ -21,7 +21,9 @@ def xacro(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
     output: Path = typer.Option(None, "--output", "-o", help="Write the URDF here."),
-    no_env: bool = typer.Option(False, "--no-env", help="Make $(env)/$(optenv) errors."),
+    no_env: bool = typer.Option(False, "--no-env",
+                                help="Never read the environment: $(env) is an error, "
+                                     "$(optenv NAME DEFAULT) its default."),
     deps: bool = typer.Option(False, "--deps", help="Print the files it includes, "
                                                     "space-separated, instead of the URDF."),
     quiet: bool = typer.Option(False, "-q", help="Do not print xacro's warnings."),

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from urdftool.collision.matrix import Matrix, compute
+from urdftool.collision.matrix import MAX_PAIRS, Matrix, compute
 from urdftool.collision.srdf import Stale, read, stale
 
 
@@ -26,6 +26,7 @@ class MatrixOptions:
     max_samples: int = 160000
     workers: int | None = None
     check_srdf: Path | None = None
+    max_pairs: int | None = MAX_PAIRS
 
 
 @dataclass
@@ -44,7 +45,8 @@ def classify(robot, options: MatrixOptions = MatrixOptions(),
     Raises SrdfError when ``check_srdf`` cannot be read.
     """
     result = compute(robot, options.samples, options.seed, options.min_fraction, options.margin,
-                     options.until_converged, options.max_samples, options.workers, on_progress)
+                     options.until_converged, options.max_samples, options.workers, on_progress,
+                     max_pairs=options.max_pairs)
     found = []
     if options.check_srdf:
         entries, root = read(options.check_srdf)

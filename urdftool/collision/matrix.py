@@ -29,9 +29,14 @@ from urdftool.kinematics.tree import adjacent_pairs, pair_key
 
 CLASSES = ("Adjacent", "Default", "Always", "Never", "")
 BLOCK = 250
+# Link pairs a scene is built for: 708 links with collision geometry. Every check of a scene
+# costs in proportion to its pairs (memory and time): the limit is checked before anything is
+# built. At 244,650 pairs `collisions --matrix` peaks at 0.34 GB; 1,500 links (1.1 million
+# pairs) peaked at 0.85 to 1.56 GB.
+MAX_PAIRS = 250_000
 
 
-@dataclass
+@dataclass(slots=True)
 class PairResult:
     """One pair of links: class, how often it collided and how close it came.
 
@@ -87,9 +92,12 @@ class Scene:
     depend on where the base is.
     """
 
-    def __init__(self, robot, margin: float):
+    def __init__(self, robot, margin: float, max_pairs: int | None = MAX_PAIRS):
+        """OverLimit, before anything is built, when the links holding ``<collision>`` make
+        more than ``max_pairs`` pairs (None: no limit)."""
         from urdftool.kinematics.fk import KinematicModel
 
+        check_pairs(robot, max_pairs)
         self.geometry = geometry_module.build(robot)
         self.kinematics = KinematicModel(robot)
         self.variables = self.kinematics.variables
@@ -121,6 +129,18 @@ class Scene:
 
     def at(self, q: np.ndarray) -> np.ndarray:
         return self.poses(q[None])[0]
+
+
+def check_pairs(robot, max_pairs: int | None = MAX_PAIRS) -> None:
+    """OverLimit when the links of ``robot`` holding a ``<collision>`` (an upper bound of those
+    with collision geometry) make more than ``max_pairs`` pairs; None: no limit."""
+    from urdftool.errors import OverLimit
+
+    links = sum(1 for link in robot.links.values() if link.find("collision") is not None)
+    pairs = links * (links - 1) // 2
+    if max_pairs is not None and pairs > max_pairs:
+        raise OverLimit(f"{links} links with collision geometry",
+                        pairs, max_pairs, "pairs")
 
 
 def default_collisions(scene: Scene, q: np.ndarray) -> set[tuple[str, str]]:
@@ -161,15 +181,16 @@ def _pool(workers: int):
 def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.95,
             margin: float = 0.005, until_converged: bool = False, max_samples: int = 160000,
             workers: int | None = None, progress: Callable[[int, int], None] | None = None,
-            scene: Scene | None = None) -> Matrix:
+            scene: Scene | None = None, max_pairs: int | None = MAX_PAIRS) -> Matrix:
     """Classify every pair of links with geometry; see the module docstring.
 
     samples: configurations to sample (rounded up to whole blocks of 250)
     margin: a pair that came closer than this in [m] is never marked Never
     until_converged: double the samples until no pair changed class in the second half
     progress: called with (samples done, samples planned) as blocks finish
+    max_pairs: OverLimit, before any work, for more link pairs (None: no limit)
     """
-    scene = scene or Scene(robot, margin)
+    scene = scene or Scene(robot, margin, max_pairs)
     workers = workers or min(2, os.cpu_count() or 1)
     classes = {pair: "" for pair in scene.pairs}
     for pair in scene.adjacent:

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from urdftool.collision.matrix import MAX_PAIRS
+
 
 @dataclass
 class Contact:
@@ -43,7 +45,7 @@ class PoseReport:
 
 
 def check_pose(robot, values: dict[str, str], degrees: bool = False,
-               srdf: Path | None = None) -> PoseReport:
+               srdf: Path | None = None, max_pairs: int | None = MAX_PAIRS) -> PoseReport:
     """Self-collision of ``robot`` at one configuration: ``values`` ({joint: text}) over the
     default (0, or mid-range when 0 is outside the limits), pairs allowed by adjacency or by
     the SRDF's disable_collisions. The SRDF is ``srdf``, else the one found beside the robot
@@ -56,7 +58,7 @@ def check_pose(robot, values: dict[str, str], degrees: bool = False,
     from urdftool.description.companions import find_srdf
     from urdftool.diagnostics import display_path
 
-    scene = Scene(robot, 0.0)
+    scene = Scene(robot, 0.0, max_pairs)
     chosen = configuration(scene, values, degrees)
     srdf = srdf or find_srdf(robot)
     allowed = srdf_module.allowed_pairs(srdf_module.read(srdf)[0]) if srdf else {}

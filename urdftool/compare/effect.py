@@ -169,7 +169,12 @@ def effects(old, new, renames: Renames, samples: int = 200, seed: int = 0,
         result.chains.append(ChainEffect(base, tip, reaches[0][0], reaches[1][0],
                                          reaches[0][1], reaches[1][1]))
     if collisions:
-        result.collisions, problems = _collisions(old, new, old_values, new_values, back)
+        from urdftool.errors import OverLimit
+
+        try:
+            result.collisions, problems = _collisions(old, new, old_values, new_values, back)
+        except OverLimit as error:  # the pairs of a side are over the limit: not compared
+            result.collisions, problems = [], [f"collisions not compared: {error}"]
         result.warnings += problems
     return result
 

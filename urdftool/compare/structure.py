@@ -219,50 +219,103 @@ def _children(robot) -> dict[str, set]:
     return found
 
 
+MAX_RENAME_WORK = 2_000_000  # removed links looked at over all passes of renames()
+
+
+def _depths(robot) -> dict[str, int]:
+    """Link -> its depth in the tree (roots 0; links in a cycle or unreachable: the count)."""
+    parents = {child: joint.find("parent").get("link")
+               for child, joint in _parent_joints(robot).items()
+               if joint.find("parent") is not None}
+    depths: dict[str, int] = {}
+    for name in robot.links:
+        chain, current = [], name
+        while current in parents and current not in depths and len(chain) <= len(parents):
+            chain.append(current)
+            current = parents[current]
+        depth = depths.get(current, 0 if current not in parents else len(parents))
+        for link in reversed(chain):
+            depth += 1
+            depths[link] = depth
+        depths.setdefault(name, depth)
+    return depths
+
+
+def _place(joint, renames: Renames) -> tuple:
+    """(parent through ``renames``, type) of a ``<joint>``: where its child hangs."""
+    parent = joint.find("parent")
+    return (renames.link(parent.get("link")) if parent is not None else None,
+            joint.get("type"))
+
+
+def _xyz(joint):
+    origin = joint.find("origin")
+    return _numbers(origin.get("xyz") if origin is not None else None, 3, (0.0, 0.0, 0.0))
+
+
 def renames(old, new, tolerance: float = 1e-9) -> Renames:
     """Links and joints of ``old`` that ``new`` has under another name, matched by position in
     the tree: a removed link and an added one hanging from the same (renamed) parent through
     a joint at the same origin of the same type, or with the same children; a removed joint and
-    an added one joining the same links."""
+    an added one joining the same links.
+
+    The added links are indexed once by where they hang and by their children, and the removed
+    ones taken parents first, pass after pass while one more is matched: the cost grows with the
+    number of links, not its cube (300 renamed links took minutes), and stops at
+    MAX_RENAME_WORK removed links looked at (what is left unmatched is compared as removed and
+    added)."""
     result = Renames()
     old_parents, new_parents = _parent_joints(old), _parent_joints(new)
     old_children, new_children = _children(old), _children(new)
-    progress = True
-    while progress:
+    added = [n for n in new.links if n not in old.links]
+    roots, by_place, by_children, xyz = [], {}, {}, {}
+    for other in added:
+        twin = new_parents.get(other)
+        if twin is None:
+            roots.append(other)
+            continue
+        by_place.setdefault(_place(twin, Renames()), []).append(other)
+        xyz[other] = _xyz(twin)
+        if new_children.get(other):
+            by_children.setdefault(frozenset(new_children[other]), []).append(other)
+    depths = _depths(old)
+    removed = sorted((n for n in old.links if n not in new.links), key=lambda n: depths[n])
+    removed_xyz = {name: _xyz(old_parents[name]) for name in removed if name in old_parents}
+    taken, work, progress = set(), 0, True
+    while progress and work < MAX_RENAME_WORK:
         progress = False
-        removed = [n for n in old.links if n not in new.links and n not in result.links]
-        added = [n for n in new.links if n not in old.links and n not in result.links.values()]
         for name in removed:
+            if name in result.links:
+                continue
+            work += 1
             joint = old_parents.get(name)
-            candidates = []
-            for other in added:
-                twin = new_parents.get(other)
-                if joint is None or twin is None:
-                    if joint is None and twin is None:  # both roots
-                        candidates.append(other)
-                    continue
-                a, b = joint_fields(joint, result), joint_fields(twin)
-                same_place = a["parent"] == b["parent"] and a["type"] == b["type"] and \
-                    _equal(a["origin.xyz"], b["origin.xyz"], 1e-6)
-                same_children = {result.link(c) for c in old_children.get(name, ())} == \
-                    new_children.get(other, set()) != set()
-                if same_place or same_children:
-                    candidates.append(other)
+            if joint is None:
+                found = roots
+            else:
+                found = [other for other in by_place.get(_place(joint, result), ())
+                         if _equal(removed_xyz[name], xyz[other], 1e-6)]
+                kids = frozenset(result.link(c) for c in old_children.get(name, ()))
+                found = found + [other for other in by_children.get(kids, ()) if kids
+                                 and other not in found]
+            candidates = [other for other in found if other not in taken]
             if len(candidates) == 1:
                 result.links[name] = candidates[0]
+                taken.add(candidates[0])
                 progress = True
-                break
-    added_joints = [n for n in new.joints if n not in old.joints]
+    by_ends: dict[tuple, list[str]] = {}
+    for other in (n for n in new.joints if n not in old.joints):
+        fields = joint_fields(new.joints[other])
+        by_ends.setdefault((fields["parent"], fields["child"]), []).append(other)
+    matched = set()
     for name, joint in old.joints.items():
         if name in new.joints:
             continue
         ends = joint_fields(joint, result)
-        matches = [other for other in added_joints
-                   if (joint_fields(new.joints[other])["parent"],
-                       joint_fields(new.joints[other])["child"]) == (ends["parent"], ends["child"])
-                   and other not in result.joints.values()]
+        matches = [other for other in by_ends.get((ends["parent"], ends["child"]), ())
+                   if other not in matched]
         if len(matches) == 1:
             result.joints[name] = matches[0]
+            matched.add(matches[0])
     return result
 
 

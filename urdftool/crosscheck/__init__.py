@@ -22,7 +22,6 @@ from __future__ import annotations
 import math
 import os
 import re
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -121,7 +120,9 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     present = [name for name in names if available(name)]
     missing = {name: LOADERS[name].install for name in names if name not in present}
     configurations = joint_configurations(robot)
-    with tempfile.TemporaryDirectory(prefix="urdftool-crosscheck-") as folder:
+    from urdftool.description.files import temporary_folder
+
+    with temporary_folder("urdftool-crosscheck-") as folder:
         urdf, lines = _urdf_file(robot, folder)
         job = Job(urdf, _packages(robot), tuple(configurations))
         raw = _run(present, job, budget)
@@ -175,7 +176,9 @@ def _urdf_file(robot, folder: str) -> tuple[str, dict]:
     target = Path(folder) / (Path(robot.display).name.removesuffix(".xacro") or "robot.urdf")
     if not target.name.endswith(".urdf"):
         target = target.with_suffix(".urdf")
-    target.write_text(text, encoding="utf-8")
+    from urdftool.description.files import write_new
+
+    write_new(Path(folder), target.name, text.encode("utf-8"))
     reread = etree.fromstring(text.encode("utf-8"))
     lines = {}
     for mine, theirs in zip(robot.root.iter(), reread.iter()):

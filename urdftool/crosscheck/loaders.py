@@ -119,13 +119,13 @@ def version(name: str) -> str | None:
 def captured_output():
     """Catch what is written to file descriptors 1 and 2 (C libraries print there) in a
     temporary file; yields a list that holds the text once the block ends."""
-    import tempfile
+    from urdftool.description.files import scratch_file
 
     caught: list[str] = []
     for stream in ("stdout", "stderr"):
         getattr(__import__("sys"), stream).flush()
     saved = [os.dup(1), os.dup(2)]
-    with tempfile.TemporaryFile() as sink:
+    with scratch_file() as sink:
         os.dup2(sink.fileno(), 1)
         os.dup2(sink.fileno(), 2)
         try:

@@ -94,14 +94,14 @@ def near(name: str, reads) -> str | None:
     """The name of ``reads`` that ``name`` is a slip of: the same but for case, or close (difflib
     0.8) with a close last word (``wheelSeperation``, ``distalostionK1``, ``xyzOffsets``; not
     ``odometry_rate`` for ``odometry_frame``)."""
-    import difflib
+    from urdftool.errors import close_names, similarity
 
     folded = {read.lower(): read for read in reads}
     if name.lower() in folded:
         return folded[name.lower()]
-    for candidate in difflib.get_close_matches(name, sorted(reads), n=3, cutoff=0.8):
+    for candidate in close_names(name, sorted(reads), n=3, cutoff=0.8):
         mine, theirs = _last_word(name), _last_word(candidate)
-        if difflib.SequenceMatcher(None, mine, theirs).ratio() >= 0.75:
+        if similarity(mine, theirs) >= 0.75:
             return candidate
     return None
 

@@ -11,6 +11,14 @@ MAX_TRIANGLES = 2_000_000
 MAX_MESH_BYTES = 128 * 1024 * 1024
 
 
+class SettingValue(str):
+    """A xacro argument's value that a repository's settings file gave (``per-file-args``):
+    data for the expansion, never a folder included files may come from (a value given on the
+    command line is one, see :func:`urdftool.description.load.load`)."""
+
+    __slots__ = ()
+
+
 @dataclass(frozen=True)
 class MeshLimits:
     max_triangles: int = MAX_TRIANGLES

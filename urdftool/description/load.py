@@ -17,6 +17,7 @@ from lxml import etree
 from urdftool.diagnostics import Location, display_path
 from urdftool.errors import LoadError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, read_regular
+from urdftool.description.inputs import SettingValue
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
@@ -99,9 +100,8 @@ def _refuse_link_out(path: str, shown: str) -> None:
     leading outside the repository holding it; the file is not opened."""
     leads = link_out(path)
     if leads:
-        target, root = leads
-        raise LoadError("link", (
-            f"is a symbolic link to '{target}', outside the repository ({display_path(root)}); "
+        raise LoadError("link", (  # where it leads is not said: that is outside
+            f"is a symbolic link leading outside the repository ({display_path(leads[1])}); "
             "not followed"), Location(shown, None))
 
 
@@ -212,9 +212,13 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
 def _allowed_roots(source: Path, args: dict[str, str]) -> list[Path]:
     """Where included and YAML files may be: the repository (see
     :func:`~urdftool.description.packages.containment_root`) and the files and folders named by xacro
-    arguments. Folders of packages ``$(find)`` resolves are added later."""
+    arguments given by whoever runs the check, not by a settings file (a
+    :class:`~urdftool.description.inputs.SettingValue`: the repository's own data). Folders of
+    packages ``$(find)`` resolves are added later."""
     roots = [containment_root(_folder_of(source))]
     for value in args.values():
+        if isinstance(value, SettingValue):
+            continue
         try:
             if value and os.path.exists(value):
                 roots.append(Path(value))

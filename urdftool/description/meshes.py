@@ -105,10 +105,14 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         # file:// and relative paths stay where the loader's files stay
         root = _real(containment_root(Path(base)))
         if not inside(path, root):
+            # as written, never where links lead: that would name what exists outside
+            written = os.path.normpath(os.path.join(base, named))
+            how = (f"is a symbolic link (or lies in one) leading outside {root}"
+                   if written.startswith(str(containment_root(Path(base))) + os.sep)
+                   else f"resolves to {written}, outside {root}")
             return MeshProblem("outside", (
-                f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
-                "outside the robot's repository: use package://PKG/... for files of another "
-                "package"))
+                f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
+                "repository: use package://PKG/... for files of another package"))
     if not path.is_file():
         return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:

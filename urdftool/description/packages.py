@@ -15,7 +15,7 @@ import re
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
-from urdftool.description.files import inside, read_regular
+from urdftool.description.files import enclosing_root, inside, read_regular, repository_root
 from urdftool.description.run_memo import per_run
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -41,15 +41,6 @@ def package_name(folder: Path, root: Path | None = None) -> str | None:
 
 
 @per_run
-def repository_root(start: Path) -> Path | None:
-    """The nearest ancestor of ``start`` holding a ``.git`` entry."""
-    for folder in [start, *start.parents]:
-        if (folder / ".git").exists():
-            return folder
-    return None
-
-
-@per_run
 def containment_root(folder: Path) -> Path:
     """The folder files read for a robot in ``folder`` must stay in: its repository (nearest
     ``.git`` above); without one, the nearest folder above holding a package.xml; else
@@ -59,8 +50,7 @@ def containment_root(folder: Path) -> Path:
     graph of ``urdftool check`` use it. (Companion discovery is stricter on purpose: only a few
     folders beside the robot, see :mod:`urdftool.description.companions`.)"""
     folder = Path(os.path.abspath(folder))
-    return repository_root(folder) or next(
-        (f for f in [folder, *folder.parents] if (f / "package.xml").is_file()), folder)
+    return enclosing_root(folder) or folder
 
 
 def link_out(path) -> tuple[str, Path] | None:

@@ -9,6 +9,9 @@ of one expansion:
 - ``handle_macro_call`` lifts the stamp off the call and records it as a call site, and
   ``eval_all`` appends the active call sites to the elements a macro body produces;
 - ``substitution_args._eval_find`` resolves ``$(find pkg)`` through :class:`PackageResolver`;
+- ``get_include_files`` expands an include's glob pattern (``robots/*.xacro``) itself
+  (:func:`_expand_pattern`): where the pattern may look is decided before anything is listed,
+  and no folder outside the repository and the packages is listed, nor named in a message;
 - ``safe_eval`` and ``substitution_args._eval`` (``$(eval ...)``) go through
   :mod:`xacro_sandbox`, whose ``env``/``optenv``/``find`` are the session's own.
 
@@ -21,8 +24,10 @@ from __future__ import annotations
 import builtins
 import contextlib
 import io
+import fnmatch
 import math
 import os
+import re
 import sys
 import xml.dom
 import xml.dom.minidom
@@ -49,6 +54,8 @@ MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
 MAX_OUTPUT_DEPTH = 1000  # element nesting of the expanded document
 MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion may produce
 MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
+MAX_PATTERN_ENTRIES = 20_000  # folder entries one include pattern may look at
+_MAGIC = re.compile(r"[*?[]")  # what makes xacro glob an include's filename
 _UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 
 
@@ -99,11 +106,15 @@ class _Session:
     def allow_root(self, folder) -> None:
         self.roots.append(os.path.realpath(folder))
 
+    def within_roots(self, filename: str) -> bool:
+        """Whether ``filename``, links followed, is in an allowed root (or there are none)."""
+        real = os.path.realpath(filename)
+        return not self.roots or any(
+            real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in self.roots)
+
     def check_inside(self, filename: str, what: str) -> None:
         """Record (or, without environment access, refuse) a file outside the allowed roots."""
-        real = os.path.realpath(filename)
-        if not self.roots or any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
-                                 for root in self.roots):
+        if self.within_roots(filename):
             return
         where = self.current_location()
         shown = ", ".join(display_path(root) for root in self.roots)
@@ -230,6 +241,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         (xacro, "safe_eval"): xacro.safe_eval,
         (xacro, "eval_text"): xacro.eval_text,
         (xacro, "eval_extension"): xacro.eval_extension,
+        (xacro, "get_include_files"): xacro.get_include_files,
         (substitution_args, "_eval"): substitution_args._eval,
     }
     replacements = _replacements(session, originals, xacro, substitution_args)
@@ -428,6 +440,24 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
     def eval_extension(text):
         return charge_text(original_eval_extension(text), "substitution")
 
+    def get_include_files(filename_spec, symbols):
+        # xacro's own, but a pattern is expanded by _expand_pattern instead of glob.glob
+        try:
+            spec = xacro.abs_filename_spec(xacro.eval_text(filename_spec, symbols))
+        except xacro.XacroException as error:
+            if error.exc and isinstance(error.exc, NameError) and symbols is None:
+                raise xacro.XacroException(
+                    "variable filename is supported with in-order option only") from None
+            raise
+        filenames = [spec]
+        if _MAGIC.search(spec):
+            filenames = _expand_pattern(session, spec)
+            if not filenames:
+                xacro.warning(xacro.include_no_matches_msg.format(spec))
+        for filename in filenames:
+            xacro.all_includes.append(filename)
+            yield filename
+
     def eval_substitution(expression, context):
         args = context.setdefault("arg", {})
         functions = dict(_EVAL_CONSTANTS)
@@ -453,9 +483,8 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         return original_env(name)
 
     def eval_optenv(name, default=""):
-        if not session.allow_env:
-            raise substitution_args.SubstitutionException(
-                f"$(optenv {name}) is disabled by --no-env")
+        if not session.allow_env:  # the robot as an environment without NAME makes it: the
+            return default  # default, the environment never read (an error was a false one)
         return original_optenv(name, default)
 
     return {
@@ -465,6 +494,7 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         (xacro, "check_attrs"): check_attrs,
         (xacro, "eval_text"): eval_text,
         (xacro, "eval_extension"): eval_extension,
+        (xacro, "get_include_files"): get_include_files,
         (xacro, "safe_eval"): safe_eval,
         (substitution_args, "_eval"): eval_substitution,
         (substitution_args, "_eval_find"): eval_find,
@@ -495,9 +525,61 @@ def _refuse_link_out(session: _Session, filename: str) -> None:
                            for base in (str(root), os.path.realpath(root)))
     if lexically_inside and not inside(filename, root):
         raise XacroFailure("link", (
-            f"included file '{display_path(filename)}' is a symbolic link to "
-            f"'{os.path.realpath(filename)}', outside the repository ({display_path(root)}); "
-            "not followed"), session.current_location())
+            f"included file '{display_path(filename)}' is a symbolic link leading outside "
+            f"the repository ({display_path(root)}); not followed"), session.current_location())
+
+
+def _expand_pattern(session: _Session, spec: str) -> list[str]:
+    """The files an include's glob pattern names, as ``sorted(glob.glob(spec))`` finds them
+    (``*``, ``?``, ``[...]`` in any part; a name starting with ``.`` only for a part that does;
+    ``**`` is ``*``), decided before anything is listed: the folder before the first wildcard
+    must be in the repository or a package used (:meth:`_Session.check_inside`: refused under
+    --no-env, else a warning), not reached through a link in the repository leading outside
+    it, and no ``..`` may follow a wildcard. The walk never enters a linked folder that leads
+    outside the allowed roots, looks at MAX_PATTERN_ENTRIES entries at most, and no message
+    names what it found outside (a matched link leading out is refused when it is read,
+    without saying where it leads)."""
+    parts = spec.split("/")
+    first = next(i for i, part in enumerate(parts) if _MAGIC.search(part))
+    if ".." in parts[first:]:
+        raise xacro_sandbox.SandboxViolation(
+            f"include pattern '{spec}' climbs ('..') after a wildcard; not expanded")
+    base = "/".join(parts[:first]) or ("/" if spec.startswith("/") else ".")
+    _refuse_link_out(session, base)
+    session.check_inside(base, "include pattern folder")
+    anywhere = not session.within_roots(base)  # --allow-env, outside: already reported
+    folders, seen = [base if first else ""], 0
+    for index, part in enumerate(parts[first:], start=first):
+        last = index == len(parts) - 1
+        found = []
+        for folder in folders:
+            here = folder or "."
+            if not _MAGIC.search(part):
+                candidate = os.path.join(folder, part) if folder else part
+                if os.path.lexists(candidate) if last else os.path.isdir(candidate):
+                    found.append(candidate)
+                continue
+            try:
+                entries = sorted(os.scandir(here), key=lambda entry: entry.name)
+            except OSError:
+                continue
+            seen += len(entries)
+            if seen > MAX_PATTERN_ENTRIES:
+                raise xacro_sandbox.SandboxViolation(
+                    f"include pattern '{spec}' looked at over {MAX_PATTERN_ENTRIES} files; "
+                    "not expanded")
+            for entry in entries:
+                if entry.name.startswith(".") and not part.startswith("."):
+                    continue
+                if not fnmatch.fnmatchcase(entry.name, part):
+                    continue
+                path = os.path.join(folder, entry.name) if folder else entry.name
+                if not last and not (entry.is_dir() and (
+                        anywhere or not entry.is_symlink() or session.within_roots(path))):
+                    continue  # a file, or a linked folder leading out: never listed
+                found.append(path)
+        folders = found
+    return sorted(folders)
 
 
 class _Outside(Exception):

@@ -93,13 +93,13 @@ class Chain:
         m, d = self.model, self.data
         q = self.q(x)
         pin.computeJointJacobians(m, d, q)  # and the joint placements
-        jacobian = pin.getFrameJacobian(m, d, self.tip_frame, pin.LOCAL)
+        jacobian = frame_jacobian(m, d, self.tip_frame, pin.LOCAL)
         tip = pin.updateFramePlacement(m, d, self.tip_frame)
         if self._base_placement is not None:
             relative = self._base_placement.actInv(tip)
         else:
             relative = pin.updateFramePlacement(m, d, self.base_frame).actInv(tip)
-            base_jacobian = pin.getFrameJacobian(m, d, self.base_frame, pin.LOCAL)
+            base_jacobian = frame_jacobian(m, d, self.base_frame, pin.LOCAL)
             jacobian = jacobian - relative.inverse().action @ base_jacobian
         if self._selection is not None:
             jacobian = jacobian @ self._selection
@@ -107,6 +107,16 @@ class Chain:
             rotation = relative.rotation
             jacobian = np.vstack([rotation @ jacobian[:3], rotation @ jacobian[3:]])
         return relative, jacobian
+
+
+def frame_jacobian(model, data, frame: int, reference) -> np.ndarray:
+    """``pinocchio.getFrameJacobian`` (after ``computeJointJacobians``) as a ``[6, nv]`` array,
+    always two-dimensional: for a model of one velocity (a limb of one joint) Pinocchio hands
+    back a vector of 6, and every product with it took the wrong shape (ik raised
+    ValueError). The only caller of getFrameJacobian (a test holds it so)."""
+    import pinocchio as pin
+
+    return np.asarray(pin.getFrameJacobian(model, data, frame, reference)).reshape(6, model.nv)
 
 
 def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None,

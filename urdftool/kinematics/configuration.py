@@ -252,8 +252,8 @@ def read_text(path: str, what: str) -> str:
 
     leads = link_out(path)
     if leads:
-        raise ConfigError(f"cannot read {what}: it is a symbolic link to '{leads[0]}', outside "
-                          f"the repository ({leads[1]}); not followed", path)
+        raise ConfigError(f"cannot read {what}: it is a symbolic link leading outside the "
+                          f"repository ({leads[1]}); not followed", path)
     try:
         return read_regular(path).decode("utf-8")
     except OSError as error:

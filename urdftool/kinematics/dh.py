@@ -306,8 +306,8 @@ def load_table(path: str) -> DHTable:
 
     leads = link_out(path)
     if leads:
-        raise DHError(f"cannot read D-H table: it is a symbolic link to '{leads[0]}', outside "
-                      f"the repository ({leads[1]}); not followed", where=path)
+        raise DHError(f"cannot read D-H table: it is a symbolic link leading outside the "
+                      f"repository ({leads[1]}); not followed", where=path)
     try:
         text = read_regular(path).decode("utf-8")
         data = yaml.load(text, Loader=BoundedLoader)  # noqa: S506 - SafeLoader; JSON is YAML

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.errors import ConfigError, available
-from urdftool.kinematics.chain import Chain
+from urdftool.kinematics.chain import Chain, frame_jacobian
 
 TOLERANCE = 1e-6  # [m] and [rad]
 MAX_ITERATIONS = 100  # per seed
@@ -228,7 +228,7 @@ def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float
     for iteration in range(iterations + 1):
         if direct:
             pin.computeJointJacobians(m, d, x)
-            jacobian = pin.getFrameJacobian(m, d, tip, reference)
+            jacobian = frame_jacobian(m, d, tip, reference)
             pose = pin.updateFramePlacement(m, d, tip)
         else:
             pose, jacobian = chain.pose_and_jacobian(x, local=not position_only)

@@ -12,9 +12,9 @@ from __future__ import annotations
 import os
 import re
 import sys
-import tempfile
 from contextlib import contextmanager
 
+from urdftool.description.files import scratch_file
 from urdftool.errors import ModelBuildError
 
 MAX_CAPTURED = 64 * 1024  # [bytes] of urdfdom's messages kept
@@ -26,7 +26,7 @@ def captured_stderr():
     a list that holds the text written once the block ends."""
     sys.stderr.flush()
     text: list[str] = []
-    with tempfile.TemporaryFile() as buffer:
+    with scratch_file() as buffer:
         saved = os.dup(2)
         try:
             os.dup2(buffer.fileno(), 2)

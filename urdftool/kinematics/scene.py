@@ -22,6 +22,9 @@ from urdftool.errors import MeshProblem, SceneError
 from urdftool.description.urdf import MOVING
 
 DEFAULT_COLOUR = (0.62, 0.64, 0.68)  # [0, 1] rgb of geometry without a material colour
+# Triangles a posed scene may hold, checked before any is placed: the per-mesh limit is 2 million
+# (check --max-triangles), and one such mesh on many links is that many copies (72 bytes each).
+MAX_SCENE_TRIANGLES = 8_000_000
 
 
 @dataclass
@@ -126,8 +129,16 @@ class SceneModel:
 
     def pose(self, q: dict[str, float] | None = None) -> PosedScene:
         """The triangles at joint values ``q`` ({variable: value} in [rad] or [m]; others 0,
-        or mid-range when 0 is outside the limits)."""
+        or mid-range when 0 is outside the limits). OverLimit, before any is placed, when the
+        scene holds more than MAX_SCENE_TRIANGLES (every instance of a mesh counted: one
+        mesh within the per-mesh limit, used by many links, is that many copies here)."""
         import numpy as np
+
+        from urdftool.errors import OverLimit
+
+        if self.triangle_count > MAX_SCENE_TRIANGLES:
+            raise OverLimit("the robot's geometry, every instance of a mesh counted",
+                            self.triangle_count, MAX_SCENE_TRIANGLES, "triangles")
 
         values = {v.name: v.default for v in self.variables}
         values.update({name: float(value) for name, value in (q or {}).items()

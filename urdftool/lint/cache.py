@@ -69,8 +69,8 @@ import sys
 import time
 from pathlib import Path
 
-from urdftool.description.files import TooLarge, noted_reads, noting_reads, read_regular, \
-    real_path, write_file
+from urdftool.description.files import TooLarge, make_folders, noted_reads, noting_reads, \
+    read_regular, real_path, write_file
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
 from urdftool.errors import UsageError
@@ -286,7 +286,10 @@ class Cache:
             except FileNotFoundError:
                 if not create:
                     return False
-                os.makedirs(folder, mode=0o700, exist_ok=True)
+                try:
+                    make_folders(folder, 0o700)  # never through a link leading out of a repository
+                except UsageError:
+                    return False
                 mode = os.lstat(folder).st_mode
                 if folder == self.folder:
                     _write(folder / "CACHEDIR.TAG", _TAG)
@@ -579,9 +582,9 @@ def _secret() -> bytes | None:
     if key is not None and len(key) >= 32:
         return key
     try:
-        os.makedirs(folder, mode=0o700, exist_ok=True)
+        make_folders(folder, 0o700)
         _write(path, os.urandom(32).hex())
-    except OSError:
+    except (OSError, UsageError):
         return None
     key = _read_entry(path, 1024)
     return key if key is not None and len(key) >= 32 else None

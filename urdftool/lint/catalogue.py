@@ -201,11 +201,11 @@ class Catalogue:
             listed = ", ".join(f"{r.code} {r.name}" for r in prefixed)
             raise UnknownRule(
                 f"no rule '{wanted}'; the rules starting with {wanted.upper()} are: {listed}")
-        import difflib  # only for a name that is no rule's
+        from urdftool.errors import close_names  # only for a name that is no rule's
 
         by_word = {r.code: r for r in rules} | {r.name: r for r in rules}
         close = dict.fromkeys(by_word[word] for word in
-                              difflib.get_close_matches(wanted, list(by_word), n=3, cutoff=0.6))
+                              close_names(wanted, list(by_word), n=3, cutoff=0.6))
         hint = ("; did you mean " + " or ".join(f"{r.code} {r.name}" for r in close) + "?"
                 if close else ".")
         raise UnknownRule(f"no rule '{wanted}'{hint} `urdftool rules` lists all {len(rules)} rules")

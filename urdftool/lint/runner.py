@@ -31,6 +31,7 @@ from urdftool import budget as budgets
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.errors import SettingsError
 from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
 
@@ -168,6 +169,8 @@ class Run:
     strict: per result, whether a warning in it fails the run (its settings or the request)
     depends: for a run the result cache keeps whole, the stamps of what it was built from
         (see :mod:`urdftool.lint.cache`); None for any other
+    errors: why files were not checked: the settings file that applies to them is broken
+        (each message names it); the other files were checked
     """
 
     results: list[FileResult]
@@ -175,6 +178,7 @@ class Run:
     notes: list[str] = field(default_factory=list)
     strict: list[bool] = field(default_factory=list)
     depends: list | None = field(default=None, repr=False)
+    errors: list[str] = field(default_factory=list)
 
     def __post_init__(self):
         for result, strict in zip(self.results, self.strict):
@@ -183,7 +187,10 @@ class Run:
 
     @property
     def exit_code(self) -> int:
-        """0 clean, 1 when a file has an error, or a warning and is checked strictly."""
+        """0 clean, 1 when a file has an error, or a warning and is checked strictly; 2 when
+        files were not checked for their broken settings (:attr:`errors`)."""
+        if self.errors:
+            return 2
         return 1 if any(result.failures for result in self.results) else 0
 
 
@@ -199,7 +206,9 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
         ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
         that results are kept between runs only with ``cache_dir``
-    Raises SettingsError or TargetError (both UrdftoolError) before anything is checked.
+    Raises TargetError (an UrdftoolError) before anything is checked, and SettingsError when
+    the settings of every file to check are broken; broken settings that apply to some files
+    only are the run's ``errors``, and the other files are checked.
     """
     if request is None:
         request = _request(options)
@@ -224,19 +233,29 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
     from urdftool.lint.targets import expand  # not on a re-run served whole from the cache
 
     targets = expand(paths, request)
-    plans = [for_file(request.stdin_filename if path == "-" and request.stdin_filename else path,
-                      request) for path in targets.files]
-    by_path = dict(zip(targets.files, plans))
-    results: list[FileResult | None] = [None] * len(targets.files)
+    by_path, errors = {}, []
+    for path in targets.files:  # broken settings stop the files they apply to, no others
+        try:
+            by_path[path] = for_file(request.stdin_filename if path == "-" and
+                                     request.stdin_filename else path, request)
+        except SettingsError as error:
+            errors.append(str(error))
+    errors = list(dict.fromkeys(errors))
+    if errors and not by_path:
+        raise SettingsError(errors[0])
+    files = [path for path in targets.files if path in by_path]
+    plans = [by_path[path] for path in files]
+    results: list[FileResult | None] = [None] * len(files)
     for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
         indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
-        found = check_files([targets.files[i] for i in indexes], lambda p: by_path[p].options,
+        found = check_files([files[i] for i in indexes], lambda p: by_path[p].options,
                             jobs=request.jobs, timeout=request.timeout, memory=memory,
                             stdin_as=request.stdin_filename, cache=cache)
         for index, result in zip(indexes, found):
             results[index] = result
-    run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans])
-    if cache is not None:
+    run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
+              errors=errors)
+    if cache is not None and not errors:
         run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options)
     return run
 

@@ -4,39 +4,50 @@ each input, and their merge with what was asked for (:class:`CheckRequest`, the 
 Settings are resolved per target file (:func:`for_file`): checking ``a/`` and ``b/`` together
 applies ``a``'s settings to the files in ``a`` and ``b``'s to those in ``b``, in either order.
 
-Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
-glob -> list), ``per-file-args`` (a table of glob -> xacro arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
-``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
-``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``),
-``targets`` (simulators to check portability to, as ``--target``: ``["mujoco", "gz"]``).
-Command-line options win over the file.
+Keys (:data:`KEYS`): ``select``, ``ignore`` (lists of codes, prefixes or names),
+``per-file-ignores`` (a table of glob -> list), ``per-file-args`` (a table of glob -> xacro
+arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
+``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file),
+``strict``, ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``:
+``"1G"``), ``targets`` (simulators to check portability to, as ``--target``:
+``["mujoco", "gz"]``). Command-line options win over the file.
 
-The settings file comes with the repository, so it is as untrusted as the robot files: it is
+The settings file comes with the repository, so it is as untrusted as the robot files. It is
 looked for up to the repository root (the nearest folder holding ``.git``) and no further, read
-only when it is a regular file of at most 1 MiB, and a path it names (``packages``, ``spec``,
-``srdf``, ``controllers``) that leads outside the repository, through ``..``, an absolute path or
-a symbolic link, is a :class:`~urdftool.errors.SettingsError`: nothing there is read.
+only when it is a regular file of at most 1 MiB nesting at most :data:`MAX_DEPTH` levels, and
+every key goes through :func:`_validated`, so that a key added later cannot skip it:
+
+- no string anywhere in it (a key, a glob, a xacro argument's value, a package folder, a
+  companion) names a path outside the repository: absolute, ``~``, a drive, a ``file:`` URI,
+  or ``..`` climbing out of the repository from the settings file's folder; the path keys
+  (``packages``, ``spec``, ``srdf``, ``controllers``) may not lead out through a symbolic link
+  either. A xacro argument from the settings is never a folder includes may come from
+  (:class:`~urdftool.description.inputs.SettingValue`);
+- a limit (:data:`LIMITS`: ``max-file-size``, ``max-memory``) may be lowered, never raised above
+  the built-in default nor turned off: raising it takes the command line;
+- anything else is a :class:`~urdftool.errors.SettingsError` naming the file and key. It stops
+  only the files those settings apply to (see :mod:`urdftool.lint.runner`).
 """
 
 from __future__ import annotations
 
 import fnmatch
 import os
-from collections.abc import Iterable, Mapping
+import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
-from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, parse_memory
+from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
-from urdftool.description.files import inside, read_regular
-from urdftool.description.inputs import CompanionPaths, MeshLimits
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular
+from urdftool.description.inputs import CompanionPaths, MeshLimits, SettingValue
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
-KEYS = {"select", "ignore", "per-file-ignores", "per-file-args", "packages", "spec",
-        "controllers", "srdf", "strict", "max-file-size", "max-memory", "targets"}
+MAX_DEPTH = 32  # nesting of arrays, tables and dotted keys in a settings file
 
 
 @dataclass
@@ -113,8 +124,9 @@ def _settings_in(folder: Path) -> Settings:
 
 def settings_file(path: str | os.PathLike) -> Settings:
     """The settings in one named file (``--config``): an ``urdftool.toml``, or any other TOML
-    file holding them at top level or under ``[tool.urdftool]``. It was named by whoever runs
-    the check, so the paths it names may lead anywhere its own folder's repository allows."""
+    file holding them at top level or under ``[tool.urdftool]``. Its content is held to the
+    same rules as a settings file found in a repository (it may well be one: naming it does
+    not make what a stranger wrote in it the user's)."""
     path = Path(path).absolute()
     if not path.is_file():
         raise SettingsError(f"settings file '{path}' does not exist or is not a file")
@@ -129,7 +141,8 @@ def _settings_file(file: Path, mtime: int, size: int) -> Settings | None:
     """The settings in ``file``; None for a pyproject.toml without ``[tool.urdftool]``."""
     if file.name == "urdftool.toml":
         return _parse(file, _read(file))
-    table = _read(file).get("tool", {}).get("urdftool")
+    tool = _read(file).get("tool", {})
+    table = tool.get("urdftool") if isinstance(tool, dict) else None
     return None if table is None else _parse(file, table)
 
 
@@ -138,60 +151,162 @@ def _read(path: Path) -> dict:
 
     _refuse_outside(path, path, "the settings file itself")
     try:
-        return tomllib.loads(read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8"))
+        text = read_regular(path, MAX_SETTINGS_SIZE).decode("utf-8")
     except OSError as error:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
+    except UnicodeDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
+    deep = too_deep(text)
+    if deep is not None:
+        raise SettingsError(f"{path}:{deep}: settings nest deeper than {MAX_DEPTH} levels "
+                            "(arrays, tables or dotted keys); not read")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SettingsError(f"cannot read settings in {path}: {error}") from None
+    except RecursionError:  # what too_deep() missed
+        raise SettingsError(f"{path}: settings nest too deeply; not read") from None
+
+
+_TOKENS = re.compile("\"\"\"|'''|\"|'|#|\\[|\\]|\\{|\\}|\\.|\n")
+_QUOTES = ('"""', "'''", '"', "'")
+
+
+def too_deep(text: str) -> int | None:
+    """The line where ``text`` (TOML) first nests deeper than MAX_DEPTH, counting open
+    brackets and braces and the dots of a key on one line (``a.b.c = 1``: tomllib's cost
+    grows with their square), strings and comments skipped; None when it never does. A dot
+    between two digits is a number's, not a key's."""
+    depth, dots, line, at = 0, 0, 1, 0
+    while (found := _TOKENS.search(text, at)) is not None:
+        token, at = found.group(), found.end()
+        if token == "\n":
+            line, dots = line + 1, 0
+        elif token == "#":
+            end = text.find("\n", at)
+            at = len(text) if end < 0 else end
+        elif token in _QUOTES:
+            at = _string_end(text, at, token)
+            line += text.count("\n", found.end(), at)
+        elif token in "[{":
+            depth += 1
+        elif token in "]}":
+            depth = max(0, depth - 1)
+        elif not (found.start() > 0 and text[found.start() - 1].isdigit()
+                  and text[at:at + 1].isdigit()):
+            dots += 1
+        if depth + dots > MAX_DEPTH:
+            return line
+    return None
+
+
+def _string_end(text: str, at: int, quote: str) -> int:
+    """Where the string opened by ``quote`` just before ``at`` ends (after its closing quote);
+    the end of the line or text for an unterminated one (tomllib says what is wrong)."""
+    escapes = quote.startswith('"')
+    while at < len(text):
+        char = text[at]
+        if escapes and char == "\\":
+            at += 2
+            continue
+        if text.startswith(quote, at):
+            return at + len(quote)
+        if char == "\n" and len(quote) == 1:
+            return at
+        at += 1
+    return at
 
 
 def _refuse_outside(settings: Path, path: Path, what: str) -> None:
     """SettingsError when ``path``, named by ``settings``, leads outside the settings file's
-    repository (nearest ``.git`` above it, else its own folder)."""
-    from urdftool.description.packages import repository_root
-
-    root = repository_root(settings.parent) or settings.parent
+    repository (nearest ``.git`` above it, else its own folder), symbolic links followed."""
+    root = _root_of(settings)
     if not inside(path, root):
         raise SettingsError(f"{settings}: {what} '{path}' leads outside the repository ({root}); "
-                         "settings may name only files inside it (give outside paths on the "
-                         "command line)")
+                            "settings may name only files inside it (give outside paths on the "
+                            "command line)")
+
+
+def _root_of(settings: Path) -> Path:
+    from urdftool.description.packages import repository_root
+
+    return repository_root(settings.parent) or settings.parent
+
+
+_DRIVE = re.compile(r"^[A-Za-z]:([\\/]|$)")
+
+
+def _names_outside(settings: Path, text: str) -> bool:
+    """Whether ``text``, taken as a path from the settings file's folder, names a place outside
+    its repository as written: absolute, from a home folder (``~``), a drive, a ``file:`` URI,
+    a UNC path, or climbing out with ``..``. Decided on the text alone: nothing is looked up,
+    so the answer tells nothing about what exists outside."""
+    if text.startswith(("/", "\\", "~")) or _DRIVE.match(text) or \
+            text.lower().startswith("file:"):
+        return True
+    parts = re.split(r"[\\/]", text)
+    if ".." not in parts:
+        return False
+    root = os.path.normpath(os.path.abspath(_root_of(settings)))
+    climbed = os.path.normpath(os.path.join(os.path.abspath(settings.parent), *parts))
+    return not (climbed == root or climbed.startswith(root.rstrip(os.sep) + os.sep))
+
+
+def _refuse_outside_text(settings: Path, key: str, value) -> None:
+    """SettingsError for the first string in ``value`` (keys of tables too) that
+    :func:`_names_outside`: every key's value goes through this walk."""
+    if isinstance(value, str):
+        if _names_outside(settings, value):
+            raise SettingsError(f"{settings}: {key}: '{value}' leads outside the "
+                                f"repository ({_root_of(settings)}); settings may name only "
+                                "paths inside it (give outside paths on the command line)")
+    elif isinstance(value, dict):
+        for name, item in value.items():
+            _refuse_outside_text(settings, key, name)
+            _refuse_outside_text(settings, f"{key}.{name}", item)
+    elif isinstance(value, list):
+        for item in value:
+            _refuse_outside_text(settings, key, item)
+
+
+# ---- one validation for every key -----------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Key:
+    """A settings key: ``read(settings file, value, key)`` checks its value and returns what
+    :class:`Settings` keeps under ``attribute`` (None: in ``companions``, under the key)."""
+
+    read: Callable
+    attribute: str | None
+
+
+def _validated(path: Path, key: str, value):
+    """The one gate of a settings key: known, no path outside the repository anywhere in its
+    value, then its own check (a limit no higher than the built-in one). SettingsError
+    naming the file and the key otherwise."""
+    if key not in KEYS:
+        raise SettingsError(f"{path}: unknown urdftool setting(s) {key}; "
+                            f"valid: {', '.join(sorted(KEYS))}")
+    _refuse_outside_text(path, f"'{key}'", value)
+    return KEYS[key].read(path, value, key)
 
 
 def _parse(path: Path, table: dict) -> Settings:
-    unknown = sorted(set(table) - KEYS)
+    unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
-                         f"valid: {', '.join(sorted(KEYS))}")
+                            f"valid: {', '.join(sorted(KEYS))}")
     config = Settings(path=path)
-    config.select = _selectors(path, table, "select")
-    config.ignore = _selectors(path, table, "ignore")
-    for pattern in _table(path, table, "per-file-ignores"):
-        config.per_file_ignores[pattern] = _selectors(path, table["per-file-ignores"], pattern,
-                                                      f"per-file-ignores.{pattern}")
-    for pattern, args in _table(path, table, "per-file-args").items():
-        config.per_file_args[pattern] = _xacro_args(path, pattern, args)
-    config.packages = {name: _inside_path(path, f"package {name}", folder)
-                       for name, folder in _table(path, table, "packages").items()}
-    config.companions = {key: _inside_path(path, key, table[key]) for key in ("spec", "srdf")
-                         if key in table}
-    if "controllers" in table:
-        listed = table["controllers"]
-        config.companions["controllers"] = [_inside_path(path, "controllers", p) for p in
-                                            (listed if isinstance(listed, list) else [listed])]
-    config.strict = table.get("strict", False)
-    if not isinstance(config.strict, bool):
-        raise SettingsError(f"{path}: 'strict' must be true or false (a TOML boolean, "
-                            f"unquoted), not {config.strict!r}")
-    if "max-file-size" in table:
-        config.max_file_size = checked_file_size(table["max-file-size"], f"{path}: 'max-file-size'")
-    if "max-memory" in table:
-        config.max_memory = _memory(path, table["max-memory"])
-    if "targets" in table:
-        config.targets = _targets(path, table["targets"])
+    for key, value in table.items():
+        read = _validated(path, key, value)
+        if KEYS[key].attribute is None:
+            config.companions[key] = read
+        else:
+            setattr(config, KEYS[key].attribute, read)
     return config
 
 
-def _targets(path: Path, value) -> list[str]:
+def _targets(path: Path, value, key: str = "targets") -> list[str]:
     """``targets``: a list of simulator names (``NAME`` or ``NAME@VERSION``)."""
     if isinstance(value, str):
         value = [value]
@@ -215,7 +330,7 @@ def checked_targets(values: Iterable[str]) -> tuple[str, ...]:
     return words
 
 
-def _inside_path(settings: Path, what: str, value) -> Path:
+def _inside_path(settings: Path, value, what: str) -> Path:
     """A path setting, relative to the settings file; SettingsError when it is not a string or
     leads outside the repository."""
     if not isinstance(value, str) or "\0" in value:
@@ -225,32 +340,97 @@ def _inside_path(settings: Path, what: str, value) -> Path:
     return path
 
 
-MAX_FILE_SIZE = 2 ** 40  # [bytes] the largest size limit that can be set (1 TiB)
+def _packages(settings: Path, value, key: str) -> dict[str, Path]:
+    return {name: _inside_path(settings, folder, f"package {name}")
+            for name, folder in _table(settings, value, key).items()}
 
 
-def checked_file_size(value, what: str) -> int:
-    """``value`` as a file size limit in [bytes]; SettingsError naming ``what`` unless it is a whole
-    number from 1 to MAX_FILE_SIZE."""
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= MAX_FILE_SIZE:
-        raise SettingsError(f"{what} must be a whole number of bytes from 1 to {MAX_FILE_SIZE}, "
-                         f"not {value!r}")
+def _controllers(settings: Path, value, key: str) -> list[Path]:
+    return [_inside_path(settings, item, key)
+            for item in (value if isinstance(value, list) else [value])]
+
+
+def _strict(settings: Path, value, key: str) -> bool:
+    if not isinstance(value, bool):
+        raise SettingsError(f"{settings}: '{key}' must be true or false (a TOML boolean, "
+                            f"unquoted), not {value!r}")
     return value
 
 
-def _memory(path: Path, value) -> str:
-    from urdftool.budget import parse_memory
+def _per_file_ignores(settings: Path, value, key: str) -> dict[str, list[str]]:
+    table = _table(settings, value, key)
+    return {pattern: _selectors(settings, table[pattern], f"{key}.{pattern}")
+            for pattern in table}
 
+
+def _per_file_args(settings: Path, value, key: str) -> dict[str, dict[str, str]]:
+    return {pattern: _xacro_args(settings, pattern, args)
+            for pattern, args in _table(settings, value, key).items()}
+
+
+MAX_FILE_SIZE = 2 ** 40  # [bytes] the largest size limit the command line can set (1 TiB)
+
+
+def checked_file_size(value, what: str, most: int = MAX_FILE_SIZE, why: str = "") -> int:
+    """``value`` as a file size limit in [bytes]; SettingsError naming ``what`` (and saying
+    ``why``) unless it is a whole number from 1 to ``most``."""
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= most:
+        raise SettingsError(f"{what} must be a whole number of bytes from 1 to {most}, "
+                            f"not {value!r}{why}")
+    return value
+
+
+def _file_size(settings: Path, value, key: str) -> int:
+    """A size limit no larger than the built-in one: a repository may lower it, never raise it
+    (that takes ``--max-file-size``)."""
+    return checked_file_size(value, f"{settings}: '{key}'", LIMITS[key],
+                             " (a repository may lower the built-in limit; raise it with "
+                             "--max-file-size)")
+
+
+def _memory(settings: Path, value, key: str) -> str:
+    """A memory budget no larger than the built-in one, and not 0 (none): a repository may
+    lower it, never raise it (that takes ``--max-memory``)."""
     try:
-        parse_memory(str(value))
+        size = parse_memory(str(value)) if isinstance(value, (str, int)) else -1
     except UsageError:
-        raise SettingsError(f"{path}: 'max-memory' must be a size such as \"2G\", \"512M\" or 0 "
-                         f"(no limit), not {value!r}") from None
+        size = -1
+    if isinstance(value, bool) or size is None or not 0 < size <= LIMITS[key]:
+        raise SettingsError(f"{settings}: '{key}' must be a size such as \"1G\" or \"512M\" up "
+                            f"to the built-in {format_memory(LIMITS[key])}, not {value!r} (a "
+                            "repository may lower the budget; raise it with --max-memory)")
     return str(value)
+
+
+def _selector_key(settings: Path, value, key: str) -> list[str]:
+    return _selectors(settings, value, key)
+
+
+def _companion(settings: Path, value, key: str) -> Path:
+    return _inside_path(settings, value, key)
+
+
+KEYS: dict[str, _Key] = {
+    "select": _Key(_selector_key, "select"),
+    "ignore": _Key(_selector_key, "ignore"),
+    "per-file-ignores": _Key(_per_file_ignores, "per_file_ignores"),
+    "per-file-args": _Key(_per_file_args, "per_file_args"),
+    "packages": _Key(_packages, "packages"),
+    "spec": _Key(_companion, None),
+    "srdf": _Key(_companion, None),
+    "controllers": _Key(_controllers, None),
+    "strict": _Key(_strict, "strict"),
+    "max-file-size": _Key(_file_size, "max_file_size"),
+    "max-memory": _Key(_memory, "max_memory"),
+    "targets": _Key(_targets, "targets"),
+}
+# The budgets a settings file may only lower: key -> the built-in value.
+LIMITS = {"max-file-size": DEFAULT_MAX_FILE_SIZE, "max-memory": DEFAULT_MEMORY}
 
 
 def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
     """One ``per-file-args`` entry: a table of xacro argument name -> value (a string, number or
-    boolean, written as xacro reads it)."""
+    boolean, written as xacro reads it), each a :class:`SettingValue`."""
     if not isinstance(args, dict):
         raise SettingsError(f"{path}: 'per-file-args.{pattern}' must be a table of xacro "
                             f"arguments (name = value), not {args!r}")
@@ -263,22 +443,19 @@ def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
         if not isinstance(value, str):
             raise SettingsError(f"{path}: 'per-file-args.{pattern}.{name}' must be a string, "
                                 f"number or boolean, not {value!r}")
-        values[name] = value
+        values[name] = SettingValue(value)
     return values
 
 
-def _table(path: Path, table: dict, key: str) -> dict:
-    value = table.get(key, {})
+def _table(path: Path, value, key: str) -> dict:
     if not isinstance(value, dict):
         raise SettingsError(f"{path}: '{key}' must be a table, not {value!r}")
     return value
 
 
-def _selectors(path: Path, table: dict, key: str, what: str | None = None) -> list[str]:
+def _selectors(path: Path, value, what: str) -> list[str]:
     """A list of rule codes, prefixes or names; SettingsError when it is not one, or when an
     entry picks no rule (a misspelt code would silently select or ignore nothing)."""
-    what = what or key
-    value = table.get(key, [])
     if isinstance(value, str):
         value = [value]
     if not isinstance(value, list) or not all(isinstance(item, str) for item in value):

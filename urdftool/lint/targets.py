@@ -372,11 +372,22 @@ def expand(paths: list[str], request) -> Targets:
     from the settings above each path (:func:`~urdftool.lint.settings.for_file`) under
     ``request``. Raises TargetError for a path that does not exist or a folder without robot
     files."""
-    from urdftool.errors import TargetError
+    import dataclasses
+
+    from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
 
+    def options_for(path):
+        """The options ``path`` is checked with; when the settings that apply to it are broken,
+        the request's alone: a settings file in another folder never stops this walk (checking
+        a file it applies to says what is wrong with it)."""
+        try:
+            return for_file(str(path), request).options
+        except SettingsError:
+            return for_file(str(path), dataclasses.replace(request, use_settings=False)).options
+
     def resolver_for(path: Path) -> PackageResolver:
-        return PackageResolver(for_file(str(path), request).options.packages, start=path.parent)
+        return PackageResolver(options_for(path).packages, start=path.parent)
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
@@ -387,7 +398,7 @@ def expand(paths: list[str], request) -> Targets:
         if path == "-" or not Path(path).is_file() and not Path(path).is_dir():
             files.append(path)
             continue
-        limit = for_file(path, request).options.max_file_size
+        limit = options_for(path).max_file_size
         if Path(path).is_file() and path.endswith(COMPANION_SUFFIXES):
             root = project_root(Path(path))
             if (root, limit) not in robots:

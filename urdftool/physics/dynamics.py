@@ -175,6 +175,9 @@ class State:
                 "tau_total": listed(self.total)}
 
 
+MAX_MATRIX_SIZE = 1000  # rows of M(q): 8 MB each matrix, 11 MB of text; 10,000 were 0.8 GB
+
+
 def state(model: Model, q_values: dict, v_values: dict | None = None,
           a_values: dict | None = None) -> State:
     """M(q) (crba), G(q) (computeGeneralizedGravity), the energies K = v^T M v / 2 and
@@ -182,10 +185,16 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     or a, C(q, v) and tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs
     difference), and the URDF's ``<dynamics damping friction>`` torques ``damping v`` and
     ``friction sign(v)`` that the actuators supply on top (Pinocchio's rnea has neither); a
-    robot without mass gets a warning."""
+    robot without mass gets a warning. OverLimit, before any is computed, when M(q) and
+    C(q, v) would be over MAX_MATRIX_SIZE rows (their memory and text grow with the square)."""
     import pinocchio as pin
 
+    from urdftool.errors import OverLimit
+
     m, d = model.model, model.data
+    if m.nv > MAX_MATRIX_SIZE:
+        raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv,
+                        MAX_MATRIX_SIZE, "rows")
     q = model.configuration(q_values)
     mass_matrix = pin.crba(m, d, q)
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T

@@ -28,6 +28,7 @@ import numpy as np
 
 from urdftool.errors import DynamicsError, available
 from urdftool.physics.dynamics import JointLoad, Model, gravity_loads
+from urdftool.kinematics.chain import frame_jacobian
 
 CONTACT = 1e-3  # [m]: support points this close to the ground touch it
 SHARED_LOAD = ("several supports: the load split is statically indeterminate; the wrenches "
@@ -154,7 +155,7 @@ def stand(standing: Standing, q_values: dict, polygon: bool = True) -> Stance:
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     pin.computeJointJacobians(m, d, q)
     pin.updateFramePlacements(m, d)
-    jacobians = [pin.getFrameJacobian(m, d, frame, pin.LOCAL_WORLD_ALIGNED)
+    jacobians = [frame_jacobian(m, d, frame, pin.LOCAL_WORLD_ALIGNED)
                  for frame in standing.frames]
     base = np.hstack([jacobian[:, :6].T for jacobian in jacobians])  # [6, 6 k]
     if len(jacobians) == 1:

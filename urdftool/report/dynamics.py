@@ -107,7 +107,7 @@ def stance_text(stance, standing_load=None) -> str:
     if stance.assumption:
         lines.append(f"assumption: {_text(stance.assumption)}")
     joints = [_text(j) for j in stance.joints]
-    width = max(len(j) for j in joints)
+    width = max((len(j) for j in joints), default=5)
     lines += ["", "joint torque holding the robot [N m or N]:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
     for joint, standing, fixed, effort in zip(joints, stance.torques, stance.fixed_base,

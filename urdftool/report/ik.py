@@ -47,7 +47,7 @@ def as_dict(chain, solution, given=None) -> dict:
 
 def text(chain, solutions, given=None) -> str:
     """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
-    width = max(len(_text(v.name)) for v in chain.variables)
+    width = max((len(_text(v.name)) for v in chain.variables), default=5)
     tip, base = _text(chain.tip), _text(chain.base)
     lines = []
     for solution in solutions:

@@ -441,7 +441,7 @@ def gazebo_plugin_library(robot):
     Bad: ``<plugin filename="libgazebo_ros_control.so">`` beside ``<ros2_control>``
     Good: ``<plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">``
     """
-    import difflib
+    from urdftool.errors import close_names
 
     ros2 = bool(robot.children("ros2_control"))
     namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"}
@@ -456,7 +456,7 @@ def gazebo_plugin_library(robot):
                            "it has none: add one, or use ROS 1's "
                            f"{ROS1_CONTROL} with transmissions")
         elif library.startswith("libgazebo_ros") and library not in GAZEBO_LIBRARIES:
-            close = difflib.get_close_matches(library, sorted(GAZEBO_LIBRARIES), n=1, cutoff=_TYPO)
+            close = close_names(library, sorted(GAZEBO_LIBRARIES), n=1, cutoff=_TYPO)
             if close:
                 yield plugin, f"plugin library '{library}' does not exist; did you mean '{close[0]}'?"
         if library == ROS1_CONTROL and len(namespaces) == 1:

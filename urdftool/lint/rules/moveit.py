@@ -276,7 +276,7 @@ def kinematics_solver_unknown(robot):
     Bad: ``kinematics_solver: kdl_kinematics_plugin/KDLKinematicPlugin``
     Good: ``kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin``
     """
-    import difflib
+    from urdftool.errors import close_names
 
     file, entries, _ = _kinematics(robot)
     packages = {name.split("/")[0] for name in moveit.SOLVERS}
@@ -284,7 +284,7 @@ def kinematics_solver_unknown(robot):
         solver = entry.solver
         if solver is None or solver in moveit.SOLVERS or solver.endswith(f"/{moveit.IKFAST}"):
             continue
-        close = difflib.get_close_matches(solver, moveit.SOLVERS, n=1, cutoff=0.8)
+        close = close_names(solver, moveit.SOLVERS, n=1, cutoff=0.8)
         if close or solver.split("/")[0] in packages:
             hint = (f"did you mean '{close[0]}'?" if close else
                     available("solvers", solver, moveit.SOLVERS))

@@ -9,7 +9,6 @@ distribution that has the class: a parameter renamed in a later one (``i_clamp``
 
 from __future__ import annotations
 
-import difflib
 import functools
 
 from urdftool.description import controller_parameters as schema
@@ -249,7 +248,9 @@ def _shown_name(name: str) -> str:
 
 
 def _suggest(name: str, names: list[str]) -> str:
-    close = difflib.get_close_matches(name, names, n=1, cutoff=0.75)
+    from urdftool.errors import close_names
+
+    close = close_names(name, names, n=1, cutoff=0.75)
     if close:
         return f"did you mean '{close[0]}'?"
     return available("parameters", name, sorted({n.split(".")[0] for n in names}))

@@ -90,7 +90,7 @@ def gazebo_plugin_unknown_parameter(robot):
     Bad: ``<wheel_diameter>0.2</wheel_diameter>`` in ``gz-sim-diff-drive-system``
     Good: ``<wheel_radius>0.1</wheel_radius>``
     """
-    import difflib
+    from urdftool.errors import close_names
 
     version, _ = ros_version(robot)
     for element in gazebo_plugins(robot):
@@ -116,7 +116,7 @@ def gazebo_plugin_unknown_parameter(robot):
                     f"{_tag(right)}{'' if len(close) == 1 and not mine else ' (' + ', '.join(_VERSION.get(v, v) for v in vs) + ')'}"
                     for right, vs in close.items()) + "?"
             else:
-                guess = difflib.get_close_matches(child.tag, sorted(names), n=1, cutoff=0.6)
+                guess = close_names(child.tag, sorted(names), n=1, cutoff=0.6)
                 hint = ("it is Gazebo Classic's name" + (f"; the new Gazebo's plugin reads <{guess[0]}>"
                                                           if guess else "") + " (see the system's documentation)")
             yield child, (f"{_label(element, found)} does not read <{child.tag}>, so it is ignored; {hint}")

@@ -28,14 +28,14 @@ def _close(name: str, valid) -> list[str]:
     after it (``gear_velocity``, ``velocity_max``) is a tool's own extension written on
     purpose, not a misspelling of ``velocity``, and a word of a known name (``mimic`` beside
     ros2_control's ``is_mimic``) is another version's name for it: neither is close."""
-    import difflib  # only for an unknown name
+    from urdftool.errors import close_names  # only for an unknown name
 
     valid = list(dict.fromkeys(valid))
     same_case = [v for v in valid if v.lower() == name.lower()]
     def words(text: str) -> set[str]:
         return set(text.lower().replace("-", "_").split("_"))
 
-    return same_case or [v for v in difflib.get_close_matches(name, valid, n=3, cutoff=CUTOFF)
+    return same_case or [v for v in close_names(name, valid, n=3, cutoff=CUTOFF)
                          if not (len(words(name)) > 1 and v.lower() in words(name))
                          and not (len(words(v)) > 1 and name.lower() in words(v))]
 
