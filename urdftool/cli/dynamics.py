@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, refuse_bad_outputs, single_robot, warn)
+                                  joint_words, refuse_bad_outputs, show, single_robot, warn)
 
 
 FORMATS = ("text", "json")
@@ -79,7 +79,7 @@ def dynamics(
         # --samples alone asks for gravity margins: M and G at the zero pose would be noise
         least = render.weakest(loads)
         relevant = gravity_variables(model, least.joint) if least is not None else set()
-        typer.echo(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
+        show(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
                                relevant=relevant), nl=False)
     raise typer.Exit(1 if any(load.holds is False for load in loads) else 0)
 
@@ -117,6 +117,6 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
             document["poses_drawn"] = standing_load.poses
         write_json(document)
     else:
-        typer.echo(render.stance_text(stance, standing_load), nl=False)
+        show(render.stance_text(stance, standing_load), nl=False)
     holds = stance.holds and all(load.holds is not False for load in loads)
     raise typer.Exit(0 if stance.stands and holds else 1)

@@ -7,7 +7,7 @@ import typer
 from urdftool.errors import UnknownName
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, single_robot, warn)
+                                  joint_words, say, single_robot, warn)
 
 FORMATS = ("text", "json", "csv")
 VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
@@ -58,7 +58,7 @@ def fk(
             count = random or VERIFY_DEFAULT_COUNT
             errors = dh_verify(table, model, config.random(model.variables, count, seed), base,
                                tip)
-            typer.echo(verify_line(count, seed, *errors, VERIFY_TOLERANCE))
+            say(verify_line(count, seed, *errors, VERIFY_TOLERANCE))
             raise typer.Exit(0 if all(e <= VERIFY_TOLERANCE for e in errors) else 1)
         configurations = config.configurations(model, joint_words(q, "--q"), deg, q_file,
                                                random, seed)

@@ -282,7 +282,10 @@ def _plain_csv_table(text: str):
 
 def _csv_rows(text: str, path: str, what: str, named: str) -> tuple[list[str], list[list[str]]]:
     if '"' in text:
-        lines = list(csv.reader(io.StringIO(text)))
+        try:  # newline="": a line break inside a quoted cell is the cell's, as csv reads it
+            lines = list(csv.reader(io.StringIO(text, newline="")))
+        except csv.Error as error:
+            raise ConfigError(f"{what} is not CSV: {error}", path) from None
     else:  # no quoting: splitting is csv's answer, ten times faster on 10,000 rows
         lines = [line.split(",") if line else [] for line in text.splitlines()]
     numbered = [(n, line) for n, line in enumerate(lines, start=1)
@@ -398,5 +401,7 @@ def random(variables: list[Variable], count: int, seed=None,
             span = _RANDOM_SPAN.get(v.kind, math.pi)
             lower.append(-span)
             upper.append(span)
-    values = generator.uniform(lower, upper, size=(count, len(variables)))
+    # limits written the wrong way round are a range all the same (numpy refuses them)
+    values = generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
+                               size=(count, len(variables)))
     return Configurations(variables, values, [])

@@ -52,6 +52,8 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
 
     import numpy as np
 
+    from urdftool.report.escape import csv_cell
+
     header = ["row", "base", "frame", "x", "y", "z", "roll", "pitch", "yaw",
               "qx", "qy", "qz", "qw"]
     if matrix:
@@ -64,7 +66,8 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
             numbers.shape[:2] + (12,))], axis=-1)
     for row in range(len(numbers)):
         for k, name in enumerate(result.frames):
-            writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
+            writer.writerow([row + 1, csv_cell(result.base), csv_cell(name),
+                             *(repr(float(v)) for v in numbers[row, k])])
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
@@ -72,6 +75,8 @@ HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
+    from urdftool.report.escape import markup
+
     plain = plain_tables(len(result.frames))
     console = None if plain else wide_console()
     for row in range(len(positions)):
@@ -87,19 +92,19 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
             continue
         print_table(console, title, HEADERS, rows)
         if matrix:
-            from rich.markup import escape
-
             for k, name in enumerate(result.frames):
-                console.print(f"{escape(name)}:")
+                console.print(f"{markup(name)}:")
                 for line in result.matrices[row, k]:
                     console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))
 
 
-def _plain_matrices(result, row: int) -> None:
-    from urdftool.report.summary import printable
+def _plain_matrices(result, row: int, stream=None) -> None:
+    from urdftool.report.escape import text
 
     lines = []
     for k, name in enumerate(result.frames):
-        lines.append(f"{printable(name)}:")
-        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line) for line in result.matrices[row, k]]
-    sys.stdout.write("\n".join(lines) + "\n")
+        lines.append(f"{text(name)}:")
+        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line)
+                  for line in result.matrices[row, k]]
+    stream = stream or sys.stdout
+    stream.write("\n".join(lines) + "\n")

@@ -21,7 +21,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.xml import first_child
+from urdftool.description.xml import attribute, first_child
 from urdftool.description.values import number_tuple
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
@@ -400,9 +400,10 @@ def root_link_inertia(robot):
         location = robot.locations.get(root)
         edits = Unfixable(f"'{roots[0]}' is written in a macro (called at {location.via[0]}); "
                           "add the link beside the call") if location and location.via else \
-            insert_before(robot, root, f'<link name="{name}"/>',
-                          f'<joint name="{name}_joint" type="fixed"><parent link="{name}"/>'
-                          f'<child link="{roots[0]}"/></joint>')
+            insert_before(robot, root, f'<link name="{attribute(name)}"/>',
+                          f'<joint name="{attribute(name)}_joint" type="fixed"><parent '
+                          f'link="{attribute(name)}"/><child link="{attribute(roots[0])}"/>'
+                          '</joint>')
         yield offer(first_child(root, "inertial"), (
             f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
             "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
