@@ -7,11 +7,12 @@ A new family module is added to ``FAMILY_MODULES``: nothing is found by scanning
 from __future__ import annotations
 
 from urdftool.lint.catalogue import Catalogue
-from urdftool.lint.rules import (controllers, gazebo, geometry, inertials, internal, joints,
-                                 loading, moveit, spec, srdf, transmissions,
+from urdftool.lint.rules import (controllers, conventions, gazebo, geometry, inertials, internal,
+                                 joints, loading, moveit, spec, srdf, symmetry,
+                                 transmissions,
                                  tree, vocabulary)
 
-FAMILY_MODULES = (loading, vocabulary, tree, joints, inertials, geometry, transmissions,
+FAMILY_MODULES = (loading, vocabulary, tree, joints, symmetry, inertials, geometry, conventions, transmissions,
                   controllers, gazebo, spec, srdf, moveit, internal)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
