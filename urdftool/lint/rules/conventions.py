@@ -222,7 +222,8 @@ def wheel_not_touching_ground(robot):
     """A wheel or caster does not touch the ground at the zero pose.
 
     The ground is ``base_footprint``'s plane (REP 120) when the robot's wheels stand on it,
-    else the lowest point of its wheels and casters. A wheel whose lowest collision point
+    else the lowest point of its wheels (of its casters, without wheels; a caster reaching
+    below the wheels is U617's). A wheel whose lowest collision point
     (meshes included) is more than 1 cm above it carries no load in simulation: a drive wheel
     spins in the air, a robot on a hovering caster tips onto it. Wheels and casters are
     identified by a diff drive or by their names (never arms, grippers or feet); casters in a
@@ -234,19 +235,18 @@ def wheel_not_touching_ground(robot):
     ground = _ground_points(robot)
     if not ground:
         return
-    plane = footprint(robot)
     heights = {name: z for name, z in ground}
+    plane, base, source = footprint(robot), None, ""
     if plane is not None:
         placed = {name: lowest(robot, name, plane)[0] for name in heights}
         if abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
-            heights, base = placed, 0.0
-            source = f"'{FOOTPRINT}' (the ground)"
-        else:
-            base = min(heights.values())
-            source = "the lowest wheel or caster"
-    else:
-        base = min(heights.values())
-        source = "the lowest wheel or caster"
+            heights, base, source = placed, 0.0, f"'{FOOTPRINT}' (the ground)"
+    if base is None:
+        # the wheels stand on the ground; a caster below them lifts them (U617 says so)
+        kinds = {wheel.link: wheel.kind for wheel in wheels(robot)}
+        rolling = [z for name, z in heights.items() if kinds.get(name) == "wheel"]
+        base = min(rolling or heights.values())
+        source = "the lowest wheel" if rolling else "the lowest caster"
     parents = parent_joints(robot)
     for wheel in wheels(robot):
         if wheel.link not in heights:

@@ -27,6 +27,7 @@ from urdftool.physics import mat3
 from urdftool.physics.frames import joint_frames, link_frames, parent_joints, world_axis
 from urdftool.physics.mass import declared
 from urdftool.physics.mirror import joint_pairs, link_pairs, plane
+from urdftool.physics.wheels import driven_joints
 
 POSITION_TOLERANCE = 0.002  # [m]: CAD exports round to 0.1 mm; a slip is a centimetre
 RELATIVE_POSITION = 0.01  # and 1 % of the distance from the plane (big robots round coarser)
@@ -265,10 +266,11 @@ def _typed_pairs(robot):
     if analysis is None:
         return
     found, pairs, _ = analysis
+    driven = driven_joints(robot)  # a diff drive's wheels: U617 judges their axes
     for (left, right), pair in pairs.items():
         a, b = robot.joints[left], robot.joints[right]
         if pair.kind != "local" and a.get("type") == b.get("type") and \
-                a.get("type") in VARIABLE:
+                a.get("type") in VARIABLE and not (left in driven and right in driven):
             yield a, b, found, pair
 
 
