@@ -403,3 +403,26 @@ def test_spherical_wrist_needs_meeting_axes(tmp_path):
     ur5 = build_chain(load(str(corpus_or_skip() / "ur_description" / "urdf" / "ur5.xacro")),
                       "base_link", "tool0")
     assert ik.spherical(ur5) is None  # UR's wrist axes do not meet
+
+
+def test_cli_check_reach_reads_comment_lines(run_cli, humanoid, tmp_path):
+    chain = build_chain(humanoid, "body_link", "l_forearm_link")
+    pose = _fk_pose(chain, chain.row_of(np.array([0.2, 0.3, -0.4])))
+    path = tmp_path / "cell.csv"
+    path.write_text("# the work cell's targets, in body_link\nx,y,z\n"
+                    "  # the first one is reached at the pose above\n"
+                    + ",".join(repr(float(v)) for v in pose[:3, 3]) + "\n# far away\n1,1,1\n")
+    result = run_cli("ik", HUMANOID, "--base", "body_link", "--tip", "l_forearm_link",
+                     "--check-reach", path)
+    assert result.exit_code == 1, result.output
+    assert result.output.splitlines()[-1] == "1 of 2 targets reachable"
+
+
+def test_a_wrong_row_after_comments_is_located_on_its_own_line(tmp_path):
+    from urdftool.kinematics.configuration import ConfigError, read_table
+
+    path = tmp_path / "cell.csv"
+    path.write_text("# comment\nx,y,z\n# another\n1,2\n")
+    with pytest.raises(ConfigError) as raised:
+        read_table(str(path), "target file", "column")
+    assert raised.value.where == f"{path}:4"

@@ -26,7 +26,8 @@ def dynamics(
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
-                                "joint over N random poses within limits (and the zero pose)."),
+                                "joint over the joint ranges: N random poses within limits (and "
+                                "the zero pose), then climbed from the worst to a maximum."),
     seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
     support: list[str] = typer.Option([], "--support", metavar="LINK",
                                       help="Standing on this link (repeatable: feet, wheels): "
@@ -65,7 +66,7 @@ def dynamics(
         _standing(robot, support, values, samples, seed, output_format, plot)
     result = state(model, values.q, values.v, values.a)
     warn(values.warnings + result.warnings)
-    loads = gravity_loads(model, samples, seed) if samples else []
+    loads = gravity_loads(model, samples, seed, refine=True) if samples else []
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

@@ -219,9 +219,11 @@ class JointLoad:
 
     joint: str
     effort: float
-    worst: float  # [N m] or [N], absolute
+    worst: float  # [N m] or [N], absolute: over the ranges when refined, else the samples'
     worst_pose: dict = field(default_factory=dict)
     zero_pose: float = 0.0
+    sampled: float | None = None  # the worst of the samples, when ``worst`` was refined
+    evaluations: int = 0  # of G(q) while refining
 
     @property
     def limited(self) -> bool:
@@ -237,7 +239,7 @@ class JointLoad:
 
     def as_dict(self) -> dict:
         return {"joint": self.joint, "effort": self.effort if self.limited else None,
-                "worst": self.worst,
+                "worst": self.worst, "sampled_worst": self.sampled,
                 "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
 
@@ -254,12 +256,15 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
-    """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
+                  refine: bool = False) -> list[JointLoad]:
+    """Per joint, the largest |G(q)| over the zero pose (mid-range for a variable whose range
+    leaves 0 out) and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
     ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
-    pose out."""
+    pose out. ``refine``: climb from the worst samples to the worst over the joint ranges
+    (:mod:`urdftool.physics.gravity_bound`; G(q) only), keeping the samples' in ``sampled``."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -267,7 +272,9 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
     m, d = model.model, model.data
     names = [variable.name for variable in model.variables]
     drawn = random(model.variables, samples, seed).values if samples else np.zeros((0, len(names)))
-    poses = [{name: 0.0 for name in names}]
+    # the zero pose, or mid-range for a variable whose range leaves 0 out: every pose judged is
+    # one the robot can take
+    poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
@@ -278,10 +285,12 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
         def torques(pose):
             return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
 
+    table = []
     for number, pose in enumerate(poses):
         values = torques(pose)
         if values is None:  # a pose the caller leaves out
             continue
+        table.append(np.asarray(values, dtype=float))
         for load, torque in zip(loads, np.abs(values)):
             torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
@@ -289,4 +298,10 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
                 load.zero_pose = torque
             if torque > load.worst or number == 0:
                 load.worst, load.worst_pose = torque, pose
+    if refine and table:
+        from urdftool.physics.gravity_bound import refine as climb
+
+        first = np.array([[poses[0][name] for name in names]])
+        start = np.vstack([first, drawn]) if len(drawn) else first
+        climb(model, loads, start, np.vstack(table))
     return loads

@@ -48,8 +48,11 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
         lines += ["", f"energy: K = {result.kinetic:.6g} J, P = {result.potential:.6g} J "
                       f"(m g z of the centre of mass), L = K - P = {result.lagrangian:.6g} J"]
     if loads:
-        lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
-                                          "random poses:", relevant)
+        refined = any(load.sampled is not None for load in loads)
+        title = (f"static gravity load over the joint ranges (the zero pose and {samples} random "
+                 "poses, then climbed to a maximum, exact along each joint):" if refined else
+                 f"static gravity load over the zero pose and {samples} random poses:")
+        lines += [""] + load_lines(loads, title, relevant)
     return "\n".join(lines) + "\n"
 
 
@@ -58,19 +61,23 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     whether every joint holds; relevant: joints whose values in the worst pose matter. A joint
     without an effort limit has no margin and is listed as not judged."""
     width = max((len(load.joint) for load in loads), default=5)
-    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
-                    f"{'margin':>10s}"]
+    refined = any(load.sampled is not None for load in loads)
+    sampled = f" {'sampled':>10s}" if refined else ""
+    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s}{sampled} "
+                    f"{'worst':>10s} {'margin':>10s}"]
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
         effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
             else (f"{'none':>8s}", f"{'-':>10s}")
-        lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
+        drawn = "" if not refined else f" {load.sampled:10.4g}" if load.sampled is not None \
+            else f" {'':10s}"
+        lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g}{drawn} "
                      f"{load.worst:10.4g} {margin}{flag}")
     least = weakest(loads)
     if least is not None:
         # only the joints that change its load: the others' values are noise
         pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
-                         if v and k in relevant)
+                         if abs(v) >= 5e-4 and k in relevant)
         lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
                      f"{least.effort:.3g}) at {pose or 'the zero pose'}")
     unlimited = [load.joint for load in loads if not load.limited]

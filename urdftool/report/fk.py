@@ -15,10 +15,13 @@ def verify_line(count: int, seed, position: float, rotation: float, tolerance: f
             f"{'agree' if ok else 'DISAGREE'} (tolerance {tolerance:g})")
 
 
-def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None) -> None:
+def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None,
+                drawn=None) -> None:
     """``result`` (urdftool.kinematics.fk.FKResult) in ``output_format``: text, json or csv.
 
-    matrix: also each pose as a 4x4 matrix; single: JSON gives one document, not a list
+    matrix: also each pose as a 4x4 matrix; single: JSON gives one document, not a list;
+    drawn: (variable names, values [rows, variables], seed) of random configurations, written
+    with each pose (full precision: ``--q NAME=VALUE`` with them gives the pose again)
     """
     from urdftool.kinematics.fk import pose_components
 
@@ -31,11 +34,16 @@ def write_poses(result, output_format: str, matrix: bool, single: bool, stream=N
             _frame_entry(name, positions[row, k], rpys[row, k], quaternions[row, k],
                          result.matrices[row, k] if matrix else None)
             for k, name in enumerate(result.frames)]} for row in range(len(positions))]
+        if drawn is not None:
+            names, values, seed = drawn
+            for row, document in enumerate(documents):
+                document["seed"] = seed
+                document["q"] = {name: float(v) for name, v in zip(names, values[row])}
         write_json(documents[0] if single else documents, stream)
     elif output_format == "csv":
-        _csv(result, positions, rpys, quaternions, matrix, stream)
+        _csv(result, positions, rpys, quaternions, matrix, stream, drawn)
     else:
-        _text(result, positions, rpys, quaternions, matrix)
+        _text(result, positions, rpys, quaternions, matrix, drawn)
 
 
 def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
@@ -46,7 +54,13 @@ def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
     return entry
 
 
-def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
+def _drawn_words(drawn, row: int) -> str:
+    """``--q NAME=VALUE ...`` of a drawn configuration, every value at full precision."""
+    names, values, _ = drawn
+    return " ".join(f"--q {name}={float(v)!r}" for name, v in zip(names, values[row]))
+
+
+def _csv(result, positions, rpys, quaternions, matrix, stream, drawn=None) -> None:
     import csv
 
     import numpy as np
@@ -55,6 +69,8 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
               "qx", "qy", "qz", "qw"]
     if matrix:
         header += [f"m{i}{j}" for i in range(3) for j in range(4)]
+    if drawn is not None:
+        header += drawn[0]  # the joint values drawn, one column per variable
     writer = csv.writer(stream, lineterminator="\n")
     writer.writerow(header)
     numbers = np.concatenate([positions, rpys, quaternions], axis=-1)
@@ -62,21 +78,26 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
         numbers = np.concatenate([numbers, result.matrices[..., :3, :].reshape(
             numbers.shape[:2] + (12,))], axis=-1)
     for row in range(len(numbers)):
+        joints = [repr(float(v)) for v in drawn[1][row]] if drawn is not None else []
         for k, name in enumerate(result.frames):
-            writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
+            writer.writerow([row + 1, result.base, name,
+                             *(repr(float(v)) for v in numbers[row, k]), *joints])
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
            "qx [-]", "qy [-]", "qz [-]", "qw [-]"]
 
 
-def _text(result, positions, rpys, quaternions, matrix) -> None:
+def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
     from rich.markup import escape
 
     console = wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
+        if drawn is not None:
+            console.print(escape(f"configuration {row + 1} (--random, --seed {drawn[2]}): "
+                                 f"{_drawn_words(drawn, row)}"), soft_wrap=True)
         print_table(console, title, HEADERS, [
             [name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k], *quaternions[row, k]))]
             for k, name in enumerate(result.frames)])
