@@ -94,7 +94,8 @@ def optical_frame_rotation(robot):
     read pixels in the optical frame: z along the view, x to the right of the image, y down.
     From the camera's body frame (x forward, y left, z up) that is ``rpy="-pi/2 0 -pi/2"``.
     Checked for links whose name says optical (``camera_optical_frame``, ``*_optical``),
-    against the nearest link above whose name does not, and for the frame a Gazebo camera
+    against the nearest link above whose name does not (an optical frame fixed to another with
+    the same axes is judged through that one), and for the frame a Gazebo camera
     sensor's plugin stamps its images with (``frameName``, ``frame_name``,
     ``optical_frame_id``, ``gz_frame_id``), against the sensor itself (its link and
     ``<pose>``: a Gazebo camera looks along its x axis). Within 1 degree (``1.57`` for pi/2
@@ -125,6 +126,11 @@ def optical_frame_rotation(robot):
         if body is None or body not in frames:
             continue
         turn = relative(frames[body], frames[name])[1]
+        above = robot.ends()[parents[name]]["parent"][1]
+        if above in frames and _OPTICAL_NAME.search(above) and _angle(
+                mat3.IDENTITY, relative(frames[above], frames[name])[1]) <= ANGLE_TOLERANCE:
+            continue  # an optical frame on another (a depth lens beside the colour one): the
+            # one above is judged
         if _angle(OPTICAL, turn) > ANGLE_TOLERANCE:
             yield parents[name], (f"optical frame '{name}' is turned rpy=\"{_rpy_text(turn)}\" "
                                   f"from camera link '{body}'; an optical frame is z forward, x "

@@ -109,11 +109,30 @@ def _analyse(robot):
             pairs[(left, right)] = _Pair("copy", residual, turn)
         elif residual <= tolerance:
             pairs[(left, right)] = _Pair("mirror", residual)
+        elif _other_partner(frames, found, left, right, above, turn, tolerance):
+            # a copied part keeps its own labels: the right gripper's finger 1 is the copy of
+            # the left's finger 1, though the names mirror finger 1 to finger 2
+            pairs[(left, right)] = _Pair("copy", residual, turn or mat3.IDENTITY)
         else:
             pairs[(left, right)] = _Pair("off", residual)
     judged = [pair for pair in pairs.values() if pair.kind != "local"]
     agreeing = sum(1 for pair in judged if pair.kind != "off")
     return found, pairs, agreeing >= AGREEING and agreeing * 2 >= len(judged)
+
+
+def _other_partner(frames, found, left, right, above, turn, tolerance) -> bool:
+    """Whether another name ``left`` may mirror to is at its mirror image, or its copy."""
+    from urdftool.physics.mirror import mirror_names
+
+    for other in mirror_names(left):
+        if other == right or other not in frames:
+            continue
+        if math.dist(found.reflect(frames[left][0]), frames[other][0]) <= tolerance:
+            return True
+        if turn is not None and math.dist(_carried(frames, above, turn, frames[left][0]),
+                                          frames[other][0]) <= tolerance:
+            return True
+    return False
 
 
 def _meets_on_plane(robot, pair, found) -> bool:
