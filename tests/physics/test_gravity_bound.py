@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from conftest import load_text
-from urdftool.physics.dynamics import build, gravity_loads
+from urdftool.physics.dynamics import build
+from urdftool.physics.gravity_bound import worst_loads
 
 G0 = 9.81
 M1, M2, L1, L2 = 2.0, 1.0, 0.5, 0.4
@@ -38,7 +39,7 @@ def test_shoulder_worst_is_the_closed_form(tmp_path):
     # |G1| = (M1 + M2) g L1 cos q1 + M2 g L2 cos(q1 + q2), largest at q1 = 0.5 (the end of
     # its range nearest horizontal) with the forearm horizontal (q2 = -0.5)
     model = build(load_text(tmp_path, _arm()))
-    loads = {load.joint: load for load in gravity_loads(model, 20, seed=1, refine=True)}
+    loads = {load.joint: load for load in worst_loads(model, 20, seed=1)}
     expected = (M1 + M2) * G0 * L1 * math.cos(0.5) + M2 * G0 * L2
     assert math.isclose(loads["shoulder"].worst, expected, rel_tol=1e-12)
     assert loads["shoulder"].sampled < expected  # what 20 samples read
@@ -100,7 +101,7 @@ def test_spatial_arm_against_a_brute_force_grid(tmp_path):
     import pinocchio as pin
 
     model = build(load_text(tmp_path, SPATIAL))
-    loads = gravity_loads(model, 30, seed=2, refine=True)
+    loads = worst_loads(model, 30, seed=2)
     grid = _grid_worst(model, 61)
     rows = [model.model.joints[model.model.getJointId(j)].idx_v for j in model.joints]
     for load, best in zip(loads, grid):
@@ -123,7 +124,7 @@ MIMIC = SPATIAL.replace(
 
 def test_a_variable_driving_a_mimic_joint_is_searched(tmp_path):
     model = build(load_text(tmp_path, MIMIC))
-    loads = gravity_loads(model, 30, seed=2, refine=True)
+    loads = worst_loads(model, 30, seed=2)
     grid = _grid_worst(model, 2001)  # one variable left: j1 (j2 follows it), and j3
     for load, best in zip(loads, grid):
         assert load.worst >= best - 1e-6 * best, (load.joint, load.worst, best)

@@ -42,8 +42,8 @@ def dynamics(
     package: list[str] = PackageOption,
 ) -> None:
     from urdftool.kinematics.configuration import ConfigError, joint_values
-    from urdftool.physics.dynamics import (DynamicsError, build, gravity_loads, gravity_variables,
-                                           state)
+    from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
+    from urdftool.physics.gravity_bound import worst_loads
     from urdftool.report import dynamics as render
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
@@ -66,7 +66,7 @@ def dynamics(
         _standing(robot, support, values, samples, seed, output_format, plot)
     result = state(model, values.q, values.v, values.a)
     warn(values.warnings + result.warnings)
-    loads = gravity_loads(model, samples, seed, refine=True) if samples else []
+    loads = worst_loads(model, samples, seed) if samples else []
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

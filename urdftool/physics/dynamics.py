@@ -256,15 +256,20 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
-                  refine: bool = False) -> list[JointLoad]:
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose (mid-range for a variable whose range
     leaves 0 out) and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
     ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
-    pose out. ``refine``: climb from the worst samples to the worst over the joint ranges
-    (:mod:`urdftool.physics.gravity_bound`; G(q) only), keeping the samples' in ``sampled``."""
+    pose out. :func:`urdftool.physics.gravity_bound.worst_loads` climbs from them to the worst
+    over the joint ranges."""
+    return sampled_loads(model, samples, seed, torques)[0]
+
+
+def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None):
+    """(:func:`gravity_loads`' loads, the poses judged [poses, variables] in
+    ``model.variables`` order, their torques [poses, joints] in ``model.joints`` order)."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -285,9 +290,10 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
         def torques(pose):
             return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
 
-    table = []
+    table, kept = [], []
     for number, pose in enumerate(poses):
         values = torques(pose)
+        kept.append(values)
         if values is None:  # a pose the caller leaves out
             continue
         table.append(np.asarray(values, dtype=float))
@@ -298,10 +304,6 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
                 load.zero_pose = torque
             if torque > load.worst or number == 0:
                 load.worst, load.worst_pose = torque, pose
-    if refine and table:
-        from urdftool.physics.gravity_bound import refine as climb
-
-        first = np.array([[poses[0][name] for name in names]])
-        start = np.vstack([first, drawn]) if len(drawn) else first
-        climb(model, loads, start, np.vstack(table))
-    return loads
+    judged = np.array([[pose[name] for name in names] for pose, values in zip(poses, kept)
+                       if values is not None]).reshape(-1, len(names))
+    return loads, judged, (np.vstack(table) if table else np.zeros((0, len(loads))))

@@ -29,7 +29,8 @@ import math
 
 import numpy as np
 
-from urdftool.physics.dynamics import _ROUND_OFF, JointLoad, Model, gravity_variables
+from urdftool.physics.dynamics import (_ROUND_OFF, JointLoad, Model, gravity_variables,
+                                       sampled_loads)
 
 STARTS = 2  # the worst samples climbed from, for each sign of the torque
 SWEEPS = 100
@@ -79,6 +80,14 @@ class _Torque:
             self.load(values)
         self.evaluations += 1
         return float(self.gravity(self.model.model, self.model.data, self.q)[self.row])
+
+
+def worst_loads(model: Model, samples: int, seed: int = 0) -> list[JointLoad]:
+    """Per joint, the worst |G(q)| over the joint ranges: the zero pose and ``samples`` random
+    poses (:func:`urdftool.physics.dynamics.gravity_loads`), then climbed from the worst."""
+    loads, poses, torques = sampled_loads(model, samples, seed)
+    refine(model, loads, poses, torques)
+    return loads
 
 
 def refine(model: Model, loads: list[JointLoad], samples: np.ndarray,

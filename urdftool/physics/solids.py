@@ -489,7 +489,7 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
     if not written:
         return LinkSolid("none")
     result = LinkSolid(source)
-    if len(chosen) < written:  # an element without a shape that can be measured (U401-U404)
+    if len(chosen) < written:  # an element without a shape that can be measured
         result._unread.append((link, f"{written - len(chosen)} of the link's {written} <{source}> "
                                      "elements have no shape that can be measured"))
     boxes = []
