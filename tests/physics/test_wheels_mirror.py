@@ -82,6 +82,12 @@ def test_pairs_swap_every_side_word_first_and_pick_the_left():
              "r_gripper_r_finger", "l_gripper_l_finger", "torso"]
     assert pairs(names) == [("LLEG_HIP_R", "RLEG_HIP_R"), ("l_gripper_r_finger", "r_gripper_l_finger"),
                             ("l_gripper_l_finger", "r_gripper_r_finger")]
+    # a later side word alone names parts of one side: the SVH hand's little and ring fingers
+    assert pairs(["left_hand_l", "left_hand_r", "hand_l_finger", "hand_r_finger"]) == [
+        ("hand_l_finger", "hand_r_finger")]
+    # DARwIn's MP_ARM_LOW_L: the L of LOW starts a word in capitals, and is no side
+    assert pairs(["MP_ARM_LOW_L", "MP_ARM_LOW_R", "LLEG", "RLEG"]) == [
+        ("MP_ARM_LOW_L", "MP_ARM_LOW_R"), ("LLEG", "RLEG")]
 
 
 def test_the_plane_is_what_most_pairs_agree_with():

@@ -3,8 +3,9 @@ image, and the plane they mirror about.
 
 Names: the side words are swapped all at once (``l_gripper_r_finger_joint`` mirrors to
 ``r_gripper_l_finger_joint``: the mirror image of the left gripper's right finger is the right
-gripper's left finger), else one at a time (``RLEG_HIP_R``, whose last ``R`` is a roll, pairs
-with ``LLEG_HIP_R``). Side words: ``l``/``r``, ``left``/``right`` in any case, a capital
+gripper's left finger), else the first alone (``RLEG_HIP_R``, whose last ``R`` is a roll, pairs
+with ``LLEG_HIP_R``); a later word alone names a part within one side (two fingers of a hand),
+not the robot's left and right. Side words: ``l``/``r``, ``left``/``right`` in any case, a capital
 ``L``/``R`` starting a capitalised word (``LShoulderPitch``, ``LLEG``), and the two-letter leg
 codes (``lf``/``rf``, ``fl``/``fr``, ``lh``/``rh``, ``hl``/``hr``, ``bl``/``br``). A pair
 counts only when both names exist.
@@ -36,13 +37,18 @@ _SWAPS = {"l": "r", "r": "l", "left": "right", "right": "left", "L": "R", "R": "
 _WORD = re.compile(r"(?<![A-Za-z])[LR](?=[A-Z])|[A-Z]?[a-z]+|[A-Z]+(?![a-z])")
 
 
-def _side_words(name: str) -> list[tuple[int, int, str]]:
-    """(start, end, mirror) of each side word in ``name``."""
+def _side_words(name: str, strong: bool = False) -> list[tuple[int, int, str]]:
+    """(start, end, mirror) of each side word in ``name``; ``strong``: not a capital L or R
+    that starts a word in capitals (``LLEG`` is a left leg, but ``LOW`` is not a right 'OW')."""
     found = []
     for match in _WORD.finditer(name):
         word = match.group(0)
         if word in _SWAPS:
-            found.append((match.start(), match.end(), _SWAPS[word]))
+            after = name[match.end():match.end() + 2]
+            weak = len(word) == 1 and word in "LR" and after[:1].isupper() and \
+                not after[1:2].islower()
+            if not (strong and weak):
+                found.append((match.start(), match.end(), _SWAPS[word]))
     return found
 
 
@@ -67,6 +73,21 @@ def mirror_names(name: str) -> list[str]:
     return [c for c in candidates if c != name]
 
 
+def partner_names(name: str) -> list[str]:
+    """The names ``name`` is paired with: every side word swapped, else the first one alone
+    (the side of the robot; a later word alone names a part within one side, such as a
+    finger of one hand, or is a label such as the SVH hand's little and ring fingers'); the
+    same again without the capital L or R starting a word in capitals (``MP_ARM_LOW_L``)."""
+    words, strong = _side_words(name), _side_words(name, strong=True)
+    candidates = []
+    for chosen in (words, strong, words[:1], strong[:1]):
+        if chosen:
+            candidate = _replaced(name, chosen)
+            if candidate != name and candidate not in candidates:
+                candidates.append(candidate)
+    return candidates
+
+
 def _is_left(name: str, mirror: str) -> bool:
     """Whether ``name`` is the left one of the pair (its first differing side word is left)."""
     for (start, end, _), (other_start, other_end, _) in zip(_side_words(name), _side_words(mirror)):
@@ -84,7 +105,7 @@ def pairs(names) -> list[tuple[str, str]]:
     for name in names:
         if name in used:
             continue
-        for mirror in mirror_names(name):
+        for mirror in partner_names(name):
             if mirror in known and mirror not in used:
                 left, right = (name, mirror) if _is_left(name, mirror) else (mirror, name)
                 found.append((left, right))

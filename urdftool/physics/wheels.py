@@ -12,8 +12,9 @@ A **wheel** is the child link of a joint that rolls it:
 - a fixed joint with those names: a wheel welded in place (a simplified model) still stands
   on the ground, but has no axle to judge.
 
-A **caster** is a link whose name has ``caster``/``castor`` and that carries no wheel below it
-(a caster's swivel fork is not what touches the ground; the wheel in it is). Names decide, not
+A **caster** is a link whose name has ``caster``/``castor``, that carries no wheel below it
+(a caster's swivel fork is not what touches the ground; the wheel in it is) and hangs below no
+wheel (a caster wheel's hubcap is part of the wheel). Names decide, not
 shapes alone: a continuous joint with a cylinder is also a PR2 wrist or a spinning lidar, and
 no arm, gripper or foot is named a wheel. Legged robots' feet are never wheels or casters.
 
@@ -105,6 +106,8 @@ def _identify(robot) -> list[Wheel]:
             continue
         if _carries_wheel(robot, name, found, children):
             continue  # the fork: the wheel below it touches the ground
+        if _below_wheel(robot, name, found, parents):
+            continue  # part of a wheel (a caster wheel's hubcap): the wheel is judged
         found[name] = Wheel(name, parents.get(name), "caster", "its name", None)
     order = {name: index for index, name in enumerate(robot.links)}
     return sorted(found.values(), key=lambda wheel: order.get(wheel.link, len(order)))
@@ -130,6 +133,17 @@ def _carries_wheel(robot, link: str, found: dict, children) -> bool:
                 return True
             if child is not None:
                 pending.append(child)
+    return False
+
+
+def _below_wheel(robot, link: str, found: dict, parents) -> bool:
+    """Whether a wheel is above ``link`` in the tree."""
+    seen = set()
+    while link in parents and link not in seen:
+        seen.add(link)
+        link = robot.ends()[parents[link]]["parent"][1]
+        if link in found and found[link].kind == "wheel":
+            return True
     return False
 
 

@@ -176,8 +176,9 @@ def footprint_not_on_ground(robot):
     Navigation (costmaps, the footprint polygon, odometry) takes ``base_footprint`` for the
     robot's projection on the floor: its origin right below ``base_link`` (same x and y, to
     the millimetre), level with it, and at the height of what the robot stands on at the zero
-    pose: its wheels and casters when it has them (:mod:`urdftool.physics.wheels`), else the
-    lowest point of its collision geometry. Off by more than 1 cm (tyres squash and casters
+    pose: its wheels and casters when it has them (:mod:`urdftool.physics.wheels`); without
+    any, its collision geometry must not reach below the footprint (whatever it stands on may
+    not be drawn). Off by more than 1 cm (tyres squash and casters
     clear by millimetres: the PR2's wheels are 4.4 mm above its footprint; a slip is a wheel
     radius or a missing offset) is reported. Skipped when some
     collision geometry cannot be measured.
@@ -213,6 +214,9 @@ def footprint_not_on_ground(robot):
             return
         name, z = found
         what = f"its lowest point (on '{name}')"
+    if z > FOOTPRINT_TOLERANCE and not wheels(robot):
+        return  # the robot's lowest geometry is above the footprint: it may stand on wheels
+        # or feet the description does not draw; only geometry below the floor is certain
     if abs(z) > FOOTPRINT_TOLERANCE:
         side = "above" if z < 0 else "below"
         yield where, (f"'{FOOTPRINT}' is {abs(z) * 1000:.0f} mm {side} {what} at the zero pose; "

@@ -74,6 +74,7 @@ class _Pair:
     kind: str
     residual: float
     turn: mat3.Matrix = mat3.IDENTITY
+    copy_turn: mat3.Matrix | None = None  # a copy's turn, when the pair above is turned
 
 
 def _analysis(robot):
@@ -115,9 +116,22 @@ def _analyse(robot):
             pairs[(left, right)] = _Pair("copy", residual, turn or mat3.IDENTITY)
         else:
             pairs[(left, right)] = _Pair("off", residual)
+        if turn is not None and _turned(turn):
+            # identical parts mounted turned (the same arm on both sides of a torso): their
+            # axes and limits may be a copy's rather than a mirror's
+            pairs[(left, right)].copy_turn = turn
     judged = [pair for pair in pairs.values() if pair.kind != "local"]
     agreeing = sum(1 for pair in judged if pair.kind != "off")
     return found, pairs, agreeing >= AGREEING and agreeing * 2 >= len(judged)
+
+
+COPY_TURN = math.radians(10.0)
+
+
+def _turned(turn) -> bool:
+    """Whether a rotation turns by more than 10 degrees (a translated copy of a limb is not
+    how a robot carries one part on both sides: its limbs are mirror images)."""
+    return math.acos(max(-1.0, min(1.0, (mat3.trace(turn) - 1) / 2))) > COPY_TURN
 
 
 def _other_partner(frames, found, left, right, above, turn, tolerance) -> bool:
@@ -266,6 +280,16 @@ def _expected_axis(robot, left, found, pair) -> mat3.Vector | None:
     return reflected if left.get("type") == "prismatic" else tuple(-v for v in reflected)
 
 
+def _relations(robot, left, right, found, pair) -> list[tuple[str, float]]:
+    """:func:`_axis_relation` under each reading the pair allows: a mirror image, and a copy
+    when it is one or may be one (``copy_turn``)."""
+    readings = [pair]
+    if pair is not None and pair.kind != "copy" and pair.copy_turn is not None:
+        readings.append(_Pair("copy", pair.residual, pair.copy_turn))
+    found_relations = [_axis_relation(robot, left, right, found, reading) for reading in readings]
+    return [relation for relation in found_relations if relation is not None]
+
+
 def _axis_relation(robot, left, right, found, pair=None) -> tuple[str, float] | None:
     """("same", angle) when the right axis moves the right joint as the mirror image of the
     left one (or its copy) for the same value, ("negated", angle) when for the opposite value,
@@ -307,9 +331,10 @@ def mirror_axis(robot):
     Good: both about ``1 0 0``, or ``1 0 0`` and ``-1 0 0``
     """
     for left, right, found, pair in _typed_pairs(robot):
-        relation = _axis_relation(robot, left, right, found, pair)
-        if relation is None or relation[1] <= AXIS_TOLERANCE:
+        relations = _relations(robot, left, right, found, pair)
+        if not relations or any(angle <= AXIS_TOLERANCE for _, angle in relations):
             continue
+        relation = relations[0]
         a_right = world_axis(robot, right)
         what = "carried over from" if pair.kind == "copy" else "the mirror image of"
         yield _located(robot, left, right), (
@@ -345,7 +370,8 @@ def mirror_limits(robot):
 def _limit_findings(robot, left, right, found, pair):
     """One finding per pair: every limit that differs, in one message."""
     differences = []
-    for attribute in ("effort", "velocity"):
+    mimic = left.find("mimic") is not None or right.find("mimic") is not None
+    for attribute in () if mimic else ("effort", "velocity"):
         a = number(left.find("limit"), attribute) if left.find("limit") is not None else None
         b = number(right.find("limit"), attribute) if right.find("limit") is not None else None
         if a is not None and b is not None and not _near(a, b, 1e-9, 0.01):
@@ -363,23 +389,25 @@ def _range_difference(robot, left, right, found, pair) -> str | None:
     if left.get("type") == "continuous":
         return None
     a, b = _limits(left), _limits(right)
-    relation = _axis_relation(robot, left, right, found, pair)
-    if a is None or b is None or relation is None or relation[1] > AXIS_TOLERANCE:
+    readings = [relation for relation in _relations(robot, left, right, found, pair)
+                if relation[1] <= AXIS_TOLERANCE]
+    if a is None or b is None or not readings:
         return None
     span = max(a[1] - a[0], b[1] - b[0])
     equal = all(_near(x, y, LIMIT_TOLERANCE, 0.01, span) for x, y in zip(a, b))
     negated = all(_near(x, y, LIMIT_TOLERANCE, 0.01, span)
                   for x, y in zip(_mirrored_limits(*a), b))
-    if equal if relation[0] == "same" else negated:
+    if any(equal if kind == "same" else negated for kind, _ in readings):
         return None
+    kind = readings[0][0]
     text = f"range [{a[0]:.4g}, {a[1]:.4g}] and [{b[0]:.4g}, {b[1]:.4g}]"
-    if relation[0] == "same" and negated or relation[0] == "negated" and equal:
+    if kind == "same" and negated or kind == "negated" and equal:
         how = ("move both sides as mirror images for the same value, so the ranges should be "
-               "equal" if relation[0] == "same" else "move both sides the same way for the same "
+               "equal" if kind == "same" else "move both sides the same way for the same "
                "value, so the ranges should be negated and swapped")
         return (f"{text} are {'negated' if negated else 'equal'}, but their axes {how}: an "
                 "axis or a range's sign was flipped on one side only")
-    expected = a if relation[0] == "same" else _mirrored_limits(*a)
+    expected = a if kind == "same" else _mirrored_limits(*a)
     return f"{text} (with these axes the right would be [{expected[0]:.4g}, {expected[1]:.4g}])"
 
 
