@@ -251,6 +251,33 @@ def test_com_outside_hull(tmp_path, com, reported):
     assert bool(found) == reported, [f.message for f in findings]
 
 
+def test_a_frame_placeholder_between_the_fingers_is_not_judged(tmp_path):
+    # a tool centre point: no geometry of its own, its inertial at its origin, fixed to a
+    # gripper whose geometry is behind it
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="gripper"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="gripper"><inertial><mass value="0.3"/><inertia ixx="1e-4" ixy="0" ixz="0"
+        iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+        <collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision></link>
+      <joint name="t" type="fixed"><parent link="gripper"/><child link="tcp"/>
+        <origin xyz="0.1 0 0"/></joint>
+      <link name="tcp"><inertial><mass value="0.001"/><inertia ixx="1e-9" ixy="0" ixz="0"
+        iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    assert not found, [f.message for f in findings]
+    text = text.replace('<link name="tcp"><inertial>', '<link name="tcp"><inertial><origin xyz="-0.05 0 0"/>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    assert found  # an offset given: a centre of mass, judged
+
+
+def test_the_bound_skips_a_marker_box(tmp_path):
+    found, _ = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.005 0.005 0.005"/>')
+    assert not found  # a 5 mm marker is no body (40 times the bound)
+    found, _ = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.02 0.02 0.02"/>')
+    assert found  # 2.5 times the bound of a 2 cm part (7.5 times its uniform solid: not U310)
+
+
 def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):
     text = """<robot name="r"><link name="base_link"/>
       <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
@@ -288,6 +315,8 @@ def test_principal_moments_order(tmp_path, tensor, reported):
     (0.00003, '<box size="0.1 0.05 0.02"/>', False),    # 0.3: lighter than a shell, no slip
     (0.005, '<cylinder radius="0.128" length="0.005"/>', False),  # a propeller's disc: 19
     (2.0, '<box size="1.0 0.6 0.5"/>', False),          # a big shell box: 6.7 over 1 m
+    (0.0001, '<box size="0.05 0.04 0.02"/>', False),    # 2.5: a power of ten is a placeholder
+    (0.00013, '<box size="0.05 0.04 0.02"/>', False),   # 3.25: no material's 3250
 ])
 def test_density_in_grams(tmp_path, mass, geometry, reported):
     found, findings = _check(tmp_path, "U315", mass, 1e-6, geometry)

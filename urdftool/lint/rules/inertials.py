@@ -668,12 +668,16 @@ COM_HULL_FRACTION = 0.2  # of the geometry's largest extent: collision shapes ar
 COM_HULL_MIN = 0.01  # [m]
 
 
+def _largest_extent(reach) -> float:
+    """The largest side of the box of a reach's pieces [m]."""
+    return max(reach.support(axis) + reach.support(tuple(-a for a in axis))
+               for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
+
+
 def _hull_margin(reach) -> float:
     """How far outside a geometry's hull a centre of mass may be [m]: a fifth of its largest
     extent, at least 1 cm."""
-    extent = max(reach.support(axis) + reach.support(tuple(-a for a in axis))
-                 for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
-    return max(COM_HULL_FRACTION * extent, COM_HULL_MIN)
+    return max(COM_HULL_FRACTION * _largest_extent(reach), COM_HULL_MIN)
 
 
 def _copied_joint_origin(robot, link, properties) -> object | None:
@@ -704,8 +708,9 @@ def com_outside_hull(robot):
     centre of mass may lie outside by a fifth of the geometry's largest extent (at least 1 cm);
     beyond that, the inertial origin is in another frame, has a sign flipped, or belongs to
     another part. Skipped when some geometry cannot be measured (a mesh missing, refused or
-    unreadable). Farther out than the geometry's size is U307's, an origin copied from the
-    joint U313's.
+    unreadable), and for a frame's placeholder inertial (a link without geometry of its own
+    whose centre of mass is its origin: a tool centre point between a gripper's fingers).
+    Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
 
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
@@ -713,6 +718,9 @@ def com_outside_hull(robot):
     for link, properties in _valid(robot):
         if not properties.mass > 0 or _far_outside_box(robot, link, properties) is not None:
             continue
+        if properties.com == (0.0, 0.0, 0.0) and \
+                not link_reach(robot, link, ("visual", "collision")).pieces:
+            continue  # a frame's placeholder (a tool centre point between the fingers)
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
             continue
@@ -861,9 +869,25 @@ def _unit(v) -> mat3.Vector:
 SHELL = 0.25  # [kg/m^2]: the lightest wall a robot part has (0.25 mm of plastic, 0.1 mm of
 # aluminium); a closed body of size L weighs at least its surface times this: 6 SHELL / L
 # per volume for a cube, more for anything flatter
-MATERIALS = ((500.0, 2300.0), (2500.0, 2900.0), (4300.0, 4600.0), (7600.0, 9000.0))
-# [kg/m^3]: woods and plastics, carbon fibre, magnesium; aluminium; titanium; steels, brass,
-# copper: the densities a part is computed from
+MATERIALS = {"water": 1000.0, "ABS": 1050.0, "nylon": 1140.0, "polycarbonate": 1200.0,
+             "PLA": 1240.0, "PETG": 1270.0, "acetal": 1410.0, "carbon fibre": 1600.0,
+             "magnesium": 1740.0, "aluminium": 2700.0, "titanium": 4430.0, "steel": 7850.0,
+             "brass": 8500.0, "copper": 8960.0}
+# [kg/m^3]: the densities a part's mass is computed from (CRC Handbook; plastics' datasheets)
+MATERIAL_MATCH = 0.03  # relative: a density typed with two or three digits
+
+
+def _material(density: float) -> str | None:
+    """The material whose density ``density`` [kg/m^3] is, within 3 %."""
+    for name, value in MATERIALS.items():
+        if abs(density - value) <= MATERIAL_MATCH * value:
+            return name
+    return None
+
+
+def _round_number(value: float) -> bool:
+    """Whether a mass is a power of ten (1e-3, 0.01...): a placeholder, not a product."""
+    return value > 0 and abs(math.log10(value) - round(math.log10(value))) < 1e-9
 
 
 @rule("U315", "density-in-grams", Severity.WARNING)
@@ -874,9 +898,12 @@ def density_in_grams(robot):
     7.85, PLA 1.24) where kg/m^3 was meant (2700, 7850, 1240) comes out 1000 times too small.
     Reported when the implied density (the declared mass over the volume of the link's
     primitives or closed meshes) is lighter than the thinnest plausible shell at that size
-    (0.25 kg/m^2 of wall over a cube of the geometry's largest extent: 6 * 0.25 / L kg/m^3) and
-    1000 times it is the density of a material parts are made of (plastics and wood 500-2300,
-    aluminium 2500-2900, titanium 4300-4600, steels and copper alloys 7600-9000 kg/m^3).
+    (0.25 kg/m^2 of wall over a cube of the geometry's largest extent: 6 * 0.25 / L
+    kg/m^3) and 1000 times it is, within 3 %, the density of a material parts are made of
+    (water 1000, ABS 1050, nylon 1140, polycarbonate 1200, PLA 1240, PETG 1270, acetal 1410,
+    carbon fibre 1600, magnesium 1740, aluminium 2700, titanium 4430, steel 7850, brass 8500,
+    copper 8960 kg/m^3). A mass that is a power of ten (``1e-3``) is a placeholder, not a
+    product of a density, and is not judged.
     Envelopes drawn around something mostly empty (a propeller's disc) are large enough to
     stay above that bound; a mass 1000 times too large is U311's (denser than osmium).
 
@@ -893,14 +920,14 @@ def density_in_grams(robot):
         lightest_shell = 6 * SHELL / solid.extent
         if density >= lightest_shell:
             continue
-        material = 1000 * density
-        if any(low <= material <= high for low, high in MATERIALS):
+        material = _material(1000 * density)
+        if material is not None and not _round_number(properties.mass):
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:.4g} kg in {volume:.3g} m^3 of "
                 f"{solid.source} geometry is {density:.3g} kg/m^3, lighter than any shell of "
-                f"its size ({lightest_shell:.3g}), and 1000 times that is a solid's density "
-                f"({material:,.0f} kg/m^3): was a density in g/cm^3 used as kg/m^3? The mass "
-                f"would be {1000 * properties.mass:.4g} kg")
+                f"its size ({lightest_shell:.3g}), and 1000 times that is {material}'s "
+                f"density ({MATERIALS[material]:,.0f} kg/m^3): was a density in g/cm^3 used as "
+                f"kg/m^3? The mass would be {1000 * properties.mass:.4g} kg")
 
 
 FAR_BEYOND = 2.0  # the bound takes the whole rigid body's reach: twice it is beyond doubt
@@ -924,7 +951,8 @@ def inertia_beyond_geometry(robot):
     mesh, only how far the geometry reaches (every vertex of a mesh, open or not, and the
     primitives exactly). The geometry is the link's visual and collision geometry and that of
     the links fixed to it (the whole rigid body: a generous d), so a trace over twice the
-    bound is reported; skipped when some of that geometry cannot be measured. Judged whatever
+    bound is reported; skipped when some of that geometry cannot be measured, or is 1 cm or
+    less (a frame's marker box, not its body). Judged whatever
     the mass (a placeholder's tensor beyond it is as impossible), and when U305, U306, U309
     and U310 have not already said so. Beyond the bound, the tensor belongs to another part or
     another mass, or is in other units.
@@ -938,8 +966,8 @@ def inertia_beyond_geometry(robot):
         if not properties.mass > 0 or _name(link) in told or _impossible(robot, link, properties):
             continue
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
-        if not reach.pieces or not reach.complete:
-            continue
+        if not reach.pieces or not reach.complete or _largest_extent(reach) <= MARKER_EXTENT:
+            continue  # a frame's marker box is not its body
         farthest = reach.farthest(properties.com)
         bound = 2 * properties.mass * farthest * farthest
         trace = mat3.trace(properties.inertia)
