@@ -21,12 +21,12 @@ _ROOT: Frame = ((0.0, 0.0, 0.0), mat3.IDENTITY)
 
 def link_frames(robot) -> dict[str, Frame]:
     """Link name -> (position, rotation) of its frame at the zero pose, once per robot."""
-    return robot.memo(link_frames, lambda: _walk(robot)[0])
+    return robot.memo(_walk, lambda: _walk(robot))[0]
 
 
 def joint_frames(robot) -> dict[str, Frame]:
     """Joint name -> (position, rotation) of its frame (its child link's) at the zero pose."""
-    return robot.memo(joint_frames, lambda: _walk(robot)[1])
+    return robot.memo(_walk, lambda: _walk(robot))[1]
 
 
 def parent_joints(robot) -> dict[str, object]:

@@ -152,6 +152,8 @@ def plane(robot) -> Plane | None:
 
 
 def _fit(robot) -> Plane | None:
+    if not joint_pairs(robot):
+        return None
     frames = joint_frames(robot)
     return fit([(frames[left][0], frames[right][0]) for left, right in joint_pairs(robot)
                 if left in frames and right in frames])

@@ -106,6 +106,11 @@ def optical_frame_rotation(robot):
     Good: a ``camera_optical_frame`` fixed to ``camera_link`` by
     ``<origin rpy="${-pi/2} 0 ${-pi/2}"/>``, named by the plugin
     """
+    optical = [name for name in robot.links if _OPTICAL_NAME.search(name)]
+    cameras = [sensor for gazebo in robot.children("gazebo") for sensor in gazebo.iter("sensor")
+               if (sensor.get("type") or "").lower() in CAMERA_SENSORS]
+    if not optical and not cameras:
+        return
     frames = link_frames(robot)
     parents = parent_joints(robot)
     judged = set()
@@ -119,8 +124,8 @@ def optical_frame_rotation(robot):
                             f"rpy=\"{_rpy_text(turn)}\" from the sensor; image consumers read "
                             "them in an optical frame (z forward, x right, y down: rpy=\"-pi/2 0 "
                             "-pi/2\" from the sensor); name a frame turned so, or add one")
-    for name in robot.links:
-        if name in judged or not _OPTICAL_NAME.search(name) or name not in frames:
+    for name in optical:
+        if name in judged or name not in frames:
             continue
         body = _reference_link(robot, name)
         if body is None or body not in frames:

@@ -32,6 +32,7 @@ from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 from urdftool.physics import solids
+from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import link_reach
 
 NEGATIVE_TOLERANCE = 1e-9
@@ -683,7 +684,7 @@ def _hull_margin(reach) -> float:
 def _copied_joint_origin(robot, link, properties) -> object | None:
     """The joint whose child ``link`` is, when the inertial origin repeats that joint's origin
     (its xyz, over 1 cm from the link frame), else None."""
-    joint = _joints_by_child(robot).get(_name(link))
+    joint = parent_joints(robot).get(_name(link))
     if joint is None:
         return None
     xyz = origin_of(joint).xyz
@@ -716,17 +717,18 @@ def com_outside_hull(robot):
     Good: ``<origin xyz="0 0 -0.0475"/>``
     """
     for link, properties in _valid(robot):
-        if not properties.mass > 0 or _far_outside_box(robot, link, properties) is not None:
+        if not properties.mass > 0:
+            continue
+        reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
+        if not reach.pieces or not reach.complete:
+            continue
+        outside = reach.outside(properties.com)  # 0 at once inside a box, cylinder or sphere
+        if outside <= COM_HULL_MIN or outside <= _hull_margin(reach) or \
+                _far_outside_box(robot, link, properties) is not None:
             continue
         if properties.com == (0.0, 0.0, 0.0) and \
                 not link_reach(robot, link, ("visual", "collision")).pieces:
             continue  # a frame's placeholder (a tool centre point between the fingers)
-        reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
-        if not reach.pieces or not reach.complete:
-            continue
-        outside = reach.outside(properties.com)
-        if outside <= _hull_margin(reach):
-            continue
         if _copied_joint_origin(robot, link, properties) is not None and \
                 _own_outside(robot, link, properties) is not None:
             continue  # U313 says why
@@ -806,14 +808,16 @@ def principal_moments_order(robot):
     from urdftool.physics.wheels import wheels
 
     skip = {wheel.link for wheel in wheels(robot)}
-    for link, properties, solid in _link_solids(robot):
-        if _name(link) in skip or properties.mass <= PLACEHOLDER_MASS or \
-                not _trustworthy(solid) or _zero_tensor(properties.inertia):
+    # the links with trustworthy geometry and a tensor, with the geometry's (U309, U310 ask)
+    for link, properties, solid, expected, _ in _inertia_ratios(robot):
+        if _name(link) in skip or properties.mass <= PLACEHOLDER_MASS:
             continue
-        expected = solids.computed(solid, mass=properties.mass)
         easiest, _, hardest = mat3.eigvalsh(expected.inertia)
         if not easiest > 0 or hardest < ORDER_RATIO * easiest:
             continue
+        least, _, most = _principal(robot, link, properties)[0]
+        if not most > ORDER_SLACK * least:
+            continue  # no two axes of the declared tensor are twice apart
         # about the geometry's easiest axis against its hardest; when two of its moments are
         # equal, every axis of their plane is one: the declared tensor's most about the easy
         # ones against its least about the hard ones
@@ -963,14 +967,23 @@ def inertia_beyond_geometry(robot):
     """
     told = _told_by_ratio(robot)
     for link, properties in _valid(robot):
-        if not properties.mass > 0 or _name(link) in told or _impossible(robot, link, properties):
+        if not properties.mass > 0:
+            continue
+        trace = mat3.trace(properties.inertia)
+        rigid = solids.rigid_bounds(robot, link)
+        if rigid.bounds is None:
+            continue
+        (lx, ly, lz), (hx, hy, hz) = rigid.bounds
+        half = max(hx - lx, hy - ly, hz - lz) / 2  # no point is this close to all of the body
+        if trace <= FAR_BEYOND * 2 * properties.mass * half * half:
+            continue  # within the bound whatever the farthest point is (d >= half)
+        if _name(link) in told or _impossible(robot, link, properties):
             continue
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete or _largest_extent(reach) <= MARKER_EXTENT:
             continue  # a frame's marker box is not its body
         farthest = reach.farthest(properties.com)
         bound = 2 * properties.mass * farthest * farthest
-        trace = mat3.trace(properties.inertia)
         if trace > FAR_BEYOND * bound:
             fixed = f" and the links fixed to it" if len(reach.links) > 1 else ""
             yield _inertial_part(link, "inertia"), (
