@@ -103,3 +103,36 @@ def test_arms_that_are_not_mirror_images_by_design_say_nothing(tmp_path):
     text = ARMS.format(arm_l=ARM.format(s="l", y=0.2, yaw=0, grip=0),
                        arm_r=ARM.format(s="r", y=-0.2, yaw=1.2, grip=0))
     assert [code for code, _ in _found(tmp_path, text) if code == "U218"] == []
+
+
+def test_two_identical_arms_side_by_side_are_copies(tmp_path):
+    # the same product on both sides, not mirrored: the elbow sits 5 cm to the arm's left on
+    # both, so the limb is a copy (a mirror would put the right one to its right); its roll
+    # axes and ranges are then a copy's, equal
+    arm = ARM.replace('<origin xyz="0.3 0 0"/><axis xyz="0 1 0"/>',
+                      '<origin xyz="0.3 0.05 0"/><axis xyz="0 1 0"/>')
+    arm = arm.replace('<origin xyz="0 {y} 0.4" rpy="0 0 {yaw}"/><axis xyz="0 1 0"/>',
+                      '<origin xyz="0 {y} 0.4" rpy="0 0 {yaw}"/><axis xyz="1 0 0"/>')
+    wheels = "".join(
+        f'<joint name="{s}_wheel_{k}_joint" type="continuous"><parent link="torso"/>'
+        f'<child link="{s}_wheel_{k}"/><origin xyz="{x} {y} 0"/><axis xyz="0 1 0"/></joint>'
+        f'<link name="{s}_wheel_{k}"/>'
+        for s, y in (("l", 0.3), ("r", -0.3)) for k, x in ((1, 0.3), (2, -0.3), (3, 0.0)))
+    text = ARMS.format(arm_l=arm.format(s="l", y=0.2, yaw=0, grip=0),
+                       arm_r=arm.format(s="r", y=-0.2, yaw=0, grip=0) + wheels)
+    assert _found(tmp_path, text) == []
+
+
+def test_a_serial_arms_l_and_r_axes_are_not_two_sides(tmp_path):
+    # Motoman's joints S, L, E, U, R, B, T: link_l and link_r are one above the other
+    chain = ['<link name="base_link"/>']
+    parent = "base_link"
+    for axis, mass in (("s", 4), ("l", 5.2), ("e", 3), ("u", 2), ("r", 3.0), ("b", 1)):
+        chain.append(f'<joint name="joint_{axis}" type="revolute"><parent link="{parent}"/>'
+                     f'<child link="link_{axis}"/><origin xyz="0 0 0.2"/><axis xyz="0 1 0"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+                     f'<link name="link_{axis}"><inertial><mass value="{mass}"/><inertia '
+                     'ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
+                     '</link>')
+        parent = f"link_{axis}"
+    assert _found(tmp_path, f'<robot name="r">{"".join(chain)}</robot>') == []

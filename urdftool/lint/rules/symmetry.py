@@ -89,7 +89,9 @@ def _analyse(robot):
     if found is None:
         return None
     frames = joint_frames(robot)
-    known = [(l, r) for l, r in joint_pairs(robot) if l in frames and r in frames]
+    parents = parent_joints(robot)
+    known = [(l, r) for l, r in joint_pairs(robot) if l in frames and r in frames
+             and not _in_line(robot, robot.joints[l], robot.joints[r], parents)]
     sagittal = [pair for pair in known if _meets_on_plane(robot, pair, found)]
     found = _refit(frames, sagittal) or found
     pairs: dict = {}
@@ -120,9 +122,41 @@ def _analyse(robot):
             # identical parts mounted turned (the same arm on both sides of a torso): their
             # axes and limits may be a copy's rather than a mirror's
             pairs[(left, right)].copy_turn = turn
+    _copied_limbs(robot, frames, pairs)
     judged = [pair for pair in pairs.values() if pair.kind != "local"]
     agreeing = sum(1 for pair in judged if pair.kind != "off")
     return found, pairs, agreeing >= AGREEING and agreeing * 2 >= len(judged)
+
+
+def _copied_limbs(robot, frames, pairs) -> None:
+    """A limb (pairs joined to the pair above them) holding a pair that is a copy and not a
+    mirror image is a copy of one product on both sides (two identical arms): each of its
+    pairs may then be read as a copy, its right joint's frame carried from the left one's."""
+    limb: dict = {}
+
+    def root(pair):
+        while limb.get(pair, pair) != pair:
+            pair = limb[pair]
+        return pair
+
+    for pair in pairs:
+        above = _upstream_pair(robot, *pair)
+        if above in pairs:
+            limb[root(pair)] = root(above)
+    copied = {root(pair) for pair, found in pairs.items() if found.kind == "copy"}
+    for pair, found in pairs.items():
+        if found.kind in ("mirror", "off") and root(pair) in copied and found.copy_turn is None:
+            left, right = pair
+            found.copy_turn = mat3.multiply(frames[right][1], mat3.transpose(frames[left][1]))
+
+
+def _in_line(robot, a, b, parents) -> bool:
+    """Whether joint ``b`` is above or below joint ``a`` (a serial arm's joint_l and joint_r:
+    Motoman's L and R axes, not a left and a right)."""
+    for start, other in ((a, b), (b, a)):
+        if other.get("name") in _joints_above(robot, start.get("name"), parents):
+            return True
+    return False
 
 
 COPY_TURN = math.radians(10.0)
@@ -425,7 +459,11 @@ def mirror_inertial(robot):
     Bad: ``l_thigh_link`` 0.119 kg and ``r_thigh_link`` 0.191 kg
     Good: both 0.119 kg
     """
+    parents = parent_joints(robot)
     for left, right in link_pairs(robot):
+        joints = parents.get(left), parents.get(right)
+        if None not in joints and _in_line(robot, *joints, parents):
+            continue  # one below the other: a serial arm's L and R axes, not two sides
         a, b = declared(robot.links[left]), declared(robot.links[right])
         if a is None or b is None or not (a.mass > 0 or b.mass > 0):
             continue
