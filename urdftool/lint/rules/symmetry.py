@@ -105,7 +105,11 @@ def _analyse(robot):
         copied = above is not None and pairs.get(above) is not None and \
             pairs[above].kind == "copy"
         turn = _carry(frames, above) if above is not None else None
-        if residual <= tolerance and not copied:
+        if residual <= tolerance and _translated_copy(found, frames[left][1], frames[right][1]):
+            # the right frame is the left one's, turned as no mirror image is (a hand mounted
+            # at 45 degrees on both arms): one product carried across, not mirrored
+            pairs[(left, right)] = _Pair("copy", residual, _carry(frames, (left, right)))
+        elif residual <= tolerance and not copied:
             pairs[(left, right)] = _Pair("mirror", residual)
         elif turn is not None and math.dist(_carried(frames, above, turn, frames[left][0]),
                                             frames[right][0]) <= tolerance:
@@ -160,6 +164,25 @@ def _in_line(robot, a, b, parents) -> bool:
 
 
 COPY_TURN = math.radians(10.0)
+_SIGNS = [(a, b, c) for a in (1, -1) for b in (1, -1) for c in (1, -1)]
+
+
+def _translated_copy(found, left, right, tolerance: float = 1e-6) -> bool:
+    """Whether two frames have one orientation that their mirror image does not keep (up to
+    the sign of each axis): the mark of a part carried across, not mirrored."""
+    if any(abs(a - b) > tolerance for row_a, row_b in zip(left, right)
+           for a, b in zip(row_a, row_b)):
+        return False
+    n = found.normal
+    reflection = tuple(tuple((1.0 if i == j else 0.0) - 2 * n[i] * n[j] for j in range(3))
+                       for i in range(3))
+    mirrored = mat3.multiply(mat3.multiply(reflection, left), reflection)
+    for signs in _SIGNS:
+        flipped = tuple(tuple(left[i][j] * signs[j] for j in range(3)) for i in range(3))
+        if all(abs(a - b) <= tolerance for row_a, row_b in zip(mirrored, flipped)
+               for a, b in zip(row_a, row_b)):
+            return False  # the frame is its own mirror image, up to its axes' signs
+    return True
 
 
 def _turned(turn) -> bool:
