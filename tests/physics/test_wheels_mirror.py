@@ -40,6 +40,16 @@ def test_wheels_by_name_by_drive_and_casters_in_a_fork(tmp_path):
                      "rear_caster": ("caster", "its name")}
 
 
+def test_a_caster_wheels_hubcap_is_part_of_the_wheel(tmp_path):
+    # pioneer3dx: caster_wheel_joint is a fixed joint holding the hubcap on the caster wheel
+    robot = load_text(tmp_path, f"""<robot name="r"><link name="base_link"/>
+      <link name="caster_swivel"/>{_joint("swivel", "base_link", "caster_swivel", axis="0 0 1")}
+      <link name="caster_wheel">{CYLINDER}</link>{_joint("caster_swivel_hubcap_joint", "caster_swivel", "caster_wheel")}
+      <link name="caster_hubcap">{CYLINDER}</link>
+      {_joint("caster_wheel_joint", "caster_wheel", "caster_hubcap", kind="fixed")}</robot>""")
+    assert [(w.link, w.kind) for w in wheels(robot)] == [("caster_wheel", "wheel")]
+
+
 def test_no_wheel_on_an_arm_or_a_legged_robot(tmp_path):
     robot = load_text(tmp_path, f"""<robot name="r"><link name="base"/>
       <link name="lf_foot"><collision><geometry><sphere radius="0.02"/></geometry></collision>

@@ -9,8 +9,8 @@ A **wheel** is the child link of a joint that rolls it:
   ``WheelLeft``), and none of the words of a joint that steers, hangs or holds a wheel
   (``steer``, ``suspension``, ``hinge``, ``pivot``, ``swivel``, ``hub_mount``...) nor of a
   wheel that is not a ground wheel (``reaction``, ``fly``, ``momentum``, ``steering_wheel``);
-- a fixed joint with those names: a wheel welded in place (a simplified model) still stands
-  on the ground, but has no axle to judge.
+- a fixed joint whose child link's name says so: a wheel welded in place (a simplified model)
+  still stands on the ground, but has no axle to judge.
 
 A **caster** is a link whose name has ``caster``/``castor``, that carries no wheel below it
 (a caster's swivel fork is not what touches the ground; the wheel in it is) and hangs below no
@@ -95,8 +95,9 @@ def _identify(robot) -> list[Wheel]:
             and kind != "floating"
         if name in driven:
             why = "a differential drive names it"
-        elif (moving or kind == "fixed") and _named_wheel(name, child):
-            why = "its name"
+        elif moving and _named_wheel(name, child) or kind == "fixed" and _named_wheel(child):
+            why = "its name"  # a fixed joint's name names the mount (caster_wheel_joint
+            # holds the hubcap of a caster wheel): its child's name must say wheel
         else:
             continue
         found[child] = Wheel(child, joint, "wheel", why, axis(joint) if moving else None)
@@ -113,8 +114,8 @@ def _identify(robot) -> list[Wheel]:
     return sorted(found.values(), key=lambda wheel: order.get(wheel.link, len(order)))
 
 
-def _named_wheel(joint: str, child: str) -> bool:
-    for text in (_words(joint), _words(child)):
+def _named_wheel(*names: str) -> bool:
+    for text in (_words(name) for name in names):
         if _WHEEL.search(text) and not _NOT_WHEEL.search(text.replace("wheel", " ")):
             return True
     return False
