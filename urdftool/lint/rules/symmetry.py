@@ -414,7 +414,8 @@ def mirror_limits(robot):
     sides as mirror images the limits are equal, when it moves them the same way they are
     negated. Limits of the other form mean an axis or a limit whose sign was flipped on one
     side only; limits of neither form, or a different effort or velocity, a number changed on
-    one side. Within 1e-3 (and 1 % of the range).
+    one side. Within 1e-3 (and 1 % of the range). Mimic joints are not judged: a mimic joint
+    goes where its source and multiplier take it (U216 checks that against its limits).
 
     Bad: ``l_sho_roll`` ``[-0.5, 1.7]`` and ``r_sho_roll`` ``[-0.5, 1.7]`` about the same
     axis (the right arm can only swing inwards)
@@ -426,9 +427,10 @@ def mirror_limits(robot):
 
 def _limit_findings(robot, left, right, found, pair):
     """One finding per pair: every limit that differs, in one message."""
+    if left.find("mimic") is not None or right.find("mimic") is not None:
+        return  # a mimic joint goes where its source and multiplier take it, not its limits
     differences = []
-    mimic = left.find("mimic") is not None or right.find("mimic") is not None
-    for attribute in () if mimic else ("effort", "velocity"):
+    for attribute in ("effort", "velocity"):
         a = number(left.find("limit"), attribute) if left.find("limit") is not None else None
         b = number(right.find("limit"), attribute) if right.find("limit") is not None else None
         if a is not None and b is not None and not _near(a, b, 1e-9, 0.01):
