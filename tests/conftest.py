@@ -178,6 +178,15 @@ def expected_marks(case: Path) -> set[tuple[str, int, str]]:
 CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
 
 
+def case_targets(case: Path) -> tuple[str, ...]:
+    """The ``--target`` a case is checked with: its code's own (a portability rule runs only for
+    its target), none for the others."""
+    from urdftool.lint.catalogue import TARGET_DECADES
+
+    target = TARGET_DECADES.get(case.name[:3])
+    return (target,) if target else ()
+
+
 def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
     skips it)."""

@@ -18,13 +18,15 @@ PACKAGE = Path(__file__).resolve().parents[1] / "urdftool"  # tests/test_layers.
 
 # Lowest first. A module may import modules of its own layer or of a lower one.
 LAYERS = [
-    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget")),
+    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget",
+              "urdftool.simulators")),
     ("description", ("urdftool.description",)),
     ("kinematics", ("urdftool.kinematics",)),
     ("physics", ("urdftool.physics",)),
     ("collision", ("urdftool.collision",)),
     ("compare", ("urdftool.compare",)),
     ("lint", ("urdftool.lint",)),
+    ("crosscheck", ("urdftool.crosscheck",)),
     ("report", ("urdftool.report",)),
     ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin",
              "urdftool.server")),

@@ -54,26 +54,49 @@ class Edit:
 
 
 @dataclass(frozen=True)
+class Derived:
+    """A new file a fix writes, made from another when the fix is applied (not before: a
+    converted mesh can be megabytes).
+
+    file: the new file's path as findings name files; source: the file it is made from
+    how: ``obj`` (the mesh converted to Wavefront OBJ), ``stl`` (to binary STL)
+    """
+
+    file: str
+    source: str
+    how: str
+
+
+@dataclass(frozen=True)
 class Fix:
     """What would make a finding go away, as edits of the files the user wrote.
 
     safe: whether applying it keeps what the description means apart from the defect (``check
         --fix``); an unsafe fix changes a value a person should look at (``--unsafe-fixes``)
+    creates: new files the fix writes besides its edits (a mesh converted to another format)
     """
 
     description: str
     edits: tuple[Edit, ...]
     safe: bool = True
+    creates: tuple[Derived, ...] = ()
 
 
 @dataclass(frozen=True)
 class Finding:
+    """What a rule found, where, how bad, and how to fix it.
+
+    target: for a finding about one simulator or loader (``check --target``), its name
+        (``mujoco``, ``gz``...); None for the others
+    """
+
     code: str
     name: str
     severity: Severity
     message: str
     location: Location
     fix: Fix | None = None
+    target: str | None = None
 
     @property
     def file(self) -> str:

@@ -20,6 +20,10 @@ from typer.core import TyperGroup
 COMMANDS = {
     "check": "Check robot descriptions (files or folders) and report problems.",
     "collisions": "Self-collision with FCL.",
+    "crosscheck": "Load the robot with each real loader installed (Pinocchio, MuJoCo, "
+                  "PyBullet, Drake, sdformat's gz sdf), each in a process of its own, and "
+                  "compare: loaded or why not (at the line), mass, degrees of freedom, base, "
+                  "links dropped, frame positions, inertia.",
     "dh": "Extract the D-H table of the chain from --base to --tip.",
     "diff": "Compare two robot descriptions (OLD NEW, or --rev REV FILE: FILE as it was at git "
             "revision REV, includes from the same revision): links and joints added, removed or "

@@ -33,6 +33,11 @@ def check(
     select: list[str] = typer.Option([], "--select", help="Only these codes, prefixes or names "
                                      "(comma-separated, repeatable)."),
     ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
+    target: list[str] = typer.Option([], "--target", "-t", metavar="NAME",
+                                     help="Also check what this simulator refuses or changes "
+                                          "(repeatable): gazebo, gz, mujoco, drake, pybullet, "
+                                          "isaac, pinocchio; NAME@VERSION for an older one. "
+                                          "See docs/targets.md."),
     strict: bool = typer.Option(False, "--strict", help="Exit 1 on warnings too."),
     verbose: bool = typer.Option(False, "--verbose", "-v", help="Say which files were skipped, "
                                  "and which companion files each robot was checked with."),
@@ -113,7 +118,8 @@ def check(
         if unsafe_fixes and not (fix or diff):
             raise UsageError("--unsafe-fixes applies with --fix or --diff")
         request = CheckRequest(
-            select=tuple(select), ignore=tuple(ignore), strict=strict, xacro_args=args,
+            select=tuple(select), ignore=tuple(ignore), targets=tuple(target), strict=strict,
+            xacro_args=args,
             packages=packages, companions=Companions(tuple(controllers), srdf, spec),
             allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
             max_memory=max_memory, timeout=timeout, jobs=jobs or None,

@@ -964,3 +964,16 @@ def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None 
     if isinstance(found, MeshProblem):
         raise found
     return found
+
+
+def converted(path, how: str, limits: MeshLimits | None = None) -> bytes:
+    """The mesh file at ``path`` (read within ``limits``, COLLADA scaled by its unit as the
+    loaders read it) written as ``how``: ``obj`` (Wavefront OBJ text) or ``stl`` (binary STL).
+    MeshProblem when it does not load. For fixes that point a robot at a format a simulator
+    reads."""
+    path = Path(path)
+    mesh = _read_mesh(path, path.name, limits or MeshLimits())
+    if how not in ("obj", "stl"):
+        raise MeshProblem("format", f"cannot convert a mesh to '{how}'")
+    data = mesh.export(file_type=how)
+    return data.encode("utf-8") if isinstance(data, str) else bytes(data)

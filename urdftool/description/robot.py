@@ -45,6 +45,8 @@ class Robot:
         given), by the name findings give it: suppressions are read from these, not from disk
     companion_paths: companion files the user named (the rest are discovered)
     mesh_limits: how large a mesh may be loaded
+    targets: the simulators the robot is checked for (``check --target``): name -> the version
+        whose behaviour to predict (a tuple of numbers), or None for the newest known
     """
 
     path: str
@@ -58,6 +60,7 @@ class Robot:
     sources: dict[str, bytes] = field(default_factory=dict)
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
+    targets: dict = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 

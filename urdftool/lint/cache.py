@@ -506,6 +506,8 @@ def _record(finding: Finding) -> dict:
     if finding.fix is not None:
         record["fix"] = {"description": finding.fix.description, "safe": finding.fix.safe,
                          "edits": [dataclasses.astuple(edit) for edit in finding.fix.edits]}
+    if finding.target is not None:
+        record["target"] = finding.target
     return record
 
 
@@ -542,9 +544,11 @@ def _finding(record: dict) -> Finding:
     code, name, message = record["code"], record["name"], record["message"]
     if type(code) is not str or type(name) is not str or type(message) is not str:
         raise TypeError("malformed finding")
-    fix = record.get("fix")
+    fix, target = record.get("fix"), record.get("target")
+    if target is not None and type(target) is not str:
+        raise TypeError("malformed finding")
     return Finding(code, name, _SEVERITIES[record["severity"]], message,
-                   _location(record["location"]), None if fix is None else _fix(fix))
+                   _location(record["location"]), None if fix is None else _fix(fix), target)
 
 
 def _read_entry(path: Path, limit: int = MAX_ENTRY_BYTES) -> bytes | None:

@@ -16,7 +16,9 @@ misordered code and a repeated name.
 
 Families: U0xx loading (U02x the URDF vocabulary), U1xx kinematic tree, U2xx joints, U3xx inertials, U4xx geometry and
 meshes, U5xx transmissions and ros2_control, U6xx controllers and Gazebo, U7xx joint spec table,
-U8xx SRDF and collisions, U9xx urdftool itself.
+U8xx SRDF and collisions, U9xx urdftool itself (U92x-U98x: simulator portability, one decade per
+target: what that program refuses or silently changes; they run only for the targets asked for,
+``check --target NAME``, and each of their findings names its target).
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from typing import Callable
 
 from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule
+from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
 
@@ -43,6 +46,11 @@ FAMILIES = {
     "U8": "SRDF and collisions",
     "U9": "urdftool",
 }
+# Simulator portability: one decade of codes per target (``check --target NAME``). A code in one
+# of these decades is that target's: it runs only when the target is asked for, and its findings
+# carry the target's name (:attr:`Finding.target`).
+TARGET_DECADES = {"U92": "mujoco", "U93": "pybullet", "U94": "drake", "U95": "gz",
+                  "U96": "gazebo", "U97": "isaac", "U98": "pinocchio"}
 _CODE = re.compile(r"U\d{3}")
 
 
@@ -60,11 +68,19 @@ class Rule:
 
     @property
     def family(self) -> str:
+        target = self.target
+        if target is not None:
+            return f"simulator portability: {SIMULATORS[target].title}"
         return FAMILIES[self.code[:2]]
+
+    @property
+    def target(self) -> str | None:
+        """The target (``check --target``) this rule is about, or None for a rule of every run."""
+        return TARGET_DECADES.get(self.code[:3])
 
     def finding(self, message: str, location: Location, fix: Fix | None = None) -> Finding:
         """A finding of this rule at ``location``, with the fix that would remove it if any."""
-        return Finding(self.code, self.name, self.severity, message, location, fix)
+        return Finding(self.code, self.name, self.severity, message, location, fix, self.target)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -77,6 +77,8 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     Inline ``<!-- urdftool: ignore ... -->`` comments then filter the findings (see
     :mod:`urdftool.lint.suppressions`); unused ones become U901.
     """
+    if selection.targets:
+        robot.targets = target_versions(selection.targets)
     findings = [f for f in note_findings(robot) if selection.allows(f.code)]
     findings += _run_rules(robot, selection.allows)
     findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
@@ -103,6 +105,17 @@ def _run_rules(robot, allows) -> list[Finding]:
         except Exception as error:  # a bug in a rule must not hide the other findings
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
     return findings
+
+
+def target_versions(targets) -> dict:
+    """``NAME`` / ``NAME@VERSION`` words as name -> version tuple (None: the newest known)."""
+    from urdftool.simulators import parse_target
+
+    found = {}
+    for word in targets:
+        target = parse_target(word)
+        found[target.name] = target.version
+    return found
 
 
 def urdfdom_refusals(robot) -> list[Finding]:

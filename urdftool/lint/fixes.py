@@ -466,14 +466,35 @@ def _new_inertial(robot, link, mass: str, com: str, terms: dict) -> list[Edit] |
     return [text.edit(closing, tag.end, f"><{block[1:]}</link>")]
 
 
-def offer(where, message: str, description: str, edits, safe: bool = True):
+def offer(where, message: str, description: str, edits, safe: bool = True, creates=()):
     """What a rule yields for a finding with a possible fix: ``(where, message, fix)``; when
-    ``edits`` is :class:`Unfixable`, the message with why there is no fix; None: no fix."""
+    ``edits`` is :class:`Unfixable`, the message with why there is no fix; None: no fix.
+    creates: the :class:`~urdftool.diagnostics.Derived` files the fix writes too."""
     if edits is None:
         return where, message, None
     if isinstance(edits, Unfixable):
         return where, f"{message} (no automatic fix: {edits.reason})", None
-    return where, message, Fix(description, tuple(edits), safe)
+    return where, message, Fix(description, tuple(edits), safe, tuple(creates))
+
+
+def converted_mesh(robot, mesh, source, suffix: str):
+    """(edits, creates) pointing ``mesh``'s filename at ``source`` converted to ``suffix``
+    (``.obj``, ``.stl``), beside it: the file is written when the fix is applied, unless it is
+    there already. Unfixable when the filename comes from an expression or has no
+    extension to replace."""
+    from pathlib import Path
+
+    from urdftool.diagnostics import Derived, display_path
+
+    filename = mesh.get("filename") or ""
+    old_suffix = Path(filename.split("?")[0]).suffix
+    if not old_suffix or not filename.endswith(old_suffix):
+        return Unfixable(f"mesh '{filename}' has no extension to replace"), ()
+    edits = set_attribute(robot, mesh, "filename", filename[:-len(old_suffix)] + suffix)
+    target = Path(source).with_suffix(suffix)
+    if isinstance(edits, Unfixable) or target.exists():
+        return edits, ()
+    return edits, (Derived(display_path(target), display_path(source), suffix[1:]),)
 
 
 # --- applying ---------------------------------------------------------------------------------
@@ -518,10 +539,12 @@ def _take(candidates, read) -> Plan:
     current: dict[str, bytes] = {}
     taken: dict[str, list[Edit]] = {}
     disputed = _disputed([fix for fix, _ in candidates])
+    created: dict[str, bytes] = {}
     for fix, root in candidates:
         if fix in result.applied or any(fix is other for other, _ in result.skipped):
             continue
-        why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside)
+        why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside) \
+            or _creation_refusal(fix, root, created, inside)
         if why == "":
             continue  # the same edits, already taken for another finding
         if why:
@@ -540,7 +563,29 @@ def _take(candidates, read) -> Plan:
         for edit in (edits[i] for i in reversed(order)):
             after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
         result.changed[file] = (data, after)
+    for file, data in created.items():
+        result.changed[file] = (b"", data)
     return result
+
+
+def _creation_refusal(fix: Fix, root, created: dict, inside) -> str | None:
+    """Why the files ``fix`` creates cannot be made (outside the root, there already, the source
+    does not convert); None: they are made, into ``created`` (file -> bytes)."""
+    for derived in fix.creates:
+        if derived.file in created:
+            continue
+        if not inside(derived.file, root) or not inside(derived.source, root):
+            return f"{derived.file} is outside the repository ({root})"
+        if os.path.lexists(derived.file):
+            return f"{derived.file} exists already"
+        from urdftool.description.meshes import converted
+        from urdftool.errors import MeshProblem
+
+        try:
+            created[derived.file] = converted(derived.source, derived.how)
+        except MeshProblem as problem:
+            return str(problem)
+    return None
 
 
 def inertia_rewrite(robot, results) -> tuple[Plan, list[tuple[str, str]]]:

@@ -13,12 +13,21 @@ from urdftool.diagnostics import Finding, Severity
 
 @dataclass(frozen=True)
 class Selection:
-    """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``)."""
+    """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``).
+
+    targets: the simulators asked for (``check --target``, ``targets`` in the settings), as
+        ``NAME`` or ``NAME@VERSION``: a portability rule (U92x-U98x) runs only for its own
+        target, and ``select``/``ignore`` narrow them as any other rule
+    """
 
     select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
+    targets: tuple[str, ...] = ()
 
     def allows(self, code: str) -> bool:
+        target = _target_of(code)
+        if target is not None and target not in {t.partition("@")[0] for t in self.targets}:
+            return False
         if not self.select and not self.ignore:
             return True
         from urdftool.lint.rules import CATALOGUE
@@ -26,6 +35,12 @@ class Selection:
         if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):
             return False
         return not any(CATALOGUE.matches(code, s) for s in self.ignore)
+
+
+def _target_of(code: str) -> str | None:
+    from urdftool.lint.catalogue import TARGET_DECADES
+
+    return TARGET_DECADES.get(code[:3])
 
 
 @dataclass

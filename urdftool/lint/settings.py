@@ -7,7 +7,8 @@ applies ``a``'s settings to the files in ``a`` and ``b``'s to those in ``b``, in
 Keys: ``select``, ``ignore`` (lists of codes, prefixes or names), ``per-file-ignores`` (a table of
 glob -> list), ``per-file-args`` (a table of glob -> xacro arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
 ``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file), ``strict``,
-``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``).
+``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``: ``"2G"``, ``0``),
+``targets`` (simulators to check portability to, as ``--target``: ``["mujoco", "gz"]``).
 Command-line options win over the file.
 
 The settings file comes with the repository, so it is as untrusted as the robot files: it is
@@ -35,7 +36,7 @@ from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 KEYS = {"select", "ignore", "per-file-ignores", "per-file-args", "packages", "spec",
-        "controllers", "srdf", "strict", "max-file-size", "max-memory"}
+        "controllers", "srdf", "strict", "max-file-size", "max-memory", "targets"}
 
 
 @dataclass
@@ -53,6 +54,7 @@ class Settings:
     strict: bool = False
     max_file_size: int | None = None
     max_memory: str | None = None  # as --max-memory takes it
+    targets: list[str] = field(default_factory=list)  # as --target takes them
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -184,7 +186,33 @@ def _parse(path: Path, table: dict) -> Settings:
         config.max_file_size = checked_file_size(table["max-file-size"], f"{path}: 'max-file-size'")
     if "max-memory" in table:
         config.max_memory = _memory(path, table["max-memory"])
+    if "targets" in table:
+        config.targets = _targets(path, table["targets"])
     return config
+
+
+def _targets(path: Path, value) -> list[str]:
+    """``targets``: a list of simulator names (``NAME`` or ``NAME@VERSION``)."""
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
+        raise SettingsError(f"{path}: 'targets' must be a list of simulator names, such as "
+                            f"[\"mujoco\", \"gz\"], not {value!r}")
+    try:
+        checked_targets(value)
+    except UsageError as error:
+        raise SettingsError(f"{path}: 'targets': {error}") from None
+    return value
+
+
+def checked_targets(values: Iterable[str]) -> tuple[str, ...]:
+    """The targets as given (comma-separated values split); UsageError for an unknown name."""
+    from urdftool.simulators import parse_target
+
+    words = tuple(_codes(values))
+    for word in words:
+        parse_target(word)
+    return words
 
 
 def _inside_path(settings: Path, what: str, value) -> Path:
@@ -310,6 +338,8 @@ class CheckRequest:
     stdin_filename: the path standard input ('-') is checked as: its settings, includes and
         packages are found from there and its findings name it (an editor's unsaved buffer)
     settings_file: this settings file for every target instead of the one above each
+    targets: simulators to check portability to (``NAME`` or ``NAME@VERSION``); replaces the
+        settings' ``targets`` when given
     cache_dir: where results are kept between runs (:mod:`urdftool.lint.cache`); None: not kept
         (``urdftool check`` keeps them in ``.urdftool_cache`` unless --no-cache or CI)
     """
@@ -330,12 +360,15 @@ class CheckRequest:
     stdin_filename: str | None = None
     settings_file: Path | None = None
     cache_dir: Path | None = None
+    targets: tuple[str, ...] = ()
 
     def __post_init__(self):
         for name in ("select", "ignore"):
             value = getattr(self, name)
             object.__setattr__(self, name, (value,) if isinstance(value, str) else tuple(value))
             check_selectors(getattr(self, name))
+        object.__setattr__(self, "targets", checked_targets(
+            (self.targets,) if isinstance(self.targets, str) else self.targets or ()))
         object.__setattr__(self, "xacro_args", dict(self.xacro_args or {}))
         object.__setattr__(self, "packages", {name: Path(folder) for name, folder
                                               in (self.packages or {}).items()})
@@ -367,7 +400,8 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
                 settings_for(path))
     selection = Selection(tuple(_codes(request.select or settings.select)),
                           tuple(_codes([*settings.ignore, *request.ignore,
-                                        *settings.ignores_for(path)])))
+                                        *settings.ignores_for(path)])),
+                          request.targets or tuple(_codes(settings.targets)))
     options = CheckOptions(
         xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),

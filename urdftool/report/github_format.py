@@ -25,7 +25,9 @@ def render(results, stream) -> None:
             properties.append(f"line={finding.line}")
             if finding.column is not None:
                 properties.append(f"col={finding.column}")
-        properties.append(f"title={_escape_property(f'{finding.code} {finding.name}')}")
+        title = f"{finding.code} {finding.name}" + (f" ({finding.target})" if finding.target
+                                                    else "")
+        properties.append(f"title={_escape_property(title)}")
         message = "\n".join([finding.message, *via_text(finding.location)])
         stream.write(f"::{_LEVELS[finding.severity.value]} {','.join(properties)}::"
                      f"{_escape_data(message)}\n")

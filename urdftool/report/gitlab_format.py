@@ -27,12 +27,20 @@ def as_list(results) -> list[dict]:
             json.dumps([*identity, seen[identity]]).encode()).hexdigest()
         issues.append({
             "description": f"{finding.code} {finding.message}",
-            "check_name": f"{finding.code} {finding.name}",
+            "check_name": _check_name(finding),
             "fingerprint": fingerprint,
             "severity": _SEVERITIES[finding.severity.value],
             "location": {"path": finding.file, "lines": {"begin": finding.line or 1}},
+            **({"target": finding.target} if finding.target is not None else {}),
         })
     return issues
+
+
+def _check_name(finding) -> str:
+    """The rule, and for a portability finding its target: ``U921 mujoco-mesh-format
+    (mujoco)``."""
+    name = f"{finding.code} {finding.name}"
+    return name if finding.target is None else f"{name} ({finding.target})"
 
 
 def render(results, stream) -> None:

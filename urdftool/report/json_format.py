@@ -12,6 +12,7 @@ def diagnostic(finding) -> dict:
     return {"file": where["file"], "line": where["line"], "column": where["column"],
             "code": finding.code, "name": finding.name, "severity": finding.severity.value,
             "message": finding.message, "via": where["via"],
+            **({"target": finding.target} if finding.target is not None else {}),
             **({"fix": _fix(finding.fix)} if finding.fix is not None else {})}
 
 

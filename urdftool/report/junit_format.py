@@ -29,7 +29,10 @@ def render(results, stream) -> None:
         if not result.findings:
             etree.SubElement(suite, "testcase", name="urdftool check", classname=shown)
         for finding in result.findings:
-            case = etree.SubElement(suite, "testcase", name=f"{finding.code} {finding.name}",
+            # junit-10.xsd gives a test case no properties: the target is in its name
+            target = f" ({finding.target})" if finding.target is not None else ""
+            case = etree.SubElement(suite, "testcase",
+                                    name=printable(f"{finding.code} {finding.name}{target}"),
                                     classname=shown)
             text = printable("\n".join([f"{finding.location}: {finding.severity.value} "
                                         f"{finding.code} {finding.message}",

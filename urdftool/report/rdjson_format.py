@@ -30,6 +30,9 @@ def as_dict(results) -> dict:
         entry = {"message": finding.message, "location": _location(finding.location),
                  "severity": _SEVERITIES[finding.severity.value],
                  "code": {"value": finding.code, "url": help_uri(finding.code)}}
+        if finding.target is not None:  # rdjson has no free properties: the source names it
+            entry["source"] = {"name": f"urdftool --target {finding.target}",
+                               "url": help_uri(finding.code)}
         if finding.location.via:
             entry["related_locations"] = [
                 {"message": "expanded from this macro call", "location": _location(site)}

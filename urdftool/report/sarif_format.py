@@ -77,6 +77,8 @@ def as_dict(results) -> dict:
             "message": {"text": finding.message},
             "locations": [_location(finding.location)],
         }
+        if finding.target is not None:  # the simulator a portability finding is about
+            entry["properties"] = {"target": finding.target}
         if finding.location.via:
             entry["relatedLocations"] = [
                 {"id": i, **_location(site), "message": {"text": "expanded from this macro call"}}

@@ -28,7 +28,8 @@ def lines(results, quiet: bool = False) -> list[Line]:
             out.append([(f"  {location}: ", ""), (severity, STYLES[severity]),
                         (" ", ""), *_marker(finding), (finding.code, "bold"),
                         (f" {finding.message} ", ""),
-                        (f"({finding.name})", "dim")])
+                        (f"({finding.name}, {finding.target})" if finding.target else
+                         f"({finding.name})", "dim")])
             if location.via:  # a macro's: its call sites (10,000 findings may have none)
                 out.extend([(f"      {line}", "dim")] for line in via_text(location))
         if not quiet:

@@ -1,0 +1,127 @@
+"""``urdftool crosscheck``: each loader in a process of its own, the JSON shape, the table, the
+exit code, a loader that dies, and the install hints (valid extras of pyproject.toml)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+from urdftool.crosscheck import crosscheck, loaders
+from urdftool.crosscheck.loaders import LOADERS, available
+
+ARM = """<robot name="arm">
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0.1 0.2 0.3" rpy="0.1 0.2 0.3"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <link name="arm"><inertial><origin xyz="0 0 0.05"/><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="k" type="prismatic"><parent link="arm"/><child link="tip"/><origin xyz="0 0 0.4" rpy="0.5 0 0"/>
+    <axis xyz="1 0 0"/><limit lower="0" upper="0.2" effort="1" velocity="1"/></joint>
+  <link name="tip"><inertial><mass value="0.5"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+</robot>
+"""
+KEYS = {"name", "version", "loaded", "error", "location", "mass", "dof", "floating_base",
+        "links", "dropped_links", "frames"}
+
+
+def _installed(*names):
+    missing = [n for n in names if not available(n)]
+    if missing:
+        pytest.skip(f"{missing[0]} is not installed: {LOADERS[missing[0]].install}")
+
+
+def test_loaders_agree_on_a_small_arm(tmp_path):
+    _installed("pinocchio", "mujoco")
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    report = crosscheck(str(path), [n for n in LOADERS if available(n)])
+    assert not report.disagreements and not report.failed and report.exit_code == 0
+    document = report.as_dict()
+    for loader in document["loaders"]:
+        assert KEYS <= set(loader)
+        # MuJoCo fuses the base, fixed to the world, into the world: its 1 kg are not counted
+        mass = 1.5 if loader["name"] == "mujoco" else 2.5
+        assert loader["mass"] == pytest.approx(mass) and loader["dof"] == 2
+        assert len(loader["frames"]) == 4  # zero and three configurations
+    # the frames really moved between configurations (the comparison is not of zeros)
+    mujoco = next(r for r in report.loaders if r.name == "mujoco")
+    assert mujoco.frames[0]["tip"] != mujoco.frames[1]["tip"]
+
+
+def test_a_loader_that_dies_is_a_failure_not_a_crash(tmp_path, monkeypatch):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    def abort(job):
+        import faulthandler
+
+        faulthandler.disable()  # the test runner's handler would print the worker's stack
+        os.abort()
+
+    monkeypatch.setitem(loaders.LOAD, "pinocchio", abort)
+    monkeypatch.setattr("urdftool.crosscheck.available", lambda name: True)
+    [result] = crosscheck(str(path), ["pinocchio"]).loaders
+    assert not result.loaded and "died" in result.error
+
+
+def test_a_refusal_is_located_at_the_line(tmp_path):
+    _installed("mujoco")
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM.replace('<link name="tip"><inertial><mass value="0.5"/>',
+                                '<link name="tip"><inertial><mass value="0"/>'))
+    report = crosscheck(str(path), ["mujoco"])
+    [result] = report.loaders
+    assert not result.loaded and "mjMINVAL" in result.error
+    assert result.location.line == 10 and report.exit_code == 1
+
+
+def test_missing_loaders_say_how_to_install_them(tmp_path, monkeypatch):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    monkeypatch.setattr("urdftool.crosscheck.available", lambda name: name == "pinocchio")
+    report = crosscheck(str(path))
+    assert set(report.missing) == set(LOADERS) - {"pinocchio"}
+    assert "pip install -e '.[sim]'" in report.missing["mujoco"]
+
+
+def test_the_install_hints_name_extras_that_exist():
+    """The printed command installs the loader: its extra is in pyproject.toml and lists the
+    loader's distribution (the package is not on PyPI: the command works from a checkout)."""
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"]
+    distributions = {"pinocchio": "pin", "mujoco": "mujoco", "pybullet": "pybullet",
+                     "drake": "drake"}
+    for name, loader in LOADERS.items():
+        if name == "sdformat":
+            assert "apt-get install ignition-tools libsdformat-dev" in loader.install
+            continue
+        extra = loader.install.split("'.[", 1)[1].split("]'", 1)[0]
+        assert extra in extras
+        assert any(requirement.startswith(distributions[name])
+                   for requirement in extras[extra]), (extra, extras[extra])
+
+
+def test_cli_json_and_exit_code(tmp_path):
+    _installed("pinocchio")
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    done = subprocess.run([sys.executable, "-m", "urdftool", "crosscheck", str(path), "-l",
+                           "pinocchio", "-f", "json"], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    document = json.loads(done.stdout)
+    assert [loader["name"] for loader in document["loaders"]] == ["pinocchio"]
+    text = subprocess.run([sys.executable, "-m", "urdftool", "crosscheck", str(path), "-l",
+                           "pinocchio"], capture_output=True, text=True, timeout=300)
+    assert "pinocchio" in text.stdout and "the loaders agree" in text.stdout
+    bad = subprocess.run([sys.executable, "-m", "urdftool", "crosscheck", str(path), "-l",
+                          "mujuco"], capture_output=True, text=True, timeout=300)
+    assert bad.returncode == 2 and "did you mean 'mujoco'" in bad.stderr

@@ -1,0 +1,61 @@
+"""``urdftool crosscheck``: load a robot with every real loader installed and compare."""
+
+from __future__ import annotations
+
+import typer
+
+from urdftool.cli._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
+                                  fail_usage, robot_inputs)
+
+FORMATS = ("text", "json")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("crosscheck", help="Load the robot with each real loader installed (Pinocchio, "
+                                   "MuJoCo, PyBullet, Drake, sdformat's gz sdf), each in a "
+                                   "process of its own, and compare: loaded or why not (at the "
+                                   "line), mass, degrees of freedom, base, links dropped, frame "
+                                   "positions, inertia. Exit 1 when a loader fails or they "
+                                   "disagree.")(crosscheck)
+
+
+def crosscheck(
+    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    loader: list[str] = typer.Option([], "--loader", "-l", metavar="NAME",
+                                     help="Only this loader (repeatable): pinocchio, mujoco, "
+                                          "pybullet, drake, sdformat [default: all]."),
+    output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
+    arg: list[str] = XacroArgOption,
+    package: list[str] = PackageOption,
+    timeout: float = TimeoutOption,
+    max_memory: str = MaxMemoryOption,
+) -> None:
+    from urdftool.budget import Budget
+    from urdftool.crosscheck import crosscheck as run
+    from urdftool.errors import LoadError, UsageError
+    from urdftool.report import crosscheck as render
+
+    try:
+        paths, args, packages = robot_inputs(words, arg, package)
+        if len(paths) != 1:
+            raise UsageError("give one robot file")
+        if output_format not in FORMATS:
+            raise UsageError(f"unknown format '{output_format}'; choose text or json")
+        budget = Budget.of(timeout, max_memory)
+        result = run(paths[0], [name for value in loader for name in value.split(",")],
+                     xacro_args=args, packages=packages, budget=budget)
+    except UsageError as error:
+        fail_usage(error)
+    except LoadError as error:
+        from urdftool.cli._common import report_findings
+        from urdftool.lint.engine import load_error_findings
+
+        report_findings(paths[0], load_error_findings(error))
+        raise typer.Exit(1)
+    if output_format == "json":
+        from urdftool.report.json_output import write_json
+
+        write_json(result.as_dict(), finite=True)
+    else:
+        typer.echo(render.text(result), nl=False)
+    raise typer.Exit(result.exit_code)

@@ -1,0 +1,345 @@
+"""``urdftool crosscheck``: load a robot with every real loader installed and compare what each
+made of it.
+
+Each loader (:mod:`.loaders`: Pinocchio, MuJoCo, PyBullet, Drake, sdformat through ``gz sdf``)
+runs in a worker process of its own, forked by the runner under the time and memory budget
+(:func:`urdftool.lint.runner.run_budgeted`): loaders segfault and abort on bad input, and a
+loader that dies, hangs or overruns its memory is reported as failed, with why. A xacro file is
+expanded by urdftool and written to a temporary folder; packages are handed to the loaders that
+take them (Drake's PackageMap, Pinocchio, PyBullet's search path), as a user would.
+
+For each loader: whether it loaded, or its error mapped back to the line of the file the user
+wrote; total mass; degrees of freedom; floating or fixed base; the URDF links it dropped or
+fused; frame positions at the zero configuration and a few others; the inertia it holds. The
+loaders **disagree** when the positions of a frame two of them keep differ by more than
+:data:`TOLERANCE`; masses and degrees of freedom are reported side by side (they differ by
+design: Drake floats a robot that MuJoCo welds, PyBullet gives massless links 1 kg), each
+difference said in words.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from urdftool.budget import Budget
+from urdftool.crosscheck.loaders import LOADERS, Job, available, version
+
+TOLERANCE = 1e-9  # [m]: frame positions of two loaders that keep a frame must agree within it
+# [m] PyBullet's frames are off by up to 1.4e-8 m on a 0.4 m arm (measured with 3.2.7 against
+# Pinocchio, MuJoCo, Drake and sdformat, which agree to 1e-15 there): single-precision
+# arithmetic somewhere in its importer. Compared with it, frames must agree within this.
+LOADER_TOLERANCE = {"pybullet": 1e-6}
+CONFIGURATIONS = 3  # besides the zero configuration
+
+
+@dataclass
+class LoaderResult:
+    """One loader's verdict, as the JSON has it (``as_dict``)."""
+
+    name: str
+    version: str | None
+    loaded: bool
+    error: str | None = None
+    location: object = None  # a Location
+    mass: float | None = None
+    dof: int | None = None
+    floating_base: bool | None = None
+    links: list = field(default_factory=list)
+    dropped_links: list = field(default_factory=list)
+    frames: list = field(default_factory=list)
+    inertia: dict = field(default_factory=dict)
+    output: str = ""
+    details: dict = field(default_factory=dict)  # joints' limits, constraints, geoms: as read
+
+    def as_dict(self) -> dict:
+        from urdftool.diagnostics import display_path
+
+        where = None if self.location is None else {
+            "file": display_path(self.location.file), "line": self.location.line}
+        return {"name": self.name, "version": self.version, "loaded": self.loaded,
+                "error": self.error, "location": where, "mass": self.mass, "dof": self.dof,
+                "floating_base": self.floating_base, "links": self.links,
+                "dropped_links": self.dropped_links, "frames": self.frames,
+                "inertia": self.inertia, **self.details}
+
+
+@dataclass
+class Crosscheck:
+    """What every loader made of one robot.
+
+    loaders: the results, one per loader run; missing: loader -> how to install it
+    configurations: joint values the frames were compared at (the first: zero)
+    disagreements: sentences, each a difference between loaders that keep the same thing
+    """
+
+    path: str
+    loaders: list[LoaderResult]
+    missing: dict[str, str]
+    configurations: list[dict]
+    disagreements: list[str] = field(default_factory=list)
+    differences: list[str] = field(default_factory=list)
+
+    @property
+    def failed(self) -> list[LoaderResult]:
+        return [result for result in self.loaders if not result.loaded]
+
+    @property
+    def exit_code(self) -> int:
+        """1 when a loader failed or the loaders disagree, else 0."""
+        return 1 if self.failed or self.disagreements else 0
+
+    def as_dict(self) -> dict:
+        return {"file": self.path, "loaders": [r.as_dict() for r in self.loaders],
+                "missing": self.missing, "configurations": self.configurations,
+                "disagreements": self.disagreements, "differences": self.differences}
+
+
+def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
+               budget: Budget = Budget(), allow_env: bool = True) -> Crosscheck:
+    """Load ``path`` (URDF or xacro) with each of ``loaders`` (names; None: every one known)
+    that is installed, each in a worker process within ``budget``, and compare.
+
+    Raises UrdftoolError (LoadError, UsageError) when urdftool itself cannot load the file or
+    a loader name is unknown."""
+    from urdftool.description.load import load
+    from urdftool.errors import UsageError
+
+    names = list(LOADERS) if not loaders else list(dict.fromkeys(loaders))
+    unknown = [name for name in names if name not in LOADERS]
+    if unknown:
+        from urdftool.errors import available as choices
+
+        raise UsageError(f"unknown loader '{unknown[0]}'; "
+                         f"{choices('loaders', unknown[0], LOADERS)}")
+    robot = load(path, xacro_args=xacro_args or {}, packages=packages or {},
+                 allow_env=allow_env)
+    present = [name for name in names if available(name)]
+    missing = {name: LOADERS[name].install for name in names if name not in present}
+    configurations = joint_configurations(robot)
+    with tempfile.TemporaryDirectory(prefix="urdftool-crosscheck-") as folder:
+        urdf, lines = _urdf_file(robot, folder)
+        job = Job(urdf, _packages(robot), tuple(configurations))
+        raw = _run(present, job, budget)
+    results = [_result(name, raw[index], robot, lines, urdf)
+               for index, name in enumerate(present)]
+    report = Crosscheck(path, results, missing, configurations)
+    _compare(report, robot)
+    return report
+
+
+def joint_configurations(robot) -> list[dict]:
+    """The zero configuration and :data:`CONFIGURATIONS` more, each joint inside its limits
+    (the same for every loader): deterministic, different for each joint."""
+    from urdftool.description.urdf import MOVING
+    from urdftool.description.values import number_tuple
+    from urdftool.description.xml import first_child
+
+    configurations = [{}]
+    movable = [j for j in robot.children("joint")
+               if j.get("type") in MOVING]
+    for index in range(CONFIGURATIONS):
+        configuration = {}
+        for position, joint in enumerate(movable):
+            fraction = ((index + 1) * 0.29 + position * 0.137) % 1.0
+            limit = first_child(joint, "limit")
+            low = number_tuple(limit.get("lower", "0"), 1)[0] if limit is not None else None
+            high = number_tuple(limit.get("upper", "0"), 1)[0] if limit is not None else None
+            if joint.get("type") == "continuous" or not low or not high or \
+                    not low[0] < high[0] or not math.isfinite(high[0] - low[0]):
+                value = -1.2 + 2.4 * fraction if joint.get("type") != "prismatic" else \
+                    -0.05 + 0.1 * fraction
+            else:
+                value = low[0] + (high[0] - low[0]) * fraction
+            configuration[joint.get("name")] = round(value, 6)
+        configurations.append(configuration)
+    return configurations
+
+
+def _urdf_file(robot, folder: str) -> tuple[str, dict]:
+    """The file the loaders read, and its line -> the element there (for the loaders' errors):
+    the user's URDF itself, or xacro's output written in ``folder``."""
+    from lxml import etree
+
+    if not robot.from_xacro and robot.path != "-":
+        lines: dict = {}
+        for element in robot.root.iter():
+            if isinstance(element.tag, str):
+                lines.setdefault(robot.locate(element).line, element)
+        return os.path.abspath(robot.path), lines
+    text = etree.tostring(robot.root, pretty_print=True, encoding="unicode")
+    target = Path(folder) / (Path(robot.display).name.removesuffix(".xacro") or "robot.urdf")
+    if not target.name.endswith(".urdf"):
+        target = target.with_suffix(".urdf")
+    target.write_text(text, encoding="utf-8")
+    reread = etree.fromstring(text.encode("utf-8"))
+    lines = {}
+    for mine, theirs in zip(robot.root.iter(), reread.iter()):
+        lines.setdefault(theirs.sourceline, mine)
+    return os.fspath(target), lines
+
+
+def _packages(robot) -> dict:
+    """Package name -> folder, for every package:// the robot names that resolves."""
+    from urdftool.description.packages import package_uri_parts
+
+    found = {}
+    for element in robot.root.iter("mesh", "texture"):
+        uri = element.get("filename") or ""
+        if uri.startswith("package://"):
+            name, _ = package_uri_parts(uri)
+            if name and name not in found:
+                try:
+                    found[name] = os.fspath(robot.resolver.find(name))
+                except Exception:  # noqa: BLE001 - the loader will say it is missing
+                    pass
+    return found
+
+
+def _run(names: list[str], job: Job, budget: Budget) -> list:
+    """Each loader in a worker of its own (forked, one piece each), within the budget."""
+    from urdftool.crosscheck.loaders import LOAD
+    from urdftool.lint.runner import run_budgeted
+
+    if not names:
+        return []
+    # never in this process: a loader that aborts would take urdftool with it
+    budget = Budget(budget.seconds or 24 * 3600.0, budget.memory)
+
+    def work(index: int):
+        return LOAD[names[index]](job)
+
+    def stopped(index: int, stop) -> dict:
+        from urdftool.budget import format_memory
+
+        why = {"time": f"took longer than {stop.budget.seconds:g} s and was stopped",
+               "memory": "ran out of its memory budget"
+                         + (f" ({format_memory(stop.budget.memory)})" if stop.budget.memory
+                            else ""),
+               "died": f"the loader's process died: {stop.detail}"}.get(
+            stop.kind, (stop.detail.strip().splitlines() or ["crashed"])[-1])
+        return {"loaded": False, "error": why}
+
+    return run_budgeted(len(names), work, budget, stopped, jobs=len(names))
+
+
+_LINE = (re.compile(r"\.urdf:(\d+):"), re.compile(r"Line number=(\d+)"),
+         re.compile(r"line (\d+)"))
+_FILE = (re.compile(r"Error opening file '([^']+)'"),
+         re.compile(r"no decoder found for mesh file '([^']+)'"),
+         re.compile(r"cannot find '([^']+)' in any directory"),
+         re.compile(r"invalid mesh filename extension"),
+         re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$", re.M))
+_LINK = (re.compile(r"Element name '([^']+)'"), re.compile(r"link\[@name=\"([^\"]+)\"\]"),
+         re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]]*\]:\s*)?"
+                                                             r"(\S+?)b3"),
+         re.compile(r"link \[([^\]]+)\]"))
+
+
+def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult:
+    result = LoaderResult(name, version(name), bool(raw.get("loaded")), raw.get("error"),
+                          mass=raw.get("mass"), dof=raw.get("dof"),
+                          floating_base=raw.get("floating_base"), links=raw.get("links") or [],
+                          frames=raw.get("frames") or [], inertia=raw.get("inertia") or {},
+                          output=raw.get("output") or "",
+                          details={key: raw[key] for key in ("joints", "constraints", "geoms")
+                                   if key in raw})
+    if result.links:
+        result.dropped_links = [link for link in robot.links if link not in set(result.links)]
+    if not result.loaded:
+        result.location = _located(robot, lines, result.error or "", result.output, urdf)
+    return result
+
+
+def _located(robot, lines: dict, error: str, output: str, urdf: str):
+    """Where in the files the user wrote a loader's error points: the line it names (through
+    xacro's output, the element there), else the link it names; None when it names neither."""
+    text = f"{error}\n{output}"
+    for pattern in _LINE:
+        for match in pattern.finditer(text):
+            line = int(match.group(1))
+            # the element starting on that line of the file the loader read, else the last
+            # one before it (a loader may count the line where a tag ends)
+            starts = [number for number in lines if number is not None and number <= line]
+            if starts and line <= max(number for number in lines if number is not None) + 50:
+                return robot.locate(lines[max(starts)])
+    for pattern in _FILE:
+        for match in pattern.finditer(text):
+            named = _normalized(match.group(1))
+            # a <collision> first: MuJoCo and Drake fail on those, RViz-only visuals later
+            elements = sorted(robot.root.iter("mesh", "texture"), key=lambda e: (
+                e.getparent() is None or e.getparent().getparent() is None or
+                e.getparent().getparent().tag != "collision"))
+            for element in elements:
+                if _names(robot, element.get("filename") or "", named):
+                    return robot.locate(element)
+    for pattern in _LINK:
+        for match in pattern.finditer(text):
+            link = robot.links.get(match.group(1))
+            if link is not None:
+                return robot.locate(link)
+    return None
+
+
+def _names(robot, filename: str, named: str) -> bool:
+    """Whether a loader's file name ``named`` is the file ``filename`` of the robot: as written
+    (MuJoCo), as resolved (Drake), or as PyBullet cuts package:// off."""
+    if not filename:
+        return False
+    if _normalized(filename) == named or \
+            _normalized(filename.split("://", 1)[-1]).lstrip("/") == named.lstrip("/"):
+        return True
+    try:
+        return os.path.realpath(robot.resolve_uri(filename)) == os.path.realpath(named)
+    except Exception:  # noqa: BLE001 - an unknown package
+        return False
+
+
+def _normalized(name: str) -> str:
+    """A file name as MuJoCo prints it: runs of "/" made one ("package:/pkg/...")."""
+    return re.sub(r"/+", "/", name)
+
+
+def _compare(report: Crosscheck, robot) -> None:
+    """Fill ``disagreements`` (frames two loaders keep, apart by more than TOLERANCE) and
+    ``differences`` (mass, degrees of freedom, base, dropped links: said, not failed)."""
+    loaded = [r for r in report.loaders if r.loaded and r.frames]
+    for index, configuration in enumerate(report.configurations):
+        for first_index, first in enumerate(loaded):
+            for second in loaded[first_index + 1:]:
+                a, b = first.frames[index], second.frames[index]
+                worst, where = 0.0, None
+                for link in robot.links:
+                    if link in a and link in b:
+                        gap = math.dist(a[link], b[link])
+                        if not gap <= worst:  # NaN too
+                            worst, where = gap, link
+                tolerance = max(LOADER_TOLERANCE.get(first.name, TOLERANCE),
+                                LOADER_TOLERANCE.get(second.name, TOLERANCE))
+                if where is not None and not worst <= tolerance:
+                    at = "the zero configuration" if index == 0 else f"configuration {index}"
+                    report.disagreements.append(
+                        f"{first.name} and {second.name} place link '{where}' {worst:.3g} m "
+                        f"apart at {at}")
+    for label, key in (("total mass [kg]", "mass"), ("degrees of freedom", "dof"),
+                       ("floating base", "floating_base")):
+        values = {r.name: getattr(r, key) for r in report.loaders if r.loaded}
+        shown = {v if not isinstance(v, float) else round(v, 9) for v in values.values()}
+        if len(shown) > 1:
+            report.differences.append(f"{label}: " + ", ".join(
+                f"{name} {value:.6g}" if isinstance(value, float) else f"{name} {value}"
+                for name, value in values.items()))
+    for result in report.loaders:
+        if result.loaded and result.dropped_links:
+            listed = ", ".join(result.dropped_links[:6])
+            more = f" and {len(result.dropped_links) - 6} more" if \
+                len(result.dropped_links) > 6 else ""
+            report.differences.append(f"{result.name} has no link {listed}{more} "
+                                      "(fused, lumped or dropped)")
+
+
+__all__ = ["TOLERANCE", "Crosscheck", "LoaderResult", "crosscheck", "joint_configurations"]
