@@ -271,8 +271,8 @@ def _joints_above(robot, joint_name: str, parents) -> list[str]:
     while joint is not None:
         link = robot.ends()[joint]["parent"][1]
         joint = parents.get(link)
-        if joint is None or joint.get("name") in seen:
-            break
+        if joint is None or joint.get("name") is None or joint.get("name") in seen:
+            break  # the root, a joint without a name (U103), or a cycle (U109)
         seen.add(joint.get("name"))
         found.append(joint.get("name"))
     return found
