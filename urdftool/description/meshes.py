@@ -109,7 +109,11 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                 f"mesh '{uri}' resolves to {path}, outside {root}; urdftool does not open files "
                 "outside the robot's repository: use package://PKG/... for files of another "
                 "package"))
-    if not path.is_file():
+    try:
+        is_file = path.is_file()
+    except OSError as error:  # a name too long for the file system (ENAMETOOLONG), ...
+        return MeshProblem("missing", f"mesh '{uri}' cannot be looked up: {error.strerror}")
+    if not is_file:
         return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
