@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test test-fast bench fuzz sweep-setup clean
+.PHONY: demo test test-fast bench fuzz sweep-setup real-sweep-setup real-sweep clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -20,8 +20,9 @@ demo: $(INSTALLED)
 	@echo; echo "A broken robot (exit code 1; the finding points into the included macro file):"
 	@$(VENV)/bin/urdftool check tests/cases/U005_xacro_error/robot.urdf.xacro || true
 
+# The sweeps (marked slow: minutes) run by their own targets, not here.
 test: $(INSTALLED)
-	$(PY) -m pytest -n auto
+	$(PY) -m pytest -n auto -m "not slow"
 
 # The inner loop: unit tests only, without the corpus, parity, fuzz and README runs.
 test-fast: $(INSTALLED)
@@ -49,6 +50,16 @@ sweep-setup: $(INSTALLED)
 	$(PY) -m pip install --quiet --disable-pip-version-check --no-deps --no-compile \
 		--target $(SWEEP) $(SWEEP_PACKAGES)
 	test -e $(SWEEP)/.git || git init --quiet $(SWEEP)
+
+# The real-repository sweep (tests/integration/test_real_sweep.py, issue 30): over a hundred
+# public robot repositories at the commits of tests/integration/real_sweep/MANIFEST.tsv, restored
+# as data (no checkout, no filters or hooks) from the git snapshots in URDFTOOL_MIRROR
+# (/work/.mirror) into URDFTOOL_REAL_SWEEP (../sweep-repos). About 3.5 GB.
+real-sweep-setup: $(INSTALLED)
+	$(PY) scripts/restore_real_sweep.py
+
+real-sweep: $(INSTALLED)
+	$(PY) -m pytest -m slow tests/integration/test_real_sweep.py
 
 clean:
 	rm -rf $(VENV) .pytest_cache build *.egg-info

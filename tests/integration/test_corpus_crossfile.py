@@ -76,17 +76,22 @@ ENTRIES = {
     (f"{ERD}/finger_edu_description/robots/finger_edu.urdf", "", (),
      f"{ERD}/finger_edu_description/srdf/finger_edu.srdf"): {"U802": 1, "U808": 1},
     # hyq.srdf: groups all_legs, r_legs, ... use subgroups lf, rf, lh, rh; the groups are lf_leg, ...
-    # Its 12 transmissions name the bare EffortJointInterface (U508).
+    # Its 12 transmissions name the bare EffortJointInterface (U508). Its p3d plugin's
+    # <xyzOffsets>/<rpyOffsets> are read by no gazebo_ros_p3d (ROS 1 reads xyzOffset, since
+    # hydro) (U641).
     (f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf", "", (), f"{ERD}/hyq_description/srdf/hyq.srdf"):
-        {"U508": 12, "U805": 16},
+        {"U508": 12, "U641": 2, "U805": 16},
     # icub.srdf is for robot "icub", the URDF is "iCub". U811: at the zero configuration (and
     # half_sitting) 16 non-adjacent pairs of collision meshes intersect with no disable_collisions
     # entry (forearms in the torso, feet and lower legs in each other; checked independently with
-    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull).
+    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull). U823: 9 adjacent pairs
+    # overlap by 4.5 to 46 mm (chest in torso_1, each upper arm in its shoulder, the feet in the
+    # ankles at half_sitting) and the SRDF, not written by the Setup Assistant, has no Adjacent
+    # entry: MoveIt (and Pinocchio's collision pairs minus the SRDF's) see them in collision.
     (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1, "U811": 16},
+        {"U802": 1, "U811": 16, "U823": 9},
     (f"{ERD}/icub_description/robots/icub_reduced.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1, "U811": 16},
+        {"U802": 1, "U811": 16, "U823": 9},
     # This pr2.urdf made the caster and gripper joints fixed but kept their transmissions (U502),
     # and its gazebo references double_stereo_double_stereo_link and sensor_mount_sensor_link (U611).
     (f"{ERD}/pr2_description/urdf/pr2.urdf", "", (), f"{ERD}/pr2_description/srdf/pr2.srdf"):
@@ -110,16 +115,17 @@ ENTRIES = {
     # and the knee and ankle meshes (leg_*_4/leg_*_6), disabled as Never, intersect (U810; 7 knee
     # vertices inside the watertight ankle mesh). talos_full_v2's meshes use package:/// (an empty
     # package name, resolved as Pinocchio does since issue 14): the same knee and ankle meshes
-    # intersect there (U810, 2 pairs).
+    # intersect there (U810, 2 pairs). talos_reduced's two openni_kinect plugins spell the
+    # distortion parameters <distalostionK1>...<distalostionT2> (U641, 2 x 5).
     (f"{ERD}/talos_data/robots/talos_reduced.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
-        {"U810": 2, "U811": 12},
+        {"U641": 10, "U810": 2, "U811": 12},
     (f"{ERD}/talos_data/robots/talos_full_v2.urdf", "", (), f"{ERD}/talos_data/srdf/talos.srdf"):
         {"U810": 2},
 }
 
 
 def crossfile(code: str) -> bool:
-    return code[:2] in ("U5", "U6", "U7") or "U800" <= code <= "U819"
+    return code[:2] in ("U5", "U6", "U7") or "U800" <= code <= "U839"
 
 
 def check_entry(robot, args, controllers, srdf):

@@ -116,3 +116,33 @@ def test_find_names_the_close_rules():
     with pytest.raises(UnknownRule, match="the rules starting with U7 are: U701"):
         CATALOGUE.find("U7")
     assert CATALOGUE.find("u204").name == "inverted-limits"
+
+
+def test_a_finding_may_be_less_severe_than_its_rule_never_more():
+    from urdftool.diagnostics import Location
+
+    @rule("U999", "conditional", Severity.WARNING)
+    def conditional(robot):
+        """A defect that holds under a condition."""
+        yield None, "x"
+
+    where = Location("r.urdf", 1)
+    assert conditional.rule.finding("m", where).severity == Severity.WARNING
+    assert conditional.rule.finding("m", where, None, Severity.INFO).severity == Severity.INFO
+    with pytest.raises(ValueError, match="cannot be more severe"):
+        conditional.rule.finding("m", where, None, Severity.ERROR)
+
+
+def test_the_engine_stamps_a_findings_own_severity(tmp_path):
+    from urdftool.lint.engine import stamp
+
+    @rule("U998", "graded", Severity.ERROR)
+    def graded(robot):
+        """A rule whose findings may be conditional."""
+        yield None, "x"
+
+    robot = types.SimpleNamespace(locate=lambda where: None)
+    from urdftool.diagnostics import Location
+    at = Location("r.urdf", 3)
+    assert stamp(graded.rule, at, "m", robot).severity == Severity.ERROR
+    assert stamp(graded.rule, at, "m", robot, None, Severity.WARNING).severity == Severity.WARNING

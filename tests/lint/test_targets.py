@@ -30,6 +30,20 @@ def test_unused_macro_library_is_skipped(run_cli, tmp_path):
     assert "nothing to check" in result.stderr
 
 
+def test_a_macro_library_with_another_root_is_skipped_and_other_roots_are_reported(run_cli,
+                                                                                   tmp_path):
+    """Pre-Groovy macro files are ``<root xmlns:xacro=...>`` (mas-group/youbot_description's
+    sensors): a macro library all the same. A non-robot root with content stays U004."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "sensor.urdf.xacro").write_text(
+        '<root xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:property name="w" value="1"/>'
+        '<xacro:macro name="m" params="parent"><link name="a"/></xacro:macro></root>')
+    (tmp_path / "world.urdf").write_text('<sdf version="1.6"><model name="m"/></sdf>')
+    result = run_cli("check", tmp_path, "--format", "json")
+    assert '"code": "U004"' in result.stdout and "world.urdf" in result.stdout
+    assert "sensor.urdf.xacro" not in result.stdout and '"files": 1' in result.stdout
+
+
 def test_finding_in_macro_is_reported_through_its_robot(run_cli, tmp_path):
     (tmp_path / ".git").mkdir()
     shutil.copytree(ROBOTS / "diffbot", tmp_path / "diffbot")

@@ -25,6 +25,7 @@ import numpy as np
 from urdftool.collision import geometry as geometry_module
 from urdftool.collision.pairs import PairChecker, Tally
 from urdftool.description.urdf import MOVING
+from urdftool.kinematics.tree import adjacent_pairs, pair_key
 
 CLASSES = ("Adjacent", "Default", "Always", "Never", "")
 BLOCK = 250
@@ -120,35 +121,6 @@ class Scene:
 
     def at(self, q: np.ndarray) -> np.ndarray:
         return self.poses(q[None])[0]
-
-
-def pair_key(one: str, two: str) -> tuple[str, str]:
-    """A pair as MoveIt stores it: the smaller name (byte order) first."""
-    return (one, two) if one.encode() <= two.encode() else (two, one)
-
-
-def adjacent_pairs(robot, with_geometry: set[str]) -> set[tuple[str, str]]:
-    """Pairs joined by a joint, looking through links that have no geometry."""
-    from urdftool.kinematics.tree import children_by_link
-
-    neighbours: dict[str, set[str]] = {name: set() for name in robot.links}
-    for parent, children in children_by_link(robot).items():
-        for _, child in children:
-            neighbours.setdefault(parent, set()).add(child)
-            neighbours.setdefault(child, set()).add(parent)
-    result = set()
-    for start in with_geometry:
-        seen, stack = {start}, [start]
-        while stack:
-            for other in neighbours[stack.pop()]:
-                if other in seen:
-                    continue
-                seen.add(other)
-                if other in with_geometry:
-                    result.add(pair_key(start, other))
-                else:
-                    stack.append(other)
-    return result
 
 
 def default_collisions(scene: Scene, q: np.ndarray) -> set[tuple[str, str]]:

@@ -12,7 +12,8 @@ from urdftool.diagnostics import Location
 from urdftool.description.documents import read_srdf
 from urdftool.description.files import read_regular
 from urdftool.errors import SrdfError, available
-from urdftool.collision.matrix import Matrix, pair_key
+from urdftool.collision.matrix import Matrix
+from urdftool.kinematics.tree import pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
 
@@ -198,6 +199,7 @@ class Overlap:
     link2: str
     depth: float = 0.0
     poses: list = field(default_factory=list)
+    adjacent: bool = False  # joined by a joint (MoveIt's "Adjacent"): contact is expected there
 
 
 def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
@@ -228,10 +230,10 @@ TOUCHING = 0.001  # [m]: meshes that overlap less than this touch by design (sea
 
 
 def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
-    """Pairs of links (not adjacent) that overlap by more than :data:`TOUCHING` at the default
-    configuration or at a group state of the SRDF: one FCL check of every pair per pose, as in
-    :func:`urdftool.collision.matrix.default_collisions`. Surfaces that only touch (a lift on
-    its base, meshes exported to share a face) are not reported."""
+    """Pairs of links that overlap by more than :data:`TOUCHING` at the default configuration
+    or at a group state of the SRDF (adjacent ones marked so): one FCL check of every pair per
+    pose, as in :func:`urdftool.collision.matrix.default_collisions`. Surfaces that only touch
+    (a lift on its base, meshes exported to share a face) are not reported."""
     from urdftool.collision.matrix import Scene, default_collisions
 
     scene = Scene(robot, 0.0)
@@ -239,12 +241,12 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
     index = {pair: i for i, pair in enumerate(scene.pairs)}
     for label, q, element in named_poses(scene, srdf_root):
         parts = None
-        for pair in sorted(default_collisions(scene, q) - scene.adjacent):
+        for pair in sorted(default_collisions(scene, q)):
             if parts is None:  # every part placed once for the pairs at this pose (as pose.py)
                 scene.checker.place(parts := scene.checker.part_poses(scene.at(q)))
             depth = scene.checker.exact(None, index[pair], contacts=True, part_poses=parts,
                                         placed=True)[2]
-            overlap = found.setdefault(pair, Overlap(*pair))
+            overlap = found.setdefault(pair, Overlap(*pair, adjacent=pair in scene.adjacent))
             overlap.depth = max(overlap.depth, depth)
             overlap.poses.append((label, element))
     return {pair: overlap for pair, overlap in found.items() if overlap.depth > TOUCHING}

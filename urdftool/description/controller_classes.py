@@ -176,9 +176,27 @@ CLASSES: tuple[ControllerClass, ...] = (
           "velocity_controllers/velocity_controllers_plugins.xml", _ONE, ("joint",), "velocity"),
 )
 
-# MoveIt's controller managers drive FollowJointTrajectory and GripperCommand action servers;
-# their ``joints`` are URDF joints (moveit_simple_controller_manager, MoveIt 1 and 2).
-MOVEIT_TYPES = ("FollowJointTrajectory", "GripperCommand")
+# MoveIt's controller managers drive FollowJointTrajectory and GripperCommand action servers
+# (and, MoveIt 2 from Jazzy, ParallelGripperCommand: moveit_simple_controller_manager.cpp of
+# moveit/moveit2 main); their ``joints`` are URDF joints.
+MOVEIT_TYPES = ("FollowJointTrajectory", "GripperCommand", "ParallelGripperCommand")
+
+
+def action_served(name: str) -> tuple[str, str] | None:
+    """(MoveIt controller type, action name under the controller) that a class of
+    ros_controllers or ros2_controllers serves, or None: the trajectory controllers serve
+    ``follow_joint_trajectory`` (control_msgs/FollowJointTrajectory), the gripper action
+    controllers ``gripper_cmd`` (control_msgs/GripperCommand; ROS 2's parallel gripper
+    controller control_msgs/ParallelGripperCommand)."""
+    if not known_package(name):
+        return None
+    short = name.split("/")[-1]
+    if short == "JointTrajectoryController":
+        return "FollowJointTrajectory", "follow_joint_trajectory"
+    if short == "GripperActionController":
+        kind = "ParallelGripperCommand" if name.startswith("parallel_gripper") else "GripperCommand"
+        return kind, "gripper_cmd"
+    return None
 
 # What replaces a class in the other ROS version (name in ROS x -> the class ROS y has).
 COUNTERPARTS = {
@@ -193,6 +211,7 @@ COUNTERPARTS = {
         "joint_trajectory_controller/JointTrajectoryController (command_interfaces: [velocity])",
     (1, "velocity_controllers/JointVelocityController"): "velocity_controllers/JointGroupVelocityController",
     (2, "joint_state_broadcaster/JointStateBroadcaster"): "joint_state_controller/JointStateController",
+    (2, "joint_state_controller/JointStateController"): "joint_state_broadcaster/JointStateBroadcaster",
     (2, "joint_trajectory_controller/JointTrajectoryController"):
         "position_controllers/JointTrajectoryController (or velocity_/effort_controllers/...)",
 }

@@ -9,7 +9,8 @@ Layouts read (a file may hold several):
   node). A controller is declared by ``NAME: {type: pkg/Class}`` in a node's parameters (the
   controller_manager's), or by ``type:`` in its own block (the spawner's ``--param-file``
   form); it reads the parameters of the wildcard blocks and of its own ``NAME:
-  ros__parameters:`` block.
+  ros__parameters:`` blocks (``/robot_1/NAME``, ``/**/NAME``: one controller name may be
+  configured per namespace; its blocks are read together).
 - **ROS 1** (``ros1``; rosparam): any mapping ``NAME: {type: pkg/Class, ...}`` at any depth
   (the keys above it are its namespace), or a file that is one controller (top-level
   ``type:``; named after the file).
@@ -55,6 +56,8 @@ class Controller:
         ROS 1 and MoveIt: its mapping); None for a name MoveIt lists with no mapping
     block_line: ROS 2: the line of its own ``NAME: ros__parameters:`` block, None without one
     namespace: the keys above it ("/"-joined; ROS 2: its node's namespace)
+    own: ROS 2: the parameters of its own block alone (``params`` without the wildcard
+        blocks', which every node reads); ROS 1: ``params``
     """
 
     file: YamlFile
@@ -65,6 +68,7 @@ class Controller:
     params: YamlMap | None = None
     block_line: int | None = None
     namespace: str = ""
+    own: YamlMap | None = None
 
     @property
     def package(self) -> str:
@@ -148,6 +152,19 @@ class ControllerFile:
     blocks: list[ParameterBlock] = field(default_factory=list)  # ROS 2 node blocks
 
 
+def started(robot, controller: Controller) -> bool | None:
+    """Whether the robot is run with ``controller`` started: True when a launch file starts it,
+    False when the launch files that load its file start other controllers and not it, None
+    when nothing read says (a controller file is often a menu from which a launch file starts
+    a few).
+
+    The one place that question is answered: the rules whose finding matters only for a
+    started controller ask it here. Launch files are not read yet, so the answer is None
+    for every controller.
+    """
+    return None
+
+
 def controllers(robot) -> list[Controller]:
     """Every controller in the robot's controller YAML files (read once per robot)."""
     return [c for f in controller_files(robot) for c in f.controllers]
@@ -228,10 +245,16 @@ def _ros2(file: YamlFile, found: ControllerFile) -> None:
     for block in found.blocks:
         if block.name in WILDCARDS:
             wildcard = merged(wildcard, block.params)
-    own = {}
+    own: dict[str, ParameterBlock] = {}  # a node's blocks in every namespace, merged
     for block in found.blocks:
-        if block.name not in WILDCARDS:
-            own.setdefault(block.name, block)
+        if block.name in WILDCARDS:
+            continue
+        if block.name in own:
+            first = own[block.name]
+            own[block.name] = ParameterBlock(first.name, first.namespace,
+                                             merged(first.params, block.params), first.line)
+        else:
+            own[block.name] = block
     declared: dict[str, Controller] = {}
     for block in found.blocks:
         for key, value in block.params.items():
@@ -247,6 +270,7 @@ def _ros2(file: YamlFile, found: ControllerFile) -> None:
     for name, controller in declared.items():
         block = own.get(name)
         controller.params = merged(wildcard, block.params) if block else wildcard
+        controller.own = block.params if block else None
         controller.block_line = block.line if block else None
     found.controllers.extend(declared.values())
 
@@ -258,7 +282,7 @@ def _ros1(file: YamlFile, skip: set[int]) -> list[Controller]:
     kind = data.get("type")
     if isinstance(kind, str) and "/" in kind:
         found.append(Controller(file, file.path.name.split(".")[0], kind, data.lines["type"], "ros1",
-                                params=data))
+                                params=data, own=data))
 
     def walk(node, path, depth):
         if not isinstance(node, YamlMap) or id(node) in seen or depth > _MAX_DEPTH:
@@ -270,7 +294,7 @@ def _ros1(file: YamlFile, skip: set[int]) -> list[Controller]:
             kind = value.get("type")
             if isinstance(kind, str) and "/" in kind:
                 found.append(Controller(file, str(key), kind, node.lines.get(key, node.line), "ros1",
-                                        params=value, namespace="/".join(path)))
+                                        params=value, namespace="/".join(path), own=value))
             walk(value, (*path, str(key)), depth + 1)
 
     walk(data, (), 0)

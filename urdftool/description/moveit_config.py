@@ -24,10 +24,27 @@ from dataclasses import dataclass, field
 from urdftool.description.documents import YamlFile, YamlList, YamlMap
 from urdftool.errors import available
 
-# Solvers that need the group to be one serial chain (moveit_kinematics: both build a KDL chain
-# and refuse a group for which JointModelGroup::isChain() is false).
+# Solvers that need the group to be one serial chain (moveit_kinematics: they build a KDL chain
+# and refuse a group for which JointModelGroup::isChain() is false; the cached one wraps KDL's).
 CHAIN_SOLVERS = ("kdl_kinematics_plugin/KDLKinematicsPlugin",
-                 "lma_kinematics_plugin/LMAKinematicsPlugin")
+                 "lma_kinematics_plugin/LMAKinematicsPlugin",
+                 "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin")
+# The kinematics plugins whose names are known, with where each is exported: moveit_kinematics'
+# plugin XML files (moveit/moveit2 main: kdl_, lma_, srv_ and cached_ik_kinematics_plugin
+# _description.xml; the same names in MoveIt 1), trac_ik (traclabs/trac_ik,
+# trac_ik_kinematics_plugin), bio_ik (TAMS-Group/bio_ik) and pick_ik (PickNikRobotics/pick_ik,
+# its USAGE.md). An IKFast plugin is generated per robot: any PACKAGE/IKFastKinematicsPlugin.
+SOLVERS = ("kdl_kinematics_plugin/KDLKinematicsPlugin", "lma_kinematics_plugin/LMAKinematicsPlugin",
+           "srv_kinematics_plugin/SrvKinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedSrvKinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedTRACKinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedUR3KinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedUR5KinematicsPlugin",
+           "cached_ik_kinematics_plugin/CachedUR10KinematicsPlugin",
+           "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin", "bio_ik/BioIKKinematicsPlugin",
+           "pick_ik/PickIkPlugin")
+IKFAST = "IKFastKinematicsPlugin"
 SOLVER_NUMBERS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 # joint_limits_interface (ROS 1) and joint_limits (ROS 2) keys
 LIMIT_FLAGS = {"has_position_limits": ("min_position", "max_position"),
@@ -195,6 +212,8 @@ class ControllerEntry:
     type: str
     joints: list = field(default_factory=list)  # (name, line)
     joints_line: int = 0
+    action_ns: str | None = None  # None when not written
+    action_line: int = 0
 
 
 def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tuple[int, str]]]:
@@ -215,9 +234,11 @@ def _entry(file, name, block: YamlMap, line) -> tuple[ControllerEntry | None, li
     if not isinstance(joints, YamlList):
         return None, [(block.lines.get("joints", line), f"MoveIt controller '{name}' needs a "
                        "'joints:' list")]
+    action = block.get("action_ns")
     entry = ControllerEntry(file, str(name), line, str(block.get("type", "")),
                             [(str(j), at) for j, at in zip(joints, joints.lines)],
-                            block.lines["joints"])
+                            block.lines["joints"], None if action is None else str(action),
+                            block.lines.get("action_ns", line))
     return entry, []
 
 

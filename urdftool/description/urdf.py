@@ -166,6 +166,16 @@ EXTENSION_VOCABULARY: dict[str, tuple[str, ...]] = {
 
 
 
+def version_problem(text: str) -> str | None:
+    """Why ``text`` is no ``<robot version>`` urdfdom reads (MAJOR.MINOR, 1.0 to 1.2), or None."""
+    major, dot, minor = text.strip().partition(".")
+    if not dot or not major.isdigit() or not minor.isdigit():
+        return f"version '{text}' is not of the form MAJOR.MINOR (e.g. 1.0)"
+    if not (1, 0) <= (int(major), int(minor)) <= (1, 2):
+        return f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"
+    return None
+
+
 def is_xacro(tag) -> bool:
     """Whether an element tag (lxml: ``{uri}local``, or a raw ``xacro:`` name) is xacro's."""
     return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag

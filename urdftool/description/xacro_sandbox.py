@@ -73,9 +73,17 @@ def check_name(name: str, what: str = "attribute") -> None:
         raise SandboxViolation(f"{what} '{name}' is not allowed in xacro expressions")
 
 
+def _private_name(name: str) -> bool:
+    """A name (not an attribute) an expression may not use: a dunder like ``__import__`` or
+    ``__builtins__``. One leading underscore is a plain xacro property (``_ixx`` in HEBI's
+    end_effector.xacro, ``_tmp_`` in Shadow's hand): names reach only the symbol table, where
+    nothing else starts with an underscore; attributes (``x._y``) stay refused."""
+    return name.startswith("__")
+
+
 class _Validator(ast.NodeVisitor):
     def visit_Name(self, node):
-        if node.id.startswith("_"):
+        if _private_name(node.id):
             raise SandboxViolation(f"name '{node.id}' is not allowed in xacro expressions")
 
     def visit_Attribute(self, node):
@@ -93,12 +101,12 @@ class _Validator(ast.NodeVisitor):
             raise SandboxViolation(f"assigning to {what} is not allowed in xacro expressions")
 
     def visit_keyword(self, node):
-        if node.arg is not None and node.arg.startswith("_"):
+        if node.arg is not None and _private_name(node.arg):
             raise SandboxViolation(f"keyword '{node.arg}' is not allowed in xacro expressions")
         self.generic_visit(node)
 
     def visit_arg(self, node):
-        if node.arg.startswith("_"):
+        if _private_name(node.arg):
             raise SandboxViolation(f"parameter '{node.arg}' is not allowed in xacro expressions")
 
     def visit_Constant(self, node):

@@ -28,3 +28,31 @@ def root_link(robot) -> str:
         raise TreeError(what, robot.root)
     return roots[0]
 
+
+
+def pair_key(one: str, two: str) -> tuple[str, str]:
+    """A pair of links as MoveIt stores it: the smaller name (byte order) first."""
+    return (one, two) if one.encode() <= two.encode() else (two, one)
+
+
+def adjacent_pairs(robot, with_geometry: set[str]) -> set[tuple[str, str]]:
+    """Pairs of the links ``with_geometry`` joined by a joint, looking through links that have
+    no geometry (MoveIt's Setup Assistant's "Adjacent")."""
+    neighbours: dict[str, set[str]] = {name: set() for name in robot.links}
+    for parent, children in children_by_link(robot).items():
+        for _, child in children:
+            neighbours.setdefault(parent, set()).add(child)
+            neighbours.setdefault(child, set()).add(parent)
+    result = set()
+    for start in with_geometry:
+        seen, stack = {start}, [start]
+        while stack:
+            for other in neighbours.get(stack.pop(), ()):
+                if other in seen:
+                    continue
+                seen.add(other)
+                if other in with_geometry:
+                    result.add(pair_key(start, other))
+                else:
+                    stack.append(other)
+    return result

@@ -4,7 +4,10 @@ A rule is one function that yields ``(where, message)``, or ``(where, message, f
 can say how to remove the finding (a :class:`~urdftool.diagnostics.Fix`, built with
 :mod:`urdftool.lint.fixes`): ``where`` is an lxml element of the robot, a
 :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
-The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
+The engine, not the rule, stamps the code, name, severity and location. A rule's severity is
+what it reports when the defect is certain; a finding that holds only under a condition the
+rule cannot decide (whether a launch file starts the controller) is yielded as ``(where,
+message, fix, severity)`` with a lower severity, and its message names the condition. The rule's docstring is
 its documentation: a first-line summary, then why it matters, then examples (the README table and
 ``urdftool rules CODE`` are generated from it).
 
@@ -52,6 +55,7 @@ FAMILIES = {
 TARGET_DECADES = {"U92": "mujoco", "U93": "pybullet", "U94": "drake", "U95": "gz",
                   "U96": "gazebo", "U97": "isaac", "U98": "pinocchio"}
 _CODE = re.compile(r"U\d{3}")
+_RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 
 @dataclass(frozen=True)
@@ -78,9 +82,16 @@ class Rule:
         """The target (``check --target``) this rule is about, or None for a rule of every run."""
         return TARGET_DECADES.get(self.code[:3])
 
-    def finding(self, message: str, location: Location, fix: Fix | None = None) -> Finding:
-        """A finding of this rule at ``location``, with the fix that would remove it if any."""
-        return Finding(self.code, self.name, self.severity, message, location, fix, self.target)
+    def finding(self, message: str, location: Location, fix: Fix | None = None,
+                severity: Severity | None = None) -> Finding:
+        """A finding of this rule at ``location``, with the fix that would remove it if any;
+        ``severity`` lowers the rule's for a finding that holds only under a condition (it is
+        never raised: ValueError)."""
+        if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
+            raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
+                             f"more severe ({Severity(severity).value})")
+        return Finding(self.code, self.name, Severity(severity or self.severity), message, location,
+                       fix, self.target)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -32,10 +32,11 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
-def stamp(rule: Rule, where, message: str, robot, fix=None) -> Finding:
-    """A finding for ``rule`` at ``where`` (element, Location or None), with its fix if any."""
+def stamp(rule: Rule, where, message: str, robot, fix=None, severity=None) -> Finding:
+    """A finding for ``rule`` at ``where`` (element, Location or None), with its fix if any and
+    its severity when lower than the rule's (a condition the rule cannot decide)."""
     location = where if isinstance(where, Location) else robot.locate(where)
-    return rule.finding(message, location, fix)
+    return rule.finding(message, location, fix, severity)
 
 
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
@@ -91,8 +92,8 @@ def _run_rules(robot, allows) -> list[Finding]:
         if rule.check is None or not allows(rule.code):
             continue
         try:
-            for where, message, *fix in rule.check(robot):
-                findings.append(stamp(rule, where, message, robot, *fix))
+            for where, message, *rest in rule.check(robot):
+                findings.append(stamp(rule, where, message, robot, *rest))
         except MemoryError:
             raise  # over the memory budget: the runner reports it (U018)
         except ImportError as error:  # a lint-only install: say what did not run, and why

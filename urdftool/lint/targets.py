@@ -202,11 +202,14 @@ class _Answered(Exception):
 
 
 class _TopLevelTags:
-    """lxml parser target: answers 'robot' at a root other than <robot> or at a child of
-    <robot> that is not a definition, 'srdf' at a child only an SRDF has."""
+    """lxml parser target: answers 'robot' at a child of the root that is not a definition,
+    'srdf' at a child only an SRDF has. A root other than <robot> holding only definitions
+    is a macro library too: xacro's includes ignore the root element, and pre-Groovy macro
+    files were written ``<root xmlns:xacro=...>`` (mas-group/youbot_description's sensors);
+    with anything else, or nothing, it is checked (and its root reported)."""
 
     def __init__(self):
-        self.depth, self.seen_robot = 0, False
+        self.depth, self.seen_robot, self.other_root = 0, False, False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -214,7 +217,8 @@ class _TopLevelTags:
             return
         name = _local_name(tag)
         if self.depth == 1 and name != "robot":
-            raise _Answered("robot")
+            self.other_root = True
+            return
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")

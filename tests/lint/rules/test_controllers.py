@@ -28,12 +28,15 @@ ROS2_YAML = """\
         interface_name: {claim}
         state_interfaces: [position]
     """
+# ROS2_YAML sets both command_interfaces and interface_name for whichever class it holds: the
+# one the class does not read is U632's business, not these tests'.
+ONLY_U60 = ("U5", "U60", "U61", "U7", "U8")
 
 
 def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
     robot = HEAD_ROBOT.format(body=ROS2.format(iface="velocity"))
     yaml = ROS2_YAML.format(type="joint_trajectory_controller/JointTrajectoryController", claim="position")
-    found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml}, select=ONLY_U60)
     assert found == [("c.yaml", 10, "U604")]
     assert "offers velocity; set command_interfaces to [velocity]" in findings[0].message
 
@@ -41,24 +44,26 @@ def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
 def test_ros2_forward_command_controller_uses_interface_name(tmp_path):
     robot = HEAD_ROBOT.format(body=ROS2.format(iface="effort"))
     yaml = ROS2_YAML.format(type="forward_command_controller/ForwardCommandController", claim="effort")
-    assert check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})[0] == []
+    assert check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml}, select=ONLY_U60)[0] == []
 
 
 def test_ros1_namespaced_layout_and_prefixless_interface(tmp_path):
     robot = HEAD_ROBOT.format(body=TX.format(iface="EffortJointInterface"))
     yaml = """\
         robot:
-          joint_state_controller: {type: joint_state_controller/JointStateController}
+          joint_state_controller: {type: joint_state_controller/JointStateController, publish_rate: 50}
           head_controller:
             type: effort_controllers/JointPositionController
             joint: head_joint
+            pid: {p: 10.0}
           cam_controller:
             type: effort_controllers/JointPositionController
             joint: cam_joint
+            pid: {p: 10.0}
         """
     found, _ = check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})
     # the bare name still offers effort (U508 only asks for the prefix)
-    assert found == [("c.yaml", 8, "U603"), ("robot.urdf", 9, "U508")]
+    assert found == [("c.yaml", 9, "U603"), ("robot.urdf", 9, "U508")]
 
 
 def test_moveit_controller_list_joints_are_checked(tmp_path):
@@ -76,7 +81,7 @@ def test_moveit_controller_list_joints_are_checked(tmp_path):
 
 def test_roslaunch_substitutions_in_joint_names_are_not_checked(tmp_path):
     robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
-    yaml = ("jsc: {type: joint_state_controller/JointStateController}\n"
+    yaml = ("jsc: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
             "c: {type: position_controllers/JointGroupPositionController, joints: [$(arg prefix)head_joint]}\n")
     assert check_folder(tmp_path, {"robot.urdf": robot, "config/c.yaml": yaml})[0] == []
 
@@ -179,3 +184,19 @@ def test_a_ros1_class_in_a_ros2_file_names_the_ros2_class():
     assert ("position_controllers/JointPositionController is a ROS 1 (ros_control) class, and the "
             "file has ros__parameters, so it is a ROS 2 parameter file; ROS 2 (ros2_control) has "
             "position_controllers/JointGroupPositionController") in messages
+
+
+def test_moveit2_parallel_gripper_command_is_a_moveit_type(tmp_path):
+    # moveit_simple_controller_manager (moveit2 main) knows ParallelGripperCommand
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = """\
+        moveit_simple_controller_manager:
+          controller_names: [gripper]
+          gripper:
+            type: ParallelGripperCommand
+            action_ns: gripper_cmd
+            joints: [head_joint]
+        """
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "other/c.yaml": yaml},
+                            controllers=[str(tmp_path / "other/c.yaml")], select=("U606",))
+    assert found == []

@@ -107,15 +107,16 @@ def test_diff_drive_plugin_wheels_count_as_actuated(tmp_path):
         "</robot>", '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>\n'
                     '<link name="h"/><joint name="hj" type="continuous"><parent link="base_link"/>'
                     '<child link="h"/></joint>\n</robot>')
-    found, _ = check_folder(tmp_path, {"robot.urdf": robot})
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U5", "U60", "U61"))
     assert found == [("robot.urdf", 13, "U507")]  # hj only
 
 
 def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):
     robot = WHEELS.format(filename="libgazebo_ros_control.so", tags="").replace("</robot>", """
       <ros2_control name="s" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>
-        <joint name="lj"><command_interface name="velocity"/></joint>
-        <joint name="rj"><command_interface name="velocity"/></joint></ros2_control>
+        <joint name="lj"><command_interface name="velocity"/><state_interface name="velocity"/></joint>
+        <joint name="rj"><command_interface name="velocity"/><state_interface name="velocity"/></joint>
+      </ros2_control>
     </robot>""")
     found, findings = check_folder(tmp_path, {"robot.urdf": robot})
     assert found == [("robot.urdf", 9, "U618")]

@@ -114,3 +114,84 @@ def test_kinematics_yaml_in_the_robots_config_folder_with_the_srdf_beside_the_ro
              "config/joint_limits.yaml": "joint_limits:\n  nope: {has_velocity_limits: true}\n"}
     # the backwards chain is found; a joint_limits.yaml outside the SRDF's folder is not MoveIt's
     assert check_folder(tmp_path, files, select=("U81",))[0] == [("robot.srdf", 3, "U814")]
+
+
+def _kinematics(tmp_path, solver):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "kinematics.yaml": f"head:\n  kinematics_solver: {solver}\n"}
+    return check_folder(tmp_path, files, select=("U819",))[0]
+
+
+def test_kinematics_solver_names(tmp_path):
+    assert _kinematics(tmp_path / "a", "kdl_kinematics_plugin/KDLKinematicPlugin") == [("kinematics.yaml", 2, "U819")]
+    assert _kinematics(tmp_path / "b", "kdl_kinematics_plugin/Other") == [("kinematics.yaml", 2, "U819")]
+    for fine in ("pick_ik/PickIkPlugin", "r_head_ikfast_plugin/IKFastKinematicsPlugin",
+                 "ur_kinematics/UR5KinematicsPlugin", "vendor_ik/VendorPlugin"):
+        assert _kinematics(tmp_path / fine.split("/")[0], fine) == [], fine
+
+
+def _controllers(tmp_path, ros_control, moveit, select=("U820", "U821")):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "config/controllers.yaml": ros_control,
+             "moveit_controllers.yaml": moveit}
+    return check_folder(tmp_path, files, select=select)
+
+
+GRIPPER = "g:\n  type: position_controllers/GripperActionController\n  joint: head_joint\n"
+
+
+def test_moveit_action_and_type_against_the_served_action(tmp_path):
+    moveit = ("controller_list:\n  - name: g\n    action_ns: gripper_action\n    type: FollowJointTrajectory\n"
+              "    joints: [head_joint]\n")
+    found, findings = _controllers(tmp_path, GRIPPER, moveit)
+    assert found == [("moveit_controllers.yaml", 2, "U820"), ("moveit_controllers.yaml", 3, "U820")]
+    assert "write action_ns: gripper_cmd" in findings[1].message and "write type: GripperCommand" in findings[0].message
+    right = ("controller_list:\n  - name: g\n    action_ns: gripper_cmd\n    type: GripperCommand\n"
+             "    joints: [head_joint]\n")
+    assert _controllers(tmp_path / "b", GRIPPER, right)[0] == []
+
+
+def test_moveit_namespace_against_the_controller_yamls(tmp_path):
+    nested = "robot1:\n" + "".join(f"  {line}\n" for line in GRIPPER.splitlines())
+    moveit = ("controller_list:\n  - name: {name}\n    action_ns: gripper_cmd\n    type: GripperCommand\n"
+              "    joints: [head_joint]\n")
+    found, findings = _controllers(tmp_path / "a", nested, moveit.format(name="g"))
+    assert found == [("moveit_controllers.yaml", 2, "U821")] and "unless move_group runs in /robot1" in findings[0].message
+    assert _controllers(tmp_path / "b", nested, moveit.format(name="robot1/g"))[0] == []
+    assert _controllers(tmp_path / "c", GRIPPER, moveit.format(name="g"))[0] == []
+
+
+ARM = """<robot name="r">
+  <link name="base_link"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="upper"><collision><origin xyz="0 0 0.25"/><geometry><box size="0.06 0.06 {length}"/></geometry></collision></link>
+  <link name="flange"/>
+  <link name="lower"><collision><origin xyz="0 0 0.15"/><geometry><box size="0.05 0.05 0.2"/></geometry></collision></link>
+  <joint name="shoulder" type="revolute"><parent link="base_link"/><child link="upper"/>
+    <origin xyz="0 0 0.05"/><axis xyz="1 0 0"/><limit lower="-1.6" upper="1.6" effort="5" velocity="2"/></joint>
+  <joint name="mount" type="fixed"><parent link="upper"/><child link="flange"/><origin xyz="0 0 0.4"/></joint>
+  <joint name="elbow" type="revolute"><parent link="flange"/><child link="lower"/>
+    <axis xyz="1 0 0"/><limit lower="-2" upper="2" effort="5" velocity="2"/></joint>
+</robot>
+"""
+
+
+def _srdf(tmp_path, length, entries):
+    srdf = '<robot name="r">\n' + "".join(
+        f'<disable_collisions link1="{a}" link2="{b}" reason="{r}"/>\n' for a, b, r in entries) + "</robot>\n"
+    return check_folder(tmp_path, {"robot.urdf": ARM.format(length=length), "robot.srdf": srdf},
+                        select=("U810", "U811", "U822", "U823"))
+
+
+def test_adjacency_looks_through_links_without_geometry(tmp_path):
+    # upper and lower are joined through flange, which has no geometry: Adjacent is right
+    entries = [("base_link", "upper", "Adjacent"), ("lower", "upper", "Adjacent")]
+    assert _srdf(tmp_path / "a", 0.4, entries)[0] == []
+    found, findings = _srdf(tmp_path / "b", 0.4, [("base_link", "lower", "Adjacent")])
+    assert found == [("robot.srdf", 2, "U822")] and "3 joints apart" in findings[0].message
+
+
+def test_adjacent_overlap_without_an_entry_and_its_fix(tmp_path):
+    found, findings = _srdf(tmp_path, 0.5, [("base_link", "upper", "Adjacent")])
+    assert found == [("robot.srdf", 1, "U823")]  # and no U811: the pair is adjacent
+    [edit] = findings[0].fix.edits
+    assert edit.text.strip() == '<disable_collisions link1="lower" link2="upper" reason="Adjacent"/>'
+    # disabled as Never, the adjacent overlap is no U810 either (contact at a joint is expected)
+    assert _srdf(tmp_path / "b", 0.5, [("base_link", "upper", "Adjacent"), ("lower", "upper", "Never")])[0] == []

@@ -19,7 +19,7 @@ def codes(tmp_path, body):
 
 def test_ros2_form_transmission_inside_ros2_control(tmp_path):
     body = """<ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
-      <joint name="head_joint"><command_interface name="position"/></joint>
+      <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint>
       <transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>
         <actuator name="a" role="a"/><joint name="head_joint" role="j"><mechanical_reduction>0</mechanical_reduction></joint>
       </transmission></ros2_control>"""
@@ -50,7 +50,7 @@ def test_unactuated_joint_with_ros2_control_but_not_mimic(tmp_path):
     body = """<link name="f"/><joint name="finger" type="revolute"><parent link="head"/><child link="f"/>
       <axis xyz="0 0 1"/><limit lower="0" upper="1" effort="1" velocity="1"/><mimic joint="head_joint"/></joint>
       <ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
-      <joint name="head_joint"><command_interface name="position"/></joint></ros2_control>"""
+      <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint></ros2_control>"""
     assert codes(tmp_path, body) == []
 
 
@@ -86,7 +86,7 @@ def test_unknown_interface_on_a_ros2_robot_says_ros2_control_does_not_read_it(tm
         <joint name="head_joint"><hardwareInterface>hardware_interface/PositionInterface</hardwareInterface></joint>
         <actuator name="m"/></transmission>
       <ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
-        <joint name="head_joint"><command_interface name="position"/></joint></ros2_control>""")
+        <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint></ros2_control>""")
     _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U503",))
     assert [f.code for f in findings] == ["U503"]
     assert "ros2_control does not read this ROS 1 transmission" in findings[0].message

@@ -7,6 +7,7 @@ from urdftool.description.actuation import (command_interfaces, interface_kind, 
                                             ros2_state_interfaces, transmission_joints, transmissions)
 from urdftool.description.companions import companions
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
+from urdftool.description import controllers as described
 from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
 from urdftool.errors import available
 from urdftool.lint.catalogue import Severity, rule
@@ -17,8 +18,28 @@ def _substituted(name: str) -> bool:
     return "$(" in name
 
 
-def _label(controller: Controller) -> str:
+def label(controller: Controller) -> str:
     return f"controller '{controller.name}' ({controller.type or 'no type'})"
+
+
+_label = label
+
+
+def if_started(robot, controller: Controller, consequence: str) -> tuple[Severity | None, str]:
+    """How bad a defect is that matters only when ``controller`` runs (it fails to configure,
+    it commands nothing), and how to say so: an error stating ``consequence`` when the launch
+    files start it; a warning stating it under the condition ("if 'x' is started, ...") when
+    nothing says whether they do (a controller file is often a menu from which a launch file
+    starts a few); None when they are known not to start it.
+
+    Every severity decision about a controller that may or may not run goes through here
+    (:func:`urdftool.description.controllers.started` answers the question)."""
+    answer = described.started(robot, controller)
+    if answer is False:
+        return None, consequence
+    if answer:
+        return Severity.ERROR, consequence
+    return Severity.WARNING, f"if '{controller.name}' is started, {consequence}"
 
 
 def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
@@ -227,6 +248,10 @@ def controller_unknown_class(robot):
     """A controller's ``type`` is not a class of its controller manager's ROS version.
 
     The controller manager cannot load it ("Loader for controller 'x' not found").
+    A class only ROS 2 distributions past their end of life export
+    (``joint_state_controller/JointStateController``, Foxy's name of the joint state broadcaster
+    and ROS 1's class) is a warning: it loads on Foxy only. Which distribution exports which
+    class is read from ros2_controllers' plugin files (``urdftool/data/ros2_controllers.json``).
     A file with ``ros__parameters`` is read by ROS 2's controller_manager, any other by ROS 1's
     ros_control; each has its own classes (ROS 1's
     ``position_controllers/JointPositionController`` is ROS 2's
@@ -246,7 +271,12 @@ def controller_unknown_class(robot):
                     f"MoveIt controller '{controller.name}' has type '{controller.type}'; MoveIt's "
                     f"simple controller manager knows {' and '.join(MOVEIT_TYPES)}")
             continue
-        if controller.cls is not None or not known_package(controller.type):
+        if controller.cls is not None:
+            retired = _end_of_life(controller)
+            if retired:
+                yield controller.file.at(controller.line), retired, None, Severity.WARNING
+            continue
+        if not known_package(controller.type):
             continue
         other = 3 - controller.ros
         if lookup(controller.type, other) is not None:
@@ -261,48 +291,95 @@ def controller_unknown_class(robot):
                 f"{available('classes', controller.type, classes(controller.ros))}")
 
 
+def _end_of_life(controller: Controller) -> str | None:
+    """Why a ROS 2 class only distributions past their end of life export is a problem."""
+    from urdftool.description import controller_parameters as schema
+
+    if controller.ros != 2:
+        return None
+    found = schema.ros2_class_distributions(controller.type)
+    if not found or any(d not in schema.END_OF_LIFE for d in found):
+        return None
+    instead = COUNTERPARTS.get((2, controller.type))
+    also = (f"; ROS 1 has a class of that name, and it is not ROS 2's" if lookup(controller.type, 1)
+            else "")
+    return (f"{controller.type} is a class of ROS 2 {' and '.join(d.capitalize() for d in found)} only "
+            f"(end of life){also}: the controller manager of later distributions cannot load it"
+            + (f"; use {instead}" if instead else ""))
+
+
 @rule("U607", "controller-missing-parameter", Severity.ERROR)
 def controller_missing_parameter(robot):
     """A controller lacks a parameter its class needs, or writes it under the other ROS's key.
 
-    ROS 2 controllers read their parameters from their own ``NAME: ros__parameters:`` block
-    (or a ``/**`` block); a controller declared in the controller_manager without one has
-    none. ROS 2's classes read ``joints:`` (a list) where ROS 1's single-joint controllers read
-    ``joint:`` (ROS 1's ``position_controllers/JointPositionController`` ignores a ``joints:``
-    list); joint_trajectory_controller needs ``joints``, ``command_interfaces`` and
-    ``state_interfaces``; diff_drive_controller its wheel names, ``wheel_separation`` and
-    ``wheel_radius``.
+    What a class needs is read from the controllers' own definitions (see
+    :mod:`urdftool.description.controller_parameters`): a ros2_controllers parameter without a
+    default, or whose default its own validation refuses (``joints: []`` with ``size_gt``), in
+    every ROS 2 distribution that has the class; what ROS 1's ros_controllers refuse to start
+    without (``publish_rate`` of joint_state_controller, the ``pid`` or ``gains/JOINT`` of a
+    controller closing a loop in software); and the checks the controllers' code makes beyond
+    that (forward_command_controller's ``joints``). ROS 2 controllers read their parameters
+    from their own ``NAME: ros__parameters:`` block (or a ``/**`` block); a controller declared
+    in the controller_manager without one has none. ROS 2's classes read ``joints:`` (a list)
+    where ROS 1's single-joint controllers read ``joint:``.
 
-    Bad: ``head_controller: {type: position_controllers/JointPositionController, joints: [head]}``
-    Good: ``joint: head``
+    An error when the controller is started; a warning saying "if it is started" while that
+    is not known (a controller file is often a menu).
+
+    Bad: ``joint_state_controller: {type: joint_state_controller/JointStateController}``
+    (ROS 1, no ``publish_rate``); ``head_controller: {type:
+    position_controllers/JointPositionController, joints: [head]}``
+    Good: ``publish_rate: 50``; ``joint: head``
     """
+    from urdftool.description import controller_parameters as schema
+
     blocks = {block.name for read in controller_files(robot) for block in read.blocks}
+    flat = {name for read in controller_files(robot) for name in _flat_blocks(read)}
     for controller in controllers(robot):
+        if controller.layout == "moveit":
+            continue
         known = controller.cls
-        if known is None:
+        needed = dict.fromkeys(known.required if known else ())
+        needed.update(schema.required(controller.type, controller.ros, controller.own))
+        if known is None and not needed:
+            continue
+        severity, condition = if_started(robot, controller, "it fails to configure")
+        if severity is None:
             continue
         params = controller.params or {}
         if controller.layout == "ros2" and controller.block_line is None and controller.name not in blocks:
-            if known.required:
+            if needed and controller.name not in flat:  # a block without ros__parameters: U633
                 yield controller.file.at(controller.line), (
                     f"{_label(controller)} is declared but has no '{controller.name}: "
-                    f"ros__parameters:' block, and {known.name.split('/')[-1]} needs "
-                    f"{', '.join(known.required)}; add the block")
+                    f"ros__parameters:' block, and {controller.type.split('/')[-1]} needs "
+                    f"{', '.join(n for n in needed if '__map_' not in n)}; add the block ({condition})"), \
+                    None, severity
             continue
         misplaced = set()
-        for key, shape in known.joints.items():
+        for key, shape in (known.joints.items() if known else ()):
             other = {"joints": "joint", "joint": "joints"}.get(key)
             if key not in params and other in params and other not in known.joints:
                 misplaced.add(key)
                 reads = ("joints: (a list)" if key == "joints" else "joint: (one name)")
                 yield controller.file.at(controller.where(other)), (
                     f"{_label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
-                    f"its {other}: is ignored; write {key}: instead")
-        missing = [key for key in known.required if key not in params and key not in misplaced]
+                    f"its {other}: is ignored; write {key}: instead ({condition})"), None, severity
+        missing = [name for key in needed if key not in misplaced
+                   for name in schema.expand(key, params) if schema.lookup(params, name) is None]
         if missing:
             yield controller.file.at(controller.block_line or controller.line), (
-                f"{_label(controller)} has no {', '.join(missing)}; {known.name} does not "
-                "configure without " + ("it" if len(missing) == 1 else "them"))
+                f"{_label(controller)} has no {', '.join(missing)}; {controller.type} does not "
+                "configure without " + ("it" if len(missing) == 1 else "them") + f" ({condition})"), \
+                None, severity
+
+
+def _flat_blocks(read) -> list[str]:
+    """Top-level keys of a ROS 2 file that hold parameters without ros__parameters (U633)."""
+    data = read.file.data
+    if not read.file.ros2 or not isinstance(data, dict):
+        return []
+    return [str(key) for key, value in data.items()
+            if isinstance(value, dict) and "ros__parameters" not in value]
 
 
 _CONTROLLER_PARAMETERS = ("joints", "joint", "interface_name", "command_interfaces",
@@ -342,11 +419,12 @@ def trajectory_controller_settings(robot):
     """A joint trajectory controller's settings contradict its joints or themselves.
 
     Checked for joint_trajectory_controller (ROS 2) and ``*_controllers/JointTrajectoryController``
-    (ROS 1): a joint listed twice; ``constraints`` naming a joint the controller does not
-    command (its tolerance is never applied); ``constraints.goal_time`` below 0;
-    ``state_publish_rate`` or ``action_monitor_rate`` not above 0 (the controller refuses to
-    configure); a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry does not
-    offer.
+    (ROS 1): ``constraints`` naming a joint the controller does not command (its tolerance is
+    never applied); a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry
+    does not offer. ROS 1 (whose parameters are declared nowhere): a joint listed twice;
+    ``constraints.goal_time`` below 0; ``state_publish_rate`` or ``action_monitor_rate`` not
+    above 0 (the controller refuses to configure). ROS 2 declares these limits with the
+    parameters: U631 checks them against ros2_controllers' own definitions.
 
     Bad: ``constraints: {elbw: {goal: 0.1}}`` for ``joints: [shoulder, elbow]``
     Good: ``constraints: {elbow: {goal: 0.1}}``
@@ -358,22 +436,23 @@ def trajectory_controller_settings(robot):
         params, at = controller.params or {}, controller.file.at
         joints = [ref for ref in controller.joints() if ref.key == "joints"]
         names = [ref.name for ref in joints]
+        declared = controller.ros == 2  # ROS 2 declares the limits below: U631
         for index, ref in enumerate(joints):
-            if ref.name in names[:index]:
+            if ref.name in names[:index] and not declared:
                 yield at(ref.line), f"{_label(controller)} lists joint '{ref.name}' twice; keep one"
         constraints = params.get("constraints")
         if isinstance(constraints, dict):
             for key, value in constraints.items():
                 where = at(constraints.lines.get(key, controller.line))
                 if key == "goal_time":
-                    if _number(value) is not None and _number(value) < 0:
+                    if _number(value) is not None and _number(value) < 0 and not declared:
                         yield where, (f"{_label(controller)}: constraints.goal_time is {value}; it "
                                       "must be 0 or more (0: no limit)")
                 elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
                         and not _substituted(str(key)):
                     yield where, (f"{_label(controller)}: constraints name '{key}', which is not one "
                                   f"of its joints; {available('joints', str(key), names)}")
-        for key in _RATES:
+        for key in () if declared else _RATES:
             value = _number(params.get(key))
             if value is not None and value <= 0:
                 yield at(controller.where(key)), (f"{_label(controller)}: {key} is {params[key]}; "

@@ -5,11 +5,13 @@ Mesh files are resolved, bounded and loaded by :mod:`urdftool.description.meshes
 
 from __future__ import annotations
 
+import math
+
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import child_list, first_child
-from urdftool.description.values import finite, number_tuple, parse_numbers
+from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
@@ -373,12 +375,33 @@ def _extent(mesh) -> float:
     return float(max(mesh.extents))
 
 
+def _link_spans(robot) -> dict[str, float]:
+    """Each link's span [m]: the longest offset of the joints at it (its parent joint's origin,
+    its child joints' origins), the scale a mesh of that link has."""
+    def compute():
+        spans: dict[str, float] = {}
+        for joint in robot.children("joint"):
+            length = math.hypot(*origin_pose(joint)[0])
+            for end in ("parent", "child"):
+                element = first_child(joint, end)
+                name = element.get("link") if element is not None else None
+                if name is not None and length > spans.get(name, 0.0):
+                    spans[name] = length
+        return spans
+    return robot.memo(_link_spans, compute)
+
+
 @rule("U413", "mesh-implausible-size", Severity.WARNING)
 def mesh_implausible_size(robot):
     """A mesh, after its ``scale``, is over 5 m or under 1 mm across: probably the wrong unit.
 
     CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
-    too big, and any inertia computed from the mesh is 10^6 too big.
+    too big, and any inertia computed from the mesh is 10^6 too big. A size outside that window
+    is a unit slip only when the rescaled mesh would fit its link: within 10 times the link's
+    span (the longest offset of the joints at the link). A 5 m boat hull whose thrusters sit
+    2.4 m from its origin (osrf/vrx's WAM-V), or a 0.5 mm marker at a fingertip 27 mm from its
+    knuckle (Unitree's BrainCo hand), is the size it means; a link with no joint offsets is
+    judged by the window alone.
 
     Fix (safe): the ``scale`` that brings it to a plausible size (x 0.001 or 0.01 for a mesh
     too large, x 1000 or 100 for one too small), written or multiplied into the one there.
@@ -397,6 +420,9 @@ def mesh_implausible_size(robot):
         elif 0 < extent < 0.001:
             factor = next((f for f in (1000.0, 100.0) if extent * f >= 0.001), None)
         else:
+            continue
+        span = _link_spans(robot).get(link.get("name"), 0.0)
+        if span > 0 and factor and not span / 10 <= extent * factor <= span * 10:
             continue
         where = f"link '{link.get('name')}' <{holder.tag}>: mesh '{shape.get('filename')}'"
         if factor is None:

@@ -10,7 +10,11 @@ from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
 from urdftool.description.values import finite, number_tuple, parse_numbers
 
-UNIT_TOLERANCE = 1e-6
+# An axis is a unit vector when its length is within this of 1. CAD exporters round each
+# component to 5 or 6 significant digits, which leaves the length a few 1e-6 off (moveo_ros,
+# nao_robot); an axis 1e-4 off scales the motion by 0.01 %, which no tool can feel, while the
+# mistakes worth a warning ("0 0 2", "1 1 0") are off by 0.4 or more.
+UNIT_TOLERANCE = 1e-4
 
 # (child tag, attribute, how many numbers) read as numbers in a joint
 NUMERIC_FIELDS = (
@@ -155,8 +159,10 @@ def axis_not_unit(robot):
     Some parsers normalise it and some do not, so the same joint value moves the robot by
     different amounts in different tools.
 
+    An axis within 1e-4 of unit length is one, as CAD exporters round it to 5 or 6 digits.
+
     Fix (safe): the axis divided by its length, written with as many digits as make it a unit
-    vector to 1e-6.
+    vector to 1e-5.
 
     Bad: ``<axis xyz="0 0 2"/>``
     Good: ``<axis xyz="0 0 1"/>``

@@ -4,6 +4,7 @@ The loader raises errors and records notes tagged with a kind; the engine turns 
 codes (``urdftool.lint.engine.LOAD_CODES`` and ``NOTE_CODES``). U015 and U018 are the runner's.
 """
 
+from urdftool.description.urdf import version_problem
 from urdftool.lint.catalogue import Severity, declare, rule
 
 U001 = declare("U001", "malformed-xml", Severity.ERROR, """
@@ -129,13 +130,9 @@ def unsupported_version(robot):
     Good: ``<robot name="r" version="1.0">`` or no version attribute
     """
     text = robot.root.get("version")
-    if text is None:
-        return
-    major, dot, minor = text.strip().partition(".")
-    if not dot or not major.isdigit() or not minor.isdigit():
-        yield robot.root, f"version '{text}' is not of the form MAJOR.MINOR (e.g. 1.0)"
-    elif not (1, 0) <= (int(major), int(minor)) <= (1, 2):
-        yield robot.root, f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"
+    problem = version_problem(text) if text is not None else None
+    if problem:
+        yield robot.root, problem
 
 
 U013 = declare("U013", "file-outside-root", Severity.WARNING, """

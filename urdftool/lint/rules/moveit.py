@@ -258,3 +258,233 @@ def moveit_controller_joints(robot):
         yield entry.file.at(entry.joints_line), (
             f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the ros_control "
             f"controller's joints ({', '.join(sorted(theirs))})")
+
+
+@rule("U819", "kinematics-solver-unknown", Severity.ERROR)
+def kinematics_solver_unknown(robot):
+    """kinematics.yaml names a solver plugin that is a near miss of a known one.
+
+    MoveIt loads the solver by its plugin name; a misspelt one fails ("According to the loaded
+    plugin descriptions the class ... does not exist") and the group gets no IK solver. Known
+    names: moveit_kinematics' (``kdl_kinematics_plugin/KDLKinematicsPlugin``,
+    ``lma_kinematics_plugin/LMAKinematicsPlugin``, ``srv_kinematics_plugin/SrvKinematicsPlugin``,
+    the ``cached_ik_kinematics_plugin`` ones), ``trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin``,
+    ``bio_ik/BioIKKinematicsPlugin``, ``pick_ik/PickIkPlugin``, and any
+    ``PACKAGE/IKFastKinematicsPlugin`` (generated per robot). A name of a known package with
+    another class, or close to a known name, is reported; another vendor's plugin is not.
+
+    Bad: ``kinematics_solver: kdl_kinematics_plugin/KDLKinematicPlugin``
+    Good: ``kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin``
+    """
+    import difflib
+
+    file, entries, _ = _kinematics(robot)
+    packages = {name.split("/")[0] for name in moveit.SOLVERS}
+    for entry in entries:
+        solver = entry.solver
+        if solver is None or solver in moveit.SOLVERS or solver.endswith(f"/{moveit.IKFAST}"):
+            continue
+        close = difflib.get_close_matches(solver, moveit.SOLVERS, n=1, cutoff=0.8)
+        if close or solver.split("/")[0] in packages:
+            hint = (f"did you mean '{close[0]}'?" if close else
+                    available("solvers", solver, moveit.SOLVERS))
+            yield file.at(entry.solver_line), (
+                f"group '{entry.group}': kinematics solver '{solver}' is no plugin MoveIt can load, so "
+                f"the group has no IK solver; {hint}")
+
+
+def _ros_control_by_name(robot) -> dict:
+    """The ros_control controllers (the controller model's), by name."""
+    from urdftool.description.controllers import controllers
+
+    found: dict = {}
+    for controller in controllers(robot):
+        if controller.layout != "moveit":
+            found.setdefault(controller.name, []).append(controller)
+    return found
+
+
+def _entry_namespace(entry) -> tuple[str, str]:
+    """(namespace, name) of a MoveIt controller entry's name (``/robot1/arm_controller``)."""
+    parts = [p for p in entry.name.split("/") if p]
+    return "/".join(parts[:-1]), parts[-1] if parts else entry.name
+
+
+@rule("U820", "moveit-controller-action", Severity.ERROR)
+def moveit_controller_action(robot):
+    """A MoveIt controller's ``action_ns`` or ``type`` is not the action its ros_control controller serves.
+
+    MoveIt sends goals to ``NAME/ACTION_NS``: joint_trajectory_controller serves
+    ``NAME/follow_joint_trajectory`` (type ``FollowJointTrajectory``), the gripper action
+    controllers ``NAME/gripper_cmd`` (``GripperCommand``; ROS 2's parallel gripper controller
+    ``ParallelGripperCommand``), in ROS 1 and ROS 2 alike. Another ``action_ns`` connects to
+    nothing ("Action client not connected"); another type sends the wrong action. Checked
+    for the controllers of ros_controllers/ros2_controllers MoveIt's list names. An error when
+    the controller is started; a warning saying "if it is started" while that is not known.
+
+    Bad: ``action_ns: joint_trajectory_action`` for a joint_trajectory_controller
+    Good: ``action_ns: follow_joint_trajectory``
+    """
+    from urdftool.description.controller_classes import action_served
+    from urdftool.lint.rules.controllers import if_started
+
+    declared = _ros_control_by_name(robot)
+    for entry in _moveit_controllers(robot)[0]:
+        namespace, name = _entry_namespace(entry)
+        for controller in declared.get(name, [])[:1]:
+            served = action_served(controller.type)
+            if served is None:
+                continue
+            kind, action = served
+            wrong = []
+            if entry.action_ns is not None and entry.action_ns.strip("/") != action:
+                wrong.append((entry.action_line, f"action_ns '{entry.action_ns}'", f"action_ns: {action}"))
+            if entry.type and entry.type != kind:
+                wrong.append((entry.line, f"type '{entry.type}'", f"type: {kind}"))
+            if not wrong:
+                continue
+            severity, condition = if_started(robot, controller, "MoveIt cannot execute through it")
+            if severity is None:
+                continue
+            for line, what, right in wrong:
+                yield entry.file.at(line), (
+                    f"MoveIt controller '{entry.name}': {what}, but {controller.type} serves "
+                    f"{name}/{action} ({kind}); write {right} ({condition})"), None, severity
+
+
+@rule("U821", "moveit-controller-namespace", Severity.WARNING)
+def moveit_controller_namespace(robot):
+    """A MoveIt controller's name is in another namespace than the ros_control controller of that name.
+
+    MoveIt resolves ``NAME/ACTION_NS`` in move_group's namespace. A ROS 1 controller YAML that
+    nests its controllers under a namespace (``robot1: arm_controller: ...``) loads them
+    there, and MoveIt's ``arm_controller`` reaches ``/robot1/arm_controller`` only when
+    move_group runs in ``/robot1`` too; ``/robot1/arm_controller`` in MoveIt's list and a
+    controller loaded at the top disagree the other way. Which namespaces the nodes run in is
+    up to the launch files: a warning that states the condition.
+
+    Bad: MoveIt ``name: arm_controller`` for ``robot1: arm_controller: {type: ...}``, move_group
+    outside ``/robot1``
+    Good: ``name: robot1/arm_controller``, or move_group in ``/robot1``
+    """
+    declared = _ros_control_by_name(robot)
+    for entry in _moveit_controllers(robot)[0]:
+        namespace, name = _entry_namespace(entry)
+        found = declared.get(name, [])
+        spaces = {c.namespace.strip("/") for c in found if c.layout == "ros1"}
+        if not spaces or namespace in spaces:
+            continue
+        theirs = sorted(spaces)[0]
+        mine = f"{namespace}/{name}" if namespace else name
+        condition = (f"unless move_group runs in /{theirs}" if not namespace else
+                     f"unless the two namespaces meet where the nodes run")
+        yield entry.file.at(entry.line), (
+            f"MoveIt controller '{entry.name}' is looked for as {mine} in move_group's namespace, and "
+            f"the controller YAML puts '{name}' under '{theirs or '/'}': MoveIt does not reach it "
+            f"{condition}; name it '{f'{theirs}/{name}' if theirs else name}' in MoveIt's list if "
+            "move_group runs at the top")
+
+
+def _with_geometry(robot) -> set:
+    """The links with collision geometry: the ones MoveIt's collision matrix pairs."""
+    return {name for name, link in robot.links.items() if link.find("collision/geometry") is not None}
+
+
+@rule("U822", "srdf-adjacent-not-adjacent", Severity.WARNING)
+def srdf_adjacent_not_adjacent(robot):
+    """The SRDF disables a pair as ``Adjacent``, and the two links are not adjacent in the tree.
+
+    The Setup Assistant writes ``reason="Adjacent"`` for links joined by a joint (or by a chain
+    of joints through links without collision geometry), whose contact is expected. A pair
+    that is not (the URDF changed since the SRDF was written, or the entry was copied from
+    another robot) stays disabled under a false reason: MoveIt never checks it, and a real
+    collision between the two is planned through. Said so when they also collide at the
+    default pose or a group state (checked with FCL as U810 does).
+
+    Bad: ``<disable_collisions link1="l_hand" link2="torso" reason="Adjacent"/>`` for a hand
+    two joints away from the torso
+    Good: no entry, or the reason the Setup Assistant gives on a fresh matrix
+    """
+    from urdftool.kinematics.tree import adjacent_pairs, pair_key
+    from urdftool.lint.rules.srdf import _overlaps, _srdf, _where
+
+    srdf = _srdf(robot)
+    entries = [e for e in srdf.root.iter("disable_collisions")
+               if e.get("reason") == "Adjacent"] if srdf is not None else []
+    if not entries:
+        return
+    geometry = _with_geometry(robot)
+    adjacent = adjacent_pairs(robot, geometry)
+    found = None
+    for element in entries:
+        names = (element.get("link1", ""), element.get("link2", ""))
+        pair = pair_key(*names)
+        if any(name not in robot.links for name in names) or pair in adjacent:
+            continue  # an unknown link: U804
+        if not all(name in geometry for name in names):
+            continue  # a link without collision geometry is in no pair MoveIt checks
+        if found is None:
+            found = _overlaps(robot, srdf) or {}
+        overlap = found.get(pair)
+        yield srdf.at(element.sourceline), (
+            f"{pair[0]} and {pair[1]} are disabled as Adjacent but no joint joins them "
+            f"({_path(robot, *pair)})" + (f", and they {_where(overlap)}" if overlap else "")
+            + ": MoveIt never checks the pair; remove the entry, or give the reason a fresh "
+            "collision matrix gives")
+
+
+def _path(robot, one: str, two: str) -> str:
+    """The joints between two links, as words."""
+    from urdftool.kinematics.tree import children_by_link
+
+    parent = {child: (joint, up) for up, children in children_by_link(robot).items()
+              for joint, child in children}
+
+    def chain(link):
+        found = [link]
+        while found[-1] in parent and len(found) <= len(parent):
+            found.append(parent[found[-1]][1])
+        return found
+
+    above_one, above_two = chain(one), chain(two)
+    common = next((link for link in above_one if link in above_two), None)
+    if common is None:
+        return "they are in different trees"
+    joints = above_one.index(common) + above_two.index(common)
+    return f"{joints} joints apart" + ("" if common in (one, two) else f", through {common}")
+
+
+@rule("U823", "srdf-adjacent-collision-not-disabled", Severity.WARNING)
+def srdf_adjacent_collision_not_disabled(robot):
+    """Two adjacent links overlap at the default pose or a group state, and the SRDF does not disable them.
+
+    MoveIt checks every pair the SRDF does not disable, adjacent ones included: the Setup
+    Assistant disables them as ``Adjacent``. Without the entry, links whose meshes overlap at
+    the joint between them put the robot in collision there ("Start state appears to be in
+    collision") and planning from it fails. Checked only when the robot has an SRDF, with FCL
+    at the default configuration and each group state (as U811 for the other pairs).
+
+    Fix (unsafe): add the entry MoveIt's Setup Assistant writes, ``reason="Adjacent"``, before
+    ``</robot>``.
+
+    Bad: ``upper_arm`` and ``forearm`` (joined by ``elbow``) overlapping at the elbow with no
+    entry
+    Good: ``<disable_collisions link1="forearm" link2="upper_arm" reason="Adjacent"/>``
+    """
+    from urdftool.lint.fixes import offer
+    from urdftool.lint.rules.srdf import _add_entry, _overlaps, _srdf, _where
+    from urdftool.kinematics.tree import pair_key
+
+    srdf = _srdf(robot)
+    if srdf is None:
+        return
+    listed = {pair_key(e.get("link1", ""), e.get("link2", "")) for e in srdf.root.iter("disable_collisions")}
+    for pair, overlap in sorted((_overlaps(robot, srdf) or {}).items()):
+        if not overlap.adjacent or pair in listed:
+            continue
+        element = overlap.poses[0][1]
+        yield offer(srdf.at(element.sourceline if element is not None else srdf.root.sourceline), (
+            f"{pair[0]} and {pair[1]} are adjacent and {_where(overlap)}, and the SRDF does not "
+            "disable the pair: MoveIt reports the robot in collision there; add <disable_collisions "
+            f"link1=\"{pair[0]}\" link2=\"{pair[1]}\" reason=\"Adjacent\"/>"),
+            f"disable {pair[0]} and {pair[1]} as Adjacent", _add_entry(srdf, pair, "Adjacent"), safe=False)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 
 from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
-                                       is_namespaced, is_xacro, where_valid)
+                                       is_namespaced, is_xacro, version_problem, where_valid)
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import child_list
 from urdftool.lint.catalogue import Severity, rule
@@ -133,7 +133,8 @@ def _walk_children(element, key: str, place: Place, found: list) -> None:
         elif tag in place.ignored:
             found.append(_Unknown(child, None, key, [], place.ignored[tag]))
         else:
-            found.append(_Unknown(child, None, key, _close(tag, place.names())))
+            close = [] if _metadata(child, key) else _close(tag, place.names())
+            found.append(_Unknown(child, None, key, close))
 
 
 # Per place of the vocabulary: the attribute names known there (a set, compared with each
@@ -142,6 +143,15 @@ _KNOWN = {key: frozenset(place.attributes) for key, place in VOCABULARY.items()}
 _KNOWN_CHILDREN = {key: {tag: (name, VOCABULARY[name], _KNOWN[name])
                          for tag, name in place.children.items()}
                    for key, place in VOCABULARY.items()}
+
+
+def _metadata(element, key: str) -> bool:
+    """Whether an element named like an attribute of its holder holds what that attribute
+    cannot: ``<version>2025-09-17_13-38-40</version>`` in ``<robot>`` (kroshu's KUKA robots) is
+    a build stamp, not a slip for ``version="1.0"``, so no effect (U022) rather than a
+    misspelling whose fix would make urdfdom refuse the robot."""
+    return key == "robot" and element.tag == "version" and \
+        version_problem(element.text or "") is not None
 
 
 def _zero(text) -> bool:

@@ -1,0 +1,145 @@
+"""Which Gazebo plugin a ``<plugin>`` element loads, and the child elements it reads, per version.
+
+The vocabularies are data (``urdftool/data/gazebo_plugins.json``), extracted from the plugins'
+C++ sources by ``scripts/extract_gazebo_plugins.py``: gazebo_ros_pkgs for ROS 1 (noetic-devel)
+and ROS 2 (ros2), gazebo_ros2_control and gz_ros2_control, and gz-sim's systems (Fortress,
+Harmonic, Ionic), each with the repository, branch and commit read. This module names the
+plugin an element loads, says what each version reads, and what the other version calls a
+name (ROS 1's ``leftJoint`` is ROS 2's ``left_joint``). It judges nothing.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from urdftool.description import data
+
+CLASSIC, GZ = "classic", "gz"
+_GZ_SYSTEM = re.compile(r"^(?:lib)?(?:gz-sim|ignition-gazebo|gz-sim-|ignition-gazebo-)\d*-(.+?)-system(?:\.so)?$")
+_CAMEL = re.compile(r"(?<=[a-z0-9])([A-Z])")
+
+# What ROS 2's gazebo_ros plugins read instead of a ROS 1 element that has no name of its own
+# there (gazebo_ros_pkgs' ROS 2 migration guides): the namespace and topic names go under <ros>.
+ROS2_INSTEAD = {"robotNamespace": "<ros><namespace>", "rosDebugLevel": "the --ros-args log level"}
+_TOPIC = re.compile(r"(?:[tT]opic(?:Name)?)$")
+
+
+@dataclass(frozen=True)
+class Plugin:
+    """The plugin a ``<plugin>`` element loads.
+
+    key: its library (``gazebo_ros_diff_drive``) or gz-sim system (``gz-sim:diff-drive``)
+    family: "classic" (Gazebo Classic) or "gz" (the new Gazebo)
+    versions: version -> the element names it reads there ("ros1"/"ros2" for Gazebo Classic's
+        ROS plugins; "fortress", "harmonic", "ionic" for gz-sim's systems, "ros2" for
+        gz_ros2_control)
+    hardware: the ros2_control hardware classes it can load (the *_ros2_control plugins)
+    source: where the vocabularies were read
+    """
+
+    key: str
+    family: str
+    versions: dict
+    hardware: tuple = ()
+    source: str = ""
+
+    @property
+    def names(self) -> set:
+        """Every element name some version reads."""
+        return set().union(*self.versions.values()) if self.versions else set()
+
+
+def _data() -> dict:
+    return data.load("gazebo_plugins.json")
+
+
+def plugin_key(filename: str) -> str | None:
+    """The data's key of a ``<plugin filename>`` (``libgazebo_ros_diff_drive.so``,
+    ``gz-sim-diff-drive-system``, ``libignition-gazebo6-diff-drive-system.so``), or None when
+    it is no plugin the data knows."""
+    name = filename.strip().rsplit("/", 1)[-1]
+    system = _GZ_SYSTEM.match(name)
+    if system:
+        key = f"gz-sim:{system.group(1)}"
+    else:
+        key = re.sub(r"^lib", "", re.sub(r"\.so$", "", name))
+    return key if key in _data()["plugins"] else None
+
+
+def plugin(element) -> Plugin | None:
+    """The plugin a ``<plugin>`` element loads, or None (a vendor's, or a misspelt one)."""
+    key = plugin_key(element.get("filename") or "")
+    if key is None:
+        return None
+    entry = _data()["plugins"][key]
+    sources = _data()["sources"]
+    read = [r for version in entry["versions"].values() for r in version["read"]]
+    source = "; ".join(f"{sources[r['source']]['repository']} {sources[r['source']]['ref']} "
+                       f"({sources[r['source']]['commit'][:12]})" for r in read)
+    return Plugin(key, entry["family"], {v: frozenset(e["tags"]) for v, e in entry["versions"].items()},
+                  tuple(entry.get("hardware", ())), source)
+
+
+def classic_counterpart(key: str) -> frozenset:
+    """The names Gazebo Classic's plugin doing the job of gz-sim system ``key`` reads (its
+    gazebo_ros_* namesake: ``gz-sim:diff-drive`` and ``gazebo_ros_diff_drive``), in any ROS."""
+    name = "gazebo_ros_" + key.split(":", 1)[-1].replace("-", "_")
+    entry = _data()["plugins"].get(name) if key.startswith("gz-sim:") else None
+    return frozenset(tag for version in entry["versions"].values() for tag in version["tags"]) \
+        if entry else frozenset()
+
+
+def near(name: str, reads) -> str | None:
+    """The name of ``reads`` that ``name`` is a slip of: the same but for case, or close (difflib
+    0.8) with a close last word (``wheelSeperation``, ``distalostionK1``, ``xyzOffsets``; not
+    ``odometry_rate`` for ``odometry_frame``)."""
+    import difflib
+
+    folded = {read.lower(): read for read in reads}
+    if name.lower() in folded:
+        return folded[name.lower()]
+    for candidate in difflib.get_close_matches(name, sorted(reads), n=3, cutoff=0.8):
+        mine, theirs = _last_word(name), _last_word(candidate)
+        if difflib.SequenceMatcher(None, mine, theirs).ratio() >= 0.75:
+            return candidate
+    return None
+
+
+def _last_word(name: str) -> str:
+    return re.split(r"_", snake(name))[-1]
+
+
+def control_plugins() -> dict[str, tuple[str, ...]]:
+    """Key of each Gazebo plugin that loads ros2_control hardware -> the classes it loads."""
+    return {key: tuple(entry["hardware"]) for key, entry in _data()["plugins"].items()
+            if entry.get("hardware")}
+
+
+def snake(name: str) -> str:
+    """``wheelSeparation`` -> ``wheel_separation``."""
+    return _CAMEL.sub(r"_\1", name).lower()
+
+
+def camel(name: str) -> str:
+    """``wheel_separation`` -> ``wheelSeparation``."""
+    head, *rest = name.split("_")
+    return head + "".join(part[:1].upper() + part[1:] for part in rest)
+
+
+def counterpart(name: str, reads: set, to: str) -> str | None:
+    """What a plugin reading ``reads`` (in version ``to``) calls the element ``name`` of the other
+    version, or None when it has no counterpart: ``leftJoint`` -> ``left_joint`` (ROS 2),
+    ``robotNamespace`` -> ``<ros><namespace>``, a topic name -> ``<ros><remapping>``."""
+    for candidate in (snake(name), camel(name), name.lower()):
+        if candidate in reads:
+            return candidate
+    folded = {read.lower(): read for read in reads}
+    if name.lower() in folded:  # <cameraname> for <cameraName>
+        return folded[name.lower()]
+    if to == "ros2" and "ros" in reads:
+        if name in ROS2_INSTEAD:
+            return ROS2_INSTEAD[name]
+        if _TOPIC.search(name):
+            return "<ros><remapping>"
+    return None
