@@ -50,6 +50,17 @@ def test_a_caster_wheels_hubcap_is_part_of_the_wheel(tmp_path):
     assert [(w.link, w.kind) for w in wheels(robot)] == [("caster_wheel", "wheel")]
 
 
+def test_the_mount_beside_a_caster_wheel_is_no_caster(tmp_path):
+    # andino: caster_base_link is a block fixed beside the swivel that holds the caster wheel
+    robot = load_text(tmp_path, f"""<robot name="r"><link name="base_link"/>
+      <link name="caster_base_link"><collision><geometry><box size="0.03 0.03 0.01"/></geometry>
+      </collision></link>{_joint("caster_base_joint", "base_link", "caster_base_link", kind="fixed")}
+      <link name="caster_rotation_link"/>{_joint("caster_rotation_joint", "base_link", "caster_rotation_link", axis="0 0 1")}
+      <link name="caster_wheel_link">{CYLINDER}</link>{_joint("caster_wheel_joint", "caster_rotation_link", "caster_wheel_link")}
+      </robot>""")
+    assert [(w.link, w.kind) for w in wheels(robot)] == [("caster_wheel_link", "wheel")]
+
+
 def test_no_wheel_on_an_arm_or_a_legged_robot(tmp_path):
     robot = load_text(tmp_path, f"""<robot name="r"><link name="base"/>
       <link name="lf_foot"><collision><geometry><sphere radius="0.02"/></geometry></collision>

@@ -13,8 +13,11 @@ A **wheel** is the child link of a joint that rolls it:
   still stands on the ground, but has no axle to judge.
 
 A **caster** is a link whose name has ``caster``/``castor``, that carries no wheel below it
-(a caster's swivel fork is not what touches the ground; the wheel in it is) and hangs below no
-wheel (a caster wheel's hubcap is part of the wheel). Names decide, not
+(a caster's swivel fork is not what touches the ground; the wheel in it is), hangs below no
+wheel (a caster wheel's hubcap is part of the wheel) and is not named as a caster's mount
+(``base``, ``mount``, ``holder``, ``plate``, ``bracket``, ``support``, ``housing``, ``fork``,
+``swivel``, ``rotation``, ``hub``, ``cap``: andino's caster_base_link is the block beside the
+wheel's swivel). Names decide, not
 shapes alone: a continuous joint with a cylinder is also a PR2 wrist or a spinning lidar, and
 no arm, gripper or foot is named a wheel. Legged robots' feet are never wheels or casters.
 
@@ -37,6 +40,8 @@ _WHEEL = re.compile(r"(?:^|[^a-z])(?:wheels?|tires?|tyres?)(?:$|[^a-z])")
 _NOT_WHEEL = re.compile(r"steer|suspension|hinge|pivot|swivel|mount|reaction|momentum|fly|"
                         r"knuckle|arm|fork|rocker|bogie|axle_joint_pos")
 _CASTER = re.compile(r"caster|castor")
+_NOT_CASTER = re.compile(r"base|mount|holder|plate|bracket|support|housing|fork|swivel|"
+                         r"rotation|hub|cap")
 FOOTPRINT = "base_footprint"
 
 
@@ -103,7 +108,7 @@ def _identify(robot) -> list[Wheel]:
         found[child] = Wheel(child, joint, "wheel", why, axis(joint) if moving else None)
     children = child_joints(robot)
     for name in robot.links:
-        if name in found or not _CASTER.search(name.lower()):
+        if name in found or not _CASTER.search(name.lower()) or _NOT_CASTER.search(_words(name)):
             continue
         if _carries_wheel(robot, name, found, children):
             continue  # the fork: the wheel below it touches the ground
