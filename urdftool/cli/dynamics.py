@@ -26,7 +26,8 @@ def dynamics(
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
-                                "joint over N random poses within limits (and the zero pose)."),
+                                "joint over the joint ranges: N random poses within limits (and "
+                                "the zero pose), then climbed from the worst to a maximum."),
     seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
     support: list[str] = typer.Option([], "--support", metavar="LINK",
                                       help="Standing on this link (repeatable: feet, wheels): "
@@ -41,8 +42,8 @@ def dynamics(
     package: list[str] = PackageOption,
 ) -> None:
     from urdftool.kinematics.configuration import ConfigError, joint_values
-    from urdftool.physics.dynamics import (DynamicsError, build, gravity_loads, gravity_variables,
-                                           state)
+    from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
+    from urdftool.physics.gravity_bound import worst_loads
     from urdftool.report import dynamics as render
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
@@ -70,7 +71,7 @@ def dynamics(
         from urdftool.report.progress import sampling_progress
 
         with sampling_progress(samples + 1, machine=output_format != "text") as moved:
-            loads = gravity_loads(model, samples, seed, progress=moved)
+            loads = worst_loads(model, samples, seed, progress=moved)
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

@@ -69,8 +69,11 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
         lines += ["", f"energy: K = {kinetic} J, P = {potential} J "
                       f"(m g z of the centre of mass), L = K - P = {lagrangian} J"]
     if loads:
-        lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
-                                          "random poses:", relevant)
+        refined = any(load.sampled is not None for load in loads)
+        title = (f"static gravity load over the joint ranges (the zero pose and {samples} random "
+                 "poses, then climbed to a maximum, exact along each joint):" if refined else
+                 f"static gravity load over the zero pose and {samples} random poses:")
+        lines += [""] + load_lines(loads, title, relevant)
     return "\n".join(lines) + "\n"
 
 
@@ -79,21 +82,25 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     whether every joint holds; relevant: joints whose values in the worst pose matter. A joint
     without an effort limit has no margin and is listed as not judged."""
     width = max((len(_text(load.joint)) for load in loads), default=5)
-    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
-                    f"{'margin':>10s}"]
+    refined = any(load.sampled is not None for load in loads)
+    sampled = f" {'sampled':>10s}" if refined else ""
+    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s}{sampled} "
+                    f"{'worst':>10s} {'margin':>10s}"]
     scale = _scale([value for load in loads for value in (load.zero_pose, load.worst)])
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
         effort, margin = (f"{number(load.effort):>8s}", f"{number(load.margin):>10s}") \
             if load.limited else (f"{'none':>8s}", f"{'-':>10s}")
+        drawn = "" if not refined else f" {number(load.sampled, scale=scale):>10s}" \
+            if load.sampled is not None else f" {'':10s}"
         lines.append(f"  {_text(load.joint):{width}s} {effort} "
-                     f"{number(load.zero_pose, scale=scale):>10s} "
+                     f"{number(load.zero_pose, scale=scale):>10s}{drawn} "
                      f"{number(load.worst, scale=scale):>10s} {margin}{flag}")
     least = weakest(loads)
     if least is not None:
         # only the joints that change its load: the others' values are noise
         pose = ", ".join(f"{_text(k)}={number(v, places=3)}" for k, v in least.worst_pose.items()
-                         if v and k in relevant and number(v, places=3) != "0.000")
+                         if k in relevant and number(v, places=3) != "0.000")
         lines.append(f"  smallest margin: {_text(least.joint)} ({number(least.margin, 3)} of "
                      f"{number(least.effort, 3)}) at {pose or 'the zero pose'}")
     unlimited = [_text(load.joint) for load in loads if not load.limited]
