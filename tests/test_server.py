@@ -451,6 +451,10 @@ BUDGET = 10  # [s] the server's --timeout in these tests
 @pytest_lsp.fixture(config=ClientServerConfig(
     server_command=[sys.executable, "-m", "urdftool", "server", "--timeout", str(BUDGET)]))
 async def budgeted(lsp_client: LanguageClient):
+    @lsp_client.feature(types.CLIENT_REGISTER_CAPABILITY)
+    def register(params: types.RegistrationParams):  # as an editor does
+        pass
+
     await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities("visual-studio-code")))
     yield

@@ -94,7 +94,7 @@ def _text(run) -> str:
     from urdftool.report.escape import text
     from urdftool.report.summary import via_text
 
-    lines = [printable(f"urdftool: error: {error}") for error in run.errors]  # settings
+    lines = [text(f"urdftool: error: {error}") for error in run.errors]  # settings
     for result in run.results:
         for finding in result.failures:
             lines.append(text(f"{finding.location}: {finding.severity.value} {finding.code} "

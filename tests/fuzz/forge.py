@@ -418,6 +418,7 @@ def invocations(repo: Repository) -> list[Invocation]:
     variants = [
         (["check", robot, "--verbose", "--statistics"], "text", []),
         (["check", robot, "--quiet"], "text", []),
+        (["check", robot, "--notes"], "text", []),
         (["check", robot, *(w for t in ("gazebo", "gz", "mujoco", "drake", "pybullet", "isaac",
                                          "pinocchio") for w in ("--target", t))], "text", []),
         (["check", robot, "--target", "mujoco", "--format", "github"], "github", []),

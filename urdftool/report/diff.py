@@ -65,12 +65,10 @@ def change_line(change, quote=_quoted) -> str:
 
 def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN, quote=_text) -> str:
     """The values in ``at`` of ``joints``, the joints that move what changed (the other
-    joints' values change nothing there), named even at zero unless all are (names marked by
-    ``quote``); with none, the change is the same in every configuration."""
+    joints' values change nothing there), named even at zero (names marked by ``quote``); with
+    none, the change is the same in every configuration."""
     if not joints:
         return "every configuration alike"
-    if all(abs(at.get(name, 0.0)) <= 1e-12 for name in joints):
-        return "zero"  # the joints that move it all at zero: the zero configuration
     shown = ", ".join(f"{quote(name)}={number(at.get(name, 0.0), 3)}" for name in joints[:limit])
     return shown + (f", ... ({len(joints)} joints)" if len(joints) > limit else "")
 
