@@ -459,6 +459,7 @@ def invocations(repo: Repository) -> list[Invocation]:
         (["fk", robot, "--dh", str(repo.dh_table), "--verify", "--random", "5"], "text", []),
         (["dh", robot, "--base", unknown, "--tip", n.tip], "text", []),
         (["dh", robot, "--base", n.base, "--tip", unknown], "text", []),
+        (["dh", robot, "--base", n.base, "--tip", n.tip, "--textbook"], "text", []),
         (["ik", robot, "--tip", n.tip, "--base", n.base, "--q", f"{n.joint1}=0.2", "--xyz", "0",
           "0", "0.55"], "text", []),
         (["ik", robot, "--tip", n.tip, "--xyz", "0", "0", "5"], "text", []),

@@ -118,11 +118,7 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
                 "repository: use package://PKG/... for files of another package"))
-    try:
-        found = kind_of(path)
-    except OSError as error:  # a name too long for the file system (ENAMETOOLONG), ...
-        return MeshProblem("missing", f"mesh '{uri}' cannot be looked up: {error.strerror}")
-    if found != "file":
+    if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "

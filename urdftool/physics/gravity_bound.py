@@ -101,7 +101,7 @@ def refine(model: Model, loads: list[JointLoad], samples: np.ndarray,
     index = {variable.name: k for k, variable in enumerate(variables)}
     for column, load in enumerate(loads):
         load.sampled = load.worst
-        free = [index[name] for name in gravity_variables(model, load.joint) if name in index]
+        free = sorted(index[name] for name in gravity_variables(model, load.joint) if name in index)
         if not free or not len(samples):
             continue
         torque = _Torque(model, load.joint)
