@@ -428,3 +428,98 @@ async def test_a_file_created_outside_the_editor_rechecks_the_robots_that_search
     client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
         types.FileEvent(uri=macro.as_uri(), type=types.FileChangeType.Changed)]))
     await wait_until(lambda: codes(client, macro.as_uri()) == [(LIMIT_LINE, "U204")])
+# ---- the budget: a slow document holds no other, a flood of changes queues nothing -------------
+
+# A robot that takes hours to expand, every expression of it quick: each level of the macro
+# calls the next twice (2^24 calls).
+SLOW = """\
+<?xml version="1.0"?>
+<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="twice" params="n">
+    <xacro:if value="${n > 0}">
+      <xacro:twice n="${n - 1}"/>
+      <xacro:twice n="${n - 1}"/>
+    </xacro:if>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:twice n="24"/>
+</robot>
+"""
+BUDGET = 10  # [s] the server's --timeout in these tests
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdftool", "server", "--timeout", str(BUDGET)]))
+async def budgeted(lsp_client: LanguageClient):
+    @lsp_client.feature(types.CLIENT_REGISTER_CAPABILITY)
+    def register(params: types.RegistrationParams):  # as an editor does
+        pass
+
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=client_capabilities("visual-studio-code")))
+    yield
+    await lsp_client.shutdown_session()
+
+
+def workers(client: LanguageClient) -> int:
+    """How many processes the server has started and not ended (its check workers)."""
+    from tests.fuzz.server_session import children
+
+    return children(client._server.pid)
+
+
+def open_slow(client: LanguageClient, folder: Path) -> str:
+    """The slow robot written in ``folder`` (made a repository) and opened; its URI."""
+    (folder / ".git").mkdir()
+    path = folder / "slow.urdf.xacro"
+    path.write_text(SLOW)
+    return open_document(client, path)
+
+
+@pytest.mark.integration
+@pytest.mark.asyncio
+async def test_a_slow_document_holds_no_other_and_ends_with_the_timeout_finding(
+        budgeted, tmp_path):
+    client = budgeted
+    slow_uri = open_slow(client, tmp_path)
+    await asyncio.sleep(1.0)  # its check is under way
+    fast = tmp_path / "fast.urdf"
+    fast.write_text((CASES / "U204_inverted_limits.urdf").read_text())
+    fast_uri = open_document(client, fast)
+
+    await wait_until(lambda: fast_uri in client.diagnostics, seconds=BUDGET - 1)
+    assert [code for _, code in codes(client, fast_uri)] == ["U204"]
+    assert slow_uri not in client.diagnostics  # still being checked, within its budget
+
+    await wait_until(lambda: slow_uri in client.diagnostics, seconds=6 * BUDGET)
+    found = client.diagnostics[slow_uri]  # where the expansion was, and each macro call
+    assert {d.code for d in found} == {"U015"}
+    assert all(f"longer than {BUDGET} s" in d.message for d in found)
+    assert {d.range.start.line for d in found} <= set(range(2, 10))
+    await asyncio.sleep(0.5)
+    assert workers(client) == 0  # its worker was killed
+
+
+@pytest.mark.integration
+@pytest.mark.asyncio
+async def test_a_flood_of_changes_keeps_one_check_per_document_and_publishes_the_last(
+        budgeted, tmp_path):
+    client = budgeted
+    uri = open_slow(client, tmp_path)
+    most = 0
+    version = 1
+    for pause in [0.01] * 200 + [0.6] * 8:  # within the debounce, then each check started
+        version += 1
+        change_document(client, uri, version, SLOW + " " * version)
+        await asyncio.sleep(pause)
+        most = max(most, workers(client))
+    assert most <= 1  # one document: one check at a time, each older one stopped
+    version += 1
+    change_document(client, uri, version, f'<robot name="quick"><link name="a"/></robot>\n'
+                                          f"<!-- version {version} -->\n")
+    await wait_until(lambda: any(f"(version {version})" in m for m in checked(client, "slow")),
+                     seconds=BUDGET - 1)  # not behind any of the slow versions
+    assert checked(client, "slow") == [m for m in checked(client, "slow")
+                                       if f"(version {version})" in m]
+    await wait_until(lambda: uri in client.diagnostics)  # published just after the log
+    assert codes(client, uri) == []

@@ -274,11 +274,11 @@ def stale(root: Path) -> list[str]:
 
 def write(root: Path) -> list[str]:
     """Write every generated file that changed and remove leftovers; what changed."""
-    from urdftool.description.files import write_file
+    from urdftool.description.files import make_folders, remove_file, write_file
 
     files = generated(root)
     changed = []
-    (root / RULE_PAGES).mkdir(parents=True, exist_ok=True)
+    make_folders(root / RULE_PAGES)
     for name, text in files.items():
         path = root / name
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
@@ -287,7 +287,7 @@ def write(root: Path) -> list[str]:
     for name in leftovers(root, files):
         path = root / name
         if path.is_file() and _PAGE.fullmatch(path.name):
-            path.unlink()
+            remove_file(path)
             changed.append(f"remove {name}")
         else:  # not a rule page: a person put it there, a person removes it
             changed.append(f"left {name} (not a rule page: remove it by hand)")

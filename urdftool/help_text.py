@@ -63,8 +63,10 @@ def render() -> str:
 
 
 def main() -> None:
+    from urdftool.description.files import write_file
+
     path = Path(startup.HELP_FILE)
-    path.write_text(render(), encoding="utf-8")
+    write_file(path, render())
     print(f"wrote {path}", file=sys.stderr)
 
 

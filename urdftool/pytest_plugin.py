@@ -91,14 +91,15 @@ def _check(paths, **options):
 def _text(run) -> str:
     """The findings that fail the check, one located line each (with the macro call chain), so
     that pytest's short summary shows the first."""
-    from urdftool.report.summary import printable, via_text
+    from urdftool.report.escape import text
+    from urdftool.report.summary import via_text
 
-    lines = [printable(f"urdftool: error: {error}") for error in run.errors]  # settings
+    lines = [text(f"urdftool: error: {error}") for error in run.errors]  # settings
     for result in run.results:
         for finding in result.failures:
-            lines.append(printable(f"{finding.location}: {finding.severity.value} {finding.code} "
-                                   f"{finding.message} ({finding.name})"))
-            lines.extend(f"    {printable(line)}" for line in via_text(finding.location))
+            lines.append(text(f"{finding.location}: {finding.severity.value} {finding.code} "
+                              f"{finding.message} ({finding.name})"))
+            lines.extend(f"    {text(line)}" for line in via_text(finding.location))
     return "\n".join(lines)
 
 

@@ -25,20 +25,28 @@
   rule's documentation; **code actions** offer the ``<!-- urdftool: ignore CODE -->``
   suppressions (:data:`ACTION_PROVIDERS`: a provider maps a finding to code actions).
 
-Checks run one at a time in a worker thread (xacro keeps state in module globals), so the server
-answers hovers and code actions while a robot is being checked. A check that raises is logged
-(``window/logMessage``) and shown once (``window/showMessage``); nothing new is published for it
-and the server goes on.
+Each robot is checked in a forked worker within the same time and memory budget as ``urdftool
+check`` (:func:`urdftool.lint.runner.run_budgeted`; ``urdftool server --timeout/--max-memory``,
+the settings' ``max-memory``): a robot that takes too long or too much ends with its U015 or
+U018 diagnostic, located where the work was, and its worker is killed. Up to :data:`JOBS`
+documents are checked at once, each job waiting in a thread of its own, so one slow document
+never holds the others' diagnostics; a newer version of a document (or its closing) stops the
+check of the older one at once (its worker is killed, its result dropped), so a flood of
+changes keeps at most one check per document. The server answers hovers and code actions all
+the while. A check that raises is logged (``window/logMessage``) and shown once
+(``window/showMessage``); nothing new is published for it and the server goes on.
 """
 
 from __future__ import annotations
 
 import asyncio
+import io
 import itertools
 import logging
 import os
 import re
 import sys
+import threading
 import time
 import traceback
 from concurrent.futures import ThreadPoolExecutor
@@ -48,11 +56,14 @@ from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
+from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.diagnostics import Finding, Location, Severity, display_path
 
 ROBOT_SUFFIXES = (".urdf", ".xacro")
 COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
 DEBOUNCE = 0.3  # [s] quiet time after the last change before the buffer is checked
+JOBS = 2  # documents checked at once (each in a worker process; at least 2: a slow one and the
+# one being typed in), more on machines with more cores: see _jobs()
 SOURCE = "urdftool"
 
 _SEVERITIES = {Severity.ERROR: types.DiagnosticSeverity.Error,
@@ -235,12 +246,89 @@ def _range(place: Location, text: str, codec) -> types.Range:
 
 
 def _work(path: str, kind: str, targets: list[str] | None, also: list[str],
-          buffers: dict[str, Buffer], codec) -> tuple[list[str], list[Outcome]]:
-    """What a job does off the event loop: which robots (``targets`` when known), then each."""
+          buffers: dict[str, Buffer], codec, limits: "Limits",
+          cancel: threading.Event) -> tuple[list[str], list[Outcome]]:
+    """What a job does in its thread: which robots (``targets`` when known), then each robot,
+    every step in a budgeted worker that ``cancel`` stops (then the robots not checked are
+    left out: the job's result is dropped anyway)."""
+    from urdftool.lint import engine  # noqa: F401  (the rules, imported once here: every
+    # worker forked from this process starts with them)
+
     if targets is None:
-        targets = robots_for(path, kind)
-    robots = list(dict.fromkeys([*targets, *also]))
-    return targets, [check_robot(robot, buffers, codec) for robot in robots]
+        found = _budgeted(lambda: robots_for(path, kind), limits.budget, cancel)
+        if isinstance(found, _Stopped):
+            if found.stop.kind == "cancelled":
+                return [], []
+            found = [path] if kind == "robot" else []  # its check says what took so long
+        targets = found
+    outcomes = []
+    for robot in dict.fromkeys([*targets, *also]):
+        outcome = checked(robot, buffers, codec, limits, cancel)
+        if outcome is None:
+            break
+        outcomes.append(outcome)
+    return targets, outcomes
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The server's budget per robot, as ``urdftool check``'s: ``timeout`` [s] (None: none) and
+    ``max_memory`` as --max-memory takes it (None: the settings' ``max-memory`` or 2G)."""
+
+    timeout: float | None = DEFAULT_TIMEOUT
+    max_memory: str | None = None
+
+    @property
+    def budget(self) -> Budget:
+        """The budget of work that is not a robot's check (finding the robots to check)."""
+        return Budget.of(self.timeout or 0, self.max_memory)
+
+    def of(self, robot: str) -> Budget:
+        """The budget checking ``robot`` gets: the memory its settings file allows, as
+        ``urdftool check`` gives it (the settings' error is the check's to report)."""
+        from urdftool.errors import UrdftoolError
+        from urdftool.lint.settings import CheckRequest, for_file
+
+        try:
+            memory = for_file(robot, CheckRequest(max_memory=self.max_memory)).memory
+        except UrdftoolError:
+            return self.budget
+        return Budget(self.timeout, memory)
+
+
+@dataclass
+class _Stopped:
+    stop: object  # urdftool.lint.runner.Stop
+
+
+def _budgeted(work, budget: Budget, cancel: threading.Event):
+    """``work()`` in a worker within ``budget``; a :class:`_Stopped` when it ended without a
+    result (over the budget, cancelled, crashed)."""
+    from urdftool.lint.runner import run_budgeted
+
+    [result] = run_budgeted(1, lambda _: work(), budget, lambda _, stop: _Stopped(stop),
+                            cancel=cancel)
+    return result
+
+
+def checked(robot: str, buffers: dict[str, Buffer], codec, limits: Limits,
+            cancel: threading.Event) -> Outcome | None:
+    """:func:`check_robot` in a worker within the robot's budget: over it, an Outcome with the
+    U015 or U018 finding, located where the work was; None when ``cancel`` stopped it."""
+    result = _budgeted(lambda: check_robot(robot, buffers, codec), limits.of(robot), cancel)
+    if not isinstance(result, _Stopped):
+        return result
+    if result.stop.kind == "cancelled":
+        return None
+    from urdftool.lint.runner import stop_finding
+
+    buffer = buffers.get(robot)
+    outcome = Outcome(robot, buffer.version if buffer else None)
+    texts = _Texts({}, buffers)
+    finding = stop_finding(robot, result.stop, "checking")
+    outcome.by_path = diagnostics_by_path([finding], texts, codec, uri_of=texts.uri)
+    outcome.by_path.setdefault(robot, [])
+    return outcome
 
 
 # ---- on the event loop: documents, jobs, publishing -------------------------------------------
@@ -257,12 +345,15 @@ class _Published:
 class UrdftoolServer(LanguageServer):
     """The document state, the debounced jobs and what each robot published."""
 
-    def __init__(self, debounce: float = DEBOUNCE):
+    def __init__(self, debounce: float = DEBOUNCE, limits: Limits = Limits(),
+                 jobs: int | None = None):
         from urdftool import __version__
 
         super().__init__("urdftool", __version__)
-        self.debounce = debounce
-        self.checks = ThreadPoolExecutor(max_workers=1, thread_name_prefix="urdftool-check")
+        self.debounce, self.limits = debounce, limits
+        self.checks = ThreadPoolExecutor(max_workers=jobs or _jobs(),
+                                         thread_name_prefix="urdftool-check")
+        self.running: set[threading.Event] = set()  # the cancel switch of each job running
         self.open: dict[str, str] = {}  # path -> the URI the editor named it by
         self.targets: dict[str, list[str]] = {}  # document path -> the robots it means
         self.published: dict[str, _Published] = {}  # robot path -> its diagnostics
@@ -373,9 +464,17 @@ class UrdftoolServer(LanguageServer):
             also = self.concerned(path)
             if kind is None and not also:
                 return  # a file no robot checked so far read, searched or followed
-            targets, outcomes = await asyncio.get_running_loop().run_in_executor(
-                self.checks, _work, path, kind, targets, also, buffers,
-                self.workspace.position_codec)
+            cancel = threading.Event()
+            self.running.add(cancel)
+            try:
+                targets, outcomes = await asyncio.get_running_loop().run_in_executor(
+                    self.checks, _work, path, kind, targets, also, buffers,
+                    self.workspace.position_codec, self.limits, cancel)
+            except asyncio.CancelledError:  # a newer version, or closed: its worker is killed
+                cancel.set()
+                raise
+            finally:
+                self.running.discard(cancel)
             if kind is not None:
                 self.targets[path] = targets
             for outcome in outcomes:
@@ -432,8 +531,20 @@ class UrdftoolServer(LanguageServer):
         self.text_document_publish_diagnostics(
             types.PublishDiagnosticsParams(uri=self.uri_of(path), diagnostics=diagnostics))
 
+    def shutdown(self) -> None:
+        """Stop every check (its worker is killed, its thread returns), then the server."""
+        for cancel in list(self.running):
+            cancel.set()
+        self.checks.shutdown(wait=False, cancel_futures=True)
+        super().shutdown()
+
     def _log(self, kind: types.MessageType, message: str) -> None:
-        logger.log(logging.ERROR if kind == types.MessageType.Error else logging.INFO, message)
+        from urdftool.report.escape import lines
+
+        # the log file (and standard error, without one) is terminal text; the client's copy
+        # is JSON and stays exact
+        logger.log(logging.ERROR if kind == types.MessageType.Error else logging.INFO,
+                   lines(message))
         self.window_log_message(types.LogMessageParams(type=kind, message=message))
 
     def finding_for(self, path: str, diagnostic: types.Diagnostic) -> Finding | None:
@@ -448,6 +559,8 @@ class UrdftoolServer(LanguageServer):
     # -- hover and code actions
 
     def hover(self, params: types.HoverParams) -> types.Hover | None:
+        if self.path_of(params.text_document.uri) not in self.open:
+            return None  # not open (pygls would read it from disk, or fail to)
         document = self.workspace.get_text_document(params.text_document.uri)
         word = document.word_at_position(params.position, *_WORD)
         line = document.lines[params.position.line] if params.position.line < len(
@@ -573,8 +686,14 @@ def _on_document(event: str):
     return handler
 
 
-def make_server(debounce: float = DEBOUNCE) -> UrdftoolServer:
-    server = UrdftoolServer(debounce)
+def _jobs() -> int:
+    from urdftool.lint.runner import default_jobs
+
+    return max(JOBS, min(4, default_jobs()))
+
+
+def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> UrdftoolServer:
+    server = UrdftoolServer(debounce, limits)
     for method, event in _DOCUMENT_EVENTS.items():
         server.feature(method)(_on_document(event))
 
@@ -598,8 +717,9 @@ def make_server(debounce: float = DEBOUNCE) -> UrdftoolServer:
     return server
 
 
-def serve(log_file: str | None = None) -> None:
-    """Run the server on standard input and output until the editor ends it."""
+def serve(log_file: str | None = None, limits: Limits = Limits()) -> None:
+    """Run the server on standard input and output until the editor ends it; ``limits``: the
+    budget of each robot's check."""
     if log_file:
         logging.basicConfig(filename=log_file, level=logging.DEBUG,
                             format="%(asctime)s %(name)s %(levelname)s %(message)s")
@@ -608,4 +728,8 @@ def serve(log_file: str | None = None) -> None:
     protocol_out = os.fdopen(os.dup(sys.stdout.fileno()), "wb")
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
     sys.stdout = sys.stderr
-    make_server().start_io(sys.stdin.buffer, protocol_out)
+    # A worker (forked by run_budgeted) closes sys.stdin as it starts: not the protocol's, whose
+    # lock pygls's reader thread holds while it waits for a message (the worker would wait for
+    # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
+    protocol_in, sys.stdin = sys.stdin, io.StringIO()
+    make_server(limits=limits).start_io(protocol_in.buffer, protocol_out)

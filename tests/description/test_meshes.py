@@ -38,6 +38,15 @@ def test_relative_path_escaping_the_repository_is_refused(tmp_path):
     assert error.value.kind == "outside"
 
 
+def test_a_name_too_long_for_the_file_system_is_a_problem_not_a_crash(tmp_path):
+    # pathlib's is_file() raised ENAMETOOLONG: every mesh rule crashed (U900), found by make
+    # fuzz; the lookup goes through description.files.kind_of, which finds nothing there
+    name = "9" * 400 + ".stl"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, name), name)
+    assert error.value.kind == "missing" and "not found" in str(error.value)
+
+
 def test_non_mesh_extension_is_never_opened(tmp_path):
     (tmp_path / "notes.txt").write_text("hello")
     with pytest.raises(MeshProblem) as error:

@@ -2,12 +2,15 @@
 
 Usage: python -m tests.fuzz.run [N] [--seed S] [--max-seed-bytes B] [--kinds K,K]
                                 [--time-limit SECONDS] [--parallel P] [--in-process]
+                                [--names] [--server]
 
 Each case (tests/fuzz/cases.py) is a mutated robot in a throw-away repository with hostile
 additions, run through check (in worker mode and as a folder walk), xacro, tree, graph, fk, dh,
 inertia, dynamics and collisions, each in a forked child with a time limit, its peak memory
 measured and every file it opens audited (harness.case_report). ``--in-process`` runs the older,
 faster mode instead: the check engine on mutated robots in this process (harness.problems).
+``--names`` runs hostile names through every command and format (names.py: forged output),
+``--server`` language-server sessions (server_session.py: floods, huge and slow documents).
 Every failing input is kept in tests/fuzz/regressions/ and the run goes on; exit 1 if any failed.
 """
 
@@ -113,7 +116,19 @@ def main(argv=None) -> int:
     parser.add_argument("--time-limit", type=float, default=30.0, help="per command [s]")
     parser.add_argument("--parallel", type=int, default=2, help="commands at a time")
     parser.add_argument("--in-process", action="store_true", help="check_file only, in-process")
+    parser.add_argument("--names", action="store_true",
+                        help="hostile names through every command and format (names.py)")
+    parser.add_argument("--server", action="store_true",
+                        help="language-server sessions: floods, huge and slow documents "
+                             "(server_session.py)")
     options = parser.parse_args(argv)
+    if options.names or options.server:
+        from . import names, server_session
+
+        stats = (names if options.names else server_session).run(options.count, options.seed)
+        print(f"fuzz {'--names' if options.names else '--server'}: "
+              + ", ".join(f"{key} {value}" for key, value in stats.items()))
+        return 1 if stats["failures"] else 0
     if options.in_process:
         stats = run(options.count, options.seed, options.max_seed_bytes)
         print(f"fuzz: {stats['cases']} cases from {stats['seeds']} seed robots, "

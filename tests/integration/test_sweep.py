@@ -119,6 +119,13 @@ DEFECTS = [
      'includes a package:// path as a file path: xacro cannot open it'),
     (ERD + "human_description/robots/human.urdf", 'U303', 19,
      'massless virtual links of decomposed ball joints, moved: Gazebo drops them'),
+    (ERD + "hyq_description/robots/hyq_no_sensors.urdf", 'U306', 5,
+     'base and feet of 1e-6 kg with all six fields 1e-6: rank 1 (judged since the mass no '
+     'longer turns the check off)'),
+    (ERD + "icub_description/robots/icub.urdf", 'U306', 1,
+     'base_link: 1e-6 kg with all six fields 1e-6, rank 1'),
+    (ERD + "icub_description/robots/icub_reduced.urdf", 'U306', 1,
+     'base_link: 1e-6 kg with all six fields 1e-6, rank 1'),
     (ERD + "icub_description/robots/icub.urdf", 'U304', 12,
      'links with mass and an all-zero tensor (head 1.34 kg) moved by joints'),
     (ERD + "icub_description/robots/icub_reduced.urdf", 'U304', 9,

@@ -316,3 +316,49 @@ def test_cli_dh_options_that_contradict_the_table(run_cli, tmp_path):
     assert "chain is body_link -> l_foot_link; --frame l_hip_link names another" in result.stderr
     result = run_cli("fk", HUMANOID, "--dh", path, "--frame", "l_foot_link", "--frame", "x")
     assert result.exit_code == 2 and "at most one --frame" in result.output
+
+
+# -- the textbook form: a >= 0, the sign in alpha and theta ----------------------------------
+
+@pytest.mark.parametrize("convention", dh.CONVENTIONS)
+@pytest.mark.parametrize("base,tip", LIMBS)
+def test_textbook_form_keeps_link_lengths_positive_and_the_chain(humanoid, humanoid_model, base,
+                                                                 tip, convention):
+    table = dh.extract(humanoid, base, tip, convention, textbook=True)
+    assert all(j.a >= 0 for j in table.joints)
+    assert all(-math.pi < j.theta <= math.pi and -math.pi < j.alpha <= math.pi
+               for j in table.joints)
+    position, rotation = _worst_errors(humanoid, humanoid_model, table)
+    assert position < 1e-12 and rotation < 1e-12
+
+
+def test_textbook_form_of_the_leg_moves_the_sign_into_theta(humanoid):
+    default = dh.extract(humanoid, "body_link", "l_foot_link")
+    assert [j.a for j in default.joints][2:4] == [-0.093, -0.093]  # what dh writes by default
+    table = dh.extract(humanoid, "body_link", "l_foot_link", textbook=True)
+    np.testing.assert_allclose([j.a for j in table.joints], [0, 0, 0.093, 0.093, 0, 0],
+                               atol=1e-12)
+    np.testing.assert_allclose([j.theta for j in table.joints],
+                               [math.pi / 2, math.pi / 2, math.pi, 0, math.pi, -math.pi / 2],
+                               atol=1e-12)
+    np.testing.assert_allclose([j.alpha for j in table.joints],
+                               [j.alpha for j in default.joints], atol=1e-12)
+
+
+def test_ur5_textbook_form_matches_the_published_magnitudes():
+    robot = load(corpus_or_skip() / "ur_description/urdf/ur5.xacro")
+    table = dh.extract(robot, "base_link", "tool0", textbook=True)
+    assert all(j.a >= 0 for j in table.joints)
+    np.testing.assert_allclose([j.a for j in table.joints], np.abs(UR5["a"]), atol=1e-9)
+    assert max(_worst_errors(robot, KinematicModel(robot), table)) < 1e-12
+
+
+def test_cli_dh_textbook(run_cli, tmp_path):
+    out = tmp_path / "leg.json"
+    result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_foot_link",
+                     "--textbook", "-f", "json")
+    assert result.exit_code == 0, result.output
+    out.write_text(result.output)
+    assert all(j["a"] >= 0 for j in json.loads(result.output)["joints"])
+    verified = run_cli("fk", HUMANOID, "--dh", out, "--verify", "--random", "50")
+    assert verified.exit_code == 0, verified.output

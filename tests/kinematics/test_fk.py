@@ -306,3 +306,29 @@ def test_a_long_fk_table_is_plain_text(tmp_path, run_cli):
     lines = result.stdout.splitlines()
     assert lines[0] == "poses relative to l0" and len(lines) == 2 + 120
     assert lines[-1].split()[0] == "l119" and not any(c in result.stdout for c in "┃│━─")
+# -- fk --random: the joint values drawn, so that each pose can be computed again --------------
+
+def test_random_configurations_are_given_with_their_values(run_cli):
+    import shlex
+
+    robot = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
+    result = run_cli("fk", robot, "--random", "3", "--seed", "11", "--frame", "l_foot_link",
+                     "-f", "json")
+    assert result.exit_code == 0, result.output
+    documents = json.loads(result.output)
+    assert [d["seed"] for d in documents] == [11, 11, 11]
+    for document in documents:
+        words = [f"{name}={value!r}" for name, value in document["q"].items()]
+        again = run_cli("fk", robot, *[w for word in words for w in ("--q", word)],
+                        "--frame", "l_foot_link", "-f", "json")
+        assert json.loads(again.output)["frames"] == document["frames"]
+    text = run_cli("fk", robot, "--random", "2", "--seed", "11", "--frame", "l_foot_link")
+    lines = [line for line in text.output.splitlines() if line.startswith("configuration ")]
+    assert len(lines) == 2 and "--seed 11" in lines[0]
+    words = shlex.split(lines[1].split(": ", 1)[1])
+    again = run_cli("fk", robot, *words, "--frame", "l_foot_link", "-f", "json")
+    assert json.loads(again.output)["frames"] == documents[1]["frames"]
+    table = run_cli("fk", robot, "--random", "2", "--seed", "11", "--frame", "l_foot_link",
+                    "-f", "csv").output.splitlines()
+    assert table[0].split(",")[13:] == list(documents[0]["q"])
+    assert [float(v) for v in table[2].split(",")[13:]] == list(documents[1]["q"].values())

@@ -488,3 +488,24 @@ def test_pinocchio_frame_jacobians_come_from_one_function():
                      if "getFrameJacobian(" in path.read_text())
     assert callers == ["kinematics/chain.py"]
     assert (package / "kinematics" / "chain.py").read_text().count("getFrameJacobian(") == 1
+def test_cli_check_reach_reads_comment_lines(run_cli, humanoid, tmp_path):
+    chain = build_chain(humanoid, "body_link", "l_forearm_link")
+    pose = _fk_pose(chain, chain.row_of(np.array([0.2, 0.3, -0.4])))
+    path = tmp_path / "cell.csv"
+    path.write_text("# the work cell's targets, in body_link\nx,y,z\n"
+                    "  # the first one is reached at the pose above\n"
+                    + ",".join(repr(float(v)) for v in pose[:3, 3]) + "\n# far away\n1,1,1\n")
+    result = run_cli("ik", HUMANOID, "--base", "body_link", "--tip", "l_forearm_link",
+                     "--check-reach", path)
+    assert result.exit_code == 1, result.output
+    assert result.output.splitlines()[-1] == "1 of 2 targets reachable"
+
+
+def test_a_wrong_row_after_comments_is_located_on_its_own_line(tmp_path):
+    from urdftool.kinematics.configuration import ConfigError, read_table
+
+    path = tmp_path / "cell.csv"
+    path.write_text("# comment\nx,y,z\n# another\n1,2\n")
+    with pytest.raises(ConfigError) as raised:
+        read_table(str(path), "target file", "column")
+    assert raised.value.where == f"{path}:4"

@@ -11,6 +11,7 @@ import pytest
 
 from conftest import CASES
 from urdftool.description.load import load
+from urdftool.description.xml import attribute as escape_attribute
 from urdftool.lint import fixes
 from urdftool.lint.engine import CheckOptions, check_file
 
@@ -218,6 +219,54 @@ def test_a_massless_root_is_added_before_a_root_with_mass(tmp_path):
     for added in (fixed.links["base_footprint"], fixed.joints["base_footprint_joint"]):
         fixed.root.remove(added)
     assert _differences(before.robot.root, fixed.root) == set()
+
+
+# A name that would break out of an attribute written by hand, and characters a parser turns
+# into spaces (line breaks, tabs) or that splitlines() splits at (NEL, LINE SEPARATOR).
+INJECTED = 'b"/><link name="injected"/><x a="\n::error::x\r\t\x85\u2028\'&amp;<>'
+
+
+def test_a_fix_writes_a_hostile_name_back_exactly_and_injects_nothing(tmp_path):
+    """U308 writes the root's name into a new joint, U507 the joint's name into a new
+    transmission: the file stays well formed and reads back the same names (it was
+    malformed, the name cut at its first quote)."""
+    (tmp_path / ".git").mkdir()
+    name = escape_attribute(INJECTED)
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(f"""<robot name="r">
+  <link name="{name}"><inertial><mass value="1"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="c"/>
+  <joint name="{name}" type="revolute"><parent link="{name}"/><child link="c"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <gazebo><plugin name="g" filename="libgazebo_ros_control.so"/></gazebo>
+</robot>
+""")
+    before = check_file(str(robot), CheckOptions())
+    assert {"U308", "U507"} <= {f.code for f in before.findings}
+    [after], applied, _, _ = fixes.apply(
+        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+    assert applied >= 2 and after.robot is not None, [f.message for f in after.findings]
+    fixed = load(str(robot))
+    assert set(fixed.links) == {INJECTED, "c", "base_footprint"}
+    assert fixed.joints["base_footprint_joint"].find("child").get("link") == INJECTED
+    [transmission] = fixed.root.iter("transmission")
+    assert transmission.find("joint").get("name") == INJECTED
+
+
+def test_a_fix_that_would_write_anything_but_one_element_is_refused(tmp_path):
+    """The inserting functions' own guard: a name written without attribute() (in a fix to
+    come) would end the attribute or add an element; such an edit is never made."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robot.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    robot = load(str(tmp_path / "robot.urdf"))
+    link = robot.links["a"]
+    injected = '<link name="b"/><link name="injected"/>'
+    for edits in (fixes.insert_before(robot, link, injected),
+                  fixes.insert_before(robot, link, '<link name="a"b"/>'),
+                  fixes.append_child(robot, robot.root, '<link name="<"/>')):
+        assert isinstance(edits, fixes.Unfixable), edits
+    assert not isinstance(fixes.insert_before(robot, link, '<link name="b"/>'), fixes.Unfixable)
 
 
 def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):

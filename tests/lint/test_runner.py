@@ -213,6 +213,21 @@ def test_one_call_without_a_budget_runs_in_this_process():
     assert os.getpid() not in run_budgeted(2, lambda _: os.getpid(), unlimited, None, jobs=2)
 
 
+def test_a_cancelled_run_kills_its_workers_at_once():
+    """A language server's check of a version that has changed since: the caller sets the
+    switch, the worker is killed within CANCEL_POLL, every piece not done is 'cancelled'."""
+    import threading
+
+    cancel = threading.Event()
+    started = time.monotonic()
+    threading.Timer(0.3, cancel.set).start()
+    results = run_budgeted(3, lambda _: time.sleep(60), Budget(None, None),
+                           lambda index, stop: stop.kind, cancel=cancel)
+    assert results == ["cancelled"] * 3
+    assert time.monotonic() - started < 5  # not the 60 s the work takes
+    # with a switch, even one call without a budget runs in a worker (only it can be stopped)
+    assert run_budgeted(1, lambda _: os.getpid(), Budget(None, None), None,
+                        cancel=threading.Event()) != [os.getpid()]
 
 
 @pytest.mark.parametrize("cores, load, files, jobs", [

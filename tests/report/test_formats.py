@@ -51,8 +51,9 @@ def test_json_is_exactly_the_documented_shape():
 def test_github_annotations_escape_data_and_properties():
     lines = rendered("github").splitlines()
     assert lines[0] == "::error file=a.urdf,line=7,title=U204 inverted-limits::lower above upper, 100%25"
+    # a line break of the message's own is escaped; %0A only before each macro call site
     assert lines[1] == ("::warning file=parts.xacro,line=3,title=U206 axis-not-unit::axis: length 2,"
-                        "%0Anot 1%0Aexpanded from macro call at a.urdf:9")
+                        "\\nnot 1%0Aexpanded from macro call at a.urdf:9")
     assert lines[2] == "urdftool: 2 files, 1 error, 1 warning, 0 notes"
 
 
@@ -63,7 +64,7 @@ def test_junit_has_a_suite_per_file_and_a_failure_per_failing_finding():
     [failure] = suites[0].findall("testcase/failure")  # the warning passes: the run exits 0 on it
     assert failure.get("message") == "a.urdf:7: lower above upper, 100%"
     assert suites[0].findall("testcase/system-out")[0].text.startswith(
-        "parts.xacro:3: warning U206 axis: length 2,\nnot 1\nexpanded from macro call at a.urdf:9")
+        "parts.xacro:3: warning U206 axis: length 2,\\nnot 1\nexpanded from macro call at a.urdf:9")
     assert suites[1].findall("testcase/failure") == [] and len(suites[1].findall("testcase")) == 1
     assert root.get("failures") == "1"
 
@@ -258,7 +259,7 @@ def test_github_commands_cannot_be_forged():
     command, _, message = lines[0].partition("::")[2].partition("::")
     assert command == ("error file=x%0A%3A%3Awarning%3A%3Ay%2Cz.urdf,line=7,"
                        "title=U204 inverted-limits")
-    assert message.startswith("joint 'j%0A::error file=a.urdf,line=1::pwned%0D%0A1 file")
+    assert message.startswith("joint 'j\\n::error file=a.urdf,line=1::pwned\\r\\n1 file")
     assert "\\x1b[8mhidden" in message and "\\u202eevil\\x00\\udce9" in message
     assert _control_characters(hostile("github")) == {"\n"}
 

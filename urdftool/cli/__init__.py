@@ -142,7 +142,9 @@ def _version(value: bool):
     if value:
         from urdftool import __version__
 
-        typer.echo(f"urdftool {__version__}")
+        from urdftool.cli._common import say
+
+        say(f"urdftool {__version__}")
         raise typer.Exit()
 
 

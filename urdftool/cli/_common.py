@@ -79,8 +79,35 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     return paths, args, packages
 
 
+def say(message: object, err: bool = False) -> None:
+    """Print a message, one line of terminal text (:func:`urdftool.report.escape.text`): a name
+    from the robot's files, a file name or a word of the command line in it cannot end the
+    line, start a workflow command or send an escape sequence. With :func:`show` and
+    :func:`document`, the only ways a command prints (``tests/report/test_escape.py``)."""
+    from urdftool.report.escape import text
+
+    typer.echo(text(message), err=err)
+
+
+def show(block: str, err: bool = False, nl: bool = True, keep: str = "") -> None:
+    """Print the lines a renderer built (its values escaped as terminal text), each line through
+    :func:`urdftool.report.escape.text` once more: whatever reached it, no line it prints is a
+    workflow command or holds an escape sequence. ``keep``: characters left as they are (tabs
+    of lines copied from a file)."""
+    from urdftool.report.escape import lines
+
+    typer.echo(lines(block, keep), err=err, nl=nl)
+
+
+def document(data: str) -> None:
+    """Write a document to standard output exactly as a report function made it for a
+    terminal or a log (JSON, a report format, ``urdftool xacro``'s XML): its own kind's
+    escaping is done (urdftool.report.escape), :func:`say`'s would change its data."""
+    sys.stdout.write(data)
+
+
 def fail_usage(error: UsageError) -> None:
-    typer.echo(f"urdftool: error: {error}", err=True)
+    say(f"urdftool: error: {error}", err=True)
     raise typer.Exit(2)
 
 
@@ -100,7 +127,7 @@ def joint_words(values: list[str], option: str) -> dict[str, str]:
 
 def warn(warnings) -> None:
     for warning in warnings:
-        typer.echo(f"urdftool: warning: {warning}", err=True)
+        say(f"urdftool: warning: {warning}", err=True)
 
 
 def refuse_bad_outputs(*paths) -> None:
@@ -136,7 +163,7 @@ def fail_at(robot, error: Exception) -> None:
     if isinstance(error, UnknownName):
         fail_usage(error)
     where = getattr(error, "where", None) or robot.locate(getattr(error, "element", None))
-    typer.echo(f"{where}: error: {error}", err=True)
+    say(f"{where}: error: {error}", err=True)
     raise typer.Exit(1)
 
 
@@ -148,7 +175,7 @@ def missing_extra_exit(command: str, error: ImportError) -> int:
     advice = missing_extra(error)
     if advice is None:
         raise error
-    typer.echo(f"urdftool: error: urdftool {command} {advice}", err=True)
+    say(f"urdftool: error: urdftool {command} {advice}", err=True)
     return 2
 
 
@@ -163,7 +190,7 @@ def fail_unbuildable(error) -> int:
     if errors:
         report_findings(robot.path, errors)
     else:
-        typer.echo(f"{robot.locate(error.element)}: error: {error}", err=True)
+        say(f"{robot.locate(error.element)}: error: {error}", err=True)
     return 1
 
 
@@ -255,7 +282,7 @@ def budgeted(command):
             except ModelBuildError as error:
                 return fail_unbuildable(error)
             except OverLimit as error:  # a size limit checked before the work: a usage error
-                typer.echo(f"urdftool: error: {error}", err=True)
+                say(f"urdftool: error: {error}", err=True)
                 return 2
             except ImportError as error:
                 return missing_extra_exit(command.__name__, error)
@@ -263,8 +290,8 @@ def budgeted(command):
 
         [result] = run_budgeted(1, work, budget, lambda _, stop: stop)
         if isinstance(result, Stop):
-            if result.kind == "crash":
-                sys.stderr.write(result.detail)
+            if result.kind == "crash":  # a traceback: its lines quote the robot's names
+                show(result.detail, err=True, nl=False)
             else:
                 report_findings(path, [stop_finding(path, result, f"urdftool {command.__name__}")])
             raise typer.Exit(1)

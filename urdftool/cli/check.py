@@ -8,9 +8,12 @@ from pathlib import Path
 import typer
 
 from urdftool.errors import UsageError
-from urdftool.cli._common import (PackageOption, XacroArgOption, fail_usage, max_memory_option,
-                                  refuse_bad_outputs, robot_inputs, timeout_option,
-                                  write_output)
+from urdftool.cli._common import (PackageOption, XacroArgOption, document, fail_usage,
+                                  max_memory_option, refuse_bad_outputs, robot_inputs, say, show,
+                                  timeout_option, write_output)
+from urdftool.report import FORMATS as REPORT_FORMATS
+
+FORMATS = (*REPORT_FORMATS, "auto")  # auto: github under GitHub Actions, else text
 
 
 def register(app: typer.Typer) -> None:
@@ -109,7 +112,8 @@ def check(
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
                                         notes_shown)
-    from urdftool.report import FORMATS, printable, render
+    from urdftool.report import render
+    from urdftool.report.escape import text
 
     try:
         paths, args, packages = robot_inputs(words, arg, package)
@@ -121,8 +125,9 @@ def check(
             raise UsageError("--stdin-filename names standard input: give '-' as the PATH")
         if config is not None and isolated:
             raise UsageError("--config and --isolated exclude each other")
-        if format not in (*FORMATS, "auto"):
-            raise UsageError(f"unknown format '{format}'; choose from auto, {', '.join(FORMATS)}")
+        if format not in FORMATS:
+            raise UsageError(f"unknown format '{format}'; choose from auto, "
+                             f"{', '.join(REPORT_FORMATS)}")
         refuse_bad_outputs(output)
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
@@ -153,9 +158,9 @@ def check(
         messages += [f"skipped {path}: {reason}" for path, reason in run.skipped.items()]
         messages += [f"companion of {result.path}: {line}" for result in run.results
                      for line in result.companions]
-    messages = [printable(message) for message in messages]  # a file name can hold a line break
+    messages = [text(message) for message in messages]  # a file name can hold a line break
     for message in messages:
-        typer.echo(message, err=True)
+        say(message, err=True)
     if statistics:
         from urdftool.report.statistics import render as render_statistics
 
@@ -174,13 +179,13 @@ def check(
         if output:
             write_output(output, text.getvalue())
         else:
-            sys.stdout.write(text.getvalue())
+            document(text.getvalue())
             _keep_output(request, run, text.getvalue(), "".join(m + "\n" for m in messages),
                          code)
     else:
         report(run.results, sys.stdout)
     for error in run.errors:  # settings broken for some files; the others were checked
-        typer.echo(printable(f"urdftool: error: {error}"), err=True)
+        say(f"urdftool: error: {error}", err=True)
     raise typer.Exit(code)
 
 
@@ -218,8 +223,9 @@ def _apply_fixes(run, diff: bool, unsafe: bool, recheck):
 
         changes = fixes.plan(run.results, unsafe=unsafe)
         _skipped(changes.skipped)
-        sys.stdout.write(unified(changes.changed))
-        typer.echo(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
+        # the files' own lines, as terminal text (their tabs kept)
+        show(unified(changes.changed), nl=False, keep="\t")
+        say(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
                    "file(s) would be applied", err=True)
         raise typer.Exit(1 if changes.changed else 0)
     rerun = []
@@ -231,15 +237,13 @@ def _apply_fixes(run, diff: bool, unsafe: bool, recheck):
     _, applied, changed, skipped = fixes.apply(run.results, again, unsafe=unsafe)
     _skipped(skipped)
     if applied:
-        typer.echo(f"urdftool: applied {_fixes(applied)} in {len(changed)} file(s)", err=True)
+        say(f"urdftool: applied {_fixes(applied)} in {len(changed)} file(s)", err=True)
     return rerun[-1] if rerun else run
 
 
 def _skipped(skipped) -> None:
-    from urdftool.report import printable
-
     for fix, why in skipped:
-        typer.echo(printable(f"urdftool: not fixed ({fix.description}): {why}"), err=True)
+        say(f"urdftool: not fixed ({fix.description}): {why}", err=True)
 
 
 def _fixes(count: int) -> str:

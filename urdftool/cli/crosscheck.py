@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, fail_usage,
-                                  max_memory_option, robot_inputs, timeout_option)
+                                  max_memory_option, robot_inputs, show, timeout_option)
 
 FORMATS = ("text", "json")
 
@@ -59,5 +59,5 @@ def crosscheck(
 
         write_json(result.as_dict(), finite=True)
     else:
-        typer.echo(render.text(result), nl=False)
+        show(render.text(result), nl=False)
     raise typer.Exit(result.exit_code)

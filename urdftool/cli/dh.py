@@ -21,6 +21,8 @@ def dh(
     tip: str = typer.Option(..., "--tip", metavar="LINK", help="Last link of the chain."),
     convention: str = typer.Option("standard", "--convention",
                                    help="standard, or modified (Craig)."),
+    textbook: bool = typer.Option(False, "--textbook", help="Every link length a >= 0, the "
+                                  "sign in alpha and theta, as textbook tables write them."),
     output_format: str = typer.Option("text", "--format", "-f", help="text, json or yaml."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
@@ -32,7 +34,7 @@ def dh(
         "dh", words, arg, package,
         {"--format": (output_format, FORMATS), "--convention": (convention, CONVENTIONS)})
     try:
-        table = extract(robot, base, tip, convention)
+        table = extract(robot, base, tip, convention, textbook=textbook)
     except (DHError, UnknownName) as error:
         fail_at(robot, error)
     write_table(table, output_format)

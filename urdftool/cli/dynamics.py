@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, refuse_bad_outputs, single_robot, warn)
+                                  joint_words, refuse_bad_outputs, show, single_robot, warn)
 
 
 FORMATS = ("text", "json")
@@ -26,7 +26,8 @@ def dynamics(
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "
-                                "joint over N random poses within limits (and the zero pose)."),
+                                "joint over the joint ranges: N random poses within limits (and "
+                                "the zero pose), then climbed from the worst to a maximum."),
     seed: int = typer.Option(0, "--seed", help="Random seed for --samples."),
     support: list[str] = typer.Option([], "--support", metavar="LINK",
                                       help="Standing on this link (repeatable: feet, wheels): "
@@ -41,8 +42,8 @@ def dynamics(
     package: list[str] = PackageOption,
 ) -> None:
     from urdftool.kinematics.configuration import ConfigError, joint_values
-    from urdftool.physics.dynamics import (DynamicsError, build, gravity_loads, gravity_variables,
-                                           state)
+    from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
+    from urdftool.physics.gravity_bound import worst_loads
     from urdftool.report import dynamics as render
 
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
@@ -70,7 +71,7 @@ def dynamics(
         from urdftool.report.progress import sampling_progress
 
         with sampling_progress(samples + 1, machine=output_format != "text") as moved:
-            loads = gravity_loads(model, samples, seed, progress=moved)
+            loads = worst_loads(model, samples, seed, progress=moved)
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
@@ -79,7 +80,7 @@ def dynamics(
         # --samples alone asks for gravity margins: M and G at the zero pose would be noise
         least = render.weakest(loads)
         relevant = gravity_variables(model, least.joint) if least is not None else set()
-        typer.echo(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
+        show(render.text(result, loads, samples, matrices=bool(q or v or a or not samples),
                                relevant=relevant), nl=False)
     raise typer.Exit(1 if any(load.holds is False for load in loads) else 0)
 
@@ -117,6 +118,6 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
             document["poses_drawn"] = standing_load.poses
         write_json(document)
     else:
-        typer.echo(render.stance_text(stance, standing_load), nl=False)
+        show(render.stance_text(stance, standing_load), nl=False)
     holds = stance.holds and all(load.holds is not False for load in loads)
     raise typer.Exit(0 if stance.stands and holds else 1)

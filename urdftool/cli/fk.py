@@ -7,7 +7,7 @@ import typer
 from urdftool.errors import UnknownName
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, single_robot, warn)
+                                  joint_words, say, single_robot, warn)
 
 FORMATS = ("text", "json", "csv")
 VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
@@ -25,7 +25,8 @@ def fk(
     deg: bool = typer.Option(False, "--deg", help="Angles are in degrees."),
     q_file: str = typer.Option(None, "--q-file", metavar="FILE",
                                help="CSV (header = joint names) or JSON configurations, one per row."),
-    random: int = typer.Option(None, "--random", metavar="N", help="N random configurations."),
+    random: int = typer.Option(None, "--random", metavar="N", help="N random configurations "
+                               "within the limits, each given with the joint values drawn."),
     seed: int = typer.Option(0, "--seed", help="Seed for --random and --verify."),
     frame: list[str] = typer.Option([], "--frame", metavar="LINK", help="Only this link (repeatable)."),
     base: str = typer.Option(None, "--base", metavar="LINK", help="Poses relative to this link."),
@@ -58,7 +59,7 @@ def fk(
             count = random or VERIFY_DEFAULT_COUNT
             errors = dh_verify(table, model, config.random(model.variables, count, seed), base,
                                tip)
-            typer.echo(verify_line(count, seed, *errors, VERIFY_TOLERANCE))
+            say(verify_line(count, seed, *errors, VERIFY_TOLERANCE))
             raise typer.Exit(0 if all(e <= VERIFY_TOLERANCE for e in errors) else 1)
         configurations = config.configurations(model, joint_words(q, "--q"), deg, q_file,
                                                random, seed)
@@ -75,4 +76,8 @@ def fk(
     except (FKError, UnknownName) as error:
         fail_at(robot, error)
     warn(result.warnings)
-    write_poses(result, output_format, matrix, single=not (q_file or random))
+    drawn = None
+    if random is not None:  # the values drawn, so that each pose can be computed again
+        drawn = ([variable.name for variable in configurations.variables],
+                 configurations.values, seed)
+    write_poses(result, output_format, matrix, single=not (q_file or random), drawn=drawn)

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
-                      refuse_bad_outputs, single_robot)
+                                  refuse_bad_outputs, say, show, single_robot)
 from urdftool.errors import UsageError
 
 
@@ -33,13 +33,13 @@ def graph(
     robot = single_robot("graph", words, arg, package)
     dot = to_dot(robot, check_robot(robot))
     if output is None:
-        typer.echo(dot, nl=False)
+        show(dot, nl=False)
         return
     try:
         written = write(dot, output)
     except DotMissing as missing:
-        typer.echo(f"urdftool: {dot_missing_advice(missing, output)}", err=True)
+        say(f"urdftool: {dot_missing_advice(missing, output)}", err=True)
         raise typer.Exit(1)
     except (ValueError, OSError, UsageError) as error:
         fail_usage(UsageError(str(error)))
-    typer.echo(f"wrote {written}", err=True)
+    say(f"wrote {written}", err=True)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, single_robot, warn)
+                                  joint_words, show, single_robot, warn)
 
 FORMATS = ("text", "json", "csv")
 METHODS = ("auto", "numeric", "closed-form")
@@ -117,9 +117,9 @@ def ik(
         documents = [render.as_dict(chain, s, given) for s in solutions]
         write_json(documents[0] if xyz is not None or target_frame else documents)
     elif output_format == "csv":
-        typer.echo(render.csv_text(chain, solutions), nl=False)
+        show(render.csv_text(chain, solutions), nl=False)
     elif check_reach:
-        typer.echo(render.reach_text(chain, solutions, tol), nl=False)
+        show(render.reach_text(chain, solutions, tol), nl=False)
     else:
-        typer.echo(render.text(chain, solutions, given), nl=False)
+        show(render.text(chain, solutions, given), nl=False)
     raise typer.Exit(0 if all(s.solved for s in solutions) else 1)

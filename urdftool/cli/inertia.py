@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
-                      refuse_bad_outputs, single_robot, write_output)
+                                  refuse_bad_outputs, say, show, single_robot, write_output)
 from urdftool.errors import UsageError
 
 
@@ -60,22 +60,22 @@ def inertia(
         changes, unwritten = inertia_rewrite(robot, chosen)
         if robot.from_xacro:  # the edits land in the xacro files: written as a patch of them
             write_output(write, unified(changes.changed))
-            typer.echo(f"wrote {write}: a unified diff of the xacro files ({len(changes.applied)} "
+            say(f"wrote {write}: a unified diff of the xacro files ({len(changes.applied)} "
                        "inertials corrected; `urdftool check --fix --unsafe-fixes` applies "
                        "such edits in place)", err=True)
             shown = {link for link, _ in unwritten}
-            typer.echo(render.xacro_blocks(robot, [r for r in chosen if r.link in shown]),
+            show(render.xacro_blocks(robot, [r for r in chosen if r.link in shown]),
                        nl=False)
         else:
             data = changes.changed.get(robot.display, (robot.sources[robot.display],) * 2)[1]
             write_output(write, data.decode("utf-8"))
-            typer.echo(f"wrote {write} ({len(changes.applied)} inertials corrected)", err=True)
+            say(f"wrote {write} ({len(changes.applied)} inertials corrected)", err=True)
         for link, why in unwritten:
-            typer.echo(f"urdftool: {link}: not written: {why}", err=True)
+            say(f"urdftool: {link}: not written: {why}", err=True)
     elif output_format == "json":
         from urdftool.report.json_output import write_json
 
         write_json({"links": [r.as_dict() for r in results]})
     else:
-        typer.echo(render.text(results), nl=False)
+        show(render.text(results), nl=False)
     raise typer.Exit(1 if any(r.fails for r in results) else 0)

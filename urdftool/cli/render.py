@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  fail_usage, joint_words, refuse_bad_outputs, single_robot,
+                                  fail_usage, joint_words, refuse_bad_outputs, say, single_robot,
                                   warn)
 from urdftool.errors import UsageError
 
@@ -70,4 +70,4 @@ def render(
         fail_usage(UsageError(str(error)))
     except SceneError as error:
         fail_at(robot, error)
-    typer.echo(f"wrote {output} ({len(scene.triangles)} triangles)", err=True)
+    say(f"wrote {output} ({len(scene.triangles)} triangles)", err=True)

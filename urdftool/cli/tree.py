@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at,
-                                  report_findings, single_robot)
+                                  report_findings, show, single_robot)
 
 
 def register(app: typer.Typer) -> None:
@@ -29,6 +29,6 @@ def tree(
         report_findings(robot.path, refusals)
         raise typer.Exit(1)
     try:
-        typer.echo(tree_text(robot), nl=False)
+        show(tree_text(robot), nl=False)
     except TreeError as error:
         fail_at(robot, error)

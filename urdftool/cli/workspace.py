@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, refuse_bad_outputs, single_robot, warn)
+                                  joint_words, refuse_bad_outputs, show, single_robot, warn)
 from urdftool.cli.ik import BaseOption, PointOption, TipOption, Triple
 
 FORMATS = ("text", "json")
@@ -68,4 +68,4 @@ def workspace(
 
         write_json(space.as_dict())
     else:
-        typer.echo(render.text(space), nl=False)
+        show(render.text(space), nl=False)

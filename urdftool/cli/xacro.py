@@ -7,8 +7,8 @@ from pathlib import Path
 
 import typer
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, refuse_bad_outputs,
-                                  single_robot, write_output)
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, document,
+                                  refuse_bad_outputs, say, show, single_robot, write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -32,16 +32,18 @@ def xacro(
     check_order: bool = typer.Option(False, "--check-order", hidden=True,
                                      help="Accepted for ROS 1 scripts; nothing to check."),
 ) -> None:
-    from urdftool.report.summary import printable
+    from urdftool.report.escape import xml_document
     from urdftool.report.urdf import dependencies, expanded_urdf
 
     refuse_bad_outputs(output)
     robot = single_robot("xacro", words, arg, package, allow_env=False if no_env else None)
     if not quiet:
         for note in robot.notes:
-            typer.echo(printable(f"{note.location}: warning: {note.message}"), err=True)
+            say(f"{note.location}: warning: {note.message}", err=True)
     text = dependencies(robot) if deps else expanded_urdf(robot, robot.path)
     if output:
         write_output(output, text)
-    else:
-        typer.echo(text, nl=False)
+    elif deps:
+        show(text, nl=False)
+    else:  # the XML exact, its lines safe in a terminal or a log
+        document(xml_document(text, robot.root))

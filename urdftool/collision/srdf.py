@@ -12,6 +12,7 @@ from urdftool.numbers import number
 from urdftool.diagnostics import Location
 from urdftool.description.documents import read_srdf
 from urdftool.description.files import read_regular
+from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix
 from urdftool.kinematics.tree import pair_key
@@ -68,8 +69,8 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
     with other reasons, such as 'User', are kept) and everything else untouched."""
     new = entries_of(matrix)
     if existing is None:
-        lines = ['<?xml version="1.0" ?>', f'<robot name="{_attr(robot_name)}">']
-        lines += [f'    <disable_collisions link1="{_attr(a)}" link2="{_attr(b)}" '
+        lines = ['<?xml version="1.0" ?>', f'<robot name="{attribute(robot_name)}">']
+        lines += [f'    <disable_collisions link1="{attribute(a)}" link2="{attribute(b)}" '
                   f'reason="{r}" />' for a, b, r in new]
         return "\n".join([*lines, "</robot>", ""])
     root = _document(existing).root
@@ -147,10 +148,6 @@ def _remove(element) -> None:
         else:
             parent.text = (parent.text or "") + element.tail
     parent.remove(element)
-
-
-def _attr(text: str) -> str:
-    return (text.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;"))
 
 
 def stale(matrix: Matrix, entries: list[Disabled], robot_links, root: Location) -> list[Stale]:

@@ -463,6 +463,17 @@ def write_file(path, data: str | bytes) -> None:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
 
 
+def remove_file(path) -> None:
+    """Remove the regular file ``path`` (a link is removed, never its target) in the folder
+    :func:`check_output` allows; UsageError when that folder is refused or the system
+    refuses."""
+    folder = check_output(path)
+    try:
+        os.unlink(os.path.join(folder, Path(path).name))
+    except OSError as error:
+        raise UsageError(f"cannot remove '{path}': {error.strerror}") from None
+
+
 def make_folders(folder, mode: int = 0o777) -> None:
     """``os.makedirs(folder, mode, exist_ok=True)`` in the folder :func:`real_folder` finds;
     UsageError when a link on the way leads outside its repository; OSError when the system

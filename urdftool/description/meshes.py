@@ -118,7 +118,7 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
                 "repository: use package://PKG/... for files of another package"))
-    if kind_of(path) != "file":
+    if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "

@@ -38,6 +38,25 @@ class _TooDeep(Exception):
     pass
 
 
+_ESCAPES = {"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&apos;"}
+
+
+def attribute(value: str) -> str:
+    """``value`` written by hand into an XML file (a fix's edit, a new SRDF) as an attribute
+    value in either quotes, or as text: markup escaped, and as character references the
+    characters a parser would change (line breaks and tabs become spaces in an attribute) or
+    that act in a terminal or reorder text (other controls, format characters, separators), so
+    that the file reads back the same value and injects nothing."""
+    if value.isascii() and value.isprintable():
+        return "".join(_ESCAPES.get(char, char) for char in value) if \
+            any(char in _ESCAPES for char in value) else value
+    import unicodedata
+
+    return "".join(_ESCAPES.get(char) or (f"&#{ord(char)};" if unicodedata.category(char) in
+                                         ("Cc", "Cf", "Zl", "Zp") else char)
+                   for char in value)
+
+
 def external_dtd_message(where: str) -> str:
     return (f"external DTD '{where}' refused: robot descriptions may not load DTDs (a DTD "
             "can read local files or reach the network)")

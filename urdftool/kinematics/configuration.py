@@ -219,7 +219,8 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
 
 
 def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str], np.ndarray]:
-    """(column names, values ``[rows, columns]``) of a CSV file (header = names) or a JSON file
+    """(column names, values ``[rows, columns]``) of a CSV file (header = names; lines that start
+    with ``#`` are comments) or a JSON file
     (a list of objects {name: value}) of numbers, read with :func:`read_text`; ``what`` names
     the file, ``named`` what its columns are ("joint"), ``check(names)`` may refuse the header
     before the values are read. ConfigError, located, for anything wrong."""
@@ -265,7 +266,7 @@ def read_text(path: str, what: str) -> str:
 def _plain_csv_table(text: str):
     """(names, table) of a well-formed unquoted CSV in one vectorised pass, or None so that the
     row-by-row reader finds and locates whatever is wrong."""
-    if '"' in text or "\r" in text:
+    if '"' in text or "\r" in text or "#" in text:
         return None
     lines = text.strip().split("\n")
     if len(lines) < 2 or any(not line.strip() for line in lines):
@@ -282,11 +283,16 @@ def _plain_csv_table(text: str):
 
 def _csv_rows(text: str, path: str, what: str, named: str) -> tuple[list[str], list[list[str]]]:
     if '"' in text:
-        lines = list(csv.reader(io.StringIO(text)))
+        try:  # newline="": a line break inside a quoted cell is the cell's, as csv reads it
+            lines = list(csv.reader(io.StringIO(text, newline="")))
+        except csv.Error as error:
+            raise ConfigError(f"{what} is not CSV: {error}", path) from None
     else:  # no quoting: splitting is csv's answer, ten times faster on 10,000 rows
         lines = [line.split(",") if line else [] for line in text.splitlines()]
+    # blank lines and comment lines (# first) are skipped; the others keep their numbers
     numbered = [(n, line) for n, line in enumerate(lines, start=1)
-                if line and any(cell.strip() for cell in line)]
+                if line and any(cell.strip() for cell in line)
+                and not line[0].lstrip().startswith("#")]
     if not numbered:
         raise ConfigError(f"empty {what}: expected a header of {named} names", path)
     (_, header), body = numbered[0], numbered[1:]
@@ -398,5 +404,7 @@ def random(variables: list[Variable], count: int, seed=None,
             span = _RANDOM_SPAN.get(v.kind, math.pi)
             lower.append(-span)
             upper.append(span)
-    values = generator.uniform(lower, upper, size=(count, len(variables)))
+    # limits written the wrong way round are a range all the same (numpy refuses them)
+    values = generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
+                               size=(count, len(variables)))
     return Configurations(variables, values, [])

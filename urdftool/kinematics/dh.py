@@ -13,6 +13,12 @@ Choices where D-H leaves freedom (documented so tables are reproducible):
 - the sign of each x axis keeps the theta offset within (-90, 90] degrees, so a and alpha take the
   sign that follows (manufacturers' tables such as UR's and Franka's do the same);
 - the last frame lies on the last axis at the foot of the tip link's origin, x from the tip's x.
+
+``textbook=True`` chooses the sign of each x axis the other way textbooks do: every link
+length ``a >= 0``, the sign moved into ``alpha`` and ``theta``. Turning frame i about its z by pi
+negates a_i and alpha_i and adds pi to theta_i (standard; modified: negates a_{i} and alpha_{i}
+of the row that follows frame i and takes pi from its theta), and the next row's theta (or the
+tool, the base) takes the turn back: the chain is unchanged, which the table is checked for.
 """
 
 from __future__ import annotations
@@ -132,8 +138,10 @@ def _is_below(parent_joint: dict, link: str, ancestor: str) -> bool:
     return link == ancestor
 
 
-def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable:
-    """The D-H table of the chain ``base`` -> ``tip`` with its base and tool transforms."""
+def extract(robot, base: str, tip: str, convention: str = "standard",
+            textbook: bool = False) -> DHTable:
+    """The D-H table of the chain ``base`` -> ``tip`` with its base and tool transforms;
+    ``textbook``: every link length ``a >= 0`` (:func:`textbook_form`)."""
     if convention not in CONVENTIONS:
         raise DHError(f"unknown convention '{convention}'; use one of {', '.join(CONVENTIONS)}")
     joints = chain(robot, base, tip)
@@ -168,8 +176,53 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         rows.append(DHJoint(joint.get("name"), kind, _clean(theta), _clean(d), _clean(a),
                             _clean(alpha)))
     tool = transforms.invert(frames[-1]) @ pose
-    return DHTable(convention, _clean_matrix(frames[0]), _clean_matrix(tool), rows, base, tip,
-                   residual)
+    table = DHTable(convention, _clean_matrix(frames[0]), _clean_matrix(tool), rows, base, tip,
+                    residual)
+    return textbook_form(table) if textbook else table
+
+
+_TURN = np.diag([-1.0, -1.0, 1.0, 1.0])  # Rot_z(pi)
+
+
+def _wrapped(angle: float) -> float:
+    """An angle in (-pi, pi]."""
+    wrapped = math.remainder(angle, 2 * math.pi)
+    return math.pi if wrapped == -math.pi else wrapped
+
+
+def textbook_form(table: DHTable) -> DHTable:
+    """The same chain with every ``a >= 0``: each frame whose link length is negative is
+    turned by pi about its z axis (a and alpha change sign, theta takes the turn, the next row's
+    theta or the tool/base takes it back). DHError if the result does not reproduce the table
+    (it always should: the products are the same)."""
+    rows = [DHJoint(j.joint, j.type, j.theta, j.d, j.a, j.alpha) for j in table.joints]
+    base, tool = table.base.copy(), table.tool.copy()
+    for i, row in enumerate(rows):
+        if row.a >= 0:
+            continue
+        row.a, row.alpha = -row.a, _wrapped(-row.alpha)
+        if table.convention == "standard":  # frame i: A_i Rz(pi), then Rz(-pi) A_{i+1}
+            row.theta = _wrapped(row.theta + math.pi)
+            if i + 1 < len(rows):
+                rows[i + 1].theta = _wrapped(rows[i + 1].theta - math.pi)
+            else:
+                tool = _TURN @ tool
+        else:  # frame i-1: Rz(-pi) A_i, then A_{i-1} Rz(pi) (or the base)
+            row.theta = _wrapped(row.theta - math.pi)
+            if i > 0:
+                rows[i - 1].theta = _wrapped(rows[i - 1].theta + math.pi)
+            else:
+                base = base @ _TURN
+    rows = [DHJoint(j.joint, j.type, _clean(j.theta), j.d, _clean(j.a), _clean(j.alpha))
+            for j in rows]
+    result = DHTable(table.convention, _clean_matrix(base), _clean_matrix(tool), rows,
+                     table.base_link, table.tip_link, table.residual)
+    probe = np.random.default_rng(0).uniform(-math.pi, math.pi, (16, len(rows)))
+    error = float(np.abs(table_fk(result, probe) - table_fk(table, probe)).max())
+    if not error <= 1e-9:
+        raise DHError(f"the textbook form of the table does not reproduce it ({number(error, 2)})")
+    result.residual = max(table.residual, error)
+    return result
 
 
 def _standard_frames(moving, tip_pose) -> list[np.ndarray]:

@@ -302,7 +302,8 @@ def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) 
     generator = np.random.default_rng(seed)
     lower = np.where(np.isfinite(chain.lower), chain.lower, -math.pi)
     upper = np.where(np.isfinite(chain.upper), chain.upper, math.pi)
-    return np.vstack([first, generator.uniform(lower, upper, size=(count - 1, len(first)))])
+    return np.vstack([first, generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
+                                               size=(count - 1, len(first)))])
 
 
 def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from xml.parsers import expat
 
 from urdftool.description.files import kind_of
+from urdftool.description.xml import attribute
 from urdftool.diagnostics import Edit, Fix
 
 _ATTRIBUTE = re.compile(rb"""(\s+)([^\s/>=]+)(\s*=\s*)("([^"]*)"|'([^']*)')""")
@@ -236,10 +237,6 @@ def source_tag(robot, element) -> tuple[Source, _Tag] | Unfixable:
     return found, candidates[0]
 
 
-def _escape(value: str) -> str:
-    return value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
-
-
 def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixable:
     """Edits giving ``element``'s attribute ``name`` the value ``value``: the literal replaced,
     or the attribute added after the last one; Unfixable when the value came from an
@@ -254,15 +251,14 @@ def set_attribute(robot, element, name: str, value: str) -> list[Edit] | Unfixab
             line, _ = text.position(start)
             return Unfixable(_origin(robot, element, name, raw, f"{text.file}:{line}"))
         quote = text.data[start - 1:start]
-        escaped = _escape(value) if quote == b'"' else _escape(value).replace("'", "&apos;")
-        return [text.edit(start, end, escaped)]
+        return [text.edit(start, end, attribute(value))]
     if element.get(name) is not None:
         return Unfixable(f"{name} is not written at {text.file}:{tag.line} (set by xacro)")
     closing = text.data.rfind(b"/>" if tag.self_closing else b">", tag.start, tag.end)
     at = closing
     while at > tag.start and text.data[at - 1:at].isspace():
         at -= 1
-    return [text.edit(at, at, f' {name}="{_escape(value)}"')]
+    return [text.edit(at, at, f' {name}="{attribute(value)}"')]
 
 
 _ARGUMENT = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
@@ -303,10 +299,35 @@ def swap_attributes(robot, element, first: str, second: str,
     return edits
 
 
+def _not_one_element(xml: tuple[str, ...]) -> Unfixable | None:
+    """Unfixable when a fragment a fix would write is not exactly one well-formed element: a
+    name from the robot written into it without :func:`~urdftool.description.xml.attribute`
+    would break the file or add an element of the attacker's (``"/><link name="x``)."""
+    for fragment in xml:
+        parser, depth, tops = expat.ParserCreate(), [0], [0]
+
+        def start(name, attributes, depth=depth, tops=tops):
+            tops[0] += depth[0] == 1  # a child of <_>: an element of the fragment's top level
+            depth[0] += 1
+
+        def end(name, depth=depth):
+            depth[0] -= 1
+
+        parser.StartElementHandler, parser.EndElementHandler = start, end
+        try:
+            parser.Parse(f"<_>{fragment}</_>", True)
+        except expat.ExpatError:
+            tops[0] = 0
+        if tops[0] != 1:
+            return Unfixable("the element it would write is not well formed (a name in it?)")
+    return None
+
+
 def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
     """An edit writing the elements ``xml`` just before ``element``'s start tag, each on a line
-    of its own with the same indentation when ``element`` starts its line."""
-    found = source_tag(robot, element)
+    of its own with the same indentation when ``element`` starts its line; Unfixable when one
+    is not exactly one well-formed element."""
+    found = _not_one_element(xml) or source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
     text, tag = found
@@ -318,8 +339,9 @@ def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
 
 def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     """An edit writing ``xml`` (lines of an element) as the last child of ``element``, indented
-    one step (two spaces) deeper than ``element`` when its end tag starts a line."""
-    found = source_tag(robot, element)
+    one step (two spaces) deeper than ``element`` when its end tag starts a line; Unfixable when
+    it is not exactly one well-formed element."""
+    found = _not_one_element((xml,)) or source_tag(robot, element)
     if isinstance(found, Unfixable):
         return found
     text, tag = found
@@ -331,7 +353,7 @@ def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     if before.strip():
         return [text.edit(close, close, xml)]
     indent = before.decode("utf-8") + "  "
-    lines = "".join(indent + line + text.newline for line in xml.splitlines())
+    lines = "".join(indent + line + text.newline for line in xml.split("\n"))
     return [text.edit(line_start, line_start, lines)]
 
 

@@ -61,8 +61,8 @@ class Stop:
     """Why a piece of work ended without a result.
 
     kind: 'time' (over the time budget), 'memory' (MemoryError, over the memory budget or out of
-        memory), 'died' (the worker process ended; ``detail`` says how) or 'crash' (an
-        exception; ``detail`` is its traceback)
+        memory), 'died' (the worker process ended; ``detail`` says how), 'crash' (an
+        exception; ``detail`` is its traceback) or 'cancelled' (the caller no longer wanted it)
     where: the location the work had reached, when known
     """
 
@@ -73,24 +73,33 @@ class Stop:
 
 
 def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
-                 finished=None) -> list:
+                 finished=None, cancel=None) -> list:
     """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
     forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
 
     Without a budget, with one job or one call (or where processes cannot fork) the work is
     done in this process, and only a MemoryError becomes a Stop.
     finished: called in this process with how many calls have ended, as each ends (progress)
+    cancel: a ``threading.Event`` another thread sets when it no longer wants the results (a
+        language server's document changed again): the workers are killed within
+        :data:`CANCEL_POLL` and every call not done gives ``stopped(i, Stop('cancelled'))``.
+        With it, the work is always done in a worker (only a worker can be stopped).
     """
     finished = finished or (lambda done: None)
-    if budget.unlimited and min(jobs, count) == 1 or count == 0 or not hasattr(os, "fork"):
+    if count == 0 or not hasattr(os, "fork") or \
+            cancel is None and budget.unlimited and min(jobs, count) == 1:
         results = []
         for index in range(count):
             results.append(_here(index, work, budget, stopped))
             finished(index + 1)
         return results
     results: list = [None] * count
-    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, finished)
+    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, finished,
+              cancel)
     return results
+
+
+CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
 
 
 def _here(index, work, budget, stopped):
@@ -512,7 +521,8 @@ def _drain(worker: _Worker) -> None:
         pass
 
 
-def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished) -> None:
+def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
+              cancel=None) -> None:
     import multiprocessing
     from multiprocessing.connection import wait
 
@@ -530,6 +540,11 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished) -> 
             wait_for = None
             if timeout:
                 wait_for = max(0.0, min(w.started + timeout for w in busy) - time.monotonic())
+            if cancel is not None:
+                if cancel.is_set():
+                    _cancel(workers, pending, budget, stopped, results)
+                    return
+                wait_for = CANCEL_POLL if wait_for is None else min(wait_for, CANCEL_POLL)
             ready = wait([w.connection for w in busy], wait_for)
             for position, worker in enumerate(workers):
                 if worker.index is None:
@@ -569,6 +584,17 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished) -> 
     finally:
         for worker in workers:
             worker.stop(kill=worker.index is not None)
+
+
+def _cancel(workers, pending, budget, stopped, results) -> None:
+    """Kill the busy workers at once; every piece not done gives a 'cancelled' Stop."""
+    for worker in workers:
+        if worker.index is not None:
+            worker.kill()
+            results[worker.index] = stopped(worker.index, Stop("cancelled", budget))
+    for index in pending:
+        results[index] = stopped(index, Stop("cancelled", budget))
+    pending.clear()
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",

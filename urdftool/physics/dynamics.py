@@ -228,9 +228,11 @@ class JointLoad:
 
     joint: str
     effort: float
-    worst: float  # [N m] or [N], absolute
+    worst: float  # [N m] or [N], absolute: over the ranges when refined, else the samples'
     worst_pose: dict = field(default_factory=dict)
     zero_pose: float = 0.0
+    sampled: float | None = None  # the worst of the samples, when ``worst`` was refined
+    evaluations: int = 0  # of G(q) while refining
 
     @property
     def limited(self) -> bool:
@@ -246,7 +248,7 @@ class JointLoad:
 
     def as_dict(self) -> dict:
         return {"joint": self.joint, "effort": self.effort if self.limited else None,
-                "worst": self.worst,
+                "worst": self.worst, "sampled_worst": self.sampled,
                 "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
 
@@ -265,11 +267,20 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
 
 def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
                   progress=None) -> list[JointLoad]:
-    """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
+    """Per joint, the largest |G(q)| over the zero pose (mid-range for a variable whose range
+    leaves 0 out) and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
     ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
-    pose out. ``progress``: called with (poses done, poses) as they are."""
+    pose out. ``progress``: called with (poses done, poses) as they are.
+    :func:`urdftool.physics.gravity_bound.worst_loads` climbs from them to the worst over the
+    joint ranges."""
+    return sampled_loads(model, samples, seed, torques, progress)[0]
+
+
+def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progress=None):
+    """(:func:`gravity_loads`' loads, the poses judged [poses, variables] in
+    ``model.variables`` order, their torques [poses, joints] in ``model.joints`` order)."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -277,7 +288,9 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
     m, d = model.model, model.data
     names = [variable.name for variable in model.variables]
     drawn = random(model.variables, samples, seed).values if samples else np.zeros((0, len(names)))
-    poses = [{name: 0.0 for name in names}]
+    # the zero pose, or mid-range for a variable whose range leaves 0 out: every pose judged is
+    # one the robot can take
+    poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
@@ -288,10 +301,13 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
         def torques(pose):
             return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]
 
+    table, kept = [], []
     for number, pose in enumerate(poses):
         values = torques(pose)
+        kept.append(values)
         if values is None:  # a pose the caller leaves out
             continue
+        table.append(np.asarray(values, dtype=float))
         for load, torque in zip(loads, np.abs(values)):
             torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load
@@ -301,4 +317,6 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
                 load.worst, load.worst_pose = torque, pose
         if progress is not None:
             progress(number + 1, len(poses))
-    return loads
+    judged = np.array([[pose[name] for name in names] for pose, values in zip(poses, kept)
+                       if values is not None]).reshape(-1, len(names))
+    return loads, judged, (np.vstack(table) if table else np.zeros((0, len(loads))))

@@ -50,10 +50,11 @@ class LinkSolid:
     only its volume, which placing keeps.
     """
 
-    __slots__ = ("source", "bounds", "_entries", "_built", "_parts", "_extent")
+    __slots__ = ("source", "bounds", "_entries", "_built", "_parts", "_extent", "_unread")
 
     def __init__(self, source: str):
         self.source = source
+        self._unread: list = []  # (element, message): geometry that made no shape
         self.bounds: tuple[mat3.Vector, mat3.Vector] | None = None  # min, max corner, link frame
         self._extent: float | None = None
         self._entries: list[_Entry] = []  # one per shape counted, in order
@@ -110,7 +111,7 @@ class LinkSolid:
                     _quietly(_hull_entry, entry)
             self._built = ([entry for entry in self._entries
                             if entry.solid is not None or entry.local is not None],
-                           [p for entry in self._entries for p in entry.problems])
+                           [p for entry in self._entries for p in entry.problems] + self._unread)
         return self._built
 
 
@@ -477,12 +478,19 @@ def _corners(bounds) -> list[mat3.Vector]:
 def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) -> LinkSolid:
     """The solids of a link's collision geometry, or its visual geometry when it has none;
     ``tag`` ("collision" or "visual") takes that geometry only."""
-    collision = shapes(robot, link, "collision") if tag in (None, "collision") else []
-    chosen, source = (collision, "collision") if collision or tag == "collision" else \
-        (shapes(robot, link, "visual"), "visual")
-    if not chosen:
+    found = _link_shapes(robot, link)
+    collision, written = found["collision"] if tag in (None, "collision") else ([], 0)
+    # a link whose collision elements are all unreadable is judged by none of its geometry,
+    # not by its visual: that would be another body
+    chosen, source = (collision, "collision") if collision or written or tag == "collision" \
+        else (found["visual"][0], "visual")
+    written = found[source][1]
+    if not written:
         return LinkSolid("none")
     result = LinkSolid(source)
+    if len(chosen) < written:  # an element without a shape that can be measured
+        result._unread.append((link, f"{written - len(chosen)} of the link's {written} <{source}> "
+                                     "elements have no shape that can be measured"))
     boxes = []
     for shape in chosen:
         if shape.kind == "mesh":

@@ -10,8 +10,9 @@ from __future__ import annotations
 import importlib
 import os
 
+from urdftool.report.escape import printable
 from urdftool.report.json_output import write_json
-from urdftool.report.summary import STYLES, Summary, all_findings, printable
+from urdftool.report.summary import STYLES, Summary, all_findings
 
 __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render",
            "resolve_format", "write_json"]

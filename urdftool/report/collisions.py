@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 from urdftool.report.console import fixed, plain_console
+from urdftool.report.escape import markup
 
 
 def write_pose(robot_name: str, report, output_format: str, custom: bool, stream=None) -> None:
@@ -29,14 +30,22 @@ def write_matrix(robot_name: str, outcome, output_format: str, all_pairs: bool =
 
 
 def _notes(console, geometry_problems, visual_only) -> None:
-    from rich.markup import escape
-
     for problem in geometry_problems:
-        console.print(f"{escape(str(problem.location))}: [yellow]warning[/] "
-                      f"{escape(problem.message)}")
+        console.print(f"{markup(problem.location)}: [yellow]warning[/] "
+                      f"{markup(problem.message)}")
     if visual_only:
         console.print(f"[yellow]Links with a visual but no collision geometry[/] (they escape "
-                      f"every check): {', '.join(visual_only)}")
+                      f"every check): {', '.join(map(markup, visual_only))}")
+
+
+def _table(*headers):
+    """A table whose cells never wrap (a name's blank would start a line of its own)."""
+    from rich.table import Table
+
+    table = Table(*headers, box=None, pad_edge=False)
+    for column in table.columns:
+        column.no_wrap = True
+    return table
 
 
 def _problems(problems) -> list[dict]:
@@ -53,28 +62,26 @@ def pose_json(robot_name: str, report) -> dict:
 
 def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
     """custom: the configuration was given (else it is the default one)"""
-    from rich.table import Table
-
     console = plain_console(stream)
     where = "the given configuration" if custom else "the default configuration"
-    console.print(f"[bold]{robot_name}[/] at {where} ({len(report.q)} joints), "
-                  f"SRDF: {report.srdf or 'none'}")
+    console.print(f"[bold]{markup(robot_name)}[/] at {where} ({len(report.q)} joints), "
+                  f"SRDF: {markup(report.srdf or 'none')}")
     touching = [c for c in report.colliding if c.allowed == "Adjacent"]
     listed = [c for c in report.colliding if c.allowed != "Adjacent"]
     if listed:
-        table = Table("link 1", "link 2", "depth (mm)", "status", box=None, pad_edge=False)
+        table = _table("link 1", "link 2", "depth (mm)", "status")
         for c in listed:
             status = f"allowed ({c.allowed})" if c.allowed else "[bold red]COLLIDING[/]"
-            table.add_row(c.link1, c.link2, fixed(c.depth * 1000, 2), status)
+            table.add_row(markup(c.link1), markup(c.link2), fixed(c.depth * 1000, 2), status)
         console.print(table)
     if touching:
         console.print(f"{len(touching)} adjacent pair(s) overlap at their joints (allowed): "
-                      + ", ".join(f"{c.link1}/{c.link2}" for c in touching))
+                      + ", ".join(f"{markup(c.link1)}/{markup(c.link2)}" for c in touching))
     if report.closest:
         console.print("Closest pairs apart:")
-        table = Table("link 1", "link 2", "distance (mm)", "status", box=None, pad_edge=False)
+        table = _table("link 1", "link 2", "distance (mm)", "status")
         for c in report.closest:
-            table.add_row(c.link1, c.link2, fixed(c.distance * 1000, 2),
+            table.add_row(markup(c.link1), markup(c.link2), fixed(c.distance * 1000, 2),
                           f"disabled ({c.allowed})" if c.allowed else "")
         console.print(table)
     _notes(console, report.problems, report.visual_only)
@@ -113,12 +120,9 @@ def matrix_json(robot_name: str, result, stale) -> dict:
 def matrix_text(robot_name: str, result, stale, all_pairs: bool = False, written=(),
                 stream=None) -> None:
     """all_pairs: list every pair, not only those a planner must check; written: files made"""
-    from rich.markup import escape
-    from rich.table import Table
-
     console = plain_console(stream)
     counts = Counter(p.reason for p in result.pairs)
-    console.print(f"[bold]{robot_name}[/]: {len(result.links)} links with geometry, "
+    console.print(f"[bold]{markup(robot_name)}[/]: {len(result.links)} links with geometry, "
                   f"{len(result.pairs)} pairs, {result.samples} samples (seed {result.seed}, "
                   f"margin {result.margin * 1000:g} mm)")
     console.print("  " + ", ".join(f"{counts[c]} {c or 'enabled'}" for c in
@@ -126,17 +130,18 @@ def matrix_text(robot_name: str, result, stale, all_pairs: bool = False, written
     shown = [p for p in result.pairs if all_pairs or p.reason in ("", "Default", "Always")]
     near = [p for p in result.pairs if p.reason == "" and p.collisions == 0]
     if shown:
-        table = Table("link 1", "link 2", "class", "collisions", "min distance (mm)", box=None,
-                      pad_edge=False)
+        table = _table("link 1", "link 2", "class", "collisions", "min distance (mm)")
         for p in sorted(shown, key=lambda p: (-p.fraction, p.min_distance or 0)):
             distance = "" if p.min_distance is None else fixed(p.min_distance * 1000, 2)
             count = f"{p.collisions}/{p.samples}" if p.samples else ""
-            table.add_row(p.link1, p.link2, p.reason or "enabled", count, distance)
+            table.add_row(markup(p.link1), markup(p.link2), p.reason or "enabled", count,
+                          distance)
         console.print(table)
     if near:
         console.print(f"{len(near)} pair(s) never collided but came within the margin, so they "
                       "stay enabled (MoveIt would disable them as Never): "
-                      + ", ".join(f"{p.link1}/{p.link2} ({fixed(p.min_distance * 1000, 1)} mm)"
+                      + ", ".join(f"{markup(p.link1)}/{markup(p.link2)} "
+                                  f"({fixed(p.min_distance * 1000, 1)} mm)"
                                   for p in near))
     for n, changed in result.rounds:
         console.print(f"after {n} samples: {changed} pair(s) changed class in the second half")
@@ -144,11 +149,12 @@ def matrix_text(robot_name: str, result, stale, all_pairs: bool = False, written
         console.print("[green]converged[/]: no pair changed class in the second half")
     else:
         console.print("[yellow]not converged[/]: " + ", ".join(
-            f"{a}/{b} {x or 'enabled'} -> {y or 'enabled'}" for a, b, x, y in result.unsettled)
+            f"{markup(a)}/{markup(b)} {x or 'enabled'} -> {y or 'enabled'}"
+            for a, b, x, y in result.unsettled)
             + f"; these pairs are rare events: more samples (--until-converged, --max-samples) "
             "would settle them")
     _notes(console, result.problems, result.visual_only)
     for item in stale:
-        console.print(f"{escape(str(item.location))}: [bold red]stale[/] {escape(item.message)}")
+        console.print(f"{markup(item.location)}: [bold red]stale[/] {markup(item.message)}")
     for path in written:
-        console.print(f"wrote {path}")
+        console.print(f"wrote {markup(path)}")

@@ -11,10 +11,7 @@ def wide_console():
     file) it is as wide as the widest table; on one, :func:`print_table` decides the layout."""
     from rich.console import Console
 
-    console = Console(highlight=False)
-    if not console.is_terminal:
-        console.width = 10_000
-    return console
+    return _guarded(Console(highlight=False, emoji=False))
 
 
 def print_table(console, title: str, headers: list[str], rows: list[list[str]],
@@ -24,13 +21,19 @@ def print_table(console, title: str, headers: list[str], rows: list[list[str]],
 
     left: how many leading columns are text (left-aligned); the others are numbers
     """
-    from rich.markup import escape
     from rich.table import Table
+    from rich.text import Text
 
-    widths = [max([len(h), *(len(row[i]) for row in rows)]) for i, h in enumerate(headers)]
+    from urdftool.report.escape import markup as escape, text
+
+    widths = [max([len(h), *(len(text(row[i])) for row in rows)])
+              for i, h in enumerate(headers)]
     needed = sum(widths) + 3 * len(widths) + 1  # rich's borders and one space of padding
     if not console.is_terminal or needed <= console.width:
-        table = Table(title=escape(title), title_justify="left")
+        # the title on one line, however long (rich wraps it at the table's width: a name's
+        # blank would start a line of its own there)
+        table = Table(title=Text(text(title), no_wrap=True, overflow="ignore"),
+                      title_justify="left")
         for i, header in enumerate(headers):
             table.add_column(escape(header), justify="left" if i < left else "right",
                              no_wrap=True)
@@ -65,14 +68,14 @@ def write_table(stream, title: str, headers: list[str], rows: list[list[str]],
                 left: int = 1) -> None:
     """A table as plain text: its title, then the headers and the rows in columns two spaces
     apart, the ``left`` leading (text) columns left-aligned, the numbers right-aligned. The
-    title, the headers and the text cells are made printable (a name cannot start a line of
-    its own); the numbers are this program's."""
-    from urdftool.report.summary import printable
+    title, the headers and the text cells are terminal text (urdftool.report.escape.text: a
+    name cannot start a line of its own); the numbers are this program's."""
+    from urdftool.report.escape import text
 
-    cells = [[printable(cell) for cell in headers]]
-    cells += [[*map(printable, row[:left]), *row[left:]] for row in rows]
+    cells = [[text(cell) for cell in headers]]
+    cells += [[*map(text, row[:left]), *row[left:]] for row in rows]
     widths = [max(len(line[i]) for line in cells) for i in range(len(headers))]
-    out = [printable(title)]
+    out = [text(title)]
     for line in cells:
         out.append("  ".join(cell.ljust(width) if i < left else cell.rjust(width)
                              for i, (cell, width) in enumerate(zip(line, widths))).rstrip())
@@ -83,7 +86,22 @@ def plain_console(stream=None):
     """A rich console on ``stream`` (default: standard output) that never wraps lines."""
     from rich.console import Console
 
-    return Console(file=stream or sys.stdout, highlight=False, soft_wrap=True)
+    return _guarded(Console(file=stream or sys.stdout, highlight=False, soft_wrap=True,
+                            emoji=False))
+
+
+def _guarded(console):
+    """``console`` off a terminal (a CI log, a pipe, a file): as wide as its widest table (a
+    table squeezed to 80 columns wraps a name at its blanks: a piece of it would start a line),
+    and every line it writes through urdftool.report.escape.text (whatever a renderer let
+    through, no line is a workflow command or holds an escape sequence). On a terminal, rich's
+    own colours stand, and the renderers' markup() alone guards."""
+    from urdftool.report.escape import Lines
+
+    if not console.is_terminal:
+        console.width = 10_000
+        console.file = Lines(console.file)
+    return console
 
 
 def fixed(value: float, places: int = 6) -> str:

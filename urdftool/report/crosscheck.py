@@ -3,7 +3,7 @@ disagree, how they differ, and what is missing (with how to install it)."""
 
 from __future__ import annotations
 
-from urdftool.report.summary import printable
+from urdftool.report.escape import text as _text
 
 
 def _cell(value) -> str:
@@ -50,4 +50,4 @@ def text(result) -> str:
     verdict = ("the loaders agree" if not failed and not result.disagreements else
                f"{len(failed)} loader(s) failed, {len(result.disagreements)} disagreement(s)")
     lines += ["", verdict]
-    return "".join(printable(line) + "\n" for line in lines)
+    return "".join(_text(line) + "\n" for line in lines)  # one line each, none a command

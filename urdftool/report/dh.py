@@ -17,14 +17,14 @@ def write_table(table, output_format: str, stream=None) -> None:
 
         write_json(table.as_dict(), stream)
     elif output_format == "yaml":
-        import yaml
+        from urdftool.report.escape import yaml_text
 
-        stream.write(yaml.safe_dump(table.as_dict(), sort_keys=False))
+        stream.write(yaml_text(table.as_dict()))
     else:
-        text(table)
+        text(table, stream)
 
 
-def text(table) -> None:
+def text(table, stream=None) -> None:
     from urdftool.kinematics.fk import pose_components
 
     modified = table.convention == "modified"
@@ -40,8 +40,11 @@ def text(table) -> None:
         lines.append(f"{name}: xyz {_triple(position)}  rpy {_triple(rpy)}")
     lines.append(f"base * D-H chain * tool reproduces the URDF chain to {number(table.residual, 1)}")
     if plain_tables(len(rows)):
-        write_plain_table(sys.stdout, title, headers, rows, left=2)
-        sys.stdout.write("\n".join(lines) + "\n")
+        from urdftool.report.escape import lines as terminal_lines
+
+        stream = stream or sys.stdout
+        write_plain_table(stream, title, headers, rows, left=2)
+        stream.write(terminal_lines("\n".join(lines) + "\n"))
         return
     console = wide_console()
     print_table(console, title, headers, rows, left=2)

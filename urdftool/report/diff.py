@@ -6,12 +6,14 @@ import math
 import sys
 
 from urdftool.numbers import number, numbers
+from urdftool.report.escape import lines as _lines, markdown as _code, text as _text
 
 FRAMES_SHOWN = 15  # rows of the moved-frames table in text and Markdown
 JOINTS_SHOWN = 8  # joint values shown for "where" (JSON gives all)
 
 
-def _value(value) -> str:
+def _value(value, quote) -> str:
+    """A field's value; ``quote`` marks text (a name, a file name: the robot's words)."""
     if value is None:
         return "(none)"
     if isinstance(value, float):
@@ -19,9 +21,9 @@ def _value(value) -> str:
     if isinstance(value, tuple):
         if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
             return "(" + numbers(value, 6, ", ") + ")"
-        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else str(v)
-                               for v in value) + ")"
-    return str(value)
+        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else
+                               quote(v) if isinstance(v, str) else str(v) for v in value) + ")"
+    return quote(value) if isinstance(value, str) else str(value)
 
 
 def _amount(change) -> str:
@@ -44,59 +46,57 @@ def _amount(change) -> str:
 
 
 def _quoted(name) -> str:
-    return f"'{name}'"
-
-
-def _code(name) -> str:
-    return f"`{name}`"
+    return f"'{_text(name)}'"
 
 
 def change_line(change, quote=_quoted) -> str:
-    """One change as a sentence; ``quote`` marks names (quotes in text, code in Markdown)."""
+    """One change as a sentence; ``quote`` marks names and the other text of the robot's
+    (quotes around terminal text in text, a code span in Markdown)."""
     if change.kind == "renamed":
         return f"renamed {change.element} {quote(change.old_name)} -> {quote(change.name)}"
     if change.kind in ("added", "removed"):
         return f"{change.kind} {change.element} {quote(change.name)}"
     line = (f"{change.element} {quote(change.name)}: {change.field} "
-            f"{_value(change.old)} -> {_value(change.new)}"
+            f"{_value(change.old, quote)} -> {_value(change.new, quote)}"
             + (f" {change.unit}" if change.unit and change.delta is not None else ""))
     amount = _amount(change)
     return line + (f" ({amount})" if amount else "")
 
 
-def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN) -> str:
+def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN, quote=_text) -> str:
     """The values in ``at`` of ``joints``, the joints that move what changed (the other
-    joints' values change nothing there), named even at zero; with none, the change is the
-    same in every configuration."""
+    joints' values change nothing there), named even at zero (names marked by ``quote``); with
+    none, the change is the same in every configuration."""
     if not joints:
         return "every configuration alike"
-    shown = ", ".join(f"{name}={number(at.get(name, 0.0), 3)}" for name in joints[:limit])
+    shown = ", ".join(f"{quote(name)}={number(at.get(name, 0.0), 3)}" for name in joints[:limit])
     return shown + (f", ... ({len(joints)} joints)" if len(joints) > limit else "")
 
 
-def _frame_cells(frame) -> tuple[str, str, str, str, str]:
+def _frame_cells(frame, quote=_text) -> tuple[str, str, str, str, str]:
     """A moved frame's numbers as people read them: at zero (mm, deg), at most (mm, deg),
-    and where it moved most (the joints that move it)."""
+    and where it moved most (the joints that move it, names marked by ``quote``)."""
     return (number(frame.zero_position * 1000, 3), number(math.degrees(frame.zero_rotation), 3),
             number(frame.max_position * 1000, 3), number(math.degrees(frame.max_rotation), 3),
-            _where(frame.at, frame.joints))
+            _where(frame.at, frame.joints, quote=quote))
 
 
-def _worst_line(effects) -> str:
+def _worst_line(effects, quote=_text) -> str:
     """The configuration where the frames moved most (``diff --render`` draws it): the joints
     that move the changed frames, with their values."""
-    return (f"largest change at {_where(effects.worst, effects.moving)} (the joints that move "
-            "the changed frames; --render draws this configuration)")
+    return (f"largest change at {_where(effects.worst, effects.moving, quote=quote)} (the joints "
+            "that move the changed frames; --render draws this configuration)")
 
 
-def _effect_lines(effects) -> list[str]:
+def _effect_lines(effects, quote=_text) -> list[str]:
+    """The effects as lines of text; ``quote`` marks names (as :func:`change_line`)."""
     lines = [f"Effect over {effects.samples + 1} configurations (zero + {effects.samples} "
              "within the limits both allow):"]
     if effects.frames:
         lines.append(f"  {len(effects.frames)} frame(s) moved; most:")
         for frame in effects.frames[:FRAMES_SHOWN]:
             zero_mm, zero_deg, max_mm, max_deg, where = _frame_cells(frame)
-            lines.append(f"    {frame.link}: at zero {zero_mm} mm {zero_deg} deg; at most "
+            lines.append(f"    {quote(frame.link)}: at zero {zero_mm} mm {zero_deg} deg; at most "
                          f"{max_mm} mm {max_deg} deg (at {where})")
         if len(effects.frames) > FRAMES_SHOWN:
             lines.append(f"    ... {len(effects.frames) - FRAMES_SHOWN} more (--format json)")
@@ -105,14 +105,14 @@ def _effect_lines(effects) -> list[str]:
         lines.append("  no frame moved")
     lines.append("  " + _mass_line(effects))
     for chain in effects.chains:
-        lines.append(f"  reach {chain.base} -> {chain.tip}: {number(chain.old_reach * 1000)} "
-                     f"-> {number(chain.new_reach * 1000)} mm "
+        lines.append(f"  reach {quote(chain.base)} -> {quote(chain.tip)}: "
+                     f"{number(chain.old_reach * 1000)} -> {number(chain.new_reach * 1000)} mm "
                      f"({number((chain.new_reach - chain.old_reach) * 1000, 3, plus=True)} mm; "
                      f"at zero {number((chain.new_zero - chain.old_zero) * 1000, 3, plus=True)}"
                      " mm)")
     for collision in effects.collisions:
         verb = "newly collides" if collision.new_count else "no longer collides"
-        lines.append(f"  {collision.link1} / {collision.link2} {verb}: in "
+        lines.append(f"  {quote(collision.link1)} / {quote(collision.link2)} {verb}: in "
                      f"{collision.old_count} -> {collision.new_count} of "
                      f"{effects.samples + 1} configurations")
     return lines
@@ -133,13 +133,14 @@ def _mass_line(effects) -> str:
 
 def text(result) -> str:
     changes = result.changes + result.companions
+    old, new = _text(result.old), _text(result.new)
     if result.equivalent:
-        return f"{result.old} and {result.new}: equivalent (no change)\n"
-    lines = [f"{result.old} -> {result.new}: {len(changes)} change(s)"]
+        return f"{old} and {new}: equivalent (no change)\n"
+    lines = [f"{old} -> {new}: {len(changes)} change(s)"]
     lines += ["  " + change_line(change) for change in changes]
     if result.effects is not None:
         lines += _effect_lines(result.effects)
-        lines += [f"warning: {warning}" for warning in result.effects.warnings]
+        lines += [f"warning: {_text(warning)}" for warning in result.effects.warnings]
     return "\n".join(lines) + "\n"
 
 
@@ -147,7 +148,7 @@ def markdown(result) -> str:
     """For a pull-request comment or ``$GITHUB_STEP_SUMMARY``: a heading, the changes as a
     list, the effects as tables."""
     changes = result.changes + result.companions
-    title = f"### Robot description: `{result.old}` → `{result.new}`"
+    title = f"### Robot description: {_code(result.old)} → {_code(result.new)}"
     if result.equivalent:
         return f"{title}\n\nNo change: the two describe the same robot.\n"
     out = [title, "", f"**{len(changes)} change(s)**", ""]
@@ -160,22 +161,17 @@ def markdown(result) -> str:
             out += ["| link | at zero (mm) | at zero (deg) | at most (mm) | at most (deg) | "
                     "where |", "|---|---:|---:|---:|---:|---|"]
             for frame in effects.frames[:FRAMES_SHOWN]:
-                out.append(f"| `{frame.link}` | " + " | ".join(map(_md, _frame_cells(frame)))
+                out.append(f"| {_code(frame.link)} | " + " | ".join(_frame_cells(frame, _code))
                            + " |")
             if len(effects.frames) > FRAMES_SHOWN:
                 out.append(f"\n… and {len(effects.frames) - FRAMES_SHOWN} more frame(s)")
-            out += ["", f"{_worst_line(effects)}."]
+            out += ["", f"{_worst_line(effects, _code)}."]
         else:
             out.append("No frame moved.")
         out += ["", f"- {_mass_line(effects)}"]
-        out += [f"- {line.strip()}" for line in _effect_lines(effects)
+        out += [f"- {line.strip()}" for line in _effect_lines(effects, _code)
                 if line.startswith("  reach") or "collides" in line]
     return "\n".join(out) + "\n"
-
-
-def _md(text: str) -> str:
-    """Text for a Markdown table cell."""
-    return text.replace("|", "\\|")
 
 
 def change_detail(result):
@@ -240,6 +236,6 @@ def write(result, output_format: str, stream=None) -> None:
 
         write_json(as_json(result), stream, finite=True)
     elif output_format == "markdown":
-        stream.write(markdown(result))
+        stream.write(_lines(markdown(result)))
     else:
-        stream.write(text(result))
+        stream.write(_lines(text(result)))

@@ -10,6 +10,7 @@ from pathlib import Path
 from urdftool.description.urdf import UNITS
 from urdftool.diagnostics import Severity
 from urdftool.errors import DotMissing
+from urdftool.report.escape import dot as _quote
 
 COLOURS = {  # severity -> (outline, fill)
     Severity.ERROR: ("#c62828", "#ffcdd2"),
@@ -68,7 +69,7 @@ def to_dot(robot, findings=()) -> str:
             name = end.get("link") if end is not None else None
             if name and name not in robot.links and name not in missing:
                 missing.append(name)
-                attributes = {**MISSING, "label": f"{name}\n(missing)",
+                attributes = {**MISSING, "label": (name, "(missing)"),
                               "tooltip": f"no link named '{name}'"}
                 lines.append(f"  {_quote(name)}{_attributes(attributes)};")
     for joint in robot.children("joint"):
@@ -87,15 +88,16 @@ def to_dot(robot, findings=()) -> str:
 MISSING = {"style": "dashed", "color": "#c62828", "fontcolor": "#c62828"}  # a link not defined
 
 
-def joint_label(joint) -> str:
-    """``name``, then the type and, for limited joints, ``[lower, upper] unit``."""
+def joint_label(joint) -> tuple[str, str]:
+    """The label's lines: ``name``, then the type and, for limited joints, ``[lower, upper]
+    unit``."""
     kind = joint.get("type", "?")
-    label = f"{joint.get('name', '?')}\n{kind}"
+    second = kind
     limit = joint.find("limit")
     if kind in UNITS and limit is not None:
         lower, upper = _short(limit.get("lower", "0")), _short(limit.get("upper", "0"))
-        label += f" [{lower}, {upper}] {UNITS[kind]}"
-    return label
+        second += f" [{lower}, {upper}] {UNITS[kind]}"
+    return joint.get("name", "?"), second
 
 
 def _short(text: str) -> str:
@@ -115,7 +117,7 @@ def _colour(findings, line_key: str, fill_key: str) -> dict:
     if worst not in COLOURS:
         return {}
     outline, fill = COLOURS[worst]
-    tooltip = "\n".join(f"{f.code} {f.message}" for f in findings)
+    tooltip = tuple(f"{f.code} {f.message}" for f in findings)
     fill_value = fill if fill_key == "fillcolor" else outline
     return {line_key: outline, fill_key: fill_value, "penwidth": "2", "tooltip": tooltip}
 
@@ -123,12 +125,8 @@ def _colour(findings, line_key: str, fill_key: str) -> dict:
 def _attributes(attributes: dict) -> str:
     if not attributes:
         return ""
-    return " [" + ", ".join(f"{key}={_quote(value)}" for key, value in attributes.items()) + "]"
-
-
-def _quote(text: str) -> str:
-    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
-    return f'"{escaped}"'
+    return " [" + ", ".join(f"{key}={_quote(*value) if isinstance(value, tuple) else _quote(value)}"
+                            for key, value in attributes.items()) + "]"
 
 
 def write(dot: str, output: Path) -> Path:

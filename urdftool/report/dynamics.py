@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.report.escape import text as _text
 
 
 def weakest(loads):
@@ -37,20 +38,21 @@ def _scale(values) -> float | None:
 
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
-    width = max((len(j) for j in result.joints), default=5)
-    lines = [f"total mass {number(result.mass)} kg, centre of mass ({numbers(result.com, floor=MILLIMETRE)}) m "
-             "in the root frame"]
+    joints = [_text(j) for j in result.joints]
+    width = max((len(j) for j in joints), default=5)
+    lines = [f"total mass {number(result.mass)} kg, centre of mass "
+             f"({numbers(result.com, floor=MILLIMETRE)}) m in the root frame"]
     if matrices:
         lines += ["", "G(q): gravity torque per joint [N m or N]"]
         lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
-                  for name, g in zip(result.joints, result.G)]
+                  for name, g in zip(joints, result.G)]
         lines += ["", "M(q): joint-space mass matrix"]
         lines += [f"  {name:{width}s} {_row(row, _scale(result.M))}"
-                  for name, row in zip(result.joints, result.M)]
+                  for name, row in zip(joints, result.M)]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row, _scale(result.C))}"
-                  for name, row in zip(result.joints, result.C)]
+                  for name, row in zip(joints, result.C)]
         lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
                       "+ damping v + friction sign(v)"]
         lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
@@ -59,7 +61,7 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
         scales = [_scale(column) for column in columns]
         lines += [f"  {name:{width}s} "
                   + " ".join(f"{number(v, scale=s):>10s}" for v, s in zip(values, scales))
-                  for name, *values in zip(result.joints, *columns)]
+                  for name, *values in zip(joints, *columns)]
         lines.append(f"  (tau matches rnea to {number(result.rnea_residual, 2)})")
     if matrices or result.C is not None:
         energies = (result.kinetic, result.potential, result.lagrangian)
@@ -67,8 +69,11 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
         lines += ["", f"energy: K = {kinetic} J, P = {potential} J "
                       f"(m g z of the centre of mass), L = K - P = {lagrangian} J"]
     if loads:
-        lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
-                                          "random poses:", relevant)
+        refined = any(load.sampled is not None for load in loads)
+        title = (f"static gravity load over the joint ranges (the zero pose and {samples} random "
+                 "poses, then climbed to a maximum, exact along each joint):" if refined else
+                 f"static gravity load over the zero pose and {samples} random poses:")
+        lines += [""] + load_lines(loads, title, relevant)
     return "\n".join(lines) + "\n"
 
 
@@ -76,29 +81,33 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     """Each joint's worst gravity load against its effort limit, the smallest margin, and
     whether every joint holds; relevant: joints whose values in the worst pose matter. A joint
     without an effort limit has no margin and is listed as not judged."""
-    width = max((len(load.joint) for load in loads), default=5)
-    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
-                    f"{'margin':>10s}"]
+    width = max((len(_text(load.joint)) for load in loads), default=5)
+    refined = any(load.sampled is not None for load in loads)
+    sampled = f" {'sampled':>10s}" if refined else ""
+    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s}{sampled} "
+                    f"{'worst':>10s} {'margin':>10s}"]
     scale = _scale([value for load in loads for value in (load.zero_pose, load.worst)])
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
         effort, margin = (f"{number(load.effort):>8s}", f"{number(load.margin):>10s}") \
             if load.limited else (f"{'none':>8s}", f"{'-':>10s}")
-        lines.append(f"  {load.joint:{width}s} {effort} "
-                     f"{number(load.zero_pose, scale=scale):>10s} "
+        drawn = "" if not refined else f" {number(load.sampled, scale=scale):>10s}" \
+            if load.sampled is not None else f" {'':10s}"
+        lines.append(f"  {_text(load.joint):{width}s} {effort} "
+                     f"{number(load.zero_pose, scale=scale):>10s}{drawn} "
                      f"{number(load.worst, scale=scale):>10s} {margin}{flag}")
     least = weakest(loads)
     if least is not None:
         # only the joints that change its load: the others' values are noise
-        pose = ", ".join(f"{k}={number(v, places=3)}" for k, v in least.worst_pose.items()
-                         if v and k in relevant and number(v, places=3) != "0.000")
-        lines.append(f"  smallest margin: {least.joint} ({number(least.margin, 3)} of "
+        pose = ", ".join(f"{_text(k)}={number(v, places=3)}" for k, v in least.worst_pose.items()
+                         if k in relevant and number(v, places=3) != "0.000")
+        lines.append(f"  smallest margin: {_text(least.joint)} ({number(least.margin, 3)} of "
                      f"{number(least.effort, 3)}) at {pose or 'the zero pose'}")
-    unlimited = [load.joint for load in loads if not load.limited]
+    unlimited = [_text(load.joint) for load in loads if not load.limited]
     if unlimited:
         lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
                      f"{', '.join(unlimited)}")
-    failing = [load.joint for load in loads if load.holds is False]
+    failing = [_text(load.joint) for load in loads if load.holds is False]
     every = "every joint with an effort limit" if unlimited else "every joint"
     lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
                  f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
@@ -114,9 +123,9 @@ def _vector(values) -> str:
 def stance_text(stance, standing_load=None) -> str:
     """The robot standing: centre of mass, support polygon and margin, each joint's torque
     standing and with the root fixed against its effort limit, the ground's wrenches."""
-    supports = ", ".join(stance.supports)
-    lines = [f"standing on {supports} (ground frame: {stance.supports[0]}'s, level, on its "
-             "lowest point)",
+    supports = ", ".join(map(_text, stance.supports))
+    lines = [f"standing on {supports} (ground frame: {_text(stance.supports[0])}'s, level, on "
+             "its lowest point)",
              f"total mass {number(stance.mass)} kg, centre of mass "
              f"({numbers(stance.com, floor=MILLIMETRE)}) m"]
     where = "inside" if stance.stands else "OUTSIDE"
@@ -125,19 +134,21 @@ def stance_text(stance, standing_load=None) -> str:
                  f"{where} its nearest "
                  "edge" + ("" if stance.stands else " (it tips over)"))
     if stance.assumption:
-        lines.append(f"assumption: {stance.assumption}")
-    width = max((len(j) for j in stance.joints), default=5)
+        lines.append(f"assumption: {_text(stance.assumption)}")
+    joints = [_text(j) for j in stance.joints]
+    width = max((len(j) for j in joints), default=5)
     lines += ["", "joint torque holding the robot [N m or N]:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
     scale = _scale([*stance.torques, *stance.fixed_base])
-    for joint, standing, fixed, effort in zip(stance.joints, stance.torques, stance.fixed_base,
+    for joint, standing, fixed, effort in zip(joints, stance.torques, stance.fixed_base,
                                               stance.efforts):
         flag = "  ERROR: beyond its effort limit" if abs(standing) > effort else ""
         lines.append(f"  {joint:{width}s} {number(standing, scale=scale):>10s} "
                      f"{number(fixed, scale=scale):>10s} {number(effort):>8s}{flag}")
     lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
     for name, wrench in stance.wrenches.items():
-        lines.append(f"  {name}: force ({_vector(wrench[:3])}), torque ({_vector(wrench[3:])})")
+        lines.append(f"  {_text(name)}: force ({_vector(wrench[:3])}), "
+                     f"torque ({_vector(wrench[3:])})")
     if standing_load is not None:
         tipped = standing_load.poses - standing_load.stable
         which = "the zero pose and " if standing_load.zero_stands else ""

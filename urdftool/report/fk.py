@@ -16,10 +16,13 @@ def verify_line(count: int, seed, position: float, rotation: float, tolerance: f
             f"{'agree' if ok else 'DISAGREE'} (tolerance {number(tolerance, 6)})")
 
 
-def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None) -> None:
+def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None,
+                drawn=None) -> None:
     """``result`` (urdftool.kinematics.fk.FKResult) in ``output_format``: text, json or csv.
 
-    matrix: also each pose as a 4x4 matrix; single: JSON gives one document, not a list
+    matrix: also each pose as a 4x4 matrix; single: JSON gives one document, not a list;
+    drawn: (variable names, values [rows, variables], seed) of random configurations, written
+    with each pose (full precision: ``--q NAME=VALUE`` with them gives the pose again)
     """
     from urdftool.kinematics.fk import pose_components
 
@@ -32,11 +35,16 @@ def write_poses(result, output_format: str, matrix: bool, single: bool, stream=N
             _frame_entry(name, positions[row, k], rpys[row, k], quaternions[row, k],
                          result.matrices[row, k] if matrix else None)
             for k, name in enumerate(result.frames)]} for row in range(len(positions))]
+        if drawn is not None:
+            names, values, seed = drawn
+            for row, document in enumerate(documents):
+                document["seed"] = seed
+                document["q"] = {name: float(v) for name, v in zip(names, values[row])}
         write_json(documents[0] if single else documents, stream)
     elif output_format == "csv":
-        _csv(result, positions, rpys, quaternions, matrix, stream)
+        _csv(result, positions, rpys, quaternions, matrix, stream, drawn)
     else:
-        _text(result, positions, rpys, quaternions, matrix)
+        _text(result, positions, rpys, quaternions, matrix, drawn)
 
 
 def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
@@ -47,15 +55,28 @@ def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
     return entry
 
 
-def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
+def _drawn_words(drawn, row: int) -> str:
+    """``--q NAME=VALUE ...`` of a drawn configuration, every value at full precision."""
+    names, values, _ = drawn
+    import shlex
+
+    return " ".join(f"--q {shlex.quote(f'{name}={float(v)!r}')}"
+                    for name, v in zip(names, values[row]))
+
+
+def _csv(result, positions, rpys, quaternions, matrix, stream, drawn=None) -> None:
     import csv
 
     import numpy as np
+
+    from urdftool.report.escape import csv_cell
 
     header = ["row", "base", "frame", "x", "y", "z", "roll", "pitch", "yaw",
               "qx", "qy", "qz", "qw"]
     if matrix:
         header += [f"m{i}{j}" for i in range(3) for j in range(4)]
+    if drawn is not None:
+        header += [csv_cell(name) for name in drawn[0]]  # the values drawn, a column each
     writer = csv.writer(stream, lineterminator="\n")
     writer.writerow(header)
     numbers = np.concatenate([positions, rpys, quaternions], axis=-1)
@@ -63,15 +84,19 @@ def _csv(result, positions, rpys, quaternions, matrix, stream) -> None:
         numbers = np.concatenate([numbers, result.matrices[..., :3, :].reshape(
             numbers.shape[:2] + (12,))], axis=-1)
     for row in range(len(numbers)):
+        joints = [repr(float(v)) for v in drawn[1][row]] if drawn is not None else []
         for k, name in enumerate(result.frames):
-            writer.writerow([row + 1, result.base, name, *(repr(float(v)) for v in numbers[row, k])])
+            writer.writerow([row + 1, csv_cell(result.base), csv_cell(name),
+                             *(repr(float(v)) for v in numbers[row, k]), *joints])
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
            "qx [-]", "qy [-]", "qz [-]", "qw [-]"]
 
 
-def _text(result, positions, rpys, quaternions, matrix) -> None:
+def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
+    from urdftool.report.escape import markup, text
+
     plain = plain_tables(len(result.frames))
     console = None if plain else wide_console()
     for row in range(len(positions)):
@@ -80,26 +105,33 @@ def _text(result, positions, rpys, quaternions, matrix) -> None:
         rows = [[name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k],
                                             *quaternions[row, k]))]
                 for k, name in enumerate(result.frames)]
+        drawn_line = None if drawn is None else (
+            f"configuration {row + 1} (--random, --seed {drawn[2]}): {_drawn_words(drawn, row)}")
         if plain:
-            write_table(sys.stdout, title, HEADERS, rows)
+            out = sys.stdout
+            if drawn_line is not None:
+                out.write(text(drawn_line) + "\n")
+            write_table(out, title, HEADERS, rows)
             if matrix:
-                _plain_matrices(result, row)
+                _plain_matrices(result, row, out)
             continue
+        if drawn_line is not None:
+            console.print(markup(drawn_line), soft_wrap=True)
         print_table(console, title, HEADERS, rows)
         if matrix:
-            from rich.markup import escape
-
             for k, name in enumerate(result.frames):
-                console.print(f"{escape(name)}:")
+                console.print(f"{markup(name)}:")
                 for line in result.matrices[row, k]:
                     console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))
 
 
-def _plain_matrices(result, row: int) -> None:
-    from urdftool.report.summary import printable
+def _plain_matrices(result, row: int, stream=None) -> None:
+    from urdftool.report.escape import text
 
     lines = []
     for k, name in enumerate(result.frames):
-        lines.append(f"{printable(name)}:")
-        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line) for line in result.matrices[row, k]]
-    sys.stdout.write("\n".join(lines) + "\n")
+        lines.append(f"{text(name)}:")
+        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line)
+                  for line in result.matrices[row, k]]
+    stream = stream or sys.stdout
+    stream.write("\n".join(lines) + "\n")

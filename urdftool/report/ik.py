@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.numbers import number, numbers
+from urdftool.report.escape import csv_cell, text as _text
 
 
 def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
@@ -47,29 +48,30 @@ def as_dict(chain, solution, given=None) -> dict:
 
 def text(chain, solutions, given=None) -> str:
     """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
-    width = max((len(v.name) for v in chain.variables), default=5)
+    width = max((len(_text(v.name)) for v in chain.variables), default=5)
+    tip, base = _text(chain.tip), _text(chain.base)
     lines = []
     for solution in solutions:
-        head = f"{solution.target.name}: " if solution.target.name else ""
+        head = f"{_text(solution.target.name)}: " if solution.target.name else ""
         mode = "position only" if solution.target.rotation is None else "position and orientation"
-        lines.append(f"{head}{chain.tip} relative to {chain.base} ({mode}, {solution.method}): "
+        lines.append(f"{head}{tip} relative to {base} ({mode}, {solution.method}): "
                      + ("solved" if solution.solved else "UNREACHABLE"))
         lines.append(f"  {'joint':{width}s} {'value':>12s} {'[deg]':>9s} {'lower':>9s} "
                      f"{'upper':>9s}")
         for variable, value in zip(chain.variables, solution.x):
             degrees = f"{number(math.degrees(value), places=3):>9s}" if variable.angular \
                 else " " * 9
-            lines.append(f"  {variable.name:{width}s} {number(value, places=6):>12s} {degrees} "
-                         f"{number(variable.lower):>9s} {number(variable.upper):>9s}")
+            lines.append(f"  {_text(variable.name):{width}s} {number(value, places=6):>12s} "
+                         f"{degrees} {number(variable.lower):>9s} {number(variable.upper):>9s}")
         lines.append(f"  residual: {_verdict(solution)}; {solution.iterations} iterations, "
                      f"{solution.seeds} seed{'s' if solution.seeds != 1 else ''}")
         if solution.at_limits:
-            lines.append("  at a limit: " + ", ".join(f"{name} ({side})"
+            lines.append("  at a limit: " + ", ".join(f"{_text(name)} ({side})"
                                                        for name, side in solution.at_limits))
         if not solution.solved:
             lines.append(f"  closest pose reached: {_pose(solution.pose)}")
-            lines.append(f"  why: {solution.reason}")
-        lines.append(f"  fk: {q_words(chain, solution, given)}")
+            lines.append(f"  why: {_text(solution.reason)}")
+        lines.append(f"  fk: {_text(q_words(chain, solution, given))}")
         lines.append("")
     solved = sum(s.solved for s in solutions)
     if len(solutions) > 1:
@@ -84,9 +86,10 @@ def csv_text(chain, solutions) -> str:
     stream = io.StringIO()
     writer = csv.writer(stream, lineterminator="\n")
     writer.writerow(["target", "solved", "position_error", "rotation_error", "iterations",
-                     *(v.name for v in chain.variables)])
+                     *(csv_cell(v.name) for v in chain.variables)])
     for number, solution in enumerate(solutions, start=1):
-        writer.writerow([solution.target.name or number, int(solution.solved),
+        writer.writerow([csv_cell(solution.target.name) if solution.target.name else number,
+                         int(solution.solved),
                          repr(solution.position_error), repr(solution.rotation_error),
                          solution.iterations, *(repr(float(v)) for v in solution.x)])
     return stream.getvalue()
@@ -94,15 +97,15 @@ def csv_text(chain, solutions) -> str:
 
 def reach_text(chain, solutions, tolerance: float) -> str:
     """``--check-reach``: one line per target, reachable or not, with its residual."""
-    lines = [f"reach of {chain.tip} relative to {chain.base} ({len(chain.variables)} joints), "
-             f"tolerance {number(tolerance, 6)}:"]
+    lines = [f"reach of {_text(chain.tip)} relative to {_text(chain.base)} "
+             f"({len(chain.variables)} joints), tolerance {number(tolerance, 6)}:"]
     for solution in solutions:
         x, y, z = solution.target.position
         verdict = "reachable" if solution.solved else "UNREACHABLE"
-        line = (f"  {solution.target.name:12s} ({numbers((x, y, z))}) {verdict:11s} "
+        line = (f"  {_text(solution.target.name):12s} ({numbers((x, y, z))}) {verdict:11s} "
                 f"{_verdict(solution)}")
         if not solution.solved:
-            line += f"; {solution.reason}"
+            line += f"; {_text(solution.reason)}"
         lines.append(line)
     reached = sum(s.solved for s in solutions)
     lines.append(f"{reached} of {len(solutions)} targets reachable")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.report.escape import text as _text
 
 
 def xacro_blocks(robot, results) -> str:
@@ -17,7 +18,7 @@ def xacro_blocks(robot, results) -> str:
         what = "replaces the <inertial> at" if result.element is not None else \
             "goes into the link at"
         via = "".join(f", expanded from the macro call at {site}" for site in where.via)
-        lines.append(f"<!-- link '{result.link}': {what} {where}{via} -->")
+        lines.append(_text(f"<!-- link '{result.link}': {what} {where}{via} -->"))
         lines.append(inertial_xml(result.computed))
     return "".join(line + "\n" for line in lines)
 
@@ -33,12 +34,12 @@ def _fmt(properties) -> tuple[str, str, str]:
 def text(results) -> str:
     lines = []
     for result in results:
+        link = _text(result.link)
         if result.declared is None and result.computed is None and not result.notes:
-            lines.append(f"{result.link}: {result.verdict} (a frame: no inertial, no geometry)")
+            lines.append(f"{link}: {result.verdict} (a frame: no inertial, no geometry)")
             continue
-        lines.append(f"{result.link}: {result.verdict} (computed from {result.source} geometry)"
-                     if result.source != "none" else f"{result.link}: {result.verdict} "
-                                                     "(no geometry)")
+        lines.append(f"{link}: {result.verdict} (computed from {result.source} geometry)"
+                     if result.source != "none" else f"{link}: {result.verdict} (no geometry)")
         for label, properties in (("declared", result.declared), ("computed", result.computed)):
             mass, com, tensor = _fmt(properties)
             lines.append(f"  {label:9s} mass {mass:>9s} kg  com {com:28s}  "
@@ -47,7 +48,7 @@ def text(results) -> str:
             diff = ", ".join(f"{k} {number(100 * v, places=1)}%"
                              for k, v in result.differences.items())
             lines.append(f"  difference {diff}")
-        lines.extend(f"  note: {note}" for note in result.notes)
+        lines.extend(f"  note: {_text(note)}" for note in result.notes)
     from urdftool.physics.inertia_compare import VERDICTS
 
     counts = {v: sum(r.verdict == v for r in results) for v in VERDICTS}

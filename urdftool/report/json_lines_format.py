@@ -12,4 +12,5 @@ from urdftool.report.summary import all_findings
 
 def render(results, stream) -> None:
     for finding in all_findings(results):
-        stream.write(json.dumps(diagnostic(finding), ensure_ascii=False) + "\n")
+        # ASCII: the data exact, no raw bidi override or C1 control in a terminal or a log
+        stream.write(json.dumps(diagnostic(finding)) + "\n")

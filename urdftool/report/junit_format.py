@@ -12,16 +12,18 @@ from __future__ import annotations
 from lxml import etree
 
 from urdftool.diagnostics import display_path
-from urdftool.report.summary import printable, via_text
+from urdftool.report.escape import xml
+from urdftool.report.summary import via_text
 
 
 def render(results, stream) -> None:
-    """Every text is passed through :func:`printable`: XML 1.0 cannot hold most control
-    characters (lxml refuses them), and CI pages show the message attribute as a line."""
+    """Every text is passed through :func:`~urdftool.report.escape.xml`: XML 1.0 cannot hold
+    most control characters (lxml refuses them), CI pages show the message attribute as a line
+    and the failure's text line by line (each line of ours stays one line)."""
     suites = etree.Element("testsuites", name="urdftool", tests=str(_tests(results)),
                            failures=str(sum(len(r.failures) for r in results)), errors="0")
     for result in results:
-        shown = printable(display_path(result.path))
+        shown = xml(display_path(result.path))
         failing = {id(finding) for finding in result.failures}
         suite = etree.SubElement(suites, "testsuite", name=shown,
                                  tests=str(max(1, len(result.findings))),
@@ -32,15 +34,14 @@ def render(results, stream) -> None:
             # junit-10.xsd gives a test case no properties: the target is in its name
             target = f" ({finding.target})" if finding.target is not None else ""
             case = etree.SubElement(suite, "testcase",
-                                    name=printable(f"{finding.code} {finding.name}{target}"),
+                                    name=xml(f"{finding.code} {finding.name}{target}"),
                                     classname=shown)
-            text = printable("\n".join([f"{finding.location}: {finding.severity.value} "
-                                        f"{finding.code} {finding.message}",
-                                        *via_text(finding.location)]), keep="\n")
+            text = "\n".join(map(xml, [f"{finding.location}: {finding.severity.value} "
+                                       f"{finding.code} {finding.message}",
+                                       *via_text(finding.location)]))
             if id(finding) in failing:
                 failure = etree.SubElement(case, "failure", type=finding.severity.value,
-                                           message=printable(f"{finding.location}: "
-                                                             f"{finding.message}"))
+                                           message=xml(f"{finding.location}: {finding.message}"))
                 failure.text = text
             else:
                 etree.SubElement(case, "system-out").text = text

@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass, field
-from html import escape
 
 from urdftool.errors import PlotError
+from urdftool.report.escape import svg as escape
 
 VIEWS = ("front", "side", "top", "iso")
 # (towards the viewer, up on the screen) in the robot's root frame: x forward, z up

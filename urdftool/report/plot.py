@@ -9,11 +9,11 @@ layout with Pillow.
 from __future__ import annotations
 
 import io
-from html import escape
 from pathlib import Path
 
 from urdftool.errors import PlotError
 from urdftool.numbers import number
+from urdftool.report.escape import svg as escape
 
 
 COLOURS = {"Adjacent": "#7f7f7f", "Default": "#ff7f0e", "Always": "#d62728",

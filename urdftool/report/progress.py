@@ -66,9 +66,10 @@ def _start(label: str, unit: str, total: int, stream):
     from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn,
                                TimeElapsedColumn)
 
-    console = Console(file=stream, force_terminal=True, highlight=False)
-    bar = Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TextColumn(unit),
-                   TimeElapsedColumn(), console=console, transient=True)
+    console = Console(file=stream, force_terminal=True, highlight=False, emoji=False)
+    bar = Progress(TextColumn(label, markup=False), BarColumn(), MofNCompleteColumn(),
+                   TextColumn(unit, markup=False), TimeElapsedColumn(), console=console,
+                   transient=True)
     bar.start()
     return bar, bar.add_task(label, total=total)
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.report.summary import all_findings, printable
+from urdftool.report.escape import text
+from urdftool.report.summary import all_findings
 
 
 def counts(results) -> list[tuple[int, str, str, str]]:
@@ -17,4 +18,4 @@ def render(results, stream) -> None:
     rows = counts(results)
     width = max((len(str(n)) for n, *_ in rows), default=1)
     for number, code, name, severity in rows:
-        stream.write(printable(f"{number:>{width}}  {code}  {severity:<7}  {name}") + "\n")
+        stream.write(text(f"{number:>{width}}  {code}  {severity:<7}  {name}") + "\n")

@@ -23,7 +23,8 @@ import re
 from typing import Callable
 
 from urdftool.diagnostics import Severity, display_path
-from urdftool.report.summary import STYLES, Summary, counted, printable, via_text
+from urdftool.report.escape import text as escaped
+from urdftool.report.summary import STYLES, Summary, counted, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
@@ -40,7 +41,8 @@ _LONG_LIST = 60  # [characters] a list shorter than this is written every time
 
 def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     """The report as lines of (text, style) spans; names, paths and messages come from the
-    files checked, so their control characters are escaped (one finding, one line).
+    files checked, so each line is terminal text (urdftool.report.escape.text: one finding,
+    one line, none a workflow command).
 
     notes: whether findings of severity info are shown, for every result or per result
     """
@@ -60,7 +62,7 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         if not quiet:
             out.append([])
     if quiet:
-        return [_printable(line) for line in out]
+        return [_escaped(line) for line in out]
     out.append(_summary(results, hidden))
     fixable = [f.fix.safe for result in results for f in result.findings if f.fix is not None]
     if fixable:
@@ -68,7 +70,7 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         parts = [f"[*] {safe} fixable with --fix"] if safe else []
         parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
         out.append([("; ".join(parts), "")])
-    return [_printable(line) for line in out]
+    return [_escaped(line) for line in out]
 
 
 def _summary(results, hidden: int) -> Line:
@@ -157,14 +159,14 @@ def _once(message: str, location, listed: dict) -> str:
     return _AVAILABLE.sub(replace, message)
 
 
-def _printable(line: Line) -> Line:
-    """The line with each span :func:`printable`; one look at the whole line first (escaping
-    is per character, so a line that needs none is kept as it is: 10,000 findings are 60,000
-    spans)."""
+def _escaped(line: Line) -> Line:
+    """The line with each span escaped as terminal text; one look at the whole line first
+    (escaping is per character, so a line that needs none is kept as it is: 10,000 findings
+    are 60,000 spans)."""
     whole = "".join([text for text, _ in line])
-    if printable(whole) == whole:
+    if escaped(whole) == whole:
         return line
-    return [(printable(text), style) for text, style in line]
+    return [(escaped(text), style) for text, style in line]
 
 
 def _marker(finding) -> Line:
@@ -180,11 +182,12 @@ def render(results, stream, quiet: bool = False, notes: Notes = True) -> None:
     if not _colour(stream):
         stream.write("".join("".join(text for text, _ in line) + "\n" for line in report))
         return
-    from rich.console import Console
     from rich.text import Text
 
+    from urdftool.report.console import plain_console
+
     # emoji=False, highlight=False, Text spans: messages are printed exactly as written
-    console = Console(file=stream, highlight=False, soft_wrap=True, emoji=False)
+    console = plain_console(stream)
     for line in report:
         console.print(Text.assemble(*line))
 

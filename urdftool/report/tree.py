@@ -3,15 +3,16 @@
 from __future__ import annotations
 
 from urdftool.kinematics.tree import children_by_link, root_link
+from urdftool.report.escape import text
 
 
 def tree_text(robot) -> str:
     """check_urdf's tree listing; TreeError (urdftool.kinematics.tree) when there is no tree."""
     root = root_link(robot)
     children = children_by_link(robot)
-    lines = [f"robot name is: {robot.name}",
+    lines = [f"robot name is: {text(robot.name)}",
              "---------- Successfully Parsed XML ---------------",
-             f"root Link: {root} has {len(children.get(root, []))} child(ren)"]
+             f"root Link: {text(root)} has {len(children.get(root, []))} child(ren)"]
 
     # depth first with a stack of our own, not recursion: a 1,500-link chain is 1,500 deep
     stack = [(child, index, 1) for index, (_, child) in reversed(
@@ -19,7 +20,7 @@ def tree_text(robot) -> str:
     seen = {root}
     while stack:
         link, index, depth = stack.pop()
-        lines.append("    " * depth + f"child({index}):  {link}")
+        lines.append("    " * depth + f"child({index}):  {text(link)}")
         if link in seen:
             continue  # a cycle below the root: listed once, not followed
         seen.add(link)

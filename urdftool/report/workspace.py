@@ -14,14 +14,17 @@ TOP = 56  # [px] title rows
 def text(space) -> str:
     lower, upper = space.lower, space.upper
     m = space.manipulability
+    from urdftool.report.escape import text
+
     size = max(abs(float(v)) for v in (*lower, *upper, space.reach)) or None
 
     def length(value):  # digits counted from the workspace's size: round-off bounds are 0
         return number(value, scale=size)
 
     peak = float(m.max()) or None
-    lines = [f"workspace of {space.tip} relative to {space.base} ({len(space.joints)} joints: "
-             f"{', '.join(space.joints)}), {space.samples} samples (seed {space.seed})",
+    lines = [f"workspace of {text(space.tip)} relative to {text(space.base)} "
+             f"({len(space.joints)} joints: {', '.join(map(text, space.joints))}), "
+             f"{space.samples} samples (seed {space.seed})",
              f"  max reach {length(space.reach)} m from the first joint at "
              f"({numbers(space.centre)}); horizontal {length(space.horizontal_reach)} m",
              f"  x from {length(lower[0])} to {length(upper[0])} m, y from {length(lower[1])} "

@@ -183,3 +183,154 @@ def test_an_infinite_inertial_angle_is_reported_not_a_crash(tmp_path):
                    'izz="inf"/></inertial></link></robot>', ("U3", "U404", "U900"))
     assert [code for code, _ in found] == ["U301", "U404"]
     assert "izz='inf' is not a finite number" in found[0][1]
+
+
+# -- issue 30 item 8: never judged from part of the geometry -----------------------------------
+
+def test_density_is_not_judged_from_the_collision_when_the_visual_did_not_load(tmp_path):
+    # a 2 kg arm whose collision is a 2 cm sphere at its joint and whose visual mesh (the arm)
+    # is missing: 2 kg in the sphere alone would be denser than osmium, but the arm is not known
+    visual = '<visual><geometry><mesh filename="arm.stl"/></geometry></visual>'
+    found, findings = _check(tmp_path, "U311", 2, 0.01, '<sphere radius="0.01"/>',
+                             visual=visual)
+    assert not found, [f.message for f in findings]
+    found, _ = _check(tmp_path, "U311", 2, 0.01, '<sphere radius="0.01"/>')  # the same, alone
+    assert found
+
+
+def test_a_link_whose_collision_is_all_unreadable_is_not_judged_by_its_visual(tmp_path):
+    from urdftool.physics import solids
+
+    from conftest import load_text
+
+    robot = load_text(tmp_path, """<robot name="r"><link name="a">
+      <visual><geometry><box size="1 1 1"/></geometry></visual>
+      <collision><geometry><box size="0.1 -1 0.1"/></geometry></collision></link></robot>""")
+    solid = solids.link_solid(robot, robot.links["a"])
+    assert solid.source == "collision" and not solid.sound and not solid.counts
+
+
+# -- issue 30 item 11: a threshold that switched the tensor checks off ---------------------------
+
+@pytest.mark.parametrize("mass, tensor, code", [
+    (1e-6, ("1e-6",) * 6, "U306"),  # rank 1: principal moments 0, 0, 3e-6
+    (1e-5, ("0",) * 6, "U304"),  # a moving body with mass and no inertia
+    (1e-6, ("1e-6", "0", "0", "1e-6", "0", "-2e-6"), "U304"),  # izz negative
+])
+def test_light_links_tensors_are_judged(tmp_path, mass, tensor, code):
+    ixx, ixy, ixz, iyy, iyz, izz = tensor
+    text = f"""<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><mass value="{mass}"/><inertia ixx="{ixx}" ixy="{ixy}"
+        ixz="{ixz}" iyy="{iyy}" iyz="{iyz}" izz="{izz}"/></inertial></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304", "U305",
+                                                                             "U306"))
+    assert [f.code for f in findings] == [code], [f.message for f in findings]
+
+
+def test_a_light_placeholder_with_a_valid_tensor_passes(tmp_path):
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><mass value="1e-6"/><inertia ixx="1e-12" ixy="0" ixz="0"
+        iyy="1e-12" iyz="0" izz="1e-12"/></inertial></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U3",))
+    assert not found, [f.message for f in findings]
+
+
+# -- issue 32 class 6 and issue 30 item 11: inertials against geometry -------------------------
+
+@pytest.mark.parametrize("com, reported", [
+    ("0 0 0.04", False),   # inside
+    ("0 0 0.059", False),  # 9 mm outside a 0.1 m box: within a fifth of its size
+    ("0 0 0.09", True),    # 4 cm outside
+])
+def test_com_outside_hull(tmp_path, com, reported):
+    found, findings = _check(tmp_path, "U312", 1, 0.0017, CUBE, com=com)
+    assert bool(found) == reported, [f.message for f in findings]
+
+
+def test_a_frame_placeholder_between_the_fingers_is_not_judged(tmp_path):
+    # a tool centre point: no geometry of its own, its inertial at its origin, fixed to a
+    # gripper whose geometry is behind it
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="gripper"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="gripper"><inertial><mass value="0.3"/><inertia ixx="1e-4" ixy="0" ixz="0"
+        iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+        <collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision></link>
+      <joint name="t" type="fixed"><parent link="gripper"/><child link="tcp"/>
+        <origin xyz="0.1 0 0"/></joint>
+      <link name="tcp"><inertial><mass value="0.001"/><inertia ixx="1e-9" ixy="0" ixz="0"
+        iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    assert not found, [f.message for f in findings]
+    text = text.replace('<link name="tcp"><inertial>', '<link name="tcp"><inertial><origin xyz="-0.05 0 0"/>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    assert found  # an offset given: a centre of mass, judged
+
+
+def test_the_bound_skips_a_marker_box(tmp_path):
+    found, _ = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.005 0.005 0.005"/>')
+    assert not found  # a 5 mm marker is no body (40 times the bound)
+    found, _ = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.02 0.02 0.02"/>')
+    assert found  # 2.5 times the bound of a 2 cm part (7.5 times its uniform solid: not U310)
+
+
+def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <origin xyz="0 0 0.3"/><axis xyz="0 1 0"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><origin xyz="0 0 0.3"/><mass value="1"/>
+        <inertia ixx="0.03" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.001"/></inertial>
+        <collision><origin xyz="0 0 0.3"/><geometry><box size="0.05 0.05 0.6"/></geometry>
+        </collision></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U312", "U313"))
+    assert not found, [f.message for f in findings]
+
+
+@pytest.mark.parametrize("tensor, reported", [
+    ("0.0135 0.0135 0.00042", True),   # written for a bar along z
+    ("0.00042 0.0135 0.0135", False),  # the bar's own
+    ("0.002 0.004 0.004", False),      # a heavy motor in the middle: not reversed twice over
+    ("0.006 0.006 0.006", False),      # a placeholder sphere (U310's, if anything)
+])
+def test_principal_moments_order(tmp_path, tensor, reported):
+    ixx, iyy, izz = tensor.split()
+    text = f"""<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><mass value="1"/><inertia ixx="{ixx}" ixy="0" ixz="0"
+        iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
+        <collision><geometry><box size="0.4 0.05 0.05"/></geometry></collision></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U314",))
+    assert bool(found) == reported, [f.message for f in findings]
+
+
+@pytest.mark.parametrize("mass, geometry, reported", [
+    (0.00027, '<box size="0.1 0.05 0.02"/>', True),     # 2.7 kg/m^3: aluminium in g/cm^3
+    (0.27, '<box size="0.1 0.05 0.02"/>', False),       # 2700
+    (0.00003, '<box size="0.1 0.05 0.02"/>', False),    # 0.3: lighter than a shell, no slip
+    (0.005, '<cylinder radius="0.128" length="0.005"/>', False),  # a propeller's disc: 19
+    (2.0, '<box size="1.0 0.6 0.5"/>', False),          # a big shell box: 6.7 over 1 m
+    (0.0001, '<box size="0.05 0.04 0.02"/>', False),    # 2.5: a power of ten is a placeholder
+    (0.00013, '<box size="0.05 0.04 0.02"/>', False),   # 3.25: no material's 3250
+])
+def test_density_in_grams(tmp_path, mass, geometry, reported):
+    found, findings = _check(tmp_path, "U315", mass, 1e-6, geometry)
+    assert bool(found) == reported, [f.message for f in findings]
+
+
+def test_the_bound_takes_open_meshes_and_skips_missing_ones(tmp_path):
+    (tmp_path / "open.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n")
+    mesh = '<mesh filename="open.obj" scale="0.1 0.1 0.1"/>'
+    # d = |(0.1, 0, 0) - com| at most; trace 0.3 for 1 kg against 2 m d^2 ~ 0.02
+    found, findings = _check(tmp_path, "U316", 1, 0.1, mesh)
+    assert found, [f.message for f in findings]
+    found, _ = _check(tmp_path, "U316", 1, 0.005, mesh)  # trace 0.015: possible
+    assert not found
+    found, _ = _check(tmp_path, "U316", 1, 0.1, mesh,
+                      visual='<visual><geometry><mesh filename="gone.stl"/></geometry></visual>')
+    assert not found  # the body may reach as far as the missing mesh

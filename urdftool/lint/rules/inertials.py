@@ -5,12 +5,18 @@ Thresholds, chosen so that real robots' dummy links do not trip them:
 - A link with zero mass and zero inertia is a massless frame (tool flange, sensor mount,
   ``base_footprint``): fine wherever it is fixed to a body that has mass. Only a *moving* body
   (a link on a non-fixed joint plus every link fixed to it) must have mass.
-- Links lighter than 1e-4 kg (0.1 g) are placeholders for frames: their tensor is not judged
-  (tools write ``1e-6`` into every field, products included, for such links).
-- Moments below ``1e-12 kg m^2`` count as zero (a 1 g, 1 mm part already has ~4e-10).
+- No mass switches the validity of a tensor off (U304, U305, U306): a 1e-6 kg placeholder
+  whose six fields are all ``1e-6`` has principal moments (0, 0, 3e-6), which MuJoCo, Drake
+  and sdformat refuse like any other. What counts as zero scales with the mass: moments
+  below ``1e-12 kg m^2`` times the mass in kg (up to 1 kg), a radius of gyration under a
+  micrometre (a 1 g, 1 mm part already has ~4e-10 kg m^2).
 - Principal moments count as negative below ``-1e-9`` times the largest and below
-  ``-1e-12 kg m^2`` (rounding in printed values), and the triangle inequality allows a relative slack of 1e-3 (CAD tools print few
-  digits, and thin plates sit exactly on the bound).
+  ``-1e-12 kg m^2`` times the mass (up to 1 kg: rounding in printed values), and the
+  triangle inequality allows a relative slack of 1e-3 (CAD tools print few digits, and thin
+  plates sit exactly on the bound).
+- The comparisons with geometry (U309, U310, U311) leave out links of 0.1 g or less: a
+  placeholder frame's tensor has no weight in the dynamics, and its geometry is a marker. The
+  physical bound of U316 judges them too: no mass makes a tensor beyond it possible.
 """
 
 from __future__ import annotations
@@ -21,16 +27,19 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.xml import first_child
+from urdftool.description.xml import attribute, first_child
 from urdftool.description.values import number_tuple
+from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
 from urdftool.physics import solids
+from urdftool.physics.frames import parent_joints
+from urdftool.physics.support import link_reach
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
 ZERO_INERTIA = 1e-12  # [kg m^2]: below this a moment counts as zero
-PLACEHOLDER_MASS = 1e-4  # [kg]: lighter links are frames whose tensor is not judged
+PLACEHOLDER_MASS = 1e-4  # [kg]: lighter links' tensors are not compared with their geometry
 TRIANGLE_TOLERANCE = 1e-3
 COM_MARGIN_FRACTION = 1.0
 COM_MARGIN_MIN = 0.05  # [m]
@@ -82,18 +91,25 @@ def _finite_tensor(m) -> bool:
     return all(math.isfinite(v) for row in m for v in row)
 
 
-def _zero_tensor(m) -> bool:
-    """Whether every entry of a tensor is zero (below :data:`ZERO_INERTIA`)."""
+def _scaled(floor: float, mass: float) -> float:
+    """A floor [kg m^2] for a link of ``mass`` [kg]: ``floor`` up to 1 kg, ``floor`` times the
+    mass below (so that no mass, however small, makes every moment count as zero)."""
+    return floor if mass >= 1.0 else floor * mass
+
+
+def _zero_tensor(m, zero: float = ZERO_INERTIA) -> bool:
+    """Whether every entry of a tensor is zero (below ``zero``)."""
     (a, b, c), (d, e, f), (g, h, i) = m  # written out (10,000 links, twice): in row order
-    return abs(a) < ZERO_INERTIA and abs(b) < ZERO_INERTIA and abs(c) < ZERO_INERTIA \
-        and abs(d) < ZERO_INERTIA and abs(e) < ZERO_INERTIA and abs(f) < ZERO_INERTIA \
-        and abs(g) < ZERO_INERTIA and abs(h) < ZERO_INERTIA and abs(i) < ZERO_INERTIA
+    return abs(a) < zero and abs(b) < zero and abs(c) < zero \
+        and abs(d) < zero and abs(e) < zero and abs(f) < zero \
+        and abs(g) < zero and abs(h) < zero and abs(i) < zero
 
 
 def _judged(robot):
-    """(link, MassProperties) of links heavy enough for their tensor to matter."""
+    """(link, MassProperties) of links with mass: the validity of a tensor does not depend on
+    how light the link is."""
     for link, properties in _valid(robot):
-        if properties.mass >= PLACEHOLDER_MASS:
+        if properties.mass > 0:
             yield link, properties
 
 
@@ -244,10 +260,11 @@ def _diagonal(properties) -> list[float]:
 
 
 def _negative_moment(properties) -> bool:
-    """Whether a diagonal moment is negative (below -NEGATIVE_FLOOR); written out: U304 and
-    U305 ask for every link."""
+    """Whether a diagonal moment is negative (below the negative floor for its mass); written
+    out: U304 and U305 ask for every link."""
     (xx, _, _), (_, yy, _), (_, _, zz) = properties.inertia
-    return xx < -NEGATIVE_FLOOR or yy < -NEGATIVE_FLOOR or zz < -NEGATIVE_FLOOR
+    floor = -_scaled(NEGATIVE_FLOOR, properties.mass)
+    return xx < floor or yy < floor or zz < floor
 
 
 @rule("U304", "inertia-not-positive-definite", Severity.ERROR)
@@ -267,11 +284,12 @@ def inertia_not_positive_definite(robot):
     for link, properties in _judged(robot):
         if _negative_moment(properties):
             names = [a for a, v in zip(("ixx", "iyy", "izz"), _diagonal(properties))
-                     if v < -NEGATIVE_FLOOR]
+                     if v < -_scaled(NEGATIVE_FLOOR, properties.mass)]
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
                 "positive"))
-        elif _name(link) in moving and _zero_tensor(properties.inertia):
+        elif _name(link) in moving and _zero_tensor(properties.inertia,
+                                                    _scaled(ZERO_INERTIA, properties.mass)):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
                 "moved by a joint; give the inertia of its shape"))
@@ -293,7 +311,8 @@ def inertia_indefinite(robot):
         if _negative_moment(properties):
             continue
         moments, largest = _principal(robot, link, properties)
-        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
+        if moments[0] < -max(NEGATIVE_TOLERANCE * largest,
+                             _scaled(NEGATIVE_FLOOR, properties.mass)):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
                 f"{', '.join(number(m) for m in moments)} include a negative one; check the "
@@ -304,24 +323,36 @@ def inertia_indefinite(robot):
 def inertia_triangle_inequality(robot):
     """The principal moments violate the triangle inequality (A + B >= C): no body has them.
 
-    MuJoCo refuses the model; Gazebo and PyBullet simulate physically impossible motion.
-    Allows a relative slack of 1e-3 for printed rounding.
+    MuJoCo, Drake and sdformat refuse the model; Gazebo and PyBullet simulate physically
+    impossible motion. Allows a relative slack of 1e-3 for printed rounding. Judged whatever
+    the mass: a placeholder with every field ``1e-6``, products included, has principal
+    moments (0, 0, 3e-6), a tensor of rank 1.
 
     Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
 
-    Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5)
-    Good: ``ixx="0.3" iyy="0.3" izz="0.5"``
+    Bad: ``ixx="0.1" iyy="0.1" izz="0.5"`` (0.1 + 0.1 < 0.5); ``<mass value="1e-6"/>`` with
+    ``ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"``
+    Good: ``ixx="0.3" iyy="0.3" izz="0.5"``; a placeholder's products of inertia 0
     """
     for link, properties in _judged(robot):
         moments, largest = _principal(robot, link, properties)
-        if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR) \
-                or moments[-1] < ZERO_INERTIA:
+        if moments[0] < -max(NEGATIVE_TOLERANCE * largest,
+                             _scaled(NEGATIVE_FLOOR, properties.mass)) \
+                or moments[-1] < _scaled(ZERO_INERTIA, properties.mass):
             continue
         broken = triangle_violation(moments, TRIANGLE_TOLERANCE)
         if broken:
+            hint = ("every field is the same, products included: a tensor of rank 1; give a "
+                    "placeholder zero products of inertia, or" if _all_equal(properties) else "")
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments violate the triangle inequality "
-                f"({broken}); recompute with `urdftool inertia`"))
+                f"({broken}); {hint} recompute with `urdftool inertia`".replace(";  ", "; ")))
+
+
+def _all_equal(properties) -> bool:
+    """Whether the six fields of a declared tensor are one value (a placeholder's)."""
+    (xx, xy, xz), (_, yy, yz), (_, _, zz) = properties.inertia
+    return xx != 0 and xx == xy == xz == yy == yz == zz
 
 
 def _link_solids(robot):
@@ -351,26 +382,38 @@ def com_outside_geometry(robot):
     Good: the centre of mass inside or near the link's shape
     """
     for link, properties in _valid(robot):
-        if not properties.mass > 0:
+        far = _far_outside_box(robot, link, properties)
+        if far is None:
             continue
-        rigid = solids.rigid_bounds(robot, link)
-        if rigid.bounds is None or not rigid.complete:
-            continue
+        distance, rigid = far
         low, high = rigid.bounds
-        (lx, ly, lz), (hx, hy, hz), (cx, cy, cz) = low, high, properties.com
-        # per axis, written out (10,000 links): the same maxima and the same sum
-        ox, oy, oz = max(lx - cx, cx - hx, 0.0), max(ly - cy, cy - hy, 0.0), \
-            max(lz - cz, cz - hz, 0.0)
-        distance = math.sqrt(sum((ox * ox, oy * oy, oz * oz)))
-        extent = max(hx - lx, hy - ly, hz - lz)
-        if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
-            com = numbers(properties.com, floor=MILLIMETRE)
-            fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
-                if len(rigid.links) > 1 else ""
-            yield first_child(link, "inertial"), (
-                f"link '{_name(link)}': centre of mass ({com}) is {number(distance, 3)} m outside its "
-                f"visual and collision geometry{fixed} (box {_rounded(low)} to "
-                f"{_rounded(high)}); check the inertial origin's frame")
+        com = numbers(properties.com, floor=MILLIMETRE)
+        fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
+            if len(rigid.links) > 1 else ""
+        yield first_child(link, "inertial"), (
+            f"link '{_name(link)}': centre of mass ({com}) is {number(distance, 3)} m outside "
+            f"its visual and collision geometry{fixed} (box {_rounded(low)} to "
+            f"{_rounded(high)}); check the inertial origin's frame")
+
+
+def _far_outside_box(robot, link, properties):
+    """(distance [m], RigidBounds) when the centre of mass is farther outside the box of the
+    link's rigid body than U307 allows, else None."""
+    if not properties.mass > 0:
+        return None
+    rigid = solids.rigid_bounds(robot, link)
+    if rigid.bounds is None or not rigid.complete:
+        return None
+    low, high = rigid.bounds
+    (lx, ly, lz), (hx, hy, hz), (cx, cy, cz) = low, high, properties.com
+    # per axis, written out (10,000 links): the same maxima and the same sum
+    ox, oy, oz = max(lx - cx, cx - hx, 0.0), max(ly - cy, cy - hy, 0.0), \
+        max(lz - cz, cz - hz, 0.0)
+    distance = math.sqrt(sum((ox * ox, oy * oy, oz * oz)))
+    extent = max(hx - lx, hy - ly, hz - lz)
+    if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
+        return distance, rigid
+    return None
 
 
 @rule("U308", "root-link-inertia", Severity.INFO)
@@ -400,9 +443,10 @@ def root_link_inertia(robot):
         location = robot.locations.get(root)
         edits = Unfixable(f"'{roots[0]}' is written in a macro (called at {location.via[0]}); "
                           "add the link beside the call") if location and location.via else \
-            insert_before(robot, root, f'<link name="{name}"/>',
-                          f'<joint name="{name}_joint" type="fixed"><parent link="{name}"/>'
-                          f'<child link="{roots[0]}"/></joint>')
+            insert_before(robot, root, f'<link name="{attribute(name)}"/>',
+                          f'<joint name="{attribute(name)}_joint" type="fixed"><parent '
+                          f'link="{attribute(name)}"/><child link="{attribute(roots[0])}"/>'
+                          '</joint>')
         yield offer(first_child(root, "inertial"), (
             f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
             "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
@@ -533,13 +577,26 @@ def inertia_far_from_geometry(robot):
             f"`urdftool inertia --link {_name(link)}` computes it")
 
 
+def _told_by_ratio(robot) -> set[str]:
+    """The links whose tensor U309 or U310 reports (a unit slip, or far from the geometry)."""
+    told = set()
+    for link, properties, solid, expected, ratio in _inertia_ratios(robot):
+        if _unit_factor(properties, expected, ratio) is not None:
+            told.add(_name(link))
+        elif properties.mass > PLACEHOLDER_MASS and _body_sized(solid) and (
+                ratio < 1 / FAR_RATIO or ratio > FAR_RATIO and
+                mat3.trace(properties.inertia) > _largest_trace(properties, solid)):
+            told.add(_name(link))
+    return told
+
+
 DENSEST = 22_590.0  # [kg/m^3]: osmium, the densest element (CRC Handbook of Chemistry and Physics)
 LIGHTEST = 0.16  # [kg/m^3]: graphene aerogel, the lightest solid made (Sun et al., Adv. Mater. 2013)
 
 
 def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None] | None:
     """(smallest, largest) volume the link's drawn body can have [m^3], or None when some
-    geometry did not load. The largest takes the bigger of its collision and visual
+    geometry did not load (its collision or its visual: never judged from part of it). The largest takes the bigger of its collision and visual
     geometry with open meshes as their convex hulls (a hull holds the part): dividing the mass
     by it gives the least density the link can have. The smallest counts only when the
     geometry is trustworthy (no hull); a hollow shell's envelope makes it too large, so it
@@ -562,8 +619,10 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     volumes = [own]
     if robot.grouped(link).get(other):
         second = _solid(robot, link, other)
-        if loaded(second):
-            volumes.append(solids.volume(second))
+        if not loaded(second):
+            return None  # the body may be the other geometry, which is not all known: the
+            # least density cannot be judged from part of the link's geometry
+        volumes.append(solids.volume(second))
     return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
@@ -609,3 +668,331 @@ def implausible_density(robot):
                 f"{solid.source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
                 "lighter "
                 f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")
+
+
+COM_HULL_FRACTION = 0.2  # of the geometry's largest extent: collision shapes are simplified
+COM_HULL_MIN = 0.01  # [m]
+
+
+def _largest_extent(reach) -> float:
+    """The largest side of the box of a reach's pieces [m]."""
+    return max(reach.support(axis) + reach.support(tuple(-a for a in axis))
+               for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
+
+
+def _hull_margin(reach) -> float:
+    """How far outside a geometry's hull a centre of mass may be [m]: a fifth of its largest
+    extent, at least 1 cm."""
+    return max(COM_HULL_FRACTION * _largest_extent(reach), COM_HULL_MIN)
+
+
+def _copied_joint_origin(robot, link, properties) -> object | None:
+    """The joint whose child ``link`` is, when the inertial origin repeats that joint's origin
+    (its xyz, over 1 cm from the link frame), else None."""
+    joint = parent_joints(robot).get(_name(link))
+    if joint is None:
+        return None
+    xyz = origin_of(joint).xyz
+    com = properties.com
+    if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
+        return None
+    inertial = first_child(link, "inertial")
+    written = origin_of(inertial).xyz
+    if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)) and \
+            all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+        return joint
+    return None
+
+
+@rule("U312", "com-outside-hull", Severity.WARNING)
+def com_outside_hull(robot):
+    """A link's centre of mass lies outside the convex hull of its geometry.
+
+    A body's centre of mass is always inside the convex hull of the body. The hull here is that
+    of the link's visual and collision geometry and of the links fixed to it (one rigid body),
+    meshes by their vertices (open meshes too). Collision shapes are often simplified, so the
+    centre of mass may lie outside by a fifth of the geometry's largest extent (at least 1 cm);
+    beyond that, the inertial origin is in another frame, has a sign flipped, or belongs to
+    another part. Skipped when some geometry cannot be measured (a mesh missing, refused or
+    unreadable), and for a frame's placeholder inertial (a link without geometry of its own
+    whose centre of mass is its origin: a tool centre point between a gripper's fingers).
+    Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
+
+    Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
+    Good: ``<origin xyz="0 0 -0.0475"/>``
+    """
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
+            continue
+        reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
+        if not reach.pieces or not reach.complete:
+            continue
+        outside = reach.outside(properties.com)  # 0 at once inside a box, cylinder or sphere
+        if outside <= COM_HULL_MIN or outside <= _hull_margin(reach) or \
+                _far_outside_box(robot, link, properties) is not None:
+            continue
+        if properties.com == (0.0, 0.0, 0.0) and \
+                not link_reach(robot, link, ("visual", "collision")).pieces:
+            continue  # a frame's placeholder (a tool centre point between the fingers)
+        if _copied_joint_origin(robot, link, properties) is not None and \
+                _own_outside(robot, link, properties) is not None:
+            continue  # U313 says why
+        fixed = f" and of {', '.join(repr(n) for n in reach.links[1:])} fixed to it" \
+            if len(reach.links) > 1 else ""
+        yield first_child(link, "inertial"), (
+            f"link '{_name(link)}': centre of mass ({' '.join(f'{number(v, 4)}' for v in properties.com)}) "
+            f"is at least {number(outside * 1000, places=0)} mm outside the convex hull of its visual and "
+            f"collision geometry{fixed}, where no body has its centre of mass; check the "
+            "inertial origin (a sign, or another part's frame)")
+
+
+def _own_outside(robot, link, properties) -> float | None:
+    """How far [m] the centre of mass is outside the hull of the link's own geometry, when
+    beyond the margin; None when inside it, or when the geometry cannot all be measured."""
+    reach = link_reach(robot, link, ("visual", "collision"))
+    if not reach.pieces or not reach.complete:
+        return None
+    outside = reach.outside(properties.com)
+    return outside if outside > _hull_margin(reach) else None
+
+
+@rule("U313", "inertial-origin-is-joint-origin", Severity.WARNING)
+def inertial_origin_is_joint_origin(robot):
+    """A link's inertial origin repeats the origin of the joint that holds it, outside the link.
+
+    The joint's ``<origin>`` places the link's frame in its parent; the inertial's
+    ``<origin>`` places the centre of mass in the link's own frame. Copying one into the other
+    puts the centre of mass as far again from the joint, outside the link (a caster 0.4 m
+    behind the base gets its mass 0.8 m behind it). Reported when the two xyz are the same
+    (over 1 cm from the link frame) and the centre of mass is outside the hull of the link's
+    own geometry by a fifth of its size (at least 1 cm).
+
+    Bad: ``<joint name="caster_joint"><origin xyz="-0.4 0 -0.05"/>`` and the caster's
+    ``<inertial><origin xyz="-0.4 0 -0.05"/>``
+    Good: the caster's ``<inertial><origin xyz="0 0 0"/>`` (its centre)
+    """
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
+            continue
+        joint = _copied_joint_origin(robot, link, properties)
+        if joint is None:
+            continue
+        outside = _own_outside(robot, link, properties)
+        if outside is None:
+            continue
+        xyz = " ".join(f"{number(v, 4)}" for v in properties.com)
+        yield first_child(link, "inertial"), (
+            f"link '{_name(link)}': inertial origin xyz=\"{xyz}\" repeats the origin of joint "
+            f"'{joint.get('name')}', which places the link itself; in the link's frame it puts "
+            f"the centre of mass at least {number(outside * 1000, places=0)} mm outside the link's geometry "
+            "(the centre of mass is given from the link's own origin)")
+
+
+ORDER_RATIO = 4.0  # the geometry's largest moment over its smallest: clearly long or flat
+ORDER_SLACK = 2.0  # the declared moments must be reversed by this much: a heavy motor in
+# the middle of a long bracket can lower the moments across it, not below half the axial one
+
+
+@rule("U314", "principal-moments-order", Severity.WARNING)
+def principal_moments_order(robot):
+    """A link's declared moments of inertia are ordered against its geometry's (ixx and izz swapped).
+
+    A long or flat body turns hardest about the axes across its length and easiest about its
+    long axis, whatever its density: the ordering of its moments follows its shape (for a
+    hollow tube as for a solid rod, once it is longer than it is wide). Compared, along the
+    principal axes of the link's geometry (collision, else visual; primitives and closed meshes
+    only), when the geometry's largest moment is at least 4 times its smallest: reported when
+    the declared moment about the geometry's easiest axis is over twice the declared moment
+    about its hardest one (mass gathered in the middle of a long part lowers the moments across
+    it, not that far). Typical of a tensor written for another axis convention (a
+    cylinder along z whose link is a rod along x), or of ixx and izz swapped. Wheels are U421's.
+
+    Bad: a 0.4 x 0.05 x 0.05 m box with ``ixx="0.013" iyy="0.013" izz="0.0004"``
+    Good: ``ixx="0.0004" iyy="0.013" izz="0.013"``
+    """
+    from urdftool.physics.wheels import wheels
+
+    skip = {wheel.link for wheel in wheels(robot)}
+    # the links with trustworthy geometry and a tensor, with the geometry's (U309, U310 ask)
+    for link, properties, solid, expected, _ in _inertia_ratios(robot):
+        if _name(link) in skip or properties.mass <= PLACEHOLDER_MASS:
+            continue
+        easiest, _, hardest = mat3.eigvalsh(expected.inertia)
+        if not easiest > 0 or hardest < ORDER_RATIO * easiest:
+            continue
+        least, _, most = _principal(robot, link, properties)[0]
+        if not most > ORDER_SLACK * least:
+            continue  # no two axes of the declared tensor are twice apart
+        # about the geometry's easiest axis against its hardest; when two of its moments are
+        # equal, every axis of their plane is one: the declared tensor's most about the easy
+        # ones against its least about the hard ones
+        easy, about_easy = _declared_about(properties.inertia, expected.inertia, easiest, max)
+        hard, about_hard = _declared_about(properties.inertia, expected.inertia, hardest, min)
+        if about_easy > ORDER_SLACK * about_hard:
+            yield _recomputed(robot, link, properties, (
+                f"link '{_name(link)}': its {solid.source} geometry turns easiest about "
+                f"({_axis_text(easy)}) and hardest about ({_axis_text(hard)}) (moments "
+                f"{number(easiest, 3)} and {number(hardest, 3)} kg m^2 as a uniform solid), but the declared "
+                f"tensor has {number(about_easy, 3)} and {number(about_hard, 3)} about them: moments "
+                "written for other axes (ixx and izz swapped?)"))
+
+
+def _axis_text(v) -> str:
+    return ", ".join(f"{number(a + 0.0, 3)}" for a in v)
+
+
+def _declared_about(declared, geometry, value: float, pick) -> tuple[mat3.Vector, float]:
+    """(axis, declared moment about it) for the geometry's principal moment ``value``: its
+    axis when the moment is simple; when it is repeated, the axis of its plane about which the
+    declared tensor's moment is ``pick`` (min or max) of those in the plane."""
+    rows = [tuple(geometry[i][j] - (value if i == j else 0.0) for j in range(3)) for i in range(3)]
+    crosses = sorted((mat3.cross(rows[0], rows[1]), mat3.cross(rows[0], rows[2]),
+                      mat3.cross(rows[1], rows[2])), key=lambda c: mat3.dot(c, c))
+    scale = max(abs(v) for row in geometry for v in row) or 1.0
+    longest = crosses[-1]
+    if mat3.dot(longest, longest) > (1e-9 * scale * scale) ** 2:  # a simple eigenvalue
+        axis = _unit(longest)
+        return axis, mat3.dot(axis, mat3.apply(declared, axis))
+    # repeated: the plane is orthogonal to the row of largest norm (rank 1), or everything
+    normal = max(rows, key=lambda r: mat3.dot(r, r))
+    if not mat3.dot(normal, normal) > 0:
+        normal = (0.0, 0.0, 1.0)
+    normal = _unit(normal)
+    helper = (1.0, 0.0, 0.0) if abs(normal[0]) < 0.9 else (0.0, 1.0, 0.0)
+    u = _unit(mat3.cross(normal, helper))
+    v = mat3.cross(normal, u)
+    uu, vv = mat3.dot(u, mat3.apply(declared, u)), mat3.dot(v, mat3.apply(declared, v))
+    uv = mat3.dot(u, mat3.apply(declared, v))
+    mean, radius = (uu + vv) / 2, math.hypot((uu - vv) / 2, uv)
+    moment = pick(mean - radius, mean + radius)
+    angle = 0.5 * math.atan2(2 * uv, uu - vv) + (0.0 if moment == mean + radius else math.pi / 2)
+    axis = tuple(math.cos(angle) * a + math.sin(angle) * b for a, b in zip(u, v))
+    return axis, moment
+
+
+def _unit(v) -> mat3.Vector:
+    norm = math.sqrt(mat3.dot(v, v))
+    return tuple(x / norm for x in v)
+
+
+SHELL = 0.25  # [kg/m^2]: the lightest wall a robot part has (0.25 mm of plastic, 0.1 mm of
+# aluminium); a closed body of size L weighs at least its surface times this: 6 SHELL / L
+# per volume for a cube, more for anything flatter
+MATERIALS = {"water": 1000.0, "ABS": 1050.0, "nylon": 1140.0, "polycarbonate": 1200.0,
+             "PLA": 1240.0, "PETG": 1270.0, "acetal": 1410.0, "carbon fibre": 1600.0,
+             "magnesium": 1740.0, "aluminium": 2700.0, "titanium": 4430.0, "steel": 7850.0,
+             "brass": 8500.0, "copper": 8960.0}
+# [kg/m^3]: the densities a part's mass is computed from (CRC Handbook; plastics' datasheets)
+MATERIAL_MATCH = 0.03  # relative: a density typed with two or three digits
+
+
+def _material(density: float) -> str | None:
+    """The material whose density ``density`` [kg/m^3] is, within 3 %."""
+    for name, value in MATERIALS.items():
+        if abs(density - value) <= MATERIAL_MATCH * value:
+            return name
+    return None
+
+
+def _round_number(value: float) -> bool:
+    """Whether a mass is a power of ten (1e-3, 0.01...): a placeholder, not a product."""
+    return value > 0 and abs(math.log10(value) - round(math.log10(value))) < 1e-9
+
+
+@rule("U315", "density-in-grams", Severity.WARNING)
+def density_in_grams(robot):
+    """A link's mass is 1000 times too small for its geometry: a density in g/cm^3 typed as kg/m^3.
+
+    A mass computed as density times volume with the density in g/cm^3 (aluminium 2.7, steel
+    7.85, PLA 1.24) where kg/m^3 was meant (2700, 7850, 1240) comes out 1000 times too small.
+    Reported when the implied density (the declared mass over the volume of the link's
+    primitives or closed meshes) is lighter than the thinnest plausible shell at that size
+    (0.25 kg/m^2 of wall over a cube of the geometry's largest extent: 6 * 0.25 / L
+    kg/m^3) and 1000 times it is, within 3 %, the density of a material parts are made of
+    (water 1000, ABS 1050, nylon 1140, polycarbonate 1200, PLA 1240, PETG 1270, acetal 1410,
+    carbon fibre 1600, magnesium 1740, aluminium 2700, titanium 4430, steel 7850, brass 8500,
+    copper 8960 kg/m^3). A mass that is a power of ten (``1e-3``) is a placeholder, not a
+    product of a density, and is not judged.
+    Envelopes drawn around something mostly empty (a propeller's disc) are large enough to
+    stay above that bound; a mass 1000 times too large is U311's (denser than osmium).
+
+    Bad: ``<mass value="${2.7 * 0.1 * 0.05 * 0.02}"/>`` (0.00027 kg) on a 10 x 5 x 2 cm box
+    Good: ``<mass value="${2700 * 0.1 * 0.05 * 0.02}"/>`` (0.27 kg)
+    """
+    for link, properties, solid in _link_solids(robot):
+        if properties.mass <= 0 or not _trustworthy(solid):
+            continue
+        volume = solids.volume(solid)
+        if not volume > 0:
+            continue
+        density = properties.mass / volume
+        lightest_shell = 6 * SHELL / solid.extent
+        if density >= lightest_shell:
+            continue
+        material = _material(1000 * density)
+        if material is not None and not _round_number(properties.mass):
+            yield _inertial_part(link, "mass"), (
+                f"link '{_name(link)}': {number(properties.mass, 4)} kg in {number(volume, 3)} m^3 of "
+                f"{solid.source} geometry is {number(density, 3)} kg/m^3, lighter than any shell of "
+                f"its size ({number(lightest_shell, 3)}), and 1000 times that is {material}'s "
+                f"density ({number(MATERIALS[material], places=0, grouped=True)} kg/m^3): was a density in g/cm^3 used as "
+                f"kg/m^3? The mass would be {number(1000 * properties.mass, 4)} kg")
+
+
+FAR_BEYOND = 2.0  # the bound takes the whole rigid body's reach: twice it is beyond doubt
+
+
+def _impossible(robot, link, properties) -> bool:
+    """Whether U305 or U306 already refuses the tensor (indefinite, or a triangle broken)."""
+    moments, largest = _principal(robot, link, properties)
+    if moments[0] < -max(NEGATIVE_TOLERANCE * largest, _scaled(NEGATIVE_FLOOR, properties.mass)):
+        return True
+    return moments[-1] >= _scaled(ZERO_INERTIA, properties.mass) and \
+        triangle_violation(moments, TRIANGLE_TOLERANCE) is not None
+
+
+@rule("U316", "inertia-beyond-geometry", Severity.WARNING)
+def inertia_beyond_geometry(robot):
+    """A link's inertia is larger than any distribution of its mass inside its geometry allows.
+
+    About its centre of mass a body's inertia tensor has trace 2 * sum(m r^2) <= 2 m d^2, d the
+    farthest point of the body from its centre of mass: a physical bound that needs no closed
+    mesh, only how far the geometry reaches (every vertex of a mesh, open or not, and the
+    primitives exactly). The geometry is the link's visual and collision geometry and that of
+    the links fixed to it (the whole rigid body: a generous d), so a trace over twice the
+    bound is reported; skipped when some of that geometry cannot be measured, or is 1 cm or
+    less (a frame's marker box, not its body). Judged whatever
+    the mass (a placeholder's tensor beyond it is as impossible), and when U305, U306, U309
+    and U310 have not already said so. Beyond the bound, the tensor belongs to another part or
+    another mass, or is in other units.
+
+    Bad: a 2 kg arm link reaching 0.15 m from its centre of mass with
+    ``ixx="0.5" iyy="0.5" izz="0.5"`` (trace 1.5 > 2 * 2 * 0.15^2 = 0.09)
+    Good: the tensor ``urdftool inertia`` computes from its geometry
+    """
+    told = _told_by_ratio(robot)
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
+            continue
+        trace = mat3.trace(properties.inertia)
+        rigid = solids.rigid_bounds(robot, link)
+        if rigid.bounds is None:
+            continue
+        (lx, ly, lz), (hx, hy, hz) = rigid.bounds
+        half = max(hx - lx, hy - ly, hz - lz) / 2  # no point is this close to all of the body
+        if trace <= FAR_BEYOND * 2 * properties.mass * half * half:
+            continue  # within the bound whatever the farthest point is (d >= half)
+        if _name(link) in told or _impossible(robot, link, properties):
+            continue
+        reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
+        if not reach.pieces or not reach.complete or _largest_extent(reach) <= MARKER_EXTENT:
+            continue  # a frame's marker box is not its body
+        farthest = reach.farthest(properties.com)
+        bound = 2 * properties.mass * farthest * farthest
+        if trace > FAR_BEYOND * bound:
+            fixed = f" and the links fixed to it" if len(reach.links) > 1 else ""
+            yield _inertial_part(link, "inertia"), (
+                f"link '{_name(link)}': declared inertia has trace {number(trace, 3)} kg m^2, more "
+                f"than {properties.mass:g} kg can have anywhere inside its geometry{fixed} "
+                f"(at most 2 m d^2 = {number(bound, 3)}, d = {number(farthest, 3)} m the farthest point from "
+                "its centre of mass): a tensor of another part, mass or unit")

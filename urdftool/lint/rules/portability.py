@@ -36,7 +36,7 @@ from urdftool.description.files import kind_of
 from urdftool.numbers import number
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
-from urdftool.description.xml import child_list, first_child
+from urdftool.description.xml import attribute, child_list, first_child
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.fixes import Unfixable, append_child, insert_before, offer
 from urdftool.physics import mat3
@@ -246,7 +246,7 @@ def _mujoco_reads(robot, holder) -> bool:
 def _compiler_fix(robot, where, message: str, attributes: dict, description: str):
     """The finding with a fix adding (or completing) ``<mujoco><compiler .../></mujoco>``, which
     only MuJoCo reads."""
-    text = " ".join(f'{key}="{value}"' for key, value in attributes.items())
+    text = " ".join(f'{key}="{attribute(str(value))}"' for key, value in attributes.items())
     compiler = _mujoco_compiler(robot)
     if compiler is not None:
         from urdftool.lint.fixes import set_attribute
@@ -631,8 +631,8 @@ def _world_fix(robot, link, message: str):
     """The finding with the unsafe fix adding a world link fixed to ``link``."""
     name = _name(link)
     edits = insert_before(robot, link, '<link name="world"/>',
-                          f'<joint name="world_to_{name}" type="fixed"><parent link="world"/>'
-                          f'<child link="{name}"/></joint>')
+                          f'<joint name="world_to_{attribute(name)}" type="fixed"><parent '
+                          f'link="world"/><child link="{attribute(name)}"/></joint>')
     return offer(link, message, f"add a world link fixed to '{name}' (a fixed base)", edits,
                  safe=False)
 
@@ -1167,7 +1167,7 @@ def _lumped_frames(robot, target: str):
                    "name in the simulation")
         if first and where is not None and not isinstance(where, tuple):
             first = False
-            block = (f'<gazebo reference="{_name(joint)}">'
+            block = (f'<gazebo reference="{attribute(_name(joint))}">'
                      '<preserveFixedJoint>true</preserveFixedJoint></gazebo>')
             edits = append_child(robot, robot.root, block)
             yield offer(where, message, f"keep fixed joint '{_name(joint)}' in Gazebo "

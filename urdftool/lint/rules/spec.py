@@ -105,6 +105,16 @@ def _entry_problems(name, entry, joint) -> list:
     return problems
 
 
+def spec_joints(robot) -> list[tuple[str, object, object]]:
+    """(joint name, servo_id as written, where) of each well-formed joint of the robot's spec
+    table (none without one): the symmetry rules read the servo IDs."""
+    spec = _spec(robot)
+    if spec is None:
+        return []
+    return [(joint.name, joint.entry.get("servo_id"),
+             spec[0].at(joint.lines.get("servo_id", joint.line))) for joint in spec[2]]
+
+
 @rule("U701", "malformed-spec", Severity.ERROR)
 def malformed_spec(robot):
     """The joint spec file is not valid YAML or not in the spec format.

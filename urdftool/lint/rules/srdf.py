@@ -18,6 +18,7 @@ from urdftool.lint.fixes import offer
 from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
+from urdftool.description.xml import attribute
 
 LIMIT_TOLERANCE = 1e-6
 
@@ -461,6 +462,6 @@ def _add_entry(srdf, pair, reason: str):
         indent = data[data.rfind(b"\n", 0, first) + 1:first].decode("utf-8", "replace")
     else:
         indent = "  "
-    line = (f'{indent}<disable_collisions link1="{pair[0]}" link2="{pair[1]}" '
-            f'reason="{reason}"/>{source.newline}')
+    line = (f'{indent}<disable_collisions link1="{attribute(pair[0])}" '
+            f'link2="{attribute(pair[1])}" reason="{attribute(reason)}"/>{source.newline}')
     return [source.edit(line_start, line_start, line)]

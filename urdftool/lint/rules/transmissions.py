@@ -22,6 +22,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
 from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
+from urdftool.description.xml import attribute
 
 ROS2_INTERFACES = ("position", "velocity", "acceleration", "effort", "torque", "force",
                    "current", "temperature")
@@ -301,16 +302,18 @@ def _actuation(robot, plugin, name: str):
                  if child.tag in ("command_interface", "state_interface") and child.get("name")]
         kinds = kinds or [("command_interface", "position"), ("state_interface", "position"),
                           ("state_interface", "velocity")]
-        lines = [f'<joint name="{name}">', *(f'  <{tag} name="{kind}"/>' for tag, kind in kinds),
-                 "</joint>"]
+        lines = [f'<joint name="{attribute(name)}">',
+                 *(f'  <{tag} name="{attribute(kind)}"/>' for tag, kind in kinds), "</joint>"]
         return append_child(robot, plugin, "\n".join(lines))
     used = [(interface.text or "").strip() for t in transmissions(robot)
             for joint in transmission_joints(t) for interface in joint.interfaces]
     interface = max(set(used), key=used.count) if used else \
         "hardware_interface/EffortJointInterface"
+    name = attribute(name)
     lines = [f'<transmission name="{name}_transmission">',
              "  <type>transmission_interface/SimpleTransmission</type>",
-             f'  <joint name="{name}"><hardwareInterface>{interface}</hardwareInterface></joint>',
+             f'  <joint name="{name}"><hardwareInterface>{attribute(interface)}'
+             "</hardwareInterface></joint>",
              f'  <actuator name="{name}_motor"><mechanicalReduction>1</mechanicalReduction>'
              "</actuator>", "</transmission>"]
     return append_child(robot, robot.root, "\n".join(lines))

@@ -1,0 +1,145 @@
+"""U417-U421: ROS frame conventions and wheels, on small inline robots (each rule's case file is
+in tests/cases); what must not be reported."""
+
+from __future__ import annotations
+
+import pytest
+
+from urdftool.lint.engine import CheckOptions, Selection, check_file
+
+CODES = ("U417", "U418", "U419", "U420", "U421")
+WHEEL = """<link name="{side}_wheel">
+  <inertial><mass value="0.2"/>
+    <inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
+  <collision><origin rpy="{rpy}"/><geometry>{geometry}</geometry></collision></link>
+<joint name="{side}_wheel_joint" type="continuous"><parent link="base_link"/>
+  <child link="{side}_wheel"/><origin xyz="0 {y} {z}"/><axis xyz="0 1 0"/></joint>"""
+
+
+def _found(tmp_path, body: str, codes=CODES) -> list[tuple[str, str]]:
+    (tmp_path / "r.urdf").write_text(f'<robot name="r">{body}</robot>')
+    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
+    return [(f.code, f.message) for f in result.findings]
+
+
+def _base(z=0.05, footprint=True, caster_z=None, wheel=None) -> str:
+    wheel = wheel or {}
+    parts = ['<link name="base_link"><collision><geometry><box size="0.3 0.2 0.04"/></geometry>'
+             '</collision></link>']
+    if footprint:
+        parts.append('<link name="base_footprint"/><joint name="base_footprint_joint" '
+                     f'type="fixed"><parent link="base_footprint"/><child link="base_link"/>'
+                     f'<origin xyz="0 0 {z}"/></joint>')
+    for side, y in (("left", 0.12), ("right", -0.12)):
+        values = dict(side=side, y=y, z=0.0, rpy="1.5708 0 0", ixx=0.00013, iyy=0.00025,
+                      izz=0.00013, geometry='<cylinder radius="0.05" length="0.02"/>')
+        values.update(wheel)
+        parts.append(WHEEL.format(**values))
+    if caster_z is not None:
+        parts.append('<link name="caster_link"><collision><geometry><sphere radius="0.02"/>'
+                     '</geometry></collision></link><joint name="caster_joint" type="fixed">'
+                     '<parent link="base_link"/><child link="caster_link"/>'
+                     f'<origin xyz="-0.12 0 {caster_z}"/></joint>')
+    return "".join(parts)
+
+
+def test_a_well_made_base_is_clean(tmp_path):
+    assert _found(tmp_path, _base(caster_z=-0.03)) == []
+
+
+def test_a_caster_clear_by_millimetres_touches(tmp_path):
+    assert _found(tmp_path, _base(caster_z=-0.025)) == []  # 5 mm: within the 1 cm
+
+
+def test_without_footprint_the_wheels_are_the_ground(tmp_path):
+    assert _found(tmp_path, _base(footprint=False, caster_z=-0.03)) == []
+    [(code, message)] = _found(tmp_path, _base(footprint=False, caster_z=0.0))
+    assert code == "U419" and "30 mm above the lowest wheel" in message
+
+
+def test_footprint_checks(tmp_path):
+    [(code, message)] = _found(tmp_path, _base(z=0.08, caster_z=-0.03))
+    assert code == "U418" and "30 mm below the lowest" in message and "move it up" in message
+    shifted = _base(caster_z=-0.03).replace('<origin xyz="0 0 0.05"/></joint>',
+                                            '<origin xyz="0.1 0 0.05"/></joint>', 1)
+    [(code, message)] = _found(tmp_path, shifted)
+    assert code == "U418" and "not right below 'base_link'" in message
+
+
+def test_footprint_of_a_robot_without_wheels_is_below_all_its_geometry(tmp_path):
+    legs = ('<link name="base_footprint"/><link name="base_link"><collision><origin xyz="0 0 -0.2"/>'
+            '<geometry><box size="0.1 0.1 0.4"/></geometry></collision></link>'
+            '<joint name="f" type="fixed"><parent link="base_footprint"/><child link="base_link"/>'
+            '<origin xyz="0 0 {}"/></joint>')
+    assert _found(tmp_path, legs.format(0.4)) == []
+    # 10 cm above the footprint: it may stand on wheels or feet that are not drawn
+    assert _found(tmp_path, legs.format(0.5)) == []
+    [(code, message)] = _found(tmp_path, legs.format(0.3))
+    assert code == "U418" and "100 mm above its lowest point" in message
+
+
+def test_wheels_without_measurable_geometry_leave_the_ground_unknown(tmp_path):
+    body = _base(z=0.3, wheel={"geometry": '<mesh filename="missing.stl"/>'})
+    assert [code for code, _ in _found(tmp_path, body)] == []
+
+
+def test_wheel_axle_and_inertia(tmp_path):
+    # a wide roller (length over 0.6 diameter) turns hardest about a diameter: not judged
+    roller = _base(caster_z=-0.03, wheel={"geometry": '<cylinder radius="0.05" length="0.2"/>',
+                                          "ixx": 0.0008, "iyy": 0.00025, "izz": 0.0008})
+    assert _found(tmp_path, roller) == []
+    # a sphere wheel has no axis to be off
+    ball = _base(caster_z=-0.03, wheel={"geometry": '<sphere radius="0.05"/>', "rpy": "0 0 0",
+                                        "ixx": 0.0002, "iyy": 0.0002, "izz": 0.0002})
+    assert _found(tmp_path, ball) == []
+    turned = _base(caster_z=-0.03, wheel={"rpy": "0 0 0", "ixx": 0.00013, "iyy": 0.00013,
+                                          "izz": 0.00025})
+    codes = sorted(code for code, _ in _found(tmp_path, turned))
+    # the cylinders lie flat (U420) and so hang above the caster's ground (U419); their tensor
+    # is right for the cylinders as drawn, so U421 leaves it to U420
+    assert codes == ["U419", "U419", "U420", "U420"]
+    upright_but_swapped = _base(caster_z=-0.03, wheel={"ixx": 0.00013, "iyy": 0.00013,
+                                                       "izz": 0.00025})
+    assert sorted(code for code, _ in _found(tmp_path, upright_but_swapped)) == ["U421", "U421"]
+
+
+CAMERA = """<link name="base_link"/>
+<link name="camera_link"/><joint name="cj" type="fixed"><parent link="base_link"/>
+  <child link="camera_link"/><origin xyz="0.1 0 0.2" rpy="{body}"/></joint>
+<link name="camera_optical_frame"/><joint name="oj" type="fixed"><parent link="camera_link"/>
+  <child link="camera_optical_frame"/><origin rpy="{optical}"/></joint>
+<link name="camera_depth_optical_frame"/><joint name="dj" type="fixed">
+  <parent link="camera_optical_frame"/><child link="camera_depth_optical_frame"/>
+  <origin xyz="0.02 0 0"/></joint>
+<gazebo reference="camera_link"><sensor name="c" type="{sensor}">{pose}
+  <plugin name="p" filename="libgazebo_ros_camera.so"><{tag}>{frame}</{tag}></plugin>
+</sensor></gazebo>"""
+
+
+def _camera(**given) -> str:
+    values = dict(body="0 0.3 0", optical="-1.5708 0 -1.5708", sensor="camera", pose="",
+                  tag="frame_name", frame="camera_optical_frame")
+    values.update(given)
+    return CAMERA.format(**values)
+
+
+@pytest.mark.parametrize("given", [
+    {},  # the optical frame named, the camera tilted down (any body turn is fine)
+    {"optical": "-1.57 0 -1.57"},  # printed pi/2: 0.05 deg off
+    {"tag": "frameName", "sensor": "depth"},
+    {"tag": "gz_frame_id", "sensor": "rgbd_camera"},
+    {"sensor": "ray", "frame": "camera_link"},  # a lidar's frame is no image frame
+])
+def test_optical_frames_that_are_right(tmp_path, given):
+    assert _found(tmp_path, _camera(**given), ("U417",)) == []
+
+
+def test_optical_frames_that_are_wrong(tmp_path):
+    found = _found(tmp_path, _camera(optical="0 0 0", frame="camera_link"), ("U417",))
+    messages = sorted(message for _, message in found)
+    assert len(messages) == 2  # the depth lens fixed to the optical frame: judged through it
+    assert "stamps its images with 'camera_link'" in messages[0]
+    assert "optical frame 'camera_optical_frame' is turned" in messages[1]
+    # the sensor's <pose> turns it: the frame it stamps is judged against the sensor
+    [(_, message)] = _found(tmp_path, _camera(pose="<pose>0 0 0 0 0 1.5708</pose>"), ("U417",))
+    assert "from the sensor" in message

@@ -1,0 +1,119 @@
+"""How far a link's geometry reaches (physics/support.py), against independent derivations:
+dense samples of each shape's surface, closed forms, and the distance to a box computed by hand."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from conftest import load_text
+from urdftool.kinematics.transforms import rotation_from_rpy
+from urdftool.physics.frames import joint_frames, link_frames
+from urdftool.physics.support import DIRECTIONS, link_reach
+
+SHAPES = {
+    "box": '<box size="0.3 0.1 0.05"/>',
+    "cylinder": '<cylinder radius="0.07" length="0.2"/>',
+    "sphere": '<sphere radius="0.04"/>',
+}
+RPY = (0.3, -0.7, 1.1)
+XYZ = (0.05, -0.02, 0.1)
+
+
+def _robot(tmp_path, shape: str, extra: str = ""):
+    return load_text(tmp_path, f"""<robot name="r"><link name="a">
+      <collision><origin xyz="{' '.join(map(str, XYZ))}" rpy="{' '.join(map(str, RPY))}"/>
+      <geometry>{shape}</geometry></collision>{extra}</link></robot>""")
+
+
+def _surface(kind: str, n: int = 400) -> np.ndarray:
+    """Dense points on a shape's surface in its own frame (its support is their maximum, up to
+    the sampling)."""
+    rng = np.random.default_rng(0)
+    if kind == "box":
+        half = np.array([0.15, 0.05, 0.025])
+        grid = np.array(np.meshgrid(*[np.linspace(-1, 1, 21)] * 3)).reshape(3, -1).T
+        return grid * half
+    if kind == "cylinder":
+        angles = np.linspace(0, 2 * np.pi, n, endpoint=False)
+        rim = np.stack([0.07 * np.cos(angles), 0.07 * np.sin(angles)], -1)
+        return np.vstack([np.column_stack([rim, np.full(n, z)]) for z in (-0.1, 0.1)])
+    points = rng.normal(size=(20000, 3))
+    return 0.04 * points / np.linalg.norm(points, axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize("kind", SHAPES)
+def test_support_is_the_largest_projection(tmp_path, kind):
+    robot = _robot(tmp_path, SHAPES[kind])
+    reach = link_reach(robot, robot.links["a"], ("collision",))
+    placed = _surface(kind) @ rotation_from_rpy(np.array(RPY)).T + np.array(XYZ)
+    for d in DIRECTIONS[::7]:
+        sampled = float((placed @ np.array(d)).max())
+        assert reach.support(d) >= sampled - 1e-12
+        assert reach.support(d) <= sampled + (2e-3 if kind == "sphere" else 1e-4)
+    p = (0.3, 0.2, -0.1)
+    distances = np.linalg.norm(placed - np.array(p), axis=1)
+    assert reach.farthest(p) >= distances.max() - 1e-12
+    assert reach.farthest(p) <= distances.max() + 1e-3
+
+
+def test_lowest_point_of_a_tilted_cylinder_is_the_closed_form(tmp_path):
+    # a cylinder's lowest point: centre - h |u_z| - r sqrt(1 - u_z^2), u its axis
+    robot = _robot(tmp_path, SHAPES["cylinder"])
+    u = rotation_from_rpy(np.array(RPY))[:, 2]
+    expected = XYZ[2] - 0.1 * abs(u[2]) - 0.07 * math.sqrt(1 - u[2] ** 2)
+    reach = link_reach(robot, robot.links["a"], ("collision",))
+    assert math.isclose(reach.lowest(), expected, rel_tol=0, abs_tol=1e-15)
+
+
+def test_distance_outside_a_box_is_a_lower_bound_and_close(tmp_path):
+    robot = load_text(tmp_path, """<robot name="r"><link name="a"><collision>
+      <geometry><box size="0.2 0.2 0.2"/></geometry></collision></link></robot>""")
+    reach = link_reach(robot, robot.links["a"], ("collision",))
+    for p in [(0.3, 0.0, 0.0), (0.3, 0.3, 0.0), (0.25, 0.4, -0.3), (0.0, 0.0, 0.05)]:
+        outside = np.maximum(np.abs(p) - 0.1, 0.0)
+        exact = float(np.linalg.norm(outside))  # the distance to the box, by hand
+        found = reach.outside(p)
+        assert found <= exact + 1e-12
+        assert found >= 0.97 * exact  # 134 directions and the one towards the point
+
+
+def test_a_mesh_reaches_as_far_as_its_vertices_open_or_not(tmp_path):
+    (tmp_path / "lid.obj").write_text("v 0 0 0\nv 0.2 0 0\nv 0 0.1 0\nv 0 0 0.3\nf 1 2 3\nf 1 2 4\n")
+    robot = load_text(tmp_path, """<robot name="r"><link name="a"><visual>
+      <origin xyz="0 0 1"/><geometry><mesh filename="lid.obj"/></geometry></visual></link>
+      </robot>""")
+    reach = link_reach(robot, robot.links["a"])
+    assert reach.complete
+    assert math.isclose(reach.support((0, 0, 1)), 1.3)
+    assert math.isclose(reach.lowest(), 1.0)
+    assert math.isclose(reach.farthest((0, 0, 1)), 0.3)
+
+
+def test_missing_geometry_leaves_the_reach_incomplete(tmp_path):
+    robot = load_text(tmp_path, """<robot name="r"><link name="a">
+      <visual><geometry><mesh filename="missing.stl"/></geometry></visual>
+      <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+      <collision><geometry><cone radius="1"/></geometry></collision></link></robot>""")
+    reach = link_reach(robot, robot.links["a"])
+    assert not reach.complete
+    assert len(reach.missing) == 2 and len(reach.pieces) == 1
+
+
+def test_rigid_reach_and_zero_pose_frames(tmp_path):
+    robot = load_text(tmp_path, """<robot name="r">
+      <link name="a"/><link name="b"><collision><geometry><sphere radius="0.1"/></geometry>
+      </collision></link><link name="c"/>
+      <joint name="ab" type="fixed"><parent link="a"/><child link="b"/>
+        <origin xyz="0 0 0.5" rpy="0 0 1.5707963267948966"/></joint>
+      <joint name="bc" type="revolute"><parent link="b"/><child link="c"/>
+        <origin xyz="1 0 0"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1"
+        velocity="1"/></joint></robot>""")
+    reach = link_reach(robot, robot.links["a"], rigid=True)
+    assert reach.links == ["a", "b"]
+    assert math.isclose(reach.support((0, 0, 1)), 0.6)
+    frames = link_frames(robot)
+    np.testing.assert_allclose(frames["c"][0], (0, 1, 0.5), atol=1e-12)  # b is turned 90 deg
+    assert joint_frames(robot)["bc"] == frames["c"]

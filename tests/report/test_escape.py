@@ -1,0 +1,244 @@
+"""urdftool.report.escape: one escaping function per output kind, each held to its kind; and a
+scan of the sources that finds output written past them (a renderer printing for itself, an
+escaper of another library, a console that is not one of the guarded ones)."""
+
+from __future__ import annotations
+
+import ast
+import csv
+import io
+import json
+from pathlib import Path
+
+import pytest
+import yaml
+from lxml import etree
+
+from urdftool.report import escape
+
+URDFTOOL = Path(escape.__file__).resolve().parent.parent
+HOSTILE = ("j\n::error file=a.urdf,line=1::pwned\r\n## All checks passed\x1b[2J\x1b]8;;https://e"
+           "\x1b\\l\x1b]8;;\x1b\\\x9b31m\u202eevil\u2066\u2028|a|`b`<img src=x onerror=1>"
+           "[bold]x[/]:thumbs_up:\t=cmd()")
+
+
+def _one_line_without_controls(text: str) -> bool:
+    import unicodedata
+
+    return not any(unicodedata.category(c) in ("Cc", "Cf", "Cs", "Zl", "Zp") for c in text)
+
+
+def test_text_is_one_line_with_nothing_a_terminal_or_a_runner_acts_on():
+    shown = escape.text(HOSTILE)
+    assert _one_line_without_controls(shown)
+    assert shown.startswith("j\\n::error file=a.urdf,line=1::pwned\\r\\n## All checks passed\\x1b")
+    for name in ("::error::x", "  ::warning::x", "\u3000::add-mask::x", ":x"):
+        assert not escape.text(name).lstrip().startswith(":"), name
+    assert escape.text("  ::x") == "  \\x3a:x"
+    assert escape.text(escape.text(HOSTILE)) == escape.text(HOSTILE)  # idempotent
+    assert escape.text("naïve 机器人 a::b") == "naïve 机器人 a::b"
+
+
+def test_lines_keeps_a_renderers_lines_and_guards_each():
+    block = "first\n" + "::error::x\n  \x1b[31mred\n"
+    assert escape.lines(block) == "first\n\\x3a:error::x\n  \\x1b[31mred\n"
+    assert escape.lines("\t<link/>\n\t::x\x1b", keep="\t") == "\t<link/>\n\t\\x3a:x\\x1b"
+
+
+def test_the_lines_stream_guards_every_line_a_library_writes():
+    out = io.StringIO()
+    stream = escape.Lines(out)
+    stream.write("a\n::er")
+    stream.write("ror::x\x1b\nlast")
+    stream.flush()
+    assert out.getvalue() == "a\n\\x3a:error::x\\x1b\nlast" and not stream.isatty()
+
+
+def test_markup_is_printed_by_rich_as_written():
+    from rich.console import Console
+
+    out = io.StringIO()
+    Console(file=out, width=1000, emoji=False).print(escape.markup("[bold red]x[/] [link=u]y"))
+    assert out.getvalue() == "[bold red]x[/] [link=u]y\n"
+
+
+def test_workflow_data_and_properties_cannot_end_the_command():
+    data = escape.workflow(HOSTILE)
+    assert "\n" not in data and "\r" not in data and "%0A" in data and "\x1b" not in data
+    assert escape.workflow("50%") == "50%25"
+    assert escape.workflow("a:b,c\n", property=True) == "a%3Ab%2Cc%0A"
+
+
+def test_markdown_is_a_code_span_whatever_it_holds():
+    from markdown_it import MarkdownIt
+
+    for value in (HOSTILE, "`", "``x``", " a ", "", "# h", "![i](u)", "<script>"):
+        span = escape.markdown(value)
+        [block] = [t for t in MarkdownIt("commonmark").enable("table").parse(f"- {span}\n")
+                   if t.type == "inline"]
+        assert [child.type for child in block.children] == ["code_inline"], value
+        assert "\n" not in span
+    cell = MarkdownIt("commonmark").enable("table").parse(
+        f"| a | b |\n|---|---|\n| {escape.markdown('x|y')} | z |\n")
+    assert sum(t.type == "td_open" for t in cell) == 2
+
+
+def test_xml_and_svg_values_make_documents_that_parse_and_say_the_same():
+    element = etree.Element("failure", message=escape.xml(HOSTILE))
+    element.text = escape.xml(HOSTILE)
+    parsed = etree.fromstring(etree.tostring(element))
+    assert parsed.get("message") == parsed.text == escape.text(HOSTILE)
+    svg = f'<svg><text a="{escape.svg(HOSTILE)}">{escape.svg(HOSTILE)}</text></svg>'
+    root = etree.fromstring(svg.encode())
+    assert [e.tag for e in root.iter()] == ["svg", "text"]
+    assert root[0].text == root[0].get("a") == escape.printable(HOSTILE)
+
+
+def test_xml_documents_keep_their_data_and_lose_their_forged_lines():
+    root = etree.fromstring('<r a="x&#10;y">\n::error::x\n<!--\n ::c -->\u202e\x85</r>'.encode())
+    document = etree.tostring(root, encoding="unicode")
+    safe = escape.xml_document(document, root)
+    assert not any(line.lstrip().startswith(":") for line in safe.split("\n"))
+    assert _one_line_without_controls(safe.replace("\n", ""))
+    again = etree.fromstring(safe.encode())
+    assert again.text == root.text and again.get("a") == root.get("a")
+
+
+def test_csv_cells_hold_no_line_break_and_run_no_formula():
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerow([escape.csv_cell(HOSTILE), "=1+1", 1])
+    assert out.getvalue().count("\n") == 1
+    [[first, *_]] = list(csv.reader(io.StringIO(out.getvalue())))
+    assert first == escape.printable(HOSTILE)
+    assert [escape.csv_cell(v) for v in ("=1+1", "+x", "-y", "@z", "ok")] == \
+        ["'=1+1", "'+x", "'-y", "'@z", "ok"]
+
+
+def test_dot_ids_stay_quoted():
+    quoted = escape.dot('a"b\\N', HOSTILE)
+    assert quoted.startswith('"a\\"b\\\\N\\n') and quoted.endswith('"') and "\n" not in quoted
+    inner = quoted[1:-1].replace('\\\\', "").replace('\\"', "")
+    assert '"' not in inner
+
+
+def test_yaml_reads_back_exactly_and_no_scalar_starts_a_line():
+    data = {"joints": [{"joint": HOSTILE, "long": "w " * 200 + "::error::x"}],
+            "::k\n::error::key": "é"}
+    text = escape.yaml_text(data)
+    assert yaml.safe_load(text) == data
+    assert not any(line.lstrip().startswith("::") for line in text.split("\n"))
+    assert _one_line_without_controls(text.replace("\n", ""))
+
+
+def test_json_stays_exact_in_ascii():
+    from urdftool.report.json_output import dumps
+
+    text = dumps({"name": HOSTILE})
+    assert text.isascii() and json.loads(text) == {"name": HOSTILE}
+
+
+# ---- the scan: output written past urdftool.report.escape ------------------------------------
+
+SINKS = {("typer", "echo"), ("click", "echo"), ("sys.stdout", "write"), ("sys.stderr", "write")}
+# where a command prints: cli/_common.py's say, show and document
+PRINTERS = {"say", "show", "document"}
+# escapers of other libraries: only urdftool/report/escape.py may call them
+FOREIGN_ESCAPERS = {("html", "escape"), ("markup", "escape"), ("saxutils", "escape"),
+                    ("yaml", "dump"), ("yaml", "safe_dump"), ("cgi", "escape")}
+
+
+def _calls(tree):
+    """(function it is in, dotted receiver, attribute or name, node) for every call."""
+    def walk(node, function):
+        for child in ast.iter_child_nodes(node):
+            inner = child.name if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)) \
+                else function
+            if isinstance(child, ast.Call):
+                func = child.func
+                if isinstance(func, ast.Attribute):
+                    yield function, ast.unparse(func.value), func.attr, child
+                elif isinstance(func, ast.Name):
+                    yield function, "", func.id, child
+            yield from walk(child, inner)
+
+    yield from walk(tree, None)
+
+
+def _sources(*folders: str, files=()):
+    for folder in folders:
+        yield from sorted((URDFTOOL / folder).glob("*.py"))
+    for name in files:
+        yield URDFTOOL / name
+
+
+# modules that print only urdftool's own text (with rich markup of their own)
+OWN_TEXT = {"rules.py": "the rule catalogue: codes, names and docstrings are ours"}
+
+
+def scan() -> list[str]:
+    """Each place that writes output past the escaping functions and the guarded sinks."""
+    found = []
+    for path in _sources("cli", "report", files=("server.py", "pytest_plugin.py", "docs.py")):
+        relative = path.relative_to(URDFTOOL.parent).as_posix()
+        tree = ast.parse(path.read_text())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module in ("html", "rich.markup") and \
+                    any(a.name == "escape" for a in node.names) and \
+                    path.name not in ("escape.py", *OWN_TEXT):
+                found.append(f"{relative}:{node.lineno}: imports {node.module}.escape "
+                             "(use urdftool.report.escape)")
+        for function, receiver, name, node in _calls(tree):
+            where = f"{relative}:{node.lineno}"
+            if (receiver, name) in SINKS or (receiver == "" and name == "print"):
+                allowed = path.name == "_common.py" and function in PRINTERS
+                if not allowed and path.name != "docs.py":
+                    found.append(f"{where}: {receiver + '.' if receiver else ''}{name}() "
+                                 "prints past say/show/document")
+            if (receiver.rsplit(".", 1)[-1], name) in FOREIGN_ESCAPERS and \
+                    path.name != "escape.py":
+                found.append(f"{where}: {receiver}.{name}() escapes for itself")
+            if name == "Console" and path.name not in ("console.py", "progress.py"):
+                found.append(f"{where}: a rich Console not from report/console.py's guarded "
+                             "factories")
+            for keyword in node.keywords:
+                if keyword.arg == "ensure_ascii" and isinstance(keyword.value, ast.Constant) \
+                        and keyword.value.value is False:
+                    found.append(f"{where}: JSON with raw non-ASCII (bidi, C1) characters")
+    return found
+
+
+def test_nothing_prints_past_the_escaping_functions():
+    assert scan() == []
+
+
+def test_the_scan_finds_each_bypass(tmp_path, monkeypatch):
+    """The scan can fail: a module of each kind of bypass, written where it looks."""
+    bypasses = {
+        "cli/bad_echo.py": "import typer\ndef run(name):\n    typer.echo(name)\n",
+        "cli/bad_print.py": "def run(name):\n    print(name)\n",
+        "report/bad_html.py": "from html import escape\ndef svg(n):\n    return escape(n)\n",
+        "report/bad_yaml.py": "import yaml\ndef out(d, s):\n    s.write(yaml.safe_dump(d))\n",
+        "report/bad_console.py": "from rich.console import Console\ndef c():\n"
+                                 "    return Console()\n",
+        "report/bad_json.py": "import json\ndef j(d):\n    return json.dumps(d, "
+                              "ensure_ascii=False)\n",
+        "report/bad_stdout.py": "import sys\ndef w(t):\n    sys.stdout.write(t)\n",
+    }
+    fake = tmp_path / "urdftool"
+    for relative, source in bypasses.items():
+        (fake / relative).parent.mkdir(parents=True, exist_ok=True)
+        (fake / relative).write_text(source)
+    for name in ("server.py", "pytest_plugin.py", "docs.py"):
+        (fake / name).write_text("")
+    monkeypatch.setattr(__import__(__name__), "URDFTOOL", fake)
+    found = scan()
+    assert len(found) == len(bypasses), found
+    for relative in bypasses:
+        assert any(line.startswith(f"urdftool/{relative}:") for line in found), relative
+
+
+@pytest.mark.parametrize("function", ["text", "markup", "workflow", "markdown", "xml", "svg",
+                                      "csv_cell", "dot"])
+def test_every_kind_escapes_a_lone_surrogate_from_a_file_name(function):
+    value = getattr(escape, function)("a\udce9b")
+    assert "\udce9" not in value and value.encode("utf-8")
