@@ -430,6 +430,7 @@ def test_an_edited_or_new_launch_file_changes_the_findings(robot, tmp_path):
     # which controllers run is the launch files' say (description/runtime.py): a result kept
     # while arm_controller was started nowhere is stale once a launch file starts it
     cache_dir = tmp_path / "cache"
+    (robot / ".git").mkdir()  # launch files are the repository's (or package's)
     (robot / "launch").mkdir()
     (robot / "launch" / "bot.launch").write_text(LAUNCH.format(spawned="other"))
     assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))

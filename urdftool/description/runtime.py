@@ -28,7 +28,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, read_regular, real_path
+from urdftool.description.files import enclosing_root, inside, kind_of, read_regular, real_path
 from urdftool.description.launch_configs import (Configuration, Described, Loaded, Resolved, Started,
                                                  launch_index, shown)
 from urdftool.description.packages import containment_root, packages_below
@@ -130,12 +130,22 @@ def launch_files_read(robot) -> list[Path]:
     return runtime(robot).read if robot.memoized(runtime) else []
 
 
+def _launch_root(folder: Path) -> Path | None:
+    """The repository (or, without one, the package) whose launch files may run the robot in
+    ``folder``; None for a robot in neither: a launch file finds a robot through its package
+    (``$(find pkg)``, ``FindPackageShare``), and the files around a lone robot file (a
+    download folder, the user's cache folder) are not its launch files."""
+    return enclosing_root(Path(os.path.abspath(folder)))
+
+
 def _runtime(robot) -> Runtime:
     found = Runtime()
     if robot.path == "-":
         return found
     path = Path(os.path.abspath(robot.path))
-    root = containment_root(path.parent)
+    root = _launch_root(path.parent)
+    if root is None:
+        return found
     index = launch_index(root)
     found.read = [launch.path for launch in index.files.values()]
     real = real_path(path)
@@ -298,7 +308,9 @@ def launch_xacro_args(path: str) -> list[tuple[str, dict]]:
     if path == "-":
         return []
     absolute = Path(os.path.abspath(path))
-    root = containment_root(absolute.parent)
+    root = _launch_root(absolute.parent)
+    if root is None:
+        return []
     index, packages = launch_index(root), packages_below(root)
     real, found, seen = real_path(absolute), [], set()
     for configuration in index.configurations:
