@@ -11,7 +11,9 @@ U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
 
     Every tool that reads the robot (robot_state_publisher, Gazebo, MoveIt) stops here. The
-    finding gives the parser's line and reason.
+    finding gives the parser's line and reason; a file left with git's conflict markers
+    (``<<<<<<<``, ``=======``, ``>>>>>>>``) is said to hold an unresolved merge conflict, at its
+    first marker's line.
 
     Bad: ``<link name="base"><visual></link>``
     Good: ``<link name="base"><visual/></link>``
