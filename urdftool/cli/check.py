@@ -75,9 +75,13 @@ def check(
     spec: Path = typer.Option(None, "--spec", metavar="FILE",
                               help="Joint spec table [default: joint_limits.yaml beside the "
                                    "robot, when it is a urdftool spec]."),
-    max_triangles: int = typer.Option(2_000_000, "--max-triangles", metavar="N",
-                                      help="Refuse meshes with more triangles than this."),
-    timeout: float = TimeoutOption,
+    max_triangles: int = typer.Option(None, "--max-triangles", metavar="N", min=1,
+                                      help="Refuse meshes with more triangles than this "
+                                           "[default: 2,000,000, or max-triangles in the "
+                                           "settings]."),
+    timeout: float = typer.Option(None, "--timeout", metavar="SECONDS",
+                                  help=f"{TimeoutOption.help} [default: 60, or timeout in the "
+                                       "settings]."),
     max_memory: str = typer.Option(None, "--max-memory", metavar="SIZE",
                                    help=f"{MaxMemoryOption.help} Per worker [default: 2G, or "
                                         "max-memory in the settings]."),
@@ -115,7 +119,7 @@ def check(
         refuse_bad_outputs(output)
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
-        Budget.of(timeout, max_memory)  # --timeout and --max-memory are well formed
+        Budget.of(timeout or 0, max_memory)  # --timeout and --max-memory are well formed
         if unsafe_fixes and not (fix or diff):
             raise UsageError("--unsafe-fixes applies with --fix or --diff")
         request = CheckRequest(

@@ -232,10 +232,11 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
     files = [path for path in targets.files if path in by_path]
     plans = [by_path[path] for path in files]
     results: list[FileResult | None] = [None] * len(files)
-    for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
-        indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
+    for memory, timeout in dict.fromkeys((plan.memory, plan.timeout) for plan in plans):
+        indexes = [i for i, plan in enumerate(plans)  # one pool per budget
+                   if (plan.memory, plan.timeout) == (memory, timeout)]
         found = check_files([files[i] for i in indexes], lambda p: by_path[p].options,
-                            jobs=request.jobs, timeout=request.timeout, memory=memory,
+                            jobs=request.jobs, timeout=timeout, memory=memory,
                             stdin_as=request.stdin_filename, cache=cache)
         for index, result in zip(indexes, found):
             results[index] = result
