@@ -24,6 +24,11 @@ TimeoutOption = typer.Option(DEFAULT_TIMEOUT, "--timeout", metavar="SECONDS",
 MaxMemoryOption = typer.Option("2G", "--max-memory", metavar="SIZE",
                                help="Memory (address space) the work may use, e.g. 2G, 512M; "
                                     "0 for none. Over it: U018, exit 1.")
+MAX_SCENE_TRIANGLES = 8_000_000  # urdftool.kinematics.scene's (not imported: start-up time)
+MaxSceneTrianglesOption = typer.Option(
+    MAX_SCENE_TRIANGLES, "--max-scene-triangles", min=0, metavar="N",
+    help="Refuse, before any work, to draw a robot whose geometry holds more triangles (every "
+         "instance of a mesh counted; memory and time grow with them); 0 for no limit.")
 
 
 def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
@@ -69,6 +74,12 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
 def fail_usage(error: UsageError) -> None:
     typer.echo(f"urdftool: error: {error}", err=True)
     raise typer.Exit(2)
+
+
+def fail_over_limit(error, option: str) -> None:
+    """Exit 2 for a size limit (``errors.OverLimit``) checked before the work, naming the option
+    that raises it."""
+    fail_usage(UsageError(f"{error} (raise it with {option})"))
 
 
 def fail_config(error, option: str) -> None:
