@@ -75,11 +75,11 @@ def with_table(text: str) -> str:
 
 
 def main(argv: list[str]) -> int:
-    from urdftool.description.files import write_file
+    from urdftool.description.files import read_regular, write_file
 
     for name in argv or ["README.md"]:
         path = Path(name)
-        write_file(path, with_table(path.read_text(encoding="utf-8")))
+        write_file(path, with_table(read_regular(path).decode("utf-8")))
     return 0
 
 

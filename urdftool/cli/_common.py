@@ -65,8 +65,10 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     paths, args = split_words(words)
     args.update(pairs(arg_options, "--arg"))
     packages = {name: Path(path) for name, path in pairs(package_options, "--package").items()}
+    from urdftool.description.files import kind_of
+
     for path in paths:
-        if path != "-" and not Path(path).exists():
+        if path != "-" and not kind_of(path):
             raise UsageError(f"path '{path}' does not exist")
     return paths, args, packages
 

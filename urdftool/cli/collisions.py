@@ -71,6 +71,7 @@ def collisions(
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
     from urdftool.collision.srdf import SrdfError
+    from urdftool.description.files import kind_of
     from urdftool.errors import SceneError
     from urdftool.kinematics.configuration import ConfigError
     from urdftool.kinematics.fk import FKError
@@ -86,7 +87,8 @@ def collisions(
                             "draws the matrix)"),
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
-        *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
+        *((given is not None and kind_of(given) != "file",
+           f"{name}: '{given}' does not exist")
           for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
         if matrix:

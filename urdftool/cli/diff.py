@@ -99,13 +99,14 @@ def _chain(text: str) -> tuple[str, str]:
 
 def _packages_at(packages: dict, path: str, tree: Path) -> dict:
     """``--package`` folders inside the repository, moved to the same place in ``tree``."""
+    from urdftool.description.files import real_path
     from urdftool.description.revision import repository_of
 
-    root = Path(repository_of(path)[0]).resolve()
+    root = Path(real_path(repository_of(path)[0]))
     moved = {}
     for name, folder in packages.items():
         try:
-            moved[name] = tree / Path(folder).resolve().relative_to(root)
+            moved[name] = tree / Path(real_path(folder)).relative_to(root)
         except ValueError:
             moved[name] = folder  # outside the repository: as it is now
     return moved
