@@ -160,14 +160,18 @@ def test_declared_dependencies_are_every_dependency_tag_out_of_comments(tmp_path
     assert declared_dependencies(tmp_path / "none") is None
 
 
-def test_package_references_are_literal_names_out_of_comments_at_their_column():
+def test_package_references_are_literal_names_out_of_comments_and_conditions_at_their_column():
     from urdftool.description.packages import package_references
 
     data = ('<robot>\n  <!-- $(find commented) package://commented/x -->\n'
             '  <include filename="$(find  one)/urdf/a.xacro"/> <mesh filename="package://two/m.stl"/>\n'
             '  <x value="$(find ${built})" uri="package://${built}/m.stl" é="package://three/m"/>\n'
+            '  <xacro:if value="${sim}"><x v="$(find optional)"/><xacro:unless value="1"/>\n'
+            '    <if value="1">package://optional/m.stl</if> $(find optional)</xacro:if>\n'
+            '  <x v="$(find four)"/>\n'
             '</robot>\n').encode()
-    assert package_references(data) == [(3, 22, "one"), (3, 67, "two"), (4, 65, "three")]  # é: 1
+    assert package_references(data) == [(3, 22, "one"), (3, 67, "two"), (4, 65, "three"),
+                                         (7, 9, "four")]  # é: 2 bytes, 1 column
 
 
 def test_the_package_of_a_file_stays_in_its_repository(tmp_path):

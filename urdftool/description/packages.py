@@ -154,9 +154,11 @@ _DEPEND = re.compile(rb"<(?:depend|build_depend|build_export_depend|exec_depend|
                      rb"test_depend|doc_depend|buildtool_depend|buildtool_export_depend)"
                      rb"(?:\s[^>]*)?>\s*([^<\s]+)\s*</")
 _COMMENT = re.compile(rb"<!--.*?-->", re.S)
-# A package named literally in robot files: $(find NAME), package://NAME/ (not ${...} names).
+# A package named literally in robot files: $(find NAME), package://NAME/ (not ${...} names);
+# and the tags of xacro's conditional blocks (unprefixed as ROS 1's xacro took them too).
 _REFERENCE = re.compile(rb"\$\(find\s+([A-Za-z0-9_][A-Za-z0-9_.-]*)\s*\)|"
-                        rb"package://([A-Za-z0-9_][A-Za-z0-9_.-]*)/")
+                        rb"package://([A-Za-z0-9_][A-Za-z0-9_.-]*)/|"
+                        rb"<(/?)(?:xacro:)?(if|unless)\b[^>]*?(/?)>")
 
 
 def package_of(path) -> Path | None:
@@ -194,10 +196,18 @@ def declared_dependencies(folder: Path) -> frozenset[str] | None:
 
 def package_references(data: bytes) -> list[tuple[int, int, str]]:
     """(line, column, package name) of each package a robot file names literally, by
-    ``$(find NAME)`` or ``package://NAME/``, outside XML comments; a name built by xacro
-    (``$(find ${pkg})``) is not one."""
-    found = []
+    ``$(find NAME)`` or ``package://NAME/``, outside XML comments and outside xacro's
+    ``<xacro:if>``/``<xacro:unless>`` blocks (used in some configurations only: an optional
+    dependency, often one that would be circular); a name built by xacro (``$(find ${pkg})``)
+    is not one."""
+    found, depth = [], 0
     for match in _REFERENCE.finditer(_COMMENT.sub(_blanked, data)):
+        if match.group(4):  # a conditional block opens or closes
+            if not match.group(5):
+                depth += -1 if match.group(3) else 1
+            continue
+        if depth > 0:
+            continue
         line = data.count(b"\n", 0, match.start()) + 1
         start = data.rfind(b"\n", 0, match.start()) + 1
         column = len(data[start:match.start()].decode("utf-8", "replace")) + 1
