@@ -235,8 +235,10 @@ def undeclared_package_dependency(robot):
     (``<depend>``, ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its
     ``condition``. Each file read to build the robot is judged by the package.xml above it, in
     the robot's repository only (installed packages are not the user's to fix), at the first
-    place it names the package; a name built by xacro (``$(find ${pkg})``) and a package that
-    is not found (U006, U407) are not judged.
+    place it names the package. Not judged: a use inside ``<xacro:if>``/``<xacro:unless>``
+    (needed in some configurations only, such as a simulator's, often by a package that
+    itself depends on this one), a name built by xacro (``$(find ${pkg})``), and a package
+    that is not found (U006, U407).
 
     Bad: ``<xacro:include filename="$(find ur_description)/urdf/ur.urdf.xacro"/>`` in a
     package whose package.xml has no ``<exec_depend>ur_description</exec_depend>``
