@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test test-fast bench fuzz sweep-setup real-sweep-setup real-sweep clean
+.PHONY: demo test test-fast docs examples bench fuzz sweep-setup real-sweep-setup real-sweep clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -22,11 +22,21 @@ demo: $(INSTALLED)
 
 # The sweeps (marked slow: minutes) run by their own targets, not here.
 test: $(INSTALLED)
-	$(PY) -m pytest -n auto -m "not slow"
+	$(PY) -m pytest -n auto --dist loadgroup -m "not slow"
 
-# The inner loop: unit tests only, without the corpus, parity, fuzz and README runs.
+# The inner loop: unit tests only, without the corpus, parity, fuzz and documentation runs.
 test-fast: $(INSTALLED)
-	$(PY) -m pytest -n auto -m "not integration and not network"
+	$(PY) -m pytest -n auto --dist loadgroup -m "not integration and not network"
+
+# The documentation generated from the rules (docs/rules/, the table in docs/targets.md): run it
+# after adding or changing a rule, or after a merge; `make test` fails while a page is stale.
+docs: $(INSTALLED)
+	$(PY) -m urdftool.docs
+
+# The examples of command output in README.md and docs/ (tests/test_examples.py compares them):
+# rewrite those whose output changed, after a change made on purpose. Review the diff.
+examples: $(INSTALLED)
+	$(PY) tests/examples.py
 
 bench: $(INSTALLED)
 	$(PY) -m compileall -q urdftool  # sources edited since the install would compile every run

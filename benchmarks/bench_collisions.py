@@ -75,8 +75,8 @@ def main() -> list[dict]:
 
     robot = load(str(ROOT / "robots" / "humanoid" / "humanoid.urdf.xacro"))
     scene = matrix.Scene(robot, 0.005)
-    # ours and the reference alternately, medians of each: the host's speed drifts within
-    # minutes (the naive loop took 2.4 to 4.4 s in one afternoon, one side timed after the other)
+    # ours and the reference alternately, medians of each: the host's speed may drift within
+    # minutes, and one side timed after the other would compare two hosts
     timings, cpus, references, reference_cpus = {1: [], 2: []}, [], [], []
     q = scene.sample(0, SAMPLES // 10)
     for _ in range(REPEATS):

@@ -4,9 +4,8 @@ files / cores x the cost of one file?
 The reference is measured in the same run: ``check_files`` with one job checks the files one after
 another in this process (the cost of one file, times the count), then with one worker per core.
 ratio = parallel time / (serial time / workers); about 1 means the workers scale, the target
-allows for process start-up and the pipe. Medians of three runs of each, alternating: on this
-shared machine the second core's speed drifts (two workers took 4.6 to 5.7 s in one afternoon,
-one job 6.9 to 7.2 s).
+allows for process start-up and the pipe. Medians of three runs of each, alternating: on a
+shared machine the second core's speed drifts.
 """
 
 from __future__ import annotations

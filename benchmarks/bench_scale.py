@@ -8,9 +8,8 @@
   ``tree`` prints check_urdf's format, indented by depth, so its output on a chain is quadratic
   in the links, as check_urdf's is) (target: <= 12), medians of three runs.
 - ``fk``, ``dynamics`` and ``collisions`` are not run at 10,000 links: Pinocchio builds its model
-  in quadratic time (its own ``buildModelFromXML``, measured on 2026-11-28: 9.9 s for the star
-  and 30 s for the chain, against 0.12 s and 0.18 s at 1,000 links; ``urdftool fk`` then took 21 s
-  and 35 s, 3.4 GB for the chain), and its Data grows with nv^3 (``dynamics`` refuses beyond the
+  in quadratic time (its own ``buildModelFromXML``; the figures are in CHANGELOG.md), and its
+  Data grows with nv^3 (``dynamics`` refuses beyond the
   memory budget), so their ratio is reported MISSED with Pinocchio's own parse ratio measured
   on 1,000 and 3,000 links as the reason (linear would be 3, quadratic 9).
 """

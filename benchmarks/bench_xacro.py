@@ -7,8 +7,8 @@ blocks, conditionals), sized so that xacro's output is about 440 kB; the corpus'
 expansion is 114 kB (pr2), measured as well when the corpus is there (xacro's ``$(find)`` resolved
 as urdftool resolves it, as tests/integration/test_corpus_xacro.py does). Target: <= 1.5x. The
 best of runs alternating the two (three each for the synthetic robot, five for pr2), in CPU time:
-the machine is shared, and its speed drifts within minutes (on 2026-11-28 the same code's pr2
-ratio read 0.73x to 2.25x with the two sides timed one after the other).
+the machine may be shared, and its speed drift within minutes: a ratio of two sides timed one
+after the other compares two hosts.
 """
 
 from __future__ import annotations

@@ -3,9 +3,8 @@
 Each module has ``main() -> list[dict]`` (or a dict); a result has ``name``, ``value``,
 ``reference`` (what it is measured against, in the same run), ``ratio``, ``target`` and ``ok``.
 Each module runs in a process of its own: what one leaves in memory (the render bench's meshes,
-some 100,000 objects) does not slow the next one's in-process timings (the xacro bench's pr2 load
-took 1.7x xacro's time after the render bench in the same process, 1.25x alone, for the
-reference and the code alike). Exit code 1 when a target is missed.
+some 100,000 objects) would slow the next one's in-process timings, for the reference and the
+code alike. Exit code 1 when a target is missed.
 """
 
 from __future__ import annotations

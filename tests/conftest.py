@@ -43,8 +43,24 @@ def corpus() -> Path:
     return corpus_or_skip()
 
 
+@pytest.fixture(scope="session")
+def analysis_imported():
+    """The analysis commands' libraries imported once in this test process: a command runs
+    in a worker forked from it (its budget), which would otherwise import them again for
+    every command a test runs (1-3 s of CPU each)."""
+    import importlib
+
+    for name in ("numpy", "lxml.etree", "rich.console", "rich.table", "trimesh", "PIL.Image",
+                 "pinocchio", "fcl", "yourdfpy", "urdftool.lint.engine",
+                 "urdftool.kinematics.fk", "urdftool.kinematics.scene", "urdftool.report.picture"):
+        try:
+            importlib.import_module(name)
+        except ImportError:  # a lint-only install: the test says what is missing
+            pass
+
+
 @pytest.fixture
-def run_cli():
+def run_cli(analysis_imported):
     """Invoke the CLI in-process with a fixed width and no colour; returns the Result."""
     from typer.testing import CliRunner
 
@@ -133,7 +149,7 @@ def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \
     shutil.which("check_urdf")
 # pin's check_urdf is a Python wrapper (cmeel) that sets LD_LIBRARY_PATH and runs the binary in
-# its prefix: run the binary directly, saving a Python start-up (~0.3 s) per file.
+# its prefix: run the binary directly, saving a Python start-up per file.
 _CMEEL = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix"
 if CHECK_URDF and (_CMEEL / "bin" / "check_urdf").is_file():
     CHECK_URDF = str(_CMEEL / "bin" / "check_urdf")
@@ -189,7 +205,10 @@ def case_targets(case: Path) -> tuple[str, ...]:
 
 def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
-    skips it)."""
+    skips it). The tests that read the corpus run share one xdist worker (``make test`` runs
+    ``--dist loadgroup``), so the corpus is checked once per session, not once per worker."""
     for item in items:
         if "integration" in item.path.relative_to(ROOT).parts[:2]:
             item.add_marker(pytest.mark.integration)
+        if "corpus_run" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.xdist_group("corpus"))

@@ -14,6 +14,7 @@ import pytest
 import yaml
 
 from conftest import ROBOTS, ROOT
+from rule_links import assert_rule_page
 
 ACTION = yaml.safe_load((ROOT / "action.yml").read_text())
 STEPS = ACTION["runs"]["steps"]
@@ -68,6 +69,15 @@ def test_the_check_and_sarif_scripts_run_as_written(tmp_path):
     assert sarif.returncode == 0, sarif.stderr  # findings (exit 1) still upload
     log = json.loads((tmp_path / "urdftool.sarif").read_text())
     assert any(r["ruleId"] == "U204" for r in log["runs"][0]["results"])
+    assert_rule_page(log["runs"][0]["tool"]["driver"]["rules"][0]["helpUri"], "U001")
+    # run as the action of a repository at a tag: the links go to its pages at that tag
+    tagged = _run(step("SARIF")["run"], tmp_path, **env, ACTION_REPOSITORY="you/urdftool",
+                  ACTION_REF="v0.1.0", GITHUB_SERVER_URL="https://github.com")
+    assert tagged.returncode == 0, tagged.stderr
+    rule = json.loads((tmp_path / "urdftool.sarif").read_text())["runs"][0]["tool"]["driver"][
+        "rules"][0]
+    assert rule["helpUri"] == "https://github.com/you/urdftool/blob/v0.1.0/docs/rules/U001.md"
+    assert_rule_page(rule["helpUri"], "U001")
     usage = _run(step("SARIF")["run"], tmp_path, PATHS=str(urdf), ARGS="--select U999")
     assert usage.returncode != 0  # a usage error is not hidden
 

@@ -18,8 +18,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "urdftool"  # tests/test_layers.
 
 # Lowest first. A module may import modules of its own layer or of a lower one.
 LAYERS = [
-    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget",
-              "urdftool.simulators")),
+    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget", "urdftool.numbers",
+              "urdftool.simulators", "urdftool.origin")),
     ("description", ("urdftool.description",)),
     ("kinematics", ("urdftool.kinematics",)),
     ("physics", ("urdftool.physics",)),
@@ -28,7 +28,8 @@ LAYERS = [
     ("lint", ("urdftool.lint",)),
     ("crosscheck", ("urdftool.crosscheck",)),
     ("report", ("urdftool.report",)),
-    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.pytest_plugin",
+    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.help_text",
+             "urdftool.pytest_plugin",
              "urdftool.server")),
     ("api", ("urdftool",)),
 ]

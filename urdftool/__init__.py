@@ -1,4 +1,4 @@
-"""urdftool: lint and analyse URDF/xacro robot descriptions (README, "Python API").
+"""urdftool: lint and analyse URDF/xacro robot descriptions (docs/python-api.md).
 
 >>> import urdftool
 >>> run = urdftool.check_paths(["robots/"])      # what `urdftool check robots/` does

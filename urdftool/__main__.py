@@ -1,27 +1,38 @@
-"""``urdftool`` and ``python -m urdftool``: the command line.
+"""``urdftool`` and ``python -m urdftool``: the command line, and the one door for the tricks
+that make it start fast. Each stays while ``make bench`` shows it saves 50 ms or more on what
+users run (benchmarks/bench_startup.py times each with and without it).
+
+``urdftool --help``, ``-h``, ``-V``, ``--version``, no words, and ``urdftool COMMAND --help``
+print the texts Typer prints (kept in ``urdftool/data/help.txt``, made from the Typer app by
+:mod:`urdftool.help_text`) without importing Typer: 0.1 s of imports saved on a run that
+costs less than that otherwise. On a terminal narrower than Typer's 80 columns (where Typer wraps
+its text to the width), or when the kept texts were made from other command modules, Typer
+answers.
 
 ``urdftool check`` run again with the same words, in the same folder and environment, while
 none of the files its findings came from changed, prints what it printed before from the result
 cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
 run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
 
-Otherwise ``check`` forks a spare worker first (:func:`urdftool.lint.runner.fork_spare`), and
-ends without tearing the interpreter down (:func:`_end`).
+``check`` runs the cyclic garbage collector less often around each robot (:func:`_collect_less`,
+installed into the engine) and ends without tearing the interpreter down (:func:`_end`): each
+saves over 50 ms of a check of the corpus (``make bench``).
 """
 
 from __future__ import annotations
 
+import os
 import sys
+from contextlib import contextmanager
 
 
 def main() -> None:
     words = sys.argv[1:]
+    _help(words)
     check = words[:1] == ["check"]
     if check:
         _replay(words)
-        from urdftool.lint.runner import fork_spare
-
-        fork_spare()  # the rules are imported on another core while Typer is imported here
+        _collect_less()
     from urdftool.cli import main as run
 
     try:
@@ -32,15 +43,67 @@ def main() -> None:
         raise
 
 
+def _collect_less() -> None:
+    """Install into the engine (:data:`urdftool.lint.engine.COLLECTION`) the collector's
+    rhythm for a check: the cyclic collector runs after 100,000 new objects rather than
+    Python's 700 while a robot loads (millions of short-lived tuples, freed by reference
+    counting: a tenth of a 10,000-link robot's check), and what the rules build and keep for
+    as long as the robot lives is moved to the oldest generation unexamined (the collector
+    examined all of it twice, young then middle, to find a few cycles). The cycles left
+    (trimesh's, a few MB per robot) are freed by a full collection before the check that
+    follows 250,000 objects moved so."""
+    from urdftool.lint import engine  # the rules: the workers that check are forked after it
+
+    engine.COLLECTION = (_fewer_collections, _unexamined)
+
+
+_PROMOTED = {"objects": 0}  # moved to the oldest generation since the last full collection
+FULL_COLLECTION_AFTER = 250_000
+
+
+@contextmanager
+def _fewer_collections(young: int = 100_000):
+    import gc
+
+    threshold = gc.get_threshold()
+    gc.set_threshold(max(young, threshold[0]), *threshold[1:])
+    try:
+        yield
+    finally:
+        gc.set_threshold(*threshold)
+
+
+@contextmanager
+def _unexamined():
+    """The rules run with the collector paused; what they kept is then moved to the oldest
+    generation (``gc.freeze()`` then ``gc.unfreeze()``). Left to Python's collector when it
+    is off or objects are frozen (a forking parent's own ``gc.freeze()`` must stay)."""
+    import gc
+
+    if not gc.isenabled() or gc.get_freeze_count():
+        yield
+        return
+    if _PROMOTED["objects"] > FULL_COLLECTION_AFTER:
+        gc.collect()
+        _PROMOTED["objects"] = 0
+    gc.disable()
+    try:
+        yield
+    finally:
+        _PROMOTED["objects"] += gc.get_count()[0]
+        gc.freeze()
+        gc.unfreeze()
+        gc.enable()
+
+
 def _end(code) -> None:
     """End a check as ``SystemExit(code)`` ends Python, but without tearing the interpreter
     down: the message of a text ``code``, the exit functions, the standard streams flushed,
     then the process ends, not freeing the rules', the robot's and the libraries' objects one
-    by one (some 20 ms of a 0.27 s check; the system frees the memory at once). Files are
+    by one (a noticeable part of a short check; the system frees the memory at once). Files are
     closed by then (the cache and ``--output`` write within ``with``). Returns, for Python's
     own ending, while another thread runs (Python waits for it first)."""
     import atexit
-    import os
     import threading
 
     if threading.active_count() > 1:
@@ -57,6 +120,89 @@ def _end(code) -> None:
         except (OSError, ValueError):
             status = status or 120  # what Python's ending gives when flushing fails
     os._exit(status)
+
+
+HELP_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "help.txt")
+HELP_MARK = "\f"  # starts each section of HELP_FILE (no help text holds one)
+HELP_COLUMNS = 80  # click wraps help to min(terminal columns, 80) - 2
+
+
+def _help(words: list[str]) -> None:
+    """Exit with Typer's answer to ``words`` when they ask for help or the version and the
+    kept help texts are current; else return."""
+    if words in (["-V"], ["--version"]):
+        from urdftool import __version__
+
+        _exit_with(f"urdftool {__version__}\n", "", 0)
+    if not words or words in (["--help"], ["-h"]):
+        name = ""
+    elif len(words) == 2 and words[1] in ("--help", "-h") and words[0][:1] not in ("-", ""):
+        name = words[0]
+    else:
+        return
+    if _columns() < HELP_COLUMNS or (text := kept_help().get(name)) is None:
+        return
+    if words:
+        _exit_with(text, "", 0)
+    _exit_with("", text, 2)  # no words: the help, as the usage error click makes of them
+
+
+def _columns() -> int:
+    """The terminal's width as click reads it (``shutil.get_terminal_size``, without importing
+    shutil and what it imports)."""
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns or 80
+
+
+def kept_help() -> dict[str, str]:
+    """The help texts of HELP_FILE ("" for the program's, else by command), or none when it
+    is absent or was made from other command modules than these."""
+    try:
+        with open(HELP_FILE, encoding="utf-8") as handle:
+            sections = handle.read().split(HELP_MARK)[1:]
+    except (OSError, UnicodeDecodeError):
+        return {}
+    if not sections or sections[0] != f"digest {commands_digest()}\n":
+        return {}
+    texts = {}
+    for section in sections[1:]:
+        head, _, text = section.partition("\n")
+        texts[head.removeprefix("help ")] = text
+    return texts
+
+
+def commands_digest() -> str:
+    """A digest of the command modules (``urdftool/cli/*.py``) the help texts come from."""
+    import zlib
+
+    folder = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cli")
+    digest = 0
+    for name in sorted(n for n in os.listdir(folder) if n.endswith(".py")):
+        with open(os.path.join(folder, name), "rb") as handle:
+            digest = zlib.crc32(handle.read(), zlib.crc32(name.encode(), digest))
+    return f"{digest:08x}"
+
+
+def _exit_with(stdout: str, stderr: str, code: int) -> None:
+    """Print ``stdout`` and ``stderr`` and exit with ``code``, quietly when the reader of
+    standard output left (``| head``), as click does."""
+    try:
+        sys.stderr.write(stderr)
+        sys.stdout.write(stdout)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        code = 1
+    raise SystemExit(code)
 
 
 def _replay(words: list[str]) -> None:
@@ -77,18 +223,7 @@ def _replay(words: list[str]) -> None:
             folder = word.partition("=")[2]
     if folder is None or (kept := Cache(folder).get_output(words)) is None:
         return
-    stdout, stderr, code = kept
-    try:
-        sys.stderr.write(stderr)
-        sys.stdout.write(stdout)
-        sys.stdout.flush()
-    except BrokenPipeError:  # the reader left (``| head``): stop quietly, as click does
-        import os
-
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        code = 1
-    raise SystemExit(code)
+    _exit_with(*kept)
 
 
 if __name__ == "__main__":

@@ -17,12 +17,12 @@ from dataclasses import dataclass
 from urdftool.errors import UsageError
 
 # ``Location`` below is urdftool.diagnostics.Location, in annotations only (never evaluated):
-# importing typing for TYPE_CHECKING would cost every command 5 ms at start-up
+# importing typing for TYPE_CHECKING would slow every command's start-up
 
 DEFAULT_TIMEOUT = 60.0  # [s] per file
 DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
-# numpy's OpenBLAS starts a thread per core and reserves address space for each (80 MiB per
-# thread measured): on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
+# numpy's OpenBLAS starts a thread per core and reserves address space for each (some 80 MiB):
+# on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
 _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 _UNITS = {"": 1, "K": 1024, "M": 1024 ** 2, "G": 1024 ** 3, "T": 1024 ** 4}
 _SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on
@@ -70,7 +70,9 @@ def format_memory(size: int) -> str:
     """``2 GiB``, ``512 MiB``, ``1000 bytes``."""
     for unit in ("T", "G", "M", "K"):
         if size >= _UNITS[unit]:
-            return f"{size / _UNITS[unit]:.4g} {unit}iB"
+            from urdftool.numbers import number
+
+            return f"{number(size / _UNITS[unit])} {unit}iB"
     return f"{size} bytes"
 
 
@@ -92,7 +94,7 @@ def limit_memory(size: int | None) -> None:
 def one_blas_thread() -> None:
     """One BLAS thread for numpy when it is imported later in this process (unless the
     environment says otherwise): the products here are small, and after each large enough one
-    OpenBLAS's idle threads spin for about 0.15 s of CPU."""
+    OpenBLAS's idle threads spin, burning CPU."""
     for name in _ONE_THREAD:
         os.environ.setdefault(name, "1")
 

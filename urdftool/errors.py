@@ -226,7 +226,7 @@ class PlotError(UrdftoolError, ValueError):
 
 
 # The libraries only the analysis commands and a few rules need, by import name; they come
-# with ``pip install 'urdftool[analysis]'`` (a lint-only install has none of them).
+# with urdftool's ``analysis`` extra (a lint-only install has none of them).
 ANALYSIS_MODULES = {"pinocchio": "pin", "fcl": "python-fcl", "yourdfpy": "yourdfpy",
                     "PIL": "pillow"}
 
@@ -237,6 +237,8 @@ def missing_extra(error: BaseException) -> str | None:
     top = name.split(".")[0]
     if not isinstance(error, ImportError) or top not in ANALYSIS_MODULES:
         return None
+    from urdftool.origin import install_command
+
     return (f"needs {ANALYSIS_MODULES[top]}, which a lint-only install leaves out: "
-            "pip install 'urdftool[analysis]'")
+            f"{install_command('analysis')}")
 

@@ -189,7 +189,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_
     """Each finding as a diagnostic on the file it is located in and one at each macro call site
     that produced it (in the robot, or an intermediate macro), keyed by absolute path; each
     points at the others as related information. Findings about standard input are left out."""
-    from urdftool.report.sarif_format import help_uri
+    from urdftool.origin import rule_url
 
     by_path: dict[str, list[Shown]] = {}
     for finding in findings:
@@ -212,7 +212,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_
             diagnostic = types.Diagnostic(
                 range=span, message=message, severity=_SEVERITIES[finding.severity],
                 code=finding.code, source=SOURCE,
-                code_description=types.CodeDescription(href=help_uri(finding.code)),
+                code_description=_code_description(rule_url(finding.code)),
                 related_information=related or None)
             by_path.setdefault(path, []).append((diagnostic, finding))
     return by_path
@@ -485,12 +485,18 @@ def rule_named(word: str, in_comment: bool = False):
     return None
 
 
-def rule_markdown(rule) -> str:
-    from urdftool.report.sarif_format import help_uri
+def _code_description(url: str | None):
+    """The link to a rule's page (urdftool.origin), None when nothing says where it is."""
+    return None if url is None else types.CodeDescription(href=url)
 
+
+def rule_markdown(rule) -> str:
+    from urdftool.origin import rule_url
+
+    url = rule_url(rule.code)
+    link = f"\n\n[{rule.code} in the documentation]({url})" if url else ""
     return (f"**{rule.code} {rule.name}** ({rule.severity.value}, {rule.family})\n\n"
-            f"{rule.doc or rule.summary}\n\n[{rule.code} in the documentation]"
-            f"({help_uri(rule.code)})")
+            f"{rule.doc or rule.summary}{link}")
 
 
 # ---- code actions: a provider maps (document, diagnostic, finding) to code actions ------------

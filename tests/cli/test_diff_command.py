@@ -51,7 +51,7 @@ def test_json_and_markdown(run_cli, pair, tmp_path):
     assert run_cli("diff", *pair, "--format", "markdown", "-o", summary).exit_code == 1
     text = summary.read_text()
     assert text.startswith("### Robot description:")
-    assert "- joint `elbow`: origin.xyz" in text and "| `hand` | 3 | 0 | 3 | 0 | zero |" in text
+    assert "- joint `elbow`: origin.xyz" in text and "| `hand` | 3 | 0 | 3 | 0 | shoulder=0, elbow=0 |" in text
 
 
 def test_render_overlays_old_and_new(run_cli, pair, tmp_path):
@@ -112,3 +112,99 @@ def test_a_side_yourdfpy_cannot_draw_is_located_in_its_own_file(run_cli, pair, t
     assert result.exit_code == 1
     assert "nameless.urdf: error: yourdfpy cannot build the scene" in result.output
     assert "change(s)" in result.output  # the report came first
+
+
+# two arms on one base: a change in the left one moves only the left one's frames
+TWO_ARMS = """<robot name="two">
+  <link name="base"><visual><geometry><box size="0.4 0.1 0.1"/></geometry></visual></link>
+  <link name="left_upper"><visual><origin xyz="0 0 0.15"/><geometry>
+    <box size="0.04 0.04 0.3"/></geometry></visual></link>
+  <link name="left_fore"><visual><origin xyz="0 0 0.12"/><geometry>
+    <box size="0.03 0.03 0.24"/></geometry></visual></link>
+  <link name="right_upper"><visual><origin xyz="0 0 0.15"/><geometry>
+    <box size="0.04 0.04 0.3"/></geometry></visual></link>
+  <joint name="left_shoulder" type="revolute"><parent link="base"/><child link="left_upper"/>
+    <origin xyz="-0.15 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="left_elbow" type="revolute"><parent link="left_upper"/><child link="left_fore"/>
+    <origin xyz="0 0 0.3"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="right_shoulder" type="revolute"><parent link="base"/><child link="right_upper"/>
+    <origin xyz="0.15 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+@pytest.fixture
+def arms(tmp_path):
+    (tmp_path / ".git").mkdir()
+    old, new = tmp_path / "old.urdf", tmp_path / "new.urdf"
+    old.write_text(TWO_ARMS)
+    # the left elbow turned a little: the left forearm's frame turns, more with the shoulder
+    new.write_text(TWO_ARMS.replace('<origin xyz="0 0 0.3"/><axis xyz="1 0 0"/>',
+                                    '<origin xyz="0 0 0.3" rpy="0.01 0 0"/><axis xyz="1 0 0"/>'))
+    return old, new
+
+
+def test_the_worst_pose_names_the_joints_that_move_the_changed_frames(run_cli, arms):
+    result = run_cli("diff", *arms, "--no-collisions")
+    assert result.exit_code == 1, result.output
+    [line] = [line for line in result.output.splitlines() if "left_fore:" in line]
+    assert "(at left_shoulder=" in line and ", left_elbow=" in line
+    assert "right_shoulder" not in line  # its value changes nothing for the left forearm
+    [worst] = [line for line in result.output.splitlines() if "largest change at" in line]
+    assert "left_shoulder=" in worst and "right_shoulder" not in worst
+    data = json.loads(run_cli("diff", *arms, "--no-collisions", "-f", "json").output)
+    [frame] = [f for f in data["effects"]["frames"] if f["link"] == "left_fore"]
+    assert frame["joints"] == ["left_shoulder", "left_elbow"]
+    assert data["effects"]["worst_joints"] == ["left_shoulder", "left_elbow"]
+
+
+def test_render_magnifies_a_small_change_in_an_inset(run_cli, tmp_path):
+    """A 3 mm change is a line of a pixel or two on the picture: an inset magnifies where it
+    is, and says what moved; the SVG says it in text."""
+    import numpy as np
+    from PIL import Image
+
+    from urdftool.description.load import load
+    from urdftool.kinematics.scene import scene_model
+    from urdftool.report import picture
+
+    (tmp_path / ".git").mkdir()
+    old, new = tmp_path / "old.urdf", tmp_path / "new.urdf"
+    old.write_text(TWO_ARMS)
+    new.write_text(TWO_ARMS.replace('<origin xyz="0 0 0.3"/><axis xyz="1 0 0"/>',
+                                    '<origin xyz="0 0 0.303"/><axis xyz="1 0 0"/>'))
+
+    def moved_pixels(path):  # below the legend: the pixels of one side only
+        pixels = np.asarray(Image.open(path).convert("RGB"), dtype=float)[40:]
+        blue = (pixels[..., 2] > pixels[..., 0] + 80).sum()
+        orange = (pixels[..., 0] > pixels[..., 2] + 80).sum()
+        return blue + orange
+
+    shown = tmp_path / "diff.png"
+    assert run_cli("diff", old, new, "--no-collisions", "--render", shown).exit_code == 1
+    plain = tmp_path / "plain.png"
+    layers = [picture.Layer(scene_model(load(path)).pose({}), tint=tint, label=label)
+              for path, tint, label in ((old, picture.OLD, "old"), (new, picture.NEW, "new"))]
+    picture.write(plain, layers)  # no detail: the change at the picture's scale
+    assert 0 < 5 * moved_pixels(plain) < moved_pixels(shown)
+    vector = tmp_path / "diff.svg"
+    assert run_cli("diff", old, new, "--no-collisions", "--render", vector).exit_code == 1
+    text = vector.read_text()
+    assert "magnified" in text and "left_fore moved 3 mm" in text
+
+
+def test_no_inset_for_a_change_large_enough_to_see(tmp_path):
+    from urdftool.description.load import load
+    from urdftool.kinematics.scene import scene_model
+    from urdftool.report import picture
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(ARM)
+    scene = scene_model(load(robot))
+    layers = [picture.Layer(scene.pose({}), tint=picture.OLD, label="old"),
+              picture.Layer(scene.pose({"shoulder": 0.8}), tint=picture.NEW, label="new")]
+    text = picture.svg(layers, picture.PictureOptions(detail=picture.Detail(0.3, "big")))
+    assert "magnified" not in text

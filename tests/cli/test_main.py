@@ -10,6 +10,8 @@ import sys
 import pytest
 
 from conftest import ROOT
+from urdftool.lint import engine
+from urdftool.lint.engine import CheckOptions, check_file
 
 
 def _module(*args: str) -> subprocess.CompletedProcess:
@@ -113,18 +115,36 @@ def test_a_reader_that_leaves_ends_the_replay_quietly(bot):
     assert "Traceback" not in error and "[typer]" not in error
 
 
-def test_a_check_through_the_spare_worker_prints_what_one_process_prints():
-    """``urdftool check`` forks a spare worker before it reads its words (with two cores or
-    more; see runner.fork_spare), which takes the file, or standard input, with its budget."""
+def test_a_check_through_a_worker_prints_what_one_process_prints():
+    """``urdftool check`` checks a file, or standard input, in a worker forked after the rules
+    were imported, within its budget; without one, in this process."""
     case = "tests/cases/U204_inverted_limits.urdf"
     alone = ["--timeout", "0", "--max-memory", "0", "--jobs", "1"]
     for words in (["--no-cache", case], ["--no-cache", "--stdin-filename", case, "-"]):
         stdin = (ROOT / case).read_text() if "-" in words else None
-        spare, here = (subprocess.run([sys.executable, "-m", "urdftool", "check", *extra, *words],
-                                      capture_output=True, text=True, cwd=ROOT, timeout=120,
-                                      input=stdin) for extra in ([], alone))
-        assert spare.returncode == here.returncode == 1 and "U204" in spare.stdout, spare.stderr
-        assert (spare.stdout, spare.stderr) == (here.stdout, here.stderr)
+        worker, here = (subprocess.run([sys.executable, "-m", "urdftool", "check", *extra, *words],
+                                       capture_output=True, text=True, cwd=ROOT, timeout=120,
+                                       input=stdin) for extra in ([], alone))
+        assert worker.returncode == here.returncode == 1 and "U204" in worker.stdout, worker.stderr
+        assert (worker.stdout, worker.stderr) == (here.stdout, here.stderr)
+
+
+def test_check_runs_the_collector_as_the_door_says_and_other_commands_as_python_does(tmp_path):
+    """The collector's rhythm for a check is installed by ``__main__`` (the door for speed
+    tricks) into the engine; a library user's check keeps Python's."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, sys; from urdftool.lint import engine; import urdftool.__main__ as d;"
+               " atexit.register(lambda: print('[policy]', engine.COLLECTION =="
+               " (d._fewer_collections, d._unexamined), file=sys.stderr)); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
+    for words, installed in ((["check", "--no-cache", "a.urdf"], True),
+                             (["tree", "a.urdf"], False)):
+        done = subprocess.run([sys.executable, "-c", program, *words], capture_output=True,
+                              text=True, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0 and f"[policy] {installed}" in done.stderr, done.stderr
+    from urdftool.lint import engine
+
+    assert engine.COLLECTION[0] is engine.COLLECTION[1]  # nullcontext, unless installed
 
 
 def test_a_check_ends_without_teardown_yet_says_all_and_exits_as_the_command_does(tmp_path):
@@ -148,3 +168,96 @@ def test_a_check_ends_without_teardown_yet_says_all_and_exits_as_the_command_doe
         assert (ended.stdout, ended.stderr) == (usual.stdout, usual.stderr)
         assert ended.stderr.endswith("[exit functions ran]\n")
     assert ended.stdout.count('"U204"') == 399
+
+# The collector's rhythm for a check, installed into the engine by the door (``__main__``)
+
+@pytest.fixture
+def door_collection(monkeypatch):
+    import urdftool.__main__ as door
+
+    monkeypatch.setattr(engine, "COLLECTION", (door._fewer_collections, door._unexamined))
+    return door
+
+
+def test_a_check_collects_garbage_less_often_and_restores_the_threshold(door_collection, monkeypatch, tmp_path):
+    import gc
+
+    seen = []
+    real = engine.check_robot
+    monkeypatch.setattr(engine, "check_robot", lambda *a: seen.append(gc.get_threshold()) or
+                        real(*a))
+    before = gc.get_threshold()
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    check_file(str(robot), CheckOptions())
+    assert seen[0][0] >= 100_000 and seen[0][1:] == before[1:]
+    assert gc.get_threshold() == before
+
+
+@pytest.fixture
+def _nothing_frozen():
+    """No object frozen while the test runs (a test before it in this process may have frozen
+    its own, as the fuzz harness's parent does): they are frozen again afterwards."""
+    import gc
+
+    frozen = gc.get_freeze_count()
+    gc.unfreeze()
+    yield
+    if frozen:
+        gc.freeze()
+
+
+def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(door_collection, monkeypatch,
+                                                                    tmp_path, _nothing_frozen):
+    import gc
+    import weakref
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    seen, left = [], []
+    real = engine.check_robot
+
+    def rules(*args):
+        seen.append(gc.isenabled())
+        left.append(weakref.ref(_Cycle()))  # garbage only the cyclic collector frees
+        return real(*args)
+
+    monkeypatch.setattr(engine, "check_robot", rules)
+    check_file(str(robot), CheckOptions())
+    assert seen == [False]  # paused while the rules ran
+    assert gc.isenabled() and gc.get_freeze_count() == 0
+    gc.collect()
+    assert left[0]() is None  # what the rules left is still collected
+
+
+def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path):
+    import gc
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    check_file(str(robot), CheckOptions())  # a first check frees objects made on import
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        check_file(str(robot), CheckOptions())
+        assert gc.get_freeze_count() == frozen
+    finally:
+        gc.unfreeze()
+
+
+def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collection, monkeypatch, tmp_path):
+    import gc
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    full = []
+    real = gc.collect
+    monkeypatch.setattr(gc, "collect", lambda *a: full.append(a) or real(*a))
+    monkeypatch.setitem(door_collection._PROMOTED, "objects", door_collection.FULL_COLLECTION_AFTER + 1)
+    check_file(str(robot), CheckOptions())
+    assert full == [()] and door_collection._PROMOTED["objects"] < door_collection.FULL_COLLECTION_AFTER
+
+
+class _Cycle:
+    def __init__(self):
+        self.me = self

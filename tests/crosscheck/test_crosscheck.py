@@ -89,7 +89,9 @@ def test_missing_loaders_say_how_to_install_them(tmp_path, monkeypatch):
     monkeypatch.setattr("urdftool.crosscheck.available", lambda name: name == "pinocchio")
     report = crosscheck(str(path))
     assert set(report.missing) == set(LOADERS) - {"pinocchio"}
-    assert "pip install -e '.[sim]'" in report.missing["mujoco"]
+    from urdftool.origin import install_command
+
+    assert report.missing["mujoco"] == install_command("sim")
 
 
 def test_the_install_hints_name_extras_that_exist():
@@ -103,8 +105,8 @@ def test_the_install_hints_name_extras_that_exist():
         if name == "sdformat":
             assert "apt-get install ignition-tools libsdformat-dev" in loader.install
             continue
-        extra = loader.install.split("'.[", 1)[1].split("]'", 1)[0]
-        assert extra in extras
+        extra = loader.extra
+        assert extra in extras and f"[{extra}]" in loader.install
         assert any(requirement.startswith(distributions[name])
                    for requirement in extras[extra]), (extra, extras[extra])
 

@@ -91,6 +91,11 @@ DOOR = "description/files.py"
 ELSEWHERE = {
     "description/revision.py": "runs git to unpack an old revision into a temporary folder "
                                "(git's objects, not the work tree a check's record describes)",
+    # urdftool's own files, never a robot's (to move onto files.read_own and friends):
+    "__main__.py": "reads urdftool's own help texts and command modules before anything else "
+                   "is imported, for a fast --help",
+    "docs.py": "generates urdftool's own documentation from its checkout (make docs)",
+    "origin.py": "reads where urdftool itself was installed from (its dist-info, its checkout)",
 }
 # Calls that open, stat, list, glob, follow links or write, by the dotted name they are made
 # through (a module's function) ...

@@ -113,13 +113,13 @@ def test_a_relative_package_folder_is_relative_to_the_working_directory(tmp_path
     assert resolver.find("my_description") == tmp_path / "src" / "my_description"
 
 
-def test_the_readme_package_example_runs_as_written(run_cli, tmp_path, monkeypatch):
-    """The README's line, word for word; then the same robot from another folder, whose
+def test_the_documented_package_example_runs_as_written(run_cli, tmp_path, monkeypatch):
+    """docs/check.md's line, word for word; then the same robot from another folder, whose
     includes once resolved the package against robots/ instead of the working directory."""
     import shlex
     from pathlib import Path
 
-    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    readme = (Path(__file__).parents[2] / "docs" / "check.md").read_text()
     [line] = [line for line in readme.splitlines() if "--package my_description=" in line
               and line.startswith("urdftool check")]
     words = shlex.split(line.split("#")[0])[1:]

@@ -20,7 +20,8 @@ def _check_urdf(tmp_path, kind: str, limit: bool) -> bool:
     """Whether urdfdom accepts a two-link robot whose joint has this type."""
     binary = CHECK_URDF if CHECK_URDF.exists() else shutil.which("check_urdf")
     if not binary:
-        pytest.skip("check_urdf (urdfdom) is not installed")
+        pytest.skip("urdfdom's check_urdf is not installed (the pin wheel of the analysis extra "
+                    "has it)")
     text = (f'<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="{kind}">'
             '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
             + ('<limit lower="-1" upper="1" effort="1" velocity="1"/>' if limit else "")

@@ -59,7 +59,8 @@ def test_urdftool_errors_wherever_check_urdf_does(name, tmp_path):
     """urdfdom prints "Error:" for a link it cannot read and goes on (exit code 0), so its words,
     not its exit code, tell whether it found an error; both ways are asserted."""
     if CHECK_URDF is None:
-        pytest.skip("check_urdf not installed")
+        pytest.skip("urdfdom's check_urdf is not installed (the pin wheel of the analysis extra "
+                    "has it)")
     path = tmp_path / f"{name}.urdf"
     path.write_text(f'<robot name="r">\n{CASES[name]}\n</robot>\n')
     run = check_urdf(path)

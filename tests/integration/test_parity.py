@@ -10,7 +10,7 @@ from conftest import CASES, CHECK_URDF, CORPUS, check_urdf, corpus_entry_points
 from conftest import CASE_PATHS, case_robot
 from urdftool.lint.engine import URDFDOM_REFUSES, CheckOptions, check_file
 
-pytestmark = pytest.mark.skipif(CHECK_URDF is None, reason="check_urdf not installed")
+pytestmark = pytest.mark.skipif(CHECK_URDF is None, reason="urdfdom's check_urdf is not installed (the pin wheel of the analysis extra has it)")
 
 # The errors for what urdfdom refuses too (the linter owns the set; `urdftool tree` fails on
 # them): the file does not parse, is not a <robot> of a version it reads, or its tree, joint

@@ -1,6 +1,6 @@
-"""Every urdftool command line in the README's CI section runs, and its output is valid.
+"""Every urdftool command line of the CI guide (docs/ci.md) runs, and its output is valid.
 
-The command lines are taken from the README's code blocks, so the examples cannot rot. Each is
+The command lines are taken from the guide's code blocks, so the examples cannot rot. Each is
 run through the CLI on a copy of robots/ (clean) and on the same copy plus one broken robot.
 """
 
@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 import sarif_schema
+from rule_links import assert_rule_page
 from lxml import etree
 
 from conftest import ROBOTS, ROOT
@@ -31,10 +32,7 @@ BROKEN = """<robot name="broken">
 
 
 def ci_section() -> str:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    start = text.index("## Using urdftool in CI")
-    end = text.index("\n## ", start + 1)
-    return text[start:end]
+    return (ROOT / "docs" / "ci.md").read_text(encoding="utf-8")
 
 
 def readme_commands() -> dict:
@@ -71,17 +69,17 @@ def workspaces(tmp_path_factory):
 
 
 def readme_test():
-    """The test function of the README's Python test file (it calls urdftool in process)."""
+    """The test function of the guide's Python test file (it calls urdftool in process)."""
     source = readme_commands()["pytest"]
     assert "subprocess" not in source
     namespace = {}
-    exec(compile(source, "README.md:tests/test_urdf.py", "exec"), namespace)
+    exec(compile(source, "docs/ci.md:tests/test_urdf.py", "exec"), namespace)
     (test,) = [value for name, value in namespace.items() if name.startswith("test_")]
     return test
 
 
 def run(run_cli, monkeypatch, workspace: Path, argv: list[str]):
-    """Run a README command line in ``workspace`` (its robots/ and output files are there)."""
+    """Run a command line of the guide in ``workspace`` (its robots/ and output files are there)."""
     monkeypatch.chdir(workspace)
     return run_cli(*argv)
 
@@ -104,7 +102,7 @@ def test_github_annotations(run_cli, monkeypatch, workspaces, broken):
 def test_sarif(run_cli, monkeypatch, workspaces, broken):
     argv = readme_commands()["sarif"]
     result = run(run_cli, monkeypatch, workspaces[broken], argv)
-    assert result.exit_code == int(broken)  # the README tolerates 1, not 2
+    assert result.exit_code == int(broken)  # the guide tolerates 1, not 2
     log = json.loads((workspaces[broken] / argv[argv.index("--output") + 1]).read_text())
     sarif_schema.validate(log)
     rules = log["runs"][0]["tool"]["driver"]["rules"]
@@ -113,7 +111,7 @@ def test_sarif(run_cli, monkeypatch, workspaces, broken):
     for entry in results:
         rule = rules[entry["ruleIndex"]]
         assert rule["id"] == entry["ruleId"] and "Bad:" in rule["help"]["text"]
-        assert rule["helpUri"].endswith("#" + rule["id"].lower())  # the README table's anchor
+        assert_rule_page(rule["helpUri"], rule["id"])
         assert entry["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == \
             "robots/broken.urdf"
 
@@ -122,7 +120,7 @@ def test_sarif(run_cli, monkeypatch, workspaces, broken):
 def test_gitlab_code_quality(run_cli, monkeypatch, workspaces, broken):
     argv = readme_commands()["gitlab"]
     result = run(run_cli, monkeypatch, workspaces[broken], argv)
-    assert result.exit_code == int(broken)  # the README tolerates 1, not 2
+    assert result.exit_code == int(broken)  # the guide tolerates 1, not 2
     issues = json.loads((workspaces[broken] / argv[argv.index("--output") + 1]).read_text())
     assert [(i["check_name"], i["location"]["path"]) for i in issues] == \
         ([("U204 inverted-limits", "robots/broken.urdf")] if broken else [])
@@ -147,7 +145,7 @@ def test_junit(run_cli, monkeypatch, workspaces, broken):
 @pytest.mark.parametrize("broken", [False, True], ids=["clean", "broken"])
 @pytest.mark.parametrize("integration", ["make", "pytest"])
 def test_make_and_pytest(run_cli, monkeypatch, workspaces, broken, integration):
-    if integration == "pytest":  # the README's test file, run as pytest would, in process
+    if integration == "pytest":  # the guide's test file, run as pytest would, in process
         monkeypatch.chdir(workspaces[broken])
         if not broken:
             readme_test()()

@@ -295,3 +295,14 @@ def _body_height() -> float:
     model = KinematicModel(load(HUMANOID))
     result = forward_kinematics(model, config.from_words(model.variables, {}), ["body_link"])
     return float(result.matrices[0, 0, 2, 3])
+
+
+def test_a_long_fk_table_is_plain_text(tmp_path, run_cli):
+    from conftest import synthetic_robot
+
+    robot = synthetic_robot(tmp_path, 120)
+    result = run_cli("fk", robot, "--timeout", "0")
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert lines[0] == "poses relative to l0" and len(lines) == 2 + 120
+    assert lines[-1].split()[0] == "l119" and not any(c in result.stdout for c in "┃│━─")

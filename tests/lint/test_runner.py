@@ -213,68 +213,16 @@ def test_one_call_without_a_budget_runs_in_this_process():
     assert os.getpid() not in run_budgeted(2, lambda _: os.getpid(), unlimited, None, jobs=2)
 
 
-# A spare worker, forked before the work is known (``urdftool check`` forks one at start-up),
-# takes the first pool's work when the work pickles.
-
-def _process(index):  # a piece of work that pickles: where it ran, with what address space
-    import resource
-
-    return os.getpid(), resource.getrlimit(resource.RLIMIT_AS)[0]
 
 
-@pytest.fixture
-def two_cores(monkeypatch):
-    monkeypatch.setattr(runner, "default_jobs", lambda: 2)
-    yield
-    runner._drop_spare()
-
-
-def test_a_spare_worker_takes_the_first_pool_with_its_budget(two_cores):
-    runner.fork_spare()
-    spare = runner._spare
-    [(pid, limit)] = run_budgeted(1, _process, Budget(30.0, 1 << 30), None)
-    assert pid == spare.process.pid and limit == 1 << 30
-    assert runner._spare is None and not spare.process.is_alive()
-    # the next pool forks its own
-    [(pid, _)] = run_budgeted(1, _process, Budget(30.0, None), None)
-    assert pid not in (spare.process.pid, os.getpid())
-
-
-def test_work_that_does_not_pickle_goes_to_a_new_worker(two_cores):
-    runner.fork_spare()
-    spare = runner._spare
-    [pid] = run_budgeted(1, lambda _: os.getpid(), Budget(30.0, None), None)
-    assert pid not in (spare.process.pid, os.getpid()) and not spare.process.is_alive()
-
-
-def test_a_spare_checks_files_as_a_forked_worker_does(two_cores, robots, tmp_path):
-    from urdftool.lint.cache import Cache
-
-    def kept(folder):
-        return sorted(path.name for path in folder.rglob("*.json"))
-
-    forked = check_files(robots, lambda p: CheckOptions(), jobs=1, timeout=30,
-                         cache=Cache(tmp_path / "forked"))
-    runner.fork_spare()
-    spare = runner._spare
-    taken = check_files(robots, lambda p: CheckOptions(), jobs=1, timeout=30,
-                        cache=Cache(tmp_path / "spare"))
-    assert not spare.process.is_alive() and runner._spare is None
-    assert [r.findings for r in taken] == [r.findings for r in forked]
-    assert kept(tmp_path / "spare") == kept(tmp_path / "forked") != []  # the spare kept them
-
-
-def test_no_spare_on_one_core(monkeypatch):
-    monkeypatch.setattr(runner, "default_jobs", lambda: 1)
-    runner.fork_spare()
-    assert runner._spare is None
-
-
-def test_a_spare_no_pool_takes_ends_with_the_program():
-    """Not left behind, nor waited for (multiprocessing joins its children at exit)."""
-    program = ("from urdftool.lint import runner; runner.default_jobs = lambda: 2; "
-               "runner.fork_spare(); print(runner._spare.process.pid)")
-    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
-                          timeout=60)
-    assert done.returncode == 0, done.stderr
-    assert not _running(int(done.stdout))
+@pytest.mark.parametrize("cores, load, files, jobs", [
+    (2, 0.3, 46, 2),  # an idle second core: two workers
+    (2, 12.0, 46, 1),  # a busy machine: two workers would cost more CPU for nothing
+    (8, 5.2, 46, 3),  # the idle cores only
+    (2, 0.0, 5, 1),  # too few files to pay a second worker's imports and reads
+    (2, 0.0, 1, 1),
+])
+def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, load, files, jobs):
+    monkeypatch.setattr(runner, "default_jobs", lambda: cores)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    assert runner.auto_jobs(files) == jobs

@@ -1,4 +1,4 @@
-"""Settings discovery: every key documented in the README does what it says."""
+"""Settings discovery: every key documented in docs/settings.md does what it says."""
 
 from __future__ import annotations
 
@@ -136,13 +136,12 @@ def test_unknown_key_is_a_usage_error(run_cli, project):
     assert result.exit_code == 2 and "unknown urdftool setting(s) selct" in result.stderr
 
 
-def test_readme_example_parses(project):
+def test_the_documented_example_parses(project):
     from conftest import ROOT
     import re
 
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = text[text.index("## Using urdftool in CI"):]
-    example = re.search(r"```toml\n(.*?)```", section, re.S).group(1)
+    text = (ROOT / "docs" / "settings.md").read_text(encoding="utf-8")
+    example = re.search(r"```toml\n(.*?)```", text, re.S).group(1)
     (project / "pyproject.toml").write_text(example)
     config = settings_for(project)
     assert config.select == ["U"] and config.ignore == ["U206", "axis-not-unit"]
@@ -332,6 +331,7 @@ OUTSIDE_IN = {  # every key, with a value naming a path outside the repository
     "srdf": 'srdf = "file:///etc/passwd"\n',
     "controllers": 'controllers = ["robots/../../outside/c.yaml"]\n',
     "strict": '"/etc/passwd" = true\n',  # a key that is itself a path: unknown, and outside
+    "notes": 'notes = "/etc/passwd"\n',
     "max-file-size": 'max-file-size = "C:\\\\Windows"\n',
     "max-memory": 'max-memory = "/dev/zero"\n',
     "timeout": 'timeout = "/dev/zero"\n',

@@ -232,8 +232,8 @@ def test_the_pre_commit_hook_passes_companion_files():
 
 
 def test_a_robot_named_on_the_command_line_does_not_walk_its_repository(monkeypatch):
-    # the include graph is for macro libraries named; walking this repository for r2d2 cost
-    # more than checking it (0.5 s of a 1.2 s `urdftool check r2d2`)
+    # the include graph is for macro libraries named; walking this repository for r2d2 costs
+    # more than checking it
     from urdftool.lint import targets
     from urdftool.lint.settings import CheckRequest
 

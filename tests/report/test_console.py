@@ -52,3 +52,31 @@ def test_a_table_wider_than_the_terminal_turns_vertical_with_units():
     assert max(map(len, lines)) <= 40
     assert lines[:3] == ["poses", "base_link", "  x [m]           0.000000"]
     assert "  roll [rad]      1.570796" in lines
+
+
+class _Stream(io.StringIO):
+    def __init__(self, terminal: bool):
+        super().__init__()
+        self.terminal = terminal
+
+    def isatty(self) -> bool:
+        return self.terminal
+
+
+def test_tables_are_plain_text_off_a_terminal_or_when_long():
+    from urdftool.report.console import LONG_TABLE, plain_tables
+
+    assert plain_tables(3, _Stream(False)) and plain_tables(LONG_TABLE + 1, _Stream(True))
+    assert not plain_tables(3, _Stream(True))
+
+
+def test_a_plain_table_aligns_names_left_and_numbers_right_and_prints_names_safely():
+    from urdftool.report.console import write_table
+
+    stream = io.StringIO()
+    write_table(stream, "poses", HEADERS, [*ROWS, ["evil\nname", "1.0", "2", "3", "4"]])
+    lines = stream.getvalue().splitlines()
+    assert lines[0] == "poses" and len(lines) == 5  # a line break in a name stays in its row
+    assert lines[1].split() == HEADERS[:1] + ["x", "[m]", "y", "[m]", "z", "[m]", "roll", "[rad]"]
+    assert lines[2].startswith("base_link ") and lines[2].endswith(" 1.570796")
+    assert len({len(line) for line in lines[1:4]}) == 1  # columns line up

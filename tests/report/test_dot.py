@@ -71,7 +71,7 @@ def test_without_dot_the_dot_source_is_written_and_explained(run_cli, bad, tmp_p
     assert (tmp_path / "tree.dot").read_text().startswith('digraph "bad"')
 
 
-@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot is not installed")
+@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot is not installed (apt-get install graphviz)")
 @pytest.mark.parametrize("suffix, magic", [(".svg", b"<?xml"), (".png", b"\x89PNG")])
 def test_rendered_with_dot(run_cli, bad, tmp_path, suffix, magic):
     out = tmp_path / f"tree{suffix}"

@@ -9,6 +9,7 @@ import pytest
 from lxml import etree
 
 import sarif_schema
+from rule_links import assert_rule_page
 
 from urdftool.diagnostics import Finding, Location, Severity
 from urdftool.lint.engine import FileResult
@@ -154,7 +155,7 @@ def test_rdjson_carries_severity_code_url_and_macro_call_sites():
     assert data["source"]["name"] == "urdftool"
     first, second = data["diagnostics"]
     assert first["severity"] == "ERROR" and first["code"]["value"] == "U204"
-    assert first["code"]["url"].endswith("#u204")
+    assert_rule_page(first["code"]["url"], "U204")
     assert first["location"] == {"path": "a.urdf", "range": {"start": {"line": 7}}}
     assert second["related_locations"] == [{"message": "expanded from this macro call",
                                             "location": {"path": "a.urdf",

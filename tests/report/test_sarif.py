@@ -10,9 +10,11 @@ import re
 import pytest
 
 import sarif_schema
+from rule_links import assert_rule_page, page_of
 
 from urdftool.diagnostics import Finding, Location, Severity
 from urdftool.lint.engine import FileResult
+from urdftool.lint.rules import CATALOGUE
 from urdftool.report import render
 
 # RFC 3986 URI-reference characters: unreserved, reserved, and %HH escapes.
@@ -99,10 +101,13 @@ def test_absolute_paths_are_file_uris_and_stdin_is_named(tmp_path):
     assert second == {"artifactLocation": {"uri": "stdin"}, "region": {"startLine": 1}}
 
 
-def test_every_rule_has_a_help_uri_and_descriptions():
+def test_every_rule_has_a_help_uri_to_its_page_and_descriptions():
     log = sarif([])
     rules = log["runs"][0]["tool"]["driver"]["rules"]
-    assert rules and all(rule["helpUri"].endswith("#" + rule["id"].lower()) for rule in rules)
+    assert len(rules) == len(CATALOGUE)
+    for rule in rules:
+        assert_rule_page(rule["helpUri"], rule["id"])
+    assert page_of(log["runs"][0]["tool"]["driver"]["informationUri"]).is_file()
     assert github_problems(log) == []
 
 

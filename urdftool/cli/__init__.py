@@ -59,6 +59,22 @@ class LazyGroup(TyperGroup):
     def list_commands(self, ctx) -> list[str]:
         return sorted({*COMMANDS, *self.commands})
 
+    def resolve_command(self, ctx, args):
+        """The command named by ``args[0]``; a name that is none: a usage error that suggests
+        the closest command (``urdftool chek``: did you mean 'check'?). Typer's own suggestion
+        looks only at the commands already imported, which here is none."""
+        from typer._click.exceptions import UsageError
+
+        try:
+            return super().resolve_command(ctx, args)
+        except UsageError as error:
+            from urdftool.errors import close_names
+
+            close = close_names(args[0], self.list_commands(ctx), n=1) if args else []
+            if close and "did you mean" not in error.message.lower():
+                error.message = f"{error.message.rstrip('.')}; did you mean '{close[0]}'?"
+            raise
+
     def get_command(self, ctx, name: str):
         if name not in self.commands and name in COMMANDS:
             self.add_command(command(name), name)
@@ -77,10 +93,37 @@ class LazyGroup(TyperGroup):
 
 
 def command(name: str):
-    """The click command ``name`` (a key of :data:`COMMANDS`), its module imported now."""
-    single = typer.Typer(rich_markup_mode=None, pretty_exceptions_enable=False)
+    """The click command ``name`` (a key of :data:`COMMANDS`), its module imported now, its
+    options made uniform by :func:`_uniform_options`. Shell completion is an option of
+    ``urdftool`` itself, not of each command."""
+    single = typer.Typer(rich_markup_mode=None, pretty_exceptions_enable=False,
+                         add_completion=False)
     importlib.import_module(f"urdftool.cli.{name}").register(single)
-    return typer.main.get_command(single)
+    built = typer.main.get_command(single)
+    _uniform_options(built)
+    return built
+
+
+# metavar of an option that names none, by the kind of its value
+_METAVARS = {"path": "FILE", "int": "N", "int range": "N", "float": "NUMBER",
+             "float range": "NUMBER"}
+
+
+def _uniform_options(built) -> None:
+    """Every option's help the same way: one default, said once (an option whose help says its
+    default in words, ``[default: number of cores]``, does not get click's ``[default: 0]``
+    too), and a metavar in capitals (FILE, N, NUMBER, or the option's name: ``--format
+    FORMAT``), never click's ``<str>``."""
+    from typer.core import TyperOption
+
+    for param in built.params:
+        if not isinstance(param, TyperOption) or param.is_flag:
+            continue
+        if param.help and "[default:" in param.help:
+            param.show_default = False
+        if param.metavar is None:
+            long = max(param.opts, key=len).lstrip("-")
+            param.metavar = _METAVARS.get(param.type.name, long.upper().replace("-", "_"))
 
 
 app = typer.Typer(
@@ -90,7 +133,7 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=True,  # --install-completion / --show-completion for bash, zsh, fish
     pretty_exceptions_enable=False,
-    rich_markup_mode=None,  # plain click help: rich formatting costs ~0.4 s of imports
+    rich_markup_mode=None,  # plain click help: rich formatting would import rich for --help
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 

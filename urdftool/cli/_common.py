@@ -18,12 +18,26 @@ PACKAGE_HELP = "Where a ROS package is: NAME=PATH (repeatable)."
 
 XacroArgOption = typer.Option([], "--arg", metavar="NAME=VALUE", help=ARG_HELP)
 PackageOption = typer.Option([], "--package", "-p", metavar="NAME=PATH", help=PACKAGE_HELP)
-TimeoutOption = typer.Option(DEFAULT_TIMEOUT, "--timeout", metavar="SECONDS",
-                             help="Time budget (check: per file); 0 for none. Over it: U015, "
-                                  "exit 1.")
-MaxMemoryOption = typer.Option("2G", "--max-memory", metavar="SIZE",
-                               help="Memory (address space) the work may use, e.g. 2G, 512M; "
-                                    "0 for none. Over it: U018, exit 1.")
+
+
+def timeout_option(what: str, over: str, default: float | None = DEFAULT_TIMEOUT,
+                   note: str = ""):
+    """``--timeout``, its help saying what the budget covers (``what``: "each file", "the
+    command") and what happens over it (``over``)."""
+    return typer.Option(default, "--timeout", metavar="SECONDS",
+                        help=f"Seconds {what} may take; 0 for none. Over it: {over}.{note}")
+
+
+def max_memory_option(what: str, over: str, default: str | None = "2G", note: str = ""):
+    """``--max-memory``, its help saying whose memory it bounds (``what``)."""
+    return typer.Option(default, "--max-memory", metavar="SIZE",
+                        help=f"Memory (address space) {what} may use, e.g. 2G, 512M; 0 for "
+                             f"none. Over it: {over}.{note}")
+
+
+# the commands that analyse one robot (``budgeted``): the budget is the whole command's
+TimeoutOption = timeout_option("the command", "it stops and reports U015, exit 1")
+MaxMemoryOption = max_memory_option("the command", "it stops and reports U018, exit 1")
 MAX_SCENE_TRIANGLES = 8_000_000  # urdftool.kinematics.scene's (not imported: start-up time)
 MaxSceneTrianglesOption = typer.Option(
     MAX_SCENE_TRIANGLES, "--max-scene-triangles", min=0, metavar="N",

@@ -8,8 +8,9 @@ from pathlib import Path
 import typer
 
 from urdftool.errors import UsageError
-from urdftool.cli._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
-                      fail_usage, refuse_bad_outputs, robot_inputs, write_output)
+from urdftool.cli._common import (PackageOption, XacroArgOption, fail_usage, max_memory_option,
+                                  refuse_bad_outputs, robot_inputs, timeout_option,
+                                  write_output)
 
 
 def register(app: typer.Typer) -> None:
@@ -30,9 +31,11 @@ def check(
                                     "gitlab, rdjson, or auto (github under GitHub Actions, "
                                     "else text)."),
     output: Path = typer.Option(None, "--output", "-o", help="Write the report to this file."),
-    select: list[str] = typer.Option([], "--select", help="Only these codes, prefixes or names "
-                                     "(comma-separated, repeatable)."),
-    ignore: list[str] = typer.Option([], "--ignore", help="Skip these codes, prefixes or names."),
+    select: list[str] = typer.Option([], "--select", metavar="CODES",
+                                     help="Only these codes, prefixes or names "
+                                          "(comma-separated, repeatable)."),
+    ignore: list[str] = typer.Option([], "--ignore", metavar="CODES",
+                                     help="Skip these codes, prefixes or names."),
     target: list[str] = typer.Option([], "--target", "-t", metavar="NAME",
                                      help="Also check what this simulator refuses or changes "
                                           "(repeatable): gazebo, gz, mujoco, drake, pybullet, "
@@ -43,6 +46,11 @@ def check(
                                  "and which companion files each robot was checked with."),
     quiet: bool = typer.Option(False, "--quiet", "-q",
                                help="Text format: print the findings only, no summary line."),
+    notes: bool = typer.Option(None, "--notes/--no-notes", show_default=False,
+                               help="Text format: show the notes (severity info: what a check "
+                                    "assumed or could not do, not problems); the other formats "
+                                    "always include them [default: --no-notes, or notes in "
+                                    "the settings]."),
     exit_zero: bool = typer.Option(False, "--exit-zero",
                                    help="Exit 0 even when problems are found (usage errors "
                                         "still exit 2)."),
@@ -79,14 +87,15 @@ def check(
                                       help="Refuse meshes with more triangles than this "
                                            "[default: 2,000,000, or max-triangles in the "
                                            "settings]."),
-    timeout: float = typer.Option(None, "--timeout", metavar="SECONDS",
-                                  help=f"{TimeoutOption.help} [default: 60, or timeout in the "
-                                       "settings]."),
-    max_memory: str = typer.Option(None, "--max-memory", metavar="SIZE",
-                                   help=f"{MaxMemoryOption.help} Per worker [default: 2G, or "
-                                        "max-memory in the settings]."),
+    timeout: float = timeout_option("each file", "the file is stopped and reported as U015, "
+                                                 "exit 1", default=None,
+                                    note=" [default: 60, or timeout in the settings]"),
+    max_memory: str = max_memory_option("each worker", "its file is stopped and reported as "
+                                        "U018, exit 1", default=None,
+                                        note=" [default: 2G, or max-memory in the settings]"),
     jobs: int = typer.Option(0, "--jobs", "-j", metavar="N",
-                             help="Check files in N worker processes [default: number of cores]."),
+                             help="Check files in N worker processes [default: one per idle core, "
+                                  "at most one per 4 files]."),
     fix: bool = typer.Option(False, "--fix", help="Apply the safe fixes ([*] in the report) to "
                              "the files (inside the repository), then report what remains."),
     unsafe_fixes: bool = typer.Option(False, "--unsafe-fixes",
@@ -101,7 +110,8 @@ def check(
     from urdftool.budget import Budget, one_blas_thread
     from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.runner import check_paths
-    from urdftool.lint.settings import CheckRequest, Companions, checked_file_size
+    from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
+                                        notes_shown)
     from urdftool.report import FORMATS, printable, render
 
     try:
@@ -131,7 +141,12 @@ def check(
             use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
             cache_dir=None if no_cache else cache_dir or _default_cache())
         one_blas_thread()  # files checked in this process too (--jobs 1 without budgets)
-        run = check_paths(paths, request)
+        from urdftool.report import resolve_format
+        from urdftool.report.progress import progress
+
+        machine = not statistics and resolve_format(format) != "text"  # for a program
+        with progress("checking", "files", 0, machine=machine) as moved:
+            run = check_paths(paths, request, progress=moved)
         if fix or diff:
             run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
     except (UsageError, SettingsError, TargetError, UnknownName) as error:
@@ -150,7 +165,8 @@ def check(
         report = render_statistics
     else:
         def report(results, stream):
-            render(format, results, stream, quiet=quiet)
+            render(format, results, stream, quiet=quiet,
+                   notes=lambda result: notes_shown(result.path, notes, request))
     code = 2 if run.errors else 0 if exit_zero else run.exit_code
     keep = output is None and not (fix or diff) and _keeps_output(request, run)
     if output or keep:

@@ -57,12 +57,12 @@ def collisions(
                                        "collision geometry make more pairs (memory and time "
                                        "grow with them); 0 for no limit."),
     workers: int = typer.Option(2, "--workers", min=1, help="Worker processes."),
-    write_srdf: Path = typer.Option(None, "--write-srdf", metavar="OUT",
+    write_srdf: Path = typer.Option(None, "--write-srdf", metavar="FILE",
                                     help="Write disable_collisions here; an existing SRDF keeps "
                                          "its other content."),
     check_srdf: Path = typer.Option(None, "--check-srdf", metavar="FILE",
                                     help="Report stale disable_collisions in FILE (exit 1)."),
-    plot: Path = typer.Option(None, "--plot", metavar="FILE.svg|png", help="Draw the matrix."),
+    plot: Path = typer.Option(None, "--plot", metavar="FILE.png|svg", help="Draw the matrix."),
     render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
                                 help="Pose mode: draw the collision geometry at the pose, the "
                                      "links of colliding pairs that are not allowed in red."),
@@ -141,7 +141,7 @@ def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
     from urdftool.report.collisions import write_matrix
     from urdftool.report.progress import sampling_progress
 
-    with sampling_progress(options.samples) as on_progress:
+    with sampling_progress(options.samples, machine=format != "text") as on_progress:
         outcome = classify(robot, options, on_progress)
     if write_srdf:
         write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf))

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli._common import (MaxMemoryOption, PackageOption, TimeoutOption, XacroArgOption,
-                                  fail_usage, robot_inputs)
+from urdftool.cli._common import (PackageOption, XacroArgOption, fail_usage,
+                                  max_memory_option, robot_inputs, timeout_option)
 
 FORMATS = ("text", "json")
 
@@ -20,15 +20,17 @@ def register(app: typer.Typer) -> None:
 
 
 def crosscheck(
-    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     loader: list[str] = typer.Option([], "--loader", "-l", metavar="NAME",
                                      help="Only this loader (repeatable): pinocchio, mujoco, "
                                           "pybullet, drake, sdformat [default: all]."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
-    timeout: float = TimeoutOption,
-    max_memory: str = MaxMemoryOption,
+    timeout: float = timeout_option("each loader", "the loader is stopped and counts as not "
+                                                   "loading, exit 1"),
+    max_memory: str = max_memory_option("each loader", "the loader is stopped and counts as "
+                                        "not loading, exit 1"),
 ) -> None:
     from urdftool.budget import Budget
     from urdftool.crosscheck import crosscheck as run

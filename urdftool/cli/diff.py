@@ -142,7 +142,8 @@ def _render(old, new, result, path, max_triangles) -> None:
     cannot read exits 1, located in that side's file, a side over ``max_triangles`` exits 2."""
     from urdftool.errors import OverLimit, SceneError
     from urdftool.kinematics.scene import scene_model
-    from urdftool.report.picture import NEW, OLD, Layer, write
+    from urdftool.report.diff import change_detail
+    from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
 
     worst = result.effects.worst if result.effects is not None else {}
     back = {new_name: old_name for old_name, new_name in result.renames.joints.items()}
@@ -158,4 +159,5 @@ def _render(old, new, result, path, max_triangles) -> None:
             fail_over_limit(error, "--max-scene-triangles")
     warn(scenes[0].problems + scenes[1].problems)
     write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
-                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")])
+                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")],
+          PictureOptions(detail=change_detail(result)))

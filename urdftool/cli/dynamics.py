@@ -20,7 +20,7 @@ def register(app: typer.Typer) -> None:
 
 
 def dynamics(
-    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
                                 "(repeatable); others are 0."),
     v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
@@ -35,7 +35,7 @@ def dynamics(
                                            "torques with the ground carrying the robot, centre "
                                            "of mass against the support polygon; exit 1 when "
                                            "it tips over or a joint cannot hold."),
-    plot: str = typer.Option(None, "--plot", metavar="FILE",
+    plot: str = typer.Option(None, "--plot", metavar="FILE.png|svg",
                              help="With --support: the support polygon and centre of mass seen "
                                   "from above, as .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
@@ -75,7 +75,12 @@ def dynamics(
     except OverLimit as error:
         fail_over_limit(error, "--max-matrix-rows")
     warn(values.warnings + result.warnings)
-    loads = gravity_loads(model, samples, seed) if samples else []
+    loads = []
+    if samples:
+        from urdftool.report.progress import sampling_progress
+
+        with sampling_progress(samples + 1, machine=output_format != "text") as moved:
+            loads = gravity_loads(model, samples, seed, progress=moved)
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
@@ -100,7 +105,12 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
         fail_at(robot, error)
     stance = stand(standing, values.q)
     warn(values.warnings + stance.warnings)
-    standing_load = standing_loads(standing, samples, seed) if samples else None
+    standing_load = None
+    if samples:
+        from urdftool.report.progress import sampling_progress
+
+        with sampling_progress(samples + 1, machine=output_format != "text") as moved:
+            standing_load = standing_loads(standing, samples, seed, moved)
     loads = standing_load.loads if standing_load else []
     if plot:
         from urdftool.report.plot import write_items

@@ -20,7 +20,7 @@ def register(app: typer.Typer) -> None:
 
 def fk(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
-    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+    q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Joint value [rad or m] (repeatable); others take 0 or mid-range."),
     deg: bool = typer.Option(False, "--deg", help="Angles are in degrees."),
     q_file: str = typer.Option(None, "--q-file", metavar="FILE",

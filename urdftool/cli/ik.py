@@ -40,7 +40,7 @@ def ik(
         None, "--quat", metavar="X Y Z W", help="Target orientation as a quaternion."),
     target_frame: str = typer.Option(None, "--target-frame", metavar="LINK",
                                      help="Target: the pose of LINK at --target-q."),
-    target_q: list[str] = typer.Option([], "--target-q", metavar="NAME=VALUE",
+    target_q: list[str] = typer.Option([], "--target-q", metavar="JOINT=VALUE",
                                        help="With --target-frame: the configuration it is at."),
     targets: str = typer.Option(None, "--targets", metavar="FILE",
                                 help="Many targets: CSV or JSON with x, y, z and optionally "
@@ -48,7 +48,7 @@ def ik(
     check_reach: str = typer.Option(None, "--check-reach", metavar="FILE",
                                     help="Which targets of FILE (as --targets) are reachable; "
                                          "exit 1 if one is not."),
-    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+    q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Joint value (repeatable): the first seed, and where the "
                                      "joints off the limb stay."),
     deg: bool = typer.Option(False, "--deg", help="Angles (--q, --rpy, files) in degrees."),

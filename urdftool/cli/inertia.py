@@ -20,16 +20,16 @@ def register(app: typer.Typer) -> None:
 
 
 def inertia(
-    words: list[str] = typer.Argument(..., metavar="ROBOT [NAME:=VALUE...]"),
+    words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     density: float = typer.Option(None, "--density", metavar="KG_PER_M3",
                                   help="Compute masses from this density instead of keeping "
                                        "the declared ones."),
     keep_mass: bool = typer.Option(True, "--keep-mass/--no-keep-mass",
-                                   help="Keep declared masses (default; --density overrides; "
+                                   help="Keep declared masses (--density overrides; "
                                         "--no-keep-mass alone uses 1000 kg/m^3)."),
     link: list[str] = typer.Option([], "--link", help="Only this link (repeatable)."),
     all_links: bool = typer.Option(False, "--all", help="With --write: correct every link."),
-    write: Path = typer.Option(None, "--write", metavar="OUT",
+    write: Path = typer.Option(None, "--write", metavar="FILE",
                                help="Write the URDF with the <inertial> blocks of the --link "
                                     "selection or --all computed from geometry, as edits of "
                                     "the file (formatting kept); xacro input: a unified diff "

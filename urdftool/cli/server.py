@@ -22,8 +22,10 @@ def server(log_file: Path = typer.Option(None, "--log-file", metavar="FILE",
         import lsprotocol  # noqa: F401
         import pygls  # noqa: F401
     except ImportError:
-        typer.echo("urdftool: error: the language server needs pygls: "
-                   "pip install 'urdftool[lsp]'", err=True)
+        from urdftool.origin import install_command
+
+        typer.echo(f"urdftool: error: the language server needs pygls: {install_command('lsp')}",
+                   err=True)
         raise typer.Exit(2)
     from urdftool.server import serve
 

@@ -23,10 +23,10 @@ def workspace(
     point: Triple = PointOption,
     samples: int = typer.Option(2000, "--samples", metavar="N", help="Configurations drawn."),
     seed: int = typer.Option(0, "--seed", help="Random seed."),
-    q: list[str] = typer.Option([], "--q", metavar="NAME=VALUE",
+    q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Value of a joint off the limb (repeatable)."),
     deg: bool = typer.Option(False, "--deg", help="--q angles in degrees."),
-    plot: str = typer.Option(None, "--plot", metavar="FILE",
+    plot: str = typer.Option(None, "--plot", metavar="FILE.png|svg",
                              help="Top and side views shaded by manipulability, .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     arg: list[str] = XacroArgOption,
@@ -54,7 +54,10 @@ def workspace(
     except (FKError, IKError) as error:
         fail_at(robot, error)
     warn(start.warnings)
-    space = sample(chain, samples, seed)
+    from urdftool.report.progress import sampling_progress
+
+    with sampling_progress(samples, machine=output_format != "text") as moved:
+        space = sample(chain, samples, seed, moved)
     if plot:
         from urdftool.report.plot import write_items
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from urdftool.numbers import number
 from urdftool.diagnostics import Location
 from urdftool.description.documents import read_srdf
 from urdftool.description.files import kind_of, read_regular
@@ -176,7 +177,8 @@ def stale(matrix: Matrix, entries: list[Disabled], robot_links, root: Location) 
         if pair.reason in ("Adjacent", "Default", "Always") and \
                 (pair.link1, pair.link2) not in disabled:
             what = {"Adjacent": "are adjacent", "Default": "collide in the default pose",
-                    "Always": f"collide in {pair.fraction:.0%} of samples"}[pair.reason]
+                    "Always": f"collide in {number(100 * pair.fraction, places=0)}% of samples"
+                    }[pair.reason]
             problems.append(Stale(root, f"{pair.link1} and {pair.link2} {what} but are not "
                                   f"disabled; add <disable_collisions link1=\"{pair.link1}\" "
                                   f"link2=\"{pair.link2}\" reason=\"{pair.reason}\"/>"))

@@ -18,7 +18,9 @@ from urdftool.compare.structure import Renames
 @dataclass
 class FrameEffect:
     """How far a link's frame moved: at the zero configuration and at most over the samples
-    (position in [m], rotation in [rad]) and where (joint values by new name)."""
+    (position in [m], rotation in [rad]) and where (joint values by new name); ``joints``:
+    the variables that move the frame (the joints from the root to it, root first), the only
+    values of ``at`` that change how far it moved."""
 
     link: str
     zero_position: float
@@ -26,6 +28,7 @@ class FrameEffect:
     max_position: float
     max_rotation: float
     at: dict[str, float]
+    joints: list[str] = field(default_factory=list)
 
 
 @dataclass
@@ -63,6 +66,12 @@ class Effects:
     collisions: list[CollisionEffect] = field(default_factory=list)
     worst: dict[str, float] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+
+    @property
+    def moving(self) -> list[str]:
+        """The variables that move the frames that moved, in the order the frames name them
+        (the values of ``worst`` that matter)."""
+        return list(dict.fromkeys(j for frame in self.frames for j in frame.joints))
 
 
 @dataclass
@@ -143,7 +152,8 @@ def effects(old, new, renames: Renames, samples: int = 200, seed: int = 0,
             result.frames.append(FrameEffect(
                 link, float(moved[0, column]), float(turned[0, column]),
                 float(moved[:, column].max()), float(turned[:, column].max()),
-                {name: float(x) for name, x in zip(names, new_values[row])}))
+                {name: float(x) for name, x in zip(names, new_values[row])},
+                new_model.variables_moving(link)))
     result.frames.sort(key=lambda f: (-f.max_position, -f.max_rotation, f.link))
     if len(common):
         worst = int(np.argmax(moved.max(axis=1) + turned.max(axis=1) * 1e-3))

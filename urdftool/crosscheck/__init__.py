@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.budget import Budget
+from urdftool.numbers import number
 from urdftool.crosscheck.loaders import LOADERS, Job, available, version
 
 TOLERANCE = 1e-9  # [m]: frame positions of two loaders that keep a frame must agree within it
@@ -328,7 +329,7 @@ def _compare(report: Crosscheck, robot) -> None:
                 if where is not None and not worst <= tolerance:
                     at = "the zero configuration" if index == 0 else f"configuration {index}"
                     report.disagreements.append(
-                        f"{first.name} and {second.name} place link '{where}' {worst:.3g} m "
+                        f"{first.name} and {second.name} place link '{where}' {number(worst, 3)} m "
                         f"apart at {at}")
     for label, key in (("total mass [kg]", "mass"), ("degrees of freedom", "dof"),
                        ("floating base", "floating_base")):
@@ -336,7 +337,7 @@ def _compare(report: Crosscheck, robot) -> None:
         shown = {v if not isinstance(v, float) else round(v, 9) for v in values.values()}
         if len(shown) > 1:
             report.differences.append(f"{label}: " + ", ".join(
-                f"{name} {value:.6g}" if isinstance(value, float) else f"{name} {value}"
+                f"{name} {number(value, 6)}" if isinstance(value, float) else f"{name} {value}"
                 for name, value in values.items()))
     for result in report.loaders:
         if result.loaded and result.dropped_links:

@@ -39,27 +39,35 @@ class Loader:
     """One loader: its name, the module (or command) that makes it present, and how to get it.
 
     name: as the crosscheck report names it; target: the ``--target`` its rules are under
-    install: what to run to install it
+    get: urdftool's pip extra that brings it, or how to install it when it is no Python package
     """
 
     name: str
     title: str
     target: str
     probe: str  # a Python module to import, or "cmd:" and a command on PATH
-    install: str
+    get: str
+
+    @property
+    def extra(self) -> str | None:
+        """urdftool's pip extra that brings the loader; None for a system package."""
+        return self.get.removeprefix("extra:") if self.get.startswith("extra:") else None
+
+    @property
+    def install(self) -> str:
+        """What to run to install the loader: the extra's command for this urdftool."""
+        from urdftool.origin import install_command
+
+        return install_command(self.extra) if self.extra else self.get
 
 
 # pip extras of urdftool: `sim` brings MuJoCo and PyBullet, `drake` Drake (a wheel of 170 MB);
 # sdformat is a system package (Debian: ignition-tools and libsdformat-dev give `ign sdf`).
 LOADERS = {loader.name: loader for loader in (
-    Loader("pinocchio", "Pinocchio", "pinocchio", "pinocchio",
-           "pip install -e '.[analysis]'  (from a checkout of urdftool)"),
-    Loader("mujoco", "MuJoCo", "mujoco", "mujoco",
-           "pip install -e '.[sim]'  (from a checkout of urdftool)"),
-    Loader("pybullet", "PyBullet", "pybullet", "pybullet",
-           "pip install -e '.[sim]'  (from a checkout of urdftool)"),
-    Loader("drake", "Drake", "drake", "pydrake",
-           "pip install -e '.[drake]'  (from a checkout of urdftool)"),
+    Loader("pinocchio", "Pinocchio", "pinocchio", "pinocchio", "extra:analysis"),
+    Loader("mujoco", "MuJoCo", "mujoco", "mujoco", "extra:sim"),
+    Loader("pybullet", "PyBullet", "pybullet", "pybullet", "extra:sim"),
+    Loader("drake", "Drake", "drake", "pydrake", "extra:drake"),
     Loader("sdformat", "sdformat (gz sdf)", "gz", "cmd:gz|ign",
            "apt-get install ignition-tools libsdformat-dev  (Debian: `ign sdf`), or Gazebo's "
            "`gz` tool"),

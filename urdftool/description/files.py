@@ -470,6 +470,16 @@ def make_folders(folder, mode: int = 0o777) -> None:
     os.makedirs(real_folder(folder), mode=mode, exist_ok=True)
 
 
+def remove_file(path) -> None:
+    """Remove the file (or symbolic link) at ``path``, in the folder :func:`check_output`
+    allows; UsageError when that folder is refused or the system refuses."""
+    target = os.path.join(check_output(path), Path(path).name)
+    try:
+        os.unlink(target)
+    except OSError as error:
+        raise UsageError(f"cannot remove '{path}': {error.strerror}") from None
+
+
 @contextmanager
 def temporary_folder(prefix: str):
     """A new private folder in the system's temporary folder, removed with everything in it

@@ -410,8 +410,8 @@ def _transformed(vertices, faces, matrix):
     factors = matrix.diagonal()[:3]
     if np.array_equal(matrix, np.diag([*factors, 1.0])) and np.isfinite(vertices).all():
         # a scale: what the product below gives, to the bit, each coordinate times its factor
-        # plus zeros (+0.0 for a zero of either sign), without BLAS, whose threads spin on
-        # after a large product (0.15 s of CPU each, 2 cores)
+        # plus zeros (+0.0 for a zero of either sign), without BLAS, whose threads spin on,
+        # burning CPU, after a large product
         moved = vertices * factors + 0.0
     else:
         stacked = np.column_stack((vertices, np.ones(len(vertices))))

@@ -620,7 +620,7 @@ def _geometry_resolver(path: Path, limits: MeshLimits):
 
 
 def _zipped(data: bytes) -> bool:
-    import zipfile  # only for COLLADA files (4 ms of every check's start-up otherwise)
+    import zipfile  # only for COLLADA files, not on every check's start-up
 
     return zipfile.is_zipfile(io.BytesIO(data))
 

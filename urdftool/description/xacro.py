@@ -698,21 +698,38 @@ def _to_lxml(session: _Session, doc, root_location: Location):
         else:
             locations[element] = root_location
         last = None
+        texts = 0  # text nodes before the first child (lxml joins them; minidom does not)
         for child in node.childNodes:
             if child.nodeType == xml.dom.Node.ELEMENT_NODE:
                 last = build(child, element, depth + 1)
             elif child.nodeType in (xml.dom.Node.TEXT_NODE, xml.dom.Node.CDATA_SECTION_NODE):
                 if last is None:
                     element.text = (element.text or "") + child.data
+                    texts += 1
                 else:
                     last.tail = (last.tail or "") + child.data
             elif child.nodeType == xml.dom.Node.COMMENT_NODE:
                 comment = etree.Comment(child.data.replace("--", "- -"))
                 element.append(comment)
                 last = comment
+        if last is None and texts > 1 and not (element.text or "").strip():
+            # content that all expanded away (an <xacro:if> that was false): the blank xacro
+            # prints for it, so that `urdftool xacro` writes what ROS xacro writes
+            element.text = "\n" + "  " * depth
         return element
 
     root = build(source, None)
+    # the comments around the root element (a title above <robot>) stay where they were
+    for node in doc.childNodes:
+        if node is source:
+            break
+        if node.nodeType == xml.dom.Node.COMMENT_NODE:
+            root.addprevious(etree.Comment(node.data.replace("--", "- -")))
+    for node in reversed(doc.childNodes):
+        if node is source:
+            break
+        if node.nodeType == xml.dom.Node.COMMENT_NODE:
+            root.addnext(etree.Comment(node.data.replace("--", "- -")))
     return root, locations
 
 

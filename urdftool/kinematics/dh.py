@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from urdftool.numbers import number
 from urdftool.errors import DHError, UnknownLink, available
 from urdftool.description.urdf import MOVING
 from urdftool.description.values import origin as read_origin, parse_numbers
@@ -162,7 +163,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard") -> DHTable
         error = np.abs(dh_matrices(theta, d, a, alpha, convention) - link).max()
         if not error <= 1e-9:  # NaN included
             raise DHError(f"joint '{joint.get('name')}': its axis cannot be placed in D-H form "
-                          f"(residual {error:.2g}; axes nearly parallel?)", joint)
+                          f"(residual {number(error, 2)}; axes nearly parallel?)", joint)
         residual = max(residual, error)
         rows.append(DHJoint(joint.get("name"), kind, _clean(theta), _clean(d), _clean(a),
                             _clean(alpha)))

@@ -96,6 +96,19 @@ class KinematicModel:
         self.root_frame = "world" if floating else self.links[0]
         self._at_joint = [np.array_equal(placement, np.eye(4)) for _, _, placement in self._frames]
 
+    def variables_moving(self, link: str) -> list[str]:
+        """The variables whose values move ``link``'s frame relative to the root: those of the
+        joints from the root to it, root first (a mimic joint's: the one it follows)."""
+        joint = self._frames[self.links.index(link)][1]
+        columns: list[int] = []
+        while joint > 0:
+            source = self._joints[joint].source
+            if source:
+                columns += list(reversed(source)) if self._joints[joint].kind in (
+                    "floating", "planar") else [source[0]]
+            joint = self._joints[joint].parent
+        return [self.variables[c].name for c in reversed(list(dict.fromkeys(columns)))]
+
     def _joint(self, index: int) -> _Joint:
         model = self.model
         joint, name = model.joints[index], model.names[index]

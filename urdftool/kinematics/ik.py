@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.numbers import number
 from urdftool.errors import ConfigError, available
 from urdftool.kinematics.chain import Chain, frame_jacobian
 
@@ -373,8 +374,8 @@ def why_unreachable(chain: Chain, target: Target, result: Solution) -> str:
     centre, radius = reach(chain)
     distance = float(np.linalg.norm(target.position - centre))
     if distance > radius + 1e-9:
-        return (f"out of reach: the target is {distance:.4g} m from the limb's first joint, "
-                f"beyond its reach of {radius:.4g} m")
+        return (f"out of reach: the target is {number(distance)} m from the limb's first "
+                f"joint, beyond its reach of {number(radius)} m")
     reasons = []
     blocked = blocking_limits(chain, result.x, target)
     if blocked:

@@ -67,9 +67,12 @@ def manipulability(jacobian: np.ndarray) -> float:
     return math.sqrt(max(0.0, float(np.linalg.det(square))))
 
 
-def sample(chain: Chain, samples: int, seed: int = 0) -> Workspace:
+def sample(chain: Chain, samples: int, seed: int = 0, progress=None) -> Workspace:
     """``samples`` random in-limit configurations of the limb (continuous joints over a turn;
-    the zero-or-mid-range configuration first) and where they put the tip."""
+    the zero-or-mid-range configuration first) and where they put the tip.
+
+    progress: called with (configurations done, samples) as they are
+    """
     from urdftool.kinematics.configuration import random
     from urdftool.kinematics.ik import reach
 
@@ -81,6 +84,8 @@ def sample(chain: Chain, samples: int, seed: int = 0) -> Workspace:
         pose, jacobian = chain.pose_and_jacobian(x, local=False)
         points[row] = pose.translation
         measure[row] = manipulability(jacobian)
+        if progress is not None:
+            progress(row + 1, samples)
     centre, _ = reach(chain)
     return Workspace(chain.base, chain.tip, [v.name for v in chain.variables], samples, seed,
                      values, points, measure, np.asarray(centre, dtype=float))

@@ -8,7 +8,7 @@ The engine, not the rule, stamps the code, name, severity and location. A rule's
 what it reports when the defect is certain; a finding that holds only under a condition the
 rule cannot decide (whether a launch file starts the controller) is yielded as ``(where,
 message, fix, severity)`` with a lower severity, and its message names the condition. The rule's docstring is
-its documentation: a first-line summary, then why it matters, then examples (the README table and
+its documentation: a first-line summary, then why it matters, then examples (the pages of docs/rules/ and
 ``urdftool rules CODE`` are generated from it).
 
 ``rule()`` marks a check with its code, name and severity and registers nothing. Codes that the

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import gc
-from contextlib import contextmanager
+from contextlib import nullcontext
 from pathlib import Path
 
 from urdftool.diagnostics import Finding, Location, display_path
@@ -127,60 +126,17 @@ def urdfdom_refusals(robot) -> list[Finding]:
     return sorted({f for f in found if f.severity.value == "error"}, key=Finding.sort_key)
 
 
+# How the cyclic garbage collector runs around each check: (a context manager factory around a
+# whole check, one around its rules). Python's own collection unless the program installs its
+# own: ``urdftool/__main__.py``, the one door for speed tricks, does for the command line.
+COLLECTION = (nullcontext, nullcontext)
+
+
 def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
     """Load and check one file (``data``: its content, when not to be read from ``path``);
     load failures are findings too."""
-    with _fewer_collections():
+    with COLLECTION[0]():
         return _check_file(path, options, data)
-
-
-@contextmanager
-def _fewer_collections(young: int = 100_000):
-    """Run the cyclic garbage collector after ``young`` new objects rather than Python's 700:
-    loading allocates millions of short-lived tuples that are freed by reference counting,
-    and on a 10,000-link robot the collections cost a tenth of the run (6.0 -> 5.4 s)."""
-    threshold = gc.get_threshold()
-    gc.set_threshold(max(young, threshold[0]), *threshold[1:])
-    try:
-        yield
-    finally:
-        gc.set_threshold(*threshold)
-
-
-# Objects the rules kept that were moved to the oldest generation unexamined since the last full
-# collection (see _unexamined), and how many may be before the next check starts with one: the
-# 46 corpus URDFs move 190,000 in all, a 10,000-link robot 900,000; a full collection between
-# two checks costs 20-50 ms, as the robot checked before is gone by then.
-_PROMOTED = {"objects": 0}
-FULL_COLLECTION_AFTER = 250_000
-
-
-@contextmanager
-def _unexamined():
-    """Run the rules with the cyclic garbage collector paused, then move what they kept to the
-    oldest generation without examining it (``gc.freeze()`` then ``gc.unfreeze()``).
-
-    What the rules build (groupings, parsed numbers, solids: a million objects on a 10,000-link
-    robot) lives as long as the robot, and the collector examined all of it twice (young, then
-    middle generation) to find a few cycles: 0.37 of 5.8 s. The cycles rules leave (trimesh's,
-    a few MB per robot) are freed by the next full collection, which is forced before a check
-    once FULL_COLLECTION_AFTER objects were moved so (a server checking edit after edit never
-    grows without bound). Left to Python's collector when it is off or objects are frozen (a
-    forking parent's own ``gc.freeze()`` must stay frozen)."""
-    if not gc.isenabled() or gc.get_freeze_count():
-        yield
-        return
-    if _PROMOTED["objects"] > FULL_COLLECTION_AFTER:
-        gc.collect()
-        _PROMOTED["objects"] = 0
-    gc.disable()
-    try:
-        yield
-    finally:
-        _PROMOTED["objects"] += gc.get_count()[0]
-        gc.freeze()
-        gc.unfreeze()
-        gc.enable()
 
 
 def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
@@ -210,7 +166,7 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
-    with _unexamined():
+    with COLLECTION[1]():
         findings = check_robot(robot, options.selection)
     return FileResult(path, findings, robot, companions=_companion_lines(robot))
 

@@ -192,7 +192,7 @@ def _local(name: str) -> str:
 class _DocumentOrder:
     """Each element's place among the document's elements (comments left out), learnt only as
     far as asked: a fix is usually wanted for a few elements near the top (the root link), and
-    numbering all 190,000 elements of a 10,000-link robot for it cost 0.2 s. The walk resumes
+    numbering every element of a large robot for it costs more than the fix. The walk resumes
     where the last question left it, so many questions still cost one walk in all."""
 
     def __init__(self, root):
@@ -406,19 +406,13 @@ def prefix_text(robot, element, prefix: str) -> list[Edit] | Unfixable:
     return [text.edit(at, at, prefix)]
 
 
-_INERTIA_TERMS = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("iyz", 1, 2),
-                  ("izz", 2, 2))
-
-
 def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
     """Edits making ``link``'s ``<inertial>`` say ``body`` (mass [kg], com [m] and inertia
     [kg m^2] about the com in link axes): mass, origin (at the com, rpy zero) and the six
     terms; a whole block written when the link has none."""
-    largest = max(abs(float(v)) for row in body.inertia for v in row) or 1.0
-    terms = {name: _number(float(body.inertia[row][column]), largest)
-             for name, row, column in _INERTIA_TERMS}
-    com = " ".join(_number(float(v), 1.0) for v in body.com)
-    mass = f"{float(body.mass):.6g}"
+    from urdftool.physics.inertia_compare import inertial_numbers
+
+    mass, com, terms = inertial_numbers(body)
     inertial = link.find("inertial")
     if inertial is None:
         return _new_inertial(robot, link, mass, com, terms)
@@ -432,7 +426,7 @@ def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
         edits.append(set_attribute(robot, origin, "xyz", com))
         if origin.get("rpy") is not None:
             edits.append(set_attribute(robot, origin, "rpy", "0 0 0"))
-    elif any(abs(float(v)) > 1e-12 for v in body.com):
+    elif com != "0 0 0":  # as written: round-off is 0
         first = next((c for c in inertial if isinstance(c.tag, str)), None)
         if first is None:
             return Unfixable("its <inertial> is empty")
@@ -443,11 +437,6 @@ def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
         edits.append(set_attribute(robot, inertial.find("inertia"), name, value))
     unfixable = next((e for e in edits if isinstance(e, Unfixable)), None)
     return unfixable or [edit for group in edits for edit in group]
-
-
-def _number(value: float, scale: float) -> str:
-    """``value`` with 6 significant digits, 0 when it is rounding noise next to ``scale``."""
-    return "0" if abs(value) <= 1e-9 * scale else f"{value:.6g}"
 
 
 def _new_inertial(robot, link, mass: str, com: str, terms: dict) -> list[Edit] | Unfixable:

@@ -8,8 +8,8 @@ interrupted from inside) and replaced. Either way the piece ends with a :class:`
 where the work was (see :mod:`urdftool.budget`), and the run goes on. Results come back in the
 order given, whatever order the workers finish in. What a worker prints goes to this process's
 standard streams: directly when they are files, passed on over the pipe when they are not (under
-a test runner). ``urdftool check`` forks one worker at start-up, before its command line is read
-(:func:`fork_spare`), so that the rules are imported on another core meanwhile.
+a test runner). The rules are imported before the workers that check files are forked, so that
+each inherits them rather than importing them again.
 
 ``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files;
 ``check_paths`` is ``urdftool check`` (settings, targets, budgets, exit code) and ``check_file``
@@ -36,7 +36,24 @@ from urdftool.lint.settings import CheckRequest, Companions, check_companions, f
 
 
 def default_jobs() -> int:
+    """The number of cores this process may run on."""
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+FILES_PER_WORKER = 4  # a worker pays for its own lazy imports (numpy) and mesh reads
+
+
+def auto_jobs(files: int) -> int:
+    """How many workers check ``files`` files when ``--jobs`` is not given: one per core that
+    is idle now (the cores less the load average), and at most one per FILES_PER_WORKER files.
+    Two workers cost more CPU than one (each imports and reads again what the other did), so
+    they finish sooner only on a core nobody else uses: on a busy machine, one."""
+    try:
+        busy = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        busy = 0.0
+    idle = max(1, round(default_jobs() - busy))
+    return max(1, min(idle, files // FILES_PER_WORKER))
 
 
 @dataclass(frozen=True)
@@ -55,17 +72,24 @@ class Stop:
     where: Location | None = None
 
 
-def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1) -> list:
+def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
+                 finished=None) -> list:
     """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
     forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
 
     Without a budget, with one job or one call (or where processes cannot fork) the work is
     done in this process, and only a MemoryError becomes a Stop.
+    finished: called in this process with how many calls have ended, as each ends (progress)
     """
+    finished = finished or (lambda done: None)
     if budget.unlimited and min(jobs, count) == 1 or count == 0 or not hasattr(os, "fork"):
-        return [_here(index, work, budget, stopped) for index in range(count)]
+        results = []
+        for index in range(count):
+            results.append(_here(index, work, budget, stopped))
+            finished(index + 1)
+        return results
     results: list = [None] * count
-    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results)
+    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, finished)
     return results
 
 
@@ -80,10 +104,10 @@ def _here(index, work, budget, stopped):
 def check_files(files: list[str], options_for, jobs: int | None = None,
                 timeout: float | None = DEFAULT_TIMEOUT,
                 memory: int | None = None, stdin_as: str | None = None,
-                cache=None) -> list[FileResult]:
+                cache=None, finished=None) -> list[FileResult]:
     """Check ``files`` (``options_for(path) -> CheckOptions``) and return results in order.
 
-    jobs: worker processes [default: the number of cores]; timeout: budget per file in [s],
+    jobs: worker processes [default: :func:`auto_jobs`]; timeout: budget per file in [s],
     memory: address space per worker in [bytes]; None or 0 for no limit. Without a budget and
     with one job, files are checked in this process. Standard input ('-') is read here.
     stdin_as: the path standard input is checked as (its includes and packages are found from
@@ -91,13 +115,16 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
     cache: a :class:`~urdftool.lint.cache.Cache`: files whose result it holds are not checked
         again (looked up here, before any worker starts), the others' results are kept in it;
         standard input is never cached
+    finished: called with how many of ``files`` are done (found in the cache or checked), as
+        each is (progress)
     """
     with one_run():  # one view of the file system for the files (the workers inherit it)
-        return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache)
+        return _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
+                            finished or (lambda done: None))
 
 
-def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> list[FileResult]:
-    jobs = max(1, jobs or default_jobs())
+def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
+                 finished) -> list[FileResult]:
     budget = Budget(timeout or None, memory or None)
     stdin = {}
     if "-" in files:
@@ -106,7 +133,11 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
     kept = [cache.get(path, options_for(path)) if cache and path != "-" else None
             for path in files]
     todo = [index for index, found in enumerate(kept) if found is None]
+    finished(len(files) - len(todo))
+    jobs = max(1, jobs or auto_jobs(len(todo)))
 
+    if todo:
+        from urdftool.lint import engine  # noqa: F401  (before the workers fork: they inherit it)
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
@@ -114,8 +145,9 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
         return [stop_finding(named[todo[index]], stop, "checking")], []
 
     lines: list[list[str]] = [[] for _ in files]
-    for index, (found, companions) in zip(todo, run_budgeted(len(todo), work, budget, stopped,
-                                                             jobs)):
+    checked = run_budgeted(len(todo), work, budget, stopped, jobs,
+                           lambda done: finished(len(files) - len(todo) + done))
+    for index, (found, companions) in zip(todo, checked):
         kept[index], lines[index] = found, companions
     return [FileResult(path, found, companions=companions)
             for path, found, companions in zip(named, kept, lines)]
@@ -123,8 +155,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache) -> 
 
 @dataclass
 class _Checking:
-    """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``: it
-    pickles, so that a spare worker forked before it was made can take it (:func:`fork_spare`).
+    """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``.
     stdin: the bytes read for '-'; cache: where results are kept, or None."""
 
     paths: list[str]
@@ -178,7 +209,8 @@ class Run:
         return 1 if any(result.failures for result in self.results) else 0
 
 
-def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run:
+def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
+                **options) -> Run:
     """Check files and folders as ``urdftool check PATH...`` does: the settings file above each
     target applies to it, folders are walked for top-level robots, a macro library named is
     replaced by the robots including it, and files are checked in worker processes within the
@@ -190,6 +222,7 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
         ``allow_env``, ``max_file_size``, ``max_triangles``, ``max_memory``, ``timeout`` [s],
         ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
         that results are kept between runs only with ``cache_dir``
+    progress: called with (files done, files to check) as the files are checked
     Raises TargetError (an UrdftoolError) before anything is checked, and SettingsError when
     the settings of every file to check are broken; broken settings that apply to some files
     only are the run's ``errors``, and the other files are checked.
@@ -202,10 +235,10 @@ def check_paths(paths, request: CheckRequest | None = None, /, **options) -> Run
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
     with one_run():  # one view of the file system: roots and settings looked up once
-        return _check_paths(list(paths), request)
+        return _check_paths(list(paths), request, progress or (lambda done, planned: None))
 
 
-def _check_paths(paths: list, request: CheckRequest) -> Run:
+def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
     cache = None
     if request.cache_dir is not None:
         from urdftool.lint.cache import Cache
@@ -232,12 +265,15 @@ def _check_paths(paths: list, request: CheckRequest) -> Run:
     files = [path for path in targets.files if path in by_path]
     plans = [by_path[path] for path in files]
     results: list[FileResult | None] = [None] * len(files)
+    before = 0  # files of the pools already run
     for memory, timeout in dict.fromkeys((plan.memory, plan.timeout) for plan in plans):
         indexes = [i for i, plan in enumerate(plans)  # one pool per budget
                    if (plan.memory, plan.timeout) == (memory, timeout)]
         found = check_files([files[i] for i in indexes], lambda p: by_path[p].options,
                             jobs=request.jobs, timeout=timeout, memory=memory,
-                            stdin_as=request.stdin_filename, cache=cache)
+                            stdin_as=request.stdin_filename, cache=cache,
+                            finished=lambda done: progress(before + done, len(files)))
+        before += len(indexes)
         for index, result in zip(indexes, found):
             results[index] = result
     run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
@@ -342,14 +378,6 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         pass
     _die_with(parent)
     budgets.report_into(slot)
-    if work is None:  # a spare: ready while the parent reads its command line, then its work
-        _ready()
-        try:
-            work, memory = connection.recv() or (None, None)
-        except (EOFError, OSError):
-            return
-        if work is None:
-            return
     budgets.limit_memory(memory)
     for number in relay:
         setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
@@ -383,17 +411,6 @@ def _serve_pieces(connection, work) -> None:
             connection.send(message)
         except Exception as error:  # a result that does not pickle, or memory to pickle it
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
-
-
-def _ready() -> None:
-    """Import what checking a robot needs: the rules, lxml, and xacro with PyYAML."""
-    try:
-        import xacro.substitution_args  # noqa: F401  (and PyYAML)
-
-        from urdftool.description import load, meshes, xacro as expander, yaml_limits  # noqa: F401
-        from urdftool.lint import engine  # noqa: F401
-    except Exception:  # the same import in the work says what failed, as a finding
-        pass
 
 
 def _die_with(parent: int) -> None:
@@ -461,50 +478,6 @@ def _relayed() -> tuple[int, ...]:
     return tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
 
 
-# A worker forked at start-up, before any work is known (see fork_spare), until a pool takes it.
-_spare: _Worker | None = None
-
-
-def fork_spare() -> None:
-    """Fork a spare worker now, before the command line is read: it imports the rules, lxml,
-    xacro and PyYAML (0.1 s) on another core while this process imports Typer and finds its
-    targets and settings, and the first pool of :func:`run_budgeted` takes it, with its work
-    (which must pickle, as :class:`_Checking` does) and budget. Not with a single core, where
-    the two would take turns; a spare no pool takes is killed when this process exits."""
-    global _spare
-    if _spare is not None or not hasattr(os, "fork") or default_jobs() < 2:
-        return
-    import atexit
-    import multiprocessing
-
-    _spare = _Worker(multiprocessing.get_context("fork"), None, None)
-    atexit.register(_drop_spare)
-
-
-def _adopted(work, memory: int | None) -> _Worker | None:
-    """The spare worker, sent ``work`` and ``memory``; None without one, or when it cannot
-    take them (it relays other streams than a worker forked now would, or it died)."""
-    global _spare
-    spare, _spare = _spare, None
-    if spare is None:
-        return None
-    if spare.relay == _relayed() and spare.process.is_alive():
-        try:
-            spare.connection.send((work, memory))
-            return spare
-        except Exception:  # work that does not pickle (a closure), or the pipe closed
-            pass
-    spare.stop(kill=True)
-    return None
-
-
-def _drop_spare() -> None:
-    global _spare
-    spare, _spare = _spare, None
-    if spare is not None:
-        spare.stop(kill=True)
-
-
 def _pass_on(number: int, data: bytes) -> None:
     """Write what a worker printed to this process's stdout (1) or stderr (2)."""
     stream = sys.stdout if number == 1 else sys.stderr
@@ -540,15 +513,15 @@ def _drain(worker: _Worker) -> None:
         pass
 
 
-def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
+def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished) -> None:
     import multiprocessing
     from multiprocessing.connection import wait
 
     context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))
-    workers = [_adopted(work, budget.memory) or _Worker(context, work, budget.memory)
-               for _ in range(jobs)]
+    ended = 0
+    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
     try:
         for worker in workers:
             if pending:
@@ -590,6 +563,8 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
                         worker.stop(kill=True)
                         workers[position] = worker = _Worker(context, work, budget.memory)
                 worker.index = None
+                ended += 1
+                finished(ended)
                 if pending:
                     worker.give(pending.pop())
     finally:
@@ -598,5 +573,5 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results) -> None:
 
 
 __all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
-           "check_file", "check_files", "check_paths", "default_jobs", "fork_spare",
-           "run_budgeted", "stop_finding"]
+           "auto_jobs", "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
+           "stop_finding"]

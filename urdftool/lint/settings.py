@@ -11,7 +11,8 @@ arguments), ``packages`` (a table of package name -> folder, relative to the set
 ``strict``, ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``:
 ``"1G"``), ``timeout`` (per file, in seconds, as ``--timeout``), ``max-triangles`` (per mesh,
 as ``--max-triangles``), ``targets`` (simulators to check portability to, as ``--target``:
-``["mujoco", "gz"]``). Command-line options win over the file.
+``["mujoco", "gz"]``), ``notes`` (whether the text report shows notes, as ``--notes``; false
+by default). Command-line options win over the file.
 
 The settings file comes with the repository, so it is as untrusted as the robot files. It is
 looked for up to the repository root (the nearest folder holding ``.git``) and no further, read
@@ -71,6 +72,7 @@ class Settings:
     timeout: float | None = None  # [s] per file
     max_triangles: int | None = None  # per mesh
     targets: list[str] = field(default_factory=list)  # as --target takes them
+    notes: bool = False  # the text report shows notes (severity info)
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -365,6 +367,7 @@ def _controllers(settings: Path, value, key: str) -> list[Path]:
 
 
 def _strict(settings: Path, value, key: str) -> bool:
+    """A true-or-false key (``strict``, ``notes``)."""
     if not isinstance(value, bool):
         raise SettingsError(f"{settings}: '{key}' must be true or false (a TOML boolean, "
                             f"unquoted), not {value!r}")
@@ -455,6 +458,7 @@ KEYS: dict[str, _Key] = {
     "srdf": _Key(_companion, None),
     "controllers": _Key(_controllers, None),
     "strict": _Key(_strict, "strict"),
+    "notes": _Key(_strict, "notes"),
     "max-file-size": _Key(_file_size, "max_file_size"),
     "max-memory": _Key(_memory, "max_memory"),
     "timeout": _Key(_timeout, "timeout"),
@@ -615,13 +619,33 @@ class FileSettings:
     timeout: float | None = DEFAULT_TIMEOUT
 
 
+def _applying(path: str, request: CheckRequest) -> Settings:
+    """The settings file that applies to ``path`` under the request (none, ``--config``'s, or
+    the one above it)."""
+    return (Settings() if not request.use_settings else
+            settings_file(request.settings_file) if request.settings_file is not None else
+            settings_for(path))
+
+
+def notes_shown(path: str, asked: bool | None, request: CheckRequest) -> bool:
+    """Whether the text report shows the notes about ``path``: ``asked`` (``--notes`` or
+    ``--no-notes``) when given, else the ``notes`` setting that applies to it, else no (also
+    when its settings are broken: the run reports those)."""
+    if asked is not None:
+        return asked
+    if path == "-" and request.stdin_filename:
+        path = request.stdin_filename
+    try:
+        return _applying(path, request).notes
+    except SettingsError:
+        return False
+
+
 def for_file(path: str, request: CheckRequest) -> FileSettings:
     """The settings for checking ``path``: the settings file above it (unless the request
     turns them off) under the request. Command-line values win: ``select`` replaces, ``ignore``
     and per-file ignores add, companions and packages win one by one."""
-    settings = (Settings() if not request.use_settings else
-                settings_file(request.settings_file) if request.settings_file is not None else
-                settings_for(path))
+    settings = _applying(path, request)
     selection = Selection(tuple(_codes(request.select or settings.select)),
                           tuple(_codes([*settings.ignore, *request.ignore,
                                         *settings.ignores_for(path)])),

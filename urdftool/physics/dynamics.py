@@ -264,12 +264,13 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
 
 
-def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> list[JointLoad]:
+def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
+                  progress=None) -> list[JointLoad]:
     """Per joint, the largest |G(q)| over the zero pose and ``samples`` random poses drawn by
     ``configuration.random`` (within the limits, continuous joints over a full turn; mimic
     joints follow their variable). ``torques(pose)``: the torques to use instead of G(q), in
     ``model.joints`` order (a standing robot's, urdftool.physics.statics), or None to leave the
-    pose out."""
+    pose out. ``progress``: called with (poses done, poses) as they are."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import random
@@ -299,4 +300,6 @@ def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None) -> li
                 load.zero_pose = torque
             if torque > load.worst or number == 0:
                 load.worst, load.worst_pose = torque, pose
+        if progress is not None:
+            progress(number + 1, len(poses))
     return loads

@@ -132,14 +132,31 @@ def compare(robot, density: float | None = None, links: list[str] | None = None)
     return [compare_link(robot, link, density) for link in chosen]
 
 
+INERTIA_TERMS = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("iyz", 1, 2),
+                 ("izz", 2, 2))
+
+
+def inertial_numbers(properties) -> tuple[str, str, dict[str, str]]:
+    """Mass, centre of mass (``x y z``) and the six inertia terms (ixx, ixy, ixz, iyy, iyz,
+    izz) as written into a file: 6 significant digits, the terms counted from the tensor's
+    largest and the com from its largest component (at least a millimetre), so that round-off
+    is written 0 (never ``-9e-21``)."""
+    from urdftool.numbers import MILLIMETRE, number, numbers
+
+    largest = max(abs(float(v)) for row in properties.inertia for v in row) or None
+    terms = {name: number(float(properties.inertia[row][column]), 6, scale=largest)
+             for name, row, column in INERTIA_TERMS}
+    return (number(float(properties.mass), 6), numbers(properties.com, 6, floor=MILLIMETRE),
+            terms)
+
+
 def inertial_xml(properties: MassProperties, indent: str = "  ") -> str:
     """An ``<inertial>`` block for mass properties: origin at the com, link axes."""
-    i = properties.inertia
-    xyz = " ".join(f"{v:.6g}" for v in properties.com)
+    mass, com, terms = inertial_numbers(properties)
+    ixx, ixy, ixz, iyy, iyz, izz = terms.values()
     return (f"{indent}<inertial>\n"
-            f"{indent}  <origin xyz=\"{xyz}\" rpy=\"0 0 0\"/>\n"
-            f"{indent}  <mass value=\"{properties.mass:.6g}\"/>\n"
-            f"{indent}  <inertia ixx=\"{i[0, 0]:.6g}\" ixy=\"{i[0, 1]:.6g}\" "
-            f"ixz=\"{i[0, 2]:.6g}\" iyy=\"{i[1, 1]:.6g}\" iyz=\"{i[1, 2]:.6g}\" "
-            f"izz=\"{i[2, 2]:.6g}\"/>\n"
+            f"{indent}  <origin xyz=\"{com}\" rpy=\"0 0 0\"/>\n"
+            f"{indent}  <mass value=\"{mass}\"/>\n"
+            f"{indent}  <inertia ixx=\"{ixx}\" ixy=\"{ixy}\" ixz=\"{ixz}\" iyy=\"{iyy}\" "
+            f"iyz=\"{iyz}\" izz=\"{izz}\"/>\n"
             f"{indent}</inertial>")

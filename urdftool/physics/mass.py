@@ -136,7 +136,9 @@ def triangle_violation(moments, tolerance: float = 0.0) -> str | None:
     """Which triangle inequality principal moments break (a + b >= c), or None."""
     a, b, c = sorted(float(m) for m in moments)
     if a + b < c * (1 - tolerance):
-        return f"{a:.4g} + {b:.4g} < {c:.4g}"
+        from urdftool.numbers import number
+
+        return f"{number(a)} + {number(b)} < {number(c)}"
     return None
 
 

@@ -387,8 +387,7 @@ _ROWS = 1024  # a product of so many rows by (3, 70) is small enough for one BLA
 
 def _rows_times(points, matrix):
     """``points @ matrix`` ([k, 3] by [3, m]), block of rows by block of rows: OpenBLAS splits
-    a larger product among threads that spin on after it (0.15 s of CPU each time, on 2
-    cores). The same numbers: no block is a single row (a vector product, rounded otherwise)."""
+    a larger product among threads that spin on after it, burning CPU. The same numbers: no block is a single row (a vector product, rounded otherwise)."""
     import numpy as np
 
     product = np.empty((len(points), matrix.shape[1]))

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.numbers import number
 from urdftool.errors import DynamicsError, available
 from urdftool.physics.dynamics import JointLoad, Model, gravity_loads
 from urdftool.kinematics.chain import frame_jacobian
@@ -179,7 +180,8 @@ def stand(standing: Standing, q_values: dict, polygon: bool = True) -> Stance:
                     contacts, _efforts(model), SHARED_LOAD if len(jacobians) > 1 else None)
     for name, height in lifted.items():
         if height > CONTACT:
-            stance.warnings.append(f"support '{name}' is {height * 1000:.1f} mm above the "
+            stance.warnings.append(f"support '{name}' is {number(height * 1000, places=1)} mm "
+                                   "above the "
                                    "ground: it cannot carry the share it is given")
     return stance
 
@@ -210,7 +212,8 @@ class StandingLoads:
     zero_stands: bool
 
 
-def standing_loads(standing: Standing, samples: int, seed: int = 0) -> StandingLoads:
+def standing_loads(standing: Standing, samples: int, seed: int = 0,
+                   progress=None) -> StandingLoads:
     """Per joint, the largest standing |torque| over the zero pose and ``samples`` random poses
     within the limits (as urdftool.physics.dynamics.gravity_loads) in which the robot stands,
     against its effort limit; the poses in which it tips over or lifts a support are left
@@ -222,7 +225,7 @@ def standing_loads(standing: Standing, samples: int, seed: int = 0) -> StandingL
         stable.append(stance.stands and not any(stance.lifted.values()))
         return stance.torques if stable[-1] else None
 
-    loads = gravity_loads(standing.model, samples, seed, torques)
+    loads = gravity_loads(standing.model, samples, seed, torques, progress)
     if not any(stable):
         loads = []
     return StandingLoads(loads, len(stable), sum(stable), bool(stable and stable[0]))

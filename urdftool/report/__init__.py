@@ -33,11 +33,13 @@ def resolve_format(name: str) -> str:
     return name
 
 
-def render(format_name: str, results, stream, quiet: bool = False) -> None:
-    """Write ``results`` in a format; ``quiet``: the text format leaves out its summary line."""
+def render(format_name: str, results, stream, quiet: bool = False, notes=True) -> None:
+    """Write ``results`` in a format; ``quiet``: the text format leaves out its summary line;
+    ``notes``: whether the text format shows notes (True, False, or a function of a result);
+    the other formats, read by programs, always write every finding."""
     name = resolve_format(format_name)
     module = importlib.import_module(f"urdftool.report.{_MODULES[name]}")
     if name == "text":
-        module.render(results, stream, quiet=quiet)
+        module.render(results, stream, quiet=quiet, notes=notes)
     else:
         module.render(results, stream)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.report.console import plain_console
+from urdftool.report.console import fixed, plain_console
 
 
 def write_pose(robot_name: str, report, output_format: str, custom: bool, stream=None) -> None:
@@ -65,7 +65,7 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
         table = Table("link 1", "link 2", "depth (mm)", "status", box=None, pad_edge=False)
         for c in listed:
             status = f"allowed ({c.allowed})" if c.allowed else "[bold red]COLLIDING[/]"
-            table.add_row(c.link1, c.link2, f"{c.depth * 1000:.2f}", status)
+            table.add_row(c.link1, c.link2, fixed(c.depth * 1000, 2), status)
         console.print(table)
     if touching:
         console.print(f"{len(touching)} adjacent pair(s) overlap at their joints (allowed): "
@@ -74,7 +74,7 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
         console.print("Closest pairs apart:")
         table = Table("link 1", "link 2", "distance (mm)", "status", box=None, pad_edge=False)
         for c in report.closest:
-            table.add_row(c.link1, c.link2, f"{c.distance * 1000:.2f}",
+            table.add_row(c.link1, c.link2, fixed(c.distance * 1000, 2),
                           f"disabled ({c.allowed})" if c.allowed else "")
         console.print(table)
     _notes(console, report.problems, report.visual_only)
@@ -129,14 +129,14 @@ def matrix_text(robot_name: str, result, stale, all_pairs: bool = False, written
         table = Table("link 1", "link 2", "class", "collisions", "min distance (mm)", box=None,
                       pad_edge=False)
         for p in sorted(shown, key=lambda p: (-p.fraction, p.min_distance or 0)):
-            distance = "" if p.min_distance is None else f"{p.min_distance * 1000:.2f}"
+            distance = "" if p.min_distance is None else fixed(p.min_distance * 1000, 2)
             count = f"{p.collisions}/{p.samples}" if p.samples else ""
             table.add_row(p.link1, p.link2, p.reason or "enabled", count, distance)
         console.print(table)
     if near:
         console.print(f"{len(near)} pair(s) never collided but came within the margin, so they "
                       "stay enabled (MoveIt would disable them as Never): "
-                      + ", ".join(f"{p.link1}/{p.link2} ({p.min_distance * 1000:.1f} mm)"
+                      + ", ".join(f"{p.link1}/{p.link2} ({fixed(p.min_distance * 1000, 1)} mm)"
                                   for p in near))
     for n, changed in result.rounds:
         console.print(f"after {n} samples: {changed} pair(s) changed class in the second half")

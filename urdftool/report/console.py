@@ -1,4 +1,5 @@
-"""Terminal output shared by the command renderers: rich consoles and fixed-point numbers."""
+"""Terminal output shared by the command renderers: rich consoles and fixed-point numbers
+(:mod:`urdftool.numbers` formats them)."""
 
 from __future__ import annotations
 
@@ -45,6 +46,39 @@ def print_table(console, title: str, headers: list[str], rows: list[list[str]],
             console.print(escape(f"  {header:<{label}}  {value:>12}"))
 
 
+LONG_TABLE = 50  # [rows]: past this a table is plain text on a terminal too (rich: ~2 ms a row)
+
+
+def plain_tables(rows: int, stream=None) -> bool:
+    """Whether a table of ``rows`` rows goes out as plain aligned text (:func:`write_table`)
+    rather than through rich: off a terminal (a pipe, a file: rich's borders earn nothing
+    there) and for long tables, where rich's layout costs seconds."""
+    stream = stream or sys.stdout
+    try:
+        terminal = stream.isatty()
+    except (AttributeError, ValueError):
+        terminal = False
+    return rows > LONG_TABLE or not terminal
+
+
+def write_table(stream, title: str, headers: list[str], rows: list[list[str]],
+                left: int = 1) -> None:
+    """A table as plain text: its title, then the headers and the rows in columns two spaces
+    apart, the ``left`` leading (text) columns left-aligned, the numbers right-aligned. The
+    title, the headers and the text cells are made printable (a name cannot start a line of
+    its own); the numbers are this program's."""
+    from urdftool.report.summary import printable
+
+    cells = [[printable(cell) for cell in headers]]
+    cells += [[*map(printable, row[:left]), *row[left:]] for row in rows]
+    widths = [max(len(line[i]) for line in cells) for i in range(len(headers))]
+    out = [printable(title)]
+    for line in cells:
+        out.append("  ".join(cell.ljust(width) if i < left else cell.rjust(width)
+                             for i, (cell, width) in enumerate(zip(line, widths))).rstrip())
+    stream.write("\n".join(out) + "\n")
+
+
 def plain_console(stream=None):
     """A rich console on ``stream`` (default: standard output) that never wraps lines."""
     from rich.console import Console
@@ -54,5 +88,6 @@ def plain_console(stream=None):
 
 def fixed(value: float, places: int = 6) -> str:
     """``value`` with ``places`` decimals, without the '-0.000000' that round-off leaves."""
-    text = f"{value:.{places}f}"
-    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
+    from urdftool.numbers import number
+
+    return number(value, places=places)

@@ -12,7 +12,9 @@ def _cell(value) -> str:
     if isinstance(value, bool):
         return "floating" if value else "fixed"
     if isinstance(value, float):
-        return f"{value:.6g}"
+        from urdftool.numbers import number
+
+        return number(value, 6)
     return str(value)
 
 

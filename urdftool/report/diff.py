@@ -5,17 +5,21 @@ from __future__ import annotations
 import math
 import sys
 
+from urdftool.numbers import number, numbers
+
 FRAMES_SHOWN = 15  # rows of the moved-frames table in text and Markdown
-JOINTS_SHOWN = 6  # joint values shown for "where" (JSON gives all)
+JOINTS_SHOWN = 8  # joint values shown for "where" (JSON gives all)
 
 
 def _value(value) -> str:
     if value is None:
         return "(none)"
     if isinstance(value, float):
-        return f"{value:.6g}"
+        return number(value, 6)
     if isinstance(value, tuple):
-        return "(" + ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v)
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+            return "(" + numbers(value, 6, ", ") + ")"
+        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else str(v)
                                for v in value) + ")"
     return str(value)
 
@@ -26,15 +30,16 @@ def _amount(change) -> str:
     if change.delta is not None:
         vector = isinstance(change.old, tuple)
         if change.unit == "m":
-            parts.append(f"{'moved ' if vector else ''}{change.delta * 1000:+.4g} mm"
-                         .replace("moved +", "moved "))
+            parts.append(f"moved {number(change.delta * 1000)} mm" if vector else
+                         f"{number(change.delta * 1000, plus=True)} mm")
         elif change.unit == "rad":
-            parts.append(f"{'turned ' if vector else ''}{math.degrees(change.delta):+.4g} deg"
-                         .replace("turned +", "turned "))
+            parts.append(f"turned {number(math.degrees(change.delta))} deg" if vector else
+                         f"{number(math.degrees(change.delta), plus=True)} deg")
         elif not vector:
-            parts.append(f"{change.delta:+.4g}{' ' + change.unit if change.unit else ''}")
+            parts.append(f"{number(change.delta, plus=True)}"
+                         f"{' ' + change.unit if change.unit else ''}")
     if change.percent is not None:
-        parts.append(f"{change.percent:+.3g} %")
+        parts.append(f"{number(change.percent, 3, plus=True)} %")
     return ", ".join(parts)
 
 
@@ -59,18 +64,29 @@ def change_line(change, quote=_quoted) -> str:
     return line + (f" ({amount})" if amount else "")
 
 
-def _where(at: dict, limit: int = JOINTS_SHOWN) -> str:
-    moved = [(name, value) for name, value in at.items() if abs(value) > 1e-12]
-    shown = ", ".join(f"{name}={value:.3g}" for name, value in moved[:limit])
-    return (shown + (f", ... ({len(moved)} joints)" if len(moved) > limit else "")) or "zero"
+def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN) -> str:
+    """The values in ``at`` of ``joints``, the joints that move what changed (the other
+    joints' values change nothing there), named even at zero; with none, the change is the
+    same in every configuration."""
+    if not joints:
+        return "every configuration alike"
+    shown = ", ".join(f"{name}={number(at.get(name, 0.0), 3)}" for name in joints[:limit])
+    return shown + (f", ... ({len(joints)} joints)" if len(joints) > limit else "")
 
 
 def _frame_cells(frame) -> tuple[str, str, str, str, str]:
     """A moved frame's numbers as people read them: at zero (mm, deg), at most (mm, deg),
-    and where it moved most."""
-    return (f"{frame.zero_position * 1000:.3g}", f"{math.degrees(frame.zero_rotation):.3g}",
-            f"{frame.max_position * 1000:.3g}", f"{math.degrees(frame.max_rotation):.3g}",
-            _where(frame.at))
+    and where it moved most (the joints that move it)."""
+    return (number(frame.zero_position * 1000, 3), number(math.degrees(frame.zero_rotation), 3),
+            number(frame.max_position * 1000, 3), number(math.degrees(frame.max_rotation), 3),
+            _where(frame.at, frame.joints))
+
+
+def _worst_line(effects) -> str:
+    """The configuration where the frames moved most (``diff --render`` draws it): the joints
+    that move the changed frames, with their values."""
+    return (f"largest change at {_where(effects.worst, effects.moving)} (the joints that move "
+            "the changed frames; --render draws this configuration)")
 
 
 def _effect_lines(effects) -> list[str]:
@@ -84,14 +100,16 @@ def _effect_lines(effects) -> list[str]:
                          f"{max_mm} mm {max_deg} deg (at {where})")
         if len(effects.frames) > FRAMES_SHOWN:
             lines.append(f"    ... {len(effects.frames) - FRAMES_SHOWN} more (--format json)")
+        lines.append(f"  {_worst_line(effects)}")
     else:
         lines.append("  no frame moved")
     lines.append("  " + _mass_line(effects))
     for chain in effects.chains:
-        lines.append(f"  reach {chain.base} -> {chain.tip}: {chain.old_reach * 1000:.4g} -> "
-                     f"{chain.new_reach * 1000:.4g} mm "
-                     f"({(chain.new_reach - chain.old_reach) * 1000:+.3g} mm; at zero "
-                     f"{(chain.new_zero - chain.old_zero) * 1000:+.3g} mm)")
+        lines.append(f"  reach {chain.base} -> {chain.tip}: {number(chain.old_reach * 1000)} "
+                     f"-> {number(chain.new_reach * 1000)} mm "
+                     f"({number((chain.new_reach - chain.old_reach) * 1000, 3, plus=True)} mm; "
+                     f"at zero {number((chain.new_zero - chain.old_zero) * 1000, 3, plus=True)}"
+                     " mm)")
     for collision in effects.collisions:
         verb = "newly collides" if collision.new_count else "no longer collides"
         lines.append(f"  {collision.link1} / {collision.link2} {verb}: in "
@@ -101,14 +119,16 @@ def _effect_lines(effects) -> list[str]:
 
 
 def _mass_line(effects) -> str:
-    com = math.dist(effects.old_com, effects.new_com) * 1000
-    moved = f"centre of mass at zero moved {com:.3g} mm" if com else "centre of mass unchanged"
+    com = math.dist(effects.old_com, effects.new_com) * 1000  # [mm]; below 1 nm: round-off
+    moved = f"centre of mass at zero moved {number(com, 3)} mm" if com >= 1e-6 else \
+        "centre of mass unchanged"
     if effects.old_mass == effects.new_mass:
-        return f"total mass {effects.new_mass:.6g} kg unchanged; {moved}"
+        return f"total mass {number(effects.new_mass, 6)} kg unchanged; {moved}"
     change = effects.new_mass - effects.old_mass
-    percent = f", {100 * change / effects.old_mass:+.3g} %" if effects.old_mass else ""
-    return (f"total mass {effects.old_mass:.6g} -> {effects.new_mass:.6g} kg "
-            f"({change:+.4g} kg{percent}); {moved}")
+    percent = f", {number(100 * change / effects.old_mass, 3, plus=True)} %" \
+        if effects.old_mass else ""
+    return (f"total mass {number(effects.old_mass, 6)} -> {number(effects.new_mass, 6)} kg "
+            f"({number(change, plus=True)} kg{percent}); {moved}")
 
 
 def text(result) -> str:
@@ -144,6 +164,7 @@ def markdown(result) -> str:
                            + " |")
             if len(effects.frames) > FRAMES_SHOWN:
                 out.append(f"\n… and {len(effects.frames) - FRAMES_SHOWN} more frame(s)")
+            out += ["", f"{_worst_line(effects)}."]
         else:
             out.append("No frame moved.")
         out += ["", f"- {_mass_line(effects)}"]
@@ -155,6 +176,22 @@ def markdown(result) -> str:
 def _md(text: str) -> str:
     """Text for a Markdown table cell."""
     return text.replace("|", "\\|")
+
+
+def change_detail(result):
+    """What ``diff --render`` magnifies: the frame that moved most, how far at the drawn
+    configuration's scale, as a :class:`~urdftool.report.picture.Detail`; None when no frame
+    moved."""
+    from urdftool.report.picture import Detail
+
+    effects = result.effects
+    if effects is None or not effects.frames:
+        return None
+    frame = effects.frames[0]
+    moved = (f"{frame.link} moved {number(frame.max_position * 1000, 3)} mm"
+             if frame.max_position else
+             f"{frame.link} turned {number(math.degrees(frame.max_rotation), 3)} deg")
+    return Detail(frame.max_position, moved)
 
 
 def as_json(result) -> dict:
@@ -180,7 +217,7 @@ def as_json(result) -> dict:
             "configurations": effects.samples + 1,
             "frames": [{"link": f.link, "zero_position_m": f.zero_position,
                         "zero_rotation_rad": f.zero_rotation, "max_position_m": f.max_position,
-                        "max_rotation_rad": f.max_rotation, "at": f.at}
+                        "max_rotation_rad": f.max_rotation, "at": f.at, "joints": f.joints}
                        for f in effects.frames],
             "mass_kg": {"old": effects.old_mass, "new": effects.new_mass},
             "com_m": {"old": list(effects.old_com), "new": list(effects.new_com)},
@@ -190,6 +227,7 @@ def as_json(result) -> dict:
             "collisions": [{"link1": c.link1, "link2": c.link2, "old_count": c.old_count,
                             "new_count": c.new_count} for c in effects.collisions],
             "worst_configuration": effects.worst,
+            "worst_joints": effects.moving,
             "warnings": effects.warnings}
     return data
 

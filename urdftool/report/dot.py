@@ -101,7 +101,9 @@ def joint_label(joint) -> str:
 def _short(text: str) -> str:
     """A limit with 4 significant digits; as written when it is not a number."""
     try:
-        return f"{float(text):.4g}"
+        from urdftool.numbers import number
+
+        return number(float(text))
     except ValueError:
         return text
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from urdftool.numbers import MILLIMETRE, number, numbers
+
 
 def weakest(loads):
     """The joint load with the smallest margin relative to its effort limit; None when no joint
@@ -19,34 +21,51 @@ def json_document(result, loads) -> dict:
     return data
 
 
-def _row(values) -> str:
-    return " ".join(f"{v:10.4g}" for v in values)
+def _row(values, scale: float | None) -> str:
+    return " ".join(f"{number(v, scale=scale):>10s}" for v in values)
+
+
+def _scale(values) -> float | None:
+    """The largest finite magnitude among ``values`` (a matrix or a column): the size its
+    entries' digits are counted from."""
+    import numpy as np
+
+    values = np.abs(np.asarray(values, dtype=float))
+    values = values[np.isfinite(values)]
+    return float(values.max()) if values.size and values.max() > 0 else None
 
 
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
     width = max((len(j) for j in result.joints), default=5)
-    com = " ".join(f"{c if abs(c) > 1e-12 else 0.0:.4g}" for c in result.com)
-    lines = [f"total mass {result.mass:.4g} kg, centre of mass ({com}) m in the root frame"]
+    lines = [f"total mass {number(result.mass)} kg, centre of mass ({numbers(result.com, floor=MILLIMETRE)}) m "
+             "in the root frame"]
     if matrices:
         lines += ["", "G(q): gravity torque per joint [N m or N]"]
-        lines += [f"  {name:{width}s} {g:10.4g}" for name, g in zip(result.joints, result.G)]
+        lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
+                  for name, g in zip(result.joints, result.G)]
         lines += ["", "M(q): joint-space mass matrix"]
-        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.M)]
+        lines += [f"  {name:{width}s} {_row(row, _scale(result.M))}"
+                  for name, row in zip(result.joints, result.M)]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
-        lines += [f"  {name:{width}s} {_row(row)}" for name, row in zip(result.joints, result.C)]
+        lines += [f"  {name:{width}s} {_row(row, _scale(result.C))}"
+                  for name, row in zip(result.joints, result.C)]
         lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
                       "+ damping v + friction sign(v)"]
         lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
                      f"{'total':>10s}")
-        lines += [f"  {name:{width}s} {t:10.4g} {b:10.4g} {f:10.4g} {total:10.4g}"
-                  for name, t, b, f, total in zip(result.joints, result.tau, result.damping,
-                                                  result.friction, result.total)]
-        lines.append(f"  (tau matches rnea to {result.rnea_residual:.2g})")
+        columns = (result.tau, result.damping, result.friction, result.total)
+        scales = [_scale(column) for column in columns]
+        lines += [f"  {name:{width}s} "
+                  + " ".join(f"{number(v, scale=s):>10s}" for v, s in zip(values, scales))
+                  for name, *values in zip(result.joints, *columns)]
+        lines.append(f"  (tau matches rnea to {number(result.rnea_residual, 2)})")
     if matrices or result.C is not None:
-        lines += ["", f"energy: K = {result.kinetic:.6g} J, P = {result.potential:.6g} J "
-                      f"(m g z of the centre of mass), L = K - P = {result.lagrangian:.6g} J"]
+        energies = (result.kinetic, result.potential, result.lagrangian)
+        kinetic, potential, lagrangian = (number(e, 6, scale=_scale(energies)) for e in energies)
+        lines += ["", f"energy: K = {kinetic} J, P = {potential} J "
+                      f"(m g z of the centre of mass), L = K - P = {lagrangian} J"]
     if loads:
         lines += [""] + load_lines(loads, f"static gravity load over the zero pose and {samples} "
                                           "random poses:", relevant)
@@ -60,19 +79,21 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     width = max((len(load.joint) for load in loads), default=5)
     lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s} {'worst':>10s} "
                     f"{'margin':>10s}"]
+    scale = _scale([value for load in loads for value in (load.zero_pose, load.worst)])
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
-        effort, margin = (f"{load.effort:8.4g}", f"{load.margin:10.4g}") if load.limited \
-            else (f"{'none':>8s}", f"{'-':>10s}")
-        lines.append(f"  {load.joint:{width}s} {effort} {load.zero_pose:10.4g} "
-                     f"{load.worst:10.4g} {margin}{flag}")
+        effort, margin = (f"{number(load.effort):>8s}", f"{number(load.margin):>10s}") \
+            if load.limited else (f"{'none':>8s}", f"{'-':>10s}")
+        lines.append(f"  {load.joint:{width}s} {effort} "
+                     f"{number(load.zero_pose, scale=scale):>10s} "
+                     f"{number(load.worst, scale=scale):>10s} {margin}{flag}")
     least = weakest(loads)
     if least is not None:
         # only the joints that change its load: the others' values are noise
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in least.worst_pose.items()
-                         if v and k in relevant)
-        lines.append(f"  smallest margin: {least.joint} ({least.margin:.3g} of "
-                     f"{least.effort:.3g}) at {pose or 'the zero pose'}")
+        pose = ", ".join(f"{k}={number(v, places=3)}" for k, v in least.worst_pose.items()
+                         if v and k in relevant and number(v, places=3) != "0.000")
+        lines.append(f"  smallest margin: {least.joint} ({number(least.margin, 3)} of "
+                     f"{number(least.effort, 3)}) at {pose or 'the zero pose'}")
     unlimited = [load.joint for load in loads if not load.limited]
     if unlimited:
         lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
@@ -87,7 +108,7 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
 
 
 def _vector(values) -> str:
-    return " ".join(f"{v if abs(v) > 1e-12 else 0.0:.4g}" for v in values)
+    return numbers(values)
 
 
 def stance_text(stance, standing_load=None) -> str:
@@ -96,21 +117,24 @@ def stance_text(stance, standing_load=None) -> str:
     supports = ", ".join(stance.supports)
     lines = [f"standing on {supports} (ground frame: {stance.supports[0]}'s, level, on its "
              "lowest point)",
-             f"total mass {stance.mass:.4g} kg, centre of mass ({_vector(stance.com)}) m"]
+             f"total mass {number(stance.mass)} kg, centre of mass "
+             f"({numbers(stance.com, floor=MILLIMETRE)}) m"]
     where = "inside" if stance.stands else "OUTSIDE"
     lines.append(f"support polygon: {len(stance.polygon)} corners from the supports' geometry; "
-                 f"the centre of mass is {abs(stance.margin) * 1000:.1f} mm {where} its nearest "
+                 f"the centre of mass is {number(abs(stance.margin) * 1000, places=1)} mm "
+                 f"{where} its nearest "
                  "edge" + ("" if stance.stands else " (it tips over)"))
     if stance.assumption:
         lines.append(f"assumption: {stance.assumption}")
     width = max((len(j) for j in stance.joints), default=5)
     lines += ["", "joint torque holding the robot [N m or N]:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
+    scale = _scale([*stance.torques, *stance.fixed_base])
     for joint, standing, fixed, effort in zip(stance.joints, stance.torques, stance.fixed_base,
                                               stance.efforts):
         flag = "  ERROR: beyond its effort limit" if abs(standing) > effort else ""
-        lines.append(f"  {joint:{width}s} {_clean(standing):10.4g} {_clean(fixed):10.4g} "
-                     f"{effort:8.4g}{flag}")
+        lines.append(f"  {joint:{width}s} {number(standing, scale=scale):>10s} "
+                     f"{number(fixed, scale=scale):>10s} {number(effort):>8s}{flag}")
     lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
     for name, wrench in stance.wrenches.items():
         lines.append(f"  {name}: force ({_vector(wrench[:3])}), torque ({_vector(wrench[3:])})")
@@ -127,10 +151,6 @@ def stance_text(stance, standing_load=None) -> str:
             lines += ["", f"no pose drawn stands: all {standing_load.poses} tip over or lift a "
                           "support (more --samples, or --q for a pose that stands)"]
     return "\n".join(lines) + "\n"
-
-
-def _clean(value: float) -> float:
-    return 0.0 if abs(value) < 1e-12 else float(value)
 
 
 def stance_picture(stance, title: str, size: int = 420):
@@ -151,7 +171,8 @@ def stance_picture(stance, title: str, size: int = 420):
 
     items = [("text", 8, 18, title, 13, "start", False)]
     where = "inside" if stance.stands else "OUTSIDE"
-    items.append(("text", 8, 36, f"centre of mass {abs(stance.margin) * 1000:.1f} mm {where} "
+    items.append(("text", 8, 36, f"centre of mass {number(abs(stance.margin) * 1000, places=1)} "
+                                 f"mm {where} "
                                  "the support polygon", 11, "start", False))
     if len(stance.polygon) >= 3:
         items.append(("polygon", [at(*p) for p in stance.polygon], "#2ca02c", 0.3, "#2ca02c"))

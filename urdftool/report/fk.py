@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import sys
 
-from urdftool.report.console import fixed, print_table, wide_console
+from urdftool.numbers import number
+from urdftool.report.console import fixed, plain_tables, print_table, wide_console, write_table
 
 
 def verify_line(count: int, seed, position: float, rotation: float, tolerance: float) -> str:
     """The verdict of comparing D-H and URDF forward kinematics; errors in [m] and [rad]."""
     ok = position <= tolerance and rotation <= tolerance
     return (f"D-H vs URDF over {count} random configurations (seed {seed}): worst position "
-            f"error {position:.3g} m, worst orientation error {rotation:.3g} rad: "
-            f"{'agree' if ok else 'DISAGREE'} (tolerance {tolerance:g})")
+            f"error {number(position, 3)} m, worst orientation error {number(rotation, 3)} rad: "
+            f"{'agree' if ok else 'DISAGREE'} (tolerance {number(tolerance, 6)})")
 
 
 def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None) -> None:
@@ -71,17 +72,34 @@ HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw
 
 
 def _text(result, positions, rpys, quaternions, matrix) -> None:
-    from rich.markup import escape
-
-    console = wide_console()
+    plain = plain_tables(len(result.frames))
+    console = None if plain else wide_console()
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
-        print_table(console, title, HEADERS, [
-            [name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k], *quaternions[row, k]))]
-            for k, name in enumerate(result.frames)])
+        rows = [[name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k],
+                                            *quaternions[row, k]))]
+                for k, name in enumerate(result.frames)]
+        if plain:
+            write_table(sys.stdout, title, HEADERS, rows)
+            if matrix:
+                _plain_matrices(result, row)
+            continue
+        print_table(console, title, HEADERS, rows)
         if matrix:
+            from rich.markup import escape
+
             for k, name in enumerate(result.frames):
                 console.print(f"{escape(name)}:")
                 for line in result.matrices[row, k]:
-                    console.print("  " + " ".join(f"{v: .6f}" for v in line))
+                    console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))
+
+
+def _plain_matrices(result, row: int) -> None:
+    from urdftool.report.summary import printable
+
+    lines = []
+    for k, name in enumerate(result.frames):
+        lines.append(f"{printable(name)}:")
+        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line) for line in result.matrices[row, k]]
+    sys.stdout.write("\n".join(lines) + "\n")

@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import math
 
+from urdftool.numbers import number, numbers
+
 
 def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
     """``--q NAME=VALUE`` words for ``urdftool fk``: the limb's values [rad or m] and the other
     joints the user set (``given``: {name: text as typed})."""
-    limb = {v.name: f"{value if abs(value) > 1e-12 else 0.0:.12g}"
+    scale = max([1.0, *(abs(float(value)) for value in solution.x)])  # [rad] or [m]
+    limb = {v.name: number(value, 12, scale=scale)
             for v, value in zip(chain.variables, solution.x)}
     others = {name: text for name, text in (given or {}).items() if name not in limb}
     return " ".join(f"--q {name}={value}" for name, value in {**limb, **others}.items())
@@ -18,14 +21,13 @@ def _pose(matrix) -> str:
     from urdftool.kinematics.fk import pose_components
 
     position, rpy, _ = pose_components(matrix[None])
-    return (f"xyz ({' '.join(f'{v:.6g}' for v in position[0])}) m, "
-            f"rpy ({' '.join(f'{v:.6g}' for v in rpy[0])}) rad")
+    return f"xyz ({numbers(position[0], 6)}) m, rpy ({numbers(rpy[0], 6)}) rad"
 
 
 def _verdict(solution) -> str:
-    residual = f"position {solution.position_error:.2g} m"
+    residual = f"position {number(solution.position_error, 2)} m"
     if solution.target.rotation is not None:
-        residual += f", orientation {solution.rotation_error:.2g} rad"
+        residual += f", orientation {number(solution.rotation_error, 2)} rad"
     return residual
 
 
@@ -55,9 +57,10 @@ def text(chain, solutions, given=None) -> str:
         lines.append(f"  {'joint':{width}s} {'value':>12s} {'[deg]':>9s} {'lower':>9s} "
                      f"{'upper':>9s}")
         for variable, value in zip(chain.variables, solution.x):
-            degrees = f"{math.degrees(value):9.3f}" if variable.angular else " " * 9
-            lines.append(f"  {variable.name:{width}s} {value:12.6f} {degrees} "
-                         f"{variable.lower:9.4g} {variable.upper:9.4g}")
+            degrees = f"{number(math.degrees(value), places=3):>9s}" if variable.angular \
+                else " " * 9
+            lines.append(f"  {variable.name:{width}s} {number(value, places=6):>12s} {degrees} "
+                         f"{number(variable.lower):>9s} {number(variable.upper):>9s}")
         lines.append(f"  residual: {_verdict(solution)}; {solution.iterations} iterations, "
                      f"{solution.seeds} seed{'s' if solution.seeds != 1 else ''}")
         if solution.at_limits:
@@ -92,11 +95,11 @@ def csv_text(chain, solutions) -> str:
 def reach_text(chain, solutions, tolerance: float) -> str:
     """``--check-reach``: one line per target, reachable or not, with its residual."""
     lines = [f"reach of {chain.tip} relative to {chain.base} ({len(chain.variables)} joints), "
-             f"tolerance {tolerance:g}:"]
+             f"tolerance {number(tolerance, 6)}:"]
     for solution in solutions:
         x, y, z = solution.target.position
         verdict = "reachable" if solution.solved else "UNREACHABLE"
-        line = (f"  {solution.target.name:12s} ({x:.4g} {y:.4g} {z:.4g}) {verdict:11s} "
+        line = (f"  {solution.target.name:12s} ({numbers((x, y, z))}) {verdict:11s} "
                 f"{_verdict(solution)}")
         if not solution.solved:
             line += f"; {solution.reason}"

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from urdftool.numbers import MILLIMETRE, number, numbers
+
 
 def xacro_blocks(robot, results) -> str:
     """For xacro input, which cannot be rewritten: each corrected ``<inertial>`` after a comment
@@ -24,8 +26,8 @@ def _fmt(properties) -> tuple[str, str, str]:
     if properties is None:
         return "-", "-", "-"
     i = properties.inertia
-    return (f"{properties.mass:.4g}", " ".join(f"{v:.4g}" for v in properties.com),
-            " ".join(f"{v:.4g}" for v in (i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2])))
+    return (number(properties.mass), numbers(properties.com, floor=MILLIMETRE),
+            numbers((i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2])))
 
 
 def text(results) -> str:
@@ -42,7 +44,8 @@ def text(results) -> str:
             lines.append(f"  {label:9s} mass {mass:>9s} kg  com {com:28s}  "
                          f"ixx iyy izz ixy ixz iyz {tensor}")
         if result.differences:
-            diff = ", ".join(f"{k} {v:.1%}" for k, v in result.differences.items())
+            diff = ", ".join(f"{k} {number(100 * v, places=1)}%"
+                             for k, v in result.differences.items())
             lines.append(f"  difference {diff}")
         lines.extend(f"  note: {note}" for note in result.notes)
     from urdftool.physics.inertia_compare import VERDICTS

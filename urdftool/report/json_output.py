@@ -15,7 +15,7 @@ def dumps(data, finite: bool = False) -> str:
     """``data`` as indented JSON: a list or object that fits in :data:`WIDTH` columns stays on
     one line, and so does an object in a list up to :data:`RECORD` characters (a record a line);
     a longer one has an item a line. Each line is encoded by json's C encoder
-    (``json.dumps(indent=...)`` is its pure-Python one: 20 ms for the findings of the corpus).
+    (``json.dumps(indent=...)`` runs the slower pure-Python one).
 
     finite: write infinite or NaN floats as null, which JSON can carry (else they are refused)
     """

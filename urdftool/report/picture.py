@@ -4,9 +4,15 @@ no display, no OpenGL.
 An orthographic camera looks along one of :data:`VIEWS`. Each triangle is shaded flat (Lambert,
 a fixed light over the viewer's shoulder, lit on both sides so that meshes wound either way
 look the same); faces of closed surfaces turned away from the viewer are left out (hidden
-anyway). Triangles are drawn far to near by their mean depth (the painter's
-algorithm), with Pillow's C polygon filler for PNG (~300,000 triangles a second on one
-core) and as polygons for SVG.
+anyway).
+
+Which triangle a pixel shows is decided by a depth buffer (:func:`zbuffer`, numpy): the nearest
+at the pixel's centre, so that parts which cut into each other meet along their intersection
+(drawing whole triangles far to near, the painter's order, gave saw-tooth edges there). PNG
+is that buffer's colours. SVG is vector: the triangles that show anywhere, outlined in their
+own colour (no seams where a renderer's anti-aliasing leaves background between them), in an
+order taken from the depth buffer (a triangle after every triangle it hides), and, where no
+order is right (parts that cut into each other), the pixels the depth buffer shows.
 
 A picture is made of layers (:class:`Layer`): one scene in its own colours, a scene with some
 links painted (colliding pairs), or, for a comparison, two scenes tinted in two colours, grey
@@ -32,20 +38,39 @@ HIGHLIGHT = (0.86, 0.1, 0.1)  # rgb of painted links (colliding pairs)
 OLD, NEW = (0.15, 0.4, 0.85), (0.95, 0.45, 0.05)  # the two sides of a comparison
 AMBIENT = 0.35
 MARGIN = 0.06  # of the picture's size, around the robot
-MAX_EDGE = 40.0  # [px] longer triangle sides are split for the painter's order
-_ROUNDS = 5  # splits at most: a side of the whole picture becomes 1/32 of it
 SVG_MIN_AREA = 0.05  # [px^2] triangles smaller than this are left out of an SVG
+
+
+@dataclass(frozen=True)
+class Detail:
+    """For a comparison whose change is too small to see at the picture's scale: a magnified
+    inset of where the layers differ most, in a corner, its place in the picture outlined.
+
+    size: how far the change moves things in [m] (the inset magnifies it to about VISIBLE
+        pixels); 0 when unknown (then measured on the picture: the width of what differs)
+    label: what changed, written in the inset (``l_forearm_link moved 4 mm``)
+    """
+
+    size: float = 0.0
+    label: str = ""
+
+
+VISIBLE = 24.0  # [px] a change is shown at least this wide, magnified when smaller
+MAX_ZOOM = 16.0
+INSET = 0.42  # the inset's side, of the picture's smaller side
 
 
 @dataclass(frozen=True)
 class PictureOptions:
     """How to draw: ``view`` one of VIEWS, ``size`` (width, height) in pixels, link frames
-    (x red, y green, z blue) and joint axes (magenta) drawn over the geometry or not."""
+    (x red, y green, z blue) and joint axes (magenta) drawn over the geometry or not, and for a
+    comparison the ``detail`` (:class:`Detail`) to magnify, if any."""
 
     view: str = "iso"
     size: tuple[int, int] = (600, 600)
     frames: bool = False
     axes: bool = False
+    detail: Detail | None = None
 
 
 @dataclass
@@ -112,6 +137,20 @@ class _Camera:
         """Pixel coordinates ``[..., 2]`` of points ``[..., 3]`` (y down)."""
         return self.screen(points)[..., :2]
 
+    def zoomed(self, x: float, y: float, factor: float, side: int) -> "_Camera":
+        """A camera ``factor`` times closer, ``side`` pixels square, centred on this one's
+        pixel (x, y)."""
+        import copy
+
+        import numpy as np
+
+        other = copy.copy(self)
+        other.centre = np.array([self.centre[0] + (x - self.width / 2) / self.scale,
+                                 self.centre[1] - (y - self.height / 2) / self.scale])
+        other.scale = self.scale * factor
+        other.width = other.height = side
+        return other
+
 
 def _camera(layers: list[Layer], view: str, width: int, height: int) -> _Camera:
     import numpy as np
@@ -122,9 +161,9 @@ def _camera(layers: list[Layer], view: str, width: int, height: int) -> _Camera:
     return _Camera(view, np.concatenate(points), width, height)
 
 
-def _project(layer: Layer, camera: _Camera, ordered: bool = False) -> _Drawn:
-    """The layer's triangles shaded; with ``ordered`` sorted far to near (the painter's
-    order, for SVG)."""
+def _project(layer: Layer, camera: _Camera) -> _Drawn:
+    """The layer's triangles shaded and projected (closed surfaces' faces turned away left
+    out), in the scene's order."""
     import numpy as np
 
     scene = layer.scene
@@ -146,35 +185,154 @@ def _project(layer: Layer, camera: _Camera, ordered: bool = False) -> _Drawn:
                                    if name in layer.highlight])
         base[painted] = HIGHLIGHT
     colours = np.clip(base * intensity[:, None] * 255, 0, 255).astype(np.uint8)
-    screen, colours, owners = _subdivided(camera.screen(triangles), colours, owners)
-    if ordered:
-        order = np.argsort(screen[:, :, 2].sum(axis=1), kind="stable")
-        screen, colours, owners = screen[order], colours[order], owners[order]
+    screen = camera.screen(triangles)
     return _Drawn(screen[..., :2], screen[..., 2], colours, owners, scene.links)
 
 
-def _subdivided(screen, colours, owners):
-    """Triangles (in screen coordinates) with a side longer than ``MAX_EDGE`` pixels split in
-    four at their midpoints (a few rounds): the painter's order by mean depth is then right
-    where a long triangle (a cylinder's side) meets another shape."""
+def _visibility_order(drawn: _Drawn, shown, covered):
+    """Indices of the triangles in an order to draw them far to near: a triangle comes after
+    every triangle it hides at some pixel of the depth buffer (``shown``, flat; ``covered``:
+    every pixel each triangle covers), else by mean depth (the painter's order). Parts that
+    cut into each other hide each other in turn; such a cycle is broken at its farthest
+    triangle, and the pixels it gets wrong are drawn again from the depth buffer."""
+    import heapq
+
     import numpy as np
 
-    done = [(screen, colours, owners)]
-    for _ in range(_ROUNDS):
-        screen, colours, owners = done.pop()
-        flat = screen[..., :2]
-        edges = np.abs(flat - flat[:, [1, 2, 0]]).max(axis=(1, 2))  # the longest side's x or y
-        large = edges > MAX_EDGE
-        if not large.any():
-            done.append((screen, colours, owners))
-            break
-        done.append((screen[~large], colours[~large], owners[~large]))
-        a, b, c = (screen[large][:, i] for i in range(3))
-        ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
-        split = np.concatenate([np.stack(corners, axis=1) for corners in
-                                ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
-        done.append((split, np.tile(colours[large], (4, 1)), np.tile(owners[large], 4)))
-    return tuple(np.concatenate(parts) for parts in zip(*done))
+    n = len(drawn.corners)
+    mean = drawn.depths.sum(axis=1)
+    if not covered:
+        return np.argsort(mean, kind="stable")
+    pixels = np.concatenate([p for p, _ in covered])
+    triangles = np.concatenate([t for _, t in covered])
+    front = shown[pixels]
+    behind = (triangles != front) & (front >= 0)
+    pairs = np.unique(triangles[behind] * n + front[behind])
+    before, after = pairs // n, pairs % n  # before is hidden by after somewhere
+    waiting = np.bincount(after, minlength=n)  # triangles to draw before each one
+    following = np.split(after[np.argsort(before, kind="stable")],
+                         np.cumsum(np.bincount(before, minlength=n))[:-1])
+    ready = [(float(mean[i]), int(i)) for i in np.flatnonzero(waiting == 0)]
+    heapq.heapify(ready)
+    stuck = sorted(range(n), key=lambda i: (mean[i], i))  # for breaking cycles, farthest first
+    done = np.zeros(n, dtype=bool)
+    order = []
+    position = 0
+    while len(order) < n:
+        if ready:
+            _, i = heapq.heappop(ready)
+            if done[i]:
+                continue
+        else:  # a cycle: the farthest triangle left goes first
+            while done[stuck[position]]:
+                position += 1
+            i = stuck[position]
+        done[i] = True
+        order.append(i)
+        for j in following[i].tolist():
+            waiting[j] -= 1
+            if waiting[j] == 0 and not done[j]:
+                heapq.heappush(ready, (float(mean[j]), j))
+    return np.array(order, dtype=np.int64)
+
+
+def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
+    """Which triangle each pixel shows: ``[height, width]`` indices into ``corners``
+    (``[n, 3, 2]`` pixel positions, y down), -1 where none covers the pixel's centre.
+
+    A pixel shows the triangle nearest at its centre (``depths [n, 3]`` at the corners,
+    larger is nearer, interpolated over the triangle: exact for the orthographic camera), so
+    parts that cut into each other meet along their true intersection. ``keys [n]``: one
+    depth per triangle instead (a drawing order: the largest key wins, as the last painted).
+    A pixel centre on an edge two triangles share is covered by both (no cracks); on a tie
+    the triangle listed first wins. ``covered``: a list that receives, chunk by chunk, the
+    ``(pixels, triangles)`` of every pixel centre each triangle covers, hidden or not.
+    """
+    import numpy as np
+
+    n = len(corners)
+    buffer = np.full(width * height, -np.inf)
+    index = np.full(width * height, -1, dtype=np.int64)
+    if n == 0:
+        return index.reshape(height, width)
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+    area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    low = np.floor(corners.min(axis=1) - 0.5) + 1  # the first pixel whose centre may be inside
+    high = np.floor(corners.max(axis=1) - 0.5)
+    low = np.maximum(low, 0).astype(np.int64)
+    high = np.minimum(high, [width - 1, height - 1]).astype(np.int64)
+    span = high - low + 1
+    usable = (np.abs(area) > 1e-12) & (span > 0).all(axis=1)
+    # triangles in groups of one box size (powers of two across and down), tested together
+    size = np.ones((n, 2), dtype=np.int64)
+    size[usable] = 1 << np.ceil(np.log2(span[usable])).astype(np.int64)
+    kinds = size[:, 0] * (1 << 32) + size[:, 1]
+    for kind in np.unique(kinds[usable]):
+        members = np.flatnonzero(usable & (kinds == kind))
+        across, down = int(kind >> 32), int(kind & 0xFFFFFFFF)
+        step = max(1, _RASTER_CHUNK // (across * down))
+        for first in range(0, len(members), step):
+            chunk = members[first:first + step]
+            _cover(chunk, (across, down), corners, depths, area, low, high, width, keys,
+                   buffer, index, covered)
+    return index.reshape(height, width)
+
+
+_RASTER_CHUNK = 1 << 20  # pixel tests at a time [samples]
+
+
+def _cover(chunk, box: tuple[int, int], corners, depths, area, low, high, width: int, keys,
+           buffer, index, covered) -> None:
+    """Rasterise the triangles ``chunk`` (each fits a ``box`` (across, down) of pixels) into
+    the depth ``buffer`` and the ``index`` of the triangle each pixel shows."""
+    import numpy as np
+
+    px = low[chunk, 0][:, None, None] + np.arange(box[0])[None, None, :]
+    py = low[chunk, 1][:, None, None] + np.arange(box[1])[None, :, None]
+    valid = (px <= high[chunk, 0][:, None, None]) & (py <= high[chunk, 1][:, None, None])
+    cx, cy = px + 0.5, py + 0.5
+    a, b, c = (corners[chunk, i][:, :, None, None] for i in range(3))
+    inverse = 1.0 / area[chunk][:, None, None]
+    # barycentric weights of the pixel centre: of a, of b, of c
+    wa = ((c[:, 0] - b[:, 0]) * (cy - b[:, 1]) - (c[:, 1] - b[:, 1]) * (cx - b[:, 0])) * inverse
+    wb = ((a[:, 0] - c[:, 0]) * (cy - c[:, 1]) - (a[:, 1] - c[:, 1]) * (cx - c[:, 0])) * inverse
+    wc = 1.0 - wa - wb
+    tolerance = -1e-9
+    inside = valid & (wa >= tolerance) & (wb >= tolerance) & (wc >= tolerance)
+    which, rows, columns = np.nonzero(inside)
+    if not len(which):
+        return
+    triangles = chunk[which]
+    if keys is None:
+        d = depths[triangles]
+        depth = (wa[which, rows, columns] * d[:, 0] + wb[which, rows, columns] * d[:, 1]
+                 + wc[which, rows, columns] * d[:, 2])
+    else:
+        depth = keys[triangles].astype(float)
+    pixel = py[which, rows, 0] * width + px[which, 0, columns]
+    if covered is not None:
+        covered.append((pixel, triangles))
+    # the nearest sample per pixel within the chunk (first listed on a tie), then the buffer
+    order = np.lexsort((-triangles, depth, pixel))
+    pixel, depth, triangles = pixel[order], depth[order], triangles[order]
+    last = np.r_[pixel[1:] != pixel[:-1], True]
+    pixel, depth, triangles = pixel[last], depth[last], triangles[last]
+    nearer = depth > buffer[pixel]
+    tie = (depth == buffer[pixel]) & (triangles < index[pixel])
+    better = nearer | tie
+    buffer[pixel[better]] = depth[better]
+    index[pixel[better]] = triangles[better]
+
+
+def _colour_image(drawn: _Drawn, shown):
+    """RGB pixels ``[height, width, 3]`` of the triangles ``shown`` (from :func:`zbuffer`)."""
+    import numpy as np
+
+    image = np.empty(shown.shape + (3,), dtype=np.uint8)
+    image[...] = BACKGROUND
+    covered = shown >= 0
+    image[covered] = drawn.colours[shown[covered]]
+    return image
 
 
 def _overlays(layers: list[Layer], camera: _Camera, options: PictureOptions) -> list:
@@ -200,46 +358,130 @@ def _overlays(layers: list[Layer], camera: _Camera, options: PictureOptions) -> 
             for a, b, c, w in lines]
 
 
-def _painted(drawn: _Drawn, width: int, height: int):
-    """The triangles filled far to near with Pillow, as an RGB image."""
+def _composite(layers: list[Layer], camera: _Camera):
+    """The layers' pixels ``[height, width, 3]`` (uint8) seen by ``camera``, and how many
+    layers cover each pixel: what several layers cover is grey (their mean brightness), so
+    that what only one covers stands out in its colour."""
     import numpy as np
-    from PIL import Image, ImageDraw
 
-    image = Image.new("RGB", (width, height), BACKGROUND)
-    # Pillow's C drawing call, without ImageDraw.polygon's per-call colour parsing (2/3 of the
-    # time): an RGB ink is the packed integer r + g << 8 + b << 16
-    polygon = ImageDraw.Draw(image).draw.draw_polygon
-    inks = drawn.colours.astype(np.int64) @ np.array([1, 1 << 8, 1 << 16])
-    for corners, ink in zip(drawn.corners.reshape(-1, 6).tolist(), inks.tolist()):
-        polygon(corners, ink, 1)
-    return image
+    width, height = camera.width, camera.height
+    arrays, covered = [], []
+    for layer in layers:
+        drawn = _project(layer, camera)
+        shown = zbuffer(drawn.corners, drawn.depths, width, height)
+        arrays.append(_colour_image(drawn, shown).astype(np.float32))
+        covered.append(shown >= 0)
+    count = np.sum(covered, axis=0)
+    if len(layers) == 1:
+        return arrays[0].astype(np.uint8), count
+    white = np.array(BACKGROUND, dtype=np.float32)
+    total = np.sum([np.where(c[..., None], a, 0) for c, a in zip(covered, arrays)], axis=0)
+    pixels = np.where(count[..., None] > 0, total / np.maximum(count, 1)[..., None], white)
+    # the tints are about half as bright as white: the grey is lifted back
+    grey = np.repeat(np.clip(pixels.mean(axis=-1, keepdims=True) * 1.6, 0, 235), 3, axis=-1)
+    pixels = np.where(count[..., None] > 1, grey, pixels)
+    return pixels.astype(np.uint8), count
+
+
+@dataclass
+class _Inset:
+    """Where a detail is magnified: the window (x, y, side) of the picture, in pixels, shown
+    ``zoom`` times larger in the square at (left, top) of ``side`` pixels."""
+
+    x: float
+    y: float
+    window: float
+    zoom: float
+    left: int
+    top: int
+    side: int
+    camera: _Camera
+    label: str
+
+
+def _inset(layers: list[Layer], camera: _Camera, count, detail: Detail | None):
+    """The inset that shows a comparison's small change, or None: no detail asked for, no
+    difference, or one already large enough to see."""
+    import numpy as np
+
+    if detail is None or len(layers) < 2:
+        return None
+    differs = count == 1  # covered by one side only: what moved
+    if not differs.any():
+        return None
+    rows, columns = np.nonzero(differs)
+    if detail.size > 0:
+        band = detail.size * camera.scale  # [px]
+    else:  # a band's width: its area over its length
+        band = differs.sum() / max(np.ptp(rows) + 1, np.ptp(columns) + 1)
+    zoom = min(MAX_ZOOM, VISIBLE / max(band, 0.25))
+    if zoom < 2:
+        return None
+    side = int(INSET * min(camera.width, camera.height))
+    window = side / zoom
+    # the window that holds the most of the difference (a box sum over the picture)
+    step = max(1, int(window))
+    sums = np.pad(differs.astype(np.int64).cumsum(0).cumsum(1), ((1, 0), (1, 0)))
+    height, width_px = differs.shape
+    top = np.clip(np.arange(height) - step // 2, 0, max(0, height - step))
+    left = np.clip(np.arange(width_px) - step // 2, 0, max(0, width_px - step))
+    bottom, right = np.minimum(top + step, height), np.minimum(left + step, width_px)
+    boxes = (sums[bottom][:, right] - sums[top][:, right] - sums[bottom][:, left]
+             + sums[top][:, left])
+    y, x = np.unravel_index(int(np.argmax(boxes)), boxes.shape)
+    x, y = float(left[x] + step / 2), float(top[y] + step / 2)
+    # the corner where the inset hides least of the robot and not the window (the legend
+    # takes the top left's first rows)
+    margin, legend = 6, 6 + 16 * sum(1 for layer in layers if layer.tint is not None
+                                     and layer.label)
+    corners = [(camera.width - side - margin, camera.height - side - margin),
+               (margin, camera.height - side - margin),
+               (camera.width - side - margin, margin), (margin, legend + margin)]
+
+    def cost(corner):
+        left_, top_ = (max(0, int(v)) for v in corner)
+        over = (left_ < x + window / 2 and x - window / 2 < left_ + side
+                and top_ < y + window / 2 and y - window / 2 < top_ + side)
+        return over, int((count[top_:top_ + side, left_:left_ + side] > 0).sum())
+
+    corner = min(corners, key=cost)
+    return _Inset(x, y, window, zoom, int(corner[0]), int(corner[1]), side,
+                  camera.zoomed(x, y, zoom, side), detail.label)
+
+
+def _inset_words(inset: _Inset) -> list[str]:
+    from urdftool.numbers import number
+
+    return [f"magnified {number(inset.zoom, 2)}x", *([inset.label] if inset.label else [])]
 
 
 def rasterise(layers: list[Layer], options: PictureOptions = PictureOptions()):
-    """The picture as a Pillow RGB image; where several layers overlap it is grey."""
-    import numpy as np
+    """The picture as a Pillow RGB image; where several layers overlap it is grey; a small
+    change of a comparison magnified in an inset (``options.detail``)."""
     from PIL import Image, ImageDraw
 
     width, height = options.size
     camera = _camera(layers, options.view, width, height)
-    images = [_painted(_project(layer, camera, ordered=True), width, height)
-              for layer in layers]
-    if len(images) == 1:
-        image = images[0]
-    else:  # what several layers cover is grey (their mean brightness): the rest stands out
-        white = np.array(BACKGROUND, dtype=np.float32)
-        arrays = [np.asarray(image, dtype=np.float32) for image in images]
-        covered = [np.any(array != white, axis=-1) for array in arrays]
-        count = np.sum(covered, axis=0)
-        total = np.sum([np.where(c[..., None], a, 0) for c, a in zip(covered, arrays)], axis=0)
-        pixels = np.where(count[..., None] > 0, total / np.maximum(count, 1)[..., None], white)
-        # the tints are about half as bright as white: the grey is lifted back
-        grey = np.repeat(np.clip(pixels.mean(axis=-1, keepdims=True) * 1.6, 0, 235), 3, axis=-1)
-        pixels = np.where(count[..., None] > 1, grey, pixels)
-        image = Image.fromarray(pixels.astype(np.uint8), "RGB")
+    pixels, count = _composite(layers, camera)
+    image = Image.fromarray(pixels, "RGB")
     draw = ImageDraw.Draw(image)
     for start, end, colour, line_width in _overlays(layers, camera, options):
         draw.line([tuple(start), tuple(end)], fill=colour, width=line_width)
+    inset = _inset(layers, camera, count, options.detail)
+    if inset is not None:
+        magnified, _ = _composite(layers, inset.camera)
+        image.paste(Image.fromarray(magnified, "RGB"), (inset.left, inset.top))
+        half = inset.window / 2
+        draw.rectangle([inset.x - half, inset.y - half, inset.x + half, inset.y + half],
+                       outline=(0, 0, 0))
+        draw.line([(inset.x, inset.y + half if inset.top > inset.y else inset.y - half),
+                   (inset.left + inset.side / 2,
+                    inset.top if inset.top > inset.y else inset.top + inset.side)],
+                  fill=(0, 0, 0))
+        draw.rectangle([inset.left, inset.top, inset.left + inset.side - 1,
+                        inset.top + inset.side - 1], outline=(0, 0, 0))
+        for row, words in enumerate(_inset_words(inset)):
+            draw.text((inset.left + 4, inset.top + 3 + 12 * row), words, fill=(0, 0, 0))
     _legend(draw, layers)
     return image
 
@@ -260,39 +502,38 @@ def png(layers: list[Layer], options: PictureOptions = PictureOptions()) -> byte
 
 
 def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
-    """The picture as SVG polygons, far to near; each run of one link's triangles is a group
-    whose ``<title>`` names the link (shown on hover). Triangles under 0.05 px^2 are left out."""
-    import numpy as np
-
+    """The picture as SVG: each layer's visible triangles as polygons far to near (each run of
+    one link's triangles a group whose ``<title>`` names the link, shown on hover), then, where
+    that order is wrong (parts that cut into each other), the pixels the depth buffer shows.
+    Each polygon is outlined in its own colour, so that no background shows through the seams
+    a renderer's anti-aliasing leaves between triangles."""
     width, height = options.size
     camera = _camera(layers, options.view, width, height)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>']
-    for layer in layers:
-        drawn = _project(layer, camera, ordered=True)
-        corners = drawn.corners
-        one, two = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
-        area = 0.5 * np.abs(one[:, 0] * two[:, 1] - one[:, 1] * two[:, 0])
-        keep = area >= SVG_MIN_AREA
-        opacity = f' opacity="{1 / len(layers):.2f}"' if len(layers) > 1 else ""
-        title = f"<title>{escape(layer.label)}</title>" if layer.label else ""
-        out.append(f"<g{opacity}>{title}")
-        current = None
-        for points, colour, owner in zip(corners[keep].round(1).reshape(-1, 6).tolist(),
-                                         drawn.colours[keep].tolist(), drawn.owners[keep].tolist()):
-            if owner != current:
-                if current is not None:
-                    out.append("</g>")
-                out.append(f"<g><title>{escape(drawn.links[owner])}</title>")
-                current = owner
-            text = " ".join(f"{x:g},{y:g}" for x, y in zip(points[::2], points[1::2]))
-            fill = "#%02x%02x%02x" % tuple(colour)
-            out.append(f'<polygon points="{text}" fill="{fill}" stroke="{fill}" '
-                       'stroke-width="0.3"/>')
-        if current is not None:
-            out.append("</g>")
-        out.append("</g>")
+    out += _svg_layers(layers, camera)
+    inset = None
+    if options.detail is not None and len(layers) > 1:
+        inset = _inset(layers, camera, _composite(layers, camera)[1], options.detail)
+    if inset is not None:
+        half, side = inset.window / 2, inset.side
+        out.append(f'<rect x="{inset.x - half:.1f}" y="{inset.y - half:.1f}" '
+                   f'width="{2 * half:.1f}" height="{2 * half:.1f}" fill="none" '
+                   'stroke="black"/>')
+        below = inset.top > inset.y
+        out.append(f'<line x1="{inset.x:.1f}" y1="{inset.y + (half if below else -half):.1f}" '
+                   f'x2="{inset.left + side / 2:.1f}" '
+                   f'y2="{inset.top if below else inset.top + side:.1f}" stroke="black"/>')
+        out.append(f'<svg x="{inset.left}" y="{inset.top}" width="{side}" height="{side}" '
+                   f'viewBox="0 0 {side} {side}">')
+        out.append(f'<rect width="{side}" height="{side}" fill="white"/>')
+        out += _svg_layers(layers, inset.camera)
+        out.append(f'<rect x="0.5" y="0.5" width="{side - 1}" height="{side - 1}" '
+                   'fill="none" stroke="black"/>')
+        out += [f'<text x="4" y="{13 + 12 * row}">{escape(words)}</text>'
+                for row, words in enumerate(_inset_words(inset))]
+        out.append("</svg>")
     for start, end, colour, line_width in _overlays(layers, camera, options):
         out.append(f'<line x1="{start[0]:.1f}" y1="{start[1]:.1f}" x2="{end[0]:.1f}" '
                    f'y2="{end[1]:.1f}" stroke="#%02x%02x%02x" stroke-width="{line_width}"/>'
@@ -303,6 +544,102 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
         out.append(f'<text x="24" y="{16 + 16 * row}">{escape(layer.label)}</text>')
     out.append("</svg>")
     return "\n".join(out) + "\n"
+
+
+def _svg_layers(layers: list[Layer], camera: _Camera) -> list[str]:
+    """Each layer's SVG group as ``camera`` sees it (see :func:`_svg_layer`)."""
+    out = []
+    for layer in layers:
+        opacity = f' opacity="{1 / len(layers):.2f}"' if len(layers) > 1 else ""
+        title = f"<title>{escape(layer.label)}</title>" if layer.label else ""
+        out.append(f"<g{opacity}>{title}")
+        out += _svg_layer(_project(layer, camera), camera.width, camera.height)
+        out.append("</g>")
+    return out
+
+
+def _svg_layer(drawn: _Drawn, width: int, height: int) -> list[str]:
+    """One layer's SVG elements: its triangles that show anywhere (in the depth buffer), in the
+    painter's order, then the corrections: runs of pixels where the painter's order shows
+    another colour than the depth buffer, as rectangles drawn without anti-aliasing."""
+    import numpy as np
+
+    covered: list = []
+    true = zbuffer(drawn.corners, drawn.depths, width, height, covered=covered)
+    one = drawn.corners[:, 1] - drawn.corners[:, 0]
+    two = drawn.corners[:, 2] - drawn.corners[:, 0]
+    area = 0.5 * np.abs(one[:, 0] * two[:, 1] - one[:, 1] * two[:, 0])
+    visible = np.zeros(len(drawn.corners), dtype=bool)
+    visible[true[true >= 0]] = True
+    order = _visibility_order(drawn, true.reshape(-1), covered)
+    order = order[visible[order] & (area[order] >= SVG_MIN_AREA)]
+    painted = _painted(drawn, order, width, height)
+    # a triangle drawn over one nearer than it (parts that cut into each other) would show
+    # its anti-aliased edges there: it is drawn as the pixels where it shows instead
+    wrong = np.unique(painted[(painted != true) & (painted >= 0)])
+    if len(wrong):
+        order = order[~np.isin(order, wrong)]
+        painted = _painted(drawn, order, width, height)
+    out, current = [], None
+    for points, colour, owner in zip(drawn.corners[order].round(1).reshape(-1, 6).tolist(),
+                                     drawn.colours[order].tolist(),
+                                     drawn.owners[order].tolist()):
+        if owner != current:
+            if current is not None:
+                out.append("</g>")
+            out.append(f"<g><title>{escape(drawn.links[owner])}</title>")
+            current = owner
+        text = " ".join(f"{x:g},{y:g}" for x, y in zip(points[::2], points[1::2]))
+        fill = "#%02x%02x%02x" % tuple(colour)
+        out.append(f'<polygon points="{text}" fill="{fill}" stroke="{fill}" '
+                   'stroke-width="1" stroke-linejoin="round"/>')
+    if current is not None:
+        out.append("</g>")
+    wanted, got = _colour_image(drawn, true), _colour_image(drawn, painted)
+    patches = _runs(wanted, (wanted != got).any(axis=-1))
+    if patches:
+        out.append('<g shape-rendering="crispEdges">')
+        out += [f'<rect x="{x}" y="{y}" width="{w}" height="{h}" fill="#%02x%02x%02x"/>'
+                % colour for x, y, w, h, colour in patches]
+        out.append("</g>")
+    return out
+
+
+def _painted(drawn: _Drawn, order, width: int, height: int):
+    """Which triangle each pixel shows when the triangles ``order`` are drawn in that order."""
+    import numpy as np
+
+    rank = np.full(len(drawn.corners), -np.inf)
+    rank[order] = np.arange(len(order))
+    return zbuffer(drawn.corners, drawn.depths, width, height, keys=rank)
+
+
+def _runs(image, mask) -> list[tuple[int, int, int, int, tuple]]:
+    """The pixels of ``mask`` as rectangles ``(x, y, width, height, rgb)`` of one colour of
+    ``image``: runs along each row, joined with the same run on the rows below."""
+    import numpy as np
+
+    open_runs: dict[tuple, list] = {}  # (x, width, rgb) -> [x, y, width, height, rgb]
+    done = []
+    for y in range(mask.shape[0]):
+        columns = np.flatnonzero(mask[y])
+        row: dict[tuple, list] = {}
+        if len(columns):
+            colours = image[y, columns]
+            breaks = np.flatnonzero((np.diff(columns) != 1)
+                                    | (colours[1:] != colours[:-1]).any(axis=1)) + 1
+            for piece in np.split(np.arange(len(columns)), breaks):
+                x, run = int(columns[piece[0]]), len(piece)
+                key = (x, run, tuple(int(v) for v in colours[piece[0]]))
+                rect = open_runs.pop(key, None)
+                if rect is None:
+                    rect = [x, y, run, 0, key[2]]
+                rect[3] += 1
+                row[key] = rect
+        done += open_runs.values()
+        open_runs = row
+    done += open_runs.values()
+    return [tuple(rect) for rect in done]
 
 
 def write(path, layers: list[Layer], options: PictureOptions = PictureOptions()) -> None:

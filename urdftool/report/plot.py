@@ -13,6 +13,7 @@ from html import escape
 from pathlib import Path
 
 from urdftool.errors import PlotError
+from urdftool.numbers import number
 
 
 COLOURS = {"Adjacent": "#7f7f7f", "Default": "#ff7f0e", "Always": "#d62728",
@@ -52,7 +53,7 @@ def _layout(matrix, title: str):
         tip = (f"{pair.link1} / {pair.link2}: {pair.reason or 'enabled'}, "
                f"{pair.collisions}/{pair.samples} collisions")
         if pair.min_distance is not None:
-            tip += f", min distance {pair.min_distance * 1000:.1f} mm"
+            tip += f", min distance {number(pair.min_distance * 1000, places=1)} mm"
         for row, column in ((i, j), (j, i)):
             items.append(("rect", label + column * CELL, top + row * CELL, CELL - 1, CELL - 1,
                           COLOURS[pair.reason], _shade(pair), tip))
@@ -131,8 +132,10 @@ def png_of(width: int, height: int, items, scale: int = 2) -> bytes:
     try:
         from PIL import Image, ImageColor, ImageDraw, ImageFont
     except ImportError:
-        raise PlotError("PNG output needs Pillow (pip install pillow); an .svg needs "
-                         "nothing") from None
+        from urdftool.origin import install_command
+
+        raise PlotError(f"PNG output needs Pillow ({install_command('analysis')}); an .svg "
+                        "needs nothing") from None
     image = Image.new("RGB", (width * scale, height * scale), "white")
     draw = ImageDraw.Draw(image)
     fonts = {}

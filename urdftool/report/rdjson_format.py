@@ -22,23 +22,28 @@ def _location(location) -> dict:
     return where
 
 
+def _with_url(entry: dict, url: str | None) -> dict:
+    return entry if url is None else {**entry, "url": url}
+
+
 def as_dict(results) -> dict:
-    from urdftool.report.sarif_format import help_uri
+    from urdftool.origin import docs_index_url, rule_url
 
     diagnostics = []
     for finding in all_findings(results):
+        url = rule_url(finding.code)  # the rule's page (urdftool.origin); None: no link
         entry = {"message": finding.message, "location": _location(finding.location),
                  "severity": _SEVERITIES[finding.severity.value],
-                 "code": {"value": finding.code, "url": help_uri(finding.code)}}
+                 "code": _with_url({"value": finding.code}, url)}
         if finding.target is not None:  # rdjson has no free properties: the source names it
-            entry["source"] = {"name": f"urdftool --target {finding.target}",
-                               "url": help_uri(finding.code)}
+            entry["source"] = _with_url({"name": f"urdftool --target {finding.target}"}, url)
         if finding.location.via:
             entry["related_locations"] = [
                 {"message": "expanded from this macro call", "location": _location(site)}
                 for site in finding.location.via]
         diagnostics.append(entry)
-    return {"source": {"name": "urdftool", "url": help_uri(None)}, "diagnostics": diagnostics}
+    return {"source": _with_url({"name": "urdftool"}, docs_index_url()),
+            "diagnostics": diagnostics}
 
 
 def render(results, stream) -> None:

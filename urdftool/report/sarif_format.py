@@ -19,15 +19,8 @@ from urdftool.report.json_output import write_json
 from urdftool.report.summary import all_findings
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
-HOME = "https://pypi.org/project/urdftool/"
 _LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 SRCROOT = "%SRCROOT%"
-
-
-def help_uri(code: str | None) -> str:
-    """Where a rule is documented: the README's rules table, whose rows carry the code's
-    anchor; None: the project's page."""
-    return HOME if code is None else f"{HOME}#{code.lower()}"
 
 
 def artifact_location(file: str) -> dict:
@@ -42,16 +35,20 @@ def artifact_location(file: str) -> dict:
 
 
 def _rule_descriptor(rule) -> dict:
-    return {
+    from urdftool.origin import rule_url
+
+    descriptor = {
         "id": rule.code,
         "name": rule.name,
         "shortDescription": {"text": rule.summary},
         "fullDescription": {"text": rule.doc or rule.summary},
         "help": {"text": rule.doc or rule.summary, "markdown": rule.doc or rule.summary},
-        "helpUri": help_uri(rule.code),
         "defaultConfiguration": {"level": _LEVELS[rule.severity.value]},
         "properties": {"family": rule.family},
     }
+    if (url := rule_url(rule.code)) is not None:  # the rule's page (urdftool.origin)
+        descriptor["helpUri"] = url
+    return descriptor
 
 
 def _location(location) -> dict:
@@ -65,6 +62,7 @@ def _location(location) -> dict:
 
 def as_dict(results) -> dict:
     from urdftool.lint.rules import CATALOGUE  # the rule families load only for sarif
+    from urdftool.origin import docs_index_url
 
     rules = CATALOGUE.rules
     index = {rule.code: i for i, rule in enumerate(rules)}
@@ -85,17 +83,15 @@ def as_dict(results) -> dict:
                 for i, site in enumerate(finding.location.via)
             ]
         sarif_results.append(entry)
+    driver = {"name": "urdftool", "version": __version__, "semanticVersion": __version__,
+              "rules": [_rule_descriptor(rule) for rule in rules]}
+    if (home := docs_index_url()) is not None:
+        driver["informationUri"] = home
     return {
         "$schema": SCHEMA,
         "version": "2.1.0",
         "runs": [{
-            "tool": {"driver": {
-                "name": "urdftool",
-                "version": __version__,
-                "informationUri": HOME,
-                "semanticVersion": __version__,
-                "rules": [_rule_descriptor(rule) for rule in rules],
-            }},
+            "tool": {"driver": driver},
             "originalUriBaseIds": {SRCROOT: {"uri": Path.cwd().as_uri().rstrip("/") + "/"}},
             "results": sarif_results,
             "columnKind": "unicodeCodePoints",

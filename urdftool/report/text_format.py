@@ -3,45 +3,65 @@
 The lines are built once as styled spans. On a terminal (or with FORCE_COLOR) rich renders them
 in colour; anywhere else (CI logs, pipes, files) they are written as plain text, which is what
 rich would write there too, without paying for importing it.
+
+Text is for people, so it says each thing once (the machine formats keep every finding):
+
+- findings of one rule that say the same thing about different names (24 transmissions whose
+  interface lacks ``hardware_interface/``) are one line, the first of them, followed by how
+  many there are and where (:func:`groups`);
+- a long "available links: ..." list is written in full the first time in a file's report,
+  and later findings refer to it (:func:`_once`);
+- notes (severity info: explanations such as "its inertia is taken from its convex hull", not
+  problems) are shown only when asked for (``check --notes``, ``notes = true`` in the
+  settings); the summary line counts the ones it left out.
 """
 
 from __future__ import annotations
 
 import os
+import re
+from typing import Callable
 
-from urdftool.diagnostics import display_path
+from urdftool.diagnostics import Severity, display_path
 from urdftool.report.summary import STYLES, Summary, counted, printable, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
+Notes = bool | Callable[[object], bool]  # for all results, or per result
+
+PLACES_SHOWN = 12  # places listed on a grouped line; more are counted
+# a name in quotes or an absolute path: what differs between findings that say the same thing
+_NAME = re.compile(r"'[^'\s]*'|(?<=[\s(])/[^\s)]*")
+# "available links: a, b, c" or "... (31 in all)", as urdftool.errors.available writes it
+_AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
+                        r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
+                        r"(?:, \.\.\. \((?P<count>\d+) in all\))?(?=$|;| \()")
+_LONG_LIST = 60  # [characters] a list shorter than this is written every time
 
 
-def lines(results, quiet: bool = False) -> list[Line]:
+def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     """The report as lines of (text, style) spans; names, paths and messages come from the
-    files checked, so their control characters are escaped (one finding, one line)."""
+    files checked, so their control characters are escaped (one finding, one line).
+
+    notes: whether findings of severity info are shown, for every result or per result
+    """
     out: list[Line] = []
+    hidden = 0
     for result in results:
-        if not result.findings:
+        shown = result.findings
+        if not (notes(result) if callable(notes) else notes):
+            shown = [f for f in shown if f.severity is not Severity.INFO]
+            hidden += len(result.findings) - len(shown)
+        if not shown:
             continue
         out.append([(display_path(result.path), "bold underline")])
-        for finding in result.findings:
-            location, severity = finding.location, finding.severity.value
-            out.append([(f"  {location}: ", ""), (severity, STYLES[severity]),
-                        (" ", ""), *_marker(finding), (finding.code, "bold"),
-                        (f" {finding.message} ", ""),
-                        (f"({finding.name}, {finding.target})" if finding.target else
-                         f"({finding.name})", "dim")])
-            if location.via:  # a macro's: its call sites (10,000 findings may have none)
-                out.extend([(f"      {line}", "dim")] for line in via_text(location))
+        listed: dict = {}  # each long list of names -> where it was written in full
+        for group in groups(shown):
+            out.extend(_group_lines(group, listed))
         if not quiet:
             out.append([])
     if quiet:
         return [_printable(line) for line in out]
-    summary = Summary.of(results)
-    style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
-    verdict = "no problems found" if not (summary.errors or summary.warnings or summary.infos) \
-        else ", ".join([counted(summary.errors, "error"), counted(summary.warnings, "warning"),
-                        counted(summary.infos, "note")])
-    out.append([(f"{counted(summary.files, 'file')} checked: {verdict}", style)])
+    out.append(_summary(results, hidden))
     fixable = [f.fix.safe for result in results for f in result.findings if f.fix is not None]
     if fixable:
         safe, unsafe = fixable.count(True), fixable.count(False)
@@ -49,6 +69,92 @@ def lines(results, quiet: bool = False) -> list[Line]:
         parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
         out.append([("; ".join(parts), "")])
     return [_printable(line) for line in out]
+
+
+def _summary(results, hidden: int) -> Line:
+    summary = Summary.of(results)
+    infos = summary.infos - hidden
+    style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
+    counts = [counted(summary.errors, "error"), counted(summary.warnings, "warning")]
+    counts += [counted(infos, "note")] if infos or not hidden else []
+    verdict = ", ".join(counts) if summary.errors or summary.warnings or infos \
+        else "no problems found"
+    if hidden:
+        verdict += f" ({counted(hidden, 'note')} not shown: --notes shows them)"
+    return [(f"{counted(summary.files, 'file')} checked: {verdict}", style)]
+
+
+def groups(findings) -> list[list]:
+    """The findings in groups that say the same thing in one file: one rule, severity, target
+    and kind of fix, and the same message once the names in quotes and the absolute paths are
+    set aside. Each group is in the order of its first finding; a finding alone is a group of
+    one."""
+    found: dict[tuple, list] = {}
+    for finding in findings:
+        fix = None if finding.fix is None else finding.fix.safe
+        key = (finding.location.file, finding.code, finding.severity, finding.target, fix,
+               _NAME.sub("''", finding.message))
+        found.setdefault(key, []).append(finding)
+    return list(found.values())
+
+
+def _group_lines(group: list, listed: dict) -> list[Line]:
+    first = group[0]
+    location, severity = first.location, first.severity.value
+    line = [(f"  {location}: ", ""), (severity, STYLES[severity]), (" ", ""), *_marker(first),
+            (first.code, "bold"), (f" {_once(first.message, location, listed)} ", ""),
+            (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
+    if len(group) > 1:
+        line.append((f" [{len(group)} times: {_places(group)}]", ""))
+    out = [line]
+    calls = list(dict.fromkeys(f.location.via for f in group))
+    if calls == [()]:
+        return out
+    if len(calls) == 1:  # a macro's: its call sites (10,000 findings may have none)
+        return out + [[(f"      {text}", "dim")] for text in via_text(location)]
+    # the level of the call chains (innermost first) where the findings differ most
+    depth = max(len(via) for via in calls)
+    sites = max((list(dict.fromkeys(str(via[level]) for via in calls if len(via) > level))
+                 for level in range(depth)), key=len)
+    return out + [[(f"      expanded from {counted(len(sites), 'macro call')} at "
+                    f"{_listed(sites)}", "dim")]]
+
+
+def _places(group: list) -> str:
+    """Where the findings of a group are (lines of one file), each place once, with how many
+    findings it holds when several (a macro line expanded by several calls)."""
+    counts: dict[str, int] = {}
+    for finding in group:
+        place = str(finding.location.line or "?")
+        counts[place] = counts.get(place, 0) + 1
+    places = [place if n == 1 else f"{place} ({n}x)" for place, n in counts.items()]
+    return ("line " if len(places) == 1 else "lines ") + _listed(places)
+
+
+def _listed(items: list[str]) -> str:
+    shown = ", ".join(items[:PLACES_SHOWN])
+    return shown + (f", ... ({len(items)} in all)" if len(items) > PLACES_SHOWN else "")
+
+
+def _once(message: str, location, listed: dict) -> str:
+    """``message`` with each long "available ..." list it repeats from an earlier finding of
+    the same report replaced by a reference to where it was written in full."""
+    def replace(match) -> str:
+        names = match.group("names")
+        if len(names) < _LONG_LIST:
+            return match.group()
+        key = match.group()
+        if key not in listed:
+            listed[key] = location
+            return key
+        where = listed[key]
+        at = f"line {where.line}" if where.file == location.file and where.line is not None \
+            else str(where)
+        count = match.group("count")
+        return f"available {match.group('kind')}: " + (f"the {count} listed at {at}" if count
+                                                         else f"as listed at {at}")
+
+    return _AVAILABLE.sub(replace, message)
 
 
 def _printable(line: Line) -> Line:
@@ -69,8 +175,8 @@ def _marker(finding) -> Line:
     return [("[*] " if finding.fix.safe else "[~] ", "bold cyan")]
 
 
-def render(results, stream, quiet: bool = False) -> None:
-    report = lines(results, quiet)
+def render(results, stream, quiet: bool = False, notes: Notes = True) -> None:
+    report = lines(results, quiet, notes)
     if not _colour(stream):
         stream.write("".join("".join(text for text, _ in line) + "\n" for line in report))
         return
@@ -89,4 +195,3 @@ def _colour(stream) -> bool:
     if os.environ.get("FORCE_COLOR"):
         return True
     return hasattr(stream, "isatty") and stream.isatty()
-

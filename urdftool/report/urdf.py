@@ -1,10 +1,21 @@
-"""A loaded robot written back as URDF text (``urdftool xacro``)."""
+"""A loaded robot written back as URDF text (``urdftool xacro``), byte for byte as ROS xacro
+writes it.
+
+ROS xacro prints its DOM with ``minidom``'s ``toprettyxml(indent="  ")`` and its own
+``Element.writexml`` (xacro/xmlutils.py ``fixed_writexml``): attributes sorted by name, an
+element whose one child is text written on one line, whitespace-only text between elements
+left out, other text on a line of its own at the child indentation, comments as ``<!--...-->``
+lines; ``&``, ``<``, ``"`` and ``>`` escaped in text and attribute values alike. The writer
+below follows those rules over urdftool's lxml tree, so that a build that diffs the two
+outputs sees no change.
+"""
 
 from __future__ import annotations
 
 import re
 
 RULE = "=" * 83
+_INDENT = "  "
 
 
 def banner(source: str) -> list[str]:
@@ -18,14 +29,88 @@ def banner(source: str) -> list[str]:
 
 
 def expanded_urdf(robot, source: str | None = None) -> str:
-    """The robot's (expanded) document, indented by two spaces, with an XML declaration and,
-    when ``source`` is given, xacro's banner naming it."""
+    """The robot's (expanded) document as ROS xacro prints it: an XML declaration, when
+    ``source`` is given xacro's banner naming it, the comments and processing instructions
+    around the root, and the root element."""
+    out = ['<?xml version="1.0" ?>\n']
+    out += [line + "\n" for line in (banner(source) if source is not None else [])]
+    root = robot.root
+    around = [*reversed(list(root.itersiblings(preceding=True))), root,
+              *root.itersiblings()]
+    for node in around:
+        _write(node, out, "", {})
+    return "".join(out)
+
+
+def _escaped(text: str) -> str:
+    """minidom's ``_write_data``: the same four characters in text and attribute values."""
+    return (text.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+            .replace(">", "&gt;"))
+
+
+def _write(node, out: list[str], indent: str, declared: dict) -> None:
+    """``node`` (an lxml element, comment or processing instruction) as xacro's writer puts
+    it at ``indent``; ``declared``: the namespace prefixes in scope (prefix -> uri)."""
     from lxml import etree
 
-    etree.indent(robot.root, space="  ")
-    text = etree.tostring(robot.root, encoding="unicode", xml_declaration=False)
-    lines = banner(source) if source is not None else []
-    return "\n".join(['<?xml version="1.0" ?>', *lines, text]) + "\n"
+    if isinstance(node, etree._Comment):
+        out.append(f"{indent}<!--{node.text or ''}-->\n")
+        return
+    if isinstance(node, etree._ProcessingInstruction):
+        out.append(f"{indent}<?{node.target} {node.text or ''}?>\n")
+        return
+    name = _qualified(node.tag, node.nsmap)
+    attributes = {_qualified(key, node.nsmap, attribute=True): value
+                  for key, value in node.attrib.items()}
+    # xacro removes its own namespace's declaration and attributes from every element
+    attributes = {key: value for key, value in attributes.items()
+                  if not key.startswith("xacro:")}
+    scope = dict(declared)
+    for prefix, uri in node.nsmap.items():
+        if declared.get(prefix) != uri and prefix != "xacro":
+            attributes["xmlns" if prefix is None else f"xmlns:{prefix}"] = uri
+            scope[prefix] = uri
+    out.append(f"{indent}<{name}")
+    for key in sorted(attributes):
+        out.append(f' {key}="{_escaped(attributes[key])}"')
+    children = _children(node)
+    if not children:
+        out.append("/>\n")
+        return
+    if len(children) == 1 and isinstance(children[0], str):
+        out.append(f">{_escaped(children[0])}</{name}>\n")
+        return
+    out.append(">\n")
+    for child in children:
+        if isinstance(child, str):
+            if child.strip():  # whitespace between elements is left out
+                out.append(_escaped(f"{indent}{_INDENT}{child}\n"))
+        else:
+            _write(child, out, indent + _INDENT, scope)
+    out.append(f"{indent}</{name}>\n")
+
+
+def _children(node) -> list:
+    """The child nodes as minidom has them: text (str) and nodes, in order; an empty text is
+    no node."""
+    children = [node.text] if node.text else []
+    for child in node:
+        children.append(child)
+        if child.tail:
+            children.append(child.tail)
+    return children
+
+
+def _qualified(tag: str, nsmap: dict, attribute: bool = False) -> str:
+    """``{uri}local`` as ``prefix:local`` with the prefix declared for ``uri`` (none for the
+    default namespace of an element)."""
+    if not tag.startswith("{"):
+        return tag
+    uri, _, local = tag[1:].partition("}")
+    for prefix, mapped in nsmap.items():
+        if mapped == uri and (prefix is not None or not attribute):
+            return local if prefix is None else f"{prefix}:{local}"
+    return local
 
 
 def dependencies(robot) -> str:

@@ -3,6 +3,8 @@ points shaded by manipulability)."""
 
 from __future__ import annotations
 
+from urdftool.numbers import number, numbers
+
 # viridis at five stops: low manipulability light, high dark
 _RAMP = ((253, 231, 37), (94, 201, 98), (33, 145, 140), (59, 82, 139), (68, 1, 84))
 PANEL = 360  # [px] each view
@@ -12,15 +14,21 @@ TOP = 56  # [px] title rows
 def text(space) -> str:
     lower, upper = space.lower, space.upper
     m = space.manipulability
+    size = max(abs(float(v)) for v in (*lower, *upper, space.reach)) or None
+
+    def length(value):  # digits counted from the workspace's size: round-off bounds are 0
+        return number(value, scale=size)
+
+    peak = float(m.max()) or None
     lines = [f"workspace of {space.tip} relative to {space.base} ({len(space.joints)} joints: "
              f"{', '.join(space.joints)}), {space.samples} samples (seed {space.seed})",
-             f"  max reach {space.reach:.4g} m from the first joint at "
-             f"({' '.join(f'{v:.4g}' for v in space.centre)}); horizontal "
-             f"{space.horizontal_reach:.4g} m",
-             f"  x from {lower[0]:.4g} to {upper[0]:.4g} m, y from {lower[1]:.4g} to "
-             f"{upper[1]:.4g} m, z from {lower[2]:.4g} to {upper[2]:.4g} m (vertical extent "
-             f"{upper[2] - lower[2]:.4g} m)",
-             f"  manipulability: min {m.min():.3g}, mean {m.mean():.3g}, max {m.max():.3g}"]
+             f"  max reach {length(space.reach)} m from the first joint at "
+             f"({numbers(space.centre)}); horizontal {length(space.horizontal_reach)} m",
+             f"  x from {length(lower[0])} to {length(upper[0])} m, y from {length(lower[1])} "
+             f"to {length(upper[1])} m, z from {length(lower[2])} to {length(upper[2])} m "
+             f"(vertical extent {length(upper[2] - lower[2])} m)",
+             f"  manipulability: min {number(m.min(), 3, scale=peak)}, mean "
+             f"{number(m.mean(), 3, scale=peak)}, max {number(m.max(), 3)}"]
     return "\n".join(lines) + "\n"
 
 
@@ -46,7 +54,7 @@ def picture(space, title: str):
     middle = (low + high) / 2
     peak = float(space.manipulability.max()) or 1.0
     items = [("text", 8, 18, title, 13, "start", False),
-             ("text", 8, 36, f"max reach {space.reach:.3g} m, {space.samples} samples; colour: "
+             ("text", 8, 36, f"max reach {number(space.reach, 3)} m, {space.samples} samples; colour: "
                              "manipulability (light low, dark high)", 11, "start", False)]
     order = np.argsort(space.manipulability)  # dark, well-conditioned points on top
     for panel, (axis, name) in enumerate(((1, "top view: x right, y up"),

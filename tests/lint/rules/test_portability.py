@@ -152,12 +152,3 @@ def test_isaac_names_are_usd_identifiers():
     for name in ("arm-joint.1", "2nd_link", "_base", "base_link", "tool 0", "a.b"):
         made = tf.MakeValidIdentifier(name)
         assert _usd_identifier(name) == ("a" + made if made.startswith("_") else made)
-
-
-def test_docs_targets_table_is_current():
-    from conftest import ROOT
-    from urdftool.docs import with_table
-
-    text = (ROOT / "docs" / "targets.md").read_text(encoding="utf-8")
-    assert text == with_table(text), \
-        "docs/targets.md rules table is stale: run python -m urdftool.docs docs/targets.md"

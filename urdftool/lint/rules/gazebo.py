@@ -12,6 +12,7 @@ from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import number, numbers
 from urdftool.physics import mat3
 
 GEOMETRY_TOLERANCE = 0.05
@@ -170,7 +171,7 @@ def diff_drive_geometry(robot):
             if expected > 0 and abs(values[0] - expected) > GEOMETRY_TOLERANCE * expected:
                 off = 100 * (values[0] - expected) / expected
                 yield where, (f"{drive.label}: {tag} is {values[0]:g} m but the URDF gives "
-                              f"{expected:.4g} m ({off:+.1f} %)")
+                              f"{number(expected)} m ({number(off, places=1, plus=True)} %)")
 
 
 HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg is horizontal
@@ -340,7 +341,7 @@ def diff_drive_wheel_layout(robot):
             axis = _world_axis(robot, joint)
             if axis is not None and abs(axis[2]) > HORIZONTAL:
                 yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
-                                    f"({axis[0]:.3g}, {axis[1]:.3g}, {axis[2]:.3g}) in the root frame, "
+                                    f"({numbers(axis, 3, ', ')}) in the root frame, "
                                     "not a horizontal axis; the wheel would spin flat on the ground "
                                     "(set its axis or origin rpy so the axis points sideways)")
             link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
@@ -352,8 +353,8 @@ def diff_drive_wheel_layout(robot):
         names = left.get("name"), right.get("name")
         if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
             yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
-                                    f"(y = {poses[names[0]][0][1]:.3g} m, right wheel at y = "
-                                    f"{poses[names[1]][0][1]:.3g} m; REP-103: +y is left); swap them")
+                                    f"(y = {number(poses[names[0]][0][1], 3)} m, right wheel at y = "
+                                    f"{number(poses[names[1]][0][1], 3)} m; REP-103: +y is left); swap them")
         axes = _world_axis(robot, left), _world_axis(robot, right)
         if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
             yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
@@ -381,8 +382,9 @@ def _caster_below(robot, drive, wheel, where):
             offset, _ = mat3.placement(origin(collision))
             bottom = (position[2] + mat3.apply(rotation, offset)[2]) - values[0]
             if bottom < ground - CASTER_CLEARANCE:
-                yield where, (f"{drive.label}: caster '{name}' reaches {1000 * (ground - bottom):.0f} mm "
-                              f"below the drive wheels' contact plane (z = {ground:.3g} m); the "
+                yield where, (f"{drive.label}: caster '{name}' reaches "
+                              f"{number(1000 * (ground - bottom), places=0)} mm below the drive "
+                              f"wheels' contact plane (z = {number(ground, 3)} m); the "
                               "wheels would hang in the air: raise the caster or shrink it")
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import MILLIMETRE, number, numbers
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import first_child
@@ -295,7 +296,7 @@ def inertia_indefinite(robot):
         if moments[0] < -max(NEGATIVE_TOLERANCE * largest, NEGATIVE_FLOOR):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
-                f"{', '.join(f'{m:.4g}' for m in moments)} include a negative one; check the "
+                f"{', '.join(number(m) for m in moments)} include a negative one; check the "
                 "signs of ixy, ixz, iyz"))
 
 
@@ -330,9 +331,9 @@ def _link_solids(robot):
                                              if properties.mass > 0])
 
 
-def _rounded(values) -> list[float]:
-    """Values rounded to 4 decimals as numpy rounds them (round half to even of x * 1e4)."""
-    return [math.copysign(round(v * 1e4) / 1e4, v) for v in values]
+def _rounded(values) -> str:
+    """Values rounded to 4 decimals (round half to even), as a list: ``[-0.05, 0.1, 0]``."""
+    return "[" + ", ".join(number(round(v, 4), 6) for v in values) + "]"
 
 
 @rule("U307", "com-outside-geometry", Severity.WARNING)
@@ -363,11 +364,11 @@ def com_outside_geometry(robot):
         distance = math.sqrt(sum((ox * ox, oy * oy, oz * oz)))
         extent = max(hx - lx, hy - ly, hz - lz)
         if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
-            com = " ".join(f"{v:.4g}" for v in properties.com)
+            com = numbers(properties.com, floor=MILLIMETRE)
             fixed = f" and of {', '.join(repr(n) for n in rigid.links[1:])} fixed to it" \
                 if len(rigid.links) > 1 else ""
             yield first_child(link, "inertial"), (
-                f"link '{_name(link)}': centre of mass ({com}) is {distance:.3g} m outside its "
+                f"link '{_name(link)}': centre of mass ({com}) is {number(distance, 3)} m outside its "
                 f"visual and collision geometry{fixed} (box {_rounded(low)} to "
                 f"{_rounded(high)}); check the inertial origin's frame")
 
@@ -429,7 +430,7 @@ def inertia_unit_mistake(robot):
         if factor is not None:
             direction = "larger" if ratio > 1 else "smaller"
             yield _recomputed(robot, link, properties, (
-                f"link '{_name(link)}': declared inertia is {ratio:.3g} times the "
+                f"link '{_name(link)}': declared inertia is {number(ratio, 3)} times the "
                 f"{solid.source} geometry's (about 1e{factor} {direction}); a unit mistake? "
                 "`urdftool inertia` computes the right values"))
 
@@ -523,11 +524,12 @@ def inertia_far_from_geometry(robot):
         if _unit_factor(properties, expected, ratio) is not None:
             continue  # U309 says it
         beyond = (f", more than any distribution of that mass inside it can have "
-                  f"({_largest_trace(properties, solid):.3g})") if larger else ""
+                  f"({number(_largest_trace(properties, solid), 3)})") if larger else ""
         yield _inertial_part(link, "inertia"), (
-            f"link '{_name(link)}': declared inertia (trace {trace:.3g} kg m^2) is "
-            f"{ratio:.3g} times that of its {solid.source} geometry as a uniform solid of the "
-            f"declared {properties.mass:g} kg (trace {mat3.trace(expected.inertia):.3g}){beyond}; "
+            f"link '{_name(link)}': declared inertia (trace {number(trace, 3)} kg m^2) is "
+            f"{number(ratio, 3)} times that of its {solid.source} geometry as a uniform solid of "
+            f"the declared {properties.mass:g} kg (trace "
+            f"{number(mat3.trace(expected.inertia), 3)}){beyond}; "
             f"`urdftool inertia --link {_name(link)}` computes it")
 
 
@@ -597,11 +599,13 @@ def implausible_density(robot):
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
         if least > DENSEST:
             yield _inertial_part(link, "mass"), (
-                f"link '{_name(link)}': {properties.mass:g} kg in at most {bounds[1]:.3g} m^3 "
-                f"of geometry is at least {least:,.0f} kg/m^3, denser than osmium "
-                f"({DENSEST:,.0f}); a wrong mass or geometry scale")
+                f"link '{_name(link)}': {properties.mass:g} kg in at most "
+                f"{number(bounds[1], 3)} m^3 of geometry is at least "
+                f"{number(least, places=0, grouped=True)} kg/m^3, denser than osmium "
+                f"({number(DENSEST, places=0, grouped=True)}); a wrong mass or geometry scale")
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
-                f"link '{_name(link)}': {properties.mass:g} kg in {bounds[0]:.3g} m^3 of "
-                f"{solid.source} geometry is {properties.mass / bounds[0]:.3g} kg/m^3, lighter "
+                f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
+                f"{solid.source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
+                "lighter "
                 f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")

@@ -26,9 +26,9 @@ U901 = declare("U901", "unused-suppression", Severity.WARNING, """
 U902 = declare("U902", "analysis-unavailable", Severity.INFO, """
     A rule did not run because a library it needs is not installed.
 
-    A lint-only install (``pip install urdftool``, as the pre-commit hook uses) leaves out
-    Pinocchio, FCL and the other analysis libraries; the rules that pose the robot or test
-    collisions need them. The note names the library; ``pip install 'urdftool[analysis]'`` runs
-    them too. The other rules ran as usual.
+    A lint-only install (urdftool without its ``analysis`` extra, as the pre-commit hook
+    installs it) leaves out Pinocchio, FCL and the other analysis libraries; the rules that pose
+    the robot or test collisions need them. The note names the library and the command that
+    installs the extra. The other rules ran as usual.
     """)
 

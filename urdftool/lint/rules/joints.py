@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import number
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
@@ -170,7 +171,7 @@ def axis_not_unit(robot):
     for joint, axis, values, norm in _axes(robot):
         if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE:
             unit = _unit_text(values, norm)
-            yield offer(axis, (f"joint '{_name(joint)}' axis has length {norm:.6g}, not 1; "
+            yield offer(axis, (f"joint '{_name(joint)}' axis has length {number(norm, 6)}, not 1; "
                                f"write xyz=\"{unit}\""), f"normalise the axis to {unit}",
                         set_attribute(robot, axis, "xyz", unit))
 
@@ -414,7 +415,7 @@ def mimic_outside_limits(robot):
         if ends[0] < own[0] - slack or ends[1] > own[1] + slack:
             yield mimic, (f"joint '{_name(joint)}' mimics '{target}' ({multiplier[0]:g} x "
                           f"[{driven[0]:g}, {driven[1]:g}] + {offset[0]:g}), so it goes over "
-                          f"[{ends[0]:.4g}, {ends[1]:.4g}], outside its own limits "
+                          f"[{number(ends[0])}, {number(ends[1])}], outside its own limits "
                           f"[{own[0]:g}, {own[1]:g}]; fix the multiplier's sign or the limits")
 
 
@@ -441,6 +442,6 @@ def revolute_range_in_degrees(robot):
         largest = max(abs(lower), abs(upper))
         if MULTI_TURN < largest <= DEGREE_LIKE:
             yield limit, (f"revolute joint '{_name(joint)}' has limits [{lower:g}, {upper:g}] "
-                          f"rad ({largest / (2 * math.pi):.1f} turns): degrees written as radians? "
-                          f"In radians: lower=\"{math.radians(lower):.4g}\" "
-                          f"upper=\"{math.radians(upper):.4g}\"")
+                          f"rad ({number(largest / (2 * math.pi), places=1)} turns): degrees "
+                          f"written as radians? In radians: lower=\"{number(math.radians(lower))}\" "
+                          f"upper=\"{number(math.radians(upper))}\"")

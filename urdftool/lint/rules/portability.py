@@ -33,6 +33,7 @@ from pathlib import Path
 
 from urdftool import simulators as facts
 from urdftool.description.files import kind_of
+from urdftool.numbers import number
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import child_list, first_child
@@ -450,7 +451,7 @@ def mujoco_inertia_refused(robot):
             continue
         where = first_child(first_child(link, "inertial"), "inertia")
         message = (f"link '{_name(link)}': {_as_of(robot, 'mujoco')} refuses its inertia "
-                   f"(principal moments {a:.4g}, {b:.4g}, {c:.4g}): \"{why}\"")
+                   f"(principal moments {', '.join(number(m) for m in (a, b, c))}): \"{why}\"")
         if first and why.endswith("A + B >= C"):
             yield _compiler_fix(robot, where, message, {"balanceinertia": "true"},
                                 "add <mujoco><compiler balanceinertia=\"true\"/>")
@@ -1149,7 +1150,8 @@ def _invalid_inertia(robot, target: str):
             also = f" (with {', '.join(lumped_in)} lumped into it)" if lumped_in else ""
             where = first_child(link, "inertial")
             yield where if where is not None else link, (
-                f"link '{name}'{also}: principal moments {a:.4g}, {b:.4g}, {c:.4g} break the "
+                f"link '{name}'{also}: principal moments {', '.join(number(m) for m in (a, b, c))} "
+                "break the "
                 f"triangle inequality: {_sdf_title(robot, target)} reports \"has invalid "
                 "inertia\" and its validity check (gz sdf -k) fails")
 

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from urdftool.description.companions import companions, is_spec
 from urdftool.description.documents import YamlMap
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import number
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
@@ -109,7 +110,7 @@ def malformed_spec(robot):
     """The joint spec file is not valid YAML or not in the spec format.
 
     A spec that does not parse checks nothing, so it is an error rather than silence.
-    See the README for the format (``unit``, ``tolerance``, ``joints``).
+    See docs/companions.md for the format (``unit``, ``tolerance``, ``joints``).
 
     Bad: ``head_pan: {servo_id: 19, lower: -90, uper: 90}``
     Good: ``head_pan: {servo_id: 19, lower: -90, upper: 90}``
@@ -176,14 +177,15 @@ def limit_outside_spec(robot):
             urdf = value / scale if joint.get("type") == "revolute" else value
             beyond = sign * (urdf - entry.entry[key])
             if beyond > tolerance + 1e-9:
-                yield where, (f"joint '{entry.name}': {key} limit {urdf:.4g} {unit} is "
-                              f"{beyond:.4g} {unit} beyond the spec's {entry.entry[key]:g} {unit} "
+                yield where, (f"joint '{entry.name}': {key} limit {number(urdf)} {unit} is "
+                              f"{number(beyond)} {unit} beyond the spec's {entry.entry[key]:g} "
+                              f"{unit} "
                               f"(tolerance {tolerance:g} {unit})")
         for key in ("effort", "velocity"):
             value, allowed = _limit(joint, key), entry.entry.get(key)
             if value is not None and allowed is not None and value > allowed * (1 + SI_TOLERANCE):
                 yield where, (f"joint '{entry.name}': {key} limit {value:g} exceeds the spec's "
-                              f"{allowed:g} by {value - allowed:.4g}")
+                              f"{allowed:g} by {number(value - allowed)}")
 
 
 @rule("U704", "joint-not-in-spec", Severity.WARNING)
@@ -265,7 +267,8 @@ def limit_spec_degree_slip(robot):
             continue
         if all(abs(u - t * DEGREE) <= DEGREE_MATCH * span for u, t in zip(urdf, table)):
             yield joint.find("limit"), (
-                f"joint '{entry.name}': URDF range {urdf[0]:.4g} .. {urdf[1]:.4g} {unit} is the "
+                f"joint '{entry.name}': URDF range {number(urdf[0])} .. {number(urdf[1])} {unit} is "
+                "the "
                 f"spec's {table[0]:g} .. {table[1]:g} {unit} times pi/180: the spec's values "
                 f"look like degrees{' under unit: rad' if unit == 'rad' else ''}, or the URDF "
                 "was converted from degrees twice")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from urdftool.description.companions import companions
 from urdftool.lint.catalogue import Severity, rule
+from urdftool.numbers import number
 from urdftool.lint.fixes import offer
 from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
@@ -273,7 +274,8 @@ def _at_default(overlap) -> bool:
 def _where(overlap) -> str:
     labels = [label for label, _ in overlap.poses]
     shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
-    return f"collide (FCL penetration depth {overlap.depth * 1000:.1f} mm) at {shown}"
+    return (f"collide (FCL penetration depth {number(overlap.depth * 1000, places=1)} mm) at "
+            f"{shown}")
 
 
 @rule("U810", "srdf-disabled-pair-collides", Severity.WARNING)

@@ -1,0 +1,49 @@
+"""Big generated robots: ``urdftool fk`` of a chain, text output to a pipe, against Pinocchio's
+own ``buildModelFromXML`` of the same file (target: 1.5x at 2,000 links), and how ``fk`` grows
+(target: t(8,000 links) / t(1,000 links) at most 12, i.e. no worse than n log n by much).
+Median CPU times of the child processes, runs alternating (benchmarks/timing.py).
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from benchmarks import generate  # noqa: E402
+from benchmarks.timing import alternating, load  # noqa: E402
+
+URDFTOOL = str(Path(sys.executable).parent / "urdftool")
+
+
+def main() -> list[dict]:
+    results = []
+    with tempfile.TemporaryDirectory() as folder:
+        chain = {n: str(generate.write(Path(folder), n, "chain")) for n in (1000, 2000, 8000)}
+        build = ("import pinocchio, sys; "
+                 "pinocchio.buildModelFromXML(open(sys.argv[1]).read())")
+        found = alternating({"fk": [URDFTOOL, "fk", chain[2000]],
+                             "pinocchio": [sys.executable, "-c", build, chain[2000]]}, 3)
+        ratio = found["fk"].median / found["pinocchio"].median
+        print(f"fk 2000-link chain: {found['fk'].text()}; buildModelFromXML "
+              f"{found['pinocchio'].text()}; {ratio:.2f}x; {load()}")
+        results.append({"name": f"fk 2000-link chain, text [{found['fk'].median:.2f} s cpu] vs "
+                                f"buildModelFromXML [{found['pinocchio'].median:.2f} s] "
+                                f"({load()})",
+                        "ratio": ratio, "target": 1.5, "ok": ratio <= 1.5})
+        grown = alternating({"1k": [URDFTOOL, "fk", chain[1000]],
+                             "8k": [URDFTOOL, "fk", chain[8000]]}, 2)
+        growth = grown["8k"].median / grown["1k"].median
+        print(f"fk 8000 vs 1000 links: {grown['8k'].text()} / {grown['1k'].text()} = "
+              f"{growth:.1f}; {load()}")
+        results.append({"name": f"fk t(8000 links)/t(1000 links) [{grown['8k'].median:.2f} / "
+                                f"{grown['1k'].median:.2f} s cpu] ({load()})",
+                        "ratio": growth, "target": 12.0, "ok": growth <= 12})
+    return results
+
+
+if __name__ == "__main__":
+    main()

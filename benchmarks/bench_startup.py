@@ -1,0 +1,100 @@
+"""Start-up against its references, and each start-up trick of ``urdftool/__main__.py`` (the one
+door for them) with and without it: a trick stays while it saves 50 ms or more of CPU on what
+users run.
+
+- ``urdftool --help`` against ``python -c pass`` (target: 1.5x).
+- ``urdftool check`` of robots/r2d2 against urdfdom's way, ``xacro`` then the ELF ``check_urdf``
+  (target: 2x).
+- the kept help texts (``--help``), the output replay (the same ``check`` words again, cached,
+  as a pre-commit hook or an editor runs it, on r2d2), the collector's rhythm and the skipped
+  teardown (``check --jobs 1 --no-cache`` of the corpus URDFs, the CI path): each timed with the
+  door as it is and with that trick patched out.
+
+Every figure is the median CPU time of the child processes (load-independent; the range and the
+median wall time beside it) of runs alternating with its reference, with the load average.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from benchmarks.bench_check import corpus_urdfs, urdfdom_check_urdf  # noqa: E402
+from benchmarks.timing import alternating, load  # noqa: E402
+
+BIN = Path(sys.executable).parent
+ROBOT = ROOT / "robots" / "r2d2" / "r2d2.urdf.xacro"
+SAVES = 0.050  # [s] of CPU a trick must save to stay
+# urdftool through its door, with one trick patched out (PATCH) or none ("pass")
+DOOR = ("import sys; sys.argv = ['urdftool', *sys.argv[1:]]; import urdftool.__main__ as door; "
+        "{patch}; door.main()")
+
+
+def door(patch: str, *words: str) -> list[str]:
+    return [sys.executable, "-c", DOOR.format(patch=patch), *words]
+
+
+def _ratio(name: str, ours, reference, target: float) -> dict:
+    ratio = ours.median / reference.median
+    print(f"{name}: {ratio:.2f}x (target {target}x): ours {ours.text()}; reference "
+          f"{reference.text()}; {load()}")
+    return {"name": f"{name} [{ours.median * 1e3:.0f} vs {reference.median * 1e3:.0f} ms cpu, "
+                    f"{load()}]",
+            "ratio": ratio, "target": target, "ok": ratio <= target}
+
+
+def _trick(name: str, kept, without) -> dict:
+    saved = without.median - kept.median
+    print(f"trick {name}: saves {saved * 1e3:.0f} ms cpu (stays at {SAVES * 1e3:.0f}): with it "
+          f"{kept.text()}; without {without.text()}; {load()}")
+    return {"name": f"trick {name}: saves {saved * 1e3:.0f} ms cpu [{load()}]",
+            "ratio": kept.median / without.median, "target": f">= {SAVES * 1e3:.0f} ms",
+            "ok": saved >= SAVES}
+
+
+def main() -> list[dict]:
+    urdftool = str(BIN / "urdftool")
+    results = []
+    found = alternating({"python": [sys.executable, "-c", "pass"],
+                         "help": [urdftool, "--help"],
+                         "help without": door("door._help = lambda words: None", "--help")}, 9)
+    results.append(_ratio("urdftool --help vs python -c pass", found["help"], found["python"],
+                          1.5))
+    results.append(_trick("kept help texts (--help)", found["help"], found["help without"]))
+
+    check_urdf, environment = urdfdom_check_urdf()
+    with tempfile.TemporaryDirectory() as folder:
+        urdf = Path(folder) / "r2d2.urdf"
+        reference = (f"{BIN / 'xacro'} {ROBOT} > {urdf} && {check_urdf} {urdf}", environment)
+        cached = [urdftool, "check", "--cache-dir", str(Path(folder) / "cache"), str(ROBOT)]
+        found = alternating({"ours": [urdftool, "check", "--no-cache", str(ROBOT)],
+                             "reference": reference,
+                             "replayed": cached,
+                             "not replayed": door("door._replay = lambda words: None",
+                                                  *cached[1:])}, 9)
+    results.append(_ratio("urdftool check r2d2 vs xacro + check_urdf", found["ours"],
+                          found["reference"], 2.0))
+    results.append(_trick("output replay (check r2d2 again, cached)", found["replayed"],
+                          found["not replayed"]))
+
+    files = [str(path) for path in corpus_urdfs()]
+    if files:
+        words = ["check", "--jobs", "1", "--format", "json", "--no-cache", *files]
+        found = alternating({"door": door("pass", *words),
+                             "no collector rhythm": door("door._collect_less = lambda: None",
+                                                         *words),
+                             "teardown": door("door._end = lambda code: None", *words)}, 5)
+        results.append(_trick(f"collector rhythm (check {len(files)} corpus URDFs)",
+                              found["door"], found["no collector rhythm"]))
+        results.append(_trick(f"skipped teardown (check {len(files)} corpus URDFs)",
+                              found["door"], found["teardown"]))
+    return results
+
+
+if __name__ == "__main__":
+    main()

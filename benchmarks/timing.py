@@ -1,0 +1,56 @@
+"""Alternating timings of commands in CPU time (the load-independent measure on a shared host:
+the CPU time of the child processes, from ``resource.getrusage``), with wall time and the load
+average beside each figure."""
+
+from __future__ import annotations
+
+import os
+import resource
+import statistics
+import subprocess
+import time
+
+
+def run_once(command, **kwargs) -> tuple[float, float]:
+    """(CPU time, wall time) in [s] of one run of ``command`` (a list, or a shell string)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                   shell=isinstance(command, str), **kwargs)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
+
+
+class Series:
+    """The samples of one command: CPU and wall times in [s]."""
+
+    def __init__(self):
+        self.cpu, self.wall = [], []
+
+    @property
+    def median(self) -> float:
+        return statistics.median(self.cpu)
+
+    def text(self) -> str:
+        return (f"{self.median * 1e3:.0f} ms cpu [{min(self.cpu) * 1e3:.0f}-"
+                f"{max(self.cpu) * 1e3:.0f}], {statistics.median(self.wall) * 1e3:.0f} ms wall")
+
+
+def alternating(commands: dict, repeat: int = 7, env: dict | None = None) -> dict:
+    """name -> Series of each command of ``commands`` (name -> command, or (command,
+    environment)), run in turn ``repeat`` times (one warm-up round first, not counted), so that
+    each meets the same load."""
+    found = {name: Series() for name in commands}
+    for round_ in range(repeat + 1):
+        for name, command in commands.items():
+            command, environment = command if isinstance(command, tuple) else (command, env)
+            cpu, wall = run_once(command, env=environment)
+            if round_:
+                found[name].cpu.append(cpu)
+                found[name].wall.append(wall)
+    return found
+
+
+def load() -> str:
+    return "load {:.1f}/{:.1f}/{:.1f}".format(*os.getloadavg())

@@ -1,0 +1,124 @@
+"""The text report says each thing once: findings that say the same thing are one line with a
+count and the places; a long "available ..." list is written once; notes show when asked for.
+The machine formats keep every finding."""
+
+from __future__ import annotations
+
+import io
+import json
+
+from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.errors import available
+from urdftool.lint.engine import FileResult
+from urdftool.report import render
+
+JOINTS = [f"j{i}" for i in range(24)]
+
+
+def _prefix(i: int) -> Finding:
+    return Finding("U508", "hardware-interface-prefix", Severity.WARNING,
+                   f"transmission 't_{JOINTS[i]}': joint '{JOINTS[i]}' names "
+                   "'EffortJointInterface' without hardware_interface/; write "
+                   "hardware_interface/EffortJointInterface", Location("robot.urdf", 100 + 12 * i))
+
+
+def _text(results, **options) -> str:
+    stream = io.StringIO()
+    render("text", results, stream, **options)
+    return stream.getvalue()
+
+
+def test_findings_that_say_the_same_thing_are_one_line_with_count_and_places():
+    results = [FileResult("robot.urdf", [_prefix(i) for i in range(24)])]
+    lines = _text(results).splitlines()
+    assert len([line for line in lines if "U508" in line]) == 1
+    [line] = [line for line in lines if "U508" in line]
+    assert line.startswith("  robot.urdf:100: warning U508 transmission 't_j0'")
+    assert "[24 times: lines 100, 112, 124," in line and "... (24 in all)]" in line
+    assert "1 file checked: 0 errors, 24 warnings" in lines[-1]
+    # the machine formats keep every finding
+    stream = io.StringIO()
+    render("json", results, stream)
+    assert len(json.loads(stream.getvalue())["diagnostics"]) == 24
+
+
+def test_different_things_stay_apart():
+    other = Finding("U508", "hardware-interface-prefix", Severity.WARNING,
+                    "transmission 't': joint 'j' names 'VelocityJointInterface' without "
+                    "hardware_interface/; write hardware_interface/VelocityJointInterface",
+                    Location("robot.urdf", 5))
+    error = Finding("U204", "inverted-limits", Severity.ERROR, "joint 'j0': lower 1 is above "
+                    "upper -1; swap them", Location("robot.urdf", 7))
+    text = _text([FileResult("robot.urdf", [other, error, _prefix(0), _prefix(1)])])
+    assert text.count("U508") == 2 and "[2 times: lines 100, 112]" in text
+    assert "U204" in text
+
+
+def test_a_macro_line_expanded_by_several_calls_is_one_place():
+    findings = [Finding("U022", "no-effect", Severity.WARNING, "<dynamics> attribute 'K' has no "
+                        "effect", Location("arm.xacro", line, (Location("robot.xacro", call),)))
+                for line in (36, 51) for call in (29, 33)]
+    text = _text([FileResult("robot.xacro", findings)])
+    assert "arm.xacro:36: warning U022" in text
+    assert "[4 times: lines 36 (2x), 51 (2x)]" in text
+    assert "expanded from 2 macro calls at robot.xacro:29, robot.xacro:33" in text
+
+
+def test_a_long_list_of_names_is_written_once():
+    links = [f"link_{i:02d}" for i in range(31)]
+    findings = [Finding("U611", "gazebo-unknown-reference", Severity.ERROR,
+                        f"<gazebo reference='{name}'> names no link or joint; "
+                        f"{available('links', name, links)}", Location("robot.urdf", line))
+                for name, line in (("head", 10), ("arm", 20))]
+    findings.append(Finding("U501", "transmission-unknown-joint", Severity.ERROR,
+                            f"transmission 't' names link 'x'; {available('links', 'x', links)}",
+                            Location("robot.urdf", 30)))
+    text = _text([FileResult("robot.urdf", findings)])
+    assert text.count("link_00, link_01") == 1
+    assert "available links: the 31 listed at line 10" in text
+    assert "U501 transmission 't' names link 'x'; available links: the 31 listed at line 10" \
+        in text
+    # a short list is cheaper to repeat than to refer to
+    short = [Finding("U406", "undefined-material", Severity.WARNING,
+                     f"material '{m}' is not defined; {available('materials', m, ['Red'])}",
+                     Location("robot.urdf", line)) for m, line in (("a", 1), ("b", 2))]
+    assert _text([FileResult("robot.urdf", short)]).count("available materials: Red") == 1
+
+
+NOTE = Finding("U308", "root-link-inertia", Severity.INFO, "root link 'base' has mass 1 kg, "
+               "which KDL ignores", Location("robot.urdf", 2))
+
+
+def test_notes_are_counted_when_not_shown():
+    results = [FileResult("robot.urdf", [NOTE, _prefix(0)])]
+    hidden = _text(results, notes=False)
+    assert "U308" not in hidden
+    assert hidden.splitlines()[-1] == \
+        "1 file checked: 0 errors, 1 warning (1 note not shown: --notes shows them)"
+    assert "U308" in _text(results, notes=True)
+    alone = _text([FileResult("robot.urdf", [NOTE])], notes=False)
+    assert alone == "1 file checked: no problems found (1 note not shown: --notes shows them)\n"
+
+
+ROBOT = """<robot name="r">
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+</robot>
+"""
+
+
+def test_check_hides_notes_unless_asked_by_option_or_setting(run_cli, tmp_path):
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    plain = run_cli("check", robot, "--no-cache")
+    assert "U308" not in plain.stdout and "1 note not shown" in plain.stdout
+    assert "U308" in run_cli("check", robot, "--no-cache", "--notes").stdout
+    assert "U308" in json.loads(run_cli("check", robot, "--no-cache", "-f", "json").stdout
+                                )["diagnostics"][0]["code"]
+    (tmp_path / "urdftool.toml").write_text("notes = true\n")
+    assert "U308" in run_cli("check", robot, "--no-cache").stdout
+    assert "U308" not in run_cli("check", robot, "--no-cache", "--no-notes").stdout
+    (tmp_path / "urdftool.toml").write_text("notes = \"yes\"\n")
+    refused = run_cli("check", robot, "--no-cache")
+    assert refused.exit_code == 2 and "'notes' must be true or false" in refused.output

@@ -1,0 +1,79 @@
+"""One way to print a float for people: rounded to what is printed, never -0; and a guard that
+no other module formats floats its own way."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import load_text
+from urdftool.numbers import MILLIMETRE, number, numbers
+
+PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
+
+
+@pytest.mark.parametrize("value, kwargs, text", [
+    (-9.0e-21, {"scale": 0.19}, "0"),
+    (2e-14, {"scale": 0.19}, "0"),
+    (6.896e-05, {"scale": 0.3709}, "6.896e-05"),  # above the last digit of 0.3709: kept
+    (-0.0, {}, "0"),
+    (-1e-9, {"places": 6}, "0.000000"),
+    (-0.5, {"places": 6}, "-0.500000"),
+    (1.23456789, {"places": 3}, "1.235"),
+    (-4e-5, {"places": 3, "plus": True}, "0.000"),
+    (4.0, {"plus": True}, "+4"),
+    (-4.0, {"plus": True}, "-4"),
+    (0.0, {"plus": True}, "0"),
+    (1e-17, {}, "1e-17"),  # alone, a number is its own scale
+    (float("nan"), {}, "nan"),
+    (float("-inf"), {}, "-inf"),
+])
+def test_number(value, kwargs, text):
+    assert number(value, **kwargs) == text
+
+
+def test_numbers_count_digits_from_the_largest_component():
+    assert numbers((0.3, 1e-17, -2e-18)) == "0.3 0 0"
+    assert numbers((1e-17, -2e-17, 0.0), floor=MILLIMETRE) == "0 0 0"
+    assert numbers((0.0002279, 0.0001225, 0.0002279, 0, 0, 6.455e-21)) == \
+        "0.0002279 0.0001225 0.0002279 0 0 0"
+
+
+WHEEL = """<robot name="r"><link name="wheel">
+  <inertial><mass value="0.2"/><origin rpy="1.5707963267948966 0 0"/>
+    <inertia ixx="0.0002279" iyy="0.0001225" izz="0.0002279" ixy="0" ixz="0" iyz="0"/></inertial>
+  <collision><origin rpy="1.5707963267948966 0 0"/>
+    <geometry><cylinder radius="0.035" length="0.1"/></geometry></collision></link></robot>"""
+
+
+def test_inertia_prints_round_off_as_zero(tmp_path):
+    """A cylinder turned a quarter turn: its computed tensor's off-diagonal is round-off
+    (it printed 6.455e-21 before), in the table and in the corrected <inertial> block."""
+    from urdftool.physics.inertia_compare import compare, inertial_xml
+    from urdftool.report.inertia import text
+
+    results = compare(load_text(tmp_path, WHEEL))
+    table = text(results)
+    assert "e-2" not in table and "e-1" not in table and "-0 " not in table, table
+    block = inertial_xml(results[0].computed)
+    assert "e-" not in block and '"-0"' not in block, block
+
+
+def test_no_module_formats_floats_its_own_way():
+    """Every float people read goes through urdftool.numbers.number: a format spec with a
+    precision (``:.3g``, ``:+.1f``, ``:.0%``) anywhere else is a place that can print -0 or
+    round-off. SVG coordinates and opacities (plot.py, picture.py) are not read by people; the
+    language server's log line of elapsed seconds is never negative."""
+    spec = re.compile(r"\{[^{}]*:[+ ]?\d*,?\.\d+[fgeG%]\}")
+    allowed = {"numbers.py", "report/plot.py", "report/picture.py", "server.py"}
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(PACKAGE).as_posix()
+        if relative in allowed:
+            continue
+        for number_, line in enumerate(path.read_text().splitlines(), 1):
+            if spec.search(line):
+                found.append(f"{relative}:{number_}: {line.strip()}")
+    assert not found, "\n".join(found)

@@ -1,0 +1,61 @@
+"""How numbers are printed for people: one function, :func:`number`, for every table, report
+line, message and generated XML value that shows a float.
+
+A number is rounded to the precision it is printed with before it is written, and the sign of
+a value that rounds to zero is dropped: an inertia tensor whose off-diagonal is ``-9e-21``
+(round-off of a rotation) prints ``0``, never ``-9e-21``, ``-0`` or ``-0.000``. The precision
+is either a number of decimals (``places``) or of significant digits (``digits``); with
+significant digits, ``scale`` is the size of the largest number printed beside it (the same
+vector, tensor or table column), so that a value far below that size's last printed digit is
+noise and prints ``0``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+
+def number(value: float, digits: int = 4, *, places: int | None = None,
+           scale: float | None = None, plus: bool = False, grouped: bool = False) -> str:
+    """``value`` as text, rounded to what is printed, never ``-0``.
+
+    digits: significant digits (as the ``g`` format) when ``places`` is None
+    places: decimals after the point (as the ``f`` format)
+    scale: with ``digits``, the magnitude the digits are counted from (default: the value
+        itself); e.g. ``number(2e-14, 4, scale=0.19)`` is ``0``
+    plus: write ``+`` before a positive value (a change), never before zero
+    grouped: with ``places``, thousands separated by commas (``22,590``)
+    """
+    value = float(value)
+    if not math.isfinite(value):
+        return ("+" if plus and value > 0 else "") + repr(value)
+    if places is not None:
+        value = round(value, places)
+        text = f"{value:,.{places}f}" if grouped else f"{value:.{places}f}"
+    else:
+        reference = abs(scale) if scale is not None and math.isfinite(scale) else abs(value)
+        if reference > 0:
+            quantum = 10.0 ** (math.floor(math.log10(reference)) - digits + 1)
+            if abs(value) < quantum / 2:
+                value = 0.0
+        text = f"{value:.{digits}g}"
+    if text.startswith("-") and not text.strip("-0.,e+"):
+        text = text[1:]  # -0, -0.000: zero after rounding
+    if plus and not text.startswith("-") and text.strip("0.e+"):
+        text = "+" + text
+    return text
+
+
+MILLIMETRE = 1e-3  # [m] the smallest scale of a position: a centre of mass of round-off only
+
+
+def numbers(values: Iterable[float], digits: int = 4, separator: str = " ",
+            floor: float = 0.0) -> str:
+    """A vector or tensor's components with :func:`number`, all counted from the largest one
+    (``0.3 1e-17`` -> ``0.3 0``), or from ``floor`` when that is larger: a position whose
+    components are all round-off (``1e-17 -2e-17 0`` with ``floor=MILLIMETRE``) is ``0 0 0``."""
+    values = [float(v) for v in values]
+    finite = [abs(v) for v in values if math.isfinite(v)]
+    scale = max([*finite, floor]) or None
+    return separator.join(number(v, digits, scale=scale) for v in values)
