@@ -34,7 +34,7 @@ LAYERS = [
     ("api", ("urdftool",)),
 ]
 # Inside lint, lowest first (the same rule applies).
-LINT = ["urdftool.lint.catalogue", "urdftool.lint.rules", "urdftool.lint.suppressions",
+LINT = ["urdftool.lint.pool", "urdftool.lint.catalogue", "urdftool.lint.rules", "urdftool.lint.suppressions",
         "urdftool.lint.engine", "urdftool.lint.settings", "urdftool.lint.targets",
         "urdftool.lint.cache", "urdftool.lint.runner"]
 ONLY_IN = {"rich": "urdftool.report", "typer": "urdftool.cli", "click": "urdftool.cli"}

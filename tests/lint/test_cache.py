@@ -100,8 +100,8 @@ def _entries(cache_dir, kind: str = "file") -> list:
 
 def _counting_checks(monkeypatch) -> list:
     checked = []
-    real = engine.check_file
-    monkeypatch.setattr(engine, "check_file", lambda path, *rest, **kw: checked.append(path)
+    real = engine.load_and_check
+    monkeypatch.setattr(engine, "load_and_check", lambda path, *rest, **kw: checked.append(path)
                         or real(path, *rest, **kw))
     return checked
 
@@ -340,7 +340,7 @@ def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
 def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeypatch, saved):
     # an editor saves a file while the check runs: the findings come from the old content, the
     # file's stamps and content are the new ones
-    real = engine.check_file
+    real = engine.load_and_check
 
     def save():
         if saved == "macro":
@@ -355,10 +355,10 @@ def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeyp
         save()
         return result
 
-    monkeypatch.setattr(engine, "check_file", saved_meanwhile)
+    monkeypatch.setattr(engine, "load_and_check", saved_meanwhile)
     cache_dir = tmp_path / "cache"
     before = _messages(robot, cache_dir)
-    monkeypatch.setattr(engine, "check_file", real)
+    monkeypatch.setattr(engine, "load_and_check", real)
     after = _messages(robot, cache_dir)
     assert after != before
     assert after == _messages(robot, tmp_path / "another-cache")  # as checked afresh
