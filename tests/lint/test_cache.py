@@ -12,7 +12,7 @@ import pytest
 from urdftool.description import files as files_module
 from urdftool.lint import cache as cache_module
 from urdftool.lint import engine
-from urdftool.lint.runner import check_paths
+from urdftool.lint.runner import Run, check_paths
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -306,6 +306,21 @@ def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, 
     monkeypatch.delenv("SOME_VARIABLE")
     (robot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
     assert cache.get_output(words) is None
+
+
+def test_keep_output_keeps_only_a_run_the_cache_kept_whole(robot, tmp_path, monkeypatch):
+    """What ``urdftool check`` printed is kept through the cache's own function, for a run kept
+    whole (its depends say when the output is stale), in the folder asked for, nowhere else."""
+    monkeypatch.setattr(files_module, "RACY_NS", 0)
+    cache_dir = tmp_path / "cache"
+    run = _kept_run(robot, cache_dir)
+    words = ["check", str(robot / "bot.urdf.xacro")]
+    cache_module.keep_output(None, run, (words, dict(os.environ)), "lost\n", "", 0)
+    cache_module.keep_output(cache_dir, Run(run.results), (words, dict(os.environ)), "no\n", "",
+                             0)  # a run not kept whole (depends None): its output is not either
+    assert cache_module.Cache(cache_dir).get_output(words) is None
+    cache_module.keep_output(cache_dir, run, (words, dict(os.environ)), "the report\n", "", 1)
+    assert cache_module.Cache(cache_dir).get_output(words) == ("the report\n", "", 1)
 
 
 def test_a_run_with_a_racy_stamp_keeps_no_servable_output(robot, tmp_path):
