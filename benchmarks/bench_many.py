@@ -52,13 +52,14 @@ def _write_repo(folder: Path, count: int) -> list[str]:
 
 
 def main() -> dict:
-    from urdftool.lint.engine import CheckOptions, check_file
-    from urdftool.lint.runner import check_files, default_jobs
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.lint.pool import default_jobs
+    from urdftool.lint.runner import check_files
 
     with tempfile.TemporaryDirectory() as tmp:
         files = _write_repo(Path(tmp), COUNT)
         options = CheckOptions()
-        check_file(files[0], options)  # warm up imports and rule registration
+        load_and_check(files[0], options)  # warm up imports and rule registration
         jobs = default_jobs()
         serials, parallels = [], []
         for _ in range(REPEATS):

@@ -114,10 +114,10 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
     """Every corpus entry point checked once per session, as ``urdftool check`` checks it, with
     the loaded robot kept: ``{entry_id: (entry, FileResult)}``. The integration modules that
     need the corpus robots or their findings read them here instead of loading them again."""
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     corpus_or_skip()
-    return {entry_id(entry): (entry, check_file(str(CORPUS / entry[0]),
+    return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
                                                 CheckOptions(xacro_args=entry[1])))
             for entry in corpus_entry_points()}
 

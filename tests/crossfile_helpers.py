@@ -8,7 +8,7 @@ from pathlib import Path
 
 from conftest import CASES, ROBOTS
 from urdftool.description.robot import CompanionPaths
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 HEAD_ROBOT = """<robot name="r">
   <link name="base_link"/><link name="head"/><link name="cam"/>
@@ -34,7 +34,7 @@ def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), con
         path.write_text(textwrap.dedent(text))
     options = CheckOptions(selection=Selection(tuple(select)),
                            companions=CompanionPaths(tuple(controllers), srdf, spec))
-    result = check_file(str(folder / "robot.urdf"), options)
+    result = load_and_check(str(folder / "robot.urdf"), options)
     return [(Path(f.file).name, f.line, f.code) for f in result.findings], result.findings
 
 
@@ -46,7 +46,7 @@ def broken_copy(tmp_path: Path, robot: str, file: str, old: str, new: str, count
     text = path.read_text()
     assert text.count(old) == count, f"{old!r} occurs {text.count(old)} times in {file}"
     path.write_text(text.replace(old, new))
-    result = check_file(str(folder / f"{robot}.urdf.xacro"), CheckOptions())
+    result = load_and_check(str(folder / f"{robot}.urdf.xacro"), CheckOptions())
     return result.findings
 
 
@@ -60,4 +60,4 @@ def case_messages(case: str, code: str) -> list[str]:
     path = CASES / case
     if path.is_dir():
         path = next(p for p in path.iterdir() if p.name.endswith((".urdf", ".urdf.xacro")))
-    return [f.message for f in check_file(str(path), CheckOptions()).findings if f.code == code]
+    return [f.message for f in load_and_check(str(path), CheckOptions()).findings if f.code == code]

@@ -1,52 +1,76 @@
 """The package is layered one way, without cycles (docs/architecture.md).
 
-Imports are read with ast, not by importing: every `import`/`from ... import` at any depth
-(inside functions too) and every `importlib.import_module("urdftool....")`. A dynamic
-`import_module(f"...")` is itself a failure: registries list their modules explicitly.
+The contracts are import-linter's, in pyproject.toml (``[tool.importlinter]``): the layers
+(every top-level module in one), the order inside lint, rich only in report, typer and click
+only in cli, no cycle between siblings. ``lint-imports`` reads every import statement, inside
+functions too; this file runs it, shows that each contract can fail, and keeps the two checks
+import-linter cannot make: a module imported by a computed name (which it does not see) and a
+rule code named below lint.
 """
 
 from __future__ import annotations
 
 import ast
 import re
-from collections import defaultdict
+import shutil
+import subprocess
+import sys
+import tomllib
 from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parents[1] / "urdftool"  # tests/test_layers.py
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "urdftool"
+CONTRACTS = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"]
+LAYERS = next(c for c in CONTRACTS["contracts"] if c["id"] == "layers")["layers"]  # highest first
 
-# Lowest first. A module may import modules of its own layer or of a lower one.
-LAYERS = [
-    ("base", ("urdftool.diagnostics", "urdftool.errors", "urdftool.budget", "urdftool.numbers",
-              "urdftool.simulators", "urdftool.origin")),
-    ("description", ("urdftool.description",)),
-    ("kinematics", ("urdftool.kinematics",)),
-    ("physics", ("urdftool.physics",)),
-    ("collision", ("urdftool.collision",)),
-    ("compare", ("urdftool.compare",)),
-    ("lint", ("urdftool.lint",)),
-    ("crosscheck", ("urdftool.crosscheck",)),
-    ("report", ("urdftool.report",)),
-    ("cli", ("urdftool.cli", "urdftool.__main__", "urdftool.docs", "urdftool.help_text",
-             "urdftool.pytest_plugin",
-             "urdftool.server")),
-    ("api", ("urdftool",)),
-]
-# Inside lint, lowest first (the same rule applies).
-LINT = ["urdftool.lint.catalogue", "urdftool.lint.rules", "urdftool.lint.suppressions",
-        "urdftool.lint.engine", "urdftool.lint.settings", "urdftool.lint.targets",
-        "urdftool.lint.cache", "urdftool.lint.runner"]
-ONLY_IN = {"rich": "urdftool.report", "typer": "urdftool.cli", "click": "urdftool.cli"}
-# Temporary exceptions while the migration runs: "importer -> imported". Each must still exist
-# (the test fails on a stale entry), so this list can only shrink. Empty at the end.
-ALLOWED: set[str] = set()
+
+def _lint_imports(root: Path) -> subprocess.CompletedProcess:
+    """``lint-imports`` on the package under ``root`` with the contracts of its pyproject.toml."""
+    return subprocess.run([sys.executable, "-c", "import sys; from importlinter.cli import "
+                           "lint_imports_command; sys.exit(lint_imports_command())",
+                           "--no-cache"], cwd=root, env={"PYTHONPATH": str(root)},
+                          capture_output=True, text=True)
+
+
+def test_the_import_contracts_are_kept():
+    done = _lint_imports(ROOT)
+    assert done.returncode == 0, done.stdout + done.stderr
+
+
+def test_each_contract_can_fail(tmp_path):
+    """On a copy of the package with one violation of each kind, each contract is broken."""
+    shutil.copytree(PACKAGE, tmp_path / "urdftool", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path)
+
+    def add(module: str, line: str) -> None:
+        path = tmp_path / "urdftool" / module
+        path.write_text(path.read_text() + f"\n\ndef _late():\n    {line}\n")
+
+    add("description/values.py", "from urdftool.lint import settings")  # upward, in a function
+    add("lint/pool.py", "from urdftool.lint import engine")  # the pool knowing rules
+    add("kinematics/fk.py", "import rich")
+    add("report/json_output.py", "import typer")
+    add("description/xml.py", "from urdftool.description import load")  # load imports xml
+    (tmp_path / "urdftool" / "stray.py").write_text('"""A module in no layer."""\n')
+    done = _lint_imports(tmp_path)
+    assert done.returncode == 1
+    report = done.stdout.split("Broken contracts")[1]
+    for expected in ("urdftool.description.values -> urdftool.lint.settings",
+                     "urdftool.lint.pool -> urdftool.lint.engine",
+                     "urdftool.stray",  # exhaustive: every top-level module has a layer
+                     "urdftool.kinematics.fk -> rich", "urdftool.report.json_output -> typer",
+                     "No cycles are allowed in urdftool.description.\nIt could be made acyclic "
+                     "by removing 1 dependency:\n\n- .xml -> .load"):
+        assert expected in report, expected
+    assert done.stdout.count(" BROKEN") == len(CONTRACTS["contracts"])
 
 
 def _modules() -> dict[str, Path]:
     found = {}
     for path in sorted(PACKAGE.rglob("*.py")):
-        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        parts = list(path.relative_to(ROOT).with_suffix("").parts)
         if parts[-1] == "__init__":
             parts.pop()
         found[".".join(parts)] = path
@@ -56,162 +80,57 @@ def _modules() -> dict[str, Path]:
 MODULES = _modules()
 
 
-def _existing(name: str) -> str:
-    while name and name not in MODULES:
-        name = name.rpartition(".")[0]
-    return name
-
-
-def _imports(name: str, path: Path):
-    """(imported name, line) for every import in the module; external names are kept whole."""
-    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+def _computed_imports(name: str, path: Path):
+    """(line, name imported) of every ``import_module`` call not naming its module whole."""
+    own = name if path.name == "__init__.py" else name.rpartition(".")[0]
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.Import):
-            for alias in node.names:
-                yield alias.name, node.lineno
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = package.split(".")[:len(package.split(".")) - node.level + 1]
-                parent = ".".join(base + ([node.module] if node.module else []))
-            else:
-                parent = node.module or ""
-            for alias in node.names:
-                yield f"{parent}.{alias.name}" if f"{parent}.{alias.name}" in MODULES else parent, \
-                    node.lineno
-        elif isinstance(node, ast.Call) and getattr(node.func, "attr",
-                                                    getattr(node.func, "id", "")) == "import_module":
+        if isinstance(node, ast.Call) and getattr(node.func, "attr",
+                                                  getattr(node.func, "id", "")) == "import_module":
             argument = node.args[0] if node.args else None
             if isinstance(argument, ast.Constant) and isinstance(argument.value, str):
-                yield argument.value, node.lineno
-            elif isinstance(argument, ast.JoinedStr) and _package_prefix(argument):
-                yield _package_prefix(argument), node.lineno  # f"urdftool.cli.{name}": in there
+                yield node.lineno, argument.value
+            elif isinstance(argument, ast.JoinedStr) and argument.values and \
+                    isinstance(argument.values[0], ast.Constant) and \
+                    argument.values[0].value == own + ".":
+                continue  # f"urdftool.cli.{name}" in urdftool.cli: a module of its own package
             else:
-                yield "<dynamic import>", node.lineno
+                yield node.lineno, "<computed>"
 
 
-def _package_prefix(text: ast.JoinedStr) -> str | None:
-    """``urdftool.cli`` for ``f"urdftool.cli.{name}"``: a module of that package, whichever."""
-    head = text.values[0] if text.values else None
-    if isinstance(head, ast.Constant) and isinstance(head.value, str) and \
-            head.value.endswith(".") and head.value.count(".") >= 2:
-        return head.value.rstrip(".")
-    return None
+def test_no_module_is_imported_where_the_contracts_cannot_see_it():
+    """import-linter reads import statements: ``import_module`` may only compute the name of a
+    module of the caller's own package (a registry listing its modules, as cli/__init__.py and
+    report/__init__.py do); a module of urdftool named whole is imported with ``import``."""
+    found = [f"{path.relative_to(ROOT)}:{line}: import_module({target})"
+             for name, path in MODULES.items()
+             for line, target in _computed_imports(name, path)
+             if target == "<computed>" or target.split(".")[0] == "urdftool"]
+    assert not found, found
 
 
-EDGES = [(name, target, line) for name, path in MODULES.items()
-         for target, line in _imports(name, path)]
-INTERNAL = [(a, _existing(b), line) for a, b, line in EDGES
-            if b == "urdftool" or b.startswith("urdftool.")]
-
-
-def _rank(name: str, layers) -> int | None:
-    best = None
-    for rank, prefixes in enumerate(layers):
-        for prefix in prefixes:
-            if name == prefix or (prefix != "urdftool" and name.startswith(prefix + ".")):
-                if best is None or len(prefix) > best[1]:
-                    best = (rank, len(prefix))
-    return None if best is None else best[0]
-
-
-def _violations() -> list[str]:
-    found = {}  # dict: ordered, without repeats
-    layers = [prefixes for _, prefixes in LAYERS]
-    for name in MODULES:
-        if _rank(name, layers) is None:
-            found.setdefault(f"{name}: module outside every layer")
-    for a, b, line in INTERNAL:
-        rank_a, rank_b = _rank(a, layers), _rank(b, layers)
-        if rank_a is None:
-            continue
-        if rank_b is not None and rank_b > rank_a and b != "urdftool":
-            found.setdefault(f"{a}:{line} -> {b}")
-        lint_a, lint_b = _rank(a, [(m,) for m in LINT]), _rank(b, [(m,) for m in LINT])
-        if lint_a is not None and lint_b is not None and lint_b > lint_a:
-            found.setdefault(f"{a}:{line} -> {b}")
-    for a, b, line in EDGES:
-        if b == "<dynamic import>":
-            found.setdefault(f"{a}:{line} -> <dynamic import>")
-        top = b.split(".")[0]
-        if top in ONLY_IN and not (a == ONLY_IN[top] or a.startswith(ONLY_IN[top] + ".")):
-            found.setdefault(f"{a}:{line} -> {top}")
-    return list(found)
-
-
-def _cycles(granularity) -> list[list[str]]:
-    """Strongly connected groups (Tarjan) of the graph with names mapped by ``granularity``."""
-    graph = defaultdict(set)
-    for a, b, _ in INTERNAL:
-        if granularity(a) != granularity(b) and b != "urdftool" and a != "urdftool":
-            graph[granularity(a)].add(granularity(b))
-    index, low, stack, on, groups = {}, {}, [], set(), []
-
-    def visit(node):
-        index[node] = low[node] = len(index)
-        stack.append(node)
-        on.add(node)
-        for child in sorted(graph[node]):
-            if child not in index:
-                visit(child)
-                low[node] = min(low[node], low[child])
-            elif child in on:
-                low[node] = min(low[node], index[child])
-        if low[node] == index[node]:
-            group = []
-            while True:
-                member = stack.pop()
-                on.discard(member)
-                group.append(member)
-                if member == node:
-                    break
-            if len(group) > 1:
-                groups.append(sorted(group))
-
-    for node in sorted(set(graph)):
-        if node not in index:
-            visit(node)
-    return groups
-
-
-def _key(message: str) -> str:
-    return re.sub(r":\d+", "", message)  # "a:12 -> b" is allowed as "a -> b"
-
-
-def test_no_module_imports_a_layer_above_it():
-    violations = [v for v in _violations() if _key(v) not in ALLOWED]
-    assert not violations, "upward or forbidden imports:\n" + "\n".join(violations)
-
-
-def test_allowed_exceptions_are_still_needed():
-    current = {_key(v) for v in _violations()}
-    stale = sorted(ALLOWED - current)
-    assert not stale, f"remove from ALLOWED, they are fixed: {stale}"
-
-
-@pytest.mark.parametrize("granularity", [lambda m: m, lambda m: ".".join(m.split(".")[:2])],
-                         ids=["modules", "packages"])
-def test_no_import_cycles(granularity):
-    assert _cycles(granularity) == []
+def _below_lint() -> list[str]:
+    """The packages and modules of the layers below lint."""
+    lower = LAYERS[LAYERS.index("lint") + 1:]
+    return [f"urdftool.{tail.strip()}" for layer in lower for tail in re.split(r"[:|]", layer)]
 
 
 def test_only_the_linter_knows_rule_codes():
-    below_lint = [p for name, p in MODULES.items() if (_rank(name, [x for _, x in LAYERS]) or 0) < 5]
-    found = [f"{p.relative_to(PACKAGE.parent)}:{n}" for p in below_lint
-             for n, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+    below = tuple(_below_lint())
+    assert "urdftool.description" in below and "urdftool.compare" in below
+    found = [f"{path.relative_to(ROOT)}:{number}" for name, path in MODULES.items()
+             if name.startswith(tuple(f"{b}." for b in below)) or name in below
+             for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
              if re.search(r"\bU\d{3}\b", line)]
     assert not found, found
 
 
-def test_the_checker_sees_what_it_must():
-    """The rules above can fail: an upward import and a cycle in a fake tree are found."""
-    global MODULES, EDGES, INTERNAL
-    saved = MODULES, EDGES, INTERNAL
-    try:
-        MODULES = {"urdftool.description.load": None, "urdftool.lint.engine": None}
-        EDGES = [("urdftool.description.load", "urdftool.lint.engine", 3),
-                 ("urdftool.lint.engine", "urdftool.description.load", 5)]
-        INTERNAL = EDGES
-        assert _violations() == ["urdftool.description.load:3 -> urdftool.lint.engine"]
-        assert _cycles(lambda m: m) == [sorted(MODULES)]
-    finally:
-        MODULES, EDGES, INTERNAL = saved
+@pytest.mark.parametrize("source, expected", [
+    ('import importlib\nimportlib.import_module("urdftool.lint.engine")\n',
+     [(2, "urdftool.lint.engine")]),
+    ('from importlib import import_module\nimport_module(NAMES[0])\n', [(2, "<computed>")]),
+    ('import importlib\nimportlib.import_module(f"urdftool.lint.{x}")\n', [(2, "<computed>")]),
+    ('import importlib\nimportlib.import_module(f"urdftool.description.{x}")\n', []),
+])
+def test_the_computed_import_check_sees_what_it_must(tmp_path, source, expected):
+    (tmp_path / "__init__.py").write_text(source)
+    assert list(_computed_imports("urdftool.description", tmp_path / "__init__.py")) == expected

@@ -1,6 +1,6 @@
 """Time and memory budgets: how much a piece of work may take, and where it was when stopped.
 
-A budgeted piece of work runs in a forked process (see :mod:`urdftool.lint.runner`) whose address
+A budgeted piece of work runs in a forked process (see :mod:`urdftool.lint.pool`) whose address
 space is capped with ``RLIMIT_AS``: an allocation over the cap raises MemoryError instead of
 taking the machine's memory. A process stopped for overrunning its time cannot say where it was,
 so the work tells as it goes: the xacro expander calls :func:`working_at` with the location of

@@ -26,7 +26,7 @@
   suppressions (:data:`ACTION_PROVIDERS`: a provider maps a finding to code actions).
 
 Each robot is checked in a forked worker within the same time and memory budget as ``urdftool
-check`` (:func:`urdftool.lint.runner.run_budgeted`; ``urdftool server --timeout/--max-memory``,
+check`` (:func:`urdftool.lint.pool.run_budgeted`; ``urdftool server --timeout/--max-memory``,
 the settings' ``max-memory``): a robot that takes too long or too much ends with its U015 or
 U018 diagnostic, located where the work was, and its worker is killed. Up to :data:`JOBS`
 documents are checked at once, each job waiting in a thread of its own, so one slow document
@@ -298,13 +298,13 @@ class Limits:
 
 @dataclass
 class _Stopped:
-    stop: object  # urdftool.lint.runner.Stop
+    stop: object  # urdftool.lint.pool.Stop
 
 
 def _budgeted(work, budget: Budget, cancel: threading.Event):
     """``work()`` in a worker within ``budget``; a :class:`_Stopped` when it ended without a
     result (over the budget, cancelled, crashed)."""
-    from urdftool.lint.runner import run_budgeted
+    from urdftool.lint.pool import run_budgeted
 
     [result] = run_budgeted(1, lambda _: work(), budget, lambda _, stop: _Stopped(stop),
                             cancel=cancel)
@@ -320,7 +320,7 @@ def checked(robot: str, buffers: dict[str, Buffer], codec, limits: Limits,
         return result
     if result.stop.kind == "cancelled":
         return None
-    from urdftool.lint.runner import stop_finding
+    from urdftool.lint.engine import stop_finding
 
     buffer = buffers.get(robot)
     outcome = Outcome(robot, buffer.version if buffer else None)
@@ -687,7 +687,7 @@ def _on_document(event: str):
 
 
 def _jobs() -> int:
-    from urdftool.lint.runner import default_jobs
+    from urdftool.lint.pool import default_jobs
 
     return max(JOBS, min(4, default_jobs()))
 

@@ -11,7 +11,7 @@ import pytest
 
 from conftest import ROOT
 from urdftool.lint import engine
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 
 def _module(*args: str) -> subprocess.CompletedProcess:
@@ -189,7 +189,7 @@ def test_a_check_collects_garbage_less_often_and_restores_the_threshold(door_col
     before = gc.get_threshold()
     robot = tmp_path / "r.urdf"
     robot.write_text('<robot name="r"><link name="a"/></robot>')
-    check_file(str(robot), CheckOptions())
+    load_and_check(str(robot), CheckOptions())
     assert seen[0][0] >= 100_000 and seen[0][1:] == before[1:]
     assert gc.get_threshold() == before
 
@@ -223,7 +223,7 @@ def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(door_collect
         return real(*args)
 
     monkeypatch.setattr(engine, "check_robot", rules)
-    check_file(str(robot), CheckOptions())
+    load_and_check(str(robot), CheckOptions())
     assert seen == [False]  # paused while the rules ran
     assert gc.isenabled() and gc.get_freeze_count() == 0
     gc.collect()
@@ -235,11 +235,11 @@ def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path):
 
     robot = tmp_path / "r.urdf"
     robot.write_text('<robot name="r"><link name="a"/></robot>')
-    check_file(str(robot), CheckOptions())  # a first check frees objects made on import
+    load_and_check(str(robot), CheckOptions())  # a first check frees objects made on import
     gc.freeze()
     try:
         frozen = gc.get_freeze_count()
-        check_file(str(robot), CheckOptions())
+        load_and_check(str(robot), CheckOptions())
         assert gc.get_freeze_count() == frozen
     finally:
         gc.unfreeze()
@@ -254,7 +254,7 @@ def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collect
     real = gc.collect
     monkeypatch.setattr(gc, "collect", lambda *a: full.append(a) or real(*a))
     monkeypatch.setitem(door_collection._PROMOTED, "objects", door_collection.FULL_COLLECTION_AFTER + 1)
-    check_file(str(robot), CheckOptions())
+    load_and_check(str(robot), CheckOptions())
     assert full == [()] and door_collection._PROMOTED["objects"] < door_collection.FULL_COLLECTION_AFTER
 
 

@@ -11,7 +11,7 @@ from conftest import ROBOTS
 from urdftool.description.companions import companions, is_spec, looks_like_controllers
 from urdftool.description.documents import read_yaml
 from urdftool.description.robot import CompanionPaths
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 from urdftool.description.load import load
 
 ROBOT = """<robot name="r">
@@ -36,7 +36,7 @@ def write(folder, files: dict):
 
 @pytest.fixture(scope="module")
 def example_robots():
-    return {name: check_file(str(ROBOTS / name / f"{name}.urdf.xacro"), CheckOptions())
+    return {name: load_and_check(str(ROBOTS / name / f"{name}.urdf.xacro"), CheckOptions())
             for name in ("diffbot", "r2d2", "humanoid")}
 
 
@@ -97,13 +97,13 @@ def test_ros_joint_limits_yaml_is_not_a_spec_nor_controllers(corpus):
 
 def test_ros_joint_limits_yaml_beside_the_robot_is_ignored(tmp_path):
     write(tmp_path, {"r.urdf": ROBOT, "joint_limits.yaml": "joint_limits:\n  head_joint: {has_position_limits: true}\n"})
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions())
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions())
     assert companions(result.robot).spec is None and result.findings == []
 
 
 def test_given_ros_joint_limits_yaml_as_spec_is_malformed(tmp_path):
     write(tmp_path, {"r.urdf": ROBOT, "x/limits.yaml": "joint_limits:\n  head_joint: {max_velocity: 1}\n"})
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(
         companions=CompanionPaths(spec=tmp_path / "x/limits.yaml")))
     assert [(f.code, f.line) for f in result.findings] == [("U701", 1)]
     assert "ROS joint_limits.yaml" in result.findings[0].message
@@ -237,7 +237,7 @@ def test_a_folder_holding_two_robots_gives_each_only_its_own(tmp_path):
     assert any(line.startswith("not used:") and "controllers.yaml (2 robots share its folder"
                in line for line in lines)
     # no finding from the neighbour's files
-    assert check_file(str(tmp_path / "r.urdf"), CheckOptions()).findings == []
+    assert load_and_check(str(tmp_path / "r.urdf"), CheckOptions()).findings == []
 
 
 def test_gazebo_ros2_control_parameters_are_followed_inside_the_repository(tmp_path):

@@ -263,7 +263,7 @@ def test_only_the_parameters_consumers_read_describe_the_robot(tmp_path):
 def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
     # kinova-movo: $(optenv MOVO_HAS_KINOVA_ARM false) decides whether the robot has arms
     from urdftool.description.runtime import runtime
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
                             "p/r.urdf.xacro": """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -272,6 +272,6 @@ def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
 </robot>""", "p/launch/x.launch": """<launch>
       <param name="robot_description" command="xacro $(find p)/r.urdf.xacro"/>
     </launch>"""})
-    robot = check_file(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
+    robot = load_and_check(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
     [(configuration, relation)] = [c for c in runtime(robot).configurations if c[1]]
     assert relation == "as the environment builds it (HAS_ARM)"

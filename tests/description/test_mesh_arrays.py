@@ -143,8 +143,8 @@ def test_checking_a_robot_of_stl_or_collada_meshes_does_not_import_trimesh(tmp_p
         f'filename="{name}"/></geometry></visual><collision><geometry><mesh '
         f'filename="{name}" scale="2 2 2"/></geometry></collision></link></robot>')
     output = without_heavy_imports(
-        "from urdftool.lint.engine import CheckOptions, check_file\n"
-        f"print(sorted(f.code for f in check_file({str(robot)!r}, CheckOptions()).findings))")
+        "from urdftool.lint.engine import CheckOptions, load_and_check\n"
+        f"print(sorted(f.code for f in load_and_check({str(robot)!r}, CheckOptions()).findings))")
     # 2000 kg in 0.048 m^3 (the hull's volume, for the open box) is denser than osmium
     assert "U311" in output
     assert ("U414" if open_ else "U310") in output  # U310: compared with the box's inertia

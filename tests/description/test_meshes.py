@@ -191,13 +191,13 @@ def _mesh_robot(folder, name: str, mesh: str, links: int = 3) -> str:
 def test_a_mesh_is_read_once_per_run_across_links_rules_and_robots(tmp_path, monkeypatch):
     import trimesh
 
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
     reads = _count_reads(monkeypatch)
     options = CheckOptions()
     for name in ("one.urdf", "two.urdf"):
-        check_file(_mesh_robot(tmp_path, name, "part.stl"), options)
+        load_and_check(_mesh_robot(tmp_path, name, "part.stl"), options)
     assert [p.name for p in reads] == ["part.stl"]
 
 
@@ -272,14 +272,14 @@ def test_a_uri_is_resolved_and_checked_once_per_robot(tmp_path, monkeypatch):
     import trimesh
 
     from urdftool.description import meshes
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
     calls = []
     real = meshes._resolve
     monkeypatch.setattr(meshes, "_resolve", lambda robot, uri: calls.append(uri) or
                         real(robot, uri))
-    check_file(_mesh_robot(tmp_path, "one.urdf", "part.stl", links=5), CheckOptions())
+    load_and_check(_mesh_robot(tmp_path, "one.urdf", "part.stl", links=5), CheckOptions())
     assert calls == ["part.stl"]
 
 

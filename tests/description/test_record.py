@@ -10,7 +10,7 @@ import pytest
 from urdftool.description import files, meshes
 from urdftool.description.record import Record, recording
 from urdftool.description.run_memo import one_run
-from urdftool.lint.engine import check_file
+from urdftool.lint.engine import load_and_check
 from urdftool.lint.options import CheckOptions
 
 ROBOT = """<?xml version="1.0"?>
@@ -45,7 +45,7 @@ def package(tmp_path):
 
 
 def test_the_record_holds_what_the_check_read_searched_and_resolved(package):
-    result = check_file(str(package / "urdf" / "one.urdf.xacro"), CheckOptions())
+    result = load_and_check(str(package / "urdf" / "one.urdf.xacro"), CheckOptions())
     record = result.record
     urdf = package / "urdf"
     assert record.read_as("robot") == [str(urdf / "one.urdf.xacro")]
@@ -80,18 +80,18 @@ def test_answers_remembered_for_one_robot_are_in_the_record_of_the_next(package)
     # per-run answers (the repository root, discovery's folders) and the mesh read once per
     # process are given to the second robot without asking again: their entries are replayed
     meshes._RUN_CACHE.clear()
-    alone = check_file(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
+    alone = load_and_check(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
     meshes._RUN_CACHE.clear()
     with one_run():
-        check_file(str(package / "urdf" / "one.urdf.xacro"), CheckOptions())
-        second = check_file(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
+        load_and_check(str(package / "urdf" / "one.urdf.xacro"), CheckOptions())
+        second = load_and_check(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
     assert second.read_as("mesh") == [str(package / "meshes" / "base.stl")]
     assert set(alone.entries) <= set(second.entries)
 
 
 def test_an_entry_holds_until_what_it_answered_changes(package, monkeypatch):
     monkeypatch.setattr(files, "RACY_NS", 0)
-    record = check_file(str(package / "urdf" / "one.urdf.xacro"), CheckOptions()).record
+    record = load_and_check(str(package / "urdf" / "one.urdf.xacro"), CheckOptions()).record
     entries = record.dump()
     assert files.unchanged(entries) and files.unchanged(entries, quick=True)
 
@@ -116,7 +116,7 @@ def test_an_entry_holds_until_what_it_answered_changes(package, monkeypatch):
 
 
 def test_a_file_that_became_a_link_out_is_not_read_to_compare_it(package, tmp_path):
-    record = check_file(str(package / "urdf" / "one.urdf.xacro"), CheckOptions()).record
+    record = load_and_check(str(package / "urdf" / "one.urdf.xacro"), CheckOptions()).record
     entries = [entry for entry in record.dump() if entry[0] == "read"]
     outside = tmp_path / "outside.yaml"
     outside.write_text("lower: -1\n")  # the same content, elsewhere
@@ -184,7 +184,7 @@ def test_an_include_pattern_is_a_search_a_new_match_changes(tmp_path):
     robot = _write(tmp_path / "r.urdf.xacro",
                    '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
                    '<xacro:include filename="parts/*.xacro"/></robot>')
-    record = check_file(str(robot), CheckOptions()).record
+    record = load_and_check(str(robot), CheckOptions()).record
     assert record.read_as("include") == [str(tmp_path / "parts" / "a.xacro")]
     assert record.concerns(tmp_path / "parts" / "b.xacro")
     entries = record.dump()

@@ -8,7 +8,7 @@ from urdftool.description.companions import companions
 from urdftool.description.load import load
 from urdftool.description.meshes import MeshLimits
 from urdftool.description.robot import CompanionPaths
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 ROBOT = ('<robot name="r"><link name="a"><collision><geometry><mesh filename="ball.stl"/>'
          '</geometry></collision><inertial><mass value="1"/>'
@@ -35,7 +35,7 @@ def test_memo_computes_once_per_key(tmp_path):
 
 
 def test_rules_keep_what_they_derive_in_the_memo_not_on_the_robot(tmp_path):
-    robot = check_file(str(_folder(tmp_path)), CheckOptions()).robot
+    robot = load_and_check(str(_folder(tmp_path)), CheckOptions()).robot
     assert companions(robot) is companions(robot)
     assert not {"_companions", "_spec", "_controllers"} & set(vars(robot))
     assert not {"_mesh_cache", "_mesh_outcomes", "_link_solids", "max_triangles", "spec",
@@ -50,12 +50,12 @@ def test_typed_options_reach_the_robot_and_the_rules(tmp_path):
     spec.write_text("joints: [\n")
     options = CheckOptions(selection=Selection(("U411", "U701")), mesh_limits=MeshLimits(1000),
                            companions=CompanionPaths(spec=spec))
-    result = check_file(str(path), options)
+    result = load_and_check(str(path), options)
     assert result.robot.mesh_limits.max_triangles == 1000
     assert result.robot.companion_paths == CompanionPaths(spec=spec)
     assert sorted(f.code for f in result.findings) == ["U411", "U701"]
     assert "1280 triangles" in next(f.message for f in result.findings if f.code == "U411")
-    assert check_file(str(path), CheckOptions(selection=Selection(("U411",)))).findings == []
+    assert load_and_check(str(path), CheckOptions(selection=Selection(("U411",)))).findings == []
 
 
 def test_the_command_line_names_win_over_the_settings_file():

@@ -17,7 +17,7 @@ import resource
 import pytest
 
 from urdftool.description.robot import CompanionPaths
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 HEADER = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
 # `$(` ends at the first `)`, so a property supplies the `)` that $(eval ...) calls need.
@@ -46,7 +46,7 @@ def _check(folder, body: str, files: dict[str, str] | None = None, allow_env=Fal
         (folder / name).write_text(text)
     path = folder / "robot.urdf.xacro"
     path.write_text(HEADER + body + "\n</robot>\n")
-    return check_file(str(path), CheckOptions(allow_env=allow_env, companions=companions))
+    return load_and_check(str(path), CheckOptions(allow_env=allow_env, companions=companions))
 
 
 def _refused(folder, body, line, files=None, **kwargs):
@@ -73,7 +73,7 @@ def test_issue_exploit_runs_no_code(tmp_path, monkeypatch, allow_env):
     monkeypatch.chdir(tmp_path)
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(ISSUE_EXPLOIT)
-    result = check_file(str(path), CheckOptions(allow_env=allow_env))
+    result = load_and_check(str(path), CheckOptions(allow_env=allow_env))
     assert [(f.code, f.line) for f in result.findings] == [(SANDBOX, 3)]
     assert "exec" in result.findings[0].message
     assert not (tmp_path / "pwned.txt").exists()

@@ -180,9 +180,9 @@ def _outside_robot(tmp_path):
 
 
 def test_files_outside_the_repository_are_reported(tmp_path):
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
-    result = check_file(str(_outside_robot(tmp_path)), CheckOptions())
+    result = load_and_check(str(_outside_robot(tmp_path)), CheckOptions())
     outside = sorted((f.code, f.line) for f in result.findings if f.code == "U013")
     assert outside == [("U013", 2), ("U013", 3)]
 
@@ -238,10 +238,10 @@ def test_xacro_helpers_stay_harmless(tmp_path, expression, code):
 
 
 def test_bare_range_keeps_xacro_deprecation_warning(tmp_path):
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(HEADER + '<link name="${len(range(3))}"/>\n</robot>\n')
-    result = check_file(str(path), CheckOptions())
+    result = load_and_check(str(path), CheckOptions())
     assert [f.code for f in result.findings] == ["U010"]
     assert "deprecated" in result.findings[0].message

@@ -48,7 +48,8 @@ def preload() -> None:
     hook then sees the robot's files rather than Python's)."""
     import importlib
 
-    for name in ("urdftool.cli", "urdftool.lint.engine", "urdftool.lint.runner", "urdftool.description.load",
+    for name in ("urdftool.cli", "urdftool.lint.engine", "urdftool.lint.runner",
+                 "urdftool.lint.pool", "urdftool.description.load",
                  "urdftool.description.meshes", "urdftool.physics.dynamics", "urdftool.physics.inertia",
                  "urdftool.collision.pairs", "urdftool.collision.srdf", "urdftool.kinematics.fk",
                  "urdftool.kinematics.dh", "urdftool.report.dot", "urdftool.report",

@@ -20,7 +20,7 @@ import signal
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 from .cases import SECRET_LINK, Case, cleanup, commands, git_environment, materialize
 from .child import CANARY, SECRET_VALUE, Allow, run_all
@@ -45,7 +45,7 @@ def problems(seed: Seed, data: bytes) -> list[str]:
     previous = signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(HANG_SECONDS)
     try:
-        result = check_file(str(seed.path), CheckOptions(xacro_args=dict(seed.args),
+        result = load_and_check(str(seed.path), CheckOptions(xacro_args=dict(seed.args),
                                                          allow_env=False), data=data)
     except _Hang:
         return [f"hang: over {HANG_SECONDS} s"]

@@ -15,7 +15,7 @@ import pytest
 from conftest import CORPUS, corpus_or_skip
 from urdftool.description.robot import CompanionPaths
 from urdftool.diagnostics import Severity
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 UR_ARGS = ("robot_model:={m} joint_limit_params:={c}/ur_description/config/{m}/joint_limits.yaml "
            "kinematics_params:={c}/ur_description/config/{m}/default_kinematics.yaml "
@@ -134,7 +134,7 @@ def check_entry(robot, args, controllers, srdf):
                       args.replace("{corpus}", str(corpus)).split()) if args else {}
     named = CompanionPaths(tuple(corpus / c for c in controllers or ()),
                            corpus / srdf if srdf else None)
-    return check_file(str(corpus / robot), CheckOptions(xacro_args=xacro_args, companions=named))
+    return load_and_check(str(corpus / robot), CheckOptions(xacro_args=xacro_args, companions=named))
 
 
 @pytest.mark.parametrize("entry", list(ENTRIES), ids=[f"{e[0]}+{len(e[2])}y+{bool(e[3])}s"

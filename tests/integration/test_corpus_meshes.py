@@ -56,12 +56,12 @@ def test_empty_package_names_resolve_as_pinocchio_does_with_a_warning(corpus):
     U415 warning, never U407 (package '' not found); the few the corpus left out are U408."""
     from collections import Counter
 
-    from urdftool.lint.engine import CheckOptions, Selection, check_file
+    from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
     omitted = {row["referenced_path"] for row in csv.DictReader(
         open(corpus / "OMITTED.tsv"), delimiter="\t")}
     talos = corpus / "example-robot-data/robots/talos_data/robots/talos_full_v2.urdf"
-    result = check_file(str(talos), CheckOptions(selection=Selection(("U407", "U408", "U415"))))
+    result = load_and_check(str(talos), CheckOptions(selection=Selection(("U407", "U408", "U415"))))
     codes = Counter(f.code for f in result.findings)
     assert codes["U407"] == 0 and codes["U415"] == 93
     missing = [f.message.split("'")[3] for f in result.findings if f.code == "U408"]

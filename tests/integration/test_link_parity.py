@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import CHECK_URDF, check_urdf
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 I6 = 'ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"'
 BOX = '<geometry><box size="1 1 1"/></geometry>'
@@ -68,7 +68,7 @@ def test_urdftool_errors_wherever_check_urdf_does(name, tmp_path):
     urdfdom_error = "Error:" in said
     # if urdfdom's wording changes, fail here rather than silently take the other branch
     assert urdfdom_error or (run.returncode == 0 and "Successfully Parsed XML" in run.stdout), said
-    errors = [f for f in check_file(str(path), CheckOptions()).findings
+    errors = [f for f in load_and_check(str(path), CheckOptions()).findings
               if f.severity.value == "error"]
     if urdfdom_error:
         assert errors, f"check_urdf rejects {name} but urdftool reports no error:\n{said}"

@@ -8,7 +8,7 @@ import pytest
 
 from conftest import CASES, CHECK_URDF, CORPUS, check_urdf, corpus_entry_points
 from conftest import CASE_PATHS, case_robot
-from urdftool.lint.engine import URDFDOM_REFUSES, CheckOptions, check_file
+from urdftool.lint.engine import URDFDOM_REFUSES, CheckOptions, load_and_check
 
 pytestmark = pytest.mark.skipif(CHECK_URDF is None, reason="urdfdom's check_urdf is not installed (the pin wheel of the analysis extra has it)")
 
@@ -72,7 +72,7 @@ def test_parity_fails_either_way():
 def test_parity_on_case_files(case, tmp_path):
     """check_urdf reads the file itself, or urdftool's expansion of a xacro."""
     robot_file = case_robot(case)
-    result = check_file(str(robot_file), CheckOptions())
+    result = load_and_check(str(robot_file), CheckOptions())
     urdf = robot_file
     if robot_file.name.endswith(".xacro"):
         if result.robot is None:
@@ -105,7 +105,7 @@ def test_tree_matches_check_urdf(path, run_cli, request):
     if path.is_relative_to(CORPUS):
         robot = request.getfixturevalue("corpus_run")[str(path.relative_to(CORPUS))][1].robot
     else:
-        robot = check_file(str(path), CheckOptions()).robot
+        robot = load_and_check(str(path), CheckOptions()).robot
     if robot is None:
         pytest.skip("urdftool refuses to load it (e.g. entity declarations, U009)")
     result = run_cli("tree", path)

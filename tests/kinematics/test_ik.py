@@ -331,11 +331,32 @@ def test_cli_check_reach(run_cli, humanoid, tmp_path):
     (["--tip", "l_foot_link", "--xyz", "0", "0", "0", "--seeds", "0"], "--seeds must be"),
     (["--tip", "l_foot_link", "--xyz", "0", "0", "0", "--q", "l_kne=1"],
      "--q: unknown joint 'l_kne'; did you mean 'l_knee'"),
+    (["--tip", "l_foot_link", "--target-frame", "l_fot_link"],  # a traceback before
+     "link 'l_fot_link' does not exist; did you mean 'l_foot_link'"),
+    (["--tip", "l_foot_link", "--target-frame", "l_foot_link", "--target-q", "l_kne=1"],
+     "--target-q: unknown joint 'l_kne'"),
+    (["--tip", "l_foot_link", "--xyz", "0", "0", "0", "--quat", "0", "0", "0", "0"],
+     "--quat: a quaternion of length 0 is no rotation"),
 ])
 def test_cli_usage_errors(run_cli, args, message):
     result = run_cli("ik", HUMANOID, *args)
     assert result.exit_code == 2
     assert message in result.output
+
+
+def test_solve_limb_says_which_input_a_configuration_error_is_about(humanoid):
+    """The core names its parameters, never an option: the command maps them to its flags."""
+    for inputs, argument in (({"q": {"l_kne": "1"}, "xyz": (0, 0, 0)}, "q"),
+                             ({"xyz": (0, 0, 0), "quaternion": (0, 0, 0, 0)}, "orientation"),
+                             ({"frame": "l_foot_link", "frame_q": {"l_kne": "1"}}, "frame_q")):
+        with pytest.raises(ConfigError) as raised:
+            ik.solve_limb(humanoid, "l_foot_link", "body_link", **inputs)
+        assert raised.value.argument == argument and "--" not in str(raised.value)
+    found = ik.solve_limb(humanoid, "l_foot_link", "body_link", q={"l_knee": "9"},
+                          frame="l_foot_link", frame_q={"l_knee": "1"}, name="there")
+    [solution] = found.solutions
+    assert solution.solved and solution.target.name == "there"
+    assert found.chain.tip == "l_foot_link" and "outside its limits" in found.warnings[0]
 
 
 def test_cli_csv(run_cli):

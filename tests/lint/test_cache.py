@@ -12,7 +12,7 @@ import pytest
 from urdftool.description import files as files_module
 from urdftool.lint import cache as cache_module
 from urdftool.lint import engine
-from urdftool.lint.runner import check_paths
+from urdftool.lint.runner import Run, check_paths
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -100,8 +100,8 @@ def _entries(cache_dir, kind: str = "file") -> list:
 
 def _counting_checks(monkeypatch) -> list:
     checked = []
-    real = engine.check_file
-    monkeypatch.setattr(engine, "check_file", lambda path, *rest, **kw: checked.append(path)
+    real = engine.load_and_check
+    monkeypatch.setattr(engine, "load_and_check", lambda path, *rest, **kw: checked.append(path)
                         or real(path, *rest, **kw))
     return checked
 
@@ -308,6 +308,21 @@ def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, 
     assert cache.get_output(words) is None
 
 
+def test_keep_output_keeps_only_a_run_the_cache_kept_whole(robot, tmp_path, monkeypatch):
+    """What ``urdftool check`` printed is kept through the cache's own function, for a run kept
+    whole (its depends say when the output is stale), in the folder asked for, nowhere else."""
+    monkeypatch.setattr(files_module, "RACY_NS", 0)
+    cache_dir = tmp_path / "cache"
+    run = _kept_run(robot, cache_dir)
+    words = ["check", str(robot / "bot.urdf.xacro")]
+    cache_module.keep_output(None, run, (words, dict(os.environ)), "lost\n", "", 0)
+    cache_module.keep_output(cache_dir, Run(run.results), (words, dict(os.environ)), "no\n", "",
+                             0)  # a run not kept whole (depends None): its output is not either
+    assert cache_module.Cache(cache_dir).get_output(words) is None
+    cache_module.keep_output(cache_dir, run, (words, dict(os.environ)), "the report\n", "", 1)
+    assert cache_module.Cache(cache_dir).get_output(words) == ("the report\n", "", 1)
+
+
 def test_a_run_with_a_racy_stamp_keeps_no_servable_output(robot, tmp_path):
     cache_dir = tmp_path / "cache"
     run = _kept_run(robot, cache_dir)  # files written just now: their stamps are not trusted
@@ -340,7 +355,7 @@ def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
 def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeypatch, saved):
     # an editor saves a file while the check runs: the findings come from the old content, the
     # file's stamps and content are the new ones
-    real = engine.check_file
+    real = engine.load_and_check
 
     def save():
         if saved == "macro":
@@ -355,10 +370,10 @@ def test_a_file_changed_while_it_is_checked_is_not_kept(robot, tmp_path, monkeyp
         save()
         return result
 
-    monkeypatch.setattr(engine, "check_file", saved_meanwhile)
+    monkeypatch.setattr(engine, "load_and_check", saved_meanwhile)
     cache_dir = tmp_path / "cache"
     before = _messages(robot, cache_dir)
-    monkeypatch.setattr(engine, "check_file", real)
+    monkeypatch.setattr(engine, "load_and_check", real)
     after = _messages(robot, cache_dir)
     assert after != before
     assert after == _messages(robot, tmp_path / "another-cache")  # as checked afresh

@@ -10,7 +10,7 @@ from conftest import CASES
 from urdftool.description.load import load
 from urdftool.errors import LoadError
 from urdftool.lint import engine
-from urdftool.lint.engine import (LOAD_CODES, NOTE_CODES, CheckOptions, Selection, check_file,
+from urdftool.lint.engine import (LOAD_CODES, NOTE_CODES, CheckOptions, Selection, load_and_check,
                                   load_error_findings)
 from urdftool.lint.catalogue import Catalogue, Rule, Severity
 from urdftool.lint.rules import CATALOGUE
@@ -27,7 +27,7 @@ def test_a_crashing_rule_is_u900_and_the_other_rules_still_run(monkeypatch):
     crashing = Rule("U204", original.name, original.severity, broken, original.doc)
     monkeypatch.setattr(engine, "CATALOGUE", Catalogue(
         [crashing if r.code == "U204" else r for r in CATALOGUE.rules]))
-    findings = check_file(str(ROBOT), CheckOptions()).findings
+    findings = load_and_check(str(ROBOT), CheckOptions()).findings
     crash = [f for f in findings if f.code == "U900"]
     assert len(crash) == 1
     assert "rule U204 (inverted-limits) crashed: ZeroDivisionError: boom" in crash[0].message
@@ -42,13 +42,13 @@ def test_a_crashing_loader_is_u900_naming_the_file(monkeypatch):
         raise RecursionError("deep")
 
     monkeypatch.setattr(urdftool.description.load, "load", explode)
-    [finding] = check_file(str(ROBOT), CheckOptions()).findings
+    [finding] = load_and_check(str(ROBOT), CheckOptions()).findings
     assert finding.code == "U900" and finding.severity is Severity.ERROR
     assert finding.message.startswith("loading crashed: RecursionError: deep")
 
 
 def test_load_failures_are_reported_whatever_the_selection():
-    result = check_file(str(CASES / "U001_malformed_xml.urdf"),
+    result = load_and_check(str(CASES / "U001_malformed_xml.urdf"),
                         CheckOptions(selection=Selection(ignore=("U0",))))
     assert [f.code for f in result.findings] == ["U001"]
 
@@ -101,7 +101,7 @@ def test_every_kind_the_loader_raises_or_notes_has_a_code():
 def test_a_disguised_xacro_that_does_not_expand_keeps_the_hint(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(XACRO + '<link name="$(arg part)"/>\n</robot>')
-    [finding] = [f for f in check_file(str(path), CheckOptions()).findings if f.code == "U007"]
+    [finding] = [f for f in load_and_check(str(path), CheckOptions()).findings if f.code == "U007"]
     assert finding.line == 2
     assert "which xacro cannot expand (Undefined substitution argument part; pass it as " \
            "part:=VALUE (or --arg part=VALUE)) and URDF parsers ignore" in finding.message
@@ -111,10 +111,10 @@ def test_notes_become_findings_that_the_selection_and_suppressions_filter(tmp_pa
     path = tmp_path / "r.urdf.xacro"
     path.write_text(XACRO + '<xacro:property name="p" value="1" bogus="2"/>\n<link name="a"/>\n'
                     '</robot>')
-    codes = [f.code for f in check_file(str(path), CheckOptions()).findings]
+    codes = [f.code for f in load_and_check(str(path), CheckOptions()).findings]
     assert codes.count("U010") == 1
     ignoring = CheckOptions(selection=Selection(ignore=("xacro-warning",)))
-    assert "U010" not in [f.code for f in check_file(str(path), ignoring).findings]
+    assert "U010" not in [f.code for f in load_and_check(str(path), ignoring).findings]
 
 
 def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_path):
@@ -140,12 +140,12 @@ def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_pat
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(text)
     robot = str(tmp_path / "arm/urdf/arm.urdf.xacro")
-    result = check_file(robot, CheckOptions())
+    result = load_and_check(robot, CheckOptions())
     assert result.robot is not None and "m5_base" in result.robot.links
     [note] = [f for f in result.findings if f.code == "U005"]
     assert note.severity == Severity.INFO and "load_m5.launch builds it (model:=m5)" in note.message
-    given = check_file(robot, CheckOptions(xacro_args={"model": "m10"}))
+    given = load_and_check(robot, CheckOptions(xacro_args={"model": "m10"}))
     assert "m10_base" in given.robot.links and not [f for f in given.findings if f.code == "U005"]
     (tmp_path / "arm/launch/load_m5.launch").unlink()  # load_arm.launch alone gives no model
-    failed = check_file(robot, CheckOptions())
+    failed = load_and_check(robot, CheckOptions())
     assert failed.robot is None and [f.severity for f in failed.findings] == [Severity.ERROR]

@@ -13,7 +13,7 @@ from conftest import CASES
 from urdftool.description.load import load
 from urdftool.description.xml import attribute as escape_attribute
 from urdftool.lint import fixes
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 FIXES = Path(__file__).parent.parent / "fixes"
 
@@ -73,14 +73,14 @@ def _differences(before, after) -> set:
                          ids=[c[0].name for c in CASES_FIXED])
 def test_a_fix_removes_its_finding_and_changes_nothing_else(tmp_path, case, code, unsafe, allowed):
     robot = _copy(case, tmp_path)
-    before = check_file(str(robot), CheckOptions())
+    before = load_and_check(str(robot), CheckOptions())
     fixed = [f for f in before.findings if f.code == code and f.fix is not None]
     assert fixed and all(f.fix.safe is not unsafe for f in fixed)
     # U901's case also names an unknown code: a misspelling to correct by hand, kept
     kept = [f.message for f in before.findings if f.code == code and f.fix is None]
     assert bool(fixes.plan([before]).changed) is not unsafe  # unsafe: only --unsafe-fixes
     [after], applied, _, skipped = fixes.apply(
-        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+        [before], lambda: [load_and_check(str(robot), CheckOptions())], unsafe=True)
     assert applied and not skipped
     assert [f.message for f in after.findings if f.code == code] == kept
     assert {f.code for f in after.findings} <= {f.code for f in before.findings}
@@ -94,7 +94,7 @@ def test_fixes_keep_comments_formatting_and_attribute_order(tmp_path):
                      "  <joint name='j'   type='revolute'><parent link='a'/><child link='b'/>\n"
                      "    <limit effort='1'  uper='1'\n           lower='-1' velocity='1'/>\n"
                      "  </joint>\n</robot>")
-    result = check_file(str(robot), CheckOptions())
+    result = load_and_check(str(robot), CheckOptions())
     fixes.write(fixes.plan([result]))
     assert robot.read_text() == robot.read_text().replace("uper=", "upper=")
     assert robot.read_text() == ('<robot name="r">\n  <link name="a"/>  <!-- keep me -->\n'
@@ -107,7 +107,7 @@ def test_fixes_keep_comments_formatting_and_attribute_order(tmp_path):
 
 def test_a_value_from_a_macro_argument_is_not_edited_and_the_finding_says_where(tmp_path):
     robot = _copy(FIXES / "xacro_macro", tmp_path)
-    result = check_file(str(robot), CheckOptions())
+    result = load_and_check(str(robot), CheckOptions())
     [argument] = [f for f in result.findings if f.code == "U206" and f.fix is None]
     assert "xyz is the macro argument axis=\"0 3 0\" of the call at " in argument.message
     assert argument.message.endswith("robot.urdf.xacro:7; change it there)")
@@ -119,7 +119,7 @@ def test_an_edit_outside_the_repository_or_of_a_changed_file_is_refused(tmp_path
     outside = tmp_path / "elsewhere.urdf"
     outside.write_text(shutil.os.linesep.join(["x"] * 3))
     robot = _copy(CASES / "U204_inverted_limits.urdf", repository)
-    result = check_file(str(robot), CheckOptions())
+    result = load_and_check(str(robot), CheckOptions())
     [finding] = [f for f in result.findings if f.code == "U204"]
     edit = finding.fix.edits[0]
     moved = type(finding.fix)(finding.fix.description, (
@@ -129,9 +129,9 @@ def test_an_edit_outside_the_repository_or_of_a_changed_file_is_refused(tmp_path
     changes = fixes.plan([result])
     assert not changes.changed and "outside the repository" in changes.skipped[0][1]
     robot.write_text(robot.read_text().replace('lower="1.57"', 'lower="1.5"'))
-    changes = fixes.plan([check_file(str(robot), CheckOptions())])
+    changes = fixes.plan([load_and_check(str(robot), CheckOptions())])
     assert changes.changed  # checked again: applies
-    stale = check_file(str(robot), CheckOptions())
+    stale = load_and_check(str(robot), CheckOptions())
     robot.write_text(robot.read_text().replace('lower="1.5"', 'lower="1.4"'))
     changes = fixes.plan([stale])
     assert not changes.changed and "changed since it was checked" in changes.skipped[0][1]
@@ -208,11 +208,11 @@ def test_json_carries_the_fix_as_data(tmp_path, run_cli):
 
 def test_a_massless_root_is_added_before_a_root_with_mass(tmp_path):
     robot = _copy(CASES / "U308_root_link_inertia.urdf", tmp_path)
-    before = check_file(str(robot), CheckOptions())
+    before = load_and_check(str(robot), CheckOptions())
     [finding] = [f for f in before.findings if f.code == "U308"]
     assert finding.fix is not None and not finding.fix.safe
     [after], applied, _, _ = fixes.apply(
-        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+        [before], lambda: [load_and_check(str(robot), CheckOptions())], unsafe=True)
     assert applied == 1 and "U308" not in {f.code for f in after.findings}
     fixed = load(str(robot))
     assert fixed.joints["base_footprint_joint"].find("child").get("link") == "base"
@@ -242,10 +242,10 @@ def test_a_fix_writes_a_hostile_name_back_exactly_and_injects_nothing(tmp_path):
   <gazebo><plugin name="g" filename="libgazebo_ros_control.so"/></gazebo>
 </robot>
 """)
-    before = check_file(str(robot), CheckOptions())
+    before = load_and_check(str(robot), CheckOptions())
     assert {"U308", "U507"} <= {f.code for f in before.findings}
     [after], applied, _, _ = fixes.apply(
-        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+        [before], lambda: [load_and_check(str(robot), CheckOptions())], unsafe=True)
     assert applied >= 2 and after.robot is not None, [f.message for f in after.findings]
     fixed = load(str(robot))
     assert set(fixed.links) == {INJECTED, "c", "base_footprint"}
@@ -284,7 +284,7 @@ def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
   <joint name="ja" type="fixed"><parent link="base_link"/><child link="a"/></joint>
   <joint name="jb" type="fixed"><parent link="base_link"/><child link="b"/></joint>
 </robot>""")
-    result = check_file(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
     assert [f.code for f in result.findings if f.fix is not None] == ["U306", "U306"]
     changes = fixes.plan([result], unsafe=True)
     assert not changes.changed and len(changes.skipped) == 2
@@ -297,7 +297,7 @@ def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path)
                       b'      <mass value="1"/>\r\n      <inertia ixx="0.01" ixy="0" ixz="0" '
                       b'iyy="0.01" iyz="0" izz="0.01"/>\r\n    </inertial>\r\n  </link>\r\n'
                       b'</robot>\r\n')
-    result = check_file(str(robot), CheckOptions())
+    result = load_and_check(str(robot), CheckOptions())
     [finding] = [f for f in result.findings if f.code == "U308"]
     [edit] = finding.fix.edits
     assert (edit.line, edit.column, edit.end_line, edit.end_column) == (2, 2, 2, 2)
@@ -309,7 +309,7 @@ def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path)
     other.write_text('<robot name="r"><link name="a"/><link name="b"/>\n<joint name="j" '
                      'type="revolute"><parent link="a"/><child link="b"/>\n  <limit lower="-1" '
                      'uper="1" effort="1" velocity="1"/></joint></robot>')
-    [rename] = [f for f in check_file(str(other), CheckOptions()).findings if f.code == "U021"]
+    [rename] = [f for f in load_and_check(str(other), CheckOptions()).findings if f.code == "U021"]
     [edit] = rename.fix.edits
     assert (edit.line, edit.column, edit.end_line, edit.end_column) == (3, 20, 3, 24)
 
@@ -321,8 +321,8 @@ def test_the_issue_example_is_fixed_to_what_urdfdom_reads(tmp_path):
                      '  <orgin xyz="0 0 1"/>\n'
                      '  <limit lower="-1" uper="1" effort="1" velocity="1"/>\n'
                      '  <dynamics><damping>100</damping></dynamics>\n</joint>\n</robot>\n')
-    [after], applied, _, _ = fixes.apply([check_file(str(robot), CheckOptions())],
-                                         lambda: [check_file(str(robot), CheckOptions())])
+    [after], applied, _, _ = fixes.apply([load_and_check(str(robot), CheckOptions())],
+                                         lambda: [load_and_check(str(robot), CheckOptions())])
     assert applied == 3 and not [f for f in after.findings if f.code.startswith("U02")]
     assert robot.read_text() == (
         '<robot name="r"><link name="a"/><link name="b"/>\n'
@@ -337,12 +337,12 @@ def test_a_never_pair_that_collides_loses_its_entry(tmp_path):
     robot = _copy(CASES / "U810_srdf_disabled_pair_collides", tmp_path)
     srdf = robot.parent / "robot.srdf"
     urdf_before = robot.read_bytes()
-    before = check_file(str(robot), CheckOptions())
+    before = load_and_check(str(robot), CheckOptions())
     [finding] = [f for f in before.findings if f.code == "U810"]
     assert finding.fix is not None and not finding.fix.safe
     assert not fixes.plan([before]).changed  # only with --unsafe-fixes
     [after], applied, _, skipped = fixes.apply(
-        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+        [before], lambda: [load_and_check(str(robot), CheckOptions())], unsafe=True)
     assert applied and not skipped
     assert "U810" not in {f.code for f in after.findings}
     assert 'link1="l_hand" link2="r_hand" reason="Never"' not in srdf.read_text()
@@ -369,11 +369,11 @@ def test_a_pair_in_contact_at_the_default_pose_is_disabled_as_default(tmp_path):
     srdf = tmp_path / "robot.srdf"
     srdf.write_text('<?xml version="1.0"?>\n<robot name="r">\n    <disable_collisions link1="a" '
                     'link2="m" reason="Adjacent"/>\n</robot>\n')
-    before = check_file(str(robot), CheckOptions())
+    before = load_and_check(str(robot), CheckOptions())
     [finding] = [f for f in before.findings if f.code == "U811"]
     assert finding.fix is not None and not finding.fix.safe
     [after], applied, _, _ = fixes.apply(
-        [before], lambda: [check_file(str(robot), CheckOptions())], unsafe=True)
+        [before], lambda: [load_and_check(str(robot), CheckOptions())], unsafe=True)
     assert applied and not {"U810", "U811"} & {f.code for f in after.findings}
     assert srdf.read_text().endswith('    <disable_collisions link1="a" link2="b" '
                                      'reason="Default"/>\n</robot>\n')

@@ -1,20 +1,12 @@
-"""Worker processes: a time and memory budget per file, stable order, crashes become findings,
-what workers print reaches this process."""
+"""The linter's entry points: files checked in worker processes within budgets, in stable order,
+crashes and budgets become findings; check_paths and Run."""
 
 from __future__ import annotations
 
-import os
-import signal
-import subprocess
-import sys
-import time
-
 import pytest
 
-from urdftool.budget import Budget
 from urdftool.lint.engine import CheckOptions
-from urdftool.lint import runner
-from urdftool.lint.runner import check_files, run_budgeted
+from urdftool.lint.runner import check_files
 
 GOOD = '<robot name="r"><link name="a"/></robot>\n'
 BAD = '<robot name="r"><link name="a"></robot>\n'
@@ -64,14 +56,14 @@ def test_a_dying_worker_becomes_an_internal_error(robots, monkeypatch):
 
     from urdftool.lint import engine
 
-    real = engine.check_file
+    real = engine.load_and_check
 
     def die_on_second(path, options, data=None):
         if path == robots[1]:
             os._exit(3)
         return real(path, options, data)
 
-    monkeypatch.setattr(engine, "check_file", die_on_second)
+    monkeypatch.setattr(engine, "load_and_check", die_on_second)
     results = check_files(robots, lambda p: CheckOptions(), jobs=2, timeout=30)
     assert _codes(results) == [[], ["U900"], [], ["U001"], []]
     assert "exit code 3" in results[1].findings[0].message
@@ -98,7 +90,7 @@ def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, t
     for name in ("a.urdf", "b.urdf", "c.urdf"):
         (tmp_path / name).write_text(GOOD)
         files.append(str(tmp_path / name))
-    real = engine.check_file
+    real = engine.load_and_check
 
     def hungry_b(path, options, data=None):
         if path.endswith("b.urdf"):
@@ -106,7 +98,7 @@ def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, t
             raise MemoryError
         return real(path, options, data)
 
-    monkeypatch.setattr(engine, "check_file", hungry_b)
+    monkeypatch.setattr(engine, "load_and_check", hungry_b)
     for jobs, timeout, memory in ((1, 30, 2 * 1024 ** 3), (1, None, None)):  # worker, here
         results = check_files(files, lambda p: CheckOptions(), jobs=jobs, timeout=timeout,
                               memory=memory)
@@ -114,65 +106,6 @@ def test_a_memory_error_in_a_worker_is_located_where_the_work_was(monkeypatch, t
         finding = results[1].findings[0]
         assert (finding.file, finding.line, finding.location.via) == (
             "b.urdf", 7, (Location("top.xacro", 2),))
-
-
-def test_a_stopped_worker_takes_the_processes_it_started_along(tmp_path):
-    pid_file = tmp_path / "pid"
-
-    def work(_):
-        child = subprocess.Popen(["sleep", "60"])
-        pid_file.write_text(str(child.pid))
-        time.sleep(60)
-
-    [stop] = run_budgeted(1, work, Budget(1.0, None), lambda _, stop: stop)
-    assert stop.kind == "time"
-    pid = int(pid_file.read_text())
-    deadline = time.monotonic() + 5
-    while _running(pid) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not _running(pid)
-
-
-def _running(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat") as stat:
-            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except FileNotFoundError:
-        return False
-
-
-def test_a_worker_ends_with_its_parent(tmp_path):
-    """Workers have a process group of their own, so a signal to the command's group misses
-    them; they die with the command instead of running on."""
-    (tmp_path / "fact.urdf.xacro").write_text(
-        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-        '  <link name="${factorial(10**7)}"/>\n</robot>\n')
-    command = subprocess.Popen([sys.executable, "-c", "from urdftool.cli import main; main()",
-                                "tree", "--timeout", "100", "fact.urdf.xacro"], cwd=tmp_path,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    children = f"/proc/{command.pid}/task/{command.pid}/children"
-    deadline = time.monotonic() + 30
-    while time.monotonic() < deadline and not open(children).read().split():
-        time.sleep(0.05)
-    [worker] = map(int, open(children).read().split())
-    command.send_signal(signal.SIGTERM)
-    command.wait(10)
-    deadline = time.monotonic() + 5
-    while _running(worker) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not _running(worker)
-
-
-def test_what_a_worker_prints_reaches_this_process(capsys):
-    def talk(index):
-        print(f"out {index}")
-        print(f"err {index}", file=sys.stderr)
-        return index
-
-    assert run_budgeted(2, talk, Budget(30.0, None), None, jobs=2) == [0, 1]
-    captured = capsys.readouterr()  # streams without a file: passed on over the pipe
-    assert sorted(captured.out.split("\n")) == ["", "out 0", "out 1"]
-    assert sorted(captured.err.split("\n")) == ["", "err 0", "err 1"]
 
 
 def test_check_paths_keeps_the_order_across_memory_budgets(tmp_path):
@@ -202,42 +135,3 @@ def test_run_exit_code_is_strict_per_file():
     assert Run([warning, clean], strict=[True, False]).exit_code == 1
     assert Run([clean, error], strict=[False, False]).exit_code == 1
     assert Run([]).exit_code == 0
-
-
-def test_one_call_without_a_budget_runs_in_this_process():
-    import os
-
-    unlimited = Budget(None, None)
-    assert run_budgeted(1, lambda _: os.getpid(), unlimited, None, jobs=2) == [os.getpid()]
-    # two calls on two jobs are spread over workers
-    assert os.getpid() not in run_budgeted(2, lambda _: os.getpid(), unlimited, None, jobs=2)
-
-
-def test_a_cancelled_run_kills_its_workers_at_once():
-    """A language server's check of a version that has changed since: the caller sets the
-    switch, the worker is killed within CANCEL_POLL, every piece not done is 'cancelled'."""
-    import threading
-
-    cancel = threading.Event()
-    started = time.monotonic()
-    threading.Timer(0.3, cancel.set).start()
-    results = run_budgeted(3, lambda _: time.sleep(60), Budget(None, None),
-                           lambda index, stop: stop.kind, cancel=cancel)
-    assert results == ["cancelled"] * 3
-    assert time.monotonic() - started < 5  # not the 60 s the work takes
-    # with a switch, even one call without a budget runs in a worker (only it can be stopped)
-    assert run_budgeted(1, lambda _: os.getpid(), Budget(None, None), None,
-                        cancel=threading.Event()) != [os.getpid()]
-
-
-@pytest.mark.parametrize("cores, load, files, jobs", [
-    (2, 0.3, 46, 2),  # an idle second core: two workers
-    (2, 12.0, 46, 1),  # a busy machine: two workers would cost more CPU for nothing
-    (8, 5.2, 46, 3),  # the idle cores only
-    (2, 0.0, 5, 1),  # too few files to pay a second worker's imports and reads
-    (2, 0.0, 1, 1),
-])
-def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, load, files, jobs):
-    monkeypatch.setattr(runner, "default_jobs", lambda: cores)
-    monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
-    assert runner.auto_jobs(files) == jobs

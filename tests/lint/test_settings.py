@@ -121,8 +121,8 @@ def test_companion_files_reach_the_rules(run_cli, project, monkeypatch):
     settings(project, 'spec = "config/limits.yaml"\ncontrollers = "config/c.yaml"\n'
                       'srdf = "config/r.srdf"\n')
     seen = []
-    real = engine.check_file
-    monkeypatch.setattr(engine, "check_file", lambda path, options, data=None:
+    real = engine.load_and_check
+    monkeypatch.setattr(engine, "load_and_check", lambda path, options, data=None:
                         seen.append(options.companions) or real(path, options, data))
     codes(run_cli, project / "robots", "--jobs", "1", "--timeout", "0",
           "--max-memory", "0")  # no budget: in this process

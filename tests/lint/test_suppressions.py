@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from urdftool.diagnostics import Finding, Location, Severity
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint.suppressions import apply, parse
 
@@ -71,7 +71,7 @@ def test_check_file_applies_suppressions_and_selection(tmp_path):
   </joint>
 </robot>
 """)
-    codes = lambda options: [(f.code, f.line) for f in check_file(str(path), options).findings]  # noqa: E731
+    codes = lambda options: [(f.code, f.line) for f in load_and_check(str(path), options).findings]  # noqa: E731
     # U204 is located at <limit>: the trailing comment silences it, the one above <joint> is unused
     assert codes(CheckOptions()) == [("U901", 3)]
     assert codes(CheckOptions(selection=Selection(ignore=("U204",)))) == []
@@ -93,7 +93,7 @@ def test_suppression_only_in_the_data_given_is_honoured(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(LIMITS.format(comment=""))
     data = LIMITS.format(comment=COMMENT).encode()
-    result = check_file(str(path), CheckOptions(), data=data)
+    result = load_and_check(str(path), CheckOptions(), data=data)
     assert [(f.code, f.line) for f in result.findings] == []
 
 
@@ -101,7 +101,7 @@ def test_suppression_only_on_disk_is_not_applied_to_the_data_given(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(LIMITS.format(comment=COMMENT))
     data = LIMITS.format(comment="").encode()
-    result = check_file(str(path), CheckOptions(), data=data)
+    result = load_and_check(str(path), CheckOptions(), data=data)
     assert [(f.code, f.line) for f in result.findings] == [("U204", 5)]
 
 
@@ -125,13 +125,13 @@ def test_suppressions_in_included_files_come_from_the_bytes_loaded(tmp_path, mon
         raise AssertionError(f"suppressions re-read {name} from disk")
 
     monkeypatch.setattr(suppressions, "read_regular", no_disk)
-    assert check_file(str(robot), CheckOptions()).findings == []
+    assert load_and_check(str(robot), CheckOptions()).findings == []
 
 
 def test_suppressions_in_standard_input_count():
     """Read from the bytes loaded, a comment in piped input works like one in a file."""
     data = LIMITS.format(comment=COMMENT).encode()
-    assert check_file("-", CheckOptions(), data=data).findings == []
+    assert load_and_check("-", CheckOptions(), data=data).findings == []
     unused = LIMITS.format(comment="").replace("<link", COMMENT + "<link", 1).encode()
-    assert [(f.code, f.file) for f in check_file("-", CheckOptions(), data=unused).findings] \
+    assert [(f.code, f.file) for f in load_and_check("-", CheckOptions(), data=unused).findings] \
         == [("U901", "<stdin>"), ("U204", "<stdin>")]

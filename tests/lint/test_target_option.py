@@ -16,7 +16,7 @@ import pytest
 from conftest import CASES
 from urdftool.errors import SettingsError, UsageError
 from urdftool.lint import fixes
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 from urdftool.lint.options import Selection
 from urdftool.lint.runner import check_paths
 from urdftool.report import render
@@ -25,9 +25,9 @@ WELDED = CASES / "U928_mujoco_welded_root.urdf"
 
 
 def test_target_rules_run_only_for_their_target():
-    plain = check_file(str(WELDED), CheckOptions())
+    plain = load_and_check(str(WELDED), CheckOptions())
     assert not [f for f in plain.findings if f.code.startswith("U92")]
-    mujoco = check_file(str(WELDED), CheckOptions(selection=Selection(targets=("mujoco",))))
+    mujoco = load_and_check(str(WELDED), CheckOptions(selection=Selection(targets=("mujoco",))))
     [finding] = [f for f in mujoco.findings if f.code == "U928"]
     assert finding.target == "mujoco" and "MuJoCo" in finding.message
     assert not [f for f in mujoco.findings if f.code.startswith("U94")]  # drake not asked
@@ -35,15 +35,15 @@ def test_target_rules_run_only_for_their_target():
 
 def test_select_and_ignore_narrow_target_rules():
     both = Selection(ignore=("U928",), targets=("mujoco", "drake"))
-    found = {f.code for f in check_file(str(WELDED), CheckOptions(selection=both)).findings}
+    found = {f.code for f in load_and_check(str(WELDED), CheckOptions(selection=both)).findings}
     assert "U944" in found and "U928" not in found
 
 
 def test_a_version_changes_the_facts():
     """MuJoCo before 3.7 drops a mesh path's folders: package:// is no error of its own."""
     case = CASES / "U920_mujoco_package_uri" / "robot.urdf"
-    new = check_file(str(case), CheckOptions(selection=Selection(targets=("mujoco",))))
-    old = check_file(str(case), CheckOptions(selection=Selection(targets=("mujoco@3.6",))))
+    new = load_and_check(str(case), CheckOptions(selection=Selection(targets=("mujoco",))))
+    old = load_and_check(str(case), CheckOptions(selection=Selection(targets=("mujoco@3.6",))))
     assert "U920" in {f.code for f in new.findings}
     assert "U920" not in {f.code for f in old.findings}
     assert "MuJoCo 3.6" in " ".join(f.message for f in old.findings)  # U922: not beside it
@@ -66,7 +66,7 @@ def test_settings_targets_apply_and_are_checked(tmp_path):
 
 
 def test_every_machine_format_carries_the_target():
-    result = check_file(str(WELDED), CheckOptions(selection=Selection(targets=("mujoco",))))
+    result = load_and_check(str(WELDED), CheckOptions(selection=Selection(targets=("mujoco",))))
     result.findings = [f for f in result.findings if f.code == "U928"]
 
     def out(name):
@@ -108,12 +108,12 @@ def _fixed(tmp_path, case, code, target):
     (folder / ".git").mkdir()
     robot = folder / "robot.urdf"
     options = CheckOptions(selection=Selection(select=(code,), targets=(target,)))
-    result = check_file(str(robot), options)
+    result = load_and_check(str(robot), options)
     assert [f for f in result.findings if f.code == code and f.fix is not None]
     changes = fixes.plan([result], unsafe=True)
     assert changes.applied and not changes.skipped, changes.skipped
     fixes.write(changes)
-    assert not [f for f in check_file(str(robot), options).findings if f.code == code]
+    assert not [f for f in load_and_check(str(robot), options).findings if f.code == code]
     return robot
 
 

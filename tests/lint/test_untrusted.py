@@ -10,7 +10,7 @@ import os
 
 import pytest
 
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 XACRO_NS = ' xmlns:xacro="http://www.ros.org/wiki/xacro"'
 LAUGHS = ('<!DOCTYPE robot [<!ENTITY lol "lol">'
@@ -55,7 +55,7 @@ def _write(tmp_path, name, text, xacro):
 @pytest.mark.parametrize("name", sorted(INPUTS))
 def test_untrusted_input_ends_in_a_finding(tmp_path, name, xacro):
     text, code = INPUTS[name]
-    result = check_file(str(_write(tmp_path, name, text, xacro)), CheckOptions(allow_env=False))
+    result = load_and_check(str(_write(tmp_path, name, text, xacro)), CheckOptions(allow_env=False))
     codes = {f.code for f in result.findings}
     assert "U900" not in codes, result.findings
     if code is not None:
@@ -69,7 +69,7 @@ def test_untrusted_input_ends_in_a_finding(tmp_path, name, xacro):
 
 
 def test_entity_bomb_is_refused_at_its_declaration(tmp_path):
-    result = check_file(str(_write(tmp_path, "laughs", LAUGHS, False)), CheckOptions())
+    result = load_and_check(str(_write(tmp_path, "laughs", LAUGHS, False)), CheckOptions())
     assert [(f.code, f.line) for f in result.findings] == [("U009", 1)]
 
 
@@ -77,7 +77,7 @@ def test_included_file_over_the_size_limit(tmp_path):
     (tmp_path / "big.xacro").write_text(f'<robot{XACRO_NS}>' + " " * 5000 + "</robot>")
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(f'<robot name="r"{XACRO_NS}>\n<xacro:include filename="big.xacro"/>\n</robot>')
-    result = check_file(str(path), CheckOptions(max_file_size=1000))
+    result = load_and_check(str(path), CheckOptions(max_file_size=1000))
     assert [(f.code, f.line) for f in result.findings] == [("U005", 2)]
     assert "over the limit" in result.findings[0].message
 
@@ -89,7 +89,7 @@ def test_unreadable_include_is_a_located_finding(tmp_path):
     (tmp_path / "secret.xacro").chmod(0)
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(f'<robot name="r"{XACRO_NS}>\n<xacro:include filename="secret.xacro"/>\n</robot>')
-    result = check_file(str(path), CheckOptions())
+    result = load_and_check(str(path), CheckOptions())
     assert [(f.code, f.line) for f in result.findings] == [("U005", 2)]
 
 
@@ -97,14 +97,14 @@ def test_folder_as_include_is_a_located_finding(tmp_path):
     (tmp_path / "sub").mkdir()
     path = tmp_path / "robot.urdf.xacro"
     path.write_text(f'<robot name="r"{XACRO_NS}>\n<xacro:include filename="sub"/>\n</robot>')
-    result = check_file(str(path), CheckOptions())
+    result = load_and_check(str(path), CheckOptions())
     assert [(f.code, f.line) for f in result.findings] == [("U005", 2)]
 
 
 def test_fifo_input_is_not_read(tmp_path):
     fifo = tmp_path / "pipe.urdf"
     os.mkfifo(fifo)
-    result = check_file(str(fifo), CheckOptions())
+    result = load_and_check(str(fifo), CheckOptions())
     assert [f.code for f in result.findings] == ["U001"]
 
 
@@ -127,5 +127,5 @@ def test_odd_files_in_a_folder_do_not_break_the_walk(run_cli, tmp_path):
 def test_symlink_loop_input_is_a_finding(tmp_path):
     loop = tmp_path / "loop.urdf"
     loop.symlink_to(loop)
-    result = check_file(str(loop), CheckOptions())
+    result = load_and_check(str(loop), CheckOptions())
     assert [f.code for f in result.findings] == ["U001"]

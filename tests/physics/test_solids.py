@@ -89,7 +89,7 @@ def test_rigid_bounds_equal_the_placed_corners_exactly(tmp_path):
 
 
 def test_a_links_shapes_are_read_once_per_robot(tmp_path, monkeypatch):
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
     from urdftool.physics import solids
 
     read, shape_of = [], solids.shape_of
@@ -99,7 +99,7 @@ def test_a_links_shapes_are_read_once_per_robot(tmp_path, monkeypatch):
         'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>').replace(
         '<link name="arm">', '<link name="arm"><inertial><mass value="1"/><inertia ixx="0.1" '
         'ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'))
-    check_file(str(tmp_path / "r.urdf"), CheckOptions())
+    load_and_check(str(tmp_path / "r.urdf"), CheckOptions())
     assert len(read) == len(set(read)) == 3  # base's collision, sensor's and arm's visuals
 
 

@@ -257,7 +257,7 @@ def load_robot(path: str, args: dict[str, str], packages, **load_options):
 
 def budgeted(command):
     """``command`` with ``--timeout`` and ``--max-memory`` options, run within that budget in a
-    forked process (see urdftool.lint.runner): over it, a finding located where the work was (U015,
+    forked process (see urdftool.lint.pool): over it, a finding located where the work was (U015,
     U018) and exit 1. The command's first word is the robot it is about."""
     signature = inspect.signature(command, eval_str=True)
     options = {"timeout": (float, TimeoutOption), "max_memory": (str, MaxMemoryOption)}
@@ -265,7 +265,7 @@ def budgeted(command):
     @functools.wraps(command)
     def run(**kwargs):
         from urdftool.budget import Budget
-        from urdftool.lint.runner import Stop, run_budgeted, stop_finding
+        from urdftool.lint.pool import Stop, run_budgeted
 
         try:
             budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
@@ -307,6 +307,8 @@ def budgeted(command):
             if result.kind == "crash":  # a traceback: its lines quote the robot's names
                 show(result.detail, err=True, nl=False)
             else:
+                from urdftool.lint.engine import stop_finding
+
                 report_findings(path, [stop_finding(path, result, f"urdftool {command.__name__}")])
             raise typer.Exit(1)
         raise typer.Exit(result)

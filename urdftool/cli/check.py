@@ -111,6 +111,7 @@ def check(
                                         ".urdftool_cache; none when CI is set]."),
 ) -> None:
     from urdftool.budget import Budget, one_blas_thread
+    from urdftool.cli import COMMAND_LINE  # the program's words (None from the Python API)
     from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
@@ -173,7 +174,10 @@ def check(
             render(format, results, stream, quiet=quiet,
                    notes=lambda result: notes_shown(result.path, notes, request))
     code = 2 if run.errors else 0 if exit_zero else run.exit_code
-    keep = output is None and not (fix or diff) and _keeps_output(request, run)
+    # kept for the same words, run again as the program (``urdftool/__main__.py``), when the
+    # report goes to a file or pipe (a terminal's colours are not kept)
+    keep = output is None and not (fix or diff) and run.depends is not None and \
+        COMMAND_LINE is not None and not sys.stdout.isatty()
     if output or keep:
         import io
 
@@ -183,8 +187,10 @@ def check(
             write_output(output, text.getvalue())
         else:
             document(text.getvalue())
-            _keep_output(request, run, text.getvalue(), "".join(m + "\n" for m in messages),
-                         code)
+            from urdftool.lint.cache import keep_output
+
+            keep_output(request.cache_dir, run, COMMAND_LINE, text.getvalue(),
+                        "".join(m + "\n" for m in messages), code)
     else:
         report(run.results, sys.stdout)
     for error in run.errors:  # settings broken for some files; the others were checked
@@ -196,25 +202,6 @@ def _default_cache():
     from urdftool.lint.cache import default_folder  # not imported by a run without the cache
 
     return default_folder()
-
-
-def _keeps_output(request, run) -> bool:
-    """Whether this run's output is kept for ``urdftool check`` run again with the same words
-    (see ``urdftool/__main__.py``): a run the result cache kept whole, started as the program
-    (not through the Python API), printing to a file or pipe (a terminal's colours are not
-    kept)."""
-    from urdftool.cli import COMMAND_LINE
-
-    return COMMAND_LINE is not None and request.cache_dir is not None and \
-        run.depends is not None and not sys.stdout.isatty()
-
-
-def _keep_output(request, run, stdout: str, stderr: str, code: int) -> None:
-    from urdftool.cli import COMMAND_LINE
-    from urdftool.lint.cache import Cache
-
-    words, environment = COMMAND_LINE  # before check set any variable (one_blas_thread)
-    Cache(request.cache_dir).put_output(words, environment, run.depends, stdout, stderr, code)
 
 
 def _apply_fixes(run, diff: bool, unsafe: bool, recheck):

@@ -65,11 +65,8 @@ def ik(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.errors import ConfigError, FKError, IKError
-    from urdftool.kinematics import configuration as config
-    from urdftool.kinematics import ik as solver
-    from urdftool.kinematics.chain import build_chain
-    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+    from urdftool.errors import ConfigError, FKError, IKError, UnknownName
+    from urdftool.kinematics.ik import solve_limb
     from urdftool.report import ik as render
 
     sources = [xyz is not None, target_frame is not None, targets is not None,
@@ -84,33 +81,22 @@ def ik(
         (iterations < 1, "--iterations must be at least 1"),
         (not tol > 0, "--tol must be more than 0")))
     given = joint_words(q, "--q")
-    option = "--q"
+    frame_q = joint_words(target_q, "--target-q")
     try:
-        kinematics = KinematicModel(robot)
-        start = config.from_words(kinematics.variables, given, deg, kinematics.mimics)
-        chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
-        if xyz is not None:
-            option = "--quat"
-            wanted = [solver.target(xyz, rpy, quat, deg)]
-        elif target_frame is not None:
-            option = "--target-q"
-            other = config.from_words(kinematics.variables, joint_words(target_q, option), deg,
-                                      kinematics.mimics)
-            pose = forward_kinematics(kinematics, other, [target_frame], chain.base).matrices[0, 0]
-            if point is not None:  # the same point on the target frame
-                pose[:3, 3] += pose[:3, :3] @ point
-            wanted = [solver.Target(pose[:3, 3], pose[:3, :3], f"{target_frame} at --target-q")]
-        else:
-            option = "--targets" if targets else "--check-reach"
-            wanted = solver.read_targets(targets or check_reach, deg)
+        found = solve_limb(robot, tip, base, point, given, xyz=xyz, rpy=rpy, quaternion=quat,
+                           frame=target_frame, frame_q=frame_q,
+                           targets_file=targets or check_reach,
+                           name=f"{target_frame} at --target-q" if target_frame else "",
+                           degrees=deg, seeds_count=seeds, seed=seed, tolerance=tol,
+                           iterations=iterations, method=method.replace("-", " "))
     except ConfigError as error:
-        fail_config(error, option)
-    except (FKError, IKError) as error:
+        fail_config(error, {"q": "--q", "orientation": "--quat", "frame_q": "--target-q",
+                            "targets": "--targets" if targets else "--check-reach"
+                            }[error.argument])
+    except (FKError, IKError, UnknownName) as error:
         fail_at(robot, error)
-    warn(start.warnings)
-    starts = solver.seeds(chain, seeds, seed)
-    solutions = [solver.solve(chain, goal, starts, tol, iterations,
-                              method.replace("-", " ")) for goal in wanted]
+    warn(found.warnings)
+    chain, solutions = found.chain, found.solutions
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

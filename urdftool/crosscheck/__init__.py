@@ -2,8 +2,8 @@
 made of it.
 
 Each loader (:mod:`.loaders`: Pinocchio, MuJoCo, PyBullet, Drake, sdformat through ``gz sdf``)
-runs in a worker process of its own, forked by the runner under the time and memory budget
-(:func:`urdftool.lint.runner.run_budgeted`): loaders segfault and abort on bad input, and a
+runs in a worker process of its own, forked by the pool under the time and memory budget
+(:func:`urdftool.lint.pool.run_budgeted`): loaders segfault and abort on bad input, and a
 loader that dies, hangs or overruns its memory is reported as failed, with why. A xacro file is
 expanded by urdftool and written to a temporary folder; packages are handed to the loaders that
 take them (Drake's PackageMap, Pinocchio, PyBullet's search path), as a user would.
@@ -207,7 +207,7 @@ def _packages(robot) -> dict:
 def _run(names: list[str], job: Job, budget: Budget) -> list:
     """Each loader in a worker of its own (forked, one piece each), within the budget."""
     from urdftool.crosscheck.loaders import LOAD
-    from urdftool.lint.runner import run_budgeted
+    from urdftool.lint.pool import run_budgeted
 
     if not names:
         return []

@@ -292,6 +292,65 @@ def blocking_limits(chain: Chain, x: np.ndarray, target: Target) -> list[tuple[s
     return blocked
 
 
+@dataclass
+class LimbSolutions:
+    """What :func:`solve_limb` found: the limb (``chain``), a solution per target, in order, and
+    warnings about the starting configuration (a joint outside its limits)."""
+
+    chain: Chain
+    solutions: list[Solution]
+    warnings: list[str]
+
+
+def solve_limb(robot, tip: str, base: str | None = None, point=None,
+               q: dict[str, str] | None = None, *, xyz=None, rpy=None, quaternion=None,
+               frame: str | None = None, frame_q: dict[str, str] | None = None,
+               targets_file: str | None = None, name: str = "", degrees: bool = False,
+               seeds_count: int = SEEDS, seed: int = 0, tolerance: float = TOLERANCE, iterations: int = MAX_ITERATIONS,
+               method: str = "auto") -> LimbSolutions:
+    """Joint values that put ``point`` [m] of ``tip`` (default: its origin) at each target,
+    relative to ``base`` (default: the root link).
+
+    q: ``{joint: text}``, the first seed and where the joints off the limb stay; the target is
+        one of: ``xyz`` [m] with ``rpy`` or ``quaternion`` (position only without them), where
+        ``frame`` is at the configuration ``frame_q`` (the same ``point`` on it), or the targets
+        of ``targets_file`` (:func:`read_targets`); name: the label of the one target of ``xyz``
+        or ``frame``; degrees: angles in degrees; then
+        ``seeds_count`` starting points (:func:`seeds`) for :func:`solve`.
+    Raises ConfigError whose ``argument`` names the input it is about ('q', 'orientation',
+    'frame_q', 'targets'), FKError, IKError, and UnknownLink for an unknown ``frame``.
+    """
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.chain import build_chain
+    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+
+    argument = "q"
+    try:
+        kinematics = KinematicModel(robot)
+        start = config.from_words(kinematics.variables, q or {}, degrees, kinematics.mimics)
+        chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
+        if xyz is not None:
+            argument = "orientation"
+            wanted = [target(xyz, rpy, quaternion, degrees, name)]
+        elif frame is not None:
+            argument = "frame_q"
+            other = config.from_words(kinematics.variables, frame_q or {}, degrees,
+                                      kinematics.mimics)
+            pose = forward_kinematics(kinematics, other, [frame], chain.base).matrices[0, 0]
+            if point is not None:  # the same point on the target frame
+                pose[:3, 3] += pose[:3, :3] @ point
+            wanted = [Target(pose[:3, 3], pose[:3, :3], name)]
+        else:
+            argument = "targets"
+            wanted = read_targets(targets_file, degrees)
+    except ConfigError as error:
+        error.argument = argument
+        raise
+    starts = seeds(chain, seeds_count, seed)
+    return LimbSolutions(chain, [solve(chain, goal, starts, tolerance, iterations, method)
+                                 for goal in wanted], start.warnings)
+
+
 def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) -> np.ndarray:
     """``count`` starting points ``[count, len(x)]``: ``first`` (default: the limb's values in
     the chain's row), then random ones within the limits (continuous joints over a turn)."""

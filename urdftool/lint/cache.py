@@ -87,6 +87,17 @@ def default_folder(environ=os.environ) -> Path | None:
     return None if environ.get("CI") or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
 
 
+def keep_output(folder, run, command_line: tuple[list[str], dict[str, str]], stdout: str,
+                stderr: str, code: int) -> None:
+    """Keep what a ``check`` command line (its words and environment) printed for ``run`` and
+    its exit code, in the cache ``folder``, for the same words to print it again
+    (:meth:`Cache.get_output`); only a run the cache kept whole (``run.depends``), whose entries
+    say when the output is stale."""
+    if folder is not None and run.depends is not None:
+        words, environment = command_line
+        Cache(folder).put_output(words, environment, run.depends, stdout, stderr, code)
+
+
 class Cache:
     """Results of files checked, in ``folder``; every problem with the folder is a miss."""
 

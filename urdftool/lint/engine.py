@@ -1,11 +1,15 @@
-"""Run rules over robots: select, stamp, and never let one rule's crash end the run."""
+"""Run rules over robots: select, stamp, and never let one rule's crash end the run; what went
+wrong around the rules as findings too: a load error's kind -> U0xx, a crash -> U900, a piece of
+work the pool stopped (:class:`urdftool.lint.pool.Stop`) -> U015, U018 or U900."""
 
 from __future__ import annotations
 
 import os
 from contextlib import nullcontext
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError, missing_extra
 from urdftool.lint.catalogue import Rule
@@ -13,7 +17,11 @@ from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
 
-__all__ = ["CheckOptions", "FileResult", "Selection", "check_file", "check_robot"]
+if TYPE_CHECKING:
+    from urdftool.lint.pool import Stop
+
+__all__ = ["CheckOptions", "FileResult", "Selection", "check_robot", "load_and_check",
+           "stop_finding"]
 
 # What the loader's errors (LoadError.kind) and notes (LoadNote.kind) are reported as. The loader
 # knows no rule code and names no option: the hints on what to pass are added here.
@@ -95,7 +103,7 @@ def _run_rules(robot, allows) -> list[Finding]:
             for where, message, *rest in rule.check(robot):
                 findings.append(stamp(rule, where, message, robot, *rest))
         except MemoryError:
-            raise  # over the memory budget: the runner reports it (U018)
+            raise  # over the memory budget: the pool stops it (U018)
         except ImportError as error:  # a lint-only install: say what did not run, and why
             if (advice := missing_extra(error)) is None:
                 findings.append(_crash(f"rule {rule.code} ({rule.name})", error,
@@ -133,14 +141,15 @@ def urdfdom_refusals(robot) -> list[Finding]:
 COLLECTION = (nullcontext, nullcontext)
 
 
-def check_file(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
-    """Load and check one file (``data``: its content, when not to be read from ``path``);
-    load failures are findings too."""
+def load_and_check(path: str, options: CheckOptions, data: bytes | None = None) -> FileResult:
+    """Load and check one file with ``options`` as they are (no settings file is looked for:
+    the public ``urdftool.check_file`` finds them, then calls this); ``data``: its content,
+    when not to be read from ``path``. Load failures are findings too."""
     with COLLECTION[0]():
-        return _check_file(path, options, data)
+        return _recorded(path, options, data)
 
 
-def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
+def _recorded(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
     """Load and check, everything read, searched and resolved noted in the result's record
     (:mod:`urdftool.description.record`): the loader, discovery and every rule read through
     the one door, so the record is complete; the result cache and the language server read it."""
@@ -176,7 +185,7 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, load_error_findings(error))
     except MemoryError:
-        raise  # over the memory budget: the runner reports it where loading was (U018)
+        raise  # over the memory budget: the pool stops it where loading was (U018)
     except Exception as error:  # a loader bug (RecursionError too): a finding, not a traceback
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
@@ -224,3 +233,30 @@ def _companion_lines(robot) -> list[str]:
         return companions(robot).describe()
     except Exception as error:  # noqa: BLE001 - the rules already reported what broke
         return [f"companions not found: {type(error).__name__}: {error}"]
+
+
+def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
+    """The finding for work on ``path`` that ``stop`` ended; ``doing``: what it was, e.g.
+    'checking'. Located where the work was, when known."""
+    shown = display_path(path) if path != "-" else "<stdin>"
+    where = stop.where or Location(shown)
+    if path == "-" and where.file.endswith("stdin.xacro"):
+        where = Location(shown, where.line, where.via)
+    if stop.kind == "time":
+        return _finding("U015", where, f"{doing} took longer than {stop.budget.seconds:g} s and "
+                                       "was stopped (raise the budget with --timeout)")
+    if stop.kind == "memory":
+        limit = stop.budget.memory
+        needed = (f"needed more than {budgets.format_memory(limit)} of memory"
+                  if limit else "ran out of memory")
+        return _finding("U018", where, f"{doing} {needed} and was stopped"
+                                       + (" (raise the budget with --max-memory)" if limit else ""))
+    detail = stop.detail.strip().splitlines()[-1] if stop.detail.strip() else stop.kind
+    if stop.kind == "died" and stop.budget.memory:  # C libraries may exit when malloc fails
+        detail += (f"; it may have run out of its {budgets.format_memory(stop.budget.memory)} "
+                   "of memory (--max-memory)")
+    return _finding("U900", where, f"internal error: {detail}")
+
+
+def _finding(code: str, where: Location, message: str) -> Finding:
+    return CATALOGUE.get(code).finding(message, where)

@@ -1,113 +1,29 @@
-"""Run work in forked worker processes, each piece within a time and memory budget.
+"""The linter's entry points: check paths as ``urdftool check`` does, many files in worker
+processes, one file as an editor has it.
 
-Each worker is a forked process that does one piece of work at a time and sends the result back
-over a pipe. Its address space is capped (``--max-memory``), so an allocation over the budget
-raises MemoryError in the worker instead of taking the machine's memory. A worker that overruns
-the time budget is killed with every process it started (a hung xacro expression cannot be
-interrupted from inside) and replaced. Either way the piece ends with a :class:`Stop` that says
-where the work was (see :mod:`urdftool.budget`), and the run goes on. Results come back in the
-order given, whatever order the workers finish in. What a worker prints goes to this process's
-standard streams: directly when they are files, passed on over the pipe when they are not (under
-a test runner). The rules are imported before the workers that check files are forked, so that
-each inherits them rather than importing them again.
-
-``run_budgeted`` is the general form every command uses; ``check_files`` checks many robot files;
-``check_paths`` is ``urdftool check`` (settings, targets, budgets, exit code) and ``check_file``
-one file in this process, as an editor has it (both are the public API: ``urdftool.check_paths``).
+``check_paths`` is ``urdftool check`` (settings per target, folders walked, budgets, the result
+cache, an exit code) and ``check_file`` one file in this process, with the settings above it
+(both are the public API: ``urdftool.check_paths``, ``urdftool.check_file``); ``check_files``
+checks files already resolved to their options in the budgeted workers of
+:mod:`urdftool.lint.pool`. Each file is loaded and checked by ``engine.load_and_check``. The rules
+are imported before the workers that check files are forked, so that each inherits them rather
+than importing them again.
 """
 
 from __future__ import annotations
 
-import io
 import os
-import signal
 import sys
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from urdftool import budget as budgets
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.description.run_memo import one_run
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding
 from urdftool.errors import SettingsError
 from urdftool.lint.options import CheckOptions, FileResult
+from urdftool.lint.pool import Stop, auto_jobs, run_budgeted
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
-
-
-def default_jobs() -> int:
-    """The number of cores this process may run on."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-
-
-FILES_PER_WORKER = 4  # a worker pays for its own lazy imports (numpy) and mesh reads
-
-
-def auto_jobs(files: int) -> int:
-    """How many workers check ``files`` files when ``--jobs`` is not given: one per core that
-    is idle now (the cores less the load average), and at most one per FILES_PER_WORKER files.
-    Two workers cost more CPU than one (each imports and reads again what the other did), so
-    they finish sooner only on a core nobody else uses: on a busy machine, one."""
-    try:
-        busy = os.getloadavg()[0]
-    except (AttributeError, OSError):
-        busy = 0.0
-    idle = max(1, round(default_jobs() - busy))
-    return max(1, min(idle, files // FILES_PER_WORKER))
-
-
-@dataclass(frozen=True)
-class Stop:
-    """Why a piece of work ended without a result.
-
-    kind: 'time' (over the time budget), 'memory' (MemoryError, over the memory budget or out of
-        memory), 'died' (the worker process ended; ``detail`` says how), 'crash' (an
-        exception; ``detail`` is its traceback) or 'cancelled' (the caller no longer wanted it)
-    where: the location the work had reached, when known
-    """
-
-    kind: str
-    budget: Budget
-    detail: str = ""
-    where: Location | None = None
-
-
-def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
-                 finished=None, cancel=None) -> list:
-    """``[work(i) for i in range(count)]``, each call within ``budget`` in one of up to ``jobs``
-    forked workers; a call that ends without a result gives ``stopped(i, Stop)`` instead.
-
-    Without a budget, with one job or one call (or where processes cannot fork) the work is
-    done in this process, and only a MemoryError becomes a Stop.
-    finished: called in this process with how many calls have ended, as each ends (progress)
-    cancel: a ``threading.Event`` another thread sets when it no longer wants the results (a
-        language server's document changed again): the workers are killed within
-        :data:`CANCEL_POLL` and every call not done gives ``stopped(i, Stop('cancelled'))``.
-        With it, the work is always done in a worker (only a worker can be stopped).
-    """
-    finished = finished or (lambda done: None)
-    if count == 0 or not hasattr(os, "fork") or \
-            cancel is None and budget.unlimited and min(jobs, count) == 1:
-        results = []
-        for index in range(count):
-            results.append(_here(index, work, budget, stopped))
-            finished(index + 1)
-        return results
-    results: list = [None] * count
-    _run_pool(work, list(range(count)), min(jobs, count), budget, stopped, results, finished,
-              cancel)
-    return results
-
-
-CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
-
-
-def _here(index, work, budget, stopped):
-    budgets.working_at(None)
-    try:
-        return work(index)
-    except MemoryError:
-        return stopped(index, Stop("memory", budget, where=budgets.where()))
 
 
 def check_files(files: list[str], options_for, jobs: int | None = None,
@@ -151,6 +67,8 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
                      [options_for(files[i]) for i in todo], stdin, cache)
 
     def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
+        from urdftool.lint.engine import stop_finding
+
         return [stop_finding(named[todo[index]], stop, "checking")], []
 
     lines: list[list[str]] = [[] for _ in files]
@@ -177,7 +95,7 @@ class _Checking:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
-        result = engine.check_file(self.named[index], options, data=self.stdin.get(path))
+        result = engine.load_and_check(self.named[index], options, data=self.stdin.get(path))
         if self.cache and path != "-":
             self.cache.put(path, options, result)  # with the record of what its check read
         return result.findings, result.companions
@@ -312,7 +230,7 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
 
     with recording() as record:  # the settings found, and the check's own record
         check_companions(request.companions)
-        result = engine.check_file(path, for_file(path, request).options, data=data)
+        result = engine.load_and_check(path, for_file(path, request).options, data=data)
     result.record = record
     return result
 
@@ -323,281 +241,5 @@ def _request(options: dict) -> CheckRequest:
         options = {**options, "companions": Companions(**companions)}
     return CheckRequest(**options)
 
-
-def stop_finding(path: str, stop: Stop, doing: str) -> Finding:
-    """The finding for work on ``path`` that ``stop`` ended; ``doing``: what it was, e.g.
-    'checking'. Located where the work was, when known."""
-    shown = display_path(path) if path != "-" else "<stdin>"
-    where = stop.where or Location(shown)
-    if path == "-" and where.file.endswith("stdin.xacro"):
-        where = Location(shown, where.line, where.via)
-    if stop.kind == "time":
-        return _finding("U015", where, f"{doing} took longer than {stop.budget.seconds:g} s and "
-                                       "was stopped (raise the budget with --timeout)")
-    if stop.kind == "memory":
-        limit = stop.budget.memory
-        needed = (f"needed more than {budgets.format_memory(limit)} of memory"
-                  if limit else "ran out of memory")
-        return _finding("U018", where, f"{doing} {needed} and was stopped"
-                                       + (" (raise the budget with --max-memory)" if limit else ""))
-    detail = stop.detail.strip().splitlines()[-1] if stop.detail.strip() else stop.kind
-    if stop.kind == "died" and stop.budget.memory:  # C libraries may exit when malloc fails
-        detail += (f"; it may have run out of its {budgets.format_memory(stop.budget.memory)} "
-                   "of memory (--max-memory)")
-    return _finding("U900", where, f"internal error: {detail}")
-
-
-def _finding(code: str, where: Location, message: str) -> Finding:
-    from urdftool.lint.rules import CATALOGUE
-
-    return CATALOGUE.get(code).finding(message, where)
-
-
-# ---- in the worker -------------------------------------------------------------------------
-
-class _Relay(io.RawIOBase):
-    """A stream of the worker whose bytes go over the pipe to the parent's stream."""
-
-    def __init__(self, connection, number: int):
-        self.connection, self.number = connection, number
-
-    def writable(self) -> bool:
-        return True
-
-    def write(self, data) -> int:
-        self.connection.send(("write", self.number, bytes(data)))
-        return len(data)
-
-
-def _has_file(stream) -> bool:
-    try:
-        return stream.fileno() >= 0
-    except (AttributeError, OSError, ValueError):
-        return False
-
-
-def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
-           parent: int) -> None:
-    """The worker: do the piece of work it is sent, until told to stop. ``parent``: the pid of
-    the process that started it, taken before the fork (read here, it could already be the
-    reaper's when the parent died first)."""
-    try:
-        os.setpgid(0, 0)  # its own process group: a kill reaches what it starts (dot, pools)
-    except OSError:
-        pass
-    _die_with(parent)
-    budgets.report_into(slot)
-    budgets.limit_memory(memory)
-    for number in relay:
-        setattr(sys, ("stdout", "stderr")[number - 1], io.TextIOWrapper(
-            io.BufferedWriter(_Relay(connection, number)), encoding="utf-8",
-            errors="backslashreplace", line_buffering=True))
-    with one_run():  # one view of the file system for its pieces (a forked worker's: the block
-        # it was forked in, when there was one)
-        _serve_pieces(connection, work)
-
-
-def _serve_pieces(connection, work) -> None:
-    while True:
-        try:
-            index = connection.recv()
-        except (EOFError, OSError):
-            return
-        if index is None:
-            return
-        budgets.working_at(None)
-        try:
-            message = ("done", index, work(index))
-        except MemoryError:
-            message = ("stop", index, "memory", "")
-        except BaseException:  # report, never die silently
-            import traceback
-
-            message = ("stop", index, "crash", traceback.format_exc())
-        for stream in (sys.stdout, sys.stderr):
-            stream.flush()
-        try:
-            connection.send(message)
-        except Exception as error:  # a result that does not pickle, or memory to pickle it
-            connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
-
-
-def _die_with(parent: int) -> None:
-    """Be killed when the parent process ends (Linux): in a process group of its own, a worker
-    no longer hears the terminal's or the CI runner's signals, and a hung one would run on."""
-    try:
-        import ctypes
-
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        return
-    if os.getppid() != parent:  # it ended before the request
-        os._exit(1)
-
-
-# ---- in the parent -------------------------------------------------------------------------
-
-class _Worker:
-    def __init__(self, context, work, memory):
-        self.connection, child = context.Pipe()
-        self.slot = budgets.share_slot()
-        self.relay = _relayed()
-        # not a daemon: a worker may start processes of its own (collisions --matrix)
-        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory,
-                                                            self.relay, os.getpid()))
-        self.process.start()
-        try:
-            os.setpgid(self.process.pid, self.process.pid)
-        except OSError:
-            pass  # already done by the worker, or it has ended
-        child.close()
-        self.index: int | None = None
-        self.started = 0.0
-
-    def give(self, index: int) -> None:
-        self.index, self.started = index, time.monotonic()
-        self.slot[:4] = bytes(4)
-        self.connection.send(index)
-
-    def kill(self) -> None:
-        try:
-            os.killpg(self.process.pid, signal.SIGKILL)
-        except OSError:
-            pass
-        self.process.kill()
-
-    def stop(self, kill: bool = False) -> None:
-        if kill:
-            self.kill()
-        else:
-            try:
-                self.connection.send(None)
-            except OSError:
-                self.kill()
-        self.process.join(5)
-        if self.process.is_alive():
-            self.kill()
-            self.process.join()
-        self.connection.close()
-        self.slot.close()
-
-
-def _relayed() -> tuple[int, ...]:
-    """The standard streams (1, 2) a worker sends over its pipe: those that are not files."""
-    return tuple(n for n, s in ((1, sys.stdout), (2, sys.stderr)) if not _has_file(s))
-
-
-def _pass_on(number: int, data: bytes) -> None:
-    """Write what a worker printed to this process's stdout (1) or stderr (2)."""
-    stream = sys.stdout if number == 1 else sys.stderr
-    stream.flush()
-    if hasattr(stream, "buffer"):
-        stream.buffer.write(data)
-        stream.buffer.flush()
-    else:
-        stream.write(data.decode("utf-8", errors="replace"))
-        stream.flush()
-
-
-def _receive(worker: _Worker):
-    """The worker's next message, None at its end; output it sent is passed on, giving ()."""
-    try:
-        message = worker.connection.recv()
-    except (EOFError, OSError):
-        return None
-    if message[0] == "write":
-        _pass_on(*message[1:])
-        return ()
-    return message
-
-
-def _drain(worker: _Worker) -> None:
-    """Pass on what a worker that is being stopped printed before."""
-    try:
-        while worker.connection.poll():
-            message = worker.connection.recv()
-            if message[0] == "write":
-                _pass_on(*message[1:])
-    except (EOFError, OSError):
-        pass
-
-
-def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
-              cancel=None) -> None:
-    import multiprocessing
-    from multiprocessing.connection import wait
-
-    context = multiprocessing.get_context("fork")
-    timeout = budget.seconds
-    pending = list(reversed(queue))
-    ended = 0
-    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
-    try:
-        for worker in workers:
-            if pending:
-                worker.give(pending.pop())
-        while any(worker.index is not None for worker in workers):
-            busy = [w for w in workers if w.index is not None]
-            wait_for = None
-            if timeout:
-                wait_for = max(0.0, min(w.started + timeout for w in busy) - time.monotonic())
-            if cancel is not None:
-                if cancel.is_set():
-                    _cancel(workers, pending, budget, stopped, results)
-                    return
-                wait_for = CANCEL_POLL if wait_for is None else min(wait_for, CANCEL_POLL)
-            ready = wait([w.connection for w in busy], wait_for)
-            for position, worker in enumerate(workers):
-                if worker.index is None:
-                    continue
-                stop = None  # why the worker's piece has no result
-                if worker.connection in ready:
-                    message = _receive(worker)
-                    if message == ():
-                        continue
-                    if message is None:
-                        worker.process.join(5)
-                        stop = Stop("died", budget, "worker process died (exit code "
-                                                    f"{worker.process.exitcode})")
-                    elif message[0] == "stop":
-                        stop = Stop(message[2], budget, message[3])
-                    else:
-                        results[message[1]] = message[2]
-                elif timeout and time.monotonic() - worker.started >= timeout:
-                    stop = Stop("time", budget)
-                else:
-                    continue
-                if stop is not None:
-                    if stop.kind != "crash":  # a worker out of time or memory starts afresh
-                        worker.kill()
-                    _drain(worker)
-                    where = budgets.read_slot(worker.slot)
-                    results[worker.index] = stopped(worker.index, Stop(
-                        stop.kind, budget, stop.detail, where))
-                    if stop.kind != "crash":
-                        worker.stop(kill=True)
-                        workers[position] = worker = _Worker(context, work, budget.memory)
-                worker.index = None
-                ended += 1
-                finished(ended)
-                if pending:
-                    worker.give(pending.pop())
-    finally:
-        for worker in workers:
-            worker.stop(kill=worker.index is not None)
-
-
-def _cancel(workers, pending, budget, stopped, results) -> None:
-    """Kill the busy workers at once; every piece not done gives a 'cancelled' Stop."""
-    for worker in workers:
-        if worker.index is not None:
-            worker.kill()
-            results[worker.index] = stopped(worker.index, Stop("cancelled", budget))
-    for index in pending:
-        results[index] = stopped(index, Stop("cancelled", budget))
-    pending.clear()
-
-
-__all__ = ["Budget", "CheckOptions", "CheckRequest", "DEFAULT_TIMEOUT", "FileResult", "Run", "Stop",
-           "auto_jobs", "check_file", "check_files", "check_paths", "default_jobs", "run_budgeted",
-           "stop_finding"]
+__all__ = ["CheckOptions", "CheckRequest", "FileResult", "Run", "check_file", "check_files",
+           "check_paths"]

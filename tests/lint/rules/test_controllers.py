@@ -6,7 +6,7 @@ import pytest
 
 from conftest import ROBOTS
 from urdftool.diagnostics import Severity
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder, line_of
 
 TX = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
@@ -285,7 +285,7 @@ def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_pat
     for name, text in files.items():
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(text)
-    result = check_file(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
     [finding] = [f for f in result.findings if f.code == "U602"]
     assert finding.severity == Severity.WARNING
     assert "against the robot with other xacro arguments (gripper:=true)" in finding.message

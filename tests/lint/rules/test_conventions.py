@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 CODES = ("U417", "U418", "U419", "U420", "U421")
 WHEEL = """<link name="{side}_wheel">
@@ -18,7 +18,7 @@ WHEEL = """<link name="{side}_wheel">
 
 def _found(tmp_path, body: str, codes=CODES) -> list[tuple[str, str]]:
     (tmp_path / "r.urdf").write_text(f'<robot name="r">{body}</robot>')
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
     return [(f.code, f.message) for f in result.findings]
 
 

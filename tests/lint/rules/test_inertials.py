@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from crossfile_helpers import check_folder
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 INERTIAL = """<inertial><origin xyz="{com}"/><mass value="1"/>
   <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>"""
@@ -15,7 +15,7 @@ INERTIAL = """<inertial><origin xyz="{com}"/><mass value="1"/>
 
 def _u307(tmp_path, links, joints=""):
     (tmp_path / "r.urdf").write_text(f'<robot name="r">{links}{joints}</robot>')
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U307",))))
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U307",))))
     return [f.message for f in result.findings]
 
 
@@ -162,7 +162,7 @@ def test_a_zero_tensor_is_u304s_not_also_far_from_its_geometry(tmp_path):
 
 def _found(tmp_path, text, codes=("U3",)):
     (tmp_path / "r.urdf").write_text(text)
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
     return [(f.code, f.message) for f in result.findings]
 
 

@@ -8,7 +8,7 @@ import pytest
 
 from conftest import ROBOTS
 from crossfile_helpers import HEAD_ROBOT, check_folder, line_of
-from urdftool.lint.engine import CheckOptions, check_file
+from urdftool.lint.engine import CheckOptions, load_and_check
 
 ROBOT = HEAD_ROBOT.format(body="")
 SRDF = '<robot name="r">\n<group name="head">\n<chain base_link="base_link" tip_link="head"/>\n</group>\n</robot>\n'
@@ -66,7 +66,7 @@ def humanoid_with_kdl(tmp_path, srdf_old=None, srdf_new=None):
     if srdf_old:
         srdf = folder / "humanoid.srdf"
         srdf.write_text(srdf.read_text().replace(srdf_old, srdf_new))
-    findings = check_file(str(folder / "humanoid.urdf.xacro"), CheckOptions()).findings
+    findings = load_and_check(str(folder / "humanoid.urdf.xacro"), CheckOptions()).findings
     return folder, [f for f in findings if f.code.startswith("U81")]
 
 

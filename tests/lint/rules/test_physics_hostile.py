@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 CODES = ("U218", "U219", "U220", "U221", "U222", "U312", "U313", "U314", "U315", "U316",
          "U417", "U418", "U419", "U420", "U421", "U900")
@@ -57,6 +57,6 @@ WHEEL = ('<link name="{s}_wheel"><inertial><mass value="{m}"/><inertia ixx="{i}"
 ])
 def test_no_crash_on_malformed_robots(tmp_path, body):
     (tmp_path / "r.urdf").write_text(f'<robot name="r">{body}</robot>')
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(CODES)))
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(CODES)))
     assert not [f for f in result.findings if f.code == "U900"], \
         [f.message for f in result.findings]

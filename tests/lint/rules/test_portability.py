@@ -115,14 +115,14 @@ def _same_place(case, code, location):
     link holding it (a link's name is all MuJoCo and sdformat give), or at a link the finding
     names (sdformat names the link a NaN ends in, the rule the massless inertial causing it)."""
     from conftest import case_targets
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
     from urdftool.lint.options import Selection
 
     marks = {(file, line) for file, line, mark in expected_marks(case) if mark == code}
     assert Path(location.file).name in {file for file, _ in marks}
     if location.line <= max(line for _, line in marks):
         return
-    checked = check_file(str(case_robot(case)), CheckOptions(
+    checked = load_and_check(str(case_robot(case)), CheckOptions(
         selection=Selection(select=(code,), targets=case_targets(case))))
     text = Path(case_robot(case)).read_text().splitlines()[location.line - 1]
     assert any(f"'{name}'" in finding.message for finding in checked.findings

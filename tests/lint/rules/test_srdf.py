@@ -134,7 +134,7 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
     # config/arm.srdf: the finger the SRDF names is not in the robot as checked (gripper false),
     # which is a warning naming the launch file, not an error; robot.srdf beside it is not used
     from urdftool.diagnostics import Severity
-    from urdftool.lint.engine import CheckOptions, check_file
+    from urdftool.lint.engine import CheckOptions, load_and_check
 
     (tmp_path / ".git").mkdir()
     files = {
@@ -159,7 +159,7 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
     for name, text in files.items():
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(text)
-    result = check_file(str(tmp_path / "arm.urdf.xacro"), CheckOptions())
+    result = load_and_check(str(tmp_path / "arm.urdf.xacro"), CheckOptions())
     found = [(f.file.rsplit("/", 2)[-2:], f.code, f.severity) for f in result.findings if f.code.startswith("U8")]
     assert found == [(["config", "arm.srdf"], "U803", Severity.INFO)], result.findings
     assert "launch/planning_context.launch gives MoveIt this SRDF with the robot with other xacro " \

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from urdftool.lint.engine import CheckOptions, Selection, check_file
+from urdftool.lint.engine import CheckOptions, Selection, load_and_check
 
 CODES = ("U218", "U219", "U220", "U221", "U222")
 CASES = Path(__file__).resolve().parents[2] / "cases"
@@ -13,7 +13,7 @@ CASES = Path(__file__).resolve().parents[2] / "cases"
 
 def _found(tmp_path, text: str, codes=CODES) -> list[tuple[str, str]]:
     (tmp_path / "r.urdf").write_text(text)
-    result = check_file(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(codes)))
     return [(f.code, f.message) for f in result.findings]
 
 
