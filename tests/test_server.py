@@ -133,15 +133,16 @@ async def test_an_unsaved_edit_in_an_included_macro_file_rechecks_its_robot_unti
     robot = write_robot(tmp_path / "bot", FIXED)
     macro = tmp_path / "bot" / "arm.xacro"
     uri = open_document(client, robot)
-    macro_uri = open_document(client, macro)
-    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) >= 2)
+    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    macro_uri = open_document(client, macro)  # checks its robot again
+    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) == 2)
     assert codes(client, uri) == [] and codes(client, macro_uri) == []
 
     edited = MACRO.replace("  <xacro:macro", "  <!-- two lines\n  more -->\n  <xacro:macro") \
         .replace('lower="${lower}"', 'lower="2"')  # the limit, two lines down, inverted
     change_document(client, macro_uri, 2, edited)  # in the buffer, not saved
-    await wait_until(lambda: codes(client, macro_uri) == [(LIMIT_LINE + 2, "U204")])
-    assert codes(client, uri) == [(CALL_LINE, "U204")]
+    await wait_until(lambda: codes(client, macro_uri) == [(LIMIT_LINE + 2, "U204")]
+                     and codes(client, uri) == [(CALL_LINE, "U204")])
     assert "lower limit 2 is above upper limit 1" in client.diagnostics[macro_uri][0].message
     assert macro.read_text() == MACRO
 
