@@ -55,11 +55,11 @@ def broken(tmp_path, monkeypatch):
 
 
 def test_check_paths_on_a_broken_copy(broken):
-    run = urdftool.check_paths(["robots"], jobs=1, timeout=None)
+    run = urdftool.check_paths(["robots"], jobs=1, timeout=0)
     assert run.exit_code == 1
     found = [(f.code, str(f.location), f.severity) for r in run.results for f in r.findings]
     assert found == [("U204", "robots/broken.urdf:7", urdftool.Severity.ERROR)]
-    assert urdftool.check_paths(["robots"], ignore=["U204"], jobs=1, timeout=None).exit_code == 0
+    assert urdftool.check_paths(["robots"], ignore=["U204"], jobs=1, timeout=0).exit_code == 0
     assert urdftool.check_paths("robots/broken.urdf").results[0].path == "robots/broken.urdf"
 
 

@@ -176,24 +176,43 @@ def test_renames_cost_grows_with_the_links_not_their_cube(tmp_path, monkeypatch)
 
 # ---- instances of meshes, square matrices -------------------------------------------------------
 
-def test_a_picture_past_the_triangle_limit_is_refused(run_cli, tmp_path, monkeypatch):
-    from urdftool.kinematics import scene
-
-    monkeypatch.setattr(scene, "MAX_SCENE_TRIANGLES", 20)  # two boxes of 12 triangles
+@pytest.mark.parametrize("command", [["render", "-o", "{out}"], ["collisions", "--render", "{out}"],
+                                     ["diff", "{robot}", "--render", "{out}"]],
+                         ids=["render", "collisions", "diff"])
+def test_a_picture_past_the_triangle_limit_is_refused_and_the_option_raises_it(
+        run_cli, tmp_path, command):
+    """Every command that poses the scene refuses one past --max-scene-triangles, naming the
+    option, before drawing; the option raises the limit, 0 lifts it."""
     path = tmp_path / "r.urdf"
-    path.write_text(chain(2))
-    result = run_cli("render", path, "-o", tmp_path / "r.svg", *IN_PROCESS)
+    path.write_text(chain(2))  # two boxes of 12 triangles
+    out = tmp_path / "r.svg"
+    words = [word.format(out=out, robot=path) for word in command]
+    result = run_cli(words[0], path, *words[1:], "--max-scene-triangles", "20", *IN_PROCESS)
     assert result.exit_code == 2, result.output
     assert "24 triangles, over the limit of 20" in result.stderr
-    assert not (tmp_path / "r.svg").exists()
+    assert "(raise it with --max-scene-triangles)" in result.stderr
+    assert not out.exists()
+    for limit in ("24", "0"):
+        result = run_cli(words[0], path, *words[1:], "--max-scene-triangles", limit, *IN_PROCESS)
+        assert result.exit_code == 0 and out.exists(), result.output
+        out.unlink()
 
 
-def test_dynamics_refuses_matrices_past_their_limit(run_cli, tmp_path, monkeypatch):
-    from urdftool.physics import dynamics
-
-    monkeypatch.setattr(dynamics, "MAX_MATRIX_SIZE", 2)
+def test_dynamics_refuses_matrices_past_their_limit_and_the_option_raises_it(run_cli, tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(chain(4))
-    result = run_cli("dynamics", path, *IN_PROCESS)
+    result = run_cli("dynamics", path, "--max-matrix-rows", "2", *IN_PROCESS)
     assert result.exit_code == 2 and "3 rows, over the limit of 2" in result.stderr, \
         result.output
+    assert "(raise it with --max-matrix-rows)" in result.stderr
+    for limit in ("3", "0"):
+        assert run_cli("dynamics", path, "--max-matrix-rows", limit, *IN_PROCESS).exit_code == 0
+
+
+def test_the_cli_defaults_of_the_scene_and_matrix_limits_are_the_core_ones():
+    from urdftool.cli import _common, dynamics as dynamics_command
+    from urdftool.kinematics import scene
+    from urdftool.physics import dynamics
+
+    assert _common.MAX_SCENE_TRIANGLES == scene.MAX_SCENE_TRIANGLES
+    assert dynamics_command.MAX_MATRIX_ROWS == dynamics.MAX_MATRIX_SIZE

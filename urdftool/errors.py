@@ -103,7 +103,7 @@ class OverLimit(UrdftoolError):
     which option raises the limit."""
 
     def __init__(self, what: str, value: int, limit: int, unit: str):
-        self.what, self.value, self.limit = what, value, limit
+        self.what, self.value, self.limit, self.unit = what, value, limit, unit
         super().__init__(f"{what}: {value} {unit}, over the limit of {limit}; not computed")
 
 

@@ -30,7 +30,9 @@ def pytest_addoption(parser):
 def pytest_collect_file(file_path: Path, parent):
     if not parent.config.getoption("urdftool") or file_path.suffix not in SUFFIXES:
         return None
-    if file_path.resolve() not in _top_level(parent.config, file_path.parent):
+    from urdftool.description.files import real_path
+
+    if Path(real_path(file_path)) not in _top_level(parent.config, file_path.parent):
         return None  # a macro library or a fragment another file includes: checked through it
     return RobotFile.from_parent(parent, path=file_path)
 
@@ -39,6 +41,7 @@ def _top_level(config, folder: Path) -> set[Path]:
     """The top-level robot files directly in ``folder`` (cached per folder and session)."""
     cache = config.stash.setdefault(_CACHE, {})
     if folder not in cache:
+        from urdftool.description.files import real_path
         from urdftool.lint.settings import CheckRequest
         from urdftool.lint.targets import expand
 
@@ -46,8 +49,8 @@ def _top_level(config, folder: Path) -> set[Path]:
             files = expand([str(folder)], CheckRequest()).files
         except Exception:  # noqa: BLE001 - no robots here, or unreadable: nothing to collect
             files = []
-        cache[folder] = {Path(file).resolve() for file in files
-                         if Path(file).resolve().parent == folder.resolve()}
+        real = [Path(real_path(file)) for file in files]
+        cache[folder] = {file for file in real if file.parent == Path(real_path(folder))}
     return cache[folder]
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from urdftool.errors import PackageNotFound
@@ -141,3 +143,81 @@ def test_an_empty_package_name_is_read_as_pinocchio_does(tmp_path):
     resolver = PackageResolver(start=tmp_path / "talos_data" / "meshes")
     assert resolver.resolve_uri("package:///talos_data/meshes/a.stl", tmp_path) == \
         tmp_path / "talos_data" / "meshes" / "a.stl"
+
+
+# ---- a package's manifest: dependencies declared, packages named -------------------------------
+
+def test_declared_dependencies_are_every_dependency_tag_out_of_comments(tmp_path):
+    from urdftool.description.packages import declared_dependencies
+
+    (tmp_path / "package.xml").write_text(
+        '<package format="3"><name>me</name>\n<depend>a</depend><exec_depend>b</exec_depend>\n'
+        '<run_depend>c</run_depend><build_depend>d</build_depend>\n'
+        '<exec_depend condition="$ROS_VERSION == 2"> e </exec_depend>\n'
+        '<test_depend>f</test_depend>\n<!-- <exec_depend>hidden</exec_depend> -->\n'
+        '<description>g</description><export><h/></export></package>\n')
+    assert declared_dependencies(tmp_path) == set("abcdef")
+    assert declared_dependencies(tmp_path / "none") is None
+
+
+def test_package_references_are_literal_names_out_of_comments_and_conditions_at_their_column():
+    from urdftool.description.packages import package_references
+
+    data = ('<robot>\n  <!-- $(find commented) package://commented/x -->\n'
+            '  <include filename="$(find  one)/urdf/a.xacro"/> <mesh filename="package://two/m.stl"/>\n'
+            '  <x value="$(find ${built})" uri="package://${built}/m.stl" é="package://three/m"/>\n'
+            '  <xacro:if value="${sim}"><x v="$(find optional)"/><xacro:unless value="1"/>\n'
+            '    <if value="1">package://optional/m.stl</if> $(find optional)</xacro:if>\n'
+            '  <x v="$(find four)"/>\n'
+            '</robot>\n').encode()
+    assert package_references(data) == [(3, 22, "one"), (3, 67, "two"), (4, 65, "three"),
+                                         (7, 9, "four")]  # é: 2 bytes, 1 column
+
+
+def test_the_package_of_a_file_stays_in_its_repository(tmp_path):
+    from urdftool.description.packages import package_of
+
+    (tmp_path / ".git").mkdir()
+    make_package(tmp_path / "pkg", "pkg")
+    (tmp_path / "pkg" / "urdf").mkdir()
+    assert package_of(tmp_path / "pkg" / "urdf" / "r.urdf") == tmp_path / "pkg"
+    assert package_of(tmp_path / "loose.urdf") is None
+    make_package(tmp_path.parent / "outer", "outer")  # above the repository: not its package
+    (tmp_path.parent / "outer" / "repo" / ".git").mkdir(parents=True)
+    assert package_of(tmp_path.parent / "outer" / "repo" / "r.urdf") is None
+
+
+def test_undeclared_dependencies_are_judged_per_file_by_its_own_package(run_cli, tmp_path):
+    """U019 at the first use of each undeclared package in each file of the repository, by the
+    package.xml above that file; a package not found is U006's, not U019's; an installed
+    package's files (outside the repository) are not judged."""
+    (tmp_path / "repo" / ".git").mkdir(parents=True)
+    installed = tmp_path / "opt" / "share" / "vendor_description"
+    make_package(installed, "vendor_description")
+    (installed / "vendor.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="vendor">'
+        '<xacro:property name="p" value="$(find cell)"/><link name="v"/></xacro:macro></robot>')
+    cell, parts = tmp_path / "repo" / "cell", tmp_path / "repo" / "parts"
+    make_package(cell, "cell")
+    make_package(parts, "parts")
+    (cell / "package.xml").write_text(
+        "<package><name>cell</name><depend>vendor_description</depend></package>")
+    (parts / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="parts">\n'
+        '<xacro:property name="p" value="$(find cell)"/>\n<link name="p"/>'
+        '</xacro:macro></robot>\n')
+    (cell / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:include filename="$(find vendor_description)/vendor.xacro"/>\n'
+        '<xacro:include filename="$(find parts)/parts.xacro"/>\n'
+        '<xacro:property name="again" value="$(find parts)"/>\n'
+        '<xacro:vendor/><xacro:parts/><link name="b"/>\n'
+        '<joint name="j" type="fixed"><parent link="b"/><child link="v"/></joint>\n'
+        '<joint name="k" type="fixed"><parent link="b"/><child link="p"/></joint>\n'
+        '</robot>\n')
+    result = run_cli("check", "--format", "json", "--select", "U019,U006", "--no-cache",
+                     "--package", f"vendor_description={installed}", cell / "robot.urdf.xacro")
+    found = [(d["file"].split("/")[-2:], d["line"], d["code"])
+             for d in json.loads(result.stdout)["diagnostics"]]
+    assert found == [(["cell", "robot.urdf.xacro"], 3, "U019"),
+                     (["parts", "parts.xacro"], 2, "U019")], result.output

@@ -282,3 +282,43 @@ def test_a_blob_no_reader_takes_is_left_out(repo, monkeypatch):
     with checkout(repo / "robot.urdf.xacro", "HEAD") as (tree, path):
         assert not (tree / "a_big.bin").exists()
         assert (tree / "z_after.xacro").read_text() == PART and path.is_file()
+
+
+def test_a_checkout_owned_by_another_user_is_read_and_runs_nothing(hostile, monkeypatch):
+    """A CI container's workspace belongs to the user that checked it out: git refuses it
+    ("dubious ownership") when it discovers the repository (the positive control). urdftool
+    tells git the repository and names its top level in ``safe.directory`` on the command line
+    (protected configuration: the repository cannot set it), so the old side is read; the
+    repository's config, whose programs are what the ownership check guards against, still
+    runs nothing."""
+    import os
+    import pwd
+
+    from urdftool.description import revision
+
+    if os.geteuid() != 0:
+        pytest.skip("making a checkout another user's needs root")
+    root, markers = hostile
+    with open(root / ".git" / "config", "a") as handle:
+        handle.write(config(markers).replace("[extensions]\n\tpartialClone = origin\n", ""))
+    nobody = pwd.getpwnam("nobody").pw_uid
+    for folder, names, files in os.walk(root):
+        for name in [*names, *files, "."]:
+            os.lchown(os.path.join(folder, name), nobody, nobody)
+    control = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True,
+                             text=True, env={"PATH": "/usr/bin:/bin", "GIT_CONFIG_NOSYSTEM": "1",
+                                             "GIT_CONFIG_GLOBAL": os.devnull})
+    assert control.returncode != 0 and "dubious ownership" in control.stderr
+    commands = []
+    started = subprocess.Popen
+
+    def spy(command, *args, **kwargs):
+        commands.append(command)
+        return started(command, *args, **kwargs)
+
+    monkeypatch.setattr(revision.subprocess, "Popen", spy)
+    with checkout(root / "robot" / "robot.urdf", "HEAD") as (tree, path):
+        assert path.read_text() == (root / "robot" / "robot.urdf").read_text()
+    assert commands and all(f"safe.directory={os.path.realpath(root)}" in command
+                            for command in commands)
+    assert markers_found(markers) == []

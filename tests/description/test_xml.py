@@ -75,3 +75,45 @@ def test_a_too_deep_plain_document_is_refused_whether_or_not_lxml_builds_it(monk
         monkeypatch.setattr(xml, "_lxml_builds_too_deep", lambda: builds)
         with pytest.raises(xml.XmlProblem, match="deeper than"):
             xml.parse(document)
+
+
+CONFLICTED = (b'<robot name="r">\n  <link name="base"/>\n<<<<<<< HEAD\n  <link name="arm"/>\n'
+              b'=======\n  <link name="arm_2"/>\n>>>>>>> feature/arm\n</robot>\n')
+
+
+def test_a_merge_conflict_is_said_to_be_one_at_its_first_marker(tmp_path):
+    """A file left with git's conflict markers is not 'malformed XML: not well-formed (invalid
+    token)' but an unresolved merge conflict, at the ``<<<<<<<`` line, with the other markers'
+    lines: whether read as URDF, expanded as xacro (itself or included) or read as an SRDF."""
+    from urdftool.description.documents import read_srdf
+    from urdftool.description.load import load
+    from urdftool.errors import LoadError
+
+    (tmp_path / "arm.urdf").write_bytes(CONFLICTED)
+    (tmp_path / "arm.urdf.xacro").write_bytes(CONFLICTED)
+    (tmp_path / "top.urdf.xacro").write_text(
+        '<robot name="t" xmlns:xacro="http://ros.org/wiki/xacro">\n\n'
+        '  <xacro:include filename="arm.urdf"/>\n</robot>\n')
+    for name in ("arm.urdf", "arm.urdf.xacro", "top.urdf.xacro"):
+        with pytest.raises(LoadError) as caught:
+            load(tmp_path / name)
+        assert caught.value.kind == "syntax"
+        assert caught.value.location.file.endswith(("arm.urdf", "arm.urdf.xacro"))
+        assert caught.value.location.line == 3
+        assert caught.value.message.startswith(
+            "unresolved merge conflict: git's conflict marker '<<<<<<< HEAD' at this line; "
+            "the other markers at lines 5, 7"), caught.value.message
+    (tmp_path / "arm.srdf").write_bytes(CONFLICTED)
+    srdf = read_srdf(tmp_path / "arm.srdf")
+    assert (srdf.line, srdf.problem.split(":")[0]) == (3, "unresolved merge conflict")
+
+
+def test_a_stray_marker_like_line_is_no_conflict_and_the_parser_is_believed():
+    from urdftool.description.xml import XmlProblem, parse
+
+    for data in (b'<robot name="r">\n=======\n<link name="a">\n</robot>\n',  # text, then a tag
+                 b'<robot name="r">\n  <<<<<<<< eight\n</robot>\n',  # not seven
+                 b'<robot name="r">\n  <<<<<<< indented\n</robot>\n'):  # not at a line start
+        with pytest.raises(XmlProblem) as caught:
+            parse(data)
+        assert caught.value.message.startswith("malformed XML: "), data

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -168,7 +169,7 @@ def test_settings_apply_per_target_in_either_order(two_projects, order):
     """Bug: settings came from the first path only, so `check a b` and `check b a` differed."""
     from urdftool.lint.runner import check_paths
 
-    run = check_paths([two_projects[i] for i in order], jobs=1, timeout=None)
+    run = check_paths([two_projects[i] for i in order], jobs=1, timeout=0)
     assert _found(run.results) == [("a", "U206"), ("b", "U204"), ("b", "U206")]
     assert run.strict == [order[i] == 0 for i in range(2)]  # a's strict = true, b's not
     assert run.exit_code == 1
@@ -185,11 +186,11 @@ def test_strict_settings_fail_only_their_own_files(two_projects):
 
     a, b = two_projects
     (b / "arm.urdf").write_text(ROBOT.replace('lower="1" upper="-1"', 'lower="-1" upper="1"'))
-    assert check_paths([b], jobs=1, timeout=None).exit_code == 0
-    assert check_paths([b, a], jobs=1, timeout=None).exit_code == 1
-    assert check_paths([b, a], jobs=1, timeout=None, use_settings=False).exit_code == 1
+    assert check_paths([b], jobs=1, timeout=0).exit_code == 0
+    assert check_paths([b, a], jobs=1, timeout=0).exit_code == 1
+    assert check_paths([b, a], jobs=1, timeout=0, use_settings=False).exit_code == 1
     (a / "urdftool.toml").write_text('ignore = ["U204"]\n')
-    assert check_paths([b, a], jobs=1, timeout=None).exit_code == 0
+    assert check_paths([b, a], jobs=1, timeout=0).exit_code == 0
 
 
 def test_settings_files_are_read_once_per_version(project, monkeypatch):
@@ -254,7 +255,7 @@ def test_size_limit_and_per_file_ignores_apply_per_target(two_projects):
     (a / "urdftool.toml").write_text("max-file-size = 10\n")
     (b / "urdftool.toml").write_text('[per-file-ignores]\n"arm.urdf" = ["U206"]\n')
     for paths in ([a, b], [b, a]):
-        run = check_paths(paths, jobs=1, timeout=None)
+        run = check_paths(paths, jobs=1, timeout=0)
         assert _found(run.results) == [("a", "U008"), ("b", "U204")]
 
 
@@ -333,6 +334,8 @@ OUTSIDE_IN = {  # every key, with a value naming a path outside the repository
     "notes": 'notes = "/etc/passwd"\n',
     "max-file-size": 'max-file-size = "C:\\\\Windows"\n',
     "max-memory": 'max-memory = "/dev/zero"\n',
+    "timeout": 'timeout = "/dev/zero"\n',
+    "max-triangles": 'max-triangles = "~/mesh.stl"\n',
     "targets": 'targets = ["~/mujoco"]\n',
 }
 
@@ -401,11 +404,15 @@ def test_a_settings_argument_is_never_an_allowed_root(run_cli, repo_project, mon
 
 @pytest.mark.parametrize("text", [
     "max-file-size = 16777217\n", "max-file-size = 1099511627776\n", 'max-memory = "4G"\n',
-    'max-memory = "0"\n', "max-memory = 0\n", 'max-memory = "2049M"\n'])
+    'max-memory = "0"\n', "max-memory = 0\n", 'max-memory = "2049M"\n', "timeout = 61\n",
+    "timeout = 60.5\n", "timeout = 0\n", "timeout = -1\n", "timeout = inf\n", "timeout = nan\n",
+    'timeout = "30"\n', "timeout = true\n", "max-triangles = 2000001\n", "max-triangles = 0\n",
+    "max-triangles = 1.5\n", "max-triangles = true\n"])
 def test_settings_may_lower_a_limit_but_never_raise_it(run_cli, repo_project, text):
     settings(repo_project, text)
     result = run_cli("check", repo_project / "robots")
-    assert result.exit_code == 2 and "raise it with --max-" in result.stderr, result.output
+    option = "--" + text.split(" =")[0]
+    assert result.exit_code == 2 and f"raise it with {option})" in result.stderr, result.output
 
 
 def test_the_command_line_may_raise_a_limit(run_cli, repo_project):
@@ -417,7 +424,9 @@ def test_the_command_line_may_raise_a_limit(run_cli, repo_project):
 
 
 @pytest.mark.parametrize("text", ["max-file-size = 1024\n", 'max-memory = "1G"\n',
-                                  'max-memory = "2G"\n', "max-file-size = 16777216\n"])
+                                  'max-memory = "2G"\n', "max-file-size = 16777216\n",
+                                  "timeout = 30\n", "timeout = 0.5\n", "timeout = 60\n",
+                                  "max-triangles = 1000\n", "max-triangles = 2000000\n"])
 def test_lowering_a_limit_or_keeping_it_is_fine(run_cli, repo_project, text):
     settings(repo_project, text)
     assert run_cli("check", repo_project / "robots").exit_code == 1
@@ -470,3 +479,61 @@ def test_broken_settings_elsewhere_never_stop_another_file(run_cli, tmp_path):
     assert result.exit_code == 2
     assert {d["code"] for d in json.loads(result.stdout)["diagnostics"]} >= {"U204"}
     assert "b/urdftool.toml: unknown urdftool setting(s) bogus" in result.stderr
+
+
+def test_every_budget_of_the_check_command_line_is_a_setting_that_may_only_lower_it():
+    """A budget the command line of ``check`` has (``--timeout``, ``--max-...``) is a settings
+    key of the same name in LIMITS, so that a repository can lower it and never raise it."""
+    from urdftool.cli import command
+    from urdftool.lint.settings import KEYS, LIMITS
+
+    options = {name for parameter in command("check").params
+               if parameter.param_type_name == "option" for name in parameter.opts
+               if name == "--timeout" or name.startswith("--max-")}
+    assert options == {"--timeout", "--max-file-size", "--max-memory", "--max-triangles"}
+    assert {f"--{key}" for key in LIMITS} == options and set(LIMITS) <= set(KEYS)
+
+
+def test_a_lowered_timeout_and_triangle_limit_apply_and_the_command_line_wins(repo_project):
+    from urdftool.lint.settings import CheckRequest, for_file
+
+    settings(repo_project, "timeout = 0.5\nmax-triangles = 10\n")
+    robot = str(repo_project / "robots" / "arm.urdf")
+    found = for_file(robot, CheckRequest())
+    assert (found.timeout, found.options.mesh_limits.max_triangles) == (0.5, 10)
+    given = for_file(robot, CheckRequest(timeout=120, max_triangles=5_000_000))
+    assert (given.timeout, given.options.mesh_limits.max_triangles) == (120, 5_000_000)
+    assert for_file(robot, CheckRequest(timeout=0)).timeout is None  # the user's "no budget"
+    assert for_file(robot, CheckRequest(use_settings=False)).timeout == 60
+
+
+def test_a_timeout_in_the_settings_stops_only_its_own_files(run_cli, tmp_path):
+    """Two projects checked together: the one whose settings lower the timeout has its slow
+    robot stopped (U015); the other's same robot, under the built-in 60 s, is not."""
+    slow = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">' + "".join(
+        f'<link name="l{i}_${{python.len([0 for i in python.range(10**5)])}}"/>'
+        for i in range(12)) + "</robot>\n")  # about 1.3 s of legal work, each under MAX_WORK
+    for name, text in (("quick", "timeout = 0.5\n"), ("patient", "")):
+        (tmp_path / name / "robots").mkdir(parents=True)
+        (tmp_path / name / "robots" / "slow.urdf.xacro").write_text(slow)
+        (tmp_path / name / "urdftool.toml").write_text(text)
+    result = run_cli("check", "--format", "json", "--select", "U015", "--jobs", "2",
+                     tmp_path / "quick", tmp_path / "patient")
+    found = {(Path(d["file"]).parts[-3], d["code"])
+             for d in json.loads(result.stdout)["diagnostics"]}
+    assert found == {("quick", "U015")}, result.output
+
+
+def test_a_lowered_triangle_limit_refuses_a_mesh_the_built_in_one_takes(run_cli, repo_project):
+    import struct
+
+    stl = b"\0" * 80 + struct.pack("<I", 12) + b"\0" * 50 * 12  # twelve (empty) triangles
+    (repo_project / "robots" / "box.stl").write_bytes(stl)
+    (repo_project / "robots" / "arm.urdf").write_text(ROBOT.replace(
+        '<link name="arm"/>', '<link name="arm"><visual><geometry><mesh filename="box.stl"/>'
+        '</geometry></visual></link>'))
+    assert codes(run_cli, repo_project / "robots", "--select", "U411")[1] == []
+    settings(repo_project, "max-triangles = 10\n")
+    assert codes(run_cli, repo_project / "robots", "--select", "U411")[1] == ["U411"]
+    assert codes(run_cli, repo_project / "robots", "--select", "U411",
+                 "--max-triangles", "12")[1] == []

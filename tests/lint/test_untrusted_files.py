@@ -334,9 +334,10 @@ def test_one_bounded_reader():
     """Every file urdftool reads goes through urdftool.description.files.read_regular."""
     allowed = {
         "files.py": "the reader and the writer themselves",
-        "__main__.py": "urdftool's own help texts and command modules, read before any import",
         "docs.py": "regenerates docs/ from the rules (a developer command)",
         "origin.py": "pip's record of where urdftool came from (its own direct_url.json)",
+        "__main__.py": "urdftool's own help texts and command modules, read before anything is "
+                       "imported (a fast --help)",
         "meshes.py": "mesh headers, after the mesh size limit (issue 12 class 5)",
         "revision.py": "diff --rev: the git archive it writes itself, cut at its size cap",
     }

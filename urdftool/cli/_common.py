@@ -20,11 +20,12 @@ XacroArgOption = typer.Option([], "--arg", metavar="NAME=VALUE", help=ARG_HELP)
 PackageOption = typer.Option([], "--package", "-p", metavar="NAME=PATH", help=PACKAGE_HELP)
 
 
-def timeout_option(what: str, over: str):
+def timeout_option(what: str, over: str, default: float | None = DEFAULT_TIMEOUT,
+                   note: str = ""):
     """``--timeout``, its help saying what the budget covers (``what``: "each file", "the
     command") and what happens over it (``over``)."""
-    return typer.Option(DEFAULT_TIMEOUT, "--timeout", metavar="SECONDS",
-                        help=f"Seconds {what} may take; 0 for none. Over it: {over}.")
+    return typer.Option(default, "--timeout", metavar="SECONDS",
+                        help=f"Seconds {what} may take; 0 for none. Over it: {over}.{note}")
 
 
 def max_memory_option(what: str, over: str, default: str | None = "2G", note: str = ""):
@@ -37,6 +38,11 @@ def max_memory_option(what: str, over: str, default: str | None = "2G", note: st
 # the commands that analyse one robot (``budgeted``): the budget is the whole command's
 TimeoutOption = timeout_option("the command", "it stops and reports U015, exit 1")
 MaxMemoryOption = max_memory_option("the command", "it stops and reports U018, exit 1")
+MAX_SCENE_TRIANGLES = 8_000_000  # urdftool.kinematics.scene's (not imported: start-up time)
+MaxSceneTrianglesOption = typer.Option(
+    MAX_SCENE_TRIANGLES, "--max-scene-triangles", min=0, metavar="N",
+    help="Refuse, before any work, to draw a robot whose geometry holds more triangles (every "
+         "instance of a mesh counted; memory and time grow with them); 0 for no limit.")
 
 
 def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
@@ -73,8 +79,10 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     paths, args = split_words(words)
     args.update(pairs(arg_options, "--arg"))
     packages = {name: Path(path) for name, path in pairs(package_options, "--package").items()}
+    from urdftool.description.files import kind_of
+
     for path in paths:
-        if path != "-" and not Path(path).exists():
+        if path != "-" and not kind_of(path):
             raise UsageError(f"path '{path}' does not exist")
     return paths, args, packages
 
@@ -109,6 +117,12 @@ def document(data: str) -> None:
 def fail_usage(error: UsageError) -> None:
     say(f"urdftool: error: {error}", err=True)
     raise typer.Exit(2)
+
+
+def fail_over_limit(error, option: str) -> None:
+    """Exit 2 for a size limit (``errors.OverLimit``) checked before the work, naming the option
+    that raises it."""
+    fail_usage(UsageError(f"{error} (raise it with {option})"))
 
 
 def fail_config(error, option: str) -> None:

@@ -86,10 +86,13 @@ def check(
     spec: Path = typer.Option(None, "--spec", metavar="FILE",
                               help="Joint spec table [default: joint_limits.yaml beside the "
                                    "robot, when it is a urdftool spec]."),
-    max_triangles: int = typer.Option(2_000_000, "--max-triangles", metavar="N",
-                                      help="Refuse meshes with more triangles than this."),
+    max_triangles: int = typer.Option(None, "--max-triangles", metavar="N", min=1,
+                                      help="Refuse meshes with more triangles than this "
+                                           "[default: 2,000,000, or max-triangles in the "
+                                           "settings]."),
     timeout: float = timeout_option("each file", "the file is stopped and reported as U015, "
-                                                 "exit 1"),
+                                                 "exit 1", default=None,
+                                    note=" [default: 60, or timeout in the settings]"),
     max_memory: str = max_memory_option("each worker", "its file is stopped and reported as "
                                         "U018, exit 1", default=None,
                                         note=" [default: 2G, or max-memory in the settings]"),
@@ -131,7 +134,7 @@ def check(
         refuse_bad_outputs(output)
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
-        Budget.of(timeout, max_memory)  # --timeout and --max-memory are well formed
+        Budget.of(timeout or 0, max_memory)  # --timeout and --max-memory are well formed
         if unsafe_fixes and not (fix or diff):
             raise UsageError("--unsafe-fixes applies with --fix or --diff")
         request = CheckRequest(

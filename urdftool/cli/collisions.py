@@ -8,9 +8,10 @@ import typer
 
 from urdftool.errors import OverLimit, UnknownName
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  fail_usage, joint_words, refuse_bad_outputs, single_robot,
-                                  warn, write_output)
+from urdftool.cli._common import (MaxSceneTrianglesOption, PackageOption, XacroArgOption,
+                                  budgeted, fail_at, fail_config, fail_over_limit, fail_usage,
+                                  joint_words, refuse_bad_outputs, single_robot, warn,
+                                  write_output)
 from urdftool.errors import UsageError
 
 MAX_PAIRS = 250_000  # urdftool.collision.matrix.MAX_PAIRS (not imported: numpy, FCL)
@@ -65,10 +66,12 @@ def collisions(
     render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
                                 help="Pose mode: draw the collision geometry at the pose, the "
                                      "links of colliding pairs that are not allowed in red."),
+    max_scene_triangles: int = MaxSceneTrianglesOption,
     all_pairs: bool = typer.Option(False, "--all", help="List every pair in text output."),
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
     from urdftool.collision.srdf import SrdfError
+    from urdftool.description.files import kind_of
     from urdftool.errors import SceneError
     from urdftool.kinematics.configuration import ConfigError
     from urdftool.kinematics.fk import FKError
@@ -84,7 +87,8 @@ def collisions(
                             "draws the matrix)"),
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
-        *((given is not None and not given.is_file(), f"{name}: '{given}' does not exist")
+        *((given is not None and kind_of(given) != "file",
+           f"{name}: '{given}' does not exist")
           for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
         if matrix:
@@ -95,7 +99,7 @@ def collisions(
             code = _matrix(robot, options, write_srdf, plot, all_pairs, format)
         else:
             code = _pose(robot, joint_words(q, "--q"), deg, srdf, format, render,
-                         max_pairs or None)
+                         max_pairs or None, max_scene_triangles or None)
     except ConfigError as error:
         fail_config(error, "--q")
     except SrdfError as error:
@@ -105,13 +109,14 @@ def collisions(
     except UsageError as error:
         fail_usage(error)
     except OverLimit as error:
-        fail_usage(UsageError(f"{error} (raise it with --max-pairs)"))
+        fail_over_limit(error, "--max-scene-triangles" if error.unit == "triangles"
+                        else "--max-pairs")
     except (FKError, SceneError, UnknownName) as error:
         fail_at(robot, error)
     raise typer.Exit(code)
 
 
-def _pose(robot, values, degrees, srdf, format, render, max_pairs) -> int:
+def _pose(robot, values, degrees, srdf, format, render, max_pairs, max_triangles) -> int:
     from urdftool.collision.pose import check_pose
     from urdftool.report.collisions import write_pose
 
@@ -121,7 +126,7 @@ def _pose(robot, values, degrees, srdf, format, render, max_pairs) -> int:
         from urdftool.kinematics.scene import scene_model
         from urdftool.report.picture import Layer, write
 
-        scene = scene_model(robot, collision=True).pose(report.q)
+        scene = scene_model(robot, collision=True).pose(report.q, max_triangles)
         warn(scene.problems)
         colliding = {name for c in report.forbidden for name in (c.link1, c.link2)}
         write(render, [Layer(scene, highlight=colliding, label=robot.name)])

@@ -6,7 +6,8 @@ from pathlib import Path
 
 import typer
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_usage,
+from urdftool.cli._common import (MaxSceneTrianglesOption, PackageOption, XacroArgOption,
+                                  budgeted, fail_at, fail_over_limit, fail_usage,
                                   load_robot, refuse_bad_outputs, robot_inputs, warn,
                                   write_output)
 from urdftool.errors import UsageError
@@ -44,6 +45,7 @@ def diff(
     render: Path = typer.Option(None, "--render", metavar="FILE.png|svg",
                                 help="Draw old and new overlaid in two colours where they "
                                      "differ most."),
+    max_scene_triangles: int = MaxSceneTrianglesOption,
     output_format: str = typer.Option("text", "--format", "-f", help="text, json or markdown."),
     output: Path = typer.Option(None, "--output", "-o", help="Write the report here."),
     arg: list[str] = XacroArgOption,
@@ -76,13 +78,15 @@ def diff(
                 old = load_robot(str(old_path), args, _packages_at(packages, paths[0], tree))
                 old.display = f"{rev}:{old_path.relative_to(tree).as_posix()}"
                 new = load_robot(paths[0], args, packages)
-                code = _compare(old, new, options, output_format, output, render)
+                code = _compare(old, new, options, output_format, output,
+                                (render, max_scene_triangles or None))
         except UsageError as error:
             fail_usage(error)
     else:
         old = load_robot(paths[0], args, packages)
         new = load_robot(paths[1], args, packages)
-        code = _compare(old, new, options, output_format, output, render)
+        code = _compare(old, new, options, output_format, output,
+                        (render, max_scene_triangles or None))
     raise typer.Exit(code)
 
 
@@ -95,19 +99,20 @@ def _chain(text: str) -> tuple[str, str]:
 
 def _packages_at(packages: dict, path: str, tree: Path) -> dict:
     """``--package`` folders inside the repository, moved to the same place in ``tree``."""
+    from urdftool.description.files import real_path
     from urdftool.description.revision import repository_of
 
-    root = Path(repository_of(path)[0]).resolve()
+    root = Path(real_path(repository_of(path)[0]))
     moved = {}
     for name, folder in packages.items():
         try:
-            moved[name] = tree / Path(folder).resolve().relative_to(root)
+            moved[name] = tree / Path(real_path(folder)).relative_to(root)
         except ValueError:
             moved[name] = folder  # outside the repository: as it is now
     return moved
 
 
-def _compare(old, new, options, output_format, output, render) -> int:
+def _compare(old, new, options, output_format, output, drawing) -> int:
     import io
 
     from urdftool.compare.diff import diff as compare
@@ -127,15 +132,15 @@ def _compare(old, new, options, output_format, output, render) -> int:
         buffer = io.StringIO()
         write(result, output_format, buffer)
         write_output(output, buffer.getvalue())
-    if render is not None:
-        _render(old, new, result, render)
+    if drawing[0] is not None:
+        _render(old, new, result, *drawing)
     return 0 if result.equivalent else 1
 
 
-def _render(old, new, result, path) -> None:
+def _render(old, new, result, path, max_triangles) -> None:
     """Old and new tinted, at the configuration where they differ most; a side yourdfpy
-    cannot read exits 1, located in that side's file."""
-    from urdftool.errors import SceneError
+    cannot read exits 1, located in that side's file, a side over ``max_triangles`` exits 2."""
+    from urdftool.errors import OverLimit, SceneError
     from urdftool.kinematics.scene import scene_model
     from urdftool.report.diff import change_detail
     from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
@@ -147,9 +152,11 @@ def _render(old, new, result, path) -> None:
     scenes = []
     for robot, q in ((old, old_q), (new, worst)):
         try:
-            scenes.append(scene_model(robot).pose(q))
+            scenes.append(scene_model(robot).pose(q, max_triangles))
         except SceneError as error:
             fail_at(robot, error)
+        except OverLimit as error:
+            fail_over_limit(error, "--max-scene-triangles")
     warn(scenes[0].problems + scenes[1].problems)
     write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
                  Layer(scenes[1], tint=NEW, label=f"new: {result.new}")],

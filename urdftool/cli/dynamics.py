@@ -5,10 +5,12 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, refuse_bad_outputs, show, single_robot, warn)
+                                  fail_over_limit, joint_words, refuse_bad_outputs, show,
+                                  single_robot, warn)
 
 
 FORMATS = ("text", "json")
+MAX_MATRIX_ROWS = 1000  # urdftool.physics.dynamics.MAX_MATRIX_SIZE (not imported: numpy)
 
 
 def register(app: typer.Typer) -> None:
@@ -38,9 +40,14 @@ def dynamics(
                              help="With --support: the support polygon and centre of mass seen "
                                   "from above, as .svg or .png."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
+    max_matrix_rows: int = typer.Option(MAX_MATRIX_ROWS, "--max-matrix-rows", min=0, metavar="N",
+                                        help="Refuse, before any work, a robot with more joint "
+                                             "velocities (rows of M(q) and C(q, v): memory and "
+                                             "text grow with their square); 0 for no limit."),
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
+    from urdftool.errors import OverLimit
     from urdftool.kinematics.configuration import ConfigError, joint_values
     from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
     from urdftool.physics.gravity_bound import worst_loads
@@ -64,7 +71,10 @@ def dynamics(
         fail_config(error, f"--{error.argument}")
     if support:
         _standing(robot, support, values, samples, seed, output_format, plot)
-    result = state(model, values.q, values.v, values.a)
+    try:
+        result = state(model, values.q, values.v, values.a, max_matrix_rows or None)
+    except OverLimit as error:
+        fail_over_limit(error, "--max-matrix-rows")
     warn(values.warnings + result.warnings)
     loads = []
     if samples:

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import typer
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  fail_usage, joint_words, refuse_bad_outputs, say, single_robot,
-                                  warn)
+from urdftool.cli._common import (MaxSceneTrianglesOption, PackageOption, XacroArgOption,
+                                  budgeted, fail_at, fail_config, fail_over_limit, fail_usage,
+                                  joint_words, refuse_bad_outputs, say, single_robot, warn)
 from urdftool.errors import UsageError
 
 HELP = ("Draw the robot's visual (or --collision) geometry posed at a configuration (default: "
@@ -44,10 +44,11 @@ def render(
                                                         "green blue)."),
     axes: bool = typer.Option(False, "--axes", help="Draw every moving joint's axis."),
     size: str = typer.Option("600x600", "--size", metavar="WxH", help="Picture size in pixels."),
+    max_scene_triangles: int = MaxSceneTrianglesOption,
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.errors import ConfigError, PlotError, SceneError
+    from urdftool.errors import ConfigError, OverLimit, PlotError, SceneError
     from urdftool.kinematics.scene import posed
     from urdftool.report.picture import Layer, PictureOptions, write
 
@@ -60,12 +61,15 @@ def render(
         (output.suffix.lower() not in (".png", ".svg"),
          f"--output: '{output.name}' must end in .png or .svg")])
     try:
-        scene, warnings = posed(robot, joint_words(q, "--q"), deg, collision)
+        scene, warnings = posed(robot, joint_words(q, "--q"), deg, collision,
+                                max_scene_triangles or None)
         warn(warnings + scene.problems)
         write(output, [Layer(scene, label=robot.name)],
               PictureOptions(view, dimensions, frames, axes))
     except ConfigError as error:
         fail_config(error, "--q")
+    except OverLimit as error:
+        fail_over_limit(error, "--max-scene-triangles")
     except (PlotError, UsageError) as error:
         fail_usage(UsageError(str(error)))
     except SceneError as error:

@@ -11,7 +11,7 @@ from lxml import etree
 from urdftool.numbers import number
 from urdftool.diagnostics import Location
 from urdftool.description.documents import read_srdf
-from urdftool.description.files import read_regular
+from urdftool.description.files import kind_of, read_regular
 from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix
@@ -106,7 +106,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
 def updated(matrix: Matrix, robot_name: str, path: Path) -> str:
     """The SRDF text to write at ``path``: merged into what is there when it is a regular file
     (see render), else a new document; a link planted at ``path`` is not read."""
-    existing = path if path.is_file() and not path.is_symlink() else None
+    existing = path if kind_of(path, follow=False) == "file" else None
     return render(matrix, robot_name, existing)
 
 

@@ -297,8 +297,10 @@ def _names(robot, filename: str, named: str) -> bool:
     if _normalized(filename) == named or \
             _normalized(filename.split("://", 1)[-1]).lstrip("/") == named.lstrip("/"):
         return True
+    from urdftool.description.files import real_path
+
     try:
-        return os.path.realpath(robot.resolve_uri(filename)) == os.path.realpath(named)
+        return real_path(robot.resolve_uri(filename)) == real_path(named)
     except Exception:  # noqa: BLE001 - an unknown package
         return False
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import TooLarge, read_regular
-from urdftool.description.xml import XmlProblem, start_tag_lines
+from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines
 
 MAX_SIZE = 16 * 1024 * 1024
 
@@ -192,7 +192,9 @@ def read_srdf(path: Path, as_: str = "companion SRDF") -> SrdfFile:
     try:
         result.data = etree.fromstring(text.encode(), parser)
     except etree.XMLSyntaxError as error:
-        result.problem, result.line = f"not well-formed XML: {error.msg}", _xml_error_line(error, text)
+        conflict = merge_conflict(text.encode())
+        result.problem, result.line = (conflict.message, conflict.line) if conflict else \
+            (f"not well-formed XML: {error.msg}", _xml_error_line(error, text))
         return result
     _start_tag_lines(result.data, text)
     if result.data.tag != "robot":

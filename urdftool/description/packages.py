@@ -146,6 +146,81 @@ class PackageResolver:
         return base_dir / uri
 
 
+# ---- a package's manifest: which package a file is in, what that package declares -------------
+
+# Every dependency tag of package.xml formats 1 to 3: a package named in any of them is declared
+# (a build-only one too: whether it reaches a binary install is the build's business).
+_DEPEND = re.compile(rb"<(?:depend|build_depend|build_export_depend|exec_depend|run_depend|"
+                     rb"test_depend|doc_depend|buildtool_depend|buildtool_export_depend)"
+                     rb"(?:\s[^>]*)?>\s*([^<\s]+)\s*</")
+_COMMENT = re.compile(rb"<!--.*?-->", re.S)
+# A package named literally in robot files: $(find NAME), package://NAME/ (not ${...} names);
+# and the tags of xacro's conditional blocks (unprefixed as ROS 1's xacro took them too).
+_REFERENCE = re.compile(rb"\$\(find\s+([A-Za-z0-9_][A-Za-z0-9_.-]*)\s*\)|"
+                        rb"package://([A-Za-z0-9_][A-Za-z0-9_.-]*)/|"
+                        rb"<(/?)(?:xacro:)?(if|unless)\b[^>]*?(/?)>")
+
+
+def package_of(path) -> Path | None:
+    """The folder of the ROS package holding the file ``path``: the nearest folder at or above
+    the file's own folder holding a package.xml, without leaving its containment root; None
+    when there is none. Links are not followed (the package is where the file is named)."""
+    start = Path(os.path.abspath(path)).parent
+    root = containment_root(start)
+    for folder in [start, *start.parents]:
+        if kind_of(folder / "package.xml") == "file" and inside(folder / "package.xml", root):
+            return folder
+        if folder == root:
+            return None
+    return None
+
+
+def manifest_text(folder: Path) -> bytes | None:
+    """The package.xml of ``folder``, comments removed; None when it cannot be read."""
+    try:
+        return _COMMENT.sub(b"", read_regular(folder / "package.xml", _MAX_MANIFEST,
+                                              as_="package manifest"))
+    except OSError:
+        return None
+
+
+def declared_dependencies(folder: Path) -> frozenset[str] | None:
+    """Every package the package.xml of ``folder`` names in a dependency tag (``<depend>``,
+    ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its ``condition``;
+    None when there is no readable package.xml."""
+    text = manifest_text(folder)
+    if text is None:
+        return None
+    return frozenset(name.decode("utf-8", "replace") for name in _DEPEND.findall(text))
+
+
+def package_references(data: bytes) -> list[tuple[int, int, str]]:
+    """(line, column, package name) of each package a robot file names literally, by
+    ``$(find NAME)`` or ``package://NAME/``, outside XML comments and outside xacro's
+    ``<xacro:if>``/``<xacro:unless>`` blocks (used in some configurations only: an optional
+    dependency, often one that would be circular); a name built by xacro (``$(find ${pkg})``)
+    is not one."""
+    found, depth = [], 0
+    for match in _REFERENCE.finditer(_COMMENT.sub(_blanked, data)):
+        if match.group(4):  # a conditional block opens or closes
+            if not match.group(5):
+                depth += -1 if match.group(3) else 1
+            continue
+        if depth > 0:
+            continue
+        line = data.count(b"\n", 0, match.start()) + 1
+        start = data.rfind(b"\n", 0, match.start()) + 1
+        column = len(data[start:match.start()].decode("utf-8", "replace")) + 1
+        found.append((line, column, (match.group(1) or match.group(2)).decode()))
+    return found
+
+
+def _blanked(comment: re.Match) -> bytes:
+    """A comment as as many spaces, its line breaks kept: lines and columns stay where they
+    were."""
+    return bytes(c if c == 0x0A else 0x20 for c in comment.group(0))
+
+
 def package_uri_parts(uri: str) -> tuple[str, str]:
     """(package name, path inside it) of a ``package://NAME/PATH`` URI.
 

@@ -8,7 +8,9 @@ Every git command goes through :func:`_git`, which tells git which repository to
 folder of the pull request holding ``HEAD``, ``config``, ``objects/`` and ``refs/`` (a bare
 repository committed inside the checkout) is never taken for one, and its ``config`` never
 read; ``GIT_CEILING_DIRECTORIES`` and ``safe.bareRepository=explicit`` refuse discovery should
-anything ask for it. No system or global configuration is read, every ``GIT_*`` variable of the
+anything ask for it. ``safe.directory`` names that top level, so that a checkout owned by another
+user is read (git checks ownership today only for a repository it discovers; the key keeps
+``diff --rev`` working should it check a repository it is told too). No system or global configuration is read, every ``GIT_*`` variable of the
 caller is dropped, and the repository's own configuration (itself a stranger's in an unpacked
 archive) is overridden on the command line for every key that names a program git may run on
 its own: fsmonitor, hooks, pager, editor, external diff, ssh and proxy commands, askpass and
@@ -77,7 +79,18 @@ def _environment(root: Path) -> dict[str, str]:
 
 def _command(root: Path, args) -> list[str]:
     return ["git", "--no-pager", f"--git-dir={root / '.git'}", f"--work-tree={root}",
-            *(word for pair in _OVERRIDES for word in ("-c", pair)), *args]
+            *(word for pair in (*_OVERRIDES, *_trusted(root)) for word in ("-c", pair)), *args]
+
+
+def _trusted(root: Path) -> tuple[str, ...]:
+    """``safe.directory`` naming the one top level git is told to use, by its real path (the
+    work tree as git compares it), so that a checkout owned by another user (a CI container's
+    workspace) is read. git honours the key only from protected configuration (system, global,
+    command line: the repository cannot set it), and its ownership check guards against a
+    stranger's configuration running programs, which the overrides above already neutralise for
+    every repository, whoever owns it. A path ending in ``*`` (git's wildcard) is not passed."""
+    real = os.path.realpath(root)
+    return () if real.endswith("*") else (f"safe.directory={real}",)
 
 
 def _git(root: Path, *args: str) -> str:

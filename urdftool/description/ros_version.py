@@ -19,8 +19,7 @@ import re
 from pathlib import Path
 
 from urdftool.description.actuation import gazebo_plugins
-from urdftool.description.files import kind_of, read_regular
-from urdftool.description.packages import containment_root
+from urdftool.description.packages import manifest_text, package_of
 
 _BUILD_TOOL = re.compile(rb"<buildtool_depend>\s*(catkin|ament_cmake|ament_python)\s*</buildtool_depend>")
 _CONTROL = {"libgazebo_ros_control.so": 1, "libgazebo_ros2_control.so": 2,
@@ -61,20 +60,10 @@ def _package_build_tool(robot) -> tuple[int, str] | None:
     """(version, why) from the build tool of the package.xml above the robot's file."""
     if robot.path == "-":
         return None
-    start = Path(robot.path).parent
-    root = containment_root(start)
-    for folder in [start, *start.parents]:
-        manifest = folder / "package.xml"
-        if kind_of(manifest) == "file":
-            try:
-                match = _BUILD_TOOL.search(read_regular(manifest, 1024 * 1024,
-                                                        as_="package manifest"))
-            except OSError:
-                return None
-            if match is None:
-                return None
-            tool = match.group(1).decode()
-            return (1 if tool == "catkin" else 2), f"its package builds with {tool}"
-        if folder == root:
-            return None
-    return None
+    folder = package_of(robot.path)
+    text = manifest_text(folder) if folder is not None else None
+    match = _BUILD_TOOL.search(text) if text else None
+    if match is None:
+        return None
+    tool = match.group(1).decode()
+    return (1 if tool == "catkin" else 2), f"its package builds with {tool}"

@@ -44,7 +44,8 @@ from urdftool.errors import PackageNotFound
 from urdftool.description import files
 from urdftool.errors import available
 from urdftool.description import xacro_sandbox
-from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, too_deep_message
+from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, malformed, \
+    too_deep_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
@@ -206,14 +207,12 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
     try:
         return builder.parseString(data)
     except expat.ExpatError as error:
-        message = f"malformed XML: {expat.ErrorString(error.code)}"
-        raise XacroFailure("syntax", message, Location(display_path(path), error.lineno)) from None
-    except XmlProblem as problem:
-        raise XacroFailure(problem.kind, problem.message,
-                           Location(display_path(path), problem.line)) from None
+        problem = malformed(data, expat.ErrorString(error.code), error.lineno)
+    except XmlProblem as refused:
+        problem = refused
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
-        raise XacroFailure("syntax", f"malformed XML: {error}",
-                           Location(display_path(path), 1)) from None
+        problem = malformed(data, str(error), 1)
+    raise XacroFailure(problem.kind, problem.message, Location(display_path(path), problem.line))
 
 
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,

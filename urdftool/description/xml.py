@@ -67,6 +67,34 @@ def too_deep_message() -> str:
             "refuse it too, and no robot description needs it)")
 
 
+# git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's)
+_CONFLICT = re.compile(rb"^(<{7}|\|{7}|={7}|>{7})(?=[ \t\r]|$)[^\n]*", re.MULTILINE)
+
+
+def malformed(data: bytes, reason: str, line: int | None,
+              column: int | None = None) -> XmlProblem:
+    """The XmlProblem of a document that is not well-formed: the parser's ``reason`` at
+    ``line``, or the unresolved merge conflict it holds (:func:`merge_conflict`)."""
+    return merge_conflict(data) or XmlProblem("syntax", f"malformed XML: {reason}", line, column)
+
+
+def merge_conflict(data: bytes) -> XmlProblem | None:
+    """A document holding an unresolved merge conflict (a ``<<<<<<<`` line, which is never
+    XML), said as such at its first marker's line with the other markers' lines; else None."""
+    markers = [(data.count(b"\n", 0, found.start()) + 1, found.group(0))
+               for found in _CONFLICT.finditer(data)]
+    opening = next((marker for marker in markers if marker[1].startswith(b"<")), None)
+    if opening is None:
+        return None
+    shown = opening[1].decode("utf-8", "replace").strip()
+    others = [str(number) for number, _ in markers if number != opening[0]]
+    more = f"; the other markers at line{'s' if len(others) > 1 else ''} " \
+           f"{', '.join(others[:10])}{', ...' if len(others) > 10 else ''}" if others else ""
+    return XmlProblem("syntax", (
+        f"unresolved merge conflict: git's conflict marker '{shown[:60]}' at this line{more}; "
+        "keep one side of each conflict and remove the markers"), opening[0], 1)
+
+
 def refuse_empty_or_binary(data: bytes) -> None:
     """Raise XmlProblem for input that is empty or not text at all."""
     if not data.strip():
@@ -119,15 +147,14 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
             "entities (they are how XML bombs and local file reads are built)",
             parser.CurrentLineNumber, parser.CurrentColumnNumber + 1) from None
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
-        raise XmlProblem("syntax", f"malformed XML: {error}", 1) from None
+        raise malformed(data, str(error), 1) from None
     except _TooDeep:
         raise XmlProblem("syntax", too_deep_message(), parser.CurrentLineNumber) from None
     except expat.ExpatError as error:
         message = expat.ErrorString(error.code)
         if message == "undefined entity":
             message += " (only the five predefined XML entities are allowed)"
-        raise XmlProblem("syntax", f"malformed XML: {message}", error.lineno,
-                         error.offset + 1) from None
+        raise malformed(data, message, error.lineno, error.offset + 1) from None
     return lines
 
 

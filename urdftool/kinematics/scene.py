@@ -127,18 +127,20 @@ class SceneModel:
             return DEFAULT_COLOUR
         return tuple(float(c) / 255 for c in visual.face_colors[0][:3])
 
-    def pose(self, q: dict[str, float] | None = None) -> PosedScene:
+    def pose(self, q: dict[str, float] | None = None,
+             max_triangles: int | None = MAX_SCENE_TRIANGLES) -> PosedScene:
         """The triangles at joint values ``q`` ({variable: value} in [rad] or [m]; others 0,
         or mid-range when 0 is outside the limits). OverLimit, before any is placed, when the
-        scene holds more than MAX_SCENE_TRIANGLES (every instance of a mesh counted: one
-        mesh within the per-mesh limit, used by many links, is that many copies here)."""
+        scene holds more than ``max_triangles`` (None: no limit; every instance of a mesh
+        counted: one mesh within the per-mesh limit, used by many links, is that many copies
+        here)."""
         import numpy as np
 
         from urdftool.errors import OverLimit
 
-        if self.triangle_count > MAX_SCENE_TRIANGLES:
+        if max_triangles is not None and self.triangle_count > max_triangles:
             raise OverLimit("the robot's geometry, every instance of a mesh counted",
-                            self.triangle_count, MAX_SCENE_TRIANGLES, "triangles")
+                            self.triangle_count, max_triangles, "triangles")
 
         values = {v.name: v.default for v in self.variables}
         values.update({name: float(value) for name, value in (q or {}).items()
@@ -233,12 +235,13 @@ def scene_model(robot, collision: bool = False) -> SceneModel:
 
 
 def posed(robot, words: dict[str, str] | None = None, degrees: bool = False,
-          collision: bool = False):
+          collision: bool = False, max_triangles: int | None = MAX_SCENE_TRIANGLES):
     """(PosedScene, warnings) of ``robot`` at ``words`` ({joint: text}) over the default
-    configuration; ConfigError for a bad joint name or value."""
+    configuration; ConfigError for a bad joint name or value, OverLimit for a scene over
+    ``max_triangles`` (see :meth:`SceneModel.pose`)."""
     from urdftool.kinematics import configuration as config
 
     model = scene_model(robot, collision)
     chosen = config.from_words(model.all_variables, words or {}, degrees, model.mimics)
     q = {v.name: float(x) for v, x in zip(model.all_variables, chosen.values[0])}
-    return model.pose(q), chosen.warnings
+    return model.pose(q, max_triangles), chosen.warnings

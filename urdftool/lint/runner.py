@@ -275,10 +275,11 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
     plans = [by_path[path] for path in files]
     results: list[FileResult | None] = [None] * len(files)
     before = 0  # files of the pools already run
-    for memory in dict.fromkeys(plan.memory for plan in plans):  # one pool per memory budget
-        indexes = [i for i, plan in enumerate(plans) if plan.memory == memory]
+    for memory, timeout in dict.fromkeys((plan.memory, plan.timeout) for plan in plans):
+        indexes = [i for i, plan in enumerate(plans)  # one pool per budget
+                   if (plan.memory, plan.timeout) == (memory, timeout)]
         found = check_files([files[i] for i in indexes], lambda p: by_path[p].options,
-                            jobs=request.jobs, timeout=request.timeout, memory=memory,
+                            jobs=request.jobs, timeout=timeout, memory=memory,
                             stdin_as=request.stdin_filename, cache=cache,
                             finished=lambda done: progress(before + done, len(files)))
         before += len(indexes)

@@ -9,7 +9,8 @@ Keys (:data:`KEYS`): ``select``, ``ignore`` (lists of codes, prefixes or names),
 arguments), ``packages`` (a table of package name -> folder, relative to the settings file),
 ``spec``, ``controllers``, ``srdf`` (companion files, relative to the settings file),
 ``strict``, ``max-file-size`` (bytes), ``max-memory`` (per worker, as ``--max-memory``:
-``"1G"``), ``targets`` (simulators to check portability to, as ``--target``:
+``"1G"``), ``timeout`` (per file, in seconds, as ``--timeout``), ``max-triangles`` (per mesh,
+as ``--max-triangles``), ``targets`` (simulators to check portability to, as ``--target``:
 ``["mujoco", "gz"]``), ``notes`` (whether the text report shows notes, as ``--notes``; false
 by default). Command-line options win over the file.
 
@@ -24,8 +25,9 @@ every key goes through :func:`_validated`, so that a key added later cannot skip
   (``packages``, ``spec``, ``srdf``, ``controllers``) may not lead out through a symbolic link
   either. A xacro argument from the settings is never a folder includes may come from
   (:class:`~urdftool.description.inputs.SettingValue`);
-- a limit (:data:`LIMITS`: ``max-file-size``, ``max-memory``) may be lowered, never raised above
-  the built-in default nor turned off: raising it takes the command line;
+- a limit (:data:`LIMITS`: every budget the command line of ``check`` has: ``max-file-size``,
+  ``max-memory``, ``timeout``, ``max-triangles``) may be lowered, never raised above the
+  built-in default nor turned off: raising it takes the command line;
 - anything else is a :class:`~urdftool.errors.SettingsError` naming the file and key. It stops
   only the files those settings apply to (see :mod:`urdftool.lint.runner`).
 """
@@ -43,7 +45,7 @@ from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, pars
 from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity, inside, kind_of, \
     read_regular
-from urdftool.description.inputs import CompanionPaths, MeshLimits, SettingValue
+from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
@@ -67,6 +69,8 @@ class Settings:
     strict: bool = False
     max_file_size: int | None = None
     max_memory: str | None = None  # as --max-memory takes it
+    timeout: float | None = None  # [s] per file
+    max_triangles: int | None = None  # per mesh
     targets: list[str] = field(default_factory=list)  # as --target takes them
     notes: bool = False  # the text report shows notes (severity info)
 
@@ -415,6 +419,27 @@ def _memory(settings: Path, value, key: str) -> str:
     return str(value)
 
 
+def _timeout(settings: Path, value, key: str) -> float:
+    """A time budget per file in [s] no longer than the built-in one, and not 0 (none): a
+    repository may lower it, never raise it (that takes ``--timeout``)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+            not 0 < value <= LIMITS[key]:
+        raise SettingsError(f"{settings}: '{key}' must be a number of seconds above 0 and up to "
+                            f"the built-in {LIMITS[key]:g}, not {value!r} (a repository may "
+                            "lower the budget; raise it with --timeout)")
+    return float(value)
+
+
+def _triangles(settings: Path, value, key: str) -> int:
+    """A triangle limit per mesh no higher than the built-in one: a repository may lower it,
+    never raise it (that takes ``--max-triangles``)."""
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= LIMITS[key]:
+        raise SettingsError(f"{settings}: '{key}' must be a whole number of triangles from 1 to "
+                            f"the built-in {LIMITS[key]}, not {value!r} (a repository may lower "
+                            "the limit; raise it with --max-triangles)")
+    return value
+
+
 def _selector_key(settings: Path, value, key: str) -> list[str]:
     return _selectors(settings, value, key)
 
@@ -436,10 +461,14 @@ KEYS: dict[str, _Key] = {
     "notes": _Key(_strict, "notes"),
     "max-file-size": _Key(_file_size, "max_file_size"),
     "max-memory": _Key(_memory, "max_memory"),
+    "timeout": _Key(_timeout, "timeout"),
+    "max-triangles": _Key(_triangles, "max_triangles"),
     "targets": _Key(_targets, "targets"),
 }
-# The budgets a settings file may only lower: key -> the built-in value.
-LIMITS = {"max-file-size": DEFAULT_MAX_FILE_SIZE, "max-memory": DEFAULT_MEMORY}
+# The budgets a settings file may only lower: key -> the built-in value. Every budget of the
+# ``check`` command line is one (a test holds them to its options).
+LIMITS = {"max-file-size": DEFAULT_MAX_FILE_SIZE, "max-memory": DEFAULT_MEMORY,
+          "timeout": DEFAULT_TIMEOUT, "max-triangles": MAX_TRIANGLES}
 
 
 def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
@@ -523,7 +552,8 @@ class CheckRequest:
     max_file_size: [bytes] None: the settings', else 16 MiB
     max_memory: per worker, as ``parse_memory`` reads it ("2G", "0" for none) or in bytes;
         None: the settings', else 2 GiB
-    timeout: per file in [s]; None or 0 for none
+    max_triangles: per mesh; None: the settings', else 2,000,000
+    timeout: per file in [s], 0 for none; None: the settings', else 60
     jobs: worker processes; None: one per core
     use_settings: whether settings files apply at all
     stdin_filename: the path standard input ('-') is checked as: its settings, includes and
@@ -543,9 +573,9 @@ class CheckRequest:
     companions: CompanionPaths = CompanionPaths()
     allow_env: bool | None = None
     max_file_size: int | None = None
-    max_triangles: int = 2_000_000
+    max_triangles: int | None = None
     max_memory: str | int | None = None
-    timeout: float | None = DEFAULT_TIMEOUT
+    timeout: float | None = None
     jobs: int | None = None
     use_settings: bool = True
     stdin_filename: str | None = None
@@ -567,6 +597,11 @@ class CheckRequest:
             object.__setattr__(self, "companions", CompanionPaths())
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
+        if self.timeout is not None and (isinstance(self.timeout, bool) or self.timeout < 0):
+            raise UsageError(f"timeout must not be negative, got {self.timeout!r}")
+        if self.max_triangles is not None and (isinstance(self.max_triangles, bool) or
+                                               self.max_triangles < 0):
+            raise UsageError(f"max_triangles must not be negative, got {self.max_triangles!r}")
 
 
 @dataclass(frozen=True)
@@ -575,11 +610,13 @@ class FileSettings:
 
     strict: whether a warning in it fails the run
     memory: the address space a worker checking it may use in [bytes]; None for no limit
+    timeout: the time checking it may take in [s]; None for no limit
     """
 
     options: CheckOptions
     strict: bool
     memory: int | None
+    timeout: float | None = DEFAULT_TIMEOUT
 
 
 def _applying(path: str, request: CheckRequest) -> Settings:
@@ -619,14 +656,22 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         max_file_size=request.max_file_size or settings.max_file_size
         or CheckOptions.max_file_size,
         companions=_settings_companions(settings).overridden_by(request.companions),
-        mesh_limits=MeshLimits(max_triangles=request.max_triangles))
+        mesh_limits=MeshLimits(max_triangles=_given(request.max_triangles,
+                                                    settings.max_triangles, MAX_TRIANGLES)))
     memory = request.max_memory if request.max_memory is not None else settings.max_memory
     try:
         limit = DEFAULT_MEMORY if memory is None else parse_memory(str(memory))  # or bytes
     except UsageError:
         raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
                             f"(no limit), not {memory!r}") from None
-    return FileSettings(options, request.strict or settings.strict, limit)
+    timeout = _given(request.timeout, settings.timeout, DEFAULT_TIMEOUT)
+    return FileSettings(options, request.strict or settings.strict, limit, timeout or None)
+
+
+def _given(requested, setting, default):
+    """The request's value when given (the command line wins), else the settings', else the
+    built-in one."""
+    return requested if requested is not None else setting if setting is not None else default
 
 
 def env_allowed(flag: bool | None) -> bool:

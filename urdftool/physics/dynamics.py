@@ -179,22 +179,23 @@ MAX_MATRIX_SIZE = 1000  # rows of M(q): 8 MB each matrix, 11 MB of text; 10,000 
 
 
 def state(model: Model, q_values: dict, v_values: dict | None = None,
-          a_values: dict | None = None) -> State:
+          a_values: dict | None = None, max_rows: int | None = MAX_MATRIX_SIZE) -> State:
     """M(q) (crba), G(q) (computeGeneralizedGravity), the energies K = v^T M v / 2 and
     P = m g z_com (the fixed root's own mass included, so P is the whole robot's), and, given v
     or a, C(q, v) and tau = M a + C v + G, checked against rnea (``rnea_residual``, max abs
     difference), and the URDF's ``<dynamics damping friction>`` torques ``damping v`` and
     ``friction sign(v)`` that the actuators supply on top (Pinocchio's rnea has neither); a
     robot without mass gets a warning. OverLimit, before any is computed, when M(q) and
-    C(q, v) would be over MAX_MATRIX_SIZE rows (their memory and text grow with the square)."""
+    C(q, v) would be over ``max_rows`` rows (None: no limit; their memory and text grow with the
+    square)."""
     import pinocchio as pin
 
     from urdftool.errors import OverLimit
 
     m, d = model.model, model.data
-    if m.nv > MAX_MATRIX_SIZE:
-        raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv,
-                        MAX_MATRIX_SIZE, "rows")
+    if max_rows is not None and m.nv > max_rows:
+        raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv, max_rows,
+                        "rows")
     q = model.configuration(q_values)
     mass_matrix = pin.crba(m, d, q)
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T

@@ -5,13 +5,17 @@ codes (``urdftool.lint.engine.LOAD_CODES`` and ``NOTE_CODES``). U015 and U018 ar
 """
 
 from urdftool.description.urdf import version_problem
+from urdftool.diagnostics import Location
+from urdftool.errors import PackageNotFound
 from urdftool.lint.catalogue import Severity, declare, rule
 
 U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
 
     Every tool that reads the robot (robot_state_publisher, Gazebo, MoveIt) stops here. The
-    finding gives the parser's line and reason.
+    finding gives the parser's line and reason; a file left with git's conflict markers
+    (``<<<<<<<``, ``=======``, ``>>>>>>>``) is said to hold an unresolved merge conflict, at its
+    first marker's line.
 
     Bad: ``<link name="base"><visual></link>``
     Good: ``<link name="base"><visual/></link>``
@@ -218,3 +222,55 @@ U018 = declare("U018", "out-of-memory", Severity.ERROR, """
     Bad: ``<link name="${len([[0] * 10**6 for i in range(400)])}"/>``
     Good: ``<link name="${'link_%d' % index}"/>``
     """)
+
+
+@rule("U019", "undeclared-package-dependency", Severity.WARNING)
+def undeclared_package_dependency(robot):
+    """A robot file uses another ROS package that its own package.xml does not declare.
+
+    ``$(find other_pkg)`` and ``package://other_pkg/...`` work in a source workspace, where
+    every package is built from the same checkout; installed from binaries (``apt install
+    ros-<distro>-my-robot-description``, rosdep on a fresh machine), only the packages
+    package.xml declares come along, and the look-up fails there. Any dependency tag counts
+    (``<depend>``, ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its
+    ``condition``. Each file read to build the robot is judged by the package.xml above it, in
+    the robot's repository only (installed packages are not the user's to fix), at the first
+    place it names the package. Not judged: a use inside ``<xacro:if>``/``<xacro:unless>``
+    (needed in some configurations only, such as a simulator's, often by a package that
+    itself depends on this one), a name built by xacro (``$(find ${pkg})``), and a package
+    that is not found (U006, U407).
+
+    Bad: ``<xacro:include filename="$(find ur_description)/urdf/ur.urdf.xacro"/>`` in a
+    package whose package.xml has no ``<exec_depend>ur_description</exec_depend>``
+    Good: ``<exec_depend>ur_description</exec_depend>`` (or ``<depend>``) in its package.xml
+    """
+    from pathlib import Path
+
+    from urdftool.description.files import inside
+    from urdftool.description.packages import (containment_root, declared_dependencies,
+                                               package_name, package_of, package_references)
+
+    if robot.path == "-" or not robot.files:
+        return
+    root = containment_root(Path(robot.files[0]).parent)
+    for file in robot.files:
+        if file == "-" or file not in robot.sources or not inside(file, root):
+            continue
+        folder = package_of(file)
+        declared = declared_dependencies(folder) if folder is not None else None
+        if declared is None:
+            continue
+        own = package_name(folder)
+        judged = set()
+        for line, column, name in package_references(robot.sources[file]):
+            if name in judged or name == own or name in declared:
+                continue
+            judged.add(name)
+            try:
+                robot.resolver.find(name)
+            except PackageNotFound:
+                continue
+            yield Location(file, line, column=column), (
+                f"uses package '{name}', which {own}'s package.xml does not declare (add "
+                f"<exec_depend>{name}</exec_depend> or <depend>): found in a source workspace, "
+                f"it is missing where {own} is installed from binaries")
