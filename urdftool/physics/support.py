@@ -204,7 +204,8 @@ def _extreme_points(vertices):
     cannot build one (a flat mesh; scipy absent). Exact for everything a piece answers: the
     support in any direction and the farthest point from any point are both reached at a
     vertex of the hull. A mesh of 100,000 vertices keeps a few thousand: every direction and
-    every reach that holds it is that much cheaper (U312's 134 directions per link)."""
+    every reach that holds it is that much cheaper (134 directions per link are asked whether
+    a centre of mass is outside the hull)."""
     import numpy as np
 
     vertices = np.asarray(vertices, dtype=float)
