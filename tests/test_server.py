@@ -128,6 +128,30 @@ async def test_a_finding_in_an_included_macro_is_published_there_and_cleared_whe
 
 
 @pytest.mark.asyncio
+async def test_an_unsaved_edit_in_an_included_macro_file_rechecks_its_robot_until_closed(
+        client: LanguageClient, tmp_path):
+    robot = write_robot(tmp_path / "bot", FIXED)
+    macro = tmp_path / "bot" / "arm.xacro"
+    uri = open_document(client, robot)
+    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    macro_uri = open_document(client, macro)  # checks its robot again
+    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) == 2)
+    assert codes(client, uri) == [] and codes(client, macro_uri) == []
+
+    edited = MACRO.replace("  <xacro:macro", "  <!-- two lines\n  more -->\n  <xacro:macro") \
+        .replace('lower="${lower}"', 'lower="2"')  # the limit, two lines down, inverted
+    change_document(client, macro_uri, 2, edited)  # in the buffer, not saved
+    await wait_until(lambda: codes(client, macro_uri) == [(LIMIT_LINE + 2, "U204")]
+                     and codes(client, uri) == [(CALL_LINE, "U204")])
+    assert "lower limit 2 is above upper limit 1" in client.diagnostics[macro_uri][0].message
+    assert macro.read_text() == MACRO
+
+    client.text_document_did_close(types.DidCloseTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri)))  # unsaved: the disk's
+    await wait_until(lambda: codes(client, macro_uri) == [] and codes(client, uri) == [])
+
+
+@pytest.mark.asyncio
 async def test_quick_changes_are_checked_once_at_their_last_version(client: LanguageClient,
                                                                      tmp_path):
     robot = write_robot(tmp_path / "bot", FIXED)
@@ -219,6 +243,7 @@ async def test_a_companion_file_gets_its_findings_and_a_macro_library_its_robots
     assert (line, "U602") in codes(client, uri)
 
     fixed = controllers.read_text().replace("      - head_jnt  # expect: U602\n", "")
+    change_document(client, uri, 2, fixed)  # as an editor saves: the buffer, then the file
     controllers.write_text(fixed)
     client.text_document_did_save(types.DidSaveTextDocumentParams(
         text_document=types.TextDocumentIdentifier(uri=uri)))
@@ -353,6 +378,33 @@ def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offl
     server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
     server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
     assert sent == [(uri, 0)]  # the check that started later wins
+
+
+def test_a_result_that_read_an_older_buffer_of_an_included_file_is_never_published(
+        offline_server, monkeypatch, tmp_path):
+    from urdftool.server import Outcome, check_robot
+
+    server, _ = offline_server
+    sent = []
+    monkeypatch.setattr(server, "text_document_publish_diagnostics", sent.append)
+    robot = write_robot(tmp_path / "bot", FIXED)
+    macro = str(tmp_path / "bot" / "arm.xacro")
+    uri = Path(macro).as_uri()
+    edited = MACRO.replace('lower="${lower}"', 'lower="2"')
+    for version, text in [(1, MACRO), (2, edited)]:
+        server.protocol.workspace.put_text_document(types.TextDocumentItem(
+            uri=uri, language_id="xml", version=version, text=text))
+    server.open[macro] = uri
+
+    outcome = check_robot(str(robot), server._buffers(), server.workspace.position_codec)
+    assert outcome.versions == {macro: 2}  # the buffer, not the disk
+    assert [d.range.start.line for d, _ in outcome.by_path[macro]] == [LIMIT_LINE]
+    server._publish(Outcome(str(robot), None, {macro: outcome.by_path[macro]},
+                            versions={macro: 1}), ticket=1)
+    assert sent == []  # it read version 1; the editor has version 2
+    server._publish(outcome, ticket=2)
+    [on_macro] = [params for params in sent if params.uri == uri]
+    assert (on_macro.version, len(on_macro.diagnostics)) == (2, 1)
 
 
 PACKAGE_ROBOT = """\

@@ -7,8 +7,12 @@
   would check it.
 - A macro library (a ``.xacro`` that only defines macros) is checked through the robots that
   include it, and a companion file (controllers ``.yaml``, ``.srdf``) through the robots
-  ``urdftool check`` would check with it; both on open and on save, since the robot reads them
-  from disk.
+  ``urdftool check`` would check with it; both on open, on change and on save. A check reads
+  every open document from its buffer, the robot's and every file its expansion and discovery
+  read (:func:`urdftool.description.files.unsaved`, where every read goes): an edit to an
+  included macro file re-checks, debounced, the robots that read it, with its findings at the
+  buffer's lines; a result is dropped when any buffer it read has changed since, and closing an
+  unsaved buffer re-checks those robots from the disk.
 - Which robots a file saved, created, changed or removed concerns is asked of each robot's
   record (:mod:`urdftool.description.record`): the record of its last check, made by the
   loader and discovery as they read, names every file read, folder searched (found empty too),
@@ -104,6 +108,8 @@ class Outcome:
     """One robot checked.
 
     version: of its open document whose text was checked; None when read from disk
+    versions: of every open document the check read (the robot, an included file, a
+        companion), by path: the buffers it was served
     by_path: diagnostics per file (absolute path); the robot's own file always has an entry
     record: what the check read, searched, probed and followed
         (:class:`~urdftool.description.record.Record`), None when it raised
@@ -114,6 +120,7 @@ class Outcome:
     robot: str
     version: int | None
     by_path: dict[str, list[Shown]] = field(default_factory=dict)
+    versions: dict[str, int | None] = field(default_factory=dict)
     record: object | None = None
     error: str | None = None
     user_error: bool = False
@@ -140,8 +147,10 @@ def robots_for(path: str, kind: str | None) -> list[str]:
 
 
 def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
-    """Check ``robot`` (its open buffer when it has one, else the file) and turn its findings
-    into diagnostics per file; an exception becomes ``Outcome.error``."""
+    """Check ``robot`` and turn its findings into diagnostics per file; an exception becomes
+    ``Outcome.error``. Every file the check reads (the robot, its includes, its companions) is
+    read from its open buffer when it has one (:func:`urdftool.description.files.unsaved`)."""
+    from urdftool.description.files import unsaved
     from urdftool.description.record import recording
     from urdftool.errors import UrdftoolError
     from urdftool.lint.runner import check_file
@@ -149,10 +158,12 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     buffer = buffers.get(robot)
     outcome = Outcome(robot, buffer.version if buffer else None)
     started = time.monotonic()
+    served: set[str] = set()
     try:
-        with recording() as outcome.record:  # kept when the check raises: fixing a settings
-            result = check_file(robot, data=buffer.text if buffer else None)  # file it read
-    except UrdftoolError as error:  # re-checks it
+        with recording() as outcome.record, \
+                unsaved({path: open_.text for path, open_ in buffers.items()}) as served:
+            result = check_file(robot)  # the record is kept when the check raises: fixing a
+    except UrdftoolError as error:  # settings file it read re-checks it
         outcome.error, outcome.user_error = str(error), True
         return outcome
     except Exception:
@@ -160,6 +171,7 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
         return outcome
     finally:
         outcome.seconds = time.monotonic() - started
+        outcome.versions = {path: buffers[path].version for path in served}
     sources = {}
     if result.robot is not None:
         sources = {os.path.abspath(name): data.decode("utf-8", "replace")
@@ -340,6 +352,7 @@ class _Published:
 
     ticket: int
     by_path: dict[str, list[Shown]]
+    versions: dict[str, int | None] = field(default_factory=dict)  # of the buffers it read
 
 
 class UrdftoolServer(LanguageServer):
@@ -378,9 +391,11 @@ class UrdftoolServer(LanguageServer):
             self.schedule(path, 0.0, retarget=True)
 
     def changed(self, uri: str) -> None:
+        """An edit, not saved: what the document means (a robot, the robots including a macro
+        file or checked with a companion) and the robots whose last check read it are checked
+        again, each reading every open document from its buffer."""
         path = self.path_of(uri)
-        # Included files and companions are read from disk by the robots: checked on save.
-        if path and kind_of(path) == "robot" and path in self.targets.get(path, [path]):
+        if path in self.open:
             self.schedule(path, self.debounce)
 
     def saved(self, uri: str) -> None:
@@ -407,7 +422,8 @@ class UrdftoolServer(LanguageServer):
                 if record is not None and record.concerns(path, file)]
 
     def closed(self, uri: str) -> None:
-        """Forget the document; what its robot check published is cleared."""
+        """Forget the document; what its robot check published is cleared. The robots whose
+        last check read its buffer are checked again: closed unsaved, it is the disk's again."""
         path = self.path_of(uri)
         if not path:
             return
@@ -420,6 +436,8 @@ class UrdftoolServer(LanguageServer):
         previous = self.published.pop(path, None)
         for shown in previous.by_path if previous else ():
             self._send(shown)
+        if any(path in published.versions for published in self.published.values()):
+            self.schedule(path, 0.0, concerned_only=True)
 
     def watch_files(self) -> None:
         """Ask the client to report every file of the workspace created, changed or removed
@@ -502,14 +520,15 @@ class UrdftoolServer(LanguageServer):
                 self.window_show_message(types.ShowMessageParams(
                     type=types.MessageType.Error, message=f"urdftool: {what} {shown}: {headline}"))
             return
-        if robot in self.open or outcome.version is not None:
-            buffer = self._buffers().get(robot)
-            if buffer is None or buffer.version != outcome.version:
-                return  # checked an older version: the newer one's job publishes
+        stale = self._stale(outcome)
+        if stale:  # it read an older version: the newer one's job publishes; a buffer closed
+            if robot not in stale and any(path not in self.open for path in stale):
+                self.schedule(robot, 0.0)  # since: the robot is checked again from the disk
+            return
         previous = self.published.get(robot)
         if previous is not None and previous.ticket > ticket:
             return
-        self.published[robot] = _Published(ticket, outcome.by_path)
+        self.published[robot] = _Published(ticket, outcome.by_path, outcome.versions)
         self.records[robot] = outcome.record
         for path in {*outcome.by_path, *(previous.by_path if previous else ())}:
             self._send(path)
@@ -518,18 +537,36 @@ class UrdftoolServer(LanguageServer):
         self._log(types.MessageType.Log, f"checked {shown}{version}: {count} diagnostic(s) "
                                          f"in {outcome.seconds:.2f} s")  # after: it is done
 
+    def _stale(self, outcome: Outcome) -> list[str]:
+        """The open documents ``outcome``'s check read whose buffer has changed since, or
+        closed (then the disk holds what a check reads); the robot's own document when it
+        was opened or closed since."""
+        buffers = self._buffers()
+        read = dict(outcome.versions)
+        if outcome.robot in self.open or outcome.version is not None:
+            read[outcome.robot] = outcome.version
+        return [path for path, version in read.items()
+                if path not in buffers or buffers[path].version != version]
+
     def _send(self, path: str) -> None:
-        """Publish on ``path`` what every robot's last check found there."""
-        seen, diagnostics = set(), []
+        """Publish on ``path`` what every robot's last check found there, with the version of
+        its buffer when every diagnostic there came from that version."""
+        seen, diagnostics, versions = set(), [], set()
         for published in self.published.values():
-            for diagnostic, _ in published.by_path.get(path, ()):
+            shown = published.by_path.get(path, ())
+            if shown:
+                versions.add(published.versions.get(path))
+            for diagnostic, _ in shown:
                 key = (diagnostic.range.start.line, diagnostic.range.start.character,
                        diagnostic.code, diagnostic.message)
                 if key not in seen:
                     seen.add(key)
                     diagnostics.append(diagnostic)
-        self.text_document_publish_diagnostics(
-            types.PublishDiagnosticsParams(uri=self.uri_of(path), diagnostics=diagnostics))
+        buffer = self._buffers().get(path) if path in self.open else None
+        version = buffer.version if buffer is not None and versions == {buffer.version} \
+            else None
+        self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
+            uri=self.uri_of(path), diagnostics=diagnostics, version=version))
 
     def shutdown(self) -> None:
         """Stop every check (its worker is killed, its thread returns), then the server."""

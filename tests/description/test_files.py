@@ -173,6 +173,72 @@ def _modules() -> dict[str, Path]:
     return {path.relative_to(PACKAGE).as_posix(): path for path in sorted(PACKAGE.rglob("*.py"))}
 
 
+# ---- unsaved buffers (the language server's overlay) -----------------------------------
+
+MACRO = b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="m"/></robot>'
+
+
+def test_an_unsaved_buffer_is_read_for_its_file_and_recorded_as_read_so(tmp_path):
+    from urdftool.description.record import recording
+
+    path = tmp_path / "arm.xacro"
+    path.write_bytes(b"<robot/>")
+    link = tmp_path / "link.xacro"
+    link.symlink_to(path)
+    with recording() as record, files.unsaved({str(path): "<robot>é</robot>"}) as served:
+        assert served == set()
+        assert files.read_regular(link) == "<robot>é</robot>".encode()  # the file it leads to
+        assert files.read_regular(path) == "<robot>é</robot>".encode()
+    assert served == {str(path)}
+    assert files.read_regular(path) == b"<robot/>"  # the block ended
+    read = record.reads()[str(path)]
+    assert (read.stamp, read.size, read.digest) == \
+        (None, 17, files.digest("<robot>é</robot>".encode()))
+    entries = record.dump()
+    assert not files.unchanged(entries)  # the disk has other bytes: not a result from disk
+    path.write_text("<robot>é</robot>")
+    assert files.unchanged(entries)  # saved: the same bytes
+
+
+def test_a_buffer_obeys_the_size_limit_and_nested_blocks_add_theirs(tmp_path):
+    path, other = tmp_path / "a.xacro", tmp_path / "b.xacro"
+    path.write_bytes(b"x")
+    other.write_bytes(b"y")
+    with files.unsaved({str(path): b"z" * 100}) as outer:
+        with pytest.raises(files.TooLarge) as error:
+            files.read_regular(path, limit=99)
+        assert error.value.size == 100
+        assert outer == set()  # refused: not read
+        with files.unsaved({str(other): b"w"}) as inner:
+            assert files.read_regular(path) == b"z" * 100
+            assert files.read_regular(other) == b"w"
+        assert (outer, inner) == ({str(path)}, {str(other)})
+    assert files.read_own(path, 100) == b"x"
+
+
+def test_a_buffer_is_read_only_where_the_disk_would_be(tmp_path):
+    """A buffer for a file outside the repository, or reached through a link leading out of
+    it, is not read by a check that would not read that file from disk."""
+    from urdftool.description.load import load
+    from urdftool.errors import LoadError
+
+    repository, outside = tmp_path / "repo", tmp_path / "elsewhere"
+    (repository / ".git").mkdir(parents=True)
+    outside.mkdir()
+    (outside / "arm.xacro").write_bytes(MACRO)
+    (repository / "link.xacro").symlink_to(outside / "arm.xacro")
+    buffers = {str(outside / "arm.xacro"): MACRO.replace(b'name="m"', b'name="n"'),
+               str(repository / "link.xacro"): MACRO}
+    for include in ["link.xacro", "../elsewhere/arm.xacro"]:
+        robot = repository / "robot.urdf.xacro"
+        robot.write_text(f'<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                         f'<xacro:include filename="{include}"/><link name="a"/></robot>')
+        with files.unsaved(buffers) as served, pytest.raises(LoadError) as error:
+            load(robot, allow_env=False)
+        assert error.value.kind in ("link", "outside"), include
+        assert served == set(), include
+
+
 def test_only_the_door_opens_stats_lists_or_globs_files():
     """Every read of urdftool (the description, the linter, the commands, the cross-check, the
     pytest plugin, ...) goes through description/files.py, which records it: a reader cannot

@@ -6,6 +6,7 @@ import contextlib
 import json
 import os
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -577,3 +578,29 @@ def test_a_file_a_rule_looked_for_made_later_is_seen(package, tmp_path):
     _write_mesh(package / "assets" / "base.stl", 0.1)
     assert "U922" not in codes(tmp_path / "fresh-cache")
     assert "U922" not in codes(cache_dir)
+
+
+def test_a_result_checked_from_unsaved_buffers_is_never_served_for_the_disk(robot, tmp_path):
+    """The language server's buffers (an included macro file, a companion) are what the record
+    stamps: the result is not kept while the disk holds other bytes, nor served for them."""
+    from urdftool.lint.runner import check_file
+    from urdftool.lint.settings import CheckRequest, for_file
+
+    path = str(robot / "bot.urdf.xacro")
+    options = for_file(path, CheckRequest()).options
+    buffers = {str(robot / "parts.xacro"): PARTS.format(mass=-3),
+               str(robot / "config" / "controllers.yaml"): CONTROLLERS.format(joint="wrist")}
+    with files_module.unsaved(buffers):
+        result = check_file(path)
+    messages = {f.message for f in result.findings}
+    assert any("-3 kg" in m for m in messages) and any("'wrist'" in m for m in messages)
+    cache = cache_module.Cache(tmp_path / "cache")
+    cache.put(path, options, result)
+    assert cache.get(path, options) is None
+    assert not files_module.unchanged(result.record.dump())
+    disk = {f.message for f in check_file(path).findings}
+    assert any("-1 kg" in m for m in disk) and any("'elbow'" in m for m in disk)
+
+    for name, text in buffers.items():  # saved: the same bytes, the result holds
+        Path(name).write_text(text)
+    assert files_module.unchanged(result.record.dump())

@@ -9,7 +9,8 @@ there is no other way to read. ``tests/description/test_files.py`` fails when a 
 
 - :func:`read_regular`: a file's bytes, only a regular file, only when it is not over a size
   limit (a FIFO, ``/dev/zero`` or a sparse 100 GB file is refused before it is read), with
-  what it was read as;
+  what it was read as; inside :func:`unsaved`, the buffer an editor holds for a file instead
+  of the disk's bytes (the language server's overlay, for one check);
 - :func:`kind_of` and :func:`identity`: what is at a path;
 - :func:`listing`: the entries of a folder (an include's pattern is expanded with it);
 - :func:`real_path` and :func:`inside`: where links lead, whether a path stays in a folder;
@@ -37,7 +38,9 @@ from __future__ import annotations
 import hashlib
 import os
 import stat
+import threading
 import time
+from collections.abc import Mapping
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -60,7 +63,15 @@ class TooLarge(OSError):
 
 def read_regular(name, limit: int = DEFAULT_MAX_FILE_SIZE, as_: str = "file") -> bytes:
     """A regular file's bytes; OSError for anything else (strerror says why), TooLarge when its
-    size is over ``limit`` [bytes]. Recorded as read as ``as_`` (robot, include, mesh, ...)."""
+    size is over ``limit`` [bytes]. Recorded as read as ``as_`` (robot, include, mesh, ...).
+    Inside :func:`unsaved`, a file open in an editor is read from its buffer."""
+    buffer = _buffer_of(name)
+    if buffer is not None:
+        return _read_buffer(name, buffer, limit, as_)
+    return _read_disk(name, limit, as_)
+
+
+def _read_disk(name, limit: int, as_: str) -> bytes:
     try:
         info = os.stat(name)
     except OSError as error:
@@ -99,11 +110,73 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
 def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) -> None:
     if records.active() is None:
         return
-    path = os.path.abspath(name)
     stamp = "" if info is None else _stamp(info)
-    records.note(READ, path, Read(_real_path(path), stamp, None if info is None else (
-        info.st_size if data is None else len(data)), None if data is None else digest(data),
-        failure), as_)
+    _note(name, as_, stamp, None if info is None else (
+        info.st_size if data is None else len(data)), data, failure)
+
+
+def _note(name, as_: str, stamp: str | None, size: int | None, data: bytes | None,
+          failure: str | None) -> None:
+    path = os.path.abspath(name)
+    records.note(READ, path, Read(_real_path(path), stamp, size,
+                                  None if data is None else digest(data), failure), as_)
+
+
+# ---- unsaved buffers: what an editor holds, read in place of the disk --------------------
+
+class _Unsaved(threading.local):
+    """The buffers of the blocks running in this thread (:func:`unsaved`): real path -> (the
+    path the buffer was given as, its bytes, the set its block yields)."""
+
+    buffers: dict | None = None
+
+
+_UNSAVED = _Unsaved()
+
+
+@contextmanager
+def unsaved(buffers: Mapping[str, bytes | str]):
+    """For the block, :func:`read_regular` reads the file at each path of ``buffers`` (path ->
+    its content, unsaved in an editor) from the buffer instead of the disk; yields the set of
+    those paths read so far.
+
+    A buffer stands for the file it names, links followed: a read of any name leading to that
+    file reads it. It is read only where the check reads the file from disk (whoever reads
+    decides first whether the path may be read: inside the repository, no link out), under the
+    same size limit; nothing else about the file system changes (a buffer of a file not on
+    disk is found by no listing or probe). The record notes a buffer read by the digest of its
+    bytes and no stamp, so a record made from buffers holds only while the disk has the same
+    bytes (:func:`holds`): a result from buffers is never taken for the disk's. Blocks nest:
+    an inner block's buffers are added to the outer's (its own win)."""
+    served: set[str] = set()
+    table = dict(_UNSAVED.buffers or {})
+    for path, content in buffers.items():
+        data = content.encode("utf-8", "replace") if isinstance(content, str) else bytes(content)
+        table[os.path.realpath(os.path.abspath(path))] = (path, data, served)
+    outer, _UNSAVED.buffers = _UNSAVED.buffers, table
+    try:
+        yield served
+    finally:
+        _UNSAVED.buffers = outer
+
+
+def _buffer_of(name) -> tuple | None:
+    if not _UNSAVED.buffers:
+        return None
+    return _UNSAVED.buffers.get(_real_path(os.path.abspath(name)))
+
+
+def _read_buffer(name, buffer: tuple, limit: int, as_: str) -> bytes:
+    given, data, served = buffer
+    if len(data) > limit:
+        message = f"file is {len(data)} bytes, over the limit of {limit}"
+        if records.active() is not None:
+            _note(name, as_, None, len(data), None, message)
+        raise TooLarge(27, message, str(name), size=len(data))
+    served.add(given)
+    if records.active() is not None:
+        _note(name, as_, None, len(data), data, None)
+    return data
 
 
 def digest(data: bytes) -> str:
@@ -337,7 +410,7 @@ def read_own(path, limit: int) -> bytes | None:
         try:
             if stat.S_ISLNK(os.lstat(path).st_mode):
                 return None
-            return read_regular(path, limit)
+            return _read_disk(path, limit, "own")
         except (OSError, ValueError):
             return None
 

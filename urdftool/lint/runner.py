@@ -215,7 +215,10 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     """Check one file in this process, with no time budget, as an editor has it.
 
     data: the file's content when it is not to be read from ``path`` (an unsaved buffer);
-        suppression comments are read from it too
+        suppression comments are read from it too. It is read as any unsaved buffer
+        (:func:`urdftool.description.files.unsaved`, which also gives the check the buffers
+        of other files: included macro files, companions): recorded by its digest, and
+        refused where the file would be (a link leading out of the repository)
     options: as :func:`check_paths` (the settings file above ``path`` applies, per-file ignores
         too, unless ``use_settings=False``); the result keeps the loaded ``robot`` and the
         ``record`` of what the check read, searched and followed, the settings looked for
@@ -223,13 +226,17 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     """
     path = os.fspath(path)
     request = _request(options)
+    buffers = {}
+    if data is not None and path != "-":
+        buffers[path], data = data, None
     if isinstance(data, str):
         data = data.encode("utf-8")
+    from urdftool.description.files import unsaved
     from urdftool.description.record import recording
     from urdftool.lint import engine
 
-    with recording() as record:  # the settings found, and the check's own record
-        check_companions(request.companions)
+    with recording() as record, unsaved(buffers):  # the settings found, and the check's own
+        check_companions(request.companions)  # record
         result = engine.load_and_check(path, for_file(path, request).options, data=data)
     result.record = record
     return result
