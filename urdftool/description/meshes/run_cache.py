@@ -14,34 +14,29 @@ from urdftool.description.files import identity
 from urdftool.description.record import captured, replay
 from urdftool.errors import MeshProblem
 
+# [bytes] of meshes kept between robots (a worker has 2 GiB of address space in all)
 RUN_CACHE_BYTES = 128 * 1024 * 1024
 
-# Meshes read in this process, shared by every robot checked in it (a run of robots of one
-# package reads each mesh once, not once per robot): key -> (bytes held, outcome, what
-# computing it recorded), least recently used first. Outcomes: a trimesh (counted as its file's
-# size), a mesh's arrays and their measures (counted as the arrays' bytes), or a MeshProblem.
-# A worker process per file has its own; it dies with its file.
-class _RunCache(dict):
-    """key -> (bytes held, outcome, record), with ``held``: the bytes of all entries (kept as
-    entries come and go, not summed again at each insertion)."""
 
-    held = 0
+def new_cache(limit: int = RUN_CACHE_BYTES):
+    """An empty cache of at most ``limit`` bytes: key -> (bytes held, outcome, what computing it
+    recorded), the least recently used dropped first. Outcomes: a trimesh (counted as its
+    file's size), a mesh's arrays and their measures (counted as the arrays' bytes), or a
+    MeshProblem (counted as nothing)."""
+    from cachetools import LRUCache  # only robots with meshes pay for its import
 
-    def __setitem__(self, key, entry) -> None:
-        self.held += entry[0] - (self[key][0] if key in self else 0)
-        super().__setitem__(key, entry)
-
-    def pop(self, key, *default):
-        if key in self:
-            self.held -= self[key][0]
-        return super().pop(key, *default)
-
-    def clear(self) -> None:
-        self.held = 0
-        super().clear()
+    return LRUCache(maxsize=limit, getsizeof=lambda entry: entry[0])
 
 
-_RUN_CACHE = _RunCache()
+# Meshes read in this process, shared by every robot checked in it; made when the first is
+# kept. A worker process per file has its own; it dies with its file.
+_RUN_CACHE = None
+
+
+def clear() -> None:
+    """Forget every mesh kept in this process."""
+    if _RUN_CACHE is not None:
+        _RUN_CACHE.clear()
 
 
 def stamp_of(path: Path):
@@ -54,9 +49,12 @@ def once(key: tuple, uri: str, compute):
     path and its :func:`stamp_of`: a changed file is read again); a MeshProblem is kept under the
     URI its message names too. What computing it recorded (the mesh read, :mod:`.record`) is
     replayed into the record of each later caller. Returns the outcome or the MeshProblem."""
+    global _RUN_CACHE
+    if _RUN_CACHE is None:
+        _RUN_CACHE = new_cache()
     for known in (key, (*key, uri)):
-        if known in _RUN_CACHE:
-            _RUN_CACHE[known] = entry = _RUN_CACHE.pop(known)  # most recently used last
+        entry = _RUN_CACHE.get(known)  # a hit becomes the most recently used
+        if entry is not None:
             replay(entry[2])
             return entry[1]
 
@@ -67,9 +65,7 @@ def once(key: tuple, uri: str, compute):
             return problem, 0
 
     (outcome, size), events = captured(outcome_of)
-    if key[1] is not None:
+    if key[1] is not None and size <= _RUN_CACHE.maxsize:  # a larger one is not kept
         _RUN_CACHE[(*key, uri) if isinstance(outcome, MeshProblem) else key] = (size, outcome,
                                                                                events)
-        while _RUN_CACHE.held > RUN_CACHE_BYTES:
-            _RUN_CACHE.pop(next(iter(_RUN_CACHE)))  # the least recently used
     return outcome
