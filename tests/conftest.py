@@ -169,6 +169,8 @@ def check_urdf(path: Path) -> subprocess.CompletedProcess:
 # ---- case files (tests/cases): one per rule, offending lines marked `expect: CODE` ----------
 
 MARK = re.compile(r"expect:\s*((?:U\d{3}[\s,]*)+)(?:is reported )?(?:at\s+([\w.\-]+):(\d+))?")
+# ``expect: U604 warning``: the finding is reported at that severity (a conditional one)
+SEVERITY_MARK = re.compile(r"expect:\s*(U\d{3})\s+(error|warning|info)\b")
 
 
 def case_robot(case: Path) -> Path:
@@ -189,6 +191,14 @@ def expected_marks(case: Path) -> set[tuple[str, int, str]]:
                 for code in re.findall(r"U\d{3}", codes):
                     marks.add((*where, code))
     return marks
+
+
+def expected_severities(case: Path) -> dict[tuple[str, int, str], str]:
+    """(file, line, code) -> severity, for the marks that say one (``expect: U604 warning``)."""
+    files = [case] if case.is_file() else sorted(p for p in case.rglob("*") if p.is_file())
+    return {(path.name, number, code): severity for path in files
+            for number, line in enumerate(path.read_text(errors="replace").splitlines(), start=1)
+            for code, severity in SEVERITY_MARK.findall(line)}
 
 
 CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))

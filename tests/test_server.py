@@ -398,8 +398,15 @@ def test_the_record_of_a_check_says_which_changes_concern_a_robot(offline_server
                       "urdf/config/robot.srdf", "urdf/urdftool.toml", "pyproject.toml"]:
         assert server.concerned(str(package / concerned)) == [robot], concerned
     # (a file in config/, which is not there yet, concerns it: config/ would be searched)
-    for unconcerned in ["README.md", "urdf/notes.txt", "meshes/other.stl", "launch/x.py"]:
+    # a file written there (the launch files' walk lists folders, so a path not there yet may
+    # become a folder holding launch files: it concerns the robot until it is a file)
+    for unconcerned in ["README.md", "urdf/notes.txt", "meshes/other.stl"]:
+        (package / unconcerned).write_text("x")
         assert server.concerned(str(package / unconcerned)) == [], unconcerned
+    # a launch file may start the robot's controllers or build it: it concerns it
+    (package / "launch").mkdir()
+    (package / "launch" / "x.launch.py").write_text("")
+    assert server.concerned(str(package / "launch" / "x.launch.py")) == [robot]
 
 
 @pytest.mark.asyncio

@@ -323,7 +323,7 @@ NOT_OUTPUT = {
     "--margin": "a number", "--tol": "a number", "--iterations": "a number",
     "--seeds": "a number", "--random": "a number", "--density": "a number",
     "--size": "a number", "--max-file-size": "a limit", "--max-triangles": "a limit",
-    "--max-pairs": "a limit",
+    "--max-pairs": "a limit", "--max-scene-triangles": "a limit", "--max-matrix-rows": "a limit",
     "--deg": "units", "--keep-mass": "a number's source", "--view": "a camera",
     "--collision": "geometry drawn", "--frames": "lines drawn", "--axes": "lines drawn",
     "--floating": "an extra joint of ours", "--method": "a solver", "--point": "a number",

@@ -418,6 +418,30 @@ def test_a_companion_named_on_the_command_line_is_followed_wherever_it_leads(rob
     assert "U602" in codes()
 
 
+LAUNCH = """<launch>
+  <param name="robot_description" command="xacro $(dirname)/../bot.urdf.xacro"/>
+  <rosparam file="$(dirname)/../config/controllers.yaml" command="load"/>
+  <node name="s" pkg="controller_manager" type="spawner" args="{spawned}"/>
+</launch>
+"""
+
+
+def test_an_edited_or_new_launch_file_changes_the_findings(robot, tmp_path):
+    # which controllers run is the launch files' say (description/runtime.py): a result kept
+    # while arm_controller was started nowhere is stale once a launch file starts it
+    cache_dir = tmp_path / "cache"
+    (robot / ".git").mkdir()  # launch files are the repository's (or package's)
+    (robot / "launch").mkdir()
+    (robot / "launch" / "bot.launch").write_text(LAUNCH.format(spawned="other"))
+    assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "launch" / "bot.launch").write_text(LAUNCH.format(spawned="arm_controller"))
+    assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "launch" / "bot.launch").write_text(LAUNCH.format(spawned="other"))
+    assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "launch" / "more.launch").write_text(LAUNCH.format(spawned="arm_controller"))
+    assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
+
+
 @pytest.fixture
 def package(tmp_path):
     """A ROS package whose robot is in urdf/ and whose controllers go in the package's

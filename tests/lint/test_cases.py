@@ -3,6 +3,9 @@
 itself cannot hold a comment, as inside a tag or in an empty file), and the set of (file, line, code) found must
 equal the set marked.
 
+A mark may say the severity too (``expect: U604 warning``: a finding that holds only in some
+configurations is reported below its rule's severity, docs/certainty.md); then it must be so.
+
 A case is a file ``tests/cases/<CODE>_<slug>.urdf`` (or ``.urdf.xacro``), or a folder
 ``tests/cases/<CODE>_<slug>/`` whose robot is the one ``.urdf``/``.urdf.xacro`` file in it and whose
 other files (included xacro, controller YAML, SRDF, spec) are companions found beside it.
@@ -14,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import CASE_PATHS, case_robot, case_targets, expected_marks
+from conftest import CASE_PATHS, case_robot, case_targets, expected_marks, expected_severities
 from urdftool.lint.engine import CheckOptions, check_file
 from urdftool.lint.options import Selection
 from urdftool.lint.rules import CATALOGUE
@@ -26,6 +29,9 @@ def test_case_findings_match_marks(case):
     found = {(Path(f.file).name, f.line, f.code) for f in result.findings}
     assert found == expected_marks(case), "\n".join(
         f"{f.location}: {f.code} {f.message}" for f in result.findings)
+    severities = {(Path(f.file).name, f.line, f.code): f.severity.value for f in result.findings}
+    for mark, severity in expected_severities(case).items():
+        assert severities[mark] == severity, f"{mark}: {severities[mark]}, marked {severity}"
 
 
 def test_every_case_marks_its_own_code():

@@ -115,3 +115,37 @@ def test_notes_become_findings_that_the_selection_and_suppressions_filter(tmp_pa
     assert codes.count("U010") == 1
     ignoring = CheckOptions(selection=Selection(ignore=("xacro-warning",)))
     assert "U010" not in [f.code for f in check_file(str(path), ignoring).findings]
+
+
+def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_path):
+    # ur.xacro needs robot_model, which has no default: load_ur5.launch gives it. The robot is
+    # checked as that launch file builds it, and U005 is a note naming it (issue 30: the
+    # launch files say against which xacro arguments)
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    files = {
+        "arm/package.xml": "<package format='2'><name>arm</name></package>",
+        "arm/urdf/arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="$(arg model)_base"/>
+</robot>""",
+        "arm/launch/load_arm.launch": """<launch>
+  <arg name="model"/>
+  <param name="robot_description" command="xacro $(find arm)/urdf/arm.urdf.xacro model:=$(arg model)"/>
+</launch>""",
+        "arm/launch/load_m5.launch": """<launch>
+  <include file="$(find arm)/launch/load_arm.launch"><arg name="model" value="m5"/></include>
+</launch>"""}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    robot = str(tmp_path / "arm/urdf/arm.urdf.xacro")
+    result = check_file(robot, CheckOptions())
+    assert result.robot is not None and "m5_base" in result.robot.links
+    [note] = [f for f in result.findings if f.code == "U005"]
+    assert note.severity == Severity.INFO and "load_m5.launch builds it (model:=m5)" in note.message
+    given = check_file(robot, CheckOptions(xacro_args={"model": "m10"}))
+    assert "m10_base" in given.robot.links and not [f for f in given.findings if f.code == "U005"]
+    (tmp_path / "arm/launch/load_m5.launch").unlink()  # load_arm.launch alone gives no model
+    failed = check_file(robot, CheckOptions())
+    assert failed.robot is None and [f.severity for f in failed.findings] == [Severity.ERROR]

@@ -197,7 +197,7 @@ def _two_robots(tmp_path):
 
 def test_a_companion_named_checks_the_robots_checked_with_it(run_cli, tmp_path):
     root = _two_robots(tmp_path)
-    result = run_cli("check", root / "pkg/config/b_controllers.yaml", "-v")
+    result = run_cli("check", root / "pkg/config/b_controllers.yaml", "-v", "--strict")
     assert result.exit_code == 1 and "b_controllers.yaml:3" in result.stdout and "U602" in result.stdout
     assert "a companion of" in result.stderr and "b.urdf" in result.stderr and "a.urdf:" not in result.stdout
     assert "companion of " in result.stderr and "controllers: " in result.stderr
@@ -210,16 +210,114 @@ def test_a_companion_in_the_config_folder_of_a_robot_outside_any_repository(run_
     # to check when no repository or package held them (the robots were looked for below
     # config/ only)
     shutil.copytree(CASES / "U602_controller_unknown_joint", tmp_path / "ctl")
-    result = run_cli("check", tmp_path / "ctl" / "config" / "controllers.yaml")
+    # (a warning: no launch file says whether the controller is started; --strict fails on it)
+    result = run_cli("check", tmp_path / "ctl" / "config" / "controllers.yaml", "--strict")
     assert result.exit_code == 1 and "U602" in result.stdout
     assert "a companion of" in result.stderr and "robot.urdf" in result.stderr
 
 
-def test_a_yaml_no_robot_uses_checks_nothing(run_cli, tmp_path):
+def test_a_yaml_no_robot_uses_checks_nothing_quietly(run_cli, tmp_path):
+    # issue 30 class 9: pre-commit passes every staged YAML (launch, navigation, CI settings)
     root = _two_robots(tmp_path)
     result = run_cli("check", root / ".github/ci.yml", "--format", "json")
     assert result.exit_code == 0 and '"files": 0' in result.stdout
-    assert "nothing to check" in result.stderr
+    assert result.stderr == ""
+    verbose = run_cli("check", root / ".github/ci.yml", "--format", "json", "-v")
+    assert "nothing to check" in verbose.stderr
+
+
+GAZEBO_FRAGMENT = """<?xml version="1.0"?>
+<robot name="bot_sim" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="laser_visual" default="false"/>
+  <gazebo reference="base_link"><material>Gazebo/DarkGrey</material></gazebo>
+  <gazebo reference="wheel_link"><mu1>0.1</mu1></gazebo>
+  <gazebo>
+    <plugin name="bot_controller" filename="libgazebo_ros_diff_drive.so">
+      <leftJoint>wheel_joint</leftJoint><rightJoint>wheel_joint</rightJoint>
+      <robotBaseFrame>base_link</robotBaseFrame>
+    </plugin>
+  </gazebo>
+  <transmission name="wheel_transmission">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="wheel_joint"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint>
+    <actuator name="wheel_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+ROBOT_WITH_FRAGMENT = """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find bot_description)/urdf/bot.gazebo.xacro"/>
+  <link name="base_link"/>
+  <link name="wheel_link"/>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"""
+
+
+def _fragment_package(root):
+    """The X.urdf.xacro beside X.gazebo.xacro layout (turtlebot3's), in a repository."""
+    (root / ".git").mkdir(parents=True)
+    urdf = root / "bot_description" / "urdf"
+    urdf.mkdir(parents=True)
+    (root / "bot_description" / "package.xml").write_text(
+        "<package format='2'><name>bot_description</name></package>")
+    (urdf / "bot.urdf.xacro").write_text(ROBOT_WITH_FRAGMENT)
+    (urdf / "bot.gazebo.xacro").write_text(GAZEBO_FRAGMENT)
+    (urdf / "unused.gazebo.xacro").write_text(GAZEBO_FRAGMENT)
+    return urdf
+
+
+def test_a_gazebo_fragment_named_is_checked_through_the_robot_including_it(run_cli, tmp_path):
+    # issue 30 class 9: pre-commit passes bot.gazebo.xacro by name; alone it has no links
+    # (U106) and every reference misses (U611, U612): 89 false errors on turtlebot3
+    urdf = _fragment_package(tmp_path)
+    result = run_cli("check", urdf / "bot.gazebo.xacro", "--format", "json")
+    assert '"files": 1' in result.stdout and "U106" not in result.stdout, result.stdout
+    assert "U611" not in result.stdout and "included by" in result.stderr
+    assert "bot.urdf.xacro" in result.stderr
+    both = run_cli("check", urdf / "bot.gazebo.xacro", urdf / "bot.urdf.xacro", "--format", "json")
+    assert '"files": 1' in both.stdout
+
+
+def test_a_fragment_nobody_includes_is_skipped_named_or_walked(run_cli, tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import FRAGMENT, expand
+
+    urdf = _fragment_package(tmp_path)
+    named = run_cli("check", urdf / "unused.gazebo.xacro", "--format", "json")
+    assert named.exit_code == 0 and '"files": 0' in named.stdout
+    assert FRAGMENT in named.stderr and "nothing to check" in named.stderr
+    walked = expand([str(tmp_path)], CheckRequest())
+    assert [p.rsplit("/", 1)[-1] for p in walked.files] == ["bot.urdf.xacro"]
+    assert walked.skipped[str(urdf / "unused.gazebo.xacro")] == FRAGMENT
+
+
+UNBOUND_PREFIX = """<?xml version="1.0"?>
+<robot name="arm">
+  <xacro:macro name="arm" params="prefix">
+    <link name="${prefix}base"/>
+  </xacro:macro>
+</robot>
+"""
+
+
+def test_a_malformed_xacro_file_is_reported_walked_or_named(run_cli, tmp_path):
+    # issue 30 class 10: the xacro: prefix without xmlns:xacro made a folder walk skip the file
+    # as a macro library (lxml's recovering parser kept going), and nothing reported it
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "arm_macro.xacro").write_text(UNBOUND_PREFIX)
+    (tmp_path / "lib.xacro").write_text(UNBOUND_PREFIX.replace(
+        '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'))
+    for target in (tmp_path, tmp_path / "arm_macro.xacro"):
+        result = run_cli("check", target, "--format", "json")
+        assert result.exit_code == 1 and '"files": 1' in result.stdout, result.stdout
+        assert "U001" in result.stdout and "arm_macro.xacro" in result.stdout
+    broken = tmp_path / "broken.xacro"
+    broken.write_text('<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="m">')
+    result = run_cli("check", tmp_path, "--format", "json")
+    assert '"files": 2' in result.stdout and "broken.xacro" in result.stdout
 
 
 def test_the_pre_commit_hook_passes_companion_files():
@@ -243,3 +341,93 @@ def test_a_robot_named_on_the_command_line_does_not_walk_its_repository(monkeypa
     monkeypatch.setattr(targets, "includers_below", walk)
     found = targets.expand([str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")], CheckRequest())
     assert found.files == [str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")]
+
+
+def test_a_part_that_only_calls_macros_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # niryo's niryo_ned.transmission.xacro: a named <robot> whose content is transmissions made
+    # by macro calls; alone it has no link (U106) and no joint its transmissions name (U501)
+    urdf = _fragment_package(tmp_path)
+    part = urdf / "bot.transmission.xacro"
+    part.write_text("""<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="trans" params="joint">
+    <transmission name="${joint}_t"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="${joint}"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="${joint}_m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
+  </xacro:macro>
+  <xacro:trans joint="wheel_joint"/>
+</robot>""")
+    robot = urdf / "bot.urdf.xacro"
+    robot.write_text(robot.read_text().replace(
+        "</robot>", '<xacro:include filename="$(find bot_description)/urdf/bot.transmission.xacro"/>\n</robot>'))
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U106" not in result.stdout and "U501" not in result.stdout
+    assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
+
+
+def test_a_part_hanging_on_its_robots_link_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # baxter's pedestal.xacro: a named <robot> with links and joints of its own, one joint on
+    # the 'torso' of the robot that includes it; alone it is U105 (the walk skips it as included)
+    urdf = _fragment_package(tmp_path)
+    part = urdf / "bot_pedestal.xacro"
+    part.write_text("""<robot name="pedestal" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="pedestal"/>
+  <joint name="pedestal_fixed" type="fixed"><parent link="base_link"/><child link="pedestal"/></joint>
+</robot>""")
+    robot = urdf / "bot.urdf.xacro"
+    robot.write_text(robot.read_text().replace(
+        "</robot>", '<xacro:include filename="$(find bot_description)/urdf/bot_pedestal.xacro"/>\n</robot>'))
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U105" not in result.stdout
+    assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
+
+
+def test_a_library_named_including_a_package_found_nowhere_is_checked(run_cli, tmp_path):
+    # doosan-robot2's macro.*mobile.xacro: $(find dsr_description), ROS 1's name of the ROS 2
+    # package dsr_description2; naming it says so (U006), as it did before libraries whose
+    # includes cannot be followed were skipped; one inside a macro body is not (kortex's grippers)
+    (tmp_path / ".git").mkdir()
+    library = tmp_path / "mobile_macro.xacro"
+    library.write_text("""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find no_such_description)/xacro/base.xacro"/>
+  <xacro:macro name="mobile" params="prefix"><link name="${prefix}base"/></xacro:macro>
+</robot>""")
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 1' in named.stdout and "U006" in named.stdout
+    library.write_text(library.read_text().replace(
+        '<xacro:include filename="$(find no_such_description)/xacro/base.xacro"/>', "").replace(
+        '<link name="${prefix}base"/>',
+        '<xacro:include filename="$(find no_such_description)/xacro/base.xacro"/><link name="${prefix}base"/>'))
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 0' in named.stdout
+
+
+def test_a_macro_library_named_whose_includes_cannot_be_followed_is_a_library(run_cli, tmp_path):
+    # kortex's gen3_macro.xacro, named by pre-commit: a named <robot> defining a macro and
+    # including files by ${...} paths; the walk skips it, and so does naming it
+    (tmp_path / ".git").mkdir()
+    library = tmp_path / "arm_macro.xacro"
+    library.write_text("""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="dof" value="6"/>
+  <xacro:include filename="$(find arm)/${dof}dof/parts.xacro"/>
+  <xacro:macro name="load_arm" params="prefix"><link name="${prefix}base"/></xacro:macro>
+</robot>""")
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 0' in named.stdout and "defines only macros" in named.stderr
+
+
+def test_a_urdf_holding_only_plugin_blocks_is_a_fragment_walked_or_named(run_cli, tmp_path):
+    # webots_ros2's resource/*_webots.urdf: a <robot> of <webots> and <ros2_control> blocks that
+    # the driver reads beside the real robot description; alone it has no link (U106, U511)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robot.urdf").write_text(
+        '<robot name="r"><link name="base"/><link name="wheel"/><joint name="j" type="continuous">'
+        '<parent link="base"/><child link="wheel"/></joint></robot>')
+    (tmp_path / "robot_webots.urdf").write_text(
+        '<robot name="r"><webots><plugin type="webots_ros2_control::Ros2Control"/></webots>'
+        '<ros2_control name="w" type="system"><hardware><plugin>webots_ros2_control::Ros2ControlSystem'
+        '</plugin></hardware><joint name="j"><command_interface name="velocity"/></joint>'
+        '</ros2_control></robot>')
+    walked = run_cli("check", tmp_path, "--format", "json")
+    assert '"files": 1' in walked.stdout and "U106" not in walked.stdout
+    named = run_cli("check", tmp_path / "robot_webots.urdf", "--format", "json")
+    assert '"files": 0' in named.stdout and "fragment" in named.stderr

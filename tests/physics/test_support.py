@@ -117,3 +117,24 @@ def test_rigid_reach_and_zero_pose_frames(tmp_path):
     frames = link_frames(robot)
     np.testing.assert_allclose(frames["c"][0], (0, 1, 0.5), atol=1e-12)  # b is turned 90 deg
     assert joint_frames(robot)["bc"] == frames["c"]
+
+
+def test_a_mesh_piece_keeps_only_its_hull_vertices_and_answers_the_same():
+    """Support and farthest point are reached at a vertex of the convex hull: a mesh piece
+    keeps only those (U312 asks 134 directions per link of every reach holding the mesh)."""
+    import numpy as np
+
+    from urdftool.physics.support import Piece, _extreme_points
+
+    rng = np.random.default_rng(3)
+    cloud = rng.normal(size=(5000, 3))
+    kept = _extreme_points(cloud)
+    assert len(kept) < len(cloud) / 10
+    whole = Piece("mesh", (0.0, 0.0, 0.0), ((1, 0, 0), (0, 1, 0), (0, 0, 1)), vertices=cloud)
+    hull = Piece("mesh", (0.0, 0.0, 0.0), ((1, 0, 0), (0, 1, 0), (0, 0, 1)), vertices=kept)
+    for d in rng.normal(size=(50, 3)):
+        assert hull.support(tuple(d)) == whole.support(tuple(d))
+    for p in rng.normal(size=(20, 3)) * 3:
+        assert hull.farthest(tuple(p)) == whole.farthest(tuple(p))
+    flat = np.c_[rng.normal(size=(200, 2)), np.zeros(200)]  # qhull refuses: all kept
+    assert len(_extreme_points(flat)) == 200

@@ -163,6 +163,26 @@ def diff_drive_wheels(robot) -> set:
             for tag in WHEEL_JOINT_TAGS for element in plugin.findall(tag)}
 
 
+STATE_PLUGIN = "joint_state_publisher"  # libgazebo_ros_joint_state_publisher.so, ROS 1 and 2
+
+
+def published_by_gazebo(robot) -> set:
+    """Names of the joints a Gazebo joint state publisher plugin publishes: ROS 1's
+    ``<jointName>a, b</jointName>``, ROS 2's ``<joint_name>`` (one per element); Gazebo Sim's
+    ``gz-sim-joint-state-publisher-system`` every joint unless it names some."""
+    found = set()
+    for plugin in gazebo_plugins(robot):
+        filename = plugin.get("filename") or ""
+        if STATE_PLUGIN not in filename and "joint-state-publisher" not in filename:
+            continue
+        named = [*plugin.iter("jointName"), *plugin.iter("joint_name")]
+        if not named and "joint-state-publisher" in filename:  # Gazebo Sim's: every joint
+            found.update(robot.joints)
+        for element in named:
+            found.update(name.strip() for name in (element.text or "").split(",") if name.strip())
+    return found
+
+
 def moving_joints(robot) -> dict:
     """Non-fixed joints that need a driver: revolute, continuous and prismatic, not mimic."""
     return {name: joint for name, joint in robot.joints.items()

@@ -14,12 +14,19 @@ Which files belong to the robot (an option always wins; a file named in the URDF
 
 - controllers: every ``--controllers FILE``; else each YAML file the URDF's
   ``gazebo_ros2_control``/``gz_ros2_control`` ``<parameters>`` names (inside the repository),
-  and the YAML files found that look like a controller configuration (a mapping with a ``type:
-  package/Class`` entry, a ``controller_manager`` key, or MoveIt's ``controller_list``/
-  ``controller_names``; in a ``config/`` folder a file that is not valid YAML counts, so that
-  it is reported).
-- SRDF: ``--srdf FILE``; else the ``*.srdf`` found whose file name matches the robot, else the
-  one whose ``<robot name>`` is the robot's, else the only one.
+  and each controller YAML the robot's launch files load (:mod:`urdftool.description.runtime`:
+  the configurations that describe the robot's file); else, or when a launch file loads a file
+  urdftool cannot resolve, the YAML files found that look like a controller configuration (a
+  mapping with a ``type: package/Class`` entry, a ``controller_manager`` key, or MoveIt's
+  ``controller_list``/``controller_names``; in a ``config/`` folder a file that is not valid
+  YAML counts, so that it is reported). A file the URDF's ``<parameters>`` or a launch file
+  names is the robot's controller file: a sibling demo's file in the same folder is not
+  (MoveIt's controller lists found there still are). A controller YAML is read as its launch
+  files load it: with ``subst_value``/``allow_substs``, its ``$(arg)``/``$(var)`` take the
+  launch arguments' values.
+- SRDF: ``--srdf FILE``; else the SRDF a launch file of the robot gives MoveIt
+  (``robot_description_semantic``); else the ``*.srdf`` found whose file name matches the
+  robot, else the one whose ``<robot name>`` is the robot's, else the only one.
 - spec: ``--spec FILE``; else ``joint_limits.yaml`` or ``joint_spec.yaml``, when it is a
   urdftool spec (top-level ``unit:`` and ``joints:``; a ROS ``joint_limits.yaml`` has a top-level
   ``joint_limits:`` and is left alone) or is not valid YAML.
@@ -49,6 +56,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
+from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.packages import containment_root
@@ -78,6 +86,7 @@ class Companions:
     kinematics: YamlFile | None = None  # MoveIt's
     planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml
     moveit_controllers: list[YamlFile] = field(default_factory=list)  # beside the SRDF
+    moveit_given: list[Path] = field(default_factory=list)  # MoveIt settings launch files load
     used: dict[Path, str] = field(default_factory=dict)
     unused: dict[Path, str] = field(default_factory=dict)
 
@@ -90,7 +99,9 @@ class Companions:
             ("MoveIt controllers", f) for f in self.moveit_controllers]
         lines = [f"{kind}: {file.display} ({self.used.get(file.path, 'named')})" for kind, file in kinds]
         lines += [f"not used: {display_path(path)} ({why})" for path, why in self.unused.items()]
-        return lines
+        return lines + self.launch
+
+    launch: list[str] = field(default_factory=list)  # what the robot's launch files told
 
 
 def companions(robot) -> Companions:
@@ -103,12 +114,19 @@ def _discover(robot) -> Companions:
     found = Companions()
     folders = search_folders(Path(robot.path)) if robot.path != "-" else []
     owner = _Owner(robot, folders)
+    if robot.path != "-":
+        found.launch = launched.runtime(robot).describe()
     if named.controllers:
-        found.controllers = [read_yaml(Path(p), "named controllers") for p in named.controllers]
+        found.controllers = [controller_yaml(robot, Path(p), "named controllers") for p in named.controllers]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
+    launched_srdf = launched.semantic_files(robot) if robot.path != "-" else []
     if named.srdf:
         found.srdf = read_srdf(Path(named.srdf), "named SRDF")
+    elif launched_srdf:
+        path, configuration, _ = launched_srdf[0]
+        found.srdf = read_srdf(path)
+        found.used[path] = f"given to MoveIt by {configuration.display}"
     else:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
@@ -152,12 +170,24 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
     known = {real_path(f.path) for f in found.controllers if kind_of(f.path)}
     for name in MOVEIT_CONTROLLER_NAMES:
         path = here(name)
-        if path is None or real_path(path) in known:
-            continue
+        if path is None or real_path(path) in known or path in found.unused:
+            continue  # (a list the launch files do not give MoveIt is not used: _auto_controllers)
         parsed = read_yaml(path)
+        if found.moveit_given and not parsed.problem and \
+                real_path(path) not in {real_path(p) for p in found.moveit_given}:
+            found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
+                                  f"{', '.join(display_path(p) for p in found.moveit_given[:2])})")
+            continue
         if parsed.problem or is_moveit_controllers(parsed.data):
             found.moveit_controllers.append(parsed)
             found.used[path] = "beside the SRDF"
+
+
+def is_moveit_execution(data) -> bool:
+    """MoveIt's execution settings: its controller list, or the file choosing its controller
+    manager (``moveit_controller_manager``, ``trajectory_execution``)."""
+    return is_moveit_controllers(data) or isinstance(data, dict) and any(
+        key in data for key in ("moveit_controller_manager", "trajectory_execution"))
 
 
 def is_moveit_controllers(data) -> bool:
@@ -169,6 +199,22 @@ def is_moveit_controllers(data) -> bool:
         return True
     return any(is_moveit_controllers(value.get("ros__parameters")) for value in data.values()
                if isinstance(value, dict))
+
+
+_FAKE_TYPES = ("", "interpolate", "last point", "via points")  # or a $(arg ...) set at launch
+
+
+def is_fake_controller_list(data) -> bool:
+    """MoveIt's fake controller manager's list (``fake_controllers.yaml``): a
+    ``controller_list`` whose entries name no ``action_ns`` and no simple controller manager
+    type (``interpolate``, ``via points`` or none), and nothing else; no controller runs it."""
+    if not isinstance(data, dict) or set(data) - {"controller_list", "initial"}:
+        return False
+    entries = data.get("controller_list")
+    return isinstance(entries, list) and all(
+        isinstance(e, dict) and "action_ns" not in e
+        and (str(e.get("type", "")) in _FAKE_TYPES or "$(" in str(e.get("type", "")))
+        for e in entries)
 
 
 def users_below(companion: Path) -> Path:
@@ -296,16 +342,46 @@ def _robot_files(folder: Path) -> tuple[Path, ...]:
 
 def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[YamlFile]:
     files, seen = [], set()
-    for path in parameter_files(robot):
+    named = parameter_files(robot)
+    for path in named:
         seen.add(real_path(path))
-        files.append(read_yaml(path, "controllers named by the URDF"))
+        files.append(controller_yaml(robot, path, "controllers named by the URDF"))
         found.used[files[-1].path] = "named by the URDF's <parameters>"
+    facts = launched.runtime(robot) if robot.path != "-" else None
+    loaded = facts.loaded_files() if facts is not None else []
+    moveit_given = found.moveit_given  # MoveIt settings a launch file loads: it picks MoveIt's list
+    for path in loaded:
+        if real_path(path) in seen or path.name in SPEC_NAMES or path.name == "kinematics.yaml":
+            continue
+        parsed = controller_yaml(robot, path)
+        if is_moveit_execution(parsed.data):
+            moveit_given.append(path)
+        if not looks_like_controllers(parsed.data) and not parsed.problem or is_fake_controller_list(parsed.data):
+            continue
+        seen.add(real_path(path))
+        files.append(parsed)
+        launches = sorted({load.launch for load in facts.loads(path)})
+        found.used[path] = f"loaded by {', '.join(launches[:3])}"
+    chosen = named or ([f for f in files if f.path not in named] if loaded else [])
+    # A launch file loading a file urdftool cannot resolve may load any of those found
+    decided = bool(named) or (bool(chosen) and not facts.unresolved_loads())
     for path in _candidates(folders, "*.yaml"):
         if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or real_path(path) in seen:
             continue
-        parsed = read_yaml(path)
+        parsed = controller_yaml(robot, path)
         in_config = path.parent.name == "config"
-        if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)):
+        if not (looks_like_controllers(parsed.data) or (in_config and parsed.problem)) or \
+                is_fake_controller_list(parsed.data):
+            continue
+        if decided and not is_moveit_controllers(parsed.data):
+            found.unused[path] = (
+                f"the URDF's <parameters> names the robot's controller file ({display_path(named[0])})"
+                if named else "no launch file of the robot loads it (they load "
+                f"{', '.join(display_path(f.path) for f in chosen[:3])})")
+            continue
+        if moveit_given and is_moveit_controllers(parsed.data) and not facts.unresolved_loads():
+            found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
+                                  f"{', '.join(display_path(p) for p in moveit_given[:2])})")
             continue
         mine, why = owner.claims(path)
         if mine:
@@ -314,6 +390,29 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         else:
             found.unused[path] = why
     return files
+
+
+def controller_yaml(robot, path: Path, as_: str = "companion YAML") -> YamlFile:
+    """A controller YAML read as the robot's launch files load it (with or without
+    substitution of its ``$(arg)``/``$(var)``; see ``CompanionFile.substituted``); as_: what
+    it is read as, for the record."""
+    if robot.path == "-":
+        return read_yaml(path, as_)
+    loads = launched.runtime(robot).loads(path)
+    if not loads:
+        return read_yaml(path, as_)
+    if not any(load.substitute for load in loads):
+        return read_yaml(path, as_, substituted=False)
+    if not all(load.substitute for load in loads):
+        return read_yaml(path, as_)
+    values: dict[str, str | None] = {}
+    for load in loads:
+        for name, value in load.args.items():
+            text = launched.shown_text(value)
+            if values.setdefault(name, text) != text:
+                values[name] = None  # loaded with different values: not known
+    return read_yaml(path, as_, substituted=True,
+                     substitutions={k: v for k, v in values.items() if v is not None})
 
 
 def parameter_files(robot) -> list[Path]:

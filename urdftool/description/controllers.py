@@ -152,17 +152,25 @@ class ControllerFile:
     blocks: list[ParameterBlock] = field(default_factory=list)  # ROS 2 node blocks
 
 
-def started(robot, controller: Controller) -> bool | None:
-    """Whether the robot is run with ``controller`` started: True when a launch file starts it,
-    False when the launch files that load its file start other controllers and not it, None
-    when nothing read says (a controller file is often a menu from which a launch file starts
-    a few).
+def runs_of(robot, controller: Controller):
+    """Whether the robot's launch files start ``controller``
+    (:func:`urdftool.description.runtime.runs`, the URDF's ``<parameters>`` files counted as
+    loaded), once per controller."""
+    from urdftool.description.companions import parameter_files
+    from urdftool.description.runtime import runs
 
-    The one place that question is answered: the rules whose finding matters only for a
-    started controller ask it here. Launch files are not read yet, so the answer is None
-    for every controller.
-    """
-    return None
+    return robot.memo_for(runs_of, id(controller),
+                          lambda: runs(robot, controller, parameter_files(robot)))
+
+
+def started(robot, controller: Controller) -> bool | None:
+    """Whether the robot is run with ``controller`` started: True when a launch file of the robot
+    as checked starts it, active and unconditionally; False when the robot's launch files load
+    its file and start it nowhere (or only inactive); None when nothing read says, or it starts
+    only under a condition (a controller file is often a menu from which a launch file starts a
+    few). The one place that question is answered (:func:`runs_of` says the condition)."""
+    state = runs_of(robot, controller).state
+    return True if state == "certain" else False if state == "never" else None
 
 
 def controllers(robot) -> list[Controller]:

@@ -127,6 +127,10 @@ class CompanionFile:
     line: int | None = None
     ros2: bool = False  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
     text: str | None = None  # an SRDF's text as read, for the fixes that edit it
+    # YAML: how its launch files load it: True with substitution (subst_value, allow_substs:
+    # its $(arg)/$(var) are replaced, by ``substitutions`` where known), False as written (a
+    # $(arg) stays as it is), None when no launch file tells
+    substituted: bool | None = None
 
     @property
     def root(self):
@@ -139,13 +143,25 @@ class CompanionFile:
 YamlFile = SrdfFile = CompanionFile
 
 
-def read_yaml(path: Path, as_: str = "companion YAML") -> YamlFile:
+_SUBSTITUTION = re.compile(r"\$\((?:arg|var)\s+([A-Za-z0-9_./-]+)\s*\)")
+
+
+def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None = None,
+              substitutions: dict[str, str] | None = None) -> YamlFile:
     """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports.
-    as_: what it is read as, for the record (:mod:`.record`)."""
-    result = YamlFile(path, display_path(path))
+    as_: what it is read as, for the record (:mod:`.record`).
+
+    substituted, substitutions: how launch files load it (see ``CompanionFile.substituted``):
+    with substitution, each ``$(arg NAME)``/``$(var NAME)`` whose NAME ``substitutions`` holds
+    is replaced in the text before it is parsed, as roslaunch and ROS 2's ``allow_substs`` do
+    (a value holding a line break is not: lines stay where they were written)."""
+    result = YamlFile(path, display_path(path), substituted=substituted)
     text = _read_text(path, result, as_)
     if text is None:
         return result
+    if substituted and substitutions:
+        text = _SUBSTITUTION.sub(lambda m: substitutions[m.group(1)]
+                                 if "\n" not in substitutions.get(m.group(1), "\n") else m.group(0), text)
     import yaml
 
     loader = _loader()(text)
@@ -226,13 +242,21 @@ def _start_tag_lines(root, text: str) -> None:
             element.sourceline = line
 
 
-def _read_text(path: Path, result, as_: str) -> str | None:
-    """The file's text when it is a regular file of at most MAX_SIZE bytes; else None and
+def read_text(path: Path, limit: int = MAX_SIZE, as_: str = "launch file") -> CompanionFile:
+    """One text file (a launch file) read as companions are: ``text`` when it is a regular file
+    of at most ``limit`` bytes in UTF-8, else ``problem`` says why."""
+    result = CompanionFile(path, display_path(path))
+    result.text = _read_text(path, result, as_, limit)
+    return result
+
+
+def _read_text(path: Path, result, as_: str, limit: int = MAX_SIZE) -> str | None:
+    """The file's text when it is a regular file of at most ``limit`` bytes; else None and
     ``result.problem`` says why (nothing is read from a FIFO or a device)."""
     try:
-        return read_regular(path, MAX_SIZE, as_).decode("utf-8")
+        return read_regular(path, limit, as_).decode("utf-8")
     except TooLarge:
-        result.problem = f"larger than {MAX_SIZE} bytes; not read"
+        result.problem = f"larger than {limit} bytes; not read"
     except OSError as error:
         result.problem = f"cannot be read: {error.strerror}"
     except UnicodeDecodeError as error:

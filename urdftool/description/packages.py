@@ -234,6 +234,19 @@ def package_uri_parts(uri: str) -> tuple[str, str]:
     return name, tail
 
 
+@per_run
+def packages_below(root: Path) -> dict[str, Path]:
+    """Package name -> folder of each package.xml below ``root`` (its folders walked as
+    :class:`PackageResolver` scans them: bounded, links not followed; the first of a name
+    wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
+    found: dict[str, Path] = {}
+    for folder in _walk_dirs(root):
+        name = package_name(folder, root)
+        if name is not None and kind_of(folder / "package.xml") == "file":
+            found.setdefault(name, folder)
+    return found
+
+
 def _split_path(value: str) -> list[str]:
     return [entry for entry in value.split(os.pathsep) if entry]
 

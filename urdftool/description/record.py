@@ -117,8 +117,10 @@ class Record:
         while True:
             folder = os.path.dirname(child)
             name = os.path.basename(child)
+            # (a change below a folder the listing already held leaves that listing as it was)
             if any(_matches(name, pattern, child != path or not file)
-                   for pattern in patterns.get(folder, ())):
+                   and not (child != path and name in held)
+                   for pattern, held in patterns.get(folder, ())):
                 return True
             if folder in not_folders:  # it was nothing, or a file: now it holds ``child``
                 return True
@@ -138,7 +140,8 @@ class Record:
                         not_folders.add(key[0])
                 elif kind == SEARCH:
                     folder, pattern = key
-                    patterns.setdefault(folder, []).append(pattern)
+                    held = frozenset(entry[0] for entry in (answer[1] or ()) if entry[1] == "folder")
+                    patterns.setdefault(folder, []).append((pattern, held))
                     if answer[1] is None:
                         not_folders.add(folder)
             self._index = paths, patterns, not_folders

@@ -45,6 +45,7 @@ class Robot:
         given), by the name findings give it: suppressions are read from these, not from disk
     companion_paths: companion files the user named (the rest are discovered)
     mesh_limits: how large a mesh may be loaded
+    xacro_args: the xacro arguments it was checked with (the rest took their defaults)
     targets: the simulators the robot is checked for (``check --target``): name -> the version
         whose behaviour to predict (a tuple of numbers), or None for the newest known
     """
@@ -60,6 +61,7 @@ class Robot:
     sources: dict[str, bytes] = field(default_factory=dict)
     companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
+    xacro_args: Mapping = field(default_factory=dict)
     targets: dict = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
@@ -71,6 +73,11 @@ class Robot:
         if key not in self._memo:
             self._memo[key] = compute()
         return self._memo[key]
+
+    def memoized(self, key) -> bool:
+        """Whether :meth:`memo` has computed ``key`` (a result cache lists what it was built
+        from only when it was)."""
+        return key in self._memo
 
     def memo_for(self, kind, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot, ``kind`` and ``key`` (a link, say), then the same

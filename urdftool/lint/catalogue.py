@@ -4,12 +4,15 @@ A rule is one function that yields ``(where, message)``, or ``(where, message, f
 can say how to remove the finding (a :class:`~urdftool.diagnostics.Fix`, built with
 :mod:`urdftool.lint.fixes`): ``where`` is an lxml element of the robot, a
 :class:`~urdftool.diagnostics.Location` in another file, or None for the file as a whole.
-The engine, not the rule, stamps the code, name, severity and location. A rule's severity is
-what it reports when the defect is certain; a finding that holds only under a condition the
-rule cannot decide (whether a launch file starts the controller) is yielded as ``(where,
-message, fix, severity)`` with a lower severity, and its message names the condition. The rule's docstring is
+The engine, not the rule, stamps the code, name, severity and location. The rule's docstring is
 its documentation: a first-line summary, then why it matters, then examples (the pages of docs/rules/ and
 ``urdftool rules CODE`` are generated from it).
+
+A rule's severity is for a defect that holds in every configuration the robot's consumers can
+run (docs/certainty.md). A finding that holds only in some (a controller a launch file may or
+may not start, a ROS version that may read the element) names the condition in its message and
+is reported lower: yielded as ``(where, message, fix, severity)``, or with its message wrapped in
+:class:`Conditional` (a warning unless it says otherwise); never above the rule's own severity.
 
 ``rule()`` marks a check with its code, name and severity and registers nothing. Codes that the
 engine or the runner report themselves are ``declare()``d as module-level constants.
@@ -35,7 +38,8 @@ from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule
 from urdftool.simulators import SIMULATORS
 
-__all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule"]
+__all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
+           "Conditional"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -56,6 +60,19 @@ TARGET_DECADES = {"U92": "mujoco", "U93": "pybullet", "U94": "drake", "U95": "gz
                   "U96": "gazebo", "U97": "isaac", "U98": "pinocchio"}
 _CODE = re.compile(r"U\d{3}")
 _RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
+
+
+class Conditional(str):
+    """A finding's message when the defect holds only in some configurations the robot's
+    consumers can run; the text names the condition ("if controller 'x' is started ...").
+    Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower."""
+
+    severity: Severity
+
+    def __new__(cls, text: str, severity: Severity = Severity.WARNING):
+        made = super().__new__(cls, text)
+        made.severity = Severity(severity)
+        return made
 
 
 @dataclass(frozen=True)
@@ -86,12 +103,15 @@ class Rule:
                 severity: Severity | None = None) -> Finding:
         """A finding of this rule at ``location``, with the fix that would remove it if any;
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
-        never raised: ValueError)."""
+        never raised: ValueError); a :class:`Conditional` message is reported at its own
+        severity when that is below the rule's."""
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")
-        return Finding(self.code, self.name, Severity(severity or self.severity), message, location,
-                       fix, self.target)
+        if severity is None and isinstance(message, Conditional):
+            severity = min(self.severity, message.severity, key=_RANK.__getitem__)
+        return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
+                       location, fix, self.target)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from contextlib import nullcontext
 from pathlib import Path
 
@@ -154,9 +155,23 @@ def _check_file(path: str, options: CheckOptions, data: bytes | None) -> FileRes
 def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
     from urdftool.description.load import load
 
+    xacro_args, built = dict(options.xacro_args or {}), []
     try:
-        robot = load(path, xacro_args=options.xacro_args, packages=options.packages,
-                     allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
+        try:
+            robot = load(path, xacro_args=xacro_args, packages=options.packages,
+                         allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
+        except LoadError as error:
+            launched = _launch_arguments(path, error, xacro_args) if data is None else None
+            if launched is None:
+                raise
+            launch, given = launched
+            try:
+                robot = load(path, xacro_args={**given, **xacro_args}, packages=options.packages,
+                             allow_env=options.allow_env, max_file_size=options.max_file_size)
+            except LoadError:
+                raise error from None  # that build fails too: the argument is what is missing
+            xacro_args = {**given, **xacro_args}
+            built = [_built_note(error, launch, given)]
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, load_error_findings(error))
@@ -166,9 +181,40 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
+    robot.xacro_args = xacro_args
     with COLLECTION[1]():
         findings = check_robot(robot, options.selection)
+    if built and options.selection.allows(built[0].code):
+        findings = sorted(set(findings) | set(built), key=Finding.sort_key)
     return FileResult(path, findings, robot, companions=_companion_lines(robot))
+
+
+def _launch_arguments(path: str, error: LoadError, given: dict) -> tuple[str, dict] | None:
+    """(launch file, its xacro arguments) to build ``path`` with when it needs an argument it
+    has no default for and the user gave none: the first launch file that builds it with that
+    argument known (:func:`~urdftool.description.runtime.launch_xacro_args`); else None."""
+    if error.kind != "arg" or not error.subject or error.subject in given:
+        return None
+    from urdftool.description.runtime import launch_xacro_args
+
+    for launch, arguments in launch_xacro_args(path):
+        if error.subject in arguments:
+            return launch, arguments
+    return None
+
+
+def _built_note(error: LoadError, launch: str, arguments: dict) -> Finding:
+    """U005 as a note: the robot needs an argument the user did not give, and was built with
+    those a launch file gives it."""
+    from urdftool.lint.catalogue import Conditional
+    from urdftool.diagnostics import Severity
+
+    shown = ", ".join(f"{k}:={display_path(v) if os.path.isabs(v) else v}"
+                      for k, v in sorted(arguments.items())[:6])
+    more = " ..." if len(arguments) > 6 else ""
+    message = (f"{error.message}; checked as {launch} builds it ({shown}{more}); pass "
+               f"{error.subject}:=VALUE (or --arg {error.subject}=VALUE) to check another build")
+    return CATALOGUE.get(LOAD_CODES["arg"]).finding(Conditional(message, Severity.INFO), error.location)
 
 
 def _companion_lines(robot) -> list[str]:

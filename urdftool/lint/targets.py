@@ -27,6 +27,8 @@ _INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
+# What a fragment of a robot defined elsewhere holds besides definitions: X.gazebo.xacro
+_EXTENSIONS = {"gazebo", "transmission", "ros2_control", "webots"}
 # xacro's own elements: everything else in its namespace is a macro call
 _XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
                                     "call", "load_yaml"}
@@ -35,6 +37,8 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
+FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
+            "<ros2_control> or <webots> blocks besides definitions)")
 
 
 def robot_files(folder: Path) -> list[Path]:
@@ -69,6 +73,9 @@ class _Summary:
     named_robot: bool
     srdf: bool = False
     unfollowed: bool = False  # it includes files whose path is only known when expanding
+    fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
+    macros: bool = False  # it defines xacro macros
+    missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -91,7 +98,10 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
             skipped[path] = SRDF_SOURCE
         elif path.name.endswith(".xacro") and not summaries[path].defines_robot and \
                 _includes_yield_links(summaries[path], resolver_for, max_file_size) is not True:
-            skipped[path] = "defines only macros or properties (a macro library)"
+            skipped[path] = (FRAGMENT if summaries[path].fragment else
+                             "defines only macros or properties (a macro library)")
+        elif path.name.endswith(".urdf") and summaries[path].fragment:
+            skipped[path] = FRAGMENT
         else:
             top.append(path)
     return top, skipped
@@ -117,9 +127,30 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
         return _Summary([], True, True)
     includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
     answer = _top_level_answer(data)
-    return _Summary(includes, answer != "definitions", bool(_NAMED_ROBOT.search(data)),
+    if answer in ("definitions", "fragment", "empty") and path.name.endswith(".xacro") and \
+            not _well_formed_for_xacro(data):
+        answer = "robot"  # not a library: checking it reports why xacro cannot read it
+    return _Summary(includes, answer not in ("definitions", "fragment", "empty"),
+                    bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
-                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes))
+                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
+                    answer == "fragment", bool(_MACRO.search(data)),
+                    resolver_for is not None and _misses_a_package(data, resolver_for(path)))
+
+
+def _well_formed_for_xacro(data: bytes) -> bool:
+    """Whether xacro can parse ``data``: well-formed XML with its namespaces declared (xacro's
+    parser refuses a ``xacro:`` prefix used without ``xmlns:xacro``; lxml's recovering parser,
+    which classifies files, would not say)."""
+    from xml.parsers import expat
+
+    parser = expat.ParserCreate(namespace_separator=" ")
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    try:
+        parser.Parse(data, True)
+    except Exception:  # noqa: BLE001 - malformed (the check says how), or an unknown encoding
+        return False
+    return True
 
 
 def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool | None:
@@ -159,9 +190,9 @@ def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
 
 def _defines_robot(data: bytes) -> bool:
     """Whether a xacro file produces a robot itself: anything under <robot> besides xacro
-    definitions (properties, args, includes, macros). Unparsable files count, so that the parse
-    error is reported."""
-    return _top_level_answer(data) != "definitions"
+    definitions (properties, args, includes, macros) and extension blocks (a fragment).
+    Unparsable files count, so that the parse error is reported."""
+    return _top_level_answer(data) not in ("definitions", "fragment", "empty")
 
 
 def _stream(data: bytes, target) -> str:
@@ -185,8 +216,35 @@ def _stream(data: bytes, target) -> str:
 
 def _top_level_answer(data: bytes) -> str:
     """'robot' (content of its own, or not a xacro library at all), 'srdf' (a semantic
-    description) or 'definitions' (only properties, args, includes, macros)."""
+    description), 'fragment' (<gazebo>, <transmission>, <ros2_control> blocks and definitions:
+    part of a robot defined elsewhere) or 'definitions' (only properties, args, includes,
+    macros)."""
     return _stream(data, _TopLevelTags())
+
+
+def _has_own_links(path: Path, limit: int) -> bool:
+    """Whether the file at ``path`` writes ``<link>`` or ``<joint>`` elements of its own under
+    ``<robot>`` (inside ``xacro:if``/``unless`` too): a robot, not a part that only calls
+    macros (``niryo_ned.transmission.xacro``: transmissions through macro calls). A file that
+    is not read counts (checking it says why)."""
+    data = _head(path, limit)
+    return data is None or b"\0" in data or _stream(data, _OwnLinks()) == "own"
+
+
+_LINK_NAME = re.compile(rb"<link\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+_JOINT_END = re.compile(rb"<(?:parent|child)\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+
+
+def _self_contained(path: Path, limit: int) -> bool:
+    """Whether every link the file's joints name as parent or child is a link the file
+    writes (names compared as written): a robot of its own. A file whose joints hang on links
+    it does not write (baxter's pedestal.xacro on the 'torso' of the robot including it) is a
+    part, checked through what includes it. A file that is not read counts (checking it says
+    why)."""
+    data = _head(path, limit)
+    if data is None or b"\0" in data:
+        return True
+    return set(_JOINT_END.findall(data)) <= set(_LINK_NAME.findall(data))
 
 
 def _yields_links(data: bytes) -> bool:
@@ -210,14 +268,17 @@ class _Answered(Exception):
 
 
 class _TopLevelTags:
-    """lxml parser target: answers 'robot' at a child of the root that is not a definition,
-    'srdf' at a child only an SRDF has. A root other than <robot> holding only definitions
-    is a macro library too: xacro's includes ignore the root element, and pre-Groovy macro
-    files were written ``<root xmlns:xacro=...>`` (mas-group/youbot_description's sensors);
-    with anything else, or nothing, it is checked (and its root reported)."""
+    """lxml parser target: answers 'robot' at a child of the root that is neither a definition
+    nor an extension block (<gazebo>, ...), 'srdf' at a child only an SRDF has; at the end,
+    'fragment' when it saw extension blocks, else 'definitions' ('empty' for a <robot> with no
+    child). A root other than <robot> holding only definitions is a macro library too: xacro's
+    includes ignore the root element, and pre-Groovy macro files were written ``<root
+    xmlns:xacro=...>`` (mas-group/youbot_description's sensors); with anything else, or
+    nothing, it is checked (and its root reported)."""
 
     def __init__(self):
         self.depth, self.seen_robot, self.other_root = 0, False, False
+        self.extensions = self.children = False
 
     def start(self, tag, attributes):
         self.depth += 1
@@ -230,8 +291,11 @@ class _TopLevelTags:
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
+        self.children = self.children or self.depth == 2
+        if self.depth == 2 and name in _EXTENSIONS and not _is_xacro(tag):
+            self.extensions = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
-        if self.depth == 2 and name not in _DEFINITIONS:
+        elif self.depth == 2 and name not in _DEFINITIONS:
             raise _Answered("robot")
 
     def end(self, tag):
@@ -241,7 +305,34 @@ class _TopLevelTags:
         return None
 
     def default(self) -> str:
-        return "definitions" if self.seen_robot else "robot"
+        if not self.seen_robot:
+            return "robot"
+        return "fragment" if self.extensions else "definitions" if self.children else "empty"
+
+
+class _OwnLinks:
+    """lxml parser target: answers 'own' at a <link> or <joint> child of <robot>, or of a
+    ``xacro:if``/``unless`` there."""
+
+    def __init__(self):
+        self.path: list[str] = []
+
+    def start(self, tag, attributes):
+        name = _local_name(tag)
+        if name in ("link", "joint") and not _is_xacro(tag) and len(self.path) >= 1 and \
+                all(part in ("if", "unless") for part in self.path[1:]):
+            raise _Answered("own")
+        self.path.append(name if _is_xacro(tag) or not self.path else "?")
+
+    def end(self, tag):
+        if self.path:
+            self.path.pop()
+
+    def close(self):
+        return None
+
+    def default(self) -> str:
+        return "none"
 
 
 class _LinksOutsideMacros:
@@ -284,7 +375,24 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
         yield resolved_path(path.parent / spec)
 
 
+def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
+    """Whether an include names, through ``$(find PKG)``, a package that cannot be found (a
+    defect expanding the file reports, U006), rather than a path only known when expanding.
+    Includes inside a macro definition are left out: they are expanded only where it is called."""
+    for match in _INCLUDE.finditer(_MACRO_BODY.sub(b"", data)):
+        spec = match.group(1).decode("utf-8", "replace")
+        find = _FIND.search(spec)
+        if find and "$" not in spec.replace(find.group(0), ""):  # the rest is written out
+            try:
+                resolver.find(find.group(1))
+            except Exception:  # noqa: BLE001 - not found, whatever the resolver says
+                return True
+    return False
+
+
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
+_MACRO = re.compile(rb"<(?:xacro:)?macro\s")
+_MACRO_BODY = re.compile(rb"<(?:xacro:)?macro\s.*?</(?:xacro:)?macro\s*>", re.S)
 
 
 def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE
@@ -322,10 +430,11 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     summary = _summary(path, resolver_for, max_file_size)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
+    if summary.named_robot and _has_own_links(path, max_file_size) and \
+            _self_contained(path, max_file_size):
+        return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
-    if summary.named_robot and (summary.defines_robot or yields):
-        return [path], None
     includers = includers() if callable(includers) else includers
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
@@ -339,14 +448,24 @@ def explicit_targets(path: Path, includers: dict, root: Path,
             pending.append(resolved)
             if resolved not in includers:
                 tops.append(parent)
-    if tops:
+    if tops:  # as the folder walk takes it, a robot of its own too (baxter's pedestal.xacro)
         tops = sorted(tops)
         return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
-    # A named <robot> whose includes could not all be followed is checked: expanding it says
+    if summary.named_robot and _has_own_links(path, max_file_size):
+        return [path], None  # a robot of its own, hanging on links nobody here writes
+    if path.name.endswith(".urdf") and summary.fragment:
+        return [], f"{FRAGMENT}, and no robot below {root} includes it: nothing to check"
+    if summary.named_robot and (summary.defines_robot or yields):
+        return [path], None
+    # A named <robot> whose includes could not all be followed is checked (expanding it says),
+    # unless it defines macros of its own: then it is a macro library including others, as the
+    # folder walk takes it (kortex's gen3_macro.xacro, named by pre-commit)
+    # (one whose include names a package found nowhere is checked: expanding it says so, U006)
     if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
-            not (yields is None and summary.named_robot):
-        return [], "defines only macros or properties, and no robot below " \
-                   f"{root} includes it: nothing to check"
+            not (yields is None and summary.named_robot and not summary.macros) and \
+            not (yields is None and summary.missing_package):
+        what = FRAGMENT if summary.fragment else "defines only macros or properties"
+        return [], f"{what}, and no robot below {root} includes it: nothing to check"
     return [path], None
 
 
@@ -365,7 +484,8 @@ class Targets:
     """What checking some paths means.
 
     files: the files to check, in a stable order, each once
-    skipped: files found in folders and not checked -> why (included by a robot, a macro library)
+    skipped: files found in folders and not checked -> why (included by a robot, a macro library),
+        and companion files named that no robot is checked with (said only with -v)
     notes: "PATH: what happened" for files named that are checked through others or not at all
     """
 
@@ -414,10 +534,11 @@ def expand(paths: list[str], request) -> Targets:
                 robots[root, limit] = split_top_level(robot_files(root), resolver_for, limit)[0]
             users = companion_users(Path(path), robots[root, limit], limit)
             files.extend(display_path(p) for p in users)
-            notes.append(f"{path}: " + (
-                f"a companion of {', '.join(display_path(p) for p in users)}: checking "
-                f"{'that' if len(users) == 1 else 'those'}" if users else
-                f"no robot below {root} is checked with it: nothing to check"))
+            if users:
+                notes.append(f"{path}: a companion of {', '.join(display_path(p) for p in users)}: "
+                             f"checking {'that' if len(users) == 1 else 'those'}")
+            else:  # any YAML a hook passes (launch, navigation, CI settings): said with -v only
+                skipped[path] = f"no robot below {root} is checked with it: nothing to check"
             continue
         if kind == "file":
             root = project_root(Path(path))

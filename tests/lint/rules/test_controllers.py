@@ -5,6 +5,8 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
+from urdftool.diagnostics import Severity
+from urdftool.lint.engine import CheckOptions, check_file
 from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder, line_of
 
 TX = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
@@ -181,9 +183,129 @@ def test_diff_drive_controller_on_position_wheels_says_what_ros2_needs(tmp_path)
 
 def test_a_ros1_class_in_a_ros2_file_names_the_ros2_class():
     messages = case_messages("U606_controller_unknown_class", "U606")
-    assert ("position_controllers/JointPositionController is a ROS 1 (ros_control) class, and the "
-            "file has ros__parameters, so it is a ROS 2 parameter file; ROS 2 (ros2_control) has "
-            "position_controllers/JointGroupPositionController") in messages
+    # no launch file says whether it is started: the message says so first (a warning)
+    assert any(m.endswith("position_controllers/JointPositionController is a ROS 1 (ros_control) "
+                          "class, and the file has ros__parameters, so it is a ROS 2 parameter "
+                          "file; ROS 2 (ros2_control) has "
+                          "position_controllers/JointGroupPositionController") for m in messages)
+
+
+# --- which controllers run: the launch files' say (issue 30 classes 1, 5; issue 32 class 9) ------
+
+ROS2_HEAD = HEAD_ROBOT.format(body="""
+  <ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint>
+  </ros2_control>""")
+ROS2_CONTROLLERS = """
+controller_manager:
+  ros__parameters:
+    jsb: {type: joint_state_broadcaster/JointStateBroadcaster}
+    head_controller: {type: forward_command_controller/ForwardCommandController}
+head_controller:
+  ros__parameters:
+    joints: [$(var prefix)joint]
+    interface_name: position
+"""
+ROS2_LAUNCH = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterFile
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    robot = Command(["xacro ", PathJoinSubstitution([FindPackageShare("head"), "robot.urdf"])])
+    params = ParameterFile(PathJoinSubstitution([FindPackageShare("head"), "config", "c.yaml"]),
+                           allow_substs={allow})
+    return LaunchDescription([
+        DeclareLaunchArgument("prefix", default_value="{prefix}"),
+        Node(package="controller_manager", executable="ros2_control_node",
+             parameters=[{{"robot_description": robot}}]),
+        Node(package="controller_manager", executable="spawner", parameters=[params],
+             arguments=["jsb", "head_controller"]),
+    ])
+"""
+
+
+def _ros2_head(tmp_path, prefix: str, allow: bool):
+    files = {"robot.urdf": ROS2_HEAD, "config/c.yaml": ROS2_CONTROLLERS,
+             "package.xml": "<package format='3'><name>head</name>"
+                            "<buildtool_depend>ament_cmake</buildtool_depend></package>",
+             "launch/head.launch.py": ROS2_LAUNCH.format(prefix=prefix, allow=allow)}
+    (tmp_path / ".git").mkdir(parents=True, exist_ok=True)
+    return check_folder(tmp_path, files, select=("U602",))
+
+
+def test_var_substitutions_take_the_launch_arguments_values(tmp_path):
+    # ros2_control_demos example 1: joints [$(var joint_prefix)1, ...] loaded with allow_substs
+    assert _ros2_head(tmp_path / "fits", "head_", True)[0] == []
+    marks, findings = _ros2_head(tmp_path / "typo", "hed_", True)
+    assert marks == [("c.yaml", 8, "U602")] and "'hed_joint'" in findings[0].message
+    assert findings[0].severity == Severity.ERROR
+
+
+def test_a_substitution_loaded_as_written_is_the_name_the_controller_gets(tmp_path):
+    marks, findings = _ros2_head(tmp_path, "head_", False)
+    assert marks == [("c.yaml", 8, "U602")]
+    assert "'$(var prefix)joint'" in findings[0].message and "without substitution" in findings[0].message
+
+
+def test_a_controller_no_launch_file_starts_is_not_judged(tmp_path):
+    (tmp_path / ".git").mkdir()
+    files = {"robot.urdf": HEAD_ROBOT.format(body=""),
+             "package.xml": "<package format='2'><name>head</name></package>",
+             "config/c.yaml": "jsc: {type: joint_state_controller/JointStateController}\n"
+                              "spare: {type: position_controllers/JointPositionController, joint: nek}\n",
+             "launch/head.launch": """<launch>
+               <param name="robot_description" textfile="$(find head)/robot.urdf"/>
+               <rosparam file="$(find head)/config/c.yaml" command="load"/>
+               <node name="s" pkg="controller_manager" type="spawner" args="jsc"/>
+             </launch>"""}
+    assert check_folder(tmp_path, files, select=("U602",))[0] == []
+    (tmp_path / "launch/head.launch").write_text((tmp_path / "launch/head.launch").read_text().replace(
+        'args="jsc"', 'args="jsc spare"'))
+    marks, findings = check_folder(tmp_path, {}, select=("U602",))
+    assert marks == [("c.yaml", 2, "U602")] and findings[0].severity == Severity.ERROR
+
+
+def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_path):
+    (tmp_path / ".git").mkdir()
+    robot = HEAD_ROBOT.format(body="").replace('<robot name="r">', '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                               '<xacro:arg name="gripper" default="false"/>')
+    files = {"robot.urdf": "", "robot.urdf.xacro": robot,
+             "package.xml": "<package format='2'><name>head</name></package>",
+             "config/c.yaml": "jsc: {type: joint_state_controller/JointStateController}\n"
+                              "grip: {type: position_controllers/JointPositionController, joint: finger}\n",
+             "launch/head.launch": """<launch>
+               <param name="robot_description" command="xacro $(find head)/robot.urdf.xacro gripper:=true"/>
+               <rosparam file="$(find head)/config/c.yaml" command="load"/>
+               <node name="s" pkg="controller_manager" type="spawner" args="jsc grip"/>
+             </launch>"""}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    result = check_file(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U602"]
+    assert finding.severity == Severity.WARNING
+    assert "against the robot with other xacro arguments (gripper:=true)" in finding.message
+
+
+def test_a_file_naming_only_another_builds_joints_is_one_note(tmp_path):
+    # a sibling build's file (every joint prefixed, as a dual-arm robot's left_ arm): not one
+    # warning per joint, one note at its first controller; a file naming one missing joint alone
+    # may hold a slip and is judged as before
+    other = ("arm: {type: position_controllers/JointGroupPositionController,\n"
+             "      joints: [left_head_joint, left_neck_joint]}\n"
+             "grip: {type: position_controllers/JointPositionController, joint: left_finger}\n")
+    marks, findings = check_folder(tmp_path / "other", {"robot.urdf": HEAD_ROBOT.format(body=""),
+                                                       "config/c.yaml": other}, select=("U602",))
+    assert marks == [("c.yaml", 1, "U602")] and findings[0].severity == Severity.INFO
+    assert "none of the 3 joints" in findings[0].message and "another build" in findings[0].message
+    slip = "grip: {type: position_controllers/JointPositionController, joint: hed_joint}\n"
+    marks, findings = check_folder(tmp_path / "slip", {"robot.urdf": HEAD_ROBOT.format(body=""),
+                                                      "config/c.yaml": slip}, select=("U602",))
+    assert marks == [("c.yaml", 1, "U602")] and findings[0].severity == Severity.WARNING
 
 
 def test_moveit2_parallel_gripper_command_is_a_moveit_type(tmp_path):

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import shutil
 
+import pytest
+
 from conftest import ROBOTS
 from crossfile_helpers import HEAD_ROBOT, check_folder, line_of
 from urdftool.lint.engine import CheckOptions, check_file
@@ -114,6 +116,47 @@ def test_kinematics_yaml_in_the_robots_config_folder_with_the_srdf_beside_the_ro
              "config/joint_limits.yaml": "joint_limits:\n  nope: {has_velocity_limits: true}\n"}
     # the backwards chain is found; a joint_limits.yaml outside the SRDF's folder is not MoveIt's
     assert check_folder(tmp_path, files, select=("U81",))[0] == [("robot.srdf", 3, "U814")]
+
+
+@pytest.mark.parametrize("written, reported", [(2.53073, False), (9.6, False), (2.5308, True),
+                                               (7.85, True)])
+def test_a_limit_rounded_from_the_urdfs_is_the_same_limit(written, reported):
+    # MoveIt Setup Assistant writes the URDF's limit rounded: 2.53073 for ${radians(145)}, 9.6
+    # for 9.59931 (motoman, fanuc); the same limit, not one above it
+    from urdftool.lint.rules.moveit import TOLERANCE, _rounded
+
+    urdf = {2.53073: 2.5307274153917776, 9.6: 9.59931, 2.5308: 2.5307274153917776, 7.85: 6.45772}[written]
+    assert (written - urdf > TOLERANCE and not _rounded(written, urdf)) is reported
+
+
+DRIVER_LAUNCH = """<launch>
+  <param name="robot_description" textfile="$(find arm)/robot.urdf"/>
+  <rosparam file="$(find arm)/config/controllers.yaml" command="load"/>
+  <rosparam file="$(find arm)/config/moveit_list.yaml" command="load" ns="move_group"/>
+  <node name="s" pkg="controller_manager" type="spawner" args="jsc arm_controller"/>
+  {driver}
+  <node name="move_group" pkg="moveit_ros_move_group" type="move_group"/>
+</launch>"""
+
+
+@pytest.mark.parametrize("driver, expected", [
+    ("", ("U817", "error")),  # MoveIt and ros_control alone: the name misses for certain
+    ('<node name="d" pkg="arm_driver" type="trajectory_action_server"/>', None),  # the driver's
+])
+def test_a_moveit_controller_a_driver_serves_is_not_ros_controls(tmp_path, driver, expected):
+    (tmp_path / ".git").mkdir()
+    files = {"package.xml": "<package format='2'><name>arm</name></package>",
+             "robot.urdf": HEAD_ROBOT.format(body="""<transmission name="t">
+               <type>transmission_interface/SimpleTransmission</type>
+               <joint name="head_joint"><hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint>
+               <actuator name="m"/></transmission>"""),
+             "config/controllers.yaml": "jsc: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
+                                        "arm_controller: {type: position_controllers/JointTrajectoryController, joints: [head_joint]}\n",
+             "config/moveit_list.yaml": "controller_list:\n- {name: arm_driver_controller, action_ns: follow_joint_trajectory,"
+                                        " type: FollowJointTrajectory, joints: [head_joint]}\n",
+             "launch/moveit.launch": DRIVER_LAUNCH.format(driver=driver)}
+    _, findings = check_folder(tmp_path, files, select=("U817",))
+    assert [(f.code, f.severity.value) for f in findings] == ([expected] if expected else [])
 
 
 def _kinematics(tmp_path, solver):

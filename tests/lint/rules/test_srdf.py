@@ -127,3 +127,41 @@ def test_an_overlap_at_the_default_pose_is_reported_at_robot(tmp_path):
 def test_no_pose_check_without_an_srdf_or_geometry(tmp_path):
     assert check_folder(tmp_path, {"robot.urdf": BOXES}, select=("U810", "U811"))[0] == []
     assert check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf("")}, select=("U810", "U811"))[0] == []
+
+
+def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_arguments(tmp_path):
+    # MoveIt's launch file builds the robot with its gripper (gripper:=true) and gives it
+    # config/arm.srdf: the finger the SRDF names is not in the robot as checked (gripper false),
+    # which is a warning naming the launch file, not an error; robot.srdf beside it is not used
+    from urdftool.diagnostics import Severity
+    from urdftool.lint.engine import CheckOptions, check_file
+
+    (tmp_path / ".git").mkdir()
+    files = {
+        "package.xml": "<package format='2'><name>arm_pkg</name></package>",
+        "arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="gripper" default="false"/>
+  <link name="base"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="tool"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <xacro:if value="$(arg gripper)">
+    <link name="finger"/>
+    <joint name="finger_joint" type="prismatic"><parent link="tool"/><child link="finger"/>
+      <axis xyz="1 0 0"/><limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+  </xacro:if>
+</robot>""",
+        "arm.srdf": '<robot name="arm"><group name="other"><joint name="nope"/></group></robot>',
+        "config/arm.srdf": '<robot name="arm"><group name="hand"><joint name="finger_joint"/></group></robot>',
+        "launch/planning_context.launch": """<launch>
+  <param name="robot_description" command="xacro $(find arm_pkg)/arm.urdf.xacro gripper:=true"/>
+  <param name="robot_description_semantic" textfile="$(find arm_pkg)/config/arm.srdf"/>
+</launch>"""}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    result = check_file(str(tmp_path / "arm.urdf.xacro"), CheckOptions())
+    found = [(f.file.rsplit("/", 2)[-2:], f.code, f.severity) for f in result.findings if f.code.startswith("U8")]
+    assert found == [(["config", "arm.srdf"], "U803", Severity.INFO)], result.findings
+    assert "launch/planning_context.launch gives MoveIt this SRDF with the robot with other xacro " \
+           "arguments (gripper:=true)" in result.findings[0].message
+    assert any("srdf: " in line and "given to MoveIt by" in line for line in result.companions)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from urdftool.diagnostics import Severity
+
 from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder
 
 
@@ -60,6 +62,9 @@ def test_r2d2_transmission_on_a_misspelt_joint(tmp_path):
     assert [f.code for f in findings] == ["U501"]  # head_joint stays actuated by ros2_control
     u501 = findings[0]
     assert u501.file.endswith("transmission.xacro") and u501.location.via[0].file.endswith("r2d2.urdf.xacro")
+    # r2d2 runs under ROS 2 only (<ros2_control>, gazebo_ros2_control): nothing reads its ROS 1
+    # transmissions, so a stale joint name in one is a note, not an error
+    assert u501.severity == Severity.INFO and u501.message.startswith("nothing reads this ROS 1")
 
 
 def test_humanoid_unknown_hardware_interface(tmp_path):
@@ -80,13 +85,53 @@ def test_message_says_what_would_be_right(case, code, fix):
     assert messages and all(fix in m for m in messages)
 
 
-def test_unknown_interface_on_a_ros2_robot_says_ros2_control_does_not_read_it(tmp_path):
-    robot = HEAD_ROBOT.format(body="""
+LEGACY = """
       <transmission name="t"><type>transmission_interface/SimpleTransmission</type>
-        <joint name="head_joint"><hardwareInterface>hardware_interface/PositionInterface</hardwareInterface></joint>
+        <joint name="head_joint"><hardwareInterface>{interface}</hardwareInterface></joint>
         <actuator name="m"/></transmission>
       <ros2_control name="s" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
-        <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint></ros2_control>""")
-    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U503",))
-    assert [f.code for f in findings] == ["U503"]
-    assert "ros2_control does not read this ROS 1 transmission" in findings[0].message
+        <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint></ros2_control>"""
+
+
+@pytest.mark.parametrize("interface", ["hardware_interface/PositionInterface", "", "position",
+                                       "EffortJointInterface"])
+def test_a_ros2_robot_keeping_legacy_transmissions_is_not_judged_as_ros1(tmp_path, interface):
+    # issue 30 class 3: ros2_control reads only the transmissions inside <ros2_control>
+    robot = HEAD_ROBOT.format(body=LEGACY.format(interface=interface))
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U5",))
+    assert findings == []
+
+
+def test_an_ament_package_is_ros2_without_ros2_control(tmp_path):
+    robot = HEAD_ROBOT.format(body=LEGACY.format(interface="EffortJointInterface").split("<ros2_control")[0])
+    manifest = ("<package format='3'><name>p</name><buildtool_depend>ament_cmake</buildtool_depend>"
+                "</package>")
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U508",))
+    assert [f.code for f in findings] == ["U508"]  # no evidence: the element is ROS 1's
+    _, findings = check_folder(tmp_path / "ament", {"robot.urdf": robot, "package.xml": manifest},
+                               select=("U508",))
+    assert findings == []
+
+
+def test_unknown_interface_when_ros1_may_read_it_too_is_a_warning_naming_it(tmp_path):
+    body = LEGACY.format(interface="hardware_interface/PositionInterface") + \
+        '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>'
+    _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)}, select=("U503",))
+    assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
+    assert findings[0].message.startswith("if ROS 1 reads this transmission (the URDF loads "
+                                          "gazebo_ros_control; ros2_control ignores it: the URDF "
+                                          "has <ros2_control>)")
+
+
+@pytest.mark.parametrize("plugin, reported", [
+    ('<plugin name="c" filename="libgazebo_ros_control.so"/>', True),
+    # a vendor's control plugin (HSR's) may publish every joint: not known, not judged
+    ('<plugin name="c" filename="libhsrb_gazebo_ros_control.so"/>', False),
+    # Gazebo Sim's joint state publisher publishes every joint unless it names some
+    ('<plugin name="c" filename="libgazebo_ros_control.so"/>'
+     '<plugin filename="gz-sim-joint-state-publisher-system" name="gz::sim::systems::JointStatePublisher"/>', False),
+])
+def test_a_passive_joint_is_judged_only_with_a_known_control_plugin(tmp_path, plugin, reported):
+    robot = HEAD_ROBOT.format(body=f"<gazebo>{plugin}</gazebo>")
+    marks, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507",))
+    assert bool(marks) is reported

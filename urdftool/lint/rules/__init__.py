@@ -9,12 +9,12 @@ from __future__ import annotations
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import (controllers, conventions, gazebo, geometry, inertials, internal,
                                  joints, loading, moveit, parameters, plugins, portability,
-                                 ros2_control, spec, srdf, symmetry, transmissions, tree,
+                                 ros2_control, running, spec, srdf, symmetry, transmissions, tree,
                                  vocabulary)
 
 FAMILY_MODULES = (loading, vocabulary, tree, joints, symmetry, inertials, geometry, conventions,
-                  transmissions, ros2_control, controllers, gazebo, parameters, plugins, spec,
-                  srdf, moveit, internal, portability)
+                  transmissions, ros2_control, controllers, gazebo, running, parameters, plugins,
+                  spec, srdf, moveit, internal, portability)
 CATALOGUE = Catalogue.from_modules(FAMILY_MODULES)
 
 __all__ = ["CATALOGUE", "FAMILY_MODULES"]

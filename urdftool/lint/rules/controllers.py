@@ -1,52 +1,89 @@
-"""U60x: controller configuration YAML (ROS 1 ros_control and ROS 2 ros2_control layouts)."""
+"""U60x: controller configuration YAML (ROS 1 ros_control and ROS 2 ros2_control layouts).
+
+Which controllers run is the launch files' choice (:mod:`urdftool.description.runtime`): a
+finding on a controller is an error when a launch file of the robot as checked starts it, active
+and unconditionally; a warning naming when it holds when a launch file starts it only under a
+condition or no launch file says (a controller file is often a menu from which a launch file
+starts a few); nothing when the robot's launch files start it nowhere (docs/certainty.md).
+"""
 
 from __future__ import annotations
 
 
 from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
                                             ros2_state_interfaces, transmission_joints, transmissions)
-from urdftool.description.companions import companions
+from urdftool.description.companions import companions, parameter_files
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description import controllers as described
-from urdftool.description.controllers import Controller, JointRef, controller_files, controllers
+from urdftool.description.controllers import (Controller, JointRef, controller_files, controllers,
+                                              runs_of)
+from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runtime, together
 from urdftool.errors import available
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 
 
-def _substituted(name: str) -> bool:
-    """A roslaunch substitution (``$(arg arm_id)_joint1``) is resolved at launch: not checkable."""
-    return "$(" in name
+def _substituted(name: str, controller: Controller | None = None) -> bool:
+    """A launch substitution (``$(arg arm_id)_joint1``, ``$(var prefix)``) is replaced at
+    launch: not checkable, unless every launch file of the robot loads the file without
+    substitution (then the controller gets the text as written)."""
+    return "$(" in name and (controller is None or controller.file.substituted is not False)
 
 
 def label(controller: Controller) -> str:
     return f"controller '{controller.name}' ({controller.type or 'no type'})"
 
 
-_label = label
+def hedged(robot, controller: Controller, message: str):
+    """``message`` as a rule yields it for ``controller``: as it is when a launch file of the
+    robot as checked starts it (the defect holds whenever the robot runs); None when the
+    robot's launch files start it nowhere; else a :class:`Conditional` naming when it holds
+    (a launch file starts it only under a condition, or no launch file says: a controller file
+    is often a menu from which a launch file starts a few)."""
+    answer = described.started(robot, controller)
+    if answer is False:
+        return None
+    if answer:
+        return message
+    verdict = runs_of(robot, controller)
+    return Conditional(f"{_if_started(controller, verdict)}: {_after(controller, message)}")
+
+
+def _if_started(controller: Controller, verdict: Runs) -> str:
+    why = verdict.condition or "no launch file of the robot says whether it is"
+    return f"if {label(controller)} is started against this robot as checked ({why})"
+
+
+def _after(controller: Controller, message: str) -> str:
+    """``message`` without the controller's label it starts with (the condition names it)."""
+    named = label(controller)
+    return (message[len(named) + 2:] if message.startswith(named + ": ") else
+            "it" + message[len(named):] if message.startswith(named) else message)
 
 
 def if_started(robot, controller: Controller, consequence: str) -> tuple[Severity | None, str]:
     """How bad a defect is that matters only when ``controller`` runs (it fails to configure,
-    it commands nothing), and how to say so: an error stating ``consequence`` when the launch
-    files start it; a warning stating it under the condition ("if 'x' is started, ...") when
-    nothing says whether they do (a controller file is often a menu from which a launch file
-    starts a few); None when they are known not to start it.
-
-    Every severity decision about a controller that may or may not run goes through here
-    (:func:`urdftool.description.controllers.started` answers the question)."""
+    it commands nothing), and how to say so, for a rule yielding ``(where, message, None,
+    severity)``: an error stating ``consequence`` when a launch file of the robot as checked
+    starts it, active and unconditionally; a warning stating it under the condition ("if 'x' is
+    started, ...", with why it may not be) when a launch file starts it only under a condition
+    or none says (a controller file is often a menu from which a launch file starts a few);
+    None when the robot's launch files start it nowhere. :func:`hedged` says the same for a
+    rule yielding a message; both ask :func:`~urdftool.description.controllers.runs_of`."""
     answer = described.started(robot, controller)
     if answer is False:
         return None, consequence
     if answer:
         return Severity.ERROR, consequence
-    return Severity.WARNING, f"if '{controller.name}' is started, {consequence}"
+    verdict = runs_of(robot, controller)
+    why = f" ({verdict.condition})" if verdict.condition else ""
+    return Severity.WARNING, f"if '{controller.name}' is started{why}, {consequence}"
 
 
 def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
     """The names a controller holds that are meant as URDF joints: all of them for a known
     class; for a class nothing is known about (a vendor's), only when some of them are URDF
     joints (its ``joint: tcp`` may be a hardware interface prefix, not a joint)."""
-    refs = [ref for ref in controller.joints() if not _substituted(ref.name)]
+    refs = [ref for ref in controller.joints() if not _substituted(ref.name, controller)]
     if controller.known or any(ref.name in robot.joints for ref in refs):
         return refs
     return []
@@ -96,15 +133,48 @@ def controller_unknown_joint(robot):
     its ``joint``/``joints``/``joint_names`` are URDF joints: its ``joint: tcp`` may name a
     hardware interface prefix, not a joint.
 
+    A file whose controllers name two or more joints, none of them in the robot (no launch file
+    of the robot starting any of them for certain), is another build's (a prefix, other xacro
+    arguments, a sibling robot's file): one note says so, at its first controller. One name
+    alone that is missing may be a slip, and is judged as any other.
+
     Bad: ``joints: [head_jont]``
     Good: ``joints: [head_joint]``
     """
+    foreign = _foreign_files(robot)
+    for read in controller_files(robot):
+        if read.file.path in foreign:
+            first, names = foreign[read.file.path]
+            yield first.file.at(first.line), Conditional(
+                f"none of the {len(names)} joints {read.file.display}'s controllers name is in the "
+                f"robot as checked ({', '.join(names[:4])}{', ...' if len(names) > 4 else ''}): "
+                "the file is for another build of the robot (a prefix, other xacro arguments) "
+                "or another robot; check the robot as that build with --arg", Severity.INFO)
     for controller in controllers(robot):
+        if controller.file.path in foreign:
+            continue
         for ref in _urdf_joints(robot, controller):
             if ref.name not in robot.joints:
-                yield controller.file.at(ref.line), (
-                    f"{_label(controller)} names joint '{ref.name}', which is not in the URDF; "
-                    f"{available('joints', ref.name, robot.joints)}")
+                literal = (" (every launch file of the robot loads the file without substitution, "
+                           "so it is not replaced)" if "$(" in ref.name else "")
+                message = hedged(robot, controller, (
+                    f"{label(controller)} names joint '{ref.name}', which is not in the URDF"
+                    f"{literal}; {available('joints', ref.name, robot.joints)}"))
+                if message is not None:
+                    yield controller.file.at(ref.line), message
+
+
+def _foreign_files(robot) -> dict:
+    """Controller file -> (its first controller, the joints named) for each file whose
+    controllers name two or more joints and none of the robot's, none started for certain."""
+    found = {}
+    for read in controller_files(robot):
+        mine = [c for c in read.controllers if c.layout != "moveit"]
+        names = list(dict.fromkeys(ref.name for c in mine for ref in _urdf_joints(robot, c)))
+        if len(names) > 1 and not any(name in robot.joints for name in names) and \
+                not any(runs_of(robot, c).state == "certain" for c in mine):
+            found[read.file.path] = (mine[0], names)
+    return found
 
 
 @rule("U603", "controller-joint-not-actuated", Severity.ERROR)
@@ -130,7 +200,9 @@ def controller_joint_not_actuated(robot):
             what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
                     else "has no transmission or ros2_control joint; add one for it, or remove "
                          "it from the controller")
-            yield controller.file.at(ref.line), f"{_label(controller)}: joint '{ref.name}' {what}"
+            message = hedged(robot, controller, f"{label(controller)}: joint '{ref.name}' {what}")
+            if message is not None:
+                yield controller.file.at(ref.line), message
 
 
 @rule("U604", "controller-interface-mismatch", Severity.ERROR)
@@ -144,35 +216,94 @@ def controller_interface_mismatch(robot):
     only what the joint's ``<ros2_control>`` entry offers (ros2_control does not read
     transmissions outside ``<ros2_control>``).
 
+    A controller file is often a menu: effort, position and velocity variants for the same joints,
+    of which a launch argument starts one (and the robot's xacro arguments choose the interfaces
+    its transmissions offer). So this is an error only for a controller that runs with the robot
+    as checked (a launch file starts it, active, unconditionally); a warning naming the
+    condition when a launch file starts it only under an argument or no launch file says; and
+    when no launch file says and the file offers alternatives for its joints, nothing when one
+    of them fits the robot as checked (it is the one for this configuration), one warning per
+    controller when none does. Nothing for a controller no launch file of the robot starts.
+
     Bad: ``position_controllers/JointTrajectoryController`` on a joint with
     ``hardware_interface/VelocityJointInterface``
     Good: ``velocity_controllers/JointTrajectoryController`` on that joint, or
     ``hardware_interface/PositionJointInterface`` in its transmission
     """
+    for controller in controllers(robot):
+        mismatches = _mismatches(robot, controller)
+        if not mismatches:
+            continue
+        verdict = runs_of(robot, controller)
+        if verdict.state == "never":
+            continue
+        rivals = _rivals(robot, controller)
+        if verdict.state == "certain" or verdict.state == "unknown" and not rivals:
+            for ref, missing, has_set in mismatches:  # each joint where it was written
+                has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
+                yield controller.file.at(ref.line), hedged(robot, controller, (
+                    f"{label(controller)} commands {'/'.join(missing)} on joint '{ref.name}', "
+                    f"which offers {has}; {_interface_fix(controller, has_set, missing)}"))
+            continue
+        if verdict.state == "unknown" and any(not _mismatches(robot, rival) for rival in rivals):
+            continue  # one of the file's alternatives fits the robot as checked: it is the one
+        if verdict.state == "unknown" and rivals:
+            verdict = Runs("unknown", f"it is one of {len(rivals) + 1} controllers for these joints "
+                                      f"({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
+                                      "launch file of the robot says which starts; none fits the "
+                                      "robot as checked")
+        joints = ", ".join(dict.fromkeys(ref.name for ref, _, _ in mismatches))
+        ref, missing, has_set = mismatches[0]
+        has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
+        yield controller.file.at(controller.line), Conditional(
+            f"{_if_started(controller, verdict)}: it commands {'/'.join(missing)} on {joints}, "
+            f"where {ref.name} offers {has}; {_interface_fix(controller, has_set, missing)}")
+
+
+def _offers(robot, controller: Controller, name: str) -> set | None:
+    """The command interfaces joint ``name`` offers to ``controller`` (ROS 2: its
+    ``<ros2_control>`` entry; else its transmissions), None when not known."""
     offered = command_interfaces(robot)
     ros2 = ros2_command_interfaces(robot)
-    unknown = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)
-               if any(not interface_kind(i.text)[0] for i in joint.interfaces)}  # U503
-    for controller in controllers(robot):
-        claimed = controller.interfaces()
-        if not claimed or controller.is_state:
+    unknown = robot.memo(_offers, lambda: {
+        joint.name for t in transmissions(robot) for joint in transmission_joints(t)
+        if any(not interface_kind(i.text)[0] for i in joint.interfaces)})  # U503
+    if name not in robot.joints:
+        return None
+    if controller.ros == 2 and name in ros2:
+        return ros2[name]
+    if name in offered and name not in unknown:
+        return offered[name]
+    return None
+
+
+def _mismatches(robot, controller: Controller) -> list:
+    """(joint reference, interfaces claimed and not offered, interfaces offered) for each joint
+    ``controller`` claims an interface of that it does not offer."""
+    claimed = controller.interfaces()
+    if not claimed or controller.is_state:
+        return []
+    found = []
+    for ref in _urdf_joints(robot, controller):
+        has_set = _offers(robot, controller, ref.name)
+        if has_set is None:
             continue
-        for ref in _urdf_joints(robot, controller):
-            name = ref.name
-            if controller.ros == 2 and name in ros2:
-                has_set = ros2[name]
-            elif name in offered and name not in unknown:
-                has_set = offered[name]
-            else:
-                continue
-            if name not in robot.joints:
-                continue
-            missing = [c for c in claimed if c not in has_set]
-            if missing:
-                has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
-                yield controller.file.at(ref.line), (
-                    f"{_label(controller)} commands {'/'.join(missing)} on joint '{name}', which "
-                    f"offers {has}; {_interface_fix(controller, has_set, missing)}")
+        missing = [c for c in claimed if c not in has_set]
+        if missing:
+            found.append((ref, missing, has_set))
+    return found
+
+
+def _commanding(controller: Controller) -> bool:
+    return controller.layout != "moveit" and not controller.is_state and bool(controller.interfaces())
+
+
+def _rivals(robot, controller: Controller) -> list[Controller]:
+    """The other controllers of the robot's files that command one of ``controller``'s joints:
+    alternatives, of which one runs at a time."""
+    mine = {ref.name for ref in _urdf_joints(robot, controller)}
+    return [other for other in controllers(robot) if other is not controller and _commanding(other)
+            and mine & {ref.name for ref in _urdf_joints(robot, other)}]
 
 
 def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> str:
@@ -221,12 +352,20 @@ def no_joint_state_controller(robot):
 
     Without joint_state_broadcaster (ROS 2) or joint_state_controller (ROS 1) nothing publishes
     /joint_states, so robot_state_publisher and RViz show the robot frozen. MoveIt's controller
-    lists are not counted: MoveIt does not publish joint states.
+    lists are not counted: MoveIt does not publish joint states. A launch file of the robot
+    that starts one (from a file of another package), or that starts joint_state_publisher,
+    counts; a controller no launch file of the robot starts is not counted.
 
     Bad: only ``head_controller`` in the YAML
     Good: add ``joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}``
     """
-    found = [c for c in controllers(robot) if c.layout != "moveit"]
+    found = [c for c in controllers(robot) if c.layout != "moveit"
+             and runs_of(robot, c).state != "never"]
+    facts = runtime(robot)
+    if any("joint_state" in spawn.name for spawn in facts.spawns):
+        return  # a launch file starts one, from a file the robot is not checked with
+    if any(start.package in STATE_PUBLISHERS for c in facts.described for start in c.started):
+        return  # a launch file of the robot publishes the joint states itself
     if found and not any(c.is_state for c in found):
         first = found[0]
         yield first.file.at(first.line), (
@@ -265,6 +404,8 @@ def controller_unknown_class(robot):
     Good: ``type: position_controllers/JointGroupPositionController``
     """
     for controller in controllers(robot):
+        if _substituted(controller.type, controller):
+            continue
         if controller.layout == "moveit":
             if controller.params is not None and controller.type not in MOVEIT_TYPES:
                 yield controller.file.at(controller.where("type")), (
@@ -281,14 +422,16 @@ def controller_unknown_class(robot):
         other = 3 - controller.ros
         if lookup(controller.type, other) is not None:
             instead = COUNTERPARTS.get((other, controller.type))
-            yield controller.file.at(controller.line), (
+            message = (
                 f"{controller.type} is a {_ROS[other]} class, and {_version_reason(controller)}; "
                 + (f"{_ROS[controller.ros]} has {instead}" if instead
                    else f"{available('classes', controller.type, classes(controller.ros))}"))
         else:
-            yield controller.file.at(controller.line), (
-                f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
-                f"{available('classes', controller.type, classes(controller.ros))}")
+            message = (f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
+                       f"{available('classes', controller.type, classes(controller.ros))}")
+        message = hedged(robot, controller, message)
+        if message is not None:
+            yield controller.file.at(controller.line), message
 
 
 def _end_of_life(controller: Controller) -> str | None:
@@ -350,7 +493,7 @@ def controller_missing_parameter(robot):
         if controller.layout == "ros2" and controller.block_line is None and controller.name not in blocks:
             if needed and controller.name not in flat:  # a block without ros__parameters: U633
                 yield controller.file.at(controller.line), (
-                    f"{_label(controller)} is declared but has no '{controller.name}: "
+                    f"{label(controller)} is declared but has no '{controller.name}: "
                     f"ros__parameters:' block, and {controller.type.split('/')[-1]} needs "
                     f"{', '.join(n for n in needed if '__map_' not in n)}; add the block ({condition})"), \
                     None, severity
@@ -362,13 +505,13 @@ def controller_missing_parameter(robot):
                 misplaced.add(key)
                 reads = ("joints: (a list)" if key == "joints" else "joint: (one name)")
                 yield controller.file.at(controller.where(other)), (
-                    f"{_label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
+                    f"{label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
                     f"its {other}: is ignored; write {key}: instead ({condition})"), None, severity
         missing = [name for key in needed if key not in misplaced
                    for name in schema.expand(key, params) if schema.lookup(params, name) is None]
         if missing:
             yield controller.file.at(controller.block_line or controller.line), (
-                f"{_label(controller)} has no {', '.join(missing)}; {controller.type} does not "
+                f"{label(controller)} has no {', '.join(missing)}; {controller.type} does not "
                 "configure without " + ("it" if len(missing) == 1 else "them") + f" ({condition})"), \
                 None, severity
 
@@ -429,46 +572,54 @@ def trajectory_controller_settings(robot):
     Bad: ``constraints: {elbw: {goal: 0.1}}`` for ``joints: [shoulder, elbow]``
     Good: ``constraints: {elbow: {goal: 0.1}}``
     """
-    states = ros2_state_interfaces(robot)
     for controller in controllers(robot):
         if controller.cls is None or not controller.type.endswith("/JointTrajectoryController"):
             continue
-        params, at = controller.params or {}, controller.file.at
-        joints = [ref for ref in controller.joints() if ref.key == "joints"]
-        names = [ref.name for ref in joints]
-        declared = controller.ros == 2  # ROS 2 declares the limits below: U631
-        for index, ref in enumerate(joints):
-            if ref.name in names[:index] and not declared:
-                yield at(ref.line), f"{_label(controller)} lists joint '{ref.name}' twice; keep one"
-        constraints = params.get("constraints")
-        if isinstance(constraints, dict):
-            for key, value in constraints.items():
-                where = at(constraints.lines.get(key, controller.line))
-                if key == "goal_time":
-                    if _number(value) is not None and _number(value) < 0 and not declared:
-                        yield where, (f"{_label(controller)}: constraints.goal_time is {value}; it "
-                                      "must be 0 or more (0: no limit)")
-                elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
-                        and not _substituted(str(key)):
-                    yield where, (f"{_label(controller)}: constraints name '{key}', which is not one "
-                                  f"of its joints; {available('joints', str(key), names)}")
-        for key in () if declared else _RATES:
-            value = _number(params.get(key))
-            if value is not None and value <= 0:
-                yield at(controller.where(key)), (f"{_label(controller)}: {key} is {params[key]}; "
-                                                   "it must be above 0 [Hz]")
-        claimed = params.get("state_interfaces")
-        if controller.ros == 2 and isinstance(claimed, list):
-            for interface in dict.fromkeys(str(c) for c in claimed):
-                lacking = [name for name in dict.fromkeys(names)
-                           if name in states and interface not in states[name]]
-                if lacking:
-                    yield at(controller.where("state_interfaces")), (
-                        f"{_label(controller)} reads state interface {interface} of "
-                        f"{', '.join(lacking)}, which <ros2_control> does not offer there; add "
-                        f"<state_interface name=\"{interface}\"/> to "
-                        f"{'that joint' if len(lacking) == 1 else 'those joints'} or drop it "
-                        "from state_interfaces")
+        for where, message in _trajectory_problems(robot, controller):
+            message = hedged(robot, controller, message)
+            if message is not None:
+                yield where, message
+
+
+def _trajectory_problems(robot, controller: Controller):
+    """(where, message) for each contradiction in a trajectory controller's settings."""
+    states = ros2_state_interfaces(robot)
+    params, at = controller.params or {}, controller.file.at
+    joints = [ref for ref in controller.joints() if ref.key == "joints"]
+    names = [ref.name for ref in joints]
+    declared = controller.ros == 2  # ROS 2 declares the limits below: U631
+    for index, ref in enumerate(joints):
+        if ref.name in names[:index] and not declared:
+            yield at(ref.line), f"{label(controller)} lists joint '{ref.name}' twice; keep one"
+    constraints = params.get("constraints")
+    if isinstance(constraints, dict):
+        for key, value in constraints.items():
+            where = at(constraints.lines.get(key, controller.line))
+            if key == "goal_time":
+                if _number(value) is not None and _number(value) < 0 and not declared:
+                    yield where, (f"{label(controller)}: constraints.goal_time is {value}; it "
+                                  "must be 0 or more (0: no limit)")
+            elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
+                    and not _substituted(str(key)):
+                yield where, (f"{label(controller)}: constraints name '{key}', which is not one "
+                              f"of its joints; {available('joints', str(key), names)}")
+    for key in () if declared else _RATES:
+        value = _number(params.get(key))
+        if value is not None and value <= 0:
+            yield at(controller.where(key)), (f"{label(controller)}: {key} is {params[key]}; "
+                                               "it must be above 0 [Hz]")
+    claimed = params.get("state_interfaces")
+    if controller.ros == 2 and isinstance(claimed, list):
+        for interface in dict.fromkeys(str(c) for c in claimed):
+            lacking = [name for name in dict.fromkeys(names)
+                       if name in states and interface not in states[name]]
+            if lacking:
+                yield at(controller.where("state_interfaces")), (
+                    f"{label(controller)} reads state interface {interface} of "
+                    f"{', '.join(lacking)}, which <ros2_control> does not offer there; add "
+                    f"<state_interface name=\"{interface}\"/> to "
+                    f"{'that joint' if len(lacking) == 1 else 'those joints'} or drop it "
+                    "from state_interfaces")
 
 
 def _number(value) -> float | None:
@@ -487,11 +638,30 @@ def joint_commanded_twice(robot):
     The controller manager activates only one of them at a time (ROS 2: "resource conflict";
     ROS 1: a claimed resource): a configuration may offer both (a trajectory controller and a
     forward command controller on the arm) and start one. Which are started is up to the
-    launch files, so this is a note: make sure the two are never spawned active together.
+    launch files, so this is a note when no launch file of the robot says: make sure the two
+    are never spawned active together. When the launch files say, U619 reports the two they
+    start together, and nothing is said of two they never start together.
 
     Bad: ``arm_controller`` and ``arm_position_controller`` both active on ``joints: [shoulder]``
     Good: spawn one active and the other ``--inactive``
     """
+    for controller, other, line, joints in shared_commands(robot, by_interface=True):
+        if together(robot, other, controller, parameter_files(robot))[0] != "unknown":
+            continue
+        yield controller.file.at(line), (
+            f"{label(controller)} commands {', '.join(joints)} through the same interfaces as "
+            f"{label(other)}; only one of them can be active at a time")
+
+
+def _short(controller: Controller) -> str:
+    return controller.name.strip("/").split("/")[-1]
+
+
+def shared_commands(robot, by_interface: bool):
+    """(controller, an earlier one, the line of the first joint shared, the joints shared) for
+    each two controllers commanding one joint: through the same interface (``by_interface``),
+    or at all (ROS 1's controller manager refuses two controllers claiming one joint whatever
+    their interfaces)."""
     first: dict[tuple, Controller] = {}
     for controller in controllers(robot):
         claimed = controller.interfaces()
@@ -499,13 +669,13 @@ def joint_commanded_twice(robot):
             continue
         shared: dict[int, tuple] = {}  # the earlier controller -> (it, first line, joints shared)
         for ref in _urdf_joints(robot, controller):
-            for interface in claimed:
+            for interface in (claimed if by_interface else ["*"]):
                 other = first.setdefault((ref.name, interface), controller)
-                if other is not controller:
+                # one name is one controller: a second file's mapping of it is merged into
+                # the same parameters (ROS 1), or is the same controller's (ROS 2)
+                if other is not controller and _short(other) != _short(controller):
                     entry = shared.setdefault(id(other), (other, ref.line, []))
                     if ref.name not in entry[2]:
                         entry[2].append(ref.name)
         for other, line, joints in shared.values():
-            yield controller.file.at(line), (
-                f"{_label(controller)} commands {', '.join(joints)} through the same interfaces as "
-                f"{_label(other)}; only one of them can be active at a time")
+            yield controller, other, line, joints

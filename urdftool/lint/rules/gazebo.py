@@ -11,12 +11,22 @@ from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.runtime import ros_versions, runtime
+from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.description.controllers import runs_of
+from urdftool.lint.rules.controllers import hedged
 from urdftool.numbers import number, numbers
 from urdftool.physics import mat3
 
 GEOMETRY_TOLERANCE = 0.05
 FRAME_TAGS = ("frame_name", "frameName", "bodyName", "body_name")
+ROS1_FRAME_TAGS = ("frameName", "bodyName", "robotBaseFrame", "odometryFrame")
+
+
+def _frame(name: str, ros1: bool) -> str:
+    """A frame name as TF gets it: ROS 1's Gazebo plugins and tf2 strip a leading ``/``
+    (``/base_link`` is ``base_link``; ROS 2 keeps it, and TF refuses it)."""
+    return name.lstrip("/") if ros1 and name.lstrip("/") else name
 
 
 @dataclass
@@ -30,6 +40,7 @@ class _Drive:
 
     label: str
     wheels: list = field(default_factory=list)
+    controller: object = None  # the diff_drive_controller, for a controller's drive
     numbers: list = field(default_factory=list)
     frames: list = field(default_factory=list)
 
@@ -67,15 +78,24 @@ def _plugin_drives(robot):
         for tag, link in _PLUGIN_FRAMES:
             element = plugin.find(tag)
             if element is not None and (element.text or "").strip():
-                drive.frames.append((tag, element.text.strip(), element, link))
+                drive.frames.append((tag, _frame(element.text.strip(), tag in ROS1_FRAME_TAGS),
+                                     element, link))
         yield drive
+
+
+def _said(robot, drive: _Drive, message: str):
+    """``message`` as the rule yields it for ``drive``: a controller's is hedged by whether its
+    launch files start it (:func:`~urdftool.lint.rules.controllers.hedged`)."""
+    return hedged(robot, drive.controller, message) if drive.controller is not None else message
 
 
 def _controller_drives(robot):
     for controller in controllers(robot):
         if controller.cls is None or controller.cls.package != "diff_drive_controller":
             continue
-        drive = _Drive(f"controller '{controller.name}' ({controller.type})")
+        if runs_of(robot, controller).state == "never":
+            continue
+        drive = _Drive(f"controller '{controller.name}' ({controller.type})", controller=controller)
         at, params = controller.file.at, controller.params or {}
         for key, side in _CONTROLLER_WHEELS.items():
             drive.wheels.extend((side, name, at(line)) for name, line in names_at(params, key))
@@ -84,7 +104,9 @@ def _controller_drives(robot):
                 drive.numbers.append((key, str(params[key]), at(controller.where(key))))
         for key, link in _CONTROLLER_FRAMES:
             if isinstance(params.get(key), str) and params[key].strip():
-                drive.frames.append((key, params[key].strip(), at(controller.where(key)), link))
+                name = _frame(params[key].strip(), controller.ros == 1)
+                if "$(" not in name or controller.file.substituted is False:
+                    drive.frames.append((key, name, at(controller.where(key)), link))
         yield drive
 
 
@@ -137,8 +159,9 @@ def diff_drive_joint_not_continuous(robot):
         for _, name, where in drive.wheels:
             joint = robot.joints.get(name)
             if joint is not None and joint.get("type") != "continuous":
-                yield where, (f"diff-drive wheel joint '{name}' is {joint.get('type')}, not "
-                              "continuous; make it type=\"continuous\" (a wheel turns without limit)")
+                yield where, _said(robot, drive, (
+                    f"diff-drive wheel joint '{name}' is {joint.get('type')}, not continuous; make "
+                    "it type=\"continuous\" (a wheel turns without limit)"))
 
 
 @rule("U614", "diff-drive-geometry", Severity.WARNING)
@@ -170,8 +193,9 @@ def diff_drive_geometry(robot):
             expected = actual * scales[tag]
             if expected > 0 and abs(values[0] - expected) > GEOMETRY_TOLERANCE * expected:
                 off = 100 * (values[0] - expected) / expected
-                yield where, (f"{drive.label}: {tag} is {values[0]:g} m but the URDF gives "
-                              f"{number(expected)} m ({number(off, places=1, plus=True)} %)")
+                yield where, _said(robot, drive, (f"{drive.label}: {tag} is {values[0]:g} m but the "
+                                                  f"URDF gives {number(expected)} m "
+                                                  f"({number(off, places=1, plus=True)} %)"))
 
 
 HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg is horizontal
@@ -262,7 +286,8 @@ def sensor_unknown_link(robot):
     A ``<sensor>`` must sit in ``<gazebo reference="LINK">``; outside one, or under a joint
     reference (except force_torque sensors, which belong on joints), Gazebo drops it. A sensor
     plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link (or
-    Gazebo's ``world``), or the data is stamped with a frame TF does not know.
+    Gazebo's ``world``), or the data is stamped with a frame TF does not know. ROS 1's plugins
+    (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``.
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -280,7 +305,7 @@ def sensor_unknown_link(robot):
         for tag in FRAME_TAGS:
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
-                name = (element.text or "").strip()
+                name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
                 if name and name not in robot.links and name not in GAZEBO_FRAMES:
                     own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
                            if reference in robot.links else available("links", name, robot.links))
@@ -296,7 +321,8 @@ def diff_drive_frame(robot):
     frame must be a link (diff_drive_controller's ``base_frame_id``, the plugin's
     ``robot_base_frame``/``robotBaseFrame``), or the robot hangs off a frame TF does not
     connect; the odometry frame (``odom_frame_id``, ``odometry_frame``/``odometryFrame``) must
-    not be one, or the link gets a second parent and TF breaks.
+    not be one, or the link gets a second parent and TF breaks. ROS 1 (the plugin's camelCase
+    tags, a ROS 1 diff_drive_controller) strips a leading ``/`` from a frame name.
 
     Bad: ``base_frame_id: base`` when the robot's root link is ``base_link``
     Good: ``base_frame_id: base_link``, ``odom_frame_id: odom``
@@ -304,12 +330,17 @@ def diff_drive_frame(robot):
     for drive in _drives(robot):
         for tag, name, where, must_be_link in drive.frames:
             if must_be_link and name not in robot.links:
-                yield where, (f"{drive.label}: {tag} '{name}' is not a link of the robot; "
-                              f"{available('links', name, robot.links)}")
+                message = (f"{drive.label}: {tag} '{name}' is not a link of the robot; "
+                           f"{available('links', name, robot.links)}")
             elif not must_be_link and name in robot.links:
-                yield where, (f"{drive.label}: {tag} '{name}' is a link of the robot; the "
-                              "odometry frame is published as its parent, so use a frame outside "
-                              "the URDF (odom)")
+                message = (f"{drive.label}: {tag} '{name}' is a link of the robot; the "
+                           "odometry frame is published as its parent, so use a frame outside "
+                           "the URDF (odom)")
+            else:
+                continue
+            message = _said(robot, drive, message)
+            if message is not None:
+                yield where, message
 
 
 CASTER_CLEARANCE = 0.005  # [m] a caster this far below the wheels' contact plane lifts a wheel
@@ -331,35 +362,41 @@ def diff_drive_wheel_layout(robot):
     Good: ``<axis xyz="0 1 0"/>``
     """
     for drive in _drives(robot):
-        left, right = drive.side(robot, "left"), drive.side(robot, "right")
-        where = {name: place for _, name, place in drive.wheels}
-        poses = _joint_frames(robot)
-        for joint in (left, right):
-            if joint is None:
-                continue
-            name = joint.get("name")
-            axis = _world_axis(robot, joint)
-            if axis is not None and abs(axis[2]) > HORIZONTAL:
-                yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
-                                    f"({numbers(axis, 3, ', ')}) in the root frame, "
-                                    "not a horizontal axis; the wheel would spin flat on the ground "
-                                    "(set its axis or origin rpy so the axis points sideways)")
-            link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
-            if link is not None and link.find("collision") is None:
-                yield where[name], (f"{drive.label}: wheel link '{link.get('name')}' has no "
-                                    "<collision>; the simulated wheel touches nothing")
-        if left is None or right is None:
+        for where, message in _layout_problems(robot, drive):
+            yield where, _said(robot, drive, message)
+
+
+def _layout_problems(robot, drive: _Drive):
+    """(where, message) for each way ``drive``'s wheels cannot drive (see U617)."""
+    left, right = drive.side(robot, "left"), drive.side(robot, "right")
+    where = {name: place for _, name, place in drive.wheels}
+    poses = _joint_frames(robot)
+    for joint in (left, right):
+        if joint is None:
             continue
-        names = left.get("name"), right.get("name")
-        if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
-            yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
-                                    f"(y = {number(poses[names[0]][0][1], 3)} m, right wheel at y = "
-                                    f"{number(poses[names[1]][0][1], 3)} m; REP-103: +y is left); swap them")
-        axes = _world_axis(robot, left), _world_axis(robot, right)
-        if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
-            yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
-                                    "are not parallel; both wheels must turn about the same line")
-        yield from _caster_below(robot, drive, left, where[names[0]])
+        name = joint.get("name")
+        axis = _world_axis(robot, joint)
+        if axis is not None and abs(axis[2]) > HORIZONTAL:
+            yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
+                                f"({numbers(axis, 3, ', ')}) in the root frame, "
+                                "not a horizontal axis; the wheel would spin flat on the ground "
+                                "(set its axis or origin rpy so the axis points sideways)")
+        link = robot.links.get(joint.find("child").get("link")) if joint.find("child") is not None else None
+        if link is not None and link.find("collision") is None:
+            yield where[name], (f"{drive.label}: wheel link '{link.get('name')}' has no "
+                                "<collision>; the simulated wheel touches nothing")
+    if left is None or right is None:
+        return
+    names = left.get("name"), right.get("name")
+    if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
+        yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
+                                f"(y = {number(poses[names[0]][0][1], 3)} m, right wheel at y = "
+                                f"{number(poses[names[1]][0][1], 3)} m; REP-103: +y is left); swap them")
+    axes = _world_axis(robot, left), _world_axis(robot, right)
+    if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
+        yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
+                                "are not parallel; both wheels must turn about the same line")
+    yield from _caster_below(robot, drive, left, where[names[0]])
 
 
 def _caster_below(robot, drive, wheel, where):
@@ -438,7 +475,9 @@ def gazebo_plugin_library(robot):
     uses ``libgazebo_ros2_control.so``, or gz_ros2_control on Gazebo Sim), and
     ``libgazebo_ros2_control.so`` without ``<ros2_control>`` has nothing to load; a
     gazebo_ros_control ``<robotNamespace>`` other than the namespace of the ROS 1 controller
-    YAML (``humanoid_robot:`` above the controllers) finds no controller parameters.
+    YAML (``humanoid_robot:`` above the controllers) finds no controller parameters. A robot
+    that ROS 1 may run too (a catkin package, a ROS 1 launch file) gets a warning for the
+    first, and the namespace of a YAML a launch file loads is the launch file's to choose.
 
     Bad: ``<plugin filename="libgazebo_ros_control.so">`` beside ``<ros2_control>``
     Good: ``<plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control">``
@@ -446,13 +485,20 @@ def gazebo_plugin_library(robot):
     from urdftool.errors import close_names
 
     ros2 = bool(robot.children("ros2_control"))
-    namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"}
+    facts = runtime(robot)
+    # a file a launch file loads goes where the launch file puts it (a group's ns): not known
+    namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"
+                  and not facts.loads(c.file.path)}
+    ros1 = [why for version, why in ros_versions(robot).evidence
+            if version == 1 and "gazebo_ros_control" not in why]
     for plugin in gazebo_plugins(robot):
         library = (plugin.get("filename") or "").strip()
         if library == ROS1_CONTROL and ros2:
-            yield plugin, (f"{library} is ROS 1's gazebo_ros_control, but the robot describes its "
-                           f"hardware in <ros2_control> (ROS 2): use {ROS2_CONTROL} "
-                           "(gz_ros2_control-system on Gazebo Sim)")
+            message = (f"{library} is ROS 1's gazebo_ros_control, but the robot describes its "
+                       f"hardware in <ros2_control> (ROS 2): use {ROS2_CONTROL} "
+                       "(gz_ros2_control-system on Gazebo Sim)")
+            yield plugin, (Conditional(f"if the robot runs under ROS 2 (it may under ROS 1 too: "
+                                       f"{'; '.join(ros1)}): {message}") if ros1 else message)
         elif library == ROS2_CONTROL and not ros2:
             yield plugin, (f"{library} (gazebo_ros2_control) reads the robot's <ros2_control>, and "
                            "it has none: add one, or use ROS 1's "

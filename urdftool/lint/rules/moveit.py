@@ -12,7 +12,9 @@ from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
 from urdftool.errors import available
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.runtime import moveit_execution
+from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.rules.srdf import as_moveit_runs
 
 TOLERANCE = 1e-9  # relative, so that a value copied from the URDF with all its digits passes
 
@@ -57,6 +59,7 @@ def _srdf_groups(robot):
 
 
 @rule("U812", "malformed-moveit-config", Severity.ERROR)
+@as_moveit_runs
 def malformed_moveit_config(robot):
     """MoveIt's kinematics.yaml, joint_limits.yaml or controller list is malformed.
 
@@ -84,6 +87,7 @@ def malformed_moveit_config(robot):
 
 
 @rule("U813", "kinematics-unknown-group", Severity.ERROR)
+@as_moveit_runs
 def kinematics_unknown_group(robot):
     """kinematics.yaml configures a group that the SRDF does not define.
 
@@ -105,6 +109,7 @@ def kinematics_unknown_group(robot):
 
 
 @rule("U814", "kinematics-group-not-chain", Severity.ERROR)
+@as_moveit_runs
 def kinematics_group_not_chain(robot):
     """A group solved by KDL (or LMA) is not one serial chain.
 
@@ -147,6 +152,7 @@ def kinematics_group_not_chain(robot):
 
 
 @rule("U815", "moveit-limits-unknown-joint", Severity.WARNING)
+@as_moveit_runs
 def moveit_limits_unknown_joint(robot):
     """MoveIt's joint_limits.yaml sets limits for a joint the URDF does not have.
 
@@ -172,6 +178,7 @@ def _urdf_limit(joint, key: str) -> float | None:
 
 
 @rule("U816", "moveit-limits-exceed-urdf", Severity.ERROR)
+@as_moveit_runs
 def moveit_limits_exceed_urdf(robot):
     """MoveIt's joint_limits.yaml allows more than the URDF's ``<limit>``.
 
@@ -180,6 +187,9 @@ def moveit_limits_exceed_urdf(robot):
     MoveIt plans with the YAML's limits, so it produces trajectories the controllers and the
     hardware reject (or that drive the joint into its stop). The YAML may only tighten the
     URDF's limits. Only limits switched on (``has_velocity_limits: true``, ...) count.
+
+    A value that is the URDF's rounded to the decimals it is written with (2.53073 for
+    2.5307274) is the same limit.
 
     Bad: ``max_velocity: 3.0`` for a joint with ``<limit velocity="2.0" .../>``
     Good: ``max_velocity: 2.0`` or less
@@ -196,12 +206,21 @@ def moveit_limits_exceed_urdf(robot):
             mine, urdf = entry.values.get(key), _urdf_limit(joint, attribute)
             if mine is None or urdf is None:
                 continue
-            if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)):
+            if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)) and not _rounded(mine, urdf):
                 what, bound = ("above", "at most") if sign > 0 else ("below", "at least")
                 yield file.at(entry.lines[key]), (
                     f"joint '{entry.joint}': MoveIt's {key} {mine:g} is {what} the URDF's "
                     f"<limit {attribute}=\"{urdf:g}\">, so MoveIt would plan beyond what the "
                     f"joint allows; use {bound} {urdf:g}")
+
+
+def _rounded(written: float, urdf: float) -> bool:
+    """Whether ``written`` is ``urdf`` rounded to the decimals it is written with: MoveIt's
+    Setup Assistant writes 2.53073 for a URDF's ${radians(145)} (2.5307274...)."""
+    text = repr(written)
+    if "e" in text or "." not in text:
+        return False
+    return round(urdf, len(text.split(".")[1])) == written
 
 
 def _ros_control(robot) -> dict[str, set[str]]:
@@ -216,6 +235,14 @@ def moveit_controller_unknown(robot):
     execution fails ("Action client not connected"). Checked only when ros_control controllers
     are declared in the YAML the robot is checked with (a namespace before the name is ignored).
 
+    A MoveIt configuration is often written for the real robot, whose driver serves the
+    trajectory action itself (ur_robot_driver's scaled_pos_joint_traj_controller, kortex_driver's
+    own action server), while the ros_control YAML beside it is the simulation's. So this is an
+    error only when a launch file of the robot starts MoveIt with this list and ros_control with
+    those controllers, and nothing else that could serve the action (a node of another package
+    than ROS's own); nothing when every launch file starting MoveIt with this list starts such a
+    node beside it (aubo_driver's trajectory action); a warning naming the condition otherwise.
+
     Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
     ``arm_trajectory_controller``
     Good: the same name in both
@@ -226,12 +253,23 @@ def moveit_controller_unknown(robot):
     for entry in _moveit_controllers(robot)[0]:
         name = entry.name.strip("/").split("/")[-1]
         if name not in declared:
-            yield entry.file.at(entry.line), (
-                f"MoveIt controller '{entry.name}' is not a ros_control controller of this robot; "
-                f"{available('controllers', name, declared)}")
+            message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
+                       f"robot; {available('controllers', name, declared)}")
+            who, where = moveit_execution(robot, entry.file.path)
+            if who == "other":
+                continue  # a launch file starts MoveIt with it beside the driver serving it
+            if who == "unknown":
+                message = Conditional(
+                    f"if MoveIt executes through the ros_control controllers the robot is checked "
+                    f"with (a driver may serve '{entry.name}' with its own action server; no "
+                    f"launch file of the robot starts MoveIt with them alone): {message}")
+            else:
+                message = f"{where} starts MoveIt with this list and ros_control: {message}"
+            yield entry.file.at(entry.line), message
 
 
 @rule("U818", "moveit-controller-joints", Severity.ERROR)
+@as_moveit_runs
 def moveit_controller_joints(robot):
     """A MoveIt controller lists other joints than the ros_control controller of that name.
 
@@ -239,6 +277,10 @@ def moveit_controller_joints(robot):
     rejects a goal naming joints it does not control, and joints it controls but MoveIt does not
     list are never commanded. For a ``GripperCommand`` controller (gripper_action_controller
     takes one ``joint:``) the ros_control joint need only be among MoveIt's.
+
+    An error when a launch file of the robot starts MoveIt with this list and ros_control
+    with that controller (and nothing else that could serve the action, as for U817); a
+    warning naming the condition otherwise.
 
     Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
     Good: the same joints (in any order)
@@ -255,9 +297,16 @@ def moveit_controller_joints(robot):
         missing, extra = sorted(theirs - mine), sorted(mine - theirs)
         parts = ([f"lacks {', '.join(missing)}"] if missing else []) + \
                 ([f"adds {', '.join(extra)}"] if extra and not gripper else [])
-        yield entry.file.at(entry.joints_line), (
-            f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the ros_control "
-            f"controller's joints ({', '.join(sorted(theirs))})")
+        message = (f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the "
+                   f"ros_control controller's joints ({', '.join(sorted(theirs))})")
+        who, _ = moveit_execution(robot, entry.file.path)
+        if who == "other":
+            continue
+        if who == "unknown":
+            message = Conditional(f"if MoveIt executes through the ros_control controller of that "
+                                  f"name the robot is checked with (a driver may serve "
+                                  f"'{entry.name}' itself): {message}")
+        yield entry.file.at(entry.joints_line), message
 
 
 @rule("U819", "kinematics-solver-unknown", Severity.ERROR)

@@ -1,9 +1,18 @@
-"""U80x: the SRDF (MoveIt semantic description) against the URDF."""
+"""U80x: the SRDF (MoveIt semantic description) against the URDF.
+
+MoveIt reads the SRDF with the robot a launch file builds: when the robot's launch files give
+MoveIt this SRDF only with the robot built otherwise (other xacro arguments: a gripper, a
+prefix; or environment variables the robot reads), a mismatch with the robot as checked is a
+note naming them (docs/certainty.md): the MoveIt configuration is another build's.
+"""
 
 from __future__ import annotations
 
+import functools
+
 from urdftool.description.companions import companions
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.runtime import moveit_with
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.lint.fixes import offer
 from urdftool.errors import available
@@ -12,6 +21,23 @@ from urdftool.description.values import parse_numbers
 from urdftool.description.xml import attribute
 
 LIMIT_TOLERANCE = 1e-6
+
+
+def as_moveit_runs(check):
+    """A rule on MoveIt's files whose findings are :class:`Conditional` when the robot's launch
+    files give MoveIt its SRDF only with the robot built from other xacro arguments."""
+    @functools.wraps(check)
+    def judged(robot):
+        srdf = companions(robot).srdf
+        state, why = moveit_with(robot, srdf.path) if srdf is not None else ("unknown", "")
+        for where, message, *fix in check(robot):
+            if state == "conditional":  # the MoveIt configuration of another build: a note
+                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}",
+                                      Severity.INFO)
+            elif state == "certain":
+                message = f"{why}: {message}"
+            yield (where, message, *fix)
+    return judged
 
 
 def _srdf(robot):
@@ -48,6 +74,7 @@ def malformed_srdf(robot):
 
 
 @rule("U802", "srdf-robot-name", Severity.WARNING)
+@as_moveit_runs
 def srdf_robot_name(robot):
     """The SRDF's robot name differs from the URDF's.
 
@@ -69,6 +96,7 @@ def _virtual_joints(srdf) -> set:
 
 
 @rule("U803", "srdf-unknown-joint", Severity.ERROR)
+@as_moveit_runs
 def srdf_unknown_joint(robot):
     """An SRDF group, group state or passive joint names a joint the URDF lacks.
 
@@ -92,6 +120,7 @@ def srdf_unknown_joint(robot):
 
 
 @rule("U804", "srdf-unknown-link", Severity.ERROR)
+@as_moveit_runs
 def srdf_unknown_link(robot):
     """An SRDF group, chain, end effector, virtual joint or collision pair names a link the URDF lacks.
 
@@ -114,6 +143,7 @@ def srdf_unknown_link(robot):
 
 
 @rule("U805", "srdf-unknown-group", Severity.ERROR)
+@as_moveit_runs
 def srdf_unknown_group(robot):
     """An SRDF subgroup, group state or end effector names a group that is not defined.
 
@@ -134,6 +164,7 @@ def srdf_unknown_group(robot):
 
 
 @rule("U806", "srdf-state-outside-limits", Severity.ERROR)
+@as_moveit_runs
 def srdf_state_outside_limits(robot):
     """An SRDF group state puts a joint outside its URDF limits.
 
@@ -163,6 +194,7 @@ def srdf_state_outside_limits(robot):
 
 
 @rule("U807", "srdf-duplicate-group", Severity.ERROR)
+@as_moveit_runs
 def srdf_duplicate_group(robot):
     """Two SRDF groups have the same name.
 
@@ -193,6 +225,7 @@ def _groups(robot, srdf):
 
 
 @rule("U808", "srdf-state-foreign-joint", Severity.ERROR)
+@as_moveit_runs
 def srdf_state_foreign_joint(robot):
     """An SRDF group state sets a joint that is not in its group.
 
@@ -225,6 +258,7 @@ def srdf_state_foreign_joint(robot):
 
 
 @rule("U809", "srdf-end-effector-parent", Severity.ERROR)
+@as_moveit_runs
 def srdf_end_effector_parent(robot):
     """An SRDF end effector's ``parent_link`` is not a link of its ``parent_group``.
 
@@ -280,6 +314,7 @@ def _where(overlap) -> str:
 
 
 @rule("U810", "srdf-disabled-pair-collides", Severity.WARNING)
+@as_moveit_runs
 def srdf_disabled_pair_collides(robot):
     """A pair disabled as "Never" (or "User") collides at the default pose or a group state.
 
@@ -328,6 +363,7 @@ def srdf_disabled_pair_collides(robot):
 
 
 @rule("U811", "srdf-collision-not-disabled", Severity.WARNING)
+@as_moveit_runs
 def srdf_collision_not_disabled(robot):
     """Two links overlap at the default pose or a group state, and the SRDF does not disable them.
 

@@ -1,11 +1,24 @@
-"""U5xx: transmissions (ROS 1 and ROS 2 forms) and ``<ros2_control>`` blocks."""
+"""U5xx: transmissions (ROS 1 and ROS 2 forms) and ``<ros2_control>`` blocks.
+
+A top-level ``<transmission>`` is read by ROS 1 only (gazebo_ros_control, ros_control's
+transmission loader): ros2_control reads the transmissions inside ``<ros2_control>`` and no
+other. So the transmission rules judge a top-level transmission as ROS 1 reads it when the
+robot is ROS 1 or nothing says (the element itself is ROS 1's); say nothing of it when the
+robot is ROS 2 only (its package builds with ament, it has ``<ros2_control>``, its launch files
+are ROS 2's: :func:`~urdftool.description.runtime.ros_versions`), and make a warning naming
+the condition when both may read it (docs/certainty.md).
+"""
 
 from __future__ import annotations
 
-from urdftool.lint.catalogue import Severity, rule
+import functools
+
+from urdftool.description.runtime import STATE_PUBLISHERS, ros_versions, runtime
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
                                             interface_kind, is_ros2_form, moving_joints,
-                                            ros2_control_joints, transmission_joints, transmissions)
+                                            published_by_gazebo, ros2_control_joints,
+                                            transmission_joints, transmissions)
 from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
@@ -19,7 +32,44 @@ def _label(transmission) -> str:
     return f"transmission '{transmission.get('name') or '?'}'"
 
 
+def _as_read(robot, transmission, message, unread_note: bool = False):
+    """``message`` as the ROS versions reading ``transmission`` make it: None when none does
+    (a ROS 1 transmission on a robot only ROS 2 runs; a note with ``unread_note``), a
+    :class:`Conditional` when only one of the versions the robot runs under does, else as it
+    is."""
+    if is_ros2_form(transmission):
+        return message
+    versions = ros_versions(robot)
+    if versions.ros2_only:
+        return Conditional(f"nothing reads this ROS 1 transmission (ros2_control reads only those "
+                           f"inside <ros2_control>; {versions.why(2)}), but {message}",
+                           Severity.INFO) if unread_note else None
+    if 2 in versions.versions and 1 in versions.versions:
+        return Conditional(f"if ROS 1 reads this transmission ({versions.why(1)}; ros2_control "
+                           f"ignores it: {versions.why(2)}): {message}")
+    return message
+
+
+def _as_ros_reads(unread_note: bool = False):
+    """A transmission rule whose findings are made :func:`_as_read` (the transmission is the
+    element found, or the one holding it)."""
+    def decorate(check):
+        @functools.wraps(check)
+        def judged(robot):
+            for where, message, *fix in check(robot):
+                transmission = where
+                while transmission is not None and getattr(transmission, "tag", None) != "transmission":
+                    transmission = transmission.getparent()
+                if transmission is not None:
+                    message = _as_read(robot, transmission, message, unread_note)
+                if message is not None:
+                    yield (where, message, *fix)
+        return judged
+    return decorate
+
+
 @rule("U501", "transmission-unknown-joint", Severity.ERROR)
+@_as_ros_reads(unread_note=True)
 def transmission_unknown_joint(robot):
     """A transmission names a joint that does not exist (or names none).
 
@@ -42,6 +92,7 @@ def transmission_unknown_joint(robot):
 
 
 @rule("U502", "transmission-fixed-joint", Severity.ERROR)
+@_as_ros_reads(unread_note=True)
 def transmission_fixed_joint(robot):
     """A transmission drives a fixed joint.
 
@@ -62,42 +113,39 @@ def transmission_fixed_joint(robot):
 
 
 @rule("U503", "unknown-hardware-interface", Severity.ERROR)
+@_as_ros_reads()
 def unknown_hardware_interface(robot):
     """A ROS 1 transmission joint has no ``<hardwareInterface>`` or an unknown one.
 
     ``hardware_interface/`` may be omitted (old Gazebo form). Vendor interfaces written
     ``package/Name`` (franka_hw/FrankaStateInterface) are accepted. Transmissions inside
-    ``<ros2_control>`` take their interfaces from the ros2_control joint instead. On a robot
-    with ``<ros2_control>``, ros2_control never reads this transmission (only ROS 1's
-    gazebo_ros_control does): the message says where the joint's ROS 2 interfaces are.
+    ``<ros2_control>`` take their interfaces from the ros2_control joint instead. Only ROS 1
+    reads a top-level transmission: on a robot ROS 2 alone runs (``<ros2_control>``, an ament
+    package) nothing is said of it; on one both may run, a warning says so.
 
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
-    ros2 = {joint.get("name") for _, joint in ros2_control_joints(robot)}
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
             continue
         for joint in transmission_joints(transmission):
-            note = (f" (ros2_control does not read this ROS 1 transmission: joint '{joint.name}' "
-                    "takes its ROS 2 interfaces from its <ros2_control> <command_interface>s)"
-                    if joint.name in ros2 else "")
             if not joint.interfaces:
                 yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
                                       "<hardwareInterface>; e.g. hardware_interface/"
-                                      f"PositionJointInterface{note}")
+                                      "PositionJointInterface")
             for interface in joint.interfaces:
                 known, _ = interface_kind(interface.text)
                 if not known:
                     text = (interface.text or "").strip()
                     bare = text.split("/")[-1].split("::")[-1]
                     yield interface, (f"{_label(transmission)}: unknown hardware interface "
-                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}"
-                                      f"{note}")
+                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}")
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
+@_as_ros_reads()
 def transmission_no_actuator(robot):
     """A transmission has no actuator.
 
@@ -115,6 +163,7 @@ def transmission_no_actuator(robot):
 
 
 @rule("U505", "zero-mechanical-reduction", Severity.ERROR)
+@_as_ros_reads()
 def zero_mechanical_reduction(robot):
     """A transmission's mechanical reduction is zero or not a number.
 
@@ -140,6 +189,7 @@ def _commands(joint) -> set:
 
 
 @rule("U506", "duplicate-transmission", Severity.ERROR)
+@_as_ros_reads()
 def duplicate_transmission(robot):
     """A joint is driven by more than one transmission with the same interface.
 
@@ -175,7 +225,13 @@ def unactuated_joint(robot):
     With gazebo_ros_control or ``<ros2_control>``, only actuated joints are simulated as
     actuated and published: the joint never appears in /joint_states and falls limp.
     Mimic joints are exempt, and so are the wheels a Gazebo diff-drive plugin drives (it
-    turns them and publishes their states itself).
+    turns them and publishes their states itself) and the joints something else publishes:
+    a Gazebo joint state publisher plugin naming them, or a joint_state_publisher every launch
+    file starting the robot's controllers starts (passive joints: casters, sprung wheel-drop
+    joints). When only some of those launch files start one, this is a note naming the others.
+    Checked for ``<ros2_control>`` and the control plugins whose behaviour is known
+    (gazebo_ros_control, gazebo_ros2_control, gz_ros2_control, ign_ros2_control); a vendor's
+    (``libhsrb_gazebo_ros_control.so``) may publish every joint.
 
     Fix (unsafe: the interface is a guess): a ros2_control ``<joint>`` with the interfaces of
     the block's first joint, or a ROS 1 SimpleTransmission with the interface most of the
@@ -186,18 +242,50 @@ def unactuated_joint(robot):
     prismatic joint
     """
     plugin = control_plugin(robot)
-    if plugin is None:
-        return
+    if plugin is None or plugin.tag != "ros2_control" and not _known_loader(plugin):
+        return  # a vendor's control plugin (libhsrb_gazebo_ros_control.so) may publish them all
     actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
     actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
     actuated.update(diff_drive_wheels(robot))
+    actuated.update(published_by_gazebo(robot))
+    publishing, silent = _state_publishers(robot)
+    if publishing and not silent:
+        return  # every launch file starting the robot's controllers starts joint_state_publisher
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
-            yield offer(joint, (
-                f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
-                f"although the robot loads {loader}; it will not be in /joint_states"),
-                f"actuate joint '{name}'", _actuation(robot, plugin, name), safe=False)
+            message = (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
+                       f"although the robot loads {loader}; it will not be in /joint_states")
+            if publishing:
+                message = Conditional(
+                    f"if the robot is started by {', '.join(silent[:2])} (which start"
+                    f"{'s' if len(silent) == 1 else ''} no joint_state_publisher; "
+                    f"{publishing[0]} does): {message}", Severity.INFO)
+            yield offer(joint, message, f"actuate joint '{name}'", _actuation(robot, plugin, name),
+                        safe=False)
+
+
+# The control plugins whose behaviour is known: they publish only the joints they actuate
+KNOWN_LOADERS = ("libgazebo_ros_control.so", "libgazebo_ros2_control.so", "gz_ros2_control-system",
+                 "libgz_ros2_control-system.so", "ign_ros2_control-system",
+                 "libign_ros2_control-system.so")
+
+
+def _known_loader(plugin) -> bool:
+    return (plugin.get("filename") or "").strip() in KNOWN_LOADERS
+
+
+def _state_publishers(robot) -> tuple[list[str], list[str]]:
+    """(the robot's launch files that start its controllers and a joint_state_publisher, those
+    that start its controllers and none)."""
+    facts = runtime(robot)
+    publishing, silent = [], []
+    for configuration in facts.described:
+        if not any(spawn.configuration is configuration for spawn in facts.spawns):
+            continue
+        starts = any(start.package in STATE_PUBLISHERS for start in configuration.started)
+        (publishing if starts else silent).append(configuration.display)
+    return publishing, silent
 
 
 def _actuation(robot, plugin, name: str):
@@ -237,6 +325,7 @@ _DEPRECATED_BARE = ("EffortJointInterface", "PositionJointInterface", "VelocityJ
 
 
 @rule("U508", "hardware-interface-prefix", Severity.WARNING)
+@_as_ros_reads()
 def hardware_interface_prefix(robot):
     """A ROS 1 transmission joint names its interface without ``hardware_interface/``.
 

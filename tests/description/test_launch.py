@@ -1,0 +1,277 @@
+"""Launch files read without running them: the readers (ROS 1 and ROS 2 XML, ROS 2 YAML and
+Python), the configurations they make, and what they tell of a robot."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from urdftool.description.launch import Arg, Description, Include, ParamFile, Start, substituted
+from urdftool.description.launch_configs import launch_index, read_launch, resolve, words
+
+
+def _repo(root: Path, files: dict[str, str]) -> Path:
+    (root / ".git").mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
+        (root / name).write_text(text)
+    return root
+
+
+PACKAGE = "<package format='2'><name>{}</name></package>"
+
+
+def test_substitutions_of_both_ros_versions_and_nested_ones():
+    value = substituted("$(find pkg)/config/$(arg robot)_$(var side).yaml")
+    assert value.parts == (("find", "pkg"), "/config/", ("arg", "robot", None), "_",
+                           ("arg", "side", None), ".yaml")
+    nested = substituted("$(find-pkg-share $(var package))/x")
+    assert nested.parts[0][0] == "unknown"  # a package named by an argument is not guessed
+    assert substituted("$(eval 1 + 2)").parts == (("unknown", "$(eval 1 + 2)"),)
+    command = substituted("$(command 'xacro $(find-pkg-share d)/r.urdf.xacro a:=$(var a)')")
+    assert command.parts[0][0] == "command" and command.parts[0][1].names() == {"a"}
+
+
+def test_words_keep_quoted_parts_and_substitutions_together():
+    value = substituted("$(find xacro)/xacro '$(find d)/urdf/r.urdf.xacro'\n  ns:=$(arg ns) prefix:=\"\"")
+    assert [w.text for w in words(value)] == ["$(...)/xacro", "$(...)/urdf/r.urdf.xacro",
+                                              "ns:=$(...)", "prefix:="]
+
+
+def test_ros1_xml(tmp_path):
+    launch = _repo(tmp_path, {"pkg/launch/a.launch": """<launch>
+      <arg name="model" default="arm"/>
+      <arg name="fixed" value="1"/>
+      <param name="robot_description" command="$(find xacro)/xacro $(find pkg)/urdf/$(arg model).urdf.xacro hw:=$(arg hw)"/>
+      <rosparam file="$(find pkg)/config/c.yaml" command="load" subst_value="true"/>
+      <group if="$(arg sim)">
+        <node name="s" pkg="controller_manager" type="spawner" args="a b --stopped"/>
+      </group>
+      <include file="$(find pkg)/launch/b.launch" pass_all_args="true"><arg name="x" value="1"/></include>
+    </launch>"""}) / "pkg/launch/a.launch"
+    read = read_launch(launch)
+    assert read.form == "ros1" and read.problem is None
+    kinds = [type(a).__name__ for a in read.actions]
+    assert kinds == ["Arg", "Arg", "Description", "ParamFile", "Start", "Include"]
+    assert read.actions[1] == Arg("fixed", substituted("1"), True, (), 3)
+    assert read.actions[3].substitute and read.actions[4].when[0].text == 'if="$(arg sim)"'
+    assert read.actions[5].every and read.actions[5].args == (("x", substituted("1")),)
+
+
+def test_ros2_xml_and_yaml(tmp_path):
+    root = _repo(tmp_path, {
+        "p/launch/a.launch.xml": """<launch>
+          <arg name="gui" default="true"/>
+          <let name="cfg" value="$(find-pkg-share p)/config/c.yaml"/>
+          <node pkg="controller_manager" exec="spawner" args="jsb arm" if="$(var gui)">
+            <param from="$(var cfg)"/>
+          </node>
+        </launch>""",
+        "p/launch/b.launch.yaml": """launch:
+- arg: {name: gui, default: "false"}
+- node:
+    pkg: controller_manager
+    exec: spawner
+    args: jsb
+    param: [{from: $(find-pkg-share p)/config/c.yaml}]
+- include: {file: $(find-pkg-share p)/launch/a.launch.xml, arg: [{name: gui, value: "false"}]}
+"""})
+    xml = read_launch(root / "p/launch/a.launch.xml")
+    assert xml.form == "ros2-xml" and [type(a).__name__ for a in xml.actions] == ["Arg", "Arg", "Start"]
+    assert xml.actions[1].fixed and xml.actions[2].files[0].substitute
+    yaml = read_launch(root / "p/launch/b.launch.yaml")
+    assert [type(a).__name__ for a in yaml.actions] == ["Arg", "Start", "Include"]
+
+
+PYTHON = '''
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription, OpaqueFunction
+from launch.conditions import IfCondition
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+def spawner(name, *extra):
+    return Node(package="controller_manager", executable="spawner", arguments=[name, *extra])
+
+def launch_setup(context):
+    hw = LaunchConfiguration("hw").perform(context)
+    nodes = [spawner(c) for c in ["jsb", "arm_controller"]]
+    if hw == "mock":
+        nodes.append(spawner("mock_controller", "--inactive"))
+    return nodes
+
+def generate_launch_description():
+    description = Command([FindExecutable(name="xacro"), " ",
+                           PathJoinSubstitution([FindPackageShare("p"), "urdf", "r.urdf.xacro"]),
+                           " prefix:=", LaunchConfiguration("prefix")])
+    controllers = os.path.join(get_package_share_directory("p"), "config", "c.yaml")
+    ld = LaunchDescription()
+    ld.add_action(DeclareLaunchArgument("prefix", default_value="left_"))
+    ld.add_action(DeclareLaunchArgument("hw", default_value="mock"))
+    ld.add_action(Node(package="controller_manager", executable="ros2_control_node",
+                       parameters=[{"robot_description": description}, controllers]))
+    ld.add_action(Node(package="rviz2", executable="rviz2", condition=IfCondition(LaunchConfiguration("gui"))))
+    ld.add_action(IncludeLaunchDescription(PythonLaunchDescriptionSource(
+        [FindPackageShare("p"), "/launch/other.launch.py"]), launch_arguments={"x": "1"}.items()))
+    ld.add_action(OpaqueFunction(function=launch_setup))
+    return ld
+'''
+
+
+def test_ros2_python_by_its_syntax_tree(tmp_path):
+    root = _repo(tmp_path, {"p/launch/a.launch.py": PYTHON})
+    read = read_launch(root / "p/launch/a.launch.py")
+    assert read.form == "ros2-python" and read.problem is None
+    args = [a for a in read.actions if isinstance(a, Arg)]
+    assert [a.name for a in args] == ["prefix", "hw"]
+    described = [a for a in read.actions if isinstance(a, Description)]
+    assert len(described) == 1 and described[0].command.names() == {"prefix"}
+    starts = [a for a in read.actions if isinstance(a, Start)]
+    spawned = [[w.text for w in s.arguments] for s in starts if s.executable.literal == "spawner"]
+    assert spawned == [["jsb"], ["arm_controller"], ["mock_controller", "--inactive"]]
+    mock = next(s for s in starts if s.arguments and s.arguments[0].literal == "mock_controller")
+    assert mock.when[0].kind == "equals"  # the Python if, read as a condition on hw
+    node = next(s for s in starts if s.executable.literal == "ros2_control_node")
+    assert isinstance(node.files[0], ParamFile) and node.files[0].path.parts[0] == ("find", "p")
+    assert [a for a in read.actions if isinstance(a, Include)][0].args[0][0] == "x"
+
+
+def test_configurations_resolve_includes_arguments_and_installed_share_paths(tmp_path):
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/description/urdf/r.urdf.xacro": "<robot name='r'/>",
+        "p/bringup/config/c.yaml": "a: {type: x/Y}\n",
+        "p/bringup/launch/a.launch.py": PYTHON.replace("OpaqueFunction(function=launch_setup)",
+                                                       "OpaqueFunction(function=launch_setup)")})
+    index = launch_index(root)
+    [configuration] = index.configurations
+    [described] = configuration.described
+    # share/p/urdf/r.urdf.xacro is installed from p/description/urdf/r.urdf.xacro
+    assert described.path == root / "p/description/urdf/r.urdf.xacro"
+    assert described.args["prefix"].text == "left_" and described.args["prefix"].free == {"prefix"}
+    loaded = [l for l in configuration.loaded if l.path is not None]
+    assert loaded[0].path == root / "p/bringup/config/c.yaml"
+    assert configuration.incomplete  # other.launch.py is not there
+
+
+def test_conditions_are_evaluated_with_the_defaults(tmp_path):
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": """<launch>
+      <arg name="sim" default="false"/>
+      <arg name="controllers" default="jsb arm"/>
+      <node name="real" pkg="controller_manager" type="spawner" args="$(arg controllers)" unless="$(arg sim)"/>
+      <node name="fake" pkg="controller_manager" type="spawner" args="fake" if="$(arg sim)"/>
+      <node name="never" pkg="controller_manager" type="spawner" args="never" if="false"/>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    started = {tuple(w.text for w in s.arguments): s.when for s in configuration.started}
+    assert set(started) == {("jsb", "arm"), ("fake",)}  # if="false" never runs
+    assert started["jsb", "arm"].truth is True and started["jsb", "arm"].free == {"sim"}
+    assert started["fake",].truth is False and started["fake",].free == {"sim"}
+
+
+# --- hostile launch files -----------------------------------------------------------------------
+
+def test_a_python_launch_file_is_never_run_or_imported(tmp_path):
+    marker = tmp_path / "ran"
+    root = _repo(tmp_path / "repo", {"p/launch/evil.launch.py": f"""
+import os
+open({str(marker)!r}, "w").write("x")
+os.system("touch {marker}")
+def generate_launch_description():
+    open({str(marker)!r}, "w").write("x")
+    __import__("os").system("touch {marker}")
+    return []
+"""})
+    modules = set(sys.modules)
+    launch_index(root)
+    assert not marker.exists()
+    assert not {m for m in set(sys.modules) - modules if "evil" in m}
+
+
+def test_hostile_launch_files_are_bounded(tmp_path):
+    deep = "(" * 5000 + "1" + ")" * 5000
+    root = _repo(tmp_path, {
+        "p/launch/deep.launch.py": f"def generate_launch_description():\n    x = {deep}\n",
+        "p/launch/loop.launch.py": "def generate_launch_description():\n    while True:\n        pass\n",
+        "p/launch/recurse.launch.py": "def f(x):\n    return f(x)\ndef generate_launch_description():\n    return f(1)\n",
+        "p/launch/big.launch": "<launch>" + "<arg name='a' default='b'/>" * 60000 + "</launch>",
+        "p/launch/entity.launch": '<!DOCTYPE l [<!ENTITY e "x">]><launch><arg name="&e;"/></launch>',
+        "p/launch/self.launch": "<launch><include file='$(dirname)/self.launch'/></launch>",
+        "p/launch/doubling.launch": "<launch><arg name='a' default='x'/>"
+                                    + "".join(f"<arg name='a{i + 1}' default='$(arg a{i})$(arg a{i})'/>"
+                                              for i in range(40)).replace("a0", "a") + "</launch>",
+        "p/launch/binary.launch": "\0\1\2",
+    })
+    index = launch_index(root)  # returns; nothing raised
+    problems = {Path(f.path).name: f.problem for f in index.files.values()}
+    assert "big.launch" not in problems  # over the size limit: not read
+    assert all(c.display for c in index.configurations)
+    doubling = next(c for c in index.configurations if c.display.endswith("doubling.launch"))
+    assert doubling is not None  # the 2**40-character value was not built
+
+
+def test_paths_outside_the_repository_are_never_followed(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret.launch").write_text(
+        "<launch><node pkg='controller_manager' type='spawner' args='stolen'/></launch>")
+    (outside / "c.yaml").write_text("stolen: {type: a/B}\n")
+    root = _repo(tmp_path / "repo", {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": f"""<launch>
+      <include file="{outside}/secret.launch"/>
+      <include file="$(find p)/../../outside/secret.launch"/>
+      <rosparam file="{outside}/c.yaml" command="load"/>
+    </launch>"""})
+    (root / "p/launch/link.launch").symlink_to(outside / "secret.launch")
+    index = launch_index(root)
+    assert [Path(f.path).name for f in index.files.values()] == ["a.launch"]
+    [configuration] = index.configurations
+    assert configuration.started == [] and [l.path for l in configuration.loaded] == [None]
+
+
+def test_resolve_keeps_what_is_not_known_unknown(tmp_path):
+    from urdftool.description.launch import LaunchFile
+    from urdftool.description.launch_configs import Resolved, Scope
+
+    scope = Scope({"a": Resolved("x", frozenset({"a"}))}, {}, LaunchFile(tmp_path / "l.launch", "l", "ros1"),
+                  tmp_path, True)
+    assert resolve(substituted("$(arg a)_y"), scope) == Resolved("x_y", frozenset({"a"}))
+    assert resolve(substituted("$(arg b)"), scope).text is None
+    assert resolve(substituted("$(env HOME)"), scope).text is None  # the environment is not read
+    assert resolve(substituted("$(optenv ROBOT arm)"), scope).text == "arm"
+
+
+def test_only_the_parameters_consumers_read_describe_the_robot(tmp_path):
+    # niryo: robot_description_tf2 holds another build beside robot_description; it is not
+    # what MoveIt and robot_state_publisher read
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/a.urdf.xacro": "<robot name='a'/>", "p/b.urdf.xacro": "<robot name='b'/>",
+                            "p/launch/x.launch": """<launch>
+      <param name="robot_description" command="xacro $(find p)/a.urdf.xacro"/>
+      <param name="robot_description_tf2" command="xacro $(find p)/b.urdf.xacro"/>
+      <param name="robot_description_semantic" textfile="$(find p)/a.srdf"/>
+    </launch>""", "p/a.srdf": "<robot name='a'/>"})
+    [configuration] = launch_index(root).configurations
+    assert [d.path.name for d in configuration.described] == ["a.urdf.xacro", "a.srdf"]
+
+
+def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
+    # kinova-movo: $(optenv MOVO_HAS_KINOVA_ARM false) decides whether the robot has arms
+    from urdftool.description.runtime import runtime
+    from urdftool.lint.engine import CheckOptions, check_file
+
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/r.urdf.xacro": """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/>
+  <xacro:if value="$(optenv HAS_ARM false)"><link name="arm"/></xacro:if>
+</robot>""", "p/launch/x.launch": """<launch>
+      <param name="robot_description" command="xacro $(find p)/r.urdf.xacro"/>
+    </launch>"""})
+    robot = check_file(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
+    [(configuration, relation)] = [c for c in runtime(robot).configurations if c[1]]
+    assert relation == "as the environment builds it (HAS_ARM)"

@@ -1,0 +1,499 @@
+"""Launch files read without running them: what each one declares, starts, loads and includes.
+
+Readers, one per form, all giving the same :class:`LaunchFile`:
+
+- ROS 1 XML (``.launch``, ``.launch.xml``): ``<arg>`` (``default=`` may be given at launch,
+  ``value=`` may not), ``<include file>`` with its ``<arg>``\\s, ``<group>``, ``<node pkg type
+  args>`` with its ``<param>``/``<rosparam>`` children, ``<param name command|textfile>``
+  (``robot_description`` from xacro with its arguments), ``<rosparam command="load" file
+  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)``,
+  ``$(optenv)``/``$(env)``, ``$(dirname)``.
+- ROS 2 XML and YAML (``.launch.xml``, ``.launch.yaml``): the same elements with ``exec``,
+  ``<let>``, ``<param from>``, ``<executable cmd>``; ``$(var)``, ``$(find-pkg-share)``,
+  ``$(command '...')``.
+- ROS 2 Python (``.launch.py``): by static analysis of its syntax tree,
+  :mod:`urdftool.description.launch_python` (:func:`~urdftool.description.launch_configs.read_launch`
+  picks the reader).
+
+A launch file is a stranger's program: it is parsed, never executed, imported or evaluated.
+Files over :data:`MAX_LAUNCH_SIZE` are not read, nesting and the number of actions are bounded,
+and every path a launch file names is resolved later, only inside the repository
+(:mod:`urdftool.description.launch_configs`). What a reader cannot tell (``$(eval ...)``, a
+value computed in Python) is kept as unknown, never guessed.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from urdftool.description.documents import read_text, read_yaml, YamlMap
+
+MAX_LAUNCH_SIZE = 512 * 1024  # [bytes]
+MAX_ACTIONS = 5000  # per file
+MAX_SUBSTITUTION_DEPTH = 8
+MAX_TEXT = 16 * 1024  # [characters] a resolved value may have
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+
+
+# --- values: text with substitutions ----------------------------------------------------------
+
+@dataclass(frozen=True)
+class Value:
+    """Text as a launch file writes it: literal parts and substitutions.
+
+    parts: each a ``str``, or a tuple: ``("arg", name, default Value or None)``, ``("find",
+        package)``, ``("env", name, default Value or None)``, ``("dirname",)``, ``("command",
+        Value)``, ``("unknown", text)``
+    text: as written, for messages
+    """
+
+    parts: tuple
+    text: str
+
+    @property
+    def literal(self) -> str | None:
+        """The text when it holds no substitution."""
+        return self.parts[0] if len(self.parts) == 1 and isinstance(self.parts[0], str) else \
+            ("" if not self.parts else None)
+
+    def names(self) -> set[str]:
+        """The launch arguments it reads."""
+        found = set()
+        for part in self.parts:
+            if isinstance(part, tuple) and part[0] == "arg":
+                found.add(part[1])
+                if part[2] is not None:
+                    found |= part[2].names()
+            elif isinstance(part, tuple) and part[0] == "command":
+                found |= part[1].names()
+        return found
+
+
+def literal(text: str) -> Value:
+    return Value((text,) if text else (), text)
+
+
+def unknown(text: str) -> Value:
+    return Value((("unknown", text),), text)
+
+
+def concat(values, text: str | None = None) -> Value:
+    """The values one after the other (adjacent literals joined)."""
+    parts: list = []
+    for value in values:
+        for part in value.parts:
+            if isinstance(part, str) and parts and isinstance(parts[-1], str):
+                parts[-1] += part
+            else:
+                parts.append(part)
+    return Value(tuple(parts), text if text is not None else "".join(v.text for v in values))
+
+
+def substituted(text: str | None) -> Value | None:
+    """``text`` with its ``$(...)`` substitutions (ROS 1 and ROS 2 spellings), nested ones too."""
+    if text is None:
+        return None
+    return Value(tuple(_substitutions(text, 0)), text)
+
+
+_FIND = ("find", "find-pkg-share", "find-pkg-prefix")
+
+
+def _substitutions(text: str, depth: int) -> list:
+    parts: list = []
+    index = 0
+    while index < len(text):
+        start = text.find("$(", index)
+        if start < 0:
+            parts.append(text[index:])
+            break
+        if start > index:
+            parts.append(text[index:start])
+        end = _closing(text, start + 2)
+        if end is None:
+            parts.append(("unknown", text[start:]))
+            break
+        parts.append(_substitution(text[start + 2:end], text[start:end + 1], depth))
+        index = end + 1
+    return [p for p in parts if p != ""]
+
+
+def _closing(text: str, index: int) -> int | None:
+    """The index of the ``)`` closing a ``$(`` whose content starts at ``index``."""
+    depth, quote = 1, None
+    for position in range(index, len(text)):
+        char = text[position]
+        if quote:
+            if char == quote:
+                quote = None
+        elif char in "'\"" and depth == 1 and text[position - 1] in " (":
+            quote = char
+        elif char == "(":
+            depth += 1
+        elif char == ")":
+            depth -= 1
+            if depth == 0:
+                return position
+    return None
+
+
+def _substitution(inner: str, written: str, depth: int):
+    kind, _, rest = inner.strip().partition(" ")
+    words = _words(rest)
+    if depth >= MAX_SUBSTITUTION_DEPTH:
+        return ("unknown", written)
+    if kind in ("arg", "var") and len(words) == 1 and "$(" not in words[0]:
+        return ("arg", words[0], None)
+    if kind in _FIND and len(words) >= 1 and "$(" not in words[0]:
+        return ("find", words[0]) if len(words) == 1 else ("unknown", written)
+    if kind in ("env", "optenv") and words and "$(" not in words[0]:
+        default = substituted(" ".join(words[1:])) if len(words) > 1 or kind == "optenv" else None
+        return ("env", words[0], default)
+    if kind == "dirname":
+        return ("dirname",)
+    if kind == "command":
+        return ("command", Value(tuple(_substitutions(rest.strip().strip("'\""), depth + 1)), rest))
+    return ("unknown", written)
+
+
+def _words(text: str) -> list[str]:
+    """Words split at spaces outside quotes, quotes removed."""
+    words, current, quote = [], "", None
+    for char in text:
+        if quote:
+            if char == quote:
+                quote = None
+            else:
+                current += char
+        elif char in "'\"":
+            quote = char
+        elif char.isspace():
+            if current:
+                words.append(current)
+            current = ""
+        else:
+            current += char
+    if current:
+        words.append(current)
+    return words
+
+
+# --- conditions ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Condition:
+    """When an action runs: ``kind`` "if"/"unless" (``value`` true or false), "equals" /
+    "differs" (``value`` against ``other``), or "unknown" (a Python test, an expression;
+    ``value`` holds the arguments it reads, ``text`` what was written)."""
+
+    kind: str
+    value: Value
+    text: str
+    other: Value | None = None
+
+
+# --- actions ------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Arg:
+    """A launch argument: ``fixed`` when the file sets it (ROS 1 ``value=``, ``<let>``,
+    SetLaunchConfiguration), else it may be given at launch and ``default`` is used otherwise
+    (None: required)."""
+
+    name: str
+    default: Value | None
+    fixed: bool
+    when: tuple = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Include:
+    """Another launch file included, with the arguments given to it (``every``: ROS 1's
+    ``pass_all_args``)."""
+
+    path: Value
+    args: tuple  # ((name, Value), ...)
+    when: tuple = ()
+    line: int | None = None
+    every: bool = False
+
+
+@dataclass(frozen=True)
+class ParamFile:
+    """A parameter file loaded (``<rosparam command="load">``, a node's parameter file, a
+    spawner's ``--param-file``); ``substitute``: its ``$(arg)``/``$(var)`` are replaced
+    (``subst_value``, ``allow_substs``)."""
+
+    path: Value
+    substitute: bool = False
+    when: tuple = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Start:
+    """A node or process started: ``package``/``executable`` (a process: empty package,
+    ``executable`` its command line), its argument words, the parameter files given to it."""
+
+    package: Value
+    executable: Value
+    arguments: tuple  # Values, each one or more words once resolved
+    files: tuple = ()  # ParamFile
+    when: tuple = ()
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Description:
+    """A robot (or semantic) description made from a file: ``command`` a xacro command line
+    (the file and its ``name:=value`` arguments are read from it once resolved), or ``file``
+    read as it is, with ``args`` given apart (xacro.process_file's mappings)."""
+
+    command: Value | None = None
+    file: Value | None = None
+    args: tuple = ()  # ((name, Value), ...)
+    when: tuple = ()
+    line: int | None = None
+    parameter: str = ""  # the parameter it is loaded into, as written ("" when not said)
+
+
+@dataclass
+class LaunchFile:
+    """One launch file, read. ``form``: "ros1", "ros2-xml", "ros2-yaml" or "ros2-python";
+    ``actions``: Arg, Include, ParamFile, Start and Description, in the order written;
+    ``problem``: why it could not be read (then it has no actions)."""
+
+    path: Path
+    display: str
+    form: str
+    actions: list = field(default_factory=list)
+    problem: str | None = None
+
+    @property
+    def ros(self) -> int:
+        return 1 if self.form == "ros1" else 2
+
+
+def is_launch_file(path: Path, root: Path) -> bool:
+    """A launch file by its name: ``*.launch``, ``*.launch.xml|py|yaml``, or a ``.py``,
+    ``.xml`` or ``.yaml`` in a ``launch`` folder below ``root``."""
+    name = path.name
+    if name.endswith(LAUNCH_SUFFIXES):
+        return True
+    try:
+        folders = path.parent.relative_to(root).parts
+    except ValueError:
+        return False
+    return bool(folders) and folders[-1] == "launch" and \
+        name.endswith((".py", ".xml", ".yaml", ".yml")) and not name.startswith(("__", "test_"))
+
+
+def read_launch_text(path: Path) -> LaunchFile | str:
+    """An XML or YAML launch file read (never run); the text of a Python one, for
+    :mod:`urdftool.description.launch_python`. A file that cannot be read or parsed has a
+    ``problem`` and no actions."""
+    if path.name.endswith((".yaml", ".yml")):
+        return _read_yaml_launch(path)
+    document = read_text(path, MAX_LAUNCH_SIZE)
+    if document.text is None:
+        form = "ros2-python" if path.name.endswith(".py") else "ros1"
+        return LaunchFile(path, document.display, form, problem=document.problem)
+    if path.name.endswith(".py"):
+        return document.text
+    return _read_xml_launch(path, document.display, document.text)
+
+
+# --- XML (ROS 1 and ROS 2) ----------------------------------------------------------------------
+
+_ROS2_XML = re.compile(r"\bexec\s*=|\$\(var\s|\$\(find-pkg-|<let\b")
+
+
+def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
+    from urdftool.description.xml import XmlProblem, parse
+
+    form = "ros2-xml" if _ROS2_XML.search(text) else "ros1"
+    launch = LaunchFile(path, display, form)
+    try:
+        root, positions = parse(text.encode())
+    except (XmlProblem, ValueError, SyntaxError) as error:  # lxml's XMLSyntaxError is one
+        launch.problem = f"not well-formed XML: {error}"
+        return launch
+    except Exception as error:  # noqa: BLE001 - a stranger's file must not stop the check
+        launch.problem = f"not read: {type(error).__name__}: {error}"
+        return launch
+    if root.tag != "launch":
+        launch.problem = f"root element is <{root.tag}>, not <launch>"
+        return launch
+
+    def line(element) -> int | None:
+        position = positions.get(element)
+        return position[0] if position else element.sourceline
+
+    _xml_children(root, (), launch, line, 0)
+    return launch
+
+
+def _when(element) -> tuple:
+    found = []
+    for key in ("if", "unless"):
+        value = element.get(key)
+        if value is not None:
+            found.append(Condition(key, substituted(value), f'{key}="{value}"'))
+    return tuple(found)
+
+
+def _xml_children(parent, when: tuple, launch: LaunchFile, line, depth: int) -> None:
+    for element in parent:
+        if not isinstance(element.tag, str) or len(launch.actions) >= MAX_ACTIONS or depth > 64:
+            continue
+        own = when + _when(element)
+        tag = element.tag
+        if tag == "arg" and element.get("name"):
+            fixed = element.get("value") is not None
+            default = element.get("value") if fixed else element.get("default")
+            launch.actions.append(Arg(element.get("name"), substituted(default), fixed, own,
+                                      line(element)))
+        elif tag == "let" and element.get("name"):
+            launch.actions.append(Arg(element.get("name"), substituted(element.get("value", "")),
+                                      True, own, line(element)))
+        elif tag == "include" and element.get("file"):
+            args = tuple((a.get("name"), substituted(a.get("value", a.get("default", ""))))
+                         for a in element if a.tag == "arg" and a.get("name"))
+            every = (element.get("pass_all_args") or "").strip().lower() in ("true", "1")
+            launch.actions.append(Include(substituted(element.get("file")), args, own, line(element),
+                                          every))
+        elif tag == "group":
+            _xml_children(element, own, launch, line, depth + 1)
+        elif tag == "node" and element.get("pkg"):
+            _xml_node(element, own, launch, line)
+        elif tag == "executable" and element.get("cmd"):
+            launch.actions.append(Start(literal(""), substituted(element.get("cmd")), (), (), own,
+                                        line(element)))
+        elif tag == "param":
+            _xml_param(element, own, launch, line)
+        elif tag == "rosparam":
+            loaded = _rosparam(element, own, line)
+            if loaded is not None:
+                launch.actions.append(loaded)
+
+
+def _xml_node(element, when, launch, line) -> None:
+    files = []
+    for child in element:
+        if not isinstance(child.tag, str):
+            continue
+        if child.tag == "rosparam":
+            loaded = _rosparam(child, when + _when(child), line)
+            if loaded is not None:
+                files.append(loaded)
+        elif child.tag == "param" and child.get("from"):
+            files.append(ParamFile(substituted(child.get("from")), True, when + _when(child),
+                                   line(child)))
+        elif child.tag == "param":
+            _xml_param(child, when + _when(child), launch, line)
+    executable = element.get("type") or element.get("exec") or ""
+    arguments = (substituted(element.get("args")),) if element.get("args") else ()
+    launch.actions.append(Start(substituted(element.get("pkg")), substituted(executable),
+                                arguments, tuple(files), when, line(element)))
+
+
+def _xml_param(element, when, launch, line) -> None:
+    """A ``<param>`` holding a description: ``command=`` (xacro) or ``textfile=`` (a URDF)."""
+    command, textfile = element.get("command"), element.get("textfile")
+    name = element.get("name") or ""
+    if command and ("xacro" in command or ".urdf" in command):
+        launch.actions.append(Description(substituted(command), None, (), when, line(element), name))
+    elif textfile:
+        launch.actions.append(Description(None, substituted(textfile), (), when, line(element), name))
+    value = element.get("value") or ""
+    if value.startswith("$(command") and "xacro" in value:  # ROS 2 XML: value="$(command 'xacro ...')"
+        launch.actions.append(Description(substituted(value), None, (), when, line(element), name))
+
+
+def _rosparam(element, when, line) -> ParamFile | None:
+    command = element.get("command", "load")
+    if command != "load" or not element.get("file"):
+        return None
+    substitute = (element.get("subst_value") or "").strip().lower() in ("true", "1")
+    return ParamFile(substituted(element.get("file")), substitute, when, line(element))
+
+
+# --- YAML (ROS 2) -------------------------------------------------------------------------------
+
+def _read_yaml_launch(path: Path) -> LaunchFile:
+    document = read_yaml(path, "launch file")
+    launch = LaunchFile(path, document.display, "ros2-yaml")
+    if document.problem:
+        launch.problem = document.problem
+        return launch
+    data = document.data
+    entries = data.get("launch") if isinstance(data, dict) else None
+    if not isinstance(entries, list):
+        launch.problem = "no top-level 'launch:' list"
+        return launch
+    _yaml_entries(entries, (), launch, 0)
+    return launch
+
+
+def _yaml_when(entry) -> tuple:
+    found = []
+    for key in ("if", "unless"):
+        if isinstance(entry.get(key), str):
+            found.append(Condition(key, substituted(entry[key]), f"{key}: {entry[key]}"))
+    return tuple(found)
+
+
+def _yaml_line(mapping, key=None) -> int | None:
+    if isinstance(mapping, YamlMap):
+        return mapping.lines.get(key, mapping.line) if key is not None else mapping.line
+    return None
+
+
+def _text(value) -> Value | None:
+    if isinstance(value, (str, int, float, bool)):
+        return substituted(str(value).lower() if isinstance(value, bool) else str(value))
+    return None
+
+
+def _yaml_entries(entries, when: tuple, launch: LaunchFile, depth: int) -> None:
+    if depth > 32:
+        return
+    for item in entries:
+        if not isinstance(item, dict) or len(launch.actions) >= MAX_ACTIONS:
+            continue
+        for kind, entry in item.items():
+            if not isinstance(entry, dict):
+                continue
+            own = when + _yaml_when(entry)
+            at = _yaml_line(item, kind)
+            if kind in ("arg", "let") and isinstance(entry.get("name"), str):
+                value = entry.get("value" if kind == "let" else "default")
+                launch.actions.append(Arg(entry["name"], _text(value), kind == "let", own, at))
+            elif kind == "include" and _text(entry.get("file")) is not None:
+                args = entry.get("arg") if isinstance(entry.get("arg"), list) else []
+                pairs = tuple((a["name"], _text(a.get("value")) or literal(""))
+                              for a in args if isinstance(a, dict) and isinstance(a.get("name"), str))
+                launch.actions.append(Include(_text(entry["file"]), pairs, own, at))
+            elif kind == "group" and isinstance(entry.get("children"), list):
+                _yaml_entries(entry["children"], own, launch, depth + 1)
+            elif kind == "node" and _text(entry.get("pkg")) is not None:
+                files, params = [], entry.get("param") if isinstance(entry.get("param"), list) else []
+                for param in params:
+                    if isinstance(param, dict) and _text(param.get("from")) is not None:
+                        files.append(ParamFile(_text(param["from"]), True, own, _yaml_line(param)))
+                    elif isinstance(param, dict) and isinstance(param.get("value"), str) \
+                            and "xacro" in param["value"] and "$(command" in param["value"]:
+                        launch.actions.append(Description(_text(param["value"]), None, (), own,
+                                                          _yaml_line(param)))
+                arguments = (_text(entry["args"]),) if _text(entry.get("args")) is not None else ()
+                launch.actions.append(Start(_text(entry["pkg"]), _text(entry.get("exec")) or literal(""),
+                                            arguments, tuple(files), own, at))
+            elif kind == "executable" and _text(entry.get("cmd")) is not None:
+                launch.actions.append(Start(literal(""), _text(entry["cmd"]), (), (), own, at))
+
+
+__all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Start",
+           "Value", "concat", "is_launch_file", "literal", "read_launch_text", "substituted", "unknown"]

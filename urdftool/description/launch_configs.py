@@ -1,0 +1,516 @@
+"""What runs with a robot, as its repository's launch files tell: decided once, used by every rule.
+
+Every launch file of the robot's repository (:func:`launch_index`: files named ``*.launch``,
+``*.launch.xml|py|yaml``, or ``.py``/``.xml``/``.yaml`` in a ``launch/`` folder; bounded in
+number and size, links leading outside not followed) is read
+(:mod:`urdftool.description.launch`), and each one no other includes (what a user runs) is
+expanded as a configuration: its includes followed
+(``$(find pkg)``, ``FindPackageShare``: only packages inside the repository; an installed
+``share/`` path is mapped back to the package's source folder), its arguments at their defaults.
+A configuration *describes* the robot when one of its robot descriptions is the robot's file;
+then what it starts is what runs with the robot:
+
+- the parameter files it loads (controller YAML, with or without ``subst_value`` /
+  ``allow_substs``);
+- the controllers its spawners start (active, or ``--stopped``/``--inactive``/``load``);
+- its other nodes (joint_state_publisher, move_group);
+- the xacro arguments it gives the robot, compared with those the robot was checked with.
+
+Each thing it does is *certain* (no ``if``/``unless`` and no launch argument it depends on), or
+*conditional*, with the condition in words ("when gui is true", "robot_controller:=X, its
+default"); an argument given at launch is free, its default what is used. Nothing is run,
+imported or evaluated; what cannot be told (``$(eval ...)``, a value computed in Python, a file
+outside the repository) is unknown, never guessed.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from urdftool.description.files import inside, kind_of, listing, real_path
+from urdftool.description.launch import (Arg, Condition, Description, Include, LaunchFile, ParamFile,
+                                         Start, Value, is_launch_file, read_launch_text)
+from urdftool.description.launch_python import read_python_launch
+from urdftool.description.packages import SKIP_DIRS, containment_root, packages_below
+from urdftool.description.run_memo import per_run
+from urdftool.diagnostics import display_path
+
+MAX_LAUNCH_FILES = 1500  # per repository
+MAX_WALK_DEPTH = 10
+MAX_INCLUDE_DEPTH = 12
+MAX_EVENTS = 20_000  # per configuration
+MAX_PACKAGE_FILES = 5000
+TRUE, FALSE = ("true", "1"), ("false", "0")
+DESCRIPTION_SUFFIXES = (".urdf", ".xacro", ".urdf.xml")
+
+
+# --- resolved values ----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Resolved:
+    """A value in a configuration: ``text`` (None when not known) and the launch arguments it
+    depends on that may be given at launch (their defaults were used)."""
+
+    text: str | None
+    free: frozenset = frozenset()
+
+
+@dataclass
+class Scope:
+    """What resolving a launch file's values needs: its arguments so far, the repository's
+    packages, the file itself."""
+
+    args: dict
+    packages: dict
+    launch: LaunchFile
+    root: Path
+    ros1: bool
+
+
+def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
+    if value is None:
+        return Resolved(None)
+    text, free = [], set()
+    for part in value.parts:
+        if isinstance(part, str):
+            text.append(part)
+            continue
+        kind = part[0]
+        if kind == "arg":
+            bound = scope.args.get(part[1])
+            if bound is None and part[2] is not None and depth < 8:
+                bound = resolve(part[2], scope, depth + 1)
+            if bound is None:
+                return Resolved(None, frozenset(free | {part[1]}))
+            free |= bound.free
+            if bound.text is None:
+                return Resolved(None, frozenset(free))
+            text.append(bound.text)
+        elif kind == "find":
+            folder = scope.packages.get(part[1])
+            if folder is None:
+                return Resolved(None, frozenset(free))
+            text.append(f"\0{part[1]}\0")  # the package's folder, placed by resolve_path
+        elif kind == "env":
+            free.add(f"${part[1]}")
+            if part[2] is None or depth >= 8:
+                return Resolved(None, frozenset(free))
+            default = resolve(part[2], scope, depth + 1)
+            if default.text is None:
+                return Resolved(None, frozenset(free | default.free))
+            text.append(default.text)
+        elif kind == "dirname":
+            text.append(str(scope.launch.path.parent))
+        else:  # command, unknown
+            return Resolved(None, frozenset(free | value.names()))
+        if sum(len(t) for t in text) > 16 * 1024:
+            return Resolved(None, frozenset(free))
+    return Resolved("".join(text), frozenset(free))
+
+
+def shown(resolved: Resolved) -> str | None:
+    """The text as a user reads it (a package's folder as ``$(find pkg)``)."""
+    if resolved.text is None:
+        return None
+    parts = resolved.text.split("\0")
+    return "".join(f"$(find {p})" if i % 2 else p for i, p in enumerate(parts))
+
+
+def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
+    """The file a path value names, inside the repository: ``$(find pkg)/rest`` is
+    ``pkg/rest`` in the package's source folder, or the one file below the package whose path
+    ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
+    x.yaml``); an absolute path only inside the repository; None otherwise."""
+    resolved = resolve(value, scope)
+    text = resolved.text
+    if text is None or "\n" in text:
+        return None, resolved
+    if text.count("\0") >= 2:
+        _, package, rest = text.split("\0", 2)
+        if "\0" in rest:
+            return None, resolved
+        folder = scope.packages.get(package)
+        return (_in_package(folder, rest.strip("/"), scope.root) if folder else None), resolved
+    path = Path(text)
+    if not path.is_absolute():
+        path = scope.launch.path.parent / path
+    path = Path(os.path.normpath(path))
+    return (path if _regular_inside(path, scope.root) else None), resolved
+
+
+def _regular_inside(path: Path, root: Path) -> bool:
+    return kind_of(path) == "file" and inside(path, root)
+
+
+def _in_package(folder: Path, rest: str, root: Path) -> Path | None:
+    if not rest or ".." in Path(rest).parts:
+        return None
+    direct = folder / rest
+    if _regular_inside(direct, root):
+        return direct
+    tail = "/" + rest
+    matches = [p for p in _package_files(folder) if ("/" + p.relative_to(folder).as_posix()).endswith(tail)]
+    if len(matches) == 1 and _regular_inside(matches[0], root):
+        return matches[0]
+    return None
+
+
+@per_run
+def _package_files(folder: Path) -> tuple[Path, ...]:
+    found = []
+    for current, files in _walk(folder, 8):
+        found.extend(current / f for f in files)
+        if len(found) > MAX_PACKAGE_FILES:
+            break
+    return tuple(found)
+
+
+def _walk(root: Path, depth: int, pattern: str = "*"):
+    """(folder, its file names matching ``pattern``) for ``root`` and the folders below it,
+    ``depth`` levels at most, in sorted order, through the recorded listing
+    (:func:`~urdftool.description.files.listing`): folders that are links, hidden or build
+    output (SKIP_DIRS) are not entered."""
+    pending = [(root, 0)]
+    while pending:
+        current, level = pending.pop()
+        entries = listing(current, pattern + "|[!.]*/")  # hidden folders: not entered, not listed
+        yield current, [name for name, kind in entries if kind == "file"]
+        if level + 1 < depth:
+            pending.extend((current / name, level + 1) for name, kind in reversed(entries)
+                           if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."))
+
+
+def words(value: Value | None) -> list[Value]:
+    """A command line or argument list value split into words at the spaces of its literal
+    text outside quotes (quotes removed); a substitution belongs to the word it is written in."""
+    if value is None:
+        return []
+    found, current, piece, quote, quoted = [], [], "", None, False
+    for part in value.parts:
+        if not isinstance(part, str):
+            if piece:
+                current.append(piece)
+                piece = ""
+            current.append(part)
+            continue
+        for char in part:
+            if quote:
+                if char == quote:
+                    quote = None
+                else:
+                    piece += char
+            elif char in "'\"":
+                quote, quoted = char, True
+            elif char.isspace():
+                if piece:
+                    current.append(piece)
+                if current or quoted:
+                    found.append(current or [""])
+                piece, current, quoted = "", [], False
+            else:
+                piece += char
+    if piece:
+        current.append(piece)
+    if current or quoted:
+        found.append(current or [""])
+    return [Value(tuple(p for p in parts if p != ""),
+                  "".join(p if isinstance(p, str) else "$(...)" for p in parts)) for parts in found]
+
+
+# --- conditions ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class When:
+    """Whether an action runs in a configuration: ``truth`` True/False/None (not known), the
+    arguments it depends on, and the condition in words (empty when certain)."""
+
+    truth: bool | None = True
+    free: frozenset = frozenset()
+    words: tuple = ()
+
+    @property
+    def certain(self) -> bool:
+        return self.truth is True and not self.free
+
+    def also(self, other: When) -> When:
+        if self.truth is False or other.truth is False:
+            truth = False
+        elif self.truth is None or other.truth is None:
+            truth = None
+        else:
+            truth = True
+        return When(truth, self.free | other.free, self.words + other.words)
+
+    def text(self) -> str:
+        return " and ".join(dict.fromkeys(self.words))
+
+
+def evaluate(condition: Condition, scope: Scope) -> When:
+    value = resolve(condition.value, scope)
+    text = (value.text or "").strip().lower()
+    arguments = ", ".join(sorted(n for n in condition.value.names())) or condition.text
+    if condition.kind in ("if", "unless"):
+        truth = True if text in TRUE else False if text in FALSE else None
+        if truth is not None and condition.kind == "unless":
+            truth = not truth
+        if value.free or truth is None:
+            return When(None if truth is None else truth, value.free, (f"when {condition.text}",))
+        return When(truth)
+    if condition.kind in ("equals", "differs"):
+        other = resolve(condition.other, scope)
+        free = value.free | other.free
+        if value.text is None or other.text is None:
+            return When(None, free, (f"when {condition.text}",))
+        same = value.text.strip().lower() == other.text.strip().lower()
+        truth = same if condition.kind == "equals" else not same
+        return When(truth, free, (f"when {condition.text}",) if free else ())
+    return When(None, value.free, (f"when {condition.text}" + (f" (reads {arguments})" if arguments != condition.text else ""),))
+
+
+def _when_of(conditions, scope: Scope) -> When:
+    found = When()
+    for condition in conditions:
+        found = found.also(evaluate(condition, scope))
+    return found
+
+
+# --- configurations -----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Loaded:
+    """A parameter file a configuration loads."""
+
+    path: Path | None
+    written: str
+    substitute: bool
+    args: dict  # the launch arguments it is loaded with, for its $(arg)/$(var)
+    when: When
+    launch: str
+    line: int | None
+
+
+@dataclass(frozen=True)
+class Started:
+    """A node or process a configuration starts."""
+
+    package: str | None
+    executable: str | None
+    arguments: tuple  # Resolved words
+    files: tuple  # Loaded
+    when: When
+    launch: str
+    line: int | None
+
+
+@dataclass(frozen=True)
+class Described:
+    """A robot description a configuration makes: the file, and the xacro arguments given."""
+
+    path: Path | None
+    written: str
+    args: dict  # name -> Resolved
+    when: When
+    launch: str
+    line: int | None
+
+
+@dataclass
+class Configuration:
+    """One launch file run as it is, its includes followed."""
+
+    top: LaunchFile
+    loaded: list = field(default_factory=list)
+    started: list = field(default_factory=list)
+    described: list = field(default_factory=list)
+    files: list = field(default_factory=list)  # display names of the launch files it read
+    included: set = field(default_factory=set)  # the real paths of the files it includes
+    incomplete: bool = False  # an include could not be followed, or a bound was reached
+
+    @property
+    def display(self) -> str:
+        return self.top.display
+
+
+@dataclass
+class LaunchIndex:
+    """Every launch file of a repository, read; and each run as a configuration."""
+
+    root: Path
+    files: dict  # real path -> LaunchFile
+    configurations: list
+    truncated: bool = False
+
+
+_LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take
+
+
+def launch_files(root: Path) -> tuple[list[Path], bool]:
+    """The launch files below ``root`` (sorted, bounded; folders that are links not entered,
+    files leading outside ``root`` left out), and whether the bound was reached."""
+    found = []
+    for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+        for name in files:
+            path = current / name
+            if is_launch_file(path, root) and inside(path, root):
+                found.append(path)
+                if len(found) >= MAX_LAUNCH_FILES:
+                    return found, True
+    return found, False
+
+
+def read_launch(path: Path) -> LaunchFile:
+    """One launch file read, never run: XML and YAML by :mod:`urdftool.description.launch`,
+    Python by :mod:`urdftool.description.launch_python`."""
+    read = read_launch_text(path)
+    if isinstance(read, str):
+        return read_python_launch(path, display_path(path), read)
+    return read
+
+
+@per_run
+def launch_index(root: Path) -> LaunchIndex:
+    """The launch files of the repository ``root`` read and expanded (once per run)."""
+    paths, truncated = launch_files(root)
+    files = {}
+    for path in paths:
+        launch = read_launch(path)
+        if launch.problem is None or launch.actions:
+            files[_key(path)] = launch
+    packages = packages_below(root)
+    index = LaunchIndex(root, files, [], truncated)
+    expanded = [_expand_top(index, launch, packages) for launch in files.values()]
+    # what a user runs is a launch file no other includes: an included one (a controllers-only
+    # launch file, planning_context.launch) runs as part of those including it
+    included = {key for configuration in expanded for key in configuration.included}
+    index.configurations = [c for c in expanded if _key(c.top.path) not in included]
+    return index
+
+
+def _key(path: Path) -> str:
+    return real_path(path)
+
+
+def _expand_top(index: LaunchIndex, launch: LaunchFile, packages: dict) -> Configuration:
+    configuration = Configuration(launch)
+    _expand(index, launch, {}, True, When(), configuration, packages, (), 0)
+    return configuration
+
+
+def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
+            configuration: Configuration, packages: dict, via: tuple, depth: int) -> None:
+    configuration.files.append(launch.display)
+    scope = Scope(dict(given) if launch.ros == 2 else {}, packages, launch, index.root, launch.ros == 1)
+    for action in launch.actions:
+        if len(configuration.loaded) + len(configuration.started) > MAX_EVENTS:
+            configuration.incomplete = True
+            return
+        when = outer.also(_when_of(action.when, scope))
+        if when.truth is False and not when.free:
+            continue
+        if isinstance(action, Arg):
+            _bind(action, scope, given, top or launch.ros == 2, when)
+        elif isinstance(action, Include):
+            _include(index, action, scope, when, configuration, packages, via + (launch.display,), depth)
+        elif isinstance(action, ParamFile):
+            configuration.loaded.append(_loaded(action, scope, when, launch))
+        elif isinstance(action, Start):
+            files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch)
+                          for f in action.files)
+            arguments = tuple(resolve(word, scope) for value in action.arguments for word in words(value))
+            if launch.ros == 1:  # roslaunch splits args= after substituting: $(arg controllers)
+                arguments = tuple(Resolved(text, word.free) if word.text is not None else word
+                                  for word in arguments
+                                  for text in (word.text.split() if word.text is not None else [None]))
+            package, executable = resolve(action.package, scope), resolve(action.executable, scope)
+            if package.free or executable.free:
+                when = when.also(When(True, package.free | executable.free, ()))
+            configuration.started.append(Started(package.text, executable.text, arguments, files, when,
+                                                 launch.display, action.line))
+            configuration.loaded.extend(files)
+        elif isinstance(action, Description) and _describes(action.parameter):
+            configuration.described.append(_described(action, scope, when, launch))
+
+
+def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> None:
+    if not action.fixed and action.name in given:
+        scope.args[action.name] = given[action.name]
+        return
+    value = resolve(action.default, scope) if action.default is not None else Resolved(None)
+    if not action.fixed and free:
+        value = Resolved(value.text, value.free | {action.name})
+    if not when.certain:
+        if when.truth is None:
+            value = Resolved(None, value.free | when.free)
+        elif action.name in scope.args and not action.fixed:
+            return
+        else:
+            value = Resolved(value.text, value.free | when.free)
+    scope.args[action.name] = value
+
+
+def _include(index, action: Include, scope: Scope, when: When, configuration: Configuration,
+             packages: dict, via: tuple, depth: int) -> None:
+    path, _ = resolve_path(action.path, scope)
+    target = index.files.get(_key(path)) if path is not None else None
+    if target is None or depth >= MAX_INCLUDE_DEPTH or target.display in via:
+        configuration.incomplete = True
+        return
+    configuration.included.add(_key(path))
+    given = dict(scope.args) if (action.every or target.ros == 2) else {}
+    for name, value in action.args:
+        given[name] = resolve(value, scope)
+    _expand(index, target, given, False, when, configuration, packages, via, depth + 1)
+
+
+def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile) -> Loaded:
+    path, resolved = resolve_path(action.path, scope)
+    if resolved.free:
+        when = when.also(When(True, resolved.free, ()))
+    return Loaded(path, shown(resolved) or action.path.text, action.substitute,
+                  dict(scope.args) if action.substitute else {}, when, launch.display, action.line)
+
+
+_DESCRIPTION_PARAMETER = re.compile(r"robot_description\)?(_semantic)?$")
+
+
+def _describes(parameter: str) -> bool:
+    """Whether a description loaded into ``parameter`` is what the robot's consumers read:
+    ``robot_description`` (or ``..._semantic``, or a name that says nothing of it), not
+    ``robot_description_tf2`` or another copy beside it."""
+    return "robot_description" not in parameter or bool(_DESCRIPTION_PARAMETER.search(parameter.strip()))
+
+
+def _described(action: Description, scope: Scope, when: When, launch: LaunchFile) -> Described:
+    args: dict = {}
+    path, written = None, ""
+    if action.command is not None:
+        command = action.command
+        if len(command.parts) == 1 and isinstance(command.parts[0], tuple) and command.parts[0][0] == "command":
+            command = command.parts[0][1]
+        for word in words(command):
+            text = word.literal
+            head = word.parts[0] if word.parts and isinstance(word.parts[0], str) else ""
+            if ":=" in head:
+                name, _, rest = head.partition(":=")
+                tail = Value(((rest,) if rest else ()) + word.parts[1:], word.text)
+                args[name] = resolve(tail, scope)
+                continue
+            if text is not None and (text.endswith(("xacro", "xacro.py")) or text.startswith("-")):
+                continue
+            candidate, resolved = resolve_path(word, scope)
+            shown_text = shown(resolved) or word.text
+            if path is None and shown_text.endswith(DESCRIPTION_SUFFIXES):
+                path, written = candidate, shown_text
+    elif action.file is not None:
+        path, resolved = resolve_path(action.file, scope)
+        written = shown(resolved) or action.file.text
+        for name, value in action.args:
+            args[name] = resolve(value, scope)
+    return Described(path, written, args, when, launch.display, action.line)
+
+
+__all__ = ["Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+           "launch_index", "resolve", "shown", "words"]

@@ -1,0 +1,639 @@
+"""ROS 2 Python launch files read by static analysis of their syntax tree (``ast``), never run.
+
+The functions a launch file defines are walked from ``generate_launch_description`` (and the
+functions it hands to ``OpaqueFunction`` or calls), their assignments followed, and the calls
+that make launch actions read into :class:`~urdftool.description.launch.LaunchFile` actions:
+
+- ``DeclareLaunchArgument(name, default_value=...)``, ``SetLaunchConfiguration``;
+- ``Node(package=..., executable=..., arguments=[...], parameters=[...], condition=...)``,
+  ``ExecuteProcess(cmd=[...])``; parameter files given as paths, ``ParameterFile(path,
+  allow_substs=True)``;
+- ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
+- ``GroupAction(actions, condition=...)``, ``TimerAction``, ``RegisterEventHandler``;
+- robot descriptions: ``Command([FindExecutable(name="xacro"), " ", path, " name:=", ...])``,
+  ``xacro.process_file(path, mappings={...})``, MoveItConfigsBuilder's
+  ``robot_description(file_path=..., mappings=...)``.
+
+Values are read through ``LaunchConfiguration``, ``FindPackageShare``,
+``get_package_share_directory``, ``PathJoinSubstitution``, ``os.path.join``, ``/`` on paths,
+``+``, f-strings and ``TextSubstitution``; anything else (a value a function computes at run
+time) is unknown. A Python ``if`` around an action is a condition read from its test when it
+compares a launch argument with a constant, else an unknown one that names the test. The walk
+is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
+"""
+
+from __future__ import annotations
+
+import ast
+from ast import walk as syntax_nodes
+from pathlib import Path
+
+from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
+                                         LaunchFile, ParamFile, Start, Value, concat, literal, unknown)
+
+MAX_STEPS = 200_000  # expressions and statements evaluated per file
+MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
+MAX_LOOP_ITEMS = 64
+_SOURCES = ("PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource",
+            "YAMLLaunchDescriptionSource", "AnyLaunchDescriptionSource",
+            "FrontendLaunchDescriptionSource")
+_SHARE = ("FindPackageShare", "FindPackagePrefix", "get_package_share_directory",
+          "get_package_share_path", "get_package_prefix")
+
+
+class _Stop(Exception):
+    """The budget is spent."""
+
+
+class _Act:
+    """An action made while walking; conditions of enclosing groups are added afterwards."""
+
+    def __init__(self, kind: str, when: tuple, line: int | None, **fields):
+        self.kind, self.when, self.line, self.fields = kind, list(when), line, fields
+
+
+def read_python_launch(path: Path, display: str, text: str) -> LaunchFile:
+    launch = LaunchFile(path, display, "ros2-python")
+    try:
+        tree = ast.parse(text, filename=display)
+    except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
+        launch.problem = f"not valid Python: {type(error).__name__}: {error}"
+        return launch
+    reader = _Reader(tree)
+    try:
+        reader.run()
+    except (_Stop, RecursionError):
+        launch.problem = "too large or too deeply nested to read completely; read in part"
+    # A launch configuration is read when its action runs, after every argument is declared:
+    # the declarations come first, whichever line made them.
+    acts = sorted(reader.acts, key=lambda act: act.kind != "arg" or act.fields["fixed"])
+    launch.actions = [action for action in (reader.convert(act) for act in acts)
+                      if action is not None][:MAX_ACTIONS]
+    return launch
+
+
+class _Reader:
+    def __init__(self, tree: ast.Module):
+        self.tree = tree
+        self.functions: dict[str, ast.FunctionDef] = {}
+        self.acts: list[_Act] = []
+        self.steps = 0
+        self.walked: set[str] = set()
+
+    # --- statements -----------------------------------------------------------------------
+
+    def run(self) -> None:
+        module_env: dict = {}
+        self.block(self.tree.body, module_env, (), 0, top=True)
+        entry = self.functions.get("generate_launch_description")
+        order = [entry] if entry is not None else []
+        # then the functions handed over rather than called (OpaqueFunction(function=f)): a
+        # helper the others call is walked where it is called, with its arguments
+        called, handed = set(), set()
+        for node in syntax_nodes(self.tree):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+                called.add(node.func.id)
+                handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
+                              if isinstance(a, ast.Name))
+        order += [f for name, f in self.functions.items() if f is not entry and name in handed]
+        for function in order:
+            if function.name not in self.walked:
+                self.call_function(function, [], {}, module_env, (), 0)
+
+    def tick(self) -> None:
+        self.steps += 1
+        if self.steps > MAX_STEPS:
+            raise _Stop
+
+    def block(self, statements, env: dict, when: tuple, depth: int, top: bool = False):
+        """Walk statements; the value of a ``return`` if one is reached."""
+        for statement in statements:
+            self.tick()
+            if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                self.functions.setdefault(statement.name, statement)
+            elif top and not isinstance(statement, (ast.Assign, ast.AnnAssign)):
+                continue
+            elif isinstance(statement, ast.Assign):
+                value = self.eval(statement.value, env, when, depth)
+                for target in statement.targets:
+                    self.bind(target, value, env)
+            elif isinstance(statement, ast.AnnAssign) and statement.value is not None:
+                self.bind(statement.target, self.eval(statement.value, env, when, depth), env)
+            elif isinstance(statement, ast.AugAssign) and isinstance(statement.target, ast.Name):
+                value = self.eval(statement.value, env, when, depth)
+                current = env.get(statement.target.id)
+                if isinstance(current, list) and isinstance(value, list):
+                    current.extend(value)
+                elif isinstance(current, Value) and isinstance(value, Value):
+                    env[statement.target.id] = concat([current, value])
+            elif isinstance(statement, ast.Expr):
+                self.eval(statement.value, env, when, depth)
+            elif isinstance(statement, ast.Return):
+                return self.eval(statement.value, env, when, depth) if statement.value else None
+            elif isinstance(statement, ast.If):
+                test = self.condition(statement.test, env, depth)
+                found = self.block(statement.body, env, when + (test,), depth)
+                otherwise = self.block(statement.orelse, env, when + (_negated(test),), depth)
+                if found is not None or otherwise is not None:
+                    return found if found is not None else otherwise
+            elif isinstance(statement, (ast.For, ast.AsyncFor)):
+                for item in self.items(statement.iter, env, depth):
+                    self.bind(statement.target, item, env)
+                    self.block(statement.body, env, when, depth)
+            elif isinstance(statement, (ast.With, ast.AsyncWith)):
+                found = self.block(statement.body, env, when, depth)
+                if found is not None:
+                    return found
+            elif isinstance(statement, ast.Try):
+                for body in (statement.body, *(h.body for h in statement.handlers),
+                             statement.orelse, statement.finalbody):
+                    self.block(body, env, when, depth)
+        return None
+
+    def bind(self, target, value, env: dict) -> None:
+        if isinstance(target, ast.Name):
+            env[target.id] = value
+        elif isinstance(target, (ast.Tuple, ast.List)):
+            values = value if isinstance(value, list) and len(value) == len(target.elts) else \
+                [unknown("?")] * len(target.elts)
+            for element, item in zip(target.elts, values):
+                self.bind(element, item, env)
+
+    def items(self, node, env: dict, depth: int) -> list:
+        """What a ``for`` loop or comprehension iterates over: the items of a list the file
+        writes out (bounded), else one unknown item."""
+        value = self.eval(node, env, (), depth)
+        if isinstance(value, dict):
+            value = [literal(k) if isinstance(k, str) else k for k in value]
+        if isinstance(value, list) and value:
+            return value[:MAX_LOOP_ITEMS]
+        return [unknown(_source(node))]
+
+    def call_function(self, function, args, keywords, env, when, depth):
+        if depth > MAX_DEPTH // 4:
+            return None
+        self.walked.add(function.name)
+        local = dict(env)
+        names = [a.arg for a in function.args.args]
+        for name, value in zip(names, args):
+            local[name] = value
+        for name in names[len(args):]:
+            local[name] = keywords.get(name, unknown(name))
+        if function.args.vararg is not None:
+            local[function.args.vararg.arg] = list(args[len(names):])
+        for argument in function.args.kwonlyargs:
+            local[argument.arg] = keywords.get(argument.arg, unknown(argument.arg))
+        return self.block(function.body, local, when, depth + 1)
+
+    # --- conditions -----------------------------------------------------------------------
+
+    def condition(self, test, env: dict, depth: int) -> Condition:
+        """A Python test as a condition: ``x == "c"``/``x != "c"`` on a launch argument, else
+        unknown (naming the test and the arguments it reads)."""
+        text = _source(test)
+        if isinstance(test, ast.Compare) and len(test.ops) == 1 and \
+                isinstance(test.ops[0], (ast.Eq, ast.NotEq)):
+            left = self.eval(test.left, env, (), depth)
+            right = self.eval(test.comparators[0], env, (), depth)
+            if isinstance(left, Value) and isinstance(right, Value):
+                kind = "equals" if isinstance(test.ops[0], ast.Eq) else "differs"
+                return Condition(kind, left, text, right)
+        reads = [v for v in _values_in(self.eval(test, env, (), depth))]
+        return Condition("unknown", concat(reads) if reads else literal(""), text)
+
+    # --- expressions ----------------------------------------------------------------------
+
+    def eval(self, node, env: dict, when: tuple, depth: int):
+        self.tick()
+        if depth > MAX_DEPTH:
+            return unknown(_source(node))
+        depth += 1
+        if isinstance(node, ast.Constant):
+            if isinstance(node.value, bool):
+                return literal(str(node.value).lower())
+            if isinstance(node.value, (str, int, float)):
+                return literal(str(node.value))
+            return None
+        if isinstance(node, ast.Name):
+            if node.id in env:
+                return env[node.id]
+            return unknown(node.id)
+        if isinstance(node, (ast.List, ast.Tuple, ast.Set)):
+            found = []
+            for element in node.elts:
+                if isinstance(element, ast.Starred):
+                    value = self.eval(element.value, env, when, depth)
+                    found.extend(value if isinstance(value, list) else [value])
+                else:
+                    found.append(self.eval(element, env, when, depth))
+            return found
+        if isinstance(node, ast.Dict):
+            result = {}
+            for key, value in zip(node.keys, node.values):
+                evaluated = self.eval(value, env, when, depth)
+                if key is None:
+                    if isinstance(evaluated, dict):
+                        result.update(evaluated)
+                    continue
+                name = self.eval(key, env, when, depth)
+                if isinstance(name, Value) and name.literal is not None:
+                    result[name.literal] = evaluated
+            return result
+        if isinstance(node, ast.JoinedStr):
+            parts = []
+            for value in node.values:
+                part = self.eval(value.value if isinstance(value, ast.FormattedValue) else value,
+                                 env, when, depth)
+                parts.append(part if isinstance(part, Value) else unknown(_source(value)))
+            return concat(parts, _source(node))
+        if isinstance(node, ast.BinOp):
+            left = self.eval(node.left, env, when, depth)
+            right = self.eval(node.right, env, when, depth)
+            if isinstance(node.op, ast.Add):
+                if isinstance(left, Value) and isinstance(right, Value):
+                    return concat([left, right])
+                if isinstance(left, list) and isinstance(right, list):
+                    return left + right
+            if isinstance(node.op, ast.Div) and isinstance(left, Value) and isinstance(right, Value):
+                return _joined([left, right])
+            return unknown(_source(node))
+        if isinstance(node, ast.IfExp):
+            return self.eval(node.body, env, when, depth)
+        if isinstance(node, ast.Subscript):
+            return self.subscript(node, env, when, depth)
+        if isinstance(node, ast.Attribute):
+            return unknown(_source(node))
+        if isinstance(node, (ast.ListComp, ast.GeneratorExp)) and len(node.generators) == 1:
+            generator, found = node.generators[0], []
+            local = dict(env)
+            for item in self.items(generator.iter, env, depth):
+                self.bind(generator.target, item, local)
+                found.append(self.eval(node.elt, local, when, depth))
+            return found
+        if isinstance(node, ast.Call):
+            return self.call(node, env, when, depth)
+        return unknown(_source(node))
+
+    def subscript(self, node, env, when, depth):
+        container = node.value
+        # context.launch_configurations["name"]
+        if isinstance(container, ast.Attribute) and container.attr == "launch_configurations":
+            key = self.eval(node.slice, env, when, depth)
+            if isinstance(key, Value) and key.literal:
+                return Value((("arg", key.literal, None),), _source(node))
+        value = self.eval(container, env, when, depth)
+        key = self.eval(node.slice, env, when, depth)
+        if isinstance(value, dict) and isinstance(key, Value) and key.literal in value:
+            return value[key.literal]
+        if isinstance(value, list) and isinstance(key, Value) and (key.literal or "").lstrip("-").isdigit():
+            index = int(key.literal)
+            if -len(value) <= index < len(value):
+                return value[index]
+        return unknown(_source(node))
+
+    def call(self, node: ast.Call, env: dict, when: tuple, depth: int):
+        name = _callee(node.func)
+        args = [self.eval(a.value if isinstance(a, ast.Starred) else a, env, when, depth)
+                for a in node.args]
+        keywords = {k.arg: self.eval(k.value, env, when, depth) for k in node.keywords if k.arg}
+        line = node.lineno
+        method = node.func.attr if isinstance(node.func, ast.Attribute) else None
+        if method is not None:
+            found = self.method(node, method, args, keywords, env, when, depth)
+            if found is not _NOT_HANDLED:
+                return found
+        if name in self.functions and name not in ("generate_launch_description",):
+            function = self.functions[name]
+            result = self.call_function(function, args, keywords, env, when, depth)
+            return result if result is not None else unknown(_source(node))
+        return self.construct(name, node, args, keywords, when, line)
+
+    def method(self, node, method, args, keywords, env, when, depth):
+        owner = self.eval(node.func.value, env, when, depth) if isinstance(node.func, ast.Attribute) \
+            else None
+        if method in ("add_action", "add_entity", "append") and args:
+            if isinstance(owner, list):
+                owner.append(args[0])
+            return None
+        if method == "extend" and args and isinstance(owner, list) and isinstance(args[0], list):
+            owner.extend(args[0])
+            return None
+        if method == "items" and isinstance(owner, dict):
+            return [[literal(k), v] for k, v in owner.items()]
+        if method in ("perform", "lower", "strip", "__str__") and isinstance(owner, Value):
+            return owner
+        if method == "perform_substitution" and args:
+            return args[0]
+        if method == "join" and isinstance(owner, Value) and owner.literal is not None and args \
+                and isinstance(args[0], list):
+            separator, parts = literal(owner.literal), []
+            for index, item in enumerate(args[0]):
+                if index:
+                    parts.append(separator)
+                parts.append(item if isinstance(item, Value) else unknown("?"))
+            return concat(parts)
+        if method == "join" and _callee(node.func.value) == "os.path":
+            return _joined([a if isinstance(a, Value) else unknown("?") for a in args])
+        if method == "process_file" and args and isinstance(args[0], Value):  # xacro.process_file
+            mappings = keywords.get("mappings")
+            self.acts.append(_Act("description", when, node.lineno, file=args[0],
+                                  args=_pairs(mappings)))
+            return unknown(_source(node))
+        if method in ("robot_description", "robot_description_semantic") and isinstance(owner, _Builder):
+            path = keywords.get("file_path") or (args[0] if args else None)
+            if isinstance(path, Value):
+                self.acts.append(_Act("description", when, node.lineno,
+                                      file=_in_package(owner.package, path),
+                                      args=_pairs(keywords.get("mappings"))))
+            return owner
+        if isinstance(owner, _Builder):
+            if method == "trajectory_execution":
+                path = keywords.get("file_path") or (args[0] if args else None)
+                if isinstance(path, Value):
+                    self.acts.append(_Act("params", when, node.lineno,
+                                          path=_in_package(owner.package, path), substitute=False))
+            return owner
+        if method in ("to_moveit_configs", "to_dict"):
+            return owner if isinstance(owner, _Builder) else unknown(_source(node))
+        return _NOT_HANDLED
+
+    def construct(self, name: str, node, args, keywords, when, line):
+        short = name.rsplit(".", 1)[-1]
+        if short == "LaunchDescription":
+            return args[0] if args and isinstance(args[0], list) else []
+        if short == "LaunchConfiguration":
+            key = keywords.get("variable_name") or (args[0] if args else None)
+            if isinstance(key, Value) and key.literal:
+                default = keywords.get("default")
+                return Value((("arg", key.literal, default if isinstance(default, Value) else None),),
+                             _source(node))
+            return unknown(_source(node))
+        if short in _SHARE:
+            package = keywords.get("package") or keywords.get("package_name") or (args[0] if args else None)
+            if isinstance(package, Value) and package.literal:
+                return Value((("find", package.literal),), _source(node))
+            return unknown(_source(node))
+        if short in ("PathJoinSubstitution",):
+            return _joined(_flat(args[0] if args else []))
+        if short in ("PathSubstitution", "Path", "str", "TextSubstitution", "ParameterValue"):
+            value = keywords.get("text") if short == "TextSubstitution" else \
+                (args[0] if args else keywords.get("value"))
+            if isinstance(value, list):
+                return concat([v if isinstance(v, Value) else unknown("?") for v in value])
+            return value if isinstance(value, Value) else unknown(_source(node))
+        if short == "FindExecutable":
+            executable = keywords.get("name") or (args[0] if args else None)
+            return executable if isinstance(executable, Value) else unknown(_source(node))
+        if short == "EnvironmentVariable":
+            variable = keywords.get("name") or (args[0] if args else None)
+            if isinstance(variable, Value) and variable.literal:
+                default = keywords.get("default_value")
+                return Value((("env", variable.literal, default if isinstance(default, Value) else None),),
+                             _source(node))
+            return unknown(_source(node))
+        if short == "Command":
+            command = args[0] if args else keywords.get("command")
+            value = concat(_flat(command)) if isinstance(command, list) else command
+            if not isinstance(value, Value):
+                return unknown(_source(node))
+            if "xacro" in value.text or any(isinstance(p, str) and "xacro" in p for p in value.parts):
+                self.acts.append(_Act("description", when, line, command=value))
+            return Value((("command", value),), _source(node))
+        if short == "PythonExpression":
+            inner = args[0] if args else None
+            reads = concat(_flat(inner)) if isinstance(inner, list) else inner
+            return Value((("unknown", _source(node)),) + (reads.parts if isinstance(reads, Value) else ()),
+                         _source(node))
+        if short in ("IfCondition", "UnlessCondition"):
+            value = args[0] if args else keywords.get("predicate_expression")
+            value = concat(_flat(value)) if isinstance(value, list) else value
+            kind = "if" if short == "IfCondition" else "unless"
+            if isinstance(value, Value) and any(isinstance(p, tuple) and p[0] == "unknown" for p in value.parts):
+                return Condition("unknown", value, _source(node))
+            return Condition(kind, value if isinstance(value, Value) else unknown("?"), _source(node))
+        if short in ("LaunchConfigurationEquals", "LaunchConfigurationNotEquals"):
+            key, expected = (args + [None, None])[:2]
+            expected = keywords.get("expected_value", expected)
+            if isinstance(key, Value) and key.literal and isinstance(expected, Value):
+                kind = "equals" if short.endswith("Equals") and "Not" not in short else "differs"
+                return Condition(kind, Value((("arg", key.literal, None),), key.literal), _source(node),
+                                 expected)
+            return Condition("unknown", literal(""), _source(node))
+        if short == "DeclareLaunchArgument":
+            arg = keywords.get("name") or (args[0] if args else None)
+            if isinstance(arg, Value) and arg.literal:
+                default = keywords.get("default_value", args[1] if len(args) > 1 else None)
+                if isinstance(default, list):
+                    default = concat(_flat(default))
+                act = _Act("arg", when, line, name=arg.literal,
+                           default=default if isinstance(default, Value) else None, fixed=False)
+                self.acts.append(act)
+                return act
+            return None
+        if short == "SetLaunchConfiguration":
+            arg = keywords.get("name") or (args[0] if args else None)
+            value = keywords.get("value", args[1] if len(args) > 1 else None)
+            if isinstance(arg, Value) and arg.literal:
+                act = _Act("arg", when, line, name=arg.literal,
+                           default=value if isinstance(value, Value) else unknown("?"), fixed=True)
+                self.acts.append(act)
+                return act
+            return None
+        if short in ("Node", "ComposableNodeContainer", "LifecycleNode"):
+            return self.node(node, keywords, when, line)
+        if short == "ExecuteProcess":
+            command = keywords.get("cmd") or (args[0] if args else None)
+            words = [v if isinstance(v, Value) else unknown("?") for v in _flat(command)] \
+                if isinstance(command, list) else []
+            joined = []
+            for index, word in enumerate(words):
+                joined += [literal(" "), word] if index else [word]
+            act = _Act("start", when, line, package=literal(""),
+                       executable=concat(joined) if joined else unknown("?"), arguments=(), files=())
+            self.acts.append(act)
+            _add_condition(act, keywords.get("condition"))
+            return act
+        if short == "IncludeLaunchDescription":
+            source = args[0] if args else keywords.get("launch_description_source")
+            path = source.fields.get("path") if isinstance(source, _Act) else \
+                (source if isinstance(source, Value) else None)
+            arguments = keywords.get("launch_arguments")
+            act = _Act("include", when, line, path=path if isinstance(path, Value) else unknown("?"),
+                       args=_pairs(arguments))
+            self.acts.append(act)
+            _add_condition(act, keywords.get("condition"))
+            return act
+        if short in _SOURCES:
+            path = args[0] if args else keywords.get("launch_file_path")
+            if isinstance(path, list):
+                path = concat(_flat(path))
+            return _Act("source", (), line, path=path)
+        if short in ("GroupAction", "TimerAction"):
+            children = keywords.get("actions", args[0] if args and short == "GroupAction" else None)
+            group = _Act("group", when, line)
+            for child in _acts_in(children):
+                _add_condition(child, keywords.get("condition"))
+            return group
+        if short in ("RegisterEventHandler", "OnProcessExit", "OnProcessStart", "OnExecutionComplete"):
+            return _Act("group", when, line)
+        if short == "ParameterFile":
+            path = keywords.get("param_file") or (args[0] if args else None)
+            substitute = keywords.get("allow_substs")
+            return _ParamFile(path if isinstance(path, Value) else unknown("?"),
+                              isinstance(substitute, Value) and substitute.literal == "true")
+        if short == "MoveItConfigsBuilder":
+            package = keywords.get("package_name")
+            robot = args[0] if args else keywords.get("robot_name")
+            if not isinstance(package, Value) and isinstance(robot, Value) and robot.literal:
+                package = literal(f"{robot.literal}_moveit_config")
+            return _Builder(package.literal if isinstance(package, Value) else None)
+        if short in ("open",) and args and isinstance(args[0], Value):
+            return _Opened(args[0])
+        return unknown(_source(node))
+
+    def node(self, node, keywords, when, line):
+        package = keywords.get("package")
+        executable = keywords.get("executable") or keywords.get("node_executable")
+        arguments = [v if isinstance(v, Value) else unknown("?")
+                     for v in _flat(keywords.get("arguments") or [])]
+        files = []
+        for entry in _flat(keywords.get("parameters") or []):
+            if isinstance(entry, _ParamFile):
+                files.append(ParamFile(entry.path, entry.substitute, (), line))
+            elif isinstance(entry, Value) and not any(isinstance(p, tuple) and p[0] == "command"
+                                                      for p in entry.parts) \
+                    and not all(isinstance(p, tuple) and p[0] == "unknown" for p in entry.parts):
+                files.append(ParamFile(entry, False, (), line))
+            elif isinstance(entry, dict):
+                for value in entry.values():
+                    if isinstance(value, _Opened):
+                        self.acts.append(_Act("description", when, line, file=value.path, args=()))
+        act = _Act("start", when, line, package=package if isinstance(package, Value) else unknown("?"),
+                   executable=executable if isinstance(executable, Value) else unknown("?"),
+                   arguments=tuple(arguments), files=tuple(files))
+        self.acts.append(act)
+        _add_condition(act, keywords.get("condition"))
+        return act
+
+    # --- conversion -----------------------------------------------------------------------
+
+    def convert(self, act: _Act):
+        when, fields = tuple(act.when), act.fields
+        if act.kind == "arg":
+            return Arg(fields["name"], fields["default"], fields["fixed"], when, act.line)
+        if act.kind == "include":
+            return Include(fields["path"], fields["args"], when, act.line)
+        if act.kind == "start":
+            files = tuple(ParamFile(f.path, f.substitute, when, f.line) for f in fields["files"])
+            return Start(fields["package"], fields["executable"], fields["arguments"], files, when,
+                         act.line)
+        if act.kind == "description":
+            return Description(fields.get("command"), fields.get("file"), fields.get("args", ()),
+                               when, act.line)
+        if act.kind == "params" and isinstance(fields.get("path"), Value):
+            return ParamFile(fields["path"], fields["substitute"], when, act.line)
+        return None
+
+
+_NOT_HANDLED = object()
+
+
+class _ParamFile:
+    def __init__(self, path: Value, substitute: bool):
+        self.path, self.substitute = path, substitute
+
+
+class _Builder:
+    """MoveItConfigsBuilder: the MoveIt config package its file paths are relative to."""
+
+    def __init__(self, package: str | None):
+        self.package = package
+
+
+class _Opened:
+    """A file the launch file reads into robot_description as it is (Python's open on a path)."""
+
+    def __init__(self, path: Value):
+        self.path = path
+
+
+def _in_package(package: str | None, path: Value) -> Value:
+    if package is None or (path.literal or "").startswith("/"):
+        return path
+    return concat([Value((("find", package),), package), literal("/"), path])
+
+
+def _add_condition(act: _Act, condition) -> None:
+    if isinstance(condition, Condition):
+        act.when.append(condition)
+
+
+def _acts_in(value) -> list:
+    return [item for item in _flat(value) if isinstance(item, _Act)] if isinstance(value, list) else \
+        ([value] if isinstance(value, _Act) else [])
+
+
+def _negated(condition: Condition) -> Condition:
+    opposite = {"if": "unless", "unless": "if", "equals": "differs", "differs": "equals"}
+    if condition.kind in opposite:
+        return Condition(opposite[condition.kind], condition.value, f"not ({condition.text})",
+                         condition.other)
+    return Condition("unknown", condition.value, f"not ({condition.text})")
+
+
+def _pairs(value) -> tuple:
+    """Launch arguments given to an include (a dict, ``dict.items()``, a list of pairs)."""
+    if isinstance(value, dict):
+        value = [[literal(k), v] for k, v in value.items()]
+    pairs = []
+    for item in value if isinstance(value, list) else []:
+        if isinstance(item, list) and len(item) == 2 and isinstance(item[0], Value) \
+                and item[0].literal:
+            second = item[1]
+            if isinstance(second, list):
+                second = concat(_flat(second))
+            pairs.append((item[0].literal, second if isinstance(second, Value) else unknown("?")))
+    return tuple(pairs)
+
+
+def _flat(value) -> list:
+    """Items of nested lists, in order."""
+    if not isinstance(value, list):
+        return [value] if value is not None else []
+    found = []
+    for item in value:
+        found.extend(_flat(item) if isinstance(item, list) else [item])
+    return found
+
+
+def _joined(values) -> Value:
+    parts = []
+    for index, value in enumerate(values):
+        if index:
+            parts.append(literal("/"))
+        parts.append(value if isinstance(value, Value) else unknown("?"))
+    return concat(parts)
+
+
+def _values_in(value):
+    if isinstance(value, Value):
+        yield value
+    elif isinstance(value, list):
+        for item in value:
+            yield from _values_in(item)
+
+
+def _callee(node) -> str:
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        return f"{_callee(node.value)}.{node.attr}"
+    return ""
+
+
+def _source(node) -> str:
+    try:
+        text = ast.unparse(node)
+    except Exception:  # noqa: BLE001 - only for messages
+        return "?"
+    return text if len(text) <= 200 else text[:197] + "..."

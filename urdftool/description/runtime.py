@@ -1,0 +1,551 @@
+"""What runs with one robot: its launch configurations, the controllers they start, the ROS
+versions that read it. Decided once per robot (kept in ``Robot.memo``) and used by every rule.
+
+A launch configuration is the robot's when it describes the robot's file
+(:mod:`urdftool.description.launch_configs`): *as checked* when every xacro argument it gives
+has the value the robot was checked with (``--arg``, else the ``<xacro:arg>`` default), else
+*with other arguments*. A controller then runs (:func:`runs`):
+
+- ``certain``: a configuration of the robot as checked starts it, active, unconditionally, and
+  loads its file (or the URDF's ``<parameters>`` names the file);
+- ``conditional``: a configuration starts it only under a launch argument or condition, with
+  other xacro arguments, or one that describes no robot urdftool can tell; ``condition`` says
+  which, in words;
+- ``never``: the robot's configurations load its file, read every spawner, and start it in none;
+- ``unknown``: no launch file of the robot says (the rules then judge what is certain without
+  them: see docs/certainty.md).
+
+The ROS versions that read the robot (:func:`ros_versions`) come from its package.xml (catkin:
+ROS 1; ament: ROS 2), its URDF (``<ros2_control>``, gazebo_ros2_control: ROS 2;
+gazebo_ros_control: ROS 1) and its launch files (XML with ``type=``: ROS 1; Python, or ``exec=``:
+ROS 2).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from urdftool.description.files import enclosing_root, inside, kind_of, read_regular, real_path
+from urdftool.description.launch_configs import (Configuration, Described, Loaded, Resolved, Started,
+                                                 launch_index, shown)
+from urdftool.description.packages import containment_root, packages_below
+from urdftool.diagnostics import display_path
+
+SPAWNERS = ("spawner", "spawner.py", "controller_manager")
+STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
+_INACTIVE = ("--stopped", "--inactive", "--load-only")
+_VALUED = {"-c", "--controller-manager", "-p", "--param-file", "-n", "--namespace", "-t",
+           "--controller-type", "--controller-manager-timeout", "--switch-timeout",
+           "--service-call-timeout", "--timeout", "--shutdown-timeout", "--controller-ros-args",
+           "--fallback_controllers", "--fallback-controllers"}
+_XACRO_ARG = re.compile(rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
+                        re.S)
+
+
+@dataclass(frozen=True)
+class Spawn:
+    """A controller a configuration of the robot starts (or loads inactive)."""
+
+    name: str
+    active: bool
+    configuration: Configuration
+    start: Started
+    certain: bool  # unconditional, name not from an argument, robot as checked
+    condition: str  # when, in words ("when gui is true"), when not certain
+
+    def told(self) -> str:
+        """Which launch file starts it, and when."""
+        return f"{self.configuration.display} starts it" + (f" {self.condition}" if self.condition else "")
+
+
+@dataclass
+class Runtime:
+    """The robot's launch configurations and what they start.
+
+    configurations: (configuration, how it describes the robot: "as checked", "with other
+        xacro arguments (a:=b)", or "" when it describes no robot urdftool can tell)
+    """
+
+    configurations: list = field(default_factory=list)
+    spawns: list = field(default_factory=list)
+    unread_spawners: list = field(default_factory=list)  # (configuration, start) with names not read
+    read: list = field(default_factory=list)  # every launch file read to tell it (the index's)
+
+    @property
+    def described(self) -> list[Configuration]:
+        return [c for c, relation in self.configurations if relation]
+
+    def loads(self, path: Path) -> list[Loaded]:
+        """Every load of the parameter file ``path`` by the robot's configurations."""
+        key = real_path(path)
+        return [loaded for c, relation in self.configurations if relation for loaded in c.loaded
+                if loaded.path is not None and real_path(loaded.path) == key]
+
+    def loaded_files(self) -> list[Path]:
+        """The parameter files the robot's configurations load (resolved, once each)."""
+        found: dict[str, Path] = {}
+        for configuration, relation in self.configurations:
+            if relation:
+                for loaded in configuration.loaded:
+                    if loaded.path is not None:
+                        found.setdefault(real_path(loaded.path), loaded.path)
+        return list(found.values())
+
+    def unresolved_loads(self) -> list[Loaded]:
+        return [loaded for c, relation in self.configurations if relation for loaded in c.loaded
+                if loaded.path is None]
+
+    def starts(self, package: str, executables=()) -> list[tuple[Configuration, Started]]:
+        return [(c, s) for c, relation in self.configurations if relation for s in c.started
+                if s.package == package and (not executables or s.executable in executables)]
+
+    def describe(self) -> list[str]:
+        """One line per configuration of the robot, for ``check -v``."""
+        lines = []
+        for configuration, relation in [(c, r) for c, r in self.configurations if r][:12]:
+            spawned = [s for s in self.spawns if s.configuration is configuration]
+            parts = [f"describes the robot {relation}"]
+            files = list(dict.fromkeys(loaded.written for loaded in configuration.loaded
+                                       if loaded.path is not None and loaded.path.suffix in (".yaml", ".yml")))
+            if files:
+                parts.append("loads " + ", ".join(files[:6]) + (" ..." if len(files) > 6 else ""))
+            if spawned:
+                parts.append("starts controllers " + ", ".join(
+                    dict.fromkeys(s.name + ("" if s.active else " (inactive)")
+                                  + (f" ({s.condition})" if s.condition else "") for s in spawned)))
+            lines.append(f"launch {configuration.display}: " + "; ".join(parts))
+        return lines
+
+
+def runtime(robot) -> Runtime:
+    """What the robot's launch files start (read once per robot)."""
+    return robot.memo(runtime, lambda: _runtime(robot))
+
+
+def launch_files_read(robot) -> list[Path]:
+    """The launch files the robot's findings were told by: none when no rule asked."""
+    return runtime(robot).read if robot.memoized(runtime) else []
+
+
+def _launch_root(folder: Path) -> Path | None:
+    """The repository (or, without one, the package) whose launch files may run the robot in
+    ``folder``; None for a robot in neither: a launch file finds a robot through its package
+    (``$(find pkg)``, ``FindPackageShare``), and the files around a lone robot file (a
+    download folder, the user's cache folder) are not its launch files."""
+    return enclosing_root(Path(os.path.abspath(folder)))
+
+
+def _runtime(robot) -> Runtime:
+    found = Runtime()
+    if robot.path == "-":
+        return found
+    path = Path(os.path.abspath(robot.path))
+    root = _launch_root(path.parent)
+    if root is None:
+        return found
+    index = launch_index(root)
+    found.read = [launch.path for launch in index.files.values()]
+    real = real_path(path)
+    mine = None
+    environment = _environment_names(robot)
+    for configuration in index.configurations:
+        described = [d for d in configuration.described if d.path is not None]
+        relation = ""
+        for description in described:
+            if real_path(description.path) == real:
+                mine = mine if mine is not None else _robot_args(robot)
+                relation = _relation(description, mine, relation, packages_below(root))
+        if relation == "as checked" and environment:
+            # the robot as checked is one build: what the environment says at launch decides it
+            relation = f"as the environment builds it ({', '.join(environment[:4])})"
+        if relation or not described:
+            found.configurations.append((configuration, relation))
+    for configuration, relation in found.configurations:
+        _spawns(configuration, relation, found)
+    return found
+
+
+_ENVIRONMENT = re.compile(rb"\$\((?:opt)?env\s+([A-Za-z_][A-Za-z0-9_]*)")
+
+
+def _environment_names(robot) -> list[str]:
+    """The environment variables the robot's files read (``$(optenv MOVO_HAS_ARM false)``)."""
+    found = []
+    for data in robot.sources.values():
+        found.extend(name.decode() for name in _ENVIRONMENT.findall(data))
+    return list(dict.fromkeys(found))
+
+
+def _relation(description: Described, mine: dict, before: str, packages: dict) -> str:
+    """How ``description`` gives the robot: "as checked" or "with other xacro arguments
+    (...)"; the better of it and ``before``."""
+    if before == "as checked":
+        return before
+    other = []
+    for name, value in description.args.items():
+        if name not in mine:
+            continue
+        given = _as_given(value, packages)
+        if given is None:
+            other.append(f"{name} unknown")
+        elif _normal(given) != _normal(mine[name]):
+            other.append(f"{name}:={shown_text(value)}")
+    if other:
+        return before or f"with other xacro arguments ({', '.join(other[:4])})"
+    if description.when.truth is True:
+        return "as checked"
+    return before or f"only {description.when.text() or 'under a condition'}"
+
+
+def _normal(text: str) -> str:
+    text = text.strip()
+    if len(text) >= 2 and text[0] == text[-1] and text[0] in "'\"":
+        text = text[1:-1]
+    return text.lower() if text.lower() in ("true", "false") else text
+
+
+def _robot_args(robot) -> dict:
+    """Xacro argument -> the value the robot was checked with (given, else its literal
+    default)."""
+    found: dict = {}
+    for data in robot.sources.values():
+        for name, default in _XACRO_ARG.findall(data):
+            if b"$(" not in default:
+                found.setdefault(name.decode("utf-8", "replace"), default.decode("utf-8", "replace"))
+    found.update({str(k): str(v) for k, v in getattr(robot, "xacro_args", {}).items()})
+    return found
+
+
+def _spawns(configuration: Configuration, relation: str, found: Runtime) -> None:
+    for start in configuration.started:
+        names = _spawned(start)
+        if names is None:
+            continue
+        active, listed = names
+        if any(word is None for word in listed):
+            found.unread_spawners.append((configuration, start))
+        for word in listed:
+            if word is None:
+                continue
+            text, free = word
+            when = start.when
+            certain = when.certain and not free and relation == "as checked"
+            words = [w for w in when.words]
+            if free:
+                words.append("by default (" + ", ".join(
+                    f"the launch argument {name}" if not name.startswith("$")
+                    else f"the environment variable {name[1:]}" for name in sorted(free)) + " names it)")
+            if relation != "as checked":
+                words.append(f"against the robot {relation}" if relation else
+                             "against a robot description urdftool cannot tell")
+            found.spawns.append(Spawn(text, active, configuration, start, certain, " and ".join(words)))
+
+
+def _spawned(start: Started):
+    """(active, [(name, free arguments) or None for a name not read]) when ``start`` starts
+    controllers; None when it is not a spawner."""
+    words = [w.text for w in start.arguments]
+    frees = [w.free for w in start.arguments]
+    executable = start.executable or ""
+    if start.package == "controller_manager" and executable in ("spawner", "spawner.py"):
+        pass
+    elif start.package == "controller_manager" and executable == "controller_manager" and words:
+        verb = words[0]
+        if verb not in ("spawn", "load"):
+            return None
+        active = verb == "spawn"
+        return active, [(w, f) if w is not None else None for w, f in zip(words[1:], frees[1:])
+                        if w is None or not w.startswith("-")]
+    elif not start.package and executable.split()[:3] == ["ros2", "control", "load_controller"]:
+        parts = executable.split()[3:]
+        active = "active" in parts
+        return active, [(w, frozenset()) for w in parts if not w.startswith("-")
+                        and w not in ("active", "inactive", "configured")]
+    else:
+        return None
+    active = not any(w in _INACTIVE for w in words if w is not None)
+    listed, skip = [], False
+    for word, free in zip(words, frees):
+        if skip:
+            skip = False
+            continue
+        if word is None:
+            listed.append(None)
+            continue
+        if word.startswith("-"):
+            skip = word in _VALUED
+            continue
+        listed.append((word, free))
+    return active, listed
+
+
+def _as_given(value: Resolved, packages: dict) -> str | None:
+    """A launch argument's value as xacro gets it: a package's place as its folder."""
+    if value.text is None:
+        return None
+    parts = value.text.split("\0")
+    if len(parts) % 2 == 0:
+        return None
+    text = "".join(str(packages[p]) if i % 2 else p for i, p in enumerate(parts))
+    # the command line is split as a shell splits it: prefix:='""' gives an empty prefix
+    return text[1:-1] if len(text) >= 2 and text[0] == text[-1] and text[0] in "'\"" else text
+
+
+def shown_text(value: Resolved) -> str | None:
+    """A launch argument's value as substituted into a file (a package folder as the path)."""
+    if value.text is None:
+        return None
+    return shown(value) if "\0" in value.text else value.text
+
+
+def launch_xacro_args(path: str) -> list[tuple[str, dict]]:
+    """(launch file, xacro arguments) for each launch file a user runs that builds the robot
+    file ``path`` with arguments all known (at their launch defaults); the same arguments once.
+    What to build a robot with when it needs an argument that has no default."""
+    if path == "-":
+        return []
+    absolute = Path(os.path.abspath(path))
+    root = _launch_root(absolute.parent)
+    if root is None:
+        return []
+    index, packages = launch_index(root), packages_below(root)
+    real, found, seen = real_path(absolute), [], set()
+    for configuration in index.configurations:
+        for described in configuration.described:
+            if described.path is None or real_path(described.path) != real \
+                    or not described.when.truth:
+                continue
+            texts = {name: _as_given(value, packages) for name, value in described.args.items()}
+            if any(text is None for text in texts.values()):
+                continue
+            key = tuple(sorted(texts.items()))
+            if key not in seen:
+                seen.add(key)
+                found.append((configuration.display, texts))
+    return found
+
+
+# --- the questions rules ask --------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Runs:
+    """Whether a controller runs with the robot: ``state`` certain, conditional, never or
+    unknown; ``condition`` says when (conditional) or why not (never)."""
+
+    state: str
+    condition: str = ""
+    spawns: tuple = ()
+
+
+def runs(robot, controller, parameter_files=()) -> Runs:
+    """Whether ``controller`` (of :mod:`urdftool.description.controllers`) runs with the robot,
+    as its launch files tell; ``parameter_files``: the files the URDF's ``<parameters>`` names
+    (loaded wherever the robot runs in Gazebo)."""
+    facts = runtime(robot)
+    file = real_path(controller.file.path)
+    named = {real_path(p) for p in parameter_files}
+    short = controller.name.strip("/").split("/")[-1]
+    relevant, loading = [], []
+    for configuration, relation in facts.configurations:
+        # a configuration describing no robot urdftool can tell counts when it loads the file
+        loads = any(loaded.path is not None and real_path(loaded.path) == file
+                    for loaded in configuration.loaded) or (bool(relation) and file in named)
+        if relation and loads:
+            loading.append(configuration)
+        spawned = [s for s in facts.spawns if s.configuration is configuration
+                   and s.name.strip("/").split("/")[-1] == short]
+        if spawned and loads:
+            relevant.extend(spawned)
+    if not relevant:
+        if not loading:
+            return Runs("unknown")
+        unread = [c for c, _ in facts.unread_spawners if c in loading]
+        if unread:
+            return Runs("conditional", f"{unread[0].display} starts controllers named by values "
+                                       "urdftool cannot read", ())
+        return Runs("never", f"no launch file of the robot starts it ({loading[0].display} loads "
+                             f"{display_path(controller.file.path)})")
+    active = [s for s in relevant if s.active]
+    if any(s.certain for s in active):
+        return Runs("certain", "", tuple(relevant))
+    if not active:
+        return Runs("never", f"{relevant[0].configuration.display} loads it inactive", tuple(relevant))
+    return Runs("conditional", active[0].told(), tuple(relevant))
+
+
+def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
+    """Whether two controllers run at once: ("certain", where) when a configuration of the robot
+    as checked starts both active unconditionally; ("conditional", when) when one starts both
+    active under a condition; ("apart", "") when the launch files tell both and never start
+    them active together; ("unknown", "") otherwise."""
+    one, two = runs(robot, first, parameter_files), runs(robot, second, parameter_files)
+    if "unknown" in (one.state, two.state):
+        return "unknown", ""
+    if "never" in (one.state, two.state):
+        return "apart", ""
+    best = None
+    for a in one.spawns:
+        for b in two.spawns:
+            if a.configuration is not b.configuration or not (a.active and b.active):
+                continue
+            if a.certain and b.certain:
+                return "certain", a.configuration.display
+            if best is None:
+                words = [c for c in (a.condition, b.condition) if c]
+                best = ("conditional", f"{a.configuration.display} starts both "
+                        + " and ".join(dict.fromkeys(words)))
+    if best is not None:
+        return best
+    if not (one.spawns and two.spawns):  # started by a spawner whose names were not read
+        return "unknown", ""
+    return "apart", ""
+
+
+# Packages of ROS itself whose nodes serve no trajectory action of a robot's controllers
+_ROS_OWN = ("controller_manager", "robot_state_publisher", "joint_state_publisher",
+            "joint_state_publisher_gui", "rviz", "rviz2", "moveit_ros_move_group",
+            "moveit_ros_visualization", "moveit_ros_warehouse", "gazebo_ros", "ros_gz_sim",
+            "ros_gz_bridge", "ros_ign_gazebo", "ros_ign_bridge", "tf", "tf2_ros", "xacro",
+            "rqt_gui", "rqt_joint_trajectory_controller", "topic_tools", "warehouse_ros_mongo",
+            "moveit_servo", "rosbag", "rosbag2", "joy", "teleop_twist_joy", "teleop_twist_keyboard",
+            "nodelet", "image_proc", "depth_image_proc", "twist_mux", "robot_localization")
+
+
+def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
+    """Who serves the trajectories MoveIt sends through the controller list ``moveit_file``, as
+    the robot's launch files that start MoveIt with it tell: ("ros_control", launch file) when
+    one starts MoveIt with it, spawns ros_control controllers, and starts no node that could
+    serve a trajectory action itself (a node of a package other than ROS's own), all
+    unconditionally, with the robot as checked; ("other", launch file) when every one starting
+    MoveIt with it also starts such a node (a driver: aubo_driver, kortex_driver); ("unknown",
+    "") otherwise."""
+    key = real_path(moveit_file)
+    facts = runtime(robot)
+    starting, served = [], []
+    for configuration, relation in facts.configurations:
+        if not relation:
+            continue
+        lists = [loaded for loaded in configuration.loaded
+                 if loaded.path is not None and real_path(loaded.path) == key]
+        group = [s for s in configuration.started if s.package == "moveit_ros_move_group"]
+        if not (lists and group):
+            continue
+        starting.append(configuration)
+        others = [s for s in configuration.started if s.package not in _ROS_OWN]
+        spawns = [s for s in facts.spawns if s.configuration is configuration and s.certain]
+        certain = relation == "as checked" and all(x.when.certain for x in [*lists, *group])
+        if certain and spawns and not others:
+            return "ros_control", configuration.display
+        if others:
+            served.append((configuration, others[0]))
+    if starting and len(served) == len(starting):
+        configuration, node = served[0]
+        return "other", f"{configuration.display} starts {node.package}/{node.executable} with it"
+    return "unknown", ""
+
+
+def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:
+    """(SRDF, configuration, how it describes the robot) for each SRDF the robot's
+    configurations give MoveIt (``robot_description_semantic``), the robot as checked first."""
+    found = []
+    for configuration, relation in runtime(robot).configurations:
+        if not relation:
+            continue
+        for described in configuration.described:
+            if described.path is not None and described.path.name.endswith(".srdf"):
+                found.append((described.path, configuration, relation))
+    return sorted(found, key=lambda item: item[2] != "as checked")
+
+
+def moveit_with(robot, srdf: Path) -> tuple[str, str]:
+    """Whether MoveIt runs with the SRDF ``srdf`` and the robot as checked: ("certain", which
+    launch file) when a launch file gives MoveIt both; ("conditional", why) when launch files give
+    it that SRDF only with the robot built with other xacro arguments; ("unknown", "") when none
+    gives it."""
+    key = real_path(srdf)
+    loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
+    if not loads:
+        return "unknown", ""
+    certain = [c for c, relation in loads if relation == "as checked"]
+    if certain:
+        return "certain", f"{certain[0].display} gives MoveIt this SRDF with the robot as checked"
+    configuration, relation = loads[0]
+    return "conditional", f"{configuration.display} gives MoveIt this SRDF with the robot {relation}"
+
+
+def state_publishers(robot) -> list[tuple[Configuration, Started]]:
+    """The joint_state_publisher nodes the robot's configurations start."""
+    facts = runtime(robot)
+    return [found for package in STATE_PUBLISHERS for found in facts.starts(package)]
+
+
+# --- ROS versions -------------------------------------------------------------------------------
+
+_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*catkin\s*<")
+_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*ament_(cmake|python)|<build_type>\s*ament_")
+_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
+
+
+@dataclass(frozen=True)
+class Versions:
+    """The ROS versions that read the robot, and why each (``evidence``)."""
+
+    versions: frozenset
+    evidence: tuple
+
+    @property
+    def ros2_only(self) -> bool:
+        return self.versions == frozenset({2})
+
+    def why(self, version: int) -> str:
+        return "; ".join(e for v, e in self.evidence if v == version)
+
+
+def ros_versions(robot) -> Versions:
+    return robot.memo(ros_versions, lambda: _versions(robot))
+
+
+def _versions(robot) -> Versions:
+    from urdftool.description.actuation import gazebo_plugins
+
+    evidence = []
+    manifest = _manifest(robot)
+    if manifest is not None:
+        data, shown_as = manifest
+        if not _CONDITIONED.search(data):
+            if _CATKIN.search(data):
+                evidence.append((1, f"{shown_as} builds with catkin"))
+            if _AMENT.search(data):
+                evidence.append((2, f"{shown_as} builds with ament"))
+    if robot.children("ros2_control"):
+        evidence.append((2, "the URDF has <ros2_control>"))
+    for plugin in gazebo_plugins(robot):
+        library = plugin.get("filename") or ""
+        if library == "libgazebo_ros_control.so":
+            evidence.append((1, "the URDF loads gazebo_ros_control"))
+        elif "ros2_control" in library:
+            evidence.append((2, f"the URDF loads {library}"))
+    for configuration in runtime(robot).described:
+        evidence.append((configuration.top.ros, f"{configuration.display} launches it"))
+    evidence = list(dict.fromkeys(evidence))
+    return Versions(frozenset(v for v, _ in evidence), tuple(evidence))
+
+
+def _manifest(robot):
+    if robot.path == "-":
+        return None
+    folder = Path(os.path.abspath(robot.path)).parent
+    root = containment_root(folder)
+    for candidate in [folder, *folder.parents]:
+        manifest = candidate / "package.xml"
+        if kind_of(manifest) == "file" and inside(manifest, root):
+            try:
+                return read_regular(manifest, 1024 * 1024), display_path(manifest)
+            except OSError:
+                return None
+        if candidate == root:
+            return None
+    return None
