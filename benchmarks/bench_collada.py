@@ -2,7 +2,7 @@
 
 Each side is a ``python -c`` run that imports its reader and reads every corpus ``.dae`` (then
 only the first one: what a robot with one COLLADA mesh pays): ``read_collada`` (lxml and numpy)
-against ``trimesh.load(path, force="mesh", process=True)`` as ``meshes._read_mesh`` calls it,
+against ``trimesh.load(path, force="mesh", process=True)`` as ``meshes.reading._read_mesh`` calls it,
 imports included. The ratio is of the CPU time of the two child processes (2 cores shared by
 several agents make wall time noisy); the medians of a few runs, wall times shown too.
 Target: the reader in at most half trimesh's time over the corpus.

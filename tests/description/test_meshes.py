@@ -154,7 +154,7 @@ def test_collada_over_the_triangle_limit_is_refused_when_measured(tmp_path):
     from urdftool.description import meshes
 
     _malformed_collada(tmp_path)
-    meshes._RUN_CACHE.clear()
+    meshes.run_cache.clear()
     with pytest.raises(MeshProblem) as error:
         meshes.mesh_facts(_robot(tmp_path, "m.dae"), "m.dae",
                           limits=MeshLimits(max_triangles=11))
@@ -166,12 +166,12 @@ def _count_reads(monkeypatch) -> list:
     from urdftool.description import mesh_arrays, meshes
 
     reads = []
-    real, light = meshes._read_mesh, mesh_arrays.read_unmerged
-    monkeypatch.setattr(meshes, "_read_mesh", lambda path, *rest: reads.append(path) or
+    real, light = meshes.reading._read_mesh, mesh_arrays.read_unmerged
+    monkeypatch.setattr(meshes.reading, "_read_mesh", lambda path, *rest: reads.append(path) or
                         real(path, *rest))
     monkeypatch.setattr(mesh_arrays, "read_unmerged", lambda path, *rest: reads.append(path) or
                         light(path, *rest))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", meshes.run_cache.new_cache())
     return reads
 
 
@@ -222,7 +222,7 @@ def test_a_mesh_file_is_opened_once_when_measured(tmp_path, monkeypatch, name):
         monkeypatch.setattr(module, attribute, lambda file, *rest, real=real, **named: (
             opened.append(os.fspath(file)) if isinstance(file, (str, os.PathLike)) else None)
             or real(file, *rest, **named))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", meshes.run_cache.new_cache())
     facts = meshes.mesh_facts(robot, name)
     assert facts.faces == 12 and facts.is_watertight
     assert [os.path.basename(path) for path in opened] == [name]
@@ -239,7 +239,7 @@ def test_a_plain_obj_over_the_triangle_limit_is_refused_with_its_count(tmp_path,
     if joined:
         text = text.replace("\nf ", "\nf\\\n ")
     (tmp_path / "m.obj").write_text(text)
-    meshes._RUN_CACHE.clear()
+    meshes.run_cache.clear()
     for limit, refused in ((11, True), (12, False)):
         try:
             meshes.mesh_facts(_robot(tmp_path, "m.obj"), "m.obj",
@@ -276,8 +276,8 @@ def test_a_uri_is_resolved_and_checked_once_per_robot(tmp_path, monkeypatch):
 
     trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
     calls = []
-    real = meshes._resolve
-    monkeypatch.setattr(meshes, "_resolve", lambda robot, uri: calls.append(uri) or
+    real = meshes.uris._resolve
+    monkeypatch.setattr(meshes.uris, "_resolve", lambda robot, uri: calls.append(uri) or
                         real(robot, uri))
     load_and_check(_mesh_robot(tmp_path, "one.urdf", "part.stl", links=5), CheckOptions())
     assert calls == ["part.stl"]
@@ -312,25 +312,50 @@ def test_a_bad_stl_is_the_same_problem_measured_or_loaded(tmp_path, data):
     robot = _robot(tmp_path)
     with pytest.raises(MeshProblem) as loaded:
         load_mesh(robot, "m.stl")
-    meshes._RUN_CACHE.clear()
+    meshes.run_cache.clear()
     with pytest.raises(MeshProblem) as measured:
         meshes.mesh_facts(_robot(tmp_path), "m.stl")
     assert (measured.value.kind, str(measured.value)) == (loaded.value.kind, str(loaded.value))
     assert loaded.value.kind == "corrupt"
 
 
-def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
+def _boxes(tmp_path, count: int) -> list:
     import trimesh
 
+    robots = []
+    for index in range(count):
+        trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
+        robots.append(_robot(tmp_path, f"p{index}.stl"))
+    return robots
+
+
+def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
     from urdftool.description import meshes
 
-    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
-    monkeypatch.setattr(meshes, "RUN_CACHE_BYTES", 2000)
-    for index in range(4):  # arrays and scaled facts: 480 bytes each
-        trimesh.creation.box((0.1, 0.1, 0.1 + index)).export(tmp_path / f"p{index}.stl")
-        meshes.mesh_facts(_robot(tmp_path, f"p{index}.stl"), f"p{index}.stl", (2, 2, 2))
-    held = sum(entry[0] for entry in meshes._RUN_CACHE.values())
-    assert 0 < held == meshes._RUN_CACHE.held <= 2000 and len(meshes._RUN_CACHE) < 8
+    cache = meshes.run_cache.new_cache(5000)
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", cache)
+    for index, robot in enumerate(_boxes(tmp_path, 4)):  # arrays and scaled facts: 1152 B each
+        meshes.mesh_facts(robot, f"p{index}.stl", (2, 2, 2))
+        held = sum(entry[0] for entry in cache.values())
+        assert 0 < held == cache.currsize <= 5000
+    assert len(cache) == 4  # of 8: the others were let go
+
+
+def test_the_run_cache_lets_the_least_recently_used_go(monkeypatch):
+    from urdftool.description.meshes import run_cache
+
+    monkeypatch.setattr(run_cache, "_RUN_CACHE", run_cache.new_cache(300))
+    computed = []
+
+    def kept(name: str, size: int = 100):
+        return run_cache.once((name, "stamp"), name,
+                              lambda: computed.append(name) or (name.upper(), size))
+
+    assert [kept(name) for name in "abac"] == ["A", "B", "A", "C"]
+    assert computed == ["a", "b", "c"]  # a was kept
+    kept("d")  # b, the least recently used, goes; a, used after it, stays
+    assert sorted(key[0] for key in run_cache._RUN_CACHE) == ["a", "c", "d"]
+    assert kept("x", 301) == "X" and ("x", "stamp") not in run_cache._RUN_CACHE  # over the bound
 
 
 def test_a_mesh_path_in_a_symbolic_link_loop_is_a_missing_mesh(tmp_path):
@@ -367,7 +392,7 @@ def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, s
     merges = []
     real = mesh_arrays.merged
     monkeypatch.setattr(mesh_arrays, "merged", lambda *a: merges.append(1) or real(*a))
-    monkeypatch.setattr(meshes, "_RUN_CACHE", meshes._RunCache())
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", meshes.run_cache.new_cache())
     facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
     assert facts.faces == 320 and not merges
     loaded = load_mesh(_robot(tmp_path), "m.stl", scale)
@@ -383,8 +408,8 @@ def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, m
     (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
     robots = [_robot(tmp_path) for _ in range(3)]
     looked = []
-    real = meshes.inside
-    monkeypatch.setattr(meshes, "inside", lambda *a: looked.append(a) or real(*a))
+    real = meshes.uris.inside
+    monkeypatch.setattr(meshes.uris, "inside", lambda *a: looked.append(a) or real(*a))
     with one_run():
         assert {resolve(robot, "m.stl") for robot in robots} == {tmp_path / "m.stl"}
         with pytest.raises(MeshProblem) as first:

@@ -134,7 +134,7 @@ def test_obj_ngon_separated_by_tabs_is_counted(tmp_path, run_cli):
 @pytest.mark.parametrize("chunk", [1, 3, 1 << 20])
 def test_obj_triangles_counted_as_trimesh_fans_them(tmp_path, monkeypatch, text, triangles,
                                                    chunk):
-    monkeypatch.setattr(meshes, "_CHUNK", chunk)  # corners split between chunks count once
+    monkeypatch.setattr(meshes.counting, "_CHUNK", chunk)  # corners split between chunks count once
     (tmp_path / "m.obj").write_bytes(text)
     assert triangle_count(tmp_path / "m.obj") >= triangles
     if text.isascii():  # each other byte may be a corner of its own: an upper bound

@@ -127,7 +127,7 @@ def _open_box(tmp_path):
                             '<mesh filename="open.stl"/></geometry></collision></link></robot>')
 
 
-def test_an_open_meshs_hull_is_built_when_its_parts_are_read(tmp_path, monkeypatch):
+def test_an_open_meshs_hull_is_built_once_for_its_floor_and_its_parts(tmp_path, monkeypatch):
     from urdftool.description import mesh_arrays
     from urdftool.physics.solids import HULL_USED, link_solid, volume
 
@@ -137,60 +137,36 @@ def test_an_open_meshs_hull_is_built_when_its_parts_are_read(tmp_path, monkeypat
     solid = link_solid(robot, robot.links["a"])
     assert not solid.sound and solid.bounds is not None and not built
     floor = solid.volume_floor()
-    assert not built and 0.9 * 6e-3 < floor <= 6e-3
+    assert built == [1] and 6e-3 * (1 - 2e-6) < floor < 6e-3
     assert HULL_USED in solid.problems[0][1] and built == [1]
     assert volume(solid) == pytest.approx(6e-3) and floor <= volume(solid)
 
 
 @pytest.mark.parametrize("shape", ["sphere", "cylinder", "normal", "uniform", "flat"])
-def test_hull_floor_is_below_the_hull_and_near_it(shape):
+def test_hull_floor_is_qhulls_volume_shaved_for_rounding(shape):
     np = pytest.importorskip("numpy")
     trimesh = pytest.importorskip("trimesh")
     from scipy.spatial import ConvexHull, QhullError
 
+    from urdftool.description.meshes import MeshFacts
     from urdftool.physics.solids import _hull_floor
 
     rng = np.random.default_rng(7)
-    points = {"sphere": lambda: trimesh.creation.icosphere(3).vertices,
-              "cylinder": lambda: trimesh.creation.cylinder(0.1, 1.0).vertices,
-              "normal": lambda: rng.normal(size=(500, 3)) * (1.0, 0.1, 0.01),
-              "uniform": lambda: rng.uniform(size=(3000, 3)),
-              "flat": lambda: np.c_[rng.uniform(size=(100, 2)), np.zeros(100)]}[shape]()
-
-    class Mesh:
-        vertices = np.asarray(points, dtype=float)
-
+    points = np.asarray({
+        "sphere": lambda: trimesh.creation.icosphere(3).vertices,
+        "cylinder": lambda: trimesh.creation.cylinder(0.1, 1.0).vertices,
+        "normal": lambda: rng.normal(size=(500, 3)) * (1.0, 0.1, 0.01),
+        "uniform": lambda: rng.uniform(size=(3000, 3)),
+        "flat": lambda: np.c_[rng.uniform(size=(100, 2)), np.zeros(100)]}[shape](), dtype=float)
     try:
-        hull = ConvexHull(Mesh.vertices).volume
+        hull = ConvexHull(points).volume
     except QhullError:
         hull = 0.0
-    floor = _hull_floor(Mesh)
-    assert floor <= hull and (floor >= 0.5 * hull if hull else floor == 0.0)
-    assert _hull_floor(Mesh, enough=0.1 * hull) <= floor  # stops growing once enough
-
-
-def test_a_meshs_hull_floor_grows_once_whatever_is_enough(monkeypatch):
-    """Later calls continue the growth where it stopped, and give what a fresh one would."""
-    np = pytest.importorskip("numpy")
-    from urdftool.description.meshes import MeshFacts
-    from urdftool.physics import solids
-
-    points = np.random.default_rng(3).normal(size=(400, 3))
-    faces = np.arange(399).reshape(-1, 3)
-
-    def fresh(enough):
-        return solids._hull_floor(MeshFacts(points, faces, {}), enough)
-
-    expected = {enough: fresh(enough) for enough in (0.0, 1.0, 3.0, float("inf"))}
-    added = []
-    real = solids._Tetrahedra.add
-    monkeypatch.setattr(solids._Tetrahedra, "add", lambda *a, **k: added.append(1) or real(*a, **k))
-    fresh(float("inf"))
-    once = len(added)
-    mesh, added[:] = MeshFacts(points, faces, {}), []
-    for enough in (1.0, 0.0, float("inf"), 3.0, 1.0):
-        assert solids._hull_floor(mesh, enough) == expected[enough]
-    assert len(added) == once
+    floor = _hull_floor(MeshFacts(points, np.arange(len(points) // 3 * 3).reshape(-1, 3), {}))
+    if shape == "flat":  # qhull fails; joggled, it encloses next to nothing
+        assert hull == 0.0 and floor < 1e-9
+    else:
+        assert hull * (1 - 2e-6) < floor < hull
 
 
 @pytest.mark.parametrize("xyz", ["0 0 0", "-0 0.3 -0", "1e308 -1e308 0.05", "inf 0 nan"])
@@ -214,19 +190,6 @@ def test_unturned_shapes_are_placed_as_the_rotation_would_place_them(tmp_path, x
         [[float(v).hex() for v in c] for c in _box(placed)]
     assert [[float(v).hex() for v in c] for c in _shape_corners(shape)] == \
         [[float(v).hex() for v in c] for c in placed]
-
-
-@pytest.mark.parametrize("rows", [1, 2, 1023, 1024, 1025, 2049, 5000])
-def test_rows_times_is_the_whole_product_to_the_bit(rows):
-    """The hull floor's projections, computed in blocks small enough for one BLAS thread."""
-    import numpy as np
-
-    from urdftool.physics.solids import _rows_times
-
-    rng = np.random.default_rng(rows)
-    points = rng.normal(size=(rows, 3)) * 10.0 ** rng.uniform(-6, 6, size=(rows, 1))
-    matrix = rng.normal(size=(70, 3)).T
-    assert _rows_times(points, matrix).tobytes() == (points @ matrix).tobytes()
 
 
 def test_two_boxes_join_as_min_and_max_choose_to_the_bit():

@@ -4,13 +4,12 @@ The inertia rules and ``urdftool inertia`` read geometry through here, and meshe
 :mod:`urdftool.description.meshes` (their measures, once per run: ``mesh_facts``), so both see
 the same shapes, scales and origins. Pure Python (:mod:`urdftool.physics.mat3` tuples): numpy is
 imported only when a mesh is measured, trimesh only for formats other than STL, COLLADA and
-plain OBJ, scipy only when an open mesh's convex hull decides a result.
+plain OBJ, scipy (qhull) only for the convex hull of an open mesh.
 """
 
 from __future__ import annotations
 
 import math
-import weakref
 from dataclasses import dataclass, field
 
 from urdftool.physics import mass as mp
@@ -44,10 +43,10 @@ class LinkSolid:
 
     parts: unit-density solids in the link frame; problems: (element, message) for geometry
     that could not count (missing mesh, open mesh replaced by its hull...). An open mesh's
-    convex hull (and with it scipy) is built only when ``parts`` or ``problems`` is first read:
-    ``sound`` and ``volume_floor`` answer without it. A primitive is placed in the link frame
-    only when ``parts`` is first read: ``counts``, :func:`volume` and ``volume_floor`` need
-    only its volume, which placing keeps.
+    convex hull (and with it scipy) is built only when ``parts``, ``problems`` or
+    ``volume_floor`` is first read: ``sound`` answers without it. A primitive is placed in the
+    link frame only when ``parts`` is first read: ``counts``, :func:`volume` and
+    ``volume_floor`` need only its volume, which placing keeps.
     """
 
     __slots__ = ("source", "bounds", "_entries", "_built", "_parts", "_extent", "_unread")
@@ -93,15 +92,14 @@ class LinkSolid:
                 return False
         return not self.problems
 
-    def volume_floor(self, enough: float = math.inf) -> float:
-        """A lower bound of :func:`volume` [m^3] that builds no convex hull (exact without open
-        meshes): an open mesh counts with a polytope on its vertices, which its hull holds,
-        grown only until the bound reaches ``enough``."""
+    def volume_floor(self) -> float:
+        """A lower bound of :func:`volume` [m^3] (exact without open meshes; an open mesh counts
+        with its convex hull, shaved for rounding) that places no primitive."""
         floor = sum(_unit_volume(entry) for entry in self._entries
                     if entry.solid is not None or entry.local is not None)
         for entry in self._entries:
             if entry.open_mesh is not None:
-                floor += _hull_floor(entry.open_mesh, enough - floor)
+                floor += _quietly(_hull_floor, entry.open_mesh)
         return floor
 
     def _build(self) -> tuple[list, list]:
@@ -271,179 +269,17 @@ def _set_solid(entry: _Entry, body) -> None:
     entry.solid = mp.transformed(solid, entry.shape.xyz, entry.shape.rotation)
 
 
-def _hull_floor(mesh, enough: float = math.inf) -> float:
-    """A lower bound of the volume of the convex hull of a mesh's vertices [m^3], without
-    building it (nor importing scipy): solids with disjoint insides spanned by vertices, which
-    the hull holds. 0 when the vertices are not at hand; shaved by 1e-6 for rounding (and
-    qhull's joggle of a degenerate hull). The polytope grows the same way whatever
-    ``enough`` is, so it is grown once per mesh and run: a later call with a larger
-    ``enough`` continues where the last one stopped."""
-    import numpy as np
-
-    vertices = getattr(mesh, "vertices", None)  # MeshFacts' or a trimesh's
-    if vertices is None or len(vertices) < 4:
+def _hull_floor(mesh) -> float:
+    """The volume of the convex hull of a mesh's vertices [m^3] (qhull, through the mesh's
+    ``convex_hull``: built once, and the same hull stands for the mesh in ``parts``), shaved
+    by 1e-6 for rounding; 0 when the vertices are flat or a single point."""
+    try:
+        hull = mesh.convex_hull
+    except RuntimeError:  # qhull: the vertices are one point, a line or (unjoggled) a plane
         return 0.0
-    growth = _GROWTHS.get(mesh) if _remembered(mesh) else None
-    if growth is None:
-        growth = _Growth(_vertex_polytope_volumes(np.asarray(vertices, dtype=np.float64)))
-        if _remembered(mesh):
-            _GROWTHS[mesh] = growth
-    with np.errstate(all="ignore"):
-        floor = growth.volume(enough / (1 - 1e-6))
-    return floor * (1 - 1e-6) if math.isfinite(floor) and floor > 0 else 0.0
-
-
-# the growth of each mesh's polytope, kept as long as the mesh (MeshFacts: shared by a run)
-_GROWTHS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def _remembered(mesh) -> bool:
-    from urdftool.description.meshes import MeshFacts
-
-    return isinstance(mesh, MeshFacts)
-
-
-class _Growth:
-    """The volumes a polytope passes through as it grows (:func:`_vertex_polytope_volumes`),
-    computed as far as asked."""
-
-    def __init__(self, volumes):
-        self._volumes, self._seen = volumes, []
-
-    def volume(self, enough: float) -> float:
-        """The first volume that reaches ``enough``, else the last one."""
-        for seen in self._seen:
-            if seen >= enough:
-                return seen
-        for volume in self._volumes:
-            self._seen.append(volume)
-            if volume >= enough:
-                return volume
-        return self._seen[-1]
-
-
-_DIRECTIONS = 64  # the hull's vertices farthest along this many directions span the polytope
-_ROUNDS, _TRIES = 6, 4  # growth rounds; candidates tried per face and round
-
-
-def _vertex_polytope_volumes(points):
-    """The volume of a polytope inside the hull of ``points`` [k, 3], grown as quickhull grows
-    a hull but keeping only what is certain without one. From the points farthest along many
-    directions (vertices of the hull): a tetrahedron or two (a, b farthest apart along the
-    longest side of the box, c farthest from line ab, the farthest on either side of plane
-    abc); then, round by round, on each outer face the farthest point beyond it whose
-    tetrahedron with the face is separated from every tetrahedron kept (all four corners on
-    or beyond one of that one's face planes). The tetrahedra lie in the hull, apart. Yields
-    the volume [m^3] before the first round and after each one (its last when nothing grew):
-    a caller stops once it is enough. numpy's floating point errors are the caller's to
-    silence, around each step."""
-    import numpy as np
-
-    golden = np.pi * (3.0 - np.sqrt(5.0))
-    k = np.arange(_DIRECTIONS)
-    z = 1.0 - 2.0 * (k + 0.5) / _DIRECTIONS
-    ring = np.sqrt(1.0 - z * z)
-    directions = np.vstack([np.column_stack([ring * np.cos(golden * k),
-                                             ring * np.sin(golden * k), z]),
-                            np.eye(3), -np.eye(3)])
-    extents = points.max(axis=0) - points.min(axis=0)
-    if not float(extents.max()) > 0:
-        yield 0.0
-        return
-    stretch = np.where(extents > 0, extents, float(extents.max()))  # directions as if a cube
-    farthest = np.argmax(_rows_times(points, (directions / stretch).T), axis=0)
-    points = points[sorted(set(farthest.tolist()))]  # as np.unique, which imports np.ma
-    if len(points) < 4:
-        yield 0.0
-        return
-    axis = int(np.argmax(extents))
-    a, b = points[np.argmin(points[:, axis])], points[np.argmax(points[:, axis])]
-    line = b - a
-    offsets = points - a
-    across = offsets - np.outer(offsets @ line / np.dot(line, line), line)
-    c = points[np.argmax((across * across).sum(axis=1))]
-    heights = offsets @ np.cross(line, c - a)
-    top, bottom = int(np.argmax(heights)), int(np.argmin(heights))
-    apexes = ([points[top]] if heights[top] > 0 else []) + \
-        ([points[bottom]] if heights[bottom] < 0 else [])
-    slack = 1e-12 * float(extents.max())
-    kept = _Tetrahedra()
-    for d in apexes:
-        kept.add(np.array([a, b, c, d]), shared=len(apexes) == 2)
-    yield kept.volume
-    for _ in range(_ROUNDS):
-        outer, kept.faces = kept.faces, []
-        for corners, normal in outer:
-            if not kept.grow(points, (points - corners[0]) @ normal, corners, slack):
-                kept.faces.append((corners, normal))
-        grew = len(kept.faces) != len(outer) or any(f[0] is not o[0] for f, o in
-                                                    zip(kept.faces, outer))
-        yield kept.volume
-        if not grew:
-            return
-
-
-_ROWS = 1024  # a product of so many rows by (3, 70) is small enough for one BLAS thread
-
-
-def _rows_times(points, matrix):
-    """``points @ matrix`` ([k, 3] by [3, m]), block of rows by block of rows: OpenBLAS splits
-    a larger product among threads that spin on after it, burning CPU. The same numbers: no block is a single row (a vector product, rounded otherwise)."""
-    import numpy as np
-
-    product = np.empty((len(points), matrix.shape[1]))
-    starts = list(range(0, len(points), _ROWS))
-    if len(starts) > 1 and len(points) - starts[-1] == 1:
-        starts.pop()  # the last row joins the block before it
-    for start, end in zip(starts, starts[1:] + [len(points)]):
-        np.matmul(points[start:end], matrix, out=product[start:end])
-    return product
-
-
-_FACES = ((0, 1, 2, 3), (0, 1, 3, 2), (1, 2, 3, 0), (2, 0, 3, 1))  # corners, then the one left
-
-
-class _Tetrahedra:
-    """Tetrahedra with disjoint insides: their summed volume, their face planes (outward unit
-    normals [t, 4, 3], levels [t, 4]) and the faces of their outer surface."""
-
-    def __init__(self):
-        import numpy as np
-
-        self.volume, self.faces = 0.0, []
-        self.normals, self.levels = np.zeros((0, 4, 3)), np.zeros((0, 4))
-
-    def add(self, corners, shared: bool) -> None:
-        """Keep tetrahedron ``corners`` [4, 3]; ``shared``: its first face (the one it was
-        built on) is not on the outer surface."""
-        import numpy as np
-
-        order = np.array(_FACES)
-        triangles, others = corners[order[:, :3]], corners[order[:, 3]]
-        normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-        normals /= np.linalg.norm(normals, axis=1)[:, None]
-        normals[((others - triangles[:, 0]) * normals).sum(axis=1) > 0] *= -1.0
-        self.volume += abs(float(np.linalg.det(corners[1:] - corners[0]))) / 6.0
-        self.normals = np.concatenate([self.normals, normals[None]])
-        self.levels = np.concatenate([self.levels,
-                                      (normals * triangles[:, 0]).sum(axis=1)[None]])
-        self.faces.extend((triangles[i], normals[i]) for i in range(1 if shared else 0, 4))
-
-    def grow(self, points, beyond, corners, slack: float) -> bool:
-        """Build a tetrahedron on outer face ``corners`` [3, 3] with the farthest of
-        ``points`` beyond it (``beyond``: their heights over it) apart from every one kept:
-        all its corners on or beyond one face plane of each."""
-        import numpy as np
-
-        for index in np.argsort(-beyond)[:_TRIES]:
-            if not beyond[index] > slack:
-                return False
-            tetrahedron = np.vstack([corners, points[index]])
-            reach = np.einsum("tfk,ck->tfc", self.normals, tetrahedron) - self.levels[:, :, None]
-            if (reach >= -slack).all(axis=2).any(axis=1).all():
-                self.add(tetrahedron, shared=True)
-                return True
-        return False
+    properties = getattr(hull, "mass_properties", None)
+    volume = float(properties["volume"]) if isinstance(properties, dict) else float(hull.volume)
+    return volume * (1 - 1e-6) if math.isfinite(volume) and volume > 0 else 0.0
 
 
 def _local(shape: Shape):

@@ -603,9 +603,9 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     only bounds the density from below loosely.
 
     The largest is None when it cannot matter: when ``mass`` [kg] in a lower bound of the
-    solid's own volume (found without convex hulls, exact without open meshes) is no denser
-    than osmium, no larger volume makes it denser, and no hull or other geometry is built."""
-    floor = solid.volume_floor(enough=mass / DENSEST)
+    solid's own volume (exact without open meshes, which count as their convex hulls) is no
+    denser than osmium, no larger volume makes it denser, and no other geometry is built."""
+    floor = solid.volume_floor()
     if floor > 0 and mass / floor <= DENSEST:
         return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 

@@ -1,0 +1,252 @@
+"""Reading a mesh file within its limits, through trimesh.
+
+- the file size and the triangle count (:mod:`.counting`) are bounded before trimesh reads a
+  byte; a zipped COLLADA file (ZAE, which pycollada would inflate whole) is refused;
+- beside the mesh, trimesh may read only glTF buffers in the mesh's folder, under the size
+  limit: no textures or material files;
+- a file that does not parse is a :class:`MeshProblem`, never a traceback;
+- a COLLADA file that is not well-formed XML is read as libxml2's recover mode reads it (assimp,
+  which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
+  ``metadata[NOT_WELL_FORMED]``; it is scaled by the ``<unit meter>`` it declares, as RViz and
+  Gazebo do.
+
+Meshes are read once per run (:mod:`.run_cache`) and kept per robot by scale
+(:func:`load_mesh`). trimesh is imported lazily.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+import re
+import warnings
+from pathlib import Path
+
+from urdftool.description.collada import parser
+from urdftool.description.files import TooLarge, inside, read_regular
+from urdftool.description.inputs import MeshLimits
+from urdftool.description.meshes.counting import triangle_count
+from urdftool.description.meshes.run_cache import once, stamp_of
+from urdftool.description.meshes.uris import resolve
+from urdftool.errors import MeshProblem
+
+NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
+
+
+def recovered_collada(data: bytes) -> tuple[bytes, str] | None:
+    """(the document libxml2's recover mode makes of a COLLADA file that is not well-formed
+    XML, the first error with its line), or None when it makes none."""
+    from lxml import etree
+
+    lenient = parser(recover=True)
+    try:
+        root = etree.fromstring(data, lenient)
+    except (etree.LxmlError, ValueError):
+        return None
+    if root is None:
+        return None
+    errors = [e for e in lenient.error_log if e.level >= etree.ErrorLevels.ERROR]
+    first = f"line {errors[0].line}: {errors[0].message}" if errors else "not well-formed"
+    return etree.tostring(root), first
+
+
+def mesh_bytes(path: Path, uri: str, limits: MeshLimits) -> bytes:
+    """The mesh file's bytes, read once (recorded as a mesh): MeshProblem when it is over the
+    size limit (not opened) or cannot be read."""
+    try:
+        return read_regular(path, limits.max_bytes, as_="mesh")
+    except TooLarge as error:
+        raise MeshProblem("too-large", f"mesh '{uri}' is {error.size} bytes, over the limit "
+                                       f"of {limits.max_bytes}; not opened") from None
+    except OSError as error:
+        raise MeshProblem("corrupt", f"mesh '{uri}' cannot be read: {error.strerror}") from None
+
+
+def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
+                count: bool = True) -> None:
+    """Every limit, checked in the file's bytes before trimesh reads them: size, archive,
+    triangles (unless ``count`` is false: the reader counts them before it builds them)."""
+    size = len(data)
+    if size > limits.max_bytes:
+        raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "
+                                       f"{limits.max_bytes}; not opened")
+    if path.suffix.lower() == ".dae" and _zipped(data):
+        # pycollada inflates a zipped .dae (ZAE) whole, whatever its name says
+        raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
+                                    "document; urdftool does not inflate archives: store "
+                                    "the .dae uncompressed")
+    triangles = triangle_count(path, data) if count else None
+    if triangles is not None:
+        refuse_too_many(uri, triangles, limits)
+
+
+def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
+    if triangles > limits.max_triangles:
+        raise MeshProblem("too-large", f"mesh '{uri}' has {triangles} triangles, over the "
+                                       f"limit of {limits.max_triangles}; decimate it")
+
+
+_DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
+
+
+def collada_unit(data: bytes) -> float:
+    """The ``<unit meter=...>`` a COLLADA document declares (1 when none): viewers apply it,
+    and trimesh does not, so :func:`load_mesh` does."""
+    try:
+        match = _DAE_UNIT.search(data, 0, 65536)
+        value = float(match.group(1)) if match else 1.0
+    except (OSError, ValueError):
+        return 1.0
+    return value if value > 0 and value == value and value != float("inf") else 1.0
+
+
+_SIDECARS = (".bin",)  # the files beside a mesh that hold geometry: glTF buffers
+
+
+def _geometry_resolver(path: Path, limits: MeshLimits):
+    """What trimesh may read beside the mesh: glTF buffers in the mesh's folder (or below it),
+    regular files under the size limit, read through the one door (recorded). Textures and
+    materials are refused (urdftool reads geometry only, and an image can be a decompression
+    bomb); trimesh loads the mesh without them."""
+    from trimesh.resolvers import Resolver
+
+    folder = path.parent
+
+    class GeometryResolver(Resolver):
+        def __init__(self):
+            pass
+
+        def get(self, name: str):
+            name = name.strip()
+            for candidate in (name, name.lstrip("/"), os.path.split(name)[-1]):
+                found = folder / candidate
+                if found.suffix.lower() not in _SIDECARS:
+                    raise FileNotFoundError(f"{name}: not geometry, not read")
+                if not inside(found, folder):
+                    continue  # it leaves the mesh's folder
+                try:
+                    return read_regular(found, limits.max_bytes, as_="mesh buffer")
+                except OSError:
+                    continue
+            raise FileNotFoundError(f"{name}: not a regular file under the size limit in the "
+                                    "mesh's folder")
+
+        def write(self, name, data):
+            raise NotImplementedError("urdftool writes no mesh files")
+
+        def namespaced(self, namespace):
+            raise NotImplementedError("a mesh's buffers are beside it")
+
+        def keys(self):
+            return iter(())  # nothing is listed
+
+    return GeometryResolver()
+
+
+def _zipped(data: bytes) -> bool:
+    import zipfile  # only for COLLADA files, not on every check's start-up
+
+    return zipfile.is_zipfile(io.BytesIO(data))
+
+
+def _read_mesh(path: Path, uri: str, limits: MeshLimits):
+    import logging
+
+    import trimesh
+
+    data = mesh_bytes(path, uri, limits)
+    check_size(path, uri, limits, data)
+    # trimesh logs missing textures with tracebacks; a mesh's geometry is all urdftool reads
+    logging.getLogger("trimesh").setLevel(logging.CRITICAL)
+    malformed = None
+    suffix = path.suffix.lower()
+    try:
+        try:
+            loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
+                                  process=True, resolver=_geometry_resolver(path, limits))
+        except Exception as error:  # pycollada refuses XML that is not well-formed
+            recovered = recovered_collada(data) if suffix == ".dae" and \
+                "XML Parsing Error" in str(error) else None
+            if recovered is None:
+                raise
+            data, malformed = recovered
+            loaded = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh",
+                                  process=True, resolver=_geometry_resolver(path, limits))
+    except Exception as error:  # trimesh raises many types for a bad file
+        raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {type(error).__name__}: "
+                                     f"{error}") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles")
+    refuse_too_many(uri, len(loaded.faces), limits)
+    unit = collada_unit(data) if suffix == ".dae" else 1.0
+    if unit != 1.0:
+        loaded.apply_scale(unit)
+    if malformed:
+        loaded.metadata[NOT_WELL_FORMED] = malformed
+    return loaded
+
+
+def read_once(path: Path, uri: str, limits: MeshLimits):
+    """``_read_mesh`` once per run for a file as it is now (keyed by the resolved path, its
+    :func:`stamp_of` and the limits). Returns the mesh or the MeshProblem."""
+    stamp = stamp_of(path)
+    return once((str(path), stamp, limits), uri,
+                 lambda: (_read_mesh(path, uri, limits), stamp[2] if stamp else 0))
+
+
+def finite_scale(uri: str, scale) -> tuple[float, float, float]:
+    scale = tuple(float(s) for s in scale)
+    if not all(math.isfinite(s) for s in scale):
+        raise MeshProblem("corrupt", f"mesh '{uri}' has a non-finite scale {scale}; not loaded")
+    return scale
+
+
+def beyond_range(uri: str, scale) -> MeshProblem:
+    return MeshProblem("corrupt", f"mesh '{uri}' scaled by {scale} has coordinates beyond "
+                                  "floating point range; not loaded")
+
+
+def load_mesh(robot, uri: str, scale=(1.0, 1.0, 1.0), limits: MeshLimits | None = None):
+    """The mesh at ``uri`` scaled by ``scale`` (a trimesh.Trimesh; do not modify it).
+
+    Loaded once per robot per (path, scale); problems are cached and raised again as
+    MeshProblem. The limits are ``robot.mesh_limits`` (``check --max-triangles``) unless
+    ``limits`` are given. Checks that need only measures ask :func:`mesh_facts`.
+    """
+    limits = limits or robot.mesh_limits
+    cache = robot.memo(load_mesh, dict)
+    path = resolve(robot, uri)
+    scale = finite_scale(uri, scale)
+    key = (path, scale)
+    if key not in cache:
+        raw_key = (path, (1.0, 1.0, 1.0))
+        if raw_key not in cache:
+            cache[raw_key] = read_once(path, uri, limits)
+        raw = cache[raw_key]
+        if isinstance(raw, MeshProblem) or key == raw_key:
+            cache[key] = raw
+        else:
+            scaled = raw.copy()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # overflow is reported below
+                scaled.apply_scale(scale)
+            finite_vertices = all(math.isfinite(v) for v in scaled.bounds.ravel())
+            cache[key] = scaled if finite_vertices else beyond_range(uri, scale)
+    found = cache[key]
+    if isinstance(found, MeshProblem):
+        raise found
+    return found
+
+
+def converted(path, how: str, limits: MeshLimits | None = None) -> bytes:
+    """The mesh file at ``path`` (read within ``limits``, COLLADA scaled by its unit as the
+    loaders read it) written as ``how``: ``obj`` (Wavefront OBJ text) or ``stl`` (binary STL).
+    MeshProblem when it does not load. For fixes that point a robot at a format a simulator
+    reads."""
+    path = Path(path)
+    mesh = _read_mesh(path, path.name, limits or MeshLimits())
+    if how not in ("obj", "stl"):
+        raise MeshProblem("format", f"cannot convert a mesh to '{how}'")
+    data = mesh.export(file_type=how)
+    return data.encode("utf-8") if isinstance(data, str) else bytes(data)

@@ -1,0 +1,98 @@
+"""Where a mesh URI leads, and whether urdftool may open it.
+
+- the URI resolves (``package://`` through the robot's resolver, ``file://``, relative);
+- a ``file://`` or relative path may not leave the containment root (the nearest ancestor of
+  the robot file holding ``.git``; without one, the robot's package folder, else its folder);
+  a ``package://`` path may not leave its package folder;
+- only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`).
+
+A URI is resolved and checked once per robot, a path once per run.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from urdftool.description.files import inside, kind_of, real_path, resolved
+from urdftool.description.packages import containment_root, package_uri_parts
+from urdftool.description.run_memo import per_run
+from urdftool.errors import MeshProblem, PackageNotFound
+
+MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
+
+def resolve(robot, uri: str) -> Path:
+    """The absolute path of a mesh URI; raises MeshProblem when it may not or cannot be used.
+
+    Resolved and checked once per robot and URI (every rule, link and solid asks again)."""
+    found = robot.memo((resolve, uri), lambda: _resolved(robot, uri))
+    if isinstance(found, MeshProblem):
+        raise found
+    return found
+
+
+def _resolved(robot, uri: str) -> Path | MeshProblem:
+    try:
+        found = _resolve(robot, uri)
+    except MeshProblem as problem:
+        resolved(f"mesh {uri}", f"{problem.kind}: {problem}")
+        return problem
+    resolved(f"mesh {uri}", found)
+    return found
+
+
+def _resolve(robot, uri: str) -> Path:
+    if uri.startswith("package://"):
+        package, _ = package_uri_parts(uri)
+        try:
+            folder = robot.resolver.find(package)
+        except PackageNotFound as error:
+            raise MeshProblem("package", f"mesh '{uri}': {error}") from None
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(folder), package)
+    else:
+        if "://" in uri and not uri.startswith("file://"):
+            raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
+                                        "paths are supported")
+        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(robot.base_dir),
+                         None)
+    if isinstance(found, MeshProblem):
+        raise MeshProblem(found.kind, found.message)  # a new one: raised once per robot
+    return found
+
+
+@per_run
+def _checked(uri: str, named: str, base: str, package: str | None) -> Path | MeshProblem:
+    """The path ``named`` for mesh ``uri`` with its links followed, when it stays in package
+    ``package``'s folder ``base`` (or, for ``package`` None, in the containment root of the
+    robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
+    Once per run: robots of one package name the same meshes."""
+    path = _real(Path(named))
+    if package is not None:
+        folder = _real(Path(base))
+        if not inside(path, folder):
+            return MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' "
+                                          f"({folder}); name a file inside the package")
+    else:
+        # file:// and relative paths stay where the loader's files stay
+        root = _real(containment_root(Path(base)))
+        if not inside(path, root):
+            # as written, never where links lead: that would name what exists outside
+            written = os.path.normpath(os.path.join(base, named))
+            how = (f"is a symbolic link (or lies in one) leading outside {root}"
+                   if written.startswith(str(containment_root(Path(base))) + os.sep)
+                   else f"resolves to {written}, outside {root}")
+            return MeshProblem("outside", (
+                f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
+                "repository: use package://PKG/... for files of another package"))
+    if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
+        return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
+    if path.suffix.lower() not in MESH_EXTENSIONS:
+        return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
+                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"))
+    return path
+
+
+def _real(path: Path) -> Path:
+    """``path`` with every symbolic link followed (once per run; a loop is left as it is, and
+    is then no file)."""
+    return Path(real_path(os.fspath(path)))

@@ -1,0 +1,212 @@
+"""Applying fixes: byte edits on the files, checked against what is there now.
+
+:func:`plan` gathers the fixes of checked files (safe ones, or all with ``unsafe``), refuses
+edits of files outside the checked robot's containment root, edits whose text is no longer
+what was read and edits that overlap, and gives the new contents; :func:`write` writes them
+atomically through :mod:`urdftool.description.files`; :func:`apply` repeats until nothing
+more is fixed.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from urdftool.description.files import kind_of
+from urdftool.diagnostics import Edit, Fix
+from urdftool.lint.fixes.building import inertial_edits
+from urdftool.lint.fixes.tags import Unfixable
+
+
+@dataclass
+class Plan:
+    """What applying the fixes would do.
+
+    changed: file (as findings name it) -> (bytes now, bytes after)
+    applied: the fixes taken; skipped: (fix, why) of those left out
+    """
+
+    changed: dict[str, tuple[bytes, bytes]] = field(default_factory=dict)
+    applied: list[Fix] = field(default_factory=list)
+    skipped: list[tuple[Fix, str]] = field(default_factory=list)
+
+
+def plan(results, unsafe: bool = False, read=None) -> Plan:
+    """The fixes of ``results`` (FileResults) that apply: safe ones, unsafe ones too with
+    ``unsafe``. A fix is taken whole or not at all; it is left out when one of its edits is
+    outside the checked robot's containment root, when the file no longer holds the text
+    the edit replaces, or when it overlaps an edit already taken."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.packages import containment_root
+
+    candidates = []
+    for checked in results:
+        if checked is None or checked.path == "-":
+            continue
+        root = containment_root(os.path.dirname(os.path.abspath(checked.path)))
+        candidates.extend((finding.fix, root) for finding in checked.findings
+                          if finding.fix is not None and (finding.fix.safe or unsafe))
+    return _take(candidates, read or read_regular)
+
+
+def _take(candidates, read) -> Plan:
+    """The plan of ``candidates``: (fix, containment root) pairs, in order."""
+    from urdftool.description.files import inside
+
+    result = Plan()
+    current: dict[str, bytes] = {}
+    taken: dict[str, list[Edit]] = {}
+    disputed = _disputed([fix for fix, _ in candidates])
+    created: dict[str, bytes] = {}
+    for fix, root in candidates:
+        if fix in result.applied or any(fix is other for other, _ in result.skipped):
+            continue
+        why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside) \
+            or _creation_refusal(fix, root, created, inside)
+        if why == "":
+            continue  # the same edits, already taken for another finding
+        if why:
+            result.skipped.append((fix, why))
+            continue
+        for edit in fix.edits:
+            if edit not in taken.get(edit.file, ()):
+                taken.setdefault(edit.file, []).append(edit)
+        result.applied.append(fix)
+    for file, edits in taken.items():
+        data = current[file]
+        after = data
+        # from the end, so offsets stay true; of insertions at one point, the first taken
+        # ends up first
+        order = sorted(range(len(edits)), key=lambda i: (edits[i].start, edits[i].end, i))
+        for edit in (edits[i] for i in reversed(order)):
+            after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
+        result.changed[file] = (data, after)
+    for file, data in created.items():
+        result.changed[file] = (b"", data)
+    return result
+
+
+def _creation_refusal(fix: Fix, root, created: dict, inside) -> str | None:
+    """Why the files ``fix`` creates cannot be made (outside the root, there already, the source
+    does not convert); None: they are made, into ``created`` (file -> bytes)."""
+    for derived in fix.creates:
+        if derived.file in created:
+            continue
+        if not inside(derived.file, root) or not inside(derived.source, root):
+            return f"{derived.file} is outside the repository ({root})"
+        if kind_of(derived.file, follow=False):
+            return f"{derived.file} exists already"
+        from urdftool.description.meshes import converted
+        from urdftool.errors import MeshProblem
+
+        try:
+            created[derived.file] = converted(derived.source, derived.how)
+        except MeshProblem as problem:
+            return str(problem)
+    return None
+
+
+def inertia_rewrite(robot, results) -> tuple[Plan, list[tuple[str, str]]]:
+    """``urdftool inertia --write``: the edits giving each link of ``results`` (LinkInertia
+    with a computed inertial) that inertial, in the files the robot was written in; and (link,
+    why) for the links whose inertial cannot be edited (values from expressions)."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.packages import containment_root
+
+    root = containment_root(robot.base_dir)
+    candidates, unfixable = [], []
+    for result in results:
+        edits = inertial_edits(robot, robot.links[result.link], result.computed)
+        if isinstance(edits, Unfixable):
+            unfixable.append((result.link, edits.reason))
+        else:
+            fix = Fix(f"link '{result.link}' inertial from its geometry", tuple(edits), False)
+            candidates.append((fix, root))
+    changes = _take(candidates, read_regular)
+    unfixable.extend((fix.description, why) for fix, why in changes.skipped)
+    return changes, unfixable
+
+
+def _overlap(one: Edit, other: Edit) -> bool:
+    """Whether two different edits touch the same text. Insertions at one point do not: they
+    are written one after the other."""
+    if one == other:
+        return False
+    if one.start == one.end and other.start == other.end:
+        return False
+    if one.start == one.end:
+        return other.start < one.start < other.end
+    if other.start == other.end:
+        return one.start < other.start < one.end
+    return one.start < other.end and other.start < one.end
+
+
+def _disputed(candidates: list[Fix]) -> dict[int, str]:
+    """Fixes (by id) whose edits overlap a different edit of another fix: a literal in a macro
+    that serves several elements needing different values. None of them is taken."""
+    spans: dict[str, list[tuple[Edit, int]]] = {}
+    for fix in candidates:
+        for edit in fix.edits:
+            spans.setdefault(edit.file, []).append((edit, id(fix)))
+    disputed: dict[int, str] = {}
+    for edits in spans.values():
+        edits.sort(key=lambda pair: (pair[0].start, pair[0].end))
+        for index, (edit, owner) in enumerate(edits):
+            for other, second in edits[index + 1:]:
+                if other.start > edit.end:
+                    break
+                if owner != second and _overlap(edit, other):
+                    why = (f"the text at {edit.file}:{edit.line} would need different values "
+                           "for different elements (a macro used more than once?)")
+                    disputed[owner] = disputed[second] = why
+    return disputed
+
+
+def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
+    """Why ``fix`` cannot be taken; "" when all its edits are taken already; None: take it."""
+    if all(edit in taken.get(edit.file, ()) for edit in fix.edits):
+        return ""
+    for edit in fix.edits:
+        if not inside(edit.file, root):
+            return f"{edit.file} is outside the repository ({root})"
+        if edit.file not in current:
+            try:
+                current[edit.file] = read(edit.file)
+            except OSError as error:
+                return f"{edit.file} cannot be read: {error.strerror}"
+        data = current[edit.file]
+        if data[edit.start:edit.end].decode("utf-8", errors="replace") != edit.old:
+            return f"{edit.file} changed since it was checked"
+        if any(_overlap(edit, other) for other in taken.get(edit.file, ())):
+            return f"it overlaps another fix in {edit.file}"
+    return None
+
+
+MAX_PASSES = 10  # a fix can make another finding (an unused suppression) and its fix appear
+
+
+def apply(results, recheck, unsafe: bool = False):
+    """Apply fixes and check again until nothing more is fixed (at most MAX_PASSES times).
+
+    recheck: ``() -> results`` checks the same targets again
+    Returns (the results of the last check, fixes applied, files changed, skipped fixes).
+    """
+    applied, changed, skipped = 0, set(), []
+    for _ in range(MAX_PASSES):
+        changes = plan(results, unsafe=unsafe)
+        skipped = changes.skipped
+        if not changes.changed:
+            break
+        write(changes)
+        applied += len(changes.applied)
+        changed.update(changes.changed)
+        results = recheck()
+    return results, applied, changed, skipped
+
+
+def write(changes: Plan) -> None:
+    """Write the changed files, each atomically (a temporary file replaces it)."""
+    from urdftool.description.files import write_file
+
+    for file, (_, after) in changes.changed.items():
+        write_file(file, after)
