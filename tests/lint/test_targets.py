@@ -431,3 +431,32 @@ def test_a_urdf_holding_only_plugin_blocks_is_a_fragment_walked_or_named(run_cli
     assert '"files": 1' in walked.stdout and "U106" not in walked.stdout
     named = run_cli("check", tmp_path / "robot_webots.urdf", "--format", "json")
     assert '"files": 0' in named.stdout and "fragment" in named.stderr
+
+
+def test_a_part_included_only_by_a_library_nobody_includes_is_skipped_named_or_walked(
+        run_cli, tmp_path):
+    """clearpath's a200.urdf.xacro: a nameless <robot> of arguments, includes and the macro
+    a robot generated at run time calls. Named with its wheel macro (pre-commit names every
+    staged file) the wheel was checked through it, the library checked as a robot: U011 and
+    U106, as the library named alone or walked is skipped."""
+    (tmp_path / ".git").mkdir()
+    lib = tmp_path / "a200.urdf.xacro"
+    lib.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:include filename="wheel.urdf.xacro"/>'
+                   '<xacro:macro name="a200"><link name="base"/><xacro:wheel/></xacro:macro>'
+                   '</robot>')
+    (tmp_path / "wheel.urdf.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="wheel">'
+        '<link name="wheel"/></xacro:macro></robot>')
+    for named in ([tmp_path / "wheel.urdf.xacro"], [lib, tmp_path / "wheel.urdf.xacro"]):
+        result = run_cli("check", *named, "--format", "json")
+        assert result.exit_code == 0 and '"files": 0' in result.stdout, result.output
+        assert "nothing to check" in result.stderr
+    walked = run_cli("check", tmp_path, "--format", "json")
+    assert walked.exit_code == 0 and '"files": 0' in walked.stdout
+    # a robot including the library is checked instead, as before
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="a200.urdf.xacro"/><xacro:a200/></robot>')
+    result = run_cli("check", tmp_path / "wheel.urdf.xacro", "--format", "json")
+    assert '"files": 1' in result.stdout and "robot.urdf.xacro" in result.stderr

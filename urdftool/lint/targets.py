@@ -450,7 +450,20 @@ def explicit_targets(path: Path, includers: dict, root: Path,
                 tops.append(parent)
     if tops:  # as the folder walk takes it, a robot of its own too (baxter's pedestal.xacro)
         tops = sorted(tops)
-        return tops, f"included by {', '.join(display_path(p) for p in tops)}: checking that instead"
+        # each top as if it were named: a macro library or fragment nobody includes is skipped
+        # (clearpath's a200.urdf.xacro defines the macro a robot generated at run time calls),
+        # so a file included only by such libraries is not checked through them either
+        robots = list(dict.fromkeys(
+            robot for top in tops
+            for robot in explicit_targets(top, includers, root, max_file_size, resolver_for)[0]))
+        shown = ', '.join(display_path(p) for p in tops)
+        if not robots:
+            return [], (f"included by {shown}, which define only macros, properties or "
+                        f"fragments, and no robot below {root} includes them: nothing to check")
+        if robots != tops:
+            return robots, (f"included by {shown}: checking "
+                            f"{', '.join(display_path(p) for p in robots)} instead")
+        return robots, f"included by {shown}: checking that instead"
     if summary.named_robot and _has_own_links(path, max_file_size):
         return [path], None  # a robot of its own, hanging on links nobody here writes
     if path.name.endswith(".urdf") and summary.fragment:
