@@ -147,9 +147,9 @@ def test_check_runs_the_collector_as_the_door_says_and_other_commands_as_python_
     assert engine.COLLECTION[0] is engine.COLLECTION[1]  # nullcontext, unless installed
 
 
-def test_a_check_ends_without_teardown_yet_says_all_and_exits_as_the_command_does(tmp_path):
-    """``__main__._end``: the exit status, a long report through a pipe, and the exit
-    functions of a check run as through ``urdftool.cli.main`` (which tears down as usual)."""
+def test_a_check_through_the_door_says_all_and_exits_as_the_command_does(tmp_path):
+    """The exit status, a long report through a pipe, and the exit functions of a check run
+    through the door (``__main__``) as through ``urdftool.cli.main``."""
     links = "".join(f'<link name="l{i}"/><joint name="j{i}" type="revolute"><parent link="l0"/>'
                     f'<child link="l{i}"/><limit lower="1" upper="-1" effort="1" velocity="1"/>'
                     "</joint>\n" for i in range(1, 400))
