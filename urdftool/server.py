@@ -166,6 +166,8 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     except UrdftoolError as error:  # settings file it read re-checks it
         outcome.error, outcome.user_error = str(error), True
         return outcome
+    except MemoryError:  # over the budget's memory: the pool makes it U018 on the robot
+        raise
     except Exception:
         outcome.error = traceback.format_exc()
         return outcome
