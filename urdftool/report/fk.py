@@ -122,7 +122,12 @@ def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
             for k, name in enumerate(result.frames):
                 console.print(f"{markup(name)}:")
                 for line in result.matrices[row, k]:
-                    console.print("  " + " ".join(f"{fixed(v):>9s}" for v in line))
+                    console.print(_matrix_line(line))
+
+
+def _matrix_line(line) -> str:
+    """One row of a 4x4 pose matrix, as both table styles print it."""
+    return "  " + " ".join(f"{fixed(v):>9s}" for v in line)
 
 
 def _plain_matrices(result, row: int, stream=None) -> None:
@@ -131,7 +136,6 @@ def _plain_matrices(result, row: int, stream=None) -> None:
     lines = []
     for k, name in enumerate(result.frames):
         lines.append(f"{text(name)}:")
-        lines += ["  " + " ".join(f"{fixed(v):>9s}" for v in line)
-                  for line in result.matrices[row, k]]
+        lines += [_matrix_line(line) for line in result.matrices[row, k]]
     stream = stream or sys.stdout
     stream.write("\n".join(lines) + "\n")
