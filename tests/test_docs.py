@@ -127,7 +127,9 @@ def test_every_relative_link_and_anchor_resolves():
                 continue  # an address elsewhere
             path, _, anchor = target.partition("#")
             resolved = (page.parent / path).resolve() if path else page
-            if not resolved.exists():
+            if not resolved.is_relative_to(ROOT.resolve()):  # found here, absent in a clone
+                broken.append(f"{page.relative_to(ROOT)}: {target} (outside the repository)")
+            elif not resolved.exists():
                 broken.append(f"{page.relative_to(ROOT)}: {target} (no such file)")
             elif anchor and resolved.suffix == ".md" and anchor not in _anchors(resolved):
                 broken.append(f"{page.relative_to(ROOT)}: {target} (no such heading)")
