@@ -121,7 +121,15 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
                   scratch=scratch)
     assert victim.read_text() == "VICTIM\n"
     assert any(e.startswith("outside: open write") for e in written.events)
-    slow = run(["check", "r.urdf"], cwd=repo, allow=allow, scratch=scratch, time_limit=0.01)
+    # a robot that expands for hours (each level calls the next twice, 2^24 calls): killed at
+    # the time limit however fast the machine (a tiny robot under 10 ms was not always)
+    (repo / "slow.urdf.xacro").write_text(
+        '<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:macro name="twice" params="n"><xacro:if value="${n > 0}">'
+        '<xacro:twice n="${n - 1}"/><xacro:twice n="${n - 1}"/></xacro:if></xacro:macro>'
+        '<link name="base"/><xacro:twice n="24"/></robot>\n')
+    slow = run(["check", "--timeout", "0", "slow.urdf.xacro"], cwd=repo, allow=allow,
+               scratch=scratch, time_limit=1.0)
     assert slow.hung
 
 
