@@ -14,6 +14,7 @@ from urdftool.physics import mat3
 from urdftool.kinematics import transforms
 from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics, pose_components
 from urdftool.description.load import load
+from urdftool.description.urdf import JOINT_TYPES, MOVING
 
 HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
 
@@ -336,7 +337,6 @@ def test_random_configurations_are_given_with_their_values(run_cli):
 
 # -- the model read down the parsed tree, against Pinocchio's -------------------------------------
 
-_KINDS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 
 def _random_tree(seed: int, links: int = 14) -> bytes:
@@ -345,7 +345,7 @@ def _random_tree(seed: int, links: int = 14) -> bytes:
     rng = np.random.default_rng(seed)
     parts, kinds = [f'<robot name="r{seed}">', '<link name="l0"/>'], {}
     for i in range(1, links):
-        kind = _KINDS[rng.integers(len(_KINDS))] if i > 1 else "revolute"
+        kind = JOINT_TYPES[rng.integers(len(JOINT_TYPES))] if i > 1 else "revolute"
         parent = int(rng.integers(i))
         name = f"{'zyxw'[rng.integers(4)]}{rng.integers(100)}_{i}"
         xyz = " ".join(f"{v:.3f}" for v in rng.uniform(-1, 1, 3))
@@ -355,7 +355,7 @@ def _random_tree(seed: int, links: int = 14) -> bytes:
         extra = f'<axis xyz="{axis}"/>'
         if kind in ("revolute", "prismatic"):
             extra += '<limit lower="-1.5" upper="1.5" effort="1" velocity="1"/>'
-        movers = [n for n, k in kinds.items() if k in ("revolute", "continuous", "prismatic")]
+        movers = [n for n, k in kinds.items() if k in MOVING]
         if kind in ("revolute", "prismatic") and movers and rng.random() < 0.4:
             extra += (f'<mimic joint="{movers[rng.integers(len(movers))]}" '
                       f'multiplier="{rng.uniform(-2, 2):.3f}" offset="{rng.uniform(-1, 1):.3f}"/>')

@@ -22,6 +22,7 @@ from functools import cached_property
 
 import numpy as np
 
+from urdftool.description.urdf import MOVING
 from urdftool.errors import FKError, TreeError, UnknownLink
 from urdftool.kinematics import transforms
 from urdftool.kinematics.tree import children_by_link, root_link
@@ -187,7 +188,7 @@ class KinematicModel:
             return _Joint(name, "planar", parent, placement,
                           source=self._coordinate_columns(name, PLANAR_COORDINATES),
                           idx_q=idx_q)
-        if kind not in ("revolute", "continuous", "prismatic"):
+        if kind not in MOVING:
             raise FKError(f"joint '{name}': unknown joint type '{kind}'", element)
         return _Joint(name, "prismatic" if kind == "prismatic" else "revolute", parent,
                       placement, _axis(element), self._source(name), idx_q,
