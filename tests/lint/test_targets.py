@@ -524,3 +524,26 @@ def test_an_include_through_an_optenv_default_or_an_argument_default_is_an_inclu
                                       "library.urdf.xacro")
     assert walked.files == named.files == [str(tmp_path / "robot.urdf.xacro")]
     assert "macro library" in walked.skipped[str(tmp_path / "library.urdf.xacro")]
+
+
+def test_a_xacro_part_with_no_root_of_its_own_is_a_part_and_world_is_no_link(tmp_path):
+    # articubot_one's depth_camera.xacro (its include commented out, so nobody includes it):
+    # joints on the 'chassis' of a robot defined elsewhere; a robot fixed to Gazebo's 'world'
+    # is a robot, and so is one whose root a macro call writes
+    (tmp_path / ".git").mkdir()
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "depth_camera.xacro").write_text(
+        f'<robot {ns}><joint name="j" type="fixed"><parent link="chassis"/>'
+        '<child link="camera_link"/></joint><link name="camera_link"/></robot>')
+    (tmp_path / "arm.urdf.xacro").write_text(
+        f'<robot name="arm" {ns}><joint name="j" type="fixed"><parent link="world"/>'
+        '<child link="base"/></joint><link name="base"/></robot>')
+    (tmp_path / "rover.urdf.xacro").write_text(
+        f'<robot name="rover" {ns}><xacro:macro name="body"><link name="chassis"/></xacro:macro>'
+        '<xacro:body/><joint name="j" type="fixed"><parent link="chassis"/>'
+        '<child link="mast"/></joint><link name="mast"/></robot>')
+    walked, named = _walked_and_named(tmp_path, "depth_camera.xacro", "arm.urdf.xacro",
+                                      "rover.urdf.xacro")
+    robots = [str(tmp_path / "arm.urdf.xacro"), str(tmp_path / "rover.urdf.xacro")]
+    assert walked.files == named.files == robots
+    assert "no root link" in walked.skipped[str(tmp_path / "depth_camera.xacro")]

@@ -85,7 +85,7 @@ class _Summary:
     macros: bool = False  # it defines xacro macros
     missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
     empty: bool = False  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
-    root_elsewhere: bool = False  # a .urdf whose joints hang on links it does not write
+    root_elsewhere: bool = False  # its joints hang on links it does not write, no root of its own
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -141,7 +141,8 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
                     resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes),
                     answer == "fragment", bool(_MACRO.search(written)),
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
-                    answer == "empty", path.name.endswith(".urdf") and _root_elsewhere(written))
+                    answer == "empty",
+                    _root_elsewhere(written, expanded=not path.name.endswith(".urdf")))
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -257,16 +258,27 @@ def _self_contained(path: Path, limit: int) -> bool:
 _CHILD = re.compile(rb"<child\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 
 
-def _root_elsewhere(data: bytes) -> bool:
+def _root_elsewhere(data: bytes, expanded: bool = True) -> bool:
     """Whether the robot ``data`` writes has no root of its own: it has joints, every link it
     writes is a joint's child, and some joint names a link it does not write. A robot has one
     root link; such a file is a part of a robot defined elsewhere, whatever its root element
     says (jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS): joints on the
     'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
-    root a root."""
+    root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
+    definitions may write links the text does not show (macro calls, includes), unless the
+    file is not ``expanded`` (a ``.urdf`` is read as written)."""
+    data = _MACRO_BODY.sub(b"", data)
+    if expanded and _LINK_MAKER.search(data):
+        return False  # a macro call or an include may write the root
     ends = set(_JOINT_END.findall(data))
     links = set(_LINK_NAME.findall(data))
-    return bool(ends - links) and links <= set(_CHILD.findall(data))
+    return bool(ends - links - {b"world"}) and links <= set(_CHILD.findall(data))
+
+
+# Outside macro definitions, what may write links the text does not show: a macro call (any
+# xacro: element but the directives that write none) or an include.
+_LINK_MAKER = re.compile(rb"<xacro:(?!(?:property|arg|macro|if|unless|load_yaml)[\s/>])[\w.]|"
+                         rb"<(?:xacro:)?include\s")
 
 
 def _yields_links(data: bytes) -> bool:
@@ -530,7 +542,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     yields: :func:`_includes_yield_links` when already known
     Skipped: an SRDF source; an empty ``<robot>``; a ``.urdf`` that is a fragment (only
     ``<gazebo>``, transmission, ros2_control or webots blocks) or a part with no root of its
-    own (:func:`_root_elsewhere`); a ``.xacro`` that defines only macros and properties, or is a
+    own (:func:`_root_elsewhere`, ``.xacro`` too: stretch's stretch_dry_erase_marker.xacro); a
+    ``.xacro`` that defines only macros and properties, or is a
     fragment, whose includes produce no links. A named ``<robot>`` with links of its own is a
     robot, hanging on links nobody here writes or not; so is one whose includes could not all
     be followed (expanding it says), unless it defines macros of its own: then it is a macro
@@ -542,6 +555,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
         return EMPTY
     if path.name.endswith(".urdf"):
         return FRAGMENT if summary.fragment else ROOT_ELSEWHERE if summary.root_elsewhere else None
+    if summary.root_elsewhere:
+        return ROOT_ELSEWHERE
     if summary.defines_robot or summary.named_robot and _has_own_links(path, limit):
         return None
     if yields is _UNKNOWN:
