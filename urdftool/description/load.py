@@ -126,7 +126,7 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
     """A ``.urdf`` holding xacro: a xacro robot when every launch file that loads it runs
     xacro on it (:func:`~urdftool.description.runtime.builds`: what its consumers read, and a
     xacro error is theirs), with a note; else expanded when xacro can, read as plain URDF when
-    not, with U007's error."""
+    not, with the loader's error note."""
     from urdftool.description.runtime import builds, unread_naming
 
     where = plain.locate(first)

@@ -341,8 +341,9 @@ def builds(path: str) -> list[Build]:
     """How the launch files of the repository holding ``path`` make a robot description from
     it: one :class:`Build` per launch file a user runs and description action, in the index's
     order. The one owner of "this file is loaded through xacro by launch files X" and of "launch
-    file X gives it these xacro arguments": loading a ``.urdf`` that holds xacro and U005/U007
-    ask here. Empty for stdin, or a file in no repository or package."""
+    file X gives it these xacro arguments": loading a ``.urdf`` that holds xacro, and the rules
+    on xacro errors and on xacro in a ``.urdf``, ask here. Empty for stdin, or a file in no
+    repository or package."""
     absolute, root = _file_root(path)
     if root is None:
         return []
