@@ -681,7 +681,8 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
     message = " ".join(str(error).split()) or type(error).__name__
     argument = None
     if message.startswith("Undefined substitution argument"):  # the caller says how to pass it
-        argument = message.rsplit(" ", 1)[-1]
+        # "Undefined substitution argument NAME[ when evaluating expression '...']"
+        argument = message[len("Undefined substitution argument"):].split()[0]
     if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
         message = f"{type(error).__name__}: {message}"
     undefined = _undefined_name(error)
