@@ -91,3 +91,22 @@ def test_other_packages_are_expanded_as_ros2_xacro_reads_them(tmp_path, build_to
     assert robot.root.find("include") is not None  # ROS 2's xacro leaves such tags as they are
     assert robot.root.find("property") is not None
     assert not [note for note in robot.notes if note.kind == "xacro-warning"]
+
+
+def test_a_macro_used_before_its_definition_is_told_where_it_is_defined(tmp_path):
+    # xacro up to Lunar read every definition first (legacy order); since Melodic it expands
+    # in document order, and the use fails as an unknown macro
+    from urdftool.errors import LoadError
+
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:part/>\n'
+        '  <xacro:macro name="part">\n'
+        '    <link name="base"/>\n'
+        '  </xacro:macro>\n'
+        '</robot>\n')
+    with pytest.raises(LoadError) as raised:
+        load(tmp_path / "r.urdf.xacro")
+    assert raised.value.location.line == 2
+    assert "it is defined further on (its body begins at " in str(raised.value)
+    assert "r.urdf.xacro:4)" in str(raised.value) and "--legacy" in str(raised.value)

@@ -328,7 +328,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     except Exception as error:  # xacro raises many kinds; each becomes a located finding
         if _caused_by(error, MemoryError):
             raise MemoryError(str(error)) from None
-        raise _as_failure(session, error, path) from None
+        raise _as_failure(session, error, path, doc) from None
     finally:
         for (module, name), function in originals.items():
             setattr(module, name, function)
@@ -666,7 +666,7 @@ class _PackageFailure(Exception):
         self.error = error
 
 
-def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure:
+def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> XacroFailure:
     where = _failure_location(session, error.__traceback__, path)
     cause = error
     while cause is not None and not isinstance(cause, (_PackageFailure, _Outside,
@@ -688,7 +688,23 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
     undefined = _undefined_name(error)
     if undefined:
         message += "; " + available("properties", undefined, _visible_properties(error))
+    if message.startswith("unknown macro name: xacro:") and doc is not None:
+        message += _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
+
+
+def _defined_later(session: _Session, doc, name: str) -> str:
+    """Where a macro used before its definition is defined further on, with why that fails."""
+    for element in doc.getElementsByTagName("xacro:macro"):
+        if element.getAttribute("name") == name:  # unstamped (_UNSTAMPED): its body is
+            body = [e.getAttribute(STAMP) for e in element.getElementsByTagName("*")
+                    if e.hasAttribute(STAMP)]
+            where = session.location(body[0].split(";")[0]) if body else None
+            at = f" (its body begins at {where.file}:{where.line})" if where and where.line else ""
+            return (f"; it is defined further on{at}: xacro expands in document order since "
+                    "Melodic (1.13), and only the legacy order (xacro up to Lunar, or Melodic's "
+                    "--legacy) read every definition first. Move the definition (or its include) above the first use")
+    return ""
 
 
 def _caused_by(error: BaseException, kind: type) -> bool:
