@@ -547,3 +547,25 @@ def test_a_xacro_part_with_no_root_of_its_own_is_a_part_and_world_is_no_link(tmp
     robots = [str(tmp_path / "arm.urdf.xacro"), str(tmp_path / "rover.urdf.xacro")]
     assert walked.files == named.files == robots
     assert "no root link" in walked.skipped[str(tmp_path / "depth_camera.xacro")]
+
+
+def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_path):
+    # osrf/vrx: wamv_gazebo.urdf.xacro calls <xacro:wamv_gazebo thruster_layout="$(find
+    # wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>, whose macro includes
+    # "${thruster_layout}"; the layout (and the engine.xacro it includes) are parts of that
+    # robot, not robots checked on their own (U005: 'namespace' is the robot's property)
+    (tmp_path / ".git").mkdir()
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "layout.xacro").write_text(
+        f'<robot {ns}><link name="${{namespace}}/engine"/><joint name="e" type="fixed">'
+        '<parent link="${namespace}/base"/><child link="${namespace}/engine"/></joint></robot>')
+    (tmp_path / "macros.xacro").write_text(
+        f'<robot {ns}><xacro:macro name="boat" params="layout">'
+        '<xacro:include filename="${layout}"/></xacro:macro></robot>')
+    (tmp_path / "boat.urdf.xacro").write_text(
+        f'<robot name="boat" {ns}><xacro:property name="namespace" value="wamv"/>'
+        '<link name="wamv/base"/><xacro:include filename="macros.xacro"/>'
+        '<xacro:boat layout="layout.xacro"/></robot>')
+    walked, named = _walked_and_named(tmp_path, "layout.xacro")
+    assert walked.files == named.files == [str(tmp_path / "boat.urdf.xacro")]
+    assert "included by" in walked.skipped[str(tmp_path / "layout.xacro")]

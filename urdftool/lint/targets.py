@@ -32,6 +32,9 @@ _ARG_USE = re.compile(r"\$\(arg\s+([^)\s]+)\)")
 _ARG_DEFAULT = re.compile(
     rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
     re.S)
+# A robot file named in an attribute value (a macro parameter or property that a macro hands to
+# <xacro:include filename="${layout}"/>: osrf/vrx's thruster layouts)
+_NAMED_FILE = re.compile(rb"=\s*[\"']([^\"'<>]+\.(?:xacro|urdf))[\"']")
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
@@ -131,6 +134,9 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
         return _Summary([], True, True)
     written = _uncommented(data)
     includes = list(_included_files(path, written, resolver_for(path))) if resolver_for else []
+    unfollowed = resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes)
+    if resolver_for:
+        includes += _named_files(path, written, resolver_for(path), includes)
     answer = _top_level_answer(data)
     if answer in ("definitions", "fragment", "empty") and path.name.endswith(".xacro") and \
             not _well_formed_for_xacro(data):
@@ -138,8 +144,7 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
     return _Summary(includes, answer not in ("definitions", "fragment", "empty"),
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
-                    resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes),
-                    answer == "fragment", bool(_MACRO.search(written)),
+                    unfollowed, answer == "fragment", bool(_MACRO.search(written)),
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
                     answer == "empty",
                     _root_elsewhere(written, expanded=not path.name.endswith(".urdf")))
@@ -181,7 +186,7 @@ def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool |
             data = _uncommented(data)
             included = list(_included_files(target, data, resolver_for(target)))
             unknown = unknown or len(_INCLUDE.findall(data)) > len(included)
-            pending.extend(included)
+            pending.extend(included + _named_files(target, data, resolver_for(target), included))
     return None if unknown else False
 
 
@@ -416,21 +421,48 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
     defaults = None
     for match in _INCLUDE.finditer(data):
         spec = match.group(1).decode("utf-8", "replace")
-        if "$(arg" in spec:
-            if defaults is None:
-                defaults = {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
-                            for name, value in _ARG_DEFAULT.findall(data)}
-            spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
-        spec = _OPTENV.sub(lambda m: m.group(1), spec)
-        find = _FIND.search(spec)
-        if find:
-            try:
-                spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
-            except Exception:
-                continue
-        if "$" in spec or "\0" in spec:
+        found = _resolved_spec(path, spec, data, resolver, defaults)
+        if found is not None:
+            defaults = found[1]
+            yield found[0]
+
+
+def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -> list[Path]:
+    """Robot files (existing, other than ``includes``) named by attribute values of ``data``:
+    a macro parameter or property holding a path that a macro includes
+    (``<xacro:wamv_gazebo thruster_layout="$(find wamv_gazebo)/urdf/.../wamv_aft_thrusters.xacro"/>``
+    handed to ``<xacro:include filename="${thruster_layout}"/>``), which the include graph
+    counts as included by ``path``."""
+    named, defaults = [], None
+    for match in _NAMED_FILE.finditer(data):
+        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), data, resolver,
+                               defaults)
+        if found is None:
             continue
-        yield resolved_path(path.parent / spec)
+        defaults = found[1]
+        if found[0] not in includes and found[0] not in named and found[0].is_file():
+            named.append(found[0])
+    return named
+
+
+def _resolved_spec(path: Path, spec: str, data: bytes, resolver: PackageResolver, defaults):
+    """(the file ``spec``, written in ``path``, names, the file's argument defaults), or None
+    when it needs what is only known when expanding."""
+    if "$(arg" in spec:
+        if defaults is None:
+            defaults = {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
+                        for name, value in _ARG_DEFAULT.findall(data)}
+        spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
+    spec = _OPTENV.sub(lambda m: m.group(1), spec)
+    find = _FIND.search(spec)
+    if find:
+        try:
+            spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
+        except Exception:
+            return None
+    if "$" in spec or "\0" in spec:
+        return None
+    return resolved_path(path.parent / spec), defaults
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
