@@ -213,3 +213,13 @@ def test_a_large_rigid_body_seen_from_a_member_reaches_as_its_own_walk(tmp_path,
             assert mine.farthest(p) == pytest.approx(theirs.farthest(p), abs=1e-9)
             assert mine.outside(p) == pytest.approx(theirs.outside(p), abs=1e-9)
         assert mine.lowest() == pytest.approx(theirs.lowest(), abs=1e-9)
+
+
+def test_a_link_nothing_is_fixed_to_has_one_reach_for_its_body_and_itself(tmp_path):
+    """Its rigid body is itself: the reach (and its table of every direction) is built once,
+    not once per question."""
+    _pieces(tmp_path, mesh=True)  # writes robot.urdf: link 'a', alone
+    robot = load_text(tmp_path, (tmp_path / "robot.urdf").read_text())
+    link = robot.links["a"]
+    assert link_reach(robot, link, rigid=True) is link_reach(robot, link)
+    assert link_reach(robot, link).links == ["a"]

@@ -397,8 +397,11 @@ def link_reach(robot, link, tags=TAGS, rigid: bool = False) -> Reach | _Body:
                                   lambda: _build(robot, robot.links[root], tags, True))
             return robot.memo_for((link_reach, tags, rigid), name, lambda: _Body(
                 body, frames[name], lambda: rigid_group(robot, name)))
-    return robot.memo_for((link_reach, tags, rigid), name or link,
-                          lambda: _build(robot, link, tags, rigid))
+        return robot.memo_for((link_reach, tags, rigid), name,
+                              lambda: _build(robot, link, tags, rigid))
+    # nothing fixed to it (most links): its body is itself, one reach for both
+    return robot.memo_for((link_reach, tags), name or link,
+                          lambda: _build(robot, link, tags, False))
 
 
 def _build(robot, link, tags, rigid) -> Reach:
