@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError, missing_extra
-from urdftool.lint.catalogue import Rule
+from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
@@ -64,9 +64,12 @@ def load_error_message(error: LoadError) -> str:
 
 
 def load_error_findings(error: LoadError) -> list[Finding]:
-    """A file that did not load, as findings: one, of the rule its kind maps to."""
+    """A file that did not load, as findings: one, of the rule its kind maps to; a warning
+    when it may not hold after a package's build (``error.certain``: an included file that
+    package's install rules, not read, may put there)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
-    return [rule.finding(load_error_message(error), error.location)]
+    message = load_error_message(error)
+    return [rule.finding(message if error.certain else Conditional(message), error.location)]
 
 
 def note_findings(robot) -> list[Finding]:
@@ -215,7 +218,6 @@ def _launch_arguments(path: str, error: LoadError, given: dict) -> tuple[str, di
 def _built_note(error: LoadError, launch: str, arguments: dict) -> Finding:
     """U005 as a note: the robot needs an argument the user did not give, and was built with
     those a launch file gives it."""
-    from urdftool.lint.catalogue import Conditional
     from urdftool.diagnostics import Severity
 
     shown = ", ".join(f"{k}:={display_path(v) if os.path.isabs(v) else v}"

@@ -372,7 +372,7 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
                 continue
         if "$" in spec or "\0" in spec:
             continue
-        yield resolved_path(path.parent / spec)
+        yield resolved_path(resolver.locate(path.parent / spec).path)  # as xacro finds it
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:

@@ -54,6 +54,10 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     include cycles end here, located at the line of the xacro file (or the included file) where
     the element that failed was written.
 
+    An included file missing from the source tree below a package (``$(find NAME)/...``) is
+    looked for where the package's build installs it from (docs/packages.md); when that
+    package's install rules cannot be read, it may exist after the build: a warning saying so.
+
     Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
     """)
