@@ -13,6 +13,7 @@ from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
+from urdftool.description.values import number as attribute
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
@@ -384,9 +385,28 @@ def _extent(mesh) -> float:
     return float(max(mesh.extents))
 
 
+def _primitive_size(geometry) -> float:
+    """The largest extent [m] of a box, cylinder or sphere shape (0 for others or unreadable)."""
+    if geometry is None:
+        return 0.0
+    box, cylinder, sphere = (first_child(geometry, tag) for tag in ("box", "cylinder", "sphere"))
+    sizes = []
+    if box is not None:
+        sizes, _ = parse_numbers(box.get("size", ""), 3)
+    elif cylinder is not None:
+        radius, length = attribute(cylinder, "radius"), attribute(cylinder, "length")
+        sizes = [2 * radius if radius is not None else None, length]
+    elif sphere is not None:
+        radius = attribute(sphere, "radius")
+        sizes = [2 * radius if radius is not None else None]
+    sizes = [abs(size) for size in (sizes or []) if size is not None and math.isfinite(size)]
+    return max(sizes, default=0.0)
+
+
 def _link_spans(robot) -> dict[str, float]:
     """Each link's span [m]: the longest offset of the joints at it (its parent joint's origin,
-    its child joints' origins), the scale a mesh of that link has."""
+    its child joints' origins) or the largest of its box, cylinder and sphere shapes, the scale
+    a mesh of that link has (a ground plane's 30 m mesh beside its 30 m collision box)."""
     def compute():
         spans: dict[str, float] = {}
         for joint in robot.children("joint"):
@@ -396,6 +416,13 @@ def _link_spans(robot) -> dict[str, float]:
                 name = element.get("link") if element is not None else None
                 if name is not None and length > spans.get(name, 0.0):
                     spans[name] = length
+        for link in robot.children("link"):
+            for holder in child_list(link):
+                if holder.tag not in ("visual", "collision"):
+                    continue
+                size = _primitive_size(first_child(holder, "geometry"))
+                if size > spans.get(link.get("name"), 0.0):
+                    spans[link.get("name")] = size
         return spans
     return robot.memo(_link_spans, compute)
 
