@@ -434,7 +434,8 @@ def mesh_implausible_size(robot):
     CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
     too big, and any inertia computed from the mesh is 10^6 too big. A size outside that window
     is a unit slip only when the rescaled mesh would fit its link: within 10 times the link's
-    span (the longest offset of the joints at the link). A 5 m boat hull whose thrusters sit
+    span (the longest offset of the joints at the link, or its largest box, cylinder or sphere:
+    robot_properties_bolt's 30 m ground plane beside its 30 m collision box). A 5 m boat hull whose thrusters sit
     2.4 m from its origin (osrf/vrx's WAM-V), or a 0.5 mm marker at a fingertip 27 mm from its
     knuckle (Unitree's BrainCo hand), is the size it means; a link with no joint offsets is
     judged by the window alone.
