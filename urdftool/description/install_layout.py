@@ -28,6 +28,7 @@ the resolver follows no link out (:meth:`Layout.sources` gives paths; the caller
 from __future__ import annotations
 
 import ast
+from ast import walk as ast_nodes  # (in memory: ast.walk reads no file)
 import configparser
 import fnmatch
 import os
@@ -570,7 +571,7 @@ def _setup_py(reader: _Reader) -> None:
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         reader.doubt(None, "setup.py: not parsed")
         return
-    calls = [node for node in ast.walk(module) if isinstance(node, ast.Call)
+    calls = [node for node in ast_nodes(module) if isinstance(node, ast.Call)
              and _called(node.func) in ("setup", "setuptools.setup")]
     if len(calls) != 1:
         if calls:
@@ -732,7 +733,7 @@ _MUTATORS = {"append", "extend", "insert", "update", "setdefault", "pop", "remov
 def _changed_names(node: ast.AST):
     """Names a statement may bind or change: stored, deleted, declared global, or a mutating
     method called on them (``name.append(...)``)."""
-    for child in ast.walk(node):
+    for child in ast_nodes(node):
         if isinstance(child, ast.Name) and isinstance(child.ctx, (ast.Store, ast.Del)):
             yield child.id
         elif isinstance(child, ast.Call) and isinstance(child.func, ast.Attribute) and \

@@ -13,7 +13,6 @@ from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
-from urdftool.description.values import number as attribute
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
@@ -386,20 +385,15 @@ def _extent(mesh) -> float:
 
 
 def _primitive_size(geometry) -> float:
-    """The largest extent [m] of a box, cylinder or sphere shape (0 for others or unreadable)."""
-    if geometry is None:
-        return 0.0
-    box, cylinder, sphere = (first_child(geometry, tag) for tag in ("box", "cylinder", "sphere"))
+    """The largest extent [m] of a box, cylinder or sphere shape (0 for a mesh, or unreadable)."""
+    shape = _first_element(geometry) if geometry is not None else None
     sizes = []
-    if box is not None:
-        sizes, _ = parse_numbers(box.get("size", ""), 3)
-    elif cylinder is not None:
-        radius, length = attribute(cylinder, "radius"), attribute(cylinder, "length")
-        sizes = [2 * radius if radius is not None else None, length]
-    elif sphere is not None:
-        radius = attribute(sphere, "radius")
-        sizes = [2 * radius if radius is not None else None]
-    sizes = [abs(size) for size in (sizes or []) if size is not None and math.isfinite(size)]
+    for attribute, count in SHAPE_ATTRIBUTES.get(getattr(shape, "tag", None), ()):
+        if count is None:  # a mesh's filename
+            continue
+        values, _ = parse_numbers(shape.get(attribute), count)
+        sizes += [abs(v) * (2 if attribute == "radius" else 1) for v in values or ()
+                  if math.isfinite(v)]
     return max(sizes, default=0.0)
 
 
