@@ -546,7 +546,7 @@ def _refuse_link_out(session: _Session, filename: str) -> None:
 
 class _Unsure(OSError):
     """A file below a package missing from the source tree, whose package's install rules
-    could not be read: it may exist after the build (U005 as a warning)."""
+    could not be read: it may exist after the build (a load error that is not certain)."""
 
     def __str__(self) -> str:
         return self.strerror
