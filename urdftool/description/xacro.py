@@ -15,6 +15,12 @@ of one expansion:
 - ``safe_eval`` and ``substitution_args._eval`` (``$(eval ...)``) go through
   :mod:`xacro_sandbox`, whose ``env``/``optenv``/``find`` are the session's own.
 
+The expander is ROS 2's xacro. A robot whose package builds with catkin (ROS 1) is expanded as
+ROS 1's xacro up to Melodic (1.13) read it: the seven xacro tags without the ``xacro:`` prefix
+(:data:`ROS1_TAGS`; an ``<include>`` only when it holds no element, as Gazebo's ``<include><uri>``
+does) and macro calls without it are xacro's (:func:`_prefix_ros1_tags`), each file that relies on
+it named in a warning: xacro since Noetic (1.14) and ROS 2's leave those tags in the output.
+
 When xacro raises, the element being processed is recovered from the traceback's frames, so the
 diagnostic points at the line that failed and not just at the file.
 """
@@ -57,7 +63,10 @@ MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion m
 MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
 MAX_PATTERN_ENTRIES = 20_000  # folder entries one include pattern may look at
 _MAGIC = re.compile(r"[*?[]")  # what makes xacro glob an include's filename
-_UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
+_UNSTAMPED = {"xacro:macro"}
+# xacro's tags that ROS 1's xacro up to Melodic (1.13) also read without the xacro: prefix (its
+# deprecation message lists them); its macro calls too (handle_macro_call)
+ROS1_TAGS = ("include", "property", "macro", "arg", "if", "unless", "insert_block")  # its attributes are copied onto the caller's parent
 
 
 @dataclass
@@ -104,6 +113,8 @@ class _Session:
         self.elements = 0
         self.macro_calls = 0
         self.text = 0
+        self.ros1_tags = False  # read unprefixed xacro tags as ROS 1's xacro up to Melodic did
+        self.unprefixed: dict[int, tuple[str, str, int]] = {}  # file index -> (stamp, tag, count)
 
     def allow_root(self, folder) -> None:
         self.roots.append(files.real_path(folder))
@@ -206,7 +217,10 @@ class _StampingBuilder(ExpatBuilderNS):
 def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom.Document:
     builder = _StampingBuilder(session.file_index(path))
     try:
-        return builder.parseString(data)
+        doc = builder.parseString(data)
+        if session.ros1_tags:
+            _prefix_ros1_tags(session, doc)
+        return doc
     except expat.ExpatError as error:
         problem = malformed(data, expat.ErrorString(error.code), error.lineno)
     except XmlProblem as refused:
@@ -214,6 +228,51 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
         problem = malformed(data, str(error), 1)
     raise XacroFailure(problem.kind, problem.message, Location(display_path(path), problem.line))
+
+
+def _prefix_ros1_tags(session: _Session, doc) -> None:
+    """Rename the unprefixed xacro tags of a parsed file as ROS 1's xacro up to Melodic read
+    them (``<include>`` only without child elements, its is_include), and record where."""
+    for element in list(doc.getElementsByTagName("*")):
+        tag = element.tagName
+        if tag not in ROS1_TAGS or tag == "include" and any(
+                child.nodeType == xml.dom.Node.ELEMENT_NODE for child in element.childNodes):
+            continue
+        stamp = element.getAttribute(STAMP)
+        _record_unprefixed(session, stamp, f"<{tag}>")
+        element.tagName = element.nodeName = f"xacro:{tag}"
+        if element.tagName in _UNSTAMPED and stamp:
+            element.removeAttribute(STAMP)
+
+
+def _record_unprefixed(session: _Session, stamp: str, what: str) -> None:
+    if not stamp:
+        return
+    index = int(stamp[len(_STAMP_PREFIX):].split(":", 1)[0])
+    first, shown, count = session.unprefixed.get(index, (stamp, what, 0))
+    session.unprefixed[index] = (first, shown, count + 1)
+
+
+def _unprefixed_warnings(session: _Session) -> list[tuple[Location, str]]:
+    """One warning per file that relies on ROS 1's unprefixed xacro tags."""
+    found = []
+    for first, what, count in session.unprefixed.values():
+        more = f" (and {count - 1} more in this file)" if count > 1 else ""
+        found.append((session.location(first.split(";")[0]), (
+            f"{what} without the xacro: prefix{more}: read here as ROS 1's xacro up to Melodic "
+            "(1.13) read it, with a deprecation warning, since the package builds with catkin; "
+            "xacro since Noetic (1.14) and ROS 2's xacro leave it in the output, and the robot "
+            "loses what it does there. Prefix it: <xacro:...>")))
+    return found
+
+
+def _reads_ros1_tags(path: Path) -> bool:
+    """Whether the file's package builds with catkin (ROS 1), so its consumers may run a
+    xacro that reads unprefixed tags."""
+    from urdftool.description.ros_version import package_build_tool
+
+    found = package_build_tool(str(path))
+    return found is not None and found[0] == 1
 
 
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,
@@ -228,6 +287,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
 
     read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
+    session.ros1_tags = _reads_ros1_tags(path)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
     originals = {
@@ -280,7 +340,8 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
     budget.working_at(None)
-    warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
+    warnings = (session.warnings + _unprefixed_warnings(session)
+                + _warnings(stderr.getvalue(), display_path(path)))
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
                      session.outside)
 
@@ -373,7 +434,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
 
     def handle_macro_call(node, macros, symbols):
         if not node.tagName.startswith("xacro:"):
-            return False  # xacro asks this of every element; only xacro: tags are calls
+            if not (session.ros1_tags and _is_macro(xacro, node.tagName, macros, symbols)):
+                return False  # xacro asks this of every element; only xacro: tags are calls
+            _record_unprefixed(session, node.getAttribute(STAMP), f"macro call <{node.tagName}>")
+            node.tagName = node.nodeName = f"xacro:{node.tagName}"
         call_site = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
         if call_site:
             node.removeAttribute(STAMP)
@@ -529,6 +593,16 @@ _EVAL_CONSTANTS = {
 }
 
 
+def _is_macro(xacro, name: str, macros, symbols) -> bool:
+    """Whether ``name`` calls a macro defined so far (ROS 1's xacro up to Melodic called macros
+    without the xacro: prefix)."""
+    try:
+        xacro.resolve_macro(name, macros, symbols)
+    except (KeyError, TypeError, AttributeError):
+        return False
+    return True
+
+
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
@@ -647,7 +721,8 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
     message = " ".join(str(error).split()) or type(error).__name__
     argument = None
     if message.startswith("Undefined substitution argument"):  # the caller says how to pass it
-        argument = message.rsplit(" ", 1)[-1]
+        # "Undefined substitution argument NAME[ when evaluating expression '...']"
+        argument = message[len("Undefined substitution argument"):].split()[0]
     if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
         message = f"{type(error).__name__}: {message}"
     undefined = _undefined_name(error)
