@@ -34,7 +34,8 @@ from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.launch import (MAX_TEXT, Arg, Condition, Description, Include, LaunchFile, ParamFile,
                                          Start, Value, is_launch_file, read_launch_text)
 from urdftool.description.launch_python import read_python_launch
-from urdftool.description.packages import SKIP_DIRS, containment_root, packages_below
+from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
+    packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -133,8 +134,9 @@ def shown(resolved: Resolved) -> str | None:
 
 def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
     """The file a path value names, inside the repository: ``$(find pkg)/rest`` is
-    ``pkg/rest`` in the package's source folder, or the one file below the package whose path
-    ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
+    ``pkg/rest`` in the package's source folder, or where the package's install rules take
+    ``share/pkg/rest`` from (:func:`~urdftool.description.packages.installed`), or the one
+    file below the package whose path ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
     x.yaml``); an absolute path only inside the repository; None otherwise."""
     resolved = resolve(value, scope)
     text = resolved.text
@@ -145,7 +147,8 @@ def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
         if "\0" in rest:
             return None, resolved
         folder = scope.packages.get(package)
-        return (_in_package(folder, rest.strip("/"), scope.root) if folder else None), resolved
+        return (_in_package(package, folder, rest.strip("/"), scope.root) if folder else None), \
+            resolved
     path = Path(text)
     if not path.is_absolute():
         path = scope.launch.path.parent / path
@@ -157,11 +160,11 @@ def _regular_inside(path: Path, root: Path) -> bool:
     return kind_of(path) == "file" and inside(path, root)
 
 
-def _in_package(folder: Path, rest: str, root: Path) -> Path | None:
+def _in_package(name: str, folder: Path, rest: str, root: Path) -> Path | None:
     if not rest or ".." in Path(rest).parts:
         return None
-    direct = folder / rest
-    if _regular_inside(direct, root):
+    direct = installed(name, folder, folder / rest).path
+    if _regular_inside(direct, root):  # where the package's install rules put it
         return direct
     tail = "/" + rest
     matches = [p for p in _package_files(folder) if ("/" + p.relative_to(folder).as_posix()).endswith(tail)]

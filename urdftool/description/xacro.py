@@ -80,6 +80,7 @@ class XacroFailure(Exception):
     message: str
     location: Location
     subject: str | None = None
+    certain: bool = True  # False: may not hold after the package's build (a file it installs)
 
 
 @dataclass
@@ -349,8 +350,16 @@ def _yaml_opener(session: _Session):
     """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
 
     def open_yaml(filename, *args, **kwargs):
+        filename = _installed(session, filename)
         session.check_inside(filename, "YAML file")
-        data = session.read_file(filename, "yaml")
+        try:
+            data = session.read_file(filename, "yaml")
+        except OSError as error:
+            doubt = session.resolver.locate(filename).doubt if session.resolver else None
+            if doubt:
+                raise _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: not "
+                                           f"found in the source tree; {doubt}") from None
+            raise
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -412,6 +421,11 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             data = session.read_file(filename)
         except OSError as error:
             xacro.filestack.pop()
+            doubt = session.resolver.locate(filename).doubt if session.resolver else None
+            if doubt:  # the package's build may install it: not certainly missing
+                raise xacro.XacroException(exc=_Unsure(error.errno, (
+                    f"{error.strerror}: {display_path(filename)}: not found in the source "
+                    f"tree; {doubt}")))
             hint = ""
             if "package://" in filename:
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
@@ -510,9 +524,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
                 raise xacro.XacroException(
                     "variable filename is supported with in-order option only") from None
             raise
-        filenames = [spec]
+        filenames = [_installed(session, spec)]
         if _MAGIC.search(spec):
-            filenames = _expand_pattern(session, spec)
+            filenames = _expand_pattern(session, _installed(session, spec))
             if not filenames:
                 xacro.warning(xacro.include_no_matches_msg.format(spec))
         for filename in filenames:
@@ -604,6 +618,30 @@ def _refuse_link_out(session: _Session, filename: str) -> None:
             f"the repository ({display_path(root)}); not followed"), session.current_location())
 
 
+class _Unsure(OSError):
+    """A file below a package missing from the source tree, whose package's install rules
+    could not be read: it may exist after the build (a load error that is not certain)."""
+
+    def __str__(self) -> str:
+        return self.strerror
+
+
+def _installed(session: _Session, spec: str) -> str:
+    """``spec`` (a file, or an include pattern) where the source tree has it: a path below a
+    package ``$(find)`` resolved names the installed ``share/NAME``, which the package's build
+    may fill from other folders (:meth:`PackageResolver.locate`); for a pattern, the folder
+    before its first wildcard is looked for so."""
+    if session.resolver is None:
+        return spec
+    parts = spec.split("/")
+    first = next((i for i, part in enumerate(parts) if _MAGIC.search(part)), len(parts))
+    base = "/".join(parts[:first])
+    if not base:
+        return spec
+    found = os.fspath(session.resolver.locate(base).path)
+    return spec if found == base else "/".join([found, *parts[first:]])
+
+
 def _expand_pattern(session: _Session, spec: str) -> list[str]:
     """The files an include's glob pattern names, as ``sorted(glob.glob(spec))`` finds them
     (``*``, ``?``, ``[...]`` in any part; a name starting with ``.`` only for a part that does;
@@ -678,6 +716,8 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):
         return XacroFailure("sandbox", str(cause), where)
+    if _caused_by(error, _Unsure):
+        return XacroFailure("io", " ".join(str(error).split()), where, certain=False)
     message = " ".join(str(error).split()) or type(error).__name__
     argument = None
     if message.startswith("Undefined substitution argument"):  # the caller says how to pass it

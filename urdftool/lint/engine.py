@@ -63,9 +63,12 @@ def load_error_message(error: LoadError) -> str:
 
 
 def load_error_findings(error: LoadError) -> list[Finding]:
-    """A file that did not load, as findings: one, of the rule its kind maps to."""
+    """A file that did not load, as findings: one, of the rule its kind maps to; a warning
+    when it may not hold after a package's build (``error.certain``: an included file that
+    package's install rules, not read, may put there)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
-    return [rule.finding(load_error_message(error), error.location)]
+    message = load_error_message(error)
+    return [rule.finding(message if error.certain else Conditional(message), error.location)]
 
 
 def note_findings(robot) -> list[Finding]:

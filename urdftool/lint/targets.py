@@ -462,7 +462,7 @@ def _resolved_spec(path: Path, spec: str, data: bytes, resolver: PackageResolver
             return None
     if "$" in spec or "\0" in spec:
         return None
-    return resolved_path(path.parent / spec), defaults
+    return resolved_path(resolver.locate(path.parent / spec).path), defaults  # as xacro finds it
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
@@ -297,7 +297,9 @@ def _load_meshes(robot):
 def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
-            yield shape, f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            # a problem that may not hold after the package's build: a warning saying so
+            yield shape, (message if outcome.certain else Conditional(message))
 
 
 @rule("U407", "mesh-package-not-found", Severity.ERROR)
@@ -315,6 +317,12 @@ def mesh_not_found(robot):
     """A mesh file does not exist.
 
     Every viewer and simulator fails or shows nothing for that link.
+
+    ``package://NAME/...`` names the installed ``share/NAME``: a file missing from the source
+    folder is looked for where the package's build (CMakeLists.txt ``install()``, setup.py or
+    setup.cfg ``data_files``) installs it from. When those install rules cannot be read (a
+    variable set in a loop, ``data_files`` built by walking folders), a file not found is a
+    warning saying so, not an error (docs/packages.md).
 
     Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
     Good: the exact file name (case matters on Linux)

@@ -74,6 +74,10 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
       build asks for (ROS 1 robots often read ``$(arg name)`` undeclared, given by the
       command line). ``--arg name=VALUE`` checks a build of your choice.
 
+    An included file missing from the source tree below a package (``$(find NAME)/...``) is
+    looked for where the package's build installs it from (docs/packages.md); when that
+    package's install rules cannot be read, it may exist after the build: a warning saying so.
+
     Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
     """)
