@@ -2,10 +2,14 @@
 
     python benchmarks/same_findings.py record FOLDER   # before the change
     python benchmarks/same_findings.py compare FOLDER  # after it: exit 1 on any difference
+    python benchmarks/same_findings.py record FOLDER meshes300  # those cases only
 
-Each case is ``urdftool check --format json --no-cache --jobs 1`` (every rule on) over: the
+Each case is ``urdftool check --format json --no-cache --jobs 1 --timeout 0`` (every rule on,
+no time budget: slow code before a change must finish too) over: the
 corpus URDFs (../shared/corpus or URDFTOOL_CORPUS), robots/, and synthetic robots of
-benchmarks/generate.py (a 1,000-link chain and star, a 10,000-link star). Speed work must not
+benchmarks/generate.py (a 1,000-link chain and star, a 10,000-link star, the robot of
+meshes of 300 links, 150 of them one rigid body: before the bodies were measured once, more
+links took minutes and gigabytes). Speed work must not
 change one byte of what a check finds.
 """
 
@@ -20,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))
 CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
-SYNTHETIC = [(1000, "chain"), (1000, "star"), (10000, "star")]
+SYNTHETIC = [(1000, "chain"), (1000, "star"), (10000, "star"), (300, "meshes")]
 
 
 def cases(folder: Path) -> dict[str, list[str]]:
@@ -39,7 +43,7 @@ def cases(folder: Path) -> dict[str, list[str]]:
 
 def run(paths: list[str]) -> bytes:
     command = [str(Path(sys.executable).parent / "urdftool"), "check", "--format", "json",
-               "--no-cache", "--jobs", "1", *paths]
+               "--no-cache", "--jobs", "1", "--timeout", "0", *paths]
     done = subprocess.run(command, capture_output=True, cwd=ROOT)
     return done.stdout + b"\n--- stderr ---\n" + done.stderr + \
         f"\n--- exit {done.returncode} ---\n".encode()
@@ -51,7 +55,10 @@ def main() -> int:
     differ = 0
     robots = folder / "robots"  # the same paths in both runs' findings
     robots.mkdir(exist_ok=True)
+    chosen = sys.argv[3:]
     for name, paths in cases(robots).items():
+        if chosen and name not in chosen:
+            continue
         out = run(paths)
         kept = folder / f"{name}.out"
         if verb == "record":

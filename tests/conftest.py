@@ -144,6 +144,31 @@ def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
     return module.write(folder, links, shape)
 
 
+def rigid_body_robot(links: int, mesh: str = "") -> str:
+    """The URDF text of ``links`` links fixed together (one rigid body: each fixed to the base
+    or to the link before, turned and offset its own way), each with a box, cylinder or
+    sphere (or ``mesh``), and one more link on a revolute joint, not part of the body."""
+    import random
+
+    rng = random.Random(links)
+    shapes = ['<box size="0.1 0.2 0.05"/>', '<cylinder radius="0.03" length="0.2"/>',
+              '<sphere radius="0.04"/>', mesh or '<box size="0.02 0.02 0.3"/>']
+    parts = ['<robot name="b">']
+    for i in range(links + 1):
+        rpy = " ".join(f"{rng.uniform(-3, 3):.3f}" for _ in range(3))
+        xyz = " ".join(f"{rng.uniform(-1, 1):.3f}" for _ in range(3))
+        parts.append(f'<link name="l{i}"><visual><origin xyz="{xyz}" rpy="{rpy}"/><geometry>'
+                     f'{shapes[i % 4]}</geometry></visual></link>')
+        if i:  # fixed to the base or to the link before, turned: a tree of fixed joints
+            parent = 0 if i % 3 else i - 1
+            kind = "revolute" if i == links else "fixed"
+            parts.append(f'<joint name="j{i}" type="{kind}"><parent link="l{parent}"/>'
+                         f'<child link="l{i}"/><origin xyz="{xyz}" rpy="{rpy}"/>'
+                         '<axis xyz="0 0 1"/><limit lower="0" upper="1" effort="1" '
+                         'velocity="1"/></joint>')
+    return "".join(parts) + "</robot>"
+
+
 # ---- urdfdom's check_urdf (shipped in the pin wheel), the reference parser -----------------
 
 CHECK_URDF = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or \

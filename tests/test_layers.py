@@ -62,8 +62,10 @@ def test_each_contract_can_fail(tmp_path):
                      "urdftool.stray",  # exhaustive: every top-level module has a layer
                      "urdftool.kinematics.fk -> rich", "urdftool.report.json_output -> typer",
                      "No cycles are allowed in urdftool.description.\nIt could be made acyclic "
-                     "by removing 1 dependency:\n\n- .xml -> .load"):
+                     "by removing"):
         assert expected in report, expected
+    cycles = report.split("No cycles are allowed in urdftool.description.")[1].split("\n\n\n")[0]
+    assert "- .xml -> .load" in cycles.split("No cycles are allowed in")[0], cycles
     assert done.stdout.count(" BROKEN") == len(CONTRACTS["contracts"])
 
 

@@ -30,13 +30,17 @@ class LoadError(UrdftoolError):
         (named by ``subject``), 'sandbox', 'outside' or 'link'
     message: what went wrong, for people
     location: the :class:`~urdftool.diagnostics.Location` of the problem
+    certain: False when it may not hold after a package's build (an included file missing from
+        the source tree whose package's install rules could not be read)
     """
 
-    def __init__(self, kind: str, message: str, location, subject: str | None = None):
+    def __init__(self, kind: str, message: str, location, subject: str | None = None,
+                 certain: bool = True):
         self.kind = kind
         self.message = message
         self.location = location
         self.subject = subject
+        self.certain = certain
         super().__init__(message)
 
 
@@ -134,10 +138,13 @@ class MeshProblem(LocatedError):
     kind: ``package`` (unknown package), ``outside`` (escapes the root), ``missing``,
     ``format`` (not a mesh extension), ``too-large`` (bytes or triangles), ``corrupt``
     message: what a user should read, naming the file and the fix
+    certain: False when the problem may not hold after the package's build (a file missing
+    from the source tree whose package's install rules could not be read)
     """
 
     kind: str
     message: str
+    certain: bool = True
 
     def __str__(self) -> str:
         return self.message

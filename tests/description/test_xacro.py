@@ -29,3 +29,84 @@ def test_attributes_keep_their_order_values_and_namespaces_after_expansion(tmp_p
     assert list(box.attrib.items()) == [("size", "0.5 1 ${x}"),
                                         ("{http://gazebosim.org/schema}kind", "plain")]
     assert robot.locate(box).line == 3
+
+
+def _package(folder, build_tool):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "package.xml").write_text(
+        f'<package format="2"><name>{folder.name}</name><version>1.0.0</version>'
+        f'<buildtool_depend>{build_tool}</buildtool_depend></package>')
+    return folder
+
+
+_ROS1_ROBOT = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <property name="w" value="0.5"/>
+  <include filename="$(find arm)/urdf/parts.xacro"/>
+  <macro name="box_link" params="name">
+    <link name="${name}"><visual><geometry><box size="${w} 1 1"/></geometry></visual></link>
+  </macro>
+  <if value="true"><box_link name="base"/></if>
+  <unless value="true"><link name="never"/></unless>
+  <part parent="base"/>
+  <gazebo><include><uri>model://sun</uri></include></gazebo>
+</robot>
+"""
+_ROS1_PARTS = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <macro name="part" params="parent">
+    <link name="tool"/>
+    <joint name="j" type="fixed"><parent link="${parent}"/><child link="tool"/></joint>
+  </macro>
+</robot>
+"""
+
+
+def test_a_catkin_package_is_expanded_as_ros1_xacro_read_unprefixed_tags(tmp_path):
+    # ROS 1's xacro up to Melodic (1.13) read include, property, macro, arg, if, unless and
+    # insert_block, and macro calls, without the xacro: prefix; Noetic's and ROS 2's do not.
+    arm = _package(tmp_path / "arm", "catkin")
+    (arm / "urdf").mkdir()
+    (arm / "urdf" / "parts.xacro").write_text(_ROS1_PARTS)
+    (arm / "urdf" / "r.urdf.xacro").write_text(_ROS1_ROBOT)
+    robot = load(arm / "urdf" / "r.urdf.xacro")
+    assert [link.get("name") for link in robot.root.iter("link")] == ["base", "tool"]
+    assert robot.root.find("link/visual/geometry/box").get("size") == "0.5 1 1"
+    # Gazebo's <include> holds an element: never xacro's (ROS 1's is_include)
+    assert robot.root.find("gazebo/include/uri").text == "model://sun"
+    warned = [(note.location.file, note.location.line, note.message) for note in robot.notes
+              if note.kind == "xacro-warning"]
+    assert [(file.rsplit("/", 1)[-1], line) for file, line, _ in warned] == [
+        ("r.urdf.xacro", 2), ("parts.xacro", 2)]
+    assert "<property> without the xacro: prefix (and 6 more in this file)" in warned[0][2]
+    assert "Noetic (1.14)" in warned[0][2]
+
+
+@pytest.mark.parametrize("build_tool", ["ament_cmake", None])
+def test_other_packages_are_expanded_as_ros2_xacro_reads_them(tmp_path, build_tool):
+    arm = _package(tmp_path / "arm", build_tool) if build_tool else tmp_path / "arm"
+    (arm / "urdf").mkdir(parents=True)
+    (arm / "urdf" / "r.urdf.xacro").write_text(
+        '<robot name="r"><property name="w" value="1"/><include filename="parts.xacro"/>'
+        '<link name="base"/></robot>')
+    robot = load(arm / "urdf" / "r.urdf.xacro")
+    assert robot.root.find("include") is not None  # ROS 2's xacro leaves such tags as they are
+    assert robot.root.find("property") is not None
+    assert not [note for note in robot.notes if note.kind == "xacro-warning"]
+
+
+def test_a_macro_used_before_its_definition_is_told_where_it_is_defined(tmp_path):
+    # xacro up to Lunar read every definition first (legacy order); since Melodic it expands
+    # in document order, and the use fails as an unknown macro
+    from urdftool.errors import LoadError
+
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:part/>\n'
+        '  <xacro:macro name="part">\n'
+        '    <link name="base"/>\n'
+        '  </xacro:macro>\n'
+        '</robot>\n')
+    with pytest.raises(LoadError) as raised:
+        load(tmp_path / "r.urdf.xacro")
+    assert raised.value.location.line == 2
+    assert "it is defined further on (its body begins at " in str(raised.value)
+    assert "r.urdf.xacro:4)" in str(raised.value) and "--legacy" in str(raised.value)

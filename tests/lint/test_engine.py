@@ -146,6 +146,14 @@ def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_pat
     assert note.severity == Severity.INFO and "load_m5.launch builds it (model:=m5)" in note.message
     given = load_and_check(robot, CheckOptions(xacro_args={"model": "m10"}))
     assert "m10_base" in given.robot.links and not [f for f in given.findings if f.code == "U005"]
-    (tmp_path / "arm/launch/load_m5.launch").unlink()  # load_arm.launch alone gives no model
+    (tmp_path / "arm/launch/load_m5.launch").unlink()  # load_arm.launch gives it only at launch
+    failed = load_and_check(robot, CheckOptions())
+    assert failed.robot is None and [f.severity for f in failed.findings] == [Severity.INFO]
+    assert "load_arm.launch gives it a value known only at launch" in failed.findings[0].message
+    # a launch file building the robot, unconditionally, without the argument: xacro fails there
+    (tmp_path / "arm/launch/load_arm.launch").write_text("""<launch>
+  <param name="robot_description" command="xacro $(find arm)/urdf/arm.urdf.xacro"/>
+</launch>""")
     failed = load_and_check(robot, CheckOptions())
     assert failed.robot is None and [f.severity for f in failed.findings] == [Severity.ERROR]
+    assert "load_arm.launch:2 builds this robot without it" in failed.findings[0].message

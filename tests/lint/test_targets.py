@@ -460,3 +460,112 @@ def test_a_part_included_only_by_a_library_nobody_includes_is_skipped_named_or_w
         '<xacro:include filename="a200.urdf.xacro"/><xacro:a200/></robot>')
     result = run_cli("check", tmp_path / "wheel.urdf.xacro", "--format", "json")
     assert '"files": 1' in result.stdout and "robot.urdf.xacro" in result.stderr
+
+
+def _walked_and_named(tmp_path, *named):
+    """expand() of the folder walked and of ``named`` files (as pre-commit names them)."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    return (expand([str(tmp_path)], CheckRequest()),
+            expand([str(tmp_path / name) for name in named], CheckRequest()))
+
+
+def test_an_empty_robot_is_a_placeholder_walked_or_named(tmp_path):
+    # Clearpath's empty.urdf (husky, jackal, dingo, ridgeback, warthog, spot): the file an
+    # $(optenv X_URDF_EXTRAS empty.urdf) include takes by default; alone U011 and U106
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "empty.urdf").write_text("<robot>\n  <!-- a placeholder -->\n</robot>\n")
+    (tmp_path / "nothing.urdf").write_text('<robot name="empty"/>')
+    walked, named = _walked_and_named(tmp_path, "empty.urdf", "nothing.urdf")
+    assert walked.files == [] and named.files == []
+    assert "empty <robot>" in walked.skipped[str(tmp_path / "empty.urdf")]
+    assert all("empty <robot>" in note for note in named.notes)
+
+
+def test_an_accessory_with_no_root_of_its_own_is_a_part_walked_or_named(tmp_path):
+    # jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS ...): joints on the
+    # 'front_mount' of the jackal including it; alone U011, U106 and a U105 per joint end
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "custom_example.urdf").write_text(
+        '<robot><joint name="j" type="fixed"><parent link="front_mount"/><child link="cam"/>'
+        '</joint><link name="cam"/></robot>')
+    # a robot whose joint names a misspelt parent keeps its root: checked (U105 says it)
+    (tmp_path / "robot.urdf").write_text(
+        '<robot name="r"><link name="base"/><link name="cam"/><joint name="j" type="fixed">'
+        '<parent link="bsae"/><child link="cam"/></joint></robot>')
+    walked, named = _walked_and_named(tmp_path, "custom_example.urdf", "robot.urdf")
+    assert walked.files == [str(tmp_path / "robot.urdf")]
+    assert named.files == [str(tmp_path / "robot.urdf")]
+    assert "no root link" in walked.skipped[str(tmp_path / "custom_example.urdf")]
+
+
+def test_an_include_through_an_optenv_default_or_an_argument_default_is_an_include(tmp_path):
+    # jackal.urdf.xacro: <xacro:include filename="$(optenv JACKAL_URDF_EXTRAS extras.urdf)"/>;
+    # husky.urdf.xacro: the same default given to an argument, included as $(arg urdf_extras);
+    # ros-naoqi's nao_robot_v4.urdf.xacro: pre-2019 <include> without the xacro: prefix;
+    # a commented include is none (cob_common's ur10_arm.urdf.xacro named a missing package
+    # only there, and was checked as a robot when named: U011, U106)
+    (tmp_path / ".git").mkdir()
+    part = ('<robot><link name="{n}"/><joint name="{n}_j" type="fixed"><parent link="base"/>'
+            '<child link="{n}"/></joint></robot>')
+    for name in ("extras", "more", "old"):
+        (tmp_path / f"{name}.xacro").write_text(part.format(n=name))
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/>'
+        '<xacro:arg name="more" default="$(optenv MORE more.xacro)"/>'
+        '<xacro:include filename="$(optenv EXTRAS extras.xacro)"/>'
+        '<xacro:include filename="$(arg more)"/><include filename="old.xacro"/></robot>')
+    (tmp_path / "library.urdf.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<!-- <xacro:include filename="$(find nowhere_description)/urdf/arm.xacro"/> -->'
+        '<xacro:macro name="arm"><link name="a"/></xacro:macro></robot>')
+    walked, named = _walked_and_named(tmp_path, "extras.xacro", "more.xacro", "old.xacro",
+                                      "library.urdf.xacro")
+    assert walked.files == named.files == [str(tmp_path / "robot.urdf.xacro")]
+    assert "macro library" in walked.skipped[str(tmp_path / "library.urdf.xacro")]
+
+
+def test_a_xacro_part_with_no_root_of_its_own_is_a_part_and_world_is_no_link(tmp_path):
+    # articubot_one's depth_camera.xacro (its include commented out, so nobody includes it):
+    # joints on the 'chassis' of a robot defined elsewhere; a robot fixed to Gazebo's 'world'
+    # is a robot, and so is one whose root a macro call writes
+    (tmp_path / ".git").mkdir()
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "depth_camera.xacro").write_text(
+        f'<robot {ns}><joint name="j" type="fixed"><parent link="chassis"/>'
+        '<child link="camera_link"/></joint><link name="camera_link"/></robot>')
+    (tmp_path / "arm.urdf.xacro").write_text(
+        f'<robot name="arm" {ns}><joint name="j" type="fixed"><parent link="world"/>'
+        '<child link="base"/></joint><link name="base"/></robot>')
+    (tmp_path / "rover.urdf.xacro").write_text(
+        f'<robot name="rover" {ns}><xacro:macro name="body"><link name="chassis"/></xacro:macro>'
+        '<xacro:body/><joint name="j" type="fixed"><parent link="chassis"/>'
+        '<child link="mast"/></joint><link name="mast"/></robot>')
+    walked, named = _walked_and_named(tmp_path, "depth_camera.xacro", "arm.urdf.xacro",
+                                      "rover.urdf.xacro")
+    robots = [str(tmp_path / "arm.urdf.xacro"), str(tmp_path / "rover.urdf.xacro")]
+    assert walked.files == named.files == robots
+    assert "no root link" in walked.skipped[str(tmp_path / "depth_camera.xacro")]
+
+
+def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_path):
+    # osrf/vrx: wamv_gazebo.urdf.xacro calls <xacro:wamv_gazebo thruster_layout="$(find
+    # wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>, whose macro includes
+    # "${thruster_layout}"; the layout (and the engine.xacro it includes) are parts of that
+    # robot, not robots checked on their own (U005: 'namespace' is the robot's property)
+    (tmp_path / ".git").mkdir()
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "layout.xacro").write_text(
+        f'<robot {ns}><link name="${{namespace}}/engine"/><joint name="e" type="fixed">'
+        '<parent link="${namespace}/base"/><child link="${namespace}/engine"/></joint></robot>')
+    (tmp_path / "macros.xacro").write_text(
+        f'<robot {ns}><xacro:macro name="boat" params="layout">'
+        '<xacro:include filename="${layout}"/></xacro:macro></robot>')
+    (tmp_path / "boat.urdf.xacro").write_text(
+        f'<robot name="boat" {ns}><xacro:property name="namespace" value="wamv"/>'
+        '<link name="wamv/base"/><xacro:include filename="macros.xacro"/>'
+        '<xacro:boat layout="layout.xacro"/></robot>')
+    walked, named = _walked_and_named(tmp_path, "layout.xacro")
+    assert walked.files == named.files == [str(tmp_path / "boat.urdf.xacro")]
+    assert "included by" in walked.skipped[str(tmp_path / "layout.xacro")]

@@ -236,3 +236,28 @@ def test_inertia_write_xacro_is_a_diff_of_the_macro_file(run_cli, tmp_path):
     patch = out.read_text()
     assert patch.splitlines()[0].endswith("r/arm.xacro")
     assert '-        <inertia ixx="1666.7"' in patch and 'ixx="0.00166667"' in patch
+
+
+def test_inertia_of_many_links_without_inertial_reads_the_robot_once(tmp_path, monkeypatch):
+    """Whether a link is a moving body without mass is decided from what is read of the robot
+    once (its joints, whether it declares any inertial, each body's mass), not by a walk of
+    every joint and link for each link (quadratic: a generated robot of 10,000 links)."""
+    from conftest import load_text
+    from urdftool.physics.inertia_compare import compare
+
+    links = "".join(f'<link name="l{i}"/>' for i in range(1, 200))
+    joints = "".join(f'<joint name="j{i}" type="{"fixed" if i % 2 else "revolute"}">'
+                     f'<parent link="l{i - 1}"/><child link="l{i}"/><axis xyz="0 0 1"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+                     for i in range(1, 200))
+    robot = load_text(tmp_path, '<robot name="r"><link name="l0"><inertial><mass value="1"/>'
+                                '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+                                f'</inertial></link>{links}{joints}</robot>')
+    asked = []
+    children = type(robot).children
+    monkeypatch.setattr(type(robot), "children",
+                        lambda self, tag: asked.append(tag) or children(self, tag))
+    found = {result.link: result for result in compare(robot)}
+    assert len(asked) < 10
+    assert any("moved by joint 'j2'" in note for note in found["l2"].notes)  # l2, l3: no mass
+    assert not any("moved by joint" in note for note in found["l1"].notes)  # fixed to l0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from conftest import rigid_body_robot
 from urdftool.description.load import load
 from urdftool.physics.solids import rigid_bounds
 
@@ -218,3 +219,42 @@ def test_a_solid_measures_its_extent_once(tmp_path):
     assert solid.extent == max(hx - lx, hy - ly, hz - lz) == pytest.approx(0.3)
     solid.bounds = ((0.0, 0.0, 0.0), (9.0, 9.0, 9.0))  # kept: not measured again
     assert solid.extent == pytest.approx(0.3)
+
+
+def test_a_large_rigid_body_gives_each_member_the_box_its_own_walk_gives(tmp_path,
+                                                                         monkeypatch):
+    """A body of more than GROUP_DIRECT links is measured once in its root's frame; each
+    member's box is what gathering the body from the member's own frame gives (the way every
+    smaller body is measured), to rounding."""
+    from urdftool.physics import solids
+
+    text = rigid_body_robot(40)
+    measured = _robot(tmp_path, text)
+    assert len(solids._bodies(measured)["l5"][1]) == 40 > solids.GROUP_DIRECT
+    (tmp_path / "walked").mkdir()
+    walked = _robot(tmp_path / "walked", text)
+    for name in [f"l{i}" for i in range(41)]:
+        mine = rigid_bounds(measured, measured.links[name])
+        monkeypatch.setattr(solids, "GROUP_DIRECT", 10 ** 6)
+        theirs = rigid_bounds(walked, walked.links[name])  # every body walked from each member
+        monkeypatch.undo()
+        assert mine.links == theirs.links and mine.complete == theirs.complete
+        assert mine.bounds[0] == pytest.approx(theirs.bounds[0], abs=1e-12)
+        assert mine.bounds[1] == pytest.approx(theirs.bounds[1], abs=1e-12)
+
+
+def test_the_members_of_a_rigid_body_cost_each_a_constant(tmp_path, monkeypatch):
+    """Asking the box and the reach of every member of a body of n links composes O(n)
+    frames, not n per member (a body of 10,000 fixed links took hours)."""
+    from urdftool.physics import solids
+    from urdftool.physics.support import link_reach
+
+    robot = _robot(tmp_path, rigid_body_robot(300))
+    calls = []
+    multiply = solids.mat3.multiply
+    monkeypatch.setattr(solids.mat3, "multiply", lambda *a: calls.append(1) or multiply(*a))
+    for i in range(300):
+        link = robot.links[f"l{i}"]
+        assert rigid_bounds(robot, link).bounds is not None
+        assert link_reach(robot, link, rigid=True).pieces
+    assert len(calls) < 3 * 300

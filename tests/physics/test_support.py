@@ -124,7 +124,8 @@ def test_a_mesh_piece_keeps_only_its_hull_vertices_and_answers_the_same():
     keeps only those (U312 asks 134 directions per link of every reach holding the mesh)."""
     import numpy as np
 
-    from urdftool.physics.support import Piece, _extreme_points
+    from urdftool.description.mesh_arrays import extreme_points as _extreme_points
+    from urdftool.physics.support import Piece
 
     rng = np.random.default_rng(3)
     cloud = rng.normal(size=(5000, 3))
@@ -138,3 +139,87 @@ def test_a_mesh_piece_keeps_only_its_hull_vertices_and_answers_the_same():
         assert hull.farthest(tuple(p)) == whole.farthest(tuple(p))
     flat = np.c_[rng.normal(size=(200, 2)), np.zeros(200)]  # qhull refuses: all kept
     assert len(_extreme_points(flat)) == 200
+
+
+def _pieces(tmp_path, mesh: bool):
+    """A link's reach of a turned box, cylinder and sphere (and an open mesh)."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "open.stl").write_bytes(_sphere_stl(0.05, 16, 24, open_top=True))
+    extra = ('<visual><origin xyz="0.1 0.2 -0.1" rpy="1 0.5 0.2"/><geometry><mesh '
+             'filename="open.stl" scale="1 2 0.5"/></geometry></visual>') if mesh else ""
+    parts = "".join(f'<collision><origin xyz="{0.1 * i} {-0.05 * i} {0.02 * i}" '
+                    f'rpy="{0.3 * i} {-0.7 + i} {1.1 * i}"/><geometry>{shape}</geometry>'
+                    '</collision>' for i, shape in enumerate(SHAPES.values()))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="a">{parts}{extra}</link></robot>')
+    return link_reach(robot, robot.links["a"])
+
+
+@pytest.mark.parametrize("mesh", [False, True])
+def test_the_table_answers_as_the_pieces_do(tmp_path, mesh):
+    """_Table (every piece as arrays, every direction at once) against each Piece's own
+    closed form: support, farthest point, holds, and outside (by the pieces, direction by
+    direction, as Reach.outside asked before)."""
+    from urdftool.physics.support import _Table
+
+    reach = _pieces(tmp_path, mesh)
+    table = _Table(reach.pieces)
+    rng = np.random.default_rng(5)
+    directions = rng.normal(size=(3, 40))
+    np.testing.assert_allclose(table.support(directions),
+                               [reach.support(tuple(d)) for d in directions.T], atol=1e-12)
+    for p in rng.normal(size=(60, 3)) * 0.2:
+        p = tuple(p)
+        assert table.farthest(p) == pytest.approx(reach.farthest(p), abs=1e-12)
+        assert table.holds(np.asarray(p)) == any(piece.holds(p) for piece in reach.pieces)
+        if any(piece.holds(p) for piece in reach.pieces):
+            expected = 0.0
+        else:
+            centre = [(reach.support(a) - reach.support(tuple(-v for v in a))) / 2
+                      for a in np.eye(3)]
+            towards = np.asarray(p) - centre
+            extra = (tuple(towards / np.linalg.norm(towards)),)
+            expected = max(float(np.dot(d, p)) - reach.support(d) for d in DIRECTIONS + extra)
+        assert table.outside(p) == pytest.approx(expected, abs=1e-12)
+        assert reach.outside(p) == pytest.approx(expected, abs=1e-12)
+
+
+def test_a_large_rigid_body_seen_from_a_member_reaches_as_its_own_walk(tmp_path, monkeypatch):
+    """The reach of a member of a body of more than GROUP_DIRECT links (placed once in the
+    root's frame, questions turned into it) against the member's own walk of the body."""
+    from benchmarks.generate import _sphere_stl
+    from conftest import rigid_body_robot
+    from urdftool.physics import solids
+
+    (tmp_path / "open.stl").write_bytes(_sphere_stl(0.05, 8, 12, open_top=True))
+    text = rigid_body_robot(30, mesh='<mesh filename="open.stl" scale="1 0.5 2"/>')
+    robot = load_text(tmp_path, text)
+    monkeypatch.setattr(solids, "GROUP_DIRECT", 10 ** 6)
+    (tmp_path / "w").mkdir()
+    (tmp_path / "w" / "open.stl").write_bytes((tmp_path / "open.stl").read_bytes())
+    walked = load_text(tmp_path / "w", text)
+    expected = {name: link_reach(walked, walked.links[name], rigid=True)
+                for name in ("l0", "l7", "l29")}
+    monkeypatch.undo()
+    rng = np.random.default_rng(2)
+    for name, theirs in expected.items():
+        mine = link_reach(robot, robot.links[name], rigid=True)
+        assert type(mine).__name__ == "_Body" and mine.links == theirs.links
+        assert mine.complete and theirs.complete
+        for d in rng.normal(size=(20, 3)):
+            assert mine.support(tuple(d)) == pytest.approx(theirs.support(tuple(d)), abs=1e-9)
+        for p in rng.normal(size=(20, 3)) * 3:
+            p = tuple(p)
+            assert mine.farthest(p) == pytest.approx(theirs.farthest(p), abs=1e-9)
+            assert mine.outside(p) == pytest.approx(theirs.outside(p), abs=1e-9)
+        assert mine.lowest() == pytest.approx(theirs.lowest(), abs=1e-9)
+
+
+def test_a_link_nothing_is_fixed_to_has_one_reach_for_its_body_and_itself(tmp_path):
+    """Its rigid body is itself: the reach (and its table of every direction) is built once,
+    not once per question."""
+    _pieces(tmp_path, mesh=True)  # writes robot.urdf: link 'a', alone
+    robot = load_text(tmp_path, (tmp_path / "robot.urdf").read_text())
+    link = robot.links["a"]
+    assert link_reach(robot, link, rigid=True) is link_reach(robot, link)
+    assert link_reach(robot, link).links == ["a"]

@@ -248,9 +248,11 @@ class Start:
 
 @dataclass(frozen=True)
 class Description:
-    """A robot (or semantic) description made from a file: ``command`` a xacro command line
-    (the file and its ``name:=value`` arguments are read from it once resolved), or ``file``
-    read as it is, with ``args`` given apart (xacro.process_file's mappings)."""
+    """A robot (or semantic) description made from a file: ``command`` a command line (xacro's,
+    or ``cat``; the file and its ``name:=value`` arguments are read from it once resolved), or
+    ``file`` with ``args`` given apart: run through xacro when ``xacro`` (xacro.process_file's
+    mappings, MoveItConfigsBuilder), else read as it is (``textfile=``, Python's ``open``).
+    ``complete``: every argument given is in ``args`` (False when a mapping was not read)."""
 
     command: Value | None = None
     file: Value | None = None
@@ -258,6 +260,8 @@ class Description:
     when: tuple = ()
     line: int | None = None
     parameter: str = ""  # the parameter it is loaded into, as written ("" when not said)
+    xacro: bool = False  # for ``file``: run through xacro
+    complete: bool = True
 
 
 @dataclass

@@ -31,10 +31,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path
-from urdftool.description.launch import (Arg, Condition, Description, Include, LaunchFile, ParamFile,
+from urdftool.description.launch import (MAX_TEXT, Arg, Condition, Description, Include, LaunchFile, ParamFile,
                                          Start, Value, is_launch_file, read_launch_text)
 from urdftool.description.launch_python import read_python_launch
-from urdftool.description.packages import SKIP_DIRS, containment_root, packages_below
+from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
+    packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -56,6 +57,10 @@ class Resolved:
 
     text: str | None
     free: frozenset = frozenset()
+    pattern: str | None = None  # the text with WILD where a value given at launch goes; None: text
+
+
+WILD = "\1"  # in a pattern: any value a launch argument may be given
 
 
 @dataclass
@@ -73,10 +78,11 @@ class Scope:
 def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
     if value is None:
         return Resolved(None)
-    text, free = [], set()
+    text, free, pattern = [], set(), []
     for part in value.parts:
         if isinstance(part, str):
             text.append(part)
+            pattern.append(part)
             continue
         kind = part[0]
         if kind == "arg":
@@ -86,9 +92,10 @@ def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
             if bound is None:
                 return Resolved(None, frozenset(free | {part[1]}))
             free |= bound.free
-            if bound.text is None:
+            if bound.text is None and WILD not in (bound.pattern or ""):
                 return Resolved(None, frozenset(free))
-            text.append(bound.text)
+            text.append(bound.text)  # None: a value only given at launch; the pattern goes on
+            pattern.append(bound.text if bound.pattern is None else bound.pattern)
         elif kind == "find":
             folder = scope.packages.get(part[1])
             if folder is None:
@@ -106,9 +113,15 @@ def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
             text.append(str(scope.launch.path.parent))
         else:  # command, unknown
             return Resolved(None, frozenset(free | value.names()))
-        if sum(len(t) for t in text) > 16 * 1024:
+        if kind != "arg":
+            pattern.append(text[-1])
+        if max(sum(len(t) for t in text if t is not None), sum(len(t) for t in pattern)) > MAX_TEXT:
             return Resolved(None, frozenset(free))
-    return Resolved("".join(text), frozenset(free))
+    patterned = "".join(pattern)
+    if None in text:
+        return Resolved(None, frozenset(free), patterned)
+    joined = "".join(text)
+    return Resolved(joined, frozenset(free), patterned if patterned != joined else None)
 
 
 def shown(resolved: Resolved) -> str | None:
@@ -121,8 +134,9 @@ def shown(resolved: Resolved) -> str | None:
 
 def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
     """The file a path value names, inside the repository: ``$(find pkg)/rest`` is
-    ``pkg/rest`` in the package's source folder, or the one file below the package whose path
-    ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
+    ``pkg/rest`` in the package's source folder, or where the package's install rules take
+    ``share/pkg/rest`` from (:func:`~urdftool.description.packages.installed`), or the one
+    file below the package whose path ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
     x.yaml``); an absolute path only inside the repository; None otherwise."""
     resolved = resolve(value, scope)
     text = resolved.text
@@ -133,7 +147,8 @@ def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
         if "\0" in rest:
             return None, resolved
         folder = scope.packages.get(package)
-        return (_in_package(folder, rest.strip("/"), scope.root) if folder else None), resolved
+        return (_in_package(package, folder, rest.strip("/"), scope.root) if folder else None), \
+            resolved
     path = Path(text)
     if not path.is_absolute():
         path = scope.launch.path.parent / path
@@ -145,11 +160,11 @@ def _regular_inside(path: Path, root: Path) -> bool:
     return kind_of(path) == "file" and inside(path, root)
 
 
-def _in_package(folder: Path, rest: str, root: Path) -> Path | None:
+def _in_package(name: str, folder: Path, rest: str, root: Path) -> Path | None:
     if not rest or ".." in Path(rest).parts:
         return None
-    direct = folder / rest
-    if _regular_inside(direct, root):
+    direct = installed(name, folder, folder / rest).path
+    if _regular_inside(direct, root):  # where the package's install rules put it
         return direct
     tail = "/" + rest
     matches = [p for p in _package_files(folder) if ("/" + p.relative_to(folder).as_posix()).endswith(tail)]
@@ -315,6 +330,10 @@ class Described:
     when: When
     launch: str
     line: int | None
+    xacro: bool = True  # run through xacro (else read as it is: textfile=, cat, open)
+    complete: bool = True  # every argument given is in args
+    template: str | None = None  # the path, WILD where a launch argument chooses it
+    chosen_by: frozenset = frozenset()  # the launch arguments the path depends on
 
 
 @dataclass
@@ -440,14 +459,14 @@ def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> Non
         return
     value = resolve(action.default, scope) if action.default is not None else Resolved(None)
     if not action.fixed and free:
-        value = Resolved(value.text, value.free | {action.name})
+        value = Resolved(value.text, value.free | {action.name}, WILD)
     if not when.certain:
         if when.truth is None:
             value = Resolved(None, value.free | when.free)
         elif action.name in scope.args and not action.fixed:
             return
         else:
-            value = Resolved(value.text, value.free | when.free)
+            value = Resolved(value.text, value.free | when.free, value.pattern)
     scope.args[action.name] = value
 
 
@@ -485,11 +504,13 @@ def _describes(parameter: str) -> bool:
 
 def _described(action: Description, scope: Scope, when: When, launch: LaunchFile) -> Described:
     args: dict = {}
-    path, written = None, ""
+    path, written, template, through, complete = None, "", None, action.xacro, action.complete
+    chosen_by: frozenset = frozenset()
     if action.command is not None:
         command = action.command
         if len(command.parts) == 1 and isinstance(command.parts[0], tuple) and command.parts[0][0] == "command":
             command = command.parts[0][1]
+        through, program = False, True
         for word in words(command):
             text = word.literal
             head = word.parts[0] if word.parts and isinstance(word.parts[0], str) else ""
@@ -498,19 +519,47 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
                 tail = Value(((rest,) if rest else ()) + word.parts[1:], word.text)
                 args[name] = resolve(tail, scope)
                 continue
-            if text is not None and (text.endswith(("xacro", "xacro.py")) or text.startswith("-")):
+            if text is not None and text.startswith("-"):
                 continue
             candidate, resolved = resolve_path(word, scope)
+            if path is None and _program(resolved.text or word.text) in ("xacro", "xacro.py"):
+                through = True
+                continue
             shown_text = shown(resolved) or word.text
-            if path is None and shown_text.endswith(DESCRIPTION_SUFFIXES):
-                path, written = candidate, shown_text
+            if path is None and (shown_text.endswith(DESCRIPTION_SUFFIXES)
+                                 or (resolved.pattern or "").endswith(DESCRIPTION_SUFFIXES)):
+                path, written, template = candidate, shown_text, _template(resolved)
+                chosen_by, program = resolved.free, False
+            elif resolved.text is not None and ":=" in resolved.text:
+                # roslaunch substitutes, then splits: $(arg xacro_args) may be "a:=1 b:=2"
+                for piece in resolved.text.split():
+                    name, given, value = piece.partition(":=")
+                    if given:
+                        args[name] = Resolved(value, resolved.free)
+                    else:
+                        complete = False
+            elif not program:
+                complete = False  # a word not read may give arguments
     elif action.file is not None:
         path, resolved = resolve_path(action.file, scope)
         written = shown(resolved) or action.file.text
+        template, chosen_by = _template(resolved), resolved.free
         for name, value in action.args:
             args[name] = resolve(value, scope)
-    return Described(path, written, args, when, launch.display, action.line)
+    return Described(path, written, args, when, launch.display, action.line, through, complete,
+                     template, chosen_by)
 
 
-__all__ = ["Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+def _program(text: str | None) -> str:
+    """The name of the program a command line's word runs (``$(find xacro)/xacro``: xacro)."""
+    return (text or "").strip("'\"").rstrip("/").rsplit("/", 1)[-1].rsplit("\0", 1)[-1]
+
+
+def _template(resolved: Resolved) -> str | None:
+    """The path a description is made from, with :data:`WILD` where a launch argument's value
+    goes, when a launch argument chooses it (``talos_$(arg robot).urdf.xacro``); else None."""
+    return resolved.pattern if resolved.pattern is not None and WILD in resolved.pattern else None
+
+
+__all__ = ["WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
            "launch_index", "resolve", "shown", "words"]

@@ -228,17 +228,22 @@ class _Reader:
                     found.append(self.eval(element, env, when, depth))
             return found
         if isinstance(node, ast.Dict):
-            result = {}
+            result, partial = {}, False
             for key, value in zip(node.keys, node.values):
                 evaluated = self.eval(value, env, when, depth)
                 if key is None:
                     if isinstance(evaluated, dict):
                         result.update(evaluated)
+                        partial = partial or isinstance(evaluated, _Partial)
+                    else:
+                        partial = True
                     continue
                 name = self.eval(key, env, when, depth)
                 if isinstance(name, Value) and name.literal is not None:
                     result[name.literal] = evaluated
-            return result
+                else:
+                    partial = True
+            return _Partial(result) if partial else result
         if isinstance(node, ast.JoinedStr):
             parts = []
             for value in node.values:
@@ -337,14 +342,16 @@ class _Reader:
         if method == "process_file" and args and isinstance(args[0], Value):  # xacro.process_file
             mappings = keywords.get("mappings")
             self.acts.append(_Act("description", when, node.lineno, file=args[0],
-                                  args=_pairs(mappings)))
+                                  args=_pairs(mappings), xacro=True, complete=_read_all(mappings)))
             return unknown(_source(node))
         if method in ("robot_description", "robot_description_semantic") and isinstance(owner, _Builder):
             path = keywords.get("file_path") or (args[0] if args else None)
             if isinstance(path, Value):
+                mappings = keywords.get("mappings")
                 self.acts.append(_Act("description", when, node.lineno,
                                       file=_in_package(owner.package, path),
-                                      args=_pairs(keywords.get("mappings"))))
+                                      args=_pairs(mappings), xacro=True,
+                                      complete=_read_all(mappings)))
             return owner
         if isinstance(owner, _Builder):
             if method == "trajectory_execution":
@@ -529,13 +536,18 @@ class _Reader:
                          act.line)
         if act.kind == "description":
             return Description(fields.get("command"), fields.get("file"), fields.get("args", ()),
-                               when, act.line)
+                               when, act.line, xacro=fields.get("xacro", False),
+                               complete=fields.get("complete", True))
         if act.kind == "params" and isinstance(fields.get("path"), Value):
             return ParamFile(fields["path"], fields["substitute"], when, act.line)
         return None
 
 
 _NOT_HANDLED = object()
+
+
+class _Partial(dict):
+    """A dict some of whose entries were not read (a key a function computes, ``**other``)."""
 
 
 class _ParamFile:
@@ -594,6 +606,16 @@ def _pairs(value) -> tuple:
                 second = concat(_flat(second))
             pairs.append((item[0].literal, second if isinstance(second, Value) else unknown("?")))
     return tuple(pairs)
+
+
+def _read_all(mappings) -> bool:
+    """Whether every xacro argument a mapping gives was read: none given, or a dict (or list of
+    pairs) whose every name is a constant."""
+    if mappings is None:
+        return True
+    if isinstance(mappings, dict):
+        return not isinstance(mappings, _Partial)
+    return isinstance(mappings, list) and len(_pairs(mappings)) == len(mappings)
 
 
 def _flat(value) -> list:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdftool.diagnostics import Location, display_path
+from urdftool.diagnostics import Location, Severity, display_path
 from urdftool.errors import LoadError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of, read_regular
 from urdftool.description.inputs import SettingValue
@@ -123,20 +123,42 @@ def _read(path: str, shown: str, limit: int) -> bytes:
 
 
 def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
-    """A ``.urdf`` holding xacro: expanded when xacro can, read as plain URDF when not."""
+    """A ``.urdf`` holding xacro: a xacro robot when every launch file that loads it runs
+    xacro on it (:func:`~urdftool.description.runtime.builds`: what its consumers read, and a
+    xacro error is theirs), with a note; else expanded when xacro can, read as plain URDF when
+    not, with the loader's error note."""
+    from urdftool.description.runtime import builds, unread_naming
+
     where = plain.locate(first)
     named = f"named {Path(plain.path).suffix or 'without .xacro'}"
+    loads = builds(plain.path)
+    through = list(dict.fromkeys(b.launch for b in loads if b.xacro))
+    as_is = list(dict.fromkeys(b.launch for b in loads if not b.xacro))
+    if through and not as_is:
+        as_is = unread_naming(plain.path)  # what a launch file not read does with it is unknown
+    if through and not as_is:
+        robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env, limit)
+        return robot, LoadNote("xacro-in-urdf", where, (
+            f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); every launch "
+            f"file that loads it runs xacro on it ({_listed(through)}), so it is checked as "
+            "xacro; a tool given the file itself (check_urdf, Gazebo, MuJoCo) reads it "
+            "unexpanded: a name ending .xacro says which it is"), severity=Severity.INFO)
+    read_by = f"; {_listed(as_is)} may read it as it is" if as_is else ""
     try:
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
                             limit)
     except LoadError as error:
         return plain, LoadNote("xacro-in-urdf", where, (
             f"file is {named} but contains xacro (<{_shown_tag(first)}>), which xacro cannot "
-            f"expand ({error.message}) and URDF parsers ignore; remove it or rename the file "
-            ".urdf.xacro"), cause=error)
+            f"expand ({error.message}) and URDF parsers ignore{read_by}; remove it or rename "
+            "the file .urdf.xacro"), cause=error)
     return robot, LoadNote("xacro-in-urdf", where, (
         f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); urdftool "
-        "expanded it, but URDF parsers will not: rename it .urdf.xacro"))
+        f"expanded it, but URDF parsers will not{read_by}: rename it .urdf.xacro"))
+
+
+def _listed(launches: list[str], limit: int = 3) -> str:
+    return ", ".join(launches[:limit]) + (f" and {len(launches) - limit} more" if len(launches) > limit else "")
 
 
 def _shown_tag(element) -> str:
@@ -198,7 +220,8 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         location = failure.location
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
-        raise LoadError(failure.kind, failure.message, location, failure.subject) from None
+        raise LoadError(failure.kind, failure.message, location, failure.subject,
+                        failure.certain) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True, sources=sources)

@@ -6,17 +6,25 @@ package, or has it as a child), then package.xml files below the repository root
 folder holding ``.git``). A folder or package.xml in the repository that is a symbolic link
 leading outside it is not a package: it is not read, and the not-found message says so. Without
 a ``.git`` above the input there is no repository to keep to, and the walk goes up to ``/``.
+
+A path below a package found (``$(find NAME)/urdf/x.xacro``, ``package://NAME/meshes/x.stl``)
+names the package's installed ``share/NAME``: when the source folder has no such file, the
+package's build description says where it comes from (:mod:`.install_layout`), and
+:meth:`PackageResolver.locate` is the one place that answers, for xacro's includes and YAML,
+meshes, launch files' ``FindPackageShare`` and the cache's record alike.
 """
 
 from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
     read_regular, real_path, repository_root, resolved
+from urdftool.description.install_layout import layout
 from urdftool.description.run_memo import per_run
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -61,6 +69,45 @@ def link_out(path) -> tuple[str, Path] | None:
     request cannot make urdftool read, and print parts of, a file elsewhere."""
     root = containment_root(Path(os.path.abspath(path)).parent)
     return None if inside(path, root) else (real_path(path), root)
+
+
+@dataclass(frozen=True)
+class Located:
+    """Where a path below a package is in the source tree.
+
+    path: the file (or folder) found, or, when none is, the path as named; within: the folder
+    it must stay in, links followed (its package's, or the source folder an install rule
+    copies; None for a path below no package found); doubt: when nothing was found and the
+    package's install rules for that path could not be read, why the file may still exist
+    after a build (a missing file is then not certain)."""
+
+    path: Path
+    within: Path | None = None
+    doubt: str | None = None
+
+
+def installed(name: str, folder: Path, path) -> Located:
+    """Where ``path``, below the source folder ``folder`` of package ``name``, is: itself when
+    it exists; else the source an install rule of the package's build puts at that place of
+    ``share/NAME`` (inside the repository, no link leading out); else not found, with the
+    doubt when the rules for that place could not be read."""
+    named = Path(path)
+    if kind_of(named):
+        return Located(named, folder)
+    tail = Path(os.path.relpath(os.path.abspath(named), folder)).as_posix()
+    if tail == ".." or tail.startswith("../"):
+        return Located(named, folder)
+    root = containment_root(folder)
+    found = layout(folder, name, root)
+    for source, rule in found.sources(tail):
+        candidate = Path(os.path.normpath(folder / source))
+        within = Path(os.path.normpath(folder / rule.source))
+        if rule.kind != "tree":
+            within = candidate.parent
+        if kind_of(candidate) and inside(candidate, root) and inside(candidate, within):
+            resolved(f"installed share/{name}/{tail}", f"{candidate} ({rule.origin})")
+            return Located(candidate, within)
+    return Located(named, folder, found.doubt(tail))
 
 
 class PackageResolver:
@@ -137,13 +184,27 @@ class PackageResolver:
         return self._scanned
 
     def resolve_uri(self, uri: str, base_dir: Path) -> Path:
-        """A mesh or include URI as a path: package://, file:// or relative to ``base_dir``."""
+        """A mesh or include URI as a path: package://, file:// or relative to ``base_dir``,
+        where :meth:`locate` finds it."""
+        return self.locate_uri(uri, base_dir).path
+
+    def locate_uri(self, uri: str, base_dir: Path) -> Located:
+        """:meth:`locate` of a package://, file:// or relative (to ``base_dir``) URI."""
         if uri.startswith("package://"):
             name, tail = package_uri_parts(uri)
-            return self.find(name) / tail
+            return installed(name, self.find(name), self.find(name) / tail)
         if uri.startswith("file://"):
-            return Path(uri[len("file://"):])
-        return base_dir / uri
+            return self.locate(Path(uri[len("file://"):]))
+        return self.locate(base_dir / uri)
+
+    def locate(self, path) -> Located:
+        """Where ``path`` is when it lies below a package this resolver found (``$(find
+        NAME)/...``): see :func:`installed`. Any other path is as named."""
+        named = os.path.abspath(path)
+        for name, folder in sorted(self._cache.items(), key=lambda item: -len(str(item[1]))):
+            if named == str(folder) or named.startswith(str(folder).rstrip(os.sep) + os.sep):
+                return installed(name, folder, path)
+        return Located(Path(path))
 
 
 # ---- a package's manifest: which package a file is in, what that package declares -------------

@@ -8,7 +8,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Callable, Mapping, TypeVar
 
-from urdftool.diagnostics import Location
+from urdftool.diagnostics import Location, Severity
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.packages import PackageResolver
 from urdftool.description.xml import child_list
@@ -23,12 +23,14 @@ class LoadNote:
     kind: 'xacro-in-urdf' (a file not named .xacro that needs xacro; ``cause`` is the
         :class:`~urdftool.errors.LoadError` when xacro could not expand it), 'xacro-warning'
         (xacro printed a warning) or 'outside-file' (xacro read a file outside the repository)
+    severity: lower than the rule's when what it notices holds only in some configurations
     """
 
     kind: str
     location: Location
     message: str
     cause: Exception | None = None
+    severity: Severity | None = None
 
 
 @dataclass

@@ -58,9 +58,12 @@ def _decide(robot) -> tuple[int | None, str]:
 
 def _package_build_tool(robot) -> tuple[int, str] | None:
     """(version, why) from the build tool of the package.xml above the robot's file."""
-    if robot.path == "-":
-        return None
-    folder = package_of(robot.path)
+    return None if robot.path == "-" else package_build_tool(robot.path)
+
+
+def package_build_tool(path: str) -> tuple[int, str] | None:
+    """(version, why) from the build tool of the package.xml above ``path``, or None."""
+    folder = package_of(path)
     text = manifest_text(folder) if folder is not None else None
     match = _BUILD_TOOL.search(text) if text else None
     if match is None:

@@ -29,8 +29,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import enclosing_root, inside, kind_of, read_regular, real_path
-from urdftool.description.launch_configs import (Configuration, Described, Loaded, Resolved, Started,
-                                                 launch_index, shown)
+from urdftool.description.launch import MAX_LAUNCH_SIZE
+from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
+                                                 Started, launch_files, launch_index, shown)
 from urdftool.description.packages import containment_root, packages_below
 from urdftool.diagnostics import display_path
 
@@ -301,30 +302,138 @@ def shown_text(value: Resolved) -> str | None:
     return shown(value) if "\0" in value.text else value.text
 
 
-def launch_xacro_args(path: str) -> list[tuple[str, dict]]:
-    """(launch file, xacro arguments) for each launch file a user runs that builds the robot
-    file ``path`` with arguments all known (at their launch defaults); the same arguments once.
-    What to build a robot with when it needs an argument that has no default."""
-    if path == "-":
-        return []
-    absolute = Path(os.path.abspath(path))
-    root = _launch_root(absolute.parent)
+@dataclass(frozen=True)
+class Build:
+    """A launch file making a robot description from a file (:func:`builds`).
+
+    launch: the launch file a user runs (its includes followed); ``written``: the one holding
+        the description, and ``line`` there
+    xacro: the file is run through xacro (else read as it is: ``textfile=``, ``cat``, ``open``)
+    args: xacro argument -> its value as xacro gets it (None: not known without running it)
+    complete: every argument given is in ``args`` (no word or mapping left unread)
+    chosen: a launch argument chooses the file (``talos_$(arg robot).urdf.xacro``), and its
+        default names another
+    condition: when the description is made, in words; "" when unconditionally
+    """
+
+    launch: str
+    written: str
+    line: int | None
+    xacro: bool
+    args: dict
+    free: frozenset
+    complete: bool
+    chosen: bool
+    condition: str
+
+    @property
+    def certain(self) -> bool:
+        """Made, from this very file, whenever the launch file runs."""
+        return not self.chosen and not self.condition
+
+    def shown_args(self, limit: int = 6) -> str:
+        texts = [f"{k}:={display_path(v) if v and os.path.isabs(v) else v}"
+                 for k, v in sorted(self.args.items()) if v is not None][:limit]
+        return ", ".join(texts) + (" ..." if len(self.args) > limit else "")
+
+
+def builds(path: str) -> list[Build]:
+    """How the launch files of the repository holding ``path`` make a robot description from
+    it: one :class:`Build` per launch file a user runs and description action, in the index's
+    order. The one owner of "this file is loaded through xacro by launch files X" and of "launch
+    file X gives it these xacro arguments": loading a ``.urdf`` that holds xacro, and the rules
+    on xacro errors and on xacro in a ``.urdf``, ask here. Empty for stdin, or a file in no
+    repository or package."""
+    absolute, root = _file_root(path)
     if root is None:
         return []
     index, packages = launch_index(root), packages_below(root)
-    real, found, seen = real_path(absolute), [], set()
+    real, found = real_path(absolute), []
     for configuration in index.configurations:
         for described in configuration.described:
-            if described.path is None or real_path(described.path) != real \
-                    or not described.when.truth:
+            exact = described.path is not None and real_path(described.path) == real
+            if described.when.truth is False or not (
+                    exact or _template_matches(described.template, absolute, packages)):
                 continue
-            texts = {name: _as_given(value, packages) for name, value in described.args.items()}
-            if any(text is None for text in texts.values()):
-                continue
-            key = tuple(sorted(texts.items()))
-            if key not in seen:
-                seen.add(key)
-                found.append((configuration.display, texts))
+            chosen = not exact or described.template is not None
+            # an argument from the launch argument choosing the file follows the choice
+            texts = {name: None if chosen and value.free & described.chosen_by
+                     else _as_given(value, packages) for name, value in described.args.items()}
+            free = frozenset().union(*(value.free for value in described.args.values()))
+            words = list(described.when.words) if not described.when.certain else []
+            if described.when.truth is None and not words:
+                words = ["under a condition urdftool cannot tell"]
+            found.append(Build(configuration.display, described.launch, described.line,
+                               described.xacro, texts, free, described.complete, chosen,
+                               " and ".join(dict.fromkeys(words))))
+    return found
+
+
+def _file_root(path: str) -> tuple[Path | None, Path | None]:
+    """A robot file's absolute path and the root whose launch files may build it (None, None
+    for stdin)."""
+    if path == "-":
+        return None, None
+    absolute = Path(os.path.abspath(path))
+    return absolute, _launch_root(absolute.parent)
+
+
+def unread_naming(path: str) -> list[str]:
+    """The launch files of the repository holding ``path`` that could not be read (not
+    well-formed, a merge conflict left in) and name its file: what they do with it is not known."""
+    absolute, root = _file_root(path)
+    if root is None:
+        return []
+    index, name, found = launch_index(root), absolute.name.encode(), []
+    for launch in launch_files(root)[0]:
+        if real_path(launch) in index.files:
+            continue
+        try:
+            if name in read_regular(launch, MAX_LAUNCH_SIZE, as_="launch"):
+                found.append(display_path(launch))
+        except OSError:
+            continue
+    return found
+
+
+def _template_matches(template: str | None, path: Path, packages: dict) -> bool:
+    """Whether the file ``path`` is one a launch argument may choose: ``template`` (a
+    description's path with WILD for the argument's value, ``\\0pkg\\0`` for a package's
+    folder) matches it, each WILD standing for part of one path segment."""
+    if template is None:
+        return False
+    parts = template.split("\0")
+    if len(parts) % 2 == 0 or any(WILD in p for p in parts[1::2]):
+        return False
+    texts = []
+    for index, part in enumerate(parts):
+        if index % 2:
+            folder = packages.get(part)
+            if folder is None:
+                return False
+            texts.append(re.escape(str(folder)))
+        else:
+            texts.append("[^/]+".join(re.escape(piece) for piece in part.split(WILD)))
+    pattern = "".join(texts)
+    if not pattern.startswith("/"):
+        return False
+    return re.fullmatch(pattern.replace("//", "/"), os.path.normpath(str(path))) is not None
+
+
+def launch_xacro_args(path: str, argument: str) -> list[tuple[Build, dict]]:
+    """(build, the xacro arguments it gives whose values are known) for each launch file that
+    runs ``path`` through xacro giving ``argument`` a known value; the same arguments once.
+    What to build a robot with when it needs an argument that has no default: the arguments
+    only given at launch are left to the robot's defaults."""
+    found, seen = [], set()
+    for build in builds(path):
+        if not build.xacro or build.args.get(argument) is None:
+            continue
+        known = {name: text for name, text in build.args.items() if text is not None}
+        key = tuple(sorted(known.items()))
+        if key not in seen:
+            seen.add(key)
+            found.append((build, known))
     return found
 
 

@@ -15,6 +15,12 @@ of one expansion:
 - ``safe_eval`` and ``substitution_args._eval`` (``$(eval ...)``) go through
   :mod:`xacro_sandbox`, whose ``env``/``optenv``/``find`` are the session's own.
 
+The expander is ROS 2's xacro. A robot whose package builds with catkin (ROS 1) is expanded as
+ROS 1's xacro up to Melodic (1.13) read it: the seven xacro tags without the ``xacro:`` prefix
+(:data:`ROS1_TAGS`; an ``<include>`` only when it holds no element, as Gazebo's ``<include><uri>``
+does) and macro calls without it are xacro's (:func:`_prefix_ros1_tags`), each file that relies on
+it named in a warning: xacro since Noetic (1.14) and ROS 2's leave those tags in the output.
+
 When xacro raises, the element being processed is recovered from the traceback's frames, so the
 diagnostic points at the line that failed and not just at the file.
 """
@@ -57,7 +63,10 @@ MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion m
 MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
 MAX_PATTERN_ENTRIES = 20_000  # folder entries one include pattern may look at
 _MAGIC = re.compile(r"[*?[]")  # what makes xacro glob an include's filename
-_UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
+_UNSTAMPED = {"xacro:macro"}
+# xacro's tags that ROS 1's xacro up to Melodic (1.13) also read without the xacro: prefix (its
+# deprecation message lists them); its macro calls too (handle_macro_call)
+ROS1_TAGS = ("include", "property", "macro", "arg", "if", "unless", "insert_block")  # its attributes are copied onto the caller's parent
 
 
 @dataclass
@@ -71,6 +80,7 @@ class XacroFailure(Exception):
     message: str
     location: Location
     subject: str | None = None
+    certain: bool = True  # False: may not hold after the package's build (a file it installs)
 
 
 @dataclass
@@ -103,6 +113,8 @@ class _Session:
         self.elements = 0
         self.macro_calls = 0
         self.text = 0
+        self.ros1_tags = False  # read unprefixed xacro tags as ROS 1's xacro up to Melodic did
+        self.unprefixed: dict[int, tuple[str, str, int]] = {}  # file index -> (stamp, tag, count)
 
     def allow_root(self, folder) -> None:
         self.roots.append(files.real_path(folder))
@@ -205,7 +217,10 @@ class _StampingBuilder(ExpatBuilderNS):
 def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom.Document:
     builder = _StampingBuilder(session.file_index(path))
     try:
-        return builder.parseString(data)
+        doc = builder.parseString(data)
+        if session.ros1_tags:
+            _prefix_ros1_tags(session, doc)
+        return doc
     except expat.ExpatError as error:
         problem = malformed(data, expat.ErrorString(error.code), error.lineno)
     except XmlProblem as refused:
@@ -213,6 +228,51 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
         problem = malformed(data, str(error), 1)
     raise XacroFailure(problem.kind, problem.message, Location(display_path(path), problem.line))
+
+
+def _prefix_ros1_tags(session: _Session, doc) -> None:
+    """Rename the unprefixed xacro tags of a parsed file as ROS 1's xacro up to Melodic read
+    them (``<include>`` only without child elements, its is_include), and record where."""
+    for element in list(doc.getElementsByTagName("*")):
+        tag = element.tagName
+        if tag not in ROS1_TAGS or tag == "include" and any(
+                child.nodeType == xml.dom.Node.ELEMENT_NODE for child in element.childNodes):
+            continue
+        stamp = element.getAttribute(STAMP)
+        _record_unprefixed(session, stamp, f"<{tag}>")
+        element.tagName = element.nodeName = f"xacro:{tag}"
+        if element.tagName in _UNSTAMPED and stamp:
+            element.removeAttribute(STAMP)
+
+
+def _record_unprefixed(session: _Session, stamp: str, what: str) -> None:
+    if not stamp:
+        return
+    index = int(stamp[len(_STAMP_PREFIX):].split(":", 1)[0])
+    first, shown, count = session.unprefixed.get(index, (stamp, what, 0))
+    session.unprefixed[index] = (first, shown, count + 1)
+
+
+def _unprefixed_warnings(session: _Session) -> list[tuple[Location, str]]:
+    """One warning per file that relies on ROS 1's unprefixed xacro tags."""
+    found = []
+    for first, what, count in session.unprefixed.values():
+        more = f" (and {count - 1} more in this file)" if count > 1 else ""
+        found.append((session.location(first.split(";")[0]), (
+            f"{what} without the xacro: prefix{more}: read here as ROS 1's xacro up to Melodic "
+            "(1.13) read it, with a deprecation warning, since the package builds with catkin; "
+            "xacro since Noetic (1.14) and ROS 2's xacro leave it in the output, and the robot "
+            "loses what it does there. Prefix it: <xacro:...>")))
+    return found
+
+
+def _reads_ros1_tags(path: Path) -> bool:
+    """Whether the file's package builds with catkin (ROS 1), so its consumers may run a
+    xacro that reads unprefixed tags."""
+    from urdftool.description.ros_version import package_build_tool
+
+    found = package_build_tool(str(path))
+    return found is not None and found[0] == 1
 
 
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,
@@ -227,6 +287,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
 
     read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
+    session.ros1_tags = _reads_ros1_tags(path)
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText()
     originals = {
@@ -268,7 +329,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     except Exception as error:  # xacro raises many kinds; each becomes a located finding
         if _caused_by(error, MemoryError):
             raise MemoryError(str(error)) from None
-        raise _as_failure(session, error, path) from None
+        raise _as_failure(session, error, path, doc) from None
     finally:
         for (module, name), function in originals.items():
             setattr(module, name, function)
@@ -279,7 +340,8 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         xacro.init_stacks(None)
         xacro.substitution_args_context.clear()
     budget.working_at(None)
-    warnings = session.warnings + _warnings(stderr.getvalue(), display_path(path))
+    warnings = (session.warnings + _unprefixed_warnings(session)
+                + _warnings(stderr.getvalue(), display_path(path)))
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
                      session.outside)
 
@@ -288,8 +350,16 @@ def _yaml_opener(session: _Session):
     """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
 
     def open_yaml(filename, *args, **kwargs):
+        filename = _installed(session, filename)
         session.check_inside(filename, "YAML file")
-        data = session.read_file(filename, "yaml")
+        try:
+            data = session.read_file(filename, "yaml")
+        except OSError as error:
+            doubt = session.resolver.locate(filename).doubt if session.resolver else None
+            if doubt:
+                raise _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: not "
+                                           f"found in the source tree; {doubt}") from None
+            raise
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -351,6 +421,11 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             data = session.read_file(filename)
         except OSError as error:
             xacro.filestack.pop()
+            doubt = session.resolver.locate(filename).doubt if session.resolver else None
+            if doubt:  # the package's build may install it: not certainly missing
+                raise xacro.XacroException(exc=_Unsure(error.errno, (
+                    f"{error.strerror}: {display_path(filename)}: not found in the source "
+                    f"tree; {doubt}")))
             hint = ""
             if "package://" in filename:
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
@@ -359,7 +434,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
 
     def handle_macro_call(node, macros, symbols):
         if not node.tagName.startswith("xacro:"):
-            return False  # xacro asks this of every element; only xacro: tags are calls
+            if not (session.ros1_tags and _is_macro(xacro, node.tagName, macros, symbols)):
+                return False  # xacro asks this of every element; only xacro: tags are calls
+            _record_unprefixed(session, node.getAttribute(STAMP), f"macro call <{node.tagName}>")
+            node.tagName = node.nodeName = f"xacro:{node.tagName}"
         call_site = node.getAttribute(STAMP) if node.hasAttribute(STAMP) else None
         if call_site:
             node.removeAttribute(STAMP)
@@ -446,9 +524,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
                 raise xacro.XacroException(
                     "variable filename is supported with in-order option only") from None
             raise
-        filenames = [spec]
+        filenames = [_installed(session, spec)]
         if _MAGIC.search(spec):
-            filenames = _expand_pattern(session, spec)
+            filenames = _expand_pattern(session, _installed(session, spec))
             if not filenames:
                 xacro.warning(xacro.include_no_matches_msg.format(spec))
         for filename in filenames:
@@ -515,6 +593,16 @@ _EVAL_CONSTANTS = {
 }
 
 
+def _is_macro(xacro, name: str, macros, symbols) -> bool:
+    """Whether ``name`` calls a macro defined so far (ROS 1's xacro up to Melodic called macros
+    without the xacro: prefix)."""
+    try:
+        xacro.resolve_macro(name, macros, symbols)
+    except (KeyError, TypeError, AttributeError):
+        return False
+    return True
+
+
 def _refuse_link_out(session: _Session, filename: str) -> None:
     """XacroFailure 'link' when ``filename``, as named, is in the input's repository but a
     symbolic link on the way leads outside it: not followed, whatever ``--no-env`` says."""
@@ -528,6 +616,30 @@ def _refuse_link_out(session: _Session, filename: str) -> None:
         raise XacroFailure("link", (
             f"included file '{display_path(filename)}' is a symbolic link leading outside "
             f"the repository ({display_path(root)}); not followed"), session.current_location())
+
+
+class _Unsure(OSError):
+    """A file below a package missing from the source tree, whose package's install rules
+    could not be read: it may exist after the build (a load error that is not certain)."""
+
+    def __str__(self) -> str:
+        return self.strerror
+
+
+def _installed(session: _Session, spec: str) -> str:
+    """``spec`` (a file, or an include pattern) where the source tree has it: a path below a
+    package ``$(find)`` resolved names the installed ``share/NAME``, which the package's build
+    may fill from other folders (:meth:`PackageResolver.locate`); for a pattern, the folder
+    before its first wildcard is looked for so."""
+    if session.resolver is None:
+        return spec
+    parts = spec.split("/")
+    first = next((i for i, part in enumerate(parts) if _MAGIC.search(part)), len(parts))
+    base = "/".join(parts[:first])
+    if not base:
+        return spec
+    found = os.fspath(session.resolver.locate(base).path)
+    return spec if found == base else "/".join([found, *parts[first:]])
 
 
 def _expand_pattern(session: _Session, spec: str) -> list[str]:
@@ -592,7 +704,7 @@ class _PackageFailure(Exception):
         self.error = error
 
 
-def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure:
+def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> XacroFailure:
     where = _failure_location(session, error.__traceback__, path)
     cause = error
     while cause is not None and not isinstance(cause, (_PackageFailure, _Outside,
@@ -604,16 +716,35 @@ def _as_failure(session: _Session, error: Exception, path: Path) -> XacroFailure
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):
         return XacroFailure("sandbox", str(cause), where)
+    if _caused_by(error, _Unsure):
+        return XacroFailure("io", " ".join(str(error).split()), where, certain=False)
     message = " ".join(str(error).split()) or type(error).__name__
     argument = None
     if message.startswith("Undefined substitution argument"):  # the caller says how to pass it
-        argument = message.rsplit(" ", 1)[-1]
+        # "Undefined substitution argument NAME[ when evaluating expression '...']"
+        argument = message[len("Undefined substitution argument"):].split()[0]
     if "when evaluating expression" not in message and isinstance(error, (NameError, TypeError)):
         message = f"{type(error).__name__}: {message}"
     undefined = _undefined_name(error)
     if undefined:
         message += "; " + available("properties", undefined, _visible_properties(error))
+    if message.startswith("unknown macro name: xacro:") and doc is not None:
+        message += _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
+
+
+def _defined_later(session: _Session, doc, name: str) -> str:
+    """Where a macro used before its definition is defined further on, with why that fails."""
+    for element in doc.getElementsByTagName("xacro:macro"):
+        if element.getAttribute("name") == name:  # unstamped (_UNSTAMPED): its body is
+            body = [e.getAttribute(STAMP) for e in element.getElementsByTagName("*")
+                    if e.hasAttribute(STAMP)]
+            where = session.location(body[0].split(";")[0]) if body else None
+            at = f" (its body begins at {where.file}:{where.line})" if where and where.line else ""
+            return (f"; it is defined further on{at}: xacro expands in document order since "
+                    "Melodic (1.13), and only the legacy order (xacro up to Lunar, or Melodic's "
+                    "--legacy) read every definition first. Move the definition (or its include) above the first use")
+    return ""
 
 
 def _caused_by(error: BaseException, kind: type) -> bool:

@@ -4,7 +4,6 @@ work the pool stopped (:class:`urdftool.lint.pool.Stop`) -> U015, U018 or U900."
 
 from __future__ import annotations
 
-import os
 from contextlib import nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -12,7 +11,7 @@ from typing import TYPE_CHECKING
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError, missing_extra
-from urdftool.lint.catalogue import Rule
+from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
@@ -64,9 +63,12 @@ def load_error_message(error: LoadError) -> str:
 
 
 def load_error_findings(error: LoadError) -> list[Finding]:
-    """A file that did not load, as findings: one, of the rule its kind maps to."""
+    """A file that did not load, as findings: one, of the rule its kind maps to; a warning
+    when it may not hold after a package's build (``error.certain``: an included file that
+    package's install rules, not read, may put there)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
-    return [rule.finding(load_error_message(error), error.location)]
+    message = load_error_message(error)
+    return [rule.finding(message if error.certain else Conditional(message), error.location)]
 
 
 def note_findings(robot) -> list[Finding]:
@@ -76,6 +78,8 @@ def note_findings(robot) -> list[Finding]:
         message = note.message
         if note.cause is not None and load_error_message(note.cause) != note.cause.message:
             message = message.replace(note.cause.message, load_error_message(note.cause), 1)
+        if note.severity is not None:
+            message = Conditional(message, note.severity)
         findings.append(CATALOGUE.get(NOTE_CODES[note.kind]).finding(message, note.location))
     return findings
 
@@ -170,17 +174,19 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
             robot = load(path, xacro_args=xacro_args, packages=options.packages,
                          allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
         except LoadError as error:
-            launched = _launch_arguments(path, error, xacro_args) if data is None else None
-            if launched is None:
+            if data is not None or error.kind != "arg" or not error.subject \
+                    or error.subject in xacro_args:
                 raise
-            launch, given = launched
-            try:
-                robot = load(path, xacro_args={**given, **xacro_args}, packages=options.packages,
-                             allow_env=options.allow_env, max_file_size=options.max_file_size)
-            except LoadError:
-                raise error from None  # that build fails too: the argument is what is missing
+            from urdftool.lint.rules.loading import required_argument
+
+            def build(given: dict):
+                return load(path, xacro_args={**given, **xacro_args}, packages=options.packages,
+                            allow_env=options.allow_env, max_file_size=options.max_file_size)
+
+            robot, given, built = required_argument(path, error, build)
+            if robot is None:
+                return FileResult(path, built)
             xacro_args = {**given, **xacro_args}
-            built = [_built_note(error, launch, given)]
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.
         return FileResult(path, load_error_findings(error))
@@ -196,34 +202,6 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
     if built and options.selection.allows(built[0].code):
         findings = sorted(set(findings) | set(built), key=Finding.sort_key)
     return FileResult(path, findings, robot, companions=_companion_lines(robot))
-
-
-def _launch_arguments(path: str, error: LoadError, given: dict) -> tuple[str, dict] | None:
-    """(launch file, its xacro arguments) to build ``path`` with when it needs an argument it
-    has no default for and the user gave none: the first launch file that builds it with that
-    argument known (:func:`~urdftool.description.runtime.launch_xacro_args`); else None."""
-    if error.kind != "arg" or not error.subject or error.subject in given:
-        return None
-    from urdftool.description.runtime import launch_xacro_args
-
-    for launch, arguments in launch_xacro_args(path):
-        if error.subject in arguments:
-            return launch, arguments
-    return None
-
-
-def _built_note(error: LoadError, launch: str, arguments: dict) -> Finding:
-    """U005 as a note: the robot needs an argument the user did not give, and was built with
-    those a launch file gives it."""
-    from urdftool.lint.catalogue import Conditional
-    from urdftool.diagnostics import Severity
-
-    shown = ", ".join(f"{k}:={display_path(v) if os.path.isabs(v) else v}"
-                      for k, v in sorted(arguments.items())[:6])
-    more = " ..." if len(arguments) > 6 else ""
-    message = (f"{error.message}; checked as {launch} builds it ({shown}{more}); pass "
-               f"{error.subject}:=VALUE (or --arg {error.subject}=VALUE) to check another build")
-    return CATALOGUE.get(LOAD_CODES["arg"]).finding(Conditional(message, Severity.INFO), error.location)
 
 
 def _companion_lines(robot) -> list[str]:

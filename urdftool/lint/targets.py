@@ -23,7 +23,18 @@ from urdftool.description.packages import SKIP_DIRS, PackageResolver, containmen
 SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
 # on files made of "<xacro:include " repeated).
-_INCLUDE = re.compile(rb"<xacro:include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
+# Pre-2019 xacro wrote <include> without the prefix (ros-naoqi/nao_robot's nao_robot_v4.urdf.xacro).
+_INCLUDE = re.compile(rb"<(?:xacro:)?include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
+# $(optenv VAR default): xacro takes the default when VAR is unset (Clearpath's
+# $(optenv HUSKY_URDF_EXTRAS empty.urdf)); $(arg NAME): the argument's default in the same file
+_OPTENV = re.compile(r"\$\(optenv\s+\S+\s+([^)$\s]+)\)")
+_ARG_USE = re.compile(r"\$\(arg\s+([^)\s]+)\)")
+_ARG_DEFAULT = re.compile(
+    rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
+    re.S)
+# A robot file named in an attribute value (a macro parameter or property that a macro hands to
+# <xacro:include filename="${layout}"/>: osrf/vrx's thruster layouts)
+_NAMED_FILE = re.compile(rb"=\s*[\"']([^\"'<>]+\.(?:xacro|urdf))[\"']")
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
@@ -76,6 +87,8 @@ class _Summary:
     fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
     macros: bool = False  # it defines xacro macros
     missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
+    empty: bool = False  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
+    root_elsewhere: bool = False  # its joints hang on links it does not write, no root of its own
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -94,14 +107,8 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
         key = resolved_path(path)
         if key in included:
             skipped[path] = f"included by {included[key]}"
-        elif summaries[path].srdf:
-            skipped[path] = SRDF_SOURCE
-        elif path.name.endswith(".xacro") and not summaries[path].defines_robot and \
-                _includes_yield_links(summaries[path], resolver_for, max_file_size) is not True:
-            skipped[path] = (FRAGMENT if summaries[path].fragment else
-                             "defines only macros or properties (a macro library)")
-        elif path.name.endswith(".urdf") and summaries[path].fragment:
-            skipped[path] = FRAGMENT
+        elif (reason := _not_a_robot(path, summaries[path], resolver_for, max_file_size)):
+            skipped[path] = reason
         else:
             top.append(path)
     return top, skipped
@@ -125,7 +132,11 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
     data = _head(path, limit)
     if data is None or b"\0" in data:  # unread, or binary: a target, so checking says why
         return _Summary([], True, True)
-    includes = list(_included_files(path, data, resolver_for(path))) if resolver_for else []
+    written = _uncommented(data)
+    includes = list(_included_files(path, written, resolver_for(path))) if resolver_for else []
+    unfollowed = resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes)
+    if resolver_for:
+        includes += _named_files(path, written, resolver_for(path), includes)
     answer = _top_level_answer(data)
     if answer in ("definitions", "fragment", "empty") and path.name.endswith(".xacro") and \
             not _well_formed_for_xacro(data):
@@ -133,9 +144,10 @@ def _summary(path: Path, resolver_for, limit: int) -> _Summary:
     return _Summary(includes, answer not in ("definitions", "fragment", "empty"),
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
-                    resolver_for is not None and len(_INCLUDE.findall(data)) > len(includes),
-                    answer == "fragment", bool(_MACRO.search(data)),
-                    resolver_for is not None and _misses_a_package(data, resolver_for(path)))
+                    unfollowed, answer == "fragment", bool(_MACRO.search(written)),
+                    resolver_for is not None and _misses_a_package(written, resolver_for(path)),
+                    answer == "empty",
+                    _root_elsewhere(written, expanded=not path.name.endswith(".urdf")))
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -171,9 +183,10 @@ def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool |
         if _yields_links(data):
             return True
         if resolver_for:
+            data = _uncommented(data)
             included = list(_included_files(target, data, resolver_for(target)))
             unknown = unknown or len(_INCLUDE.findall(data)) > len(included)
-            pending.extend(included)
+            pending.extend(included + _named_files(target, data, resolver_for(target), included))
     return None if unknown else False
 
 
@@ -245,6 +258,32 @@ def _self_contained(path: Path, limit: int) -> bool:
     if data is None or b"\0" in data:
         return True
     return set(_JOINT_END.findall(data)) <= set(_LINK_NAME.findall(data))
+
+
+_CHILD = re.compile(rb"<child\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+
+
+def _root_elsewhere(data: bytes, expanded: bool = True) -> bool:
+    """Whether the robot ``data`` writes has no root of its own: it has joints, every link it
+    writes is a joint's child, and some joint names a link it does not write. A robot has one
+    root link; such a file is a part of a robot defined elsewhere, whatever its root element
+    says (jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS): joints on the
+    'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
+    root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
+    definitions may write links the text does not show (macro calls, includes), unless the
+    file is not ``expanded`` (a ``.urdf`` is read as written)."""
+    data = _MACRO_BODY.sub(b"", data)
+    if expanded and _LINK_MAKER.search(data):
+        return False  # a macro call or an include may write the root
+    ends = set(_JOINT_END.findall(data))
+    links = set(_LINK_NAME.findall(data))
+    return bool(ends - links - {b"world"}) and links <= set(_CHILD.findall(data))
+
+
+# Outside macro definitions, what may write links the text does not show: a macro call (any
+# xacro: element but the directives that write none) or an include.
+_LINK_MAKER = re.compile(rb"<xacro:(?!(?:property|arg|macro|if|unless|load_yaml)[\s/>])[\w.]|"
+                         rb"<(?:xacro:)?include\s")
 
 
 def _yields_links(data: bytes) -> bool:
@@ -361,18 +400,69 @@ class _LinksOutsideMacros:
         return "none"
 
 
+def _uncommented(data: bytes) -> bytes:
+    """``data`` without its XML comments: an include commented out is no include
+    (ipa320/cob_common's ur10_arm.urdf.xacro). Linear: a comment left open ends the text."""
+    parts, start = [], 0
+    while (opening := data.find(b"<!--", start)) >= 0:
+        parts.append(data[start:opening])
+        closing = data.find(b"-->", opening + 4)
+        if closing < 0:
+            return b"".join(parts)
+        start = closing + 3
+    return b"".join(parts) + data[start:] if parts else data
+
+
 def _included_files(path: Path, data: bytes, resolver: PackageResolver):
+    """The files ``data`` (of ``path``) includes, resolved. An include through ``$(arg NAME)``
+    takes the argument's default written in the file, and ``$(optenv VAR default)`` its default,
+    as xacro does when nobody gives the argument or sets the variable (Clearpath's
+    ``<xacro:arg name="urdf_extras" default="$(optenv HUSKY_URDF_EXTRAS empty.urdf)"/>``)."""
+    defaults = None
     for match in _INCLUDE.finditer(data):
         spec = match.group(1).decode("utf-8", "replace")
-        find = _FIND.search(spec)
-        if find:
-            try:
-                spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
-            except Exception:
-                continue
-        if "$" in spec or "\0" in spec:
+        found = _resolved_spec(path, spec, data, resolver, defaults)
+        if found is not None:
+            defaults = found[1]
+            yield found[0]
+
+
+def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -> list[Path]:
+    """Robot files (existing, other than ``includes``) named by attribute values of ``data``:
+    a macro parameter or property holding a path that a macro includes
+    (``<xacro:wamv_gazebo thruster_layout="$(find wamv_gazebo)/urdf/.../wamv_aft_thrusters.xacro"/>``
+    handed to ``<xacro:include filename="${thruster_layout}"/>``), which the include graph
+    counts as included by ``path``."""
+    named, defaults = [], None
+    for match in _NAMED_FILE.finditer(data):
+        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), data, resolver,
+                               defaults)
+        if found is None:
             continue
-        yield resolved_path(path.parent / spec)
+        defaults = found[1]
+        if found[0] not in includes and found[0] not in named and found[0].is_file():
+            named.append(found[0])
+    return named
+
+
+def _resolved_spec(path: Path, spec: str, data: bytes, resolver: PackageResolver, defaults):
+    """(the file ``spec``, written in ``path``, names, the file's argument defaults), or None
+    when it needs what is only known when expanding."""
+    if "$(arg" in spec:
+        if defaults is None:
+            defaults = {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
+                        for name, value in _ARG_DEFAULT.findall(data)}
+        spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
+    spec = _OPTENV.sub(lambda m: m.group(1), spec)
+    find = _FIND.search(spec)
+    if find:
+        try:
+            spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
+        except Exception:
+            return None
+    if "$" in spec or "\0" in spec:
+        return None
+    return resolved_path(resolver.locate(path.parent / spec).path), defaults  # as xacro finds it
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
@@ -464,22 +554,49 @@ def explicit_targets(path: Path, includers: dict, root: Path,
             return robots, (f"included by {shown}: checking "
                             f"{', '.join(display_path(p) for p in robots)} instead")
         return robots, f"included by {shown}: checking that instead"
-    if summary.named_robot and _has_own_links(path, max_file_size):
-        return [path], None  # a robot of its own, hanging on links nobody here writes
-    if path.name.endswith(".urdf") and summary.fragment:
-        return [], f"{FRAGMENT}, and no robot below {root} includes it: nothing to check"
-    if summary.named_robot and (summary.defines_robot or yields):
-        return [path], None
-    # A named <robot> whose includes could not all be followed is checked (expanding it says),
-    # unless it defines macros of its own: then it is a macro library including others, as the
-    # folder walk takes it (kortex's gen3_macro.xacro, named by pre-commit)
-    # (one whose include names a package found nowhere is checked: expanding it says so, U006)
-    if not summary.defines_robot and path.name.endswith(".xacro") and not yields and \
-            not (yields is None and summary.named_robot and not summary.macros) and \
-            not (yields is None and summary.missing_package):
-        what = FRAGMENT if summary.fragment else "defines only macros or properties"
-        return [], f"{what}, and no robot below {root} includes it: nothing to check"
+    reason = _not_a_robot(path, summary, resolver_for, max_file_size, yields)
+    if reason:
+        return [], f"{reason}, and no robot below {root} includes it: nothing to check"
     return [path], None
+
+
+EMPTY = "an empty <robot> (a placeholder an include takes when nothing is added)"
+ROOT_ELSEWHERE = ("a part of a robot defined elsewhere (its joints hang on links it does not write, "
+                  "and it has no root link of its own)")
+_UNKNOWN = object()
+
+
+def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
+                 yields=_UNKNOWN) -> str | None:
+    """Why a file that no robot found includes is not checked as a robot, or None to check
+    it: the one decision for a file walked and a file named (pre-commit).
+
+    yields: :func:`_includes_yield_links` when already known
+    Skipped: an SRDF source; an empty ``<robot>``; a ``.urdf`` that is a fragment (only
+    ``<gazebo>``, transmission, ros2_control or webots blocks) or a part with no root of its
+    own (:func:`_root_elsewhere`, ``.xacro`` too: stretch's stretch_dry_erase_marker.xacro); a
+    ``.xacro`` that defines only macros and properties, or is a
+    fragment, whose includes produce no links. A named ``<robot>`` with links of its own is a
+    robot, hanging on links nobody here writes or not; so is one whose includes could not all
+    be followed (expanding it says), unless it defines macros of its own: then it is a macro
+    library including others (kortex's gen3_macro.xacro); one whose include names a package
+    found nowhere is checked (expanding it says so, U006)."""
+    if summary.srdf:
+        return SRDF_SOURCE
+    if summary.empty:
+        return EMPTY
+    if path.name.endswith(".urdf"):
+        return FRAGMENT if summary.fragment else ROOT_ELSEWHERE if summary.root_elsewhere else None
+    if summary.root_elsewhere:
+        return ROOT_ELSEWHERE
+    if summary.defines_robot or summary.named_robot and _has_own_links(path, limit):
+        return None
+    if yields is _UNKNOWN:
+        yields = _includes_yield_links(summary, resolver_for, limit)
+    if yields or yields is None and (summary.named_robot and not summary.macros
+                                     or summary.missing_package):
+        return None
+    return FRAGMENT if summary.fragment else "defines only macros or properties (a macro library)"
 
 
 def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE

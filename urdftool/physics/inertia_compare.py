@@ -11,7 +11,7 @@ import numpy as np
 
 from urdftool.physics.inertia import MassProperties, declared, relative_difference, triangle_violation
 from urdftool.description.urdf import VARIABLE
-from urdftool.physics.solids import computed, link_solid, rigid_group
+from urdftool.physics.solids import _bodies, computed, link_solid, rigid_group
 from urdftool.errors import UnknownLink  # noqa: F401 - raised here, re-exported
 
 AGREE_TOLERANCE = 0.1  # relative difference of tensor and com offset (vs link size) that agrees
@@ -106,18 +106,37 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
 def _massless_moving_body(robot, name: str) -> str | None:
     """The joint moving link ``name`` when no link of its rigid body declares a positive
     mass; None when it is not moved or carries mass, or when the robot declares no
-    ``<inertial>`` at all (a kinematic model, not meant to be simulated)."""
-    if not any(link.find("inertial") is not None for link in robot.children("link")):
+    ``<inertial>`` at all (a kinematic model, not meant to be simulated). What it reads of the
+    whole robot is read once per robot (asked of every link without an inertial)."""
+    if not robot.memo(_massless_moving_body, lambda: any(
+            link.find("inertial") is not None for link in robot.children("link"))):
         return None
-    mover = next((j for j in robot.children("joint") if j.get("type") in VARIABLE
-                  and j.find("child") is not None and j.find("child").get("link") == name), None)
+    mover = _movers(robot).get(name)
     if mover is None:
         return None
-    for member in rigid_group(robot, name):
-        properties = declared(robot.links[member])
-        if properties is not None and properties.mass > 0:
-            return None
-    return mover.get("name", "?")
+    return None if _body_has_mass(robot, name) else mover.get("name", "?")
+
+
+def _body_has_mass(robot, name: str) -> bool:
+    """Whether a link of link ``name``'s rigid body declares a positive mass; once per body."""
+    bodies = _bodies(robot)
+    root = bodies[name][0] if name in bodies else name
+    return robot.memo_for(_body_has_mass, root, lambda: any(
+        (properties := declared(robot.links[member])) is not None and properties.mass > 0
+        for member in rigid_group(robot, name)))
+
+
+def _movers(robot) -> dict:
+    """Link name -> the first joint (in document order) of a moving type whose child it is."""
+    def build():
+        found = {}
+        for joint in robot.children("joint"):
+            child = joint.find("child")
+            if joint.get("type") in VARIABLE and child is not None:
+                found.setdefault(child.get("link"), joint)
+        return found
+
+    return robot.memo(_movers, build)
 
 
 def compare(robot, density: float | None = None, links: list[str] | None = None):

@@ -341,18 +341,41 @@ def link_solid(robot, link, load_meshes: bool = True, tag: str | None = None) ->
     return result
 
 
-@dataclass(slots=True)
 class RigidBounds:
     """The bounding box [m] of everything rigidly one with a link, in the link frame.
 
     links: the link and those fixed to it (through fixed joints, either way), in the order
-    reached; complete: False when some of their geometry could not be measured (a mesh that
-    does not resolve or load), so the box may be too small; bounds: None without geometry.
+    reached (listed when first read: a message asks, a rule deciding does not); complete:
+    False when some of their geometry could not be measured (a mesh that does not resolve or
+    load), so the box may be too small; bounds: None without geometry.
     """
 
-    links: list[str]
-    complete: bool = True
-    bounds: tuple[mat3.Vector, mat3.Vector] | None = None
+    __slots__ = ("_links", "complete", "bounds")
+
+    def __init__(self, links, complete: bool = True,
+                 bounds: tuple[mat3.Vector, mat3.Vector] | None = None):
+        self._links = links  # a list, or what lists them
+        self.complete, self.bounds = complete, bounds
+
+    @property
+    def links(self) -> list[str]:
+        if callable(self._links):
+            self._links = self._links()
+        return self._links
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, RigidBounds) and (self.links, self.complete, self.bounds) == \
+            (other.links, other.complete, other.bounds)
+
+    def __repr__(self) -> str:
+        return f"RigidBounds({self.links!r}, {self.complete!r}, {self.bounds!r})"
+
+
+# A rigid body of more links than this is measured once in one frame (its root's, see
+# _bodies) and seen from each member's frame, not gathered again from each: a robot's cost
+# stays linear in its links however many are fixed together. Up to it, each member's box is
+# gathered from its own frame (the numbers of the member's own walk, to the bit).
+GROUP_DIRECT = 16
 
 
 def rigid_bounds(robot, link) -> RigidBounds:
@@ -362,6 +385,12 @@ def rigid_bounds(robot, link) -> RigidBounds:
         members, box, complete = _placed_corners(robot, robot.links.get(name, link))
         if box is not None:
             return RigidBounds([name], complete, box)
+    else:
+        root, frames = _bodies(robot)[name]
+        if len(frames) > GROUP_DIRECT:
+            found = _body_bounds(robot, name, root, frames)
+            if found is not None:
+                return found
     frames = _rigid_frames(robot, name)
     result, corners = RigidBounds(list(frames)), []
     for name, (rotation, xyz) in frames.items():
@@ -378,6 +407,50 @@ def rigid_bounds(robot, link) -> RigidBounds:
         result.complete = result.complete and complete
     result.bounds = _box(corners)
     return result
+
+
+def _body_bounds(robot, name: str, root: str, frames: dict) -> RigidBounds | None:
+    """The rigid bounds of member ``name`` of a body of more than :data:`GROUP_DIRECT` links:
+    the corners of every member's shapes placed in the root's frame once (numpy; reduced to
+    their convex hull's vertices, which have the same extremes in every direction), then
+    turned into ``name``'s frame. None when some corner is not finite (then the member's own
+    walk decides, as for a small body)."""
+    import numpy as np
+
+    found = robot.memo_for(_body_bounds, root, lambda: _body_corners(robot, frames))
+    if found is None:
+        return None
+    points, complete = found
+    if points is None:
+        return RigidBounds(lambda: rigid_group(robot, name), complete, None)
+    rotation, xyz = frames[name]  # p_root = xyz + rotation p_member
+    local = (points - np.asarray(xyz)) @ np.asarray(rotation)  # rows: rotation^T (p - xyz)
+    low, high = local.min(axis=0) + 0.0, local.max(axis=0) + 0.0  # a zero of either sign: +0
+    return RigidBounds(lambda: rigid_group(robot, name), complete,
+                       (tuple(low.tolist()), tuple(high.tolist())))
+
+
+def _body_corners(robot, frames: dict):
+    """(the hull vertices of every member's shape corners placed in the root's frame, or None
+    without any; whether every shape was measured), or None when a corner is not finite."""
+    import numpy as np
+
+    from urdftool.description.mesh_arrays import extreme_points
+
+    placed, complete = [], True
+    for member, (rotation, xyz) in frames.items():
+        shapes, _, measured = _placed_corners(robot, robot.links[member])
+        complete = complete and measured
+        if shapes:
+            corners = np.array([c for shape in shapes for c in _shape_corners(shape)])
+            with np.errstate(all="ignore"):
+                placed.append(corners @ np.asarray(rotation).T + np.asarray(xyz))
+    if not placed:
+        return None, complete
+    points = np.vstack(placed)
+    if not np.isfinite(points).all():
+        return None
+    return extreme_points(points), complete
 
 
 def _box(corners) -> tuple[mat3.Vector, mat3.Vector] | None:
@@ -523,8 +596,16 @@ def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vect
 
 
 def rigid_group(robot, name: str) -> list[str]:
-    """Link ``name`` and every link joined to it by fixed joints (either way): one body."""
-    return list(_rigid_frames(robot, name))
+    """Link ``name`` and every link joined to it by fixed joints (either way): one body, in the
+    order reached from ``name``."""
+    neighbours = _fixed_neighbours(robot)
+    order, seen = [name], {name}
+    for current in order:  # the walk of _rigid_frames, without the frames
+        for other, _, _ in neighbours.get(current, ()):
+            if other not in seen:
+                seen.add(other)
+                order.append(other)
+    return order
 
 
 def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]]:
@@ -533,14 +614,29 @@ def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]
     neighbours = _fixed_neighbours(robot)
     frames = {name: (mat3.IDENTITY, (0.0, 0.0, 0.0))}
     pending = [name]
-    while pending:
-        current = pending.pop(0)
+    for current in pending:  # breadth first: each link is appended once
         r, t = frames[current]
         for other, rotation, xyz in neighbours.get(current, ()):
             if other not in frames:
                 frames[other] = (mat3.multiply(r, rotation), mat3.add(t, mat3.apply(r, xyz)))
                 pending.append(other)
     return frames
+
+
+def _bodies(robot) -> dict[str, tuple[str, dict]]:
+    """Link -> (the root of its rigid body, the body's :func:`_rigid_frames` from the root),
+    for every link with a link fixed to it; one walk per body, once per robot. The root is
+    the body's link met first in the joints' order."""
+    def build():
+        found = {}
+        for name in _fixed_neighbours(robot):
+            if name not in found:
+                frames = _rigid_frames(robot, name)
+                for member in frames:
+                    found[member] = (name, frames)
+        return found
+
+    return robot.memo(_bodies, build)
 
 
 def volume(solid: LinkSolid) -> float:

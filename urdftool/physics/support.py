@@ -18,12 +18,14 @@ Pure Python for primitives (``urdftool check`` starts fast); numpy for mesh vert
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 from urdftool.physics import mat3
 from urdftool.physics.frames import Frame
-from urdftool.physics.solids import _link_shapes, rigid_group, _rigid_frames
+from urdftool.physics.solids import GROUP_DIRECT, _bodies, _fixed_neighbours, _link_shapes, \
+    rigid_group, _rigid_frames
 
 TAGS = ("visual", "collision")
 
@@ -102,6 +104,7 @@ class Reach:
     pieces: list[Piece] = field(default_factory=list)
     missing: list = field(default_factory=list)
     links: list[str] = field(default_factory=list)
+    _table: object = field(default=None, repr=False, compare=False)  # see outside
 
     @property
     def complete(self) -> bool:
@@ -123,24 +126,231 @@ class Reach:
         """How far ``p`` lies outside the convex hull of the pieces, at least [m]: the largest
         ``d . p - h(d)`` over :data:`DIRECTIONS` and the direction from the centre of the
         pieces' box to ``p`` (each a true lower bound of the distance; 0 or less: inside, or
-        too near to tell). 0 when ``p`` is inside a primitive piece."""
-        if not self.pieces or any(piece.holds(p) for piece in self.pieces):
+        too near to tell). 0 when ``p`` is inside a primitive piece. With a mesh among the
+        pieces (numpy is loaded), every direction is asked at once (:class:`_Table`)."""
+        if not self.pieces:
+            return 0.0
+        if any(piece.kind == "mesh" for piece in self.pieces):
+            if self._table is None:
+                self._table = _Table(self.pieces)
+            return self._table.outside(p)
+        if any(piece.holds(p) for piece in self.pieces):
             return 0.0
         centre = tuple((self.support(axis) - self.support(tuple(-a for a in axis))) / 2
                        for axis in _AXES)
         towards = tuple(a - b for a, b in zip(p, centre))
         norm = math.sqrt(mat3.dot(towards, towards))
         directions = DIRECTIONS + ((tuple(v / norm for v in towards),) if norm > 0 else ())
-        meshes = [piece for piece in self.pieces if piece.kind == "mesh"]
-        heights = _mesh_heights(meshes, directions) if meshes else None
-        best = -math.inf
-        for index, d in enumerate(directions):
-            h = max((piece.support(d) for piece in self.pieces if piece.kind != "mesh"),
-                    default=-math.inf)
-            if heights is not None:
-                h = max(h, heights[index])
-            best = max(best, mat3.dot(d, p) - h)
-        return best
+        return max(mat3.dot(d, p) - self.support(d) for d in directions)
+
+
+class _Body:
+    """The reach of a rigid body of more than :data:`~urdftool.physics.solids.GROUP_DIRECT`
+    links seen from one member's frame: the body's pieces are placed once, in its root's
+    frame (``reach``, its :class:`_Table` reduced to its hull's vertices), and each question
+    is turned into that frame (``rotation``, ``xyz``: p_root = xyz + rotation p_member)."""
+
+    __slots__ = ("reach", "rotation", "xyz", "_links")
+
+    def __init__(self, reach: Reach, frame, links):
+        self.reach, (self.rotation, self.xyz), self._links = reach, frame, links
+
+    @property
+    def pieces(self) -> list[Piece]:
+        return self.reach.pieces  # in the root's frame: whether there are any
+
+    @property
+    def missing(self) -> list:
+        return self.reach.missing
+
+    @property
+    def complete(self) -> bool:
+        return not self.reach.missing
+
+    @property
+    def links(self) -> list[str]:
+        if callable(self._links):
+            self._links = self._links()
+        return self._links
+
+    def _table(self):
+        if self.reach._table is None:
+            self.reach._table = _Table(self.reach.pieces, reduce=True)
+        return self.reach._table
+
+    def support(self, d) -> float:
+        import numpy as np
+
+        if not self.reach.pieces:
+            return -math.inf
+        return float(self._table().support(np.asarray(d, dtype=float).reshape(3, 1),
+                                           (self.rotation, self.xyz))[0])
+
+    def lowest(self) -> float:
+        return -self.support((0.0, 0.0, -1.0))
+
+    def farthest(self, p) -> float:
+        if not self.reach.pieces:
+            return 0.0
+        return self._table().farthest(p, (self.rotation, self.xyz))
+
+    def outside(self, p) -> float:
+        if not self.reach.pieces:
+            return 0.0
+        return self._table().outside(p, (self.rotation, self.xyz))
+
+
+class _Table:
+    """Pieces as arrays, for questions asked in many directions at once: points (a mesh's
+    vertices, a box's corners: a box's support and farthest point are reached at a corner),
+    cylinders and spheres by their closed forms, and for :meth:`holds` every primitive. With
+    ``reduce``, the points are cut to the vertices of their convex hull (the same extremes).
+    A ``frame`` (rotation, xyz) takes the asker's coordinates into the table's."""
+
+    __slots__ = ("points", "cylinders", "spheres", "boxes")
+
+    def __init__(self, pieces, reduce: bool = False):
+        import numpy as np
+
+        points, cylinders, spheres, boxes = [], [], [], []
+        for piece in pieces:
+            if piece.kind == "mesh":
+                points.append(piece.vertices)
+            elif piece.kind == "box":
+                rotation = np.asarray(piece.rotation, dtype=float)
+                points.append((_columns()[2] * piece.size) @ rotation.T + piece.centre)
+                boxes.append((piece.centre, rotation, piece.size))
+            elif piece.kind == "cylinder":
+                cylinders.append((piece.centre, np.asarray(piece.rotation, dtype=float),
+                                  piece.size))
+            else:
+                spheres.append((*piece.centre, piece.size[0]))
+        self.points = np.vstack(points) if points else np.zeros((0, 3))
+        if reduce and len(self.points):
+            from urdftool.description.mesh_arrays import extreme_points
+
+            self.points = extreme_points(self.points)
+        self.boxes = _primitives(boxes)
+        self.cylinders = _primitives(cylinders)
+        self.spheres = np.array(spheres, dtype=float).reshape(-1, 4)
+
+    def support(self, directions, frame=None):
+        """h(d) [m] for each column d of ``directions`` (3, k), in the asker's frame."""
+        import numpy as np
+
+        if frame is not None:
+            rotation, xyz = np.asarray(frame[0], dtype=float), np.asarray(frame[1], dtype=float)
+            turned = rotation @ directions
+            return self.support(turned) - xyz @ turned
+        heights = np.full(directions.shape[1], -np.inf)
+        with np.errstate(all="ignore"):
+            if len(self.points):
+                heights = np.maximum(heights, (self.points @ directions).max(axis=0))
+            if self.cylinders is not None:
+                centres, rotations, (radii, halves) = self.cylinders
+                along = rotations[:, :, 2] @ directions  # (c, k): the axis is the third column
+                across = np.sqrt(np.maximum((directions * directions).sum(axis=0) -
+                                            along * along, 0.0))
+                heights = np.maximum(heights, (centres @ directions + halves[:, None] *
+                                               np.abs(along) + radii[:, None] * across)
+                                     .max(axis=0))
+            if len(self.spheres):
+                lengths = np.sqrt((directions * directions).sum(axis=0))
+                heights = np.maximum(heights, (self.spheres[:, :3] @ directions +
+                                               self.spheres[:, 3:] * lengths).max(axis=0))
+        return heights
+
+    def _in_table_frame(self, p, frame):
+        import numpy as np
+
+        p = np.asarray(p, dtype=float)
+        if frame is None:
+            return p
+        return np.asarray(frame[1], dtype=float) + np.asarray(frame[0], dtype=float) @ p
+
+    def holds(self, p) -> bool:
+        """Whether ``p`` (the table's frame) is inside a box, cylinder or sphere."""
+        import numpy as np
+
+        for found, inside in ((self.boxes, _in_boxes), (self.cylinders, _in_cylinders)):
+            if found is not None and inside(found, p):
+                return True
+        if len(self.spheres):
+            offsets = p - self.spheres[:, :3]
+            return bool((np.sqrt((offsets * offsets).sum(axis=1)) <= self.spheres[:, 3]).any())
+        return False
+
+    def farthest(self, p, frame=None) -> float:
+        """The largest distance [m] from ``p`` to the pieces."""
+        import numpy as np
+
+        p = self._in_table_frame(p, frame)
+        found = 0.0
+        if len(self.points):
+            offsets = self.points - p
+            found = max(found, float(np.sqrt((offsets * offsets).sum(axis=1)).max()))
+        if self.cylinders is not None:
+            centres, rotations, (radii, halves) = self.cylinders
+            offsets = p - centres
+            along = (offsets * rotations[:, :, 2]).sum(axis=1)
+            across = np.sqrt(np.maximum((offsets * offsets).sum(axis=1) - along * along, 0.0))
+            found = max(found, float(np.hypot(np.abs(along) + halves, across + radii).max()))
+        if len(self.spheres):
+            offsets = p - self.spheres[:, :3]
+            found = max(found, float((np.sqrt((offsets * offsets).sum(axis=1)) +
+                                      self.spheres[:, 3]).max()))
+        return found
+
+    def outside(self, p, frame=None) -> float:
+        """:meth:`Reach.outside` of ``p`` (the asker's frame)."""
+        import numpy as np
+
+        if self.holds(self._in_table_frame(p, frame)):
+            return 0.0
+        p = np.asarray(p, dtype=float)
+        every, six, _ = _columns()
+        heights = self.support(six, frame)
+        centre = (heights[:3] - heights[3:]) / 2
+        towards = p - centre
+        norm = math.sqrt(float(towards @ towards))
+        directions = every if not norm > 0 else \
+            np.hstack([every, (towards / norm).reshape(3, 1)])
+        return float((p @ directions - self.support(directions, frame)).max())
+
+
+def _primitives(found):
+    """(centres (k, 3), rotations (k, 3, 3), sizes as columns) of boxes or cylinders, or None."""
+    import numpy as np
+
+    if not found:
+        return None
+    centres, rotations, sizes = zip(*found)
+    return (np.array(centres, dtype=float), np.array(rotations),
+            tuple(np.array(sizes, dtype=float).T))
+
+
+def _local(found, p):
+    """``p`` in each primitive's own axes: rotation^T (p - centre), (k, 3)."""
+    import numpy as np
+
+    centres, rotations, _ = found
+    return np.einsum("kij,ki->kj", rotations, p - centres)
+
+
+def _in_boxes(found, p) -> bool:
+    import numpy as np
+
+    halves = np.stack(found[2], axis=1)
+    return bool((np.abs(_local(found, p)) <= halves).all(axis=1).any())
+
+
+def _in_cylinders(found, p) -> bool:
+    import numpy as np
+
+    local = _local(found, p)
+    radii, halves = found[2]
+    return bool(((np.abs(local[:, 2]) <= halves) &
+                 (np.hypot(local[:, 0], local[:, 1]) <= radii)).any())
 
 
 _AXES = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
@@ -161,20 +371,37 @@ def _fibonacci(count: int) -> tuple:
 DIRECTIONS = _fibonacci(128)  # neighbours ~18 deg apart: a bound within 2 % of the distance
 
 
-def _mesh_heights(meshes, directions) -> list[float]:
+@functools.cache
+def _columns():
+    """(DIRECTIONS as columns (3, k), the six axis directions as columns, the signs of a box's
+    corners (8, 3)) in numpy, made when first asked: a robot without meshes needs no numpy."""
     import numpy as np
 
-    d = np.asarray(directions).T
-    return np.max([(piece.vertices @ d).max(axis=0) for piece in meshes], axis=0).tolist()
+    signs = [(i, j, k) for i in (-1.0, 1.0) for j in (-1.0, 1.0) for k in (-1.0, 1.0)]
+    return (np.array(DIRECTIONS, dtype=float).T, np.hstack([np.eye(3), -np.eye(3)]),
+            np.array(signs))
 
 
-def link_reach(robot, link, tags=TAGS, rigid: bool = False) -> Reach:
+def link_reach(robot, link, tags=TAGS, rigid: bool = False) -> Reach | _Body:
     """The geometry of ``link`` (its ``tags`` elements) in its own frame; with ``rigid``, that
-    of every link fixed to it too (:func:`urdftool.physics.solids.rigid_group`). Once per
-    robot, link, tags and rigid."""
+    of every link fixed to it too (:func:`urdftool.physics.solids.rigid_group`): of a body of
+    more than :data:`~urdftool.physics.solids.GROUP_DIRECT` links, placed once in the body's
+    root's frame and seen from the link's (:class:`_Body`). Once per robot, link, tags and
+    rigid."""
     name = link.get("name")
-    return robot.memo_for((link_reach, tuple(tags), rigid), name or link,
-                          lambda: _build(robot, link, tuple(tags), rigid))
+    tags = tuple(tags)
+    if rigid and name in _fixed_neighbours(robot):
+        root, frames = _bodies(robot)[name]
+        if len(frames) > GROUP_DIRECT:
+            body = robot.memo_for((link_reach, tags, _Body), root,
+                                  lambda: _build(robot, robot.links[root], tags, True))
+            return robot.memo_for((link_reach, tags, rigid), name, lambda: _Body(
+                body, frames[name], lambda: rigid_group(robot, name)))
+        return robot.memo_for((link_reach, tags, rigid), name,
+                              lambda: _build(robot, link, tags, rigid))
+    # nothing fixed to it (most links): its body is itself, one reach for both
+    return robot.memo_for((link_reach, tags), name or link,
+                          lambda: _build(robot, link, tags, False))
 
 
 def _build(robot, link, tags, rigid) -> Reach:
@@ -199,26 +426,6 @@ def _build(robot, link, tags, rigid) -> Reach:
     return reach
 
 
-def _extreme_points(vertices):
-    """The vertices of the convex hull of ``vertices`` (qhull), or all of them when qhull
-    cannot build one (a flat mesh; scipy absent). Exact for everything a piece answers: the
-    support in any direction and the farthest point from any point are both reached at a
-    vertex of the hull. A mesh of 100,000 vertices keeps a few thousand: every direction and
-    every reach that holds it is that much cheaper (134 directions per link are asked whether
-    a centre of mass is outside the hull)."""
-    import numpy as np
-
-    vertices = np.asarray(vertices, dtype=float)
-    if len(vertices) < 64:
-        return vertices
-    try:
-        from scipy.spatial import ConvexHull
-
-        return vertices[np.sort(ConvexHull(vertices, qhull_options="Qt").vertices)]
-    except Exception:  # qhull's error for a flat or degenerate mesh, or no scipy
-        return vertices
-
-
 def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     """A shape placed by ``frame`` (position, rotation of its link in the reach's frame), or
     what keeps it from being measured."""
@@ -235,9 +442,8 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
     try:
-        mesh = mesh_facts(robot, p["filename"], p["scale"])
-        vertices = robot.memo((_extreme_points, p["filename"], tuple(p["scale"])),
-                              lambda: _extreme_points(mesh.vertices))
+        # the hull's vertices, once per run for every robot using the file at that scale
+        vertices = mesh_facts(robot, p["filename"], p["scale"]).extreme_points
     except MeshProblem as problem:
         return str(problem)
     import numpy as np

@@ -322,3 +322,29 @@ def test_moveit2_parallel_gripper_command_is_a_moveit_type(tmp_path):
     found, _ = check_folder(tmp_path, {"robot.urdf": robot, "other/c.yaml": yaml},
                             controllers=[str(tmp_path / "other/c.yaml")], select=("U606",))
     assert found == []
+
+
+def test_a_chained_controller_names_another_controllers_reference_interfaces(tmp_path):
+    """ros2_control_demos example 16: diff_drive_controller's wheels are the reference
+    interfaces of two pid_controllers (pid_left/head_joint), not joints of the URDF."""
+    chained = """
+controller_manager:
+  ros__parameters:
+    pid_left: {type: pid_controller/PidController}
+    base: {type: diff_drive_controller/DiffDriveController}
+    head_controller: {type: forward_command_controller/ForwardCommandController}
+head_controller:
+  ros__parameters:
+    joints: [head_joint]
+    interface_name: position
+pid_left:
+  ros__parameters:
+    dof_names: [head_joint]
+base:
+  ros__parameters:
+    left_wheel_names: ["pid_left/head_joint"]
+    right_wheel_names: ["pid_rigth/head_joint"]
+"""
+    files = {"robot.urdf": ROS2_HEAD, "config/c.yaml": chained}
+    marks, findings = check_folder(tmp_path, files, select=("U602",))
+    assert [m[1] for m in marks] == [line_of(tmp_path / "config/c.yaml", "pid_rigth")]  # no such controller

@@ -136,3 +136,12 @@ def test_simulator_hardware_and_the_plugin_that_loads_it(tmp_path):
     # ROS 1's gazebo_ros_control in a ROS 2 robot is U618's to name
     assert codes("gazebo_ros2_control/GazeboSystem",
                  '<gazebo><plugin name="g" filename="libgazebo_ros_control.so"/></gazebo>', "f") == []
+
+
+def test_a_joint_read_by_a_sensor_component_has_its_state(tmp_path):
+    """ros2_control_demos example 14: an actuator without feedback, and a sensor component
+    reporting the same joint's position: joint_state_broadcaster publishes it (no U517)."""
+    actuator = ROS2_CONTROL.format(hardware="demo/ActuatorWithoutFeedback", state="")
+    sensor = ('<ros2_control name="p" type="sensor"><hardware><plugin>demo/Sensor</plugin>'
+              f'</hardware><joint name="head_joint">{STATE}</joint></ros2_control>')
+    assert _check(tmp_path, actuator + sensor)[0] == []

@@ -127,9 +127,11 @@ class MeshFacts:
 
     faces: the triangle count; bounds: (2, 3) min and max corner; extents; is_watertight;
     metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; vertices (merged by
-    position), is_watertight, mass_properties (density 1, of the mesh as it is) and
+    position), is_watertight, mass_properties (density 1, of the mesh as it is),
     convex_hull (its measures, as trimesh's hull has them; qhull's RuntimeError for a flat
-    mesh) are computed when first asked: the merging too, when bounds were found without it.
+    mesh) and extreme_points (the hull's vertices, or all: :func:`.mesh_arrays.extreme_points`)
+    are computed when first asked, once per run for every robot using the file at that scale:
+    the merging too, when bounds were found without it.
     """
 
     def __init__(self, vertices, faces, metadata: dict, watertight: bool | None = None,
@@ -154,7 +156,7 @@ class MeshFacts:
         self.faces, self.bounds, self.metadata, self.nbytes = triangles, bounds, metadata, nbytes
         self.extents = self.bounds[1] - self.bounds[0]
         self._vertices = self._faces = self._watertight = self._merge = None
-        self._properties, self._hull = None, None
+        self._properties, self._hull, self._extreme = None, None, None
 
     def _arrays(self):
         if self._merge is not None:
@@ -181,6 +183,13 @@ class MeshFacts:
         if self._properties is None:
             self._properties = mesh_arrays.mass_properties(*self._arrays())
         return self._properties
+
+    @property
+    def extreme_points(self):
+        """The vertices that the support and the farthest point are reached at (read only)."""
+        if self._extreme is None:
+            self._extreme = mesh_arrays.extreme_points(self.vertices)
+        return self._extreme
 
     @property
     def convex_hull(self):

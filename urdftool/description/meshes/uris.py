@@ -45,17 +45,21 @@ def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
         package, _ = package_uri_parts(uri)
         try:
-            folder = robot.resolver.find(package)
+            located = robot.resolver.locate_uri(uri, robot.base_dir)
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
-        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(folder), package)
+        found = _checked(uri, os.fspath(located.path), os.fspath(located.within), package)
     else:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
-        found = _checked(uri, os.fspath(robot.resolve_uri(uri)), os.fspath(robot.base_dir),
-                         None)
+        located = robot.resolver.locate_uri(uri, robot.base_dir)
+        found = _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir), None)
     if isinstance(found, MeshProblem):
+        if found.kind == "missing" and located.doubt:
+            # the build may put it there: not certainly missing (docs/packages.md)
+            raise MeshProblem("missing", f"{found.message}: not found in the source tree; "
+                                         f"{located.doubt}", certain=False)
         raise MeshProblem(found.kind, found.message)  # a new one: raised once per robot
     return found
 

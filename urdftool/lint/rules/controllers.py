@@ -138,6 +138,10 @@ def controller_unknown_joint(robot):
     arguments, a sibling robot's file): one note says so, at its first controller. One name
     alone that is missing may be a slip, and is judged as any other.
 
+    A name ``CONTROLLER/NAME`` where CONTROLLER is another controller of the robot is a chained
+    controller's reference interface (diff_drive_controller driving two pid_controllers,
+    ros2_control_demos example 16), not a joint.
+
     Bad: ``joints: [head_jont]``
     Good: ``joints: [head_joint]``
     """
@@ -150,11 +154,13 @@ def controller_unknown_joint(robot):
                 f"robot as checked ({', '.join(names[:4])}{', ...' if len(names) > 4 else ''}): "
                 "the file is for another build of the robot (a prefix, other xacro arguments) "
                 "or another robot; check the robot as that build with --arg", Severity.INFO)
+    # a chained controller claims another's reference interfaces, CONTROLLER/NAME, not joints
+    chainable = {controller.name for controller in controllers(robot)}
     for controller in controllers(robot):
         if controller.file.path in foreign:
             continue
         for ref in _urdf_joints(robot, controller):
-            if ref.name not in robot.joints:
+            if ref.name not in robot.joints and ref.name.partition("/")[0] not in chainable:
                 literal = (" (every launch file of the robot loads the file without substitution, "
                            "so it is not replaced)" if "$(" in ref.name else "")
                 message = hedged(robot, controller, (

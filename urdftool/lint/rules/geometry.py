@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
 from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
+from urdftool.description.values import number as attribute_number
 
 ORIGIN_FIELDS = (("origin", "xyz"), ("origin", "rpy"))
 
@@ -296,7 +297,9 @@ def _load_meshes(robot):
 def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
-            yield shape, f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            # a problem that may not hold after the package's build: a warning saying so
+            yield shape, (message if outcome.certain else Conditional(message))
 
 
 @rule("U407", "mesh-package-not-found", Severity.ERROR)
@@ -314,6 +317,12 @@ def mesh_not_found(robot):
     """A mesh file does not exist.
 
     Every viewer and simulator fails or shows nothing for that link.
+
+    ``package://NAME/...`` names the installed ``share/NAME``: a file missing from the source
+    folder is looked for where the package's build (CMakeLists.txt ``install()``, setup.py or
+    setup.cfg ``data_files``) installs it from. When those install rules cannot be read (a
+    variable set in a loop, ``data_files`` built by walking folders), a file not found is a
+    warning saying so, not an error (docs/packages.md).
 
     Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
     Good: the exact file name (case matters on Linux)
@@ -376,18 +385,44 @@ def _extent(mesh) -> float:
     return float(max(mesh.extents))
 
 
+def _half_size(shape) -> float:
+    """How far a primitive reaches from its origin [m]: half a box's largest side, a sphere's
+    radius, a cylinder's half diagonal (0 when malformed or for a mesh)."""
+    if shape.tag == "box":
+        sides, _ = number_tuple(shape.get("size"), 3)
+        return max(map(abs, sides)) / 2 if sides else 0.0
+    radius = abs(attribute_number(shape, "radius", 0.0) or 0.0)
+    if shape.tag == "cylinder":
+        return math.hypot(radius, (attribute_number(shape, "length", 0.0) or 0.0) / 2)
+    return radius if shape.tag == "sphere" else 0.0  # a mesh: its size is the question
+
+
 def _link_spans(robot) -> dict[str, float]:
     """Each link's span [m]: the longest offset of the joints at it (its parent joint's origin,
-    its child joints' origins), the scale a mesh of that link has."""
+    its child joints' origins) and the farthest reach of its own visual and collision
+    primitives (origin plus half size), the scale a mesh of that link has."""
     def compute():
         spans: dict[str, float] = {}
+
+        def reach(name, length):
+            if name is not None and length > spans.get(name, 0.0):
+                spans[name] = length
+
         for joint in robot.children("joint"):
             length = math.hypot(*origin_pose(joint)[0])
             for end in ("parent", "child"):
                 element = first_child(joint, end)
-                name = element.get("link") if element is not None else None
-                if name is not None and length > spans.get(name, 0.0):
-                    spans[name] = length
+                reach(element.get("link") if element is not None else None, length)
+        for link in robot.children("link"):
+            for holder in child_list(link):
+                geometry = first_child(holder, "geometry") \
+                    if holder.tag in ("visual", "collision") else None
+                for shape in child_list(geometry) if geometry is not None else ():
+                    if not isinstance(shape.tag, str):
+                        continue
+                    length = math.hypot(*origin_pose(holder)[0]) + _half_size(shape)
+                    if math.isfinite(length):
+                        reach(link.get("name"), length)
         return spans
     return robot.memo(_link_spans, compute)
 
@@ -399,9 +434,10 @@ def mesh_implausible_size(robot):
     CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
     too big, and any inertia computed from the mesh is 10^6 too big. A size outside that window
     is a unit slip only when the rescaled mesh would fit its link: within 10 times the link's
-    span (the longest offset of the joints at the link). A 5 m boat hull whose thrusters sit
-    2.4 m from its origin (osrf/vrx's WAM-V), or a 0.5 mm marker at a fingertip 27 mm from its
-    knuckle (Unitree's BrainCo hand), is the size it means; a link with no joint offsets is
+    span (the longest offset of the joints at the link, or the reach of its own boxes,
+    cylinders and spheres). A 5 m boat hull whose thrusters sit 2.4 m from its origin, or whose
+    collision boxes reach 1.3 m (osrf/vrx's WAM-V), or a 0.5 mm marker at a fingertip 27 mm
+    from its knuckle (Unitree's BrainCo hand), is the size it means; a link with neither is
     judged by the window alone.
 
     Fix (safe): the ``scale`` that brings it to a plausible size (x 0.001 or 0.01 for a mesh

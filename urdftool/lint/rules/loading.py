@@ -6,8 +6,8 @@ codes (``urdftool.lint.engine.LOAD_CODES`` and ``NOTE_CODES``). U015 and U018 ar
 
 from urdftool.description.urdf import version_problem
 from urdftool.diagnostics import Location
-from urdftool.errors import PackageNotFound
-from urdftool.lint.catalogue import Severity, declare, rule
+from urdftool.errors import PackageNotFound, close_names
+from urdftool.lint.catalogue import Conditional, Severity, declare, rule
 
 U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
@@ -54,6 +54,30 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     include cycles end here, located at the line of the xacro file (or the included file) where
     the element that failed was written.
 
+    An argument without a default (``<xacro:arg name="robot_model"/>``, or ``$(arg name)``
+    read with no declaration) is not a defect in itself: xacro fails only when whoever builds the
+    robot does not give it, and a robot meant to be built several ways asks for it on purpose.
+    The repository's launch files say who builds it (docs/launch.md), and what is certain is
+    reported so:
+
+    - **error** when a launch file makes the robot from this file, unconditionally, with every
+      xacro argument it gives read, and does not give this one: xacro fails there, every time;
+      and when the build a launch file makes with no launch argument involved fails;
+    - **warning**, naming the launch file and its condition, when one makes it without the
+      argument only under a condition (an ``if``, or a launch argument choosing the file); and
+      when no launch file gives it, it is declared nowhere and its name is close to one that is
+      declared (``$(arg robot_nmae)``: a misspelt name fails unless a command line gives it);
+    - **note** when launch files give it: the robot is checked as the first one builds it
+      (the arguments known only at launch left at the robot's defaults; when that build
+      fails, the failure is the note), or, when its value is known only at launch, not
+      checked; and when no launch file here builds the robot: an argument a robot others
+      build asks for (ROS 1 robots often read ``$(arg name)`` undeclared, given by the
+      command line). ``--arg name=VALUE`` checks a build of your choice.
+
+    An included file missing from the source tree below a package (``$(find NAME)/...``) is
+    looked for where the package's build installs it from (docs/packages.md); when that
+    package's install rules cannot be read, it may exist after the build: a warning saying so.
+
     Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
     """)
@@ -77,9 +101,98 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     simulators read ``.urdf`` files as plain URDF: they reject ``${...}`` values and ignore
     ``xacro:`` elements.
 
+    Which it is, the repository's launch files say (docs/launch.md): when every launch file
+    that loads the file runs xacro on it (``<param command="xacro ...">``, ``Command(["xacro",
+    ...])``, ``xacro.process_file``), its consumers read it expanded, so it is checked as a
+    xacro robot (a xacro error is then U005's, theirs) and this is a **note** naming the launch
+    files: only a tool given the file itself reads it unexpanded. An **error** otherwise: a
+    launch file reads it as it is (``textfile=``, ``cat``, Python's ``open``), or none loads it.
+
     Bad: ``robot.urdf`` containing ``<xacro:property .../>``
     Good: rename it ``robot.urdf.xacro``
     """)
+
+
+def required_argument(path: str, error, build):
+    """(robot or None, the xacro arguments it was built with, findings) for a robot that needs
+    the argument ``error.subject`` (a LoadError of kind "arg"), which has no default and the user
+    did not give; ``build(args)`` loads the robot with those arguments (raises LoadError). What
+    the launch files of its repository say decides (:func:`~urdftool.description.runtime.builds`);
+    U005's documentation says how."""
+    from urdftool.description.runtime import builds, launch_xacro_args
+    from urdftool.errors import LoadError
+
+    name, rule = error.subject, U005
+    hint = f"pass {name}:=VALUE (or --arg {name}=VALUE) to check a build"
+    for made, given in launch_xacro_args(path, name):
+        try:
+            robot = build(given)
+        except LoadError as again:
+            later = sorted(k for k, v in made.args.items() if v is None)
+            certain = made.certain and not made.free and not later
+            told = f"{made.launch} builds it ({made.shown_args()}" + (
+                "" if certain else f"; {', '.join(later)} known only at launch, left at the "
+                "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
+            message = f"{again.message}; {told}, and xacro fails so"
+            return None, given, [rule.finding(
+                message if certain else Conditional(message, Severity.INFO), again.location)]
+        message = f"{error.message}; checked as {made.launch} builds it ({made.shown_args()}); {hint} of your choice"
+        return robot, given, [rule.finding(Conditional(message, Severity.INFO), error.location)]
+    made = [b for b in builds(path) if b.xacro]
+    giving = [b for b in made if name in b.args]
+    if giving:
+        return None, {}, [rule.finding(Conditional(
+            f"{error.message}; {giving[0].launch} gives it a value known only at launch, so the "
+            f"robot is not checked; {hint}", Severity.INFO), error.location)]
+    lacking = [b for b in made if b.complete]
+    for b in lacking:
+        if b.certain:
+            return None, {}, [rule.finding(
+                f"{error.message}; {_where(b)} builds this robot without it, and xacro fails "
+                "there", error.location)]
+    if lacking:
+        b = lacking[0]
+        when = b.condition or "when its launch argument chooses this file"
+        return None, {}, [rule.finding(Conditional(
+            f"{error.message}; {_where(b)} builds this robot without it {when}, and xacro "
+            "fails then"), error.location)]
+    declared = _declared(path, error)
+    near = close_names(name, declared - {name})
+    if name in declared or not near:
+        return None, {}, [rule.finding(Conditional(
+            f"{error.message}: {name} has no default and no launch file here builds the robot: "
+            f"a parameter whoever builds it gives; not checked: {hint}",
+            Severity.INFO), error.location)]
+    return None, {}, [rule.finding(Conditional(
+        f"{error.message}: {name} is declared nowhere and no launch file here gives it, but "
+        f"{', '.join(near)} is (<xacro:arg>): a misspelt name fails unless the command line "
+        f"gives {name}; {hint}"), error.location)]
+
+
+def _where(build) -> str:
+    """Where a launch file builds the robot: the file and line, and the launch file run."""
+    at = f"{build.written}:{build.line or '?'}"
+    return at if build.written == build.launch else f"{at} (run by {build.launch})"
+
+
+def _declared(path: str, error) -> set[str]:
+    """The xacro arguments declared (``<xacro:arg name="...">``) in the robot's file and the
+    file where xacro failed."""
+    import re
+
+    from urdftool.description.files import read_regular
+
+    declaration = re.compile(rb"<(?:xacro:)?arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"']")
+    found: set[str] = set()
+    for file in dict.fromkeys([path, *([error.location.file] if error.location else [])]):
+        try:
+            data = read_regular(file, 16 << 20, as_="include")
+        except OSError:
+            continue
+        found.update(name.decode("utf-8", "replace") for name in declaration.findall(data))
+    return found
+
+
 
 
 U008 = declare("U008", "file-too-large", Severity.ERROR, """

@@ -189,7 +189,9 @@ def moveit_limits_exceed_urdf(robot):
     URDF's limits. Only limits switched on (``has_velocity_limits: true``, ...) count.
 
     A value that is the URDF's rounded to the decimals it is written with (2.53073 for
-    2.5307274) is the same limit.
+    2.5307274) is the same limit. A URDF velocity or effort of 0 or less is no limit to keep
+    under (a CAD exporter's placeholder, which U212 reports; the YAML is where such robots
+    give the real one: AuboRobot's aubo_i5L.urdf).
 
     Bad: ``max_velocity: 3.0`` for a joint with ``<limit velocity="2.0" .../>``
     Good: ``max_velocity: 2.0`` or less
@@ -204,7 +206,7 @@ def moveit_limits_exceed_urdf(robot):
             checks += [("max_position", "upper", 1), ("min_position", "lower", -1)]
         for key, attribute, sign in checks:
             mine, urdf = entry.values.get(key), _urdf_limit(joint, attribute)
-            if mine is None or urdf is None:
+            if mine is None or urdf is None or attribute in ("velocity", "effort") and urdf <= 0:
                 continue
             if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)) and not _rounded(mine, urdf):
                 what, bound = ("above", "at most") if sign > 0 else ("below", "at least")

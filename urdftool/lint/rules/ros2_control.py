@@ -17,11 +17,17 @@ def ros2_control_no_state_interface(robot):
     position (joint_trajectory_controller) cannot be configured on it. A warning: hardware may
     report the joint some other way.
 
+    A state interface of the joint in another ``<ros2_control>`` block counts: a sensor
+    component reporting an actuator's position (ros2_control_demos example 14) is the joint's
+    state as joint_state_broadcaster reads it.
+
     Bad: ``<joint name="head_joint"><command_interface name="position"/></joint>``
     Good: ``<command_interface name="position"/><state_interface name="position"/>``
     """
-    for block, joint in ros2_control_joints(robot):
-        if joint.find("command_interface") is not None and joint.find("state_interface") is None:
+    joints = ros2_control_joints(robot)
+    reported = {joint.get("name") for _, joint in joints if joint.find("state_interface") is not None}
+    for block, joint in joints:
+        if joint.find("command_interface") is not None and joint.get("name") not in reported:
             commands = ", ".join(c.get("name", "?") for c in joint.findall("command_interface"))
             yield joint, (f"ros2_control joint '{joint.get('name')}' in '{block.get('name')}' has command "
                           f"interface(s) {commands} and no state interface: joint_state_broadcaster "
