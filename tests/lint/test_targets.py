@@ -569,3 +569,16 @@ def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_p
     walked, named = _walked_and_named(tmp_path, "layout.xacro")
     assert walked.files == named.files == [str(tmp_path / "boat.urdf.xacro")]
     assert "included by" in walked.skipped[str(tmp_path / "layout.xacro")]
+
+
+def test_a_urdf_holding_a_xacro_include_keeps_its_root_to_the_include(tmp_path):
+    # elephantrobotics' mycobot_with_vision_copy.urdf: a .urdf that includes (with xacro) the
+    # arm writing 'joint1', a file since removed; it is a robot, checked (U007 and what is
+    # missing), not a part of another robot
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "copy.urdf").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="gone.urdf"/><link name="env"/>'
+        '<joint name="j" type="fixed"><parent link="joint1"/><child link="env"/></joint></robot>')
+    walked, named = _walked_and_named(tmp_path, "copy.urdf")
+    assert walked.files == named.files == [str(tmp_path / "copy.urdf")]
