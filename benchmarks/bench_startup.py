@@ -1,10 +1,10 @@
 """Start-up against its references, and each start-up trick of ``urdftool/__main__.py`` (the one
 door for them) with and without it: a trick stays while it saves 50 ms or more of CPU on what
-users run.
+users run, or while a goal is missed without it.
 
 - ``urdftool --help`` against ``python -c pass`` (target: 1.5x).
 - ``urdftool check`` of robots/r2d2 against urdfdom's way, ``xacro`` then the ELF ``check_urdf``
-  (target: 2x).
+  (target: 2x), xacro finding r2d2's package through an ament index as on a ROS 2 machine.
 - the kept help texts (``--help``), the output replay (the same ``check`` words again, cached,
   as a pre-commit hook or an editor runs it, on r2d2), the collector's rhythm (``check --jobs 1 --no-cache`` of the corpus URDFs, the CI path): each timed with the
   door as it is and with that trick patched out.
@@ -16,6 +16,7 @@ median wall time beside it) of runs alternating with its reference, with the loa
 from __future__ import annotations
 
 import os
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -44,16 +45,65 @@ def _ratio(name: str, ours, reference, target: float) -> dict:
           f"{reference.text()}; {load()}")
     return {"name": f"{name} [{ours.median * 1e3:.0f} vs {reference.median * 1e3:.0f} ms cpu, "
                     f"{load()}]",
-            "ratio": ratio, "target": target, "ok": ratio <= target}
+            "ratio": ratio, "target": target, "ok": ratio <= target,
+            "detail": f"goal <= {target}x; ours {ours.text()}; reference {reference.text()}"}
 
 
-def _trick(name: str, kept, without) -> dict:
+def _trick(name: str, kept, without, goal: tuple | None = None) -> dict:
+    """Whether a trick pays: it saves SAVES of CPU, or a goal (what, reference Series, target
+    ratio) is missed without it."""
     saved = without.median - kept.median
-    print(f"trick {name}: saves {saved * 1e3:.0f} ms cpu (stays at {SAVES * 1e3:.0f}): with it "
-          f"{kept.text()}; without {without.text()}; {load()}")
-    return {"name": f"trick {name}: saves {saved * 1e3:.0f} ms cpu [{load()}]",
+    needed = ""
+    if goal is not None:
+        what, reference, target = goal
+        if without.median / reference.median > target:
+            needed = (f"; without it {what} is {without.median / reference.median:.2f}x "
+                      f"(goal {target}x)")
+    print(f"trick {name}: saves {saved * 1e3:.0f} ms cpu (stays at {SAVES * 1e3:.0f}{needed}): "
+          f"with it {kept.text()}; without {without.text()}; {load()}")
+    return {"name": f"trick {name}: saves {saved * 1e3:.0f} ms cpu{needed} [{load()}]",
             "ratio": kept.median / without.median, "target": f">= {SAVES * 1e3:.0f} ms",
-            "ok": saved >= SAVES}
+            "ok": saved >= SAVES or bool(needed),
+            "detail": f"goal saves >= {SAVES * 1e3:.0f} ms or a goal needs it; with it "
+                      f"{kept.text()}; without (reference) {without.text()}"}
+
+
+# xacro resolves $(find PKG) through ament_index_python (ROS 2), which no wheel provides: the
+# reference gets the index's lookup as ROS 2 installs it (a prefix whose share/ament_index
+# marks the package), so that xacro expands r2d2 as a ROS 2 machine does instead of stopping
+# at its first $(find) (it did, from the round r2d2 first used one: a reference too cheap)
+_AMENT_INDEX = '''import os
+
+
+class PackageNotFoundError(KeyError):
+    pass
+
+
+def get_package_share_directory(package_name):
+    for prefix in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep):
+        if os.path.isfile(os.path.join(prefix, "share", "ament_index", "resource_index",
+                                       "packages", package_name)):
+            return os.path.join(prefix, "share", package_name)
+    raise PackageNotFoundError(package_name)
+'''
+
+
+def ros2_packages(folder: Path, environment: dict, packages: dict[str, Path]) -> dict:
+    """``environment`` with an ament index in ``folder`` that finds ``packages`` (name ->
+    folder), and the module that reads it on PYTHONPATH."""
+    module = folder / "ament_index_python"
+    module.mkdir()
+    (module / "__init__.py").write_text("")
+    (module / "packages.py").write_text(_AMENT_INDEX)
+    prefix = folder / "prefix"
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    for name, source in packages.items():
+        (index / name).write_text("")
+        (prefix / "share" / name).symlink_to(source)
+    return {**environment, "AMENT_PREFIX_PATH": str(prefix),
+            "PYTHONPATH": os.pathsep.join(filter(None, [str(folder),
+                                                        environment.get("PYTHONPATH")]))}
 
 
 def main() -> list[dict]:
@@ -64,12 +114,19 @@ def main() -> list[dict]:
                          "help without": door("door._help = lambda words: None", "--help")}, 9)
     results.append(_ratio("urdftool --help vs python -c pass", found["help"], found["python"],
                           1.5))
-    results.append(_trick("kept help texts (--help)", found["help"], found["help without"]))
+    results.append(_trick("kept help texts (--help)", found["help"], found["help without"],
+                          ("--help", found["python"], 1.5)))
 
     check_urdf, environment = urdfdom_check_urdf()
     with tempfile.TemporaryDirectory() as folder:
         urdf = Path(folder) / "r2d2.urdf"
+        environment = ros2_packages(Path(folder), environment,
+                                    {"r2d2_description": ROBOT.parent})
+        # set -e: a reference that fails is no reference (the run stops with its exit code)
         reference = (f"{BIN / 'xacro'} {ROBOT} > {urdf} && {check_urdf} {urdf}", environment)
+        for command in (reference[0], f"grep -q '<robot' {urdf}"):
+            subprocess.run(command, shell=True, env=environment, check=True,
+                           stdout=subprocess.DEVNULL)
         cached = [urdftool, "check", "--cache-dir", str(Path(folder) / "cache"), str(ROBOT)]
         found = alternating({"ours": [urdftool, "check", "--no-cache", str(ROBOT)],
                              "reference": reference,
@@ -104,7 +161,8 @@ def main() -> list[dict]:
         rows = [(label, _trick(f"{trick} (check {label})", found["door"], found[key]))
                 for label, found in workloads.items()]
         best = max((row for _, row in rows), key=lambda row: row["ok"])
-        results.append({**best, "name": f"trick {trick}: "
+        results.append({**best, "detail": " | ".join(row["detail"] for _, row in rows),
+                        "name": f"trick {trick}: "
                         + "; ".join(row["name"].split(": ", 1)[1] + f" on {label}"
                                     for label, row in rows),
                         "ok": any(row["ok"] for _, row in rows)})

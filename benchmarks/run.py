@@ -1,7 +1,8 @@
 """`make bench`: run every benchmarks/bench_*.py and compare each against its reference.
 
 Each module has ``main() -> list[dict]`` (or a dict); a result has ``name``, ``value``,
-``reference`` (what it is measured against, in the same run), ``ratio``, ``target`` and ``ok``.
+``reference`` (what it is measured against, in the same run), ``ratio``, ``target`` and ``ok``,
+and ``detail``: the goal, and the median and spread of each side (printed under its row).
 Each module runs in a process of its own: what one leaves in memory (the render bench's meshes,
 some 100,000 objects) would slow the next one's in-process timings, for the reference and the
 code alike. Exit code 1 when a target is missed.
@@ -47,6 +48,8 @@ def main() -> int:
         verdict = "ok" if result.get("ok", True) else "MISSED"
         print(f"{result['name']:58} {result.get('ratio', float('nan')):8.2f} "
               f"{str(result.get('target', '')):>10}  {verdict}")
+        if result.get("detail"):  # goal, reference, median and spread [min-max] of each side
+            print(f"    {result['detail']}")
     return 0 if all(r.get("ok", True) for r in results) else 1
 
 

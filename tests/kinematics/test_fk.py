@@ -14,6 +14,7 @@ from urdftool.physics import mat3
 from urdftool.kinematics import transforms
 from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics, pose_components
 from urdftool.description.load import load
+from urdftool.description.urdf import JOINT_TYPES, MOVING
 
 HUMANOID = ROBOTS / "humanoid" / "humanoid.urdf.xacro"
 
@@ -332,3 +333,72 @@ def test_random_configurations_are_given_with_their_values(run_cli):
                     "-f", "csv").output.splitlines()
     assert table[0].split(",")[13:] == list(documents[0]["q"])
     assert [float(v) for v in table[2].split(",")[13:]] == list(documents[1]["q"].values())
+
+
+# -- the model read down the parsed tree, against Pinocchio's -------------------------------------
+
+
+
+def _random_tree(seed: int, links: int = 14) -> bytes:
+    """A random tree: every joint kind, mimic joints (of mimic joints too), unaligned and
+    negative axes, turned origins, joint names whose byte order is not the document order."""
+    rng = np.random.default_rng(seed)
+    parts, kinds = [f'<robot name="r{seed}">', '<link name="l0"/>'], {}
+    for i in range(1, links):
+        kind = JOINT_TYPES[rng.integers(len(JOINT_TYPES))] if i > 1 else "revolute"
+        parent = int(rng.integers(i))
+        name = f"{'zyxw'[rng.integers(4)]}{rng.integers(100)}_{i}"
+        xyz = " ".join(f"{v:.3f}" for v in rng.uniform(-1, 1, 3))
+        rpy = " ".join(f"{v:.3f}" for v in rng.uniform(-3, 3, 3)) if rng.random() < 0.7 else "0 0 0"
+        axis = ["1 0 0", "0 0 -1", "0 1 0", "0 0.6 0.8", "1 1 1", "-1 0 6.12323e-17",
+                "0 1 6.12323e-17"][rng.integers(7)]
+        extra = f'<axis xyz="{axis}"/>'
+        if kind in ("revolute", "prismatic"):
+            extra += '<limit lower="-1.5" upper="1.5" effort="1" velocity="1"/>'
+        movers = [n for n, k in kinds.items() if k in MOVING]
+        if kind in ("revolute", "prismatic") and movers and rng.random() < 0.4:
+            extra += (f'<mimic joint="{movers[rng.integers(len(movers))]}" '
+                      f'multiplier="{rng.uniform(-2, 2):.3f}" offset="{rng.uniform(-1, 1):.3f}"/>')
+        kinds[name] = kind
+        parts.append(f'<link name="l{i}"/>')
+        parts.append(f'<joint name="{name}" type="{kind}"><parent link="l{parent}"/>'
+                     f'<child link="l{i}"/><origin xyz="{xyz}" rpy="{rpy}"/>{extra}</joint>')
+    return "\n".join(parts + ["</robot>"]).encode()
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_model_read_down_the_tree_is_pinocchios(tmp_path, seed):
+    """The joints, link frames, their order and Pinocchio's coordinates, and every pose, as
+    Pinocchio's model has them, on random trees with every joint kind and mimic joints."""
+    import pinocchio
+
+    path = tmp_path / "random.urdf"
+    path.write_bytes(_random_tree(seed))
+    for floating in (False, True):
+        model = KinematicModel(load(path), floating=floating)
+        native = model.model
+        body = [f for f in native.frames if f.type == pinocchio.FrameType.BODY]
+        assert model.links == [f.name for f in body]
+        assert [j.name for j in model._joints] == list(native.names)
+        assert [j.parent for j in model._joints[1:]] == list(native.parents)[1:]
+        assert [j.idx_q for j in model._joints[1:]] == [j.idx_q for j in native.joints][1:]
+        assert model.pinocchio_q(np.zeros((1, len(model.variables)))).shape == (1, native.nq)
+        values = config.random(model.variables, 8, seed=seed).values
+        np.testing.assert_allclose(model.link_poses(values), _pinocchio_poses(model, values),
+                                   atol=1e-12)
+
+
+def test_fk_builds_no_pinocchio_model(tiny, monkeypatch):
+    """Poses come from the tree read once, not from Pinocchio's model (quadratic in links),
+    past the size where urdfdom's verdict is asked of it."""
+    from urdftool.kinematics import fk, native
+
+    def refused(*args):
+        raise AssertionError("Pinocchio's model was built")
+
+    monkeypatch.setattr(native, "build_model", refused)
+    monkeypatch.setattr(fk, "URDFDOM_VERDICT_UP_TO", len(tiny.links) - 1)
+    model = KinematicModel(tiny.robot)
+    values = config.random(model.variables, 3, seed=0).values
+    result = forward_kinematics(model, config.Configurations(model.variables, values, []))
+    np.testing.assert_allclose(result.matrices, tiny.link_poses(values), atol=1e-12)

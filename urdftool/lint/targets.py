@@ -442,7 +442,7 @@ def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -
         if found is None:
             continue
         defaults = found[1]
-        if found[0] not in includes and found[0] not in named and found[0].is_file():
+        if found[0] not in includes and found[0] not in named and kind_of(found[0]) == "file":
             named.append(found[0])
     return named
 
