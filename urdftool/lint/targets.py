@@ -271,11 +271,12 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> bool:
     'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
     root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
     definitions may write links the text does not show (macro calls, includes), unless the
-    file is not ``expanded`` (a ``.urdf`` is read as written) and holds no xacro element (a
-    ``.urdf`` holding xacro is expanded, with U007: elephantrobotics' stale
-    mycobot_with_vision_copy.urdf includes a file that is gone)."""
+    file is not ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's
+    namespace (a ``.urdf`` that does is expanded, with U007: elephantrobotics' stale
+    mycobot_with_vision_copy.urdf includes a file that is gone; jackal's custom_example.urdf
+    calls a macro without declaring it, which xacro cannot parse)."""
     data = _MACRO_BODY.sub(b"", data)
-    if (expanded or b"<xacro:" in data) and _LINK_MAKER.search(data):
+    if (expanded or b"xmlns:xacro" in data) and _LINK_MAKER.search(data):
         return False  # a macro call or an include may write the root
     ends = set(_JOINT_END.findall(data))
     links = set(_LINK_NAME.findall(data))
