@@ -57,7 +57,10 @@ def tally_memory(links: int) -> tuple[int, int]:
     from urdftool.description.load import load
 
     with tempfile.TemporaryDirectory() as folder:
-        scene = matrix.Scene(load(str(generate.write(Path(folder), links, "chain"))), 0.005)
+        # past the command's --max-pairs default (1,200 links: 719,400 pairs): a memory
+        # measure, asked for explicitly, as --max-pairs 0 would
+        scene = matrix.Scene(load(str(generate.write(Path(folder), links, "chain"))), 0.005,
+                             max_pairs=None)
     poses = scene.poses(scene.sample(0, 16))
     tracemalloc.start()
     scene.checker.tally(poses)
