@@ -47,14 +47,27 @@ class LoadError(UrdftoolError):
 class PackageNotFound(UrdftoolError):
     """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path."""
 
-    def __init__(self, name: str, searched: list[str]):
+    def __init__(self, name: str, searched: list[str], declared_by: str | None = None):
         self.name = name
         self.searched = searched
+        self.declared_by = declared_by
         where = ", ".join(searched) if searched else "nowhere (no search path)"
-        super().__init__(
-            f"package '{name}' not found; looked in: {where}. "
-            f"Pass --package {name}=PATH or set ROS_PACKAGE_PATH"
-        )
+        if declared_by:  # a dependency not installed here: the environment, not the robot
+            super().__init__(
+                f"package '{name}' not found: the package.xml of '{declared_by}' declares it as "
+                f"a dependency, which is not installed here, so the robot cannot be expanded "
+                f"(nothing in it is wrong); looked in: {where}. Pass --package {name}=PATH, set "
+                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
+                "install --from-paths . --ignore-src)")
+        else:
+            super().__init__(
+                f"package '{name}' not found; looked in: {where}. "
+                f"Pass --package {name}=PATH or set ROS_PACKAGE_PATH"
+            )
+
+    def declared(self, owner: str) -> "PackageNotFound":
+        """The same error, said of a package that ``owner``'s package.xml depends on."""
+        return PackageNotFound(self.name, self.searched, owner)
 
 _LISTED = 12
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested

@@ -110,3 +110,25 @@ def test_a_macro_used_before_its_definition_is_told_where_it_is_defined(tmp_path
     assert raised.value.location.line == 2
     assert "it is defined further on (its body begins at " in str(raised.value)
     assert "r.urdf.xacro:4)" in str(raised.value) and "--legacy" in str(raised.value)
+
+
+@pytest.mark.parametrize("declared", [True, False])
+def test_a_missing_package_the_package_xml_declares_is_said_to_be_not_installed(tmp_path,
+                                                                                declared):
+    # husky_description's package.xml declares fath_pivot_mount_description (another
+    # repository): missing here, it is a dependency not installed, not a misspelt name
+    from urdftool.errors import LoadError
+
+    (tmp_path / ".git").mkdir()
+    depend = "<exec_depend>mount_description</exec_depend>" if declared else ""
+    (tmp_path / "package.xml").write_text(
+        f'<package format="2"><name>bot_description</name>{depend}</package>')
+    (tmp_path / "bot.urdf.xacro").write_text(
+        '<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find mount_description)/urdf/mount.xacro"/>\n</robot>\n')
+    with pytest.raises(LoadError) as raised:
+        load(tmp_path / "bot.urdf.xacro")
+    assert raised.value.location.line == 2
+    said = "the package.xml of 'bot_description' declares it as a dependency"
+    assert (said in str(raised.value)) is declared
+    assert "Pass --package mount_description=PATH" in str(raised.value)
