@@ -275,3 +275,16 @@ def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
     robot = load_and_check(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
     [(configuration, relation)] = [c for c in runtime(robot).configurations if c[1]]
     assert relation == "as the environment builds it (HAS_ARM)"
+
+
+def test_an_argument_without_default_but_with_choices_builds_with_the_first(tmp_path):
+    # UR's view_ur.launch.py: DeclareLaunchArgument("ur_type", choices=["ur3", ...]) and no
+    # default; the robot is built (and checked) with the first choice, not left unbuilt
+    text = PYTHON.replace('DeclareLaunchArgument("prefix", default_value="left_")',
+                          'DeclareLaunchArgument("prefix", choices=["right_", "left_"])')
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/urdf/r.urdf.xacro": "<robot name='r'/>",
+                            "p/launch/a.launch.py": text})
+    [configuration] = launch_index(root).configurations
+    [described] = configuration.described
+    assert described.args["prefix"].text == "right_"

@@ -432,6 +432,12 @@ class _Reader:
                 default = keywords.get("default_value", args[1] if len(args) > 1 else None)
                 if isinstance(default, list):
                     default = concat(_flat(default))
+                choices = keywords.get("choices")
+                if default is None and isinstance(choices, list) and choices and \
+                        isinstance(choices[0], Value) and choices[0].literal is not None:
+                    # no default, but the values it may take: the robot is built with the
+                    # first (UR's ur_type), as a user must choose one
+                    default = literal(choices[0].literal)
                 act = _Act("arg", when, line, name=arg.literal,
                            default=default if isinstance(default, Value) else None, fixed=False)
                 self.acts.append(act)
