@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.errors import available
 
 
@@ -79,15 +79,35 @@ def joint_missing_endpoint(robot):
 def unknown_link(robot):
     """A joint names a parent or child link that does not exist.
 
+    A robot with no root link of its own (every link it writes is a joint's child, and its
+    joints hang on links it does not write, Gazebo's ``world`` aside) is a part of a robot
+    defined elsewhere, as a macro may build it (Baxter's example end effector, mounted on the
+    arm's ``left_hand``): the links it hangs on are said in a note, right only inside the
+    robot that includes it (the folder walk skips such a file when its text shows it).
+
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
     """
-    for joint, ends in robot.ends().items():
+    ends = robot.ends()
+    mounts = {link for _, link in (e["parent"] for e in ends.values())
+              if link and link not in robot.links}
+    children = {link for _, link in (e["child"] for e in ends.values())}
+    part = bool(robot.links) and mounts and "world" not in mounts and \
+        all(name in children for name in robot.links)
+    for joint, ends_of in ends.items():
         for side in ("parent", "child"):
-            element, link = ends[side]
-            if link and link not in robot.links:
-                yield element, (f"joint '{joint.get('name')}' names {side} link '{link}', "
-                                f"which does not exist; {available('links', link, robot.links)}")
+            element, link = ends_of[side]
+            if not link or link in robot.links:
+                continue
+            message = (f"joint '{joint.get('name')}' names {side} link '{link}', which does not "
+                       f"exist; {available('links', link, robot.links)}")
+            if part and side == "parent":
+                message = Conditional(
+                    f"joint '{joint.get('name')}' hangs on '{link}', which this robot does not "
+                    "write, and it has no root link of its own: a part of a robot defined "
+                    "elsewhere, right only inside the robot that includes it (alone, urdfdom "
+                    "refuses it)", Severity.INFO)
+            yield element, message
 
 
 @rule("U106", "no-links", Severity.ERROR)
