@@ -28,11 +28,11 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.files import enclosing_root, inside, kind_of, read_regular, real_path
+from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE
 from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
                                                  Started, launch_files, launch_index, shown)
-from urdftool.description.packages import containment_root, packages_below
+from urdftool.description.packages import manifest_text, package_of, packages_below
 from urdftool.diagnostics import display_path
 
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -644,17 +644,8 @@ def _versions(robot) -> Versions:
 
 
 def _manifest(robot):
-    if robot.path == "-":
-        return None
-    folder = Path(os.path.abspath(robot.path)).parent
-    root = containment_root(folder)
-    for candidate in [folder, *folder.parents]:
-        manifest = candidate / "package.xml"
-        if kind_of(manifest) == "file" and inside(manifest, root):
-            try:
-                return read_regular(manifest, 1024 * 1024), display_path(manifest)
-            except OSError:
-                return None
-        if candidate == root:
-            return None
-    return None
+    """(the package.xml of the robot's package, comments removed, as shown), or None: the
+    package is :func:`~urdftool.description.packages.package_of`'s."""
+    folder = None if robot.path == "-" else package_of(robot.path)
+    data = manifest_text(folder) if folder is not None else None
+    return None if data is None else (data, display_path(folder / "package.xml"))

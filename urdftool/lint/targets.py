@@ -421,13 +421,12 @@ def _included_files(path: Path, data: bytes, resolver: PackageResolver):
     takes the argument's default written in the file, and ``$(optenv VAR default)`` its default,
     as xacro does when nobody gives the argument or sets the variable (Clearpath's
     ``<xacro:arg name="urdf_extras" default="$(optenv HUSKY_URDF_EXTRAS empty.urdf)"/>``)."""
-    defaults = None
+    defaults = _arg_defaults(data)
     for match in _INCLUDE.finditer(data):
-        spec = match.group(1).decode("utf-8", "replace")
-        found = _resolved_spec(path, spec, data, resolver, defaults)
+        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), defaults,
+                               resolver)
         if found is not None:
-            defaults = found[1]
-            yield found[0]
+            yield found
 
 
 def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -> list[Path]:
@@ -436,26 +435,30 @@ def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -
     (``<xacro:wamv_gazebo thruster_layout="$(find wamv_gazebo)/urdf/.../wamv_aft_thrusters.xacro"/>``
     handed to ``<xacro:include filename="${thruster_layout}"/>``), which the include graph
     counts as included by ``path``."""
-    named, defaults = [], None
+    named, defaults = [], _arg_defaults(data)
     for match in _NAMED_FILE.finditer(data):
-        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), data, resolver,
-                               defaults)
-        if found is None:
-            continue
-        defaults = found[1]
-        if found[0] not in includes and found[0] not in named and kind_of(found[0]) == "file":
-            named.append(found[0])
+        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), defaults,
+                               resolver)
+        if found is not None and found not in includes and found not in named and \
+                kind_of(found) == "file":
+            named.append(found)
     return named
 
 
-def _resolved_spec(path: Path, spec: str, data: bytes, resolver: PackageResolver, defaults):
-    """(the file ``spec``, written in ``path``, names, the file's argument defaults), or None
-    when it needs what is only known when expanding."""
-    if "$(arg" in spec:
-        if defaults is None:
-            defaults = {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
-                        for name, value in _ARG_DEFAULT.findall(data)}
-        spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
+def _arg_defaults(data: bytes) -> dict[str, str]:
+    """The defaults of the ``<xacro:arg>`` written in ``data`` (none looked for when nothing
+    in it uses ``$(arg``)."""
+    if b"$(arg" not in data:
+        return {}
+    return {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
+            for name, value in _ARG_DEFAULT.findall(data)}
+
+
+def _resolved_spec(path: Path, spec: str, defaults: dict[str, str],
+                   resolver: PackageResolver) -> Path | None:
+    """The file ``spec``, written in ``path``, names, or None when it needs what is only
+    known when expanding."""
+    spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
     spec = _OPTENV.sub(lambda m: m.group(1), spec)
     find = _FIND.search(spec)
     if find:
@@ -465,7 +468,7 @@ def _resolved_spec(path: Path, spec: str, data: bytes, resolver: PackageResolver
             return None
     if "$" in spec or "\0" in spec:
         return None
-    return resolved_path(resolver.locate(path.parent / spec).path), defaults  # as xacro finds it
+    return resolved_path(resolver.locate(path.parent / spec).path)  # as xacro finds it
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
