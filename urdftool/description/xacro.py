@@ -63,10 +63,10 @@ MAX_TEXT = 64 * 1024 * 1024  # [characters] all substitutions of one expansion m
 MAX_MESSAGES = 1024 * 1024  # [characters] of xacro's warnings kept
 MAX_PATTERN_ENTRIES = 20_000  # folder entries one include pattern may look at
 _MAGIC = re.compile(r"[*?[]")  # what makes xacro glob an include's filename
-_UNSTAMPED = {"xacro:macro"}
+_UNSTAMPED = {"xacro:macro"}  # its attributes are copied onto the caller's parent
 # xacro's tags that ROS 1's xacro up to Melodic (1.13) also read without the xacro: prefix (its
 # deprecation message lists them); its macro calls too (handle_macro_call)
-ROS1_TAGS = ("include", "property", "macro", "arg", "if", "unless", "insert_block")  # its attributes are copied onto the caller's parent
+ROS1_TAGS = ("include", "property", "macro", "arg", "if", "unless", "insert_block")
 
 
 @dataclass
@@ -355,10 +355,9 @@ def _yaml_opener(session: _Session):
         try:
             data = session.read_file(filename, "yaml")
         except OSError as error:
-            doubt = session.resolver.locate(filename).doubt if session.resolver else None
-            if doubt:
-                raise _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: not "
-                                           f"found in the source tree; {doubt}") from None
+            unsure = _unsure(session, filename, error)
+            if unsure:
+                raise unsure from None
             raise
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
@@ -421,11 +420,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             data = session.read_file(filename)
         except OSError as error:
             xacro.filestack.pop()
-            doubt = session.resolver.locate(filename).doubt if session.resolver else None
-            if doubt:  # the package's build may install it: not certainly missing
-                raise xacro.XacroException(exc=_Unsure(error.errno, (
-                    f"{error.strerror}: {display_path(filename)}: not found in the source "
-                    f"tree; {doubt}")))
+            unsure = _unsure(session, filename, error)
+            if unsure:
+                raise xacro.XacroException(exc=unsure)
             hint = ""
             if "package://" in filename:
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
@@ -625,6 +622,16 @@ class _Unsure(OSError):
 
     def __str__(self) -> str:
         return self.strerror
+
+
+def _unsure(session: _Session, filename: str, error: OSError) -> _Unsure | None:
+    """``error`` reading ``filename`` as not certain, when the package's build may install the
+    file (its install rules could not be read); None when it is certainly missing."""
+    doubt = session.resolver.locate(filename).doubt if session.resolver else None
+    if not doubt:
+        return None
+    return _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: not found in the "
+                                f"source tree; {doubt}")
 
 
 def _installed(session: _Session, spec: str) -> str:
