@@ -42,7 +42,51 @@ def _text(samples: list[float]) -> str:
             f"[{min(samples) * 1e3:.1f}-{max(samples) * 1e3:.1f}]")
 
 
-def main() -> dict:
+# The command's reference: the plainest script printing the same poses with Pinocchio (its
+# model from the URDF, forwardKinematics and updateFramePlacements per row, every body frame's
+# position, roll-pitch-yaw and quaternion, numpy's text writer at six decimals)
+PLAIN_SCRIPT = """
+import sys, numpy as np, pinocchio
+model = pinocchio.buildModelFromXML(open(sys.argv[1]).read())
+data, q = model.createData(), np.load(sys.argv[2])
+frames = [i for i, f in enumerate(model.frames) if f.type == pinocchio.FrameType.BODY]
+rows = []
+for row in q:
+    pinocchio.forwardKinematics(model, data, row)
+    pinocchio.updateFramePlacements(model, data)
+    for i in frames:
+        pose = data.oMf[i]
+        rows.append([*pose.translation, *pinocchio.rpy.matrixToRpy(pose.rotation),
+                     *pinocchio.Quaternion(pose.rotation).coeffs()])
+np.savetxt(sys.stdout, np.array(rows), fmt="%.6f")
+"""
+
+
+def _command(model, path: Path, q, folder: str) -> dict:
+    """``urdftool fk --q-file`` to a pipe (text tables) against :data:`PLAIN_SCRIPT`: median
+    CPU times of the child processes, alternating (benchmarks/timing.py)."""
+    import numpy as np
+
+    from benchmarks.timing import alternating, load
+
+    urdf, saved = Path(folder) / "humanoid.urdf", Path(folder) / "q.npy"
+    urdf.write_text(model.robot.urdf)
+    np.save(saved, q)
+    urdftool = str(Path(sys.executable).parent / "urdftool")
+    found = alternating({"fk": [urdftool, "fk", str(ROOT / "robots" / "humanoid" /
+                                                    "humanoid.urdf.xacro"), "--q-file", str(path)],
+                         "plain": [sys.executable, "-c", PLAIN_SCRIPT, str(urdf), str(saved)]}, 3)
+    ratio = found["fk"].median / found["plain"].median
+    print(f"fk --q-file {ROWS} rows, text: {found['fk'].text()}; plain Pinocchio script "
+          f"{found['plain'].text()}; {ratio:.2f}x; {load()}")
+    return {"name": f"fk --q-file {ROWS} rows, text [{found['fk'].median:.2f} s cpu] vs a plain "
+                    f"Pinocchio script [{found['plain'].median:.2f} s] ({load()})",
+            "ratio": ratio, "target": TARGET, "ok": ratio <= TARGET,
+            "detail": f"goal <= {TARGET}x; ours {found['fk'].text()}; reference "
+                      f"{found['plain'].text()}"}
+
+
+def main() -> list[dict]:
     from urdftool.budget import one_blas_thread
 
     one_blas_thread()  # before numpy's import, as the command does
@@ -83,6 +127,7 @@ def main() -> dict:
         check = data.oMf[model.model.getFrameId(model.links[-1])].homogeneous
         assert np.allclose(result.matrices[-1, -1], check, atol=1e-12)
         found = _alternating({"ours": ours, "raw": raw, "parse": parse})
+        command = _command(model, path, q, folder)
     ours_time, raw_time, parse_time = (statistics.median(found[name])
                                        for name in ("ours", "raw", "parse"))
     ratio = ours_time / raw_time
@@ -90,11 +135,11 @@ def main() -> dict:
     print(f"fk --q-file {ROWS} rows on the humanoid: urdftool FK {ours_time * 1e3:.1f} ms "
           f"(+ {parse_time * 1e3:.1f} ms reading the CSV), raw Pinocchio {raw_time * 1e3:.1f} ms,"
           f" ratio {ratio:.2f} (target <= {TARGET}); with reading {with_parsing:.2f}")
-    return {"name": "fk_q_file_10000_rows", "ratio": ratio, "target": TARGET,
-            "detail": f"goal <= {TARGET}x; ours {_text(found['ours'])}; reference "
-                      f"{_text(found['raw'])}; reading the CSV {_text(found['parse'])}",
-            "ratio_with_reading": with_parsing, "urdftool_s": ours_time,
-            "reading_s": parse_time, "pinocchio_s": raw_time, "rows": ROWS}
+    return [{"name": "fk_q_file_10000_rows", "ratio": ratio, "target": TARGET,
+             "detail": f"goal <= {TARGET}x; ours {_text(found['ours'])}; reference "
+                       f"{_text(found['raw'])}; reading the CSV {_text(found['parse'])}",
+             "ratio_with_reading": with_parsing, "urdftool_s": ours_time,
+             "reading_s": parse_time, "pinocchio_s": raw_time, "rows": ROWS}, command]
 
 
 if __name__ == "__main__":
