@@ -230,7 +230,8 @@ U010 = declare("U010", "xacro-warning", Severity.WARNING, """
 def robot_name_missing(robot):
     """The ``<robot>`` element has no ``name`` attribute.
 
-    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name.
+    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name. On a part of a
+    robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
 
     Bad: ``<robot>``
     Good: ``<robot name="my_robot">``
