@@ -11,7 +11,7 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
 - ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
 - ``GroupAction(actions, condition=...)``, ``TimerAction``, ``RegisterEventHandler``;
 - robot descriptions: ``Command([FindExecutable(name="xacro"), " ", path, " name:=", ...])``,
-  ``xacro.process_file(path, mappings={...})``, ``xacro.process_doc(xacro.parse(open(path)))``,
+  ``xacro.process_file(path, mappings={...})``, ``xacro.process_doc`` of a file ``xacro.parse`` read,
   MoveItConfigsBuilder's
   ``robot_description(file_path=..., mappings=...)``.
 
@@ -593,7 +593,7 @@ class _Opened:
 
 
 class _Parsed:
-    """A file xacro parsed (``xacro.parse(open(path))``), which ``xacro.process_doc`` expands."""
+    """A file ``xacro.parse`` read (opened by Python), which ``xacro.process_doc`` expands."""
 
     def __init__(self, path: Value):
         self.path = path

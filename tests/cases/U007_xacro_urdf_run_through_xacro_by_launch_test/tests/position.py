@@ -1,3 +1,4 @@
+# (named without test_/_test so that pytest does not collect it; a tests/ folder makes it a possible launch test)
 # A launch test (launch_testing): read, never run, for how it builds the robot; what it starts
 # (the controllers) runs for the test alone
 import os

@@ -1,3 +1,4 @@
+# (named without test_/_test so that pytest does not collect it; a tests/ folder makes it a possible launch test)
 # A launch test reading the file as it is: a consumer that does not run xacro, so the file's
 # xacro is an error whatever the launch file does
 import os
