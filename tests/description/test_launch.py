@@ -288,3 +288,57 @@ def test_an_argument_without_default_but_with_choices_builds_with_the_first(tmp_
     [configuration] = launch_index(root).configurations
     [described] = configuration.described
     assert described.args["prefix"].text == "right_"
+
+
+LAUNCH_TEST = """import os
+import launch
+from launch_ros.actions import Node
+from ament_index_python.packages import get_package_share_directory
+import xacro
+
+def generate_test_description():
+    path = os.path.join(get_package_share_directory("p"), "urdf", "r.urdf.xacro")
+    doc = xacro.parse(open(path))
+    xacro.process_doc(doc, mappings={"prefix": "left_"})
+    return launch.LaunchDescription([
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": doc.toxml()}]),
+        Node(package="controller_manager", executable="spawner", arguments=["arm_controller"]),
+    ])
+"""
+
+
+def test_a_launch_test_shows_how_the_robot_is_built_not_what_a_deployment_starts(tmp_path):
+    # gz_ros2_control_tests/tests/position_test.py: launch_testing's generate_test_description,
+    # read from its syntax tree as a launch file is; its spawners start nothing for the rules
+    from urdftool.description.runtime import builds, runtime
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/urdf/r.urdf.xacro": "<robot name='r'><link name='a'/></robot>",
+                            "p/test/position_test.py": LAUNCH_TEST,
+                            "p/test/test_unit.py": "def test_x():\n    open('urdf/r.urdf.xacro')\n"})
+    index = launch_index(root)
+    assert index.configurations == []
+    [test] = index.tests
+    assert test.top.test and [s.executable for s in test.started] == ["robot_state_publisher",
+                                                                       "spawner"]
+    [build] = builds(str(root / "p/urdf/r.urdf.xacro"))
+    assert build.xacro and build.args == {"prefix": "left_"} and build.launch.endswith("position_test.py")
+    robot = load_and_check(str(root / "p/urdf/r.urdf.xacro"), CheckOptions()).robot
+    assert runtime(robot).configurations == []
+
+
+def test_what_a_launch_test_is_is_decided_by_its_entry_point(tmp_path):
+    from urdftool.description.launch import is_launch_test, may_be_launch_test
+
+    assert is_launch_test(LAUNCH_TEST)
+    assert is_launch_test("@pytest.mark.launch_test\ndef generate_test_description():\n    pass\n")
+    assert not is_launch_test(LAUNCH_TEST + "\ndef generate_launch_description():\n    pass\n")
+    assert not is_launch_test("def test_x():\n    generate_test_description()\n")
+    root = tmp_path
+    assert may_be_launch_test(root / "p/test/position.py", root)
+    assert may_be_launch_test(root / "p/tests/integration/x.test.py", root)
+    assert may_be_launch_test(root / "p/launch/test_view.py", root)
+    assert not may_be_launch_test(root / "p/scripts/teleop.py", root)
+    assert not may_be_launch_test(root / "p/test/config.yaml", root)

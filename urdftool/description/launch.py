@@ -275,6 +275,7 @@ class LaunchFile:
     form: str
     actions: list = field(default_factory=list)
     problem: str | None = None
+    test: bool = False  # a launch test (:func:`is_launch_test`), read from its entry point
 
     @property
     def ros(self) -> int:
@@ -293,6 +294,39 @@ def is_launch_file(path: Path, root: Path) -> bool:
         return False
     return bool(folders) and folders[-1] == "launch" and \
         name.endswith((".py", ".xml", ".yaml", ".yml")) and not name.startswith(("__", "test_"))
+
+
+# launch_testing's entry point: ``launch_test FILE`` and CMake's ``add_launch_test`` run it
+LAUNCH_TEST_ENTRY = "generate_test_description"
+_TEST_FOLDERS = ("test", "tests")
+_DEFINES_TEST = re.compile(rf"^(?:async\s+)?def\s+{LAUNCH_TEST_ENTRY}\s*\(", re.M)
+_DEFINES_LAUNCH = re.compile(r"^(?:async\s+)?def\s+generate_launch_description\s*\(", re.M)
+
+
+def may_be_launch_test(path: Path, root: Path) -> bool:
+    """A Python file that may be a launch test, by its name: in a ``test`` or ``tests`` folder
+    below ``root``, or named ``test_*.py``, ``*_test.py`` or ``*.test.py``; read, it is one
+    when :func:`is_launch_test` says so."""
+    name = path.name
+    if not name.endswith(".py"):
+        return False
+    if name.startswith("test_") or name.endswith(("_test.py", ".test.py")):
+        return True
+    try:
+        folders = path.parent.relative_to(root).parts
+    except ValueError:
+        return False
+    return any(folder in _TEST_FOLDERS for folder in folders)
+
+
+def is_launch_test(text: str) -> bool:
+    """Whether a Python file's text is a launch test: it defines launch_testing's
+    ``generate_test_description`` (and not ``generate_launch_description``: then ``ros2
+    launch`` runs it, a launch file). The one decision of what a launch test is. A launch test
+    shows how a robot file is built (its robot description), never what a deployment starts:
+    its controllers and nodes run for the test alone
+    (:func:`~urdftool.description.launch_configs.launch_index` keeps it apart)."""
+    return bool(_DEFINES_TEST.search(text)) and not _DEFINES_LAUNCH.search(text)
 
 
 def read_launch_text(path: Path) -> LaunchFile | str:

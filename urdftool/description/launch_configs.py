@@ -31,8 +31,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path
-from urdftool.description.launch import (MAX_TEXT, Arg, Condition, Description, Include, LaunchFile, ParamFile,
-                                         Start, Value, is_launch_file, read_launch_text)
+from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition, Description,
+                                         Include, LaunchFile, ParamFile, Start, Value,
+                                         is_launch_file, is_launch_test, may_be_launch_test,
+                                         read_launch_text)
 from urdftool.description.launch_python import read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
@@ -355,56 +357,73 @@ class Configuration:
 
 @dataclass
 class LaunchIndex:
-    """Every launch file of a repository, read; and each run as a configuration."""
+    """Every launch file of a repository, read; and each run as a configuration.
+
+    tests: the launch tests (:func:`~urdftool.description.launch.is_launch_test`; in
+        ``files`` too), each run as a configuration: how they build a robot file counts
+        (``runtime.builds``), what they start does not (a test is not a deployment), so they
+        are not among ``configurations``
+    """
 
     root: Path
     files: dict  # real path -> LaunchFile
     configurations: list
     truncated: bool = False
+    tests: list = field(default_factory=list)
 
 
 _LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take
 
 
-def launch_files(root: Path) -> tuple[list[Path], bool]:
+def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     """The launch files below ``root`` (sorted, bounded; folders that are links not entered,
-    files leading outside ``root`` left out), and whether the bound was reached."""
+    files leading outside ``root`` left out), and whether the bound was reached; with
+    ``tests``, the Python files that may be launch tests too
+    (:func:`~urdftool.description.launch.may_be_launch_test`: :func:`read_launch` tells)."""
     found = []
     for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
         for name in files:
             path = current / name
-            if is_launch_file(path, root) and inside(path, root):
+            if (is_launch_file(path, root) or tests and may_be_launch_test(path, root)) and \
+                    inside(path, root):
                 found.append(path)
                 if len(found) >= MAX_LAUNCH_FILES:
                     return found, True
     return found, False
 
 
-def read_launch(path: Path) -> LaunchFile:
+def read_launch(path: Path, only_test: bool = False) -> LaunchFile | None:
     """One launch file read, never run: XML and YAML by :mod:`urdftool.description.launch`,
-    Python by :mod:`urdftool.description.launch_python`."""
+    Python by :mod:`urdftool.description.launch_python` (a launch test from its entry point).
+    ``only_test``: a Python file that may be a launch test, None (not parsed) when it is not
+    one."""
     read = read_launch_text(path)
     if isinstance(read, str):
-        return read_python_launch(path, display_path(path), read)
-    return read
+        if is_launch_test(read):
+            return read_python_launch(path, display_path(path), read, LAUNCH_TEST_ENTRY)
+        return None if only_test else read_python_launch(path, display_path(path), read)
+    return None if only_test else read
 
 
 @per_run
 def launch_index(root: Path) -> LaunchIndex:
     """The launch files of the repository ``root`` read and expanded (once per run)."""
-    paths, truncated = launch_files(root)
+    paths, truncated = launch_files(root, tests=True)
     files = {}
     for path in paths:
-        launch = read_launch(path)
-        if launch.problem is None or launch.actions:
+        launch = read_launch(path, only_test=not is_launch_file(path, root))
+        if launch is not None and (launch.problem is None or launch.actions):
             files[_key(path)] = launch
     packages = packages_below(root)
     index = LaunchIndex(root, files, [], truncated)
-    expanded = [_expand_top(index, launch, packages) for launch in files.values()]
+    expanded = [_expand_top(index, launch, packages) for launch in files.values()
+                if not launch.test]
     # what a user runs is a launch file no other includes: an included one (a controllers-only
     # launch file, planning_context.launch) runs as part of those including it
     included = {key for configuration in expanded for key in configuration.included}
     index.configurations = [c for c in expanded if _key(c.top.path) not in included]
+    index.tests = [_expand_top(index, launch, packages) for launch in files.values()
+                   if launch.test]
     return index
 
 

@@ -11,7 +11,8 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
 - ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
 - ``GroupAction(actions, condition=...)``, ``TimerAction``, ``RegisterEventHandler``;
 - robot descriptions: ``Command([FindExecutable(name="xacro"), " ", path, " name:=", ...])``,
-  ``xacro.process_file(path, mappings={...})``, MoveItConfigsBuilder's
+  ``xacro.process_file(path, mappings={...})``, ``xacro.process_doc`` of a file ``xacro.parse`` read,
+  MoveItConfigsBuilder's
   ``robot_description(file_path=..., mappings=...)``.
 
 Values are read through ``LaunchConfiguration``, ``FindPackageShare``,
@@ -52,14 +53,17 @@ class _Act:
         self.kind, self.when, self.line, self.fields = kind, list(when), line, fields
 
 
-def read_python_launch(path: Path, display: str, text: str) -> LaunchFile:
-    launch = LaunchFile(path, display, "ros2-python")
+def read_python_launch(path: Path, display: str, text: str,
+                       entry: str = "generate_launch_description") -> LaunchFile:
+    """A Python launch file read from the function ``entry`` (a launch test's
+    ``generate_test_description``: :func:`~urdftool.description.launch.is_launch_test`)."""
+    launch = LaunchFile(path, display, "ros2-python", test=entry != "generate_launch_description")
     try:
         tree = ast.parse(text, filename=display)
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
         launch.problem = f"not valid Python: {type(error).__name__}: {error}"
         return launch
-    reader = _Reader(tree)
+    reader = _Reader(tree, entry)
     try:
         reader.run()
     except (_Stop, RecursionError):
@@ -73,8 +77,8 @@ def read_python_launch(path: Path, display: str, text: str) -> LaunchFile:
 
 
 class _Reader:
-    def __init__(self, tree: ast.Module):
-        self.tree = tree
+    def __init__(self, tree: ast.Module, entry: str):
+        self.tree, self.entry = tree, entry
         self.functions: dict[str, ast.FunctionDef] = {}
         self.acts: list[_Act] = []
         self.steps = 0
@@ -85,7 +89,7 @@ class _Reader:
     def run(self) -> None:
         module_env: dict = {}
         self.block(self.tree.body, module_env, (), 0, top=True)
-        entry = self.functions.get("generate_launch_description")
+        entry = self.functions.get(self.entry)
         order = [entry] if entry is not None else []
         # then the functions handed over rather than called (OpaqueFunction(function=f)): a
         # helper the others call is walked where it is called, with its arguments
@@ -141,6 +145,10 @@ class _Reader:
                     self.bind(statement.target, item, env)
                     self.block(statement.body, env, when, depth)
             elif isinstance(statement, (ast.With, ast.AsyncWith)):
+                for item in statement.items:  # with open(path) as file: the file
+                    if item.optional_vars is not None:
+                        self.bind(item.optional_vars,
+                                  self.eval(item.context_expr, env, when, depth), env)
                 found = self.block(statement.body, env, when, depth)
                 if found is not None:
                     return found
@@ -307,7 +315,7 @@ class _Reader:
             found = self.method(node, method, args, keywords, env, when, depth)
             if found is not _NOT_HANDLED:
                 return found
-        if name in self.functions and name not in ("generate_launch_description",):
+        if name in self.functions and name != self.entry:
             function = self.functions[name]
             result = self.call_function(function, args, keywords, env, when, depth)
             return result if result is not None else unknown(_source(node))
@@ -339,6 +347,15 @@ class _Reader:
             return concat(parts)
         if method == "join" and _callee(node.func.value) == "os.path":
             return _joined([a if isinstance(a, Value) else unknown("?") for a in args])
+        if method == "read" and isinstance(owner, _Opened):  # open(path).read(): the text as it is
+            return owner
+        if method == "parse" and args and isinstance(args[0], _Opened):  # xacro.parse(open(path))
+            return _Parsed(args[0].path)
+        if method == "process_doc" and args and isinstance(args[0], _Parsed):  # xacro.process_doc
+            mappings = keywords.get("mappings")
+            self.acts.append(_Act("description", when, node.lineno, file=args[0].path,
+                                  args=_pairs(mappings), xacro=True, complete=_read_all(mappings)))
+            return None
         if method == "process_file" and args and isinstance(args[0], Value):  # xacro.process_file
             mappings = keywords.get("mappings")
             self.acts.append(_Act("description", when, node.lineno, file=args[0],
@@ -570,6 +587,13 @@ class _Builder:
 
 class _Opened:
     """A file the launch file reads into robot_description as it is (Python's open on a path)."""
+
+    def __init__(self, path: Value):
+        self.path = path
+
+
+class _Parsed:
+    """A file ``xacro.parse`` read (opened by Python), which ``xacro.process_doc`` expands."""
 
     def __init__(self, path: Value):
         self.path = path

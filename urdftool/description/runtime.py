@@ -347,7 +347,8 @@ def builds(path: str) -> list[Build]:
         return []
     index, packages = launch_index(root), packages_below(root)
     real, found = real_path(absolute), []
-    for configuration in index.configurations:
+    # launch tests too: a test shows how the file is built, not what a deployment starts
+    for configuration in index.configurations + index.tests:
         for described in configuration.described:
             exact = described.path is not None and real_path(described.path) == real
             if described.when.truth is False or not (

@@ -13,6 +13,7 @@ from urdftool.diagnostics import Finding, Location, display_path
 from urdftool.errors import LoadError, missing_extra
 from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
+from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
 
@@ -85,7 +86,9 @@ def note_findings(robot) -> list[Finding]:
 
 
 def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
-    """Run every selected rule over a loaded robot; a crashing rule becomes U900.
+    """Run every selected rule over a loaded robot; a crashing rule becomes U900. On a part of
+    a robot defined elsewhere, what it cannot be right about alone is a note
+    (:func:`~urdftool.lint.parts.judged`).
 
     Inline ``<!-- urdftool: ignore ... -->`` comments then filter the findings (see
     :mod:`urdftool.lint.suppressions`); unused ones become U901.
@@ -93,7 +96,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     if selection.targets:
         robot.targets = target_versions(selection.targets)
     findings = [f for f in note_findings(robot) if selection.allows(f.code)]
-    findings += _run_rules(robot, selection.allows)
+    findings += judged(robot, _run_rules(robot, selection.allows))
     findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
     return sorted(set(findings), key=Finding.sort_key)
 

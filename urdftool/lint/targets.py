@@ -19,6 +19,7 @@ from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_b
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
+from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS
 
 SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
@@ -38,8 +39,6 @@ _NAMED_FILE = re.compile(rb"=\s*[\"']([^\"'<>]+\.(?:xacro|urdf))[\"']")
 _CHUNK = 64 * 1024
 _FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
 _DEFINITIONS = {"property", "arg", "include", "macro", "material"}
-# What a fragment of a robot defined elsewhere holds besides definitions: X.gazebo.xacro
-_EXTENSIONS = {"gazebo", "transmission", "ros2_control", "webots"}
 # xacro's own elements: everything else in its namespace is a macro call
 _XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
                                     "call", "load_yaml"}

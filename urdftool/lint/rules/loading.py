@@ -103,7 +103,8 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
 
     Which it is, the repository's launch files say (docs/launch.md): when every launch file
     that loads the file runs xacro on it (``<param command="xacro ...">``, ``Command(["xacro",
-    ...])``, ``xacro.process_file``), its consumers read it expanded, so it is checked as a
+    ...])``, ``xacro.process_file``; a launch test's ``generate_test_description`` counts, as it
+    builds the robot), its consumers read it expanded, so it is checked as a
     xacro robot (a xacro error is then U005's, theirs) and this is a **note** naming the launch
     files: only a tool given the file itself reads it unexpanded. An **error** otherwise: a
     launch file reads it as it is (``textfile=``, ``cat``, Python's ``open``), or none loads it.
@@ -230,7 +231,8 @@ U010 = declare("U010", "xacro-warning", Severity.WARNING, """
 def robot_name_missing(robot):
     """The ``<robot>`` element has no ``name`` attribute.
 
-    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name.
+    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name. On a part of a
+    robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
 
     Bad: ``<robot>``
     Good: ``<robot name="my_robot">``

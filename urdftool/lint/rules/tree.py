@@ -6,6 +6,7 @@ from collections import Counter
 
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.errors import available
+from urdftool.lint.parts import part
 
 
 def _duplicates(robot, tag: str):
@@ -89,11 +90,8 @@ def unknown_link(robot):
     Good: ``<parent link="base_link"/>``
     """
     ends = robot.ends()
-    mounts = {link for _, link in (e["parent"] for e in ends.values())
-              if link and link not in robot.links}
-    children = {link for _, link in (e["child"] for e in ends.values())}
-    part = bool(robot.links) and mounts and "world" not in mounts and \
-        all(name in children for name in robot.links)
+    found = part(robot)
+    mounts = found.mounts if found is not None else frozenset()
     for joint, ends_of in ends.items():
         for side in ("parent", "child"):
             element, link = ends_of[side]
@@ -101,7 +99,7 @@ def unknown_link(robot):
                 continue
             message = (f"joint '{joint.get('name')}' names {side} link '{link}', which does not "
                        f"exist; {available('links', link, robot.links)}")
-            if part and side == "parent":
+            if link in mounts and side == "parent":
                 message = Conditional(
                     f"joint '{joint.get('name')}' hangs on '{link}', which this robot does not "
                     "write, and it has no root link of its own: a part of a robot defined "
@@ -113,6 +111,13 @@ def unknown_link(robot):
 @rule("U106", "no-links", Severity.ERROR)
 def no_links(robot):
     """The robot has no ``<link>`` at all.
+
+    A robot with no link and no joint that holds ``<gazebo>``, ``<transmission>``,
+    ``<ros2_control>`` or ``<webots>`` blocks (a macro call writing only the Gazebo plugins of a
+    base that another file writes: Care-O-bot's ``raw_mini``) is a part of a robot defined
+    elsewhere: this and every name its blocks give that the robot does not write are notes,
+    right only inside the robot that includes it (:mod:`urdftool.lint.parts`). A robot with
+    nothing at all in it (a macro call that wrote nothing) is an error.
 
     Bad: ``<robot name="r"/>``
     Good: ``<robot name="r"><link name="base_link"/></robot>``

@@ -1,0 +1,133 @@
+"""A part of a robot defined elsewhere, checked alone (urdftool/lint/parts.py): what it cannot be
+right about alone is a note, decided once for every rule."""
+
+from __future__ import annotations
+
+import ast
+import inspect
+import textwrap
+
+from crossfile_helpers import check_folder
+from urdftool.lint.parts import ABOUT_THE_ROBOT
+from urdftool.lint.rules import FAMILY_MODULES
+
+# Only <gazebo>, <transmission> and <ros2_control> blocks, naming links and joints the robot
+# that includes it writes; with the companions that robot is checked with
+BLOCKS = """<robot>
+  <gazebo reference="base_link"><mu1>0.5</mu1></gazebo>
+  <gazebo reference="laser">
+    <sensor type="ray" name="laser">
+      <plugin name="laser" filename="libgazebo_ros_laser.so">
+        <frameName>laser</frameName><topicName>scan</topicName>
+      </plugin>
+    </sensor>
+  </gazebo>
+  <gazebo>
+    <plugin name="drive" filename="libgazebo_ros_diff_drive.so">
+      <leftJoint>left_wheel_joint</leftJoint><rightJoint>right_wheel_joint</rightJoint>
+      <wheelSeparation>0.4</wheelSeparation><wheelDiameter>0.2</wheelDiameter>
+      <robotBaseFrame>base_footprint</robotBaseFrame>
+    </plugin>
+  </gazebo>
+  <gazebo><plugin name="control" filename="libgazebo_ros_control.so"/></gazebo>
+  <transmission name="head_transmission">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="head_joint">
+      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="head_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+CONTROLLERS = """head_controller:
+  type: position_controllers/JointTrajectoryController
+  joints: [head_joint]
+joint_state_controller:
+  type: joint_state_controller/JointStateController
+  publish_rate: 50
+"""
+SRDF = """<robot name="r">
+  <group name="head"><joint name="head_joint"/><link name="head"/></group>
+  <disable_collisions link1="base_link" link2="head" reason="Adjacent"/>
+</robot>
+"""
+SPEC = """unit: deg
+joints:
+  head_joint: {lower: -60, upper: 60}
+"""
+
+
+def _blocks(tmp_path, robot=BLOCKS):
+    return check_folder(tmp_path, {"robot.urdf": robot, "config/controllers.yaml": CONTROLLERS},
+                        select=("U",), controllers=(str(tmp_path / "config/controllers.yaml"),),
+                        srdf=_write(tmp_path / "robot.srdf", SRDF),
+                        spec=_write(tmp_path / "joint_limits.yaml", SPEC))[1]
+
+
+def _write(path, text):
+    path.write_text(text)
+    return str(path)
+
+
+def test_a_robot_of_extension_blocks_only_is_a_part_every_rule_notes(tmp_path):
+    findings = _blocks(tmp_path)
+    loud = [f"{f.code} {f.severity.value} {f.message}" for f in findings
+            if f.severity.value != "info"]
+    assert not loud, loud
+    codes = {f.code for f in findings}
+    assert {"U011", "U106", "U501", "U611", "U612", "U615", "U616", "U702", "U803",
+            "U804"} <= codes, codes
+    assert all(f.message.startswith("a part of a robot defined elsewhere (no link of its own, "
+                                    "only <gazebo> and <transmission> blocks)")
+               for f in findings if f.code in ABOUT_THE_ROBOT)
+
+
+def test_what_the_blocks_say_of_themselves_stays(tmp_path):
+    """A part's own mistakes hold inside any robot: an unknown plugin parameter, a hardware
+    interface misspelt."""
+    robot = BLOCKS.replace("<wheelDiameter>", "<wheelDiametre>").replace(
+        "</wheelDiameter>", "</wheelDiametre>").replace("PositionJointInterface",
+                                                        "PositionJointInterfce")
+    loud = {f.code: f.severity.value for f in _blocks(tmp_path, robot)
+            if f.severity.value != "info"}
+    assert loud == {"U503": "error", "U641": "warning"}, loud
+
+
+def test_a_robot_with_a_link_of_its_own_is_judged_as_a_robot(tmp_path):
+    robot = BLOCKS.replace("<robot>", '<robot name="r"><link name="base_link"/>')
+    loud = {f.code for f in _blocks(tmp_path, robot) if f.severity.value == "error"}
+    assert {"U501", "U611", "U612", "U615", "U616", "U702", "U803", "U804"} <= loud, loud
+
+
+def test_a_robot_with_nothing_in_it_is_not_a_part(tmp_path):
+    findings = check_folder(tmp_path, {"robot.urdf": '<robot name="r"><material name="m"/></robot>'},
+                            select=("U1",))[1]
+    assert [(f.code, f.severity.value) for f in findings] == [("U106", "error")]
+
+
+def _names_the_robot(function) -> bool:
+    """Whether a rule compares a name with the robot's links or joints, saying which exist
+    (``available('links', name, robot.links)``)."""
+    for node in ast.walk(ast.parse(textwrap.dedent(inspect.getsource(function)))):
+        if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "available" and \
+                len(node.args) == 3 and isinstance(node.args[2], ast.Attribute) and \
+                getattr(node.args[2].value, "id", None) == "robot" and \
+                node.args[2].attr in ("links", "joints"):
+            return True
+    return False
+
+
+# Rules that compare names with the robot's and cannot fire on a robot with no link and no joint
+# (a joint's ends, a mimic joint): judged on a part by themselves
+_JUDGED_BY_THEMSELVES = {"U105", "U209"}
+
+
+def test_every_rule_comparing_names_with_the_robot_notes_them_on_a_part():
+    """The guard for a new rule: one that says a link or joint is not the robot's must be in
+    ABOUT_THE_ROBOT (or say why not here)."""
+    naming = {value.rule.code for module in FAMILY_MODULES for value in vars(module).values()
+              if callable(value) and hasattr(value, "rule") and
+              getattr(value, "__module__", None) == module.__name__ and _names_the_robot(value)}
+    assert naming, "the guard finds nothing: the rules no longer say names this way"
+    missing = naming - ABOUT_THE_ROBOT - _JUDGED_BY_THEMSELVES
+    assert not missing, f"rules comparing names with the robot's, not judged on a part: {missing}"

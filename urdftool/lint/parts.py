@@ -1,0 +1,112 @@
+"""Whether a checked robot is a part of a robot defined elsewhere: decided once per robot, for
+every rule, whether the folder walk found the file or the user named it.
+
+The folder walk skips a file whose text shows it is a part (:mod:`urdftool.lint.targets`: an
+``X.gazebo.xacro`` holding only ``<gazebo>`` blocks, a ``.urdf`` whose joints hang on links it
+does not write). When only the expansion shows it (a top-level macro call builds the part), the
+file is checked, and what it cannot be right about alone (a name it does not write, its own
+name, links of its own) is a note stating the condition:
+
+- **hangs**: links of its own, each a joint's child, and joints hanging on links it does not
+  write (Gazebo's ``world`` aside: a robot fixed to the world is a robot): Baxter's example end
+  effector, mounted on the arm's ``left_hand``. U105 says so on the joints' ``<parent>``
+  (:func:`~urdftool.lint.rules.tree.unknown_link`), and a name of its own is not needed.
+- **extensions**: no link and no joint at all, only :data:`EXTENSIONS` blocks (and materials):
+  Care-O-bot's ``raw_mini`` base, whose ``base.urdf.xacro`` calls only the macro writing its
+  Gazebo plugins. Every rule of :data:`ABOUT_THE_ROBOT` (a name compared with links and joints
+  it does not write, links or a simulator plugin it lacks) is a note.
+
+A robot with nothing at all in it (a macro call that wrote nothing) is not a part: U106 stays
+an error (docs/certainty.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from urdftool.diagnostics import Finding, Severity
+
+# What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
+# blocks that extend links and joints written by the robot that includes it
+EXTENSIONS = frozenset({"gazebo", "transmission", "ros2_control", "webots"})
+# Top-level elements an expanded part may hold besides EXTENSIONS
+_DEFINITIONS = frozenset({"material"})
+# The rules whose findings on a part with no link and no joint of its own hold only for the robot
+# alone, not inside the robot that includes it: the robot's name, its links, and every name of a
+# link or joint (or the Gazebo plugin loading its hardware) that the includer writes.
+# tests/lint/test_parts.py holds every rule that compares a name with the robot's links or
+# joints to this set.
+ABOUT_THE_ROBOT = frozenset({
+    "U011",  # robot-name-missing: the includer's <robot> has the name
+    "U106",  # no-links
+    "U501", "U511",  # a transmission's or a ros2_control block's joint
+    "U519",  # ros2_control hardware of a simulator and no Gazebo plugin loading it
+    "U602", "U603", "U604",  # a controller's joints
+    "U611", "U612", "U615", "U616",  # Gazebo references, diff drive joints and frames, sensors
+    "U702",  # the joint spec table's joints
+    "U802", "U803", "U804", "U809", "U815",  # MoveIt's robot name, joints and links
+})
+# A name of its own is the includer's, for either kind
+_HANGS = frozenset({"U011"})
+
+
+@dataclass(frozen=True)
+class Part:
+    """A robot checked alone that is a part of one defined elsewhere.
+
+    kind: 'hangs' or 'extensions' (see the module)
+    mounts: the links its joints hang on, which it does not write (empty for 'extensions')
+    condition: what makes it a part, as a finding's message says it
+    """
+
+    kind: str
+    mounts: frozenset[str]
+    condition: str
+
+    def covers(self, code: str) -> bool:
+        """Whether a finding of rule ``code`` on this part is right only inside the robot that
+        includes it (U105's joints are judged by the rule itself, one side at a time)."""
+        return code in (ABOUT_THE_ROBOT if self.kind == "extensions" else _HANGS)
+
+    def noted(self, finding: Finding) -> Finding:
+        """``finding`` as the note it is on this part: its message after the condition."""
+        return replace(finding, severity=Severity.INFO,
+                       message=f"{self.condition}, right only inside the robot that includes it: "
+                               f"{finding.message}")
+
+
+def part(robot) -> Part | None:
+    """The :class:`Part` ``robot`` is, or None for a robot of its own (computed once)."""
+    return robot.memo(part, lambda: _part(robot))
+
+
+def _part(robot) -> Part | None:
+    ends = robot.ends()
+    if not robot.links and not ends:
+        tags = {tag for tag in robot.grouped(robot.root)}
+        blocks = sorted(tags & EXTENSIONS)
+        if blocks and tags <= EXTENSIONS | _DEFINITIONS:
+            said = ", ".join(f"<{tag}>" for tag in blocks[:-1])
+            said = f"{said} and <{blocks[-1]}>" if said else f"<{blocks[-1]}>"
+            return Part("extensions", frozenset(),
+                        f"a part of a robot defined elsewhere (no link of its own, only "
+                        f"{said} blocks)")
+        return None
+    mounts = {link for _, link in (e["parent"] for e in ends.values())
+              if link and link not in robot.links}
+    children = {link for _, link in (e["child"] for e in ends.values())}
+    if robot.links and mounts and "world" not in mounts and \
+            all(name in children for name in robot.links):
+        return Part("hangs", frozenset(mounts),
+                    "a part of a robot defined elsewhere (its joints hang on links it does not "
+                    "write, and it has no root link of its own)")
+    return None
+
+
+def judged(robot, findings: list[Finding]) -> list[Finding]:
+    """``findings`` of rules on ``robot``, those a part cannot be right about alone as notes."""
+    found = part(robot)
+    if found is None:
+        return findings
+    return [found.noted(f) if f.severity != Severity.INFO and found.covers(f.code) else f
+            for f in findings]
