@@ -31,8 +31,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path
-from urdftool.description.launch import (MAX_TEXT, Arg, Condition, Description, Include, LaunchFile, ParamFile,
-                                         Start, Value, is_launch_file, read_launch_text)
+from urdftool.description.launch import (LAUNCH_SUFFIXES, MAX_TEXT, Arg, Condition, Description, Include,
+                                         LaunchFile, ParamFile, Start, Value, is_launch_file,
+                                         read_launch_text)
 from urdftool.description.launch_python import read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
@@ -371,7 +372,10 @@ def launch_files(root: Path) -> tuple[list[Path], bool]:
     files leading outside ``root`` left out), and whether the bound was reached."""
     found = []
     for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+        in_launch = current.name == "launch" and current != root
         for name in files:
+            if not (in_launch or name.endswith(LAUNCH_SUFFIXES)):
+                continue  # (is_launch_file's answer, before a path is made of every .py)
             path = current / name
             if is_launch_file(path, root) and inside(path, root):
                 found.append(path)
