@@ -258,6 +258,24 @@ def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collect
     assert full == [()] and door_collection._PROMOTED["objects"] < door_collection.FULL_COLLECTION_AFTER
 
 
+def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tmp_path):
+    """The door imports what a check needs with the collector off, then freezes it (a forked
+    worker's collector no longer writes into every imported object's page); its own freeze
+    does not turn the rhythm off: the rules still run with the collector paused, and what
+    was frozen goes to the oldest generation after them."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import gc; import urdftool.__main__ as d; d._collect_less(); "
+               "frozen = gc.get_freeze_count(); "
+               "from urdftool.lint import engine; seen = []; real = engine.check_robot; "
+               "engine.check_robot = lambda *a: seen.append(gc.isenabled()) or real(*a); "
+               "engine.load_and_check('a.urdf', engine.CheckOptions()); "
+               "print(frozen > 10000, 'urdftool.cli' in __import__('sys').modules, seen, "
+               "gc.get_freeze_count(), gc.isenabled())")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=120)
+    assert done.stdout.split("\n")[0] == "True True [False] 0 True", done.stderr
+
+
 class _Cycle:
     def __init__(self):
         self.me = self
