@@ -14,6 +14,12 @@ none of the files its findings came from changed, prints what it printed before 
 cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
 run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
 
+Every command but those answered above starts with the compiled forms of the class methods
+:mod:`dataclasses` writes and of the regular expressions a check compiles, kept beside the
+bytecode by :mod:`urdftool.kept_code` (``make`` writes them): Python compiled the source of
+hundreds of methods and parsed a hundred patterns again on every run. A form is used only for the very text or pattern it was made from, and only by the Python that
+made it (:func:`kept_code`).
+
 ``check`` imports the rules and the command line with the cyclic garbage collector off and
 freezes them, then runs the collector less often around each robot (:func:`_collect_less`,
 installed into the engine): it saves a fifth of the check of a 10,000-link robot, and the
@@ -32,6 +38,7 @@ from contextlib import contextmanager
 def main() -> None:
     words = sys.argv[1:]
     _help(words)
+    kept_code()
     check = words[:1] == ["check"]
     if check:
         _replay(words)
@@ -109,6 +116,56 @@ def _unexamined():
         gc.unfreeze()
         _FROZEN["objects"] = 0  # (no longer frozen)
         gc.enable()
+
+
+KEPT_CODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__",
+                         f"kept_code.{sys.implementation.cache_tag}.marshal")
+
+
+def kept_code(path: str | None = None) -> None:
+    """Give :mod:`dataclasses` and :mod:`re` the compiled forms of the class methods and
+    regular expressions kept in ``path`` (KEPT_CODE) by :mod:`urdftool.kept_code`, when it
+    was written by this very Python: a text or pattern kept is not compiled again; any other
+    is, as always."""
+    import marshal
+
+    try:
+        with open(path or KEPT_CODE, "rb") as handle:
+            header, functions, patterns = marshal.loads(handle.read())
+    except (OSError, EOFError, ValueError, TypeError):
+        return
+    if header != kept_code_header():
+        return
+    import builtins
+    import dataclasses
+    import re
+
+    import _sre
+
+    def exec_kept(source, globals=None, locals=None):
+        if isinstance(source, str):
+            source = functions.get(source, source)
+        return builtins.exec(source, globals, locals)
+
+    compile_pattern = re._compiler.compile
+
+    def compile_kept(pattern, flags=0):
+        found = patterns.get((pattern, flags)) if isinstance(pattern, (str, bytes)) else None
+        if found is None:
+            return compile_pattern(pattern, flags)
+        return _sre.compile(pattern, *found)
+
+    dataclasses.exec = exec_kept  # (its module's global, found before the built-in)
+    re._compiler.compile = compile_kept
+
+
+def kept_code_header() -> tuple:
+    """What a KEPT_CODE file must have been written by: this Python, its bytecode, its regular
+    expression engine."""
+    from importlib._bootstrap_external import MAGIC_NUMBER
+    from re._constants import MAGIC
+
+    return sys.version, MAGIC_NUMBER, MAGIC
 
 
 HELP_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "help.txt")
