@@ -9,6 +9,13 @@ costs less than that otherwise. On a terminal narrower than Typer's 80 columns (
 its text to the width), or when the kept texts were made from other command modules, Typer
 answers.
 
+``urdftool check`` with plain words (paths, and options written in full: :func:`plain_words`)
+runs without Typer (:func:`_check`): the words are read with the parameters of the Typer
+command kept in the same file as the help texts, and the command's work
+(:func:`urdftool.checking.run`) prints through a :class:`urdftool.terminal.Terminal` that writes
+as click does, on streams click would write to as they are. Any other words, or streams, and
+Typer answers.
+
 ``urdftool check`` run again with the same words, in the same folder and environment, while
 none of the files its findings came from changed, prints what it printed before from the result
 cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
@@ -43,9 +50,38 @@ def main() -> None:
     if check:
         _replay(words)
         _collect_less()
+        _check(words)
     from urdftool.cli import main as run
 
     run()
+
+
+def _check(words: list[str]) -> None:
+    """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
+    parameters kept from the Typer app) and the standard streams are ones click writes to as
+    they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
+    if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
+        return
+    parameters = kept_words("check")
+    values = None if parameters is None else plain_words(words[1:], parameters)
+    if values is None:
+        return
+    from urdftool.terminal import plain
+
+    terminal = plain()
+    if terminal is None:
+        return
+    from urdftool.checking import run
+
+    try:
+        code = run(terminal, (words, dict(os.environ)), **values)
+    except BrokenPipeError:
+        code = _reader_left()
+    except (KeyboardInterrupt, EOFError):  # as click says it
+        terminal.echo("", err=True)
+        terminal.say("Aborted!", err=True)
+        code = 1
+    raise SystemExit(code)
 
 
 def _collect_less() -> None:
@@ -67,7 +103,8 @@ def _collect_less() -> None:
     gc.disable()
     try:
         from urdftool.lint import engine  # the rules: the workers that check are forked after it
-        import urdftool.cli  # noqa: F401
+        import urdftool.checking  # noqa: F401  (the command, run by Typer or by _check)
+        import urdftool.lint.runner  # noqa: F401
     finally:
         gc.freeze()
         _FROZEN["objects"] = gc.get_freeze_count()
@@ -211,6 +248,13 @@ def _columns() -> int:
 def kept_help() -> dict[str, str]:
     """The help texts of HELP_FILE ("" for the program's, else by command), or none when it
     is absent or was made from other command modules than these."""
+    return {head.removeprefix("help "): text for head, text in _kept().items()
+            if head.startswith("help ")}
+
+
+def _kept() -> dict[str, str]:
+    """The sections of HELP_FILE by their heads, or none when it is absent or was made from
+    other command modules than these."""
     try:
         with open(HELP_FILE, encoding="utf-8") as handle:
             sections = handle.read().split(HELP_MARK)[1:]
@@ -218,11 +262,89 @@ def kept_help() -> dict[str, str]:
         return {}
     if not sections or sections[0] != f"digest {commands_digest()}\n":
         return {}
-    texts = {}
-    for section in sections[1:]:
-        head, _, text = section.partition("\n")
-        texts[head.removeprefix("help ")] = text
-    return texts
+    return dict(section.partition("\n")[::2] for section in sections[1:])
+
+
+def kept_words(command: str) -> list[list[str]] | None:
+    """The parameters of ``command`` kept in HELP_FILE by :mod:`urdftool.help_text` (name,
+    kind, option names, negative option names, default), or None."""
+    text = _kept().get(f"words {command}")
+    return None if text is None else [line.split("\t") for line in text.splitlines()]
+
+
+def _default(kind: str, text: str):
+    """A default as :func:`urdftool.help_text.words` kept it."""
+    if text == "[]":
+        return []
+    if text[:1] == "'":
+        return text[1:]
+    if text in ("None", "False", "True"):
+        return {"None": None, "False": False, "True": True}[text]
+    return float(text) if kind == "float" else int(text)
+
+
+def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
+    """The values Typer gives a command's parameters (:func:`kept_words`) for ``words``, when
+    they are plain: each word a path, an option named in full and alone (``-f json``,
+    ``--format json``, ``--format=json``, ``--strict``; not ``-fjson``, ``-qv``, ``--``),
+    each value one that cannot be read as an option (no leading ``-``) and that converts as
+    click converts it; at least one path. None for any other (Typer answers: its usage errors,
+    ``--help``)."""
+    from pathlib import Path
+
+    values, options, positional = {}, {}, None
+    for name, kind, names, negative, default in parameters:
+        values[name] = _default(kind, default)
+        if kind == "words":
+            positional, values[name] = name, []
+            continue
+        for option in names.split(","):
+            options[option] = (name, kind, True)
+        for option in filter(None, negative.split(",")):
+            options[option] = (name, kind, False)
+    if positional is None:
+        return None
+    index = 0
+    while index < len(words):
+        word = words[index]
+        index += 1
+        if word == "-" or not word.startswith("-"):
+            values[positional].append(word)
+            continue
+        given, equals, value = word.partition("=") if word.startswith("--") else (word, "", "")
+        if given not in options:
+            return None
+        name, kind, positive = options[given]
+        if kind in ("flag", "switch"):
+            if equals:
+                return None
+            values[name] = positive
+            continue
+        if not equals:
+            if index >= len(words):
+                return None
+            value = words[index]
+            index += 1
+        if value.startswith("-"):
+            return None
+        try:
+            if kind in ("text", "texts"):
+                read = value
+            elif kind in ("path", "paths"):
+                read = Path(value)
+            elif kind == "float":
+                read = float(value)
+            else:
+                read = int(value)
+                if kind.startswith("int>=") and read < int(kind[5:]):
+                    return None
+        except ValueError:
+            return None
+        if kind in ("texts", "paths"):
+            values[name].append(read)
+        else:
+            values[name] = read
+    return values if values[positional] else None
 
 
 def commands_digest() -> str:
@@ -245,10 +367,16 @@ def _exit_with(stdout: str, stderr: str, code: int) -> None:
         sys.stdout.write(stdout)
         sys.stdout.flush()
     except BrokenPipeError:
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        code = 1
+        code = _reader_left()
     raise SystemExit(code)
+
+
+def _reader_left() -> int:
+    """The exit code when the reader of standard output left (``| head``), standard output
+    now going nowhere, so that nothing complains at exit: 1, as click's."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    return 1
 
 
 def _replay(words: list[str]) -> None:

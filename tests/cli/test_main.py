@@ -40,9 +40,10 @@ PARTS = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
 </robot>
 """
 # the program as the urdftool script starts it, trusting the stamps of files written just now,
-# and saying at exit whether Typer was imported
+# and saying at exit whether the command ran (imported the rules) rather than replayed
 PROGRAM = ("import atexit, sys; import urdftool.description.files as files; files.RACY_NS = 0; "
-           "atexit.register(lambda: sys.stderr.write('[typer]' * ('typer' in sys.modules))); "
+           "atexit.register(lambda: sys.stderr.write('[ran]' * ('urdftool.lint.engine' in "
+           "sys.modules))); "
            "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.__main__ import main; main()")
 
 
@@ -59,17 +60,17 @@ def bot(tmp_path):
     return tmp_path
 
 
-def test_the_same_check_again_prints_the_kept_output_without_typer(bot):
+def test_the_same_check_again_prints_the_kept_output_without_running(bot):
     words = ["check", "--cache-dir", "cache", "--timeout", "0", "bot.urdf.xacro"]
     first = _program(bot, *words)
-    assert first.returncode == 1 and "U302" in first.stdout and "[typer]" in first.stderr
+    assert first.returncode == 1 and "U302" in first.stdout and "[ran]" in first.stderr
     again = _program(bot, *words)
     assert (again.returncode, again.stdout) == (1, first.stdout)
-    assert "[typer]" not in again.stderr
+    assert "[ran]" not in again.stderr
     # other words run the command, from the same cache
     as_json = _program(bot, *words[:-1], "--format=json", "bot.urdf.xacro")
     assert as_json.returncode == 1 and '"code": "U302"' in as_json.stdout
-    assert "[typer]" in as_json.stderr
+    assert "[ran]" in as_json.stderr
 
 
 def test_an_edited_included_file_is_seen_by_the_same_words(bot):
@@ -79,7 +80,7 @@ def test_an_edited_included_file_is_seen_by_the_same_words(bot):
     (bot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
     edited = _program(bot, *words)
     assert "-2.5 kg" in edited.stdout and "-1 kg" not in edited.stdout
-    assert "[typer]" in edited.stderr
+    assert "[ran]" in edited.stderr
 
 
 def test_a_planted_output_is_not_printed(bot):
@@ -99,7 +100,7 @@ def test_a_planted_output_is_not_printed(bot):
 def test_no_output_is_kept_without_the_cache_or_for_a_report_file(bot, words):
     for _ in range(2):
         result = _program(bot, "check", "--timeout", "0", *words, "bot.urdf.xacro")
-        assert result.returncode == 1 and "[typer]" in result.stderr
+        assert result.returncode == 1 and "[ran]" in result.stderr
     assert not list(bot.glob("cache/v*/*-output.json"))
 
 
@@ -112,7 +113,7 @@ def test_a_reader_that_leaves_ends_the_replay_quietly(bot):
     reader.stdout.close()  # before anything is read
     assert reader.wait(timeout=120) == 1
     error = reader.stderr.read().decode()
-    assert "Traceback" not in error and "[typer]" not in error
+    assert "Traceback" not in error and "[ran]" not in error
 
 
 def test_a_check_through_a_worker_prints_what_one_process_prints():
@@ -269,7 +270,7 @@ def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tm
                "from urdftool.lint import engine; seen = []; real = engine.check_robot; "
                "engine.check_robot = lambda *a: seen.append(gc.isenabled()) or real(*a); "
                "engine.load_and_check('a.urdf', engine.CheckOptions()); "
-               "print(frozen > 10000, 'urdftool.cli' in __import__('sys').modules, seen, "
+               "print(frozen > 10000, 'urdftool.checking' in __import__('sys').modules, seen, "
                "gc.get_freeze_count(), gc.isenabled())")
     done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
                           cwd=tmp_path, timeout=120)
@@ -279,3 +280,110 @@ def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tm
 class _Cycle:
     def __init__(self):
         self.me = self
+
+
+# ---- check's plain words, parsed by the door without Typer ------------------------------------
+
+def _typer_values(monkeypatch, words: list[str]):
+    """The values Typer gives the check command for ``words``, or None when it gives none (a
+    usage error, --help)."""
+    import urdftool.checking
+    from urdftool.cli import app
+
+    seen = []
+    monkeypatch.setattr(urdftool.checking, "run", lambda *a, **values: seen.append(values) or 0)
+    try:
+        app(["check", *words], prog_name="urdftool")
+    except SystemExit:
+        pass
+    return seen[0] if seen else None
+
+
+def _grammar():
+    """Word lists: paths, xacro words, stdin, every option of check in each of its forms with
+    values that convert, that do not, that look like options, and what is never plain (short
+    options joined, --, --help, an unknown option, a flag given a value)."""
+    import itertools
+
+    import urdftool.__main__ as door
+
+    values = {"text": ["json", "", "a b", "-x", "é"], "texts": ["U2", "-U2", "a=b"],
+              "path": ["out.txt", "", "-", "./x"], "paths": ["c.yaml", "-c"],
+              "int": ["3", "-1", "x", "0x1", "1_0", " 4 "], "float": ["2.5", "1e1", "nan", "x"],
+              "int>=1": ["0", "1", "7", "x"]}
+    forms = []
+    for name, kind, names, negative, default in door.kept_words("check"):
+        if kind == "words":
+            continue
+        for option in names.split(",") + [n for n in negative.split(",") if n]:
+            if kind in ("flag", "switch"):
+                forms += [[option], [option + "=1"] if option.startswith("--") else [option + "x"]]
+                continue
+            for value in values[kind]:
+                forms.append([option, value])
+                if option.startswith("--"):
+                    forms.append([f"{option}={value}"])
+                else:
+                    forms.append([option + value])
+            forms.append([option])  # no value
+    odd = [["--"], ["--help"], ["-h"], ["-qv"], ["--nope"], ["-"], ["x:=1"], []]
+    paths = [["robots/r2d2/r2d2.urdf.xacro"], ["a", "b"], []]
+    found = []
+    for form, before in itertools.product(forms + odd, paths):
+        found.append(before + form)
+        found.append(form + before)
+    found += [["a", "--format", "json", "-f", "text"], ["a", "--notes", "--no-notes"],
+              ["a", "--select", "U1", "--select", "U2", "--arg", "x=1", "b:=2"],
+              ["--strict", "a", "--strict"], ["a", "-o", "o", "-j", "2", "-t", "mujoco"]]
+    return found
+
+
+def test_the_door_reads_checks_plain_words_as_typer_does_and_leaves_it_the_others(monkeypatch):
+    """Over a grammar of words: where the door's parser gives values, Typer gives the same
+    (same types); where it gives none, Typer runs the command (usage errors, help)."""
+    import urdftool.__main__ as door
+
+    parameters = door.kept_words("check")
+    assert parameters, "stale help.txt: run python -m urdftool.help_text"
+    plain = 0
+    for words in _grammar():
+        ours = door.plain_words(words, parameters)
+        if ours is None:
+            continue
+        theirs = _typer_values(monkeypatch, words)
+        assert repr(ours) == repr(theirs), words  # (nan is no nan)
+        assert [type(v) for v in ours.values()] == [type(v) for v in theirs.values()], words
+        assert all(type(a) is type(b) for key in ours if isinstance(ours[key], list)
+                   for a, b in zip(ours[key], theirs[key])), words
+        plain += 1
+    assert plain > 300
+
+
+def test_the_kept_parameters_are_the_commands():
+    import urdftool.__main__ as door
+    from urdftool import help_text
+
+    assert ["\t".join(row) + "\n" for row in door.kept_words("check")] == \
+        help_text.words("check").splitlines(True)
+
+
+@pytest.mark.parametrize("words", [
+    ["tests/cases/U204_inverted_limits.urdf"],
+    ["tests/cases/U204_inverted_limits.urdf", "--format", "json", "--exit-zero", "-v"],
+    ["tests/cases/U204_inverted_limits.urdf", "--statistics", "--strict"],
+    ["tests/cases/U204_inverted_limits.urdf", "--diff"],
+    ["tests/cases/U204_inverted_limits.urdf", "--format", "nope"],
+    ["tests/cases/U204_inverted_limits.urdf", "--unsafe-fixes"],
+    ["no/such/file.urdf"],
+    ["robots", "--notes", "--select", "U1,U2", "--jobs", "2"],
+])
+def test_a_plain_check_prints_and_exits_as_typers_without_importing_it(words):
+    program = ("import atexit, sys; import urdftool.__main__ as door; {}; "
+               "atexit.register(lambda: sys.stderr.write('[typer]' * ('typer' in sys.modules)));"
+               " sys.argv = ['urdftool', *sys.argv[1:]]; door.main()")
+    plain, typer = (subprocess.run([sys.executable, "-c", program.format(patch), "check",
+                                    "--no-cache", *words], capture_output=True, text=True,
+                                   cwd=ROOT, timeout=120)
+                    for patch in ("pass", "door._check = lambda words: None"))
+    assert (plain.returncode, plain.stdout, plain.stderr + "[typer]") == \
+        (typer.returncode, typer.stdout, typer.stderr)
