@@ -49,7 +49,8 @@ re.compile(PATTERN + "e", FLAGS)
 print("other pattern parsed", len(parsed))
 space = {"dataclasses": dataclasses}
 exec(compile(SOURCE, "<test>", "exec"), space)
-print("class compiled", len(compiled) - 1, repr(space["Kept"](1)), space["Kept"](1) == space["Kept"](1, "x"))
+kept_class = space["Kept"]
+print("class compiled", len(compiled) - 1, repr(kept_class(1)), kept_class(1) == kept_class(1, "x"))
 try:
     space["Kept"](1).a = 2
 except dataclasses.FrozenInstanceError:

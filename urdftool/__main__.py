@@ -24,15 +24,17 @@ run: the case of pre-commit hooks and editors checking on save. On any doubt the
 Every command but those answered above starts with the compiled forms of the class methods
 :mod:`dataclasses` writes and of the regular expressions a check compiles, kept beside the
 bytecode by :mod:`urdftool.kept_code` (``make`` writes them): Python compiled the source of
-hundreds of methods and parsed a hundred patterns again on every run. A form is used only for the very text or pattern it was made from, and only by the Python that
-made it (:func:`kept_code`).
+hundreds of methods and parsed a hundred patterns again on every run. A form is used only for
+the very text or pattern it was made from, and only by the Python that made it
+(:func:`kept_code`).
 
-``check`` imports the rules and the command line with the cyclic garbage collector off and
-freezes them, then runs the collector less often around each robot (:func:`_collect_less`,
-installed into the engine): it saves a fifth of the check of a 10,000-link robot, and the
-collector's passes over the imports, in the parent and, page by page, in the forked worker,
-of a one-file check (``make bench``). Ending without tearing the interpreter down saved under 50 ms on the corpus and on a
-10,000-link robot: it went.
+``check`` imports the rules and its own work with the cyclic garbage collector off and freezes
+them, then runs the collector less often around each robot (:func:`_collect_less`, installed
+into the engine): it saves a fifth of the check of a 10,000-link robot, and the collector's
+passes over the imports, in the parent and, page by page, in the forked worker, of a one-file
+check (``make bench``). Ending without tearing the interpreter down saved under 50 ms on the
+corpus and on a 10,000-link robot: it went. A one-file check keeps its budgeted worker: in this
+process it cost the same, and a hung C call can only be stopped from outside.
 """
 
 from __future__ import annotations
@@ -94,7 +96,7 @@ def _collect_less() -> None:
     (trimesh's, a few MB per robot) are freed by a full collection before the check that
     follows 250,000 objects moved so.
 
-    The modules the check needs (the rules, the command line) are imported with the
+    The modules the check needs (the rules, the command's work) are imported with the
     collector off and then frozen (``gc.freeze()``): objects that live as long as the program,
     which the collector examined again and again as they were made, and which a worker
     forked to check a file would copy page by page as its collector wrote into them."""

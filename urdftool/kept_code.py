@@ -19,13 +19,14 @@ from __future__ import annotations
 import builtins
 import dataclasses
 import marshal
+import os
 import re
 import sys
 from pathlib import Path
 
 from urdftool import __main__ as door
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(os.path.abspath(__file__)).parent.parent
 
 
 def collect(workload) -> tuple[dict, dict]:

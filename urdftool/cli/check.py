@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from urdftool.checking import FORMATS  # noqa: F401  (the --format values it takes)
 from urdftool.cli._common import PackageOption, XacroArgOption, max_memory_option, timeout_option
 
 
