@@ -16,11 +16,6 @@ command kept in the same file as the help texts, and the command's work
 as click does, on streams click would write to as they are. Any other words, or streams, and
 Typer answers.
 
-``urdftool check`` run again with the same words, in the same folder and environment, while
-none of the files its findings came from changed, prints what it printed before from the result
-cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
-run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
-
 Every command but those answered above starts with the compiled forms of the class methods
 :mod:`dataclasses` writes and of the regular expressions a check compiles, kept beside the
 bytecode by :mod:`urdftool.kept_code` (``make`` writes them): Python compiled the source of
@@ -50,7 +45,6 @@ def main() -> None:
     kept_code()
     check = words[:1] == ["check"]
     if check:
-        _replay(words)
         _collect_less()
         _check(words)
     from urdftool.cli import main as run
@@ -76,7 +70,7 @@ def _check(words: list[str]) -> None:
     from urdftool.checking import run
 
     try:
-        code = run(terminal, (words, dict(os.environ)), **values)
+        code = run(terminal, **values)
     except BrokenPipeError:
         code = _reader_left()
     except (KeyboardInterrupt, EOFError):  # as click says it
@@ -379,27 +373,6 @@ def _reader_left() -> int:
     devnull = os.open(os.devnull, os.O_WRONLY)
     os.dup2(devnull, sys.stdout.fileno())
     return 1
-
-
-def _replay(words: list[str]) -> None:
-    """Exit with the output kept for ``words``, when there is one; else return.
-
-    The cache folder is read off the words without parsing them as the command does: where
-    that reading is wrong, it looks in a folder the command never kept these words in (each
-    entry is keyed by the words), and the command runs."""
-    if "--no-cache" in words:
-        return
-    from urdftool.lint.cache import Cache, default_folder
-
-    folder = default_folder()
-    for word, after in zip(words, [*words[1:], None]):
-        if word == "--cache-dir" and after is not None:
-            folder = after
-        elif word.startswith("--cache-dir="):
-            folder = word.partition("=")[2]
-    if folder is None or (kept := Cache(folder).get_output(words)) is None:
-        return
-    _exit_with(*kept)
 
 
 if __name__ == "__main__":

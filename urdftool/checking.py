@@ -13,14 +13,13 @@ from urdftool.terminal import Terminal, robot_inputs
 FORMATS = (*REPORT_FORMATS, "auto")  # auto: github under GitHub Actions, else text
 
 
-def run(terminal: Terminal, command_line, /, *, words, arg, package, format, output, select,
+def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         ignore, target, strict, verbose, quiet, notes, exit_zero, statistics, config, isolated,
         stdin_filename, allow_env, max_file_size, controllers, srdf, spec, max_triangles,
         timeout, max_memory, jobs, fix, unsafe_fixes, diff, no_cache, cache_dir) -> int:
     """Check as ``urdftool check`` does and return its exit code; print and exit (on a usage
     error: 2) through ``terminal``. The values are those of the command's parameters (see
-    ``urdftool check --help``); command_line: the program's words and environment, under which
-    its output is kept for the door's replay (None from the Python API)."""
+    ``urdftool check --help``)."""
     from urdftool.budget import Budget, one_blas_thread
     from urdftool.errors import SettingsError, TargetError, UnknownName
     from urdftool.lint.runner import check_paths
@@ -85,23 +84,12 @@ def run(terminal: Terminal, command_line, /, *, words, arg, package, format, out
             render(format, results, stream, quiet=quiet,
                    notes=lambda result: notes_shown(result.path, notes, request))
     code = 2 if run.errors else 0 if exit_zero else run.exit_code
-    # kept for the same words, run again as the program (``urdftool/__main__.py``), when the
-    # report goes to a file or pipe (a terminal's colours are not kept)
-    keep = output is None and not (fix or diff) and run.depends is not None and \
-        command_line is not None and not sys.stdout.isatty()
-    if output or keep:
+    if output:
         import io
 
         written = io.StringIO()
         report(run.results, written)
-        if output:
-            terminal.write_output(output, written.getvalue())
-        else:
-            terminal.document(written.getvalue())
-            from urdftool.lint.cache import keep_output
-
-            keep_output(request.cache_dir, run, command_line, written.getvalue(),
-                        "".join(m + "\n" for m in messages), code)
+        terminal.write_output(output, written.getvalue())
     else:
         report(run.results, sys.stdout)
     for error in run.errors:  # settings broken for some files; the others were checked

@@ -106,7 +106,6 @@ def check(
 ) -> None:
     values = dict(locals())  # the parameters, as Typer parsed them
     from urdftool.checking import run
-    from urdftool.cli import COMMAND_LINE  # the program's words (None from the Python API)
     from urdftool.cli._common import TYPER
 
-    raise typer.Exit(run(TYPER, COMMAND_LINE, **values))
+    raise typer.Exit(run(TYPER, **values))
