@@ -12,6 +12,7 @@ $(INSTALLED): pyproject.toml
 	$(PY) -m pip install --quiet --disable-pip-version-check uv
 	$(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[analysis,test]'
 	$(PY) -m compileall -q urdftool  # PYTHONDONTWRITEBYTECODE machines would compile it every run
+	$(PY) -m urdftool.kept_code  # the class methods and patterns a check compiles, compiled once
 	touch $(INSTALLED)
 
 demo: $(INSTALLED)
@@ -40,6 +41,7 @@ examples: $(INSTALLED)
 
 bench: $(INSTALLED)
 	$(PY) -m compileall -q urdftool  # sources edited since the install would compile every run
+	$(PY) -m urdftool.kept_code
 	$(PY) benchmarks/run.py
 
 fuzz: $(INSTALLED)

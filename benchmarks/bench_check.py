@@ -4,9 +4,8 @@ bench_startup.py).
 - `check` over every corpus URDF in one process against a shell loop of urdfdom's `check_urdf`
   over the same files (target: within 5x of its CPU time, runs alternating), first without the
   result cache (the CI path), then again with it
-  on an unchanged corpus (target: within 1x; the same words again print the output kept
-  beside the cache's results, before Typer is imported: see ``urdftool/__main__.py``; other
-  words are shown too, their findings from the cache and rendered). The reference is the ELF binary shipped in the pin
+  on an unchanged corpus (target: within 1x; the run's findings served from the cache's one
+  entry for the whole run and rendered; other spellings of the same options are shown too). The reference is the ELF binary shipped in the pin
   wheel (``cmeel.prefix/bin/check_urdf`` with its ``lib/``), not ``.venv/bin/check_urdf``: that
   one is a Python wrapper that starts an interpreter per file, a flattering reference.
 """
@@ -132,8 +131,8 @@ def main() -> list[dict]:
             again, reference, _ = paired(cached, reference_loop, repeat=5,
                                          reference_env=environment)
             # other words: the findings come from the cache, the command runs and renders them
-            # (no target; what a changed command line costs). Each spelling of the format
-            # option is other words once: the second run of the same words would replay.
+            # (no target; what a changed command line costs), each spelling of the format
+            # option once.
             other = [[*command[:-2], *spelling, "--cache-dir", folder, *map(str, files)]
                      for spelling in (["-f", "text"], ["--format", "text"], ["--format=text"])]
             rendered = statistics.median(timed(words, repeat=1) for words in other)

@@ -5,9 +5,11 @@ users run, or while a goal is missed without it.
 - ``urdftool --help`` against ``python -c pass`` (target: 1.5x).
 - ``urdftool check`` of robots/r2d2 against urdfdom's way, ``xacro`` then the ELF ``check_urdf``
   (target: 2x), xacro finding r2d2's package through an ament index as on a ROS 2 machine.
-- the kept help texts (``--help``), the output replay (the same ``check`` words again, cached,
-  as a pre-commit hook or an editor runs it, on r2d2), the collector's rhythm (``check --jobs 1 --no-cache`` of the corpus URDFs, the CI path): each timed with the
-  door as it is and with that trick patched out.
+- the kept help texts (``--help``), the kept compiled class methods and patterns
+  (:mod:`urdftool.kept_code`, on r2d2), check's plain words read without Typer (r2d2), the
+  collector's rhythm (r2d2, whose
+  imports it freezes; ``check --jobs 1 --no-cache`` of the corpus URDFs, the CI path; a
+  10,000-link robot): each timed with the door as it is and with that trick patched out.
 
 Every figure is the median CPU time of the child processes (load-independent; the range and the
 median wall time beside it) of runs alternating with its reference, with the load average.
@@ -127,21 +129,28 @@ def main() -> list[dict]:
         for command in (reference[0], f"grep -q '<robot' {urdf}"):
             subprocess.run(command, shell=True, env=environment, check=True,
                            stdout=subprocess.DEVNULL)
-        cached = [urdftool, "check", "--cache-dir", str(Path(folder) / "cache"), str(ROBOT)]
         found = alternating({"ours": [urdftool, "check", "--no-cache", str(ROBOT)],
                              "reference": reference,
-                             "replayed": cached,
-                             "not replayed": door("door._replay = lambda words: None",
-                                                  *cached[1:])}, 9)
+                             "door": door("pass", "check", "--no-cache", str(ROBOT)),
+                             "no collector rhythm": door("door._collect_less = lambda: None",
+                                                         "check", "--no-cache", str(ROBOT)),
+                             "no kept code": door("door.kept_code = lambda path=None: None",
+                                                  "check", "--no-cache", str(ROBOT)),
+                             "through typer": door("door._check = lambda words: None",
+                                                   "check", "--no-cache", str(ROBOT))},
+                            9)
     results.append(_ratio("urdftool check r2d2 vs xacro + check_urdf", found["ours"],
                           found["reference"], 2.0))
-    results.append(_trick("output replay (check r2d2 again, cached)", found["replayed"],
-                          found["not replayed"]))
+    results.append(_trick("kept compiled code (check r2d2)", found["door"],
+                          found["no kept code"], ("check of r2d2", found["reference"], 2.0)))
+    results.append(_trick("plain words without Typer (check r2d2)", found["door"],
+                          found["through typer"], ("check of r2d2", found["reference"], 2.0)))
+    r2d2 = {"door": found["door"], "no collector rhythm": found["no collector rhythm"]}
 
     # the collector's rhythm: on the corpus (the CI path) and on a
     # generated robot of 10,000 links (the big robots issue 34 names); each stays while it
     # saves 50 ms on one of them
-    workloads = {}
+    workloads = {"r2d2 (its imports frozen)": r2d2}
     files = [str(path) for path in corpus_urdfs()]
     with tempfile.TemporaryDirectory() as folder:
         sys.path.insert(0, str(ROOT / "benchmarks"))

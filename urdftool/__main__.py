@@ -9,15 +9,27 @@ costs less than that otherwise. On a terminal narrower than Typer's 80 columns (
 its text to the width), or when the kept texts were made from other command modules, Typer
 answers.
 
-``urdftool check`` run again with the same words, in the same folder and environment, while
-none of the files its findings came from changed, prints what it printed before from the result
-cache (:meth:`urdftool.lint.cache.Cache.get_output`) without importing Typer, a third of the
-run: the case of pre-commit hooks and editors checking on save. On any doubt the command runs.
+``urdftool check`` with plain words (paths, and options written in full: :func:`plain_words`)
+runs without Typer (:func:`_check`): the words are read with the parameters of the Typer
+command kept in the same file as the help texts, and the command's work
+(:func:`urdftool.checking.run`) prints through a :class:`urdftool.terminal.Terminal` that writes
+as click does, on streams click would write to as they are. Any other words, or streams, and
+Typer answers.
 
-``check`` runs the cyclic garbage collector less often around each robot (:func:`_collect_less`,
-installed into the engine): it saves a fifth of the check of a 10,000-link robot (``make
-bench``). Ending without tearing the interpreter down saved under 50 ms on the corpus and on a
-10,000-link robot: it went.
+Every command but those answered above starts with the compiled forms of the class methods
+:mod:`dataclasses` writes and of the regular expressions a check compiles, kept beside the
+bytecode by :mod:`urdftool.kept_code` (``make`` writes them): Python compiled the source of
+hundreds of methods and parsed a hundred patterns again on every run. A form is used only for
+the very text or pattern it was made from, and only by the Python that made it
+(:func:`kept_code`).
+
+``check`` imports the rules and its own work with the cyclic garbage collector off and freezes
+them, then runs the collector less often around each robot (:func:`_collect_less`, installed
+into the engine): it saves a fifth of the check of a 10,000-link robot, and the collector's
+passes over the imports, in the parent and, page by page, in the forked worker, of a one-file
+check (``make bench``). Ending without tearing the interpreter down saved under 50 ms on the
+corpus and on a 10,000-link robot: it went. A one-file check keeps its budgeted worker: in this
+process it cost the same, and a hung C call can only be stopped from outside.
 """
 
 from __future__ import annotations
@@ -30,13 +42,42 @@ from contextlib import contextmanager
 def main() -> None:
     words = sys.argv[1:]
     _help(words)
+    kept_code()
     check = words[:1] == ["check"]
     if check:
-        _replay(words)
         _collect_less()
+        _check(words)
     from urdftool.cli import main as run
 
     run()
+
+
+def _check(words: list[str]) -> None:
+    """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
+    parameters kept from the Typer app) and the standard streams are ones click writes to as
+    they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
+    if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
+        return
+    parameters = kept_words("check")
+    values = None if parameters is None else plain_words(words[1:], parameters)
+    if values is None:
+        return
+    from urdftool.terminal import plain
+
+    terminal = plain()
+    if terminal is None:
+        return
+    from urdftool.checking import run
+
+    try:
+        code = run(terminal, **values)
+    except BrokenPipeError:
+        code = _reader_left()
+    except (KeyboardInterrupt, EOFError):  # as click says it
+        terminal.echo("", err=True)
+        terminal.say("Aborted!", err=True)
+        code = 1
+    raise SystemExit(code)
 
 
 def _collect_less() -> None:
@@ -47,12 +88,27 @@ def _collect_less() -> None:
     as long as the robot lives is moved to the oldest generation unexamined (the collector
     examined all of it twice, young then middle, to find a few cycles). The cycles left
     (trimesh's, a few MB per robot) are freed by a full collection before the check that
-    follows 250,000 objects moved so."""
-    from urdftool.lint import engine  # the rules: the workers that check are forked after it
+    follows 250,000 objects moved so.
 
+    The modules the check needs (the rules, the command's work) are imported with the
+    collector off and then frozen (``gc.freeze()``): objects that live as long as the program,
+    which the collector examined again and again as they were made, and which a worker
+    forked to check a file would copy page by page as its collector wrote into them."""
+    import gc
+
+    gc.disable()
+    try:
+        from urdftool.lint import engine  # the rules: the workers that check are forked after it
+        import urdftool.checking  # noqa: F401  (the command, run by Typer or by _check)
+        import urdftool.lint.runner  # noqa: F401
+    finally:
+        gc.freeze()
+        _FROZEN["objects"] = gc.get_freeze_count()
+        gc.enable()
     engine.COLLECTION = (_fewer_collections, _unexamined)
 
 
+_FROZEN = {"objects": 0}  # what this program froze itself (the imports)
 _PROMOTED = {"objects": 0}  # moved to the oldest generation since the last full collection
 FULL_COLLECTION_AFTER = 250_000
 
@@ -72,11 +128,13 @@ def _fewer_collections(young: int = 100_000):
 @contextmanager
 def _unexamined():
     """The rules run with the collector paused; what they kept is then moved to the oldest
-    generation (``gc.freeze()`` then ``gc.unfreeze()``). Left to Python's collector when it
-    is off or objects are frozen (a forking parent's own ``gc.freeze()`` must stay)."""
+    generation (``gc.freeze()`` then ``gc.unfreeze()``; the imports :func:`_collect_less`
+    froze go there too). Left to Python's collector when it is off or objects are frozen by
+    another (a forking parent's own ``gc.freeze()`` must stay)."""
     import gc
 
-    if not gc.isenabled() or gc.get_freeze_count():
+    # (more frozen than the imports _collect_less froze, some of which may be freed since)
+    if not gc.isenabled() or gc.get_freeze_count() > _FROZEN["objects"]:
         yield
         return
     if _PROMOTED["objects"] > FULL_COLLECTION_AFTER:
@@ -89,7 +147,58 @@ def _unexamined():
         _PROMOTED["objects"] += gc.get_count()[0]
         gc.freeze()
         gc.unfreeze()
+        _FROZEN["objects"] = 0  # (no longer frozen)
         gc.enable()
+
+
+KEPT_CODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__",
+                         f"kept_code.{sys.implementation.cache_tag}.marshal")
+
+
+def kept_code(path: str | None = None) -> None:
+    """Give :mod:`dataclasses` and :mod:`re` the compiled forms of the class methods and
+    regular expressions kept in ``path`` (KEPT_CODE) by :mod:`urdftool.kept_code`, when it
+    was written by this very Python: a text or pattern kept is not compiled again; any other
+    is, as always."""
+    import marshal
+
+    try:
+        with open(path or KEPT_CODE, "rb") as handle:
+            header, functions, patterns = marshal.loads(handle.read())
+    except (OSError, EOFError, ValueError, TypeError):
+        return
+    if header != kept_code_header():
+        return
+    import builtins
+    import dataclasses
+    import re
+
+    import _sre
+
+    def exec_kept(source, globals=None, locals=None):
+        if isinstance(source, str):
+            source = functions.get(source, source)
+        return builtins.exec(source, globals, locals)
+
+    compile_pattern = re._compiler.compile
+
+    def compile_kept(pattern, flags=0):
+        found = patterns.get((pattern, flags)) if isinstance(pattern, (str, bytes)) else None
+        if found is None:
+            return compile_pattern(pattern, flags)
+        return _sre.compile(pattern, *found)
+
+    dataclasses.exec = exec_kept  # (its module's global, found before the built-in)
+    re._compiler.compile = compile_kept
+
+
+def kept_code_header() -> tuple:
+    """What a KEPT_CODE file must have been written by: this Python, its bytecode, its regular
+    expression engine."""
+    from importlib._bootstrap_external import MAGIC_NUMBER
+    from re._constants import MAGIC
+
+    return sys.version, MAGIC_NUMBER, MAGIC
 
 
 HELP_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "help.txt")
@@ -135,6 +244,13 @@ def _columns() -> int:
 def kept_help() -> dict[str, str]:
     """The help texts of HELP_FILE ("" for the program's, else by command), or none when it
     is absent or was made from other command modules than these."""
+    return {head.removeprefix("help "): text for head, text in _kept().items()
+            if head.startswith("help ")}
+
+
+def _kept() -> dict[str, str]:
+    """The sections of HELP_FILE by their heads, or none when it is absent or was made from
+    other command modules than these."""
     try:
         with open(HELP_FILE, encoding="utf-8") as handle:
             sections = handle.read().split(HELP_MARK)[1:]
@@ -142,11 +258,89 @@ def kept_help() -> dict[str, str]:
         return {}
     if not sections or sections[0] != f"digest {commands_digest()}\n":
         return {}
-    texts = {}
-    for section in sections[1:]:
-        head, _, text = section.partition("\n")
-        texts[head.removeprefix("help ")] = text
-    return texts
+    return dict(section.partition("\n")[::2] for section in sections[1:])
+
+
+def kept_words(command: str) -> list[list[str]] | None:
+    """The parameters of ``command`` kept in HELP_FILE by :mod:`urdftool.help_text` (name,
+    kind, option names, negative option names, default), or None."""
+    text = _kept().get(f"words {command}")
+    return None if text is None else [line.split("\t") for line in text.splitlines()]
+
+
+def _default(kind: str, text: str):
+    """A default as :func:`urdftool.help_text.words` kept it."""
+    if text == "[]":
+        return []
+    if text[:1] == "'":
+        return text[1:]
+    if text in ("None", "False", "True"):
+        return {"None": None, "False": False, "True": True}[text]
+    return float(text) if kind == "float" else int(text)
+
+
+def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
+    """The values Typer gives a command's parameters (:func:`kept_words`) for ``words``, when
+    they are plain: each word a path, an option named in full and alone (``-f json``,
+    ``--format json``, ``--format=json``, ``--strict``; not ``-fjson``, ``-qv``, ``--``),
+    each value one that cannot be read as an option (no leading ``-``) and that converts as
+    click converts it; at least one path. None for any other (Typer answers: its usage errors,
+    ``--help``)."""
+    from pathlib import Path
+
+    values, options, positional = {}, {}, None
+    for name, kind, names, negative, default in parameters:
+        values[name] = _default(kind, default)
+        if kind == "words":
+            positional, values[name] = name, []
+            continue
+        for option in names.split(","):
+            options[option] = (name, kind, True)
+        for option in filter(None, negative.split(",")):
+            options[option] = (name, kind, False)
+    if positional is None:
+        return None
+    index = 0
+    while index < len(words):
+        word = words[index]
+        index += 1
+        if word == "-" or not word.startswith("-"):
+            values[positional].append(word)
+            continue
+        given, equals, value = word.partition("=") if word.startswith("--") else (word, "", "")
+        if given not in options:
+            return None
+        name, kind, positive = options[given]
+        if kind in ("flag", "switch"):
+            if equals:
+                return None
+            values[name] = positive
+            continue
+        if not equals:
+            if index >= len(words):
+                return None
+            value = words[index]
+            index += 1
+        if value.startswith("-"):
+            return None
+        try:
+            if kind in ("text", "texts"):
+                read = value
+            elif kind in ("path", "paths"):
+                read = Path(value)
+            elif kind == "float":
+                read = float(value)
+            else:
+                read = int(value)
+                if kind.startswith("int>=") and read < int(kind[5:]):
+                    return None
+        except ValueError:
+            return None
+        if kind in ("texts", "paths"):
+            values[name].append(read)
+        else:
+            values[name] = read
+    return values if values[positional] else None
 
 
 def commands_digest() -> str:
@@ -169,31 +363,16 @@ def _exit_with(stdout: str, stderr: str, code: int) -> None:
         sys.stdout.write(stdout)
         sys.stdout.flush()
     except BrokenPipeError:
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        code = 1
+        code = _reader_left()
     raise SystemExit(code)
 
 
-def _replay(words: list[str]) -> None:
-    """Exit with the output kept for ``words``, when there is one; else return.
-
-    The cache folder is read off the words without parsing them as the command does: where
-    that reading is wrong, it looks in a folder the command never kept these words in (each
-    entry is keyed by the words), and the command runs."""
-    if "--no-cache" in words:
-        return
-    from urdftool.lint.cache import Cache, default_folder
-
-    folder = default_folder()
-    for word, after in zip(words, [*words[1:], None]):
-        if word == "--cache-dir" and after is not None:
-            folder = after
-        elif word.startswith("--cache-dir="):
-            folder = word.partition("=")[2]
-    if folder is None or (kept := Cache(folder).get_output(words)) is None:
-        return
-    _exit_with(*kept)
+def _reader_left() -> int:
+    """The exit code when the reader of standard output left (``| head``), standard output
+    now going nowhere, so that nothing complains at exit: 1, as click's."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    return 1
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@ import pytest
 from urdftool.description import files as files_module
 from urdftool.lint import cache as cache_module
 from urdftool.lint import engine
-from urdftool.lint.runner import Run, check_paths
+from urdftool.lint.runner import check_paths
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -91,9 +91,8 @@ def _messages(folder, cache_dir) -> set[tuple[str, str]]:
 
 
 def _entries(cache_dir, kind: str = "file") -> list:
-    """The entries of one file's results ('file'), of whole runs ('run') or of a command's
-    output ('output')."""
-    suffix = {"run": "-run.json", "output": "-output.json"}
+    """The entries of one file's results ('file') or of whole runs ('run')."""
+    suffix = {"run": "-run.json"}
     return [entry for entry in (cache_dir / f"v{cache_module.SCHEMA}").iterdir()
             if entry.name.endswith(suffix.get(kind, ".json"))
             and (kind in suffix or not entry.name.endswith(tuple(suffix.values())))]
@@ -290,66 +289,11 @@ def _kept_run(robot, cache_dir):
                        max_memory="0", jobs=1)
 
 
-def test_a_command_output_is_served_while_its_run_is_unchanged(robot, tmp_path, monkeypatch):
+def test_a_run_kept_whole_is_served_with_what_it_depends_on(robot, tmp_path, monkeypatch):
     monkeypatch.setattr(files_module, "RACY_NS", 0)  # files written just now: trust stamps
     cache_dir = tmp_path / "cache"
     run = _kept_run(robot, cache_dir)
     assert run.depends and _kept_run(robot, cache_dir).depends == run.depends  # as served
-    words = ["check", str(robot / "bot.urdf.xacro")]
-    cache = cache_module.Cache(cache_dir)
-    cache.put_output(words, dict(os.environ), run.depends, "the report\n", "a note\n", 1)
-    assert cache.get_output(words) == ("the report\n", "a note\n", 1)
-    assert cache.get_output([*words, "--strict"]) is None  # other words
-    assert cache.get_output(words, {**os.environ, "_": "/usr/bin/time"})  # the shell's "_"
-    monkeypatch.setenv("SOME_VARIABLE", "set")
-    assert cache.get_output(words) is None  # another environment
-    assert cache.get_output(words, {**os.environ, "SOME_VARIABLE": "other"}) is None
-    monkeypatch.delenv("SOME_VARIABLE")
-    (robot / "parts.xacro").write_text(PARTS.format(mass=-2.5))
-    assert cache.get_output(words) is None
-
-
-def test_keep_output_keeps_only_a_run_the_cache_kept_whole(robot, tmp_path, monkeypatch):
-    """What ``urdftool check`` printed is kept through the cache's own function, for a run kept
-    whole (its depends say when the output is stale), in the folder asked for, nowhere else."""
-    monkeypatch.setattr(files_module, "RACY_NS", 0)
-    cache_dir = tmp_path / "cache"
-    run = _kept_run(robot, cache_dir)
-    words = ["check", str(robot / "bot.urdf.xacro")]
-    cache_module.keep_output(None, run, (words, dict(os.environ)), "lost\n", "", 0)
-    cache_module.keep_output(cache_dir, Run(run.results), (words, dict(os.environ)), "no\n", "",
-                             0)  # a run not kept whole (depends None): its output is not either
-    assert cache_module.Cache(cache_dir).get_output(words) is None
-    cache_module.keep_output(cache_dir, run, (words, dict(os.environ)), "the report\n", "", 1)
-    assert cache_module.Cache(cache_dir).get_output(words) == ("the report\n", "", 1)
-
-
-def test_a_run_with_a_racy_stamp_keeps_no_servable_output(robot, tmp_path):
-    cache_dir = tmp_path / "cache"
-    run = _kept_run(robot, cache_dir)  # files written just now: their stamps are not trusted
-    cache = cache_module.Cache(cache_dir)
-    cache.put_output(["check"], os.environ, run.depends, "", "", 0)
-    assert cache.get_output(["check"]) is None
-
-
-@pytest.mark.parametrize("change", [
-    {"stdout": None}, {"code": "1"}, {"depends": [["file", "/nowhere", None]]},
-    {"depends": "x"}, {"stderr": 3}])
-def test_a_malformed_output_entry_is_a_miss(tmp_path, change):
-    cache = cache_module.Cache(tmp_path / "cache")
-    body = {"schema": cache_module.SCHEMA, "depends": [], "stdout": "", "stderr": "", "code": 0,
-            **change}
-    cache._keep(cache._output_path(["check"], os.environ), json.dumps(body))
-    assert cache.get_output(["check"]) is None
-
-
-def test_an_output_over_the_entry_size_is_not_kept(tmp_path, monkeypatch):
-    monkeypatch.setattr(cache_module, "MAX_ENTRY_BYTES", 1000)
-    cache = cache_module.Cache(tmp_path / "cache")
-    cache.put_output(["check"], os.environ, [], "x" * 2000, "", 0)
-    assert cache.get_output(["check"]) is None
-    cache.put_output(["check"], os.environ, [], "x" * 200, "", 0)
-    assert cache.get_output(["check"]) == ("x" * 200, "", 0)
 
 
 @pytest.mark.parametrize("saved", ["macro", "mesh", "companion"])

@@ -9,8 +9,6 @@ libraries are imported inside the command that needs them, so start-up stays fas
 from __future__ import annotations
 
 import importlib
-import os
-import sys
 
 import typer
 from typer.core import TyperGroup
@@ -154,14 +152,8 @@ def _root(version: bool = typer.Option(False, "--version", "-V", callback=_versi
     """Validate and analyse URDF and xacro robot descriptions, without ROS."""
 
 
-# the words and the environment the program started with: check keeps its output under them
-COMMAND_LINE: tuple[list[str], dict[str, str]] | None = None
-
-
 def main() -> None:
     """The ``urdftool`` program, on the words of ``sys.argv``."""
-    global COMMAND_LINE
-    COMMAND_LINE = sys.argv[1:], dict(os.environ)
     app(prog_name="urdftool")
 
 

@@ -12,6 +12,13 @@ import typer
 
 from urdftool.budget import DEFAULT_TIMEOUT
 from urdftool.errors import UsageError
+from urdftool.terminal import Terminal, pairs, robot_inputs, split_words  # noqa: F401
+
+# how the commands print and exit: click's echo, Typer's Exit (urdftool.terminal: the only ways
+# a command prints)
+TYPER = Terminal(typer.echo, typer.Exit)
+say, show, document, fail_usage = TYPER.say, TYPER.show, TYPER.document, TYPER.fail_usage
+refuse_bad_outputs, write_output = TYPER.refuse_bad_outputs, TYPER.write_output
 
 ARG_HELP = "xacro argument NAME=VALUE (repeatable); NAME:=VALUE words after the file work too."
 PACKAGE_HELP = "Where a ROS package is: NAME=PATH (repeatable)."
@@ -45,80 +52,6 @@ MaxSceneTrianglesOption = typer.Option(
          "instance of a mesh counted; memory and time grow with them); 0 for no limit.")
 
 
-def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
-    """Separate ``name:=value`` xacro words from paths."""
-    paths, args = [], {}
-    for word in words:
-        if ":=" in word:
-            name, _, value = word.partition(":=")
-            args[name] = value
-        else:
-            paths.append(word)
-    return paths, args
-
-
-def pairs(values: list[str], what: str, separator: str = "=",
-          strip: bool = False) -> dict[str, str]:
-    """``NAME=VALUE`` option values as a dict; a malformed one is a usage error. The one
-    NAME=VALUE parser: --arg, --package, --q, --v, --a.
-
-    strip: remove blanks around each NAME (joint values: ``--q " elbow=1"``)
-    """
-    result = {}
-    for value in values:
-        name, sep, rest = value.partition(separator)
-        name = name.strip() if strip else name
-        if not sep or not name:
-            raise UsageError(f"{what} must be NAME{separator}VALUE, got '{value}'")
-        result[name] = rest
-    return result
-
-
-def robot_inputs(words: list[str], arg_options: list[str], package_options: list[str]):
-    """(paths, xacro args, packages) from a command's words and options; checks paths exist."""
-    paths, args = split_words(words)
-    args.update(pairs(arg_options, "--arg"))
-    packages = {name: Path(path) for name, path in pairs(package_options, "--package").items()}
-    from urdftool.description.files import kind_of
-
-    for path in paths:
-        if path != "-" and not kind_of(path):
-            raise UsageError(f"path '{path}' does not exist")
-    return paths, args, packages
-
-
-def say(message: object, err: bool = False) -> None:
-    """Print a message, one line of terminal text (:func:`urdftool.report.escape.text`): a name
-    from the robot's files, a file name or a word of the command line in it cannot end the
-    line, start a workflow command or send an escape sequence. With :func:`show` and
-    :func:`document`, the only ways a command prints (``tests/report/test_escape.py``)."""
-    from urdftool.report.escape import text
-
-    typer.echo(text(message), err=err)
-
-
-def show(block: str, err: bool = False, nl: bool = True, keep: str = "") -> None:
-    """Print the lines a renderer built (its values escaped as terminal text), each line through
-    :func:`urdftool.report.escape.text` once more: whatever reached it, no line it prints is a
-    workflow command or holds an escape sequence. ``keep``: characters left as they are (tabs
-    of lines copied from a file)."""
-    from urdftool.report.escape import lines
-
-    typer.echo(lines(block, keep), err=err, nl=nl)
-
-
-def document(data: str) -> None:
-    """Write a document to standard output exactly as a report function made it for a
-    terminal or a log (JSON, a report format, ``urdftool xacro``'s XML): its own kind's
-    escaping is done (urdftool.report.escape), :func:`say`'s would change its data."""
-    sys.stdout.write(data)
-
-
-def fail_usage(error: UsageError) -> None:
-    say(f"urdftool: error: {error}", err=True)
-    raise typer.Exit(2)
-
-
 def fail_over_limit(error, option: str) -> None:
     """Exit 2 for a size limit (``errors.OverLimit``) checked before the work, naming the option
     that raises it."""
@@ -142,30 +75,6 @@ def joint_words(values: list[str], option: str) -> dict[str, str]:
 def warn(warnings) -> None:
     for warning in warnings:
         say(f"urdftool: warning: {warning}", err=True)
-
-
-def refuse_bad_outputs(*paths) -> None:
-    """Exit 2 with one line when an output path given (None: not given) cannot be written: its
-    folder is missing or it is a folder. Call it before the work."""
-    from urdftool.description.files import check_output
-
-    try:
-        for path in paths:
-            if path is not None:
-                check_output(path)
-    except UsageError as error:
-        fail_usage(error)
-
-
-def write_output(path, data: str | bytes) -> None:
-    """Write an output file with :func:`urdftool.description.files.write_file` (a symbolic link planted at
-    ``path`` is replaced, never followed); exit 2 with one line when it cannot be written."""
-    from urdftool.description.files import write_file
-
-    try:
-        write_file(path, data)
-    except UsageError as error:
-        fail_usage(error)
 
 
 def fail_at(robot, error: Exception) -> None:

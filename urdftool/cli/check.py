@@ -2,18 +2,12 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import typer
 
-from urdftool.errors import UsageError
-from urdftool.cli._common import (PackageOption, XacroArgOption, document, fail_usage,
-                                  max_memory_option, refuse_bad_outputs, robot_inputs, say, show,
-                                  timeout_option, write_output)
-from urdftool.report import FORMATS as REPORT_FORMATS
-
-FORMATS = (*REPORT_FORMATS, "auto")  # auto: github under GitHub Actions, else text
+from urdftool.checking import FORMATS  # noqa: F401  (the --format values it takes)
+from urdftool.cli._common import PackageOption, XacroArgOption, max_memory_option, timeout_option
 
 
 def register(app: typer.Typer) -> None:
@@ -110,131 +104,8 @@ def check(
                                    help="Keep results here between runs [default: "
                                         ".urdftool_cache; none when CI is set]."),
 ) -> None:
-    from urdftool.budget import Budget, one_blas_thread
-    from urdftool.cli import COMMAND_LINE  # the program's words (None from the Python API)
-    from urdftool.errors import SettingsError, TargetError, UnknownName
-    from urdftool.lint.runner import check_paths
-    from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
-                                        notes_shown)
-    from urdftool.report import render
-    from urdftool.report.escape import text
+    values = dict(locals())  # the parameters, as Typer parsed them
+    from urdftool.checking import run
+    from urdftool.cli._common import TYPER
 
-    try:
-        paths, args, packages = robot_inputs(words, arg, package)
-        if jobs < 0:
-            raise UsageError("--jobs must not be negative")
-        if not paths:
-            raise UsageError("no PATH given")
-        if stdin_filename is not None and "-" not in paths:
-            raise UsageError("--stdin-filename names standard input: give '-' as the PATH")
-        if config is not None and isolated:
-            raise UsageError("--config and --isolated exclude each other")
-        if format not in FORMATS:
-            raise UsageError(f"unknown format '{format}'; choose from auto, "
-                             f"{', '.join(REPORT_FORMATS)}")
-        refuse_bad_outputs(output)
-        if max_file_size is not None:
-            checked_file_size(max_file_size, "--max-file-size")
-        Budget.of(timeout or 0, max_memory)  # --timeout and --max-memory are well formed
-        if unsafe_fixes and not (fix or diff):
-            raise UsageError("--unsafe-fixes applies with --fix or --diff")
-        request = CheckRequest(
-            select=tuple(select), ignore=tuple(ignore), targets=tuple(target), strict=strict,
-            xacro_args=args,
-            packages=packages, companions=Companions(tuple(controllers), srdf, spec),
-            allow_env=allow_env, max_file_size=max_file_size, max_triangles=max_triangles,
-            max_memory=max_memory, timeout=timeout, jobs=jobs or None,
-            use_settings=not isolated, settings_file=config, stdin_filename=stdin_filename,
-            cache_dir=None if no_cache else cache_dir or _default_cache())
-        one_blas_thread()  # files checked in this process too (--jobs 1 without budgets)
-        from urdftool.report import resolve_format
-        from urdftool.report.progress import progress
-
-        machine = not statistics and resolve_format(format) != "text"  # for a program
-        with progress("checking", "files", 0, machine=machine) as moved:
-            run = check_paths(paths, request, progress=moved)
-        if fix or diff:
-            run = _apply_fixes(run, diff, unsafe_fixes, lambda: check_paths(paths, request))
-    except (UsageError, SettingsError, TargetError, UnknownName) as error:
-        fail_usage(error)
-    messages = [f"urdftool: {note}" for note in run.notes]
-    if verbose:
-        messages += [f"skipped {path}: {reason}" for path, reason in run.skipped.items()]
-        messages += [f"companion of {result.path}: {line}" for result in run.results
-                     for line in result.companions]
-    messages = [text(message) for message in messages]  # a file name can hold a line break
-    for message in messages:
-        say(message, err=True)
-    if statistics:
-        from urdftool.report.statistics import render as render_statistics
-
-        report = render_statistics
-    else:
-        def report(results, stream):
-            render(format, results, stream, quiet=quiet,
-                   notes=lambda result: notes_shown(result.path, notes, request))
-    code = 2 if run.errors else 0 if exit_zero else run.exit_code
-    # kept for the same words, run again as the program (``urdftool/__main__.py``), when the
-    # report goes to a file or pipe (a terminal's colours are not kept)
-    keep = output is None and not (fix or diff) and run.depends is not None and \
-        COMMAND_LINE is not None and not sys.stdout.isatty()
-    if output or keep:
-        import io
-
-        text = io.StringIO()
-        report(run.results, text)
-        if output:
-            write_output(output, text.getvalue())
-        else:
-            document(text.getvalue())
-            from urdftool.lint.cache import keep_output
-
-            keep_output(request.cache_dir, run, COMMAND_LINE, text.getvalue(),
-                        "".join(m + "\n" for m in messages), code)
-    else:
-        report(run.results, sys.stdout)
-    for error in run.errors:  # settings broken for some files; the others were checked
-        say(f"urdftool: error: {error}", err=True)
-    raise typer.Exit(code)
-
-
-def _default_cache():
-    from urdftool.lint.cache import default_folder  # not imported by a run without the cache
-
-    return default_folder()
-
-
-def _apply_fixes(run, diff: bool, unsafe: bool, recheck):
-    """--diff: print the fixes as a diff and exit; --fix: write them and check again."""
-    from urdftool.lint import fixes
-
-    if diff:
-        from urdftool.report.unified import unified
-
-        changes = fixes.plan(run.results, unsafe=unsafe)
-        _skipped(changes.skipped)
-        # the files' own lines, as terminal text (their tabs kept)
-        show(unified(changes.changed), nl=False, keep="\t")
-        say(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
-                   "file(s) would be applied", err=True)
-        raise typer.Exit(1 if changes.changed else 0)
-    rerun = []
-
-    def again():
-        rerun.append(recheck())
-        return rerun[-1].results
-
-    _, applied, changed, skipped = fixes.apply(run.results, again, unsafe=unsafe)
-    _skipped(skipped)
-    if applied:
-        say(f"urdftool: applied {_fixes(applied)} in {len(changed)} file(s)", err=True)
-    return rerun[-1] if rerun else run
-
-
-def _skipped(skipped) -> None:
-    for fix, why in skipped:
-        say(f"urdftool: not fixed ({fix.description}): {why}", err=True)
-
-
-def _fixes(count: int) -> str:
-    return f"{count} fix" if count == 1 else f"{count} fixes"
+    raise typer.Exit(run(TYPER, **values))

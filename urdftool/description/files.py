@@ -35,8 +35,11 @@ nothing.
 
 from __future__ import annotations
 
+import fnmatch
+import functools
 import hashlib
 import os
+import re
 import stat
 import threading
 import time
@@ -254,18 +257,41 @@ def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
 
 
 def _listing(folder: str, pattern: str) -> tuple | None:
+    entries = _entries(folder)
+    if entries is None:
+        return None
+    plain, any_kind = _matcher(pattern)
+    return tuple(entry for entry in entries
+                 if (any_kind if entry[1] in ("folder", "link") else plain)(entry[0]))
+
+
+@per_run
+def _entries(folder: str) -> tuple | None:
+    """(name, kind) of every entry of ``folder``, sorted, once per run whatever the patterns
+    asked of it (a launch file walk and a package walk list the same folders)."""
     try:
         with os.scandir(folder) as entries:
-            found = []
-            for entry in entries:
-                kind = "link" if entry.is_symlink() else "folder" if entry.is_dir(
-                    follow_symlinks=False) else "file" if entry.is_file(
-                    follow_symlinks=False) else "other"
-                if records.matches(entry.name, kind, pattern):
-                    found.append((entry.name, kind))
+            found = [(entry.name, "link" if entry.is_symlink() else "folder" if entry.is_dir(
+                follow_symlinks=False) else "file" if entry.is_file(
+                follow_symlinks=False) else "other") for entry in entries]
     except (OSError, ValueError):
         return None
     return tuple(sorted(found))
+
+
+@functools.lru_cache(maxsize=64)
+def _matcher(pattern: str):
+    """(match for a file's name, match for a folder's or link's) as
+    :func:`urdftool.description.record.matches` decides, each one compiled expression."""
+    alternatives = pattern.split("|")
+
+    def union(chosen):
+        if not chosen:
+            return lambda name: False
+        return re.compile("|".join(fnmatch.translate(a) for a in chosen)).match
+
+    return (union([a for a in alternatives if not a.endswith("/")]),
+            union([a[:-1] if a.endswith("/") else a for a in alternatives]))
 
 
 def environ(name: str, variables=None) -> str | None:

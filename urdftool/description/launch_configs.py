@@ -31,8 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path
-from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition, Description,
-                                         Include, LaunchFile, ParamFile, Start, Value,
+from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition,
+                                         Description, Include, LaunchFile, ParamFile, Start, Value,
                                          is_launch_file, is_launch_test, may_be_launch_test,
                                          read_launch_text)
 from urdftool.description.launch_python import read_python_launch
@@ -382,7 +382,10 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     (:func:`~urdftool.description.launch.may_be_launch_test`: :func:`read_launch` tells)."""
     found = []
     for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+        in_launch = current.name == "launch" and current != root
         for name in files:
+            if not (in_launch or name.endswith(LAUNCH_SUFFIXES) or tests and name.endswith(".py")):
+                continue  # (is_launch_file's and may_be_launch_test's, before a path is made)
             path = current / name
             if (is_launch_file(path, root) or tests and may_be_launch_test(path, root)) and \
                     inside(path, root):

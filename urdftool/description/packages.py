@@ -302,6 +302,8 @@ def packages_below(root: Path) -> dict[str, Path]:
     wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
     found: dict[str, Path] = {}
     for folder in _walk_dirs(root):
+        if not listing(folder, "package.xml"):  # none here: nothing to read
+            continue
         name = package_name(folder, root)
         if name is not None and kind_of(folder / "package.xml") == "file":
             found.setdefault(name, folder)

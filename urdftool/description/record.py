@@ -247,8 +247,14 @@ def unrecorded():
 def captured(compute):
     """(``compute()``, what it recorded, or None for nothing), the entries noted in the
     enclosing record as well. An exception passes through, its entries noted."""
-    with recording() as record:
+    record = Record()  # (recording()'s work, without a generator: every per-run answer's)
+    record.parent = outer = _ACTIVE.record
+    _ACTIVE.record = record
+    try:
         value = compute()
+    finally:
+        _ACTIVE.record = outer
+        record.parent = None
     return value, (record if record.entries else None)
 
 

@@ -35,10 +35,7 @@ and of editors): keyed by the paths and the request, it lists the records of its
 record of finding their targets and settings (settings files, ``.git`` and package.xml probed
 in the folders above each path). A re-run whose entries all hold by their stamps alone is
 served from it without looking for settings or classifying the paths; any difference and the
-run goes file by file. The output of such a run (``urdftool check`` printing to a file or pipe)
-is kept beside it, keyed by the command's words, the working directory, the whole environment
-and which standard streams are terminals, and printed again for the same words while the run's
-entries hold (``urdftool/__main__.py``, before the command line is even parsed).
+run goes file by file.
 
 The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
 ``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``. Robot files and even the cache folder may come
@@ -63,7 +60,6 @@ import hashlib
 import hmac
 import json
 import os
-import sys
 from pathlib import Path
 
 from urdftool.description.files import make_folders, own_folder, read_own, tree_stamp, \
@@ -85,17 +81,6 @@ def default_folder(environ=os.environ) -> Path | None:
     """``.urdftool_cache`` in the working directory; None under CI (see the module docstring)
     or with ``URDFTOOL_NO_CACHE`` set (as the test suite does)."""
     return None if environ.get("CI") or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
-
-
-def keep_output(folder, run, command_line: tuple[list[str], dict[str, str]], stdout: str,
-                stderr: str, code: int) -> None:
-    """Keep what a ``check`` command line (its words and environment) printed for ``run`` and
-    its exit code, in the cache ``folder``, for the same words to print it again
-    (:meth:`Cache.get_output`); only a run the cache kept whole (``run.depends``), whose entries
-    say when the output is stale."""
-    if folder is not None and run.depends is not None:
-        words, environment = command_line
-        Cache(folder).put_output(words, environment, run.depends, stdout, stderr, code)
 
 
 class Cache:
@@ -142,7 +127,7 @@ class Cache:
 
     def get_run(self, paths: list[str], request) -> tuple[list, list[bool], list] | None:
         """The results (FileResult), their strictness and the record entries they depend on
-        (for :meth:`put_output`) kept for checking ``paths`` with ``request``, or None. A run
+        kept for checking ``paths`` with ``request``, or None. A run
         is kept only when each path was checked as itself (no folder, macro library or
         companion named), and is a hit only while every entry it lists holds by its stamps
         alone: the records of its files, and of finding their settings and targets. Any
@@ -184,8 +169,7 @@ class Cache:
         """Keep ``run`` for :meth:`get_run`, when every path was checked as itself and every
         result was kept (see :meth:`put`); ``options_for``: path -> its CheckOptions;
         ``surroundings``: the record of finding the paths' targets and settings. Returns the
-        record entries the run depends on (for :meth:`put_output`) when it was kept, else
-        None."""
+        record entries the run depends on when it was kept, else None."""
         if self._key is None or "-" in paths or run.skipped or run.notes or \
                 [result.path for result in run.results] != list(paths):
             return None
@@ -205,45 +189,6 @@ class Cache:
                                         "findings": [_record(f) for f in result.findings]}
                                        for result in run.results]})
         return depends if self._keep(self._run_path(paths, request), body) else None
-
-    # -- a command's output ----------------------------------------------------------------
-
-    def get_output(self, command_line: list[str], environment=os.environ
-                   ) -> tuple[str, str, int] | None:
-        """(standard output, standard error, exit code) of ``command_line`` started in
-        ``environment``, as :meth:`put_output` kept them, while every entry its run depended
-        on holds by its stamps; else None."""
-        content = self._content(self._output_path(command_line, environment))
-        if content is None:
-            return None
-        try:
-            stdout, stderr, code = content["stdout"], content["stderr"], content["code"]
-            if type(stdout) is not str or type(stderr) is not str or type(code) is not int \
-                    or not isinstance(content["depends"], list) \
-                    or not unchanged(content["depends"], quick=True):
-                return None
-        except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
-            return None
-        return stdout, stderr, code
-
-    def put_output(self, command_line: list[str], environment, depends: list, stdout: str,
-                   stderr: str, code: int) -> None:
-        """Keep what ``command_line`` started in ``environment`` printed and its exit code,
-        for a run kept whole whose record entries are ``depends`` (from :meth:`get_run` or
-        :meth:`put_run`)."""
-        body = json.dumps({"schema": SCHEMA, "depends": depends, "stdout": stdout,
-                           "stderr": stderr, "code": code})
-        if len(body) < MAX_ENTRY_BYTES - 100:  # the signature and line break fit too
-            self._keep(self._output_path(command_line, environment), body)
-
-    def _output_path(self, command_line: list[str], environment) -> Path:
-        """Where a command line's output is kept: keyed by its words as given, the whole
-        environment (formats, colours, encodings and defaults follow variables) but ``_``
-        (which the shell sets to the program it started: ``time urdftool`` is the same
-        command), the Python and which standard streams are terminals."""
-        environment = {name: value for name, value in environment.items() if name != "_"}
-        return self._keyed("output", list(command_line), _environment(environment), sys.version,
-                           [os.isatty(fd) for fd in (0, 1, 2)], suffix="-output")
 
     # -- writing ---------------------------------------------------------------------------
 
@@ -287,10 +232,6 @@ class Cache:
                 _write(folder / "CACHEDIR.TAG", _TAG)
                 _write(folder / ".gitignore", "# created by urdftool\n*\n")
         return True
-
-
-def _environment(environment=os.environ) -> str:
-    return hashlib.sha256(json.dumps(sorted(environment.items())).encode()).hexdigest()
 
 
 def _record(finding: Finding) -> dict:

@@ -191,14 +191,14 @@ def _die_with(parent: int) -> None:
 # ---- in the parent -------------------------------------------------------------------------
 
 class _Worker:
-    def __init__(self, context, work, memory):
-        self.connection, child = context.Pipe()
+    def __init__(self, work, memory):
         self.slot = budgets.share_slot()
         self.relay = _relayed()
+        self.connection, child = _channels()
+        parent = os.getpid()
         # not a daemon: a worker may start processes of its own (collisions --matrix)
-        self.process = context.Process(target=_serve, args=(child, self.slot, work, memory,
-                                                            self.relay, os.getpid()))
-        self.process.start()
+        self.process = _Forked(lambda: _serve(child, self.slot, work, memory, self.relay,
+                                              parent), (self.connection,))
         try:
             os.setpgid(self.process.pid, self.process.pid)
         except OSError:
@@ -233,6 +233,150 @@ class _Worker:
             self.process.join()
         self.connection.close()
         self.slot.close()
+
+
+# ---- processes and pipes without multiprocessing (whose import costs a one-file check more
+# than its worker needs): a forked process, and two pipes carrying pickled messages
+
+class _Channel:
+    """One end of a two-way channel: pickled messages, each after its length (8 bytes)."""
+
+    def __init__(self, read: int, write: int):
+        self.read, self.write = read, write
+
+    def fileno(self) -> int:
+        return self.read
+
+    def send(self, message) -> None:
+        import pickle
+
+        data = pickle.dumps(message, pickle.HIGHEST_PROTOCOL)
+        _write_all(self.write, len(data).to_bytes(8, "big"))
+        _write_all(self.write, data)
+
+    def recv(self):
+        """The next message; EOFError when the other end is closed."""
+        import pickle
+
+        return pickle.loads(_read_exactly(self.read, int.from_bytes(_read_exactly(self.read, 8),
+                                                                     "big")))
+
+    def poll(self) -> bool:
+        """Whether a message (or the end) is ready to be read."""
+        return bool(_ready([self], 0))
+
+    def close(self) -> None:
+        for fd in (self.read, self.write):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        self.read = self.write = -1
+
+
+def _channels() -> tuple[_Channel, _Channel]:
+    """The two ends of a new channel."""
+    down_read, down_write = os.pipe()
+    up_read, up_write = os.pipe()
+    return _Channel(up_read, down_write), _Channel(down_read, up_write)
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
+
+
+def _read_exactly(fd: int, size: int) -> bytes:
+    chunks, left = [], size
+    while left:
+        chunk = os.read(fd, min(left, 1 << 20))
+        if not chunk:
+            raise EOFError("the other end of the channel is closed")
+        chunks.append(chunk)
+        left -= len(chunk)
+    return b"".join(chunks)
+
+
+def _ready(channels: list, timeout: float | None) -> list:
+    """The channels of ``channels`` with a message or their end to read, waiting up to
+    ``timeout`` [s] (None: until one has)."""
+    import select
+
+    poller = select.poll()
+    by_fd = {channel.fileno(): channel for channel in channels}
+    for fd in by_fd:
+        poller.register(fd, select.POLLIN)
+    while True:
+        try:
+            events = poller.poll(None if timeout is None else max(0, int(timeout * 1000 + 0.999)))
+            break
+        except InterruptedError:
+            continue
+    return [by_fd[fd] for fd, _ in events]
+
+
+class _Forked:
+    """``target()`` run in a forked process, which then exits (0, or 1 after an exception
+    it prints); ``closed``: the parent's channels the process closes first."""
+
+    def __init__(self, target, closed=()):
+        self.exitcode: int | None = None
+        self.pid = os.fork()
+        if self.pid:
+            return
+        code = 1
+        try:
+            for channel in closed:
+                channel.close()
+            try:
+                sys.stdin.close()  # (standard input is the parent's to read)
+            except (AttributeError, OSError, ValueError):
+                pass
+            target()
+            code = 0
+        except SystemExit as ended:
+            code = ended.code if isinstance(ended.code, int) else 1
+        except BaseException:
+            import traceback
+
+            traceback.print_exc()
+        finally:
+            for stream in (sys.stdout, sys.stderr):
+                try:
+                    stream.flush()
+                except (AttributeError, OSError, ValueError):
+                    pass
+            os._exit(code)
+
+    def kill(self) -> None:
+        if self.exitcode is None:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+            except OSError:
+                pass
+
+    def join(self, timeout: float | None = None) -> None:
+        """Wait until the process ends, at most ``timeout`` [s]."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        pause = 0.0005
+        while self.exitcode is None:
+            try:
+                pid, status = os.waitpid(self.pid, 0 if deadline is None else os.WNOHANG)
+            except ChildProcessError:
+                self.exitcode = -1
+                return
+            if pid:
+                self.exitcode = os.waitstatus_to_exitcode(status)
+                return
+            if time.monotonic() >= deadline:
+                return
+            time.sleep(pause)
+            pause = min(pause * 2, 0.05)
+
+    def is_alive(self) -> bool:
+        self.join(0)
+        return self.exitcode is None
 
 
 def _relayed() -> tuple[int, ...]:
@@ -277,14 +421,10 @@ def _drain(worker: _Worker) -> None:
 
 def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
               cancel=None) -> None:
-    import multiprocessing
-    from multiprocessing.connection import wait
-
-    context = multiprocessing.get_context("fork")
     timeout = budget.seconds
     pending = list(reversed(queue))
     ended = 0
-    workers = [_Worker(context, work, budget.memory) for _ in range(jobs)]
+    workers = [_Worker(work, budget.memory) for _ in range(jobs)]
     try:
         for worker in workers:
             if pending:
@@ -299,7 +439,7 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                     _cancel(workers, pending, budget, stopped, results)
                     return
                 wait_for = CANCEL_POLL if wait_for is None else min(wait_for, CANCEL_POLL)
-            ready = wait([w.connection for w in busy], wait_for)
+            ready = _ready([w.connection for w in busy], wait_for)
             for position, worker in enumerate(workers):
                 if worker.index is None:
                     continue
@@ -329,7 +469,7 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                         stop.kind, budget, stop.detail, where))
                     if stop.kind != "crash":
                         worker.stop(kill=True)
-                        workers[position] = worker = _Worker(context, work, budget.memory)
+                        workers[position] = worker = _Worker(work, budget.memory)
                 worker.index = None
                 ended += 1
                 finished(ended)

@@ -1,0 +1,108 @@
+"""The class methods and regular expressions a check compiles, kept compiled
+(``urdftool.kept_code``) and given back by the door (``urdftool/__main__.py``): used for the
+very texts and patterns they were made from and nothing else, by the Python that made them
+only, with the same findings."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from conftest import ROOT
+
+# made in one process (collect), used in another (the door's kept_code); prints what the
+# second compiled
+PROGRAM = '''
+import dataclasses, marshal, re, sys
+from urdftool import __main__ as door
+
+SOURCE = """
+@dataclasses.dataclass(frozen=True)
+class Kept:
+    a: int
+    b: str = "x"
+"""
+OTHER = SOURCE.replace("Kept", "Other").replace("b: str", "c: str")
+PATTERN, FLAGS = r"(?P<word>ab+)c|(d)", re.I
+
+if sys.argv[1] == "make":
+    from urdftool import kept_code
+
+    functions, patterns = kept_code.collect(lambda: (re.compile(PATTERN, FLAGS),
+                                                     exec(SOURCE, {"dataclasses": dataclasses})))
+    header = door.kept_code_header() if sys.argv[3] == "this" else ("another Python",)
+    with open(sys.argv[2], "wb") as handle:
+        handle.write(marshal.dumps((header, functions, patterns)))
+    raise SystemExit(0)
+
+door.kept_code(sys.argv[2])
+compiled, parsed = [], []
+sys.addaudithook(lambda event, args: event == "compile" and compiled.append(args[1]))
+real = re._compiler._code
+re._compiler._code = lambda *a: parsed.append(1) or real(*a)
+re.purge()
+kept = re.compile(PATTERN, FLAGS)
+print("pattern parsed", len(parsed), kept.groupindex, kept.groups, kept.flags,
+      [m.group(0) for m in kept.finditer("xABBc d")])
+re.compile(PATTERN + "e", FLAGS)
+print("other pattern parsed", len(parsed))
+space = {"dataclasses": dataclasses}
+exec(compile(SOURCE, "<test>", "exec"), space)
+kept_class = space["Kept"]
+print("class compiled", len(compiled) - 1, repr(kept_class(1)), kept_class(1) == kept_class(1, "x"))
+try:
+    space["Kept"](1).a = 2
+except dataclasses.FrozenInstanceError:
+    print("frozen")
+before = len(compiled)
+exec(compile(OTHER, "<test>", "exec"), space)
+print("other class compiled", len(compiled) - before - 1 > 0)
+'''
+
+
+def _run(*words: str) -> str:
+    done = subprocess.run([sys.executable, "-c", PROGRAM, *words], capture_output=True,
+                          text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_kept_forms_serve_the_texts_and_patterns_they_were_made_from_and_no_other(tmp_path):
+    kept = str(tmp_path / "kept.marshal")
+    _run("make", kept, "this")
+    lines = _run("use", kept).splitlines()
+    assert lines == ["pattern parsed 0 {'word': 1} 2 34 ['ABBc', 'd']",
+                     "other pattern parsed 1",
+                     "class compiled 0 Kept(a=1, b='x') True", "frozen",
+                     "other class compiled True"]
+
+
+def test_another_pythons_kept_forms_are_not_used(tmp_path):
+    kept = str(tmp_path / "kept.marshal")
+    _run("make", kept, "another")
+    lines = _run("use", kept).splitlines()
+    assert lines[0].startswith("pattern parsed 1 ") and lines[2].startswith("class compiled ")
+    assert lines[2] != "class compiled 0 Kept(a=1, b='x') True"
+
+
+def test_a_check_finds_the_same_with_and_without_the_kept_forms(tmp_path):
+    """robots/ and a broken case, through the door, with the file ``python -m
+    urdftool.kept_code`` writes and with the door's kept_code patched out."""
+    kept = tmp_path / "kept.marshal"
+    program = ("import sys; sys.argv = ['urdftool', *sys.argv[1:]]; "
+               "import urdftool.__main__ as door; {}; door.main()")
+    made = subprocess.run([sys.executable, "-c", "import sys, urdftool.__main__ as door; "
+                           f"door.KEPT_CODE = {str(kept)!r}; "
+                           "from urdftool import kept_code; kept_code.main()"],
+                          capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert made.returncode == 0 and kept.stat().st_size, made.stderr
+    words = ["check", "--no-cache", "--format", "json", "robots",
+             "tests/cases/U005_xacro_error/robot.urdf.xacro"]
+    runs = [subprocess.run([sys.executable, "-c", program.format(patch), *words],
+                           capture_output=True, text=True, cwd=ROOT, timeout=300,
+                           env={**os.environ, "COLUMNS": "100"})
+            for patch in (f"door.KEPT_CODE = {str(kept)!r}", "door.kept_code = lambda: None")]
+    assert runs[0].returncode == runs[1].returncode == 1
+    assert (runs[0].stdout, runs[0].stderr) == (runs[1].stdout, runs[1].stderr)
+    assert '"U005"' in runs[0].stdout
