@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from urdftool.description.launch import Arg, Description, Include, ParamFile, Start, substituted
-from urdftool.description.launch_configs import launch_index, read_launch, resolve, words
+from urdftool.description.launch_configs import launch_index, launch_tests, read_launch, resolve, words
 
 
 def _repo(root: Path, files: dict[str, str]) -> Path:
@@ -320,7 +320,7 @@ def test_a_launch_test_shows_how_the_robot_is_built_not_what_a_deployment_starts
                             "p/test/test_unit.py": "def test_x():\n    open('urdf/r.urdf.xacro')\n"})
     index = launch_index(root)
     assert index.configurations == []
-    [test] = index.tests
+    [test] = launch_tests(root)
     assert test.top.test and [s.executable for s in test.started] == ["robot_state_publisher",
                                                                        "spawner"]
     [build] = builds(str(root / "p/urdf/r.urdf.xacro"))

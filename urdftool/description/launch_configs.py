@@ -357,19 +357,13 @@ class Configuration:
 
 @dataclass
 class LaunchIndex:
-    """Every launch file of a repository, read; and each run as a configuration.
-
-    tests: the launch tests (:func:`~urdftool.description.launch.is_launch_test`; in
-        ``files`` too), each run as a configuration: how they build a robot file counts
-        (``runtime.builds``), what they start does not (a test is not a deployment), so they
-        are not among ``configurations``
-    """
+    """Every launch file of a repository, read; and each run as a configuration (a launch
+    test among them is in ``files``, not in ``configurations``: :func:`launch_tests`)."""
 
     root: Path
     files: dict  # real path -> LaunchFile
     configurations: list
     truncated: bool = False
-    tests: list = field(default_factory=list)
 
 
 _LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take
@@ -411,10 +405,10 @@ def read_launch(path: Path, only_test: bool = False) -> LaunchFile | None:
 @per_run
 def launch_index(root: Path) -> LaunchIndex:
     """The launch files of the repository ``root`` read and expanded (once per run)."""
-    paths, truncated = launch_files(root, tests=True)
+    paths, truncated = launch_files(root)
     files = {}
     for path in paths:
-        launch = read_launch(path, only_test=not is_launch_file(path, root))
+        launch = read_launch(path)
         if launch is not None and (launch.problem is None or launch.actions):
             files[_key(path)] = launch
     packages = packages_below(root)
@@ -425,9 +419,26 @@ def launch_index(root: Path) -> LaunchIndex:
     # launch file, planning_context.launch) runs as part of those including it
     included = {key for configuration in expanded for key in configuration.included}
     index.configurations = [c for c in expanded if _key(c.top.path) not in included]
-    index.tests = [_expand_top(index, launch, packages) for launch in files.values()
-                   if launch.test]
     return index
+
+
+@per_run
+def launch_tests(root: Path) -> list[Configuration]:
+    """The launch tests of the repository ``root`` (:func:`~urdftool.description.launch.
+    is_launch_test`), each run as a configuration: how they build a robot file counts
+    (``runtime.builds``), what they start does not (a test is not a deployment), so they are
+    not among the index's ``configurations``. Read only when asked (only how a robot file is
+    built asks), apart from the launch files: Python files named or placed as tests do not
+    count against the launch files' bound."""
+    index, packages = launch_index(root), packages_below(root)
+    tests = [launch for launch in index.files.values() if launch.test]
+    for path in launch_files(root, tests=True)[0]:
+        if _key(path) in index.files or is_launch_file(path, root):
+            continue
+        launch = read_launch(path, only_test=True)
+        if launch is not None and (launch.problem is None or launch.actions):
+            tests.append(launch)
+    return [_expand_top(index, launch, packages) for launch in tests]
 
 
 def _key(path: Path) -> str:

@@ -29,7 +29,8 @@ from pathlib import Path
 from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE
 from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
-                                                 Started, launch_files, launch_index, shown)
+                                                 Started, launch_files, launch_index, launch_tests,
+                                                 shown)
 from urdftool.description.packages import packages_below
 from urdftool.diagnostics import display_path
 
@@ -348,7 +349,7 @@ def builds(path: str) -> list[Build]:
     index, packages = launch_index(root), packages_below(root)
     real, found = real_path(absolute), []
     # launch tests too: a test shows how the file is built, not what a deployment starts
-    for configuration in index.configurations + index.tests:
+    for configuration in index.configurations + launch_tests(root):
         for described in configuration.described:
             exact = described.path is not None and real_path(described.path) == real
             if described.when.truth is False or not (
