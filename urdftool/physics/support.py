@@ -24,8 +24,8 @@ from dataclasses import dataclass, field
 
 from urdftool.physics import mat3
 from urdftool.physics.frames import Frame
-from urdftool.physics.solids import GROUP_DIRECT, _bodies, _fixed_neighbours, _link_shapes, \
-    rigid_group, _rigid_frames
+from urdftool.physics.solids import GROUP_DIRECT, _bodies, body_points, _fixed_neighbours, \
+    _link_shapes, rigid_group, _rigid_frames
 
 TAGS = ("visual", "collision")
 
@@ -35,7 +35,9 @@ class Piece:
     """One shape placed in the frame of a :class:`Reach`: ``kind`` box, cylinder, sphere or
     mesh; ``centre`` [m]; ``rotation`` (its axes as columns); ``size``: half sizes of a box,
     (radius, half length) of a cylinder, (radius,) of a sphere; ``vertices``: a mesh's
-    vertices placed, numpy [k, 3]; ``link``: the link it belongs to."""
+    vertices placed, numpy [k, 3] (placed when first asked: ``local`` holds them until
+    then); ``inner``: a few of them placed (``MeshFacts.inner_points``: points of their
+    hull); ``link``: the link it belongs to."""
 
     kind: str
     centre: mat3.Vector
@@ -43,6 +45,16 @@ class Piece:
     size: tuple = ()
     vertices: object = None
     link: str = ""
+    inner: object = None
+    local: object = field(default=None, repr=False, compare=False)
+
+    def placed(self):
+        """A mesh's vertices placed (every vertex: the support and the farthest point are
+        reached at one), placed once."""
+        if self.vertices is None:
+            self.vertices = _placed(self.local, self.rotation, self.centre)
+            self.local = None
+        return self.vertices
 
     def support(self, d) -> float:
         """max over the piece of d . x [m] (``d`` need not be a unit vector)."""
@@ -59,7 +71,7 @@ class Piece:
             return base + half * abs(along) + radius * math.sqrt(across)
         if self.kind == "sphere":
             return base + self.size[0] * math.sqrt(dx * dx + dy * dy + dz * dz)
-        return float((self.vertices @ (dx, dy, dz)).max())
+        return float((self.placed() @ (dx, dy, dz)).max())
 
     def farthest(self, p) -> float:
         """The largest distance [m] from ``p`` to a point of the piece."""
@@ -78,7 +90,7 @@ class Piece:
             return math.sqrt(mat3.dot(offset, offset)) + self.size[0]
         import numpy as np
 
-        return float(np.sqrt(((self.vertices - np.asarray(p)) ** 2).sum(axis=1)).max())
+        return float(np.sqrt(((self.placed() - np.asarray(p)) ** 2).sum(axis=1)).max())
 
     def holds(self, p) -> bool:
         """Whether ``p`` is inside the piece's solid (a mesh: never claimed)."""
@@ -127,7 +139,9 @@ class Reach:
         ``d . p - h(d)`` over :data:`DIRECTIONS` and the direction from the centre of the
         pieces' box to ``p`` (each a true lower bound of the distance; 0 or less: inside, or
         too near to tell). 0 when ``p`` is inside a primitive piece. With a mesh among the
-        pieces (numpy is loaded), every direction is asked at once (:class:`_Table`)."""
+        pieces (numpy is loaded), every direction is asked at once (:class:`_Table`), and 0
+        when ``p`` is found inside the hull of a few points of the pieces (:class:`_Inside`):
+        then no vertex of a mesh is placed."""
         if not self.pieces:
             return 0.0
         if any(piece.kind == "mesh" for piece in self.pieces):
@@ -175,7 +189,7 @@ class _Body:
 
     def _table(self):
         if self.reach._table is None:
-            self.reach._table = _Table(self.reach.pieces, reduce=True)
+            self.reach._table = _Table(self.reach.pieces, reduce=len(self.reach.links))
         return self.reach._table
 
     def support(self, d) -> float:
@@ -203,36 +217,59 @@ class _Body:
 class _Table:
     """Pieces as arrays, for questions asked in many directions at once: points (a mesh's
     vertices, a box's corners: a box's support and farthest point are reached at a corner),
-    cylinders and spheres by their closed forms, and for :meth:`holds` every primitive. With
-    ``reduce``, the points are cut to the vertices of their convex hull (the same extremes).
-    A ``frame`` (rotation, xyz) takes the asker's coordinates into the table's."""
+    cylinders and spheres by their closed forms, and for :meth:`holds` every primitive. The
+    points are gathered when first asked (:meth:`outside` may not need them, see
+    :class:`_Inside`); with ``reduce`` (the members of a body asking), cut to the vertices
+    of their convex hull (the same extremes) when many (:func:`~urdftool.physics.solids.
+    body_points`). A ``frame`` (rotation, xyz) takes the asker's coordinates into the table's."""
 
-    __slots__ = ("points", "cylinders", "spheres", "boxes")
+    __slots__ = ("_pieces", "_points", "_reduce", "_inside", "_corners", "cylinders",
+                 "spheres", "boxes")
 
-    def __init__(self, pieces, reduce: bool = False):
+    def __init__(self, pieces, reduce: int = 0):
         import numpy as np
 
-        points, cylinders, spheres, boxes = [], [], [], []
+        corners, cylinders, spheres, boxes = [], [], [], []
         for piece in pieces:
-            if piece.kind == "mesh":
-                points.append(piece.vertices)
-            elif piece.kind == "box":
+            if piece.kind == "box":
                 rotation = np.asarray(piece.rotation, dtype=float)
-                points.append((_columns()[2] * piece.size) @ rotation.T + piece.centre)
+                corners.append((_columns()[2] * piece.size) @ rotation.T + piece.centre)
                 boxes.append((piece.centre, rotation, piece.size))
             elif piece.kind == "cylinder":
                 cylinders.append((piece.centre, np.asarray(piece.rotation, dtype=float),
                                   piece.size))
-            else:
+            elif piece.kind == "sphere":
                 spheres.append((*piece.centre, piece.size[0]))
-        self.points = np.vstack(points) if points else np.zeros((0, 3))
-        if reduce and len(self.points):
-            from urdftool.description.mesh_arrays import extreme_points
-
-            self.points = extreme_points(self.points)
+        self._pieces, self._reduce, self._corners = pieces, reduce, corners
+        self._points = self._inside = None
         self.boxes = _primitives(boxes)
         self.cylinders = _primitives(cylinders)
         self.spheres = np.array(spheres, dtype=float).reshape(-1, 4)
+
+    @property
+    def points(self):
+        """Every mesh vertex and box corner, placed (numpy [k, 3]), in the pieces' order."""
+        if self._points is None:
+            import numpy as np
+
+            found, corners = [], iter(self._corners)
+            for piece in self._pieces:
+                if piece.kind == "mesh":
+                    found.append(piece.placed())
+                elif piece.kind == "box":
+                    found.append(next(corners))
+            points = np.vstack(found) if found else np.zeros((0, 3))
+            if self._reduce and len(points):
+                points = body_points(points, self._reduce)
+            self._points = points
+        return self._points
+
+    def within(self, p) -> bool:
+        """Whether ``p`` (the table's frame) is found inside the convex hull of the pieces
+        from a few of their points (:class:`_Inside`): no mesh vertex is placed for it."""
+        if self._inside is None:
+            self._inside = _Inside(self._pieces, self._corners, self.cylinders, self.spheres)
+        return self._inside.holds(p)
 
     def support(self, directions, frame=None):
         """h(d) [m] for each column d of ``directions`` (3, k), in the asker's frame."""
@@ -305,7 +342,8 @@ class _Table:
         """:meth:`Reach.outside` of ``p`` (the asker's frame)."""
         import numpy as np
 
-        if self.holds(self._in_table_frame(p, frame)):
+        inside = self._in_table_frame(p, frame)
+        if self.holds(inside) or self.within(inside):
             return 0.0
         p = np.asarray(p, dtype=float)
         every, six, _ = _columns()
@@ -316,6 +354,57 @@ class _Table:
         directions = every if not norm > 0 else \
             np.hstack([every, (towards / norm).reshape(3, 1)])
         return float((p @ directions - self.support(directions, frame)).max())
+
+
+class _Inside:
+    """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
+    points of them: of a mesh its ``inner`` vertices, of a box its corners, of a cylinder
+    eight points of its rims, of a sphere its six poles. Of those, the ones largest along the
+    26 directions of a cube's faces, edges and corners span a star of 48 tetrahedra about
+    their mean (one per triangle of neighbouring directions,
+    :data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES`). Every tetrahedron lies in the
+    hull, so a point strictly inside one (by 1e-7 in barycentric coordinates; flat ones are
+    not asked) is inside it: outside is then at most 0. A point it cannot place is asked of
+    every vertex. Coordinates over 1e6 m are not judged so (rounding beyond a micrometre)."""
+
+    __slots__ = ("centre", "inverses")
+
+    def __init__(self, pieces, corners, cylinders, spheres):
+        import numpy as np
+
+        from urdftool.description.mesh_arrays import CUBE_TRIANGLES, cube_extremes
+
+        found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
+        if cylinders is not None:
+            centres, rotations, (radii, halves) = cylinders
+            signs = _columns()[2]  # (8, 3): a rim point for each corner of the box about it
+            found.append((centres[:, None, :] + np.einsum(
+                "kij,knj->kni", rotations, signs[None] * np.stack(
+                    [radii, np.zeros_like(radii), halves], axis=1)[:, None, :])).reshape(-1, 3))
+        if len(spheres):
+            offsets = np.vstack([np.eye(3), -np.eye(3)])
+            found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets).reshape(-1, 3))
+        self.centre = self.inverses = None
+        points = np.vstack(found) if found else np.zeros((0, 3))
+        if len(points) < 4 or not (np.abs(points) < 1e6).all():
+            return
+        extremes = points[cube_extremes(points)]
+        centre = extremes.mean(axis=0)
+        # columns: the corners of each tetrahedron but the centre, from the centre
+        edges = (extremes[np.array(CUBE_TRIANGLES)] - centre).transpose(0, 2, 1)
+        volumes = np.abs(np.linalg.det(edges))
+        sizes = np.prod(np.sqrt((edges * edges).sum(axis=1)), axis=1)
+        solid = volumes > 1e-6 * sizes  # not flat: well conditioned
+        if solid.any():
+            self.centre, self.inverses = centre, np.linalg.inv(edges[solid])
+
+    def holds(self, p) -> bool:
+        if self.inverses is None:
+            return False
+        import numpy as np
+
+        weights = self.inverses @ (np.asarray(p, dtype=float) - self.centre)
+        return bool(((weights > 1e-7).all(axis=1) & (weights.sum(axis=1) < 1 - 1e-7)).any())
 
 
 def _primitives(found):
@@ -442,17 +531,32 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
     try:
-        # the hull's vertices, once per run for every robot using the file at that scale
-        vertices = mesh_facts(robot, p["filename"], p["scale"]).extreme_points
+        mesh = mesh_facts(robot, p["filename"], p["scale"])
+        vertices = mesh.vertices  # merged, once per run for every robot using the file
     except MeshProblem as problem:
         return str(problem)
     import numpy as np
 
+    piece = Piece("mesh", centre, rotation, local=vertices, link=member)
+    # every vertex placed is finite when the corners of their box are (a vertex is a mean of
+    # them: not beyond them); else each vertex is placed now, as they are all asked then
+    (lx, ly, lz), (hx, hy, hz) = np.asarray(mesh.bounds, dtype=float).tolist()
+    corners = [(x, y, z) for x in (lx, hx) for y in (ly, hy) for z in (lz, hz)]
+    if not (len(vertices) and all(abs(v) < 1e300 for c in _placed(corners, rotation, centre)
+                                  .tolist() for v in c)):
+        placed = piece.placed()
+        if not len(placed) or not np.isfinite(placed).all():
+            return f"mesh '{p['filename']}' has no finite vertices"
+    piece.inner = _placed(mesh.inner_points, rotation, centre)
+    return piece
+
+
+def _placed(points, rotation, centre):
+    """``points`` (numpy [k, 3], or rows) turned by ``rotation`` and moved by ``centre``."""
+    import numpy as np
+
     with np.errstate(all="ignore"):
-        placed = np.asarray(vertices, dtype=float) @ np.asarray(rotation).T + np.asarray(centre)
-    if not len(placed) or not np.isfinite(placed).all():
-        return f"mesh '{p['filename']}' has no finite vertices"
-    return Piece("mesh", centre, rotation, vertices=placed, link=member)
+        return np.asarray(points, dtype=float) @ np.asarray(rotation).T + np.asarray(centre)
 
 
 def frame_of(robot, name: str, base: str) -> Frame | None:

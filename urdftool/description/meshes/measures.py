@@ -157,6 +157,7 @@ class MeshFacts:
         self.extents = self.bounds[1] - self.bounds[0]
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
+        self._inner = self._inner_volume = None
 
     def _arrays(self):
         if self._merge is not None:
@@ -190,6 +191,25 @@ class MeshFacts:
         if self._extreme is None:
             self._extreme = mesh_arrays.extreme_points(self.vertices)
         return self._extreme
+
+    @property
+    def inner_points(self):
+        """At most 26 vertices, each largest along a direction of a cube's faces, edges and
+        corners (:func:`.mesh_arrays.cube_extremes`): points of the mesh's hull, found
+        without building it (read only)."""
+        if self._inner is None:
+            vertices = self.vertices
+            self._inner = vertices[mesh_arrays.cube_extremes(vertices)] if len(vertices) \
+                else vertices
+        return self._inner
+
+    @property
+    def inner_volume(self) -> float:
+        """A lower bound of the volume of the convex hull (:func:`.mesh_arrays.inner_volume`),
+        found without building it [m^3]."""
+        if self._inner_volume is None:
+            self._inner_volume = mesh_arrays.inner_volume(self.vertices)
+        return self._inner_volume
 
     @property
     def convex_hull(self):
