@@ -21,6 +21,7 @@ says what is wrong with it. numpy, scipy and lxml are imported inside the functi
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 
@@ -562,8 +563,16 @@ def cube_extremes(points):
     product: points of the convex hull of ``points`` whose own hull lies inside it."""
     import numpy as np
 
-    heights = np.asarray(points, dtype=np.float64) @ np.array(_CUBE, dtype=np.float64).T
+    heights = np.asarray(points, dtype=np.float64) @ _cube_columns()
     return np.concatenate([heights.argmax(axis=0), heights.argmin(axis=0)])
+
+
+@functools.cache
+def _cube_columns():
+    """:data:`_CUBE` as the columns of a numpy array (3, 13), made once."""
+    import numpy as np
+
+    return np.array(_CUBE, dtype=np.float64).T
 
 
 def inner_volume(vertices) -> float:
@@ -598,9 +607,12 @@ def _small_hull_volume(points: list) -> float:
     def dot(u, v):
         return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 
+    def face(i, j, k):  # its corners and its normal (not unit: twice its area)
+        a = points[i]
+        return i, j, k, a, cross(minus(points[j], a), minus(points[k], a))
+
     def height(face, q):  # six times the signed volume of the tetrahedron (face, q)
-        a, b, c = (points[i] for i in face)
-        return dot(cross(minus(b, a), minus(c, a)), minus(q, a))
+        return dot(face[4], minus(q, face[3]))
 
     if len(points) < 4:
         return 0.0
@@ -614,24 +626,26 @@ def _small_hull_volume(points: list) -> float:
     line = minus(points[b], points[a])
     c = max(range(len(points)), key=lambda i: dot(*(cross(line, minus(points[i], points[a])),)
                                                   * 2))
-    d = max(range(len(points)), key=lambda i: abs(height((a, b, c), points[i])))
-    first = height((a, b, c), points[d])
+    base = face(a, b, c)
+    d = max(range(len(points)), key=lambda i: abs(height(base, points[i])))
+    first = height(base, points[d])
     if not abs(first) > margin:
         return 0.0
-    faces = [(a, c, b), (a, b, d), (b, c, d), (c, a, d)] if first > 0 else \
+    corners = [(a, c, b), (a, b, d), (b, c, d), (c, a, d)] if first > 0 else \
         [(a, b, c), (a, d, b), (b, d, c), (c, d, a)]  # each turned outward
+    faces = [face(*turned) for turned in corners]
     volume = abs(first) / 6.0
     for q in range(len(points)):
         if q in (a, b, c, d):
             continue
-        heights = [height(face, points[q]) for face in faces]
-        seen = [face for face, h in zip(faces, heights) if h > margin]
+        heights = [height(f, points[q]) for f in faces]
+        seen = [f for f, h in zip(faces, heights) if h > margin]
         if not seen:
             continue  # inside, or too near the hull to tell
         volume += sum(h for h in heights if h > margin) / 6.0
-        edges = {(u, v) for face in seen for u, v in zip(face, face[1:] + face[:1])}
-        faces = [face for face, h in zip(faces, heights) if h <= margin] + \
-            [(u, v, q) for u, v in edges if (v, u) not in edges]
+        edges = {(u, v) for f in seen for u, v in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
+        faces = [f for f, h in zip(faces, heights) if h <= margin] + \
+            [face(u, v, q) for u, v in edges if (v, u) not in edges]
     return volume - len(points) * len(faces) * margin
 
 

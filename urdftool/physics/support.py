@@ -372,7 +372,7 @@ class _Inside:
     def __init__(self, pieces, corners, cylinders, spheres):
         import numpy as np
 
-        from urdftool.description.mesh_arrays import CUBE_TRIANGLES, cube_extremes
+        from urdftool.description.mesh_arrays import cube_extremes
 
         found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
         if cylinders is not None:
@@ -391,7 +391,7 @@ class _Inside:
         extremes = points[cube_extremes(points)]
         centre = extremes.mean(axis=0)
         # columns: the corners of each tetrahedron but the centre, from the centre
-        edges = (extremes[np.array(CUBE_TRIANGLES)] - centre).transpose(0, 2, 1)
+        edges = (extremes[_triangles()] - centre).transpose(0, 2, 1)
         volumes = np.abs(np.linalg.det(edges))
         sizes = np.prod(np.sqrt((edges * edges).sum(axis=1)), axis=1)
         solid = volumes > 1e-6 * sizes  # not flat: well conditioned
@@ -405,6 +405,16 @@ class _Inside:
 
         weights = self.inverses @ (np.asarray(p, dtype=float) - self.centre)
         return bool(((weights > 1e-7).all(axis=1) & (weights.sum(axis=1) < 1 - 1e-7)).any())
+
+
+@functools.cache
+def _triangles():
+    """:data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES` as a numpy array, made once."""
+    import numpy as np
+
+    from urdftool.description.mesh_arrays import CUBE_TRIANGLES
+
+    return np.array(CUBE_TRIANGLES)
 
 
 def _primitives(found):
@@ -538,12 +548,10 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     import numpy as np
 
     piece = Piece("mesh", centre, rotation, local=vertices, link=member)
-    # every vertex placed is finite when the corners of their box are (a vertex is a mean of
-    # them: not beyond them); else each vertex is placed now, as they are all asked then
-    (lx, ly, lz), (hx, hy, hz) = np.asarray(mesh.bounds, dtype=float).tolist()
-    corners = [(x, y, z) for x in (lx, hx) for y in (ly, hy) for z in (lz, hz)]
-    if not (len(vertices) and all(abs(v) < 1e300 for c in _placed(corners, rotation, centre)
-                                  .tolist() for v in c)):
+    # placed, a vertex within 1e150 of the origin stays finite (a rotation's entries are at
+    # most 1) when the centre is too; else each vertex is placed now, as all are asked then
+    if not (len(vertices) and all(abs(v) < 1e150 for v in centre) and
+            float(np.abs(mesh.bounds).max()) < 1e150):
         placed = piece.placed()
         if not len(placed) or not np.isfinite(placed).all():
             return f"mesh '{p['filename']}' has no finite vertices"
