@@ -390,21 +390,27 @@ class _Inside:
             return
         extremes = points[cube_extremes(points)]
         centre = extremes.mean(axis=0)
-        # columns: the corners of each tetrahedron but the centre, from the centre
-        edges = (extremes[_triangles()] - centre).transpose(0, 2, 1)
-        volumes = np.abs(np.linalg.det(edges))
-        sizes = np.prod(np.sqrt((edges * edges).sum(axis=1)), axis=1)
-        solid = volumes > 1e-6 * sizes  # not flat: well conditioned
+        # (3, 48, 3): the corners a, b, c of each tetrahedron but the centre, from the centre
+        corners = (extremes[_triangles()] - centre).transpose(1, 0, 2)
+        turned = corners[[1, 2, 0]]  # b, c, a: then b x c, c x a, a x b are the rows of the
+        after = corners[[2, 0, 1]]  # inverse of the matrix of columns a, b, c times its det
+        normals = turned[..., [1, 2, 0]] * after[..., [2, 0, 1]] - \
+            turned[..., [2, 0, 1]] * after[..., [1, 2, 0]]
+        volumes = (corners[0] * normals[0]).sum(axis=1)  # a . (b x c)
+        sizes = np.sqrt((corners * corners).sum(axis=2)).prod(axis=0)
+        solid = np.abs(volumes) > 1e-6 * sizes  # not flat: well conditioned
         if solid.any():
-            self.centre, self.inverses = centre, np.linalg.inv(edges[solid])
+            self.centre = centre
+            self.inverses = normals[:, solid] / volumes[solid][:, None]
 
     def holds(self, p) -> bool:
         if self.inverses is None:
             return False
         import numpy as np
 
+        # barycentric weights of p in each tetrahedron (for a, b, c; the centre's is the rest)
         weights = self.inverses @ (np.asarray(p, dtype=float) - self.centre)
-        return bool(((weights > 1e-7).all(axis=1) & (weights.sum(axis=1) < 1 - 1e-7)).any())
+        return bool(((weights > 1e-7).all(axis=0) & (weights.sum(axis=0) < 1 - 1e-7)).any())
 
 
 @functools.cache
