@@ -35,9 +35,9 @@ class Piece:
     """One shape placed in the frame of a :class:`Reach`: ``kind`` box, cylinder, sphere or
     mesh; ``centre`` [m]; ``rotation`` (its axes as columns); ``size``: half sizes of a box,
     (radius, half length) of a cylinder, (radius,) of a sphere; ``vertices``: a mesh's
-    vertices placed, numpy [k, 3] (placed when first asked: ``local`` holds them until
-    then); ``inner``: a few of them placed (``MeshFacts.inner_points``: points of their
-    hull); ``link``: the link it belongs to."""
+    vertices placed, numpy [k, 3] (placed when first asked: ``local``, the mesh's
+    ``MeshFacts``, holds them until then); ``inner``: a few points of the mesh placed
+    (``MeshFacts.inner_points``: points of its hull); ``link``: the link it belongs to."""
 
     kind: str
     centre: mat3.Vector
@@ -52,7 +52,7 @@ class Piece:
         """A mesh's vertices placed (every vertex: the support and the farthest point are
         reached at one), placed once."""
         if self.vertices is None:
-            self.vertices = _placed(self.local, self.rotation, self.centre)
+            self.vertices = _placed(self.local.vertices, self.rotation, self.centre)
             self.local = None
         return self.vertices
 
@@ -364,8 +364,10 @@ class _Inside:
     their mean (one per triangle of neighbouring directions,
     :data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES`). Every tetrahedron lies in the
     hull, so a point strictly inside one (by 1e-7 in barycentric coordinates; flat ones are
-    not asked) is inside it: outside is then at most 0. A point it cannot place is asked of
-    every vertex. Coordinates over 1e6 m are not judged so (rounding beyond a micrometre)."""
+    not asked) is inside it (to within 1e-8 m times the mesh's scale: a mesh's points are its
+    corners as read until it is merged): outside is then 0 (the rules ask of it only beyond
+    a centimetre). A point it cannot place is asked of every vertex. Coordinates over 1e6 m
+    are not judged so (rounding beyond a micrometre)."""
 
     __slots__ = ("centre", "inverses")
 
@@ -548,15 +550,15 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
 
     try:
         mesh = mesh_facts(robot, p["filename"], p["scale"])
-        vertices = mesh.vertices  # merged, once per run for every robot using the file
     except MeshProblem as problem:
         return str(problem)
     import numpy as np
 
-    piece = Piece("mesh", centre, rotation, local=vertices, link=member)
+    # its vertices (merged, once per run for every robot using the file) when first placed
+    piece = Piece("mesh", centre, rotation, local=mesh, link=member)
     # placed, a vertex within 1e150 of the origin stays finite (a rotation's entries are at
     # most 1) when the centre is too; else each vertex is placed now, as all are asked then
-    if not (len(vertices) and all(abs(v) < 1e150 for v in centre) and
+    if not (mesh.faces and all(abs(v) < 1e150 for v in centre) and
             float(np.abs(mesh.bounds).max()) < 1e150):
         placed = piece.placed()
         if not len(placed) or not np.isfinite(placed).all():

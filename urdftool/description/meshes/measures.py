@@ -101,6 +101,21 @@ class _Arrays:
             self._merged, self._read = (vertices, faces, mesh_arrays.is_watertight(faces)), None
         return self._merged
 
+    def corners_read(self, scale: tuple[float, float, float]):
+        """The triangles' corners as read (not merged: each within 1e-8 of a merged vertex,
+        or one), in metres and scaled by ``scale``; None once merged (the merged vertices
+        then stand for them)."""
+        if self._read is None:
+            return None
+        import numpy as np
+
+        moved = self._read[0]
+        with np.errstate(all="ignore"):
+            for factors in ((self._unit,) * 3, scale):
+                if factors != (1.0, 1.0, 1.0):
+                    moved, _ = mesh_arrays.scaled(moved, self._read[1], factors)
+        return moved
+
     def bounds(self, scale: tuple[float, float, float]):
         """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
         them; None when that cannot be decided so (see :func:`.mesh_arrays.merged_bounds`)."""
@@ -144,12 +159,14 @@ class MeshFacts:
         self._properties = properties
 
     @classmethod
-    def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge):
+    def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge,
+                 corners=None):
         """Facts whose bounds are known and whose arrays ``merge()`` builds when first
-        needed: (vertices, faces, watertight), merged and scaled."""
+        needed: (vertices, faces, watertight), merged and scaled; ``corners()``: the corners
+        as read, scaled (or None), for what needs no merging (:attr:`inner_points`)."""
         facts = cls.__new__(cls)
         facts._start(triangles, bounds, metadata, nbytes)
-        facts._merge = merge
+        facts._merge, facts._corners = merge, corners
         return facts
 
     def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
@@ -157,7 +174,7 @@ class MeshFacts:
         self.extents = self.bounds[1] - self.bounds[0]
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
-        self._inner = self._inner_volume = None
+        self._inner = self._inner_volume = self._corners = None
 
     def _arrays(self):
         if self._merge is not None:
@@ -194,13 +211,15 @@ class MeshFacts:
 
     @property
     def inner_points(self):
-        """At most 26 vertices, each largest along a direction of a cube's faces, edges and
-        corners (:func:`.mesh_arrays.cube_extremes`): points of the mesh's hull, found
-        without building it (read only)."""
+        """At most 26 points of the mesh, each largest along a direction of a cube's faces,
+        edges and corners (:func:`.mesh_arrays.cube_extremes`): points of its hull, found
+        without building it (read only). Of the corners as read while the mesh is not merged
+        (merging would cost more), each within 1e-8 (times the scale) of a merged vertex."""
         if self._inner is None:
-            vertices = self.vertices
-            self._inner = vertices[mesh_arrays.cube_extremes(vertices)] if len(vertices) \
-                else vertices
+            points = self._corners() if self._merge is not None and self._corners else None
+            if points is None:
+                points = self.vertices
+            self._inner = points[mesh_arrays.cube_extremes(points)] if len(points) else points
         return self._inner
 
     @property
@@ -253,7 +272,8 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
         bounds = arrays.bounds(scale)
         if bounds is not None:
             facts = MeshFacts.unmerged(arrays.triangles, bounds, arrays.metadata, arrays.nbytes,
-                                       lambda: _merged_scaled(arrays, scale))
+                                       lambda: _merged_scaled(arrays, scale),
+                                       lambda: arrays.corners_read(scale))
         else:
             import numpy as np
 
