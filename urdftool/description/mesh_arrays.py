@@ -563,8 +563,9 @@ def cube_extremes(points):
     product: points of the convex hull of ``points`` whose own hull lies inside it."""
     import numpy as np
 
-    heights = np.asarray(points, dtype=np.float64) @ _cube_columns()
-    return np.concatenate([heights.argmax(axis=0), heights.argmin(axis=0)])
+    # one row per direction: each row's largest and least found along contiguous memory
+    heights = _cube_columns().T @ np.asarray(points, dtype=np.float64).T
+    return np.concatenate([heights.argmax(axis=1), heights.argmin(axis=1)])
 
 
 @functools.cache
