@@ -587,7 +587,7 @@ def inner_volume(vertices) -> float:
     vertices = np.asarray(vertices, dtype=np.float64)
     if len(vertices) < 4 or not np.isfinite(vertices).all():
         return 0.0
-    chosen = vertices[np.unique(cube_extremes(vertices))]
+    chosen = vertices[sorted(set(cube_extremes(vertices).tolist()))]  # (np.unique: numpy.ma)
     volume = _small_hull_volume([tuple(p) for p in chosen.tolist()])
     return volume * (1 - 1e-9) if math.isfinite(volume) and volume > 0 else 0.0
 
