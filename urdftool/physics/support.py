@@ -546,11 +546,10 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
         return Piece("cylinder", centre, rotation, (p["radius"], p["length"] / 2), link=member)
     if shape.kind == "sphere":
         return Piece("sphere", centre, rotation, (p["radius"],), link=member)
-    from urdftool.description.meshes import MeshProblem, mesh_facts
-
+    problem_type, mesh_facts = _meshes()
     try:
         mesh = mesh_facts(robot, p["filename"], p["scale"])
-    except MeshProblem as problem:
+    except problem_type as problem:
         return str(problem)
     import numpy as np
 
@@ -558,8 +557,7 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     piece = Piece("mesh", centre, rotation, local=mesh, link=member)
     # placed, a vertex within 1e150 of the origin stays finite (a rotation's entries are at
     # most 1) when the centre is too; else each vertex is placed now, as all are asked then
-    if not (mesh.faces and all(abs(v) < 1e150 for v in centre) and
-            float(np.abs(mesh.bounds).max()) < 1e150):
+    if not (mesh.faces and all(abs(v) < 1e150 for v in centre) and mesh.moderate):
         placed = piece.placed()
         if not len(placed) or not np.isfinite(placed).all():
             return f"mesh '{p['filename']}' has no finite vertices"
@@ -567,6 +565,15 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     else:  # nothing overflows: numpy's error state need not be set (a tenth of the placing)
         piece.inner = mesh.inner_points @ np.asarray(rotation).T + np.asarray(centre)
     return piece
+
+
+@functools.cache
+def _meshes():
+    """(MeshProblem, mesh_facts), imported when a mesh is first placed (a robot without
+    meshes does not import them), then kept (an import statement per piece costs more)."""
+    from urdftool.description.meshes import MeshProblem, mesh_facts
+
+    return MeshProblem, mesh_facts
 
 
 def _placed(points, rotation, centre):

@@ -172,6 +172,9 @@ class MeshFacts:
     def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
         self.faces, self.bounds, self.metadata, self.nbytes = triangles, bounds, metadata, nbytes
         self.extents = self.bounds[1] - self.bounds[0]
+        # every coordinate within 1e150 of the origin: turned and moved by what is not
+        # larger, none overflows
+        self.moderate = bool((abs(self.bounds) < 1e150).all())
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
         self._inner = self._inner_volume = self._corners = None
