@@ -258,10 +258,36 @@ def test_a_mesh_piece_places_its_vertices_only_when_asked_exactly(tmp_path):
     scipy_spatial = pytest.importorskip("scipy.spatial")
     reach = _pieces(tmp_path, mesh=True)
     mesh = next(piece for piece in reach.pieces if piece.kind == "mesh")
-    assert mesh.vertices is None and mesh.local is not None and len(mesh.inner) <= 26
+    assert mesh.vertices is None and mesh.mesh is not None and len(mesh.inner) <= 26
     centre = tuple(mesh.inner.mean(axis=0))
     assert reach.outside(centre) == 0.0 and mesh.vertices is None
     height = mesh.support((0.3, -0.2, 0.9))
     placed = mesh.vertices
     kept = placed[scipy_spatial.ConvexHull(placed).vertices]
     assert height == float((kept @ (0.3, -0.2, 0.9)).max())
+
+
+def test_a_point_inside_one_mesh_far_from_the_reachs_middle_is_found_inside(tmp_path):
+    """A small mesh two metres from a large one: points inside the small one, which the
+    reach's own star (about a middle near the large one) leaves to every vertex, are found
+    inside by the mesh's star (in its frame, made once per run); none found inside is beyond
+    the geometry."""
+    from benchmarks.generate import _sphere_stl
+    from urdftool.physics.support import _Table
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+    parts = "".join(f'<visual><origin xyz="{x} 0 0" rpy="0.3 0.2 {x}"/><geometry><mesh '
+                    f'filename="ball.stl" scale="{k} {k} {k}"/></geometry></visual>'
+                    for x, k in ((0, 1), (2, 10)))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="a">{parts}</link></robot>')
+    table = _Table(link_reach(robot, robot.links["a"]).pieces)
+    rng = np.random.default_rng(4)
+    small = table.points[:len(table._pieces[0].placed())]  # the first mesh's vertices
+    samples = rng.normal(size=(400, 3)) * 0.03 + small.mean(axis=0)
+    directions = rng.normal(size=(3, 2000))
+    directions /= np.linalg.norm(directions, axis=0)
+    margins = samples @ directions - table.support(directions)
+    found = np.array([table.within(p) for p in samples])
+    by_reach = np.array([table._inside.star.holds(p) for p in samples])
+    assert (margins[found] <= 1e-12).all()
+    assert (found & ~by_reach).sum() > 20  # the mesh's own star finds what the reach's misses

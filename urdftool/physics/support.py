@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from dataclasses import dataclass, field
 
 from urdftool.physics import mat3
@@ -35,8 +36,8 @@ class Piece:
     """One shape placed in the frame of a :class:`Reach`: ``kind`` box, cylinder, sphere or
     mesh; ``centre`` [m]; ``rotation`` (its axes as columns); ``size``: half sizes of a box,
     (radius, half length) of a cylinder, (radius,) of a sphere; ``vertices``: a mesh's
-    vertices placed, numpy [k, 3] (placed when first asked: ``local``, the mesh's
-    ``MeshFacts``, holds them until then); ``inner``: a few points of the mesh placed
+    vertices placed, numpy [k, 3] (placed when first asked, from ``mesh``, its
+    ``MeshFacts``); ``inner``: a few points of the mesh placed
     (``MeshFacts.inner_points``: points of its hull); ``link``: the link it belongs to."""
 
     kind: str
@@ -46,14 +47,13 @@ class Piece:
     vertices: object = None
     link: str = ""
     inner: object = None
-    local: object = field(default=None, repr=False, compare=False)
+    mesh: object = field(default=None, repr=False, compare=False)
 
     def placed(self):
         """A mesh's vertices placed (every vertex: the support and the farthest point are
         reached at one), placed once."""
         if self.vertices is None:
-            self.vertices = _placed(self.local.vertices, self.rotation, self.centre)
-            self.local = None
+            self.vertices = _placed(self.mesh.vertices, self.rotation, self.centre)
         return self.vertices
 
     def support(self, d) -> float:
@@ -358,23 +358,17 @@ class _Table:
 
 class _Inside:
     """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
-    points of them: of a mesh its ``inner`` vertices, of a box its corners, of a cylinder
-    eight points of its rims, of a sphere its six poles. Of those, the ones largest along the
-    26 directions of a cube's faces, edges and corners span a star of 48 tetrahedra about
-    their mean (one per triangle of neighbouring directions,
-    :data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES`). Every tetrahedron lies in the
-    hull, so a point strictly inside one (by 1e-7 in barycentric coordinates; flat ones are
-    not asked) is inside it (to within 1e-8 m times the mesh's scale: a mesh's points are its
-    corners as read until it is merged): outside is then 0 (the rules ask of it only beyond
-    a centimetre). A point it cannot place is asked of every vertex. Coordinates over 1e6 m
-    are not judged so (rounding beyond a micrometre)."""
+    points of them (:class:`_Star`): first those of every piece (of a mesh its ``inner``
+    points, of a box its corners, of a cylinder eight points of its rims, of a sphere its six
+    poles), then each mesh's own (its star in its frame, made once per run: a centre of mass
+    inside its link's mesh but far from the reach's middle, a sensor's on a robot's base).
+    Outside is then 0 (the rules ask of it only beyond a centimetre); a point it cannot
+    place is asked of every vertex."""
 
-    __slots__ = ("centre", "inverses")
+    __slots__ = ("star", "pieces")
 
     def __init__(self, pieces, corners, cylinders, spheres):
         import numpy as np
-
-        from urdftool.description.mesh_arrays import cube_extremes
 
         found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
         if cylinders is not None:
@@ -386,8 +380,41 @@ class _Inside:
         if len(spheres):
             offsets = np.vstack([np.eye(3), -np.eye(3)])
             found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets).reshape(-1, 3))
+        self.star = _Star(np.vstack(found) if found else np.zeros((0, 3)))
+        self.pieces = [piece for piece in pieces if piece.kind == "mesh"]
+
+    def holds(self, p) -> bool:
+        import numpy as np
+
+        p = np.asarray(p, dtype=float)
+        if self.star.holds(p):
+            return True
+        for piece in self.pieces:
+            star = _mesh_star(piece.mesh)
+            # p in the mesh's own frame: rotation^T (p - centre)
+            if star.inverses is not None and \
+                    star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
+                return True
+        return False
+
+
+class _Star:
+    """Of some points of a solid, the ones largest along the 26 directions of a cube's faces,
+    edges and corners span a star of 48 tetrahedra about their mean (one per triangle of
+    neighbouring directions, :data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES`).
+    Every tetrahedron lies in the solid's hull, so a point strictly inside one (by 1e-7 in
+    barycentric coordinates; flat ones are not asked) is inside it (to within 1e-8 m times a
+    mesh's scale: a mesh's points are its corners as read until it is merged). Coordinates
+    over 1e6 m are not judged so (rounding beyond a micrometre)."""
+
+    __slots__ = ("centre", "inverses")
+
+    def __init__(self, points):
+        import numpy as np
+
+        from urdftool.description.mesh_arrays import cube_extremes
+
         self.centre = self.inverses = None
-        points = np.vstack(found) if found else np.zeros((0, 3))
         if len(points) < 4 or not (np.abs(points) < 1e6).all():
             return
         extremes = points[cube_extremes(points)]
@@ -408,11 +435,20 @@ class _Inside:
     def holds(self, p) -> bool:
         if self.inverses is None:
             return False
-        import numpy as np
-
         # barycentric weights of p in each tetrahedron (for a, b, c; the centre's is the rest)
-        weights = self.inverses @ (np.asarray(p, dtype=float) - self.centre)
+        weights = self.inverses @ (p - self.centre)
         return bool(((weights > 1e-7).all(axis=0) & (weights.sum(axis=0) < 1 - 1e-7)).any())
+
+
+_STARS = weakref.WeakKeyDictionary()  # MeshFacts -> its _Star: once per run, as the facts
+
+
+def _mesh_star(mesh) -> _Star:
+    """The :class:`_Star` of a mesh's inner points in its own frame, made once."""
+    star = _STARS.get(mesh)
+    if star is None:
+        star = _STARS[mesh] = _Star(mesh.inner_points)
+    return star
 
 
 @functools.cache
@@ -554,7 +590,7 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
     import numpy as np
 
     # its vertices (merged, once per run for every robot using the file) when first placed
-    piece = Piece("mesh", centre, rotation, local=mesh, link=member)
+    piece = Piece("mesh", centre, rotation, mesh=mesh, link=member)
     # placed, a vertex within 1e150 of the origin stays finite (a rotation's entries are at
     # most 1) when the centre is too; else each vertex is placed now, as all are asked then
     if not (mesh.faces and all(abs(v) < 1e150 for v in centre) and mesh.moderate):
