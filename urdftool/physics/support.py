@@ -358,44 +358,51 @@ class _Table:
 
 class _Inside:
     """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
-    points of them (:class:`_Star`): first those of every piece (of a mesh its ``inner``
-    points, of a box its corners, of a cylinder eight points of its rims, of a sphere its six
-    poles), then each mesh's own (its star in its frame, made once per run: a centre of mass
-    inside its link's mesh but far from the reach's middle, a sensor's on a robot's base).
-    Outside is then 0 (the rules ask of it only beyond a centimetre); a point it cannot
-    place is asked of every vertex."""
+    points of them (:class:`_Star`): first each mesh's own (its star in its frame, made once
+    per run), then those of every piece together (of a mesh its ``inner`` points, of a box
+    its corners, of a cylinder eight points of its rims, of a sphere its six poles: a point
+    between pieces), made when first asked. Outside is then 0 (the rules ask of it only
+    beyond a centimetre); a point it cannot place is asked of every vertex."""
 
-    __slots__ = ("star", "pieces")
+    __slots__ = ("_star", "_parts", "pieces")
 
     def __init__(self, pieces, corners, cylinders, spheres):
-        import numpy as np
-
-        found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
-        if cylinders is not None:
-            centres, rotations, (radii, halves) = cylinders
-            signs = _columns()[2]  # (8, 3): a rim point for each corner of the box about it
-            found.append((centres[:, None, :] + np.einsum(
-                "kij,knj->kni", rotations, signs[None] * np.stack(
-                    [radii, np.zeros_like(radii), halves], axis=1)[:, None, :])).reshape(-1, 3))
-        if len(spheres):
-            offsets = np.vstack([np.eye(3), -np.eye(3)])
-            found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets).reshape(-1, 3))
-        self.star = _Star(np.vstack(found) if found else np.zeros((0, 3)))
+        self._star, self._parts = None, (pieces, corners, cylinders, spheres)
         self.pieces = [piece for piece in pieces if piece.kind == "mesh"]
+
+    @property
+    def star(self):
+        """The star of the points of every piece, made when first asked."""
+        if self._star is None:
+            import numpy as np
+
+            pieces, corners, cylinders, spheres = self._parts
+            found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
+            if cylinders is not None:
+                centres, rotations, (radii, halves) = cylinders
+                signs = _columns()[2]  # (8, 3): a rim point for each corner of the box about it
+                found.append((centres[:, None, :] + np.einsum(
+                    "kij,knj->kni", rotations, signs[None] * np.stack(
+                        [radii, np.zeros_like(radii), halves], axis=1)[:, None, :]))
+                    .reshape(-1, 3))
+            if len(spheres):
+                offsets = np.vstack([np.eye(3), -np.eye(3)])
+                found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets)
+                             .reshape(-1, 3))
+            self._star = _Star(np.vstack(found) if found else np.zeros((0, 3)))
+        return self._star
 
     def holds(self, p) -> bool:
         import numpy as np
 
         p = np.asarray(p, dtype=float)
-        if self.star.holds(p):
-            return True
         for piece in self.pieces:
             star = _mesh_star(piece.mesh)
             # p in the mesh's own frame: rotation^T (p - centre)
             if star.inverses is not None and \
                     star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
                 return True
-        return False
+        return self.star.holds(p)
 
 
 class _Star:
