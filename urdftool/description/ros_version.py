@@ -1,72 +1,126 @@
-"""Which ROS a robot is written for, from what its files say (or None when they do not agree).
+"""Which ROS reads a robot, from what its files say: the one owner of that fact.
 
-Evidence, each with the reason it is shown with:
+Evidence (:func:`ros_versions`), each with the reason it is shown with:
 
+- the package.xml of the robot's package: ``catkin`` (ROS 1) or ``ament_cmake``/``ament_python``
+  (ROS 2) as its build tool; a build tool under a ``condition=`` (a package built by both) says
+  nothing;
 - ``<ros2_control>`` in the URDF: ROS 2 (ros2_control reads it; ROS 1's ros_control does not);
 - its controller YAML: ROS 2 with ``ros__parameters``, ROS 1 without (MoveIt's lists aside);
 - Gazebo's ros_control plugin: ``libgazebo_ros_control.so`` is ROS 1's,
-  ``libgazebo_ros2_control.so`` and the gz_ros2_control systems ROS 2's;
-- the package.xml of the robot's package: ``catkin`` (ROS 1) or ``ament_cmake``/``ament_python``
-  (ROS 2) as its build tool.
+  ``libgazebo_ros2_control.so`` and the gz/ign_ros2_control systems ROS 2's;
+- the launch files that describe it: XML with ``type=`` (ROS 1); Python, or ``exec=`` (ROS 2).
 
-A robot whose evidence disagrees, or that has none, has no version: what depends on it is not
-certain.
+:func:`ros_version` is the one version all of it names, or None when it names both or none:
+what depends on the version is then not certain.
 """
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
-from urdftool.description.actuation import gazebo_plugins
 from urdftool.description.packages import manifest_text, package_of
+from urdftool.diagnostics import display_path
 
-_BUILD_TOOL = re.compile(rb"<buildtool_depend>\s*(catkin|ament_cmake|ament_python)\s*</buildtool_depend>")
-_CONTROL = {"libgazebo_ros_control.so": 1, "libgazebo_ros2_control.so": 2,
-            "gz_ros2_control-system": 2, "ign_ros2_control-system": 2}
+_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*(catkin)\s*<")
+_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*(ament_(?:cmake|python))|<build_type>\s*(ament_\w+)")
+_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """One reason to think ROS ``version`` reads the robot; ``kind`` is where it was read:
+    'package', 'ros2_control', 'controllers', 'plugin' or 'launch'."""
+
+    version: int
+    why: str
+    kind: str
+
+
+@dataclass(frozen=True)
+class Versions:
+    """The ROS versions that read the robot, and why each (``evidence``)."""
+
+    versions: frozenset
+    evidence: tuple
+
+    @property
+    def ros2_only(self) -> bool:
+        return self.versions == frozenset({2})
+
+    def why(self, version: int) -> str:
+        return "; ".join(e.why for e in self.evidence if e.version == version)
+
+
+def ros_versions(robot) -> Versions:
+    """Every version the robot's files name, with the evidence; read once per robot."""
+    return robot.memo(ros_versions, lambda: _versions(robot))
 
 
 def ros_version(robot) -> tuple[int | None, str]:
-    """(1, 2 or None, the evidence in words), read once per robot."""
-    return robot.memo(ros_version, lambda: _decide(robot))
+    """(1 or 2, the evidence in words) when the evidence names one version, else (None, "")."""
+    found = ros_versions(robot)
+    if len(found.versions) != 1:
+        return None, ""
+    version = next(iter(found.versions))
+    return version, found.why(version)
 
 
-def _decide(robot) -> tuple[int | None, str]:
+def _versions(robot) -> Versions:
+    from urdftool.description.actuation import gazebo_plugins
     from urdftool.description.controllers import controller_files  # companions: not at import
+    from urdftool.description.runtime import runtime
 
-    found: dict[int, list[str]] = {1: [], 2: []}
+    evidence = [] if robot.path == "-" else list(package_evidence(robot.path))
     if robot.children("ros2_control"):
-        found[2].append("it has <ros2_control>")
+        evidence.append(Evidence(2, "the URDF has <ros2_control>", "ros2_control"))
     for read in controller_files(robot):
         if any(c.layout != "moveit" for c in read.controllers):
-            found[2 if read.file.ros2 else 1].append(
-                f"{read.file.display} is a {'ROS 2' if read.file.ros2 else 'ROS 1'} parameter file")
+            version = 2 if read.file.ros2 else 1
+            evidence.append(Evidence(version, f"{read.file.display} is a ROS {version} parameter "
+                                              "file", "controllers"))
     for plugin in gazebo_plugins(robot):
-        name = (plugin.get("filename") or "").strip().rsplit("/", 1)[-1]
-        version = _CONTROL.get(name) or _CONTROL.get(re.sub(r"^lib|\.so$", "", name))
+        library = (plugin.get("filename") or "").strip()
+        version = plugin_version(library)
         if version:
-            found[version].append(f"it loads {name}")
-    package = _package_build_tool(robot)
-    if package:
-        found[package[0]].append(package[1])
-    if found[1] and not found[2]:
-        return 1, "; ".join(found[1])
-    if found[2] and not found[1]:
-        return 2, "; ".join(found[2])
-    return None, ""
+            evidence.append(Evidence(version, f"the URDF loads {library}", "plugin"))
+    for configuration in runtime(robot).described:
+        evidence.append(Evidence(configuration.top.ros, f"{configuration.display} launches it",
+                                 "launch"))
+    evidence = list(dict.fromkeys(evidence))
+    return Versions(frozenset(e.version for e in evidence), tuple(evidence))
 
 
-def _package_build_tool(robot) -> tuple[int, str] | None:
-    """(version, why) from the build tool of the package.xml above the robot's file."""
-    return None if robot.path == "-" else package_build_tool(robot.path)
+def plugin_version(library: str) -> int | None:
+    """The ROS version of a Gazebo ros_control plugin library (file name, with or without
+    ``lib``/``.so`` and a folder), or None for any other plugin."""
+    name = re.sub(r"^lib|\.so$", "", library.rsplit("/", 1)[-1])
+    if name == "gazebo_ros_control":
+        return 1
+    return 2 if "ros2_control" in name else None
+
+
+def package_evidence(path: str) -> tuple[Evidence, ...]:
+    """What the build tool of the package.xml above ``path`` says (comments removed): nothing
+    when a build tool is conditioned (a package built by both ROS versions)."""
+    folder = package_of(path)
+    data = manifest_text(folder) if folder is not None else None
+    if data is None or _CONDITIONED.search(data):
+        return ()
+    shown_as = display_path(Path(folder) / "package.xml")
+    found = ((version, pattern.search(data)) for version, pattern in ((1, _CATKIN), (2, _AMENT)))
+    return tuple(Evidence(version, f"its package builds with {_tool(match)} ({shown_as})",
+                          "package") for version, match in found if match)
+
+
+def _tool(match) -> str:
+    return next(group for group in match.groups() if group).decode()
 
 
 def package_build_tool(path: str) -> tuple[int, str] | None:
-    """(version, why) from the build tool of the package.xml above ``path``, or None."""
-    folder = package_of(path)
-    text = manifest_text(folder) if folder is not None else None
-    match = _BUILD_TOOL.search(text) if text else None
-    if match is None:
-        return None
-    tool = match.group(1).decode()
-    return (1 if tool == "catkin" else 2), f"its package builds with {tool}"
+    """(version, why) from the build tool of the package.xml above ``path``, when it names one
+    version; else None."""
+    found = package_evidence(path)
+    return (found[0].version, found[0].why) if len(found) == 1 else None

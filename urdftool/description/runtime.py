@@ -15,10 +15,8 @@ has the value the robot was checked with (``--arg``, else the ``<xacro:arg>`` de
 - ``unknown``: no launch file of the robot says (the rules then judge what is certain without
   them: see docs/certainty.md).
 
-The ROS versions that read the robot (:func:`ros_versions`) come from its package.xml (catkin:
-ROS 1; ament: ROS 2), its URDF (``<ros2_control>``, gazebo_ros2_control: ROS 2;
-gazebo_ros_control: ROS 1) and its launch files (XML with ``type=``: ROS 1; Python, or ``exec=``:
-ROS 2).
+The ROS versions that read the robot are :mod:`urdftool.description.ros_version`'s (its launch
+files are part of the evidence).
 """
 
 from __future__ import annotations
@@ -32,7 +30,7 @@ from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE
 from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
                                                  Started, launch_files, launch_index, shown)
-from urdftool.description.packages import manifest_text, package_of, packages_below
+from urdftool.description.packages import packages_below
 from urdftool.diagnostics import display_path
 
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -590,62 +588,3 @@ def state_publishers(robot) -> list[tuple[Configuration, Started]]:
     facts = runtime(robot)
     return [found for package in STATE_PUBLISHERS for found in facts.starts(package)]
 
-
-# --- ROS versions -------------------------------------------------------------------------------
-
-_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*catkin\s*<")
-_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*ament_(cmake|python)|<build_type>\s*ament_")
-_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
-
-
-@dataclass(frozen=True)
-class Versions:
-    """The ROS versions that read the robot, and why each (``evidence``)."""
-
-    versions: frozenset
-    evidence: tuple
-
-    @property
-    def ros2_only(self) -> bool:
-        return self.versions == frozenset({2})
-
-    def why(self, version: int) -> str:
-        return "; ".join(e for v, e in self.evidence if v == version)
-
-
-def ros_versions(robot) -> Versions:
-    return robot.memo(ros_versions, lambda: _versions(robot))
-
-
-def _versions(robot) -> Versions:
-    from urdftool.description.actuation import gazebo_plugins
-
-    evidence = []
-    manifest = _manifest(robot)
-    if manifest is not None:
-        data, shown_as = manifest
-        if not _CONDITIONED.search(data):
-            if _CATKIN.search(data):
-                evidence.append((1, f"{shown_as} builds with catkin"))
-            if _AMENT.search(data):
-                evidence.append((2, f"{shown_as} builds with ament"))
-    if robot.children("ros2_control"):
-        evidence.append((2, "the URDF has <ros2_control>"))
-    for plugin in gazebo_plugins(robot):
-        library = plugin.get("filename") or ""
-        if library == "libgazebo_ros_control.so":
-            evidence.append((1, "the URDF loads gazebo_ros_control"))
-        elif "ros2_control" in library:
-            evidence.append((2, f"the URDF loads {library}"))
-    for configuration in runtime(robot).described:
-        evidence.append((configuration.top.ros, f"{configuration.display} launches it"))
-    evidence = list(dict.fromkeys(evidence))
-    return Versions(frozenset(v for v, _ in evidence), tuple(evidence))
-
-
-def _manifest(robot):
-    """(the package.xml of the robot's package, comments removed, as shown), or None: the
-    package is :func:`~urdftool.description.packages.package_of`'s."""
-    folder = None if robot.path == "-" else package_of(robot.path)
-    data = manifest_text(folder) if folder is not None else None
-    return None if data is None else (data, display_path(folder / "package.xml"))

@@ -121,7 +121,7 @@ def test_unknown_interface_when_ros1_may_read_it_too_is_a_warning_naming_it(tmp_
     _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)}, select=("U503",))
     assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
     assert findings[0].message.startswith("if ROS 1 reads this transmission (the URDF loads "
-                                          "gazebo_ros_control; ros2_control ignores it: the URDF "
+                                          "libgazebo_ros_control.so; ros2_control ignores it: the URDF "
                                           "has <ros2_control>)")
 
 

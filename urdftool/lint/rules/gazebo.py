@@ -11,7 +11,8 @@ from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
-from urdftool.description.runtime import ros_versions, runtime
+from urdftool.description.ros_version import ros_versions
+from urdftool.description.runtime import runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
@@ -489,8 +490,7 @@ def gazebo_plugin_library(robot):
     # a file a launch file loads goes where the launch file puts it (a group's ns): not known
     namespaces = {c.namespace.strip("/") for c in controllers(robot) if c.layout == "ros1"
                   and not facts.loads(c.file.path)}
-    ros1 = [why for version, why in ros_versions(robot).evidence
-            if version == 1 and "gazebo_ros_control" not in why]
+    ros1 = [e.why for e in ros_versions(robot).evidence if e.version == 1 and e.kind != "plugin"]
     for plugin in gazebo_plugins(robot):
         library = (plugin.get("filename") or "").strip()
         if library == ROS1_CONTROL and ros2:

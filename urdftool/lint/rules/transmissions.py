@@ -5,7 +5,7 @@ transmission loader): ros2_control reads the transmissions inside ``<ros2_contro
 other. So the transmission rules judge a top-level transmission as ROS 1 reads it when the
 robot is ROS 1 or nothing says (the element itself is ROS 1's); say nothing of it when the
 robot is ROS 2 only (its package builds with ament, it has ``<ros2_control>``, its launch files
-are ROS 2's: :func:`~urdftool.description.runtime.ros_versions`), and make a warning naming
+are ROS 2's: :func:`~urdftool.description.ros_version.ros_versions`), and make a warning naming
 the condition when both may read it (docs/certainty.md).
 """
 
@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import functools
 
-from urdftool.description.runtime import STATE_PUBLISHERS, ros_versions, runtime
+from urdftool.description.ros_version import ros_versions
+from urdftool.description.runtime import STATE_PUBLISHERS, runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
                                             interface_kind, is_ros2_form, moving_joints,
