@@ -1,6 +1,10 @@
 """Big generated robots: ``urdftool fk`` of a chain, text output to a pipe, against Pinocchio's
 own ``buildModelFromXML`` of the same file (target: 1.5x at 2,000 links), and how ``fk`` grows
-(target: t(8,000 links) / t(1,000 links) at most 12, i.e. no worse than n log n by much).
+(target: t(8,000 links) / t(1,000 links) at most 12, i.e. no worse than n log n by much); the
+same growth for the other long tables on the chain: ``dh`` from its first link to its last and
+``inertia`` (issue 34: "fk, dh, inertia and other tables"). ``dynamics`` has no line: Pinocchio's
+Data holds nv^3 tensors, so it refuses a 2,000-joint chain before any work (its memory check),
+and ``M(q)`` is nv^2 numbers to print anyway (``--max-matrix-rows``).
 Median CPU times of the child processes, runs alternating (benchmarks/timing.py).
 """
 
@@ -46,6 +50,19 @@ def main() -> list[dict]:
                         "ratio": growth, "target": 12.0, "ok": growth <= 12,
                         "detail": f"goal <= 12; 8k {grown['8k'].text()}; 1k (reference) "
                                   f"{grown['1k'].text()}"})
+        for name, words in (("dh", ["dh", "--base", "l0", "--tip"]), ("inertia", ["inertia"])):
+            commands = {n: [URDFTOOL, *words, *([f"l{n - 1}"] if name == "dh" else []),
+                            "--timeout", "0", "--max-memory", "0", chain[n]]
+                        for n in (1000, 8000)}
+            grown = alternating(commands, 2)
+            growth = grown[8000].median / grown[1000].median
+            print(f"{name} 8000 vs 1000 links: {grown[8000].text()} / {grown[1000].text()} = "
+                  f"{growth:.1f}; {load()}")
+            results.append({"name": f"{name} t(8000 links)/t(1000 links) [{grown[8000].median:.2f}"
+                                    f" / {grown[1000].median:.2f} s cpu] ({load()})",
+                            "ratio": growth, "target": 12.0, "ok": growth <= 12,
+                            "detail": f"goal <= 12; 8k {grown[8000].text()}; 1k (reference) "
+                                      f"{grown[1000].text()}"})
     return results
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from conftest import load_text
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, fixed_texts, number, numbers
 
 PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
 
@@ -33,6 +33,18 @@ PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
 def test_number(value, kwargs, text):
     assert number(value, **kwargs) == text
 
+
+@pytest.mark.parametrize("places", [0, 3, 6])
+def test_fixed_texts_are_number_with_places(places):
+    """Formatted at once, the texts of number(v, places=...) to the character: round-off
+    without its minus, ties (2**-7 at six places) as Python rounds them, values that are not
+    finite, large and tiny ones, and a spread of random ones."""
+    import numpy as np
+
+    values = [-1e-9, -0.0, 0.0, -0.4, -0.5, 0.5, 2.5, 2.0 ** -7, -(2.0 ** -7), 1.0000005,
+              -4e-4, 1e300, -1e300, 5e-324, float("nan"), float("inf"), float("-inf")]
+    values += np.random.default_rng(places).uniform(-4, 4, 2000).tolist()
+    assert fixed_texts(values, places) == [number(v, places=places) for v in values]
 
 def test_numbers_count_digits_from_the_largest_component():
     assert numbers((0.3, 1e-17, -2e-18)) == "0.3 0 0"

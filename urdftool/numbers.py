@@ -47,6 +47,19 @@ def number(value: float, digits: int = 4, *, places: int | None = None,
     return text
 
 
+def fixed_texts(values: Iterable[float], places: int = 6) -> list[str]:
+    """``number(v, places=places)`` of each of ``values`` (floats), the same texts at a tenth of
+    the cost, for tables of hundreds of thousands of numbers (``fk --q-file``): Python's
+    ``round(v, places)`` and the ``f`` format both round the float's exact value to the nearest
+    decimal (ties to even), so formatting alone gives the same digits; what rounds to zero
+    loses its sign, as in :func:`number`; a value that is not finite is written as ``repr``
+    writes it, as there."""
+    form = f"%.{places}f"
+    negative_zero, zero = form % -0.0, form % 0.0
+    texts = [form % value for value in values]
+    return [zero if text == negative_zero else text for text in texts]
+
+
 MILLIMETRE = 1e-3  # [m] the smallest scale of a position: a centre of mass of round-off only
 
 

@@ -388,6 +388,22 @@ def test_model_read_down_the_tree_is_pinocchios(tmp_path, seed):
                                    atol=1e-12)
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_poses_of_some_links_are_those_of_all(tmp_path, seed):
+    """Poses asked for some links (in any order, one twice, a link at its joint left out while
+    one below it is asked) are, to the bit, those of the same links among all: a moving
+    joint's pose is written into its link's block only when that link is asked for."""
+    path = tmp_path / "random.urdf"
+    path.write_bytes(_random_tree(seed))
+    for floating in (False, True):
+        model = KinematicModel(load(path), floating=floating)
+        values = config.random(model.variables, 5, seed=seed).values
+        every = model.link_poses(values)
+        rng = np.random.default_rng(seed)
+        chosen = [int(i) for i in rng.permutation(len(model.links))[: len(model.links) // 2]]
+        chosen += chosen[:1]
+        assert np.array_equal(model.link_poses(values, chosen), every[:, chosen])
+
 def test_fk_builds_no_pinocchio_model(tiny, monkeypatch):
     """Poses come from the tree read once, not from Pinocchio's model (quadratic in links),
     past the size where urdfdom's verdict is asked of it."""

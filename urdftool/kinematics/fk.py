@@ -220,41 +220,59 @@ class KinematicModel:
     def _frame_poses(self, values: np.ndarray, links: list[int] | None) -> np.ndarray:
         """Poses ``[links, rows, 4, 4]``: each link's block contiguous, so numpy's batched
         matrix products stay on their fast path (strided or broadcast operands are 5-100x
-        slower)."""
+        slower). A moving joint's pose is written straight into the block of the link at it
+        (every moving joint has one), so no block is copied and memory is touched once."""
         values = np.atleast_2d(np.asarray(values, dtype=float))
         links = range(len(self._frames)) if links is None else links
+        rows = len(values)
+        out = np.empty((len(links), rows, 4, 4))
+        home = {}  # joint -> the block of out its pose is written to
+        for index, link in enumerate(links):
+            joint = self._frames[link][1]
+            if joint and self._at_joint[link]:
+                home.setdefault(joint, index)
+        scratch = _Scratch(rows)
         placed: list = [None]  # the universe: identity
-        for joint in self._joints[1:]:
-            local = self._local(joint, values)
+        for number, joint in enumerate(self._joints[1:], 1):
+            target = out[home[number]] if number in home else None
             parent = placed[joint.parent]
-            placed.append(local if parent is None else np.matmul(parent, local))
-        out = np.empty((len(links), len(values), 4, 4))
+            if parent is None:
+                placed.append(self._local(joint, values, scratch, target))
+            else:
+                local = self._local(joint, values, scratch, scratch.local)
+                placed.append(np.matmul(parent, local, out=target))
         for index, link in enumerate(links):
             _, joint, placement = self._frames[link]
             if placed[joint] is None:
                 out[index] = placement
-            elif self._at_joint[link]:  # a link at its joint: no product
+            elif home.get(joint) == index:  # written above
+                continue
+            elif self._at_joint[link]:
                 out[index] = placed[joint]
             else:
                 np.matmul(placed[joint], placement, out=out[index])
         return out
 
-    def _local(self, joint: _Joint, values: np.ndarray) -> np.ndarray:
-        """Joint placement times joint motion, ``[rows, 4, 4]``."""
+    def _local(self, joint: _Joint, values: np.ndarray, scratch: "_Scratch",
+               out: np.ndarray | None = None) -> np.ndarray:
+        """Joint placement times joint motion, ``[rows, 4, 4]`` (into ``out`` when given)."""
         rows = len(values)
         if joint.kind in ("revolute", "prismatic"):
             # Rodrigues folded into the placement: P R(q) = P + sin q (P K) + (1 - cos q) (P K^2);
             # P Trans(q u) = P + q (P u e_w^T). Linear in (1, sin q, 1 - cos q): one BLAS product
             # of [rows, 3] coefficients with the [3, 16] stacked blocks.
             q = joint.value(values)
-            coefficients = np.empty((rows, 3))
-            coefficients[:, 0] = 1.0
+            coefficients = scratch.coefficients
             if joint.kind == "prismatic":
                 coefficients[:, 1], coefficients[:, 2] = q, 0.0
             else:
-                coefficients[:, 1] = np.sin(q)
-                coefficients[:, 2] = 1.0 - np.cos(q)
-            return (coefficients @ joint.stacked).reshape(rows, 4, 4)
+                np.sin(q, out=coefficients[:, 1])
+                np.cos(q, out=coefficients[:, 2])
+                np.subtract(1.0, coefficients[:, 2], out=coefficients[:, 2])
+            if out is None:
+                return (coefficients @ joint.stacked).reshape(rows, 4, 4)
+            np.matmul(coefficients, joint.stacked, out=out.reshape(rows, 16))
+            return out
         motion = np.zeros((rows, 4, 4))
         motion[:, 3, 3] = 1.0
         if joint.kind == "floating":
@@ -265,7 +283,7 @@ class KinematicModel:
             x, y, yaw = (values[:, c] for c in joint.source)
             motion[:, :3, :3] = transforms.rotations_about((0.0, 0.0, 1.0), yaw)
             motion[:, 0, 3], motion[:, 1, 3] = x, y
-        return np.matmul(joint.placement, motion)
+        return np.matmul(joint.placement, motion, out=out)
 
     def pinocchio_q(self, values: np.ndarray) -> np.ndarray:
         """Pinocchio configuration vectors ``[rows, nq]`` for ``values`` (cos/sin, quaternions)."""
@@ -289,6 +307,16 @@ class KinematicModel:
                 x, y, yaw = (values[:, c] for c in joint.source)
                 q[:, start:start + 4] = np.stack([x, y, np.cos(yaw), np.sin(yaw)], -1)
         return q
+
+
+class _Scratch:
+    """Arrays reused from joint to joint in one pass: the coefficients (1, sin q, 1 - cos q)
+    and one joint's local placement."""
+
+    def __init__(self, rows: int):
+        self.coefficients = np.empty((rows, 3))
+        self.coefficients[:, 0] = 1.0
+        self.local = np.empty((rows, 4, 4))
 
 
 NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4}  # Pinocchio's

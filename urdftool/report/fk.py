@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from urdftool.numbers import number
-from urdftool.report.console import fixed, plain_tables, print_table, wide_console, write_table
+from urdftool.numbers import fixed_texts, number
+from urdftool.report.console import plain_tables, print_table, wide_console, write_table
 
 
 def verify_line(count: int, seed, position: float, rotation: float, tolerance: float) -> str:
@@ -31,9 +31,12 @@ def write_poses(result, output_format: str, matrix: bool, single: bool, stream=N
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
+        # Python floats in one conversion per array, not three per pose
+        lists = [positions.tolist(), rpys.tolist(), quaternions.tolist(),
+                 result.matrices.tolist() if matrix else None]
         documents = [{"base": result.base, "frames": [
-            _frame_entry(name, positions[row, k], rpys[row, k], quaternions[row, k],
-                         result.matrices[row, k] if matrix else None)
+            _frame_entry(name, lists[0][row][k], lists[1][row][k], lists[2][row][k],
+                         lists[3][row][k] if matrix else None)
             for k, name in enumerate(result.frames)]} for row in range(len(positions))]
         if drawn is not None:
             names, values, seed = drawn
@@ -48,10 +51,10 @@ def write_poses(result, output_format: str, matrix: bool, single: bool, stream=N
 
 
 def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
-    entry = {"frame": name, "position": position.tolist(), "rpy": rpy.tolist(),
-             "quaternion": quaternion.tolist()}
+    """One frame's pose in a JSON document (lists of floats)."""
+    entry = {"frame": name, "position": position, "rpy": rpy, "quaternion": quaternion}
     if matrix is not None:
-        entry["matrix"] = matrix.tolist()
+        entry["matrix"] = matrix
     return entry
 
 
@@ -83,11 +86,13 @@ def _csv(result, positions, rpys, quaternions, matrix, stream, drawn=None) -> No
     if matrix:
         numbers = np.concatenate([numbers, result.matrices[..., :3, :].reshape(
             numbers.shape[:2] + (12,))], axis=-1)
-    for row in range(len(numbers)):
-        joints = [repr(float(v)) for v in drawn[1][row]] if drawn is not None else []
-        for k, name in enumerate(result.frames):
-            writer.writerow([row + 1, csv_cell(result.base), csv_cell(name),
-                             *(repr(float(v)) for v in numbers[row, k]), *joints])
+    base, names = csv_cell(result.base), [csv_cell(name) for name in result.frames]
+    drawn_values = drawn[1].tolist() if drawn is not None else None
+    # Python floats in one conversion (repr of each as repr(float(v)) gives it)
+    for row, poses in enumerate(numbers.tolist()):
+        joints = list(map(repr, drawn_values[row])) if drawn is not None else []
+        writer.writerows([row + 1, base, name, *map(repr, pose), *joints]
+                         for name, pose in zip(names, poses))
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
@@ -95,15 +100,25 @@ HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw
 
 
 def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
+    import numpy as np
+
     from urdftool.report.escape import markup, text
 
-    plain = plain_tables(len(result.frames))
+    # plain past a long table's worth of rows in all: 10,000 configurations are 10,000 tables
+    plain = plain_tables(len(result.frames) * len(positions))
     console = None if plain else wide_console()
+    columns = len(HEADERS) - 1
+    # every number of every table formatted at once (numbers.fixed_texts), as fixed() would
+    cells = fixed_texts(np.concatenate([positions, rpys, quaternions], axis=-1).ravel().tolist())
+    per_row = columns * len(result.frames)
+    if matrix:  # 16 numbers a frame, formatted at once too; the names escaped once
+        entries = fixed_texts(result.matrices.ravel().tolist())
+        names = [text(name) for name in result.frames]
     for row in range(len(positions)):
         title = f"poses relative to {result.base}" + (
             f" (configuration {row + 1})" if len(positions) > 1 else "")
-        rows = [[name, *(fixed(v) for v in (*positions[row, k], *rpys[row, k],
-                                            *quaternions[row, k]))]
+        start = row * per_row
+        rows = [[name, *cells[start + k * columns:start + (k + 1) * columns]]
                 for k, name in enumerate(result.frames)]
         drawn_line = None if drawn is None else (
             f"configuration {row + 1} (--random, --seed {drawn[2]}): {_drawn_words(drawn, row)}")
@@ -113,7 +128,7 @@ def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
                 out.write(text(drawn_line) + "\n")
             write_table(out, title, HEADERS, rows)
             if matrix:
-                _plain_matrices(result, row, out)
+                _plain_matrices(names, entries, row * 16 * len(names), out)
             continue
         if drawn_line is not None:
             console.print(markup(drawn_line), soft_wrap=True)
@@ -121,21 +136,23 @@ def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
         if matrix:
             for k, name in enumerate(result.frames):
                 console.print(f"{markup(name)}:")
-                for line in result.matrices[row, k]:
-                    console.print(_matrix_line(line))
+                at = (row * len(result.frames) + k) * 16
+                for line in range(4):
+                    console.print(_matrix_line(entries[at + 4 * line:at + 4 * line + 4]))
 
 
-def _matrix_line(line) -> str:
-    """One row of a 4x4 pose matrix, as both table styles print it."""
-    return "  " + " ".join(f"{fixed(v):>9s}" for v in line)
+def _matrix_line(texts) -> str:
+    """One row of a 4x4 pose matrix (its four numbers as fixed() writes them), as both table
+    styles print it."""
+    return "  " + " ".join(f"{entry:>9s}" for entry in texts)
 
 
-def _plain_matrices(result, row: int, stream=None) -> None:
-    from urdftool.report.escape import text
-
+def _plain_matrices(names: list[str], entries: list[str], start: int, stream) -> None:
+    """One configuration's 4x4 matrices: each frame's (escaped) name, then its four rows, from
+    ``entries[start:]`` (16 texts a frame)."""
     lines = []
-    for k, name in enumerate(result.frames):
-        lines.append(f"{text(name)}:")
-        lines += [_matrix_line(line) for line in result.matrices[row, k]]
-    stream = stream or sys.stdout
+    for k, name in enumerate(names):
+        lines.append(f"{name}:")
+        at = start + 16 * k
+        lines += [_matrix_line(entries[at + 4 * line:at + 4 * line + 4]) for line in range(4)]
     stream.write("\n".join(lines) + "\n")
