@@ -150,6 +150,29 @@ def test_checking_a_robot_of_stl_or_collada_meshes_does_not_import_trimesh(tmp_p
     assert ("U414" if open_ else "U310") in output  # U310: compared with the box's inertia
 
 
+@pytest.mark.parametrize("open_", [False, True])
+def test_checking_a_plausible_robot_of_meshes_does_not_import_scipy(tmp_path, open_):
+    """Nothing is to be reported of a light link of an open or closed mesh, its centre of mass
+    inside: U311's volume and U312's hull are decided from a few of the mesh's vertices, and
+    neither qhull nor scipy (0.2 s to import) is asked."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "part.stl").write_bytes(_sphere_stl(0.05, 16, 24, open_top=open_))  # 370 vertices
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><inertial><origin xyz="0.005 -0.005 0.06"/><mass '
+        'value="2"/><inertia ixx="2e-3" ixy="0" ixz="0" iyy="2e-3" iyz="0" izz="2e-3"/>'
+        '</inertial><visual><geometry><mesh filename="part.stl"/></geometry></visual>'
+        '<collision><geometry><mesh filename="part.stl" scale="2 2 2"/></geometry></collision>'
+        '</link></robot>')
+    output = without_heavy_imports(
+        "from urdftool.lint.engine import CheckOptions, load_and_check\n"
+        f"print(sorted(f.code for f in load_and_check({str(robot)!r}, CheckOptions()).findings))\n"
+        "assert 'scipy' not in sys.modules, 'scipy imported'")
+    assert not {"U307", "U311", "U312", "U313", "U316"} & set(eval(output))
+
+
 _COLLADA = """<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
   <asset><unit meter="1"/><up_axis>Z_UP</up_axis></asset>
@@ -410,3 +433,46 @@ def test_a_scale_is_the_transforms_product_to_the_bit_without_blas(scale, monkey
         moved, turned = mesh_arrays.scaled(vertices, faces, scale)
     assert np.ascontiguousarray(moved).tobytes() == np.ascontiguousarray(expected).tobytes()
     assert np.array_equal(turned, faces[:, ::-1] if np.prod(np.sign(scale)) < 0 else faces)
+
+
+def _clouds():
+    """Point clouds of many shapes (scipy's qhull is the oracle of their hulls): round, long,
+    thin, a box's surface with points on its faces, a far-off small one, few points."""
+    rng = np.random.default_rng(11)
+    box = rng.uniform(-1, 1, size=(400, 3))
+    box[np.arange(400), rng.integers(0, 3, 400)] = rng.choice([-1.0, 1.0], 400)
+    grid = np.array([(x, y, z) for x in (0, .5, 1) for y in (0, .5, 1) for z in (0, .5, 1)])
+    return [rng.normal(size=(3000, 3)), rng.normal(size=(500, 3)) * [2.0, 0.5, 0.01],
+            box * [0.1, 0.2, 0.3], rng.normal(size=(200, 3)) * 1e-3 + [50.0, -20.0, 3.0],
+            rng.normal(size=(6, 3)), grid, np.c_[rng.normal(size=(100, 2)), np.zeros(100)]]
+
+
+def test_inner_volume_is_below_qhulls_hull_volume_and_near_it():
+    """The bound U311 asks before building a hull (no qhull, no scipy): never above the
+    volume of the hull qhull builds, and not far below it on solid shapes."""
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    for cloud in _clouds():
+        bound = mesh_arrays.inner_volume(cloud)
+        try:
+            volume = scipy_spatial.ConvexHull(cloud).volume
+        except scipy_spatial.QhullError:  # flat: no volume
+            assert bound == 0.0
+            continue
+        assert 0.0 <= bound <= volume
+        assert bound >= 0.3 * volume or len(cloud) < 10
+    rng = np.random.default_rng(2)
+    for _ in range(20):  # few points: the small hull itself is qhull's, less its margin
+        points = rng.normal(size=(rng.integers(4, 27), 3))
+        found = mesh_arrays._small_hull_volume([tuple(p) for p in points.tolist()])
+        assert found == pytest.approx(scipy_spatial.ConvexHull(points).volume, rel=1e-5)
+        assert found <= scipy_spatial.ConvexHull(points).volume
+
+
+def test_cube_extremes_are_hull_vertices_largest_along_the_cubes_directions():
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    cloud = _clouds()[0]
+    found = mesh_arrays.cube_extremes(cloud)
+    assert len(found) == 26 and set(found) <= set(scipy_spatial.ConvexHull(cloud).vertices)
+    directions = np.array(mesh_arrays._CUBE, dtype=float)
+    np.testing.assert_array_equal((cloud[found[:13]] * directions).sum(axis=1),
+                                  (cloud @ directions.T).max(axis=0))

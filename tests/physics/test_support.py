@@ -180,8 +180,13 @@ def test_the_table_answers_as_the_pieces_do(tmp_path, mesh):
             towards = np.asarray(p) - centre
             extra = (tuple(towards / np.linalg.norm(towards)),)
             expected = max(float(np.dot(d, p)) - reach.support(d) for d in DIRECTIONS + extra)
-        assert table.outside(p) == pytest.approx(expected, abs=1e-12)
-        assert reach.outside(p) == pytest.approx(expected, abs=1e-12)
+        found = expected
+        if table.within(np.asarray(p)):  # found inside the hull from a few points: 0
+            assert expected <= 0
+            found = 0.0
+        assert table.outside(p) == pytest.approx(found, abs=1e-12)
+        # the reach asks the table only with a mesh among its pieces
+        assert reach.outside(p) == pytest.approx(found if mesh else expected, abs=1e-12)
 
 
 def test_a_large_rigid_body_seen_from_a_member_reaches_as_its_own_walk(tmp_path, monkeypatch):
@@ -223,3 +228,66 @@ def test_a_link_nothing_is_fixed_to_has_one_reach_for_its_body_and_itself(tmp_pa
     link = robot.links["a"]
     assert link_reach(robot, link, rigid=True) is link_reach(robot, link)
     assert link_reach(robot, link).links == ["a"]
+
+
+def test_a_point_found_inside_from_a_few_points_is_inside_the_hull(tmp_path):
+    """_Inside (no mesh vertex placed, no qhull): every point it finds inside a reach's pieces
+    is inside the hull of the pieces (below their support in each of 4,000 directions: the
+    pieces' closed forms and every mesh vertex), and most points well inside are found so."""
+    from urdftool.physics.support import _Table
+
+    reach = _pieces(tmp_path, mesh=True)
+    table = _Table(reach.pieces)
+    rng = np.random.default_rng(8)
+    directions = rng.normal(size=(3, 4000))
+    directions /= np.linalg.norm(directions, axis=0)
+    heights = table.support(directions)
+    samples = rng.normal(size=(2000, 3)) * 0.15 + table.points.mean(axis=0)
+    found = np.array([table.within(p) for p in samples])
+    margins = samples @ directions - heights  # > 0: beyond the geometry in that direction
+    assert (margins[found] <= 1e-12).all()
+    assert not found[(margins > 1e-9).any(axis=1)].any()
+    deep = (margins < -0.02).all(axis=1)
+    assert deep.sum() > 50 and found[deep].mean() > 0.8
+
+
+def test_a_mesh_piece_places_its_vertices_only_when_asked_exactly(tmp_path):
+    """A centre of mass found inside the hull from the mesh's few inner points: no vertex is
+    placed (and no hull built); the support then places them all, and answers as qhull's
+    hull vertices do."""
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    reach = _pieces(tmp_path, mesh=True)
+    mesh = next(piece for piece in reach.pieces if piece.kind == "mesh")
+    assert mesh.vertices is None and mesh.mesh is not None and len(mesh.inner) <= 26
+    centre = tuple(mesh.inner.mean(axis=0))
+    assert reach.outside(centre) == 0.0 and mesh.vertices is None
+    height = mesh.support((0.3, -0.2, 0.9))
+    placed = mesh.vertices
+    kept = placed[scipy_spatial.ConvexHull(placed).vertices]
+    assert height == float((kept @ (0.3, -0.2, 0.9)).max())
+
+
+def test_a_point_inside_one_mesh_far_from_the_reachs_middle_is_found_inside(tmp_path):
+    """A small mesh two metres from a large one: points inside the small one, which the
+    reach's own star (about a middle near the large one) leaves to every vertex, are found
+    inside by the mesh's star (in its frame, made once per run); none found inside is beyond
+    the geometry."""
+    from benchmarks.generate import _sphere_stl
+    from urdftool.physics.support import _Table
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+    parts = "".join(f'<visual><origin xyz="{x} 0 0" rpy="0.3 0.2 {x}"/><geometry><mesh '
+                    f'filename="ball.stl" scale="{k} {k} {k}"/></geometry></visual>'
+                    for x, k in ((0, 1), (2, 10)))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="a">{parts}</link></robot>')
+    table = _Table(link_reach(robot, robot.links["a"]).pieces)
+    rng = np.random.default_rng(4)
+    small = table.points[:len(table._pieces[0].placed())]  # the first mesh's vertices
+    samples = rng.normal(size=(400, 3)) * 0.03 + small.mean(axis=0)
+    directions = rng.normal(size=(3, 2000))
+    directions /= np.linalg.norm(directions, axis=0)
+    margins = samples @ directions - table.support(directions)
+    found = np.array([table.within(p) for p in samples])
+    by_reach = np.array([table._inside.star.holds(p) for p in samples])
+    assert (margins[found] <= 1e-12).all()
+    assert (found & ~by_reach).sum() > 20  # the mesh's own star finds what the reach's misses

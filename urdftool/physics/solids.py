@@ -92,14 +92,24 @@ class LinkSolid:
                 return False
         return not self.problems
 
-    def volume_floor(self) -> float:
+    def volume_floor(self, enough=None) -> float:
         """A lower bound of :func:`volume` [m^3] (exact without open meshes; an open mesh counts
-        with its convex hull, shaved for rounding) that places no primitive."""
+        with its convex hull, shaved for rounding) that places no primitive. With ``enough``
+        (a test of a floor), a lower one is returned when it passes: open meshes counted with
+        a bound of their hull's volume found without building it (and without qhull), each
+        below the hull's, so that their sum is too (``enough`` must hold of every larger floor
+        when it holds of a smaller one)."""
         floor = sum(_unit_volume(entry) for entry in self._entries
                     if entry.solid is not None or entry.local is not None)
-        for entry in self._entries:
-            if entry.open_mesh is not None:
-                floor += _quietly(_hull_floor, entry.open_mesh)
+        opened = [entry.open_mesh for entry in self._entries if entry.open_mesh is not None]
+        if enough is not None and opened:
+            lower = floor
+            for mesh in opened:
+                lower += _quietly(_inner_floor, mesh)
+            if enough(lower):
+                return lower
+        for mesh in opened:
+            floor += _quietly(_hull_floor, mesh)
         return floor
 
     def _build(self) -> tuple[list, list]:
@@ -282,6 +292,13 @@ def _hull_floor(mesh) -> float:
     return volume * (1 - 1e-6) if math.isfinite(volume) and volume > 0 else 0.0
 
 
+def _inner_floor(mesh) -> float:
+    """Below :func:`_hull_floor` of the same mesh [m^3]: a lower bound of its hull's volume
+    (``inner_volume``, no hull built), shaved by 1e-6 as that one is."""
+    volume = getattr(mesh, "inner_volume", 0.0)
+    return volume * (1 - 1e-6) if math.isfinite(volume) and volume > 0 else 0.0
+
+
 def _local(shape: Shape):
     """The unit-density solid of a primitive in its own frame."""
     p = shape.params
@@ -376,6 +393,18 @@ class RigidBounds:
 # stays linear in its links however many are fixed together. Up to it, each member's box is
 # gathered from its own frame (the numbers of the member's own walk, to the bit).
 GROUP_DIRECT = 16
+# A large body's points (corners, vertices) times its members up to this are all kept: each
+# member asks of them in a few directions, which costs less than reducing them to the
+# vertices of their hull (qhull, and scipy's import: 0.2 s).
+BODY_POINTS = 2 ** 22
+
+
+def body_points(points, members: int):
+    """``points`` of a body of ``members`` links, cut to the vertices of their hull (the same
+    extremes) when asking every one of them from every member would cost more."""
+    from urdftool.description.mesh_arrays import extreme_points
+
+    return extreme_points(points, all_below=BODY_POINTS // max(members, 1))
 
 
 def rigid_bounds(robot, link) -> RigidBounds:
@@ -435,8 +464,6 @@ def _body_corners(robot, frames: dict):
     without any; whether every shape was measured), or None when a corner is not finite."""
     import numpy as np
 
-    from urdftool.description.mesh_arrays import extreme_points
-
     placed, complete = [], True
     for member, (rotation, xyz) in frames.items():
         shapes, _, measured = _placed_corners(robot, robot.links[member])
@@ -450,7 +477,7 @@ def _body_corners(robot, frames: dict):
     points = np.vstack(placed)
     if not np.isfinite(points).all():
         return None
-    return extreme_points(points), complete
+    return body_points(points, len(frames)), complete
 
 
 def _box(corners) -> tuple[mat3.Vector, mat3.Vector] | None:

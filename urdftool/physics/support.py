@@ -20,12 +20,13 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from dataclasses import dataclass, field
 
 from urdftool.physics import mat3
 from urdftool.physics.frames import Frame
-from urdftool.physics.solids import GROUP_DIRECT, _bodies, _fixed_neighbours, _link_shapes, \
-    rigid_group, _rigid_frames
+from urdftool.physics.solids import GROUP_DIRECT, _bodies, body_points, _fixed_neighbours, \
+    _link_shapes, rigid_group, _rigid_frames
 
 TAGS = ("visual", "collision")
 
@@ -35,7 +36,9 @@ class Piece:
     """One shape placed in the frame of a :class:`Reach`: ``kind`` box, cylinder, sphere or
     mesh; ``centre`` [m]; ``rotation`` (its axes as columns); ``size``: half sizes of a box,
     (radius, half length) of a cylinder, (radius,) of a sphere; ``vertices``: a mesh's
-    vertices placed, numpy [k, 3]; ``link``: the link it belongs to."""
+    vertices placed, numpy [k, 3] (placed when first asked, from ``mesh``, its
+    ``MeshFacts``); ``inner``: a few points of the mesh placed
+    (``MeshFacts.inner_points``: points of its hull); ``link``: the link it belongs to."""
 
     kind: str
     centre: mat3.Vector
@@ -43,6 +46,15 @@ class Piece:
     size: tuple = ()
     vertices: object = None
     link: str = ""
+    inner: object = None
+    mesh: object = field(default=None, repr=False, compare=False)
+
+    def placed(self):
+        """A mesh's vertices placed (every vertex: the support and the farthest point are
+        reached at one), placed once."""
+        if self.vertices is None:
+            self.vertices = _placed(self.mesh.vertices, self.rotation, self.centre)
+        return self.vertices
 
     def support(self, d) -> float:
         """max over the piece of d . x [m] (``d`` need not be a unit vector)."""
@@ -59,7 +71,7 @@ class Piece:
             return base + half * abs(along) + radius * math.sqrt(across)
         if self.kind == "sphere":
             return base + self.size[0] * math.sqrt(dx * dx + dy * dy + dz * dz)
-        return float((self.vertices @ (dx, dy, dz)).max())
+        return float((self.placed() @ (dx, dy, dz)).max())
 
     def farthest(self, p) -> float:
         """The largest distance [m] from ``p`` to a point of the piece."""
@@ -78,7 +90,7 @@ class Piece:
             return math.sqrt(mat3.dot(offset, offset)) + self.size[0]
         import numpy as np
 
-        return float(np.sqrt(((self.vertices - np.asarray(p)) ** 2).sum(axis=1)).max())
+        return float(np.sqrt(((self.placed() - np.asarray(p)) ** 2).sum(axis=1)).max())
 
     def holds(self, p) -> bool:
         """Whether ``p`` is inside the piece's solid (a mesh: never claimed)."""
@@ -127,7 +139,9 @@ class Reach:
         ``d . p - h(d)`` over :data:`DIRECTIONS` and the direction from the centre of the
         pieces' box to ``p`` (each a true lower bound of the distance; 0 or less: inside, or
         too near to tell). 0 when ``p`` is inside a primitive piece. With a mesh among the
-        pieces (numpy is loaded), every direction is asked at once (:class:`_Table`)."""
+        pieces (numpy is loaded), every direction is asked at once (:class:`_Table`), and 0
+        when ``p`` is found inside the hull of a few points of the pieces (:class:`_Inside`):
+        then no vertex of a mesh is placed."""
         if not self.pieces:
             return 0.0
         if any(piece.kind == "mesh" for piece in self.pieces):
@@ -175,7 +189,7 @@ class _Body:
 
     def _table(self):
         if self.reach._table is None:
-            self.reach._table = _Table(self.reach.pieces, reduce=True)
+            self.reach._table = _Table(self.reach.pieces, reduce=len(self.reach.links))
         return self.reach._table
 
     def support(self, d) -> float:
@@ -203,36 +217,59 @@ class _Body:
 class _Table:
     """Pieces as arrays, for questions asked in many directions at once: points (a mesh's
     vertices, a box's corners: a box's support and farthest point are reached at a corner),
-    cylinders and spheres by their closed forms, and for :meth:`holds` every primitive. With
-    ``reduce``, the points are cut to the vertices of their convex hull (the same extremes).
-    A ``frame`` (rotation, xyz) takes the asker's coordinates into the table's."""
+    cylinders and spheres by their closed forms, and for :meth:`holds` every primitive. The
+    points are gathered when first asked (:meth:`outside` may not need them, see
+    :class:`_Inside`); with ``reduce`` (the members of a body asking), cut to the vertices
+    of their convex hull (the same extremes) when many (:func:`~urdftool.physics.solids.
+    body_points`). A ``frame`` (rotation, xyz) takes the asker's coordinates into the table's."""
 
-    __slots__ = ("points", "cylinders", "spheres", "boxes")
+    __slots__ = ("_pieces", "_points", "_reduce", "_inside", "_corners", "cylinders",
+                 "spheres", "boxes")
 
-    def __init__(self, pieces, reduce: bool = False):
+    def __init__(self, pieces, reduce: int = 0):
         import numpy as np
 
-        points, cylinders, spheres, boxes = [], [], [], []
+        corners, cylinders, spheres, boxes = [], [], [], []
         for piece in pieces:
-            if piece.kind == "mesh":
-                points.append(piece.vertices)
-            elif piece.kind == "box":
+            if piece.kind == "box":
                 rotation = np.asarray(piece.rotation, dtype=float)
-                points.append((_columns()[2] * piece.size) @ rotation.T + piece.centre)
+                corners.append((_columns()[2] * piece.size) @ rotation.T + piece.centre)
                 boxes.append((piece.centre, rotation, piece.size))
             elif piece.kind == "cylinder":
                 cylinders.append((piece.centre, np.asarray(piece.rotation, dtype=float),
                                   piece.size))
-            else:
+            elif piece.kind == "sphere":
                 spheres.append((*piece.centre, piece.size[0]))
-        self.points = np.vstack(points) if points else np.zeros((0, 3))
-        if reduce and len(self.points):
-            from urdftool.description.mesh_arrays import extreme_points
-
-            self.points = extreme_points(self.points)
+        self._pieces, self._reduce, self._corners = pieces, reduce, corners
+        self._points = self._inside = None
         self.boxes = _primitives(boxes)
         self.cylinders = _primitives(cylinders)
         self.spheres = np.array(spheres, dtype=float).reshape(-1, 4)
+
+    @property
+    def points(self):
+        """Every mesh vertex and box corner, placed (numpy [k, 3]), in the pieces' order."""
+        if self._points is None:
+            import numpy as np
+
+            found, corners = [], iter(self._corners)
+            for piece in self._pieces:
+                if piece.kind == "mesh":
+                    found.append(piece.placed())
+                elif piece.kind == "box":
+                    found.append(next(corners))
+            points = np.vstack(found) if found else np.zeros((0, 3))
+            if self._reduce and len(points):
+                points = body_points(points, self._reduce)
+            self._points = points
+        return self._points
+
+    def within(self, p) -> bool:
+        """Whether ``p`` (the table's frame) is found inside the convex hull of the pieces
+        from a few of their points (:class:`_Inside`): no mesh vertex is placed for it."""
+        if self._inside is None:
+            self._inside = _Inside(self._pieces, self._corners, self.cylinders, self.spheres)
+        return self._inside.holds(p)
 
     def support(self, directions, frame=None):
         """h(d) [m] for each column d of ``directions`` (3, k), in the asker's frame."""
@@ -305,7 +342,8 @@ class _Table:
         """:meth:`Reach.outside` of ``p`` (the asker's frame)."""
         import numpy as np
 
-        if self.holds(self._in_table_frame(p, frame)):
+        inside = self._in_table_frame(p, frame)
+        if self.holds(inside) or self.within(inside):
             return 0.0
         p = np.asarray(p, dtype=float)
         every, six, _ = _columns()
@@ -316,6 +354,118 @@ class _Table:
         directions = every if not norm > 0 else \
             np.hstack([every, (towards / norm).reshape(3, 1)])
         return float((p @ directions - self.support(directions, frame)).max())
+
+
+class _Inside:
+    """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
+    points of them (:class:`_Star`): first each mesh's own (its star in its frame, made once
+    per run), then those of every piece together (of a mesh its ``inner`` points, of a box
+    its corners, of a cylinder eight points of its rims, of a sphere its six poles: a point
+    between pieces), made when first asked. Outside is then 0 (the rules ask of it only
+    beyond a centimetre); a point it cannot place is asked of every vertex."""
+
+    __slots__ = ("_star", "_parts", "pieces")
+
+    def __init__(self, pieces, corners, cylinders, spheres):
+        self._star, self._parts = None, (pieces, corners, cylinders, spheres)
+        self.pieces = [piece for piece in pieces if piece.kind == "mesh"]
+
+    @property
+    def star(self):
+        """The star of the points of every piece, made when first asked."""
+        if self._star is None:
+            import numpy as np
+
+            pieces, corners, cylinders, spheres = self._parts
+            found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
+            if cylinders is not None:
+                centres, rotations, (radii, halves) = cylinders
+                signs = _columns()[2]  # (8, 3): a rim point for each corner of the box about it
+                found.append((centres[:, None, :] + np.einsum(
+                    "kij,knj->kni", rotations, signs[None] * np.stack(
+                        [radii, np.zeros_like(radii), halves], axis=1)[:, None, :]))
+                    .reshape(-1, 3))
+            if len(spheres):
+                offsets = np.vstack([np.eye(3), -np.eye(3)])
+                found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets)
+                             .reshape(-1, 3))
+            self._star = _Star(np.vstack(found) if found else np.zeros((0, 3)))
+        return self._star
+
+    def holds(self, p) -> bool:
+        import numpy as np
+
+        p = np.asarray(p, dtype=float)
+        for piece in self.pieces:
+            star = _mesh_star(piece.mesh)
+            # p in the mesh's own frame: rotation^T (p - centre)
+            if star.inverses is not None and \
+                    star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
+                return True
+        return self.star.holds(p)
+
+
+class _Star:
+    """Of some points of a solid, the ones largest along the 26 directions of a cube's faces,
+    edges and corners span a star of 48 tetrahedra about their mean (one per triangle of
+    neighbouring directions, :data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES`).
+    Every tetrahedron lies in the solid's hull, so a point strictly inside one (by 1e-7 in
+    barycentric coordinates; flat ones are not asked) is inside it (to within 1e-8 m times a
+    mesh's scale: a mesh's points are its corners as read until it is merged). Coordinates
+    over 1e6 m are not judged so (rounding beyond a micrometre)."""
+
+    __slots__ = ("centre", "inverses")
+
+    def __init__(self, points):
+        import numpy as np
+
+        from urdftool.description.mesh_arrays import cube_extremes
+
+        self.centre = self.inverses = None
+        if len(points) < 4 or not (np.abs(points) < 1e6).all():
+            return
+        extremes = points[cube_extremes(points)]
+        centre = extremes.mean(axis=0)
+        # (3, 48, 3): the corners a, b, c of each tetrahedron but the centre, from the centre
+        corners = (extremes[_triangles()] - centre).transpose(1, 0, 2)
+        turned = corners[[1, 2, 0]]  # b, c, a: then b x c, c x a, a x b are the rows of the
+        after = corners[[2, 0, 1]]  # inverse of the matrix of columns a, b, c times its det
+        normals = turned[..., [1, 2, 0]] * after[..., [2, 0, 1]] - \
+            turned[..., [2, 0, 1]] * after[..., [1, 2, 0]]
+        volumes = (corners[0] * normals[0]).sum(axis=1)  # a . (b x c)
+        sizes = np.sqrt((corners * corners).sum(axis=2)).prod(axis=0)
+        solid = np.abs(volumes) > 1e-6 * sizes  # not flat: well conditioned
+        if solid.any():
+            self.centre = centre
+            self.inverses = normals[:, solid] / volumes[solid][:, None]
+
+    def holds(self, p) -> bool:
+        if self.inverses is None:
+            return False
+        # barycentric weights of p in each tetrahedron (for a, b, c; the centre's is the rest)
+        weights = self.inverses @ (p - self.centre)
+        return bool(((weights > 1e-7).all(axis=0) & (weights.sum(axis=0) < 1 - 1e-7)).any())
+
+
+_STARS = weakref.WeakKeyDictionary()  # MeshFacts -> its _Star: once per run, as the facts
+
+
+def _mesh_star(mesh) -> _Star:
+    """The :class:`_Star` of a mesh's inner points in its own frame, made once."""
+    star = _STARS.get(mesh)
+    if star is None:
+        star = _STARS[mesh] = _Star(mesh.inner_points)
+    return star
+
+
+@functools.cache
+def _triangles():
+    """:data:`~urdftool.description.mesh_arrays.CUBE_TRIANGLES` as a numpy array, made once."""
+    import numpy as np
+
+    from urdftool.description.mesh_arrays import CUBE_TRIANGLES
+
+    return np.array(CUBE_TRIANGLES)
 
 
 def _primitives(found):
@@ -439,20 +589,42 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
         return Piece("cylinder", centre, rotation, (p["radius"], p["length"] / 2), link=member)
     if shape.kind == "sphere":
         return Piece("sphere", centre, rotation, (p["radius"],), link=member)
-    from urdftool.description.meshes import MeshProblem, mesh_facts
-
+    problem_type, mesh_facts = _meshes()
     try:
-        # the hull's vertices, once per run for every robot using the file at that scale
-        vertices = mesh_facts(robot, p["filename"], p["scale"]).extreme_points
-    except MeshProblem as problem:
+        mesh = mesh_facts(robot, p["filename"], p["scale"])
+    except problem_type as problem:
         return str(problem)
     import numpy as np
 
+    # its vertices (merged, once per run for every robot using the file) when first placed
+    piece = Piece("mesh", centre, rotation, mesh=mesh, link=member)
+    # placed, a vertex within 1e150 of the origin stays finite (a rotation's entries are at
+    # most 1) when the centre is too; else each vertex is placed now, as all are asked then
+    if not (mesh.faces and all(abs(v) < 1e150 for v in centre) and mesh.moderate):
+        placed = piece.placed()
+        if not len(placed) or not np.isfinite(placed).all():
+            return f"mesh '{p['filename']}' has no finite vertices"
+        piece.inner = _placed(mesh.inner_points, rotation, centre)
+    else:  # nothing overflows: numpy's error state need not be set (a tenth of the placing)
+        piece.inner = mesh.inner_points @ np.asarray(rotation).T + np.asarray(centre)
+    return piece
+
+
+@functools.cache
+def _meshes():
+    """(MeshProblem, mesh_facts), imported when a mesh is first placed (a robot without
+    meshes does not import them), then kept (an import statement per piece costs more)."""
+    from urdftool.description.meshes import MeshProblem, mesh_facts
+
+    return MeshProblem, mesh_facts
+
+
+def _placed(points, rotation, centre):
+    """``points`` (numpy [k, 3], or rows) turned by ``rotation`` and moved by ``centre``."""
+    import numpy as np
+
     with np.errstate(all="ignore"):
-        placed = np.asarray(vertices, dtype=float) @ np.asarray(rotation).T + np.asarray(centre)
-    if not len(placed) or not np.isfinite(placed).all():
-        return f"mesh '{p['filename']}' has no finite vertices"
-    return Piece("mesh", centre, rotation, vertices=placed, link=member)
+        return np.asarray(points, dtype=float) @ np.asarray(rotation).T + np.asarray(centre)
 
 
 def frame_of(robot, name: str, base: str) -> Frame | None:

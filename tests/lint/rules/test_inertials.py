@@ -127,11 +127,12 @@ def hulls_built(monkeypatch):
 @pytest.mark.parametrize("mass, reported", [(10.0, False), (200.0, True)])
 def test_implausible_density_builds_an_open_mesh_hull_once(
         tmp_path, hulls_built, mass, reported):
-    # 10 kg in the 6 litres of the hull: 1,667 kg/m^3; 200 kg: 33,333 kg/m^3, reported with
+    # 10 kg in the 6 litres of the hull: 1,667 kg/m^3, known light enough from a bound of the
+    # hull's volume found without qhull (no hull built); 200 kg: 33,333 kg/m^3, reported with
     # the hull's volume; the hull that bounds the volume from below is the one measured
     found, findings = _check(tmp_path, "U311", mass, 1e-3, _open_box(tmp_path))
     assert bool(found) == reported, [f.message for f in findings]
-    assert len(hulls_built) == 1
+    assert len(hulls_built) == (1 if reported else 0)
     if reported:
         assert "in at most 0.006 m^3 of geometry is at least 33,333 kg/m^3" in findings[0].message
 

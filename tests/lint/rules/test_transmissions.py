@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from urdftool.diagnostics import Severity
@@ -135,3 +137,35 @@ def test_a_passive_joint_is_judged_only_with_a_known_control_plugin(tmp_path, pl
     robot = HEAD_ROBOT.format(body=f"<gazebo>{plugin}</gazebo>")
     marks, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507",))
     assert bool(marks) is reported
+
+
+def test_the_added_transmissions_interface_is_the_same_whatever_the_hash_seed(tmp_path):
+    """U507's fix gives a new transmission the interface most transmissions use; of interfaces
+    used equally often, the first written (it was the first of a set of strings: which one
+    changed with PYTHONHASHSEED, from run to run)."""
+    import json
+    import subprocess
+    import sys
+
+    joints = "".join(
+        f'<link name="l{i}"/><joint name="j{i}" type="revolute"><parent link="base_link"/>'
+        f'<child link="l{i}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" '
+        'velocity="1"/></joint>' for i in range(3))
+    body = joints + tx(joint="j0", name="a", iface="hardware_interface/VelocityJointInterface") \
+        + tx(joint="j1", name="b", iface="hardware_interface/PositionJointInterface") \
+        + '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>'
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(HEAD_ROBOT.format(body=body))
+    (tmp_path / ".git").mkdir()
+    chosen = set()
+    for seed in range(6):
+        done = subprocess.run(
+            [sys.executable, "-m", "urdftool", "check", str(robot), "--format", "json",
+             "--no-cache", "--select", "U507"], capture_output=True, text=True,
+            env={**os.environ, "PYTHONHASHSEED": str(seed)})
+        text = json.dumps([d for d in json.loads(done.stdout)["diagnostics"]
+                           if "'j2'" in d["message"]])
+        chosen.add("Velocity" if "VelocityJointInterface</hardwareInterface>" in text
+                   else "Position" if "PositionJointInterface</hardwareInterface>" in text
+                   else text)
+    assert chosen == {"Velocity"}

@@ -101,6 +101,21 @@ class _Arrays:
             self._merged, self._read = (vertices, faces, mesh_arrays.is_watertight(faces)), None
         return self._merged
 
+    def corners_read(self, scale: tuple[float, float, float]):
+        """The triangles' corners as read (not merged: each within 1e-8 of a merged vertex,
+        or one), in metres and scaled by ``scale``; None once merged (the merged vertices
+        then stand for them)."""
+        if self._read is None:
+            return None
+        import numpy as np
+
+        moved = self._read[0]
+        with np.errstate(all="ignore"):
+            for factors in ((self._unit,) * 3, scale):
+                if factors != (1.0, 1.0, 1.0):
+                    moved, _ = mesh_arrays.scaled(moved, self._read[1], factors)
+        return moved
+
     def bounds(self, scale: tuple[float, float, float]):
         """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
         them; None when that cannot be decided so (see :func:`.mesh_arrays.merged_bounds`)."""
@@ -144,19 +159,25 @@ class MeshFacts:
         self._properties = properties
 
     @classmethod
-    def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge):
+    def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge,
+                 corners=None):
         """Facts whose bounds are known and whose arrays ``merge()`` builds when first
-        needed: (vertices, faces, watertight), merged and scaled."""
+        needed: (vertices, faces, watertight), merged and scaled; ``corners()``: the corners
+        as read, scaled (or None), for what needs no merging (:attr:`inner_points`)."""
         facts = cls.__new__(cls)
         facts._start(triangles, bounds, metadata, nbytes)
-        facts._merge = merge
+        facts._merge, facts._corners = merge, corners
         return facts
 
     def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
         self.faces, self.bounds, self.metadata, self.nbytes = triangles, bounds, metadata, nbytes
         self.extents = self.bounds[1] - self.bounds[0]
+        # every coordinate within 1e150 of the origin: turned and moved by what is not
+        # larger, none overflows
+        self.moderate = bool((abs(self.bounds) < 1e150).all())
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
+        self._inner = self._inner_volume = self._corners = None
 
     def _arrays(self):
         if self._merge is not None:
@@ -190,6 +211,27 @@ class MeshFacts:
         if self._extreme is None:
             self._extreme = mesh_arrays.extreme_points(self.vertices)
         return self._extreme
+
+    @property
+    def inner_points(self):
+        """At most 26 points of the mesh, each largest along a direction of a cube's faces,
+        edges and corners (:func:`.mesh_arrays.cube_extremes`): points of its hull, found
+        without building it (read only). Of the corners as read while the mesh is not merged
+        (merging would cost more), each within 1e-8 (times the scale) of a merged vertex."""
+        if self._inner is None:
+            points = self._corners() if self._merge is not None and self._corners else None
+            if points is None:
+                points = self.vertices
+            self._inner = points[mesh_arrays.cube_extremes(points)] if len(points) else points
+        return self._inner
+
+    @property
+    def inner_volume(self) -> float:
+        """A lower bound of the volume of the convex hull (:func:`.mesh_arrays.inner_volume`),
+        found without building it [m^3]."""
+        if self._inner_volume is None:
+            self._inner_volume = mesh_arrays.inner_volume(self.vertices)
+        return self._inner_volume
 
     @property
     def convex_hull(self):
@@ -233,7 +275,8 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
         bounds = arrays.bounds(scale)
         if bounds is not None:
             facts = MeshFacts.unmerged(arrays.triangles, bounds, arrays.metadata, arrays.nbytes,
-                                       lambda: _merged_scaled(arrays, scale))
+                                       lambda: _merged_scaled(arrays, scale),
+                                       lambda: arrays.corners_read(scale))
         else:
             import numpy as np
 

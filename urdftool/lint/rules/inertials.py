@@ -605,8 +605,10 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     The largest is None when it cannot matter: when ``mass`` [kg] in a lower bound of the
     solid's own volume (exact without open meshes, which count as their convex hulls) is no
     denser than osmium, no larger volume makes it denser, and no other geometry is built."""
-    floor = solid.volume_floor()
-    if floor > 0 and mass / floor <= DENSEST:
+    def light_enough(floor: float) -> bool:
+        return floor > 0 and mass / floor <= DENSEST
+
+    if light_enough(solid.volume_floor(enough=light_enough)):
         return (solids.volume(solid) if _trustworthy(solid) else 0.0), None
 
     def loaded(s):

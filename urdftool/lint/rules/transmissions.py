@@ -308,7 +308,9 @@ def _actuation(robot, plugin, name: str):
         return append_child(robot, plugin, "\n".join(lines))
     used = [(interface.text or "").strip() for t in transmissions(robot)
             for joint in transmission_joints(t) for interface in joint.interfaces]
-    interface = max(set(used), key=used.count) if used else \
+    # the most used; of those used as often, the first written (a set's order of strings
+    # changes with the hash seed: the fix changed from run to run)
+    interface = max(dict.fromkeys(used), key=used.count) if used else \
         "hardware_interface/EffortJointInterface"
     name = attribute(name)
     lines = [f'<transmission name="{name}_transmission">',
