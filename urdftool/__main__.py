@@ -284,7 +284,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
     they are plain: each word a path, an option named in full and alone (``-f json``,
     ``--format json``, ``--format=json``, ``--strict``; not ``-fjson``, ``-qv``, ``--``),
     each value one that cannot be read as an option (no leading ``-``) and that converts as
-    click converts it; at least one path. None for any other (Typer answers: its usage errors,
+    click converts it (a path Typer refuses, present but unreadable, is not plain); at least
+    one path. None for any other (Typer answers: its usage errors,
     ``--help``)."""
     from pathlib import Path
 
@@ -327,6 +328,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
             if kind in ("text", "texts"):
                 read = value
             elif kind in ("path", "paths"):
+                if not _typer_path(value):
+                    return None
                 read = Path(value)
             elif kind == "float":
                 read = float(value)
@@ -341,6 +344,16 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
         else:
             values[name] = read
     return values if values[positional] else None
+
+
+def _typer_path(value: str) -> bool:
+    """Whether Typer's path parameters take ``value`` as it is: absent, or present and
+    readable (else Typer's usage error: "Path '...' is not readable.")."""
+    try:
+        os.stat(value)
+    except (OSError, ValueError):
+        return True
+    return os.access(value, os.R_OK)
 
 
 def commands_digest() -> str:
