@@ -216,6 +216,38 @@ def test_hostile_launch_files_are_bounded(tmp_path):
     assert doubling is not None  # the 2**40-character value was not built
 
 
+@pytest.mark.parametrize("grows", [
+    "    x = 'aaaaaaaa'\n" + "    x = x + x\n" * 60,  # a text doubled
+    "    x = 'ab'\n" + "    x = f'{x}{x}'\n" * 60,
+    "    x = y\n" + "    x = x + z + x\n" * 60,  # substitutions doubled: parts, not characters
+    "    x = ['a']\n" + "    x += x\n" * 60,  # a list grown in place
+    "    x = ['a']\n" + "    x.extend(x)\n" * 60,
+    "    x = [{'a': 'b'}]\n" + "    x = [x, x]\n" * 60,  # 2**60 items to whoever flattens it
+    "    x = []\n    y = [x]\n    x.append(y)\n",  # a list inside itself
+])
+def test_what_a_python_launch_file_builds_is_bounded(tmp_path, grows):
+    """The values a Python launch file (here a launch test) makes the reader build are bounded
+    in memory and time, whatever builds them: read in part, not 2**60 characters or items."""
+    import resource
+    import time
+
+    from urdftool.description.launch_python import read_python_launch
+
+    text = ("def generate_test_description():\n" + grows + "    return LaunchDescription("
+            "[Node(package='robot_state_publisher', executable='robot_state_publisher', "
+            "parameters=[{'robot_description': x}, *x]), *x])\n")
+    limit = resource.getrlimit(resource.RLIMIT_AS)
+    resource.setrlimit(resource.RLIMIT_AS, (2 * 1024 ** 3, limit[1]))  # (not the machine's)
+    started = time.process_time()
+    try:
+        launch = read_python_launch(tmp_path / "test_x.py", "test_x.py", text,
+                                    "generate_test_description")
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, limit)
+    assert launch.problem == "too large or too deeply nested to read completely; read in part"
+    assert time.process_time() - started < 5
+
+
 def test_paths_outside_the_repository_are_never_followed(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()

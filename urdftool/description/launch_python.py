@@ -35,6 +35,12 @@ from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Descriptio
 MAX_STEPS = 200_000  # expressions and statements evaluated per file
 MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
 MAX_LOOP_ITEMS = 64
+# what the values a file's expressions build may hold, summed over every value built: texts'
+# characters, and items (of lists, dicts, a text's parts) counted through every nesting, shared
+# ones each time (``x = [x, x]`` 60 times is 2**60 items to whoever flattens it)
+MAX_BUILT_CHARACTERS = 64 * 1024 * 1024
+MAX_BUILT_ITEMS = 1_000_000
+_BUILDS_NOTHING = (ast.Name, ast.Constant, ast.Subscript, ast.IfExp)  # (values already built)
 _SOURCES = ("PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource",
             "YAMLLaunchDescriptionSource", "AnyLaunchDescriptionSource",
             "FrontendLaunchDescriptionSource")
@@ -82,6 +88,7 @@ class _Reader:
         self.functions: dict[str, ast.FunctionDef] = {}
         self.acts: list[_Act] = []
         self.steps = 0
+        self.room = [MAX_BUILT_CHARACTERS, MAX_BUILT_ITEMS]  # what values may still be built
         self.walked: set[str] = set()
 
     # --- statements -----------------------------------------------------------------------
@@ -109,6 +116,27 @@ class _Reader:
         if self.steps > MAX_STEPS:
             raise _Stop
 
+    def built(self, value):
+        """``value``, a value just built (an expression's, a list grown in place), charged to
+        the file's room for values (MAX_BUILT_CHARACTERS, MAX_BUILT_ITEMS): the one bound on
+        what a file makes the reader build, in memory and time, whatever builds it (``x = x +
+        x``, f-strings, ``x += x``, ``x.extend(x)``, lists nested in shared lists or in
+        themselves). _Stop when spent."""
+        room, stack = self.room, [value]
+        while stack:
+            item = stack.pop()
+            room[1] -= 1
+            if isinstance(item, Value):
+                room[0] -= len(item.text) + sum(len(p) for p in item.parts if isinstance(p, str))
+                room[1] -= len(item.parts)
+            elif isinstance(item, list):
+                stack.extend(item)
+            elif isinstance(item, dict):
+                stack.extend(item.values())
+            if room[0] < 0 or room[1] < 0:
+                raise _Stop
+        return value
+
     def block(self, statements, env: dict, when: tuple, depth: int, top: bool = False):
         """Walk statements; the value of a ``return`` if one is reached."""
         for statement in statements:
@@ -127,9 +155,10 @@ class _Reader:
                 value = self.eval(statement.value, env, when, depth)
                 current = env.get(statement.target.id)
                 if isinstance(current, list) and isinstance(value, list):
-                    current.extend(value)
+                    self.built(current).extend(value)
+                    self.built(current)
                 elif isinstance(current, Value) and isinstance(value, Value):
-                    env[statement.target.id] = concat([current, value])
+                    env[statement.target.id] = self.built(concat([current, value]))
             elif isinstance(statement, ast.Expr):
                 self.eval(statement.value, env, when, depth)
             elif isinstance(statement, ast.Return):
@@ -212,6 +241,10 @@ class _Reader:
     # --- expressions ----------------------------------------------------------------------
 
     def eval(self, node, env: dict, when: tuple, depth: int):
+        value = self.evaluated(node, env, when, depth)
+        return value if isinstance(node, _BUILDS_NOTHING) else self.built(value)
+
+    def evaluated(self, node, env: dict, when: tuple, depth: int):
         self.tick()
         if depth > MAX_DEPTH:
             return unknown(_source(node))
@@ -327,9 +360,11 @@ class _Reader:
         if method in ("add_action", "add_entity", "append") and args:
             if isinstance(owner, list):
                 owner.append(args[0])
+                self.built(owner)
             return None
         if method == "extend" and args and isinstance(owner, list) and isinstance(args[0], list):
             owner.extend(args[0])
+            self.built(owner)
             return None
         if method == "items" and isinstance(owner, dict):
             return [[literal(k), v] for k, v in owner.items()]
