@@ -361,6 +361,29 @@ def test_a_launch_test_shows_how_the_robot_is_built_not_what_a_deployment_starts
     assert runtime(robot).configurations == []
 
 
+def test_a_launch_file_that_includes_a_launch_test_starts_none_of_it(tmp_path):
+    """ros2 launch cannot include a file without generate_launch_description (a launch test
+    named as a launch file): what the test starts is no deployment's, through an include
+    either; the including configuration is incomplete."""
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/urdf/r.urdf.xacro": "<robot name='r'><link name='a'/></robot>",
+        "p/launch/robot_test.launch.py": LAUNCH_TEST,
+        "p/launch/bringup.launch.py": (
+            "import os\nfrom launch import LaunchDescription\n"
+            "from launch.actions import IncludeLaunchDescription\n"
+            "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
+            "def generate_launch_description():\n"
+            "    return LaunchDescription([IncludeLaunchDescription(PythonLaunchDescriptionSource("
+            "os.path.join(get_package_share_directory('p'), 'launch', 'robot_test.launch.py')))])"
+            "\n")})
+    [bringup] = launch_index(root).configurations
+    assert bringup.display.endswith("bringup.launch.py")
+    assert bringup.started == [] and bringup.incomplete
+    [test] = launch_tests(root)
+    assert [s.executable for s in test.started] == ["robot_state_publisher", "spawner"]
+
+
 def test_what_a_launch_test_is_is_decided_by_its_entry_point(tmp_path):
     from urdftool.description.launch import is_launch_test, may_be_launch_test
 

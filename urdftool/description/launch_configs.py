@@ -507,7 +507,9 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
              packages: dict, via: tuple, depth: int) -> None:
     path, _ = resolve_path(action.path, scope)
     target = index.files.get(_key(path)) if path is not None else None
-    if target is None or depth >= MAX_INCLUDE_DEPTH or target.display in via:
+    # a launch test cannot be included (ros2 launch asks it for generate_launch_description):
+    # what it starts is never a deployment's
+    if target is None or target.test or depth >= MAX_INCLUDE_DEPTH or target.display in via:
         configuration.incomplete = True
         return
     configuration.included.add(_key(path))
