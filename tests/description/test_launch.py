@@ -248,6 +248,20 @@ def test_what_a_python_launch_file_builds_is_bounded(tmp_path, grows):
     assert time.process_time() - started < 5
 
 
+def test_what_all_the_launch_tests_of_a_repository_cost_is_bounded_together(tmp_path):
+    """Hundreds of launch tests, each within the bounds of one file, cost what one
+    repository's launch files may cost (launch_python.Room), not their sum: each once built
+    its texts up to the bound of a file."""
+    import time
+
+    grows = ("def generate_test_description():\n    x = 'a'\n" + "    x = x + x\n" * 40
+             + "    return LaunchDescription([])\n")
+    root = _repo(tmp_path, {f"p/test/test_{i}.py": grows for i in range(300)})
+    started = time.process_time()
+    launch_tests(root)
+    assert time.process_time() - started < 3
+
+
 def test_paths_outside_the_repository_are_never_followed(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()
