@@ -26,7 +26,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import number
 from urdftool.physics import mat3
 from urdftool.physics.frames import joint_frames, link_frames, parent_joints, world_axis
-from urdftool.physics.mass import declared
+from urdftool.physics.mass import declared_of, moments_of
 from urdftool.physics.mirror import joint_pairs, link_pairs, plane
 from urdftool.physics.wheels import driven_joints
 
@@ -500,7 +500,7 @@ def mirror_inertial(robot):
         joints = parents.get(left), parents.get(right)
         if None not in joints and _in_line(robot, *joints):
             continue  # one below the other: a serial arm's L and R axes, not two sides
-        a, b = declared(robot.links[left]), declared(robot.links[right])
+        a, b = declared_of(robot, robot.links[left]), declared_of(robot, robot.links[right])
         if a is None or b is None or not (a.mass > 0 or b.mass > 0):
             continue
         where = _located(robot, robot.links[left].find("inertial"),
@@ -510,7 +510,8 @@ def mirror_inertial(robot):
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
                           f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)")
             continue
-        moments_a, moments_b = a.principal_moments(), b.principal_moments()
+        moments_a = moments_of(robot, robot.links[left])
+        moments_b = moments_of(robot, robot.links[right])
         largest, smallest = sorted((max(moments_a), max(moments_b)))[::-1]
         if not smallest > ZERO_SIDE * largest:
             continue  # a zero tensor on one side: U304's finding
