@@ -191,6 +191,8 @@ _XACRO_NS = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
     ('<!-- ${x} --><link name="a"/><link name="${x}"/>', "${x}"),
     ('<?pi <!-- ?><link name="$(arg a)"/><!-- -->', "$(arg a)"),
     ('<!-- ${x} --><link name="a"/>', None),
+    ('<!--> ${x} --><link name="a"/><!-- -->', None),
+    ('<!--> --><link name="${x}"/><!-- -->', "${x}"),
 ])
 def test_the_first_xacro_use_whatever_the_bytes_hide(body, first):
     """The bytes spare the walk of attributes and texts only when no ``${``/``$(`` can be in

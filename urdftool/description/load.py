@@ -50,24 +50,30 @@ def _may_use_xacro(data: bytes) -> bool:
     """False when the bytes alone show that no element needs xacro (no ``${``, ``$(`` or
     ``xacro`` in an ASCII-compatible file without character references), sparing a walk of every
     element of a large URDF."""
-    return _may_substitute(data) or b"xacro" in data
+    if b"\x00" in data[:4] or b"&#" in data:
+        return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
+    return b"${" in data or b"$(" in data or b"xacro" in data
 
 
 def _may_substitute(data: bytes) -> bool:
-    """False when the bytes alone show that no attribute or text holds ``${`` or ``$(``
-    (outside comments: generated URDFs keep commented-out xacro)."""
-    if b"\x00" in data[:4] or b"&#" in data or b"<![CDATA[" in data or b"<!DOCTYPE" in data \
-            or data.find(b"<?", 1) >= 0:
-        return True  # UTF-16/32, "$" written as a reference or an entity, "$<![CDATA[{", a
-        # processing instruction holding "<!--": only the parsed tree tells
-    if b"${" not in data and b"$(" not in data:
+    """False when the bytes alone show that no attribute or text holds ``${`` or ``$(``: none
+    is outside comments (generated URDFs keep commented-out xacro)."""
+    if b"\x00" in data[:4] or b"&#" in data:
+        return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
+    if b"$" not in data:
         return False
-    if b"<!--" in data:
-        data = _COMMENT.sub(b"", data)
-    return b"${" in data or b"$(" in data
+    if b"<![CDATA[" in data or b"<!DOCTYPE" in data or data.find(b"<?", 1) >= 0:
+        return True  # "$<![CDATA[{", an entity, a processing instruction holding "<!--"
+    for found in _SUBSTITUTION.finditer(data):
+        opening = data.rfind(b"<!--", 0, found.start())
+        # in a comment when the first "-->" after the last "<!--" before it is after it (a
+        # comment holds no "--"; "<" stands for itself nowhere else in these documents)
+        if opening < 0 or data.find(b"-->", opening + 4) < found.start():
+            return True
+    return False
 
 
-_COMMENT = re.compile(rb"<!--.*?-->", re.DOTALL)
+_SUBSTITUTION = re.compile(rb"\$[{(]")
 
 
 def _substitutes(text: str | None) -> bool:
