@@ -409,7 +409,7 @@ def body_points(points, members: int):
 
 def rigid_bounds(robot, link) -> RigidBounds:
     """The box of a link's visual and collision geometry and of the links fixed to it, once
-    per robot and link (U307 and U316 ask of every link with mass)."""
+    per robot and link (two inertia rules ask of every link with mass)."""
     return robot.memo_for(rigid_bounds, link, lambda: _rigid_bounds(robot, link))
 
 
