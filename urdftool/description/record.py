@@ -77,12 +77,24 @@ class Record:
             record = record.parent
 
     def merge(self, other: "Record") -> None:
-        """Note every entry of ``other`` here (and in the enclosing records)."""
-        for (kind, key), answer in other.entries.items():
-            self.note(kind, key, answer)
-        for key, labels in other.labels.items():
-            for label in labels:
-                self.note(READ, key, other.entries[READ, key], label)
+        """Note every entry of ``other`` here (and in the enclosing records): as :meth:`note`
+        of each entry, then of each label, a record at a time (a remembered answer is replayed
+        into every robot's record)."""
+        record = self
+        while record is not None:
+            entries, labels = record.entries, record.labels
+            for question, answer in other.entries.items():
+                if question not in entries:
+                    entries[question] = answer
+            for key, kept in other.labels.items():
+                if not kept:
+                    continue
+                question = (READ, key)
+                if question not in entries:
+                    entries[question] = other.entries[question]
+                labels.setdefault(key, set()).update(kept)
+            record._index = None
+            record = record.parent
 
     # -- what it holds
 
