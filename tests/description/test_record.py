@@ -211,7 +211,8 @@ def test_files_are_digested_only_for_the_cache_which_compares_them_with_the_disk
                     cache_dir=None if cache_dir is None else str(cache_dir))
         wanted = cache_dir is not None
         assert (mesh.read_bytes() in digested, robot.read_bytes() in digested) == (wanted, wanted)
-    kept = "".join(entry.read_text() for entry in (tmp_path / "cache").rglob("*") if entry.is_file())
+    kept = "".join(entry.read_text() for entry in (tmp_path / "cache").rglob("*")
+                   if entry.is_file())
     assert real_digest(mesh.read_bytes()) in kept and real_digest(robot.read_bytes()) in kept
     with recording() as record:  # a record made outside a run: digests, as the server's
         load_and_check(str(robot), CheckOptions())
