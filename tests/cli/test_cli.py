@@ -170,17 +170,27 @@ def test_tree_fails_located_where_check_urdf_fails(run_cli, tmp_path, joint, cod
 
 
 def test_a_reader_that_leaves_early_gets_no_traceback():
-    """``urdftool collisions --matrix ... | head -1``: the rest of the output meets a closed pipe
-    in the worker; the command stops quietly with exit code 1."""
+    """``urdftool collisions --matrix --all ... | head -1``: the rest of the output meets a closed
+    pipe in the worker; the command stops quietly with exit code 1. The pipe holds one page and
+    the reader takes only the first line, so the rest (some 15 kB) cannot all be written before
+    the reader leaves, however the two processes are scheduled."""
+    import fcntl
+    import os
     import subprocess
     import sys
 
+    read, write = os.pipe()
+    if hasattr(fcntl, "F_SETPIPE_SZ"):  # Linux; elsewhere pipes hold 16 kB at most
+        fcntl.fcntl(write, fcntl.F_SETPIPE_SZ, 4096)
     process = subprocess.Popen(
         [sys.executable, "-m", "urdftool", "collisions", str(ROBOTS / "humanoid" /
                                                              "humanoid.urdf.xacro"),
-         "--matrix", "--samples", "500"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    first = process.stdout.readline()
-    process.stdout.close()  # as head does after its line; the matrix is written after this
+         "--matrix", "--all", "--samples", "500"], stdout=write, stderr=subprocess.PIPE)
+    os.close(write)
+    first = b""
+    while not first.endswith(b"\n") and (byte := os.read(read, 1)):  # unbuffered: one line
+        first += byte
+    os.close(read)  # as head does after its line
     _, errors = process.communicate(timeout=300)
     assert first.startswith(b"humanoid_robot:")
     assert b"Traceback" not in errors and process.returncode == 1, errors.decode()

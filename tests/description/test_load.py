@@ -180,6 +180,38 @@ def test_commented_xacro_in_generated_urdf_is_plain(tmp_path):
     assert not robot.from_xacro and robot.notes == []
 
 
+
+_XACRO_NS = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+
+
+@pytest.mark.parametrize("body, first", [
+    ('<!-- ${x} --><link name="a"/><xacro:property name="p" value="1"/>', "property"),
+    ('<!-- ${x} --><link name="a"/><link name="b">$<![CDATA[{x}]]></link>', "b"),
+    ('<!-- $(find x) --><link name="a"/><link name="&#36;{x}"/>', "${x}"),
+    ('<!-- ${x} --><link name="a"/><link name="${x}"/>', "${x}"),
+    ('<?pi <!-- ?><link name="$(arg a)"/><!-- -->', "$(arg a)"),
+    ('<!-- ${x} --><link name="a"/>', None),
+    ('<!--> ${x} --><link name="a"/><!-- -->', None),
+    ('<!--> --><link name="${x}"/><!-- -->', "${x}"),
+])
+def test_the_first_xacro_use_whatever_the_bytes_hide(body, first):
+    """The bytes spare the walk of attributes and texts only when no ``${``/``$(`` can be in
+    them: one in a comment is not, one spelt by a reference, a CDATA section or behind a
+    processing instruction is."""
+    from lxml import etree
+
+    from urdftool.description.load import _may_substitute, first_xacro_use
+
+    data = f"{_XACRO_NS}{body}</robot>".encode()
+    root = etree.fromstring(data)
+    found = first_xacro_use(root, _may_substitute(data))
+    assert found is first_xacro_use(root, True)
+    if first is None:
+        assert found is None
+    else:
+        assert first in (found.tag if "xacro" in found.tag else found.get("name"))
+
+
 def test_misspelt_property_suggests_the_defined_one(tmp_path):
     path = write(tmp_path, "r.urdf.xacro",
                  '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

@@ -192,3 +192,28 @@ def test_an_include_pattern_is_a_search_a_new_match_changes(tmp_path):
     (tmp_path / "parts" / "b.xacro").write_text(
         '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>')
     assert not files.unchanged(entries)
+
+
+def test_files_are_digested_only_for_the_cache_which_compares_them_with_the_disk(package,
+                                                                                 tmp_path,
+                                                                                 monkeypatch):
+    from urdftool.description.meshes import run_cache
+    from urdftool.lint.runner import check_paths
+
+    robot, mesh = package / "urdf" / "one.urdf.xacro", package / "meshes" / "base.stl"
+    digested = []
+    real_digest = files.digest
+    monkeypatch.setattr(files, "digest", lambda data: digested.append(data) or real_digest(data))
+    for cache_dir in (None, tmp_path / "cache"):
+        run_cache.clear()  # the mesh read again, not replayed from the last run
+        digested.clear()
+        check_paths([str(robot)], jobs=1, timeout=0, max_memory=0,  # in this process
+                    cache_dir=None if cache_dir is None else str(cache_dir))
+        wanted = cache_dir is not None
+        assert (mesh.read_bytes() in digested, robot.read_bytes() in digested) == (wanted, wanted)
+    kept = "".join(entry.read_text() for entry in (tmp_path / "cache").rglob("*")
+                   if entry.is_file())
+    assert real_digest(mesh.read_bytes()) in kept and real_digest(robot.read_bytes()) in kept
+    with recording() as record:  # a record made outside a run: digests, as the server's
+        load_and_check(str(robot), CheckOptions())
+    assert record.reads()[str(robot)].digest == real_digest(robot.read_bytes())

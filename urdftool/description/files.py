@@ -121,8 +121,8 @@ def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) ->
 def _note(name, as_: str, stamp: str | None, size: int | None, data: bytes | None,
           failure: str | None) -> None:
     path = os.path.abspath(name)
-    records.note(READ, path, Read(_real_path(path), stamp, size,
-                                  None if data is None else digest(data), failure), as_)
+    records.note(READ, path, Read(_real_path(path), stamp, size, None if data is None or
+                                  not records.digests_kept() else digest(data), failure), as_)
 
 
 # ---- unsaved buffers: what an editor holds, read in place of the disk --------------------

@@ -8,6 +8,7 @@ the file and line where the problem is; what did not stop loading is a :class:`L
 from __future__ import annotations
 
 import os
+import re
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -28,9 +29,14 @@ XACRO_SUFFIXES = (".xacro",)
 __all__ = ["Robot", "LoadNote", "load", "first_xacro_use", "PackageResolver"]
 
 
-def first_xacro_use(root):
+def first_xacro_use(root, substitutions: bool = True):
     """The first element that needs xacro (a xacro: tag, or a ``${}``/``$()`` in an attribute or
-    text), or None. Comments do not count: generated URDFs often keep commented-out xacro."""
+    text), or None. Comments do not count: generated URDFs often keep commented-out xacro.
+    ``substitutions`` False: the document's bytes hold no ``${`` or ``$(`` that could reach
+    an attribute or a text (:func:`_may_substitute`), so only a tag is looked at."""
+    if not substitutions:  # (every xacro tag holds the word: a C test first)
+        return next((e for e in root.iter(etree.Element) if "xacro" in e.tag and is_xacro(e.tag)),
+                    None)
     for element in root.iter(etree.Element):
         if is_xacro(element.tag):
             return element
@@ -47,6 +53,27 @@ def _may_use_xacro(data: bytes) -> bool:
     if b"\x00" in data[:4] or b"&#" in data:
         return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
     return b"${" in data or b"$(" in data or b"xacro" in data
+
+
+def _may_substitute(data: bytes) -> bool:
+    """False when the bytes alone show that no attribute or text holds ``${`` or ``$(``: none
+    is outside comments (generated URDFs keep commented-out xacro)."""
+    if b"\x00" in data[:4] or b"&#" in data:
+        return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
+    if b"$" not in data:
+        return False
+    if b"<![CDATA[" in data or b"<!DOCTYPE" in data or data.find(b"<?", 1) >= 0:
+        return True  # "$<![CDATA[{", an entity, a processing instruction holding "<!--"
+    for found in _SUBSTITUTION.finditer(data):
+        opening = data.rfind(b"<!--", 0, found.start())
+        # in a comment when the first "-->" after the last "<!--" before it is after it (a
+        # comment holds no "--"; "<" stands for itself nowhere else in these documents)
+        if opening < 0 or data.find(b"-->", opening + 4) < found.start():
+            return True
+    return False
+
+
+_SUBSTITUTION = re.compile(rb"\$[{(]")
 
 
 def _substitutes(text: str | None) -> bool:
@@ -74,7 +101,8 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
                             max_file_size)
     else:
         robot = _load_urdf(path, shown, data, resolver)
-        first = None if as_written or not _may_use_xacro(data) else first_xacro_use(robot.root)
+        first = None if as_written or not _may_use_xacro(data) else \
+            first_xacro_use(robot.root, _may_substitute(data))
         if first is not None and path == "-":
             robot = _load_xacro(path, shown, data, xacro_args or {}, resolver, allow_env,
                                 max_file_size)

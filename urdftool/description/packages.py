@@ -261,7 +261,7 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
     ``<xacro:if>``/``<xacro:unless>`` blocks (used in some configurations only: an optional
     dependency, often one that would be circular); a name built by xacro (``$(find ${pkg})``)
     is not one."""
-    found, depth = [], 0
+    found, depth, line, counted = [], 0, 1, 0
     for match in _REFERENCE.finditer(_COMMENT.sub(_blanked, data)):
         if match.group(4):  # a conditional block opens or closes
             if not match.group(5):
@@ -269,7 +269,8 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
             continue
         if depth > 0:
             continue
-        line = data.count(b"\n", 0, match.start()) + 1
+        line += data.count(b"\n", counted, match.start())  # the lines since the last one
+        counted = match.start()
         start = data.rfind(b"\n", 0, match.start()) + 1
         column = len(data[start:match.start()].decode("utf-8", "replace")) + 1
         found.append((line, column, (match.group(1) or match.group(2)).decode()))
@@ -279,7 +280,10 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
 def _blanked(comment: re.Match) -> bytes:
     """A comment as as many spaces, its line breaks kept: lines and columns stay where they
     were."""
-    return bytes(c if c == 0x0A else 0x20 for c in comment.group(0))
+    return comment.group(0).translate(_BLANKS)
+
+
+_BLANKS = bytes(0x0A if c == 0x0A else 0x20 for c in range(256))  # a byte's blank
 
 
 def package_uri_parts(uri: str) -> tuple[str, str]:

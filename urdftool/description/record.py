@@ -46,7 +46,8 @@ class Read:
     """A file read. real: where the path led, links followed; stamp: device, inode, size,
     modification and change times as git's index keeps them (None when the file had changed
     too recently to trust them, '' when nothing was there); size [bytes] (None when nothing
-    was there); digest: of the bytes read (None when none were: ``failure`` says why)."""
+    was there); digest: of the bytes read (None when none were: ``failure`` says why; or when
+    it was read where no record is compared with the disk by content: :func:`digesting`)."""
 
     real: str
     stamp: str | None
@@ -76,12 +77,24 @@ class Record:
             record = record.parent
 
     def merge(self, other: "Record") -> None:
-        """Note every entry of ``other`` here (and in the enclosing records)."""
-        for (kind, key), answer in other.entries.items():
-            self.note(kind, key, answer)
-        for key, labels in other.labels.items():
-            for label in labels:
-                self.note(READ, key, other.entries[READ, key], label)
+        """Note every entry of ``other`` here (and in the enclosing records): as :meth:`note`
+        of each entry, then of each label, a record at a time (a remembered answer is replayed
+        into every robot's record)."""
+        record = self
+        while record is not None:
+            entries, labels = record.entries, record.labels
+            for question, answer in other.entries.items():
+                if question not in entries:
+                    entries[question] = answer
+            for key, kept in other.labels.items():
+                if not kept:
+                    continue
+                question = (READ, key)
+                if question not in entries:
+                    entries[question] = other.entries[question]
+                labels.setdefault(key, set()).update(kept)
+            record._index = None
+            record = record.parent
 
     # -- what it holds
 
@@ -202,9 +215,31 @@ class _Active(threading.local):
     language server's worker, a worker process's main thread)."""
 
     record: Record | None = None
+    digests: bool = True  # see digesting()
 
 
 _ACTIVE = _Active()
+
+
+def digests_kept() -> bool:
+    """Whether a file read now is noted with the digest of its bytes (:func:`digesting`)."""
+    return _ACTIVE.digests
+
+
+@contextmanager
+def digesting(wanted: bool):
+    """Whether the files the block reads are noted with the digest of their bytes. The digest
+    is read only where a record is compared with the disk by content (a stamp that changed, a
+    buffer's bytes: :func:`urdftool.description.files.holds`), i.e. by the result cache; a run
+    that keeps no cache says so here (:func:`urdftool.lint.runner.check_paths`, the one
+    owner), and spares hashing every mesh it reads. A Read without a digest (replayed later
+    from an answer remembered in the process) never holds by content: a stale-looking entry
+    is checked again, never taken for the disk's."""
+    outer, _ACTIVE.digests = _ACTIVE.digests, wanted
+    try:
+        yield
+    finally:
+        _ACTIVE.digests = outer
 
 
 def active() -> Record | None:

@@ -167,7 +167,8 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
 # Any other document, and any expat refuses, takes the full pass (start_tag_positions), which
 # says why.
 _START = re.compile(rb"<[^/!?]")
-_MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|(<)(?![/!?])", re.DOTALL)
+_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.DOTALL)
+_OPENING = re.compile(rb"<(?![/!?])")
 _NEWLINE = re.compile(rb"\n")
 _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element below MAX_DEPTH
 
@@ -179,7 +180,14 @@ def _plain_start_tags(data: bytes) -> list[int] | None:
         return None
     if b"<!" not in data and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
         return [match.start() for match in _START.finditer(data)]
-    return [match.start(1) for match in _MARKUP.finditer(data) if match.start(1) >= 0]
+    # between the comments, CDATA sections and processing instructions (no "<" stands for a
+    # tag in them), scanned as one: a match object for each of those, not for every "<"
+    found, at = [], 0
+    for skipped in _SKIPPED.finditer(data):
+        found += [match.start() for match in _OPENING.finditer(data, at, skipped.start())]
+        at = skipped.end()
+    found += [match.start() for match in _OPENING.finditer(data, at)]
+    return found
 
 
 def _accepted(data: bytes) -> bool:

@@ -38,9 +38,18 @@ class Selection:
 
 
 def _target_of(code: str) -> str | None:
-    from urdftool.lint.catalogue import TARGET_DECADES
+    """The simulator a portability rule's code belongs to, or None. The catalogue is imported
+    when first asked (a run served from the cache never asks), then kept: every rule asks for
+    every robot."""
+    decades = _DECADES[0]
+    if decades is None:
+        from urdftool.lint.catalogue import TARGET_DECADES
 
-    return TARGET_DECADES.get(code[:3])
+        decades = _DECADES[0] = TARGET_DECADES
+    return decades.get(code[:3])
+
+
+_DECADES: list = [None]  # [the catalogue's TARGET_DECADES], once imported
 
 
 @dataclass

@@ -150,6 +150,8 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
         ``jobs``, ``use_settings``, ``cache_dir``); defaults as the command line's, except
         that results are kept between runs only with ``cache_dir``
     progress: called with (files done, files to check) as the files are checked
+    The results' records (:mod:`urdftool.description.record`) note the digests of the files
+    read only with ``cache_dir``, the one reader that compares them with the disk.
     Raises TargetError (an UrdftoolError) before anything is checked, and SettingsError when
     the settings of every file to check are broken; broken settings that apply to some files
     only are the run's ``errors``, and the other files are checked.
@@ -161,7 +163,11 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
     check_companions(request.companions)
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]  # one path, not its characters
-    with one_run():  # one view of the file system: roots and settings looked up once
+    from urdftool.description.record import digesting
+
+    # one view of the file system (roots and settings looked up once); the files' digests only
+    # for the cache, the one reader that compares a record with the disk by content
+    with one_run(), digesting(request.cache_dir is not None):
         return _check_paths(list(paths), request, progress or (lambda done, planned: None))
 
 

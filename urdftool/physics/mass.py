@@ -68,6 +68,23 @@ def declared(link) -> Body | None:
                                           mat3.rpy_matrix(rpy)))
 
 
+_NONE = object()  # (robot.memo_for keeps no None)
+
+
+def declared_of(robot, link) -> Body | None:
+    """:func:`declared`, once per robot and link (the inertia and symmetry rules ask)."""
+    found = robot.memo_for(declared_of, link, lambda: declared(link) or _NONE)
+    return None if found is _NONE else found
+
+
+def moments_of(robot, link) -> mat3.Vector | None:
+    """The principal moments of :func:`declared_of`, once per robot and link; None without
+    a declared inertial."""
+    body = declared_of(robot, link)
+    return None if body is None else \
+        robot.memo_for(moments_of, link, body.principal_moments)
+
+
 # Solids: mass properties per unit density, about their own centre, in their own frame.
 
 def box(size) -> Body:

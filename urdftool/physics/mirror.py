@@ -173,9 +173,19 @@ def fit(points, tolerance=(0.002, 0.01)) -> Plane | None:
             middle = tuple((x + y) / 2 for x, y in zip(a, b))
             candidates.append(Plane(normal, mat3.dot(normal, middle)))
     best, score = None, -1
+    points = [(a, b) for a, b in points]
+    near, relative = tolerance
     for candidate in candidates:
-        agreeing = sum(1 for a, b in points if math.dist(candidate.reflect(a), b) <= tolerance[0]
-                       + tolerance[1] * abs(mat3.dot(candidate.normal, a) - candidate.offset))
+        # Plane.reflect inlined (the same operations, the same bits): a pair's vote for each
+        # candidate is the inner loop of a robot's symmetry rules
+        (nx, ny, nz), offset = candidate.normal, candidate.offset
+        agreeing = 0
+        for (ax, ay, az), b in points:
+            distance = nx * ax + ny * ay + nz * az - offset
+            twice = 2 * distance
+            if math.dist((ax - twice * nx, ay - twice * ny, az - twice * nz), b) <= \
+                    near + relative * abs(distance):
+                agreeing += 1
         if agreeing > score:
             best, score = candidate, agreeing
     return best

@@ -408,7 +408,12 @@ def body_points(points, members: int):
 
 
 def rigid_bounds(robot, link) -> RigidBounds:
-    """The box of a link's visual and collision geometry and of the links fixed to it."""
+    """The box of a link's visual and collision geometry and of the links fixed to it, once
+    per robot and link (two inertia rules ask of every link with mass)."""
+    return robot.memo_for(rigid_bounds, link, lambda: _rigid_bounds(robot, link))
+
+
+def _rigid_bounds(robot, link) -> RigidBounds:
     name = link.get("name")
     if name not in _fixed_neighbours(robot):  # nothing fixed to it (most links): its own box
         members, box, complete = _placed_corners(robot, robot.links.get(name, link))

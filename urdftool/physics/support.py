@@ -37,8 +37,8 @@ class Piece:
     mesh; ``centre`` [m]; ``rotation`` (its axes as columns); ``size``: half sizes of a box,
     (radius, half length) of a cylinder, (radius,) of a sphere; ``vertices``: a mesh's
     vertices placed, numpy [k, 3] (placed when first asked, from ``mesh``, its
-    ``MeshFacts``); ``inner``: a few points of the mesh placed
-    (``MeshFacts.inner_points``: points of its hull); ``link``: the link it belongs to."""
+    ``MeshFacts``); ``inner``: a few points of the mesh placed (``MeshFacts.inner_points``:
+    points of its hull; :meth:`inner_placed`); ``link``: the link it belongs to."""
 
     kind: str
     centre: mat3.Vector
@@ -48,6 +48,17 @@ class Piece:
     link: str = ""
     inner: object = None
     mesh: object = field(default=None, repr=False, compare=False)
+
+    def inner_placed(self):
+        """A mesh's ``inner`` points, placed when first asked (most pieces never are: only a
+        reach whose star is made asks). Nothing overflows here (else :func:`_piece` placed them
+        at once, within numpy's error state): no error state need be set."""
+        if self.inner is None:
+            import numpy as np
+
+            self.inner = self.mesh.inner_points @ np.asarray(self.rotation).T + \
+                np.asarray(self.centre)
+        return self.inner
 
     def placed(self):
         """A mesh's vertices placed (every vertex: the support and the farthest point are
@@ -377,7 +388,8 @@ class _Inside:
             import numpy as np
 
             pieces, corners, cylinders, spheres = self._parts
-            found = [piece.inner for piece in pieces if piece.kind == "mesh"] + list(corners)
+            found = [piece.inner_placed() for piece in pieces if piece.kind == "mesh"] + \
+                list(corners)
             if cylinders is not None:
                 centres, rotations, (radii, halves) = cylinders
                 signs = _columns()[2]  # (8, 3): a rim point for each corner of the box about it
@@ -605,8 +617,7 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
         if not len(placed) or not np.isfinite(placed).all():
             return f"mesh '{p['filename']}' has no finite vertices"
         piece.inner = _placed(mesh.inner_points, rotation, centre)
-    else:  # nothing overflows: numpy's error state need not be set (a tenth of the placing)
-        piece.inner = mesh.inner_points @ np.asarray(rotation).T + np.asarray(centre)
+    # else nothing overflows: its inner points are placed when a star asks (inner_placed)
     return piece
 
 

@@ -31,7 +31,8 @@ from urdftool.description.xml import attribute, first_child
 from urdftool.description.values import number_tuple
 from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
-from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared, relative_difference, triangle_violation
+from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
+    relative_difference, triangle_violation
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import link_reach
@@ -80,7 +81,7 @@ def _valid(robot) -> list:
     (every inertia rule asks)."""
     return robot.memo(_valid, lambda: [
         (link, properties) for link in robot.children("link")
-        if (properties := declared(link)) is not None and math.isfinite(properties.mass)
+        if (properties := declared_of(robot, link)) is not None and math.isfinite(properties.mass)
         and _finite_tensor(properties.inertia)])
 
 
@@ -248,8 +249,8 @@ def moving_link_without_mass(robot):
 def _principal(robot, link, properties):
     """(principal moments, the largest magnitude) of a link's declared inertial (from
     :func:`_valid`), once per robot and link (U305 and U306 ask)."""
-    def compute():
-        moments = properties.principal_moments()
+    def compute():  # (properties is the link's declared_of)
+        moments = moments_of(robot, link)
         return moments, max(max(abs(m) for m in moments), 1e-300)
 
     return robot.memo_for(_principal, link, compute)

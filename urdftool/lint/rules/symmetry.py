@@ -26,7 +26,7 @@ from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import number
 from urdftool.physics import mat3
 from urdftool.physics.frames import joint_frames, link_frames, parent_joints, world_axis
-from urdftool.physics.mass import declared
+from urdftool.physics.mass import declared_of, moments_of
 from urdftool.physics.mirror import joint_pairs, link_pairs, plane
 from urdftool.physics.wheels import driven_joints
 
@@ -90,9 +90,8 @@ def _analyse(robot):
     if found is None:
         return None
     frames = joint_frames(robot)
-    parents = parent_joints(robot)
     known = [(l, r) for l, r in joint_pairs(robot) if l in frames and r in frames
-             and not _in_line(robot, robot.joints[l], robot.joints[r], parents)]
+             and not _in_line(robot, robot.joints[l], robot.joints[r])]
     sagittal = [pair for pair in known if _meets_on_plane(robot, pair, found)]
     found = _refit(frames, sagittal) or found
     pairs: dict = {}
@@ -155,11 +154,11 @@ def _copied_limbs(robot, frames, pairs) -> None:
             found.copy_turn = mat3.multiply(frames[right][1], mat3.transpose(frames[left][1]))
 
 
-def _in_line(robot, a, b, parents) -> bool:
+def _in_line(robot, a, b) -> bool:
     """Whether joint ``b`` is above or below joint ``a`` (a serial arm's joint_l and joint_r:
     Motoman's L and R axes, not a left and a right)."""
     for start, other in ((a, b), (b, a)):
-        if other.get("name") in _joints_above(robot, start.get("name"), parents):
+        if other.get("name") in _joints_above(robot, start.get("name")):
             return True
     return False
 
@@ -256,17 +255,28 @@ def _position_tolerance(found, point) -> float:
 
 
 def _upstream_pair(robot, left: str, right: str) -> tuple[str, str] | None:
-    """The nearest pair of joints above ``left`` and ``right`` (one above each), if any."""
-    parents = parent_joints(robot)
-    pairs = dict(joint_pairs(robot))
-    above_right = set(_joints_above(robot, right, parents))
-    for joint in _joints_above(robot, left, parents):
+    """The nearest pair of joints above ``left`` and ``right`` (one above each), if any; once
+    per robot and pair (every symmetry rule asks it of every pair)."""
+    return robot.memo_for(_upstream_pair, (left, right),
+                          lambda: _find_upstream_pair(robot, left, right) or ()) or None
+
+
+def _find_upstream_pair(robot, left: str, right: str) -> tuple[str, str] | None:
+    pairs = robot.memo(_find_upstream_pair, lambda: dict(joint_pairs(robot)))
+    above_right = set(_joints_above(robot, right))
+    for joint in _joints_above(robot, left):
         if pairs.get(joint) in above_right:
             return joint, pairs[joint]
     return None
 
 
-def _joints_above(robot, joint_name: str, parents) -> list[str]:
+def _joints_above(robot, joint_name: str) -> tuple[str, ...]:
+    """The names of the joints above ``joint_name``, nearest first; once per robot and joint."""
+    return robot.memo_for(_joints_above, joint_name, lambda: _walk_up(robot, joint_name))
+
+
+def _walk_up(robot, joint_name: str) -> tuple[str, ...]:
+    parents = parent_joints(robot)
     found, seen = [], set()
     joint = robot.joints.get(joint_name)
     while joint is not None:
@@ -276,7 +286,7 @@ def _joints_above(robot, joint_name: str, parents) -> list[str]:
             break  # the root, a joint without a name (U103), or a cycle (U109)
         seen.add(joint.get("name"))
         found.append(joint.get("name"))
-    return found
+    return tuple(found)
 
 
 def _text(v) -> str:
@@ -488,9 +498,9 @@ def mirror_inertial(robot):
     parents = parent_joints(robot)
     for left, right in link_pairs(robot):
         joints = parents.get(left), parents.get(right)
-        if None not in joints and _in_line(robot, *joints, parents):
+        if None not in joints and _in_line(robot, *joints):
             continue  # one below the other: a serial arm's L and R axes, not two sides
-        a, b = declared(robot.links[left]), declared(robot.links[right])
+        a, b = declared_of(robot, robot.links[left]), declared_of(robot, robot.links[right])
         if a is None or b is None or not (a.mass > 0 or b.mass > 0):
             continue
         where = _located(robot, robot.links[left].find("inertial"),
@@ -500,7 +510,8 @@ def mirror_inertial(robot):
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
                           f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)")
             continue
-        moments_a, moments_b = a.principal_moments(), b.principal_moments()
+        moments_a = moments_of(robot, robot.links[left])
+        moments_b = moments_of(robot, robot.links[right])
         largest, smallest = sorted((max(moments_a), max(moments_b)))[::-1]
         if not smallest > ZERO_SIDE * largest:
             continue  # a zero tensor on one side: U304's finding
