@@ -29,11 +29,43 @@ PATTERN, FLAGS = r"(?P<word>ab+)c|(d)", re.I
 if sys.argv[1] == "make":
     from urdftool import kept_code
 
-    functions, patterns = kept_code.collect(lambda: (re.compile(PATTERN, FLAGS),
-                                                     exec(SOURCE, {"dataclasses": dataclasses})))
-    header = door.kept_code_header() if sys.argv[3] == "this" else ("another Python",)
-    with open(sys.argv[2], "wb") as handle:
-        handle.write(marshal.dumps((header, functions, patterns)))
+    # python -m urdftool.kept_code, its workload these two
+    kept_code.check_robots = lambda: (re.compile(PATTERN, FLAGS),
+                                      exec(SOURCE, {"dataclasses": dataclasses}))
+    door.KEPT_CODE = sys.argv[2]
+    if sys.argv[3] != "this":
+        door.kept_code_header = lambda: ("another Python",)
+    kept_code.main()
+    raise SystemExit(0)
+
+if sys.argv[1] == "corrupt":  # every byte of the file in turn inverted: nothing else changes
+    import builtins
+    whole = open(sys.argv[2], "rb").read()
+    real = dataclasses.exec if hasattr(dataclasses, "exec") else None, re._compiler.compile
+
+    def outcome():
+        re.purge()
+        space = {"dataclasses": dataclasses}
+        exec(SOURCE, space)
+        kept = space["Kept"]
+        return ([m.group(0) for m in re.compile(PATTERN, FLAGS).finditer("xABBc d")],
+                repr(kept(1)), kept(1) == kept(1, "x"))
+
+    expected, changed = outcome(), []
+    for at in range(len(whole)):
+        with open(sys.argv[2], "wb") as handle:
+            handle.write(whole[:at] + bytes([whole[at] ^ 0xFF]) + whole[at + 1:])
+        try:
+            door.kept_code(sys.argv[2])
+            got = outcome()
+        except Exception as error:
+            got = repr(error)
+        finally:
+            vars(dataclasses).pop("exec", None)
+            re._compiler.compile = real[1]
+        if got != expected:
+            changed.append((at, got))
+    print(len(whole), "bytes,", len(changed), "changed", changed[:3])
     raise SystemExit(0)
 
 door.kept_code(sys.argv[2])
@@ -84,6 +116,15 @@ def test_another_pythons_kept_forms_are_not_used(tmp_path):
     lines = _run("use", kept).splitlines()
     assert lines[0].startswith("pattern parsed 1 ") and lines[2].startswith("class compiled ")
     assert lines[2] != "class compiled 0 Kept(a=1, b='x') True"
+
+
+def test_a_corrupt_kept_file_costs_the_saving_and_changes_nothing(tmp_path):
+    """A byte of the file inverted anywhere (header, checksum, a code object, a pattern's
+    code): the door uses no form of it, and nothing raises or compiles differently."""
+    kept = str(tmp_path / "kept.marshal")
+    _run("make", kept, "this")
+    counted, _, changed = _run("corrupt", kept).partition(" bytes, ")
+    assert int(counted) > 500 and changed.startswith("0 changed"), changed
 
 
 def test_a_check_finds_the_same_with_and_without_the_kept_forms(tmp_path):

@@ -158,17 +158,12 @@ KEPT_CODE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache_
 def kept_code(path: str | None = None) -> None:
     """Give :mod:`dataclasses` and :mod:`re` the compiled forms of the class methods and
     regular expressions kept in ``path`` (KEPT_CODE) by :mod:`urdftool.kept_code`, when it
-    was written by this very Python: a text or pattern kept is not compiled again; any other
-    is, as always."""
-    import marshal
-
-    try:
-        with open(path or KEPT_CODE, "rb") as handle:
-            header, functions, patterns = marshal.loads(handle.read())
-    except (OSError, EOFError, ValueError, TypeError):
+    was written by this very Python and is whole (:func:`kept_code_file`): a text or pattern
+    kept is not compiled again; any other is, as always."""
+    read = _kept_forms(path or KEPT_CODE)
+    if read is None:
         return
-    if header != kept_code_header():
-        return
+    functions, patterns = read
     import builtins
     import dataclasses
     import re
@@ -199,6 +194,38 @@ def kept_code_header() -> tuple:
     from re._constants import MAGIC
 
     return sys.version, MAGIC_NUMBER, MAGIC
+
+
+def kept_code_file(functions: dict, patterns: dict) -> bytes:
+    """The KEPT_CODE file of ``functions`` and ``patterns``: this Python's header
+    (:func:`kept_code_header`), then a checksum of the marshalled forms, then the forms."""
+    import marshal
+    import zlib
+
+    forms = marshal.dumps((functions, patterns))
+    return marshal.dumps((kept_code_header(), zlib.crc32(forms), forms))
+
+
+def _kept_forms(path: str) -> tuple[dict, dict] | None:
+    """(functions, patterns) of the KEPT_CODE file at ``path``, or None when it is absent,
+    unreadable, written by another Python, or not whole: a truncated or corrupt file, whose
+    forms unmarshalled would raise (marshal's SystemError on a bad code object, _sre's
+    "invalid SRE code") or, worse, run a flipped instruction, is caught by its checksum before
+    a form is read. (The file is as trusted as the bytecode beside it: whoever can write one
+    can write the other.)"""
+    import marshal
+    import zlib
+
+    try:
+        with open(path, "rb") as handle:
+            header, checksum, forms = marshal.loads(handle.read())
+        if header != kept_code_header() or type(forms) is not bytes or \
+                checksum != zlib.crc32(forms):
+            return None
+        functions, patterns = marshal.loads(forms)
+    except Exception:  # (what marshal raises on data of another Python or none at all)
+        return None
+    return (functions, patterns) if type(functions) is dict and type(patterns) is dict else None
 
 
 HELP_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "help.txt")
@@ -284,7 +311,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
     they are plain: each word a path, an option named in full and alone (``-f json``,
     ``--format json``, ``--format=json``, ``--strict``; not ``-fjson``, ``-qv``, ``--``),
     each value one that cannot be read as an option (no leading ``-``) and that converts as
-    click converts it; at least one path. None for any other (Typer answers: its usage errors,
+    click converts it (a path Typer refuses, present but unreadable, is not plain); at least
+    one path. None for any other (Typer answers: its usage errors,
     ``--help``)."""
     from pathlib import Path
 
@@ -327,6 +355,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
             if kind in ("text", "texts"):
                 read = value
             elif kind in ("path", "paths"):
+                if not _typer_path(value):
+                    return None
                 read = Path(value)
             elif kind == "float":
                 read = float(value)
@@ -341,6 +371,16 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
         else:
             values[name] = read
     return values if values[positional] else None
+
+
+def _typer_path(value: str) -> bool:
+    """Whether Typer's path parameters take ``value`` as it is: absent, or present and
+    readable (else Typer's usage error: "Path '...' is not readable.")."""
+    try:
+        os.stat(value)
+    except (OSError, ValueError):
+        return True
+    return os.access(value, os.R_OK)
 
 
 def commands_digest() -> str:

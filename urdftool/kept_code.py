@@ -10,15 +10,15 @@ compiled forms beside urdftool's bytecode (:data:`urdftool.__main__.KEPT_CODE`, 
 ``urdftool/__main__.py`` (:func:`~urdftool.__main__.kept_code`) installs them before the
 command imports anything. Each is kept under its whole source text or pattern and flags, so a
 kept form is used only for the very text it was compiled from; the file is used only by the
-Python that wrote it (version, bytecode and regular expression engine checked): a stale or
-foreign file costs the compilation it would have saved, nothing else.
+Python that wrote it (version, bytecode and regular expression engine checked) and only whole
+(its forms checksummed): a stale, foreign, truncated or corrupt file costs the compilation it
+would have saved, nothing else.
 """
 
 from __future__ import annotations
 
 import builtins
 import dataclasses
-import marshal
 import os
 import re
 import sys
@@ -92,7 +92,7 @@ def main() -> None:
            and name != __name__ for name in sys.modules):
         raise SystemExit("python -m urdftool.kept_code must run in a fresh interpreter")
     functions, patterns = collect(check_robots)
-    data = marshal.dumps((door.kept_code_header(), functions, patterns))
+    data = door.kept_code_file(functions, patterns)
     from urdftool.description.files import write_file
 
     write_file(door.KEPT_CODE, data)

@@ -318,6 +318,29 @@ def test_the_door_reads_checks_plain_words_as_typer_does_and_leaves_it_the_other
     assert plain > 300
 
 
+def test_a_path_typer_refuses_is_not_plain(monkeypatch, tmp_path, capsys):
+    """Typer refuses a path option naming a file that is present but unreadable (its usage
+    error, exit 2): the door hands such words over instead of checking with them. (os.access
+    is faked: the tests may run as root, who reads everything.)"""
+    import os
+
+    import urdftool.__main__ as door
+
+    secret = tmp_path / "secret.yaml"
+    secret.write_text("{}")
+    real_access = os.access
+    monkeypatch.setattr(os, "access", lambda path, mode, *a, **k: False
+                        if os.fspath(path) == str(secret) else real_access(path, mode, *a, **k))
+    parameters = door.kept_words("check")
+    for option in ("--controllers", "--config", "--srdf", "--spec", "--output", "--cache-dir"):
+        words = ["robots", option, str(secret)]
+        assert _typer_values(monkeypatch, words) is None, option
+        assert "is not readable" in capsys.readouterr().err
+        assert door.plain_words(words, parameters) is None, option
+        absent = ["robots", option, str(tmp_path / "absent")]
+        assert door.plain_words(absent, parameters) is not None, option
+
+
 def test_the_kept_parameters_are_the_commands():
     import urdftool.__main__ as door
     from urdftool import help_text

@@ -216,6 +216,52 @@ def test_hostile_launch_files_are_bounded(tmp_path):
     assert doubling is not None  # the 2**40-character value was not built
 
 
+@pytest.mark.parametrize("grows", [
+    "    x = 'aaaaaaaa'\n" + "    x = x + x\n" * 60,  # a text doubled
+    "    x = 'ab'\n" + "    x = f'{x}{x}'\n" * 60,
+    "    x = y\n" + "    x = x + z + x\n" * 60,  # substitutions doubled: parts, not characters
+    "    x = ['a']\n" + "    x += x\n" * 60,  # a list grown in place
+    "    x = ['a']\n" + "    x.extend(x)\n" * 60,
+    "    x = [{'a': 'b'}]\n" + "    x = [x, x]\n" * 60,  # 2**60 items to whoever flattens it
+    "    x = []\n    y = [x]\n    x.append(y)\n",  # a list inside itself
+])
+def test_what_a_python_launch_file_builds_is_bounded(tmp_path, grows):
+    """The values a Python launch file (here a launch test) makes the reader build are bounded
+    in memory and time, whatever builds them: read in part, not 2**60 characters or items."""
+    import resource
+    import time
+
+    from urdftool.description.launch_python import read_python_launch
+
+    text = ("def generate_test_description():\n" + grows + "    return LaunchDescription("
+            "[Node(package='robot_state_publisher', executable='robot_state_publisher', "
+            "parameters=[{'robot_description': x}, *x]), *x])\n")
+    limit = resource.getrlimit(resource.RLIMIT_AS)
+    resource.setrlimit(resource.RLIMIT_AS, (2 * 1024 ** 3, limit[1]))  # (not the machine's)
+    started = time.process_time()
+    try:
+        launch = read_python_launch(tmp_path / "test_x.py", "test_x.py", text,
+                                    "generate_test_description")
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, limit)
+    assert launch.problem == "too large or too deeply nested to read completely; read in part"
+    assert time.process_time() - started < 5
+
+
+def test_what_all_the_launch_tests_of_a_repository_cost_is_bounded_together(tmp_path):
+    """Hundreds of launch tests, each within the bounds of one file, cost what one
+    repository's launch files may cost (launch_python.Room), not their sum: each once built
+    its texts up to the bound of a file."""
+    import time
+
+    grows = ("def generate_test_description():\n    x = 'a'\n" + "    x = x + x\n" * 40
+             + "    return LaunchDescription([])\n")
+    root = _repo(tmp_path, {f"p/test/test_{i}.py": grows for i in range(300)})
+    started = time.process_time()
+    launch_tests(root)
+    assert time.process_time() - started < 3
+
+
 def test_paths_outside_the_repository_are_never_followed(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()
@@ -327,6 +373,29 @@ def test_a_launch_test_shows_how_the_robot_is_built_not_what_a_deployment_starts
     assert build.xacro and build.args == {"prefix": "left_"} and build.launch.endswith("position_test.py")
     robot = load_and_check(str(root / "p/urdf/r.urdf.xacro"), CheckOptions()).robot
     assert runtime(robot).configurations == []
+
+
+def test_a_launch_file_that_includes_a_launch_test_starts_none_of_it(tmp_path):
+    """ros2 launch cannot include a file without generate_launch_description (a launch test
+    named as a launch file): what the test starts is no deployment's, through an include
+    either; the including configuration is incomplete."""
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/urdf/r.urdf.xacro": "<robot name='r'><link name='a'/></robot>",
+        "p/launch/robot_test.launch.py": LAUNCH_TEST,
+        "p/launch/bringup.launch.py": (
+            "import os\nfrom launch import LaunchDescription\n"
+            "from launch.actions import IncludeLaunchDescription\n"
+            "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
+            "def generate_launch_description():\n"
+            "    return LaunchDescription([IncludeLaunchDescription(PythonLaunchDescriptionSource("
+            "os.path.join(get_package_share_directory('p'), 'launch', 'robot_test.launch.py')))])"
+            "\n")})
+    [bringup] = launch_index(root).configurations
+    assert bringup.display.endswith("bringup.launch.py")
+    assert bringup.started == [] and bringup.incomplete
+    [test] = launch_tests(root)
+    assert [s.executable for s in test.started] == ["robot_state_publisher", "spawner"]
 
 
 def test_what_a_launch_test_is_is_decided_by_its_entry_point(tmp_path):

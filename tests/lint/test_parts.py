@@ -105,6 +105,37 @@ def test_a_robot_with_nothing_in_it_is_not_a_part(tmp_path):
     assert [(f.code, f.severity.value) for f in findings] == [("U106", "error")]
 
 
+LAUNCH = """
+from launch import LaunchDescription
+from launch.substitutions import Command, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    robot = Command(["xacro ", PathJoinSubstitution([FindPackageShare("p"), "robot.urdf"])])
+    return LaunchDescription([Node(package="robot_state_publisher",
+                                   executable="robot_state_publisher",
+                                   parameters=[{"robot_description": robot}])])
+"""
+
+
+def test_a_robot_a_launch_file_runs_as_it_is_checked_is_no_part(tmp_path):
+    """What a launch file gives robot_state_publisher as the robot description, unconditionally
+    and with the arguments it was checked with, is a whole robot, however little it writes:
+    no link is an error there (it is certain), not a part's note."""
+    files = {"robot.urdf": BLOCKS, "package.xml": "<package format='3'><name>p</name></package>",
+             "launch/robot.launch.py": LAUNCH}
+    (tmp_path / ".git").mkdir(parents=True, exist_ok=True)
+    errors = {f.code for f in check_folder(tmp_path, files, select=("U1",))[1]
+              if f.severity.value == "error"}
+    assert "U106" in errors, errors
+    other = tmp_path / "other"
+    (other / ".git").mkdir(parents=True)
+    files["launch/robot.launch.py"] = LAUNCH.replace('"robot.urdf"', '"other.urdf"')
+    assert not [f for f in check_folder(other, files, select=("U1",))[1]
+                if f.severity.value == "error"]
+
+
 def _names_the_robot(function) -> bool:
     """Whether a rule compares a name with the robot's links or joints, saying which exist
     (``available('links', name, robot.links)``)."""

@@ -76,6 +76,38 @@ def test_what_a_worker_prints_reaches_this_process(capsys):
     assert sorted(captured.err.split("\n")) == ["", "err 0", "err 1"]
 
 
+def test_a_worker_that_prints_without_end_is_stopped_on_time(capsys, monkeypatch):
+    """Its channel is always ready to be read (here: a slow reader of what it prints): its
+    time budget is looked at all the same."""
+    real = pool._pass_on
+    monkeypatch.setattr(pool, "_pass_on", lambda *a: (time.sleep(0.005), real(*a)))
+
+    def shout(_):
+        while True:
+            print("x" * 1000)
+
+    started = time.monotonic()
+    assert run_budgeted(1, shout, Budget(0.3, None), lambda _, stop: stop.kind) == ["time"]
+    assert time.monotonic() - started < 5
+
+
+def test_a_worker_that_closes_its_channel_costs_no_one_else_time(tmp_path):
+    """A worker whose end of the channel closes while it lives on is stopped at once; no
+    other worker's piece waits for it (it had once to end on its own within 5 s)."""
+
+    def work(index):
+        if index == 0:
+            os.closerange(3, 1024)  # its channel among them
+            time.sleep(60)
+        time.sleep(0.5)
+        return index
+
+    started = time.monotonic()
+    results = run_budgeted(2, work, Budget(2.0, None), lambda _, stop: stop.kind, jobs=2)
+    assert results == ["died", 1]
+    assert time.monotonic() - started < 2
+
+
 def test_one_call_without_a_budget_runs_in_this_process():
     import os
 

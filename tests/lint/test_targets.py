@@ -582,3 +582,32 @@ def test_a_urdf_holding_a_xacro_include_keeps_its_root_to_the_include(tmp_path):
         '<joint name="j" type="fixed"><parent link="joint1"/><child link="env"/></joint></robot>')
     walked, named = _walked_and_named(tmp_path, "copy.urdf")
     assert walked.files == named.files == [str(tmp_path / "copy.urdf")]
+
+
+def test_a_part_a_launch_file_runs_as_the_robot_is_checked_walked_or_named(tmp_path):
+    """Whatever its text shows (a fragment, no root of its own, an empty placeholder), a file
+    a launch file of its repository gives robot_state_publisher unconditionally is a robot:
+    checked, and what it lacks is an error where it runs (a misspelt root, no link)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text("<package format='3'><name>p</name></package>")
+    root_typo = ('<robot name="r"><link name="base"/><link name="arm"/>'
+                 '<joint name="j0" type="fixed"><parent link="bsae"/><child link="base"/></joint>'
+                 '<joint name="j1" type="fixed"><parent link="base"/><child link="arm"/></joint>'
+                 '</robot>')
+    files = {"typo.urdf": root_typo, "typo_unrun.urdf": root_typo,
+             "gazebo.urdf": '<robot><gazebo><plugin name="x" filename="libx.so"/></gazebo></robot>',
+             "empty.urdf": "<robot>\n</robot>\n"}
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    run = "".join(
+        f"        Node(package='robot_state_publisher', executable='robot_state_publisher',"
+        f" parameters=[{{'robot_description': Command(['xacro ', PathJoinSubstitution("
+        f"[FindPackageShare('p'), '{name}'])])}}]),\n"
+        for name in ("typo.urdf", "gazebo.urdf", "empty.urdf"))
+    (tmp_path / "launch").mkdir()
+    (tmp_path / "launch/robot.launch.py").write_text(
+        "def generate_launch_description():\n    return LaunchDescription([\n" + run + "    ])\n")
+    walked, named = _walked_and_named(tmp_path, *files)
+    ran = sorted(str(tmp_path / name) for name in ("empty.urdf", "gazebo.urdf", "typo.urdf"))
+    assert sorted(walked.files) == ran and sorted(named.files) == ran
+    assert "no root link" in walked.skipped[str(tmp_path / "typo_unrun.urdf")]

@@ -35,7 +35,7 @@ from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX
                                          Description, Include, LaunchFile, ParamFile, Start, Value,
                                          is_launch_file, is_launch_test, may_be_launch_test,
                                          read_launch_text)
-from urdftool.description.launch_python import read_python_launch
+from urdftool.description.launch_python import Room, read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
 from urdftool.description.run_memo import per_run
@@ -389,17 +389,26 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     return found, False
 
 
-def read_launch(path: Path, only_test: bool = False) -> LaunchFile | None:
+def read_launch(path: Path, only_test: bool = False, room: Room | None = None
+                ) -> LaunchFile | None:
     """One launch file read, never run: XML and YAML by :mod:`urdftool.description.launch`,
-    Python by :mod:`urdftool.description.launch_python` (a launch test from its entry point).
-    ``only_test``: a Python file that may be a launch test, None (not parsed) when it is not
-    one."""
+    Python by :mod:`urdftool.description.launch_python` (a launch test from its entry point)
+    at the cost of ``room`` (:func:`reading_room`). ``only_test``: a Python file that may be
+    a launch test, None (not parsed) when it is not one."""
     read = read_launch_text(path)
     if isinstance(read, str):
         if is_launch_test(read):
-            return read_python_launch(path, display_path(path), read, LAUNCH_TEST_ENTRY)
-        return None if only_test else read_python_launch(path, display_path(path), read)
+            return read_python_launch(path, display_path(path), read, LAUNCH_TEST_ENTRY, room)
+        return None if only_test else read_python_launch(path, display_path(path), read,
+                                                         room=room)
     return None if only_test else read
+
+
+@per_run
+def reading_room(root: Path) -> Room:
+    """What reading the Python launch files of the repository ``root`` (its launch tests
+    too) may still cost in this run."""
+    return Room()
 
 
 @per_run
@@ -408,7 +417,7 @@ def launch_index(root: Path) -> LaunchIndex:
     paths, truncated = launch_files(root)
     files = {}
     for path in paths:
-        launch = read_launch(path)
+        launch = read_launch(path, room=reading_room(root))
         if launch is not None and (launch.problem is None or launch.actions):
             files[_key(path)] = launch
     packages = packages_below(root)
@@ -435,7 +444,7 @@ def launch_tests(root: Path) -> list[Configuration]:
     for path in launch_files(root, tests=True)[0]:
         if _key(path) in index.files or is_launch_file(path, root):
             continue
-        launch = read_launch(path, only_test=True)
+        launch = read_launch(path, only_test=True, room=reading_room(root))
         if launch is not None and (launch.problem is None or launch.actions):
             tests.append(launch)
     return [_expand_top(index, launch, packages) for launch in tests]
@@ -507,7 +516,9 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
              packages: dict, via: tuple, depth: int) -> None:
     path, _ = resolve_path(action.path, scope)
     target = index.files.get(_key(path)) if path is not None else None
-    if target is None or depth >= MAX_INCLUDE_DEPTH or target.display in via:
+    # a launch test cannot be included (ros2 launch asks it for generate_launch_description):
+    # what it starts is never a deployment's
+    if target is None or target.test or depth >= MAX_INCLUDE_DEPTH or target.display in via:
         configuration.incomplete = True
         return
     configuration.included.add(_key(path))

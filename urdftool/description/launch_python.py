@@ -35,6 +35,14 @@ from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Descriptio
 MAX_STEPS = 200_000  # expressions and statements evaluated per file
 MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
 MAX_LOOP_ITEMS = 64
+# what reading the Python launch files of one repository (tests among them) may cost, all of
+# them together: its bounds per file (MAX_STEPS, MAX_LAUNCH_SIZE) times MAX_LAUNCH_FILES were
+# minutes; the most the 105 repositories of the real sweep use is 15,374 steps, 0.65 MB of text
+# and 0.43 M characters built (xarm_ros2, moveo_ros)
+MAX_REPOSITORY_STEPS = 1_000_000
+MAX_REPOSITORY_CHARACTERS = 16 * 1024 * 1024  # of text parsed, and of texts built
+MAX_REPOSITORY_ITEMS = 1_000_000  # of lists, dicts and texts' parts built
+_BUILDS_NOTHING = (ast.Name, ast.Constant, ast.Subscript, ast.IfExp)  # (values already built)
 _SOURCES = ("PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource",
             "YAMLLaunchDescriptionSource", "AnyLaunchDescriptionSource",
             "FrontendLaunchDescriptionSource")
@@ -46,6 +54,17 @@ class _Stop(Exception):
     """The budget is spent."""
 
 
+class Room:
+    """What reading Python launch files may still cost (MAX_REPOSITORY_*): one per repository
+    and run (:func:`urdftool.description.launch_configs.reading_room`), drawn on by every file
+    read, whatever makes the reader work: steps walked, text parsed, and what the values its
+    expressions build hold (:meth:`_Reader.built`)."""
+
+    def __init__(self):
+        self.steps, self.characters, self.items = (MAX_REPOSITORY_STEPS,
+                                                   MAX_REPOSITORY_CHARACTERS, MAX_REPOSITORY_ITEMS)
+
+
 class _Act:
     """An action made while walking; conditions of enclosing groups are added afterwards."""
 
@@ -54,20 +73,29 @@ class _Act:
 
 
 def read_python_launch(path: Path, display: str, text: str,
-                       entry: str = "generate_launch_description") -> LaunchFile:
+                       entry: str = "generate_launch_description", room: Room | None = None
+                       ) -> LaunchFile:
     """A Python launch file read from the function ``entry`` (a launch test's
-    ``generate_test_description``: :func:`~urdftool.description.launch.is_launch_test`)."""
+    ``generate_test_description``: :func:`~urdftool.description.launch.is_launch_test`), at
+    the cost of ``room`` (its repository's; a room of its own when None)."""
     launch = LaunchFile(path, display, "ros2-python", test=entry != "generate_launch_description")
+    room = room if room is not None else Room()
+    if len(text) > room.characters:
+        launch.problem = "not read: the launch files of its repository are too large to read all"
+        return launch
+    room.characters -= len(text)
     try:
         tree = ast.parse(text, filename=display)
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
         launch.problem = f"not valid Python: {type(error).__name__}: {error}"
         return launch
-    reader = _Reader(tree, entry)
+    reader = _Reader(tree, entry, room)
     try:
         reader.run()
     except (_Stop, RecursionError):
         launch.problem = "too large or too deeply nested to read completely; read in part"
+    finally:
+        room.steps -= reader.steps
     # A launch configuration is read when its action runs, after every argument is declared:
     # the declarations come first, whichever line made them.
     acts = sorted(reader.acts, key=lambda act: act.kind != "arg" or act.fields["fixed"])
@@ -77,11 +105,11 @@ def read_python_launch(path: Path, display: str, text: str,
 
 
 class _Reader:
-    def __init__(self, tree: ast.Module, entry: str):
+    def __init__(self, tree: ast.Module, entry: str, room: Room):
         self.tree, self.entry = tree, entry
         self.functions: dict[str, ast.FunctionDef] = {}
         self.acts: list[_Act] = []
-        self.steps = 0
+        self.steps, self.max_steps, self.room = 0, min(MAX_STEPS, room.steps), room
         self.walked: set[str] = set()
 
     # --- statements -----------------------------------------------------------------------
@@ -106,8 +134,30 @@ class _Reader:
 
     def tick(self) -> None:
         self.steps += 1
-        if self.steps > MAX_STEPS:
+        if self.steps > self.max_steps:
             raise _Stop
+
+    def built(self, value):
+        """``value``, a value just built (an expression's, a list grown in place), charged to
+        the room (:class:`Room`: characters, and items counted through every nesting, shared
+        ones each time): the one bound on what files make the reader build, in memory and
+        time, whatever builds it (``x = x + x``, f-strings, ``x += x``, ``x.extend(x)``, ``x =
+        [x, x]``, a list inside itself). _Stop when spent."""
+        room, stack = self.room, [value]
+        while stack:
+            item = stack.pop()
+            room.items -= 1
+            if isinstance(item, Value):
+                room.characters -= len(item.text) + sum(len(p) for p in item.parts
+                                                        if isinstance(p, str))
+                room.items -= len(item.parts)
+            elif isinstance(item, list):
+                stack.extend(item)
+            elif isinstance(item, dict):
+                stack.extend(item.values())
+            if room.characters < 0 or room.items < 0:
+                raise _Stop
+        return value
 
     def block(self, statements, env: dict, when: tuple, depth: int, top: bool = False):
         """Walk statements; the value of a ``return`` if one is reached."""
@@ -127,9 +177,10 @@ class _Reader:
                 value = self.eval(statement.value, env, when, depth)
                 current = env.get(statement.target.id)
                 if isinstance(current, list) and isinstance(value, list):
-                    current.extend(value)
+                    self.built(current).extend(value)
+                    self.built(current)
                 elif isinstance(current, Value) and isinstance(value, Value):
-                    env[statement.target.id] = concat([current, value])
+                    env[statement.target.id] = self.built(concat([current, value]))
             elif isinstance(statement, ast.Expr):
                 self.eval(statement.value, env, when, depth)
             elif isinstance(statement, ast.Return):
@@ -212,6 +263,10 @@ class _Reader:
     # --- expressions ----------------------------------------------------------------------
 
     def eval(self, node, env: dict, when: tuple, depth: int):
+        value = self.evaluated(node, env, when, depth)
+        return value if isinstance(node, _BUILDS_NOTHING) else self.built(value)
+
+    def evaluated(self, node, env: dict, when: tuple, depth: int):
         self.tick()
         if depth > MAX_DEPTH:
             return unknown(_source(node))
@@ -327,9 +382,11 @@ class _Reader:
         if method in ("add_action", "add_entity", "append") and args:
             if isinstance(owner, list):
                 owner.append(args[0])
+                self.built(owner)
             return None
         if method == "extend" and args and isinstance(owner, list) and isinstance(args[0], list):
             owner.extend(args[0])
+            self.built(owner)
             return None
         if method == "items" and isinstance(owner, dict):
             return [[literal(k), v] for k, v in owner.items()]

@@ -17,7 +17,8 @@ name, links of its own) is a note stating the condition:
   it does not write, links or a simulator plugin it lacks) is a note.
 
 A robot with nothing at all in it (a macro call that wrote nothing) is not a part: U106 stays
-an error (docs/certainty.md).
+an error (docs/certainty.md); nor is one a launch file of its repository runs as the robot,
+unconditionally and as checked: whatever it lacks, it lacks where it runs.
 """
 
 from __future__ import annotations
@@ -76,8 +77,22 @@ class Part:
 
 
 def part(robot) -> Part | None:
-    """The :class:`Part` ``robot`` is, or None for a robot of its own (computed once)."""
-    return robot.memo(part, lambda: _part(robot))
+    """The :class:`Part` ``robot`` is, or None for a robot of its own (computed once): what a
+    launch file of its repository gives as the robot description, unconditionally and with the
+    xacro arguments it was checked with, is a robot of its own, however little it writes (its
+    errors are certain where it runs)."""
+    return robot.memo(part, lambda: _unless_run_as_checked(robot, _part(robot)))
+
+
+def _unless_run_as_checked(robot, found: Part | None) -> Part | None:
+    """``found``, unless a launch configuration describes the robot as checked (asked of a
+    part only: reading the launch files costs more than judging the robot)."""
+    if found is None:
+        return None
+    from urdftool.description.runtime import runtime
+
+    run = any(relation == "as checked" for _, relation in runtime(robot).configurations)
+    return None if run else found
 
 
 def _part(robot) -> Part | None:

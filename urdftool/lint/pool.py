@@ -444,22 +444,22 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                 if worker.index is None:
                     continue
                 stop = None  # why the worker's piece has no result
-                if worker.connection in ready:
-                    message = _receive(worker)
-                    if message == ():
+                # (its time looked at on every turn: a worker that prints without end is
+                # always ready to be read)
+                message = _receive(worker) if worker.connection in ready else ()
+                if message == ():
+                    if not (timeout and time.monotonic() - worker.started >= timeout):
                         continue
-                    if message is None:
-                        worker.process.join(5)
-                        stop = Stop("died", budget, "worker process died (exit code "
-                                                    f"{worker.process.exitcode})")
-                    elif message[0] == "stop":
-                        stop = Stop(message[2], budget, message[3])
-                    else:
-                        results[message[1]] = message[2]
-                elif timeout and time.monotonic() - worker.started >= timeout:
                     stop = Stop("time", budget)
+                elif message is None:  # its end of the channel closed: it died, or will
+                    worker.kill()  # (the others' budgets run on: no waiting for it to end)
+                    worker.process.join()
+                    stop = Stop("died", budget, "worker process died (exit code "
+                                                f"{worker.process.exitcode})")
+                elif message[0] == "stop":
+                    stop = Stop(message[2], budget, message[3])
                 else:
-                    continue
+                    results[message[1]] = message[2]
                 if stop is not None:
                     if stop.kind != "crash":  # a worker out of time or memory starts afresh
                         worker.kill()

@@ -585,9 +585,25 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     robot, hanging on links nobody here writes or not; so is one whose includes could not all
     be followed (expanding it says), unless it defines macros of its own: then it is a macro
     library including others (kortex's gen3_macro.xacro); one whose include names a package
-    found nowhere is checked (expanding it says so, U006)."""
+    found nowhere is checked (expanding it says so, U006). Any of them a launch file of its
+    repository runs as the robot description, unconditionally, is a robot: checked
+    (:mod:`urdftool.lint.parts` then judges what it lacks)."""
     if summary.srdf:
         return SRDF_SOURCE
+    reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields)
+    return None if reason is not None and _run_as_robot(path) else reason
+
+
+def _run_as_robot(path: Path) -> bool:
+    """Whether a launch file of ``path``'s repository gives it, unconditionally, as the robot
+    description (:func:`urdftool.description.runtime.builds`)."""
+    from urdftool.description.runtime import builds
+
+    return any(not build.condition and not build.chosen for build in builds(str(path)))
+
+
+def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int,
+                         yields) -> str | None:
     if summary.empty:
         return EMPTY
     if path.name.endswith(".urdf"):
