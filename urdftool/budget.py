@@ -91,6 +91,21 @@ def limit_memory(size: int | None) -> None:
     resource.setrlimit(resource.RLIMIT_AS, (size, hard))
 
 
+def grown(size: int | None) -> bool:
+    """Whether this process's address space has grown past half of ``size`` bytes, its memory
+    budget (Linux's /proc; False elsewhere and without a budget): a worker that kept that much
+    from its earlier pieces (what a run remembers, the allocator's free pages) would give the
+    next piece less than half of its budget."""
+    if not size:
+        return False
+    try:
+        with open("/proc/self/statm", "rb") as handle:
+            pages = int(handle.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return False
+    return pages * os.sysconf("SC_PAGE_SIZE") > size // 2
+
+
 def one_blas_thread() -> None:
     """One BLAS thread for numpy when it is imported later in this process (unless the
     environment says otherwise): the products here are small, and after each large enough one

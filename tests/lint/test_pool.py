@@ -145,3 +145,49 @@ def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, loa
     monkeypatch.setattr(pool, "default_jobs", lambda: cores)
     monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
     assert pool.auto_jobs(files) == jobs
+
+
+
+KEPT = []  # what a worker's earlier pieces kept (a run's memo of meshes, say)
+MB = 1 << 20
+
+
+def _keep(size: int) -> int:
+    KEPT.append(bytearray(size))
+    return os.getpid()
+
+
+def _address_space() -> int:
+    """This process's address space [bytes], which a forked worker starts with."""
+    with open("/proc/self/statm", "rb") as handle:
+        return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="Linux's /proc")
+def test_a_worker_grown_past_half_its_budget_hands_the_next_piece_to_a_fresh_one():
+    """mycobot_ros walked: one worker checked 86 robots in turn, what it kept grew to its 2 GiB
+    and the 87th died (exit code 127). A worker past half its budget after a piece now ends,
+    and the next piece starts in a fresh one."""
+    half = _address_space() + 300 * MB
+    pids = run_budgeted(3, lambda _: _keep(200 * MB), Budget(60.0, 2 * half),
+                        lambda _, stop: stop, jobs=1)
+    assert all(isinstance(pid, int) for pid in pids), pids
+    assert pids[0] == pids[1] != pids[2]  # 400 MB kept after the second: past half
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="Linux's /proc")
+def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monkeypatch):
+    """A piece stopped for memory or death in a worker that did earlier pieces is given once
+    more to a fresh worker: only there is the verdict (U900, U018) its own."""
+    monkeypatch.setattr(pool.budgets, "grown", lambda size: False)  # the worker never retires
+    start = _address_space()
+    budget = Budget(60.0, 2 * (start + 100 * MB))  # half: what the first piece leaves
+
+    def work(index):  # the second fits alone, not after the first
+        return _keep(100 * MB if index == 0 else start + 150 * MB)
+
+    pids = run_budgeted(2, work, budget, lambda _, stop: stop, jobs=1)
+    assert all(isinstance(pid, int) for pid in pids), pids
+    assert pids[0] != pids[1]
+    [stop] = run_budgeted(1, lambda _: _keep(budget.memory), budget, lambda _, stop: stop, jobs=1)
+    assert stop.kind == "memory"  # alone, it does not fit: reported, not tried again

@@ -147,10 +147,13 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
             errors="backslashreplace", line_buffering=True))
     with one_run():  # one view of the file system for its pieces (a forked worker's: the block
         # it was forked in, when there was one)
-        _serve_pieces(connection, work)
+        _serve_pieces(connection, work, memory)
 
 
-def _serve_pieces(connection, work) -> None:
+def _serve_pieces(connection, work, memory: int | None = None) -> None:
+    """Do each piece sent, until told to stop, or until the worker has grown past half its
+    memory budget (:func:`urdftool.budget.grown`): it then says so with the piece's result
+    (``("done", index, result, True)``) and ends, and the parent starts a fresh one."""
     while True:
         try:
             index = connection.recv()
@@ -169,10 +172,13 @@ def _serve_pieces(connection, work) -> None:
             message = ("stop", index, "crash", traceback.format_exc())
         for stream in (sys.stdout, sys.stderr):
             stream.flush()
+        retiring = message[0] == "done" and budgets.grown(memory)
         try:
-            connection.send(message)
+            connection.send((*message, True) if retiring else message)
         except Exception as error:  # a result that does not pickle, or memory to pickle it
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
+        if retiring:
+            return
 
 
 def _die_with(parent: int) -> None:
@@ -206,6 +212,7 @@ class _Worker:
         child.close()
         self.index: int | None = None
         self.started = 0.0
+        self.served = 0  # pieces it has done
 
     def give(self, index: int) -> None:
         self.index, self.started = index, time.monotonic()
@@ -423,7 +430,7 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
               cancel=None) -> None:
     timeout = budget.seconds
     pending = list(reversed(queue))
-    ended = 0
+    ended, retried = 0, set()
     workers = [_Worker(work, budget.memory) for _ in range(jobs)]
     try:
         for worker in workers:
@@ -460,6 +467,16 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                     stop = Stop(message[2], budget, message[3])
                 else:
                     results[message[1]] = message[2]
+                    worker.served += 1
+                if stop is not None and stop.kind in ("died", "memory") and worker.served and \
+                        worker.index not in retried:
+                    # what earlier pieces left in it may be what ran out: once more, afresh
+                    retried.add(worker.index)
+                    _drain(worker)
+                    worker.stop(kill=True)
+                    workers[position] = fresh = _Worker(work, budget.memory)
+                    fresh.give(worker.index)
+                    continue
                 if stop is not None:
                     if stop.kind != "crash":  # a worker out of time or memory starts afresh
                         worker.kill()
@@ -473,6 +490,9 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                 worker.index = None
                 ended += 1
                 finished(ended)
+                if stop is None and message[3:] == (True,):  # grown past half its memory
+                    worker.stop()  # (it has ended)
+                    workers[position] = worker = _Worker(work, budget.memory)
                 if pending:
                     worker.give(pending.pop())
     finally:
