@@ -336,6 +336,7 @@ def test_one_bounded_reader():
         "description/files.py": "the reader and the writer themselves",
         "docs.py": "regenerates docs/ from the rules (a developer command)",
         "origin.py": "pip's record of where urdftool came from (its own direct_url.json)",
+        "budget.py": "a worker's own address space (/proc/self/statm)",
         "__main__.py": "urdftool's own help texts and command modules, read before anything is "
                        "imported (a fast --help)",
     }
