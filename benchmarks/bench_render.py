@@ -25,7 +25,7 @@ TARGET = 1.5  # ours / Pillow's bare fill of the same triangles
 def _bench(name: str, path: Path, target: float | None) -> dict:
     from PIL import Image, ImageDraw
 
-    from benchmarks.bench_fk import _best_of
+    from benchmarks.timing import best_of as _best_of
     from urdftool.description.load import load
     from urdftool.kinematics.scene import scene_model
     from urdftool.report import picture

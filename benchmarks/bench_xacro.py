@@ -23,7 +23,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
 import generate  # noqa: E402
-from bench_fk import _best_of  # noqa: E402
+from timing import best_of as _best_of  # noqa: E402
 
 SEGMENTS = 550
 TARGET = 1.5
