@@ -369,11 +369,15 @@ class _Table:
 
 class _Inside:
     """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
-    points of them (:class:`_Star`): first each mesh's own (its star in its frame, made once
-    per run), then those of every piece together (of a mesh its ``inner`` points, of a box
-    its corners, of a cylinder eight points of its rims, of a sphere its six poles: a point
-    between pieces), made when first asked. Outside is then 0 (the rules ask of it only
-    beyond a centimetre); a point it cannot place is asked of every vertex."""
+    points of them (:class:`_Star`): first those of every piece together (of a mesh its
+    ``inner`` points, of a box its corners, of a cylinder eight points of its rims, of a
+    sphere its six poles: a point between pieces), made when first asked, one test; then each
+    mesh's own (its star in its frame, made once per run: a centre of mass inside its link's
+    mesh far from the reach's middle), one test per mesh, so only for the points the first
+    cannot place (asked first, they made a rigid body of n meshes cost n tests for each of
+    its n links: 1,000 links fixed together with meshes 1.5 s -> 5.8 s, 2,000 -> 17.5 s).
+    Outside is then 0 (the rules ask of it only beyond a centimetre); a point neither can
+    place is asked of every vertex."""
 
     __slots__ = ("_star", "_parts", "pieces")
 
@@ -408,13 +412,15 @@ class _Inside:
         import numpy as np
 
         p = np.asarray(p, dtype=float)
+        if self.star.holds(p):  # one test for the whole reach first: its meshes' own stars,
+            return True  # one each, made a body of n meshes cost n tests for each of its links
         for piece in self.pieces:
             star = _mesh_star(piece.mesh)
             # p in the mesh's own frame: rotation^T (p - centre)
             if star.inverses is not None and \
                     star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
                 return True
-        return self.star.holds(p)
+        return False
 
 
 class _Star:
