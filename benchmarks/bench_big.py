@@ -40,21 +40,12 @@ def main() -> list[dict]:
                         "ratio": ratio, "target": 1.5, "ok": ratio <= 1.5,
                         "detail": f"goal <= 1.5x; ours {found['fk'].text()}; reference "
                                   f"{found['pinocchio'].text()}"})
-        grown = alternating({"1k": [URDFTOOL, "fk", chain[1000]],
-                             "8k": [URDFTOOL, "fk", chain[8000]]}, 2)
-        growth = grown["8k"].median / grown["1k"].median
-        print(f"fk 8000 vs 1000 links: {grown['8k'].text()} / {grown['1k'].text()} = "
-              f"{growth:.1f}; {load()}")
-        results.append({"name": f"fk t(8000 links)/t(1000 links) [{grown['8k'].median:.2f} / "
-                                f"{grown['1k'].median:.2f} s cpu] ({load()})",
-                        "ratio": growth, "target": 12.0, "ok": growth <= 12,
-                        "detail": f"goal <= 12; 8k {grown['8k'].text()}; 1k (reference) "
-                                  f"{grown['1k'].text()}"})
-        for name, words in (("dh", ["dh", "--base", "l0", "--tip"]), ("inertia", ["inertia"])):
-            commands = {n: [URDFTOOL, *words, *([f"l{n - 1}"] if name == "dh" else []),
-                            "--timeout", "0", "--max-memory", "0", chain[n]]
-                        for n in (1000, 8000)}
-            grown = alternating(commands, 2)
+        budget = ["--timeout", "0", "--max-memory", "0"]
+        growing = {"fk": lambda n: ["fk", chain[n]],
+                   "dh": lambda n: ["dh", "--base", "l0", "--tip", f"l{n - 1}", *budget, chain[n]],
+                   "inertia": lambda n: ["inertia", *budget, chain[n]]}
+        for name, words in growing.items():
+            grown = alternating({n: [URDFTOOL, *words(n)] for n in (1000, 8000)}, 2)
             growth = grown[8000].median / grown[1000].median
             print(f"{name} 8000 vs 1000 links: {grown[8000].text()} / {grown[1000].text()} = "
                   f"{growth:.1f}; {load()}")
