@@ -93,17 +93,22 @@ def limit_memory(size: int | None) -> None:
 
 def grown(size: int | None) -> bool:
     """Whether this process's address space has grown past half of ``size`` bytes, its memory
-    budget (Linux's /proc; False elsewhere and without a budget): a worker that kept that much
+    budget (False without a budget, or where it cannot be read): a worker that kept that much
     from its earlier pieces (what a run remembers, the allocator's free pages) would give the
     next piece less than half of its budget."""
     if not size:
         return False
+    used = address_space()
+    return used is not None and used > size // 2
+
+
+def address_space() -> int | None:
+    """This process's address space [bytes] (Linux's /proc), or None."""
     try:
         with open("/proc/self/statm", "rb") as handle:
-            pages = int(handle.read().split()[0])
+            return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError, IndexError):
-        return False
-    return pages * os.sysconf("SC_PAGE_SIZE") > size // 2
+        return None
 
 
 def one_blas_thread() -> None:

@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from urdftool.budget import Budget
+from urdftool.budget import Budget, address_space
 from urdftool.lint import pool
 from urdftool.lint.pool import run_budgeted
 
@@ -157,18 +157,12 @@ def _keep(size: int) -> int:
     return os.getpid()
 
 
-def _address_space() -> int:
-    """This process's address space [bytes], which a forked worker starts with."""
-    with open("/proc/self/statm", "rb") as handle:
-        return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
-
-
 @pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="Linux's /proc")
 def test_a_worker_grown_past_half_its_budget_hands_the_next_piece_to_a_fresh_one():
     """mycobot_ros walked: one worker checked 86 robots in turn, what it kept grew to its 2 GiB
     and the 87th died (exit code 127). A worker past half its budget after a piece now ends,
     and the next piece starts in a fresh one."""
-    half = _address_space() + 300 * MB
+    half = address_space() + 300 * MB
     pids = run_budgeted(3, lambda _: _keep(200 * MB), Budget(60.0, 2 * half),
                         lambda _, stop: stop, jobs=1)
     assert all(isinstance(pid, int) for pid in pids), pids
@@ -180,7 +174,7 @@ def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monke
     """A piece stopped for memory or death in a worker that did earlier pieces is given once
     more to a fresh worker: only there is the verdict (U900, U018) its own."""
     monkeypatch.setattr(pool.budgets, "grown", lambda size: False)  # the worker never retires
-    start = _address_space()
+    start = address_space()
     budget = Budget(60.0, 2 * (start + 100 * MB))  # half: what the first piece leaves
 
     def work(index):  # the second fits alone, not after the first
