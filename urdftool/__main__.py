@@ -40,6 +40,14 @@ from contextlib import contextmanager
 
 
 def main() -> None:
+    """The program: :func:`_main` within :func:`urdftool.streams.run` (how it writes and ends
+    when its output or its reader fails)."""
+    from urdftool.streams import run
+
+    run(_main)
+
+
+def _main() -> None:
     words = sys.argv[1:]
     _help(words)
     kept_code()
@@ -71,8 +79,6 @@ def _check(words: list[str]) -> None:
 
     try:
         code = run(terminal, **values)
-    except BrokenPipeError:
-        code = _reader_left()
     except (KeyboardInterrupt, EOFError):  # as click says it
         terminal.echo("", err=True)
         terminal.say("Aborted!", err=True)
@@ -396,23 +402,11 @@ def commands_digest() -> str:
 
 
 def _exit_with(stdout: str, stderr: str, code: int) -> None:
-    """Print ``stdout`` and ``stderr`` and exit with ``code``, quietly when the reader of
-    standard output left (``| head``), as click does."""
-    try:
-        sys.stderr.write(stderr)
-        sys.stdout.write(stdout)
-        sys.stdout.flush()
-    except BrokenPipeError:
-        code = _reader_left()
+    """Print ``stdout`` and ``stderr`` and exit with ``code`` (:func:`urdftool.streams.run`
+    ends it quietly when the reader of standard output left, ``| head``, as click does)."""
+    sys.stderr.write(stderr)
+    sys.stdout.write(stdout)
     raise SystemExit(code)
-
-
-def _reader_left() -> int:
-    """The exit code when the reader of standard output left (``| head``), standard output
-    now going nowhere, so that nothing complains at exit: 1, as click's."""
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, sys.stdout.fileno())
-    return 1
 
 
 if __name__ == "__main__":
