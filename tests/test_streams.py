@@ -87,8 +87,13 @@ def _commands() -> dict[str, list[str]]:
 # import its libraries again on each run (a budgeted worker: test_a_budgeted_worker_...)
 UNBUDGETED: set[str] = set()
 COMMAND_FORMATS = _commands()
-CASES = [pytest.param(name, fmt, id=f"{name}-{fmt or 'plain'}")
+# outputs chosen by other options than --format
+OTHER_OUTPUTS = {"check": [["--statistics"], ["--diff", "--unsafe-fixes"]], "rules": [["U204"]],
+                 "collisions": [["--matrix"]], "fk": [["--matrix"]]}
+CASES = [pytest.param(name, ["--format", fmt] if fmt else [], id=f"{name}-{fmt or 'plain'}")
          for name, choices in COMMAND_FORMATS.items() for fmt in choices]
+CASES += [pytest.param(name, words, id=f"{name}{''.join(words)}")
+          for name, more in OTHER_OUTPUTS.items() for words in more]
 # the paths Typer and the door answer before any command runs
 FRONT = [pytest.param(words, columns, id=f"{' '.join(words) or 'none'}-{columns}")
          for columns in ("100", "40")  # the door's kept help; Typer's (narrow terminal)
@@ -206,13 +211,11 @@ def _walk(program, words, columns="100"):
 
 
 @pytest.mark.integration
-@pytest.mark.parametrize("name, fmt", CASES)
-def test_every_command_and_format_ends_as_its_output_allows(program, name, fmt):
-    words = list(WORDS.get(name, ["{robot}"]))
+@pytest.mark.parametrize("name, chosen", CASES)
+def test_every_command_and_format_ends_as_its_output_allows(program, name, chosen):
+    words = list(WORDS.get(name, ["{robot}"])) + chosen
     if name in UNBUDGETED:
         words += ["--timeout", "0", "--max-memory", "0"]
-    if fmt is not None:
-        words += ["--format", fmt]
     code, stdout = _walk(program, [name, *words])
     assert code in (0, 1), f"urdftool {name} did not run on {words}: give its words in WORDS"
     assert bool(stdout) is (name not in NO_OUTPUT), (name, stdout)
