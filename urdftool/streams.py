@@ -75,13 +75,13 @@ class _Stream(io.RawIOBase):
 
 
 _WATCHED: list[_Stream] = []  # the output streams whose failure ends the program
-_ERR: list[_Stream] = []
+_ERR: list[_Stream] = []  # standard error's (guard() made the streams: it is done)
 
 
 def guard() -> None:
     """Put the standard streams in this module's hands (once): closed descriptors opened on
     the null device, ``sys.stdout`` and ``sys.stderr`` written through :class:`_Stream`."""
-    if _WATCHED:
+    if _WATCHED or _ERR:
         return
     for fd, name, flags in ((0, "stdin", os.O_RDONLY), (1, "stdout", os.O_RDONLY),
                             (2, "stderr", os.O_WRONLY)):
