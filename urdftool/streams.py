@@ -88,7 +88,8 @@ def guard() -> None:
         if getattr(sys, name) is None:
             _reopen(fd, flags)
             if fd == 0:
-                sys.stdin = open(0, encoding="utf-8", closefd=False)
+                sys.stdin = io.TextIOWrapper(io.BufferedReader(io.FileIO(0, closefd=False)),
+                                             encoding="utf-8")  # (empty: the null device)
     sys.stdout = _text(sys.stdout, 1, "standard output", True)
     sys.stderr = _text(sys.stderr, 2, "standard error", False)
 
