@@ -129,6 +129,22 @@ def test_a_check_through_the_door_says_all_and_exits_as_the_command_does(tmp_pat
         assert ended.stderr.endswith("[exit functions ran]\n")
     assert ended.stdout.count('"U204"') == 399
 
+
+def test_a_check_without_the_cache_loads_no_openssl(tmp_path):
+    """The digests of what a check read are the result cache's: hashlib (which loads OpenSSL)
+    is imported for a check that keeps its results, not for one without the cache."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, sys; atexit.register(lambda: sys.stderr.write("
+               "'[hashlib]' * ('hashlib' in sys.modules))); sys.argv = ['urdftool', *sys.argv[1:]];"
+               " from urdftool.cli import main; main()")
+    for words, loaded in ((["--no-cache"], False), (["--cache-dir", "cache"], True)):
+        done = subprocess.run([sys.executable, "-c", program, "check", "--timeout", "0",
+                               "--max-memory", "0", *words, "a.urdf"], capture_output=True,
+                              text=True, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0, done.stderr
+        assert ("[hashlib]" in done.stderr) == loaded, (words, done.stderr)
+
+
 # The collector's rhythm for a check, installed into the engine by the door (``__main__``)
 
 @pytest.fixture
