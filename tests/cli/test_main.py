@@ -130,6 +130,24 @@ def test_a_check_through_the_door_says_all_and_exits_as_the_command_does(tmp_pat
     assert ended.stdout.count('"U204"') == 399
 
 
+def test_a_plain_check_ends_without_tearing_the_interpreter_down(tmp_path):
+    """``__main__._end``: the door's check runs the exit functions and ends, not freeing its
+    objects one by one (the finalizer of an object an exit function made does not run);
+    through Typer, Python tears down as usual."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, os, sys\nclass Kept:\n    def __del__(self, write=os.write):\n"
+               "        write(2, b'[torn down]')\n"
+               "atexit.register(lambda: setattr(sys, 'kept', Kept()))\n"
+               "atexit.register(lambda: print('[exit functions ran]', file=sys.stderr))\n"
+               "sys.argv = ['urdftool', *sys.argv[1:]]\nfrom urdftool.{} import main\nmain()")
+    for module, torn_down in (("__main__", False), ("cli", True)):
+        done = subprocess.run([sys.executable, "-c", program.format(module), "check",
+                               "--no-cache", "a.urdf"], capture_output=True, text=True,
+                              cwd=tmp_path, timeout=120)
+        assert done.returncode == 0 and "[exit functions ran]" in done.stderr, done.stderr
+        assert ("[torn down]" in done.stderr) == torn_down, (module, done.stderr)
+
+
 def test_a_check_without_the_cache_loads_no_openssl(tmp_path):
     """The digests of what a check read are the result cache's: hashlib (which loads OpenSSL)
     is imported for a check that keeps its results, not for one without the cache."""
