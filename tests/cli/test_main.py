@@ -148,19 +148,20 @@ def test_a_plain_check_ends_without_tearing_the_interpreter_down(tmp_path):
         assert ("[torn down]" in done.stderr) == torn_down, (module, done.stderr)
 
 
-def test_a_check_without_the_cache_loads_no_openssl(tmp_path):
+def test_a_check_imports_no_module_its_robot_does_not_use(tmp_path):
     """The digests of what a check read are the result cache's: hashlib (which loads OpenSSL)
-    is imported for a check that keeps its results, not for one without the cache."""
+    is imported for a check that keeps its results, not for one without the cache; a
+    setup.cfg's parser (configparser) only for a package that has one."""
     (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
-    program = ("import atexit, sys; atexit.register(lambda: sys.stderr.write("
-               "'[hashlib]' * ('hashlib' in sys.modules))); sys.argv = ['urdftool', *sys.argv[1:]];"
-               " from urdftool.cli import main; main()")
-    for words, loaded in ((["--no-cache"], False), (["--cache-dir", "cache"], True)):
+    program = ("import atexit, sys; atexit.register(lambda: sys.stderr.write(''.join("
+               "f'[{m}]' for m in ('hashlib', 'configparser') if m in sys.modules))); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.cli import main; main()")
+    for words, loaded in ((["--no-cache"], ""), (["--cache-dir", "cache"], "[hashlib]")):
         done = subprocess.run([sys.executable, "-c", program, "check", "--timeout", "0",
                                "--max-memory", "0", *words, "a.urdf"], capture_output=True,
                               text=True, cwd=tmp_path, timeout=120)
         assert done.returncode == 0, done.stderr
-        assert ("[hashlib]" in done.stderr) == loaded, (words, done.stderr)
+        assert done.stderr.endswith("\n" + loaded) or done.stderr == loaded, (words, done.stderr)
 
 
 # The collector's rhythm for a check, installed into the engine by the door (``__main__``)
