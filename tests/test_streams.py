@@ -136,6 +136,13 @@ def program(monkeypatch, tmp_path):
     # about the streams
     monkeypatch.setattr(door, "kept_code", lambda path=None: None)
     monkeypatch.setattr(door, "_collect_less", lambda: None)
+    if hasattr(door, "_end"):  # the door's check ends the process (os._exit): as the program
+        # only (test_the_program_ends_as_its_output_allows[door])
+
+        def end(code):
+            raise SystemExit(code)
+
+        monkeypatch.setattr(door, "_end", end)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     monkeypatch.delenv("GITHUB_ACTIONS", raising=False)
     (tmp_path / "r.urdf").write_text(ROBOT.format(z=0.5))

@@ -92,17 +92,15 @@ def _end(code: int) -> None:
     standard streams flushed, the exit functions run (last registered first, once), the
     streams flushed again, then the process ends, not freeing the rules', the robot's and the
     libraries' objects one by one (the system frees the memory at once). Files are closed by
-    then (the cache and ``--output`` write within ``with``). Python ends as usual instead
-    (``SystemExit``) while another thread runs, or when a stream cannot be flushed (a
-    reader that left: whoever handles ``SystemExit`` says it)."""
+    then (the cache and ``--output`` write within ``with``); the status is the one
+    :func:`urdftool.streams.end` gives when the output failed (a reader that left, a full
+    disk). Python ends as usual instead (``SystemExit``) while another thread runs."""
     threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
     if threading is not None and threading.active_count() > 1:
         raise SystemExit(code)
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except Exception:
-            raise SystemExit(code) from None
+    from urdftool.streams import end
+
+    code = end(code)
     import atexit
 
     atexit._run_exitfuncs()
