@@ -400,7 +400,7 @@ def com_outside_geometry(robot):
 def _far_outside_box(robot, link, properties):
     """(distance [m], RigidBounds) when the centre of mass is farther outside the box of the
     link's rigid body than U307 allows, else None."""
-    if not properties.mass > 0:
+    if not properties.mass > 0 or link in _plain_decided(robot)[0]:
         return None
     rigid = solids.rigid_bounds(robot, link)
     if rigid.bounds is None or not rigid.complete:
@@ -415,6 +415,55 @@ def _far_outside_box(robot, link, properties):
     if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
         return distance, rigid
     return None
+
+
+def _plain_decided(robot) -> tuple[set, set, set]:
+    """What the links of :func:`~urdftool.physics.solids.plain_links` with mass and a finite
+    centre of mass settle at once (numpy, the per-link path's operations in its order, to the
+    bit): (links whose centre of mass is not far outside their box (U307), links whose trace
+    is within the half-size bound (U316), links whose centre of mass is inside one of their
+    own primitives (U312: outside by 0)). Empty below
+    :data:`~urdftool.physics.solids.BULK_LINKS` links; once per robot."""
+    def build():
+        table = solids.plain_links(robot)
+        if table is None:
+            return set(), set(), set()
+        import numpy as np
+
+        links, names, found = [], [], []
+        rows, isfinite = table.rows, math.isfinite
+        for link, properties in _valid(robot):
+            name = link.get("name")
+            if name in rows and properties.mass > 0:
+                mass, (cx, cy, cz), ((xx, _, _), (_, yy, _), (_, _, zz)) = properties
+                if isfinite(cx + cy + cz):  # (overflow too: not asked)
+                    links.append(link)
+                    names.append(name)
+                    found += (cx, cy, cz, mass, xx, yy, zz)
+        if not links:
+            return set(), set(), set()
+        values = np.array(found, dtype=float).reshape(-1, 7)
+        com, mass = values[:, :3], values[:, 3]
+        trace = values[:, 4] + values[:, 5] + values[:, 6]  # mat3.trace's order
+        at = np.fromiter((rows[name] for name in names), dtype=np.intp, count=len(names))
+        low, high = table.low[at], table.high[at]
+        with np.errstate(all="ignore"):
+            # _far_outside_box: per axis max(l - c, c - h, 0), their squares' sum, its root
+            outside = np.maximum(np.maximum(low - com, com - high), 0.0)
+            distance = np.sqrt(outside[:, 0] * outside[:, 0] + outside[:, 1] * outside[:, 1] +
+                               outside[:, 2] * outside[:, 2])
+            sides = high - low
+            extent = np.maximum(np.maximum(sides[:, 0], sides[:, 1]), sides[:, 2])
+            far = distance > np.maximum(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN)
+            # inertia_beyond_geometry: trace <= FAR_BEYOND * 2 * m * half * half, left to right
+            half = extent / 2
+            within = trace <= FAR_BEYOND * 2 * mass * half * half
+        inside = table.inside(names, com)
+        return ({link for link, f in zip(links, far.tolist()) if not f},
+                {link for link, w in zip(links, within.tolist()) if w},
+                {link for link, i in zip(links, inside.tolist()) if i})
+
+    return robot.memo(_plain_decided, build)
 
 
 @rule("U308", "root-link-inertia", Severity.INFO)
@@ -727,6 +776,8 @@ def com_outside_hull(robot):
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
+        if link in _plain_decided(robot)[2]:
+            continue  # inside one of its primitives: outside by 0
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
             continue
@@ -977,6 +1028,8 @@ def inertia_beyond_geometry(robot):
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
+        if link in _plain_decided(robot)[1]:
+            continue  # within the bound, found with the others at once
         trace = mat3.trace(properties.inertia)
         rigid = solids.rigid_bounds(robot, link)
         if rigid.bounds is None:
