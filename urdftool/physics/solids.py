@@ -309,6 +309,16 @@ def _local(shape: Shape):
     return mp.sphere(p["radius"])
 
 
+def unit_volume(shape: Shape) -> float:
+    """The volume of a primitive [m^3]: its :func:`_local` solid's mass, without the solid."""
+    p = shape.params
+    if shape.kind == "box":
+        return mp.box_volume(p["size"])
+    if shape.kind == "cylinder":
+        return mp.cylinder_volume(p["radius"], p["length"])
+    return mp.sphere_volume(p["radius"])
+
+
 def _local_box(shape: Shape):
     """A primitive's box in its own frame: (min corner, max corner)."""
     p = shape.params
@@ -618,11 +628,13 @@ class PlainLinks:
     (numpy, the per-link path's operations in its order, so the same numbers to the bit):
     ``rows`` link name -> row of ``low`` and ``high`` (n, 3), the box of the link's shapes as
     :func:`rigid_bounds` gives it (a zero of either sign as +0; only links whose box is all
-    finite have a row); for :meth:`inside`, the shapes as :class:`~urdftool.physics.support.
-    Piece` places them (``shape_rows`` the row of each shape's link)."""
+    finite have a row); ``extents``: the largest side of the box of the geometry
+    :func:`link_solid` takes (collision, else visual), its ``extent``; for :meth:`inside`, the
+    shapes as :class:`~urdftool.physics.support.Piece` places them (``shape_rows`` the row of
+    each shape's link)."""
 
     __slots__ = ("rows", "low", "high", "shape_rows", "kinds", "centres", "rotations",
-                 "sizes")
+                 "sizes", "extents")
 
     def inside(self, names, points):
         """For link names (each with a row) and points [m] (k, 3) in their frames: whether
@@ -678,7 +690,7 @@ def _plain_links(robot) -> PlainLinks:
     from itertools import chain
 
     neighbours = _fixed_neighbours(robot)
-    names, shape_rows, kinds, highs, xyzs, turns = [], [], [], [], [], []
+    names, shape_rows, kinds, highs, xyzs, turns, chosen = [], [], [], [], [], [], []
     index, distinct = {}, []  # the distinct rotations (most shapes': NO_TURN), by identity
     kind_of, local_box = _KINDS.get, _local_box
     for name, link in robot.links.items():
@@ -695,6 +707,7 @@ def _plain_links(robot) -> PlainLinks:
         else:
             row = len(names)
             names.append(name)
+            chosen += [not collision] * len(visual) + [True] * len(collision)
             for shape in shapes:
                 shape_rows.append(row)
                 kinds.append(kind_of(shape.kind))
@@ -717,13 +730,21 @@ def _plain_links(robot) -> PlainLinks:
     low, high_box, finite = _shape_boxes(-high, high, xyz, rotation, unturned)
     count = len(names)
     starts = np.searchsorted(shape_rows, np.arange(count)) if count else shape_rows
+    extents = np.zeros(count)
     if count:
+        # link_solid's extent: of its chosen shapes' box (finite: the differences are the
+        # same whatever the sign of a zero)
+        picked = np.array(chosen, dtype=bool)[:, None]
+        with np.errstate(all="ignore"):  # (rows not all finite are dropped below)
+            sides = np.maximum.reduceat(np.where(picked, high_box, -np.inf), starts) - \
+                np.minimum.reduceat(np.where(picked, low, np.inf), starts)
+        extents = np.maximum(np.maximum(sides[:, 0], sides[:, 1]), sides[:, 2])
         low = np.minimum.reduceat(low, starts) + 0.0  # a zero of either sign: +0
         high_box = np.maximum.reduceat(high_box, starts) + 0.0
         finite = np.logical_and.reduceat(finite, starts)
     kept = np.flatnonzero(finite) if count else np.zeros(0, dtype=np.intp)
     table.rows = {names[i]: j for j, i in enumerate(kept.tolist())}
-    table.low, table.high = low[kept], high_box[kept]
+    table.low, table.high, table.extents = low[kept], high_box[kept], extents[kept]
     renumbered = np.full(count, -1, dtype=np.intp)
     renumbered[kept] = np.arange(len(kept))
     shapes_kept = renumbered[shape_rows] >= 0 if count else np.zeros(0, dtype=bool)

@@ -354,7 +354,7 @@ def test_plain_links_settled_at_once_as_the_per_link_path_settles_them(tmp_path,
     def rules(robot):
         found = []
         for check in (inertials.com_outside_geometry, inertials.com_outside_hull,
-                      inertials.inertia_beyond_geometry):
+                      inertials.inertia_beyond_geometry, inertials.implausible_density):
             try:
                 found.append([message for _, message, *_ in check(robot)])
             except OverflowError as error:  # mass.sphere of a radius beyond 1e102 (U900)
@@ -398,3 +398,5 @@ def test_plain_links_settled_at_once_as_the_per_link_path_settles_them(tmp_path,
         if all(piece.kind != "cylinder" for piece in pieces):
             assert (link in inside) == any(piece.holds(properties.com) for piece in pieces)
     assert rules(robot) == expected
+    if isinstance(expected[3], list):  # (not a crash)
+        assert len(expected[3]) > 3 and inertials._plain_volumes(robot)  # U311, at once

@@ -28,7 +28,7 @@ from urdftool.numbers import MILLIMETRE, number, numbers
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
-from urdftool.description.values import number_tuple
+from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
@@ -678,6 +678,49 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
+def _plain_volumes(robot) -> dict:
+    """link -> (whether :func:`_body_sized`, the source, the volume [m^3]) of the links of
+    :func:`~urdftool.physics.solids.plain_links` with mass (the volume of the geometry
+    :func:`~urdftool.physics.solids.link_solid` takes, as :func:`~urdftool.physics.solids.
+    volume` sums it), measured without their solids; every other link with mass has its
+    solid built here, in order, as :func:`_link_solids` builds them (an error is raised where
+    it raises). Once per robot (U311 asks)."""
+    def build():
+        table = solids.plain_links(robot)
+        rows = table.rows if table is not None else {}
+        extents = table.extents.tolist() if table is not None else []
+        found, marker = {}, MARKER_EXTENT * 1.01
+        for link, properties in _valid(robot):
+            if not properties.mass > 0:
+                continue
+            name = link.get("name")
+            row = rows.get(name)
+            if row is None or robot.links.get(name) is not link:
+                _solid(robot, link)
+                continue
+            shapes = solids.shapes(robot, link, "collision")
+            source = "collision" if shapes else "visual"
+            volume = sum([solids.unit_volume(shape) for shape in
+                          shapes or solids.shapes(robot, link, "visual")])
+            found[link] = (marker < extents[row] <= 5.0, source, volume)
+        return found
+
+    return robot.memo(_plain_volumes, build)
+
+
+def _plain_volume_bounds(robot, link, found, mass: float) -> tuple[float, float | None]:
+    """:func:`_volume_bounds` of a link of :func:`_plain_volumes` of a plain size (its
+    geometry is trustworthy, and all of it loaded)."""
+    _, source, own = found
+    if own > 0 and mass / own <= DENSEST:
+        return own, None
+    volumes = [own]
+    if source == "collision" and robot.grouped(link).get("visual"):
+        volumes.append(sum([solids.unit_volume(shape)
+                            for shape in solids.shapes(robot, link, "visual")]))
+    return own, max(volumes)
+
+
 @rule("U311", "implausible-density", Severity.WARNING)
 def implausible_density(robot):
     """A link's mass is impossible for the volume of its geometry: a mass or units slip.
@@ -701,10 +744,21 @@ def implausible_density(robot):
     Bad: ``<mass value="54"/>`` on a 30 x 20 x 1 cm plate (90,000 kg/m^3)
     Good: ``<mass value="1.6"/>`` (aluminium)
     """
-    for link, properties, solid in _link_solids(robot):
-        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
+    plain = _plain_volumes(robot)
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
             continue
-        bounds = _volume_bounds(robot, link, solid, properties.mass)
+        found = plain.get(link)
+        if found is None:  # the per-link path: the link's solids
+            solid = _solid(robot, link)
+            if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
+                continue
+            bounds = _volume_bounds(robot, link, solid, properties.mass)
+            source = solid.source
+        else:
+            if properties.mass <= PLACEHOLDER_MASS or not found[0]:
+                continue
+            bounds, source = _plain_volume_bounds(robot, link, found, properties.mass), found[1]
         if bounds is None or bounds[1] is not None and bounds[1] <= 0:
             continue
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
@@ -717,7 +771,7 @@ def implausible_density(robot):
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
-                f"{solid.source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
+                f"{source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
                 "lighter "
                 f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")
 
@@ -744,14 +798,15 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     joint = parent_joints(robot).get(_name(link))
     if joint is None:
         return None
-    xyz = origin_of(joint).xyz
+    xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
     com = properties.com
     if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
         return None
-    inertial = first_child(link, "inertial")
-    written = origin_of(inertial).xyz
-    if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)) and \
-            all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+    # the centre of mass first (most links: not the joint's), then the written origin
+    if not all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+        return None
+    written = origin_of(first_child(link, "inertial")).xyz
+    if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)):
         return joint
     return None
 
