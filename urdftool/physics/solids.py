@@ -301,22 +301,22 @@ def _inner_floor(mesh) -> float:
 
 def _local(shape: Shape):
     """The unit-density solid of a primitive in its own frame."""
-    p = shape.params
-    if shape.kind == "box":
-        return mp.box(p["size"])
-    if shape.kind == "cylinder":
-        return mp.cylinder(p["radius"], p["length"])
-    return mp.sphere(p["radius"])
+    return _of_primitive(shape, mp.box, mp.cylinder, mp.sphere)
 
 
 def unit_volume(shape: Shape) -> float:
     """The volume of a primitive [m^3]: its :func:`_local` solid's mass, without the solid."""
+    return _of_primitive(shape, mp.box_volume, mp.cylinder_volume, mp.sphere_volume)
+
+
+def _of_primitive(shape: Shape, box, cylinder, sphere):
+    """``box(size)``, ``cylinder(radius, length)`` or ``sphere(radius)`` of a primitive."""
     p = shape.params
     if shape.kind == "box":
-        return mp.box_volume(p["size"])
+        return box(p["size"])
     if shape.kind == "cylinder":
-        return mp.cylinder_volume(p["radius"], p["length"])
-    return mp.sphere_volume(p["radius"])
+        return cylinder(p["radius"], p["length"])
+    return sphere(p["radius"])
 
 
 def _local_box(shape: Shape):
