@@ -228,14 +228,17 @@ def moving_link_without_mass(robot):
     masses = {link.get("name"): p.mass for link, p in _valid(robot)}
     fixed = _fixed_children(robot)
     for name in sorted(moving.keys() & robot.links.keys()):
-        body, stack, total = set(), [name], 0.0
-        while stack:
-            current = stack.pop()
-            if current in body:
-                continue
-            body.add(current)
-            total += max(masses.get(current, 0.0), 0.0)
-            stack.extend(fixed.get(current, []))
+        if name not in fixed:  # nothing fixed below it (most links): the walk's one step
+            body, total = (name,), 0.0 + max(masses.get(name, 0.0), 0.0)
+        else:
+            body, stack, total = set(), [name], 0.0
+            while stack:
+                current = stack.pop()
+                if current in body:
+                    continue
+                body.add(current)
+                total += max(masses.get(current, 0.0), 0.0)
+                stack.extend(fixed.get(current, []))
         link = robot.links[name]
         if total <= 0 and not any(first_child(l, "inertial") is not None
                                   and _name(l) not in masses
