@@ -138,6 +138,16 @@ def _floats32(element, what: str, count: int | None = None):
         return values.astype(np.float32)
 
 
+def _joined(indices: list):
+    """The index arrays of a primitive's ``<p>`` elements end to end: a new array (the one
+    array itself when there is one: each is read for this primitive alone)."""
+    import numpy as np
+
+    if len(indices) == 1:
+        return indices[0]
+    return np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
+
+
 def _int_attribute(element, name: str, default: int | None = None) -> int:
     value = element.get(name)
     if value is None and default is not None:
@@ -318,7 +328,7 @@ class _Document:
                 raise _corrupt(f"<{kind}> (line {line}) has {len(index)} indices in <p>, not a "
                                f"multiple of its {stride} inputs")
         if kind == "triangles":
-            corners = np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
+            corners = _joined(indices)
             counts = None
             if len(corners) % (3 * stride):
                 raise _corrupt(f"<triangles> (line {line}) has {len(corners)} indices, not "
@@ -335,7 +345,7 @@ class _Document:
                                f"corners, <p> holds {len(corners) // stride}")
         else:
             counts = np.array([len(index) // stride for index in indices], dtype=np.int64)
-            corners = np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
+            corners = _joined(indices)
         triangles = len(corners) // (3 * stride) if counts is None else \
             int(np.maximum(counts - 2, 0).sum())
         declared = primitive.get("count")
@@ -346,7 +356,8 @@ class _Document:
         if before + triangles > self.max_triangles:
             raise ColladaProblem("too-large", f"a geometry has over {self.max_triangles} "
                                               "triangles")
-        corners = corners.reshape(-1, stride)[:, offset]
+        if stride > 1:  # one contiguous copy of the VERTEX column, read several times below
+            corners = np.ascontiguousarray(corners.reshape(-1, stride)[:, offset])
         if counts is not None and len(counts) and counts.min() == counts.max() == 3:
             counts = None  # triangles only: each its own fan
         if counts is not None:  # fans: (first, j, j + 1) for each polygon of k >= 3 corners
@@ -364,8 +375,8 @@ class _Document:
                            f"number {len(positions)}")
         used = np.zeros(len(positions), dtype=bool)
         used[corners] = True
-        if used.all():  # the common case: no renumbering
-            kept, corners = positions.astype(np.float64), np.array(corners, dtype=np.int64)
+        if used.all():  # the common case: no renumbering (corners is this primitive's own)
+            kept = positions.astype(np.float64)
         else:
             kept, corners = positions[used].astype(np.float64), (np.cumsum(used) - 1)[corners]
         if not np.all(np.isfinite(kept)):
@@ -448,11 +459,16 @@ def read_collada(data: bytes, *, max_triangles: int):
     except RecursionError:
         raise ColladaProblem("too-large", "the scene nests nodes too deep") from None
     vertices, faces, count = [], [], 0
+    identity = np.identity(4)
     for matrix, geometry in placed:
         flips = np.linalg.det(matrix[:3, :3]) < 0
+        # placed where it is (the common case): the product below gives each finite
+        # coordinate itself, and +0.0 for a zero of either sign, as adding +0.0 does
+        kept = np.array_equal(matrix, identity)
         for positions, triangles in document.geometry(geometry):
             with np.errstate(over="ignore", invalid="ignore"):
-                moved = np.dot(positions, matrix[:3, :3].T) + matrix[:3, 3]
+                moved = positions + 0.0 if kept else \
+                    np.dot(positions, matrix[:3, :3].T) + matrix[:3, 3]
             vertices.append(moved)
             faces.append((triangles[:, ::-1] if flips else triangles) + count)
             count += len(positions)
