@@ -76,11 +76,13 @@ def tag(element) -> str:
 
 
 def _children(element, name: str) -> list:
-    return [child for child in element if tag(child) == name]
+    """The child elements named ``name`` in any namespace or none (lxml's "{*}" filter, in C:
+    each ``.tag`` read in Python builds a string)."""
+    return list(element.iterchildren("{*}" + name))
 
 
 def _child(element, name: str):
-    return next((child for child in element if tag(child) == name), None)
+    return next(element.iterchildren("{*}" + name), None)
 
 
 def _numbers(element, dtype, what: str):
@@ -95,8 +97,8 @@ def _numbers(element, dtype, what: str):
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # numpy warns, and stops, at text that is no number
         try:
-            return np.fromstring(text, dtype=dtype, sep=" ") if text.strip() else \
-                np.zeros(0, dtype=dtype)
+            return np.fromstring(text, dtype=dtype, sep=" ") if text and not text.isspace() \
+                else np.zeros(0, dtype=dtype)
         except (ValueError, DeprecationWarning, RuntimeWarning, OverflowError):
             raise _corrupt(f"{what} (line {element.sourceline}) holds text that is not a "
                            f"list of {'integers' if dtype == 'int64' else 'numbers'}") from None
@@ -104,7 +106,6 @@ def _numbers(element, dtype, what: str):
 
 _LOADTXT_FROM = 4096  # [characters]: in shorter texts, loadtxt's set-up costs more than it saves
 _NOT_NUMBERS = b"0123456789.eE+- \t\n\r\x0b\x0c"  # what a plain list of numbers is made of
-_LINE_ENDS = str.maketrans("\r\n", "  ")
 
 
 def plain_floats(text: str):
@@ -115,13 +116,13 @@ def plain_floats(text: str):
     parses each word whole with the function fromstring parses it with (Python's
     ``PyOS_string_to_double``), in half the time; on these characters both split words alike."""
     if len(text) < _LOADTXT_FROM or not text.isascii() or \
-            text.encode("ascii").translate(None, _NOT_NUMBERS) or not text.strip():
+            text.encode("ascii").translate(None, _NOT_NUMBERS) or text.isspace():
         return None
     import numpy as np
 
     try:
-        return np.loadtxt([text.translate(_LINE_ENDS)], dtype=np.float64, comments=None,
-                          ndmin=1).reshape(-1)
+        return np.loadtxt([text.replace("\r", " ").replace("\n", " ")], dtype=np.float64,
+                          comments=None, ndmin=1).reshape(-1)
     except ValueError:  # a word that is no number: fromstring says how far it reads
         return None
 

@@ -219,8 +219,8 @@ def _row_floats(chars, starts, ends):
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # fromstring warns, and stops, at a word
             try:
-                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text.strip() \
-                    else np.zeros(0)
+                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text and \
+                    not text.isspace() else np.zeros(0)
             except (ValueError, DeprecationWarning):
                 return None
     return numbers
