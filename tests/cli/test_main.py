@@ -129,6 +129,41 @@ def test_a_check_through_the_door_says_all_and_exits_as_the_command_does(tmp_pat
         assert ended.stderr.endswith("[exit functions ran]\n")
     assert ended.stdout.count('"U204"') == 399
 
+
+def test_a_plain_check_ends_without_tearing_the_interpreter_down(tmp_path):
+    """``__main__._end``: the door's check runs the exit functions and ends, not freeing its
+    objects one by one (the finalizer of an object an exit function made does not run);
+    through Typer, Python tears down as usual."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, os, sys\nclass Kept:\n    def __del__(self, write=os.write):\n"
+               "        write(2, b'[torn down]')\n"
+               "atexit.register(lambda: setattr(sys, 'kept', Kept()))\n"
+               "atexit.register(lambda: print('[exit functions ran]', file=sys.stderr))\n"
+               "sys.argv = ['urdftool', *sys.argv[1:]]\nfrom urdftool.{} import main\nmain()")
+    for module, torn_down in (("__main__", False), ("cli", True)):
+        done = subprocess.run([sys.executable, "-c", program.format(module), "check",
+                               "--no-cache", "a.urdf"], capture_output=True, text=True,
+                              cwd=tmp_path, timeout=120)
+        assert done.returncode == 0 and "[exit functions ran]" in done.stderr, done.stderr
+        assert ("[torn down]" in done.stderr) == torn_down, (module, done.stderr)
+
+
+def test_a_check_imports_no_module_its_robot_does_not_use(tmp_path):
+    """The digests of what a check read are the result cache's: hashlib (which loads OpenSSL)
+    is imported for a check that keeps its results, not for one without the cache; a
+    setup.cfg's parser (configparser) only for a package that has one."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, sys; atexit.register(lambda: sys.stderr.write(''.join("
+               "f'[{m}]' for m in ('hashlib', 'configparser') if m in sys.modules))); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.cli import main; main()")
+    for words, loaded in ((["--no-cache"], ""), (["--cache-dir", "cache"], "[hashlib]")):
+        done = subprocess.run([sys.executable, "-c", program, "check", "--timeout", "0",
+                               "--max-memory", "0", *words, "a.urdf"], capture_output=True,
+                              text=True, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0, done.stderr
+        assert done.stderr.endswith("\n" + loaded) or done.stderr == loaded, (words, done.stderr)
+
+
 # The collector's rhythm for a check, installed into the engine by the door (``__main__``)
 
 @pytest.fixture

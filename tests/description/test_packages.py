@@ -221,3 +221,22 @@ def test_undeclared_dependencies_are_judged_per_file_by_its_own_package(run_cli,
              for d in json.loads(result.stdout)["diagnostics"]]
     assert found == [(["cell", "robot.urdf.xacro"], 3, "U019"),
                      (["parts", "parts.xacro"], 2, "U019")], result.output
+
+
+def test_the_package_walk_lists_each_folder_once(tmp_path):
+    """packages_below: a folder's subfolders and its package.xml come from one listing (the
+    launch index walks every folder of a repository), and the packages found are the same."""
+    from urdftool.description.packages import packages_below
+    from urdftool.description.record import SEARCH, recording
+
+    for name in ("a", "b/c", "b/d", "e"):
+        (tmp_path / name).mkdir(parents=True)
+    for name in ("a", "b/c"):
+        (tmp_path / name / "package.xml").write_text(f"<package><name>p_{name[-1]}</name></package>")
+    (tmp_path / "e" / "package.xml").mkdir()  # a folder named so: no package
+    with recording() as record:
+        found = packages_below(tmp_path)
+    assert found == {"p_a": tmp_path / "a", "p_c": tmp_path / "b" / "c"}
+    listed = [key[0] for kind, key in record.entries if kind == SEARCH]
+    assert sorted(listed) == sorted({str(tmp_path / f) for f in ("", "a", "b", "b/c", "b/d", "e",
+                                                               "e/package.xml")})

@@ -194,6 +194,7 @@ class Running:
     def __init__(self, argv, pid, out: Path, log: Path, time_limit: float):
         self.argv, self.pid, self.out, self.log = argv, pid, out, log
         self.started = time.perf_counter()
+        self.time_limit = time_limit
         self.deadline = time.monotonic() + time_limit
         self.status: int | None = None
         self.usage = None
@@ -205,7 +206,7 @@ class Running:
             if pid:
                 self.status, self.usage, self.done = os.waitstatus_to_exitcode(status), usage, True
                 self.seconds = time.perf_counter() - self.started
-            elif time.monotonic() > self.deadline:
+            elif time.monotonic() > self.deadline and self._over_time():
                 _kill_group(self.pid)
                 _, _, self.usage = os.wait4(self.pid, 0)
                 self.status, self.done = None, True
@@ -213,6 +214,14 @@ class Running:
             if self.done:
                 _kill_group(self.pid)  # workers the command left behind
         return self.done
+
+    def _over_time(self) -> bool:
+        """Whether the child, past its wall deadline, counts as hung: its process group has
+        spent ``time_limit`` seconds of CPU (a busy hang, whatever the machine's load), or
+        ``WALL_FACTOR`` times that in wall time (a hang that sleeps). On a loaded machine a
+        command that ends within its limit of CPU is late, not hung; it is waited for."""
+        over_wall = time.monotonic() > self.deadline + (WALL_FACTOR - 1) * self.time_limit
+        return over_wall or group_cpu_seconds(self.pid) >= self.time_limit
 
     def finish(self) -> Outcome:
         delay = 0.002
@@ -225,6 +234,27 @@ class Running:
         self.log.unlink()
         return Outcome(self.argv, self.status, output, self.usage.ru_maxrss if self.usage else 0,
                        self.seconds, list(dict.fromkeys(events)))
+
+
+WALL_FACTOR = 6  # a child under its CPU limit is hung only past this many limits of wall time
+_TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def group_cpu_seconds(group: int) -> float:
+    """CPU seconds [s] spent by the live processes of process group ``group`` and the children
+    they reaped (``/proc/PID/stat``: utime, stime, cutime, cstime)."""
+    total = 0
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/stat", "rb") as file:
+                fields = file.read().rsplit(b")", 1)[1].split()
+        except OSError:  # gone meanwhile
+            continue
+        if int(fields[2]) == group:  # fields after the name: state, ppid, pgrp, ...
+            total += sum(int(value) for value in fields[11:15])
+    return total / _TICKS
 
 
 def _kill_group(pid: int) -> None:

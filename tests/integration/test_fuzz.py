@@ -182,3 +182,42 @@ def test_git_trace_judges_what_git_opens_and_starts(tmp_path):
     (scratch / "markers" / "filter.smudge").write_text("")
     assert _git_traced(layout)[0] == "code ran: git ran what a planted config names " \
                                      "(filter.smudge)"
+
+
+def _spin(group_seconds: float, busy: bool) -> int:
+    """A child in a process group of its own that spins (or sleeps) ``group_seconds``."""
+    import os
+    import time
+
+    pid = os.fork()
+    if pid == 0:
+        os.setpgid(0, 0)
+        end = time.monotonic() + group_seconds
+        while time.monotonic() < end:
+            if not busy:
+                time.sleep(0.01)
+        os._exit(0)
+    return pid
+
+
+def test_a_hang_is_judged_by_cpu_time_or_a_wall_ceiling(tmp_path):
+    """A child spinning past its limit of CPU is hung whatever the load; one sleeping past its
+    wall deadline is waited for until the wall ceiling (a loaded machine makes commands late,
+    not hung); group_cpu_seconds counts the group's CPU."""
+    import time
+
+    from tests.fuzz import child
+
+    out, log = tmp_path / "out", tmp_path / "log"
+    busy = child.Running(["spin"], _spin(30, busy=True), out, log, time_limit=0.3)
+    while not busy.poll():
+        time.sleep(0.01)
+    assert busy.status is None and busy.seconds < 10  # killed: hung on CPU, not on the ceiling
+    sleeper = child.Running(["sleep"], _spin(0.8, busy=False), out, log, time_limit=0.2)
+    while not sleeper.poll():
+        time.sleep(0.01)
+    assert sleeper.status == 0  # past its 0.2 s deadline, under its CPU and the 1.2 s ceiling
+    asleep = child.Running(["sleep"], _spin(30, busy=False), out, log, time_limit=0.2)
+    while not asleep.poll():
+        time.sleep(0.01)
+    assert asleep.status is None and asleep.seconds < 5  # the ceiling (6 x 0.2 s) holds

@@ -185,3 +185,16 @@ def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monke
     assert pids[0] != pids[1]
     [stop] = run_budgeted(1, lambda _: _keep(budget.memory), budget, lambda _, stop: stop, jobs=1)
     assert stop.kind == "memory"  # alone, it does not fit: reported, not tried again
+
+
+def test_a_worker_inherits_pickle_from_the_process_that_forked_it(tmp_path):
+    """Both ends of a worker's channel pickle: the module is imported once, before the fork,
+    not again in each worker (``-X importtime`` prints a line per import, in either process)."""
+    import re
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>\n')
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "urdftool", "check",
+                           "--no-cache", str(robot)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert len(re.findall(r"\|\s+pickle$", done.stderr, re.M)) == 1, done.stderr

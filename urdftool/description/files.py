@@ -37,7 +37,6 @@ from __future__ import annotations
 
 import fnmatch
 import functools
-import hashlib
 import os
 import re
 import stat
@@ -183,7 +182,10 @@ def _read_buffer(name, buffer: tuple, limit: int, as_: str) -> bytes:
 
 
 def digest(data: bytes) -> str:
-    """The digest records keep of the bytes read."""
+    """The digest records keep of the bytes read (only the result cache asks for them: hashlib,
+    which loads OpenSSL, is imported then)."""
+    import hashlib
+
     return hashlib.blake2b(data, digest_size=20).hexdigest()
 
 

@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import ast
 from ast import walk as ast_nodes  # (in memory: ast.walk reads no file)
-import configparser
 import fnmatch
 import os
 import posixpath
@@ -795,6 +794,8 @@ def _setup_cfg(reader: _Reader) -> None:
     text = reader.read(reader.folder / "setup.cfg")
     if text is None:
         return
+    import configparser  # (a package with a setup.cfg: most have none)
+
     parser = configparser.ConfigParser(interpolation=None, strict=False)
     parser.optionxform = str  # destinations keep their case
     try:

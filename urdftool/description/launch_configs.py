@@ -179,7 +179,7 @@ def _in_package(name: str, folder: Path, rest: str, root: Path) -> Path | None:
 def _package_files(folder: Path) -> tuple[Path, ...]:
     found = []
     for current, files in _walk(folder, 8):
-        found.extend(current / f for f in files)
+        found.extend(Path(current, f) for f in files)
         if len(found) > MAX_PACKAGE_FILES:
             break
     return tuple(found)
@@ -189,14 +189,17 @@ def _walk(root: Path, depth: int, pattern: str = "*"):
     """(folder, its file names matching ``pattern``) for ``root`` and the folders below it,
     ``depth`` levels at most, in sorted order, through the recorded listing
     (:func:`~urdftool.description.files.listing`): folders that are links, hidden or build
-    output (SKIP_DIRS) are not entered."""
-    pending = [(root, 0)]
+    output (SKIP_DIRS) are not entered. A folder is named as text (``root`` joined with the
+    names below it): a repository's hundreds of folders, few of which hold a file wanted."""
+    pending = [(os.fspath(root), 0)]
+    pattern += "|[!.]*/"  # hidden folders: not entered, not listed
     while pending:
         current, level = pending.pop()
-        entries = listing(current, pattern + "|[!.]*/")  # hidden folders: not entered, not listed
+        entries = listing(current, pattern)
         yield current, [name for name, kind in entries if kind == "file"]
         if level + 1 < depth:
-            pending.extend((current / name, level + 1) for name, kind in reversed(entries)
+            pending.extend((os.path.join(current, name), level + 1)
+                           for name, kind in reversed(entries)
                            if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."))
 
 
@@ -374,13 +377,13 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     files leading outside ``root`` left out), and whether the bound was reached; with
     ``tests``, the Python files that may be launch tests too
     (:func:`~urdftool.description.launch.may_be_launch_test`: :func:`read_launch` tells)."""
-    found = []
+    found, top = [], os.fspath(root)
     for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
-        in_launch = current.name == "launch" and current != root
+        in_launch = os.path.basename(current) == "launch" and current != top
         for name in files:
             if not (in_launch or name.endswith(LAUNCH_SUFFIXES) or tests and name.endswith(".py")):
                 continue  # (is_launch_file's and may_be_launch_test's, before a path is made)
-            path = current / name
+            path = Path(current, name)
             if (is_launch_file(path, root) or tests and may_be_launch_test(path, root)) and \
                     inside(path, root):
                 found.append(path)

@@ -305,9 +305,10 @@ def packages_below(root: Path) -> dict[str, Path]:
     :class:`PackageResolver` scans them: bounded, links not followed; the first of a name
     wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
     found: dict[str, Path] = {}
-    for folder in _walk_dirs(root):
-        if not listing(folder, "package.xml"):  # none here: nothing to read
+    for folder, entries in _walk_listed(root, "package.xml"):
+        if not any(name == "package.xml" for name, _ in entries):  # none here: nothing to read
             continue
+        folder = Path(folder)
         name = package_name(folder, root)
         if name is not None and kind_of(folder / "package.xml") == "file":
             found.setdefault(name, folder)
@@ -332,18 +333,31 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None 
     (appended to ``links`` when given), never entering a hidden folder (as catkin's and
     colcon's package crawlers do; ``.urdftool_cache`` among them: the result cache appearing
     beside the packages is no change to where they are)."""
-    frontier = [root]
+    for folder, _ in _walk_listed(root, "", max_depth, links):
+        yield Path(folder)
+
+
+def _walk_listed(root: Path, names: str, max_depth: int = _MAX_SCAN_DEPTH,
+                 links: list | None = None):
+    """(folder, its entries) of :func:`_walk_dirs`: its subfolders and links and, in the same
+    listing, the entries ``names`` matches (a :func:`~urdftool.description.files.listing`
+    pattern); with ``names`` "", (folder, None). A folder is named as text (a Path is made
+    for the few a caller keeps)."""
+    frontier = [os.fspath(root)]
     seen = 0
+    pattern = f"{names}|[!.]*/" if names else "[!.]*/"  # subfolders and links, not hidden
     for _ in range(max_depth + 1):
         next_frontier = []
         for folder in frontier:
-            yield folder
+            entries = listing(folder, pattern) if names else None  # sorted
+            yield folder, entries
             seen += 1
             if seen > _MAX_SCAN_DIRS:
                 return
-            entries = listing(folder, "[!.]*/")  # subfolders and links, sorted, not hidden
-            next_frontier.extend(folder / name for name, kind in entries
+            if entries is None:  # (listed once yielded: a caller may stop there)
+                entries = listing(folder, pattern)
+            next_frontier.extend(os.path.join(folder, name) for name, kind in entries
                                  if kind == "folder" and name not in SKIP_DIRS)
             if links is not None:
-                links.extend(folder / name for name, kind in entries if kind == "link")
+                links.extend(Path(folder, name) for name, kind in entries if kind == "link")
         frontier = next_frontier

@@ -282,7 +282,9 @@ class _Channel:
 
 
 def _channels() -> tuple[_Channel, _Channel]:
-    """The two ends of a new channel."""
+    """The two ends of a new channel (made before a worker forks: pickle, which both ends
+    use, is imported here once, and the worker inherits it)."""
+    import pickle  # noqa: F401
     down_read, down_write = os.pipe()
     up_read, up_write = os.pipe()
     return _Channel(up_read, down_write), _Channel(down_read, up_write)
