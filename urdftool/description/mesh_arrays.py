@@ -26,6 +26,7 @@ import math
 from pathlib import Path
 
 from urdftool.description.inputs import MAX_TRIANGLES
+from urdftool.numbers import power
 
 _HEADER = 84  # [bytes]: 80 of text, the triangle count
 _RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
@@ -499,7 +500,7 @@ def convex_hull(vertices):
     valid = norms > float(np.finfo(np.float64).resolution * 100)
     faces, crosses, norms = faces[valid], crosses[valid], norms[valid]
     centers = points[faces].mean(axis=1)
-    areas = np.sqrt((crosses ** 2).sum(axis=1)) / 2.0
+    areas = np.sqrt((power(crosses, 2)).sum(axis=1)) / 2.0
     try:
         centroid = np.average(centers, weights=areas, axis=0)
     except ZeroDivisionError:
@@ -626,7 +627,7 @@ def _small_hull_volume(points: list) -> float:
     size = max(max(abs(v) for v in minus(p, points[0])) for p in points)
     if not size > 0:
         return 0.0
-    margin = 1e-9 * size ** 3  # of a height: an area (size^2) times a length
+    margin = 1e-9 * power(size, 3)  # of a height: an area (size^2) times a length
     a = 0
     b = max(range(len(points)), key=lambda i: dot(minus(points[i], points[a]),
                                                   minus(points[i], points[a])))
@@ -666,7 +667,7 @@ def mass_properties(vertices, faces) -> dict:
     columns = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).T)
     t0, t1, t2 = (np.take(columns, faces[:, corner], axis=1) for corner in range(3))
     # powers per vertex, not per corner: the same numbers, a quarter of the (slow) pow calls
-    squares, cubes = columns ** 2, columns ** 3
+    squares, cubes = power(columns, 2), power(columns, 3)
     s0, s1, c0, c1 = (np.take(power, faces[:, corner], axis=1)
                       for power in (squares, cubes) for corner in (0, 1))
     a, b = t1 - t0, t2 - t1
@@ -708,9 +709,9 @@ def mass_properties(vertices, faces) -> dict:
     with np.errstate(divide="ignore", invalid="ignore"):
         center = integrated[1:4] / volume
     inertia = np.zeros((3, 3))
-    inertia[0, 0] = integrated[5] + integrated[6] - volume * (center[[1, 2]] ** 2).sum()
-    inertia[1, 1] = integrated[4] + integrated[6] - volume * (center[[0, 2]] ** 2).sum()
-    inertia[2, 2] = integrated[4] + integrated[5] - volume * (center[[0, 1]] ** 2).sum()
+    inertia[0, 0] = integrated[5] + integrated[6] - volume * (power(center[[1, 2]], 2)).sum()
+    inertia[1, 1] = integrated[4] + integrated[6] - volume * (power(center[[0, 2]], 2)).sum()
+    inertia[2, 2] = integrated[4] + integrated[5] - volume * (power(center[[0, 1]], 2)).sum()
     inertia[0, 1] = -(integrated[7] - volume * np.prod(center[[0, 1]]))
     inertia[1, 2] = -(integrated[8] - volume * np.prod(center[[1, 2]]))
     inertia[0, 2] = -(integrated[9] - volume * np.prod(center[[0, 2]]))

@@ -18,6 +18,7 @@ from typing import NamedTuple
 from urdftool.physics import mat3
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import first_child
+from urdftool.numbers import power
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -100,7 +101,7 @@ def cylinder_volume(radius: float, length: float) -> float:
 
 def sphere_volume(radius: float) -> float:
     """The volume of a sphere [m^3]: :func:`sphere`'s mass (OverflowError beyond ~5e102 m)."""
-    return 4 / 3 * math.pi * radius ** 3
+    return 4 / 3 * math.pi * power(radius, 3)
 
 
 def box(size) -> Body:
@@ -187,4 +188,4 @@ def relative_difference(declared_value, computed_value) -> float:
     scale = math.sqrt(sum(v * v for v in c))
     if scale == 0:
         return math.inf if any(v != 0 for v in d) else 0.0
-    return math.sqrt(sum((a - b) ** 2 for a, b in zip(d, c))) / scale
+    return math.sqrt(sum(power(a - b, 2) for a, b in zip(d, c))) / scale

@@ -879,8 +879,13 @@ def volume(solid: LinkSolid) -> float:
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
     """A :class:`~urdftool.physics.mass.Body` of the solids: with ``mass`` [kg] kept, or
-    from ``density`` [kg/m^3]."""
+    from ``density`` [kg/m^3]. None without parts, or when their volume is no positive
+    finite float (sizes of ~1e-108 m underflow to 0, of ~1e103 m overflow to infinity): such a
+    solid says nothing of a tensor."""
     if not solid.parts:
+        return None
+    volume = sum(part.mass for part in solid.parts)
+    if not 0 < volume < math.inf:
         return None
     unit = mp.combine(solid.parts)  # density 1: mass is volume
     if mass is not None:

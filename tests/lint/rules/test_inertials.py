@@ -355,10 +355,7 @@ def test_plain_links_settled_at_once_as_the_per_link_path_settles_them(tmp_path,
         found = []
         for check in (inertials.com_outside_geometry, inertials.com_outside_hull,
                       inertials.inertia_beyond_geometry, inertials.implausible_density):
-            try:
-                found.append([message for _, message, *_ in check(robot)])
-            except OverflowError as error:  # mass.sphere of a radius beyond 1e102 (U900)
-                found.append(repr(error))
+            found.append([message for _, message, *_ in check(robot)])  # none may raise
         return found
 
     monkeypatch.setattr(solids, "BULK_LINKS", 10 ** 9)

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, number, numbers, power
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
@@ -120,7 +120,8 @@ def _from_geometry(robot, link, mass: float):
     solid = _solid(robot, link)
     if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
-    return inertial_edits(robot, link, solids.computed(solid, mass=mass))
+    body = solids.computed(solid, mass=mass)
+    return inertial_edits(robot, link, body) if body is not None else None
 
 
 def _solid(robot, link, tag: str | None = None):
@@ -556,7 +557,7 @@ def _inertia_ratios(robot) -> list:
             if not _trustworthy(solid) or _zero_tensor(properties.inertia):
                 continue  # a zero tensor is U304's finding, not a ratio to judge
             expected = solids.computed(solid, mass=properties.mass)
-            if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
+            if expected is None or mat3.trace(expected.inertia) == 0:  # no ratio to judge
                 continue
             ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
             if ratio > 0:
@@ -586,7 +587,7 @@ def _largest_trace(properties, solid) -> float:
     """The largest trace any mass distribution inside the geometry's bounding box can have
     about the declared centre of mass: 2 m R^2, R the box corner farthest from it [kg m^2]."""
     low, high = solid.bounds
-    reach = sum(max(abs(l - c), abs(h - c)) ** 2 for l, c, h in zip(low, properties.com, high))
+    reach = sum(power(max(abs(l - c), abs(h - c)), 2) for l, c, h in zip(low, properties.com, high))
     return 2 * properties.mass * reach
 
 
@@ -962,7 +963,7 @@ def _declared_about(declared, geometry, value: float, pick) -> tuple[mat3.Vector
                       mat3.cross(rows[1], rows[2])), key=lambda c: mat3.dot(c, c))
     scale = max(abs(v) for row in geometry for v in row) or 1.0
     longest = crosses[-1]
-    if mat3.dot(longest, longest) > (1e-9 * scale * scale) ** 2:  # a simple eigenvalue
+    if mat3.dot(longest, longest) > power(1e-9 * scale * scale, 2):  # a simple eigenvalue
         axis = _unit(longest)
         return axis, mat3.dot(axis, mat3.apply(declared, axis))
     # repeated: the plane is orthogonal to the row of largest norm (rank 1), or everything
