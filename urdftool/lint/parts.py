@@ -64,7 +64,8 @@ class Part:
     kind: 'hangs', 'joints' or 'extensions' (see the module)
     mounts: the links its joints hang on, which it does not write (empty for 'extensions')
     condition: what makes it a part, as a finding's message says it
-    attaches: the links its joints hang on the mounts, which it does not write either ('joints')
+    attaches: the links its joints attach to the mounts, which it does not write either
+        ('joints'; empty otherwise)
     """
 
     kind: str
@@ -115,8 +116,8 @@ def _part(robot) -> Part | None:
                         f"a part of a robot defined elsewhere (no link of its own, only "
                         f"{said} blocks)")
         return None
-    return rootless(robot.links, [link for e in ends.values() for _, link in (e["parent"],)],
-                    [link for e in ends.values() for _, link in (e["child"],)])
+    return rootless(robot.links, [e["parent"][1] for e in ends.values()],
+                    [e["child"][1] for e in ends.values()])
 
 
 def rootless(links, parents, children) -> Part | None:
