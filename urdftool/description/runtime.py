@@ -32,6 +32,7 @@ from urdftool.description.launch_configs import (WILD, Configuration, Described,
                                                  Started, launch_files, launch_index, launch_tests,
                                                  shown)
 from urdftool.description.packages import packages_below
+from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -404,10 +405,18 @@ def unread_naming(path: str, words: tuple[str, ...] = (), tests: bool = True) ->
     absolute, root = _file_root(path)
     if root is None:
         return []
-    index, found = launch_index(root), []
     names = [word.encode() for word in words] or [absolute.name.encode()]
-    read = set(index.files) | ({real_path(c.top.path) for c in launch_tests(root)} if tests
-                               else set())
+    return [named(display_path(launch), test, read=False) for launch, data, test in
+            _not_read(root, tests) if any(name in data for name in names)]
+
+
+@per_run
+def _not_read(root: Path, tests: bool) -> tuple[tuple[Path, bytes, bool], ...]:
+    """(path, text, whether it is a launch test) of each launch file (and, with ``tests``,
+    each launch test) of the repository ``root`` that was not read (:func:`unread_naming`)."""
+    read = set(launch_index(root).files) | (
+        {real_path(c.top.path) for c in launch_tests(root)} if tests else set())
+    found = []
     for launch in launch_files(root, tests=tests)[0]:
         if real_path(launch) in read:
             continue
@@ -415,12 +424,10 @@ def unread_naming(path: str, words: tuple[str, ...] = (), tests: bool = True) ->
             data = read_regular(launch, MAX_LAUNCH_SIZE, as_="launch")
         except OSError:
             continue
-        if not any(name in data for name in names):
-            continue
         test = is_launch_test(data.decode("utf-8", "replace"))
         if (test and tests) or (not test and is_launch_file(launch, root)):
-            found.append(named(display_path(launch), test, read=False))
-    return found
+            found.append((launch, data, test))
+    return tuple(found)
 
 
 def _template_matches(template: str | None, path: Path, packages: dict) -> bool:
