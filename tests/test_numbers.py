@@ -3,7 +3,10 @@ no other module formats floats its own way."""
 
 from __future__ import annotations
 
+import ast
+import math
 import re
+import struct
 from pathlib import Path
 
 import pytest
@@ -89,3 +92,51 @@ def test_no_module_formats_floats_its_own_way():
             if spec.search(line):
                 found.append(f"{relative}:{number_}: {line.strip()}")
     assert not found, "\n".join(found)
+
+
+def test_power_is_ieee_where_python_raises():
+    from urdftool.numbers import power
+
+    assert power(1e103, 3) == math.inf and power(-1e103, 3) == -math.inf
+    assert power(-1e200, 2) == math.inf and power(1e200, 2.0) == math.inf
+    for value in (0.1, -3.7, 1e-300, 5e-324, 1.7e102, -0.0, math.inf, -math.inf):
+        for exponent in (2, 3):
+            got, expected = power(value, exponent), value ** exponent
+            assert struct.pack("<d", got) == struct.pack("<d", expected), (value, exponent)
+    assert math.isnan(power(math.nan, 2))
+
+
+def test_no_module_raises_a_float_power_itself():
+    """Every ``x ** n`` of the package with a computed base goes through numbers.power:
+    Python's float power raises OverflowError where IEEE arithmetic gives infinity, and a
+    robot's ``radius="1e103"`` then stopped U309-U316 with U900."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(PACKAGE).as_posix()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) \
+                    and not isinstance(node.left, ast.Constant) and relative != "numbers.py":
+                found.append(f"{relative}:{node.lineno}: {ast.unparse(node)}")
+            elif isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Pow) or \
+                    isinstance(node, ast.Call) and ast.unparse(node.func) in ("pow", "math.pow"):
+                found.append(f"{relative}:{node.lineno}: {ast.unparse(node)}")
+    assert not found, "\n".join(found)
+
+
+def test_a_huge_sphere_is_judged_not_crashed(tmp_path):
+    """A sphere too large for its volume's float: the inertia rules judge it (a non-finite
+    volume) instead of stopping with U900."""
+    from urdftool.lint.engine import load_and_check
+    from urdftool.lint.options import CheckOptions
+
+    robot = tmp_path / "huge.urdf"
+    robot.write_text(
+        '<robot name="huge"><link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+        '<collision><geometry><sphere radius="1e103"/></geometry></collision></link>'
+        '<link name="arm"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>'
+        '<joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>'
+        '</robot>')
+    codes = [finding.code for finding in load_and_check(str(robot), CheckOptions()).findings]
+    assert "U900" not in codes, codes

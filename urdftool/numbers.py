@@ -8,12 +8,27 @@ is either a number of decimals (``places``) or of significant digits (``digits``
 significant digits, ``scale`` is the size of the largest number printed beside it (the same
 vector, tensor or table column), so that a value far below that size's last printed digit is
 noise and prints ``0``.
+
+:func:`power` is the one float power of the package: Python's ``x ** n`` raises OverflowError
+where IEEE arithmetic (and numpy) gives infinity, so a robot's ``radius="1e103"`` would stop a
+rule instead of reaching the rule's own test for non-finite values.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+
+
+def power(base, exponent):
+    """``base ** exponent`` as IEEE arithmetic: an infinity of the right sign where the result
+    is too large for a float (Python raises OverflowError there), else exactly ``**``'s bits.
+    Works as ``**`` on numpy values and arrays (which never raise)."""
+    try:
+        return base ** exponent
+    except OverflowError:
+        odd = float(exponent).is_integer() and int(exponent) % 2 == 1
+        return -math.inf if odd and base < 0 else math.inf
 
 
 def number(value: float, digits: int = 4, *, places: int | None = None,

@@ -142,6 +142,32 @@ def test_polygons_fan_and_several_primitives_in_one_geometry():
         [[0, 1], [1, 2], [2, 1]]])
 
 
+def test_triangles_of_several_p_blocks_at_an_offset_are_joined_in_order():
+    # two <p> blocks of (normal, vertex) corners: the VERTEX column of both, end to end
+    primitives = ('<triangles count="2"><input semantic="NORMAL" source="#g-n" offset="0"/>'
+                  '<input semantic="VERTEX" source="#g-v" offset="1"/>'
+                  '<p>0 0 0 1 0 2</p><p>0 2 0 1 0 3</p></triangles>')
+    positions = "0 0 0  1 0 0  0 1 0  1 1 0"
+    vertices, faces = _read(_placed(positions=positions, primitives=primitives,
+                                    extra_sources=_source("g-n", "0 0 1")))
+    np.testing.assert_array_equal(vertices[faces], [
+        [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 0], [1, 0, 0], [1, 1, 0]]])
+
+
+@pytest.mark.parametrize("transform", ["", "<translate>0 0 0</translate>",
+                                       "<translate>0 0 1e-9</translate>"])
+def test_a_geometry_placed_where_it_is_keeps_its_numbers_and_zeros_turn_positive(transform):
+    """A placement at (or within 1e-8 of) the identity gives each coordinate as the product
+    with the identity gives it: itself, and +0.0 for a zero of either sign."""
+    positions = "-0 0 -0.25  1e-30 -0 0  0.1 -7.5 -0"
+    vertices, _ = _read(_dae(f'<node id="n">{transform}{PLACED}</node>',
+                             _geometry(positions=positions)))
+    expected = np.array(positions.split(), dtype=np.float32).astype(np.float64).reshape(-1, 3)
+    product = np.dot(expected, np.identity(3).T) + np.zeros(3)
+    assert vertices.tobytes() == product.tobytes()
+    assert not np.signbit(vertices[vertices == 0]).any()
+
+
 def _volume(vertices, faces) -> float:
     a, b, c = (vertices[faces[:, i]] for i in range(3))
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)

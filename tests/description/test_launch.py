@@ -411,3 +411,24 @@ def test_what_a_launch_test_is_is_decided_by_its_entry_point(tmp_path):
     assert may_be_launch_test(root / "p/launch/test_view.py", root)
     assert not may_be_launch_test(root / "p/scripts/teleop.py", root)
     assert not may_be_launch_test(root / "p/test/config.yaml", root)
+
+
+def test_a_launch_test_not_read_is_unknown_as_a_launch_file_not_read_is(tmp_path):
+    """'Could not be read' is one answer for launch files and launch tests (launch.was_read,
+    runtime.unread_naming): what one that names the robot does with it is unknown, and each is
+    named as what it is. A Python file in a test folder that is no launch test says nothing."""
+    from urdftool.description.runtime import unread_naming
+
+    broken = LAUNCH_TEST.replace("def generate_test_description():",
+                                 "def generate_test_description(:")
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/urdf/r.urdf.xacro": "<robot name='r'><link name='a'/></robot>",
+                            "p/test/position_test.py": broken,
+                            "p/test/test_unit.py": "def test_x(:\n    open('urdf/r.urdf.xacro')\n",
+                            "p/launch/view.launch.py": broken.replace(
+                                "generate_test_description", "generate_launch_description"),
+                            "p/launch/other.launch.py": broken.replace("r.urdf.xacro", "o.urdf")})
+    assert launch_tests(root) == [] and launch_index(root).configurations == []
+    assert sorted(unread_naming(str(root / "p/urdf/r.urdf.xacro"))) == [
+        f"launch file {root}/p/launch/view.launch.py (not read)",
+        f"launch test {root}/p/test/position_test.py (not read)"]

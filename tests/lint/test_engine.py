@@ -157,3 +157,51 @@ def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_pat
     failed = load_and_check(robot, CheckOptions())
     assert failed.robot is None and [f.severity for f in failed.findings] == [Severity.ERROR]
     assert "load_arm.launch:2 builds this robot without it" in failed.findings[0].message
+
+
+def test_findings_name_a_launch_test_as_a_launch_test(tmp_path):
+    """A build told by a launch test is named as one (launch.named), in U005's and U007's
+    messages alike: a launch test builds the robot for the test alone. One that cannot be read
+    is unknown: U005's 'declared nowhere' is then a note naming it."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    test = ("import xacro\n\ndef generate_test_description():\n"
+            "    doc = xacro.process_file(os.path.join(get_package_share_directory('arm'), "
+            "'urdf', '{name}'), mappings={{'model': 'm5'}})\n"
+            "    return LaunchDescription([Node(package='robot_state_publisher', "
+            "executable='robot_state_publisher', parameters=[{{'robot_description': "
+            "doc.toxml()}}])])\n")
+    files = {"arm/package.xml": "<package format='2'><name>arm</name></package>",
+             "arm/urdf/arm.urdf.xacro": '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/'
+                                        'xacro">\n  <link name="$(arg model)_base"/>\n</robot>',
+             "arm/urdf/plain.urdf": '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/'
+                                    'xacro">\n<xacro:property name="m" value="m5"/>\n'
+                                    '<link name="${m}_base"/>\n</robot>',
+             "arm/test/arm.py": test.format(name="arm.urdf.xacro"),
+             "arm/test/plain.py": test.format(name="plain.urdf")}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    [u005] = [f for f in load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"),
+                                        CheckOptions()).findings if f.code == "U005"]
+    assert f"launch test {tmp_path}/arm/test/arm.py builds it (model:=m5)" in u005.message
+    [u007] = [f for f in load_and_check(str(tmp_path / "arm/urdf/plain.urdf"),
+                                        CheckOptions()).findings if f.code == "U007"]
+    assert u007.severity == Severity.INFO and f"(launch test {tmp_path}/arm/test/plain.py)" in \
+        u007.message, u007.message
+    # declared nowhere, a near name declared: a warning, unless a launch test not read names it
+    (tmp_path / "arm/urdf/arm.urdf.xacro").write_text(
+        '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:arg name="modle" default="m1"/>\n  <link name="$(arg model)_base"/>\n</robot>')
+    (tmp_path / "arm/test/arm.py").write_text(test.format(name="other.urdf.xacro"))
+    [u005] = [f for f in load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"),
+                                        CheckOptions()).findings if f.code == "U005"]
+    assert u005.severity == Severity.WARNING, u005.message
+    (tmp_path / "arm/test/arm.py").write_text(test.format(name="arm.urdf.xacro").replace(
+        "():", "(:"))
+    [u005] = [f for f in load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"),
+                                        CheckOptions()).findings if f.code == "U005"]
+    assert u005.severity == Severity.INFO and \
+        f"(but launch test {tmp_path}/arm/test/arm.py (not read) may)" in u005.message, \
+        u005.message

@@ -162,3 +162,57 @@ def test_every_rule_comparing_names_with_the_robot_notes_them_on_a_part():
     assert naming, "the guard finds nothing: the rules no longer say names this way"
     missing = naming - ABOUT_THE_ROBOT - _JUDGED_BY_THEMSELVES
     assert not missing, f"rules comparing names with the robot's, not judged on a part: {missing}"
+
+
+# Robots whose text shows every link and joint (no macro call, no include): the walk reads
+# the text (targets._root_elsewhere), a check the expansion (parts.part); name -> (text, part?)
+_ROOTS = {
+    "hangs": ('<link name="cam"/><joint name="j" type="fixed"><parent link="front_mount"/>'
+              '<child link="cam"/></joint>', True),
+    "joints only": ('<joint name="j" type="fixed"><parent link="front_mount"/>'
+                    '<child link="cam"/></joint>', True),
+    "fixed to the world, joints only": ('<joint name="j" type="fixed"><parent link="world"/>'
+                                        '<child link="base_link"/></joint>', True),
+    "fixed to the world": ('<link name="a"/><joint name="j" type="fixed"><parent link="world"/>'
+                           '<child link="a"/></joint>', False),
+    "the world and a mount": ('<link name="a"/><link name="b"/><joint name="j" type="fixed">'
+                              '<parent link="world"/><child link="a"/></joint><joint name="k" '
+                              'type="fixed"><parent link="torso"/><child link="b"/></joint>', True),
+    "a misspelt parent": ('<link name="base"/><link name="cam"/><joint name="j" type="fixed">'
+                          '<parent link="bsae"/><child link="cam"/></joint>', False),
+    "a root of its own": ('<link name="base"/><link name="cam"/><joint name="j" type="fixed">'
+                          '<parent link="base"/><child link="cam"/></joint>', False),
+    "no joint": ('<link name="base"/>', False),
+}
+
+
+def test_the_walk_and_a_check_decide_a_root_elsewhere_alike(tmp_path):
+    """One owner (parts.rootless) for 'no root link of its own', whether the text is read (the
+    folder walk skips the file) or the expansion (a check notes what the part cannot be
+    right about): a robot with joints and no link is a part either way."""
+    from conftest import load_text
+    from urdftool.lint.parts import part
+    from urdftool.lint.targets import _root_elsewhere
+
+    decided, said = {}, {}
+    for name, (body, _) in _ROOTS.items():
+        text = f'<robot name="r">{body}</robot>'
+        walked = _root_elsewhere(text.encode(), expanded=False)
+        found = part(load_text(tmp_path, text))
+        decided[name] = (bool(walked), found is not None)
+        said[name] = (walked, found.condition if found else None)
+    assert decided == {name: (expected, expected) for name, (_, expected) in _ROOTS.items()}
+    assert all(walked == checked for walked, checked in said.values()), said
+
+
+def test_a_part_with_joints_and_no_link_notes_what_only_its_includer_writes(tmp_path):
+    """A mount's joints between links other files write (jackal's custom_example.urdf, built
+    by a macro): U106, U105 on both ends, and every name compared with the robot's are notes."""
+    robot = ('<robot name="r"><joint name="head_joint" type="revolute"><parent link="torso"/>'
+             '<child link="head"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" '
+             'velocity="1"/></joint>' + BLOCKS.split("<robot>", 1)[1])
+    findings = _blocks(tmp_path, robot)
+    loud = [f"{f.code} {f.severity.value} {f.message}" for f in findings
+            if f.severity.value != "info"]
+    assert not loud, loud
+    assert {"U105", "U106", "U611"} <= {f.code for f in findings}

@@ -258,3 +258,78 @@ def test_the_members_of_a_rigid_body_cost_each_a_constant(tmp_path, monkeypatch)
         assert rigid_bounds(robot, link).bounds is not None
         assert link_reach(robot, link, rigid=True).pieces
     assert len(calls) < 3 * 300
+
+
+def _bits(box) -> tuple:
+    """A box's numbers as their bytes (-0.0 and 0.0 differ, a nan equals itself)."""
+    import struct
+
+    return tuple(struct.pack("<d", v) for corner in box for v in corner)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_plain_links_measured_at_once_are_the_per_link_boxes_to_the_bit(tmp_path, monkeypatch,
+                                                                        seed):
+    """Every row of plain_links is rigid_bounds' box of the link, byte for byte, over random
+    robots with zeros of either sign, subnormal, huge and non-finite numbers; and each plain
+    link whose own box is finite has a row (the per-link path is not left doing the work)."""
+    from plain_robots import plain_robot
+    from urdftool.physics import solids
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    text = plain_robot(seed)
+    table = solids.plain_links(_robot(tmp_path, text))
+    robot = _robot(tmp_path, text)  # another load: the per-link path measures afresh
+    assert len(table.rows) > 20
+    for name, link in robot.links.items():
+        found = solids._link_shapes(robot, link)
+        plain = name not in solids._fixed_neighbours(robot) and all(
+            len(found[tag][0]) == found[tag][1] for tag in ("visual", "collision")) and \
+            found["visual"][0] + found["collision"][0] and \
+            all(s.kind != "mesh" for s in found["visual"][0] + found["collision"][0])
+        if name not in table.rows:
+            assert not plain or solids._placed_corners(robot, link)[1] is None, name
+            continue
+        assert plain, name
+        row = table.rows[name]
+        rigid = rigid_bounds(robot, link)
+        assert rigid.links == [name] and rigid.complete
+        assert _bits((tuple(table.low[row].tolist()), tuple(table.high[row].tolist()))) == \
+            _bits(rigid.bounds), name
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_plain_links_inside_is_what_the_pieces_hold(tmp_path, monkeypatch, seed):
+    """PlainLinks.inside says a point is inside only when a piece of the link's reach holds it
+    (Piece.holds, the per-link path), and for links without cylinders exactly when."""
+    import random
+
+    from plain_robots import plain_robot
+    from urdftool.physics import solids
+    from urdftool.physics.support import link_reach
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    robot = _robot(tmp_path, plain_robot(seed))
+    table = solids.plain_links(robot)
+    rng = random.Random(seed)
+    names, points = [], []
+    for name in table.rows:
+        for piece in link_reach(robot, robot.links[name]).pieces:  # points about each piece
+            for _ in range(3):
+                names.append(name)
+                points.append(tuple(c + rng.choice([0.0, 1.0, -1.0, 0.5]) * s * rng.random()
+                                    for c, s in zip(piece.centre, piece.size * 3)))
+            for axis in range(3):  # on the faces of an unturned box, to the bit
+                names.append(name)
+                points.append(tuple(c + (piece.size[0] if i == axis else 0.0)
+                                    for i, c in enumerate(piece.centre)))
+    inside = table.inside(names, points).tolist()
+    decided = 0
+    for name, point, found in zip(names, points, inside):
+        pieces = link_reach(robot, robot.links[name]).pieces
+        held = any(piece.holds(point) for piece in pieces)
+        assert held or not found, (name, point)
+        if all(piece.kind != "cylinder" for piece in pieces):
+            assert found == held, (name, point)
+        decided += found
+    assert decided > 20

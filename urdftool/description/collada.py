@@ -76,11 +76,13 @@ def tag(element) -> str:
 
 
 def _children(element, name: str) -> list:
-    return [child for child in element if tag(child) == name]
+    """The child elements named ``name`` in any namespace or none (lxml's "{*}" filter, in C:
+    each ``.tag`` read in Python builds a string)."""
+    return list(element.iterchildren("{*}" + name))
 
 
 def _child(element, name: str):
-    return next((child for child in element if tag(child) == name), None)
+    return next(element.iterchildren("{*}" + name), None)
 
 
 def _numbers(element, dtype, what: str):
@@ -95,8 +97,8 @@ def _numbers(element, dtype, what: str):
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # numpy warns, and stops, at text that is no number
         try:
-            return np.fromstring(text, dtype=dtype, sep=" ") if text.strip() else \
-                np.zeros(0, dtype=dtype)
+            return np.fromstring(text, dtype=dtype, sep=" ") if text and not text.isspace() \
+                else np.zeros(0, dtype=dtype)
         except (ValueError, DeprecationWarning, RuntimeWarning, OverflowError):
             raise _corrupt(f"{what} (line {element.sourceline}) holds text that is not a "
                            f"list of {'integers' if dtype == 'int64' else 'numbers'}") from None
@@ -104,7 +106,6 @@ def _numbers(element, dtype, what: str):
 
 _LOADTXT_FROM = 4096  # [characters]: in shorter texts, loadtxt's set-up costs more than it saves
 _NOT_NUMBERS = b"0123456789.eE+- \t\n\r\x0b\x0c"  # what a plain list of numbers is made of
-_LINE_ENDS = str.maketrans("\r\n", "  ")
 
 
 def plain_floats(text: str):
@@ -115,13 +116,13 @@ def plain_floats(text: str):
     parses each word whole with the function fromstring parses it with (Python's
     ``PyOS_string_to_double``), in half the time; on these characters both split words alike."""
     if len(text) < _LOADTXT_FROM or not text.isascii() or \
-            text.encode("ascii").translate(None, _NOT_NUMBERS) or not text.strip():
+            text.encode("ascii").translate(None, _NOT_NUMBERS) or text.isspace():
         return None
     import numpy as np
 
     try:
-        return np.loadtxt([text.translate(_LINE_ENDS)], dtype=np.float64, comments=None,
-                          ndmin=1).reshape(-1)
+        return np.loadtxt([text.replace("\r", " ").replace("\n", " ")], dtype=np.float64,
+                          comments=None, ndmin=1).reshape(-1)
     except ValueError:  # a word that is no number: fromstring says how far it reads
         return None
 
@@ -136,6 +137,16 @@ def _floats32(element, what: str, count: int | None = None):
                        f"expected {count}")
     with np.errstate(over="ignore"):
         return values.astype(np.float32)
+
+
+def _joined(indices: list):
+    """The index arrays of a primitive's ``<p>`` elements end to end: a new array (the one
+    array itself when there is one: each is read for this primitive alone)."""
+    import numpy as np
+
+    if len(indices) == 1:
+        return indices[0]
+    return np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
 
 
 def _int_attribute(element, name: str, default: int | None = None) -> int:
@@ -318,7 +329,7 @@ class _Document:
                 raise _corrupt(f"<{kind}> (line {line}) has {len(index)} indices in <p>, not a "
                                f"multiple of its {stride} inputs")
         if kind == "triangles":
-            corners = np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
+            corners = _joined(indices)
             counts = None
             if len(corners) % (3 * stride):
                 raise _corrupt(f"<triangles> (line {line}) has {len(corners)} indices, not "
@@ -335,7 +346,7 @@ class _Document:
                                f"corners, <p> holds {len(corners) // stride}")
         else:
             counts = np.array([len(index) // stride for index in indices], dtype=np.int64)
-            corners = np.concatenate(indices) if indices else np.zeros(0, dtype=np.int64)
+            corners = _joined(indices)
         triangles = len(corners) // (3 * stride) if counts is None else \
             int(np.maximum(counts - 2, 0).sum())
         declared = primitive.get("count")
@@ -346,7 +357,8 @@ class _Document:
         if before + triangles > self.max_triangles:
             raise ColladaProblem("too-large", f"a geometry has over {self.max_triangles} "
                                               "triangles")
-        corners = corners.reshape(-1, stride)[:, offset]
+        if stride > 1:  # one contiguous copy of the VERTEX column, read several times below
+            corners = np.ascontiguousarray(corners.reshape(-1, stride)[:, offset])
         if counts is not None and len(counts) and counts.min() == counts.max() == 3:
             counts = None  # triangles only: each its own fan
         if counts is not None:  # fans: (first, j, j + 1) for each polygon of k >= 3 corners
@@ -364,8 +376,8 @@ class _Document:
                            f"number {len(positions)}")
         used = np.zeros(len(positions), dtype=bool)
         used[corners] = True
-        if used.all():  # the common case: no renumbering
-            kept, corners = positions.astype(np.float64), np.array(corners, dtype=np.int64)
+        if used.all():  # the common case: no renumbering (corners is this primitive's own)
+            kept = positions.astype(np.float64)
         else:
             kept, corners = positions[used].astype(np.float64), (np.cumsum(used) - 1)[corners]
         if not np.all(np.isfinite(kept)):
@@ -448,11 +460,16 @@ def read_collada(data: bytes, *, max_triangles: int):
     except RecursionError:
         raise ColladaProblem("too-large", "the scene nests nodes too deep") from None
     vertices, faces, count = [], [], 0
+    identity = np.identity(4)
     for matrix, geometry in placed:
         flips = np.linalg.det(matrix[:3, :3]) < 0
+        # placed where it is (the common case): the product below gives each finite
+        # coordinate itself, and +0.0 for a zero of either sign, as adding +0.0 does
+        kept = np.array_equal(matrix, identity)
         for positions, triangles in document.geometry(geometry):
             with np.errstate(over="ignore", invalid="ignore"):
-                moved = np.dot(positions, matrix[:3, :3].T) + matrix[:3, 3]
+                moved = positions + 0.0 if kept else \
+                    np.dot(positions, matrix[:3, :3].T) + matrix[:3, 3]
             vertices.append(moved)
             faces.append((triangles[:, ::-1] if flips else triangles) + count)
             count += len(positions)

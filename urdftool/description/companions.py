@@ -59,6 +59,7 @@ from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside, kind_of, listing, real_path
+from urdftool.description.launch import named as launch_named
 from urdftool.description.packages import containment_root
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -126,7 +127,7 @@ def _discover(robot) -> Companions:
     elif launched_srdf:
         path, configuration, _ = launched_srdf[0]
         found.srdf = read_srdf(path)
-        found.used[path] = f"given to MoveIt by {configuration.display}"
+        found.used[path] = f"given to MoveIt by {configuration.named}"
     else:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
@@ -360,7 +361,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
             continue
         seen.add(real_path(path))
         files.append(parsed)
-        launches = sorted({load.launch for load in facts.loads(path)})
+        launches = sorted({launch_named(load.launch) for load in facts.loads(path)})
         found.used[path] = f"loaded by {', '.join(launches[:3])}"
     chosen = named or ([f for f in files if f.path not in named] if loaded else [])
     # A launch file loading a file urdftool cannot resolve may load any of those found

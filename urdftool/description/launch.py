@@ -281,6 +281,28 @@ class LaunchFile:
     def ros(self) -> int:
         return 1 if self.form == "ros1" else 2
 
+    @property
+    def named(self) -> str:
+        """What it is and where, as a finding names it (:func:`named`)."""
+        return named(self.display, self.test)
+
+
+def named(display: str, test: bool = False, read: bool = True) -> str:
+    """A source of launch evidence as a finding names it: what it is, then where ("launch
+    file launch/robot.launch.py", "launch test test/robot.py"), and "(not read)" when it could
+    not be read (:func:`was_read`). The one describing function: a launch test shows how a
+    robot file is built, never what a deployment starts, so a reader must be told which of the
+    two said it."""
+    return f"{'launch test' if test else 'launch file'} {display}" + ("" if read else " (not read)")
+
+
+def was_read(launch: LaunchFile | None) -> bool:
+    """Whether reading a launch file or launch test told what it does: parsed (or read in
+    part, with actions). The one test of "could not be read" for every reader of launch files
+    and tests: what one that was not read does is unknown
+    (:func:`urdftool.description.runtime.unread_naming`), never nothing."""
+    return launch is not None and (launch.problem is None or bool(launch.actions))
+
 
 def is_launch_file(path: Path, root: Path) -> bool:
     """A launch file by its name: ``*.launch``, ``*.launch.xml|py|yaml``, or a ``.py``,
@@ -534,4 +556,4 @@ def _yaml_entries(entries, when: tuple, launch: LaunchFile, depth: int) -> None:
 
 
 __all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Start",
-           "Value", "concat", "is_launch_file", "literal", "read_launch_text", "substituted", "unknown"]
+           "Value", "concat", "is_launch_file", "literal", "named", "read_launch_text", "substituted", "unknown", "was_read"]

@@ -34,7 +34,7 @@ from urdftool.description.files import inside, kind_of, listing, real_path
 from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition,
                                          Description, Include, LaunchFile, ParamFile, Start, Value,
                                          is_launch_file, is_launch_test, may_be_launch_test,
-                                         read_launch_text)
+                                         read_launch_text, was_read)
 from urdftool.description.launch_python import Room, read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
@@ -357,6 +357,11 @@ class Configuration:
     def display(self) -> str:
         return self.top.display
 
+    @property
+    def named(self) -> str:
+        """The launch file run, as a finding names it (:func:`~urdftool.description.launch.named`)."""
+        return self.top.named
+
 
 @dataclass
 class LaunchIndex:
@@ -421,7 +426,7 @@ def launch_index(root: Path) -> LaunchIndex:
     files = {}
     for path in paths:
         launch = read_launch(path, room=reading_room(root))
-        if launch is not None and (launch.problem is None or launch.actions):
+        if was_read(launch):
             files[_key(path)] = launch
     packages = packages_below(root)
     index = LaunchIndex(root, files, [], truncated)
@@ -448,7 +453,7 @@ def launch_tests(root: Path) -> list[Configuration]:
         if _key(path) in index.files or is_launch_file(path, root):
             continue
         launch = read_launch(path, only_test=True, room=reading_room(root))
-        if launch is not None and (launch.problem is None or launch.actions):
+        if was_read(launch):  # one not read: runtime.unread_naming
             tests.append(launch)
     return [_expand_top(index, launch, packages) for launch in tests]
 

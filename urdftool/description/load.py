@@ -151,26 +151,30 @@ def _read(path: str, shown: str, limit: int) -> bytes:
 
 
 def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
-    """A ``.urdf`` holding xacro: a xacro robot when every launch file that loads it runs
-    xacro on it (:func:`~urdftool.description.runtime.builds`: what its consumers read, and a
-    xacro error is theirs), with a note; else expanded when xacro can, read as plain URDF when
-    not, with the loader's error note."""
+    """A ``.urdf`` holding xacro: a xacro robot when every launch file and launch test that
+    loads it runs xacro on it (:func:`~urdftool.description.runtime.builds`: what its
+    consumers read, and a xacro error is theirs), with a note (a warning when one that names it
+    could not be read: :func:`~urdftool.description.runtime.unread_naming`); else expanded when
+    xacro can, read as plain URDF when not, with the loader's error note."""
     from urdftool.description.runtime import builds, unread_naming
 
     where = plain.locate(first)
     named = f"named {Path(plain.path).suffix or 'without .xacro'}"
     loads = builds(plain.path)
-    through = list(dict.fromkeys(b.launch for b in loads if b.xacro))
-    as_is = list(dict.fromkeys(b.launch for b in loads if not b.xacro))
-    if through and not as_is:
-        as_is = unread_naming(plain.path)  # what a launch file not read does with it is unknown
+    through = list(dict.fromkeys(b.named for b in loads if b.xacro))
+    as_is = list(dict.fromkeys(b.named for b in loads if not b.xacro))
+    # what a launch file or test that could not be read does with it is unknown
+    unread = unread_naming(plain.path) if through and not as_is else []
     if through and not as_is:
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env, limit)
+        every = f"every launch file and launch test {'read ' if unread else ''}that loads it"
+        tail = (f"; {_listed(unread)} may read it as it is: rename it .urdf.xacro" if unread
+                else "; a tool given the file itself (check_urdf, Gazebo, MuJoCo) reads it "
+                     "unexpanded: a name ending .xacro says which it is")
         return robot, LoadNote("xacro-in-urdf", where, (
-            f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); every launch "
-            f"file that loads it runs xacro on it ({_listed(through)}), so it is checked as "
-            "xacro; a tool given the file itself (check_urdf, Gazebo, MuJoCo) reads it "
-            "unexpanded: a name ending .xacro says which it is"), severity=Severity.INFO)
+            f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); {every} "
+            f"runs xacro on it ({_listed(through)}), so it is checked as xacro{tail}"),
+            severity=Severity.WARNING if unread else Severity.INFO)
     read_by = f"; {_listed(as_is)} may read it as it is" if as_is else ""
     try:
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,

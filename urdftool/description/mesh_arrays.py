@@ -26,6 +26,7 @@ import math
 from pathlib import Path
 
 from urdftool.description.inputs import MAX_TRIANGLES
+from urdftool.numbers import power
 
 _HEADER = 84  # [bytes]: 80 of text, the triangle count
 _RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
@@ -77,9 +78,14 @@ def _stl_binary(data: bytes):
     count = _count(data)
     if count <= 0 or len(data) != _HEADER + _RECORD * count:
         return None
-    records = np.frombuffer(data, dtype=np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)),
-                                                  ("attribute", "<u2")]), offset=_HEADER)
-    return records["vertices"].reshape(-1, 3).astype(np.float64)
+    # the corners are read in one copy, straight to float64 (the normals and attributes are
+    # skipped by the record's layout); the (count, 3, 3) array is contiguous, so it is
+    # reshaped without another copy
+    return np.frombuffer(data, dtype=_STL_RECORD, offset=_HEADER)["vertices"].astype(
+        np.float64).reshape(-1, 3)
+
+
+_STL_RECORD = [("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")]
 
 
 def _stl_ascii(data: bytes):
@@ -214,8 +220,8 @@ def _row_floats(chars, starts, ends):
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # fromstring warns, and stops, at a word
             try:
-                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text.strip() \
-                    else np.zeros(0)
+                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text and \
+                    not text.isspace() else np.zeros(0)
             except (ValueError, DeprecationWarning):
                 return None
     return numbers
@@ -327,7 +333,9 @@ def _merges_earlier(vertices, column, row: int) -> bool:
     import numpy as np
 
     value = column[row]
-    near = np.flatnonzero(np.abs(column[:row] - value) <= 1e-7 + 1e-12 * abs(value))
+    near = column[:row] - value  # one array, made and reused in place
+    np.abs(near, out=near)
+    near = np.flatnonzero(near <= 1e-7 + 1e-12 * abs(value))
     if not len(near):
         return False
     return bool((_merge_keys(vertices[near]) == _merge_keys(vertices[row:row + 1])).all(
@@ -344,14 +352,14 @@ def _unique_rows(keys):
     count = len(keys)
     if not count:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    bits = np.uint64(max(int(count - 1).bit_length(), 1))
+    bits = max(int(count - 1).bit_length(), 1)
+    low = np.uint64((1 << bits) - 1)  # the row's index; the hash's top bits above it
     packed = _row_hash(keys)
-    packed >>= bits
-    packed <<= bits
+    packed &= ~low
     packed |= np.arange(count, dtype=np.uint64)
     packed.sort()
-    index = (packed & np.uint64((1 << int(bits)) - 1)).astype(np.int64)
-    packed >>= bits
+    index = (packed & low).view(np.int64)  # below 2 ** 63: the same numbers
+    packed >>= np.uint64(bits)
     new = np.empty(count, dtype=bool)
     new[0] = True
     np.not_equal(packed[1:], packed[:-1], out=new[1:])
@@ -366,13 +374,12 @@ def _unique_rows(keys):
         rank = np.empty(len(order), dtype=np.int64)
         rank[order] = np.arange(len(order))
         return starts[order], rank[inverse.ravel()]
-    group = np.cumsum(new) - 1  # of each sorted row
-    starts = index[new]  # the first row of each group
+    starts = index[new]  # the first row of each group (sorted by index within it)
     first = np.zeros(count, dtype=bool)
     first[starts] = True
     rank = np.cumsum(first) - 1  # a first row's place among the first rows
-    inverse = np.empty(count, dtype=np.int64)
-    inverse[index] = rank[starts][group]
+    inverse = np.empty(count, dtype=np.int64)  # each group's rank, repeated over its rows
+    inverse[index] = np.repeat(rank[starts], np.diff(np.flatnonzero(np.append(new, True))))
     return np.flatnonzero(first), inverse
 
 
@@ -493,7 +500,7 @@ def convex_hull(vertices):
     valid = norms > float(np.finfo(np.float64).resolution * 100)
     faces, crosses, norms = faces[valid], crosses[valid], norms[valid]
     centers = points[faces].mean(axis=1)
-    areas = np.sqrt((crosses ** 2).sum(axis=1)) / 2.0
+    areas = np.sqrt((power(crosses, 2)).sum(axis=1)) / 2.0
     try:
         centroid = np.average(centers, weights=areas, axis=0)
     except ZeroDivisionError:
@@ -620,7 +627,7 @@ def _small_hull_volume(points: list) -> float:
     size = max(max(abs(v) for v in minus(p, points[0])) for p in points)
     if not size > 0:
         return 0.0
-    margin = 1e-9 * size ** 3  # of a height: an area (size^2) times a length
+    margin = 1e-9 * power(size, 3)  # of a height: an area (size^2) times a length
     a = 0
     b = max(range(len(points)), key=lambda i: dot(minus(points[i], points[a]),
                                                   minus(points[i], points[a])))
@@ -660,7 +667,7 @@ def mass_properties(vertices, faces) -> dict:
     columns = np.ascontiguousarray(np.asarray(vertices, dtype=np.float64).T)
     t0, t1, t2 = (np.take(columns, faces[:, corner], axis=1) for corner in range(3))
     # powers per vertex, not per corner: the same numbers, a quarter of the (slow) pow calls
-    squares, cubes = columns ** 2, columns ** 3
+    squares, cubes = power(columns, 2), power(columns, 3)
     s0, s1, c0, c1 = (np.take(power, faces[:, corner], axis=1)
                       for power in (squares, cubes) for corner in (0, 1))
     a, b = t1 - t0, t2 - t1
@@ -668,28 +675,43 @@ def mass_properties(vertices, faces) -> dict:
     crosses[0] = a[1] * b[2] - a[2] * b[1]
     crosses[1] = a[2] * b[0] - a[0] * b[2]
     crosses[2] = a[0] * b[1] - a[1] * b[0]
-    f1 = t0 + t1 + t2
-    f2 = s0 + s1 + t0 * t1 + t2 * f1  # t0 ** 2 + t1 ** 2 + ...
-    f3 = c0 + s0 * t1 + t0 * s1 + c1 + t2 * f2  # t0 ** 3 + (t0 ** 2) * t1 + ...
-    g0 = f2 + (t0 + f1) * t0
-    g1 = f2 + (t1 + f1) * t1
-    g2 = f2 + (t2 + f1) * t2
+    # each sum and product below is trimesh's, in its order, written into arrays made once
+    # (a large mesh's temporaries cost more to allocate than to fill)
+    f1 = t0 + t1
+    f1 += t2  # t0 + t1 + t2
+    work = t0 * t1
+    f2 = s0 + s1
+    f2 += work
+    f2 += np.multiply(t2, f1, out=work)  # s0 + s1 + t0 * t1 + t2 * f1
+    f3 = s0 * t1
+    f3 += c0
+    f3 += np.multiply(t0, s1, out=work)
+    f3 += c1
+    f3 += np.multiply(t2, f2, out=work)  # c0 + s0 * t1 + t0 * s1 + c1 + t2 * f2
+    g0, g1, g2 = (np.add(t, f1, out=s) for t, s in ((t0, s0), (t1, s1), (t2, c0)))
+    for g, t in ((g0, t0), (g1, t1), (g2, t2)):
+        g *= t
+        g += f2  # f2 + (t + f1) * t
     integral = np.empty((10, t0.shape[1]))
-    integral[0] = crosses[0] * f1[0]
-    integral[1:4] = crosses * f2
-    integral[4:7] = crosses * f3
+    np.multiply(crosses[0], f1[0], out=integral[0])
+    np.multiply(crosses, f2, out=integral[1:4])
+    np.multiply(crosses, f3, out=integral[4:7])
+    row, term = c1[0], work[0]  # spare rows
     for i in range(3):
         j = (i + 1) % 3
-        integral[i + 7] = crosses[i] * (t0[j] * g0[i] + t1[j] * g1[i] + t2[j] * g2[i])
+        np.multiply(t0[j], g0[i], out=row)
+        row += np.multiply(t1[j], g1[i], out=term)
+        row += np.multiply(t2[j], g2[i], out=term)
+        np.multiply(crosses[i], row, out=integral[i + 7])
     integrated = integral.sum(axis=1) / np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120],
                                                  dtype=np.float64)
     volume = integrated[0]
     with np.errstate(divide="ignore", invalid="ignore"):
         center = integrated[1:4] / volume
     inertia = np.zeros((3, 3))
-    inertia[0, 0] = integrated[5] + integrated[6] - volume * (center[[1, 2]] ** 2).sum()
-    inertia[1, 1] = integrated[4] + integrated[6] - volume * (center[[0, 2]] ** 2).sum()
-    inertia[2, 2] = integrated[4] + integrated[5] - volume * (center[[0, 1]] ** 2).sum()
+    inertia[0, 0] = integrated[5] + integrated[6] - volume * (power(center[[1, 2]], 2)).sum()
+    inertia[1, 1] = integrated[4] + integrated[6] - volume * (power(center[[0, 2]], 2)).sum()
+    inertia[2, 2] = integrated[4] + integrated[5] - volume * (power(center[[0, 1]], 2)).sum()
     inertia[0, 1] = -(integrated[7] - volume * np.prod(center[[0, 1]]))
     inertia[1, 2] = -(integrated[8] - volume * np.prod(center[[1, 2]]))
     inertia[0, 2] = -(integrated[9] - volume * np.prod(center[[0, 2]]))

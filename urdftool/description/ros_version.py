@@ -87,7 +87,7 @@ def _versions(robot) -> Versions:
         if version:
             evidence.append(Evidence(version, f"the URDF loads {library}", "plugin"))
     for configuration in runtime(robot).described:
-        evidence.append(Evidence(configuration.top.ros, f"{configuration.display} launches it",
+        evidence.append(Evidence(configuration.top.ros, f"{configuration.named} launches it",
                                  "launch"))
     evidence = list(dict.fromkeys(evidence))
     return Versions(frozenset(e.version for e in evidence), tuple(evidence))

@@ -27,11 +27,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.files import enclosing_root, read_regular, real_path
-from urdftool.description.launch import MAX_LAUNCH_SIZE
+from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
 from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
                                                  Started, launch_files, launch_index, launch_tests,
                                                  shown)
 from urdftool.description.packages import packages_below
+from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -58,7 +59,7 @@ class Spawn:
 
     def told(self) -> str:
         """Which launch file starts it, and when."""
-        return f"{self.configuration.display} starts it" + (f" {self.condition}" if self.condition else "")
+        return f"{self.configuration.named} starts it" + (f" {self.condition}" if self.condition else "")
 
 
 @dataclass
@@ -116,7 +117,7 @@ class Runtime:
                 parts.append("starts controllers " + ", ".join(
                     dict.fromkeys(s.name + ("" if s.active else " (inactive)")
                                   + (f" ({s.condition})" if s.condition else "") for s in spawned)))
-            lines.append(f"launch {configuration.display}: " + "; ".join(parts))
+            lines.append(f"{configuration.named}: " + "; ".join(parts))
         return lines
 
 
@@ -313,6 +314,7 @@ class Build:
     chosen: a launch argument chooses the file (``talos_$(arg robot).urdf.xacro``), and its
         default names another
     condition: when the description is made, in words; "" when unconditionally
+    test: ``launch`` is a launch test (it builds the file for the test alone)
     """
 
     launch: str
@@ -324,6 +326,19 @@ class Build:
     complete: bool
     chosen: bool
     condition: str
+    test: bool = False
+
+    @property
+    def named(self) -> str:
+        """The launch file or test run, as a finding names it."""
+        return named(self.launch, self.test)
+
+    def named_at(self) -> str:
+        """Where it builds the robot, as a finding names it: the file and line, and the launch
+        file run when an include of it holds the description."""
+        at = f"{self.written}:{self.line or '?'}"
+        return named(at, self.test) if self.written == self.launch else \
+            f"{named(at)} (run by {self.named})"
 
     @property
     def certain(self) -> bool:
@@ -365,7 +380,7 @@ def builds(path: str) -> list[Build]:
                 words = ["under a condition urdftool cannot tell"]
             found.append(Build(configuration.display, described.launch, described.line,
                                described.xacro, texts, free, described.complete, chosen,
-                               " and ".join(dict.fromkeys(words))))
+                               " and ".join(dict.fromkeys(words)), configuration.top.test))
     return found
 
 
@@ -378,22 +393,41 @@ def _file_root(path: str) -> tuple[Path | None, Path | None]:
     return absolute, _launch_root(absolute.parent)
 
 
-def unread_naming(path: str) -> list[str]:
-    """The launch files of the repository holding ``path`` that could not be read (not
-    well-formed, a merge conflict left in) and name its file: what they do with it is not known."""
+def unread_naming(path: str, words: tuple[str, ...] = (), tests: bool = True) -> list[str]:
+    """The launch files (and, with ``tests``, launch tests) of the repository holding ``path``
+    that could not be read (not well-formed, not valid Python, a merge conflict left in, over
+    the reading budget: :func:`~urdftool.description.launch.was_read`) and whose text names its
+    file (or any of ``words``), as findings name them: what they do with it is not known. The
+    one answer to "could not read" for every question the launch files answer: a rule that
+    finds no build of a kind (:func:`builds`, tests included), or a controller started nowhere
+    (:func:`runs`, launch files only), asks here before it says there is none. A Python file
+    placed or named as a test counts when its text defines the launch test's entry point."""
     absolute, root = _file_root(path)
     if root is None:
         return []
-    index, name, found = launch_index(root), absolute.name.encode(), []
-    for launch in launch_files(root)[0]:
-        if real_path(launch) in index.files:
+    names = [word.encode() for word in words] or [absolute.name.encode()]
+    return [named(display_path(launch), test, read=False) for launch, data, test in
+            _not_read(root, tests) if any(name in data for name in names)]
+
+
+@per_run
+def _not_read(root: Path, tests: bool) -> tuple[tuple[Path, bytes, bool], ...]:
+    """(path, text, whether it is a launch test) of each launch file (and, with ``tests``,
+    each launch test) of the repository ``root`` that was not read (:func:`unread_naming`)."""
+    read = set(launch_index(root).files) | (
+        {real_path(c.top.path) for c in launch_tests(root)} if tests else set())
+    found = []
+    for launch in launch_files(root, tests=tests)[0]:
+        if real_path(launch) in read:
             continue
         try:
-            if name in read_regular(launch, MAX_LAUNCH_SIZE, as_="launch"):
-                found.append(display_path(launch))
+            data = read_regular(launch, MAX_LAUNCH_SIZE, as_="launch")
         except OSError:
             continue
-    return found
+        test = is_launch_test(data.decode("utf-8", "replace"))
+        if (test and tests) or (not test and is_launch_file(launch, root)):
+            found.append((launch, data, test))
+    return tuple(found)
 
 
 def _template_matches(template: str | None, path: Path, packages: dict) -> bool:
@@ -473,16 +507,26 @@ def runs(robot, controller, parameter_files=()) -> Runs:
             return Runs("unknown")
         unread = [c for c, _ in facts.unread_spawners if c in loading]
         if unread:
-            return Runs("conditional", f"{unread[0].display} starts controllers named by values "
+            return Runs("conditional", f"{unread[0].named} starts controllers named by values "
                                        "urdftool cannot read", ())
-        return Runs("never", f"no launch file of the robot starts it ({loading[0].display} loads "
+        if (unknown := _unread_starting(robot, short)):
+            return unknown
+        return Runs("never", f"no launch file of the robot starts it ({loading[0].named} loads "
                              f"{display_path(controller.file.path)})")
     active = [s for s in relevant if s.active]
     if any(s.certain for s in active):
         return Runs("certain", "", tuple(relevant))
     if not active:
-        return Runs("never", f"{relevant[0].configuration.display} loads it inactive", tuple(relevant))
+        return _unread_starting(robot, short) or Runs(
+            "never", f"{relevant[0].configuration.named} loads it inactive", tuple(relevant))
     return Runs("conditional", active[0].told(), tuple(relevant))
+
+
+def _unread_starting(robot, short: str) -> Runs | None:
+    """A launch file of the robot that could not be read and names controller ``short`` may
+    start it: "never" is then not known (:func:`unread_naming`)."""
+    unread = unread_naming(robot.path, (short,), tests=False) if robot.path != "-" else []
+    return Runs("conditional", f"{unread[0]} may start it", ()) if unread else None
 
 
 def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
@@ -501,10 +545,10 @@ def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
             if a.configuration is not b.configuration or not (a.active and b.active):
                 continue
             if a.certain and b.certain:
-                return "certain", a.configuration.display
+                return "certain", a.configuration.named
             if best is None:
                 words = [c for c in (a.condition, b.condition) if c]
-                best = ("conditional", f"{a.configuration.display} starts both "
+                best = ("conditional", f"{a.configuration.named} starts both "
                         + " and ".join(dict.fromkeys(words)))
     if best is not None:
         return best
@@ -547,12 +591,12 @@ def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
         spawns = [s for s in facts.spawns if s.configuration is configuration and s.certain]
         certain = relation == "as checked" and all(x.when.certain for x in [*lists, *group])
         if certain and spawns and not others:
-            return "ros_control", configuration.display
+            return "ros_control", configuration.named
         if others:
             served.append((configuration, others[0]))
     if starting and len(served) == len(starting):
         configuration, node = served[0]
-        return "other", f"{configuration.display} starts {node.package}/{node.executable} with it"
+        return "other", f"{configuration.named} starts {node.package}/{node.executable} with it"
     return "unknown", ""
 
 
@@ -580,9 +624,9 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
         return "unknown", ""
     certain = [c for c, relation in loads if relation == "as checked"]
     if certain:
-        return "certain", f"{certain[0].display} gives MoveIt this SRDF with the robot as checked"
+        return "certain", f"{certain[0].named} gives MoveIt this SRDF with the robot as checked"
     configuration, relation = loads[0]
-    return "conditional", f"{configuration.display} gives MoveIt this SRDF with the robot {relation}"
+    return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
 
 
 def state_publishers(robot) -> list[tuple[Configuration, Started]]:

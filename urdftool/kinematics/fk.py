@@ -28,6 +28,7 @@ from urdftool.kinematics import transforms
 from urdftool.kinematics.tree import children_by_link, root_link
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
+from urdftool.numbers import power
 
 FLOATING_ROOT = "root_joint"
 # [links] up to which Pinocchio's model is built with each KinematicModel, for urdfdom's verdict
@@ -397,7 +398,7 @@ def _axis(element) -> np.ndarray:
         raise FKError(f"joint '{element.get('name')}': <axis xyz> '{axis_element.get('xyz')}' has "
                       "no direction; give a unit vector such as '0 0 1'", element)
     for unit in np.eye(3):  # Pinocchio's joint about x, y or z: Eigen's isApprox (1e-12)
-        if np.sum((axis - unit) ** 2) <= 1e-24 * min(length * length, 1.0):
+        if np.sum(power(axis - unit, 2)) <= 1e-24 * min(length * length, 1.0):
             return unit
     return axis / length
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urdftool.numbers import number
+from urdftool.numbers import number, power
 from urdftool.errors import ConfigError, available
 from urdftool.kinematics.chain import Chain, frame_jacobian
 
@@ -503,7 +503,7 @@ def closed_form(chain: Chain, target: Target, start: np.ndarray,
 
     def rank(x):
         _, position, rotation = residuals(chain, x, target)
-        return (position > tolerance or rotation > tolerance, float(np.sum((x - start) ** 2)))
+        return (position > tolerance or rotation > tolerance, float(np.sum(power(x - start, 2))))
 
     return _solution(chain, target, min(inside, key=rank), 0, 1, "closed form", tolerance)
 
@@ -535,7 +535,7 @@ def _planar_branches(chain: Chain, target: Target) -> list[np.ndarray] | None:
     r1, r2 = abs(first), abs(second)
     if r1 < 1e-12 or r2 < 1e-12:
         return None
-    cosine = (abs(wanted) ** 2 - r1 * r1 - r2 * r2) / (2 * r1 * r2)
+    cosine = (power(abs(wanted), 2) - r1 * r1 - r2 * r2) / (2 * r1 * r2)
     beta = math.acos(max(-1.0, min(1.0, cosine)))
     alpha1 = math.atan2(first.imag, first.real)
     alpha2 = math.atan2(second.imag, second.real) - alpha1
@@ -589,7 +589,7 @@ def _subproblem2(axis1, axis2, point, p, q) -> list[tuple[float, float]]:
     alpha = (c * (axis2 @ u) - axis1 @ v) / (c * c - 1)
     beta = (c * (axis1 @ v) - axis2 @ u) / (c * c - 1)
     normal = np.cross(axis1, axis2)
-    gamma2 = (u @ u - alpha ** 2 - beta ** 2 - 2 * alpha * beta * c) / (normal @ normal)
+    gamma2 = (u @ u - power(alpha, 2) - power(beta, 2) - 2 * alpha * beta * c) / (normal @ normal)
     if gamma2 < -1e-12:
         return []
     pairs = []
@@ -602,11 +602,11 @@ def _subproblem2(axis1, axis2, point, p, q) -> list[tuple[float, float]]:
 def _subproblem3(axis, point, p, q, distance) -> list[float]:
     """The angles about the line that put ``p`` at ``distance`` from ``q`` (Paden-Kahan 3)."""
     u, v = _flat(axis, p - point), _flat(axis, q - point)
-    flat2 = distance ** 2 - (axis @ (p - q)) ** 2
+    flat2 = power(distance, 2) - power(axis @ (p - q), 2)
     nu, nv = np.linalg.norm(u), np.linalg.norm(v)
     if nu < 1e-12 or nv < 1e-12:
         return []
-    cosine = (nu ** 2 + nv ** 2 - flat2) / (2 * nu * nv)
+    cosine = (power(nu, 2) + power(nv, 2) - flat2) / (2 * nu * nv)
     if abs(cosine) > 1 + 1e-9:
         return []
     base = math.atan2(axis @ np.cross(u, v), u @ v)

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 from urdftool.errors import MeshProblem, SceneError
 from urdftool.description.urdf import MOVING
+from urdftool.numbers import power
 
 DEFAULT_COLOUR = (0.62, 0.64, 0.68)  # [0, 1] rgb of geometry without a material colour
 # Triangles a posed scene may hold, checked before any is placed: the per-mesh limit is 2 million
@@ -190,7 +191,7 @@ def _orientation(triangles) -> int:
 
     volume = np.einsum("ij,ij->", triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2]))
     extent = np.ptp(triangles.reshape(-1, 3), axis=0).max() if len(triangles) else 0.0
-    if abs(volume) <= 1e-12 * max(extent, 1e-12) ** 3:
+    if abs(volume) <= 1e-12 * power(max(extent, 1e-12), 3):
         return 0
     return 1 if volume > 0 else -1
 

@@ -11,10 +11,16 @@ name, links of its own) is a note stating the condition:
   write (Gazebo's ``world`` aside: a robot fixed to the world is a robot): Baxter's example end
   effector, mounted on the arm's ``left_hand``. U105 says so on the joints' ``<parent>``
   (:func:`~urdftool.lint.rules.tree.unknown_link`), and a name of its own is not needed.
+- **joints**: no link at all, only joints between links it does not write (a mount file
+  joining the robot's ``front_mount`` to a sensor another file writes: jackal's
+  ``custom_example.urdf``); judged as an **extensions** part is, and U105 notes both ends.
 - **extensions**: no link and no joint at all, only :data:`EXTENSIONS` blocks (and materials):
   Care-O-bot's ``raw_mini`` base, whose ``base.urdf.xacro`` calls only the macro writing its
   Gazebo plugins. Every rule of :data:`ABOUT_THE_ROBOT` (a name compared with links and joints
   it does not write, links or a simulator plugin it lacks) is a note.
+
+Whether a robot has a root link of its own is decided once (:func:`rootless`), for the
+expansion here and for a file's text in the folder walk.
 
 A robot with nothing at all in it (a macro call that wrote nothing) is not a part: U106 stays
 an error (docs/certainty.md); nor is one a launch file of its repository runs as the robot,
@@ -55,19 +61,22 @@ _HANGS = frozenset({"U011"})
 class Part:
     """A robot checked alone that is a part of one defined elsewhere.
 
-    kind: 'hangs' or 'extensions' (see the module)
+    kind: 'hangs', 'joints' or 'extensions' (see the module)
     mounts: the links its joints hang on, which it does not write (empty for 'extensions')
     condition: what makes it a part, as a finding's message says it
+    attaches: the links its joints attach to the mounts, which it does not write either
+        ('joints'; empty otherwise)
     """
 
     kind: str
     mounts: frozenset[str]
     condition: str
+    attaches: frozenset[str] = frozenset()
 
     def covers(self, code: str) -> bool:
         """Whether a finding of rule ``code`` on this part is right only inside the robot that
         includes it (U105's joints are judged by the rule itself, one side at a time)."""
-        return code in (ABOUT_THE_ROBOT if self.kind == "extensions" else _HANGS)
+        return code in (_HANGS if self.kind == "hangs" else ABOUT_THE_ROBOT)
 
     def noted(self, finding: Finding) -> Finding:
         """``finding`` as the note it is on this part: its message after the condition."""
@@ -107,15 +116,36 @@ def _part(robot) -> Part | None:
                         f"a part of a robot defined elsewhere (no link of its own, only "
                         f"{said} blocks)")
         return None
-    mounts = {link for _, link in (e["parent"] for e in ends.values())
-              if link and link not in robot.links}
-    children = {link for _, link in (e["child"] for e in ends.values())}
-    if robot.links and mounts and "world" not in mounts and \
-            all(name in children for name in robot.links):
-        return Part("hangs", frozenset(mounts),
-                    "a part of a robot defined elsewhere (its joints hang on links it does not "
-                    "write, and it has no root link of its own)")
-    return None
+    return rootless(robot.links, [e["parent"][1] for e in ends.values()],
+                    [e["child"][1] for e in ends.values()])
+
+
+def rootless(links, parents, children) -> Part | None:
+    """The :class:`Part` a robot is when it has no root link of its own, else None: the one
+    decision, whether the links and joints are read from the expansion (:func:`part`) or from
+    a file's text (the folder walk's :func:`urdftool.lint.targets._root_elsewhere`).
+
+    links: the names of the links it writes; parents, children: the links its joints name on
+    each side (None or "" for a side not given). It has no root of its own when every link it
+    writes is a joint's child and some joint names a link it does not write, Gazebo's
+    ``world`` aside (a robot fixed to the world is a robot; a misspelt parent leaves the real
+    root a root). With no link at all, its joints join links it does not write (a mount
+    file's joint between the robot's ``front_mount`` and a sensor another file writes): kind
+    'joints', judged as the 'extensions' kind is, since every name it gives is the includer's.
+    URDF asks a robot for links and one root link (urdfdom refuses it alone either way)."""
+    links = set(links)
+    parents, children = {p for p in parents if p}, {c for c in children if c}
+    if not (parents | children) - links - {"world"} or not links <= children:
+        return None
+    if not links:
+        return Part("joints", frozenset(parents), (
+            "a part of a robot defined elsewhere (no link of its own, only joints between "
+            "links it does not write)"), frozenset(children))
+    return Part("hangs", frozenset(parents - links), ROOT_ELSEWHERE)
+
+
+ROOT_ELSEWHERE = ("a part of a robot defined elsewhere (its joints hang on links it does not "
+                  "write, and it has no root link of its own)")
 
 
 def judged(robot, findings: list[Finding]) -> list[Finding]:

@@ -19,7 +19,7 @@ from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_b
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
-from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS
+from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, rootless
 
 SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
@@ -87,7 +87,7 @@ class _Summary:
     macros: bool = False  # it defines xacro macros
     missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
     empty: bool = False  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
-    root_elsewhere: bool = False  # its joints hang on links it does not write, no root of its own
+    root_elsewhere: str | None = None  # no root link of its own: why, as parts.rootless says
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -260,13 +260,15 @@ def _self_contained(path: Path, limit: int) -> bool:
 
 
 _CHILD = re.compile(rb"<child\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+_PARENT = re.compile(rb"<parent\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 
 
-def _root_elsewhere(data: bytes, expanded: bool = True) -> bool:
-    """Whether the robot ``data`` writes has no root of its own: it has joints, every link it
-    writes is a joint's child, and some joint names a link it does not write. A robot has one
-    root link; such a file is a part of a robot defined elsewhere, whatever its root element
-    says (jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS): joints on the
+def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
+    """Why the robot ``data`` writes has no root of its own, as its text shows, or None when it
+    has one (:func:`urdftool.lint.parts.rootless` decides, from the links and joints read
+    here): it has joints, every link it writes is a joint's child, and some joint names a link
+    it does not write. A robot has one root link; such a file is a part of a robot defined
+    elsewhere, whatever its root element says (jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS): joints on the
     'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
     root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
     definitions may write links the text does not show (macro calls, includes), unless the
@@ -276,10 +278,10 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> bool:
     calls a macro without declaring it, which xacro cannot parse)."""
     data = _MACRO_BODY.sub(b"", data)
     if (expanded or b"xmlns:xacro" in data) and _LINK_MAKER.search(data):
-        return False  # a macro call or an include may write the root
-    ends = set(_JOINT_END.findall(data))
-    links = set(_LINK_NAME.findall(data))
-    return bool(ends - links - {b"world"}) and links <= set(_CHILD.findall(data))
+        return None  # a macro call or an include may write the root
+    found = rootless(*([name.decode("utf-8", "replace") for name in pattern.findall(data)]
+                       for pattern in (_LINK_NAME, _PARENT, _CHILD)))
+    return found.condition if found is not None else None
 
 
 # Outside macro definitions, what may write links the text does not show: a macro call (any
@@ -566,8 +568,6 @@ def explicit_targets(path: Path, includers: dict, root: Path,
 
 
 EMPTY = "an empty <robot> (a placeholder an include takes when nothing is added)"
-ROOT_ELSEWHERE = ("a part of a robot defined elsewhere (its joints hang on links it does not write, "
-                  "and it has no root link of its own)")
 _UNKNOWN = object()
 
 
@@ -607,9 +607,9 @@ def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int
     if summary.empty:
         return EMPTY
     if path.name.endswith(".urdf"):
-        return FRAGMENT if summary.fragment else ROOT_ELSEWHERE if summary.root_elsewhere else None
+        return FRAGMENT if summary.fragment else summary.root_elsewhere
     if summary.root_elsewhere:
-        return ROOT_ELSEWHERE
+        return summary.root_elsewhere
     if summary.defines_robot or summary.named_robot and _has_own_links(path, limit):
         return None
     if yields is _UNKNOWN:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.errors import DynamicsError
+from urdftool.numbers import power
 
 _ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
 
@@ -91,7 +92,7 @@ DATA_BYTES_PER_NV_CUBED = 64  # [bytes]: pinocchio.Data holds second-order deriv
 
 def data_size(nv: int) -> int:
     """What ``model.createData()`` allocates for ``nv`` velocity variables, about [bytes]."""
-    return DATA_BYTES_PER_NV_CUBED * nv ** 3
+    return DATA_BYTES_PER_NV_CUBED * power(nv, 3)
 
 
 def _refuse_oversized_data(robot, nv: int) -> None:

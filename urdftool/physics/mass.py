@@ -18,6 +18,7 @@ from typing import NamedTuple
 from urdftool.physics import mat3
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import first_child
+from urdftool.numbers import power
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -87,10 +88,26 @@ def moments_of(robot, link) -> mat3.Vector | None:
 
 # Solids: mass properties per unit density, about their own centre, in their own frame.
 
+def box_volume(size) -> float:
+    """The volume of a box of edges ``size`` [m^3]: :func:`box`'s mass."""
+    a, b, c = size
+    return a * b * c
+
+
+def cylinder_volume(radius: float, length: float) -> float:
+    """The volume of a cylinder [m^3]: :func:`cylinder`'s mass."""
+    return math.pi * radius * radius * length
+
+
+def sphere_volume(radius: float) -> float:
+    """The volume of a sphere [m^3]: :func:`sphere`'s mass (OverflowError beyond ~5e102 m)."""
+    return 4 / 3 * math.pi * power(radius, 3)
+
+
 def box(size) -> Body:
     """Solid box of edges ``size`` [m], unit density."""
     a, b, c = size
-    m = a * b * c
+    m = box_volume(size)
     return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([m * (b * b + c * c) / 12,
                                                    m * (a * a + c * c) / 12,
                                                    m * (a * a + b * b) / 12]))
@@ -98,14 +115,14 @@ def box(size) -> Body:
 
 def cylinder(radius: float, length: float) -> Body:
     """Solid cylinder along z, unit density."""
-    m = math.pi * radius * radius * length
+    m = cylinder_volume(radius, length)
     side = m * (3 * radius * radius + length * length) / 12
     return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([side, side, m * radius * radius / 2]))
 
 
 def sphere(radius: float) -> Body:
     """Solid sphere, unit density."""
-    m = 4 / 3 * math.pi * radius ** 3
+    m = sphere_volume(radius)
     moment = 2 / 5 * m * radius * radius
     return Body(m, (0.0, 0.0, 0.0), mat3.diagonal([moment] * 3))
 
@@ -171,4 +188,4 @@ def relative_difference(declared_value, computed_value) -> float:
     scale = math.sqrt(sum(v * v for v in c))
     if scale == 0:
         return math.inf if any(v != 0 for v in d) else 0.0
-    return math.sqrt(sum((a - b) ** 2 for a, b in zip(d, c))) / scale
+    return math.sqrt(sum(power(a - b, 2) for a, b in zip(d, c))) / scale

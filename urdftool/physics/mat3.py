@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 import struct
 
+from urdftool.numbers import power
+
 Vector = tuple[float, float, float]
 Matrix = tuple[Vector, Vector, Vector]
 
@@ -152,7 +154,7 @@ def eigvalsh(m) -> Vector:
     scale = max(abs(a00), abs(a11), abs(a22), abs(a10), abs(a20), abs(a21))
     a00, a11, a22, a10, a20, a21 = (v / scale for v in (a00, a11, a22, a10, a20, a21))
     q = (a00 + a11 + a22) / 3
-    p = math.sqrt(((a00 - q) ** 2 + (a11 - q) ** 2 + (a22 - q) ** 2
+    p = math.sqrt((power(a00 - q, 2) + power(a11 - q, 2) + power(a22 - q, 2)
                    + 2 * (a10 * a10 + a20 * a20 + a21 * a21)) / 6)
     if p == 0:
         return (q * scale,) * 3

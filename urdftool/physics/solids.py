@@ -301,12 +301,22 @@ def _inner_floor(mesh) -> float:
 
 def _local(shape: Shape):
     """The unit-density solid of a primitive in its own frame."""
+    return _of_primitive(shape, mp.box, mp.cylinder, mp.sphere)
+
+
+def unit_volume(shape: Shape) -> float:
+    """The volume of a primitive [m^3]: its :func:`_local` solid's mass, without the solid."""
+    return _of_primitive(shape, mp.box_volume, mp.cylinder_volume, mp.sphere_volume)
+
+
+def _of_primitive(shape: Shape, box, cylinder, sphere):
+    """``box(size)``, ``cylinder(radius, length)`` or ``sphere(radius)`` of a primitive."""
     p = shape.params
     if shape.kind == "box":
-        return mp.box(p["size"])
+        return box(p["size"])
     if shape.kind == "cylinder":
-        return mp.cylinder(p["radius"], p["length"])
-    return mp.sphere(p["radius"])
+        return cylinder(p["radius"], p["length"])
+    return sphere(p["radius"])
 
 
 def _local_box(shape: Shape):
@@ -607,6 +617,196 @@ def _local_bounds(robot, shape: Shape):
     return tuple(mat3.vector(corner) for corner in mesh.bounds)
 
 
+# A robot of this many links or more measures its plain links' boxes all at once (numpy):
+# below, numpy's import (50 ms) costs more than the per-link Python it saves.
+BULK_LINKS = 256
+
+
+class PlainLinks:
+    """The links of a robot that are a rigid body alone (no fixed joint) and whose every
+    ``<visual>`` and ``<collision>`` made a box, cylinder or sphere, measured all at once
+    (numpy, the per-link path's operations in its order, so the same numbers to the bit):
+    ``rows`` link name -> row of ``low`` and ``high`` (n, 3), the box of the link's shapes as
+    :func:`rigid_bounds` gives it (a zero of either sign as +0; only links whose box is all
+    finite have a row); ``extents``: the largest side of the box of the geometry
+    :func:`link_solid` takes (collision, else visual), its ``extent``; for :meth:`inside`, the
+    shapes as :class:`~urdftool.physics.support.Piece` places them (``shape_rows`` the row of
+    each shape's link)."""
+
+    __slots__ = ("rows", "low", "high", "shape_rows", "kinds", "centres", "rotations",
+                 "sizes", "extents")
+
+    def inside(self, names, points):
+        """For link names (each with a row) and points [m] (k, 3) in their frames: whether
+        each point is certainly inside one of its link's primitives (what
+        :meth:`~urdftool.physics.support.Piece.holds` answers True for; a point on a cylinder's
+        round side within rounding is left undecided: False)."""
+        import numpy as np
+
+        asked = np.fromiter((self.rows[name] for name in names), dtype=np.intp,
+                            count=len(names))
+        found = np.zeros(len(asked), dtype=bool)
+        # each point against each shape of its link (the rows' shapes are consecutive)
+        starts = np.searchsorted(self.shape_rows, asked, "left")
+        counts = np.searchsorted(self.shape_rows, asked, "right") - starts
+        shape_of = np.repeat(np.arange(len(asked)), counts)  # the point of each pair
+        if not len(shape_of):
+            return found
+        chosen = np.repeat(starts - (np.cumsum(counts) - counts), counts) + \
+            np.arange(len(shape_of))  # the shape of each pair
+        p = np.asarray(points, dtype=float).reshape(-1, 3)[shape_of]
+        kinds, centres, r = self.kinds[chosen], self.centres[chosen], self.rotations[chosen]
+        sizes = self.sizes[chosen]
+        with np.errstate(all="ignore"):
+            o0, o1, o2 = p[:, 0] - centres[:, 0], p[:, 1] - centres[:, 1], p[:, 2] - centres[:, 2]
+            # r[0][i] * o0 + r[1][i] * o1 + r[2][i] * o2, in Piece.holds' order
+            local = [r[:, 0, i] * o0 + r[:, 1, i] * o1 + r[:, 2, i] * o2 for i in range(3)]
+            box = (np.abs(local[0]) <= sizes[:, 0]) & (np.abs(local[1]) <= sizes[:, 1]) & \
+                (np.abs(local[2]) <= sizes[:, 2])
+            radius, half = sizes[:, 0], sizes[:, 1]
+            # math.hypot(x, y) <= radius, certain: its square with room for rounding, in a
+            # range where nothing underflows to matter
+            across = local[0] * local[0] + local[1] * local[1]
+            cylinder = (np.abs(local[2]) <= half) & (across <= radius * radius * (1 - 1e-9)) & \
+                (radius >= 1e-100) & (np.abs(local[0]) <= 1e100) & (np.abs(local[1]) <= 1e100)
+            sphere = np.sqrt(o0 * o0 + o1 * o1 + o2 * o2) <= sizes[:, 0]
+        holds = np.where(kinds == 0, box, np.where(kinds == 1, cylinder, sphere))
+        np.logical_or.at(found, shape_of[holds], True)
+        return found
+
+
+def plain_links(robot) -> PlainLinks | None:
+    """:class:`PlainLinks` of a robot of :data:`BULK_LINKS` links or more (else None), once
+    per robot."""
+    return robot.memo(plain_links, lambda: _plain_links(robot) if len(robot.links) >= BULK_LINKS
+                      else None)
+
+
+_KINDS = {"box": 0, "cylinder": 1, "sphere": 2}
+
+
+def _plain_links(robot) -> PlainLinks:
+    import numpy as np
+    from itertools import chain
+
+    neighbours = _fixed_neighbours(robot)
+    names, shape_rows, kinds, highs, xyzs, turns, chosen = [], [], [], [], [], [], []
+    index, distinct = {}, []  # the distinct rotations (most shapes': NO_TURN), by identity
+    kind_of, local_box = _KINDS.get, _local_box
+    for name, link in robot.links.items():
+        if name in neighbours:
+            continue
+        found = _link_shapes(robot, link)
+        (visual, seen), (collision, touched) = found["visual"], found["collision"]
+        if len(visual) < seen or len(collision) < touched or not (visual or collision):
+            continue  # incomplete, or nothing to measure: the per-link path says so
+        shapes = visual + collision
+        for shape in shapes:
+            if shape.kind == "mesh":
+                break
+        else:
+            row = len(names)
+            names.append(name)
+            chosen += [not collision] * len(visual) + [True] * len(collision)
+            for shape in shapes:
+                shape_rows.append(row)
+                kinds.append(kind_of(shape.kind))
+                highs.append(local_box(shape)[1])
+                xyzs.append(shape.xyz)
+                rotation = shape.rotation
+                turn = index.get(id(rotation))
+                if turn is None:  # (distinct keeps it alive: its id stays its own)
+                    turn = index[id(rotation)] = len(distinct)
+                    distinct.append(rotation)
+                turns.append(turn)
+    table = PlainLinks()
+    k = len(shape_rows)
+    shape_rows = np.array(shape_rows, dtype=np.intp)
+    high = np.fromiter(chain.from_iterable(highs), dtype=float, count=3 * k).reshape(-1, 3)
+    xyz = np.fromiter(chain.from_iterable(xyzs), dtype=float, count=3 * k).reshape(-1, 3)
+    turns = np.array(turns, dtype=np.intp)
+    rotation = np.array(distinct, dtype=float).reshape(-1, 3, 3)[turns]
+    unturned = np.array([r is mat3.NO_TURN for r in distinct], dtype=bool).reshape(-1)[turns]
+    low, high_box, finite = _shape_boxes(-high, high, xyz, rotation, unturned)
+    count = len(names)
+    starts = np.searchsorted(shape_rows, np.arange(count)) if count else shape_rows
+    extents = np.zeros(count)
+    if count:
+        # link_solid's extent: of its chosen shapes' box (finite: the differences are the
+        # same whatever the sign of a zero)
+        picked = np.array(chosen, dtype=bool)[:, None]
+        with np.errstate(all="ignore"):  # (rows not all finite are dropped below)
+            sides = np.maximum.reduceat(np.where(picked, high_box, -np.inf), starts) - \
+                np.minimum.reduceat(np.where(picked, low, np.inf), starts)
+        extents = np.maximum(np.maximum(sides[:, 0], sides[:, 1]), sides[:, 2])
+        low = np.minimum.reduceat(low, starts) + 0.0  # a zero of either sign: +0
+        high_box = np.maximum.reduceat(high_box, starts) + 0.0
+        finite = np.logical_and.reduceat(finite, starts)
+    kept = np.flatnonzero(finite) if count else np.zeros(0, dtype=np.intp)
+    table.rows = {names[i]: j for j, i in enumerate(kept.tolist())}
+    table.low, table.high, table.extents = low[kept], high_box[kept], extents[kept]
+    renumbered = np.full(count, -1, dtype=np.intp)
+    renumbered[kept] = np.arange(len(kept))
+    shapes_kept = renumbered[shape_rows] >= 0 if count else np.zeros(0, dtype=bool)
+    table.shape_rows = renumbered[shape_rows][shapes_kept] if count else shape_rows
+    table.kinds = np.array(kinds, dtype=np.int8)[shapes_kept]
+    # as support._piece places a shape of a link alone: centre 0 + I xyz, rotation I R
+    one = np.asarray(mat3.IDENTITY)
+    x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+    with np.errstate(all="ignore"):
+        centres = np.stack([0.0 + (one[i, 0] * x + one[i, 1] * y + one[i, 2] * z)
+                            for i in range(3)], axis=1)
+        placed = np.empty_like(rotation)
+        for i in range(3):
+            for j in range(3):
+                placed[:, i, j] = one[i, 0] * rotation[:, 0, j] + \
+                    one[i, 1] * rotation[:, 1, j] + one[i, 2] * rotation[:, 2, j]
+    table.centres, table.rotations = centres[shapes_kept], placed[shapes_kept]
+    # Piece sizes: a box's half sizes (size / 2: the local box's high corner), a cylinder's
+    # (radius, half length), a sphere's (radius,)
+    table.sizes = high[shapes_kept]
+    cylinders = table.kinds == 1
+    table.sizes[cylinders] = high[shapes_kept][cylinders][:, [0, 2, 2]]
+    return table
+
+
+def _shape_boxes(low, high, xyz, rotation, unturned):
+    """(min corner, max corner, whether finite) of each shape's box placed in its link's
+    frame, as :func:`_measured` finds them: (k, 3), (k, 3), (k,)."""
+    import numpy as np
+
+    with np.errstate(all="ignore"):
+        (lx, ly, lz), (hx, hy, hz) = low.T, high.T
+        # _kept_by_no_turn: the six coordinates' sum finite (in its order) and none zero
+        kept = unturned & np.isfinite(lx + ly + lz + hx + hy + hz) & \
+            (lx != 0) & (ly != 0) & (lz != 0) & (hx != 0) & (hy != 0) & (hz != 0)
+        tx, ty, tz = xyz.T
+        # unturned: the corners' coordinates on each axis, t + l and t + h
+        axes = [(tx + lx, tx + hx), (ty + ly, ty + hy), (tz + lz, tz + hz)]
+        total = np.zeros(len(low))
+        for x in axes[0]:
+            for y in axes[1]:
+                for z in axes[2]:
+                    total = total + (x + y + z)
+        axes_low = np.stack([np.where(b < a, b, a) for a, b in axes], axis=1)
+        axes_high = np.stack([np.where(b > a, b, a) for a, b in axes], axis=1)
+        axes_finite = np.isfinite(total)
+        # turned: the eight corners (in _corners' order) placed, t + (a x + b y + c z)
+        r = rotation
+        corners = [(x, y, z) for x in (lx, hx) for y in (ly, hy) for z in (lz, hz)]
+        placed = [tuple(t + (r[:, i, 0] * x + r[:, i, 1] * y + r[:, i, 2] * z)
+                        for i, t in enumerate((tx, ty, tz))) for x, y, z in corners]
+        total = np.zeros(len(low))
+        for x, y, z in placed:
+            total = total + (x + y + z)
+        points = np.array(placed)  # (8, 3, k)
+        turned_low, turned_high = points.min(axis=0).T, points.max(axis=0).T
+        turned_finite = np.isfinite(total)
+    return (np.where(kept[:, None], axes_low, turned_low),
+            np.where(kept[:, None], axes_high, turned_high),
+            np.where(kept, axes_finite, turned_finite))
+
+
 def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vector]]]:
     """Link -> (link fixed to it, R, t taking points of that link's frame into this one's)."""
     def build():
@@ -679,8 +879,13 @@ def volume(solid: LinkSolid) -> float:
 
 def computed(solid: LinkSolid, mass: float | None = None, density: float | None = None):
     """A :class:`~urdftool.physics.mass.Body` of the solids: with ``mass`` [kg] kept, or
-    from ``density`` [kg/m^3]."""
+    from ``density`` [kg/m^3]. None without parts, or when their volume is no positive
+    finite float (sizes of ~1e-108 m underflow to 0, of ~1e103 m overflow to infinity): such a
+    solid says nothing of a tensor."""
     if not solid.parts:
+        return None
+    volume = sum(part.mass for part in solid.parts)
+    if not 0 < volume < math.inf:
         return None
     unit = mp.combine(solid.parts)  # density 1: mass is volume
     if mass is not None:

@@ -27,6 +27,7 @@ from urdftool.physics import mat3
 from urdftool.physics.frames import Frame
 from urdftool.physics.solids import GROUP_DIRECT, _bodies, body_points, _fixed_neighbours, \
     _link_shapes, rigid_group, _rigid_frames
+from urdftool.numbers import power
 
 TAGS = ("visual", "collision")
 
@@ -91,7 +92,7 @@ class Piece:
         if self.kind == "box":
             local = [abs(r[0][i] * offset[0] + r[1][i] * offset[1] + r[2][i] * offset[2])
                      for i in range(3)]
-            return math.sqrt(sum((v + half) ** 2 for v, half in zip(local, self.size)))
+            return math.sqrt(sum(power(v + half, 2) for v, half in zip(local, self.size)))
         if self.kind == "cylinder":
             radius, half = self.size
             along = r[0][2] * offset[0] + r[1][2] * offset[1] + r[2][2] * offset[2]
@@ -101,7 +102,7 @@ class Piece:
             return math.sqrt(mat3.dot(offset, offset)) + self.size[0]
         import numpy as np
 
-        return float(np.sqrt(((self.placed() - np.asarray(p)) ** 2).sum(axis=1)).max())
+        return float(np.sqrt((power(self.placed() - np.asarray(p), 2)).sum(axis=1)).max())
 
     def holds(self, p) -> bool:
         """Whether ``p`` is inside the piece's solid (a mesh: never claimed)."""

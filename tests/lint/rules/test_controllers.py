@@ -251,17 +251,22 @@ def test_a_substitution_loaded_as_written_is_the_name_the_controller_gets(tmp_pa
     assert "'$(var prefix)joint'" in findings[0].message and "without substitution" in findings[0].message
 
 
+# A robot whose controller file holds 'spare' (on a joint it lacks) beside jsc, which its one
+# launch file starts alone
+_SPARE = {"robot.urdf": HEAD_ROBOT.format(body=""),
+          "package.xml": "<package format='2'><name>head</name></package>",
+          "config/c.yaml": "jsc: {type: joint_state_controller/JointStateController}\n"
+                           "spare: {type: position_controllers/JointPositionController, joint: nek}\n",
+          "launch/head.launch": """<launch>
+            <param name="robot_description" textfile="$(find head)/robot.urdf"/>
+            <rosparam file="$(find head)/config/c.yaml" command="load"/>
+            <node name="s" pkg="controller_manager" type="spawner" args="jsc"/>
+          </launch>"""}
+
+
 def test_a_controller_no_launch_file_starts_is_not_judged(tmp_path):
     (tmp_path / ".git").mkdir()
-    files = {"robot.urdf": HEAD_ROBOT.format(body=""),
-             "package.xml": "<package format='2'><name>head</name></package>",
-             "config/c.yaml": "jsc: {type: joint_state_controller/JointStateController}\n"
-                              "spare: {type: position_controllers/JointPositionController, joint: nek}\n",
-             "launch/head.launch": """<launch>
-               <param name="robot_description" textfile="$(find head)/robot.urdf"/>
-               <rosparam file="$(find head)/config/c.yaml" command="load"/>
-               <node name="s" pkg="controller_manager" type="spawner" args="jsc"/>
-             </launch>"""}
+    files = dict(_SPARE)
     assert check_folder(tmp_path, files, select=("U602",))[0] == []
     (tmp_path / "launch/head.launch").write_text((tmp_path / "launch/head.launch").read_text().replace(
         'args="jsc"', 'args="jsc spare"'))
@@ -348,3 +353,16 @@ base:
     files = {"robot.urdf": ROS2_HEAD, "config/c.yaml": chained}
     marks, findings = check_folder(tmp_path, files, select=("U602",))
     assert [m[1] for m in marks] == [line_of(tmp_path / "config/c.yaml", "pid_rigth")]  # no such controller
+
+
+def test_a_controller_a_launch_file_not_read_names_is_not_started_nowhere(tmp_path):
+    """A launch file that cannot be read (not well-formed) and names the controller may start
+    it: 'started nowhere' is not known (runtime.unread_naming, as for a robot file's builds),
+    so the controller is judged, conditionally, naming the file."""
+    (tmp_path / ".git").mkdir()
+    not_closed = '<launch><node pkg="controller_manager" type="spawner" args="spare"></launch>'
+    files = {**_SPARE, "launch/spare.launch": not_closed}
+    marks, findings = check_folder(tmp_path, files, select=("U602",))
+    assert marks == [("c.yaml", 2, "U602")] and findings[0].severity == Severity.WARNING
+    assert f"launch file {tmp_path}/launch/spare.launch (not read) may start it" in \
+        findings[0].message, findings[0].message

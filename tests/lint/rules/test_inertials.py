@@ -335,3 +335,65 @@ def test_the_bound_takes_open_meshes_and_skips_missing_ones(tmp_path):
     found, _ = _check(tmp_path, "U316", 1, 0.1, mesh,
                       visual='<visual><geometry><mesh filename="gone.stl"/></geometry></visual>')
     assert not found  # the body may reach as far as the missing mesh
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_plain_links_settled_at_once_as_the_per_link_path_settles_them(tmp_path, monkeypatch,
+                                                                       seed):
+    """U307, U312 and U316 settle a large robot's plain links at once (_plain_decided): each
+    link they settle is one the per-link path finds nothing on, the per-link path is left
+    few, and the rules find the same, over random robots with awkward numbers."""
+    from plain_robots import plain_robot
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import solids
+    from urdftool.physics.support import link_reach
+
+    (tmp_path / "r.urdf").write_text(plain_robot(seed, 240))
+
+    def rules(robot):
+        found = []
+        for check in (inertials.com_outside_geometry, inertials.com_outside_hull,
+                      inertials.inertia_beyond_geometry, inertials.implausible_density):
+            found.append([message for _, message, *_ in check(robot)])  # none may raise
+        return found
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 10 ** 9)
+    alone = load(tmp_path / "r.urdf")
+    assert inertials._plain_decided(alone) == (set(), set(), set())
+    expected = rules(alone)
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    robot = load(tmp_path / "r.urdf")
+    near, within, inside = inertials._plain_decided(robot)
+    assert len(near) > 5 and len(within) > 2 and len(inside) > 2
+    pairs = dict(zip(robot.children("link"), alone.children("link")))
+    valid = dict(inertials._valid(alone))
+    for link in near:
+        other = pairs[link]
+        assert inertials._far_outside_box(alone, other, valid[other]) is None
+    for link in within:
+        other = pairs[link]
+        (lx, ly, lz), (hx, hy, hz) = solids.rigid_bounds(alone, other).bounds
+        half = max(hx - lx, hy - ly, hz - lz) / 2
+        trace = inertials.mat3.trace(valid[other].inertia)
+        assert trace <= inertials.FAR_BEYOND * 2 * valid[other].mass * half * half
+    for link in inside:
+        other = pairs[link]
+        assert link_reach(alone, other, rigid=True).outside(valid[other].com) == 0
+    rows = solids.plain_links(robot).rows
+    for link, properties in inertials._valid(robot):  # and every plain link is settled
+        if link.get("name") not in rows or not properties.mass > 0 or \
+                not all(map(inertials.math.isfinite, properties.com)):
+            continue
+        other = pairs[link]
+        assert (link in near) == (inertials._far_outside_box(alone, other, valid[other]) is None)
+        (lx, ly, lz), (hx, hy, hz) = solids.rigid_bounds(alone, other).bounds
+        half = max(hx - lx, hy - ly, hz - lz) / 2
+        assert (link in within) == (inertials.mat3.trace(properties.inertia) <=
+                                    inertials.FAR_BEYOND * 2 * properties.mass * half * half)
+        pieces = link_reach(alone, other).pieces
+        if all(piece.kind != "cylinder" for piece in pieces):
+            assert (link in inside) == any(piece.holds(properties.com) for piece in pieces)
+    assert rules(robot) == expected
+    if isinstance(expected[3], list):  # (not a crash)
+        assert len(expected[3]) > 3 and inertials._plain_volumes(robot)  # U311, at once

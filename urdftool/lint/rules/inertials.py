@@ -24,11 +24,11 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, number, numbers, power
 from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
-from urdftool.description.values import number_tuple
+from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
@@ -120,7 +120,8 @@ def _from_geometry(robot, link, mass: float):
     solid = _solid(robot, link)
     if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
-    return inertial_edits(robot, link, solids.computed(solid, mass=mass))
+    body = solids.computed(solid, mass=mass)
+    return inertial_edits(robot, link, body) if body is not None else None
 
 
 def _solid(robot, link, tag: str | None = None):
@@ -228,14 +229,17 @@ def moving_link_without_mass(robot):
     masses = {link.get("name"): p.mass for link, p in _valid(robot)}
     fixed = _fixed_children(robot)
     for name in sorted(moving.keys() & robot.links.keys()):
-        body, stack, total = set(), [name], 0.0
-        while stack:
-            current = stack.pop()
-            if current in body:
-                continue
-            body.add(current)
-            total += max(masses.get(current, 0.0), 0.0)
-            stack.extend(fixed.get(current, []))
+        if name not in fixed:  # nothing fixed below it (most links): the walk's one step
+            body, total = (name,), 0.0 + max(masses.get(name, 0.0), 0.0)
+        else:
+            body, stack, total = set(), [name], 0.0
+            while stack:
+                current = stack.pop()
+                if current in body:
+                    continue
+                body.add(current)
+                total += max(masses.get(current, 0.0), 0.0)
+                stack.extend(fixed.get(current, []))
         link = robot.links[name]
         if total <= 0 and not any(first_child(l, "inertial") is not None
                                   and _name(l) not in masses
@@ -400,7 +404,7 @@ def com_outside_geometry(robot):
 def _far_outside_box(robot, link, properties):
     """(distance [m], RigidBounds) when the centre of mass is farther outside the box of the
     link's rigid body than U307 allows, else None."""
-    if not properties.mass > 0:
+    if not properties.mass > 0 or link in _plain_decided(robot)[0]:
         return None
     rigid = solids.rigid_bounds(robot, link)
     if rigid.bounds is None or not rigid.complete:
@@ -415,6 +419,55 @@ def _far_outside_box(robot, link, properties):
     if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
         return distance, rigid
     return None
+
+
+def _plain_decided(robot) -> tuple[set, set, set]:
+    """What the links of :func:`~urdftool.physics.solids.plain_links` with mass and a finite
+    centre of mass settle at once (numpy, the per-link path's operations in its order, to the
+    bit): (links whose centre of mass is not far outside their box (U307), links whose trace
+    is within the half-size bound (U316), links whose centre of mass is inside one of their
+    own primitives (U312: outside by 0)). Empty below
+    :data:`~urdftool.physics.solids.BULK_LINKS` links; once per robot."""
+    def build():
+        table = solids.plain_links(robot)
+        if table is None:
+            return set(), set(), set()
+        import numpy as np
+
+        links, names, found = [], [], []
+        rows, isfinite = table.rows, math.isfinite
+        for link, properties in _valid(robot):
+            name = link.get("name")
+            if name in rows and properties.mass > 0:
+                mass, (cx, cy, cz), ((xx, _, _), (_, yy, _), (_, _, zz)) = properties
+                if isfinite(cx + cy + cz):  # (overflow too: not asked)
+                    links.append(link)
+                    names.append(name)
+                    found += (cx, cy, cz, mass, xx, yy, zz)
+        if not links:
+            return set(), set(), set()
+        values = np.array(found, dtype=float).reshape(-1, 7)
+        com, mass = values[:, :3], values[:, 3]
+        trace = values[:, 4] + values[:, 5] + values[:, 6]  # mat3.trace's order
+        at = np.fromiter((rows[name] for name in names), dtype=np.intp, count=len(names))
+        low, high = table.low[at], table.high[at]
+        with np.errstate(all="ignore"):
+            # _far_outside_box: per axis max(l - c, c - h, 0), their squares' sum, its root
+            outside = np.maximum(np.maximum(low - com, com - high), 0.0)
+            distance = np.sqrt(outside[:, 0] * outside[:, 0] + outside[:, 1] * outside[:, 1] +
+                               outside[:, 2] * outside[:, 2])
+            sides = high - low
+            extent = np.maximum(np.maximum(sides[:, 0], sides[:, 1]), sides[:, 2])
+            far = distance > np.maximum(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN)
+            # inertia_beyond_geometry: trace <= FAR_BEYOND * 2 * m * half * half, left to right
+            half = extent / 2
+            within = trace <= FAR_BEYOND * 2 * mass * half * half
+        inside = table.inside(names, com)
+        return ({link for link, f in zip(links, far.tolist()) if not f},
+                {link for link, w in zip(links, within.tolist()) if w},
+                {link for link, i in zip(links, inside.tolist()) if i})
+
+    return robot.memo(_plain_decided, build)
 
 
 @rule("U308", "root-link-inertia", Severity.INFO)
@@ -504,7 +557,7 @@ def _inertia_ratios(robot) -> list:
             if not _trustworthy(solid) or _zero_tensor(properties.inertia):
                 continue  # a zero tensor is U304's finding, not a ratio to judge
             expected = solids.computed(solid, mass=properties.mass)
-            if mat3.trace(expected.inertia) == 0:  # numpy's inf or nan ratio: no finding
+            if expected is None or mat3.trace(expected.inertia) == 0:  # no ratio to judge
                 continue
             ratio = mat3.trace(properties.inertia) / mat3.trace(expected.inertia)
             if ratio > 0:
@@ -534,7 +587,7 @@ def _largest_trace(properties, solid) -> float:
     """The largest trace any mass distribution inside the geometry's bounding box can have
     about the declared centre of mass: 2 m R^2, R the box corner farthest from it [kg m^2]."""
     low, high = solid.bounds
-    reach = sum(max(abs(l - c), abs(h - c)) ** 2 for l, c, h in zip(low, properties.com, high))
+    reach = sum(power(max(abs(l - c), abs(h - c)), 2) for l, c, h in zip(low, properties.com, high))
     return 2 * properties.mass * reach
 
 
@@ -629,6 +682,49 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
     return (own if _trustworthy(solid) else 0.0), max(volumes)
 
 
+def _plain_volumes(robot) -> dict:
+    """link -> (whether :func:`_body_sized`, the source, the volume [m^3]) of the links of
+    :func:`~urdftool.physics.solids.plain_links` with mass (the volume of the geometry
+    :func:`~urdftool.physics.solids.link_solid` takes, as :func:`~urdftool.physics.solids.
+    volume` sums it), measured without their solids; every other link with mass has its
+    solid built here, in order, as :func:`_link_solids` builds them (an error is raised where
+    it raises). Once per robot (U311 asks)."""
+    def build():
+        table = solids.plain_links(robot)
+        rows = table.rows if table is not None else {}
+        extents = table.extents.tolist() if table is not None else []
+        found, marker = {}, MARKER_EXTENT * 1.01
+        for link, properties in _valid(robot):
+            if not properties.mass > 0:
+                continue
+            name = link.get("name")
+            row = rows.get(name)
+            if row is None or robot.links.get(name) is not link:
+                _solid(robot, link)
+                continue
+            shapes = solids.shapes(robot, link, "collision")
+            source = "collision" if shapes else "visual"
+            volume = sum([solids.unit_volume(shape) for shape in
+                          shapes or solids.shapes(robot, link, "visual")])
+            found[link] = (marker < extents[row] <= 5.0, source, volume)
+        return found
+
+    return robot.memo(_plain_volumes, build)
+
+
+def _plain_volume_bounds(robot, link, found, mass: float) -> tuple[float, float | None]:
+    """:func:`_volume_bounds` of a link of :func:`_plain_volumes` of a plain size (its
+    geometry is trustworthy, and all of it loaded)."""
+    _, source, own = found
+    if own > 0 and mass / own <= DENSEST:
+        return own, None
+    volumes = [own]
+    if source == "collision" and robot.grouped(link).get("visual"):
+        volumes.append(sum([solids.unit_volume(shape)
+                            for shape in solids.shapes(robot, link, "visual")]))
+    return own, max(volumes)
+
+
 @rule("U311", "implausible-density", Severity.WARNING)
 def implausible_density(robot):
     """A link's mass is impossible for the volume of its geometry: a mass or units slip.
@@ -652,10 +748,21 @@ def implausible_density(robot):
     Bad: ``<mass value="54"/>`` on a 30 x 20 x 1 cm plate (90,000 kg/m^3)
     Good: ``<mass value="1.6"/>`` (aluminium)
     """
-    for link, properties, solid in _link_solids(robot):
-        if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
+    plain = _plain_volumes(robot)
+    for link, properties in _valid(robot):
+        if not properties.mass > 0:
             continue
-        bounds = _volume_bounds(robot, link, solid, properties.mass)
+        found = plain.get(link)
+        if found is None:  # the per-link path: the link's solids
+            solid = _solid(robot, link)
+            if properties.mass <= PLACEHOLDER_MASS or not _body_sized(solid):
+                continue
+            bounds = _volume_bounds(robot, link, solid, properties.mass)
+            source = solid.source
+        else:
+            if properties.mass <= PLACEHOLDER_MASS or not found[0]:
+                continue
+            bounds, source = _plain_volume_bounds(robot, link, found, properties.mass), found[1]
         if bounds is None or bounds[1] is not None and bounds[1] <= 0:
             continue
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
@@ -668,7 +775,7 @@ def implausible_density(robot):
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
-                f"{solid.source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
+                f"{source} geometry is {number(properties.mass / bounds[0], 3)} kg/m^3, "
                 "lighter "
                 f"than any solid ({LIGHTEST:g}, aerogel); a wrong mass or geometry scale")
 
@@ -695,14 +802,15 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     joint = parent_joints(robot).get(_name(link))
     if joint is None:
         return None
-    xyz = origin_of(joint).xyz
+    xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
     com = properties.com
     if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
         return None
-    inertial = first_child(link, "inertial")
-    written = origin_of(inertial).xyz
-    if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)) and \
-            all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+    # the centre of mass first (most links: not the joint's), then the written origin
+    if not all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+        return None
+    written = origin_of(first_child(link, "inertial")).xyz
+    if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)):
         return joint
     return None
 
@@ -727,6 +835,8 @@ def com_outside_hull(robot):
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
+        if link in _plain_decided(robot)[2]:
+            continue  # inside one of its primitives: outside by 0
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
             continue
@@ -853,7 +963,7 @@ def _declared_about(declared, geometry, value: float, pick) -> tuple[mat3.Vector
                       mat3.cross(rows[1], rows[2])), key=lambda c: mat3.dot(c, c))
     scale = max(abs(v) for row in geometry for v in row) or 1.0
     longest = crosses[-1]
-    if mat3.dot(longest, longest) > (1e-9 * scale * scale) ** 2:  # a simple eigenvalue
+    if mat3.dot(longest, longest) > power(1e-9 * scale * scale, 2):  # a simple eigenvalue
         axis = _unit(longest)
         return axis, mat3.dot(axis, mat3.apply(declared, axis))
     # repeated: the plane is orthogonal to the row of largest norm (rank 1), or everything
@@ -977,6 +1087,8 @@ def inertia_beyond_geometry(robot):
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
+        if link in _plain_decided(robot)[1]:
+            continue  # within the bound, found with the others at once
         trace = mat3.trace(properties.inertia)
         rigid = solids.rigid_bounds(robot, link)
         if rigid.bounds is None:

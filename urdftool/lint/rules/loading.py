@@ -106,8 +106,11 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     ...])``, ``xacro.process_file``; a launch test's ``generate_test_description`` counts, as it
     builds the robot), its consumers read it expanded, so it is checked as a
     xacro robot (a xacro error is then U005's, theirs) and this is a **note** naming the launch
-    files: only a tool given the file itself reads it unexpanded. An **error** otherwise: a
-    launch file reads it as it is (``textfile=``, ``cat``, Python's ``open``), or none loads it.
+    files and launch tests, each as what it is: only a tool given the file itself reads it
+    unexpanded. A **warning** when a launch file or launch test that names the file cannot be
+    read (not well-formed, not valid Python): what it does with the file is not known. An
+    **error** otherwise: a launch file reads it as it is (``textfile=``, ``cat``, Python's
+    ``open``), or none loads it.
 
     Bad: ``robot.urdf`` containing ``<xacro:property .../>``
     Good: rename it ``robot.urdf.xacro``
@@ -120,7 +123,7 @@ def required_argument(path: str, error, build):
     did not give; ``build(args)`` loads the robot with those arguments (raises LoadError). What
     the launch files of its repository say decides (:func:`~urdftool.description.runtime.builds`);
     U005's documentation says how."""
-    from urdftool.description.runtime import builds, launch_xacro_args
+    from urdftool.description.runtime import builds, launch_xacro_args, unread_naming
     from urdftool.errors import LoadError
 
     name, rule = error.subject, U005
@@ -131,49 +134,47 @@ def required_argument(path: str, error, build):
         except LoadError as again:
             later = sorted(k for k, v in made.args.items() if v is None)
             certain = made.certain and not made.free and not later
-            told = f"{made.launch} builds it ({made.shown_args()}" + (
+            told = f"{made.named} builds it ({made.shown_args()}" + (
                 "" if certain else f"; {', '.join(later)} known only at launch, left at the "
                 "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
             message = f"{again.message}; {told}, and xacro fails so"
             return None, given, [rule.finding(
                 message if certain else Conditional(message, Severity.INFO), again.location)]
-        message = f"{error.message}; checked as {made.launch} builds it ({made.shown_args()}); {hint} of your choice"
+        message = f"{error.message}; checked as {made.named} builds it ({made.shown_args()}); {hint} of your choice"
         return robot, given, [rule.finding(Conditional(message, Severity.INFO), error.location)]
     made = [b for b in builds(path) if b.xacro]
     giving = [b for b in made if name in b.args]
     if giving:
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}; {giving[0].launch} gives it a value known only at launch, so the "
+            f"{error.message}; {giving[0].named} gives it a value known only at launch, so the "
             f"robot is not checked; {hint}", Severity.INFO), error.location)]
     lacking = [b for b in made if b.complete]
     for b in lacking:
         if b.certain:
             return None, {}, [rule.finding(
-                f"{error.message}; {_where(b)} builds this robot without it, and xacro fails "
+                f"{error.message}; {b.named_at()} builds this robot without it, and xacro fails "
                 "there", error.location)]
     if lacking:
         b = lacking[0]
         when = b.condition or "when its launch argument chooses this file"
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}; {_where(b)} builds this robot without it {when}, and xacro "
+            f"{error.message}; {b.named_at()} builds this robot without it {when}, and xacro "
             "fails then"), error.location)]
     declared = _declared(path, error)
     near = close_names(name, declared - {name})
+    # what a launch file or test not read does with the robot is unknown: it may give the name
+    unread = unread_naming(path)
+    unknown = f" (but {', '.join(unread[:3])} may)" if unread else ""
     if name in declared or not near:
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}: {name} has no default and no launch file here builds the robot: "
-            f"a parameter whoever builds it gives; not checked: {hint}",
-            Severity.INFO), error.location)]
-    return None, {}, [rule.finding(Conditional(
-        f"{error.message}: {name} is declared nowhere and no launch file here gives it, but "
-        f"{', '.join(near)} is (<xacro:arg>): a misspelt name fails unless the command line "
-        f"gives {name}; {hint}"), error.location)]
-
-
-def _where(build) -> str:
-    """Where a launch file builds the robot: the file and line, and the launch file run."""
-    at = f"{build.written}:{build.line or '?'}"
-    return at if build.written == build.launch else f"{at} (run by {build.launch})"
+            f"{error.message}: {name} has no default and no launch file or launch test here "
+            f"builds the robot{unknown}: a parameter whoever builds it gives; not checked: "
+            f"{hint}", Severity.INFO), error.location)]
+    message = (f"{error.message}: {name} is declared nowhere and no launch file or launch test "
+               f"here gives it{unknown}, but {', '.join(near)} is (<xacro:arg>): a misspelt name "
+               f"fails unless the command line gives {name}; {hint}")
+    return None, {}, [rule.finding(Conditional(message, Severity.INFO) if unread else
+                                   Conditional(message), error.location)]
 
 
 def _declared(path: str, error) -> set[str]:

@@ -285,7 +285,7 @@ def _state_publishers(robot) -> tuple[list[str], list[str]]:
         if not any(spawn.configuration is configuration for spawn in facts.spawns):
             continue
         starts = any(start.package in STATE_PUBLISHERS for start in configuration.started)
-        (publishing if starts else silent).append(configuration.display)
+        (publishing if starts else silent).append(configuration.named)
     return publishing, silent
 
 

@@ -84,14 +84,16 @@ def unknown_link(robot):
     joints hang on links it does not write, Gazebo's ``world`` aside) is a part of a robot
     defined elsewhere, as a macro may build it (Baxter's example end effector, mounted on the
     arm's ``left_hand``): the links it hangs on are said in a note, right only inside the
-    robot that includes it (the folder walk skips such a file when its text shows it).
+    robot that includes it (the folder walk skips such a file when its text shows it). So are
+    both ends of the joints of a part with no link at all (a mount file's joint between links
+    other files write).
 
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
     """
     ends = robot.ends()
     found = part(robot)
-    mounts = found.mounts if found is not None else frozenset()
+    mounts = {"parent": found.mounts, "child": found.attaches} if found is not None else {}
     for joint, ends_of in ends.items():
         for side in ("parent", "child"):
             element, link = ends_of[side]
@@ -99,9 +101,10 @@ def unknown_link(robot):
                 continue
             message = (f"joint '{joint.get('name')}' names {side} link '{link}', which does not "
                        f"exist; {available('links', link, robot.links)}")
-            if link in mounts and side == "parent":
+            if link in mounts.get(side, ()):
+                verb = "hangs on" if side == "parent" else "attaches"
                 message = Conditional(
-                    f"joint '{joint.get('name')}' hangs on '{link}', which this robot does not "
+                    f"joint '{joint.get('name')}' {verb} '{link}', which this robot does not "
                     "write, and it has no root link of its own: a part of a robot defined "
                     "elsewhere, right only inside the robot that includes it (alone, urdfdom "
                     "refuses it)", Severity.INFO)
