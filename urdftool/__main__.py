@@ -41,6 +41,14 @@ from contextlib import contextmanager
 
 
 def main() -> None:
+    """The program: :func:`_main` within :func:`urdftool.streams.run` (how it writes and ends
+    when its output or its reader fails)."""
+    from urdftool.streams import run
+
+    run(_main)
+
+
+def _main() -> None:
     words = sys.argv[1:]
     _help(words)
     kept_code()
@@ -72,8 +80,6 @@ def _check(words: list[str]) -> None:
 
     try:
         code = run(terminal, **values)
-    except BrokenPipeError:
-        code = _reader_left()
     except (KeyboardInterrupt, EOFError):  # as click says it
         terminal.echo("", err=True)
         terminal.say("Aborted!", err=True)
@@ -86,17 +92,15 @@ def _end(code: int) -> None:
     standard streams flushed, the exit functions run (last registered first, once), the
     streams flushed again, then the process ends, not freeing the rules', the robot's and the
     libraries' objects one by one (the system frees the memory at once). Files are closed by
-    then (the cache and ``--output`` write within ``with``). Python ends as usual instead
-    (``SystemExit``) while another thread runs, or when a stream cannot be flushed (a
-    reader that left: whoever handles ``SystemExit`` says it)."""
+    then (the cache and ``--output`` write within ``with``); the status is the one
+    :func:`urdftool.streams.end` gives when the output failed (a reader that left, a full
+    disk). Python ends as usual instead (``SystemExit``) while another thread runs."""
     threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
     if threading is not None and threading.active_count() > 1:
         raise SystemExit(code)
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except Exception:
-            raise SystemExit(code) from None
+    from urdftool.streams import end
+
+    code = end(code)
     import atexit
 
     atexit._run_exitfuncs()
@@ -424,23 +428,11 @@ def commands_digest() -> str:
 
 
 def _exit_with(stdout: str, stderr: str, code: int) -> None:
-    """Print ``stdout`` and ``stderr`` and exit with ``code``, quietly when the reader of
-    standard output left (``| head``), as click does."""
-    try:
-        sys.stderr.write(stderr)
-        sys.stdout.write(stdout)
-        sys.stdout.flush()
-    except BrokenPipeError:
-        code = _reader_left()
+    """Print ``stdout`` and ``stderr`` and exit with ``code`` (:func:`urdftool.streams.run`
+    ends it quietly when the reader of standard output left, ``| head``, as click does)."""
+    sys.stderr.write(stderr)
+    sys.stdout.write(stdout)
     raise SystemExit(code)
-
-
-def _reader_left() -> int:
-    """The exit code when the reader of standard output left (``| head``), standard output
-    now going nowhere, so that nothing complains at exit: 1, as click's."""
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, sys.stdout.fileno())
-    return 1
 
 
 if __name__ == "__main__":

@@ -313,4 +313,6 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    from urdftool.streams import run
+
+    run(lambda: main(sys.argv[1:]))

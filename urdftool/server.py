@@ -756,15 +756,56 @@ def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> Urdfto
     return server
 
 
-def serve(log_file: str | None = None, limits: Limits = Limits()) -> None:
+class _Log(logging.FileHandler):
+    """The log file: one that stops being written (a full disk) says so once, and the server
+    then ends with status 2 (:func:`serve`), not a traceback per message."""
+
+    failed = False
+
+    def handleError(self, record) -> None:
+        if not self.failed:
+            from urdftool.streams import say
+
+            self.failed = True
+            say(f"urdftool: error: cannot write '{self.baseFilename}': {sys.exc_info()[1]}")
+
+
+def _quiet_once_output_failed(failed) -> None:
+    """Once the protocol's output failed (``failed()``), pygls's tracebacks of each message
+    it could not send (thousands, as it reports its errors by sending them) and the thread
+    pool's of its callbacks say nothing more than the one line :func:`urdftool.streams.end`
+    says: left out, of the log file too. Without a log file, warnings go to standard error as
+    Python's last resort printed them."""
+    handlers = logging.getLogger().handlers
+    if not handlers:
+        handler = logging.StreamHandler()
+        handler.setLevel(logging.WARNING)
+        logging.getLogger().addHandler(handler)
+        handlers = [handler]
+    for handler in handlers:
+        handler.addFilter(lambda record: not failed())
+
+
+def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
     """Run the server on standard input and output until the editor ends it; ``limits``: the
-    budget of each robot's check."""
+    budget of each robot's check. Its exit status: 2 when the log file could not be written."""
     if log_file:
-        logging.basicConfig(filename=log_file, level=logging.DEBUG,
-                            format="%(asctime)s %(name)s %(levelname)s %(message)s")
+        from urdftool.errors import UsageError
+
+        try:
+            handler = _Log(log_file)
+            handler.setFormatter(logging.Formatter(
+                "%(asctime)s %(name)s %(levelname)s %(message)s"))
+            logging.getLogger().addHandler(handler)
+            logging.getLogger().setLevel(logging.DEBUG)
+        except OSError as error:
+            raise UsageError(f"cannot write '{log_file}': {error.strerror}") from None
     # The protocol writes to its own copy of standard output; anything else written there (a
     # library's print, C code) goes to standard error instead of corrupting the messages.
-    protocol_out = os.fdopen(os.dup(sys.stdout.fileno()), "wb")
+    from urdftool import streams
+
+    protocol_out = streams.binary_output(os.dup(sys.stdout.fileno()))  # ends as stdout does
+    _quiet_once_output_failed(streams.failed)
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
     sys.stdout = sys.stderr
     # A worker (forked by run_budgeted) closes sys.stdin as it starts: not the protocol's, whose
@@ -772,3 +813,4 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> None:
     # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
     protocol_in, sys.stdin = sys.stdin, io.StringIO()
     make_server(limits=limits).start_io(protocol_in.buffer, protocol_out)
+    return 2 if any(getattr(h, "failed", False) for h in logging.getLogger().handlers) else 0

@@ -99,7 +99,27 @@ def command(name: str):
     importlib.import_module(f"urdftool.cli.{name}").register(single)
     built = typer.main.get_command(single)
     _uniform_options(built)
+    built.callback = _usage_errors_end(built.callback)
     return built
+
+
+def _usage_errors_end(callback):
+    """``callback`` ending a UsageError that reaches it (an output file the system refuses,
+    written by a report) as every usage error ends: one line, exit 2."""
+    import functools
+
+    @functools.wraps(callback)
+    def run(*args, **kwargs):
+        from urdftool.errors import UsageError
+
+        try:
+            return callback(*args, **kwargs)
+        except UsageError as error:
+            from urdftool.cli._common import fail_usage
+
+            fail_usage(error)
+
+    return run
 
 
 # metavar of an option that names none, by the kind of its value

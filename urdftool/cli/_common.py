@@ -188,6 +188,18 @@ def budgeted(command):
             stdin = sys.stdin.buffer.read(DEFAULT_MAX_FILE_SIZE + 1)
 
         def work(_):
+            """The command in the worker, its exit status as its output decides (a reader
+            that left, a full disk: :func:`urdftool.streams.end`)."""
+            from urdftool import streams
+
+            try:
+                return streams.end(worked())
+            except BaseException:
+                if not streams.failed():
+                    raise
+                return streams.end(1)
+
+        def worked():
             from urdftool.errors import ModelBuildError, OverLimit
 
             if stdin is not None:
@@ -196,15 +208,10 @@ def budgeted(command):
                 command(**kwargs)
             except typer.Exit as exit:
                 return exit.exit_code
-            except BrokenPipeError:  # the reader left (``| head``): stop quietly
-                return _output_closed()
-            except SystemExit as exit:  # rich's console ends so on a broken pipe
-                if isinstance(exit.__context__, BrokenPipeError):
-                    return _output_closed()
-                raise
             except ModelBuildError as error:
                 return fail_unbuildable(error)
-            except OverLimit as error:  # a size limit checked before the work: a usage error
+            except (OverLimit, UsageError) as error:  # a size limit checked before the work,
+                # an output file the system refuses: a usage error
                 say(f"urdftool: error: {error}", err=True)
                 return 2
             except ImportError as error:
@@ -229,17 +236,6 @@ def budgeted(command):
     run.__annotations__ = {**typing.get_type_hints(command),
                            **{name: kind for name, (kind, _) in options.items()}}
     return run
-
-
-def _output_closed() -> int:
-    """Exit code 1 for a command whose reader closed its output, with standard output sent to
-    /dev/null so that nothing more is written there (Python flushes it at exit)."""
-    import os
-
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, sys.stdout.fileno())
-    os.close(devnull)
-    return 1
 
 
 def _bytes_stdin(data: bytes):

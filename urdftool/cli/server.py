@@ -43,4 +43,5 @@ def server(log_file: Path = typer.Option(None, "--log-file", metavar="FILE",
         Budget.of(timeout, max_memory)  # well formed
     except UsageError as error:
         fail_usage(error)
-    serve(str(log_file) if log_file else None, Limits(timeout or None, max_memory))
+    raise typer.Exit(serve(str(log_file) if log_file else None,
+                           Limits(timeout or None, max_memory)))

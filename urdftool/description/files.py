@@ -541,6 +541,12 @@ def write_file(path, data: str | bytes) -> None:
         existing = os.lstat(target)
     except OSError:
         existing = None
+    if existing is not None and stat.S_ISBLK(existing.st_mode):
+        raise UsageError(f"cannot write '{path}': it is a block device")
+    if existing is not None and (stat.S_ISCHR(existing.st_mode) or
+                                 stat.S_ISFIFO(existing.st_mode)):
+        _write_in_place(path, target, data)  # /dev/null, /dev/full, a named pipe: never replaced
+        return
     if existing is not None and stat.S_ISREG(existing.st_mode):
         mode = stat.S_IMODE(existing.st_mode)
     else:
@@ -561,6 +567,18 @@ def write_file(path, data: str | bytes) -> None:
         os.replace(temporary, target)
     except OSError as error:
         os.unlink(temporary)
+        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _write_in_place(path, target: str, data: bytes) -> None:
+    """Write ``data`` into the character device or named pipe at ``target`` (a temporary file
+    renamed over it would replace the device itself: ``-o /dev/null`` run as root); UsageError
+    when the system refuses (``/dev/full``: no space left)."""
+    try:
+        descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY)
+        with open(descriptor, "wb") as handle:
+            handle.write(data)
+    except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
 
 
