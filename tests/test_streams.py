@@ -333,3 +333,26 @@ def test_a_named_pipe_given_as_the_output_is_written_not_replaced(tmp_path):
     write_file(fifo, "report\n")
     reader.join(10)
     assert read == [b"report\n"] and stat.S_ISFIFO(os.lstat(fifo).st_mode)
+
+
+def test_an_output_link_to_a_standard_stream_is_written_to_it_not_replaced(tmp_path):
+    """``-o /dev/stdout`` (a link to /proc/self/fd/1) writes on standard output; replacing
+    the link with a file, as the writer did, broke the machine's /dev/stdout when run as root.
+    Tested on a link of the test's own, never on /dev/stdout. Any other link is still
+    replaced, its target untouched."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "stdout"
+    out.symlink_to("/proc/self/fd/1")
+    script = ("import sys; from urdftool.description.files import write_file; "
+              "print('before', flush=True); write_file(sys.argv[1], 'report\\n')")
+    done = subprocess.run([sys.executable, "-c", script, str(out)], capture_output=True)
+    assert done.stdout == b"before\nreport\n", done
+    assert out.is_symlink() and os.readlink(out) == "/proc/self/fd/1"
+    elsewhere, link = tmp_path / "elsewhere", tmp_path / "link.txt"
+    elsewhere.write_text("kept")
+    link.symlink_to(elsewhere)
+    subprocess.run([sys.executable, "-c", script, str(link)], capture_output=True, check=True)
+    assert elsewhere.read_text() == "kept" and not link.is_symlink() and \
+        link.read_text() == "report\n"

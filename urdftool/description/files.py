@@ -541,6 +541,11 @@ def write_file(path, data: str | bytes) -> None:
         existing = os.lstat(target)
     except OSError:
         existing = None
+    if existing is not None and stat.S_ISLNK(existing.st_mode):
+        stream = _own_stream(target)
+        if stream is not None:  # -o /dev/stdout: the stream itself, the link left as it is
+            _write_descriptor(path, stream, data)
+            return
     if existing is not None and stat.S_ISBLK(existing.st_mode):
         raise UsageError(f"cannot write '{path}': it is a block device")
     if existing is not None and (stat.S_ISCHR(existing.st_mode) or
@@ -567,6 +572,43 @@ def write_file(path, data: str | bytes) -> None:
         os.replace(temporary, target)
     except OSError as error:
         os.unlink(temporary)
+        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _own_stream(target: str) -> int | None:
+    """1 or 2 when the link ``target`` leads to this process's standard output or error (the
+    very open file: ``/dev/stdout``, ``/proc/self/fd/2``), else None. Only these links are
+    followed: replacing ``/dev/stdout`` with a file (run as root) broke the machine's, and a
+    link a repository commits may lead anywhere else (it is replaced, its target untouched)."""
+    try:
+        reached = os.stat(target)
+    except OSError:
+        return None
+    for descriptor in (1, 2):
+        try:
+            stream = os.fstat(descriptor)
+        except OSError:
+            continue
+        if (stream.st_dev, stream.st_ino) == (reached.st_dev, reached.st_ino):
+            return descriptor
+    return None
+
+
+def _write_descriptor(path, descriptor: int, data: bytes) -> None:
+    """Write ``data`` on the open standard stream ``descriptor`` after what Python has
+    buffered for it; UsageError when the system refuses."""
+    import sys
+
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError, AttributeError):
+            pass
+    view = memoryview(data)
+    try:
+        while view:
+            view = view[os.write(descriptor, view):]
+    except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
 
 
