@@ -595,21 +595,19 @@ def _own_stream(target: str) -> int | None:
 
 
 def _write_descriptor(path, descriptor: int, data: bytes) -> None:
-    """Write ``data`` on the open standard stream ``descriptor`` after what Python has
-    buffered for it; UsageError when the system refuses."""
+    """Write ``data`` on the standard stream ``descriptor`` as printing there does (after what
+    is buffered for it, through the stream :mod:`urdftool.streams` watches when it runs: a
+    reader that left or a full disk end the run as for any output)."""
     import sys
 
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError, AttributeError):
-            pass
-    view = memoryview(data)
-    try:
-        while view:
-            view = view[os.write(descriptor, view):]
-    except OSError as error:
-        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+    stream = sys.stdout if descriptor == 1 else sys.stderr
+    stream.flush()
+    binary = getattr(stream, "buffer", None)
+    if binary is None:
+        stream.write(data.decode("utf-8", "replace"))
+    else:
+        binary.write(data)
+    stream.flush()
 
 
 def _write_in_place(path, target: str, data: bytes) -> None:
