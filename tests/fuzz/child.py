@@ -216,12 +216,12 @@ class Running:
         return self.done
 
     def _over_time(self) -> bool:
-        """Whether the child, past its wall deadline, counts as hung: its process group has
-        spent ``time_limit`` seconds of CPU (a busy hang, whatever the machine's load), or
+        """Whether the child, past its wall deadline, counts as hung: it and its descendants
+        have spent ``time_limit`` seconds of CPU (a busy hang, whatever the machine's load), or
         ``WALL_FACTOR`` times that in wall time (a hang that sleeps). On a loaded machine a
         command that ends within its limit of CPU is late, not hung; it is waited for."""
         over_wall = time.monotonic() > self.deadline + (WALL_FACTOR - 1) * self.time_limit
-        return over_wall or group_cpu_seconds(self.pid) >= self.time_limit
+        return over_wall or tree_cpu_seconds(self.pid) >= self.time_limit
 
     def finish(self) -> Outcome:
         delay = 0.002
@@ -240,10 +240,11 @@ WALL_FACTOR = 6  # a child under its CPU limit is hung only past this many limit
 _TICKS = os.sysconf("SC_CLK_TCK")
 
 
-def group_cpu_seconds(group: int) -> float:
-    """CPU seconds [s] spent by the live processes of process group ``group`` and the children
-    they reaped (``/proc/PID/stat``: utime, stime, cutime, cstime)."""
-    total = 0
+def tree_cpu_seconds(root: int) -> float:
+    """CPU seconds [s] spent by process ``root`` and its live descendants, whatever group or
+    session they moved to (the pool's workers have their own), with the children each reaped
+    (``/proc/PID/stat``: ppid, utime, stime, cutime, cstime)."""
+    parents, spent = {}, {}
     for entry in os.scandir("/proc"):
         if not entry.name.isdigit():
             continue
@@ -252,8 +253,17 @@ def group_cpu_seconds(group: int) -> float:
                 fields = file.read().rsplit(b")", 1)[1].split()
         except OSError:  # gone meanwhile
             continue
-        if int(fields[2]) == group:  # fields after the name: state, ppid, pgrp, ...
-            total += sum(int(value) for value in fields[11:15])
+        pid = int(entry.name)
+        parents[pid] = int(fields[1])  # fields after the name: state, ppid, pgrp, ...
+        spent[pid] = sum(int(value) for value in fields[11:15])
+    total, tree = 0, {root}
+    while True:
+        grown = {pid for pid, parent in parents.items() if parent in tree} - tree
+        if not grown:
+            break
+        tree |= grown
+    for pid in tree:
+        total += spent.get(pid, 0)
     return total / _TICKS
 
 

@@ -203,7 +203,7 @@ def _spin(group_seconds: float, busy: bool) -> int:
 def test_a_hang_is_judged_by_cpu_time_or_a_wall_ceiling(tmp_path):
     """A child spinning past its limit of CPU is hung whatever the load; one sleeping past its
     wall deadline is waited for until the wall ceiling (a loaded machine makes commands late,
-    not hung); group_cpu_seconds counts the group's CPU."""
+    not hung); tree_cpu_seconds counts the CPU of the child and its descendants."""
     import time
 
     from tests.fuzz import child
@@ -221,3 +221,36 @@ def test_a_hang_is_judged_by_cpu_time_or_a_wall_ceiling(tmp_path):
     while not asleep.poll():
         time.sleep(0.01)
     assert asleep.status is None and asleep.seconds < 5  # the ceiling (6 x 0.2 s) holds
+
+
+def test_the_cpu_of_a_descendant_in_a_session_of_its_own_counts():
+    """The pool's workers leave the command's process group: their CPU counts for a hang
+    all the same (counting the group only, a hung worker was judged by the wall ceiling)."""
+    import os
+    import signal
+    import time
+
+    from tests.fuzz.child import tree_cpu_seconds
+
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read)
+        worker = os.fork()
+        if worker == 0:
+            os.setsid()
+            while True:
+                pass
+        os.write(write, str(worker).encode())
+        os.waitpid(worker, 0)  # reaped here: no zombie left for a PID 1 that does not reap
+        os._exit(0)
+    os.close(write)
+    worker = int(os.read(read, 32))
+    try:
+        deadline = time.monotonic() + 20
+        while tree_cpu_seconds(pid) < 0.2 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert tree_cpu_seconds(pid) >= 0.2
+    finally:
+        os.kill(worker, signal.SIGKILL)
+        os.waitpid(pid, 0)
