@@ -50,6 +50,12 @@ def seeds(max_bytes: int | None = None) -> list[Seed]:
     return found
 
 
+# numbers at a float's edges, where Python's arithmetic raises or rounds to 0 or infinity:
+# cubed (a sphere's volume), squared twice (a tensor), summed (a bound); 1e103 and 5e-324
+# found U309-U316 crashing (numbers.power, solids.computed)
+EDGE_NUMBERS = ["1e103", "-1e103", "1e155", "1e200", "1.7e308", "-1.7e308", "5e-324", "1e-108",
+                "1e-200", "-0.0", "2.2250738585072014e-308"]
+
 NASTY_VALUES = [
     "", " ", "nan", "-nan", "inf", "-inf", "1e309", "-0", "0x10", "1_000", "abc", "1 2", "1 2 3 4",
     "1,2,3", "  1   2   3  ", "1e-400", "9" * 400, "\u00e9\u4e2d", "\t\n", "&amp;", "<", "]]>",
@@ -119,7 +125,8 @@ def tree_mutation(draw, data: bytes) -> bytes:
             words = target.get(name).split() or ["0"]
             index = draw(st.integers(0, len(words) - 1))
             words[index] = draw(st.sampled_from(["-1", "0", "1e30", "-1e30", "nan", "1.5.2",
-                                                 "--1", "1e", "+", str(draw(st.floats()))]))
+                                                 "--1", "1e", "+", str(draw(st.floats()))])
+                                | st.sampled_from(EDGE_NUMBERS))
             target.set(name, " ".join(words))
         elif kind == "retag":
             tag = draw(st.sampled_from(NASTY_TAGS))
