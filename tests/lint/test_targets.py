@@ -611,3 +611,24 @@ def test_a_part_a_launch_file_runs_as_the_robot_is_checked_walked_or_named(tmp_p
     ran = sorted(str(tmp_path / name) for name in ("empty.urdf", "gazebo.urdf", "typo.urdf"))
     assert sorted(walked.files) == ran and sorted(named.files) == ran
     assert "no root link" in walked.skipped[str(tmp_path / "typo_unrun.urdf")]
+
+
+def test_a_part_only_a_launch_test_builds_stays_a_part_walked_as_checked(tmp_path):
+    """A launch test builds a file for the test alone, never as a deployment: the walk skips a
+    part only a launch test builds, as the check judges it a part (launch configurations
+    only). Before, the walk checked it and the check then made every finding a note."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text("<package format='3'><name>p</name></package>")
+    (tmp_path / "tested.urdf").write_text(
+        '<robot name="r"><link name="base"/><link name="arm"/>'
+        '<joint name="j0" type="fixed"><parent link="bsae"/><child link="base"/></joint>'
+        '<joint name="j1" type="fixed"><parent link="base"/><child link="arm"/></joint></robot>')
+    (tmp_path / "test").mkdir()
+    (tmp_path / "test/test_robot.py").write_text(
+        "def generate_test_description():\n    return LaunchDescription([\n"
+        "        Node(package='robot_state_publisher', executable='robot_state_publisher',"
+        " parameters=[{'robot_description': Command(['xacro ', PathJoinSubstitution("
+        "[FindPackageShare('p'), 'tested.urdf'])])}]),\n"
+        "        ReadyToTest(),\n    ])\n")
+    walked, _ = _walked_and_named(tmp_path, "tested.urdf")
+    assert walked.files == [] and "no root link" in walked.skipped[str(tmp_path / "tested.urdf")]

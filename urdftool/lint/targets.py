@@ -596,10 +596,14 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
 
 def _run_as_robot(path: Path) -> bool:
     """Whether a launch file of ``path``'s repository gives it, unconditionally, as the robot
-    description (:func:`urdftool.description.runtime.builds`)."""
+    description (:func:`urdftool.description.runtime.builds`). A launch test's build is not a
+    deployment (it builds the file for the test alone): as for the check
+    (:func:`urdftool.lint.parts._unless_run_as_checked`, launch configurations only), it makes
+    no part a robot."""
     from urdftool.description.runtime import builds
 
-    return any(not build.condition and not build.chosen for build in builds(str(path)))
+    return any(not build.condition and not build.chosen and not build.test
+               for build in builds(str(path)))
 
 
 def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int,
