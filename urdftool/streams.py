@@ -101,10 +101,7 @@ def _reopen(fd: int, flags: int) -> None:
         return
     except OSError:
         pass
-    opened = os.open(os.devnull, flags)
-    if opened != fd:
-        os.dup2(opened, fd)
-        os.close(opened)
+    _reopen_null(fd, flags)
 
 
 def _text(stream, fd: int, name: str, output: bool):
@@ -202,11 +199,13 @@ def say(line: str) -> None:
         pass
 
 
-def _reopen_null(fd: int) -> None:
-    """``fd`` on the null device (written to nowhere from now on)."""
+def _reopen_null(fd: int, flags: int = os.O_WRONLY) -> None:
+    """``fd`` on the null device, opened with ``flags`` (written to nowhere from now on)."""
     try:
-        null = os.open(os.devnull, os.O_WRONLY)
+        null = os.open(os.devnull, flags)
     except OSError:
+        return
+    if null == fd:  # (fd was closed: the lowest free number)
         return
     try:
         os.dup2(null, fd)

@@ -544,7 +544,7 @@ def write_file(path, data: str | bytes) -> None:
     if existing is not None and stat.S_ISLNK(existing.st_mode):
         stream = _own_stream(target)
         if stream is not None:  # -o /dev/stdout: the stream itself, the link left as it is
-            _write_descriptor(path, stream, data)
+            _write_descriptor(stream, data)
             return
     if existing is not None and stat.S_ISBLK(existing.st_mode):
         raise UsageError(f"cannot write '{path}': it is a block device")
@@ -594,7 +594,7 @@ def _own_stream(target: str) -> int | None:
     return None
 
 
-def _write_descriptor(path, descriptor: int, data: bytes) -> None:
+def _write_descriptor(descriptor: int, data: bytes) -> None:
     """Write ``data`` on the standard stream ``descriptor`` as printing there does (after what
     is buffered for it, through the stream :mod:`urdftool.streams` watches when it runs: a
     reader that left or a full disk end the run as for any output)."""

@@ -100,7 +100,7 @@ def cylinder_volume(radius: float, length: float) -> float:
 
 
 def sphere_volume(radius: float) -> float:
-    """The volume of a sphere [m^3]: :func:`sphere`'s mass (OverflowError beyond ~5e102 m)."""
+    """The volume of a sphere [m^3]: :func:`sphere`'s mass (infinity beyond ~5e102 m)."""
     return 4 / 3 * math.pi * power(radius, 3)
 
 
