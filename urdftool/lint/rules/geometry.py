@@ -114,17 +114,21 @@ def geometry_attribute(robot):
     for link, holder, shape in _shapes(robot):
         for attribute, count in SHAPE_ATTRIBUTES[shape.tag]:
             text = shape.get(attribute)
-            prefix = f"link '{link.get('name')}': <{shape.tag}>"
             if text is None or (count is None and not text.strip()):
-                yield shape, f"{prefix} has no {attribute} attribute"
+                yield shape, f"{_shape_prefix(link, shape)} has no {attribute} attribute"
                 continue
             if count is None:
                 continue
             values, problem = number_tuple(text, count)
             if problem:
-                yield shape, f"{prefix} {attribute}: {problem}"
+                yield shape, f"{_shape_prefix(link, shape)} {attribute}: {problem}"
             elif not finite(values):
-                yield shape, f"{prefix} {attribute}=\"{text}\" is not finite"
+                yield shape, f"{_shape_prefix(link, shape)} {attribute}=\"{text}\" is not finite"
+
+
+def _shape_prefix(link, shape) -> str:
+    """How U402's messages start (made for a finding only: 20,000 shapes on a large robot)."""
+    return f"link '{link.get('name')}': <{shape.tag}>"
 
 
 _DIMENSIONS = {tag: tuple((a, c) for a, c in fields if c is not None)

@@ -749,6 +749,7 @@ def implausible_density(robot):
     Good: ``<mass value="1.6"/>`` (aluminium)
     """
     plain = _plain_volumes(robot)
+    osmium = number(DENSEST, places=0, grouped=True)  # (in every message)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
@@ -771,7 +772,7 @@ def implausible_density(robot):
                 f"link '{_name(link)}': {properties.mass:g} kg in at most "
                 f"{number(bounds[1], 3)} m^3 of geometry is at least "
                 f"{number(least, places=0, grouped=True)} kg/m^3, denser than osmium "
-                f"({number(DENSEST, places=0, grouped=True)}); a wrong mass or geometry scale")
+                f"({osmium}); a wrong mass or geometry scale")
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
