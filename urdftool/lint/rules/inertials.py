@@ -361,10 +361,13 @@ def _all_equal(properties) -> bool:
 
 
 def _link_solids(robot):
-    """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
-    return robot.memo(_link_solids, lambda: [(link, properties, _solid(robot, link))
-                                             for link, properties in _valid(robot)
-                                             if properties.mass > 0])
+    """(link, declared, solid) for links with mass, computed once per robot: the link's
+    :class:`~urdftool.physics.solids.PlainSolid` when it is one of a large robot's plain links
+    (measured with the others at once: what the rules read of its LinkSolid, the same
+    numbers), else its :class:`~urdftool.physics.solids.LinkSolid`, built in order."""
+    return robot.memo(_link_solids, lambda: [
+        (link, properties, solids.plain_solid(robot, link) or _solid(robot, link))
+        for link, properties in _valid(robot) if properties.mass > 0])
 
 
 def _rounded(values) -> str:
