@@ -778,17 +778,54 @@ def _plain_links(robot) -> PlainLinks:
     def kept_taken(values):
         return values[shapes_kept][taken] if count else values[:0]
 
+    dims = np.fromiter(chain.from_iterable(dims), dtype=float, count=3 * k).reshape(-1, 3)
     table.units = _plain_units(
-        len(kept), table.shape_rows[taken], table.kinds[taken],
-        kept_taken(np.fromiter(chain.from_iterable(dims), dtype=float, count=3 * k).reshape(-1, 3)),
-        kept_taken(xyz),
-        kept_taken(rotation), kept_taken(shape_low), kept_taken(shape_high))
+        len(kept), table.shape_rows[taken], table.kinds[taken], kept_taken(dims),
+        kept_taken(xyz), kept_taken(rotation), kept_taken(shape_low), kept_taken(shape_high))
     collision = np.zeros(len(kept), dtype=bool)
+    visual = np.logical_not(np.array(collisions, dtype=bool).reshape(-1))[shapes_kept] \
+        if count else np.zeros(0, dtype=bool)
     if count:  # the links with a <collision> shape: link_solid takes those
-        collision[table.shape_rows[np.array(collisions, dtype=bool).reshape(-1)[shapes_kept]]] \
-            = True
+        collision[table.shape_rows[np.logical_not(visual)]] = True
     table.units["collision"], table.solids = collision, {}
+    # each link's <visual> shapes' volume, summed in order (the bigger body U311 asks of)
+    table.units["visual"] = _summed(len(kept), table.shape_rows[visual], _unit_volumes(
+        table.kinds[visual], dims[shapes_kept][visual] if count else dims[:0]))
+    table.units["visuals"] = np.bincount(table.shape_rows[visual], minlength=len(kept))
     return table
+
+
+def _unit_volumes(kinds, dims):
+    """The volume of each primitive (``kinds`` 0 box, 1 cylinder, 2 sphere; ``dims``
+    :func:`_dimensions`) as :func:`unit_volume` gives it (its unit solid's mass)."""
+    import numpy as np
+
+    a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
+    with np.errstate(all="ignore"):
+        return np.where(kinds == 0, a * b * c, np.where(kinds == 1, math.pi * a * a * b, b))
+
+
+def _parts_in_order(rows) -> list:
+    """For items of links ``rows`` (ascending, each link's items together, in order): for
+    k = 0, 1, ..., whether each item is its link's k-th."""
+    import numpy as np
+
+    if not len(rows):
+        return []
+    order = np.arange(len(rows)) - np.searchsorted(rows, rows, "left")
+    return [order == k for k in range(int(order.max()) + 1)]
+
+
+def _summed(count: int, rows, values):
+    """Per link of ``count``, the sum of its items' ``values`` (``rows`` as for
+    :func:`_parts_in_order`) from 0 in their order, as Python's ``sum`` adds them."""
+    import numpy as np
+
+    total = np.zeros(count)
+    with np.errstate(all="ignore"):
+        for at in _parts_in_order(rows):
+            total[rows[at]] = total[rows[at]] + values[at]
+    return total
 
 
 def _dimensions(shape: Shape) -> tuple[float, float, float]:
@@ -812,14 +849,17 @@ def _plain_units(count: int, rows, kinds, dims, xyz, rotation, low, high) -> dic
     them, every product and sum in their order (numpy's elementwise operations are IEEE's, as
     Python's), so the same numbers to the bit. A dict of arrays: ``mass`` (n,) (the volume,
     summed as :func:`volume` sums it), ``com`` (n, 3), ``inertia`` (n, 3, 3), ``low`` and
-    ``high`` (n, 3) (the box of the chosen shapes, a zero of either sign as +0)."""
+    ``high`` (n, 3) (the box of the chosen shapes, a zero of either sign as +0);
+    :func:`_plain_links` adds ``collision`` (whether the link has a <collision> shape: its
+    solid's source), ``visual`` (the volume of its <visual> shapes, summed in order) and
+    ``visuals`` (how many)."""
     import numpy as np
 
     with np.errstate(all="ignore"):
         a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
         box, cylinder = kinds == 0, kinds == 1
         # mass.box / cylinder / sphere: the volume and the diagonal, as each writes them
-        m = np.where(box, a * b * c, np.where(cylinder, math.pi * a * a * b, b))
+        m = _unit_volumes(kinds, dims)
         side = m * (3 * a * a + b * b) / 12
         moment = 2 / 5 * m * a * a
         diagonal = np.stack([np.where(box, m * (b * b + c * c) / 12, np.where(cylinder, side, moment)),
@@ -844,16 +884,10 @@ def _plain_units(count: int, rows, kinds, dims, xyz, rotation, low, high) -> dic
                 inertia[:, i, j] = turned[:, i, 0] * r[:, j, 0] + turned[:, i, 1] * r[:, j, 1] + \
                     turned[:, i, 2] * r[:, j, 2]
         # mass.combine over each link's parts in order: the sums start at 0, part by part
-        order = np.zeros(len(rows), dtype=np.intp)  # each part's place among its link's
-        if len(rows):
-            starts = np.searchsorted(rows, rows, "left")
-            order = np.arange(len(rows)) - starts
-        parts = int(order.max()) + 1 if len(rows) else 0
         taken = [(rows[at], m[at], com[at], inertia[at])
-                 for at in (order == k for k in range(parts))]  # each link's k-th parts
-        mass, weighted = np.zeros(count), np.zeros((count, 3))
+                 for at in _parts_in_order(rows)]  # each link's k-th parts
+        mass, weighted = _summed(count, rows, m), np.zeros((count, 3))
         for link, mk, ck, _ in taken:
-            mass[link] = mass[link] + mk
             weighted[link] = weighted[link] + mk[:, None] * ck
         centre = weighted / mass[:, None]
         total = np.zeros((count, 3, 3))

@@ -686,7 +686,8 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
 
 
 def _plain_volumes(robot) -> dict:
-    """link -> (whether :func:`_body_sized`, the source, the volume [m^3]) of the links of
+    """link -> (whether :func:`_body_sized`, the source, the volume [m^3], the volume of its
+    <visual> shapes [m^3] or None without) of the links of
     :func:`~urdftool.physics.solids.plain_links` with mass (the volume of the geometry
     :func:`~urdftool.physics.solids.link_solid` takes, as :func:`~urdftool.physics.solids.
     volume` sums it), measured without their solids; every other link with mass has its
@@ -695,7 +696,12 @@ def _plain_volumes(robot) -> dict:
     def build():
         table = solids.plain_links(robot)
         rows = table.rows if table is not None else {}
-        extents = table.extents.tolist() if table is not None else []
+        if table is not None:  # the volumes as the shapes' unit_volume sums them, at once
+            units = table.units
+            extents, volumes = table.extents.tolist(), units["mass"].tolist()
+            visual = [v if n else None for v, n in zip(units["visual"].tolist(),
+                                                         units["visuals"].tolist())]
+            sources = ["collision" if c else "visual" for c in units["collision"].tolist()]
         found, marker = {}, MARKER_EXTENT * 1.01
         for link, properties in _valid(robot):
             if not properties.mass > 0:
@@ -705,11 +711,7 @@ def _plain_volumes(robot) -> dict:
             if row is None or robot.links.get(name) is not link:
                 _solid(robot, link)
                 continue
-            shapes = solids.shapes(robot, link, "collision")
-            source = "collision" if shapes else "visual"
-            volume = sum([solids.unit_volume(shape) for shape in
-                          shapes or solids.shapes(robot, link, "visual")])
-            found[link] = (marker < extents[row] <= 5.0, source, volume)
+            found[link] = (marker < extents[row] <= 5.0, sources[row], volumes[row], visual[row])
         return found
 
     return robot.memo(_plain_volumes, build)
@@ -718,13 +720,12 @@ def _plain_volumes(robot) -> dict:
 def _plain_volume_bounds(robot, link, found, mass: float) -> tuple[float, float | None]:
     """:func:`_volume_bounds` of a link of :func:`_plain_volumes` of a plain size (its
     geometry is trustworthy, and all of it loaded)."""
-    _, source, own = found
+    _, source, own, visual = found
     if own > 0 and mass / own <= DENSEST:
         return own, None
     volumes = [own]
-    if source == "collision" and robot.grouped(link).get("visual"):
-        volumes.append(sum([solids.unit_volume(shape)
-                            for shape in solids.shapes(robot, link, "visual")]))
+    if source == "collision" and visual is not None:  # (a plain link's visuals all count)
+        volumes.append(visual)
     return own, max(volumes)
 
 
