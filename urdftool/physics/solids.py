@@ -683,18 +683,14 @@ def plain_links(robot) -> PlainLinks | None:
                       else None)
 
 
-_KINDS = {"box": 0, "cylinder": 1, "sphere": 2}
-
-
 def _plain_links(robot) -> PlainLinks:
     import numpy as np
     from itertools import chain
 
     neighbours = _fixed_neighbours(robot)
-    names, shape_rows, kinds, highs, xyzs, turns, chosen = [], [], [], [], [], [], []
+    names, shape_rows, xyzs, turns, chosen = [], [], [], [], []
     dims, collisions = [], []  # per shape: see _dimensions; whether a <collision>'s
     index, distinct = {}, []  # the distinct rotations (most shapes': NO_TURN), by identity
-    kind_of, local_box = _KINDS.get, _local_box
     for name, link in robot.links.items():
         if name in neighbours:
             continue
@@ -713,8 +709,6 @@ def _plain_links(robot) -> PlainLinks:
             collisions += [False] * len(visual) + [True] * len(collision)
             for shape in shapes:
                 shape_rows.append(row)
-                kinds.append(kind_of(shape.kind))
-                highs.append(local_box(shape)[1])
                 dims.append(_dimensions(shape))
                 xyzs.append(shape.xyz)
                 rotation = shape.rotation
@@ -726,7 +720,9 @@ def _plain_links(robot) -> PlainLinks:
     table = PlainLinks()
     k = len(shape_rows)
     shape_rows = np.array(shape_rows, dtype=np.intp)
-    high = np.fromiter(chain.from_iterable(highs), dtype=float, count=3 * k).reshape(-1, 3)
+    kinds_dims = np.fromiter(chain.from_iterable(dims), dtype=float, count=4 * k).reshape(-1, 4)
+    kinds, dims = kinds_dims[:, 0].astype(np.int8), kinds_dims[:, 1:]
+    high = _local_highs(kinds, dims)
     xyz = np.fromiter(chain.from_iterable(xyzs), dtype=float, count=3 * k).reshape(-1, 3)
     turns = np.array(turns, dtype=np.intp)
     rotation = np.array(distinct, dtype=float).reshape(-1, 3, 3)[turns]
@@ -754,7 +750,7 @@ def _plain_links(robot) -> PlainLinks:
     renumbered[kept] = np.arange(len(kept))
     shapes_kept = renumbered[shape_rows] >= 0 if count else np.zeros(0, dtype=bool)
     table.shape_rows = renumbered[shape_rows][shapes_kept] if count else shape_rows
-    table.kinds = np.array(kinds, dtype=np.int8)[shapes_kept]
+    table.kinds = kinds[shapes_kept]
     # as support._piece places a shape of a link alone: centre 0 + I xyz, rotation I R
     one = np.asarray(mat3.IDENTITY)
     x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
@@ -778,7 +774,6 @@ def _plain_links(robot) -> PlainLinks:
     def kept_taken(values):
         return values[shapes_kept][taken] if count else values[:0]
 
-    dims = np.fromiter(chain.from_iterable(dims), dtype=float, count=3 * k).reshape(-1, 3)
     table.units = _plain_units(
         len(kept), table.shape_rows[taken], table.kinds[taken], kept_taken(dims),
         kept_taken(xyz), kept_taken(rotation), kept_taken(shape_low), kept_taken(shape_high))
@@ -828,16 +823,30 @@ def _summed(count: int, rows, values):
     return total
 
 
-def _dimensions(shape: Shape) -> tuple[float, float, float]:
-    """What :func:`_plain_units` makes a primitive's solid from: a box's size, a cylinder's
-    (radius, length, 0), a sphere's (radius, volume, 0) (its volume from
-    :func:`~urdftool.physics.mass.sphere_volume`: a cube as Python's ``**`` gives it)."""
+def _dimensions(shape: Shape) -> tuple[float, float, float, float]:
+    """What :func:`_plain_links` measures a primitive from: its kind (0 box, 1 cylinder, 2
+    sphere) and a box's size, a cylinder's (radius, length, 0), a sphere's (radius, volume, 0)
+    (its volume from :func:`~urdftool.physics.mass.sphere_volume`: a cube as Python's ``**``
+    gives it)."""
     p = shape.params
     if shape.kind == "box":
-        return p["size"]
+        a, b, c = p["size"]
+        return 0.0, a, b, c
     if shape.kind == "cylinder":
-        return p["radius"], p["length"], 0.0
-    return p["radius"], mp.sphere_volume(p["radius"]), 0.0
+        return 1.0, p["radius"], p["length"], 0.0
+    return 2.0, p["radius"], mp.sphere_volume(p["radius"]), 0.0
+
+
+def _local_highs(kinds, dims):
+    """Each primitive's :func:`_local_box` high corner (its low one is its negation): a box's
+    half size, a cylinder's (radius, radius, half length), a sphere's radius thrice."""
+    import numpy as np
+
+    a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
+    box, cylinder = (kinds == 0)[:, None], (kinds == 1)[:, None]
+    with np.errstate(all="ignore"):
+        return np.where(box, np.stack([a / 2, b / 2, c / 2], axis=1), np.where(
+            cylinder, np.stack([a, a, b / 2], axis=1), np.stack([a, a, a], axis=1)))
 
 
 def _plain_units(count: int, rows, kinds, dims, xyz, rotation, low, high) -> dict:
