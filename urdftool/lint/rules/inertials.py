@@ -491,9 +491,14 @@ def root_link_inertia(robot):
     """
     children = {c.get("link") for j in robot.children("joint")
                 for c in robot.grouped(j).get("child", ())}
-    masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
-    if len(roots) == 1 and masses.get(roots[0], 0) > 0:
+    if len(roots) != 1:
+        return
+    masses = {}  # the root's (the last link of its name with an inertial, as a dict keeps)
+    for link, properties in _valid(robot):
+        if _name(link) == roots[0]:
+            masses[roots[0]] = properties.mass
+    if masses.get(roots[0], 0) > 0:
         root = robot.links[roots[0]]
         name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
                     if n not in robot.links and f"{n}_joint" not in robot.joints)
