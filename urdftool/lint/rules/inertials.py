@@ -813,11 +813,13 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     if joint is None:
         return None
     xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
-    com = properties.com
-    if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
+    (cx, cy, cz), (x, y, z) = properties.com, xyz
+    # the centre of mass first (most links: not the joint's; written out, 10,000 links),
+    # then the joint's distance, then the written origin
+    if not (abs(cx - x) <= 1e-9 + 1e-6 * abs(cx) and abs(cy - y) <= 1e-9 + 1e-6 * abs(cy)
+            and abs(cz - z) <= 1e-9 + 1e-6 * abs(cz)):
         return None
-    # the centre of mass first (most links: not the joint's), then the written origin
-    if not all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+    if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
         return None
     written = origin_of(first_child(link, "inertial")).xyz
     if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)):
