@@ -228,6 +228,10 @@ def test_the_latest_robot_is_kept_only_where_a_program_installs_the_slot(tmp_pat
     monkeypatch.setattr(engine, "LATEST", [])
     first = robot_of("a")
     assert first() is not None and engine.LATEST == [first()]
+    alive = []  # the robots alive when the next one is loaded: the kept one is freed first
+    monkeypatch.setattr(engine, "_recorded", lambda *args, recorded=engine._recorded: (
+        gc.collect(), alive.append(first()), recorded(*args))[-1])
     second = robot_of("b")
     gc.collect()
-    assert first() is None and second() is not None and engine.LATEST == [second()]
+    assert alive == [None] and first() is None
+    assert second() is not None and engine.LATEST == [second()]

@@ -151,7 +151,7 @@ COLLECTION = (nullcontext, nullcontext)
 # (``os._exit``) installs a list (``urdftool/__main__.py`` does for a check): the last robot
 # checked then lives until the end, and its objects (a 10,000-link robot's elements, tree and
 # everything the rules built for it: 0.14 s) are not freed one by one; each check frees the
-# robot before it, so one at most is kept.
+# robot before it first, so no more robots are alive at once than without the slot.
 LATEST: list | None = None
 
 
@@ -159,10 +159,12 @@ def load_and_check(path: str, options: CheckOptions, data: bytes | None = None) 
     """Load and check one file with ``options`` as they are (no settings file is looked for:
     the public ``urdftool.check_file`` finds them, then calls this); ``data``: its content,
     when not to be read from ``path``. Load failures are findings too."""
+    if LATEST:
+        LATEST.clear()  # (before this check builds its robot: a memory budget sees one)
     with COLLECTION[0]():
         result = _recorded(path, options, data)
     if LATEST is not None:
-        LATEST[:] = [result.robot]
+        LATEST.append(result.robot)
     return result
 
 
