@@ -783,7 +783,7 @@ def _plain_links(robot) -> PlainLinks:
     if count:  # the links with a <collision> shape: link_solid takes those
         collision[table.shape_rows[np.logical_not(visual)]] = True
     table.units["collision"], table.solids = collision, {}
-    # each link's <visual> shapes' volume, summed in order (the bigger body U311 asks of)
+    # each link's <visual> shapes' volume, summed in order (the larger body the density rule asks of)
     table.units["visual"] = _summed(len(kept), table.shape_rows[visual], _unit_volumes(
         table.kinds[visual], dims[shapes_kept][visual] if count else dims[:0]))
     table.units["visuals"] = np.bincount(table.shape_rows[visual], minlength=len(kept))
