@@ -759,6 +759,7 @@ def implausible_density(robot):
     """
     plain = _plain_volumes(robot)
     osmium = number(DENSEST, places=0, grouped=True)  # (in every message)
+    denser: dict = {}  # (mass, volume) -> what is said of them (copies of a link repeat them)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
@@ -776,12 +777,14 @@ def implausible_density(robot):
         if bounds is None or bounds[1] is not None and bounds[1] <= 0:
             continue
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
-        if least > DENSEST:
-            yield _inertial_part(link, "mass"), (
-                f"link '{_name(link)}': {properties.mass:g} kg in at most "
-                f"{number(bounds[1], 3)} m^3 of geometry is at least "
-                f"{number(least, places=0, grouped=True)} kg/m^3, denser than osmium "
-                f"({osmium}); a wrong mass or geometry scale")
+        if least > DENSEST:  # (mass and volume positive: equal keys, the same numbers)
+            said = denser.get((properties.mass, bounds[1]))
+            if said is None:
+                said = denser[properties.mass, bounds[1]] = (
+                    f"{properties.mass:g} kg in at most {number(bounds[1], 3)} m^3 of geometry "
+                    f"is at least {number(least, places=0, grouped=True)} kg/m^3, denser than "
+                    f"osmium ({osmium}); a wrong mass or geometry scale")
+            yield _inertial_part(link, "mass"), f"link '{_name(link)}': {said}"
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
