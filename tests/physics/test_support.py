@@ -292,3 +292,45 @@ def test_a_point_inside_one_mesh_far_from_the_reachs_middle_is_found_inside(tmp_
     by_reach = np.array([table._inside.star.holds(p) for p in samples])
     assert (margins[found] <= 1e-12).all()
     assert (found & ~by_reach).sum() > 20  # the mesh's own star finds what the reach's misses
+
+
+def _balls(tmp_path, count: int):
+    """A link of ``count`` closed ball meshes 0.5 m apart along x, each turned its own way
+    (each standing on its origin: its centre 5 cm up its own z axis)."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+    parts = "".join(f'<visual><origin xyz="{0.5 * i} 0 0" rpy="0.3 {0.2 * i} 0.1"/><geometry>'
+                    '<mesh filename="ball.stl"/></geometry></visual>' for i in range(count))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="a">{parts}</link></robot>')
+    return link_reach(robot, robot.links["a"])
+
+
+def _centre(piece, off=(0.0, 0.0, 0.0)):
+    """The centre of a ball of :func:`_balls` in the reach's frame (moved by ``off`` in the
+    ball's frame)."""
+    return np.asarray(piece.centre) + np.asarray(piece.rotation) @ np.add((0.0, 0.0, 0.05), off)
+
+
+def test_a_point_inside_its_own_mesh_makes_no_star_of_the_reach(tmp_path):
+    """A centre of mass inside one of a reach's first meshes is found inside by that mesh's
+    star (made once per run), and the reach makes no star of its own points for it."""
+    from urdftool.physics.support import _Table
+
+    table = _Table(_balls(tmp_path, 2).pieces)
+    assert table.within(_centre(table._pieces[1], (0.01, 0.02, -0.015)))  # in the 2nd ball
+    assert table._inside._star is None
+
+
+def test_a_body_of_many_meshes_asks_at_most_a_few_own_stars_before_its_own(tmp_path,
+                                                                          monkeypatch):
+    """Between the balls (inside the reach's hull, in no ball): the first OWN_STARS_FIRST
+    meshes' stars are asked, then the reach's star finds it; the other meshes' are not."""
+    from urdftool.physics import support
+
+    table = support._Table(_balls(tmp_path, 8).pieces)
+    asked = []
+    real = support._mesh_star
+    monkeypatch.setattr(support, "_mesh_star", lambda mesh: asked.append(mesh) or real(mesh))
+    assert table.within((_centre(table._pieces[2]) + _centre(table._pieces[3])) / 2)
+    assert len(asked) == support.OWN_STARS_FIRST and table._inside._star is not None
