@@ -125,10 +125,14 @@ def _stays_inside(path: Path) -> bool:
     return inside(path, containment_root(Path(os.path.abspath(path)).parent))
 
 
-def _summary(path: Path, resolver_for, limit: int) -> _Summary:
-    """Read ``path`` (when :func:`_head` may) and keep only what classification needs; the
-    includes only given ``resolver_for``."""
-    data = _head(path, limit)
+_UNREAD = object()  # a file's bytes not read yet (None: read and refused)
+
+
+def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
+    """Read ``path`` (when :func:`_head` may; ``data``: its :func:`_head`, read already) and
+    keep only what classification needs; the includes only given ``resolver_for``."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     if data is None or b"\0" in data:  # unread, or binary: a target, so checking says why
         return _Summary([], True, True)
     written = _uncommented(data)
@@ -234,12 +238,13 @@ def _top_level_answer(data: bytes) -> str:
     return _stream(data, _TopLevelTags())
 
 
-def _has_own_links(path: Path, limit: int) -> bool:
+def _has_own_links(path: Path, limit: int, data=_UNREAD) -> bool:
     """Whether the file at ``path`` writes ``<link>`` or ``<joint>`` elements of its own under
     ``<robot>`` (inside ``xacro:if``/``unless`` too): a robot, not a part that only calls
     macros (``niryo_ned.transmission.xacro``: transmissions through macro calls). A file that
-    is not read counts (checking it says why)."""
-    data = _head(path, limit)
+    is not read counts (checking it says why). ``data``: its :func:`_head`, read already."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     return data is None or b"\0" in data or _stream(data, _OwnLinks()) == "own"
 
 
@@ -247,13 +252,14 @@ _LINK_NAME = re.compile(rb"<link\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S
 _JOINT_END = re.compile(rb"<(?:parent|child)\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 
 
-def _self_contained(path: Path, limit: int) -> bool:
+def _self_contained(path: Path, limit: int, data=_UNREAD) -> bool:
     """Whether every link the file's joints name as parent or child is a link the file
     writes (names compared as written): a robot of its own. A file whose joints hang on links
     it does not write (baxter's pedestal.xacro on the 'torso' of the robot including it) is a
     part, checked through what includes it. A file that is not read counts (checking it says
-    why)."""
-    data = _head(path, limit)
+    why). ``data``: its :func:`_head`, read already."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     if data is None or b"\0" in data:
         return True
     return set(_JOINT_END.findall(data)) <= set(_LINK_NAME.findall(data))
@@ -524,11 +530,12 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     properties, or is an SRDF source.
     resolver_for: path -> its PackageResolver, to follow ``$(find)`` includes
     """
-    summary = _summary(path, resolver_for, max_file_size)
+    data = _head(path, max_file_size)  # read once for the three questions
+    summary = _summary(path, resolver_for, max_file_size, data)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
-    if summary.named_robot and _has_own_links(path, max_file_size) and \
-            _self_contained(path, max_file_size):
+    if summary.named_robot and _has_own_links(path, max_file_size, data) and \
+            _self_contained(path, max_file_size, data):
         return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
@@ -660,14 +667,21 @@ def expand(paths: list[str], request) -> Targets:
     from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
 
+    known = {}  # path -> its options: asked for each file up to four times (its size limit,
+    # the resolver of each question its classification asks)
+
     def options_for(path):
         """The options ``path`` is checked with; when the settings that apply to it are broken,
         the request's alone: a settings file in another folder never stops this walk (checking
         a file it applies to says what is wrong with it)."""
-        try:
-            return for_file(str(path), request).options
-        except SettingsError:
-            return for_file(str(path), dataclasses.replace(request, use_settings=False)).options
+        path = str(path)
+        if path not in known:
+            try:
+                known[path] = for_file(path, request).options
+            except SettingsError:
+                known[path] = for_file(path, dataclasses.replace(request, use_settings=False)
+                                       ).options
+        return known[path]
 
     def resolver_for(path: Path) -> PackageResolver:
         return PackageResolver(options_for(path).packages, start=path.parent)
