@@ -636,7 +636,8 @@ def test_a_part_only_a_launch_test_builds_stays_a_part_walked_as_checked(tmp_pat
 
 def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, monkeypatch):
     """What a file named on the command line is (a robot of its own, a part, a library) is
-    decided from one read of it, under the settings looked up once for it."""
+    decided from one read of it, under the settings looked up once for it; a robot of its own
+    without following its includes (its summary is for what is not one)."""
     from urdftool.lint import settings, targets
     from urdftool.lint.settings import CheckRequest
 
@@ -650,5 +651,9 @@ def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, mo
                         lambda path, *a, **k: reads.append(path) or real_read(path, *a, **k))
     monkeypatch.setattr(settings, "for_file",
                         lambda path, *a: lookups.append(path) or real_for_file(path, *a))
+    summaries = []
+    real_summary = targets._summary
+    monkeypatch.setattr(targets, "_summary", lambda *a: summaries.append(a) or real_summary(*a))
     assert targets.expand([str(robot)], CheckRequest()).files == [str(robot)]
     assert [str(p) for p in reads] == [str(robot)] and lookups == [str(robot)]
+    assert not summaries

@@ -506,6 +506,18 @@ def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MA
             if may_use(robot, companion, _head(robot, limit) or b"")]
 
 
+def _own_robot(path: Path, limit: int, data) -> bool:
+    """Whether a file named, read as ``data`` (its :func:`_head`), is a robot of its own: not
+    an SRDF source, a named ``<robot>`` writing links or joints of its own that hang on no
+    link it does not write, or a file not read (checking it says why). Asked before its
+    :func:`_summary`, whose includes only a file that is not one needs."""
+    if data is None or b"\0" in data:
+        return True
+    return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
+        _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
+        _self_contained(path, limit, data)
+
+
 def project_root(path: Path) -> Path:
     """The folder whose robots may include ``path``: its
     :func:`~urdftool.description.packages.containment_root` (repository, else package, else
@@ -530,13 +542,12 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     properties, or is an SRDF source.
     resolver_for: path -> its PackageResolver, to follow ``$(find)`` includes
     """
-    data = _head(path, max_file_size)  # read once for the three questions
+    data = _head(path, max_file_size)  # read once for every question below
+    if _own_robot(path, max_file_size, data):
+        return [path], None  # a robot of its own: no need to look for robots including it
     summary = _summary(path, resolver_for, max_file_size, data)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
-    if summary.named_robot and _has_own_links(path, max_file_size, data) and \
-            _self_contained(path, max_file_size, data):
-        return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
     includers = includers() if callable(includers) else includers
