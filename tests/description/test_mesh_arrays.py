@@ -106,6 +106,7 @@ def test_merged_keeps_the_first_of_equal_vertices_in_order_of_first_use():
     b"solid a\nvertex 0 0 0\nvertex 1 0\nendsolid a\n",  # not whole triangles
     b"solid \xff\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendsolid\n",  # not UTF-8
     b"solid a\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\nendsolid a\n",  # not finite
+    b"solid a\nvertex 0 0 0\nvertex 1 0 x\nvertex 0 1 0\nendsolid a\n",  # a word no number
 ])
 def test_what_trimesh_should_judge_is_not_read_light(tmp_path, data):
     path = tmp_path / "m.stl"

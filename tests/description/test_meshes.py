@@ -418,3 +418,69 @@ def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, m
             resolve(robots[1], "gone.stl")
     assert len(looked) == 2 and first.value is not second.value
     assert (first.value.kind, str(first.value)) == (second.value.kind, str(second.value))
+
+
+def test_a_meshs_inner_points_lie_within_their_slack_of_its_merged_vertices(tmp_path,
+                                                                           monkeypatch):
+    """Corners as read that merge (each within 1e-8 of the first of them on every axis, in
+    the file's unit) and a scale: every inner point (found from the corners, not merged) is
+    within the facts' inner_slack of a merged vertex, and the slack is that small."""
+    import numpy as np
+
+    from urdftool.description import meshes
+
+    rng = np.random.default_rng(3)
+    grid = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]) * 0.12345678
+    grid = np.round(grid * 1e8) / 1e8  # on the merge's grid: moved by < 0.5e-8, they merge
+    rows = []
+    inward = np.sign(grid.mean(axis=0) - grid)  # a corner moved into the solid (its box
+    # then decided without merging: each extreme is first had by the corner that is kept)
+    seen = set()
+    for face in ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)):
+        corners = grid[list(face)] + rng.uniform(0, 0.45e-8, size=(3, 3)) * \
+            inward[list(face)] * [[i in seen] for i in face]  # a vertex's first: on the grid
+        seen.update(face)
+        rows.append("facet normal 0 0 0\nouter loop\n" + "".join(
+            f"vertex {float(x)!r} {float(y)!r} {float(z)!r}\n" for x, y, z in corners) + "endloop\nendfacet\n")
+    (tmp_path / "m.stl").write_text("solid t\n" + "".join(rows) + "endsolid t\n")
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", meshes.run_cache.new_cache())
+    scale = (1000.0, -2.0, 0.5)
+    facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
+    inner = np.array(facts.inner_points)  # before merging: from the corners as read
+    assert 0 < facts.inner_slack <= 4e-8 * 1000
+    merged = facts.vertices
+    assert len(merged) == 4
+    gaps = np.sqrt(((inner[:, None, :] - merged[None, :, :]) ** 2).sum(axis=2)).min(axis=1)
+    assert gaps.max() > 0 and (gaps <= facts.inner_slack).all()
+
+
+def test_a_package_mesh_is_located_once_per_run_for_robots_of_several_folders(tmp_path,
+                                                                              monkeypatch):
+    """Robots in two folders of one package name its mesh: where the file is (an install
+    rule's source, or missing and why) is worked out once per run, each robot still told."""
+    from urdftool.description import meshes
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text("<package><name>pkg</name></package>")
+    (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
+    robots = []
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+        path = tmp_path / folder / "r.urdf"
+        path.write_text('<robot name="r"><link name="l"/></robot>')
+        robots.append(load(path))
+    located = []
+    real = meshes.uris.installed
+    monkeypatch.setattr(meshes.uris, "installed", lambda *a: located.append(a) or real(*a))
+    with one_run():
+        assert {resolve(robot, "package://pkg/m.stl") for robot in robots} == \
+            {tmp_path / "m.stl"}
+        problems = []
+        for robot in robots:
+            with pytest.raises(MeshProblem) as problem:
+                resolve(robot, "package://pkg/gone.stl")
+            problems.append(problem.value)
+    assert len(located) == 2  # m.stl once, gone.stl once
+    assert problems[0] is not problems[1] and problems[0].kind == "missing"
+    assert str(problems[0]) == str(problems[1])

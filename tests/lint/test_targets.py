@@ -666,3 +666,28 @@ def test_a_part_only_a_launch_test_builds_stays_a_part_walked_as_checked(tmp_pat
         "        ReadyToTest(),\n    ])\n")
     walked, _ = _walked_and_named(tmp_path, "tested.urdf")
     assert walked.files == [] and "no root link" in walked.skipped[str(tmp_path / "tested.urdf")]
+
+
+def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, monkeypatch):
+    """What a file named on the command line is (a robot of its own, a part, a library) is
+    decided from one read of it, under the settings looked up once for it; a robot of its own
+    without following its includes (its summary is for what is not one)."""
+    from urdftool.lint import settings, targets
+    from urdftool.lint.settings import CheckRequest
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                     'type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
+    reads, lookups = [], []
+    real_read, real_for_file = targets.read_regular, settings.for_file
+    monkeypatch.setattr(targets, "read_regular",
+                        lambda path, *a, **k: reads.append(path) or real_read(path, *a, **k))
+    monkeypatch.setattr(settings, "for_file",
+                        lambda path, *a: lookups.append(path) or real_for_file(path, *a))
+    summaries = []
+    real_summary = targets._summary
+    monkeypatch.setattr(targets, "_summary", lambda *a: summaries.append(a) or real_summary(*a))
+    assert targets.expand([str(robot)], CheckRequest()).files == [str(robot)]
+    assert [str(p) for p in reads] == [str(robot)] and lookups == [str(robot)]
+    assert not summaries

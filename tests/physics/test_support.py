@@ -292,3 +292,85 @@ def test_a_point_inside_one_mesh_far_from_the_reachs_middle_is_found_inside(tmp_
     by_reach = np.array([table._inside.star.holds(p) for p in samples])
     assert (margins[found] <= 1e-12).all()
     assert (found & ~by_reach).sum() > 20  # the mesh's own star finds what the reach's misses
+
+
+def _balls(tmp_path, count: int):
+    """A link of ``count`` closed ball meshes 0.5 m apart along x, each turned its own way
+    (each standing on its origin: its centre 5 cm up its own z axis)."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+    parts = "".join(f'<visual><origin xyz="{0.5 * i} 0 0" rpy="0.3 {0.2 * i} 0.1"/><geometry>'
+                    '<mesh filename="ball.stl"/></geometry></visual>' for i in range(count))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="a">{parts}</link></robot>')
+    return link_reach(robot, robot.links["a"])
+
+
+def _centre(piece, off=(0.0, 0.0, 0.0)):
+    """The centre of a ball of :func:`_balls` in the reach's frame (moved by ``off`` in the
+    ball's frame)."""
+    return np.asarray(piece.centre) + np.asarray(piece.rotation) @ np.add((0.0, 0.0, 0.05), off)
+
+
+def test_a_point_inside_its_own_mesh_makes_no_star_of_the_reach(tmp_path):
+    """A centre of mass inside one of a reach's first meshes is found inside by that mesh's
+    star (made once per run), and the reach makes no star of its own points for it."""
+    from urdftool.physics.support import _Table
+
+    table = _Table(_balls(tmp_path, 2).pieces)
+    assert table.within(_centre(table._pieces[1], (0.01, 0.02, -0.015)))  # in the 2nd ball
+    assert table._inside._star is None
+
+
+def test_a_body_of_many_meshes_asks_at_most_a_few_own_stars_before_its_own(tmp_path,
+                                                                          monkeypatch):
+    """Between the balls (inside the reach's hull, in no ball): the first OWN_STARS_FIRST
+    meshes' stars are asked, then the reach's star finds it; the other meshes' are not."""
+    from urdftool.physics import support
+
+    table = support._Table(_balls(tmp_path, 8).pieces)
+    asked = []
+    real = support._mesh_star
+    monkeypatch.setattr(support, "_mesh_star", lambda mesh: asked.append(mesh) or real(mesh))
+    assert table.within((_centre(table._pieces[2]) + _centre(table._pieces[3])) / 2)
+    assert len(asked) == support.OWN_STARS_FIRST and table._inside._star is not None
+
+
+def _margin(extent: float) -> float:
+    return max(0.2 * extent, 0.01)
+
+
+def test_a_point_near_the_hull_is_judged_by_its_few_points_without_placing_a_vertex(tmp_path):
+    """Just outside a ball (outside its star, so not found inside), within the margin the
+    caller names for geometry that large: 0 from the star's points alone, no vertex placed
+    and the mesh not merged; beyond it, the exact distance from every vertex."""
+    reach = _balls(tmp_path, 1)
+    piece = reach.pieces[0]
+    near = _centre(piece, (0.053, 0.0, 0.0))  # 3 mm outside the ball
+    assert reach.outside(near, beyond=_margin) == 0.0
+    assert piece.vertices is None and piece.mesh._merge is not None
+    far = _centre(piece, (0.09, 0.0, 0.0))  # 4 cm out: beyond a fifth of its 10 cm
+    assert reach.outside(far, beyond=_margin) == pytest.approx(0.04, abs=2e-3)
+    assert piece.vertices is not None
+
+
+def test_what_is_found_near_from_a_few_points_is_within_the_margin_of_every_vertex(tmp_path):
+    """Points all round a reach of meshes and primitives: every one judged near (0) has an
+    exact distance (every vertex and closed form, as before) within the margin of the
+    reach's largest extent; most points near the hull but outside its stars are judged so."""
+    from urdftool.physics.support import _Table
+
+    reach = _pieces(tmp_path, mesh=True)
+    rng = np.random.default_rng(11)
+    extent = max(reach.support(a) + reach.support(tuple(-v for v in a)) for a in np.eye(3))
+    samples = rng.normal(size=(600, 3)) * 0.25
+    judged = 0
+    for p in samples:
+        fast = _Table(reach.pieces).outside(p, beyond=_margin)
+        exact = _Table(reach.pieces).outside(p)
+        if fast == 0.0 and exact > 0.0:
+            judged += 1
+            assert exact <= _margin(extent)
+        elif exact > 0.0:
+            assert fast == exact
+    assert judged > 50, judged

@@ -30,7 +30,7 @@ from urdftool.numbers import power
 
 _HEADER = 84  # [bytes]: 80 of text, the triangle count
 _RECORD = 50  # [bytes]: normal, three vertices (12 float32) and a 2-byte attribute
-_MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
+MERGE_DIGITS = 8  # trimesh merges vertices equal to 1e-8 (tol.merge)
 
 
 def read(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
@@ -89,7 +89,10 @@ _STL_RECORD = [("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attribute", 
 
 
 def _stl_ascii(data: bytes):
-    """The vertices of an ASCII STL of one solid, split and parsed as trimesh does."""
+    """The vertices of an ASCII STL of one solid, split and parsed as trimesh does; None when
+    a word is no number (trimesh then says what is wrong with it)."""
+    import warnings
+
     import numpy as np
 
     try:
@@ -100,8 +103,13 @@ def _stl_ascii(data: bytes):
     if start < 0 or end < 0 or start > end or text.find("solid", end + 8) >= 0:
         return None  # none, or several solids: trimesh's scene of them
     pieces = text[start:end].split("vertex")[1:]
-    vertices = np.fromstring(" ".join(line[:line.find("\n")] for line in pieces), sep=" ",
-                             dtype=np.float64) if pieces else np.zeros(0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # fromstring warns, or raises, and stops at a word
+        try:
+            vertices = np.fromstring(" ".join(line[:line.find("\n")] for line in pieces),
+                                     sep=" ", dtype=np.float64) if pieces else np.zeros(0)
+        except (ValueError, DeprecationWarning):
+            return None
     if len(vertices) < 9 or len(vertices) % 9:
         return None
     return vertices.reshape(-1, 3)
@@ -287,7 +295,7 @@ def _merge_keys(vertices):
     """The (n, 3) int64 keys by which vertices merge: their coordinates in units of 1e-8."""
     import numpy as np
 
-    return (vertices * 10 ** _MERGE_DIGITS).round().astype(np.int64)
+    return (vertices * 10 ** MERGE_DIGITS).round().astype(np.int64)
 
 
 def merged_bounds(vertices, unmerged):
@@ -323,7 +331,7 @@ def merged_bounds(vertices, unmerged):
     return corners[0], corners[1]
 
 
-_KEY_RANGE = 2.0 ** 62 / 10 ** _MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
+_KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
 
 
 def _merges_earlier(vertices, column, row: int) -> bool:

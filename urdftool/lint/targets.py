@@ -512,18 +512,16 @@ def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MA
             if may_use(robot, companion, _head(robot, limit) or b"")]
 
 
-def _robot_of_its_own(path: Path, data: bytes | None) -> bool:
-    """What :func:`explicit_targets` decides from :func:`_summary`'s ``srdf`` and
-    ``named_robot`` for a robot of its own, asked of the file's bytes (``data``, None when not
-    read) before the rest of the summary (its includes resolved, its macros and root looked
-    for), which such a file does not need: not an SRDF source, a named ``<robot>``, links of
-    its own and its joints on them; and a file that is not read (checking it says why)."""
+def _own_robot(path: Path, limit: int, data) -> bool:
+    """Whether a file named, read as ``data`` (its :func:`_head`), is a robot of its own: not
+    an SRDF source, a named ``<robot>`` writing links or joints of its own that hang on no
+    link it does not write, or a file not read (checking it says why). Asked before its
+    :func:`_summary`, whose includes only a file that is not one needs."""
     if data is None or b"\0" in data:
-        return True  # (_summary's answer for it: a named robot, no SRDF)
-    if path.name.endswith(".srdf.xacro") or not _NAMED_ROBOT.search(data):
-        return False
-    return _top_level_answer(data) != "srdf" and _has_own_links(path, 0, data) and \
-        _self_contained(path, 0, data)
+        return True
+    return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
+        _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
+        _self_contained(path, limit, data)
 
 
 def project_root(path: Path) -> Path:
@@ -550,15 +548,12 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     properties, or is an SRDF source.
     resolver_for: path -> its PackageResolver, to follow ``$(find)`` includes
     """
-    data = _head(path, max_file_size)  # read once for the questions below
-    if _robot_of_its_own(path, data):
-        return [path], None  # no need to look for robots including it, nor for its includes
+    data = _head(path, max_file_size)  # read once for every question below
+    if _own_robot(path, max_file_size, data):
+        return [path], None  # a robot of its own: no need to look for robots including it
     summary = _summary(path, resolver_for, max_file_size, data)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
-    if summary.named_robot and _has_own_links(path, max_file_size, data) and \
-            _self_contained(path, max_file_size, data):
-        return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
     includers = includers() if callable(includers) else includers
@@ -689,14 +684,21 @@ def expand(paths: list[str], request) -> Targets:
     from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
 
+    known = {}  # path -> its options: asked for each file up to four times (its size limit,
+    # the resolver of each question its classification asks)
+
     def options_for(path):
         """The options ``path`` is checked with; when the settings that apply to it are broken,
         the request's alone: a settings file in another folder never stops this walk (checking
         a file it applies to says what is wrong with it)."""
-        try:
-            return for_file(str(path), request).options
-        except SettingsError:
-            return for_file(str(path), dataclasses.replace(request, use_settings=False)).options
+        path = str(path)
+        if path not in known:
+            try:
+                known[path] = for_file(path, request).options
+            except SettingsError:
+                known[path] = for_file(path, dataclasses.replace(request, use_settings=False)
+                                       ).options
+        return known[path]
 
     def resolver_for(path: Path) -> PackageResolver:
         return PackageResolver(options_for(path).packages, start=path.parent)

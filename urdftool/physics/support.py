@@ -146,20 +146,22 @@ class Reach:
         """The largest distance [m] from ``p`` to the geometry; 0 without pieces."""
         return max((piece.farthest(p) for piece in self.pieces), default=0.0)
 
-    def outside(self, p) -> float:
+    def outside(self, p, beyond=None) -> float:
         """How far ``p`` lies outside the convex hull of the pieces, at least [m]: the largest
         ``d . p - h(d)`` over :data:`DIRECTIONS` and the direction from the centre of the
         pieces' box to ``p`` (each a true lower bound of the distance; 0 or less: inside, or
         too near to tell). 0 when ``p`` is inside a primitive piece. With a mesh among the
         pieces (numpy is loaded), every direction is asked at once (:class:`_Table`), and 0
-        when ``p`` is found inside the hull of a few points of the pieces (:class:`_Inside`):
-        then no vertex of a mesh is placed."""
+        when ``p`` is found inside the hull of a few points of the pieces (:class:`_Inside`),
+        or, given ``beyond`` (largest extent [m] -> the distance [m] that matters for
+        geometry that large, never smaller for a larger one), found within that distance of
+        it (:meth:`_Inside.near`): then no vertex of a mesh is placed (nor a mesh merged)."""
         if not self.pieces:
             return 0.0
         if any(piece.kind == "mesh" for piece in self.pieces):
             if self._table is None:
                 self._table = _Table(self.pieces)
-            return self._table.outside(p)
+            return self._table.outside(p, beyond=beyond)
         if any(piece.holds(p) for piece in self.pieces):
             return 0.0
         centre = tuple((self.support(axis) - self.support(tuple(-a for a in axis))) / 2
@@ -220,7 +222,9 @@ class _Body:
             return 0.0
         return self._table().farthest(p, (self.rotation, self.xyz))
 
-    def outside(self, p) -> float:
+    def outside(self, p, beyond=None) -> float:
+        """:meth:`Reach.outside` (``beyond`` is not asked: the body's few points are in its
+        root's frame)."""
         if not self.reach.pieces:
             return 0.0
         return self._table().outside(p, (self.rotation, self.xyz))
@@ -350,13 +354,16 @@ class _Table:
                                       self.spheres[:, 3]).max()))
         return found
 
-    def outside(self, p, frame=None) -> float:
-        """:meth:`Reach.outside` of ``p`` (the asker's frame)."""
+    def outside(self, p, frame=None, beyond=None) -> float:
+        """:meth:`Reach.outside` of ``p`` (the asker's frame; ``beyond`` asked without a
+        ``frame`` only)."""
         import numpy as np
 
         inside = self._in_table_frame(p, frame)
         if self.holds(inside) or self.within(inside):
             return 0.0
+        if beyond is not None and frame is None and self._inside.near(inside, beyond):
+            return 0.0  # within what matters: a lower bound of how far out, as 0 is
         p = np.asarray(p, dtype=float)
         every, six, _ = _columns()
         heights = self.support(six, frame)
@@ -368,23 +375,33 @@ class _Table:
         return float((p @ directions - self.support(directions, frame)).max())
 
 
+# Meshes of a reach whose own stars are asked before the reach's star is made (see _Inside)
+OWN_STARS_FIRST = 4
+# _Inside.near: steps of the walk, room for rounding [m], and the coordinates [m] it judges
+_NEAR_STEPS, _NEAR_ROOM, _NEAR_RANGE = 48, 1e-6, 1e6
+
+
 class _Inside:
     """A quick test that a point lies inside the convex hull of a reach's pieces, from a few
-    points of them (:class:`_Star`): first those of every piece together (of a mesh its
-    ``inner`` points, of a box its corners, of a cylinder eight points of its rims, of a
-    sphere its six poles: a point between pieces), made when first asked, one test; then each
-    mesh's own (its star in its frame, made once per run: a centre of mass inside its link's
-    mesh far from the reach's middle), one test per mesh, so only for the points the first
-    cannot place (asked first, they made a rigid body of n meshes cost n tests for each of
-    its n links: 1,000 links fixed together with meshes 1.5 s -> 5.8 s, 2,000 -> 17.5 s).
-    Outside is then 0 (the rules ask of it only beyond a centimetre); a point neither can
-    place is asked of every vertex."""
+    points of them (:class:`_Star`). First the stars of the reach's first
+    :data:`OWN_STARS_FIRST` meshes, each in its own frame (made once per run: a centre of mass
+    lies inside its own link's mesh far more often than not, on the corpus 349 of 420
+    questions, and then the reach makes no star of its own); then the star of the points of
+    every piece together (of a mesh its ``inner`` points, of a box its corners, of a cylinder
+    eight points of its rims, of a sphere its six poles: a point between pieces), made when
+    first asked, one test; then the other meshes' own, one test each (asked before the
+    reach's, every mesh's made a rigid body of n meshes cost n tests for each of its n links:
+    1,000 links fixed together with meshes 1.5 s -> 5.8 s, 2,000 -> 17.5 s). Either star
+    finding the point inside is enough, so the order changes only what is made. Outside is
+    then 0 (the rules ask of it only beyond a centimetre); a point none can place is asked of
+    every vertex."""
 
-    __slots__ = ("_star", "_parts", "pieces")
+    __slots__ = ("_star", "_parts", "pieces", "_points")
 
     def __init__(self, pieces, corners, cylinders, spheres):
         self._star, self._parts = None, (pieces, corners, cylinders, spheres)
         self.pieces = [piece for piece in pieces if piece.kind == "mesh"]
+        self._points = None  # the star's points, once made
 
     @property
     def star(self):
@@ -406,22 +423,81 @@ class _Inside:
                 offsets = np.vstack([np.eye(3), -np.eye(3)])
                 found.append((spheres[:, None, :3] + spheres[:, None, 3:] * offsets)
                              .reshape(-1, 3))
-            self._star = _Star(np.vstack(found) if found else np.zeros((0, 3)))
+            self._points = np.vstack(found) if found else np.zeros((0, 3))
+            self._star = _Star(self._points)
         return self._star
+
+    def near(self, p, beyond) -> bool:
+        """Whether ``p`` is certainly within ``beyond(extent)`` of the hull of the pieces
+        (see :meth:`Reach.outside`), found from the star's points alone: a point of their
+        hull that near (Gilbert's walk towards ``p``, each step a point of the hull) against
+        ``beyond`` of their box's largest side. Their hull lies in the pieces' (a mesh's
+        points within its ``inner_slack`` of it: counted, with room for rounding), and their
+        box in the pieces', so what holds of them holds of every vertex: False when that
+        does not show it (then every vertex is asked)."""
+        import numpy as np
+
+        points = self._points
+        if points is None:
+            self.star  # (made by holds first; made here when a caller did not ask it)
+            points = self._points
+        if not len(points) or not np.isfinite(points).all() or \
+                not np.isfinite(p).all():
+            return False
+        slack = max((piece.mesh.inner_slack for piece in self.pieces), default=0.0)
+        size = float(np.abs(points).max()) + float(np.abs(p).max())
+        if not size < _NEAR_RANGE:
+            return False
+        extent = float((points.max(axis=0) - points.min(axis=0)).max())
+        # far more than every rounding (of the points, their box and the walk's sums)
+        room = _NEAR_ROOM + 1e-9 * size + slack
+        limit = beyond(max(extent - 2 * slack, 0.0)) - room
+        if not limit > 0:
+            return False
+        offsets = points - p
+        x = points[int(np.argmin((offsets * offsets).sum(axis=1)))]  # the nearest point
+        for _ in range(_NEAR_STEPS):
+            g = x - p
+            distance = math.sqrt(float(g @ g))
+            if distance <= limit:
+                return True
+            heights = points @ g
+            nearest = int(np.argmin(heights))
+            # no point of the hull is nearer than along -g: the hull lies beyond p there
+            if (float(heights[nearest]) - float(g @ p)) / distance >= limit:
+                return False
+            step = x - points[nearest]
+            length = float(step @ step)
+            t = float(g @ step) / length if length > 0 else 0.0
+            if not t > 0:
+                return False  # x is the nearest point of the hull
+            x = x - min(t, 1.0) * step
+        return False
 
     def holds(self, p) -> bool:
         import numpy as np
 
         p = np.asarray(p, dtype=float)
-        if self.star.holds(p):  # one test for the whole reach first: its meshes' own stars,
-            return True  # one each, made a body of n meshes cost n tests for each of its links
-        for piece in self.pieces:
-            star = _mesh_star(piece.mesh)
-            # p in the mesh's own frame: rotation^T (p - centre)
-            if star.inverses is not None and \
-                    star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
-                return True
-        return False
+        first, rest = self.pieces[:OWN_STARS_FIRST], self.pieces[OWN_STARS_FIRST:]
+        if _in_own_star(first, p):  # made once per run: no star of the reach made for it
+            return True
+        if self.star.holds(p):  # one test for the whole reach before every mesh's own: one
+            return True  # each made a body of n meshes cost n tests for each of its links
+        return _in_own_star(rest, p)
+
+
+def _in_own_star(pieces, p) -> bool:
+    """Whether ``p`` (the reach's frame) is inside the star of one of the mesh ``pieces`` in
+    its own frame (:func:`_mesh_star`)."""
+    import numpy as np
+
+    for piece in pieces:
+        star = _mesh_star(piece.mesh)
+        # p in the mesh's own frame: rotation^T (p - centre)
+        if star.inverses is not None and \
+                star.holds((p - piece.centre) @ np.asarray(piece.rotation)):
+            return True
+    return False
 
 
 class _Star:

@@ -116,6 +116,14 @@ class _Arrays:
                     moved, _ = mesh_arrays.scaled(moved, self._read[1], factors)
         return moved
 
+    def corner_slack(self, scale: tuple[float, float, float]) -> float:
+        """How far [m] a corner as read (:meth:`corners_read`) may lie from the merged vertex
+        it merges into: corners merge when their coordinates round to one multiple of 1e-8
+        in the file's unit (less than 1e-8 apart on each axis), and both are then scaled by
+        the unit and ``scale``; twice that, for rounding."""
+        return 2 * 3 ** 0.5 * 10.0 ** -mesh_arrays.MERGE_DIGITS * abs(self._unit) * \
+            max(abs(s) for s in scale)
+
     def bounds(self, scale: tuple[float, float, float]):
         """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
         them; None when that cannot be decided so (see :func:`.mesh_arrays.merged_bounds`)."""
@@ -160,13 +168,15 @@ class MeshFacts:
 
     @classmethod
     def unmerged(cls, triangles: int, bounds, metadata: dict, nbytes: int, merge,
-                 corners=None):
+                 corners=None, slack: float = 0.0):
         """Facts whose bounds are known and whose arrays ``merge()`` builds when first
         needed: (vertices, faces, watertight), merged and scaled; ``corners()``: the corners
-        as read, scaled (or None), for what needs no merging (:attr:`inner_points`)."""
+        as read, scaled (or None), for what needs no merging (:attr:`inner_points`), each
+        within ``slack`` [m] of a merged vertex (:attr:`inner_slack`)."""
         facts = cls.__new__(cls)
         facts._start(triangles, bounds, metadata, nbytes)
         facts._merge, facts._corners = merge, corners
+        facts.inner_slack = slack if corners is not None else 0.0
         return facts
 
     def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
@@ -178,6 +188,7 @@ class MeshFacts:
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
         self._inner = self._inner_volume = self._corners = None
+        self.inner_slack = 0.0  # [m]: how far an inner point may lie from a merged vertex
 
     def _arrays(self):
         if self._merge is not None:
@@ -217,7 +228,7 @@ class MeshFacts:
         """At most 26 points of the mesh, each largest along a direction of a cube's faces,
         edges and corners (:func:`.mesh_arrays.cube_extremes`): points of its hull, found
         without building it (read only). Of the corners as read while the mesh is not merged
-        (merging would cost more), each within 1e-8 (times the scale) of a merged vertex."""
+        (merging would cost more), each within :attr:`inner_slack` [m] of a merged vertex."""
         if self._inner is None:
             points = self._corners() if self._merge is not None and self._corners else None
             if points is None:
@@ -276,7 +287,8 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
         if bounds is not None:
             facts = MeshFacts.unmerged(arrays.triangles, bounds, arrays.metadata, arrays.nbytes,
                                        lambda: _merged_scaled(arrays, scale),
-                                       lambda: arrays.corners_read(scale))
+                                       lambda: arrays.corners_read(scale),
+                                       arrays.corner_slack(scale))
         else:
             import numpy as np
 

@@ -15,7 +15,7 @@ import os
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, real_path, resolved
-from urdftool.description.packages import containment_root, package_uri_parts
+from urdftool.description.packages import containment_root, installed, package_uri_parts
 from urdftool.description.run_memo import per_run
 from urdftool.errors import MeshProblem, PackageNotFound
 
@@ -43,24 +43,42 @@ def _resolved(robot, uri: str) -> Path | MeshProblem:
 
 def _resolve(robot, uri: str) -> Path:
     if uri.startswith("package://"):
-        package, _ = package_uri_parts(uri)
+        package, tail = package_uri_parts(uri)
         try:
-            located = robot.resolver.locate_uri(uri, robot.base_dir)
+            folder = robot.resolver.find(package)  # (the robot's resolver: once per robot)
         except PackageNotFound as error:
             raise MeshProblem("package", f"mesh '{uri}': {error}") from None
-        found = _checked(uri, os.fspath(located.path), os.fspath(located.within), package)
+        found = _in_package(uri, package, os.fspath(folder), tail)
     else:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
         located = robot.resolver.locate_uri(uri, robot.base_dir)
-        found = _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir), None)
+        found = _doubted(_checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
+                                  None), located)
     if isinstance(found, MeshProblem):
-        if found.kind == "missing" and located.doubt:
-            # the build may put it there: not certainly missing (docs/packages.md)
-            raise MeshProblem("missing", f"{found.message}: not found in the source tree; "
-                                         f"{located.doubt}", certain=False)
-        raise MeshProblem(found.kind, found.message)  # a new one: raised once per robot
+        # a new one: raised once per robot
+        raise MeshProblem(found.kind, found.message, certain=found.certain)
+    return found
+
+
+@per_run
+def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshProblem:
+    """The file of ``uri``, ``tail`` below package ``package``'s folder ``folder`` (or where
+    an install rule of its build takes it from), checked (:func:`_checked`); else the
+    MeshProblem. Once per run: every robot that names the mesh in a package found in the same
+    folder gets the same answer."""
+    located = installed(package, Path(folder), Path(folder) / tail)
+    return _doubted(_checked(uri, os.fspath(located.path), os.fspath(located.within), package),
+                    located)
+
+
+def _doubted(found: Path | MeshProblem, located) -> Path | MeshProblem:
+    """``found``, a file missing from the source tree said not certain when the package's
+    build may put it there (``located.doubt``, docs/packages.md)."""
+    if isinstance(found, MeshProblem) and found.kind == "missing" and located.doubt:
+        return MeshProblem("missing", f"{found.message}: not found in the source tree; "
+                                      f"{located.doubt}", certain=False)
     return found
 
 

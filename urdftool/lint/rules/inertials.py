@@ -805,8 +805,15 @@ def _largest_extent(reach) -> float:
 
 def _hull_margin(reach) -> float:
     """How far outside a geometry's hull a centre of mass may be [m]: a fifth of its largest
-    extent, at least 1 cm."""
-    return max(COM_HULL_FRACTION * _largest_extent(reach), COM_HULL_MIN)
+    extent, at least 1 cm (:func:`_margin`)."""
+    return _margin(_largest_extent(reach))
+
+
+def _margin(extent: float) -> float:
+    """How far outside the hull of geometry whose largest extent is ``extent`` [m] a centre
+    of mass may be [m]: a fifth of it, at least 1 cm (never smaller for larger geometry: a
+    reach finding the point within it from a few points of its pieces says 0)."""
+    return max(COM_HULL_FRACTION * extent, COM_HULL_MIN)
 
 
 def _copied_joint_origin(robot, link, properties) -> object | None:
@@ -855,7 +862,8 @@ def com_outside_hull(robot):
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
             continue
-        outside = reach.outside(properties.com)  # 0 at once inside a box, cylinder or sphere
+        # 0 at once inside a box, cylinder or sphere, or found within the margin
+        outside = reach.outside(properties.com, beyond=_margin)
         if outside <= COM_HULL_MIN or outside <= _hull_margin(reach) or \
                 _far_outside_box(robot, link, properties) is not None:
             continue
@@ -880,7 +888,7 @@ def _own_outside(robot, link, properties) -> float | None:
     reach = link_reach(robot, link, ("visual", "collision"))
     if not reach.pieces or not reach.complete:
         return None
-    outside = reach.outside(properties.com)
+    outside = reach.outside(properties.com, beyond=_margin)
     return outside if outside > _hull_margin(reach) else None
 
 
