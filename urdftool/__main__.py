@@ -392,6 +392,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
                 read = Path(value)
             elif kind == "float":
                 read = float(value)
+                if read - read != 0:  # NaN or infinite: Typer's usage error (cli._finite_numbers)
+                    return None
             else:
                 read = int(value)
                 if kind.startswith("int>=") and read < int(kind[5:]):
