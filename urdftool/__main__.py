@@ -67,6 +67,10 @@ def _check(words: list[str]) -> None:
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
     if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
         return
+    from urdftool.terminal import option_named_by_a_file
+
+    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
+        return
     parameters = kept_words("check")
     values = None if parameters is None else plain_words(words[1:], parameters)
     if values is None:

@@ -245,3 +245,31 @@ def test_a_non_finite_number_is_a_usage_error(tmp_path, words):
     result = subprocess.run([sys.executable, "-m", "urdftool", words[0], str(robot), *words[1:]],
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 2 and "not a finite number" in result.stderr, result.stderr
+
+
+def test_a_file_named_like_an_option_is_never_read_as_one(tmp_path, monkeypatch, run_cli):
+    """pre-commit appends the staged file names without '--': a committed file named
+    '--controllers=x.yaml' (a link to a file outside the repository) was read as the option,
+    and a companion named on the command line is read wherever it leads (/etc/passwd parsed,
+    U601); '--select=U0.urdf' would choose the rules. Every command, both doors: a usage error
+    that names the word."""
+    import subprocess
+    import sys
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    outside = tmp_path.parent / f"{tmp_path.name}-secret.yaml"
+    outside.write_text("SECRET: 1\n")
+    (tmp_path / "x.yaml").symlink_to(outside)
+    (tmp_path / "--controllers=x.yaml").write_text("")
+    (tmp_path / "-oREADME.urdf").write_text("")
+    monkeypatch.chdir(tmp_path)
+    for words in (["check", "--controllers=x.yaml", "r.urdf"], ["tree", "-oREADME.urdf", "r.urdf"]):
+        result = run_cli(*words)
+        assert result.exit_code == 2 and f"'{words[1]}' reads as an option" in result.output
+        assert "SECRET" not in result.output
+        door = subprocess.run([sys.executable, "-m", "urdftool", *words], capture_output=True,
+                              text=True, timeout=60)
+        assert door.returncode == 2 and "reads as an option" in door.stderr, door.stderr
+    assert run_cli("check", "--no-cache", "--", "--controllers=x.yaml", "r.urdf").exit_code == 0
+    assert run_cli("check", "--no-cache", "--select=U2", "r.urdf").exit_code == 0

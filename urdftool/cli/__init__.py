@@ -73,6 +73,20 @@ class LazyGroup(TyperGroup):
                 error.message = f"{error.message.rstrip('.')}; did you mean '{close[0]}'?"
             raise
 
+    def parse_args(self, ctx, args):
+        """The words of every command, before any is parsed: a word that reads as an option
+        while a file of that name exists is a usage error (terminal.option_named_by_a_file)."""
+        from urdftool.errors import UsageError
+        from urdftool.terminal import refuse_options_named_by_files
+
+        try:
+            refuse_options_named_by_files(args[1:])
+        except UsageError as error:
+            from urdftool.cli._common import fail_usage
+
+            fail_usage(error)
+        return super().parse_args(ctx, args)
+
     def get_command(self, ctx, name: str):
         if name not in self.commands and name in COMMANDS:
             self.add_command(command(name), name)
