@@ -107,18 +107,15 @@ def option_named_by_a_file(words: list[str]) -> str | None:
     committed, handed over by a tool that appends file names without ``--`` (pre-commit's
     ``pass_filenames``), which the parser would take as an option (a companion named on the
     command line is read wherever its link leads; ``--select`` checks nothing). None when
-    there is none. One ``lstat`` per word that starts with ``-``."""
-    import os
-
+    there is none. One ``lstat`` per word that starts with ``-`` (the door's ``kind_of``)."""
     for word in words:
         if word == "--":
             return None
         if word.startswith("-") and word != "-":
-            try:
-                os.lstat(word)
-            except (OSError, ValueError):
-                continue
-            return word
+            from urdftool.description.files import kind_of
+
+            if kind_of(word, follow=False):
+                return word
     return None
 
 
