@@ -67,6 +67,10 @@ def _check(words: list[str]) -> None:
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
     if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
         return
+    from urdftool.terminal import option_named_by_a_file
+
+    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
+        return
     parameters = kept_words("check")
     values = None if parameters is None else plain_words(words[1:], parameters)
     if values is None:
@@ -396,6 +400,8 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
                 read = Path(value)
             elif kind == "float":
                 read = float(value)
+                if read - read != 0:  # NaN or infinite: Typer's usage error (cli._finite_numbers)
+                    return None
             else:
                 read = int(value)
                 if kind.startswith("int>=") and read < int(kind[5:]):

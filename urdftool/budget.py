@@ -44,8 +44,9 @@ class Budget:
         """A budget from option values: ``--timeout`` in [s], ``--max-memory`` as
         :func:`parse_memory` reads it (None: the default); 0 for no limit. UsageError when one
         is malformed or negative."""
-        if timeout < 0:
-            raise UsageError(f"--timeout must not be negative, got {timeout:g}")
+        if not timeout >= 0 or timeout == float("inf"):  # NaN compares false: refused too
+            raise UsageError(f"--timeout must be a number of seconds, 0 or more (0: no limit), "
+                             f"got {timeout:g}")
         memory = DEFAULT_MEMORY if max_memory is None else parse_memory(max_memory)
         return cls(timeout or None, memory)
 
@@ -62,8 +63,11 @@ def parse_memory(text: str) -> int | None:
     if not match:
         raise UsageError(f"--max-memory must be a size such as 2G, 512M or 0 (no limit), "
                          f"not '{text}'")
-    size = int(float(match[1]) * _UNITS[match[2]])
-    return size or None
+    size = float(match[1]) * _UNITS[match[2]]
+    if size == float("inf"):  # 400 digits: a float, but no integer
+        raise UsageError(f"--max-memory must be a size such as 2G, 512M or 0 (no limit), "
+                         f"not '{text}'")
+    return int(size) or None
 
 
 def format_memory(size: int) -> str:

@@ -101,6 +101,33 @@ def plain() -> Terminal | None:
     return Terminal(plain_echo, SystemExit)
 
 
+def option_named_by_a_file(words: list[str]) -> str | None:
+    """The first word before ``--`` that reads as an option (``--select=U9.yaml``,
+    ``-oREADME.urdf``) while a file or link of that very name exists: a file name a stranger
+    committed, handed over by a tool that appends file names without ``--`` (pre-commit's
+    ``pass_filenames``), which the parser would take as an option (a companion named on the
+    command line is read wherever its link leads; ``--select`` checks nothing). None when
+    there is none. One ``lstat`` per word that starts with ``-`` (the door's ``kind_of``)."""
+    for word in words:
+        if word == "--":
+            return None
+        if word.startswith("-") and word != "-":
+            from urdftool.description.files import kind_of
+
+            if kind_of(word, follow=False):
+                return word
+    return None
+
+
+def refuse_options_named_by_files(words: list[str]) -> None:
+    """UsageError when :func:`option_named_by_a_file` finds one: every command, both doors
+    (``__main__``'s plain check and the Typer app)."""
+    word = option_named_by_a_file(words)
+    if word is not None:
+        raise UsageError(f"'{word}' reads as an option, but a file of that name exists here; "
+                         "name files after '--' (urdftool COMMAND [OPTIONS] -- FILE...)")
+
+
 def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
     """Separate ``name:=value`` xacro words from paths."""
     paths, args = [], {}

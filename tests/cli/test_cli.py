@@ -194,3 +194,82 @@ def test_a_reader_that_leaves_early_gets_no_traceback():
     _, errors = process.communicate(timeout=300)
     assert first.startswith(b"humanoid_robot:")
     assert b"Traceback" not in errors and process.returncode == 1, errors.decode()
+
+
+def _float_parameters():
+    """(command, option, parameter) of every float the command line reads, tuples' members
+    included (``ik --xyz X Y Z``)."""
+    from typer._click import types
+
+    from urdftool.cli import COMMANDS, command
+
+    for name in COMMANDS:
+        for param in command(name).params:
+            kinds = param.type.types if isinstance(param.type, types.Tuple) else [param.type]
+            if any(isinstance(kind, types.FloatParamType) for kind in kinds):
+                yield name, max(param.opts, key=len), param
+
+
+def test_every_float_option_refuses_nan_and_infinity():
+    """click reads 'nan', 'inf' and '1e999' as floats and a NaN passes every min=/max=: a NaN
+    --density gave NaN masses, --min-fraction nan an 'Always' for no pair, --tolerance 1e999
+    every change equal, --timeout 1e999 a traceback. One guard (cli._finite_numbers) for every
+    float option of every command."""
+    from typer._click.exceptions import BadParameter
+
+    found = list(_float_parameters())
+    assert len(found) >= 15 and {"--density", "--timeout", "--xyz", "--min-fraction"} <= \
+        {option for _, option, _ in found}
+    for name, option, param in found:
+        kinds = getattr(param.type, "types", [param.type])
+        for kind in kinds:
+            with pytest.raises(BadParameter, match="finite"):  # NaN passes any range
+                kind.convert("nan", param, None)
+            for word in ("inf", "-inf", "1e999"):  # (or out of its range)
+                with pytest.raises(BadParameter, match="finite|range"):
+                    kind.convert(word, param, None)
+            assert kind.convert("0.5", param, None) == 0.5, (name, option)
+
+
+@pytest.mark.parametrize("words", [["check", "--timeout", "nan"], ["check", "--timeout", "1e999"],
+                                   ["inertia", "--density", "nan"],
+                                   ["ik", "--tip", "b", "--xyz", "0", "nan", "0"]])
+def test_a_non_finite_number_is_a_usage_error(tmp_path, words):
+    """Through the real door too: check's plain words are read without Typer (__main__)."""
+    import subprocess
+    import sys
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                     'type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
+    result = subprocess.run([sys.executable, "-m", "urdftool", words[0], str(robot), *words[1:]],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and "not a finite number" in result.stderr, result.stderr
+
+
+def test_a_file_named_like_an_option_is_never_read_as_one(tmp_path, monkeypatch, run_cli):
+    """pre-commit appends the staged file names without '--': a committed file named
+    '--controllers=x.yaml' (a link to a file outside the repository) was read as the option,
+    and a companion named on the command line is read wherever it leads (/etc/passwd parsed,
+    U601); '--select=U0.urdf' would choose the rules. Every command, both doors: a usage error
+    that names the word."""
+    import subprocess
+    import sys
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    outside = tmp_path.parent / f"{tmp_path.name}-secret.yaml"
+    outside.write_text("SECRET: 1\n")
+    (tmp_path / "x.yaml").symlink_to(outside)
+    (tmp_path / "--controllers=x.yaml").write_text("")
+    (tmp_path / "-oREADME.urdf").write_text("")
+    monkeypatch.chdir(tmp_path)
+    for words in (["check", "--controllers=x.yaml", "r.urdf"], ["tree", "-oREADME.urdf", "r.urdf"]):
+        result = run_cli(*words)
+        assert result.exit_code == 2 and f"'{words[1]}' reads as an option" in result.output
+        assert "SECRET" not in result.output
+        door = subprocess.run([sys.executable, "-m", "urdftool", *words], capture_output=True,
+                              text=True, timeout=60)
+        assert door.returncode == 2 and "reads as an option" in door.stderr, door.stderr
+    assert run_cli("check", "--no-cache", "--", "--controllers=x.yaml", "r.urdf").exit_code == 0
+    assert run_cli("check", "--no-cache", "--select=U2", "r.urdf").exit_code == 0

@@ -38,3 +38,20 @@ def test_an_srdf_left_open_is_located_where_the_open_tag_is(tmp_path):
     path.write_text('<robot name="r">\n  <group name="a">\n')
     parsed = read_srdf(path)
     assert parsed.data is None and "Premature end" in parsed.problem and parsed.line == 2
+
+
+def test_an_integer_past_pythons_digits_is_a_located_yaml_error(tmp_path):
+    """int() refuses a decimal of more than 4,300 digits with a ValueError, which YAML readers
+    do not catch (fk --dh ended in a traceback): every loader built on yaml_limits.DepthLimit
+    makes it a YAML error at its line."""
+    import yaml
+
+    from urdftool.description.yaml_limits import BoundedLoader
+
+    path = tmp_path / "c.yaml"
+    path.write_text("a: 1\nb: " + "9" * 5000 + "\n")
+    parsed = read_yaml(path)
+    assert parsed.data is None and parsed.line == 2 and "5,000 characters" in parsed.problem
+    with pytest.raises(yaml.YAMLError, match="5,000 characters"):
+        yaml.load(path.read_text(), Loader=BoundedLoader)  # noqa: S506 - the safe loader
+    assert yaml.load("a: 0x" + "f" * 5000, Loader=BoundedLoader)["a"] == 16 ** 5000 - 1  # noqa: S506

@@ -279,3 +279,15 @@ def test_the_scan_sees_each_way_of_touching_files(source):
     "np.loadtxt([text])", "os.open(os.devnull, os.O_WRONLY)"])
 def test_the_scan_lets_the_door_and_bytes_through(source):
     assert file_system_calls(source) == []
+
+
+def test_real_path_of_a_folder_deeper_than_the_recursion_limit(tmp_path):
+    """_real_path asks the folder above for its answer (each a few frames): a folder 400 deep,
+    committed in a repository, ended `check DIR` in a RecursionError."""
+    from urdftool.description.run_memo import one_run
+
+    deep = tmp_path.joinpath(*["d"] * 400)
+    deep.mkdir(parents=True)
+    (deep / "r.urdf").write_text("<robot/>")
+    with one_run():
+        assert files.real_path(deep / "r.urdf") == os.path.realpath(deep / "r.urdf")

@@ -409,6 +409,8 @@ def _bomb_yaml(kind: str) -> bytes:
         return ("\n".join(lines) + "\n").encode()
     if kind == "deep":  # 50,000 levels
         return b"x: " + b"[" * 50_000 + b"]" * 50_000 + b"\n"
+    if kind == "digits":  # past int()'s 4,300 digits: ValueError, not a YAMLError
+        return b"x: " + b"9" * 5_000 + b"\ny: [1, -" + b"7" * 4_400 + b"]\n"
     return b"a: &a [" + b", ".join([b"*a"] * 3) + b"]\n"  # a recursive alias
 
 
@@ -558,7 +560,7 @@ def case_strategy(draw, seed_list: list[Seed], kinds: list[str] | None = None):
             case.files[f"{deep}/x.urdf"] = b'<robot name="x"><link name="a"/></robot>\n'
         case.commands = ("check-walk",)
     elif kind == "yaml":
-        bomb = draw(st.sampled_from(["anchors", "deep", "recursive"]))
+        bomb = draw(st.sampled_from(["anchors", "deep", "recursive", "digits"]))
         target = draw(st.sampled_from(["load_yaml", "joint_limits.yaml", "controllers"]))
         if target == "load_yaml":
             case.files[f"{robot_dir}/bomb.yaml"] = _bomb_yaml(bomb)
@@ -572,10 +574,14 @@ def case_strategy(draw, seed_list: list[Seed], kinds: list[str] | None = None):
         else:
             case.files[f"{robot_dir}/config/controllers.yaml"] = _bomb_yaml(bomb)
     elif kind == "mesh_bomb":
-        bomb = draw(st.sampled_from(["zae", "obj_spaces", "obj_tabs", "q_file"]))
+        bomb = draw(st.sampled_from(["zae", "obj_spaces", "obj_tabs", "q_file", "q_digits"]))
         if bomb == "zae":
             case.generated[f"{robot_dir}/bomb.dae"] = "zae"
             case.data = _insert_after_root(data, _mesh_link("bomb.dae"))
+        elif bomb == "q_digits":  # JSON past int()'s digits, or nested past the recursion
+            case.files["q_file"] = draw(st.sampled_from([
+                b'[{"j": ' + b"9" * 5_000 + b"}]", b"[" * 100_000, b'{"j": -' + b"1" * 4_400 + b"}"]))
+            case.commands = ("fk-q",)
         elif bomb == "q_file":
             case.links["q_file"] = draw(st.sampled_from(["/dev/zero", "/etc/passwd",
                                                          OUTSIDE + "/victim.txt"]))

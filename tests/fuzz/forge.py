@@ -56,6 +56,9 @@ TERMINAL_PAYLOADS = {
     "osc8": "\x1b]8;;https://evil.example\x1b\\OSC8\x1b]8;;\x1b\\",
     "osc52": "\x1b]52;c;ZWNobyBwd25lZA==\x07",
 }
+# Only in YAML, whose "\\ud800" escape makes a string no file of text can hold: a surrogate code
+# point (a file name's undecodable byte is one too), which JSON must not write unpaired.
+YAML_PAYLOADS = {"surrogate": "\ud800UNPAIRED\udcff"}
 FORMULA = '=HYPERLINK("https://evil.example")'  # a spreadsheet formula: in link names only
 # Text that appears only inside payloads: in Markdown it must stay inside code.
 MARKERS = ("FORGED", "SECRET", "TOKEN", "All checks passed", "HEADING", "IMAGE", "LINK", "onerror",
@@ -171,7 +174,8 @@ def _yaml(text: str) -> str:
         code = ord(char)
         if char in '"\\':
             out.append("\\" + char)
-        elif code < 0x20 or 0x7f <= code < 0xa0 or code in (0x2028, 0x2029):
+        elif code < 0x20 or 0x7f <= code < 0xa0 or code in (0x2028, 0x2029) \
+                or 0xd800 <= code < 0xe000:
             out.append({"\n": "\\n", "\r": "\\r", "\t": "\\t", "\x1b": "\\e"}.get(char,
                                                                                 f"\\x{code:02x}"
                                                                                 if code < 0x100
@@ -185,7 +189,7 @@ def controllers_yaml(n: Names) -> str:
     """ROS 2 controllers: one named hostile, its joints an existing hostile joint and a missing
     one whose name holds terminal escape sequences."""
     name = _yaml(n.controller)
-    missing = _yaml(hostile("NOJOINT", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS}))
+    missing = _yaml(hostile("NOJOINT", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS, **YAML_PAYLOADS}))
     return f"""controller_manager:
   ros__parameters:
     update_rate: 50
@@ -224,13 +228,14 @@ def dh_yaml(n: Names) -> str:
 base_link: {_yaml(n.base)}
 tip_link: {_yaml(hostile("DHTIP", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS}))}
 joints:
-  - {{joint: {_yaml(hostile("DHJOINT", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS}))}, type: revolute, theta: 0, d: 0.1, a: 0, alpha: 0}}
+  - {{joint: {_yaml(hostile("DHJOINT", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS, **YAML_PAYLOADS}))}, type: revolute, theta: 0, d: 0.1, a: 0, alpha: 0}}
 """
 
 
 # A folder and a file name: what a file system allows (no '/', no NUL) reaches every message
-# that names the robot's file.
-FOLDER_NAME = "dir" + "\n::error::FOLDER\x1b[31m\u202e"
+# that names the robot's file; "\udcff" is the byte 0xff, not UTF-8 (os.fsencode), as Python
+# names it: a surrogate code point in every string that holds the path.
+FOLDER_NAME = "dir" + "\n::error::FOLDER\x1b[31m\u202e\udcff"
 FILE_NAME = "r" + "\n::error file=x,line=1::FILE\r\x1b]8;;evil.example\x1b\\F\x07" \
             "[bold]RICHMARK<img src=x onerror=1>.urdf"
 
@@ -691,7 +696,7 @@ def file_written(path: Path, code: int = 0) -> list[str]:
             json.loads(data)
         except ValueError as error:
             return [f"{where}: not JSON: {error}"]
-        return terminal(data.decode(), where)
+        return terminal(data.decode(), where) + unpaired(data.decode(), where)
     if suffix == ".png":
         return [] if data.startswith(b"\x89PNG") else [f"{where}: not a PNG"]
     if suffix == ".md":
@@ -699,6 +704,19 @@ def file_written(path: Path, code: int = 0) -> list[str]:
     if suffix == ".dot":
         return dot(data.decode(), where)
     return terminal(data.decode("utf-8", "replace"), where)
+
+
+_UNPAIRED = re.compile(r"(?<!\\)((?:\\\\)*)\\u(d[89ab][0-9a-f]{2})(?!\\ud[c-f])"
+                       r"|(?<!\\)((?:\\\\)*)(?<!\\ud[89ab][0-9a-f]{2})\\u(d[c-f][0-9a-f]{2})",
+                       re.IGNORECASE)
+
+
+def unpaired(text: str, where: str) -> list[str]:
+    """JSON holding an unpaired surrogate escape (``"\\ud800"``): JSON's grammar allows it, but
+    no strict reader (I-JSON, RFC 7493: SARIF uploads, serde, Go) takes it."""
+    found = _UNPAIRED.search(text)
+    return [f"{where}: an unpaired surrogate in JSON: {text[found.start():found.end() + 20]!r}"] \
+        if found else []
 
 
 def _exact(data, where: str) -> list[str]:
@@ -738,7 +756,7 @@ def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:
                 found += _exact(json.loads(document), out)
             except ValueError as error:
                 found.append(f"{out}: not JSON: {error}")
-        found += terminal(stdout, out)
+        found += terminal(stdout, out) + unpaired(stdout, out)
     elif kind == "junit":
         found += xml_document(stdout.encode(), out, JUNIT_ELEMENTS)
     elif kind == "github":

@@ -68,6 +68,8 @@ def test_the_judge_finds_each_kind_of_forgery():
     assert forge.xml_document(b"<testsuites><testsuite><testcase><failure>a\n::error::x"
                               b"</failure></testcase></testsuite></testsuites>", "j",
                               forge.JUNIT_ELEMENTS)
+    assert forge.unpaired('{"a": "x\\udcff"}', "j")
+    assert not forge.unpaired('{"a": "x\\ud83d\\ude00 \\\\udcff"}', "j")
     assert forge.csv_text('a,b\n"x\n::error::y",1\n', "c")
     assert forge.csv_text("a,b\n=cmd(),1\n", "c")
     assert not forge.csv_text("a,b\n-1.5,1\n", "c")

@@ -418,3 +418,48 @@ def test_fk_builds_no_pinocchio_model(tiny, monkeypatch):
     values = config.random(model.variables, 3, seed=0).values
     result = forward_kinematics(model, config.Configurations(model.variables, values, []))
     np.testing.assert_allclose(result.matrices, tiny.link_poses(values), atol=1e-12)
+
+
+def test_every_random_stream_comes_from_one_maker_that_refuses_a_negative_seed():
+    """``--seed -1`` (fk, ik, dynamics, workspace, collisions, diff) ended in numpy's
+    traceback ("expected non-negative integer"): every stream is made by
+    configuration.random_stream, whose refusal is a usage error."""
+    import ast
+    from pathlib import Path
+
+    import urdftool
+    from urdftool.errors import UsageError
+    from urdftool.kinematics.configuration import random_stream
+
+    for seed in (-1, [-1, 0]):
+        with pytest.raises(UsageError, match="--seed must be an integer, 0 or more, not -1"):
+            random_stream(seed)
+    assert random_stream(2 ** 70).integers(10) == random_stream(2 ** 70).integers(10)
+    makers = []
+    for path in Path(urdftool.__file__).parent.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Attribute) and node.attr in ("default_rng", "RandomState",
+                                                                 "SeedSequence"):
+                makers.append(f"{path.name}:{node.lineno}")
+    assert [m for m in makers if not m.startswith("configuration.py:")] == [] and makers
+
+
+def test_a_negative_seed_is_a_usage_error(run_cli, tmp_path):
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                     'type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    result = run_cli("fk", robot, "--random", "2", "--seed", "-1")
+    assert result.exit_code == 2 and "--seed must be an integer, 0 or more" in result.output
+
+
+@pytest.mark.parametrize("text", ['[{"j1": ' + "9" * 5000 + "}]", "[" * 100_000])
+def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, text):
+    """json.loads raises ValueError past int()'s 4,300 digits and RecursionError past its
+    nesting, neither a JSONDecodeError (fk --q-file, ik --targets/--check-reach: tracebacks)."""
+    from urdftool.errors import ConfigError
+
+    path = tmp_path / "q.json"
+    path.write_text(text)
+    with pytest.raises(ConfigError, match="invalid JSON"):
+        config.read_table(str(path), "configurations", "joint")

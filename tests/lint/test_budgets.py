@@ -185,6 +185,21 @@ def test_sizes():
     assert Budget.of(60, None) == Budget(60.0, 2 * 1024 ** 3)
 
 
+def test_budgets_past_what_a_number_or_poll_holds(tmp_path):
+    """A timeout of 115 days (1e7 s) is finite, but poll() takes at most 24 days of ms: it
+    ended in OverflowError; NaN passed ``timeout < 0``; 400 digits of memory are an infinite
+    float."""
+    for wrong in (float("nan"), float("inf"), -1.0):
+        with pytest.raises(UsageError):
+            Budget.of(wrong, None)
+    with pytest.raises(UsageError):
+        parse_memory("9" * 400 + "G")
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    found = check_files([robot], lambda path: CheckOptions(), jobs=1, timeout=1e7)
+    assert [finding.code for finding in found[0].findings if finding.code.startswith("U0")] == []
+
+
 @pytest.mark.parametrize("args", [("--max-memory", "lots"), ("--timeout", "-1")])
 @pytest.mark.parametrize("command", COMMANDS)
 def test_a_bad_budget_is_a_usage_error(run_cli, factorial, command, args):

@@ -537,3 +537,13 @@ def test_a_lowered_triangle_limit_refuses_a_mesh_the_built_in_one_takes(run_cli,
     assert codes(run_cli, repo_project / "robots", "--select", "U411")[1] == ["U411"]
     assert codes(run_cli, repo_project / "robots", "--select", "U411",
                  "--max-triangles", "12")[1] == []
+
+
+def test_a_number_past_pythons_digits_is_a_settings_error(tmp_path, run_cli):
+    """tomllib converts an integer with int(): past 4,300 digits a ValueError, not a
+    TOMLDecodeError (the run ended in a traceback)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    (tmp_path / "urdftool.toml").write_text("timeout = " + "9" * 5000 + "\n")
+    result = run_cli("check", "--no-cache", tmp_path / "r.urdf")
+    assert result.exit_code == 2 and "a number too long for any setting" in result.output

@@ -284,7 +284,9 @@ def test_json_formats_keep_the_exact_text_in_valid_json(format_name):
         message = data["runs"][0]["results"][0]["message"]["text"]
     else:
         message = data["diagnostics"][0]["message"]
-    assert message == f"joint '{HOSTILE}': swap them"
+    # exact, but for the file name's undecodable byte (a surrogate code point), which no
+    # strict JSON reader takes unpaired: U+FFFD, as those readers read it
+    assert message == f"joint '{HOSTILE[:-1]}\ufffd': swap them"
 
 
 def test_printable_escapes_every_control_format_and_separator_character():

@@ -73,6 +73,20 @@ class LazyGroup(TyperGroup):
                 error.message = f"{error.message.rstrip('.')}; did you mean '{close[0]}'?"
             raise
 
+    def parse_args(self, ctx, args):
+        """The words of every command, before any is parsed: a word that reads as an option
+        while a file of that name exists is a usage error (terminal.option_named_by_a_file)."""
+        from urdftool.errors import UsageError
+        from urdftool.terminal import refuse_options_named_by_files
+
+        try:
+            refuse_options_named_by_files(args[1:])
+        except UsageError as error:
+            from urdftool.cli._common import fail_usage
+
+            fail_usage(error)
+        return super().parse_args(ctx, args)
+
     def get_command(self, ctx, name: str):
         if name not in self.commands and name in COMMANDS:
             self.add_command(command(name), name)
@@ -135,6 +149,7 @@ def _uniform_options(built) -> None:
     from typer.core import TyperOption
 
     for param in built.params:
+        _finite_numbers(param)
         if not isinstance(param, TyperOption) or param.is_flag:
             continue
         if param.help and "[default:" in param.help:
@@ -142,6 +157,45 @@ def _uniform_options(built) -> None:
         if param.metavar is None:
             long = max(param.opts, key=len).lstrip("-")
             param.metavar = _METAVARS.get(param.type.name, long.upper().replace("-", "_"))
+
+
+def _finite_numbers(param) -> None:
+    """Every number a command reads as a float (``--density``, ``--timeout``, ``--tolerance``,
+    ``--xyz X Y Z``, ...) finite: click reads ``nan``, ``inf`` and ``1e999`` as floats, and a
+    NaN passes every ``min=``/``max=`` comparison (a NaN density gave NaN masses, a NaN
+    tolerance made every change equal, an infinite timeout ended in a traceback). The one
+    guard of the command line's numbers; ``JOINT=VALUE`` words are read by
+    ``kinematics.configuration``, which refuses the same."""
+    from typer._click import types
+
+    if isinstance(param.type, types.Tuple):
+        param.type.types = [_Finite(kind) if isinstance(kind, types.FloatParamType)
+                            else kind for kind in param.type.types]
+    elif isinstance(param.type, types.FloatParamType):
+        param.type = _Finite(param.type)
+
+
+def _Finite(kind):
+    """A copy of click's float type ``kind`` (``FLOAT``, a ``FloatRange``: its help and range
+    unchanged) whose conversion refuses NaN and infinities."""
+    import copy
+    import functools
+
+    @functools.cache
+    def finite_class(base):
+        def convert(self, value, param, ctx):
+            import math
+
+            number = base.convert(self, value, param, ctx)
+            if isinstance(number, float) and not math.isfinite(number):
+                self.fail(f"{value!r} is not a finite number.", param, ctx)
+            return number
+
+        return type(f"Finite{base.__name__}", (base,), {"convert": convert})
+
+    finite = copy.copy(kind)
+    finite.__class__ = finite_class(type(kind))
+    return finite
 
 
 app = typer.Typer(

@@ -331,6 +331,11 @@ def real_path(path) -> str:
     return found
 
 
+# folders below which a real path is realpath's, not the folder's answered once and a name: a
+# folder 200 deep, committed, ran the recursion past Python's limit (a traceback)
+MAX_REAL_DEPTH = 48
+
+
 @per_run
 def _real_path(path: str) -> str:
     """``os.path.realpath(path)``, answered once per run (see :mod:`.run_memo`). A file that
@@ -338,8 +343,8 @@ def _real_path(path: str) -> str:
     meshes of a package share a few folders, and realpath would walk every component of each
     (``lstat`` calls in a check of the corpus's 46 URDFs: 4,240 before, 2,034 so)."""
     folder, name = os.path.split(path)
-    if not folder or name in ("", ".", ".."):
-        return os.path.realpath(path)
+    if not folder or name in ("", ".", "..") or path.count(os.sep) > MAX_REAL_DEPTH:
+        return os.path.realpath(path)  # (deep: each level asked of the folder above is frames)
     try:
         if stat.S_ISLNK(os.lstat(path).st_mode):
             return os.path.realpath(path)

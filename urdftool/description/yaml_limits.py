@@ -17,9 +17,16 @@ MAX_EXPANSION = 1_000_000  # [nodes + characters] aliases may add to what the te
 
 
 class DepthLimit:
-    """Mixin for a yaml Loader: collections nested deeper than MAX_DEPTH are a ComposerError."""
+    """Mixin for a yaml Loader: collections nested deeper than MAX_DEPTH are a ComposerError;
+    an integer longer than Python converts (4,300 digits) a ConstructorError at its line, not
+    the ValueError ``int()`` raises (a traceback wherever YAML errors are caught)."""
 
     _depth = 0
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if hasattr(cls, "add_constructor"):  # a loader: its own table (PyYAML copies it)
+            cls.add_constructor("tag:yaml.org,2002:int", _bounded_int)
 
     def compose_node(self, parent, index):
         if self._depth >= MAX_DEPTH:
@@ -32,6 +39,15 @@ class DepthLimit:
             return super().compose_node(parent, index)
         finally:
             self._depth -= 1
+
+
+def _bounded_int(loader, node) -> int:
+    try:
+        return yaml.constructor.SafeConstructor.construct_yaml_int(loader, node)
+    except ValueError:  # past sys.get_int_max_str_digits(): its conversion is quadratic
+        raise yaml.constructor.ConstructorError(
+            None, None, f"an integer of {len(node.value):,} characters, longer than any number "
+            "a configuration holds", node.start_mark) from None
 
 
 class BoundedLoader(DepthLimit, yaml.SafeLoader):

@@ -311,6 +311,9 @@ def _json_rows(text: str, path: str, named: str) -> tuple[list[str], list[list]]
         data = json.loads(text)
     except json.JSONDecodeError as error:
         raise ConfigError(f"invalid JSON: {error.msg}", f"{path}:{error.lineno}") from None
+    except (ValueError, RecursionError):  # an integer past Python's 4,300 digits; 10^5 [[
+        raise ConfigError("invalid JSON: a number too long or lists nested too deep for "
+                          "any configuration", path) from None
     if isinstance(data, dict):
         data = [data]
     if not isinstance(data, list) or not data:
@@ -383,6 +386,20 @@ def limit_warnings(variables: list[Variable], values: np.ndarray) -> list[str]:
     return warnings
 
 
+def random_stream(seed):
+    """numpy's generator of ``seed`` (an integer 0 or more, a sequence of them, or None), the
+    one maker of every random stream a command draws from (``--seed`` of fk, ik, dynamics,
+    workspace, collisions, diff). UsageError for a seed numpy refuses (a negative one): the
+    message numpy gives is a traceback's."""
+    from urdftool.errors import UsageError
+
+    try:
+        return np.random.default_rng(seed)
+    except (ValueError, TypeError):
+        given = seed[0] if isinstance(seed, (list, tuple)) else seed  # (a block's stream)
+        raise UsageError(f"--seed must be an integer, 0 or more, not {given}") from None
+
+
 def random(variables: list[Variable], count: int, seed=None,
            hold: Collection[str] = ()) -> Configurations:
     """``count`` configurations drawn uniformly within the limits (continuous: [-pi, pi]).
@@ -391,7 +408,7 @@ def random(variables: list[Variable], count: int, seed=None,
         gives independent streams for blocks drawn apart (e.g. in worker processes)
     hold: names of variables kept at their default instead of drawn
     """
-    generator = np.random.default_rng(seed)
+    generator = random_stream(seed)
     lower, upper = [], []
     for v in variables:
         if v.name in hold:

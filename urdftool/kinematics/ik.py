@@ -358,7 +358,9 @@ def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) 
     first = _wrap(chain, first, chain.continuous)
     if count <= 1:
         return first[None, :]
-    generator = np.random.default_rng(seed)
+    from urdftool.kinematics.configuration import random_stream
+
+    generator = random_stream(seed)
     lower = np.where(np.isfinite(chain.lower), chain.lower, -math.pi)
     upper = np.where(np.isfinite(chain.upper), chain.upper, math.pi)
     return np.vstack([first, generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),

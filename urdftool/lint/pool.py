@@ -307,6 +307,9 @@ def _read_exactly(fd: int, size: int) -> bytes:
     return b"".join(chunks)
 
 
+MAX_WAIT = 24 * 3600.0  # [s] the longest one wait for a worker's message (poll's limit is 24 days)
+
+
 def _ready(channels: list, timeout: float | None) -> list:
     """The channels of ``channels`` with a message or their end to read, waiting up to
     ``timeout`` [s] (None: until one has)."""
@@ -316,9 +319,12 @@ def _ready(channels: list, timeout: float | None) -> list:
     by_fd = {channel.fileno(): channel for channel in channels}
     for fd in by_fd:
         poller.register(fd, select.POLLIN)
+    # poll takes at most 2**31 - 1 ms (24 days): a longer budget (--timeout 1e7) waits a day at
+    # a time, and the caller, finding nothing ready, looks at the time and waits again
+    wait = None if timeout is None else max(0, int(min(timeout, MAX_WAIT) * 1000 + 0.999))
     while True:
         try:
-            events = poller.poll(None if timeout is None else max(0, int(timeout * 1000 + 0.999)))
+            events = poller.poll(wait)
             break
         except InterruptedError:
             continue

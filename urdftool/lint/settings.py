@@ -180,6 +180,9 @@ def _read(path: Path) -> dict:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
+    except ValueError:  # tomllib's int() of a number past Python's 4,300 digits
+        raise SettingsError(f"cannot read settings in {path}: a number too long for any "
+                            "setting") from None
     except RecursionError:  # what too_deep() missed
         raise SettingsError(f"{path}: settings nest too deeply; not read") from None
 

@@ -9,9 +9,8 @@ finding below into a new one).
 from __future__ import annotations
 
 import hashlib
-import json
 
-from urdftool.report.json_output import write_json
+from urdftool.report.json_output import line, write_json
 from urdftool.report.summary import all_findings
 
 # https://docs.gitlab.com/ci/testing/code_quality/#code-quality-report-format
@@ -24,7 +23,7 @@ def as_list(results) -> list[dict]:
         identity = (finding.file, finding.code, finding.message)
         seen[identity] = seen.get(identity, -1) + 1
         fingerprint = hashlib.sha256(
-            json.dumps([*identity, seen[identity]]).encode()).hexdigest()
+            line([*identity, seen[identity]]).encode()).hexdigest()
         issues.append({
             "description": f"{finding.code} {finding.message}",
             "check_name": _check_name(finding),

@@ -4,13 +4,11 @@ written: a clean run is an empty output."""
 
 from __future__ import annotations
 
-import json
-
 from urdftool.report.json_format import diagnostic
+from urdftool.report.json_output import line
 from urdftool.report.summary import all_findings
 
 
 def render(results, stream) -> None:
     for finding in all_findings(results):
-        # ASCII: the data exact, no raw bidi override or C1 control in a terminal or a log
-        stream.write(json.dumps(diagnostic(finding)) + "\n")
+        stream.write(line(diagnostic(finding)) + "\n")

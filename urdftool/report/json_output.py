@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 
 WIDTH = 100  # a value whose JSON fits on a line this wide is written on one line
@@ -21,7 +22,37 @@ def dumps(data, finite: bool = False) -> str:
     """
     if finite:
         data = _finite(data)
-    encode = json.JSONEncoder(allow_nan=not finite).encode
+    text = _dumps(data, json.JSONEncoder(allow_nan=not finite).encode)
+    # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
+    # an escape no strict reader takes (I-JSON, RFC 7493; SARIF uploads, serde, Go): rare, so
+    # looked for in the text, and only then the data cleaned and written again
+    return _dumps(_whole(data), json.JSONEncoder(allow_nan=not finite).encode) \
+        if "\\ud" in text else text
+
+
+def line(data) -> str:
+    """``data`` as one line of compact JSON (json-lines): ASCII, exact, no lone surrogate (as
+    :func:`dumps`)."""
+    text = json.dumps(data)
+    return json.dumps(_whole(data)) if "\\ud" in text else text
+
+
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def _whole(value):
+    """``value`` with every surrogate code point of its strings (keys too) replaced by U+FFFD,
+    as a strict reader of the JSON would read it."""
+    if isinstance(value, str):
+        return _SURROGATE.sub("\ufffd", value)
+    if isinstance(value, dict):
+        return {_whole(key): _whole(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_whole(item) for item in value]
+    return value
+
+
+def _dumps(data, encode) -> str:
     parts: list[str] = []
 
     def write(value, indent: str, in_list: bool = False) -> None:
