@@ -424,9 +424,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             if unsure:
                 raise xacro.XacroException(exc=unsure)
             hint = ""
-            if "package://" in filename:
+            if "package:/" in filename:  # package://: a path by now, its // made one /
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
-            raise xacro.XacroException(f"{error.strerror}: {filename}{hint}", exc=error)
+            # the OSError is the context, not repeated in the message ("[Errno 2] ...")
+            raise xacro.XacroException(f"{error.strerror}: {filename}{hint}")
         return _parse_stamped(session, filename, data)
 
     def handle_macro_call(node, macros, symbols):
