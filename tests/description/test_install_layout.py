@@ -203,3 +203,17 @@ def test_build_files_are_bounded(repo):
     assert [(name, [a.text for a in args]) for name, args, _ in commands] == [
         ("install", ["FILES", "a b", "c", "DESTINATION", "share/x"]),
         ("if", ["(A)", "AND", "B"])]
+
+
+def test_a_package_xml_without_a_build_file_leaves_its_share_folder_uncertain(repo):
+    """icub-models: iCub_manual/package.xml ('a placeholder so that share/iCub is found') has no
+    build file beside it; the repository's CMake copies iCub/, iCub_manual/ and
+    iCub_creo2urdf/ into share/iCub, so package://iCub/meshes/... is there after the build."""
+    package(repo, "iCub_manual", "iCub")
+    located = PackageResolver(start=repo, environ={}).locate_uri(
+        "package://iCub/meshes/chest.stl", repo)
+    assert located.doubt and "another build makes its share folder" in located.doubt
+    package(repo, "built", "built", **{"CMakeLists.txt": "project(built)\n"})
+    located = PackageResolver(start=repo, environ={}).locate_uri(
+        "package://built/meshes/chest.stl", repo)
+    assert located.doubt is None

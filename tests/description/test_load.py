@@ -295,3 +295,12 @@ def test_a_urdfs_locations_are_a_mapping_of_every_element(tmp_path):
     assert len(robot.locations) == 3 and set(robot.locations) == set(robot.root.iter())
     assert robot.locations.get(robot.root.makeelement("link")) is None
     assert robot.locate(visual).line == 3
+
+
+def test_xacro_in_a_urdf_names_the_attribute_holding_it(tmp_path):
+    """TurtleBot3's common_properties.urdf: '(<color> at this line)' said nothing of the
+    rgba="${255/255} ..." in it."""
+    path = write(tmp_path, "r.urdf", '<robot name="r"><link name="a"/>\n<material name="m">'
+                 '<color rgba="${255/255} 0 0 1"/></material>\n</robot>')
+    [note] = load(path).notes
+    assert 'rgba="${255/255} 0 0 1" in <color> at this line' in note.message, note.message

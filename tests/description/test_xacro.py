@@ -132,3 +132,17 @@ def test_a_missing_package_the_package_xml_declares_is_said_to_be_not_installed(
     said = "the package.xml of 'bot_description' declares it as a dependency"
     assert (said in str(raised.value)) is declared
     assert "Pass --package mount_description=PATH" in str(raised.value)
+
+
+def test_an_include_of_a_package_uri_says_xacro_does_not_resolve_it(tmp_path):
+    """example-robot-data's hector quadrotor_base.xacro: the hint was lost (the URI is a path by
+    then, its // one /) and the OSError printed twice ("... [Errno 2] No such file ...")."""
+    from urdftool.errors import LoadError
+
+    (tmp_path / "robot.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="package://pkg/urdf/base.xacro"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "robot.xacro"))
+    message = caught.value.message
+    assert "does not resolve package:// URIs" in message and "Errno" not in message, message

@@ -18,6 +18,8 @@ site-packages find ``NAME/...`` there). :func:`layout` reads them without runnin
   ``append``/``extend`` at module level;
 - ``setup.cfg``: ``[options.data_files]`` and ``[options] package_dir``.
 
+A package.xml with none of these beside it is built by nothing that reads it: another build
+(the repository's own CMake, a script) makes its share folder, and nothing is certain.
 What cannot be read with certainty (a variable set in a loop, a generator expression, a
 ``data_files`` built by walking folders) is kept as a reason in :attr:`Layout.unread`: a file
 then missing from the source tree is not certainly missing after the build. Everything read is
@@ -133,6 +135,11 @@ def layout(folder: Path, name: str, root: Path) -> Layout:
         if kind_of(Path(folder) / setup) == "file":
             reader.build.append(setup)
             (_setup_py if setup == "setup.py" else _setup_cfg)(reader)
+    if not reader.build:  # colcon and catkin build no such folder: another build lays out
+        # share/NAME (icub-models' placeholder package.xml, its share folder made by the
+        # repository's own CMake from three source folders)
+        reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg beside its package.xml: "
+                           "another build makes its share folder")
     return Layout(tuple(reader.rules[:MAX_RULES]), tuple(dict.fromkeys(reader.unread)),
                   ", ".join(reader.build))
 

@@ -105,11 +105,13 @@ def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
             text.append(f"\0{part[1]}\0")  # the package's folder, placed by resolve_path
         elif kind == "env":
             free.add(f"${part[1]}")
-            if part[2] is None or depth >= 8:
-                return Resolved(None, frozenset(free))
-            default = resolve(part[2], scope, depth + 1)
-            if default.text is None:
-                return Resolved(None, frozenset(free | default.free))
+            default = resolve(part[2], scope, depth + 1) if part[2] is not None and depth < 8 \
+                else Resolved(None)
+            free |= default.free
+            if default.text is None:  # only given at launch, as an argument without a default
+                text.append(None)
+                pattern.append(WILD)
+                continue
             text.append(default.text)
         elif kind == "dirname":
             text.append(str(scope.launch.path.parent))

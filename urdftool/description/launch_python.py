@@ -15,7 +15,9 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
   MoveItConfigsBuilder's
   ``robot_description(file_path=..., mappings=...)``.
 
-Values are read through ``LaunchConfiguration``, ``FindPackageShare``,
+Values are read through ``LaunchConfiguration``, ``EnvironmentVariable`` and
+``os.environ[NAME]``, ``os.environ.get``, ``os.getenv`` (a value given at launch, like an
+argument), ``FindPackageShare``,
 ``get_package_share_directory``, ``PathJoinSubstitution``, ``os.path.join``, ``/`` on paths,
 ``+``, f-strings and ``TextSubstitution``; anything else (a value a function computes at run
 time) is unknown. A Python ``if`` around an action is a condition read from its test when it
@@ -349,8 +351,12 @@ class _Reader:
             key = self.eval(node.slice, env, when, depth)
             if isinstance(key, Value) and key.literal:
                 return Value((("arg", key.literal, None),), _source(node))
-        value = self.eval(container, env, when, depth)
         key = self.eval(node.slice, env, when, depth)
+        if _callee(container) == "os.environ":  # os.environ["NAME"]: a value given at launch
+            if isinstance(key, Value) and key.literal:
+                return Value((("env", key.literal, None),), _source(node))
+            return unknown(_source(node))
+        value = self.eval(container, env, when, depth)
         if isinstance(value, dict) and isinstance(key, Value) and key.literal in value:
             return value[key.literal]
         if isinstance(value, list) and isinstance(key, Value) and (key.literal or "").lstrip("-").isdigit():
@@ -379,6 +385,13 @@ class _Reader:
     def method(self, node, method, args, keywords, env, when, depth):
         owner = self.eval(node.func.value, env, when, depth) if isinstance(node.func, ast.Attribute) \
             else None
+        if (method, _callee(node.func.value)) in (("get", "os.environ"), ("getenv", "os")):
+            name, default = (args + [None, None])[:2]  # os.environ.get / os.getenv(NAME, DEFAULT)
+            default = keywords.get("default", default)
+            if isinstance(name, Value) and name.literal:
+                return Value((("env", name.literal,
+                               default if isinstance(default, Value) else None),), _source(node))
+            return unknown(_source(node))
         if method in ("add_action", "add_entity", "append") and args:
             if isinstance(owner, list):
                 owner.append(args[0])

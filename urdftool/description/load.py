@@ -172,7 +172,7 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
                 else "; a tool given the file itself (check_urdf, Gazebo, MuJoCo) reads it "
                      "unexpanded: a name ending .xacro says which it is")
         return robot, LoadNote("xacro-in-urdf", where, (
-            f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); {every} "
+            f"file is {named} but needs xacro ({_shown_use(first)} at this line); {every} "
             f"runs xacro on it ({_listed(through)}), so it is checked as xacro{tail}"),
             severity=Severity.WARNING if unread else Severity.INFO)
     read_by = f"; {_listed(as_is)} may read it as it is" if as_is else ""
@@ -181,16 +181,33 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
                             limit)
     except LoadError as error:
         return plain, LoadNote("xacro-in-urdf", where, (
-            f"file is {named} but contains xacro (<{_shown_tag(first)}>), which xacro cannot "
+            f"file is {named} but contains xacro ({_shown_use(first)}), which xacro cannot "
             f"expand ({error.message}) and URDF parsers ignore{read_by}; remove it or rename "
             "the file .urdf.xacro"), cause=error)
     return robot, LoadNote("xacro-in-urdf", where, (
-        f"file is {named} but needs xacro (<{_shown_tag(first)}> at this line); urdftool "
+        f"file is {named} but needs xacro ({_shown_use(first)} at this line); urdftool "
         f"expanded it, but URDF parsers will not{read_by}: rename it .urdf.xacro"))
 
 
 def _listed(launches: list[str], limit: int = 3) -> str:
     return ", ".join(launches[:limit]) + (f" and {len(launches) - limit} more" if len(launches) > limit else "")
+
+
+def _shown_use(element) -> str:
+    """What in ``element`` needs xacro, as a reader finds it: a xacro tag, or the attribute or
+    text holding ``${...}``/``$(...)`` (not the bare tag: ``<color>`` alone says nothing of the
+    ``rgba="${255/255} ..."`` in it)."""
+    tag = _shown_tag(element)
+    if is_xacro(element.tag):
+        return f"<{tag}>"
+    for name, value in element.attrib.items():
+        if _substitutes(value):
+            return f"{name}=\"{_clipped(value)}\" in <{tag}>"
+    return f"\"{_clipped((element.text or '').strip())}\" in <{tag}>"
+
+
+def _clipped(text: str, limit: int = 40) -> str:
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def _shown_tag(element) -> str:

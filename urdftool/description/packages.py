@@ -315,6 +315,41 @@ def packages_below(root: Path) -> dict[str, Path]:
     return found
 
 
+_EXPORT = re.compile(rb"<export\b[^>]*>(.*?)</export>", re.S)
+_PLUGIN = re.compile(rb"\splugin\s*=\s*[\"']\$\{prefix\}/([^\"']+)[\"']")
+_CLASS = re.compile(rb"<class\b([^>]*)>")
+_CLASS_NAME = re.compile(rb"\s(name|type)\s*=\s*[\"']([^\"']+)[\"']")
+
+
+@per_run
+def exported_classes(root: Path) -> frozenset[str]:
+    """The pluginlib class names the packages below ``root`` export: each package.xml's
+    ``<export><TAG plugin="${prefix}/FILE.xml"/>`` names a plugin description file in the
+    package, whose ``<class name="...">`` (or, with no name, its ``type``, as pluginlib looks
+    it up) a controller manager, the resource manager or MoveIt can load. A vendor's package
+    exports classes in another package's namespace (Pilz's
+    ``position_controllers/PilzJointTrajectoryController``)."""
+    found: set[str] = set()
+    for folder in packages_below(root).values():
+        manifest = manifest_text(folder)
+        for export in _EXPORT.findall(manifest or b""):
+            for relative in _PLUGIN.findall(export):
+                description = folder / relative.decode("utf-8", "replace")
+                if not inside(description, folder):
+                    continue
+                try:
+                    text = _COMMENT.sub(b"", read_regular(description, _MAX_MANIFEST,
+                                                          as_="plugin description"))
+                except OSError:
+                    continue
+                for attributes in _CLASS.findall(text):
+                    named = dict(_CLASS_NAME.findall(attributes))
+                    name = named.get(b"name") or named.get(b"type")
+                    if name:
+                        found.add(name.decode("utf-8", "replace"))
+    return frozenset(found)
+
+
 def _split_path(value: str) -> list[str]:
     return [entry for entry in value.split(os.pathsep) if entry]
 

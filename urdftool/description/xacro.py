@@ -424,9 +424,11 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             if unsure:
                 raise xacro.XacroException(exc=unsure)
             hint = ""
-            if "package://" in filename:
+            if "package:/" in filename:  # package://: a path by now, its // made one /
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
-            raise xacro.XacroException(f"{error.strerror}: {filename}{hint}", exc=error)
+            # an OSError still (xacro skips an optional include by it), said once, plainly
+            raise xacro.XacroException(suffix=hint or None, exc=_Unreadable(
+                error.errno, error.strerror, filename)) from error
         return _parse_stamped(session, filename, data)
 
     def handle_macro_call(node, macros, symbols):
@@ -721,6 +723,14 @@ class _PackageFailure(Exception):
     def __init__(self, error: PackageNotFound):
         super().__init__(str(error))
         self.error = error
+
+
+class _Unreadable(OSError):
+    """An included file that cannot be read, said as "REASON: PATH" (an OSError says
+    "[Errno 2] REASON: 'PATH'")."""
+
+    def __str__(self):
+        return f"{self.strerror}: {self.filename}"
 
 
 def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> XacroFailure:

@@ -366,3 +366,23 @@ def test_a_controller_a_launch_file_not_read_names_is_not_started_nowhere(tmp_pa
     assert marks == [("c.yaml", 2, "U602")] and findings[0].severity == Severity.WARNING
     assert f"launch file {tmp_path}/launch/spare.launch (not read) may start it" in \
         findings[0].message, findings[0].message
+
+
+def test_a_class_a_package_of_the_repository_exports_is_loadable(tmp_path):
+    """Pilz (pilz_robots): pilz_control exports position_controllers/PilzJointTrajectoryController
+    in ros_controllers' namespace, through its package.xml's <export> and plugin XML."""
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = "arm: {type: position_controllers/PilzJointTrajectoryController, joints: [head_joint]}\n"
+    files = {"robot.urdf": robot, "config/c.yaml": yaml, ".git/HEAD": "ref: refs/heads/main\n"}
+    found, _ = check_folder(tmp_path / "alone", files, select=("U606",))
+    assert found == [("c.yaml", 1, "U606")]  # no package exports it: a slip
+    files.update({
+        "pilz_control/package.xml": """<package format="2"><name>pilz_control</name>
+            <export><controller_interface plugin="${prefix}/plugins.xml"/></export></package>""",
+        "pilz_control/plugins.xml": """<library path="lib/libpilz_control">
+            <!-- <class name="position_controllers/Commented"/> -->
+            <class name="position_controllers/PilzJointTrajectoryController"
+                   type="position_controllers::PilzJointTrajectoryController"
+                   base_class_type="controller_interface::ControllerBase"/></library>"""})
+    found, _ = check_folder(tmp_path / "exported", files, select=("U606",))
+    assert found == []

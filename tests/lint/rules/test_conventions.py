@@ -143,3 +143,27 @@ def test_optical_frames_that_are_wrong(tmp_path):
     # the sensor's <pose> turns it: the frame it stamps is judged against the sensor
     [(_, message)] = _found(tmp_path, _camera(pose="<pose>0 0 0 0 0 1.5708</pose>"), ("U417",))
     assert "from the sensor" in message
+
+
+def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_axes(tmp_path):
+    """Reachy Mini (onshape-to-robot): 'camera_optical' is fixed to the servo 'xl_330', whose
+    CAD axes are turned anyhow; in the root frame it is z forward, x right, y down."""
+    servo = """<link name="base_link"/>
+<link name="xl_330"/><joint name="sj" type="fixed"><parent link="base_link"/>
+  <child link="xl_330"/><origin rpy="0.3 1.1 -2.0"/></joint>
+<link name="{optical}"/><joint name="oj" type="fixed"><parent link="xl_330"/>
+  <child link="{optical}"/><origin rpy="{rpy}"/></joint>"""
+    # the servo's turn undone, then the optical turn: right in the root frame
+    import numpy as np
+    from urdftool.physics import mat3
+
+    servo_turn = np.array(mat3.rpy_matrix((0.3, 1.1, -2.0)))
+    wanted = np.array(mat3.rpy_matrix((-np.pi / 2, 0.0, -np.pi / 2)))
+    r = servo_turn.T @ wanted
+    rpy = (np.arctan2(r[2, 1], r[2, 2]), np.arctan2(-r[2, 0], np.hypot(r[0, 0], r[1, 0])),
+           np.arctan2(r[1, 0], r[0, 0]))
+    text = servo.format(optical="camera_optical", rpy=" ".join(f"{v:.6f}" for v in rpy))
+    assert _found(tmp_path, text, ("U417",)) == []
+    # the same optical frame on a link named for the camera is judged from its axes
+    text = text.replace("xl_330", "camera_link")
+    assert [code for code, _ in _found(tmp_path, text, ("U417",))] == ["U417"]

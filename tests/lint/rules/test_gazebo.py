@@ -132,3 +132,20 @@ def test_caster_joint_naming_a_missing_link_is_not_a_crash(tmp_path):
                     '<child link="front_caster"/></joint>\n</robot>')
     found, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U1", "U6", "U9"))
     assert found == [("robot.urdf", 12, "U105")]
+
+
+def test_a_frame_under_a_tf_prefix_is_the_link(tmp_path):
+    """sjtu_drone: <frame_name>${namespace}/base_link</frame_name>, robot_state_publisher given
+    frame_prefix NAMESPACE/ by the launch file: TF knows the frame. ROS 2's tf2 refuses a
+    leading '/' (the drone's own namespace was '/simple_drone')."""
+    tags = "<left_joint>lj</left_joint><right_joint>rj</right_joint>"
+    sensor = ('<gazebo reference="base_link"><sensor type="imu" name="imu"><plugin name="p" '
+              'filename="libgazebo_ros_imu_sensor.so"><frame_name>{}</frame_name></plugin>'
+              '</sensor></gazebo>\n</robot>')
+    robot = WHEELS.format(filename="x", tags=tags)
+    for frame, expected in (("drone/base_link", []), ("drone/base_lnk", [12]), ("/drone/base_link", [12])):
+        found, findings = check_folder(tmp_path / str(len(expected)) / frame.replace("/", "_"),
+                                       {"robot.urdf": robot.replace("</robot>", sensor.format(frame))},
+                                       select=("U615",))
+        assert [line for _, line, _ in found] == expected, [f.message for f in findings]
+    assert "starts with '/'" in findings[0].message

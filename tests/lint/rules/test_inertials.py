@@ -429,3 +429,35 @@ def test_plain_solids_give_the_rules_on_solids_what_the_per_link_solids_give(tmp
     plain = [solid for _, _, solid in inertials._link_solids(robot)
              if isinstance(solid, solids.PlainSolid)]
     assert len(plain) > 20 and sum(map(len, expected)) > 0
+
+
+# -- session 6's sweep: a zero tensor judged on the rigid body the simulators see ----------------
+
+def _ankle(foot_inertia: str) -> str:
+    """iCub's l_ankle_2: 0.2675 kg and a zero tensor, moved by a revolute joint, with its foot
+    (0.59 kg) fixed to it."""
+    return f"""<robot name="r"><link name="base_link"/>
+      <joint name="ankle" type="revolute"><parent link="base_link"/><child link="ankle_2"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="ankle_2"><inertial><origin xyz="0.01 0 0"/><mass value="0.2675"/>
+        <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+      <joint name="foot_fixed" type="fixed"><origin xyz="0 0 -0.05"/><parent link="ankle_2"/>
+        <child link="foot"/></joint>
+      <link name="foot"><inertial><mass value="0.5935"/>
+        <inertia {foot_inertia}/></inertial></link></robot>"""
+
+
+def test_a_zero_tensor_with_a_fixed_body_below_is_one_rigid_body_with_inertia(tmp_path):
+    """Gazebo and gz sim lump fixed joints, MuJoCo fuses them (fusestatic, its URDF default),
+    Pinocchio merges them: the body they move has the foot's inertia and both masses apart,
+    not zero inertia; Drake and KDL take a point mass."""
+    text = _ankle('ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304",))
+    assert not found, [f.message for f in findings]
+
+
+def test_a_zero_tensor_stays_zero_when_what_is_fixed_to_it_adds_none(tmp_path):
+    text = _ankle('ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"').replace(
+        '<origin xyz="0 0 -0.05"/>', "").replace('<origin xyz="0.01 0 0"/>', "")
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304",))
+    assert [f.code for f in findings] == ["U304"], [f.message for f in findings]

@@ -15,6 +15,7 @@ from urdftool.description.actuation import (command_interfaces, interface_kind, 
 from urdftool.description.companions import companions, parameter_files
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description import controllers as described
+from urdftool.description.packages import containment_root, exported_classes
 from urdftool.description.controllers import (Controller, JointRef, controller_files, controllers,
                                               runs_of)
 from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runtime, together
@@ -403,7 +404,9 @@ def controller_unknown_class(robot):
     ``position_controllers/JointGroupPositionController``). Classes are checked for the packages
     of ros_controllers and ros2_controllers (see the class table,
     ``urdftool/description/controller_classes.py``, with the plugin XML of each); a vendor's
-    package is not. MoveIt's simple controller manager knows ``FollowJointTrajectory`` and
+    package is not, and a class a package of the repository exports (its package.xml's
+    ``<export>`` names a plugin description with that class, as Pilz's
+    ``position_controllers/PilzJointTrajectoryController``) is one the manager loads. MoveIt's simple controller manager knows ``FollowJointTrajectory`` and
     ``GripperCommand``.
 
     Bad: ``type: position_controllers/JointPositionController`` under ``ros__parameters``
@@ -423,7 +426,8 @@ def controller_unknown_class(robot):
             if retired:
                 yield controller.file.at(controller.line), retired, None, Severity.WARNING
             continue
-        if not known_package(controller.type):
+        if not known_package(controller.type) or controller.type in exported_classes(
+                containment_root(controller.file.path.parent)):
             continue
         other = 3 - controller.ros
         if lookup(controller.type, other) is not None:

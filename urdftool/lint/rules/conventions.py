@@ -71,6 +71,26 @@ def _camera_frames(robot):
                                                      f"'{sensor.get('name')}' on '{reference}'"
 
 
+_CAMERA_BODY = re.compile(r"cam|rgb|depth|stereo|kinect|xtion|realsense|zed|oak|lens|infra",
+                          re.IGNORECASE)
+_NAME_WORDS = re.compile(r"[a-z]+|[0-9]+")
+
+
+def _camera_body(robot, body: str, optical: str) -> bool:
+    """Whether link ``body`` is the camera body of optical frame ``optical``, whose axes REP 103
+    fixes (x forward): a Gazebo camera sensor sits on it, its name says camera, or it shares a
+    word with the optical frame's name (``high_def_frame`` for ``high_def_optical_frame``).
+    Any other link above is a part of the robot (a servo of a CAD export, a head) whose axes
+    say nothing of where the camera looks."""
+    if _CAMERA_BODY.search(body) or any(
+            gazebo.get("reference") == body and (sensor.get("type") or "").lower()
+            in CAMERA_SENSORS for gazebo in robot.children("gazebo")
+            for sensor in gazebo.iter("sensor")):
+        return True
+    words = set(_NAME_WORDS.findall(optical.lower())) - {"optical", "frame", "link"}
+    return bool(words & set(_NAME_WORDS.findall(body.lower())))
+
+
 def _reference_link(robot, name: str) -> str | None:
     """The nearest link above ``name`` whose name does not say optical (its camera body)."""
     parents = parent_joints(robot)
@@ -96,7 +116,10 @@ def optical_frame_rotation(robot):
     From the camera's body frame (x forward, y left, z up) that is ``rpy="-pi/2 0 -pi/2"``.
     Checked for links whose name says optical (``camera_optical_frame``, ``*_optical``),
     against the nearest link above whose name does not (an optical frame fixed to another with
-    the same axes is judged through that one), and for the frame a Gazebo camera
+    the same axes is judged through that one) when that link is the camera's body (a Gazebo
+    camera sits on it, its name says camera, or it shares a word with the optical frame's
+    name): an optical frame fixed to a servo of a CAD export is right or wrong whatever the
+    servo's axes, and is not judged from them; and for the frame a Gazebo camera
     sensor's plugin stamps its images with (``frameName``, ``frame_name``,
     ``optical_frame_id``, ``gz_frame_id``), against the sensor itself (its link and
     ``<pose>``: a Gazebo camera looks along its x axis). Within 1 degree (``1.57`` for pi/2
@@ -129,7 +152,7 @@ def optical_frame_rotation(robot):
         if name in judged or name not in frames:
             continue
         body = _reference_link(robot, name)
-        if body is None or body not in frames:
+        if body is None or body not in frames or not _camera_body(robot, body, name):
             continue
         turn = relative(frames[body], frames[name])[1]
         above = robot.ends()[parents[name]]["parent"][1]

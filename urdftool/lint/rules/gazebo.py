@@ -288,7 +288,10 @@ def sensor_unknown_link(robot):
     reference (except force_torque sensors, which belong on joints), Gazebo drops it. A sensor
     plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link (or
     Gazebo's ``world``), or the data is stamped with a frame TF does not know. ROS 1's plugins
-    (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``.
+    (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``;
+    ROS 2's tf2 refuses a frame id that starts with ``/``. A name ``NAMESPACE/LINK`` is the link
+    under a TF prefix (robot_state_publisher's ``frame_prefix``, ROS 1's ``tf_prefix``) that a
+    launch file chooses: not judged.
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -307,6 +310,14 @@ def sensor_unknown_link(robot):
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
                 name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
+                namespace, _, link = name.rpartition("/")
+                if namespace.strip("/") and link in robot.links:
+                    if name.startswith("/"):  # ROS 2 (ROS 1's tags are stripped above)
+                        yield element, (
+                            f"<{tag}> '{name}' starts with '/': ROS 2's tf2 refuses frame ids "
+                            f"that do (\"frame_id should not start with a '/'\"); write "
+                            f"'{name.lstrip('/')}'")
+                    continue  # link '{link}' under a TF prefix the launch gives (frame_prefix)
                 if name and name not in robot.links and name not in GAZEBO_FRAMES:
                     own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
                            if reference in robot.links else available("links", name, robot.links))

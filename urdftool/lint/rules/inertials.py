@@ -68,12 +68,8 @@ def _joints_by_child(robot) -> dict:
 
 
 def _fixed_children(robot) -> dict[str, list[str]]:
-    children: dict[str, list[str]] = {}
-    for joint, ends in robot.ends().items():
-        (parent, parent_link), (child, child_link) = ends["parent"], ends["child"]
-        if joint.get("type") == "fixed" and parent is not None and child is not None:
-            children.setdefault(parent_link, []).append(child_link)
-    return children
+    return {parent: [child for _, child in below]
+            for parent, below in _fixed_joints_below(robot).items()}
 
 
 def _valid(robot) -> list:
@@ -250,6 +246,48 @@ def moving_link_without_mass(robot):
                          "does any link fixed to it); give it its real mass and inertia")
 
 
+def _rigid_body_has_no_inertia(robot, name: str) -> bool:
+    """Whether the rigid body of link ``name`` (it and every link fixed to it, placed by the
+    fixed joints' origins) has zero inertia about its centre of mass. Gazebo and gz sim lump
+    fixed joints, MuJoCo fuses them (``fusestatic``, its URDF default), Pinocchio merges them:
+    a link's zero tensor is no defect when the body they move has inertia."""
+    from urdftool.physics.mass import combine, transformed
+
+    fixed = _fixed_joints_below(robot)
+    if name not in fixed:  # nothing fixed below it (most links): the link alone
+        return True
+    parts, stack = [], [(name, (0.0, 0.0, 0.0), mat3.rpy_matrix((0.0, 0.0, 0.0)))]
+    seen = set()
+    while stack:
+        current, xyz, rotation = stack.pop()
+        if current in seen:
+            continue
+        seen.add(current)
+        link = robot.links.get(current)
+        body = declared_of(robot, link) if link is not None else None
+        if body is not None and math.isfinite(body.mass) and body.mass > 0 \
+                and _finite_tensor(body.inertia):
+            parts.append(transformed(body, xyz, rotation))
+        for joint, child in fixed.get(current, ()):
+            offset, rpy = origin_pose(joint)
+            stack.append((child, mat3.add(mat3.vector(xyz), mat3.apply(rotation, offset)),
+                          mat3.multiply(rotation, mat3.rpy_matrix(rpy))))
+    whole = combine(parts)
+    return _zero_tensor(whole.inertia, _scaled(ZERO_INERTIA, whole.mass))
+
+
+def _fixed_joints_below(robot) -> dict[str, list]:
+    """Link name -> (fixed joint, child link name) of the fixed joints hanging from it."""
+    def build():
+        below: dict[str, list] = {}
+        for joint, ends in robot.ends().items():
+            (parent, parent_link), (child, child_link) = ends["parent"], ends["child"]
+            if joint.get("type") == "fixed" and parent is not None and child is not None:
+                below.setdefault(parent_link, []).append((joint, child_link))
+        return below
+    return robot.memo(_fixed_joints_below, build)
+
+
 def _principal(robot, link, properties):
     """(principal moments, the largest magnitude) of a link's declared inertial (from
     :func:`_valid`), once per robot and link (U305 and U306 ask)."""
@@ -278,6 +316,9 @@ def inertia_not_positive_definite(robot):
 
     A body with mass but no rotational inertia cannot be simulated: MuJoCo refuses it, and
     Gazebo/ODE produce an explosion. Zero mass with zero inertia (a massless frame) is fine.
+    The body judged is the one simulators move: the link and every link fixed to it (Gazebo
+    lumps them, MuJoCo fuses them, Pinocchio merges them), so a zero tensor on a link whose
+    fixed foot or hand carries the inertia is no finding.
 
     Fix (unsafe): the inertia (and inertial origin) computed from the link's geometry at its
     declared mass; a person should confirm the geometry stands for the body.
@@ -294,7 +335,8 @@ def inertia_not_positive_definite(robot):
                 f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
                 "positive"))
         elif _name(link) in moving and _zero_tensor(properties.inertia,
-                                                    _scaled(ZERO_INERTIA, properties.mass)):
+                                                    _scaled(ZERO_INERTIA, properties.mass)) \
+                and _rigid_body_has_no_inertia(robot, _name(link)):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
                 "moved by a joint; give the inertia of its shape"))
