@@ -34,3 +34,31 @@ def test_a_mesh_the_size_of_its_links_primitive_shapes_is_the_size_it_means(tmp_
 
     assert "U413" not in codes(visual + box)
     assert "U413" in codes(visual)
+
+
+def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path):
+    """onshape-to-robot writes ``package://assets/part.stl`` with no ROS package: PyBullet and
+    Pinocchio (given the robot's folder) drop ``package://`` and open ``assets/part.stl``
+    beside the robot file; only ROS's resource_retriever cannot. U407 is then a warning that
+    says so; a package whose path is nowhere stays an error."""
+    import struct
+
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "assets").mkdir()
+    triangle = struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + b"\0\0"
+    (tmp_path / "assets" / "part.stl").write_bytes(b"\0" * 80 + struct.pack("<I", 1) + triangle)
+    robot = tmp_path / "robot.urdf"
+
+    def found(uri):
+        robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{uri}"'
+                         '/></geometry></visual></link></robot>')
+        result = load_and_check(str(robot), CheckOptions())
+        return [(f.severity, f.message) for f in result.findings if f.code == "U407"]
+
+    [(severity, message)] = found("package://assets/part.stl")
+    assert severity == Severity.WARNING and "beside the robot file" in message
+    [(severity, _)] = found("package://assets/other.stl")
+    assert severity == Severity.ERROR

@@ -47,7 +47,7 @@ def _resolve(robot, uri: str) -> Path:
         try:
             folder = robot.resolver.find(package)  # (the robot's resolver: once per robot)
         except PackageNotFound as error:
-            raise MeshProblem("package", f"mesh '{uri}': {error}") from None
+            raise _no_package(robot, uri, package, tail, error) from None
         found = _in_package(uri, package, os.fspath(folder), tail)
     else:
         if "://" in uri and not uri.startswith("file://"):
@@ -60,6 +60,23 @@ def _resolve(robot, uri: str) -> Path:
         # a new one: raised once per robot
         raise MeshProblem(found.kind, found.message, certain=found.certain)
     return found
+
+
+def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
+    """The problem of a ``package://`` mesh whose package is not found: not certain when the
+    path it names, read as relative to the robot file (``PACKAGE/TAIL``), is a mesh file in the
+    robot's repository, as exporters with no ROS package write it (onshape-to-robot's
+    ``package://assets/part.stl``): the loaders that drop ``package://`` (PyBullet; Pinocchio
+    given the robot's folder) open it there, ROS's resource_retriever does not."""
+    base = os.fspath(robot.base_dir)
+    beside = _checked(uri, os.path.join(base, package, tail), base, None)
+    if isinstance(beside, MeshProblem):
+        return MeshProblem("package", f"mesh '{uri}': {error}")
+    written = os.path.join(package, tail)
+    return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {written} is beside "
+                                  "the robot file, where loaders that drop 'package://' "
+                                  "(PyBullet; Pinocchio given this folder) find it",
+                       certain=False)
 
 
 @per_run
