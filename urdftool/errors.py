@@ -204,8 +204,9 @@ class ModelBuildError(LocatedError):
     """Pinocchio's URDF parser (urdfdom) refuses the robot; the message gives urdfdom's reasons.
     The command line reports the linter's located findings instead, when it has some."""
 class IKError(LocatedError):
-    """A chain or target that inverse kinematics cannot work with (an unknown link, a target
-    file that cannot be read); ``where`` is the target file (and row) when it came from one."""
+    """A chain or target that inverse kinematics cannot work with (a limb without a moving
+    joint, a target file that cannot be read); ``where`` is the target file (and row) when it
+    came from one. A link name the robot does not have is an :class:`UnknownLink`."""
 
     def __init__(self, message: str, element=None, where: str | None = None):
         super().__init__(f"{where}: {message}" if where else message, element)

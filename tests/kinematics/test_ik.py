@@ -243,8 +243,23 @@ def test_limbs_ik_cannot_work_on(tmp_path):
 
 
 def test_unknown_link_lists_the_links(humanoid):
-    with pytest.raises(IKError, match="did you mean 'l_foot_link'"):
+    from urdftool.errors import UnknownLink
+
+    with pytest.raises(UnknownLink, match="did you mean 'l_foot_link'"):
         build_chain(humanoid, "body_link", "l_fot_link")
+
+
+@pytest.mark.parametrize("command", [["ik", "--xyz", "0", "0", "0"], ["workspace"]])
+def test_an_unknown_tip_or_base_is_a_usage_error(run_cli, command):
+    """A link named on the command line that the robot does not have is a usage error (exit 2)
+    in every command, as fk, dh and inertia say it; ik and workspace said it at the robot's
+    file with exit 1."""
+    for option in ("--tip", "--base"):
+        words = ["--tip", "l_foot_link", "--base", "body_link"]
+        words[words.index(option) + 1] = "l_fot_link"
+        result = run_cli(command[0], HUMANOID, *words, *command[1:])
+        assert result.exit_code == 2, result.output
+        assert "link 'l_fot_link' does not exist; did you mean 'l_foot_link'" in result.output
 
 
 def test_ur5_from_the_corpus():

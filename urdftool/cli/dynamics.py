@@ -100,9 +100,11 @@ def _standing(robot, supports, values, samples, seed, output_format, plot) -> No
     from urdftool.physics.statics import DynamicsError, build_standing, stand, standing_loads
     from urdftool.report import dynamics as render
 
+    from urdftool.errors import UnknownName
+
     try:
         standing = build_standing(robot, supports)
-    except DynamicsError as error:
+    except (DynamicsError, UnknownName) as error:
         fail_at(robot, error)
     stance = stand(standing, values.q)
     warn(values.warnings + stance.warnings)

@@ -32,7 +32,7 @@ def workspace(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.errors import ConfigError, FKError, IKError
+    from urdftool.errors import ConfigError, FKError, IKError, UnknownName
     from urdftool.kinematics import configuration as config
     from urdftool.kinematics.chain import build_chain
     from urdftool.kinematics.fk import KinematicModel
@@ -51,7 +51,7 @@ def workspace(
         chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
     except ConfigError as error:
         fail_config(error, "--q")
-    except (FKError, IKError) as error:
+    except (FKError, IKError, UnknownName) as error:
         fail_at(robot, error)
     warn(start.warnings)
     from urdftool.report.progress import sampling_progress

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from urdftool.errors import IKError, available
+from urdftool.errors import IKError, UnknownLink
 from urdftool.kinematics.configuration import Variable
 from urdftool.kinematics.fk import KinematicModel
 
@@ -123,8 +123,9 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
                 kinematics: KinematicModel | None = None, point=None) -> Chain:
     """The limb from ``base`` (default: the root link) to ``tip``; the variables off the limb
     stay at ``row`` (default: each variable's default); ``point`` [m] in the tip's frame is the
-    point placed instead of the tip's origin (a hand's palm on a forearm link). IKError for an
-    unknown link or a limb without a moving joint."""
+    point placed instead of the tip's origin (a hand's palm on a forearm link). UnknownLink for
+    an unknown link (a name given by the user: a usage error in every command), IKError for a
+    limb without a moving joint."""
     import pinocchio as pin
 
     kinematics = kinematics or KinematicModel(robot)
@@ -132,7 +133,7 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     base = base or kinematics.links[0]
     for name in (base, tip):
         if name not in kinematics.links:
-            raise IKError(f"unknown link '{name}'; {available('links', name, kinematics.links)}")
+            raise UnknownLink(name, kinematics.links)
     row = np.array([v.default for v in kinematics.variables]) if row is None else \
         np.asarray(row, dtype=float).copy()
     frame = {name: full.getFrameId(name, pin.FrameType.BODY) for name in (base, tip)}

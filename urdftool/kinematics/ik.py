@@ -318,7 +318,8 @@ def solve_limb(robot, tip: str, base: str | None = None, point=None,
         or ``frame``; degrees: angles in degrees; then
         ``seeds_count`` starting points (:func:`seeds`) for :func:`solve`.
     Raises ConfigError whose ``argument`` names the input it is about ('q', 'orientation',
-    'frame_q', 'targets'), FKError, IKError, and UnknownLink for an unknown ``frame``.
+    'frame_q', 'targets'), FKError, IKError, and UnknownLink for an unknown ``frame``,
+    ``base`` or ``tip``.
     """
     from urdftool.kinematics import configuration as config
     from urdftool.kinematics.chain import build_chain

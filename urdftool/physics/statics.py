@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.numbers import number
-from urdftool.errors import DynamicsError, available
+from urdftool.errors import DynamicsError, UnknownLink
 from urdftool.physics.dynamics import JointLoad, Model, gravity_loads
 from urdftool.kinematics.chain import frame_jacobian
 
@@ -113,8 +113,7 @@ def build_standing(robot, supports: list[str]) -> Standing:
     frames, points = [], []
     for name in supports:
         if name not in robot.links:
-            raise DynamicsError(f"unknown support link '{name}'; "
-                                f"{available('links', name, robot.links)}")
+            raise UnknownLink(name, robot.links)  # (a usage error in every command)
         link_points, problems = surface_points(robot, robot.links[name])
         if not len(link_points):
             detail = f" ({problems[0][1]})" if problems else ""
