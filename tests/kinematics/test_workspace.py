@@ -91,5 +91,5 @@ def test_cli_usage(run_cli, args, message):
 
 
 def test_cli_unknown_tip(run_cli):
-    result = run_cli("workspace", HUMANOID, "--tip", "l_fot_link")
-    assert result.exit_code == 1 and "did you mean 'l_foot_link'" in result.output
+    result = run_cli("workspace", HUMANOID, "--tip", "l_fot_link")  # a name given: exit 2
+    assert result.exit_code == 2 and "did you mean 'l_foot_link'" in result.output
