@@ -274,8 +274,8 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
     has one (:func:`urdftool.lint.parts.rootless` decides, from the links and joints read
     here): it has joints, every link it writes is a joint's child, and some joint names a link
     it does not write. A robot has one root link; such a file is a part of a robot defined
-    elsewhere, whatever its root element says (jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS): joints on the
-    'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
+    elsewhere, whatever its root element says (jackal's custom_example.urdf, meant for
+    $(optenv JACKAL_URDF_EXTRAS): joints on the 'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
     root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
     definitions may write links the text does not show (macro calls, includes), unless the
     file is not ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's
