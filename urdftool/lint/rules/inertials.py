@@ -536,11 +536,11 @@ def root_link_inertia(robot):
     roots = [name for name in robot.links if name not in children]
     if len(roots) != 1:
         return
-    masses = {}  # the root's (the last link of its name with an inertial, as a dict keeps)
+    mass = 0  # the root's: the last link of its name with an inertial
     for link, properties in _valid(robot):
         if _name(link) == roots[0]:
-            masses[roots[0]] = properties.mass
-    if masses.get(roots[0], 0) > 0:
+            mass = properties.mass
+    if mass > 0:
         root = robot.links[roots[0]]
         name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
                     if n not in robot.links and f"{n}_joint" not in robot.joints)
@@ -552,7 +552,7 @@ def root_link_inertia(robot):
                           f'link="{attribute(name)}"/><child link="{attribute(roots[0])}"/>'
                           '</joint>')
         yield offer(first_child(root, "inertial"), (
-            f"root link '{roots[0]}' has mass {masses[roots[0]]:g} kg, which KDL ignores; add a "
+            f"root link '{roots[0]}' has mass {mass:g} kg, which KDL ignores; add a "
             "massless root link fixed to it"), f"add the massless root link '{name}'", edits,
             safe=False)
 
