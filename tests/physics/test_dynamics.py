@@ -306,16 +306,3 @@ def test_a_robot_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tm
     with pytest.raises(DynamicsError, match="300 joint variables.*cube of the joints"):
         build(robot)
 
-
-def test_mass_matrix_text_keeps_a_wrist_beside_a_shoulder():
-    """Each M(q) entry's digits are counted from its own joints' scale sqrt(M_ii M_jj): a
-    wrist's 1.3e-4 beside a shoulder's 3.2 is printed, round-off beside it is 0."""
-    from urdftool.report.dynamics import _mass_matrix_rows
-
-    matrix = [[3.1924, 1.1669, -2.7e-14], [1.1669, 0.5395, 1.3212e-04],
-              [-2.7e-14, 1.3212e-04, 1.3212e-04]]
-    rows = _mass_matrix_rows(matrix)
-    assert rows[2] == ["0", "0.0001321", "0.0001321"]
-    assert rows[0] == ["3.192", "1.167", "0"]
-    zero_diagonal = _mass_matrix_rows([[2.0, 1e-20], [1e-20, 0.0]])
-    assert zero_diagonal == [["2", "0"], ["0", "0"]]  # no own scale: the matrix's

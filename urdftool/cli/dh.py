@@ -12,7 +12,7 @@ FORMATS = ("text", "json", "yaml")
 
 
 def register(app: typer.Typer) -> None:
-    app.command("dh", help="Extract the D-H table of the chain from --base (default: the root) to --tip.")(budgeted(dh))
+    app.command("dh", help="Extract the D-H table of the chain from --base to --tip.")(budgeted(dh))
 
 
 def dh(

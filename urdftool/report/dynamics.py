@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, number, numbers, symmetric_texts
 from urdftool.report.escape import text as _text
 
 
@@ -36,23 +36,6 @@ def _scale(values) -> float | None:
     return float(values.max()) if values.size and values.max() > 0 else None
 
 
-def _mass_matrix_rows(matrix) -> list[list[str]]:
-    """M(q)'s entries as text, each one's digits counted from its own joints' scale,
-    sqrt(M_ii M_jj) (which bounds it, M being positive definite), so that a wrist's 1e-4 kg m2
-    beside a shoulder's 3 kg m2 is printed and not rounded to 0, while round-off beside it is;
-    the matrix's largest entry where a diagonal is zero or not finite."""
-    overall = _scale(matrix)
-    diagonal = [abs(float(matrix[i][i])) for i in range(len(matrix))]
-    rows = []
-    for i, row in enumerate(matrix):
-        texts = []
-        for j, value in enumerate(row):
-            own = math.sqrt(diagonal[i] * diagonal[j])
-            texts.append(number(value, scale=own if own > 0 and math.isfinite(own) else overall))
-        rows.append(texts)
-    return rows
-
-
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
     joints = [_text(j) for j in result.joints]
@@ -65,7 +48,7 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
                   for name, g in zip(joints, result.G)]
         lines += ["", "M(q): joint-space mass matrix"]
         lines += [f"  {name:{width}s} " + " ".join(f"{entry:>10s}" for entry in row)
-                  for name, row in zip(joints, _mass_matrix_rows(result.M))]
+                  for name, row in zip(joints, symmetric_texts(result.M))]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row, _scale(result.C))}"
