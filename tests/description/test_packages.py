@@ -43,6 +43,20 @@ def test_package_name_comes_from_package_xml_not_folder(tmp_path):
     assert PackageResolver(start=folder, environ={}).find("real_name") == folder
 
 
+def test_a_commented_out_name_is_not_the_package_s_name(tmp_path):
+    """catkin_pkg and ament read package.xml as XML: a <name> in a comment (a fork's old
+    name kept for reference) is not the package's name."""
+    folder = tmp_path / "fork"
+    folder.mkdir()
+    (folder / "package.xml").write_text(
+        '<package format="3">\n  <!-- <name>upstream_description</name> -->\n'
+        '  <name>fork_description</name>\n</package>\n')
+    resolver = PackageResolver(start=folder, environ={})
+    assert resolver.find("fork_description") == folder
+    with pytest.raises(PackageNotFound):
+        resolver.find("upstream_description")
+
+
 def test_not_found_lists_where_it_looked(tmp_path):
     with pytest.raises(PackageNotFound) as error:
         PackageResolver(start=tmp_path, environ={"ROS_PACKAGE_PATH": str(tmp_path)}).find("ghost")

@@ -41,10 +41,10 @@ def package_name(folder: Path, root: Path | None = None) -> str | None:
     manifest = folder / "package.xml"
     if root is not None and not inside(manifest, root):
         return None
-    head = _manifest(os.fspath(manifest))
-    if head is None:
+    text = manifest_text(folder)
+    if text is None:
         return None
-    match = _NAME.search(head)
+    match = _NAME.search(text)  # comments removed: a commented-out <name> is not the name
     return match.group(1).decode("utf-8", "replace") if match else folder.name
 
 
