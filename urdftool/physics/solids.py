@@ -1002,10 +1002,10 @@ def _shape_boxes(low, high, xyz, rotation, unturned):
 def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vector]]]:
     """Link -> (link fixed to it, R, t taking points of that link's frame into this one's)."""
     def build():
-        neighbours = {}
+        neighbours, kinds = {}, robot.kinds()
         for joint, ends in robot.ends().items():
             (parent_element, parent), (child_element, child) = ends["parent"], ends["child"]
-            if joint.get("type") != "fixed" or parent_element is None or child_element is None:
+            if kinds[joint] != "fixed" or parent_element is None or child_element is None:
                 continue
             if parent not in robot.links or child not in robot.links:
                 continue
