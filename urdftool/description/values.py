@@ -74,6 +74,9 @@ def number(element, attribute: str, default: float | None = None):
     return values[0] if values else None
 
 
+_UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)
+
+
 class Origin(NamedTuple):
     """An element's ``<origin>``: xyz in [m], rpy in [rad] (URDF roll-pitch-yaw).
 
@@ -102,11 +105,14 @@ def origin(element) -> Origin:
     return Origin(xyz or _ZEROS, rpy or _ZEROS, problem, found)
 
 
-def origin_pose(element) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+def origin_pose(element, found=_UNREAD) -> tuple[tuple[float, float, float],
+                                                 tuple[float, float, float]]:
     """(xyz, rpy) of :func:`origin` (zeros for a malformed part), without the rest: the solids
     and inertials place 30,000 shapes and inertials of a 10,000-link robot, and count a
-    malformed part as 0 (the rules that judge it read :func:`origin`)."""
-    found = first_child(element, "origin") if element is not None else None
+    malformed part as 0 (the rules that judge it read :func:`origin`). ``found``: the first
+    ``<origin>`` of ``element`` (or None), when the caller has its children at hand."""
+    if found is _UNREAD:
+        found = first_child(element, "origin") if element is not None else None
     if found is None:
         return _ZEROS, _ZEROS
     get = found.get
