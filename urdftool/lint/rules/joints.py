@@ -40,8 +40,9 @@ def unknown_joint_type(robot):
     Bad: ``<joint name="j" type="hinge">``
     Good: ``<joint name="j" type="revolute">`` (or continuous, prismatic, fixed, floating, planar)
     """
+    kinds = robot.kinds()
     for joint in robot.children("joint"):
-        kind = joint.get("type")
+        kind = kinds[joint]
         if kind not in JOINT_TYPES:
             what = f"type '{kind}'" if kind is not None else "no type"
             yield joint, f"joint '{_name(joint)}' has {what}; valid types: {', '.join(JOINT_TYPES)}"
@@ -50,7 +51,8 @@ def unknown_joint_type(robot):
 def _limits(robot) -> list:
     """(joint, its type, its first ``<limit>`` or None) of every joint; once per robot (three
     rules ask)."""
-    return robot.memo(_limits, lambda: [(joint, joint.get("type"), robot.child(joint, "limit"))
+    kinds = robot.kinds()
+    return robot.memo(_limits, lambda: [(joint, kinds[joint], robot.child(joint, "limit"))
                                         for joint in robot.children("joint")])
 
 
@@ -126,10 +128,10 @@ def _axes(robot) -> list:
     """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
     per robot (U205 and U206 ask)."""
     def read():
-        found = []
+        found, kinds = [], robot.kinds()
         for joint in robot.children("joint"):
             axis = robot.child(joint, "axis")
-            if axis is None or joint.get("type") not in AXIS:
+            if axis is None or kinds[joint] not in AXIS:
                 continue
             values, _ = number_tuple(axis.get("xyz"), 3)
             if values is not None and finite(values):
@@ -442,8 +444,9 @@ def revolute_range_in_degrees(robot):
     Bad: ``<limit lower="-250" upper="250" .../>`` on a revolute joint
     Good: ``<limit lower="-4.3633" upper="4.3633" .../>``
     """
+    kinds = robot.kinds()
     for joint, limit, lower, upper in _ranges(robot):
-        if joint.get("type") != "revolute" or not finite((lower, upper)):
+        if kinds[joint] != "revolute" or not finite((lower, upper)):
             continue
         largest = max(abs(lower), abs(upper))
         if MULTI_TURN < largest <= DEGREE_LIKE:
