@@ -407,9 +407,7 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
                        frames: list[str] | None = None, base: str | None = None) -> FKResult:
     """Poses of ``frames`` (default: every link) relative to ``base`` (default: the root)."""
     index = {name: i for i, name in enumerate(model.links)}
-    for name in (frames or []) + ([base] if base else []):
-        if name not in index:
-            raise UnknownLink(name, model.links)
+    UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links)
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
     if base:
         poses = model._frame_poses(configurations.values, chosen + [index[base]])
