@@ -311,6 +311,11 @@ def _validated(path: Path, key: str, value):
 
 
 def _parse(path: Path, table: dict) -> Settings:
+    if not isinstance(table, dict):  # `urdftool = 5` under [tool]: TypeError; a string was
+        # read as its characters, each an unknown setting
+        where = "the file" if path.name == "urdftool.toml" else "[tool.urdftool]"
+        raise SettingsError(f"{path}: {where} must be a table of settings, not "
+                            f"{type(table).__name__} {str(table)[:40]!r}")
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
@@ -653,6 +658,13 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
                           tuple(_codes([*settings.ignore, *request.ignore,
                                         *settings.ignores_for(path)])),
                           request.targets or tuple(_codes(settings.targets)))
+    if selection.runs_nothing():  # every rule ignored (`ignore = ["U"]` in a settings file a
+        # pull request edits, `--select U1 --ignore U1`): a check of nothing is no pass
+        where = f" (with {settings.path})" if settings.path else ""
+        raise SettingsError(f"select {list(selection.select)}, ignore "
+                            f"{list(selection.ignore)} and targets "
+                            f"{list(selection.targets)}{where} leave no rule to check "
+                            f"{path} with")
     options = CheckOptions(
         xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),
