@@ -72,6 +72,12 @@ def test_a_selection_that_leaves_no_rule_is_an_error_not_a_pass(run_cli, project
     assert "no problems found" not in result.output
 
 
+def test_a_per_file_ignore_of_every_rule_leaves_those_files_out(run_cli, project):
+    """How a repository leaves vendored robots out: not a selection of nothing."""
+    settings(project, '[tool.urdftool.per-file-ignores]\n"robots/*" = ["U"]\n')
+    assert codes(run_cli, project / "robots") == (0, [])
+
+
 @pytest.mark.parametrize("text", ["[tool]\nurdftool = 5\n", 'tool.urdftool = "select"\n',
                                   "[[tool.urdftool]]\nselect = []\n"])
 def test_tool_urdftool_that_is_not_a_table_is_a_settings_error(run_cli, project, text):

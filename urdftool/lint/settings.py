@@ -38,7 +38,7 @@ import fnmatch
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
@@ -655,16 +655,18 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
     and per-file ignores add, companions and packages win one by one."""
     settings = _applying(path, request)
     selection = Selection(tuple(_codes(request.select or settings.select)),
-                          tuple(_codes([*settings.ignore, *request.ignore,
-                                        *settings.ignores_for(path)])),
+                          tuple(_codes([*settings.ignore, *request.ignore])),
                           request.targets or tuple(_codes(settings.targets)))
     if selection.runs_nothing():  # every rule ignored (`ignore = ["U"]` in a settings file a
-        # pull request edits, `--select U1 --ignore U1`): a check of nothing is no pass
+        # pull request edits, `--select U1 --ignore U1`): a check of nothing is no pass. A
+        # per-file ignore of every rule is how a repository leaves vendored files out: not here
         where = f" (with {settings.path})" if settings.path else ""
         raise SettingsError(f"select {list(selection.select)}, ignore "
                             f"{list(selection.ignore)} and targets "
                             f"{list(selection.targets)}{where} leave no rule to check "
                             f"{path} with")
+    selection = replace(selection, ignore=(
+        *selection.ignore, *_codes(settings.ignores_for(path))))
     options = CheckOptions(
         xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),
