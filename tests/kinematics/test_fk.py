@@ -463,3 +463,18 @@ def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, te
     path.write_text(text)
     with pytest.raises(ConfigError, match="invalid JSON"):
         config.read_table(str(path), "configurations", "joint")
+
+
+@pytest.mark.parametrize("origin", ['xyz="0 0 0" rpy="inf 0 0"', 'xyz="nan 0 0"',
+                                    'xyz="0 1e999 0"', 'rpy="0 -inf nan"'])
+def test_an_origin_that_is_not_finite_is_a_located_error(tmp_path, origin):
+    """rpy="inf": math.sin raised ValueError, a traceback from fk, ik and every command
+    that poses the robot; "nan": every pose below it nan, exit 0 (attacks.md, session 7)."""
+    from conftest import load_text
+
+    robot = load_text(tmp_path, f"""<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+      <origin {origin}/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    with pytest.raises(FKError, match="not finite"):
+        KinematicModel(robot)

@@ -331,14 +331,23 @@ def _placement(element) -> np.ndarray:
     from urdftool.description.values import origin
 
     found = origin(element)
-    if found.problem:
-        raise FKError(f"joint '{element.get('name')}': <origin> {found.problem}",
+    problem = found.problem or (None if all(map(math.isfinite, (*found.xyz, *found.rpy))) else
+                                f"holds a number that is not finite (xyz {_numbers(found.xyz)}, "
+                                f"rpy {_numbers(found.rpy)}): no pose has it")
+    if problem:  # inf: math.sin raised ValueError; nan: every pose below it nan, silently
+        raise FKError(f"joint '{element.get('name')}': <origin> {problem}",
                       found.element if found.element is not None else element)
     matrix = np.eye(4)
     matrix[:3, 3] = found.xyz
     if found.rpy != (0.0, 0.0, 0.0):  # the identity to the bit, without the products
         matrix[:3, :3] = _rotation(*found.rpy)
     return matrix
+
+
+def _numbers(values) -> str:
+    from urdftool.numbers import number
+
+    return "'" + " ".join(map(number, values)) + "'"
 
 
 def _compose(first: np.ndarray, second: np.ndarray) -> np.ndarray:
