@@ -247,6 +247,13 @@ def test_core_errors_name_no_flag(project):
         check_paths([project], max_file_size=0)
     with pytest.raises(SettingsError, match="companion file '.*nowhere.yaml' does not exist"):
         check_paths([project], companions={"spec": project / "nowhere.yaml"})
+    import os
+
+    (project / "dir.yaml").mkdir()
+    os.mkfifo(project / "fifo.yaml")
+    for name, why in (("dir.yaml", "is a folder"), ("fifo.yaml", "is not a regular file")):
+        with pytest.raises(SettingsError, match=f"'.*{name}' {why}"):  # not "does not exist"
+            check_paths([project], companions={"spec": project / name})
     settings(project, 'selct = ["U2"]\n')
     with pytest.raises(SettingsError, match="unknown urdftool setting"):
         check_paths([project / "robots"])

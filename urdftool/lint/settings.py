@@ -535,10 +535,13 @@ Companions = CompanionPaths  # the API's name for the companion files a request 
 
 
 def check_companions(companions: CompanionPaths) -> None:
-    """SettingsError when a companion file named does not exist."""
+    """SettingsError when a companion file named does not exist or is not a regular file."""
     for path in companions.named():
-        if kind_of(path) != "file":
-            raise SettingsError(f"companion file '{path}' does not exist")
+        kind = kind_of(path)
+        if kind != "file":
+            why = ("does not exist" if not kind else "is a folder" if kind == "folder"
+                   else "is not a regular file (a FIFO, a device or a socket)")
+            raise SettingsError(f"companion file '{path}' {why}")
 
 
 def _settings_companions(settings: Settings) -> CompanionPaths:
