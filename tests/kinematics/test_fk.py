@@ -478,3 +478,23 @@ def test_an_origin_that_is_not_finite_is_a_located_error(tmp_path, origin):
       <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
     with pytest.raises(FKError, match="not finite"):
         KinematicModel(robot)
+
+
+def test_a_chain_of_3000_mimic_joints_has_its_values(tmp_path):
+    """Each joint mimicking the one before, twice its value plus 0.001: mimic_source recursed
+    once per joint (RecursionError from fk, ik, dynamics, collisions, workspace) and walked
+    the chain again for each (attacks.md, session 7)."""
+    from conftest import load_text
+
+    links = "".join(f'<link name="l{i}"/>' for i in range(3001))
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l0"/><child link="l{i + 1}"/>'
+        f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        + (f'<mimic joint="j{i - 1}" multiplier="{2 if i < 3 else 1}" offset="0.001"/>'
+           if i else "") + "</joint>" for i in range(3000))
+    model = KinematicModel(load_text(tmp_path, f'<robot name="r">{links}{joints}</robot>'))
+    assert [v.name for v in model.variables] == ["j0"]
+    from urdftool.kinematics.configuration import mimic_source
+
+    assert mimic_source(model.robot, "j2", {"j0"}) == ("j0", 4.0, 2 * 0.001 + 0.001)
+    assert mimic_source(model.robot, "j2999", {"j0"})[1] == 4.0

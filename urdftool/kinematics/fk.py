@@ -201,7 +201,8 @@ class KinematicModel:
     def _source(self, name: str) -> tuple:
         """(column, multiplier, offset): the joint's value as a function of one variable."""
         try:
-            variable, multiplier, offset = mimic_source(self.robot, name, self._columns)
+            variable, multiplier, offset = mimic_source(
+                self.robot, name, self._columns, known=self.__dict__.setdefault("_sources", {}))
         except MimicError as error:
             raise FKError(str(error), error.element) from None
         return self._columns[variable], multiplier, offset
