@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
@@ -19,7 +19,7 @@ from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_b
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
-from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, rootless
+from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
 
 SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
@@ -671,11 +671,18 @@ class Targets:
     skipped: files found in folders and not checked -> why (included by a robot, a macro library),
         and companion files named that no robot is checked with (said only with -v)
     notes: "PATH: what happened" for files named that are checked through others or not at all
+    unchecked: "PATH: why" for each path named that asked for a robot to be checked and gave
+        none: a folder whose robot files are all skipped, a file with links of its own that is
+        a part (its root link deleted looks the same) nobody here includes. When the run checks
+        no file at all these make it a usage error (:func:`urdftool.lint.runner.check_paths`),
+        as a folder without robot files is; a companion, a macro library, a fragment or an
+        SRDF source named (pre-commit names every staged file) is none by what it is.
     """
 
     files: list[str]
     skipped: dict[str, str]
     notes: list[str]
+    unchecked: list[str] = field(default_factory=list)
 
 
 def expand(paths: list[str], request) -> Targets:
@@ -710,7 +717,7 @@ def expand(paths: list[str], request) -> Targets:
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
-    files, skipped, notes = [], {}, []
+    files, skipped, notes, unchecked = [], {}, [], []
     for path in map(os.fspath, paths):
         if path != "-" and not kind_of(path, follow=False):
             raise TargetError(f"path '{path}' does not exist")
@@ -743,6 +750,8 @@ def expand(paths: list[str], request) -> Targets:
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
                 notes.append(f"{path}: {reason}")
+                if not targets and reason.startswith(PART):
+                    unchecked.append(f"{path}: {reason}")
             continue
         found = robot_files(Path(path))
         top, skipped_here = split_top_level(found, resolver_for, limit)
@@ -750,7 +759,11 @@ def expand(paths: list[str], request) -> Targets:
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
             raise TargetError(f"no .urdf or .xacro files found in '{path}'")
+        if not top:
+            first, why = next(iter(skipped_here.items()))
+            more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
+            unchecked.append(f"{path}: no robot of its own in it: {first}: {why}{more}")
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
         unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
-    return Targets(list(unique.values()), skipped, notes)
+    return Targets(list(unique.values()), skipped, notes, unchecked)
