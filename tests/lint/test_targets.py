@@ -691,3 +691,20 @@ def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, mo
     assert targets.expand([str(robot)], CheckRequest()).files == [str(robot)]
     assert [str(p) for p in reads] == [str(robot)] and lookups == [str(robot)]
     assert not summaries
+
+
+def test_a_solidworks_export_named_in_capitals_is_walked(tmp_path):
+    """The SolidWorks exporter writes NAME.URDF (poppy-project/poppy-humanoid): a folder walk
+    found no robot there and `check .` ended with a usage error; the language server and the
+    pytest plugin ask the same question (description.urdf.is_robot_name)."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robots").mkdir()
+    (tmp_path / "robots" / "Poppy.URDF").write_text('<robot name="p"><link name="a"/></robot>')
+    walked = expand([str(tmp_path)], CheckRequest())
+    assert [p.rsplit("/", 1)[-1] for p in walked.files] == ["Poppy.URDF"]
+    from urdftool.description.urdf import is_robot_name
+
+    assert is_robot_name("arm.Xacro") and not is_robot_name("arm.urdf.bak")
