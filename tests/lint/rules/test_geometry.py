@@ -62,3 +62,34 @@ def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path)
     assert severity == Severity.WARNING and "beside the robot file" in message
     [(severity, _)] = found("package://assets/other.stl")
     assert severity == Severity.ERROR
+
+
+def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):
+    """reachy_mini's robot.urdf names 322 meshes ``package://assets/NAME.stl``: the text report
+    says one thing once (report.text_format.groups) when the findings differ only in names in
+    quotes, and the file each finding named beside the robot was written unquoted: 644 lines."""
+    import io
+    import struct
+
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.report import render
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "assets").mkdir()
+    triangle = struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + b"\0\0"
+    links = ""
+    for name in ("a", "b", "c"):
+        (tmp_path / "assets" / f"{name}.stl").write_bytes(b"\0" * 80 + struct.pack("<I", 1)
+                                                          + triangle)
+        links += (f'<link name="{name}"><visual><geometry><mesh filename="package://assets/'
+                  f'{name}.stl"/></geometry></visual></link>')
+    joints = "".join(f'<joint name="{c}" type="fixed"><parent link="a"/><child link="{c}"/>'
+                     "</joint>" for c in ("b", "c"))
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(f'<robot name="r">{links}{joints}</robot>')
+    result = load_and_check(str(robot), CheckOptions())
+    assert [f.message for f in result.findings if f.code == "U407"][0].count("'assets/a.stl'") == 1
+    stream = io.StringIO()
+    render("text", [result], stream)
+    [line] = [line for line in stream.getvalue().splitlines() if "U407" in line]
+    assert "[3 times: line" in line

@@ -73,7 +73,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     if isinstance(beside, MeshProblem):
         return MeshProblem("package", f"mesh '{uri}': {error}")
     written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
-    return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {written} is beside "
+    return MeshProblem("package", f"mesh '{uri}': {error}; not certain: '{written}' is beside "
                                   "the robot file, where loaders that drop 'package://' "
                                   "(PyBullet; Pinocchio given this folder) find it",
                        certain=False)
