@@ -175,6 +175,24 @@ def test_conditions_are_evaluated_with_the_defaults(tmp_path):
     assert started["fake",].truth is False and started["fake",].free == {"sim"}
 
 
+def test_an_eval_comparing_an_argument_with_a_word_is_read_as_that_comparison(tmp_path):
+    """roslaunch's ``if="$(eval arg('arm') == 'gen3')"`` (ros_kortex chooses the dof default
+    so) is read, never evaluated, as "arm equals gen3"; any other expression stays unknown."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": """<launch>
+      <arg name="arm" default="gen3"/>
+      <node name="seven" pkg="controller_manager" type="spawner" args="seven" if="$(eval arg('arm') == 'gen3')"/>
+      <node name="six" pkg="controller_manager" type="spawner" args="six" if="$(eval arg('arm') == 'gen3_lite')"/>
+      <node name="other" pkg="controller_manager" type="spawner" args="other" unless="$(eval arg('arm') != 'gen3')"/>
+      <node name="odd" pkg="controller_manager" type="spawner" args="odd" if="$(eval 1 + len(arg('arm')) > 2)"/>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    started = {s.arguments[0].text: s.when for s in configuration.started}
+    assert started["seven"].truth is True and started["seven"].free == {"arm"}
+    assert "six" not in started or started["six"].truth is False
+    assert started["other"].truth is True
+    assert started["odd"].truth is None
+
+
 # --- hostile launch files -----------------------------------------------------------------------
 
 def test_a_python_launch_file_is_never_run_or_imported(tmp_path):
