@@ -206,6 +206,8 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                 from urdftool.lint.rules.loading import failing_defaults
 
                 robot, given, built = failing_defaults(path, error, build)
+                if robot is None and built:
+                    return FileResult(path, built)
                 if robot is None:
                     raise
             else:

@@ -78,8 +78,10 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     make an include path ``arms//urdf/_macro.xacro``: ros_kortex's kortex_dual_robots.xacro)
     is, when a launch file here builds it giving arguments with which xacro succeeds, checked as
     that launch file builds it, and the failure of the defaults is a **warning** saying so: it
-    holds for a plain ``xacro FILE``, not for the build the repository runs. When no launch
-    file's build succeeds, the failure is an error as above.
+    holds for a plain ``xacro FILE``, not for the build the repository runs. A **warning** too
+    when a launch file builds it giving arguments whose values are known only at launch
+    (``arm_model:=$(arg arm_model)`` computed by ``$(eval ...)``: interbotix_ros_rovers'
+    locobot.urdf.xacro), and that build is not checked. Otherwise the failure is an error.
 
     An included file missing from the source tree below a package (``$(find NAME)/...``) is
     looked for where the package's build installs it from (docs/packages.md); when that
@@ -194,10 +196,14 @@ def failing_defaults(path: str, error, build):
     from urdftool.description.runtime import builds
     from urdftool.errors import LoadError
 
-    tried = set()
+    tried, unknown = set(), None
     for made in builds(path):
         known = {name: text for name, text in made.args.items() if text is not None}
-        if not made.xacro or not known or tuple(sorted(known.items())) in tried:
+        if not made.xacro or not made.args:
+            continue
+        later = sorted(name for name, text in made.args.items() if text is None)
+        unknown = unknown or (later and (made, later))
+        if tuple(sorted(known.items())) in tried:
             continue
         tried.add(tuple(sorted(known.items())))
         try:
@@ -208,6 +214,12 @@ def failing_defaults(path: str, error, build):
                    f"but {made.named} builds it with {made.shown_args()} and xacro succeeds: "
                    "checked as built there (--arg NAME=VALUE checks another build)")
         return robot, known, [U005.finding(Conditional(message), error.location)]
+    if unknown:  # the build the repository runs depends on values given at launch
+        made, later = unknown
+        message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "
+                   f"and {made.named} builds it giving {', '.join(later)} values known only at "
+                   "launch, so that build is not checked (--arg NAME=VALUE checks one)")
+        return None, {}, [U005.finding(Conditional(message), error.location)]
     return None, {}, []
 
 
