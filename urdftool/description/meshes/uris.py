@@ -85,8 +85,9 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                       "find it", certain=False)
     return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
                                   f"folder '{package}' (no package.xml) with this file, where "
-                                  "loaders given it as a package path (Pinocchio's "
-                                  "package_dirs; urdf-loaders' packages) find it", certain=False)
+                                  "PyBullet (which looks in every folder above the robot file) "
+                                  "and loaders given it as a package path (Pinocchio's "
+                                  "package_dirs) find it", certain=False)
 
 
 @per_run
