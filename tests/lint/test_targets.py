@@ -708,3 +708,21 @@ def test_a_solidworks_export_named_in_capitals_is_walked(tmp_path):
     from urdftool.description.urdf import is_robot_name
 
     assert is_robot_name("arm.Xacro") and not is_robot_name("arm.urdf.bak")
+
+
+def test_a_named_macro_library_nobody_includes_is_read_once(monkeypatch, tmp_path):
+    """A library named on the command line (a ``<robot name>`` of macros that nobody
+    includes) is classified from the bytes read once: whether it writes links of its own is
+    asked of them, not of the file read again. Skipped either way, as before."""
+    from urdftool.lint import targets
+    from urdftool.lint.settings import CheckRequest
+
+    (tmp_path / ".git").mkdir()
+    lib = tmp_path / "lib.xacro"
+    lib.write_text('<robot name="lib" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:macro name="m"><link name="a"/></xacro:macro></robot>')
+    reads, head = [], targets._head
+    monkeypatch.setattr(targets, "_head", lambda path, *rest: reads.append(path) or head(path, *rest))
+    found = targets.expand([str(lib)], CheckRequest())
+    assert found.files == [] and "nothing to check" in found.notes[0]
+    assert [str(path) for path in reads] == [str(lib)]

@@ -536,8 +536,9 @@ def explicit_targets(path: Path, includers: dict, root: Path,
                      ) -> tuple[list[Path], str | None]:
     """What to check for a file named on the command line (as pre-commit does), and why.
 
-    includers: :func:`includers_below` ``root``, or a function returning it, called only when
-        the file is not a robot of its own (walking a repository costs more than checking a robot)
+    includers: :func:`includers_below` ``root``, or a function of the bytes already read
+        (absolute path -> bytes) returning it, called only when the file is not a robot of its
+        own (walking a repository costs more than checking a robot)
     A robot of its own (a named ``<robot>`` with links, joints or macro calls) is checked as it
     is, and so is a file that is not read (a link leading outside the repository, a file over
     the size limit, a FIFO): checking it reports why. A file that is not (a macro library, a
@@ -556,7 +557,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
         return [], f"{SRDF_SOURCE}: nothing to check"
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
-    includers = includers() if callable(includers) else includers
+    includers = includers({os.path.abspath(path): data}) if callable(includers) else includers
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
     while pending:
@@ -585,7 +586,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
             return robots, (f"included by {shown}: checking "
                             f"{', '.join(display_path(p) for p in robots)} instead")
         return robots, f"included by {shown}: checking that instead"
-    reason = _not_a_robot(path, summary, resolver_for, max_file_size, yields)
+    reason = _not_a_robot(path, summary, resolver_for, max_file_size, yields, data)
     if reason:
         return [], f"{reason}, and no robot below {root} includes it: nothing to check"
     return [path], None
@@ -596,7 +597,7 @@ _UNKNOWN = object()
 
 
 def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
-                 yields=_UNKNOWN) -> str | None:
+                 yields=_UNKNOWN, data=_UNREAD) -> str | None:
     """Why a file that no robot found includes is not checked as a robot, or None to check
     it: the one decision for a file walked and a file named (pre-commit).
 
@@ -611,10 +612,11 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     library including others (kortex's gen3_macro.xacro); one whose include names a package
     found nowhere is checked (expanding it says so, U006). Any of them a launch file of its
     repository runs as the robot description, unconditionally, is a robot: checked
-    (:mod:`urdftool.lint.parts` then judges what it lacks)."""
+    (:mod:`urdftool.lint.parts` then judges what it lacks).
+    data: the file's :func:`_head`, when the caller read it (a file named: read once)."""
     if summary.srdf:
         return SRDF_SOURCE
-    reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields)
+    reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields, data)
     return None if reason is not None and _run_as_robot(path) else reason
 
 
@@ -631,14 +633,14 @@ def _run_as_robot(path: Path) -> bool:
 
 
 def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int,
-                         yields) -> str | None:
+                         yields, data=_UNREAD) -> str | None:
     if summary.empty:
         return EMPTY
     if is_urdf_name(path.name):
         return FRAGMENT if summary.fragment else summary.root_elsewhere
     if summary.root_elsewhere:
         return summary.root_elsewhere
-    if summary.defines_robot or summary.named_robot and _has_own_links(path, limit):
+    if summary.defines_robot or summary.named_robot and _has_own_links(path, limit, data):
         return None
     if yields is _UNKNOWN:
         yields = _includes_yield_links(summary, resolver_for, limit)
@@ -648,12 +650,15 @@ def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int
     return FRAGMENT if summary.fragment else "defines only macros or properties (a macro library)"
 
 
-def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
-                    ) -> dict[Path, list[Path]]:
-    """Included file (resolved) -> the files below ``root`` that include it."""
+def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE,
+                    read: dict | None = None) -> dict[Path, list[Path]]:
+    """Included file (resolved) -> the files below ``root`` that include it. ``read``:
+    absolute path -> the bytes :func:`_head` gave of files already read (not read again)."""
     includers: dict[Path, list[Path]] = {}
+    read = read or {}
     for path in robot_files(root):
-        for target in _summary(path, resolver_for, max_file_size).includes:
+        data = read.get(os.path.abspath(path), _UNREAD)
+        for target in _summary(path, resolver_for, max_file_size, data).includes:
             includers.setdefault(target, []).append(path)
     return includers
 
@@ -729,9 +734,9 @@ def expand(paths: list[str], request) -> Targets:
         if kind == "file":
             root = project_root(Path(path))
 
-            def graph(root=root, limit=limit):
+            def graph(read, root=root, limit=limit):
                 if (root, limit) not in includers:
-                    includers[root, limit] = includers_below(root, resolver_for, limit)
+                    includers[root, limit] = includers_below(root, resolver_for, limit, read)
                 return includers[root, limit]
 
             targets, reason = explicit_targets(Path(path), graph, root, limit, resolver_for)
