@@ -80,8 +80,8 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     that launch file builds it, and the failure of the defaults is a **warning** saying so: it
     holds for a plain ``xacro FILE``, not for the build the repository runs. A **warning** too
     when a launch file builds it giving arguments whose values are known only at launch
-    (``arm_model:=$(arg arm_model)`` computed by ``$(eval ...)``: interbotix_ros_rovers'
-    locobot.urdf.xacro), and that build is not checked. Otherwise the failure is an error.
+    (``arm:=$(arg arm)`` from a launch argument without a default), and that build is not
+    checked. Otherwise the failure is an error.
 
     An included file missing from the source tree below a package (``$(find NAME)/...``) is
     looked for where the package's build installs it from (docs/packages.md); when that
