@@ -231,7 +231,7 @@ def survey(folder: Path) -> dict[str, str]:
         text = path.read_text(errors="replace") if path.stat().st_size < 8 << 20 else ""
         if path.name == "package.xml":
             ros |= {"2"} if "ament_" in text else {"1"} if "catkin" in text else set()
-        elif relative.endswith(ROBOT_SUFFIXES):
+        elif relative.lower().endswith(ROBOT_SUFFIXES):  # NAME.URDF, as SolidWorks writes it
             robots += 1
             has |= {"ros2_control"} if "<ros2_control" in text else set()
         if LAUNCH.search(relative):

@@ -21,8 +21,6 @@ from pathlib import Path
 
 import pytest
 
-SUFFIXES = (".urdf", ".xacro")
-
 
 def pytest_addoption(parser):
     group = parser.getgroup("urdftool")
@@ -31,7 +29,11 @@ def pytest_addoption(parser):
 
 
 def pytest_collect_file(file_path: Path, parent):
-    if not parent.config.getoption("urdftool") or file_path.suffix not in SUFFIXES:
+    if not parent.config.getoption("urdftool"):
+        return None
+    from urdftool.description.urdf import is_robot_name
+
+    if not is_robot_name(file_path.name):
         return None
     from urdftool.description.files import real_path
 

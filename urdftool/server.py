@@ -62,8 +62,8 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.description.urdf import ROBOT_SUFFIXES, is_robot_name
 
-ROBOT_SUFFIXES = (".urdf", ".xacro")
 COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
 DEBOUNCE = 0.3  # [s] quiet time after the last change before the buffer is checked
 JOBS = 2  # documents checked at once (each in a worker process; at least 2: a slow one and the
@@ -84,7 +84,7 @@ def kind_of(path: str) -> str | None:
     """'robot', 'companion', or None for a file the server shows no diagnostics of its own
     for (a settings file, a mesh: saving one re-checks the robots whose record names it)."""
     name = os.path.basename(path)
-    if name.endswith(ROBOT_SUFFIXES):
+    if is_robot_name(name):
         return "robot"
     return "companion" if name.endswith(COMPANION_SUFFIXES) else None
 

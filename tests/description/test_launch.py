@@ -175,6 +175,24 @@ def test_conditions_are_evaluated_with_the_defaults(tmp_path):
     assert started["fake",].truth is False and started["fake",].free == {"sim"}
 
 
+def test_an_eval_comparing_an_argument_with_a_word_is_read_as_that_comparison(tmp_path):
+    """roslaunch's ``if="$(eval arg('arm') == 'gen3')"`` (ros_kortex chooses the dof default
+    so) is read, never evaluated, as "arm equals gen3"; any other expression stays unknown."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": """<launch>
+      <arg name="arm" default="gen3"/>
+      <node name="seven" pkg="controller_manager" type="spawner" args="seven" if="$(eval arg('arm') == 'gen3')"/>
+      <node name="six" pkg="controller_manager" type="spawner" args="six" if="$(eval arg('arm') == 'gen3_lite')"/>
+      <node name="other" pkg="controller_manager" type="spawner" args="other" unless="$(eval arg('arm') != 'gen3')"/>
+      <node name="odd" pkg="controller_manager" type="spawner" args="odd" if="$(eval 1 + len(arg('arm')) > 2)"/>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    started = {s.arguments[0].text: s.when for s in configuration.started}
+    assert started["seven"].truth is True and started["seven"].free == {"arm"}
+    assert "six" not in started or started["six"].truth is False
+    assert started["other"].truth is True
+    assert started["odd"].truth is None
+
+
 # --- hostile launch files -----------------------------------------------------------------------
 
 def test_a_python_launch_file_is_never_run_or_imported(tmp_path):
@@ -321,6 +339,39 @@ def test_a_robot_its_environment_builds_is_not_the_robot_as_checked(tmp_path):
     robot = load_and_check(str(root / "p/r.urdf.xacro"), CheckOptions()).robot
     [(configuration, relation)] = [c for c in runtime(robot).configurations if c[1]]
     assert relation == "as the environment builds it (HAS_ARM)"
+
+
+def test_a_launch_file_describing_another_robot_keeps_its_controllers(tmp_path):
+    """ai_worker's ffw_bg2_ai.launch.py includes the follower's launch file and the leader's,
+    each describing its robot and loading its own controllers file: the follower's file is not
+    the leader's (its joints are not the leader's), a file loaded by a launch file describing no
+    robot stays shared."""
+    from urdftool.description.runtime import runtime
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    def side(name):
+        return f"""<launch>
+      <param name="robot_description" command="xacro $(find p)/{name}.urdf.xacro"/>
+      <node pkg="controller_manager" type="spawner" name="s" args="{name}_controller"/>
+      <rosparam file="$(find p)/config/{name}.yaml" command="load"/>
+    </launch>"""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/leader.urdf.xacro": "<robot name='leader'><link name='l'/></robot>",
+                            "p/follower.urdf.xacro": "<robot name='f'><link name='f'/></robot>",
+                            "p/config/leader.yaml": "a: 1\n", "p/config/follower.yaml": "a: 1\n",
+                            "p/config/shared.yaml": "a: 1\n",
+                            "p/launch/leader.launch": side("leader"),
+                            "p/launch/follower.launch": side("follower"),
+                            "p/launch/both.launch": """<launch>
+      <include file="$(find p)/launch/follower.launch"/>
+      <include file="$(find p)/launch/leader.launch"/>
+      <rosparam file="$(find p)/config/shared.yaml" command="load"/>
+    </launch>"""})
+    robot = load_and_check(str(root / "p/leader.urdf.xacro"), CheckOptions()).robot
+    facts = runtime(robot)
+    assert sorted(p.name for p in facts.loaded_files()) == ["leader.yaml", "shared.yaml"]
+    assert {s.arguments[0].text for c, s in facts.starts("controller_manager")} == \
+        {"leader_controller"}
 
 
 def test_an_argument_without_default_but_with_choices_builds_with_the_first(tmp_path):

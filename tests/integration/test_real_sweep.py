@@ -44,7 +44,7 @@ ROOT = Path(__file__).resolve().parents[2]
 DATA = Path(__file__).resolve().parent / "real_sweep"
 SWEEP = Path(os.environ.get("URDFTOOL_REAL_SWEEP", ROOT.parent / "sweep-repos"))
 URDFTOOL = Path(sys.executable).with_name("urdftool")
-HOOK_FILES = re.compile(r"\.(urdf|xacro|ya?ml|srdf)$")  # .pre-commit-hooks.yaml's `files`
+HOOK_FILES = re.compile(r"(?i)\.(urdf|xacro|ya?ml|srdf)$")  # .pre-commit-hooks.yaml's `files`
 VERDICTS = ("TRUE", "DEBATABLE", "ARTEFACT", "FALSE-OPEN", "FALSE")
 pytestmark = pytest.mark.slow
 

@@ -725,6 +725,23 @@ def test_a_check_that_checks_nothing_is_a_usage_error_not_a_pass(run_cli, tmp_pa
     assert both.exit_code == 2  # a part among what was named: still nothing checked
 
 
+def test_a_solidworks_export_named_in_capitals_is_walked(tmp_path):
+    """The SolidWorks exporter writes NAME.URDF (poppy-project/poppy-humanoid): a folder walk
+    found no robot there and `check .` ended with a usage error; the language server and the
+    pytest plugin ask the same question (description.urdf.is_robot_name)."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robots").mkdir()
+    (tmp_path / "robots" / "Poppy.URDF").write_text('<robot name="p"><link name="a"/></robot>')
+    walked = expand([str(tmp_path)], CheckRequest())
+    assert [p.rsplit("/", 1)[-1] for p in walked.files] == ["Poppy.URDF"]
+    from urdftool.description.urdf import is_robot_name
+
+    assert is_robot_name("arm.Xacro") and not is_robot_name("arm.urdf.bak")
+
+
 def test_a_named_macro_library_nobody_includes_is_read_once(monkeypatch, tmp_path):
     """A library named on the command line (a ``<robot name>`` of macros that nobody
     includes) is classified from the bytes read once: whether it writes links of its own is

@@ -107,13 +107,29 @@ def command_interfaces(robot) -> dict[str, set]:
     return offered
 
 
+# Command interfaces a hardware plugin reads under a name of its own and exports under a standard
+# one: gazebo_ros2_control's GazeboSystem drives position_pid and velocity_pid through a PID and
+# exports them as position and velocity (gazebo_system.cpp), which controllers claim.
+PLUGIN_INTERFACES = {"gazebo_ros2_control/GazeboSystem": {"position_pid": "position",
+                                                         "velocity_pid": "velocity"}}
+
+
+def exported_interface(block, name: str) -> str:
+    """The name under which the hardware plugin of ``<ros2_control>`` ``block`` exports the
+    command interface ``name`` (:data:`PLUGIN_INTERFACES`; else ``name``)."""
+    plugin = (block.findtext("hardware/plugin") or "").strip()
+    return PLUGIN_INTERFACES.get(plugin, {}).get(name, name)
+
+
 def ros2_command_interfaces(robot) -> dict[str, set]:
-    """Joint name -> command interfaces its ``<ros2_control>`` entries offer: all a ROS 2
-    controller can claim (ros2_control reads no transmission outside ``<ros2_control>``)."""
+    """Joint name -> command interfaces its ``<ros2_control>`` entries offer, as their hardware
+    plugins export them: all a ROS 2 controller can claim (ros2_control reads no transmission
+    outside ``<ros2_control>``)."""
     offered: dict[str, set] = {}
-    for _, joint in ros2_control_joints(robot):
+    for block, joint in ros2_control_joints(robot):
         offered.setdefault(joint.get("name"), set()).update(
-            c.get("name") for c in joint.findall("command_interface") if c.get("name"))
+            exported_interface(block, c.get("name"))
+            for c in joint.findall("command_interface") if c.get("name"))
     return offered
 
 

@@ -396,11 +396,24 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
     return launch
 
 
+# roslaunch's commonest expression, read (never evaluated) as the comparison it writes:
+# if="$(eval arg('arm') == 'gen3')" (ros_kortex's launch files choose a default by it)
+_EVAL_COMPARE = re.compile(r"""\s*\$\(eval\s+arg\(\s*(["'])(\w+)\1\s*\)\s*(==|!=)\s*(["'])([^"'$]*)\4\s*\)\s*""")
+
+
 def _when(element) -> tuple:
     found = []
     for key in ("if", "unless"):
         value = element.get(key)
-        if value is not None:
+        if value is None:
+            continue
+        compared = _EVAL_COMPARE.fullmatch(value)
+        if compared:
+            equals = (compared.group(3) == "==") == (key == "if")
+            found.append(Condition("equals" if equals else "differs",
+                                   substituted(f"$(arg {compared.group(2)})"), f'{key}="{value}"',
+                                   substituted(compared.group(5))))
+        else:
             found.append(Condition(key, substituted(value), f'{key}="{value}"'))
     return tuple(found)
 

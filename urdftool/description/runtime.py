@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from urdftool.description.files import enclosing_root, read_regular, real_path
@@ -163,10 +163,27 @@ def _runtime(robot) -> Runtime:
             # the robot as checked is one build: what the environment says at launch decides it
             relation = f"as the environment builds it ({', '.join(environment[:4])})"
         if relation or not described:
-            found.configurations.append((configuration, relation))
+            found.configurations.append((_narrowed(configuration, real) if relation
+                                         else configuration, relation))
     for configuration, relation in found.configurations:
         _spawns(configuration, relation, found)
     return found
+
+
+def _narrowed(configuration: Configuration, real: str) -> Configuration:
+    """``configuration`` as the robot (real path ``real``) has it: what a launch file that
+    describes other robots only loads and starts is theirs. ai_worker's ffw_bg2_ai.launch.py
+    includes the follower's launch file and the leader's, each describing its robot and starting
+    its own controller manager with its own controllers file: the follower's file is not the
+    leader's companion. A launch file describing no robot (or this one too) stays shared."""
+    described = [d for d in configuration.described if d.path is not None]
+    mine = {d.launch for d in described if real_path(d.path) == real}
+    others = {d.launch for d in described if real_path(d.path) != real} - mine
+    if not others:
+        return configuration
+    return replace(configuration,
+                   loaded=[load for load in configuration.loaded if load.launch not in others],
+                   started=[start for start in configuration.started if start.launch not in others])
 
 
 _ENVIRONMENT = re.compile(rb"\$\((?:opt)?env\s+([A-Za-z_][A-Za-z0-9_]*)")

@@ -176,6 +176,23 @@ def version_problem(text: str) -> str | None:
     return None
 
 
+# A robot file by its name: .urdf or .xacro, in any letter case (the SolidWorks exporter writes
+# NAME.URDF: poppy-project/poppy-humanoid's Poppy_Humanoid.URDF). One owner for every walk.
+ROBOT_SUFFIXES = (".urdf", ".xacro")
+ROBOT_GLOB = "|".join("*" + "".join(f"[{c.lower()}{c.upper()}]" if c.isalpha() else c for c in s)
+                      for s in ROBOT_SUFFIXES)  # the same as a listing's pattern
+
+
+def is_robot_name(name: str) -> bool:
+    """Whether a file named ``name`` is a robot description by its name (:data:`ROBOT_GLOB`)."""
+    return name.lower().endswith(ROBOT_SUFFIXES)
+
+
+def is_urdf_name(name: str) -> bool:
+    """Whether ``name`` says the file is URDF, read as written (``.urdf``, any case)."""
+    return name.lower().endswith(".urdf")
+
+
 def is_xacro(tag) -> bool:
     """Whether an element tag (lxml: ``{uri}local``, or a raw ``xacro:`` name) is xacro's."""
     return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag

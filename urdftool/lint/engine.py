@@ -184,23 +184,34 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
     from urdftool.description.load import load
 
     xacro_args, built = dict(options.xacro_args or {}), []
+
+    def build(given: dict):
+        return load(path, xacro_args={**given, **xacro_args}, packages=options.packages,
+                    allow_env=options.allow_env, max_file_size=options.max_file_size)
+
     try:
         try:
             robot = load(path, xacro_args=xacro_args, packages=options.packages,
                          allow_env=options.allow_env, max_file_size=options.max_file_size, data=data)
         except LoadError as error:
-            if data is not None or error.kind != "arg" or not error.subject \
-                    or error.subject in xacro_args:
+            if data is not None:
                 raise
-            from urdftool.lint.rules.loading import required_argument
+            if error.kind == "arg" and error.subject and error.subject not in xacro_args:
+                from urdftool.lint.rules.loading import required_argument
 
-            def build(given: dict):
-                return load(path, xacro_args={**given, **xacro_args}, packages=options.packages,
-                            allow_env=options.allow_env, max_file_size=options.max_file_size)
+                robot, given, built = required_argument(path, error, build)
+                if robot is None:
+                    return FileResult(path, built)
+            elif error.kind in ("xacro", "io") and not xacro_args:
+                from urdftool.lint.rules.loading import failing_defaults
 
-            robot, given, built = required_argument(path, error, build)
-            if robot is None:
-                return FileResult(path, built)
+                robot, given, built = failing_defaults(path, error, build)
+                if robot is None and built:
+                    return FileResult(path, built)
+                if robot is None:
+                    raise
+            else:
+                raise
             xacro_args = {**given, **xacro_args}
     except LoadError as error:
         # A file that cannot be loaded is never silently passed, whatever the selection.

@@ -19,9 +19,9 @@ from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_b
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
+from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
 from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
 
-SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
 # on files made of "<xacro:include " repeated).
 # Pre-2019 xacro wrote <include> without the prefix (ros-naoqi/nao_robot's nao_robot_v4.urdf.xacro).
@@ -58,7 +58,7 @@ def robot_files(folder: Path) -> list[Path]:
     if not _stays_inside(folder):
         return [folder]
     found, pending = [], [Path(folder)]
-    pattern = "|".join(["*/", *(f"*{suffix}" for suffix in SUFFIXES)])
+    pattern = f"*/|{ROBOT_GLOB}"
     while pending:
         current = pending.pop()
         for name, kind in listing(current, pattern):
@@ -69,7 +69,7 @@ def robot_files(folder: Path) -> list[Path]:
             elif kind == "folder":
                 if name not in SKIP_DIRS and not name.startswith("."):
                     pending.append(path)
-            elif name.endswith(SUFFIXES):
+            elif is_robot_name(name):
                 found.append(path)
     return sorted(found)
 
@@ -150,7 +150,7 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
                     unfollowed, answer == "fragment", bool(_MACRO.search(written)),
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
                     answer == "empty",
-                    _root_elsewhere(written, expanded=not path.name.endswith(".urdf")))
+                    _root_elsewhere(written, expanded=not is_urdf_name(path.name)))
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -636,7 +636,7 @@ def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int
                          yields, data=_UNREAD) -> str | None:
     if summary.empty:
         return EMPTY
-    if path.name.endswith(".urdf"):
+    if is_urdf_name(path.name):
         return FRAGMENT if summary.fragment else summary.root_elsewhere
     if summary.root_elsewhere:
         return summary.root_elsewhere

@@ -36,29 +36,80 @@ def test_a_mesh_the_size_of_its_links_primitive_shapes_is_the_size_it_means(tmp_
     assert "U413" in codes(visual)
 
 
+def _stl(path):
+    """A one-triangle binary STL at ``path``."""
+    import struct
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    triangle = struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + b"\0\0"
+    path.write_bytes(b"\0" * 80 + struct.pack("<I", 1) + triangle)
+
+
+def _u407(robot, uri):
+    """(severity, message) of each U407 of a one-link robot at ``robot`` naming mesh ``uri``."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{uri}"'
+                     '/></geometry></visual></link></robot>')
+    result = load_and_check(str(robot), CheckOptions())
+    return [(f.severity, f.message) for f in result.findings if f.code == "U407"]
+
+
 def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path):
     """onshape-to-robot writes ``package://assets/part.stl`` with no ROS package: PyBullet and
     Pinocchio (given the robot's folder) drop ``package://`` and open ``assets/part.stl``
     beside the robot file; only ROS's resource_retriever cannot. U407 is then a warning that
     says so; a package whose path is nowhere stays an error."""
-    import struct
-
-    from urdftool.lint.engine import CheckOptions, load_and_check
     from urdftool.diagnostics import Severity
 
     (tmp_path / ".git").mkdir()
-    (tmp_path / "assets").mkdir()
-    triangle = struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + b"\0\0"
-    (tmp_path / "assets" / "part.stl").write_bytes(b"\0" * 80 + struct.pack("<I", 1) + triangle)
-    robot = tmp_path / "robot.urdf"
-
-    def found(uri):
-        robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{uri}"'
-                         '/></geometry></visual></link></robot>')
-        result = load_and_check(str(robot), CheckOptions())
-        return [(f.severity, f.message) for f in result.findings if f.code == "U407"]
-
-    [(severity, message)] = found("package://assets/part.stl")
+    _stl(tmp_path / "assets" / "part.stl")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://assets/part.stl")
     assert severity == Severity.WARNING and "beside the robot file" in message
-    [(severity, _)] = found("package://assets/other.stl")
+    [(severity, _)] = _u407(tmp_path / "robot.urdf", "package://assets/other.stl")
+    assert severity == Severity.ERROR
+
+
+def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):
+    """reachy_mini's robot.urdf names 322 meshes ``package://assets/NAME.stl``: the text report
+    says one thing once (report.text_format.groups) when the findings differ only in names in
+    quotes, and the file each finding named beside the robot was written unquoted: 644 lines."""
+    import io
+
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.report import render
+
+    (tmp_path / ".git").mkdir()
+    links = ""
+    for name in ("a", "b", "c"):
+        _stl(tmp_path / "assets" / f"{name}.stl")
+        links += (f'<link name="{name}"><visual><geometry><mesh filename="package://assets/'
+                  f'{name}.stl"/></geometry></visual></link>')
+    joints = "".join(f'<joint name="{c}" type="fixed"><parent link="a"/><child link="{c}"/>'
+                     "</joint>" for c in ("b", "c"))
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(f'<robot name="r">{links}{joints}</robot>')
+    result = load_and_check(str(robot), CheckOptions())
+    assert [f.message for f in result.findings if f.code == "U407"][0].count("'assets/a.stl'") == 1
+    stream = io.StringIO()
+    render("text", [result], stream)
+    [line] = [line for line in stream.getvalue().splitlines() if "U407" in line]
+    assert "[3 times: line" in line
+
+
+def test_a_package_mesh_in_a_folder_of_the_package_s_name_above_the_robot_is_not_certain(tmp_path):
+    """NASA's r2_description (gkjohnson/nasa-urdf-robots): a folder of the package's name with
+    no package.xml, its robots in r2_description/robots/ naming package://r2_description/...:
+    ROS cannot find the package, a loader given the folder above as a package path (Pinocchio's
+    package_dirs, urdf-loaders' packages) can. A warning that says so; a file that is nowhere
+    stays an error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    _stl(tmp_path / "r2_description" / "meshes" / "part.stl")
+    robot = tmp_path / "r2_description" / "robots" / "r2.urdf"
+    robot.parent.mkdir()
+    [(severity, message)] = _u407(robot, "package://r2_description/meshes/part.stl")
+    assert severity == Severity.WARNING and "package_dirs" in message
+    [(severity, _)] = _u407(robot, "package://r2_description/meshes/other.stl")
     assert severity == Severity.ERROR

@@ -94,6 +94,28 @@ def test_gazebo_ros_control_missing_or_without_filename(tmp_path):
     assert _check(tmp_path / "c", loaded, yaml)[0] == []
 
 
+def test_no_gazebo_ros_control_wanted_in_a_urdf_when_gazebo_spawns_an_sdf(tmp_path):
+    """quad-sdk: the launch file spawns robot_description_sdf (an SDF that loads
+    gazebo_ros_control itself) into Gazebo; the URDF feeds robot_state_publisher only. A launch
+    file spawning the robot description (-urdf -param robot_description) wants it."""
+    tx = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+          '<joint name="head_joint"><hardwareInterface>hardware_interface/PositionJointInterface'
+          '</hardwareInterface></joint><actuator name="m"/></transmission>'
+          '<gazebo reference="head"><material>Gazebo/White</material></gazebo>')
+    launch = """<launch>
+      <param name="robot_description" command="cat $(find bot)/robot.urdf"/>
+      <param name="robot_description_sdf" textfile="$(find bot)/robot.sdf"/>
+      <rosparam file="$(find bot)/config/c.yaml" command="load"/>
+      <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="{args} -model r"/>
+    </launch>"""
+    files = {"config/c.yaml": "h: {type: position_controllers/JointPositionController, joint: head_joint}\n",
+             "package.xml": PACKAGE.format(tool="catkin"), ".git/HEAD": ""}
+    sdf = {**files, "launch/sim.launch": launch.format(args="-sdf -param robot_description_sdf")}
+    assert _check(tmp_path / "sdf", tx, sdf)[0] == []
+    urdf = {**files, "launch/sim.launch": launch.format(args="-urdf -param robot_description")}
+    assert _check(tmp_path / "urdf", tx, urdf)[0] == [("c.yaml", 1, "U642")]
+
+
 ROS2_CONTROL = """<ros2_control name="s" type="system"><hardware><plugin>{hardware}</plugin></hardware>
     <joint name="head_joint"><command_interface name="position"/>{state}</joint></ros2_control>"""
 STATE = '<state_interface name="position"/>'

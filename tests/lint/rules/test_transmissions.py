@@ -169,3 +169,24 @@ def test_the_added_transmissions_interface_is_the_same_whatever_the_hash_seed(tm
                    else "Position" if "PositionJointInterface</hardwareInterface>" in text
                    else text)
     assert chosen == {"Velocity"}
+
+
+def test_a_plugin_s_own_interface_is_claimed_under_the_name_it_exports(tmp_path):
+    """gazebo_ros2_control's GazeboSystem reads <command_interface name="position_pid"> and
+    exports it as position (gazebo_system.cpp): a position controller claims it, and the name
+    is not a misspelt interface (gazebo_ros2_control_demos' vertical cart examples). Another
+    plugin exports no such name: there it stays non-standard."""
+    from urdftool.description.load import load
+
+    def body(plugin):
+        return (f'<ros2_control name="s" type="system"><hardware><plugin>{plugin}</plugin>'
+                '</hardware><joint name="head_joint"><command_interface name="position_pid"/>'
+                '<state_interface name="position"/></joint></ros2_control>')
+
+    assert "U513" not in codes(tmp_path, body("gazebo_ros2_control/GazeboSystem"))
+    assert "U513" in codes(tmp_path, body("mock_components/GenericSystem"))
+    from urdftool.description.actuation import ros2_command_interfaces
+
+    robot = HEAD_ROBOT.format(body=body("gazebo_ros2_control/GazeboSystem"))
+    (tmp_path / "robot.urdf").write_text(robot)
+    assert ros2_command_interfaces(load(str(tmp_path / "robot.urdf"))) == {"head_joint": {"position"}}

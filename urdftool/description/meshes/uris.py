@@ -64,19 +64,30 @@ def _resolve(robot, uri: str) -> Path:
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     """The problem of a ``package://`` mesh whose package is not found: not certain when the
-    path it names, read as relative to the robot file (``PACKAGE/TAIL``), is a mesh file in the
-    robot's repository, as exporters with no ROS package write it (onshape-to-robot's
-    ``package://assets/part.stl``): the loaders that drop ``package://`` (PyBullet; Pinocchio
-    given the robot's folder) open it there, ROS's resource_retriever does not."""
+    path it names, read below the robot's folder or a folder above it in its repository
+    (``FOLDER/PACKAGE/TAIL``), is a mesh file, as descriptions with no ROS package write it:
+    onshape-to-robot's ``package://assets/part.stl`` beside the robot file, which the loaders
+    that drop ``package://`` (PyBullet; Pinocchio given the robot's folder) open; NASA's
+    r2_description, a folder of the package's name without a package.xml, which a loader given
+    the folder above as a package path (Pinocchio's package_dirs, urdf-loaders' packages)
+    opens. ROS's resource_retriever opens neither."""
     base = os.fspath(robot.base_dir)
-    beside = _checked(uri, os.path.join(base, package, tail), base, None)
-    if isinstance(beside, MeshProblem):
-        return MeshProblem("package", f"mesh '{uri}': {error}")
-    written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
-    return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {written} is beside "
-                                  "the robot file, where loaders that drop 'package://' "
-                                  "(PyBullet; Pinocchio given this folder) find it",
-                       certain=False)
+    root, folder = os.path.normpath(os.fspath(containment_root(Path(base)))), base
+    while isinstance(_checked(uri, os.path.join(folder, package, tail), base, None), MeshProblem):
+        if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
+            return MeshProblem("package", f"mesh '{uri}': {error}")
+        folder = os.path.dirname(folder)
+    if folder == base:
+        written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
+        return MeshProblem("package", f"mesh '{uri}': {error}; not certain: '{written}' is "
+                                      "beside the robot file, where loaders that drop "
+                                      "'package://' (PyBullet; Pinocchio given this folder) "
+                                      "find it", certain=False)
+    return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
+                                  f"folder '{package}' (no package.xml) with this file, where "
+                                  "PyBullet (which looks in every folder above the robot file) "
+                                  "and loaders given it as a package path (Pinocchio's "
+                                  "package_dirs) find it", certain=False)
 
 
 @per_run

@@ -320,6 +320,13 @@ def _problems(robot, kind: str):
 def mesh_package_not_found(robot):
     """A mesh's ``package://`` names a package that cannot be found.
 
+    A **warning**, not an error, when the file is there for loaders that do not ask ROS:
+    ``PACKAGE/PATH`` beside the robot file (onshape-to-robot's ``package://assets/part.stl``:
+    PyBullet and Pinocchio given the robot's folder drop ``package://``), or in a folder of the
+    package's name with no package.xml above the robot file in its repository (NASA's
+    r2_description: a loader given the folder above as a package path finds it). ROS's
+    resource_retriever finds neither.
+
     Bad: ``package://my_robot_descripton/meshes/base.stl``
     Good: the right package name, or ``--package my_robot_description=PATH``
     """

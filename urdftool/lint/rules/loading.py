@@ -74,6 +74,15 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
       build asks for (ROS 1 robots often read ``$(arg name)`` undeclared, given by the
       command line). ``--arg name=VALUE`` checks a build of your choice.
 
+    A robot whose own argument defaults do not build (placeholders such as ``default=""`` that
+    make an include path ``arms//urdf/_macro.xacro``: ros_kortex's kortex_dual_robots.xacro)
+    is, when a launch file here builds it giving arguments with which xacro succeeds, checked as
+    that launch file builds it, and the failure of the defaults is a **warning** saying so: it
+    holds for a plain ``xacro FILE``, not for the build the repository runs. A **warning** too
+    when a launch file builds it giving arguments whose values are known only at launch
+    (``arm:=$(arg arm)`` from a launch argument without a default), and that build is not
+    checked. Otherwise the failure is an error.
+
     An included file missing from the source tree below a package (``$(find NAME)/...``) is
     looked for where the package's build installs it from (docs/packages.md); when that
     package's install rules cannot be read, it may exist after the build: a warning saying so.
@@ -175,6 +184,43 @@ def required_argument(path: str, error, build):
                f"fails unless the command line gives {name}; {hint}")
     return None, {}, [rule.finding(Conditional(message, Severity.INFO) if unread else
                                    Conditional(message), error.location)]
+
+
+def failing_defaults(path: str, error, build):
+    """(robot or None, the xacro arguments it was built with, findings) for a robot that xacro
+    cannot expand with its own argument defaults (``error``, a LoadError): built as the first
+    launch file that gives it arguments builds it (:func:`~urdftool.description.runtime.builds`;
+    those known only at launch left at the robot's defaults) when xacro succeeds so, with a
+    warning that the defaults fail; None when no launch file's build succeeds (the failure then
+    stands). ``build(args)`` loads the robot with those arguments (raises LoadError)."""
+    from urdftool.description.runtime import builds
+    from urdftool.errors import LoadError
+
+    tried, unknown = set(), None
+    for made in builds(path):
+        known = {name: text for name, text in made.args.items() if text is not None}
+        if not made.xacro or not made.args:
+            continue
+        later = sorted(name for name, text in made.args.items() if text is None)
+        unknown = unknown or (later and (made, later))
+        if tuple(sorted(known.items())) in tried:
+            continue
+        tried.add(tuple(sorted(known.items())))
+        try:
+            robot = build(known)
+        except LoadError:
+            continue
+        message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "
+                   f"but {made.named} builds it with {made.shown_args()} and xacro succeeds: "
+                   "checked as built there (--arg NAME=VALUE checks another build)")
+        return robot, known, [U005.finding(Conditional(message), error.location)]
+    if unknown:  # the build the repository runs depends on values given at launch
+        made, later = unknown
+        message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "
+                   f"and {made.named} builds it giving {', '.join(later)} values known only at "
+                   "launch, so that build is not checked (--arg NAME=VALUE checks one)")
+        return None, {}, [U005.finding(Conditional(message), error.location)]
+    return None, {}, []
 
 
 def _declared(path: str, error) -> set[str]:

@@ -140,6 +140,8 @@ def gazebo_ros_control_missing(robot):
     comes, and the joints hang limp. A ``<plugin name="gazebo_ros_control">`` without a
     ``filename`` (as older Setup Assistants wrote it) loads nothing either. (ROS 2: U519 for
     ``<ros2_control>``.) A warning: the plugin may be added by a file that includes this one.
+    Not reported when the launch files spawn an SDF into Gazebo instead (``spawn_model -sdf``):
+    the model Gazebo simulates is then not this URDF.
 
     Bad: transmissions and ``head_controller`` in the YAML, no ``<gazebo><plugin
     filename="libgazebo_ros_control.so">``
@@ -148,7 +150,7 @@ def gazebo_ros_control_missing(robot):
     if robot.children("ros2_control") or not robot.children("gazebo") or not transmissions(robot):
         return
     started = [c for c in controllers(robot) if c.layout == "ros1"]
-    if not started:
+    if not started or _gazebo_spawns_another_model(robot):
         return
     unloaded = None
     for element in gazebo_plugins(robot):
@@ -169,6 +171,17 @@ def gazebo_ros_control_missing(robot):
         f"{len(transmissions(robot))} transmission(s) for a robot simulated in Gazebo, but no "
         "<gazebo><plugin filename=\"libgazebo_ros_control.so\"> starts ros_control there: the "
         "controllers never load in simulation")
+
+
+def _gazebo_spawns_another_model(robot) -> bool:
+    """Whether every launch file describing the robot that spawns a model into Gazebo spawns an
+    SDF (``spawn_model -sdf``): Gazebo then simulates that model, with its own plugins, and the
+    URDF only feeds robot_state_publisher (quad-sdk spawns robot_description_sdf)."""
+    from urdftool.description.runtime import runtime
+
+    spawns = runtime(robot).starts("gazebo_ros", ("spawn_model",))
+    return bool(spawns) and all(
+        "-sdf" in [word.text for word in start.arguments] for _, start in spawns)
 
 
 @rule("U643", "gazebo-control-parameters-path", Severity.ERROR)

@@ -17,8 +17,8 @@ from urdftool.description.ros_version import ros_versions
 from urdftool.description.runtime import STATE_PUBLISHERS, runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
-                                            interface_kind, is_ros2_form, moving_joints,
-                                            published_by_gazebo, ros2_control_joints,
+                                            exported_interface, interface_kind, is_ros2_form,
+                                            moving_joints, published_by_gazebo, ros2_control_joints,
                                             transmission_joints, transmissions)
 from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.errors import available
@@ -394,15 +394,19 @@ def ros2_control_interface_name(robot):
     Controllers claim interfaces by name (``head_joint/position``); a misspelt interface is
     never claimed. Custom names are legal for custom hardware, hence a warning.
 
+    A name the hardware plugin reads and exports as a standard one is not reported
+    (gazebo_ros2_control's ``position_pid``, exported as ``position``).
+
     Bad: ``<command_interface name="positon"/>``
     Good: ``<command_interface name="position"/>`` (velocity, effort, acceleration, ...)
     """
-    for _, joint in ros2_control_joints(robot):
+    for block, joint in ros2_control_joints(robot):
         for interface in [*joint.findall("command_interface"), *joint.findall("state_interface")]:
             name = interface.get("name")
             if not name:
                 yield interface, f"ros2_control joint '{joint.get('name')}': <{interface.tag}> has no name"
-            elif name not in ROS2_INTERFACES:
+            elif name not in ROS2_INTERFACES and (interface.tag == "state_interface" or
+                                                  exported_interface(block, name) == name):
                 yield interface, (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> "
                                   f"'{name}' is not a standard interface; "
                                   f"{available('interfaces', name, ROS2_INTERFACES)}")
