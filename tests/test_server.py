@@ -341,7 +341,10 @@ def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
     assert '{ command: "urdftool", args: ["server"] }' in source
     patterns = re.findall(r'pattern: "\*\*/\*\.\{([^}]*)\}"', source)
     suffixes = {suffix for pattern in patterns for suffix in pattern.split(",")}
-    assert suffixes == {s.lstrip(".") for s in (*ROBOT_SUFFIXES, *COMPANION_SUFFIXES)}
+    robot = {s.lstrip(".") for s in ROBOT_SUFFIXES}
+    # robot files in capitals too (SolidWorks' NAME.URDF), as the server takes them
+    assert suffixes == robot | {s.upper() for s in robot} | {
+        s.lstrip(".") for s in COMPANION_SUFFIXES}
 
 
 @pytest.fixture

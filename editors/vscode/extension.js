@@ -11,6 +11,8 @@ exports.activate = function () {
     {
       documentSelector: [
         { scheme: "file", pattern: "**/*.{urdf,xacro,srdf}" },
+        // the SolidWorks exporter writes NAME.URDF; the server reads robot names in any case
+        { scheme: "file", pattern: "**/*.{URDF,XACRO}" },
         { scheme: "file", pattern: "**/*.{yaml,yml}" },
       ],
     },
