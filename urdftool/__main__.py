@@ -29,8 +29,13 @@ into the engine): it saves a fifth of the check of a 10,000-link robot, and the 
 passes over the imports, in the parent and, page by page, in the forked worker, of a one-file
 check (``make bench``). A check run without Typer ends without tearing the interpreter down
 (:func:`_end`): under 50 ms on the corpus and on a 10,000-link robot, it stays while the check of
-robots/r2d2 misses its goal without it. A one-file check keeps its budgeted worker: in this
-process it cost the same, and a hung C call can only be stopped from outside.
+robots/r2d2 misses its goal without it.
+
+A plain check forks at once, small, into a guardian and the process that checks
+(:func:`_guarded`): a budgeted file checked alone is checked in that process, not in a worker
+forked after the rules were imported (whose pages it copied one by one: 3,500 page faults on
+robots/r2d2), and the guardian, outside, keeps the budget a worker had (a hung C call is
+killed at --timeout, the stop reported by the guardian: U015; a death in the check: U900).
 """
 
 from __future__ import annotations
@@ -52,10 +57,9 @@ def _main() -> None:
     words = sys.argv[1:]
     _help(words)
     kept_code()
-    check = words[:1] == ["check"]
-    if check:
-        _collect_less()
+    if words[:1] == ["check"]:
         _check(words)
+        _collect_less()
     from urdftool.cli import main as run
 
     run()
@@ -76,6 +80,16 @@ def _check(words: list[str]) -> None:
     terminal = plain()
     if terminal is None:
         return
+    if _guarded(values):  # the child: it checks as the program, and ends as forked processes end
+        from urdftool.lint.pool import end_after
+        from urdftool.streams import run
+
+        end_after(lambda: run(lambda: _checked(terminal, values)))
+    _checked(terminal, values)
+
+
+def _checked(terminal, values: dict) -> None:
+    _collect_less()
     from urdftool.checking import run
 
     try:
@@ -84,10 +98,36 @@ def _check(words: list[str]) -> None:
         terminal.echo("", err=True)
         terminal.say("Aborted!", err=True)
         code = 1
+    except SystemExit as ended:  # a usage error
+        if not isinstance(ended.code, int):
+            raise
+        code = ended.code
     _end(code)
 
 
-def _end(code: int) -> None:
+def _guarded(values: dict) -> bool:
+    """Check a file in this process under a guardian forked now, small, before the rules are
+    imported (:func:`urdftool.lint.pool.guarded`), rather than in a budgeted worker forked
+    after them. True in the child (it checks). In the guardian: end as the child ended, or
+    return False to check again with the piece the child was stopped in given its Stop (over
+    its time, or died: U015, U900) without doing it. False with nothing forked for standard
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks): those
+    check in budgeted workers."""
+    if "-" in values["words"] or values["fix"] or values["diff"]:
+        return False
+    from urdftool.lint import pool
+
+    found = pool.guarded()
+    if found is None:
+        return pool.guarding()
+    code, verdict = found
+    if verdict is None:
+        _end(code, exit_functions=False)  # (the child's, which ran them)
+    pool.stopped_as(verdict)
+    return False
+
+
+def _end(code: int, exit_functions: bool = True) -> None:
     """Exit with ``code`` as ``SystemExit`` would, without tearing the interpreter down: the
     standard streams flushed, the exit functions run (last registered first, once), the
     streams flushed again, then the process ends, not freeing the rules', the robot's and the
@@ -101,9 +141,10 @@ def _end(code: int) -> None:
     from urdftool.streams import end
 
     code = end(code)
-    import atexit
+    if exit_functions:
+        import atexit
 
-    atexit._run_exitfuncs()
+        atexit._run_exitfuncs()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

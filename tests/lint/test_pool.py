@@ -192,9 +192,11 @@ def test_a_worker_inherits_pickle_from_the_process_that_forked_it(tmp_path):
     not again in each worker (``-X importtime`` prints a line per import, in either process)."""
     import re
 
-    robot = tmp_path / "r.urdf"
-    robot.write_text('<robot name="r"><link name="a"/></robot>\n')
+    robots = [tmp_path / "r.urdf", tmp_path / "s.urdf"]  # (one file: no worker, see
+    for robot in robots:  # test_a_plain_check_of_one_file_forks_before_the_rules_are_imported)
+        robot.write_text('<robot name="r"><link name="a"/></robot>\n')
     done = subprocess.run([sys.executable, "-X", "importtime", "-m", "urdftool", "check",
-                           "--no-cache", str(robot)], capture_output=True, text=True, timeout=120)
+                           "--no-cache", "--jobs", "1", *map(str, robots)], capture_output=True,
+                          text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert len(re.findall(r"\|\s+pickle$", done.stderr, re.M)) == 1, done.stderr
