@@ -85,7 +85,8 @@ def _check(words: list[str]) -> None:
         from urdftool.streams import run
 
         end_after(lambda: run(lambda: _checked(terminal, values)))
-    _checked(terminal, values)
+    with _verdict_given():
+        _checked(terminal, values)
 
 
 def _checked(terminal, values: dict) -> None:
@@ -125,6 +126,18 @@ def _guarded(values: dict) -> bool:
         _end(code, exit_functions=False)  # (the child's, which ran them)
     pool.stopped_as(verdict)
     return False
+
+
+@contextmanager
+def _verdict_given():
+    """No verdict of :func:`_guarded` left for what this process does after the check (a
+    caller running the door in its own process)."""
+    try:
+        yield
+    finally:
+        from urdftool.lint import pool
+
+        pool.stopped_as(None)
 
 
 def _end(code: int, exit_functions: bool = True) -> None:

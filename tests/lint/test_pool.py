@@ -200,3 +200,33 @@ def test_a_worker_inherits_pickle_from_the_process_that_forked_it(tmp_path):
                           text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert len(re.findall(r"\|\s+pickle$", done.stderr, re.M)) == 1, done.stderr
+
+
+def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
+    """``guarded``: the child's pieces are counted from the fork, as the guardian counts them
+    when it does the work again, whatever pieces this process ran before; the verdict is given
+    once, to that piece, and not left to a later run."""
+    import time
+
+    from urdftool.lint import pool
+
+    budget = Budget(0.5, None)
+    for _ in range(3):  # pieces of this process before
+        assert run_budgeted(1, lambda index: "done", budget, lambda _, stop: stop) == ["done"]
+    found = pool.guarded()
+    if found is None:  # the child: its one piece runs for a minute
+        pool.end_after(lambda: run_budgeted(1, lambda index: time.sleep(60), budget,
+                                            lambda _, stop: stop))
+
+    def never(index):
+        raise AssertionError("the stopped piece is not done again")
+
+    code, verdict = found
+    assert code is None and verdict[1] == "time"
+    pool.stopped_as(verdict)
+    try:
+        [stop] = run_budgeted(1, never, budget, lambda _, stop: stop)
+        assert stop.kind == "time" and stop.budget == budget
+        assert run_budgeted(1, lambda index: "again", budget, lambda _, stop: stop) == ["again"]
+    finally:
+        pool.stopped_as(None)

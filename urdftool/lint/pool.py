@@ -86,6 +86,7 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
         _GUARDED["pieces"] += 1  # (the same count in the guardian's run again: a verdict's)
         verdict = _GUARDED["verdict"]
         if verdict is not None and verdict[0] == _GUARDED["pieces"]:
+            _GUARDED["verdict"] = None  # (given once)
             result = [stopped(0, Stop(verdict[1], budget, verdict[2], verdict[3]))]
         elif _GUARDED["guardian"] is not None:
             result = [_guarded_piece(work, budget, stopped)]
@@ -137,6 +138,7 @@ def guarded():
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
     parent = os.getpid()
+    _GUARDED["pieces"] = 0  # (the child's pieces, as the guardian counts them when it runs again)
     pid = os.fork()
     if pid == 0:
         os.close(read)
@@ -158,7 +160,8 @@ def guarding() -> bool:
 
 
 def stopped_as(verdict) -> None:
-    """In this process from now on, the piece ``verdict`` names gives its Stop, not done."""
+    """In this process from now on, the piece ``verdict`` names (counted from now) gives its
+    Stop, once, without being done; None: no piece."""
     _GUARDED.update(verdict=verdict, pieces=0)
 
 
