@@ -31,11 +31,11 @@ check (``make bench``). A check run without Typer ends without tearing the inter
 (:func:`_end`): under 50 ms on the corpus and on a 10,000-link robot, it stays while the check of
 robots/r2d2 misses its goal without it.
 
-A plain check forks at once, small, into a guardian and the process that checks
-(:func:`_guarded`): a budgeted file checked alone is checked in that process, not in a worker
-forked after the rules were imported (whose pages it copied one by one: 3,500 page faults on
-robots/r2d2), and the guardian, outside, keeps the budget a worker had (a hung C call is
-killed at --timeout, the stop reported by the guardian: U015; a death in the check: U900).
+A plain check forks first, small, into a guardian and the process that runs the command
+(:func:`_guarded`, :mod:`urdftool.guardian`): a budgeted file checked alone is checked in that
+process, not in a worker forked after the rules were imported (whose pages it copied one by
+one), and the guardian, outside, keeps the budget a worker had (a hung C call is killed at
+--timeout, the stop reported by the guardian: U015; a death in the check: U900).
 """
 
 from __future__ import annotations
@@ -56,6 +56,30 @@ def main() -> None:
 def _main() -> None:
     words = sys.argv[1:]
     _help(words)
+    if _guarded(words):  # the child: it runs the command, and ends as the program
+        from urdftool.guardian import end_after
+
+        end_after(lambda: _ended(words))
+    with _verdict_given():
+        _command(words)
+
+
+def _ended(words: list[str]) -> None:
+    """The command run as the program (:func:`urdftool.streams.run`), ended by :func:`_end`
+    (the exit functions run, the status the streams allow) however it ends."""
+    from urdftool.streams import run
+
+    try:
+        run(lambda: _command(words))
+    except SystemExit as ended:
+        code = ended.code
+        if code is not None and not isinstance(code, int):
+            sys.stderr.write(f"{code}\n")  # (as Python ends on such an exit)
+            code = 1
+        _end(code or 0)
+
+
+def _command(words: list[str]) -> None:
     kept_code()
     if words[:1] == ["check"]:
         _check(words)
@@ -69,10 +93,7 @@ def _check(words: list[str]) -> None:
     """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
     parameters kept from the Typer app) and the standard streams are ones click writes to as
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
-    if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
-        return
-    parameters = kept_words("check")
-    values = None if parameters is None else plain_words(words[1:], parameters)
+    values = _plain_check(words)
     if values is None:
         return
     from urdftool.terminal import plain
@@ -80,16 +101,6 @@ def _check(words: list[str]) -> None:
     terminal = plain()
     if terminal is None:
         return
-    if _guarded(values):  # the child: it checks as the program, and ends as forked processes end
-        from urdftool.lint.pool import end_after
-        from urdftool.streams import run
-
-        end_after(lambda: run(lambda: _checked(terminal, values)))
-    with _verdict_given():
-        _checked(terminal, values)
-
-
-def _checked(terminal, values: dict) -> None:
     _collect_less()
     from urdftool.checking import run
 
@@ -106,25 +117,38 @@ def _checked(terminal, values: dict) -> None:
     _end(code)
 
 
-def _guarded(values: dict) -> bool:
-    """Check a file in this process under a guardian forked now, small, before the rules are
-    imported (:func:`urdftool.lint.pool.guarded`), rather than in a budgeted worker forked
-    after them. True in the child (it checks). In the guardian: end as the child ended, or
-    return False to check again with the piece the child was stopped in given its Stop (over
-    its time, or died: U015, U900) without doing it. False with nothing forked for standard
-    input (read once), ``--fix`` and ``--diff`` (files written between two checks): those
-    check in budgeted workers."""
-    if "-" in values["words"] or values["fix"] or values["diff"]:
-        return False
-    from urdftool.lint import pool
+def _plain_check(words: list[str]) -> dict | None:
+    """The values of ``check``'s parameters for ``words`` when they are plain (with the
+    parameters kept from the Typer app), else None; None too when click's shell completion
+    asks."""
+    if "_URDFTOOL_COMPLETE" in os.environ:
+        return None
+    parameters = kept_words("check")
+    return None if parameters is None else plain_words(words[1:], parameters)
 
-    found = pool.guarded()
+
+def _guarded(words: list[str]) -> bool:
+    """Run a check whose words are plain (:func:`plain_words`) under a guardian forked now
+    (:func:`urdftool.guardian.guarded`), before anything else is imported or the kept code is
+    given, rather than in a budgeted worker forked after the rules are imported (whose pages it
+    copied one by one). True in the child, which runs the command (a budgeted file checked
+    alone is checked there). In the guardian: end as the child ended, or return False to run
+    the command again with the piece the child was stopped in given its Stop (over its time,
+    or died: U015, U900) without doing it. False with nothing forked for other words, standard
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks): those check
+    in budgeted workers."""
+    values = _plain_check(words) if words[:1] == ["check"] else None
+    if values is None or "-" in values["words"] or values["fix"] or values["diff"]:
+        return False
+    from urdftool import guardian
+
+    found = guardian.guarded()
     if found is None:
-        return pool.guarding()
+        return guardian.guarding()
     code, verdict = found
     if verdict is None:
         _end(code, exit_functions=False)  # (the child's, which ran them)
-    pool.stopped_as(verdict)
+    guardian.stopped_as(verdict)
     return False
 
 
@@ -135,9 +159,9 @@ def _verdict_given():
     try:
         yield
     finally:
-        from urdftool.lint import pool
+        from urdftool import guardian
 
-        pool.stopped_as(None)
+        guardian.stopped_as(None)
 
 
 def _end(code: int, exit_functions: bool = True) -> None:

@@ -406,7 +406,7 @@ def test_a_plain_check_prints_and_exits_as_typers_without_importing_it(words):
         (typer.returncode, typer.stdout, typer.stderr)
 
 
-# One file checked under a guardian (``__main__._guarded``, ``lint.pool.guarded``): forked
+# One file checked under a guardian (``__main__._guarded``, ``urdftool.guardian``): forked
 # before the rules are imported, the budgets kept against hostile files
 
 # a robot that expands for hours (each level calls the next twice, 2^24 calls)
@@ -426,10 +426,12 @@ def _door(tmp_path, patch: str, *words: str) -> subprocess.CompletedProcess:
 
 def test_a_plain_check_of_one_file_forks_before_the_rules_are_imported(tmp_path):
     """The one process forked for a budgeted check of one file is forked small, before the
-    rules: the check runs in it, not in a worker forked after them, which copied their pages."""
+    rules and before any class is made (the kept code): the check runs in it, not in a worker
+    forked after them, which copied their pages."""
     (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
     patch = ("fork = os.fork\ndef counted():\n"
-             "    big = 'urdftool.lint.engine' in sys.modules\n    pid = fork()\n"
+             "    big = {'urdftool.lint.engine', 'dataclasses'} & set(sys.modules)\n"
+             "    pid = fork()\n"
              "    if pid: os.write(2, b'[fork after rules]' if big else b'[fork before rules]')\n"
              "    return pid\nos.fork = counted")
     done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")

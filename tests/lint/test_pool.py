@@ -208,14 +208,14 @@ def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
     once, to that piece, and not left to a later run."""
     import time
 
-    from urdftool.lint import pool
+    from urdftool import guardian
 
     budget = Budget(0.5, None)
     for _ in range(3):  # pieces of this process before
         assert run_budgeted(1, lambda index: "done", budget, lambda _, stop: stop) == ["done"]
-    found = pool.guarded()
+    found = guardian.guarded()
     if found is None:  # the child: its one piece runs for a minute
-        pool.end_after(lambda: run_budgeted(1, lambda index: time.sleep(60), budget,
+        guardian.end_after(lambda: run_budgeted(1, lambda index: time.sleep(60), budget,
                                             lambda _, stop: stop))
 
     def never(index):
@@ -223,10 +223,10 @@ def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
 
     code, verdict = found
     assert code is None and verdict[1] == "time"
-    pool.stopped_as(verdict)
+    guardian.stopped_as(verdict)
     try:
         [stop] = run_budgeted(1, never, budget, lambda _, stop: stop)
         assert stop.kind == "time" and stop.budget == budget
         assert run_budgeted(1, lambda index: "again", budget, lambda _, stop: stop) == ["again"]
     finally:
-        pool.stopped_as(None)
+        guardian.stopped_as(None)

@@ -25,8 +25,9 @@ import sys
 import time
 from dataclasses import dataclass
 
-from urdftool import budget as budgets
+from urdftool import budget as budgets, guardian
 from urdftool.budget import Budget
+from urdftool.guardian import end_after
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Location
 
@@ -83,12 +84,12 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
     """
     finished = finished or (lambda done: None)
     if count == 1 and cancel is None and not budget.unlimited:
-        _GUARDED["pieces"] += 1  # (the same count in the guardian's run again: a verdict's)
-        verdict = _GUARDED["verdict"]
-        if verdict is not None and verdict[0] == _GUARDED["pieces"]:
-            _GUARDED["verdict"] = None  # (given once)
+        guardian.STATE["pieces"] += 1  # (the same count in the guardian's run again: a verdict's)
+        verdict = guardian.STATE["verdict"]
+        if verdict is not None and verdict[0] == guardian.STATE["pieces"]:
+            guardian.STATE["verdict"] = None  # (given once)
             result = [stopped(0, Stop(verdict[1], budget, verdict[2], verdict[3]))]
-        elif _GUARDED["guardian"] is not None:
+        elif guardian.STATE["guardian"] is not None:
             result = [_guarded_piece(work, budget, stopped)]
         else:
             result = None
@@ -111,122 +112,17 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
 CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
 
 
-# ---- one piece in this process, stopped from outside ---------------------------------------
-
-# guardian: (channel to the guardian, slot) in a process :func:`guarded` forked, else None;
-# pieces: the budgeted single pieces this process has run; verdict: in the guardian's run
-# again, (piece, kind, detail, where) of the piece it stopped
-_GUARDED: dict = {"guardian": None, "pieces": 0, "verdict": None}
-
-
-def guarded():
-    """Fork this process, early and small, into a guardian (the parent) and the process that
-    does the work (the child, which returns None): a budgeted run of one piece
-    (:func:`run_budgeted`) is then done in the child itself, not in a worker forked from it
-    (which would copy, page by page, the imports and the memory of a checked robot), its
-    memory capped as a worker's, its time watched by the guardian, which kills it at the end
-    of the budget. The guardian takes no part in the work and waits for the child; it returns
-    ``(status, None)`` when the child ended (its exit status), or ``(None, verdict)`` when a
-    piece was stopped (over its time, or the child died in it): the caller then does the same
-    work again in the guardian with :func:`stopped_as` ``verdict``, and that piece gives the
-    Stop without being done. A child killed by a signal outside a piece gives the guardian
-    the same end. None, with nothing forked, where processes cannot fork."""
-    if not hasattr(os, "fork"):
-        return None
-    slot = budgets.share_slot()
-    read, write = os.pipe()
-    for stream in (sys.stdout, sys.stderr):
-        stream.flush()
-    parent = os.getpid()
-    _GUARDED["pieces"] = 0  # (the child's pieces, as the guardian counts them when it runs again)
-    pid = os.fork()
-    if pid == 0:
-        os.close(read)
-        _die_with(parent)  # a guardian killed (SIGKILL) leaves no child to run unwatched
-        budgets.report_into(slot)
-        _GUARDED["guardian"] = (write, slot)
-        return None
-    os.close(write)
-    try:
-        return _guard(pid, read, slot)
-    finally:
-        os.close(read)
-        slot.close()
-
-
-def guarding() -> bool:
-    """Whether this process runs under a guardian (:func:`guarded`'s child)."""
-    return _GUARDED["guardian"] is not None
-
-
-def stopped_as(verdict) -> None:
-    """In this process from now on, the piece ``verdict`` names (counted from now) gives its
-    Stop, once, without being done; None: no piece."""
-    _GUARDED.update(verdict=verdict, pieces=0)
-
-
-def _guard(pid: int, read: int, slot):
-    """The guardian's wait: (status, None) or (None, verdict); see :func:`guarded`."""
-    import select
-
-    interrupt = signal.signal(signal.SIGINT, signal.SIG_IGN)  # the child's to answer (the
-    try:  # terminal's Ctrl-C reaches both)
-        piece, deadline, pending, stopped = None, None, b"", None
-        poller = select.poll()
-        poller.register(read, select.POLLIN)
-        while True:
-            wait = None if deadline is None else max(0, int((deadline - time.monotonic()) * 1000
-                                                             + 0.999))
-            try:
-                ready = poller.poll(wait)
-            except InterruptedError:
-                continue
-            if not ready:
-                if deadline is not None and time.monotonic() >= deadline:
-                    stopped = (piece, "time", "", budgets.read_slot(slot))
-                    os.kill(pid, signal.SIGKILL)
-                    break
-                continue
-            data = os.read(read, 4096)
-            if not data:  # the child ended (or closed its end: it ends)
-                break
-            pending += data
-            while b"\n" in pending:
-                line, pending = pending.split(b"\n", 1)
-                kind, number, seconds = line.decode().split()
-                piece = int(number) if kind == "start" else None
-                deadline = time.monotonic() + float(seconds) if kind == "start" and \
-                    float(seconds) else None
-        while True:
-            try:
-                _, status = os.waitpid(pid, 0)
-                break
-            except InterruptedError:
-                continue
-        code = os.waitstatus_to_exitcode(status)
-        if stopped is None and piece is not None:  # it died in the piece
-            stopped = (piece, "died", f"worker process died (exit code {code})",
-                       budgets.read_slot(slot))
-        if stopped is not None:
-            return None, stopped
-        if code < 0:  # a signal ended it: the same end
-            signal.signal(-code, signal.SIG_DFL)
-            os.kill(os.getpid(), -code)
-            code = 128 - code
-        return code, None
-    finally:
-        signal.signal(signal.SIGINT, interrupt)
-
+# ---- one piece in this process, under the guardian (urdftool.guardian) ------------------
 
 def _guarded_piece(work, budget: Budget, stopped):
     """``work(0)`` in this process under its guardian: its memory capped (a MemoryError gives
     a Stop, as in a worker), its start and end told, the guardian kills it over its time."""
     import resource
 
-    channel, slot = _GUARDED["guardian"]
+    channel, slot = guardian.STATE["guardian"]
     slot[:4] = bytes(4)
-    budgets.working_at(None)
-    _write_all(channel, f"start {_GUARDED['pieces']} {budget.seconds or 0}\n".encode())
+    budgets.report_into(slot)
+    _write_all(channel, f"start {guardian.STATE['pieces']} {budget.seconds or 0}\n".encode())
     limits = resource.getrlimit(resource.RLIMIT_AS)
     budgets.limit_memory(budget.memory)
     try:
@@ -239,7 +135,7 @@ def _guarded_piece(work, budget: Budget, stopped):
         return stopped(0, Stop("crash", budget, traceback.format_exc(), budgets.where()))
     finally:
         resource.setrlimit(resource.RLIMIT_AS, limits)
-        _write_all(channel, f"end {_GUARDED['pieces']} 0\n".encode())
+        _write_all(channel, f"end {guardian.STATE['pieces']} 0\n".encode())
 
 
 def _here(index, work, budget, stopped):
@@ -282,7 +178,7 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         os.setpgid(0, 0)  # its own process group: a kill reaches what it starts (dot, pools)
     except OSError:
         pass
-    _die_with(parent)
+    guardian.die_with(parent)
     budgets.report_into(slot)
     budgets.limit_memory(memory)
     for number in relay:
@@ -323,19 +219,6 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
         if retiring:
             return
-
-
-def _die_with(parent: int) -> None:
-    """Be killed when the parent process ends (Linux): in a process group of its own, a worker
-    no longer hears the terminal's or the CI runner's signals, and a hung one would run on."""
-    try:
-        import ctypes
-
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        return
-    if os.getppid() != parent:  # it ended before the request
-        os._exit(1)
 
 
 # ---- in the parent -------------------------------------------------------------------------
@@ -518,29 +401,6 @@ class _Forked:
     def is_alive(self) -> bool:
         self.join(0)
         return self.exitcode is None
-
-
-def end_after(target) -> None:
-    """Run ``target()``, then end this (forked) process: 0, the status of a SystemExit, or 1
-    after an exception it prints; its standard streams flushed. A forked process never returns
-    into the callers of the process it was forked from."""
-    code = 1
-    try:
-        target()
-        code = 0
-    except SystemExit as ended:
-        code = 0 if ended.code is None else ended.code if isinstance(ended.code, int) else 1
-    except BaseException:
-        import traceback
-
-        traceback.print_exc()
-    finally:
-        for stream in (sys.stdout, sys.stderr):
-            try:
-                stream.flush()
-            except (AttributeError, OSError, ValueError):
-                pass
-        os._exit(code)
 
 
 def _relayed() -> tuple[int, ...]:
