@@ -203,7 +203,10 @@ def _collect_less() -> None:
     The modules the check needs (the rules, the command's work) are imported with the
     collector off and then frozen (``gc.freeze()``): objects that live as long as the program,
     which the collector examined again and again as they were made, and which a worker
-    forked to check a file would copy page by page as its collector wrote into them."""
+    forked to check a file would copy page by page as its collector wrote into them.
+
+    The robot last checked is kept until the program ends (:data:`urdftool.lint.engine.
+    LATEST`), which frees no object one by one (:func:`_end`, a worker's ``os._exit``)."""
     import gc
 
     gc.disable()
@@ -216,6 +219,7 @@ def _collect_less() -> None:
         _FROZEN["objects"] = gc.get_freeze_count()
         gc.enable()
     engine.COLLECTION = (_fewer_collections, _unexamined)
+    engine.LATEST = []
 
 
 _FROZEN = {"objects": 0}  # what this program froze itself (the imports)

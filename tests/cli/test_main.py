@@ -95,7 +95,8 @@ def test_check_runs_the_collector_as_the_door_says_and_other_commands_as_python_
     (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
     program = ("import atexit, sys; from urdftool.lint import engine; import urdftool.__main__ as d;"
                " atexit.register(lambda: print('[policy]', engine.COLLECTION =="
-               " (d._fewer_collections, d._unexamined), file=sys.stderr)); "
+               " (d._fewer_collections, d._unexamined) and engine.LATEST is not None,"
+               " file=sys.stderr)); "
                "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
     for words, installed in ((["check", "--no-cache", "a.urdf"], True),
                              (["tree", "a.urdf"], False)):
@@ -105,6 +106,7 @@ def test_check_runs_the_collector_as_the_door_says_and_other_commands_as_python_
     from urdftool.lint import engine
 
     assert engine.COLLECTION[0] is engine.COLLECTION[1]  # nullcontext, unless installed
+    assert engine.LATEST is None
 
 
 def test_a_check_through_the_door_says_all_and_exits_as_the_command_does(tmp_path):

@@ -205,3 +205,33 @@ def test_findings_name_a_launch_test_as_a_launch_test(tmp_path):
     assert u005.severity == Severity.INFO and \
         f"(but launch test {tmp_path}/arm/test/arm.py (not read) may)" in u005.message, \
         u005.message
+
+
+def test_the_latest_robot_is_kept_only_where_a_program_installs_the_slot(tmp_path, monkeypatch):
+    """``engine.LATEST``: a program ending with os._exit (the command line) keeps the last
+    robot checked, each check freeing the one before; a library user's robot is freed with
+    its result."""
+    import gc
+    import weakref
+
+    for name in "ab":
+        (tmp_path / f"{name}.urdf").write_text(f'<robot name="{name}"><link name="l"/></robot>\n')
+
+    def robot_of(name):
+        result = load_and_check(str(tmp_path / f"{name}.urdf"), CheckOptions())
+        return weakref.ref(result.robot)
+
+    assert engine.LATEST is None  # unless installed
+    freed = robot_of("a")
+    gc.collect()  # (a robot's memos may hold cycles)
+    assert freed() is None
+    monkeypatch.setattr(engine, "LATEST", [])
+    first = robot_of("a")
+    assert first() is not None and engine.LATEST == [first()]
+    alive = []  # the robots alive when the next one is loaded: the kept one is freed first
+    monkeypatch.setattr(engine, "_recorded", lambda *args, recorded=engine._recorded: (
+        gc.collect(), alive.append(first()), recorded(*args))[-1])
+    second = robot_of("b")
+    gc.collect()
+    assert alive == [None] and first() is None
+    assert second() is not None and engine.LATEST == [second()]

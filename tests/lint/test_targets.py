@@ -343,6 +343,40 @@ def test_a_robot_named_on_the_command_line_does_not_walk_its_repository(monkeypa
     assert found.files == [str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")]
 
 
+def test_a_robot_of_its_own_named_is_read_once_and_its_includes_not_resolved(monkeypatch):
+    """Named on the command line, a robot of its own is decided from its bytes, read once:
+    its includes (which a robot of its own does not need) are not resolved, and the rest of
+    the classification is not done. A 10,000-link robot's text was read and scanned three
+    times."""
+    from urdftool.lint import targets
+    from urdftool.lint.settings import CheckRequest
+
+    reads, head = [], targets._head
+    monkeypatch.setattr(targets, "_head", lambda path, *rest: reads.append(path) or head(path, *rest))
+
+    def resolved(*_):
+        raise AssertionError("its includes were resolved")
+
+    monkeypatch.setattr(targets, "_included_files", resolved)
+    monkeypatch.setattr(targets, "_summary", resolved)
+    robot = str(ROBOTS / "r2d2" / "r2d2.urdf.xacro")
+    assert targets.expand([robot], CheckRequest()).files == [robot]
+    assert [str(path) for path in reads] == [robot]
+
+
+def test_macro_definitions_are_removed_only_where_a_macro_is_written():
+    import random
+
+    from urdftool.lint.targets import _MACRO_BODY, _without_macro_bodies
+
+    parts = [b"<xacro:macro name='m'>", b"</xacro:macro>", b"<macro ", b"</macro >", b"macro",
+             b"<link name='a'/>", b"<xacro:include filename='x.xacro'/>", b"\n", b" ", b"mac"]
+    chance = random.Random(34)
+    for _ in range(2000):
+        data = b"".join(chance.choice(parts) for _ in range(chance.randint(0, 8)))
+        assert _without_macro_bodies(data) == _MACRO_BODY.sub(b"", data), data
+
+
 def test_a_part_that_only_calls_macros_named_is_checked_through_its_robot(run_cli, tmp_path):
     # niryo's niryo_ned.transmission.xacro: a named <robot> whose content is transmissions made
     # by macro calls; alone it has no link (U106) and no joint its transmissions name (U501)

@@ -96,3 +96,31 @@ def test_combine_is_the_parallel_axis_sum_to_the_bit():
             ours, loop = mp.combine(parts), by_loop(parts)
             assert [float(v).hex() for v in (ours.mass, *ours.com, *np.ravel(ours.inertia))] == \
                 [float(v).hex() for v in (loop.mass, *loop.com, *np.ravel(loop.inertia))]
+
+
+def test_declared_keeps_an_unturned_tensor_as_rotate_gives_it_back():
+    """declared() takes an unturned tensor as it is where mat3.rotate would give it back to the
+    bit; the same numbers as rotating it, over awkward values (zeros of either sign, subnormal,
+    huge, infinite, nan) and origins turned or not."""
+    import random
+    import struct
+
+    from lxml import etree
+
+    from urdftool.physics import mass, mat3
+
+    values = ["0", "-0.0", "5e-324", "1e-3", "-2.5", "1e308", "-1e308", "inf", "nan", "0.1"]
+    chance = random.Random(34)
+    for _ in range(3000):
+        terms = [chance.choice(values) for _ in range(6)]
+        rpy = chance.choice(["0 0 0", "-0.0 0 0", "0.5 0 0", None])
+        origin = f'<origin xyz="0 0 0" rpy="{rpy}"/>' if rpy else ""
+        link = etree.fromstring(
+            f'<link name="l"><inertial>{origin}<mass value="1"/><inertia ixx="{terms[0]}" '
+            f'ixy="{terms[1]}" ixz="{terms[2]}" iyy="{terms[3]}" iyz="{terms[4]}" '
+            f'izz="{terms[5]}"/></inertial></link>')
+        xx, xy, xz, yy, yz, zz = (float(t) for t in terms)
+        tensor = ((xx, xy, xz), (xy, yy, yz), (xz, yz, zz))
+        turned = mat3.rotate(tensor, mat3.rpy_matrix(tuple(map(float, (rpy or "0 0 0").split()))))
+        found = mass.declared(link).inertia
+        assert struct.pack("<9d", *sum(found, ())) == struct.pack("<9d", *sum(turned, ())), terms

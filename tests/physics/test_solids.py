@@ -333,3 +333,51 @@ def test_plain_links_inside_is_what_the_pieces_hold(tmp_path, monkeypatch, seed)
             assert found == held, (name, point)
         decided += found
     assert decided > 20
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_plain_solids_measured_at_once_are_the_per_link_solids_to_the_bit(tmp_path, monkeypatch,
+                                                                          seed):
+    """Every plain link's PlainSolid (its shapes' unit solids placed and combined with the
+    others' at once) gives what the link's LinkSolid gives to the inertia rules, byte for
+    byte: computed() at several masses (or None for both), volume(), source, extent, bounds
+    (zeros as +0), over random robots with zeros of either sign, subnormal, huge and
+    non-finite numbers, several shapes per link, turned and unturned."""
+    import struct
+
+    from plain_robots import plain_robot
+    from urdftool.physics import solids
+
+    def bits(values) -> bytes:
+        return struct.pack(f"<{len(values)}d", *values)
+
+    def body_bits(body):
+        return None if body is None else \
+            bits([body.mass, *body.com, *(v for row in body.inertia for v in row)])
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    text = plain_robot(seed)
+    robot = _robot(tmp_path, text)
+    alone = _robot(tmp_path, text)  # another load: the per-link path measures afresh
+    table = solids.plain_links(robot)
+    pairs = dict(zip(robot.children("link"), alone.children("link")))
+    found = 0
+    for link in robot.children("link"):
+        plain = solids.plain_solid(robot, link)
+        if plain is None:
+            assert link.get("name") not in table.rows or robot.links[link.get("name")] is not link
+            continue
+        found += 1
+        solid = solids.link_solid(alone, pairs[link])
+        for mass in (1.0, 0.37, 1e-300, 5e-324, 1e300):
+            assert body_bits(solids.computed(plain, mass=mass)) == \
+                body_bits(solids.computed(solid, mass=mass)), link.get("name")
+        assert body_bits(solids.computed(plain, density=7850.0)) == \
+            body_bits(solids.computed(solid, density=7850.0))
+        assert bits([solids.volume(plain), plain.extent]) == \
+            bits([solids.volume(solid), solid.extent])
+        assert (plain.source, plain.sound, plain.counts) == \
+            (solid.source, solid.sound, bool(solid.counts))
+        assert bits([v + 0.0 for corner in solid.bounds for v in corner]) == \
+            bits([v for corner in plain.bounds for v in corner])
+    assert found > 20

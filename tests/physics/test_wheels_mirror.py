@@ -118,3 +118,67 @@ def test_the_plane_is_what_most_pairs_agree_with():
     found = fit(points)
     assert found.normal == (1.0, 0.0, 0.0) and math.isclose(found.offset, 0.1)
     assert found.reflect((0.2, 1, 0)) == pytest.approx((0.0, 1, 0))
+
+
+def _partner_names_two_passes(name):
+    """partner_names as first written: the side words found twice, each candidate built."""
+    from urdftool.physics.mirror import _SWAPS, _WORD, _replaced
+
+    def side_words(strong):
+        found = []
+        for match in _WORD.finditer(name):
+            word = match.group(0)
+            if word in _SWAPS:
+                after = name[match.end():match.end() + 2]
+                weak = len(word) == 1 and word in "LR" and after[:1].isupper() and \
+                    not after[1:2].islower()
+                if not (strong and weak):
+                    found.append((match.start(), match.end(), _SWAPS[word]))
+        return found
+
+    words, strong = side_words(False), side_words(True)
+    candidates = []
+    for chosen in (words, strong, words[:1], strong[:1]):
+        if chosen:
+            candidate = _replaced(name, chosen)
+            if candidate != name and candidate not in candidates:
+                candidates.append(candidate)
+    return candidates, words, strong
+
+
+def test_partner_names_one_pass_gives_the_two_passes_answers():
+    import random
+
+    from urdftool.physics.mirror import _side_words, partner_names
+
+    parts = ["l", "r", "L", "R", "LL", "LR", "RL", "LEG", "Leg", "leg", "left", "Right", "LEFT",
+             "fl", "FR", "hl", "OW", "Ow", "x", "_", "-", "1", "2", ".", "/", "LOW", "RR", "lF"]
+    chance = random.Random(34)
+    names = ["".join(chance.choice(parts) for _ in range(chance.randint(1, 7)))
+             for _ in range(3000)] + ["MP_ARM_LOW_L", "LLEG", "RLEG_HIP_R", "LRLeg", "l1", ""]
+    for name in names:
+        candidates, words, strong = _partner_names_two_passes(name)
+        assert partner_names(name) == candidates, name
+        assert _side_words(name) == words and _side_words(name, strong=True) == strong, name
+
+
+def test_named_wheel_skips_only_names_without_a_wheel_word():
+    import random
+    import re
+
+    from urdftool.physics.wheels import _NOT_WHEEL, _WHEEL, _named_wheel
+
+    def by_every_name(*names):  # as first written: every name split and searched
+        for name in names:
+            text = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
+            if _WHEEL.search(text) and not _NOT_WHEEL.search(text.replace("wheel", " ")):
+                return True
+        return False
+
+    parts = ["wheel", "Wheel", "WHEEL", "wHeel", "tire", "Tyre", "TIRES", "wheels", "left",
+             "Left", "_", "1", "steer", "Mount", "fly", "Σ", "İ", "x", "arm", "caster"]
+    chance = random.Random(34)
+    for _ in range(3000):
+        names = ["".join(chance.choice(parts) for _ in range(chance.randint(1, 5)))
+                 for _ in range(chance.randint(1, 2))]
+        assert _named_wheel(*names) == by_every_name(*names), names

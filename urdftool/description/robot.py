@@ -140,13 +140,17 @@ class Robot:
         """Joint -> {"parent": (element, link it names), "child": (element, link)}, in document
         order; read once per robot (the tree rules, the inertial rules and the rigid bodies of
         the solids all ask). A missing ``<parent>`` or ``<child>`` is (None, None)."""
-        def read(joint, side):
-            element = self.child(joint, side)
-            return element, (element.get("link") if element is not None else None)
+        return self.memo(Robot.ends, self._read_ends)
 
-        return self.memo(Robot.ends, lambda: {
-            joint: {side: read(joint, side) for side in ("parent", "child")}
-            for joint in self.children("joint")})
+    def _read_ends(self) -> dict:
+        found = {}
+        for joint in self.children("joint"):  # (a loop, not comprehensions: 10,000 joints)
+            groups = self.grouped(joint)
+            parents, children = groups.get("parent"), groups.get("child")
+            parent, child = parents[0] if parents else None, children[0] if children else None
+            found[joint] = {"parent": (parent, parent.get("link") if parent is not None else None),
+                            "child": (child, child.get("link") if child is not None else None)}
+        return found
 
     @cached_property
     def links(self) -> dict[str, object]:

@@ -105,6 +105,9 @@ class Rule:
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
         never raised: ValueError); a :class:`Conditional` message is reported at its own
         severity when that is below the rule's."""
+        if severity is None and type(message) is str:  # most findings: as the rule says
+            return Finding(self.code, self.name, self.severity, message, location, fix,
+                           self.target)
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")

@@ -74,6 +74,9 @@ def robot_files(folder: Path) -> list[Path]:
     return sorted(found)
 
 
+_UNREAD = object()  # (a file's bytes not yet asked of _head)
+
+
 @dataclass
 class _Summary:
     """What classifying one file needs: the files it includes, and whether it is a robot."""
@@ -125,10 +128,11 @@ def _stays_inside(path: Path) -> bool:
     return inside(path, containment_root(Path(os.path.abspath(path)).parent))
 
 
-def _summary(path: Path, resolver_for, limit: int) -> _Summary:
+def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
     """Read ``path`` (when :func:`_head` may) and keep only what classification needs; the
-    includes only given ``resolver_for``."""
-    data = _head(path, limit)
+    includes only given ``resolver_for``. ``data``: what :func:`_head` gave, when read."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     if data is None or b"\0" in data:  # unread, or binary: a target, so checking says why
         return _Summary([], True, True)
     written = _uncommented(data)
@@ -234,12 +238,13 @@ def _top_level_answer(data: bytes) -> str:
     return _stream(data, _TopLevelTags())
 
 
-def _has_own_links(path: Path, limit: int) -> bool:
+def _has_own_links(path: Path, limit: int, data=_UNREAD) -> bool:
     """Whether the file at ``path`` writes ``<link>`` or ``<joint>`` elements of its own under
     ``<robot>`` (inside ``xacro:if``/``unless`` too): a robot, not a part that only calls
     macros (``niryo_ned.transmission.xacro``: transmissions through macro calls). A file that
-    is not read counts (checking it says why)."""
-    data = _head(path, limit)
+    is not read counts (checking it says why). ``data``: what :func:`_head` gave, when read."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     return data is None or b"\0" in data or _stream(data, _OwnLinks()) == "own"
 
 
@@ -247,13 +252,14 @@ _LINK_NAME = re.compile(rb"<link\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S
 _JOINT_END = re.compile(rb"<(?:parent|child)\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 
 
-def _self_contained(path: Path, limit: int) -> bool:
+def _self_contained(path: Path, limit: int, data=_UNREAD) -> bool:
     """Whether every link the file's joints name as parent or child is a link the file
     writes (names compared as written): a robot of its own. A file whose joints hang on links
     it does not write (baxter's pedestal.xacro on the 'torso' of the robot including it) is a
     part, checked through what includes it. A file that is not read counts (checking it says
-    why)."""
-    data = _head(path, limit)
+    why). ``data``: what :func:`_head` gave, when read."""
+    if data is _UNREAD:
+        data = _head(path, limit)
     if data is None or b"\0" in data:
         return True
     return set(_JOINT_END.findall(data)) <= set(_LINK_NAME.findall(data))
@@ -276,7 +282,7 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
     namespace (a ``.urdf`` that does is expanded, with U007: elephantrobotics' stale
     mycobot_with_vision_copy.urdf includes a file that is gone; jackal's custom_example.urdf
     calls a macro without declaring it, which xacro cannot parse)."""
-    data = _MACRO_BODY.sub(b"", data)
+    data = _without_macro_bodies(data)
     if (expanded or b"xmlns:xacro" in data) and _LINK_MAKER.search(data):
         return None  # a macro call or an include may write the root
     found = rootless(*([name.decode("utf-8", "replace") for name in pattern.findall(data)]
@@ -476,7 +482,7 @@ def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
     """Whether an include names, through ``$(find PKG)``, a package that cannot be found (a
     defect expanding the file reports, U006), rather than a path only known when expanding.
     Includes inside a macro definition are left out: they are expanded only where it is called."""
-    for match in _INCLUDE.finditer(_MACRO_BODY.sub(b"", data)):
+    for match in _INCLUDE.finditer(_without_macro_bodies(data)):
         spec = match.group(1).decode("utf-8", "replace")
         find = _FIND.search(spec)
         if find and "$" not in spec.replace(find.group(0), ""):  # the rest is written out
@@ -485,6 +491,12 @@ def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
             except Exception:  # noqa: BLE001 - not found, whatever the resolver says
                 return True
     return False
+
+
+def _without_macro_bodies(data: bytes) -> bytes:
+    """``data`` without its macro definitions (the same bytes, not searched, when it has no
+    ``macro`` at all, as most robots)."""
+    return _MACRO_BODY.sub(b"", data) if b"macro" in data else data
 
 
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
@@ -498,6 +510,20 @@ def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MA
     YAML, an SRDF, a spec): see :func:`~urdftool.description.companions.may_use`."""
     return [robot for robot in robots
             if may_use(robot, companion, _head(robot, limit) or b"")]
+
+
+def _robot_of_its_own(path: Path, data: bytes | None) -> bool:
+    """What :func:`explicit_targets` decides from :func:`_summary`'s ``srdf`` and
+    ``named_robot`` for a robot of its own, asked of the file's bytes (``data``, None when not
+    read) before the rest of the summary (its includes resolved, its macros and root looked
+    for), which such a file does not need: not an SRDF source, a named ``<robot>``, links of
+    its own and its joints on them; and a file that is not read (checking it says why)."""
+    if data is None or b"\0" in data:
+        return True  # (_summary's answer for it: a named robot, no SRDF)
+    if path.name.endswith(".srdf.xacro") or not _NAMED_ROBOT.search(data):
+        return False
+    return _top_level_answer(data) != "srdf" and _has_own_links(path, 0, data) and \
+        _self_contained(path, 0, data)
 
 
 def project_root(path: Path) -> Path:
@@ -524,11 +550,14 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     properties, or is an SRDF source.
     resolver_for: path -> its PackageResolver, to follow ``$(find)`` includes
     """
-    summary = _summary(path, resolver_for, max_file_size)
+    data = _head(path, max_file_size)  # read once for the questions below
+    if _robot_of_its_own(path, data):
+        return [path], None  # no need to look for robots including it, nor for its includes
+    summary = _summary(path, resolver_for, max_file_size, data)
     if summary.srdf:
         return [], f"{SRDF_SOURCE}: nothing to check"
-    if summary.named_robot and _has_own_links(path, max_file_size) and \
-            _self_contained(path, max_file_size):
+    if summary.named_robot and _has_own_links(path, max_file_size, data) and \
+            _self_contained(path, max_file_size, data):
         return [path], None  # a robot of its own: no need to look for robots including it
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)

@@ -65,8 +65,10 @@ def declared(link) -> Body | None:
         return None
     xx, xy, xz, yy, yz, zz = xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]
     xyz, rpy = origin_pose(inertial)  # a malformed part counts as 0
-    return Body(mass[0], xyz, mat3.rotate(((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)),
-                                          mat3.rpy_matrix(rpy)))
+    tensor, rotation = ((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)), mat3.rpy_matrix(rpy)
+    if rotation is mat3.NO_TURN and mat3.kept_by_no_turn(tensor):
+        return Body(mass[0], xyz, tensor)  # (floats already: mat3.rotate's matrix() of it)
+    return Body(mass[0], xyz, mat3.rotate(tensor, rotation))
 
 
 _NONE = object()  # (robot.memo_for keeps no None)

@@ -65,7 +65,7 @@ _UNDEFINED: Matrix = ((math.nan,) * 3,) * 3  # the rotation of an infinite angle
 NO_TURN: Matrix = _rpy_matrix(0.0, 0.0, 0.0)  # rpy 0 0 0: IDENTITY's values, one of them -0.0
 
 
-def _kept_by_no_turn(m) -> bool:
+def kept_by_no_turn(m) -> bool:
     """Whether ``R m R^T`` for R = NO_TURN (entries 1.0 and zeros of either sign) is ``m`` to
     the bit: every entry finite (0 * inf is nan) and none -0.0 (-0.0 + 0.0 is 0.0); each
     product and sum then adds zeros to a number that is not -0.0."""
@@ -110,7 +110,7 @@ def transpose(m) -> Matrix:
 def rotate(tensor, rotation) -> Matrix:
     """A tensor expressed in a frame rotated by ``rotation``: ``R T R^T`` (without the
     products for :data:`NO_TURN` where they give ``T`` back to the bit)."""
-    if rotation is NO_TURN and _kept_by_no_turn(tensor):
+    if rotation is NO_TURN and kept_by_no_turn(tensor):
         return matrix(tensor)
     return multiply(multiply(rotation, tensor), transpose(rotation))
 

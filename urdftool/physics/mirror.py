@@ -40,16 +40,24 @@ _WORD = re.compile(r"(?<![A-Za-z])[LR](?=[A-Z])|[A-Z]?[a-z]+|[A-Z]+(?![a-z])")
 def _side_words(name: str, strong: bool = False) -> list[tuple[int, int, str]]:
     """(start, end, mirror) of each side word in ``name``; ``strong``: not a capital L or R
     that starts a word in capitals (``LLEG`` is a left leg, but ``LOW`` is not a right 'OW')."""
-    found = []
+    words, weak = _marked_side_words(name)
+    return [word for word in words if word not in weak] if strong and weak else words
+
+
+def _marked_side_words(name: str) -> tuple[list[tuple[int, int, str]], list]:
+    """(every side word of ``name`` as :func:`_side_words` gives them, the weak ones among
+    them): one pass of the pattern for both lists."""
+    found, weak = [], []
     for match in _WORD.finditer(name):
         word = match.group(0)
         if word in _SWAPS:
-            after = name[match.end():match.end() + 2]
-            weak = len(word) == 1 and word in "LR" and after[:1].isupper() and \
-                not after[1:2].islower()
-            if not (strong and weak):
-                found.append((match.start(), match.end(), _SWAPS[word]))
-    return found
+            end = match.end()
+            found.append((match.start(), end, _SWAPS[word]))
+            if len(word) == 1 and word in "LR":
+                after = name[end:end + 2]
+                if after[:1].isupper() and not after[1:2].islower():
+                    weak.append(found[-1])
+    return found, weak
 
 
 def _replaced(name: str, words) -> str:
@@ -78,10 +86,14 @@ def partner_names(name: str) -> list[str]:
     (the side of the robot; a later word alone names a part within one side, such as a
     finger of one hand, or is a label such as the SVH hand's little and ring fingers'); the
     same again without the capital L or R starting a word in capitals (``MP_ARM_LOW_L``)."""
-    words, strong = _side_words(name), _side_words(name, strong=True)
-    candidates = []
+    words, weak = _marked_side_words(name)
+    if not words:
+        return []
+    strong = [word for word in words if word not in weak] if weak else words
+    candidates, tried = [], []
     for chosen in (words, strong, words[:1], strong[:1]):
-        if chosen:
+        if chosen and chosen not in tried:  # (the same words give the same candidate)
+            tried.append(chosen)
             candidate = _replaced(name, chosen)
             if candidate != name and candidate not in candidates:
                 candidates.append(candidate)

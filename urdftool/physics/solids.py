@@ -631,10 +631,11 @@ class PlainLinks:
     finite have a row); ``extents``: the largest side of the box of the geometry
     :func:`link_solid` takes (collision, else visual), its ``extent``; for :meth:`inside`, the
     shapes as :class:`~urdftool.physics.support.Piece` places them (``shape_rows`` the row of
-    each shape's link)."""
+    each shape's link); ``solids``: link name -> its :class:`PlainSolid` (made when first
+    asked, see :func:`plain_solid`) from ``units`` (see :func:`_plain_units`)."""
 
     __slots__ = ("rows", "low", "high", "shape_rows", "kinds", "centres", "rotations",
-                 "sizes", "extents")
+                 "sizes", "extents", "units", "solids")
 
     def inside(self, names, points):
         """For link names (each with a row) and points [m] (k, 3) in their frames: whether
@@ -682,17 +683,14 @@ def plain_links(robot) -> PlainLinks | None:
                       else None)
 
 
-_KINDS = {"box": 0, "cylinder": 1, "sphere": 2}
-
-
 def _plain_links(robot) -> PlainLinks:
     import numpy as np
     from itertools import chain
 
     neighbours = _fixed_neighbours(robot)
-    names, shape_rows, kinds, highs, xyzs, turns, chosen = [], [], [], [], [], [], []
+    names, shape_rows, xyzs, turns, chosen = [], [], [], [], []
+    dims, collisions = [], []  # per shape: see _dimensions; whether a <collision>'s
     index, distinct = {}, []  # the distinct rotations (most shapes': NO_TURN), by identity
-    kind_of, local_box = _KINDS.get, _local_box
     for name, link in robot.links.items():
         if name in neighbours:
             continue
@@ -708,10 +706,10 @@ def _plain_links(robot) -> PlainLinks:
             row = len(names)
             names.append(name)
             chosen += [not collision] * len(visual) + [True] * len(collision)
+            collisions += [False] * len(visual) + [True] * len(collision)
             for shape in shapes:
                 shape_rows.append(row)
-                kinds.append(kind_of(shape.kind))
-                highs.append(local_box(shape)[1])
+                dims.append(_dimensions(shape))
                 xyzs.append(shape.xyz)
                 rotation = shape.rotation
                 turn = index.get(id(rotation))
@@ -722,12 +720,15 @@ def _plain_links(robot) -> PlainLinks:
     table = PlainLinks()
     k = len(shape_rows)
     shape_rows = np.array(shape_rows, dtype=np.intp)
-    high = np.fromiter(chain.from_iterable(highs), dtype=float, count=3 * k).reshape(-1, 3)
+    kinds_dims = np.fromiter(chain.from_iterable(dims), dtype=float, count=4 * k).reshape(-1, 4)
+    kinds, dims = kinds_dims[:, 0].astype(np.int8), kinds_dims[:, 1:]
+    high = _local_highs(kinds, dims)
     xyz = np.fromiter(chain.from_iterable(xyzs), dtype=float, count=3 * k).reshape(-1, 3)
     turns = np.array(turns, dtype=np.intp)
     rotation = np.array(distinct, dtype=float).reshape(-1, 3, 3)[turns]
     unturned = np.array([r is mat3.NO_TURN for r in distinct], dtype=bool).reshape(-1)[turns]
     low, high_box, finite = _shape_boxes(-high, high, xyz, rotation, unturned)
+    shape_low, shape_high = low, high_box  # (each shape's, before the links' are taken)
     count = len(names)
     starts = np.searchsorted(shape_rows, np.arange(count)) if count else shape_rows
     extents = np.zeros(count)
@@ -749,7 +750,7 @@ def _plain_links(robot) -> PlainLinks:
     renumbered[kept] = np.arange(len(kept))
     shapes_kept = renumbered[shape_rows] >= 0 if count else np.zeros(0, dtype=bool)
     table.shape_rows = renumbered[shape_rows][shapes_kept] if count else shape_rows
-    table.kinds = np.array(kinds, dtype=np.int8)[shapes_kept]
+    table.kinds = kinds[shapes_kept]
     # as support._piece places a shape of a link alone: centre 0 + I xyz, rotation I R
     one = np.asarray(mat3.IDENTITY)
     x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
@@ -767,7 +768,198 @@ def _plain_links(robot) -> PlainLinks:
     table.sizes = high[shapes_kept]
     cylinders = table.kinds == 1
     table.sizes[cylinders] = high[shapes_kept][cylinders][:, [0, 2, 2]]
+    taken = np.array(chosen, dtype=bool).reshape(-1)[shapes_kept] if count else \
+        np.zeros(0, dtype=bool)  # the shapes link_solid takes, of the links kept
+
+    def kept_taken(values):
+        return values[shapes_kept][taken] if count else values[:0]
+
+    table.units = _plain_units(
+        len(kept), table.shape_rows[taken], table.kinds[taken], kept_taken(dims),
+        kept_taken(xyz), kept_taken(rotation), kept_taken(shape_low), kept_taken(shape_high))
+    collision = np.zeros(len(kept), dtype=bool)
+    visual = np.logical_not(np.array(collisions, dtype=bool).reshape(-1))[shapes_kept] \
+        if count else np.zeros(0, dtype=bool)
+    if count:  # the links with a <collision> shape: link_solid takes those
+        collision[table.shape_rows[np.logical_not(visual)]] = True
+    table.units["collision"], table.solids = collision, {}
+    # each link's <visual> shapes' volume, summed in order (the larger body the density rule asks of)
+    table.units["visual"] = _summed(len(kept), table.shape_rows[visual], _unit_volumes(
+        table.kinds[visual], dims[shapes_kept][visual] if count else dims[:0]))
+    table.units["visuals"] = np.bincount(table.shape_rows[visual], minlength=len(kept))
     return table
+
+
+def _unit_volumes(kinds, dims):
+    """The volume of each primitive (``kinds`` 0 box, 1 cylinder, 2 sphere; ``dims``
+    :func:`_dimensions`) as :func:`unit_volume` gives it (its unit solid's mass)."""
+    import numpy as np
+
+    a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
+    with np.errstate(all="ignore"):
+        return np.where(kinds == 0, a * b * c, np.where(kinds == 1, math.pi * a * a * b, b))
+
+
+def _parts_in_order(rows) -> list:
+    """For items of links ``rows`` (ascending, each link's items together, in order): for
+    k = 0, 1, ..., whether each item is its link's k-th."""
+    import numpy as np
+
+    if not len(rows):
+        return []
+    order = np.arange(len(rows)) - np.searchsorted(rows, rows, "left")
+    return [order == k for k in range(int(order.max()) + 1)]
+
+
+def _summed(count: int, rows, values):
+    """Per link of ``count``, the sum of its items' ``values`` (``rows`` as for
+    :func:`_parts_in_order`) from 0 in their order, as Python's ``sum`` adds them."""
+    import numpy as np
+
+    total = np.zeros(count)
+    with np.errstate(all="ignore"):
+        for at in _parts_in_order(rows):
+            total[rows[at]] = total[rows[at]] + values[at]
+    return total
+
+
+def _dimensions(shape: Shape) -> tuple[float, float, float, float]:
+    """What :func:`_plain_links` measures a primitive from: its kind (0 box, 1 cylinder, 2
+    sphere) and a box's size, a cylinder's (radius, length, 0), a sphere's (radius, volume, 0)
+    (its volume from :func:`~urdftool.physics.mass.sphere_volume`: a cube as Python's ``**``
+    gives it)."""
+    p = shape.params
+    if shape.kind == "box":
+        a, b, c = p["size"]
+        return 0.0, a, b, c
+    if shape.kind == "cylinder":
+        return 1.0, p["radius"], p["length"], 0.0
+    return 2.0, p["radius"], mp.sphere_volume(p["radius"]), 0.0
+
+
+def _local_highs(kinds, dims):
+    """Each primitive's :func:`_local_box` high corner (its low one is its negation): a box's
+    half size, a cylinder's (radius, radius, half length), a sphere's radius thrice."""
+    import numpy as np
+
+    a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
+    box, cylinder = (kinds == 0)[:, None], (kinds == 1)[:, None]
+    with np.errstate(all="ignore"):
+        return np.where(box, np.stack([a / 2, b / 2, c / 2], axis=1), np.where(
+            cylinder, np.stack([a, a, b / 2], axis=1), np.stack([a, a, a], axis=1)))
+
+
+def _plain_units(count: int, rows, kinds, dims, xyz, rotation, low, high) -> dict:
+    """The unit-density solid of each of ``count`` plain links, from its chosen shapes (those
+    :func:`link_solid` takes, in order: ``rows`` the link of each, ``kinds`` 0 box, 1 cylinder,
+    2 sphere, ``dims`` :func:`_dimensions`, placed by ``xyz`` and ``rotation``, their boxes
+    ``low``, ``high`` as :func:`_measured` finds them): :func:`~urdftool.physics.mass.box`,
+    ``cylinder`` or ``sphere``, ``transformed``, then ``combine`` as :func:`computed` takes
+    them, every product and sum in their order (numpy's elementwise operations are IEEE's, as
+    Python's), so the same numbers to the bit. A dict of arrays: ``mass`` (n,) (the volume,
+    summed as :func:`volume` sums it), ``com`` (n, 3), ``inertia`` (n, 3, 3), ``low`` and
+    ``high`` (n, 3) (the box of the chosen shapes, a zero of either sign as +0);
+    :func:`_plain_links` adds ``collision`` (whether the link has a <collision> shape: its
+    solid's source), ``visual`` (the volume of its <visual> shapes, summed in order) and
+    ``visuals`` (how many)."""
+    import numpy as np
+
+    with np.errstate(all="ignore"):
+        a, b, c = dims[:, 0], dims[:, 1], dims[:, 2]
+        box, cylinder = kinds == 0, kinds == 1
+        # mass.box / cylinder / sphere: the volume and the diagonal, as each writes them
+        m = _unit_volumes(kinds, dims)
+        side = m * (3 * a * a + b * b) / 12
+        moment = 2 / 5 * m * a * a
+        diagonal = np.stack([np.where(box, m * (b * b + c * c) / 12, np.where(cylinder, side, moment)),
+                             np.where(box, m * (a * a + c * c) / 12, np.where(cylinder, side, moment)),
+                             np.where(box, m * (a * a + b * b) / 12,
+                                      np.where(cylinder, m * a * a / 2, moment))], axis=1)
+        local = np.zeros((len(m), 3, 3))
+        for i in range(3):
+            local[:, i, i] = diagonal[:, i]
+        r = rotation
+        # mass.transformed: com xyz + R (0, 0, 0); inertia R T R^T (mat3.multiply's sums)
+        com = np.stack([xyz[:, i] + (r[:, i, 0] * 0.0 + r[:, i, 1] * 0.0 + r[:, i, 2] * 0.0)
+                        for i in range(3)], axis=1)
+        turned = np.empty_like(local)
+        for i in range(3):
+            for j in range(3):
+                turned[:, i, j] = r[:, i, 0] * local[:, 0, j] + r[:, i, 1] * local[:, 1, j] + \
+                    r[:, i, 2] * local[:, 2, j]
+        inertia = np.empty_like(local)
+        for i in range(3):
+            for j in range(3):
+                inertia[:, i, j] = turned[:, i, 0] * r[:, j, 0] + turned[:, i, 1] * r[:, j, 1] + \
+                    turned[:, i, 2] * r[:, j, 2]
+        # mass.combine over each link's parts in order: the sums start at 0, part by part
+        taken = [(rows[at], m[at], com[at], inertia[at])
+                 for at in _parts_in_order(rows)]  # each link's k-th parts
+        mass, weighted = _summed(count, rows, m), np.zeros((count, 3))
+        for link, mk, ck, _ in taken:
+            weighted[link] = weighted[link] + mk[:, None] * ck
+        centre = weighted / mass[:, None]
+        total = np.zeros((count, 3, 3))
+        for link, mk, ck, ik in taken:
+            d = ck - centre[link]
+            squared = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2]
+            for i in range(3):
+                for j in range(3):
+                    shift = squared - d[:, i] * d[:, j] if i == j else 0.0 - d[:, i] * d[:, j]
+                    total[link, i, j] = total[link, i, j] + (ik[:, i, j] + mk * shift)
+        # the box of the chosen shapes, as _joined gives it (its zeros as +0)
+        first = np.full((count, 3), np.inf), np.full((count, 3), -np.inf)
+        np.minimum.at(first[0], rows, low)
+        np.maximum.at(first[1], rows, high)
+    return {"mass": mass, "com": centre, "inertia": total, "low": first[0] + 0.0,
+            "high": first[1] + 0.0}
+
+
+class PlainSolid:
+    """What :func:`link_solid` gives for a link of :class:`PlainLinks` that the inertia rules
+    read, measured with the others at once: ``source``, ``bounds`` (a zero of either sign as
+    +0), ``extent``; ``sound`` and ``counts`` (a plain link's primitives all count);
+    :func:`volume` and :func:`computed` of it are the same numbers as of the link's
+    :class:`LinkSolid`."""
+
+    __slots__ = ("source", "bounds", "extent", "unit")
+    sound = True
+    counts = True
+
+    def __init__(self, source: str, bounds, extent: float, unit: mp.Body):
+        self.source, self.bounds, self.extent, self.unit = source, bounds, extent, unit
+
+
+def plain_solid(robot, link) -> PlainSolid | None:
+    """The :class:`PlainSolid` of ``link`` when it is one of :func:`plain_links` (the link of
+    its name), else None."""
+    table = plain_links(robot)
+    if table is None:
+        return None
+    name = link.get("name")
+    found = table.solids.get(name)
+    if found is None:
+        row = table.rows.get(name)
+        if row is None or robot.links.get(name) is not link:
+            return None
+        if not table.solids:  # all at once, the first time: lists, not a numpy row each
+            _plain_solids(table)
+        found = table.solids[name]
+    return found
+
+
+def _plain_solids(table: PlainLinks) -> None:
+    units = table.units
+    masses, coms, inertias = units["mass"].tolist(), units["com"].tolist(), \
+        units["inertia"].tolist()
+    lows, highs, extents = units["low"].tolist(), units["high"].tolist(), \
+        table.extents.tolist()
+    sources = ["collision" if c else "visual" for c in units["collision"].tolist()]
+    for name, row in table.rows.items():
+        (a, b, c), (d, e, f), (g, h, i) = inertias[row]
+        table.solids[name] = PlainSolid(
+            sources[row], (tuple(lows[row]), tuple(highs[row])), extents[row],
+            mp.Body(masses[row], tuple(coms[row]), ((a, b, c), (d, e, f), (g, h, i))))
 
 
 def _shape_boxes(low, high, xyz, rotation, unturned):
@@ -871,8 +1063,10 @@ def _bodies(robot) -> dict[str, tuple[str, dict]]:
     return robot.memo(_bodies, build)
 
 
-def volume(solid: LinkSolid) -> float:
+def volume(solid: LinkSolid | PlainSolid) -> float:
     """The summed volume of a solid's parts [m^3] (overlaps count twice; 0 without parts)."""
+    if isinstance(solid, PlainSolid):
+        return solid.unit.mass  # (summed so)
     # the parts' masses (unit density), in their order, without placing them
     return sum(_unit_volume(entry) for entry in solid._build()[0])
 
@@ -882,12 +1076,17 @@ def computed(solid: LinkSolid, mass: float | None = None, density: float | None 
     from ``density`` [kg/m^3]. None without parts, or when their volume is no positive
     finite float (sizes of ~1e-108 m underflow to 0, of ~1e103 m overflow to infinity): such a
     solid says nothing of a tensor."""
-    if not solid.parts:
-        return None
-    volume = sum(part.mass for part in solid.parts)
-    if not 0 < volume < math.inf:
-        return None
-    unit = mp.combine(solid.parts)  # density 1: mass is volume
+    if isinstance(solid, PlainSolid):
+        unit = solid.unit  # (combined so)
+        if not 0 < unit.mass < math.inf:
+            return None
+    else:
+        if not solid.parts:
+            return None
+        volume = sum(part.mass for part in solid.parts)
+        if not 0 < volume < math.inf:
+            return None
+        unit = mp.combine(solid.parts)  # density 1: mass is volume
     if mass is not None:
         return unit.scaled_to(mass)
     return unit.scaled_to(unit.mass * (density if density is not None else 1000.0))

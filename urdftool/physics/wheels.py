@@ -45,9 +45,12 @@ _NOT_CASTER = re.compile(r"base|mount|holder|plate|bracket|support|housing|fork|
 FOOTPRINT = "base_footprint"
 
 
+_CAMEL = re.compile(r"(?<=[a-z0-9])(?=[A-Z])")
+
+
 def _words(name: str) -> str:
     """A name lower-cased with camel case split (``WheelLeft`` -> ``wheel_left``)."""
-    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
+    return _CAMEL.sub("_", name).lower()
 
 
 @dataclass(frozen=True)
@@ -91,8 +94,9 @@ def _identify(robot) -> list[Wheel]:
     parents = parent_joints(robot)
     driven = driven_joints(robot)
     found: dict[str, Wheel] = {}
+    ends = robot.ends()
     for name, joint in robot.joints.items():
-        child = robot.ends()[joint]["child"][1] if joint in robot.ends() else None
+        child = ends[joint]["child"][1] if joint in ends else None
         if child is None or child not in robot.links or parents.get(child) is not joint:
             continue
         kind = joint.get("type")
@@ -120,7 +124,12 @@ def _identify(robot) -> list[Wheel]:
 
 
 def _named_wheel(*names: str) -> bool:
-    for text in (_words(name) for name in names):
+    for name in names:
+        lower = name.lower()  # _words(name) is it with "_" put in: without a wheel word in
+        # it, _WHEEL finds none there (most names: not split, not searched)
+        if "wheel" not in lower and "tire" not in lower and "tyre" not in lower:
+            continue
+        text = _words(name)
         if _WHEEL.search(text) and not _NOT_WHEEL.search(text.replace("wheel", " ")):
             return True
     return False

@@ -397,3 +397,35 @@ def test_plain_links_settled_at_once_as_the_per_link_path_settles_them(tmp_path,
     assert rules(robot) == expected
     if isinstance(expected[3], list):  # (not a crash)
         assert len(expected[3]) > 3 and inertials._plain_volumes(robot)  # U311, at once
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_plain_solids_give_the_rules_on_solids_what_the_per_link_solids_give(tmp_path,
+                                                                            monkeypatch, seed):
+    """U309, U310, U314, U315 and U316 read a large robot's plain links' solids measured at
+    once (solids.plain_solid): the same findings (where, message and fix) as from each
+    link's own LinkSolid, over random robots with awkward numbers."""
+    from plain_robots import plain_robot
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import solids
+
+    (tmp_path / "r.urdf").write_text(plain_robot(seed, 240))
+
+    def rules(robot):
+        found = []
+        for check in (inertials.inertia_unit_mistake, inertials.inertia_far_from_geometry,
+                      inertials.principal_moments_order, inertials.density_in_grams,
+                      inertials.inertia_beyond_geometry):
+            found.append([(robot.locate(where), message, *rest)
+                          for where, message, *rest in check(robot)])
+        return found
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 10 ** 9)
+    expected = rules(load(tmp_path / "r.urdf"))
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    robot = load(tmp_path / "r.urdf")
+    assert rules(robot) == expected
+    plain = [solid for _, _, solid in inertials._link_solids(robot)
+             if isinstance(solid, solids.PlainSolid)]
+    assert len(plain) > 20 and sum(map(len, expected)) > 0

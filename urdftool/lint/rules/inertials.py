@@ -361,10 +361,13 @@ def _all_equal(properties) -> bool:
 
 
 def _link_solids(robot):
-    """(link, declared, LinkSolid) for links with mass and geometry, computed once per robot."""
-    return robot.memo(_link_solids, lambda: [(link, properties, _solid(robot, link))
-                                             for link, properties in _valid(robot)
-                                             if properties.mass > 0])
+    """(link, declared, solid) for links with mass, computed once per robot: the link's
+    :class:`~urdftool.physics.solids.PlainSolid` when it is one of a large robot's plain links
+    (measured with the others at once: what the rules read of its LinkSolid, the same
+    numbers), else its :class:`~urdftool.physics.solids.LinkSolid`, built in order."""
+    return robot.memo(_link_solids, lambda: [
+        (link, properties, solids.plain_solid(robot, link) or _solid(robot, link))
+        for link, properties in _valid(robot) if properties.mass > 0])
 
 
 def _rounded(values) -> str:
@@ -488,9 +491,14 @@ def root_link_inertia(robot):
     """
     children = {c.get("link") for j in robot.children("joint")
                 for c in robot.grouped(j).get("child", ())}
-    masses = dict((_name(l), p.mass) for l, p in _valid(robot))
     roots = [name for name in robot.links if name not in children]
-    if len(roots) == 1 and masses.get(roots[0], 0) > 0:
+    if len(roots) != 1:
+        return
+    masses = {}  # the root's (the last link of its name with an inertial, as a dict keeps)
+    for link, properties in _valid(robot):
+        if _name(link) == roots[0]:
+            masses[roots[0]] = properties.mass
+    if masses.get(roots[0], 0) > 0:
         root = robot.links[roots[0]]
         name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
                     if n not in robot.links and f"{n}_joint" not in robot.joints)
@@ -683,7 +691,8 @@ def _volume_bounds(robot, link, solid, mass: float) -> tuple[float, float | None
 
 
 def _plain_volumes(robot) -> dict:
-    """link -> (whether :func:`_body_sized`, the source, the volume [m^3]) of the links of
+    """link -> (whether :func:`_body_sized`, the source, the volume [m^3], the volume of its
+    <visual> shapes [m^3] or None without) of the links of
     :func:`~urdftool.physics.solids.plain_links` with mass (the volume of the geometry
     :func:`~urdftool.physics.solids.link_solid` takes, as :func:`~urdftool.physics.solids.
     volume` sums it), measured without their solids; every other link with mass has its
@@ -692,7 +701,12 @@ def _plain_volumes(robot) -> dict:
     def build():
         table = solids.plain_links(robot)
         rows = table.rows if table is not None else {}
-        extents = table.extents.tolist() if table is not None else []
+        if table is not None:  # the volumes as the shapes' unit_volume sums them, at once
+            units = table.units
+            extents, volumes = table.extents.tolist(), units["mass"].tolist()
+            visual = [v if n else None for v, n in zip(units["visual"].tolist(),
+                                                         units["visuals"].tolist())]
+            sources = ["collision" if c else "visual" for c in units["collision"].tolist()]
         found, marker = {}, MARKER_EXTENT * 1.01
         for link, properties in _valid(robot):
             if not properties.mass > 0:
@@ -702,11 +716,7 @@ def _plain_volumes(robot) -> dict:
             if row is None or robot.links.get(name) is not link:
                 _solid(robot, link)
                 continue
-            shapes = solids.shapes(robot, link, "collision")
-            source = "collision" if shapes else "visual"
-            volume = sum([solids.unit_volume(shape) for shape in
-                          shapes or solids.shapes(robot, link, "visual")])
-            found[link] = (marker < extents[row] <= 5.0, source, volume)
+            found[link] = (marker < extents[row] <= 5.0, sources[row], volumes[row], visual[row])
         return found
 
     return robot.memo(_plain_volumes, build)
@@ -715,13 +725,12 @@ def _plain_volumes(robot) -> dict:
 def _plain_volume_bounds(robot, link, found, mass: float) -> tuple[float, float | None]:
     """:func:`_volume_bounds` of a link of :func:`_plain_volumes` of a plain size (its
     geometry is trustworthy, and all of it loaded)."""
-    _, source, own = found
+    _, source, own, visual = found
     if own > 0 and mass / own <= DENSEST:
         return own, None
     volumes = [own]
-    if source == "collision" and robot.grouped(link).get("visual"):
-        volumes.append(sum([solids.unit_volume(shape)
-                            for shape in solids.shapes(robot, link, "visual")]))
+    if source == "collision" and visual is not None:  # (a plain link's visuals all count)
+        volumes.append(visual)
     return own, max(volumes)
 
 
@@ -749,6 +758,8 @@ def implausible_density(robot):
     Good: ``<mass value="1.6"/>`` (aluminium)
     """
     plain = _plain_volumes(robot)
+    osmium = number(DENSEST, places=0, grouped=True)  # (in every message)
+    denser: dict = {}  # (mass, volume) -> what is said of them (copies of a link repeat them)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
@@ -766,12 +777,14 @@ def implausible_density(robot):
         if bounds is None or bounds[1] is not None and bounds[1] <= 0:
             continue
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
-        if least > DENSEST:
-            yield _inertial_part(link, "mass"), (
-                f"link '{_name(link)}': {properties.mass:g} kg in at most "
-                f"{number(bounds[1], 3)} m^3 of geometry is at least "
-                f"{number(least, places=0, grouped=True)} kg/m^3, denser than osmium "
-                f"({number(DENSEST, places=0, grouped=True)}); a wrong mass or geometry scale")
+        if least > DENSEST:  # (mass and volume positive: equal keys, the same numbers)
+            said = denser.get((properties.mass, bounds[1]))
+            if said is None:
+                said = denser[properties.mass, bounds[1]] = (
+                    f"{properties.mass:g} kg in at most {number(bounds[1], 3)} m^3 of geometry "
+                    f"is at least {number(least, places=0, grouped=True)} kg/m^3, denser than "
+                    f"osmium ({osmium}); a wrong mass or geometry scale")
+            yield _inertial_part(link, "mass"), f"link '{_name(link)}': {said}"
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
@@ -803,11 +816,13 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     if joint is None:
         return None
     xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
-    com = properties.com
-    if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
+    (cx, cy, cz), (x, y, z) = properties.com, xyz
+    # the centre of mass first (most links: not the joint's; written out, 10,000 links),
+    # then the joint's distance, then the written origin
+    if not (abs(cx - x) <= 1e-9 + 1e-6 * abs(cx) and abs(cy - y) <= 1e-9 + 1e-6 * abs(cy)
+            and abs(cz - z) <= 1e-9 + 1e-6 * abs(cz)):
         return None
-    # the centre of mass first (most links: not the joint's), then the written origin
-    if not all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(com, xyz)):
+    if math.sqrt(mat3.dot(xyz, xyz)) <= COM_HULL_MIN:
         return None
     written = origin_of(first_child(link, "inertial")).xyz
     if all(abs(a - b) <= 1e-9 + 1e-6 * abs(a) for a, b in zip(written, xyz)):

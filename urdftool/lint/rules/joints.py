@@ -195,18 +195,24 @@ def _numeric_problems(robot) -> list:
 
 def _numeric_fields(robot) -> list:
     found = []
+    sound: dict[int, set] = {}  # count -> texts already found to be that many finite numbers
     for joint in robot.children("joint"):
         for tag, elements in robot.grouped(joint).items():
             fields = _FIELDS_BY_TAG.get(tag)
             if fields is None:
                 continue  # parent, child: no numbers
             for attribute, count in fields:
+                known = sound.get(count)
+                if known is None:
+                    known = sound[count] = set()
                 for element in elements:
                     text = element.get(attribute)
-                    if text is not None:
+                    if text is not None and text not in known:  # (robots repeat their values)
                         values, problem = number_tuple(text, count)
                         if problem or not finite(values):
                             found.append((joint, element, attribute, values, problem))
+                        else:
+                            known.add(text)
     return found
 
 

@@ -112,7 +112,7 @@ def _walk_children(element, key: str, place: Place, found: list) -> None:
             if len(child):
                 _walk_children(child, name, child_place, found)
             continue
-        if _skipped(tag):
+        if tag not in children and _skipped(tag):  # (a name the place knows is plain)
             continue
         if key == "geometry":
             shapes += 1
