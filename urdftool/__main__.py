@@ -135,11 +135,14 @@ def _guarded(words: list[str]) -> bool:
     alone is checked there). In the guardian: end as the child ended, or return False to run
     the command again with the piece the child was stopped in given its Stop (over its time,
     or died: U015, U900) without doing it. False with nothing forked for other words, standard
-    input (read once), ``--fix`` and ``--diff`` (files written between two checks): those check
-    in budgeted workers."""
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks), or in a
+    process where other threads run: those check in budgeted workers."""
     values = _plain_check(words) if words[:1] == ["check"] else None
     if values is None or "-" in values["words"] or values["fix"] or values["diff"]:
         return False
+    threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
+    if threading is not None and threading.active_count() > 1:  # a caller's threads: a
+        return False  # process forked from them may find a lock held forever
     from urdftool import guardian
 
     found = guardian.guarded()

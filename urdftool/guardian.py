@@ -118,10 +118,8 @@ def _guard(pid: int, read: int, slot):
                        _where(slot))
         if stopped is not None:
             return None, stopped
-        if code < 0:  # a signal ended it: the same end
-            signal.signal(-code, signal.SIG_DFL)
-            os.kill(os.getpid(), -code)
-            code = 128 - code
+        if code < 0:  # a signal ended it: the status a shell gives (never this process
+            code = 128 - code  # killed: a caller running the door in its own process goes on)
         return code, None
     finally:
         signal.signal(signal.SIGINT, interrupt)

@@ -478,3 +478,19 @@ def test_a_check_over_its_memory_under_the_guardian_is_stopped_and_reported(tmp_
     done = _door(tmp_path, patch, "check", "--no-cache", "--max-memory", "700M", "a.urdf")
     assert done.returncode == 1, done.stderr
     assert "U018" in done.stdout and "700 MiB" in done.stdout, done.stdout + done.stderr
+
+
+def test_a_check_in_a_process_running_other_threads_forks_no_guardian(tmp_path):
+    """A process forked from one where other threads run may find a lock one of them held
+    forever (a segmentation fault was seen in such a child): there the check's file goes to a
+    budgeted worker, as before the guardian."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("import threading\nthreading.Thread(target=__import__('time').sleep, args=(60,),"
+             " daemon=True).start()\nfork = os.fork\ndef counted():\n"
+             "    big = {'urdftool.lint.engine', 'dataclasses'} & set(sys.modules)\n"
+             "    pid = fork()\n"
+             "    if pid: os.write(2, b'[fork after rules]' if big else b'[fork before rules]')\n"
+             "    return pid\nos.fork = counted")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")
+    assert "no problems found" in done.stdout, done.stderr
+    assert "[fork before rules]" not in done.stderr, done.stderr
