@@ -29,8 +29,13 @@ into the engine): it saves a fifth of the check of a 10,000-link robot, and the 
 passes over the imports, in the parent and, page by page, in the forked worker, of a one-file
 check (``make bench``). A check run without Typer ends without tearing the interpreter down
 (:func:`_end`): under 50 ms on the corpus and on a 10,000-link robot, it stays while the check of
-robots/r2d2 misses its goal without it. A one-file check keeps its budgeted worker: in this
-process it cost the same, and a hung C call can only be stopped from outside.
+robots/r2d2 misses its goal without it.
+
+A plain check forks first, small, into a guardian and the process that runs the command
+(:func:`_guarded`, :mod:`urdftool.guardian`): a budgeted file checked alone is checked in that
+process, not in a worker forked after the rules were imported (whose pages it copied one by
+one), and the guardian, outside, keeps the budget a worker had (a hung C call is killed at
+--timeout, the stop reported by the guardian: U015; a death in the check: U900).
 """
 
 from __future__ import annotations
@@ -51,11 +56,34 @@ def main() -> None:
 def _main() -> None:
     words = sys.argv[1:]
     _help(words)
+    if _guarded(words):  # the child: it runs the command, and ends as the program
+        from urdftool.guardian import end_after
+
+        end_after(lambda: _ended(words))
+    with _verdict_given():
+        _command(words)
+
+
+def _ended(words: list[str]) -> None:
+    """The command run as the program (:func:`urdftool.streams.run`), ended by :func:`_end`
+    (the exit functions run, the status the streams allow) however it ends."""
+    from urdftool.streams import run
+
+    try:
+        run(lambda: _command(words))
+    except SystemExit as ended:
+        code = ended.code
+        if code is not None and not isinstance(code, int):
+            sys.stderr.write(f"{code}\n")  # (as Python ends on such an exit)
+            code = 1
+        _end(code or 0)
+
+
+def _command(words: list[str]) -> None:
     kept_code()
-    check = words[:1] == ["check"]
-    if check:
-        _collect_less()
+    if words[:1] == ["check"]:
         _check(words)
+        _collect_less()
     from urdftool.cli import main as run
 
     run()
@@ -65,14 +93,7 @@ def _check(words: list[str]) -> None:
     """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
     parameters kept from the Typer app) and the standard streams are ones click writes to as
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
-    if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
-        return
-    from urdftool.terminal import option_named_by_a_file
-
-    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
-        return
-    parameters = kept_words("check")
-    values = None if parameters is None else plain_words(words[1:], parameters)
+    values = _plain_check(words)
     if values is None:
         return
     from urdftool.terminal import plain
@@ -80,6 +101,7 @@ def _check(words: list[str]) -> None:
     terminal = plain()
     if terminal is None:
         return
+    _collect_less()
     from urdftool.checking import run
 
     try:
@@ -88,10 +110,68 @@ def _check(words: list[str]) -> None:
         terminal.echo("", err=True)
         terminal.say("Aborted!", err=True)
         code = 1
+    except SystemExit as ended:  # a usage error
+        if not isinstance(ended.code, int):
+            raise
+        code = ended.code
     _end(code)
 
 
-def _end(code: int) -> None:
+def _plain_check(words: list[str]) -> dict | None:
+    """The values of ``check``'s parameters for ``words`` when they are plain (with the
+    parameters kept from the Typer app), else None; None too when click's shell completion
+    asks, or an option is named by a file (Typer's usage error says it)."""
+    if "_URDFTOOL_COMPLETE" in os.environ:
+        return None
+    from urdftool.terminal import option_named_by_a_file
+
+    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
+        return None
+    parameters = kept_words("check")
+    return None if parameters is None else plain_words(words[1:], parameters)
+
+
+def _guarded(words: list[str]) -> bool:
+    """Run a check whose words are plain (:func:`plain_words`) under a guardian forked now
+    (:func:`urdftool.guardian.guarded`), before anything else is imported or the kept code is
+    given, rather than in a budgeted worker forked after the rules are imported (whose pages it
+    copied one by one). True in the child, which runs the command (a budgeted file checked
+    alone is checked there). In the guardian: end as the child ended, or return False to run
+    the command again with the piece the child was stopped in given its Stop (over its time,
+    or died: U015, U900) without doing it. False with nothing forked for other words, standard
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks), or in a
+    process where other threads run: those check in budgeted workers."""
+    values = _plain_check(words) if words[:1] == ["check"] else None
+    if values is None or "-" in values["words"] or values["fix"] or values["diff"]:
+        return False
+    threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
+    if threading is not None and threading.active_count() > 1:  # a caller's threads: a
+        return False  # process forked from them may find a lock held forever
+    from urdftool import guardian
+
+    found = guardian.guarded()
+    if found is None:
+        return guardian.guarding()
+    code, verdict = found
+    if verdict is None:
+        _end(code, exit_functions=False)  # (the child's, which ran them)
+    guardian.stopped_as(verdict)
+    return False
+
+
+@contextmanager
+def _verdict_given():
+    """No verdict of :func:`_guarded` left for what this process does after the check (a
+    caller running the door in its own process)."""
+    try:
+        yield
+    finally:
+        from urdftool import guardian
+
+        guardian.stopped_as(None)
+
+
+def _end(code: int, exit_functions: bool = True) -> None:
     """Exit with ``code`` as ``SystemExit`` would, without tearing the interpreter down: the
     standard streams flushed, the exit functions run (last registered first, once), the
     streams flushed again, then the process ends, not freeing the rules', the robot's and the
@@ -105,9 +185,10 @@ def _end(code: int) -> None:
     from urdftool.streams import end
 
     code = end(code)
-    import atexit
+    if exit_functions:
+        import atexit
 
-    atexit._run_exitfuncs()
+        atexit._run_exitfuncs()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

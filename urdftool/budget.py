@@ -15,6 +15,7 @@ import os
 from dataclasses import dataclass
 
 from urdftool.errors import UsageError
+from urdftool.guardian import SLOT_SIZE as _SLOT_SIZE  # (the slot of the guardian's child too)
 
 # ``Location`` below is urdftool.diagnostics.Location, in annotations only (never evaluated):
 # importing typing for TYPE_CHECKING would slow every command's start-up
@@ -25,7 +26,6 @@ DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
 # on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
 _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 _UNITS = {"": 1, "K": 1024, "M": 1024 ** 2, "G": 1024 ** 3, "T": 1024 ** 4}
-_SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on
 
 
 @dataclass(frozen=True)

@@ -192,9 +192,41 @@ def test_a_worker_inherits_pickle_from_the_process_that_forked_it(tmp_path):
     not again in each worker (``-X importtime`` prints a line per import, in either process)."""
     import re
 
-    robot = tmp_path / "r.urdf"
-    robot.write_text('<robot name="r"><link name="a"/></robot>\n')
+    robots = [tmp_path / "r.urdf", tmp_path / "s.urdf"]  # (one file: no worker, see
+    for robot in robots:  # test_a_plain_check_of_one_file_forks_before_the_rules_are_imported)
+        robot.write_text('<robot name="r"><link name="a"/></robot>\n')
     done = subprocess.run([sys.executable, "-X", "importtime", "-m", "urdftool", "check",
-                           "--no-cache", str(robot)], capture_output=True, text=True, timeout=120)
+                           "--no-cache", "--jobs", "1", *map(str, robots)], capture_output=True,
+                          text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert len(re.findall(r"\|\s+pickle$", done.stderr, re.M)) == 1, done.stderr
+
+
+def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
+    """``guarded``: the child's pieces are counted from the fork, as the guardian counts them
+    when it does the work again, whatever pieces this process ran before; the verdict is given
+    once, to that piece, and not left to a later run."""
+    import time
+
+    from urdftool import guardian
+
+    budget = Budget(0.5, None)
+    for _ in range(3):  # pieces of this process before
+        assert run_budgeted(1, lambda index: "done", budget, lambda _, stop: stop) == ["done"]
+    found = guardian.guarded()
+    if found is None:  # the child: its one piece runs for a minute
+        guardian.end_after(lambda: run_budgeted(1, lambda index: time.sleep(60), budget,
+                                            lambda _, stop: stop))
+
+    def never(index):
+        raise AssertionError("the stopped piece is not done again")
+
+    code, verdict = found
+    assert code is None and verdict[1] == "time"
+    guardian.stopped_as(verdict)
+    try:
+        [stop] = run_budgeted(1, never, budget, lambda _, stop: stop)
+        assert stop.kind == "time" and stop.budget == budget
+        assert run_budgeted(1, lambda index: "again", budget, lambda _, stop: stop) == ["again"]
+    finally:
+        guardian.stopped_as(None)
