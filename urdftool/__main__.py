@@ -36,6 +36,11 @@ A plain check forks first, small, into a guardian and the process that runs the 
 process, not in a worker forked after the rules were imported (whose pages it copied one by
 one), and the guardian, outside, keeps the budget a worker had (a hung C call is killed at
 --timeout, the stop reported by the guardian: U015; a death in the check: U900).
+
+The door acts on its process (forks it into a guardian, ends it with ``os._exit``) only when
+it is the program: :func:`main` called from the top level of the script Python runs, decided
+once (:data:`PROGRAM`). A caller running the door inside its own program (a test runner's
+worker, with a thread of its own reading its orders) keeps its process, and gets SystemExit.
 """
 
 from __future__ import annotations
@@ -47,10 +52,21 @@ from contextlib import contextmanager
 
 def main() -> None:
     """The program: :func:`_main` within :func:`urdftool.streams.run` (how it writes and ends
-    when its output or its reader fails)."""
+    when its output or its reader fails). Whether this call is the program's, the top level of
+    the script Python runs (``urdftool``, ``python -m urdftool``, ``python -c``) and the first,
+    is decided here, once (:data:`PROGRAM`): only then may the door fork its guardian
+    (:func:`_guarded`); a caller running the door inside a process of its own (a test runner)
+    is no such program, and its process must not be forked."""
+    caller = sys._getframe(1)
+    PROGRAM["entry"] = PROGRAM["entry"] is None and caller.f_code.co_name == "<module>" and \
+        caller.f_globals.get("__name__") == "__main__"
     from urdftool.streams import run
 
     run(_main)
+
+
+# entry: None before main() is first called; then whether that call was the program's own
+PROGRAM: dict = {"entry": None}
 
 
 def _main() -> None:
@@ -93,6 +109,10 @@ def _check(words: list[str]) -> None:
     """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
     parameters kept from the Typer app) and the standard streams are ones click writes to as
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
+    from urdftool.terminal import option_named_by_a_file
+
+    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
+        return
     values = _plain_check(words)
     if values is None:
         return
@@ -120,12 +140,8 @@ def _check(words: list[str]) -> None:
 def _plain_check(words: list[str]) -> dict | None:
     """The values of ``check``'s parameters for ``words`` when they are plain (with the
     parameters kept from the Typer app), else None; None too when click's shell completion
-    asks, or an option is named by a file (Typer's usage error says it)."""
+    asks."""
     if "_URDFTOOL_COMPLETE" in os.environ:
-        return None
-    from urdftool.terminal import option_named_by_a_file
-
-    if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
         return None
     parameters = kept_words("check")
     return None if parameters is None else plain_words(words[1:], parameters)
@@ -139,14 +155,18 @@ def _guarded(words: list[str]) -> bool:
     alone is checked there). In the guardian: end as the child ended, or return False to run
     the command again with the piece the child was stopped in given its Stop (over its time,
     or died: U015, U900) without doing it. False with nothing forked for other words, standard
-    input (read once), ``--fix`` and ``--diff`` (files written between two checks), or in a
-    process where other threads run: those check in budgeted workers."""
-    values = _plain_check(words) if words[:1] == ["check"] else None
-    if values is None or "-" in values["words"] or values["fix"] or values["diff"]:
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks), without
+    budgets (``--timeout 0 --max-memory 0``: the command line wins over settings files, and
+    the check runs in one process, nothing to guard), when the
+    door is not the program (:data:`PROGRAM`: a caller's process is not ours to fork, nor to
+    end), or in a process where other threads run (a process forked from them may find a lock
+    one of them held forever): those check in budgeted workers."""
+    if not PROGRAM["entry"] or words[:1] != ["check"]:
         return False
-    threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
-    if threading is not None and threading.active_count() > 1:  # a caller's threads: a
-        return False  # process forked from them may find a lock held forever
+    values = _plain_check(words)
+    if values is None or "-" in values["words"] or values["fix"] or values["diff"] or \
+            values["timeout"] == 0 and values["max_memory"] == "0" or not _one_thread():
+        return False
     from urdftool import guardian
 
     found = guardian.guarded()
@@ -157,6 +177,17 @@ def _guarded(words: list[str]) -> bool:
         _end(code, exit_functions=False)  # (the child's, which ran them)
     guardian.stopped_as(verdict)
     return False
+
+
+def _one_thread() -> bool:
+    """Whether this process runs one thread, as the system counts them (Linux: a thread
+    started below :mod:`threading`, by ``_thread`` or a library's C code, counts too); else as
+    :mod:`threading` counts them (not imported: none of its making runs)."""
+    try:
+        return len(os.listdir("/proc/self/task")) == 1
+    except OSError:
+        threading = sys.modules.get("threading")
+        return threading is None or threading.active_count() == 1
 
 
 @contextmanager
@@ -178,9 +209,11 @@ def _end(code: int, exit_functions: bool = True) -> None:
     libraries' objects one by one (the system frees the memory at once). Files are closed by
     then (the cache and ``--output`` write within ``with``); the status is the one
     :func:`urdftool.streams.end` gives when the output failed (a reader that left, a full
-    disk). Python ends as usual instead (``SystemExit``) while another thread runs."""
+    disk). Python ends as usual instead (``SystemExit``) while another thread of
+    :mod:`threading` runs (its work would be cut short), and when the door is not the program
+    (:data:`PROGRAM`: the process is its caller's to end)."""
     threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
-    if threading is not None and threading.active_count() > 1:
+    if not PROGRAM["entry"] or threading is not None and threading.active_count() > 1:
         raise SystemExit(code)
     from urdftool.streams import end
 

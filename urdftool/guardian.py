@@ -17,7 +17,7 @@ SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on (u
 
 # guardian: (channel to the guardian, slot) in a process :func:`guarded` forked, else None;
 # pieces: the budgeted single pieces this process has run; verdict: in the guardian's run
-# again, (piece, kind, detail, where) of the piece it stopped
+# again, (piece, kind, detail, the slot's bytes: where) of the piece it stopped
 STATE: dict = {"guardian": None, "pieces": 0, "verdict": None}
 
 
@@ -48,8 +48,9 @@ def guarded():
     frozen = gc.get_freeze_count()
     gc.freeze()  # the child's collector does not write into the pages it shares (copying them)
     pid = os.fork()
-    if pid and not frozen:  # (a caller's own frozen objects stay frozen)
-        gc.unfreeze()
+    if pid:
+        if not frozen:  # (a caller's own frozen objects stay frozen)
+            gc.unfreeze()
     else:
         os.close(read)
         die_with(parent)  # a guardian killed (SIGKILL) leaves no child to run unwatched
@@ -125,10 +126,10 @@ def _guard(pid: int, read: int, slot):
         signal.signal(signal.SIGINT, interrupt)
 
 
-def _where(slot):
-    from urdftool.budget import read_slot
-
-    return read_slot(slot)
+def _where(slot) -> bytes:
+    """What the child last wrote into ``slot`` (read as a location by the pool:
+    :func:`urdftool.budget.read_slot`, which is above this module)."""
+    return bytes(slot)
 
 
 def die_with(parent: int) -> None:

@@ -441,6 +441,18 @@ def test_a_plain_check_of_one_file_forks_before_the_rules_are_imported(tmp_path)
     assert done.stderr.count("[fork") == 1 and "[fork before rules]" in done.stderr, done.stderr
 
 
+def test_a_check_without_budgets_forks_nothing(tmp_path):
+    """``--timeout 0 --max-memory 0`` (the command line wins over settings files): no budget
+    to keep, so no guardian and no worker: the check runs in the one process."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("fork = os.fork\ndef counted():\n    os.write(2, b'[fork]')\n    return fork()\n"
+             "os.fork = counted")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "0", "--max-memory", "0",
+                 "a.urdf")
+    assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
+    assert "[fork]" not in done.stderr, done.stderr
+
+
 def test_a_hostile_file_checked_under_the_guardian_is_stopped_at_its_time(tmp_path):
     """Work the sandbox lets through but that would run for minutes: stopped at --timeout by
     the guardian, reported where it was (U015), as a worker's was; the exit status the
@@ -480,13 +492,17 @@ def test_a_check_over_its_memory_under_the_guardian_is_stopped_and_reported(tmp_
     assert "U018" in done.stdout and "700 MiB" in done.stdout, done.stdout + done.stderr
 
 
-def test_a_check_in_a_process_running_other_threads_forks_no_guardian(tmp_path):
+@pytest.mark.parametrize("started", [
+    "import threading\nthreading.Thread(target=__import__('time').sleep, args=(60,), "
+    "daemon=True).start()",
+    # a thread threading does not count (execnet's, in every pytest-xdist worker)
+    "import _thread\n_thread.start_new_thread(__import__('time').sleep, (60,))"])
+def test_a_check_in_a_process_running_other_threads_forks_no_guardian(tmp_path, started):
     """A process forked from one where other threads run may find a lock one of them held
-    forever (a segmentation fault was seen in such a child): there the check's file goes to a
-    budgeted worker, as before the guardian."""
+    forever: there the check's file goes to a budgeted worker, as before the guardian. Threads
+    as the system counts them."""
     (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
-    patch = ("import threading\nthreading.Thread(target=__import__('time').sleep, args=(60,),"
-             " daemon=True).start()\nfork = os.fork\ndef counted():\n"
+    patch = (f"{started}\nfork = os.fork\ndef counted():\n"
              "    big = {'urdftool.lint.engine', 'dataclasses'} & set(sys.modules)\n"
              "    pid = fork()\n"
              "    if pid: os.write(2, b'[fork after rules]' if big else b'[fork before rules]')\n"
@@ -494,3 +510,29 @@ def test_a_check_in_a_process_running_other_threads_forks_no_guardian(tmp_path):
     done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")
     assert "no problems found" in done.stdout, done.stderr
     assert "[fork before rules]" not in done.stderr, done.stderr
+
+
+def test_the_door_run_inside_another_program_neither_forks_nor_ends_it(monkeypatch, tmp_path,
+                                                                      capsys):
+    """``main()`` called by a program of its own (a test runner, an embedding tool), not as
+    the program's top level: the door forks no guardian from that program's process (the copy
+    would hold the caller's state, its threads' locks and pipes, and the guardian would end
+    the caller as the child ended), and does not end it with ``os._exit`` (before, this very
+    test ended pytest's process, silently): it raises SystemExit, and the file goes to a
+    budgeted worker, as before the guardian. Decided once, by the first call
+    (``door.PROGRAM``)."""
+    import urdftool.__main__ as door
+    from urdftool import guardian
+
+    forked = []
+    monkeypatch.setattr(guardian, "guarded", lambda: forked.append("guardian"))
+    monkeypatch.setattr(door, "kept_code", lambda path=None: None)
+    monkeypatch.setattr(door, "_collect_less", lambda: None)
+    monkeypatch.setattr(door, "PROGRAM", {"entry": None})
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    monkeypatch.setattr(sys, "argv", ["urdftool", "check", "--no-cache",
+                                      str(tmp_path / "a.urdf")])
+    with pytest.raises(SystemExit) as ended:
+        door.main()
+    assert ended.value.code == 0 and "no problems found" in capsys.readouterr().out
+    assert forked == [] and door.PROGRAM == {"entry": False}

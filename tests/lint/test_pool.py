@@ -230,3 +230,20 @@ def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
         assert run_budgeted(1, lambda index: "again", budget, lambda _, stop: stop) == ["again"]
     finally:
         guardian.stopped_as(None)
+
+
+def test_a_guardian_forked_where_objects_were_frozen_is_still_the_parent():
+    """``guarded`` in a process whose objects were frozen before (``gc.freeze()``: a check
+    run earlier in it, the door's ``_collect_less``): the parent guards and the child works,
+    one each. (The parent took the child's part when objects were frozen: it did the work and
+    ended with ``os._exit``, in pytest-xdist a worker lost, 'node down', and the suite hung.)"""
+    program = ("import gc, os, sys\ngc.freeze()\nfrom urdftool import guardian\n"
+               "found = guardian.guarded()\n"
+               "if found is None:\n    os.write(2, b'[child]')\n"
+               "    guardian.end_after(lambda: None)\n"
+               "os.write(2, f'[guardian {found} {gc.get_freeze_count() > 0}]'.encode())\n")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert sorted(done.stderr.replace("][", "]\n[").splitlines()) == \
+        ["[child]", "[guardian (0, None) True]"], done.stderr

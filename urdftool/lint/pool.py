@@ -88,7 +88,8 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
         verdict = guardian.STATE["verdict"]
         if verdict is not None and verdict[0] == guardian.STATE["pieces"]:
             guardian.STATE["verdict"] = None  # (given once)
-            result = [stopped(0, Stop(verdict[1], budget, verdict[2], verdict[3]))]
+            result = [stopped(0, Stop(verdict[1], budget, verdict[2],
+                                      budgets.read_slot(verdict[3])))]
         elif guardian.STATE["guardian"] is not None:
             result = [_guarded_piece(work, budget, stopped)]
         else:
