@@ -115,6 +115,27 @@ def address_space() -> int | None:
         return None
 
 
+LOADAVG = "/proc/loadavg"  # (Linux) the load averages, then running/total scheduling entities
+
+
+def busy_cores() -> float:
+    """How many cores other work keeps busy: the load average of the last minute, or, when
+    more, the threads of other processes ready to run at this very moment (Linux's
+    ``/proc/loadavg``, this process's own running one not counted). The average trails by a
+    minute: a build or a test run that started seconds ago leaves it low while it takes a
+    core (a second worker then shares a core with it and the check ends later than with one)."""
+    try:
+        average = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        average = 0.0
+    try:
+        with open(LOADAVG, "rb") as handle:
+            running = int(handle.read().split()[3].split(b"/")[0]) - 1
+    except (OSError, ValueError, IndexError):
+        running = 0
+    return max(average, running)
+
+
 def one_blas_thread() -> None:
     """One BLAS thread for numpy when it is imported later in this process (unless the
     environment says otherwise): the products here are small, and after each large enough one

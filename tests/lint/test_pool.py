@@ -12,6 +12,7 @@ import time
 
 import pytest
 
+from urdftool import budget
 from urdftool.budget import Budget, address_space
 from urdftool.lint import pool
 from urdftool.lint.pool import run_budgeted
@@ -141,11 +142,26 @@ def test_a_cancelled_run_kills_its_workers_at_once():
     (2, 0.0, 5, 1),  # too few files to pay a second worker's imports and reads
     (2, 0.0, 1, 1),
 ])
-def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, load, files, jobs):
+def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, tmp_path, cores, load,
+                                                         files, jobs):
     monkeypatch.setattr(pool, "default_jobs", lambda: cores)
     monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    (tmp_path / "loadavg").write_text(f"{load:.2f} {load:.2f} {load:.2f} 1/300 4242\n")
+    monkeypatch.setattr(budget, "LOADAVG", str(tmp_path / "loadavg"))
     assert pool.auto_jobs(files) == jobs
 
+
+@pytest.mark.parametrize("running, jobs", [(1, 2), (2, 1), (3, 1)])
+def test_the_default_jobs_count_what_runs_now_not_only_the_last_minute(monkeypatch, tmp_path,
+                                                                       running, jobs):
+    """A job that started seconds ago (the 1-minute load average still near 0) keeps a core
+    busy: a second worker would share it with it (slower than one, issue 34). ``running``
+    counts this process too."""
+    monkeypatch.setattr(pool, "default_jobs", lambda: 2)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.05, 0.1, 0.1))
+    (tmp_path / "loadavg").write_text(f"0.05 0.10 0.10 {running}/300 4242\n")
+    monkeypatch.setattr(budget, "LOADAVG", str(tmp_path / "loadavg"))
+    assert pool.auto_jobs(46) == jobs
 
 
 KEPT = []  # what a worker's earlier pieces kept (a run's memo of meshes, say)

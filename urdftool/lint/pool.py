@@ -42,14 +42,11 @@ FILES_PER_WORKER = 4  # a worker pays for its own lazy imports (numpy) and mesh 
 
 def auto_jobs(files: int) -> int:
     """How many workers check ``files`` files when ``--jobs`` is not given: one per core that
-    is idle now (the cores less the load average), and at most one per FILES_PER_WORKER files.
-    Two workers cost more CPU than one (each imports and reads again what the other did), so
-    they finish sooner only on a core nobody else uses: on a busy machine, one."""
-    try:
-        busy = os.getloadavg()[0]
-    except (AttributeError, OSError):
-        busy = 0.0
-    idle = max(1, round(default_jobs() - busy))
+    is idle now (the cores less what keeps them busy: :func:`urdftool.budget.busy_cores`), and
+    at most one per FILES_PER_WORKER files. Two workers cost more CPU than one (each imports and
+    reads again what the other did), so they finish sooner only on a core nobody else uses: on
+    a busy machine, one."""
+    idle = max(1, round(default_jobs() - budgets.busy_cores()))
     return max(1, min(idle, files // FILES_PER_WORKER))
 
 
