@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from conftest import load_text
-from urdftool.numbers import MILLIMETRE, fixed_texts, number, numbers
+from urdftool.numbers import MILLIMETRE, fixed_texts, number, numbers, symmetric_texts
 
 PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
 
@@ -74,6 +74,34 @@ def test_inertia_prints_round_off_as_zero(tmp_path):
     assert "e-2" not in table and "e-1" not in table and "-0 " not in table, table
     block = inertial_xml(results[0].computed)
     assert "e-" not in block and '"-0"' not in block, block
+
+
+def test_symmetric_texts_count_each_entry_from_its_own_size():
+    """A joint-space mass matrix (UR5, Pinocchio's crba): the wrist's 1.3e-4 beside the
+    shoulder's 3.2 is printed (counted from the largest, it was 0), round-off is 0."""
+    mass_matrix = [[3.1924, 1.1669, -2.7e-14], [1.1669, 0.5395, 1.3212e-04],
+                   [-2.7e-14, 1.3212e-04, 1.3212e-04]]
+    assert symmetric_texts(mass_matrix) == [["3.192", "1.167", "0"],
+                                            ["1.167", "0.5395", "0.0001321"],
+                                            ["0", "0.0001321", "0.0001321"]]
+    # a massless last joint: no size of its own, the largest entry's round-off floor
+    assert symmetric_texts([[2.0, 1e-20], [1e-20, 0.0]]) == [["2", "0"], ["0", "0"]]
+    assert symmetric_texts([[0.0, 0.0], [0.0, 0.0]]) == [["0", "0"], ["0", "0"]]
+    assert symmetric_texts([[math.inf, 1.0], [1.0, 2.0]])[1] == ["1", "2"]
+
+
+def test_a_thin_rod_keeps_its_small_moment(tmp_path):
+    """A 1 m rod of 2 mm radius: izz = m r2 / 2 = 2e-6 beside ixx = 0.083, printed and written
+    as itself (it was 0, a tensor simulators refuse), in the table and the <inertial> block."""
+    from urdftool.physics.inertia_compare import compare, inertial_xml
+    from urdftool.report.inertia import text
+
+    rod = load_text(tmp_path, """<robot name="r"><link name="rod">
+  <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  <collision><geometry><cylinder radius="0.002" length="1"/></geometry></collision></link></robot>""")
+    results = compare(rod)
+    assert "0.08333 0.08333 2e-06 0 0 0" in text(results), text(results)
+    assert 'izz="2e-06"' in inertial_xml(results[0].computed)
 
 
 def test_no_module_formats_floats_its_own_way():

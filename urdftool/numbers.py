@@ -78,6 +78,30 @@ def fixed_texts(values: Iterable[float], places: int = 6) -> list[str]:
 MILLIMETRE = 1e-3  # [m] the smallest scale of a position: a centre of mass of round-off only
 
 
+ROUND_OFF = 1e-9  # of a matrix's largest entry: the scale below which an entry is round-off
+
+
+def symmetric_texts(matrix, digits: int = 4) -> list[list[str]]:
+    """A symmetric positive (semi)definite matrix's entries (an inertia tensor, a joint-space
+    mass matrix) with :func:`number`, entry ``(i, j)`` counted from ``sqrt(|a_ii a_jj|)``, the
+    size that bounds it, and at least :data:`ROUND_OFF` of the largest entry: a thin rod's
+    2e-6 beside its 0.08, or a wrist's 1e-4 beside a shoulder's 3, is printed, not rounded to
+    0 as it would be counted from the largest; the round-off beside them still is."""
+    rows = [[float(v) for v in row] for row in matrix]
+    finite = [abs(v) for row in rows for v in row if math.isfinite(v)]
+    floor = max(finite, default=0.0) * ROUND_OFF
+    diagonal = [abs(rows[i][i]) for i in range(len(rows))]
+    texts = []
+    for i, row in enumerate(rows):
+        line = []
+        for j, value in enumerate(row):
+            own = math.sqrt(diagonal[i] * diagonal[j])
+            scale = max(own, floor) if math.isfinite(own) else floor
+            line.append(number(value, digits, scale=scale or None))
+        texts.append(line)
+    return texts
+
+
 def numbers(values: Iterable[float], digits: int = 4, separator: str = " ",
             floor: float = 0.0) -> str:
     """A vector or tensor's components with :func:`number`, all counted from the largest one

@@ -3,8 +3,11 @@
 With ``--urdftool``, every top-level robot below the paths pytest collects (``.urdf`` and
 ``.xacro`` files that are robots of their own, as ``urdftool check FOLDER`` finds them; macro
 libraries and included fragments are left out) becomes a test item that fails with its located
-findings when ``urdftool check`` would exit 1 on it, honouring the settings file above it. Each
-item checks one file, in this process, within the usual time budget.
+findings when ``urdftool check`` would exit 1 on it, honouring the settings file above it. The
+session's robot items are checked together, at the first one, as ``urdftool check FILE...``
+checks them (one run: repositories, packages, launch files and settings looked up once; the
+files in worker processes, each within the usual time budget); under pytest-xdist, whose
+workers each run a share unknown in advance, each item checks its own file.
 
 For tests of your own, the ``urdftool_check`` fixture checks paths and fails the test with the
 findings; ``urdftool.check_paths`` returns them for any other use. Without ``--urdftool`` the
@@ -42,11 +45,13 @@ def _top_level(config, folder: Path) -> set[Path]:
     cache = config.stash.setdefault(_CACHE, {})
     if folder not in cache:
         from urdftool.description.files import real_path
+        from urdftool.description.run_memo import one_run
         from urdftool.lint.settings import CheckRequest
         from urdftool.lint.targets import expand
 
         try:
-            files = expand([str(folder)], CheckRequest()).files
+            with one_run(config.stash.setdefault(_RUN, {})):
+                files = expand([str(folder)], CheckRequest()).files
         except Exception:  # noqa: BLE001 - no robots here, or unreadable: nothing to collect
             files = []
         real = [Path(real_path(file)) for file in files]
@@ -55,6 +60,7 @@ def _top_level(config, folder: Path) -> set[Path]:
 
 
 _CACHE = pytest.StashKey[dict]()
+_RUN = pytest.StashKey[dict]()  # the per-run memory of the collection and the check together
 
 
 class RobotFile(pytest.File):
@@ -72,7 +78,7 @@ class RobotItem(pytest.Item):
     funcargs: dict = {}
 
     def runtest(self):
-        run = _check([str(self.path)])
+        run = _checked_with_the_session(self)
         if run.exit_code:
             raise _FindingsFailure(_text(run))
 
@@ -85,10 +91,37 @@ class RobotItem(pytest.Item):
         return self.path, None, f"urdftool check {self.path.name}"
 
 
+_TOGETHER = pytest.StashKey[dict]()
+
+
+def _checked_with_the_session(item):
+    """The :class:`~urdftool.Run` of ``item``'s file alone, taken from one check of every robot
+    item of the session made at the first; its own check when that check has no result for it
+    (its settings file is broken: its own run says so) or under pytest-xdist."""
+    from urdftool.description.files import real_path
+    from urdftool.description.run_memo import one_run
+    from urdftool.lint.runner import Run
+
+    config = item.config
+    if hasattr(config, "workerinput"):
+        return _check([str(item.path)])
+    results = config.stash.get(_TOGETHER, None)
+    if results is None:
+        paths = [str(other.path) for other in item.session.items if isinstance(other, RobotItem)]
+        with one_run(config.stash.setdefault(_RUN, {})):
+            together = _check(paths, jobs=None)  # worker processes as urdftool check chooses
+        results = {real_path(result.path): result for result in together.results}
+        config.stash[_TOGETHER] = results
+    result = results.get(real_path(item.path))
+    if result is None:
+        return _check([str(item.path)])
+    return Run([result], strict=[result.strict])
+
+
 def _check(paths, **options):
     from urdftool.lint.runner import check_paths
 
-    return check_paths(paths, jobs=1, **options)
+    return check_paths(paths, **{"jobs": 1, **options})
 
 
 def _text(run) -> str:

@@ -127,3 +127,54 @@ def test_cli_json_and_exit_code(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "urdftool", "crosscheck", str(path), "-l",
                           "mujuco"], capture_output=True, text=True, timeout=300)
     assert bad.returncode == 2 and "did you mean 'mujoco'" in bad.stderr
+
+
+def test_pybullet_finds_package_meshes_of_an_expanded_xacro(tmp_path):
+    """xacro's output is written to a temporary folder; PyBullet finds a package:// mesh only
+    below the folders above the file it reads, so each package is linked beside it (it failed
+    with "Cannot load URDF file" on every xacro robot with package meshes, UR5 included).
+    Removing the folder removes the links, never the package's files."""
+    _installed("pybullet")
+    import trimesh
+
+    package = tmp_path / "src" / "my_arm"
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text(
+        '<package format="3"><name>my_arm</name><version>1.0.0</version></package>')
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "box.stl")
+    (package / "urdf").mkdir()
+    path = package / "urdf" / "arm.urdf.xacro"
+    mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
+    path.write_text(ARM.replace('<robot name="arm">',
+                                '<robot name="arm" xmlns:xacro="http://wiki.ros.org/xacro">')
+                    .replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                             f'<collision>{mesh}</collision>'))
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert result.loaded, result.error
+    assert (package / "meshes" / "box.stl").is_file()
+
+
+def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_path):
+    """The fact U932 and the links beside xacro's output rest on (PyBullet 3.2.7): a
+    package:// mesh is found from the working folder, not from setAdditionalSearchPath."""
+    _installed("pybullet")
+    import trimesh
+
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b" / "pkg").mkdir(parents=True)
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "b" / "pkg" / "m.stl")
+    urdf = tmp_path / "a" / "r.urdf"
+    urdf.write_text('<robot name="r"><link name="l"><visual><geometry>'
+                    '<mesh filename="package://pkg/m.stl"/></geometry></visual></link></robot>')
+    script = ("import os, sys, pybullet as p\n"
+              "c = p.connect(p.DIRECT)\n"
+              "if sys.argv[1] == 'search': p.setAdditionalSearchPath(sys.argv[2])\n"
+              "else: os.chdir(sys.argv[2])\n"
+              "try: p.loadURDF(sys.argv[3]); print('LOADED')\n"
+              "except Exception: print('REFUSED')\n")
+    said = {}
+    for how in ("search", "cwd"):
+        done = subprocess.run([sys.executable, "-c", script, how, str(tmp_path / "b"), str(urdf)],
+                              capture_output=True, text=True, timeout=60)
+        said[how] = [word for word in ("LOADED", "REFUSED") if word in done.stdout]
+    assert said == {"search": ["REFUSED"], "cwd": ["LOADED"]}

@@ -264,3 +264,23 @@ def test_an_srdf_named_after_a_neighbour_is_not_claimed_by_robot_name(tmp_path):
                      "vega_1.srdf": "<robot name='r'/>"})
     assert companions(load(str(tmp_path / "vega_1.urdf"))).srdf.path.name == "vega_1.srdf"
     assert companions(load(str(tmp_path / "vega_1_spheres.urdf"))).srdf is None
+
+
+def test_a_robot_and_its_committed_xacro_output_are_one_robot(tmp_path):
+    """moveit_resources' panda_description/urdf holds panda.urdf.xacro and xacro's output
+    panda.urdf: the same robot in two forms, not two robots sharing a folder. panda.urdf lost
+    panda_moveit_config's panda.srdf ('collisions' then called the SRDF's allowed pairs
+    colliding) and its controllers; a robot of another stem still keeps its own."""
+    (tmp_path / ".git").mkdir()
+    write(tmp_path, {"panda_description/package.xml": "<package/>",
+                     "panda_description/urdf/panda.urdf": ROBOT,
+                     "panda_description/urdf/panda.urdf.xacro": ROBOT,
+                     "panda_moveit_config/config/panda.srdf": "<robot name='r'/>",
+                     "panda_description/config/controllers.yaml": HEAD_YAML})
+    for name in ("panda.urdf", "panda.urdf.xacro"):
+        found = companions(load(str(tmp_path / "panda_description/urdf" / name)))
+        assert found.srdf is not None and found.srdf.path.name == "panda.srdf", name
+        assert [f.path.name for f in found.controllers] == ["controllers.yaml"], name
+    write(tmp_path, {"panda_description/urdf/fr3.urdf": ROBOT})
+    found = companions(load(str(tmp_path / "panda_description/urdf/panda.urdf")))
+    assert found.srdf.path.name == "panda.srdf" and found.controllers == []

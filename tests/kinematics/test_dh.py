@@ -273,6 +273,22 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
     assert "f.urdf:2: error: joint 'fly' is floating" in result.stderr
 
 
+def test_cli_dh_base_defaults_to_the_root_and_needs_one(run_cli, tmp_path):
+    """Like ik, fk and workspace, --base defaults to the root link; without a single root the
+    table has no start, said at the robot (exit 1), not as a traceback."""
+    given = run_cli("dh", HUMANOID, "--base", "base_link", "--tip", "l_foot_link", "-f", "json")
+    default = run_cli("dh", HUMANOID, "--tip", "l_foot_link", "-f", "json")
+    assert given.exit_code == default.exit_code == 0, default.output
+    assert default.stdout == given.stdout
+    path = tmp_path / "two.urdf"
+    path.write_text('<robot name="two"><link name="a"/><link name="b"/><link name="t"/>\n'
+                    '<joint name="j" type="revolute"><parent link="a"/><child link="t"/>'
+                    '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    result = run_cli("dh", path, "--tip", "t")
+    assert result.exit_code == 1, result.output
+    assert "two.urdf:1: error: 2 root links: ['a', 'b']" in result.stderr
+
+
 @pytest.mark.parametrize("tilt", [1e-8, 1e-5, 1e-3])
 def test_nearly_parallel_axes_give_a_finite_exact_table(tmp_path, tilt):
     # 1 - cos^2 of a 1e-8 rad tilt rounds to 0: the common normal must not divide by it

@@ -305,3 +305,4 @@ def test_a_robot_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tm
     monkeypatch.setattr(resource, "getrlimit", lambda _: (1024 ** 3, resource.RLIM_INFINITY))
     with pytest.raises(DynamicsError, match="300 joint variables.*cube of the joints"):
         build(robot)
+

@@ -17,7 +17,8 @@ def register(app: typer.Typer) -> None:
 
 def dh(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
-    base: str = typer.Option(..., "--base", metavar="LINK", help="First link of the chain."),
+    base: str = typer.Option(None, "--base", metavar="LINK",
+                             help="First link of the chain (default: the root)."),
     tip: str = typer.Option(..., "--tip", metavar="LINK", help="Last link of the chain."),
     convention: str = typer.Option("standard", "--convention",
                                    help="standard, or modified (Craig)."),
@@ -27,14 +28,16 @@ def dh(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
+    from urdftool.errors import TreeError
     from urdftool.kinematics.dh import CONVENTIONS, DHError, extract
+    from urdftool.kinematics.tree import root_link
     from urdftool.report.dh import write_table
 
     robot = single_robot(
         "dh", words, arg, package,
         {"--format": (output_format, FORMATS), "--convention": (convention, CONVENTIONS)})
     try:
-        table = extract(robot, base, tip, convention, textbook=textbook)
-    except (DHError, UnknownName) as error:
+        table = extract(robot, base or root_link(robot), tip, convention, textbook=textbook)
+    except (DHError, UnknownName, TreeError) as error:
         fail_at(robot, error)
     write_table(table, output_format)

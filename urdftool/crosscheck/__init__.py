@@ -6,7 +6,8 @@ runs in a worker process of its own, forked by the pool under the time and memor
 (:func:`urdftool.lint.pool.run_budgeted`): loaders segfault and abort on bad input, and a
 loader that dies, hangs or overruns its memory is reported as failed, with why. A xacro file is
 expanded by urdftool and written to a temporary folder; packages are handed to the loaders that
-take them (Drake's PackageMap, Pinocchio, PyBullet's search path), as a user would.
+take them (Drake's PackageMap, Pinocchio), and linked beside the expanded file for PyBullet,
+which finds meshes only below the folders above the file it reads, as a user would.
 
 For each loader: whether it loaded, or its error mapped back to the line of the file the user
 wrote; total mass; degrees of freedom; floating or fixed base; the URDF links it dropped or
@@ -125,7 +126,10 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
 
     with temporary_folder("urdftool-crosscheck-") as folder:
         urdf, lines = _urdf_file(robot, folder)
-        job = Job(urdf, _packages(robot), tuple(configurations))
+        packages = _packages(robot)
+        if os.path.dirname(urdf) == os.path.abspath(folder):
+            _packages_beside(folder, packages, os.path.basename(urdf))
+        job = Job(urdf, packages, tuple(configurations))
         raw = _run(present, job, budget)
     results = [_result(name, raw[index], robot, lines, urdf)
                for index, name in enumerate(present)]
@@ -202,6 +206,19 @@ def _packages(robot) -> dict:
                 except Exception:  # noqa: BLE001 - the loader will say it is missing
                     pass
     return found
+
+
+def _packages_beside(folder: str, packages: dict, urdf_name: str) -> None:
+    """Each package as a link beside xacro's output: PyBullet (3.2) finds a ``package://``
+    mesh only below the folders above the file it reads (its search path is not asked for
+    meshes), as they are when a robot is loaded from its own repository; written to a
+    temporary folder, the expansion would lose them and PyBullet would fail where a user's
+    load does not."""
+    from urdftool.description.files import link_folder_new
+
+    for name, place in packages.items():
+        if name != urdf_name:
+            link_folder_new(Path(folder), name, place)
 
 
 def _run(names: list[str], job: Job, budget: Budget) -> list:

@@ -24,7 +24,7 @@ class Job:
 
     urdf: the URDF file to load (the user's file, or xacro's output in a temporary folder)
     packages: ROS package name -> folder, for the loaders that take them (Drake's PackageMap,
-        Pinocchio's package_dirs, PyBullet's search path)
+        Pinocchio's package_dirs; for PyBullet they are linked beside xacro's output)
     configurations: joint name -> value [rad or m], one mapping per configuration (the first
         is all zeros); frames are reported at each
     """
@@ -271,9 +271,8 @@ def load_pybullet(job: Job) -> dict:
 
     client = pybullet.connect(pybullet.DIRECT)
     try:
-        for folder in dict.fromkeys(os.path.dirname(os.fspath(p))
-                                    for p in job.packages.values()):
-            pybullet.setAdditionalSearchPath(folder, physicsClientId=client)
+        # no setAdditionalSearchPath: PyBullet does not ask it for meshes; the packages are
+        # linked beside an expanded xacro instead (crosscheck._packages_beside)
         try:
             body = pybullet.loadURDF(job.urdf, physicsClientId=client)
         except Exception as error:  # noqa: BLE001

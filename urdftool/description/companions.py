@@ -42,7 +42,8 @@ A folder holding several robots (``.urdf``/``.urdf.xacro`` files) shares its fil
 name: a file whose name starts with a robot's file stem or name (``arm_controllers.yaml`` for
 ``arm.urdf``; the longest match wins) belongs to that robot, an SRDF also by its ``<robot
 name>``; any other file found there belongs to none of them (``used`` says why). A robot alone in
-its folder gets every file found.
+its folder gets every file found; files of the same stem (``panda.urdf`` beside
+``panda.urdf.xacro``) are one robot in two forms.
 
 Files found automatically are never read through a symbolic link leading elsewhere: robot
 files may come from untrusted pull requests. Each file is read (by
@@ -330,8 +331,12 @@ def _match_length(path: Path, keys) -> int:
 
 
 def _robots_beside(path: Path) -> list[Path]:
-    """Other robot files (``.urdf``, ``.urdf.xacro``) in the folder of ``path``."""
-    return [p for p in _robot_files(path.parent) if p.name != path.name]
+    """Other robots' files (``.urdf``, ``.urdf.xacro``) in the folder of ``path``: a file of
+    the same stem is the same robot in another form (``panda.urdf``, xacro's output committed
+    beside ``panda.urdf.xacro``), not a robot that files named after it could belong to."""
+    stem = path.name.split(".")[0].lower()
+    return [p for p in _robot_files(path.parent)
+            if p.name != path.name and p.name.split(".")[0].lower() != stem]
 
 
 @per_run

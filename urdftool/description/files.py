@@ -705,6 +705,23 @@ def link_new(root: Path, relative: str, points_to: str) -> bool:
     return True
 
 
+def link_folder_new(root: Path, name: str, folder: str) -> bool:
+    """Create the symbolic link ``name`` (one plain name) in ``root``, a folder made by
+    :func:`temporary_folder`, to the existing folder ``folder`` (made absolute and real):
+    for a loader that finds a package's files only beside the file it reads (PyBullet), as
+    they are beside a robot in its own repository. It leads out of ``root`` on purpose:
+    urdftool does not follow it, the loader does, to a folder urdftool already resolved.
+    False, and nothing made, when ``name`` is not plain, exists, or ``folder`` is no folder."""
+    if "/" in name or os.sep in name or kind_of(folder) != "folder":
+        return False
+    try:
+        target = _new_path(root, name)
+        os.symlink(real_path(folder), target, target_is_directory=True)
+    except (ValueError, OSError):
+        return False
+    return True
+
+
 def remove_links_out(root: Path, relatives: list[str]) -> list[str]:
     """Remove those of the links ``relatives`` below ``root`` that, every link followed, lead
     outside it (until none does: a removal can change where others lead); the ones left."""

@@ -20,13 +20,14 @@ _MEMO: ContextVar[dict | None] = ContextVar("urdftool_run_memo", default=None)
 
 
 @contextmanager
-def one_run():
+def one_run(shared: dict | None = None):
     """Remember :func:`per_run` answers until the block ends (nested blocks share the outer
-    one's memory)."""
+    one's memory); ``shared``: the memory of earlier blocks of the same run, kept by a caller
+    that makes one run of several steps (the pytest plugin's collection and its check)."""
     if _MEMO.get() is not None:
         yield
         return
-    token = _MEMO.set({})
+    token = _MEMO.set({} if shared is None else shared)
     try:
         yield
     finally:

@@ -157,14 +157,14 @@ INERTIA_TERMS = (("ixx", 0, 0), ("ixy", 0, 1), ("ixz", 0, 2), ("iyy", 1, 1), ("i
 
 def inertial_numbers(properties) -> tuple[str, str, dict[str, str]]:
     """Mass, centre of mass (``x y z``) and the six inertia terms (ixx, ixy, ixz, iyy, iyz,
-    izz) as written into a file: 6 significant digits, the terms counted from the tensor's
-    largest and the com from its largest component (at least a millimetre), so that round-off
-    is written 0 (never ``-9e-21``)."""
-    from urdftool.numbers import MILLIMETRE, number, numbers
+    izz) as written into a file: 6 significant digits, each term counted from the size that
+    bounds it (:func:`~urdftool.numbers.symmetric_texts`) and the com from its largest component
+    (at least a millimetre), so that round-off is written 0 (never ``-9e-21``) and a thin rod's
+    small moment is not."""
+    from urdftool.numbers import MILLIMETRE, number, numbers, symmetric_texts
 
-    largest = max(abs(float(v)) for row in properties.inertia for v in row) or None
-    terms = {name: number(float(properties.inertia[row][column]), 6, scale=largest)
-             for name, row, column in INERTIA_TERMS}
+    texts = symmetric_texts(properties.inertia, 6)
+    terms = {name: texts[row][column] for name, row, column in INERTIA_TERMS}
     return (number(float(properties.mass), 6), numbers(properties.com, 6, floor=MILLIMETRE),
             terms)
 

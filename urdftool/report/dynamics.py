@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, number, numbers, symmetric_texts
 from urdftool.report.escape import text as _text
 
 
@@ -47,8 +47,8 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
         lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
                   for name, g in zip(joints, result.G)]
         lines += ["", "M(q): joint-space mass matrix"]
-        lines += [f"  {name:{width}s} {_row(row, _scale(result.M))}"
-                  for name, row in zip(joints, result.M)]
+        lines += [f"  {name:{width}s} " + " ".join(f"{entry:>10s}" for entry in row)
+                  for name, row in zip(joints, symmetric_texts(result.M))]
     if result.C is not None:
         lines += ["", "C(q, v): Coriolis matrix"]
         lines += [f"  {name:{width}s} {_row(row, _scale(result.C))}"

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.numbers import MILLIMETRE, number, numbers
+from urdftool.numbers import MILLIMETRE, number, numbers, symmetric_texts
 from urdftool.report.escape import text as _text
 
 
@@ -26,9 +26,9 @@ def xacro_blocks(robot, results) -> str:
 def _fmt(properties) -> tuple[str, str, str]:
     if properties is None:
         return "-", "-", "-"
-    i = properties.inertia
+    t = symmetric_texts(properties.inertia)
     return (number(properties.mass), numbers(properties.com, floor=MILLIMETRE),
-            numbers((i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2])))
+            " ".join((t[0][0], t[1][1], t[2][2], t[0][1], t[0][2], t[1][2])))
 
 
 def text(results) -> str:

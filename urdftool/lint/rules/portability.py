@@ -663,7 +663,7 @@ def pybullet_mesh_format(robot):
 def _pybullet_finds(robot, filename: str) -> bool | None:
     """Whether PyBullet's search (UrdfFindMeshFile) finds the mesh below a folder above the
     URDF (True); False when the file is nowhere, None when it exists but PyBullet finds it only
-    from the working folder or a search path its caller adds. Each attempt is the folder's path,
+    from a working folder that holds it. Each attempt is the folder's path,
     "/" and the name as written with package:// cut off: strings joined, so a name starting
     with "/" (``package:///pkg/...``) is looked for below every folder too."""
     import os
@@ -705,22 +705,24 @@ def pybullet_mesh_not_found(robot):
 
 @rule("U932", "pybullet-mesh-search-path", Severity.WARNING)
 def pybullet_mesh_search_path(robot):
-    """PyBullet finds this mesh only if its caller adds a search path.
+    """PyBullet finds this mesh only when it runs from a folder that holds it.
 
-    PyBullet cuts ``package://`` off and looks for the rest below each folder above the URDF
-    file, then below the working folder and the paths given to ``setAdditionalSearchPath``:
+    PyBullet cuts ``package://`` off and looks for the rest below the working folder (and its
+    parent and grandparent), then below each folder above the URDF file. The paths given to
+    ``setAdditionalSearchPath`` are not asked for meshes (PyBullet 3.2.7 fails with them), so
     when the package's folder is not named after the package, or is not beside a folder above
-    the URDF, the load fails unless the caller points PyBullet at it.
+    the URDF, the load depends on the folder the caller runs from.
 
     Bad: ``package://robot_description/meshes/base.stl`` with the package in a folder ``robot``
-    Good: the package in a folder of its own name, or ``p.setAdditionalSearchPath(...)``
+    Good: the package in a folder of its own name, beside a folder above the URDF
     """
     for link, holder, mesh, filename in _meshes(robot):
         if filename[-4:].lower() in facts.PYBULLET_MESH_EXTENSIONS and \
                 _pybullet_finds(robot, filename) is None:
             yield mesh, (f"{_where(link, holder)}: {_as_of(robot, 'pybullet')} finds mesh "
                          f"'{filename}' from none of the folders above the URDF; the load "
-                         "fails unless the working folder or setAdditionalSearchPath has it")
+                         "fails unless PyBullet runs from a folder that holds it (setAdditionalSearchPath "
+                         "is not asked for meshes)")
 
 
 @rule("U933", "pybullet-long-line", Severity.ERROR)
