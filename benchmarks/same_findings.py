@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))
 CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
-SYNTHETIC = [(1000, "chain"), (1000, "star"), (10000, "star"), (300, "meshes")]
+SYNTHETIC = [(1000, "chain"), (1000, "star"), (10000, "star"), (10000, "chain"), (300, "meshes")]
 
 
 def cases(folder: Path) -> dict[str, list[str]]:

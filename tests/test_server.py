@@ -582,3 +582,55 @@ async def test_a_flood_of_changes_keeps_one_check_per_document_and_publishes_the
                                        if f"(version {version})" in m]
     await wait_until(lambda: uri in client.diagnostics)  # published just after the log
     assert codes(client, uri) == []
+
+
+# -- the transport: what the client writes is framed before pygls reads it
+
+
+def _frame(message: dict) -> bytes:
+    import json
+
+    body = json.dumps(message).encode()
+    return b"Content-Length: %d\r\n\r\n" % len(body) + body
+
+
+_INITIALIZE = _frame({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+                      "params": {"capabilities": {}}})
+_SHUTDOWN = _frame({"jsonrpc": "2.0", "id": 2, "method": "shutdown"})
+
+
+def _serve_raw(data: bytes, tmp_path) -> tuple[int, bytes, str]:
+    import subprocess
+
+    result = subprocess.run([sys.executable, "-m", "urdftool", "server"], input=data,
+                            capture_output=True, timeout=60, cwd=tmp_path)
+    return result.returncode, result.stdout, result.stderr.decode(errors="replace")
+
+
+@pytest.mark.parametrize("framing", [
+    b"Content-Length: 100000000000\r\n\r\n{}",  # 100 GB: pygls allocated it (MemoryError)
+    b"Content-Length: abc\r\n\r\n{}" + _SHUTDOWN,  # pygls skipped it, took the body for headers
+    b"Content-Length: 0\r\n\r\n" + _SHUTDOWN,
+    b"Content-Type: x\r\n\r\n{}" + _SHUTDOWN,  # no length
+    b"Content-Length: 2\r\nContent-Length: 3\r\n\r\n{}" + _SHUTDOWN,
+    b"X" * 20_000_000,  # a header line read whole, however long
+    b"\n" + _SHUTDOWN,
+], ids=["100GB", "not-a-number", "zero", "no-length", "twice", "endless-line", "bare-newline"])
+def test_input_that_breaks_the_framing_ends_the_server_with_one_line(framing, tmp_path):
+    status, out, err = _serve_raw(_INITIALIZE + framing, tmp_path)
+    assert b'"id": 1' in out and b'"id": 2' not in out  # nothing after the broken frame is read
+    assert status == 1 and "Traceback" not in err and "MemoryError" not in err
+    assert err.count("\n") == 1 and "the client's input: " in err, err
+
+
+def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes_on(tmp_path):
+    garbage = [b"Content-Length: 5\r\n\r\n{xx}}",  # not JSON
+               _frame({"jsonrpc": "2.0", "method": "textDocument/didOpen",
+                       "params": {"textDocument": 5}}),  # cattrs' exception group
+               _frame({"jsonrpc": "2.0", "id": 9, "method": "\x1b[2J\n::error::x",
+                       "params": None}),
+               b"Content-Length: 400000\r\n\r\n" + b"[" * 400_000]  # RecursionError
+    status, out, err = _serve_raw(_INITIALIZE + b"".join(garbage) + _SHUTDOWN, tmp_path)
+    assert b'"id": 2' in out  # answered after all of it
+    assert status == 0 and "Traceback" not in err and "\x1b" not in err, err
+    assert all(line.startswith("urdftool server: ") for line in err.splitlines()), err

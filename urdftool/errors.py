@@ -238,6 +238,16 @@ class UnknownLink(UnknownName):
         super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
         self.wanted = wanted
 
+    @classmethod
+    def unless_among(cls, wanted, names) -> None:
+        """Raise for the first of ``wanted`` (link names asked for: a command line's) that is
+        not among ``names`` (a robot's links): the one check of every command that names
+        links, made before any work that might not look at them (diff's reach of a chain is
+        computed only when the robots differ: an unknown link named there was "equivalent")."""
+        for name in wanted:
+            if name not in names:
+                raise cls(name, names)
+
 
 class UnknownRule(UnknownName):
     """No rule has the code or name asked for; the message lists the close ones."""

@@ -756,6 +756,116 @@ def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> Urdfto
     return server
 
 
+MAX_MESSAGE = 128 * 2**20  # [bytes] the largest message read: a 16 MiB robot (the file-size
+# limit) with every character escaped as JSON's \uXXXX, and the rest of its didOpen
+MAX_HEADER_LINE = 4096  # [bytes] a header line (LSP has two: Content-Length, Content-Type)
+MAX_HEADERS = 32  # header lines of one message
+_CONTENT_LENGTH = re.compile(rb"Content-Length: ([0-9]+)\r\n")  # pygls.io_'s own pattern
+_HEADER = re.compile(rb"[!#-'*+.0-9A-Z^-z|~-]+: [^\r\n]*\r\n")  # RFC 9110's field: a token
+
+
+class Transport:
+    """The protocol's input as pygls reads it (:func:`pygls.io_.run_async`: ``readline`` for
+    each header line, ``read(Content-Length)`` for the body after the blank line), held to the
+    framing LSP defines before pygls sees a byte: a header line is read only up to
+    :data:`MAX_HEADER_LINE` bytes, a body only up to :data:`MAX_MESSAGE`, and a line that is
+    not ``Name: value\\r\\n``, a ``Content-Length`` that is not pygls's digits (or repeated,
+    zero or over the limit) or a message without one ends the input: pygls would otherwise
+    allocate the length it was told (100 GB: ``MemoryError``), read a line of any length, or
+    skip a header it cannot read and take the body for headers, answering nothing from then
+    on. The framing lost, nothing after it can be trusted to be a message: the input ends
+    (pygls returns, the server shuts down), :attr:`broken` says why, once, and the server ends
+    with status 1."""
+
+    def __init__(self, stream, limit: int = MAX_MESSAGE):
+        self.stream, self.limit = stream, limit
+        self.length: int | None = None  # of the message whose headers are being read
+        self.headers = 0
+        self.broken: str | None = None
+
+    def _break(self, why: str) -> bytes:
+        from urdftool.report.escape import text
+
+        if self.broken is None:
+            self.broken = text(why)
+        return b""
+
+    def readline(self) -> bytes:
+        if self.broken:
+            return b""
+        line = self.stream.readline(MAX_HEADER_LINE + 1)
+        if not line:  # the end of the input
+            return line
+        if line == b"\r\n":
+            return line if self.length else self._break("a message without a Content-Length")
+        if not _HEADER.fullmatch(line):
+            more = " (cut)" if len(line) > MAX_HEADER_LINE else ""
+            return self._break(f"not a header line{more}: {line[:80]!r}")
+        self.headers += 1
+        if self.headers > MAX_HEADERS:
+            return self._break(f"more than {MAX_HEADERS} header lines")
+        if line.split(b":", 1)[0].lower() == b"content-length":
+            match = _CONTENT_LENGTH.fullmatch(line)
+            if not match or self.length is not None:
+                return self._break(f"a malformed or repeated Content-Length: {line[:80]!r}")
+            self.length = int(match.group(1))
+            if not 0 < self.length <= self.limit:
+                return self._break(f"a message of {self.length} bytes (at most {self.limit})")
+        return line
+
+    def read(self, size: int = -1) -> bytes:
+        if self.broken or size != self.length:  # pygls reads the length its pattern read
+            return self._break(f"a body read of {size} bytes, not {self.length}")
+        self.length, self.headers = None, 0
+        return self.stream.read(size)
+
+
+_TRACEBACK = re.compile(r"\s*[ |+]*(?:Exception Group )?Traceback \(most recent call last\):")
+_EXCEPTION_LINE = re.compile(r"[A-Za-z_][\w.]*(?::|$)")  # "TypeError: ...", not "File ..."
+MAX_LOG_RECORD = 2000  # [characters] of a record's message
+
+
+class OneLine(logging.Formatter):
+    """Every record of the server's log (the log file, standard error) is one line of terminal
+    text (:func:`urdftool.report.escape.text`): a traceback (pygls logs one for each message it
+    cannot read, with the client's words in it, and formats some into its message) is its last
+    line, the exception, and where it was raised; a message is cut at :data:`MAX_LOG_RECORD`
+    characters. What a client sends cannot write lines of its own into the log, nor flood it
+    with a traceback per malformed message."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        from urdftool.report.escape import text
+
+        message = _without_traceback(record.getMessage())
+        error = record.exc_info[1] if record.exc_info else None
+        if error is not None:
+            message += f": {type(error).__name__}: {error}{_raised_at(error)}"
+        if len(message) > MAX_LOG_RECORD:
+            message = f"{message[:MAX_LOG_RECORD]}... ({len(message) - MAX_LOG_RECORD} more)"
+        record.message = message
+        if self.usesTime():
+            record.asctime = self.formatTime(record, self.datefmt)
+        return text(self.formatMessage(record))
+
+
+def _without_traceback(message: str) -> str:
+    """``message`` with a traceback formatted into it (pygls's "Unable to deserialize message")
+    replaced by its last exception line."""
+    at = _TRACEBACK.search(message)
+    if not at:
+        return message
+    last = next((line.lstrip(" |+") for line in reversed(message[at.end():].splitlines())
+                 if _EXCEPTION_LINE.match(line.lstrip(" |+"))), "")
+    return message[:at.start()] + (f": {last}" if last else "")
+
+
+def _raised_at(error: BaseException) -> str:
+    import traceback
+
+    frames = traceback.extract_tb(error.__traceback__)
+    return f" (at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno})" if frames else ""
+
+
 class _Log(logging.FileHandler):
     """The log file: one that stops being written (a full disk) says so once, and the server
     then ends with status 2 (:func:`serve`), not a traceback per message."""
@@ -779,6 +889,7 @@ def _quiet_once_output_failed(failed) -> None:
     handlers = logging.getLogger().handlers
     if not handlers:
         handler = logging.StreamHandler()
+        handler.setFormatter(OneLine("urdftool server: %(levelname)s: %(message)s"))
         handler.setLevel(logging.WARNING)
         logging.getLogger().addHandler(handler)
         handlers = [handler]
@@ -794,8 +905,7 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
 
         try:
             handler = _Log(log_file)
-            handler.setFormatter(logging.Formatter(
-                "%(asctime)s %(name)s %(levelname)s %(message)s"))
+            handler.setFormatter(OneLine("%(asctime)s %(name)s %(levelname)s %(message)s"))
             logging.getLogger().addHandler(handler)
             logging.getLogger().setLevel(logging.DEBUG)
         except OSError as error:
@@ -812,5 +922,13 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
     # lock pygls's reader thread holds while it waits for a message (the worker would wait for
     # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
     protocol_in, sys.stdin = sys.stdin, io.StringIO()
-    make_server(limits=limits).start_io(protocol_in.buffer, protocol_out)
-    return 2 if any(getattr(h, "failed", False) for h in logging.getLogger().handlers) else 0
+    transport = Transport(protocol_in.buffer)
+    make_server(limits=limits).start_io(transport, protocol_out)
+    if any(getattr(h, "failed", False) for h in logging.getLogger().handlers):
+        return 2
+    if transport.broken:  # in the log (standard error without one), and on standard error
+        logger.error("the client's input: %s: the server stopped", transport.broken)
+        if log_file:
+            streams.say(f"urdftool: error: the client's input: {transport.broken}")
+        return 1
+    return 0

@@ -72,6 +72,8 @@ def test_render_overlays_old_and_new(run_cli, pair, tmp_path):
     (["{old}", "{new}", "--format", "html"], "--format must be one of"),
     (["{old}", "{new}", "--chain", "base"], "--chain must be BASE:TIP"),
     (["{old}", "{new}", "--chain", "base:hnd"], "did you mean 'hand'?"),
+    (["{old}", "{old}", "--chain", "base:hnd"], "did you mean 'hand'?"),  # no effect computed
+    (["{old}", "{old}", "--chain", "nope:hand", "-f", "json"], "link 'nope' does not exist"),
     (["{old}", "{new}", "--render", "{old}.jpg"], "must end in .png or .svg"),
 ])
 def test_usage_errors_exit_2(run_cli, pair, args, message):

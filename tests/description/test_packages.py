@@ -43,6 +43,20 @@ def test_package_name_comes_from_package_xml_not_folder(tmp_path):
     assert PackageResolver(start=folder, environ={}).find("real_name") == folder
 
 
+def test_a_commented_out_name_is_not_the_package_s_name(tmp_path):
+    """catkin_pkg and ament read package.xml as XML: a <name> in a comment (a fork's old
+    name kept for reference) is not the package's name."""
+    folder = tmp_path / "fork"
+    folder.mkdir()
+    (folder / "package.xml").write_text(
+        '<package format="3">\n  <!-- <name>upstream_description</name> -->\n'
+        '  <name>fork_description</name>\n</package>\n')
+    resolver = PackageResolver(start=folder, environ={})
+    assert resolver.find("fork_description") == folder
+    with pytest.raises(PackageNotFound):
+        resolver.find("upstream_description")
+
+
 def test_not_found_lists_where_it_looked(tmp_path):
     with pytest.raises(PackageNotFound) as error:
         PackageResolver(start=tmp_path, environ={"ROS_PACKAGE_PATH": str(tmp_path)}).find("ghost")
@@ -240,3 +254,41 @@ def test_the_package_walk_lists_each_folder_once(tmp_path):
     listed = [key[0] for kind, key in record.entries if kind == SEARCH]
     assert sorted(listed) == sorted({str(tmp_path / f) for f in ("", "a", "b", "b/c", "b/d", "e",
                                                                "e/package.xml")})
+
+
+def test_a_package_manifest_is_read_once_per_run_and_answers_as_read_each_time(tmp_path,
+                                                                                 monkeypatch):
+    """package_name and manifest_text read each package.xml once in a run, whoever asks (the
+    resolvers of every robot of a repository, the rules reading dependencies), with the
+    answers of a read each time: a declared name, none (the folder's), an unreadable or
+    too large manifest, none at all; every later asker's record has the read."""
+    from urdftool.description import files, packages
+    from urdftool.description.record import READ, recording
+    from urdftool.description.run_memo import one_run
+
+    manifests = {"named": b"<package><name> real_name </name><depend>a</depend></package>",
+                 "unnamed": b"<package><!-- a comment --><depend>b</depend></package>",
+                 "big": b"<package><name>big</name>" + b" " * packages._MAX_MANIFEST +
+                        b"</package>",
+                 "folder_only": None, "dots": b"<package><name>d</name></package>"}
+    folders = []
+    for name, text in manifests.items():
+        folder = tmp_path / name
+        (folder / "package.xml").mkdir(parents=True) if text is None else \
+            folder.mkdir() or (folder / "package.xml").write_bytes(text)
+        folders.append(folder)
+    folders += [tmp_path / "dots" / ".." / "named", tmp_path / "missing"]
+    alone = [(packages.package_name(f), packages.package_name(f, tmp_path),
+              packages.manifest_text(f)) for f in folders]
+    assert alone[0][0] == "real_name" and alone[1][0] == "unnamed" and alone[2][0] is None
+    reads = []
+    disk = files._read_disk
+    monkeypatch.setattr(files, "_read_disk", lambda *a: reads.append(a[0]) or disk(*a))
+    with one_run():
+        for _ in range(3):
+            with recording() as record:
+                assert [(packages.package_name(f), packages.package_name(f, tmp_path),
+                         packages.manifest_text(f)) for f in folders] == alone
+            assert {key for kind, key in record.entries if kind == READ} >= \
+                {str(tmp_path / n / "package.xml") for n in ("named", "unnamed", "dots")}
+    assert sorted(reads) == sorted(set(reads)) and len(reads) == len(folders)

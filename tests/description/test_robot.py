@@ -91,3 +91,46 @@ def test_an_elements_children_grouped_by_tag_once_comments_left_out(tmp_path):
     assert robot.grouped(joint) is groups  # grouped once
     assert robot.child(joint, "limit").get("effort") == "1"
     assert robot.child(joint, "axis") is None
+
+
+def _awkward_robot(rng) -> str:
+    """A random robot of links with and without names (some repeated) and joints with none,
+    one or several ``<parent>``/``<child>`` elements, some without a ``link``, among comments."""
+    parts = ['<robot name="r">']
+    for i in range(rng.randrange(1, 12)):
+        name = rng.choice([f' name="l{i}"', f' name="l{rng.randrange(4)}"', '', ' name="?"'])
+        parts.append(f"<link{name}/>")
+        if rng.random() < 0.7:
+            ends = []
+            for tag in ("parent", "child"):
+                for _ in range(rng.choice([0, 1, 1, 1, 2, 3])):
+                    link = rng.choice([f' link="l{rng.randrange(8)}"', "", ' link=""'])
+                    ends.append(f"<{tag}{link}/>")
+            rng.shuffle(ends)
+            joint = rng.choice([f' name="j{i}"', "", f' name="j{rng.randrange(3)}"'])
+            kind = rng.choice([' type="fixed"', ' type="revolute"', "", ' type=""'])
+            parts.append(f'<joint{joint}{kind}><!-- c -->{"".join(ends)}</joint>')
+    return "".join(parts) + "</robot>"
+
+
+def test_the_links_hanging_from_joints_and_the_names_read_once_as_lxml_gives_them(tmp_path):
+    import random
+
+    rng = random.Random(34)
+    for case in range(200):
+        path = tmp_path / f"r{case}.urdf"
+        path.write_text(_awkward_robot(rng))
+        robot = load(path)
+        # the straightforward reading: lxml's own findall over every joint
+        assert robot.hanging() == {child.get("link") for joint in robot.root.findall("joint")
+                                   for child in joint.findall("child")}, path.read_text()
+        assert robot.names() == {element: element.get("name") for element in robot.root
+                                 if element.tag in ("link", "joint")}
+        assert robot.kinds() == {joint: joint.get("type") for joint in robot.root
+                                 if joint.tag == "joint"}
+        first = robot.ends()  # ends unchanged: each joint's first <parent> and <child>
+        for joint in robot.root.findall("joint"):
+            for side in ("parent", "child"):
+                element = joint.find(side)
+                assert first[joint][side] == (element, element.get("link") if element is not None
+                                              else None)

@@ -94,3 +94,44 @@ def test_finite_looks_at_each_value_when_the_sum_is_not_finite():
     for bad in (float("inf"), float("-inf"), float("nan")):
         assert not finite((1.0, bad, 2.0)) and not finite([bad])
     assert not finite((float("inf"), float("-inf")))  # the sum is nan
+
+
+def _parts_one_by_one(text, count):
+    """number_tuple reading each part with to_float, without the one match of a whole text
+    (the reference)."""
+    from urdftool.description.values import _part_by_part
+
+    parts = text.split() if text is not None else []
+    if text is None or count is not None and len(parts) != count:
+        return number_tuple.__wrapped__(text, count)  # (no number read: nothing to compare)
+    return _part_by_part(text, parts)
+
+
+def test_number_tuple_reads_every_text_as_part_by_part_to_the_bit():
+    import random
+
+    rng = random.Random(34)
+    pieces = ["0", "1", "7", "12", ".", "-", "+", "e", "E", "e-", "inf", "NaN", "x", "_", "0x1",
+              "\u0663", "1e308", "1e309", "-0", "4.", ".5"]
+    spaces = [" ", "  ", "\t", "\n", "\xa0", "\u2003", "\x1c", "\x85", ""]
+    texts = ["", " ", "1 2 3", " -0 +.5 4.e-3 ", "1\u20032\xa03", "1 2 3 4", "1,2,3", "nan inf -inf"]
+    for _ in range(6000):
+        words = ["".join(rng.choice(pieces) for _ in range(rng.randrange(1, 4)))
+                 for _ in range(rng.randrange(0, 5))]
+        texts.append(rng.choice(spaces) + "".join(w + rng.choice(spaces) for w in words))
+    for text in texts:
+        for count in (None, 1, 3):
+            assert repr(number_tuple.__wrapped__(text, count)) == \
+                repr(_parts_one_by_one(text, count)), (text, count)
+
+
+def test_a_text_of_decimals_is_read_in_one_match_not_part_by_part(monkeypatch):
+    import urdftool.description.values as values
+
+    def refused(part):
+        raise AssertionError(f"read part by part: {part}")
+
+    monkeypatch.setattr(values, "to_float", refused)
+    assert number_tuple.__wrapped__("1 -2.5e3\xa0.5", 3) == ((1.0, -2500.0, 0.5), None)
+    with pytest.raises(AssertionError):  # what is not all decimal is read part by part
+        number_tuple.__wrapped__("1 inf 3", 3)

@@ -5,7 +5,11 @@ few documents opened, changed (floods within and past the debounce), saved and c
 text drawn from fast robots (with findings), hostile names, malformed XML, a huge buffer, a
 document that takes hours to expand. Invariants:
 
-- the server never dies, never writes a traceback, answers a hover promptly at the end;
+- the server never dies, never writes a traceback, answers a hover promptly at the end, and
+  goes on past messages framed right that pygls cannot read (GARBAGE: not JSON, the wrong
+  shape, a hostile method name, nesting past the recursion limit);
+- input that breaks the framing (BREAKS: a 100 GB length, a length that is not a number, none,
+  an endless header line) ends it with status 1 and one line saying so;
 - it never runs more checks at once than its pool allows (JOBS: its worker processes sampled
   throughout), so no flood queues unbounded work;
 - every document still open ends with the diagnostics of its last version (the log says which
@@ -77,15 +81,43 @@ KINDS = ["fast", "fast", "slow", "hostile", "malformed", "huge", "many", "empty"
 DOCUMENTS = ["a.urdf", "b.urdf.xacro", "c.urdf"]
 
 
+def _framed(body: bytes) -> bytes:
+    return b"Content-Length: %d\r\n\r\n" % len(body) + body
+
+
+# Messages framed right that pygls cannot read or run: the server answers or logs one line
+# each and goes on.
+GARBAGE = {
+    "not-json": _framed(b"{xx}}"),
+    "wrong-shape": _framed(b'{"jsonrpc": "2.0", "method": "textDocument/didOpen", '
+                           b'"params": {"textDocument": 5}}'),
+    "hostile-method": _framed(b'{"jsonrpc": "2.0", "id": 777, "method": '
+                              b'"\\u001b[2J\\n::error::x\\u202e", "params": null}'),
+    "deep": _framed(b"[" * 200_000),
+    "bad-version": _framed(b'{"jsonrpc": "1.0", "method": "x"}'),
+}
+# Input that breaks the framing: the server stops with status 1 and one line saying why.
+BREAKS = {
+    "100GB": b"Content-Length: 100000000000\r\n\r\n{}",
+    "not-a-number": b"Content-Length: abc\r\n\r\n{}",
+    "no-length": b"Content-Type: x\r\n\r\n{}",
+    "endless-line": b"X" * 5_000_000,
+    "bare-newline": b"\n",
+}
+
+
 @st.composite
 def sessions(draw):
     """A list of events: (action, document index, text kind, pause [s] after it)."""
     events = []
     for _ in range(draw(st.integers(1, 6))):
-        action = draw(st.sampled_from(["open", "change", "change", "flood", "save", "close"]))
-        events.append([action, draw(st.integers(0, len(DOCUMENTS) - 1)),
-                       draw(st.sampled_from(KINDS)),
+        action = draw(st.sampled_from(["open", "change", "change", "flood", "save", "close",
+                                       "garbage"]))
+        kind = draw(st.sampled_from(sorted(GARBAGE) if action == "garbage" else KINDS))
+        events.append([action, draw(st.integers(0, len(DOCUMENTS) - 1)), kind,
                        draw(st.sampled_from([0.0, 0.01, 0.2, 0.5, 1.0]))])
+    if draw(st.booleans()):  # the session ends with its input broken, not with exit
+        events.append(["break", 0, draw(st.sampled_from(sorted(BREAKS))), 0.0])
     return events
 
 
@@ -140,6 +172,13 @@ class Session:
         self.process.stdin.flush()
         return number
 
+    def send_raw(self, data: bytes) -> None:
+        try:
+            self.process.stdin.write(data)
+            self.process.stdin.flush()
+        except BrokenPipeError:  # the server stopped reading (a broken input ends it): what
+            pass  # follows says whether it should have
+
     def drain(self) -> None:
         while True:
             try:
@@ -188,9 +227,14 @@ def run_session(events: list) -> tuple[list[str], int]:
         open_docs: dict[int, tuple[int, str]] = {}  # index -> (version, kind)
         versions = dict.fromkeys(range(len(DOCUMENTS)), 0)  # never back: reopened goes on
         most = 0
+        broken = events[-1][2] if events and events[-1][0] == "break" else None
         for action, index, kind, pause in events:
             uri = (folder / DOCUMENTS[index]).as_uri()
-            if action == "open" or index not in open_docs and action != "close":
+            if action == "break":
+                continue  # at the end, once the documents are published
+            if action == "garbage":
+                session.send_raw(GARBAGE[kind])
+            elif action == "open" or index not in open_docs and action != "close":
                 versions[index] += 1
                 (folder / DOCUMENTS[index]).write_text(text_of(kind, 0))
                 session.send("textDocument/didOpen", {"textDocument": {
@@ -247,6 +291,16 @@ def run_session(events: list) -> tuple[list[str], int]:
             found.append(f"the server peaked at {peak} MiB")
         if session.process.poll() is not None:
             found.append(f"the server died (exit {session.process.returncode})")
+        elif broken:
+            session.send_raw(BREAKS[broken])
+            try:
+                status = session.process.wait(SETTLE)
+            except subprocess.TimeoutExpired:
+                status = None
+            time.sleep(0.2)  # its standard error read to the end
+            if status != 1 or b"the client's input" not in session.stderr:
+                found.append(f"input broken ({broken}): exit {status}, standard error "
+                             f"{session.stderr[-300:]!r}")
         else:
             number = session.send("shutdown", {}, request=True)
             session.answer(number, 10.0)

@@ -463,3 +463,38 @@ def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, te
     path.write_text(text)
     with pytest.raises(ConfigError, match="invalid JSON"):
         config.read_table(str(path), "configurations", "joint")
+
+
+@pytest.mark.parametrize("origin", ['xyz="0 0 0" rpy="inf 0 0"', 'xyz="nan 0 0"',
+                                    'xyz="0 1e999 0"', 'rpy="0 -inf nan"'])
+def test_an_origin_that_is_not_finite_is_a_located_error(tmp_path, origin):
+    """rpy="inf": math.sin raised ValueError, a traceback from fk, ik and every command
+    that poses the robot; "nan": every pose below it nan, exit 0 (attacks.md, session 7)."""
+    from conftest import load_text
+
+    robot = load_text(tmp_path, f"""<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+      <origin {origin}/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    with pytest.raises(FKError, match="not finite"):
+        KinematicModel(robot)
+
+
+def test_a_chain_of_3000_mimic_joints_has_its_values(tmp_path):
+    """Each joint mimicking the one before, twice its value plus 0.001: mimic_source recursed
+    once per joint (RecursionError from fk, ik, dynamics, collisions, workspace) and walked
+    the chain again for each (attacks.md, session 7)."""
+    from conftest import load_text
+
+    links = "".join(f'<link name="l{i}"/>' for i in range(3001))
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l0"/><child link="l{i + 1}"/>'
+        f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        + (f'<mimic joint="j{i - 1}" multiplier="{2 if i < 3 else 1}" offset="0.001"/>'
+           if i else "") + "</joint>" for i in range(3000))
+    model = KinematicModel(load_text(tmp_path, f'<robot name="r">{links}{joints}</robot>'))
+    assert [v.name for v in model.variables] == ["j0"]
+    from urdftool.kinematics.configuration import mimic_source
+
+    assert mimic_source(model.robot, "j2", {"j0"}) == ("j0", 4.0, 2 * 0.001 + 0.001)
+    assert mimic_source(model.robot, "j2999", {"j0"})[1] == 4.0

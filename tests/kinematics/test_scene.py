@@ -120,3 +120,32 @@ def test_a_missing_attribute_yourdfpy_needs_is_named(tmp_path):
     robot = load_text(tmp_path, '<robot name="r"><link name="a"/><link/></robot>')
     with pytest.raises(SceneError, match="an element lacks its 'name' attribute"):
         posed(robot)
+
+
+def test_a_long_chain_is_posed_without_walking_each_links_path_from_the_base(tmp_path,
+                                                                             monkeypatch):
+    """trimesh's graph.get walks the path from the base for each node: a 3,000-link chain
+    took minutes to render (quadratic; U015 at the budget). Each frame is composed once from
+    its parent's, and equals what the walk gives."""
+    from trimesh.scene.transforms import EnforcedForest
+
+    links = "".join(f'<link name="l{i}"><visual><origin xyz="0 0 0.05"/><geometry>'
+                    f'<box size="0.1 0.1 0.1"/></geometry></visual></link>' for i in range(60))
+    joints = "".join(f'<joint name="j{i}" type="revolute"><parent link="l{i}"/>'
+                     f'<child link="l{i + 1}"/><origin xyz="0 0.1 0.1" rpy="0.1 0.2 0.3"/>'
+                     f'<axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/>'
+                     f'</joint>' for i in range(59))
+    model = scene_model(load_text(tmp_path, f'<robot name="chain">{links}{joints}</robot>'))
+    q = {f"j{i}": 0.01 * i for i in range(59)}
+    walked = model.pose(q)  # the reference: every frame through trimesh's own walk
+    expected = {name: model.scene.graph.get(name)[0] for name in walked.frames}
+
+    def no_walk(*args, **kwargs):
+        raise AssertionError("a path walked from the base")
+
+    monkeypatch.setattr(EnforcedForest, "shortest_path", no_walk)
+    model.scene.graph._cache.clear()
+    again = model.pose(q)
+    for name, pose in again.frames.items():
+        np.testing.assert_allclose(pose, expected[name], atol=1e-12)
+    np.testing.assert_allclose(again.triangles, walked.triangles, atol=1e-12)

@@ -57,6 +57,36 @@ def test_ignore_by_name_and_cli_ignore_adds(run_cli, project):
     assert codes(run_cli, project / "robots", "--ignore", "U2") == (0, [])
 
 
+@pytest.mark.parametrize("text, words", [
+    ('ignore = ["U"]\n', []),  # a pull request switches every rule off
+    ('select = ["U2"]\nignore = ["U2"]\n', []),
+    ('select = ["U92"]\n', []),  # MuJoCo's rules, MuJoCo not asked for
+    ("", ["--ignore", "U"]),
+    ("", ["--select", "U1", "--ignore", "U1"]),
+])
+def test_a_selection_that_leaves_no_rule_is_an_error_not_a_pass(run_cli, project, text, words):
+    """Before: '1 file checked: no problems found', exit 0, on a robot with errors."""
+    settings(project, text)
+    result = run_cli("check", project / "robots", *words)
+    assert result.exit_code == 2 and "leave no rule to check" in result.output, result.output
+    assert "no problems found" not in result.output
+
+
+def test_a_per_file_ignore_of_every_rule_leaves_those_files_out(run_cli, project):
+    """How a repository leaves vendored robots out: not a selection of nothing."""
+    settings(project, '[tool.urdftool.per-file-ignores]\n"robots/*" = ["U"]\n')
+    assert codes(run_cli, project / "robots") == (0, [])
+
+
+@pytest.mark.parametrize("text", ["[tool]\nurdftool = 5\n", 'tool.urdftool = "select"\n',
+                                  "[[tool.urdftool]]\nselect = []\n"])
+def test_tool_urdftool_that_is_not_a_table_is_a_settings_error(run_cli, project, text):
+    (project / "pyproject.toml").write_text(text)
+    result = run_cli("check", project / "robots")
+    assert result.exit_code == 2 and "must be a table of settings" in result.output, \
+        result.output
+
+
 def test_per_file_ignores_by_relative_glob_and_by_name(run_cli, project):
     settings(project, '[tool.urdftool.per-file-ignores]\n"robots/*.urdf" = ["U204"]\n'
                       '"arm.urdf" = "axis-not-unit"\n')
@@ -217,6 +247,13 @@ def test_core_errors_name_no_flag(project):
         check_paths([project], max_file_size=0)
     with pytest.raises(SettingsError, match="companion file '.*nowhere.yaml' does not exist"):
         check_paths([project], companions={"spec": project / "nowhere.yaml"})
+    import os
+
+    (project / "dir.yaml").mkdir()
+    os.mkfifo(project / "fifo.yaml")
+    for name, why in (("dir.yaml", "is a folder"), ("fifo.yaml", "is not a regular file")):
+        with pytest.raises(SettingsError, match=f"'.*{name}' {why}"):  # not "does not exist"
+            check_paths([project], companions={"spec": project / name})
     settings(project, 'selct = ["U2"]\n')
     with pytest.raises(SettingsError, match="unknown urdftool setting"):
         check_paths([project / "robots"])

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import shutil
 
+import pytest
+
 from conftest import CASES, ROBOTS
 
 
@@ -486,8 +488,8 @@ def test_a_part_included_only_by_a_library_nobody_includes_is_skipped_named_or_w
         result = run_cli("check", *named, "--format", "json")
         assert result.exit_code == 0 and '"files": 0' in result.stdout, result.output
         assert "nothing to check" in result.stderr
-    walked = run_cli("check", tmp_path, "--format", "json")
-    assert walked.exit_code == 0 and '"files": 0' in walked.stdout
+    walked = run_cli("check", tmp_path, "--format", "json")  # a folder: a robot was asked for
+    assert walked.exit_code == 2 and "nothing checked" in walked.stderr and not walked.stdout
     # a robot including the library is checked instead, as before
     (tmp_path / "robot.urdf.xacro").write_text(
         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
@@ -691,3 +693,51 @@ def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, mo
     assert targets.expand([str(robot)], CheckRequest()).files == [str(robot)]
     assert [str(p) for p in reads] == [str(robot)] and lookups == [str(robot)]
     assert not summaries
+
+
+ROOTLESS = """<robot name="r"><link name="a"/>
+<joint name="j" type="fixed"><parent link="base"/><child link="a"/></joint></robot>"""
+
+
+@pytest.mark.parametrize("form", ["text", "json", "sarif", "github", "junit"])
+def test_a_check_that_checks_nothing_is_a_usage_error_not_a_pass(run_cli, tmp_path, form):
+    """A robot whose root link was deleted is a part nobody includes: named or walked, the run
+    checked nothing and said 'no problems found' with exit 0 (attacks.md A172). A macro library
+    or a YAML named alone (pre-commit names every staged file) is nothing to check by what it
+    is: exit 0, and the text says so."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robots").mkdir()
+    part = tmp_path / "robots" / "part.urdf"
+    part.write_text(ROOTLESS)
+    for path in (part, tmp_path / "robots"):
+        result = run_cli("check", path, "--format", form)
+        assert result.exit_code == 2 and not result.stdout, result.output
+        assert "nothing checked" in result.stderr and "part.urdf" in result.stderr
+    lib = tmp_path / "lib.xacro"
+    lib.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:macro name="m"><link name="a"/></xacro:macro></robot>')
+    (tmp_path / "other.yaml").write_text("a: 1\n")
+    quiet = run_cli("check", lib, tmp_path / "other.yaml", "--format", form)
+    assert quiet.exit_code == 0 and "no problems found" not in quiet.stdout
+    if form == "text":
+        assert "0 files checked: nothing to check" in quiet.stdout
+    both = run_cli("check", part, tmp_path / "robots" / ".." / "lib.xacro", "--format", form)
+    assert both.exit_code == 2  # a part among what was named: still nothing checked
+
+
+def test_a_named_macro_library_nobody_includes_is_read_once(monkeypatch, tmp_path):
+    """A library named on the command line (a ``<robot name>`` of macros that nobody
+    includes) is classified from the bytes read once: whether it writes links of its own is
+    asked of them, not of the file read again. Skipped either way, as before."""
+    from urdftool.lint import targets
+    from urdftool.lint.settings import CheckRequest
+
+    (tmp_path / ".git").mkdir()
+    lib = tmp_path / "lib.xacro"
+    lib.write_text('<robot name="lib" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:macro name="m"><link name="a"/></xacro:macro></robot>')
+    reads, head = [], targets._head
+    monkeypatch.setattr(targets, "_head", lambda path, *rest: reads.append(path) or head(path, *rest))
+    found = targets.expand([str(lib)], CheckRequest())
+    assert found.files == [] and "nothing to check" in found.notes[0]
+    assert [str(path) for path in reads] == [str(lib)]

@@ -124,3 +124,41 @@ def test_declared_keeps_an_unturned_tensor_as_rotate_gives_it_back():
         turned = mat3.rotate(tensor, mat3.rpy_matrix(tuple(map(float, (rpy or "0 0 0").split()))))
         found = mass.declared(link).inertia
         assert struct.pack("<9d", *sum(found, ())) == struct.pack("<9d", *sum(turned, ())), terms
+
+
+def _awkward_link(rng, i: int) -> str:
+    """A link whose inertials, and their masses, tensors and origins, come none, once or
+    several times, malformed or not, among comments and other children."""
+    def some(text: str) -> str:
+        return "".join(text for _ in range(rng.choice([0, 1, 1, 1, 2])))
+
+    def inertial() -> str:
+        parts = [some(f'<mass value="{rng.choice(["1", "0", "-2", "x", "1e400"])}"/>'),
+                 some('<inertia ixx="1" ixy="0.1" ixz="0" iyy="{}" iyz="0" izz="1"/>'.format(
+                     rng.choice(["2", "nan", "-0"]))),
+                 some(f'<origin xyz="{rng.choice(["0 0 1", "1 2", "-0 0 0"])}" '
+                      f'rpy="{rng.choice(["0 0 0", "0 1.5 0", "a b c"])}"/>'),
+                 "<!-- c -->", "<origin/>" if rng.random() < 0.2 else ""]
+        rng.shuffle(parts)
+        return "<inertial>" + "".join(parts) + "</inertial>"
+
+    parts = ["<!-- first -->"] + [inertial() for _ in range(rng.choice([0, 1, 1, 2]))] + \
+        ['<visual><geometry><box size="1 1 1"/></geometry></visual>']
+    rng.shuffle(parts)
+    return f'<link name="l{i}">' + "".join(parts) + "</link>"
+
+
+def test_the_inertial_read_from_the_grouped_children_is_the_inertial_read_alone(tmp_path):
+    import random
+
+    from urdftool.description.load import load
+
+    rng = random.Random(34)
+    for case in range(60):
+        path = tmp_path / f"r{case}.urdf"
+        path.write_text('<robot name="r">' + "".join(_awkward_link(rng, i) for i in range(20))
+                        + "</robot>")
+        robot = load(path)
+        for link in robot.children("link"):
+            assert repr(mp.declared_of(robot, link)) == repr(mp.declared(link)), \
+                path.read_text()

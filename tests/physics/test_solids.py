@@ -94,7 +94,8 @@ def test_a_links_shapes_are_read_once_per_robot(tmp_path, monkeypatch):
     from urdftool.physics import solids
 
     read, shape_of = [], solids.shape_of
-    monkeypatch.setattr(solids, "shape_of", lambda holder: read.append(holder) or shape_of(holder))
+    monkeypatch.setattr(solids, "shape_of",
+                        lambda holder, *groups: read.append(holder) or shape_of(holder, *groups))
     (tmp_path / "r.urdf").write_text(RIGID.replace(
         '<link name="tip"/>', '<link name="tip"><inertial><mass value="1"/><inertia ixx="1" '
         'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>').replace(
@@ -381,3 +382,33 @@ def test_plain_solids_measured_at_once_are_the_per_link_solids_to_the_bit(tmp_pa
         assert bits([v + 0.0 for corner in solid.bounds for v in corner]) == \
             bits([v for corner in plain.bounds for v in corner])
     assert found > 20
+
+
+def test_a_shape_read_from_its_holders_grouped_children_is_the_shape_read_alone(tmp_path):
+    import random
+
+    from urdftool.description.load import load
+    from urdftool.physics import solids
+
+    rng = random.Random(34)
+    shapes_ = ['<box size="1 2 3"/>', '<box size="1 2"/>', '<cylinder radius="1" length="2"/>',
+               '<sphere radius="-1"/>', '<mesh filename="m.stl" scale="1 1 2"/>', "<cone/>",
+               "<!-- s -->"]
+    for case in range(40):
+        holders = []
+        for _ in range(30):
+            parts = ["<geometry>" + "".join(rng.choice(shapes_) for _ in range(
+                rng.randrange(0, 3))) + "</geometry>" for _ in range(rng.choice([0, 1, 1, 2]))]
+            parts += [f'<origin xyz="{rng.choice(["0 0 1", "1 2", "-0 0 0"])}" rpy="0 0 1"/>'
+                      for _ in range(rng.choice([0, 1, 2]))] + ["<!-- c -->", "<material/>"]
+            rng.shuffle(parts)
+            tag = rng.choice(["visual", "collision"])
+            holders.append(f"<{tag}>{''.join(parts)}</{tag}>")
+        text = '<robot name="r"><link name="a">' + "".join(holders) + "</link></robot>"
+        path = tmp_path / f"r{case}.urdf"
+        path.write_text(text)
+        robot = load(path)
+        for holder in robot.children("link")[0]:
+            if isinstance(holder.tag, str):
+                assert repr(solids.shape_of(holder, robot.grouped(holder))) == \
+                    repr(solids.shape_of(holder)), text

@@ -374,3 +374,28 @@ def test_what_is_found_near_from_a_few_points_is_within_the_margin_of_every_vert
         elif exact > 0.0:
             assert fast == exact
     assert judged > 50, judged
+
+
+def test_the_highest_products_asked_by_blocks_are_the_whole_products():
+    """support.highest asks a mesh's vertices a block of rows at a time: the same numbers as
+    the whole product's largest (NaN carried, zeros' signs too), on counts around the block
+    size and awkward coordinates."""
+    from urdftool.physics.support import HIGHEST_ROWS, _columns, highest
+
+    rng = np.random.default_rng(34)
+    directions = np.hstack([_columns()[0], rng.normal(size=(3, 1))])
+    for trial in range(60):
+        n = int(rng.choice([1, HIGHEST_ROWS - 1, HIGHEST_ROWS, HIGHEST_ROWS + 1,
+                            3 * HIGHEST_ROWS + 17, int(rng.integers(2, 5000))]))
+        points = rng.normal(size=(n, 3)) * 10.0 ** rng.integers(-8, 8, size=(n, 3))
+        if trial % 4 == 1:
+            points[rng.integers(0, n, size=3)] = rng.choice([0.0, -0.0, 1e308, -1e308], size=3)
+        if trial % 4 == 2:
+            points[rng.integers(0, n)] = [np.nan, np.inf, -np.inf][trial % 3]
+        if trial % 4 == 3:  # the largest in a late block only
+            points[-1] = 1e6
+        with np.errstate(all="ignore"):
+            whole = (points @ directions).max(axis=0)
+            found = highest(points, directions)
+        assert np.array_equal(found, whole, equal_nan=True), trial
+        assert np.array_equal(np.signbit(found), np.signbit(whole)), trial

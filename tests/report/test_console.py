@@ -80,3 +80,25 @@ def test_a_plain_table_aligns_names_left_and_numbers_right_and_prints_names_safe
     assert lines[1].split() == HEADERS[:1] + ["x", "[m]", "y", "[m]", "z", "[m]", "roll", "[rad]"]
     assert lines[2].startswith("base_link ") and lines[2].endswith(" 1.570796")
     assert len({len(line) for line in lines[1:4]}) == 1  # columns line up
+
+
+def test_no_console_breaks_a_name_or_a_location_on_a_narrow_terminal(monkeypatch):
+    """On a real terminal narrower than a name, rich cut ``fk --matrix``'s title and the
+    name of a row at a blank: ``::error::forged`` started a line of its own, and a
+    ``file:line`` holding a blank came out as two lines no click or grep finds (attacks.md
+    A171). The terminal folds a long line itself; rich never breaks one."""
+    from urdftool.report.console import plain_console, print_table, wide_console
+
+    name = "base link with blanks ::error::forged and more words"
+    where = "my robots/urdf/robot.urdf:12"
+    for make in (wide_console, lambda: plain_console(_Stream(True))):
+        stream = _Stream(True)
+        monkeypatch.setattr("sys.stdout", stream)
+        monkeypatch.setenv("COLUMNS", "30")
+        console = make()
+        assert console.is_terminal and console.width == 30
+        print_table(console, f"poses relative to {name}", HEADERS, [[name, *ROWS[0][1:]]])
+        console.print(f"{where}: joint '{name}': a finding")
+        lines = _plain(console.file.getvalue()).splitlines()
+        assert lines[:2] == [f"poses relative to {name}", name], lines
+        assert f"{where}: joint '{name}': a finding" in lines

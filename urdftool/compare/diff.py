@@ -51,6 +51,7 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
     from urdftool.compare.structure import structure
 
     changes, found = structure(old, new, options.tolerance)
+    _known_chains(old, new, found, options.chains)
     result = Diff(old.display, new.display, changes, found, None)
     if any(_physical(change) for change in changes):
         from urdftool.errors import FKError, ModelBuildError
@@ -65,6 +66,17 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
 
         result.companions = compare(old, new, found)
     return result
+
+
+def _known_chains(old, new, found, chains) -> None:
+    """UnknownLink for a ``chains`` link ``new`` does not have, or ``old`` under its old name,
+    whether or not the effects are computed."""
+    from urdftool.errors import UnknownLink
+
+    back = {new_name: old_name for old_name, new_name in found.links.items()}
+    for ends in chains:
+        UnknownLink.unless_among(ends, new.links)
+        UnknownLink.unless_among([back.get(name, name) for name in ends], old.links)
 
 
 def _physical(change: Change) -> bool:

@@ -41,12 +41,23 @@ def package_name(folder: Path, root: Path | None = None) -> str | None:
     manifest = folder / "package.xml"
     if root is not None and not inside(manifest, root):
         return None
+    text = manifest_text(folder)
+    if text is None:
+        return None
+    match = _NAME.search(text)  # comments removed: a commented-out <name> is not the name
+    return match.group(1).decode("utf-8", "replace") if match else folder.name
+
+
+@per_run
+def _manifest(path: str) -> bytes | None:
+    """The bytes of the package.xml at ``path``, None when it cannot be read: read once per
+    run, whoever asks (every robot's resolver walks up and scans below the same repository,
+    and two rules read its manifest: a check of the corpus read 83 package.xml files 351
+    times)."""
     try:
-        head = read_regular(manifest, _MAX_MANIFEST, as_="package manifest")
+        return read_regular(path, _MAX_MANIFEST, as_="package manifest")
     except OSError:
         return None
-    match = _NAME.search(head)
-    return match.group(1).decode("utf-8", "replace") if match else folder.name
 
 
 @per_run
@@ -238,11 +249,8 @@ def package_of(path) -> Path | None:
 
 def manifest_text(folder: Path) -> bytes | None:
     """The package.xml of ``folder``, comments removed; None when it cannot be read."""
-    try:
-        return _COMMENT.sub(b"", read_regular(folder / "package.xml", _MAX_MANIFEST,
-                                              as_="package manifest"))
-    except OSError:
-        return None
+    data = _manifest(os.fspath(folder / "package.xml"))
+    return None if data is None else _COMMENT.sub(b"", data)
 
 
 def declared_dependencies(folder: Path) -> frozenset[str] | None:

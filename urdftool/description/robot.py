@@ -143,13 +143,49 @@ class Robot:
         return self.memo(Robot.ends, self._read_ends)
 
     def _read_ends(self) -> dict:
-        found = {}
+        found, named = {}, set()
         for joint in self.children("joint"):  # (a loop, not comprehensions: 10,000 joints)
             groups = self.grouped(joint)
             parents, children = groups.get("parent"), groups.get("child")
             parent, child = parents[0] if parents else None, children[0] if children else None
+            link = child.get("link") if child is not None else None
             found[joint] = {"parent": (parent, parent.get("link") if parent is not None else None),
-                            "child": (child, child.get("link") if child is not None else None)}
+                            "child": (child, link)}
+            if children:
+                named.add(link)
+                for other in children[1:]:  # (one <child> in all but broken joints)
+                    named.add(other.get("link"))
+        self._memo[Robot.hanging] = named
+        return found
+
+    def hanging(self) -> set:
+        """The link (or None) named by every ``<child>`` of every joint, the first of a joint
+        and any after it: the links that hang from a joint; read with :meth:`ends`."""
+        self.ends()
+        return self._memo[Robot.hanging]
+
+    def names(self) -> dict:
+        """Element -> its ``name`` attribute (None without one) of every link and joint (the
+        ``<robot>``'s children), read once per robot: the rules of several families look
+        each link up by name and name it in their messages, 10,000 times on a large robot."""
+        return self.memo(Robot.names, self._read_names)
+
+    def kinds(self) -> dict:
+        """Joint element -> its ``type`` attribute (None without one) of every joint, read
+        once per robot with :meth:`names`: the joint, inertia and solid rules, the tree of
+        fixed bodies and the wheels each ask every joint."""
+        self.names()
+        return self._memo[Robot.kinds]
+
+    def _read_names(self) -> dict:
+        found, kinds = {}, {}
+        groups = self.grouped(self.root)
+        for element in groups.get("link", ()):
+            found[element] = element.get("name")
+        for element in groups.get("joint", ()):
+            found[element] = element.get("name")
+            kinds[element] = element.get("type")
+        self._memo[Robot.kinds] = kinds
         return found
 
     @cached_property

@@ -13,6 +13,9 @@ from urdftool.description.xml import first_child
 # spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
 _DECIMAL = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
 _NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
+# A text whose whitespace-separated parts (str.split's: re's \s is the same Unicode
+# whitespace) are all _DECIMAL, matched at once: each part is then to_float's float(part).
+_DECIMALS = re.compile(rf"\s*(?:{_DECIMAL.pattern})(?:\s+(?:{_DECIMAL.pattern}))*\s*")
 
 
 def to_float(text: str) -> float:
@@ -40,6 +43,13 @@ def number_tuple(text: str | None, count: int | None = None):
     parts = text.split()
     if count is not None and len(parts) != count:
         return None, f"expected {count} numbers, found {len(parts)} in '{text}'"
+    if _DECIMALS.fullmatch(text):  # every part decimal, as nearly all are: one match for all
+        return tuple(map(float, parts)), None
+    return _part_by_part(text, parts)
+
+
+def _part_by_part(text: str, parts: list[str]):
+    """:func:`number_tuple` of ``text`` split into ``parts``, each read by :func:`to_float`."""
     values = []
     for part in parts:
         try:
@@ -62,6 +72,9 @@ def number(element, attribute: str, default: float | None = None):
         return default
     values, problem = parse_numbers(text, 1)
     return values[0] if values else None
+
+
+_UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)
 
 
 class Origin(NamedTuple):
@@ -92,11 +105,14 @@ def origin(element) -> Origin:
     return Origin(xyz or _ZEROS, rpy or _ZEROS, problem, found)
 
 
-def origin_pose(element) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+def origin_pose(element, found=_UNREAD) -> tuple[tuple[float, float, float],
+                                                 tuple[float, float, float]]:
     """(xyz, rpy) of :func:`origin` (zeros for a malformed part), without the rest: the solids
     and inertials place 30,000 shapes and inertials of a 10,000-link robot, and count a
-    malformed part as 0 (the rules that judge it read :func:`origin`)."""
-    found = first_child(element, "origin") if element is not None else None
+    malformed part as 0 (the rules that judge it read :func:`origin`). ``found``: the first
+    ``<origin>`` of ``element`` (or None), when the caller has its children at hand."""
+    if found is _UNREAD:
+        found = first_child(element, "origin") if element is not None else None
     if found is None:
         return _ZEROS, _ZEROS
     get = found.get

@@ -131,9 +131,7 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     kinematics = kinematics or KinematicModel(robot)
     full = kinematics.model
     base = base or kinematics.links[0]
-    for name in (base, tip):
-        if name not in kinematics.links:
-            raise UnknownLink(name, kinematics.links)
+    UnknownLink.unless_among((base, tip), kinematics.links)
     row = np.array([v.default for v in kinematics.variables]) if row is None else \
         np.asarray(row, dtype=float).copy()
     frame = {name: full.getFrameId(name, pin.FrameType.BODY) for name in (base, tip)}

@@ -88,24 +88,35 @@ def mimics_of(robot) -> dict[str, str]:
             if joint.find("mimic") is not None}
 
 
-def mimic_source(robot, name: str, variable_names: Collection[str], seen=()):
+def mimic_source(robot, name: str, variable_names: Collection[str], seen=(),
+                 known: dict | None = None):
     """(variable, multiplier, offset): joint ``name``'s value as ``multiplier * variable +
     offset``, following chains of mimic joints; ConfigError (with ``element``) when a joint has
-    no value: a mimic cycle, or a mimic of a joint that does not exist."""
-    if name in variable_names:
-        return name, 1.0, 0.0
-    element = robot.joints.get(name)
-    mimic = element.find("mimic") if element is not None else None
-    if mimic is None or name in seen:
-        raise MimicError(f"joint '{name}' has no value (a mimic cycle?)", element)
-    master = mimic.get("joint")
-    if master not in robot.joints:
-        raise MimicError(f"joint '{name}' mimics unknown joint '{master}'; "
-                         f"{available('joints', master or '', robot.joints)}", mimic)
-    multiplier = _attribute(mimic, "multiplier", 1.0)
-    offset = _attribute(mimic, "offset", 0.0)
-    variable, m, o = mimic_source(robot, master, variable_names, seen + (name,))
-    return variable, multiplier * m, multiplier * o + offset
+    no value: a mimic cycle, or a mimic of a joint that does not exist. ``known``: the sources
+    found so far, shared by a caller that asks for every joint (filled in here). Walked in a
+    loop, each joint's source kept: a chain of 3,000 mimic joints raised RecursionError in every
+    command that poses the robot, and asking for each joint walked the chain again (cubic with
+    the tuple of joints seen: check, fk, ik, dynamics stopped at the time budget)."""
+    known = {} if known is None else known
+    steps, visited = [], set(seen)  # (joint, multiplier, offset) from ``name`` on
+    while name not in variable_names and name not in known:
+        element = robot.joints.get(name)
+        mimic = element.find("mimic") if element is not None else None
+        if mimic is None or name in visited:
+            raise MimicError(f"joint '{name}' has no value (a mimic cycle?)", element)
+        visited.add(name)
+        master = mimic.get("joint")
+        if master not in robot.joints:
+            raise MimicError(f"joint '{name}' mimics unknown joint '{master}'; "
+                             f"{available('joints', master or '', robot.joints)}", mimic)
+        steps.append((name, _attribute(mimic, "multiplier", 1.0),
+                      _attribute(mimic, "offset", 0.0)))
+        name = master
+    variable, multiplier, offset = known.get(name) or (name, 1.0, 0.0)
+    for joint, step_multiplier, step_offset in reversed(steps):  # the recursion's products
+        multiplier, offset = step_multiplier * multiplier, step_multiplier * offset + step_offset
+        known[joint] = variable, multiplier, offset
+    return variable, multiplier, offset
 
 
 def _coordinates(joint: str, names) -> list[Variable]:

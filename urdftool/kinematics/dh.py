@@ -108,9 +108,7 @@ def table_fk(table: DHTable, values: np.ndarray) -> np.ndarray:
 
 def chain(robot, base: str, tip: str) -> list:
     """The joint elements from ``base`` down to ``tip``; DHError when tip is not below base."""
-    for name in (base, tip):
-        if name not in robot.links:
-            raise UnknownLink(name, robot.links)
+    UnknownLink.unless_among((base, tip), robot.links)
     parent_joint = {}
     for joint in robot.children("joint"):
         child = joint.find("child")

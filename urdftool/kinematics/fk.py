@@ -201,7 +201,8 @@ class KinematicModel:
     def _source(self, name: str) -> tuple:
         """(column, multiplier, offset): the joint's value as a function of one variable."""
         try:
-            variable, multiplier, offset = mimic_source(self.robot, name, self._columns)
+            variable, multiplier, offset = mimic_source(
+                self.robot, name, self._columns, known=self.__dict__.setdefault("_sources", {}))
         except MimicError as error:
             raise FKError(str(error), error.element) from None
         return self._columns[variable], multiplier, offset
@@ -331,14 +332,23 @@ def _placement(element) -> np.ndarray:
     from urdftool.description.values import origin
 
     found = origin(element)
-    if found.problem:
-        raise FKError(f"joint '{element.get('name')}': <origin> {found.problem}",
+    problem = found.problem or (None if all(map(math.isfinite, (*found.xyz, *found.rpy))) else
+                                f"holds a number that is not finite (xyz {_numbers(found.xyz)}, "
+                                f"rpy {_numbers(found.rpy)}): no pose has it")
+    if problem:  # inf: math.sin raised ValueError; nan: every pose below it nan, silently
+        raise FKError(f"joint '{element.get('name')}': <origin> {problem}",
                       found.element if found.element is not None else element)
     matrix = np.eye(4)
     matrix[:3, 3] = found.xyz
     if found.rpy != (0.0, 0.0, 0.0):  # the identity to the bit, without the products
         matrix[:3, :3] = _rotation(*found.rpy)
     return matrix
+
+
+def _numbers(values) -> str:
+    from urdftool.numbers import number
+
+    return "'" + " ".join(map(number, values)) + "'"
 
 
 def _compose(first: np.ndarray, second: np.ndarray) -> np.ndarray:
@@ -407,9 +417,7 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
                        frames: list[str] | None = None, base: str | None = None) -> FKResult:
     """Poses of ``frames`` (default: every link) relative to ``base`` (default: the root)."""
     index = {name: i for i, name in enumerate(model.links)}
-    for name in (frames or []) + ([base] if base else []):
-        if name not in index:
-            raise UnknownLink(name, model.links)
+    UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links)
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
     if base:
         poses = model._frame_poses(configurations.values, chosen + [index[base]])

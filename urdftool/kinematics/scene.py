@@ -85,7 +85,8 @@ class SceneModel:
         return sum(len(self._geometry(node).faces) for node, _ in self._nodes)
 
     def _geometry(self, node: str):
-        return self.scene.geometry[self.scene.graph[node][1]]
+        # the node's own data: graph[node] would walk its path from the base (_placements)
+        return self.scene.geometry[self.scene.graph.transforms.node_data[node]["geometry"]]
 
     def _add_meshes(self) -> None:
         """Every ``<mesh>`` of every link, loaded safely and hung from its link's node."""
@@ -149,13 +150,13 @@ class SceneModel:
         if values:
             self.urdf.update_cfg(values)
         graph = self.scene.graph
-        frames = {link.name: graph.get(link.name)[0] for link in self.urdf.robot.links
+        placed = _placements(graph)
+        frames = {link.name: placed(link.name) for link in self.urdf.robot.links
                   if link.name in graph.nodes}
         index = {link: i for i, link in enumerate(self.links)}
         triangles, owners, colours, facing = [], [], [], []
         for node, link in self._nodes:
-            transform, name = graph.get(node)
-            geometry = self.scene.geometry[name]
+            transform, geometry = placed(node), self._geometry(node)
             vertices = np.asarray(geometry.vertices, dtype=float) @ transform[:3, :3].T \
                 + transform[:3, 3]
             faces = np.asarray(geometry.faces, dtype=np.int64)
@@ -246,3 +247,31 @@ def posed(robot, words: dict[str, str] | None = None, degrees: bool = False,
     chosen = config.from_words(model.all_variables, words or {}, degrees, model.mimics)
     q = {v.name: float(x) for v, x in zip(model.all_variables, chosen.values[0])}
     return model.pose(q, max_triangles), chosen.warnings
+
+
+def _placements(graph):
+    """A node of a trimesh scene graph -> its transform from the base frame, each composed once
+    from its parent's: trimesh's ``graph.get`` walks the whole path from the base for every
+    node, so a chain of 3,000 links took minutes (quadratic; stopped by the time budget). A
+    node whose parents do not lead to the base (a loop, none) is left to ``graph.get``."""
+    import numpy as np
+
+    forest = graph.transforms
+    placed = {graph.base_frame: np.eye(4)}
+
+    def of(node):
+        chain, seen = [], set()
+        while node not in placed:
+            parent = forest.parents.get(node)
+            if parent is None or node in seen:
+                return graph.get(chain[0] if chain else node)[0]
+            seen.add(node)
+            chain.append(node)
+            node = parent
+        for child in reversed(chain):
+            parent = forest.parents[child]
+            matrix = forest.edge_data[(parent, child)].get("matrix")
+            placed[child] = placed[parent] if matrix is None else placed[parent] @ matrix
+        return placed[chain[0] if chain else node]
+
+    return of

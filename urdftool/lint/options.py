@@ -4,6 +4,7 @@ without importing every rule (a re-run served from the cache never does)."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,6 +36,18 @@ class Selection:
         if self.select and not any(CATALOGUE.matches(code, s) for s in self.select):
             return False
         return not any(CATALOGUE.matches(code, s) for s in self.ignore)
+
+    def runs_nothing(self) -> bool:
+        """Whether no rule at all is allowed: every one ignored, or selected only among the
+        portability rules of targets not asked for."""
+        return bool(self.select or self.ignore) and _runs_nothing(self)
+
+
+@functools.lru_cache(maxsize=64)
+def _runs_nothing(selection: Selection) -> bool:
+    from urdftool.lint.rules import CATALOGUE
+
+    return not any(selection.allows(rule.code) for rule in CATALOGUE)
 
 
 def _target_of(code: str) -> str | None:

@@ -139,13 +139,14 @@ def rootless(links, parents, children) -> Part | None:
         return None
     if not links:
         return Part("joints", frozenset(parents), (
-            "a part of a robot defined elsewhere (no link of its own, only joints between "
-            "links it does not write)"), frozenset(children))
+            f"{PART} (no link of its own, only joints between links it does not write)"),
+            frozenset(children))
     return Part("hangs", frozenset(parents - links), ROOT_ELSEWHERE)
 
 
-ROOT_ELSEWHERE = ("a part of a robot defined elsewhere (its joints hang on links it does not "
-                  "write, and it has no root link of its own)")
+PART = "a part of a robot defined elsewhere"  # how every condition of rootless() starts
+ROOT_ELSEWHERE = (f"{PART} (its joints hang on links it does not write, and it has no root "
+                  "link of its own)")
 
 
 def judged(robot, findings: list[Finding]) -> list[Finding]:

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding
-from urdftool.errors import SettingsError
+from urdftool.errors import SettingsError, TargetError
 from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.pool import Stop, auto_jobs, run_budgeted
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
@@ -152,8 +152,9 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
     progress: called with (files done, files to check) as the files are checked
     The results' records (:mod:`urdftool.description.record`) note the digests of the files
     read only with ``cache_dir``, the one reader that compares them with the disk.
-    Raises TargetError (an UrdftoolError) before anything is checked, and SettingsError when
-    the settings of every file to check are broken; broken settings that apply to some files
+    Raises TargetError (an UrdftoolError) before anything is checked (also when nothing is to
+    be checked while a path named asked for a robot: ``Targets.unchecked``), and SettingsError
+    when the settings of every file to check are broken; broken settings that apply to some files
     only are the run's ``errors``, and the other files are checked.
     """
     if request is None:
@@ -185,6 +186,8 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
 
     with recording() as surroundings:  # what finding targets and settings read: a run kept
         targets = expand(paths, request)  # whole depends on it
+        if not targets.files and targets.unchecked:  # a check that checks nothing is no pass
+            raise TargetError(f"nothing checked: {'; '.join(targets.unchecked)}")
         by_path, errors = {}, []
         for path in targets.files:  # broken settings stop the files they apply to, no others
             try:

@@ -38,7 +38,7 @@ import fnmatch
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
@@ -311,6 +311,11 @@ def _validated(path: Path, key: str, value):
 
 
 def _parse(path: Path, table: dict) -> Settings:
+    if not isinstance(table, dict):  # `urdftool = 5` under [tool]: TypeError; a string was
+        # read as its characters, each an unknown setting
+        where = "the file" if path.name == "urdftool.toml" else "[tool.urdftool]"
+        raise SettingsError(f"{path}: {where} must be a table of settings, not "
+                            f"{type(table).__name__} {str(table)[:40]!r}")
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
@@ -530,10 +535,13 @@ Companions = CompanionPaths  # the API's name for the companion files a request 
 
 
 def check_companions(companions: CompanionPaths) -> None:
-    """SettingsError when a companion file named does not exist."""
+    """SettingsError when a companion file named does not exist or is not a regular file."""
     for path in companions.named():
-        if kind_of(path) != "file":
-            raise SettingsError(f"companion file '{path}' does not exist")
+        kind = kind_of(path)
+        if kind != "file":
+            why = ("does not exist" if not kind else "is a folder" if kind == "folder"
+                   else "is not a regular file (a FIFO, a device or a socket)")
+            raise SettingsError(f"companion file '{path}' {why}")
 
 
 def _settings_companions(settings: Settings) -> CompanionPaths:
@@ -650,9 +658,18 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
     and per-file ignores add, companions and packages win one by one."""
     settings = _applying(path, request)
     selection = Selection(tuple(_codes(request.select or settings.select)),
-                          tuple(_codes([*settings.ignore, *request.ignore,
-                                        *settings.ignores_for(path)])),
+                          tuple(_codes([*settings.ignore, *request.ignore])),
                           request.targets or tuple(_codes(settings.targets)))
+    if selection.runs_nothing():  # every rule ignored (`ignore = ["U"]` in a settings file a
+        # pull request edits, `--select U1 --ignore U1`): a check of nothing is no pass. A
+        # per-file ignore of every rule is how a repository leaves vendored files out: not here
+        where = f" (with {settings.path})" if settings.path else ""
+        raise SettingsError(f"select {list(selection.select)}, ignore "
+                            f"{list(selection.ignore)} and targets "
+                            f"{list(selection.targets)}{where} leave no rule to check "
+                            f"{path} with")
+    selection = replace(selection, ignore=(
+        *selection.ignore, *_codes(settings.ignores_for(path))))
     options = CheckOptions(
         xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
@@ -19,7 +19,7 @@ from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_b
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
     read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
-from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, rootless
+from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
 
 SUFFIXES = (".urdf", ".xacro")
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
@@ -536,8 +536,9 @@ def explicit_targets(path: Path, includers: dict, root: Path,
                      ) -> tuple[list[Path], str | None]:
     """What to check for a file named on the command line (as pre-commit does), and why.
 
-    includers: :func:`includers_below` ``root``, or a function returning it, called only when
-        the file is not a robot of its own (walking a repository costs more than checking a robot)
+    includers: :func:`includers_below` ``root``, or a function of the bytes already read
+        (absolute path -> bytes) returning it, called only when the file is not a robot of its
+        own (walking a repository costs more than checking a robot)
     A robot of its own (a named ``<robot>`` with links, joints or macro calls) is checked as it
     is, and so is a file that is not read (a link leading outside the repository, a file over
     the size limit, a FIFO): checking it reports why. A file that is not (a macro library, a
@@ -556,7 +557,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
         return [], f"{SRDF_SOURCE}: nothing to check"
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
-    includers = includers() if callable(includers) else includers
+    includers = includers({os.path.abspath(path): data}) if callable(includers) else includers
     target, seen, tops = resolved_path(path), set(), []
     pending = [target]
     while pending:
@@ -585,7 +586,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
             return robots, (f"included by {shown}: checking "
                             f"{', '.join(display_path(p) for p in robots)} instead")
         return robots, f"included by {shown}: checking that instead"
-    reason = _not_a_robot(path, summary, resolver_for, max_file_size, yields)
+    reason = _not_a_robot(path, summary, resolver_for, max_file_size, yields, data)
     if reason:
         return [], f"{reason}, and no robot below {root} includes it: nothing to check"
     return [path], None
@@ -596,7 +597,7 @@ _UNKNOWN = object()
 
 
 def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
-                 yields=_UNKNOWN) -> str | None:
+                 yields=_UNKNOWN, data=_UNREAD) -> str | None:
     """Why a file that no robot found includes is not checked as a robot, or None to check
     it: the one decision for a file walked and a file named (pre-commit).
 
@@ -611,10 +612,11 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     library including others (kortex's gen3_macro.xacro); one whose include names a package
     found nowhere is checked (expanding it says so, U006). Any of them a launch file of its
     repository runs as the robot description, unconditionally, is a robot: checked
-    (:mod:`urdftool.lint.parts` then judges what it lacks)."""
+    (:mod:`urdftool.lint.parts` then judges what it lacks).
+    data: the file's :func:`_head`, when the caller read it (a file named: read once)."""
     if summary.srdf:
         return SRDF_SOURCE
-    reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields)
+    reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields, data)
     return None if reason is not None and _run_as_robot(path) else reason
 
 
@@ -631,14 +633,14 @@ def _run_as_robot(path: Path) -> bool:
 
 
 def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int,
-                         yields) -> str | None:
+                         yields, data=_UNREAD) -> str | None:
     if summary.empty:
         return EMPTY
     if path.name.endswith(".urdf"):
         return FRAGMENT if summary.fragment else summary.root_elsewhere
     if summary.root_elsewhere:
         return summary.root_elsewhere
-    if summary.defines_robot or summary.named_robot and _has_own_links(path, limit):
+    if summary.defines_robot or summary.named_robot and _has_own_links(path, limit, data):
         return None
     if yields is _UNKNOWN:
         yields = _includes_yield_links(summary, resolver_for, limit)
@@ -648,12 +650,15 @@ def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int
     return FRAGMENT if summary.fragment else "defines only macros or properties (a macro library)"
 
 
-def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
-                    ) -> dict[Path, list[Path]]:
-    """Included file (resolved) -> the files below ``root`` that include it."""
+def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE,
+                    read: dict | None = None) -> dict[Path, list[Path]]:
+    """Included file (resolved) -> the files below ``root`` that include it. ``read``:
+    absolute path -> the bytes :func:`_head` gave of files already read (not read again)."""
     includers: dict[Path, list[Path]] = {}
+    read = read or {}
     for path in robot_files(root):
-        for target in _summary(path, resolver_for, max_file_size).includes:
+        data = read.get(os.path.abspath(path), _UNREAD)
+        for target in _summary(path, resolver_for, max_file_size, data).includes:
             includers.setdefault(target, []).append(path)
     return includers
 
@@ -666,11 +671,18 @@ class Targets:
     skipped: files found in folders and not checked -> why (included by a robot, a macro library),
         and companion files named that no robot is checked with (said only with -v)
     notes: "PATH: what happened" for files named that are checked through others or not at all
+    unchecked: "PATH: why" for each path named that asked for a robot to be checked and gave
+        none: a folder whose robot files are all skipped, a file with links of its own that is
+        a part (its root link deleted looks the same) nobody here includes. When the run checks
+        no file at all these make it a usage error (:func:`urdftool.lint.runner.check_paths`),
+        as a folder without robot files is; a companion, a macro library, a fragment or an
+        SRDF source named (pre-commit names every staged file) is none by what it is.
     """
 
     files: list[str]
     skipped: dict[str, str]
     notes: list[str]
+    unchecked: list[str] = field(default_factory=list)
 
 
 def expand(paths: list[str], request) -> Targets:
@@ -705,7 +717,7 @@ def expand(paths: list[str], request) -> Targets:
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
-    files, skipped, notes = [], {}, []
+    files, skipped, notes, unchecked = [], {}, [], []
     for path in map(os.fspath, paths):
         if path != "-" and not kind_of(path, follow=False):
             raise TargetError(f"path '{path}' does not exist")
@@ -729,15 +741,17 @@ def expand(paths: list[str], request) -> Targets:
         if kind == "file":
             root = project_root(Path(path))
 
-            def graph(root=root, limit=limit):
+            def graph(read, root=root, limit=limit):
                 if (root, limit) not in includers:
-                    includers[root, limit] = includers_below(root, resolver_for, limit)
+                    includers[root, limit] = includers_below(root, resolver_for, limit, read)
                 return includers[root, limit]
 
             targets, reason = explicit_targets(Path(path), graph, root, limit, resolver_for)
             files.extend(display_path(p) if p != Path(path) else path for p in targets)
             if reason:
                 notes.append(f"{path}: {reason}")
+                if not targets and reason.startswith(PART):
+                    unchecked.append(f"{path}: {reason}")
             continue
         found = robot_files(Path(path))
         top, skipped_here = split_top_level(found, resolver_for, limit)
@@ -745,7 +759,11 @@ def expand(paths: list[str], request) -> Targets:
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
             raise TargetError(f"no .urdf or .xacro files found in '{path}'")
+        if not top:
+            first, why = next(iter(skipped_here.items()))
+            more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
+            unchecked.append(f"{path}: no robot of its own in it: {first}: {why}{more}")
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
         unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
-    return Targets(list(unique.values()), skipped, notes)
+    return Targets(list(unique.values()), skipped, notes, unchecked)

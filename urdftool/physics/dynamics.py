@@ -78,8 +78,9 @@ def build(robot) -> Model:
     variables = variables_of(robot)
     names = {variable.name for variable in variables}
     try:
-        mimics = {joint: mimic_source(robot, joint, names) for joint in mimics_of(robot)
-                  if joint in joints}
+        known: dict = {}  # each joint's source found once along a chain of mimics
+        mimics = {joint: mimic_source(robot, joint, names, known=known)
+                  for joint in mimics_of(robot) if joint in joints}
     except MimicError as error:
         raise DynamicsError(str(error)) from None
     _refuse_oversized_data(robot, model.nv)

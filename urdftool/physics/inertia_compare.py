@@ -142,9 +142,7 @@ def _movers(robot) -> dict:
 def compare(robot, density: float | None = None, links: list[str] | None = None):
     """Every link (or the named ones) of a robot, in document order; UnknownLink when one of
     ``links`` does not exist."""
-    unknown = [name for name in links or () if name not in robot.links]
-    if unknown:
-        raise UnknownLink(unknown[0], robot.links)
+    UnknownLink.unless_among(links or (), robot.links)
     chosen = robot.children("link")
     if links:
         chosen = [l for l in chosen if l.get("name") in links]

@@ -48,7 +48,13 @@ def declared(link) -> Body | None:
     inertial = first_child(link, "inertial")
     if inertial is None:
         return None
-    mass_el, inertia_el = first_child(inertial, "mass"), first_child(inertial, "inertia")
+    return _declared(inertial, first_child(inertial, "mass"), first_child(inertial, "inertia"),
+                     first_child(inertial, "origin"))
+
+
+def _declared(inertial, mass_el, inertia_el, origin_el) -> Body | None:
+    """:func:`declared` of an ``<inertial>`` whose first ``<mass>``, ``<inertia>`` and
+    ``<origin>`` (each None when it has none) are found."""
     if mass_el is None or inertia_el is None:
         return None
     # The parsed tuples as they are, no list copies nor dict (a 10,000-link robot asks 70,000
@@ -64,7 +70,7 @@ def declared(link) -> Body | None:
     if mass is None:
         return None
     xx, xy, xz, yy, yz, zz = xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]
-    xyz, rpy = origin_pose(inertial)  # a malformed part counts as 0
+    xyz, rpy = origin_pose(inertial, origin_el)  # a malformed part counts as 0
     tensor, rotation = ((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)), mat3.rpy_matrix(rpy)
     if rotation is mat3.NO_TURN and mat3.kept_by_no_turn(tensor):
         return Body(mass[0], xyz, tensor)  # (floats already: mat3.rotate's matrix() of it)
@@ -75,9 +81,21 @@ _NONE = object()  # (robot.memo_for keeps no None)
 
 
 def declared_of(robot, link) -> Body | None:
-    """:func:`declared`, once per robot and link (the inertia and symmetry rules ask)."""
-    found = robot.memo_for(declared_of, link, lambda: declared(link) or _NONE)
+    """:func:`declared`, once per robot and link (the inertia and symmetry rules ask), read
+    from the children of the link and its inertial grouped once per robot
+    (:meth:`~urdftool.description.robot.Robot.grouped`), which the rules read too."""
+    found = robot.memo_for(declared_of, link, lambda: _declared_grouped(robot, link) or _NONE)
     return None if found is _NONE else found
+
+
+def _declared_grouped(robot, link) -> Body | None:
+    inertials = robot.grouped(link).get("inertial")
+    if not inertials:
+        return None
+    groups = robot.grouped(inertials[0])
+    masses, inertias, origins = groups.get("mass"), groups.get("inertia"), groups.get("origin")
+    return _declared(inertials[0], masses[0] if masses else None,
+                     inertias[0] if inertias else None, origins[0] if origins else None)
 
 
 def moments_of(robot, link) -> mat3.Vector | None:

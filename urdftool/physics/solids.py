@@ -160,9 +160,16 @@ def _positive(values) -> bool:
     return True
 
 
-def shape_of(holder) -> Shape | None:
-    """The shape of a ``<visual>``/``<collision>``, or None when malformed (rules say why)."""
-    geometry = first_child(holder, "geometry")
+def shape_of(holder, groups: dict | None = None) -> Shape | None:
+    """The shape of a ``<visual>``/``<collision>``, or None when malformed (rules say why);
+    ``groups``: the holder's children by tag (:meth:`~urdftool.description.robot.Robot.
+    grouped`) when read already."""
+    if groups is None:
+        geometry, origin_element = first_child(holder, "geometry"), first_child(holder, "origin")
+    else:
+        geometries, origins = groups.get("geometry"), groups.get("origin")
+        geometry = geometries[0] if geometries else None
+        origin_element = origins[0] if origins else None
     if geometry is None:
         return None
     for element in child_list(geometry):
@@ -196,7 +203,7 @@ def shape_of(holder) -> Shape | None:
         params = {"filename": filename, "scale": scale}
     else:
         return None
-    xyz, rpy = origin_pose(holder)  # a malformed part counts as 0
+    xyz, rpy = origin_pose(holder, origin_element)  # a malformed part counts as 0
     return Shape(kind, params, xyz, mat3.rpy_matrix(rpy), element)
 
 
@@ -215,8 +222,8 @@ def _link_shapes(robot, link) -> dict[str, tuple[list[Shape], int]]:
         for tag in ("visual", "collision"):
             holders = grouped.get(tag, ())
             kept = []
-            for holder in holders:
-                shape = shape_of(holder)
+            for holder in holders:  # (its children grouped once: the geometry rules read them)
+                shape = shape_of(holder, robot.grouped(holder))
                 if shape is not None:
                     kept.append(shape)
             found[tag] = (kept, len(holders))
@@ -1002,10 +1009,10 @@ def _shape_boxes(low, high, xyz, rotation, unturned):
 def _fixed_neighbours(robot) -> dict[str, list[tuple[str, mat3.Matrix, mat3.Vector]]]:
     """Link -> (link fixed to it, R, t taking points of that link's frame into this one's)."""
     def build():
-        neighbours = {}
+        neighbours, kinds = {}, robot.kinds()
         for joint, ends in robot.ends().items():
             (parent_element, parent), (child_element, child) = ends["parent"], ends["child"]
-            if joint.get("type") != "fixed" or parent_element is None or child_element is None:
+            if kinds[joint] != "fixed" or parent_element is None or child_element is None:
                 continue
             if parent not in robot.links or child not in robot.links:
                 continue

@@ -111,9 +111,8 @@ def build_standing(robot, supports: list[str]) -> Standing:
         raise DynamicsError(f"Pinocchio cannot build the model: {error}") from None
     model = Model(floating, floating.createData(), fixed.joints, fixed.variables, fixed.mimics)
     frames, points = [], []
+    UnknownLink.unless_among(supports, robot.links)  # (a usage error in every command)
     for name in supports:
-        if name not in robot.links:
-            raise UnknownLink(name, robot.links)  # (a usage error in every command)
         link_points, problems = surface_points(robot, robot.links[name])
         if not len(link_points):
             detail = f" ({problems[0][1]})" if problems else ""

@@ -298,7 +298,7 @@ class _Table:
         heights = np.full(directions.shape[1], -np.inf)
         with np.errstate(all="ignore"):
             if len(self.points):
-                heights = np.maximum(heights, (self.points @ directions).max(axis=0))
+                heights = np.maximum(heights, highest(self.points, directions))
             if self.cylinders is not None:
                 centres, rotations, (radii, halves) = self.cylinders
                 along = rotations[:, :, 2] @ directions  # (c, k): the axis is the third column
@@ -373,6 +373,28 @@ class _Table:
         directions = every if not norm > 0 else \
             np.hstack([every, (towards / norm).reshape(3, 1)])
         return float((p @ directions - self.support(directions, frame)).max())
+
+
+# Rows of points asked at once by highest(): their products with a few hundred directions
+# stay in the processor's cache (~1 MB)
+HIGHEST_ROWS = 1024
+
+
+def highest(points, directions):
+    """``(points @ directions).max(axis=0)``: the largest product of the points (k, 3) with
+    each column of ``directions`` (3, m), the same numbers (each product is the same row
+    times the same column; the largest of the largest of each block is the largest, NaN
+    as ``max`` carries it), asked :data:`HIGHEST_ROWS` points at a time: the whole (k, m)
+    product of a mesh's vertices (8,619 x 135: 9 MB) cost three to six times as much."""
+    import numpy as np
+
+    if len(points) <= HIGHEST_ROWS:
+        return (points @ directions).max(axis=0)
+    found = (points[:HIGHEST_ROWS] @ directions).max(axis=0)
+    for start in range(HIGHEST_ROWS, len(points), HIGHEST_ROWS):
+        np.maximum(found, (points[start:start + HIGHEST_ROWS] @ directions).max(axis=0),
+                   out=found)
+    return found
 
 
 # Meshes of a reach whose own stars are asked before the reach's star is made (see _Inside)

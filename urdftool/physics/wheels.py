@@ -94,12 +94,12 @@ def _identify(robot) -> list[Wheel]:
     parents = parent_joints(robot)
     driven = driven_joints(robot)
     found: dict[str, Wheel] = {}
-    ends = robot.ends()
+    ends, kinds = robot.ends(), robot.kinds()
     for name, joint in robot.joints.items():
         child = ends[joint]["child"][1] if joint in ends else None
         if child is None or child not in robot.links or parents.get(child) is not joint:
             continue
-        kind = joint.get("type")
+        kind = kinds[joint]
         moving = kind in VARIABLE and kind != "prismatic" and kind != "planar" \
             and kind != "floating"
         if name in driven:

@@ -106,9 +106,13 @@ def _guarded(console):
     table squeezed to 80 columns wraps a name at its blanks: a piece of it would start a line),
     and every line it writes through urdftool.report.escape.text (whatever a renderer let
     through, no line is a workflow command or holds an escape sequence). On a terminal, rich's
-    own colours stand, and the renderers' markup() alone guards."""
+    own colours stand, and the renderers' markup() alone guards; rich never breaks a line
+    there either (``soft_wrap``: a name or a ``file:line`` longer than the terminal is folded by
+    the terminal, one line still, whole when copied or searched, not cut at a blank into a
+    line a piece of the name starts)."""
     from urdftool.report.escape import Lines
 
+    console.soft_wrap = True
     if not console.is_terminal:
         console.width = 10_000
         console.file = Lines(console.file)

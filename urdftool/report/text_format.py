@@ -80,7 +80,7 @@ def _summary(results, hidden: int) -> Line:
     counts = [counted(summary.errors, "error"), counted(summary.warnings, "warning")]
     counts += [counted(infos, "note")] if infos or not hidden else []
     verdict = ", ".join(counts) if summary.errors or summary.warnings or infos \
-        else "no problems found"
+        else "no problems found" if summary.files else "nothing to check"
     if hidden:
         verdict += f" ({counted(hidden, 'note')} not shown: --notes shows them)"
     return [(f"{counted(summary.files, 'file')} checked: {verdict}", style)]

@@ -140,9 +140,10 @@ def _solid_source(robot, link) -> str:
 def _moving(robot) -> dict:
     """Link name -> the joint that moves it, for links a non-fixed joint moves; once per robot
     (U303 and U304 ask)."""
+    kinds = robot.kinds()
     return robot.memo(_moving, lambda: {name: joint for name, joint in
                                         _joints_by_child(robot).items()
-                                        if joint.get("type") in VARIABLE})
+                                        if kinds[joint] in VARIABLE})
 
 
 def _prefix(link) -> str:
@@ -222,7 +223,8 @@ def moving_link_without_mass(robot):
     if not any(first_child(link, "inertial") is not None for link in robot.children("link")):
         return
     moving = _moving(robot)
-    masses = {link.get("name"): p.mass for link, p in _valid(robot)}
+    names = robot.names()
+    masses = {names[link]: p.mass for link, p in _valid(robot)}
     fixed = _fixed_children(robot)
     for name in sorted(moving.keys() & robot.links.keys()):
         if name not in fixed:  # nothing fixed below it (most links): the walk's one step
@@ -280,9 +282,10 @@ def _fixed_joints_below(robot) -> dict[str, list]:
     """Link name -> (fixed joint, child link name) of the fixed joints hanging from it."""
     def build():
         below: dict[str, list] = {}
+        kinds = robot.kinds()
         for joint, ends in robot.ends().items():
             (parent, parent_link), (child, child_link) = ends["parent"], ends["child"]
-            if joint.get("type") == "fixed" and parent is not None and child is not None:
+            if kinds[joint] == "fixed" and parent is not None and child is not None:
                 below.setdefault(parent_link, []).append((joint, child_link))
         return below
     return robot.memo(_fixed_joints_below, build)
@@ -326,7 +329,7 @@ def inertia_not_positive_definite(robot):
     Bad: ``<mass value="0.5"/><inertia ixx="0" ... iyy="0" ... izz="0"/>`` on a revolute link
     Good: the inertia of the link's shape, e.g. ``urdftool inertia ROBOT``
     """
-    moving = _moving(robot)
+    moving, named = _moving(robot), robot.names()
     for link, properties in _judged(robot):
         if _negative_moment(properties):
             names = [a for a, v in zip(("ixx", "iyy", "izz"), _diagonal(properties))
@@ -334,9 +337,9 @@ def inertia_not_positive_definite(robot):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': {', '.join(names)} negative; moments of inertia are "
                 "positive"))
-        elif _name(link) in moving and _zero_tensor(properties.inertia,
-                                                    _scaled(ZERO_INERTIA, properties.mass)) \
-                and _rigid_body_has_no_inertia(robot, _name(link)):
+        elif (named[link] or "?") in moving and _zero_tensor(
+                properties.inertia, _scaled(ZERO_INERTIA, properties.mass)) \
+                and _rigid_body_has_no_inertia(robot, named[link] or "?"):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}' has mass {properties.mass:g} kg but zero inertia and is "
                 "moved by a joint; give the inertia of its shape"))
@@ -531,14 +534,13 @@ def root_link_inertia(robot):
     A note, not a warning: floating-base robots used with Pinocchio or MuJoCo are right to carry
     mass in their root.
     """
-    children = {c.get("link") for j in robot.children("joint")
-                for c in robot.grouped(j).get("child", ())}
+    children = robot.hanging()
     roots = [name for name in robot.links if name not in children]
     if len(roots) != 1:
         return
-    mass = 0  # the root's: the last link of its name with an inertial
+    mass, names = 0, robot.names()  # the root's: the last link of its name with an inertial
     for link, properties in _valid(robot):
-        if _name(link) == roots[0]:
+        if (names[link] or "?") == roots[0]:
             mass = properties.mass
     if mass > 0:
         root = robot.links[roots[0]]
@@ -802,6 +804,7 @@ def implausible_density(robot):
     plain = _plain_volumes(robot)
     osmium = number(DENSEST, places=0, grouped=True)  # (in every message)
     denser: dict = {}  # (mass, volume) -> what is said of them (copies of a link repeat them)
+    names = robot.names()
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
@@ -826,7 +829,7 @@ def implausible_density(robot):
                     f"{properties.mass:g} kg in at most {number(bounds[1], 3)} m^3 of geometry "
                     f"is at least {number(least, places=0, grouped=True)} kg/m^3, denser than "
                     f"osmium ({osmium}); a wrong mass or geometry scale")
-            yield _inertial_part(link, "mass"), f"link '{_name(link)}': {said}"
+            yield _inertial_part(link, "mass"), f"link '{names[link] or '?'}': {said}"
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
             yield _inertial_part(link, "mass"), (
                 f"link '{_name(link)}': {properties.mass:g} kg in {number(bounds[0], 3)} m^3 of "
@@ -990,10 +993,10 @@ def principal_moments_order(robot):
     """
     from urdftool.physics.wheels import wheels
 
-    skip = {wheel.link for wheel in wheels(robot)}
+    skip, names = {wheel.link for wheel in wheels(robot)}, robot.names()
     # the links with trustworthy geometry and a tensor, with the geometry's (U309, U310 ask)
     for link, properties, solid, expected, _ in _inertia_ratios(robot):
-        if _name(link) in skip or properties.mass <= PLACEHOLDER_MASS:
+        if (names[link] or "?") in skip or properties.mass <= PLACEHOLDER_MASS:
             continue
         easiest, _, hardest = mat3.eigvalsh(expected.inertia)
         if not easiest > 0 or hardest < ORDER_RATIO * easiest:

@@ -40,8 +40,9 @@ def unknown_joint_type(robot):
     Bad: ``<joint name="j" type="hinge">``
     Good: ``<joint name="j" type="revolute">`` (or continuous, prismatic, fixed, floating, planar)
     """
+    kinds = robot.kinds()
     for joint in robot.children("joint"):
-        kind = joint.get("type")
+        kind = kinds[joint]
         if kind not in JOINT_TYPES:
             what = f"type '{kind}'" if kind is not None else "no type"
             yield joint, f"joint '{_name(joint)}' has {what}; valid types: {', '.join(JOINT_TYPES)}"
@@ -50,7 +51,8 @@ def unknown_joint_type(robot):
 def _limits(robot) -> list:
     """(joint, its type, its first ``<limit>`` or None) of every joint; once per robot (three
     rules ask)."""
-    return robot.memo(_limits, lambda: [(joint, joint.get("type"), robot.child(joint, "limit"))
+    kinds = robot.kinds()
+    return robot.memo(_limits, lambda: [(joint, kinds[joint], robot.child(joint, "limit"))
                                         for joint in robot.children("joint")])
 
 
@@ -126,10 +128,10 @@ def _axes(robot) -> list:
     """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
     per robot (U205 and U206 ask)."""
     def read():
-        found = []
+        found, kinds = [], robot.kinds()
         for joint in robot.children("joint"):
             axis = robot.child(joint, "axis")
-            if axis is None or joint.get("type") not in AXIS:
+            if axis is None or kinds[joint] not in AXIS:
                 continue
             values, _ = number_tuple(axis.get("xyz"), 3)
             if values is not None and finite(values):
@@ -293,16 +295,20 @@ def mimic_cycle(robot):
     follows = {joint.get("name"): target for joint, _, target in _mimics(robot)
                if target and target != joint.get("name")}
     reported: set[str] = set()
+    done: set[str] = set()  # walked from before: what follows them is known (linear, not the
+    # cube of a chain's length: 3,000 mimics in a row took minutes)
     for start in follows:
-        chain, name = [], start
-        while name in follows and name not in chain:
+        chain, at, name = [], {}, start
+        while name in follows and name not in at and name not in done:
+            at[name] = len(chain)
             chain.append(name)
             name = follows[name]
-        if name in chain and name not in reported:
-            loop = chain[chain.index(name):]
+        if name in at and name not in reported:
+            loop = chain[at[name]:]
             reported.update(loop)
             yield robot.joints[name].find("mimic"), "mimic joints form a cycle: " + " -> ".join(
                 [*loop, name])
+        done.update(chain)
 
 
 @rule("U212", "zero-effort-or-velocity", Severity.WARNING)
@@ -442,8 +448,9 @@ def revolute_range_in_degrees(robot):
     Bad: ``<limit lower="-250" upper="250" .../>`` on a revolute joint
     Good: ``<limit lower="-4.3633" upper="4.3633" .../>``
     """
+    kinds = robot.kinds()
     for joint, limit, lower, upper in _ranges(robot):
-        if joint.get("type") != "revolute" or not finite((lower, upper)):
+        if kinds[joint] != "revolute" or not finite((lower, upper)):
             continue
         largest = max(abs(lower), abs(upper))
         if MULTI_TURN < largest <= DEGREE_LIKE:
