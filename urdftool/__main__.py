@@ -29,8 +29,18 @@ into the engine): it saves a fifth of the check of a 10,000-link robot, and the 
 passes over the imports, in the parent and, page by page, in the forked worker, of a one-file
 check (``make bench``). A check run without Typer ends without tearing the interpreter down
 (:func:`_end`): under 50 ms on the corpus and on a 10,000-link robot, it stays while the check of
-robots/r2d2 misses its goal without it. A one-file check keeps its budgeted worker: in this
-process it cost the same, and a hung C call can only be stopped from outside.
+robots/r2d2 misses its goal without it.
+
+A plain check forks first, small, into a guardian and the process that runs the command
+(:func:`_guarded`, :mod:`urdftool.guardian`): a budgeted file checked alone is checked in that
+process, not in a worker forked after the rules were imported (whose pages it copied one by
+one), and the guardian, outside, keeps the budget a worker had (a hung C call is killed at
+--timeout, the stop reported by the guardian: U015; a death in the check: U900).
+
+The door acts on its process (forks it into a guardian, ends it with ``os._exit``) only when
+it is the program: :func:`main` called from the top level of the script Python runs, decided
+once (:data:`PROGRAM`). A caller running the door inside its own program (a test runner's
+worker, with a thread of its own reading its orders) keeps its process, and gets SystemExit.
 """
 
 from __future__ import annotations
@@ -42,20 +52,54 @@ from contextlib import contextmanager
 
 def main() -> None:
     """The program: :func:`_main` within :func:`urdftool.streams.run` (how it writes and ends
-    when its output or its reader fails)."""
+    when its output or its reader fails). Whether this call is the program's, the top level of
+    the script Python runs (``urdftool``, ``python -m urdftool``, ``python -c``) and the first,
+    is decided here, once (:data:`PROGRAM`): only then may the door fork its guardian
+    (:func:`_guarded`); a caller running the door inside a process of its own (a test runner)
+    is no such program, and its process must not be forked."""
+    caller = sys._getframe(1)
+    PROGRAM["entry"] = PROGRAM["entry"] is None and caller.f_code.co_name == "<module>" and \
+        caller.f_globals.get("__name__") == "__main__"
     from urdftool.streams import run
 
     run(_main)
 
 
+# entry: None before main() is first called; then whether that call was the program's own
+PROGRAM: dict = {"entry": None}
+
+
 def _main() -> None:
     words = sys.argv[1:]
     _help(words)
+    if _guarded(words):  # the child: it runs the command, and ends as the program
+        from urdftool.guardian import end_after
+
+        end_after(lambda: _ended(words))
+    with _verdict_given():
+        _command(words)
+
+
+def _ended(words: list[str]) -> None:
+    """The command run as the program (:func:`urdftool.streams.run`), ended by :func:`_end`
+    (the exit functions run, the status the streams allow) however it ends."""
+    from urdftool.streams import run
+
+    try:
+        run(lambda: _command(words))
+    except SystemExit as ended:
+        code = ended.code
+        if code is not None and not isinstance(code, int):
+            sys.stderr.write(f"{code}\n")  # (as Python ends on such an exit)
+            code = 1
+        _end(code or 0)
+
+
+def _command(words: list[str]) -> None:
     kept_code()
-    check = words[:1] == ["check"]
-    if check:
-        _collect_less()
+    if words[:1] == ["check"]:
         _check(words)
+        _collect_less()
     from urdftool.cli import main as run
 
     run()
@@ -65,14 +109,11 @@ def _check(words: list[str]) -> None:
     """Run ``check`` without Typer when its words are plain (:func:`plain_words`, with the
     parameters kept from the Typer app) and the standard streams are ones click writes to as
     they are (:func:`urdftool.terminal.plain`), and exit as Typer would; else return."""
-    if "_URDFTOOL_COMPLETE" in os.environ:  # click's shell completion asks
-        return
     from urdftool.terminal import option_named_by_a_file
 
     if option_named_by_a_file(words[1:]) is not None:  # Typer's usage error says it
         return
-    parameters = kept_words("check")
-    values = None if parameters is None else plain_words(words[1:], parameters)
+    values = _plain_check(words)
     if values is None:
         return
     from urdftool.terminal import plain
@@ -80,6 +121,7 @@ def _check(words: list[str]) -> None:
     terminal = plain()
     if terminal is None:
         return
+    _collect_less()
     from urdftool.checking import run
 
     try:
@@ -88,26 +130,98 @@ def _check(words: list[str]) -> None:
         terminal.echo("", err=True)
         terminal.say("Aborted!", err=True)
         code = 1
+    except SystemExit as ended:  # a usage error
+        if not isinstance(ended.code, int):
+            raise
+        code = ended.code
     _end(code)
 
 
-def _end(code: int) -> None:
+def _plain_check(words: list[str]) -> dict | None:
+    """The values of ``check``'s parameters for ``words`` when they are plain (with the
+    parameters kept from the Typer app), else None; None too when click's shell completion
+    asks."""
+    if "_URDFTOOL_COMPLETE" in os.environ:
+        return None
+    parameters = kept_words("check")
+    return None if parameters is None else plain_words(words[1:], parameters)
+
+
+def _guarded(words: list[str]) -> bool:
+    """Run a check whose words are plain (:func:`plain_words`) under a guardian forked now
+    (:func:`urdftool.guardian.guarded`), before anything else is imported or the kept code is
+    given, rather than in a budgeted worker forked after the rules are imported (whose pages it
+    copied one by one). True in the child, which runs the command (a budgeted file checked
+    alone is checked there). In the guardian: end as the child ended, or return False to run
+    the command again with the piece the child was stopped in given its Stop (over its time,
+    or died: U015, U900) without doing it. False with nothing forked for other words, standard
+    input (read once), ``--fix`` and ``--diff`` (files written between two checks), without
+    budgets (``--timeout 0 --max-memory 0``: the command line wins over settings files, and
+    the check runs in one process, nothing to guard), when the
+    door is not the program (:data:`PROGRAM`: a caller's process is not ours to fork, nor to
+    end), or in a process where other threads run (a process forked from them may find a lock
+    one of them held forever): those check in budgeted workers."""
+    if not PROGRAM["entry"] or words[:1] != ["check"]:
+        return False
+    values = _plain_check(words)
+    if values is None or "-" in values["words"] or values["fix"] or values["diff"] or \
+            values["timeout"] == 0 and values["max_memory"] == "0" or not _one_thread():
+        return False
+    from urdftool import guardian
+
+    found = guardian.guarded()
+    if found is None:
+        return guardian.guarding()
+    code, verdict = found
+    if verdict is None:
+        _end(code, exit_functions=False)  # (the child's, which ran them)
+    guardian.stopped_as(verdict)
+    return False
+
+
+def _one_thread() -> bool:
+    """Whether this process runs one thread, as the system counts them (Linux: a thread
+    started below :mod:`threading`, by ``_thread`` or a library's C code, counts too); else as
+    :mod:`threading` counts them (not imported: none of its making runs)."""
+    try:
+        return len(os.listdir("/proc/self/task")) == 1
+    except OSError:
+        threading = sys.modules.get("threading")
+        return threading is None or threading.active_count() == 1
+
+
+@contextmanager
+def _verdict_given():
+    """No verdict of :func:`_guarded` left for what this process does after the check (a
+    caller running the door in its own process)."""
+    try:
+        yield
+    finally:
+        from urdftool import guardian
+
+        guardian.stopped_as(None)
+
+
+def _end(code: int, exit_functions: bool = True) -> None:
     """Exit with ``code`` as ``SystemExit`` would, without tearing the interpreter down: the
     standard streams flushed, the exit functions run (last registered first, once), the
     streams flushed again, then the process ends, not freeing the rules', the robot's and the
     libraries' objects one by one (the system frees the memory at once). Files are closed by
     then (the cache and ``--output`` write within ``with``); the status is the one
     :func:`urdftool.streams.end` gives when the output failed (a reader that left, a full
-    disk). Python ends as usual instead (``SystemExit``) while another thread runs."""
+    disk). Python ends as usual instead (``SystemExit``) while another thread of
+    :mod:`threading` runs (its work would be cut short), and when the door is not the program
+    (:data:`PROGRAM`: the process is its caller's to end)."""
     threading = sys.modules.get("threading")  # (not imported: no thread of its making runs)
-    if threading is not None and threading.active_count() > 1:
+    if not PROGRAM["entry"] or threading is not None and threading.active_count() > 1:
         raise SystemExit(code)
     from urdftool.streams import end
 
     code = end(code)
-    import atexit
+    if exit_functions:
+        import atexit
 
-    atexit._run_exitfuncs()
+        atexit._run_exitfuncs()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

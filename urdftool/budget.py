@@ -15,6 +15,7 @@ import os
 from dataclasses import dataclass
 
 from urdftool.errors import UsageError
+from urdftool.guardian import SLOT_SIZE as _SLOT_SIZE  # (the slot of the guardian's child too)
 
 # ``Location`` below is urdftool.diagnostics.Location, in annotations only (never evaluated):
 # importing typing for TYPE_CHECKING would slow every command's start-up
@@ -25,7 +26,6 @@ DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
 # on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
 _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 _UNITS = {"": 1, "K": 1024, "M": 1024 ** 2, "G": 1024 ** 3, "T": 1024 ** 4}
-_SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on
 
 
 @dataclass(frozen=True)
@@ -113,6 +113,27 @@ def address_space() -> int | None:
             return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError, IndexError):
         return None
+
+
+LOADAVG = "/proc/loadavg"  # (Linux) the load averages, then running/total scheduling entities
+
+
+def busy_cores() -> float:
+    """How many cores other work keeps busy: the load average of the last minute, or, when
+    more, the threads of other processes ready to run at this very moment (Linux's
+    ``/proc/loadavg``, this process's own running one not counted). The average trails by a
+    minute: a build or a test run that started seconds ago leaves it low while it takes a
+    core (a second worker then shares a core with it and the check ends later than with one)."""
+    try:
+        average = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        average = 0.0
+    try:
+        with open(LOADAVG, "rb") as handle:
+            running = int(handle.read().split()[3].split(b"/")[0]) - 1
+    except (OSError, ValueError, IndexError):
+        running = 0
+    return max(average, running)
 
 
 def one_blas_thread() -> None:

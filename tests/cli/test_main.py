@@ -406,3 +406,133 @@ def test_a_plain_check_prints_and_exits_as_typers_without_importing_it(words):
                     for patch in ("pass", "door._check = lambda words: None"))
     assert (plain.returncode, plain.stdout, plain.stderr + "[typer]") == \
         (typer.returncode, typer.stdout, typer.stderr)
+
+
+# One file checked under a guardian (``__main__._guarded``, ``urdftool.guardian``): forked
+# before the rules are imported, the budgets kept against hostile files
+
+# a robot that expands for hours (each level calls the next twice, 2^24 calls)
+SLOW = ('<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:macro name="twice" params="n"><xacro:if value="${n > 0}">\n'
+        '<xacro:twice n="${n - 1}"/><xacro:twice n="${n - 1}"/></xacro:if></xacro:macro>\n'
+        '<link name="base"/><xacro:twice n="24"/></robot>\n')
+
+
+def _door(tmp_path, patch: str, *words: str) -> subprocess.CompletedProcess:
+    """``urdftool WORDS`` as the script runs it, after ``patch`` (Python run first)."""
+    program = (f"import os, sys, signal\n{patch}\nsys.argv = ['urdftool', *sys.argv[1:]]\n"
+               "from urdftool.__main__ import main\nmain()")
+    return subprocess.run([sys.executable, "-c", program, *words], capture_output=True,
+                          text=True, cwd=tmp_path, timeout=120)
+
+
+def test_a_plain_check_of_one_file_forks_before_the_rules_are_imported(tmp_path):
+    """The one process forked for a budgeted check of one file is forked small, before the
+    rules and before any class is made (the kept code): the check runs in it, not in a worker
+    forked after them, which copied their pages."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("fork = os.fork\ndef counted():\n"
+             "    big = {'urdftool.lint.engine', 'dataclasses'} & set(sys.modules)\n"
+             "    pid = fork()\n"
+             "    if pid: os.write(2, b'[fork after rules]' if big else b'[fork before rules]')\n"
+             "    return pid\nos.fork = counted")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")
+    assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
+    assert done.stderr.count("[fork") == 1 and "[fork before rules]" in done.stderr, done.stderr
+
+
+def test_a_check_without_budgets_forks_nothing(tmp_path):
+    """``--timeout 0 --max-memory 0`` (the command line wins over settings files): no budget
+    to keep, so no guardian and no worker: the check runs in the one process."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("fork = os.fork\ndef counted():\n    os.write(2, b'[fork]')\n    return fork()\n"
+             "os.fork = counted")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "0", "--max-memory", "0",
+                 "a.urdf")
+    assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
+    assert "[fork]" not in done.stderr, done.stderr
+
+
+def test_a_hostile_file_checked_under_the_guardian_is_stopped_at_its_time(tmp_path):
+    """Work the sandbox lets through but that would run for minutes: stopped at --timeout by
+    the guardian, reported where it was (U015), as a worker's was; the exit status the
+    command's."""
+    import json
+    import time
+
+    (tmp_path / "slow.urdf.xacro").write_text(SLOW)
+    start = time.monotonic()
+    done = _door(tmp_path, "", "check", "--no-cache", "--timeout", "1", "--format", "json",
+                 "slow.urdf.xacro")
+    assert time.monotonic() - start < 30
+    assert done.returncode == 1, done.stderr
+    finding, = json.loads(done.stdout)["diagnostics"]
+    assert finding["code"] == "U015" and finding["line"] >= 2, finding
+    assert "took longer than 1 s" in finding["message"]
+
+
+def test_a_check_that_dies_under_the_guardian_is_an_internal_error(tmp_path):
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("from urdftool.lint import engine\n"
+             "engine.load_and_check = lambda *a, **k: os.kill(os.getpid(), signal.SIGKILL)")
+    done = _door(tmp_path, patch, "check", "--no-cache", "a.urdf")
+    assert done.returncode == 1, done.stderr
+    assert "U900" in done.stdout and "died (exit code -9)" in done.stdout, done.stdout
+
+
+def test_a_check_over_its_memory_under_the_guardian_is_stopped_and_reported(tmp_path):
+    """The memory budget caps the process that checks (a MemoryError there is U018), and is
+    lifted again for the report."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = ("from urdftool.lint import engine\n"
+             "def hungry(*a, **k):\n    return bytearray(1 << 30)\n"
+             "engine.load_and_check = hungry")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--max-memory", "700M", "a.urdf")
+    assert done.returncode == 1, done.stderr
+    assert "U018" in done.stdout and "700 MiB" in done.stdout, done.stdout + done.stderr
+
+
+@pytest.mark.parametrize("started", [
+    "import threading\nthreading.Thread(target=__import__('time').sleep, args=(60,), "
+    "daemon=True).start()",
+    # a thread threading does not count (execnet's, in every pytest-xdist worker)
+    "import _thread\n_thread.start_new_thread(__import__('time').sleep, (60,))"])
+def test_a_check_in_a_process_running_other_threads_forks_no_guardian(tmp_path, started):
+    """A process forked from one where other threads run may find a lock one of them held
+    forever: there the check's file goes to a budgeted worker, as before the guardian. Threads
+    as the system counts them."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    patch = (f"{started}\nfork = os.fork\ndef counted():\n"
+             "    big = {'urdftool.lint.engine', 'dataclasses'} & set(sys.modules)\n"
+             "    pid = fork()\n"
+             "    if pid: os.write(2, b'[fork after rules]' if big else b'[fork before rules]')\n"
+             "    return pid\nos.fork = counted")
+    done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")
+    assert "no problems found" in done.stdout, done.stderr
+    assert "[fork before rules]" not in done.stderr, done.stderr
+
+
+def test_the_door_run_inside_another_program_neither_forks_nor_ends_it(monkeypatch, tmp_path,
+                                                                      capsys):
+    """``main()`` called by a program of its own (a test runner, an embedding tool), not as
+    the program's top level: the door forks no guardian from that program's process (the copy
+    would hold the caller's state, its threads' locks and pipes, and the guardian would end
+    the caller as the child ended), and does not end it with ``os._exit`` (before, this very
+    test ended pytest's process, silently): it raises SystemExit, and the file goes to a
+    budgeted worker, as before the guardian. Decided once, by the first call
+    (``door.PROGRAM``)."""
+    import urdftool.__main__ as door
+    from urdftool import guardian
+
+    forked = []
+    monkeypatch.setattr(guardian, "guarded", lambda: forked.append("guardian"))
+    monkeypatch.setattr(door, "kept_code", lambda path=None: None)
+    monkeypatch.setattr(door, "_collect_less", lambda: None)
+    monkeypatch.setattr(door, "PROGRAM", {"entry": None})
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    monkeypatch.setattr(sys, "argv", ["urdftool", "check", "--no-cache",
+                                      str(tmp_path / "a.urdf")])
+    with pytest.raises(SystemExit) as ended:
+        door.main()
+    assert ended.value.code == 0 and "no problems found" in capsys.readouterr().out
+    assert forked == [] and door.PROGRAM == {"entry": False}

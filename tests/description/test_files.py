@@ -96,7 +96,8 @@ ELSEWHERE = {
                    "is imported, for a fast --help",
     "docs.py": "generates urdftool's own documentation from its checkout (make docs)",
     "origin.py": "reads where urdftool itself was installed from (its dist-info, its checkout)",
-    "budget.py": "a worker's own address space (/proc/self/statm), never a file a check reads",
+    "budget.py": "a worker's own address space (/proc/self/statm) and the machine's load "
+                 "(/proc/loadavg), never a file a check reads",
 }
 # Calls that open, stat, list, glob, follow links or write, by the dotted name they are made
 # through (a module's function) ...

@@ -11,7 +11,8 @@ write one).
 What may be opened (:class:`Allow`): the case's repository and its temporary folder (read and
 write), folders the case names explicitly (``--package``, a seed's corpus repository: read
 only), the Python installation (``sys.prefix``, ``sys.base_prefix``, site-packages, the urdftool
-package: read only), ``/proc/self`` (and ``/proc/<own pid>``), ``/dev/null``, ``/dev/urandom``.
+package: read only), ``/proc/self`` (and ``/proc/<own pid>``), ``/proc/loadavg``, ``/dev/null``,
+``/dev/urandom``.
 Anything else, after resolving symbolic links (so a link inside the repository that leads out
 counts as outside), is a violation. File descriptors passed as numbers are not checked. Writes
 outside (and starting programs) are refused with PermissionError after being noted, so a payload
@@ -111,7 +112,8 @@ def _under(path: str, folders: list[str]) -> bool:
 
 
 def _own_special(raw: str) -> bool:
-    if raw in ("/dev/null", "/dev/urandom", "/dev/random"):
+    # /proc/loadavg: the machine's load, which the default --jobs reads (budget.busy_cores)
+    if raw in ("/dev/null", "/dev/urandom", "/dev/random", "/proc/loadavg"):
         return True
     for prefix in ("/proc/self/", "/proc/thread-self/", f"/proc/{os.getpid()}/"):
         if raw.startswith(prefix):

@@ -12,6 +12,7 @@ import time
 
 import pytest
 
+from urdftool import budget
 from urdftool.budget import Budget, address_space
 from urdftool.lint import pool
 from urdftool.lint.pool import run_budgeted
@@ -141,11 +142,26 @@ def test_a_cancelled_run_kills_its_workers_at_once():
     (2, 0.0, 5, 1),  # too few files to pay a second worker's imports and reads
     (2, 0.0, 1, 1),
 ])
-def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, cores, load, files, jobs):
+def test_the_default_jobs_follow_idle_cores_and_the_work(monkeypatch, tmp_path, cores, load,
+                                                         files, jobs):
     monkeypatch.setattr(pool, "default_jobs", lambda: cores)
     monkeypatch.setattr(os, "getloadavg", lambda: (load, load, load))
+    (tmp_path / "loadavg").write_text(f"{load:.2f} {load:.2f} {load:.2f} 1/300 4242\n")
+    monkeypatch.setattr(budget, "LOADAVG", str(tmp_path / "loadavg"))
     assert pool.auto_jobs(files) == jobs
 
+
+@pytest.mark.parametrize("running, jobs", [(1, 2), (2, 1), (3, 1)])
+def test_the_default_jobs_count_what_runs_now_not_only_the_last_minute(monkeypatch, tmp_path,
+                                                                       running, jobs):
+    """A job that started seconds ago (the 1-minute load average still near 0) keeps a core
+    busy: a second worker would share it with it (slower than one, issue 34). ``running``
+    counts this process too."""
+    monkeypatch.setattr(pool, "default_jobs", lambda: 2)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.05, 0.1, 0.1))
+    (tmp_path / "loadavg").write_text(f"0.05 0.10 0.10 {running}/300 4242\n")
+    monkeypatch.setattr(budget, "LOADAVG", str(tmp_path / "loadavg"))
+    assert pool.auto_jobs(46) == jobs
 
 
 KEPT = []  # what a worker's earlier pieces kept (a run's memo of meshes, say)
@@ -192,9 +208,58 @@ def test_a_worker_inherits_pickle_from_the_process_that_forked_it(tmp_path):
     not again in each worker (``-X importtime`` prints a line per import, in either process)."""
     import re
 
-    robot = tmp_path / "r.urdf"
-    robot.write_text('<robot name="r"><link name="a"/></robot>\n')
+    robots = [tmp_path / "r.urdf", tmp_path / "s.urdf"]  # (one file: no worker, see
+    for robot in robots:  # test_a_plain_check_of_one_file_forks_before_the_rules_are_imported)
+        robot.write_text('<robot name="r"><link name="a"/></robot>\n')
     done = subprocess.run([sys.executable, "-X", "importtime", "-m", "urdftool", "check",
-                           "--no-cache", str(robot)], capture_output=True, text=True, timeout=120)
+                           "--no-cache", "--jobs", "1", *map(str, robots)], capture_output=True,
+                          text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert len(re.findall(r"\|\s+pickle$", done.stderr, re.M)) == 1, done.stderr
+
+
+def test_a_guardian_gives_the_stop_to_the_piece_its_child_was_stopped_in():
+    """``guarded``: the child's pieces are counted from the fork, as the guardian counts them
+    when it does the work again, whatever pieces this process ran before; the verdict is given
+    once, to that piece, and not left to a later run."""
+    import time
+
+    from urdftool import guardian
+
+    budget = Budget(0.5, None)
+    for _ in range(3):  # pieces of this process before
+        assert run_budgeted(1, lambda index: "done", budget, lambda _, stop: stop) == ["done"]
+    found = guardian.guarded()
+    if found is None:  # the child: its one piece runs for a minute
+        guardian.end_after(lambda: run_budgeted(1, lambda index: time.sleep(60), budget,
+                                            lambda _, stop: stop))
+
+    def never(index):
+        raise AssertionError("the stopped piece is not done again")
+
+    code, verdict = found
+    assert code is None and verdict[1] == "time"
+    guardian.stopped_as(verdict)
+    try:
+        [stop] = run_budgeted(1, never, budget, lambda _, stop: stop)
+        assert stop.kind == "time" and stop.budget == budget
+        assert run_budgeted(1, lambda index: "again", budget, lambda _, stop: stop) == ["again"]
+    finally:
+        guardian.stopped_as(None)
+
+
+def test_a_guardian_forked_where_objects_were_frozen_is_still_the_parent():
+    """``guarded`` in a process whose objects were frozen before (``gc.freeze()``: a check
+    run earlier in it, the door's ``_collect_less``): the parent guards and the child works,
+    one each. (The parent took the child's part when objects were frozen: it did the work and
+    ended with ``os._exit``, in pytest-xdist a worker lost, 'node down', and the suite hung.)"""
+    program = ("import gc, os, sys\ngc.freeze()\nfrom urdftool import guardian\n"
+               "found = guardian.guarded()\n"
+               "if found is None:\n    os.write(2, b'[child]')\n"
+               "    guardian.end_after(lambda: None)\n"
+               "os.write(2, f'[guardian {found} {gc.get_freeze_count() > 0}]'.encode())\n")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert sorted(done.stderr.replace("][", "]\n[").splitlines()) == \
+        ["[child]", "[guardian (0, None) True]"], done.stderr

@@ -25,8 +25,9 @@ import sys
 import time
 from dataclasses import dataclass
 
-from urdftool import budget as budgets
+from urdftool import budget as budgets, guardian
 from urdftool.budget import Budget
+from urdftool.guardian import end_after
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Location
 
@@ -41,14 +42,11 @@ FILES_PER_WORKER = 4  # a worker pays for its own lazy imports (numpy) and mesh 
 
 def auto_jobs(files: int) -> int:
     """How many workers check ``files`` files when ``--jobs`` is not given: one per core that
-    is idle now (the cores less the load average), and at most one per FILES_PER_WORKER files.
-    Two workers cost more CPU than one (each imports and reads again what the other did), so
-    they finish sooner only on a core nobody else uses: on a busy machine, one."""
-    try:
-        busy = os.getloadavg()[0]
-    except (AttributeError, OSError):
-        busy = 0.0
-    idle = max(1, round(default_jobs() - busy))
+    is idle now (the cores less what keeps them busy: :func:`urdftool.budget.busy_cores`), and
+    at most one per FILES_PER_WORKER files. Two workers cost more CPU than one (each imports and
+    reads again what the other did), so they finish sooner only on a core nobody else uses: on
+    a busy machine, one."""
+    idle = max(1, round(default_jobs() - budgets.busy_cores()))
     return max(1, min(idle, files // FILES_PER_WORKER))
 
 
@@ -82,6 +80,20 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
         With it, the work is always done in a worker (only a worker can be stopped).
     """
     finished = finished or (lambda done: None)
+    if count == 1 and cancel is None and not budget.unlimited:
+        guardian.STATE["pieces"] += 1  # (the same count in the guardian's run again: a verdict's)
+        verdict = guardian.STATE["verdict"]
+        if verdict is not None and verdict[0] == guardian.STATE["pieces"]:
+            guardian.STATE["verdict"] = None  # (given once)
+            result = [stopped(0, Stop(verdict[1], budget, verdict[2],
+                                      budgets.read_slot(verdict[3])))]
+        elif guardian.STATE["guardian"] is not None:
+            result = [_guarded_piece(work, budget, stopped)]
+        else:
+            result = None
+        if result is not None:
+            finished(1)
+            return result
     if count == 0 or not hasattr(os, "fork") or \
             cancel is None and budget.unlimited and min(jobs, count) == 1:
         results = []
@@ -96,6 +108,32 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
 
 
 CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
+
+
+# ---- one piece in this process, under the guardian (urdftool.guardian) ------------------
+
+def _guarded_piece(work, budget: Budget, stopped):
+    """``work(0)`` in this process under its guardian: its memory capped (a MemoryError gives
+    a Stop, as in a worker), its start and end told, the guardian kills it over its time."""
+    import resource
+
+    channel, slot = guardian.STATE["guardian"]
+    slot[:4] = bytes(4)
+    budgets.report_into(slot)
+    _write_all(channel, f"start {guardian.STATE['pieces']} {budget.seconds or 0}\n".encode())
+    limits = resource.getrlimit(resource.RLIMIT_AS)
+    budgets.limit_memory(budget.memory)
+    try:
+        return work(0)
+    except MemoryError:
+        return stopped(0, Stop("memory", budget, where=budgets.where()))
+    except (Exception, SystemExit):  # as a worker reports it
+        import traceback
+
+        return stopped(0, Stop("crash", budget, traceback.format_exc(), budgets.where()))
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, limits)
+        _write_all(channel, f"end {guardian.STATE['pieces']} 0\n".encode())
 
 
 def _here(index, work, budget, stopped):
@@ -138,7 +176,7 @@ def _serve(connection, slot, work, memory: int | None, relay: tuple[int, ...],
         os.setpgid(0, 0)  # its own process group: a kill reaches what it starts (dot, pools)
     except OSError:
         pass
-    _die_with(parent)
+    guardian.die_with(parent)
     budgets.report_into(slot)
     budgets.limit_memory(memory)
     for number in relay:
@@ -179,19 +217,6 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
             connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
         if retiring:
             return
-
-
-def _die_with(parent: int) -> None:
-    """Be killed when the parent process ends (Linux): in a process group of its own, a worker
-    no longer hears the terminal's or the CI runner's signals, and a hung one would run on."""
-    try:
-        import ctypes
-
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        return
-    if os.getppid() != parent:  # it ended before the request
-        os._exit(1)
 
 
 # ---- in the parent -------------------------------------------------------------------------
@@ -340,8 +365,8 @@ class _Forked:
         self.pid = os.fork()
         if self.pid:
             return
-        code = 1
-        try:
+
+        def child():
             for channel in closed:
                 channel.close()
             try:
@@ -349,20 +374,8 @@ class _Forked:
             except (AttributeError, OSError, ValueError):
                 pass
             target()
-            code = 0
-        except SystemExit as ended:
-            code = ended.code if isinstance(ended.code, int) else 1
-        except BaseException:
-            import traceback
 
-            traceback.print_exc()
-        finally:
-            for stream in (sys.stdout, sys.stderr):
-                try:
-                    stream.flush()
-                except (AttributeError, OSError, ValueError):
-                    pass
-            os._exit(code)
+        end_after(child)
 
     def kill(self) -> None:
         if self.exitcode is None:
