@@ -61,7 +61,17 @@ def test_a_macro_line_expanded_by_several_calls_is_one_place():
     text = _text([FileResult("robot.xacro", findings)])
     assert "arm.xacro:36: warning U022" in text
     assert "[4 times: lines 36 (2x), 51 (2x)]" in text
-    assert "expanded from 2 macro calls at robot.xacro:29, robot.xacro:33" in text
+    assert "expanded from 2 macro calls at robot.xacro:29, 33" in text
+
+
+def test_call_sites_write_each_file_once_for_its_run_of_lines():
+    """ROBOTIS-OP3 named by an absolute path wrote 21 call sites with their 80-character
+    folder each; a file is written once for its run, a site of another file names its own."""
+    from urdftool.report.text_format import _same_file_once
+
+    assert _same_file_once(["/r/a.xacro:28", "/r/a.xacro:52", "/r/b.xacro:28", "/r/a.xacro:9",
+                            "c:d", "c:d:4", "c:d:5"]) == [
+        "/r/a.xacro:28", "52", "/r/b.xacro:28", "/r/a.xacro:9", "c:d", "c:d:4", "5"]
 
 
 def test_a_long_list_of_names_is_written_once():

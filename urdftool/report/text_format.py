@@ -119,7 +119,21 @@ def _group_lines(group: list, listed: dict) -> list[Line]:
     sites = max((list(dict.fromkeys(str(via[level]) for via in calls if len(via) > level))
                  for level in range(depth)), key=len)
     return out + [[(f"      expanded from {counted(len(sites), 'macro call')} at "
-                    f"{_listed(sites)}", "dim")]]
+                    f"{_listed(_same_file_once(sites))}", "dim")]]
+
+
+def _same_file_once(sites: list[str]) -> list[str]:
+    """Call sites (``FILE:LINE``) with a file written once for its run of sites: ``a.xacro:28,
+    52, 76, b.xacro:28`` (a robot named by an absolute path repeated it 21 times on a line)."""
+    shown, previous = [], None
+    for site in sites:
+        file, _, line = site.rpartition(":")
+        if file and line.isdigit() and file == previous:
+            shown.append(line)
+        else:
+            shown.append(site)
+        previous = file if line.isdigit() else None
+    return shown
 
 
 def _places(group: list) -> str:
