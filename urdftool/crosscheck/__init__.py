@@ -128,7 +128,7 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
         urdf, lines = _urdf_file(robot, folder)
         packages = _packages(robot)
         if os.path.dirname(urdf) == os.path.abspath(folder):
-            _packages_beside(folder, packages, os.path.basename(urdf))
+            _packages_beside(folder, packages)
         job = Job(urdf, packages, tuple(configurations))
         raw = _run(present, job, budget)
     results = [_result(name, raw[index], robot, lines, urdf)
@@ -208,17 +208,16 @@ def _packages(robot) -> dict:
     return found
 
 
-def _packages_beside(folder: str, packages: dict, urdf_name: str) -> None:
+def _packages_beside(folder: str, packages: dict) -> None:
     """Each package as a link beside xacro's output: PyBullet (3.2) finds a ``package://``
     mesh only below the folders above the file it reads (its search path is not asked for
     meshes), as they are when a robot is loaded from its own repository; written to a
     temporary folder, the expansion would lose them and PyBullet would fail where a user's
-    load does not."""
+    load does not. A name taken (the expanded file's own) is left as it is."""
     from urdftool.description.files import link_folder_new
 
     for name, place in packages.items():
-        if name != urdf_name:
-            link_folder_new(Path(folder), name, place)
+        link_folder_new(Path(folder), name, place)
 
 
 def _run(names: list[str], job: Job, budget: Budget) -> list:
