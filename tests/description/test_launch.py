@@ -490,10 +490,12 @@ def test_the_launch_walk_asks_where_each_folder_leads_of_its_parent_not_the_syst
         tmp_path, monkeypatch):
     """A repository's folders are listed once each by the launch walk
     (:func:`urdftool.description.files.walk`): where a folder entered leads is its parent's
-    real path and its name (it is no link), not an ``lstat`` of it, and each listing is
+    real path and its name (it is no link), not an ``lstat`` of it, nor of it again by the
+    package walk that follows (both answers kept for the run), and each listing is
     recorded as :func:`~urdftool.description.files.listing` records it (the result cache and
     the language server compare the same entries)."""
     from urdftool.description import files, launch_configs, record, run_memo
+    from urdftool.description.packages import packages_below
 
     folder = tmp_path / "repo"
     for depth in range(1, 6):
@@ -510,19 +512,21 @@ def test_the_launch_walk_asks_where_each_folder_leads_of_its_parent_not_the_syst
         path, *a, **k))
     with run_memo.one_run(), record.recording() as walked:
         found, _ = launch_configs.launch_files(folder)
+        packages_below(folder)  # the package walk that follows: the same folders, known
     monkeypatch.setattr(os, "lstat", lstat)
     assert found == [folder / "d" / "a" / "launch" / "bringup.launch"]
     below = [path for path in map(str, asked) if path.startswith(f"{folder}{os.sep}")]
     on_the_way = {str(found[0]), *map(str, found[0].parents)}  # (inside(): the file found)
     assert set(below) <= on_the_way, sorted(set(below) - on_the_way)
-    listed = walked.searched()
+    walk = f"{launch_configs._LAUNCH_NAMES}|[!.]*/"  # (the launch walk's listings)
+    listed = [key for key in walked.searched() if key[1] == walk]
     assert len(listed) == 1 + 5 * 7 and not any(".hidden" in f or "linked" in f
                                                 for f, _ in listed), sorted(listed)
     with run_memo.one_run(), record.recording() as expected:
         for folder_listed, pattern in listed:
             files.listing(folder_listed, pattern)
     assert {question: answer for question, answer in walked.entries.items()
-            if question[0] == record.SEARCH} == expected.entries
+            if question[0] == record.SEARCH and question[1][1] == walk} == expected.entries
     monkeypatch.chdir(tmp_path)  # a folder named relative: its folders named below it
     with run_memo.one_run():
         assert [current for current, _ in launch_configs._walk(Path("repo"), 3)] == [

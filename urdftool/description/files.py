@@ -49,7 +49,7 @@ from pathlib import Path
 
 from urdftool.description import record as records
 from urdftool.description.record import ENV, PROBE, READ, REAL, RESOLVED, SEARCH, Read
-from urdftool.description.run_memo import per_run
+from urdftool.description.run_memo import answered_already, per_run
 from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
@@ -275,7 +275,9 @@ def walk(root, pattern: str, depth: int, skip=frozenset()):
     pending = [(absolute, _real_path(absolute), 0)]
     while pending:
         folder, real, level = pending.pop()
-        entries = _entries(folder)
+        if level:
+            real = answered_already(_real_path, (folder,), lambda: real)
+        entries = answered_already(_entries, (folder,), lambda: _entries.__wrapped__(folder))
         found = None if entries is None else tuple(
             entry for entry in entries
             if (any_kind if entry[1] in ("folder", "link") else plain)(entry[0]))
