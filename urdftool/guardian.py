@@ -149,7 +149,11 @@ def watched_by(life: int) -> None:
         this = os.pidfd_open(watched)  # (the very process: its pid may be reused after it)
     except (AttributeError, OSError):
         this = None
-    if os.fork():
+    try:
+        watcher = os.fork()
+    except OSError:  # (no process to spare: watched by nothing, the work goes on)
+        watcher = -1
+    if watcher:
         os.close(life)
         if this is not None:
             os.close(this)
