@@ -256,13 +256,15 @@ def _collect_less() -> None:
         import urdftool.lint.runner  # noqa: F401
     finally:
         gc.freeze()
-        _FROZEN["objects"] = gc.get_freeze_count()
+        _FROZEN["imports"] = True
         gc.enable()
     engine.COLLECTION = (_fewer_collections, _unexamined)
     engine.LATEST = []
 
 
-_FROZEN = {"objects": 0}  # what this program froze itself (the imports)
+# imports: whether what is frozen is what this program froze itself (the imports), not counted
+# (gc.get_freeze_count() walks every frozen object: a millisecond after the imports)
+_FROZEN = {"imports": False}
 _PROMOTED = {"objects": 0}  # moved to the oldest generation since the last full collection
 FULL_COLLECTION_AFTER = 250_000
 
@@ -287,8 +289,8 @@ def _unexamined():
     another (a forking parent's own ``gc.freeze()`` must stay)."""
     import gc
 
-    # (more frozen than the imports _collect_less froze, some of which may be freed since)
-    if not gc.isenabled() or gc.get_freeze_count() > _FROZEN["objects"]:
+    # (frozen, and not the imports _collect_less froze, some of which may be freed since)
+    if not gc.isenabled() or not _FROZEN["imports"] and gc.get_freeze_count() > 0:
         yield
         return
     if _PROMOTED["objects"] > FULL_COLLECTION_AFTER:
@@ -301,7 +303,7 @@ def _unexamined():
         _PROMOTED["objects"] += gc.get_count()[0]
         gc.freeze()
         gc.unfreeze()
-        _FROZEN["objects"] = 0  # (no longer frozen)
+        _FROZEN["imports"] = False  # (no longer frozen)
         gc.enable()
 
 

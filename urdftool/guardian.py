@@ -39,6 +39,7 @@ def guarded():
 
     slot = mmap.mmap(-1, SLOT_SIZE)  # (budget.share_slot's, made before budget is imported)
     read, write = os.pipe()
+    life, alive = os.pipe()  # never written: it ends when the guardian does (watched_by)
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
     parent = os.getpid()
@@ -53,14 +54,17 @@ def guarded():
             gc.unfreeze()
     else:
         os.close(read)
-        die_with(parent)  # a guardian killed (SIGKILL) leaves no child to run unwatched
+        os.close(alive)
+        watched_by(life)  # a guardian killed (SIGKILL) leaves no child to run unwatched
         STATE["guardian"] = (write, slot)
         return None
     os.close(write)
+    os.close(life)
     try:
         return _guard(pid, read, slot)
     finally:
         os.close(read)
+        os.close(alive)  # (the child ended: its watcher ends)
         slot.close()
 
 
@@ -130,6 +134,51 @@ def _where(slot) -> bytes:
     """What the child last wrote into ``slot`` (read as a location by the pool:
     :func:`urdftool.budget.read_slot`, which is above this module)."""
     return bytes(slot)
+
+
+def watched_by(life: int) -> None:
+    """Be killed (SIGKILL) when the guardian ends, as a hung C call cannot notice it: a
+    watcher forked now, small, waits on ``life`` (the read end of a pipe whose only write end
+    the guardian holds and never writes to: it reads its end when the guardian ends, however it
+    ends) and then kills this process, if it still runs. ``life`` is closed here; the watcher
+    closes every other descriptor it inherited (the guardian hears this process end when its
+    channel to it ends, a reader of its output when its streams do). Without ``ctypes``
+    (``PR_SET_PDEATHSIG``: its import cost a plain check more than this fork)."""
+    watched = os.getpid()
+    try:
+        this = os.pidfd_open(watched)  # (the very process: its pid may be reused after it)
+    except (AttributeError, OSError):
+        this = None
+    try:
+        watcher = os.fork()
+    except OSError:  # (no process to spare: watched by nothing, the work goes on)
+        watcher = -1
+    if watcher:
+        os.close(life)
+        if this is not None:
+            os.close(this)
+        return
+    try:  # the watcher: nothing of the command's, no output
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # (the terminal's Ctrl-C is the child's)
+        kept = sorted({life} | ({this} if this is not None else set()))
+        os.closerange(0, kept[0])
+        if len(kept) > 1:
+            os.closerange(kept[0] + 1, kept[1])
+        os.closerange(kept[-1] + 1, 1 << 20)
+        while True:
+            try:
+                if not os.read(life, 1):
+                    break
+            except InterruptedError:
+                continue
+        if this is not None:
+            signal.pidfd_send_signal(this, signal.SIGKILL)
+        elif os.getppid() == watched:  # (still its parent: it runs)
+            os.kill(watched, signal.SIGKILL)
+    except BaseException:
+        pass
+    finally:
+        os._exit(0)
 
 
 def die_with(parent: int) -> None:

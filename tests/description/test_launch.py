@@ -3,6 +3,7 @@ Python), the configurations they make, and what they tell of a robot."""
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -483,3 +484,51 @@ def test_a_launch_test_not_read_is_unknown_as_a_launch_file_not_read_is(tmp_path
     assert sorted(unread_naming(str(root / "p/urdf/r.urdf.xacro"))) == [
         f"launch file {root}/p/launch/view.launch.py (not read)",
         f"launch test {root}/p/test/position_test.py (not read)"]
+
+
+def test_the_launch_walk_asks_where_each_folder_leads_of_its_parent_not_the_system(
+        tmp_path, monkeypatch):
+    """A repository's folders are listed once each by the launch walk
+    (:func:`urdftool.description.files.walk`): where a folder entered leads is its parent's
+    real path and its name (it is no link), not an ``lstat`` of it, nor of it again by the
+    package walk that follows (both answers kept for the run), and each listing is
+    recorded as :func:`~urdftool.description.files.listing` records it (the result cache and
+    the language server compare the same entries)."""
+    from urdftool.description import files, launch_configs, record, run_memo
+    from urdftool.description.packages import packages_below
+
+    folder = tmp_path / "repo"
+    for depth in range(1, 6):
+        for branch in ("a", "b", "c"):
+            (folder / "/".join(["d"] * depth) / branch / "launch").mkdir(parents=True)
+    (folder / "d" / "a" / "launch" / "bringup.launch").write_text("<launch/>")
+    (folder / "d" / ".hidden" / "launch").mkdir(parents=True)
+    (folder / "d" / ".hidden" / "launch" / "x.launch").write_text("<launch/>")
+    (tmp_path / "elsewhere").mkdir()
+    (folder / "d" / "linked").symlink_to(tmp_path / "elsewhere")
+    asked = []
+    lstat = os.lstat
+    monkeypatch.setattr(os, "lstat", lambda path, *a, **k: asked.append(path) or lstat(
+        path, *a, **k))
+    with run_memo.one_run(), record.recording() as walked:
+        found, _ = launch_configs.launch_files(folder)
+        packages_below(folder)  # the package walk that follows: the same folders, known
+    monkeypatch.setattr(os, "lstat", lstat)
+    assert found == [folder / "d" / "a" / "launch" / "bringup.launch"]
+    below = [path for path in map(str, asked) if path.startswith(f"{folder}{os.sep}")]
+    on_the_way = {str(found[0]), *map(str, found[0].parents)}  # (inside(): the file found)
+    assert set(below) <= on_the_way, sorted(set(below) - on_the_way)
+    walk = f"{launch_configs._LAUNCH_NAMES}|[!.]*/"  # (the launch walk's listings)
+    listed = [key for key in walked.searched() if key[1] == walk]
+    assert len(listed) == 1 + 5 * 7 and not any(".hidden" in f or "linked" in f
+                                                for f, _ in listed), sorted(listed)
+    with run_memo.one_run(), record.recording() as expected:
+        for folder_listed, pattern in listed:
+            files.listing(folder_listed, pattern)
+    assert {question: answer for question, answer in walked.entries.items()
+            if question[0] == record.SEARCH and question[1][1] == walk} == expected.entries
+    monkeypatch.chdir(tmp_path)  # a folder named relative: its folders named below it
+    with run_memo.one_run():
+        assert [current for current, _ in launch_configs._walk(Path("repo"), 3)] == [
+            "repo", os.path.join("repo", "d"), *(os.path.join("repo", "d", name)
+                                                  for name in ("a", "b", "c", "d"))]

@@ -13,6 +13,7 @@ there is no other way to read. ``tests/description/test_files.py`` fails when a 
   of the disk's bytes (the language server's overlay, for one check);
 - :func:`kind_of` and :func:`identity`: what is at a path;
 - :func:`listing`: the entries of a folder (an include's pattern is expanded with it);
+  :func:`walk`: those of a folder and of the folders below it;
 - :func:`real_path` and :func:`inside`: where links lead, whether a path stays in a folder;
   :func:`repository_root` and :func:`enclosing_root` say which folder that is;
 - :func:`environ`: an environment variable.
@@ -48,7 +49,7 @@ from pathlib import Path
 
 from urdftool.description import record as records
 from urdftool.description.record import ENV, PROBE, READ, REAL, RESOLVED, SEARCH, Read
-from urdftool.description.run_memo import per_run
+from urdftool.description.run_memo import answered_already, per_run
 from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
@@ -256,6 +257,36 @@ def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
     found = _listing(folder, pattern)
     records.note(SEARCH, (folder, pattern), (_real_path(folder), found))
     return list(found or ())
+
+
+def walk(root, pattern: str, depth: int, skip=frozenset()):
+    """(folder, its :func:`listing` for ``pattern``) for ``root`` and the folders below it,
+    ``depth`` levels at most, depth first in sorted order, each listing recorded as
+    :func:`listing` records it; a folder is entered when ``pattern`` lists it (as a folder,
+    never a link), is not hidden and its name is not in ``skip``. A folder is named as text, ``root`` joined
+    with the names below it; where each leads is its parent's and its name (it is no link),
+    not asked again of the system: one repository's hundreds of folders, each listed once."""
+    plain, any_kind = _matcher(pattern)
+    top = os.fspath(root)
+    absolute = os.path.abspath(top)
+    named = (lambda folder: folder) if absolute == top else (  # (as the caller named it)
+        lambda folder: top if folder == absolute else os.path.join(top, os.path.relpath(
+            folder, absolute)))
+    pending = [(absolute, _real_path(absolute), 0)]
+    while pending:
+        folder, real, level = pending.pop()
+        if level:
+            real = answered_already(_real_path, (folder,), lambda: real)
+        entries = answered_already(_entries, (folder,), lambda: _entries.__wrapped__(folder))
+        found = None if entries is None else tuple(
+            entry for entry in entries
+            if (any_kind if entry[1] in ("folder", "link") else plain)(entry[0]))
+        records.note(SEARCH, (folder, pattern), (real, found))
+        yield named(folder), list(found or ())
+        if found and level + 1 < depth:
+            pending.extend((os.path.join(folder, name), os.path.join(real, name), level + 1)
+                           for name, kind in reversed(found)
+                           if kind == "folder" and name not in skip and name[:1] != ".")
 
 
 def _listing(folder: str, pattern: str) -> tuple | None:

@@ -30,7 +30,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, listing, real_path
+from urdftool.description.files import inside, kind_of, real_path, walk
 from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition,
                                          Description, Include, LaunchFile, ParamFile, Start, Value,
                                          is_launch_file, is_launch_test, may_be_launch_test,
@@ -189,20 +189,13 @@ def _package_files(folder: Path) -> tuple[Path, ...]:
 
 def _walk(root: Path, depth: int, pattern: str = "*"):
     """(folder, its file names matching ``pattern``) for ``root`` and the folders below it,
-    ``depth`` levels at most, in sorted order, through the recorded listing
-    (:func:`~urdftool.description.files.listing`): folders that are links, hidden or build
+    ``depth`` levels at most, in sorted order, through the recorded walk
+    (:func:`~urdftool.description.files.walk`): folders that are links, hidden or build
     output (SKIP_DIRS) are not entered. A folder is named as text (``root`` joined with the
     names below it): a repository's hundreds of folders, few of which hold a file wanted."""
-    pending = [(os.fspath(root), 0)]
-    pattern += "|[!.]*/"  # hidden folders: not entered, not listed
-    while pending:
-        current, level = pending.pop()
-        entries = listing(current, pattern)
+    # hidden folders: not entered, not listed
+    for current, entries in walk(root, pattern + "|[!.]*/", depth, SKIP_DIRS):
         yield current, [name for name, kind in entries if kind == "file"]
-        if level + 1 < depth:
-            pending.extend((os.path.join(current, name), level + 1)
-                           for name, kind in reversed(entries)
-                           if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."))
 
 
 def words(value: Value | None) -> list[Value]:

@@ -53,3 +53,23 @@ def per_run(function):
         return remembered(memo, key, lambda: function(*args))
 
     return answered
+
+
+def answered_already(function, args: tuple, compute):
+    """What ``function`` (wrapped with :func:`per_run`) answers to ``args``: its remembered
+    answer, or ``compute()`` remembered as its answer, in this run. For an answer found
+    alongside another one (a folder listed in a walk, whose real path is its parent's and its
+    name) and for a function that records nothing: what ``compute`` records is the caller's."""
+    memo = _MEMO.get()
+    if memo is None:
+        return compute()
+    key = (function.__wrapped__, *args)
+    found = memo.get(key)
+    if found is not None:
+        value, events = found
+        if events is not None:
+            replay(events)
+        return value
+    value = compute()
+    memo[key] = (value, None)
+    return value
