@@ -35,6 +35,7 @@ nothing.
 
 from __future__ import annotations
 
+import errno
 import fnmatch
 import functools
 import os
@@ -523,11 +524,14 @@ def check_output(path) -> str:
     planted link costs no time."""
     path = Path(path)
     folder = path.parent
-    if not folder.is_dir():
-        raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
-    real = real_folder(folder)
-    if path.is_dir() and not path.is_symlink():
-        raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+    try:  # a name the system cannot look up (too long, a loop) is refused as one missing
+        if not folder.is_dir():
+            raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
+        real = real_folder(folder)
+        if path.is_dir() and not path.is_symlink():
+            raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+    except OSError as error:
+        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     return real
 
 
@@ -618,13 +622,17 @@ def _write_descriptor(descriptor: int, data: bytes) -> None:
 def _write_in_place(path, target: str, data: bytes) -> None:
     """Write ``data`` into the character device or named pipe at ``target`` (a temporary file
     renamed over it would replace the device itself: ``-o /dev/null`` run as root); UsageError
-    when the system refuses (``/dev/full``: no space left)."""
+    when the system refuses (``/dev/full``: no space left) or a named pipe has no reader (an
+    archive can hold a pipe where a workflow writes its report: opening it would wait for a
+    reader forever)."""
     try:
-        descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY)
+        descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY | os.O_NONBLOCK)
+        os.set_blocking(descriptor, True)  # a reader that is slow is waited for
         with open(descriptor, "wb") as handle:
             handle.write(data)
     except OSError as error:
-        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+        why = "a named pipe no process reads" if error.errno == errno.ENXIO else error.strerror
+        raise UsageError(f"cannot write '{path}': {why}") from None
 
 
 def remove_file(path) -> None:
