@@ -259,6 +259,13 @@ def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
     return list(found or ())
 
 
+def listable(folder) -> bool:
+    """Whether ``folder`` could be listed: :func:`listing` gives nothing for a folder it may
+    not read or whose path is past the system's limit, as for an empty one. Asks the disk
+    nothing :func:`listing` did not (the answer is recorded there)."""
+    return _entries(os.path.abspath(folder)) is not None
+
+
 def _listing(folder: str, pattern: str) -> tuple | None:
     entries = _entries(folder)
     if entries is None:
