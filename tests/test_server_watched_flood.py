@@ -42,3 +42,26 @@ def test_a_record_answers_what_it_concerns_without_scanning_every_path(tmp_path)
     for i in range(30000):
         record.concerns(tmp_path / "other" / f"g{i}.txt", file=True)
     assert time.process_time() - started < 3  # a scan of 3,000 paths each: ~20 s
+
+
+def test_saves_of_files_never_opened_queue_nothing_of_their_own(offline_server,  # noqa: F811
+                                                                tmp_path, monkeypatch):
+    """``textDocument/didSave`` of 300 robot files not open scheduled 300 checks; the robot
+    open waited 54 s behind them. A save of a file not open is a file changed: the robots it
+    concerns, one job each."""
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    robot = str(_package(tmp_path))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    scheduled = []
+    monkeypatch.setattr(server, "schedule", lambda path, *a, **k: scheduled.append(path))
+    others = tmp_path / "others"
+    others.mkdir()
+    for i in range(300):
+        (others / f"r{i}.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+        server.saved((others / f"r{i}.urdf").as_uri())
+    assert set(scheduled) <= {robot}  # (a new file at the top concerns it: one job, replaced)
+    scheduled.clear()
+    server.saved((tmp_path / "pkg" / "urdftool.toml").as_uri())  # settings: its robot
+    assert scheduled == [robot]

@@ -401,9 +401,15 @@ class UrdftoolServer(LanguageServer):
             self.schedule(path, self.debounce)
 
     def saved(self, uri: str) -> None:
+        """A document saved: a robot or companion open is checked again, what it means found
+        again; any other file (a settings file) as a file changed outside the editor, for the
+        robots it concerns, one job each: saves of robot files never opened each queued a
+        check, and the documents open waited behind any number of them."""
         path = self.path_of(uri)
-        if path:
+        if path in self.open:
             self.schedule(path, 0.0, retarget=True)
+        else:
+            self.watched([uri])
 
     def watched(self, uris: list[str]) -> None:
         """Files created, changed or removed outside the editor: the robots whose record they
