@@ -626,14 +626,27 @@ def _write_descriptor(descriptor: int, data: bytes) -> None:
     stream.flush()
 
 
+PIPE_READER_WAIT = 10.0  # [s] how long an output that is a named pipe may wait for a reader
+
+
 def _write_in_place(path, target: str, data: bytes) -> None:
     """Write ``data`` into the character device or named pipe at ``target`` (a temporary file
     renamed over it would replace the device itself: ``-o /dev/null`` run as root); UsageError
-    when the system refuses (``/dev/full``: no space left) or a named pipe has no reader (an
-    archive can hold a pipe where a workflow writes its report: opening it would wait for a
-    reader forever)."""
+    when the system refuses (``/dev/full``: no space left) or a named pipe has no reader
+    within :data:`PIPE_READER_WAIT` seconds (an archive can hold a pipe where a workflow writes
+    its report: opening it waited for a reader forever; a reader started just before urdftool
+    may open its end a moment later)."""
+    deadline = time.monotonic() + PIPE_READER_WAIT
     try:
-        descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY | os.O_NONBLOCK)
+        while True:
+            try:
+                descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY |
+                                     os.O_NONBLOCK)
+                break
+            except OSError as error:
+                if error.errno != errno.ENXIO or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
         os.set_blocking(descriptor, True)  # a reader that is slow is waited for
         with open(descriptor, "wb") as handle:
             handle.write(data)
