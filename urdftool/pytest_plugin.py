@@ -39,7 +39,19 @@ def pytest_collect_file(file_path: Path, parent):
 
     if Path(real_path(file_path)) not in _top_level(parent.config, file_path.parent):
         return None  # a macro library or a fragment another file includes: checked through it
-    return RobotFile.from_parent(parent, path=file_path)
+    return RobotFile.from_parent(parent, path=file_path, nodeid=_node_id(parent, file_path))
+
+
+def _node_id(parent, file_path: Path) -> str:
+    """The node ID pytest would give ``file_path`` (relative to the root folder, ``/``
+    between folders), through the terminal-text escaper (see :class:`RobotFile`)."""
+    from urdftool.report.escape import text
+
+    try:
+        relative = file_path.relative_to(parent.config.rootpath).as_posix()
+    except ValueError:
+        relative = file_path.as_posix()
+    return text(relative)
 
 
 def _top_level(config, folder: Path) -> set[Path]:
@@ -66,6 +78,19 @@ _RUN = pytest.StashKey[dict]()  # the per-run memory of the collection and the c
 
 
 class RobotFile(pytest.File):
+    """A robot file as a pytest collector. Its name and node ID are a stranger's file name,
+    which pytest prints at the start of a line (``-v``, ``--collect-only``, the short summary)
+    and writes into ``--junitxml``: both go through the terminal-text escaper, so a file named
+    ``::error::x.urdf`` or holding a line break, an escape sequence or an undecodable byte
+    prints no workflow command, moves no cursor and does not end pytest's JUnit writer with
+    a traceback."""
+
+    def __init__(self, *args, **kwargs):
+        from urdftool.report.escape import text
+
+        super().__init__(*args, **kwargs)
+        self.name = text(self.name)
+
     def collect(self):
         yield RobotItem.from_parent(self, name="urdftool")
 
@@ -90,7 +115,9 @@ class RobotItem(pytest.Item):
         return super().repr_failure(excinfo, style)
 
     def reportinfo(self):
-        return self.path, None, f"urdftool check {self.path.name}"
+        from urdftool.report.escape import text
+
+        return self.path, None, text(f"urdftool check {self.path.name}")
 
 
 _TOGETHER = pytest.StashKey[dict]()

@@ -401,17 +401,30 @@ class UrdftoolServer(LanguageServer):
             self.schedule(path, self.debounce)
 
     def saved(self, uri: str) -> None:
+        """A document saved: a robot or companion open is checked again, what it means found
+        again; any other file (a settings file) as a file changed outside the editor, for the
+        robots it concerns, one job each: saves of robot files never opened each queued a
+        check, and the documents open waited behind any number of them."""
         path = self.path_of(uri)
-        if path:
+        if path in self.open:
             self.schedule(path, 0.0, retarget=True)
+        else:
+            self.watched([uri])
 
     def watched(self, uris: list[str]) -> None:
         """Files created, changed or removed outside the editor: the robots whose record they
-        concern are checked again (a document open in the editor is left to its own events)."""
-        for uri in uris:
+        concern are checked again (a document open in the editor is left to its own events).
+        Each robot concerned is one job, keyed by the robot: a checkout that changes 300,000
+        files queued a check of the same robots for each of them, and the server answered
+        nothing for minutes."""
+        robots = {}
+        for uri in dict.fromkeys(uris):
             path = self.path_of(uri)
-            if path and path not in self.open and self.concerned(path):
-                self.schedule(path, self.debounce, concerned_only=True)
+            if path and path not in self.open:
+                robots.update(dict.fromkeys(self.concerned(path)))
+        for robot in robots:
+            if not (robot in self.open and robot in self.pending):  # its own job reads it
+                self.schedule(robot, self.debounce, concerned_only=True)
 
     def concerned(self, path: str) -> list[str]:
         """The robots checked so far whose last check a change at ``path`` may change: their

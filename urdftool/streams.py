@@ -92,6 +92,20 @@ def guard() -> None:
                                              encoding="utf-8")  # (empty: the null device)
     sys.stdout = _text(sys.stdout, 1, "standard output", True)
     sys.stderr = _text(sys.stderr, 2, "standard error", False)
+    import warnings  # (imported by Python at start: no cost)
+
+    warnings.showwarning = _warning_line
+
+
+def _warning_line(message, category, filename, lineno, file=None, line=None) -> None:
+    """A Python warning (numpy's ``RuntimeWarning`` on a mesh of NaN and 1e38, a library's
+    ``UserWarning`` that may quote a file's text) as one line of standard error through the
+    terminal-text escaper, as every message there: Python printed the warning's source line
+    and whatever text it held, raw, beside urdftool's own lines."""
+    from urdftool.report.escape import text
+
+    where = f"{os.path.basename(str(filename))}:{lineno}"
+    say(text(f"urdftool: warning: {category.__name__}: {message} ({where})"))
 
 
 def _reopen(fd: int, flags: int) -> None:

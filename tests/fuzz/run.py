@@ -2,7 +2,7 @@
 
 Usage: python -m tests.fuzz.run [N] [--seed S] [--max-seed-bytes B] [--kinds K,K]
                                 [--time-limit SECONDS] [--parallel P] [--in-process]
-                                [--names] [--server]
+                                [--names] [--server] [--environments]
 
 Each case (tests/fuzz/cases.py) is a mutated robot in a throw-away repository with hostile
 additions, run through check (in worker mode and as a folder walk), xacro, tree, graph, fk, dh,
@@ -10,7 +10,9 @@ inertia, dynamics and collisions, each in a forked child with a time limit, its 
 measured and every file it opens audited (harness.case_report). ``--in-process`` runs the older,
 faster mode instead: the check engine on mutated robots in this process (harness.problems).
 ``--names`` runs hostile names through every command and format (names.py: forged output),
-``--server`` language-server sessions (server_session.py: floods, huge and slow documents).
+``--server`` language-server sessions (server_session.py: floods, huge and slow documents),
+``--environments`` the process's environment, streams, memory budget and output target
+(environments.py).
 Every failing input is kept in tests/fuzz/regressions/ and the run goes on; exit 1 if any failed.
 """
 
@@ -121,13 +123,17 @@ def main(argv=None) -> int:
     parser.add_argument("--server", action="store_true",
                         help="language-server sessions: floods, huge and slow documents "
                              "(server_session.py)")
+    parser.add_argument("--environments", action="store_true",
+                        help="odd environments, streams, memory budgets and output targets "
+                             "(environments.py)")
     options = parser.parse_args(argv)
-    if options.names or options.server:
-        from . import names, server_session
+    if options.names or options.server or options.environments:
+        from . import environments, names, server_session
 
-        stats = (names if options.names else server_session).run(options.count, options.seed)
-        print(f"fuzz {'--names' if options.names else '--server'}: "
-              + ", ".join(f"{key} {value}" for key, value in stats.items()))
+        mode, module = (("--names", names) if options.names else ("--server", server_session)
+                        if options.server else ("--environments", environments))
+        stats = module.run(options.count, options.seed)
+        print(f"fuzz {mode}: " + ", ".join(f"{key} {value}" for key, value in stats.items()))
         return 1 if stats["failures"] else 0
     if options.in_process:
         stats = run(options.count, options.seed, options.max_seed_bytes)

@@ -2,8 +2,9 @@
 seeded slices of new cases run.
 
 ``make fuzz`` runs ``--names`` (hostile names through every command and format, tests/fuzz/
-names.py) and ``--server`` (language-server sessions: floods, huge and slow documents,
-tests/fuzz/server_session.py) at length; here each kept input is replayed and a few cases of
+names.py), ``--server`` (language-server sessions: floods, huge and slow documents,
+tests/fuzz/server_session.py) and ``--environments`` (odd environments, streams, memory
+budgets and output targets, tests/fuzz/environments.py) at length; here each kept input is replayed and a few cases of
 each run.
 """
 
@@ -13,11 +14,12 @@ from pathlib import Path
 
 import pytest
 
-from tests.fuzz import names, server_session
+from tests.fuzz import environments, names, server_session
 from tests.fuzz.harness import REGRESSIONS
 
 NAMES = sorted(REGRESSIONS.glob("names-*.json"))
 SESSIONS = sorted(REGRESSIONS.glob("server-*.json"))
+ENVIRONMENTS = sorted(REGRESSIONS.glob("env-*.json"))
 
 
 @pytest.mark.parametrize("path", NAMES, ids=[p.stem for p in NAMES])
@@ -38,3 +40,13 @@ def test_seeded_names_slice():
 def test_seeded_server_slice():
     stats = server_session.run(2, seed=29, keep=False)
     assert stats["cases"] == 2 and stats["failures"] == 0, "see the FAIL lines above"
+
+
+@pytest.mark.parametrize("path", ENVIRONMENTS, ids=[p.stem for p in ENVIRONMENTS])
+def test_kept_environments_behave(path: Path):
+    assert environments.replay(path) == []
+
+
+def test_seeded_environments_slice():
+    stats = environments.run(5, seed=29, keep=False)
+    assert stats["cases"] == 5 and stats["failures"] == 0, "see the FAIL lines above"

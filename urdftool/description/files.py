@@ -36,6 +36,7 @@ nothing.
 
 from __future__ import annotations
 
+import errno
 import fnmatch
 import functools
 import os
@@ -287,6 +288,11 @@ def walk(root, pattern: str, depth: int, skip=frozenset()):
             pending.extend((os.path.join(folder, name), os.path.join(real, name), level + 1)
                            for name, kind in reversed(found)
                            if kind == "folder" and name not in skip and name[:1] != ".")
+def listable(folder) -> bool:
+    """Whether ``folder`` could be listed: :func:`listing` gives nothing for a folder it may
+    not read or whose path is past the system's limit, as for an empty one. Asks the disk
+    nothing :func:`listing` did not (the answer is recorded there)."""
+    return _entries(os.path.abspath(folder)) is not None
 
 
 def _listing(folder: str, pattern: str) -> tuple | None:
@@ -554,11 +560,14 @@ def check_output(path) -> str:
     planted link costs no time."""
     path = Path(path)
     folder = path.parent
-    if not folder.is_dir():
-        raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
-    real = real_folder(folder)
-    if path.is_dir() and not path.is_symlink():
-        raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+    try:  # a name the system cannot look up (too long, a loop) is refused as one missing
+        if not folder.is_dir():
+            raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
+        real = real_folder(folder)
+        if path.is_dir() and not path.is_symlink():
+            raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+    except OSError as error:
+        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     return real
 
 
@@ -646,16 +655,33 @@ def _write_descriptor(descriptor: int, data: bytes) -> None:
     stream.flush()
 
 
+PIPE_READER_WAIT = 10.0  # [s] how long an output that is a named pipe may wait for a reader
+
+
 def _write_in_place(path, target: str, data: bytes) -> None:
     """Write ``data`` into the character device or named pipe at ``target`` (a temporary file
     renamed over it would replace the device itself: ``-o /dev/null`` run as root); UsageError
-    when the system refuses (``/dev/full``: no space left)."""
+    when the system refuses (``/dev/full``: no space left) or a named pipe has no reader
+    within :data:`PIPE_READER_WAIT` seconds (an archive can hold a pipe where a workflow writes
+    its report: opening it waited for a reader forever; a reader started just before urdftool
+    may open its end a moment later)."""
+    deadline = time.monotonic() + PIPE_READER_WAIT
     try:
-        descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY)
+        while True:
+            try:
+                descriptor = os.open(target, os.O_WRONLY | os.O_NOFOLLOW | os.O_NOCTTY |
+                                     os.O_NONBLOCK)
+                break
+            except OSError as error:
+                if error.errno != errno.ENXIO or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+        os.set_blocking(descriptor, True)  # a reader that is slow is waited for
         with open(descriptor, "wb") as handle:
             handle.write(data)
     except OSError as error:
-        raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+        why = "a named pipe no process reads" if error.errno == errno.ENXIO else error.strerror
+        raise UsageError(f"cannot write '{path}': {why}") from None
 
 
 def remove_file(path) -> None:

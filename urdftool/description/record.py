@@ -123,8 +123,7 @@ class Record:
         else what it is, or was, is not known)."""
         paths, patterns, not_folders = self._indexed()
         path = os.path.abspath(path)
-        below = path.rstrip(os.sep) + os.sep
-        if path in paths or any(known.startswith(below) for known in paths):
+        if path in paths:  # a path it knows, or a folder above one
             return True
         child = path
         while True:
@@ -157,6 +156,11 @@ class Record:
                     patterns.setdefault(folder, []).append((pattern, held))
                     if answer[1] is None:
                         not_folders.add(folder)
+            for known in list(paths):  # the folders above each: one lookup per question (an
+                folder = os.path.dirname(known)  # editor reports 300,000 files changed at once)
+                while folder not in paths and folder != known:
+                    paths.add(folder)
+                    known, folder = folder, os.path.dirname(folder)
             self._index = paths, patterns, not_folders
         return self._index
 

@@ -296,8 +296,15 @@ def _write(path: Path, text: str) -> None:
 
 
 def _secret() -> bytes | None:
-    """This user's signing key, made on first use; None (no cache) when it cannot be had."""
-    home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    """This user's signing key, made on first use; None (no cache) when it cannot be had. A
+    relative ``XDG_CACHE_HOME`` is ignored, as the XDG specification says, and a relative
+    ``HOME`` gives no key: either put the key in the working folder, the repository being
+    checked, where a stranger can commit one and sign entries with it."""
+    home = os.environ.get("XDG_CACHE_HOME", "")
+    if not os.path.isabs(home):
+        home = os.path.join(os.path.expanduser("~"), ".cache")
+    if not os.path.isabs(home):
+        return None
     folder = Path(home) / "urdftool"
     path = folder / "key"
     key = read_own(path, 1024)

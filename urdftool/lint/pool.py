@@ -18,6 +18,7 @@ use; what a :class:`Stop` is reported as is the engine's (``engine.stop_finding`
 
 from __future__ import annotations
 
+import errno
 import io
 import os
 import signal
@@ -110,6 +111,17 @@ def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,
 CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
 
 
+def out_of_memory(error: BaseException) -> bool:
+    """Whether ``error`` is the memory budget's doing though not a MemoryError: under a small
+    address-space cap, importing a module fails to map its shared library (ImportError) and
+    the system refuses allocations (ENOMEM). Such a piece is stopped as over its memory
+    (U018), as a MemoryError is, never reported as a crash with a traceback."""
+    if isinstance(error, OSError) and error.errno == errno.ENOMEM:
+        return True
+    return isinstance(error, ImportError) and any(
+        words in str(error) for words in ("failed to map segment", "Cannot allocate memory"))
+
+
 # ---- one piece in this process, under the guardian (urdftool.guardian) ------------------
 
 def _guarded_piece(work, budget: Budget, stopped):
@@ -127,7 +139,9 @@ def _guarded_piece(work, budget: Budget, stopped):
         return work(0)
     except MemoryError:
         return stopped(0, Stop("memory", budget, where=budgets.where()))
-    except (Exception, SystemExit):  # as a worker reports it
+    except (Exception, SystemExit) as error:  # as a worker reports it
+        if out_of_memory(error):
+            return stopped(0, Stop("memory", budget, where=budgets.where()))
         import traceback
 
         return stopped(0, Stop("crash", budget, traceback.format_exc(), budgets.where()))
@@ -204,10 +218,11 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
             message = ("done", index, work(index))
         except MemoryError:
             message = ("stop", index, "memory", "")
-        except BaseException:  # report, never die silently
+        except BaseException as error:  # report, never die silently
             import traceback
 
-            message = ("stop", index, "crash", traceback.format_exc())
+            message = ("stop", index, "memory", "") if out_of_memory(error) else \
+                ("stop", index, "crash", traceback.format_exc())
         for stream in (sys.stdout, sys.stderr):
             stream.flush()
         retiring = message[0] == "done" and budgets.grown(memory)

@@ -16,8 +16,8 @@ from pathlib import Path
 
 from urdftool.diagnostics import display_path
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listing, \
-    read_regular, real_path
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listable, \
+    listing, read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
 from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
@@ -51,17 +51,22 @@ FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmissi
             "<ros2_control> or <webots> blocks besides definitions)")
 
 
-def robot_files(folder: Path) -> list[Path]:
+def robot_files(folder: Path, unlisted: list[Path] | None = None) -> list[Path]:
     """Every .urdf and .xacro file below ``folder``, sorted, skipping tool folders. Symbolic
     links (to files or folders) leading outside the repository are listed too, not followed, so
-    that checking them reports it; a ``folder`` that is itself such a link is listed alone."""
+    that checking them reports it; a ``folder`` that is itself such a link is listed alone.
+    Folders that could not be listed (no permission, a path past the system's limit) are
+    added to ``unlisted``: their files are not checked, which a run must say."""
     if not _stays_inside(folder):
         return [folder]
     found, pending = [], [Path(folder)]
     pattern = f"*/|{ROBOT_GLOB}"
     while pending:
         current = pending.pop()
-        for name, kind in listing(current, pattern):
+        entries = listing(current, pattern)
+        if not entries and unlisted is not None and not listable(current):
+            unlisted.append(current)
+        for name, kind in entries:
             path = current / name
             if kind == "link" and kind_of(path) == "folder":
                 if name not in SKIP_DIRS and not name.startswith(".") and not _stays_inside(path):
@@ -753,7 +758,10 @@ def expand(paths: list[str], request) -> Targets:
                 if not targets and reason.startswith(PART):
                     unchecked.append(f"{path}: {reason}")
             continue
-        found = robot_files(Path(path))
+        unlisted: list[Path] = []
+        found = robot_files(Path(path), unlisted)
+        notes.extend(f"folder '{folder}' cannot be read: its files are not checked"
+                     for folder in unlisted)
         top, skipped_here = split_top_level(found, resolver_for, limit)
         files.extend(str(p) for p in top)
         skipped.update({str(p): reason for p, reason in skipped_here.items()})

@@ -1,0 +1,67 @@
+"""Files changed under the language server in bulk (docs/attacks.md, session 8): a checkout
+or a build changes 300,000 files of the workspace, and the editor reports each
+(``workspace/didChangeWatchedFiles``). Each changed path that concerned a robot scheduled a
+job of its own (keyed by the path), each checking the same robots again: 30,000 events
+queued 30,000 checks and the server answered no hover for minutes; ``Record.concerns`` also
+scanned every path it knew for each question. Now ``watched`` schedules one job per robot
+concerned (keyed by the robot), and a record answers "a folder above a path it knows" from an
+index."""
+
+from __future__ import annotations
+
+import time
+
+from test_server import _package, offline_server  # noqa: F401  (the fixture)
+from urdftool.description import files
+from urdftool.description.record import Record, recording
+
+
+def test_a_flood_of_changed_files_schedules_one_job_per_robot_concerned(offline_server,  # noqa: F811
+                                                                        tmp_path, monkeypatch):
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    robot = str(_package(tmp_path))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    scheduled = []
+    monkeypatch.setattr(server, "schedule", lambda path, *a, **k: scheduled.append(path))
+    config = tmp_path / "pkg" / "config"
+    server.watched([(config / f"c{i}.yaml").as_uri() for i in range(5000)])
+    server.watched([(config / "c1.yaml").as_uri()] * 100)
+    assert scheduled == [robot, robot], scheduled[:5]
+
+
+def test_a_record_answers_what_it_concerns_without_scanning_every_path(tmp_path):
+    record = Record()
+    with recording(record):
+        for i in range(3000):
+            files.kind_of(tmp_path / "deep" / f"f{i}" / "x.yaml", follow=False)
+    assert record.concerns(tmp_path / "deep") and record.concerns(tmp_path)
+    assert not record.concerns(tmp_path / "elsewhere" / "y.txt", file=True)
+    started = time.process_time()
+    for i in range(30000):
+        record.concerns(tmp_path / "other" / f"g{i}.txt", file=True)
+    assert time.process_time() - started < 3  # a scan of 3,000 paths each: ~20 s
+
+
+def test_saves_of_files_never_opened_queue_nothing_of_their_own(offline_server,  # noqa: F811
+                                                                tmp_path, monkeypatch):
+    """``textDocument/didSave`` of 300 robot files not open scheduled 300 checks; the robot
+    open waited 54 s behind them. A save of a file not open is a file changed: the robots it
+    concerns, one job each."""
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    robot = str(_package(tmp_path))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    scheduled = []
+    monkeypatch.setattr(server, "schedule", lambda path, *a, **k: scheduled.append(path))
+    others = tmp_path / "others"
+    others.mkdir()
+    for i in range(300):
+        (others / f"r{i}.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+        server.saved((others / f"r{i}.urdf").as_uri())
+    assert set(scheduled) <= {robot}  # (a new file at the top concerns it: one job, replaced)
+    scheduled.clear()
+    server.saved((tmp_path / "pkg" / "urdftool.toml").as_uri())  # settings: its robot
+    assert scheduled == [robot]
