@@ -228,6 +228,36 @@ def test_a_yaml_no_robot_uses_checks_nothing_quietly(run_cli, tmp_path):
     assert "nothing to check" in verbose.stderr
 
 
+def test_a_launch_file_named_checks_the_robots_it_builds(run_cli, tmp_path):
+    """A launch file is no robot (it was checked as one: U001 'malformed XML' for a .launch.py,
+    U004 for a <launch>): naming it checks the robots it builds, through the launch files that
+    include it too, and one that builds none checks nothing."""
+    root = tmp_path / "repo"
+    (root / ".git").mkdir(parents=True)
+    (root / "pkg" / "urdf").mkdir(parents=True)
+    (root / "pkg" / "launch").mkdir()
+    (root / "pkg" / "package.xml").write_text("<package><name>pkg</name></package>")
+    (root / "pkg" / "urdf" / "bot.urdf.xacro").write_text(
+        '<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/>'
+        '<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>'
+        '<limit lower="1" upper="-1" effort="1" velocity="1"/></joint><link name="arm"/></robot>')
+    (root / "pkg" / "launch" / "load.launch").write_text(
+        '<launch><param name="robot_description" '
+        'command="$(find xacro)/xacro $(find pkg)/urdf/bot.urdf.xacro"/></launch>')
+    (root / "pkg" / "launch" / "run.launch").write_text(
+        '<launch><include file="$(find pkg)/launch/load.launch"/></launch>')
+    (root / "pkg" / "launch" / "nothing.launch.py").write_text(
+        "from launch import LaunchDescription\n\n\ndef generate_launch_description():\n"
+        "    return LaunchDescription([])\n")
+    for launch in ("load.launch", "run.launch"):
+        result = run_cli("check", root / "pkg" / "launch" / launch, "--format", "concise")
+        assert result.exit_code == 1 and "bot.urdf.xacro" in result.stdout, result.stdout
+        assert "U001" not in result.stdout and "U004" not in result.stdout
+        assert "a launch file building" in result.stderr
+    nothing = run_cli("check", root / "pkg" / "launch" / "nothing.launch.py", "--format", "json")
+    assert nothing.exit_code == 0 and '"files": 0' in nothing.stdout and "U001" not in nothing.stdout
+
+
 GAZEBO_FRAGMENT = """<?xml version="1.0"?>
 <robot name="bot_sim" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="laser_visual" default="false"/>

@@ -401,6 +401,23 @@ def builds(path: str) -> list[Build]:
     return found
 
 
+def built_by(launch_path: str) -> list[Path]:
+    """The robot files the launch file ``launch_path`` makes a description from, as a user runs
+    it, or as the launch files running it (its includers) do, in the index's order; not the
+    ones it makes only under a condition known false. Empty for a file the index did not read
+    (no launch file, or one in no repository or package)."""
+    absolute, root = _file_root(launch_path)
+    if root is None:
+        return []
+    real, found = real_path(absolute), {}
+    for configuration in launch_index(root).configurations:
+        if real_path(configuration.top.path) == real or real in configuration.included:
+            for described in configuration.described:
+                if described.path is not None and described.when.truth is not False:
+                    found.setdefault(real_path(described.path), Path(described.path))
+    return list(found.values())
+
+
 def _file_root(path: str) -> tuple[Path | None, Path | None]:
     """A robot file's absolute path and the root whose launch files may build it (None, None
     for stdin)."""

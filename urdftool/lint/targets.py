@@ -16,6 +16,7 @@ from pathlib import Path
 
 from urdftool.diagnostics import display_path
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
+from urdftool.description.launch import LAUNCH_SUFFIXES
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listable, \
     listing, read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
@@ -742,6 +743,20 @@ def expand(paths: list[str], request) -> Targets:
                              f"checking {'that' if len(users) == 1 else 'those'}")
             else:  # any YAML a hook passes (launch, navigation, CI settings): said with -v only
                 skipped[path] = f"no robot below {root} is checked with it: nothing to check"
+            continue
+        if kind == "file" and path.endswith(LAUNCH_SUFFIXES):
+            # a launch file is no robot: the robots it builds are checked, with it
+            from urdftool.description.runtime import built_by
+
+            users = [robot for robot in built_by(path) if is_robot_name(robot.name)]
+            files.extend(display_path(p) for p in users)
+            if users:
+                notes.append(f"{path}: a launch file building "
+                             f"{', '.join(display_path(p) for p in users)}: checking "
+                             f"{'that' if len(users) == 1 else 'those'}")
+            else:
+                skipped[path] = ("a launch file that builds no robot file urdftool can tell: "
+                                 "nothing to check")
             continue
         if kind == "file":
             root = project_root(Path(path))
