@@ -41,7 +41,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         if format not in FORMATS:
             raise UsageError(f"unknown format '{format}'; choose from auto, "
                              f"{', '.join(REPORT_FORMATS)}")
-        terminal.refuse_bad_outputs(output)
+        terminal.refuse_bad_outputs(output, inputs=paths)
         if max_file_size is not None:
             checked_file_size(max_file_size, "--max-file-size")
         Budget.of(timeout or 0, max_memory)  # --timeout and --max-memory are well formed

@@ -51,15 +51,21 @@ class Terminal:
         self.say(f"urdftool: error: {error}", err=True)
         raise self.exit(2)
 
-    def refuse_bad_outputs(self, *paths) -> None:
+    def refuse_bad_outputs(self, *paths, inputs=()) -> None:
         """Exit 2 with one line when an output path given (None: not given) cannot be written:
-        its folder is missing or it is a folder. Call it before the work."""
+        its folder is missing or it is a folder, or it would replace an input of the command
+        (:func:`replaced_input`: ``check robot.urdf -o robot.urdf`` wrote its report over the
+        robot). Call it before the work."""
         from urdftool.description.files import check_output
 
         try:
             for path in paths:
                 if path is not None:
                     check_output(path)
+                    replaced = replaced_input(path, inputs)
+                    if replaced is not None:
+                        raise UsageError(f"cannot write '{path}': it is {replaced}, which the "
+                                         "output would replace; give another file name")
         except UsageError as error:
             self.fail_usage(error)
 
@@ -73,6 +79,36 @@ class Terminal:
             write_file(path, data)
         except UsageError as error:
             self.fail_usage(error)
+
+
+def replaced_input(output, inputs) -> str | None:
+    """What writing ``output`` would replace of the command's ``inputs`` (its words: files,
+    folders, ``NAME:=VALUE``), in words; None when nothing: the very file named (links
+    followed), or, below a folder named, a robot file or a companion the check reads."""
+    import os
+
+    from urdftool.description.companions import COMPANION_SUFFIXES
+    from urdftool.description.files import kind_of, real_path
+    from urdftool.description.urdf import is_robot_name
+
+    # what the writer replaces: the file at that very name (a link there is replaced, never
+    # followed: files.write_file), in its folder's real place
+    if kind_of(output, follow=False) != "file":
+        return None
+    output = os.path.abspath(output)
+    real = os.path.join(real_path(os.path.dirname(output)), os.path.basename(output))
+    for word in inputs:
+        word = os.fspath(word)
+        if word == "-" or ":=" in word:
+            continue
+        kind = kind_of(word)
+        if kind == "file" and real_path(word) == real:
+            return "an input of the command"
+        name = os.path.basename(real)
+        if kind == "folder" and real.startswith(real_path(word).rstrip(os.sep) + os.sep) and (
+                is_robot_name(name) or name.endswith(COMPANION_SUFFIXES)):
+            return f"a file of '{word}', checked"
+    return None
 
 
 def plain_echo(message: str, err: bool = False, nl: bool = True) -> None:

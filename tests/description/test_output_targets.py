@@ -67,3 +67,33 @@ def test_a_named_pipe_with_a_reader_gets_the_whole_report(tmp_path):
     files.write_file(pipe, data)
     reader.join(10)
     assert got == [data.encode()]
+
+
+MEANT_IN_PLACE = ("inertia --write", "collisions --write-srdf")  # a file rewritten on purpose
+
+
+@pytest.mark.parametrize("writer", [w for w in WRITERS if w not in MEANT_IN_PLACE])
+def test_an_output_that_is_an_input_is_refused_before_it_replaces_it(run_cli, tmp_path, writer):
+    """``check robot.urdf -o robot.urdf`` wrote its report over the robot (attack8, session 8):
+    every writer refuses an output that is a file the command was given, before the work."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    result = run_cli(*_commands(robot, robot)[writer])
+    assert result.exit_code == 2, result.output
+    assert robot.read_text() == ROBOT
+    assert "cannot write" in result.stderr or "must end in" in result.stderr
+
+
+def test_a_robot_below_a_folder_checked_is_no_output(run_cli, tmp_path):
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    result = run_cli("check", tmp_path, "-o", robot, "--jobs", "1")
+    assert result.exit_code == 2 and robot.read_text() == ROBOT
+    assert "which the output would replace" in result.stderr
+    # a report file of its own there, and a link named as the output (replaced, not
+    # followed), are no input
+    report = run_cli("check", robot, "-o", tmp_path / "report.txt", "--jobs", "1")
+    assert report.exit_code == 0 and (tmp_path / "report.txt").is_file()
+    (tmp_path / "link.txt").symlink_to(robot)
+    linked = run_cli("check", robot, "-o", tmp_path / "link.txt", "--jobs", "1")
+    assert linked.exit_code == 0 and robot.read_text() == ROBOT

@@ -77,7 +77,8 @@ def collisions(
     from urdftool.kinematics.fk import FKError
     from urdftool.report.plot import PlotError
 
-    refuse_bad_outputs(write_srdf, plot, render)
+    refuse_bad_outputs(write_srdf)  # an SRDF written over the one it read is meant
+    refuse_bad_outputs(plot, render, inputs=words)
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
         (not matrix and (write_srdf or check_srdf or plot or until_converged),
          "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),

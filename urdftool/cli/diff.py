@@ -53,7 +53,7 @@ def diff(
 ) -> None:
     from urdftool.compare.diff import DiffOptions
 
-    refuse_bad_outputs(output, render)
+    refuse_bad_outputs(output, render, inputs=words)
     try:
         paths, args, packages = robot_inputs(words, arg, package)
         if len(paths) != (1 if rev else 2):

@@ -58,7 +58,7 @@ def dynamics(
                           (plot is not None and not support, "--plot needs --support"),
                           (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
                            "--plot must end in .svg or .png")])
-    refuse_bad_outputs(plot)
+    refuse_bad_outputs(plot, inputs=words)
     try:
         model = build(robot)
     except DynamicsError as error:

@@ -29,7 +29,7 @@ def graph(
     from urdftool.lint.engine import check_robot
     from urdftool.report.dot import DotMissing, dot_missing_advice, to_dot, write
 
-    refuse_bad_outputs(output)
+    refuse_bad_outputs(output, inputs=words)
     robot = single_robot("graph", words, arg, package)
     dot = to_dot(robot, check_robot(robot))
     if output is None:

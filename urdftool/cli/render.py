@@ -52,7 +52,7 @@ def render(
     from urdftool.kinematics.scene import posed
     from urdftool.report.picture import Layer, PictureOptions, write
 
-    refuse_bad_outputs(output)
+    refuse_bad_outputs(output, inputs=words)
     try:
         dimensions = parse_size(size)
     except UsageError as error:

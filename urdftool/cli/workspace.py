@@ -43,7 +43,7 @@ def workspace(
                          ((samples < 1, "--samples must be at least 1"),
                           (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
                            "--plot must end in .svg or .png")))
-    refuse_bad_outputs(plot)
+    refuse_bad_outputs(plot, inputs=words)
     try:
         kinematics = KinematicModel(robot)
         start = config.from_words(kinematics.variables, joint_words(q, "--q"), deg,

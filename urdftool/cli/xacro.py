@@ -35,7 +35,7 @@ def xacro(
     from urdftool.report.escape import xml_document
     from urdftool.report.urdf import dependencies, expanded_urdf
 
-    refuse_bad_outputs(output)
+    refuse_bad_outputs(output, inputs=words)
     robot = single_robot("xacro", words, arg, package, allow_env=False if no_env else None)
     if not quiet:
         for note in robot.notes:
