@@ -198,9 +198,9 @@ def robot_inputs(words: list[str], arg_options: list[str], package_options: list
     paths, args = split_words(words)
     args.update(pairs(arg_options, "--arg"))
     packages = {name: Path(path) for name, path in pairs(package_options, "--package").items()}
-    from urdftool.description.files import kind_of
+    from urdftool.description.files import kind_of, unreachable
 
     for path in paths:
         if path != "-" and not kind_of(path):
-            raise UsageError(f"path '{path}' does not exist")
+            raise UsageError(f"path '{path}' {unreachable(path)}")
     return paths, args, packages

@@ -292,3 +292,23 @@ def test_real_path_of_a_folder_deeper_than_the_recursion_limit(tmp_path):
     (deep / "r.urdf").write_text("<robot/>")
     with one_run():
         assert files.real_path(deep / "r.urdf") == os.path.realpath(deep / "r.urdf")
+
+
+def test_a_path_that_cannot_be_reached_is_not_said_missing(tmp_path, monkeypatch, run_cli):
+    """A robot behind a folder the user may not search was reported as 'does not exist', a
+    file that may well be there (attack8, session 8): the system's reason is said instead."""
+    from urdftool.description import files
+
+    assert files.unreachable(tmp_path / "nothing.urdf") == "does not exist"
+    (tmp_path / "link.urdf").symlink_to(tmp_path / "nothing.urdf")
+    assert files.unreachable(tmp_path / "link.urdf") == "does not exist"
+    robot = tmp_path / "robot.urdf"
+
+    def refused(path, *args, **kwargs):
+        raise PermissionError(13, "Permission denied", str(path))
+
+    monkeypatch.setattr(files.os, "stat", refused)
+    monkeypatch.setattr(files.os, "lstat", refused)
+    assert files.unreachable(robot) == "cannot be reached: permission denied"
+    result = run_cli("check", robot)
+    assert result.exit_code == 2 and "cannot be reached: permission denied" in result.stderr

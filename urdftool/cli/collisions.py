@@ -71,7 +71,7 @@ def collisions(
     format: str = typer.Option("text", "--format", "-f", help="text or json."),
 ) -> None:
     from urdftool.collision.srdf import SrdfError
-    from urdftool.description.files import kind_of
+    from urdftool.description.files import kind_of, unreachable
     from urdftool.errors import SceneError
     from urdftool.kinematics.configuration import ConfigError
     from urdftool.kinematics.fk import FKError
@@ -89,7 +89,7 @@ def collisions(
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
         *((given is not None and kind_of(given) != "file",
-           f"{name}: '{given}' does not exist")
+           f"{name}: '{given}' " + ("is no file" if kind_of(given) else unreachable(given)))
           for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
     try:
         if matrix:

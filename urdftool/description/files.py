@@ -219,6 +219,23 @@ def kind_of(path, follow: bool = True) -> str:
     return found
 
 
+def unreachable(path) -> str:
+    """Why nothing is at ``path`` for :func:`kind_of`, in words: 'does not exist', or what
+    the system said when it could not look (a folder on the way it may not search, a name
+    too long) — not 'does not exist' for a file that may well be there."""
+    try:
+        os.stat(path)
+    except FileNotFoundError:  # a link to nothing too
+        return "does not exist"
+    except NotADirectoryError:
+        return "does not exist (a part of it is a file)"
+    except OSError as error:
+        return f"cannot be reached: {(error.strerror or str(error)).lower()}"
+    except ValueError:
+        return "does not exist (a name with a NUL character)"
+    return "does not exist"
+
+
 def _kind(path: str, follow: bool) -> str:
     try:
         mode = (os.stat if follow else os.lstat)(path).st_mode

@@ -18,6 +18,7 @@ from urdftool.diagnostics import display_path
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
 from urdftool.description.launch import LAUNCH_SUFFIXES
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listable, \
+    unreachable, \
     listing, read_regular, real_path
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
@@ -726,7 +727,7 @@ def expand(paths: list[str], request) -> Targets:
     files, skipped, notes, unchecked = [], {}, [], []
     for path in map(os.fspath, paths):
         if path != "-" and not kind_of(path, follow=False):
-            raise TargetError(f"path '{path}' does not exist")
+            raise TargetError(f"path '{path}' {unreachable(path)}")
         kind = kind_of(path) if path != "-" else ""
         if kind not in ("file", "folder"):
             files.append(path)
