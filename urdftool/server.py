@@ -62,9 +62,9 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.description.companions import COMPANION_SUFFIXES
 from urdftool.description.urdf import ROBOT_SUFFIXES, is_robot_name
 
-COMPANION_SUFFIXES = (".yaml", ".yml", ".srdf")
 DEBOUNCE = 0.3  # [s] quiet time after the last change before the buffer is checked
 JOBS = 2  # documents checked at once (each in a worker process; at least 2: a slow one and the
 # one being typed in), more on machines with more cores: see _jobs()
