@@ -206,6 +206,16 @@ def _accepted(data: bytes) -> bool:
     return True
 
 
+def _clean(parser, data: bytes) -> bool:
+    """Whether libxml2 parsed a plain document (:func:`_plain_start_tags`) without a word: no
+    error or warning recovered from, nor an encoding declared (libxml2 reads multi-byte
+    encodings through iconv that expat refuses). Such a document is one expat accepts too
+    (tests/description/test_xml.py: mutated documents), which then need not parse it again."""
+    if len(parser.error_log):
+        return False
+    return not (data.startswith(b"<?xml") and b"encoding" in data[:data.find(b">")])
+
+
 class _StartOffsets(Mapping):
     """Element -> (line, 1-based column) of its start tag, from its byte offset when asked."""
 
@@ -294,11 +304,19 @@ def parse(data: bytes) -> tuple:
     from lxml import etree
 
     offsets = _plain_start_tags(data)
-    if offsets is None or not _accepted(data):
-        lines, offsets = start_tag_positions(data), None
-    # expat has accepted the document; recover=True only lets lxml keep prefixed names whose
-    # namespace was never declared (check_urdf accepts those, so must we).
-    root = etree.fromstring(data, etree.XMLParser(**_LXML_PARSER_OPTIONS))
+    if offsets is None:
+        lines = start_tag_positions(data)  # (raises XmlProblem for what it refuses)
+    # recover=True only lets lxml keep prefixed names whose namespace was never declared
+    # (check_urdf accepts those, so must we).
+    parser = etree.XMLParser(**_LXML_PARSER_OPTIONS)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:  # (libxml2 recovers from less than expat refuses)
+        if offsets is not None and not _accepted(data):
+            start_tag_positions(data)  # raises XmlProblem: what expat says
+        raise
+    if offsets is not None and not (_clean(parser, data) or _accepted(data)):
+        lines, offsets = start_tag_positions(data), None  # (raises: expat refuses it)
     elements = list(root.iter(etree.Element))
     if offsets is not None:
         if len(offsets) == len(elements) and not (_lxml_builds_too_deep()
