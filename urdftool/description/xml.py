@@ -176,9 +176,12 @@ _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element 
 def _plain_start_tags(data: bytes) -> list[int] | None:
     """The byte offset of each start tag's "<", or None when the document is not plain enough
     for the scan to be sure (see above)."""
-    if not data.isascii() or b"\r" in data or b"<!DOCTYPE" in data:
+    if not data.isascii() or b"\r" in data:
         return None
-    if b"<!" not in data and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
+    marked = b"<!" in data  # (a DOCTYPE, comment or CDATA: else no DOCTYPE to look for)
+    if marked and b"<!DOCTYPE" in data:
+        return None
+    if not marked and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
         return [match.start() for match in _START.finditer(data)]
     # between the comments, CDATA sections and processing instructions (no "<" stands for a
     # tag in them), scanned as one: a match object for each of those, not for every "<"
