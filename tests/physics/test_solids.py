@@ -268,6 +268,19 @@ def _bits(box) -> tuple:
     return tuple(struct.pack("<d", v) for corner in box for v in corner)
 
 
+def test_plain_links_keep_no_shapes_of_their_own(tmp_path, monkeypatch):
+    """The bulk path reads each link's shapes straight into its table: no per-link Shapes
+    made and kept for it (a 10,000-link robot's 20,000: a sixth of the table's time); the
+    links it leaves read their own when the per-link path asks."""
+    from plain_robots import plain_robot
+    from urdftool.physics import solids
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    robot = _robot(tmp_path, plain_robot(0))
+    assert len(solids.plain_links(robot).rows) > 20
+    assert not robot.memoized(solids._link_shapes)
+
+
 @pytest.mark.parametrize("seed", range(8))
 def test_plain_links_measured_at_once_are_the_per_link_boxes_to_the_bit(tmp_path, monkeypatch,
                                                                         seed):

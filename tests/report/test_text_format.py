@@ -54,6 +54,20 @@ def test_different_things_stay_apart():
     assert "U204" in text
 
 
+def test_names_in_quotes_and_absolute_paths_are_set_aside_but_not_a_slash_in_a_word():
+    from urdftool.report.text_format import groups
+
+    def said(line: int, message: str) -> Finding:
+        return Finding("U311", "implausible-density", Severity.WARNING, message,
+                       Location("robot.urdf", line))
+
+    same = [said(1, "link 'a': 2 kg/m^3 in /x/a.stl (/x/a.dae)"),
+            said(2, "link 'b': 2 kg/m^3 in /y/b.stl (/y/b.dae)")]
+    apart = [said(3, "link 'a': 2 kg/m^2 in /x/a.stl (/x/a.dae)"),  # "kg/m" is no path
+             said(4, "link 'a':/x 2 kg/m^3 in /x/a.stl (/x/a.dae)")]  # nor a slash after ':'
+    assert [len(group) for group in groups(same + apart)] == [2, 1, 1]
+
+
 def test_a_macro_line_expanded_by_several_calls_is_one_place():
     findings = [Finding("U022", "no-effect", Severity.WARNING, "<dynamics> attribute 'K' has no "
                         "effect", Location("arm.xacro", line, (Location("robot.xacro", call),)))

@@ -67,6 +67,7 @@ class Robot:
     targets: dict = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _listed: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def memo(self, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot for ``key`` (by convention the function that asks), then
@@ -127,8 +128,18 @@ class Robot:
         The dict is shared: read it, never change it."""
         groups = self._groups.get(element)
         if groups is None:
-            groups = self._groups[element] = _by_tag(element)
+            children = self._listed.pop(element, None)
+            groups = self._groups[element] = _by_tag(
+                child_list(element) if children is None else children)
         return groups
+
+    def listed(self) -> dict:
+        """Where a walk that lists the children of the robot's elements anyway (the vocabulary
+        rules') leaves each list it made (element -> :func:`~urdftool.description.xml.
+        child_list` of it, as it was when loaded): the first :meth:`grouped` of such an element
+        groups that list, and drops it, rather than listing its children again (a proxy
+        object looked up for each, a third of the grouping)."""
+        return self._listed
 
     def child(self, element, tag: str):
         """The first direct child of ``element`` with this tag, or None
@@ -210,9 +221,9 @@ class Robot:
         return self.resolver.resolve_uri(uri, self.base_dir)
 
 
-def _by_tag(root) -> dict[str, list]:
+def _by_tag(children: list) -> dict[str, list]:
     grouped: dict[str, list] = {}
-    for child in child_list(root):  # one list from lxml, not its iterator
+    for child in children:  # (child_list's: one list from lxml, not its iterator)
         tag = child.tag
         group = grouped.get(tag)
         if group is not None:

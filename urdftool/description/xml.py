@@ -176,9 +176,12 @@ _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element 
 def _plain_start_tags(data: bytes) -> list[int] | None:
     """The byte offset of each start tag's "<", or None when the document is not plain enough
     for the scan to be sure (see above)."""
-    if not data.isascii() or b"\r" in data or b"<!DOCTYPE" in data:
+    if not data.isascii() or b"\r" in data:
         return None
-    if b"<!" not in data and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
+    marked = b"<!" in data  # (a DOCTYPE, comment or CDATA: else no DOCTYPE to look for)
+    if marked and b"<!DOCTYPE" in data:
+        return None
+    if not marked and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
         return [match.start() for match in _START.finditer(data)]
     # between the comments, CDATA sections and processing instructions (no "<" stands for a
     # tag in them), scanned as one: a match object for each of those, not for every "<"
@@ -204,6 +207,16 @@ def _accepted(data: bytes) -> bool:
     except Exception:  # noqa: BLE001 - the full pass finds and says what it was
         return False
     return True
+
+
+def _clean(parser, data: bytes) -> bool:
+    """Whether libxml2 parsed a plain document (:func:`_plain_start_tags`) without a word: no
+    error or warning recovered from, nor an encoding declared (libxml2 reads multi-byte
+    encodings through iconv that expat refuses). Such a document is one expat accepts too
+    (tests/description/test_xml.py: mutated documents), which then need not parse it again."""
+    if len(parser.error_log):
+        return False
+    return not (data.startswith(b"<?xml") and b"encoding" in data[:data.find(b">")])
 
 
 class _StartOffsets(Mapping):
@@ -294,11 +307,19 @@ def parse(data: bytes) -> tuple:
     from lxml import etree
 
     offsets = _plain_start_tags(data)
-    if offsets is None or not _accepted(data):
-        lines, offsets = start_tag_positions(data), None
-    # expat has accepted the document; recover=True only lets lxml keep prefixed names whose
-    # namespace was never declared (check_urdf accepts those, so must we).
-    root = etree.fromstring(data, etree.XMLParser(**_LXML_PARSER_OPTIONS))
+    if offsets is None:
+        lines = start_tag_positions(data)  # (raises XmlProblem for what it refuses)
+    # recover=True only lets lxml keep prefixed names whose namespace was never declared
+    # (check_urdf accepts those, so must we).
+    parser = etree.XMLParser(**_LXML_PARSER_OPTIONS)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:  # (libxml2 recovers from less than expat refuses)
+        if offsets is not None and not _accepted(data):
+            start_tag_positions(data)  # raises XmlProblem: what expat says
+        raise
+    if offsets is not None and not (_clean(parser, data) or _accepted(data)):
+        lines, offsets = start_tag_positions(data), None  # (raises: expat refuses it)
     elements = list(root.iter(etree.Element))
     if offsets is not None:
         if len(offsets) == len(elements) and not (_lxml_builds_too_deep()

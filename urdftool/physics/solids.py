@@ -164,6 +164,17 @@ def shape_of(holder, groups: dict | None = None) -> Shape | None:
     """The shape of a ``<visual>``/``<collision>``, or None when malformed (rules say why);
     ``groups``: the holder's children by tag (:meth:`~urdftool.description.robot.Robot.
     grouped`) when read already."""
+    read = _shape_read(holder, groups)
+    if read is None:
+        return None
+    kind, params, element, origin_element = read
+    xyz, rpy = origin_pose(holder, origin_element)  # a malformed part counts as 0
+    return Shape(kind, params, xyz, mat3.rpy_matrix(rpy), element)
+
+
+def _shape_read(holder, groups: dict | None):
+    """(kind, params, shape element, first ``<origin>`` or None) of a ``<visual>``/
+    ``<collision>`` whose shape is well formed (what :func:`shape_of` places), else None."""
     if groups is None:
         geometry, origin_element = first_child(holder, "geometry"), first_child(holder, "origin")
     else:
@@ -203,8 +214,7 @@ def shape_of(holder, groups: dict | None = None) -> Shape | None:
         params = {"filename": filename, "scale": scale}
     else:
         return None
-    xyz, rpy = origin_pose(holder, origin_element)  # a malformed part counts as 0
-    return Shape(kind, params, xyz, mat3.rpy_matrix(rpy), element)
+    return kind, params, element, origin_element
 
 
 def shapes(robot, link, tag: str) -> list[Shape]:
@@ -701,29 +711,23 @@ def _plain_links(robot) -> PlainLinks:
     for name, link in robot.links.items():
         if name in neighbours:
             continue
-        found = _link_shapes(robot, link)
-        (visual, seen), (collision, touched) = found["visual"], found["collision"]
-        if len(visual) < seen or len(collision) < touched or not (visual or collision):
-            continue  # incomplete, or nothing to measure: the per-link path says so
-        shapes = visual + collision
-        for shape in shapes:
-            if shape.kind == "mesh":
-                break
-        else:
-            row = len(names)
-            names.append(name)
-            chosen += [not collision] * len(visual) + [True] * len(collision)
-            collisions += [False] * len(visual) + [True] * len(collision)
-            for shape in shapes:
-                shape_rows.append(row)
-                dims.append(_dimensions(shape))
-                xyzs.append(shape.xyz)
-                rotation = shape.rotation
-                turn = index.get(id(rotation))
-                if turn is None:  # (distinct keeps it alive: its id stays its own)
-                    turn = index[id(rotation)] = len(distinct)
-                    distinct.append(rotation)
-                turns.append(turn)
+        read = _plain_read(robot, link)
+        if read is None:
+            continue  # incomplete, a mesh, or nothing to measure: the per-link path says so
+        shapes, visuals = read
+        row, collision = len(names), len(shapes) - visuals
+        names.append(name)
+        chosen += [not collision] * visuals + [True] * collision
+        collisions += [False] * visuals + [True] * collision
+        for dimensions, xyz, rotation in shapes:
+            shape_rows.append(row)
+            dims.append(dimensions)
+            xyzs.append(xyz)
+            turn = index.get(id(rotation))
+            if turn is None:  # (distinct keeps it alive: its id stays its own)
+                turn = index[id(rotation)] = len(distinct)
+                distinct.append(rotation)
+            turns.append(turn)
     table = PlainLinks()
     k = len(shape_rows)
     shape_rows = np.array(shape_rows, dtype=np.intp)
@@ -830,16 +834,38 @@ def _summed(count: int, rows, values):
     return total
 
 
-def _dimensions(shape: Shape) -> tuple[float, float, float, float]:
-    """What :func:`_plain_links` measures a primitive from: its kind (0 box, 1 cylinder, 2
-    sphere) and a box's size, a cylinder's (radius, length, 0), a sphere's (radius, volume, 0)
-    (its volume from :func:`~urdftool.physics.mass.sphere_volume`: a cube as Python's ``**``
-    gives it)."""
-    p = shape.params
-    if shape.kind == "box":
+def _plain_read(robot, link):
+    """(shapes, how many of them are visual) of a link whose every ``<visual>`` then
+    ``<collision>`` is a well-formed box, cylinder or sphere, each shape as
+    (:func:`_dimensions`, xyz, rotation) placed as :func:`shape_of` places it; None when one
+    is not (malformed, a mesh) or the link has none. What :func:`_plain_links` measures, read
+    without a :class:`Shape` each nor kept (a 10,000-link robot's 20,000 shapes): the links
+    it leaves read their own for the per-link path."""
+    groups = robot.grouped(link)
+    visuals, collisions = groups.get("visual", ()), groups.get("collision", ())
+    if not (visuals or collisions):
+        return None
+    shapes = []
+    for holders in (visuals, collisions):
+        for holder in holders:
+            read = _shape_read(holder, robot.grouped(holder))
+            if read is None or read[0] == "mesh":
+                return None
+            kind, params, _, origin_element = read
+            xyz, rpy = origin_pose(holder, origin_element)  # a malformed part counts as 0
+            shapes.append((_dimensions(kind, params), xyz, mat3.rpy_matrix(rpy)))
+    return shapes, len(visuals)
+
+
+def _dimensions(kind: str, p: dict) -> tuple[float, float, float, float]:
+    """What :func:`_plain_links` measures a primitive of ``kind`` and params ``p`` from: its
+    kind (0 box, 1 cylinder, 2 sphere) and a box's size, a cylinder's (radius, length, 0), a
+    sphere's (radius, volume, 0) (its volume from :func:`~urdftool.physics.mass.sphere_volume`:
+    a cube as Python's ``**`` gives it)."""
+    if kind == "box":
         a, b, c = p["size"]
         return 0.0, a, b, c
-    if shape.kind == "cylinder":
+    if kind == "cylinder":
         return 1.0, p["radius"], p["length"], 0.0
     return 2.0, p["radius"], mp.sphere_volume(p["radius"]), 0.0
 

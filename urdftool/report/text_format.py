@@ -30,8 +30,11 @@ Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
 
 PLACES_SHOWN = 12  # places listed on a grouped line; more are counted
-# a name in quotes or an absolute path: what differs between findings that say the same thing
-_NAME = re.compile(r"'[^'\s]*'|(?<=[\s(])/[^\s)]*")
+# a name in quotes or an absolute path: what differs between findings that say the same thing.
+# Each branch starts with its character (the path's "/" then looks behind it for the space or
+# "(" before): the search jumps from quote to slash instead of trying the look-behind at every
+# character of every message (10,000 findings' messages: a quarter of the time).
+_NAME = re.compile(r"'[^'\s]*'|/(?<=[\s(]/)[^\s)]*")
 # "available links: a, b, c" or "... (31 in all)", as urdftool.errors.available writes it
 _AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
                         r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"

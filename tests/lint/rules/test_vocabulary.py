@@ -144,3 +144,39 @@ def test_a_word_of_a_known_name_is_not_its_misspelling(tmp_path):
              'mock_components/GenericSystem</plugin></hardware><joint name="j" mimic="true">'
              '<command_interface name="position"/></joint></ros2_control></robot>')
     assert check_folder(tmp_path, {"robot.urdf": robot}, select=("U021",))[0] == []
+
+
+GROUPED = """<robot name="r"><!-- c --><link name="a"><visual><origin xyz="1 0 0"/><!-- v -->
+<geometry><box size="1 1 1"/><sphere radius="1"/></geometry><origin xyz="2 0 0"/></visual>
+<visual><geometry/></visual><colision/><inertial><mass value="1"/><?pi x?><mass value="2"/>
+</inertial><gazebo><x/></gazebo></link><joint name="j" type="fixed"><parent link="a"/>
+<child link="b"/><child link="c"/><orgin/></joint><link name="b"/><material name="m">
+<color rgba="1 1 1 1"/></material><gazebo reference="a"><mu1>1</mu1></gazebo></robot>
+"""
+
+
+def test_elements_the_walk_listed_are_grouped_from_its_lists_as_lxml_lists_them(tmp_path,
+                                                                              monkeypatch):
+    """The vocabulary walk leaves the children it listed for Robot.grouped, which groups an
+    element from that list, not listing its children again; the groups are those of its
+    children listed afresh (comments, instructions, repeats, unknown and extension elements)."""
+    from urdftool.description import robot as robots
+    from urdftool.description.load import load
+    from urdftool.lint.rules.vocabulary import _unknowns
+
+    (tmp_path / "r.urdf").write_text(GROUPED)
+    walked, fresh = load(str(tmp_path / "r.urdf")), load(str(tmp_path / "r.urdf"))
+    _unknowns(walked)
+    listings, child_list = [], robots.child_list
+    monkeypatch.setattr(robots, "child_list", lambda e: listings.append(e) or child_list(e))
+    for robot in (walked, fresh):
+        shown = {}
+        for element in robot.root.iter():
+            if element.tag in ("robot", "link", "visual", "inertial", "joint", "material") \
+                    and len(element):  # (what the walk walks into, but a <geometry>)
+                shown[robot.locate(element)] = {tag: [robot.locate(e) for e in group]
+                                                for tag, group in robot.grouped(element).items()}
+        if robot is walked:
+            assert not listings  # every one from the walk's lists
+            found = shown
+    assert found == shown and len(found) > 5, len(found)

@@ -62,24 +62,28 @@ class _Unknown:
 
 
 def _unknowns(robot) -> list[_Unknown]:
-    return robot.memo(_unknowns, lambda: _walk(robot.root, "robot", VOCABULARY["robot"], []))
+    return robot.memo(_unknowns, lambda: _walk(robot.root, "robot", VOCABULARY["robot"], [],
+                                               robot.listed()))
 
 
 def _skipped(tag) -> bool:
     return not isinstance(tag, str) or is_namespaced(tag) or is_xacro(tag)
 
 
-def _walk(element, key: str, place: Place, found: list) -> list[_Unknown]:
+def _walk(element, key: str, place: Place, found: list, listed: dict) -> list[_Unknown]:
     """Append the unknowns of ``element`` and below to ``found``, in document order; return it.
     Calls, not nested generators, and leaves not iterated: a 10,000-link robot has 190,000
     elements. Each element's attributes are first compared as a whole with the names known
     there (one set operation; the names one by one only when some is not known), and a known
-    child that is a leaf is judged in its parent's loop, without a call of its own."""
+    child that is a leaf is judged in its parent's loop, without a call of its own. The list
+    of each element's children is left in ``listed`` (:meth:`~urdftool.description.robot.
+    Robot.listed`) for the families that group them, but a ``<geometry>``'s (its shape is read
+    as its first element)."""
     keys = element.keys()
     if keys and not _KNOWN[key].issuperset(keys):
         _unknown_attributes(element, key, place, keys, found)
     if len(element):
-        _walk_children(element, key, place, found)
+        _walk_children(element, key, place, found, listed)
     return found
 
 
@@ -97,11 +101,17 @@ def _unknown_attributes(element, key: str, place: Place, keys, found: list) -> N
             found.append(_Unknown(element, attribute, key, _close(attribute, place.names())))
 
 
-def _walk_children(element, key: str, place: Place, found: list) -> None:
-    """Append the unknowns below ``element`` (which has children) to ``found``, in order."""
+def _walk_children(element, key: str, place: Place, found: list, listed: dict) -> None:
+    """Append the unknowns below ``element`` (which has children) to ``found``, in order (its
+    children left in ``listed``: see :func:`_walk`)."""
     children, shapes = place.children, 0
-    known_children = _KNOWN_CHILDREN[key] if key != "geometry" else {}
-    for child in child_list(element):
+    listing = child_list(element)
+    if key != "geometry":
+        known_children = _KNOWN_CHILDREN[key]
+        listed[element] = listing
+    else:
+        known_children = {}
+    for child in listing:
         tag = child.tag
         entry = known_children.get(tag)
         if entry is not None:  # a known element (not a shape): most are; as _walk(child, ...)
@@ -110,7 +120,7 @@ def _walk_children(element, key: str, place: Place, found: list) -> None:
             if keys and not child_known.issuperset(keys):
                 _unknown_attributes(child, name, child_place, keys, found)
             if len(child):
-                _walk_children(child, name, child_place, found)
+                _walk_children(child, name, child_place, found, listed)
             continue
         if tag not in children and _skipped(tag):  # (a name the place knows is plain)
             continue
@@ -125,7 +135,7 @@ def _walk_children(element, key: str, place: Place, found: list) -> None:
                 continue
         if tag in children:
             name = children[tag]
-            _walk(child, name, VOCABULARY[name], found)
+            _walk(child, name, VOCABULARY[name], found, listed)
         elif key == "robot" and tag in EXTENSIONS:
             found.extend(_extension(child, tag))
         elif tag in place.extensions:
