@@ -498,3 +498,16 @@ def test_a_git_lfs_pointer_is_said_to_be_one(tmp_path, name):
     with pytest.raises(MeshProblem) as error:
         load_mesh(_robot(tmp_path, name), name)
     assert error.value.kind == "corrupt" and "Git LFS pointer" in str(error.value)
+
+
+def test_a_missing_mesh_named_by_its_full_path_is_not_named_twice(tmp_path):
+    # xacro expands file://$(find pkg)/meshes/trunk.dae to the very path looked at: the
+    # message read "mesh 'file:///.../trunk.dae' not found (looked at /.../trunk.dae)"
+    (tmp_path / "meshes").mkdir()
+    named = f"file://{(tmp_path / 'meshes' / 'trunk.dae').resolve()}"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, named), named)
+    assert str(error.value) == f"mesh '{named}' not found"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "meshes/gone.stl"), "meshes/gone.stl")
+    assert "(looked at " in str(error.value)
