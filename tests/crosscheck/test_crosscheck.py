@@ -178,3 +178,76 @@ def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_pat
                               capture_output=True, text=True, timeout=60)
         said[how] = [word for word in ("LOADED", "REFUSED") if word in done.stdout]
     assert said == {"search": ["REFUSED"], "cwd": ["LOADED"]}
+
+
+def _two_loaders(tmp_path, positions):
+    """A report of two loaded loaders (made here, no loader run) over ARM's links, the second
+    placing 'tip' at ``positions`` (one per configuration), and the robot."""
+    from urdftool.crosscheck import Crosscheck, LoaderResult
+    from urdftool.description.load import load
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    robot = load(str(path))
+    here = {"world": [0.0] * 3, "base": [0.0] * 3, "arm": [0.1, 0.2, 0.3], "tip": [0.1, 0.2, 0.7]}
+    first = LoaderResult("pinocchio", "1", True, frames=[dict(here) for _ in positions])
+    second = LoaderResult("pybullet", "1", True,
+                          frames=[{**here, "tip": position} for position in positions])
+    return Crosscheck(str(path), [first, second], {}, [{} for _ in positions]), robot
+
+
+def test_a_link_a_loader_cannot_place_is_said_once_not_as_nan_metres(tmp_path):
+    """PyBullet normalises a zero axis into NaN: that is the loader giving no position, said
+    once with the configurations, not 'NaN m apart' from each other loader at each one."""
+    from urdftool.crosscheck import _compare
+
+    report, robot = _two_loaders(tmp_path, [[None] * 3, [float("nan")] * 3])
+    _compare(report, robot)
+    assert report.disagreements == [
+        "pybullet gives link 'tip' no finite position (NaN) at every configuration"]
+    report, robot = _two_loaders(tmp_path, [[0.1, 0.2, 0.7], [None] * 3, [0.1, 0.2, 0.9]])
+    _compare(report, robot)
+    assert report.disagreements == [
+        "pybullet gives link 'tip' no finite position (NaN) at configuration 1",
+        "pinocchio and pybullet place link 'tip' 0.2 m apart at configuration 2"]
+
+
+def test_a_failed_loader_shows_no_figures_in_the_table(tmp_path):
+    """sdformat's ``-p`` may print a model whose ``-k`` check fails: the row says NO, and no
+    mass or degrees of freedom of a model that did not load."""
+    from urdftool.crosscheck import Crosscheck, LoaderResult
+    from urdftool.report.crosscheck import text
+
+    failed = LoaderResult("sdformat", "12", False, "Error Code 16", mass=0.0, dof=6,
+                          floating_base=True)
+    table = text(Crosscheck(str(tmp_path / "arm.urdf"), [failed], {}, [{}]))
+    [row] = [line for line in table.splitlines() if line.startswith("sdformat")]
+    assert row.split() == ["sdformat", "12", "NO", "-", "-", "-", "-", "-"]
+
+
+def test_a_joint_a_loader_names_locates_its_error(tmp_path):
+    """MuJoCo names the joint it refuses ("Element name 'j'"): the error is located there."""
+    from urdftool.crosscheck import _located
+    from urdftool.description.load import load
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    robot = load(str(path))
+    where = _located(robot, {}, "Error: axis too small in joint Element name 'k', id 1", "",
+                     str(path))
+    assert where is not None and where.line == 8
+
+
+def test_sdformat_says_each_error_once(tmp_path, monkeypatch):
+    """``gz sdf -p`` and ``-k`` print the same errors: the failure lists each once."""
+    twice = "Error Code 16: Msg: A model must have at least one link."
+
+    class Done:
+        def __init__(self, returncode, stdout="", stderr=""):
+            self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
+
+    monkeypatch.setattr(loaders, "sdformat_command", lambda: ["gz", "sdf"])
+    monkeypatch.setattr(loaders.subprocess, "run", lambda command, **kwargs: Done(
+        1, "", twice + "\n") if "-k" in command else Done(1, "", twice + "\n"))
+    job = loaders.Job(str(tmp_path / "arm.urdf"), configurations=({},))
+    assert loaders.load_sdformat(job)["error"] == twice

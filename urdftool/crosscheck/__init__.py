@@ -297,11 +297,13 @@ def _located(robot, lines: dict, error: str, output: str, urdf: str):
             for element in elements:
                 if _names(robot, element.get("filename") or "", named):
                     return robot.locate(element)
-    for pattern in _LINK:
+    for pattern in _LINK:  # a link, else a joint of that name (MuJoCo names either)
         for match in pattern.finditer(text):
-            link = robot.links.get(match.group(1))
-            if link is not None:
-                return robot.locate(link)
+            element = robot.links.get(match.group(1))
+            if element is None:
+                element = robot.joints.get(match.group(1))
+            if element is not None:
+                return robot.locate(element)
     return None
 
 
@@ -326,17 +328,42 @@ def _normalized(name: str) -> str:
     return re.sub(r"/+", "/", name)
 
 
+def _unplaced(loaded: list, robot) -> dict:
+    """loader name -> link -> the configurations (indices) at which that loader gives the link
+    no finite position (PyBullet normalises a zero axis into NaN): said once, as what it is,
+    not as a distance of NaN metres to every other loader."""
+    found: dict = {}
+    for result in loaded:
+        for index, frames in enumerate(result.frames):
+            for link in robot.links:
+                position = frames.get(link)
+                if position is not None and not all(
+                        value is not None and math.isfinite(value) for value in position):
+                    found.setdefault(result.name, {}).setdefault(link, []).append(index)
+    return found
+
+
 def _compare(report: Crosscheck, robot) -> None:
     """Fill ``disagreements`` (frames two loaders keep, apart by more than TOLERANCE) and
     ``differences`` (mass, degrees of freedom, base, dropped links: said, not failed)."""
     loaded = [r for r in report.loaders if r.loaded and r.frames]
+    unplaced = _unplaced(loaded, robot)
+    for result in loaded:
+        for link, indices in unplaced.get(result.name, {}).items():
+            at = ("every configuration" if len(indices) == len(result.frames) else
+                  ", ".join("the zero configuration" if i == 0 else f"configuration {i}"
+                            for i in indices))
+            report.disagreements.append(
+                f"{result.name} gives link '{link}' no finite position (NaN) at {at}")
     for index, configuration in enumerate(report.configurations):
         for first_index, first in enumerate(loaded):
             for second in loaded[first_index + 1:]:
                 a, b = first.frames[index], second.frames[index]
                 worst, where = 0.0, None
                 for link in robot.links:
-                    if link in a and link in b:
+                    if link in a and link in b and not any(
+                            index in unplaced.get(r.name, {}).get(link, ())
+                            for r in (first, second)):
                         gap = math.dist(a[link], b[link])
                         if not gap <= worst:  # NaN too
                             worst, where = gap, link

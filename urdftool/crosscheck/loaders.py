@@ -379,14 +379,15 @@ def load_sdformat(job: Job) -> dict:
               .splitlines() if "Error" in line and "backward" not in line]
     output = (printed.stderr + checked.stdout + checked.stderr)[-4000:]
     if printed.returncode != 0 or not printed.stdout.strip():
-        return {"loaded": False, "error": "\n".join(errors) or "no model", "output": output}
+        return {"loaded": False, "error": "\n".join(dict.fromkeys(errors)) or "no model",
+                "output": output}
     from urdftool.crosscheck.sdf import model_summary
 
     result = model_summary(printed.stdout, job.configurations)
     result["output"] = output
-    if checked.returncode != 0:
-        result["loaded"], result["error"] = False, "\n".join(
-            line for line in errors if "Error Code" in line or "Error [" in line)
+    if checked.returncode != 0:  # -p and -k print the same errors: each said once
+        result["loaded"], result["error"] = False, "\n".join(dict.fromkeys(
+            line for line in errors if "Error Code" in line or "Error [" in line))
     return result
 
 

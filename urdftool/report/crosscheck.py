@@ -24,10 +24,12 @@ def text(result) -> str:
     header = ("loader", "version", "loaded", "mass [kg]", "dof", "base", "links", "dropped")
     rows = [header]
     for loader in result.loaders:
+        # a loader that failed has no model: what it read before failing is no figure of one
+        figures = (_cell(loader.mass), _cell(loader.dof), _cell(loader.floating_base),
+                   str(len(loader.links)), str(len(loader.dropped_links))) if loader.loaded \
+            else ("-",) * 5
         rows.append((loader.name, loader.version or "?", "yes" if loader.loaded else "NO",
-                     _cell(loader.mass), _cell(loader.dof), _cell(loader.floating_base),
-                     str(len(loader.links)) if loader.loaded else "-",
-                     str(len(loader.dropped_links)) if loader.loaded else "-"))
+                     *figures))
     widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
     lines = [f"{display_path(result.path)}", ""]
     lines += ["  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
