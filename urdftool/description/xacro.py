@@ -934,7 +934,7 @@ def _warnings(text: str, top: str) -> list[tuple[Location, str]]:
         if current:
             found.append((Location(where, None), " ".join(current)))
             current = []
-        # the finding says it is a warning: "warning U010 warning: ..." said it twice
+        # the finding says it is a warning: "warning ... warning: ..." said it twice
         current.append(line[len("warning:"):].lstrip() if line.lower().startswith("warning:")
                        else line)
     if current:
