@@ -66,3 +66,13 @@ def test_every_errors_class_is_an_urdftool_error():
     for name, value in vars(errors).items():
         if inspect.isclass(value) and issubclass(value, BaseException):
             assert issubclass(value, errors.UrdftoolError), name
+
+
+def test_a_name_holding_a_substitution_without_its_dollar_says_so():
+    # quadruped_ros2_control's leg.xacro: <gazebo reference="{name}_thigh"> was asked
+    # "did you mean 'RR_thigh'?", one leg's of the four its macro call names
+    names = ["FL_thigh", "FR_thigh", "RL_thigh", "RR_thigh"]
+    text = errors.available("links", "{name}_thigh", names)
+    assert text.startswith("'{name}' is a xacro substitution without its '$' (${name})")
+    assert "did you mean" not in text and "available links: FL_thigh" in text
+    assert "substitution" not in errors.available("links", "${name}_thigh", names)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 
@@ -104,11 +105,21 @@ def _shown(name: str) -> str:
     return name if len(name) <= _SHOWN_NAME else f"{name[:_SHOWN_NAME]}... ({len(name)} characters)"
 
 
+# ``{name}`` with no ``$`` before it: xacro leaves it as written (a substitution's "$" forgotten)
+_BARE_SUBSTITUTION = re.compile(r"(?<!\$)\{([A-Za-z_]\w*)\}")
+
+
 def available(kind: str, wanted: str, names) -> str:
-    """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist."""
+    """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist. A name
+    holding ``{x}`` without its ``$`` is said to: xacro left ``{x}`` as written, and the closest
+    name (one leg's of four, for ``{name}_hip``) would mislead."""
     names = sorted({name for name in names if name})  # unnamed elements are another rule's business
-    close = close_names(wanted, names, n=1)
+    bare = _BARE_SUBSTITUTION.search(wanted)
+    close = [] if bare else close_names(wanted, names, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
+    if bare:
+        hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
+                f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
     shown = ", ".join(map(_shown, names[:_LISTED])) + (
         f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
     return f"{hint}available {kind}: {shown or '(none)'}"

@@ -304,3 +304,24 @@ def test_xacro_in_a_urdf_names_the_attribute_holding_it(tmp_path):
                  '<color rgba="${255/255} 0 0 1"/></material>\n</robot>')
     [note] = load(path).notes
     assert 'rgba="${255/255} 0 0 1" in <color> at this line' in note.message, note.message
+
+
+def test_white_space_before_the_declaration_is_read_as_urdfdom_reads_it(tmp_path):
+    # urdfdom's TinyXML2 skips it (check_urdf parses NVIDIA's urdf-importer test robots
+    # cube_dae.urdf and cube_obj.urdf); expat refused the file: a U001 error, nothing checked
+    path = write(tmp_path, "r.urdf", '\n   \n<?xml version="1.0" encoding="UTF-8"?>\n'
+                                     '<robot name="r">\n  <link name="base"/>\n</robot>\n')
+    robot = load(path)
+    assert [link.get("name") for link in robot.root.iter("link")] == ["base"]
+    assert robot.locate(robot.root.find("link")).line == 5
+    assert [(note.kind, note.location.line, note.severity.value) for note in robot.notes] == \
+        [("late-declaration", 3, "warning")]
+
+
+@pytest.mark.parametrize("head", ['x<?xml version="1.0"?>',
+                                  '\n<?xml version="1.0" encoding="ISO-8859-1"?>'])
+def test_other_text_before_the_declaration_stays_malformed(tmp_path, head):
+    path = write(tmp_path, "r.urdf", head + '\n<robot name="r"><link name="base"/></robot>\n')
+    with pytest.raises(LoadError) as error:
+        load(path)
+    assert error.value.kind == "syntax"

@@ -484,3 +484,30 @@ def test_a_package_mesh_is_located_once_per_run_for_robots_of_several_folders(tm
     assert len(located) == 2  # m.stl once, gone.stl once
     assert problems[0] is not problems[1] and problems[0].kind == "missing"
     assert str(problems[0]) == str(problems[1])
+
+
+@pytest.mark.parametrize("name", ["m.stl", "m.dae", "m.obj"])
+def test_a_git_lfs_pointer_is_said_to_be_one(tmp_path, name):
+    # a clone without git-lfs holds pointers: read as meshes, an STL's was '1647534901
+    # triangles, over the limit; decimate it', a COLLADA's 'XML Parsing Error', an OBJ's
+    # 'holds no triangles' (NVIDIA-Omniverse/urdf-importer-extension's Franka and UR10)
+    (tmp_path / name).write_bytes(
+        b"version https://git-lfs.github.com/spec/v1\n"
+        b"oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\n"
+        b"size 1234567\n")
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path, name), name)
+    assert error.value.kind == "corrupt" and "Git LFS pointer" in str(error.value)
+
+
+def test_a_missing_mesh_named_by_its_full_path_is_not_named_twice(tmp_path):
+    # xacro expands file://$(find pkg)/meshes/trunk.dae to the very path looked at: the
+    # message read "mesh 'file:///.../trunk.dae' not found (looked at /.../trunk.dae)"
+    (tmp_path / "meshes").mkdir()
+    named = f"file://{(tmp_path / 'meshes' / 'trunk.dae').resolve()}"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, named), named)
+    assert str(error.value) == f"mesh '{named}' not found"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "meshes/gone.stl"), "meshes/gone.stl")
+    assert "(looked at " in str(error.value)

@@ -146,3 +146,18 @@ def test_an_include_of_a_package_uri_says_xacro_does_not_resolve_it(tmp_path):
         load(str(tmp_path / "robot.xacro"))
     message = caught.value.message
     assert "does not resolve package:// URIs" in message and "Errno" not in message, message
+
+
+def test_xacro_warnings_are_not_prefixed_warning_twice(tmp_path):
+    # RealMan's MoveIt configs: 'warning U010 warning: Using load_yaml() directly is
+    # deprecated. Use xacro.load_yaml() instead.'
+    from urdftool.description.load import load
+
+    (tmp_path / "j.yaml").write_text("a: 1\n")
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                    '<xacro:property name="j" value="${load_yaml(\'j.yaml\')[\'a\']}"/>'
+                    '<link name="base${j}"/></robot>')
+    messages = [note.message for note in load(path).notes if note.kind == "xacro-warning"]
+    assert messages == ["Using load_yaml() directly is deprecated. Use xacro.load_yaml() "
+                        "instead."]

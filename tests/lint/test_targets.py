@@ -788,3 +788,35 @@ def test_a_named_macro_library_nobody_includes_is_read_once(monkeypatch, tmp_pat
     found = targets.expand([str(lib)], CheckRequest())
     assert found.files == [] and "nothing to check" in found.notes[0]
     assert [str(path) for path in reads] == [str(lib)]
+
+
+def _sdf_sources(folder):
+    """A Gazebo (gz) model and world built by xacro beside a robot (nav2's gz_waffle.sdf.xacro,
+    tb3_sandbox.sdf.xacro: U004 'root element is <sdf>, expected <robot>' on both)."""
+    (folder / ".git").mkdir()
+    (folder / "robot.urdf").write_text('<robot name="r"><link name="base"/></robot>')
+    (folder / "waffle.sdf.xacro").write_text(
+        f'<?xml version="1.0"?>\n<sdf version="1.6" {XACRO_NS}><xacro:arg name="ns" default=""/>'
+        '<model name="waffle"><link name="base"/></model></sdf>')
+    (folder / "world.xacro").write_text(
+        f'<sdf version="1.8" {XACRO_NS}><world name="w"><include><uri>model://sun</uri>'
+        '</include></world></sdf>')
+
+
+def test_sdf_documents_built_by_xacro_are_not_robots_in_a_folder_walk(tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import SDF_SOURCE, expand
+
+    _sdf_sources(tmp_path)
+    targets = expand([str(tmp_path)], CheckRequest())
+    assert targets.files == [str(tmp_path / "robot.urdf")]
+    assert targets.skipped == {str(tmp_path / "waffle.sdf.xacro"): SDF_SOURCE,
+                               str(tmp_path / "world.xacro"): SDF_SOURCE}
+
+
+def test_an_sdf_document_named_is_not_checked_as_a_robot(run_cli, tmp_path):
+    _sdf_sources(tmp_path)
+    result = run_cli("check", tmp_path / "waffle.sdf.xacro", tmp_path / "world.xacro",
+                     "--format", "json")
+    assert result.exit_code == 0 and '"files": 0' in result.stdout
+    assert "SDF document" in result.stderr and "U004" not in result.stdout

@@ -50,6 +50,7 @@ class TransmissionJoint:
     element: object          # the <joint> inside the transmission
     name: str | None
     interfaces: list = field(default_factory=list)   # <hardwareInterface> elements
+    in_actuator: bool = False  # the interfaces are the first actuator's: the joint names none
 
 
 def transmissions(robot) -> list:
@@ -62,13 +63,22 @@ def transmissions(robot) -> list:
 
 def transmission_joints(transmission) -> list[TransmissionJoint]:
     """The joints of a transmission; an old-style ``<hardwareInterface>`` beside the joint too.
+    A joint that names none takes its transmission's first actuator's, as gazebo_ros_control
+    and gazebo_ros2_control read them (with a deprecation warning: "should be nested inside
+    the <joint> element, not <actuator>"; ``in_actuator`` says so).
 
     PR2 transmissions name joints as ``<flexJoint>``, ``<rollJoint>``, ``<gap_joint>`` too.
     """
     shared = transmission.findall("hardwareInterface")
-    return [TransmissionJoint(joint, joint.get("name"),
-                              joint.findall("hardwareInterface") or shared)
-            for joint in transmission if _is_joint(joint)]
+    actuator = next((child for child in transmission if child.tag == "actuator"), None)
+    held = actuator.findall("hardwareInterface") if actuator is not None else []
+    found = []
+    for joint in transmission:
+        if _is_joint(joint):
+            own = joint.findall("hardwareInterface") or shared
+            found.append(TransmissionJoint(joint, joint.get("name"), own or held,
+                                           not own and bool(held)))
+    return found
 
 
 def _is_joint(element) -> bool:

@@ -219,12 +219,50 @@ def _shown_tag(element) -> str:
 
 
 def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) -> Robot:
+    note = None
     try:
         root, lines = parse(data)
     except XmlProblem as problem:
-        raise _problem_error(problem, shown) from None
-    return Robot(path=path, display=shown, root=root, locations=_StartTags(shown, lines),
-                 resolver=resolver, files=[shown], sources={shown: data})
+        late = _late_declaration(data)
+        if late is None:
+            raise _problem_error(problem, shown) from None
+        try:
+            root, lines = parse(late[0])
+        except XmlProblem:
+            raise _problem_error(problem, shown) from None
+        note = LoadNote("late-declaration", Location(shown, late[1], column=1), (
+            "text before the XML declaration (white space): urdfdom reads the file "
+            "(check_urdf, robot_state_publisher, Gazebo, PyBullet), but parsers that follow "
+            "the XML standard refuse it (xacro, urdf_parser_py, yourdfpy: 'XML or text "
+            "declaration not at start of entity'); remove what comes before '<?xml'"),
+            severity=Severity.WARNING)
+    robot = Robot(path=path, display=shown, root=root, locations=_StartTags(shown, lines),
+                  resolver=resolver, files=[shown], sources={shown: data})
+    if note is not None:
+        robot.notes.append(note)
+    return robot
+
+
+_LATE_DECLARATION = re.compile(rb"\A[ \t\r\n]+(<\?xml\s[^<>]*?\?>)")
+_DECLARED_ENCODING = re.compile(rb"encoding\s*=\s*[\"']([^\"']*)[\"']")
+
+
+def _late_declaration(data: bytes) -> tuple[bytes, int] | None:
+    """(``data`` with its XML declaration blanked, the declaration's line) when only white
+    space comes before the declaration, as urdfdom's TinyXML2 reads it (it skips the white
+    space and takes the declaration as a node); None otherwise, or when the declaration names
+    an encoding other than UTF-8 (blanking it would change how the bytes read)."""
+    found = _LATE_DECLARATION.match(data)
+    if found is None:
+        return None
+    declaration = found.group(1)
+    encoding = _DECLARED_ENCODING.search(declaration)
+    if encoding and encoding.group(1).lower().replace(b"-", b"") not in (b"utf8", b"ascii",
+                                                                           b"usascii"):
+        return None
+    blanked = re.sub(rb"[^\n]", b" ", declaration)  # lines and columns stay where they were
+    return (data[:found.start(1)] + blanked + data[found.end(1):],
+            data.count(b"\n", 0, found.start(1)) + 1)
 
 
 class _StartTags(Mapping):

@@ -22,7 +22,9 @@ class LoadNote:
 
     kind: 'xacro-in-urdf' (a file not named .xacro that needs xacro; ``cause`` is the
         :class:`~urdftool.errors.LoadError` when xacro could not expand it), 'xacro-warning'
-        (xacro printed a warning) or 'outside-file' (xacro read a file outside the repository)
+        (xacro printed a warning), 'outside-file' (xacro read a file outside the repository)
+        or 'late-declaration' (white space before a URDF's XML declaration, which urdfdom
+        reads and standard XML parsers refuse)
     severity: lower than the rule's when what it notices holds only in some configurations
     """
 

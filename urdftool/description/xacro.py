@@ -934,7 +934,9 @@ def _warnings(text: str, top: str) -> list[tuple[Location, str]]:
         if current:
             found.append((Location(where, None), " ".join(current)))
             current = []
-        current.append(line)
+        # the finding says it is a warning: "warning ... warning: ..." said it twice
+        current.append(line[len("warning:"):].lstrip() if line.lower().startswith("warning:")
+                       else line)
     if current:
         found.append((Location(where, None), " ".join(current)))
     return found

@@ -49,6 +49,7 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
+SDF_SOURCE = "an SDF document (a Gazebo model or world, built by xacro), not a URDF robot"
 FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
             "<ros2_control> or <webots> blocks besides definitions)")
 
@@ -98,6 +99,8 @@ class _Summary:
     missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
     empty: bool = False  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
     root_elsewhere: str | None = None  # no root link of its own: why, as parts.rootless says
+    sdf: bool = False  # a xacro file with an <sdf> root: a Gazebo model or world (nav2's
+    # gz_waffle.sdf.xacro); a .urdf holding SDF is checked (U004: it says it is a URDF)
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -157,7 +160,8 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
                     unfollowed, answer == "fragment", bool(_MACRO.search(written)),
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
                     answer == "empty",
-                    _root_elsewhere(written, expanded=not is_urdf_name(path.name)))
+                    _root_elsewhere(written, expanded=not is_urdf_name(path.name)),
+                    sdf=answer == "sdf" and not is_urdf_name(path.name))  # .urdf: U004
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -325,7 +329,8 @@ class _Answered(Exception):
 
 class _TopLevelTags:
     """lxml parser target: answers 'robot' at a child of the root that is neither a definition
-    nor an extension block (<gazebo>, ...), 'srdf' at a child only an SRDF has; at the end,
+    nor an extension block (<gazebo>, ...), 'srdf' at a child only an SRDF has, 'sdf' at an
+    ``<sdf>`` root (a Gazebo model or world that xacro builds, never a URDF); at the end,
     'fragment' when it saw extension blocks, else 'definitions' ('empty' for a <robot> with no
     child). A root other than <robot> holding only definitions is a macro library too: xacro's
     includes ignore the root element, and pre-Groovy macro files were written ``<root
@@ -341,6 +346,8 @@ class _TopLevelTags:
         if self.depth > 2:
             return
         name = _local_name(tag)
+        if self.depth == 1 and name == "sdf" and not _is_xacro(tag):
+            raise _Answered("sdf")
         if self.depth == 1 and name != "robot":
             self.other_root = True
             return
@@ -560,8 +567,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     if _own_robot(path, max_file_size, data):
         return [path], None  # a robot of its own: no need to look for robots including it
     summary = _summary(path, resolver_for, max_file_size, data)
-    if summary.srdf:
-        return [], f"{SRDF_SOURCE}: nothing to check"
+    if summary.srdf or summary.sdf:
+        return [], f"{SRDF_SOURCE if summary.srdf else SDF_SOURCE}: nothing to check"
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
     includers = includers({os.path.abspath(path): data}) if callable(includers) else includers
@@ -609,7 +616,7 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     it: the one decision for a file walked and a file named (pre-commit).
 
     yields: :func:`_includes_yield_links` when already known
-    Skipped: an SRDF source; an empty ``<robot>``; a ``.urdf`` that is a fragment (only
+    Skipped: an SRDF source; an SDF document (its root is ``<sdf>``); an empty ``<robot>``; a ``.urdf`` that is a fragment (only
     ``<gazebo>``, transmission, ros2_control or webots blocks) or a part with no root of its
     own (:func:`_root_elsewhere`, ``.xacro`` too: stretch's stretch_dry_erase_marker.xacro); a
     ``.xacro`` that defines only macros and properties, or is a
@@ -621,8 +628,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     repository runs as the robot description, unconditionally, is a robot: checked
     (:mod:`urdftool.lint.parts` then judges what it lacks).
     data: the file's :func:`_head`, when the caller read it (a file named: read once)."""
-    if summary.srdf:
-        return SRDF_SOURCE
+    if summary.srdf or summary.sdf:
+        return SRDF_SOURCE if summary.srdf else SDF_SOURCE
     reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields, data)
     return None if reason is not None and _run_as_robot(path) else reason
 

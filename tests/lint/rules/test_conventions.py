@@ -167,3 +167,17 @@ def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_
     # the same optical frame on a link named for the camera is judged from its axes
     text = text.replace("xl_330", "camera_link")
     assert [code for code, _ in _found(tmp_path, text, ("U417",))] == ["U417"]
+
+
+def test_wheels_whose_axles_stand_up_are_not_judged_against_the_ground(tmp_path):
+    # fusion2urdf's Basic_Robot is modelled with y up: its wheels turn about z, side by side
+    # along z (60 mm apart), and U419 said one hovers 63 mm above the other: 'lower it'
+    body = ('<link name="base_link"><collision><geometry><box size="0.3 0.04 0.2"/></geometry>'
+            '</collision></link>')
+    for side, z in (("left", 0.0), ("right", -0.06)):
+        body += (f'<link name="{side}_wheel"><collision><geometry>'
+                 '<cylinder radius="0.05" length="0.02"/></geometry></collision></link>'
+                 f'<joint name="{side}_wheel_joint" type="continuous"><parent link="base_link"/>'
+                 f'<child link="{side}_wheel"/><origin xyz="0 0 {z}"/><axis xyz="0 0 1"/>'
+                 '</joint>')
+    assert _found(tmp_path, body, codes=("U419",)) == []

@@ -190,3 +190,17 @@ def test_a_plugin_s_own_interface_is_claimed_under_the_name_it_exports(tmp_path)
     robot = HEAD_ROBOT.format(body=body("gazebo_ros2_control/GazeboSystem"))
     (tmp_path / "robot.urdf").write_text(robot)
     assert ros2_command_interfaces(load(str(tmp_path / "robot.urdf"))) == {"head_joint": {"position"}}
+
+
+def test_an_interface_written_only_in_the_actuator_is_a_warning_to_move_it(tmp_path):
+    # the form before ROS Indigo (mastering_ros's diff_wheeled_robot): gazebo_ros_control reads
+    # the actuator's interface with a deprecation warning; U503 said the joint had none, an error
+    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+            '<joint name="head_joint"/><actuator name="m"><hardwareInterface>EffortJointInterface'
+            '</hardwareInterface><mechanicalReduction>1</mechanicalReduction></actuator>'
+            '</transmission><gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>')
+    _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)},
+                               select=("U503", "U507", "U508"))
+    assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
+    assert "its actuator's ('EffortJointInterface')" in findings[0].message
+    assert "move it into <joint>" in findings[0].message

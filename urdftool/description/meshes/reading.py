@@ -32,6 +32,8 @@ from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
+# The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
+LFS_POINTER = b"version https://git-lfs.github.com/spec/"
 
 
 def recovered_collada(data: bytes) -> tuple[bytes, str] | None:
@@ -66,7 +68,13 @@ def mesh_bytes(path: Path, uri: str, limits: MeshLimits) -> bytes:
 def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                 count: bool = True) -> None:
     """Every limit, checked in the file's bytes before trimesh reads them: size, archive,
-    triangles (unless ``count`` is false: the reader counts them before it builds them)."""
+    triangles (unless ``count`` is false: the reader counts them before it builds them). A Git
+    LFS pointer is said to be one: read as the mesh, its text is a binary STL of a billion
+    triangles, a COLLADA file that is not XML or an OBJ with no triangles."""
+    if data.startswith(LFS_POINTER):
+        raise MeshProblem("corrupt", f"mesh '{uri}' is a Git LFS pointer, not the mesh: its "
+                                     "content was never fetched (`git lfs pull`), so no "
+                                     "viewer or simulator can load it")
     size = len(data)
     if size > limits.max_bytes:
         raise MeshProblem("too-large", f"mesh '{uri}' is {size} bytes, over the limit of "

@@ -135,7 +135,9 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
                 "repository: use package://PKG/... for files of another package"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
-        return MeshProblem("missing", f"mesh '{uri}' not found (looked at {path})")
+        # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
+        looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
+        return MeshProblem("missing", f"mesh '{uri}' not found{looked}")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))

@@ -18,7 +18,7 @@ from urdftool.physics import mat3
 from urdftool.physics.frames import child_joints, link_frames, parent_joints, relative
 from urdftool.physics.mass import declared
 from urdftool.physics.support import link_reach
-from urdftool.physics.wheels import FOOTPRINT, footprint, lowest, wheels
+from urdftool.physics.wheels import FOOTPRINT, footprint, lowest, wheels, world_axle
 
 OPTICAL = mat3.rpy_matrix((-math.pi / 2, 0.0, -math.pi / 2))  # z forward, x right, y down
 ANGLE_TOLERANCE = math.radians(1.0)  # printed pi/2 (1.57) is 0.05 deg off; a slip is 90 deg
@@ -266,16 +266,20 @@ def wheel_not_touching_ground(robot):
     (meshes included) is more than 1 cm above it carries no load in simulation: a drive wheel
     spins in the air, a robot on a hovering caster tips onto it. Wheels and casters are
     identified by a diff drive or by their names (never arms, grippers or feet); casters in a
-    fork are judged by their wheels.
+    fork are judged by their wheels. A wheel whose axle stands up (within 45 degrees of the
+    ground's normal) rolls on no ground below it: it is not judged, nor taken as the ground
+    (a CAD export modelled with y up, fusion2urdf's Basic_Robot: its wheels, side by side
+    along z, were said to hover 63 mm above each other).
 
     Bad: a caster sphere of radius 0.02 whose centre is 0.03 m above the ground
     Good: the caster's centre at its radius above the ground
     """
-    ground = _ground_points(robot)
+    plane, base, source = footprint(robot), None, ""
+    upright = _upright_axles(robot, plane)
+    ground = [(name, z) for name, z in _ground_points(robot) if name not in upright]
     if not ground:
         return
     heights = {name: z for name, z in ground}
-    plane, base, source = footprint(robot), None, ""
     if plane is not None:
         placed = {name: lowest(robot, name, plane)[0] for name in heights}
         if abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
@@ -296,6 +300,18 @@ def wheel_not_touching_ground(robot):
             yield where, (f"{wheel.kind} '{wheel.link}' is {number(gap * 1000, places=0)} mm above {source} at "
                           f"the zero pose: it does not touch the ground (lower it by "
                           f"{number(gap, 4)} m, or give it its real size)")
+
+
+def _upright_axles(robot, plane) -> set[str]:
+    """The wheels whose axle is within 45 degrees of the ground's normal (``plane``'s z, the
+    root frame's without one) at the zero pose: they cannot roll on that ground."""
+    up = mat3.apply(plane[1], (0.0, 0.0, 1.0)) if plane is not None else (0.0, 0.0, 1.0)
+    found = set()
+    for wheel in wheels(robot):
+        axle = world_axle(robot, wheel)
+        if axle is not None and abs(mat3.dot(axle, up)) > math.cos(math.radians(45.0)):
+            found.add(wheel.link)
+    return found
 
 
 AXLE_TOLERANCE = math.radians(5.0)

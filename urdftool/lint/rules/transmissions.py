@@ -124,6 +124,10 @@ def unknown_hardware_interface(robot):
     reads a top-level transmission: on a robot ROS 2 alone runs (``<ros2_control>``, an ament
     package) nothing is said of it; on one both may run, a warning says so.
 
+    A **warning**, not an error, for a joint whose interface is written only in its
+    ``<actuator>`` (the form before ROS Indigo): gazebo_ros_control reads it there, with a
+    deprecation warning at every start.
+
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
@@ -136,6 +140,13 @@ def unknown_hardware_interface(robot):
                 yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
                                       "<hardwareInterface>; e.g. hardware_interface/"
                                       "PositionJointInterface")
+            elif joint.in_actuator:
+                text = (joint.interfaces[0].text or "").strip()
+                yield joint.element, Conditional(
+                    f"{_label(transmission)}: joint '{joint.name}' has no <hardwareInterface>; "
+                    f"its actuator's ('{text}') stands in for it in gazebo_ros_control, which "
+                    "warns at every start that it 'should be nested inside the <joint> "
+                    "element, not <actuator>': move it into <joint>")
             for interface in joint.interfaces:
                 known, _ = interface_kind(interface.text)
                 if not known:
@@ -345,7 +356,7 @@ def hardware_interface_prefix(robot):
         if is_ros2_form(transmission):
             continue
         for joint in transmission_joints(transmission):
-            for interface in joint.interfaces:
+            for interface in [] if joint.in_actuator else joint.interfaces:  # U503 says move it
                 text = (interface.text or "").strip()
                 if text in _DEPRECATED_BARE:
                     yield offer(interface, (
