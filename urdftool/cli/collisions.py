@@ -88,9 +88,10 @@ def collisions(
                             "draws the matrix)"),
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
-        *((given is not None and kind_of(given) != "file",
+        *((kind_of(given) != "file",
            f"{name}: '{given}' " + ("is no file" if kind_of(given) else unreachable(given)))
-          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
+          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf"))
+          if given is not None)])
     try:
         if matrix:
             from urdftool.collision.classify import MatrixOptions
