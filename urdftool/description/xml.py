@@ -301,6 +301,33 @@ def _lxml_builds_too_deep() -> bool:
     return sum(1 for _ in root.iter()) > MAX_DEPTH
 
 
+_LIMITS = ("ERR_RESOURCE_LIMIT", "ERR_NAME_TOO_LONG")  # libxml2's, which expat has not
+
+
+def _refuse_a_tree_cut(data: bytes, root, parser, expat_elements: int | None = None) -> None:
+    """XmlProblem when libxml2 did not read the whole document expat accepted: past one of its
+    limits (a name over 50,000 characters; an attribute value, a text or a comment over
+    10,000,000) it recovers by dropping elements, cutting them or reading markup inside a
+    comment as elements, so its tree is not the document's: no tree at all, a limit in its
+    log, or (``expat_elements``) another count of elements than expat's. What expat says
+    first (too deep: :data:`MAX_DEPTH`, a limit of both)."""
+    cut = next((error for error in parser.error_log if error.type_name in _LIMITS), None)
+    if root is None or cut is not None or expat_elements is not None:
+        if expat_elements is None:
+            start_tag_positions(data)  # (raises what expat refuses)
+        reason = (cut.message.strip() if cut is not None else "no element read"
+                  if root is None else f"{expat_elements} elements for expat, "
+                  f"{sum(1 for _ in root.iter(_element()))} for libxml2")
+        raise XmlProblem("syntax", f"cannot be read whole: the XML readers' limits: {reason}",
+                         cut.line if cut is not None else 1)
+
+
+def _element():
+    from lxml import etree
+
+    return etree.Element
+
+
 def parse(data: bytes) -> tuple:
     """Parse ``data``; return the root (an lxml element) and a mapping of each element to its
     start-tag (line, column)."""
@@ -320,12 +347,13 @@ def parse(data: bytes) -> tuple:
         raise
     if offsets is not None and not (_clean(parser, data) or _accepted(data)):
         lines, offsets = start_tag_positions(data), None  # (raises: expat refuses it)
+    _refuse_a_tree_cut(data, root, parser)
     elements = list(root.iter(etree.Element))
     if offsets is not None:
         if len(offsets) == len(elements) and not (_lxml_builds_too_deep()
                                                    and root.xpath(_TOO_DEEP)):
             return root, _StartOffsets(data, elements, offsets)
         lines = start_tag_positions(data)  # only too deep a document: the full pass says so
-    if len(elements) != len(lines):  # cannot happen for a document expat accepted; be safe
-        return root, {element: (element.sourceline, None) for element in elements}
+    if len(elements) != len(lines):  # a comment libxml2 cut read as elements (over its limit)
+        _refuse_a_tree_cut(data, root, parser, len(lines))
     return root, dict(zip(elements, lines))
