@@ -301,25 +301,20 @@ def _lxml_builds_too_deep() -> bool:
     return sum(1 for _ in root.iter()) > MAX_DEPTH
 
 
-_LIMITS = ("ERR_RESOURCE_LIMIT", "ERR_NAME_TOO_LONG")  # libxml2's, which expat has not
-
-
 def _refuse_a_tree_cut(data: bytes, root, parser, expat_elements: int | None = None) -> None:
-    """XmlProblem when libxml2 did not read the whole document expat accepted: past one of its
-    limits (a name over 50,000 characters; an attribute value, a text or a comment over
-    10,000,000) it recovers by dropping elements, cutting them or reading markup inside a
-    comment as elements, so its tree is not the document's: no tree at all, a limit in its
-    log, or (``expat_elements``) another count of elements than expat's. What expat says
-    first (too deep: :data:`MAX_DEPTH`, a limit of both)."""
-    cut = next((error for error in parser.error_log if error.type_name in _LIMITS), None)
-    if root is None or cut is not None or expat_elements is not None:
+    """XmlProblem when libxml2 did not read the elements of the document expat accepted: past
+    one of its limits (a name over 50,000 characters; an attribute value, a text or a comment
+    over 10,000,000) it recovers by dropping the elements after it or reading markup inside a
+    cut comment as elements: no tree at all, or (``expat_elements``) another count of
+    elements than expat's. What expat says comes first (too deep: :data:`MAX_DEPTH`)."""
+    if root is None or expat_elements is not None:
         if expat_elements is None:
             start_tag_positions(data)  # (raises what expat refuses)
-        reason = (cut.message.strip() if cut is not None else "no element read"
-                  if root is None else f"{expat_elements} elements for expat, "
-                  f"{sum(1 for _ in root.iter(_element()))} for libxml2")
-        raise XmlProblem("syntax", f"cannot be read whole: the XML readers' limits: {reason}",
-                         cut.line if cut is not None else 1)
+        limit = next((error.message.strip() for error in parser.error_log
+                      if error.level_name == "FATAL"), "")
+        found = 0 if root is None else sum(1 for _ in root.iter(_element()))
+        raise XmlProblem("syntax", f"cannot be read whole: {expat_elements or 'some'} elements "
+                         f"for expat, {found} for libxml2, past its limits ({limit})", 1)
 
 
 def _element():
