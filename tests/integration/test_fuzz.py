@@ -112,7 +112,7 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
     victim.write_text("VICTIM\n")
     (repo / "report.json").symlink_to(victim)
 
-    def naive_write(path, data):  # what urdftool did before it wrote beside and replaced
+    def naive_write(path, data, rewrites=False):  # the writer before it wrote beside and replaced
         with open(path, "w" if isinstance(data, str) else "wb") as handle:
             handle.write(data)
 
