@@ -87,8 +87,12 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
     if output:
         import io
 
+        from urdftool.description.files import read_elsewhere
+
         written = io.StringIO()
         report(run.results, written)
+        read_elsewhere(path for result in run.results for path in (  # in workers too
+            result.read if result.record is None else result.record.reads()))
         terminal.write_output(output, written.getvalue())
     else:
         report(run.results, sys.stdout)

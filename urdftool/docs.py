@@ -282,7 +282,7 @@ def write(root: Path) -> list[str]:
     for name, text in files.items():
         path = root / name
         if not path.is_file() or path.read_text(encoding="utf-8") != text:
-            write_file(path, text)
+            write_file(path, text, rewrites=True)
             changed.append(name)
     for name in leftovers(root, files):
         path = root / name

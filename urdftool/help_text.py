@@ -121,7 +121,7 @@ def main() -> None:
     from urdftool.description.files import write_file
 
     path = Path(startup.HELP_FILE)
-    write_file(path, render())
+    write_file(path, render(), rewrites=True)
     print(f"wrote {path}", file=sys.stderr)
 
 

@@ -95,7 +95,7 @@ def main() -> None:
     data = door.kept_code_file(functions, patterns)
     from urdftool.description.files import write_file
 
-    write_file(door.KEPT_CODE, data)
+    write_file(door.KEPT_CODE, data, rewrites=True)
     print(f"wrote {door.KEPT_CODE}: {len(functions)} functions, {len(patterns)} patterns",
           file=sys.stderr)
 

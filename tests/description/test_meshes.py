@@ -500,6 +500,20 @@ def test_a_git_lfs_pointer_is_said_to_be_one(tmp_path, name):
     assert error.value.kind == "corrupt" and "Git LFS pointer" in str(error.value)
 
 
+def test_a_mesh_that_starts_as_a_git_lfs_pointer_does_is_read_as_the_mesh(tmp_path):
+    # a binary STL's 80-byte header is free text: one forged to open as a pointer is a mesh
+    # every viewer reads (docs/attacks.md, session 8, second wave)
+    import struct
+
+    header = b"version https://git-lfs.github.com/spec/v1\noid sha256:0\nsize 1\n".ljust(80)
+    triangles = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 0), (0, 1, 0), (0, 0, 1)),
+                 ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((1, 0, 0), (0, 0, 1), (0, 1, 0))]
+    (tmp_path / "m.stl").write_bytes(header + struct.pack("<I", 4) + b"".join(
+        struct.pack("<12f", 0, 0, 0, *a, *b, *c) + b"\0\0" for a, b, c in triangles))
+    mesh = load_mesh(_robot(tmp_path, "m.stl"), "m.stl")
+    assert len(mesh.faces) == 4
+
+
 def test_a_missing_mesh_named_by_its_full_path_is_not_named_twice(tmp_path):
     # xacro expands file://$(find pkg)/meshes/trunk.dae to the very path looked at: the
     # message read "mesh 'file:///.../trunk.dae' not found (looked at /.../trunk.dae)"

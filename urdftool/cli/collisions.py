@@ -88,9 +88,10 @@ def collisions(
                             "draws the matrix)"),
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
-        *((given is not None and kind_of(given) != "file",
+        *((kind_of(given) != "file",
            f"{name}: '{given}' " + ("is no file" if kind_of(given) else unreachable(given)))
-          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf")))])
+          for given, name in ((srdf, "--srdf"), (check_srdf, "--check-srdf"))
+          if given is not None)])
     try:
         if matrix:
             from urdftool.collision.classify import MatrixOptions
@@ -138,6 +139,7 @@ def _pose(robot, values, degrees, srdf, format, render, max_pairs, max_triangles
 def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
     from urdftool.collision.classify import classify
     from urdftool.collision.srdf import updated
+    from urdftool.description.files import identity
     from urdftool.report import plot as plot_module
     from urdftool.report.collisions import write_matrix
     from urdftool.report.progress import sampling_progress
@@ -145,7 +147,8 @@ def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
     with sampling_progress(options.samples, machine=format != "text") as on_progress:
         outcome = classify(robot, options, on_progress)
     if write_srdf:
-        write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf))
+        write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf),  # an SRDF
+                     rewrites=identity(write_srdf) != identity(robot.path))  # updated: meant
     if plot:
         plot_module.write(outcome.matrix, plot, f"{robot.name}: {outcome.matrix.samples} "
                                                 f"samples, seed {options.seed}")

@@ -53,6 +53,7 @@ def inertia(
     except UnknownLink as error:
         fail_usage(UsageError(str(error)))
     if write is not None:
+        from urdftool.description.files import identity
         from urdftool.lint.fixes import inertia_rewrite
         from urdftool.report.unified import unified
 
@@ -68,7 +69,8 @@ def inertia(
                        nl=False)
         else:
             data = changes.changed.get(robot.display, (robot.sources[robot.display],) * 2)[1]
-            write_output(write, data.decode("utf-8"))
+            write_output(write, data.decode("utf-8"),  # over the robot itself: meant
+                         rewrites=identity(write) == identity(robot.path))
             say(f"wrote {write} ({len(changes.applied)} inertials corrected)", err=True)
         for link, why in unwritten:
             say(f"urdftool: {link}: not written: {why}", err=True)

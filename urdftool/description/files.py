@@ -108,7 +108,30 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
             data += handle.read(limit + 1 - len(data))
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
+    _READ_HERE.add(_which_file(info))
     return data, info
+
+
+# every regular file this process read (:func:`_which_file`): what an output must not replace
+_READ_HERE: set = set()
+
+
+def _which_file(info: os.stat_result) -> tuple:
+    """Which file ``info`` is, by any name: device, inode and change time (an inode freed and
+    given to a new file in a long-lived process is not the file read)."""
+    return info.st_dev, info.st_ino, info.st_ctime_ns
+
+
+def read_elsewhere(paths) -> None:
+    """Note the files at ``paths`` as read by this process's command (a worker read them for
+    it: the paths of its results' records), for :func:`write_file`'s refusal."""
+    for path in paths:
+        try:
+            info = os.stat(path)
+        except (OSError, ValueError):
+            continue
+        if stat.S_ISREG(info.st_mode):
+            _READ_HERE.add(_which_file(info))
 
 
 def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) -> None:
@@ -588,12 +611,15 @@ def check_output(path) -> str:
     return real
 
 
-def write_file(path, data: str | bytes) -> None:
+def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
     A regular file keeps its permissions. UsageError when the folder is missing or reached
     through a link leading outside its repository, ``path`` is a folder, or the system
-    refuses."""
+    refuses; and, unless ``rewrites`` (the caller rewrites a file it read on purpose: fixes,
+    ``inertia --write``), when the file at ``path`` is one this process read (or was told a
+    worker read: :func:`read_elsewhere`), by any name, bind or link: a robot, an include, a
+    mesh or a companion the command's output would replace."""
     folder = check_output(path)
     path = Path(path)
     target = os.path.join(folder, path.name)
@@ -603,6 +629,10 @@ def write_file(path, data: str | bytes) -> None:
         existing = os.lstat(target)
     except OSError:
         existing = None
+    if (existing is not None and not rewrites and stat.S_ISREG(existing.st_mode)
+            and _which_file(existing) in _READ_HERE):
+        raise UsageError(f"cannot write '{path}': it is a file the command read, which the "
+                         "output would replace; give another file name")
     if existing is not None and stat.S_ISLNK(existing.st_mode):
         stream = _own_stream(target)
         if stream is not None:  # -o /dev/stdout: the stream itself, the link left as it is

@@ -301,6 +301,28 @@ def _lxml_builds_too_deep() -> bool:
     return sum(1 for _ in root.iter()) > MAX_DEPTH
 
 
+def _refuse_a_tree_cut(data: bytes, root, parser, expat_elements: int | None = None) -> None:
+    """XmlProblem when libxml2 did not read the elements of the document expat accepted: past
+    one of its limits (a name over 50,000 characters; an attribute value, a text or a comment
+    over 10,000,000) it recovers by dropping the elements after it or reading markup inside a
+    cut comment as elements: no tree at all, or (``expat_elements``) another count of
+    elements than expat's. What expat says comes first (too deep: :data:`MAX_DEPTH`)."""
+    if root is None or expat_elements is not None:
+        if expat_elements is None:
+            start_tag_positions(data)  # (raises what expat refuses)
+        limit = next((error.message.strip() for error in parser.error_log
+                      if error.level_name == "FATAL"), "")
+        found = 0 if root is None else sum(1 for _ in root.iter(_element()))
+        raise XmlProblem("syntax", f"cannot be read whole: {expat_elements or 'some'} elements "
+                         f"for expat, {found} for libxml2, past its limits ({limit})", 1)
+
+
+def _element():
+    from lxml import etree
+
+    return etree.Element
+
+
 def parse(data: bytes) -> tuple:
     """Parse ``data``; return the root (an lxml element) and a mapping of each element to its
     start-tag (line, column)."""
@@ -320,12 +342,13 @@ def parse(data: bytes) -> tuple:
         raise
     if offsets is not None and not (_clean(parser, data) or _accepted(data)):
         lines, offsets = start_tag_positions(data), None  # (raises: expat refuses it)
+    _refuse_a_tree_cut(data, root, parser)
     elements = list(root.iter(etree.Element))
     if offsets is not None:
         if len(offsets) == len(elements) and not (_lxml_builds_too_deep()
                                                    and root.xpath(_TOO_DEEP)):
             return root, _StartOffsets(data, elements, offsets)
         lines = start_tag_positions(data)  # only too deep a document: the full pass says so
-    if len(elements) != len(lines):  # cannot happen for a document expat accepted; be safe
-        return root, {element: (element.sourceline, None) for element in elements}
+    if len(elements) != len(lines):  # a comment libxml2 cut read as elements (over its limit)
+        _refuse_a_tree_cut(data, root, parser, len(lines))
     return root, dict(zip(elements, lines))

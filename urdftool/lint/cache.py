@@ -290,7 +290,7 @@ def _write(path: Path, text: str) -> None:
     """:func:`~urdftool.description.files.write_file` (a link at ``path`` is replaced, not
     followed); OSError when it cannot."""
     try:
-        write_file(path, text)
+        write_file(path, text, rewrites=True)
     except UsageError as error:
         raise OSError(str(error)) from None
 

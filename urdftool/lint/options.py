@@ -87,6 +87,7 @@ class FileResult:
         or why not (``check -v`` lists them)
     record: what the check read, searched and resolved
         (:class:`~urdftool.description.record.Record`), when it was checked here
+    read: the real paths of the files its check read, when a worker checked it
     """
 
     path: str
@@ -95,6 +96,7 @@ class FileResult:
     strict: bool = False
     companions: list[str] = field(default_factory=list)
     record: object | None = field(default=None, repr=False)
+    read: tuple = field(default=(), repr=False)
 
     @property
     def failures(self) -> list[Finding]:

@@ -66,18 +66,19 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
-    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str]]:
+    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str], tuple]:
         from urdftool.lint.engine import stop_finding
 
-        return [stop_finding(named[todo[index]], stop, "checking")], []
+        return [stop_finding(named[todo[index]], stop, "checking")], [], ()
 
     lines: list[list[str]] = [[] for _ in files]
+    read: list[tuple] = [() for _ in files]
     checked = run_budgeted(len(todo), work, budget, stopped, jobs,
                            lambda done: finished(len(files) - len(todo) + done))
-    for index, (found, companions) in zip(todo, checked):
-        kept[index], lines[index] = found, companions
-    return [FileResult(path, found, companions=companions)
-            for path, found, companions in zip(named, kept, lines)]
+    for index, (found, companions, paths) in zip(todo, checked):
+        kept[index], lines[index], read[index] = found, companions, paths
+    return [FileResult(path, found, companions=companions, read=paths)
+            for path, found, companions, paths in zip(named, kept, lines, read)]
 
 
 @dataclass
@@ -91,14 +92,16 @@ class _Checking:
     stdin: dict[str, bytes]
     cache: object = None
 
-    def __call__(self, index: int) -> tuple[list[Finding], list[str]]:
+    def __call__(self, index: int) -> tuple[list[Finding], list[str], tuple[str, ...]]:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
         result = engine.load_and_check(self.named[index], options, data=self.stdin.get(path))
         if self.cache and path != "-":
             self.cache.put(path, options, result)  # with the record of what its check read
-        return result.findings, result.companions
+        read = tuple(found.real for found in result.record.reads().values()
+                     if found.failure is None)  # (an output must not replace them)
+        return result.findings, result.companions, read
 
 
 @dataclass

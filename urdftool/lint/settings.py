@@ -44,7 +44,7 @@ from pathlib import Path
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity, inside, kind_of, \
-    read_regular
+    read_regular, unreachable
 from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
@@ -134,8 +134,10 @@ def settings_file(path: str | os.PathLike) -> Settings:
     same rules as a settings file found in a repository (it may well be one: naming it does
     not make what a stranger wrote in it the user's)."""
     path = Path(path).absolute()
-    if kind_of(path) != "file":
-        raise SettingsError(f"settings file '{path}' does not exist or is not a file")
+    kind = kind_of(path)
+    if kind != "file":
+        raise SettingsError(f"settings file '{path}' " + (
+            unreachable(path) if not kind else "is not a file"))
     table = _read(path)
     if path.name != "urdftool.toml" and "tool" in table:
         table = table["tool"].get("urdftool", {}) if isinstance(table["tool"], dict) else {}
@@ -539,7 +541,7 @@ def check_companions(companions: CompanionPaths) -> None:
     for path in companions.named():
         kind = kind_of(path)
         if kind != "file":
-            why = ("does not exist" if not kind else "is a folder" if kind == "folder"
+            why = (unreachable(path) if not kind else "is a folder" if kind == "folder"
                    else "is not a regular file (a FIFO, a device or a socket)")
             raise SettingsError(f"companion file '{path}' {why}")
 

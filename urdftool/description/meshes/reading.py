@@ -65,13 +65,24 @@ def mesh_bytes(path: Path, uri: str, limits: MeshLimits) -> bytes:
         raise MeshProblem("corrupt", f"mesh '{uri}' cannot be read: {error.strerror}") from None
 
 
+def is_lfs_pointer(data: bytes) -> bool:
+    """Whether ``data`` is a Git LFS pointer as its specification writes one: under 1024 bytes
+    of ``key value`` lines (printable ASCII), the version line first, an ``oid`` line; not a
+    mesh that starts with those words (a binary STL's 80-byte header is free text)."""
+    return (len(data) < 1024 and data.startswith(LFS_POINTER) and b"\noid " in data
+            and _POINTER_LINES.fullmatch(data) is not None)
+
+
+_POINTER_LINES = re.compile(rb"(?:[a-z0-9.-]+ [\x20-\x7e]*\r?\n)+")  # (CRLF: autocrlf)
+
+
 def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                 count: bool = True) -> None:
     """Every limit, checked in the file's bytes before trimesh reads them: size, archive,
     triangles (unless ``count`` is false: the reader counts them before it builds them). A Git
     LFS pointer is said to be one: read as the mesh, its text is a binary STL of a billion
     triangles, a COLLADA file that is not XML or an OBJ with no triangles."""
-    if data.startswith(LFS_POINTER):
+    if is_lfs_pointer(data):
         raise MeshProblem("corrupt", f"mesh '{uri}' is a Git LFS pointer, not the mesh: its "
                                      "content was never fetched (`git lfs pull`), so no "
                                      "viewer or simulator can load it")

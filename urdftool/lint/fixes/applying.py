@@ -209,4 +209,4 @@ def write(changes: Plan) -> None:
     from urdftool.description.files import write_file
 
     for file, (_, after) in changes.changed.items():
-        write_file(file, after)
+        write_file(file, after, rewrites=True)  # the fixes: meant
