@@ -532,3 +532,23 @@ def test_the_launch_walk_asks_where_each_folder_leads_of_its_parent_not_the_syst
         assert [current for current, _ in launch_configs._walk(Path("repo"), 3)] == [
             "repo", os.path.join("repo", "d"), *(os.path.join("repo", "d", name)
                                                   for name in ("a", "b", "c", "d"))]
+
+
+def test_a_quoted_launch_variable_in_a_command_is_the_shells_quote(tmp_path):
+    """Yaskawa's view_es165.launch.xml: <let name="xacro_path" value="'$(find-pkg-share p)/
+    urdf/r.xacro'"/> then $(command 'xacro $(var xacro_path) f:=$(var c)'): ROS 2 substitutes
+    and then splits with shlex, so the quotes are the shell's; the robot is built there, with
+    f known only at launch (c has no default)."""
+    from urdftool.description.runtime import builds
+
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"),
+                            "p/urdf/r.xacro": "<robot name='r'><link name='a'/></robot>",
+                            "p/launch/view.launch.xml": (
+                                "<launch>\n<let name=\"xacro_path\" value=\"'$(find-pkg-share p)/"
+                                "urdf/r.xacro'\"/>\n<arg name=\"c\"/>\n<let name=\"cp\" value="
+                                "\"'$(find-pkg-share p)/config/v_$(var c).yaml'\"/>\n"
+                                "<node pkg=\"robot_state_publisher\" exec=\"robot_state_publisher\">\n"
+                                "<param name=\"robot_description\" type=\"str\" value=\"$(command "
+                                "'xacro $(var xacro_path) f:=$(var cp)')\"/>\n</node>\n</launch>\n")})
+    [build] = builds(str(root / "p/urdf/r.xacro"))
+    assert build.xacro and build.args == {"f": None}, build

@@ -325,3 +325,19 @@ def test_other_text_before_the_declaration_stays_malformed(tmp_path, head):
     with pytest.raises(LoadError) as error:
         load(path)
     assert error.value.kind == "syntax"
+
+
+def test_xacro_only_inside_gazebo_is_a_warning_naming_gazebo(tmp_path):
+    """JAKA's jaka_a12.urdf: a $(find) only in a <gazebo> plugin's <parameters>, which URDF
+    parsers skip: not certain to break anything (only Gazebo given the file itself reads it
+    unexpanded), so a warning naming that, not an error. A substitution outside <gazebo>
+    stays an error."""
+    from urdftool.diagnostics import Severity
+    gazebo = ('<robot name="r"><link name="a"/>\n<gazebo><plugin name="p" filename="x.so">\n'
+              '<parameters>$(find pkg)/config/c.yaml</parameters></plugin></gazebo>\n</robot>')
+    path = write(tmp_path, "pkg/package.xml", "<package><name>pkg</name></package>").parent
+    [note] = load(write(path, "g.urdf", gazebo)).notes
+    assert note.severity == Severity.WARNING and "only inside <gazebo>" in note.message, note
+    outside = gazebo.replace('<link name="a"/>', '<link name="a"/><link name="$(find pkg)"/>')
+    [note] = load(write(path, "o.urdf", outside)).notes
+    assert note.severity is None and "URDF parsers will not" in note.message, note

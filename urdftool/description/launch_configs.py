@@ -136,13 +136,31 @@ def shown(resolved: Resolved) -> str | None:
     return "".join(f"$(find {p})" if i % 2 else p for i, p in enumerate(parts))
 
 
-def resolve_path(value: Value, scope: Scope) -> tuple[Path | None, Resolved]:
+def shell_word(resolved: Resolved) -> Resolved:
+    """A command word as the shell split reads it: roslaunch's ``command=`` and ROS 2's
+    ``$(command)`` substitute first and split with ``shlex`` after, so the quotes of a
+    substituted value (Yaskawa's ``<let name="xacro_path" value="'$(find-pkg-share p)/x.xacro'"/>``)
+    are the shell's, not the path's. Only a value wrapped whole in one pair is unwrapped."""
+    def unwrapped(text):
+        if text and len(text) >= 2 and text[0] == text[-1] and text[0] in "'\"" \
+                and text[0] not in text[1:-1]:
+            return text[1:-1]
+        return None
+
+    text = unwrapped(resolved.text)
+    if text is None:
+        return resolved
+    return Resolved(text, resolved.free, unwrapped(resolved.pattern) or resolved.pattern)
+
+
+def resolve_path(value: Value, scope: Scope, shell: bool = False) -> tuple[Path | None, Resolved]:
     """The file a path value names, inside the repository: ``$(find pkg)/rest`` is
     ``pkg/rest`` in the package's source folder, or where the package's install rules take
     ``share/pkg/rest`` from (:func:`~urdftool.description.packages.installed`), or the one
     file below the package whose path ends with ``rest`` (an installed ``share/pkg/config/x.yaml`` comes from ``pkg/.../config/
     x.yaml``); an absolute path only inside the repository; None otherwise."""
     resolved = resolve(value, scope)
+    resolved = shell_word(resolved) if shell else resolved
     text = resolved.text
     if text is None or "\n" in text:
         return None, resolved
@@ -564,11 +582,11 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
             if ":=" in head:
                 name, _, rest = head.partition(":=")
                 tail = Value(((rest,) if rest else ()) + word.parts[1:], word.text)
-                args[name] = resolve(tail, scope)
+                args[name] = shell_word(resolve(tail, scope))
                 continue
             if text is not None and text.startswith("-"):
                 continue
-            candidate, resolved = resolve_path(word, scope)
+            candidate, resolved = resolve_path(word, scope, shell=True)
             if path is None and _program(resolved.text or word.text) in ("xacro", "xacro.py"):
                 through = True
                 continue

@@ -37,13 +37,13 @@ def first_xacro_use(root, substitutions: bool = True):
     if not substitutions:  # (every xacro tag holds the word: a C test first)
         return next((e for e in root.iter(etree.Element) if "xacro" in e.tag and is_xacro(e.tag)),
                     None)
-    for element in root.iter(etree.Element):
-        if is_xacro(element.tag):
-            return element
-        if any(_substitutes(value) for value in element.attrib.values()) or \
-                _substitutes(element.text):
-            return element
-    return None
+    return next((e for e in root.iter(etree.Element) if _needs_xacro(e)), None)
+
+
+def _needs_xacro(element) -> bool:
+    """A xacro tag, or a ``${}``/``$()`` in one of its attributes or its text."""
+    return is_xacro(element.tag) or _substitutes(element.text) or \
+        any(_substitutes(value) for value in element.attrib.values())
 
 
 def _may_use_xacro(data: bytes) -> bool:
@@ -184,9 +184,24 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
             f"file is {named} but contains xacro ({_shown_use(first)}), which xacro cannot "
             f"expand ({error.message}) and URDF parsers ignore{read_by}; remove it or rename "
             "the file .urdf.xacro"), cause=error)
+    if _only_in_gazebo(first.getroottree().getroot()):  # what URDF parsers skip
+        return robot, LoadNote("xacro-in-urdf", where, (
+            f"file is {named} but needs xacro ({_shown_use(first)} at this line), only inside "
+            f"<gazebo>, which URDF parsers skip{read_by}: if Gazebo is given the file itself, it "
+            "reads it unexpanded; rename it .urdf.xacro"), severity=Severity.WARNING)
     return robot, LoadNote("xacro-in-urdf", where, (
         f"file is {named} but needs xacro ({_shown_use(first)} at this line); urdftool "
         f"expanded it, but URDF parsers will not{read_by}: rename it .urdf.xacro"))
+
+
+def _only_in_gazebo(root) -> bool:
+    """Whether every element that needs xacro is a ``<gazebo>`` extension or inside one
+    (JAKA's ``<parameters>$(find ...)/ros2_controllers.yaml</parameters>``): URDF parsers skip
+    them, so only Gazebo, given the file itself, reads the unexpanded text."""
+    uses = [e for e in root.iter(etree.Element) if _needs_xacro(e)]
+    return bool(uses) and all(
+        any(a.tag == "gazebo" for a in e.iterancestors(etree.Element)) or e.tag == "gazebo"
+        for e in uses)
 
 
 def _listed(launches: list[str], limit: int = 3) -> str:

@@ -238,3 +238,14 @@ def test_adjacent_overlap_without_an_entry_and_its_fix(tmp_path):
     assert edit.text.strip() == '<disable_collisions link1="lower" link2="upper" reason="Adjacent"/>'
     # disabled as Never, the adjacent overlap is no U810 either (contact at a joint is expected)
     assert _srdf(tmp_path / "b", 0.5, [("base_link", "upper", "Adjacent"), ("lower", "upper", "Never")])[0] == []
+
+
+def test_groups_wrapped_in_a_node_pattern_say_what_moveit_reads(tmp_path):
+    """Rokae's kinematics.yaml: '/**: ros__parameters: rokae_arm: ...' without
+    robot_description_kinematics: the finding names the wrapper, not 'group /**'."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "kinematics.yaml": f"/**:\n  ros__parameters:\n    head:\n      kinematics_solver: {KDL}\n"}
+    found, findings = check_folder(tmp_path, files, select=("U813",))
+    assert found == [("kinematics.yaml", 1, "U813")]
+    assert "wraps its groups in '/**: ros__parameters:'" in findings[0].message, findings[0].message
+    assert "(head) get no IK solver" in findings[0].message

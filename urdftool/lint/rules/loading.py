@@ -121,9 +121,11 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     xacro robot (a xacro error is then U005's, theirs) and this is a **note** naming the launch
     files and launch tests, each as what it is: only a tool given the file itself reads it
     unexpanded. A **warning** when a launch file or launch test that names the file cannot be
-    read (not well-formed, not valid Python): what it does with the file is not known. An
-    **error** otherwise: a launch file reads it as it is (``textfile=``, ``cat``, Python's
-    ``open``), or none loads it.
+    read (not well-formed, not valid Python): what it does with the file is not known. A
+    **warning** too when every use of xacro is inside ``<gazebo>`` (a plugin's
+    ``<parameters>$(find ...)/controllers.yaml</parameters>``): URDF parsers skip it, and only
+    Gazebo given the file itself reads it unexpanded. An **error** otherwise: a launch file
+    reads it as it is (``textfile=``, ``cat``, Python's ``open``), or none loads it.
 
     Bad: ``robot.urdf`` containing ``<xacro:property .../>``
     Good: rename it ``robot.urdf.xacro``

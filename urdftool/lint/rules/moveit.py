@@ -103,7 +103,15 @@ def kinematics_unknown_group(robot):
         return
     names = {element.get("name") for element in found[0].root.iterfind("group")}
     for entry in entries:
-        if entry.group not in names:
+        if entry.group not in names and str(entry.group).startswith("/"):  # a node pattern
+            yield file.at(entry.line), (
+                f"kinematics.yaml wraps its groups in '{entry.group}: ros__parameters:' without "
+                "robot_description_kinematics: MoveItConfigsBuilder loads the file as it is (its "
+                f"group is then '{entry.group}'), and a node given it reads no "
+                "robot_description_kinematics.GROUP: the SRDF's groups "
+                f"({', '.join(sorted(n for n in names if n))}) get no IK solver; write the groups at "
+                "the top of the file")
+        elif entry.group not in names:
             yield file.at(entry.line), (f"kinematics.yaml configures group '{entry.group}', which "
                                         f"the SRDF does not define; {available('groups', entry.group, names)}")
 
