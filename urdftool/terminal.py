@@ -84,12 +84,12 @@ class Terminal:
 def replaced_input(output, inputs) -> str | None:
     """What writing ``output`` would replace of the command's ``inputs`` (its words: files,
     folders, ``NAME:=VALUE``), in words; None when nothing: the very file named (links
-    followed), or, below a folder named, a robot file or a companion the check reads."""
+    followed), refused before the work. What the command reads below a folder or through a
+    file is refused where files are written (:func:`urdftool.description.files.write_file`:
+    any file this process read), which knows it exactly."""
     import os
 
-    from urdftool.description.companions import COMPANION_SUFFIXES
     from urdftool.description.files import kind_of, real_path
-    from urdftool.description.urdf import is_robot_name
 
     # what the writer replaces: the file at that very name (a link there is replaced, never
     # followed: files.write_file), in its folder's real place
@@ -101,13 +101,8 @@ def replaced_input(output, inputs) -> str | None:
         word = os.fspath(word)
         if word == "-" or ":=" in word:
             continue
-        kind = kind_of(word)
-        if kind == "file" and real_path(word) == real:
+        if kind_of(word) == "file" and real_path(word) == real:
             return "an input of the command"
-        name = os.path.basename(real)
-        if kind == "folder" and real.startswith(real_path(word).rstrip(os.sep) + os.sep) and (
-                is_robot_name(name) or name.endswith(COMPANION_SUFFIXES)):
-            return f"a file of '{word}', checked"
     return None
 
 
