@@ -131,6 +131,17 @@ def test_found_above_the_input_and_pyproject_without_table_is_skipped(run_cli, p
     assert codes(run_cli, project / "robots" / "arm.urdf") == (0, [])
 
 
+@pytest.mark.parametrize("text", ["[project\nname = 'x'\n", "x = [" + "[" * 5000 + "\n"])
+def test_a_pyproject_that_cannot_hold_our_table_is_not_read(run_cli, project, text):
+    """Another project's pyproject.toml, broken or hostile, is no settings file of ours: only
+    one whose text could spell ``urdftool`` (bare, or quoted with an escape) is parsed."""
+    settings(project, 'ignore = ["U2"]\n')
+    (project / "robots" / "pyproject.toml").write_text(text)
+    assert codes(run_cli, project / "robots" / "arm.urdf") == (0, [])
+    (project / "robots" / "pyproject.toml").write_text(text + '[tool."\\u0075rdftool"]\n')
+    assert run_cli("check", project / "robots" / "arm.urdf").exit_code == 2
+
+
 def test_packages_relative_to_the_settings_file(run_cli, project):
     (project / "src" / "my_description").mkdir(parents=True)
     (project / "src" / "my_description" / "parts.xacro").write_text(

@@ -159,14 +159,17 @@ def _settings_in_file(file: Path) -> Settings | None:
     """The settings in ``file``; None for a pyproject.toml without ``[tool.urdftool]``."""
     if file.name == "urdftool.toml":
         return _parse(file, _read(file))
-    tool = _read(file).get("tool", {})
+    tool = _read(file, holding="urdftool").get("tool", {})
     table = tool.get("urdftool") if isinstance(tool, dict) else None
     return None if table is None else _parse(file, table)
 
 
-def _read(path: Path) -> dict:
-    import tomllib  # only where a settings file is
-
+def _read(path: Path, holding: str | None = None) -> dict:
+    """The TOML table in ``path``. With ``holding``, a file whose text cannot hold a key of
+    that name is no settings file and reads as empty, unparsed: a key is written bare (the
+    name as it is), or quoted, where only an escape (a backslash) could spell it otherwise.
+    Another project's pyproject.toml is then neither parsed nor held to our rules: a defect
+    in it is not the user's settings."""
     _refuse_outside(path, path, "the settings file itself")
     try:
         text = read_regular(path, MAX_SETTINGS_SIZE, as_="settings").decode("utf-8")
@@ -174,6 +177,10 @@ def _read(path: Path) -> dict:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
     except UnicodeDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
+    if holding is not None and holding not in text and "\\" not in text:
+        return {}
+    import tomllib  # only where a settings file is
+
     deep = too_deep(text)
     if deep is not None:
         raise SettingsError(f"{path}:{deep}: settings nest deeper than {MAX_DEPTH} levels "
