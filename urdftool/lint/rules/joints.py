@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import length, number, unit
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
@@ -135,7 +135,7 @@ def _axes(robot) -> list:
                 continue
             values, _ = number_tuple(axis.get("xyz"), 3)
             if values is not None and finite(values):
-                found.append((joint, axis, values, math.hypot(*values)))
+                found.append((joint, axis, values, length(values)))
         return found
 
     return robot.memo(_axes, read)
@@ -181,8 +181,9 @@ def axis_not_unit(robot):
 def _unit_text(values, norm: float) -> str:
     """The unit vector of ``values`` as text: the fewest digits (6 or more) that keep its
     length within UNIT_TOLERANCE of 1."""
+    direction = unit(values)  # scaled: 1e308 1e308 1e308 is 0.57735 0.57735 0.57735, not 0 0 0
     for digits in (6, 9, 12, 17):
-        text = " ".join(f"{v / norm:.{digits}g}" for v in values)
+        text = " ".join(f"{v:.{digits}g}" for v in direction)
         if abs(math.hypot(*(float(part) for part in text.split())) - 1) <= UNIT_TOLERANCE / 10:
             return text
     return text
