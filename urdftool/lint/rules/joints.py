@@ -319,6 +319,13 @@ def zero_effort_or_velocity(robot):
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
     a zero makes the joint immovable.
 
+    A negative limit means something different to each consumer, so it is a warning, not an
+    error: the URDF specification bounds the applied effort by its absolute value; SDFormat
+    (Gazebo's import of the URDF) and gazebo_ros_control enforce no limit when it is negative
+    (the "no limit" marker some exporters write, ``velocity="-1"``); urdfdom accepts it; and
+    Pinocchio refuses the whole model ("Some components of min_velocity are greater than
+    max_velocity"). No reading is wrong in every tool, none is right in all of them.
+
     Bad: ``<limit lower="-1" upper="1" effort="0" velocity="0"/>``
     Good: the actuator's real stall torque and no-load speed
     """
@@ -327,9 +334,15 @@ def zero_effort_or_velocity(robot):
             continue
         for attribute in ("effort", "velocity"):
             values, _ = number_tuple(limit.get(attribute), 1)
-            if values and values[0] <= 0:
-                yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
+            if values and values[0] == 0:
+                yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
                               "the joint cannot move")
+            elif values and values[0] < 0:
+                yield limit, (f"joint '{_name(joint)}': {attribute} limit is {number(values[0])}: "
+                              "Gazebo (SDFormat) and gazebo_ros_control enforce no limit when it "
+                              "is negative, the URDF specification reads its absolute value, and "
+                              f"Pinocchio refuses the model (min_{attribute} above max_{attribute}); "
+                              f"write the real {attribute} limit")
 
 
 @rule("U213", "safety-controller-incomplete", Severity.ERROR)
