@@ -168,3 +168,19 @@ def test_a_huge_sphere_is_judged_not_crashed(tmp_path):
         '</robot>')
     codes = [finding.code for finding in load_and_check(str(robot), CheckOptions()).findings]
     assert "U900" not in codes, codes
+
+
+def test_length_and_unit_scale_before_they_square():
+    """sqrt(x*x + y*y + z*z) overflows at 1e155 and underflows at 1e-162: scaled by its largest
+    part first, a vector has its length and direction at any finite size."""
+    import math
+
+    from urdftool.numbers import length, unit
+
+    assert length((3e300, 4e300)) == pytest.approx(5e300)
+    assert length((3e-300, 4e-300)) == pytest.approx(5e-300)
+    assert length((1.5e308, 1.5e308)) == math.inf  # the length itself is beyond a float
+    assert unit((1e308, 1e308, 1e308)) == pytest.approx((3 ** -0.5,) * 3)
+    assert unit((1e-320, 0, 0)) == (1.0, 0.0, 0.0)
+    assert unit((0, 0, 0)) is None and unit((math.inf, 0, 0)) is None
+    assert unit((1, math.nan, 0)) is None and math.isnan(length((math.nan, 1)))

@@ -12,6 +12,14 @@ noise and prints ``0``.
 :func:`power` is the one float power of the package: Python's ``x ** n`` raises OverflowError
 where IEEE arithmetic (and numpy) gives infinity, so a robot's ``radius="1e103"`` would stop a
 rule instead of reaching the rule's own test for non-finite values.
+
+:func:`length` and :func:`unit` are the one length and direction of a vector read from a file
+(joint axes, directions in meshes, quaternions): ``sqrt(x*x + y*y + z*z)`` (numpy's
+``linalg.norm``, Eigen's ``normalized``) squares each part first, so an axis ``1e308 1e308
+1e308`` squares to infinity and its direction comes out ``0 0 0`` or NaN, and ``1e-170 0 0``
+squares to zero and looks like no direction at all. Scaled by its largest part first, every
+finite vector that is not zero has a length (infinite only when the length itself is beyond
+the largest float) and a direction.
 """
 
 from __future__ import annotations
@@ -29,6 +37,40 @@ def power(base, exponent):
     except OverflowError:
         odd = float(exponent).is_integer() and int(exponent) % 2 == 1
         return -math.inf if odd and base < 0 else math.inf
+
+
+def length(values) -> float:
+    """The Euclidean length of ``values`` (any count), scaled: ``inf`` only when it exceeds the
+    largest float, 0 only for a zero vector; NaN when a part is."""
+    values = [float(v) for v in values]
+    largest = max((abs(v) for v in values), default=0.0)
+    if largest == 0 or not math.isfinite(largest):
+        return largest if not any(math.isnan(v) for v in values) else math.nan
+    return largest * math.sqrt(math.fsum((v / largest) ** 2 for v in values))
+
+
+def unit(values) -> tuple | None:
+    """``values`` divided by its length (scaled first, so that no square overflows or
+    underflows); None for a zero vector, or one with a part not finite."""
+    values = [float(v) for v in values]
+    largest = max((abs(v) for v in values), default=0.0)
+    if largest == 0 or not all(math.isfinite(v) for v in values):
+        return None
+    scaled = [v / largest for v in values]
+    norm = math.sqrt(math.fsum(v * v for v in scaled))
+    return tuple(v / norm for v in scaled)
+
+
+def unit_rows(array, axis: int = -1):
+    """numpy: each vector along ``axis`` of ``array`` divided by its length, scaled first;
+    rows that are zero (or not finite) are NaN."""
+    import numpy as np
+
+    array = np.asarray(array, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        largest = np.abs(array).max(axis=axis, keepdims=True)
+        scaled = array / largest
+        return scaled / np.sqrt((scaled * scaled).sum(axis=axis, keepdims=True))
 
 
 def number(value: float, digits: int = 4, *, places: int | None = None,

@@ -273,3 +273,26 @@ def test_a_file_named_like_an_option_is_never_read_as_one(tmp_path, monkeypatch,
         assert door.returncode == 2 and "reads as an option" in door.stderr, door.stderr
     assert run_cli("check", "--no-cache", "--", "--controllers=x.yaml", "r.urdf").exit_code == 0
     assert run_cli("check", "--no-cache", "--select=U2", "r.urdf").exit_code == 0
+
+
+@pytest.mark.parametrize("written, direction", [("1e308 1e308 1e308", "0.57735 0.57735 0.57735"),
+                                                ("1e-170 0 0", "1 0 0")])
+def test_an_axis_whose_squares_overflow_or_underflow_still_has_its_direction(
+        written, direction, tmp_path, run_cli):
+    """Scaled before it is normalised, an axis of 1e308 (its squares overflow) or 1e-170 (they
+    underflow) has a direction: fk computes poses, check proposes the unit axis (not 0 0 0), and
+    dynamics says that Pinocchio's own normalisation (Eigen's, unscaled) loses it."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1"/>'
+                    '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>\n'
+                    '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+                    f'<axis xyz="{written}"/><limit lower="0" upper="1" effort="1" velocity="1"/>'
+                    '</joint>\n</robot>')
+    result = run_cli("fk", path, "--q", "j=1")
+    assert result.exit_code == 0 and "no direction" not in result.output, result.output
+    assert "RuntimeWarning" not in result.stderr, result.stderr
+    result = run_cli("check", path, "--no-cache", "--select", "U206")
+    assert f'write xyz="{direction}"' in result.output, result.output
+    result = run_cli("dynamics", path, "--timeout", "0")
+    assert "has no direction" not in result.stderr and "Eigen normalises it" in result.stderr, \
+        result.output

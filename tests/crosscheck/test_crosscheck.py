@@ -251,3 +251,31 @@ def test_sdformat_says_each_error_once(tmp_path, monkeypatch):
         1, "", twice + "\n") if "-k" in command else Done(1, "", twice + "\n"))
     job = loaders.Job(str(tmp_path / "arm.urdf"), configurations=({},))
     assert loaders.load_sdformat(job)["error"] == twice
+
+
+def test_pinocchios_refusal_says_what_urdfdom_printed_located(tmp_path):
+    """Pinocchio reports every parse failure as "does not contain a valid URDF model"; urdfdom
+    printed the cause: it is shown, and located (the second root link)."""
+    _installed("pinocchio")
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM.replace('<link name="world"/>', '<link name="world"/><link name="stray"/>'))
+    report = crosscheck(str(path), ["pinocchio"])
+    [result] = report.loaders
+    assert not result.loaded and "it printed why: Failed to find root link: Two root links " \
+        "found: [stray] and [world]" in result.error, result.error
+    assert result.location is not None and result.location.line == 2
+
+
+def test_a_librarys_own_source_line_is_never_a_line_of_the_robot(tmp_path):
+    """console_bridge ends a message with "at line 274 in .../model.cpp": the line of urdfdom's
+    source, which must not locate the error at line 274 of the robot's file."""
+    from urdftool.crosscheck import _located
+    from urdftool.crosscheck.loaders import printed_errors
+    from urdftool.description.load import load
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    robot = load(str(path))
+    output = "Error:   Something is wrong\n         at line 5 in /project/urdfdom/src/model.cpp\n"
+    assert _located(robot, {5: robot.joints["j"]}, "", output, str(path)) is None
+    assert printed_errors(output) == ["Something is wrong"]

@@ -552,3 +552,91 @@ def test_a_quoted_launch_variable_in_a_command_is_the_shells_quote(tmp_path):
                                 "'xacro $(var xacro_path) f:=$(var cp)')\"/>\n</node>\n</launch>\n")})
     [build] = builds(str(root / "p/urdf/r.xacro"))
     assert build.xacro and build.args == {"f": None}, build
+
+
+def test_conditions_on_one_launch_argument_that_cannot_hold_together_exclude_each_other(tmp_path):
+    """``mobile == 'husky'`` and ``mobile == 'none'``, ``if gui`` and ``unless gui``, ``gui ==
+    'true'`` and ``unless gui`` never hold in one run; a condition urdftool cannot read (an
+    expression) excludes nothing."""
+    from urdftool.description.launch_configs import launch_index
+
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": """<launch>
+      <arg name="mobile" default="none"/><arg name="gui" default="true"/>
+      <node pkg="a" type="husky" if="$(eval arg('mobile') == 'husky')"/>
+      <node pkg="a" type="none" if="$(eval arg('mobile') == 'none')"/>
+      <node pkg="a" type="not_husky" unless="$(eval arg('mobile') == 'husky')"/>
+      <node pkg="a" type="gui" if="$(arg gui)"/>
+      <node pkg="a" type="no_gui" unless="$(arg gui)"/>
+      <node pkg="a" type="gui_word" if="$(eval arg('gui') == 'true')"/>
+      <node pkg="a" type="gui_other" if="$(eval arg('gui') == 'maybe')"/>
+      <node pkg="a" type="either" if="$(eval arg('mobile') == 'husky' or arg('gui'))"/>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    when = {s.executable: s.when for s in configuration.started}
+    excluded = {(a, b) for a in when for b in when if when[a].excludes(when[b])}
+    assert excluded == {("husky", "none"), ("none", "husky"), ("husky", "not_husky"),
+                        ("not_husky", "husky"), ("gui", "no_gui"), ("no_gui", "gui"),
+                        ("gui_word", "no_gui"), ("no_gui", "gui_word"),
+                        ("gui_word", "gui_other"), ("gui_other", "gui_word"),
+                        ("gui", "gui_other"), ("gui_other", "gui")}
+
+
+def test_a_controller_started_under_a_condition_no_build_of_the_robot_meets_is_not_its(tmp_path):
+    """Doosan's shape: a base launch file builds the arm when ``mobile == 'none'`` and the arm on
+    wheels when ``mobile == 'husky'``, and spawns the wheels' controller when ``mobile ==
+    'husky'``; MoveIt's launch file beside it builds the arm for planning whatever ``mobile``
+    is. The wheels' controller is never started with the arm alone: nothing is said of it
+    against the arm, and it stays the wheeled robot's."""
+    from urdftool.description.runtime import runtime
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    arm = "<robot name='arm'><link name='base'/><link name='l1'/>" \
+          "<joint name='j1' type='revolute'><parent link='base'/><child link='l1'/>" \
+          "<limit effort='1' velocity='1' lower='-1' upper='1'/></joint></robot>"
+    wheeled = "<robot name='arm'><link name='base_link'/><link name='w'/>" \
+              "<joint name='wheel' type='continuous'><parent link='base_link'/><child link='w'/></joint></robot>"
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/arm.urdf.xacro": arm, "p/armmobile.urdf.xacro": wheeled,
+        "p/config/control.yaml": """wheels_controller:
+  type: diff_drive_controller/DiffDriveController
+  left_wheel: wheel_left
+  right_wheel: wheel_right
+  base_frame_id: base_link
+arm_controller:
+  type: position_controllers/JointTrajectoryController
+  joints: [j1]
+""",
+        "p/launch/description.launch": """<launch>
+      <arg name="mobile" default="none"/>
+      <group if="$(eval arg('mobile') == 'none')">
+        <param name="robot_description" command="xacro $(find p)/arm.urdf.xacro"/></group>
+      <group if="$(eval arg('mobile') == 'husky')">
+        <param name="robot_description" command="xacro $(find p)/armmobile.urdf.xacro"/></group>
+    </launch>""",
+        "p/launch/control.launch": """<launch>
+      <arg name="mobile" default="none"/>
+      <rosparam file="$(find p)/config/control.yaml" command="load"/>
+      <node pkg="controller_manager" type="spawner" name="s" args="wheels_controller"
+            if="$(eval arg('mobile') == 'husky')"/>
+      <node pkg="controller_manager" type="spawner" name="t" args="arm_controller"
+            if="$(eval arg('mobile') == 'none')"/>
+    </launch>""",
+        "p/launch/base.launch": """<launch>
+      <arg name="mobile" default="none"/>
+      <include file="$(find p)/launch/control.launch"><arg name="mobile" value="$(arg mobile)"/></include>
+      <include file="$(find p)/launch/description.launch"><arg name="mobile" value="$(arg mobile)"/></include>
+    </launch>""",
+        "p/launch/moveit.launch": """<launch>
+      <param name="robot_description" command="xacro $(find p)/arm.urdf.xacro"/>
+    </launch>""",
+        "p/launch/bringup.launch": """<launch>
+      <arg name="mobile" default="none"/>
+      <include file="$(find p)/launch/base.launch"><arg name="mobile" value="$(arg mobile)"/></include>
+      <include file="$(find p)/launch/moveit.launch"/>
+    </launch>"""})
+    result = load_and_check(str(root / "p/arm.urdf.xacro"), CheckOptions())
+    assert {s.name for s in runtime(result.robot).spawns} == {"arm_controller"}
+    assert not [f for f in result.findings if f.code in ("U602", "U616")], result.findings
+    wheels = load_and_check(str(root / "p/armmobile.urdf.xacro"), CheckOptions()).robot
+    assert {s.name for s in runtime(wheels).spawns} == {"wheels_controller"}

@@ -161,3 +161,25 @@ def test_xacro_warnings_are_not_prefixed_warning_twice(tmp_path):
     messages = [note.message for note in load(path).notes if note.kind == "xacro-warning"]
     assert messages == ["Using load_yaml() directly is deprecated. Use xacro.load_yaml() "
                         "instead."]
+
+
+def test_xacros_own_warnings_are_located_where_the_expansion_was(tmp_path):
+    """xacro prints its warnings without a line ('Using load_yaml() directly is deprecated',
+    'redefining global symbol: pi'): each is located at the element being expanded when xacro
+    wrote it, and a deprecated name at its use written at or above that element (a property's
+    value is evaluated where it is first used, a line below)."""
+    from urdftool.description.load import load
+
+    (tmp_path / "j.yaml").write_text("a: 1\n")
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '  <xacro:property name="pi" value="3.14"/>\n'
+                    '  <xacro:macro name="m" params="p">\n'
+                    '    <xacro:property name="j" value="${load_yaml(p)[\'a\']}"/>\n'
+                    '    <link name="base${j}"/>\n'
+                    '  </xacro:macro>\n'
+                    '  <xacro:m p="j.yaml"/>\n'
+                    '</robot>\n')
+    found = {note.message.split()[0]: note.location.line for note in load(path).notes
+             if note.kind == "xacro-warning"}
+    assert found == {"redefining": 2, "Using": 4}, found

@@ -146,3 +146,24 @@ def test_check_hides_notes_unless_asked_by_option_or_setting(run_cli, tmp_path):
     (tmp_path / "urdftool.toml").write_text("notes = \"yes\"\n")
     refused = run_cli("check", robot, "--no-cache")
     assert refused.exit_code == 2 and "'notes' must be true or false" in refused.output
+
+
+def test_the_same_thing_said_of_named_things_with_their_own_figures_is_one_true_line():
+    """RealMan's six links "has mass 0.59 kg but zero inertia", each its own mass: one line,
+    whose differing figure is the range of the group's, so that it is true of each. A value to
+    write (in double quotes) is never a figure to fold, and a message naming nothing keeps its
+    figures apart: they are what it says."""
+    from urdftool.report.text_format import groups
+
+    def said(line: int, message: str, code: str = "U304") -> Finding:
+        return Finding(code, "inertia-not-positive-definite", Severity.ERROR, message,
+                       Location("robot.urdf", line))
+
+    masses = [said(68 + 66 * i, f"link 'Link{i + 1}' has mass {mass} kg but zero inertia and is "
+                                "moved by a joint") for i, mass in enumerate((0.593563, 0.0649018, 0.2188))]
+    [line] = [line for line in _text([FileResult("robot.urdf", masses)]).splitlines() if "U304" in line]
+    assert "has mass 0.0649018 to 0.593563 kg but zero" in line and "[3 times: lines 68, 134, 200]" in line
+    fixes = [said(1, "joint 'j' axis has length 2, not 1; write xyz=\"0 0 1\"", "U206"),
+             said(2, "joint 'k' axis has length 3, not 1; write xyz=\"1 0 0\"", "U206")]
+    unnamed = [said(5, "the robot weighs 2 kg", "U399"), said(6, "the robot weighs 3 kg", "U399")]
+    assert [len(group) for group in groups(fixes + unnamed)] == [1, 1, 1, 1]

@@ -10,11 +10,10 @@ and a joint at the same origin, or the same children), not reported as removed a
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 from urdftool.description.values import parse_numbers
-from urdftool.numbers import power
+from urdftool.numbers import length
 
 # what a field's numbers are measured in, by the last part of its name
 UNITS = {"xyz": "m", "rpy": "rad", "mass": "kg", "ixx": "kg m^2", "ixy": "kg m^2",
@@ -186,7 +185,7 @@ def _numeric_change(change: Change) -> Change:
             change.percent = 100.0 * (new - old) / abs(old)
     elif isinstance(old, tuple) and isinstance(new, tuple) and len(old) == len(new) and \
             all(isinstance(x, float) for x in old + new):
-        change.delta = math.sqrt(sum(power(a - b, 2) for a, b in zip(old, new)))
+        change.delta = length([a - b for a, b in zip(old, new)])
     return change
 
 

@@ -257,7 +257,8 @@ _FILE = (re.compile(r"Error opening file '([^']+)'"),
 _LINK = (re.compile(r"Element name '([^']+)'"), re.compile(r"link\[@name=\"([^\"]+)\"\]"),
          re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]]*\]:\s*)?"
                                                              r"(\S+?)b3"),
-         re.compile(r"link \[([^\]]+)\]"))
+         re.compile(r"link \[([^\]]+)\]"),
+         re.compile(r"root links found: \[[^\]]+\] and \[([^\]]+)\]"))  # urdfdom: the second root
 
 
 def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult:
@@ -278,7 +279,9 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
 def _located(robot, lines: dict, error: str, output: str, urdf: str):
     """Where in the files the user wrote a loader's error points: the line it names (through
     xacro's output, the element there), else the link it names; None when it names neither."""
-    text = f"{error}\n{output}"
+    from urdftool.crosscheck.loaders import SOURCE_LINE
+
+    text = SOURCE_LINE.sub("", f"{error}\n{output}")  # "at line 274 in model.cpp": urdfdom's own
     for pattern in _LINE:
         for match in pattern.finditer(text):
             line = int(match.group(1))

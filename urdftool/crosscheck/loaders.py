@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import shutil
 import subprocess
 from contextlib import contextmanager
@@ -164,7 +165,30 @@ def _flush_c_streams() -> None:
 
 def _finished(result: dict, caught: list[str]) -> dict:
     result["output"] = caught[0][-4000:] if caught else ""
+    if not result.get("loaded") and result.get("error"):
+        causes = [cause for cause in printed_errors(result["output"])
+                  if cause not in result["error"]]
+        if causes:  # Pinocchio: "... does not contain a valid URDF model"; urdfdom printed why
+            result["error"] = f"{result['error'].rstrip('.')}; it printed why: {'; '.join(causes[:3])}"
     return result
+
+
+# console_bridge's messages (urdfdom, sdformat): "Error:   text" then "at line N in file.cpp",
+# the line of the library's source that printed it, never one of the robot's
+_PRINTED = re.compile(r"^(?:Error|Warning):\s+(.*?)\s*$((?:\n[ \t]+(?!at line \d+ in )\S.*$)*)", re.M)
+SOURCE_LINE = re.compile(r"\s*\bat line \d+ in \S+\.(?:cpp|cc|cxx|c|hpp|hh|h)\b")
+
+
+def printed_errors(output: str) -> list[str]:
+    """The errors a loader's C library printed (console_bridge's ``Error:`` lines, continued on
+    indented lines), without the library's own source lines."""
+    found = []
+    for match in _PRINTED.finditer(SOURCE_LINE.sub("", output)):
+        if match.group(0).startswith("Error"):
+            text = " ".join((match.group(1) + match.group(2)).split())
+            if text:
+                found.append(text)
+    return list(dict.fromkeys(found))
 
 
 def _failed(error: BaseException | str) -> dict:

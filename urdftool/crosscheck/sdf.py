@@ -45,9 +45,9 @@ def _compose(a, b):
 
 
 def _axis_motion(kind: str, axis, value: float):
-    x, y, z = axis
-    norm = math.sqrt(x * x + y * y + z * z) or 1.0
-    x, y, z = x / norm, y / norm, z / norm
+    from urdftool.numbers import unit
+
+    x, y, z = unit(axis) or axis  # scaled: an axis of 1e308 is a direction
     if kind == "prismatic":
         return ((1, 0, 0), (0, 1, 0), (0, 0, 1)), (x * value, y * value, z * value)
     c, s, t = math.cos(value), math.sin(value), 1 - math.cos(value)

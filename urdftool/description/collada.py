@@ -193,12 +193,15 @@ def _transform(element):
     else:  # lookat: eye, interest, up; the node looks down its -Z axis at the interest
         eye, interest, up = values[:3].astype(float), values[3:6].astype(float), \
             values[6:].astype(float)
-        direction, side = interest - eye, np.cross(interest - eye, up)
-        if np.linalg.norm(up) == 0 or np.linalg.norm(direction) == 0 or \
-                np.linalg.norm(side) == 0:
+        from urdftool.numbers import unit
+
+        # each direction scaled before it is normalised: 1e308 apart is a direction
+        direction, up = unit(interest - eye), unit(up)
+        side = unit(np.cross(direction, up)) if direction is not None and up is not None else None
+        if side is None:
             raise _corrupt(f"<lookat> (line {element.sourceline}) has no direction: its eye, "
                            "interest and up vector are degenerate")
-        direction, side, up = (v / np.linalg.norm(v) for v in (direction, side, up))
+        direction, side, up = (np.array(v) for v in (direction, side, up))
         matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = side, up, -direction, eye
     return matrix
 

@@ -263,6 +263,10 @@ class When:
     truth: bool | None = True
     free: frozenset = frozenset()
     words: tuple = ()
+    # what the condition requires of launch arguments given at launch, as far as read:
+    # (argument, value, True: it equals the value / False: it differs); value TRUTHY for an
+    # if/unless on the argument itself (roslaunch's true/1)
+    requires: frozenset = frozenset()
 
     @property
     def certain(self) -> bool:
@@ -275,10 +279,54 @@ class When:
             truth = None
         else:
             truth = True
-        return When(truth, self.free | other.free, self.words + other.words)
+        return When(truth, self.free | other.free, self.words + other.words,
+                    self.requires | other.requires)
+
+    def excludes(self, other: When) -> bool:
+        """Whether the two can never hold in one run: one requires a launch argument to be a
+        value the other forbids (``mobile == 'husky'`` and ``mobile == 'none'``; ``if gui`` and
+        ``unless gui``). What was not read (an expression, a Python test) excludes nothing."""
+        return any(_contradict(a, b) for a in self.requires for b in other.requires
+                   if a[0] == b[0])
 
     def text(self) -> str:
         return " and ".join(dict.fromkeys(self.words))
+
+
+TRUTHY = "\0true"  # in When.requires: the argument is roslaunch's true (true or 1)
+
+
+def _contradict(a: tuple, b: tuple) -> bool:
+    """Whether two requirements on one launch argument (:attr:`When.requires`) exclude each
+    other."""
+    (_, first, equal), (_, second, same) = a, b
+    if equal and same:
+        if TRUTHY in (first, second):
+            other = second if first == TRUTHY else first
+            return other != TRUTHY and other not in TRUE
+        return first != second
+    if equal != same:
+        wanted, refused = (first, second) if equal else (second, first)
+        return wanted == refused or (refused == TRUTHY and wanted in TRUE)
+    return False
+
+
+def _argument(value: Resolved) -> str | None:
+    """The launch argument (or environment variable, ``$NAME``) a resolved value is, whole:
+    its value is what is given at launch, nothing added."""
+    return next(iter(value.free)) if value.pattern == WILD and len(value.free) == 1 else None
+
+
+def _requires(value: Resolved, other: Resolved | None, equal: bool) -> frozenset:
+    """:attr:`When.requires` of a comparison of ``value`` with ``other`` (None: a truth test)."""
+    if other is None:
+        name = _argument(value)
+        return frozenset({(name, TRUTHY, equal)}) if name is not None else frozenset()
+    for one, two in ((value, other), (other, value)):
+        name = _argument(one)
+        if name is not None and not two.free and two.text is not None:
+            return frozenset({(name, two.text.strip().lower(), equal)})
+    return frozenset()
 
 
 def evaluate(condition: Condition, scope: Scope) -> When:
@@ -290,16 +338,18 @@ def evaluate(condition: Condition, scope: Scope) -> When:
         if truth is not None and condition.kind == "unless":
             truth = not truth
         if value.free or truth is None:
-            return When(None if truth is None else truth, value.free, (f"when {condition.text}",))
+            return When(None if truth is None else truth, value.free, (f"when {condition.text}",),
+                        _requires(value, None, condition.kind == "if"))
         return When(truth)
     if condition.kind in ("equals", "differs"):
         other = resolve(condition.other, scope)
         free = value.free | other.free
+        requires = _requires(value, other, condition.kind == "equals")
         if value.text is None or other.text is None:
-            return When(None, free, (f"when {condition.text}",))
+            return When(None, free, (f"when {condition.text}",), requires)
         same = value.text.strip().lower() == other.text.strip().lower()
         truth = same if condition.kind == "equals" else not same
-        return When(truth, free, (f"when {condition.text}",) if free else ())
+        return When(truth, free, (f"when {condition.text}",) if free else (), requires)
     return When(None, value.free, (f"when {condition.text}" + (f" (reads {arguments})" if arguments != condition.text else ""),))
 
 
@@ -323,6 +373,7 @@ class Loaded:
     when: When
     launch: str
     line: int | None
+    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
 
 
 @dataclass(frozen=True)
@@ -336,6 +387,7 @@ class Started:
     when: When
     launch: str
     line: int | None
+    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
 
 
 @dataclass(frozen=True)
@@ -352,6 +404,7 @@ class Described:
     complete: bool = True  # every argument given is in args
     template: str | None = None  # the path, WILD where a launch argument chooses it
     chosen_by: frozenset = frozenset()  # the launch arguments the path depends on
+    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
 
 
 @dataclass
@@ -497,9 +550,9 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
         elif isinstance(action, Include):
             _include(index, action, scope, when, configuration, packages, via + (launch.display,), depth)
         elif isinstance(action, ParamFile):
-            configuration.loaded.append(_loaded(action, scope, when, launch))
+            configuration.loaded.append(_loaded(action, scope, when, launch, via))
         elif isinstance(action, Start):
-            files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch)
+            files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch, via)
                           for f in action.files)
             arguments = tuple(resolve(word, scope) for value in action.arguments for word in words(value))
             if launch.ros == 1:  # roslaunch splits args= after substituting: $(arg controllers)
@@ -510,10 +563,11 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             if package.free or executable.free:
                 when = when.also(When(True, package.free | executable.free, ()))
             configuration.started.append(Started(package.text, executable.text, arguments, files, when,
-                                                 launch.display, action.line))
+                                                 launch.display, action.line,
+                                                 via + (launch.display,)))
             configuration.loaded.extend(files)
         elif isinstance(action, Description) and _describes(action.parameter):
-            configuration.described.append(_described(action, scope, when, launch))
+            configuration.described.append(_described(action, scope, when, launch, via))
 
 
 def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> None:
@@ -549,12 +603,13 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
     _expand(index, target, given, False, when, configuration, packages, via, depth + 1)
 
 
-def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile) -> Loaded:
+def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple) -> Loaded:
     path, resolved = resolve_path(action.path, scope)
     if resolved.free:
         when = when.also(When(True, resolved.free, ()))
     return Loaded(path, shown(resolved) or action.path.text, action.substitute,
-                  dict(scope.args) if action.substitute else {}, when, launch.display, action.line)
+                  dict(scope.args) if action.substitute else {}, when, launch.display, action.line,
+                  via + (launch.display,))
 
 
 _DESCRIPTION_PARAMETER = re.compile(r"robot_description\)?(_semantic)?$")
@@ -567,7 +622,8 @@ def _describes(parameter: str) -> bool:
     return "robot_description" not in parameter or bool(_DESCRIPTION_PARAMETER.search(parameter.strip()))
 
 
-def _described(action: Description, scope: Scope, when: When, launch: LaunchFile) -> Described:
+def _described(action: Description, scope: Scope, when: When, launch: LaunchFile,
+               via: tuple) -> Described:
     args: dict = {}
     path, written, template, through, complete = None, "", None, action.xacro, action.complete
     chosen_by: frozenset = frozenset()
@@ -612,7 +668,7 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
         for name, value in action.args:
             args[name] = resolve(value, scope)
     return Described(path, written, args, when, launch.display, action.line, through, complete,
-                     template, chosen_by)
+                     template, chosen_by, via + (launch.display,))
 
 
 def _program(text: str | None) -> str:
@@ -626,5 +682,5 @@ def _template(resolved: Resolved) -> str | None:
     return resolved.pattern if resolved.pattern is not None and WILD in resolved.pattern else None
 
 
-__all__ = ["WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+__all__ = ["TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
            "launch_index", "resolve", "shown", "words"]

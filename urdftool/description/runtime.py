@@ -163,27 +163,53 @@ def _runtime(robot) -> Runtime:
             # the robot as checked is one build: what the environment says at launch decides it
             relation = f"as the environment builds it ({', '.join(environment[:4])})"
         if relation or not described:
-            found.configurations.append((_narrowed(configuration, real) if relation
+            found.configurations.append((_narrowed(configuration, real, path, root) if relation
                                          else configuration, relation))
     for configuration, relation in found.configurations:
         _spawns(configuration, relation, found)
     return found
 
 
-def _narrowed(configuration: Configuration, real: str) -> Configuration:
-    """``configuration`` as the robot (real path ``real``) has it: what a launch file that
-    describes other robots only loads and starts is theirs. ai_worker's ffw_bg2_ai.launch.py
-    includes the follower's launch file and the leader's, each describing its robot and starting
-    its own controller manager with its own controllers file: the follower's file is not the
-    leader's companion. A launch file describing no robot (or this one too) stays shared."""
+def _narrowed(configuration: Configuration, real: str, path: Path, root: Path) -> Configuration:
+    """``configuration`` as the robot (real path ``real``) has it:
+
+    - what a launch file that describes other robots only loads and starts is theirs.
+      ai_worker's ffw_bg2_ai.launch.py includes the follower's launch file and the leader's,
+      each describing its robot and starting its own controller manager with its own
+      controllers file: the follower's file is not the leader's companion. A launch file
+      describing no robot (or this one too) stays shared;
+    - what it loads or starts only under a condition that excludes every build of the robot
+      is another robot's: Doosan's dsr_base.launch builds ``$(arg model).urdf.xacro`` when
+      ``mobile == 'none'`` and ``$(arg model)mobile.urdf.xacro`` when ``mobile == 'husky'``,
+      and spawns the wheels' controller when ``mobile == 'husky'``: never with the arm alone
+      (:meth:`~urdftool.description.launch_configs.When.excludes`). The builds an action
+      goes with are those of the nearest launch file including it that builds any robot (its
+      own, else its includer's, ...): dsr_base.launch's, not the arm MoveIt's launch file
+      builds for planning beside it, whatever ``mobile`` is. A build whose file is not known
+      (a path not resolved), or that a launch argument may choose (:func:`_template_matches`),
+      may be this robot's: its condition counts too."""
     described = [d for d in configuration.described if d.path is not None]
     mine = {d.launch for d in described if real_path(d.path) == real}
     others = {d.launch for d in described if real_path(d.path) != real} - mine
-    if not others:
+    builds = [d for d in configuration.described
+              if d.path is None or real_path(d.path) == real
+              or _template_matches(d.template, path, packages_below(root))]
+
+    def its(action) -> bool:
+        if action.launch in others:
+            return False
+        near = builds
+        for end in range(len(action.chain), 0, -1):
+            if any(d.chain[:end] == action.chain[:end] for d in configuration.described):
+                near = [d for d in builds if d.chain[:end] == action.chain[:end]] or builds
+                break
+        return any(not action.when.excludes(d.when) for d in near)
+
+    loaded = [load for load in configuration.loaded if its(load)]
+    started = [start for start in configuration.started if its(start)]
+    if len(loaded) == len(configuration.loaded) and len(started) == len(configuration.started):
         return configuration
-    return replace(configuration,
-                   loaded=[load for load in configuration.loaded if load.launch not in others],
-                   started=[start for start in configuration.started if start.launch not in others])
+    return replace(configuration, loaded=loaded, started=started)
 
 
 _ENVIRONMENT = re.compile(rb"\$\((?:opt)?env\s+([A-Za-z_][A-Za-z0-9_]*)")

@@ -289,7 +289,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     session = _Session(resolver, allow_env, read_file, roots)
     session.ros1_tags = _reads_ros1_tags(path)
     doc = _parse_stamped(session, str(path), data)
-    stderr = _BoundedText()
+    stderr = _BoundedText(session)
     originals = {
         (xacro, "parse"): xacro.parse,
         (xacro, "handle_macro_call"): xacro.handle_macro_call,
@@ -341,7 +341,8 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         xacro.substitution_args_context.clear()
     budget.working_at(None)
     warnings = (session.warnings + _unprefixed_warnings(session)
-                + _warnings(stderr.getvalue(), display_path(path)))
+                + [(_written_use(session, where, message), message) for where, message in
+                   _warnings(stderr.getvalue(), display_path(path), stderr.places)])
     return Expansion(root, locations, list(dict.fromkeys(session.paths)), warnings,
                      session.outside)
 
@@ -370,11 +371,22 @@ def _yaml_opener(session: _Session):
 
 
 class _BoundedText(io.StringIO):
-    """xacro's stderr: keeps the first MAX_MESSAGES characters (``xacro.warning`` in a loop)."""
+    """xacro's stderr: keeps the first MAX_MESSAGES characters (``xacro.warning`` in a loop),
+    and where the expansion was when each piece was written (``places``: offset -> Location):
+    xacro's own warnings (a deprecation: ``load_yaml()`` without ``xacro.``) say no line."""
+
+    def __init__(self, session=None):
+        super().__init__()
+        self.session, self.places = session, {}
 
     def write(self, text):
         room = MAX_MESSAGES - self.tell()
         if room > 0:
+            if self.session is not None and self.session.paths and text.strip():
+                where = _failure_location(self.session, None, self.session.paths[0],
+                                          frame=sys._getframe(1))
+                if where.line is not None:
+                    self.places[self.tell()] = where
             super().write(text[:room])
         return len(text)
 
@@ -917,12 +929,41 @@ def _qualified(node, nsmap: dict) -> str:
     return f"{{{uri}}}{local}"
 
 
-def _warnings(text: str, top: str) -> list[tuple[Location, str]]:
-    """xacro's warnings (written to stderr) as (location, message) pairs."""
+_DEPRECATED_USE = re.compile(r"Using (\w+)\(\) directly is deprecated")
+
+
+def _written_use(session: _Session, where: Location, message: str) -> Location:
+    """Where a deprecated name xacro warns about (``load_yaml()`` without ``xacro.``) is
+    written: a property's value is evaluated where it is first used, so the element being
+    expanded may be a line below its property. The nearest use at or before ``where``'s line
+    in its file, else ``where``."""
+    named = _DEPRECATED_USE.search(message)
+    if named is None or where.line is None:
+        return where
+    use = re.compile(rf"(?<![\w.]){re.escape(named.group(1))}\s*\(".encode())
+    for index, path in enumerate(session.paths):
+        if session.shown(index) != where.file:
+            continue
+        try:
+            data = session.read_file(path, "xacro")
+        except OSError:
+            return where
+        lines = [data.count(b"\n", 0, m.start()) + 1 for m in use.finditer(data)]
+        before = [line for line in lines if line <= where.line]
+        return Location(where.file, max(before), where.via) if before else where
+    return where
+
+
+def _warnings(text: str, top: str, places: dict | None = None) -> list[tuple[Location, str]]:
+    """xacro's warnings (written to stderr) as (location, message) pairs: at the element the
+    expansion was at when xacro wrote the warning (``places``, offset -> Location), else in
+    the file xacro's context lines name, without a line."""
     found = []
     current: list[str] = []
-    where = top
-    for raw in text.splitlines():
+    where, at = top, None
+    offset, marks = 0, sorted((places or {}).items())
+    for raw in text.splitlines(keepends=True):
+        start, offset = offset, offset + len(raw)
         line = raw.strip()
         if not line:
             continue
@@ -932,11 +973,14 @@ def _warnings(text: str, top: str) -> list[tuple[Location, str]]:
                 where = display_path(line.split(":", 1)[1].strip())
             continue
         if current:
-            found.append((Location(where, None), " ".join(current)))
+            found.append((at or Location(where, None), " ".join(current)))
             current = []
+        # the place of the write that began this line: the last one at or before it
+        at = next((place for mark, place in reversed(marks) if mark <= start), None) \
+            if marks else None
         # the finding says it is a warning: "warning ... warning: ..." said it twice
         current.append(line[len("warning:"):].lstrip() if line.lower().startswith("warning:")
                        else line)
     if current:
-        found.append((Location(where, None), " ".join(current)))
+        found.append((at or Location(where, None), " ".join(current)))
     return found

@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.numbers import number
+from urdftool.numbers import length, number, unit
 from urdftool.errors import DHError, UnknownLink, available
 from urdftool.description.urdf import MOVING
 from urdftool.description.values import origin as read_origin, parse_numbers
@@ -338,9 +338,10 @@ def _origin(joint) -> np.ndarray:
 def _unit_axis(joint) -> np.ndarray:
     element = joint.find("axis")
     values, _ = parse_numbers(element.get("xyz", "1 0 0") if element is not None else "1 0 0", 3)
-    if values is None or np.linalg.norm(values) < 1e-12:
+    direction = unit(values) if values is not None else None  # scaled: 1e308 1e308 1e308 is one
+    if direction is None or length(values) < 1e-12:
         raise DHError(f"joint '{joint.get('name')}': axis is missing a direction", element)
-    return np.array(values) / np.linalg.norm(values)
+    return np.array(direction)
 
 
 def _clean(value: float) -> float:

@@ -28,7 +28,7 @@ from urdftool.kinematics import transforms
 from urdftool.kinematics.tree import children_by_link, root_link
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
-from urdftool.numbers import power
+from urdftool.numbers import length as vector_length, power, unit as vector_unit
 
 FLOATING_ROOT = "root_joint"
 # [links] up to which Pinocchio's model is built with each KinematicModel, for urdfdom's verdict
@@ -403,14 +403,15 @@ def _axis(element) -> np.ndarray:
     axis_element = element.find("axis")
     values, _ = parse_numbers(axis_element.get("xyz") if axis_element is not None else "1 0 0", 3)
     axis = np.array(values or (1.0, 0.0, 0.0), dtype=float)
-    length = np.linalg.norm(axis)
-    if not np.isfinite(length) or length == 0:  # urdfdom accepts it; every pose would be NaN
+    direction = vector_unit(axis)  # scaled first: 1e308 1e308 1e308 has a direction
+    if direction is None:  # urdfdom accepts it; every pose would be NaN
         raise FKError(f"joint '{element.get('name')}': <axis xyz> '{axis_element.get('xyz')}' has "
                       "no direction; give a unit vector such as '0 0 1'", element)
+    length = vector_length(axis)
     for unit in np.eye(3):  # Pinocchio's joint about x, y or z: Eigen's isApprox (1e-12)
-        if np.sum(power(axis - unit, 2)) <= 1e-24 * min(length * length, 1.0):
+        if vector_length(axis - unit) <= 1e-12 * min(length, 1.0):
             return unit
-    return axis / length
+    return np.array(direction)
 
 
 def forward_kinematics(model: KinematicModel, configurations: Configurations,

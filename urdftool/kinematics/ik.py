@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urdftool.numbers import number, power
+from urdftool.numbers import length, number, power
 from urdftool.errors import ConfigError, available
 from urdftool.kinematics.chain import Chain, frame_jacobian
 
@@ -99,7 +99,7 @@ def target(xyz, rpy=None, quaternion=None, degrees: bool = False, name: str = ""
         import pinocchio as pin
 
         x, y, z, w = (float(v) for v in quaternion)
-        norm = math.sqrt(x * x + y * y + z * z + w * w)
+        norm = length((x, y, z, w))
         if norm < 1e-12:
             raise ConfigError("a quaternion of length 0 is no rotation")
         rotation = pin.Quaternion(w / norm, x / norm, y / norm, z / norm).matrix()

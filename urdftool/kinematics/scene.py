@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 from urdftool.errors import MeshProblem, SceneError
 from urdftool.description.urdf import MOVING
-from urdftool.numbers import power
+from urdftool.numbers import power, unit
 
 DEFAULT_COLOUR = (0.62, 0.64, 0.68)  # [0, 1] rgb of geometry without a material colour
 # Triangles a posed scene may hold, checked before any is placed: the per-mesh limit is 2 million
@@ -172,9 +172,9 @@ class SceneModel:
                 origin = joint.origin if joint.origin is not None else np.eye(4)
                 placed = frames[joint.parent] @ origin
                 direction = placed[:3, :3] @ np.asarray(joint.axis, dtype=float)
-                norm = np.linalg.norm(direction)
-                if norm > 0:
-                    axes.append((joint.name, placed[:3, 3].copy(), direction / norm))
+                direction = unit(direction)  # scaled: no square overflows
+                if direction is not None:
+                    axes.append((joint.name, placed[:3, 3].copy(), np.asarray(direction)))
         empty = np.zeros((0, 3))
         return PosedScene(
             list(self.links),

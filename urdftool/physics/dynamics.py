@@ -67,9 +67,9 @@ def build(robot) -> Model:
     joints = []
     for joint_id in range(1, model.njoints):
         axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
-        if axis is not None and not np.linalg.norm(axis) > 0:
-            raise DynamicsError(f"joint '{model.names[joint_id]}': <axis> has no direction; give "
-                                "a unit vector such as '0 0 1'",
+        if axis is not None and not abs(np.linalg.norm(axis) - 1) <= 1e-6:
+            raise DynamicsError(_axis_problem(robot.joints.get(model.names[joint_id]),
+                                              model.names[joint_id], axis),
                                 robot.joints.get(model.names[joint_id]))
         if model.joints[joint_id].nv != 1:
             raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
@@ -323,3 +323,22 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
     judged = np.array([[pose[name] for name in names] for pose, values in zip(poses, kept)
                        if values is not None]).reshape(-1, len(names))
     return loads, judged, (np.vstack(table) if table else np.zeros((0, len(loads))))
+
+
+def _axis_problem(element, name: str, modelled) -> str:
+    """Why Pinocchio's axis of joint ``name`` is not a unit vector: the file's has no direction,
+    or Eigen's ``normalized`` (the sum of squares, unscaled) overflowed or underflowed on it:
+    ``1e308 1e308 1e308`` becomes ``0 0 0`` there, a joint that never moves."""
+    from urdftool.description.values import parse_numbers
+    from urdftool.numbers import numbers, unit
+
+    axis = element.find("axis") if element is not None else None
+    written = axis.get("xyz") if axis is not None else None
+    values, _ = parse_numbers(written or "1 0 0", 3)
+    direction = unit(values) if values else None
+    if direction is None:
+        return f"joint '{name}': <axis> has no direction; give a unit vector such as '0 0 1'"
+    return (f"joint '{name}': Pinocchio's model of <axis xyz='{written}'> is "
+            f"'{numbers(modelled)}', not a unit vector: Eigen normalises it by the sum of its "
+            f"squares, which {'overflows' if max(map(abs, values)) > 1 else 'underflows'}; "
+            f"write xyz='{numbers(direction)}'")

@@ -10,9 +10,8 @@ the identity); a joint that names a missing link, or a link in a cycle, has no f
 
 from __future__ import annotations
 
-import math
-
 from urdftool.description.values import origin, parse_numbers
+from urdftool.numbers import unit
 from urdftool.physics import mat3
 
 Frame = tuple[mat3.Vector, mat3.Matrix]  # position [m], rotation, in the root frame
@@ -86,10 +85,7 @@ def axis(joint) -> mat3.Vector | None:
     values, problem = parse_numbers(element.get("xyz") if element is not None else "1 0 0", 3)
     if problem or not values:
         return None
-    norm = math.sqrt(sum(v * v for v in values))
-    if not (norm > 0 and math.isfinite(norm)):
-        return None
-    return tuple(v / norm for v in values)
+    return unit(values)  # scaled first: 1e308 1e308 1e308 has a direction
 
 
 def world_axis(robot, joint) -> mat3.Vector | None:

@@ -18,7 +18,7 @@ from typing import NamedTuple
 from urdftool.physics import mat3
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import first_child
-from urdftool.numbers import power
+from urdftool.numbers import length as vector_length, power
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -205,7 +205,7 @@ def _flat(values) -> list[float]:
 def relative_difference(declared_value, computed_value) -> float:
     """|declared - computed| / |computed| for scalars, vectors or matrices (Frobenius norm)."""
     d, c = _flat(declared_value), _flat(computed_value)
-    scale = math.sqrt(sum(v * v for v in c))
+    scale = vector_length(c)  # scaled: no square overflows
     if scale == 0:
         return math.inf if any(v != 0 for v in d) else 0.0
-    return math.sqrt(sum(power(a - b, 2) for a, b in zip(d, c))) / scale
+    return vector_length([a - b for a, b in zip(d, c)]) / scale

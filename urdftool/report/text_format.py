@@ -8,7 +8,10 @@ Text is for people, so it says each thing once (the machine formats keep every f
 
 - findings of one rule that say the same thing about different names (24 transmissions whose
   interface lacks ``hardware_interface/``) are one line, the first of them, followed by how
-  many there are and where (:func:`groups`);
+  many there are and where (:func:`groups`); the figures of what they name may differ (six
+  links "has mass 0.59 kg but zero inertia", each its own mass): a figure that differs is
+  written as the range of the group's (``0.0649 to 0.864 kg``), so the one line is true of
+  each. A message that names nothing keeps its figures apart: they are what it says;
 - a long "available links: ..." list is written in full the first time in a file's report,
   and later findings refer to it (:func:`_once`);
 - notes (severity info: explanations such as "its inertia is taken from its convex hull", not
@@ -40,6 +43,9 @@ _AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
                         r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
                         r"(?:, \.\.\. \((?P<count>\d+) in all\))?(?=$|;| \()")
 _LONG_LIST = 60  # [characters] a list shorter than this is written every time
+# a figure: a number standing alone (not part of a word, a name, a unit's power like m^3 or a
+# version like 1.2.3)
+_FIGURE = re.compile(r"(?<![\w.+\-^/])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.]\w|\w)")
 
 
 def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
@@ -97,17 +103,50 @@ def groups(findings) -> list[list]:
     found: dict[tuple, list] = {}
     for finding in findings:
         fix = None if finding.fix is None else finding.fix.safe
-        key = (finding.location.file, finding.code, finding.severity, finding.target, fix,
-               _NAME.sub("''", finding.message))
+        said = _NAME.sub("''", finding.message)
+        if said != finding.message:  # it names what it is about: that thing's figures may differ
+            said = _FIGURE.sub(lambda m: "#" if not _in_value(said, m.start()) else m.group(), said)
+        key = (finding.location.file, finding.code, finding.severity, finding.target, fix, said)
         found.setdefault(key, []).append(finding)
     return list(found.values())
+
+
+def _in_value(message: str, index: int) -> bool:
+    """Whether ``index`` is inside a value the message gives in double quotes (``write
+    xyz="0.57735 0.57735 0.57735"``): what to write, never a figure to fold into a range."""
+    return message.count('"', 0, index) % 2 == 1
+
+
+def _figures(message: str) -> list:
+    """The figures of a message outside the names it quotes and the values it gives in double
+    quotes: (start, end, text) each."""
+    named = [m.span() for m in _NAME.finditer(message)]
+    return [(m.start(), m.end(), m.group()) for m in _FIGURE.finditer(message)
+            if not any(a <= m.start() < b for a, b in named) and not _in_value(message, m.start())]
+
+
+def _ranged(group: list) -> str:
+    """The first finding's message with each figure that differs in the group written as the
+    range of the group's figures there (``0.0649 to 0.864``)."""
+    message = group[0].message
+    mine = _figures(message)
+    others = [_figures(f.message) for f in group[1:]]
+    if not mine or any(len(figures) != len(mine) for figures in others):
+        return message
+    for index in range(len(mine) - 1, -1, -1):
+        start, end, text = mine[index]
+        texts = [text] + [figures[index][2] for figures in others]
+        if len(set(texts)) > 1:
+            low, high = min(texts, key=float), max(texts, key=float)
+            message = f"{message[:start]}{low} to {high}{message[end:]}"
+    return message
 
 
 def _group_lines(group: list, listed: dict) -> list[Line]:
     first = group[0]
     location, severity = first.location, first.severity.value
     line = [(f"  {location}: ", ""), (severity, STYLES[severity]), (" ", ""), *_marker(first),
-            (first.code, "bold"), (f" {_once(first.message, location, listed)} ", ""),
+            (first.code, "bold"), (f" {_once(_ranged(group), location, listed)} ", ""),
             (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
     if len(group) > 1:
         line.append((f" [{len(group)} times: {_places(group)}]", ""))

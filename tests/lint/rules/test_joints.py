@@ -105,3 +105,24 @@ def test_a_chain_of_3000_mimic_joints_is_walked_once(tmp_path):
         assert len(found) == 1 and findings[0].message.count(" -> ") == 3000
     finally:
         signal.alarm(0)
+
+
+@pytest.mark.parametrize("attribute", ["effort", "velocity"])
+def test_a_negative_limit_says_what_each_consumer_makes_of_it(tmp_path, attribute):
+    """A negative effort or velocity is no 'joint that cannot move': Gazebo and
+    gazebo_ros_control enforce no limit, the URDF specification reads its absolute value, and
+    Pinocchio refuses the model, which this test checks with the Pinocchio installed. A warning
+    (consumers disagree), saying so."""
+    pin = pytest.importorskip("pinocchio")
+    values = {"effort": "10", "velocity": "2", attribute: "-1"}
+    robot = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
+             '<joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>'
+             f'<limit lower="0" upper="1" effort="{values["effort"]}" '
+             f'velocity="{values["velocity"]}"/></joint></robot>\n')
+    with pytest.raises(ValueError, match=f"min_{attribute}"):
+        pin.buildModelFromXML(robot)
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U212",))
+    [finding] = findings
+    assert finding.severity.name == "WARNING"
+    assert "cannot move" not in finding.message and "enforce no limit" in finding.message
+    assert f"Pinocchio refuses the model (min_{attribute} above max_{attribute})" in finding.message

@@ -16,7 +16,7 @@ from urdftool.description.runtime import runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
-from urdftool.numbers import number, numbers
+from urdftool.numbers import number, numbers, unit
 from urdftool.physics import mat3
 
 GEOMETRY_TOLERANCE = 0.05
@@ -223,10 +223,10 @@ def _world_axis(robot, joint):
         return None
     element = joint.find("axis")
     axis, problem = parse_numbers(element.get("xyz") if element is not None else "1 0 0", 3)
-    if problem or not axis or math.hypot(*axis) == 0:
+    direction = unit(axis) if not problem and axis else None  # scaled: no square overflows
+    if direction is None:
         return None
-    norm = math.hypot(*axis)
-    return mat3.apply(poses[joint.get("name")][1], [a / norm for a in axis])
+    return mat3.apply(poses[joint.get("name")][1], list(direction))
 
 
 def _wheel_diameter(robot, joint) -> float | None:

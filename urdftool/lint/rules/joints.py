@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import length, number, unit
 from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
@@ -135,7 +135,7 @@ def _axes(robot) -> list:
                 continue
             values, _ = number_tuple(axis.get("xyz"), 3)
             if values is not None and finite(values):
-                found.append((joint, axis, values, math.hypot(*values)))
+                found.append((joint, axis, values, length(values)))
         return found
 
     return robot.memo(_axes, read)
@@ -181,8 +181,9 @@ def axis_not_unit(robot):
 def _unit_text(values, norm: float) -> str:
     """The unit vector of ``values`` as text: the fewest digits (6 or more) that keep its
     length within UNIT_TOLERANCE of 1."""
+    direction = unit(values)  # scaled: 1e308 1e308 1e308 is 0.57735 0.57735 0.57735, not 0 0 0
     for digits in (6, 9, 12, 17):
-        text = " ".join(f"{v / norm:.{digits}g}" for v in values)
+        text = " ".join(f"{v:.{digits}g}" for v in direction)
         if abs(math.hypot(*(float(part) for part in text.split())) - 1) <= UNIT_TOLERANCE / 10:
             return text
     return text
@@ -318,6 +319,13 @@ def zero_effort_or_velocity(robot):
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
     a zero makes the joint immovable.
 
+    A negative limit means something different to each consumer, so it is a warning, not an
+    error: the URDF specification bounds the applied effort by its absolute value; SDFormat
+    (Gazebo's import of the URDF) and gazebo_ros_control enforce no limit when it is negative
+    (the "no limit" marker some exporters write, ``velocity="-1"``); urdfdom accepts it; and
+    Pinocchio refuses the whole model ("Some components of min_velocity are greater than
+    max_velocity"). No reading is wrong in every tool, none is right in all of them.
+
     Bad: ``<limit lower="-1" upper="1" effort="0" velocity="0"/>``
     Good: the actuator's real stall torque and no-load speed
     """
@@ -326,9 +334,15 @@ def zero_effort_or_velocity(robot):
             continue
         for attribute in ("effort", "velocity"):
             values, _ = number_tuple(limit.get(attribute), 1)
-            if values and values[0] <= 0:
-                yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
+            if values and values[0] == 0:
+                yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
                               "the joint cannot move")
+            elif values and values[0] < 0:
+                yield limit, (f"joint '{_name(joint)}': {attribute} limit is {number(values[0])}: "
+                              "Gazebo (SDFormat) and gazebo_ros_control enforce no limit when it "
+                              "is negative, the URDF specification reads its absolute value, and "
+                              f"Pinocchio refuses the model (min_{attribute} above max_{attribute}); "
+                              f"write the real {attribute} limit")
 
 
 @rule("U213", "safety-controller-incomplete", Severity.ERROR)
