@@ -204,12 +204,12 @@ class Robot:
     @cached_property
     def links(self) -> dict[str, object]:
         """Link elements by name; the first of duplicates wins."""
-        return _by_name(self.children("link"))
+        return _by_name(self.grouped(self.root).get("link", ()), self.names())
 
     @cached_property
     def joints(self) -> dict[str, object]:
         """Joint elements by name; the first of duplicates wins."""
-        return _by_name(self.children("joint"))
+        return _by_name(self.grouped(self.root).get("joint", ()), self.names())
 
     @cached_property
     def urdf(self) -> str:
@@ -235,10 +235,10 @@ def _by_tag(children: list) -> dict[str, list]:
     return grouped
 
 
-def _by_name(elements) -> dict:
+def _by_name(elements, names: dict) -> dict:
     found: dict = {}
-    for element in elements:
-        name = element.get("name")
+    for element in elements:  # (their names as read once: Robot.names)
+        name = names[element]
         if name is not None and name not in found:
             found[name] = element
     return found

@@ -83,18 +83,21 @@ def limit_missing_effort_velocity(robot):
     for joint, _, limit in _limits(robot):
         if limit is None:
             continue
-        missing = [a for a in ("effort", "velocity") if limit.get(a) is None]
+        texts = _texts(robot)[limit]
+        missing = [a for a, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY]))
+                   if text is None]
         if missing:
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
-def _bounds(kind: str | None, limit) -> tuple[float, float] | None:
+def _bounds(robot, kind: str | None, limit) -> tuple[float, float] | None:
     """(lower, upper) of a revolute or prismatic joint (``kind``) whose ``<limit>`` range
     parses; a missing bound is 0, as in urdfdom."""
     if limit is None or kind not in LIMITED:
         return None
-    lower, _ = number_tuple(limit.get("lower", "0"), 1)
-    upper, _ = number_tuple(limit.get("upper", "0"), 1)
+    texts = _texts(robot)[limit]
+    lower, _ = number_tuple("0" if texts[_LOWER] is None else texts[_LOWER], 1)
+    upper, _ = number_tuple("0" if texts[_UPPER] is None else texts[_UPPER], 1)
     return (lower[0], upper[0]) if lower and upper else None
 
 
@@ -103,7 +106,7 @@ def _ranges(robot) -> list:
     per robot (three rules ask)."""
     return robot.memo(_ranges, lambda: [
         (joint, limit, *bounds) for joint, kind, limit in _limits(robot)
-        if (bounds := _bounds(kind, limit)) is not None])
+        if (bounds := _bounds(robot, kind, limit)) is not None])
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -128,12 +131,12 @@ def _axes(robot) -> list:
     """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
     per robot (U205 and U206 ask)."""
     def read():
-        found, kinds = [], robot.kinds()
+        found, kinds, texts = [], robot.kinds(), _texts(robot)
         for joint in robot.children("joint"):
             axis = robot.child(joint, "axis")
             if axis is None or kinds[joint] not in AXIS:
                 continue
-            values, _ = number_tuple(axis.get("xyz"), 3)
+            values, _ = number_tuple(texts[axis][0], 3)  # (its xyz)
             if values is not None and finite(values):
                 found.append((joint, axis, values, math.hypot(*values)))
         return found
@@ -196,19 +199,19 @@ def _numeric_problems(robot) -> list:
 
 
 def _numeric_fields(robot) -> list:
-    found = []
+    found, texts = [], _texts(robot)
     sound: dict[int, set] = {}  # count -> texts already found to be that many finite numbers
     for joint in robot.children("joint"):
         for tag, elements in robot.grouped(joint).items():
             fields = _FIELDS_BY_TAG.get(tag)
             if fields is None:
                 continue  # parent, child: no numbers
-            for attribute, count in fields:
+            for index, (attribute, count) in enumerate(fields):
                 known = sound.get(count)
                 if known is None:
                     known = sound[count] = set()
                 for element in elements:
-                    text = element.get(attribute)
+                    text = texts[element][index]
                     if text is not None and text not in known:  # (robots repeat their values)
                         values, problem = number_tuple(text, count)
                         if problem or not finite(values):
@@ -221,6 +224,28 @@ def _numeric_fields(robot) -> list:
 _FIELDS_BY_TAG: dict[str, list[tuple[str, int]]] = {}
 for _tag, _attribute, _count in NUMERIC_FIELDS:
     _FIELDS_BY_TAG.setdefault(_tag, []).append((_attribute, _count))
+_NAMES_BY_TAG = {tag: tuple(attribute for attribute, _ in fields)
+                 for tag, fields in _FIELDS_BY_TAG.items()}
+_LOWER, _UPPER, _EFFORT, _VELOCITY = (_NAMES_BY_TAG["limit"].index(name) for name in
+                                      ("lower", "upper", "effort", "velocity"))
+
+
+def _texts(robot) -> dict:
+    """Element -> the texts of its numeric attributes (None for one not written), in the
+    order of :data:`NUMERIC_FIELDS` for its tag, of every child of every joint that has
+    them: each read from lxml once per robot (U203, U204, U205, U207, U212 ask for the same
+    limits and axes, 100,000 reads on a 10,000-joint robot)."""
+    def read():
+        found = {}
+        for joint in robot.children("joint"):
+            for tag, elements in robot.grouped(joint).items():
+                names = _NAMES_BY_TAG.get(tag)
+                if names is not None:
+                    for element in elements:
+                        found[element] = tuple(map(element.get, names))
+        return found
+
+    return robot.memo(_texts, read)
 
 
 @rule("U207", "malformed-number", Severity.ERROR)
@@ -324,8 +349,9 @@ def zero_effort_or_velocity(robot):
     for joint, kind, limit in _limits(robot):
         if limit is None or kind not in MOVING:
             continue
-        for attribute in ("effort", "velocity"):
-            values, _ = number_tuple(limit.get(attribute), 1)
+        texts = _texts(robot)[limit]
+        for attribute, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY])):
+            values, _ = number_tuple(text, 1)
             if values and values[0] <= 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {values[0]:g}; "
                               "the joint cannot move")
@@ -394,7 +420,7 @@ MIMIC_SLACK = 1e-3  # relative to the mimic joint's span: printed rounding of li
 
 def _range(robot, joint) -> tuple[float, float] | None:
     """Finite, ordered (lower, upper) of a revolute or prismatic joint, else None."""
-    bounds = _bounds(joint.get("type"), robot.child(joint, "limit"))
+    bounds = _bounds(robot, joint.get("type"), robot.child(joint, "limit"))
     return bounds if bounds is not None and finite(bounds) and bounds[0] <= bounds[1] else None
 
 
