@@ -136,41 +136,21 @@ def test_the_links_hanging_from_joints_and_the_names_read_once_as_lxml_gives_the
                                               else None)
 
 
-def test_the_tree_and_joint_rules_read_each_name_and_number_from_lxml_once(tmp_path, monkeypatch):
+def test_the_tree_and_joint_rules_read_each_name_and_number_from_lxml_once(tmp_path,
+                                                                          attribute_reads):
     """Robot.links, .joints and the U1/U2 rules take each link's and joint's name from
     Robot.names, and the joint rules each limit and axis number from one reading
     (joints._texts): lxml's get is a C call, a string made and a lookup, 500,000 times over
     a 10,000-link robot; read once each, the findings the same."""
-    import sys
-    from collections import Counter
-
-    from lxml import etree
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
-    import generate
-
+    from conftest import synthetic_robot
     from urdftool.lint.engine import check_robot
 
-    reads = Counter()
-
-    class Counted(etree.ElementBase):
-        def get(self, key, default=None):
-            reads[self, key] += 1
-            return super().get(key, default)
-
-    parser = etree.XMLParser
-
-    def counting(**options):
-        made = parser(**options)
-        made.set_element_class_lookup(etree.ElementDefaultClassLookup(element=Counted))
-        return made
-
-    path = generate.write(tmp_path, 30, "star")
+    path = synthetic_robot(tmp_path, 30, "star")
     expected = check_robot(load(path), Selection(select=("U1", "U2")))
-    monkeypatch.setattr(etree, "XMLParser", counting)
+    attribute_reads.clear()
     robot = load(path)
-    assert isinstance(robot.root, Counted)
+    assert type(robot.root).__name__ == "Counted"
     assert check_robot(robot, Selection(select=("U1", "U2"))) == expected
     assert robot.links and robot.joints
-    again = {(element.tag, key): n for (element, key), n in reads.items() if n > 1}
+    again = {(element.tag, key): n for (element, key), n in attribute_reads.items() if n > 1}
     assert not again, again
