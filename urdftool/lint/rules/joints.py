@@ -195,39 +195,7 @@ def _numeric_problems(robot) -> list:
     """(joint, element, attribute, values, problem) of every joint number that does not parse
     (``problem``) or is not finite, in document order; once per robot (U207 and U208 ask). The
     numbers that are fine are not kept: most are, and a 10,000-joint robot has 60,000."""
-    return robot.memo(_numeric_problems, lambda: _numeric_fields(robot))
-
-
-def _numeric_fields(robot) -> list:
-    found, texts = [], _texts(robot)
-    sound: dict[int, set] = {}  # count -> texts already found to be that many finite numbers
-    for joint in robot.children("joint"):
-        for tag, elements in robot.grouped(joint).items():
-            fields = _FIELDS_BY_TAG.get(tag)
-            if fields is None:
-                continue  # parent, child: no numbers
-            for index, (attribute, count) in enumerate(fields):
-                known = sound.get(count)
-                if known is None:
-                    known = sound[count] = set()
-                for element in elements:
-                    text = texts[element][index]
-                    if text is not None and text not in known:  # (robots repeat their values)
-                        values, problem = number_tuple(text, count)
-                        if problem or not finite(values):
-                            found.append((joint, element, attribute, values, problem))
-                        else:
-                            known.add(text)
-    return found
-
-
-_FIELDS_BY_TAG: dict[str, list[tuple[str, int]]] = {}
-for _tag, _attribute, _count in NUMERIC_FIELDS:
-    _FIELDS_BY_TAG.setdefault(_tag, []).append((_attribute, _count))
-_NAMES_BY_TAG = {tag: tuple(attribute for attribute, _ in fields)
-                 for tag, fields in _FIELDS_BY_TAG.items()}
-_LOWER, _UPPER, _EFFORT, _VELOCITY = (_NAMES_BY_TAG["limit"].index(name) for name in
-                                      ("lower", "upper", "effort", "velocity"))
+    return _numbers(robot)[1]
 
 
 def _texts(robot) -> dict:
@@ -235,17 +203,47 @@ def _texts(robot) -> dict:
     order of :data:`NUMERIC_FIELDS` for its tag, of every child of every joint that has
     them: each read from lxml once per robot (U203, U204, U205, U207, U212 ask for the same
     limits and axes, 100,000 reads on a 10,000-joint robot)."""
-    def read():
-        found = {}
-        for joint in robot.children("joint"):
-            for tag, elements in robot.grouped(joint).items():
-                names = _NAMES_BY_TAG.get(tag)
-                if names is not None:
-                    for element in elements:
-                        found[element] = tuple(map(element.get, names))
-        return found
+    return _numbers(robot)[0]
 
-    return robot.memo(_texts, read)
+
+def _numbers(robot) -> tuple[dict, list]:
+    """(:func:`_texts`, :func:`_numeric_problems`), read and judged in one pass over the
+    joints, once per robot."""
+    return robot.memo(_numbers, lambda: _read_numbers(robot))
+
+
+def _read_numbers(robot) -> tuple[dict, list]:
+    texts, found = {}, []
+    sound = {count: set() for _, _, count in NUMERIC_FIELDS}  # count -> texts already found
+    # to be that many finite numbers (robots repeat their values)
+    for joint in robot.children("joint"):
+        for tag, elements in robot.grouped(joint).items():
+            names = _NAMES_BY_TAG.get(tag)
+            if names is None:
+                continue  # parent, child: no numbers
+            for element in elements:
+                texts[element] = tuple(map(element.get, names))
+            for index, attribute, count in _FIELDS_BY_TAG[tag]:
+                known = sound[count]
+                for element in elements:
+                    text = texts[element][index]
+                    if text is not None and text not in known:
+                        values, problem = number_tuple(text, count)
+                        if problem or not finite(values):
+                            found.append((joint, element, attribute, values, problem))
+                        else:
+                            known.add(text)
+    return texts, found
+
+
+_FIELDS_BY_TAG: dict[str, list[tuple[int, str, int]]] = {}  # tag -> (index, attribute, count)
+for _tag, _attribute, _count in NUMERIC_FIELDS:
+    _fields = _FIELDS_BY_TAG.setdefault(_tag, [])
+    _fields.append((len(_fields), _attribute, _count))
+_NAMES_BY_TAG = {tag: tuple(attribute for _, attribute, _ in fields)
+                 for tag, fields in _FIELDS_BY_TAG.items()}
+_LOWER, _UPPER, _EFFORT, _VELOCITY = (_NAMES_BY_TAG["limit"].index(name) for name in
+                                      ("lower", "upper", "effort", "velocity"))
 
 
 @rule("U207", "malformed-number", Severity.ERROR)
