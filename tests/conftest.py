@@ -134,6 +134,32 @@ def without_heavy_imports(code: str) -> str:
 
 # ---- synthetic robots of any size (benchmarks/generate.py, the one generator) ------------
 
+@pytest.fixture
+def attribute_reads(monkeypatch):
+    """How many times each (element, attribute) of the robots loaded from now on is read
+    through lxml's get (every parser lxml makes gives elements that count)."""
+    from collections import Counter
+
+    from lxml import etree
+
+    reads = Counter()
+
+    class Counted(etree.ElementBase):
+        def get(self, key, default=None):
+            reads[self, key] += 1
+            return super().get(key, default)
+
+    parser = etree.XMLParser
+
+    def counting(**options):
+        made = parser(**options)
+        made.set_element_class_lookup(etree.ElementDefaultClassLookup(element=Counted))
+        return made
+
+    monkeypatch.setattr(etree, "XMLParser", counting)
+    return reads
+
+
 def synthetic_robot(folder: Path, links: int, shape: str = "chain") -> Path:
     """A ``shape`` ('chain' or 'star') URDF of ``links`` links written into ``folder``."""
     import importlib.util

@@ -53,6 +53,20 @@ _SEEDS = [b'<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"><visual><g
           b'<link name="a"/><?pi x?><![CDATA[ <x> ]]></robot>']
 
 
+def _mutated(rng, count: int, fewest: int, inserted: float):
+    """``count`` documents, each a seed with ``fewest`` to 3 tokens inserted (with chance
+    ``inserted``) or a few bytes deleted."""
+    for _ in range(count):
+        data = bytearray(rng.choice(_SEEDS))
+        for _ in range(rng.randint(fewest, 3)):
+            at = rng.randrange(len(data) + 1)
+            if rng.random() < inserted:
+                data[at:at] = rng.choice(_TOKENS)
+            else:
+                del data[at:at + rng.randint(1, 4)]
+        yield bytes(data)
+
+
 def test_a_plain_document_libxml2_parses_without_a_word_is_one_expat_accepts():
     """What lets parse skip expat's pass (_clean): over mutated documents (markup, entities,
     control characters, namespaces, versions and encodings declared), each plain one that
@@ -61,16 +75,8 @@ def test_a_plain_document_libxml2_parses_without_a_word_is_one_expat_accepts():
 
     from urdftool.description import xml
 
-    rng, clean = random.Random(7), 0
-    for _ in range(4000):
-        data = bytearray(rng.choice(_SEEDS))
-        for _ in range(rng.randint(1, 3)):
-            at = rng.randrange(len(data) + 1)
-            if rng.random() < 0.5:
-                data[at:at] = rng.choice(_TOKENS)
-            else:
-                del data[at:at + rng.randint(1, 4)]
-        data = bytes(data)
+    clean = 0
+    for data in _mutated(random.Random(7), 4000, 1, 0.5):
         if xml._plain_start_tags(data) is None:
             continue
         parser = etree.XMLParser(**xml._LXML_PARSER_OPTIONS)
@@ -82,6 +88,43 @@ def test_a_plain_document_libxml2_parses_without_a_word_is_one_expat_accepts():
             clean += 1
             assert xml._accepted(data), data
     assert clean > 100
+
+
+def test_the_bulk_scan_finds_the_start_tags_the_patterns_find(monkeypatch):
+    """A large document's start tags are found by numpy (_bulk_start_tags): over mutated
+    documents expat accepts (comments, CDATA, instructions, a "<" in each, or none of them),
+    the same offsets as the patterns', and the same newlines."""
+    import random
+
+    from urdftool.description import xml
+
+    compared = 0
+    for data in _mutated(random.Random(11), 3000, 0, 0.6):
+        monkeypatch.setattr(xml, "BULK_SCAN", 1 << 40)
+        scanned = xml._plain_start_tags(data)
+        if scanned is None or not xml._accepted(data):
+            continue
+        newlines = xml._newlines(data)
+        monkeypatch.setattr(xml, "BULK_SCAN", 0)
+        assert xml._plain_start_tags(data) == scanned, data
+        assert xml._newlines(data) == newlines
+        compared += 1
+    assert compared > 500
+
+
+def test_a_large_plain_document_is_scanned_in_bulk_where_expat_puts_its_tags(monkeypatch):
+    from urdftool.description import xml
+
+    bulk = []
+    scan = xml._bulk_start_tags
+    monkeypatch.setattr(xml, "_bulk_start_tags", lambda *a: bulk.append(a) or scan(*a))
+    data = (b'<?xml version="1.0"?>\n<!-- <link name="commented"/> -->\n<robot name="r">\n'
+            b'  <link\n     name="a" note="x > y"><?pi <b/> ?><visual/></link>\n'
+            b'<![CDATA[ <joint/> ]]>\n\t<joint name="j"><parent link="a"/></joint>' +
+            b'<link name="l"><!-- %s --><visual/></link>\n' % (b"x" * xml.BULK_SCAN) + b'</robot>\n')
+    root, positions = xml.parse(data)
+    assert bulk and isinstance(positions, xml._StartOffsets)
+    assert [positions[e] for e in root.iter(etree.Element)] == xml.start_tag_positions(data)
 
 
 def test_a_plain_document_libxml2_parses_cleanly_is_not_parsed_again(monkeypatch):

@@ -182,3 +182,17 @@ def test_named_wheel_skips_only_names_without_a_wheel_word():
         names = ["".join(chance.choice(parts) for _ in range(chance.randint(1, 5)))
                  for _ in range(chance.randint(1, 2))]
         assert _named_wheel(*names) == by_every_name(*names), names
+
+
+def test_a_name_without_l_or_r_is_not_searched_for_side_words(monkeypatch):
+    """The shortcut of _marked_side_words: every side word holds l, r, L or R, so a name
+    with none of them (most joint names of a large robot: 'j5', 'hip_pitch') has none, and
+    the pattern is not run over it."""
+    from urdftool.physics import mirror
+
+    assert all(not mirror._SIDE_LETTERS.isdisjoint(word) for word in mirror._SWAPS)
+    searched, pattern = [], mirror._WORD
+    monkeypatch.setattr(mirror, "_WORD", type("Counted", (), {
+        "finditer": lambda self, name: searched.append(name) or pattern.finditer(name)})())
+    assert mirror.partner_names("j5") == [] and mirror.partner_names("hip_pitch") == []
+    assert mirror.partner_names("l5") == ["r5"] and searched == ["l5"]

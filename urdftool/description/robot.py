@@ -69,7 +69,6 @@ class Robot:
     targets: dict = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    _listed: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def memo(self, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot for ``key`` (by convention the function that asks), then
@@ -130,18 +129,17 @@ class Robot:
         The dict is shared: read it, never change it."""
         groups = self._groups.get(element)
         if groups is None:
-            children = self._listed.pop(element, None)
-            groups = self._groups[element] = _by_tag(
-                child_list(element) if children is None else children)
+            groups = self._groups[element] = _by_tag(child_list(element))
         return groups
 
     def listed(self) -> dict:
         """Where a walk that lists the children of the robot's elements anyway (the vocabulary
-        rules') leaves each list it made (element -> :func:`~urdftool.description.xml.
-        child_list` of it, as it was when loaded): the first :meth:`grouped` of such an element
-        groups that list, and drops it, rather than listing its children again (a proxy
-        object looked up for each, a third of the grouping)."""
-        return self._listed
+        rules') leaves the groups of each element it lists (element -> what :meth:`grouped`
+        gives, made as :func:`_by_tag` makes it, from :func:`~urdftool.description.xml.
+        child_list` of it as it was when loaded), built as it meets each child: :meth:`grouped`
+        then finds them, rather than listing the children again (a proxy object looked up for
+        each) and reading their tags again. A walk leaves alone an element grouped already."""
+        return self._groups
 
     def child(self, element, tag: str):
         """The first direct child of ``element`` with this tag, or None
@@ -204,12 +202,12 @@ class Robot:
     @cached_property
     def links(self) -> dict[str, object]:
         """Link elements by name; the first of duplicates wins."""
-        return _by_name(self.children("link"))
+        return _by_name(self.grouped(self.root).get("link", ()), self.names())
 
     @cached_property
     def joints(self) -> dict[str, object]:
         """Joint elements by name; the first of duplicates wins."""
-        return _by_name(self.children("joint"))
+        return _by_name(self.grouped(self.root).get("joint", ()), self.names())
 
     @cached_property
     def urdf(self) -> str:
@@ -235,10 +233,10 @@ def _by_tag(children: list) -> dict[str, list]:
     return grouped
 
 
-def _by_name(elements) -> dict:
+def _by_name(elements, names: dict) -> dict:
     found: dict = {}
-    for element in elements:
-        name = element.get("name")
+    for element in elements:  # (their names as read once: Robot.names)
+        name = names[element]
         if name is not None and name not in found:
             found[name] = element
     return found

@@ -171,6 +171,10 @@ _SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.DOTALL)
 _OPENING = re.compile(rb"<(?![/!?])")
 _NEWLINE = re.compile(rb"\n")
 _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element below MAX_DEPTH
+# A document of this size or more is scanned with numpy (a match object per "<" costs 2,000
+# instructions; numpy's comparisons of the whole buffer a fiftieth of that): such a document
+# is a robot of thousands of elements, whose rules import numpy anyway.
+BULK_SCAN = 1 << 20  # [bytes]
 
 
 def _plain_start_tags(data: bytes) -> list[int] | None:
@@ -178,10 +182,15 @@ def _plain_start_tags(data: bytes) -> list[int] | None:
     for the scan to be sure (see above)."""
     if not data.isascii() or b"\r" in data:
         return None
-    marked = b"<!" in data  # (a DOCTYPE, comment or CDATA: else no DOCTYPE to look for)
+    # (a DOCTYPE, comment or CDATA: else no DOCTYPE to look for; "!" looked for first, at
+    # memchr's pace: most large robot files hold none)
+    marked = b"!" in data and b"<!" in data
     if marked and b"<!DOCTYPE" in data:
         return None
-    if not marked and data.find(b"<?", 1) < 0:  # no comment, CDATA or PI to skip
+    unmarked = not marked and data.find(b"<?", 1) < 0  # no comment, CDATA or PI to skip
+    if len(data) >= BULK_SCAN:
+        return _bulk_start_tags(data, unmarked)
+    if unmarked:
         return [match.start() for match in _START.finditer(data)]
     # between the comments, CDATA sections and processing instructions (no "<" stands for a
     # tag in them), scanned as one: a match object for each of those, not for every "<"
@@ -191,6 +200,31 @@ def _plain_start_tags(data: bytes) -> list[int] | None:
         at = skipped.end()
     found += [match.start() for match in _OPENING.finditer(data, at)]
     return found
+
+
+def _bulk_start_tags(data: bytes, unmarked: bool) -> list[int]:
+    """:func:`_plain_start_tags` of a large document (``unmarked``: it holds no comment, CDATA
+    or processing instruction past its declaration), the same offsets found by numpy: each
+    "<" that no "/", "!" or "?" follows (unmarked: that some byte follows, as ``_START``
+    asks), outside the comments, CDATA sections and processing instructions ``_SKIPPED``
+    finds."""
+    import numpy as np
+
+    text = np.frombuffer(data, dtype=np.uint8)
+    opening = np.flatnonzero(text == ord("<"))
+    following = text[np.minimum(opening + 1, len(text) - 1)]
+    last = opening == len(text) - 1  # ("<" the last byte: nothing follows it)
+    kept = (following != ord("/")) & (following != ord("!")) & (following != ord("?"))
+    kept = kept & ~last if unmarked else kept | last
+    opening = opening[kept]
+    if not unmarked:  # drop those inside a skipped stretch: [start, end) of each, in order
+        stretches = [(found.start(), found.end()) for found in _SKIPPED.finditer(data)]
+        if stretches:
+            starts, ends = np.array(stretches, dtype=np.intp).T
+            before = np.searchsorted(starts, opening, side="right") - 1  # the last starting at or before
+            inside = (before >= 0) & (opening < ends[np.maximum(before, 0)])
+            opening = opening[~inside]
+    return opening.tolist()
 
 
 def _accepted(data: bytes) -> bool:
@@ -236,7 +270,7 @@ class _StartOffsets(Mapping):
 
     def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
-            self._newlines = [match.start() for match in _NEWLINE.finditer(self._data)]
+            self._newlines = _newlines(self._data)
         before = bisect.bisect_left(self._newlines, offset)  # newlines before the "<"
         line_start = self._newlines[before - 1] + 1 if before else 0
         return before + 1, offset - line_start + 1
@@ -246,6 +280,16 @@ class _StartOffsets(Mapping):
 
     def __len__(self) -> int:
         return len(self._offsets)
+
+
+def _newlines(data: bytes) -> list[int]:
+    """The byte offset of each newline of ``data`` (numpy's for a large document: see
+    :data:`BULK_SCAN`)."""
+    if len(data) < BULK_SCAN:
+        return [match.start() for match in _NEWLINE.finditer(data)]
+    import numpy as np
+
+    return np.flatnonzero(np.frombuffer(data, dtype=np.uint8) == ord("\n")).tolist()
 
 
 def _refusing(parser, on_doctype, on_entity) -> None:

@@ -34,6 +34,7 @@ _SWAPS = {"l": "r", "r": "l", "left": "right", "right": "left", "L": "R", "R": "
           "HL": "HR", "HR": "HL", "BL": "BR", "BR": "BL"}
 # A word: letters between separators (_ - / . digits), or a capitalised part of camel case; a
 # single capital L or R starting a capitalised word (LShoulder, LLEG) is a word of its own.
+_SIDE_LETTERS = frozenset("lrLR")  # one of these is in every side word (_SWAPS)
 _WORD = re.compile(r"(?<![A-Za-z])[LR](?=[A-Z])|[A-Z]?[a-z]+|[A-Z]+(?![a-z])")
 
 
@@ -48,6 +49,8 @@ def _marked_side_words(name: str) -> tuple[list[tuple[int, int, str]], list]:
     """(every side word of ``name`` as :func:`_side_words` gives them, the weak ones among
     them): one pass of the pattern for both lists."""
     found, weak = [], []
+    if _SIDE_LETTERS.isdisjoint(name):  # (every side word holds one: most joint names none)
+        return found, weak
     for match in _WORD.finditer(name):
         word = match.group(0)
         if word in _SWAPS:

@@ -969,7 +969,8 @@ def plain_solid(robot, link) -> PlainSolid | None:
     table = plain_links(robot)
     if table is None:
         return None
-    name = link.get("name")
+    names = robot.names()  # (each link's name read once per robot)
+    name = names[link] if link in names else link.get("name")
     found = table.solids.get(name)
     if found is None:
         row = table.rows.get(name)

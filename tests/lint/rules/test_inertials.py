@@ -461,3 +461,20 @@ def test_a_zero_tensor_stays_zero_when_what_is_fixed_to_it_adds_none(tmp_path):
         '<origin xyz="0 0 -0.05"/>', "").replace('<origin xyz="0.01 0 0"/>', "")
     found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U304",))
     assert [f.code for f in findings] == ["U304"], [f.message for f in findings]
+
+
+def test_the_inertia_rules_take_each_links_name_as_read_once(tmp_path, attribute_reads):
+    """The plain links' path (a robot of BULK_LINKS links or more) of U307, U311, U313 and
+    the plain solids look each link up by the name Robot.names read, not reading it from
+    lxml again (40,000 reads on a 10,000-link robot)."""
+    from conftest import synthetic_robot
+    from urdftool.description.load import load
+    from urdftool.lint.engine import Selection, check_robot
+    from urdftool.physics.solids import BULK_LINKS
+
+    path = synthetic_robot(tmp_path, BULK_LINKS + 10, "star")
+    expected = check_robot(load(path), Selection(select=("U3",)))
+    attribute_reads.clear()
+    assert check_robot(load(path), Selection(select=("U3",))) == expected and expected
+    names = {n for (element, key), n in attribute_reads.items() if key == "name"}
+    assert names == {1}, names

@@ -157,9 +157,9 @@ GROUPED = """<robot name="r"><!-- c --><link name="a"><visual><origin xyz="1 0 0
 
 def test_elements_the_walk_listed_are_grouped_from_its_lists_as_lxml_lists_them(tmp_path,
                                                                               monkeypatch):
-    """The vocabulary walk leaves the children it listed for Robot.grouped, which groups an
-    element from that list, not listing its children again; the groups are those of its
-    children listed afresh (comments, instructions, repeats, unknown and extension elements)."""
+    """The vocabulary walk leaves the children it listed grouped by tag for Robot.grouped,
+    which neither lists nor groups them again; the groups are those of its children listed
+    afresh (comments, instructions, repeats, unknown and extension elements)."""
     from urdftool.description import robot as robots
     from urdftool.description.load import load
     from urdftool.lint.rules.vocabulary import _unknowns
@@ -167,8 +167,9 @@ def test_elements_the_walk_listed_are_grouped_from_its_lists_as_lxml_lists_them(
     (tmp_path / "r.urdf").write_text(GROUPED)
     walked, fresh = load(str(tmp_path / "r.urdf")), load(str(tmp_path / "r.urdf"))
     _unknowns(walked)
-    listings, child_list = [], robots.child_list
+    listings, child_list, by_tag = [], robots.child_list, robots._by_tag
     monkeypatch.setattr(robots, "child_list", lambda e: listings.append(e) or child_list(e))
+    monkeypatch.setattr(robots, "_by_tag", lambda c: listings.append(c) or by_tag(c))
     for robot in (walked, fresh):
         shown = {}
         for element in robot.root.iter():
@@ -177,6 +178,6 @@ def test_elements_the_walk_listed_are_grouped_from_its_lists_as_lxml_lists_them(
                 shown[robot.locate(element)] = {tag: [robot.locate(e) for e in group]
                                                 for tag, group in robot.grouped(element).items()}
         if robot is walked:
-            assert not listings  # every one from the walk's lists
+            assert not listings  # every one grouped by the walk, as it met the children
             found = shown
     assert found == shown and len(found) > 5, len(found)

@@ -483,9 +483,9 @@ def _plain_decided(robot) -> tuple[set, set, set]:
         import numpy as np
 
         links, names, found = [], [], []
-        rows, isfinite = table.rows, math.isfinite
+        rows, isfinite, named = table.rows, math.isfinite, robot.names()
         for link, properties in _valid(robot):
-            name = link.get("name")
+            name = named[link]
             if name in rows and properties.mass > 0:
                 mass, (cx, cy, cz), ((xx, _, _), (_, yy, _), (_, _, zz)) = properties
                 if isfinite(cx + cy + cz):  # (overflow too: not asked)
@@ -751,11 +751,11 @@ def _plain_volumes(robot) -> dict:
             visual = [v if n else None for v, n in zip(units["visual"].tolist(),
                                                          units["visuals"].tolist())]
             sources = ["collision" if c else "visual" for c in units["collision"].tolist()]
-        found, marker = {}, MARKER_EXTENT * 1.01
+        found, marker, names = {}, MARKER_EXTENT * 1.01, robot.names()
         for link, properties in _valid(robot):
             if not properties.mass > 0:
                 continue
-            name = link.get("name")
+            name = names[link]
             row = rows.get(name)
             if row is None or robot.links.get(name) is not link:
                 _solid(robot, link)
@@ -864,7 +864,7 @@ def _margin(extent: float) -> float:
 def _copied_joint_origin(robot, link, properties) -> object | None:
     """The joint whose child ``link`` is, when the inertial origin repeats that joint's origin
     (its xyz, over 1 cm from the link frame), else None."""
-    joint = parent_joints(robot).get(_name(link))
+    joint = parent_joints(robot).get(robot.names()[link] or "?")  # (_name, as read once)
     if joint is None:
         return None
     xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest

@@ -10,8 +10,8 @@ from urdftool.lint.parts import part
 
 
 def _duplicates(robot, tag: str):
-    elements = robot.children(tag)
-    names = [element.get("name") for element in elements]  # each read once
+    elements, named = robot.children(tag), robot.names()  # (each name read once per robot)
+    names = [named[element] for element in elements]
     counts = Counter(name for name in names if name)
     seen: set[str] = set()
     for element, name in zip(elements, names):
@@ -54,9 +54,10 @@ def missing_name(robot):
     Bad: ``<link><visual>...</visual></link>``
     Good: ``<link name="base_link">...</link>``
     """
+    names = robot.names()
     for tag in ("link", "joint"):
         for element in robot.children(tag):
-            if not element.get("name"):
+            if not names[element]:
                 yield element, f"<{tag}> has no name attribute"
 
 

@@ -75,10 +75,10 @@ def _walk(element, key: str, place: Place, found: list, listed: dict) -> list[_U
     Calls, not nested generators, and leaves not iterated: a 10,000-link robot has 190,000
     elements. Each element's attributes are first compared as a whole with the names known
     there (one set operation; the names one by one only when some is not known), and a known
-    child that is a leaf is judged in its parent's loop, without a call of its own. The list
-    of each element's children is left in ``listed`` (:meth:`~urdftool.description.robot.
-    Robot.listed`) for the families that group them, but a ``<geometry>``'s (its shape is read
-    as its first element)."""
+    child that is a leaf is judged in its parent's loop, without a call of its own. Each
+    element's children are grouped by tag as they are met, into ``listed`` (:meth:`~urdftool.
+    description.robot.Robot.listed`), for the families that group them, but a ``<geometry>``'s
+    (its shape is read as its first element)."""
     keys = element.keys()
     if keys and not _KNOWN[key].issuperset(keys):
         _unknown_attributes(element, key, place, keys, found)
@@ -103,16 +103,22 @@ def _unknown_attributes(element, key: str, place: Place, keys, found: list) -> N
 
 def _walk_children(element, key: str, place: Place, found: list, listed: dict) -> None:
     """Append the unknowns below ``element`` (which has children) to ``found``, in order (its
-    children left in ``listed``: see :func:`_walk`)."""
+    children grouped in ``listed``: see :func:`_walk`)."""
     children, shapes = place.children, 0
-    listing = child_list(element)
     if key != "geometry":
         known_children = _KNOWN_CHILDREN[key]
-        listed[element] = listing
+        groups = {}  # (as _by_tag groups them; an element grouped already keeps its groups)
+        if element not in listed:
+            listed[element] = groups
     else:
-        known_children = {}
-    for child in listing:
+        known_children, groups = {}, {}
+    for child in child_list(element):
         tag = child.tag
+        group = groups.get(tag)
+        if group is not None:
+            group.append(child)
+        elif isinstance(tag, str):  # not a comment, processing instruction or entity
+            groups[tag] = [child]
         entry = known_children.get(tag)
         if entry is not None:  # a known element (not a shape): most are; as _walk(child, ...)
             name, child_place, child_known = entry
