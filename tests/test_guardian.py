@@ -10,6 +10,8 @@ import time
 
 import pytest
 
+from conftest import guardian_and_child
+
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the guardian forks")
 
 # the child says its pid, whether ctypes was imported, then hangs (as a C call can)
@@ -53,15 +55,9 @@ def test_a_child_dies_when_its_guardian_is_killed_without_ctypes():
 def test_a_child_whose_watcher_cannot_be_forked_still_does_the_work():
     """No process to spare for the watcher (EAGAIN): the child goes on unwatched, as it did
     where ``PR_SET_PDEATHSIG`` was missing, rather than failing the command."""
-    program = ("import os\nfrom urdftool import guardian\nreal, forks = os.fork, []\n"
-               "def fork():\n    forks.append(1)\n"
-               "    if len(forks) == 2:\n        raise BlockingIOError(11, 'no process')\n"
-               "    return real()\n"
-               "os.fork = fork\nfound = guardian.guarded()\n"
-               "if found is None:\n    print('child', flush=True)\n"
-               "    guardian.end_after(lambda: None)\n"
-               "print('guardian', found, flush=True)\n")
-    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
-                          timeout=60)
-    assert done.returncode == 0, done.stderr
-    assert sorted(done.stdout.splitlines()) == ["child", "guardian (0, None)"], done.stdout
+    setup = ("real, forks = os.fork, []\n"
+             "def fork():\n    forks.append(1)\n"
+             "    if len(forks) == 2:\n        raise BlockingIOError(11, 'no process')\n"
+             "    return real()\n"
+             "os.fork = fork\n")
+    assert guardian_and_child(setup) == ["[child]", "[guardian (0, None)]"]

@@ -298,6 +298,30 @@ def test_a_crash_in_the_check_becomes_an_error_not_an_exception(monkeypatch, tmp
     assert "RuntimeError: boom" in outcome.error
 
 
+def test_a_check_out_of_memory_is_the_budgets_finding_not_an_internal_error(monkeypatch,
+                                                                            tmp_path):
+    """A MemoryError in a check (a flood of many-link documents under the memory budget: the
+    kept fuzz sessions server-134d20129a69 and server-875c27987241, replayed by ``make fuzz``)
+    is the budget's: the pool makes it U018 on the robot, not an internal error with a
+    traceback in the editor's log. The check runs in a forked worker, as the server runs it."""
+    import threading
+
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool import server
+    from urdftool.lint import runner
+
+    def exhausted(path, data=None):
+        raise MemoryError
+
+    monkeypatch.setattr(runner, "check_file", exhausted)
+    robot = str(write_robot(tmp_path))
+    outcome = server.checked(robot, {}, PositionCodec(), server.Limits(timeout=60),
+                             threading.Event())
+    assert outcome.error is None
+    assert [finding.code for _, finding in outcome.by_path[robot]] == ["U018"]
+
+
 def test_without_pygls_the_command_says_which_extra_to_install():
     import subprocess
 

@@ -158,26 +158,10 @@ def replay(path: Path) -> list[str]:
 
 def run(count: int, seed: int = 0, keep: bool = True) -> dict:
     """``count`` cases; figures: cases, failures, seconds."""
-    from hypothesis import given
+    from .run import drive
 
-    from .run import _generate
-
-    stats = {"cases": 0, "failures": 0}
-    start = time.perf_counter()
-
-    @_generate(seed, count)
-    @given(cases())
-    def case(drawn):
-        stats["cases"] += 1
+    def attempt(drawn, stats):
         problems = run_case(drawn)
-        if problems:
-            stats["failures"] += 1
-            name = save(drawn, problems).name if keep else "-"
-            print(f"FAIL {name}: {problems[0][:200]}", flush=True)
-        if stats["cases"] % 25 == 0:
-            print(f"{stats['cases']} cases, {stats['failures']} failures, "
-                  f"{time.perf_counter() - start:.0f} s", flush=True)
+        return problems, lambda: save(drawn, problems)
 
-    case()
-    stats["seconds"] = round(time.perf_counter() - start, 1)
-    return stats
+    return drive(cases(), attempt, count, seed, keep)

@@ -17,7 +17,6 @@ import json
 import resource
 import shutil
 import tempfile
-import time
 from pathlib import Path
 
 from hypothesis import strategies as st
@@ -93,37 +92,19 @@ def replay(path: Path) -> list[str]:
 def run(count: int, seed: int = 0, keep: bool = True) -> dict:
     """``count`` cases; figures: cases, invocations run, failures, forged outputs, peak memory
     [MiB] of this process and its children, seconds."""
-    from .run import _generate
+    from .run import drive
 
     with tempfile.TemporaryDirectory() as probe:
         total = len(forge.invocations(forge.repository(Path(probe))))
-    stats = {"cases": 0, "invocations": 0, "failures": 0, "forged": 0}
-    start = time.perf_counter()
 
-    @_generate(seed, count)
-    @forge_given(total)
-    def case(drawn):
+    def attempt(drawn, stats):
         payloads, chosen = drawn
-        stats["cases"] += 1
         stats["invocations"] += len(chosen)
         problems, failed = run_case(payloads, chosen)
-        if problems:
-            stats["failures"] += 1
-            stats["forged"] += len(problems)
-            name = save(payloads, failed, problems).name if keep else "-"
-            print(f"FAIL {name}: {problems[0][:200]}", flush=True)
-        if stats["cases"] % 25 == 0:
-            print(f"{stats['cases']} cases, {stats['failures']} failures, "
-                  f"{time.perf_counter() - start:.0f} s", flush=True)
+        stats["forged"] += len(problems)
+        return problems, lambda: save(payloads, failed, problems)
 
-    case()
+    stats = drive(cases(total), attempt, count, seed, keep, invocations=0, forged=0)
     stats["peak_mib"] = max(resource.getrusage(who).ru_maxrss for who in
                             (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)) // 1024
-    stats["seconds"] = round(time.perf_counter() - start, 1)
     return stats
-
-
-def forge_given(total: int):
-    from hypothesis import given
-
-    return given(cases(total))

@@ -94,6 +94,32 @@ def run_commands(count: int, seed: int = 0, max_seed_bytes: int | None = None,
     return stats
 
 
+def drive(strategy, attempt, count: int, seed: int = 0, keep: bool = True, every: int = 25,
+          **figures) -> dict:
+    """The loop of the fuzz modes that draw whole cases (names.py, server_session.py,
+    environments.py): ``count`` cases drawn from ``strategy`` (seeded), each given to
+    ``attempt(drawn, stats)``, which may add to the mode's ``figures`` in ``stats`` and returns
+    (problems, a function keeping the case in tests/fuzz/regressions). A failing case is kept
+    (when ``keep``) and named on a FAIL line; the run goes on. Figures: cases, failures, the
+    mode's, seconds."""
+    stats = {"cases": 0, "failures": 0, **figures}
+    start = time.perf_counter()
+
+    @_generate(seed, count)
+    @given(strategy)
+    def case(drawn):
+        stats["cases"] += 1
+        problems, kept = attempt(drawn, stats)
+        if problems:
+            stats["failures"] += 1
+            print(f"FAIL {kept().name if keep else '-'}: {problems[0][:200]}", flush=True)
+        _progress(stats, start, every)
+
+    case()
+    stats["seconds"] = round(time.perf_counter() - start, 1)
+    return stats
+
+
 def _generate(seed: int, count: int):
     def wrap(test):
         return hypothesis_seed(seed)(settings(

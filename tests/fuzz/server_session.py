@@ -352,30 +352,15 @@ def replay(path: Path) -> list[str]:
 
 
 def run(count: int, seed: int = 0, keep: bool = True) -> dict:
-    from hypothesis import given
+    """``count`` sessions; figures: cases, failures, peak memory of a server [MiB], seconds."""
+    from .run import drive
 
-    from .run import _generate
-
-    stats = {"cases": 0, "failures": 0, "peak_mib": 0}
-    start = time.perf_counter()
-
-    @_generate(seed, count)
-    @given(sessions())
-    def case(events):
-        stats["cases"] += 1
+    def attempt(events, stats):
         found, peak = run_session(events)
         stats["peak_mib"] = max(stats["peak_mib"], peak)
-        if found:
-            stats["failures"] += 1
-            name = save(events, found).name if keep else "-"
-            print(f"FAIL {name}: {found[0][:200]}", flush=True)
-        if stats["cases"] % 10 == 0:
-            print(f"{stats['cases']} sessions, {stats['failures']} failures, "
-                  f"{time.perf_counter() - start:.0f} s", flush=True)
+        return found, lambda: save(events, found)
 
-    case()
-    stats["seconds"] = round(time.perf_counter() - start, 1)
-    return stats
+    return drive(sessions(), attempt, count, seed, keep, every=10, peak_mib=0)
 
 
 if __name__ == "__main__":  # one session of the draws, for a look: python -m ...server_session

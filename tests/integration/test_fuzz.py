@@ -1,7 +1,8 @@
 """Fuzzing: every kept failing input stays fixed, and short seeded slices of new cases run.
 
-``make fuzz`` runs 10,000 cases of each mode (tests/fuzz/run.py); this runs a few hundred
-in-process cases from small seeds and a few whole hostile repositories through every command.
+``make fuzz`` runs 10,000 cases of each mode (tests/fuzz/run.py) and the seeded slices marked
+``slow`` here (a hundred in-process cases from small seeds, a few whole hostile repositories
+through every command); ``make test`` replays every kept input and tests the harness.
 Regression inputs that fail on today's code are listed in XFAIL with the issue-12 class they
 belong to (strict: once the fix is merged the replay passes, and the entry must go).
 """
@@ -49,6 +50,7 @@ def test_every_xfail_names_a_kept_input():
     assert sorted(set(XFAIL) - {p.stem for p in REGRESSION_FILES}) == []
 
 
+@pytest.mark.slow  # generated breadth: make fuzz runs the mode at length
 def test_seeded_fuzz_slice():
     corpus_or_skip()
     from tests.fuzz.run import run
@@ -148,6 +150,7 @@ def test_case_report_judges_the_issue_exploit(preloaded):
     assert not any(f.startswith("code ran") for f in report.failures), report.failures
 
 
+@pytest.mark.slow  # generated breadth: make fuzz runs the mode at length
 def test_seeded_command_slice(preloaded):
     """A few whole hostile repositories through every command (tests/fuzz/cases.py)."""
     from tests.fuzz.run import run_commands

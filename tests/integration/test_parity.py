@@ -97,13 +97,18 @@ def test_parity_on_corpus_urdfs(relative, corpus_run):
     assert_parity(relative, check_urdf(CORPUS / relative), result)
 
 
+# no budget: `tree` in this process, not in a worker forked for each file (a fork of the test
+# process costs more than the tree; tests/cli runs tree under its budget)
+IN_PROCESS = ("--timeout", "0", "--max-memory", "0")
+
+
 @pytest.mark.parametrize("path", [CORPUS / p for p in CORPUS_URDFS] + sorted(CASES.glob("U*.urdf")),
                          ids=lambda p: p.name)
 def test_tree_matches_check_urdf(path, run_cli, request):
     """`urdftool tree` prints what check_urdf prints, and fails, located, where it fails."""
     reference = check_urdf(path)
     if reference.returncode != 0:
-        result = run_cli("tree", path)
+        result = run_cli("tree", *IN_PROCESS, path)
         assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
         assert f"{path.name}:" in result.stderr and " error U" in result.stderr, result.output
         return
@@ -113,6 +118,6 @@ def test_tree_matches_check_urdf(path, run_cli, request):
         robot = load_and_check(str(path), CheckOptions()).robot
     if robot is None:
         pytest.skip("urdftool refuses to load it (e.g. entity declarations, U009)")
-    result = run_cli("tree", path)
+    result = run_cli("tree", *IN_PROCESS, path)
     assert result.exit_code == 0, result.output
     assert result.stdout == reference.stdout

@@ -12,6 +12,8 @@ import time
 
 import pytest
 
+from conftest import guardian_and_child
+
 from urdftool import budget
 from urdftool.budget import Budget, address_space
 from urdftool.lint import pool
@@ -253,13 +255,5 @@ def test_a_guardian_forked_where_objects_were_frozen_is_still_the_parent():
     run earlier in it, the door's ``_collect_less``): the parent guards and the child works,
     one each. (The parent took the child's part when objects were frozen: it did the work and
     ended with ``os._exit``, in pytest-xdist a worker lost, 'node down', and the suite hung.)"""
-    program = ("import gc, os, sys\ngc.freeze()\nfrom urdftool import guardian\n"
-               "found = guardian.guarded()\n"
-               "if found is None:\n    os.write(2, b'[child]')\n"
-               "    guardian.end_after(lambda: None)\n"
-               "os.write(2, f'[guardian {found} {gc.get_freeze_count() > 0}]'.encode())\n")
-    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
-                          timeout=60)
-    assert done.returncode == 0, done.stderr
-    assert sorted(done.stderr.replace("][", "]\n[").splitlines()) == \
-        ["[child]", "[guardian (0, None) True]"], done.stderr
+    assert guardian_and_child("import gc\ngc.freeze()", " {gc.get_freeze_count() > 0}") == \
+        ["[child]", "[guardian (0, None) True]"]

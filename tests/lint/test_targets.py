@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -528,6 +529,15 @@ def test_a_part_included_only_by_a_library_nobody_includes_is_skipped_named_or_w
     assert '"files": 1' in result.stdout and "robot.urdf.xacro" in result.stderr
 
 
+def _repository(folder: Path, files: dict[str, str]) -> Path:
+    """``folder`` made a repository (a ``.git`` folder) holding ``files`` (name -> text)."""
+    (folder / ".git").mkdir(exist_ok=True)
+    for name, text in files.items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    return folder
+
+
 def _walked_and_named(tmp_path, *named):
     """expand() of the folder walked and of ``named`` files (as pre-commit names them)."""
     from urdftool.lint.settings import CheckRequest
@@ -540,9 +550,10 @@ def _walked_and_named(tmp_path, *named):
 def test_an_empty_robot_is_a_placeholder_walked_or_named(tmp_path):
     # Clearpath's empty.urdf (husky, jackal, dingo, ridgeback, warthog, spot): the file an
     # $(optenv X_URDF_EXTRAS empty.urdf) include takes by default; alone U011 and U106
-    (tmp_path / ".git").mkdir()
-    (tmp_path / "empty.urdf").write_text("<robot>\n  <!-- a placeholder -->\n</robot>\n")
-    (tmp_path / "nothing.urdf").write_text('<robot name="empty"/>')
+    _repository(tmp_path, {
+        "empty.urdf": "<robot>\n  <!-- a placeholder -->\n</robot>\n",
+        "nothing.urdf": '<robot name="empty"/>',
+    })
     walked, named = _walked_and_named(tmp_path, "empty.urdf", "nothing.urdf")
     assert walked.files == [] and named.files == []
     assert "empty <robot>" in walked.skipped[str(tmp_path / "empty.urdf")]
@@ -552,14 +563,15 @@ def test_an_empty_robot_is_a_placeholder_walked_or_named(tmp_path):
 def test_an_accessory_with_no_root_of_its_own_is_a_part_walked_or_named(tmp_path):
     # jackal's custom_example.urdf, meant for $(optenv JACKAL_URDF_EXTRAS ...): joints on the
     # 'front_mount' of the jackal including it; alone U011, U106 and a U105 per joint end
-    (tmp_path / ".git").mkdir()
-    (tmp_path / "custom_example.urdf").write_text(
-        '<robot><joint name="j" type="fixed"><parent link="front_mount"/><child link="cam"/>'
-        '</joint><link name="cam"/></robot>')
-    # a robot whose joint names a misspelt parent keeps its root: checked (U105 says it)
-    (tmp_path / "robot.urdf").write_text(
-        '<robot name="r"><link name="base"/><link name="cam"/><joint name="j" type="fixed">'
-        '<parent link="bsae"/><child link="cam"/></joint></robot>')
+    _repository(tmp_path, {
+        "custom_example.urdf":
+            '<robot><joint name="j" type="fixed"><parent link="front_mount"/><child link="cam"/>'
+            '</joint><link name="cam"/></robot>',
+        # a robot whose joint names a misspelt parent keeps its root: checked (U105 says it)
+        "robot.urdf":
+            '<robot name="r"><link name="base"/><link name="cam"/><joint name="j" type="fixed">'
+            '<parent link="bsae"/><child link="cam"/></joint></robot>',
+    })
     walked, named = _walked_and_named(tmp_path, "custom_example.urdf", "robot.urdf")
     assert walked.files == [str(tmp_path / "robot.urdf")]
     assert named.files == [str(tmp_path / "robot.urdf")]
@@ -596,18 +608,19 @@ def test_a_xacro_part_with_no_root_of_its_own_is_a_part_and_world_is_no_link(tmp
     # articubot_one's depth_camera.xacro (its include commented out, so nobody includes it):
     # joints on the 'chassis' of a robot defined elsewhere; a robot fixed to Gazebo's 'world'
     # is a robot, and so is one whose root a macro call writes
-    (tmp_path / ".git").mkdir()
     ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
-    (tmp_path / "depth_camera.xacro").write_text(
-        f'<robot {ns}><joint name="j" type="fixed"><parent link="chassis"/>'
-        '<child link="camera_link"/></joint><link name="camera_link"/></robot>')
-    (tmp_path / "arm.urdf.xacro").write_text(
-        f'<robot name="arm" {ns}><joint name="j" type="fixed"><parent link="world"/>'
-        '<child link="base"/></joint><link name="base"/></robot>')
-    (tmp_path / "rover.urdf.xacro").write_text(
-        f'<robot name="rover" {ns}><xacro:macro name="body"><link name="chassis"/></xacro:macro>'
-        '<xacro:body/><joint name="j" type="fixed"><parent link="chassis"/>'
-        '<child link="mast"/></joint><link name="mast"/></robot>')
+    _repository(tmp_path, {
+        "depth_camera.xacro":
+            f'<robot {ns}><joint name="j" type="fixed"><parent link="chassis"/>'
+            '<child link="camera_link"/></joint><link name="camera_link"/></robot>',
+        "arm.urdf.xacro":
+            f'<robot name="arm" {ns}><joint name="j" type="fixed"><parent link="world"/>'
+            '<child link="base"/></joint><link name="base"/></robot>',
+        "rover.urdf.xacro":
+            f'<robot name="rover" {ns}><xacro:macro name="body"><link name="chassis"/>'
+            '</xacro:macro><xacro:body/><joint name="j" type="fixed"><parent link="chassis"/>'
+            '<child link="mast"/></joint><link name="mast"/></robot>',
+    })
     walked, named = _walked_and_named(tmp_path, "depth_camera.xacro", "arm.urdf.xacro",
                                       "rover.urdf.xacro")
     robots = [str(tmp_path / "arm.urdf.xacro"), str(tmp_path / "rover.urdf.xacro")]
@@ -620,18 +633,19 @@ def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_p
     # wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>, whose macro includes
     # "${thruster_layout}"; the layout (and the engine.xacro it includes) are parts of that
     # robot, not robots checked on their own (U005: 'namespace' is the robot's property)
-    (tmp_path / ".git").mkdir()
     ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
-    (tmp_path / "layout.xacro").write_text(
-        f'<robot {ns}><link name="${{namespace}}/engine"/><joint name="e" type="fixed">'
-        '<parent link="${namespace}/base"/><child link="${namespace}/engine"/></joint></robot>')
-    (tmp_path / "macros.xacro").write_text(
-        f'<robot {ns}><xacro:macro name="boat" params="layout">'
-        '<xacro:include filename="${layout}"/></xacro:macro></robot>')
-    (tmp_path / "boat.urdf.xacro").write_text(
-        f'<robot name="boat" {ns}><xacro:property name="namespace" value="wamv"/>'
-        '<link name="wamv/base"/><xacro:include filename="macros.xacro"/>'
-        '<xacro:boat layout="layout.xacro"/></robot>')
+    _repository(tmp_path, {
+        "layout.xacro":
+            f'<robot {ns}><link name="${{namespace}}/engine"/><joint name="e" type="fixed">'
+            '<parent link="${namespace}/base"/><child link="${namespace}/engine"/></joint></robot>',
+        "macros.xacro":
+            f'<robot {ns}><xacro:macro name="boat" params="layout">'
+            '<xacro:include filename="${layout}"/></xacro:macro></robot>',
+        "boat.urdf.xacro":
+            f'<robot name="boat" {ns}><xacro:property name="namespace" value="wamv"/>'
+            '<link name="wamv/base"/><xacro:include filename="macros.xacro"/>'
+            '<xacro:boat layout="layout.xacro"/></robot>',
+    })
     walked, named = _walked_and_named(tmp_path, "layout.xacro")
     assert walked.files == named.files == [str(tmp_path / "boat.urdf.xacro")]
     assert "included by" in walked.skipped[str(tmp_path / "layout.xacro")]
@@ -683,12 +697,14 @@ def test_a_part_only_a_launch_test_builds_stays_a_part_walked_as_checked(tmp_pat
     """A launch test builds a file for the test alone, never as a deployment: the walk skips a
     part only a launch test builds, as the check judges it a part (launch configurations
     only). Before, the walk checked it and the check then made every finding a note."""
-    (tmp_path / ".git").mkdir()
-    (tmp_path / "package.xml").write_text("<package format='3'><name>p</name></package>")
-    (tmp_path / "tested.urdf").write_text(
-        '<robot name="r"><link name="base"/><link name="arm"/>'
-        '<joint name="j0" type="fixed"><parent link="bsae"/><child link="base"/></joint>'
-        '<joint name="j1" type="fixed"><parent link="base"/><child link="arm"/></joint></robot>')
+    _repository(tmp_path, {
+        "package.xml": "<package format='3'><name>p</name></package>",
+        "tested.urdf":
+            '<robot name="r"><link name="base"/><link name="arm"/>'
+            '<joint name="j0" type="fixed"><parent link="bsae"/><child link="base"/></joint>'
+            '<joint name="j1" type="fixed"><parent link="base"/><child link="arm"/></joint>'
+            '</robot>',
+    })
     (tmp_path / "test").mkdir()
     (tmp_path / "test/test_robot.py").write_text(
         "def generate_test_description():\n    return LaunchDescription([\n"
