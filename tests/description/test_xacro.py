@@ -166,7 +166,7 @@ def test_an_include_written_relative_to_the_repository_root_says_where_it_is(tmp
         load(str(tmp_path / "xacro" / "top.xacro"))
     message = caught.value.message
     assert ("xacro reads an include beside the file including it; 'xacro/utils/box.xacro' is "
-            f"there from {tmp_path}") in message, message
+            "there from the repository's root") in message, message
     # an include missing everywhere gets no such advice
     (tmp_path / "xacro" / "top.xacro").write_text(
         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'

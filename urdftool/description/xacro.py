@@ -639,9 +639,10 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     folder = os.path.dirname(base)
     while folder.startswith(root) and len(folder) < len(base):
         if files.kind_of(os.path.join(folder, written)) == "file":
+            where = "the repository's root" if folder == root else f"'{display_path(folder)}'"
             return (f" (xacro reads an include beside the file including it; '{written}' is "
-                    f"there from {display_path(folder)}, as a tool run from that folder reads "
-                    "it: write the path from the including file, or $(find PKG)/...)")
+                    f"there from {where}, as a tool run from that folder reads it: write the "
+                    "path from the including file, or $(find PKG)/...)")
         base, folder = folder, os.path.dirname(folder)
     return ""
 
