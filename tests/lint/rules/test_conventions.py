@@ -202,6 +202,14 @@ def test_a_wheel_is_the_body_of_links_fixed_to_its_rolling_link(tmp_path):
                      f'<parent link="{side}_{parent}"/><child link="{side}_wheel_{part}"/>'
                      '</joint>')
     assert _found(tmp_path, body, codes=("U419",)) == []
+    # on a footprint, a rolling link without geometry of its own is measured by its body
+    # (example-robot-data's TIAGo: U419 crashed comparing None, the link's own lowest point)
+    bare = body.replace('<link name="left_wheel_rotor"><collision><origin rpy="1.5708 0 0"/>'
+                        '<geometry><cylinder radius="0.03" length="0.02"/></geometry></collision>'
+                        '</link>', '<link name="left_wheel_rotor"/>')
+    footprint = ('<link name="base_footprint"/><joint name="f" type="fixed"><parent '
+                 'link="base_footprint"/><child link="base_link"/><origin xyz="0 0 0.16"/></joint>')
+    assert bare != body and _found(tmp_path, bare + footprint, codes=CODES) == []
     # a wheel that is its own body still hovers when it does
     lifted = body.replace('<origin xyz="0 -0.12 -0.1"/>', '<origin xyz="0 -0.12 -0.07"/>')
     [(code, message)] = _found(tmp_path, lifted, codes=("U419",))

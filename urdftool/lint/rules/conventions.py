@@ -285,8 +285,8 @@ def wheel_not_touching_ground(robot):
         return
     heights = {name: z for name, z in ground}
     if plane is not None:
-        placed = {name: lowest(robot, name, plane)[0] for name in heights}
-        if abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
+        placed = {name: z for name, z in _ground_points(robot, plane) if name in heights}
+        if placed and abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
             heights, base, source = placed, 0.0, f"'{FOOTPRINT}' (the ground)"
     if base is None:
         # the wheels stand on the ground; a caster below them lifts them (U617 says so)
