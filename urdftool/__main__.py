@@ -353,13 +353,16 @@ def kept_code_header() -> tuple:
 
 
 def kept_code_file(functions: dict, patterns: dict) -> bytes:
-    """The KEPT_CODE file of ``functions`` and ``patterns``: this Python's header
-    (:func:`kept_code_header`), then a checksum of the marshalled forms, then the forms."""
+    """The KEPT_CODE file of ``functions`` and ``patterns``: the length of what follows it (8
+    bytes, little end first), this Python's header (:func:`kept_code_header`) and a checksum
+    of the marshalled forms (marshalled together), then the forms, as they are: read in place
+    from the mapped file (:func:`_kept_forms`), never copied whole into memory first."""
     import marshal
     import zlib
 
     forms = marshal.dumps((functions, patterns))
-    return marshal.dumps((kept_code_header(), zlib.crc32(forms), forms))
+    head = marshal.dumps((kept_code_header(), zlib.crc32(forms)))
+    return len(head).to_bytes(8, "little") + head + forms
 
 
 def _kept_forms(path: str) -> tuple[dict, dict] | None:
@@ -368,17 +371,24 @@ def _kept_forms(path: str) -> tuple[dict, dict] | None:
     forms unmarshalled would raise (marshal's SystemError on a bad code object, _sre's
     "invalid SRE code") or, worse, run a flipped instruction, is caught by its checksum before
     a form is read. (The file is as trusted as the bytecode beside it: whoever can write one
-    can write the other.)"""
+    can write the other.) The file is mapped, not read: its bytes are checksummed and
+    unmarshalled where the system keeps them (a copy of them cost a page fault per page)."""
     import marshal
+    import mmap
     import zlib
 
     try:
         with open(path, "rb") as handle:
-            header, checksum, forms = marshal.loads(handle.read())
-        if header != kept_code_header() or type(forms) is not bytes or \
-                checksum != zlib.crc32(forms):
-            return None
-        functions, patterns = marshal.loads(forms)
+            data = mmap.mmap(handle.fileno(), 0, access=mmap.ACCESS_READ)
+        try:
+            size = int.from_bytes(data[:8], "little")
+            header, checksum = marshal.loads(data[8:8 + size])
+            if header != kept_code_header() or size < 1 or \
+                    checksum != zlib.crc32(memoryview(data)[8 + size:]):
+                return None
+            functions, patterns = marshal.loads(memoryview(data)[8 + size:])
+        finally:
+            data.close()
     except Exception:  # (what marshal raises on data of another Python or none at all)
         return None
     return (functions, patterns) if type(functions) is dict and type(patterns) is dict else None

@@ -312,6 +312,8 @@ class Limits:
 
 @dataclass
 class _Stopped:
+    """Work the pool stopped, with its Stop."""
+
     stop: object  # urdftool.lint.pool.Stop
 
 

@@ -22,6 +22,8 @@ AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
 
 @dataclass
 class Disabled:
+    """A pair of links whose collisions the SRDF disables, why, and where it says so."""
+
     link1: str
     link2: str
     reason: str

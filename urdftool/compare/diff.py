@@ -28,6 +28,8 @@ class DiffOptions:
 
 @dataclass
 class Diff:
+    """Two robots compared: their changes, renames, effects, companions' changes, warnings."""
+
     old: str
     new: str
     changes: list[Change]

@@ -56,6 +56,8 @@ class CollisionEffect:
 
 @dataclass
 class Effects:
+    """What a change does: frames moved, mass and centre of mass, reach, over ``samples``."""
+
     samples: int
     frames: list[FrameEffect] = field(default_factory=list)
     old_mass: float = 0.0
@@ -76,6 +78,8 @@ class Effects:
 
 @dataclass
 class _Side:
+    """One side of a comparison: its model and its joint values."""
+
     model: object
     values: object  # [rows, variables]
 

@@ -47,6 +47,8 @@ def interface_kind(text: str | None):
 
 @dataclass
 class TransmissionJoint:
+    """A joint a transmission names, with the hardware interfaces it gives it."""
+
     element: object          # the <joint> inside the transmission
     name: str | None
     interfaces: list = field(default_factory=list)   # <hardwareInterface> elements

@@ -21,6 +21,8 @@ class SettingValue(str):
 
 @dataclass(frozen=True)
 class MeshLimits:
+    """How many triangles and bytes a mesh may have to be read."""
+
     max_triangles: int = MAX_TRIANGLES
     max_bytes: int = MAX_MESH_BYTES
 

@@ -203,6 +203,8 @@ _UNKNOWN = object()
 
 @dataclass(frozen=True)
 class _Arg:
+    """An argument of a CMake command, and whether it was quoted."""
+
     text: str
     quoted: bool
 
@@ -565,6 +567,8 @@ class _NotLiteral(Exception):
 
 @dataclass(frozen=True)
 class _Glob:
+    """A ``glob(...)`` of setup.py: its pattern."""
+
     pattern: str
 
 

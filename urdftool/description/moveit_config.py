@@ -89,6 +89,8 @@ def section(data, key: str, depth: int = 3):
 
 @dataclass
 class SolverEntry:
+    """A planning group of kinematics.yaml and its solver, with their lines."""
+
     group: str
     line: int
     solver: str | None

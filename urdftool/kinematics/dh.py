@@ -41,6 +41,8 @@ _EPS = 1e-9
 
 @dataclass
 class DHJoint:
+    """One joint's Denavit-Hartenberg parameters."""
+
     joint: str
     type: str  # revolute | prismatic
     theta: float
@@ -51,6 +53,8 @@ class DHJoint:
 
 @dataclass
 class DHTable:
+    """A chain's Denavit-Hartenberg table, with its base and tool transforms."""
+
     convention: str
     base: np.ndarray
     tool: np.ndarray

@@ -29,6 +29,8 @@ ASSUMED_ROOT = "ASSUMED_FIXED_ROOT_JOINT"  # MoveIt's fixed root joint when the 
 
 @dataclass
 class Joint:
+    """A joint of a planning group's chain."""
+
     name: str
     parent: str | None  # None for the root joint, whose parent is the world
     child: str

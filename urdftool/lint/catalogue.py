@@ -77,6 +77,9 @@ class Conditional(str):
 
 @dataclass(frozen=True)
 class Rule:
+    """A rule: its code, name and severity, its check (None: reported by the engine or the
+    runner) and its documentation."""
+
     code: str
     name: str
     severity: Severity

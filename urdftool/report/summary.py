@@ -11,6 +11,8 @@ STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}  # rich styl
 
 @dataclass(frozen=True)
 class Summary:
+    """How many files were checked, and their findings by severity."""
+
     files: int
     errors: int
     warnings: int

@@ -28,6 +28,8 @@ SI_TOLERANCE = 1e-3  # relative, for effort and velocity
 
 @dataclass
 class SpecJoint:
+    """A joint of a joint spec: its name, line, entry and the lines of its keys."""
+
     name: str
     line: int
     entry: dict
