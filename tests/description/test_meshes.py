@@ -525,3 +525,20 @@ def test_a_missing_mesh_named_by_its_full_path_is_not_named_twice(tmp_path):
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "meshes/gone.stl"), "meshes/gone.stl")
     assert "(looked at " in str(error.value)
+
+
+def test_a_mesh_path_written_with_windows_backslashes_says_so(tmp_path):
+    # DingoQuadruped's klp.urdf (a Windows export for Webots) names 'meshes\collision\x.stl':
+    # 'not found (looked at .../meshes\collision\x.stl)' left the reader to spot the separators
+    (tmp_path / "meshes" / "collision").mkdir(parents=True)
+    (tmp_path / "meshes" / "collision" / "base.stl").write_bytes(b"solid s\nendsolid s\n")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "meshes\\collision\\base.stl"), "meshes\\collision\\base.stl")
+    assert str(error.value).endswith(
+        "; backslashes are no path separators on Linux, where a backslash is part of a file "
+        "name: write 'meshes/collision/base.stl'")
+    # a backslash path with no such file, or leading up out of its folder, gets no advice
+    for named in ("meshes\\collision\\gone.stl", "..\\meshes\\collision\\base.stl"):
+        with pytest.raises(MeshProblem) as error:
+            resolve(_robot(tmp_path, named), named)
+        assert "backslashes" not in str(error.value)

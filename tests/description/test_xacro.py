@@ -148,6 +148,34 @@ def test_an_include_of_a_package_uri_says_xacro_does_not_resolve_it(tmp_path):
     assert "does not resolve package:// URIs" in message and "Errno" not in message, message
 
 
+def test_an_include_written_relative_to_the_repository_root_says_where_it_is(tmp_path):
+    """Upkie's xacro/upkie.xacro includes "xacro/utils/box_inertia.xacro", written from the
+    repository root (its build, xacrodoc, runs there); xacro reads it beside the including
+    file: "No such file or directory: xacro/xacro/utils/box_inertia.xacro" left the reader to
+    work out why."""
+    from urdftool.errors import LoadError
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "xacro" / "utils").mkdir(parents=True)
+    (tmp_path / "xacro" / "utils" / "box.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>')
+    (tmp_path / "xacro" / "top.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="xacro/utils/box.xacro"/><link name="a"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "xacro" / "top.xacro"))
+    message = caught.value.message
+    assert ("xacro reads an include beside the file including it; 'xacro/utils/box.xacro' is "
+            "there from the repository's root") in message, message
+    # an include missing everywhere gets no such advice
+    (tmp_path / "xacro" / "top.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="xacro/utils/gone.xacro"/><link name="a"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "xacro" / "top.xacro"))
+    assert "beside the file including it" not in caught.value.message
+
+
 def test_xacro_warnings_are_not_prefixed_warning_twice(tmp_path):
     # RealMan's MoveIt configs: 'warning U010 warning: Using load_yaml() directly is
     # deprecated. Use xacro.load_yaml() instead.'

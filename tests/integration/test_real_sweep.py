@@ -109,8 +109,11 @@ def run_urdftool(folder: Path, words: list[str]) -> list[dict]:
            if not key.startswith(("ROS_", "AMENT_", "COLCON_", "URDFTOOL_", "CI", "GITHUB_"))}
     out = subprocess.run([str(URDFTOOL), "check", *words, "--format", "json", "--no-cache"],
                          cwd=folder, env=env, capture_output=True, text=True, timeout=1800)
-    if out.returncode == 2 and out.stderr.startswith("urdftool: error: nothing checked: "):
-        return []  # a repository of macro libraries only (a sensor's): a usage error, no finding
+    if out.returncode == 2 and out.stderr.startswith(("urdftool: error: nothing checked: ",
+                                                      "urdftool: error: no .urdf or .xacro")):
+        # macro libraries only (a sensor's), or no robot file at all (a MoveIt configuration
+        # whose robot is another repository's): a usage error, no finding
+        return []
     assert out.returncode in (0, 1), (folder.name, words[:3], out.returncode, out.stderr[-2000:])
     return json.loads(out.stdout)["diagnostics"]
 

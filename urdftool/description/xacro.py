@@ -438,6 +438,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             hint = ""
             if "package:/" in filename:  # package://: a path by now, its // made one /
                 hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
+            else:
+                hint = _written_from_elsewhere(session, filename,
+                                               xacro.filestack[-1] if xacro.filestack else None)
             # an OSError still (xacro skips an optional include by it), said once, plainly
             raise xacro.XacroException(suffix=hint or None, exc=_Unreadable(
                 error.errno, error.strerror, filename)) from error
@@ -628,6 +631,32 @@ def _refuse_link_out(session: _Session, filename: str) -> None:
         raise XacroFailure("link", (
             f"included file '{display_path(filename)}' is a symbolic link leading outside "
             f"the repository ({display_path(root)}); not followed"), session.current_location())
+
+
+def _written_from_elsewhere(session: _Session, filename: str, including: str | None) -> str:
+    """Advice for an include xacro could not open beside the file including it when the path
+    as written is there from a folder above (inside the repository): written for a tool run
+    from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
+    repository root). "" otherwise."""
+    from urdftool.description.packages import containment_root
+
+    if not including:
+        return ""
+    base = os.path.dirname(os.path.abspath(including))
+    named = os.path.abspath(filename)
+    if not named.startswith(base + os.sep):
+        return ""  # an absolute or upward path: written as meant
+    written = named[len(base) + 1:]
+    root = str(containment_root(base))
+    folder = os.path.dirname(base)
+    while folder.startswith(root) and len(folder) < len(base):
+        if files.kind_of(os.path.join(folder, written)) == "file":
+            where = "the repository's root" if folder == root else f"'{display_path(folder)}'"
+            return (f" (xacro reads an include beside the file including it; '{written}' is "
+                    f"there from {where}, as a tool run from that folder reads it: write the "
+                    "path from the including file, or $(find PKG)/...)")
+        base, folder = folder, os.path.dirname(folder)
+    return ""
 
 
 class _Unsure(OSError):

@@ -10,7 +10,9 @@ A **wheel** is the child link of a joint that rolls it:
   (``steer``, ``suspension``, ``hinge``, ``pivot``, ``swivel``, ``hub_mount``...) nor of a
   wheel that is not a ground wheel (``reaction``, ``fly``, ``momentum``, ``steering_wheel``);
 - a fixed joint whose child link's name says so: a wheel welded in place (a simplified model)
-  still stands on the ground, but has no axle to judge.
+  still stands on the ground, but has no axle to judge; unless it hangs from a wheel through
+  fixed joints: then it is a part of that wheel (a hub or tyre fixed to the rolling link), and
+  the wheel's body (:func:`wheel_body`) is what touches the ground.
 
 A **caster** is a link whose name has ``caster``/``castor``, that carries no wheel below it
 (a caster's swivel fork is not what touches the ground; the wheel in it is), hangs below no
@@ -110,6 +112,9 @@ def _identify(robot) -> list[Wheel]:
         else:
             continue
         found[child] = Wheel(child, joint, "wheel", why, axis(joint) if moving else None)
+    for name in [name for name, wheel in found.items() if wheel.axle is None
+                 and _fixed_below(robot, name, found, parents)]:
+        del found[name]  # a part of the wheel above it (Upkie's hub and tyre on the rotor)
     children = child_joints(robot)
     for name in robot.links:
         if name in found or not _CASTER.search(name.lower()) or _NOT_CASTER.search(_words(name)):
@@ -149,6 +154,33 @@ def _carries_wheel(robot, link: str, found: dict, children) -> bool:
             if child is not None:
                 pending.append(child)
     return False
+
+
+def _fixed_below(robot, link: str, found: dict, parents) -> bool:
+    """Whether ``link`` hangs from a wheel of ``found`` through fixed joints only: a part of
+    that wheel's body."""
+    seen, kinds = set(), robot.kinds()
+    while link in parents and link not in seen and kinds.get(parents[link]) == "fixed":
+        seen.add(link)
+        link = robot.ends()[parents[link]]["parent"][1]
+        if link in found:
+            return True
+    return False
+
+
+def wheel_body(robot, link: str) -> list[str]:
+    """A wheel's link and the links fixed below it (its hub, tyre, hubcap): the body that
+    rolls, whose lowest point touches the ground. Not the links it is fixed to above: a wheel
+    welded to the chassis (a simplified model) is not the chassis."""
+    children, kinds, ends = child_joints(robot), robot.kinds(), robot.ends()
+    body, seen = [link], {link}
+    for current in body:
+        for joint in children.get(current, ()):
+            child = ends[joint]["child"][1] if joint in ends else None
+            if kinds.get(joint) == "fixed" and child in robot.links and child not in seen:
+                seen.add(child)
+                body.append(child)
+    return body
 
 
 def _below_wheel(robot, link: str, found: dict, parents) -> bool:

@@ -181,3 +181,36 @@ def test_wheels_whose_axles_stand_up_are_not_judged_against_the_ground(tmp_path)
                  f'<child link="{side}_wheel"/><origin xyz="0 0 {z}"/><axis xyz="0 0 1"/>'
                  '</joint>')
     assert _found(tmp_path, body, codes=("U419",)) == []
+
+
+def test_a_wheel_is_the_body_of_links_fixed_to_its_rolling_link(tmp_path):
+    # Upkie's wheel: joint 'left_wheel' turns the motor's rotor, to which the hub and the tyre
+    # are fixed (all three named so). U419 judged each as a wheel and said the rotor and the
+    # hub hover 16 and 11 mm above the tyre: they are parts of the one body that rolls.
+    body = ('<link name="base_link"><collision><geometry><box size="0.1 0.1 0.1"/></geometry>'
+            '</collision></link>')
+    for side, y in (("left", 0.12), ("right", -0.12)):
+        body += (f'<link name="{side}_wheel_rotor"><collision><origin rpy="1.5708 0 0"/>'
+                 '<geometry><cylinder radius="0.03" length="0.02"/></geometry></collision></link>'
+                 f'<joint name="{side}_wheel" type="continuous"><parent link="base_link"/>'
+                 f'<child link="{side}_wheel_rotor"/><origin xyz="0 {y} -0.1"/>'
+                 '<axis xyz="0 1 0"/></joint>')
+        for part, parent, radius in (("hub", "wheel_rotor", 0.04), ("tire", "wheel_hub", 0.06)):
+            body += (f'<link name="{side}_wheel_{part}"><collision><origin rpy="1.5708 0 0"/>'
+                     f'<geometry><cylinder radius="{radius}" length="0.02"/></geometry>'
+                     f'</collision></link><joint name="{side}_{part}_fix" type="fixed">'
+                     f'<parent link="{side}_{parent}"/><child link="{side}_wheel_{part}"/>'
+                     '</joint>')
+    assert _found(tmp_path, body, codes=("U419",)) == []
+    # on a footprint, a rolling link without geometry of its own is measured by its body
+    # (example-robot-data's TIAGo: U419 crashed comparing None, the link's own lowest point)
+    bare = body.replace('<link name="left_wheel_rotor"><collision><origin rpy="1.5708 0 0"/>'
+                        '<geometry><cylinder radius="0.03" length="0.02"/></geometry></collision>'
+                        '</link>', '<link name="left_wheel_rotor"/>')
+    footprint = ('<link name="base_footprint"/><joint name="f" type="fixed"><parent '
+                 'link="base_footprint"/><child link="base_link"/><origin xyz="0 0 0.16"/></joint>')
+    assert bare != body and _found(tmp_path, bare + footprint, codes=CODES) == []
+    # a wheel that is its own body still hovers when it does
+    lifted = body.replace('<origin xyz="0 -0.12 -0.1"/>', '<origin xyz="0 -0.12 -0.07"/>')
+    [(code, message)] = _found(tmp_path, lifted, codes=("U419",))
+    assert "'right_wheel_rotor' is 30 mm above the lowest wheel" in message

@@ -34,6 +34,12 @@ def test_a_mesh_the_size_of_its_links_primitive_shapes_is_the_size_it_means(tmp_
 
     assert "U413" not in codes(visual + box)
     assert "U413" in codes(visual)
+    # PyBullet's plane_implicit.urdf: its collision is a <plane> (PyBullet's infinite ground),
+    # so the link reaches without end and its 200 m plane100.obj is the size it means
+    (tmp_path / "plane.obj").write_text("v -100 -100 0\nv 100 -100 0\nv 100 100 0\n"
+                                        "v -100 100 0\nf 1 2 3\nf 1 3 4\n")
+    assert "U413" not in codes(visual + '<collision><geometry><plane normal="0 0 1"/>'
+                                        "</geometry></collision>")
 
 
 def _stl(path):
@@ -113,3 +119,26 @@ def test_a_package_mesh_in_a_folder_of_the_package_s_name_above_the_robot_is_not
     assert severity == Severity.WARNING and "package_dirs" in message
     [(severity, _)] = _u407(robot, "package://r2_description/meshes/other.stl")
     assert severity == Severity.ERROR
+
+
+def test_shapes_other_urdf_readers_know_are_warnings_that_name_them(tmp_path):
+    """Fourier's GR1 models (for Isaac Gym) have <capsule> collisions, PyBullet's
+    plane_implicit.urdf a <plane>: U401 said 'unknown geometry', an error, as for a <cone>."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    def found(shape, version=""):
+        (tmp_path / "r.urdf").write_text(f'<robot name="r"{version}><link name="a"><collision>'
+                                         f"<geometry>{shape}</geometry></collision></link>"
+                                         "</robot>")
+        result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions())
+        return [(f.severity.value, f.message) for f in result.findings if f.code == "U401"]
+
+    [(severity, message)] = found('<capsule radius="0.1" length="0.2"/>')
+    assert severity == "warning" and 'only in a robot of version="1.1"' in message
+    assert "Isaac Gym" in message
+    [(severity, message)] = found('<capsule radius="0.1" length="0.2"/>', ' version="1.1"')
+    assert severity == "warning" and "urdfdom 3 (ROS 2 Humble, Noetic) drops" in message
+    [(severity, message)] = found('<plane normal="0 0 1"/>')
+    assert severity == "warning" and "PyBullet's infinite ground" in message
+    [(severity, message)] = found('<cone radius="0.1" length="0.2"/>')
+    assert severity == "error" and "unknown geometry <cone>" in message

@@ -310,6 +310,25 @@ def test_principal_moments_order(tmp_path, tensor, reported):
     assert bool(found) == reported, [f.message for f in findings]
 
 
+def test_principal_moments_order_leaves_a_tyre_fixed_below_its_wheel_to_u421(tmp_path):
+    # a tyre fixed to the rolling rotor is part of the wheel (physics/wheels.wheel_body): U314
+    # left wheels to U421 by their link, and the tyre, no wheel of its own any more, was judged
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="wheel" type="continuous"><parent link="base_link"/><child link="rotor"/>
+        <axis xyz="0 1 0"/></joint><link name="rotor"/>
+      <joint name="tire_fix" type="fixed"><parent link="rotor"/><child link="wheel_tire"/>
+        </joint>
+      <link name="wheel_tire"><inertial><mass value="1"/><inertia ixx="0.0135" ixy="0" ixz="0"
+        iyy="0.0135" iyz="0" izz="0.00042"/></inertial>
+        <collision><geometry><box size="0.4 0.05 0.05"/></geometry></collision></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U314",))
+    assert not found, [f.message for f in findings]
+    found, _ = check_folder(tmp_path / "2", {"robot.urdf": text.replace("wheel_tire", "bar_part")
+                                             .replace('name="wheel"', 'name="spin"')},
+                            select=("U314",))
+    assert found  # no wheel at all: the same tensor is judged
+
+
 @pytest.mark.parametrize("mass, geometry, reported", [
     (0.00027, '<box size="0.1 0.05 0.02"/>', True),     # 2.7 kg/m^3: aluminium in g/cm^3
     (0.27, '<box size="0.1 0.05 0.02"/>', False),       # 2700

@@ -249,3 +249,15 @@ def test_groups_wrapped_in_a_node_pattern_say_what_moveit_reads(tmp_path):
     assert found == [("kinematics.yaml", 1, "U813")]
     assert "wraps its groups in '/**: ros__parameters:'" in findings[0].message, findings[0].message
     assert "(head) get no IK solver" in findings[0].message
+
+
+def test_a_tree_group_is_said_at_its_kinematics_entry_without_naming_that_line_again(tmp_path):
+    # RH-P12-RN-A's gripper group: "kinematics.yaml:2: error U814 group 'gripper' is solved
+    # by KDLKinematicsPlugin (kinematics.yaml line 2) but is not one serial chain"
+    folder, findings = humanoid_with_kdl(
+        tmp_path, '<group name="left_arm">',
+        '<group name="left_arm"><group name="right_arm"/>')
+    [finding] = findings
+    assert finding.file.endswith("kinematics.yaml") and finding.line == 2
+    assert finding.message.startswith("group 'left_arm' is solved by KDLKinematicsPlugin but "
+                                      "is not one serial chain: a tree"), finding.message

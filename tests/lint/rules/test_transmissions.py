@@ -204,3 +204,17 @@ def test_an_interface_written_only_in_the_actuator_is_a_warning_to_move_it(tmp_p
     assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
     assert "its actuator's ('EffortJointInterface')" in findings[0].message
     assert "move it into <joint>" in findings[0].message
+
+
+def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
+    # igus ReBeL's joint2: 'position min is -2.0944, beyond the URDF <limit> (-1.91986);
+    # commands up to -2.0944 pass ros2_control' read as if -2.0944 were a ceiling
+    body = """<ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
+      <joint name="head_joint"><command_interface name="position"><param name="min">-1.2</param>
+      <param name="max">1.2</param></command_interface><state_interface name="position"/></joint>
+      </ros2_control>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)},
+                               select=("U515",))
+    low, high = sorted((f.message for f in findings), key=lambda m: "max" in m)
+    assert "position min is -1.2, beyond the URDF <limit> (-1); commands down to -1.2 pass" in low
+    assert "position max is 1.2, beyond the URDF <limit> (1); commands up to 1.2 pass" in high

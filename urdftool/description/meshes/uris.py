@@ -137,11 +137,24 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
-        return MeshProblem("missing", f"mesh '{uri}' not found{looked}")
+        return MeshProblem("missing", f"mesh '{uri}' not found{looked}{_windows_path(uri, named)}")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _windows_path(uri: str, named: str) -> str:
+    """Advice for a mesh written with Windows separators (a Windows export's
+    ``meshes\\part.stl``) when the file it means is there; "" otherwise, and never for a path
+    leading up out of its folder."""
+    if "\\" not in uri:
+        return ""
+    written, meant = uri.replace("\\", "/"), named.replace("\\", "/")
+    if ".." in written.split("/") or kind_of(Path(meant)) != "file":
+        return ""
+    return ("; backslashes are no path separators on Linux, where a backslash is part of a "
+            f"file name: write '{written}'")
 
 
 def _real(path: Path) -> Path:

@@ -18,7 +18,7 @@ from urdftool.physics import mat3
 from urdftool.physics.frames import child_joints, link_frames, parent_joints, relative
 from urdftool.physics.mass import declared
 from urdftool.physics.support import link_reach
-from urdftool.physics.wheels import FOOTPRINT, footprint, lowest, wheels, world_axle
+from urdftool.physics.wheels import FOOTPRINT, footprint, lowest, wheel_body, wheels, world_axle
 
 OPTICAL = mat3.rpy_matrix((-math.pi / 2, 0.0, -math.pi / 2))  # z forward, x right, y down
 ANGLE_TOLERANCE = math.radians(1.0)  # printed pi/2 (1.57) is 0.05 deg off; a slip is 90 deg
@@ -174,12 +174,14 @@ BELOW_TOLERANCE = 0.001  # [m]: base_footprint is right below base_link, to the 
 
 def _ground_points(robot, frame=None, tags=("collision",)) -> list[tuple[str, float]]:
     """(link, lowest z in ``frame``, the root frame by default) of each wheel and caster whose
-    ``tags`` geometry (the first it has) can be measured."""
+    ``tags`` geometry (the first it has) can be measured: of its body, the link and the links
+    fixed below it (:func:`~urdftool.physics.wheels.wheel_body`)."""
     found = []
     for wheel in wheels(robot):
-        z, _ = lowest(robot, wheel.link, frame, tags)
-        if z is not None:
-            found.append((wheel.link, z))
+        heights = [lowest(robot, member, frame, tags) for member in wheel_body(robot, wheel.link)]
+        if heights and all(reach.complete for _, reach in heights) and \
+                any(z is not None for z, _ in heights):
+            found.append((wheel.link, min(z for z, _ in heights if z is not None)))
     return found
 
 
@@ -269,7 +271,9 @@ def wheel_not_touching_ground(robot):
     fork are judged by their wheels. A wheel whose axle stands up (within 45 degrees of the
     ground's normal) rolls on no ground below it: it is not judged, nor taken as the ground
     (a CAD export modelled with y up, fusion2urdf's Basic_Robot: its wheels, side by side
-    along z, were said to hover 63 mm above each other).
+    along z, were said to hover 63 mm above each other). A wheel is the body that rolls: its
+    link and the links fixed below it (Upkie's rotor, hub and tyre, each named a wheel, were
+    said to hover above the tyre).
 
     Bad: a caster sphere of radius 0.02 whose centre is 0.03 m above the ground
     Good: the caster's centre at its radius above the ground
@@ -281,8 +285,8 @@ def wheel_not_touching_ground(robot):
         return
     heights = {name: z for name, z in ground}
     if plane is not None:
-        placed = {name: lowest(robot, name, plane)[0] for name in heights}
-        if abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
+        placed = {name: z for name, z in _ground_points(robot, plane) if name in heights}
+        if placed and abs(min(placed.values())) <= FOOTPRINT_TOLERANCE:
             heights, base, source = placed, 0.0, f"'{FOOTPRINT}' (the ground)"
     if base is None:
         # the wheels stand on the ground; a caster below them lifts them (U617 says so)

@@ -10,7 +10,7 @@ import math
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.lint.fixes import offer, set_attribute
-from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES
+from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
 from urdftool.description.values import number as attribute_number
@@ -71,11 +71,34 @@ def _first_element(geometry):
     return child
 
 
+def _capsule(robot) -> str:
+    version = robot.root.get("version", "1.0").strip()
+    if version_problem(version) is None and tuple(map(int, version.split("."))) >= (1, 1):
+        return ("a URDF 1.1 shape: urdfdom 4 (ROS 2 Jazzy on) reads it, urdfdom 3 (ROS 2 "
+                "Humble, Noetic) drops the element")
+    return ("which urdfdom reads only in a robot of version=\"1.1\" (urdfdom 4, ROS 2 Jazzy "
+            "on): here it drops the element, and ROS tools see no shape there; PyBullet, "
+            "Isaac Gym and Drake read it")
+
+
+# Shapes urdfdom does not read in every version but other URDF readers do -> why (robot).
+_OTHER_READERS_SHAPES = {
+    "capsule": _capsule,
+    "plane": lambda robot: ("PyBullet's infinite ground: PyBullet reads it, urdfdom drops the "
+                            "element and ROS tools see no shape there"),
+}
+
+
 @rule("U401", "missing-geometry", Severity.ERROR)
 def missing_geometry(robot):
     """A ``<visual>`` or ``<collision>`` has no ``<geometry>``, an empty one, or an unknown shape.
 
     urdfdom drops the element with an error; simulators then see a link without collision.
+    A shape other URDF readers know is a warning that names them, since the robot may be
+    written for them: ``<capsule>``, which urdfdom 4 (ROS 2 Jazzy on) reads in a robot of
+    ``version="1.1"`` and urdfdom 3 (Humble, Noetic) never does, and which PyBullet, Isaac Gym
+    and Drake read (Fourier's GR1 models for Isaac Gym); PyBullet's ``<plane>`` (its ground,
+    ``plane_implicit.urdf``).
 
     Bad: ``<collision><origin xyz="0 0 0.1"/></collision>``, ``<geometry><cone .../></geometry>``
     Good: ``<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>``
@@ -84,7 +107,10 @@ def missing_geometry(robot):
         if tag == "inertial" or (shape is not None and shape.tag in SHAPES):
             continue
         where = f"link '{link.get('name')}': <{tag}>"
-        if shape is not None:
+        if shape is not None and shape.tag in _OTHER_READERS_SHAPES:
+            yield shape, Conditional(f"{where} has <{shape.tag}>, "
+                                     f"{_OTHER_READERS_SHAPES[shape.tag](robot)}")
+        elif shape is not None:
             yield shape, (f"{where} has unknown geometry <{shape.tag}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
         elif (geometry := robot.child(holder, "geometry")) is None:
@@ -421,7 +447,8 @@ def _half_size(shape) -> float:
 def _link_spans(robot) -> dict[str, float]:
     """Each link's span [m]: the longest offset of the joints at it (its parent joint's origin,
     its child joints' origins) and the farthest reach of its own visual and collision
-    primitives (origin plus half size), the scale a mesh of that link has."""
+    primitives (origin plus half size), the scale a mesh of that link has; infinite for a link
+    with a ``<plane>`` (PyBullet's ground: any size fits it)."""
     def compute():
         spans: dict[str, float] = {}
 
@@ -442,7 +469,9 @@ def _link_spans(robot) -> dict[str, float]:
                     if not isinstance(shape.tag, str):
                         continue
                     length = math.hypot(*origin_pose(holder)[0]) + _half_size(shape)
-                    if math.isfinite(length):
+                    if shape.tag == "plane":
+                        length = math.inf  # PyBullet's infinite <plane>: the link is ground
+                    if math.isfinite(length) or shape.tag == "plane":
                         reach(link.get("name"), length)
         return spans
     return robot.memo(_link_spans, compute)

@@ -986,14 +986,16 @@ def principal_moments_order(robot):
     the declared moment about the geometry's easiest axis is over twice the declared moment
     about its hardest one (mass gathered in the middle of a long part lowers the moments across
     it, not that far). Typical of a tensor written for another axis convention (a
-    cylinder along z whose link is a rod along x), or of ixx and izz swapped. Wheels are U421's.
+    cylinder along z whose link is a rod along x), or of ixx and izz swapped. Wheels, and the
+    hubs and tyres fixed below them, are U421's.
 
     Bad: a 0.4 x 0.05 x 0.05 m box with ``ixx="0.013" iyy="0.013" izz="0.0004"``
     Good: ``ixx="0.0004" iyy="0.013" izz="0.013"``
     """
-    from urdftool.physics.wheels import wheels
+    from urdftool.physics.wheels import wheel_body, wheels
 
-    skip, names = {wheel.link for wheel in wheels(robot)}, robot.names()
+    skip = {part for wheel in wheels(robot) for part in wheel_body(robot, wheel.link)}
+    names = robot.names()
     # the links with trustworthy geometry and a tensor, with the geometry's (U309, U310 ask)
     for link, properties, solid, expected, _ in _inertia_ratios(robot):
         if (names[link] or "?") in skip or properties.mass <= PLACEHOLDER_MASS:

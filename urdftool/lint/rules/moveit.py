@@ -153,10 +153,11 @@ def kinematics_group_not_chain(robot):
             continue
         solver = entry.solver.split("/")[-1]
         for shape in serial_problems(model, group, robot.links):
-            where = (file.at(entry.solver_line) if shape.kind in ("tree", "multi-dof", "empty")
-                     else srdf.at(shape.element.sourceline))
-            yield where, (f"group '{group.name}' is solved by {solver} (kinematics.yaml line "
-                          f"{entry.solver_line}) but is not one serial chain: {shape.message}")
+            at_entry = shape.kind in ("tree", "multi-dof", "empty")
+            where = file.at(entry.solver_line) if at_entry else srdf.at(shape.element.sourceline)
+            said = "" if at_entry else f" (kinematics.yaml line {entry.solver_line})"
+            yield where, (f"group '{group.name}' is solved by {solver}{said} but is not one "
+                          f"serial chain: {shape.message}")
 
 
 @rule("U815", "moveit-limits-unknown-joint", Severity.WARNING)

@@ -486,7 +486,8 @@ def ros2_control_limits(robot):
                     edge = low if name == "min" else high
                     yield bounds[name], (
                         f"ros2_control joint '{joint.get('name')}' {kind} {name} is {value:g}, beyond "
-                        f"the URDF <limit> ({edge:g}); commands up to {value:g} pass ros2_control "
+                        f"the URDF <limit> ({edge:g}); commands {'down' if name == 'min' else 'up'} "
+                        f"to {value:g} pass ros2_control "
                         f"but exceed the description: use {edge:g}, or widen <limit> if the joint "
                         "really moves that far")
 
