@@ -105,3 +105,14 @@ def test_a_chain_of_3000_mimic_joints_is_walked_once(tmp_path):
         assert len(found) == 1 and findings[0].message.count(" -> ") == 3000
     finally:
         signal.alarm(0)
+
+
+@pytest.mark.parametrize("lower, upper, swapped", [("inf", "1", False), ("1", "-inf", False),
+                                                   ("nan", "1", False), ("2", "1", True),
+                                                   ("1e308", "-1e308", True)])
+def test_limits_inverted_are_swapped_only_when_both_are_finite(tmp_path, lower, upper, swapped):
+    """session 9: lower="inf" upper="1" was U204 with a safe fix swapping them, which `--fix`
+    applied: upper="inf", the robot as broken as before (U208 says what is wrong)."""
+    text = MIMIC.format(driver_type="revolute", lower=lower, upper=upper, mimic="")
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U204",))
+    assert bool(found) == swapped, [f.message for f in findings]

@@ -118,7 +118,7 @@ def inverted_limits(robot):
     Good: ``<limit lower="-1.57" upper="1.57" .../>``
     """
     for joint, limit, lower, upper in _ranges(robot):
-        if lower > upper:
+        if lower > upper and math.isfinite(lower) and math.isfinite(upper):  # (else U208)
             yield offer(limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper "
                                 f"limit {upper:g}; swap them"), "swap lower and upper",
                         swap_attributes(robot, limit, "lower", "upper", default="0"))
