@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import time
 
+import pytest
+
 from test_server import _package, offline_server  # noqa: F401  (the fixture)
 from urdftool.description import files
 from urdftool.description.record import Record, recording
@@ -65,3 +67,43 @@ def test_saves_of_files_never_opened_queue_nothing_of_their_own(offline_server, 
     scheduled.clear()
     server.saved((tmp_path / "pkg" / "urdftool.toml").as_uri())  # settings: its robot
     assert scheduled == [robot]
+
+
+def test_a_flood_parses_each_folders_uri_once_and_stops_when_every_robot_is_concerned(
+        offline_server, tmp_path, monkeypatch):  # noqa: F811
+    """session 9: 300,000 files changed cost the server's loop 5 s, each URI parsed by pygls
+    and each path walked to the root; each folder's URI is now parsed once, a folder's walk
+    answered once, and the flood stops looking once every robot checked is concerned."""
+    from urdftool import server as module
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    robot = str(_package(tmp_path))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    scheduled = []
+    monkeypatch.setattr(server, "schedule", lambda path, *a, **k: scheduled.append(path))
+    parsed = []
+    monkeypatch.setattr(module, "to_fs_path",
+                        lambda uri, real=module.to_fs_path: parsed.append(uri) or real(uri))
+    asked = []
+    record = server.records[robot]
+    monkeypatch.setattr(record, "concerns", lambda *a, real=record.concerns: asked.append(a)
+                        or real(*a))
+    server.watched([(tmp_path / "pkg" / "config" / f"c{i}.yaml").as_uri() for i in range(3000)])
+    assert scheduled == [robot] and len(asked) == 1 and len(parsed) == 1
+    del scheduled[:], asked[:], parsed[:]
+    server.watched([(tmp_path.parent / f"{tmp_path.name}-elsewhere" / f"d{i % 7}" / f"c{i}.yaml").as_uri()
+                    for i in range(3000)])
+    assert scheduled == [] and len(asked) == 3000 and len(parsed) == 7
+
+
+@pytest.mark.parametrize("uri", [
+    "file:///a/b/c.yaml", "file:///a/b/..", "file:///a/b/.", "file:///a/b%20c/d.yaml",
+    "file:///a/b/d%2e%2e", "file:///a/../b/c", "file:///a?x/c.yaml", "file:///a#x/c.yaml",
+    "file:///a;p/c.yaml", "file:///C:/x/y.yaml", "file://host/share/x.yaml", "file:///",
+    "file:///a/\tb/c.yaml", "file:///a/b\n/c.yaml", " file:///a/c.yaml", "http://x/a/b.yaml",
+    "untitled:/a/b.yaml", "file:", "file:///a/b/", "file:///%00/x.yaml", "file:///a/é/x.yaml",
+    "file:///a/b/c.yaml\x00", "file:////a//b/c.yaml", "file://", "file:///x/-"])
+def test_paths_of_a_flood_are_the_paths_of_each_uri(offline_server, uri):  # noqa: F811
+    server, _ = offline_server
+    assert list(server.paths_of([uri])) == [server.path_of(uri)]

@@ -356,3 +356,26 @@ def test_an_output_link_to_a_standard_stream_is_written_to_it_not_replaced(tmp_p
     subprocess.run([sys.executable, "-c", script, str(link)], capture_output=True, check=True)
     assert elsewhere.read_text() == "kept" and not link.is_symlink() and \
         link.read_text() == "report\n"
+
+
+@pytest.mark.parametrize("environment", [{"PYTHONIOENCODING": "cp1252"},
+                                         {"LC_ALL": "C", "PYTHONCOERCECLOCALE": "0",
+                                          "PYTHONUTF8": "0"}])
+def test_a_name_the_output_encoding_cannot_hold_is_escaped_not_a_traceback(tmp_path,
+                                                                           environment):
+    """session 9: with standard output in ASCII (a C locale) or cp1252, a robot whose link is
+    named with a character outside it ended in a UnicodeEncodeError traceback in place of the
+    report; streams write it as a backslash escape, as the terminal-text escaper does."""
+    import os
+
+    robot = tmp_path / "robot.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="\u0101\ue000" '
+                     'type="revolute"><parent link="a"/><child link="b"/><limit lower="1" '
+                     'upper="-1" effort="1" velocity="1"/></joint></robot>\n', encoding="utf-8")
+    done = subprocess.run([sys.executable, "-m", "urdftool", "check", "--no-cache", "-f",
+                           "concise", str(robot)],
+                          capture_output=True, timeout=120,
+                          env={**{k: v for k, v in os.environ.items() if not k.startswith(
+                              ("PYTHONIOENCODING", "LC_", "LANG"))}, **environment})
+    assert b"Traceback" not in done.stderr, done.stderr[-300:]
+    assert done.returncode == 1 and b"\\u0101\\ue000" in done.stdout, done.stdout

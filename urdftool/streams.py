@@ -130,7 +130,7 @@ def _text(stream, fd: int, name: str, output: bool):
             stream.flush()
         except (OSError, ValueError):
             return stream
-        encoding, errors = stream.encoding, stream.errors
+        encoding, errors = stream.encoding, _errors(stream.encoding, stream.errors)
         line_buffering, write_through = stream.line_buffering, stream.write_through
     else:
         return stream
@@ -141,6 +141,21 @@ def _text(stream, fd: int, name: str, output: bool):
                             write_through=write_through)
     text.mode = "w"
     return text
+
+
+def _errors(encoding: str, errors: str) -> str:
+    """How a standard stream of ``encoding`` writes a character it cannot: as Python set it
+    for UTF-8, else (an ASCII or Latin-1 locale, ``PYTHONIOENCODING=cp1252``) a backslash
+    escape, as the terminal-text escaper writes what may not be printed: a robot name with a
+    character outside the encoding was a UnicodeEncodeError traceback in place of the report
+    ('strict', and 'surrogateescape' only takes surrogates)."""
+    import codecs
+
+    try:
+        utf8 = codecs.lookup(encoding).name == "utf-8"
+    except LookupError:
+        utf8 = False
+    return errors if utf8 or errors not in ("strict", "surrogateescape") else "backslashreplace"
 
 
 def binary_output(fd: int):

@@ -97,3 +97,37 @@ def test_a_robot_below_a_folder_checked_is_no_output(run_cli, tmp_path):
     (tmp_path / "link.txt").symlink_to(robot)
     linked = run_cli("check", robot, "-o", tmp_path / "link.txt", "--jobs", "1")
     assert linked.exit_code == 0 and robot.read_text() == ROBOT
+
+
+@pytest.mark.parametrize("where", [".git/HEAD", ".git/hooks/pre-commit", "sub/.git",
+                                   ".hg/store/x", "bare/HEAD", "bare/refs/heads/main",
+                                   "link/config"])
+def test_an_output_in_a_version_control_folder_is_refused(tmp_path, monkeypatch, where):
+    # session 9: -o .git/HEAD replaced the branch with a report (nothing the check read)
+    for folder in (".git/hooks", ".git/objects", ".git/refs", ".hg/store", "bare/objects",
+                   "bare/refs/heads", "sub"):
+        (tmp_path / folder).mkdir(parents=True, exist_ok=True)
+    for name in (".git/HEAD", "bare/HEAD", ".git/hooks/pre-commit", "bare/refs/heads/main",
+                 ".hg/store/x"):
+        (tmp_path / name).write_text("ref: refs/heads/main\n")
+    (tmp_path / "sub/.git").write_text("gitdir: ../.git\n")  # a worktree's .git file
+    (tmp_path / "link").symlink_to(".git")
+    monkeypatch.chdir(tmp_path)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    with pytest.raises(UsageError, match="version control system's own folder"):
+        files.write_file(where, "a report\n")
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
+    files.write_file("report.txt", "a report\n")  # beside them: written
+    files.write_file("bare.txt", "a report\n")
+
+
+def test_a_hard_link_of_a_file_read_is_replaced_and_the_file_read_keeps_its_bytes(tmp_path):
+    # session 9: the rename puts the output at the link's name only; the name read is refused
+    read, link = tmp_path / "robot.urdf", tmp_path / "copy.urdf"
+    read.write_text(ROBOT)
+    os.link(read, link)
+    files.read_regular(read)
+    with pytest.raises(UsageError, match="a file the command read"):
+        files.write_file(tmp_path / "." / "robot.urdf", "a report\n")
+    files.write_file(link, "a report\n")
+    assert read.read_text() == ROBOT and link.read_text() == "a report\n"

@@ -693,7 +693,7 @@ def file_written(path: Path, code: int = 0) -> list[str]:
         return xml_document(data, where, None)
     if suffix in (".sarif", ".json"):
         try:
-            json.loads(data)
+            strict_json(data)
         except ValueError as error:
             return [f"{where}: not JSON: {error}"]
         return terminal(data.decode(), where) + unpaired(data.decode(), where)
@@ -704,6 +704,16 @@ def file_written(path: Path, code: int = 0) -> list[str]:
     if suffix == ".dot":
         return dot(data.decode(), where)
     return terminal(data.decode("utf-8", "replace"), where)
+
+
+def strict_json(text):
+    """JSON read as RFC 8259 defines it: ``NaN``, ``Infinity`` and ``-Infinity`` (which
+    Python's reader takes and writes) are refused, as every other reader refuses them
+    (session 9: `inertia -f json` of a robot of infinite mass wrote them)."""
+    def refuse(word):
+        raise ValueError(f"{word} is no JSON")
+
+    return json.loads(text, parse_constant=refuse)
 
 
 _UNPAIRED = re.compile(r"(?<!\\)((?:\\\\)*)\\u(d[89ab][0-9a-f]{2})(?!\\ud[c-f])"
@@ -753,7 +763,7 @@ def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:
     if kind in ("json", "json-lines"):
         for document in ([stdout] if kind == "json" and stdout else stdout.splitlines()):
             try:
-                found += _exact(json.loads(document), out)
+                found += _exact(strict_json(document), out)
             except ValueError as error:
                 found.append(f"{out}: not JSON: {error}")
         found += terminal(stdout, out) + unpaired(stdout, out)

@@ -257,3 +257,23 @@ def test_a_guardian_forked_where_objects_were_frozen_is_still_the_parent():
     ended with ``os._exit``, in pytest-xdist a worker lost, 'node down', and the suite hung.)"""
     assert guardian_and_child("import gc\ngc.freeze()", " {gc.get_freeze_count() > 0}") == \
         ["[child]", "[guardian (0, None) True]"]
+
+
+def test_a_piece_whose_guardian_is_gone_gives_its_result_not_a_broken_pipe(monkeypatch):
+    """The guardian killed after its watcher (docs/attacks.md, session 9: the watcher and then
+    the guardian killed; session 8 saw it once): the child's piece ran on and its end, told to
+    a channel nobody reads, was a BrokenPipeError traceback in place of the check's result."""
+    import mmap
+
+    from urdftool import guardian
+
+    read, write = os.pipe()
+    os.close(read)  # the guardian is gone
+    slot = mmap.mmap(-1, guardian.SLOT_SIZE)
+    monkeypatch.setitem(guardian.STATE, "guardian", (write, slot))
+    try:
+        assert run_budgeted(1, lambda index: "done", Budget(5.0, None),
+                            lambda _, stop: stop) == ["done"]
+    finally:
+        os.close(write)
+        slot.close()

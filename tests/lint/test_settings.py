@@ -600,3 +600,24 @@ def test_a_number_past_pythons_digits_is_a_settings_error(tmp_path, run_cli):
     (tmp_path / "urdftool.toml").write_text("timeout = " + "9" * 5000 + "\n")
     result = run_cli("check", "--no-cache", tmp_path / "r.urdf")
     assert result.exit_code == 2 and "a number too long for any setting" in result.output
+
+
+def test_a_selection_of_100000_codes_is_matched_as_its_few_distinct_ones(tmp_path, monkeypatch):
+    """session 9 (session 8's open item): `select` of 100,000 codes cost 3.4 s, each matched
+    against every rule in the settings check and, for each rule, in each worker; the codes are
+    taken once each (``settings._codes``), a few hundred at most."""
+    from urdftool.lint.catalogue import Catalogue
+    from urdftool.lint.settings import CheckRequest, for_file
+
+    codes = ["U001", "u101", " U2", "U3", "U201", "inverted-limits", "U4"] * 15000
+    (tmp_path / "urdftool.toml").write_text(f"select = {json.dumps(codes)}\n")
+    (tmp_path / "robot.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    asked = []
+    real = Catalogue.matches
+    monkeypatch.setattr(Catalogue, "matches", lambda *a: asked.append(1) or real(*a))
+    selection = for_file(str(tmp_path / "robot.urdf"), CheckRequest()).options.selection
+    assert len(selection.select) == 7
+    from urdftool.lint.rules import CATALOGUE
+
+    assert [r.code for r in CATALOGUE if selection.allows(r.code)]
+    assert len(asked) < 20000, len(asked)  # (millions before)

@@ -259,6 +259,43 @@ def test_a_launch_file_named_checks_the_robots_it_builds(run_cli, tmp_path):
     assert nothing.exit_code == 0 and '"files": 0' in nothing.stdout and "U001" not in nothing.stdout
 
 
+
+@pytest.mark.parametrize("name, text, why", [
+    ("broken.launch", "<launch>\n<oops></launch>\n", "could not be read (not well-formed XML: "),
+    ("empty.launch", "", "could not be read (empty)"),
+    ("broken.launch.py", "def generate_launch_description(:\n",
+     "could not be read (not valid Python: "),
+    ("large.launch", "<launch><!--" + "x" * (600 * 1024) + "--></launch>",
+     "could not be read (larger than "),
+    ("nothing.launch", "<launch/>", "builds no robot file urdftool can tell"),
+])
+def test_a_launch_file_named_that_builds_nothing_says_why(tmp_path, name, text, why):
+    """session 9: every launch file named that gave no robot said "builds no robot file
+    urdftool can tell", a launch file not well-formed, over the size limit or in no
+    repository too; the skip now says why (``runtime.why_builds_nothing``)."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "launch").mkdir()
+    (tmp_path / "launch" / name).write_text(text)
+    targets = expand([str(tmp_path / "launch" / name)], CheckRequest())
+    assert targets.files == []
+    [reason] = targets.skipped.values()
+    assert reason.startswith(f"a launch file that {why}"), reason
+    assert "('syntax'" not in reason
+
+
+def test_a_launch_file_named_in_no_repository_says_so(tmp_path):
+    (tmp_path / "show.launch").write_text('<launch><param name="robot_description" '
+                                          'textfile="robot.urdf"/></launch>')
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    [reason] = expand([str(tmp_path / "show.launch")], CheckRequest()).skipped.values()
+    assert "is in no repository or package" in reason, reason
+
+
 GAZEBO_FRAGMENT = """<?xml version="1.0"?>
 <robot name="bot_sim" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="laser_visual" default="false"/>

@@ -261,3 +261,21 @@ def test_inertia_of_many_links_without_inertial_reads_the_robot_once(tmp_path, m
     assert len(asked) < 10
     assert any("moved by joint 'j2'" in note for note in found["l2"].notes)  # l2, l3: no mass
     assert not any("moved by joint" in note for note in found["l1"].notes)  # fixed to l0
+
+
+def test_a_declared_mass_past_what_its_geometry_holds_proposes_no_inertial(run_cli, tmp_path):
+    """session 9: a mass of 1e308 over a box's volume overflowed the density, and `inertia
+    --write` wrote ixx="inf" ixy="nan" into the robot (no loader reads it); a computed inertial
+    that is not finite is no proposal."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text('<robot name="r"><link name="a"><inertial><mass value="1e308"/>'
+                     '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>'
+                     '</inertial><collision><geometry><box size="0.1 0.1 0.1"/></geometry>'
+                     '</collision></link></robot>\n')
+    before = robot.read_text()
+    result = run_cli("inertia", robot, "--all", "--write", robot)
+    assert result.exit_code in (0, 1), result.output
+    assert robot.read_text() == before
+    shown = run_cli("inertia", robot, "-f", "json")
+    assert "past what a float holds" in shown.stdout
+    json.loads(shown.stdout, parse_constant=lambda word: pytest.fail(word))

@@ -6,6 +6,8 @@ import io
 import json
 import math
 
+import pytest
+
 from urdftool.report.json_output import RECORD, WIDTH, dumps, write_json
 
 
@@ -30,11 +32,18 @@ def test_write_json_ends_with_a_newline():
     assert stream.getvalue() == '{"a": [1, 2.5]}\n'
 
 
-def test_write_json_finite_writes_null_for_infinite_and_nan():
+def test_json_is_always_json_a_float_not_finite_is_null():
+    """session 9: `inertia -f json` of a robot declaring mass="inf" wrote `Infinity` and `NaN`
+    (no JSON reader but Python's takes them); every JSON urdftool writes goes through
+    json_output, which writes them null, one line (json-lines) too."""
+    from urdftool.report.json_output import line
+
     stream = io.StringIO()
-    write_json({"d": math.inf, "rows": [(1.0, math.nan)], "n": -math.inf}, stream, finite=True)
-    assert json.loads(stream.getvalue()) == {"d": None, "rows": [[1.0, None]], "n": None}
-    assert "Infinity" not in stream.getvalue()
+    write_json({"d": math.inf, "rows": [(1.0, math.nan)], "n": -math.inf}, stream)
+    strict = {"parse_constant": lambda word: pytest.fail(word)}
+    assert json.loads(stream.getvalue(), **strict) == {"d": None, "rows": [[1.0, None]], "n": None}
+    assert json.loads(line({"x": [math.nan, 2.0]}), **strict) == {"x": [None, 2.0]}
+    assert json.loads(dumps({"name": "NaN", "v": 1e308}), **strict) == {"name": "NaN", "v": 1e308}
 
 
 def test_an_object_in_a_list_is_a_line_of_its_own_up_to_a_record_long():

@@ -57,7 +57,7 @@ def crosscheck(
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
-        write_json(result.as_dict(), finite=True)
+        write_json(result.as_dict())
     else:
         show(render.text(result), nl=False)
     raise typer.Exit(result.exit_code)

@@ -128,9 +128,16 @@ PLUGIN_INTERFACES = {"gazebo_ros2_control/GazeboSystem": {"position_pid": "posit
 
 def exported_interface(block, name: str) -> str:
     """The name under which the hardware plugin of ``<ros2_control>`` ``block`` exports the
-    command interface ``name`` (:data:`PLUGIN_INTERFACES`; else ``name``)."""
-    plugin = (block.findtext("hardware/plugin") or "").strip()
-    return PLUGIN_INTERFACES.get(plugin, {}).get(name, name)
+    command interface ``name`` (:data:`PLUGIN_INTERFACES`; else ``name``). The plugin of the
+    block last asked is kept: callers ask block by block, and a block of 20,000 joints looked
+    for its plugin among its children for each interface (quadratic: over the 60 s budget)."""
+    if _LAST_BLOCK[0] is not block:
+        _LAST_BLOCK[:] = [block, PLUGIN_INTERFACES.get(
+            (block.findtext("hardware/plugin") or "").strip(), {})]
+    return _LAST_BLOCK[1].get(name, name)
+
+
+_LAST_BLOCK: list = [None, {}]  # [the <ros2_control> block, its plugin's PLUGIN_INTERFACES]
 
 
 def ros2_command_interfaces(robot) -> dict[str, set]:

@@ -108,12 +108,13 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
             data += handle.read(limit + 1 - len(data))
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
-    _READ_HERE.add(_which_file(info))
+    _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(name))
     return data, info
 
 
-# every regular file this process read (:func:`_which_file`): what an output must not replace
-_READ_HERE: set = set()
+# every regular file this process read (:func:`_which_file`) -> the names it was read by: what
+# an output must not replace (:func:`_replaces_a_file_read`)
+_READ_HERE: dict = {}
 
 
 def _which_file(info: os.stat_result) -> tuple:
@@ -131,7 +132,7 @@ def read_elsewhere(paths) -> None:
         except (OSError, ValueError):
             continue
         if stat.S_ISREG(info.st_mode):
-            _READ_HERE.add(_which_file(info))
+            _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(path))
 
 
 def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) -> None:
@@ -596,7 +597,8 @@ def _real_folder(folder) -> str:
 def check_output(path) -> str:
     """The real folder an output file ``path`` goes to (:func:`real_folder`); UsageError when
     it cannot be an output file: its folder is missing, leads outside its repository through a
-    symbolic link, or it is a folder. Commands call it before their work, so that a typo or a
+    symbolic link, or it is a folder; or it is in a version control system's own folder
+    (:func:`_version_control_folder`). Commands call it before their work, so that a typo or a
     planted link costs no time."""
     path = Path(path)
     folder = path.parent
@@ -606,9 +608,40 @@ def check_output(path) -> str:
         real = real_folder(folder)
         if path.is_dir() and not path.is_symlink():
             raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
+        owner = _version_control_folder(os.path.join(real, path.name))
     except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+    if owner is not None:
+        raise UsageError(f"cannot write '{path}': it is in '{owner}', the version control "
+                         "system's own folder, which the output would break; give another "
+                         "file name")
     return real
+
+
+# the folders a version control system keeps its own data in, by name (a worktree's ``.git``
+# file too): ``-o .git/HEAD`` replaced the branch with a report and the repository was gone
+VERSION_CONTROL_NAMES = frozenset({".git", ".hg", ".svn", ".bzr"})
+
+
+def _version_control_folder(target: str) -> str | None:
+    """The folder of a version control system's own that the output file ``target`` (its
+    folder's real path and its name) is, or is in: one named as :data:`VERSION_CONTROL_NAMES`
+    are, or a git directory by git's own test (``HEAD``, ``objects`` and ``refs``: a bare
+    repository, ``git --git-dir``'s, a submodule's below ``.git/modules``); None when none."""
+    parts = target.split(os.sep)
+    for index, part in enumerate(parts):
+        if part in VERSION_CONTROL_NAMES:
+            return os.sep.join(parts[:index + 1]) or os.sep
+    folder = os.path.dirname(target)
+    while True:
+        if (os.path.isfile(os.path.join(folder, "HEAD")) and
+                os.path.isdir(os.path.join(folder, "objects")) and
+                os.path.isdir(os.path.join(folder, "refs"))):
+            return folder
+        above = os.path.dirname(folder)
+        if above == folder:
+            return None
+        folder = above
 
 
 def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
@@ -618,8 +651,9 @@ def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
     through a link leading outside its repository, ``path`` is a folder, or the system
     refuses; and, unless ``rewrites`` (the caller rewrites a file it read on purpose: fixes,
     ``inertia --write``), when the file at ``path`` is one this process read (or was told a
-    worker read: :func:`read_elsewhere`), by any name, bind or link: a robot, an include, a
-    mesh or a companion the command's output would replace."""
+    worker read: :func:`read_elsewhere`), by any spelling, bind or link of its folder: a
+    robot, an include, a mesh or a companion the command's output would replace (a hard link
+    of one is not: :func:`_replaces_a_file_read`)."""
     folder = check_output(path)
     path = Path(path)
     target = os.path.join(folder, path.name)
@@ -629,8 +663,7 @@ def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
         existing = os.lstat(target)
     except OSError:
         existing = None
-    if (existing is not None and not rewrites and stat.S_ISREG(existing.st_mode)
-            and _which_file(existing) in _READ_HERE):
+    if existing is not None and not rewrites and _replaces_a_file_read(existing, target):
         raise UsageError(f"cannot write '{path}': it is a file the command read, which the "
                          "output would replace; give another file name")
     if existing is not None and stat.S_ISLNK(existing.st_mode):
@@ -665,6 +698,33 @@ def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _replaces_a_file_read(existing: os.stat_result, target: str) -> bool:
+    """Whether replacing the regular file ``existing`` at ``target`` (its folder's real path
+    and its name) by a rename replaces a file this process read: the same file (device, inode,
+    change time) at the same entry (the folder, by device and inode: any spelling, link or bind
+    mount of it, and the name). A hard link of a file read is another entry: the rename puts
+    the output at that name only, and the file read keeps its bytes under its own (the writer
+    never writes through a name into the file it leads to), so it is not refused."""
+    names = _READ_HERE.get(_which_file(existing)) if stat.S_ISREG(existing.st_mode) else None
+    if not names:
+        return False
+    if existing.st_nlink <= 1:
+        return True  # one name: the entry read
+    here = _entry(target)
+    return here is None or any(_entry(name) in (here, None) for name in names)
+
+
+def _entry(path: str) -> tuple | None:
+    """The folder entry holding the file ``path`` leads to: (the real folder's device and
+    inode, the name), links followed; None when it cannot be looked up."""
+    try:
+        real = os.path.realpath(path)
+        folder = os.stat(os.path.dirname(real))
+    except (OSError, ValueError):
+        return None
+    return folder.st_dev, folder.st_ino, os.path.basename(real)
 
 
 def _own_stream(target: str) -> int | None:

@@ -378,7 +378,12 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
     launch = LaunchFile(path, display, form)
     try:
         root, positions = parse(text.encode())
-    except (XmlProblem, ValueError, SyntaxError) as error:  # lxml's XMLSyntaxError is one
+    except XmlProblem as error:
+        launch.problem = "empty" if error.kind == "empty" else (  # (its message says <robot>)
+            f"not well-formed XML: {error.message.removeprefix('malformed XML: ')}" +
+            (f" (line {error.line})" if error.line else ""))
+        return launch
+    except (ValueError, SyntaxError) as error:  # lxml's XMLSyntaxError is one
         launch.problem = f"not well-formed XML: {error}"
         return launch
     except Exception as error:  # noqa: BLE001 - a stranger's file must not stop the check

@@ -120,25 +120,48 @@ class Record:
         one; an entry of a folder it listed that matches what it looked for (the path itself
         or a folder above it); a path below a place that held no folder when it looked.
         ``file``: ``path`` is now a regular file (a search for folders does not match it;
-        else what it is, or was, is not known)."""
-        paths, patterns, not_folders = self._indexed()
+        else what it is, or was, is not known); a function saying so is asked only when a
+        listing of its folder makes it matter (a stat per file an editor reports changed)."""
+        paths, patterns, not_folders, _ = self._indexed()
         path = os.path.abspath(path)
         if path in paths:  # a path it knows, or a folder above one
             return True
-        child = path
-        while True:
-            folder = os.path.dirname(child)
-            name = os.path.basename(child)
-            # (a change below a folder the listing already held leaves that listing as it was)
-            if any(_matches(name, pattern, child != path or not file)
-                   and not (child != path and name in held)
-                   for pattern, held in patterns.get(folder, ())):
+        folder, name = os.path.dirname(path), os.path.basename(path)
+        listed = patterns.get(folder)
+        if listed:
+            if callable(file):
+                file = file()
+            if any(_matches(name, pattern, not file) for pattern, _ in listed):
                 return True
-            if folder in not_folders:  # it was nothing, or a file: now it holds ``child``
-                return True
-            if folder == child or not name:
-                return False
+        if folder in not_folders:  # it was nothing, or a file: now it holds ``path``
+            return True
+        if folder == path or not name:
+            return False
+        return self._below(folder)
+
+    def _below(self, folder: str) -> bool:
+        """Whether a change below ``folder`` (a folder now, or made one) concerns the check:
+        a listing above that matches a folder on the way and did not hold it, or a place on
+        the way that held no folder. Answered once per folder while the record is unchanged:
+        the files an editor reports changed at once share a few folders (300,000 of them cost
+        the server's loop 5 s, a walk to the root each)."""
+        _, patterns, not_folders, known = self._indexed()
+        found = known.get(folder)
+        if found is None:
+            found = False
             child = folder
+            while True:
+                above, name = os.path.dirname(child), os.path.basename(child)
+                # (a change below a folder the listing already held leaves that listing as it was)
+                if any(_matches(name, pattern, True) and name not in held
+                       for pattern, held in patterns.get(above, ())) or above in not_folders:
+                    found = True
+                    break
+                if above == child or not name:
+                    break
+                child = above
+            known[folder] = found
+        return found
 
     def _indexed(self):
         if self._index is None:
@@ -161,7 +184,7 @@ class Record:
                 while folder not in paths and folder != known:
                     paths.add(folder)
                     known, folder = folder, os.path.dirname(folder)
-            self._index = paths, patterns, not_folders
+            self._index = paths, patterns, not_folders, {}  # (the answers of _below)
         return self._index
 
     # -- as kept by the result cache

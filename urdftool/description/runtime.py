@@ -30,7 +30,7 @@ from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
 from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
                                                  Started, launch_files, launch_index, launch_tests,
-                                                 shown)
+                                                 read_launch, reading_room, shown)
 from urdftool.description.packages import packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -442,6 +442,25 @@ def built_by(launch_path: str) -> list[Path]:
                 if described.path is not None and described.when.truth is not False:
                     found.setdefault(real_path(described.path), Path(described.path))
     return list(found.values())
+
+
+def why_builds_nothing(launch_path: str) -> str:
+    """Why the launch file ``launch_path`` gives :func:`built_by` no robot file, in words
+    completing "a launch file that ...": it is in no repository or package (whose launch files
+    are read), it could not be read (its problem: not well-formed, over the size limit or the
+    reading budget, ...; the one reading, :func:`~urdftool.description.launch_configs.
+    read_launch`, asked again), it is not among the launch files read below its root (past
+    their bound, or leading outside), or it was read and builds none urdftool can tell."""
+    absolute, root = _file_root(launch_path)
+    if root is None:
+        return "is in no repository or package, whose launch files urdftool reads"
+    if real_path(absolute) in launch_index(root).files:
+        return "builds no robot file urdftool can tell"
+    if real_path(absolute) not in {real_path(p) for p in launch_files(root)[0]}:
+        return f"is not among the launch files urdftool reads below {display_path(root)}"
+    launch = read_launch(absolute, room=reading_room(root))
+    problem = getattr(launch, "problem", None) or "what it does is not known"
+    return f"could not be read ({problem})"
 
 
 def _file_root(path: str) -> tuple[Path | None, Path | None]:

@@ -132,7 +132,7 @@ def _guarded_piece(work, budget: Budget, stopped):
     channel, slot = guardian.STATE["guardian"]
     slot[:4] = bytes(4)
     budgets.report_into(slot)
-    _write_all(channel, f"start {guardian.STATE['pieces']} {budget.seconds or 0}\n".encode())
+    _tell_guardian(channel, f"start {guardian.STATE['pieces']} {budget.seconds or 0}\n")
     limits = resource.getrlimit(resource.RLIMIT_AS)
     budgets.limit_memory(budget.memory)
     try:
@@ -147,7 +147,17 @@ def _guarded_piece(work, budget: Budget, stopped):
         return stopped(0, Stop("crash", budget, traceback.format_exc(), budgets.where()))
     finally:
         resource.setrlimit(resource.RLIMIT_AS, limits)
-        _write_all(channel, f"end {guardian.STATE['pieces']} 0\n".encode())
+        _tell_guardian(channel, f"end {guardian.STATE['pieces']} 0\n")
+
+
+def _tell_guardian(channel: int, line: str) -> None:
+    """Tell the guardian a piece's start or end; a guardian that is gone (killed with its
+    watcher first: nothing killed this process) leaves the work to go on unwatched, as where no
+    guardian could be forked, its result printed, never a BrokenPipeError's traceback."""
+    try:
+        _write_all(channel, line.encode())
+    except OSError:
+        pass
 
 
 def _here(index, work, budget, stopped):

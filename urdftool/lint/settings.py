@@ -717,5 +717,9 @@ def env_allowed(flag: bool | None) -> bool:
 
 
 def _codes(values: Iterable[str]) -> list[str]:
-    """Codes from values that may each hold several, comma-separated."""
-    return [part.strip() for value in values for part in value.split(",") if part.strip()]
+    """Codes from values that may each hold several, comma-separated, each once (in the order
+    first given): a selection of 100,000 codes was matched against every rule, for each rule,
+    in settings and in each worker (3.4 s), where the distinct codes and names are a few
+    hundred."""
+    return list(dict.fromkeys(part.strip() for value in values for part in value.split(",")
+                              if part.strip()))

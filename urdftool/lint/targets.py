@@ -754,7 +754,7 @@ def expand(paths: list[str], request) -> Targets:
             continue
         if kind == "file" and path.endswith(LAUNCH_SUFFIXES):
             # a launch file is no robot: the robots it builds are checked, with it
-            from urdftool.description.runtime import built_by
+            from urdftool.description.runtime import built_by, why_builds_nothing
 
             users = [robot for robot in built_by(path) if is_robot_name(robot.name)]
             files.extend(display_path(p) for p in users)
@@ -763,8 +763,7 @@ def expand(paths: list[str], request) -> Targets:
                              f"{', '.join(display_path(p) for p in users)}: checking "
                              f"{'that' if len(users) == 1 else 'those'}")
             else:
-                skipped[path] = ("a launch file that builds no robot file urdftool can tell: "
-                                 "nothing to check")
+                skipped[path] = f"a launch file that {why_builds_nothing(path)}: nothing to check"
             continue
         if kind == "file":
             root = project_root(Path(path))

@@ -74,6 +74,10 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
         notes.append("no declared mass: computed with 1000 kg/m^3 (pass --density)")
     body = computed(solid, mass=keep, density=density)
     result = MassProperties.of(body) if body is not None else None
+    if result is not None and _invalid(result) == "not finite":  # (a mass of 1e308 over its
+        # geometry's volume: no inertial to propose, and `--write` wrote ixx="inf" ixy="nan")
+        notes.append("computed inertia is past what a float holds: nothing to compare or write")
+        result = None
     if link.find("inertial") is None and result is not None:
         verdict = "missing"
         notes.append("no <inertial>: nothing declared to compare with; computed is what its "

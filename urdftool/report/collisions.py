@@ -13,7 +13,7 @@ def write_pose(robot_name: str, report, output_format: str, custom: bool, stream
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
-        write_json(pose_json(robot_name, report), stream, finite=True)
+        write_json(pose_json(robot_name, report), stream)
     else:
         pose_text(robot_name, report, custom, stream)
 
@@ -24,7 +24,7 @@ def write_matrix(robot_name: str, outcome, output_format: str, all_pairs: bool =
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
-        write_json(matrix_json(robot_name, outcome.matrix, outcome.stale), stream, finite=True)
+        write_json(matrix_json(robot_name, outcome.matrix, outcome.stale), stream)
     else:
         matrix_text(robot_name, outcome.matrix, outcome.stale, all_pairs, written, stream)
 

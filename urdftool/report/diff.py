@@ -234,7 +234,7 @@ def write(result, output_format: str, stream=None) -> None:
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
-        write_json(as_json(result), stream, finite=True)
+        write_json(as_json(result), stream)
     elif output_format == "markdown":
         stream.write(_lines(markdown(result)))
     else:

@@ -12,29 +12,37 @@ WIDTH = 100  # a value whose JSON fits on a line this wide is written on one lin
 RECORD = 4000  # an object in a list (a finding, a link's pose) up to this long is one line too
 
 
-def dumps(data, finite: bool = False) -> str:
+def dumps(data) -> str:
     """``data`` as indented JSON: a list or object that fits in :data:`WIDTH` columns stays on
     one line, and so does an object in a list up to :data:`RECORD` characters (a record a line);
     a longer one has an item a line. Each line is encoded by json's C encoder
-    (``json.dumps(indent=...)`` runs the slower pure-Python one).
-
-    finite: write infinite or NaN floats as null, which JSON can carry (else they are refused)
-    """
-    if finite:
+    (``json.dumps(indent=...)`` runs the slower pure-Python one). Always JSON (RFC 8259): a
+    float that is infinite or NaN (a declared mass of ``inf``, a pose past what a float holds)
+    is written null, which every reader takes (``NaN``/``Infinity`` are no JSON: `inertia -f
+    json` of such a robot was refused by every strict reader)."""
+    try:
+        text = _dumps(data, _ENCODE)
+    except ValueError:  # (rare: looked for by the encoder, and only then the data cleaned)
         data = _finite(data)
-    text = _dumps(data, json.JSONEncoder(allow_nan=not finite).encode)
+        text = _dumps(data, _ENCODE)
     # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
     # an escape no strict reader takes (I-JSON, RFC 7493; SARIF uploads, serde, Go): rare, so
     # looked for in the text, and only then the data cleaned and written again
-    return _dumps(_whole(data), json.JSONEncoder(allow_nan=not finite).encode) \
-        if "\\ud" in text else text
+    return _dumps(_whole(data), _ENCODE) if "\\ud" in text else text
 
 
 def line(data) -> str:
-    """``data`` as one line of compact JSON (json-lines): ASCII, exact, no lone surrogate (as
-    :func:`dumps`)."""
-    text = json.dumps(data)
-    return json.dumps(_whole(data)) if "\\ud" in text else text
+    """``data`` as one line of compact JSON (json-lines): ASCII, exact, no lone surrogate and
+    no NaN (as :func:`dumps`)."""
+    try:
+        text = _ENCODE(data)
+    except ValueError:
+        data = _finite(data)
+        text = _ENCODE(data)
+    return _ENCODE(_whole(data)) if "\\ud" in text else text
+
+
+_ENCODE = json.JSONEncoder(allow_nan=False).encode
 
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
@@ -107,10 +115,10 @@ def _least_length(value, cap: int) -> int:
     return 1
 
 
-def write_json(data, stream=None, finite: bool = False) -> None:
+def write_json(data, stream=None) -> None:
     """``data`` as :func:`dumps` writes it and a newline on ``stream`` (default: standard output),
     in one write (``json.dump`` writes token by token)."""
-    (stream or sys.stdout).write(dumps(data, finite) + "\n")
+    (stream or sys.stdout).write(dumps(data) + "\n")
 
 
 def _finite(value):

@@ -126,3 +126,12 @@ def test_a_negative_limit_says_what_each_consumer_makes_of_it(tmp_path, attribut
     assert finding.severity.name == "WARNING"
     assert "cannot move" not in finding.message and "enforce no limit" in finding.message
     assert f"Pinocchio refuses the model (min_{attribute} above max_{attribute})" in finding.message
+@pytest.mark.parametrize("lower, upper, swapped", [("inf", "1", False), ("1", "-inf", False),
+                                                   ("nan", "1", False), ("2", "1", True),
+                                                   ("1e308", "-1e308", True)])
+def test_limits_inverted_are_swapped_only_when_both_are_finite(tmp_path, lower, upper, swapped):
+    """session 9: lower="inf" upper="1" was U204 with a safe fix swapping them, which `--fix`
+    applied: upper="inf", the robot as broken as before (U208 says what is wrong)."""
+    text = MIMIC.format(driver_type="revolute", lower=lower, upper=upper, mimic="")
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U204",))
+    assert bool(found) == swapped, [f.message for f in findings]

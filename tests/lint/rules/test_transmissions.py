@@ -218,3 +218,27 @@ def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
     low, high = sorted((f.message for f in findings), key=lambda m: "max" in m)
     assert "position min is -1.2, beyond the URDF <limit> (-1); commands down to -1.2 pass" in low
     assert "position max is 1.2, beyond the URDF <limit> (1); commands up to 1.2 pass" in high
+def test_a_ros2_control_block_of_3000_joints_looks_for_its_plugin_once(tmp_path, monkeypatch):
+    """session 9: each command interface looked for its block's hardware plugin among the
+    block's children; 20,000 joints in one <ros2_control> went past the 60 s budget (U015)."""
+    from urdftool.description import actuation
+    from urdftool.description.actuation import ros2_command_interfaces
+    from urdftool.description.load import load
+
+    asked = []
+
+    class Counting(dict):
+        def get(self, *args):
+            asked.append(args[0])
+            return super().get(*args)
+
+    monkeypatch.setattr(actuation, "PLUGIN_INTERFACES", Counting(actuation.PLUGIN_INTERFACES))
+    joints = "".join(f'<joint name="j"><command_interface name="position_pid"/></joint>'
+                     for _ in range(3000))
+    (tmp_path / "robot.urdf").write_text(
+        '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="continuous">'
+        '<parent link="a"/><child link="b"/></joint><ros2_control name="s" type="system">'
+        '<hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>'
+        f'{joints}</ros2_control></robot>')
+    assert ros2_command_interfaces(load(str(tmp_path / "robot.urdf"))) == {"j": {"position"}}
+    assert len(asked) == 1, len(asked)

@@ -121,7 +121,7 @@ def inverted_limits(robot):
     Good: ``<limit lower="-1.57" upper="1.57" .../>``
     """
     for joint, limit, lower, upper in _ranges(robot):
-        if lower > upper:
+        if lower > upper and math.isfinite(lower) and math.isfinite(upper):  # (else U208)
             yield offer(limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper "
                                 f"limit {upper:g}; swap them"), "swap lower and upper",
                         swap_attributes(robot, limit, "lower", "upper", default="0"))
@@ -146,16 +146,31 @@ def _axes(robot) -> list:
 
 @rule("U205", "zero-axis", Severity.ERROR)
 def zero_axis(robot):
-    """A moving joint's axis has zero length.
+    """A moving joint's axis has zero length, or one too small for loaders to normalise.
 
-    The joint has no direction to move in; normalising it divides by zero.
+    The joint has no direction to move in; normalising it divides by zero. Loaders normalise
+    with the sum of the squares (Eigen in Pinocchio and MoveIt, gz-math in Gazebo, MuJoCo);
+    when it underflows to 0 (``5e-324 5e-324 5e-324``), the axis they get is left as written
+    (the joint does not move) or replaced by x (KDL, MuJoCo), and urdftool's fk and dynamics
+    refuse it.
 
-    Bad: ``<axis xyz="0 0 0"/>``
+    Bad: ``<axis xyz="0 0 0"/>``, ``<axis xyz="0 0 1e-200"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint, axis, _, length in _axes(robot):
+    for joint, axis, values, length in _axes(robot):
         if length == 0:
             yield axis, f"joint '{_name(joint)}' has a zero-length axis; give a unit vector"
+        elif _vanishes(values):
+            yield axis, (f"joint '{_name(joint)}' has an axis of length {number(length, 3)}, "
+                         "whose squared length underflows to 0: loaders that normalise it "
+                         "(Pinocchio, Gazebo, MuJoCo, KDL) get no direction or another; give a "
+                         "unit vector")
+
+
+def _vanishes(values) -> bool:
+    """Whether the sum of the squares of ``values``, as loaders compute it, is 0 (session 9:
+    check passed an axis of 5e-324 that fk and dynamics refuse)."""
+    return sum(v * v for v in values) == 0
 
 
 @rule("U206", "axis-not-unit", Severity.WARNING)
@@ -174,7 +189,7 @@ def axis_not_unit(robot):
     Good: ``<axis xyz="0 0 1"/>``
     """
     for joint, axis, values, norm in _axes(robot):
-        if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE:
+        if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE and not _vanishes(values):  # (U205)
             unit = _unit_text(values, norm)
             yield offer(axis, (f"joint '{_name(joint)}' axis has length {number(norm, 6)}, not 1; "
                                f"write xyz=\"{unit}\""), f"normalise the axis to {unit}",
