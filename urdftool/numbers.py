@@ -61,18 +61,6 @@ def unit(values) -> tuple | None:
     return tuple(v / norm for v in scaled)
 
 
-def unit_rows(array, axis: int = -1):
-    """numpy: each vector along ``axis`` of ``array`` divided by its length, scaled first;
-    rows that are zero (or not finite) are NaN."""
-    import numpy as np
-
-    array = np.asarray(array, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        largest = np.abs(array).max(axis=axis, keepdims=True)
-        scaled = array / largest
-        return scaled / np.sqrt((scaled * scaled).sum(axis=axis, keepdims=True))
-
-
 def number(value: float, digits: int = 4, *, places: int | None = None,
            scale: float | None = None, plus: bool = False, grouped: bool = False) -> str:
     """``value`` as text, rounded to what is printed, never ``-0``.

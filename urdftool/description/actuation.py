@@ -126,18 +126,17 @@ PLUGIN_INTERFACES = {"gazebo_ros2_control/GazeboSystem": {"position_pid": "posit
                                                          "velocity_pid": "velocity"}}
 
 
-def exported_interface(block, name: str) -> str:
+def exported_interface(robot, block, name: str) -> str:
     """The name under which the hardware plugin of ``<ros2_control>`` ``block`` exports the
-    command interface ``name`` (:data:`PLUGIN_INTERFACES`; else ``name``). The plugin of the
-    block last asked is kept: callers ask block by block, and a block of 20,000 joints looked
-    for its plugin among its children for each interface (quadratic: over the 60 s budget)."""
-    if _LAST_BLOCK[0] is not block:
-        _LAST_BLOCK[:] = [block, PLUGIN_INTERFACES.get(
-            (block.findtext("hardware/plugin") or "").strip(), {})]
-    return _LAST_BLOCK[1].get(name, name)
-
-
-_LAST_BLOCK: list = [None, {}]  # [the <ros2_control> block, its plugin's PLUGIN_INTERFACES]
+    command interface ``name`` (:data:`PLUGIN_INTERFACES`; else ``name``). Each block's plugin
+    is looked up once per robot: a block of 20,000 joints looked for it among its children for
+    each interface (quadratic: over the 60 s budget)."""
+    exports = robot.memo(exported_interface, dict)  # block -> its plugin's renames
+    renamed = exports.get(block)
+    if renamed is None:
+        renamed = exports[block] = PLUGIN_INTERFACES.get(
+            (block.findtext("hardware/plugin") or "").strip(), {})
+    return renamed.get(name, name)
 
 
 def ros2_command_interfaces(robot) -> dict[str, set]:
@@ -147,7 +146,7 @@ def ros2_command_interfaces(robot) -> dict[str, set]:
     offered: dict[str, set] = {}
     for block, joint in ros2_control_joints(robot):
         offered.setdefault(joint.get("name"), set()).update(
-            exported_interface(block, c.get("name"))
+            exported_interface(robot, block, c.get("name"))
             for c in joint.findall("command_interface") if c.get("name"))
     return offered
 

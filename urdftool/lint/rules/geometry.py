@@ -468,10 +468,11 @@ def _link_spans(robot) -> dict[str, float]:
                 for shape in child_list(geometry) if geometry is not None else ():
                     if not isinstance(shape.tag, str):
                         continue
+                    if shape.tag == "plane":  # PyBullet's infinite <plane>: the link is ground
+                        reach(link.get("name"), math.inf)
+                        continue
                     length = math.hypot(*origin_pose(holder)[0]) + _half_size(shape)
-                    if shape.tag == "plane":
-                        length = math.inf  # PyBullet's infinite <plane>: the link is ground
-                    if math.isfinite(length) or shape.tag == "plane":
+                    if math.isfinite(length):
                         reach(link.get("name"), length)
         return spans
     return robot.memo(_link_spans, compute)

@@ -417,7 +417,7 @@ def ros2_control_interface_name(robot):
             if not name:
                 yield interface, f"ros2_control joint '{joint.get('name')}': <{interface.tag}> has no name"
             elif name not in ROS2_INTERFACES and (interface.tag == "state_interface" or
-                                                  exported_interface(block, name) == name):
+                                                  exported_interface(robot, block, name) == name):
                 yield interface, (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> "
                                   f"'{name}' is not a standard interface; "
                                   f"{available('interfaces', name, ROS2_INTERFACES)}")
