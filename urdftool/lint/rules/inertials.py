@@ -824,10 +824,12 @@ def implausible_density(robot):
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
         if least > DENSEST:  # (mass and volume positive: equal keys, the same numbers)
             said = denser.get((properties.mass, bounds[1]))
-            if said is None:
+            if said is None:  # (a mass of 1e308 over a litre: more than a float holds)
+                density = f"at least {number(least, places=0, grouped=True)}" \
+                    if math.isfinite(least) else "more than 1e+308"
                 said = denser[properties.mass, bounds[1]] = (
                     f"{properties.mass:g} kg in at most {number(bounds[1], 3)} m^3 of geometry "
-                    f"is at least {number(least, places=0, grouped=True)} kg/m^3, denser than "
+                    f"is {density} kg/m^3, denser than "
                     f"osmium ({osmium}); a wrong mass or geometry scale")
             yield _inertial_part(link, "mass"), f"link '{names[link] or '?'}': {said}"
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
