@@ -22,6 +22,7 @@ from urdftool.guardian import SLOT_SIZE as _SLOT_SIZE  # (the slot of the guardi
 
 DEFAULT_TIMEOUT = 60.0  # [s] per file
 DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
+SMALL_BUDGET = 512 * 1024 ** 2  # [bytes] below which numpy is imported before the cap is set
 # numpy's OpenBLAS starts a thread per core and reserves address space for each (some 80 MiB):
 # on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
 _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
@@ -87,6 +88,15 @@ def limit_memory(size: int | None) -> None:
     one_blas_thread()
     if size is None:
         return
+    if size < SMALL_BUDGET:
+        # OpenBLAS maps its buffers when numpy is imported (~70 MiB) and at its first product
+        # of 128 x 128 or more (32 MiB) and, refused under the cap, ends the process (exit code
+        # 1, "Memory allocation still failed"): a death no piece can be told apart by, U900.
+        # Mapped first, a budget they leave no room in fails as Python's MemoryError does:
+        # U018 with its budget. (Larger budgets have room for them: nothing done.)
+        import numpy
+
+        numpy.ones((128, 128)) @ numpy.ones((128, 128))
     import resource
 
     _, hard = resource.getrlimit(resource.RLIMIT_AS)
