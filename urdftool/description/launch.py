@@ -6,7 +6,8 @@ Readers, one per form, all giving the same :class:`LaunchFile`:
   ``value=`` may not), ``<include file>`` with its ``<arg>``\\s, ``<group>``, ``<node pkg type
   args>`` with its ``<param>``/``<rosparam>`` children, ``<param name command|textfile>``
   (``robot_description`` from xacro with its arguments), ``<rosparam command="load" file
-  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)``,
+  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)`` (of a
+  package named there or by an argument, ``$(find $(arg pkg))``),
   ``$(optenv)``/``$(env)``, ``$(dirname)``.
 - ROS 2 XML and YAML (``.launch.xml``, ``.launch.yaml``): the same elements with ``exec``,
   ``<let>``, ``<param from>``, ``<executable cmd>``; ``$(var)``, ``$(find-pkg-share)``,
@@ -44,8 +45,10 @@ class Value:
     """Text as a launch file writes it: literal parts and substitutions.
 
     parts: each a ``str``, or a tuple: ``("arg", name, default Value or None)``, ``("find",
-        package)``, ``("env", name, default Value or None)``, ``("dirname",)``, ``("command",
-        Value)``, ``("unknown", text)``
+        package)`` (the package's name, a ``str``, or a Value when a launch argument names it:
+        ``$(find $(arg pkg))``, ``FindPackageShare(LaunchConfiguration("pkg"))``), ``("env",
+        name, default Value or None)``, ``("dirname",)``, ``("command", Value)``, ``("unknown",
+        text)``
     text: as written, for messages
     """
 
@@ -66,7 +69,8 @@ class Value:
                 found.add(part[1])
                 if part[2] is not None:
                     found |= part[2].names()
-            elif isinstance(part, tuple) and part[0] == "command":
+            elif isinstance(part, tuple) and part[0] in ("command", "find") \
+                    and isinstance(part[1], Value):
                 found |= part[1].names()
         return found
 
@@ -148,6 +152,11 @@ def _substitution(inner: str, written: str, depth: int):
         return ("arg", words[0], None)
     if kind in _FIND and len(words) >= 1 and "$(" not in words[0]:
         return ("find", words[0]) if len(words) == 1 else ("unknown", written)
+    if kind in _FIND and "$(" in rest:  # $(find $(arg pkg)), a launch argument names it
+        package = Value(tuple(_substitutions(rest.strip(), depth + 1)), rest.strip())
+        if any(isinstance(p, str) and any(c.isspace() for c in p) for p in package.parts):
+            return ("unknown", written)  # more than one word
+        return ("find", package)
     if kind in ("env", "optenv") and words and "$(" not in words[0]:
         default = substituted(" ".join(words[1:])) if len(words) > 1 or kind == "optenv" else None
         return ("env", words[0], default)
