@@ -156,6 +156,20 @@ def test_what_an_include_from_a_package_so_named_builds_holds_for_the_default_to
     assert [r for _, r in runtime(robot).configurations if r] == [f"{AS_CHECKED} {by_default}"]
 
 
+def test_both_conditions_are_said_once_when_the_include_and_the_file_are_so_named(tmp_path):
+    # Kassow's dual-arm bringup includes $(find-pkg-share $(var configuration_package))/launch/
+    # ...description.launch.xml, which builds $(find-pkg-share $(var description_package))/urdf/...
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/arm.launch.xml": ROS2_XML,
+        "arm_bringup/launch/bringup.launch.xml": """<launch>
+  <arg name="bringup_package" default="arm_bringup"/>
+  <include file="$(find-pkg-share $(var bringup_package))/launch/arm.launch.xml"/>
+</launch>"""})
+    [build] = builds(str(root / "arm_description/urdf/arm.urdf.xacro"))
+    assert build.condition == ("when launched with bringup_package's default 'arm_bringup' and "
+                               "description_package's default 'arm_description'")
+
+
 def test_a_package_named_in_part_by_an_argument(tmp_path):
     # Rokae: f"rokae_xMate{robot_type}_moveit_config"; KUKA: f"kuka_{robot_family}_support"
     text = PYTHON_OPAQUE.replace('LaunchConfiguration("description_package").perform(context)',

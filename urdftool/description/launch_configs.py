@@ -80,8 +80,9 @@ class Scope:
     root: Path
     ros1: bool
     # reached through an include from a package launch arguments name: that condition in words
-    # (:attr:`Described.by_default`)
+    # (:attr:`Described.by_default`), and those arguments
     by_default: str = ""
+    default_free: frozenset = frozenset()
 
 
 def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
@@ -554,10 +555,10 @@ def _expand_top(index: LaunchIndex, launch: LaunchFile, packages: dict) -> Confi
 
 def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             configuration: Configuration, packages: dict, via: tuple, depth: int,
-            by_default: str = "") -> None:
+            by_default: tuple = ("", frozenset())) -> None:
     configuration.files.append(launch.display)
     scope = Scope(dict(given) if launch.ros == 2 else {}, packages, launch, index.root, launch.ros == 1,
-                  by_default)
+                  *by_default)
     for action in launch.actions:
         if len(configuration.loaded) + len(configuration.started) > MAX_EVENTS:
             configuration.incomplete = True
@@ -625,7 +626,7 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
     if by_default:
         when = when.also(When(True, free, (by_default,)))
     _expand(index, target, given, False, when, configuration, packages, via, depth + 1,
-            _joined_words(scope.by_default, by_default))
+            (_joined_words(scope.by_default, by_default), scope.default_free | free))
 
 
 def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple) -> Loaded:
@@ -701,11 +702,14 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
                      _joined_words(scope.by_default, by_default) if path is not None else "")
 
 
+BY_DEFAULT = "when launched with "  # how a condition on package arguments' defaults begins
+
+
 def _joined_words(first: str, second: str) -> str:
     """Two conditions "when launched with ..." said as one."""
     if not (first and second) or second == first:
         return first or second
-    return f"{first} and {second.removeprefix('when launched with ')}"
+    return f"{first} and {second.removeprefix(BY_DEFAULT)}"
 
 
 def _packages_by_default(value: Value | None, scope: Scope) -> tuple[str, frozenset]:
@@ -719,16 +723,18 @@ def _packages_by_default(value: Value | None, scope: Scope) -> tuple[str, frozen
         if not (isinstance(part, tuple) and part[0] == "find" and isinstance(part[1], Value)):
             continue
         named = resolve(part[1], scope)
-        if not named.free or named.text is None:
+        # (arguments an including launch file's condition already names are said there)
+        own = named.free - scope.default_free
+        if not own or named.text is None:
             continue
-        free |= named.free
+        free |= own
         names = [f"the environment variable {n[1:]}" if n.startswith("$") else n
-                 for n in sorted(named.free)]
-        whole = _argument(named) is not None  # the package is the argument's value, whole
+                 for n in sorted(own)]
+        whole = named.pattern == WILD and len(names) == 1  # the argument's value, whole
         said.append(f"{names[0]}'s default '{named.text}'" if whole else
                     f"the default{'s' if len(names) > 1 else ''} of {', '.join(names)} "
                     f"(package '{named.text}')")
-    return ("when launched with " + " and ".join(said) if said else ""), frozenset(free)
+    return (BY_DEFAULT + " and ".join(said) if said else ""), frozenset(free)
 
 
 def _program(text: str | None) -> str:
@@ -742,5 +748,5 @@ def _template(resolved: Resolved) -> str | None:
     return resolved.pattern if resolved.pattern is not None and WILD in resolved.pattern else None
 
 
-__all__ = ["TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+__all__ = ["BY_DEFAULT", "TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
            "launch_index", "resolve", "shown", "words"]

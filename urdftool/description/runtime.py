@@ -28,9 +28,10 @@ from pathlib import Path
 
 from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
-from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
-                                                 Started, launch_files, launch_index, launch_tests,
-                                                 read_launch, reading_room, shown)
+from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
+                                                 Loaded, Resolved, Started, launch_files,
+                                                 launch_index, launch_tests, read_launch,
+                                                 reading_room, shown)
 from urdftool.description.packages import packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -429,6 +430,8 @@ def builds(path: str) -> list[Build]:
                      else _as_given(value, packages) for name, value in described.args.items()}
             free = frozenset().union(*(value.free for value in described.args.values()))
             words = list(described.when.words) if not described.when.certain else []
+            if described.by_default:  # its includes' and its own, said once
+                words = [described.by_default] + [w for w in words if not w.startswith(BY_DEFAULT)]
             if described.when.truth is None and not words:
                 words = ["under a condition urdftool cannot tell"]
             (by_default if described.by_default else found).append(Build(
@@ -720,7 +723,7 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     if certain:
         return "certain", f"{certain[0].named} gives MoveIt this SRDF with the robot as checked"
     for configuration, relation in loads:
-        if relation.startswith(f"{AS_CHECKED} when launched with "):
+        if relation.startswith(f"{AS_CHECKED} {BY_DEFAULT}"):
             return "by default", (f"{configuration.named} gives MoveIt this SRDF with the robot "
                                   f"{relation}")
     configuration, relation = loads[0]
