@@ -173,6 +173,23 @@ def generate_launch_description():
     assert package.parts == ("kuka_", ("arg", "family", None), "_moveit_config")
 
 
+def test_a_description_a_let_holds_is_read_where_a_param_takes_it(tmp_path):
+    # ros2_control_demos' example 17, gz_ros2_control's mimic joint demos, Kassow's bringup
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/urdf/r.urdf.xacro": "<robot name='r'/>",
+                            "p/launch/a.launch.xml": """<launch>
+      <let name="robot_description" value="$(command '$(find-exec xacro) $(find-pkg-share p)/urdf/r.urdf.xacro a:=1')"/>
+      <node pkg="robot_state_publisher" exec="robot_state_publisher">
+        <param name="robot_description" value="$(var robot_description)"/>
+      </node>
+      <node pkg="x" exec="y"><param name="robot_description" value="$(var other)"/></node>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    [described] = configuration.described
+    assert described.path == root / "p/urdf/r.urdf.xacro" and described.xacro
+    assert described.args["a"].text == "1"
+    assert substituted("$(find-exec xacro) x").parts == ("xacro x",)
+
+
 def test_configurations_resolve_includes_arguments_and_installed_share_paths(tmp_path):
     root = _repo(tmp_path, {
         "p/package.xml": PACKAGE.format("p"),
