@@ -202,15 +202,18 @@ def non_positive_dimension(robot):
                               "be positive")
 
 
-def _origin_fields(robot):
+def _origin_fields(robot, sound: set):
     """(link, holder, element, attribute, its text) of every origin ``xyz``/``rpy`` and mesh
-    ``scale`` written in a visual, collision or inertial."""
+    ``scale`` written in a visual, collision or inertial, but those whose text is in ``sound``
+    as each is read (texts found sound already, which the caller adds to: values repeat, and
+    a large robot's 60,000 need not each be handed over)."""
     for link, holder, _, origins, shape, kind in _parts(robot):
         for origin in origins:
             for attribute in ("xyz", "rpy"):
-                if (text := origin.get(attribute)) is not None:
+                text = origin.get(attribute)
+                if text is not None and text not in sound:
                     yield link, holder, origin, attribute, text
-        if kind == "mesh" and (text := shape.get("scale")) is not None:
+        if kind == "mesh" and (text := shape.get("scale")) is not None and text not in sound:
             yield link, holder, shape, "scale", text
 
 
@@ -224,9 +227,7 @@ def malformed_link_number(robot):
     Good: ``<origin xyz="0 0.1 0"/>``, ``<mesh filename="a.stl" scale="0.001 0.001 0.001"/>``
     """
     sound: set = set()  # texts found to be three finite numbers (values repeat)
-    for link, holder, element, attribute, text in _origin_fields(robot):
-        if text in sound:
-            continue
+    for link, holder, element, attribute, text in _origin_fields(robot, sound):
         values, problem = number_tuple(text, 3)
         if problem is None and not finite(values):
             problem = f"'{text}' is not finite"

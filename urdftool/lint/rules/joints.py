@@ -232,6 +232,21 @@ def _texts(robot) -> dict:
     return _numbers(robot)[0]
 
 
+def origin_xyz(robot, joint) -> tuple[float, float, float]:
+    """The xyz of ``joint``'s first ``<origin>`` as :func:`~urdftool.description.values.
+    origin_pose` reads it (zeros without one, or for a malformed text), from its text as read
+    once per robot (:func:`_texts`): the inertia rules compare it with each link's centre of
+    mass (10,000 joints read again)."""
+    origin = robot.child(joint, "origin")
+    if origin is None:
+        return _ZEROS
+    text = _texts(robot)[origin][0]  # (its xyz)
+    return number_tuple("0 0 0" if text is None else text, 3)[0] or _ZEROS
+
+
+_ZEROS = (0.0, 0.0, 0.0)
+
+
 def _numbers(robot) -> tuple[dict, list]:
     """(:func:`_texts`, :func:`_numeric_problems`), read and judged in one pass over the
     joints, once per robot."""
