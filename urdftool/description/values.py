@@ -132,5 +132,12 @@ def origin_pose(element, found=_UNREAD) -> tuple[tuple[float, float, float],
         number_tuple(get("rpy", "0 0 0"), 3)[0] or _ZEROS
 
 
+def pose_of(xyz: str = "0 0 0", rpy: str = "0 0 0") -> tuple[tuple[float, float, float],
+                                                            tuple[float, float, float]]:
+    """:func:`origin_pose` of an ``<origin>`` whose ``xyz`` and ``rpy`` texts were read (their
+    defaults: none written, or no ``<origin>``), for a caller that keeps the texts."""
+    return number_tuple(xyz, 3)[0] or _ZEROS, number_tuple(rpy, 3)[0] or _ZEROS
+
+
 _ZEROS = (0.0, 0.0, 0.0)
 _NO_ORIGIN = Origin()

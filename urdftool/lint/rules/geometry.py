@@ -140,19 +140,22 @@ def geometry_attribute(robot):
     Bad: ``<box size="0.1 0.2"/>``, ``<cylinder radius="0.05"/>``, ``<mesh/>``
     Good: ``<box size="0.1 0.2 0.3"/>``, ``<cylinder radius="0.05" length="0.2"/>``
     """
+    sound: set = set()  # (count, text) found to be that many finite numbers (values repeat)
     for link, holder, shape, kind in _shapes(robot):
         for attribute, count in SHAPE_ATTRIBUTES[kind]:
             text = shape.get(attribute)
             if text is None or (count is None and not text.strip()):
                 yield shape, f"{_shape_prefix(link, shape)} has no {attribute} attribute"
                 continue
-            if count is None:
+            if count is None or (count, text) in sound:
                 continue
             values, problem = number_tuple(text, count)
             if problem:
                 yield shape, f"{_shape_prefix(link, shape)} {attribute}: {problem}"
             elif not finite(values):
                 yield shape, f"{_shape_prefix(link, shape)} {attribute}=\"{text}\" is not finite"
+            else:
+                sound.add((count, text))
 
 
 def _shape_prefix(link, shape) -> str:
@@ -185,7 +188,7 @@ def non_positive_dimension(robot):
         if kind == "mesh" and shape.get("scale") is not None:
             fields = (("scale", 3),)
         texts = [(attribute, count, shape.get(attribute)) for attribute, count in fields]
-        if all(text in positive for text in texts):
+        if positive.issuperset(texts):
             continue
         numbers = [number_tuple(text, count)[0] for _, count, text in texts]
         if all(values and all(v > 0 for v in values) for values in numbers):
