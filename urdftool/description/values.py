@@ -43,9 +43,21 @@ def number_tuple(text: str | None, count: int | None = None):
     parts = text.split()
     if count is not None and len(parts) != count:
         return None, f"expected {count} numbers, found {len(parts)} in '{text}'"
+    if not text.strip(_PLAIN):  # ASCII digits, signs, points, exponents and spaces only
+        try:  # (float reads such a part exactly when it is _DECIMAL: no regular expression
+            return tuple(map(float, parts)), None  # for the 10,000 origins of a large robot)
+        except ValueError:
+            return _part_by_part(text, parts)
     if _DECIMALS.fullmatch(text):  # every part decimal, as nearly all are: one match for all
         return tuple(map(float, parts)), None
     return _part_by_part(text, parts)
+
+
+# The characters of a text of plain decimals (white space as str.split and re's \s read it,
+# ASCII's): strip() of them leaves nothing of such a text. Over these characters, float()
+# takes a part exactly when _DECIMAL matches it (no underscore, letter of inf or nan, nor
+# digit of another script: those texts are matched as before)
+_PLAIN = "0123456789+-.eE \t\n\r\f\v"
 
 
 def _part_by_part(text: str, parts: list[str]):
@@ -118,6 +130,13 @@ def origin_pose(element, found=_UNREAD) -> tuple[tuple[float, float, float],
     get = found.get
     return number_tuple(get("xyz", "0 0 0"), 3)[0] or _ZEROS, \
         number_tuple(get("rpy", "0 0 0"), 3)[0] or _ZEROS
+
+
+def pose_of(xyz: str = "0 0 0", rpy: str = "0 0 0") -> tuple[tuple[float, float, float],
+                                                            tuple[float, float, float]]:
+    """:func:`origin_pose` of an ``<origin>`` whose ``xyz`` and ``rpy`` texts were read (their
+    defaults: none written, or no ``<origin>``), for a caller that keeps the texts."""
+    return number_tuple(xyz, 3)[0] or _ZEROS, number_tuple(rpy, 3)[0] or _ZEROS
 
 
 _ZEROS = (0.0, 0.0, 0.0)

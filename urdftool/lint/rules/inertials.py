@@ -36,6 +36,7 @@ from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import link_reach
+from urdftool.lint.rules.joints import origin_xyz
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -869,7 +870,7 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     joint = parent_joints(robot).get(robot.names()[link] or "?")  # (_name, as read once)
     if joint is None:
         return None
-    xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
+    xyz = origin_xyz(robot, joint)  # origin_of(joint).xyz, from the joints' texts
     (cx, cy, cz), (x, y, z) = properties.com, xyz
     # the centre of mass first (most links: not the joint's; written out, 10,000 links),
     # then the joint's distance, then the written origin
