@@ -133,6 +133,12 @@ def _substitutions(text: str, depth: int) -> list:
 
 def _closing(text: str, index: int) -> int | None:
     """The index of the ``)`` closing a ``$(`` whose content starts at ``index``."""
+    close = text.find(")", index)
+    if close < 0:
+        return None
+    inner = text[index:close]
+    if "(" not in inner and "'" not in inner and '"' not in inner:  # (no nesting, no quote)
+        return close
     depth, quote = 1, None
     for position in range(index, len(text)):
         char = text[position]
@@ -178,6 +184,8 @@ def _substitution(inner: str, written: str, depth: int):
 
 def _words(text: str) -> list[str]:
     """Words split at spaces outside quotes, quotes removed."""
+    if "'" not in text and '"' not in text:
+        return text.split()  # (at what str.isspace says is a space, as below)
     words, current, quote = [], "", None
     for char in text:
         if quote:

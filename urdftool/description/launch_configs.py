@@ -232,6 +232,9 @@ def _walk(root: Path, depth: int, pattern: str = "*"):
         yield current, [name for name, kind in entries if kind == "file"]
 
 
+_SPACES = re.compile(r"\s+")  # (what str.isspace says is a space)
+
+
 def words(value: Value | None) -> list[Value]:
     """A command line or argument list value split into words at the spaces of its literal
     text outside quotes (quotes removed); a substitution belongs to the word it is written in."""
@@ -244,6 +247,17 @@ def words(value: Value | None) -> list[Value]:
                 current.append(piece)
                 piece = ""
             current.append(part)
+            continue
+        if quote is None and "'" not in part and '"' not in part:  # (as below, a run at a time)
+            at = 0
+            for space in _SPACES.finditer(part):
+                piece += part[at:space.start()]
+                if piece:
+                    current.append(piece)
+                if current or quoted:
+                    found.append(current or [""])
+                piece, current, quoted, at = "", [], False, space.end()
+            piece += part[at:]
             continue
         for char in part:
             if quote:

@@ -29,7 +29,6 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
-from ast import walk as syntax_nodes
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -124,10 +123,9 @@ class _Reader:
         order = [entry] if entry is not None else []
         # then the functions handed over rather than called (OpaqueFunction(function=f)): a
         # helper the others call is walked where it is called, with its arguments
-        called, handed = set(), set()
-        for node in syntax_nodes(self.tree):
-            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
-                called.add(node.func.id)
+        handed = set()
+        for node in _calls(self.tree):
+            if isinstance(node.func, ast.Name):
                 handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
                               if isinstance(a, ast.Name))
         order += [f for name, f in self.functions.items() if f is not entry and name in handed]
@@ -766,6 +764,22 @@ def _callee(node) -> str:
     if isinstance(node, ast.Attribute):
         return f"{_callee(node.value)}.{node.attr}"
     return ""
+
+
+def _calls(tree):
+    """The calls in ``tree``, every node looked at once, in no particular order (``ast``'s
+    walk, without its three generators a node)."""
+    pending, syntax, call = [tree], ast.AST, ast.Call
+    while pending:
+        node = pending.pop()
+        if isinstance(node, call):
+            yield node
+        for name in node._fields:
+            value = getattr(node, name, None)
+            if isinstance(value, list):
+                pending.extend([item for item in value if isinstance(item, syntax)])
+            elif isinstance(value, syntax):
+                pending.append(value)
 
 
 def _source(node) -> str:

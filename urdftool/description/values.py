@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import re
-from typing import NamedTuple
+from collections import namedtuple
 
 from urdftool.description.xml import first_child
 
@@ -89,21 +89,21 @@ def number(element, attribute: str, default: float | None = None):
 _UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)
 
 
-class Origin(NamedTuple):
+class Origin(namedtuple("Origin", ("xyz", "rpy", "problem", "element"),
+                        defaults=((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), None, None))):
     """An element's ``<origin>``: xyz in [m], rpy in [rad] (URDF roll-pitch-yaw).
 
     Identity when there is no ``<origin>``. A malformed ``xyz`` or ``rpy`` reads as zeros and sets
     ``problem`` (the first one), so each caller chooses: count it as 0, or refuse it.
+    xyz, rpy: 3-tuples of floats; problem: str or None
     element: the ``<origin>`` element, None when absent
 
     A named tuple, immutable: a third of a frozen dataclass's cost to make (a 10,000-link
-    robot's inertials and shapes read 30,000).
+    robot's inertials and shapes read 30,000). collections' (typing's NamedTuple would import
+    typing into every check).
     """
 
-    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    problem: str | None = None
-    element: object = None
+    __slots__ = ()
 
 
 def origin(element) -> Origin:

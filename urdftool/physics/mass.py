@@ -13,7 +13,7 @@ so ``urdftool check`` starts fast); :mod:`urdftool.physics.inertia` wraps it in 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections import namedtuple
 
 from urdftool.physics import mat3
 from urdftool.description.values import number_tuple, pose_of
@@ -23,15 +23,14 @@ from urdftool.numbers import length as vector_length, power
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-class Body(NamedTuple):
+class Body(namedtuple("Body", ("mass", "com", "inertia"))):
     """mass [kg], com [m] (3-tuple), inertia [kg m^2] (3x3 tuples) about the com, link axes.
 
     A named tuple, immutable: a half of a frozen dataclass's cost to make (the inertia rules
-    make 60,000 on a 10,000-link robot)."""
+    make 60,000 on a 10,000-link robot). collections' (typing's NamedTuple would import typing
+    into every check)."""
 
-    mass: float
-    com: mat3.Vector
-    inertia: mat3.Matrix
+    __slots__ = ()
 
     def principal_moments(self) -> mat3.Vector:
         """Eigenvalues of the tensor, ascending."""

@@ -328,9 +328,12 @@ def _mesh_outcomes(robot):
 
 
 def _load_meshes(robot):
+    elements = list(_mesh_elements(robot))
+    if not elements:
+        return  # (a robot of primitives: the mesh readers are not imported)
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
-    for link, holder, shape in _mesh_elements(robot):
+    for link, holder, shape in elements:
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         if not scale or not finite(scale):
             continue
@@ -585,9 +588,12 @@ def mesh_not_well_formed(robot):
     Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value)
     Good: ``<node id="STL_BINARY">``, or the file exported again
     """
+    outcomes = _mesh_outcomes(robot)
+    if not outcomes:
+        return  # (no mesh: the mesh readers are not imported)
     from urdftool.description.meshes import NOT_WELL_FORMED
 
-    for link, holder, shape, outcome in _mesh_outcomes(robot):
+    for link, holder, shape, outcome in outcomes:
         why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
         if why:
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
