@@ -111,15 +111,19 @@ def entry_id(entry) -> str:
 
 @pytest.fixture(scope="session")
 def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
-    """Every corpus entry point checked once per session, as ``urdftool check`` checks it, with
-    the loaded robot kept: ``{entry_id: (entry, FileResult)}``. The integration modules that
-    need the corpus robots or their findings read them here instead of loading them again."""
+    """Every corpus entry point checked once per session, as ``urdftool check`` checks it (one
+    run: the corpus repository's launch files, packages and settings looked up once, not once
+    per robot), with the loaded robot kept: ``{entry_id: (entry, FileResult)}``. The
+    integration modules that need the corpus robots or their findings read them here instead
+    of loading them again."""
+    from urdftool.description.run_memo import one_run
     from urdftool.lint.engine import CheckOptions, load_and_check
 
     corpus_or_skip()
-    return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
-                                                CheckOptions(xacro_args=entry[1])))
-            for entry in corpus_entry_points()}
+    with one_run():
+        return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
+                                                    CheckOptions(xacro_args=entry[1])))
+                for entry in corpus_entry_points()}
 
 
 def without_heavy_imports(code: str) -> str:
@@ -268,6 +272,26 @@ def expected_severities(case: Path) -> dict[tuple[str, int, str], str]:
 
 
 CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
+
+
+# The case files are checked as ``urdftool check tests/cases/...`` checks them: in one run, whose
+# view of the file system (the repository's launch index, packages and settings) is made once,
+# not once per case (two thirds of a case's check).
+_CASES_RUN: dict = {}
+
+
+@functools.cache
+def case_result(case: Path, targets: tuple[str, ...] = ()):
+    """The FileResult of checking ``case``'s robot (with the portability ``targets``), once per
+    test process: tests/lint/test_cases.py and tests/integration/test_parity.py read the
+    same check. Do not change it."""
+    from urdftool.description.run_memo import one_run
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.lint.options import Selection
+
+    with one_run(_CASES_RUN):
+        return load_and_check(str(case_robot(case)),
+                              CheckOptions(selection=Selection(targets=targets)))
 
 
 def case_targets(case: Path) -> tuple[str, ...]:
