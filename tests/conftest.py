@@ -303,12 +303,37 @@ def case_targets(case: Path) -> tuple[str, ...]:
     return (target,) if target else ()
 
 
+def in_corpus_group(nodeid: str) -> bool:
+    """Whether the test ``nodeid`` runs in the worker that checks the corpus (``corpus_run``):
+    its module or its name says corpus."""
+    return "corpus" in nodeid.partition("[")[0]
+
+
 def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
-    skips it). The tests that read the corpus run share one xdist worker (``make test`` runs
-    ``--dist loadgroup``), so the corpus is checked once per session, not once per worker."""
+    skips it). A test that reads the corpus run says so in its module or name (it must: the
+    corpus group is found by the node ID, see pytest_xdist_make_scheduler)."""
     for item in items:
         if "integration" in item.path.relative_to(ROOT).parts[:2]:
             item.add_marker(pytest.mark.integration)
-        if "corpus_run" in getattr(item, "fixturenames", ()):
-            item.add_marker(pytest.mark.xdist_group("corpus"))
+        if "corpus_run" in getattr(item, "fixturenames", ()) and not in_corpus_group(item.nodeid):
+            raise pytest.UsageError(f"{item.nodeid} reads corpus_run: name its module or test "
+                                    "for the corpus (tests/conftest.py, in_corpus_group)")
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadgroup`` (``make test``) with the tests of the corpus in one group, run by
+    one worker: the corpus is checked once per session (corpus_run, 6-8 s of CPU), not once
+    per worker. The group is read from the node ID here, where xdist reads it; an
+    ``xdist_group`` mark added at collection is lost under pytest 9.2, whose node IDs xdist
+    can no longer rename (pytest-xdist#1386)."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class CorpusGroup(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return "corpus" if in_corpus_group(nodeid) else super()._split_scope(nodeid)
+
+    return CorpusGroup(config, log)
