@@ -111,15 +111,19 @@ def entry_id(entry) -> str:
 
 @pytest.fixture(scope="session")
 def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
-    """Every corpus entry point checked once per session, as ``urdftool check`` checks it, with
-    the loaded robot kept: ``{entry_id: (entry, FileResult)}``. The integration modules that
-    need the corpus robots or their findings read them here instead of loading them again."""
+    """Every corpus entry point checked once per session, as ``urdftool check`` checks it (one
+    run: the corpus repository's launch files, packages and settings looked up once, not once
+    per robot), with the loaded robot kept: ``{entry_id: (entry, FileResult)}``. The
+    integration modules that need the corpus robots or their findings read them here instead
+    of loading them again."""
+    from urdftool.description.run_memo import one_run
     from urdftool.lint.engine import CheckOptions, load_and_check
 
     corpus_or_skip()
-    return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
-                                                CheckOptions(xacro_args=entry[1])))
-            for entry in corpus_entry_points()}
+    with one_run():
+        return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
+                                                    CheckOptions(xacro_args=entry[1])))
+                for entry in corpus_entry_points()}
 
 
 def without_heavy_imports(code: str) -> str:
@@ -270,6 +274,26 @@ def expected_severities(case: Path) -> dict[tuple[str, int, str], str]:
 CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
 
 
+# The case files are checked as ``urdftool check tests/cases/...`` checks them: in one run, whose
+# view of the file system (the repository's launch index, packages and settings) is made once,
+# not once per case (two thirds of a case's check).
+_CASES_RUN: dict = {}
+
+
+@functools.cache
+def case_result(case: Path, targets: tuple[str, ...] = ()):
+    """The FileResult of checking ``case``'s robot (with the portability ``targets``), once per
+    test process: tests/lint/test_cases.py and tests/integration/test_parity.py read the
+    same check. Do not change it."""
+    from urdftool.description.run_memo import one_run
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.lint.options import Selection
+
+    with one_run(_CASES_RUN):
+        return load_and_check(str(case_robot(case)),
+                              CheckOptions(selection=Selection(targets=targets)))
+
+
 def case_targets(case: Path) -> tuple[str, ...]:
     """The ``--target`` a case is checked with: its code's own (a portability rule runs only for
     its target), none for the others."""
@@ -279,12 +303,37 @@ def case_targets(case: Path) -> tuple[str, ...]:
     return (target,) if target else ()
 
 
+def in_corpus_group(nodeid: str) -> bool:
+    """Whether the test ``nodeid`` runs in the worker that checks the corpus (``corpus_run``):
+    its module or its name says corpus."""
+    return "corpus" in nodeid.partition("[")[0]
+
+
 def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
-    skips it). The tests that read the corpus run share one xdist worker (``make test`` runs
-    ``--dist loadgroup``), so the corpus is checked once per session, not once per worker."""
+    skips it). A test that reads the corpus run says so in its module or name (it must: the
+    corpus group is found by the node ID, see pytest_xdist_make_scheduler)."""
     for item in items:
         if "integration" in item.path.relative_to(ROOT).parts[:2]:
             item.add_marker(pytest.mark.integration)
-        if "corpus_run" in getattr(item, "fixturenames", ()):
-            item.add_marker(pytest.mark.xdist_group("corpus"))
+        if "corpus_run" in getattr(item, "fixturenames", ()) and not in_corpus_group(item.nodeid):
+            raise pytest.UsageError(f"{item.nodeid} reads corpus_run: name its module or test "
+                                    "for the corpus (tests/conftest.py, in_corpus_group)")
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadgroup`` (``make test``) with the tests of the corpus in one group, run by
+    one worker: the corpus is checked once per session (corpus_run, 6-8 s of CPU), not once
+    per worker. The group is read from the node ID here, where xdist reads it; an
+    ``xdist_group`` mark added at collection is lost under pytest 9.2, whose node IDs xdist
+    can no longer rename (pytest-xdist#1386)."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class CorpusGroup(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return "corpus" if in_corpus_group(nodeid) else super()._split_scope(nodeid)
+
+    return CorpusGroup(config, log)

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 from conftest import CASES, CHECK_URDF, CORPUS, check_urdf, corpus_entry_points
-from conftest import CASE_PATHS, case_robot
-from urdftool.lint.engine import URDFDOM_REFUSES, CheckOptions, load_and_check
+from conftest import CASE_PATHS, case_result, case_robot
+from urdftool.lint.engine import URDFDOM_REFUSES
 
 pytestmark = pytest.mark.skipif(CHECK_URDF is None, reason="urdfdom's check_urdf is not installed (the pin wheel of the analysis extra has it)")
 
@@ -77,7 +77,7 @@ def test_parity_fails_either_way():
 def test_parity_on_case_files(case, tmp_path):
     """check_urdf reads the file itself, or urdftool's expansion of a xacro."""
     robot_file = case_robot(case)
-    result = load_and_check(str(robot_file), CheckOptions())
+    result = case_result(case)
     urdf = robot_file
     if robot_file.name.endswith(".xacro"):
         if result.robot is None:
@@ -102,21 +102,26 @@ def test_parity_on_corpus_urdfs(relative, corpus_run):
 IN_PROCESS = ("--timeout", "0", "--max-memory", "0")
 
 
-@pytest.mark.parametrize("path", [CORPUS / p for p in CORPUS_URDFS] + sorted(CASES.glob("U*.urdf")),
-                         ids=lambda p: p.name)
-def test_tree_matches_check_urdf(path, run_cli, request):
-    """`urdftool tree` prints what check_urdf prints, and fails, located, where it fails."""
+@pytest.mark.parametrize("relative", CORPUS_URDFS)
+def test_tree_matches_check_urdf_on_corpus_urdfs(relative, run_cli, corpus_run):
+    assert_tree_matches(CORPUS / relative, run_cli, lambda: corpus_run[relative][1].robot)
+
+
+@pytest.mark.parametrize("path", sorted(CASES.glob("U*.urdf")), ids=lambda p: p.name)
+def test_tree_matches_check_urdf_on_case_files(path, run_cli):
+    assert_tree_matches(path, run_cli, lambda: case_result(path).robot)
+
+
+def assert_tree_matches(path, run_cli, robot) -> None:
+    """`urdftool tree` prints what check_urdf prints, and fails, located, where it fails;
+    ``robot()``: urdftool's loaded robot of ``path`` (None where it refuses to load it)."""
     reference = check_urdf(path)
     if reference.returncode != 0:
         result = run_cli("tree", *IN_PROCESS, path)
         assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
         assert f"{path.name}:" in result.stderr and " error U" in result.stderr, result.output
         return
-    if path.is_relative_to(CORPUS):
-        robot = request.getfixturevalue("corpus_run")[str(path.relative_to(CORPUS))][1].robot
-    else:
-        robot = load_and_check(str(path), CheckOptions()).robot
-    if robot is None:
+    if robot() is None:
         pytest.skip("urdftool refuses to load it (e.g. entity declarations, U009)")
     result = run_cli("tree", *IN_PROCESS, path)
     assert result.exit_code == 0, result.output

@@ -17,15 +17,12 @@ from pathlib import Path
 
 import pytest
 
-from conftest import CASE_PATHS, case_robot, case_targets, expected_marks, expected_severities
-from urdftool.lint.engine import CheckOptions, load_and_check
-from urdftool.lint.options import Selection
+from conftest import CASE_PATHS, case_result, case_targets, expected_marks, expected_severities
 from urdftool.lint.rules import CATALOGUE
 
 @pytest.mark.parametrize("case", CASE_PATHS, ids=[p.name for p in CASE_PATHS])
 def test_case_findings_match_marks(case):
-    options = CheckOptions(selection=Selection(targets=case_targets(case)))
-    result = load_and_check(str(case_robot(case)), options)
+    result = case_result(case, case_targets(case))
     found = {(Path(f.file).name, f.line, f.code) for f in result.findings}
     assert found == expected_marks(case), "\n".join(
         f"{f.location}: {f.code} {f.message}" for f in result.findings)
