@@ -104,10 +104,10 @@ def map_blas_buffers() -> None:
     """Have OpenBLAS map its buffers now: at numpy's import (~70 MiB of address space) and at
     its first product of 128 x 128 or more (32 MiB). Refused under a memory cap, OpenBLAS ends
     the process (exit code 1, "Memory allocation still failed"), a worker's death no piece can
-    be told apart by (U900, "internal error"). :func:`limit_memory` calls it before it sets the
+    be told apart by (an "internal error"). :func:`limit_memory` calls it before it sets the
     cap where numpy is imported already (the product only: 0.3 ms) or the budget is small
-    (numpy imported first): what does not fit then is Python's MemoryError, U018 with its
-    budget. A process forked after it keeps the buffers."""
+    (numpy imported first): what does not fit then is Python's MemoryError, reported as out
+    of memory with its budget. A process forked after it keeps the buffers."""
     import numpy
 
     numpy.ones((128, 128)) @ numpy.ones((128, 128))

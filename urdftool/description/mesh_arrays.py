@@ -604,7 +604,7 @@ def inner_tetrahedron_volume(vertices) -> float:
     """A lower bound of the volume of the convex hull of ``vertices`` [m^3] (0 when flat)
     cheaper than :func:`inner_volume`: the first tetrahedron :func:`_small_hull_volume` grows
     its hull from (four of the :func:`cube_extremes`, far apart: inside the hull), shaved as
-    that one is. On the corpus it alone shows 111 of the 115 open meshes U311 asks of light
+    that one is. On the corpus it alone shows 111 of the 115 open meshes the density rule asks of light
     enough, for a twentieth of the small hull's Python."""
     return _shaved(_first_tetrahedron_volume, vertices)
 
