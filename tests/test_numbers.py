@@ -32,6 +32,10 @@ PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
     (1e-17, {}, "1e-17"),  # alone, a number is its own scale
     (float("nan"), {}, "nan"),
     (float("-inf"), {}, "-inf"),
+    (22590.4, {"places": 0, "grouped": True}, "22,590"),
+    (1e100, {"places": 0, "grouped": True}, "1e+100"),  # not a hundred digits a float lacks
+    (-2.5e15, {"places": 3}, "-2.5e+15"),
+    (999999999999999.0, {"places": 0}, "999999999999999"),
 ])
 def test_number(value, kwargs, text):
     assert number(value, **kwargs) == text
@@ -45,7 +49,7 @@ def test_fixed_texts_are_number_with_places(places):
     import numpy as np
 
     values = [-1e-9, -0.0, 0.0, -0.4, -0.5, 0.5, 2.5, 2.0 ** -7, -(2.0 ** -7), 1.0000005,
-              -4e-4, 1e300, -1e300, 5e-324, float("nan"), float("inf"), float("-inf")]
+              -4e-4, 1e300, -1e300, 1e15, -1e15, 999999999999999.9, 5e-324, float("nan"), float("inf"), float("-inf")]
     values += np.random.default_rng(places).uniform(-4, 4, 2000).tolist()
     assert fixed_texts(values, places) == [number(v, places=places) for v in values]
 

@@ -12,6 +12,8 @@ every element.
 from __future__ import annotations
 
 import os
+import sys
+import time
 from dataclasses import dataclass
 
 from urdftool.errors import UsageError
@@ -22,6 +24,7 @@ from urdftool.guardian import SLOT_SIZE as _SLOT_SIZE  # (the slot of the guardi
 
 DEFAULT_TIMEOUT = 60.0  # [s] per file
 DEFAULT_MEMORY = 2 * 1024 ** 3  # [bytes] of address space per worker process
+SMALL_BUDGET = 512 * 1024 ** 2  # [bytes] below which numpy is imported before the cap is set
 # numpy's OpenBLAS starts a thread per core and reserves address space for each (some 80 MiB):
 # on a 64-core CI runner that alone is over 5 GiB. The matrices here are 4x4.
 _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
@@ -87,6 +90,8 @@ def limit_memory(size: int | None) -> None:
     one_blas_thread()
     if size is None:
         return
+    if size < SMALL_BUDGET or "numpy" in sys.modules:
+        map_blas_buffers()
     import resource
 
     _, hard = resource.getrlimit(resource.RLIMIT_AS)
@@ -94,6 +99,18 @@ def limit_memory(size: int | None) -> None:
         size = min(size, hard)
     resource.setrlimit(resource.RLIMIT_AS, (size, hard))
 
+
+def map_blas_buffers() -> None:
+    """Have OpenBLAS map its buffers now: at numpy's import (~70 MiB of address space) and at
+    its first product of 128 x 128 or more (32 MiB). Refused under a memory cap, OpenBLAS ends
+    the process (exit code 1, "Memory allocation still failed"), a worker's death no piece can
+    be told apart by (U900, "internal error"). :func:`limit_memory` calls it before it sets the
+    cap where numpy is imported already (the product only: 0.3 ms) or the budget is small
+    (numpy imported first): what does not fit then is Python's MemoryError, U018 with its
+    budget. A process forked after it keeps the buffers."""
+    import numpy
+
+    numpy.ones((128, 128)) @ numpy.ones((128, 128))
 
 def grown(size: int | None) -> bool:
     """Whether this process's address space has grown past half of ``size`` bytes, its memory
@@ -118,22 +135,37 @@ def address_space() -> int | None:
 LOADAVG = "/proc/loadavg"  # (Linux) the load averages, then running/total scheduling entities
 
 
-def busy_cores() -> float:
-    """How many cores other work keeps busy: the load average of the last minute, or, when
-    more, the threads of other processes ready to run at this very moment (Linux's
-    ``/proc/loadavg``, this process's own running one not counted). The average trails by a
-    minute: a build or a test run that started seconds ago leaves it low while it takes a
-    core (a second worker then shares a core with it and the check ends later than with one)."""
+def busy_cores(looks: int = 6, gap: float = 0.004) -> float:
+    """How many cores other work keeps busy now: the threads of other processes ready to run
+    (Linux's ``/proc/loadavg``, this process's own running one not counted), the most of a few
+    looks. The 1-minute load average trails both ways: a build started seconds ago leaves it
+    low while it takes a core (counted now, it is seen), and a run that ended seconds ago (the
+    user's previous check, a benchmark's previous round) leaves it high while the cores are
+    idle (one worker then did the work of two, issue 34). So the average only decides how hard
+    to look: when it says more than the first look finds, ``looks`` looks ``gap`` seconds apart
+    (about 20 ms) catch work that runs in bursts; where nothing can be read, the average."""
+    running = _running_now()
     try:
         average = os.getloadavg()[0]
     except (AttributeError, OSError):
         average = 0.0
+    if running is None:
+        return average
+    for _ in range(looks - 1):
+        if average - running < 0.5:  # (the two round to the same number of idle cores)
+            break
+        time.sleep(gap)
+        running = max(running, _running_now() or 0)
+    return float(running)
+
+
+def _running_now() -> int | None:
+    """The threads ready to run at this moment, less this process's running one."""
     try:
         with open(LOADAVG, "rb") as handle:
-            running = int(handle.read().split()[3].split(b"/")[0]) - 1
+            return int(handle.read().split()[3].split(b"/")[0]) - 1
     except (OSError, ValueError, IndexError):
-        running = 0
-    return max(average, running)
+        return None
 
 
 def one_blas_thread() -> None:

@@ -36,6 +36,8 @@ def guarded():
     if not hasattr(os, "fork"):
         return None
     import mmap
+    import select  # noqa: F401  (the guardian's wait: loaded after the fork, the loader's and the
+    # import system's writes copied some 140 pages the guardian shares with its child)
 
     slot = mmap.mmap(-1, SLOT_SIZE)  # (budget.share_slot's, made before budget is imported)
     read, write = os.pipe()

@@ -72,10 +72,12 @@ def collect(workload) -> tuple[dict, dict]:
 
 def check_robots() -> None:
     """``urdftool check robots/`` in this process (in one process, without the cache), its
-    report thrown away."""
+    report thrown away; the mesh readers imported first (a check imports them for a robot
+    with meshes, and the robots of ``robots/`` have none)."""
     import contextlib
     import io
 
+    import urdftool.description.meshes  # noqa: F401
     from urdftool import cli
 
     words = ["check", "--no-cache", "--jobs", "1", "--timeout", "0", "--max-memory", "0",

@@ -71,10 +71,15 @@ def number(value: float, digits: int = 4, *, places: int | None = None,
         itself); e.g. ``number(2e-14, 4, scale=0.19)`` is ``0``
     plus: write ``+`` before a positive value (a change), never before zero
     grouped: with ``places``, thousands separated by commas (``22,590``)
+
+    A value of 1e15 or more is written with ``digits`` significant digits even with ``places``:
+    a float holds no more, and a density of 1e100 would otherwise print a hundred digits.
     """
     value = float(value)
     if not math.isfinite(value):
         return ("+" if plus and value > 0 else "") + repr(value)
+    if places is not None and abs(value) >= 1e15:  # past float's integers: its digits are noise
+        places = None
     if places is not None:
         value = round(value, places)
         text = f"{value:,.{places}f}" if grouped else f"{value:.{places}f}"
@@ -97,11 +102,12 @@ def fixed_texts(values: Iterable[float], places: int = 6) -> list[str]:
     the cost, for tables of hundreds of thousands of numbers (``fk --q-file``): Python's
     ``round(v, places)`` and the ``f`` format both round the float's exact value to the nearest
     decimal (ties to even), so formatting alone gives the same digits; what rounds to zero
-    loses its sign, as in :func:`number`; a value that is not finite is written as ``repr``
-    writes it, as there."""
+    loses its sign, as in :func:`number`; a value that is not finite, or of 1e15 or more, is
+    written as there."""
     form = f"%.{places}f"
     negative_zero, zero = form % -0.0, form % 0.0
-    texts = [form % value for value in values]
+    texts = [form % value if -1e15 < value < 1e15 else number(value, places=places)
+             for value in values]  # (past 1e15, and not finite: as number writes them)
     return [zero if text == negative_zero else text for text in texts]
 
 

@@ -41,11 +41,18 @@ class Terminal:
         self.echo(lines(block, keep), err=err, nl=nl)
 
     @staticmethod
-    def document(data: str) -> None:
+    def document(data: str, xml: bool = False) -> None:
         """Write a document to standard output exactly as a report function made it for a
         terminal or a log (JSON, a report format, ``urdftool xacro``'s XML): its own kind's
-        escaping is done (urdftool.report.escape), :meth:`say`'s would change its data."""
-        sys.stdout.write(data)
+        escaping is done (urdftool.report.escape), :meth:`say`'s would change its data.
+        ``xml``: what the stream's encoding cannot hold becomes character references
+        (:func:`urdftool.report.escape.write_xml`)."""
+        if xml:
+            from urdftool.report.escape import write_xml
+
+            write_xml(sys.stdout, data)
+        else:
+            sys.stdout.write(data)
 
     def fail_usage(self, error: UsageError) -> None:
         self.say(f"urdftool: error: {error}", err=True)

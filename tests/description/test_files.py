@@ -312,3 +312,36 @@ def test_a_path_that_cannot_be_reached_is_not_said_missing(tmp_path, monkeypatch
     assert files.unreachable(robot) == "cannot be reached: permission denied"
     result = run_cli("check", robot)
     assert result.exit_code == 2 and "cannot be reached: permission denied" in result.stderr
+
+
+def test_walk_depth_first_or_breadth_first_and_bounded(tmp_path):
+    """walk lists each folder once, in sorted order depth first, or level by level (the
+    package scan's order: the shallower of two packages of one name wins), at most ``most``
+    folders; a hidden folder, one in ``skip`` or one past ``depth`` is not entered; a link
+    (here to a folder) is listed, never entered; each listing is recorded."""
+    from urdftool.description.record import SEARCH, recording
+
+    for name in ("a/x/deep", "b/y", "c", ".hidden/h", "skipped/s"):
+        (tmp_path / name).mkdir(parents=True)
+    (tmp_path / "a" / "x" / "f.txt").write_text("")
+    (tmp_path / "link").symlink_to(tmp_path / "b")
+
+    def order(**options):
+        with recording() as record:
+            found = [(os.path.relpath(folder, tmp_path), entries) for folder, entries in
+                     files.walk(tmp_path, "*/|*.txt", options.pop("depth", 9), {"skipped"},
+                                **options)]
+        listed = [os.path.relpath(key[0], tmp_path) for kind, key in record.entries
+                  if kind == SEARCH]
+        assert listed == [folder for folder, _ in found]
+        return found
+
+    depth_first = order()
+    assert [folder for folder, _ in depth_first] == [".", "a", "a/x", "a/x/deep", "b", "b/y",
+                                                     "c"]
+    assert dict(depth_first)["a/x"] == [("deep", "folder"), ("f.txt", "file")]
+    assert ("link", "link") in dict(depth_first)["."]
+    assert [folder for folder, _ in order(breadth_first=True)] == [
+        ".", "a", "b", "c", "a/x", "b/y", "a/x/deep"]
+    assert [folder for folder, _ in order(breadth_first=True, most=4)] == [".", "a", "b", "c"]
+    assert [folder for folder, _ in order(breadth_first=True, depth=2)] == [".", "a", "b", "c"]

@@ -28,8 +28,11 @@ def test_substitutions_of_both_ros_versions_and_nested_ones():
     value = substituted("$(find pkg)/config/$(arg robot)_$(var side).yaml")
     assert value.parts == (("find", "pkg"), "/config/", ("arg", "robot", None), "_",
                            ("arg", "side", None), ".yaml")
-    nested = substituted("$(find-pkg-share $(var package))/x")
-    assert nested.parts[0][0] == "unknown"  # a package named by an argument is not guessed
+    nested = substituted("$(find-pkg-share $(var package))/x")  # an argument names the package
+    assert nested.parts == (("find", substituted("$(var package)")), "/x")
+    assert nested.names() == {"package"}
+    assert substituted("$(find ur_$(arg model)_description)").parts[0][1].names() == {"model"}
+    assert substituted("$(find $(arg a) b)/x").parts[0][0] == "unknown"  # two words
     assert substituted("$(eval 1 + 2)").parts == (("unknown", "$(eval 1 + 2)"),)
     command = substituted("$(command 'xacro $(find-pkg-share d)/r.urdf.xacro a:=$(var a)')")
     assert command.parts[0][0] == "command" and command.parts[0][1].names() == {"a"}
@@ -141,6 +144,50 @@ def test_ros2_python_by_its_syntax_tree(tmp_path):
     node = next(s for s in starts if s.executable.literal == "ros2_control_node")
     assert isinstance(node.files[0], ParamFile) and node.files[0].path.parts[0] == ("find", "p")
     assert [a for a in read.actions if isinstance(a, Include)][0].args[0][0] == "x"
+
+
+def test_a_package_a_launch_argument_names_is_read_in_each_python_form(tmp_path):
+    root = _repo(tmp_path, {"p/launch/a.launch.py": '''
+from ament_index_python.packages import get_package_share_directory
+from launch_ros.substitutions import FindPackageShare
+from moveit_configs_utils import MoveItConfigsBuilder
+
+def launch_setup(context):
+    share = get_package_share_directory(context.launch_configurations["moveit_package"])
+    family = LaunchConfiguration("family").perform(context)
+    MoveItConfigsBuilder(f"kuka_{family}").robot_description(file_path="urdf/r.urdf.xacro")
+    return [Node(package="x", executable="y", parameters=[
+        PathJoinSubstitution([FindPackageShare(LaunchConfiguration("config_package")), "c.yaml"]),
+        share + "/d.yaml", get_package_share_directory(compute()) + "/e.yaml"])]
+
+def generate_launch_description():
+    return LaunchDescription([OpaqueFunction(function=launch_setup)])
+'''})
+    read = read_launch(root / "p/launch/a.launch.py")
+    [start] = [a for a in read.actions if isinstance(a, Start)]
+    assert [f.path.parts[0][0] for f in start.files] == ["find", "find", "unknown"]  # compute()
+    assert [f.path.parts[0][1].names() for f in start.files[:2]] == [{"config_package"},
+                                                                   {"moveit_package"}]
+    [described] = [a for a in read.actions if isinstance(a, Description)]
+    package = described.file.parts[0][1]
+    assert package.parts == ("kuka_", ("arg", "family", None), "_moveit_config")
+
+
+def test_a_description_a_let_holds_is_read_where_a_param_takes_it(tmp_path):
+    # ros2_control_demos' example 17, gz_ros2_control's mimic joint demos, Kassow's bringup
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/urdf/r.urdf.xacro": "<robot name='r'/>",
+                            "p/launch/a.launch.xml": """<launch>
+      <let name="robot_description" value="$(command '$(find-exec xacro) $(find-pkg-share p)/urdf/r.urdf.xacro a:=1')"/>
+      <node pkg="robot_state_publisher" exec="robot_state_publisher">
+        <param name="robot_description" value="$(var robot_description)"/>
+      </node>
+      <node pkg="x" exec="y"><param name="robot_description" value="$(var other)"/></node>
+    </launch>"""})
+    [configuration] = launch_index(root).configurations
+    [described] = configuration.described
+    assert described.path == root / "p/urdf/r.urdf.xacro" and described.xacro
+    assert described.args["a"].text == "1"
+    assert substituted("$(find-exec xacro) x").parts == ("xacro x",)
 
 
 def test_configurations_resolve_includes_arguments_and_installed_share_paths(tmp_path):

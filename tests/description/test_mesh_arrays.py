@@ -448,17 +448,25 @@ def _clouds():
             rng.normal(size=(6, 3)), grid, np.c_[rng.normal(size=(100, 2)), np.zeros(100)]]
 
 
+def _against_qhull(bound_of):
+    """(cloud, its bound, the volume of qhull's hull of it) of each of :func:`_clouds` that is
+    not flat; of a flat one the bound must be 0."""
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    found = []
+    for cloud in _clouds():
+        bound = bound_of(cloud)
+        try:
+            found.append((cloud, bound, scipy_spatial.ConvexHull(cloud).volume))
+        except scipy_spatial.QhullError:  # flat: no volume
+            assert bound == 0.0
+    return found
+
+
 def test_inner_volume_is_below_qhulls_hull_volume_and_near_it():
     """The bound U311 asks before building a hull (no qhull, no scipy): never above the
     volume of the hull qhull builds, and not far below it on solid shapes."""
     scipy_spatial = pytest.importorskip("scipy.spatial")
-    for cloud in _clouds():
-        bound = mesh_arrays.inner_volume(cloud)
-        try:
-            volume = scipy_spatial.ConvexHull(cloud).volume
-        except scipy_spatial.QhullError:  # flat: no volume
-            assert bound == 0.0
-            continue
+    for cloud, bound, volume in _against_qhull(mesh_arrays.inner_volume):
         assert 0.0 <= bound <= volume
         assert bound >= 0.3 * volume or len(cloud) < 10
     rng = np.random.default_rng(2)
@@ -467,6 +475,21 @@ def test_inner_volume_is_below_qhulls_hull_volume_and_near_it():
         found = mesh_arrays._small_hull_volume([tuple(p) for p in points.tolist()])
         assert found == pytest.approx(scipy_spatial.ConvexHull(points).volume, rel=1e-5)
         assert found <= scipy_spatial.ConvexHull(points).volume
+
+
+def test_inner_tetrahedron_volume_is_below_qhulls_hull_volume():
+    """The first bound U311 asks (one tetrahedron of the hull's points): never above the
+    hull's volume, the tetrahedron's own for four points, 0 for flat points."""
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    for _, bound, volume in _against_qhull(mesh_arrays.inner_tetrahedron_volume):
+        assert 0.0 < bound <= volume
+    rng = np.random.default_rng(3)
+    for _ in range(20):  # (of four points the cube's directions may miss one: then 0)
+        corners = rng.normal(size=(4, 3)) * rng.uniform(1e-3, 1e3)
+        volume = scipy_spatial.ConvexHull(corners).volume
+        found = mesh_arrays._first_tetrahedron_volume([tuple(p) for p in corners.tolist()])
+        assert found == pytest.approx(volume, rel=1e-12)
+        assert 0.0 <= mesh_arrays.inner_tetrahedron_volume(corners) <= volume
 
 
 def test_cube_extremes_are_hull_vertices_largest_along_the_cubes_directions():

@@ -292,3 +292,15 @@ def test_a_package_manifest_is_read_once_per_run_and_answers_as_read_each_time(t
             assert {key for kind, key in record.entries if kind == READ} >= \
                 {str(tmp_path / n / "package.xml") for n in ("named", "unnamed", "dots")}
     assert sorted(reads) == sorted(set(reads)) and len(reads) == len(folders)
+
+
+def test_the_shallowest_package_of_a_name_wins_below_a_root(tmp_path):
+    """packages_below walks as catkin's crawler does, level by level: of two package.xml
+    naming one package, the shallower one is the package, though the deeper one's folder
+    sorts first."""
+    from urdftool.description.packages import packages_below
+
+    for folder in ("a/deeper", "b"):
+        (tmp_path / folder).mkdir(parents=True)
+        (tmp_path / folder / "package.xml").write_text("<package><name>same</name></package>")
+    assert packages_below(tmp_path) == {"same": tmp_path / "b"}

@@ -135,3 +135,20 @@ def test_a_text_of_decimals_is_read_in_one_match_not_part_by_part(monkeypatch):
     assert number_tuple.__wrapped__("1 -2.5e3\xa0.5", 3) == ((1.0, -2500.0, 0.5), None)
     with pytest.raises(AssertionError):  # what is not all decimal is read part by part
         number_tuple.__wrapped__("1 inf 3", 3)
+
+
+def test_a_text_of_plain_decimals_is_read_without_a_regular_expression(monkeypatch):
+    """A text of ASCII digits, signs, points, exponents and spaces is read by float alone (the
+    10,000 distinct origins of a large robot: a match of the whole text cost as much as the
+    rest of its reading); float refusing a part (``1e``, ``+-1``) reads it part by part."""
+    import urdftool.description.values as values
+
+    class Unmatched:
+        def fullmatch(self, text):
+            raise AssertionError(f"matched: {text}")
+
+    monkeypatch.setattr(values, "_DECIMALS", Unmatched())
+    assert number_tuple.__wrapped__(" 1 -2.5E3\t.5 ", 3) == ((1.0, -2500.0, 0.5), None)
+    assert number_tuple.__wrapped__("1 1e 3", 3) == (None, "'1e' is not a number (in '1 1e 3')")
+    with pytest.raises(AssertionError):  # another script's digit: matched as before
+        number_tuple.__wrapped__("1 \u0663 3", 3)

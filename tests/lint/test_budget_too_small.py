@@ -39,3 +39,22 @@ def test_what_the_memory_cap_causes_is_out_of_memory():
     assert out_of_memory(OSError(errno.ENOMEM, "Cannot allocate memory"))
     assert not out_of_memory(ImportError("No module named 'pinocchio'"))
     assert not out_of_memory(OSError(errno.ENOENT, "No such file or directory"))
+
+
+def test_a_small_budget_leaves_numpy_no_way_to_end_the_worker(tmp_path):
+    """OpenBLAS maps its buffers at numpy's import and at its first large product, and ends the
+    process (exit code 1) when the cap refuses them: the worker died, U900 "internal error"
+    in place of U018 (a 150 MiB budget on the corpus: 48 of them). budget.limit_memory maps
+    them before it sets a small cap: what does not fit is Python's MemoryError."""
+    script = tmp_path / "capped.py"
+    script.write_text("from urdftool import budget\n"
+                      "budget.limit_memory(100 << 20)\n"
+                      "try:\n"
+                      "    import numpy as np\n"
+                      "    np.ones((300, 300)) @ np.ones((300, 300))\n"
+                      "except MemoryError:\n"
+                      "    pass\n"
+                      "print('alive')\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=120, env={"PATH": "/usr/bin:/bin"})
+    assert done.returncode == 0 and done.stdout == "alive\n", (done.returncode, done.stderr)

@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import json
 import os
+import random
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
 
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint import engine
-from urdftool.lint.settings import settings_for
+from urdftool.lint.settings import may_hold, settings_for
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>
@@ -143,6 +145,102 @@ def test_a_pyproject_that_cannot_hold_our_table_is_not_read(run_cli, project, te
     assert codes(run_cli, project / "robots" / "arm.urdf") == (0, [])
     (project / "robots" / "pyproject.toml").write_text(text + '[tool."\\u0075rdftool"]\n')
     assert run_cli("check", project / "robots" / "arm.urdf").exit_code == 2
+
+
+def test_a_pyproject_naming_urdftool_elsewhere_is_not_read(run_cli, project):
+    """A Python package's pyproject.toml names its package in other tables (``[project.scripts]
+    urdftool = ...``): no settings table of ours can be in it, so a defect in it (a missing
+    comma) stops nothing; ``[tool.urdftool]`` added, it is read (and its defect said)."""
+    settings(project, 'ignore = ["U2"]\n')
+    text = '[project]\nname = "urdftool"\n[project.scripts]\nurdftool = "a:b"\nx = [1 2]\n'
+    (project / "robots" / "pyproject.toml").write_text(text)
+    assert codes(run_cli, project / "robots" / "arm.urdf") == (0, [])
+    (project / "robots" / "pyproject.toml").write_text(text + "[tool.urdftool]\n")
+    assert run_cli("check", project / "robots" / "arm.urdf").exit_code == 2
+
+
+@pytest.mark.parametrize("text, holds", [
+    ("[tool.urdftool]\n", True),
+    ("[ tool . 'urdftool' ] # settings\n", True),
+    ('[[tool."urdftool"]]\n', True),
+    ('[tool]\nurdftool = {select = ["U1"]}\n', True),
+    ("[tool]\r\nurdftool.select = []\r\n", True),
+    ("tool.urdftool.select = []\n", True),
+    ("tool = {urdftool = {}}\n", True),
+    ('[tool]\nx = [\n  ["a"]\n]\nurdftool = {}\n', True),  # a nested array is no header
+    ('[tool]\nx = """\n[project]\n"""\nurdftool = {}\n', True),  # nor a string's line
+    ('[tool."\\u0075rdftool"]\n', True),  # an escape: the parser tells
+    ("[tool.x]\nurdftool = 1\n", False),
+    ('[project.scripts]\nurdftool = "urdftool.__main__:main"\n', False),
+    ('[project]\nname = "urdftool"  # [tool.urdftool]\n', False),
+    ('"tool.urdftool" = 1\n', False),  # one quoted key
+    ('[tool]\nx = {urdftool = 1}\n', False),  # tool.x.urdftool
+    ("[project]\nname = 'x'\n", False),
+])
+def test_may_hold_tells_where_a_key_of_tool_may_be(text, holds):
+    assert may_hold(text, "tool", "urdftool") is holds
+
+
+def _toml_document(chance: random.Random) -> str:
+    """A TOML document of headers, keys and values in the spellings the plain lines of
+    may_hold read (and some they do not), naming tool and urdftool often."""
+    names = ["tool", "urdftool", "project", "x", "a-b", "tool.urdftool", "urdf tool"]
+
+    def key():
+        name, style = chance.choice(names), chance.randrange(3)
+        if style == 0 and all(c.isalnum() or c in "_-" for c in name):
+            return name
+        return f'"{name}"' if style == 1 else f"'{name}'"
+
+    def dotted():
+        space = chance.choice(["", " ", "\t"])
+        return f"{space}.{space}".join(key() for _ in range(chance.randint(1, 3)))
+
+    def value(depth=0):
+        kind = chance.randrange(5 if depth < 2 else 3)
+        if kind == 0:
+            return '"' + chance.choice(["urdftool", "[tool.urdftool]", "# x"]) + '"'
+        if kind == 1:
+            return chance.choice(["1", "true", "3.5", "1979-05-27", "'urdftool'", '"""a"""'])
+        if kind == 2:
+            return "'" + chance.choice(["urdftool", "a=b"]) + "'"
+        if kind == 3:
+            separator = chance.choice([", ", ",\n  ", " ,\n# urdftool\n "])
+            return "[" + separator.join(value(depth + 1) for _ in range(chance.randint(0, 3))) \
+                + chance.choice(["", ","]) + "]"
+        return "{" + ", ".join(f"{dotted()} = {value(depth + 1)}"
+                               for _ in range(chance.randint(0, 2))) + "}"
+
+    lines = []
+    for _ in range(chance.randint(1, 8)):
+        kind = chance.randrange(5)
+        if kind == 0:
+            lines.append(f"[{dotted()}]" if chance.random() < 0.7 else f"[[{dotted()}]]")
+        elif kind == 1:
+            lines.append(chance.choice(["# urdftool", "# [tool.urdftool]", ""]))
+        else:
+            lines.append(f"{chance.choice(['', '  '])}{dotted()} = {value()}")
+    return chance.choice(["\n", "\r\n"]).join(lines) + "\n"
+
+
+def test_may_hold_never_misses_a_table_the_parser_finds():
+    """Seeded random documents: whenever tomllib finds ``tool.urdftool`` in one, may_hold says
+    it may be there (and it says False for some of the others: the test cannot pass by
+    always saying True)."""
+    chance, holding, told_not = random.Random(34), 0, 0
+    for _ in range(4000):
+        text = _toml_document(chance)
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError:
+            continue
+        tool = data.get("tool")
+        if isinstance(tool, dict) and "urdftool" in tool:
+            holding += 1
+            assert may_hold(text, "tool", "urdftool"), text
+        elif not may_hold(text, "tool", "urdftool"):
+            told_not += 1
+    assert holding > 50 and told_not > 500
 
 
 def test_packages_relative_to_the_settings_file(run_cli, project):

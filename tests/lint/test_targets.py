@@ -83,6 +83,33 @@ def test_expand_refuses_a_missing_path_and_a_folder_without_robots(tmp_path):
         expand([str(tmp_path)], CheckRequest())
 
 
+
+def test_a_folder_without_robots_says_which_companions_it_holds(tmp_path):
+    """A MoveIt configuration alone (its SRDF and launch files, no robot): the error says what
+    the folder holds and that it is checked beside its robot; a tool folder's files are not
+    counted, and a folder holding nothing of the kind gets the plain error."""
+    from urdftool.errors import TargetError
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "arm.srdf").write_text("<robot name='arm'/>")
+    (tmp_path / "launch").mkdir()
+    for name in ("demo.launch.py", "move_group.launch", "rviz.launch.xml"):
+        (tmp_path / "launch" / name).write_text("")
+    (tmp_path / "build").mkdir()
+    (tmp_path / "build" / "copy.srdf").write_text("")
+    with pytest.raises(TargetError) as raised:
+        expand([str(tmp_path)], CheckRequest())
+    assert str(raised.value).endswith("; it holds 1 SRDF, 3 launch files, which are checked with "
+                                      "the robot they describe: check a folder holding that "
+                                      "robot's .urdf or .xacro too")
+    empty = tmp_path / "build" / "empty"
+    empty.mkdir()
+    with pytest.raises(TargetError) as raised:
+        expand([str(empty)], CheckRequest())
+    assert str(raised.value).endswith("files found in '" + str(empty) + "'")
+
 def test_packages_of_the_settings_file_resolve_includes_when_walking(tmp_path):
     """A macro library included through $(find pkg) of a package the settings name is skipped
     as included, not checked as a robot of its own."""
@@ -257,6 +284,9 @@ def test_a_launch_file_named_checks_the_robots_it_builds(run_cli, tmp_path):
         assert "a launch file building" in result.stderr
     nothing = run_cli("check", root / "pkg" / "launch" / "nothing.launch.py", "--format", "json")
     assert nothing.exit_code == 0 and '"files": 0' in nothing.stdout and "U001" not in nothing.stdout
+    # "0 files checked" says why without -v when a launch file named gave nothing to check
+    assert nothing.stderr.startswith(f"skipped {root / 'pkg' / 'launch' / 'nothing.launch.py'}: "
+                                     "a launch file that builds no robot file urdftool can tell")
 
 
 

@@ -144,6 +144,26 @@ def test_an_open_meshs_hull_is_built_once_for_its_floor_and_its_parts(tmp_path, 
     assert volume(solid) == pytest.approx(6e-3) and floor <= volume(solid)
 
 
+def test_an_open_meshs_floor_asks_one_tetrahedron_before_its_small_hull(tmp_path, monkeypatch):
+    # a floor that is enough from one tetrahedron of the hull's points grows no small hull;
+    # one that is not asks the small hull, then qhull's: each a lower bound of the next
+    from urdftool.description import mesh_arrays
+    from urdftool.physics.solids import link_solid
+
+    grown, small = [], mesh_arrays._small_hull_volume
+    monkeypatch.setattr(mesh_arrays, "_small_hull_volume", lambda p: grown.append(1) or small(p))
+    robot = _open_box(tmp_path)  # its hull: 6e-3 m^3; a tetrahedron of it: 1e-3
+    asked = []
+    floor = link_solid(robot, robot.links["a"]).volume_floor(
+        enough=lambda v: asked.append(v) or v > 1e-4)
+    assert not grown and len(asked) == 1 and 1e-3 * (1 - 1e-5) < floor <= 1e-3
+    asked.clear()
+    floor = link_solid(robot, robot.links["a"]).volume_floor(
+        enough=lambda v: asked.append(v) or v > 2e-3)
+    assert grown == [1] and len(asked) == 2 and asked[0] < asked[1] <= 6e-3
+    assert 6e-3 * (1 - 2e-6) < floor <= 6e-3
+
+
 @pytest.mark.parametrize("shape", ["sphere", "cylinder", "normal", "uniform", "flat"])
 def test_hull_floor_is_qhulls_volume_shaved_for_rounding(shape):
     np = pytest.importorskip("numpy")

@@ -260,3 +260,25 @@ def test_the_scan_finds_each_bypass(tmp_path, monkeypatch):
 def test_every_kind_escapes_a_lone_surrogate_from_a_file_name(function):
     value = getattr(escape, function)("a\udce9b")
     assert "\udce9" not in value and value.encode("utf-8")
+
+
+@pytest.mark.parametrize("encoding", ["ascii", "latin-1", "utf-8"])
+def test_xml_on_a_stream_that_cannot_hold_a_name_keeps_it_exact(encoding):
+    """An ASCII or Latin-1 locale: the stream writes what it cannot encode as a backslash
+    escape (terminal text), which in XML is another name (b\\u0101); XML gets character
+    references, read back as the name, and the stream keeps its own handler after."""
+    import io
+
+    from lxml import etree
+
+    from urdftool.report.escape import write_xml
+
+    raw = io.BytesIO()
+    stream = io.TextIOWrapper(raw, encoding=encoding, errors="backslashreplace")
+    write_xml(stream, '<robot name="b\u0101\u00e9"><link name="\u4e2d"/></robot>')
+    stream.write("\u0101\n")
+    stream.flush()
+    document, after = raw.getvalue().rsplit(b">", 1)
+    root = etree.fromstring(document.decode(encoding) + ">")  # (read as its encoding says)
+    assert root.get("name") == "b\u0101\u00e9" and root[0].get("name") == "\u4e2d"
+    assert after == ("\u0101\n".encode() if encoding == "utf-8" else b"\\u0101\n")

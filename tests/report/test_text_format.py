@@ -167,3 +167,60 @@ def test_the_same_thing_said_of_named_things_with_their_own_figures_is_one_true_
              said(2, "joint 'k' axis has length 3, not 1; write xyz=\"1 0 0\"", "U206")]
     unnamed = [said(5, "the robot weighs 2 kg", "U399"), said(6, "the robot weighs 3 kg", "U399")]
     assert [len(group) for group in groups(fixes + unnamed)] == [1, 1, 1, 1]
+
+
+def _random_texts(seed: int, count: int, alphabet: str, longest: int) -> list[str]:
+    import random
+
+    chance = random.Random(seed)
+    return ["".join(chance.choice(alphabet) for _ in range(chance.randint(0, longest)))
+            for _ in range(count)]
+
+
+def test_figures_are_what_the_plain_pattern_finds():
+    """_FIGURE is written to start with its first character (a search that skips to the next
+    sign or digit); it finds what the pattern written plainly finds, in any text."""
+    import re
+
+    from urdftool.report.text_format import _FIGURE
+
+    plain = re.compile(r"(?<![\w.+\-^/])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.]\w|\w)")
+    texts = _random_texts(3, 20000, "0123456789.+-e^/ab_ '\"()x,;E\u0661\t", 24)
+    texts += ["link 'l0': 1 kg in at most 4e-05 m^3 is at least 25,000 kg/m^3 (22,590)",
+              "-5 +3 x-1 1.2.3 m^3 2e-3e4 /a/5 (7) 5. .5 ^2 1e 1e+ \u0661\u0662"]
+    for text in texts:
+        assert [(m.span(), m.group()) for m in _FIGURE.finditer(text)] == \
+            [(m.span(), m.group()) for m in plain.finditer(text)], text
+
+
+def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
+    """A group whose messages are one text without their names (and give no value in double
+    quotes) is written as its first message without looking for figures (_grouped's alike):
+    they are the same figures, in the same order, wherever a name sits beside one."""
+    import random
+
+    from urdftool.report.text_format import _figures, _grouped
+
+    chance = random.Random(5)
+    pieces = _random_texts(11, 3000, "0123456789.+-e^/ab_ ()x,;E\u0661", 8)
+    inside = "0123456789.+-e^/ab_()x,E\u0661"
+
+    def name() -> str:
+        letters = "".join(chance.choice(inside) for _ in range(chance.randint(0, 6)))
+        return f"'{letters}'" if chance.random() < 0.5 else "/" + letters.replace(")", "")
+
+    compared = 0  # alike pairs whose messages differ (in their names)
+    for _ in range(12000):
+        parts = chance.sample(pieces, chance.randint(1, 4))
+
+        def message() -> str:
+            return parts[0] + "".join(chance.choice(" (") + name() + part for part in parts[1:])
+
+        group = [Finding("U399", "x", Severity.WARNING, message(), Location("r.urdf", line))
+                 for line in (1, 2)]
+        grouped = _grouped(group)
+        if len(grouped) == 1 and grouped[0][1]:  # one group, alike
+            compared += group[0].message != group[1].message
+            first, second = (_figures(f.message) for f in group)
+            assert [t for _, _, t in first] == [t for _, _, t in second], group
+    assert compared > 500

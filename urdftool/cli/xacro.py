@@ -46,4 +46,4 @@ def xacro(
     elif deps:
         show(text, nl=False)
     else:  # the XML exact, its lines safe in a terminal or a log
-        document(xml_document(text, robot.root))
+        document(xml_document(text, robot.root), xml=True)

@@ -98,7 +98,8 @@ def _matches(pattern: list[str], parts: list[str], subtree: bool) -> bool:
 # --- the data files ------------------------------------------------------------------------
 
 def _data(name: str) -> dict:
-    return data.load(name)
+    # (a check reads the schemas of the classes its controllers name: a few of 69)
+    return data.load(name, "schemas" if name == "ros2_controllers.json" else None)
 
 
 def _parameter(name: str, facts: dict, source: str) -> Parameter:

@@ -36,6 +36,7 @@ nothing.
 
 from __future__ import annotations
 
+import collections
 import errno
 import fnmatch
 import functools
@@ -301,34 +302,49 @@ def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
     return list(found or ())
 
 
-def walk(root, pattern: str, depth: int, skip=frozenset()):
+def walk(root, pattern: str, depth: int, skip=frozenset(), breadth_first: bool = False,
+         most: int = 0):
     """(folder, its :func:`listing` for ``pattern``) for ``root`` and the folders below it,
-    ``depth`` levels at most, depth first in sorted order, each listing recorded as
-    :func:`listing` records it; a folder is entered when ``pattern`` lists it (as a folder,
-    never a link), is not hidden and its name is not in ``skip``. A folder is named as text, ``root`` joined
-    with the names below it; where each leads is its parent's and its name (it is no link),
-    not asked again of the system: one repository's hundreds of folders, each listed once."""
+    ``depth`` levels at most, each listing recorded as :func:`listing` records it; a folder is
+    entered when ``pattern`` lists it (as a folder, never a link), is not hidden and its name
+    is not in ``skip``. Depth first in sorted order, or ``breadth_first``: level by level,
+    the folders of a level in the order of their parents, each parent's in sorted order; at
+    most ``most`` folders when given. A folder is named as text, ``root`` joined with the
+    names below it; where each leads is its parent's and its name (it is no link), not asked
+    again of the system: one repository's hundreds of folders, each listed once."""
     plain, any_kind = _matcher(pattern)
     top = os.fspath(root)
     absolute = os.path.abspath(top)
     named = (lambda folder: folder) if absolute == top else (  # (as the caller named it)
         lambda folder: top if folder == absolute else os.path.join(top, os.path.relpath(
             folder, absolute)))
-    pending = [(absolute, _real_path(absolute), 0)]
+    pending = collections.deque([(absolute, _real_path(absolute), 0)])
+    take, note, listed = pending.popleft if breadth_first else pending.pop, records.note, 0
     while pending:
-        folder, real, level = pending.pop()
+        folder, real, level = take()
         if level:
             real = answered_already(_real_path, (folder,), lambda: real)
         entries = answered_already(_entries, (folder,), lambda: _entries.__wrapped__(folder))
-        found = None if entries is None else tuple(
-            entry for entry in entries
-            if (any_kind if entry[1] in ("folder", "link") else plain)(entry[0]))
-        records.note(SEARCH, (folder, pattern), (real, found))
+        found = None if entries is None else tuple([
+            entry for entry in entries if (any_kind if entry[1] in _LISTED else plain)(entry[0])])
+        note(SEARCH, (folder, pattern), (real, found))
         yield named(folder), list(found or ())
+        listed += 1
+        if listed == most:
+            return
         if found and level + 1 < depth:
-            pending.extend((os.path.join(folder, name), os.path.join(real, name), level + 1)
-                           for name, kind in reversed(found)
-                           if kind == "folder" and name not in skip and name[:1] != ".")
+            # (a name listed holds no separator: joined as os.path.join joins it)
+            base = folder if folder.endswith(os.sep) else folder + os.sep
+            under = real if real.endswith(os.sep) else real + os.sep
+            level += 1
+            below = [(base + name, under + name, level) for name, kind in found
+                     if kind == "folder" and name not in skip and name[:1] != "."]
+            pending.extend(below if breadth_first else reversed(below))
+
+
+_LISTED = ("folder", "link")  # the kinds of entries a pattern's "NAME/" alternatives match
+
+
 def listable(folder) -> bool:
     """Whether ``folder`` could be listed: :func:`listing` gives nothing for a folder it may
     not read or whose path is past the system's limit, as for an empty one. Asks the disk
@@ -341,8 +357,8 @@ def _listing(folder: str, pattern: str) -> tuple | None:
     if entries is None:
         return None
     plain, any_kind = _matcher(pattern)
-    return tuple(entry for entry in entries
-                 if (any_kind if entry[1] in ("folder", "link") else plain)(entry[0]))
+    return tuple([entry for entry in entries
+                  if (any_kind if entry[1] in _LISTED else plain)(entry[0])])
 
 
 @per_run
@@ -351,9 +367,9 @@ def _entries(folder: str) -> tuple | None:
     asked of it (a launch file walk and a package walk list the same folders)."""
     try:
         with os.scandir(folder) as entries:
-            found = [(entry.name, "link" if entry.is_symlink() else "folder" if entry.is_dir(
-                follow_symlinks=False) else "file" if entry.is_file(
-                follow_symlinks=False) else "other") for entry in entries]
+            found = [(entry.name, "file" if entry.is_file(follow_symlinks=False) else
+                      "folder" if entry.is_dir(follow_symlinks=False) else
+                      "link" if entry.is_symlink() else "other") for entry in entries]
     except (OSError, ValueError):
         return None
     return tuple(sorted(found))

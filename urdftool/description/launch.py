@@ -6,11 +6,13 @@ Readers, one per form, all giving the same :class:`LaunchFile`:
   ``value=`` may not), ``<include file>`` with its ``<arg>``\\s, ``<group>``, ``<node pkg type
   args>`` with its ``<param>``/``<rosparam>`` children, ``<param name command|textfile>``
   (``robot_description`` from xacro with its arguments), ``<rosparam command="load" file
-  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)``,
+  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)`` (of a
+  package named there or by an argument, ``$(find $(arg pkg))``),
   ``$(optenv)``/``$(env)``, ``$(dirname)``.
 - ROS 2 XML and YAML (``.launch.xml``, ``.launch.yaml``): the same elements with ``exec``,
-  ``<let>``, ``<param from>``, ``<executable cmd>``; ``$(var)``, ``$(find-pkg-share)``,
-  ``$(command '...')``.
+  ``<let>`` (one holding ``$(command 'xacro ...')`` builds the robot where a ``<param>`` takes
+  it by ``$(var ...)``), ``<param from>``, ``<executable cmd>``; ``$(var)``,
+  ``$(find-pkg-share)``, ``$(find-exec)`` (the program's name), ``$(command '...')``.
 - ROS 2 Python (``.launch.py``): by static analysis of its syntax tree,
   :mod:`urdftool.description.launch_python` (:func:`~urdftool.description.launch_configs.read_launch`
   picks the reader).
@@ -44,8 +46,10 @@ class Value:
     """Text as a launch file writes it: literal parts and substitutions.
 
     parts: each a ``str``, or a tuple: ``("arg", name, default Value or None)``, ``("find",
-        package)``, ``("env", name, default Value or None)``, ``("dirname",)``, ``("command",
-        Value)``, ``("unknown", text)``
+        package)`` (the package's name, a ``str``, or a Value when a launch argument names it:
+        ``$(find $(arg pkg))``, ``FindPackageShare(LaunchConfiguration("pkg"))``), ``("env",
+        name, default Value or None)``, ``("dirname",)``, ``("command", Value)``, ``("unknown",
+        text)``
     text: as written, for messages
     """
 
@@ -66,7 +70,8 @@ class Value:
                 found.add(part[1])
                 if part[2] is not None:
                     found |= part[2].names()
-            elif isinstance(part, tuple) and part[0] == "command":
+            elif isinstance(part, tuple) and part[0] in ("command", "find") \
+                    and isinstance(part[1], Value):
                 found |= part[1].names()
         return found
 
@@ -117,11 +122,23 @@ def _substitutions(text: str, depth: int) -> list:
             break
         parts.append(_substitution(text[start + 2:end], text[start:end + 1], depth))
         index = end + 1
-    return [p for p in parts if p != ""]
+    merged: list = []  # adjacent texts as one (a substitution may give text: $(find-exec x))
+    for part in parts:
+        if isinstance(part, str) and merged and isinstance(merged[-1], str):
+            merged[-1] += part
+        elif part != "":
+            merged.append(part)
+    return merged
 
 
 def _closing(text: str, index: int) -> int | None:
     """The index of the ``)`` closing a ``$(`` whose content starts at ``index``."""
+    close = text.find(")", index)
+    if close < 0:
+        return None
+    inner = text[index:close]
+    if "(" not in inner and "'" not in inner and '"' not in inner:  # (no nesting, no quote)
+        return close
     depth, quote = 1, None
     for position in range(index, len(text)):
         char = text[position]
@@ -148,6 +165,13 @@ def _substitution(inner: str, written: str, depth: int):
         return ("arg", words[0], None)
     if kind in _FIND and len(words) >= 1 and "$(" not in words[0]:
         return ("find", words[0]) if len(words) == 1 else ("unknown", written)
+    if kind in _FIND and "$(" in rest:  # $(find $(arg pkg)), a launch argument names it
+        package = Value(tuple(_substitutions(rest.strip(), depth + 1)), rest.strip())
+        if any(isinstance(p, str) and any(c.isspace() for c in p) for p in package.parts):
+            return ("unknown", written)  # more than one word
+        return ("find", package)
+    if kind == "find-exec" and len(words) == 1 and "$(" not in words[0]:
+        return words[0]  # the program's path: named by the program (``$(find-exec xacro)``)
     if kind in ("env", "optenv") and words and "$(" not in words[0]:
         default = substituted(" ".join(words[1:])) if len(words) > 1 or kind == "optenv" else None
         return ("env", words[0], default)
@@ -160,6 +184,8 @@ def _substitution(inner: str, written: str, depth: int):
 
 def _words(text: str) -> list[str]:
     """Words split at spaces outside quotes, quotes removed."""
+    if "'" not in text and '"' not in text:
+        return text.split()  # (at what str.isspace says is a space, as below)
     words, current, quote = [], "", None
     for char in text:
         if quote:
@@ -478,6 +504,9 @@ def _xml_node(element, when, launch, line) -> None:
                                 arguments, tuple(files), when, line(element)))
 
 
+_LET_VALUE = re.compile(r"\$\((?:var|arg)\s+([\w/-]+)\)")
+
+
 def _xml_param(element, when, launch, line) -> None:
     """A ``<param>`` holding a description: ``command=`` (xacro) or ``textfile=`` (a URDF)."""
     command, textfile = element.get("command"), element.get("textfile")
@@ -487,6 +516,10 @@ def _xml_param(element, when, launch, line) -> None:
     elif textfile:
         launch.actions.append(Description(None, substituted(textfile), (), when, line(element), name))
     value = element.get("value") or ""
+    held = _LET_VALUE.fullmatch(value.strip())
+    if held:  # value="$(var robot_description)", a <let> above holding the command (Kassow's)
+        value = next((a.default.text for a in reversed(launch.actions) if isinstance(a, Arg)
+                      and a.fixed and a.name == held.group(1) and a.default is not None), value)
     if value.startswith("$(command") and "xacro" in value:  # ROS 2 XML: value="$(command 'xacro ...')"
         launch.actions.append(Description(substituted(value), None, (), when, line(element), name))
 

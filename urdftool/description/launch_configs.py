@@ -7,6 +7,10 @@ number and size, links leading outside not followed) is read
 expanded as a configuration: its includes followed
 (``$(find pkg)``, ``FindPackageShare``: only packages inside the repository; an installed
 ``share/`` path is mapped back to the package's source folder), its arguments at their defaults.
+A package a launch argument names (``$(find $(arg pkg))``, ``FindPackageShare(
+LaunchConfiguration("pkg"))``) is the one its value names; from a default, what it builds and
+includes holds for that value only (:attr:`Described.by_default`, and a condition in its
+:class:`When`).
 A configuration *describes* the robot when one of its robot descriptions is the robot's file;
 then what it starts is what runs with the robot:
 
@@ -75,6 +79,10 @@ class Scope:
     launch: LaunchFile
     root: Path
     ros1: bool
+    # reached through an include from a package launch arguments name: that condition in words
+    # (:attr:`Described.by_default`), and those arguments
+    by_default: str = ""
+    default_free: frozenset = frozenset()
 
 
 def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
@@ -99,10 +107,18 @@ def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
             text.append(bound.text)  # None: a value only given at launch; the pattern goes on
             pattern.append(bound.text if bound.pattern is None else bound.pattern)
         elif kind == "find":
-            folder = scope.packages.get(part[1])
-            if folder is None:
+            name, named = part[1], None
+            if isinstance(name, Value):  # $(find $(arg pkg)): the package the argument names
+                named = resolve(name, scope, depth + 1) if depth < 8 else Resolved(None)
+                free |= named.free
+                name = named.text
+            folder = scope.packages.get(name) if name else None
+            if folder is None:  # not a package of the repository: nothing is built
                 return Resolved(None, frozenset(free))
-            text.append(f"\0{part[1]}\0")  # the package's folder, placed by resolve_path
+            text.append(f"\0{name}\0")  # the package's folder, placed by resolve_path
+            # given at launch, the argument may name another package: WILD where its name goes
+            pattern.append(text[-1] if named is None or named.pattern is None
+                           else f"\0{named.pattern}\0")
         elif kind == "env":
             free.add(f"${part[1]}")
             default = resolve(part[2], scope, depth + 1) if part[2] is not None and depth < 8 \
@@ -117,7 +133,7 @@ def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
             text.append(str(scope.launch.path.parent))
         else:  # command, unknown
             return Resolved(None, frozenset(free | value.names()))
-        if kind != "arg":
+        if kind in ("env", "dirname"):
             pattern.append(text[-1])
         if max(sum(len(t) for t in text if t is not None), sum(len(t) for t in pattern)) > MAX_TEXT:
             return Resolved(None, frozenset(free))
@@ -216,6 +232,9 @@ def _walk(root: Path, depth: int, pattern: str = "*"):
         yield current, [name for name, kind in entries if kind == "file"]
 
 
+_SPACES = re.compile(r"\s+")  # (what str.isspace says is a space)
+
+
 def words(value: Value | None) -> list[Value]:
     """A command line or argument list value split into words at the spaces of its literal
     text outside quotes (quotes removed); a substitution belongs to the word it is written in."""
@@ -228,6 +247,17 @@ def words(value: Value | None) -> list[Value]:
                 current.append(piece)
                 piece = ""
             current.append(part)
+            continue
+        if quote is None and "'" not in part and '"' not in part:  # (as below, a run at a time)
+            at = 0
+            for space in _SPACES.finditer(part):
+                piece += part[at:space.start()]
+                if piece:
+                    current.append(piece)
+                if current or quoted:
+                    found.append(current or [""])
+                piece, current, quoted, at = "", [], False, space.end()
+            piece += part[at:]
             continue
         for char in part:
             if quote:
@@ -405,6 +435,9 @@ class Described:
     template: str | None = None  # the path, WILD where a launch argument chooses it
     chosen_by: frozenset = frozenset()  # the launch arguments the path depends on
     chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
+    # when launch arguments given at launch name the package holding the file, the build holds
+    # for their defaults only: that condition in words (also in ``when``), else ""
+    by_default: str = ""
 
 
 @dataclass
@@ -535,9 +568,11 @@ def _expand_top(index: LaunchIndex, launch: LaunchFile, packages: dict) -> Confi
 
 
 def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
-            configuration: Configuration, packages: dict, via: tuple, depth: int) -> None:
+            configuration: Configuration, packages: dict, via: tuple, depth: int,
+            by_default: tuple = ("", frozenset())) -> None:
     configuration.files.append(launch.display)
-    scope = Scope(dict(given) if launch.ros == 2 else {}, packages, launch, index.root, launch.ros == 1)
+    scope = Scope(dict(given) if launch.ros == 2 else {}, packages, launch, index.root, launch.ros == 1,
+                  *by_default)
     for action in launch.actions:
         if len(configuration.loaded) + len(configuration.started) > MAX_EVENTS:
             configuration.incomplete = True
@@ -600,7 +635,12 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
     given = dict(scope.args) if (action.every or target.ros == 2) else {}
     for name, value in action.args:
         given[name] = resolve(value, scope)
-    _expand(index, target, given, False, when, configuration, packages, via, depth + 1)
+    # included from a package launch arguments name: what it does holds for their defaults only
+    by_default, free = _packages_by_default(action.path, scope)
+    if by_default:
+        when = when.also(When(True, free, (by_default,)))
+    _expand(index, target, given, False, when, configuration, packages, via, depth + 1,
+            (_joined_words(scope.by_default, by_default), scope.default_free | free))
 
 
 def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple) -> Loaded:
@@ -627,6 +667,7 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
     args: dict = {}
     path, written, template, through, complete = None, "", None, action.xacro, action.complete
     chosen_by: frozenset = frozenset()
+    source = action.file  # the value naming the file
     if action.command is not None:
         command = action.command
         if len(command.parts) == 1 and isinstance(command.parts[0], tuple) and command.parts[0][0] == "command":
@@ -650,7 +691,7 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
             if path is None and (shown_text.endswith(DESCRIPTION_SUFFIXES)
                                  or (resolved.pattern or "").endswith(DESCRIPTION_SUFFIXES)):
                 path, written, template = candidate, shown_text, _template(resolved)
-                chosen_by, program = resolved.free, False
+                chosen_by, program, source = resolved.free, False, word
             elif resolved.text is not None and ":=" in resolved.text:
                 # roslaunch substitutes, then splits: $(arg xacro_args) may be "a:=1 b:=2"
                 for piece in resolved.text.split():
@@ -667,8 +708,47 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
         template, chosen_by = _template(resolved), resolved.free
         for name, value in action.args:
             args[name] = resolve(value, scope)
+    by_default, free = _packages_by_default(source, scope) if path is not None else ("", frozenset())
+    if by_default:
+        when = when.also(When(True, free, (by_default,)))
     return Described(path, written, args, when, launch.display, action.line, through, complete,
-                     template, chosen_by, via + (launch.display,))
+                     template, chosen_by, via + (launch.display,),
+                     _joined_words(scope.by_default, by_default) if path is not None else "")
+
+
+BY_DEFAULT = "when launched with "  # how a condition on package arguments' defaults begins
+
+
+def _joined_words(first: str, second: str) -> str:
+    """Two conditions "when launched with ..." said as one."""
+    if not (first and second) or second == first:
+        return first or second
+    return f"{first} and {second.removeprefix(BY_DEFAULT)}"
+
+
+def _packages_by_default(value: Value | None, scope: Scope) -> tuple[str, frozenset]:
+    """When launch arguments that may be given at launch name the packages in ``value``
+    (``$(find $(arg description_package))``, ``FindPackageShare(LaunchConfiguration(...))``),
+    the condition under which it names those it does, in words ("when launched with
+    description_package's default 'ur_description'"), and those arguments; ("", empty) when
+    the file names its packages itself, or an including launch file gives their names."""
+    said, free = [], set()
+    for part in value.parts if value is not None else ():
+        if not (isinstance(part, tuple) and part[0] == "find" and isinstance(part[1], Value)):
+            continue
+        named = resolve(part[1], scope)
+        # (arguments an including launch file's condition already names are said there)
+        own = named.free - scope.default_free
+        if not own or named.text is None:
+            continue
+        free |= own
+        names = [f"the environment variable {n[1:]}" if n.startswith("$") else n
+                 for n in sorted(own)]
+        whole = named.pattern == WILD and len(names) == 1  # the argument's value, whole
+        said.append(f"{names[0]}'s default '{named.text}'" if whole else
+                    f"the default{'s' if len(names) > 1 else ''} of {', '.join(names)} "
+                    f"(package '{named.text}')")
+    return (BY_DEFAULT + " and ".join(said) if said else ""), frozenset(free)
 
 
 def _program(text: str | None) -> str:
@@ -682,5 +762,5 @@ def _template(resolved: Resolved) -> str | None:
     return resolved.pattern if resolved.pattern is not None and WILD in resolved.pattern else None
 
 
-__all__ = ["TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+__all__ = ["BY_DEFAULT", "TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
            "launch_index", "resolve", "shown", "words"]

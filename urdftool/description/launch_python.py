@@ -18,8 +18,9 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
 Values are read through ``LaunchConfiguration``, ``EnvironmentVariable`` and
 ``os.environ[NAME]``, ``os.environ.get``, ``os.getenv`` (a value given at launch, like an
 argument), ``FindPackageShare``,
-``get_package_share_directory``, ``PathJoinSubstitution``, ``os.path.join``, ``/`` on paths,
-``+``, f-strings and ``TextSubstitution``; anything else (a value a function computes at run
+``get_package_share_directory`` (of a package named in the file, or by such a value:
+``FindPackageShare(LaunchConfiguration("description_package"))``), ``PathJoinSubstitution``,
+``os.path.join``, ``/`` on paths, ``+``, f-strings and ``TextSubstitution``; anything else (a value a function computes at run
 time) is unknown. A Python ``if`` around an action is a condition read from its test when it
 compares a launch argument with a constant, else an unknown one that names the test. The walk
 is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
@@ -28,7 +29,6 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
-from ast import walk as syntax_nodes
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -123,10 +123,9 @@ class _Reader:
         order = [entry] if entry is not None else []
         # then the functions handed over rather than called (OpaqueFunction(function=f)): a
         # helper the others call is walked where it is called, with its arguments
-        called, handed = set(), set()
-        for node in syntax_nodes(self.tree):
-            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
-                called.add(node.func.id)
+        handed = set()
+        for node in _calls(self.tree):
+            if isinstance(node.func, ast.Name):
                 handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
                               if isinstance(a, ast.Name))
         order += [f for name, f in self.functions.items() if f is not entry and name in handed]
@@ -464,8 +463,8 @@ class _Reader:
             return unknown(_source(node))
         if short in _SHARE:
             package = keywords.get("package") or keywords.get("package_name") or (args[0] if args else None)
-            if isinstance(package, Value) and package.literal:
-                return Value((("find", package.literal),), _source(node))
+            if isinstance(package, Value) and (package.literal or _named_package(package)):
+                return Value((("find", package.literal or package),), _source(node))
             return unknown(_source(node))
         if short in ("PathJoinSubstitution",):
             return _joined(_flat(args[0] if args else []))
@@ -584,9 +583,10 @@ class _Reader:
         if short == "MoveItConfigsBuilder":
             package = keywords.get("package_name")
             robot = args[0] if args else keywords.get("robot_name")
-            if not isinstance(package, Value) and isinstance(robot, Value) and robot.literal:
-                package = literal(f"{robot.literal}_moveit_config")
-            return _Builder(package.literal if isinstance(package, Value) else None)
+            if not isinstance(package, Value) and isinstance(robot, Value):
+                package = concat([robot, literal("_moveit_config")])
+            return _Builder(package.literal or _named_package(package)
+                            if isinstance(package, Value) else None)
         if short in ("open",) and args and isinstance(args[0], Value):
             return _Opened(args[0])
         return unknown(_source(node))
@@ -649,9 +649,10 @@ class _ParamFile:
 
 
 class _Builder:
-    """MoveItConfigsBuilder: the MoveIt config package its file paths are relative to."""
+    """MoveItConfigsBuilder: the MoveIt config package its file paths are relative to (its
+    name, or the Value naming it when a launch argument does: :func:`_named_package`)."""
 
-    def __init__(self, package: str | None):
+    def __init__(self, package: str | Value | None):
         self.package = package
 
 
@@ -669,10 +670,22 @@ class _Parsed:
         self.path = path
 
 
-def _in_package(package: str | None, path: Value) -> Value:
+def _in_package(package: str | Value | None, path: Value) -> Value:
     if package is None or (path.literal or "").startswith("/"):
         return path
-    return concat([Value((("find", package),), package), literal("/"), path])
+    return concat([Value((("find", package),), getattr(package, "text", package)), literal("/"),
+                   path])
+
+
+def _named_package(package: Value) -> Value | None:
+    """``package`` when it is a package's name a launch argument gives (whole or in part:
+    ``LaunchConfiguration("description_package")``, ``f"kuka_{family}_support"``), resolved in
+    each configuration (:func:`~urdftool.description.launch_configs.resolve`); None when it holds
+    a value not read."""
+    if not package.parts or any(isinstance(p, tuple) and p[0] in ("unknown", "command")
+                                for p in package.parts):
+        return None
+    return package
 
 
 def _add_condition(act: _Act, condition) -> None:
@@ -751,6 +764,22 @@ def _callee(node) -> str:
     if isinstance(node, ast.Attribute):
         return f"{_callee(node.value)}.{node.attr}"
     return ""
+
+
+def _calls(tree):
+    """The calls in ``tree``, every node looked at once, in no particular order (``ast``'s
+    walk, without its three generators a node)."""
+    pending, syntax, call = [tree], ast.AST, ast.Call
+    while pending:
+        node = pending.pop()
+        if isinstance(node, call):
+            yield node
+        for name in node._fields:
+            value = getattr(node, name, None)
+            if isinstance(value, list):
+                pending.extend([item for item in value if isinstance(item, syntax)])
+            elif isinstance(value, syntax):
+                pending.append(value)
 
 
 def _source(node) -> str:

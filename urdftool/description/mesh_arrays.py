@@ -597,14 +597,73 @@ def inner_volume(vertices) -> float:
     which lie in it), built point by point (:func:`_small_hull_volume`); shaved by 1e-9 for
     rounding (qhull's joggled hull too), so that it stays below the volume
     :func:`convex_hull` measures."""
+    return _shaved(_small_hull_volume, vertices)
+
+
+def inner_tetrahedron_volume(vertices) -> float:
+    """A lower bound of the volume of the convex hull of ``vertices`` [m^3] (0 when flat)
+    cheaper than :func:`inner_volume`: the first tetrahedron :func:`_small_hull_volume` grows
+    its hull from (four of the :func:`cube_extremes`, far apart: inside the hull), shaved as
+    that one is. On the corpus it alone shows 111 of the 115 open meshes U311 asks of light
+    enough, for a twentieth of the small hull's Python."""
+    return _shaved(_first_tetrahedron_volume, vertices)
+
+
+def _shaved(volume_of, vertices) -> float:
+    """``volume_of`` (a list of points -> a volume inside their hull [m^3]) of the
+    :func:`cube_extremes` of ``vertices``, shaved by 1e-9 for rounding; 0 when not finite,
+    not positive, or for fewer than four or non-finite vertices."""
     import numpy as np
 
     vertices = np.asarray(vertices, dtype=np.float64)
     if len(vertices) < 4 or not np.isfinite(vertices).all():
         return 0.0
     chosen = vertices[sorted(set(cube_extremes(vertices).tolist()))]  # (np.unique: numpy.ma)
-    volume = _small_hull_volume([tuple(p) for p in chosen.tolist()])
+    volume = volume_of([tuple(p) for p in chosen.tolist()])
     return volume * (1 - 1e-9) if math.isfinite(volume) and volume > 0 else 0.0
+
+
+def _minus(u, v):
+    return u[0] - v[0], u[1] - v[1], u[2] - v[2]
+
+
+def _cross(u, v):
+    return u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+
+
+def _dot(u, v):
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+def _first_tetrahedron(points: list):
+    """(a, b, c, d, six times the signed volume of their tetrahedron, the margin of a
+    height) of the first tetrahedron of :func:`_small_hull_volume` (indices into ``points``:
+    a the first, b the farthest from it, c the farthest from their line, d from their
+    plane), or None when the points are fewer than four or all one point."""
+    if len(points) < 4:
+        return None
+    size = max(max(abs(v) for v in _minus(p, points[0])) for p in points)
+    if not size > 0:
+        return None
+    margin = 1e-9 * power(size, 3)  # of a height: an area (size^2) times a length
+    a = 0
+    b = max(range(len(points)), key=lambda i: _dot(_minus(points[i], points[a]),
+                                                   _minus(points[i], points[a])))
+    line = _minus(points[b], points[a])
+    c = max(range(len(points)), key=lambda i: _dot(*(_cross(line, _minus(points[i],
+                                                                         points[a])),) * 2))
+    normal = _cross(_minus(points[b], points[a]), _minus(points[c], points[a]))
+    d = max(range(len(points)), key=lambda i: abs(_dot(normal, _minus(points[i], points[a]))))
+    return a, b, c, d, _dot(normal, _minus(points[d], points[a])), margin
+
+
+def _first_tetrahedron_volume(points: list) -> float:
+    """The volume of :func:`_first_tetrahedron` [m^3]: 0 when it is flat (within its
+    margin), as :func:`_small_hull_volume` says of such points."""
+    found = _first_tetrahedron(points)
+    if found is None or not abs(found[4]) > found[5]:
+        return 0.0
+    return abs(found[4]) / 6.0
 
 
 def _small_hull_volume(points: list) -> float:
@@ -614,14 +673,7 @@ def _small_hull_volume(points: list) -> float:
     (1e-9 of the points' size, cubed): one nearer is taken as coplanar, which may leave the
     hull grown short of convex by slivers under that margin; their volume, at most a margin
     per point and face, is taken off, so that the volume stays a lower bound."""
-    def minus(u, v):
-        return u[0] - v[0], u[1] - v[1], u[2] - v[2]
-
-    def cross(u, v):
-        return u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
-
-    def dot(u, v):
-        return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+    minus, cross, dot = _minus, _cross, _dot
 
     def face(i, j, k):  # its corners and its normal (not unit: twice its area)
         a = points[i]
@@ -630,21 +682,10 @@ def _small_hull_volume(points: list) -> float:
     def height(face, q):  # six times the signed volume of the tetrahedron (face, q)
         return dot(face[4], minus(q, face[3]))
 
-    if len(points) < 4:
+    found = _first_tetrahedron(points)
+    if found is None:
         return 0.0
-    size = max(max(abs(v) for v in minus(p, points[0])) for p in points)
-    if not size > 0:
-        return 0.0
-    margin = 1e-9 * power(size, 3)  # of a height: an area (size^2) times a length
-    a = 0
-    b = max(range(len(points)), key=lambda i: dot(minus(points[i], points[a]),
-                                                  minus(points[i], points[a])))
-    line = minus(points[b], points[a])
-    c = max(range(len(points)), key=lambda i: dot(*(cross(line, minus(points[i], points[a])),)
-                                                  * 2))
-    base = face(a, b, c)
-    d = max(range(len(points)), key=lambda i: abs(height(base, points[i])))
-    first = height(base, points[d])
+    a, b, c, d, first, margin = found
     if not abs(first) > margin:
         return 0.0
     corners = [(a, c, b), (a, b, d), (b, c, d), (c, a, d)] if first > 0 else \

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from urdftool.errors import PackageNotFound
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
-    read_regular, real_path, repository_root, resolved
+    read_regular, real_path, repository_root, resolved, walk
 from urdftool.description.install_layout import layout
 from urdftool.description.run_memo import per_run
 
@@ -313,7 +313,9 @@ def packages_below(root: Path) -> dict[str, Path]:
     :class:`PackageResolver` scans them: bounded, links not followed; the first of a name
     wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
     found: dict[str, Path] = {}
-    for folder, entries in _walk_listed(root, "package.xml"):
+    # (as _walk_dirs walks, each folder listed once for its subfolders and its package.xml)
+    for folder, entries in walk(root, "package.xml|[!.]*/", _MAX_SCAN_DEPTH + 1, SKIP_DIRS,
+                                breadth_first=True, most=_MAX_SCAN_DIRS + 1):
         if not any(name == "package.xml" for name, _ in entries):  # none here: nothing to read
             continue
         folder = Path(folder)
@@ -376,29 +378,16 @@ def _walk_dirs(root: Path, max_depth: int = _MAX_SCAN_DEPTH, links: list | None 
     (appended to ``links`` when given), never entering a hidden folder (as catkin's and
     colcon's package crawlers do; ``.urdftool_cache`` among them: the result cache appearing
     beside the packages is no change to where they are)."""
-    for folder, _ in _walk_listed(root, "", max_depth, links):
-        yield Path(folder)
-
-
-def _walk_listed(root: Path, names: str, max_depth: int = _MAX_SCAN_DEPTH,
-                 links: list | None = None):
-    """(folder, its entries) of :func:`_walk_dirs`: its subfolders and links and, in the same
-    listing, the entries ``names`` matches (a :func:`~urdftool.description.files.listing`
-    pattern); with ``names`` "", (folder, None). A folder is named as text (a Path is made
-    for the few a caller keeps)."""
     frontier = [os.fspath(root)]
     seen = 0
-    pattern = f"{names}|[!.]*/" if names else "[!.]*/"  # subfolders and links, not hidden
     for _ in range(max_depth + 1):
         next_frontier = []
         for folder in frontier:
-            entries = listing(folder, pattern) if names else None  # sorted
-            yield folder, entries
+            yield Path(folder)  # (listed once yielded: a caller may stop there)
             seen += 1
             if seen > _MAX_SCAN_DIRS:
                 return
-            if entries is None:  # (listed once yielded: a caller may stop there)
-                entries = listing(folder, pattern)
+            entries = listing(folder, "[!.]*/")  # subfolders and links, not hidden; sorted
             next_frontier.extend(os.path.join(folder, name) for name, kind in entries
                                  if kind == "folder" and name not in SKIP_DIRS)
             if links is not None:

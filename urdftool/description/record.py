@@ -68,9 +68,9 @@ class Record:
     def note(self, kind: str, key, answer, label: str | None = None) -> None:
         """Keep ``answer`` to (``kind``, ``key``) unless an earlier one is kept, and pass it
         to the enclosing record."""
-        record = self
+        record, question = self, (kind, key)
         while record is not None:
-            record.entries.setdefault((kind, key), answer)
+            record.entries.setdefault(question, answer)
             if label is not None:
                 record.labels.setdefault(key, set()).add(label)
             record._index = None

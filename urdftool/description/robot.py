@@ -6,14 +6,18 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Callable, Mapping, TypeVar
 
 from urdftool.diagnostics import Location, Severity
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.packages import PackageResolver
 from urdftool.description.xml import child_list
 
-T = TypeVar("T")
+TYPE_CHECKING = False  # (typing.TYPE_CHECKING: typing is not imported by a check)
+if TYPE_CHECKING:  # the annotations' names, never evaluated
+    from collections.abc import Callable, Mapping
+    from typing import TypeVar
+
+    T = TypeVar("T")
 
 
 @dataclass(frozen=True)

@@ -28,13 +28,15 @@ from pathlib import Path
 
 from urdftool.description.files import enclosing_root, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
-from urdftool.description.launch_configs import (WILD, Configuration, Described, Loaded, Resolved,
-                                                 Started, launch_files, launch_index, launch_tests,
-                                                 read_launch, reading_room, shown)
+from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
+                                                 Loaded, Resolved, Started, launch_files,
+                                                 launch_index, launch_tests, read_launch,
+                                                 reading_room, shown)
 from urdftool.description.packages import packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
+AS_CHECKED = "as checked"  # a configuration's relation to the robot: built as it was checked
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
 STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
 _INACTIVE = ("--stopped", "--inactive", "--load-only")
@@ -159,7 +161,7 @@ def _runtime(robot) -> Runtime:
             if real_path(description.path) == real:
                 mine = mine if mine is not None else _robot_args(robot)
                 relation = _relation(description, mine, relation, packages_below(root))
-        if relation == "as checked" and environment:
+        if relation == AS_CHECKED and environment:
             # the robot as checked is one build: what the environment says at launch decides it
             relation = f"as the environment builds it ({', '.join(environment[:4])})"
         if relation or not described:
@@ -224,9 +226,11 @@ def _environment_names(robot) -> list[str]:
 
 
 def _relation(description: Described, mine: dict, before: str, packages: dict) -> str:
-    """How ``description`` gives the robot: "as checked" or "with other xacro arguments
-    (...)"; the better of it and ``before``."""
-    if before == "as checked":
+    """How ``description`` gives the robot: "as checked", "as checked when launched with
+    description_package's default 'x'" (:attr:`~urdftool.description.launch_configs.Described.
+    by_default`: it is this robot only so, and nothing it runs is certain), or "with other xacro
+    arguments (...)"; the better of it and ``before``."""
+    if before == AS_CHECKED:
         return before
     other = []
     for name, value in description.args.items():
@@ -239,8 +243,12 @@ def _relation(description: Described, mine: dict, before: str, packages: dict) -
             other.append(f"{name}:={shown_text(value)}")
     if other:
         return before or f"with other xacro arguments ({', '.join(other[:4])})"
+    if description.when.truth is True and description.by_default:
+        # the package holding the file is named by launch arguments: it is this robot for
+        # their defaults only
+        return before if before.startswith(AS_CHECKED) else f"{AS_CHECKED} {description.by_default}"
     if description.when.truth is True:
-        return "as checked"
+        return AS_CHECKED
     return before or f"only {description.when.text() or 'under a condition'}"
 
 
@@ -276,13 +284,13 @@ def _spawns(configuration: Configuration, relation: str, found: Runtime) -> None
                 continue
             text, free = word
             when = start.when
-            certain = when.certain and not free and relation == "as checked"
+            certain = when.certain and not free and relation == AS_CHECKED
             words = [w for w in when.words]
             if free:
                 words.append("by default (" + ", ".join(
                     f"the launch argument {name}" if not name.startswith("$")
                     else f"the environment variable {name[1:]}" for name in sorted(free)) + " names it)")
-            if relation != "as checked":
+            if relation != AS_CHECKED:
                 words.append(f"against the robot {relation}" if relation else
                              "against a robot description urdftool cannot tell")
             found.spawns.append(Spawn(text, active, configuration, start, certain, " and ".join(words)))
@@ -354,8 +362,9 @@ class Build:
     xacro: the file is run through xacro (else read as it is: ``textfile=``, ``cat``, ``open``)
     args: xacro argument -> its value as xacro gets it (None: not known without running it)
     complete: every argument given is in ``args`` (no word or mapping left unread)
-    chosen: a launch argument chooses the file (``talos_$(arg robot).urdf.xacro``), and its
-        default names another
+    chosen: a launch argument chooses the file (``talos_$(arg robot).urdf.xacro``) or the package
+        holding it (``$(find $(arg description_package))``): built so for its default only, or
+        its default names another file
     condition: when the description is made, in words; "" when unconditionally
     test: ``launch`` is a launch test (it builds the file for the test alone)
     """
@@ -397,15 +406,17 @@ class Build:
 def builds(path: str) -> list[Build]:
     """How the launch files of the repository holding ``path`` make a robot description from
     it: one :class:`Build` per launch file a user runs and description action, in the index's
-    order. The one owner of "this file is loaded through xacro by launch files X" and of "launch
-    file X gives it these xacro arguments": loading a ``.urdf`` that holds xacro, and the rules
-    on xacro errors and on xacro in a ``.urdf``, ask here. Empty for stdin, or a file in no
-    repository or package."""
+    order, those from a package a launch argument names (built for its default only) after the
+    others, so that a robot needing an argument is checked as a launch file naming its package
+    builds it when one does. The one owner of "this file is loaded through xacro by launch files
+    X" and of "launch file X gives it these xacro arguments": loading a ``.urdf`` that holds
+    xacro, and the rules on xacro errors and on xacro in a ``.urdf``, ask here. Empty for stdin,
+    or a file in no repository or package."""
     absolute, root = _file_root(path)
     if root is None:
         return []
     index, packages = launch_index(root), packages_below(root)
-    real, found = real_path(absolute), []
+    real, found, by_default = real_path(absolute), [], []
     # launch tests too: a test shows how the file is built, not what a deployment starts
     for configuration in index.configurations + launch_tests(root):
         for described in configuration.described:
@@ -419,12 +430,15 @@ def builds(path: str) -> list[Build]:
                      else _as_given(value, packages) for name, value in described.args.items()}
             free = frozenset().union(*(value.free for value in described.args.values()))
             words = list(described.when.words) if not described.when.certain else []
+            if described.by_default:  # its includes' and its own, said once
+                words = [described.by_default] + [w for w in words if not w.startswith(BY_DEFAULT)]
             if described.when.truth is None and not words:
                 words = ["under a condition urdftool cannot tell"]
-            found.append(Build(configuration.display, described.launch, described.line,
-                               described.xacro, texts, free, described.complete, chosen,
-                               " and ".join(dict.fromkeys(words)), configuration.top.test))
-    return found
+            (by_default if described.by_default else found).append(Build(
+                configuration.display, described.launch, described.line, described.xacro, texts,
+                free, described.complete, chosen, " and ".join(dict.fromkeys(words)),
+                configuration.top.test))
+    return found + by_default
 
 
 def built_by(launch_path: str) -> list[Path]:
@@ -668,7 +682,7 @@ def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
         starting.append(configuration)
         others = [s for s in configuration.started if s.package not in _ROS_OWN]
         spawns = [s for s in facts.spawns if s.configuration is configuration and s.certain]
-        certain = relation == "as checked" and all(x.when.certain for x in [*lists, *group])
+        certain = relation == AS_CHECKED and all(x.when.certain for x in [*lists, *group])
         if certain and spawns and not others:
             return "ros_control", configuration.named
         if others:
@@ -688,22 +702,30 @@ def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:
             continue
         for described in configuration.described:
             if described.path is not None and described.path.name.endswith(".srdf"):
-                found.append((described.path, configuration, relation))
-    return sorted(found, key=lambda item: item[2] != "as checked")
+                # an SRDF from a package launch arguments name is MoveIt's for their defaults
+                found.append((described.path, configuration,
+                              f"{AS_CHECKED} {described.by_default}"
+                              if described.by_default and relation == AS_CHECKED else relation))
+    return sorted(found, key=lambda item: item[2] != AS_CHECKED)
 
 
 def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     """Whether MoveIt runs with the SRDF ``srdf`` and the robot as checked: ("certain", which
-    launch file) when a launch file gives MoveIt both; ("conditional", why) when launch files give
-    it that SRDF only with the robot built with other xacro arguments; ("unknown", "") when none
-    gives it."""
+    launch file) when a launch file gives MoveIt both; ("by default", which and when) when one
+    does only with the defaults of the launch arguments naming the package of the robot or of
+    the SRDF; ("conditional", why) when launch files give it that SRDF only with the robot built
+    with other xacro arguments; ("unknown", "") when none gives it."""
     key = real_path(srdf)
     loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
     if not loads:
         return "unknown", ""
-    certain = [c for c, relation in loads if relation == "as checked"]
+    certain = [c for c, relation in loads if relation == AS_CHECKED]
     if certain:
         return "certain", f"{certain[0].named} gives MoveIt this SRDF with the robot as checked"
+    for configuration, relation in loads:
+        if relation.startswith(f"{AS_CHECKED} {BY_DEFAULT}"):
+            return "by default", (f"{configuration.named} gives MoveIt this SRDF with the robot "
+                                  f"{relation}")
     configuration, relation = loads[0]
     return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
 

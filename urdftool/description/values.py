@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import re
-from typing import NamedTuple
+from collections import namedtuple
 
 from urdftool.description.xml import first_child
 
@@ -43,9 +43,21 @@ def number_tuple(text: str | None, count: int | None = None):
     parts = text.split()
     if count is not None and len(parts) != count:
         return None, f"expected {count} numbers, found {len(parts)} in '{text}'"
+    if not text.strip(_PLAIN):  # ASCII digits, signs, points, exponents and spaces only
+        try:  # (float reads such a part exactly when it is _DECIMAL: no regular expression
+            return tuple(map(float, parts)), None  # for the 10,000 origins of a large robot)
+        except ValueError:
+            return _part_by_part(text, parts)
     if _DECIMALS.fullmatch(text):  # every part decimal, as nearly all are: one match for all
         return tuple(map(float, parts)), None
     return _part_by_part(text, parts)
+
+
+# The characters of a text of plain decimals (white space as str.split and re's \s read it,
+# ASCII's): strip() of them leaves nothing of such a text. Over these characters, float()
+# takes a part exactly when _DECIMAL matches it (no underscore, letter of inf or nan, nor
+# digit of another script: those texts are matched as before)
+_PLAIN = "0123456789+-.eE \t\n\r\f\v"
 
 
 def _part_by_part(text: str, parts: list[str]):
@@ -77,21 +89,21 @@ def number(element, attribute: str, default: float | None = None):
 _UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)
 
 
-class Origin(NamedTuple):
+class Origin(namedtuple("Origin", ("xyz", "rpy", "problem", "element"),
+                        defaults=((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), None, None))):
     """An element's ``<origin>``: xyz in [m], rpy in [rad] (URDF roll-pitch-yaw).
 
     Identity when there is no ``<origin>``. A malformed ``xyz`` or ``rpy`` reads as zeros and sets
     ``problem`` (the first one), so each caller chooses: count it as 0, or refuse it.
+    xyz, rpy: 3-tuples of floats; problem: str or None
     element: the ``<origin>`` element, None when absent
 
     A named tuple, immutable: a third of a frozen dataclass's cost to make (a 10,000-link
-    robot's inertials and shapes read 30,000).
+    robot's inertials and shapes read 30,000). collections' (typing's NamedTuple would import
+    typing into every check).
     """
 
-    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    problem: str | None = None
-    element: object = None
+    __slots__ = ()
 
 
 def origin(element) -> Origin:
@@ -118,6 +130,13 @@ def origin_pose(element, found=_UNREAD) -> tuple[tuple[float, float, float],
     get = found.get
     return number_tuple(get("xyz", "0 0 0"), 3)[0] or _ZEROS, \
         number_tuple(get("rpy", "0 0 0"), 3)[0] or _ZEROS
+
+
+def pose_of(xyz: str = "0 0 0", rpy: str = "0 0 0") -> tuple[tuple[float, float, float],
+                                                            tuple[float, float, float]]:
+    """:func:`origin_pose` of an ``<origin>`` whose ``xyz`` and ``rpy`` texts were read (their
+    defaults: none written, or no ``<origin>``), for a caller that keeps the texts."""
+    return number_tuple(xyz, 3)[0] or _ZEROS, number_tuple(rpy, 3)[0] or _ZEROS
 
 
 _ZEROS = (0.0, 0.0, 0.0)

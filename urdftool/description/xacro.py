@@ -275,6 +275,41 @@ def _reads_ros1_tags(path: Path) -> bool:
     return found is not None and found[0] == 1
 
 
+def _xacro():
+    """The xacro library, imported without its command line: its ``__init__`` imports
+    ``xacro.cli`` (optparse, gettext, locale, textwrap: 16 M instructions and 114 page faults,
+    a sixth of what expanding r2d2 costs) for ``main()``, which urdftool never runs. A stand-in
+    module gives it a ``process_args`` that imports the real one when called, and leaves
+    ``sys.modules`` once xacro is imported (an ``import xacro.cli`` later gets the real one).
+    A xacro asking more of its command line than that is imported as it is."""
+    if "xacro" in sys.modules or "xacro.cli" in sys.modules:
+        import xacro
+
+        return xacro
+    import types
+
+    stand_in = types.ModuleType("xacro.cli")
+
+    def process_args(*args, **kwargs):
+        from importlib import import_module
+
+        if sys.modules.get("xacro.cli") is stand_in:
+            del sys.modules["xacro.cli"]
+        return import_module("xacro.cli").process_args(*args, **kwargs)
+
+    stand_in.process_args = process_args
+    sys.modules["xacro.cli"] = stand_in
+    try:
+        import xacro
+    except ImportError:  # (a xacro importing more from its command line: not in sys.modules)
+        del sys.modules["xacro.cli"]
+        import xacro
+    finally:
+        if sys.modules.get("xacro.cli") is stand_in:
+            del sys.modules["xacro.cli"]
+    return xacro
+
+
 def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env: bool = True,
            read_file=None, roots=()) -> Expansion:
     """Expand the xacro document ``data`` read from ``path``; raises XacroFailure.
@@ -282,7 +317,7 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     roots: folders included and YAML files may be in; others are reported (refused when
     ``allow_env`` is false). Empty means anywhere. Folders of packages found are added.
     """
-    import xacro
+    xacro = _xacro()
     from xacro import substitution_args
 
     read_file = read_file or files.read_regular

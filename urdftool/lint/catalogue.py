@@ -32,7 +32,7 @@ from __future__ import annotations
 import inspect
 import re
 from dataclasses import dataclass
-from typing import Callable
+from collections.abc import Callable  # (not typing's: a check does not import it)
 
 from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule

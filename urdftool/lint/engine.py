@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from contextlib import nullcontext
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path
@@ -17,6 +16,7 @@ from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
 from urdftool.lint import suppressions
 
+TYPE_CHECKING = False  # (typing.TYPE_CHECKING: typing is not imported by a check)
 if TYPE_CHECKING:
     from urdftool.lint.pool import Stop
 

@@ -47,8 +47,11 @@ def auto_jobs(files: int) -> int:
     at most one per FILES_PER_WORKER files. Two workers cost more CPU than one (each imports and
     reads again what the other did), so they finish sooner only on a core nobody else uses: on
     a busy machine, one."""
+    most = files // FILES_PER_WORKER
+    if most <= 1:
+        return 1  # (the machine's load is not read: nothing to decide)
     idle = max(1, round(default_jobs() - budgets.busy_cores()))
-    return max(1, min(idle, files // FILES_PER_WORKER))
+    return max(1, min(idle, most))
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,7 @@ every key goes through :func:`_validated`, so that a key added later cannot skip
 from __future__ import annotations
 
 import fnmatch
+import functools
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
@@ -166,10 +167,9 @@ def _settings_in_file(file: Path) -> Settings | None:
 
 def _read(path: Path, holding: str | None = None) -> dict:
     """The TOML table in ``path``. With ``holding``, a file whose text cannot hold a key of
-    that name is no settings file and reads as empty, unparsed: a key is written bare (the
-    name as it is), or quoted, where only an escape (a backslash) could spell it otherwise.
-    Another project's pyproject.toml is then neither parsed nor held to our rules: a defect
-    in it is not the user's settings."""
+    that name in its table ``tool`` (:func:`may_hold`) is no settings file and reads as
+    empty, unparsed. Another project's pyproject.toml is then neither parsed nor held to our
+    rules: a defect in it is not the user's settings."""
     _refuse_outside(path, path, "the settings file itself")
     try:
         text = read_regular(path, MAX_SETTINGS_SIZE, as_="settings").decode("utf-8")
@@ -177,7 +177,7 @@ def _read(path: Path, holding: str | None = None) -> dict:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
     except UnicodeDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
-    if holding is not None and holding not in text and "\\" not in text:
+    if holding is not None and not may_hold(text, "tool", holding):
         return {}
     import tomllib  # only where a settings file is
 
@@ -194,6 +194,68 @@ def _read(path: Path, holding: str | None = None) -> dict:
                             "setting") from None
     except RecursionError:  # what too_deep() missed
         raise SettingsError(f"{path}: settings nest too deeply; not read") from None
+
+
+def may_hold(text: str, table: str, key: str) -> bool:
+    """Whether the TOML ``text`` may give its top-level table ``table`` the key ``key``
+    (``[tool.urdftool]``, ``[[tool.urdftool]]``, ``[tool]`` then ``urdftool = ...`` or
+    ``urdftool.x = ...``, ``tool.urdftool.x = ...`` or ``tool = {urdftool = ...}`` at the top,
+    each part bare or quoted, spaced or not). False only when it cannot: ``key`` is not in the
+    text, or the text is made of plain lines (:func:`_plain_line`) of which none can. A key
+    is written bare (the name as it is) or quoted, where only an escape (a backslash) could
+    spell it otherwise; a text the parser alone can tell (an escape, a multi-line string, a
+    line that is not plain) may: pyproject.toml files of Python packages name their package
+    in other tables (``[project.scripts]``), which is no settings table of ours."""
+    if "\\" in text or '"""' in text or "'''" in text:
+        return True
+    if key not in text:
+        return False
+    plain, at, end, header = _plain_line(), 0, len(text), ""
+    while at < end:
+        found = plain.match(text, at)
+        if found is None:
+            return True  # not plain: the parser decides
+        at = found.end()
+        heading, keyed = found.group(1, 2)
+        if heading is not None:
+            header = heading
+            if key in heading and _key_path(heading)[:2] == (table, key):
+                return True
+        elif keyed is not None and key in found.group():
+            path = _key_path(header) + _key_path(keyed)
+            if path[:2] == (table, key) or path == (table,):  # (tool = {urdftool = ...})
+                return True
+    return False
+
+
+_KEY_PART = re.compile(r"""[A-Za-z0-9_-]+|"[^"]*"|'[^']*'""")
+
+
+def _key_path(dotted: str) -> tuple[str, ...]:
+    """The parts of a dotted key as :func:`_plain_line` matched it, unquoted."""
+    return tuple(part[1:-1] if part[0] in "\"'" else part for part in _KEY_PART.findall(dotted))
+
+
+@functools.cache
+def _plain_line():
+    """A pattern of one plain line of TOML from where it begins to its end: blank, a comment, a
+    header (group 1: its dotted key) or a key (group 2) and its value, and a comment. A key
+    part is bare or quoted without an escape; a value is a string on one line without an
+    escape, a bare word (a number, a boolean, a date), or an array (over lines, with
+    comments) or inline table of such values, nested three deep. Lenient where a value is
+    wrong (an array without its commas): what is a header or a key is all it tells.
+    Possessive: a line that is not plain is refused in time linear in its length.
+    Compiled when first asked (a pyproject.toml naming the key): it is long."""
+    key = r"""(?:[A-Za-z0-9_-]++|"[^"\\\n]*+"|'[^'\n]*+')"""
+    dotted = rf"{key}(?:[ \t]*+\.[ \t]*+{key})*+"
+    blank = r"(?:[ \t\r\n]|#[^\n]*+)*+"
+    value = r"""(?:"[^"\\\n]*+"|'[^'\n]*+'|[A-Za-z0-9_:+.\-]++)"""
+    for _ in range(3):
+        array = rf"\[{blank}(?:{value}{blank}(?:,{blank})?)*+\]"
+        table = rf"\{{[ \t]*+(?:{dotted}[ \t]*+=[ \t]*+{value}[ \t]*+(?:,[ \t]*+)?)*+\}}"
+        value = rf"""(?:"[^"\\\n]*+"|'[^'\n]*+'|[A-Za-z0-9_:+.\-]++|{array}|{table})"""
+    return re.compile(rf"[ \t]*+(?:\[\[?[ \t]*+({dotted})[ \t]*+\]\]?|({dotted})[ \t]*+=[ \t]*+"
+                      rf"{value})?[ \t]*+(?:#[^\n]*+)?(?:\r?\n|\Z)")
 
 
 _TOKENS = re.compile("\"\"\"|'''|\"|'|#|\\[|\\]|\\{|\\}|\\.|\n")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import re
+from fnmatch import fnmatchcase as fnmatch
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -49,6 +50,7 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
+LAUNCH_SKIP = "a launch file that"  # (the start of the reason a launch file named is skipped)
 SDF_SOURCE = "an SDF document (a Gazebo model or world, built by xacro), not a URDF robot"
 FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
             "<ros2_control> or <webots> blocks besides definitions)")
@@ -80,6 +82,30 @@ def robot_files(folder: Path, unlisted: list[Path] | None = None) -> list[Path]:
             elif is_robot_name(name):
                 found.append(path)
     return sorted(found)
+
+
+_HELD = (("*.srdf", "SRDF"), ("*.launch|*.launch.*", "launch file"), ("*.sdf", "SDF document"))
+
+
+def _what_it_holds(folder) -> str:
+    """For the error of a folder without robot files: the robot descriptions' companions it
+    holds (a MoveIt configuration's SRDF, launch files, SDF documents), said so that the reader
+    knows they are checked only beside the robot they describe. Walked as robot_files walks."""
+    counts, pending, folders = dict.fromkeys([name for _, name in _HELD], 0), [Path(folder)], 0
+    pattern = "*/|" + "|".join(glob for glob, _ in _HELD)
+    while pending and folders < 2000:  # an error message: bounded, never the run's cost
+        current, folders = pending.pop(), folders + 1
+        for name, kind in listing(current, pattern):
+            if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."):
+                pending.append(current / name)
+            elif kind == "file":
+                counts[next(what for glob, what in _HELD
+                            if any(fnmatch(name, g) for g in glob.split("|")))] += 1
+    held = [f"{n} {what}{'s' if n > 1 else ''}" for what, n in counts.items() if n]
+    if not held:
+        return ""
+    return (f"; it holds {', '.join(held)}, which are checked with the robot they describe: "
+            f"check a folder holding that robot's .urdf or .xacro too")
 
 
 _UNREAD = object()  # (a file's bytes not yet asked of _head)
@@ -763,7 +789,7 @@ def expand(paths: list[str], request) -> Targets:
                              f"{', '.join(display_path(p) for p in users)}: checking "
                              f"{'that' if len(users) == 1 else 'those'}")
             else:
-                skipped[path] = f"a launch file that {why_builds_nothing(path)}: nothing to check"
+                skipped[path] = f"{LAUNCH_SKIP} {why_builds_nothing(path)}: nothing to check"
             continue
         if kind == "file":
             root = project_root(Path(path))
@@ -788,7 +814,7 @@ def expand(paths: list[str], request) -> Targets:
         files.extend(str(p) for p in top)
         skipped.update({str(p): reason for p, reason in skipped_here.items()})
         if not found:
-            raise TargetError(f"no .urdf or .xacro files found in '{path}'")
+            raise TargetError(f"no .urdf or .xacro files found in '{path}'{_what_it_holds(path)}")
         if not top:
             first, why = next(iter(skipped_here.items()))
             more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""

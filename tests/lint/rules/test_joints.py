@@ -72,6 +72,20 @@ def test_the_mimic_joints_are_read_once_per_robot(tmp_path):
     assert _mimics(robot) is found  # the four mimic rules share one reading
 
 
+
+def test_each_axis_text_is_measured_once_per_robot(tmp_path, monkeypatch):
+    """Robots repeat their axes (a 10,000-joint star has two): each distinct text is parsed,
+    measured (its scaled length: ~20,000 instructions a joint) and judged once, and the
+    joints that write it share that."""
+    from conftest import synthetic_robot
+    from urdftool.description.load import load
+    from urdftool.lint.rules import joints
+
+    measured = []
+    monkeypatch.setattr(joints, "length", lambda values: measured.append(values) or 1.0)
+    found = joints._axes(load(synthetic_robot(tmp_path, 30, "star")))
+    assert len(found) == 29 and sorted(measured) == [(0.0, 1.0, 0.0), (1.0, 0.0, 0.0)]
+
 def _mimic_chain(count: int, loop: bool) -> str:
     """``count`` joints, each mimicking the one before; with ``loop`` the first mimics the
     last."""

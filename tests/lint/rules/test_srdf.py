@@ -165,3 +165,24 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
     assert "launch/planning_context.launch gives MoveIt this SRDF with the robot with other xacro " \
            "arguments (gripper:=true)" in result.findings[0].message
     assert any("srdf: " in line and "given to MoveIt by" in line for line in result.companions)
+
+
+def test_an_srdf_moveit_gets_only_with_a_package_arguments_default_is_a_warning_saying_so(tmp_path):
+    # DENSO's and Elite's MoveIt launch files name the robot's package by a launch argument
+    # (description_package): MoveIt runs with this SRDF and the robot as checked when it keeps
+    # its default, so the mismatch is a warning naming that, not an error for every launch
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    _, findings = check_folder(tmp_path, {
+        "package.xml": "<package format='2'><name>arm_pkg</name></package>", "robot.urdf": ARM,
+        "config/arm.srdf": srdf('<group name="hand"><joint name="finger_joint"/></group>'),
+        "launch/moveit.launch": """<launch>
+          <arg name="description_package" default="arm_pkg"/>
+          <param name="robot_description" textfile="$(find $(arg description_package))/robot.urdf"/>
+          <param name="robot_description_semantic" textfile="$(find arm_pkg)/config/arm.srdf"/>
+        </launch>"""}, select=("U803",))
+    [finding] = findings
+    assert finding.severity is Severity.WARNING
+    assert "launch/moveit.launch gives MoveIt this SRDF with the robot as checked when launched " \
+           "with description_package's default 'arm_pkg': " in finding.message

@@ -187,7 +187,7 @@ class MeshFacts:
         self.moderate = bool((abs(self.bounds) < 1e150).all())
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
-        self._inner = self._inner_volume = self._corners = None
+        self._inner = self._inner_volume = self._inner_tetrahedron = self._corners = None
         self.inner_slack = 0.0  # [m]: how far an inner point may lie from a merged vertex
 
     def _arrays(self):
@@ -243,6 +243,14 @@ class MeshFacts:
         if self._inner_volume is None:
             self._inner_volume = mesh_arrays.inner_volume(self.vertices)
         return self._inner_volume
+
+    @property
+    def inner_tetrahedron_volume(self) -> float:
+        """A lower bound of the volume of the convex hull cheaper than :attr:`inner_volume`
+        (:func:`.mesh_arrays.inner_tetrahedron_volume`) [m^3]."""
+        if self._inner_tetrahedron is None:
+            self._inner_tetrahedron = mesh_arrays.inner_tetrahedron_volume(self.vertices)
+        return self._inner_tetrahedron
 
     @property
     def convex_hull(self):

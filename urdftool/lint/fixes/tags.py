@@ -50,11 +50,15 @@ class Source:
     each tag's parts, read only for the tags a fix asks for.
 
     The file is parsed as far as the tags asked for, a chunk at a time: a fix near the top of a
-    large file (the root link's) does not pay for the rest. A file that turns out not to be
-    well formed has the tags before the error (the loader has refused such files already).
+    large file (the root link's) does not pay for the rest. The chunks grow from
+    :data:`_FIRST_CHUNK` to :data:`_CHUNK` (doubling): a handler call for each tag of a first
+    64 kB chunk cost the root link's fix of the corpus's robots 8,555 calls for tags no fix
+    asked for. A file that turns out not to be well formed has the tags before the error (the
+    loader has refused such files already).
     """
 
-    _CHUNK = 64 * 1024  # [bytes] parsed at a time
+    _FIRST_CHUNK = 4 * 1024  # [bytes] parsed first
+    _CHUNK = 64 * 1024  # [bytes] parsed at a time at most
 
     def __init__(self, file: str, data: bytes):
         self.file, self.data = file, data
@@ -88,7 +92,8 @@ class Source:
         """Parse on until ``done()`` or the end of the file; False when the file is not well
         formed as far as it was parsed."""
         while self._parser is not None and not done():
-            chunk = self.data[self._fed:self._fed + self._CHUNK]
+            size = min(max(self._fed, self._FIRST_CHUNK), self._CHUNK)  # (doubling)
+            chunk = self.data[self._fed:self._fed + size]
             self._fed += len(chunk)
             final = self._fed >= len(self.data)
             try:

@@ -25,13 +25,15 @@ def _link_name(element) -> str:
 
 
 def _parts(robot) -> list:
-    """(link, holder, tag, origins, shape) of each ``<visual>``, ``<collision>`` and
+    """(link, holder, tag, origins, shape, kind) of each ``<visual>``, ``<collision>`` and
     ``<inertial>`` of every link, in document order, walked once per robot: most rules of this
     family read them, and each walk over lxml elements makes a proxy object for each child
     visited.
 
     tag: the holder's tag; origins: its ``<origin>`` children; shape: the first element inside
-    its first ``<geometry>`` (None for an inertial, when there is no geometry or it is empty).
+    its first ``<geometry>`` (None for an inertial, when there is no geometry or it is empty);
+    kind: the shape's tag (None without a shape), read once: six rules ask (each read of an
+    lxml tag makes a string: 140,000 on a 10,000-link robot).
     """
     return robot.memo(_parts, lambda: _walk_parts(robot))
 
@@ -45,16 +47,17 @@ def _walk_parts(robot) -> list:
                 continue
             children = robot.grouped(holder)  # one pass over its children, kept for U405/U406
             if tag == "inertial":
-                found.append((link, holder, tag, children.get("origin", ()), None))
+                found.append((link, holder, tag, children.get("origin", ()), None, None))
                 continue
             geometry = children.get("geometry")
             shape = _first_element(geometry[0]) if geometry else None
-            found.append((link, holder, tag, children.get("origin", ()), shape))
+            found.append((link, holder, tag, children.get("origin", ()), shape,
+                          None if shape is None else shape.tag))
     return found
 
 
 def _holders(robot, tags=("visual", "collision")):
-    for link, holder, tag, _, _ in _parts(robot):
+    for link, holder, tag, _, _, _ in _parts(robot):
         if tag in tags:
             yield link, holder
 
@@ -103,15 +106,15 @@ def missing_geometry(robot):
     Bad: ``<collision><origin xyz="0 0 0.1"/></collision>``, ``<geometry><cone .../></geometry>``
     Good: ``<collision><geometry><cylinder radius="0.05" length="0.2"/></geometry></collision>``
     """
-    for link, holder, tag, _, shape in _parts(robot):
-        if tag == "inertial" or (shape is not None and shape.tag in SHAPES):
+    for link, holder, tag, _, shape, kind in _parts(robot):
+        if tag == "inertial" or kind in SHAPES:
             continue
         where = f"link '{link.get('name')}': <{tag}>"
-        if shape is not None and shape.tag in _OTHER_READERS_SHAPES:
-            yield shape, Conditional(f"{where} has <{shape.tag}>, "
-                                     f"{_OTHER_READERS_SHAPES[shape.tag](robot)}")
+        if kind in _OTHER_READERS_SHAPES:
+            yield shape, Conditional(f"{where} has <{kind}>, "
+                                     f"{_OTHER_READERS_SHAPES[kind](robot)}")
         elif shape is not None:
-            yield shape, (f"{where} has unknown geometry <{shape.tag}>; valid shapes: "
+            yield shape, (f"{where} has unknown geometry <{kind}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
         elif (geometry := robot.child(holder, "geometry")) is None:
             yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
@@ -120,11 +123,11 @@ def missing_geometry(robot):
 
 
 def _shapes(robot) -> list:
-    """(link, holder, shape element) of every known shape, found once per robot (four rules
-    ask)."""
+    """(link, holder, shape element, its tag) of every known shape, found once per robot
+    (four rules ask)."""
     return robot.memo(_shapes, lambda: [
-        (link, holder, shape) for link, holder, _, _, shape in _parts(robot)
-        if shape is not None and shape.tag in SHAPES])
+        (link, holder, shape, kind) for link, holder, _, _, shape, kind in _parts(robot)
+        if kind in SHAPES])
 
 
 @rule("U402", "geometry-attribute", Severity.ERROR)
@@ -137,19 +140,22 @@ def geometry_attribute(robot):
     Bad: ``<box size="0.1 0.2"/>``, ``<cylinder radius="0.05"/>``, ``<mesh/>``
     Good: ``<box size="0.1 0.2 0.3"/>``, ``<cylinder radius="0.05" length="0.2"/>``
     """
-    for link, holder, shape in _shapes(robot):
-        for attribute, count in SHAPE_ATTRIBUTES[shape.tag]:
+    sound: set = set()  # (count, text) found to be that many finite numbers (values repeat)
+    for link, holder, shape, kind in _shapes(robot):
+        for attribute, count in SHAPE_ATTRIBUTES[kind]:
             text = shape.get(attribute)
             if text is None or (count is None and not text.strip()):
                 yield shape, f"{_shape_prefix(link, shape)} has no {attribute} attribute"
                 continue
-            if count is None:
+            if count is None or (count, text) in sound:
                 continue
             values, problem = number_tuple(text, count)
             if problem:
                 yield shape, f"{_shape_prefix(link, shape)} {attribute}: {problem}"
             elif not finite(values):
                 yield shape, f"{_shape_prefix(link, shape)} {attribute}=\"{text}\" is not finite"
+            else:
+                sound.add((count, text))
 
 
 def _shape_prefix(link, shape) -> str:
@@ -177,37 +183,40 @@ def non_positive_dimension(robot):
     Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
     """
     positive: set = set()  # (attribute, count, text) found all positive (values repeat)
-    for link, holder, shape in _shapes(robot):
-        fields = _DIMENSIONS[shape.tag]
-        if shape.tag == "mesh" and shape.get("scale") is not None:
+    for link, holder, shape, kind in _shapes(robot):
+        fields = _DIMENSIONS[kind]
+        if kind == "mesh" and shape.get("scale") is not None:
             fields = (("scale", 3),)
         texts = [(attribute, count, shape.get(attribute)) for attribute, count in fields]
-        if all(text in positive for text in texts):
+        if positive.issuperset(texts):
             continue
         numbers = [number_tuple(text, count)[0] for _, count, text in texts]
         if all(values and all(v > 0 for v in values) for values in numbers):
             positive.update(texts)
             continue  # every number positive, as in most shapes: nothing to report
-        if holder.tag == "visual" and shape.tag != "mesh" and all(
+        if holder.tag == "visual" and kind != "mesh" and all(
                 values and all(v == 0 for v in values) for values in numbers):
             continue  # a virtual link's invisible marker
         for (attribute, _), values in zip(fields, numbers):
             mirrored = attribute == "scale" and all(v != 0 for v in values or [0])
             if values and finite(values) and any(v <= 0 for v in values) and not mirrored:
-                yield shape, (f"link '{link.get('name')}': <{shape.tag} {attribute}="
+                yield shape, (f"link '{link.get('name')}': <{kind} {attribute}="
                               f"\"{shape.get(attribute)}\"> has a value <= 0; dimensions must "
                               "be positive")
 
 
-def _origin_fields(robot):
+def _origin_fields(robot, sound: set):
     """(link, holder, element, attribute, its text) of every origin ``xyz``/``rpy`` and mesh
-    ``scale`` written in a visual, collision or inertial."""
-    for link, holder, _, origins, shape in _parts(robot):
+    ``scale`` written in a visual, collision or inertial, but those whose text is in ``sound``
+    as each is read (texts found sound already, which the caller adds to: values repeat, and
+    a large robot's 60,000 need not each be handed over)."""
+    for link, holder, _, origins, shape, kind in _parts(robot):
         for origin in origins:
             for attribute in ("xyz", "rpy"):
-                if (text := origin.get(attribute)) is not None:
+                text = origin.get(attribute)
+                if text is not None and text not in sound:
                     yield link, holder, origin, attribute, text
-        if shape is not None and shape.tag == "mesh" and (text := shape.get("scale")) is not None:
+        if kind == "mesh" and (text := shape.get("scale")) is not None and text not in sound:
             yield link, holder, shape, "scale", text
 
 
@@ -221,9 +230,7 @@ def malformed_link_number(robot):
     Good: ``<origin xyz="0 0.1 0"/>``, ``<mesh filename="a.stl" scale="0.001 0.001 0.001"/>``
     """
     sound: set = set()  # texts found to be three finite numbers (values repeat)
-    for link, holder, element, attribute, text in _origin_fields(robot):
-        if text in sound:
-            continue
+    for link, holder, element, attribute, text in _origin_fields(robot, sound):
         values, problem = number_tuple(text, 3)
         if problem is None and not finite(values):
             problem = f"'{text}' is not finite"
@@ -310,8 +317,8 @@ def undefined_material(robot):
 # Meshes ------------------------------------------------------------------------------------
 
 def _mesh_elements(robot):
-    for link, holder, shape in _shapes(robot):
-        if shape.tag == "mesh" and shape.get("filename"):
+    for link, holder, shape, kind in _shapes(robot):
+        if kind == "mesh" and shape.get("filename"):
             yield link, holder, shape
 
 
@@ -321,9 +328,12 @@ def _mesh_outcomes(robot):
 
 
 def _load_meshes(robot):
+    elements = list(_mesh_elements(robot))
+    if not elements:
+        return  # (a robot of primitives: the mesh readers are not imported)
     from urdftool.description.meshes import MeshProblem, mesh_facts
 
-    for link, holder, shape in _mesh_elements(robot):
+    for link, holder, shape in elements:
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         if not scale or not finite(scale):
             continue
@@ -578,9 +588,12 @@ def mesh_not_well_formed(robot):
     Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value)
     Good: ``<node id="STL_BINARY">``, or the file exported again
     """
+    outcomes = _mesh_outcomes(robot)
+    if not outcomes:
+        return  # (no mesh: the mesh readers are not imported)
     from urdftool.description.meshes import NOT_WELL_FORMED
 
-    for link, holder, shape, outcome in _mesh_outcomes(robot):
+    for link, holder, shape, outcome in outcomes:
         why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
         if why:
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "

@@ -36,6 +36,7 @@ from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import link_reach
+from urdftool.lint.rules.joints import origin_xyz
 
 NEGATIVE_TOLERANCE = 1e-9
 NEGATIVE_FLOOR = 1e-12  # [kg m^2]: rounding noise in products of inertia of massless links
@@ -824,10 +825,12 @@ def implausible_density(robot):
         least = properties.mass / bounds[1] if bounds[1] is not None else 0.0
         if least > DENSEST:  # (mass and volume positive: equal keys, the same numbers)
             said = denser.get((properties.mass, bounds[1]))
-            if said is None:
+            if said is None:  # (a mass of 1e308 over a litre: more than a float holds)
+                density = f"at least {number(least, places=0, grouped=True)}" \
+                    if math.isfinite(least) else "more than 1e+308"
                 said = denser[properties.mass, bounds[1]] = (
                     f"{properties.mass:g} kg in at most {number(bounds[1], 3)} m^3 of geometry "
-                    f"is at least {number(least, places=0, grouped=True)} kg/m^3, denser than "
+                    f"is {density} kg/m^3, denser than "
                     f"osmium ({osmium}); a wrong mass or geometry scale")
             yield _inertial_part(link, "mass"), f"link '{names[link] or '?'}': {said}"
         elif bounds[0] > 0 and properties.mass / bounds[0] < LIGHTEST:
@@ -867,7 +870,7 @@ def _copied_joint_origin(robot, link, properties) -> object | None:
     joint = parent_joints(robot).get(robot.names()[link] or "?")  # (_name, as read once)
     if joint is None:
         return None
-    xyz = origin_pose(joint)[0]  # origin_of(joint).xyz, without the rest
+    xyz = origin_xyz(robot, joint)  # origin_of(joint).xyz, from the joints' texts
     (cx, cy, cz), (x, y, z) = properties.com, xyz
     # the centre of mass first (most links: not the joint's; written out, 10,000 links),
     # then the joint's distance, then the written origin

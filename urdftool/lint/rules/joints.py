@@ -128,20 +128,30 @@ def inverted_limits(robot):
 
 
 def _axes(robot) -> list:
-    """(joint, axis, xyz, length) of each moving joint whose axis is three finite numbers; once
-    per robot (U205 and U206 ask)."""
+    """(joint, axis, xyz, length, whether its squares vanish: :func:`_vanishes`) of each moving
+    joint whose axis is three finite numbers; once per robot (U205 and U206 ask), each text
+    measured once (robots repeat their axes: 10,000 joints, a few axes)."""
     def read():
         found, kinds, texts = [], robot.kinds(), _texts(robot)
+        measured = {}  # an axis's xyz text -> (xyz, length, vanishes), or None when not finite
         for joint in robot.children("joint"):
             axis = robot.child(joint, "axis")
             if axis is None or kinds[joint] not in AXIS:
                 continue
-            values, _ = number_tuple(texts[axis][0], 3)  # (its xyz)
-            if values is not None and finite(values):
-                found.append((joint, axis, values, length(values)))
+            text = texts[axis][0]  # (its xyz)
+            known = measured.get(text, _UNMEASURED)
+            if known is _UNMEASURED:
+                values, _ = number_tuple(text, 3)
+                known = measured[text] = (values, length(values), _vanishes(values)) \
+                    if values is not None and finite(values) else None
+            if known is not None:
+                found.append((joint, axis, *known))
         return found
 
     return robot.memo(_axes, read)
+
+
+_UNMEASURED = object()
 
 
 @rule("U205", "zero-axis", Severity.ERROR)
@@ -157,10 +167,10 @@ def zero_axis(robot):
     Bad: ``<axis xyz="0 0 0"/>``, ``<axis xyz="0 0 1e-200"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint, axis, values, length in _axes(robot):
+    for joint, axis, values, length, vanishes in _axes(robot):
         if length == 0:
             yield axis, f"joint '{_name(joint)}' has a zero-length axis; give a unit vector"
-        elif _vanishes(values):
+        elif vanishes:
             yield axis, (f"joint '{_name(joint)}' has an axis of length {number(length, 3)}, "
                          "whose squared length underflows to 0: loaders that normalise it "
                          "(Pinocchio, Gazebo, MuJoCo, KDL) get no direction or another; give a "
@@ -188,8 +198,8 @@ def axis_not_unit(robot):
     Bad: ``<axis xyz="0 0 2"/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
-    for joint, axis, values, norm in _axes(robot):
-        if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE and not _vanishes(values):  # (U205)
+    for joint, axis, values, norm, vanishes in _axes(robot):
+        if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE and not vanishes:  # (U205)
             unit = _unit_text(values, norm)
             yield offer(axis, (f"joint '{_name(joint)}' axis has length {number(norm, 6)}, not 1; "
                                f"write xyz=\"{unit}\""), f"normalise the axis to {unit}",
@@ -220,6 +230,21 @@ def _texts(robot) -> dict:
     them: each read from lxml once per robot (U203, U204, U205, U207, U212 ask for the same
     limits and axes, 100,000 reads on a 10,000-joint robot)."""
     return _numbers(robot)[0]
+
+
+def origin_xyz(robot, joint) -> tuple[float, float, float]:
+    """The xyz of ``joint``'s first ``<origin>`` as :func:`~urdftool.description.values.
+    origin_pose` reads it (zeros without one, or for a malformed text), from its text as read
+    once per robot (:func:`_texts`): the inertia rules compare it with each link's centre of
+    mass (10,000 joints read again)."""
+    origin = robot.child(joint, "origin")
+    if origin is None:
+        return _ZEROS
+    text = _texts(robot)[origin][0]  # (its xyz)
+    return number_tuple("0 0 0" if text is None else text, 3)[0] or _ZEROS
+
+
+_ZEROS = (0.0, 0.0, 0.0)
 
 
 def _numbers(robot) -> tuple[dict, list]:

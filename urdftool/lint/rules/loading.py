@@ -68,7 +68,8 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
       xacro argument it gives read, and does not give this one: xacro fails there, every time;
       and when the build a launch file makes with no launch argument involved fails;
     - **warning**, naming the launch file and its condition, when one makes it without the
-      argument only under a condition (an ``if``, or a launch argument choosing the file); and
+      argument only under a condition (an ``if``, a launch argument choosing the file, or
+      naming its package: "when launched with description_package's default 'x'"); and
       when no launch file gives it, it is declared nowhere and its name is close to one that is
       declared (``$(arg robot_nmae)``: a misspelt name fails unless a command line gives it);
     - **note** when launch files give it: the robot is checked as the first one builds it

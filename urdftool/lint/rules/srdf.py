@@ -3,7 +3,10 @@
 MoveIt reads the SRDF with the robot a launch file builds: when the robot's launch files give
 MoveIt this SRDF only with the robot built otherwise (other xacro arguments: a gripper, a
 prefix; or environment variables the robot reads), a mismatch with the robot as checked is a
-note naming them (docs/certainty.md): the MoveIt configuration is another build's.
+note naming them (docs/certainty.md): the MoveIt configuration is another build's. When they
+give it both only with the defaults of the launch arguments naming the robot's or the SRDF's
+package (``FindPackageShare(LaunchConfiguration("description_package"))``), a warning saying
+so.
 """
 
 from __future__ import annotations
@@ -36,6 +39,8 @@ def as_moveit_runs(check):
                                       Severity.INFO)
             elif state == "certain":
                 message = f"{why}: {message}"
+            elif state == "by default":  # MoveIt's for the defaults of the launch arguments
+                message = Conditional(f"{why}: {message}")
             yield (where, message, *fix)
     return judged
 

@@ -1,0 +1,227 @@
+"""What runs with a robot (description/runtime.py): how a robot file is built when a launch
+argument names the package holding it, in each form a launch file writes that, and what the
+build then tells the rules (docs/launch.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from urdftool.description.launch_configs import launch_index
+from urdftool.description.runtime import AS_CHECKED, builds, runtime
+from urdftool.lint.engine import CheckOptions, load_and_check
+
+PACKAGE = "<package format='2'><name>{}</name></package>"
+ROBOT = """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="tool"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+BY_DEFAULT = "when launched with description_package's default 'arm_description'"
+
+
+def _repo(root: Path, files: dict[str, str]) -> Path:
+    (root / ".git").mkdir(parents=True, exist_ok=True)
+    files = {"arm_description/package.xml": PACKAGE.format("arm_description"),
+             "arm_description/urdf/arm.urdf.xacro": ROBOT,
+             "arm_bringup/package.xml": PACKAGE.format("arm_bringup"), **files}
+    for name, text in files.items():
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
+        (root / name).write_text(text)
+    return root
+
+
+# each form of "the package a launch argument names", building arm_description's arm
+PYTHON_SUBSTITUTION = '''
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    description_package = LaunchConfiguration("description_package")
+    description = Command([FindExecutable(name="xacro"), " ",
+                           PathJoinSubstitution([FindPackageShare(description_package), "urdf", "arm.urdf.xacro"]),
+                           " prefix:=", LaunchConfiguration("prefix")])
+    return LaunchDescription([
+        DeclareLaunchArgument("description_package", default_value="arm_description"),
+        DeclareLaunchArgument("prefix", default_value=""),
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": description}]),
+        Node(package="controller_manager", executable="spawner", arguments=["arm_controller"]),
+    ])
+'''
+PYTHON_OPAQUE = '''
+import os
+import xacro
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+def launch_setup(context, *args, **kwargs):
+    package = LaunchConfiguration("description_package").perform(context)
+    path = os.path.join(get_package_share_directory(package), "urdf", "arm.urdf.xacro")
+    description = xacro.process_file(path, mappings={"prefix": ""}).toxml()
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": description}])]
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument("description_package", default_value="arm_description"),
+        OpaqueFunction(function=launch_setup),
+    ])
+'''
+ROS1 = """<launch>
+  <arg name="description_package" default="arm_description"/>
+  <param name="robot_description" command="$(find xacro)/xacro $(find $(arg description_package))/urdf/arm.urdf.xacro prefix:=''"/>
+</launch>"""
+ROS2_XML = """<launch>
+  <arg name="description_package" default="arm_description"/>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description" value="$(command 'xacro $(find-pkg-share $(var description_package))/urdf/arm.urdf.xacro prefix:=')"/>
+  </node>
+</launch>"""
+FORMS = {"python_substitution": ("arm.launch.py", PYTHON_SUBSTITUTION),
+         "python_opaque_function": ("arm.launch.py", PYTHON_OPAQUE),
+         "ros1_xml": ("arm.launch", ROS1), "ros2_xml": ("arm.launch.xml", ROS2_XML)}
+
+
+@pytest.mark.parametrize("form", FORMS)
+def test_a_package_a_launch_argument_names_is_its_default_and_the_build_holds_for_it_only(
+        tmp_path, form):
+    name, text = FORMS[form]
+    root = _repo(tmp_path, {f"arm_bringup/launch/{name}": text})
+    robot_file = root / "arm_description/urdf/arm.urdf.xacro"
+    [build] = builds(str(robot_file))
+    assert build.xacro and build.args == {"prefix": ""}
+    # built for the default only: never a certain build (U005 is then a warning)
+    assert build.chosen and not build.certain and build.condition == BY_DEFAULT
+    robot = load_and_check(str(robot_file), CheckOptions()).robot
+    [(_, relation)] = [c for c in runtime(robot).configurations if c[1]]
+    assert relation == f"{AS_CHECKED} {BY_DEFAULT}"
+
+
+def test_what_it_starts_is_conditional_on_that_default(tmp_path):
+    root = _repo(tmp_path, {"arm_bringup/launch/arm.launch.py": PYTHON_SUBSTITUTION})
+    robot = load_and_check(str(root / "arm_description/urdf/arm.urdf.xacro"), CheckOptions()).robot
+    [spawn] = runtime(robot).spawns
+    assert spawn.name == "arm_controller" and not spawn.certain
+    assert spawn.condition == f"against the robot {AS_CHECKED} {BY_DEFAULT}"
+
+
+def test_a_package_an_including_launch_file_names_is_certain(tmp_path):
+    # the including file gives the value: no launch argument is left to choose the package
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/arm.launch": ROS1.replace('default="arm_description"', ""),
+        "arm_bringup/launch/bringup.launch": """<launch>
+  <include file="$(find arm_bringup)/launch/arm.launch">
+    <arg name="description_package" value="arm_description"/>
+  </include>
+</launch>"""})
+    [build] = builds(str(root / "arm_description/urdf/arm.urdf.xacro"))
+    assert build.launch.endswith("bringup.launch") and build.certain
+
+
+def test_an_including_launch_files_own_argument_is_the_condition(tmp_path):
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/arm.launch": ROS1.replace('default="arm_description"', ""),
+        "arm_bringup/launch/bringup.launch": """<launch>
+  <arg name="robot_package" default="arm_description"/>
+  <include file="$(find arm_bringup)/launch/arm.launch">
+    <arg name="description_package" value="$(arg robot_package)"/>
+  </include>
+</launch>"""})
+    [build] = builds(str(root / "arm_description/urdf/arm.urdf.xacro"))
+    assert build.condition == "when launched with robot_package's default 'arm_description'"
+
+
+def test_what_an_include_from_a_package_so_named_builds_holds_for_the_default_too(tmp_path):
+    # Kassow: <include file="$(find-pkg-share $(var configuration_package))/launch/...">
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/arm.launch": ROS1.replace("$(arg description_package)", "arm_description"),
+        "arm_bringup/launch/bringup.launch": """<launch>
+  <arg name="bringup_package" default="arm_bringup"/>
+  <include file="$(find $(arg bringup_package))/launch/arm.launch"/>
+</launch>"""})
+    robot_file = root / "arm_description/urdf/arm.urdf.xacro"
+    by_default = "when launched with bringup_package's default 'arm_bringup'"
+    [build] = builds(str(robot_file))
+    assert build.launch.endswith("bringup.launch") and not build.certain
+    assert build.condition == by_default
+    robot = load_and_check(str(robot_file), CheckOptions()).robot
+    assert [r for _, r in runtime(robot).configurations if r] == [f"{AS_CHECKED} {by_default}"]
+
+
+def test_both_conditions_are_said_once_when_the_include_and_the_file_are_so_named(tmp_path):
+    # Kassow's dual-arm bringup includes $(find-pkg-share $(var configuration_package))/launch/
+    # ...description.launch.xml, which builds $(find-pkg-share $(var description_package))/urdf/...
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/arm.launch.xml": ROS2_XML,
+        "arm_bringup/launch/bringup.launch.xml": """<launch>
+  <arg name="bringup_package" default="arm_bringup"/>
+  <include file="$(find-pkg-share $(var bringup_package))/launch/arm.launch.xml"/>
+</launch>"""})
+    [build] = builds(str(root / "arm_description/urdf/arm.urdf.xacro"))
+    assert build.condition == ("when launched with bringup_package's default 'arm_bringup' and "
+                               "description_package's default 'arm_description'")
+
+
+def test_a_package_named_in_part_by_an_argument(tmp_path):
+    # Rokae: f"rokae_xMate{robot_type}_moveit_config"; KUKA: f"kuka_{robot_family}_support"
+    text = PYTHON_OPAQUE.replace('LaunchConfiguration("description_package").perform(context)',
+                                 'f"arm_{LaunchConfiguration(\'kind\').perform(context)}"').replace(
+        'DeclareLaunchArgument("description_package", default_value="arm_description")',
+        'DeclareLaunchArgument("kind", default_value="description")')
+    root = _repo(tmp_path, {"arm_bringup/launch/arm.launch.py": text})
+    [build] = builds(str(root / "arm_description/urdf/arm.urdf.xacro"))
+    assert build.condition == "when launched with the default of kind (package 'arm_description')"
+
+
+def test_a_default_naming_no_package_of_the_repository_builds_nothing(tmp_path):
+    root = _repo(tmp_path, {"arm_bringup/launch/arm.launch": ROS1.replace(
+        'default="arm_description"', 'default="ur_description"')})
+    assert builds(str(root / "arm_description/urdf/arm.urdf.xacro")) == []
+    [configuration] = launch_index(root).configurations
+    [described] = configuration.described
+    assert described.path is None and described.by_default == ""
+
+
+def test_a_package_given_at_launch_only_builds_nothing(tmp_path):
+    # no default: the package is known only at launch
+    root = _repo(tmp_path, {"arm_bringup/launch/arm.launch": ROS1.replace(
+        ' default="arm_description"', "")})
+    assert builds(str(root / "arm_description/urdf/arm.urdf.xacro")) == []
+
+
+def test_a_build_from_a_package_so_named_comes_after_those_naming_theirs(tmp_path):
+    # ros2_kortex: kortex_bringup's launch files name the package by an argument, and
+    # kortex_description's view_robot.launch.py names it: a robot needing a xacro argument is
+    # checked as the latter builds it, whatever the order the launch files are read in
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/a_by_default.launch": ROS1,
+        "arm_bringup/launch/z_named.launch": ROS1.replace("$(arg description_package)",
+                                                          "arm_description")})
+    assert [Path(b.launch).name for b in builds(str(root / "arm_description/urdf/arm.urdf.xacro"))] \
+        == ["z_named.launch", "a_by_default.launch"]
+
+
+def test_an_srdf_from_a_package_so_named_is_moveits_for_the_default_only(tmp_path):
+    from urdftool.description.runtime import moveit_with
+
+    root = _repo(tmp_path, {
+        "arm_moveit_config/package.xml": PACKAGE.format("arm_moveit_config"),
+        "arm_moveit_config/config/arm.srdf": "<robot name='arm'/>",
+        "arm_bringup/launch/moveit.launch": """<launch>
+  <arg name="moveit_config_package" default="arm_moveit_config"/>
+  <param name="robot_description" command="$(find xacro)/xacro $(find arm_description)/urdf/arm.urdf.xacro"/>
+  <param name="robot_description_semantic" textfile="$(find $(arg moveit_config_package))/config/arm.srdf"/>
+</launch>"""})
+    robot = load_and_check(str(root / "arm_description/urdf/arm.urdf.xacro"), CheckOptions()).robot
+    state, why = moveit_with(robot, root / "arm_moveit_config/config/arm.srdf")
+    assert state == "by default"
+    assert why.endswith("gives MoveIt this SRDF with the robot as checked when launched with "
+                        "moveit_config_package's default 'arm_moveit_config'")
