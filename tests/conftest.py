@@ -121,9 +121,27 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
 
     corpus_or_skip()
     with one_run():
-        return {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
-                                                    CheckOptions(xacro_args=entry[1])))
-                for entry in corpus_entry_points()}
+        run = {entry_id(entry): (entry, load_and_check(str(CORPUS / entry[0]),
+                                                   CheckOptions(xacro_args=entry[1])))
+               for entry in corpus_entry_points()}
+    lasting()  # the robots live as long as the session
+    return run
+
+
+def lasting() -> None:
+    """The objects alive now moved out of the cyclic collector's sight (``gc.freeze()``, after
+    a collection): what the session keeps (modules, test items, the corpus run) is no longer
+    walked by every full collection of a pytest worker, which held half a million objects.
+    Objects made later are collected as before; a test that needs nothing frozen unfreezes."""
+    import gc
+
+    gc.collect()
+    gc.freeze()
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_finish(session):
+    lasting()  # every module imported and every item collected lives as long as the session
 
 
 def without_heavy_imports(code: str) -> str:
