@@ -298,6 +298,10 @@ def _child(argv, cwd, allow, scratch, out_fd, log_fd, stdin_path, memory_limit, 
         tempfile.tempdir = str(scratch)
         if memory_limit:
             resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
+        # Python's own bytecode cache is not the command's doing (a module imported first here
+        # is compiled, and pytest's rewrite of urdftool, a plugin's package, makes its folder):
+        # an installed urdftool has its bytecode, and make test lets Python write it
+        sys.dont_write_bytecode = True
         sys.addaudithook(_auditor(allow, log_fd))
         from urdftool.cli import app
 
