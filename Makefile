@@ -21,13 +21,15 @@ demo: $(INSTALLED)
 	@echo; echo "A broken robot (exit code 1; the finding points into the included macro file):"
 	@$(VENV)/bin/urdftool check tests/cases/U005_xacro_error/robot.urdf.xacro || true
 
-# The sweeps (marked slow: minutes) run by their own targets, not here.
+# The sweeps (marked slow: minutes) run by their own targets, not here. Bytecode is written even
+# where PYTHONDONTWRITEBYTECODE is set: what pytest rewrites (the plugins' packages, hypothesis's)
+# and the test helpers are compiled once per run, not again in every Python the tests start.
 test: $(INSTALLED)
-	$(PY) -m pytest -n auto --dist loadgroup -m "not slow"
+	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -n auto --dist loadgroup -m "not slow"
 
 # The inner loop: unit tests only, without the corpus, parity, fuzz and documentation runs.
 test-fast: $(INSTALLED)
-	$(PY) -m pytest -n auto --dist loadgroup -m "not integration and not network"
+	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -n auto --dist loadgroup -m "not integration and not network"
 
 # The documentation generated from the rules (docs/rules/, the table in docs/targets.md): run it
 # after adding or changing a rule, or after a merge; `make test` fails while a page is stale.
