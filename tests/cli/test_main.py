@@ -242,7 +242,8 @@ def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path):
         gc.unfreeze()
 
 
-def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collection, monkeypatch, tmp_path):
+def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collection, monkeypatch,
+                                                                   tmp_path, _nothing_frozen):
     import gc
 
     robot = tmp_path / "r.urdf"
