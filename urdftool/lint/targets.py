@@ -19,8 +19,7 @@ from urdftool.diagnostics import display_path
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
 from urdftool.description.launch import LAUNCH_SUFFIXES
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listable, \
-    unreachable, \
-    listing, read_regular, real_path
+    read_regular, real_path, unreachable, walk
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
 from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
@@ -64,26 +63,24 @@ def robot_files(folder: Path, unlisted: list[Path] | None = None) -> list[Path]:
     added to ``unlisted``: their files are not checked, which a run must say."""
     if not _stays_inside(folder):
         return [folder]
-    found, pending = [], [Path(folder)]
-    pattern = f"*/|{ROBOT_GLOB}"
-    while pending:
-        current = pending.pop()
-        entries = listing(current, pattern)
+    found = []
+    for current, entries in walk(Path(folder), f"*/|{ROBOT_GLOB}", _ANY_DEPTH, SKIP_DIRS):
+        current = Path(current)
         if not entries and unlisted is not None and not listable(current):
             unlisted.append(current)
         for name, kind in entries:
+            if kind == "folder":
+                continue  # (walked, unless hidden or a tool's)
             path = current / name
             if kind == "link" and kind_of(path) == "folder":
                 if name not in SKIP_DIRS and not name.startswith(".") and not _stays_inside(path):
                     found.append(path)
-            elif kind == "folder":
-                if name not in SKIP_DIRS and not name.startswith("."):
-                    pending.append(path)
             elif is_robot_name(name):
                 found.append(path)
     return sorted(found)
 
 
+_ANY_DEPTH = 1 << 30  # (folders below folders: walked to the bottom)
 _HELD = (("*.srdf", "SRDF"), ("*.launch|*.launch.*", "launch file"), ("*.sdf", "SDF document"))
 
 
@@ -91,14 +88,12 @@ def _what_it_holds(folder) -> str:
     """For the error of a folder without robot files: the robot descriptions' companions it
     holds (a MoveIt configuration's SRDF, launch files, SDF documents), said so that the reader
     knows they are checked only beside the robot they describe. Walked as robot_files walks."""
-    counts, pending, folders = dict.fromkeys([name for _, name in _HELD], 0), [Path(folder)], 0
+    counts = dict.fromkeys([name for _, name in _HELD], 0)
     pattern = "*/|" + "|".join(glob for glob, _ in _HELD)
-    while pending and folders < 2000:  # an error message: bounded, never the run's cost
-        current, folders = pending.pop(), folders + 1
-        for name, kind in listing(current, pattern):
-            if kind == "folder" and name not in SKIP_DIRS and not name.startswith("."):
-                pending.append(current / name)
-            elif kind == "file":
+    # an error message: bounded, never the run's cost
+    for _, entries in walk(Path(folder), pattern, _ANY_DEPTH, SKIP_DIRS, most=2000):
+        for name, kind in entries:
+            if kind == "file":
                 counts[next(what for glob, what in _HELD
                             if any(fnmatch(name, g) for g in glob.split("|")))] += 1
     held = [f"{n} {what}{'s' if n > 1 else ''}" for what, n in counts.items() if n]
