@@ -73,9 +73,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         messages += [f"companion of {result.path}: {line}" for result in run.results
                      for line in result.companions]
     elif not run.results:  # a launch file named builds nothing: "0 files checked" says not why
-        from urdftool.lint.targets import LAUNCH_SKIP
-
-        launch = [(path, why) for path, why in run.skipped.items() if why.startswith(LAUNCH_SKIP)]
+        launch = [(path, run.skipped[path]) for path in run.unbuilt]
         messages += [f"skipped {path}: {why}" for path, why in launch[:3]]
         messages += [f"and {len(launch) - 3} more launch files (-v says why)"] * (len(launch) > 3)
     messages = [text(message) for message in messages]  # a file name can hold a line break

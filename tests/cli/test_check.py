@@ -121,3 +121,17 @@ def test_a_symlinked_folder_and_its_includes_are_shown_the_same_way(run_cli, tmp
     [finding] = json.loads(result.stdout)["diagnostics"]
     assert finding["file"] == "alias/arm.xacro"
     assert finding["via"][0]["file"] == "alias/robot.urdf.xacro"
+
+
+def test_a_run_checking_nothing_says_why_of_the_launch_files_named_alone(run_cli, tmp_path):
+    """A launch file named (pre-commit names it) that builds no robot: said without -v when the
+    run checks nothing, each once; a YAML no robot uses stays quiet (said with -v)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "empty.launch").write_text("<launch/>")
+    (tmp_path / "robot.yaml").write_text("a: 1\n")
+    named = [tmp_path / "empty.launch", tmp_path / "robot.yaml", tmp_path / "empty.launch"]
+    result = run_cli("check", *named)
+    said = [line for line in result.stderr.splitlines() if line.startswith("skipped ")]
+    assert len(said) == 1 and said[0].startswith(f"skipped {named[0]}: a launch file that "), said
+    verbose = run_cli("check", "-v", *named).stderr
+    assert f"skipped {named[1]}: no robot below" in verbose

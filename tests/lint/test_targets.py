@@ -316,6 +316,23 @@ def test_a_launch_file_named_that_builds_nothing_says_why(tmp_path, name, text, 
     assert "('syntax'" not in reason
 
 
+def test_a_launch_file_named_that_builds_nothing_is_recorded_as_such_once(tmp_path):
+    """session 11: the command found these among the skipped by the start of their reason (a
+    YAML's or a macro's reason worded alike would have been said too); ``Targets.unbuilt``
+    records them, each once however often named."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "empty.launch").write_text("<launch/>")
+    (tmp_path / "robot.yaml").write_text("a: 1\n")
+    named = [str(tmp_path / "empty.launch"), str(tmp_path / "robot.yaml"),
+             str(tmp_path / "empty.launch")]
+    targets = expand(named, CheckRequest())
+    assert targets.unbuilt == [named[0]]
+    assert set(targets.skipped) == {named[0], named[1]}
+
+
 def test_a_launch_file_named_in_no_repository_says_so(tmp_path):
     (tmp_path / "show.launch").write_text('<launch><param name="robot_description" '
                                           'textfile="robot.urdf"/></launch>')

@@ -116,6 +116,7 @@ class Run:
         (see :mod:`urdftool.lint.cache`); None for any other
     errors: why files were not checked: the settings file that applies to them is broken
         (each message names it); the other files were checked
+    unbuilt: the launch files named that build no robot (their reasons in ``skipped``)
     """
 
     results: list[FileResult]
@@ -124,6 +125,7 @@ class Run:
     strict: list[bool] = field(default_factory=list)
     depends: list | None = field(default=None, repr=False)
     errors: list[str] = field(default_factory=list)
+    unbuilt: list[str] = field(default_factory=list)
 
     def __post_init__(self):
         for result, strict in zip(self.results, self.strict):
@@ -216,7 +218,7 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
         for index, result in zip(indexes, found):
             results[index] = result
     run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
-              errors=errors)
+              errors=errors, unbuilt=targets.unbuilt)
     if cache is not None and not errors:
         run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options,
                                     surroundings)

@@ -49,7 +49,6 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "disable_collisions", "disable_default_collisions", "enable_collisions",
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
-LAUNCH_SKIP = "a launch file that"  # (the start of the reason a launch file named is skipped)
 SDF_SOURCE = "an SDF document (a Gazebo model or world, built by xacro), not a URDF robot"
 FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
             "<ros2_control> or <webots> blocks besides definitions)")
@@ -712,12 +711,15 @@ class Targets:
         no file at all these make it a usage error (:func:`urdftool.lint.runner.check_paths`),
         as a folder without robot files is; a companion, a macro library, a fragment or an
         SRDF source named (pre-commit names every staged file) is none by what it is.
+    unbuilt: the launch files named that build no robot (each in ``skipped`` with why): a run
+        that checks nothing says why without -v, where "0 files checked" would not
     """
 
     files: list[str]
     skipped: dict[str, str]
     notes: list[str]
     unchecked: list[str] = field(default_factory=list)
+    unbuilt: list[str] = field(default_factory=list)
 
 
 def expand(paths: list[str], request) -> Targets:
@@ -752,7 +754,7 @@ def expand(paths: list[str], request) -> Targets:
 
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
-    files, skipped, notes, unchecked = [], {}, [], []
+    files, skipped, notes, unchecked, unbuilt = [], {}, [], [], []
     for path in map(os.fspath, paths):
         if path != "-" and not kind_of(path, follow=False):
             raise TargetError(f"path '{path}' {unreachable(path)}")
@@ -784,7 +786,8 @@ def expand(paths: list[str], request) -> Targets:
                              f"{', '.join(display_path(p) for p in users)}: checking "
                              f"{'that' if len(users) == 1 else 'those'}")
             else:
-                skipped[path] = f"{LAUNCH_SKIP} {why_builds_nothing(path)}: nothing to check"
+                skipped[path] = f"a launch file that {why_builds_nothing(path)}: nothing to check"
+                unbuilt.append(path)
             continue
         if kind == "file":
             root = project_root(Path(path))
@@ -817,4 +820,5 @@ def expand(paths: list[str], request) -> Targets:
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
         unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
-    return Targets(list(unique.values()), skipped, notes, unchecked)
+    return Targets(list(unique.values()), skipped, notes, unchecked,
+                   list(dict.fromkeys(unbuilt)))  # (a launch file named twice: said once)
