@@ -34,7 +34,8 @@ def test_findings_that_say_the_same_thing_are_one_line_with_count_and_places():
     assert len([line for line in lines if "U508" in line]) == 1
     [line] = [line for line in lines if "U508" in line]
     assert line.startswith("  robot.urdf:100: warning U508 transmission 't_j0'")
-    assert "[24 times: lines 100, 112, 124," in line and "... (24 in all)]" in line
+    assert "[24 times: lines 100, 112, 124," in line and "... (24 in all); also 't_j1', " in line
+    assert line.endswith("... (23 in all)]")  # (the other transmissions)
     assert "1 file checked: 0 errors, 24 warnings" in lines[-1]
     # the machine formats keep every finding
     stream = io.StringIO()
@@ -50,7 +51,7 @@ def test_different_things_stay_apart():
     error = Finding("U204", "inverted-limits", Severity.ERROR, "joint 'j0': lower 1 is above "
                     "upper -1; swap them", Location("robot.urdf", 7))
     text = _text([FileResult("robot.urdf", [other, error, _prefix(0), _prefix(1)])])
-    assert text.count("U508") == 2 and "[2 times: lines 100, 112]" in text
+    assert text.count("U508") == 2 and "[2 times: lines 100, 112; also 't_j1']" in text
     assert "U204" in text
 
 
@@ -66,6 +67,29 @@ def test_names_in_quotes_and_absolute_paths_are_set_aside_but_not_a_slash_in_a_w
     apart = [said(3, "link 'a': 2 kg/m^2 in /x/a.stl (/x/a.dae)"),  # "kg/m" is no path
              said(4, "link 'a':/x 2 kg/m^3 in /x/a.stl (/x/a.dae)")]  # nor a slash after ':'
     assert [len(group) for group in groups(same + apart)] == [2, 1, 1]
+
+
+def test_a_grouped_line_says_the_other_names_it_is_about():
+    """session 11, read as a stranger (CommonplaceRobotics/iRC_ROS): one macro line expanded for
+    three joints, each its own limit, read "joint 'rebel_1_joint2' position min is -2.0944 to
+    -1.65806 [3 times: line 7 (3x)]", as if of one joint; the other names are said. Findings of
+    one name, or naming another count of things, say none."""
+    def said(line: int, message: str) -> Finding:
+        return Finding("U515", "ros2-control-limits", Severity.WARNING, message,
+                       Location("ros2_control.xacro", line))
+
+    joints = [said(7, f"ros2_control joint '{name}' position min is {low}, beyond the URDF "
+                      f"<limit> ({limit})")
+              for name, low, limit in (("j2", -2.0944, -1.91986), ("j3", -2.0944, -1.91986),
+                                       ("j5", -1.65806, -1.52716))]
+    [line] = [line for line in _text([FileResult("r.xacro", joints)]).splitlines() if "U515" in line]
+    assert line.endswith("[3 times: line 7 (3x); also 'j3', 'j5']"), line
+    one = [said(7, "ros2_control joint 'j2' has no limit"), said(9, "ros2_control joint 'j2' has no limit")]
+    assert "[2 times: lines 7, 9]\n" in _text([FileResult("r.xacro", one)])
+    counts = [said(7, "joints 'a' and 'b' have no limit"), said(9, "joints 'a' and 'b' have no limit"),
+              said(11, "joints 'c', 'd' and 'e' have no limit")]
+    text = _text([FileResult("r.xacro", counts)])
+    assert "also" not in text
 
 
 def test_a_macro_line_expanded_by_several_calls_is_one_place():
@@ -162,7 +186,7 @@ def test_the_same_thing_said_of_named_things_with_their_own_figures_is_one_true_
     masses = [said(68 + 66 * i, f"link 'Link{i + 1}' has mass {mass} kg but zero inertia and is "
                                 "moved by a joint") for i, mass in enumerate((0.593563, 0.0649018, 0.2188))]
     [line] = [line for line in _text([FileResult("robot.urdf", masses)]).splitlines() if "U304" in line]
-    assert "has mass 0.0649018 to 0.593563 kg but zero" in line and "[3 times: lines 68, 134, 200]" in line
+    assert "has mass 0.0649018 to 0.593563 kg but zero" in line and "[3 times: lines 68, 134, 200; also 'Link2', 'Link3']" in line
     fixes = [said(1, "joint 'j' axis has length 2, not 1; write xyz=\"0 0 1\"", "U206"),
              said(2, "joint 'k' axis has length 3, not 1; write xyz=\"1 0 0\"", "U206")]
     unnamed = [said(5, "the robot weighs 2 kg", "U399"), said(6, "the robot weighs 3 kg", "U399")]

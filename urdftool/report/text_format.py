@@ -193,7 +193,7 @@ def _group_lines(group: list, alike: bool, listed: dict) -> list[Line]:
             (first.code, "bold"), (f" {_once(_ranged(group, alike), location, listed)} ", ""),
             (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
     if len(group) > 1:
-        line.append((f" [{len(group)} times: {_places(group)}]", ""))
+        line.append((f" [{len(group)} times: {_places(group)}{_also(group)}]", ""))
     out = [line]
     calls = list(dict.fromkeys(f.location.via for f in group))
     if calls == [()]:
@@ -231,6 +231,26 @@ def _places(group: list) -> str:
         counts[place] = counts.get(place, 0) + 1
     places = [place if n == 1 else f"{place} ({n}x)" for place, n in counts.items()]
     return ("line " if len(places) == 1 else "lines ") + _listed(places)
+
+
+_NAMES_READ = 1000  # findings of a group whose names are looked at (10,000 may say one thing)
+
+
+def _also(group: list) -> str:
+    """The other names a group's line is about, where its findings name different things
+    (three joints of one macro line, each its own limit): "; also 'b', 'c'". The names
+    compared are the first place their findings' names differ, in the first findings of a
+    long group."""
+    named = [tuple(_NAME.findall(finding.message)) for finding in group[:_NAMES_READ]]
+    first = named[0]
+    differ = [i for i in range(len(first))
+              if any(len(names) != len(first) or names[i] != first[i] for names in named)]
+    if not differ or any(len(names) != len(first) for names in named):
+        return ""  # (the same names, or messages naming another count of things)
+    others = [name for name in dict.fromkeys(names[differ[0]] for names in named)
+              if name != first[differ[0]]]
+    more = " and more" if len(group) > _NAMES_READ else ""
+    return f"; also {_listed(others)}{more}"
 
 
 def _listed(items: list[str]) -> str:
