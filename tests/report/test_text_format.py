@@ -90,6 +90,10 @@ def test_a_grouped_line_says_the_other_names_it_is_about():
               said(11, "joints 'c', 'd' and 'e' have no limit")]
     text = _text([FileResult("r.xacro", counts)])
     assert "also" not in text
+    many = [said(7 + i, f"ros2_control joint 'j{i}' has no limit") for i in range(1001)]
+    [line] = [line for line in _text([FileResult("r.xacro", many)]).splitlines() if "U515" in line]
+    assert line.endswith("(1001 in all); also 'j1', 'j2', 'j3', 'j4', 'j5', 'j6', 'j7', 'j8', "
+                         "'j9', 'j10', 'j11', 'j12', ...]"), line  # (names of the first 1,000 read)
 
 
 def test_a_macro_line_expanded_by_several_calls_is_one_place():

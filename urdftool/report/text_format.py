@@ -249,8 +249,9 @@ def _also(group: list) -> str:
         return ""  # (the same names, or messages naming another count of things)
     others = [name for name in dict.fromkeys(names[differ[0]] for names in named)
               if name != first[differ[0]]]
-    more = " and more" if len(group) > _NAMES_READ else ""
-    return f"; also {_listed(others)}{more}"
+    if len(group) > _NAMES_READ:  # (how many in all is not known)
+        return f"; also {', '.join(others[:PLACES_SHOWN])}, ..."
+    return f"; also {_listed(others)}"
 
 
 def _listed(items: list[str]) -> str:
