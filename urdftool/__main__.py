@@ -240,10 +240,11 @@ def _collect_less() -> None:
     (trimesh's, a few MB per robot) are freed by a full collection before the check that
     follows 250,000 objects moved so.
 
-    The modules the check needs (the rules, the command's work) are imported with the
-    collector off and then frozen (``gc.freeze()``): objects that live as long as the program,
-    which the collector examined again and again as they were made, and which a worker
-    forked to check a file would copy page by page as its collector wrote into them.
+    The modules the check needs (the command's work now, the rules once files are to be
+    checked: :func:`_import_rules`, never for a run the result cache serves) are imported with
+    the collector off and then frozen (``gc.freeze()``): objects that live as long as the
+    program, which the collector examined again and again as they were made, and which a
+    worker forked to check a file would copy page by page as its collector wrote into them.
 
     The robot last checked is kept until the program ends (:data:`urdftool.lint.engine.
     LATEST`), which frees no object one by one (:func:`_end`, a worker's ``os._exit``)."""
@@ -251,9 +252,28 @@ def _collect_less() -> None:
 
     gc.disable()
     try:
-        from urdftool.lint import engine  # the rules: the workers that check are forked after it
         import urdftool.checking  # noqa: F401  (the command, run by Typer or by _check)
-        import urdftool.lint.runner  # noqa: F401
+        from urdftool.lint import runner
+    finally:
+        gc.freeze()
+        _FROZEN["imports"] = True
+        gc.enable()
+    runner.import_rules = _import_rules
+
+
+def _import_rules() -> None:
+    """The rules (the engine) imported as :func:`_collect_less` imports the command, and the
+    collector's rhythm installed into the engine: when files are to be checked, before the
+    workers that check them fork; a run the result cache serves whole imports no rule (33-75
+    ms of the corpus's cached re-check did, from session 5 to 10)."""
+    import gc
+
+    from urdftool.lint import runner
+
+    runner.import_rules = None  # (once)
+    gc.disable()
+    try:
+        from urdftool.lint import engine
     finally:
         gc.freeze()
         _FROZEN["imports"] = True

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 
@@ -263,6 +264,7 @@ def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tm
     was frozen goes to the oldest generation after them."""
     (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
     program = ("import gc; import urdftool.__main__ as d; d._collect_less(); "
+               "from urdftool.lint import runner; runner.import_rules(); "
                "frozen = gc.get_freeze_count(); "
                "from urdftool.lint import engine; seen = []; real = engine.check_robot; "
                "engine.check_robot = lambda *a: seen.append(gc.isenabled()) or real(*a); "
@@ -272,6 +274,22 @@ def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tm
     done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
                           cwd=tmp_path, timeout=120)
     assert done.stdout.split("\n")[0] == "True True [False] 0 True", done.stderr
+
+
+def test_a_run_the_result_cache_serves_imports_no_rule(tmp_path):
+    """The door imports the rules when files are to be checked (``runner.import_rules``), not
+    before: a re-run served whole from the result cache imported them for nothing (33-75 ms
+    of the corpus's cached re-check, sessions 5 to 10)."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    words = [sys.executable, "-X", "importtime", "-m", "urdftool", "check", "--jobs", "1",
+             "--cache-dir", str(tmp_path / "cache"), "a.urdf"]
+    environment = {k: v for k, v in os.environ.items() if k not in ("CI", "URDFTOOL_NO_CACHE")}
+    first, again = (subprocess.run(words, capture_output=True, text=True, cwd=tmp_path,
+                                   env=environment, timeout=120) for _ in range(2))
+    for done in (first, again):
+        assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
+    assert re.search(r"\|\s+urdftool\.lint\.engine$", first.stderr, re.M), first.stderr
+    assert not re.search(r"\|\s+urdftool\.lint\.(engine|rules)$", again.stderr, re.M), again.stderr
 
 
 def test_a_check_never_counts_the_objects_it_froze(tmp_path):

@@ -48,6 +48,11 @@ def check_files(files: list[str], options_for, jobs: int | None = None,
                             finished or (lambda done: None))
 
 
+# how the rules are imported before files are checked: the door (urdftool.__main__) imports
+# them with the collector off and freezes them; None: as any import
+import_rules = None
+
+
 def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
                  finished) -> list[FileResult]:
     budget = Budget(timeout or None, memory or None)
@@ -61,8 +66,11 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
     finished(len(files) - len(todo))
     jobs = max(1, jobs or auto_jobs(len(todo)))
 
-    if todo:
-        from urdftool.lint import engine  # noqa: F401  (before the workers fork: they inherit it)
+    if todo:  # the rules, before the workers fork (they inherit them); not for a run the
+        # result cache serves
+        if import_rules is not None:
+            import_rules()
+        from urdftool.lint import engine  # noqa: F401
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
