@@ -252,3 +252,22 @@ def test_a_xacro_asking_more_of_its_command_line_is_imported_as_it_is(tmp_path):
     program = ("import sys\nfrom urdftool.description.xacro import _xacro\n"
                "print(_xacro().OTHER, sys.modules['xacro.cli'].OTHER)\n")
     assert _run(program, tmp_path) == ["real", "real"]
+
+
+def test_an_unknown_substitution_is_said_once_by_its_exception_name(tmp_path):
+    """xacro writes ``f"{type(e)}: {e}"`` and ``e`` again: "<class 'xacro.substitution_args.
+    SubstitutionException'>: Unknown substitution command [x]. ... Unknown substitution command
+    [x]. ..." (my-zzy/am_description's ``$(controllers_yaml_path)``, a placeholder its launch file
+    fills); said once, the class by its name."""
+    from urdftool.errors import LoadError
+
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r"><link name="a"/>\n'
+        '  <gazebo><plugin name="p" filename="x"><parameters>$(controllers_yaml_path)</parameters>'
+        '</plugin></gazebo>\n</robot>\n')
+    with pytest.raises(LoadError) as raised:
+        load(tmp_path / "r.urdf.xacro")
+    said = raised.value.message
+    assert said.startswith("SubstitutionException: Unknown substitution command "
+                           "[controllers_yaml_path]. Valid commands are"), said
+    assert said.count("Unknown substitution command") == 1 and "<class" not in said, said

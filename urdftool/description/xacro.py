@@ -823,7 +823,7 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         return XacroFailure("sandbox", str(cause), where)
     if _caused_by(error, _Unsure):
         return XacroFailure("io", " ".join(str(error).split()), where, certain=False)
-    message = " ".join(str(error).split()) or type(error).__name__
+    message = _said(" ".join(str(error).split())) or type(error).__name__
     argument = None
     if message.startswith("Undefined substitution argument"):  # the caller says how to pass it
         # "Undefined substitution argument NAME[ when evaluating expression '...']"
@@ -881,6 +881,24 @@ def _visible_properties(error: Exception) -> set[str]:
             table = table.parent
         traceback = traceback.tb_next
     return names - set(xacro._global_symbols)
+
+
+def _said(message: str) -> str:
+    """xacro's message for an exception its substitution arguments raise, as a reader reads it:
+    xacro writes ``f"{type(e)}: {e}"`` and then ``e`` again ("<class 'xacro.substitution_args.
+    SubstitutionException'>: Unknown substitution command [x]. ... Unknown substitution command
+    [x]. ..."); the class by its name, the text once."""
+    match = _CLASS_SAID.match(message)
+    if match is None:
+        return message
+    said = match.group(2)
+    half = (len(said) - 1) // 2
+    if said[half:half + 1] == " " and said[:half] == said[half + 1:]:
+        said = said[:half]
+    return f"{match.group(1)}: {said}"
+
+
+_CLASS_SAID = re.compile(r"<class '(?:[\w.]+\.)?(\w+)'>: (.*)", re.S)
 
 
 def _failure_location(session: _Session, traceback, path, frame=None) -> Location:
