@@ -687,3 +687,37 @@ arm_controller:
     assert not [f for f in result.findings if f.code in ("U602", "U616")], result.findings
     wheels = load_and_check(str(root / "p/armmobile.urdf.xacro"), CheckOptions()).robot
     assert {s.name for s in runtime(wheels).spawns} == {"wheels_controller"}
+
+
+@pytest.mark.parametrize("rewrite, replaced", [
+    ("text = text.replace('$(config)', share)", ("$(config)",)),
+    ("text = text.replace('$(a)', share).replace(name, share)", ("$(a)", None)),
+    ("text = text.format(share=share)", (None,)),
+    ("text = text.format_map({'share': share})", (None,)),
+    ("text = re.sub('[$][(]config[)]', share, text)", (None,)),
+    ("text = string.Template(text).substitute(share=share)", (None, None)),
+    ("", ()),
+])
+def test_the_text_a_python_launch_file_rewrites_before_loading_it_is_recorded(tmp_path, rewrite,
+                                                                              replaced):
+    """my-zzy/am_description: ``open(urdf).read().replace('$(controllers_yaml_path)', path)``,
+    a template the launch file fills; U007 asks what it replaces (None: not known)."""
+    root = _repo(tmp_path, {"p/launch/a.launch.py": f'''
+import os, re, string
+from launch import LaunchDescription
+from launch_ros.actions import Node
+from ament_index_python.packages import get_package_share_directory
+
+def generate_launch_description():
+    share = get_package_share_directory('p')
+    name = os.environ.get('PLACEHOLDER', 'x')
+    with open(os.path.join(share, 'r.urdf')) as file:
+        text = file.read()
+    {rewrite}
+    return LaunchDescription([Node(package='robot_state_publisher',
+                                   executable='robot_state_publisher',
+                                   parameters=[{{'robot_description': text}}])])
+'''})
+    read = read_launch(root / "p/launch/a.launch.py")
+    [described] = [a for a in read.actions if isinstance(a, Description)]
+    assert not described.xacro and described.replaced == replaced

@@ -278,7 +278,9 @@ class Description:
     or ``cat``; the file and its ``name:=value`` arguments are read from it once resolved), or
     ``file`` with ``args`` given apart: run through xacro when ``xacro`` (xacro.process_file's
     mappings, MoveItConfigsBuilder), else read as it is (``textfile=``, Python's ``open``).
-    ``complete``: every argument given is in ``args`` (False when a mapping was not read)."""
+    ``complete``: every argument given is in ``args`` (False when a mapping was not read).
+    ``replaced``: for a file read as it is, the texts the launch file replaces in it before
+    loading it (None for one not known without running it): a template it fills."""
 
     command: Value | None = None
     file: Value | None = None
@@ -288,6 +290,7 @@ class Description:
     parameter: str = ""  # the parameter it is loaded into, as written ("" when not said)
     xacro: bool = False  # for ``file``: run through xacro
     complete: bool = True
+    replaced: tuple = ()
 
 
 @dataclass

@@ -438,6 +438,7 @@ class Described:
     # when launch arguments given at launch name the package holding the file, the build holds
     # for their defaults only: that condition in words (also in ``when``), else ""
     by_default: str = ""
+    replaced: tuple = ()  # read as it is, with these texts replaced first (Description's)
 
 
 @dataclass
@@ -713,7 +714,8 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
         when = when.also(When(True, free, (by_default,)))
     return Described(path, written, args, when, launch.display, action.line, through, complete,
                      template, chosen_by, via + (launch.display,),
-                     _joined_words(scope.by_default, by_default) if path is not None else "")
+                     _joined_words(scope.by_default, by_default) if path is not None else "",
+                     action.replaced if action.command is None else ())
 
 
 BY_DEFAULT = "when launched with "  # how a condition on package arguments' defaults begins

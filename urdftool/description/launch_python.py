@@ -418,6 +418,12 @@ class _Reader:
             return _joined([a if isinstance(a, Value) else unknown("?") for a in args])
         if method == "read" and isinstance(owner, _Opened):  # open(path).read(): the text as it is
             return owner
+        if isinstance(owner, _Opened) and method in _REWRITES:  # the text read, rewritten
+            old = args[0] if method == "replace" and args else None
+            return owner.rewritten(old.literal if isinstance(old, Value) else None)
+        if method in ("sub", "subn") and _callee(node.func.value) == "re" and len(args) > 2 \
+                and isinstance(args[2], _Opened):  # re.sub(pattern, new, text)
+            return args[2].rewritten(None)
         if method == "parse" and args and isinstance(args[0], _Opened):  # xacro.parse(open(path))
             return _Parsed(args[0].path)
         if method == "process_doc" and args and isinstance(args[0], _Parsed):  # xacro.process_doc
@@ -589,6 +595,8 @@ class _Reader:
                             if isinstance(package, Value) else None)
         if short in ("open",) and args and isinstance(args[0], Value):
             return _Opened(args[0])
+        if short == "Template" and args and isinstance(args[0], _Opened):  # string.Template(text)
+            return args[0].rewritten(None)
         return unknown(_source(node))
 
     def node(self, node, keywords, when, line):
@@ -607,7 +615,8 @@ class _Reader:
             elif isinstance(entry, dict):
                 for value in entry.values():
                     if isinstance(value, _Opened):
-                        self.acts.append(_Act("description", when, line, file=value.path, args=()))
+                        self.acts.append(_Act("description", when, line, file=value.path, args=(),
+                                              replaced=value.replaced))
         act = _Act("start", when, line, package=package if isinstance(package, Value) else unknown("?"),
                    executable=executable if isinstance(executable, Value) else unknown("?"),
                    arguments=tuple(arguments), files=tuple(files))
@@ -630,7 +639,8 @@ class _Reader:
         if act.kind == "description":
             return Description(fields.get("command"), fields.get("file"), fields.get("args", ()),
                                when, act.line, xacro=fields.get("xacro", False),
-                               complete=fields.get("complete", True))
+                               complete=fields.get("complete", True),
+                               replaced=fields.get("replaced", ()))
         if act.kind == "params" and isinstance(fields.get("path"), Value):
             return ParamFile(fields["path"], fields["substitute"], when, act.line)
         return None
@@ -657,10 +667,20 @@ class _Builder:
 
 
 class _Opened:
-    """A file the launch file reads into robot_description as it is (Python's open on a path)."""
+    """A file the launch file reads into robot_description (Python's open on a path), as it is
+    or with text replaced in it first: ``replaced``, the texts replaced (None for one not known
+    without running the launch file: ``str.replace`` of a variable, ``format``, a
+    ``string.Template``'s substitution, ``re.sub``)."""
 
-    def __init__(self, path: Value):
-        self.path = path
+    def __init__(self, path: Value, replaced: tuple = ()):
+        self.path, self.replaced = path, replaced
+
+    def rewritten(self, old: str | None) -> _Opened:
+        return _Opened(self.path, self.replaced + (old,))
+
+
+# methods of the text read that rewrite it (a Template's substitute: at Template(text))
+_REWRITES = ("replace", "format", "format_map", "substitute", "safe_substitute")
 
 
 class _Parsed:

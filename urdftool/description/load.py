@@ -164,7 +164,10 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
     named = f"named {Path(plain.path).suffix or 'without .xacro'}"
     loads = builds(plain.path)
     through = list(dict.fromkeys(b.named for b in loads if b.xacro))
-    as_is = list(dict.fromkeys(b.named for b in loads if not b.xacro))
+    as_is = list(dict.fromkeys(b.named for b in loads if not b.xacro and not b.replaced))
+    filling = [b for b in loads if not b.xacro and b.replaced]
+    if filling and not through and not as_is:  # a template its launch files fill
+        return _filled(plain, first, data, args, allow_env, limit, filling)
     # what a launch file or test that could not be read does with it is unknown
     unread = unread_naming(plain.path) if through and not as_is else []
     if through and not as_is:
@@ -194,6 +197,46 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
     return robot, LoadNote("xacro-in-urdf", where, (
         f"file is {named} but needs xacro ({_shown_use(first)} at this line); urdftool "
         f"expanded it, but URDF parsers will not{read_by}: rename it .urdf.xacro"))
+
+
+# a ``$(...)`` or ``${...}`` as written in a file, whole
+_SUBSTITUTED = re.compile(r"\$\([^()]*\)|\$\{[^{}]*\}")
+
+
+def _filled(plain: Robot, first, data, args, allow_env, limit, filling) -> tuple:
+    """(robot, note) for a ``.urdf`` holding ``$(...)``/``${...}`` that every launch file
+    loading it reads as text and rewrites before loading it (``text.replace('$(x)', path)``,
+    my-zzy/am_description): a template they fill. A note when each replaces every such text
+    in the file by name; a warning when what they replace is not known without running them, or
+    the file holds xacro elements: it may be filled. Checked as xacro expands it where it can,
+    else as it is."""
+    where = plain.locate(first)
+    used = set(_SUBSTITUTED.findall(data.decode("utf-8", "replace")))
+    root = first.getroottree().getroot()
+    certain = not any(is_xacro(e.tag) for e in root.iter(etree.Element)) and all(
+        None not in b.replaced and all(any(text in old for old in b.replaced) for text in used)
+        for b in filling)
+    names = list(dict.fromkeys(b.named for b in filling))
+    replaced = list(dict.fromkeys(old for b in filling for old in b.replaced if old))
+    try:
+        robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
+                            limit)
+    except LoadError:
+        robot = plain
+    named = f"named {Path(plain.path).suffix or 'without .xacro'}"
+    if certain:
+        return robot, LoadNote("xacro-in-urdf", where, (
+            f"file is {named} and holds {_shown_use(first)} at this line, which "
+            f"{_listed(names)} {'replaces' if len(names) == 1 else 'replace'} in its text "
+            f"before loading it ({_listed([repr(t) for t in replaced])}): a template its launch "
+            "files fill; a tool given the file itself (check_urdf, Gazebo) reads it unfilled"),
+            severity=Severity.INFO)
+    what = f" (replacing {_listed([repr(t) for t in replaced])} and more)" if replaced else ""
+    return robot, LoadNote("xacro-in-urdf", where, (
+        f"file is {named} but holds {_shown_use(first)} at this line; {_listed(names)} "
+        f"{'rewrites' if len(names) == 1 else 'rewrite'} its text before loading it{what}, "
+        "which may fill it: if not, URDF parsers read it unexpanded; rename it .urdf.xacro if "
+        "it is xacro"), severity=Severity.WARNING)
 
 
 def _only_in_gazebo(root) -> bool:

@@ -367,6 +367,8 @@ class Build:
         its default names another file
     condition: when the description is made, in words; "" when unconditionally
     test: ``launch`` is a launch test (it builds the file for the test alone)
+    replaced: read as it is, with these texts replaced in it first (None: one not known
+        without running the launch file): a template the launch file fills
     """
 
     launch: str
@@ -379,6 +381,7 @@ class Build:
     chosen: bool
     condition: str
     test: bool = False
+    replaced: tuple = ()
 
     @property
     def named(self) -> str:
@@ -437,7 +440,7 @@ def builds(path: str) -> list[Build]:
             (by_default if described.by_default else found).append(Build(
                 configuration.display, described.launch, described.line, described.xacro, texts,
                 free, described.complete, chosen, " and ".join(dict.fromkeys(words)),
-                configuration.top.test))
+                configuration.top.test, described.replaced))
     return found + by_default
 
 

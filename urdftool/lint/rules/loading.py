@@ -125,8 +125,13 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     read (not well-formed, not valid Python): what it does with the file is not known. A
     **warning** too when every use of xacro is inside ``<gazebo>`` (a plugin's
     ``<parameters>$(find ...)/controllers.yaml</parameters>``): URDF parsers skip it, and only
-    Gazebo given the file itself reads it unexpanded. An **error** otherwise: a launch file
-    reads it as it is (``textfile=``, ``cat``, Python's ``open``), or none loads it.
+    Gazebo given the file itself reads it unexpanded. When every launch file that loads it
+    reads its text and rewrites it first (``open(path).read().replace('$(config)', path)``), the
+    file is a template the launch file fills: a **note** when each replaces every ``$(...)``
+    and ``${...}`` in it by name, a **warning** when what it replaces is not known without
+    running it (``format``, ``string.Template``, ``re.sub``, a variable). An **error**
+    otherwise: a launch file reads it as it is (``textfile=``, ``cat``, Python's ``open``), or
+    none loads it.
 
     Bad: ``robot.urdf`` containing ``<xacro:property .../>``
     Good: rename it ``robot.urdf.xacro``
