@@ -53,15 +53,17 @@ files may come from untrusted pull requests. Each file is read (by
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
-from urdftool.description.files import inside, kind_of, listing, real_path
+from urdftool.description.files import inside, kind_of, listing, read_regular, real_path, walk
 from urdftool.description.launch import named as launch_named
-from urdftool.description.packages import containment_root
+from urdftool.description.packages import SKIP_DIRS, containment_root
+from urdftool.description.urdf import ROBOT_GLOB
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -473,18 +475,57 @@ def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
                    and not owner.named_after_neighbour(p)]
         if by_name:
             chosen, why = by_name[0], f"its <robot name> is '{robot.name}'"
-        elif len(paths) == 1 and owner.alone:
+        elif len(paths) == 1 and owner.alone and not _anothers(paths[0], robot):
             chosen, why = paths[0], "the only SRDF found"
         else:
             chosen, why = None, ""
     for path in paths:
         if path == chosen:
             found.used[path] = why
+        elif not chosen and _anothers(path, robot):
+            found.unused[path] = (f"its <robot name> is '{_srdf_robot_name(path)}', the name of "
+                                  f"{display_path(_anothers(path, robot)[0])}")
         else:
             found.unused[path] = ("another SRDF was chosen" if chosen else
                                   "neither its name nor its <robot name> matches the robot, and "
                                   "it is not the only SRDF of a robot alone in its folder")
     return chosen
+
+
+def _anothers(path: Path, robot) -> list[Path]:
+    """The other robot files of the repository whose ``<robot name>`` is the SRDF ``path``'s
+    when it is not ``robot``'s: the SRDF is theirs (deepwithin/yam_ros2_control's only SRDF,
+    i2rt_arm's, was checked against the other arm of the repository, 'output': 33 errors)."""
+    name = _srdf_robot_name(path)
+    if not name or name == robot.name or robot.path == "-":
+        return []
+    mine = real_path(os.path.abspath(robot.path))
+    return [other for other in _robot_names(containment_root(path.parent)).get(name, ())
+            if real_path(other) != mine]
+
+
+_ROBOT_NAME = re.compile(rb"<robot\b[^>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")
+_HEAD = 64 * 1024  # [bytes] of a robot file where its <robot name> is looked for
+
+
+@per_run
+def _robot_names(root: Path) -> dict[str, list[Path]]:
+    """The robot files below the repository ``root`` by the ``<robot name>`` each declares
+    (a literal one, in its first 64 kB; a name xacro substitutes is no name here)."""
+    names: dict[str, list[Path]] = {}
+    for folder, entries in walk(root, f"*/|{ROBOT_GLOB}", 1 << 30, SKIP_DIRS):
+        for entry, kind in entries:
+            if kind != "file":
+                continue
+            path = Path(folder) / entry
+            try:
+                head = read_regular(path, 1 << 62, as_="robot")[:_HEAD]
+            except OSError:
+                continue
+            found = _ROBOT_NAME.search(head)
+            if found:
+                names.setdefault(found.group(1).decode("utf-8", "replace"), []).append(path)
+    return names
 
 
 def find_srdf(robot) -> Path | None:

@@ -186,3 +186,31 @@ def test_an_srdf_moveit_gets_only_with_a_package_arguments_default_is_a_warning_
     assert finding.severity is Severity.WARNING
     assert "launch/moveit.launch gives MoveIt this SRDF with the robot as checked when launched " \
            "with description_package's default 'arm_pkg': " in finding.message
+
+
+def test_a_collision_pair_naming_an_unknown_link_is_a_warning_a_group_link_an_error(tmp_path):
+    """srdfdom drops a collision pair naming a link the URDF lacks with a warning (it has no
+    effect; an SRDF shared by a robot's variants lists each one's pairs: deepwithin's YAM);
+    a group's link, chain or end effector it drops with an error, and MoveIt plans without it."""
+    body = """<group name="head"><link name="hed"/></group>
+<disable_collisions link1="base_link" link2="gripper_base" reason="Adjacent"/>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    said = [(f.code, f.location.line, f.severity.value) for f in findings if f.code == "U804"]
+    assert said == [("U804", 2, "error"), ("U804", 3, "warning")], said
+    assert "MoveIt drops the pair (it has no effect)" in findings[-1].message
+
+
+def test_the_only_srdf_of_a_repository_is_not_another_robots(tmp_path):
+    """deepwithin/yam_ros2_control: its one SRDF (<robot name="i2rt_arm">) was checked against
+    the other arm of the repository, alone in its folder and named 'output' (33 errors); the
+    robot file named 'i2rt_arm' claims it, and so does a robot of no other name."""
+    (tmp_path / ".git").mkdir()
+    other = HEAD_ROBOT.format(body="").replace("name='r'", "name='arm'").replace(
+        'name="r"', 'name="arm"')
+    files = {"robot.urdf": ROBOT, "arm/arm.urdf": other,
+             "config/arm.srdf": srdf('<group name="g"><link name="hand"/></group>', "arm")}
+    found, _ = check_folder(tmp_path, files)
+    assert not [f for f in found if f[0] == "arm.srdf"], found
+    files["arm/arm.urdf"] = other.replace("name='arm'", "name='b'").replace('name="arm"', 'name="b"')
+    found, _ = check_folder(tmp_path, files)
+    assert ("arm.srdf", 1, "U802") in found, found  # the only SRDF, of no robot here: ours

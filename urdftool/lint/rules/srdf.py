@@ -34,13 +34,16 @@ def as_moveit_runs(check):
         srdf = companions(robot).srdf
         state, why = moveit_with(robot, srdf.path) if srdf is not None else ("unknown", "")
         for where, message, *fix in check(robot):
+            # (a finding the rule itself lowers keeps its severity, said with the condition)
+            kept = message.severity if isinstance(message, Conditional) else None
             if state == "conditional":  # the MoveIt configuration of another build: a note
                 message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}",
                                       Severity.INFO)
             elif state == "certain":
-                message = f"{why}: {message}"
+                message = f"{why}: {message}" if kept is None else \
+                    Conditional(f"{why}: {message}", kept)
             elif state == "by default":  # MoveIt's for the defaults of the launch arguments
-                message = Conditional(f"{why}: {message}")
+                message = Conditional(f"{why}: {message}", kept or Severity.WARNING)
             yield (where, message, *fix)
     return judged
 
@@ -129,8 +132,17 @@ def srdf_unknown_joint(robot):
 def srdf_unknown_link(robot):
     """An SRDF group, chain, end effector, virtual joint or collision pair names a link the URDF lacks.
 
-    Bad: ``<disable_collisions link1="base" link2="shoulder_link"/>`` when the link is ``base_link``
-    Good: ``link1="base_link"``
+    MoveIt (srdfdom) drops what names it: the link from its group, the chain, the end
+    effector, the virtual joint (an error: the group or the robot's attachment MoveIt plans
+    with is not what the SRDF says). A collision pair (``disable_collisions``,
+    ``enable_collisions``) naming an unknown link is dropped with a warning ("Link 'x' is not
+    known to URDF. Cannot disable/enable collisions."): it has no effect, and whether the pair
+    meant is then checked for collisions depends on the links' geometry: a **warning** (an
+    SRDF shared by several variants of a robot lists the pairs of each).
+
+    Bad: ``<group name="arm"><chain base_link="base" tip_link="tool0"/></group>`` when the link is
+    ``base_link``
+    Good: ``base_link="base_link"``
     """
     srdf = _srdf(robot)
     if srdf is None:
@@ -142,9 +154,13 @@ def srdf_unknown_link(robot):
                   ("link_sphere_approximation", "link"))
     for element, attribute, name in _references(srdf, attributes):
         if name not in robot.links:
-            yield srdf.at(element.sourceline), (
-                f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
-                f"{available('links', name, robot.links)}")
+            message = (f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
+                       f"{available('links', name, robot.links)}")
+            if element.tag in ("disable_collisions", "enable_collisions"):
+                message = Conditional(
+                    f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF: MoveIt "
+                    f"drops the pair (it has no effect); {available('links', name, robot.links)}")
+            yield srdf.at(element.sourceline), message
 
 
 @rule("U805", "srdf-unknown-group", Severity.ERROR)
