@@ -220,19 +220,14 @@ def _row_floats(chars, starts, ends):
 
     import numpy as np
 
-    from urdftool.description.collada import plain_floats
-
     text = _row_text(chars, starts, ends).decode("ascii")
-    numbers = plain_floats(text)
-    if numbers is None:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error")  # fromstring warns, and stops, at a word
-            try:
-                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text and \
-                    not text.isspace() else np.zeros(0)
-            except (ValueError, DeprecationWarning):
-                return None
-    return numbers
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # fromstring warns, and stops, at a word
+        try:
+            return np.fromstring(text, sep=" ", dtype=np.float64) if text and \
+                not text.isspace() else np.zeros(0)
+        except (ValueError, DeprecationWarning):
+            return None
 
 
 def _obj_corners(text: bytes):
