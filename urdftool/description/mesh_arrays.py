@@ -45,7 +45,10 @@ def read(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
 
 def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
     """What :func:`read` gives before :func:`merged`: the triangles' corners as the file
-    holds them (every vertex used by a face), or None; raises as :func:`read` does."""
+    holds them (every vertex used by a face), or None; raises as :func:`read` does. The faces
+    of an STL and an OBJ are None: each three corners in order are a triangle (an array of
+    them would be ``np.arange(len(corners)).reshape(-1, 3)``, a third of the corners' bytes
+    allocated, filled and gathered through for nothing)."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
         return _collada(data, max_triangles)
@@ -65,7 +68,7 @@ def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
 
     if not np.isfinite(raw).all():
         return None  # trimesh drops the faces of such vertices: let it
-    return raw, np.arange(len(raw)).reshape(-1, 3)
+    return raw, None
 
 
 def _count(data: bytes) -> int:
@@ -197,8 +200,7 @@ def _obj(data: bytes, max_triangles: int = MAX_TRIANGLES):
         if arrays[head] is None or index[:, column].max() >= len(arrays[head]) or \
                 not np.isfinite(arrays[head]).all():
             return None
-    corners = arrays[b"v "][index[:, 0]]
-    return corners, np.arange(len(corners)).reshape(-1, 3)
+    return arrays[b"v "][index[:, 0]], None  # each three corners a triangle
 
 
 def _row_text(chars, starts, ends) -> bytes:
@@ -281,9 +283,10 @@ def merged(vertices, faces):
     merges an STL's: the first of equal ones kept, in order of first appearance. Normals and
     texture coordinates play no part: a seam, where a COLLADA or OBJ file keeps corners apart
     because their normals or texture coordinates differ, is no hole, so watertightness is
-    judged on these."""
+    judged on these. ``faces`` None: each three corners in order are a triangle
+    (:func:`read_unmerged`)."""
     first, inverse = _unique_rows(_merge_keys(vertices))
-    return vertices[first], inverse[faces]
+    return vertices[first], inverse.reshape(-1, 3) if faces is None else inverse[faces]
 
 
 def _merge_keys(vertices):
@@ -428,7 +431,7 @@ def _transformed(vertices, faces, matrix):
     else:
         stacked = np.column_stack((vertices, np.ones(len(vertices))))
         moved = np.dot(matrix, stacked.T).T[:, :3]
-    turned = np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
+    turned = faces is not None and np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
         np.linalg.det(matrix[:3, :3]) < 0.0
     return moved, (np.ascontiguousarray(np.fliplr(faces)) if turned else faces)
 
