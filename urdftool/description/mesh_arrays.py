@@ -306,40 +306,46 @@ def merged_bounds(vertices, unmerged):
     key): merge then."""
     import numpy as np
 
-    # coordinate by coordinate: argmin along rows of three copies the array for each call
-    columns = np.ascontiguousarray(vertices.T)
-    extremes = [columns.argmin(axis=1), columns.argmax(axis=1)]  # far faster than min()
-    plain, ends = (columns, extremes) if unmerged is vertices else \
-        (np.ascontiguousarray(unmerged.T), None)
-    if ends is None:
-        ends = [plain.argmin(axis=1), plain.argmax(axis=1)]
-    if not all(np.abs(unmerged[rows, [0, 1, 2]]).max() < _KEY_RANGE for rows in ends):
-        return None
-    corners = []
-    for first in extremes:
-        for axis, row in enumerate(first.tolist()):
-            column = columns[axis]
+    # coordinate by coordinate, each copied into one contiguous buffer (argmin along rows of
+    # three copies the array for each call); the buffers are reused for every axis: a
+    # transposed copy of the whole array, and of the scaled one, was the most memory a mesh
+    # that only has to fit in a box took (pages the process faulted in for nothing)
+    count = len(vertices)
+    column = np.empty(count)
+    plain = column if unmerged is vertices else np.empty(count)
+    scratch = np.empty(count)
+    lows, highs = [], []
+    for axis in range(3):
+        np.copyto(column, vertices[:, axis])
+        low, high = int(column.argmin()), int(column.argmax())
+        if plain is not column:
+            np.copyto(plain, unmerged[:, axis])
+        ends = (low, high) if plain is column else (int(plain.argmin()), int(plain.argmax()))
+        if not (abs(plain[ends[0]]) < _KEY_RANGE and abs(plain[ends[1]]) < _KEY_RANGE):
+            return None
+        for row in (low, high):
             if column[row] == 0:  # which zero min() and max() return depends on order
                 zeros = np.signbit(column[column == 0])
                 if zeros.any() != zeros.all():
                     return None
-            if row and _merges_earlier(unmerged, plain[axis], row):
+            if row and _merges_earlier(unmerged, plain, row, scratch):
                 return None
-        corners.append(vertices[first, [0, 1, 2]])
-    return corners[0], corners[1]
+        lows.append(vertices[low, axis])
+        highs.append(vertices[high, axis])
+    return np.array(lows), np.array(highs)
 
 
 _KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
 
 
-def _merges_earlier(vertices, column, row: int) -> bool:
+def _merges_earlier(vertices, column, row: int, scratch) -> bool:
     """Whether a vertex before ``row`` merges with it: only those within 1e-8 of it along
     ``column`` (one coordinate of every vertex) can (the margin covers rounding), and their
-    keys are compared whole."""
+    keys are compared whole. ``scratch``: an array of at least ``row`` floats to work in."""
     import numpy as np
 
     value = column[row]
-    near = column[:row] - value  # one array, made and reused in place
+    near = np.subtract(column[:row], value, out=scratch[:row])
     np.abs(near, out=near)
     near = np.flatnonzero(near <= 1e-7 + 1e-12 * abs(value))
     if not len(near):
