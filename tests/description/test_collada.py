@@ -364,29 +364,3 @@ def test_mutated_documents_give_triangles_or_collada_problem():
         except ColladaProblem:
             continue
         assert np.all(np.isfinite(vertices)) and (faces.size == 0 or faces.max() < len(vertices))
-
-
-@pytest.mark.parametrize("text", [
-    " ".join(["0.5 -1e-3 +2.25E+2 .5 5. -0 1e999"] * 1000),
-    "\n".join(["1.0\t2.0\r3.0\x0b4\x0c5"] * 1000),
-    " ".join(["1.0 2.0 nan"] * 1000),  # fromstring reads what loadtxt does not
-    " ".join(["1.0 2.0 1e"] * 1000),  # no number: fromstring says how far it reads
-    " ".join(["1.0 2.0 1-2"] * 1000),
-    "1.0 2.0",  # short: fromstring
-])
-def test_plain_floats_are_fromstrings_numbers_or_none(text):
-    """Where fromstring stops early (warns or raises), plain_floats says None."""
-    import warnings
-
-    from urdftool.description.collada import plain_floats
-
-    found = plain_floats(text)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            expected = np.fromstring(text, sep=" ")
-        except (ValueError, DeprecationWarning):
-            expected = None
-    if found is not None:
-        assert found.dtype == np.float64 and found.tobytes() == expected.tobytes()
-    assert (found is None) == (expected is None or len(text) < 4096 or "nan" in text)

@@ -74,6 +74,27 @@ def test_corrupt_mesh_is_a_problem_not_a_traceback(tmp_path):
     assert error.value.kind in ("corrupt", "too-large")
 
 
+def test_a_zip_is_told_as_zipfile_tells_it():
+    """What zipfile.is_zipfile says, without zipfile for a file without the end record's
+    signature where zipfile looks for it (its last 64 kB + 22 bytes)."""
+    import io
+    import zipfile
+
+    from urdftool.description.meshes.reading import _zipped
+
+    archive = io.BytesIO()
+    with zipfile.ZipFile(archive, "w") as written:
+        written.writestr("robot.dae", "<COLLADA/>")
+    plain = archive.getvalue()
+    commented = plain[:-2] + (100).to_bytes(2, "little") + b"x" * 100  # a 100-byte comment
+    xml = b'<?xml version="1.0"?><COLLADA>' + b"1 2 3 " * 20000 + b"</COLLADA>"
+    end = zipfile.stringEndArchive
+    for data in (plain, commented, xml, xml + end, end + xml, end + b"x" * 70000,
+                 plain + b"x" * 70000, b"", end, b"x" * 65536 + end + b"x" * 20):
+        assert _zipped(data) == zipfile.is_zipfile(io.BytesIO(data))
+    assert _zipped(plain) and _zipped(commented) and not _zipped(xml)
+
+
 def test_collada_unit_is_applied(tmp_path):
     trimesh = pytest.importorskip("trimesh")
     pytest.importorskip("collada")

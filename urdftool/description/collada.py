@@ -90,10 +90,6 @@ def _numbers(element, dtype, what: str):
     import numpy as np
 
     text = element.text or ""
-    if dtype == "float64":
-        values = plain_floats(text)
-        if values is not None:
-            return values
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # numpy warns, and stops, at text that is no number
         try:
@@ -102,29 +98,6 @@ def _numbers(element, dtype, what: str):
         except (ValueError, DeprecationWarning, RuntimeWarning, OverflowError):
             raise _corrupt(f"{what} (line {element.sourceline}) holds text that is not a "
                            f"list of {'integers' if dtype == 'int64' else 'numbers'}") from None
-
-
-_LOADTXT_FROM = 4096  # [characters]: in shorter texts, loadtxt's set-up costs more than it saves
-_NOT_NUMBERS = b"0123456789.eE+- \t\n\r\x0b\x0c"  # what a plain list of numbers is made of
-
-
-def plain_floats(text: str):
-    """The numbers of ``text`` as float64, as ``np.fromstring(text, sep=" ")`` reads them, for
-    a long text of plain numbers (digits, sign, point, exponent) apart by white space; None for
-    any other text (short, empty, with ``nan``, ``inf`` or other characters, or a word that is
-    no number): the caller asks fromstring, which says how far it reads. numpy's ``loadtxt``
-    parses each word whole with the function fromstring parses it with (Python's
-    ``PyOS_string_to_double``), in half the time; on these characters both split words alike."""
-    if len(text) < _LOADTXT_FROM or not text.isascii() or \
-            text.encode("ascii").translate(None, _NOT_NUMBERS) or text.isspace():
-        return None
-    import numpy as np
-
-    try:
-        return np.loadtxt([text.replace("\r", " ").replace("\n", " ")], dtype=np.float64,
-                          comments=None, ndmin=1).reshape(-1)
-    except ValueError:  # a word that is no number: fromstring says how far it reads
-        return None
 
 
 def _floats32(element, what: str, count: int | None = None):

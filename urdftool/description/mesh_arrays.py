@@ -45,7 +45,10 @@ def read(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
 
 def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
     """What :func:`read` gives before :func:`merged`: the triangles' corners as the file
-    holds them (every vertex used by a face), or None; raises as :func:`read` does."""
+    holds them (every vertex used by a face), or None; raises as :func:`read` does. The faces
+    of an STL and an OBJ are None: each three corners in order are a triangle (an array of
+    them would be ``np.arange(len(corners)).reshape(-1, 3)``, a third of the corners' bytes
+    allocated, filled and gathered through for nothing)."""
     suffix = path.suffix.lower()
     if suffix == ".dae":
         return _collada(data, max_triangles)
@@ -65,7 +68,7 @@ def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
 
     if not np.isfinite(raw).all():
         return None  # trimesh drops the faces of such vertices: let it
-    return raw, np.arange(len(raw)).reshape(-1, 3)
+    return raw, None
 
 
 def _count(data: bytes) -> int:
@@ -197,8 +200,7 @@ def _obj(data: bytes, max_triangles: int = MAX_TRIANGLES):
         if arrays[head] is None or index[:, column].max() >= len(arrays[head]) or \
                 not np.isfinite(arrays[head]).all():
             return None
-    corners = arrays[b"v "][index[:, 0]]
-    return corners, np.arange(len(corners)).reshape(-1, 3)
+    return arrays[b"v "][index[:, 0]], None  # each three corners a triangle
 
 
 def _row_text(chars, starts, ends) -> bytes:
@@ -220,19 +222,14 @@ def _row_floats(chars, starts, ends):
 
     import numpy as np
 
-    from urdftool.description.collada import plain_floats
-
     text = _row_text(chars, starts, ends).decode("ascii")
-    numbers = plain_floats(text)
-    if numbers is None:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error")  # fromstring warns, and stops, at a word
-            try:
-                numbers = np.fromstring(text, sep=" ", dtype=np.float64) if text and \
-                    not text.isspace() else np.zeros(0)
-            except (ValueError, DeprecationWarning):
-                return None
-    return numbers
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # fromstring warns, and stops, at a word
+        try:
+            return np.fromstring(text, sep=" ", dtype=np.float64) if text and \
+                not text.isspace() else np.zeros(0)
+        except (ValueError, DeprecationWarning):
+            return None
 
 
 def _obj_corners(text: bytes):
@@ -286,9 +283,10 @@ def merged(vertices, faces):
     merges an STL's: the first of equal ones kept, in order of first appearance. Normals and
     texture coordinates play no part: a seam, where a COLLADA or OBJ file keeps corners apart
     because their normals or texture coordinates differ, is no hole, so watertightness is
-    judged on these."""
+    judged on these. ``faces`` None: each three corners in order are a triangle
+    (:func:`read_unmerged`)."""
     first, inverse = _unique_rows(_merge_keys(vertices))
-    return vertices[first], inverse[faces]
+    return vertices[first], inverse.reshape(-1, 3) if faces is None else inverse[faces]
 
 
 def _merge_keys(vertices):
@@ -308,40 +306,46 @@ def merged_bounds(vertices, unmerged):
     key): merge then."""
     import numpy as np
 
-    # coordinate by coordinate: argmin along rows of three copies the array for each call
-    columns = np.ascontiguousarray(vertices.T)
-    extremes = [columns.argmin(axis=1), columns.argmax(axis=1)]  # far faster than min()
-    plain, ends = (columns, extremes) if unmerged is vertices else \
-        (np.ascontiguousarray(unmerged.T), None)
-    if ends is None:
-        ends = [plain.argmin(axis=1), plain.argmax(axis=1)]
-    if not all(np.abs(unmerged[rows, [0, 1, 2]]).max() < _KEY_RANGE for rows in ends):
-        return None
-    corners = []
-    for first in extremes:
-        for axis, row in enumerate(first.tolist()):
-            column = columns[axis]
+    # coordinate by coordinate, each copied into one contiguous buffer (argmin along rows of
+    # three copies the array for each call); the buffers are reused for every axis: a
+    # transposed copy of the whole array, and of the scaled one, was the most memory a mesh
+    # that only has to fit in a box took (pages the process faulted in for nothing)
+    count = len(vertices)
+    column = np.empty(count)
+    plain = column if unmerged is vertices else np.empty(count)
+    scratch = np.empty(count)
+    lows, highs = [], []
+    for axis in range(3):
+        np.copyto(column, vertices[:, axis])
+        low, high = int(column.argmin()), int(column.argmax())
+        if plain is not column:
+            np.copyto(plain, unmerged[:, axis])
+        ends = (low, high) if plain is column else (int(plain.argmin()), int(plain.argmax()))
+        if not (abs(plain[ends[0]]) < _KEY_RANGE and abs(plain[ends[1]]) < _KEY_RANGE):
+            return None
+        for row in (low, high):
             if column[row] == 0:  # which zero min() and max() return depends on order
                 zeros = np.signbit(column[column == 0])
                 if zeros.any() != zeros.all():
                     return None
-            if row and _merges_earlier(unmerged, plain[axis], row):
+            if row and _merges_earlier(unmerged, plain, row, scratch):
                 return None
-        corners.append(vertices[first, [0, 1, 2]])
-    return corners[0], corners[1]
+        lows.append(vertices[low, axis])
+        highs.append(vertices[high, axis])
+    return np.array(lows), np.array(highs)
 
 
 _KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
 
 
-def _merges_earlier(vertices, column, row: int) -> bool:
+def _merges_earlier(vertices, column, row: int, scratch) -> bool:
     """Whether a vertex before ``row`` merges with it: only those within 1e-8 of it along
     ``column`` (one coordinate of every vertex) can (the margin covers rounding), and their
-    keys are compared whole."""
+    keys are compared whole. ``scratch``: an array of at least ``row`` floats to work in."""
     import numpy as np
 
     value = column[row]
-    near = column[:row] - value  # one array, made and reused in place
+    near = np.subtract(column[:row], value, out=scratch[:row])
     np.abs(near, out=near)
     near = np.flatnonzero(near <= 1e-7 + 1e-12 * abs(value))
     if not len(near):
@@ -433,7 +437,7 @@ def _transformed(vertices, faces, matrix):
     else:
         stacked = np.column_stack((vertices, np.ones(len(vertices))))
         moved = np.dot(matrix, stacked.T).T[:, :3]
-    turned = np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
+    turned = faces is not None and np.abs(matrix[:3, :3] - np.eye(3)).max() >= 1e-6 and \
         np.linalg.det(matrix[:3, :3]) < 0.0
     return moved, (np.ascontiguousarray(np.fliplr(faces)) if turned else faces)
 

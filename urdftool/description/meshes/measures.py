@@ -83,11 +83,14 @@ class _Arrays:
     until something needs them merged by position (:func:`.mesh_arrays.merged`, then scaled by
     a COLLADA file's ``unit``, as trimesh's are). Bounds need no merging
     (:func:`.mesh_arrays.merged_bounds`): a mesh that only has to fit in a box is not merged.
-    ``merged=True``: the arrays given are merged already (and in metres)."""
+    ``merged=True``: the arrays given are merged already (and in metres). ``faces`` None: each
+    three vertices in order are a triangle (:func:`.mesh_arrays.read_unmerged`)."""
 
     def __init__(self, vertices, faces, metadata: dict, unit: float = 1.0, merged: bool = False):
-        self.metadata, self.triangles = metadata, len(faces)
-        self.nbytes = vertices.nbytes + faces.nbytes  # merged, they are no larger
+        self.metadata = metadata
+        self.triangles = len(vertices) // 3 if faces is None else len(faces)
+        # merged, they are no larger (faces None: merged, they are the merging's own array)
+        self.nbytes = vertices.nbytes + (vertices.nbytes // 3 if faces is None else faces.nbytes)
         self._read = None if merged else (vertices, faces)
         self._unit = unit
         self._merged = (vertices, faces, mesh_arrays.is_watertight(faces)) if merged else None
