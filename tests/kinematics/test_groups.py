@@ -49,6 +49,21 @@ def test_links_subgroups_and_unknown_members(tmp_path):
     assert found["c"].joints == {"waist"} and not found["c"].complete
 
 
+def test_a_chain_of_subgroups_written_in_reverse_is_walked_without_recursion(tmp_path):
+    """1,500 groups each holding the next one down, the deepest written last: the recursive
+    walk ended every rule reading groups in RecursionError (U900 from U808, U809 and two
+    more); cycles stay incomplete, as before."""
+    chain = "".join(f'<group name="g{i}"><group name="g{i - 1}"/><link name="{link}"/></group>'
+                    for i, link in zip(range(1499, 0, -1), ["cam", "l_hand"] * 750))
+    cycle = ('<group name="x"><group name="y"/><joint name="waist"/></group>'
+             '<group name="y"><group name="x"/><joint name="r_sho"/></group>')
+    _, _, found = model(tmp_path, chain + '<group name="g0"><joint name="waist"/></group>' + cycle)
+    assert found["g1499"].joints == {"waist", "cam_joint", "l_wri"} and found["g1499"].complete
+    assert found["g1"].joints == {"waist", "cam_joint"} and found["g1"].complete
+    assert found["x"].joints == {"waist", "r_sho"} and not found["x"].complete
+    assert found["y"].joints == {"r_sho"} and not found["y"].complete
+
+
 def shapes(tmp_path, body: str, name: str = "g"):
     robot, tree, found = model(tmp_path, body)
     return [(s.kind, s.message) for s in serial_problems(tree, found[name], robot.links)]

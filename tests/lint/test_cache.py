@@ -215,6 +215,26 @@ def test_a_planted_entry_is_a_miss(robot, tmp_path, monkeypatch, kind):
 
 
 @pytest.mark.parametrize("kind", ["file", "run"])
+def test_an_entry_this_machine_signed_for_another_file_is_a_miss(robot, tmp_path, kind):
+    """A clean robot's entry, signed here, copied over the name of a robot with errors (by
+    anyone who may write the cache folder, without the key): was served, "no problems
+    found"; the signature covers the entry's name."""
+    cache_dir = tmp_path / "cache"
+    clean = tmp_path / "clean" / "clean.urdf"
+    clean.parent.mkdir()
+    clean.write_text('<robot name="clean"><link name="a"/></robot>\n')
+    run = check_paths([str(clean)], cache_dir=cache_dir, timeout=0, max_memory="0", jobs=1)
+    assert run.results[0].findings == []
+    kept = {entry.name: entry.read_bytes() for entry in _entries(cache_dir, kind)}
+    honest = _messages(robot, cache_dir)
+    assert honest
+    [entry] = [entry for entry in _entries(cache_dir, kind) if entry.name not in kept]
+    [body] = kept.values()
+    entry.write_bytes(body)
+    assert _messages(robot, cache_dir) == honest
+
+
+@pytest.mark.parametrize("kind", ["file", "run"])
 @pytest.mark.parametrize("garbage", [b"", b"{", b"[]", b'{"body": "{}", "mac": 1}', b"0" * 64 + b"\n{}", b"\xff" * 10])
 def test_a_corrupt_entry_is_a_miss(robot, tmp_path, garbage, kind):
     cache_dir = tmp_path / "cache"

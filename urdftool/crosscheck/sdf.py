@@ -81,27 +81,35 @@ def model_summary(text: str, configurations) -> dict:
     for configuration in configurations:
         placed: dict = {}
 
-        def place(name, depth=0):
-            if name in placed or depth > len(links) + 1:
-                return placed.get(name)
-            joint = parent_of.get(name)
-            xyz, rpy, _ = _pose(links.get(name))
-            own = _matrix(xyz, rpy)
-            if joint is None or joint.findtext("parent") in ("world", None):
+        def place(name):
+            """The link's frame in the model's, its parents' placed first: walked up in a loop
+            (a chain of 3,000 links is as deep as it is long), at most one step a link."""
+            chain, parent, depth = [], None, 0
+            while name not in placed and depth <= len(links) + 1:
+                chain.append(name)
+                joint = parent_of.get(name)
+                if joint is None or joint.findtext("parent") in ("world", None):
+                    break
+                name, depth = joint.findtext("parent"), depth + 1
+            else:
+                parent = placed.get(name)
+            for name in reversed(chain):
+                joint = parent_of.get(name)
+                xyz, rpy, _ = _pose(links.get(name))
+                own = _matrix(xyz, rpy)
                 jxyz, jrpy, _ = _pose(joint)
-                base = _compose(_matrix(jxyz, jrpy), own) if joint is not None else own
-                placed[name] = base
-                return base
-            parent = place(joint.findtext("parent"), depth + 1)
-            jxyz, jrpy, _ = _pose(joint)
-            frame = _compose(parent, _matrix(jxyz, jrpy))
-            kind = joint.get("type")
-            if kind in MOVING:
-                axis = [float(v) for v in (joint.findtext("axis/xyz") or "1 0 0").split()]
-                frame = _compose(frame, _axis_motion(kind, axis,
-                                                     configuration.get(joint.get("name"), 0.0)))
-            placed[name] = _compose(frame, own)
-            return placed[name]
+                if joint is None or joint.findtext("parent") in ("world", None):
+                    placed[name] = _compose(_matrix(jxyz, jrpy), own) if joint is not None else own
+                else:
+                    frame = _compose(parent, _matrix(jxyz, jrpy))
+                    kind = joint.get("type")
+                    if kind in MOVING:
+                        axis = [float(v) for v in (joint.findtext("axis/xyz") or "1 0 0").split()]
+                        frame = _compose(frame, _axis_motion(kind, axis,
+                                                             configuration.get(joint.get("name"), 0.0)))
+                    placed[name] = _compose(frame, own)
+                parent = placed[name]
+            return parent
 
         frames.append({name: list(place(name)[1]) for name in links})
     limits = {}

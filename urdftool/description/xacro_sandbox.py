@@ -731,26 +731,21 @@ class _ArgumentNames:
 
 
 def refuse_yaml_bomb(text: str, filename: str = "YAML file") -> None:
-    """Refuse YAML nested too deeply or whose aliases expand past MAX_EXPANSION nodes and
-    characters ("billion laughs" in YAML: ``b: &b [*a, *a, ...]``); xacro would print it in
-    full, and PyYAML would recurse until the stack runs out."""
+    """Refuse YAML past yaml_limits' limits: nested too deeply, or whose aliases expand past
+    MAX_EXPANSION nodes and characters ("billion laughs" in YAML: ``b: &b [*a, *a, ...]``) or
+    nest past MAX_DEPTH; xacro would print it in full, and PyYAML would recurse until the
+    stack runs out."""
     import yaml
 
-    from urdftool.description.yaml_limits import BoundedLoader, expansion_problem
+    from urdftool.description.yaml_limits import BoundedLoader, LimitError
 
     try:
-        documents = list(yaml.compose_all(text, Loader=BoundedLoader))
-    except yaml.MarkedYAMLError as error:
-        if "nested deeper" in str(error.problem):
-            raise SandboxViolation(f"{filename}:{error.problem_mark.line + 1}: "
-                                   f"{error.problem}") from None
-        return  # xacro's own load reports it
+        for _ in yaml.compose_all(text, Loader=BoundedLoader):
+            pass
+    except LimitError as error:
+        raise SandboxViolation(f"{filename}:{error.problem_mark.line + 1}: {error.problem}") from None
     except yaml.YAMLError:
-        return
-    for document in documents:
-        problem = document is not None and expansion_problem(document, len(text))
-        if problem:
-            raise SandboxViolation(f"{filename}:{problem[0]}: {problem[1]}")
+        return  # xacro's own load reports it
 
 
 def _bounded(make_range):

@@ -3,9 +3,12 @@
 PyYAML composes and constructs nested collections recursively, so a document nested 50,000 levels
 deep ends in a RecursionError that carries no line. An alias repeats its anchor without copying
 it, so ten lines can stand for a billion items (or a long string repeated thousands of times)
-once the data is printed or walked. :class:`DepthLimit` stops composing at the line where the
-nesting passes MAX_DEPTH, as a YAML error with that line; :func:`expansion_problem` measures what
-the aliases expand to.
+once the data is printed or walked, and a chain of aliases (``c1: &c1 [*c0]``, ``c2: &c2
+[*c1]``...) builds data a thousand levels deep from text two levels deep, which every walker of
+the data recurses into. :class:`DepthLimit` stops composing at the line where the text's
+nesting passes MAX_DEPTH, and refuses a composed document whose aliases make it deeper than
+MAX_DEPTH or larger than MAX_EXPANSION beyond its text (:func:`expansion_problem`), each as a
+YAML error (:class:`LimitError`) at its line: every loader built on it reads within them.
 """
 
 from __future__ import annotations
@@ -28,10 +31,18 @@ class DepthLimit:
         if hasattr(cls, "add_constructor"):  # a loader: its own table (PyYAML copies it)
             cls.add_constructor("tag:yaml.org,2002:int", _bounded_int)
 
+    def compose_document(self):
+        node = super().compose_document()
+        text = getattr(self, "buffer", "")  # a loader of a string holds it whole
+        problem = expansion_problem(node, len(text))
+        if problem:
+            raise LimitError(None, None, problem[1], problem[2])
+        return node
+
     def compose_node(self, parent, index):
         if self._depth >= MAX_DEPTH:
             mark = self.peek_event().start_mark
-            raise yaml.composer.ComposerError(
+            raise LimitError(
                 None, None, f"collections nested deeper than {MAX_DEPTH} levels (configuration files need a "
                 "few)", mark)
         self._depth += 1
@@ -54,40 +65,45 @@ class BoundedLoader(DepthLimit, yaml.SafeLoader):
     """yaml.SafeLoader with the depth limit."""
 
 
-def expansion_problem(node, text_length: int) -> tuple[int, str] | None:
-    """(line, message) when ``node`` (a composed document) expands, with its aliases, to more
-    than MAX_EXPANSION nodes and characters beyond ``text_length``; else None. The line is the
-    innermost collection that is over the limit by itself."""
+def expansion_problem(node, text_length: int) -> tuple[int, str, object] | None:
+    """(line, message, mark) when ``node`` (a composed document) expands, with its aliases, to
+    more than MAX_EXPANSION nodes and characters beyond ``text_length``, or nests deeper than
+    MAX_DEPTH through them; else None. The line is the innermost collection over a limit by
+    itself. Walked without recursion, each node once (a node its own descendant counts once)."""
+    if node is None:
+        return None
     limit = MAX_EXPANSION + text_length
-    sizes: dict[int, int] = {}
-
-    def size(node) -> int:
-        known = sizes.get(id(node))
-        if known is not None:
-            return known
-        sizes[id(node)] = 1  # a recursive alias counts once
-        total = 1
-        if isinstance(node, yaml.ScalarNode):
-            total += len(node.value)
-        else:
-            children = node.value if isinstance(node, yaml.SequenceNode) else \
-                [part for pair in node.value for part in pair]
-            for child in children:
-                total += size(child)
-                if total > limit:
-                    raise _TooLarge(node)
-        sizes[id(node)] = total
-        return total
-
-    try:
-        size(node)
-    except _TooLarge as found:
-        return (found.node.start_mark.line + 1,
-                f"YAML aliases expand to over {limit} nodes and characters (a YAML bomb?)")
+    sizes: dict[int, tuple[int, int]] = {}  # id -> (size, depth); (1, 0) while being walked
+    stack = [(node, False)]
+    while stack:
+        current, done = stack.pop()
+        if isinstance(current, yaml.ScalarNode):
+            sizes[id(current)] = (1 + len(current.value), 0)
+            continue
+        children = current.value if isinstance(current, yaml.SequenceNode) else \
+            [part for pair in current.value for part in pair]
+        if not done:
+            if id(current) in sizes:
+                continue
+            sizes[id(current)] = (1, 0)
+            stack.append((current, True))
+            stack.extend((child, False) for child in children if id(child) not in sizes)
+            continue
+        size, depth = 1, 0
+        for child in children:
+            child_size, child_depth = sizes[id(child)]
+            size += child_size
+            depth = max(depth, child_depth)
+        if size > limit:
+            return (current.start_mark.line + 1,
+                    f"YAML aliases expand to over {limit} nodes and characters (a YAML bomb?)",
+                    current.start_mark)
+        if depth + 1 > MAX_DEPTH:
+            return (current.start_mark.line + 1,
+                    f"YAML aliases nest collections deeper than {MAX_DEPTH} levels", current.start_mark)
+        sizes[id(current)] = (size, depth + 1)
     return None
 
 
-class _TooLarge(Exception):
-    def __init__(self, node):
-        super().__init__()
-        self.node = node
+class LimitError(yaml.composer.ComposerError):
+    """A document past one of the limits: too deep, or its aliases too large or too deep."""

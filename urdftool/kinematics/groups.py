@@ -147,41 +147,61 @@ def tree(robot, srdf_root) -> Tree:
 
 
 def _build(robot, srdf_root) -> dict[str, Group]:
+    """Every SRDF group by name, its subgroups' joints included. Subgroups are walked with a
+    stack, not by recursion: a chain of groups each naming the next, written in reverse order
+    (``g1499`` holds ``g1498``...), is as deep as it is long. A subgroup that is being built
+    (a cycle) or is not defined counts as unknown."""
     model = tree(robot, srdf_root)
     elements: dict[str, object] = {}
     for element in srdf_root.iterfind("group"):
         elements.setdefault(element.get("name"), element)
     built: dict[str, Group] = {}
 
-    def build(name: str, visiting: tuple) -> Group | None:
-        if name in built:
-            return built[name]
-        element = elements.get(name)
-        if element is None or name in visiting:
-            return None
-        group = Group(name, element)
-        for item in element:
-            if item.tag == "joint":
-                found = item.get("name") in model.joints
-                group.joints |= {item.get("name")} if found else set()
-            elif item.tag == "link":
-                found = item.get("name") in model.parent_joint
-                group.joints |= {model.parent_joint[item.get("name")]} if found else set()
-            elif item.tag == "chain":
-                found = {item.get("base_link"), item.get("tip_link")} <= set(robot.links)
-                group.joints |= model.chain(item.get("base_link"), item.get("tip_link"))[0] if found else set()
-            elif item.tag == "group":
-                sub = build(item.get("name"), (*visiting, name))
-                found = sub is not None and sub.complete
-                group.joints |= sub.joints if sub is not None else set()
-            else:
-                continue
-            group.complete = group.complete and found
-        built[name] = group
-        return group
+    def member(group: Group, item) -> None:
+        if item.tag == "joint":
+            found = item.get("name") in model.joints
+            group.joints |= {item.get("name")} if found else set()
+        elif item.tag == "link":
+            found = item.get("name") in model.parent_joint
+            group.joints |= {model.parent_joint[item.get("name")]} if found else set()
+        elif item.tag == "chain":
+            found = {item.get("base_link"), item.get("tip_link")} <= set(robot.links)
+            group.joints |= model.chain(item.get("base_link"), item.get("tip_link"))[0] if found else set()
+        else:
+            return
+        group.complete = group.complete and found
+
+    def with_subgroup(group: Group, sub: Group | None) -> None:
+        group.joints |= sub.joints if sub is not None else set()
+        group.complete = group.complete and sub is not None and sub.complete
+
+    def build(name: str) -> None:
+        if name in built or elements.get(name) is None:
+            return
+        stack = [(Group(name, elements[name]), iter(elements[name]))]  # the groups being built
+        building = {name}
+        while stack:
+            group, items = stack[-1]
+            for item in items:
+                if item.tag != "group":
+                    member(group, item)
+                    continue
+                sub_name = item.get("name")
+                if sub_name in built or elements.get(sub_name) is None or sub_name in building:
+                    with_subgroup(group, built.get(sub_name))
+                    continue
+                stack.append((Group(sub_name, elements[sub_name]), iter(elements[sub_name])))
+                building.add(sub_name)
+                break
+            else:  # every member read: the group is built, and joins the one that named it
+                stack.pop()
+                building.discard(group.name)
+                built[group.name] = group
+                if stack:
+                    with_subgroup(stack[-1][0], group)
 
     for name in elements:
-        build(name, ())
+        build(name)
     return built
 
 

@@ -44,7 +44,9 @@ findings"), so:
 
 - each entry is signed (HMAC-SHA256) with a key kept outside the repository, in
   ``$XDG_CACHE_HOME/urdftool/key`` (``~/.cache``), made on first use in a folder only its
-  owner may enter: an entry this machine did not write is a miss;
+  owner may enter: an entry this machine did not write is a miss; the signature covers the
+  entry's name (its key) with its body, so that an entry this machine wrote, copied over
+  another's name (a good robot's result over a bad one's), is a miss too;
 - a cache folder, entry or key that is a symbolic link, not a regular file, too large, not
   JSON of the expected shape or of another schema is a miss (and is overwritten, never
   followed);
@@ -157,7 +159,7 @@ class Cache:
             return None
         try:
             signature, _, body = entry.decode("utf-8").partition("\n")
-            if not hmac.compare_digest(signature, self._sign(body)):
+            if not hmac.compare_digest(signature, self._sign(entry_path, body)):
                 return None
             content = json.loads(body)
             return content if content["schema"] == SCHEMA else None
@@ -212,14 +214,18 @@ class Cache:
         folder)."""
         try:
             if self._usable_folder(create=True):
-                _write(entry_path, f"{self._sign(body)}\n{body}")
+                _write(entry_path, f"{self._sign(entry_path, body)}\n{body}")
                 return True
         except OSError:
             pass
         return False
 
-    def _sign(self, body: str) -> str:
-        return hmac.new(self._key, body.encode(), hashlib.sha256).hexdigest()
+    def _sign(self, entry_path: Path, body: str) -> str:
+        """The signature of ``body`` kept at ``entry_path``: the entry's name (its key) is
+        signed with it, so that a signed entry copied over another key's is a miss, not the
+        other file's result."""
+        message = f"{entry_path.name}\n{body}"
+        return hmac.new(self._key, message.encode(), hashlib.sha256).hexdigest()
 
     def _usable_folder(self, create: bool = False) -> bool:
         """The folder (and its ``v<SCHEMA>``) exist as real folders, never links; made when

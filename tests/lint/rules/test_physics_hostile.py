@@ -60,3 +60,34 @@ def test_no_crash_on_malformed_robots(tmp_path, body):
     result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(CODES)))
     assert not [f for f in result.findings if f.code == "U900"], \
         [f.message for f in result.findings]
+
+
+def test_no_rule_of_any_target_recurses_as_deep_as_a_chain_written_leaf_first(tmp_path):
+    """Walks of what the robot defines by name (joint chains, SRDF subgroups) were recursive:
+    a 1,100-link chain written leaf first (and a chain of subgroups likewise) ended U614 and
+    U617 (gazebo.py's frames), U950/U951/U960/U961 (portability's lumping of fixed joints,
+    however the chain is written) and U808/U809 (groups) in RecursionError. Every rule, every
+    target: no U900."""
+    from urdftool.simulators import TARGETS
+
+    count = 1100  # past the recursion limit
+    inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" '
+                'iyz="0" izz="0.01"/></inertial>')
+    links = "".join(f'<link name="l{i}">{inertial}</link>' for i in range(count))
+    joints = "".join(f'<joint name="j{i}" type="{"fixed" if i % 2 else "revolute"}"><parent link="l{i - 1}"/>'
+                     f'<child link="l{i}"/><origin xyz="0 0 0.01"/><axis xyz="0 0 1"/>{LIMIT}</joint>'
+                     for i in range(count - 1, 0, -1))
+    wheels = "".join(WHEEL.format(s=side, m=1, i=0.01, rpy="1.5708 0 0", r=0.05, p=f"l{count - 1}",
+                                  y=y, axis="0 1 0") for side, y in (("left", 0.15), ("right", -0.15)))
+    drive = ('<gazebo><plugin name="d" filename="libgazebo_ros_diff_drive.so"><left_joint>left_wheel_joint'
+             '</left_joint><right_joint>right_wheel_joint</right_joint><wheel_separation>0.5'
+             '</wheel_separation><wheel_diameter>0.1</wheel_diameter></plugin></gazebo>')
+    (tmp_path / "r.urdf").write_text(f'<robot name="r">{wheels}{links}{joints}{drive}</robot>')
+    groups = "".join(f'<group name="g{i}"><group name="g{i - 1}"/></group>' for i in range(1100, 0, -1))
+    (tmp_path / "r.srdf").write_text(f'<robot name="r">{groups}<group name="g0"><joint name="j2"/></group>'
+                                     '<group_state name="s" group="g1100"><joint name="j2" value="0"/>'
+                                     '</group_state></robot>')
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(targets=TARGETS)))
+    assert {f.code for f in result.findings} >= {"U614"}, [f.code for f in result.findings]
+    assert not [f for f in result.findings if f.code == "U900"], \
+        [f.message for f in result.findings if f.code == "U900"]

@@ -256,20 +256,31 @@ def _frames(robot) -> dict:
             by_child.setdefault(child.get("link"), joint)
     frames: dict = {}
 
-    def frame(joint, depth=0):
-        name = joint.get("name")
-        if name in frames:
-            return frames[name]
-        local = mat3.placement(origin(joint))  # a malformed part counts as 0
-        parent = joint.find("parent")
-        above = by_child.get(parent.get("link")) if parent is not None else None
-        if above is None or depth > len(by_child):
-            frames[name] = local
-        else:
-            position, rotation = frame(above, depth + 1)
-            frames[name] = (mat3.add(position, mat3.apply(rotation, local[0])),
-                            mat3.multiply(rotation, local[1]))
-        return frames[name]
+    def frame(joint):
+        """The joint's frame in the root's, its ancestors' composed first: walked up in a loop,
+        not by recursion (a chain of 3,000 joints written leaf first is as deep as it is long),
+        at most as many steps as there are joints (a loop of joints stops there)."""
+        chain, base, depth = [], None, 0
+        while True:
+            if joint.get("name") in frames:
+                base = frames[joint.get("name")]
+                break
+            chain.append(joint)
+            parent = joint.find("parent")
+            above = by_child.get(parent.get("link")) if parent is not None else None
+            if above is None or depth > len(by_child):
+                break
+            joint, depth = above, depth + 1
+        for below in reversed(chain):
+            local = mat3.placement(origin(below))  # a malformed part counts as 0
+            if base is None:
+                frames[below.get("name")] = local
+            else:
+                position, rotation = base
+                frames[below.get("name")] = (mat3.add(position, mat3.apply(rotation, local[0])),
+                                             mat3.multiply(rotation, local[1]))
+            base = frames[below.get("name")]
+        return base
 
     for joint in robot.children("joint"):
         frame(joint)

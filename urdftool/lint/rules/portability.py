@@ -1022,13 +1022,27 @@ def _lump(robot, target: str) -> _Lumped:
     def reduced(joint) -> bool:
         return _type(joint) == "fixed" and joint.get("name") not in kept_joints
 
-    def reduce(name: str, seen: set) -> None:
-        if name in seen:
-            return
-        seen.add(name)
-        for joint, child in tree.children.get(name, ()):
-            if reduced(joint):
-                reduce(child, seen)
+    def reduce(root: str, seen: set) -> None:
+        """Each link below ``root`` lumped into its parent, depth first: a link's children
+        through fixed joints before it, the others after it. A stack, not recursion: a chain
+        of 3,000 links is as deep as it is long."""
+        stack = [(root, "enter")]
+        while stack:
+            name, step = stack.pop()
+            if step == "enter":
+                if name in seen:
+                    continue
+                seen.add(name)
+                stack += [(name, "others"), (name, "lump")]
+                stack += [(child, "enter") for joint, child in reversed(tree.children.get(name, ()))
+                          if reduced(joint)]
+            elif step == "lump":
+                lump(name)
+            else:
+                stack += [(child, "enter") for joint, child in reversed(tree.children.get(name, ()))
+                          if not reduced(joint)]
+
+    def lump(name: str) -> None:
         joint, parent = tree.parent.get(name, (None, None))
         if joint is not None and parent != "world" and reduced(joint):
             into = result.owner.get(parent, parent)
@@ -1054,9 +1068,6 @@ def _lump(robot, target: str) -> _Lumped:
                 else:
                     bodies[parent] = None
                 mass[parent] = total
-        for joint, child in tree.children.get(name, ()):
-            if not reduced(joint):
-                reduce(child, seen)
 
     seen: set = set()
     for root in tree.roots:
@@ -1064,7 +1075,8 @@ def _lump(robot, target: str) -> _Lumped:
     threshold = facts.SDFORMAT_MASSLESS[target].at(_version(robot, target))
     lumped_too = facts.SDFORMAT_DROPS_LUMPED[target].at(_version(robot, target))
 
-    def create(name: str) -> None:
+    def created(name: str) -> bool:
+        """Whether the link is made (its children are then looked at): not when it is dropped."""
         zero = not inertial[name] or abs(mass[name] or 0.0) <= threshold \
             or (threshold == 0.0 and (mass[name] or 0.0) <= 0.0)
         joint, parent = tree.parent.get(name, (None, None))
@@ -1072,16 +1084,18 @@ def _lump(robot, target: str) -> _Lumped:
         if name != "world" and zero and (lumped_too or not lumped_away):
             result.dropped[name] = "no <inertial>" if not inertial[name] else \
                 f"mass {mass[name] or 0:g}"
-            return
+            return False
         if not lumped_away:
             result.owner.setdefault(name, name)
             result.mass[name] = mass[name] if inertial[name] else None
             result.bodies[name] = bodies.get(name)
-        for _, child in tree.children.get(name, ()):
-            create(child)
+        return True
 
-    for root in tree.roots:
-        create(root)
+    stack = list(reversed(tree.roots))  # depth first, parents before children, as sdformat
+    while stack:
+        name = stack.pop()
+        if created(name):
+            stack += [child for _, child in reversed(tree.children.get(name, ()))]
     return result
 
 
