@@ -31,7 +31,7 @@ from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_laun
 from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
                                                  Loaded, Resolved, Started, launch_files,
                                                  launch_index, launch_tests, read_launch,
-                                                 reading_room, shown)
+                                                 reading_room, repository_modules, shown)
 from urdftool.description.packages import packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -475,7 +475,7 @@ def why_builds_nothing(launch_path: str) -> str:
         return "builds no robot file urdftool can tell"
     if real_path(absolute) not in {real_path(p) for p in launch_files(root)[0]}:
         return f"is not among the launch files urdftool reads below {display_path(root)}"
-    launch = read_launch(absolute, room=reading_room(root))
+    launch = read_launch(absolute, room=reading_room(root), modules=repository_modules(root))
     problem = getattr(launch, "problem", None) or "what it does is not known"
     return f"could not be read ({problem})"
 
