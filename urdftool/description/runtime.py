@@ -567,6 +567,33 @@ def launch_xacro_args(path: str, argument: str) -> list[tuple[Build, dict]]:
     return found
 
 
+def built_otherwise(robot) -> list[tuple[Build, list[str]]]:
+    """(build, the robot's xacro arguments it gives another value, as ``name:=value``) for each
+    launch file (or launch test) that runs the robot's file through xacro, when every one of
+    them gives one of the robot's ``<xacro:arg>`` another value than it was checked with (its
+    default, or ``--arg``): what xacro made as checked is then no build they run, and a finding
+    of it may not hold in theirs (lbr-stack's ``mode`` defaults to ``true``, which no
+    ``xacro:if`` of its hardware macro takes; every launch file gives ``mode:=mock|gazebo|
+    hardware``). Empty when one builds it as checked, or none builds it (the finding is then
+    on a build that runs, or on the file as written). A value known only at launch is
+    another value; an argument a build may give without its being read counts as given as
+    checked."""
+    if robot.path == "-":
+        return []
+    mine, found = None, []
+    for build in builds(robot.path):
+        if not build.xacro:
+            continue
+        mine = mine if mine is not None else _robot_args(robot)
+        other = [f"{name}:={'(known only at launch)' if value is None else value}"
+                 for name, value in sorted(build.args.items())
+                 if name in mine and (value is None or _normal(value) != _normal(mine[name]))]
+        if not other:
+            return []
+        found.append((build, other))
+    return found
+
+
 # --- the questions rules ask --------------------------------------------------------------------
 
 @dataclass(frozen=True)
