@@ -230,3 +230,36 @@ def helper():
     assert not {m for m in set(sys.modules) - modules if "evil" in m}
     [read] = index.files.values()
     assert [s.package.literal for s in read.actions if isinstance(s, Start)] == ["helper"]
+
+
+def test_an_instance_of_a_class_of_another_package_keeps_the_attributes_set_on_it(tmp_path):
+    # crane_plus: RobotDescriptionLoader() sets the path in __init__, the launch file an argument
+    root = _repo(tmp_path, {
+        "arm_description/package.xml": PACKAGE.format("arm_description"),
+        "arm_description/arm_description/loader.py": '''
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch.substitutions import Command
+
+class Loader():
+    def __init__(self, port="/dev/ttyUSB0"):
+        self.path = os.path.join(get_package_share_directory("arm_description"), "urdf", "arm.xacro")
+        self.port = port
+        self.use_camera = "false"
+
+    def load(self):
+        return Command(["xacro ", self.path, " port:=", self.port, " use_camera:=", self.use_camera])
+''',
+        "arm_description/launch/display.launch.py": '''
+from arm_description.loader import Loader
+from launch.substitutions import LaunchConfiguration
+
+def generate_launch_description():
+    loader = Loader(port="/dev/ttyACM0")
+    loader.use_camera = LaunchConfiguration("use_camera")
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": loader.load()}]), Loader().missing()]
+'''})
+    [described] = _described(_read(root, "arm_description/launch/display.launch.py"))
+    assert _text(described.command) == \
+        "xacro <find:arm_description>/urdf/arm.xacro port:=/dev/ttyACM0 use_camera:=<arg:use_camera>"

@@ -29,6 +29,7 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -250,6 +251,9 @@ class _Reader:
     def bind(self, target, value, env: dict) -> None:
         if isinstance(target, ast.Name):
             env[target.id] = value
+        elif isinstance(target, ast.Attribute) and isinstance(target.value, ast.Name) and \
+                isinstance(env.get(target.value.id), _Instance):  # self.path = ...
+            env[target.value.id].attributes[target.attr] = value
         elif isinstance(target, (ast.Tuple, ast.List)):
             values = value if isinstance(value, list) and len(value) == len(target.elts) else \
                 [unknown("?")] * len(target.elts)
@@ -365,7 +369,12 @@ class _Reader:
         method, or a method of an instance made here), or a class (an instance). What it
         makes is the launch file's, at the line of its call there."""
         if isinstance(target, _Class):
-            return _Instance(target)
+            made = _Instance((("unknown", _source(node)),), _source(node), target)
+            initial = target.attributes.get("__init__")
+            if initial is not None:
+                self.call_target(_Function(initial.node, initial.module, made), args, keywords,
+                                 when, depth, node)
+            return made
         if target.bound is not None:
             args = [target.bound, *args]
         outer = self.site
@@ -839,9 +848,14 @@ class _Class:
         self.name, self.attributes = name, attributes
 
 
-class _Instance:
-    def __init__(self, of: _Class):
-        self.of = of
+@dataclass(frozen=True)
+class _Instance(Value):
+    """An instance of such a class made in the launch file (an unknown value as text): the
+    attributes its ``__init__`` and the launch file set (crane_plus's
+    ``RobotDescriptionLoader().load()``)."""
+
+    of: _Class | None = field(default=None, compare=False, hash=False)
+    attributes: dict = field(default_factory=dict, compare=False, hash=False)
 
 
 _DEFINING = (_Module, _Class, _Instance)
@@ -865,8 +879,10 @@ def _attribute(owner, name: str):
     class), an instance's method given the instance; None when not read."""
     if isinstance(owner, _Module):
         return owner.env.get(name)
+    if isinstance(owner, _Instance) and name in owner.attributes:
+        return owner.attributes[name]
     of = owner.of if isinstance(owner, _Instance) else owner
-    function = of.attributes.get(name)
+    function = of.attributes.get(name) if of is not None else None
     if function is None:
         return None
     if function.kind == "class":
