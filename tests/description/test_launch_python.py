@@ -263,3 +263,17 @@ def generate_launch_description():
     [described] = _described(_read(root, "arm_description/launch/display.launch.py"))
     assert _text(described.command) == \
         "xacro <find:arm_description>/urdf/arm.xacro port:=/dev/ttyACM0 use_camera:=<arg:use_camera>"
+
+
+def test_reading_other_modules_is_bounded(tmp_path):
+    # a chain of 40 modules each importing the next, and functions calling themselves forever
+    files = {"p/package.xml": PACKAGE.format("p"), "p/p/__init__.py": ""}
+    for index in range(40):
+        files[f"p/p/m{index}.py"] = (f"from p.m{index + 1} import f as g\n"
+                                     "def f():\n    return g() + f() + f()\n")
+    files["p/launch/a.launch.py"] = ("from p.m0 import f\ndef generate_launch_description():\n"
+                                     "    return [Node(package='x', executable=f())]\n")
+    root = _repo(tmp_path, files)
+    read = _read(root, "p/launch/a.launch.py")
+    [start] = [a for a in read.actions if isinstance(a, Start)]
+    assert start.executable.parts[0][0] == "unknown"
