@@ -277,3 +277,27 @@ def test_reading_other_modules_is_bounded(tmp_path):
     read = _read(root, "p/launch/a.launch.py")
     [start] = [a for a in read.actions if isinstance(a, Start)]
     assert start.executable.parts[0][0] == "unknown"
+
+
+def test_what_follows_a_guard_returning_early_is_read_under_its_negation(tmp_path):
+    # TurtleBot3 manipulation's model.launch.py: if not is_valid_to_launch(): return LaunchDescription([])
+    root = _repo(tmp_path, {"p/launch/a.launch.py": '''
+def generate_launch_description():
+    if not is_valid_to_launch():
+        return LaunchDescription([])
+    if LaunchConfiguration("mode") == "none":
+        pass
+    else:
+        return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                     parameters=[{"robot_description": Command(["xacro ", "a.urdf.xacro"])}]),
+                Node(package="x", executable="y")]
+    return [Node(package="z", executable="none_mode")]
+'''})
+    read = _read(root, "p/launch/a.launch.py")
+    [described] = _described(read)
+    assert [c.text for c in described.when] == ["not (not is_valid_to_launch())",
+                                                "not (LaunchConfiguration('mode') == 'none')"]
+    starts = {s.executable.literal: [c.kind for c in s.when] for s in read.actions
+              if isinstance(s, Start)}
+    assert starts == {"robot_state_publisher": ["unknown", "differs"], "y": ["unknown", "differs"],
+                      "none_mode": ["unknown", "equals"]}

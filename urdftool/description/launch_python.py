@@ -189,7 +189,7 @@ class _Reader:
 
     def block(self, statements, env: dict, when: tuple, depth: int, top: bool = False):
         """Walk statements; the value of a ``return`` if one is reached."""
-        for statement in statements:
+        for index, statement in enumerate(statements):
             self.tick()
             if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 self.functions.setdefault(statement.name, statement)
@@ -218,7 +218,13 @@ class _Reader:
                 test = self.condition(statement.test, env, depth)
                 found = self.block(statement.body, env, when + (test,), depth)
                 otherwise = self.block(statement.orelse, env, when + (_negated(test),), depth)
-                if found is not None or otherwise is not None:
+                if found is not None and otherwise is None:
+                    # a guard (``if not ok: return LaunchDescription([])``): what follows
+                    # runs when its test does not hold
+                    self.block(statements[index + 1:], env, when + (_negated(test),), depth)
+                elif otherwise is not None and found is None:
+                    self.block(statements[index + 1:], env, when + (test,), depth)
+                if found is not None or otherwise is not None:  # (the first value found)
                     return found if found is not None else otherwise
             elif isinstance(statement, (ast.For, ast.AsyncFor)):
                 for item in self.items(statement.iter, env, depth):
