@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from urdftool.description.launch_configs import launch_index
-from urdftool.description.runtime import AS_CHECKED, builds, runtime
+from urdftool.description.load import load
+from urdftool.description.runtime import AS_CHECKED, builds, built_otherwise, runtime
 from urdftool.lint.engine import CheckOptions, load_and_check
 
 PACKAGE = "<package format='2'><name>{}</name></package>"
@@ -225,3 +226,38 @@ def test_an_srdf_from_a_package_so_named_is_moveits_for_the_default_only(tmp_pat
     assert state == "by default"
     assert why.endswith("gives MoveIt this SRDF with the robot as checked when launched with "
                         "moveit_config_package's default 'arm_moveit_config'")
+
+
+MODE_ROBOT = """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="mode" default="true"/><xacro:arg name="prefix" default=""/>
+  <link name="base"/>
+  <ros2_control name="arm" type="system"><hardware>
+    <xacro:if value="${'$(arg mode)' == 'mock'}"><plugin>mock_components/GenericSystem</plugin></xacro:if>
+  </hardware></ros2_control>
+</robot>"""
+MODE_LAUNCH = '''
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+from launch.substitutions import Command, PathJoinSubstitution
+
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": Command(["xacro ",
+                     PathJoinSubstitution([FindPackageShare("arm_description"), "urdf", "arm.urdf.xacro"]),
+                     " mode:={mode} prefix:="])}])]
+'''
+
+
+@pytest.mark.parametrize("modes, otherwise", [
+    (["mock"], [["mode:=mock"]]),  # every launch file builds it otherwise
+    (["mock", "true"], []),  # one builds it as checked
+    ([], []),  # none builds it
+])
+def test_builds_all_giving_other_xacro_arguments_are_the_robot_built_otherwise(
+        tmp_path, modes, otherwise):
+    files = {"arm_description/urdf/arm.urdf.xacro": MODE_ROBOT}
+    for index, mode in enumerate(modes):
+        files[f"arm_bringup/launch/l{index}.launch.py"] = MODE_LAUNCH.replace("{mode}", mode)
+    root = _repo(tmp_path, files)
+    found = built_otherwise(load(str(root / "arm_description/urdf/arm.urdf.xacro")))
+    assert [other for _, other in found] == otherwise

@@ -422,6 +422,35 @@ def test_an_edited_or_new_launch_file_changes_the_findings(robot, tmp_path):
     assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
 
 
+PYTHON_LAUNCH = """
+import helpers
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": Command(["xacro ", "../bot.urdf.xacro"])}]),
+            Node(package="controller_manager", executable="ros2_control_node",
+                 parameters=["../config/controllers.yaml"]),
+            helpers.spawner()]
+"""
+HELPERS = """
+def spawner():
+    return Node(package="controller_manager", executable="spawner", arguments=["{spawned}"])
+"""
+
+
+def test_an_edited_module_a_python_launch_file_imports_changes_the_findings(robot, tmp_path):
+    # the launch file's own text is unchanged: the module it imports (read, never run) decides
+    # which controller it starts, so the result kept must follow that module, and its coming
+    cache_dir = tmp_path / "cache"
+    (robot / ".git").mkdir()
+    (robot / "launch").mkdir()
+    (robot / "launch" / "bot.launch.py").write_text(PYTHON_LAUNCH)
+    assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "launch" / "helpers.py").write_text(HELPERS.format(spawned="arm_controller"))
+    assert any(code == "U602" for code, _ in _messages(robot, cache_dir))
+    (robot / "launch" / "helpers.py").write_text(HELPERS.format(spawned="other"))
+    assert not any(code == "U602" for code, _ in _messages(robot, cache_dir))
+
+
 @pytest.fixture
 def package(tmp_path):
     """A ROS package whose robot is in urdf/ and whose controllers go in the package's

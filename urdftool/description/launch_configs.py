@@ -29,17 +29,21 @@ outside the repository) is unknown, never guessed.
 
 from __future__ import annotations
 
+import ast
 import os
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from urdftool.description.documents import read_text
 from urdftool.description.files import inside, kind_of, real_path, walk
-from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_TEXT, Arg, Condition,
+from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE,
+                                         MAX_TEXT, Arg, Condition,
                                          Description, Include, LaunchFile, ParamFile, Start, Value,
                                          is_launch_file, is_launch_test, may_be_launch_test,
                                          read_launch_text, was_read)
-from urdftool.description.launch_python import Room, read_python_launch
+from urdftool.description.launch_python import Modules, Room, read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
 from urdftool.description.run_memo import per_run
@@ -497,19 +501,93 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     return found, False
 
 
-def read_launch(path: Path, only_test: bool = False, room: Room | None = None
-                ) -> LaunchFile | None:
+def read_launch(path: Path, only_test: bool = False, room: Room | None = None,
+                modules: Modules | None = None) -> LaunchFile | None:
     """One launch file read, never run: XML and YAML by :mod:`urdftool.description.launch`,
     Python by :mod:`urdftool.description.launch_python` (a launch test from its entry point)
-    at the cost of ``room`` (:func:`reading_room`). ``only_test``: a Python file that may be
-    a launch test, None (not parsed) when it is not one."""
+    at the cost of ``room`` (:func:`reading_room`), the modules it imports found by
+    ``modules`` (:func:`repository_modules`). ``only_test``: a Python file that may be a
+    launch test, None (not parsed) when it is not one."""
     read = read_launch_text(path)
     if isinstance(read, str):
         if is_launch_test(read):
-            return read_python_launch(path, display_path(path), read, LAUNCH_TEST_ENTRY, room)
+            return read_python_launch(path, display_path(path), read, LAUNCH_TEST_ENTRY, room,
+                                      modules)
         return None if only_test else read_python_launch(path, display_path(path), read,
-                                                         room=room)
+                                                         room=room, modules=modules)
     return None if only_test else read
+
+
+# modules a launch file imports that are never a repository's: Python's own, and ROS's launch
+# libraries (no file is looked for)
+_NOT_THE_REPOSITORY = frozenset(sys.stdlib_module_names) | {
+    "launch", "launch_ros", "launch_xml", "launch_yaml", "launch_testing", "launch_testing_ros",
+    "ament_index_python", "moveit_configs_utils", "xacro", "yaml", "rclpy", "numpy"}
+
+
+class RepositoryModules(Modules):
+    """The Python modules of the repository ``root`` a launch file may import, found as ROS 2
+    finds them once installed, and only there: ``import pkg.mod`` in the package ``pkg``
+    (``pkg/pkg/mod.py``, ament_python's layout, or ``pkg/src/pkg/mod.py``), a module beside
+    the launch file (``import rs_launch``, on the path when the launch file puts its folder
+    there), a relative import in its own package, and ``load_python_launch_file_as_module(
+    path)``'s file (an installed ``share/`` path mapped back to the package's source). Read
+    through the one door, never imported or run."""
+
+    def __init__(self, root: Path, packages: dict):
+        self.root, self.packages = root, packages
+
+    def named(self, name: str, level: int, importer: Path) -> Path | None:
+        parts = [p for p in name.split(".") if p]
+        if not parts and not level or any(not p.isidentifier() for p in parts):
+            return None
+        if level:
+            base = importer.parent
+            for _ in range(level - 1):
+                base = base.parent
+            return self._file(base.joinpath(*parts))
+        if parts[0] in _NOT_THE_REPOSITORY:
+            return None
+        package = self.packages.get(parts[0])
+        for folder in ([package, package / "src"] if package is not None else []) + \
+                [importer.parent]:
+            found = self._file(folder.joinpath(*parts))
+            if found is not None:
+                return found
+        return None
+
+    def at(self, path: Value, importer: Path) -> Path | None:
+        scope = Scope({}, self.packages, LaunchFile(importer, display_path(importer), "ros2-python"),
+                      self.root, False)
+        found, _ = resolve_path(path, scope)
+        return found if found is not None and found.suffix == ".py" else None
+
+    def tree(self, path: Path) -> tuple[ast.Module, int] | None:
+        return _module_tree(path)
+
+    def _file(self, stem: Path) -> Path | None:
+        for candidate in (stem.with_name(stem.name + ".py"), stem / "__init__.py"):
+            if _regular_inside(candidate, self.root):
+                return candidate
+        return None
+
+
+@per_run
+def repository_modules(root: Path) -> RepositoryModules:
+    """The modules the Python launch files of the repository ``root`` may import."""
+    return RepositoryModules(root, packages_below(root))
+
+
+@per_run
+def _module_tree(path: Path) -> tuple[ast.Module, int] | None:
+    """A module's syntax tree (read through the door, parsed, never run) and its length."""
+    text = read_text(path, MAX_LAUNCH_SIZE, "Python module").text
+    if text is None:
+        return None
+    try:
+        return ast.parse(text, filename=display_path(path)), len(text)
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return None
 
 
 @per_run
@@ -525,7 +603,7 @@ def launch_index(root: Path) -> LaunchIndex:
     paths, truncated = launch_files(root)
     files = {}
     for path in paths:
-        launch = read_launch(path, room=reading_room(root))
+        launch = read_launch(path, room=reading_room(root), modules=repository_modules(root))
         if was_read(launch):
             files[_key(path)] = launch
     packages = packages_below(root)
@@ -552,7 +630,8 @@ def launch_tests(root: Path) -> list[Configuration]:
     for path in launch_files(root, tests=True)[0]:
         if _key(path) in index.files or is_launch_file(path, root):
             continue
-        launch = read_launch(path, only_test=True, room=reading_room(root))
+        launch = read_launch(path, only_test=True, room=reading_room(root),
+                             modules=repository_modules(root))
         if was_read(launch):  # one not read: runtime.unread_naming
             tests.append(launch)
     return [_expand_top(index, launch, packages) for launch in tests]

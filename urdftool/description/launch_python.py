@@ -29,6 +29,7 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -48,8 +49,31 @@ _BUILDS_NOTHING = (ast.Name, ast.Constant, ast.Subscript, ast.IfExp)  # (values 
 _SOURCES = ("PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource",
             "YAMLLaunchDescriptionSource", "AnyLaunchDescriptionSource",
             "FrontendLaunchDescriptionSource")
+_TRY = (ast.Try, ast.TryStar)
 _SHARE = ("FindPackageShare", "FindPackagePrefix", "get_package_share_directory",
           "get_package_share_path", "get_package_prefix")
+
+
+MAX_MODULES = 16  # other modules of the repository the reading of one launch file may enter
+
+
+class Modules:
+    """Where the Python modules a launch file imports are, and their syntax trees: none here
+    (a launch file read alone); a repository's are
+    :class:`~urdftool.description.launch_configs.RepositoryModules`."""
+
+    def named(self, name: str, level: int, importer: Path) -> Path | None:
+        """The file of the module ``import name`` (``from name import ...``; ``level`` dots
+        before it, relative to ``importer``'s package) reaches in the repository, else None."""
+        return None
+
+    def at(self, path: Value, importer: Path) -> Path | None:
+        """The file ``load_python_launch_file_as_module(path)`` loads, else None."""
+        return None
+
+    def tree(self, path: Path) -> tuple[ast.Module, int] | None:
+        """The module's syntax tree and the length of its text, None when it cannot be read."""
+        return None
 
 
 class _Stop(Exception):
@@ -75,11 +99,12 @@ class _Act:
 
 
 def read_python_launch(path: Path, display: str, text: str,
-                       entry: str = "generate_launch_description", room: Room | None = None
-                       ) -> LaunchFile:
+                       entry: str = "generate_launch_description", room: Room | None = None,
+                       modules: Modules | None = None) -> LaunchFile:
     """A Python launch file read from the function ``entry`` (a launch test's
     ``generate_test_description``: :func:`~urdftool.description.launch.is_launch_test`), at
-    the cost of ``room`` (its repository's; a room of its own when None)."""
+    the cost of ``room`` (its repository's; a room of its own when None), the modules of the
+    repository it imports found by ``modules`` (none when None)."""
     launch = LaunchFile(path, display, "ros2-python", test=entry != "generate_launch_description")
     room = room if room is not None else Room()
     if len(text) > room.characters:
@@ -91,7 +116,7 @@ def read_python_launch(path: Path, display: str, text: str,
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
         launch.problem = f"not valid Python: {type(error).__name__}: {error}"
         return launch
-    reader = _Reader(tree, entry, room)
+    reader = _Reader(tree, entry, room, path, modules or Modules())
     try:
         reader.run()
     except (_Stop, RecursionError):
@@ -107,8 +132,10 @@ def read_python_launch(path: Path, display: str, text: str,
 
 
 class _Reader:
-    def __init__(self, tree: ast.Module, entry: str, room: Room):
-        self.tree, self.entry = tree, entry
+    def __init__(self, tree: ast.Module, entry: str, room: Room, path: Path, modules: Modules):
+        self.tree, self.entry, self.path, self.modules = tree, entry, path, modules
+        self.entered_modules: dict[str, _Module | None] = {}  # path -> module (None: entering)
+        self.site: int | None = None  # the launch file's line calling into another module
         self.functions: dict[str, ast.FunctionDef] = {}
         self.acts: list[_Act] = []
         self.steps, self.max_steps, self.room = 0, min(MAX_STEPS, room.steps), room
@@ -162,11 +189,12 @@ class _Reader:
 
     def block(self, statements, env: dict, when: tuple, depth: int, top: bool = False):
         """Walk statements; the value of a ``return`` if one is reached."""
-        for statement in statements:
+        for index, statement in enumerate(statements):
             self.tick()
             if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 self.functions.setdefault(statement.name, statement)
-            elif top and not isinstance(statement, (ast.Assign, ast.AnnAssign)):
+            elif top and not isinstance(statement, (ast.Assign, ast.AnnAssign, ast.Import,
+                                                    ast.ImportFrom)):
                 continue
             elif isinstance(statement, ast.Assign):
                 value = self.eval(statement.value, env, when, depth)
@@ -190,7 +218,13 @@ class _Reader:
                 test = self.condition(statement.test, env, depth)
                 found = self.block(statement.body, env, when + (test,), depth)
                 otherwise = self.block(statement.orelse, env, when + (_negated(test),), depth)
-                if found is not None or otherwise is not None:
+                if found is not None and otherwise is None:
+                    # a guard (``if not ok: return LaunchDescription([])``): what follows
+                    # runs when its test does not hold
+                    self.block(statements[index + 1:], env, when + (_negated(test),), depth)
+                elif otherwise is not None and found is None:
+                    self.block(statements[index + 1:], env, when + (test,), depth)
+                if found is not None or otherwise is not None:  # (the first value found)
                     return found if found is not None else otherwise
             elif isinstance(statement, (ast.For, ast.AsyncFor)):
                 for item in self.items(statement.iter, env, depth):
@@ -204,15 +238,28 @@ class _Reader:
                 found = self.block(statement.body, env, when, depth)
                 if found is not None:
                     return found
-            elif isinstance(statement, ast.Try):
-                for body in (statement.body, *(h.body for h in statement.handlers),
-                             statement.orelse, statement.finalbody):
-                    self.block(body, env, when, depth)
+            elif isinstance(statement, _TRY):
+                # what the body returns when nothing fails (``try: with open(p) as f: return
+                # f.read()``), else what ``else`` or ``finally`` returns; a handler's is the
+                # failure's (``except OSError: return None``), walked for its actions only
+                found = None
+                for body in (statement.body, statement.orelse, statement.finalbody):
+                    value = self.block(body, env, when, depth)
+                    found = found if found is not None else value
+                for handler in statement.handlers:
+                    self.block(handler.body, env, when, depth)
+                if found is not None:
+                    return found
+            elif isinstance(statement, (ast.Import, ast.ImportFrom)):
+                self.imported(statement, env, depth)
         return None
 
     def bind(self, target, value, env: dict) -> None:
         if isinstance(target, ast.Name):
             env[target.id] = value
+        elif isinstance(target, ast.Attribute) and isinstance(target.value, ast.Name) and \
+                isinstance(env.get(target.value.id), _Instance):  # self.path = ...
+            env[target.value.id].attributes[target.attr] = value
         elif isinstance(target, (ast.Tuple, ast.List)):
             values = value if isinstance(value, list) and len(value) == len(target.elts) else \
                 [unknown("?")] * len(target.elts)
@@ -229,21 +276,126 @@ class _Reader:
             return value[:MAX_LOOP_ITEMS]
         return [unknown(_source(node))]
 
-    def call_function(self, function, args, keywords, env, when, depth):
+    def call_function(self, function, args, keywords, env, when, depth, foreign=False):
+        """What ``function`` returns called with ``args`` and ``keywords``, its globals ``env``
+        (the caller's for the file's own functions; its module's when ``foreign``); a
+        parameter not given has its default (evaluated there, making no action), else is
+        unknown."""
         if depth > MAX_DEPTH // 4:
             return None
-        self.walked.add(function.name)
+        if not foreign:
+            self.walked.add(function.name)
         local = dict(env)
-        names = [a.arg for a in function.args.args]
+        names = [a.arg for a in [*function.args.posonlyargs, *function.args.args]]
+        defaults = dict(zip(names[len(names) - len(function.args.defaults):],
+                            function.args.defaults))
+        defaults.update((a.arg, d) for a, d in zip(function.args.kwonlyargs,
+                                                   function.args.kw_defaults) if d is not None)
         for name, value in zip(names, args):
             local[name] = value
-        for name in names[len(args):]:
-            local[name] = keywords.get(name, unknown(name))
+        for name in [*names[len(args):], *(a.arg for a in function.args.kwonlyargs)]:
+            if name in keywords:
+                local[name] = keywords[name]
+            elif name in defaults:
+                made = len(self.acts)
+                local[name] = self.eval(defaults[name], env, (), depth)
+                del self.acts[made:]
+            else:
+                local[name] = unknown(name)
         if function.args.vararg is not None:
             local[function.args.vararg.arg] = list(args[len(names):])
-        for argument in function.args.kwonlyargs:
-            local[argument.arg] = keywords.get(argument.arg, unknown(argument.arg))
         return self.block(function.body, local, when, depth + 1)
+
+    # --- other modules of the repository ----------------------------------------------------
+
+    def imported(self, statement, env: dict, depth: int, importer: Path | None = None) -> None:
+        """``import m`` / ``from m import name``: a module of the repository
+        (:meth:`Modules.named`) is read, never run (:meth:`entered`), and the names bound to
+        what it defines; any other module binds nothing (its names stay unknown)."""
+        importer = importer or self.path
+        if isinstance(statement, ast.Import):
+            for alias in statement.names:
+                if alias.asname is None and "." in alias.name:
+                    continue  # (import a.b binds a, a package: its attributes are modules)
+                module = self.entered(self.modules.named(alias.name, 0, importer), depth)
+                if module is not None:
+                    env[alias.asname or alias.name] = module
+            return
+        name = statement.module or ""
+        module = self.entered(self.modules.named(name, statement.level, importer), depth)
+        for alias in statement.names:
+            if alias.name == "*":
+                if module is not None:
+                    env.update((k, v) for k, v in module.env.items() if not k.startswith("_"))
+                continue
+            found = module.env.get(alias.name) if module is not None else None
+            if found is None:  # from package import module
+                found = self.entered(self.modules.named(f"{name}.{alias.name}".lstrip("."),
+                                                        statement.level, importer), depth)
+            if found is not None:
+                env[alias.asname or alias.name] = found
+
+    def entered(self, path: Path | None, depth: int):
+        """The module of the repository at ``path`` read: its functions and classes, and the
+        values its top level assigns (any action made there dropped: importing a module adds
+        nothing to a launch description); at most MAX_MODULES a launch file, each once."""
+        if path is None:
+            return None
+        key = str(path)
+        if key in self.entered_modules:
+            return self.entered_modules[key]  # (None while it is being entered: a cycle)
+        if len(self.entered_modules) >= MAX_MODULES or depth > MAX_DEPTH // 4:
+            return None
+        self.entered_modules[key] = None
+        read = self.modules.tree(path)
+        if read is None:
+            return None
+        tree, size = read
+        if size > self.room.characters:
+            raise _Stop
+        self.room.characters -= size
+        module = _Module(path, {})
+        made = len(self.acts)
+        for statement in tree.body:
+            self.tick()
+            if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                module.env[statement.name] = _Function(statement, module)
+            elif isinstance(statement, ast.ClassDef):
+                module.env[statement.name] = _class(statement, module)
+            elif isinstance(statement, (ast.Import, ast.ImportFrom)):
+                self.imported(statement, module.env, depth + 1, path)
+            elif isinstance(statement, (ast.Assign, ast.AnnAssign)):
+                self.block([statement], module.env, (), depth + 1)
+        del self.acts[made:]
+        self.entered_modules[key] = module
+        return module
+
+    def call_target(self, target, args, keywords, when, depth, node):
+        """A call of what another module defines: a function (a class's static or class
+        method, or a method of an instance made here), or a class (an instance). What it
+        makes is the launch file's, at the line of its call there."""
+        if isinstance(target, _Class):
+            made = _Instance((("unknown", _source(node)),), _source(node), target)
+            initial = target.attributes.get("__init__")
+            if initial is not None:
+                self.call_target(_Function(initial.node, initial.module, made), args, keywords,
+                                 when, depth, node)
+            return made
+        if target.bound is not None:
+            args = [target.bound, *args]
+        outer = self.site
+        self.site = self.line(node)
+        try:
+            result = self.call_function(target.node, args, keywords, target.module.env, when,
+                                        depth, foreign=True)
+        finally:
+            self.site = outer
+        return result if result is not None else unknown(_source(node))
+
+    def line(self, node) -> int:
+        """The launch file's line of what ``node`` makes: its own, or, inside another module's
+        function, that of the launch file's call into it."""
+        return self.site or node.lineno
 
     # --- conditions -----------------------------------------------------------------------
 
@@ -331,7 +483,9 @@ class _Reader:
         if isinstance(node, ast.Subscript):
             return self.subscript(node, env, when, depth)
         if isinstance(node, ast.Attribute):
-            return unknown(_source(node))
+            owner = env.get(node.value.id) if isinstance(node.value, ast.Name) else None
+            found = _attribute(owner, node.attr) if isinstance(owner, _DEFINING) else None
+            return found if found is not None else unknown(_source(node))
         if isinstance(node, (ast.ListComp, ast.GeneratorExp)) and len(node.generators) == 1:
             generator, found = node.generators[0], []
             local = dict(env)
@@ -369,12 +523,23 @@ class _Reader:
         args = [self.eval(a.value if isinstance(a, ast.Starred) else a, env, when, depth)
                 for a in node.args]
         keywords = {k.arg: self.eval(k.value, env, when, depth) for k in node.keywords if k.arg}
-        line = node.lineno
+        line = self.line(node)
         method = node.func.attr if isinstance(node.func, ast.Attribute) else None
         if method is not None:
             found = self.method(node, method, args, keywords, env, when, depth)
             if found is not _NOT_HANDLED:
                 return found
+        target = env.get(name) if isinstance(node.func, ast.Name) else None
+        if isinstance(target, (_Function, _Class)):  # another module's (imported)
+            return self.call_target(target, args, keywords, when, depth, node)
+        if name == "getattr" and len(args) >= 2 and isinstance(args[1], Value) and \
+                isinstance(args[0], _DEFINING):
+            found = _attribute(args[0], args[1].literal or "")
+            return found if found is not None else unknown(_source(node))
+        if name.rsplit(".", 1)[-1] == "load_python_launch_file_as_module" and args and \
+                isinstance(args[0], Value):
+            found = self.entered(self.modules.at(args[0], self.path), depth)
+            return found if found is not None else unknown(_source(node))
         if name in self.functions and name != self.entry:
             function = self.functions[name]
             result = self.call_function(function, args, keywords, env, when, depth)
@@ -384,6 +549,14 @@ class _Reader:
     def method(self, node, method, args, keywords, env, when, depth):
         owner = self.eval(node.func.value, env, when, depth) if isinstance(node.func, ast.Attribute) \
             else None
+        if isinstance(owner, _DEFINING):  # module.function(...), Class.static_method(...)
+            target = _attribute(owner, method)
+            if isinstance(target, (_Function, _Class)):
+                return self.call_target(target, args, keywords, when, depth, node)
+            return unknown(_source(node))
+        if method == "find" and isinstance(owner, Value) and len(owner.parts) == 1 and \
+                isinstance(owner.parts[0], tuple) and owner.parts[0][0] == "find":
+            return owner  # FindPackageShare("p").find("p"): the package's share folder
         if (method, _callee(node.func.value)) in (("get", "os.environ"), ("getenv", "os")):
             name, default = (args + [None, None])[:2]  # os.environ.get / os.getenv(NAME, DEFAULT)
             default = keywords.get("default", default)
@@ -414,6 +587,15 @@ class _Reader:
                     parts.append(separator)
                 parts.append(item if isinstance(item, Value) else unknown("?"))
             return concat(parts)
+        if method == "format" and isinstance(owner, Value) and owner.literal is not None and \
+                owner.literal.count("{") == owner.literal.count("{}") == \
+                owner.literal.count("}") == len(args) and not keywords:
+            pieces, parts = owner.literal.split("{}"), []  # "{}:=".format(key)
+            for index, piece in enumerate(pieces):
+                parts.append(literal(piece))
+                if index < len(args):
+                    parts.append(args[index] if isinstance(args[index], Value) else unknown("?"))
+            return concat(parts)
         if method == "join" and _callee(node.func.value) == "os.path":
             return _joined([a if isinstance(a, Value) else unknown("?") for a in args])
         if method == "read" and isinstance(owner, _Opened):  # open(path).read(): the text as it is
@@ -428,19 +610,19 @@ class _Reader:
             return _Parsed(args[0].path)
         if method == "process_doc" and args and isinstance(args[0], _Parsed):  # xacro.process_doc
             mappings = keywords.get("mappings")
-            self.acts.append(_Act("description", when, node.lineno, file=args[0].path,
+            self.acts.append(_Act("description", when, self.line(node), file=args[0].path,
                                   args=_pairs(mappings), xacro=True, complete=_read_all(mappings)))
             return None
         if method == "process_file" and args and isinstance(args[0], Value):  # xacro.process_file
             mappings = keywords.get("mappings")
-            self.acts.append(_Act("description", when, node.lineno, file=args[0],
+            self.acts.append(_Act("description", when, self.line(node), file=args[0],
                                   args=_pairs(mappings), xacro=True, complete=_read_all(mappings)))
             return unknown(_source(node))
         if method in ("robot_description", "robot_description_semantic") and isinstance(owner, _Builder):
             path = keywords.get("file_path") or (args[0] if args else None)
             if isinstance(path, Value):
                 mappings = keywords.get("mappings")
-                self.acts.append(_Act("description", when, node.lineno,
+                self.acts.append(_Act("description", when, self.line(node),
                                       file=_in_package(owner.package, path),
                                       args=_pairs(mappings), xacro=True,
                                       complete=_read_all(mappings)))
@@ -449,7 +631,7 @@ class _Reader:
             if method == "trajectory_execution":
                 path = keywords.get("file_path") or (args[0] if args else None)
                 if isinstance(path, Value):
-                    self.acts.append(_Act("params", when, node.lineno,
+                    self.acts.append(_Act("params", when, self.line(node),
                                           path=_in_package(owner.package, path), substitute=False))
             return owner
         if method in ("to_moveit_configs", "to_dict"):
@@ -647,6 +829,73 @@ class _Reader:
 
 
 _NOT_HANDLED = object()
+
+
+class _Module:
+    """A module of the repository a launch file imports, read, never run: what its top level
+    defines and assigns (``env``, its functions' globals)."""
+
+    def __init__(self, path: Path, env: dict):
+        self.path, self.env = path, env
+
+
+class _Function:
+    """A function another module defines; ``bound``: what it is given first (a class
+    method's class, an instance's method's instance)."""
+
+    def __init__(self, node, module: _Module, bound=None, kind: str = ""):
+        self.node, self.module, self.bound, self.kind = node, module, bound, kind
+
+
+class _Class:
+    """A class another module defines (a launch "mixin" of static methods): its functions."""
+
+    def __init__(self, name: str, attributes: dict):
+        self.name, self.attributes = name, attributes
+
+
+@dataclass(frozen=True)
+class _Instance(Value):
+    """An instance of such a class made in the launch file (an unknown value as text): the
+    attributes its ``__init__`` and the launch file set (crane_plus's
+    ``RobotDescriptionLoader().load()``)."""
+
+    of: _Class | None = field(default=None, compare=False, hash=False)
+    attributes: dict = field(default_factory=dict, compare=False, hash=False)
+
+
+_DEFINING = (_Module, _Class, _Instance)
+
+
+def _class(node: ast.ClassDef, module: _Module) -> _Class:
+    """The functions of a class, each as its decorator makes it (``staticmethod``,
+    ``classmethod``); its bases are not read."""
+    found = _Class(node.name, {})
+    for statement in node.body:
+        if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            decorators = {_callee(d) for d in statement.decorator_list}
+            kind = "static" if "staticmethod" in decorators else \
+                "class" if "classmethod" in decorators else ""
+            found.attributes[statement.name] = _Function(statement, module, kind=kind)
+    return found
+
+
+def _attribute(owner, name: str):
+    """What ``owner.name`` is: a module's global, a class's function (a class method given its
+    class), an instance's method given the instance; None when not read."""
+    if isinstance(owner, _Module):
+        return owner.env.get(name)
+    if isinstance(owner, _Instance) and name in owner.attributes:
+        return owner.attributes[name]
+    of = owner.of if isinstance(owner, _Instance) else owner
+    function = of.attributes.get(name) if of is not None else None
+    if function is None:
+        return None
+    if function.kind == "class":
+        return _Function(function.node, function.module, of)
+    if function.kind == "" and isinstance(owner, _Instance):
+        return _Function(function.node, function.module, owner)
+    return function
 
 
 class _Partial(dict):

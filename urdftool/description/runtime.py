@@ -31,7 +31,7 @@ from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_laun
 from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
                                                  Loaded, Resolved, Started, launch_files,
                                                  launch_index, launch_tests, read_launch,
-                                                 reading_room, shown)
+                                                 reading_room, repository_modules, shown)
 from urdftool.description.packages import packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -475,7 +475,7 @@ def why_builds_nothing(launch_path: str) -> str:
         return "builds no robot file urdftool can tell"
     if real_path(absolute) not in {real_path(p) for p in launch_files(root)[0]}:
         return f"is not among the launch files urdftool reads below {display_path(root)}"
-    launch = read_launch(absolute, room=reading_room(root))
+    launch = read_launch(absolute, room=reading_room(root), modules=repository_modules(root))
     problem = getattr(launch, "problem", None) or "what it does is not known"
     return f"could not be read ({problem})"
 
@@ -564,6 +564,33 @@ def launch_xacro_args(path: str, argument: str) -> list[tuple[Build, dict]]:
         if key not in seen:
             seen.add(key)
             found.append((build, known))
+    return found
+
+
+def built_otherwise(robot) -> list[tuple[Build, list[str]]]:
+    """(build, the robot's xacro arguments it gives another value, as ``name:=value``) for each
+    launch file (or launch test) that runs the robot's file through xacro, when every one of
+    them gives one of the robot's ``<xacro:arg>`` another value than it was checked with (its
+    default, or ``--arg``): what xacro made as checked is then no build they run, and a finding
+    of it may not hold in theirs (lbr-stack's ``mode`` defaults to ``true``, which no
+    ``xacro:if`` of its hardware macro takes; every launch file gives ``mode:=mock|gazebo|
+    hardware``). Empty when one builds it as checked, or none builds it (the finding is then
+    on a build that runs, or on the file as written). A value known only at launch is
+    another value; an argument a build may give without its being read counts as given as
+    checked."""
+    if robot.path == "-":
+        return []
+    mine, found = None, []
+    for build in builds(robot.path):
+        if not build.xacro:
+            continue
+        mine = mine if mine is not None else _robot_args(robot)
+        other = [f"{name}:={'(known only at launch)' if value is None else value}"
+                 for name, value in sorted(build.args.items())
+                 if name in mine and (value is None or _normal(value) != _normal(mine[name]))]
+        if not other:
+            return []
+        found.append((build, other))
     return found
 
 

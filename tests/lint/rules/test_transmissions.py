@@ -242,3 +242,40 @@ def test_a_ros2_control_block_of_3000_joints_looks_for_its_plugin_once(tmp_path,
         f'{joints}</ros2_control></robot>')
     assert ros2_command_interfaces(load(str(tmp_path / "robot.urdf"))) == {"j": {"position"}}
     assert len(asked) == 1, len(asked)
+
+
+def test_no_plugin_as_checked_when_every_launch_file_builds_it_otherwise_is_a_warning(tmp_path):
+    # lbr-stack: mode defaults to 'true', which no xacro:if of the hardware macro takes, and
+    # every launch file gives mode:=mock|gazebo|hardware (through a mixin of another package)
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "arm_description/urdf/arm.urdf.xacro"
+    robot.parent.mkdir(parents=True)
+    (tmp_path / "arm_description/package.xml").write_text(
+        "<package format='2'><name>arm_description</name></package>")
+    robot.write_text("""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="mode" default="true"/>
+  <link name="base"/>
+  <ros2_control name="arm" type="system"><hardware>
+    <xacro:if value="${'$(arg mode)' == 'mock'}"><plugin>mock_components/GenericSystem</plugin></xacro:if>
+  </hardware></ros2_control>
+</robot>""")
+    launch = tmp_path / "arm_description/launch/mock.launch.py"
+    launch.parent.mkdir()
+    launch.write_text('''
+from launch.substitutions import Command
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": Command(["xacro ", FindPackageShare("arm_description"),
+                                                            "/urdf/arm.urdf.xacro mode:=mock"])}])]
+''')
+    findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
+    assert [f.severity for f in findings] == [Severity.WARNING]
+    assert "mock.launch.py:7 builds it with mode:=mock, and no launch file as checked" in \
+        findings[0].message
+    launch.write_text(launch.read_text().replace("mode:=mock", "mode:=true"))
+    findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
+    assert [f.severity for f in findings] == [Severity.ERROR]  # built as checked: it holds there

@@ -14,7 +14,7 @@ from __future__ import annotations
 import functools
 
 from urdftool.description.ros_version import ros_versions
-from urdftool.description.runtime import STATE_PUBLISHERS, runtime
+from urdftool.description.runtime import STATE_PUBLISHERS, built_otherwise, runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
                                             exported_interface, interface_kind, is_ros2_form,
@@ -431,14 +431,31 @@ def ros2_control_no_plugin(robot):
 
     Bad: ``<ros2_control name="sys" type="system"> <hardware/> ...``
     Good: ``<hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>``
+
+    A warning when the launch files run the robot's file through xacro only with other
+    arguments than it was checked with (its ``<xacro:arg>`` defaults, or ``--arg``), as when
+    an ``xacro:if`` on a ``mode`` argument picks the plugin and no launch file builds the
+    default: the builds that run are not checked, and the message names them.
     """
+    otherwise = None
     for block in robot.children("ros2_control"):
         hardware = block.find("hardware")
         plugin = hardware.findtext("plugin", "").strip() if hardware is not None else ""
         if not plugin:
-            yield (hardware if hardware is not None else block), (
-                f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>; e.g. "
-                "gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem")
+            named = f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>"
+            example = "e.g. gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem"
+            otherwise = built_otherwise(robot) if otherwise is None else otherwise
+            if otherwise:
+                build, other = otherwise[0]
+                more = f" (and {len(otherwise) - 1} more)" if len(otherwise) > 1 else ""
+                message = Conditional(
+                    f"{named} with the xacro arguments the robot is checked with; "
+                    f"{build.named_at()} builds it with {', '.join(other[:4])}{more}, and no "
+                    "launch file as checked: whether their builds name one is not checked "
+                    f"(--arg NAME=VALUE checks one); {example}")
+            else:
+                message = f"{named}; {example}"
+            yield (hardware if hardware is not None else block), message
 
 
 _LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}

@@ -1,0 +1,303 @@
+"""Python launch files read by their syntax tree: helpers returning from inside ``try``,
+method chains on FindPackageShare, functions and classes of other modules of the repository
+(urdftool/description/launch_python.py; the forms of test_launch.py's tests are not repeated)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from urdftool.description.launch import Arg, Description, Start
+from urdftool.description.launch_configs import launch_index, read_launch, repository_modules
+
+from tests.description.test_launch import PACKAGE, _repo
+
+
+def _read(root: Path, name: str):
+    return read_launch(root / name, modules=repository_modules(root))
+
+
+def _described(read) -> list[Description]:
+    return [a for a in read.actions if isinstance(a, Description)]
+
+
+def _text(value) -> str:
+    return "".join(p if isinstance(p, str) else f"<{p[0]}:{p[1]}>" for p in value.parts)
+
+
+def test_a_helper_returning_from_inside_try_and_with_returns_it(tmp_path):
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": '''
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch_ros.actions import Node
+
+def load_file(package_name, file_path):
+    absolute_file_path = os.path.join(get_package_share_directory(package_name), file_path)
+    try:
+        with open(absolute_file_path, "r") as file:
+            return file.read()
+    except EnvironmentError:
+        return None
+
+def generate_launch_description():
+    description = load_file("p", "urdf/arm.urdf")
+    return LaunchDescription([Node(package="robot_state_publisher",
+                                   executable="robot_state_publisher",
+                                   parameters=[{"robot_description": description}])])
+'''})
+    [described] = _described(_read(root, "p/launch/a.launch.py"))
+    assert _text(described.file) == "<find:p>/urdf/arm.urdf" and not described.xacro
+
+
+def test_find_package_share_find_is_the_packages_share_folder(tmp_path):
+    root = _repo(tmp_path, {"p/launch/a.launch.py": '''
+import os
+from launch.substitutions import Command
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    share = FindPackageShare("p").find("p")
+    return LaunchDescription([Node(package="robot_state_publisher", executable="x",
+        parameters=[{"robot_description": Command(["xacro ", os.path.join(share, "urdf", "a.xacro")])}])])
+'''})
+    [described] = _described(_read(root, "p/launch/a.launch.py"))
+    assert _text(described.command) == "xacro <find:p>/urdf/a.xacro"
+
+
+MIXIN = '''
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+STARTED = Node(package="top_level", executable="of_the_module")  # importing it starts nothing
+
+
+class DescriptionMixin:
+    @staticmethod
+    def param_robot_description(model=LaunchConfiguration("model", default="arm7"),
+                                mode=LaunchConfiguration("mode", default="mock")):
+        return {"robot_description": Command([FindExecutable(name="xacro"), " ",
+            PathJoinSubstitution([FindPackageShare("arm_description"), "urdf", model]), ".xacro",
+            " mode:=", mode])}
+
+    @staticmethod
+    def arg_model(default_value: str = "arm7"):
+        return DeclareLaunchArgument(name="model", default_value=default_value)
+
+    @classmethod
+    def node_spawner(cls, controller):
+        return cls.spawner(controller)
+
+    @staticmethod
+    def spawner(controller):
+        return Node(package="controller_manager", executable="spawner", arguments=[controller])
+'''
+
+
+def test_a_mixin_class_of_another_package_builds_as_its_static_methods_say(tmp_path):
+    root = _repo(tmp_path, {
+        "arm_bringup/package.xml": PACKAGE.format("arm_bringup"),
+        "arm_bringup/arm_bringup/__init__.py": "",
+        "arm_bringup/arm_bringup/description.py": MIXIN,
+        "arm_description/package.xml": PACKAGE.format("arm_description"),
+        "arm_bringup/launch/hardware.launch.py": '''
+from launch import LaunchDescription
+from arm_bringup.description import DescriptionMixin as Mixin
+
+def generate_launch_description():
+    ld = LaunchDescription()
+    ld.add_action(Mixin.arg_model())
+    description = Mixin.param_robot_description(mode="hardware")
+    ld.add_action(Node(package="robot_state_publisher", executable="robot_state_publisher",
+                       parameters=[description]))
+    ld.add_action(Mixin.node_spawner("arm_controller"))
+    return ld
+'''})
+    read = _read(root, "arm_bringup/launch/hardware.launch.py")
+    assert [(a.name, a.default.literal) for a in read.actions if isinstance(a, Arg)] == \
+        [("model", "arm7")]  # the parameter's default, evaluated
+    [described] = _described(read)
+    assert _text(described.command) == "xacro <find:arm_description>/urdf/<arg:model>.xacro mode:=hardware"
+    assert described.line == 8  # the launch file's call, not the module's line
+    starts = [a for a in read.actions if isinstance(a, Start)]
+    assert [s.executable.literal for s in starts] == ["robot_state_publisher", "spawner"]
+    assert [w.literal for w in starts[1].arguments] == ["arm_controller"]  # through cls
+    assert starts[1].line == 11
+
+
+def test_a_helper_loaded_as_a_module_by_its_share_path_is_read(tmp_path):
+    root = _repo(tmp_path, {
+        "arm_description/package.xml": PACKAGE.format("arm_description"),
+        "arm_description/launch/lib/description_lib.py": '''
+from launch.substitutions import Command, FindExecutable, PathJoinSubstitution
+
+def get_xacro_file_content(xacro_file, arguments={}):
+    command = [PathJoinSubstitution([FindExecutable(name="xacro")]), " ", xacro_file, " "]
+    if arguments and isinstance(arguments, dict):
+        for key, val in arguments.items():
+            command.extend(["{}:=".format(key), val, " "])
+    return Command(command)
+''',
+        "arm_description/launch/a.launch.py": '''
+import os
+from ament_index_python import get_package_share_directory
+from launch.launch_description_sources import load_python_launch_file_as_module
+
+def launch_setup(context, *args, **kwargs):
+    mod = load_python_launch_file_as_module(os.path.join(
+        get_package_share_directory("arm_description"), "launch", "lib", "description_lib.py"))
+    content = getattr(mod, "get_xacro_file_content")
+    description = {"robot_description": content(xacro_file="/tmp/x.xacro",
+                                                arguments={"dof": LaunchConfiguration("dof", default=7)})}
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[description])]
+
+def generate_launch_description():
+    return LaunchDescription([OpaqueFunction(function=launch_setup)])
+'''})
+    [described] = _described(_read(root, "arm_description/launch/a.launch.py"))
+    assert _text(described.command) == "xacro /tmp/x.xacro dof:=<arg:dof> "
+
+
+def test_a_module_beside_the_launch_file_and_a_relative_import_are_read(tmp_path):
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/launch/common.py": "def path():\n    return 'urdf/' + NAME\nNAME = 'a.urdf.xacro'\n",
+        "p/launch/a.launch.py": '''
+import common
+from launch.substitutions import Command
+
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="x",
+                 parameters=[{"robot_description": Command(["xacro ", common.path()])}])]
+''',
+        "q/package.xml": PACKAGE.format("q"),
+        "q/q/__init__.py": "",
+        "q/q/paths.py": "from .names import NAME as N\ndef path():\n    return 'urdf/' + N\n",
+        "q/q/names.py": "NAME = 'b.urdf.xacro'\n",
+        "q/launch/b.launch.py": '''
+from q import paths
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="x",
+                 parameters=[{"robot_description": Command(["xacro ", paths.path()])}])]
+'''})
+    [described] = _described(_read(root, "p/launch/a.launch.py"))
+    assert _text(described.command) == "xacro urdf/a.urdf.xacro"
+    [described] = _described(_read(root, "q/launch/b.launch.py"))
+    assert _text(described.command) == "xacro urdf/b.urdf.xacro"
+
+
+def test_modules_outside_the_repository_or_not_python_are_not_read(tmp_path):
+    (tmp_path / "outside.py").write_text("def path():\n    return 'urdf/out.urdf.xacro'\n")
+    root = _repo(tmp_path / "repo", {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/launch/cycle_a.py": "from cycle_b import f\ndef g():\n    return f()\n",
+        "p/launch/cycle_b.py": "from cycle_a import g\ndef f():\n    return g()\n",
+        "p/launch/a.launch.py": '''
+from ... import outside
+import os, yaml, launch_ros
+from cycle_a import g
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="x",
+                 parameters=[{"robot_description": Command(["xacro ", outside.path(), g()])}])]
+'''})
+    modules = repository_modules(root)
+    assert modules.named("", 3, root / "p/launch/a.launch.py") is None  # (the file above the root)
+    assert modules.named("os", 0, root / "p/launch/a.launch.py") is None
+    [described] = _described(_read(root, "p/launch/a.launch.py"))
+    assert [p[0] for p in described.command.parts if isinstance(p, tuple)] == ["unknown", "unknown"]
+
+
+def test_an_imported_module_is_never_run_and_its_top_level_starts_nothing(tmp_path):
+    marker = tmp_path / "ran"
+    root = _repo(tmp_path / "repo", {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/p/__init__.py": "",
+        "p/p/evil.py": f"""
+import os
+open({str(marker)!r}, "w").write("x")
+node = Node(package="started", executable="on_import")
+def helper():
+    os.system("touch {marker}")
+    return Node(package="helper", executable="h")
+""",
+        "p/launch/a.launch.py": "from p.evil import helper\n"
+                                "def generate_launch_description():\n    return [helper()]\n"})
+    modules = set(sys.modules)
+    index = launch_index(root)
+    assert not marker.exists()
+    assert not {m for m in set(sys.modules) - modules if "evil" in m}
+    [read] = index.files.values()
+    assert [s.package.literal for s in read.actions if isinstance(s, Start)] == ["helper"]
+
+
+def test_an_instance_of_a_class_of_another_package_keeps_the_attributes_set_on_it(tmp_path):
+    # crane_plus: RobotDescriptionLoader() sets the path in __init__, the launch file an argument
+    root = _repo(tmp_path, {
+        "arm_description/package.xml": PACKAGE.format("arm_description"),
+        "arm_description/arm_description/loader.py": '''
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch.substitutions import Command
+
+class Loader():
+    def __init__(self, port="/dev/ttyUSB0"):
+        self.path = os.path.join(get_package_share_directory("arm_description"), "urdf", "arm.xacro")
+        self.port = port
+        self.use_camera = "false"
+
+    def load(self):
+        return Command(["xacro ", self.path, " port:=", self.port, " use_camera:=", self.use_camera])
+''',
+        "arm_description/launch/display.launch.py": '''
+from arm_description.loader import Loader
+from launch.substitutions import LaunchConfiguration
+
+def generate_launch_description():
+    loader = Loader(port="/dev/ttyACM0")
+    loader.use_camera = LaunchConfiguration("use_camera")
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{"robot_description": loader.load()}]), Loader().missing()]
+'''})
+    [described] = _described(_read(root, "arm_description/launch/display.launch.py"))
+    assert _text(described.command) == \
+        "xacro <find:arm_description>/urdf/arm.xacro port:=/dev/ttyACM0 use_camera:=<arg:use_camera>"
+
+
+def test_reading_other_modules_is_bounded(tmp_path):
+    # a chain of 40 modules each importing the next, and functions calling themselves forever
+    files = {"p/package.xml": PACKAGE.format("p"), "p/p/__init__.py": ""}
+    for index in range(40):
+        files[f"p/p/m{index}.py"] = (f"from p.m{index + 1} import f as g\n"
+                                     "def f():\n    return g() + f() + f()\n")
+    files["p/launch/a.launch.py"] = ("from p.m0 import f\ndef generate_launch_description():\n"
+                                     "    return [Node(package='x', executable=f())]\n")
+    root = _repo(tmp_path, files)
+    read = _read(root, "p/launch/a.launch.py")
+    [start] = [a for a in read.actions if isinstance(a, Start)]
+    assert start.executable.parts[0][0] == "unknown"
+
+
+def test_what_follows_a_guard_returning_early_is_read_under_its_negation(tmp_path):
+    # TurtleBot3 manipulation's model.launch.py: if not is_valid_to_launch(): return LaunchDescription([])
+    root = _repo(tmp_path, {"p/launch/a.launch.py": '''
+def generate_launch_description():
+    if not is_valid_to_launch():
+        return LaunchDescription([])
+    if LaunchConfiguration("mode") == "none":
+        pass
+    else:
+        return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                     parameters=[{"robot_description": Command(["xacro ", "a.urdf.xacro"])}]),
+                Node(package="x", executable="y")]
+    return [Node(package="z", executable="none_mode")]
+'''})
+    read = _read(root, "p/launch/a.launch.py")
+    [described] = _described(read)
+    assert [c.text for c in described.when] == ["not (not is_valid_to_launch())",
+                                                "not (LaunchConfiguration('mode') == 'none')"]
+    starts = {s.executable.literal: [c.kind for c in s.when] for s in read.actions
+              if isinstance(s, Start)}
+    assert starts == {"robot_state_publisher": ["unknown", "differs"], "y": ["unknown", "differs"],
+                      "none_mode": ["unknown", "equals"]}
