@@ -55,6 +55,7 @@ fuzz: $(INSTALLED)
 	$(PY) -m tests.fuzz.run 100 --server || status=1; \
 	$(PY) -m tests.fuzz.run 1000 --environments || status=1; \
 	$(PY) -m pytest -n auto -m slow tests/integration/test_fuzz.py tests/integration/test_fuzz_output.py \
+		tests/test_kept_code.py \
 		|| status=1; exit $$status
 
 # The sweep (tests/integration/test_sweep.py): real robot descriptions that packages on PyPI ship,

@@ -22,6 +22,16 @@ CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus
 os.environ["URDFTOOL_NO_CACHE"] = "1"
 
 
+@functools.cache
+def parsed(source: str):
+    """``ast.parse(source)``, once per text and test process: a dozen tests walk every module
+    of urdftool (all of them parsed: 1 s of CPU), each for its own rule. The tree is shared:
+    read it, never change it."""
+    import ast
+
+    return ast.parse(source)
+
+
 def corpus_or_skip() -> Path:
     if not CORPUS.is_dir():
         pytest.skip(f"corpus not found at {CORPUS}")

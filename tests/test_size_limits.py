@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 import urdftool
-from conftest import ROOT
+from conftest import ROOT, parsed
 
 PACKAGE = Path(urdftool.__file__).parent
 BODY = ('<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" '
@@ -45,7 +45,7 @@ def test_similarity_is_searched_in_one_place():
     errors.close_names, which bounds its inputs; report/unified.py's unified_diff is a diff."""
     callers = set()
     for path in PACKAGE.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parsed(path.read_text())):
             if isinstance(node, ast.Attribute) and node.attr in ("get_close_matches",
                                                                  "SequenceMatcher"):
                 callers.add(path.relative_to(PACKAGE).as_posix())

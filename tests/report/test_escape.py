@@ -14,6 +14,7 @@ import pytest
 import yaml
 from lxml import etree
 
+from conftest import parsed
 from urdftool.report import escape
 
 URDFTOOL = Path(escape.__file__).resolve().parent.parent
@@ -195,7 +196,7 @@ def scan() -> list[str]:
     for path in _sources("cli", "report", files=("server.py", "pytest_plugin.py", "docs.py",
                                                   "terminal.py", "checking.py")):
         relative = path.relative_to(URDFTOOL.parent).as_posix()
-        tree = ast.parse(path.read_text())
+        tree = parsed(path.read_text())
         for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom) and node.module in ("html", "rich.markup") and \
                     any(a.name == "escape" for a in node.names) and \
