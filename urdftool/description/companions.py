@@ -494,14 +494,16 @@ def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
 
 def _anothers(path: Path, robot) -> list[Path]:
     """The other robot files of the repository whose ``<robot name>`` is the SRDF ``path``'s
-    when it is not ``robot``'s: the SRDF is theirs (deepwithin/yam_ros2_control's only SRDF,
-    i2rt_arm's, was checked against the other arm of the repository, 'output': 33 errors)."""
+    when it is not ``robot``'s, and which look for companions where it is: the SRDF is theirs
+    (deepwithin/yam_ros2_control's only SRDF, i2rt_arm's, was checked against the other arm of
+    the repository, 'output': 33 errors). A robot of that name that would not find it (Rokae's
+    generic xMate_robot, whose name every model's SRDF takes) claims nothing."""
     name = _srdf_robot_name(path)
     if not name or name == robot.name or robot.path == "-":
         return []
-    mine = real_path(os.path.abspath(robot.path))
+    mine, folder = real_path(os.path.abspath(robot.path)), Path(os.path.abspath(path.parent))
     return [other for other in _robot_names(containment_root(path.parent)).get(name, ())
-            if real_path(other) != mine]
+            if real_path(other) != mine and folder in search_folders(other)]
 
 
 _ROBOT_NAME = re.compile(rb"<robot\b[^>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")

@@ -203,14 +203,15 @@ def test_a_collision_pair_naming_an_unknown_link_is_a_warning_a_group_link_an_er
 def test_the_only_srdf_of_a_repository_is_not_another_robots(tmp_path):
     """deepwithin/yam_ros2_control: its one SRDF (<robot name="i2rt_arm">) was checked against
     the other arm of the repository, alone in its folder and named 'output' (33 errors); the
-    robot file named 'i2rt_arm' claims it, and so does a robot of no other name."""
+    robot file named 'i2rt_arm', which looks for companions where it is, claims it; with no
+    such robot it is ours."""
     (tmp_path / ".git").mkdir()
     other = HEAD_ROBOT.format(body="").replace("name='r'", "name='arm'").replace(
         'name="r"', 'name="arm"')
-    files = {"robot.urdf": ROBOT, "arm/arm.urdf": other,
+    files = {"robot.urdf": ROBOT, "config/arm.urdf": other,  # (it looks for companions there)
              "config/arm.srdf": srdf('<group name="g"><link name="hand"/></group>', "arm")}
     found, _ = check_folder(tmp_path, files)
     assert not [f for f in found if f[0] == "arm.srdf"], found
-    files["arm/arm.urdf"] = other.replace("name='arm'", "name='b'").replace('name="arm"', 'name="b"')
+    files["config/arm.urdf"] = other.replace("name='arm'", "name='b'").replace('name="arm"', 'name="b"')
     found, _ = check_folder(tmp_path, files)
     assert ("arm.srdf", 1, "U802") in found, found  # the only SRDF, of no robot here: ours
