@@ -864,10 +864,13 @@ def _margin(extent: float) -> float:
     return max(COM_HULL_FRACTION * extent, COM_HULL_MIN)
 
 
-def _copied_joint_origin(robot, link, properties) -> object | None:
+def _copied_joint_origin(robot, link, properties, read: tuple | None = None) -> object | None:
     """The joint whose child ``link`` is, when the inertial origin repeats that joint's origin
-    (its xyz, over 1 cm from the link frame), else None."""
-    joint = parent_joints(robot).get(robot.names()[link] or "?")  # (_name, as read once)
+    (its xyz, over 1 cm from the link frame), else None. ``read``: (:func:`~urdftool.physics.
+    frames.parent_joints`, :meth:`~urdftool.description.robot.Robot.names`) of the robot, for a
+    caller asking of every link (not looked up again 10,000 times)."""
+    parents, names = (parent_joints(robot), robot.names()) if read is None else read
+    joint = parents.get(names[link] or "?")  # (_name, as read once)
     if joint is None:
         return None
     xyz = origin_xyz(robot, joint)  # origin_of(joint).xyz, from the joints' texts
@@ -955,10 +958,11 @@ def inertial_origin_is_joint_origin(robot):
     ``<inertial><origin xyz="-0.4 0 -0.05"/>``
     Good: the caster's ``<inertial><origin xyz="0 0 0"/>`` (its centre)
     """
+    read = parent_joints(robot), robot.names()
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        joint = _copied_joint_origin(robot, link, properties)
+        joint = _copied_joint_origin(robot, link, properties, read)
         if joint is None:
             continue
         outside = _own_outside(robot, link, properties)
