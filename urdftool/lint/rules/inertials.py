@@ -435,8 +435,9 @@ def com_outside_geometry(robot):
     Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
     Good: the centre of mass inside or near the link's shape
     """
+    decided = _plain_decided(robot)[0]  # (read once, not once per link)
     for link, properties in _valid(robot):
-        far = _far_outside_box(robot, link, properties)
+        far = _far_outside_box(robot, link, properties, decided)
         if far is None:
             continue
         distance, rigid = far
@@ -450,10 +451,13 @@ def com_outside_geometry(robot):
             f"{_rounded(high)}); check the inertial origin's frame")
 
 
-def _far_outside_box(robot, link, properties):
+def _far_outside_box(robot, link, properties, decided: set | None = None):
     """(distance [m], RigidBounds) when the centre of mass is farther outside the box of the
-    link's rigid body than U307 allows, else None."""
-    if not properties.mass > 0 or link in _plain_decided(robot)[0]:
+    link's rigid body than U307 allows, else None. ``decided``: the first set of
+    :func:`_plain_decided`, for a caller asking of every link."""
+    if decided is None:
+        decided = _plain_decided(robot)[0]
+    if not properties.mass > 0 or link in decided:
         return None
     rigid = solids.rigid_bounds(robot, link)
     if rigid.bounds is None or not rigid.complete:
@@ -905,10 +909,11 @@ def com_outside_hull(robot):
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
     """
+    inside = _plain_decided(robot)[2]  # (read once, not once per link)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        if link in _plain_decided(robot)[2]:
+        if link in inside:
             continue  # inside one of its primitives: outside by 0
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
@@ -1161,10 +1166,11 @@ def inertia_beyond_geometry(robot):
     Good: the tensor ``urdftool inertia`` computes from its geometry
     """
     told = _told_by_ratio(robot)
+    within = _plain_decided(robot)[1]  # (read once, not once per link)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        if link in _plain_decided(robot)[1]:
+        if link in within:
             continue  # within the bound, found with the others at once
         trace = mat3.trace(properties.inertia)
         rigid = solids.rigid_bounds(robot, link)
