@@ -411,9 +411,12 @@ def _link_solids(robot):
     :class:`~urdftool.physics.solids.PlainSolid` when it is one of a large robot's plain links
     (measured with the others at once: what the rules read of its LinkSolid, the same
     numbers), else its :class:`~urdftool.physics.solids.LinkSolid`, built in order."""
-    return robot.memo(_link_solids, lambda: [
-        (link, properties, solids.plain_solid(robot, link) or _solid(robot, link))
-        for link, properties in _valid(robot) if properties.mass > 0])
+    def build():
+        read = solids.plain_links(robot), robot.names()  # (once, not once per link)
+        return [(link, properties, solids.plain_solid(robot, link, read) or _solid(robot, link))
+                for link, properties in _valid(robot) if properties.mass > 0]
+
+    return robot.memo(_link_solids, build)
 
 
 def _rounded(values) -> str:
