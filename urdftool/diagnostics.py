@@ -113,8 +113,11 @@ class Finding:
     def sort_key(self):
         """Line order, then a total order: findings that differ only in their column or macro
         call sites come out the same way in every run."""
-        return (self.file, self.line or 0, self.code, self.message, self.location.column or 0,
-                [(site.file, site.line or 0, site.column or 0) for site in self.location.via])
+        location = self.location  # (read once, not through the properties: 10,000 findings)
+        via = location.via
+        return (location.file, location.line or 0, self.code, self.message,
+                location.column or 0,
+                [(site.file, site.line or 0, site.column or 0) for site in via] if via else [])
 
 
 def display_path(path: str | os.PathLike) -> str:

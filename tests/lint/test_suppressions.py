@@ -60,6 +60,17 @@ def test_unused_is_reported_only_when_its_rules_ran(tmp_path):
     assert apply([], _sources(path), lambda code: code != "U901", CATALOGUE) == []
 
 
+def test_suppressions_are_found_beside_bytes_decoding_replaces(tmp_path):
+    # the bytes are searched for the word before any decoding: a broken UTF-8 sequence right
+    # before the comment (decoded as U+FFFD) neither hides it nor makes one of a file without
+    path, plain = tmp_path / "r.urdf", tmp_path / "p.urdf"
+    path.write_bytes(b"<robot>\n\xe2\x82<!-- urdftool: ignore U204 -->\n<joint/>\n</robot>\n")
+    plain.write_bytes(b"<robot>\n\xe2\x82<!-- urdftool ignore U204 -->\n<joint/>\n</robot>\n")
+    found = apply([], _sources(path), lambda code: True, CATALOGUE)
+    assert [(f.code, f.location.line) for f in found] == [("U901", 2)]
+    assert apply([], _sources(plain), lambda code: True, CATALOGUE) == []
+
+
 def test_check_file_applies_suppressions_and_selection(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text("""<robot name="r">

@@ -973,13 +973,13 @@ class PlainSolid:
         self.source, self.bounds, self.extent, self.unit = source, bounds, extent, unit
 
 
-def plain_solid(robot, link) -> PlainSolid | None:
+def plain_solid(robot, link, read: tuple | None = None) -> PlainSolid | None:
     """The :class:`PlainSolid` of ``link`` when it is one of :func:`plain_links` (the link of
-    its name), else None."""
-    table = plain_links(robot)
+    its name), else None. ``read``: (:func:`plain_links`, :meth:`~urdftool.description.robot.
+    Robot.names`) of the robot, for a caller asking of every link."""
+    table, names = (plain_links(robot), robot.names()) if read is None else read
     if table is None:
         return None
-    names = robot.names()  # (each link's name read once per robot)
     name = names[link] if link in names else link.get("name")
     found = table.solids.get(name)
     if found is None:

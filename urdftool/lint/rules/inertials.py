@@ -411,9 +411,12 @@ def _link_solids(robot):
     :class:`~urdftool.physics.solids.PlainSolid` when it is one of a large robot's plain links
     (measured with the others at once: what the rules read of its LinkSolid, the same
     numbers), else its :class:`~urdftool.physics.solids.LinkSolid`, built in order."""
-    return robot.memo(_link_solids, lambda: [
-        (link, properties, solids.plain_solid(robot, link) or _solid(robot, link))
-        for link, properties in _valid(robot) if properties.mass > 0])
+    def build():
+        read = solids.plain_links(robot), robot.names()  # (once, not once per link)
+        return [(link, properties, solids.plain_solid(robot, link, read) or _solid(robot, link))
+                for link, properties in _valid(robot) if properties.mass > 0]
+
+    return robot.memo(_link_solids, build)
 
 
 def _rounded(values) -> str:
@@ -435,8 +438,9 @@ def com_outside_geometry(robot):
     Bad: a 10 cm link with ``<inertial><origin xyz="0.5 0 0"/>``
     Good: the centre of mass inside or near the link's shape
     """
+    decided = _plain_decided(robot)[0]  # (read once, not once per link)
     for link, properties in _valid(robot):
-        far = _far_outside_box(robot, link, properties)
+        far = _far_outside_box(robot, link, properties, decided)
         if far is None:
             continue
         distance, rigid = far
@@ -450,10 +454,13 @@ def com_outside_geometry(robot):
             f"{_rounded(high)}); check the inertial origin's frame")
 
 
-def _far_outside_box(robot, link, properties):
+def _far_outside_box(robot, link, properties, decided: set | None = None):
     """(distance [m], RigidBounds) when the centre of mass is farther outside the box of the
-    link's rigid body than U307 allows, else None."""
-    if not properties.mass > 0 or link in _plain_decided(robot)[0]:
+    link's rigid body than U307 allows, else None. ``decided``: the first set of
+    :func:`_plain_decided`, for a caller asking of every link."""
+    if decided is None:
+        decided = _plain_decided(robot)[0]
+    if not properties.mass > 0 or link in decided:
         return None
     rigid = solids.rigid_bounds(robot, link)
     if rigid.bounds is None or not rigid.complete:
@@ -864,10 +871,13 @@ def _margin(extent: float) -> float:
     return max(COM_HULL_FRACTION * extent, COM_HULL_MIN)
 
 
-def _copied_joint_origin(robot, link, properties) -> object | None:
+def _copied_joint_origin(robot, link, properties, read: tuple | None = None) -> object | None:
     """The joint whose child ``link`` is, when the inertial origin repeats that joint's origin
-    (its xyz, over 1 cm from the link frame), else None."""
-    joint = parent_joints(robot).get(robot.names()[link] or "?")  # (_name, as read once)
+    (its xyz, over 1 cm from the link frame), else None. ``read``: (:func:`~urdftool.physics.
+    frames.parent_joints`, :meth:`~urdftool.description.robot.Robot.names`) of the robot, for a
+    caller asking of every link (not looked up again 10,000 times)."""
+    parents, names = (parent_joints(robot), robot.names()) if read is None else read
+    joint = parents.get(names[link] or "?")  # (_name, as read once)
     if joint is None:
         return None
     xyz = origin_xyz(robot, joint)  # origin_of(joint).xyz, from the joints' texts
@@ -902,10 +912,11 @@ def com_outside_hull(robot):
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
     """
+    inside = _plain_decided(robot)[2]  # (read once, not once per link)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        if link in _plain_decided(robot)[2]:
+        if link in inside:
             continue  # inside one of its primitives: outside by 0
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete:
@@ -955,10 +966,11 @@ def inertial_origin_is_joint_origin(robot):
     ``<inertial><origin xyz="-0.4 0 -0.05"/>``
     Good: the caster's ``<inertial><origin xyz="0 0 0"/>`` (its centre)
     """
+    read = parent_joints(robot), robot.names()
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        joint = _copied_joint_origin(robot, link, properties)
+        joint = _copied_joint_origin(robot, link, properties, read)
         if joint is None:
             continue
         outside = _own_outside(robot, link, properties)
@@ -1157,10 +1169,11 @@ def inertia_beyond_geometry(robot):
     Good: the tensor ``urdftool inertia`` computes from its geometry
     """
     told = _told_by_ratio(robot)
+    within = _plain_decided(robot)[1]  # (read once, not once per link)
     for link, properties in _valid(robot):
         if not properties.mass > 0:
             continue
-        if link in _plain_decided(robot)[1]:
+        if link in within:
             continue  # within the bound, found with the others at once
         trace = mat3.trace(properties.inertia)
         rigid = solids.rigid_bounds(robot, link)

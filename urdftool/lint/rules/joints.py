@@ -80,22 +80,25 @@ def limit_missing_effort_velocity(robot):
     Bad: ``<limit lower="0" upper="1"/>``
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
     """
+    read = _texts(robot)  # (once, not once per joint)
     for joint, _, limit in _limits(robot):
         if limit is None:
             continue
-        texts = _texts(robot)[limit]
+        texts = read[limit]
         missing = [a for a, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY]))
                    if text is None]
         if missing:
             yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
 
 
-def _bounds(robot, kind: str | None, limit) -> tuple[float, float] | None:
+def _bounds(robot, kind: str | None, limit, read: dict | None = None
+            ) -> tuple[float, float] | None:
     """(lower, upper) of a revolute or prismatic joint (``kind``) whose ``<limit>`` range
-    parses; a missing bound is 0, as in urdfdom."""
+    parses; a missing bound is 0, as in urdfdom. ``read``: :func:`_texts`, for a caller
+    asking of every joint."""
     if limit is None or kind not in LIMITED:
         return None
-    texts = _texts(robot)[limit]
+    texts = (_texts(robot) if read is None else read)[limit]
     lower, _ = number_tuple("0" if texts[_LOWER] is None else texts[_LOWER], 1)
     upper, _ = number_tuple("0" if texts[_UPPER] is None else texts[_UPPER], 1)
     return (lower[0], upper[0]) if lower and upper else None
@@ -104,9 +107,12 @@ def _bounds(robot, kind: str | None, limit) -> tuple[float, float] | None:
 def _ranges(robot) -> list:
     """(joint, limit, lower, upper) of revolute and prismatic joints whose range parses; once
     per robot (three rules ask)."""
-    return robot.memo(_ranges, lambda: [
-        (joint, limit, *bounds) for joint, kind, limit in _limits(robot)
-        if (bounds := _bounds(robot, kind, limit)) is not None])
+    def build():
+        read = _texts(robot)  # (once, not once per joint)
+        return [(joint, limit, *bounds) for joint, kind, limit in _limits(robot)
+                if (bounds := _bounds(robot, kind, limit, read)) is not None]
+
+    return robot.memo(_ranges, build)
 
 
 @rule("U204", "inverted-limits", Severity.ERROR)
@@ -392,10 +398,11 @@ def zero_effort_or_velocity(robot):
     Bad: ``<limit lower="-1" upper="1" effort="0" velocity="0"/>``
     Good: the actuator's real stall torque and no-load speed
     """
+    read = _texts(robot)  # (once, not once per joint)
     for joint, kind, limit in _limits(robot):
         if limit is None or kind not in MOVING:
             continue
-        texts = _texts(robot)[limit]
+        texts = read[limit]
         for attribute, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY])):
             values, _ = number_tuple(text, 1)
             if values and values[0] == 0:
