@@ -126,9 +126,9 @@ U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
     **warning** too when every use of xacro is inside ``<gazebo>`` (a plugin's
     ``<parameters>$(find ...)/controllers.yaml</parameters>``): URDF parsers skip it, and only
     Gazebo given the file itself reads it unexpanded. When every launch file that loads it
-    reads its text and rewrites it first (``open(path).read().replace('$(config)', path)``), the
-    file is a template the launch file fills: a **note** when each replaces every ``$(...)``
-    and ``${...}`` in it by name, a **warning** when what it replaces is not known without
+    reads its text and rewrites it first (``text.replace('$(config)', path)``), the file is a
+    template the launch file fills: a **note** when each replaces every ``$(...)`` and
+    ``${...}`` in it by name, a **warning** when what it replaces is not known without
     running it (``format``, ``string.Template``, ``re.sub``, a variable). An **error**
     otherwise: a launch file reads it as it is (``textfile=``, ``cat``, Python's ``open``), or
     none loads it.
