@@ -82,8 +82,9 @@ def test_a_grouped_line_says_the_other_names_it_is_about():
                       f"<limit> ({limit})")
               for name, low, limit in (("j2", -2.0944, -1.91986), ("j3", -2.0944, -1.91986),
                                        ("j5", -1.65806, -1.52716))]
-    [line] = [line for line in _text([FileResult("r.xacro", joints)]).splitlines() if "U515" in line]
-    assert line.endswith("[3 times: line 7 (3x); also 'j3', 'j5']"), line
+    lines = [line for line in _text([FileResult("r.xacro", joints)]).splitlines() if "U515" in line]
+    # (j5's two figures differ from the others': its own line, test below)
+    assert lines[0].endswith("[2 times: line 7 (2x); also 'j3']") and "'j5'" in lines[1], lines
     one = [said(7, "ros2_control joint 'j2' has no limit"), said(9, "ros2_control joint 'j2' has no limit")]
     assert "[2 times: lines 7, 9]\n" in _text([FileResult("r.xacro", one)])
     counts = [said(7, "joints 'a' and 'b' have no limit"), said(9, "joints 'a' and 'b' have no limit"),
@@ -252,3 +253,35 @@ def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
             first, second = (_figures(f.message) for f in group)
             assert [t for _, _, t in first] == [t for _, _, t in second], group
     assert compared > 500
+
+
+def test_figures_folded_only_where_the_line_stays_true_and_readable():
+    """Read as a stranger on robots new to the sweep: two figures differing folded into "min
+    -1.2 to 2.8857 is above max -1.475 to 2.486" (five joints, each its own pair), a vector's
+    coordinate into "(0.06525 -0.133 to 0.133 -0.056)", and 33,333 and 35,368 kg/m^3 into
+    "33 to 35,333 to 368". Such a group is one line per message, each as it is; one figure
+    standing alone still folds into its range."""
+    def said(line: int, message: str, code: str = "U515") -> Finding:
+        return Finding(code, "x", Severity.WARNING, message, Location("r.urdf", line))
+
+    def shown(findings) -> list[str]:
+        return [line.strip() for line in _text([FileResult("r.urdf", findings)]).splitlines()
+                if " U" in line]
+
+    pairs = shown([said(1, "joint 'a': min 2.044 is above max 0.54"),
+                   said(2, "joint 'b': min -1.2 is above max -1.45")])
+    assert [line.split(": ", 1)[1] for line in pairs] == [
+        "warning U515 joint 'a': min 2.044 is above max 0.54 (x)",
+        "warning U515 joint 'b': min -1.2 is above max -1.45 (x)"], pairs
+    vectors = shown([said(1, "link 'l': centre of mass (0.06525 -0.133 -0.056) is 0.133 m out"),
+                     said(2, "link 'r': centre of mass (0.06525 0.133 -0.056) is 0.133 m out")])
+    assert len(vectors) == 2 and " to " not in " ".join(vectors), vectors
+    thousands = shown([said(1, "link 'a': at least 35,368 kg/m^3", "U311"),
+                       said(2, "link 'b': at least 33,333 kg/m^3", "U311")])
+    assert len(thousands) == 2 and "35,368 kg" in thousands[0] and "33,333 kg" in thousands[1]
+    alone = shown([said(1, "link 'a' has mass 0.5 kg", "U304"), said(2, "link 'b' has mass 2 kg",
+                                                                     "U304")])
+    assert len(alone) == 1 and "has mass 0.5 to 2 kg" in alone[0], alone
+    same = shown([said(1, "joint 'a': min 1 is above max 0"), said(2, "joint 'b': min 3 is above "
+                  "max 2"), said(3, "joint 'c': min 1 is above max 0")])
+    assert len(same) == 2 and same[0].endswith("[2 times: lines 1, 3; also 'c']"), same

@@ -70,8 +70,9 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
             continue
         out.append([(display_path(result.path), "bold underline")])
         listed: dict = {}  # each long list of names -> where it was written in full
-        for group, alike in _grouped(shown):
-            out.extend(_group_lines(group, alike, listed))
+        for whole, alike in _grouped(shown):
+            for group, same in _foldable(whole, alike):
+                out.extend(_group_lines(group, same, listed))
         if not quiet:
             out.append([])
     if quiet:
@@ -164,6 +165,41 @@ def _figures(message: str) -> list:
             if not (quoted and _in_value(message, start)):
                 found.append((start, m.end(), m.group()))
     return found
+
+
+def _foldable(group: list, alike: bool) -> list[tuple[list, bool]]:
+    """``group`` as the lines it is written in: one, whose differing figure :func:`_ranged`
+    writes as the group's range, when one figure at most differs and it stands alone; else
+    one line per message once the names are set aside (each true as written, its names said
+    by :func:`_also`). Two figures differing read as nonsense folded ("min -1.2 to 2.89 is
+    above max -1.48 to 2.49", five joints each its own), and so did a figure of a vector
+    ("centre of mass (0.065 -0.133 to 0.133 -0.056)") or of a number written with thousands
+    ("33 to 35,333 to 368 kg/m^3", 33,333 and 35,368)."""
+    if alike or len(group) == 1:
+        return [(group, alike)]
+    mine = _figures(group[0].message)
+    others = [_figures(f.message) for f in group[1:]]
+    if any(len(figures) != len(mine) for figures in others):
+        return [(group, alike)]  # (written as the first says it: _ranged folds nothing)
+    differ = [i for i in range(len(mine)) if any(f[i][2] != mine[i][2] for f in others)]
+    if len(differ) <= 1 and not any(_joined(group[0].message, mine, i) for i in differ):
+        return [(group, alike)]
+    parts: dict[str, list] = {}
+    for finding in group:
+        parts.setdefault(_NAME.sub("''", finding.message), []).append(finding)
+    return [(part, True) for part in parts.values()]
+
+
+def _joined(message: str, figures: list, index: int) -> bool:
+    """Whether the figure ``figures[index]`` of ``message`` is one of several written as one
+    value: a vector's coordinates (a space between), a number's groups of thousands (a
+    comma)."""
+    start, end, _ = figures[index]
+    before = index > 0 and figures[index - 1][1] + 1 == start and \
+        message[start - 1] in " ,"
+    after = index + 1 < len(figures) and figures[index + 1][0] == end + 1 and \
+        message[end] in " ,"
+    return before or after
 
 
 def _ranged(group: list, alike: bool) -> str:
