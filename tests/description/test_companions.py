@@ -284,3 +284,32 @@ def test_a_robot_and_its_committed_xacro_output_are_one_robot(tmp_path):
     write(tmp_path, {"panda_description/urdf/fr3.urdf": ROBOT})
     found = companions(load(str(tmp_path / "panda_description/urdf/panda.urdf")))
     assert found.srdf.path.name == "panda.srdf" and found.controllers == []
+
+
+def test_a_moveit_package_whose_srdf_is_another_robots_lends_this_one_nothing(tmp_path):
+    """deepwithin/yam_ros2_control: the MoveIt package of the arm named 'i2rt_arm' gave the
+    repository's other arm, alone in its folder, its controllers and kinematics ("found beside
+    the robot"), and their gripper joint was reported missing there. Its SRDF names its robot;
+    the package's files are that robot's."""
+    (tmp_path / ".git").mkdir()
+    arm = '<robot name="{}"><link name="base_link"/><link name="l1"/><joint name="j1" ' \
+          'type="revolute"><parent link="base_link"/><child link="l1"/><axis xyz="0 0 1"/>' \
+          '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>\n'
+    files = {"arm_description/urdf/arm.urdf": arm.format("arm"),
+             "arm_description/other/output.urdf": arm.format("output"),
+             "arm_moveit_config/config/arm.srdf": '<robot name="arm"><group name="g">'
+                                                   '<joint name="j1"/></group></robot>\n',
+             "arm_moveit_config/config/kinematics.yaml": "g:\n  kinematics_solver: kdl\n",
+             "arm_moveit_config/config/moveit_controllers.yaml":
+                 "moveit_simple_controller_manager:\n  controller_names: [c]\n  c:\n"
+                 "    type: FollowJointTrajectory\n    joints: [j1, gripper_joint]\n"}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    (tmp_path / "arm_description" / "package.xml").write_text(
+        "<package format='2'><name>arm_description</name></package>")
+    mine = companions(load(tmp_path / "arm_description/urdf/arm.urdf"))
+    assert mine.srdf is not None and mine.kinematics is not None
+    other = companions(load(tmp_path / "arm_description/other/output.urdf"))
+    assert other.srdf is None and other.kinematics is None and not other.controllers
+    assert any("the robot its SRDF names" in why for why in other.unused.values()), other.unused

@@ -316,6 +316,10 @@ class _Owner:
         """(whether ``path``, found automatically, is this robot's, why / why not)."""
         if self.matches(path):
             return True, "named after the robot"
+        others = _moveit_package_of_another(path, self.robot)
+        if others:
+            return False, (f"in the MoveIt package of {display_path(others[0])}, the robot "
+                           "its SRDF names")
         if self.alone:
             return True, "found beside the robot"
         return False, (f"{len(self.neighbours) + 1} robots share its folder and it is not named "
@@ -492,6 +496,19 @@ def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
     return chosen
 
 
+def _moveit_package_of_another(path: Path, robot) -> list[Path]:
+    """The other robots whose MoveIt package holds ``path`` (a ``*_moveit_config/config``
+    file): every SRDF there is theirs (:func:`_anothers`), so its controllers, kinematics and
+    limits are too (deepwithin's YAM: the other arm got its MoveIt controllers' gripper
+    joint). Empty for any other file."""
+    folder = path.parent
+    if folder.name != "config" or not folder.parent.name.endswith("_moveit_config"):
+        return []
+    srdfs = _candidates([folder], "*.srdf")
+    owners = [_anothers(srdf, robot) for srdf in srdfs]
+    return owners[0] if srdfs and all(owners) else []
+
+
 def _anothers(path: Path, robot) -> list[Path]:
     """The other robot files of the repository whose ``<robot name>`` is the SRDF ``path``'s
     when it is not ``robot``'s, and which look for companions where it is: the SRDF is theirs
@@ -551,7 +568,8 @@ def _auto_yaml(folders, names, owner: _Owner, found: Companions, wanted, what: s
             if not wanted(parsed):
                 continue
             mine, why = owner.claims(path)
-            if mine or path.parent.name == "config" and path.parent.parent.name.endswith("_moveit_config"):
+            if mine or path.parent.name == "config" and path.parent.parent.name.endswith(
+                    "_moveit_config") and not _moveit_package_of_another(path, owner.robot):
                 found.used[path] = why if mine else "in the robot's MoveIt package"
                 return parsed
             found.unused[path] = why
