@@ -525,21 +525,26 @@ def _anothers(path: Path, robot) -> list[Path]:
 
 _ROBOT_NAME = re.compile(rb"<robot\b[^>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")
 _HEAD = 64 * 1024  # [bytes] of a robot file where its <robot name> is looked for
+_NAMED_MOST = 1024 * 1024  # [bytes] a robot file read for its name may have (larger: no name)
+_NAMED_FILES = 2000  # robot files of a repository read for their names, at most
 
 
 @per_run
 def _robot_names(root: Path) -> dict[str, list[Path]]:
     """The robot files below the repository ``root`` by the ``<robot name>`` each declares
-    (a literal one, in its first 64 kB; a name xacro substitutes is no name here)."""
+    (a literal one, in its first 64 kB; a name xacro substitutes is no name here). Regular
+    files only (a link is not followed), of at most 1 MiB, 2,000 at most: a hostile repository
+    costs what a repository of ordinary robots does."""
     names: dict[str, list[Path]] = {}
+    read = 0
     for folder, entries in walk(root, f"*/|{ROBOT_GLOB}", 1 << 30, SKIP_DIRS):
         for entry, kind in entries:
-            if kind != "file":
+            if kind != "file" or read >= _NAMED_FILES:
                 continue
-            path = Path(folder) / entry
+            path, read = Path(folder) / entry, read + 1
             try:
-                head = read_regular(path, 1 << 62, as_="robot")[:_HEAD]
-            except OSError:
+                head = read_regular(path, _NAMED_MOST, as_="robot name")[:_HEAD]
+            except OSError:  # (over the size, or not a regular file any more)
                 continue
             found = _ROBOT_NAME.search(head)
             if found:

@@ -215,3 +215,7 @@ def test_the_only_srdf_of_a_repository_is_not_another_robots(tmp_path):
     files["config/arm.urdf"] = other.replace("name='arm'", "name='b'").replace('name="arm"', 'name="b"')
     found, _ = check_folder(tmp_path, files)
     assert ("arm.srdf", 1, "U802") in found, found  # the only SRDF, of no robot here: ours
+    # a robot file over 1 MiB is not read for its name (a hostile repository's costs bounded)
+    files["config/arm.urdf"] = other.replace("<link", "<!--" + "x" * (1 << 20) + "--><link", 1)
+    found, _ = check_folder(tmp_path, files)
+    assert ("arm.srdf", 1, "U802") in found, found
