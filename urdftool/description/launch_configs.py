@@ -602,8 +602,10 @@ def launch_index(root: Path) -> LaunchIndex:
     """The launch files of the repository ``root`` read and expanded (once per run)."""
     paths, truncated = launch_files(root)
     files = {}
+    # (asked once: each answer remembered per run is replayed into the record at each asking)
+    room, modules = reading_room(root), repository_modules(root)
     for path in paths:
-        launch = read_launch(path, room=reading_room(root), modules=repository_modules(root))
+        launch = read_launch(path, room=room, modules=modules)
         if was_read(launch):
             files[_key(path)] = launch
     packages = packages_below(root)
@@ -627,11 +629,11 @@ def launch_tests(root: Path) -> list[Configuration]:
     count against the launch files' bound."""
     index, packages = launch_index(root), packages_below(root)
     tests = [launch for launch in index.files.values() if launch.test]
+    room, modules = reading_room(root), repository_modules(root)
     for path in launch_files(root, tests=True)[0]:
         if _key(path) in index.files or is_launch_file(path, root):
             continue
-        launch = read_launch(path, only_test=True, room=reading_room(root),
-                             modules=repository_modules(root))
+        launch = read_launch(path, only_test=True, room=room, modules=modules)
         if was_read(launch):  # one not read: runtime.unread_naming
             tests.append(launch)
     return [_expand_top(index, launch, packages) for launch in tests]
