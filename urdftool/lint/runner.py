@@ -194,6 +194,8 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
         kept = cache.get_run(paths, request)
         if kept is not None:
             return Run(kept[0], strict=kept[1], depends=kept[2])
+    if import_rules is not None and cache is None:  # every file is checked: the rules now,
+        import_rules()  # before the targets' imports, which they make with the collector off
     from urdftool.description.record import recording
     from urdftool.lint.targets import expand  # not on a re-run served whole from the cache
 
