@@ -484,11 +484,12 @@ def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
         else:
             chosen, why = None, ""
     for path in paths:
+        others = [] if path == chosen or chosen else _anothers(path, robot)
         if path == chosen:
             found.used[path] = why
-        elif not chosen and _anothers(path, robot):
+        elif others:
             found.unused[path] = (f"its <robot name> is '{_srdf_robot_name(path)}', the name of "
-                                  f"{display_path(_anothers(path, robot)[0])}")
+                                  f"{display_path(others[0])}")
         else:
             found.unused[path] = ("another SRDF was chosen" if chosen else
                                   "neither its name nor its <robot name> matches the robot, and "

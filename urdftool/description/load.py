@@ -167,7 +167,7 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
     as_is = list(dict.fromkeys(b.named for b in loads if not b.xacro and not b.replaced))
     filling = [b for b in loads if not b.xacro and b.replaced]
     if filling and not through and not as_is:  # a template its launch files fill
-        return _filled(plain, first, data, args, allow_env, limit, filling)
+        return _filled(plain, first, data, args, allow_env, limit, filling, named)
     # what a launch file or test that could not be read does with it is unknown
     unread = unread_naming(plain.path) if through and not as_is else []
     if through and not as_is:
@@ -203,7 +203,7 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
 _SUBSTITUTED = re.compile(r"\$\([^()]*\)|\$\{[^{}]*\}")
 
 
-def _filled(plain: Robot, first, data, args, allow_env, limit, filling) -> tuple:
+def _filled(plain: Robot, first, data, args, allow_env, limit, filling, named: str) -> tuple:
     """(robot, note) for a ``.urdf`` holding ``$(...)``/``${...}`` that every launch file
     loading it reads as text and rewrites before loading it (``text.replace('$(x)', path)``,
     my-zzy/am_description): a template they fill. A note when each replaces every such text
@@ -223,7 +223,6 @@ def _filled(plain: Robot, first, data, args, allow_env, limit, filling) -> tuple
                             limit)
     except LoadError:
         robot = plain
-    named = f"named {Path(plain.path).suffix or 'without .xacro'}"
     if certain:
         return robot, LoadNote("xacro-in-urdf", where, (
             f"file is {named} and holds {_shown_use(first)} at this line, which "

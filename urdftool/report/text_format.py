@@ -71,8 +71,8 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         out.append([(display_path(result.path), "bold underline")])
         listed: dict = {}  # each long list of names -> where it was written in full
         for whole, alike in _grouped(shown):
-            for group, same in _foldable(whole, alike):
-                out.extend(_group_lines(group, same, listed))
+            for group, message in _foldable(whole, alike):
+                out.extend(_group_lines(group, message, listed))
         if not quiet:
             out.append([])
     if quiet:
@@ -110,7 +110,7 @@ def groups(findings) -> list[list]:
 
 def _grouped(findings) -> list[tuple[list, bool]]:
     """:func:`groups`, each with whether its findings surely give the same figures, known
-    without finding them (:func:`_ranged` then need not look): no message gives a value in
+    without finding them (:func:`_foldable` then need not look): no message gives a value in
     double quotes, and the messages are one text once their names are set aside. A figure
     outside a name neither reaches into one nor starts right after a path, and the character
     of a name it looks at beside it (a quote, a slash) reads as the ``'`` left in the name's
@@ -167,27 +167,30 @@ def _figures(message: str) -> list:
     return found
 
 
-def _foldable(group: list, alike: bool) -> list[tuple[list, bool]]:
-    """``group`` as the lines it is written in: one, whose differing figure :func:`_ranged`
-    writes as the group's range, when one figure at most differs and it stands alone; else
-    one line per message once the names are set aside (each true as written, its names said
-    by :func:`_also`). Two figures differing read as nonsense folded ("min -1.2 to 2.89 is
-    above max -1.48 to 2.49", five joints each its own), and so did a figure of a vector
-    ("centre of mass (0.065 -0.133 to 0.133 -0.056)") or of a number written with thousands
-    ("33 to 35,333 to 368 kg/m^3", 33,333 and 35,368)."""
+def _foldable(group: list, alike: bool) -> list[tuple[list, str]]:
+    """``group`` as the lines it is written in, each (its findings, the message it says): one,
+    whose differing figure is written as the group's range (:func:`_ranged`), when one figure
+    at most differs and it stands alone; else one line per message once the names are set
+    aside (each true as written, its names said by :func:`_also`). ``alike``: the group's
+    figures are surely the same (:func:`_grouped`: 10,000 findings of one line, no figure
+    looked for). Two figures differing read as nonsense folded ("min -1.2 to 2.89 is above max
+    -1.48 to 2.49", five joints each its own), and so did a figure of a vector ("centre of
+    mass (0.065 -0.133 to 0.133 -0.056)") or of a number written with thousands ("33 to
+    35,333 to 368 kg/m^3", 33,333 and 35,368)."""
+    message = group[0].message
     if alike or len(group) == 1:
-        return [(group, alike)]
-    mine = _figures(group[0].message)
+        return [(group, message)]
+    mine = _figures(message)
     others = [_figures(f.message) for f in group[1:]]
     if any(len(figures) != len(mine) for figures in others):
-        return [(group, alike)]  # (written as the first says it: _ranged folds nothing)
+        return [(group, message)]  # (written as the first says it)
     differ = [i for i in range(len(mine)) if any(f[i][2] != mine[i][2] for f in others)]
-    if len(differ) <= 1 and not any(_joined(group[0].message, mine, i) for i in differ):
-        return [(group, alike)]
+    if len(differ) <= 1 and not any(_joined(message, mine, i) for i in differ):
+        return [(group, _ranged(message, mine, others, differ))]
     parts: dict[str, list] = {}
     for finding in group:
         parts.setdefault(_NAME.sub("''", finding.message), []).append(finding)
-    return [(part, True) for part in parts.values()]
+    return [(part, part[0].message) for part in parts.values()]
 
 
 def _joined(message: str, figures: list, index: int) -> bool:
@@ -202,31 +205,22 @@ def _joined(message: str, figures: list, index: int) -> bool:
     return before or after
 
 
-def _ranged(group: list, alike: bool) -> str:
-    """The first finding's message with each figure that differs in the group written as the
-    range of the group's figures there (``0.0649 to 0.864``); ``alike``: the group's figures
-    are surely the same (:func:`_grouped`)."""
-    message = group[0].message
-    if alike:  # (10,000 findings of one line: no figure looked for)
-        return message
-    mine = _figures(message)
-    others = [_figures(f.message) for f in group[1:]]
-    if not mine or any(len(figures) != len(mine) for figures in others):
-        return message
-    for index in range(len(mine) - 1, -1, -1):
+def _ranged(message: str, mine: list, others: list, differ: list) -> str:
+    """``message`` with each figure of ``mine`` (:func:`_figures`) whose index is in ``differ``
+    written as the range of it and the ``others``' there (``0.0649 to 0.864``)."""
+    for index in reversed(differ):
         start, end, text = mine[index]
         texts = [text] + [figures[index][2] for figures in others]
-        if len(set(texts)) > 1:
-            low, high = min(texts, key=float), max(texts, key=float)
-            message = f"{message[:start]}{low} to {high}{message[end:]}"
+        low, high = min(texts, key=float), max(texts, key=float)
+        message = f"{message[:start]}{low} to {high}{message[end:]}"
     return message
 
 
-def _group_lines(group: list, alike: bool, listed: dict) -> list[Line]:
+def _group_lines(group: list, message: str, listed: dict) -> list[Line]:
     first = group[0]
     location, severity = first.location, first.severity.value
     line = [(f"  {location}: ", ""), (severity, STYLES[severity]), (" ", ""), *_marker(first),
-            (first.code, "bold"), (f" {_once(_ranged(group, alike), location, listed)} ", ""),
+            (first.code, "bold"), (f" {_once(message, location, listed)} ", ""),
             (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
     if len(group) > 1:
         line.append((f" [{len(group)} times: {_places(group)}{_also(group)}]", ""))
@@ -279,12 +273,13 @@ def _also(group: list) -> str:
     long group."""
     named = [tuple(_NAME.findall(finding.message)) for finding in group[:_NAMES_READ]]
     first = named[0]
-    differ = [i for i in range(len(first))
-              if any(len(names) != len(first) or names[i] != first[i] for names in named)]
-    if not differ or any(len(names) != len(first) for names in named):
-        return ""  # (the same names, or messages naming another count of things)
-    others = [name for name in dict.fromkeys(names[differ[0]] for names in named)
-              if name != first[differ[0]]]
+    if any(len(names) != len(first) for names in named):
+        return ""  # (messages naming another count of things)
+    at = next((i for i in range(len(first)) if any(names[i] != first[i] for names in named)),
+              None)
+    if at is None:
+        return ""  # (the same names)
+    others = [name for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
         return f"; also {', '.join(others[:PLACES_SHOWN])}, ..."
     return f"; also {_listed(others)}"
