@@ -87,7 +87,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         def report(results, stream):
             render(format, results, stream, quiet=quiet,
                    notes=lambda result: notes_shown(result.path, notes, request))
-    code = 2 if run.errors else 0 if exit_zero else run.exit_code
+    code = 2 if run.errors or run.unexpanded else 0 if exit_zero else run.exit_code
     if output:
         import io
 
@@ -102,6 +102,14 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         report(run.results, sys.stdout)
     for error in run.errors:  # settings broken for some files; the others were checked
         terminal.say(f"urdftool: error: {error}", err=True)
+    if run.unexpanded:  # the environment's: said once, after the report that locates each
+        from urdftool.report.summary import counted
+
+        terminal.say(
+            f"urdftool: error: {counted(len(run.unexpanded), 'file')} not checked: a package "
+            "their package.xml declares is not installed here (U006 in the report); install "
+            "the dependencies (rosdep install --from-paths . --ignore-src) or pass --package "
+            "NAME=PATH", err=True)
     return code
 
 

@@ -56,8 +56,8 @@ class PackageNotFound(UrdftoolError):
         if declared_by:  # a dependency not installed here: the environment, not the robot
             super().__init__(
                 f"package '{name}' not found: the package.xml of '{declared_by}' declares it as "
-                f"a dependency, which is not installed here, so the robot cannot be expanded "
-                f"(nothing in it is wrong); looked in: {where}. Pass --package {name}=PATH, set "
+                f"a dependency, which is not installed here: the robot is not expanded, so not "
+                f"checked (nothing in it is known to be wrong); looked in: {where}. Pass --package {name}=PATH, set "
                 "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
                 "install --from-paths . --ignore-src)")
         else:

@@ -172,7 +172,7 @@ def _text(run) -> str:
 def urdftool_check():
     """``urdftool_check(*paths, **options)``: check paths as ``urdftool check`` does (options as
     :func:`urdftool.check_paths` takes them) and fail the test with the located findings when it
-    would exit 1; returns the :class:`urdftool.Run` otherwise."""
+    would not exit 0; returns the :class:`urdftool.Run` otherwise."""
 
     def check(*paths, **options):
         run = _check([str(path) for path in paths], **options)

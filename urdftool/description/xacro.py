@@ -816,7 +816,10 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
                                                        xacro_sandbox.SandboxViolation)):
         cause = getattr(cause, "exc", None) or cause.__context__
     if isinstance(cause, _PackageFailure):
-        return XacroFailure("package", str(cause.error), where, subject=cause.error.name)
+        # a dependency the package declares, not installed here: the environment, not the
+        # robot (installed wherever the package is built), so not certain
+        return XacroFailure("package", str(cause.error), where, subject=cause.error.name,
+                            certain=cause.error.declared_by is None)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):

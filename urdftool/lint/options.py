@@ -99,6 +99,14 @@ class FileResult:
     read: tuple = field(default=(), repr=False)
 
     @property
+    def unexpanded(self) -> bool:
+        """Whether its robot was not expanded, so not checked, for a dependency its package
+        declares and this machine lacks (U006 lowered by the loader: the environment's, not
+        the robot's)."""
+        return any(finding.code == "U006" and finding.severity is not Severity.ERROR
+                   for finding in self.findings)
+
+    @property
     def failures(self) -> list[Finding]:
         """The findings that fail the check: errors, and warnings when checked strictly."""
         failing = {Severity.ERROR, Severity.WARNING} if self.strict else {Severity.ERROR}

@@ -103,6 +103,14 @@ U006 = declare("U006", "unresolved-package", Severity.ERROR, """
     urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
     package.xml files above the input and below the repository root; the message lists them.
 
+    An error when nothing declares the package: a misspelt name, or a dependency the package
+    does not declare (rosdep will not install it). A **warning** when the package.xml of the
+    file's package declares it (``<depend>``, ``<exec_depend>`` ...): a dependency not installed
+    on this machine is the environment's, not the robot's, and wherever the package is built it
+    is there; the robot is not checked, though, and a run that could not check it is no pass:
+    ``urdftool check`` exits 2 and says so (``--package NAME=PATH`` or ``rosdep install
+    --from-paths . --ignore-src`` gives it what it needs).
+
     Bad: ``$(find my_robot_descripton)/urdf/arm.xacro``
     Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
     """)
