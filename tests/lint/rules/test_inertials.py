@@ -507,3 +507,21 @@ def test_the_inertia_rules_take_each_links_name_as_read_once(tmp_path, attribute
     assert check_robot(load(path), Selection(select=("U3",))) == expected and expected
     names = {n for (element, key), n in attribute_reads.items() if key == "name"}
     assert names == {1}, names
+
+
+def test_u310s_command_quotes_the_link_so_alike_links_are_one_report_line(tmp_path):
+    """onrobot's four suction cups: the command named each link unquoted, so the text report
+    read four messages, not one said of four links (U311 beside it was one line)."""
+    from urdftool.report.text_format import groups
+
+    links = "".join(
+        f'<link name="cup{i}"><inertial><mass value="0.1"/><inertia ixx="0.0016" ixy="0" '
+        f'ixz="0" iyy="0.0016" iyz="0" izz="0.0016"/></inertial><collision><geometry>'
+        f'<box size="0.1 0.03 0.03"/></geometry></collision></link>'
+        f'<joint name="j{i}" type="fixed"><parent link="base"/><child link="cup{i}"/></joint>'
+        for i in range(4))
+    found = _found(tmp_path, f'<robot name="r"><link name="base"/>{links}</robot>', ("U310",))
+    assert len(found) == 4
+    assert "`urdftool inertia --link 'cup0'` computes it" in found[0][1]
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U310",))))
+    assert len(groups(result.findings)) == 1

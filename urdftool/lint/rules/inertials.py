@@ -688,7 +688,14 @@ def inertia_far_from_geometry(robot):
             f"{number(ratio, 3)} times that of its {solid.source} geometry as a uniform solid of "
             f"the declared {properties.mass:g} kg (trace "
             f"{number(mat3.trace(expected.inertia), 3)}){beyond}; "
-            f"`urdftool inertia --link {_name(link)}` computes it")
+            f"`urdftool inertia --link {_shell_word(_name(link))}` computes it")
+
+
+def _shell_word(name: str) -> str:
+    """``name`` as one shell word in single quotes, as the other names of a message are
+    quoted (so that the report's groups read it as a name: one line for a robot's four
+    suction cups, not four)."""
+    return "'" + name.replace("'", "'\"'\"'") + "'"
 
 
 def _told_by_ratio(robot) -> set[str]:
