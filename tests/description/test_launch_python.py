@@ -301,3 +301,30 @@ def generate_launch_description():
               if isinstance(s, Start)}
     assert starts == {"robot_state_publisher": ["unknown", "differs"], "y": ["unknown", "differs"],
                       "none_mode": ["unknown", "equals"]}
+
+
+def test_a_helper_returning_one_of_two_texts_is_unknown_unless_its_test_is_decided(tmp_path):
+    # tiago_robot's get_tiago_hw_suffix: a guard returns '_' + arm for 'no-arm', the rest
+    # another suffix; it was read as the guard's value whatever the arm (the first found)
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": '''
+from launch.substitutions import Command, LaunchConfiguration
+
+def suffix(arm):
+    if arm in ["no-arm"]:
+        return "_" + arm
+    return "_gripper"
+
+def generate_launch_description():
+    given = suffix("tiago-arm")
+    unknown_arm = suffix(LaunchConfiguration("arm"))
+    return LaunchDescription([
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": Command(["xacro ", "a" + given + ".urdf.xacro"])}]),
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": Command(["xacro ", "b" + unknown_arm + ".urdf.xacro"])}]),
+    ])
+'''})
+    first, second = _described(_read(root, "p/launch/a.launch.py"))
+    assert _text(first.command) == "xacro a_gripper.urdf.xacro"  # decided: the arm is given
+    assert _text(second.command).startswith("xacro b<unknown:")  # either suffix, not the first
+    assert "_no-arm" not in _text(second.command)

@@ -215,17 +215,25 @@ class _Reader:
             elif isinstance(statement, ast.Return):
                 return self.eval(statement.value, env, when, depth) if statement.value else None
             elif isinstance(statement, ast.If):
+                decided = self.decided(statement.test, env, depth)
+                if decided is not None:  # a test of values the file gives: one branch runs
+                    found = self.block(statement.body if decided else statement.orelse, env,
+                                       when, depth)
+                    if found is not None:
+                        return found
+                    continue
                 test = self.condition(statement.test, env, depth)
                 found = self.block(statement.body, env, when + (test,), depth)
                 otherwise = self.block(statement.orelse, env, when + (_negated(test),), depth)
                 if found is not None and otherwise is None:
                     # a guard (``if not ok: return LaunchDescription([])``): what follows
                     # runs when its test does not hold
-                    self.block(statements[index + 1:], env, when + (_negated(test),), depth)
+                    otherwise = self.block(statements[index + 1:], env,
+                                           when + (_negated(test),), depth)
                 elif otherwise is not None and found is None:
-                    self.block(statements[index + 1:], env, when + (test,), depth)
-                if found is not None or otherwise is not None:  # (the first value found)
-                    return found if found is not None else otherwise
+                    found = self.block(statements[index + 1:], env, when + (test,), depth)
+                if found is not None or otherwise is not None:
+                    return _either(found, otherwise, test)
             elif isinstance(statement, (ast.For, ast.AsyncFor)):
                 for item in self.items(statement.iter, env, depth):
                     self.bind(statement.target, item, env)
@@ -398,6 +406,30 @@ class _Reader:
         return self.site or node.lineno
 
     # --- conditions -----------------------------------------------------------------------
+
+    def decided(self, test, env: dict, depth: int) -> bool | None:
+        """The outcome of an ``if`` test whose values the file gives (``arm == "no-arm"``,
+        ``arm in ["no-arm", "none"]`` with ``arm`` a literal: a helper called with literal
+        arguments), else None. Evaluated with no action made (a test's calls are walked
+        where the test is read as a condition)."""
+        if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and
+                isinstance(test.ops[0], (ast.Eq, ast.NotEq, ast.In, ast.NotIn))):
+            return None
+        made = len(self.acts)
+        left = self.eval(test.left, env, (), depth)
+        right = self.eval(test.comparators[0], env, (), depth)
+        del self.acts[made:]
+        if not (isinstance(left, Value) and left.literal is not None):
+            return None
+        if isinstance(test.ops[0], (ast.Eq, ast.NotEq)):
+            if not (isinstance(right, Value) and right.literal is not None):
+                return None
+            return (left.literal == right.literal) is isinstance(test.ops[0], ast.Eq)
+        if not (isinstance(right, list) and right and
+                all(isinstance(item, Value) and item.literal is not None for item in right)):
+            return None
+        return (left.literal in [item.literal for item in right]) is \
+            isinstance(test.ops[0], ast.In)
 
     def condition(self, test, env: dict, depth: int) -> Condition:
         """A Python test as a condition: ``x == "c"``/``x != "c"`` on a launch argument, else
@@ -965,6 +997,18 @@ def _add_condition(act: _Act, condition) -> None:
 def _acts_in(value) -> list:
     return [item for item in _flat(value) if isinstance(item, _Act)] if isinstance(value, list) else \
         ([value] if isinstance(value, _Act) else [])
+
+
+def _either(found, otherwise, test: Condition):
+    """What a function returns from the two ways an ``if`` goes, its test not known: the same
+    text either way is that text; two texts are unknown (naming the test), never the first
+    one taken for both (tiago's ``get_tiago_hw_suffix``: '_no-arm' whatever the arm); other
+    values (lists of actions, whose actions carry their conditions) the first found."""
+    if found is None or otherwise is None:
+        return found if found is not None else otherwise
+    if type(found) is Value and type(otherwise) is Value and found != otherwise:
+        return unknown(f"{found.text} if {test.text} else {otherwise.text}")
+    return found
 
 
 def _negated(condition: Condition) -> Condition:
