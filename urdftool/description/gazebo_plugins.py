@@ -25,6 +25,30 @@ ROS2_INSTEAD = {"robotNamespace": "<ros><namespace>", "rosDebugLevel": "the --ro
 _TOPIC = re.compile(r"(?:[tT]opic(?:Name)?)$")
 
 
+# A value of the other version's element that asks for what this version's plugin does
+# without its own: plugin key -> other version's name -> that value. ROS 1's camera utilities
+# compute Cx, Cy and the focal length when given 0, and hackBaseline's default is 0
+# (gazebo_ros_camera_utils.cpp, noetic-devel); ROS 2's gazebo_ros_camera computes cx, cy and
+# the focal length when they are absent (or the focal length 0) and takes hack_baseline 0
+# (gazebo_ros_camera.cpp, ros2). Written under the ROS 1 name on a ROS 2 robot, such a value
+# is ignored and nothing changes; under the ROS 2 name, cx 0 would put the image's centre in
+# its corner.
+SAME_WITHOUT = {"gazebo_ros_camera": {"Cx": 0.0, "Cy": 0.0, "focalLength": 0.0,
+                                      "hackBaseline": 0.0}}
+
+
+def same_without(key: str, name: str, text: str | None) -> bool:
+    """Whether ``text``, written under the other version's element ``name`` of plugin ``key``,
+    asks for what this version's plugin does without the element (:data:`SAME_WITHOUT`)."""
+    value = SAME_WITHOUT.get(key, {}).get(name)
+    if value is None or text is None:
+        return False
+    try:
+        return float(text.strip()) == value
+    except ValueError:
+        return False
+
+
 @dataclass(frozen=True)
 class Plugin:
     """The plugin a ``<plugin>`` element loads.

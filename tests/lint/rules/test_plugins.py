@@ -29,6 +29,21 @@ def test_the_other_rosversions_names_with_the_version_from_the_package(tmp_path)
     assert findings[1].severity == Severity.WARNING and "remove it" in findings[1].message
 
 
+def test_a_ros1_camera_value_that_asks_for_what_ros2_does_without_it_loses_nothing(tmp_path):
+    # HrithikDhongadi's diff drive (ROS 2): <Cx>0</Cx> asks ROS 1's camera to compute the
+    # centre, which ROS 2's computes with no <cx>; writing <cx>0</cx> would break it
+    body = """<gazebo reference="head"><sensor type="depth" name="c"><camera><image><width>640</width>
+      </image></camera><plugin name="cam" filename="libgazebo_ros_camera.so"><Cx>0</Cx>
+      <Cy>320.5</Cy><focalLength>0.0</focalLength></plugin></sensor></gazebo>"""
+    found, findings = _check(tmp_path, body, {"package.xml": PACKAGE.format(tool="ament_cmake")})
+    said = {f.message.split("<", 2)[1].split(">")[0]: f for f in findings}
+    assert sorted(said) == ["Cx", "Cy", "focalLength"]
+    for name in ("Cx", "focalLength"):
+        assert said[name].severity == Severity.WARNING, said[name].message
+        assert "loses nothing" in said[name].message and "write <" not in said[name].message
+    assert said["Cy"].severity == Severity.ERROR and "write <cy>" in said["Cy"].message
+
+
 def test_a_ros1_robot_with_ros2_names(tmp_path):
     body = DIFF_DRIVE.format(tags="<left_joint>head_joint</left_joint><ros><namespace>x</namespace></ros>")
     found, findings = _check(tmp_path, body, {"package.xml": PACKAGE.format(tool="catkin")})

@@ -40,7 +40,10 @@ def gazebo_plugin_other_version(robot):
 
     An error when the robot's ROS version is known (``<ros2_control>``, its controller files,
     Gazebo's ros_control plugin, its package's build tool; the message says which) and the
-    plugin of that version has the parameter under its own name (the value written is lost);
+    plugin of that version has the parameter under its own name (the value written is lost),
+    unless the value asks for what that plugin does without it (ROS 1's camera computes
+    ``<Cx>0</Cx>``, as ROS 2's does with no ``<cx>``; ``<cx>0</cx>`` there would put the
+    image's centre in its corner): then a warning;
     a warning when it has no such parameter (ROS 2's camera takes its distortion from the
     sensor's ``<distortion>``), and when the version is not known and one plugin mixes both
     versions' names (some of them are ignored whichever it runs on).
@@ -61,10 +64,18 @@ def gazebo_plugin_other_version(robot):
             other = "ros1" if mine == "ros2" else "ros2"
             for child in used[other]:
                 right = vocabulary.counterpart(child.tag, found.versions[mine], mine)
-                yield child, (f"{_label(element, found)}: <{child.tag}> is the {_ROS[other]} plugin's name, "
-                              f"and the robot is {_ROS[mine]} ({why}); the {_ROS[mine]} plugin ignores it"
-                              + (f": write {_tag(right)}" if right else
-                                 " and has no such parameter: remove it")), None, \
+                said = (f"{_label(element, found)}: <{child.tag}> is the {_ROS[other]} plugin's "
+                        f"name, and the robot is {_ROS[mine]} ({why}); the {_ROS[mine]} plugin "
+                        "ignores it")
+                if right and vocabulary.same_without(found.key, child.tag, child.text):
+                    value = child.text.strip()
+                    yield child, (f"{said}, which loses nothing: {value} asks the {_ROS[other]} "
+                                  f"plugin for what the {_ROS[mine]} one does without it (not "
+                                  f"what <{right}>{value}</{right}> asks): remove it"), None, \
+                        Severity.WARNING
+                    continue
+                yield child, (said + (f": write {_tag(right)}" if right else
+                                      " and has no such parameter: remove it")), None, \
                     (Severity.ERROR if right else Severity.WARNING)
         elif used["ros1"] and used["ros2"]:
             names = {v: ", ".join(f"<{c.tag}>" for c in used[v]) for v in used}
