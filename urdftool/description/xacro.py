@@ -596,7 +596,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         try:
             found = session.resolver.find(package)
         except PackageNotFound as error:
-            owner = _declaring_package(xacro.filestack[-1] if xacro.filestack else None, package)
+            from urdftool.description.packages import declaring_package
+
+            owner = declaring_package(xacro.filestack[-1] if xacro.filestack else None, package)
             raise _PackageFailure(error.declared(owner) if owner else error) from None
         session.allow_root(found)
         return str(found)
@@ -782,17 +784,6 @@ def _expand_pattern(session: _Session, spec: str) -> list[str]:
 
 class _Outside(Exception):
     """A file outside the allowed roots, refused."""
-
-
-def _declaring_package(filename: str | None, package: str) -> str | None:
-    """The name of the package holding ``filename`` when its package.xml declares ``package``
-    as a dependency (a dependency not installed here rather than a misspelt name)."""
-    from urdftool.description.packages import declared_dependencies, package_name, package_of
-
-    folder = package_of(filename) if filename else None
-    if folder is None or package not in (declared_dependencies(folder) or ()):
-        return None
-    return package_name(folder)
 
 
 class _PackageFailure(Exception):

@@ -76,6 +76,23 @@ def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path)
     assert severity == Severity.ERROR
 
 
+def test_a_mesh_in_a_package_the_robots_package_declares_is_not_certainly_missing(tmp_path):
+    """As U006 for a ``$(find)``: a mesh package the robot's package.xml declares and this
+    machine lacks is a dependency not installed (ros2_control_bolt's robot_properties_bolt
+    when declared), a warning saying so; undeclared, an error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    for declared in (True, False):
+        depend = "<exec_depend>bolt_meshes</exec_depend>" if declared else ""
+        (tmp_path / "package.xml").write_text(
+            f'<package format="2"><name>bolt_description</name>{depend}</package>')
+        [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bolt_meshes/a.stl")
+        assert (severity == Severity.WARNING) is declared, message
+        said = "the package.xml of 'bolt_description' declares it as a dependency"
+        assert (said in message) is declared, message
+
+
 def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):
     """reachy_mini's robot.urdf names 322 meshes ``package://assets/NAME.stl``: the text report
     says one thing once (report.text_format.groups) when the findings differ only in names in

@@ -15,7 +15,8 @@ import os
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, real_path, resolved
-from urdftool.description.packages import containment_root, installed, package_uri_parts
+from urdftool.description.packages import (containment_root, declaring_package, installed,
+                                          package_uri_parts)
 from urdftool.description.run_memo import per_run
 from urdftool.errors import MeshProblem, PackageNotFound
 
@@ -64,6 +65,8 @@ def _resolve(robot, uri: str) -> Path:
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     """The problem of a ``package://`` mesh whose package is not found: not certain when the
+    robot file's package declares it as a dependency (not installed here: the environment's,
+    as for a ``$(find)``, U006), and when the
     path it names, read below the robot's folder or a folder above it in its repository
     (``FOLDER/PACKAGE/TAIL``), is a mesh file, as descriptions with no ROS package write it:
     onshape-to-robot's ``package://assets/part.stl`` beside the robot file, which the loaders
@@ -75,6 +78,13 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     root, folder = os.path.normpath(os.fspath(containment_root(Path(base)))), base
     while isinstance(_checked(uri, os.path.join(folder, package, tail), base, None), MeshProblem):
         if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
+            owner = declaring_package(robot.path, package) if robot.path != "-" else None
+            if owner is not None:  # installed wherever the robot's package is built
+                return MeshProblem("package", (
+                    f"mesh '{uri}': package '{package}' not found: the package.xml of "
+                    f"'{owner}' declares it as a dependency, which is not installed here, so "
+                    f"the mesh is not checked; pass --package {package}=PATH or install the "
+                    "dependencies (rosdep install --from-paths . --ignore-src)"), certain=False)
             return MeshProblem("package", f"mesh '{uri}': {error}")
         folder = os.path.dirname(folder)
     if folder == base:
