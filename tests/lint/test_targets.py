@@ -920,3 +920,22 @@ def test_an_sdf_document_named_is_not_checked_as_a_robot(run_cli, tmp_path):
                      "--format", "json")
     assert result.exit_code == 0 and '"files": 0' in result.stdout
     assert "SDF document" in result.stderr and "U004" not in result.stdout
+
+
+def test_a_blank_file_nothing_loads_is_a_placeholder_not_a_robot(run_cli, tmp_path):
+    """maikelborys' diffbot.materials.xacro (zero bytes; the robot includes another file of
+    that name) and neobotix's meca_wheel.xacro: U002 erred on files no consumer reads. As an
+    empty <robot>: walked, skipped saying why; named alone, nothing to check. Loaded by a
+    launch file, it is the robot, and U002 says it is empty (tests/cases/U002_empty_file)."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import BLANK, expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "robot.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    blank = tmp_path / "placeholder.xacro"
+    blank.write_text("\n  \n")
+    walked = expand([str(tmp_path)], CheckRequest())
+    assert walked.files == [str(tmp_path / "robot.urdf")]
+    assert walked.skipped[str(blank)] == BLANK
+    named = run_cli("check", blank)
+    assert named.exit_code == 0 and "U002" not in named.output, named.output

@@ -121,6 +121,7 @@ class _Summary:
     root_elsewhere: str | None = None  # no root link of its own: why, as parts.rootless says
     sdf: bool = False  # a xacro file with an <sdf> root: a Gazebo model or world (nav2's
     # gz_waffle.sdf.xacro); a .urdf holding SDF is checked (U004: it says it is a URDF)
+    blank: bool = False  # no text at all, or white space only
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -165,6 +166,8 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
         data = _head(path, limit)
     if data is None or b"\0" in data:  # unread, or binary: a target, so checking says why
         return _Summary([], True, True)
+    if not data.strip():  # nothing a consumer could read as a robot, unless one loads it
+        return _Summary([], False, False, blank=True)
     written = _uncommented(data)
     includes = list(_included_files(path, written, resolver_for(path))) if resolver_for else []
     unfollowed = resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes)
@@ -627,6 +630,7 @@ def explicit_targets(path: Path, includers: dict, root: Path,
 
 
 EMPTY = "an empty <robot> (a placeholder an include takes when nothing is added)"
+BLANK = "a blank file (a placeholder: no launch file here loads it)"
 _UNKNOWN = object()
 
 
@@ -636,7 +640,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     it: the one decision for a file walked and a file named (pre-commit).
 
     yields: :func:`_includes_yield_links` when already known
-    Skipped: an SRDF source; an SDF document (its root is ``<sdf>``); an empty ``<robot>``; a ``.urdf`` that is a fragment (only
+    Skipped: an SRDF source; an SDF document (its root is ``<sdf>``); an empty ``<robot>``; a
+    blank file (a placeholder; xacro fails on it, U002, where something loads it); a ``.urdf`` that is a fragment (only
     ``<gazebo>``, transmission, ros2_control or webots blocks) or a part with no root of its
     own (:func:`_root_elsewhere`, ``.xacro`` too: stretch's stretch_dry_erase_marker.xacro); a
     ``.xacro`` that defines only macros and properties, or is a
@@ -670,6 +675,8 @@ def _not_a_robot_by_text(path: Path, summary: _Summary, resolver_for, limit: int
                          yields, data=_UNREAD) -> str | None:
     if summary.empty:
         return EMPTY
+    if summary.blank:
+        return BLANK
     if is_urdf_name(path.name):
         return FRAGMENT if summary.fragment else summary.root_elsewhere
     if summary.root_elsewhere:

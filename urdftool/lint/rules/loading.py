@@ -29,6 +29,11 @@ U001 = declare("U001", "malformed-xml", Severity.ERROR, """
 U002 = declare("U002", "empty-file", Severity.ERROR, """
     The file is empty or holds only white space.
 
+    Checked when something loads it as a robot: a launch file here runs it as the robot
+    description, or you name it with ``-`` (standard input). A blank file nothing loads is a
+    placeholder, as an empty ``<robot>`` is: walked or named, it is not a robot to check (``-v``
+    says so); a robot including it fails to expand (U005).
+
     Bad: a zero-byte ``robot.urdf``.
     Good: ``<robot name="r"><link name="base"/></robot>``
     """)
