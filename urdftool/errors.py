@@ -48,7 +48,8 @@ class LoadError(UrdftoolError):
 class PackageNotFound(UrdftoolError):
     """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path."""
 
-    def __init__(self, name: str, searched: list[str], declared_by: str | None = None):
+    def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
+                 undeclared_by: str | None = None):
         self.name = name
         self.searched = searched
         self.declared_by = declared_by
@@ -56,19 +57,27 @@ class PackageNotFound(UrdftoolError):
         if declared_by:  # a dependency not installed here: the environment, not the robot
             super().__init__(
                 f"package '{name}' not found: the package.xml of '{declared_by}' declares it as "
-                f"a dependency, which is not installed here: the robot is not expanded, so not "
-                f"checked (nothing in it is known to be wrong); looked in: {where}. Pass --package {name}=PATH, set "
-                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
-                "install --from-paths . --ignore-src)")
+                "a dependency, which is not installed here: the robot is not expanded, so not "
+                f"checked (nothing in it is known to be wrong); looked in: {where}. Pass "
+                f"--package {name}=PATH, set ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install "
+                "the dependencies (rosdep install --from-paths . --ignore-src)")
+        elif undeclared_by:  # not found, and nothing would install it: a misspelt name or a
+            super().__init__(  # dependency the package does not declare
+                f"package '{name}' not found, and the package.xml of '{undeclared_by}' does not "
+                "declare it (rosdep would not install it): a misspelt name, or a dependency to "
+                f"add (<exec_depend>{name}</exec_depend>); looked in: {where}. Pass --package "
+                f"{name}=PATH or set ROS_PACKAGE_PATH")
         else:
             super().__init__(
                 f"package '{name}' not found; looked in: {where}. "
                 f"Pass --package {name}=PATH or set ROS_PACKAGE_PATH"
             )
 
-    def declared(self, owner: str) -> "PackageNotFound":
-        """The same error, said of a package that ``owner``'s package.xml depends on."""
-        return PackageNotFound(self.name, self.searched, owner)
+    def declared(self, owner: str, declares: bool = True) -> "PackageNotFound":
+        """The same error, said of a package that ``owner``'s package.xml depends on, or (not
+        ``declares``) does not."""
+        return PackageNotFound(self.name, self.searched, owner if declares else None,
+                               None if declares else owner)
 
 _LISTED = 12
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested

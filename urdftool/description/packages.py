@@ -263,14 +263,16 @@ def declared_dependencies(folder: Path) -> frozenset[str] | None:
     return frozenset(name.decode("utf-8", "replace") for name in _DEPEND.findall(text))
 
 
-def declaring_package(path, package: str) -> str | None:
-    """The name of the package holding the file ``path`` when its package.xml declares
-    ``package`` as a dependency: a package not found is then one not installed here, the
-    environment's, not a misspelt name (xacro's ``$(find)``, a mesh's ``package://``)."""
+def declaring_package(path, package: str) -> tuple[str | None, bool]:
+    """(the name of the package holding the file ``path``, whether its package.xml declares
+    ``package`` as a dependency); (None, False) outside a package. A package not found that
+    it declares is one not installed here, the environment's; one it does not declare is a
+    misspelt name or a dependency rosdep would not install (xacro's ``$(find)``, a mesh's
+    ``package://``)."""
     folder = package_of(path) if path else None
-    if folder is None or package not in (declared_dependencies(folder) or ()):
-        return None
-    return package_name(folder)
+    if folder is None:
+        return None, False
+    return package_name(folder), package in (declared_dependencies(folder) or ())
 
 
 def package_references(data: bytes) -> list[tuple[int, int, str]]:

@@ -598,8 +598,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         except PackageNotFound as error:
             from urdftool.description.packages import declaring_package
 
-            owner = declaring_package(xacro.filestack[-1] if xacro.filestack else None, package)
-            raise _PackageFailure(error.declared(owner) if owner else error) from None
+            owner, declares = declaring_package(xacro.filestack[-1] if xacro.filestack else None,
+                                                package)
+            raise _PackageFailure(error.declared(owner, declares) if owner else error) from None
         session.allow_root(found)
         return str(found)
 

@@ -78,13 +78,16 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     root, folder = os.path.normpath(os.fspath(containment_root(Path(base)))), base
     while isinstance(_checked(uri, os.path.join(folder, package, tail), base, None), MeshProblem):
         if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
-            owner = declaring_package(robot.path, package) if robot.path != "-" else None
-            if owner is not None:  # installed wherever the robot's package is built
+            owner, declares = declaring_package(robot.path, package) if robot.path != "-" \
+                else (None, False)
+            if declares:  # installed wherever the robot's package is built
                 return MeshProblem("package", (
                     f"mesh '{uri}': package '{package}' not found: the package.xml of "
                     f"'{owner}' declares it as a dependency, which is not installed here, so "
                     f"the mesh is not checked; pass --package {package}=PATH or install the "
                     "dependencies (rosdep install --from-paths . --ignore-src)"), certain=False)
+            if owner is not None:  # a misspelt name, or a dependency rosdep would not install
+                error = error.declared(owner, declares=False)
             return MeshProblem("package", f"mesh '{uri}': {error}")
         folder = os.path.dirname(folder)
     if folder == base:
