@@ -378,16 +378,37 @@ def _entries(folder: str) -> tuple | None:
 @functools.lru_cache(maxsize=64)
 def _matcher(pattern: str):
     """(match for a file's name, match for a folder's or link's) as
-    :func:`urdftool.description.record.matches` decides, each one compiled expression."""
+    :func:`urdftool.description.record.matches` decides, each one function: a name without
+    wildcards is compared, ``*`` and a name is an ending, ``[!.]*`` a first character, and
+    the other alternatives are one compiled expression (fnmatch's ``*.launch`` backtracked
+    over every character of every name a walk lists, for each such alternative)."""
     alternatives = pattern.split("|")
 
     def union(chosen):
-        if not chosen:
-            return lambda name: False
-        return re.compile("|".join(fnmatch.translate(a) for a in chosen)).match
+        names, ends, visible, rest = set(), [], False, []
+        for alternative in chosen:
+            if not _WILDCARDS.intersection(alternative):
+                names.add(alternative)
+            elif alternative[:1] == "*" and not _WILDCARDS.intersection(alternative[1:]):
+                ends.append(alternative[1:])  # ("*" alone: "", every name's ending)
+            elif alternative == "[!.]*":
+                visible = True
+            else:
+                rest.append(alternative)
+        ends = tuple(ends)
+        other = re.compile("|".join(fnmatch.translate(a) for a in rest)).match if rest else None
+
+        def match(name: str) -> bool:
+            return name in names or name.endswith(ends) or visible and name[:1] not in ("", ".") \
+                or other is not None and other(name) is not None
+
+        return match
 
     return (union([a for a in alternatives if not a.endswith("/")]),
             union([a[:-1] if a.endswith("/") else a for a in alternatives]))
+
+
+_WILDCARDS = frozenset("*?[")  # (fnmatch's: any other character of a pattern is itself)
 
 
 def environ(name: str, variables=None) -> str | None:
