@@ -207,7 +207,9 @@ def _killed_by_the_end_of(life: int) -> bool:
         return False
     import select
 
-    if select.select([life], [], [], 0)[0]:  # (its end already read: the guardian is gone)
+    ended = select.poll()  # (poll, not select: any descriptor number)
+    ended.register(life, select.POLLIN)
+    if ended.poll(0):  # (its end already read, or hung up: the guardian is gone)
         os.kill(os.getpid(), signal.SIGKILL)
     return True
 
