@@ -352,8 +352,9 @@ def test_walk_depth_first_or_breadth_first_and_bounded(tmp_path):
     "*", "", "*.launch|*.py|*.xml|*.yaml|*.yml|[!.]*/", "package.xml|[!.]*/", "[!.]*",
     "*.launch.py", "a*b|x?y|*.[ch]", ".*|*/", "CMakeLists.txt|*.stl/", "*[!/]|[a-c]*.py"])
 def test_a_listings_pattern_matches_as_fnmatch_does(pattern):
-    """The walk's and listing's matcher (names compared, endings, a first character, or one
-    expression) says what :func:`urdftool.description.record.matches` says, for every kind."""
+    """The walk's and listing's selection (names compared, endings, a first character, or one
+    expression) takes the entries :func:`urdftool.description.record.matches` takes, of every
+    kind."""
     import random
 
     from urdftool.description.record import matches
@@ -363,8 +364,7 @@ def test_a_listings_pattern_matches_as_fnmatch_does(pattern):
             "m.STL", "m.stl", ".y.yml", "launch", "é.xml", "a/"]
     generated = ["".join(random.Random(seed).choices("ab.*?[]!/\nxyl", k=seed % 7))
                  for seed in range(300)]
-    plain, any_kind = files._matcher(pattern)
-    for name in pool + generated:
-        for kind in ("file", "folder", "link", "other"):
-            matcher = any_kind if kind in ("folder", "link") else plain
-            assert bool(matcher(name)) == matches(name, kind, pattern), (name, kind)
+    entries = tuple((name, kind) for name in pool + generated
+                    for kind in ("file", "folder", "link", "other"))
+    assert files._selected(pattern)(entries) == \
+        tuple(entry for entry in entries if matches(*entry, pattern))
