@@ -99,18 +99,31 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
                        size=info.st_size)
     # O_NONBLOCK: should the file be swapped for a FIFO after the stat, opening does not hang.
     descriptor = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-    with open(descriptor, "rb") as handle:
+    try:  # (read from the descriptor: a file object asked the system twice more, fstat and isatty)
         info = os.fstat(descriptor)  # the file read, whatever the name leads to now
         if not stat.S_ISREG(info.st_mode):
             raise OSError(21, "not a regular file", str(name))
         # the size it has (a read of limit + 1 bytes allocates that much first), then any more
-        data = handle.read(info.st_size + 1)
+        data = _read_up_to(descriptor, info.st_size + 1)
         if len(data) > info.st_size:  # grew since the stat
-            data += handle.read(limit + 1 - len(data))
+            data += _read_up_to(descriptor, limit + 1 - len(data))
+    finally:
+        os.close(descriptor)
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
     _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(name))
     return data, info
+
+
+def _read_up_to(descriptor: int, size: int) -> bytes:
+    """``size`` bytes read from ``descriptor``, fewer at the end of the file."""
+    data = os.read(descriptor, size)
+    if len(data) < size and data:  # (a read may give less than asked before the end)
+        parts = [data]
+        while size > (got := sum(map(len, parts))) and (more := os.read(descriptor, size - got)):
+            parts.append(more)
+        data = b"".join(parts)
+    return data
 
 
 # every regular file this process read (:func:`_which_file`) -> the names it was read by: what

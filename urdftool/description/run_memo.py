@@ -14,7 +14,7 @@ import functools
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-from urdftool.description.record import remembered, replay
+from urdftool.description.record import captured, replay
 
 _MEMO: ContextVar[dict | None] = ContextVar("urdftool_run_memo", default=None)
 
@@ -50,7 +50,10 @@ def per_run(function):
             if events is not None:
                 replay(events)
             return value
-        return remembered(memo, key, lambda: function(*args))
+        # (not asked yet: computed here, not by record.remembered, whose lookup would fail
+        # again, by an exception)
+        memo[key] = (value, _) = captured(lambda: function(*args))
+        return value
 
     return answered
 
