@@ -14,11 +14,25 @@ from conftest import guardian_and_child
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the guardian forks")
 
-# the child says its pid, whether ctypes was imported, then hangs (as a C call can)
+# the child says its pid, whether ctypes was imported and how many processes the guardian
+# has below it (its child, and a watcher if one was forked), then hangs (as a C call can)
 _HANGS = ("import os, sys, time\nfrom urdftool import guardian\n"
           "if guardian.guarded() is None:\n"
-          "    print(os.getpid(), 'ctypes' in sys.modules, flush=True)\n"
+          "    time.sleep(0.2)\n"
+          "    print(os.getpid(), 'ctypes' in sys.modules, len(_below(os.getppid())), flush=True)\n"
           "    time.sleep(120)\n")
+_BELOW = ("def _below(pid):\n"
+          "    found = [int(p) for p in os.listdir('/proc') if p.isdigit() and\n"
+          "             _parent(p) == pid]\n"
+          "    return found + [q for p in found for q in _below(p)]\n"
+          "def _parent(pid):\n"
+          "    try:\n"
+          "        with open(f'/proc/{pid}/stat') as stat:\n"
+          "            return int(stat.read().rsplit(')', 1)[1].split()[1])\n"
+          "    except (OSError, IndexError, ValueError):\n"
+          "        return None\n")
+# the system's signal is not to be had (F_SETSIG is Linux's): a watcher is forked instead
+_NO_SETSIG = "import fcntl\ndel fcntl.F_SETSIG\n"
 
 
 def _state(pid: int) -> str:
@@ -30,16 +44,23 @@ def _state(pid: int) -> str:
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="reads /proc")
-def test_a_child_dies_when_its_guardian_is_killed_without_ctypes():
+@pytest.mark.parametrize("setup, processes", [
+    pytest.param("", "1", marks=pytest.mark.skipif(not sys.platform.startswith("linux"),
+                                                   reason="F_SETSIG is Linux's"),
+                 id="the system's signal"),
+    pytest.param(_NO_SETSIG, "2", id="a watcher")])
+def test_a_child_dies_when_its_guardian_is_killed_without_ctypes(setup, processes):
     """A guardian killed (SIGKILL: a CI runner's timeout) leaves no child to run on unwatched,
     the child hung where it cannot notice; and the guarantee costs the child no ``ctypes``
-    (its import cost a plain check more than the watcher's fork)."""
-    guardian = subprocess.Popen([sys.executable, "-c", _HANGS], stdout=subprocess.PIPE,
-                                text=True)
+    (its import cost a plain check more than the watcher's fork). On Linux the system kills
+    the child, no watcher forked; elsewhere a watcher does."""
+    guardian = subprocess.Popen([sys.executable, "-c", setup + _BELOW + _HANGS],
+                                stdout=subprocess.PIPE, text=True)
     try:
-        pid, ctypes = guardian.stdout.readline().split()
+        pid, ctypes, below = guardian.stdout.readline().split()
         child = int(pid)
         assert ctypes == "False"
+        assert below == processes
         assert _state(child) not in ("gone", "Z")
         os.kill(guardian.pid, signal.SIGKILL)
         guardian.wait(timeout=30)
@@ -52,10 +73,21 @@ def test_a_child_dies_when_its_guardian_is_killed_without_ctypes():
         guardian.wait()
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="F_SETSIG is Linux's")
+def test_a_child_whose_guardian_ended_before_it_was_watched_ends():
+    """The pipe's writer closed before the system was told to signal its end (a guardian gone
+    already): no signal comes later, so the child ends at once."""
+    program = ("import os\nfrom urdftool import guardian\nlife, alive = os.pipe()\n"
+               "os.close(alive)\nguardian._killed_by_the_end_of(life)\nprint('ran on')\n")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          timeout=60)
+    assert (done.returncode, done.stdout) == (-signal.SIGKILL, "")
+
+
 def test_a_child_whose_watcher_cannot_be_forked_still_does_the_work():
     """No process to spare for the watcher (EAGAIN): the child goes on unwatched, as it did
     where ``PR_SET_PDEATHSIG`` was missing, rather than failing the command."""
-    setup = ("real, forks = os.fork, []\n"
+    setup = (_NO_SETSIG + "real, forks = os.fork, []\n"
              "def fork():\n    forks.append(1)\n"
              "    if len(forks) == 2:\n        raise BlockingIOError(11, 'no process')\n"
              "    return real()\n"

@@ -143,8 +143,16 @@ def _plain_check(words: list[str]) -> dict | None:
     asks."""
     if "_URDFTOOL_COMPLETE" in os.environ:
         return None
+    read = _READ.pop(tuple(words), _READ)  # (read by _guarded, in this program's process)
+    if read is not _READ:
+        return read
     parameters = kept_words("check")
     return None if parameters is None else plain_words(words[1:], parameters)
+
+
+# the words of the program (a tuple) -> their values as _guarded read them, for _check to
+# take once (reading the kept texts and the commands' digest again cost 1.6 M instructions)
+_READ: dict = {}
 
 
 def _guarded(words: list[str]) -> bool:
@@ -163,7 +171,7 @@ def _guarded(words: list[str]) -> bool:
     one of them held forever): those check in budgeted workers."""
     if not PROGRAM["entry"] or words[:1] != ["check"]:
         return False
-    values = _plain_check(words)
+    values = _READ[tuple(words)] = _plain_check(words)
     if values is None or "-" in values["words"] or values["fix"] or values["diff"] or \
             values["timeout"] == 0 and values["max_memory"] == "0" or not _one_thread():
         return False

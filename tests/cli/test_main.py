@@ -472,8 +472,10 @@ def test_a_plain_check_of_one_file_forks_before_the_rules_are_imported(tmp_path)
              "    return pid\nos.fork = counted")
     done = _door(tmp_path, patch, "check", "--no-cache", "--timeout", "30", "a.urdf")
     assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
-    # (the guardian's child, and the child's watcher: urdftool.guardian.watched_by)
-    assert done.stderr == "[fork before rules]" * 2, done.stderr
+    # (the guardian's child, and where the system cannot signal the guardian's end, the
+    # child's watcher: urdftool.guardian.watched_by)
+    watcher = not sys.platform.startswith("linux")
+    assert done.stderr == "[fork before rules]" * (2 if watcher else 1), done.stderr
 
 
 def test_a_check_without_budgets_forks_nothing(tmp_path):

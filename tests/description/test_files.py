@@ -346,3 +346,25 @@ def test_walk_depth_first_or_breadth_first_and_bounded(tmp_path):
         ".", "a", "b", "c", "a/x", "b/y", "a/x/deep"]
     assert [folder for folder, _ in order(breadth_first=True, most=4)] == [".", "a", "b", "c"]
     assert [folder for folder, _ in order(breadth_first=True, depth=2)] == [".", "a", "b", "c"]
+
+
+@pytest.mark.parametrize("pattern", [
+    "*", "", "*.launch|*.py|*.xml|*.yaml|*.yml|[!.]*/", "package.xml|[!.]*/", "[!.]*",
+    "*.launch.py", "a*b|x?y|*.[ch]", ".*|*/", "CMakeLists.txt|*.stl/", "*[!/]|[a-c]*.py"])
+def test_a_listings_pattern_matches_as_fnmatch_does(pattern):
+    """The walk's and listing's selection (names compared, endings, a first character, or one
+    expression) takes the entries :func:`urdftool.description.record.matches` takes, of every
+    kind."""
+    import random
+
+    from urdftool.description.record import matches
+
+    pool = ["", ".", "..", ".git", "a", "b.py", "x.launch.py", "package.xml", "Package.xml",
+            "a\nb.py", "a.c", "a.h", "xzy", "acb", "a*b", "*.py", "[!.]", "CMakeLists.txt",
+            "m.STL", "m.stl", ".y.yml", "launch", "é.xml", "a/"]
+    generated = ["".join(random.Random(seed).choices("ab.*?[]!/\nxyl", k=seed % 7))
+                 for seed in range(300)]
+    entries = tuple((name, kind) for name in pool + generated
+                    for kind in ("file", "folder", "link", "other"))
+    assert files._selected(pattern)(entries) == \
+        tuple(entry for entry in entries if matches(*entry, pattern))

@@ -51,7 +51,7 @@ from pathlib import Path
 
 from urdftool.description import record as records
 from urdftool.description.record import ENV, PROBE, READ, REAL, RESOLVED, SEARCH, Read
-from urdftool.description.run_memo import answered_already, per_run
+from urdftool.description.run_memo import answering, per_run
 from urdftool.errors import UsageError
 
 DEFAULT_MAX_FILE_SIZE = 16 * 1024 * 1024  # [bytes]
@@ -99,18 +99,31 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
                        size=info.st_size)
     # O_NONBLOCK: should the file be swapped for a FIFO after the stat, opening does not hang.
     descriptor = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-    with open(descriptor, "rb") as handle:
+    try:  # (read from the descriptor: a file object asked the system twice more, fstat and isatty)
         info = os.fstat(descriptor)  # the file read, whatever the name leads to now
         if not stat.S_ISREG(info.st_mode):
             raise OSError(21, "not a regular file", str(name))
         # the size it has (a read of limit + 1 bytes allocates that much first), then any more
-        data = handle.read(info.st_size + 1)
+        data = _read_up_to(descriptor, info.st_size + 1)
         if len(data) > info.st_size:  # grew since the stat
-            data += handle.read(limit + 1 - len(data))
+            data += _read_up_to(descriptor, limit + 1 - len(data))
+    finally:
+        os.close(descriptor)
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
     _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(name))
     return data, info
+
+
+def _read_up_to(descriptor: int, size: int) -> bytes:
+    """``size`` bytes read from ``descriptor``, fewer at the end of the file."""
+    data = os.read(descriptor, size)
+    if len(data) < size and data:  # (a read may give less than asked before the end)
+        parts = [data]
+        while size > (got := sum(map(len, parts))) and (more := os.read(descriptor, size - got)):
+            parts.append(more)
+        data = b"".join(parts)
+    return data
 
 
 # every regular file this process read (:func:`_which_file`) -> the names it was read by: what
@@ -312,7 +325,7 @@ def walk(root, pattern: str, depth: int, skip=frozenset(), breadth_first: bool =
     most ``most`` folders when given. A folder is named as text, ``root`` joined with the
     names below it; where each leads is its parent's and its name (it is no link), not asked
     again of the system: one repository's hundreds of folders, each listed once."""
-    plain, any_kind = _matcher(pattern)
+    selected = _selected(pattern)
     top = os.fspath(root)
     absolute = os.path.abspath(top)
     named = (lambda folder: folder) if absolute == top else (  # (as the caller named it)
@@ -320,13 +333,13 @@ def walk(root, pattern: str, depth: int, skip=frozenset(), breadth_first: bool =
             folder, absolute)))
     pending = collections.deque([(absolute, _real_path(absolute), 0)])
     take, note, listed = pending.popleft if breadth_first else pending.pop, records.note, 0
+    real_path_of, entries_of = answering(_real_path), answering(_entries)
     while pending:
         folder, real, level = take()
         if level:
-            real = answered_already(_real_path, (folder,), lambda: real)
-        entries = answered_already(_entries, (folder,), lambda: _entries.__wrapped__(folder))
-        found = None if entries is None else tuple([
-            entry for entry in entries if (any_kind if entry[1] in _LISTED else plain)(entry[0])])
+            real = real_path_of(folder, _same, real)
+        entries = entries_of(folder, _entries.__wrapped__, folder)
+        found = None if entries is None else selected(entries)
         note(SEARCH, (folder, pattern), (real, found))
         yield named(folder), list(found or ())
         listed += 1
@@ -340,6 +353,10 @@ def walk(root, pattern: str, depth: int, skip=frozenset(), breadth_first: bool =
             below = [(base + name, under + name, level) for name, kind in found
                      if kind == "folder" and name not in skip and name[:1] != "."]
             pending.extend(below if breadth_first else reversed(below))
+
+
+def _same(value):
+    return value
 
 
 _LISTED = ("folder", "link")  # the kinds of entries a pattern's "NAME/" alternatives match
@@ -356,9 +373,7 @@ def _listing(folder: str, pattern: str) -> tuple | None:
     entries = _entries(folder)
     if entries is None:
         return None
-    plain, any_kind = _matcher(pattern)
-    return tuple([entry for entry in entries
-                  if (any_kind if entry[1] in _LISTED else plain)(entry[0])])
+    return _selected(pattern)(entries)
 
 
 @per_run
@@ -376,18 +391,50 @@ def _entries(folder: str) -> tuple | None:
 
 
 @functools.lru_cache(maxsize=64)
-def _matcher(pattern: str):
-    """(match for a file's name, match for a folder's or link's) as
-    :func:`urdftool.description.record.matches` decides, each one compiled expression."""
+def _selected(pattern: str):
+    """The entries of a listing ``pattern`` matches, as :func:`urdftool.description.record.
+    matches` decides (:func:`_unions`; each name tested in one comprehension: a call per
+    name cost a walk more than its test)."""
+    (names, ends, visible, other), (anys, any_ends, any_visible, any_other) = _unions(pattern)
+
+    def selected(entries: tuple) -> tuple:
+        return tuple([entry for entry in entries for name in (entry[0],) if (
+            name in anys or name.endswith(any_ends) or any_visible and name[:1] not in ("", ".")
+            or any_other is not None and any_other(name) is not None
+            if entry[1] in _LISTED else
+            name in names or name.endswith(ends) or visible and name[:1] not in ("", ".")
+            or other is not None and other(name) is not None)])
+
+    return selected
+
+
+def _unions(pattern: str) -> tuple[tuple, tuple]:
+    """(for a file's name, for a folder's or link's) the alternatives of ``pattern`` as
+    (names, endings, whether ``[!.]*``, one expression of the others or None): a name
+    without wildcards is compared, ``*`` and a name is an ending, ``[!.]*`` a first
+    character, as fnmatch decides (its ``*.launch`` expressions backtracked over every
+    character of every name a walk lists)."""
     alternatives = pattern.split("|")
+    return (_union([a for a in alternatives if not a.endswith("/")]),
+            _union([a[:-1] if a.endswith("/") else a for a in alternatives]))
 
-    def union(chosen):
-        if not chosen:
-            return lambda name: False
-        return re.compile("|".join(fnmatch.translate(a) for a in chosen)).match
 
-    return (union([a for a in alternatives if not a.endswith("/")]),
-            union([a[:-1] if a.endswith("/") else a for a in alternatives]))
+def _union(chosen: list[str]) -> tuple:
+    names, ends, visible, rest = set(), [], False, []
+    for alternative in chosen:
+        if not _WILDCARDS.intersection(alternative):
+            names.add(alternative)
+        elif alternative[:1] == "*" and not _WILDCARDS.intersection(alternative[1:]):
+            ends.append(alternative[1:])  # ("*" alone: "", every name's ending)
+        elif alternative == "[!.]*":
+            visible = True
+        else:
+            rest.append(alternative)
+    other = re.compile("|".join(fnmatch.translate(a) for a in rest)).match if rest else None
+    return frozenset(names), tuple(ends), visible, other
+
+
+_WILDCARDS = frozenset("*?[")  # (fnmatch's: any other character of a pattern is itself)
 
 
 def environ(name: str, variables=None) -> str | None:

@@ -14,7 +14,7 @@ import functools
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-from urdftool.description.record import remembered, replay
+from urdftool.description.record import captured, replay
 
 _MEMO: ContextVar[dict | None] = ContextVar("urdftool_run_memo", default=None)
 
@@ -50,26 +50,35 @@ def per_run(function):
             if events is not None:
                 replay(events)
             return value
-        return remembered(memo, key, lambda: function(*args))
+        # (not asked yet: computed here, not by record.remembered, whose lookup would fail
+        # again, by an exception)
+        memo[key] = (value, _) = captured(lambda: function(*args))
+        return value
 
     return answered
 
 
-def answered_already(function, args: tuple, compute):
-    """What ``function`` (wrapped with :func:`per_run`) answers to ``args``: its remembered
-    answer, or ``compute()`` remembered as its answer, in this run. For an answer found
-    alongside another one (a folder listed in a walk, whose real path is its parent's and its
-    name) and for a function that records nothing: what ``compute`` records is the caller's."""
-    memo = _MEMO.get()
+def answering(function):
+    """``answer(arg, compute, *values)``: what ``function`` (wrapped with :func:`per_run`, of
+    one argument) answers to ``arg`` in this run: its remembered answer, or ``compute(*values)``
+    remembered as its answer. For an answer found alongside another one (a folder listed in a
+    walk, whose real path is its parent's and its name) and for a function that records
+    nothing: what ``compute`` records is the caller's. The run's memory is looked up once,
+    here (a walk asks two such questions of each of hundreds of folders)."""
+    memo, plain = _MEMO.get(), function.__wrapped__
     if memo is None:
-        return compute()
-    key = (function.__wrapped__, *args)
-    found = memo.get(key)
-    if found is not None:
-        value, events = found
-        if events is not None:
-            replay(events)
+        return lambda arg, compute, *values: compute(*values)
+
+    def answer(arg, compute, *values):
+        key = (plain, arg)
+        found = memo.get(key)
+        if found is not None:
+            value, events = found
+            if events is not None:
+                replay(events)
+            return value
+        value = compute(*values)
+        memo[key] = (value, None)
         return value
-    value = compute()
-    memo[key] = (value, None)
-    return value
+
+    return answer

@@ -20,7 +20,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from urdftool.diagnostics import Finding, Fix, Location
-from urdftool.lint.fixes import edit_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 
@@ -161,6 +160,7 @@ def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | No
         while start > line_start and text[start - 1] in " \t":
             start -= 1
     offset = len(text[:start].encode("utf-8"))
+    from urdftool.lint.fixes import edit_of  # (only for a finding)
     return Fix("delete the unused suppression", (edit_of(
         suppression.file, data, offset, offset + len(text[start:end].encode("utf-8")), ""),))
 

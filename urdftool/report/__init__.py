@@ -11,7 +11,6 @@ import importlib
 import os
 
 from urdftool.report.escape import printable
-from urdftool.report.json_output import write_json
 from urdftool.report.summary import STYLES, Summary, all_findings
 
 __all__ = ["FORMATS", "STYLES", "Summary", "all_findings", "printable", "render",
@@ -23,6 +22,15 @@ _MODULES = {"text": "text_format", "json": "json_format", "sarif": "sarif_format
             "rdjson": "rdjson_format", "concise": "concise_format",
             "json-lines": "json_lines_format"}
 FORMATS = tuple(_MODULES)
+
+
+def __getattr__(name: str):
+    """``write_json``, imported when asked (a text report never is)."""
+    if name == "write_json":
+        from urdftool.report.json_output import write_json
+
+        return write_json
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def resolve_format(name: str) -> str:

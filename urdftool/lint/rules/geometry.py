@@ -9,7 +9,6 @@ import math
 
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
-from urdftool.lint.fixes import offer, set_attribute
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
@@ -527,6 +526,7 @@ def mesh_implausible_size(robot):
             yield shape, f"{where} is {number(extent)} m across; check its unit"
             continue
         fixed = " ".join(f"{s * factor:g}" for s in scale)
+        from urdftool.lint.fixes import offer, set_attribute  # (only for a finding)
         yield offer(shape, (f"{where} is {number(extent)} m across, which suggests the wrong "
                             f"unit; scale=\"{fixed}\" would make it {number(extent * factor)} m"),
                     f"scale the mesh by {factor:g}", set_attribute(robot, shape, "scale", fixed))

@@ -25,7 +25,6 @@ import math
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers, power
-from urdftool.lint.fixes import Unfixable, inertial_edits, insert_before, offer
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
 from urdftool.description.values import number_tuple, origin_pose
@@ -118,6 +117,7 @@ def _from_geometry(robot, link, mass: float):
     if not solid.sound or not solid.parts:
         return None  # nothing to compute it from (a missing mesh is reported on its own)
     body = solids.computed(solid, mass=mass)
+    from urdftool.lint.fixes import inertial_edits  # (only for a finding)
     return inertial_edits(robot, link, body) if body is not None else None
 
 
@@ -129,6 +129,7 @@ def _solid(robot, link, tag: str | None = None):
 
 def _recomputed(robot, link, properties, message: str):
     """The finding on ``link``'s <inertia>, with the inertia from geometry as its unsafe fix."""
+    from urdftool.lint.fixes import offer  # (only for a finding)
     return offer(_inertial_part(link, "inertia"), message,
                  f"replace link '{_name(link)}' inertia with its {_solid_source(robot, link)} "
                  "geometry's", _from_geometry(robot, link, properties.mass), safe=False)
@@ -555,6 +556,7 @@ def root_link_inertia(robot):
         name = next(n for n in ("base_footprint", f"{roots[0]}_root", f"{roots[0]}_massless_root")
                     if n not in robot.links and f"{n}_joint" not in robot.joints)
         location = robot.locations.get(root)
+        from urdftool.lint.fixes import Unfixable, insert_before, offer  # (only for a finding)
         edits = Unfixable(f"'{roots[0]}' is written in a macro (called at {location.via[0]}); "
                           "add the link beside the call") if location and location.via else \
             insert_before(robot, root, f'<link name="{attribute(name)}"/>',

@@ -6,7 +6,6 @@ import math
 
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import length, number, unit
-from urdftool.lint.fixes import offer, set_attribute, swap_attributes
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
 from urdftool.description.values import finite, number_tuple, parse_numbers
@@ -128,6 +127,7 @@ def inverted_limits(robot):
     """
     for joint, limit, lower, upper in _ranges(robot):
         if lower > upper and math.isfinite(lower) and math.isfinite(upper):  # (else U208)
+            from urdftool.lint.fixes import offer, swap_attributes  # (only for a finding)
             yield offer(limit, (f"joint '{_name(joint)}': lower limit {lower:g} is above upper "
                                 f"limit {upper:g}; swap them"), "swap lower and upper",
                         swap_attributes(robot, limit, "lower", "upper", default="0"))
@@ -207,6 +207,7 @@ def axis_not_unit(robot):
     for joint, axis, values, norm, vanishes in _axes(robot):
         if norm > 0 and abs(norm - 1) > UNIT_TOLERANCE and not vanishes:  # (U205)
             unit = _unit_text(values, norm)
+            from urdftool.lint.fixes import offer, set_attribute  # (only for a finding)
             yield offer(axis, (f"joint '{_name(joint)}' axis has length {number(norm, 6)}, not 1; "
                                f"write xyz=\"{unit}\""), f"normalise the axis to {unit}",
                         set_attribute(robot, axis, "xyz", unit))

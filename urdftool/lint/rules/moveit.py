@@ -465,7 +465,6 @@ def srdf_adjacent_not_adjacent(robot):
     two joints away from the torso
     Good: no entry, or the reason the Setup Assistant gives on a fresh matrix
     """
-    from urdftool.kinematics.tree import adjacent_pairs, pair_key
     from urdftool.lint.rules.srdf import _overlaps, _srdf, _where
 
     srdf = _srdf(robot)
@@ -473,6 +472,8 @@ def srdf_adjacent_not_adjacent(robot):
                if e.get("reason") == "Adjacent"] if srdf is not None else []
     if not entries:
         return
+    from urdftool.kinematics.tree import adjacent_pairs, pair_key
+
     geometry = _with_geometry(robot)
     adjacent = adjacent_pairs(robot, geometry)
     found = None
@@ -531,13 +532,14 @@ def srdf_adjacent_collision_not_disabled(robot):
     entry
     Good: ``<disable_collisions link1="forearm" link2="upper_arm" reason="Adjacent"/>``
     """
-    from urdftool.lint.fixes import offer
     from urdftool.lint.rules.srdf import _add_entry, _overlaps, _srdf, _where
-    from urdftool.kinematics.tree import pair_key
 
     srdf = _srdf(robot)
     if srdf is None:
         return
+    from urdftool.kinematics.tree import pair_key
+    from urdftool.lint.fixes import offer
+
     listed = {pair_key(e.get("link1", ""), e.get("link2", "")) for e in srdf.root.iter("disable_collisions")}
     for pair, overlap in sorted((_overlaps(robot, srdf) or {}).items()):
         if not overlap.adjacent or pair in listed:

@@ -38,7 +38,6 @@ from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.xml import attribute, child_list, first_child
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.lint.fixes import Unfixable, append_child, insert_before, offer
 from urdftool.physics import mat3
 
 # ---- the robot as the loaders see it ---------------------------------------------------------
@@ -248,8 +247,9 @@ def _compiler_fix(robot, where, message: str, attributes: dict, description: str
     only MuJoCo reads."""
     text = " ".join(f'{key}="{attribute(str(value))}"' for key, value in attributes.items())
     compiler = _mujoco_compiler(robot)
+    from urdftool.lint.fixes import Unfixable, append_child, insert_before, offer, set_attribute
+
     if compiler is not None:
-        from urdftool.lint.fixes import set_attribute
 
         edits = []
         for key, value in attributes.items():
@@ -350,7 +350,7 @@ def mujoco_mesh_format(robot):
 def _converted(robot, mesh, filename: str, message: str, target_format: str = ".obj"):
     """The finding with the unsafe fix converting the mesh file (trimesh) and renaming it in
     the URDF; no fix when the file is missing or its name comes from an expression."""
-    from urdftool.lint.fixes import converted_mesh
+    from urdftool.lint.fixes import converted_mesh, offer
 
     found = _exists(robot, filename)
     if found is None:
@@ -630,6 +630,8 @@ def mujoco_welded_root(robot):
 def _world_fix(robot, link, message: str):
     """The finding with the unsafe fix adding a world link fixed to ``link``."""
     name = _name(link)
+    from urdftool.lint.fixes import insert_before, offer  # (only for a finding)
+
     edits = insert_before(robot, link, '<link name="world"/>',
                           f'<joint name="world_to_{attribute(name)}" type="fixed"><parent '
                           f'link="world"/><child link="{attribute(name)}"/></joint>')
@@ -1185,6 +1187,7 @@ def _lumped_frames(robot, target: str):
             first = False
             block = (f'<gazebo reference="{attribute(_name(joint))}">'
                      '<preserveFixedJoint>true</preserveFixedJoint></gazebo>')
+            from urdftool.lint.fixes import append_child, offer  # (only for a finding)
             edits = append_child(robot, robot.root, block)
             yield offer(where, message, f"keep fixed joint '{_name(joint)}' in Gazebo "
                         "(preserveFixedJoint)", edits, safe=False)

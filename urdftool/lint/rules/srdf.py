@@ -17,7 +17,6 @@ from urdftool.description.companions import companions
 from urdftool.description.runtime import moveit_with
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
-from urdftool.lint.fixes import offer
 from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
@@ -375,6 +374,7 @@ def srdf_disabled_pair_collides(robot):
                             key=str.encode))
         overlap = found.get(pair)
         if overlap is not None and not overlap.adjacent:
+            from urdftool.lint.fixes import offer  # (only for a finding)
             yield offer(srdf.at(element.sourceline), (
                 f"{pair[0]} and {pair[1]} are disabled as '{element.get('reason', '')}' but "
                 f"{_where(overlap)}: MoveIt will not see that collision; remove the entry"
@@ -415,6 +415,7 @@ def srdf_collision_not_disabled(robot):
         if pair in listed or overlap.adjacent:  # adjacent: U823
             continue
         element = overlap.poses[0][1]
+        from urdftool.lint.fixes import offer  # (only for a finding)
         yield offer(
             srdf.at(element.sourceline if element is not None else srdf.root.sourceline), (
                 f"{pair[0]} and {pair[1]} {_where(overlap)}, and the SRDF does not disable the "

@@ -20,7 +20,6 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             exported_interface, interface_kind, is_ros2_form,
                                             moving_joints, published_by_gazebo, ros2_control_joints,
                                             transmission_joints, transmissions)
-from urdftool.lint.fixes import Unfixable, append_child, offer, prefix_text
 from urdftool.errors import available
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import attribute
@@ -273,6 +272,7 @@ def unactuated_joint(robot):
                     f"if the robot is started by {', '.join(silent[:2])} (which start"
                     f"{'s' if len(silent) == 1 else ''} no joint_state_publisher; "
                     f"{publishing[0]} does): {message}", Severity.INFO)
+            from urdftool.lint.fixes import offer  # (only for a finding)
             yield offer(joint, message, f"actuate joint '{name}'", _actuation(robot, plugin, name),
                         safe=False)
 
@@ -304,6 +304,8 @@ def _actuation(robot, plugin, name: str):
     """Edits adding joint ``name`` to the robot's ros2_control block (with the interfaces of
     the block's first joint), or a ROS 1 transmission (with the interface most transmissions
     use) at the end of the robot."""
+    from urdftool.lint.fixes import Unfixable, append_child
+
     if plugin.tag == "ros2_control":
         location = robot.locations.get(plugin)
         if location is not None and location.via:
@@ -359,6 +361,7 @@ def hardware_interface_prefix(robot):
             for interface in [] if joint.in_actuator else joint.interfaces:  # U503 says move it
                 text = (interface.text or "").strip()
                 if text in _DEPRECATED_BARE:
+                    from urdftool.lint.fixes import offer, prefix_text  # (only for a finding)
                     yield offer(interface, (
                         f"{_label(transmission)}: joint '{joint.name}' names '{text}' without "
                         f"hardware_interface/; write hardware_interface/{text}"),

@@ -18,7 +18,6 @@ from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABUL
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import child_list
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.lint.fixes import element_to_attribute, offer, rename_attribute, rename_element
 
 CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a known one
 
@@ -265,6 +264,8 @@ def misspelt_attribute(robot):
 def _renamed(robot, unknown: _Unknown, message: str):
     """The finding, with the rename to the one close name as its fix (when the name is one of
     the same kind: an element for an element, an attribute for an attribute)."""
+    from urdftool.lint.fixes import element_to_attribute, offer, rename_attribute, rename_element
+
     if unknown.attribute is None and unknown.close == [unknown.name] and \
             unknown.name in _attributes(unknown.place) and \
             unknown.element.getparent().get(unknown.name) is None:
