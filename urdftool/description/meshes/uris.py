@@ -66,7 +66,7 @@ def _resolve(robot, uri: str) -> Path:
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     """The problem of a ``package://`` mesh whose package is not found: not certain when the
     robot file's package declares it as a dependency (not installed here: the environment's,
-    as for a ``$(find)``, U006), and when the
+    as for a ``$(find)``), and when the
     path it names, read below the robot's folder or a folder above it in its repository
     (``FOLDER/PACKAGE/TAIL``), is a mesh file, as descriptions with no ROS package write it:
     onshape-to-robot's ``package://assets/part.stl`` beside the robot file, which the loaders
