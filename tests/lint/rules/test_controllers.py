@@ -410,3 +410,18 @@ def test_trajectory_constraints_naming_no_joint_of_the_controller_are_a_warning(
     assert [(m[1], f.severity) for m, f in zip(marks, findings)] == [
         (5, Severity.ERROR), (7, Severity.WARNING)]
     assert "so the controller ignores them; did you mean 'head_joint'?" in findings[1].message
+
+
+def test_a_joint_state_broadcaster_declared_and_never_started_is_named(tmp_path):
+    """giacomotambe/traquad_gazebo: joint_state_broadcaster_1 is declared beside the two
+    controllers the launch files spawn, and never spawned; 'add one' sent the reader to a file
+    that has it."""
+    (tmp_path / ".git").mkdir()
+    files = dict(_SPARE)
+    files["config/c.yaml"] = files["config/c.yaml"].replace("joint: nek", "joint: head_joint")
+    files["launch/head.launch"] = files["launch/head.launch"].replace('args="jsc"', 'args="spare"')
+    marks, findings = check_folder(tmp_path, files, select=("U605",))
+    assert marks == [("c.yaml", 2, "U605")]
+    assert findings[0].message.endswith("controller 'jsc' (joint_state_controller/"
+                                        "JointStateController) is declared, but no launch file "
+                                        "of the robot starts it: spawn it")

@@ -375,10 +375,15 @@ def no_joint_state_controller(robot):
         return  # a launch file of the robot publishes the joint states itself
     if found and not any(c.is_state for c in found):
         first = found[0]
+        # one declared that no launch file starts (giacomotambe/traquad_gazebo's
+        # joint_state_broadcaster_1): starting it is the fix, not adding one
+        idle = [c for c in controllers(robot) if c.layout != "moveit" and c.is_state]
+        fix = (f"{label(idle[0])} is declared, but no launch file of the robot starts it: "
+               "spawn it" if idle else "add joint_state_broadcaster/JointStateBroadcaster "
+               "(ROS 2) or joint_state_controller/JointStateController (ROS 1)")
         yield first.file.at(first.line), (
             f"no joint state broadcaster/controller among {len(found)} controllers in "
-            f"{', '.join(sorted({c.file.display for c in found}))}; add joint_state_broadcaster/"
-            "JointStateBroadcaster (ROS 2) or joint_state_controller/JointStateController (ROS 1)")
+            f"{', '.join(sorted({c.file.display for c in found}))}; {fix}")
 
 
 _ROS = {1: "ROS 1 (ros_control)", 2: "ROS 2 (ros2_control)"}
