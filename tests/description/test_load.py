@@ -318,6 +318,30 @@ def test_white_space_before_the_declaration_is_read_as_urdfdom_reads_it(tmp_path
         [("late-declaration", 3, "warning")]
 
 
+def test_a_robot_in_a_default_namespace_is_read_as_urdfdom_reads_it(tmp_path):
+    """JLSchol/omni_marco_gazebo's omni.urdf, <robot xmlns="http://www.ros.org/wiki/urdf">
+    to validate it against urdf.xsd: check_urdf reads it (TinyXML2 knows no namespaces), and it
+    was a U004 error that checked nothing; yourdfpy reads no link of it, hence a warning."""
+    path = write(tmp_path, "r.urdf", '<?xml version="1.0"?>\n<robot\n'
+                 '    xmlns="http://www.ros.org/wiki/urdf" name="r">\n  <link name="a"/>\n'
+                 '  <link name="b"/>\n  <joint name="j" type="fixed"><parent link="a"/>'
+                 '<child link="b"/></joint>\n  <u:link xmlns:u="urn:u" name="c"/>\n</robot>\n')
+    robot = load(path)
+    assert robot.root.tag == "robot"
+    assert [link.get("name") for link in robot.root.iter("link")] == ["a", "b"]
+    assert robot.root.find("joint/child").get("link") == "b"
+    assert robot.locate(robot.root.find("link")).line == 4
+    assert [(note.kind, note.location.line, note.severity.value) for note in robot.notes] == \
+        [("root-namespace", 2, "warning")]
+
+
+def test_another_root_in_a_default_namespace_stays_not_a_robot(tmp_path):
+    path = write(tmp_path, "r.urdf", '<sdf xmlns="urn:sdf"><model name="m"/></sdf>\n')
+    with pytest.raises(LoadError) as error:
+        load(path)
+    assert error.value.kind == "root"
+
+
 @pytest.mark.parametrize("head", ['x<?xml version="1.0"?>',
                                   '\n<?xml version="1.0" encoding="ISO-8859-1"?>'])
 def test_other_text_before_the_declaration_stays_malformed(tmp_path, head):

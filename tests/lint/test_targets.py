@@ -532,6 +532,33 @@ def test_a_part_hanging_on_its_robots_link_named_is_checked_through_its_robot(ru
     assert "included by" in result.stderr and "bot.urdf.xacro" in result.stderr
 
 
+def test_a_part_calling_its_includers_macro_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # programmatoroSeduto/arm_urdf's arm.xacro: a named <robot> with its own links, which calls
+    # the cylinder_inertia macro its includer took from macros.xacro before including it; alone
+    # xacro fails on it (U005 'unknown macro name'), which the walk (main.xacro) never said
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "macros.xacro").write_text("""<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="box_inertia" params="m"><inertia ixx="${m}" ixy="0" ixz="0" iyy="${m}" iyz="0" izz="${m}"/></xacro:macro>
+</robot>""")
+    part = tmp_path / "arm.xacro"
+    part.write_text("""<robot name="robot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <!-- <xacro:include filename="macros.xacro"/> -->
+  <link name="arm"><inertial><mass value="1"/><xacro:box_inertia m="0.1"/></inertial></link>
+</robot>""")
+    (tmp_path / "main.xacro").write_text("""<robot name="robot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="macros.xacro"/>
+  <link name="base"/>
+  <xacro:include filename="arm.xacro"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+</robot>""")
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U005" not in result.stdout, result.stdout
+    assert "included by" in result.stderr and "main.xacro" in result.stderr
+    (tmp_path / "main.xacro").unlink()  # nobody includes it: checked as it is, and xacro fails
+    result = run_cli("check", part, "--format", "json")
+    assert '"files": 1' in result.stdout and "U005" in result.stdout
+
+
 def test_a_library_named_including_a_package_found_nowhere_is_checked(run_cli, tmp_path):
     # doosan-robot2's macro.*mobile.xacro: $(find dsr_description), ROS 1's name of the ROS 2
     # package dsr_description2; naming it says so (U006), as it did before libraries whose

@@ -113,9 +113,36 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
                                                 allow_env, max_file_size)
             robot.notes.insert(0, note)
     if robot.root.tag != "robot":
-        raise LoadError("root", f"root element is <{robot.root.tag}>, expected <robot>",
-                        robot.locate(robot.root))
+        note = _in_default_namespace(robot)
+        if note is None:
+            raise LoadError("root", f"root element is <{robot.root.tag}>, expected <robot>",
+                            robot.locate(robot.root))
+        robot.notes.append(note)
     return robot
+
+
+def _in_default_namespace(robot: Robot) -> LoadNote | None:
+    """A ``<robot xmlns="...">`` (the namespace of urdf.xsd, written to validate the file
+    against it: JLSchol/omni_marco_gazebo's omni.urdf) read as urdfdom reads it, with a warning;
+    None when the root is anything else. TinyXML2 knows no namespaces: urdfdom (check_urdf,
+    robot_state_publisher, Gazebo, MoveIt) and xacro read each element by its name as written,
+    so every element of that namespace written without a prefix is given its bare name (one
+    written with a prefix, ``<urdf:link>``, is a name urdfdom does not read, and stays so)."""
+    root = robot.root
+    if not isinstance(root.tag, str) or root.prefix is not None or not root.tag.startswith("{"):
+        return None
+    name = etree.QName(root)
+    if name.localname != "robot":
+        return None
+    for element in list(root.iter(f"{{{name.namespace}}}*")):
+        if element.prefix is None:
+            element.tag = etree.QName(element).localname
+    return LoadNote("root-namespace", robot.locate(root), (
+        f"<robot> is in the XML namespace '{name.namespace}' (xmlns=\"...\"): urdfdom "
+        "(check_urdf, robot_state_publisher, Gazebo, MoveIt) and xacro read elements by their "
+        "names as written and load the robot, but parsers that read namespaces find no <link> "
+        "or <joint> in it (urdf_parser_py, yourdfpy, ElementTree's find('link')); remove the "
+        "xmlns"), severity=Severity.WARNING)
 
 
 def _folder_of(path) -> Path:

@@ -27,8 +27,9 @@ class LoadNote:
     kind: 'xacro-in-urdf' (a file not named .xacro that needs xacro; ``cause`` is the
         :class:`~urdftool.errors.LoadError` when xacro could not expand it), 'xacro-warning'
         (xacro printed a warning), 'outside-file' (xacro read a file outside the repository)
-        or 'late-declaration' (white space before a URDF's XML declaration, which urdfdom
-        reads and standard XML parsers refuse)
+        'late-declaration' (white space before a URDF's XML declaration, which urdfdom
+        reads and standard XML parsers refuse) or 'root-namespace' (a ``<robot>`` in a default
+        XML namespace, which urdfdom reads by its elements' names as written)
     severity: lower than the rule's when what it notices holds only in some configurations
     """
 

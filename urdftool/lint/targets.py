@@ -558,7 +558,29 @@ def _own_robot(path: Path, limit: int, data) -> bool:
         return True
     return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
         _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
-        _self_contained(path, limit, data)
+        _self_contained(path, limit, data) and not _borrows_macros(data)
+
+
+_CALLED = re.compile(rb"<xacro:([\w.-]+)")  # a macro call, or one of xacro's directives
+_DIRECTIVE_NAMES = frozenset(name.encode() for name in _XACRO_DIRECTIVES)
+_DEFINED_MACRO = re.compile(rb"<xacro:macro\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
+_ANY_INCLUDE = re.compile(rb"<(?:xacro:)?include\s")
+
+
+def _borrows_macros(data: bytes) -> bool:
+    """Whether a file calls a macro it neither defines nor includes (it includes nothing): xacro
+    expands it only inside a file that defines the macro before including it, so it is a part
+    of that robot, not a robot of its own (programmatoroSeduto/arm_urdf's arm.xacro calls the
+    ``cylinder_inertia`` that main.xacro takes from macros.xacro before including it; named
+    alone, as pre-commit names it, xacro failed on it, a U005 error the folder walk, which
+    checks main.xacro, never gave). Nobody including it, it is checked as it is."""
+    if b"<xacro:" not in data:
+        return False
+    data = _uncommented(data)
+    if _ANY_INCLUDE.search(data):
+        return False
+    calls = set(_CALLED.findall(data)) - _DIRECTIVE_NAMES
+    return bool(calls - set(_DEFINED_MACRO.findall(data)))
 
 
 def project_root(path: Path) -> Path:

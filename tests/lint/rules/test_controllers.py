@@ -390,3 +390,38 @@ def test_a_class_a_package_of_the_repository_exports_is_loadable(tmp_path):
                    base_class_type="controller_interface::ControllerBase"/></library>"""})
     found, _ = check_folder(tmp_path / "exported", files, select=("U606",))
     assert found == []
+
+
+
+def test_trajectory_constraints_naming_no_joint_of_the_controller_are_a_warning(tmp_path):
+    """JLSchol/omni_marco_gazebo's torso_controller: constraints for torso_1_joint and
+    torso_2_joint (copied from a two-joint torso) beside joints: [torso_lift_joint]. The
+    controller reads constraints for its own joints only and ignores the entry, as a plugin
+    ignores a parameter it does not read (U641, a warning): it was an error. A contradiction
+    it refuses to configure on stays one."""
+    (tmp_path / ".git").mkdir()
+    files = dict(_SPARE)
+    files["config/c.yaml"] = (
+        "jsc: {type: joint_state_controller/JointStateController}\n"
+        "arm:\n  type: position_controllers/JointTrajectoryController\n  joints: [head_joint]\n"
+        "  state_publish_rate: 0\n  constraints:\n    head_jiont: {goal: 0.1}\n")
+    files["launch/head.launch"] = files["launch/head.launch"].replace('args="jsc"', 'args="jsc arm"')
+    marks, findings = check_folder(tmp_path, files, select=("U609",))
+    assert [(m[1], f.severity) for m, f in zip(marks, findings)] == [
+        (5, Severity.ERROR), (7, Severity.WARNING)]
+    assert "so the controller ignores them; did you mean 'head_joint'?" in findings[1].message
+
+
+def test_a_joint_state_broadcaster_declared_and_never_started_is_named(tmp_path):
+    """giacomotambe/traquad_gazebo: joint_state_broadcaster_1 is declared beside the two
+    controllers the launch files spawn, and never spawned; 'add one' sent the reader to a file
+    that has it."""
+    (tmp_path / ".git").mkdir()
+    files = dict(_SPARE)
+    files["config/c.yaml"] = files["config/c.yaml"].replace("joint: nek", "joint: head_joint")
+    files["launch/head.launch"] = files["launch/head.launch"].replace('args="jsc"', 'args="spare"')
+    marks, findings = check_folder(tmp_path, files, select=("U605",))
+    assert marks == [("c.yaml", 2, "U605")]
+    assert findings[0].message.endswith("controller 'jsc' (joint_state_controller/"
+                                        "JointStateController) is declared, but no launch file "
+                                        "of the robot starts it: spawn it")

@@ -375,10 +375,15 @@ def no_joint_state_controller(robot):
         return  # a launch file of the robot publishes the joint states itself
     if found and not any(c.is_state for c in found):
         first = found[0]
+        # one declared that no launch file starts (giacomotambe/traquad_gazebo's
+        # joint_state_broadcaster_1): starting it is the fix, not adding one
+        idle = [c for c in controllers(robot) if c.layout != "moveit" and c.is_state]
+        fix = (f"{label(idle[0])} is declared, but no launch file of the robot starts it: "
+               "spawn it" if idle else "add joint_state_broadcaster/JointStateBroadcaster "
+               "(ROS 2) or joint_state_controller/JointStateController (ROS 1)")
         yield first.file.at(first.line), (
             f"no joint state broadcaster/controller among {len(found)} controllers in "
-            f"{', '.join(sorted({c.file.display for c in found}))}; add joint_state_broadcaster/"
-            "JointStateBroadcaster (ROS 2) or joint_state_controller/JointStateController (ROS 1)")
+            f"{', '.join(sorted({c.file.display for c in found}))}; {fix}")
 
 
 _ROS = {1: "ROS 1 (ros_control)", 2: "ROS 2 (ros2_control)"}
@@ -572,9 +577,11 @@ def trajectory_controller_settings(robot):
     """A joint trajectory controller's settings contradict its joints or themselves.
 
     Checked for joint_trajectory_controller (ROS 2) and ``*_controllers/JointTrajectoryController``
-    (ROS 1): ``constraints`` naming a joint the controller does not command (its tolerance is
-    never applied); a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry
-    does not offer. ROS 1 (whose parameters are declared nowhere): a joint listed twice;
+    (ROS 1): a ROS 2 ``state_interfaces`` entry the joint's ``<ros2_control>`` entry does not
+    offer; ``constraints`` naming a joint the controller does not command, a **warning**: the
+    controller reads constraints for its own joints only and ignores the entry (a leftover of
+    another configuration, or a misspelt joint, which then goes without its tolerance), as a
+    plugin ignores a parameter it does not read (U641). ROS 1 (whose parameters are declared nowhere): a joint listed twice;
     ``constraints.goal_time`` below 0; ``state_publish_rate`` or ``action_monitor_rate`` not
     above 0 (the controller refuses to configure). ROS 2 declares these limits with the
     parameters: U631 checks them against ros2_controllers' own definitions.
@@ -585,14 +592,15 @@ def trajectory_controller_settings(robot):
     for controller in controllers(robot):
         if controller.cls is None or not controller.type.endswith("/JointTrajectoryController"):
             continue
-        for where, message in _trajectory_problems(robot, controller):
+        for where, message, severity in _trajectory_problems(robot, controller):
             message = hedged(robot, controller, message)
             if message is not None:
-                yield where, message
+                yield where, message, None, severity
 
 
 def _trajectory_problems(robot, controller: Controller):
-    """(where, message) for each contradiction in a trajectory controller's settings."""
+    """(where, message, severity: None for the rule's own) for each contradiction in a
+    trajectory controller's settings."""
     states = ros2_state_interfaces(robot)
     params, at = controller.params or {}, controller.file.at
     joints = [ref for ref in controller.joints() if ref.key == "joints"]
@@ -600,7 +608,7 @@ def _trajectory_problems(robot, controller: Controller):
     declared = controller.ros == 2  # ROS 2 declares the limits below: U631
     for index, ref in enumerate(joints):
         if ref.name in names[:index] and not declared:
-            yield at(ref.line), f"{label(controller)} lists joint '{ref.name}' twice; keep one"
+            yield at(ref.line), f"{label(controller)} lists joint '{ref.name}' twice; keep one", None
     constraints = params.get("constraints")
     if isinstance(constraints, dict):
         for key, value in constraints.items():
@@ -608,16 +616,17 @@ def _trajectory_problems(robot, controller: Controller):
             if key == "goal_time":
                 if _number(value) is not None and _number(value) < 0 and not declared:
                     yield where, (f"{label(controller)}: constraints.goal_time is {value}; it "
-                                  "must be 0 or more (0: no limit)")
+                                  "must be 0 or more (0: no limit)"), None
             elif key not in _CONSTRAINT_SETTINGS and isinstance(value, dict) and key not in names \
                     and not _substituted(str(key)):
                 yield where, (f"{label(controller)}: constraints name '{key}', which is not one "
-                              f"of its joints; {available('joints', str(key), names)}")
+                              "of its joints, so the controller ignores them; "
+                              f"{available('joints', str(key), names)}"), Severity.WARNING
     for key in () if declared else _RATES:
         value = _number(params.get(key))
         if value is not None and value <= 0:
             yield at(controller.where(key)), (f"{label(controller)}: {key} is {params[key]}; "
-                                               "it must be above 0 [Hz]")
+                                               "it must be above 0 [Hz]"), None
     claimed = params.get("state_interfaces")
     if controller.ros == 2 and isinstance(claimed, list):
         for interface in dict.fromkeys(str(c) for c in claimed):
@@ -629,7 +638,7 @@ def _trajectory_problems(robot, controller: Controller):
                     f"{', '.join(lacking)}, which <ros2_control> does not offer there; add "
                     f"<state_interface name=\"{interface}\"/> to "
                     f"{'that joint' if len(lacking) == 1 else 'those joints'} or drop it "
-                    "from state_interfaces")
+                    "from state_interfaces"), None
 
 
 def _number(value) -> float | None:

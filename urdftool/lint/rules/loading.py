@@ -51,6 +51,12 @@ U004 = declare("U004", "root-not-robot", Severity.ERROR, """
 
     URDF parsers look for ``<robot>`` at the top and find nothing else.
 
+    A **warning**, not an error, for a ``<robot xmlns="...">`` (a default XML namespace, often
+    urdf.xsd's, written to validate the file against it): urdfdom's TinyXML2 and xacro know no
+    namespaces and read the robot by its elements' names as written, while parsers that read
+    namespaces (urdf_parser_py, yourdfpy) find no link in it; the robot is checked as urdfdom
+    reads it.
+
     Bad: ``<model name="r">...</model>`` (that is SDF)
     Good: ``<robot name="r">...</robot>``
     """)
