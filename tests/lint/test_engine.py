@@ -235,3 +235,24 @@ def test_the_latest_robot_is_kept_only_where_a_program_installs_the_slot(tmp_pat
     gc.collect()
     assert alive == [None] and first() is None
     assert second() is not None and engine.LATEST == [second()]
+
+
+def test_a_part_failing_on_its_includers_name_is_a_note_a_robot_failing_so_an_error(tmp_path):
+    """talos_description's left_arm.transmissions.urdf.xacro: transmissions through macro
+    calls using ${name}, which the robot including it defines; nothing here includes it. A
+    part (its top level writes no link): U005 a note. Writing a link of its own, or built by
+    a launch file, the same failure is an error (tests/cases/U005_part_uses_a_name_...)."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "arm.transmission.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="t" params="n">'
+        '<transmission name="${n}_trans"><joint name="${n}_joint"/></transmission>'
+        '</xacro:macro></robot>')
+    call = '<xacro:include filename="arm.transmission.xacro"/><xacro:t n="${name}"/>'
+    for own, severity in (("", Severity.INFO), ('<link name="base"/>', Severity.ERROR)):
+        robot = tmp_path / "part.urdf.xacro"
+        robot.write_text(f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{own}{call}'
+                         '</robot>')
+        [finding] = load_and_check(str(robot), CheckOptions()).findings
+        assert (finding.code, finding.severity) == ("U005", severity), finding.message

@@ -839,8 +839,10 @@ def test_a_robot_named_is_read_once_and_its_settings_looked_up_once(tmp_path, mo
     robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
                      'type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
     reads, lookups = [], []
-    real_read, real_for_file = targets.read_regular, settings.for_file
-    monkeypatch.setattr(targets, "read_regular",
+    from urdftool.description import xacro_text
+
+    real_read, real_for_file = xacro_text.read_regular, settings.for_file
+    monkeypatch.setattr(xacro_text, "read_regular",
                         lambda path, *a, **k: reads.append(path) or real_read(path, *a, **k))
     monkeypatch.setattr(settings, "for_file",
                         lambda path, *a: lookups.append(path) or real_for_file(path, *a))

@@ -210,6 +210,11 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                 if robot is None and built:
                     return FileResult(path, built)
                 if robot is None:
+                    from urdftool.lint.rules.loading import part_failure
+
+                    built = part_failure(path, error, options.packages)
+                    if built:
+                        return FileResult(path, built)
                     raise
             else:
                 raise

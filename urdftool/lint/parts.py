@@ -32,10 +32,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from urdftool.diagnostics import Finding, Severity
+from urdftool.description.xacro_text import PART_BLOCKS
 
-# What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
-# blocks that extend links and joints written by the robot that includes it
-EXTENSIONS = frozenset({"gazebo", "transmission", "ros2_control", "webots"})
+# What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro)
+EXTENSIONS = PART_BLOCKS
 # Top-level elements an expanded part may hold besides EXTENSIONS
 _DEFINITIONS = frozenset({"material"})
 # The rules whose findings on a part with no link and no joint of its own hold only for the robot

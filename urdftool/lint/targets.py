@@ -18,32 +18,25 @@ from pathlib import Path
 from urdftool.diagnostics import display_path
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
 from urdftool.description.launch import LAUNCH_SUFFIXES
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, kind_of, listable, \
-    read_regular, real_path, unreachable, walk
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, kind_of, listable, unreachable, \
+    walk
 from urdftool.description.packages import SKIP_DIRS, PackageResolver, containment_root
 from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
+from urdftool.description.xacro_text import (CHUNK as _CHUNK, DEFINITIONS as _DEFINITIONS,
+                                             FIND as _FIND, INCLUDE as _INCLUDE,
+                                             XACRO_DIRECTIVES as _XACRO_DIRECTIVES,
+                                             Answered as _Answered, arg_defaults as _arg_defaults,
+                                             head as _head, included_files as _included_files,
+                                             is_xacro as _is_xacro, local_name as _local_name,
+                                             reached, resolved_path, resolved_spec as _resolved_spec,
+                                             stays_inside as _stays_inside, stream as _stream,
+                                             uncommented as _uncommented)
 from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
 
-# [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
-# on files made of "<xacro:include " repeated).
-# Pre-2019 xacro wrote <include> without the prefix (ros-naoqi/nao_robot's nao_robot_v4.urdf.xacro).
-_INCLUDE = re.compile(rb"<(?:xacro:)?include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
-# $(optenv VAR default): xacro takes the default when VAR is unset (Clearpath's
-# $(optenv HUSKY_URDF_EXTRAS empty.urdf)); $(arg NAME): the argument's default in the same file
-_OPTENV = re.compile(r"\$\(optenv\s+\S+\s+([^)$\s]+)\)")
-_ARG_USE = re.compile(r"\$\(arg\s+([^)\s]+)\)")
-_ARG_DEFAULT = re.compile(
-    rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
-    re.S)
+
 # A robot file named in an attribute value (a macro parameter or property that a macro hands to
 # <xacro:include filename="${layout}"/>: osrf/vrx's thruster layouts)
 _NAMED_FILE = re.compile(rb"=\s*[\"']([^\"'<>]+\.(?:xacro|urdf))[\"']")
-_CHUNK = 64 * 1024
-_FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
-_DEFINITIONS = {"property", "arg", "include", "macro", "material"}
-# xacro's own elements: everything else in its namespace is a macro call
-_XACRO_DIRECTIVES = _DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
-                                    "call", "load_yaml"}
 # Elements only MoveIt's semantic description (SRDF) has below its <robot> root
 _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_joint",
               "disable_collisions", "disable_default_collisions", "enable_collisions",
@@ -147,18 +140,6 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
     return top, skipped
 
 
-def resolved_path(path: Path) -> Path:
-    try:
-        return Path(real_path(path))
-    except (OSError, ValueError):  # NUL in a name
-        return path.absolute()
-
-
-def _stays_inside(path: Path) -> bool:
-    """Whether ``path``, links followed, stays in the repository holding it (as named)."""
-    return inside(path, containment_root(Path(os.path.abspath(path)).parent))
-
-
 def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
     """Read ``path`` (when :func:`_head` may) and keep only what classification needs; the
     includes only given ``resolver_for``. ``data``: what :func:`_head` gave, when read."""
@@ -207,35 +188,15 @@ def _includes_yield_links(summary: _Summary, resolver_for, limit: int) -> bool |
     produce links (see :func:`_yields_links`): a robot built by its includes is a robot. None
     when they do not as far as they could be followed, but some could not (a missing file, an
     include whose path needs an argument or a package not found)."""
-    seen, pending, unknown = set(), list(summary.includes), summary.unfollowed
-    while pending:
-        target = pending.pop()
-        if target in seen:
-            continue
-        seen.add(target)
-        data = _head(target, limit)
-        if data is None or b"\0" in data:  # missing or refused: checking the includer says why
+    unknown = summary.unfollowed
+    for data, complete in reached(summary.includes, resolver_for, limit, also=_named_files):
+        if data is None:  # missing or refused: checking the includer says why
             unknown = True
-            continue
-        if _yields_links(data):
+        elif _yields_links(data):
             return True
-        if resolver_for:
-            data = _uncommented(data)
-            included = list(_included_files(target, data, resolver_for(target)))
-            unknown = unknown or len(_INCLUDE.findall(data)) > len(included)
-            pending.extend(included + _named_files(target, data, resolver_for(target), included))
+        else:
+            unknown = unknown or not complete
     return None if unknown else False
-
-
-def _head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
-    """A file's bytes; None, without opening it, for a link leading outside the repository, a
-    file over ``limit`` [bytes] or anything else :func:`~urdftool.description.files.read_regular` refuses."""
-    if not _stays_inside(path):
-        return None
-    try:
-        return read_regular(path, limit, as_="target")
-    except (OSError, ValueError):
-        return None
 
 
 def _defines_robot(data: bytes) -> bool:
@@ -243,25 +204,6 @@ def _defines_robot(data: bytes) -> bool:
     definitions (properties, args, includes, macros) and extension blocks (a fragment).
     Unparsable files count, so that the parse error is reported."""
     return _top_level_answer(data) not in ("definitions", "fragment", "empty")
-
-
-def _stream(data: bytes, target) -> str:
-    """Feed ``data`` to an lxml parser ``target`` as a stream of start and end tags, no tree
-    kept, stopping at the first answer (raised as _Answered): memory stays small whatever the
-    file holds. An unparsable file answers 'robot', so that the parse error is reported."""
-    from lxml import etree
-
-    parser = etree.XMLParser(target=target, resolve_entities=False, no_network=True,
-                             load_dtd=False, recover=True)
-    try:
-        for offset in range(0, len(data) or 1, _CHUNK):
-            parser.feed(data[offset:offset + _CHUNK])
-        parser.close()
-    except _Answered as answered:
-        return answered.args[0]
-    except etree.LxmlError:
-        return "robot"
-    return target.default()
 
 
 def _top_level_answer(data: bytes) -> str:
@@ -334,20 +276,6 @@ def _yields_links(data: bytes) -> bool:
     """Whether a file, included, produces links: a <link> or <joint>, or a macro call, outside
     its macro definitions (inside <xacro:if> too)."""
     return _stream(data, _LinksOutsideMacros()) == "links"
-
-
-def _local_name(tag) -> str:
-    """A tag's name without namespace or prefix (lxml in recover mode keeps an undeclared
-    ``xacro:`` prefix in the name)."""
-    return tag.rpartition("}")[2].rpartition(":")[2] if isinstance(tag, str) else ""
-
-
-def _is_xacro(tag) -> bool:
-    return isinstance(tag, str) and ("ros.org/wiki/xacro}" in tag or tag.startswith("xacro:"))
-
-
-class _Answered(Exception):
-    """The question is answered (its answer is the argument): stop reading."""
 
 
 class _TopLevelTags:
@@ -447,32 +375,6 @@ class _LinksOutsideMacros:
         return "none"
 
 
-def _uncommented(data: bytes) -> bytes:
-    """``data`` without its XML comments: an include commented out is no include
-    (ipa320/cob_common's ur10_arm.urdf.xacro). Linear: a comment left open ends the text."""
-    parts, start = [], 0
-    while (opening := data.find(b"<!--", start)) >= 0:
-        parts.append(data[start:opening])
-        closing = data.find(b"-->", opening + 4)
-        if closing < 0:
-            return b"".join(parts)
-        start = closing + 3
-    return b"".join(parts) + data[start:] if parts else data
-
-
-def _included_files(path: Path, data: bytes, resolver: PackageResolver):
-    """The files ``data`` (of ``path``) includes, resolved. An include through ``$(arg NAME)``
-    takes the argument's default written in the file, and ``$(optenv VAR default)`` its default,
-    as xacro does when nobody gives the argument or sets the variable (Clearpath's
-    ``<xacro:arg name="urdf_extras" default="$(optenv HUSKY_URDF_EXTRAS empty.urdf)"/>``)."""
-    defaults = _arg_defaults(data)
-    for match in _INCLUDE.finditer(data):
-        found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), defaults,
-                               resolver)
-        if found is not None:
-            yield found
-
-
 def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -> list[Path]:
     """Robot files (existing, other than ``includes``) named by attribute values of ``data``:
     a macro parameter or property holding a path that a macro includes
@@ -487,32 +389,6 @@ def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -
                 kind_of(found) == "file":
             named.append(found)
     return named
-
-
-def _arg_defaults(data: bytes) -> dict[str, str]:
-    """The defaults of the ``<xacro:arg>`` written in ``data`` (none looked for when nothing
-    in it uses ``$(arg``)."""
-    if b"$(arg" not in data:
-        return {}
-    return {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
-            for name, value in _ARG_DEFAULT.findall(data)}
-
-
-def _resolved_spec(path: Path, spec: str, defaults: dict[str, str],
-                   resolver: PackageResolver) -> Path | None:
-    """The file ``spec``, written in ``path``, names, or None when it needs what is only
-    known when expanding."""
-    spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
-    spec = _OPTENV.sub(lambda m: m.group(1), spec)
-    find = _FIND.search(spec)
-    if find:
-        try:
-            spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
-        except Exception:
-            return None
-    if "$" in spec or "\0" in spec:
-        return None
-    return resolved_path(resolver.locate(path.parent / spec).path)  # as xacro finds it
 
 
 def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:

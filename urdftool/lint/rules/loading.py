@@ -103,6 +103,12 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     looked for where the package's build installs it from (docs/packages.md); when that
     package's install rules cannot be read, it may exist after the build: a warning saying so.
 
+    A **note** when the file is a part of a robot defined elsewhere (its top level writes no
+    link: only blocks such as ``<transmission>`` or ``<gazebo>``, through macro calls too),
+    nothing here includes it nor builds it, and xacro fails on a name the robot including it
+    would define (``${name}``, a macro): as the other findings of such a part, right only
+    inside that robot (talos_description's left_arm.transmissions.urdf.xacro).
+
     Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
     """)
@@ -252,6 +258,33 @@ def failing_defaults(path: str, error, build):
                    "launch, so that build is not checked (--arg NAME=VALUE checks one)")
         return None, {}, [U005.finding(Conditional(message), error.location)]
     return None, {}, []
+
+
+# What xacro says of a name the file uses and does not define: one a robot including it defines
+_UNDEFINED = ("is not defined", "unknown macro name", "Undefined property to forward")
+
+
+def part_failure(path: str, error, packages) -> list | None:
+    """U005 as a note, or None to report ``error`` as it is: the file is a part of a robot
+    defined elsewhere (its top level writes no link: only definitions, extension blocks and
+    calls of macros writing <transmission>, <gazebo> or <ros2_control> blocks:
+    :func:`~urdftool.description.xacro_text.writes_no_links`), no launch file here builds it,
+    and xacro fails on a name the robot including it would define (talos'
+    left_arm.transmissions.urdf.xacro: ``${name}``). As the findings of a part that expands
+    (:mod:`urdftool.lint.parts`), it is right only inside the robot that includes it; a syntax
+    error, a missing file, stay errors."""
+    from urdftool.description.runtime import builds
+    from urdftool.description.xacro_text import writes_no_links
+
+    if error.kind != "xacro" or not any(said in error.message for said in _UNDEFINED) or \
+            builds(path) or not writes_no_links(path, packages):
+        return None
+    return [U005.finding(Conditional(
+        f"{error.message}; a part of a robot defined elsewhere (its top level writes no link, "
+        "only blocks such as <transmission>, <gazebo> or <ros2_control>, through macro calls "
+        "too), right only inside the robot that includes it, which defines that name; no file "
+        "here includes it, and no launch file here builds it", Severity.INFO),
+        error.location)]
 
 
 def _declared(path: str, error) -> set[str]:

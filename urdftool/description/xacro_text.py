@@ -1,0 +1,281 @@
+"""A robot file's text read without expanding it: the files it includes, the tags of its top
+level, the macros it defines and calls. Classifying the files of a folder (which are robots,
+which are parts: :mod:`urdftool.lint.targets`) and judging a file that does not expand
+(:mod:`urdftool.lint.rules.loading`) ask the same questions; the answers are decided here, once.
+Files are read through :func:`head`: regular files under the size limit, inside their
+repository, links followed."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular, real_path
+from urdftool.description.packages import PackageResolver, containment_root
+
+# What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
+# blocks that extend links and joints written by the robot that includes it
+PART_BLOCKS = frozenset({"gazebo", "transmission", "ros2_control", "webots"})
+# [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
+# on files made of "<xacro:include " repeated).
+# Pre-2019 xacro wrote <include> without the prefix (ros-naoqi/nao_robot's nao_robot_v4.urdf.xacro).
+INCLUDE = re.compile(rb"<(?:xacro:)?include\s[^<>]*?filename\s*=\s*[\"']([^\"'<>]+)[\"']", re.S)
+# $(optenv VAR default): xacro takes the default when VAR is unset (Clearpath's
+# $(optenv HUSKY_URDF_EXTRAS empty.urdf)); $(arg NAME): the argument's default in the same file
+_OPTENV = re.compile(r"\$\(optenv\s+\S+\s+([^)$\s]+)\)")
+_ARG_USE = re.compile(r"\$\(arg\s+([^)\s]+)\)")
+_ARG_DEFAULT = re.compile(
+    rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
+    re.S)
+CHUNK = 64 * 1024
+FIND = re.compile(r"\$\(find\s+([^)\s]+)\)")
+DEFINITIONS = {"property", "arg", "include", "macro", "material"}
+# xacro's own elements: everything else in its namespace is a macro call
+XACRO_DIRECTIVES = DEFINITIONS | {"if", "unless", "insert_block", "element", "attribute",
+                                   "call", "load_yaml"}
+
+
+def resolved_path(path: Path) -> Path:
+    try:
+        return Path(real_path(path))
+    except (OSError, ValueError):  # NUL in a name
+        return path.absolute()
+
+
+def stays_inside(path: Path) -> bool:
+    """Whether ``path``, links followed, stays in the repository holding it (as named)."""
+    return inside(path, containment_root(Path(os.path.abspath(path)).parent))
+
+
+def head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
+    """A file's bytes; None, without opening it, for a link leading outside the repository, a
+    file over ``limit`` [bytes] or anything else :func:`~urdftool.description.files.read_regular` refuses."""
+    if not stays_inside(path):
+        return None
+    try:
+        return read_regular(path, limit, as_="target")
+    except (OSError, ValueError):
+        return None
+
+
+def stream(data: bytes, target) -> str:
+    """Feed ``data`` to an lxml parser ``target`` as a stream of start and end tags, no tree
+    kept, stopping at the first answer (raised as Answered): memory stays small whatever the
+    file holds. An unparsable file answers 'robot', so that the parse error is reported."""
+    from lxml import etree
+
+    parser = etree.XMLParser(target=target, resolve_entities=False, no_network=True,
+                             load_dtd=False, recover=True)
+    try:
+        for offset in range(0, len(data) or 1, CHUNK):
+            parser.feed(data[offset:offset + CHUNK])
+        parser.close()
+    except Answered as answered:
+        return answered.args[0]
+    except etree.LxmlError:
+        return "robot"
+    return target.default()
+
+
+def local_name(tag) -> str:
+    """A tag's name without namespace or prefix (lxml in recover mode keeps an undeclared
+    ``xacro:`` prefix in the name)."""
+    return tag.rpartition("}")[2].rpartition(":")[2] if isinstance(tag, str) else ""
+
+
+def is_xacro(tag) -> bool:
+    return isinstance(tag, str) and ("ros.org/wiki/xacro}" in tag or tag.startswith("xacro:"))
+
+
+class Answered(Exception):
+    """The question is answered (its answer is the argument): stop reading."""
+
+
+def uncommented(data: bytes) -> bytes:
+    """``data`` without its XML comments: an include commented out is no include
+    (ipa320/cob_common's ur10_arm.urdf.xacro). Linear: a comment left open ends the text."""
+    parts, start = [], 0
+    while (opening := data.find(b"<!--", start)) >= 0:
+        parts.append(data[start:opening])
+        closing = data.find(b"-->", opening + 4)
+        if closing < 0:
+            return b"".join(parts)
+        start = closing + 3
+    return b"".join(parts) + data[start:] if parts else data
+
+
+def included_files(path: Path, data: bytes, resolver: PackageResolver):
+    """The files ``data`` (of ``path``) includes, resolved. An include through ``$(arg NAME)``
+    takes the argument's default written in the file, and ``$(optenv VAR default)`` its default,
+    as xacro does when nobody gives the argument or sets the variable (Clearpath's
+    ``<xacro:arg name="urdf_extras" default="$(optenv HUSKY_URDF_EXTRAS empty.urdf)"/>``)."""
+    defaults = arg_defaults(data)
+    for match in INCLUDE.finditer(data):
+        found = resolved_spec(path, match.group(1).decode("utf-8", "replace"), defaults,
+                               resolver)
+        if found is not None:
+            yield found
+
+
+def arg_defaults(data: bytes) -> dict[str, str]:
+    """The defaults of the ``<xacro:arg>`` written in ``data`` (none looked for when nothing
+    in it uses ``$(arg``)."""
+    if b"$(arg" not in data:
+        return {}
+    return {name.decode("utf-8", "replace"): value.decode("utf-8", "replace")
+            for name, value in _ARG_DEFAULT.findall(data)}
+
+
+def resolved_spec(path: Path, spec: str, defaults: dict[str, str],
+                   resolver: PackageResolver) -> Path | None:
+    """The file ``spec``, written in ``path``, names, or None when it needs what is only
+    known when expanding."""
+    spec = _ARG_USE.sub(lambda m: defaults.get(m.group(1), m.group(0)), spec)
+    spec = _OPTENV.sub(lambda m: m.group(1), spec)
+    find = FIND.search(spec)
+    if find:
+        try:
+            spec = spec.replace(find.group(0), str(resolver.find(find.group(1))))
+        except Exception:
+            return None
+    if "$" in spec or "\0" in spec:
+        return None
+    return resolved_path(resolver.locate(path.parent / spec).path)  # as xacro finds it
+
+
+class MacroUse:
+    """lxml parser target for a xacro file: answers 'content' at anything outside its macro
+    definitions and extension blocks that is neither a definition nor a macro call (a
+    ``<link>``, any element of its own; ``xacro:call``, ``insert_block``, ``element``, whose
+    result is not known here), looking inside ``xacro:if``/``unless``; at the end 'calls'.
+    Meanwhile it notes the macros called there (``calls``) and, for each macro it defines,
+    whether its body writes a ``<link>`` or ``<joint>`` (or something not known here) and the
+    macros it calls (``macros``: name -> [makes links, calls])."""
+
+    _UNKNOWN = {"call", "insert_block", "element"}
+
+    def __init__(self):
+        self.depth, self.skipped = 0, None  # depth of a block whose inside says nothing
+        self.macro, self.calls, self.macros = None, set(), {}
+
+    def start(self, tag, attributes):
+        self.depth += 1
+        if self.depth == 1 or self.skipped is not None:
+            return
+        name, xacro = local_name(tag), is_xacro(tag)
+        if name == "macro":
+            if self.macro is None:  # (a definition inside one is read as part of its body)
+                self.macro = (self.depth, self.macros.setdefault(
+                    attributes.get("name", ""), [False, set()]))
+            return
+        if self.macro is not None:  # a body: what the macro writes
+            entry = self.macro[1]
+            if not xacro and name in PART_BLOCKS:  # (a transmission's <joint> names one)
+                self.skipped = self.depth
+            elif not xacro and name in ("link", "joint") or xacro and name in self._UNKNOWN:
+                entry[0] = True
+            elif xacro and name not in XACRO_DIRECTIVES:
+                entry[1].add(name)
+            return
+        if xacro and name in ("if", "unless"):
+            return  # what it holds is read as the top level
+        if xacro and name not in XACRO_DIRECTIVES:  # a call: its children are its blocks
+            self.calls.add(name)
+        elif not (name in DEFINITIONS or not xacro and name in PART_BLOCKS) or \
+                xacro and name in self._UNKNOWN:
+            raise Answered("content")
+        self.skipped = self.depth
+
+    def end(self, tag):
+        if self.skipped == self.depth:
+            self.skipped = None
+        elif self.macro is not None and self.macro[0] == self.depth:
+            self.macro = None
+        self.depth -= 1
+
+    def close(self):
+        return None
+
+    def default(self) -> str:
+        return "calls"
+
+
+def reached(includes: list, resolver_for, limit: int, also=None):
+    """(bytes, whether its own includes could all be followed) of each file reached from
+    ``includes`` through the includes of each (once; bytes None for a file missing, refused
+    or binary, whose includes are not known). ``also(path, text, resolver, included)``: more
+    files a file names, followed as its includes; nothing is followed without
+    ``resolver_for``."""
+    seen, pending = set(), list(includes)
+    while pending:
+        target = pending.pop()
+        if target in seen:
+            continue
+        seen.add(target)
+        data = head(target, limit)
+        if data is None or b"\0" in data:
+            yield None, False
+            continue
+        complete = True
+        if resolver_for:
+            written = uncommented(data)
+            resolver = resolver_for(target)
+            followed = list(included_files(target, written, resolver))
+            complete = len(INCLUDE.findall(written)) <= len(followed)
+            pending.extend(followed + (also(target, written, resolver, followed) if also else []))
+        yield data, complete
+
+
+def writes_no_links(path, packages, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
+    """Whether the xacro file ``path`` is a part whose top level writes no link: only
+    definitions, extension blocks and calls of macros, defined in it and the files it includes,
+    that write none (:func:`calls_make_links`). ``packages``: the check's ``--package``
+    paths."""
+    path = Path(path)
+    data = head(path, limit) if path.name.endswith(".xacro") else None
+    if data is None or b"\0" in data:
+        return False
+
+    def resolver_for(file: Path) -> PackageResolver:
+        return PackageResolver(packages, start=file.parent)
+
+    written = uncommented(data)
+    includes = list(included_files(path, written, resolver_for(path)))
+    unfollowed = len(INCLUDE.findall(written)) > len(includes)
+    return not calls_make_links(written, includes, unfollowed, resolver_for, limit)
+
+
+def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for,
+                     limit: int) -> bool:
+    """Whether a xacro file makes links through what its top level holds: True unless that is
+    only definitions, extension blocks and calls of macros that the file and the files it
+    includes (followed) define, none of which writes a ``<link>`` or ``<joint>`` or calls one
+    that does (talos' left_arm.transmissions.urdf.xacro: transmissions through macro calls,
+    a part for a robot that defines its ``name``). Anything not known (an include not
+    followed, a macro defined nowhere here, an included file with content of its own) counts
+    as links: the file is then checked."""
+    use = MacroUse()
+    if unfollowed or stream(data, use) != "calls":
+        return True
+    macros = use.macros
+    for included, complete in reached(includes, resolver_for, limit):
+        table = MacroUse()
+        if included is None or not complete or stream(included, table) != "calls" or \
+                table.calls:
+            return True  # not known, or an include writing or calling at its top level
+        for name, (links, calls) in table.macros.items():
+            entry = macros.setdefault(name, [False, set()])
+            entry[0] = entry[0] or links
+            entry[1] |= calls
+    called, pending = set(), list(use.calls)
+    while pending:
+        name = pending.pop()
+        if name in called:
+            continue
+        called.add(name)
+        entry = macros.get(name)
+        if entry is None or entry[0]:
+            return True
+        pending.extend(entry[1])
+    return False
