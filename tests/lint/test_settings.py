@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import datetime
 import json
 import os
 import random
@@ -14,7 +15,8 @@ import pytest
 
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint import engine
-from urdftool.lint.settings import may_hold, settings_for
+from urdftool.errors import SettingsError
+from urdftool.lint.settings import KEYS, may_hold, settings_file, settings_for
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>
@@ -732,3 +734,27 @@ def test_a_selection_of_100000_codes_is_matched_as_its_few_distinct_ones(tmp_pat
 
     assert [r.code for r in CATALOGUE if selection.allows(r.code)]
     assert len(asked) < 20000, len(asked)  # (millions before)
+
+
+@pytest.mark.parametrize("key", sorted(KEYS))
+def test_a_settings_error_quotes_a_value_in_toml_words_not_pythons(tmp_path, key):
+    """Every key given a TOML datetime: the error says it as written (it said
+    ``datetime.datetime(1979, 5, 27, 7, 32, tzinfo=datetime.timezone(...))``)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "urdftool.toml").write_text(f"{key} = 1979-05-27T07:32:00-08:00\n")
+    with pytest.raises(SettingsError) as error:
+        settings_file(tmp_path / "urdftool.toml")
+    assert "datetime" not in str(error.value) and "(1979" not in str(error.value)
+
+
+@pytest.mark.parametrize("value, written", [
+    (True, "true"), (float("nan"), "nan"), (float("-inf"), "-inf"), (1e300, "1e+300"), (7, "7"),
+    ("a\x1b\"b", '"a\\u001b\\"b"'), (datetime.date(1979, 5, 27), "1979-05-27"),
+    (datetime.time(7, 32), "07:32:00"), ([1, [True]], "[1, [true]]"), ({}, "{}"),
+    ({"a": 1, "b c": "d"}, '{ a = 1, "b c" = "d" }'), ("x" * 100_000, '"' + "x" * 76 + "..."),
+    pytest.param(10 ** 5000, "a whole number of 5000 digits or so", id="5000-digits"),
+])
+def test_shown_writes_a_settings_value_as_toml(value, written):
+    from urdftool.lint.settings import shown
+
+    assert shown(value) == written

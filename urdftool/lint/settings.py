@@ -34,8 +34,11 @@ every key goes through :func:`_validated`, so that a key added later cannot skip
 
 from __future__ import annotations
 
+import datetime
 import fnmatch
 import functools
+import json
+import math
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
@@ -370,6 +373,59 @@ class _Key:
     attribute: str | None
 
 
+_SHOWN = 80  # [characters] of a settings value a message quotes, at most
+
+
+def shown(value) -> str:
+    """A settings value as TOML writes it, the one way a settings message quotes one: in the
+    words the user wrote (``1979-05-27T07:32:00-08:00``, ``true``, ``nan``, ``"a"`` with TOML's
+    escapes, ``[1, 2]``, ``{ a = 1 }``), not Python's (``datetime.datetime(1979, ...)``,
+    ``True``), and cut to 80 characters (a 100,000-character string is not repeated whole). A
+    value TOML cannot hold (the Python API's) is its ``repr``."""
+    pieces, length = [], 0
+    for piece in _toml(value):
+        pieces.append(piece)
+        length += len(piece)
+        if length > _SHOWN:
+            return "".join(pieces)[:_SHOWN - 3] + "..."
+    return "".join(pieces)
+
+
+def _toml(value):
+    """The pieces of ``value`` written as TOML (:func:`shown`), lazily: the text past what a
+    message quotes is never made."""
+    if isinstance(value, bool):
+        yield "true" if value else "false"
+    elif isinstance(value, int) and value.bit_length() > 14_000:  # past what str() writes
+        yield f"a whole number of {int(value.bit_length() * math.log10(2))} digits or so"
+    elif isinstance(value, (int, float)) and math.isfinite(value):
+        yield repr(value)
+    elif isinstance(value, float):
+        yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    elif isinstance(value, str):
+        yield json.dumps(value, ensure_ascii=False)  # a TOML basic string: JSON's escapes are TOML's
+    elif isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
+        yield value.isoformat()
+    elif isinstance(value, list):
+        yield "["
+        for index, item in enumerate(value):
+            yield ", " if index else ""
+            yield from _toml(item)
+        yield "]"
+    elif isinstance(value, dict):
+        yield "{ " if value else "{"
+        for index, (key, item) in enumerate(value.items()):
+            bare = isinstance(key, str) and _BARE_KEY.fullmatch(key)
+            yield (", " if index else "") + (key if bare else json.dumps(str(key), ensure_ascii=False)) + " = "
+            yield from _toml(item)
+        yield " }" if value else "}"
+    else:
+        yield repr(value)
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
 def _validated(path: Path, key: str, value):
     """The one gate of a settings key: known, no path outside the repository anywhere in its
     value, then its own check (a limit no higher than the built-in one). SettingsError
@@ -386,7 +442,7 @@ def _parse(path: Path, table: dict) -> Settings:
         # read as its characters, each an unknown setting
         where = "the file" if path.name == "urdftool.toml" else "[tool.urdftool]"
         raise SettingsError(f"{path}: {where} must be a table of settings, not "
-                            f"{type(table).__name__} {str(table)[:40]!r}")
+                            f"{type(table).__name__} {shown(table)}")
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
@@ -407,7 +463,7 @@ def _targets(path: Path, value, key: str = "targets") -> list[str]:
         value = [value]
     if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
         raise SettingsError(f"{path}: 'targets' must be a list of simulator names, such as "
-                            f"[\"mujoco\", \"gz\"], not {value!r}")
+                            f"[\"mujoco\", \"gz\"], not {shown(value)}")
     try:
         checked_targets(value)
     except UsageError as error:
@@ -429,7 +485,7 @@ def _inside_path(settings: Path, value, what: str) -> Path:
     """A path setting, relative to the settings file; SettingsError when it is not a string or
     leads outside the repository."""
     if not isinstance(value, str) or "\0" in value:
-        raise SettingsError(f"{settings}: {what} must be a path (a string), got {value!r}")
+        raise SettingsError(f"{settings}: {what} must be a path (a string), got {shown(value)}")
     path = settings.parent / value
     _refuse_outside(settings, path, what)
     return path
@@ -449,7 +505,7 @@ def _strict(settings: Path, value, key: str) -> bool:
     """A true-or-false key (``strict``, ``notes``)."""
     if not isinstance(value, bool):
         raise SettingsError(f"{settings}: '{key}' must be true or false (a TOML boolean, "
-                            f"unquoted), not {value!r}")
+                            f"unquoted), not {shown(value)}")
     return value
 
 
@@ -472,7 +528,7 @@ def checked_file_size(value, what: str, most: int = MAX_FILE_SIZE, why: str = ""
     ``why``) unless it is a whole number from 1 to ``most``."""
     if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= most:
         raise SettingsError(f"{what} must be a whole number of bytes from 1 to {most}, "
-                            f"not {value!r}{why}")
+                            f"not {shown(value)}{why}")
     return value
 
 
@@ -493,7 +549,7 @@ def _memory(settings: Path, value, key: str) -> str:
         size = -1
     if isinstance(value, bool) or size is None or not 0 < size <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a size such as \"1G\" or \"512M\" up "
-                            f"to the built-in {format_memory(LIMITS[key])}, not {value!r} (a "
+                            f"to the built-in {format_memory(LIMITS[key])}, not {shown(value)} (a "
                             "repository may lower the budget; raise it with --max-memory)")
     return str(value)
 
@@ -504,7 +560,7 @@ def _timeout(settings: Path, value, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or \
             not 0 < value <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a number of seconds above 0 and up to "
-                            f"the built-in {LIMITS[key]:g}, not {value!r} (a repository may "
+                            f"the built-in {LIMITS[key]:g}, not {shown(value)} (a repository may "
                             "lower the budget; raise it with --timeout)")
     return float(value)
 
@@ -514,7 +570,7 @@ def _triangles(settings: Path, value, key: str) -> int:
     never raise it (that takes ``--max-triangles``)."""
     if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a whole number of triangles from 1 to "
-                            f"the built-in {LIMITS[key]}, not {value!r} (a repository may lower "
+                            f"the built-in {LIMITS[key]}, not {shown(value)} (a repository may lower "
                             "the limit; raise it with --max-triangles)")
     return value
 
@@ -555,7 +611,7 @@ def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
     boolean, written as xacro reads it), each a :class:`SettingValue`."""
     if not isinstance(args, dict):
         raise SettingsError(f"{path}: 'per-file-args.{pattern}' must be a table of xacro "
-                            f"arguments (name = value), not {args!r}")
+                            f"arguments (name = value), not {shown(args)}")
     values = {}
     for name, value in args.items():
         if isinstance(value, bool):
@@ -564,14 +620,14 @@ def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
             value = repr(value)
         if not isinstance(value, str):
             raise SettingsError(f"{path}: 'per-file-args.{pattern}.{name}' must be a string, "
-                                f"number or boolean, not {value!r}")
+                                f"number or boolean, not {shown(value)}")
         values[name] = SettingValue(value)
     return values
 
 
 def _table(path: Path, value, key: str) -> dict:
     if not isinstance(value, dict):
-        raise SettingsError(f"{path}: '{key}' must be a table, not {value!r}")
+        raise SettingsError(f"{path}: '{key}' must be a table, not {shown(value)}")
     return value
 
 
@@ -680,10 +736,10 @@ class CheckRequest:
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
         if self.timeout is not None and (isinstance(self.timeout, bool) or self.timeout < 0):
-            raise UsageError(f"timeout must not be negative, got {self.timeout!r}")
+            raise UsageError(f"timeout must not be negative, got {shown(self.timeout)}")
         if self.max_triangles is not None and (isinstance(self.max_triangles, bool) or
                                                self.max_triangles < 0):
-            raise UsageError(f"max_triangles must not be negative, got {self.max_triangles!r}")
+            raise UsageError(f"max_triangles must not be negative, got {shown(self.max_triangles)}")
 
 
 @dataclass(frozen=True)
@@ -754,7 +810,7 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         limit = DEFAULT_MEMORY if memory is None else parse_memory(str(memory))  # or bytes
     except UsageError:
         raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
-                            f"(no limit), not {memory!r}") from None
+                            f"(no limit), not {shown(memory)}") from None
     timeout = _given(request.timeout, settings.timeout, DEFAULT_TIMEOUT)
     return FileSettings(options, request.strict or settings.strict, limit, timeout or None)
 
