@@ -524,7 +524,7 @@ def unread_describing(path: str) -> list[tuple[str, str, int | None]]:
     """(the launch file as shown, why it could not be read, the line) for each launch file of the
     repository holding the robot file ``path`` that names it and could not be read
     (:func:`unread_naming`, launch tests left out): what it loads, starts and builds the
-    robot with is not known, and is not checked (U620 says so)."""
+    robot with is not known, and is not checked."""
     root = _file_root(path)[1]
     return [(display_path(launch), *_problem(launch, root))
             for launch, _ in _unread_naming(path, (), tests=False)]
