@@ -758,3 +758,18 @@ def test_shown_writes_a_settings_value_as_toml(value, written):
     from urdftool.lint.settings import shown
 
     assert shown(value) == written
+
+
+def test_another_tools_pyproject_larger_than_settings_may_be_is_not_ours_to_refuse(tmp_path):
+    """A 1.3 MB pyproject.toml with no ``[tool.urdftool]`` stopped every check ("over the
+    limit of 1048576"): its size is judged only once it may hold our settings."""
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / ".git").mkdir()
+    others = "".join(f'k{i} = "{"v" * 100}"\n' for i in range(12_000))
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\n[tool.other]\n' + others)
+    with one_run():
+        assert settings_for(tmp_path).path is None
+    (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nstrict = true\n[tool.other]\n' + others)
+    with one_run(), pytest.raises(SettingsError, match="over the limit of 1048576"):
+        settings_for(tmp_path)

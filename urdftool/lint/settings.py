@@ -55,6 +55,9 @@ from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
+# [bytes] a pyproject.toml read to tell whether it holds settings at all (another tool's may
+# be larger than settings are; may_hold's scan is linear)
+MAX_OTHERS_SIZE = 16 * 1024 * 1024
 MAX_DEPTH = 32  # nesting of arrays, tables and dotted keys in a settings file
 
 
@@ -174,14 +177,19 @@ def _read(path: Path, holding: str | None = None) -> dict:
     empty, unparsed. Another project's pyproject.toml is then neither parsed nor held to our
     rules: a defect in it is not the user's settings."""
     _refuse_outside(path, path, "the settings file itself")
-    try:
-        text = read_regular(path, MAX_SETTINGS_SIZE, as_="settings").decode("utf-8")
+    try:  # another tool's file may be larger than settings are: its size is not ours to judge
+        data = read_regular(path, MAX_SETTINGS_SIZE if holding is None else MAX_OTHERS_SIZE,
+                            as_="settings")
+        text = data.decode("utf-8")
     except OSError as error:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
     except UnicodeDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
     if holding is not None and not may_hold(text, "tool", holding):
         return {}
+    if len(data) > MAX_SETTINGS_SIZE:  # (a pyproject.toml that may hold the settings)
+        raise SettingsError(f"cannot read settings in {path}: file is {len(data)} bytes, over "
+                            f"the limit of {MAX_SETTINGS_SIZE}")
     import tomllib  # only where a settings file is
 
     deep = too_deep(text)
