@@ -760,9 +760,10 @@ def test_shown_writes_a_settings_value_as_toml(value, written):
     assert shown(value) == written
 
 
-def test_another_tools_pyproject_larger_than_settings_may_be_is_not_ours_to_refuse(tmp_path):
+def test_another_tools_pyproject_larger_or_in_another_encoding_is_not_ours_to_refuse(tmp_path):
     """A 1.3 MB pyproject.toml with no ``[tool.urdftool]`` stopped every check ("over the
-    limit of 1048576"): its size is judged only once it may hold our settings."""
+    limit of 1048576"), as one in Latin-1 did ("can't decode byte 0xe9"): its size and
+    encoding are judged only once it may hold our settings."""
     from urdftool.description.run_memo import one_run
 
     (tmp_path / ".git").mkdir()
@@ -772,4 +773,10 @@ def test_another_tools_pyproject_larger_than_settings_may_be_is_not_ours_to_refu
         assert settings_for(tmp_path).path is None
     (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nstrict = true\n[tool.other]\n' + others)
     with one_run(), pytest.raises(SettingsError, match="over the limit of 1048576"):
+        settings_for(tmp_path)
+    (tmp_path / "pyproject.toml").write_bytes(b'[project]\ndescription = "caf\xe9"\n')  # Latin-1
+    with one_run():
+        assert settings_for(tmp_path).path is None
+    (tmp_path / "pyproject.toml").write_bytes(b'[tool.urdftool]\nstrict = true # caf\xe9\n')
+    with one_run(), pytest.raises(SettingsError, match="can't decode byte 0xe9"):
         settings_for(tmp_path)

@@ -177,19 +177,22 @@ def _read(path: Path, holding: str | None = None) -> dict:
     empty, unparsed. Another project's pyproject.toml is then neither parsed nor held to our
     rules: a defect in it is not the user's settings."""
     _refuse_outside(path, path, "the settings file itself")
-    try:  # another tool's file may be larger than settings are: its size is not ours to judge
+    try:  # another tool's file may be larger than settings are, or not UTF-8: its size and
+        # encoding are not ours to judge until it may hold our settings
         data = read_regular(path, MAX_SETTINGS_SIZE if holding is None else MAX_OTHERS_SIZE,
                             as_="settings")
-        text = data.decode("utf-8")
     except OSError as error:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
-    except UnicodeDecodeError as error:
-        raise SettingsError(f"cannot read settings in {path}: {error}") from None
-    if holding is not None and not may_hold(text, "tool", holding):
+    if holding is not None and not may_hold(data.decode("utf-8", "surrogateescape"), "tool",
+                                            holding):
         return {}
     if len(data) > MAX_SETTINGS_SIZE:  # (a pyproject.toml that may hold the settings)
         raise SettingsError(f"cannot read settings in {path}: file is {len(data)} bytes, over "
                             f"the limit of {MAX_SETTINGS_SIZE}")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise SettingsError(f"cannot read settings in {path}: {error}") from None
     import tomllib  # only where a settings file is
 
     deep = too_deep(text)
