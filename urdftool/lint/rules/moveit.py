@@ -624,7 +624,7 @@ def _group_cycles(holds: dict[str, list], held_in: dict[str, list[str]]) -> list
         while at not in walked and at not in path:
             path[at] = len(path)
             at = next(sub for sub in edges[at] if sub in left)
-        walked |= path.keys()
+        walked.update(path)
         if at in path:  # this walk closed a cycle
             ring = list(path)[path[at]:]
             first = ring.index(min(ring, key=order.__getitem__))
