@@ -80,6 +80,9 @@ class Settings:
     max_triangles: int | None = None  # per mesh
     targets: list[str] = field(default_factory=list)  # as --target takes them
     notes: bool = False  # the text report shows notes (severity info)
+    # each per-file table's globs compiled once (fnmatch's cache holds 32,768: a table of more
+    # was compiled again for every file, seconds each)
+    _globs: dict = field(default_factory=dict, repr=False, compare=False)
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -103,8 +106,12 @@ class Settings:
             relative = target.relative_to(base).as_posix()
         except ValueError:
             relative = target.as_posix()
-        return [value for pattern, value in table.items()
-                if fnmatch.fnmatch(relative, pattern) or fnmatch.fnmatch(target.name, pattern)]
+        globs = self._globs.get(id(table))
+        if globs is None:
+            globs = self._globs[id(table)] = [(re.compile(fnmatch.translate(pattern)).match, value)
+                                              for pattern, value in table.items()]
+        name = target.name
+        return [value for match, value in globs if match(relative) or match(name)]
 
 
 def settings_for(path: str | os.PathLike) -> Settings:
@@ -651,10 +658,17 @@ def _selectors(path: Path, value, what: str) -> list[str]:
         raise SettingsError(f"{path}: '{what}' must be a list of rule codes or names")
     for selector in _codes(value):
         try:
-            check_selectors([selector])
+            _known_selector(selector)
         except UnknownRule as error:
             raise SettingsError(f"{path}: '{what}': {error}") from None
     return value
+
+
+@functools.lru_cache(maxsize=4096)
+def _known_selector(selector: str) -> None:
+    """:func:`check_selectors` of one selector, each distinct one asked once (50,000
+    ``per-file-ignores`` patterns each giving ``["U2"]`` asked it 50,000 times: 5 s)."""
+    check_selectors([selector])
 
 
 def check_selectors(selectors: Iterable[str]) -> None:
