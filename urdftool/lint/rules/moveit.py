@@ -569,34 +569,39 @@ def srdf_group_cycle(robot):
     srdf = companions(robot).srdf
     if srdf is None or srdf.root is None:
         return
-    holds: dict[str, list] = {}  # group name -> its subgroup elements (the first definition's)
+    # group name -> (subgroup name, element) of its first definition, names as srdfdom reads
+    # them: trimmed, a group or subgroup without one left out ("Group name not specified")
+    holds: dict[str, list[tuple[str, object]]] = {}
     for element in srdf.root.iterfind("group"):
-        holds.setdefault(element.get("name"), list(element.iterfind("group")))
+        if element.get("name") is not None:
+            holds.setdefault(element.get("name").strip(), [
+                (sub.get("name").strip(), sub) for sub in element.iterfind("group")
+                if sub.get("name") is not None])
     held_in: dict[str, list[str]] = {}  # group name -> the groups naming it as a subgroup
     for name, subs in holds.items():
-        for sub in dict.fromkeys(sub.get("name") for sub in subs):
+        for sub in dict.fromkeys(sub for sub, _ in subs):
             held_in.setdefault(sub, []).append(name)
     for cycle in _group_cycles(holds, held_in):
         holders = _holders(holds, held_in, set(cycle))
         named = ", ".join(holders[:_HOLDERS_NAMED]) + (
             ", ..." if len(holders) > _HOLDERS_NAMED else "")
-        closing = next(sub for sub in holds[cycle[0]] if sub.get("name") == cycle[1 % len(cycle)])
+        closing = next(sub for name, sub in holds[cycle[0]] if name == cycle[1 % len(cycle)])
         yield srdf.at(closing.sourceline), (
             f"SRDF group '{cycle[0]}' holds itself through its subgroups "
-            f"({' > '.join(cycle + [cycle[0]])}): MoveIt drops every group of the cycle "
+            f"({' > '.join(repr(name) for name in cycle + [cycle[0]])}): MoveIt drops every group of the cycle "
             f"(\"Group '{cycle[0]}' has unsatisfied subgroups\")"
             + (f", and the group(s) holding one: {named}" if holders else "")
             + ", with the group states and end effectors naming them")
 
 
-def _group_cycles(holds: dict[str, list], held_in: dict[str, list[str]]) -> list[list[str]]:
+def _group_cycles(holds: dict[str, list[tuple[str, object]]], held_in: dict[str, list[str]]
+                  ) -> list[list[str]]:
     """The cycles of subgroups, each once: its groups in the order they hold each other, from
     the one defined first. Walked with loops (a chain of groups is as deep as it is long):
     the groups srdfdom keeps are taken away (a group once its subgroups are all kept, as its
     ``loadGroups`` repeats), then those an undefined name alone keeps out (U805's); from each
     group left, a subgroup that is left leads on, to a cycle."""
-    edges = {name: list(dict.fromkeys(sub.get("name") for sub in subs))
-             for name, subs in holds.items()}
+    edges = {name: list(dict.fromkeys(sub for sub, _ in subs)) for name, subs in holds.items()}
     left = set(edges)
     waiting = {name: len(subs) for name, subs in edges.items()}  # subgroups not yet kept
     kept = [name for name, count in waiting.items() if not count]
@@ -632,7 +637,8 @@ def _group_cycles(holds: dict[str, list], held_in: dict[str, list[str]]) -> list
     return cycles
 
 
-def _holders(holds: dict[str, list], held_in: dict[str, list[str]], cycle: set) -> list[str]:
+def _holders(holds: dict[str, list[tuple[str, object]]], held_in: dict[str, list[str]],
+             cycle: set) -> list[str]:
     """Groups outside ``cycle`` that hold one of its groups, directly or through others, in
     document order: all of them, or one more than a message names."""
     found, queue = set(), list(cycle)
