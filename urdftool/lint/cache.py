@@ -245,22 +245,22 @@ class Cache:
 
     def _unusable(self) -> str:
         """Why :meth:`_usable_folder` refused the folder (or its ``v<SCHEMA>``)."""
-        for folder in (self.folder, self.folder / f"v{SCHEMA}"):
+        for folder, it in ((self.folder, "it"), (self.folder / f"v{SCHEMA}", f"its v{SCHEMA}")):
             try:
                 mode = os.lstat(folder).st_mode
             except FileNotFoundError:
                 try:
                     make_folders(folder, 0o700)
                 except (OSError, UsageError) as error:
-                    return f"{display_path(str(folder))} could not be made ({getattr(error, 'strerror', None) or error})"
+                    return f"{it} could not be made ({getattr(error, 'strerror', None) or error})"
                 continue
             except OSError as error:
                 return error.strerror or str(error)
             if stat.S_ISLNK(mode):
-                return f"{display_path(str(folder))} is a symbolic link, which is never followed"
+                return f"{it} is a symbolic link, which is never followed"
             if not stat.S_ISDIR(mode):
-                return f"{display_path(str(folder))} is not a folder"
-        return "the folder could not be used"
+                return f"{it} is not a folder"
+        return "it could not be used"
 
     def _sign(self, entry_path: Path, body: str) -> str:
         """The signature of ``body`` kept at ``entry_path``: the entry's name (its key) is
