@@ -121,7 +121,8 @@ def _discover(robot) -> Companions:
     if robot.path != "-":
         found.launch = launched.runtime(robot).describe()
     if named.controllers:  # each file once, however often and by whatever path it is named
-        # (2,000 --controllers of one file, or as many in the settings, were each checked: U015)
+        # (2,000 --controllers of one file, or as many in the settings, were each checked,
+        # past the time budget)
         unique: dict = {}
         for path in map(Path, named.controllers):
             unique.setdefault(real_path(path), path)

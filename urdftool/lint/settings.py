@@ -421,7 +421,7 @@ def _toml(value):
     elif isinstance(value, float):
         yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
     elif isinstance(value, str):
-        yield json.dumps(value, ensure_ascii=False)  # a TOML basic string: JSON's escapes are TOML's
+        yield json.dumps(value, ensure_ascii=False)  # TOML's basic string: JSON's escapes
     elif isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
         yield value.isoformat()
     elif isinstance(value, list):
@@ -434,7 +434,8 @@ def _toml(value):
         yield "{ " if value else "{"
         for index, (key, item) in enumerate(value.items()):
             bare = isinstance(key, str) and _BARE_KEY.fullmatch(key)
-            yield (", " if index else "") + (key if bare else json.dumps(str(key), ensure_ascii=False)) + " = "
+            written = key if bare else json.dumps(str(key), ensure_ascii=False)
+            yield (", " if index else "") + written + " = "
             yield from _toml(item)
         yield " }" if value else "}"
     else:

@@ -588,7 +588,8 @@ def srdf_group_cycle(robot):
         closing = next(sub for name, sub in holds[cycle[0]] if name == cycle[1 % len(cycle)])
         yield srdf.at(closing.sourceline), (
             f"SRDF group '{cycle[0]}' holds itself through its subgroups "
-            f"({' > '.join(repr(name) for name in cycle + [cycle[0]])}): MoveIt drops every group of the cycle "
+            f"({' > '.join(repr(name) for name in cycle + [cycle[0]])}): MoveIt drops every "
+            "group of the cycle "
             f"(\"Group '{cycle[0]}' has unsatisfied subgroups\")"
             + (f", and the group(s) holding one: {named}" if holders else "")
             + ", with the group states and end effectors naming them")
