@@ -262,7 +262,9 @@ def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str],
 
 def read_text(path: str, what: str) -> str:
     """The text of a file of numbers the user names (``what``: "q-file"): a regular file up to
-    the size limit that is not a link leading out of its repository, else ConfigError."""
+    the size limit that is not a link leading out of its repository, else ConfigError; UTF-8,
+    a byte-order mark left out (it was read as part of the first column's name, "unknown
+    joint '\\ufeffhead_pan'", and JSON refused it)."""
     from urdftool.description.files import read_regular
     from urdftool.description.packages import link_out
 
@@ -270,8 +272,8 @@ def read_text(path: str, what: str) -> str:
     if leads:
         raise ConfigError(f"cannot read {what}: it is a symbolic link leading outside the "
                           f"repository ({leads[1]}); not followed", path)
-    try:
-        return read_regular(path).decode("utf-8")
+    try:  # a byte-order mark (Excel's "CSV UTF-8") marks the encoding: not the first name's
+        return read_regular(path).decode("utf-8-sig")
     except OSError as error:
         raise ConfigError(f"cannot read {what}: {error.strerror}", path) from None
     except UnicodeDecodeError as error:
