@@ -107,7 +107,8 @@ class Cache:
         return (f"results are not kept in the cache folder {display_path(str(self.folder))}: "
                 f"{self.failure}; every file is checked again next time")
 
-    def _failed(self, why: str) -> None:
+    def failed(self, why: str) -> None:
+        """Remember why results were not kept, the first reason given (:meth:`unkept`)."""
         self.failure = self.failure or why
 
     # -- the key ---------------------------------------------------------------------------
@@ -189,7 +190,7 @@ class Cache:
         ``surroundings``: the record of finding the paths' targets and settings. Returns the
         record entries the run depends on when it was kept, else None."""
         if self._key is None:
-            self._failed(_NO_KEY)
+            self.failed(_NO_KEY)
             return None
         if "-" in paths or run.skipped or run.notes or \
                 [result.path for result in run.results] != list(paths):
@@ -218,7 +219,7 @@ class Cache:
         it may be: not when a file its check read has changed since (its record no longer
         holds: the findings would describe a file that is not there)."""
         if self._key is None:
-            self._failed(_NO_KEY)
+            self.failed(_NO_KEY)
             return
         if path == "-" or result.robot is None or result.record is None \
                 or any(f.code in _NOT_KEPT for f in result.findings):
@@ -238,9 +239,9 @@ class Cache:
             if self._usable_folder(create=True):
                 _write(entry_path, f"{self._sign(entry_path, body)}\n{body}")
                 return True
-            self._failed(self._unusable())
+            self.failed(self._unusable())
         except OSError as error:
-            self._failed(error.strerror or str(error))
+            self.failed(error.strerror or str(error))
         return False
 
     def _unusable(self) -> str:

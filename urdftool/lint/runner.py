@@ -86,7 +86,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
     for index, (found, companions, paths, unkept) in zip(todo, checked):
         kept[index], lines[index], read[index] = found, companions, paths
         if unkept:
-            cache._failed(unkept)
+            cache.failed(unkept)
     return [FileResult(path, found, companions=companions, read=paths)
             for path, found, companions, paths in zip(named, kept, lines, read)]
 
@@ -102,7 +102,8 @@ class _Checking:
     stdin: dict[str, bytes]
     cache: object = None
 
-    def __call__(self, index: int) -> tuple[list[Finding], list[str], tuple[str, ...], str | None]:
+    def __call__(self, index: int
+                 ) -> tuple[list[Finding], list[str], tuple[str, ...], str | None]:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
