@@ -478,10 +478,12 @@ def why_builds_nothing(launch_path: str) -> str:
     return f"could not be read ({_problem(absolute, root)[0]})"
 
 
+@per_run
 def _problem(launch: Path, root: Path) -> tuple[str, int | None]:
     """Why the launch file ``launch`` of the repository ``root`` could not be read, and the
     line it is at when the parser said, as its one reading
-    (:func:`~urdftool.description.launch_configs.read_launch`, asked again) found."""
+    (:func:`~urdftool.description.launch_configs.read_launch`, asked again, once a run: a file
+    ``ast`` cannot parse costs its parse again) found."""
     read = read_launch(launch, room=reading_room(root), modules=repository_modules(root))
     return (getattr(read, "problem", None) or "what it does is not known",
             getattr(read, "problem_line", None))
