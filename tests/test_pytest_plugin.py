@@ -82,6 +82,19 @@ def test_settings_apply_to_items(project):
     result.assert_outcomes(passed=2)
 
 
+def test_a_settings_file_that_stops_every_item_fails_each_in_one_line(project):
+    """Broken settings above every robot: ``check`` refuses the run (exit 2, one line); each
+    item failed with a traceback of urdftool's runner ending in the SettingsError."""
+    (project.path / "urdftool.toml").write_text("strict = 1979-05-27\n")
+    result = project.runpytest_inprocess("--urdftool", "robots", "-p", "no:cacheprovider",
+                                         "-p", "no:xdist")
+    result.assert_outcomes(failed=2)
+    text = result.stdout.str()
+    assert "Traceback" not in text and "runner.py" not in text and "raise SettingsError" not in text
+    result.stdout.fnmatch_lines(["urdftool: error: *urdftool.toml: 'strict' must be true or false*",
+                                 "FAILED robots/broken.urdf::urdftool - urdftool: error: *"])
+
+
 def test_without_the_option_nothing_is_collected(project):
     result = project.runpytest_inprocess("robots", "-p", "no:cacheprovider", "-p", "no:xdist")
     assert result.ret == pytest.ExitCode.NO_TESTS_COLLECTED

@@ -21,7 +21,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
     error: 2) through ``terminal``. The values are those of the command's parameters (see
     ``urdftool check --help``)."""
     from urdftool.budget import Budget, one_blas_thread
-    from urdftool.errors import SettingsError, TargetError, UnknownName
+    from urdftool.errors import REFUSALS
     from urdftool.lint.runner import check_paths
     from urdftool.lint.settings import (CheckRequest, Companions, checked_file_size,
                                         notes_shown)
@@ -65,7 +65,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         if fix or diff:
             run = _apply_fixes(terminal, run, diff, unsafe_fixes,
                                lambda: check_paths(paths, request))
-    except (UsageError, SettingsError, TargetError, UnknownName) as error:
+    except REFUSALS as error:
         terminal.fail_usage(error)
     messages = [f"urdftool: {note}" for note in run.notes]
     if verbose:

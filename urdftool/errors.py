@@ -294,3 +294,8 @@ def missing_extra(error: BaseException) -> str | None:
     return (f"needs {ANALYSIS_MODULES[top]}, which a lint-only install leaves out: "
             f"{install_command('analysis')}")
 
+
+# What a check refuses before checking anything, said in one line (exit 2 on the command line,
+# a one-line failure of a pytest item): a usage error, a broken settings file, a path holding
+# no robot, a name (rule, link) that does not exist.
+REFUSALS = (UsageError, SettingsError, TargetError, UnknownName)

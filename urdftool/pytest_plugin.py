@@ -105,7 +105,13 @@ class RobotItem(pytest.Item):
     funcargs: dict = {}
 
     def runtest(self):
-        run = _checked_with_the_session(self)
+        from urdftool.errors import REFUSALS
+        from urdftool.report.escape import text
+
+        try:
+            run = _checked_with_the_session(self)
+        except REFUSALS as error:  # as the command line says it, in one line: no traceback
+            raise _FindingsFailure(text(f"urdftool: error: {error}")) from None
         if run.exit_code:
             raise _FindingsFailure(_text(run))
 

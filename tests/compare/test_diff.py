@@ -180,3 +180,15 @@ def test_an_appearance_change_has_no_effects_to_compute(tmp_path):
     assert _fields(result) == {("changed", "link", "base", "visual[0].colour"),
                                ("changed", "material", "grey", "color")}
     assert result.effects is None and not result.equivalent
+
+
+def test_a_nan_compared_with_itself_is_no_change(tmp_path):
+    """``nan != nan``: a robot holding ``nan`` (a mass, an origin, a limit) diffed with itself
+    said "mass nan -> nan kg"; ``structure.same_value`` is the one judge of a change."""
+    nan = ARM.replace('<mass value="1.0"/>', '<mass value="nan"/>').replace(
+        '<origin xyz="0 0 0.4"/>', '<origin xyz="nan 0 0.4"/>').replace(
+        'lower="-2.0"', 'lower="nan"')
+    result = compare(tmp_path, nan, old_text=nan)
+    assert result.equivalent and result.changes == []
+    assert _fields(compare(tmp_path / "other", nan.replace('upper="2.0"', 'upper="2.5"'),
+                           old_text=nan)) == {("changed", "joint", "elbow", "limit.upper")}

@@ -72,3 +72,10 @@ def test_companions_can_be_left_out(tmp_path):
     result = diff(side(tmp_path / "old"), side(tmp_path / "new", srdf=SRDF.replace("wrist", "w")),
                   DiffOptions(companions=False))
     assert result.equivalent
+
+
+def test_a_nan_in_the_controller_yaml_compared_with_itself_is_no_change(tmp_path):
+    nan = CONTROLLERS.replace("goal_time: 0.6", "goal_time: .nan").replace(
+        "joints: [shoulder, elbow]", "joints: [shoulder, elbow]\n    gains: [.nan, 1]")
+    result = diff(side(tmp_path / "old", controllers=nan), side(tmp_path / "new", controllers=nan))
+    assert changes(result) == set()

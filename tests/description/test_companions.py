@@ -62,6 +62,22 @@ def test_companions_are_parsed_once_per_robot(tmp_path):
     assert companions(robot) is companions(robot)
 
 
+def test_a_controllers_file_named_again_is_read_and_checked_once(tmp_path):
+    """One file named 3,000 times (``--controllers``, or ``controllers`` in a repository's
+    settings), by several paths: each copy was checked against the others (U015 at 60 s);
+    it is one file, in the order first named."""
+    write(tmp_path, {"r.urdf": ROBOT, "config/c.yaml": CONTROLLERS, "other.yaml": CONTROLLERS})
+    c, other = tmp_path / "config" / "c.yaml", tmp_path / "other.yaml"
+    named = [c, other, tmp_path / "config" / ".." / "config" / "c.yaml"] * 1000
+    os.symlink(c, tmp_path / "link.yaml")
+    robot = load(str(tmp_path / "r.urdf"))
+    robot.companion_paths = CompanionPaths([*named, tmp_path / "link.yaml"])
+    assert [f.path for f in companions(robot).controllers] == [c, other]
+    result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(
+        companions=CompanionPaths(named)))
+    assert not [f for f in result.findings if f.code == "U015"]
+
+
 def test_yaml_keeps_the_line_of_every_key_and_item(tmp_path):
     path = write(tmp_path, {"c.yaml": """\
         # comment

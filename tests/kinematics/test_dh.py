@@ -234,6 +234,22 @@ def test_bad_table_is_located(tmp_path):
     assert caught.value.where.endswith("t.json: joints[0]")
 
 
+@pytest.mark.parametrize("old, new, line", [
+    ("  d: 0.0\n", "  d: 0.0\n  d: 5.0\n", None),  # a row's d twice: PyYAML kept 5.0
+    ("convention: ", "convention: modified\nconvention: ", 2),
+    ('"d": 0.0', '"d": 0.0, "d": 5.0', 1),  # JSON is read as YAML
+])
+def test_a_table_writing_a_key_twice_is_a_located_error(humanoid, tmp_path, old, new, line):
+    table = dh.extract(humanoid, "body_link", "r_foot_link").as_dict()
+    text = json.dumps(table) if old.startswith('"') else yaml.safe_dump(table, sort_keys=False)
+    path = tmp_path / "t.yaml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(dh.DHError, match="is written twice") as caught:
+        dh.load_table(str(path))
+    if line is not None:
+        assert caught.value.where == f"{path}:{line}"
+
+
 def test_cli_dh_json_then_fk_verify(run_cli, tmp_path):
     result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_foot_link", "-f", "json")
     assert result.exit_code == 0, result.output

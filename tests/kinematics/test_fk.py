@@ -153,6 +153,42 @@ def test_q_file_csv_wrong_column_count_is_located_by_row(humanoid, tmp_path):
         config.from_file(humanoid.variables, str(path))
 
 
+@pytest.mark.parametrize("reader, text, name", [
+    ("q", "l_knee,l_knee\n0.1,0.5\n", "l_knee"),  # (this one was refused; the rest were not)
+    ("q", '[{"l_knee": 0.1, "l_knee": 0.5}]', "l_knee"),
+    ("targets", "x,y,z,x\n0.1,0,0,5\n", "x"),
+    ("targets", '[{"x": 0.1, "y": 0, "z": 0, "x": 5}]', "x"),
+])
+def test_a_file_of_numbers_naming_a_column_twice_is_refused(humanoid, tmp_path, reader, text, name):
+    """Which of two values for one joint or coordinate is meant is a guess: ``json`` and
+    ``csv.DictReader`` took the last (``ik --targets`` solved for x = 5). ``read_table``,
+    the one reader of files of numbers, refuses it for every command."""
+    from urdftool.kinematics import ik
+
+    path = tmp_path / ("t.json" if text.startswith("[") else "t.csv")
+    path.write_text(text)
+    with pytest.raises(config.ConfigError, match=f"'{name}' is (named|given) twice"):
+        if reader == "q":
+            config.from_file(humanoid.variables, str(path))
+        else:
+            ik.read_targets(str(path))
+
+
+@pytest.mark.parametrize("text", ["l_knee,l_hip_pitch\r\n0.1,0.2\r\n", '[{"l_knee": 0.1, "l_hip_pitch": 0.2}]'])
+def test_a_file_of_numbers_with_a_byte_order_mark_is_read(humanoid, tmp_path, text):
+    """Excel's "CSV UTF-8" starts with a byte-order mark: it was read as part of the first
+    name ("unknown joint '\\ufeffl_knee'"), and JSON refused it."""
+    from urdftool.kinematics import ik
+
+    path = tmp_path / ("q.json" if text.startswith("[") else "q.csv")
+    path.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    values = config.from_file(humanoid.variables, str(path)).values[0]
+    names = [v.name for v in humanoid.variables]
+    assert (values[names.index("l_knee")], values[names.index("l_hip_pitch")]) == (0.1, 0.2)
+    (tmp_path / "t.csv").write_bytes(b"\xef\xbb\xbfx,y,z\n0.1,0,0.2\n")
+    assert len(ik.read_targets(str(tmp_path / "t.csv"))) == 1
+
+
 def test_q_file_non_numeric_cell_is_located_by_row(humanoid, tmp_path):
     path = tmp_path / "q.csv"
     path.write_text("l_knee\n0.1\nnope\n")

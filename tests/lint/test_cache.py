@@ -597,3 +597,36 @@ def test_a_result_checked_from_unsaved_buffers_is_never_served_for_the_disk(robo
     for name, text in buffers.items():  # saved: the same bytes, the result holds
         Path(name).write_text(text)
     assert files_module.unchanged(result.record.dump())
+
+
+@pytest.mark.parametrize("where", ["a file", "full", "no key"])
+def test_results_that_cannot_be_kept_are_said_once_and_the_check_goes_on(
+        robot, tmp_path, monkeypatch, where):
+    """Session 11 left it: ``--cache-dir`` on a full or read-only file system (or a file, or
+    with no signing key) was a miss on every run without a word. Two files in two workers
+    (each a copy of the cache) that cannot keep their results: one note, the findings as
+    without a cache."""
+    second = robot.parent / "second"
+    second.mkdir()
+    (second / "bot.urdf.xacro").write_text(ROBOT)
+    (second / "parts.xacro").write_text(PARTS.format(mass=-1))
+    paths = [str(robot / "bot.urdf.xacro"), str(second / "bot.urdf.xacro")]
+    cache_dir = tmp_path / "cache"
+    if where == "a file":
+        cache_dir.write_text("not a folder")
+    elif where == "full":
+        assert cache_module._secret() is not None  # the key made first, in another place
+
+        def full(path, text):
+            raise OSError(28, "No space left on device")
+
+        monkeypatch.setattr(cache_module, "_write", full)
+    else:
+        monkeypatch.setattr(cache_module, "_secret", lambda: None)
+    without = check_paths(paths, jobs=2)
+    run = check_paths(paths, cache_dir=cache_dir, jobs=2)
+    assert [[f.message for f in r.findings] for r in run.results] == \
+        [[f.message for f in r.findings] for r in without.results]
+    said = [note for note in run.notes if "not kept" in note]
+    assert len(said) == 1 and {"a file": "is not a folder", "full": "No space left",
+                               "no key": "no signing key"}[where] in said[0], run.notes

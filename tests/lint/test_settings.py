@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import datetime
 import json
 import os
 import random
@@ -14,7 +15,8 @@ import pytest
 
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint import engine
-from urdftool.lint.settings import may_hold, settings_for
+from urdftool.errors import SettingsError
+from urdftool.lint.settings import KEYS, may_hold, settings_file, settings_for
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>
@@ -733,3 +735,67 @@ def test_a_selection_of_100000_codes_is_matched_as_its_few_distinct_ones(tmp_pat
 
     assert [r.code for r in CATALOGUE if selection.allows(r.code)]
     assert len(asked) < 20000, len(asked)  # (millions before)
+
+
+@pytest.mark.parametrize("key", sorted(KEYS))
+def test_a_settings_error_quotes_a_value_in_toml_words_not_pythons(tmp_path, key):
+    """Every key given a TOML datetime: the error says it as written (it said
+    ``datetime.datetime(1979, 5, 27, 7, 32, tzinfo=datetime.timezone(...))``)."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "urdftool.toml").write_text(f"{key} = 1979-05-27T07:32:00-08:00\n")
+    with pytest.raises(SettingsError) as error:
+        settings_file(tmp_path / "urdftool.toml")
+    assert "datetime" not in str(error.value) and "(1979" not in str(error.value)
+
+
+@pytest.mark.parametrize("value, written", [
+    (True, "true"), (float("nan"), "nan"), (float("-inf"), "-inf"), (1e300, "1e+300"), (7, "7"),
+    ("a\x1b\"b", '"a\\u001b\\"b"'), (datetime.date(1979, 5, 27), "1979-05-27"),
+    (datetime.time(7, 32), "07:32:00"), ([1, [True]], "[1, [true]]"), ({}, "{}"),
+    ({"a": 1, "b c": "d"}, '{ a = 1, "b c" = "d" }'), ("x" * 100_000, '"' + "x" * 76 + "..."),
+    pytest.param(10 ** 5000, "a whole number of 5000 digits or so", id="5000-digits"),
+])
+def test_shown_writes_a_settings_value_as_toml(value, written):
+    from urdftool.lint.settings import shown
+
+    assert shown(value) == written
+
+
+def test_another_tools_pyproject_larger_or_in_another_encoding_is_not_ours_to_refuse(tmp_path):
+    """A 1.3 MB pyproject.toml with no ``[tool.urdftool]`` stopped every check ("over the
+    limit of 1048576"), as one in Latin-1 did ("can't decode byte 0xe9"): its size and
+    encoding are judged only once it may hold our settings."""
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / ".git").mkdir()
+    others = "".join(f'k{i} = "{"v" * 100}"\n' for i in range(12_000))
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\n[tool.other]\n' + others)
+    with one_run():
+        assert settings_for(tmp_path).path is None
+    (tmp_path / "pyproject.toml").write_text('[tool.urdftool]\nstrict = true\n[tool.other]\n' + others)
+    with one_run(), pytest.raises(SettingsError, match="over the limit of 1048576"):
+        settings_for(tmp_path)
+    (tmp_path / "pyproject.toml").write_bytes(b'[project]\ndescription = "caf\xe9"\n')  # Latin-1
+    with one_run():
+        assert settings_for(tmp_path).path is None
+    (tmp_path / "pyproject.toml").write_bytes(b'[tool.urdftool]\nstrict = true # caf\xe9\n')
+    with one_run(), pytest.raises(SettingsError, match="can't decode byte 0xe9"):
+        settings_for(tmp_path)
+
+
+def test_per_file_globs_are_compiled_once_for_every_file(tmp_path, monkeypatch):
+    """40,000 ``per-file-ignores`` globs (past the 32,768 fnmatch keeps compiled) were
+    compiled again for every file, twice (its path and its name): 50,000 over 21 robots took
+    90 s of CPU in the parent, outside any file's budget; 3.3 s now."""
+    import fnmatch
+
+    from urdftool.lint.settings import Settings
+
+    compiled = []
+    real = fnmatch.translate
+    monkeypatch.setattr(fnmatch, "translate", lambda pattern: compiled.append(pattern) or real(pattern))
+    settings = Settings(path=tmp_path / "urdftool.toml",
+                        per_file_ignores={f"d{i}/**": ["U2"] for i in range(40_000)} | {"r*.urdf": ["U3"]})
+    for index in range(3):
+        assert settings.ignores_for(str(tmp_path / f"sub{index}" / f"r{index}.urdf")) == ["U3"]
+    assert len(compiled) == 40_001

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 
-from urdftool.compare.structure import Change, Renames
+from urdftool.compare.structure import Change, Renames, same_value
 
 
 def _old_name(renames: Renames, name):
@@ -103,7 +103,7 @@ def compare(old_robot, new_robot, renames: Renames) -> list[Change]:
             changes += [Change("changed", "controllers", place, key, before.get(key),
                                after.get(key))
                         for key in list(before) + [k for k in after if k not in before]
-                        if before.get(key) != after.get(key)]
+                        if not same_value(before.get(key), after.get(key))]
     return changes
 
 

@@ -10,6 +10,8 @@ and a joint at the same origin, or the same children), not reported as removed a
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 
 from urdftool.description.values import parse_numbers
@@ -166,12 +168,18 @@ def link_fields(link, colours: dict) -> dict:
     return fields
 
 
-def _equal(old, new, tolerance: float) -> bool:
+def same_value(old, new, tolerance: float = 0.0) -> bool:
+    """Whether a field holds the same value on both sides, numbers within ``tolerance``: the
+    one judge of "changed" for every field compared (the URDF's, the companions' keys). A
+    ``nan`` is the same as a ``nan`` (the same text, read twice: a file compared with itself
+    has no change; ``nan != nan`` said it had)."""
     if isinstance(old, float) and isinstance(new, float):
-        return abs(old - new) <= tolerance or old == new
+        return abs(old - new) <= tolerance or old == new or (math.isnan(old) and math.isnan(new))
     if isinstance(old, tuple) and isinstance(new, tuple) and len(old) == len(new) and \
             all(isinstance(x, float) for x in old + new):
-        return all(abs(a - b) <= tolerance or a == b for a, b in zip(old, new))
+        return all(same_value(a, b, tolerance) for a, b in zip(old, new))
+    if isinstance(old, tuple) and isinstance(new, tuple):  # a YAML list of mixed scalars
+        return len(old) == len(new) and all(same_value(a, b) for a, b in zip(old, new))
     return old == new
 
 
@@ -194,7 +202,7 @@ def compare_fields(element: str, name: str, old: dict, new: dict, tolerance: flo
     changes = []
     for key in list(old) + [k for k in new if k not in old]:
         a, b = old.get(key), new.get(key)
-        if not _equal(a, b, tolerance):
+        if not same_value(a, b, tolerance):
             changes.append(_numeric_change(Change("changed", element, name, key, a, b,
                                                   old_name)))
     return changes
@@ -293,7 +301,7 @@ def renames(old, new, tolerance: float = 1e-9) -> Renames:
                 found = roots
             else:
                 found = [other for other in by_place.get(_place(joint, result), ())
-                         if _equal(removed_xyz[name], xyz[other], 1e-6)]
+                         if same_value(removed_xyz[name], xyz[other], 1e-6)]
                 kids = frozenset(result.link(c) for c in old_children.get(name, ()))
                 found = found + [other for other in by_children.get(kids, ()) if kids
                                  and other not in found]
@@ -355,7 +363,7 @@ def structure(old, new, tolerance: float = 1e-9) -> tuple[list[Change], Renames]
             changes.append(Change("removed", "material", name))
         elif name not in old_colours:
             changes.append(Change("added", "material", name))
-        elif not _equal(old_colours[name], new_colours[name], tolerance):
+        elif not same_value(old_colours[name], new_colours[name], tolerance):
             changes.append(Change("changed", "material", name, "color", old_colours[name],
                                   new_colours[name]))
     return changes, found

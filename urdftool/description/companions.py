@@ -120,8 +120,14 @@ def _discover(robot) -> Companions:
     owner = _Owner(robot, folders)
     if robot.path != "-":
         found.launch = launched.runtime(robot).describe()
-    if named.controllers:
-        found.controllers = [controller_yaml(robot, Path(p), "named controllers") for p in named.controllers]
+    if named.controllers:  # each file once, however often and by whatever path it is named
+        # (2,000 --controllers of one file, or as many in the settings, were each checked,
+        # past the time budget)
+        unique: dict = {}
+        for path in map(Path, named.controllers):
+            unique.setdefault(real_path(path), path)
+        found.controllers = [controller_yaml(robot, path, "named controllers")
+                             for path in unique.values()]
     else:
         found.controllers = _auto_controllers(robot, folders, owner, found)
     launched_srdf = launched.semantic_files(robot) if robot.path != "-" else []

@@ -304,6 +304,7 @@ class LaunchFile:
     form: str
     actions: list = field(default_factory=list)
     problem: str | None = None
+    problem_line: int | None = None  # the line the problem is at, when the parser said
     test: bool = False  # a launch test (:func:`is_launch_test`), read from its entry point
 
     @property
@@ -411,6 +412,7 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
         launch.problem = "empty" if error.kind == "empty" else (  # (its message says <robot>)
             f"not well-formed XML: {error.message.removeprefix('malformed XML: ')}" +
             (f" (line {error.line})" if error.line else ""))
+        launch.problem_line = error.line
         return launch
     except (ValueError, SyntaxError) as error:  # lxml's XMLSyntaxError is one
         launch.problem = f"not well-formed XML: {error}"

@@ -115,6 +115,7 @@ def read_python_launch(path: Path, display: str, text: str,
         tree = ast.parse(text, filename=display)
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
         launch.problem = f"not valid Python: {type(error).__name__}: {error}"
+        launch.problem_line = getattr(error, "lineno", None)
         return launch
     reader = _Reader(tree, entry, room, path, modules or Modules())
     try:

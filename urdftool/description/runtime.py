@@ -475,9 +475,18 @@ def why_builds_nothing(launch_path: str) -> str:
         return "builds no robot file urdftool can tell"
     if real_path(absolute) not in {real_path(p) for p in launch_files(root)[0]}:
         return f"is not among the launch files urdftool reads below {display_path(root)}"
-    launch = read_launch(absolute, room=reading_room(root), modules=repository_modules(root))
-    problem = getattr(launch, "problem", None) or "what it does is not known"
-    return f"could not be read ({problem})"
+    return f"could not be read ({_problem(absolute, root)[0]})"
+
+
+@per_run
+def _problem(launch: Path, root: Path) -> tuple[str, int | None]:
+    """Why the launch file ``launch`` of the repository ``root`` could not be read, and the
+    line it is at when the parser said, as its one reading
+    (:func:`~urdftool.description.launch_configs.read_launch`, asked again, once a run: a file
+    ``ast`` cannot parse costs its parse again) found."""
+    read = read_launch(launch, room=reading_room(root), modules=repository_modules(root))
+    return (getattr(read, "problem", None) or "what it does is not known",
+            getattr(read, "problem_line", None))
 
 
 def _file_root(path: str) -> tuple[Path | None, Path | None]:
@@ -498,12 +507,29 @@ def unread_naming(path: str, words: tuple[str, ...] = (), tests: bool = True) ->
     finds no build of a kind (:func:`builds`, tests included), or a controller started nowhere
     (:func:`runs`, launch files only), asks here before it says there is none. A Python file
     placed or named as a test counts when its text defines the launch test's entry point."""
+    return [named(display_path(launch), test, read=False)
+            for launch, test in _unread_naming(path, words, tests)]
+
+
+def _unread_naming(path: str, words: tuple[str, ...], tests: bool) -> list[tuple[Path, bool]]:
+    """(path, whether a launch test) of each launch file not read that :func:`unread_naming`
+    names."""
     absolute, root = _file_root(path)
     if root is None:
         return []
     names = [word.encode() for word in words] or [absolute.name.encode()]
-    return [named(display_path(launch), test, read=False) for launch, data, test in
-            _not_read(root, tests) if any(name in data for name in names)]
+    return [(launch, test) for launch, data, test in _not_read(root, tests)
+            if any(name in data for name in names)]
+
+
+def unread_describing(path: str) -> list[tuple[str, str, int | None]]:
+    """(the launch file as shown, why it could not be read, the line) for each launch file of the
+    repository holding the robot file ``path`` that names it and could not be read
+    (:func:`unread_naming`, launch tests left out): what it loads, starts and builds the
+    robot with is not known, and is not checked."""
+    root = _file_root(path)[1]
+    return [(display_path(launch), *_problem(launch, root))
+            for launch, _ in _unread_naming(path, (), tests=False)]
 
 
 @per_run

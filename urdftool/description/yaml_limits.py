@@ -65,6 +65,31 @@ class BoundedLoader(DepthLimit, yaml.SafeLoader):
     """yaml.SafeLoader with the depth limit."""
 
 
+class OnceLoader(BoundedLoader):
+    """:class:`BoundedLoader` refusing a key written twice in one mapping (a located YAML
+    error), for files of numbers a command computes from, where either value would be a
+    guess (PyYAML keeps the last). Keys a merge (``<<``) brings may be overridden, as YAML
+    means."""
+
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            seen = set()
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge":
+                    continue
+                key = self.construct_object(key_node, deep=True)
+                try:
+                    twice = key in seen
+                    seen.add(key)
+                except TypeError:  # an unhashable key: PyYAML's own error says so
+                    continue
+                if twice:
+                    raise yaml.constructor.ConstructorError(
+                        "while constructing a mapping", node.start_mark,
+                        f"the key '{key}' is written twice", key_node.start_mark)
+        return super().construct_mapping(node, deep)
+
+
 def expansion_problem(node, text_length: int) -> tuple[int, str, object] | None:
     """(line, message, mark) when ``node`` (a composed document) expands, with its aliases, to
     more than MAX_EXPANSION nodes and characters beyond ``text_length``, or nests deeper than

@@ -215,9 +215,8 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
     index = {v.name: i for i, v in enumerate(variables)}
 
     def check(names):
-        columns = [_column(index, name, mimics, where=f"{path}: header") for name in names]
-        if len(set(columns)) != len(columns):
-            raise ConfigError("a joint is named twice in the header", path)
+        for name in names:
+            _column(index, name, mimics, where=f"{path}: header")
 
     names, table = read_table(path, "q-file", "joint", check)
     columns = [index[name] for name in names]
@@ -234,7 +233,9 @@ def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str],
     with ``#`` are comments) or a JSON file
     (a list of objects {name: value}) of numbers, read with :func:`read_text`; ``what`` names
     the file, ``named`` what its columns are ("joint"), ``check(names)`` may refuse the header
-    before the values are read. ConfigError, located, for anything wrong."""
+    before the values are read. ConfigError, located, for anything wrong: a column named twice
+    (a CSV header, a JSON object's key) too, for every file of numbers (either value would be
+    a guess; ``json`` and ``csv.DictReader`` take the last)."""
     text = read_text(path, what)
     is_json = path.endswith(".json") or text.lstrip().startswith(("[", "{"))
     fast = None if is_json else _plain_csv_table(text)
@@ -243,6 +244,9 @@ def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str],
     else:
         names, rows = _json_rows(text, path, named) if is_json else \
             _csv_rows(text, path, what, named)
+    twice = next((name for index, name in enumerate(names) if name in names[:index]), None)
+    if twice is not None:
+        raise ConfigError(f"{named} '{twice}' is named twice in the header", f"{path}: header")
     if check is not None:
         check(names)
     if fast is None:
@@ -258,7 +262,9 @@ def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str],
 
 def read_text(path: str, what: str) -> str:
     """The text of a file of numbers the user names (``what``: "q-file"): a regular file up to
-    the size limit that is not a link leading out of its repository, else ConfigError."""
+    the size limit that is not a link leading out of its repository, else ConfigError; UTF-8,
+    a byte-order mark left out (it was read as part of the first column's name, "unknown
+    joint '\\ufeffhead_pan'", and JSON refused it)."""
     from urdftool.description.files import read_regular
     from urdftool.description.packages import link_out
 
@@ -266,8 +272,8 @@ def read_text(path: str, what: str) -> str:
     if leads:
         raise ConfigError(f"cannot read {what}: it is a symbolic link leading outside the "
                           f"repository ({leads[1]}); not followed", path)
-    try:
-        return read_regular(path).decode("utf-8")
+    try:  # a byte-order mark (Excel's "CSV UTF-8") marks the encoding: not the first name's
+        return read_regular(path).decode("utf-8-sig")
     except OSError as error:
         raise ConfigError(f"cannot read {what}: {error.strerror}", path) from None
     except UnicodeDecodeError as error:
@@ -319,7 +325,9 @@ def _csv_rows(text: str, path: str, what: str, named: str) -> tuple[list[str], l
 
 def _json_rows(text: str, path: str, named: str) -> tuple[list[str], list[list]]:
     try:
-        data = json.loads(text)
+        data = json.loads(text, object_pairs_hook=_once_each)
+    except _Twice as error:
+        raise ConfigError(f"{named} '{error.args[0]}' is given twice in one object", path) from None
     except json.JSONDecodeError as error:
         raise ConfigError(f"invalid JSON: {error.msg}", f"{path}:{error.lineno}") from None
     except (ValueError, RecursionError):  # an integer past Python's 4,300 digits; 10^5 [[
@@ -343,6 +351,19 @@ def _json_rows(text: str, path: str, named: str) -> tuple[list[str], list[list]]
                               f"{named}s)", f"{path}: row {number}")
         rows.append([row[name] for name in names])
     return names, rows
+
+
+class _Twice(Exception):
+    """A JSON object giving a key twice (its key)."""
+
+
+def _once_each(pairs: list) -> dict:
+    """A JSON object as a dict, each key given once (:class:`_Twice` otherwise)."""
+    found = dict(pairs)
+    if len(found) != len(pairs):
+        seen = set()
+        raise _Twice(next(key for key, _ in pairs if key in seen or seen.add(key)))
+    return found
 
 
 def _located_floats(rows, names, path, named: str) -> np.ndarray:

@@ -361,7 +361,7 @@ def load_table(path: str) -> DHTable:
 
     from urdftool.description.files import read_regular
     from urdftool.description.packages import link_out
-    from urdftool.description.yaml_limits import BoundedLoader
+    from urdftool.description.yaml_limits import OnceLoader
 
     leads = link_out(path)
     if leads:
@@ -369,7 +369,7 @@ def load_table(path: str) -> DHTable:
                       f"repository ({leads[1]}); not followed", where=path)
     try:
         text = read_regular(path).decode("utf-8")
-        data = yaml.load(text, Loader=BoundedLoader)  # noqa: S506 - SafeLoader; JSON is YAML
+        data = yaml.load(text, Loader=OnceLoader)  # noqa: S506 - SafeLoader; JSON is YAML
     except (OSError, UnicodeDecodeError) as error:
         raise DHError(f"cannot read D-H table: {error}", where=path) from None
     except yaml.YAMLError as error:

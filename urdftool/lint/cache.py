@@ -62,17 +62,20 @@ import hashlib
 import hmac
 import json
 import os
+import stat
 from pathlib import Path
 
 from urdftool.description.files import make_folders, own_folder, read_own, tree_stamp, \
     unchanged, write_file
 from urdftool.description.record import entry_key
-from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity
+from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
 SCHEMA = 3  # 3: an entry's dependencies are its check's record
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
+_NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "
+           "be read or made")
 _NOT_KEPT = ("U015", "U018", "U900")  # a budget stop or a crash: worth trying again
 _TAG = ("Signature: 8a477f597d28d172789f06886806bc55\n"
         "# This file is a cache directory tag created by urdftool.\n"
@@ -93,6 +96,20 @@ class Cache:
         self._key = _secret()
         self._source = _source_stamp()
         self._verified: dict = {}  # (path, options) -> the record entries of a hit or a put
+        self.failure: str | None = None  # why results could not be kept, the first time
+
+    def unkept(self) -> str | None:
+        """What a run says, once, when results could not be kept (a full or read-only file
+        system, a folder it may not write, a link or a file where the folder should be, no
+        signing key): the check goes on, and the next run checks every file again."""
+        if self.failure is None:
+            return None
+        return (f"results are not kept in the cache folder {display_path(str(self.folder))}: "
+                f"{self.failure}; every file is checked again next time")
+
+    def failed(self, why: str) -> None:
+        """Remember why results were not kept, the first reason given (:meth:`unkept`)."""
+        self.failure = self.failure or why
 
     # -- the key ---------------------------------------------------------------------------
 
@@ -172,7 +189,10 @@ class Cache:
         result was kept (see :meth:`put`); ``options_for``: path -> its CheckOptions;
         ``surroundings``: the record of finding the paths' targets and settings. Returns the
         record entries the run depends on when it was kept, else None."""
-        if self._key is None or "-" in paths or run.skipped or run.notes or \
+        if self._key is None:
+            self.failed(_NO_KEY)
+            return None
+        if "-" in paths or run.skipped or run.notes or \
                 [result.path for result in run.results] != list(paths):
             return None
         depends = []
@@ -198,7 +218,10 @@ class Cache:
         """Keep ``result`` (an engine FileResult with its robot and record) for ``path``, when
         it may be: not when a file its check read has changed since (its record no longer
         holds: the findings would describe a file that is not there)."""
-        if self._key is None or path == "-" or result.robot is None or result.record is None \
+        if self._key is None:
+            self.failed(_NO_KEY)
+            return
+        if path == "-" or result.robot is None or result.record is None \
                 or any(f.code in _NOT_KEPT for f in result.findings):
             return
         depends = result.record.dump()
@@ -211,14 +234,34 @@ class Cache:
 
     def _keep(self, entry_path: Path, body: str) -> bool:
         """Write ``body``, signed, at ``entry_path``; False when it could not be (an unusable
-        folder)."""
+        folder, a write the system refused: :attr:`failure` says why)."""
         try:
             if self._usable_folder(create=True):
                 _write(entry_path, f"{self._sign(entry_path, body)}\n{body}")
                 return True
-        except OSError:
-            pass
+            self.failed(self._unusable())
+        except OSError as error:
+            self.failed(error.strerror or str(error))
         return False
+
+    def _unusable(self) -> str:
+        """Why :meth:`_usable_folder` refused the folder (or its ``v<SCHEMA>``)."""
+        for folder, it in ((self.folder, "it"), (self.folder / f"v{SCHEMA}", f"its v{SCHEMA}")):
+            try:
+                mode = os.lstat(folder).st_mode
+            except FileNotFoundError:
+                try:
+                    make_folders(folder, 0o700)
+                except (OSError, UsageError) as error:
+                    return f"{it} could not be made ({getattr(error, 'strerror', None) or error})"
+                continue
+            except OSError as error:
+                return error.strerror or str(error)
+            if stat.S_ISLNK(mode):
+                return f"{it} is a symbolic link, which is never followed"
+            if not stat.S_ISDIR(mode):
+                return f"{it} is not a folder"
+        return "it could not be used"
 
     def _sign(self, entry_path: Path, body: str) -> str:
         """The signature of ``body`` kept at ``entry_path``: the entry's name (its key) is

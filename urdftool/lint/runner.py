@@ -74,17 +74,19 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
-    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str], tuple]:
+    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str], tuple, None]:
         from urdftool.lint.engine import stop_finding
 
-        return [stop_finding(named[todo[index]], stop, "checking")], [], ()
+        return [stop_finding(named[todo[index]], stop, "checking")], [], (), None
 
     lines: list[list[str]] = [[] for _ in files]
     read: list[tuple] = [() for _ in files]
     checked = run_budgeted(len(todo), work, budget, stopped, jobs,
                            lambda done: finished(len(files) - len(todo) + done))
-    for index, (found, companions, paths) in zip(todo, checked):
+    for index, (found, companions, paths, unkept) in zip(todo, checked):
         kept[index], lines[index], read[index] = found, companions, paths
+        if unkept:
+            cache.failed(unkept)
     return [FileResult(path, found, companions=companions, read=paths)
             for path, found, companions, paths in zip(named, kept, lines, read)]
 
@@ -100,7 +102,8 @@ class _Checking:
     stdin: dict[str, bytes]
     cache: object = None
 
-    def __call__(self, index: int) -> tuple[list[Finding], list[str], tuple[str, ...]]:
+    def __call__(self, index: int
+                 ) -> tuple[list[Finding], list[str], tuple[str, ...], str | None]:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
@@ -109,7 +112,8 @@ class _Checking:
             self.cache.put(path, options, result)  # with the record of what its check read
         read = tuple(found.real for found in result.record.reads().values()
                      if found.failure is None)  # (an output must not replace them)
-        return result.findings, result.companions, read
+        # why the result could not be kept, for the run to say once (a worker's cache is a copy)
+        return result.findings, result.companions, read, self.cache and self.cache.failure
 
 
 @dataclass
@@ -240,6 +244,8 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
     if cache is not None and not errors:
         run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options,
                                     surroundings)
+    if cache is not None and cache.unkept():  # said once a run; the check went on
+        run.notes.append(cache.unkept())
     return run
 
 

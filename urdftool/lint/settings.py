@@ -34,8 +34,11 @@ every key goes through :func:`_validated`, so that a key added later cannot skip
 
 from __future__ import annotations
 
+import datetime
 import fnmatch
 import functools
+import json
+import math
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
@@ -52,6 +55,9 @@ from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
+# [bytes] a pyproject.toml read to tell whether it holds settings at all (another tool's may
+# be larger than settings are; may_hold's scan is linear)
+MAX_OTHERS_SIZE = 16 * 1024 * 1024
 MAX_DEPTH = 32  # nesting of arrays, tables and dotted keys in a settings file
 
 
@@ -74,6 +80,9 @@ class Settings:
     max_triangles: int | None = None  # per mesh
     targets: list[str] = field(default_factory=list)  # as --target takes them
     notes: bool = False  # the text report shows notes (severity info)
+    # each per-file table's globs compiled once (fnmatch's cache holds 32,768: a table of more
+    # was compiled again for every file, seconds each)
+    _globs: dict = field(default_factory=dict, repr=False, compare=False)
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -97,8 +106,12 @@ class Settings:
             relative = target.relative_to(base).as_posix()
         except ValueError:
             relative = target.as_posix()
-        return [value for pattern, value in table.items()
-                if fnmatch.fnmatch(relative, pattern) or fnmatch.fnmatch(target.name, pattern)]
+        globs = self._globs.get(id(table))
+        if globs is None:
+            globs = self._globs[id(table)] = [(re.compile(fnmatch.translate(pattern)).match, value)
+                                              for pattern, value in table.items()]
+        name = target.name
+        return [value for match, value in globs if match(relative) or match(name)]
 
 
 def settings_for(path: str | os.PathLike) -> Settings:
@@ -171,14 +184,22 @@ def _read(path: Path, holding: str | None = None) -> dict:
     empty, unparsed. Another project's pyproject.toml is then neither parsed nor held to our
     rules: a defect in it is not the user's settings."""
     _refuse_outside(path, path, "the settings file itself")
-    try:
-        text = read_regular(path, MAX_SETTINGS_SIZE, as_="settings").decode("utf-8")
+    try:  # another tool's file may be larger than settings are, or not UTF-8: its size and
+        # encoding are not ours to judge until it may hold our settings
+        data = read_regular(path, MAX_SETTINGS_SIZE if holding is None else MAX_OTHERS_SIZE,
+                            as_="settings")
     except OSError as error:
         raise SettingsError(f"cannot read settings in {path}: {error.strerror}") from None
+    if holding is not None and not may_hold(data.decode("utf-8", "surrogateescape"), "tool",
+                                            holding):
+        return {}
+    if len(data) > MAX_SETTINGS_SIZE:  # (a pyproject.toml that may hold the settings)
+        raise SettingsError(f"cannot read settings in {path}: file is {len(data)} bytes, over "
+                            f"the limit of {MAX_SETTINGS_SIZE}")
+    try:
+        text = data.decode("utf-8")
     except UnicodeDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
-    if holding is not None and not may_hold(text, "tool", holding):
-        return {}
     import tomllib  # only where a settings file is
 
     deep = too_deep(text)
@@ -370,6 +391,60 @@ class _Key:
     attribute: str | None
 
 
+_SHOWN = 80  # [characters] of a settings value a message quotes, at most
+
+
+def shown(value) -> str:
+    """A settings value as TOML writes it, the one way a settings message quotes one: in the
+    words the user wrote (``1979-05-27T07:32:00-08:00``, ``true``, ``nan``, ``"a"`` with TOML's
+    escapes, ``[1, 2]``, ``{ a = 1 }``), not Python's (``datetime.datetime(1979, ...)``,
+    ``True``), and cut to 80 characters (a 100,000-character string is not repeated whole). A
+    value TOML cannot hold (the Python API's) is its ``repr``."""
+    pieces, length = [], 0
+    for piece in _toml(value):
+        pieces.append(piece)
+        length += len(piece)
+        if length > _SHOWN:
+            return "".join(pieces)[:_SHOWN - 3] + "..."
+    return "".join(pieces)
+
+
+def _toml(value):
+    """The pieces of ``value`` written as TOML (:func:`shown`), lazily: the text past what a
+    message quotes is never made."""
+    if isinstance(value, bool):
+        yield "true" if value else "false"
+    elif isinstance(value, int) and value.bit_length() > 14_000:  # past what str() writes
+        yield f"a whole number of {int(value.bit_length() * math.log10(2))} digits or so"
+    elif isinstance(value, (int, float)) and math.isfinite(value):
+        yield repr(value)
+    elif isinstance(value, float):
+        yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    elif isinstance(value, str):
+        yield json.dumps(value, ensure_ascii=False)  # TOML's basic string: JSON's escapes
+    elif isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
+        yield value.isoformat()
+    elif isinstance(value, list):
+        yield "["
+        for index, item in enumerate(value):
+            yield ", " if index else ""
+            yield from _toml(item)
+        yield "]"
+    elif isinstance(value, dict):
+        yield "{ " if value else "{"
+        for index, (key, item) in enumerate(value.items()):
+            bare = isinstance(key, str) and _BARE_KEY.fullmatch(key)
+            written = key if bare else json.dumps(str(key), ensure_ascii=False)
+            yield (", " if index else "") + written + " = "
+            yield from _toml(item)
+        yield " }" if value else "}"
+    else:
+        yield repr(value)
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
 def _validated(path: Path, key: str, value):
     """The one gate of a settings key: known, no path outside the repository anywhere in its
     value, then its own check (a limit no higher than the built-in one). SettingsError
@@ -386,7 +461,7 @@ def _parse(path: Path, table: dict) -> Settings:
         # read as its characters, each an unknown setting
         where = "the file" if path.name == "urdftool.toml" else "[tool.urdftool]"
         raise SettingsError(f"{path}: {where} must be a table of settings, not "
-                            f"{type(table).__name__} {str(table)[:40]!r}")
+                            f"{type(table).__name__} {shown(table)}")
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise SettingsError(f"{path}: unknown urdftool setting(s) {', '.join(unknown)}; "
@@ -407,7 +482,7 @@ def _targets(path: Path, value, key: str = "targets") -> list[str]:
         value = [value]
     if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
         raise SettingsError(f"{path}: 'targets' must be a list of simulator names, such as "
-                            f"[\"mujoco\", \"gz\"], not {value!r}")
+                            f"[\"mujoco\", \"gz\"], not {shown(value)}")
     try:
         checked_targets(value)
     except UsageError as error:
@@ -429,7 +504,7 @@ def _inside_path(settings: Path, value, what: str) -> Path:
     """A path setting, relative to the settings file; SettingsError when it is not a string or
     leads outside the repository."""
     if not isinstance(value, str) or "\0" in value:
-        raise SettingsError(f"{settings}: {what} must be a path (a string), got {value!r}")
+        raise SettingsError(f"{settings}: {what} must be a path (a string), got {shown(value)}")
     path = settings.parent / value
     _refuse_outside(settings, path, what)
     return path
@@ -449,7 +524,7 @@ def _strict(settings: Path, value, key: str) -> bool:
     """A true-or-false key (``strict``, ``notes``)."""
     if not isinstance(value, bool):
         raise SettingsError(f"{settings}: '{key}' must be true or false (a TOML boolean, "
-                            f"unquoted), not {value!r}")
+                            f"unquoted), not {shown(value)}")
     return value
 
 
@@ -472,7 +547,7 @@ def checked_file_size(value, what: str, most: int = MAX_FILE_SIZE, why: str = ""
     ``why``) unless it is a whole number from 1 to ``most``."""
     if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= most:
         raise SettingsError(f"{what} must be a whole number of bytes from 1 to {most}, "
-                            f"not {value!r}{why}")
+                            f"not {shown(value)}{why}")
     return value
 
 
@@ -493,7 +568,7 @@ def _memory(settings: Path, value, key: str) -> str:
         size = -1
     if isinstance(value, bool) or size is None or not 0 < size <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a size such as \"1G\" or \"512M\" up "
-                            f"to the built-in {format_memory(LIMITS[key])}, not {value!r} (a "
+                            f"to the built-in {format_memory(LIMITS[key])}, not {shown(value)} (a "
                             "repository may lower the budget; raise it with --max-memory)")
     return str(value)
 
@@ -504,7 +579,7 @@ def _timeout(settings: Path, value, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or \
             not 0 < value <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a number of seconds above 0 and up to "
-                            f"the built-in {LIMITS[key]:g}, not {value!r} (a repository may "
+                            f"the built-in {LIMITS[key]:g}, not {shown(value)} (a repository may "
                             "lower the budget; raise it with --timeout)")
     return float(value)
 
@@ -514,7 +589,7 @@ def _triangles(settings: Path, value, key: str) -> int:
     never raise it (that takes ``--max-triangles``)."""
     if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= LIMITS[key]:
         raise SettingsError(f"{settings}: '{key}' must be a whole number of triangles from 1 to "
-                            f"the built-in {LIMITS[key]}, not {value!r} (a repository may lower "
+                            f"the built-in {LIMITS[key]}, not {shown(value)} (a repository may lower "
                             "the limit; raise it with --max-triangles)")
     return value
 
@@ -555,7 +630,7 @@ def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
     boolean, written as xacro reads it), each a :class:`SettingValue`."""
     if not isinstance(args, dict):
         raise SettingsError(f"{path}: 'per-file-args.{pattern}' must be a table of xacro "
-                            f"arguments (name = value), not {args!r}")
+                            f"arguments (name = value), not {shown(args)}")
     values = {}
     for name, value in args.items():
         if isinstance(value, bool):
@@ -564,14 +639,14 @@ def _xacro_args(path: Path, pattern: str, args) -> dict[str, str]:
             value = repr(value)
         if not isinstance(value, str):
             raise SettingsError(f"{path}: 'per-file-args.{pattern}.{name}' must be a string, "
-                                f"number or boolean, not {value!r}")
+                                f"number or boolean, not {shown(value)}")
         values[name] = SettingValue(value)
     return values
 
 
 def _table(path: Path, value, key: str) -> dict:
     if not isinstance(value, dict):
-        raise SettingsError(f"{path}: '{key}' must be a table, not {value!r}")
+        raise SettingsError(f"{path}: '{key}' must be a table, not {shown(value)}")
     return value
 
 
@@ -584,10 +659,17 @@ def _selectors(path: Path, value, what: str) -> list[str]:
         raise SettingsError(f"{path}: '{what}' must be a list of rule codes or names")
     for selector in _codes(value):
         try:
-            check_selectors([selector])
+            _known_selector(selector)
         except UnknownRule as error:
             raise SettingsError(f"{path}: '{what}': {error}") from None
     return value
+
+
+@functools.lru_cache(maxsize=4096)
+def _known_selector(selector: str) -> None:
+    """:func:`check_selectors` of one selector, each distinct one asked once (50,000
+    ``per-file-ignores`` patterns each giving ``["U2"]`` asked it 50,000 times: 5 s)."""
+    check_selectors([selector])
 
 
 def check_selectors(selectors: Iterable[str]) -> None:
@@ -680,10 +762,10 @@ class CheckRequest:
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
         if self.timeout is not None and (isinstance(self.timeout, bool) or self.timeout < 0):
-            raise UsageError(f"timeout must not be negative, got {self.timeout!r}")
+            raise UsageError(f"timeout must not be negative, got {shown(self.timeout)}")
         if self.max_triangles is not None and (isinstance(self.max_triangles, bool) or
                                                self.max_triangles < 0):
-            raise UsageError(f"max_triangles must not be negative, got {self.max_triangles!r}")
+            raise UsageError(f"max_triangles must not be negative, got {shown(self.max_triangles)}")
 
 
 @dataclass(frozen=True)
@@ -754,7 +836,7 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         limit = DEFAULT_MEMORY if memory is None else parse_memory(str(memory))  # or bytes
     except UsageError:
         raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
-                            f"(no limit), not {memory!r}") from None
+                            f"(no limit), not {shown(memory)}") from None
     timeout = _given(request.timeout, settings.timeout, DEFAULT_TIMEOUT)
     return FileSettings(options, request.strict or settings.strict, limit, timeout or None)
 

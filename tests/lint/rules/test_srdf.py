@@ -219,3 +219,35 @@ def test_the_only_srdf_of_a_repository_is_not_another_robots(tmp_path):
     files["config/arm.urdf"] = other.replace("<link", "<!--" + "x" * (1 << 20) + "--><link", 1)
     found, _ = check_folder(tmp_path, files)
     assert ("arm.srdf", 1, "U802") in found, found
+
+
+def test_a_cycle_of_subgroups_is_one_finding_each_as_srdfdom_drops_it(tmp_path):
+    """srdfdom's ``loadGroups`` keeps a group once each of its subgroups is kept: a cycle is
+    never kept, nor a group holding one. One finding a cycle, at the subgroup of its first
+    group that closes it; a group held by an undefined name only is U805's."""
+    body = """<group name="a"><group name="b"/><joint name="head_joint"/></group>
+<group name="b"><group name="c"/></group>
+<group name="c"><group name="a"/></group>
+<group name="self"><group name="self"/></group>
+<group name="holder"><group name="c"/></group>
+<group name="lost"><group name="nowhere"/></group>
+<group name="fine"><group name="head"/></group>
+<group name="head"><joint name="head_joint"/></group>
+<group><group/></group>
+<group name="t "><group name="t "/></group>"""  # no name: srdfdom skips it
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 2, "U824"), ("robot.srdf", 5, "U824"), ("robot.srdf", 7, "U805"),
+                     ("robot.srdf", 11, "U824")]
+    assert "('a' > 'b' > 'c' > 'a')" in findings[0].message and "holding one: holder" in findings[0].message
+    assert "('self' > 'self')" in findings[1].message and "holding" not in findings[1].message
+
+
+def test_subgroups_leading_to_a_cycle_through_a_long_chain_are_walked_without_recursion(tmp_path):
+    """5,000 groups each holding the next, the last holding the first of a cycle of two,
+    written deepest last (the order that was as deep as it was long in session 11)."""
+    chain = "\n".join(f'<group name="g{i}"><group name="g{i + 1}"/></group>' for i in range(5000))
+    body = chain + '\n<group name="g5000"><group name="x"/></group>\n<group name="x"><group name="g5000"/></group>'
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 5002, "U824")]
+    assert "('g5000' > 'x' > 'g5000')" in findings[0].message and findings[0].message.count(", g") == 4 \
+        and "g4999, g4998" not in findings[0].message and ", ..." in findings[0].message

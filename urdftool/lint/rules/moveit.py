@@ -550,3 +550,104 @@ def srdf_adjacent_collision_not_disabled(robot):
             "disable the pair: MoveIt reports the robot in collision there; add <disable_collisions "
             f"link1=\"{pair[0]}\" link2=\"{pair[1]}\" reason=\"Adjacent\"/>"),
             f"disable {pair[0]} and {pair[1]} as Adjacent", _add_entry(srdf, pair, "Adjacent"), safe=False)
+
+
+_HOLDERS_NAMED = 5  # groups holding a cycle named in its message, at most
+
+
+@rule("U824", "srdf-group-cycle", Severity.ERROR)
+@as_moveit_runs
+def srdf_group_cycle(robot):
+    """SRDF groups hold each other through their subgroups: a cycle.
+
+    MoveIt's SRDF reader (srdfdom's ``Model::loadGroups``) keeps a group only once each of its
+    subgroups is kept; a group of the cycle never is, so it is dropped ("Group 'arm' has
+    unsatisfied subgroups"), with every group holding one of them, and the group states and
+    end effectors naming those ("that group is not known").
+
+    Bad: ``<group name="arm"><group name="hand"/></group> <group name="hand"><group name="arm"/></group>``
+    Good: ``<group name="arm"><chain .../><group name="hand"/></group> <group name="hand"><joint .../></group>``
+    """
+    srdf = companions(robot).srdf
+    if srdf is None or srdf.root is None:
+        return
+    # group name -> (subgroup name, element) of its first definition, names as srdfdom reads
+    # them: trimmed, a group or subgroup without one left out ("Group name not specified")
+    holds: dict[str, list[tuple[str, object]]] = {}
+    for element in srdf.root.iterfind("group"):
+        if element.get("name") is not None:
+            holds.setdefault(element.get("name").strip(), [
+                (sub.get("name").strip(), sub) for sub in element.iterfind("group")
+                if sub.get("name") is not None])
+    held_in: dict[str, list[str]] = {}  # group name -> the groups naming it as a subgroup
+    for name, subs in holds.items():
+        for sub in dict.fromkeys(sub for sub, _ in subs):
+            held_in.setdefault(sub, []).append(name)
+    for cycle in _group_cycles(holds, held_in):
+        holders = _holders(holds, held_in, set(cycle))
+        named = ", ".join(holders[:_HOLDERS_NAMED]) + (
+            ", ..." if len(holders) > _HOLDERS_NAMED else "")
+        closing = next(sub for name, sub in holds[cycle[0]] if name == cycle[1 % len(cycle)])
+        yield srdf.at(closing.sourceline), (
+            f"SRDF group '{cycle[0]}' holds itself through its subgroups "
+            f"({' > '.join(repr(name) for name in cycle + [cycle[0]])}): MoveIt drops every "
+            "group of the cycle "
+            f"(\"Group '{cycle[0]}' has unsatisfied subgroups\")"
+            + (f", and the group(s) holding one: {named}" if holders else "")
+            + ", with the group states and end effectors naming them")
+
+
+def _group_cycles(holds: dict[str, list[tuple[str, object]]], held_in: dict[str, list[str]]
+                  ) -> list[list[str]]:
+    """The cycles of subgroups, each once: its groups in the order they hold each other, from
+    the one defined first. Walked with loops (a chain of groups is as deep as it is long):
+    the groups srdfdom keeps are taken away (a group once its subgroups are all kept, as its
+    ``loadGroups`` repeats), then those an undefined name alone keeps out (U805's); from each
+    group left, a subgroup that is left leads on, to a cycle."""
+    edges = {name: list(dict.fromkeys(sub for sub, _ in subs)) for name, subs in holds.items()}
+    left = set(edges)
+    waiting = {name: len(subs) for name, subs in edges.items()}  # subgroups not yet kept
+    kept = [name for name, count in waiting.items() if not count]
+    while kept:
+        name = kept.pop()
+        left.discard(name)
+        for holder in held_in.get(name, ()):
+            waiting[holder] -= 1
+            if not waiting[holder]:
+                kept.append(holder)
+    onward = {name: sum(sub in left for sub in edges[name]) for name in left}
+    ends = [name for name in left if not onward[name]]
+    while ends:
+        name = ends.pop()
+        left.discard(name)
+        for holder in held_in.get(name, ()):
+            if holder in left:
+                onward[holder] -= 1
+                if not onward[holder]:
+                    ends.append(holder)
+    order = {name: index for index, name in enumerate(edges)}
+    cycles, walked = [], set()
+    for start in (name for name in edges if name in left):  # document order
+        path, at = {}, start
+        while at not in walked and at not in path:
+            path[at] = len(path)
+            at = next(sub for sub in edges[at] if sub in left)
+        walked.update(path)
+        if at in path:  # this walk closed a cycle
+            ring = list(path)[path[at]:]
+            first = ring.index(min(ring, key=order.__getitem__))
+            cycles.append(ring[first:] + ring[:first])
+    return cycles
+
+
+def _holders(holds: dict[str, list[tuple[str, object]]], held_in: dict[str, list[str]],
+             cycle: set) -> list[str]:
+    """Groups outside ``cycle`` that hold one of its groups, directly or through others, in
+    document order: all of them, or one more than a message names."""
+    found, queue = set(), list(cycle)
+    while queue and len(found) <= _HOLDERS_NAMED:
+        for holder in held_in.get(queue.pop(), ()):
+            if holder not in cycle and holder not in found:
+                found.add(holder)
+                queue.append(holder)
+    return [name for name in holds if name in found]

@@ -1,4 +1,4 @@
-"""U619-U629: what the robot's launch files start together.
+"""U619-U629: what the robot's launch files start together, and those that could not be read.
 
 Read from the launch files without running them (:mod:`urdftool.description.runtime`): a
 finding here is an error when a launch file always does what it says, a warning naming the
@@ -8,7 +8,8 @@ condition when it does so only under an argument or condition (docs/certainty.md
 from __future__ import annotations
 
 from urdftool.description.companions import parameter_files
-from urdftool.description.runtime import together
+from urdftool.description.runtime import together, unread_describing
+from urdftool.diagnostics import Location
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.lint.rules.controllers import label, shared_commands
 
@@ -47,3 +48,28 @@ def controllers_started_together(robot):
                 yield controller.file.at(line), f"{where} starts both active together: {message}"
             else:
                 yield controller.file.at(line), Conditional(f"if {where}, active: {message}")
+
+
+@rule("U620", "launch-file-not-read", Severity.INFO)
+def launch_file_not_read(robot):
+    """A launch file that names the robot file could not be read.
+
+    Launch files are read, never run (docs/launch.md): one that is not well-formed, not valid
+    Python (or too deep for Python's own parser), over the size limit or left with a merge
+    conflict tells nothing, so the controller YAML it loads, the controllers it starts, the
+    xacro arguments it builds the robot with and the SRDF it gives MoveIt are not known, and
+    are not checked: companions that only it names are not found. A note at the launch file
+    (where the parser stopped, when it said), saying why; the robot is checked as if the file
+    were not there. Launch tests are left out (a test is not a deployment).
+
+    Bad: ``launch/robot.launch.py`` loading ``config/ctrl.yaml`` and holding ``x = a.b.b...``
+    100,000 attributes long (``RecursionError`` in ``ast``)
+    Good: a launch file Python's parser reads
+    """
+    if robot.path == "-":
+        return
+    for display, problem, line in unread_describing(robot.path):
+        yield Location(display, line), (
+            f"this launch file names the robot and could not be read ({problem}): the "
+            "controllers, parameter files and xacro arguments it gives the robot are not known, "
+            "and not checked")
