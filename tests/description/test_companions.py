@@ -329,3 +329,39 @@ def test_a_moveit_package_whose_srdf_is_another_robots_lends_this_one_nothing(tm
     other = companions(load(tmp_path / "arm_description/other/output.urdf"))
     assert other.srdf is None and other.kinematics is None and not other.controllers
     assert any("the robot its SRDF names" in why for why in other.unused.values()), other.unused
+
+
+def test_a_moveit_package_s_yaml_is_the_srdf_its_setup_assistant_names(tmp_path):
+    """Devonics' fairino5_v6_moveit2_config holds two Setup Assistant runs' robots and SRDFs
+    (fairino5_v6_robot, fairino_with_ag95) and one kinematics.yaml, written for the SRDF its
+    .setup_assistant names (MoveItConfigsBuilder loads that SRDF whatever robot it is given):
+    checked against the other SRDF, both its groups were U813 errors."""
+    (tmp_path / ".git").mkdir()
+    srdf = "<robot name='{}'><group name='{}'><joint name='head_joint'/></group></robot>\n"
+    config = tmp_path / "r_moveit_config" / "config"
+    write(tmp_path, {"r_moveit_config/package.xml": "<package><buildtool_depend>ament_cmake"
+                                                    "</buildtool_depend></package>",
+                     "r_moveit_config/.setup_assistant":
+                         "moveit_setup_assistant_config:\n  srdf:\n    relative_path: config/new.srdf\n",
+                     "r_moveit_config/config/old.urdf": ROBOT.replace('name="r"', 'name="old"'),
+                     "r_moveit_config/config/new.urdf": ROBOT.replace('name="r"', 'name="new"'),
+                     "r_moveit_config/config/old.srdf": srdf.format("old", "old_group"),
+                     "r_moveit_config/config/new.srdf": srdf.format("new", "arm"),
+                     "r_moveit_config/config/kinematics.yaml":
+                         "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"})
+    new = companions(load(str(config / "new.urdf")))
+    assert new.srdf.path.name == "new.srdf" and new.kinematics is not None
+    old = companions(load(str(config / "old.urdf")))
+    assert old.srdf.path.name == "old.srdf" and old.kinematics is None
+    assert "its package's .setup_assistant writes it for" in old.unused[config / "kinematics.yaml"]
+    assert [f.code for f in load_and_check(str(config / "old.urdf"), CheckOptions()).findings
+            if f.code == "U813"] == []
+    # an SRDF a launch file or --srdf gives MoveIt is what MoveIt pairs the YAML with
+    named = load(str(config / "old.urdf"))
+    named.companion_paths = CompanionPaths(srdf=str(config / "old.srdf"))
+    assert companions(named).kinematics is not None
+    # ROS 1's MoveIt never reads .setup_assistant: its launch files pair the SRDF and the YAML
+    # (turtlebot_arm's pincher_arm.srdf with the package's one joint_limits.yaml)
+    write(tmp_path, {"r_moveit_config/package.xml": "<package><buildtool_depend>catkin"
+                                                    "</buildtool_depend></package>"})
+    assert companions(load(str(config / "old.urdf"))).kinematics is not None

@@ -64,6 +64,7 @@ from urdftool.description.files import inside, kind_of, listing, read_regular, r
 from urdftool.description.launch import named as launch_named
 from urdftool.description.packages import SKIP_DIRS, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
+from urdftool.description.ros_version import package_build_tool
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -140,21 +141,63 @@ def _discover(robot) -> Companions:
     else:
         path = _pick_srdf(robot, folders, owner, found)
         found.srdf = read_srdf(path) if path else None
+    picked = found.srdf if not named.srdf and not launched_srdf else None
     if named.spec:
         found.spec = read_yaml(Path(named.spec), "named spec")
     else:
         found.spec = _auto_yaml(folders, SPEC_NAMES, owner, found, lambda p: is_spec(p.data) or p.problem,
                                 "a urdftool joint spec")
     found.kinematics = _auto_yaml(folders, ("kinematics.yaml",), owner, found,
-                                  lambda p: p.problem is None and isinstance(p.data, dict), "MoveIt kinematics")
+                                  lambda p: p.problem is None and isinstance(p.data, dict), "MoveIt kinematics",
+                                  picked)
     # a joint_limits.yaml beside the robot is often its xacro's input: MoveIt's is in its package
     moveit_folders = [f for f in folders if f.parent.name.endswith("_moveit_config")]
     found.planning_limits = _auto_yaml(moveit_folders, ("joint_limits.yaml",), owner, found,
                                        lambda p: isinstance(p.data, dict)
-                                       and "joint_limits" in p.data, "MoveIt/ROS joint limits")
-    if found.srdf is not None:
+                                       and "joint_limits" in p.data, "MoveIt/ROS joint limits", picked)
+    if found.srdf is not None and not _written_for_another_srdf(found.srdf.path, picked):
         _beside_srdf(found, found.srdf.path)
     return found
+
+
+def _setup_assistant_srdf(folder: Path) -> Path | None:
+    """The SRDF that the ``.setup_assistant`` of the ROS 2 MoveIt package above ``folder``
+    (its ``config/``) names (``srdf: relative_path:``), when it is a regular file of the
+    package. MoveItConfigsBuilder loads that SRDF whatever robot name it is given, and the
+    Setup Assistant wrote the package's kinematics.yaml, joint_limits.yaml and controller lists
+    for it. ROS 1's MoveIt never reads the file: its launch files choose the SRDF
+    (turtlebot_arm's planning_context.launch loads ``$(arg arm_type)_arm.srdf`` with the one
+    joint_limits.yaml of the package), so a ROS 1 package gives nothing here."""
+    package = folder.parent
+    marker = package / ".setup_assistant"
+    if folder.name != "config" or kind_of(marker, follow=False) != "file" or \
+            (package_build_tool(str(marker)) or (None,))[0] != 2:
+        return None
+    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
+    settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
+    srdf = (settings.get("srdf") or settings.get("SRDF")) if isinstance(settings, dict) else None
+    relative = srdf.get("relative_path") if isinstance(srdf, dict) else None
+    if not isinstance(relative, str) or not relative:
+        return None
+    path = package / relative
+    return path if kind_of(path) == "file" and inside(path, package) else None
+
+
+def _written_for_another_srdf(path: Path, picked: SrdfFile | None) -> Path | None:
+    """The SRDF the Setup Assistant wrote MoveIt's file ``path`` (kinematics.yaml,
+    joint_limits.yaml, or the SRDF itself, for the files beside it) for, when it is another
+    SRDF of the same folder than ``picked``, the robot's SRDF found by name (one a launch file
+    or --srdf gives is what MoveIt pairs the files with). A package holding the SRDFs of two
+    Setup Assistant runs (Fairino's fairino5_v6_robot.srdf and fairino_with_ag95.srdf) has
+    its YAML written for the one its .setup_assistant names: checked against the other, each
+    group was 'not in the SRDF'."""
+    if picked is None or not kind_of(picked.path):
+        return None
+    named = _setup_assistant_srdf(Path(path).parent)
+    if named is None or real_path(named) == real_path(picked.path) or \
+            Path(real_path(named)).parent != Path(real_path(picked.path)).parent:
+        return None
+    return named
 
 
 def _beside_srdf(found: Companions, srdf: Path) -> None:
@@ -573,11 +616,16 @@ def _srdf_robot_name(path: Path) -> str | None:
     return parsed.data.get("name") if parsed.data is not None else None
 
 
-def _auto_yaml(folders, names, owner: _Owner, found: Companions, wanted, what: str):
+def _auto_yaml(folders, names, owner: _Owner, found: Companions, wanted, what: str,
+               picked: SrdfFile | None = None):
     for name in names:
         for path in _candidates(folders, name):
             parsed = read_yaml(path)
             if not wanted(parsed):
+                continue
+            if other := _written_for_another_srdf(path, picked):
+                found.unused[path] = (f"its package's .setup_assistant writes it for "
+                                      f"{display_path(other)}, not for this robot's SRDF")
                 continue
             mine, why = owner.claims(path)
             if mine or path.parent.name == "config" and path.parent.parent.name.endswith(

@@ -182,3 +182,20 @@ def test_a_joint_read_by_a_sensor_component_has_its_state(tmp_path):
     sensor = ('<ros2_control name="p" type="sensor"><hardware><plugin>demo/Sensor</plugin>'
               f'</hardware><joint name="head_joint">{STATE}</joint></ros2_control>')
     assert _check(tmp_path, actuator + sensor)[0] == []
+
+
+def test_a_mimic_joint_is_placed_from_the_joint_it_mimics(tmp_path):
+    """Seeed's starai cello arm: the gripper's joint7_right, a URDF <mimic> of joint7_left,
+    commanded through gazebo_ros2_control's ``mimic`` parameter with no state interface of its
+    own: robot_state_publisher places it from joint7_left's state (no U517); a mimic of a
+    joint with no state interface is still reported."""
+    finger = ('<link name="finger"/><joint name="finger_joint" type="revolute"><parent link="head"/>'
+              '<child link="finger"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" '
+              'velocity="1"/><mimic joint="head_joint"/></joint>')
+    control = ('<ros2_control name="s" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem'
+               '</plugin></hardware><joint name="head_joint"><command_interface name="position"/>{state}'
+               '</joint><joint name="finger_joint"><command_interface name="position"/>'
+               '<param name="mimic">head_joint</param></joint></ros2_control>')
+    assert _check(tmp_path / "a", finger + control.format(state=STATE), select=("U517",))[1] == []
+    findings = _check(tmp_path / "b", finger + control.format(state=""), select=("U517",))[1]
+    assert sorted(f.message.split("'")[1] for f in findings) == ["finger_joint", "head_joint"]

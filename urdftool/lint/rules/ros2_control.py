@@ -19,7 +19,9 @@ def ros2_control_no_state_interface(robot):
 
     A state interface of the joint in another ``<ros2_control>`` block counts: a sensor
     component reporting an actuator's position (ros2_control_demos example 14) is the joint's
-    state as joint_state_broadcaster reads it.
+    state as joint_state_broadcaster reads it. A joint the URDF makes a ``<mimic>`` of a joint
+    with a state interface is not reported: robot_state_publisher places it from that joint's
+    state (a gripper's second finger, driven by gazebo_ros2_control's ``mimic`` parameter).
 
     Bad: ``<joint name="head_joint"><command_interface name="position"/></joint>``
     Good: ``<command_interface name="position"/><state_interface name="position"/>``
@@ -27,12 +29,20 @@ def ros2_control_no_state_interface(robot):
     joints = ros2_control_joints(robot)
     reported = {joint.get("name") for _, joint in joints if joint.find("state_interface") is not None}
     for block, joint in joints:
-        if joint.find("command_interface") is not None and joint.get("name") not in reported:
+        if joint.find("command_interface") is not None and joint.get("name") not in reported \
+                and _mimicked(robot, joint.get("name")) not in reported:
             commands = ", ".join(c.get("name", "?") for c in joint.findall("command_interface"))
             yield joint, (f"ros2_control joint '{joint.get('name')}' in '{block.get('name')}' has command "
                           f"interface(s) {commands} and no state interface: joint_state_broadcaster "
                           "publishes nothing for it, so TF cannot place the links below it; add "
                           "<state_interface name=\"position\"/>")
+
+
+def _mimicked(robot, name) -> str | None:
+    """The joint the URDF joint ``name`` mimics (its ``<mimic joint>``), or None."""
+    joint = robot.joints.get(name)
+    mimic = joint.find("mimic") if joint is not None else None
+    return mimic.get("joint") if mimic is not None else None
 
 
 def _hardware(robot) -> list:
