@@ -107,9 +107,9 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
 
         terminal.say(
             f"urdftool: error: {counted(len(run.unexpanded), 'file')} not checked: a package "
-            "their package.xml declares is not installed here (U006 in the report); install "
-            "the dependencies (rosdep install --from-paths . --ignore-src) or pass --package "
-            "NAME=PATH", err=True)
+            "they need is not installed here (U006 in the report); install the dependencies "
+            "(rosdep install --from-paths . --ignore-src) or pass --package NAME=PATH",
+            err=True)
     return code
 
 

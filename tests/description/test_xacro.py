@@ -131,7 +131,7 @@ def test_a_missing_package_the_package_xml_declares_is_said_to_be_not_installed(
     assert raised.value.location.line == 2
     said = "the package.xml of 'bot_description' declares it as a dependency"
     assert (said in str(raised.value)) is declared
-    undeclared = "the package.xml of 'bot_description' does not declare it (rosdep would not"
+    undeclared = "the package.xml of 'bot_description' does not declare it, so rosdep would"
     assert (undeclared in str(raised.value)) is not declared
     assert "Pass --package mount_description=PATH" in str(raised.value)
 

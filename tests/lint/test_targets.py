@@ -207,8 +207,10 @@ def test_a_folder_walk_classifies_a_file_by_what_its_includes_produce(tmp_path):
 
 def test_a_robot_named_whose_includes_cannot_be_followed_is_checked(run_cli, tmp_path):
     robot = _robot_built_by_includes(tmp_path, include="$(find nowhere_pkg)/core.xacro")
-    result = run_cli("check", robot)
-    assert result.exit_code == 1 and "U006" in result.stdout
+    result = run_cli("check", robot)  # (a package not installed: not checked, exit 2)
+    assert result.exit_code == 2 and "U006" in result.stdout
+
+
 def _two_robots(tmp_path):
     """A repository with robots a and b in urdf/, each with its controller YAML, and a CI file."""
     (tmp_path / ".git").mkdir()

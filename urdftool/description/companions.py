@@ -62,9 +62,8 @@ from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside, kind_of, listing, read_regular, real_path, walk
 from urdftool.description.launch import named as launch_named
-from urdftool.description.packages import SKIP_DIRS, containment_root
+from urdftool.description.packages import SKIP_DIRS, build_tools, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
-from urdftool.description.ros_version import package_build_tool
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -171,7 +170,7 @@ def _setup_assistant_srdf(folder: Path) -> Path | None:
     package = folder.parent
     marker = package / ".setup_assistant"
     if folder.name != "config" or kind_of(marker, follow=False) != "file" or \
-            (package_build_tool(str(marker)) or (None,))[0] != 2:
+            [version for version, _, _ in build_tools(marker)] != [2]:
         return None
     data = read_yaml(marker, "MoveIt Setup Assistant settings").data
     settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None

@@ -21,7 +21,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from urdftool.errors import PackageNotFound
+from urdftool.errors import PackageNotFound, close_names
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
     read_regular, real_path, repository_root, resolved, walk
 from urdftool.description.install_layout import layout
@@ -147,7 +147,8 @@ class PackageResolver:
                 resolved(f"package {name}", candidate)
                 return candidate
         resolved(f"package {name}", "not found")
-        raise PackageNotFound(name, searched)
+        raise PackageNotFound(name, searched,  # (a misspelt name: one of those found, nearly)
+                              close=close_names(name, sorted(self._scanned or ()), cutoff=0.9))
 
     def _candidates(self, name: str):
         if name in self.explicit:
@@ -261,6 +262,24 @@ def declared_dependencies(folder: Path) -> frozenset[str] | None:
     if text is None:
         return None
     return frozenset(name.decode("utf-8", "replace") for name in _DEPEND.findall(text))
+
+
+_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*(catkin)\s*<")
+_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*(ament_(?:cmake|python))|<build_type>\s*(ament_\w+)")
+_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
+
+
+def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
+    """(ROS version, build tool, its package.xml) for each build tool the package.xml above
+    ``path`` names (comments removed): none when a build tool is conditioned (a package built
+    by both ROS versions)."""
+    folder = package_of(path)
+    data = manifest_text(folder) if folder is not None else None
+    if data is None or _CONDITIONED.search(data):
+        return ()
+    found = ((version, pattern.search(data)) for version, pattern in ((1, _CATKIN), (2, _AMENT)))
+    return tuple((version, next(g for g in match.groups() if g).decode(),
+                  Path(folder) / "package.xml") for version, match in found if match)
 
 
 def declaring_package(path, package: str) -> tuple[str | None, bool]:

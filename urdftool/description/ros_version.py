@@ -19,14 +19,10 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
-from urdftool.description.packages import manifest_text, package_of
+from urdftool.description.packages import build_tools
 from urdftool.diagnostics import display_path
 
-_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*(catkin)\s*<")
-_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*(ament_(?:cmake|python))|<build_type>\s*(ament_\w+)")
-_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
 
 
 @dataclass(frozen=True)
@@ -105,18 +101,8 @@ def plugin_version(library: str) -> int | None:
 def package_evidence(path: str) -> tuple[Evidence, ...]:
     """What the build tool of the package.xml above ``path`` says (comments removed): nothing
     when a build tool is conditioned (a package built by both ROS versions)."""
-    folder = package_of(path)
-    data = manifest_text(folder) if folder is not None else None
-    if data is None or _CONDITIONED.search(data):
-        return ()
-    shown_as = display_path(Path(folder) / "package.xml")
-    found = ((version, pattern.search(data)) for version, pattern in ((1, _CATKIN), (2, _AMENT)))
-    return tuple(Evidence(version, f"its package builds with {_tool(match)} ({shown_as})",
-                          "package") for version, match in found if match)
-
-
-def _tool(match) -> str:
-    return next(group for group in match.groups() if group).decode()
+    return tuple(Evidence(version, f"its package builds with {tool} ({display_path(manifest)})",
+                          "package") for version, tool, manifest in build_tools(path))
 
 
 def package_build_tool(path: str) -> tuple[int, str] | None:

@@ -808,10 +808,10 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
                                                        xacro_sandbox.SandboxViolation)):
         cause = getattr(cause, "exc", None) or cause.__context__
     if isinstance(cause, _PackageFailure):
-        # a dependency the package declares, not installed here: the environment, not the
-        # robot (installed wherever the package is built), so not certain
+        # a package not installed here: the environment's (a dependency declared, another
+        # repository's, or a misspelt name: the message says which it seems), never certain
         return XacroFailure("package", str(cause.error), where, subject=cause.error.name,
-                            certain=cause.error.declared_by is None)
+                            certain=False)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):

@@ -61,7 +61,7 @@ def head(path: Path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bytes | None:
 
 def stream(data: bytes, target) -> str:
     """Feed ``data`` to an lxml parser ``target`` as a stream of start and end tags, no tree
-    kept, stopping at the first answer (raised as Answered): memory stays small whatever the
+    kept, stopping at the first answer (raised as _Answered): memory stays small whatever the
     file holds. An unparsable file answers 'robot', so that the parse error is reported."""
     from lxml import etree
 
@@ -71,7 +71,7 @@ def stream(data: bytes, target) -> str:
         for offset in range(0, len(data) or 1, CHUNK):
             parser.feed(data[offset:offset + CHUNK])
         parser.close()
-    except Answered as answered:
+    except _Answered as answered:
         return answered.args[0]
     except etree.LxmlError:
         return "robot"
@@ -88,7 +88,7 @@ def is_xacro(tag) -> bool:
     return isinstance(tag, str) and ("ros.org/wiki/xacro}" in tag or tag.startswith("xacro:"))
 
 
-class Answered(Exception):
+class _Answered(Exception):
     """The question is answered (its answer is the argument): stop reading."""
 
 
@@ -184,7 +184,7 @@ class MacroUse:
             self.calls.add(name)
         elif not (name in DEFINITIONS or not xacro and name in PART_BLOCKS) or \
                 xacro and name in self._UNKNOWN:
-            raise Answered("content")
+            raise _Answered("content")
         self.skipped = self.depth
 
     def end(self, tag):

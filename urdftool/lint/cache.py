@@ -62,11 +62,10 @@ import hashlib
 import hmac
 import json
 import os
-import stat
 from pathlib import Path
 
-from urdftool.description.files import make_folders, own_folder, read_own, tree_stamp, \
-    unchanged, write_file
+from urdftool.description.files import kind_of, make_folders, own_folder, read_own, \
+    tree_stamp, unchanged, write_file
 from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
@@ -247,19 +246,16 @@ class Cache:
     def _unusable(self) -> str:
         """Why :meth:`_usable_folder` refused the folder (or its ``v<SCHEMA>``)."""
         for folder, it in ((self.folder, "it"), (self.folder / f"v{SCHEMA}", f"its v{SCHEMA}")):
-            try:
-                mode = os.lstat(folder).st_mode
-            except FileNotFoundError:
+            kind = kind_of(folder, follow=False)
+            if not kind:
                 try:
                     make_folders(folder, 0o700)
                 except (OSError, UsageError) as error:
                     return f"{it} could not be made ({getattr(error, 'strerror', None) or error})"
                 continue
-            except OSError as error:
-                return error.strerror or str(error)
-            if stat.S_ISLNK(mode):
+            if kind == "link":
                 return f"{it} is a symbolic link, which is never followed"
-            if not stat.S_ISDIR(mode):
+            if kind != "folder":
                 return f"{it} is not a folder"
         return "it could not be used"
 

@@ -100,9 +100,8 @@ class FileResult:
 
     @property
     def unexpanded(self) -> bool:
-        """Whether its robot was not expanded, so not checked, for a dependency its package
-        declares and this machine lacks (U006 lowered by the loader: the environment's, not
-        the robot's)."""
+        """Whether its robot was not expanded, so not checked, for a package this machine
+        lacks (U006: the environment's, not the robot's, a warning)."""
         return any(finding.code == "U006" and finding.severity is not Severity.ERROR
                    for finding in self.findings)
 

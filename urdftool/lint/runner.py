@@ -146,16 +146,16 @@ class Run:
 
     @property
     def unexpanded(self) -> list[str]:
-        """The files not checked for a dependency their package declares and this machine
-        lacks (:attr:`FileResult.unexpanded`): nothing in them is known wrong, and a run that
-        could not check them is no pass."""
+        """The files not checked for a package this machine lacks
+        (:attr:`FileResult.unexpanded`): nothing in them is known wrong, and a run that could
+        not check them is no pass."""
         return [result.path for result in self.results if result.unexpanded]
 
     @property
     def exit_code(self) -> int:
         """0 clean, 1 when a file has an error, or a warning and is checked strictly; 2 when
         files were not checked: for their broken settings (:attr:`errors`) or for a
-        dependency not installed (:attr:`unexpanded`)."""
+        package not installed (:attr:`unexpanded`)."""
         if self.errors or self.unexpanded:
             return 2
         return 1 if any(result.failures for result in self.results) else 0

@@ -25,7 +25,7 @@ from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
 from urdftool.description.xacro_text import (CHUNK as _CHUNK, DEFINITIONS as _DEFINITIONS,
                                              FIND as _FIND, INCLUDE as _INCLUDE,
                                              XACRO_DIRECTIVES as _XACRO_DIRECTIVES,
-                                             Answered as _Answered, arg_defaults as _arg_defaults,
+                                             _Answered, arg_defaults as _arg_defaults,
                                              head as _head, included_files as _included_files,
                                              is_xacro as _is_xacro, local_name as _local_name,
                                              reached, resolved_path, resolved_spec as _resolved_spec,

@@ -91,7 +91,7 @@ def test_a_mesh_in_a_package_the_robots_package_declares_is_not_certainly_missin
         assert (severity == Severity.WARNING) is declared, message
         said = "the package.xml of 'bolt_description' declares it as a dependency"
         assert (said in message) is declared, message
-        assert ("does not declare it (rosdep would not install it)" in message) is not declared
+        assert ("does not declare it, so rosdep would not install it" in message) is not declared
 
 
 def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):

@@ -86,7 +86,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                     f"'{owner}' declares it as a dependency, which is not installed here, so "
                     f"the mesh is not checked; pass --package {package}=PATH or install the "
                     "dependencies (rosdep install --from-paths . --ignore-src)"), certain=False)
-            if owner is not None:  # a misspelt name, or a dependency rosdep would not install
+            if owner is not None:  # a misspelt name, or another repository's package
                 error = error.declared(owner, declares=False)
             return MeshProblem("package", f"mesh '{uri}': {error}")
         folder = os.path.dirname(folder)

@@ -114,23 +114,25 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     """)
 
 
-U006 = declare("U006", "unresolved-package", Severity.ERROR, """
-    A ``$(find pkg)`` names a package that is nowhere on the search path.
+U006 = declare("U006", "unresolved-package", Severity.WARNING, """
+    A ``$(find pkg)`` names a package not installed here: the robot is not checked.
 
     urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
     package.xml files above the input and below the repository root; the message lists them.
 
-    An error when nothing declares the package: a misspelt name, or a dependency the package
-    does not declare (rosdep will not install it). A **warning** when the package.xml of the
-    file's package declares it (``<depend>``, ``<exec_depend>`` ...): a dependency not installed
-    on this machine is the environment's, not the robot's, and wherever the package is built it
-    is there; the robot is not checked, though, and a run that could not check it is no pass:
-    ``urdftool check`` exits 2 and says so (``--package NAME=PATH`` or ``rosdep install
-    --from-paths . --ignore-src`` gives it what it needs).
+    A package not installed is the environment's, not the robot's: a dependency the file's
+    package.xml declares is there wherever the package is built, and another repository's
+    package may be installed beside it. A warning, then, saying which it seems: declared
+    (install the dependencies: ``rosdep install --from-paths . --ignore-src``), not declared
+    (rosdep would not install it: add ``<exec_depend>``), or close to a package found here (a
+    misspelt name: "did you mean"). The robot is not checked, though, and a run that could not
+    check it is no pass: ``urdftool check`` exits 2 and says how many files it could not
+    check (``--package NAME=PATH`` gives it what it needs).
 
     Bad: ``$(find my_robot_descripton)/urdf/arm.xacro``
     Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
     """)
+
 
 
 U007 = declare("U007", "xacro-in-urdf", Severity.ERROR, """
