@@ -138,6 +138,26 @@ def corpus_run() -> dict[str, tuple[tuple[str, dict[str, str]], object]]:
     return run
 
 
+MESH_SUFFIXES = (".stl", ".dae", ".obj")
+
+
+@pytest.fixture(scope="session")
+def corpus_meshes() -> dict[Path, tuple | None]:
+    """Every corpus mesh (STL, COLLADA, OBJ) read once per session by ``mesh_arrays.read``:
+    ``{path: (vertices, faces) or None}``, sorted by path. The arrays are read-only: a test
+    that wrote into one fails there rather than changing what the next test reads."""
+    from urdftool.description import mesh_arrays
+
+    corpus_or_skip()
+    read = {}
+    for path in sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() in MESH_SUFFIXES):
+        if path.is_file():
+            arrays = read[path] = mesh_arrays.read(path, path.read_bytes())
+            for array in arrays or ():
+                array.setflags(write=False)
+    return read
+
+
 def lasting() -> None:
     """The objects alive now moved out of the cyclic collector's sight (``gc.freeze()``, after
     a collection): what the session keeps (modules, test items, the corpus run) is no longer

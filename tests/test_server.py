@@ -44,9 +44,12 @@ BROKEN, FIXED = ROBOT.format(lower=1, upper=-1), ROBOT.format(lower=-1, upper=1)
 LIMIT_LINE, CALL_LINE = 7, 4  # 0-based: the <limit> in arm.xacro, the macro call in the robot
 
 
-@pytest_lsp.fixture(config=ClientServerConfig(
+@pytest_lsp.fixture(scope="module", config=ClientServerConfig(
     server_command=[sys.executable, "-m", "urdftool", "server"]))
-async def client(lsp_client: LanguageClient):
+async def editor(lsp_client: LanguageClient):
+    """One server for the editor tests of a test process (its start: 0.5 s of CPU, importing
+    lsprotocol). Each test works in its own folder, which no other test's documents concern,
+    and reads only what concerns its own files (see ``client``)."""
     lsp_client.registrations = []
 
     @lsp_client.feature(types.CLIENT_REGISTER_CAPABILITY)
@@ -57,6 +60,18 @@ async def client(lsp_client: LanguageClient):
         capabilities=client_capabilities("visual-studio-code")))
     yield
     await lsp_client.shutdown_session()
+
+
+@pytest.fixture
+def client(editor: LanguageClient) -> LanguageClient:
+    """The shared server, its messages and logs from earlier tests forgotten (diagnostics are
+    kept by URI, and each test's URIs are its own; ``checked`` matches the whole path)."""
+    editor.messages.clear()
+    editor.log_messages.clear()
+    return editor
+
+
+SHARED = pytest.mark.asyncio(loop_scope="module")  # the tests of the shared server (its loop)
 
 
 async def wait_until(condition, seconds: float = 60.0):
@@ -87,9 +102,12 @@ def codes(client: LanguageClient, uri: str) -> list[tuple[int, str]]:
     return [(d.range.start.line, d.code) for d in client.diagnostics.get(uri, [])]
 
 
-def checked(client: LanguageClient, name: str) -> list[str]:
-    return [m.message for m in client.log_messages if m.message.startswith(f"checked ")
-            and name in m.message]
+def checked(client: LanguageClient, robot: Path | str) -> list[str]:
+    """The server's log lines of the checks of ``robot``: its whole path (a server checks the
+    robots of other tests too), or a word in it for a server of the test's own."""
+    return [m.message for m in client.log_messages if m.message.startswith("checked ")
+            and (m.message.startswith((f"checked {robot} (", f"checked {robot}:"))
+                 if isinstance(robot, Path) else robot in m.message)]
 
 
 def write_robot(folder: Path, robot: str = BROKEN) -> Path:
@@ -100,7 +118,7 @@ def write_robot(folder: Path, robot: str = BROKEN) -> Path:
     return path
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_a_finding_in_an_included_macro_is_published_there_and_cleared_when_fixed(
         client: LanguageClient, tmp_path):
     robot = write_robot(tmp_path / "bot")
@@ -127,15 +145,15 @@ async def test_a_finding_in_an_included_macro_is_published_there_and_cleared_whe
     assert robot.read_text() == BROKEN
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_an_unsaved_edit_in_an_included_macro_file_rechecks_its_robot_until_closed(
         client: LanguageClient, tmp_path):
     robot = write_robot(tmp_path / "bot", FIXED)
     macro = tmp_path / "bot" / "arm.xacro"
     uri = open_document(client, robot)
-    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    await wait_until(lambda: checked(client, robot))
     macro_uri = open_document(client, macro)  # checks its robot again
-    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) == 2)
+    await wait_until(lambda: len(checked(client, robot)) == 2)
     assert codes(client, uri) == [] and codes(client, macro_uri) == []
 
     edited = MACRO.replace("  <xacro:macro", "  <!-- two lines\n  more -->\n  <xacro:macro") \
@@ -151,25 +169,25 @@ async def test_an_unsaved_edit_in_an_included_macro_file_rechecks_its_robot_unti
     await wait_until(lambda: codes(client, macro_uri) == [] and codes(client, uri) == [])
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_quick_changes_are_checked_once_at_their_last_version(client: LanguageClient,
                                                                      tmp_path):
     robot = write_robot(tmp_path / "bot", FIXED)
     uri = open_document(client, robot)
-    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    await wait_until(lambda: checked(client, robot))
     assert codes(client, uri) == []
 
     for version in range(2, 7):  # well within the debounce time; only the last one is broken
         change_document(client, uri, version, BROKEN if version == 6 else FIXED + " " * version)
-    await wait_until(lambda: len(checked(client, "robot.urdf.xacro")) > 1)
+    await wait_until(lambda: len(checked(client, robot)) > 1)
     await asyncio.sleep(1.0)  # a check of an older version would have been logged by now
 
-    assert len(checked(client, "robot.urdf.xacro")) == 2
-    assert "(version 6)" in checked(client, "robot.urdf.xacro")[-1]
+    assert len(checked(client, robot)) == 2
+    assert "(version 6)" in checked(client, robot)[-1]
     assert codes(client, uri) == [(CALL_LINE, "U204")]
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_hover_on_a_rule_code_shows_its_documentation(client: LanguageClient, tmp_path):
     from urdftool.lint.rules import CATALOGUE
 
@@ -204,7 +222,7 @@ def apply(text: str, edits: list[types.TextEdit]) -> str:
     return text
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_the_quick_fix_inserts_a_suppression_that_silences_the_finding(
         client: LanguageClient, tmp_path):
     path = tmp_path / "robot.urdf"
@@ -227,11 +245,11 @@ async def test_the_quick_fix_inserts_a_suppression_that_silences_the_finding(
     assert fixed.splitlines()[limit + 1] == text.splitlines()[limit]
 
     change_document(client, uri, 2, fixed)
-    await wait_until(lambda: len(checked(client, "robot.urdf")) == 2)
+    await wait_until(lambda: len(checked(client, path)) == 2)
     assert codes(client, uri) == []  # silenced, and the suppression is used (no U901)
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_a_companion_file_gets_its_findings_and_a_macro_library_its_robots(
         client: LanguageClient, tmp_path):
     folder = tmp_path / "ctl"
@@ -255,7 +273,7 @@ async def test_a_companion_file_gets_its_findings_and_a_macro_library_its_robots
     assert codes(client, macro_uri) == [(LIMIT_LINE, "U204")]
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_a_check_that_raises_is_reported_and_the_server_goes_on(client: LanguageClient,
                                                                       tmp_path):
     bad = write_robot(tmp_path / "bad")
@@ -272,7 +290,7 @@ async def test_a_check_that_raises_is_reported_and_the_server_goes_on(client: La
     assert bad.as_uri() not in client.diagnostics  # nothing published for it
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_saving_a_settings_file_rechecks_the_robots_under_it(client: LanguageClient,
                                                                    tmp_path):
     uri = open_document(client, write_robot(tmp_path / "bot"))
@@ -488,12 +506,12 @@ def test_the_record_of_a_check_says_which_changes_concern_a_robot(offline_server
     assert server.concerned(str(package / "launch" / "x.launch.py")) == [robot]
 
 
-@pytest.mark.asyncio
+@SHARED
 async def test_a_file_created_outside_the_editor_rechecks_the_robots_that_searched_for_it(
         client: LanguageClient, tmp_path):
     robot = _package(tmp_path)
     uri = open_document(client, robot)
-    await wait_until(lambda: checked(client, "robot.urdf.xacro"))
+    await wait_until(lambda: checked(client, robot))
     assert codes(client, uri) == []
     assert [r.method for r in client.registrations] == ["workspace/didChangeWatchedFiles"]
 
@@ -531,7 +549,7 @@ SLOW = """\
   <xacro:twice n="24"/>
 </robot>
 """
-BUDGET = 10  # [s] the server's --timeout in these tests
+BUDGET = 5  # [s] the server's --timeout in these tests (the slow document spins it out)
 
 
 @pytest_lsp.fixture(config=ClientServerConfig(

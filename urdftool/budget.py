@@ -112,15 +112,21 @@ def map_blas_buffers() -> None:
 
     numpy.ones((128, 128)) @ numpy.ones((128, 128))
 
-def grown(size: int | None) -> bool:
+KEPT_AT_LEAST = 64 << 20  # [bytes] what earlier pieces must have kept for a fresh worker to help
+
+
+def grown(size: int | None, born: int = 0) -> bool:
     """Whether this process's address space has grown past half of ``size`` bytes, its memory
-    budget (False without a budget, or where it cannot be read): a worker that kept that much
-    from its earlier pieces (what a run remembers, the allocator's free pages) would give the
-    next piece less than half of its budget."""
+    budget, by at least :data:`KEPT_AT_LEAST` over ``born``, its size when it started (False
+    without a budget, or where it cannot be read): a worker that kept that much from its
+    earlier pieces (what a run remembers, the allocator's free pages) would give the next piece
+    less than half of its budget. One forked from a process already past half (a program
+    calling the API, a test session) starts that large: a fresh one would be no smaller, and
+    a worker forked for every piece cost 0.2 s of CPU each from a 1.4 GB process."""
     if not size:
         return False
     used = address_space()
-    return used is not None and used > size // 2
+    return used is not None and used > size // 2 and used - born >= KEPT_AT_LEAST
 
 
 def address_space() -> int | None:

@@ -69,7 +69,13 @@ def test_empty_package_names_resolve_as_pinocchio_does_with_a_warning(corpus):
                            for uri in missing)
 
 
-def test_stl_read_without_trimesh_measures_as_trimesh_on_every_corpus_stl(corpus):
+def _of_kind(corpus_meshes, suffix: str) -> list:
+    """The corpus meshes whose name ends in ``suffix`` (any case), with what mesh_arrays read."""
+    return [(path, arrays) for path, arrays in corpus_meshes.items()
+            if path.suffix.lower() == suffix]
+
+
+def test_stl_read_without_trimesh_measures_as_trimesh_on_every_corpus_stl(corpus_meshes):
     """Every corpus STL read by mesh_arrays (no trimesh) gives trimesh's processed mesh:
     the same vertices and faces, bounds, triangle count, watertightness and mass properties
     (within 1e-9 relative), unscaled and mirrored-scaled."""
@@ -78,11 +84,10 @@ def test_stl_read_without_trimesh_measures_as_trimesh_on_every_corpus_stl(corpus
 
     from urdftool.description import mesh_arrays
 
-    files = sorted(p for p in corpus.rglob("*") if p.suffix.lower() == ".stl" and p.is_file())
+    files = _of_kind(corpus_meshes, ".stl")
     assert len(files) > 200
     light = 0
-    for path in files:
-        arrays = mesh_arrays.read(path, path.read_bytes())
+    for path, arrays in files:
         try:
             mesh = trimesh.load(str(path), force="mesh", process=True)
         except Exception:  # a file trimesh refuses must not be read light either
@@ -114,7 +119,7 @@ def test_stl_read_without_trimesh_measures_as_trimesh_on_every_corpus_stl(corpus
     assert light == len(files)  # every corpus STL is read without trimesh
 
 
-def test_convex_hulls_without_trimesh_measure_as_trimeshs_on_every_corpus_mesh(corpus):
+def test_convex_hulls_without_trimesh_measure_as_trimeshs_on_every_corpus_mesh(corpus_meshes):
     """The hull of every corpus STL, DAE and OBJ (what an open mesh's volume is taken from) has
     trimesh's volume, centre of mass and inertia within 1e-9 relative, built without trimesh."""
     import numpy as np
@@ -122,10 +127,8 @@ def test_convex_hulls_without_trimesh_measure_as_trimeshs_on_every_corpus_mesh(c
 
     from urdftool.description import mesh_arrays
 
-    files = sorted(p for p in corpus.rglob("*") if p.suffix.lower() in (".stl", ".dae", ".obj"))
     built = 0
-    for path in files:
-        arrays = mesh_arrays.read(path, path.read_bytes())
+    for path, arrays in corpus_meshes.items():
         hull = mesh_arrays.convex_hull(arrays[0])
         theirs = trimesh.convex.convex_hull(arrays[0]).mass_properties
         assert hull is not None, path
@@ -137,7 +140,7 @@ def test_convex_hulls_without_trimesh_measure_as_trimeshs_on_every_corpus_mesh(c
                            atol=1e-9 * size), path
         assert np.allclose(ours["inertia"], theirs["inertia"], rtol=1e-9,
                            atol=1e-9 * float(np.abs(theirs["inertia"]).max())), path
-    assert built == len(files) > 300
+    assert built == len(corpus_meshes) > 300
 
 
 def _by_position(path):
@@ -163,21 +166,18 @@ def _same_merged_mesh(path, arrays, mesh) -> None:
     assert abs(ours["volume"] - theirs["volume"]) <= 1e-9 * abs(theirs["volume"]), path
 
 
-def test_collada_read_without_trimesh_is_trimeshs_merged_on_every_corpus_dae(corpus):
+def test_collada_read_without_trimesh_is_trimeshs_merged_on_every_corpus_dae(corpus_meshes):
     """Every corpus COLLADA file read by mesh_arrays (read_collada, no trimesh, no pycollada)
     is trimesh.load(force="mesh")'s mesh with its corners merged by position: vertex and
     triangle count, bounds, watertightness, volume. trimesh alone keeps corners apart where
     normals or texture coordinates differ, and so calls most of these closed meshes open."""
     import logging
 
-    from urdftool.description import mesh_arrays
-
     logging.getLogger("trimesh").setLevel(logging.CRITICAL)
-    files = sorted(p for p in corpus.rglob("*") if p.suffix.lower() == ".dae" and p.is_file())
+    files = _of_kind(corpus_meshes, ".dae")
     assert len(files) > 90
     seams = 0
-    for path in files:
-        arrays = mesh_arrays.read(path, path.read_bytes())
+    for path, arrays in files:
         assert arrays is not None, path
         mesh, was = _by_position(path)
         _same_merged_mesh(path, arrays, mesh)
@@ -185,20 +185,17 @@ def test_collada_read_without_trimesh_is_trimeshs_merged_on_every_corpus_dae(cor
     assert seams >= 60  # closed meshes trimesh alone calls open (63 when written)
 
 
-def test_obj_read_without_trimesh_measures_as_trimesh_on_every_corpus_obj(corpus):
+def test_obj_read_without_trimesh_measures_as_trimesh_on_every_corpus_obj(corpus_meshes):
     """Every corpus OBJ read by mesh_arrays gives trimesh's triangles (the same coordinates,
     face by face) merged by position: vertex count, bounds, watertightness and volume."""
     import logging
 
     import numpy as np
 
-    from urdftool.description import mesh_arrays
-
     logging.getLogger("trimesh").setLevel(logging.CRITICAL)
-    files = sorted(p for p in corpus.rglob("*") if p.suffix.lower() == ".obj" and p.is_file())
+    files = _of_kind(corpus_meshes, ".obj")
     assert files
-    for path in files:
-        arrays = mesh_arrays.read(path, path.read_bytes())
+    for path, arrays in files:
         assert arrays is not None, path
         mesh, _ = _by_position(path)
         _same_merged_mesh(path, arrays, mesh)

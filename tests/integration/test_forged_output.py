@@ -20,7 +20,10 @@ from tests.fuzz import forge
 
 
 @pytest.fixture(scope="module")
-def hostile_repository(tmp_path_factory):
+def hostile_repository(tmp_path_factory, analysis_imported):
+    """The repository of hostile names; the commands' libraries imported before the first
+    command runs, so that each command's budgeted worker, forked from this process, does not
+    import them again (100 commands: 13.3 -> 7.0 s of CPU)."""
     return forge.repository(tmp_path_factory.mktemp("hostile"))
 
 

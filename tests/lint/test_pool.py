@@ -211,10 +211,25 @@ def test_a_worker_grown_past_half_its_budget_hands_the_next_piece_to_a_fresh_one
 
 
 @pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="Linux's /proc")
+def test_a_worker_born_past_half_its_budget_is_not_replaced_until_its_pieces_keep_more():
+    """Forked from a process already past half the budget (a program calling the API, the
+    test session that replays fuzz case 59cee68e5577: 90 files, 1.4 GB), a worker retired
+    after every piece, a fresh one as large forked for the next: 90 forks, 16 s of CPU. It
+    is replaced once its pieces have kept KEPT_AT_LEAST, as one born small is past half."""
+    half = address_space() - 100 * MB  # already past it
+    pids = run_budgeted(3, lambda _: os.getpid(), Budget(60.0, 2 * half),
+                        lambda _, stop: stop, jobs=1)
+    assert len(set(pids)) == 1 and all(isinstance(pid, int) for pid in pids), pids
+    pids = run_budgeted(3, lambda _: _keep(budget.KEPT_AT_LEAST), Budget(60.0, 2 * half),
+                        lambda _, stop: stop, jobs=1)
+    assert pids[0] != pids[1] != pids[2], pids
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/statm"), reason="Linux's /proc")
 def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monkeypatch):
     """A piece stopped for memory or death in a worker that did earlier pieces is given once
     more to a fresh worker: only there is the verdict (U900, U018) its own."""
-    monkeypatch.setattr(pool.budgets, "grown", lambda size: False)  # the worker never retires
+    monkeypatch.setattr(pool.budgets, "grown", lambda size, born: False)  # the worker never retires
     start = address_space()
     budget = Budget(60.0, 2 * (start + 100 * MB))  # half: what the first piece leaves
 

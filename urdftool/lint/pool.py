@@ -219,6 +219,7 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
     """Do each piece sent, until told to stop, or until the worker has grown past half its
     memory budget (:func:`urdftool.budget.grown`): it then says so with the piece's result
     (``("done", index, result, True)``) and ends, and the parent starts a fresh one."""
+    born = budgets.address_space() or 0
     while True:
         try:
             index = connection.recv()
@@ -238,7 +239,7 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
                 ("stop", index, "crash", traceback.format_exc())
         for stream in (sys.stdout, sys.stderr):
             stream.flush()
-        retiring = message[0] == "done" and budgets.grown(memory)
+        retiring = message[0] == "done" and budgets.grown(memory, born)
         try:
             connection.send((*message, True) if retiring else message)
         except Exception as error:  # a result that does not pickle, or memory to pickle it
