@@ -157,6 +157,9 @@ def test_a_robot_not_expanded_for_a_package_not_installed_is_no_pass_nor_error(
         result = run_cli("check", "--no-cache", str(robot), *extra)
         said = "1 file not checked: a package they need is not installed here"
         assert result.exit_code == 2 and said in result.output, result.output
+        if not extra:  # the summary line does not call it checked
+            assert "0 files checked, 1 not (a package it needs is not installed)" \
+                in result.stdout, result.stdout
     from urdftool.lint.runner import check_paths
 
     run = check_paths(robot)
