@@ -485,7 +485,14 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
     """The launch files below ``root`` (sorted, bounded; folders that are links not entered,
     files leading outside ``root`` left out), and whether the bound was reached; with
     ``tests``, the Python files that may be launch tests too
-    (:func:`~urdftool.description.launch.may_be_launch_test`: :func:`read_launch` tells)."""
+    (:func:`~urdftool.description.launch.may_be_launch_test`: :func:`read_launch` tells).
+    Walked once per run (the launch index and the files it could not read ask alike); the
+    list is shared: not to be changed."""
+    return _launch_files(root, bool(tests))
+
+
+@per_run
+def _launch_files(root: Path, tests: bool) -> tuple[list[Path], bool]:
     found, top = [], os.fspath(root)
     for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
         in_launch = os.path.basename(current) == "launch" and current != top
