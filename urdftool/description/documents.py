@@ -223,11 +223,27 @@ def read_srdf(path: Path, as_: str = "companion SRDF") -> SrdfFile:
             (f"not well-formed XML: {error.msg}", _xml_error_line(error, text))
         return result
     _start_tag_lines(result.data, text)
+    _trimmed(result.data)
     if result.data.tag != "robot":
         result.problem, result.line = (f"root element is <{result.data.tag}>, not <robot>",
                                        result.data.sourceline)
         result.data = None
     return result
+
+
+# What srdfdom reads of an attribute untrimmed: a joint property's value, a collision pair's
+# reason; every name it trims (boost::trim, src/model.cpp), so `<group name="arm ">` is "arm"
+_UNTRIMMED = frozenset({"value", "reason"})
+_BLANKS = " \t\n\r\f\v"  # (C's isspace, as boost::trim's default locale has it)
+
+
+def _trimmed(root) -> None:
+    """The names of an SRDF's elements as srdfdom reads them: without the white space around
+    them (``<group name="arm ">`` is the group "arm" that MoveIt knows, not another one)."""
+    for element in root.iter():
+        for name, value in element.attrib.items():
+            if name not in _UNTRIMMED and value != value.strip(_BLANKS):
+                element.set(name, value.strip(_BLANKS))
 
 
 def _xml_error_line(error, text: str) -> int | None:

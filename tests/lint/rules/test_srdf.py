@@ -22,6 +22,16 @@ def test_valid_srdf_with_virtual_and_pinocchio_root_joints(tmp_path):
     assert check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})[0] == []
 
 
+def test_srdf_names_are_read_trimmed_as_srdfdom_reads_them(tmp_path):
+    """srdfdom trims every name it reads (boost::trim): the group "arm " is the group "arm",
+    its link " head" the URDF's head (a false U805/U804 before)."""
+    body = """<group name="arm "><chain base_link=" base_link" tip_link="head "/></group>
+<group name="all"><group name=" arm"/></group>
+<group_state name="up" group="arm\t"><joint name=" head_joint" value="1"/></group_state>
+<disable_collisions link1="base_link " link2=" head" reason="Adjacent"/>"""
+    assert check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})[0] == []
+
+
 def test_each_srdf_reference_is_located_in_the_srdf(tmp_path):
     body = """<group name="arm">
   <joint name="elbow"/>
