@@ -216,14 +216,13 @@ class _Reader:
             elif isinstance(statement, ast.Return):
                 return self.eval(statement.value, env, when, depth) if statement.value else None
             elif isinstance(statement, ast.If):
-                decided = self.decided(statement.test, env, depth)
+                decided, test = self.judged(statement.test, env, depth)
                 if decided is not None:  # a test of values the file gives: one branch runs
                     found = self.block(statement.body if decided else statement.orelse, env,
                                        when, depth)
                     if found is not None:
                         return found
                     continue
-                test = self.condition(statement.test, env, depth)
                 found = self.block(statement.body, env, when + (test,), depth)
                 otherwise = self.block(statement.orelse, env, when + (_negated(test),), depth)
                 if found is not None and otherwise is None:
@@ -408,29 +407,26 @@ class _Reader:
 
     # --- conditions -----------------------------------------------------------------------
 
-    def decided(self, test, env: dict, depth: int) -> bool | None:
-        """The outcome of an ``if`` test whose values the file gives (``arm == "no-arm"``,
-        ``arm in ["no-arm", "none"]`` with ``arm`` a literal: a helper called with literal
-        arguments), else None. Evaluated with no action made (a test's calls are walked
-        where the test is read as a condition)."""
-        if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and
-                isinstance(test.ops[0], (ast.Eq, ast.NotEq, ast.In, ast.NotIn))):
-            return None
+    def judged(self, test, env: dict, depth: int) -> tuple[bool | None, Condition | None]:
+        """An ``if`` test, its sides evaluated once: (its outcome, None) when it compares
+        values the file gives (``arm == "no-arm"``, ``arm in ["no-arm", "none"]`` with ``arm``
+        a literal: a helper called with literal arguments; no action made), else (None, the
+        test as a condition: :meth:`condition`)."""
+        op = test.ops[0] if isinstance(test, ast.Compare) and len(test.ops) == 1 else None
+        if not isinstance(op, (ast.Eq, ast.NotEq, ast.In, ast.NotIn)):
+            return None, self.condition(test, env, depth)
         made = len(self.acts)
         left = self.eval(test.left, env, (), depth)
         right = self.eval(test.comparators[0], env, (), depth)
-        del self.acts[made:]
-        if not (isinstance(left, Value) and left.literal is not None):
-            return None
-        if isinstance(test.ops[0], (ast.Eq, ast.NotEq)):
-            if not (isinstance(right, Value) and right.literal is not None):
-                return None
-            return (left.literal == right.literal) is isinstance(test.ops[0], ast.Eq)
-        if not (isinstance(right, list) and right and
-                all(isinstance(item, Value) and item.literal is not None for item in right)):
-            return None
-        return (left.literal in [item.literal for item in right]) is \
-            isinstance(test.ops[0], ast.In)
+        outcome = _outcome(op, left, right)
+        if outcome is None and isinstance(op, (ast.Eq, ast.NotEq)) and \
+                isinstance(left, Value) and isinstance(right, Value):
+            kind = "equals" if isinstance(op, ast.Eq) else "differs"
+            return None, Condition(kind, left, _source(test), right)
+        del self.acts[made:]  # (decided: no action; else read again, whole, as a condition)
+        if outcome is not None:
+            return outcome, None
+        return None, self.condition(test, env, depth)
 
     def condition(self, test, env: dict, depth: int) -> Condition:
         """A Python test as a condition: ``x == "c"``/``x != "c"`` on a launch argument, else
@@ -998,6 +994,21 @@ def _add_condition(act: _Act, condition) -> None:
 def _acts_in(value) -> list:
     return [item for item in _flat(value) if isinstance(item, _Act)] if isinstance(value, list) else \
         ([value] if isinstance(value, _Act) else [])
+
+
+def _outcome(op, left, right) -> bool | None:
+    """Whether ``left OP right`` holds, for literal values (``right`` a list of them for
+    ``in``); None when a side is not known."""
+    if not (isinstance(left, Value) and left.literal is not None):
+        return None
+    if isinstance(op, (ast.Eq, ast.NotEq)):
+        if not (isinstance(right, Value) and right.literal is not None):
+            return None
+        return (left.literal == right.literal) is isinstance(op, ast.Eq)
+    if not (isinstance(right, list) and right and
+            all(isinstance(item, Value) and item.literal is not None for item in right)):
+        return None
+    return (left.literal in [item.literal for item in right]) is isinstance(op, ast.In)
 
 
 def _either(found, otherwise, test: Condition):
