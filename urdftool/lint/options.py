@@ -102,8 +102,7 @@ class FileResult:
     def unexpanded(self) -> bool:
         """Whether its robot was not expanded, so not checked, for a package this machine
         lacks (U006: the environment's, not the robot's, a warning)."""
-        return any(finding.code == "U006" and finding.severity is not Severity.ERROR
-                   for finding in self.findings)
+        return any(finding.code == "U006" for finding in self.findings)
 
     @property
     def failures(self) -> list[Finding]:

@@ -97,11 +97,11 @@ def _summary(results, hidden: int) -> Line:
         else "no problems found" if summary.files else "nothing to check"
     if hidden:
         verdict += f" ({counted(hidden, 'note')} not shown: --notes shows them)"
-    unexpanded = sum(1 for result in results if getattr(result, "unexpanded", False))
+    unexpanded = sum(1 for result in results if result.unexpanded)
     checked = f"{counted(summary.files - unexpanded, 'file')} checked"
     if unexpanded:  # (a package they need is not installed: U006, and the run exits 2)
-        checked += f", {unexpanded} not (a package {'it' if unexpanded == 1 else 'they'} " \
-                   "need" + ("s" if unexpanded == 1 else "") + " is not installed)"
+        needs = "it needs" if unexpanded == 1 else "they need"
+        checked += f", {unexpanded} not (a package {needs} is not installed)"
     return [(f"{checked}: {verdict}", style)]
 
 
