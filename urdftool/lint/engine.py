@@ -212,7 +212,8 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                 if robot is None:
                     from urdftool.lint.rules.loading import part_failure
 
-                    built = part_failure(path, error, options.packages)
+                    built = part_failure(path, error, options.packages,
+                                         options.max_file_size)
                     if built:
                         return FileResult(path, built)
                     raise

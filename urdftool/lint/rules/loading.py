@@ -266,7 +266,7 @@ def failing_defaults(path: str, error, build):
 _UNDEFINED = ("is not defined", "unknown macro name", "Undefined property to forward")
 
 
-def part_failure(path: str, error, packages) -> list | None:
+def part_failure(path: str, error, packages, limit: int) -> list | None:
     """U005 as a note, or None to report ``error`` as it is: the file is a part of a robot
     defined elsewhere (its top level writes no link: only definitions, extension blocks and
     calls of macros writing <transmission>, <gazebo> or <ros2_control> blocks:
@@ -274,12 +274,13 @@ def part_failure(path: str, error, packages) -> list | None:
     and xacro fails on a name the robot including it would define (talos'
     left_arm.transmissions.urdf.xacro: ``${name}``). As the findings of a part that expands
     (:mod:`urdftool.lint.parts`), it is right only inside the robot that includes it; a syntax
-    error, a missing file, stay errors."""
+    error, a missing file, stay errors. ``packages``, ``limit``: the check's ``--package``
+    paths and file size limit [bytes]."""
     from urdftool.description.runtime import builds
     from urdftool.description.xacro_text import writes_no_links
 
     if error.kind != "xacro" or not any(said in error.message for said in _UNDEFINED) or \
-            builds(path) or not writes_no_links(path, packages):
+            builds(path) or not writes_no_links(path, packages, limit):
         return None
     return [U005.finding(Conditional(
         f"{error.message}; a part of a robot defined elsewhere (its top level writes no link, "
