@@ -141,7 +141,7 @@ def address_space() -> int | None:
 LOADAVG = "/proc/loadavg"  # (Linux) the load averages, then running/total scheduling entities
 
 
-def busy_cores(looks: int = 6, gap: float = 0.004) -> float:
+def busy_cores(looks: int = 6, gap: float = 0.004, enough: float = float("inf")) -> float:
     """How many cores other work keeps busy now: the threads of other processes ready to run
     (Linux's ``/proc/loadavg``, this process's own running one not counted), the most of a few
     looks. The 1-minute load average trails both ways: a build started seconds ago leaves it
@@ -149,7 +149,10 @@ def busy_cores(looks: int = 6, gap: float = 0.004) -> float:
     user's previous check, a benchmark's previous round) leaves it high while the cores are
     idle (one worker then did the work of two, issue 34). So the average only decides how hard
     to look: when it says more than the first look finds, ``looks`` looks ``gap`` seconds apart
-    (about 20 ms) catch work that runs in bursts; where nothing can be read, the average."""
+    (about 20 ms) catch work that runs in bursts; where nothing can be read, the average.
+    Once ``enough`` cores are found busy, more looks could not change what the caller decides
+    (they only find more): it stops looking (the default ``--jobs`` with a core busy waited
+    20 ms for nothing)."""
     running = _running_now()
     try:
         average = os.getloadavg()[0]
@@ -158,8 +161,8 @@ def busy_cores(looks: int = 6, gap: float = 0.004) -> float:
     if running is None:
         return average
     for _ in range(looks - 1):
-        if average - running < 0.5:  # (the two round to the same number of idle cores)
-            break
+        if average - running < 0.5 or running >= enough:  # (the two round to the same
+            break                                               # number of idle cores)
         time.sleep(gap)
         running = max(running, _running_now() or 0)
     return float(running)

@@ -181,6 +181,21 @@ def test_the_default_jobs_do_not_count_a_run_that_has_ended(monkeypatch, tmp_pat
     assert pool.auto_jobs(46) == jobs
 
 
+def test_the_default_jobs_stop_looking_once_one_worker_is_the_answer(monkeypatch):
+    """With one of 2 cores busy at the first look, more looks can only find more busy: one
+    worker whatever they find. The default ``--jobs`` waited 5 looks (20 ms) for nothing, a
+    core busy (make bench: 1.03x ``--jobs 1``). Not yet one, it looks again."""
+    monkeypatch.setattr(pool, "default_jobs", lambda: 2)
+    monkeypatch.setattr(os, "getloadavg", lambda: (2.5, 2.0, 1.0))
+    slept = []
+    monkeypatch.setattr(budget.time, "sleep", slept.append)
+    for first, looks in ((2, 1), (1, 6)):
+        slept.clear()
+        monkeypatch.setattr(budget, "_running_now", lambda: first - 1)
+        assert pool.auto_jobs(46) == first % 2 + 1
+        assert len(slept) == looks - 1
+
+
 KEPT = []  # what a worker's earlier pieces kept (a run's memo of meshes, say)
 MB = 1 << 20
 

@@ -50,7 +50,9 @@ def auto_jobs(files: int) -> int:
     most = files // FILES_PER_WORKER
     if most <= 1:
         return 1  # (the machine's load is not read: nothing to decide)
-    idle = max(1, round(default_jobs() - budgets.busy_cores()))
+    cores = default_jobs()
+    # (busy enough to leave at most one core idle: one worker, however many more are found)
+    idle = max(1, round(cores - budgets.busy_cores(enough=cores - 1.5)))
     return max(1, min(idle, most))
 
 
