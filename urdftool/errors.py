@@ -46,41 +46,49 @@ class LoadError(UrdftoolError):
 
 
 class PackageNotFound(UrdftoolError):
-    """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path."""
+    """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path.
+
+    ``unchecked`` says what is not checked for want of it: the robot (a ``$(find)``: it is
+    not expanded) or a mesh (``package://``: the robot is checked without it)."""
+
+    ROBOT = "the robot is not expanded, so not checked"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
-                 undeclared_by: str | None = None, close: tuple = ()):
+                 undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):
         self.name = name
         self.searched = searched
         self.declared_by = declared_by
         self.close = tuple(close)  # the packages found whose names are close to this one
+        self.unchecked = unchecked
         where = ", ".join(searched) if searched else "nowhere (no search path)"
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:
             super().__init__(
                 f"package '{name}' not found: the package.xml of '{declared_by}' declares it as "
-                "a dependency, which is not installed here: the robot is not expanded, so not "
-                f"checked (nothing in it is known to be wrong); looked in: {where}. Pass "
-                f"--package {name}=PATH, set ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install "
-                "the dependencies (rosdep install --from-paths . --ignore-src)")
+                f"a dependency, which is not installed here: {unchecked} (nothing in it is "
+                f"known to be wrong); looked in: {where}. Pass --package {name}=PATH, set "
+                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
+                "install --from-paths . --ignore-src)")
         elif undeclared_by:
             super().__init__(
                 f"package '{name}' not found, and the package.xml of '{undeclared_by}' does not "
                 f"declare it, so rosdep would not install it: {hint}if it is another "
-                f"repository's, add <exec_depend>{name}</exec_depend>; not installed here, the "
-                f"robot is not expanded, so not checked; looked in: {where}. Pass --package "
-                f"{name}=PATH or set ROS_PACKAGE_PATH or AMENT_PREFIX_PATH")
+                f"repository's, add <exec_depend>{name}</exec_depend>; not installed here, "
+                f"{unchecked}; looked in: {where}. Pass --package {name}=PATH or set "
+                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH")
         else:
             super().__init__(
-                f"package '{name}' not found; {hint}looked in: {where}. Pass --package "
-                f"{name}=PATH or set ROS_PACKAGE_PATH")
+                f"package '{name}' not found; {hint}{unchecked}; looked in: {where}. Pass "
+                f"--package {name}=PATH or set ROS_PACKAGE_PATH")
 
-    def declared(self, owner: str, declares: bool = True) -> "PackageNotFound":
+    def declared(self, owner: str | None, declares: bool = True,
+                 unchecked: str | None = None) -> "PackageNotFound":
         """The same error, said of a package that ``owner``'s package.xml depends on, or (not
-        ``declares``) does not."""
+        ``declares``) does not (no owner: said of no package.xml), and of ``unchecked``."""
         return PackageNotFound(self.name, self.searched, owner if declares else None,
-                               None if declares else owner, self.close)
+                               None if declares else owner, self.close,
+                               unchecked or self.unchecked)
 
 _LISTED = 12
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested

@@ -64,31 +64,34 @@ def _resolve(robot, uri: str) -> Path:
 
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
-    """The problem of a ``package://`` mesh whose package is not found: not certain when the
-    robot file's package declares it as a dependency (not installed here: the environment's,
-    as for a ``$(find)``), and when the
+    """The problem of a ``package://`` mesh whose package is not found. Not certain when the
     path it names, read below the robot's folder or a folder above it in its repository
     (``FOLDER/PACKAGE/TAIL``), is a mesh file, as descriptions with no ROS package write it:
     onshape-to-robot's ``package://assets/part.stl`` beside the robot file, which the loaders
     that drop ``package://`` (PyBullet; Pinocchio given the robot's folder) open; NASA's
     r2_description, a folder of the package's name without a package.xml, which a loader given
     the folder above as a package path (Pinocchio's package_dirs, urdf-loaders' packages)
-    opens. ROS's resource_retriever opens neither."""
+    opens. ROS's resource_retriever opens neither.
+
+    Otherwise the package is not installed here: the environment's (as U006 reads a
+    ``$(find)``), so not certain, unless the robot's package.xml does not declare it and
+    either its name is nearly that of a package found here (a misspelt or stale name:
+    ``package://moveo_urdf_4/`` beside the package moveo_urdf) or a folder of its name above
+    the robot file lacks the file (the loaders that look there find the folder, not the mesh;
+    ROS has no such package)."""
     base = os.fspath(robot.base_dir)
     root, folder = os.path.normpath(os.fspath(containment_root(Path(base)))), base
+    seen = None  # the nearest folder of the package's name beside or above the robot file
     while isinstance(_checked(uri, os.path.join(folder, package, tail), base, None), MeshProblem):
+        if seen is None and kind_of(os.path.join(folder, package)) == "folder":
+            seen = os.path.join(folder, package)
         if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
             owner, declares = declaring_package(robot.path, package) if robot.path != "-" \
                 else (None, False)
-            if declares:  # installed wherever the robot's package is built
-                return MeshProblem("package", (
-                    f"mesh '{uri}': package '{package}' not found: the package.xml of "
-                    f"'{owner}' declares it as a dependency, which is not installed here, so "
-                    f"the mesh is not checked; pass --package {package}=PATH or install the "
-                    "dependencies (rosdep install --from-paths . --ignore-src)"), certain=False)
-            if owner is not None:  # a misspelt name, or another repository's package
-                error = error.declared(owner, declares=False)
-            return MeshProblem("package", f"mesh '{uri}': {error}")
+            error = error.declared(owner, declares, unchecked="the mesh is not checked")
+            lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
+            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}",
+                               certain=not declares and bool(error.close or seen))
         folder = os.path.dirname(folder)
     if folder == base:
         written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')

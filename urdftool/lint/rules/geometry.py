@@ -355,7 +355,13 @@ def _problems(robot, kind: str):
 def mesh_package_not_found(robot):
     """A mesh's ``package://`` names a package that cannot be found.
 
-    A **warning**, not an error, when the file is there for loaders that do not ask ROS:
+    An error when the name is nearly that of a package found here (a misspelt or stale name)
+    or a folder of its name above the robot file lacks the file. Otherwise a **warning**: a
+    package not installed here is the environment's (as U006 reads a ``$(find)``), whether
+    the robot's package.xml declares it (install the dependencies) or not (declare it: rosdep
+    would not install it); the mesh is not checked.
+
+    A warning, too, when the file is there for loaders that do not ask ROS:
     ``PACKAGE/PATH`` beside the robot file (onshape-to-robot's ``package://assets/part.stl``:
     PyBullet and Pinocchio given the robot's folder drop ``package://``), or in a folder of the
     package's name with no package.xml above the robot file in its repository (NASA's
