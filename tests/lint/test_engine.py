@@ -256,3 +256,25 @@ def test_a_part_failing_on_its_includers_name_is_a_note_a_robot_failing_so_an_er
                          '</robot>')
         [finding] = load_and_check(str(robot), CheckOptions()).findings
         assert (finding.code, finding.severity) == ("U005", severity), finding.message
+
+
+def test_a_library_of_macros_needing_a_missing_package_is_a_note_a_robot_not_checked(tmp_path):
+    """talos_description's sensors/xtion_pro_live.urdf.xacro includes ``$(find reemc)`` (not
+    installed) and only defines macros; nothing here builds it. Expanded with reemc it would
+    make no robot, so its U006 is a note and the run has nothing it could not check (it made
+    the whole repository exit 2). A file calling a macro, or writing a link, is a robot not
+    checked: a warning, and unexpanded."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    include = '<xacro:include filename="$(find no_such_sensors)/urdf/calibration.xacro"/>'
+    macro = '<xacro:macro name="cam" params="name"><link name="${name}"/></xacro:macro>'
+    for top, severity in (("", Severity.INFO), ('<xacro:cam name="c"/>', Severity.WARNING),
+                          ('<link name="base"/>', Severity.WARNING)):
+        robot = tmp_path / "sensor.urdf.xacro"
+        robot.write_text(f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{include}{macro}'
+                         f'{top}</robot>')
+        result = load_and_check(str(robot), CheckOptions())
+        [finding] = result.findings
+        assert (finding.code, finding.severity) == ("U006", severity), finding.message
+        assert result.unexpanded is (severity == Severity.WARNING)

@@ -246,6 +246,20 @@ def writes_no_links(path, packages, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
     return not calls_make_links(written, includes, unfollowed, resolver_for, limit)
 
 
+def macro_library(path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
+    """Whether the xacro file ``path`` is a library of macros: it defines one or more, and its
+    own top level calls none and writes nothing but definitions, includes and extension blocks
+    (talos' sensors/xtion_pro_live.urdf.xacro). Written to be included: run alone, its own text
+    makes no robot (what a file it includes writes at its top level is not known here when
+    that file is not)."""
+    path = Path(path)
+    data = head(path, limit) if path.name.endswith(".xacro") else None
+    if data is None or b"\0" in data:
+        return False
+    use = MacroUse()
+    return stream(uncommented(data), use) == "calls" and not use.calls and bool(use.macros)
+
+
 def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for,
                      limit: int) -> bool:
     """Whether a xacro file makes links through what its top level holds: True unless that is

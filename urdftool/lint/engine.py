@@ -217,6 +217,14 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                     if built:
                         return FileResult(path, built)
                     raise
+            elif error.kind == "package" and not xacro_args:
+                from urdftool.lint.rules.loading import library_failure
+
+                built = library_failure(path, error, load_error_message(error),
+                                        options.max_file_size)
+                if built:
+                    return FileResult(path, built)
+                raise
             else:
                 raise
             xacro_args = {**given, **xacro_args}

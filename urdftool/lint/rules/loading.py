@@ -127,7 +127,10 @@ U006 = declare("U006", "unresolved-package", Severity.WARNING, """
     (rosdep would not install it: add ``<exec_depend>``), or close to a package found here (a
     misspelt name: "did you mean"). The robot is not checked, though, and a run that could not
     check it is no pass: ``urdftool check`` exits 2 and says how many files it could not
-    check (``--package NAME=PATH`` gives it what it needs).
+    check (``--package NAME=PATH`` gives it what it needs). A **note**, and no exit 2, for a
+    library of macros (its top level defines macros and calls none) that no launch file here
+    builds: expanded, it would make no robot to check (talos' sensors/xtion_pro_live.urdf.xacro,
+    including ``$(find reemc)``, made the whole repository exit 2).
 
     Bad: ``$(find my_robot_descripton)/urdf/arm.xacro``
     Good: ``$(find my_robot_description)/urdf/arm.xacro``, or ``--package my_pkg=path/to/pkg``
@@ -287,6 +290,25 @@ def part_failure(path: str, error, packages, limit: int) -> list | None:
         "only blocks such as <transmission>, <gazebo> or <ros2_control>, through macro calls "
         "too), right only inside the robot that includes it, which defines that name; no file "
         "here includes it, and no launch file here builds it", Severity.INFO),
+        error.location)]
+
+
+def library_failure(path: str, error, message: str, limit: int) -> list | None:
+    """U006 as a note, or None to report ``error`` as it is: the file is a library of macros
+    (:func:`~urdftool.description.xacro_text.macro_library`: talos' xtion_pro_live.urdf.xacro,
+    including ``$(find reemc)``) that no launch file here builds. Expanded with the package,
+    it would make no robot to check, so its not being expanded loses nothing (its macros are
+    checked in the robots that call them) and does not make the run exit 2. ``message``: the
+    finding's text as reported, ``limit``: the check's file size limit [bytes]."""
+    from urdftool.description.runtime import builds
+    from urdftool.description.xacro_text import macro_library
+
+    if error.kind != "package" or builds(path) or not macro_library(path, limit):
+        return None
+    return [U006.finding(Conditional(
+        f"{message}; a library of macros (its top level defines macros and calls none), which "
+        "no launch file here builds: expanded, it would make no robot to check, so nothing is "
+        "lost (its macros are checked in the robots calling them)", Severity.INFO),
         error.location)]
 
 
