@@ -105,9 +105,10 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
     if run.unexpanded:  # the environment's: said once, after the report that locates each
         from urdftool.report.summary import counted
 
+        needs = "it needs" if len(run.unexpanded) == 1 else "they need"
         terminal.say(
             f"urdftool: error: {counted(len(run.unexpanded), 'file')} not checked: a package "
-            "they need is not installed here (U006 in the report); install the dependencies "
+            f"{needs} is not installed here (U006 in the report); install the dependencies "
             "(rosdep install --from-paths . --ignore-src) or pass --package NAME=PATH",
             err=True)
     return code
