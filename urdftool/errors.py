@@ -33,15 +33,18 @@ class LoadError(UrdftoolError):
     location: the :class:`~urdftool.diagnostics.Location` of the problem
     certain: False when it may not hold after a package's build (an included file missing from
         the source tree whose package's install rules could not be read)
+    close: for 'package', the packages found whose names are close to ``subject`` (a misspelt
+        or stale name, most likely)
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
-                 certain: bool = True):
+                 certain: bool = True, close: tuple = ()):
         self.kind = kind
         self.message = message
         self.location = location
         self.subject = subject
         self.certain = certain
+        self.close = tuple(close)
         super().__init__(message)
 
 

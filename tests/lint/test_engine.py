@@ -278,3 +278,11 @@ def test_a_library_of_macros_needing_a_missing_package_is_a_note_a_robot_not_che
         [finding] = result.findings
         assert (finding.code, finding.severity) == ("U006", severity), finding.message
         assert result.unexpanded is (severity == Severity.WARNING)
+    # a name nearly a package's found here (doosan-robot2's libraries naming the ROS 1
+    # dsr_description beside dsr_description2): wrong for any robot including it
+    (tmp_path / "package.xml").write_text(
+        '<package format="2"><name>no_such_sensors2</name></package>')
+    robot.write_text(f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{include}{macro}'
+                     '</robot>')
+    [finding] = load_and_check(str(robot), CheckOptions()).findings
+    assert finding.severity == Severity.WARNING and "did you mean" in finding.message

@@ -394,7 +394,7 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
         raise LoadError(failure.kind, failure.message, location, failure.subject,
-                        failure.certain) from None
+                        failure.certain, failure.close) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True, sources=sources)

@@ -81,6 +81,7 @@ class XacroFailure(Exception):
     location: Location
     subject: str | None = None
     certain: bool = True  # False: may not hold after the package's build (a file it installs)
+    close: tuple = ()  # 'package': the packages found whose names are close to ``subject``
 
 
 @dataclass
@@ -811,7 +812,7 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         # a package not installed here: the environment's (a dependency declared, another
         # repository's, or a misspelt name: the message says which it seems), never certain
         return XacroFailure("package", str(cause.error), where, subject=cause.error.name,
-                            certain=False)
+                            certain=False, close=cause.error.close)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):

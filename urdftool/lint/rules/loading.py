@@ -296,15 +296,18 @@ def part_failure(path: str, error, packages, limit: int) -> list | None:
 def library_failure(path: str, error, message: str, limit: int) -> list | None:
     """U006 as a note, or None to report ``error`` as it is: the file is a library of macros
     (:func:`~urdftool.description.xacro_text.macro_library`: talos' xtion_pro_live.urdf.xacro,
-    including ``$(find reemc)``) that no launch file here builds. Expanded with the package,
+    including ``$(find reemc)``) that no launch file here builds, and the package's name is
+    not nearly that of one found here (doosan-robot2's libraries naming the ROS 1
+    ``dsr_description`` beside dsr_description2 are wrong for any robot including them). Expanded with the package,
     it would make no robot to check, so its not being expanded loses nothing (its macros are
     checked in the robots that call them) and does not make the run exit 2. ``message``: the
     finding's text as reported, ``limit``: the check's file size limit [bytes]."""
     from urdftool.description.runtime import builds
     from urdftool.description.xacro_text import macro_library
 
-    if error.kind != "package" or builds(path) or not macro_library(path, limit):
-        return None
+    if error.kind != "package" or error.close or builds(path) or \
+            not macro_library(path, limit):
+        return None  # (a name nearly one found here: misspelt or stale, doosan's ROS 1 name)
     return [U006.finding(Conditional(
         f"{message}; a library of macros (its top level defines macros and calls none), which "
         "no launch file here builds: expanded, it would make no robot to check, so nothing is "
