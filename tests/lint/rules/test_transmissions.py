@@ -279,3 +279,20 @@ def generate_launch_description():
     launch.write_text(launch.read_text().replace("mode:=mock", "mode:=true"))
     findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
     assert [f.severity for f in findings] == [Severity.ERROR]  # built as checked: it holds there
+
+
+def test_a_custom_interface_is_a_note_a_misspelt_one_a_warning(tmp_path):
+    """Legged robots' hardware plugins export ``kp`` and ``kd`` gains, Dynamixel's ``load``
+    (22 sweep rows, none a defect): legal names the standard controllers cannot claim, a
+    note. ``positon`` is ``position`` misspelt: a warning."""
+    def severities(name):
+        body = ('<ros2_control name="s" type="system"><hardware><plugin>my/Hardware</plugin>'
+                f'</hardware><joint name="head_joint"><command_interface name="{name}"/>'
+                '<state_interface name="position"/></joint></ros2_control>')
+        _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)})
+        return [f.severity for f in findings if f.code == "U513"]
+
+    for name in ("kp", "kd", "load", "stiffness", "external_effort"):
+        assert severities(name) == [Severity.INFO], name
+    for name in ("positon", "velocty", "efort"):
+        assert severities(name) == [Severity.WARNING], name

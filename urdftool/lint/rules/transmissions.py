@@ -20,7 +20,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             exported_interface, interface_kind, is_ros2_form,
                                             moving_joints, published_by_gazebo, ros2_control_joints,
                                             transmission_joints, transmissions)
-from urdftool.errors import available
+from urdftool.errors import available, close_names
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import attribute
 
@@ -401,12 +401,18 @@ def ros2_control_fixed_joint(robot):
                           "from <ros2_control>, or make the joint revolute, continuous or prismatic")
 
 
+_MISSPELT = 0.8  # difflib's ratio from which an interface name is a standard one misspelt
+
+
 @rule("U513", "ros2-control-interface-name", Severity.WARNING)
 def ros2_control_interface_name(robot):
     """A ros2_control command or state interface has no name or not a standard one.
 
     Controllers claim interfaces by name (``head_joint/position``); a misspelt interface is
-    never claimed. Custom names are legal for custom hardware, hence a warning.
+    never claimed. Custom names are legal for custom hardware (a legged robot's ``kp`` and
+    ``kd`` gains, a Dynamixel's ``load``, KUKA's ``stiffness``): a name close to a standard one
+    is a warning (a misspelling, most likely), any other a **note** (the standard controllers
+    cannot claim it; the robot's own hardware plugin and controllers must know it).
 
     A name the hardware plugin reads and exports as a standard one is not reported
     (gazebo_ros2_control's ``position_pid``, exported as ``position``).
@@ -421,9 +427,16 @@ def ros2_control_interface_name(robot):
                 yield interface, f"ros2_control joint '{joint.get('name')}': <{interface.tag}> has no name"
             elif name not in ROS2_INTERFACES and (interface.tag == "state_interface" or
                                                   exported_interface(robot, block, name) == name):
-                yield interface, (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> "
-                                  f"'{name}' is not a standard interface; "
-                                  f"{available('interfaces', name, ROS2_INTERFACES)}")
+                said = (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> '{name}' "
+                        "is not a standard interface")
+                if close_names(name, ROS2_INTERFACES, n=1, cutoff=_MISSPELT):
+                    yield interface, f"{said}; {available('interfaces', name, ROS2_INTERFACES)}"
+                else:  # a custom interface: legal, for the robot's own plugin and controllers
+                    yield interface, Conditional(
+                        f"{said}: the standard controllers (ros2_controllers) cannot claim it, "
+                        "only controllers that know the hardware plugin's own names; "
+                        f"{available('standard interfaces', name, ROS2_INTERFACES)}",
+                        Severity.INFO)
 
 
 @rule("U514", "ros2-control-no-plugin", Severity.ERROR)
