@@ -14,7 +14,8 @@ def register(app: typer.Typer) -> None:
     app.command(
         "check",
         help="Check robot descriptions (files or folders) and report problems. "
-             "Exit code: 0 clean, 1 errors (or warnings with --strict), 2 usage error.",
+             "Exit code: 0 clean, 1 errors (or warnings with --strict), 2 usage error or "
+             "files not checked (a package they need is not installed: U006).",
     )(check)
 
 

@@ -73,9 +73,9 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     the folder above as a package path (Pinocchio's package_dirs, urdf-loaders' packages)
     opens. ROS's resource_retriever opens neither.
 
-    Otherwise the package is not installed here: the environment's (as U006 reads a
-    ``$(find)``), so not certain, unless the robot's package.xml does not declare it and
-    either its name is nearly that of a package found here (a misspelt or stale name:
+    Otherwise the package is not installed here: the environment's (as a ``$(find)``'s is),
+    so not certain, unless the robot's package.xml does not declare it and either its name
+    is nearly that of a package found here (a misspelt or stale name:
     ``package://moveo_urdf_4/`` beside the package moveo_urdf) or a folder of its name above
     the robot file lacks the file (the loaders that look there find the folder, not the mesh;
     ROS has no such package)."""
