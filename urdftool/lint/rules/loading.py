@@ -298,10 +298,11 @@ def library_failure(path: str, error, message: str, limit: int) -> list | None:
     (:func:`~urdftool.description.xacro_text.macro_library`: talos' xtion_pro_live.urdf.xacro,
     including ``$(find reemc)``) that no launch file here builds, and the package's name is
     not nearly that of one found here (doosan-robot2's libraries naming the ROS 1
-    ``dsr_description`` beside dsr_description2 are wrong for any robot including them). Expanded with the package,
-    it would make no robot to check, so its not being expanded loses nothing (its macros are
-    checked in the robots that call them) and does not make the run exit 2. ``message``: the
-    finding's text as reported, ``limit``: the check's file size limit [bytes]."""
+    ``dsr_description`` beside dsr_description2 are wrong for any robot including them).
+    Expanded with the package, it would make no robot to check, so its not being expanded
+    loses nothing (its macros are checked in the robots that call them) and does not make the
+    run exit 2. ``message``: the finding's text as reported, ``limit``: the check's file size
+    limit [bytes]."""
     from urdftool.description.runtime import builds
     from urdftool.description.xacro_text import macro_library
 
