@@ -67,6 +67,9 @@ def _run(repo: Path, *words: str) -> subprocess.CompletedProcess:
     (["diff", "pkg/urdf/robot.urdf", "pkg/urdf/top.urdf.xacro", "-o"], "pkg/urdf/inc.xacro"),
     (["inertia", "pkg/urdf/top.urdf.xacro", "--all", "--write"], "pkg/urdf/top.urdf.xacro"),
     (["inertia", "pkg/urdf/robot.urdf", "--all", "--write"], "pkg/meshes/base.stl"),
+    # session 13: the grant of an SRDF's update was "any file but the robot"
+    (["collisions", "pkg/urdf/top.urdf.xacro", "--matrix", "--samples", "5", "--write-srdf"],
+     "pkg/urdf/inc.xacro"),
 ], ids=lambda value: " ".join(value) if isinstance(value, list) else value)
 @pytest.mark.integration
 def test_an_output_over_a_file_the_command_read_is_refused(repo, words, replaced):

@@ -10,7 +10,7 @@ from lxml import etree
 
 from urdftool.numbers import number
 from urdftool.diagnostics import Location
-from urdftool.description.documents import read_srdf
+from urdftool.description.documents import SRDF_READ_AS, read_srdf
 from urdftool.description.files import kind_of, read_regular
 from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
@@ -98,7 +98,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         element = etree.Element("disable_collisions", link1=a, link2=b, reason=reason)
         element.tail = indent if offset < len(merged) - 1 else last_tail
         parent.insert(index + offset, element)
-    data = read_regular(existing)
+    data = read_regular(existing, as_=SRDF_READ_AS)
     start, end = _root_span(data)
     return (data[:start].decode("utf-8", "replace")
             + etree.tostring(root, encoding="unicode", with_tail=False)
