@@ -316,6 +316,32 @@ def test_a_crash_in_the_check_becomes_an_error_not_an_exception(monkeypatch, tmp
     assert "RuntimeError: boom" in outcome.error
 
 
+def test_a_file_named_with_bytes_that_are_not_utf8_has_one_uri_read_back_exactly(monkeypatch,
+                                                                                  tmp_path):
+    # session 13: pygls's from_fs_path raised UnicodeEncodeError on such a name, so a robot
+    # whose controllers YAML or launch file was so named lost its whole check to U900; its
+    # to_fs_path read each such byte as U+FFFD, a file that is not there
+    import os
+
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool import server
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.lint import runner
+
+    name = os.fsdecode(os.fsencode(str(tmp_path)) + b"/c\n\xff\xfe\x1b%.yaml")
+    for path in (name, str(tmp_path / "a b#é%.yaml")):
+        uri = server.uri_of_path(path)
+        assert uri.isascii() and server.path_of_uri(uri) == path
+    robot = str(write_robot(tmp_path))
+    finding = Finding("U602", "controller-unknown-joint", Severity.WARNING, "m",
+                      Location(name, 1))
+    monkeypatch.setattr(runner, "check_file",
+                        lambda path, data=None: runner.FileResult(path, [finding]))
+    outcome = server.check_robot(robot, {}, PositionCodec())
+    assert outcome.error is None and [f.code for _, f in outcome.by_path[name]] == ["U602"]
+
+
 def test_a_check_out_of_memory_is_the_budgets_finding_not_an_internal_error(monkeypatch,
                                                                             tmp_path):
     """A MemoryError in a check (a flood of many-link documents under the memory budget: the
