@@ -198,6 +198,22 @@ def test_srdf_round_trip_and_merge_keeps_other_content(humanoid_matrix, tmp_path
     assert len(again) == len(entries) + 1
 
 
+@pytest.mark.parametrize("document, tag", [
+    ('<robot name="r">\n  <link name="a"/>\n</robot>\n', "<link>"),
+    ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:macro name="m"/>\n'
+     '</robot>\n', "<xacro:macro>")])
+def test_an_srdf_is_never_merged_into_a_robot_description(humanoid_matrix, tmp_path,
+                                                          document, tag):
+    # session 13: collisions --write-srdf naming a URDF or a macro file merged the entries into
+    # it, its tags rewritten by lxml (attributes written across lines joined)
+    robot, result = humanoid_matrix
+    existing = tmp_path / "arm.xacro"
+    existing.write_text(document)
+    with pytest.raises(srdf.SrdfError, match=f"arm.xacro:2: {tag} is not an SRDF element"):
+        srdf.render(result, robot.name, existing)
+    assert existing.read_text() == document
+
+
 def test_check_srdf_locates_stale_entries_at_the_start_tag(humanoid_matrix, tmp_path):
     robot, result = humanoid_matrix
     never = next(p for p in result.pairs if p.reason == "" and p.collisions)

@@ -12,6 +12,7 @@ from urdftool.numbers import number
 from urdftool.diagnostics import Location
 from urdftool.description.documents import SRDF_READ_AS, read_srdf
 from urdftool.description.files import kind_of, read_regular
+from urdftool.description.urdf import is_xacro
 from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix
@@ -75,7 +76,16 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         lines += [f'    <disable_collisions link1="{attribute(a)}" link2="{attribute(b)}" '
                   f'reason="{r}" />' for a, b, r in new]
         return "\n".join([*lines, "</robot>", ""])
-    root = _document(existing).root
+    document = _document(existing)
+    root = document.root
+    described = next((child for child in root if child.tag in ("link", "joint")
+                       or is_xacro(child.tag)), None)
+    if described is not None:  # merged into, a robot description lost its formatting
+        tag = etree.QName(described).localname
+        tag = f"{described.prefix}:{tag}" if described.prefix else tag
+        raise SrdfError(f"{document.display}:{described.sourceline}: <{tag}> is not "
+                        "an SRDF element: this is a robot description, not an SRDF; give the "
+                        "SRDF's file name", location=document.at(described.sourceline))
     old = list(root.iter("disable_collisions"))
     computed = {(a, b) for a, b, _ in new}
     kept = [(*pair_key(e.get("link1", ""), e.get("link2", "")), e.get("reason", ""))
