@@ -694,6 +694,20 @@ def test_input_that_breaks_the_framing_ends_the_server_with_one_line(framing, tm
     assert err.count("\n") == 1 and "the client's input: " in err, err
 
 
+def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
+    # session 13 (left since session 6): pygls writes its messages with json.dumps, where a
+    # name holding a byte that is not UTF-8 (U620 quoting a launch file's) was an unpaired
+    # \udcff no strict reader takes; a pair (a character past U+FFFF) is kept
+    import json
+
+    ask = _frame({"jsonrpc": "2.0", "id": 3, "method": "x\udcff\U0001F600", "params": {}})
+    status, out, _ = _serve_raw(_INITIALIZE + ask + _SHUTDOWN, tmp_path)
+    [answer] = [part for part in out.split(b"Content-Length: ") if b'"id": 3' in part]
+    length, body = answer.split(b"\r\n\r\n", 1)
+    assert int(length.split(b"\r\n")[0]) == len(body)
+    assert json.loads(body)["error"]["message"].endswith("x\ufffd\U0001F600")
+
+
 def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes_on(tmp_path):
     garbage = [b"Content-Length: 5\r\n\r\n{xx}}",  # not JSON
                _frame({"jsonrpc": "2.0", "method": "textDocument/didOpen",

@@ -833,6 +833,24 @@ _CONTENT_LENGTH = re.compile(rb"Content-Length: ([0-9]+)\r\n")  # pygls.io_'s ow
 _HEADER = re.compile(rb"[!#-'*+.0-9A-Z^-z|~-]+: [^\r\n]*\r\n")  # RFC 9110's field: a token
 
 
+class PairedOutput:
+    """The stream the server's messages are written to, each through
+    :func:`urdftool.report.json_output.paired`: pygls writes them with ``json.dumps``, where a
+    name holding a byte that is not UTF-8 (a launch file's, quoted by U620) was an unpaired
+    ``\\udcff``, which strict readers refuse (JSON's one function, as every report's)."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, data: bytes):
+        from urdftool.report.json_output import paired
+
+        return self.stream.write(paired(data))
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+
 class Transport:
     """The protocol's input as pygls reads it (:func:`pygls.io_.run_async`: ``readline`` for
     each header line, ``read(Content-Length)`` for the body after the blank line), held to the
@@ -992,7 +1010,7 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
     # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
     protocol_in, sys.stdin = sys.stdin, io.StringIO()
     transport = Transport(protocol_in.buffer)
-    make_server(limits=limits).start_io(transport, protocol_out)
+    make_server(limits=limits).start_io(transport, PairedOutput(protocol_out))
     if any(getattr(h, "failed", False) for h in logging.getLogger().handlers):
         return 2
     if transport.broken:  # in the log (standard error without one), and on standard error

@@ -35,7 +35,8 @@ Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
-rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``)
+rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a lone surrogate
+                              (``paired``: LSP)   is U+FFFD
 ============================  ==================  =============================================
 
 tests/report/test_escape.py holds each function to its kind; tests/integration/
