@@ -315,6 +315,29 @@ def test_cli_matrix_json_and_write_srdf(run_cli, tmp_path):
     assert 'reason="Never"' in out.read_text()
 
 
+@pytest.mark.parametrize("target", ["include", "description"])
+def test_an_srdf_update_it_would_refuse_is_refused_before_the_matrix(run_cli, tmp_path,
+                                                                     monkeypatch, target):
+    # session 13: the refusals of --write-srdf (an include read, a robot description) came
+    # after the matrix, minutes of work on a big robot
+    path = write(tmp_path, two_boxes(0.2, 0.5).replace(
+        '<robot name="boxes">', '<robot name="boxes" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="colours.xacro"/>'), "robot.urdf.xacro")
+    write(tmp_path, '<robot>\n  <material name="m"/>\n</robot>\n', "colours.xacro")
+    other = write(tmp_path, two_boxes(0.2, 0.5), "other.urdf")
+
+    def classify(*_):
+        raise AssertionError("the matrix was computed")
+
+    monkeypatch.setattr("urdftool.collision.classify.classify", classify)
+    result = run_cli("collisions", path, "--matrix", "--write-srdf",
+                     tmp_path / "colours.xacro" if target == "include" else other,
+                     "--timeout", "0", "--max-memory", "0")
+    assert result.exit_code == 2, result.output
+    assert ("it is a file the command read (as companion SRDF, include)" if target == "include"
+            else "not an SRDF element") in result.output
+
+
 def test_ur5_matches_moveit_adjacency_and_never():
     corpus = corpus_or_skip()
     robot = load(str(corpus / "ur_description" / "urdf" / "ur5.xacro"))

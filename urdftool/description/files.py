@@ -725,24 +725,10 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
     a link at ``path`` by which this process read a file is followed to it, and the link is
     kept (a fix of a robot file that is a committed link replaced the link with a copy and
     left the robot unfixed)."""
-    folder = check_output(path)
+    folder, target, existing = _written(path, rewrites)
     path = Path(path)
-    target = os.path.join(folder, path.name)
     if isinstance(data, str):
         data = data.encode("utf-8")
-    if rewrites:
-        linked = _read_through_link(target)
-        if linked is not None:
-            folder, target = check_output(linked), linked
-    try:
-        existing = os.lstat(target)
-    except OSError:
-        existing = None
-    kinds = _reads_replaced(existing, target) if existing is not None else None
-    if kinds and not (rewrites is True or (rewrites and kinds <= rewrites)):
-        raise UsageError(f"cannot write '{path}': it is a file the command read (as "
-                         f"{', '.join(sorted(kinds))}), which the output would replace; give "
-                         "another file name")
     if existing is not None and stat.S_ISLNK(existing.st_mode):
         stream = _own_stream(target)
         if stream is not None:  # -o /dev/stdout: the stream itself, the link left as it is
@@ -775,6 +761,35 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def check_write(path, rewrites: bool | frozenset = False) -> None:
+    """Raise the UsageError :func:`write_file` would raise for a file read that the output
+    would replace, before the work: a command that reads the file it rewrites (``collisions
+    --write-srdf``, once the SRDF is read) says so at once, not after minutes of work."""
+    _written(path, rewrites)
+
+
+def _written(path, rewrites: bool | frozenset) -> tuple[str, str, os.stat_result | None]:
+    """Where :func:`write_file` writes ``path``: the real folder, the target in it (a link
+    by which this process read a file followed, for a rewrite) and what is there now; the
+    UsageError of a file read the output would replace unless a rewrite meant."""
+    folder = check_output(path)
+    target = os.path.join(folder, Path(path).name)
+    if rewrites:
+        linked = _read_through_link(target)
+        if linked is not None:
+            folder, target = check_output(linked), linked
+    try:
+        existing = os.lstat(target)
+    except OSError:
+        existing = None
+    kinds = _reads_replaced(existing, target) if existing is not None else None
+    if kinds and not (rewrites is True or (rewrites and kinds <= rewrites)):
+        raise UsageError(f"cannot write '{path}': it is a file the command read (as "
+                         f"{', '.join(sorted(kinds))}), which the output would replace; give "
+                         "another file name")
+    return folder, target, existing
 
 
 def _reads_replaced(existing: os.stat_result, target: str) -> set[str] | None:
