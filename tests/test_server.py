@@ -316,6 +316,32 @@ def test_a_crash_in_the_check_becomes_an_error_not_an_exception(monkeypatch, tmp
     assert "RuntimeError: boom" in outcome.error
 
 
+def test_a_file_named_with_bytes_that_are_not_utf8_has_one_uri_read_back_exactly(monkeypatch,
+                                                                                  tmp_path):
+    # session 13: pygls's from_fs_path raised UnicodeEncodeError on such a name, so a robot
+    # whose controllers YAML or launch file was so named lost its whole check to U900; its
+    # to_fs_path read each such byte as U+FFFD, a file that is not there
+    import os
+
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool import server
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.lint import runner
+
+    name = os.fsdecode(os.fsencode(str(tmp_path)) + b"/c\n\xff\xfe\x1b%.yaml")
+    for path in (name, str(tmp_path / "a b#é%.yaml")):
+        uri = server.uri_of_path(path)
+        assert uri.isascii() and server.path_of_uri(uri) == path
+    robot = str(write_robot(tmp_path))
+    finding = Finding("U602", "controller-unknown-joint", Severity.WARNING, "m",
+                      Location(name, 1))
+    monkeypatch.setattr(runner, "check_file",
+                        lambda path, data=None: runner.FileResult(path, [finding]))
+    outcome = server.check_robot(robot, {}, PositionCodec())
+    assert outcome.error is None and [f.code for _, f in outcome.by_path[name]] == ["U602"]
+
+
 def test_a_check_out_of_memory_is_the_budgets_finding_not_an_internal_error(monkeypatch,
                                                                             tmp_path):
     """A MemoryError in a check (a flood of many-link documents under the memory budget: the
@@ -666,6 +692,20 @@ def test_input_that_breaks_the_framing_ends_the_server_with_one_line(framing, tm
     assert b'"id": 1' in out and b'"id": 2' not in out  # nothing after the broken frame is read
     assert status == 1 and "Traceback" not in err and "MemoryError" not in err
     assert err.count("\n") == 1 and "the client's input: " in err, err
+
+
+def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
+    # session 13 (left since session 6): pygls writes its messages with json.dumps, where a
+    # name holding a byte that is not UTF-8 (U620 quoting a launch file's) was an unpaired
+    # \udcff no strict reader takes; a pair (a character past U+FFFF) is kept
+    import json
+
+    ask = _frame({"jsonrpc": "2.0", "id": 3, "method": "x\udcff\U0001F600", "params": {}})
+    status, out, _ = _serve_raw(_INITIALIZE + ask + _SHUTDOWN, tmp_path)
+    [answer] = [part for part in out.split(b"Content-Length: ") if b'"id": 3' in part]
+    length, body = answer.split(b"\r\n\r\n", 1)
+    assert int(length.split(b"\r\n")[0]) == len(body)
+    assert json.loads(body)["error"]["message"].endswith("x\ufffd\U0001F600")
 
 
 def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes_on(tmp_path):

@@ -208,16 +208,48 @@ class _Texts:
         return text
 
     def uri(self, path: str) -> str:
-        return self.buffers[path].uri if path in self.buffers else from_fs_path(path) or path
+        return self.buffers[path].uri if path in self.buffers else uri_of_path(path)
 
 
-def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=from_fs_path
+def uri_of_path(path: str) -> str:
+    """The ``file:`` URI of ``path``: pygls's, and for a name holding bytes that are not UTF-8
+    (which Python reads as lone surrogates, ``os.fsdecode``) those bytes percent-encoded, as RFC
+    8089 writes any byte. pygls's ``from_fs_path`` raised UnicodeEncodeError on such a name: a
+    robot whose controllers YAML or launch file was so named lost its whole check to U900."""
+    try:
+        return from_fs_path(path) or path
+    except UnicodeError:
+        from urllib.parse import quote
+
+        return "file://" + quote(os.fsencode(path), safe="/")
+
+
+def path_of_uri(uri: str) -> str | None:
+    """The path a ``file:`` URI names (pygls's ``to_fs_path``), the name's own bytes where its
+    percent-escapes are not UTF-8 (pygls made each such byte U+FFFD, a file that is not
+    there): :func:`uri_of_path` read back."""
+    path = to_fs_path(uri)
+    if path and "\ufffd" in path and "%" in uri:
+        from urllib.parse import unquote_to_bytes, urlparse
+
+        parsed = urlparse(uri)
+        raw = unquote_to_bytes(parsed.path)
+        if parsed.scheme == "file" and not parsed.netloc:
+            try:
+                raw.decode("utf-8")
+            except UnicodeDecodeError:
+                return os.fsdecode(raw)
+    return path
+
+
+def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=None
                         ) -> dict[str, list[Shown]]:
     """Each finding as a diagnostic on the file it is located in and one at each macro call site
     that produced it (in the robot, or an intermediate macro), keyed by absolute path; each
     points at the others as related information. Findings about standard input are left out."""
     from urdftool.origin import rule_url
 
+    uri_of = uri_of or uri_of_path
     by_path: dict[str, list[Shown]] = {}
     for finding in findings:
         places = [place for place in (finding.location, *finding.location.via)
@@ -384,7 +416,7 @@ class UrdftoolServer(LanguageServer):
     # -- documents
 
     def path_of(self, uri: str) -> str | None:
-        path = to_fs_path(uri)
+        path = path_of_uri(uri)
         return os.path.abspath(path) if path else None
 
     def paths_of(self, uris):
@@ -405,7 +437,7 @@ class UrdftoolServer(LanguageServer):
             yield os.path.join(folder, name) if folder else None
 
     def uri_of(self, path: str) -> str:
-        return self.open.get(path) or from_fs_path(path) or path
+        return self.open.get(path) or uri_of_path(path)
 
     def opened(self, uri: str) -> None:
         path = self.path_of(uri)
@@ -801,6 +833,24 @@ _CONTENT_LENGTH = re.compile(rb"Content-Length: ([0-9]+)\r\n")  # pygls.io_'s ow
 _HEADER = re.compile(rb"[!#-'*+.0-9A-Z^-z|~-]+: [^\r\n]*\r\n")  # RFC 9110's field: a token
 
 
+class PairedOutput:
+    """The stream the server's messages are written to, each through
+    :func:`urdftool.report.json_output.paired`: pygls writes them with ``json.dumps``, where a
+    name holding a byte that is not UTF-8 (a launch file's, quoted by U620) was an unpaired
+    ``\\udcff``, which strict readers refuse (JSON's one function, as every report's)."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, data: bytes):
+        from urdftool.report.json_output import paired
+
+        return self.stream.write(paired(data))
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+
 class Transport:
     """The protocol's input as pygls reads it (:func:`pygls.io_.run_async`: ``readline`` for
     each header line, ``read(Content-Length)`` for the body after the blank line), held to the
@@ -960,7 +1010,7 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
     # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
     protocol_in, sys.stdin = sys.stdin, io.StringIO()
     transport = Transport(protocol_in.buffer)
-    make_server(limits=limits).start_io(transport, protocol_out)
+    make_server(limits=limits).start_io(transport, PairedOutput(protocol_out))
     if any(getattr(h, "failed", False) for h in logging.getLogger().handlers):
         return 2
     if transport.broken:  # in the log (standard error without one), and on standard error

@@ -76,7 +76,7 @@ class Terminal:
         except UsageError as error:
             self.fail_usage(error)
 
-    def write_output(self, path, data: str | bytes, rewrites: bool = False) -> None:
+    def write_output(self, path, data: str | bytes, rewrites: bool | frozenset = False) -> None:
         """Write an output file with :func:`urdftool.description.files.write_file` (a symbolic
         link planted at ``path`` is replaced, never followed; a file the command read is not
         replaced unless ``rewrites``); exit 2 with one line when it cannot be written."""

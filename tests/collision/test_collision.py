@@ -198,6 +198,22 @@ def test_srdf_round_trip_and_merge_keeps_other_content(humanoid_matrix, tmp_path
     assert len(again) == len(entries) + 1
 
 
+@pytest.mark.parametrize("document, tag", [
+    ('<robot name="r">\n  <link name="a"/>\n</robot>\n', "<link>"),
+    ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:macro name="m"/>\n'
+     '</robot>\n', "<xacro:macro>")])
+def test_an_srdf_is_never_merged_into_a_robot_description(humanoid_matrix, tmp_path,
+                                                          document, tag):
+    # session 13: collisions --write-srdf naming a URDF or a macro file merged the entries into
+    # it, its tags rewritten by lxml (attributes written across lines joined)
+    robot, result = humanoid_matrix
+    existing = tmp_path / "arm.xacro"
+    existing.write_text(document)
+    with pytest.raises(srdf.SrdfError, match=f"arm.xacro:2: {tag} is not an SRDF element"):
+        srdf.render(result, robot.name, existing)
+    assert existing.read_text() == document
+
+
 def test_check_srdf_locates_stale_entries_at_the_start_tag(humanoid_matrix, tmp_path):
     robot, result = humanoid_matrix
     never = next(p for p in result.pairs if p.reason == "" and p.collisions)
@@ -297,6 +313,29 @@ def test_cli_matrix_json_and_write_srdf(run_cli, tmp_path):
     assert {(p["link1"], p["link2"], p["class"]) for p in data["pairs"]} >= {
         ("fixed_box", "sliding_box", "Never")}
     assert 'reason="Never"' in out.read_text()
+
+
+@pytest.mark.parametrize("target", ["include", "description"])
+def test_an_srdf_update_it_would_refuse_is_refused_before_the_matrix(run_cli, tmp_path,
+                                                                     monkeypatch, target):
+    # session 13: the refusals of --write-srdf (an include read, a robot description) came
+    # after the matrix, minutes of work on a big robot
+    path = write(tmp_path, two_boxes(0.2, 0.5).replace(
+        '<robot name="boxes">', '<robot name="boxes" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="colours.xacro"/>'), "robot.urdf.xacro")
+    write(tmp_path, '<robot>\n  <material name="m"/>\n</robot>\n', "colours.xacro")
+    other = write(tmp_path, two_boxes(0.2, 0.5), "other.urdf")
+
+    def classify(*_):
+        raise AssertionError("the matrix was computed")
+
+    monkeypatch.setattr("urdftool.collision.classify.classify", classify)
+    result = run_cli("collisions", path, "--matrix", "--write-srdf",
+                     tmp_path / "colours.xacro" if target == "include" else other,
+                     "--timeout", "0", "--max-memory", "0")
+    assert result.exit_code == 2, result.output
+    assert ("it is a file the command read (as companion SRDF, include)" if target == "include"
+            else "not an SRDF element") in result.output
 
 
 def test_ur5_matches_moveit_adjacency_and_never():

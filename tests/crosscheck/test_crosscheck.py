@@ -279,3 +279,34 @@ def test_a_librarys_own_source_line_is_never_a_line_of_the_robot(tmp_path):
     output = "Error:   Something is wrong\n         at line 5 in /project/urdfdom/src/model.cpp\n"
     assert _located(robot, {5: robot.joints["j"]}, "", output, str(path)) is None
     assert printed_errors(output) == ["Something is wrong"]
+
+
+@pytest.mark.parametrize("shape", ["link out", "named pipe", "package named pipe"])
+def test_a_mesh_urdftool_does_not_open_is_refused_before_any_loader_opens_it(
+        tmp_path, monkeypatch, shape):
+    # session 13: MuJoCo read /etc/passwd through a committed link and quoted its path; a named
+    # pipe held PyBullet and MuJoCo to the end of their budget
+    from urdftool.errors import UsageError
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "package.xml").write_text(
+        '<package format="3"><name>p</name><version>0.0.0</version><description>x'
+        '</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>'
+        '</package>\n')
+    if shape == "link out":
+        (tmp_path / "meshes/m.stl").symlink_to("/etc/passwd")
+    else:
+        os.mkfifo(tmp_path / "meshes/m.stl")
+    uri = "package://p/meshes/m.stl" if shape.startswith("package") else "meshes/m.stl"
+    robot = tmp_path / "r.urdf"
+    robot.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual><geometry>'
+                                                      f'<mesh filename="{uri}"/></geometry>'
+                                                      '</visual>'))
+
+    def run(*_):
+        raise AssertionError("a loader ran")
+
+    monkeypatch.setattr("urdftool.crosscheck._run", run)
+    with pytest.raises(UsageError, match=r"r\.urdf:\d+: mesh .*; the loaders would open it"):
+        crosscheck(str(robot), packages={"p": str(tmp_path)})

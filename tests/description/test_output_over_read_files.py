@@ -86,3 +86,22 @@ def test_a_rewrite_meant_goes_on(repo):
     assert done.returncode in (0, 1), done.stderr
     done = _run(repo, "check", "--no-cache", "pkg/urdf/robot.urdf", "-o", "report.txt")
     assert done.returncode in (0, 1), done.stderr  # a report written over the last one
+
+
+@pytest.mark.integration
+def test_an_srdf_update_over_an_include_shaped_as_an_srdf_is_refused(repo):
+    # session 13: the grant of an SRDF's update was "any file but the robot": an include of
+    # materials (nothing in it an SRDF lacks) was rewritten as an SRDF
+    colours = repo / "pkg/urdf/colours.xacro"
+    colours.write_text('<robot>\n  <material name="m"><color rgba="1 0 0 1"/></material>\n'
+                       '</robot>\n')
+    top = repo / "pkg/urdf/top.urdf.xacro"
+    top.write_text(TOP.replace('<xacro:include filename="inc.xacro"/>',
+                               '<xacro:include filename="inc.xacro"/>'
+                               '<xacro:include filename="colours.xacro"/>'))
+    before = colours.read_bytes()
+    done = _run(repo, "collisions", "pkg/urdf/top.urdf.xacro", "--matrix", "--samples", "5",
+                "--write-srdf", "pkg/urdf/colours.xacro")
+    assert done.returncode == 2, done.stderr
+    assert "it is a file the command read (as companion SRDF, include)" in done.stderr
+    assert colours.read_bytes() == before

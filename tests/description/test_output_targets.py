@@ -131,3 +131,58 @@ def test_a_hard_link_of_a_file_read_is_replaced_and_the_file_read_keeps_its_byte
         files.write_file(tmp_path / "." / "robot.urdf", "a report\n")
     files.write_file(link, "a report\n")
     assert read.read_text() == ROBOT and link.read_text() == "a report\n"
+
+
+def test_a_rewrite_meant_for_one_kind_of_file_refuses_a_file_read_as_another(tmp_path):
+    # session 13: collisions --write-srdf over an include the robot was built from rewrote the
+    # macro file as an SRDF (the grant was "any file but the robot"); it is meant for an SRDF
+    include, srdf = tmp_path / "arm.xacro", tmp_path / "robot.srdf"
+    include.write_text(ROBOT)
+    srdf.write_text('<robot name="r"/>\n')
+    srdf_only = frozenset({"companion SRDF"})
+    files.read_regular(include, as_="include")
+    files.read_regular(include, as_="companion SRDF")  # the writer's own reading of it
+    with pytest.raises(UsageError, match=r"a file the command read \(as companion SRDF, "
+                                         r"include\)"):
+        files.write_file(include, "<robot/>\n", rewrites=srdf_only)
+    assert include.read_text() == ROBOT
+    files.read_regular(srdf, as_="companion SRDF")
+    files.write_file(srdf, "<robot/>\n", rewrites=srdf_only)
+    assert srdf.read_text() == "<robot/>\n"
+    files.write_file(include, "<robot/>\n", rewrites=True)  # the fixes: any file they read
+    assert include.read_text() == "<robot/>\n"
+
+
+def test_a_rewrite_through_a_link_writes_the_file_read_and_keeps_the_link(tmp_path):
+    # session 13: check --fix, inertia --write of a robot file that is a committed link
+    # replaced the link with a fixed copy and left the file it leads to unfixed
+    real, link, planted = tmp_path / "real.urdf", tmp_path / "link.urdf", tmp_path / "p.urdf"
+    real.write_text(ROBOT)
+    link.symlink_to("real.urdf")
+    planted.symlink_to("real.urdf")  # a link not read: replaced, as any output's
+    files.read_regular(link)
+    files.write_file(link, "fixed\n", rewrites=True)
+    assert link.is_symlink() and real.read_text() == "fixed\n"
+    files.write_file(planted, "a report\n", rewrites=True)
+    assert not planted.is_symlink() and real.read_text() == "fixed\n"
+
+
+@pytest.mark.parametrize("command", [["check", "--fix"], ["inertia", "--all", "--write"]])
+def test_a_fix_of_a_robot_file_that_is_a_link_fixes_the_file_it_leads_to(run_cli, tmp_path,
+                                                                          monkeypatch, command):
+    (tmp_path / ".git").mkdir()
+    real, link = tmp_path / "real.urdf", tmp_path / "link.urdf"
+    real.write_text('<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1"'
+                    ' iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry>'
+                    '<box size="0.1 0.1 0.1"/></geometry></collision></link><link name="b"/>'
+                    '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+                    '<axis xyz="0 0 1"/><limit lower="1" upper="-1" effort="1" velocity="1"/>'
+                    '</joint></robot>\n')
+    link.symlink_to("real.urdf")
+    monkeypatch.chdir(tmp_path)
+    words = [command[0], "link.urdf", *command[1:]] + (["link.urdf"] if "--write" in command
+                                                       else [])
+    run_cli(*words, "--timeout", "0", "--max-memory", "0")
+    assert link.is_symlink()
+    fixed = real.read_text()
+    assert ('lower="-1" upper="1"' in fixed) if command[0] == "check" else 'ixx="1"' not in fixed

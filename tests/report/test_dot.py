@@ -71,6 +71,18 @@ def test_without_dot_the_dot_source_is_written_and_explained(run_cli, bad, tmp_p
     assert (tmp_path / "tree.dot").read_text().startswith('digraph "bad"')
 
 
+def test_the_command_suggested_without_dot_is_one_shell_word_a_path(run_cli, bad, tmp_path,
+                                                                    monkeypatch):
+    # session 13: a path with a blank or a ';' was pasted into the suggested command as is
+    import shlex
+
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    result = run_cli("graph", bad, "-o", tmp_path / "a b;touch x.svg")
+    command = result.stderr.split("render it with `", 1)[1].split("`", 1)[0]
+    assert shlex.split(command) == ["dot", "-Tsvg", str(tmp_path / "a b;touch x.dot"), "-o",
+                                    str(tmp_path / "a b;touch x.svg")]
+
+
 @pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot is not installed (apt-get install graphviz)")
 @pytest.mark.parametrize("suffix, magic", [(".svg", b"<?xml"), (".png", b"\x89PNG")])
 def test_rendered_with_dot(run_cli, bad, tmp_path, suffix, magic):

@@ -117,9 +117,17 @@ def test_csv_cells_hold_no_line_break_and_run_no_formula():
 
 def test_dot_ids_stay_quoted():
     quoted = escape.dot('a"b\\N', HOSTILE)
-    assert quoted.startswith('"a\\"b\\\\N\\n') and quoted.endswith('"') and "\n" not in quoted
+    assert quoted.startswith('"a\\"b\\\\\\\\N\\n') and quoted.endswith('"') and "\n" not in quoted
     inner = quoted[1:-1].replace('\\\\', "").replace('\\"', "")
     assert '"' not in inner
+
+
+def test_dot_ids_of_names_that_differ_differ():
+    # session 13: a link named a\nb (a backslash) and one named a, line feed, b were one
+    # node of the graph: two roots drawn as one chain
+    names = ["a\\nb", "a\nb", "a\\x1bb", "a\x1bb", "a\\\\", "a\\", "a\\u202eb", "a\u202eb"]
+    assert len({escape.dot(name) for name in names}) == len(names)
+    assert len({escape.dot(*pair) for pair in [("a", "b"), ("a\\nb",), ("a\nb",)]}) == 3
 
 
 def test_yaml_reads_back_exactly_and_no_scalar_starts_a_line():

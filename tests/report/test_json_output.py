@@ -60,3 +60,17 @@ def test_the_least_length_is_never_more_than_the_length():
     for value in ([], [1], [1, 22, "abc"], {}, {"a": 1}, {"a": [1, {"bb": "c"}], 2: None},
                   ["é" * 5, [[]], {"": ""}]):
         assert _least_length(value, 10 ** 6) <= len(json.dumps(value))
+
+
+def test_paired_writes_a_lone_surrogates_escape_as_the_replacement_character_at_its_length():
+    # session 13: the language server's messages, written by pygls's json.dumps
+    from urdftool.report.json_output import paired
+
+    value = {"a": "x\udcff \U0001F600 \ud800", "b": "\\udcff", "c": "\\\udcff",
+             "d": "\ud83d\\ude00"}
+    data = json.dumps(value).encode()
+    fixed = paired(data)
+    assert len(fixed) == len(data)
+    assert json.loads(fixed) == {"a": "x\ufffd \U0001F600 \ufffd", "b": "\\udcff",
+                                 "c": "\\\ufffd", "d": "\ufffd\\ude00"}
+    assert paired(b'{"a": "plain"}') == b'{"a": "plain"}'

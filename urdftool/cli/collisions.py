@@ -138,17 +138,18 @@ def _pose(robot, values, degrees, srdf, format, render, max_pairs, max_triangles
 
 def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
     from urdftool.collision.classify import classify
-    from urdftool.collision.srdf import updated
-    from urdftool.description.files import identity
+    from urdftool.collision.srdf import REWRITES, check_update, updated
     from urdftool.report import plot as plot_module
     from urdftool.report.collisions import write_matrix
     from urdftool.report.progress import sampling_progress
 
+    if write_srdf:
+        check_update(write_srdf)  # before the work, what writing it would refuse
     with sampling_progress(options.samples, machine=format != "text") as on_progress:
         outcome = classify(robot, options, on_progress)
     if write_srdf:
         write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf),  # an SRDF
-                     rewrites=identity(write_srdf) != identity(robot.path))  # updated: meant
+                     rewrites=REWRITES)  # updated: meant, of a file read as an SRDF only
     if plot:
         plot_module.write(outcome.matrix, plot, f"{robot.name}: {outcome.matrix.samples} "
                                                 f"samples, seed {options.seed}")

@@ -10,8 +10,9 @@ from lxml import etree
 
 from urdftool.numbers import number
 from urdftool.diagnostics import Location
-from urdftool.description.documents import read_srdf
+from urdftool.description.documents import SRDF_READ_AS, read_srdf
 from urdftool.description.files import kind_of, read_regular
+from urdftool.description.urdf import is_xacro
 from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix
@@ -66,6 +67,36 @@ def entries_of(matrix: Matrix) -> list[tuple[str, str, str]]:
     return [(p.link1, p.link2, p.reason) for p in matrix.pairs if p.disabled]
 
 
+REWRITES = frozenset({SRDF_READ_AS})  # what an SRDF's update may replace: a file read so only
+
+
+def check_update(path: Path) -> None:
+    """Raise, before the matrix is computed, what writing the update at ``path`` would: an
+    existing file that is not an SRDF (:func:`_to_update`), or a file the command read as
+    anything but an SRDF (an include of the robot: :func:`~urdftool.description.files.
+    check_write`)."""
+    from urdftool.description.files import check_write
+
+    if kind_of(path, follow=False) == "file":
+        _to_update(path)
+    check_write(path, REWRITES)
+
+
+def _to_update(existing: Path):
+    """The SRDF at ``existing`` (:func:`_document`), refused when its root holds a ``<link>``,
+    a ``<joint>`` or a xacro element: a robot description, which a merge would rewrite."""
+    document = _document(existing)
+    described = next((child for child in document.root if child.tag in ("link", "joint")
+                       or is_xacro(child.tag)), None)
+    if described is not None:  # merged into, a robot description lost its formatting
+        tag = etree.QName(described).localname
+        tag = f"{described.prefix}:{tag}" if described.prefix else tag
+        raise SrdfError(f"{document.display}:{described.sourceline}: <{tag}> is not "
+                        "an SRDF element: this is a robot description, not an SRDF; give the "
+                        "SRDF's file name", location=document.at(described.sourceline))
+    return document
+
+
 def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str:
     """SRDF text: a new document, or ``existing`` with its disable_collisions replaced (entries
     with other reasons, such as 'User', are kept) and everything else untouched."""
@@ -75,7 +106,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         lines += [f'    <disable_collisions link1="{attribute(a)}" link2="{attribute(b)}" '
                   f'reason="{r}" />' for a, b, r in new]
         return "\n".join([*lines, "</robot>", ""])
-    root = _document(existing).root
+    root = _to_update(existing).root
     old = list(root.iter("disable_collisions"))
     computed = {(a, b) for a, b, _ in new}
     kept = [(*pair_key(e.get("link1", ""), e.get("link2", "")), e.get("reason", ""))
@@ -98,7 +129,7 @@ def render(matrix: Matrix, robot_name: str, existing: Path | None = None) -> str
         element = etree.Element("disable_collisions", link1=a, link2=b, reason=reason)
         element.tail = indent if offset < len(merged) - 1 else last_tail
         parent.insert(index + offset, element)
-    data = read_regular(existing)
+    data = read_regular(existing, as_=SRDF_READ_AS)
     start, end = _root_span(data)
     return (data[:start].decode("utf-8", "replace")
             + etree.tostring(root, encoding="unicode", with_tail=False)

@@ -119,6 +119,7 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
                          f"{choices('loaders', unknown[0], LOADERS)}")
     robot = load(path, xacro_args=xacro_args or {}, packages=packages or {},
                  allow_env=allow_env)
+    _refuse_files_urdftool_does_not_open(robot)
     present = [name for name in names if available(name)]
     missing = {name: LOADERS[name].install for name in names if name not in present}
     configurations = joint_configurations(robot)
@@ -136,6 +137,51 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     report = Crosscheck(path, results, missing, configurations)
     _compare(report, robot)
     return report
+
+
+def _refuse_files_urdftool_does_not_open(robot) -> None:
+    """UsageError, before any loader runs, when the robot names a mesh or texture file that
+    urdftool itself does not open (:func:`urdftool.description.meshes.uris.resolve`: a link
+    leading outside the repository, a file outside it, a named pipe or a device in its place):
+    the loaders open what the URDF names with no such rule (MuJoCo read ``/etc/passwd`` through
+    a committed link and quoted its path; a named pipe held PyBullet and MuJoCo to the end of
+    their budget). A file simply missing, or of another package, is the loaders' to report."""
+    from urdftool.description.meshes.uris import resolve
+    from urdftool.errors import MeshProblem, UsageError
+
+    for element in robot.root.iter("mesh", "texture"):
+        uri = element.get("filename") or ""
+        if not uri:
+            continue
+        try:
+            resolve(robot, uri)
+        except MeshProblem as problem:
+            there = problem.kind == "missing" and _something_at(robot, uri)
+            if problem.kind == "outside" or there:
+                why = f"{problem}" if not there else \
+                    f"{element.tag} '{uri}' is not a regular file (a named pipe, a device?)"
+                raise UsageError(f"{robot.display}:{robot.locate(element).line}: {why}; the "
+                                 "loaders would open it: not run") from None
+
+
+def _something_at(robot, uri: str) -> bool:
+    """Whether something that is neither a regular file nor a folder (a named pipe, a device,
+    a socket) is where ``uri`` leads: a mesh said missing because it is no regular file."""
+    from urdftool.description.files import kind_of
+
+    if uri.startswith("package://"):
+        from urdftool.description.packages import package_uri_parts
+
+        package, tail = package_uri_parts(uri)
+        try:
+            place = os.path.join(robot.resolver.find(package), tail)
+        except Exception:  # noqa: BLE001 - an unknown package: nothing there to open
+            return False
+    elif "://" in uri and not uri.startswith("file://"):
+        return False
+    else:
+        place = robot.resolver.locate_uri(uri, robot.base_dir).path
+    return kind_of(place) == "other"
 
 
 def joint_configurations(robot) -> list[dict]:

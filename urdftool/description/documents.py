@@ -205,7 +205,12 @@ def _error_line(error, text: str) -> int | None:
     return min(mark.line + 1, last)
 
 
-def read_srdf(path: Path, as_: str = "companion SRDF") -> SrdfFile:
+# what an SRDF is read as (the record's kind): a rewrite is meant of a file read so only
+# (``collisions --write-srdf`` updates an SRDF, never an include named in its place)
+SRDF_READ_AS = "companion SRDF"
+
+
+def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
     """Parse one SRDF; a syntax error becomes ``problem`` at its line."""
     result = SrdfFile(path, display_path(path))
     text = _read_text(path, result, as_)

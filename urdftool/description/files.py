@@ -83,7 +83,7 @@ def _read_disk(name, limit: int, as_: str) -> bytes:
         _note_read(name, as_, None, None, error.strerror or type(error).__name__)
         raise
     try:
-        data, info = _read(name, info, limit)
+        data, info = _read(name, info, limit, as_)
     except OSError as error:
         _note_read(name, as_, info, None, error.strerror or type(error).__name__)
         raise
@@ -91,7 +91,7 @@ def _read_disk(name, limit: int, as_: str) -> bytes:
     return data
 
 
-def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
+def _read(name, info, limit: int, as_: str = "file") -> tuple[bytes, os.stat_result]:
     if not stat.S_ISREG(info.st_mode):
         raise OSError(21, "not a regular file", str(name))
     if info.st_size > limit:
@@ -111,7 +111,7 @@ def _read(name, info, limit: int) -> tuple[bytes, os.stat_result]:
         os.close(descriptor)
     if len(data) > limit:
         raise TooLarge(27, f"file is over the limit of {limit} bytes", str(name), size=len(data))
-    _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(name))
+    _READ_HERE.setdefault(_which_file(info), {}).setdefault(os.path.abspath(name), set()).add(as_)
     return data, info
 
 
@@ -126,9 +126,11 @@ def _read_up_to(descriptor: int, size: int) -> bytes:
     return data
 
 
-# every regular file this process read (:func:`_which_file`) -> the names it was read by: what
-# an output must not replace (:func:`_replaces_a_file_read`)
-_READ_HERE: dict = {}
+# every regular file this process read (:func:`_which_file`) -> each name it was read by -> what
+# it was read as there (robot, include, companion SRDF, ...; a worker's: "read by a worker"):
+# what an output must not replace (:func:`_reads_replaced`)
+_READ_HERE: dict[tuple, dict[str, set[str]]] = {}
+BY_A_WORKER = "read by a worker"
 
 
 def _which_file(info: os.stat_result) -> tuple:
@@ -146,7 +148,8 @@ def read_elsewhere(paths) -> None:
         except (OSError, ValueError):
             continue
         if stat.S_ISREG(info.st_mode):
-            _READ_HERE.setdefault(_which_file(info), set()).add(os.path.abspath(path))
+            _READ_HERE.setdefault(_which_file(info), {}).setdefault(
+                os.path.abspath(path), set()).add(BY_A_WORKER)
 
 
 def _note_read(name, as_: str, info, data: bytes | None, failure: str | None) -> None:
@@ -707,28 +710,25 @@ def _version_control_folder(target: str) -> str | None:
         folder = above
 
 
-def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
+def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
     A regular file keeps its permissions. UsageError when the folder is missing or reached
     through a link leading outside its repository, ``path`` is a folder, or the system
-    refuses; and, unless ``rewrites`` (the caller rewrites a file it read on purpose: fixes,
-    ``inertia --write``), when the file at ``path`` is one this process read (or was told a
-    worker read: :func:`read_elsewhere`), by any spelling, bind or link of its folder: a
-    robot, an include, a mesh or a companion the command's output would replace (a hard link
-    of one is not: :func:`_replaces_a_file_read`)."""
-    folder = check_output(path)
+    refuses; and when the file at ``path`` is one this process read (or was told a worker
+    read: :func:`read_elsewhere`), by any spelling, bind or link of its folder: a robot, an
+    include, a mesh or a companion the command's output would replace (a hard link of one is
+    not: :func:`_reads_replaced`), unless its caller rewrites that file on purpose:
+    ``rewrites`` True (the fixes, ``inertia --write`` over its robot, urdftool's own files), or
+    the kinds of reading a rewrite is meant for (``collisions --write-srdf`` updates a file
+    read as an SRDF, never an include named in its place). A rewrite writes the file it read:
+    a link at ``path`` by which this process read a file is followed to it, and the link is
+    kept (a fix of a robot file that is a committed link replaced the link with a copy and
+    left the robot unfixed)."""
+    folder, target, existing = _written(path, rewrites)
     path = Path(path)
-    target = os.path.join(folder, path.name)
     if isinstance(data, str):
         data = data.encode("utf-8")
-    try:
-        existing = os.lstat(target)
-    except OSError:
-        existing = None
-    if existing is not None and not rewrites and _replaces_a_file_read(existing, target):
-        raise UsageError(f"cannot write '{path}': it is a file the command read, which the "
-                         "output would replace; give another file name")
     if existing is not None and stat.S_ISLNK(existing.st_mode):
         stream = _own_stream(target)
         if stream is not None:  # -o /dev/stdout: the stream itself, the link left as it is
@@ -763,20 +763,73 @@ def write_file(path, data: str | bytes, rewrites: bool = False) -> None:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
 
 
-def _replaces_a_file_read(existing: os.stat_result, target: str) -> bool:
-    """Whether replacing the regular file ``existing`` at ``target`` (its folder's real path
-    and its name) by a rename replaces a file this process read: the same file (device, inode,
-    change time) at the same entry (the folder, by device and inode: any spelling, link or bind
-    mount of it, and the name). A hard link of a file read is another entry: the rename puts
-    the output at that name only, and the file read keeps its bytes under its own (the writer
-    never writes through a name into the file it leads to), so it is not refused."""
+def check_write(path, rewrites: bool | frozenset = False) -> None:
+    """Raise the UsageError :func:`write_file` would raise for a file read that the output
+    would replace, before the work: a command that reads the file it rewrites (``collisions
+    --write-srdf``, once the SRDF is read) says so at once, not after minutes of work."""
+    _written(path, rewrites)
+
+
+def _written(path, rewrites: bool | frozenset) -> tuple[str, str, os.stat_result | None]:
+    """Where :func:`write_file` writes ``path``: the real folder, the target in it (a link
+    by which this process read a file followed, for a rewrite) and what is there now; the
+    UsageError of a file read the output would replace unless a rewrite meant."""
+    folder = check_output(path)
+    target = os.path.join(folder, Path(path).name)
+    if rewrites:
+        linked = _read_through_link(target)
+        if linked is not None:
+            folder, target = check_output(linked), linked
+    try:
+        existing = os.lstat(target)
+    except OSError:
+        existing = None
+    kinds = _reads_replaced(existing, target) if existing is not None else None
+    if kinds and not (rewrites is True or (rewrites and kinds <= rewrites)):
+        raise UsageError(f"cannot write '{path}': it is a file the command read (as "
+                         f"{', '.join(sorted(kinds))}), which the output would replace; give "
+                         "another file name")
+    return folder, target, existing
+
+
+def _reads_replaced(existing: os.stat_result, target: str) -> set[str] | None:
+    """What this process read the regular file ``existing`` at ``target`` (its folder's real
+    path and its name) as, when replacing it by a rename replaces a file it read (None when
+    not): the same file (device, inode, change time) at the same entry (the folder, by device
+    and inode: any spelling, link or bind mount of it, and the name). A hard link of a file
+    read is another entry: the rename puts the output at that name only, and the file read
+    keeps its bytes under its own (the writer never writes through a name into the file it
+    leads to), so it is not refused."""
     names = _READ_HERE.get(_which_file(existing)) if stat.S_ISREG(existing.st_mode) else None
     if not names:
-        return False
+        return None
+    kinds = set().union(*names.values())
     if existing.st_nlink <= 1:
-        return True  # one name: the entry read
+        return kinds  # one name: the entry read
     here = _entry(target)
-    return here is None or any(_entry(name) in (here, None) for name in names)
+    return kinds if here is None or any(_entry(name) in (here, None) for name in names) \
+        else None
+
+
+def _read_through_link(target: str) -> str | None:
+    """The real path of the regular file the symbolic link ``target`` leads to when this
+    process read that file by the link's name (a rewrite writes the file it read); else
+    None."""
+    try:
+        if not stat.S_ISLNK(os.lstat(target).st_mode):
+            return None
+        info = os.stat(target)
+    except (OSError, ValueError):
+        return None
+    names = _READ_HERE.get(_which_file(info)) if stat.S_ISREG(info.st_mode) else None
+    if not names:
+        return None
+    name_of_link = os.path.join(os.path.realpath(os.path.dirname(target)),
+                                os.path.basename(target))
+    if not any(os.path.join(os.path.realpath(os.path.dirname(name)), os.path.basename(name))
+               == name_of_link for name in names):
+        return None
+    return os.path.realpath(target)
 
 
 def _entry(path: str) -> tuple | None:

@@ -23,10 +23,12 @@ RENDERED = (".svg", ".png", ".pdf")
 def dot_missing_advice(missing: DotMissing, output: Path) -> str:
     """What happened to ``output`` when Graphviz is missing (``missing`` names the DOT file
     written instead), and how to render it."""
+    import shlex
+
+    command = shlex.join(["dot", f"-T{output.suffix[1:]}", str(missing), "-o", str(output)])
     return (f"Graphviz's 'dot' program is not installed, so {output} was not rendered; "
             f"wrote the DOT source to {missing} instead. Install Graphviz (apt install "
-            f"graphviz, brew install graphviz) or render it with "
-            f"'dot -T{output.suffix[1:]} {missing} -o {output}'.")
+            f"graphviz, brew install graphviz) or render it with `{command}`.")
 
 
 def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:

@@ -30,11 +30,13 @@ SVG / HTML written by hand    :func:`svg`         markup (``<img onerror>``, ``<
 CSV cells                     :func:`csv_cell`    line breaks (a row of their own) and formulas
                                                   a spreadsheet would run (``=``, ``+``, ``-``,
                                                   ``@``)
-Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's own escapes
+Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's own escapes,
+                                                  two names made one ID (one to one)
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
-rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``)
+rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a lone surrogate
+                              (``paired``: LSP)   is U+FFFD
 ============================  ==================  =============================================
 
 tests/report/test_escape.py holds each function to its kind; tests/integration/
@@ -211,9 +213,12 @@ def csv_cell(value) -> str:
 
 def dot(*lines) -> str:
     """A Graphviz double-quoted ID or label; each argument is a line of the label (DOT's
-    ``\\n``), escaped so that neither its quotes nor DOT's escapes (``\\N``, ``\\l``) act."""
-    return '"' + "\\n".join(printable(line).replace("\\", "\\\\").replace('"', '\\"')
-                            for line in lines) + '"'
+    ``\\n``), escaped so that neither its quotes nor DOT's escapes (``\\N``, ``\\l``) act.
+    A DOT ID is a node's identity, so the escape is one to one: a backslash of the name is
+    written twice before :func:`printable` writes its escapes (the link ``a\\nb``, with a
+    backslash, and ``a`` line feed ``b`` were one node: two roots drawn as one chain)."""
+    return '"' + "\\n".join(printable(str(line).replace("\\", "\\\\")).replace("\\", "\\\\")
+                            .replace('"', '\\"') for line in lines) + '"'
 
 
 def yaml_text(data) -> str:

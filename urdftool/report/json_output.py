@@ -45,6 +45,29 @@ def line(data) -> str:
 _ENCODE = json.JSONEncoder(allow_nan=False).encode
 
 
+# a \u escape of a surrogate, the backslashes before it (even: an escaped backslash's text)
+# and a low surrogate's escape after a high one (a pair: a character past U+FFFF)
+_SURROGATE_ESCAPE = re.compile(rb"(\\+)u(d[89ab][0-9a-f]{2}(?:\\ud[c-f][0-9a-f]{2})?|"
+                               rb"d[c-f][0-9a-f]{2})", re.IGNORECASE)
+
+
+def paired(data: bytes) -> bytes:
+    """JSON another library wrote (pygls: the language server's messages, with their headers)
+    with each escape of a lone surrogate written ``\\ufffd``, as :func:`dumps` writes the
+    character a strict reader would read: the same length, so a ``Content-Length`` before it
+    stays true; a pair (a character past U+FFFF) and an escaped backslash's text are left."""
+    if b"\\u" not in data:
+        return data
+
+    def one(match) -> bytes:
+        slashes, code = match.group(1), match.group(2)
+        if len(slashes) % 2 == 0 or len(code) > 4:
+            return match.group(0)
+        return slashes + b"ufffd"
+
+    return _SURROGATE_ESCAPE.sub(one, data)
+
+
 _SURROGATE = re.compile("[\ud800-\udfff]")
 
 
