@@ -72,12 +72,20 @@ def malformed_srdf(robot):
 
     MoveIt refuses to start with it.
 
+    A **warning** when srdfdom reads it all the same: a ``--`` inside a comment
+    (``<!-- ------ -->``), which the XML standard forbids, but srdfdom's TinyXML2 ends the
+    comment at the first ``-->``. MoveIt then reads it when its launch file loads the SRDF as
+    text (ROS 1's ``textfile=``), not through xacro (MoveItConfigsBuilder's way), which
+    refuses it. The SRDF is checked as srdfdom reads it.
+
     Bad: ``<group name="arm"> <chain base_link="a" tip_link="b">`` (unclosed)
     Good: ``<chain base_link="a" tip_link="b"/>``
     """
     srdf = companions(robot).srdf
     if srdf is not None and srdf.problem:
         yield srdf.at(srdf.line), srdf.problem
+    elif srdf is not None and srdf.caution:
+        yield srdf.at(srdf.line), Conditional(srdf.caution)
 
 
 @rule("U802", "srdf-robot-name", Severity.WARNING)
