@@ -62,6 +62,19 @@ def test_a_double_hyphen_in_a_comment_is_read_as_srdfdom_reads_it(tmp_path):
     assert findings[0].severity.value == "warning" and "srdfdom reads it" in findings[0].message
 
 
+def test_an_srdf_read_despite_a_double_hyphen_says_why_it_is_not_fixed(tmp_path):
+    """The fixes' tag scanner reads no tag of khi_duaro.srdf ('--!>' in a comment): the
+    entry U811 offers was not written 'as the SRDF has no </robot>', which it has."""
+    from urdftool.description.documents import read_srdf
+    from urdftool.lint.rules.srdf import _add_entry
+
+    path = tmp_path / "r.srdf"
+    path.write_text("<robot name='r'>\n<!-- <virtual_joint/> --!>\n<!-- x -->\n</robot>\n")
+    srdf = read_srdf(path)
+    assert srdf.problem is None and srdf.caution
+    assert "holds '--' in a comment" in _add_entry(srdf, ("a", "b"), "Default").reason
+
+
 def test_srdf_that_is_not_a_robot(tmp_path):
     found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": "<?xml version='1.0'?>\n<group/>"})
     assert found == [("robot.srdf", 2, "U801")] and "<group>" in findings[0].message

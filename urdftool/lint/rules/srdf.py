@@ -479,7 +479,8 @@ def _add_entry(srdf, pair, reason: str):
     source = _srdf_source(srdf)
     root = source.tag(0) if source is not None and len(source) else None
     if root is None or root.close_name is None:
-        return Unfixable(f"{srdf.display} has no </robot> to write before")
+        return Unfixable(f"{srdf.display} holds '--' in a comment, which fixes do not edit"
+                         if srdf.caution else f"{srdf.display} has no </robot> to write before")
     data = source.data
     close = root.close_name[0] - 2  # the '<' of '</robot>'
     line_start = data.rfind(b"\n", 0, close) + 1
