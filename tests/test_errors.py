@@ -76,3 +76,15 @@ def test_a_name_holding_a_substitution_without_its_dollar_says_so():
     assert text.startswith("'{name}' is a xacro substitution without its '$' (${name})")
     assert "did you mean" not in text and "available links: FL_thigh" in text
     assert "substitution" not in errors.available("links", "${name}_thigh", names)
+
+
+def test_a_name_of_the_same_words_reordered_is_the_one_suggested():
+    """youbot_gz_ros2's <gazebo reference='gripper_finger_l_link'>: difflib ranked the other
+    finger's gripper_finger_link_r first; the link meant is gripper_finger_link_l."""
+    from urdftool.errors import available, close_names
+
+    names = ["gripper_finger_link_r", "gripper_finger_link_l", "gripper_palm_link"]
+    assert close_names("gripper_finger_l_link", names, n=1) == ["gripper_finger_link_l"]
+    assert "did you mean 'gripper_finger_link_l'?" in available("links", "gripper_finger_l_link",
+                                                                 names)
+

@@ -104,14 +104,19 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
     urdftool (a test holds it so). A ratio costs the product of the two lengths, and a robot
     file can hold a 6 MB name (8 s of `check` on one): nothing is suggested for a name over
     MAX_SIMILAR_NAME characters, longer candidates are skipped, and at most
-    MAX_SIMILAR_CANDIDATES are compared."""
+    MAX_SIMILAR_CANDIDATES are compared. A name of the same words in another order
+    (``gripper_finger_l_link`` for ``gripper_finger_link_l``) comes first: difflib's ratio may
+    rank the other finger's name above it."""
     import difflib
 
     if len(wanted) > MAX_SIMILAR_NAME:
         return []
-    candidates = [name for name in names if len(name) <= MAX_SIMILAR_NAME]
-    return difflib.get_close_matches(wanted, candidates[:MAX_SIMILAR_CANDIDATES], n=n,
-                                     cutoff=cutoff)
+    candidates = [name for name in names if len(name) <= MAX_SIMILAR_NAME][:MAX_SIMILAR_CANDIDATES]
+    words = sorted(wanted.split("_"))
+    reordered = [name for name in candidates
+                 if name != wanted and "_" in name and sorted(name.split("_")) == words]
+    close = difflib.get_close_matches(wanted, candidates, n=n, cutoff=cutoff)
+    return (reordered + [name for name in close if name not in reordered])[:n]
 
 
 def similarity(one: str, two: str) -> float:

@@ -318,6 +318,21 @@ def test_white_space_before_the_declaration_is_read_as_urdfdom_reads_it(tmp_path
         [("late-declaration", 3, "warning")]
 
 
+def test_a_double_hyphen_in_a_comment_is_read_as_urdfdom_reads_it(tmp_path):
+    """A '--' inside a comment (a rule of dashes, or '--!>'): urdfdom's TinyXML2 ends the
+    comment at the first '-->' and reads the robot (UM-ARM-Lab's victor.srdf, khi_duaro.srdf
+    for srdfdom); expat refused it, a U001 error that checked nothing."""
+    path = write(tmp_path, "r.urdf", '<?xml version="1.0"?>\n<robot name="r">\n'
+                 '  <!-- ---------- -->\n  <link name="a"/>\n'
+                 '  <!-- <link name="b"/> --!>\n  <!-- still a comment -->\n</robot>\n')
+    robot = load(path)
+    assert [link.get("name") for link in robot.root.iter("link")] == ["a"]
+    assert robot.locate(robot.root.find("link")).line == 4
+    assert [(note.kind, note.location.line, note.severity.value) for note in robot.notes] == \
+        [("double-hyphen", 3, "warning")]
+    assert "urdfdom reads the file" in robot.notes[0].message
+
+
 def test_a_robot_in_a_default_namespace_is_read_as_urdfdom_reads_it(tmp_path):
     """JLSchol/omni_marco_gazebo's omni.urdf, <robot xmlns="http://www.ros.org/wiki/urdf">
     to validate it against urdf.xsd: check_urdf reads it (TinyXML2 knows no namespaces), and it

@@ -261,15 +261,32 @@ def test_an_unknown_substitution_is_said_once_by_its_exception_name(tmp_path):
     SubstitutionException'>: Unknown substitution command [x]. ... Unknown substitution command
     [x]. ..." (my-zzy/am_description's ``$(controllers_yaml_path)``, a placeholder its launch file
     fills); said once, the class by its name."""
-    from urdftool.errors import LoadError
-
-    (tmp_path / "r.urdf.xacro").write_text(
-        '<robot name="r"><link name="a"/>\n'
-        '  <gazebo><plugin name="p" filename="x"><parameters>$(controllers_yaml_path)</parameters>'
-        '</plugin></gazebo>\n</robot>\n')
-    with pytest.raises(LoadError) as raised:
-        load(tmp_path / "r.urdf.xacro")
-    said = raised.value.message
+    said = _load_error(tmp_path, '<robot name="r"><link name="a"/>\n'
+                       '  <gazebo><plugin name="p" filename="x"><parameters>$(controllers_yaml_path)'
+                       '</parameters></plugin></gazebo>\n</robot>\n').message
     assert said.startswith("SubstitutionException: Unknown substitution command "
                            "[controllers_yaml_path]. Valid commands are"), said
     assert said.count("Unknown substitution command") == 1 and "<class" not in said, said
+
+
+def test_a_macro_call_lacking_a_parameter_says_what_it_lacks(tmp_path):
+    """xacro says "Undefined parameters [velocity]" at the call (ABB's irb_120_dual.urdf.xacro
+    calls irb_120_arm, which gained a velocity parameter, without it): said as what it means."""
+    error = _load_error(tmp_path, '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                        '  <xacro:macro name="arm" params="prefix velocity"><link name="${prefix}a"/>'
+                        '</xacro:macro>\n  <xacro:arm prefix="r1_"/>\n</robot>\n')
+    assert error.message == ('Undefined parameters [velocity]: the macro called here has velocity '
+                             'without a default, and the call gives it no value; pass '
+                             'velocity="..."'), error.message
+    assert error.location.line == 3
+
+
+def _load_error(folder, text: str):
+    """The LoadError of loading ``text`` as ``folder``/r.urdf.xacro."""
+    from urdftool.errors import LoadError
+
+    (folder / "r.urdf.xacro").write_text(text)
+    with pytest.raises(LoadError) as raised:
+        load(folder / "r.urdf.xacro")
+    return raised.value
+

@@ -279,6 +279,9 @@ def test_figures_folded_only_where_the_line_stays_true_and_readable():
     thousands = shown([said(1, "link 'a': at least 35,368 kg/m^3", "U311"),
                        said(2, "link 'b': at least 33,333 kg/m^3", "U311")])
     assert len(thousands) == 2 and "35,368 kg" in thousands[0] and "33,333 kg" in thousands[1]
+    places = shown([said(1, "link 'a' is defined 2 times (first at m.xacro:49)", "U101"),
+                    said(2, "link 'b' is defined 2 times (first at m.xacro:137)", "U101")])
+    assert len(places) == 2 and " to " not in " ".join(places), places  # (ABB's dual arms)
     alone = shown([said(1, "link 'a' has mass 0.5 kg", "U304"), said(2, "link 'b' has mass 2 kg",
                                                                      "U304")])
     assert len(alone) == 1 and "has mass 0.5 to 2 kg" in alone[0], alone

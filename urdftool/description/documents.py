@@ -13,7 +13,7 @@ from pathlib import Path
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import TooLarge, read_regular
-from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines
+from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines, tinyxml2_comments
 
 MAX_SIZE = 16 * 1024 * 1024
 
@@ -137,6 +137,8 @@ class CompanionFile:
     line: int | None = None
     ros2: bool = False  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
     text: str | None = None  # an SRDF's text as read, for the fixes that edit it
+    # an SRDF that srdfdom reads but parsers following the XML standard refuse: why, at ``line``
+    caution: str | None = None
     # YAML: how its launch files load it: True with substitution (subst_value, allow_substs:
     # its $(arg)/$(var) are replaced, by ``substitutions`` where known), False as written (a
     # $(arg) stays as it is), None when no launch file tells
@@ -226,7 +228,20 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
         conflict = merge_conflict(text.encode())
         result.problem, result.line = (conflict.message, conflict.line) if conflict else \
             (f"not well-formed XML: {error.msg}", _xml_error_line(error, text))
-        return result
+        comments = None if conflict else tinyxml2_comments(text.encode())
+        if comments is None:
+            return result
+        try:  # as srdfdom's TinyXML2 reads it
+            result.data = etree.fromstring(comments[0], parser)
+        except etree.XMLSyntaxError:
+            return result
+        result.problem, result.line = None, comments[1]
+        result.caution = (
+            "not well-formed XML, '--' inside a comment: srdfdom reads "
+            "it (TinyXML2 ends a comment at the first '-->'), so MoveIt does when its launch "
+            "file loads the SRDF as text (ROS 1's textfile=, Python's open()), but xacro "
+            "refuses it, and MoveItConfigsBuilder passes every SRDF through xacro; write the "
+            "comment without '--'")
     _start_tag_lines(result.data, text)
     _trimmed(result.data)
     if result.data.tag != "robot":

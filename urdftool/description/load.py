@@ -21,7 +21,7 @@ from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of,
 from urdftool.description.inputs import SettingValue
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
-from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary
+from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary, tinyxml2_comments
 from urdftool.description.urdf import is_xacro
 
 XACRO_SUFFIXES = (".xacro",)
@@ -305,28 +305,47 @@ def _shown_tag(element) -> str:
 
 
 def _load_urdf(path: str, shown: str, data: bytes, resolver: PackageResolver) -> Robot:
-    note = None
+    notes = []
     try:
         root, lines = parse(data)
     except XmlProblem as problem:
-        late = _late_declaration(data)
-        if late is None:
+        read, notes = _as_urdfdom_reads(data, shown)
+        if not notes:
             raise _problem_error(problem, shown) from None
         try:
-            root, lines = parse(late[0])
+            root, lines = parse(read)
         except XmlProblem:
             raise _problem_error(problem, shown) from None
-        note = LoadNote("late-declaration", Location(shown, late[1], column=1), (
+    robot = Robot(path=path, display=shown, root=root, locations=_StartTags(shown, lines),
+                  resolver=resolver, files=[shown], sources={shown: data})
+    robot.notes.extend(notes)
+    return robot
+
+
+def _as_urdfdom_reads(data: bytes, shown: str) -> tuple[bytes, list[LoadNote]]:
+    """``data`` as urdfdom's TinyXML2 reads what parsers that follow the XML standard refuse
+    (white space before the XML declaration, ``--`` inside a comment), with a warning for each
+    such thing, which names who refuses it; no note when there is none."""
+    notes = []
+    late = _late_declaration(data)
+    if late is not None:
+        data = late[0]
+        notes.append(LoadNote("late-declaration", Location(shown, late[1], column=1), (
             "text before the XML declaration (white space): urdfdom reads the file "
             "(check_urdf, robot_state_publisher, Gazebo, PyBullet), but parsers that follow "
             "the XML standard refuse it (xacro, urdf_parser_py, yourdfpy: 'XML or text "
             "declaration not at start of entity'); remove what comes before '<?xml'"),
-            severity=Severity.WARNING)
-    robot = Robot(path=path, display=shown, root=root, locations=_StartTags(shown, lines),
-                  resolver=resolver, files=[shown], sources={shown: data})
-    if note is not None:
-        robot.notes.append(note)
-    return robot
+            severity=Severity.WARNING))
+    comments = tinyxml2_comments(data)
+    if comments is not None:
+        data = comments[0]
+        notes.append(LoadNote("double-hyphen", Location(shown, comments[1]), (
+            "'--' inside a comment: urdfdom reads the file (check_urdf, robot_state_publisher, "
+            "Gazebo, PyBullet: TinyXML2 ends a comment at the first '-->'), but parsers that "
+            "follow the XML standard refuse it (xacro, urdf_parser_py, yourdfpy: 'not "
+            "well-formed (invalid token)'); write the comment without '--'"),
+            severity=Severity.WARNING))
+    return data, notes
 
 
 _LATE_DECLARATION = re.compile(rb"\A[ \t\r\n]+(<\?xml\s[^<>]*?\?>)")

@@ -28,7 +28,8 @@ class LoadNote:
         :class:`~urdftool.errors.LoadError` when xacro could not expand it), 'xacro-warning'
         (xacro printed a warning), 'outside-file' (xacro read a file outside the repository)
         'late-declaration' (white space before a URDF's XML declaration, which urdfdom
-        reads and standard XML parsers refuse) or 'root-namespace' (a ``<robot>`` in a default
+        reads and standard XML parsers refuse), 'double-hyphen' (``--`` inside a
+        comment, likewise) or 'root-namespace' (a ``<robot>`` in a default
         XML namespace, which urdfdom reads by its elements' names as written)
     severity: lower than the rule's when what it notices holds only in some configurations
     """

@@ -770,11 +770,13 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     launch file) when a launch file gives MoveIt both; ("by default", which and when) when one
     does only with the defaults of the launch arguments naming the package of the robot or of
     the SRDF; ("conditional", why) when launch files give it that SRDF only with the robot built
-    with other xacro arguments; ("unknown", "") when none gives it."""
+    with other xacro arguments, or only with another robot file (a ``.urdf`` generated beside
+    the ``.xacro`` that the launch files build); ("unknown", "") when none gives it."""
     key = real_path(srdf)
     loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
     if not loads:
-        return "unknown", ""
+        other = _other_robot_with(robot, key)
+        return ("conditional", other) if other else ("unknown", "")
     certain = [c for c, relation in loads if relation == AS_CHECKED]
     if certain:
         return "certain", f"{certain[0].named} gives MoveIt this SRDF with the robot as checked"
@@ -784,6 +786,30 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
                                   f"{relation}")
     configuration, relation = loads[0]
     return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
+
+
+def _other_robot_with(robot, srdf_key) -> str:
+    """Why MoveIt never runs the SRDF ``srdf_key`` with this robot: the first launch file of
+    its repository that gives MoveIt that SRDF with another robot file; "" when none does, or
+    when one gives it with this robot file too."""
+    if robot.path == "-":
+        return ""
+    path = Path(os.path.abspath(robot.path))
+    root = _launch_root(path.parent)
+    if root is None:
+        return ""
+    mine, found = real_path(path), ""
+    for configuration in launch_index(root).configurations:
+        paths = [d.path for d in configuration.described if d.path is not None]
+        if not any(real_path(p) == srdf_key for p in paths):
+            continue
+        robots = [p for p in paths if not p.name.endswith((".srdf", ".srdf.xacro"))]
+        if any(real_path(p) == mine for p in robots):
+            return ""
+        if robots and not found:
+            found = (f"{configuration.named} gives MoveIt this SRDF with "
+                     f"{display_path(robots[0])}, another robot file")
+    return found
 
 
 def state_publishers(robot) -> list[tuple[Configuration, Started]]:

@@ -829,9 +829,18 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
     undefined = _undefined_name(error)
     if undefined:
         message += "; " + available("properties", undefined, _visible_properties(error))
+    lacking = _UNDEFINED_PARAMETERS.fullmatch(message)
+    if lacking:  # xacro names the parameters, not what they lack
+        names = [name.strip() for name in lacking.group(1).split(",") if name.strip()]
+        message += (f": the macro called here has {', '.join(names)} without a default, and the "
+                    f"call gives {'it' if len(names) == 1 else 'them'} no value; pass "
+                    f"{names[0] if names else 'it'}=\"...\"")
     if message.startswith("unknown macro name: xacro:") and doc is not None:
         message += _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
+
+
+_UNDEFINED_PARAMETERS = re.compile(r"Undefined parameters \[(.*)\]")
 
 
 def _defined_later(session: _Session, doc, name: str) -> str:

@@ -95,6 +95,36 @@ def merge_conflict(data: bytes) -> XmlProblem | None:
         "keep one side of each conflict and remove the markers"), opening[0], 1)
 
 
+# a comment as TinyXML2 reads it: from "<!--" to the first "-->", whatever comes between
+_TINYXML2_COMMENT = re.compile(rb"<!--(.*?)-->", re.DOTALL)
+
+
+def tinyxml2_comments(data: bytes) -> tuple[bytes, int] | None:
+    """(``data`` with each comment that holds ``--``, or ends in ``-``, blanked, the line of
+    the first such ``--``) when there is one; else None.
+
+    The XML standard forbids ``--`` inside a comment (``<!-- ---- -->``, ``<!-- a --!>``), and
+    parsers that follow it refuse the document (expat: xacro, urdf_parser_py; libxml2: lxml,
+    yourdfpy). TinyXML2, which urdfdom (check_urdf, robot_state_publisher) and srdfdom (MoveIt)
+    read with, ends a comment at the first ``-->`` and keeps whatever came before it as its
+    text: the returned document is the one it reads (only hyphens become spaces, so lines and
+    columns stay)."""
+    first = None
+
+    def blanked(found):
+        nonlocal first
+        body = found.group(1)
+        if b"--" not in body and not body.endswith(b"-"):
+            return found.group(0)
+        if first is None:
+            at = body.find(b"--")
+            first = found.start(1) + (at if at >= 0 else len(body) - 1)
+        return b"<!--" + body.replace(b"-", b" ") + b"-->"
+
+    rewritten = _TINYXML2_COMMENT.sub(blanked, data)
+    return None if first is None else (rewritten, data.count(b"\n", 0, first) + 1)
+
+
 def refuse_empty_or_binary(data: bytes) -> None:
     """Raise XmlProblem for input that is empty or not text at all."""
     if not data.strip():

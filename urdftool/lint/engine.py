@@ -30,7 +30,8 @@ LOAD_CODES = {"read": "U001", "syntax": "U001", "empty": "U002", "binary": "U003
               "too-large": "U008", "entity": "U009", "outside": "U014", "sandbox": "U016",
               "link": "U017"}
 NOTE_CODES = {"xacro-in-urdf": "U007", "xacro-warning": "U010", "outside-file": "U013",
-              "late-declaration": "U001", "root-namespace": "U004"}
+              "late-declaration": "U001", "double-hyphen": "U001",
+              "root-namespace": "U004"}
 # The errors for what urdfdom's parser (check_urdf, robot_state_publisher) refuses: the file does
 # not parse, is not a <robot> of a version it reads, or its tree, joint types, limits or joint
 # numbers are broken. urdftool's other errors are on files urdfdom accepts (it is stricter

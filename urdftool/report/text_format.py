@@ -190,7 +190,8 @@ def _foldable(group: list, alike: bool) -> list[tuple[list, str]]:
     if any(len(figures) != len(mine) for figures in others):
         return [(group, message)]  # (written as the first says it)
     differ = [i for i in range(len(mine)) if any(f[i][2] != mine[i][2] for f in others)]
-    if len(differ) <= 1 and not any(_joined(message, mine, i) for i in differ):
+    if len(differ) <= 1 and not any(_joined(message, mine, i) or _a_line(message, mine, i)
+                                    for i in differ):
         return [(group, _ranged(message, mine, others, differ))]
     parts: dict[str, list] = {}
     for finding in group:
@@ -208,6 +209,14 @@ def _joined(message: str, figures: list, index: int) -> bool:
     after = index + 1 < len(figures) and figures[index + 1][0] == end + 1 and \
         message[end] in " ,"
     return before or after
+
+
+def _a_line(message: str, figures: list, index: int) -> bool:
+    """Whether the figure ``figures[index]`` of ``message`` is a line of a file it names
+    (``macro.xacro:49``): lines 49 and 137 are two places, not a range ("first at
+    macro.xacro:49 to 137" read as one element written across 88 lines)."""
+    start = figures[index][0]
+    return start > 1 and message[start - 1] == ":" and not message[start - 2].isspace()
 
 
 def _ranged(message: str, mine: list, others: list, differ: list) -> str:

@@ -42,6 +42,29 @@ def test_a_mesh_the_size_of_its_links_primitive_shapes_is_the_size_it_means(tmp_
                                         "</geometry></collision>")
 
 
+def test_a_mesh_reaching_its_links_centre_of_mass_is_the_size_it_means(tmp_path):
+    """HKPolyU-UAV/bluerov2's bridge2.urdf, a SolidWorks export of a 132 m bridge pier whose
+    centre of mass, as the exporter computed it in metres, lies 14.7 m below its origin: scaled
+    by 0.001 (as U413 said) the mesh would not reach it. A mesh whose centre of mass sits at
+    its origin is judged by the size window alone."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "pier.obj").write_text("v -66 -40 0\nv 66 -40 0\nv 66 40 -28\nv -66 40 -28\n"
+                                       "f 1 2 3\nf 1 3 4\n")
+
+    def codes(z):
+        (tmp_path / "pier.urdf").write_text(
+            '<robot name="pier"><link name="p"><inertial><origin xyz="0 0 ' + z + '"/>'
+            '<mass value="14568"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>'
+            '</inertial><visual><geometry><mesh filename="pier.obj"/></geometry></visual>'
+            "</link></robot>")
+        return {f.code for f in load_and_check(str(tmp_path / "pier.urdf"),
+                                               CheckOptions()).findings}
+
+    assert "U413" not in codes("-14.7")
+    assert "U413" in codes("0")
+
+
 def _stl(path):
     """A one-triangle binary STL at ``path``."""
     import struct

@@ -51,6 +51,30 @@ def test_srdf_given_on_the_command_line(tmp_path):
     assert found == [("x.srdf", 1, "U801")]
 
 
+def test_a_double_hyphen_in_a_comment_is_read_as_srdfdom_reads_it(tmp_path):
+    """UM-ARM-Lab's victor.srdf (<!-- ------ -->), loaded with ROS 1's textfile=: srdfdom's
+    TinyXML2 reads it, so MoveIt does; it was a U801 error saying MoveIt refuses it, and nothing
+    of the SRDF was checked. A warning (xacro, and so MoveItConfigsBuilder, refuses it), and the
+    SRDF is checked as srdfdom reads it."""
+    body = "<!-- ------------ -->\n<group name='arm'><link name='hed'/></group>"
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    assert found == [("robot.srdf", 2, "U801"), ("robot.srdf", 3, "U804")]
+    assert findings[0].severity.value == "warning" and "srdfdom reads it" in findings[0].message
+
+
+def test_an_srdf_read_despite_a_double_hyphen_says_why_it_is_not_fixed(tmp_path):
+    """The fixes' tag scanner reads no tag of khi_duaro.srdf ('--!>' in a comment): the
+    entry U811 offers was not written 'as the SRDF has no </robot>', which it has."""
+    from urdftool.description.documents import read_srdf
+    from urdftool.lint.rules.srdf import _add_entry
+
+    path = tmp_path / "r.srdf"
+    path.write_text("<robot name='r'>\n<!-- <virtual_joint/> --!>\n<!-- x -->\n</robot>\n")
+    srdf = read_srdf(path)
+    assert srdf.problem is None and srdf.caution
+    assert "holds '--' in a comment" in _add_entry(srdf, ("a", "b"), "Default").reason
+
+
 def test_srdf_that_is_not_a_robot(tmp_path):
     found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": "<?xml version='1.0'?>\n<group/>"})
     assert found == [("robot.srdf", 2, "U801")] and "<group>" in findings[0].message
@@ -139,6 +163,14 @@ def test_no_pose_check_without_an_srdf_or_geometry(tmp_path):
     assert check_folder(tmp_path, {"robot.urdf": ARM, "robot.srdf": srdf("")}, select=("U810", "U811"))[0] == []
 
 
+def _repository(root, files: dict) -> None:
+    """A repository (its .git) at ``root`` holding ``files`` (relative path -> text)."""
+    (root / ".git").mkdir()
+    for name, text in files.items():
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
+        (root / name).write_text(text)
+
+
 def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_arguments(tmp_path):
     # MoveIt's launch file builds the robot with its gripper (gripper:=true) and gives it
     # config/arm.srdf: the finger the SRDF names is not in the robot as checked (gripper false),
@@ -146,7 +178,6 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
     from urdftool.diagnostics import Severity
     from urdftool.lint.engine import CheckOptions, load_and_check
 
-    (tmp_path / ".git").mkdir()
     files = {
         "package.xml": "<package format='2'><name>arm_pkg</name></package>",
         "arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -166,15 +197,44 @@ def test_the_srdf_a_launch_file_gives_moveit_is_the_robots_and_judged_with_its_a
   <param name="robot_description" command="xacro $(find arm_pkg)/arm.urdf.xacro gripper:=true"/>
   <param name="robot_description_semantic" textfile="$(find arm_pkg)/config/arm.srdf"/>
 </launch>"""}
-    for name, text in files.items():
-        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text(text)
+    _repository(tmp_path, files)
     result = load_and_check(str(tmp_path / "arm.urdf.xacro"), CheckOptions())
     found = [(f.file.rsplit("/", 2)[-2:], f.code, f.severity) for f in result.findings if f.code.startswith("U8")]
     assert found == [(["config", "arm.srdf"], "U803", Severity.INFO)], result.findings
     assert "launch/planning_context.launch gives MoveIt this SRDF with the robot with other xacro " \
            "arguments (gripper:=true)" in result.findings[0].message
     assert any("srdf: " in line and "given to MoveIt by" in line for line in result.companions)
+
+
+def test_an_srdf_moveit_gets_only_with_another_robot_file_is_a_note_on_this_one(tmp_path):
+    """UM-ARM-Lab's victor.urdf, generated long ago beside the victor.urdf.xacro that every
+    launch file gives MoveIt with victor.srdf: the SRDF checked against the stale .urdf was
+    U804 errors (its gripper links renamed since) and U823 warnings for a pairing MoveIt never
+    runs. Notes saying so; checked against the .urdf alone (no launch file), still errors."""
+    from urdftool.diagnostics import Severity
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    files = {
+        "package.xml": "<package format='2'><name>arm_pkg</name></package>",
+        "urdf/arm.urdf": ROBOT, "urdf/arm.urdf.xacro": ROBOT,
+        "config/arm.srdf": srdf('<group name="hand"><link name="r_palm"/></group>'),
+        "launch/demo.launch": """<launch>
+  <param name="robot_description" command="xacro $(find arm_pkg)/urdf/arm.urdf.xacro"/>
+  <param name="robot_description_semantic" textfile="$(find arm_pkg)/config/arm.srdf"/>
+</launch>"""}
+    _repository(tmp_path, files)
+
+    def u804(robot):
+        return [(f.severity, f.message) for f in load_and_check(
+            str(tmp_path / robot), CheckOptions()).findings if f.code == "U804"]
+
+    [(severity, message)] = u804("urdf/arm.urdf")
+    assert severity is Severity.INFO
+    assert "launch/demo.launch gives MoveIt this SRDF with " in message, message
+    assert "urdf/arm.urdf.xacro, another robot file): SRDF <link name='r_palm'>" in message
+    assert [severity for severity, _ in u804("urdf/arm.urdf.xacro")] == [Severity.ERROR]
+    (tmp_path / "launch/demo.launch").unlink()
+    assert [severity for severity, _ in u804("urdf/arm.urdf")] == [Severity.ERROR]
 
 
 def test_an_srdf_moveit_gets_only_with_a_package_arguments_default_is_a_warning_saying_so(tmp_path):

@@ -461,9 +461,10 @@ def _half_size(shape) -> float:
 
 def _link_spans(robot) -> dict[str, float]:
     """Each link's span [m]: the longest offset of the joints at it (its parent joint's origin,
-    its child joints' origins) and the farthest reach of its own visual and collision
-    primitives (origin plus half size), the scale a mesh of that link has; infinite for a link
-    with a ``<plane>`` (PyBullet's ground: any size fits it)."""
+    its child joints' origins), of its centre of mass (``<inertial><origin>``, which a CAD
+    exporter computes from the part, in metres) and the farthest reach of its own visual and
+    collision primitives (origin plus half size), the scale a mesh of that link has; infinite
+    for a link with a ``<plane>`` (PyBullet's ground: any size fits it)."""
     def compute():
         spans: dict[str, float] = {}
 
@@ -478,6 +479,9 @@ def _link_spans(robot) -> dict[str, float]:
                 reach(element.get("link") if element is not None else None, length)
         for link in robot.children("link"):
             for holder in child_list(link):
+                if holder.tag == "inertial":
+                    reach(link.get("name"), math.hypot(*origin_pose(holder)[0]))
+                    continue
                 geometry = first_child(holder, "geometry") \
                     if holder.tag in ("visual", "collision") else None
                 for shape in child_list(geometry) if geometry is not None else ():
@@ -500,11 +504,13 @@ def mesh_implausible_size(robot):
     CAD exports are often in millimetres while URDF is in metres; the robot then looks 1000 times
     too big, and any inertia computed from the mesh is 10^6 too big. A size outside that window
     is a unit slip only when the rescaled mesh would fit its link: within 10 times the link's
-    span (the longest offset of the joints at the link, or the reach of its own boxes,
-    cylinders and spheres). A 5 m boat hull whose thrusters sit 2.4 m from its origin, or whose
-    collision boxes reach 1.3 m (osrf/vrx's WAM-V), or a 0.5 mm marker at a fingertip 27 mm
-    from its knuckle (Unitree's BrainCo hand), is the size it means; a link with neither is
-    judged by the window alone.
+    span (the longest offset of the joints at the link or of its centre of mass, or the reach of
+    its own boxes, cylinders and spheres). A 5 m boat hull whose thrusters sit 2.4 m from its
+    origin, or whose collision boxes reach 1.3 m (osrf/vrx's WAM-V), a 0.5 mm marker at a
+    fingertip 27 mm from its knuckle (Unitree's BrainCo hand), or a 132 m bridge whose centre
+    of mass, as its CAD exporter computed it, lies 14.7 m below its origin (an underwater
+    inspection world's pier), is the size it means; a link with none of these is judged by the
+    window alone.
 
     Fix (safe): the ``scale`` that brings it to a plausible size (x 0.001 or 0.01 for a mesh
     too large, x 1000 or 100 for one too small), written or multiplied into the one there.

@@ -17,9 +17,10 @@ U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     (``<<<<<<<``, ``=======``, ``>>>>>>>``) is said to hold an unresolved merge conflict, at its
     first marker's line.
 
-    A **warning**, not an error, for white space before a ``.urdf``'s XML declaration: urdfdom
-    (TinyXML2) skips it and reads the robot, while xacro, urdf_parser_py and yourdfpy refuse
-    the file; the robot is checked as urdfdom reads it.
+    A **warning**, not an error, for white space before a ``.urdf``'s XML declaration, and for
+    a ``--`` inside one of its comments (``<!-- ------ -->``, ``<!-- x --!>``): urdfdom
+    (TinyXML2) skips the one and ends a comment at the first ``-->``, and reads the robot, while
+    xacro, urdf_parser_py and yourdfpy refuse the file; the robot is checked as urdfdom reads it.
 
     Bad: ``<link name="base"><visual></link>``
     Good: ``<link name="base"><visual/></link>``

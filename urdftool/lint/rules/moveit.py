@@ -451,6 +451,7 @@ def _with_geometry(robot) -> set:
 
 
 @rule("U822", "srdf-adjacent-not-adjacent", Severity.WARNING)
+@as_moveit_runs
 def srdf_adjacent_not_adjacent(robot):
     """The SRDF disables a pair as ``Adjacent``, and the two links are not adjacent in the tree.
 
@@ -516,6 +517,7 @@ def _path(robot, one: str, two: str) -> str:
 
 
 @rule("U823", "srdf-adjacent-collision-not-disabled", Severity.WARNING)
+@as_moveit_runs
 def srdf_adjacent_collision_not_disabled(robot):
     """Two adjacent links overlap at the default pose or a group state, and the SRDF does not disable them.
 

@@ -72,12 +72,20 @@ def malformed_srdf(robot):
 
     MoveIt refuses to start with it.
 
+    A **warning** when srdfdom reads it all the same: a ``--`` inside a comment
+    (``<!-- ------ -->``), which the XML standard forbids, but srdfdom's TinyXML2 ends the
+    comment at the first ``-->``. MoveIt then reads it when its launch file loads the SRDF as
+    text (ROS 1's ``textfile=``), not through xacro (MoveItConfigsBuilder's way), which
+    refuses it. The SRDF is checked as srdfdom reads it.
+
     Bad: ``<group name="arm"> <chain base_link="a" tip_link="b">`` (unclosed)
     Good: ``<chain base_link="a" tip_link="b"/>``
     """
     srdf = companions(robot).srdf
     if srdf is not None and srdf.problem:
         yield srdf.at(srdf.line), srdf.problem
+    elif srdf is not None and srdf.caution:
+        yield srdf.at(srdf.line), Conditional(srdf.caution)
 
 
 @rule("U802", "srdf-robot-name", Severity.WARNING)
@@ -471,7 +479,8 @@ def _add_entry(srdf, pair, reason: str):
     source = _srdf_source(srdf)
     root = source.tag(0) if source is not None and len(source) else None
     if root is None or root.close_name is None:
-        return Unfixable(f"{srdf.display} has no </robot> to write before")
+        return Unfixable(f"{srdf.display} holds '--' in a comment, which fixes do not edit"
+                         if srdf.caution else f"{srdf.display} has no </robot> to write before")
     data = source.data
     close = root.close_name[0] - 2  # the '<' of '</robot>'
     line_start = data.rfind(b"\n", 0, close) + 1
