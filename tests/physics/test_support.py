@@ -444,3 +444,28 @@ def test_the_highest_products_of_some_directions_are_the_same_as_of_all():
         whole = highest(points, directions)
         found = highest(points, np.ascontiguousarray(directions[:, chosen]))
         assert np.array_equal(found.view(np.int64), whole[chosen].view(np.int64)), trial
+
+
+def test_a_question_of_the_same_shapes_is_answered_once_per_run(tmp_path):
+    """Two robots of the same shapes (one robot described twice): the second's question is
+    answered from the first's (no table of its pieces made), the same number; another point,
+    or shapes placed elsewhere, are asked again."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+
+    def reach(x: float):
+        robot = load_text(tmp_path, f'<robot name="r"><link name="a"><visual><origin xyz="{x} 0 '
+                          '0"/><geometry><mesh filename="ball.stl"/></geometry></visual>'
+                          '<collision><geometry><box size="0.1 0.1 0.1"/></geometry>'
+                          '</collision></link></robot>')
+        return link_reach(robot, robot.links["a"])
+
+    far = (0.0, 0.0, 0.4)
+    first, second, moved = reach(0.2), reach(0.2), reach(0.25)
+    assert first.pieces[0].mesh is second.pieces[0].mesh  # (measured once per run)
+    expected = first.outside(far, beyond=_margin)
+    assert expected > 0.2 and first._table is not None
+    assert second.outside(far, beyond=_margin) == expected and second._table is None
+    assert second.outside((0.0, 0.0, 0.5), beyond=_margin) > expected
+    assert moved.outside(far, beyond=_margin) != expected and moved._table is not None
