@@ -502,6 +502,33 @@ def test_cube_extremes_are_hull_vertices_largest_along_the_cubes_directions():
                                   (cloud @ directions.T).max(axis=0))
 
 
+def test_cube_heights_are_the_matrix_products_to_the_bit():
+    """The sums and differences stand for the product: every entry the same number (the
+    same bits but a zero's sign), so the same extremes, the first of equals, at any
+    magnitude and rounding on every sum; coordinates where a sum could overflow, and
+    non-finite ones, are taken by the product itself."""
+    rng = np.random.default_rng(11)
+    product = mesh_arrays._cube_columns().T
+    clouds = [rng.normal(size=(500, 3)),
+              rng.normal(size=(500, 3)) * 10.0 ** rng.integers(-30, 30, size=(500, 3)),
+              np.round(rng.normal(size=(500, 3)) * 1000) / 997 +
+              rng.choice([0.0, 1e16, -1e16, 5e-324], size=(500, 3)),
+              rng.uniform(-1, 1, size=(500, 3)) * 1e307, rng.normal(size=(1, 3)),
+              np.array([[1e308, 1e308, 0.0], [0.0, 1.0, 2.0]]),
+              np.array([[np.inf, 0.0, 1.0], [np.nan, 1.0, 1.0], [-0.0, 0.0, -0.0]])]
+    for cloud in clouds:
+        with np.errstate(all="ignore"):
+            expected = product @ cloud.T
+            found = mesh_arrays._cube_heights(cloud)
+        assert found.shape == expected.shape
+        assert np.array_equal(found, expected, equal_nan=True)
+        nonzero = expected != 0
+        assert np.array_equal(found[nonzero].view(np.int64), expected[nonzero].view(np.int64))
+        if np.isfinite(expected).all():
+            assert np.array_equal(mesh_arrays.cube_extremes(cloud), np.concatenate(
+                [expected.argmax(axis=1), expected.argmin(axis=1)]))
+
+
 def test_binary_stl_corners_ignore_the_normal_and_attribute_bytes():
     """A record's normal and attribute are skipped, whatever they hold (NaN, garbage): the
     corners alone are read, in float64, three a record."""

@@ -188,6 +188,27 @@ def test_package_references_are_literal_names_out_of_comments_and_conditions_at_
                                          (7, 9, "four")]  # é: 2 bytes, 1 column
 
 
+def test_package_references_without_conditions_are_found_as_the_one_pattern_finds_them():
+    """A file without conditional tags is searched for each kind of reference apart: the same
+    (offset, name) as the one pattern's matches, on documents of every mix of references,
+    names built by xacro, comments and near misses."""
+    import random
+
+    from urdftool.description import packages
+
+    pieces = [b"$(find a)", b"$(find  b_2.x )", b"$(find ${c})", b"package://d/m.stl",
+              b"package://${e}/m", b"package:///f/m", b"$(find", b"package://", b"<!-- $(find g) -->",
+              b"<link>", b"\n", b"$(find h)package://i/", b"$(findj)", b"p", b"$", b" ", b"/"]
+    rng = random.Random(5)
+    for _ in range(2000):
+        text = b"".join(rng.choice(pieces) for _ in range(rng.randint(0, 30)))
+        if any(word in text for word in packages._CONDITIONAL):
+            continue
+        expected = [(match.start(), match.group(1) or match.group(2))
+                    for match in packages._REFERENCE.finditer(text)]
+        assert packages._named(text) == expected, text
+
+
 def test_the_package_of_a_file_stays_in_its_repository(tmp_path):
     from urdftool.description.packages import package_of
 

@@ -91,25 +91,41 @@ def test_a_plain_document_libxml2_parses_without_a_word_is_one_expat_accepts():
 
 
 def test_the_bulk_scan_finds_the_start_tags_the_patterns_find(monkeypatch):
-    """A large document's start tags are found by numpy (_bulk_start_tags): over mutated
-    documents expat accepts (comments, CDATA, instructions, a "<" in each, or none of them),
-    the same offsets as the patterns', and the same newlines."""
+    """A document scanned in bulk (large, or once numpy is imported) has its start tags
+    found by numpy (_bulk_start_tags): over mutated documents expat accepts (comments, CDATA,
+    instructions, a "<" in each, or none of them), the same offsets as the patterns', and
+    the same newlines."""
     import random
 
     from urdftool.description import xml
 
     compared = 0
     for data in _mutated(random.Random(11), 3000, 0, 0.6):
-        monkeypatch.setattr(xml, "BULK_SCAN", 1 << 40)
+        monkeypatch.setattr(xml, "_in_bulk", lambda data: False)
         scanned = xml._plain_start_tags(data)
         if scanned is None or not xml._accepted(data):
             continue
-        newlines = xml._newlines(data)
-        monkeypatch.setattr(xml, "BULK_SCAN", 0)
+        newlines = xml.newlines(data)
+        monkeypatch.setattr(xml, "_in_bulk", lambda data: True)
         assert xml._plain_start_tags(data) == scanned, data
-        assert xml._newlines(data) == newlines
+        assert xml.newlines(data) == newlines
         compared += 1
     assert compared > 500
+
+
+def test_a_small_document_is_scanned_in_bulk_only_once_numpy_is_imported(monkeypatch):
+    """A robot checked before anything imports numpy is scanned by the patterns (no import
+    for the scan), any later one by numpy, as a large document always is."""
+    import sys
+
+    import numpy  # noqa: F401 - (imported: a later robot's case)
+
+    from urdftool.description import xml
+
+    small = b'<robot name="r">\n<link name="a"/>\n</robot>\n'
+    assert xml._in_bulk(small) and xml._in_bulk(b" " * xml.BULK_SCAN)
+    monkeypatch.delitem(sys.modules, "numpy")
+    assert not xml._in_bulk(small) and xml._in_bulk(b" " * xml.BULK_SCAN)
 
 
 def test_a_large_plain_document_is_scanned_in_bulk_where_expat_puts_its_tags(monkeypatch):

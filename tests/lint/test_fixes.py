@@ -414,22 +414,24 @@ def test_a_source_is_read_as_far_as_the_tags_asked_for():
     assert fixes.parse_source("bad.urdf", b"<robot><link></robot>") is None
 
 
-def test_edits_in_a_big_file_find_their_lines_in_an_index_not_by_counting_each_time():
-    """An edit's line in a large file comes from one index of its newlines (counting them up
-    to every edit made the fixes of a generated robot of 10,000 links quadratic: 9 of 20 s),
-    and is the line counting gives, CRLF and multi-byte characters included."""
+def test_edits_find_their_lines_in_an_index_not_by_counting_each_time():
+    """An edit's line comes from one index of its file's newlines (counting them up to every
+    edit made the fixes of a generated robot of 10,000 links quadratic: 9 of 20 s, and cost
+    the corpus's small files 60 M instructions), and is the line counting gives, CRLF and
+    multi-byte characters included, in a small file and a big one."""
     from urdftool.lint.fixes.tags import edit_of
 
     class Uncounted(bytes):
         def count(self, *args):
             raise AssertionError("newlines counted again")
 
-    lines = [f'<link name="l{i}é"/>' + ("\r\n" if i % 3 else "\n") for i in range(5000)]
-    data = Uncounted("".join(lines).encode())
-    for start in (0, 1, 17, len(data) // 3, len(data) - 5, len(data)):
-        edit = edit_of("r.urdf", data, start, start, "")
-        text = bytes(data)
-        line_start = text.rfind(b"\n", 0, start) + 1
-        assert (edit.line, edit.column) == (
-            bytes.count(text, b"\n", 0, start) + 1,
-            len(text[line_start:start].decode("utf-8", errors="replace")))
+    for count in (40, 5000):
+        lines = [f'<link name="l{i}é"/>' + ("\r\n" if i % 3 else "\n") for i in range(count)]
+        data = Uncounted("".join(lines).encode())
+        for start in (0, 1, 17, len(data) // 3, len(data) - 5, len(data)):
+            edit = edit_of("r.urdf", data, start, start, "")
+            text = bytes(data)
+            line_start = text.rfind(b"\n", 0, start) + 1
+            assert (edit.line, edit.column) == (
+                bytes.count(text, b"\n", 0, start) + 1,
+                len(text[line_start:start].decode("utf-8", errors="replace")))

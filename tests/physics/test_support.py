@@ -399,3 +399,73 @@ def test_the_highest_products_asked_by_blocks_are_the_whole_products():
             found = highest(points, directions)
         assert np.array_equal(found, whole, equal_nan=True), trial
         assert np.array_equal(np.signbit(found), np.signbit(whole)), trial
+
+
+def test_outside_asks_every_point_in_a_few_directions_and_finds_the_same_number(
+        tmp_path, monkeypatch):
+    """Beyond its stars, a point's distance from a reach with meshes is the largest d . p -
+    h(d) over every direction (every vertex asked in all 136, as before): the same number to
+    the bit when the vertices are asked only in the directions whose bound from the stars'
+    points can still be the largest, and most points ask far fewer than all."""
+    from urdftool.physics import support
+
+    asked = []
+    pruned = support._Table._lifted_less
+    monkeypatch.setattr(support._Table, "_lifted_less", staticmethod(
+        lambda lifted, rounded, directions, chosen, points:
+        asked.append(len(chosen)) or pruned(lifted, rounded, directions, chosen, points)))
+    rng = np.random.default_rng(21)
+    for reach in (_pieces(tmp_path, mesh=True), _balls(tmp_path, 3)):
+        table = support._Table(reach.pieces)
+        assert len(table.points) > support._PRUNED_BELOW
+        middle = table.points.mean(axis=0)
+        for p in middle + rng.normal(size=(150, 3)) * rng.choice([0.05, 0.2, 1.0, 30.0], (150, 1)):
+            every, six, _ = support._columns()
+            heights = table.support(six)
+            towards = p - (heights[:3] - heights[3:]) / 2
+            directions = np.hstack([every, (towards / np.linalg.norm(towards)).reshape(3, 1)])
+            expected = float((p @ directions - table.support(directions)).max())
+            found = table.outside(p)
+            assert found == expected or (found == 0.0 and table.within(p))
+    assert len(asked) > 200 and np.mean(asked) < 20
+
+
+def test_the_highest_products_of_some_directions_are_the_same_as_of_all():
+    """The heights a pruned question asks (a few columns of the directions, two or more)
+    are the same numbers as those columns of the product of every direction."""
+    from urdftool.physics.support import _columns, highest
+
+    rng = np.random.default_rng(35)
+    directions = np.hstack([_columns()[0], rng.normal(size=(3, 1))])
+    for trial in range(60):
+        n = int(rng.integers(2, 5000))
+        points = rng.normal(size=(n, 3)) * 10.0 ** rng.integers(-8, 8, size=(n, 3))
+        chosen = rng.choice(directions.shape[1], size=int(rng.integers(2, 20)), replace=False)
+        whole = highest(points, directions)
+        found = highest(points, np.ascontiguousarray(directions[:, chosen]))
+        assert np.array_equal(found.view(np.int64), whole[chosen].view(np.int64)), trial
+
+
+def test_a_question_of_the_same_shapes_is_answered_once_per_run(tmp_path):
+    """Two robots of the same shapes (one robot described twice): the second's question is
+    answered from the first's (no table of its pieces made), the same number; another point,
+    or shapes placed elsewhere, are asked again."""
+    from benchmarks.generate import _sphere_stl
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+
+    def reach(x: float):
+        robot = load_text(tmp_path, f'<robot name="r"><link name="a"><visual><origin xyz="{x} 0 '
+                          '0"/><geometry><mesh filename="ball.stl"/></geometry></visual>'
+                          '<collision><geometry><box size="0.1 0.1 0.1"/></geometry>'
+                          '</collision></link></robot>')
+        return link_reach(robot, robot.links["a"])
+
+    far = (0.0, 0.0, 0.4)
+    first, second, moved = reach(0.2), reach(0.2), reach(0.25)
+    assert first.pieces[0].mesh is second.pieces[0].mesh  # (measured once per run)
+    expected = first.outside(far, beyond=_margin)
+    assert expected > 0.2 and first._table is not None
+    assert second.outside(far, beyond=_margin) == expected and second._table is None
+    assert second.outside((0.0, 0.0, 0.5), beyond=_margin) > expected
+    assert moved.outside(far, beyond=_margin) != expected and moved._table is not None

