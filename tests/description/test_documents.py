@@ -126,3 +126,87 @@ def test_an_integer_past_pythons_digits_is_a_located_yaml_error(tmp_path):
     with pytest.raises(yaml.YAMLError, match="5,000 characters"):
         yaml.load(path.read_text(), Loader=BoundedLoader)  # noqa: S506 - the safe loader
     assert yaml.load("a: 0x" + "f" * 5000, Loader=BoundedLoader)["a"] == 16 ** 5000 - 1  # noqa: S506
+
+
+def _shape(value):
+    """A value read from YAML with its types and lines (YamlMap's and YamlList's), to compare."""
+    from urdftool.description.documents import YamlList, YamlMap
+
+    if isinstance(value, YamlMap):
+        return ("map", value.line, [(k, _shape(v), value.lines.get(k)) for k, v in value.items()])
+    if isinstance(value, YamlList):
+        return ("list", value.line, value.lines, [_shape(v) for v in value])
+    return (type(value).__name__, value)
+
+
+PARAMETERS = """\
+controller_manager:
+  ros__parameters:
+    update_rate: 50  # [Hz]
+    arm_controller: {type: "joint_trajectory_controller/JointTrajectoryController"}
+
+defaults: &defaults
+  gains: {p: 100.0, i: 0.01, d: 10}
+  enabled: yes
+arm_controller:
+  ros__parameters:
+    <<: *defaults
+    joints:
+      - shoulder
+      - 'elbow'
+    limits: [1e3, -.5, 0x1F, .inf, ~, 2001-12-14]
+    note: "a \\"quoted\\" word,
+      folded"
+/**:
+  ros__parameters: {p: 1}
+/**:
+  ros__parameters: {q: 2}
+"""
+
+
+@pytest.mark.parametrize("text", [PARAMETERS, "a: 1\nb: [\n", "a: &x [*x]\n", "", "# only\n"])
+def test_yaml_read_through_libyaml_is_read_as_pyyaml_reads_it(tmp_path, monkeypatch, text):
+    """A text without the characters libyaml reads otherwise is read with libyaml's parser
+    (C): the same data, types and lines as PyYAML's Python reader gives; when it fails,
+    PyYAML's own reading answers (its message and line)."""
+    from urdftool.description import documents
+
+    path = tmp_path / "c.yaml"
+    path.write_text(text)
+    used = []
+    fast = documents._fast_loader()
+    monkeypatch.setattr(documents, "_fast_loader", lambda: used.append(text) or fast)
+    read = read_yaml(path)
+    monkeypatch.setattr(documents, "_fast_loader", lambda: None)
+    expected = read_yaml(path)
+    assert used == [text]
+    assert (_shape(read.data), read.problem, read.line, read.ros2) == \
+        (_shape(expected.data), expected.problem, expected.line, expected.ros2)
+
+
+def _loaded(loader_class, text: str):
+    """What a loader class reads of ``text`` (:func:`_shape`), or the error it raises."""
+    loader = loader_class(text)
+    loader.merge_repeated = False
+    try:
+        return _shape(loader.get_single_data())
+    except Exception as error:  # noqa: BLE001 - whatever the parser says
+        return error
+
+
+@pytest.mark.parametrize("text", ["a: [1,\t2]\n", "a: b\t\n", "- 1\t\n", "|#\n", "a: !\n",
+                                  "[a\n  +1? b]\n", "\n\ufeffa: 1\n"])
+def test_what_libyaml_reads_otherwise_is_read_by_pyyaml(tmp_path, text):
+    """libyaml takes a tab between tokens, a block scalar's header followed by a comment, a
+    ``?`` in a flow scalar, and reads ``!`` alone or a byte order mark within the text
+    otherwise: such a text is read by PyYAML alone (a tab there stays its error)."""
+    from urdftool.description import documents
+
+    path = tmp_path / "c.yaml"
+    path.write_text(text, encoding="utf-8")
+    libyaml, pyyaml = (_loaded(documents._fast_loader(), text), _loaded(documents._loader(), text))
+    assert not isinstance(libyaml, Exception) and libyaml != pyyaml  # (the case is real)
+    read = read_yaml(path)
+    assert (_shape(read.data) if read.problem is None else read.problem) == \
+        (pyyaml if not isinstance(pyyaml, Exception) else read.problem)
+    assert (read.problem is None) == (not isinstance(pyyaml, Exception))
