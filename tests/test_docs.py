@@ -39,7 +39,7 @@ def copy(tmp_path):
 
 
 def test_a_changed_docstring_makes_its_page_stale_and_make_docs_rewrites_it(copy, monkeypatch):
-    changed = [dataclasses.replace(r, doc="Changed.\n\nWhy.") if r.code == "U204" else r
+    changed = [dataclasses.replace(r, written="Changed.\n\nWhy.") if r.code == "U204" else r
                for r in CATALOGUE]
     monkeypatch.setattr(docs, "CATALOGUE", Catalogue(changed))
     assert docs.stale(copy) == ["docs/rules/U204.md", docs.INDEX]
