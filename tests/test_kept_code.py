@@ -48,7 +48,7 @@ if sys.argv[1] == "corrupt":  # bytes of the file in turn inverted: nothing else
     positions = range(len(whole)) if sys.argv[3] == "every" else sorted(  # or every byte of the
         {*range(head), len(whole) - 1,  # head, the last and a seeded sample of the forms
          *random.Random(int(sys.argv[3])).sample(range(head, len(whole)), 64)})
-    real = dataclasses.exec if hasattr(dataclasses, "exec") else None, re._compiler.compile
+    real = dataclasses.exec if hasattr(dataclasses, "exec") else None, re._compile
 
     def outcome():
         re.purge()
@@ -69,7 +69,7 @@ if sys.argv[1] == "corrupt":  # bytes of the file in turn inverted: nothing else
             got = repr(error)
         finally:
             vars(dataclasses).pop("exec", None)
-            re._compiler.compile = real[1]
+            re._compile = real[1]
         if got != expected:
             changed.append((at, got))
     print(len(positions), "bytes,", len(changed), "changed", changed[:3])

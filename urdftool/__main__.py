@@ -359,16 +359,34 @@ def kept_code(path: str | None = None) -> None:
             source = functions.get(source, source)
         return builtins.exec(source, globals, locals)
 
-    compile_pattern = re._compiler.compile
+    compile_pattern, cache, flag = re._compile, re._cache, re.RegexFlag
+    unkept = re.DEBUG.value | re.TEMPLATE.value
 
-    def compile_kept(pattern, flags=0):
+    def compile_kept(pattern, flags):
+        """``re._compile`` giving a kept pattern its compiled form, cached as it caches one;
+        its flags tested as numbers (``flags & re.DEBUG`` is enum's ``__and__`` in Python, twice
+        for each pattern compiled). Any other pattern, and one asking for re.DEBUG or
+        re.TEMPLATE, is ``re._compile``'s."""
+        if isinstance(flags, flag):
+            flags = flags.value
+        try:
+            return cache[type(pattern), pattern, flags]
+        except KeyError:
+            pass
         found = patterns.get((pattern, flags)) if isinstance(pattern, (str, bytes)) else None
-        if found is None:
+        if found is None or flags & unkept:
             return compile_pattern(pattern, flags)
-        return _sre.compile(pattern, *found)
+        compiled = _sre.compile(pattern, *found)
+        if len(cache) >= re._MAXCACHE:  # (as re drops the oldest)
+            try:
+                del cache[next(iter(cache))]
+            except (StopIteration, RuntimeError, KeyError):
+                pass
+        cache[type(pattern), pattern, flags] = compiled
+        return compiled
 
     dataclasses.exec = exec_kept  # (its module's global, found before the built-in)
-    re._compiler.compile = compile_kept
+    re._compile = compile_kept  # (re's functions call their module's global)
 
 
 def kept_code_header() -> tuple:
