@@ -5,6 +5,7 @@ only, with the same findings."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -206,3 +207,122 @@ def test_every_dataclass_has_a_docstring():
             if isinstance(node, ast.ClassDef) and any(map(is_dataclass, node.decorator_list))
             and ast.get_docstring(node) is None]
     assert not bare, bare
+
+
+# every dataclass of urdftool made by the door's plain path and, from a copy of the class as
+# written, by dataclasses' own: printed, each difference (none expected) and the counts
+PLAIN = '''
+import dataclasses as dc, importlib, json, marshal, pkgutil, sys, types
+import urdftool
+from urdftool import __main__ as door
+
+own = dc._process_class
+plain = door._plain_dataclasses(own)
+counts, differences = {"plain": 0, "own": 0}, []
+
+
+def same(a, b, classes):
+    """Whether two values dataclasses set are alike (functions: their code, names, defaults,
+    annotations, globals and closures; the classes made counted as one)."""
+    if isinstance(a, types.FunctionType) and isinstance(b, types.FunctionType):
+        cells = [(x.cell_contents, y.cell_contents) for x, y in
+                 zip(a.__closure__ or (), b.__closure__ or ())]
+        return marshal.dumps(a.__code__) == marshal.dumps(b.__code__) and all(
+            getattr(a, name) == getattr(b, name) for name in (
+                "__name__", "__qualname__", "__module__", "__doc__", "__defaults__",
+                "__kwdefaults__", "__annotations__")) and a.__globals__ is b.__globals__ and \\
+            len(a.__closure__ or ()) == len(b.__closure__ or ()) and \\
+            all(same(x, y, classes) for x, y in cells) and \\
+            same(getattr(a, "__wrapped__", None), getattr(b, "__wrapped__", None), classes)
+    if isinstance(a, dc.Field) and isinstance(b, dc.Field):
+        return all(same(getattr(a, s), getattr(b, s), classes) for s in dc.Field.__slots__)
+    if isinstance(a, dict) and isinstance(b, dict):
+        return list(a) == list(b) and all(same(a[k], b[k], classes) for k in a)
+    if isinstance(a, dc._DataclassParams):
+        return repr(a) == repr(b)
+    return a is b or (a, b) == classes or type(a) is type(b) and a == b
+
+
+def made(cls, *parameters):
+    written = {k: v for k, v in cls.__dict__.items() if k not in ("__dict__", "__weakref__")}
+    taken = []
+    counted = door._plain_dataclasses(lambda *a: taken.append(1) or own(*a))
+    result = counted(cls, *parameters)
+    if taken:
+        counts["own"] += 1
+        return result
+    counts["plain"] += 1
+    copy = type(cls)(cls.__name__, cls.__bases__, written)
+    copy.__qualname__ = cls.__qualname__
+    other = own(copy, *parameters)
+    ours, theirs = dict(vars(result)), dict(vars(other))
+    if list(ours) != list(theirs) or not all(
+            same(ours[k], theirs[k], (result, other)) for k in ours
+            if k not in ("__dict__", "__weakref__")):
+        differences.append(f"{cls.__module__}.{cls.__qualname__}")
+    return result
+
+
+dc._process_class = made
+for module in pkgutil.walk_packages(urdftool.__path__, "urdftool."):
+    if module.name not in ("urdftool.__main__", "urdftool.pytest_plugin"):
+        importlib.import_module(module.name)
+exec(sys.argv[1], {"dc": dc})  # the cases of the test
+print(json.dumps([counts["plain"], counts["own"], differences]))
+'''
+
+CASES = """
+from __future__ import annotations
+import typing
+from typing import ClassVar
+
+@dc.dataclass
+class Plain:
+    '''A plain one.'''
+    a: int
+    b: list = dc.field(default_factory=list, repr=False)
+    c: str = dc.field(default="c", compare=False, hash=False)
+    d: dict = dc.field(default_factory=dict, init=False)
+
+@dc.dataclass(frozen=True)
+class Frozen:
+    '''A frozen one, with a field named self.'''
+    self: int
+    other: float = 0.5
+
+@dc.dataclass
+class Counted:
+    '''A class variable (not a field).'''
+    a: int
+    many: ClassVar[int] = 3
+    more: typing.ClassVar[int] = 4
+
+@dc.dataclass(order=True)
+class Ordered:
+    '''Ordered.'''
+    a: int
+
+@dc.dataclass
+class Derived(Plain):
+    '''A base that is a dataclass.'''
+    e: int = 1
+
+@dc.dataclass
+class Undocumented:
+    e: int = 1
+"""
+
+
+def test_the_doors_plain_dataclasses_are_made_as_dataclasses_makes_them():
+    """Every dataclass of urdftool, and a few cases more, made by the door's plain path
+    (``_plain_dataclasses``: Python 3.11's steps without asking three times of each field
+    what its annotation names) or, when not plain, by dataclasses' own: attribute by
+    attribute (in the order the class holds them), each Field, each method's code, names,
+    defaults, annotations and closure, what dataclasses makes of a copy of the class."""
+    if sys.version_info[:2] != (3, 11):
+        pytest.skip("the plain path is Python 3.11's")
+    done = subprocess.run([sys.executable, "-c", PLAIN, CASES], capture_output=True, text=True,
+                          cwd=ROOT, timeout=300)
+    assert done.returncode == 0, done.stderr
+    plain, own, differences = json.loads(done.stdout)
+    assert differences == [] and plain > 100 and own >= 4, done.stdout
