@@ -394,20 +394,20 @@ def kept_code(path: str | None = None) -> None:
 
 # the methods a plain dataclass gets (:func:`_plain_dataclasses`), and what would change them
 _OWN_METHODS = frozenset({"__init__", "__repr__", "__eq__", "__hash__", "__setattr__",
-                          "__delattr__", "__match_args__", "__post_init__", "__slots__",
-                          "__lt__", "__le__", "__gt__", "__ge__", "__getstate__",
-                          "__setstate__"})
+                          "__delattr__", "__match_args__", "__slots__", "__lt__", "__le__",
+                          "__gt__", "__ge__", "__getstate__", "__setstate__"})
 
 
 def _plain_dataclasses(process):
     """``dataclasses._process_class`` (Python 3.11's, ``process``) making a plain dataclass as
     it does, step for step, without asking of each field whether its annotation names
     ``ClassVar``, ``InitVar`` or ``KW_ONLY`` three times over (regular expressions and
-    lookups) nor building each Field through ``_get_field``: a class whose only base is
-    ``object``, with a docstring, no method of its own that dataclasses writes, every
-    annotation a string naming none of those, and ``init``, ``repr``, ``eq`` and
-    ``match_args`` (the defaults) without ``order``, ``unsafe_hash``, ``kw_only`` or
-    ``slots``. Any other class is ``process``'s."""
+    lookups) nor building each Field through ``_get_field``: a class none of whose bases is a
+    dataclass, with a docstring, no method of its own that dataclasses writes (but
+    ``__post_init__``), every annotation a string naming none of those, and ``init``,
+    ``repr``, ``eq`` and ``match_args`` (the defaults) without ``order``, ``unsafe_hash``,
+    ``kw_only`` or ``weakref_slot`` (``slots`` as dataclasses makes them). Any other class is
+    ``process``'s."""
     import abc
     import dataclasses as dc
     import types
@@ -417,8 +417,8 @@ def _plain_dataclasses(process):
 
     def plain(cls, module) -> bool:
         own = cls.__dict__
-        if cls.__bases__ != (object,) or not own.get("__doc__") or \
-                not own.keys().isdisjoint(_OWN_METHODS):
+        if not own.get("__doc__") or not own.keys().isdisjoint(_OWN_METHODS) or any(
+                getattr(base, dc._FIELDS, None) is not None for base in cls.__mro__[1:]):
             return False
         annotations = own.get("__annotations__", {})
         names, typing = module.__dict__, sys.modules.get("typing")
@@ -449,7 +449,7 @@ def _plain_dataclasses(process):
                       slots, weakref_slot):
         module = sys.modules.get(cls.__module__)
         if module is None or not (init and repr and eq and match_args) or order or \
-                unsafe_hash or kw_only or slots or weakref_slot or not plain(cls, module):
+                unsafe_hash or kw_only or weakref_slot or not plain(cls, module):
             return process(cls, init, repr, eq, order, unsafe_hash, frozen, match_args,
                            kw_only, slots, weakref_slot)
         names = module.__dict__
@@ -478,7 +478,8 @@ def _plain_dataclasses(process):
         listed = list(fields.values())
         given = tuple(f for f in listed if f.init)  # (none keyword-only)
         dc._set_new_attribute(cls, "__init__", dc._init_fn(
-            listed, given, (), frozen, False, "__dataclass_self__" if "self" in fields else "self",
+            listed, given, (), frozen, hasattr(cls, dc._POST_INIT_NAME),
+            "__dataclass_self__" if "self" in fields else "self",
             names, slots))
         dc._set_new_attribute(cls, "__repr__", dc._repr_fn([f for f in listed if f.repr], names))
         compared = [f for f in listed if f.compare]
@@ -490,6 +491,8 @@ def _plain_dataclasses(process):
                 dc._set_new_attribute(cls, function.__name__, function)
         cls.__hash__ = dc._hash_action[False, True, bool(frozen), False](cls, listed, names)
         dc._set_new_attribute(cls, "__match_args__", tuple(f.name for f in given))
+        if slots:
+            cls = dc._add_slots(cls, frozen, weakref_slot)
         abc.update_abstractmethods(cls)
         return cls
 
