@@ -72,12 +72,14 @@ def collect(workload) -> tuple[dict, dict]:
 
 def check_robots() -> None:
     """``urdftool check robots/`` in this process (in one process, without the cache), its
-    report thrown away; the mesh readers imported first (a check imports them for a robot
-    with meshes, and the robots of ``robots/`` have none)."""
+    report thrown away; the mesh readers and the portability family imported first (a check
+    imports them for a robot with meshes or a target, and the robots of ``robots/`` have
+    neither)."""
     import contextlib
     import io
 
     import urdftool.description.meshes  # noqa: F401
+    import urdftool.lint.rules.portability  # noqa: F401
     from urdftool import cli
 
     words = ["check", "--no-cache", "--jobs", "1", "--timeout", "0", "--max-memory", "0",

@@ -98,6 +98,37 @@ def test_the_catalogue_is_built_without_importing_the_engine():
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
 
 
+def test_a_check_without_a_target_never_imports_the_targets_family(tmp_path):
+    """The portability family (U92x-U98x, rules of targets only) is imported when its rules
+    are first asked for: not by a check without a target, which runs the same rules as
+    before, in the same order; by one with a target, and by any list of the rules."""
+    import subprocess
+    import sys
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    code = """if True:
+        import sys
+        from urdftool.lint import engine
+        from urdftool.lint.options import Selection
+        from urdftool.description.load import load
+        from urdftool.lint.rules import CATALOGUE
+        portability = "urdftool.lint.rules.portability"
+        robot = load(sys.argv[1])
+        ran = []
+        for selection in (Selection(), Selection(targets=("mujoco",))):
+            engine.check_robot(robot, selection)
+            ran.append(portability in sys.modules)
+        every = [r.code for r in CATALOGUE]
+        print(ran, every == sorted(every), len(every), any(c.startswith("U92") for c in every))
+    """
+    done = subprocess.run([sys.executable, "-c", code, str(robot)], capture_output=True,
+                          text=True, cwd=ROOT, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["[False,", "True]", "True", str(len(_declared_in_source())),
+                                   "True"]
+
+
 def test_codes_are_emitted_by_modules_that_do_not_declare_them():
     """Nothing declares a code where it is emitted: U900/U901 live in lint/rules/internal.py."""
     for path in (ROOT / "urdftool" / "lint").glob("*.py"):

@@ -154,13 +154,23 @@ def _cleaned(written: str) -> str:
 
 class Catalogue:
     """Every rule, by code. ``declared`` keeps the order the rules were given in; ``rules`` is
-    sorted by code."""
+    sorted by code.
 
-    def __init__(self, rules):
-        self.declared = tuple(rules)
+    later: the names of family modules whose rules all run only for a target
+    (:data:`TARGET_DECADES`), imported, and their rules joined to the others, when first asked
+    for: every question but :meth:`running` without a target asks for them (the portability
+    family's import was 4.1 M of r2d2's 642 M instructions, for rules a check without a
+    target never runs)."""
+
+    def __init__(self, rules, later: tuple[str, ...] = ()):
+        self._later = tuple(later)
+        self._join(rules)
+
+    def _join(self, rules) -> None:
+        self._declared = tuple(rules)
         self._by_code: dict[str, Rule] = {}
         names: dict[str, str] = {}
-        for item in self.declared:
+        for item in self._declared:
             if not _CODE.fullmatch(item.code) or item.code[:2] not in FAMILIES:
                 raise ValueError(f"rule code {item.code} is not of the form U<family><nn>")
             if item.code in self._by_code:
@@ -170,14 +180,38 @@ class Catalogue:
                                  f"({names[item.name]} and {item.code})")
             self._by_code[item.code] = item
             names[item.name] = item.code
-        self.rules = tuple(self._by_code[code] for code in sorted(self._by_code))
+        self._rules = tuple(self._by_code[code] for code in sorted(self._by_code))
+
+    def _whole(self) -> Catalogue:
+        """This catalogue with the rules of its ``later`` modules joined (imported once)."""
+        if self._later:
+            import importlib
+
+            modules = [importlib.import_module(name) for name in self._later]
+            self._later = ()
+            self._join((*self._declared, *Catalogue.from_modules(modules)._declared))
+        return self
+
+    @property
+    def declared(self) -> tuple[Rule, ...]:
+        return self._whole()._declared
+
+    @property
+    def rules(self) -> tuple[Rule, ...]:
+        return self._whole()._rules
+
+    def running(self, targets: bool) -> tuple[Rule, ...]:
+        """The rules a check may run, sorted by code: with no ``targets`` asked for, none of
+        the ``later`` families' (their rules run only for a target), which stay unimported."""
+        return self.rules if targets else self._rules
 
     @classmethod
-    def from_modules(cls, modules) -> Catalogue:
+    def from_modules(cls, modules, later: tuple[str, ...] = ()) -> Catalogue:
         """The rules of ``modules``, each module's in source order: its ``rule()``-marked
         functions and its module-level ``Rule`` constants, counting only functions defined in
         that module and each constant once. A module whose codes are not ascending, or that
-        declares a code below the previous module's, is refused."""
+        declares a code below the previous module's, is refused. ``later``: the names of
+        modules read so when first asked for (:class:`Catalogue`)."""
         found: list[Rule] = []
         seen: set[int] = set()
         for module in modules:
@@ -197,7 +231,7 @@ class Catalogue:
                 codes.append(item.code)
             if codes != sorted(codes):
                 raise ValueError(f"{module.__name__}: rule codes out of order: {', '.join(codes)}")
-        return cls(found)
+        return cls(found, later)
 
     def __iter__(self):
         return iter(self.rules)
@@ -206,17 +240,20 @@ class Catalogue:
         return len(self.rules)
 
     def __contains__(self, code: str) -> bool:
-        return code in self._by_code
+        return code in self._by_code or code in self._whole()._by_code
 
     def get(self, code: str) -> Rule:
         """The rule of an exact code (KeyError when there is none)."""
-        return self._by_code[code]
+        found = self._by_code.get(code)
+        return found if found is not None else self._whole()._by_code[code]
 
     def matches(self, code: str, selector: str) -> bool:
         """Whether a selector (a code, a code prefix such as ``U2``, or a rule name) picks
         ``code``."""
         selector = selector.strip()
         found = self._by_code.get(code)
+        if found is None and self._later:
+            found = self._whole()._by_code.get(code)
         return code.startswith(selector.upper()) or (found is not None and found.name == selector)
 
     def check_selector(self, selector: str) -> None:

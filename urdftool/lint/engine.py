@@ -98,14 +98,14 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     if selection.targets:
         robot.targets = target_versions(selection.targets)
     findings = [f for f in note_findings(robot) if selection.allows(f.code)]
-    findings += judged(robot, _run_rules(robot, selection.allows))
+    findings += judged(robot, _run_rules(robot, selection.allows, bool(selection.targets)))
     findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
     return sorted(set(findings), key=Finding.sort_key)
 
 
-def _run_rules(robot, allows) -> list[Finding]:
+def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
     findings = []
-    for rule in CATALOGUE:
+    for rule in CATALOGUE.running(targets):  # (without targets, no target's family imported)
         if rule.check is None or not allows(rule.code):
             continue
         try:
