@@ -215,12 +215,12 @@ class Catalogue:
         found: list[Rule] = []
         seen: set[int] = set()
         for module in modules:
-            codes = []
+            codes, name = [], module.__name__
             for value in vars(module).values():
                 if isinstance(value, Rule):
                     item = value
-                elif callable(value) and isinstance(getattr(value, "rule", None), Rule) \
-                        and getattr(value, "__module__", None) == module.__name__:
+                elif callable(value) and getattr(value, "__module__", None) == name and \
+                        isinstance(getattr(value, "rule", None), Rule):  # (imported: not asked)
                     item = value.rule
                 else:
                     continue
