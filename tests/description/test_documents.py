@@ -33,6 +33,17 @@ def test_a_yaml_error_is_located_on_a_line_of_the_file(tmp_path, text, line):
     assert parsed.line == line and 1 <= parsed.line <= len(text.splitlines())
 
 
+def test_a_control_character_in_yaml_is_a_located_yaml_error(tmp_path):
+    """PyYAML's reader refuses a control character (a BEL in a controllers file) as the loader
+    is made: the ReaderError left read_yaml, and every rule reading the robot's companions
+    crashed (60 U900 on r2d2 with such a file). A YAML problem at its line instead."""
+    path = tmp_path / "c.yaml"
+    path.write_text("controller_manager:\n  ros__parameters:\n    update_rate: 50\x07\n")
+    parsed = read_yaml(path)
+    assert parsed.data is None and parsed.line == 3
+    assert parsed.problem == "unacceptable character #x0007: special characters are not allowed"
+
+
 def test_an_srdf_left_open_is_located_where_the_open_tag_is(tmp_path):
     path = tmp_path / "r.srdf"
     path.write_text('<robot name="r">\n  <group name="a">\n')

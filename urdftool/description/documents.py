@@ -230,7 +230,12 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
             return result
         except Exception:  # (libyaml's error, or a limit's: PyYAML's reading says it)
             result.data = None
-    loader = _loader()(text)
+    try:
+        loader = _loader()(text)  # (PyYAML's reader refuses a control character here)
+    except yaml.reader.ReaderError as error:
+        result.line = text.count("\n", 0, error.position) + 1
+        result.problem = f"unacceptable character #x{error.character:04x}: {error.reason}"
+        return result
     loader.merge_repeated = result.ros2
     try:
         result.data = loader.get_single_data()
