@@ -296,11 +296,11 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
             return result
         result.problem, result.line = None, comments[1]
         result.caution = (
-            "not well-formed XML, '--' inside a comment: srdfdom reads "
-            "it (TinyXML2 ends a comment at the first '-->'), so MoveIt does when its launch "
-            "file loads the SRDF as text (ROS 1's textfile=, Python's open()), but xacro "
-            "refuses it, and MoveItConfigsBuilder passes every SRDF through xacro; write the "
-            "comment without '--'")
+            "not well-formed XML, '--' inside a comment: srdfdom reads it (TinyXML2 ends a "
+            "comment at the first '-->'), so MoveIt does when its launch file loads the SRDF "
+            "as text (ROS 1's textfile=, a Python launch file reading it), but xacro refuses "
+            "it, and MoveItConfigsBuilder passes every SRDF through xacro; write the comment "
+            "without '--'")
     _start_tag_lines(result.data, text)
     _trimmed(result.data)
     if result.data.tag != "robot":

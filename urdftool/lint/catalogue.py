@@ -156,13 +156,14 @@ class Catalogue:
     """Every rule, by code. ``declared`` keeps the order the rules were given in; ``rules`` is
     sorted by code.
 
-    later: the names of family modules whose rules all run only for a target
+    later: functions importing (and returning) the family modules whose rules all run only
+    for a target
     (:data:`TARGET_DECADES`), imported, and their rules joined to the others, when first asked
     for: every question but :meth:`running` without a target asks for them (the portability
     family's import was 4.1 M of r2d2's 642 M instructions, for rules a check without a
     target never runs)."""
 
-    def __init__(self, rules, later: tuple[str, ...] = ()):
+    def __init__(self, rules, later: tuple = ()):
         self._later = tuple(later)
         self._join(rules)
 
@@ -185,9 +186,7 @@ class Catalogue:
     def _whole(self) -> Catalogue:
         """This catalogue with the rules of its ``later`` modules joined (imported once)."""
         if self._later:
-            import importlib
-
-            modules = [importlib.import_module(name) for name in self._later]
+            modules = [imported() for imported in self._later]
             self._later = ()
             self._join((*self._declared, *Catalogue.from_modules(modules)._declared))
         return self
@@ -206,12 +205,12 @@ class Catalogue:
         return self.rules if targets else self._rules
 
     @classmethod
-    def from_modules(cls, modules, later: tuple[str, ...] = ()) -> Catalogue:
+    def from_modules(cls, modules, later: tuple = ()) -> Catalogue:
         """The rules of ``modules``, each module's in source order: its ``rule()``-marked
         functions and its module-level ``Rule`` constants, counting only functions defined in
         that module and each constant once. A module whose codes are not ascending, or that
-        declares a code below the previous module's, is refused. ``later``: the names of
-        modules read so when first asked for (:class:`Catalogue`)."""
+        declares a code below the previous module's, is refused. ``later``: functions
+        importing the modules read so when first asked for (:class:`Catalogue`)."""
         found: list[Rule] = []
         seen: set[int] = set()
         for module in modules:
