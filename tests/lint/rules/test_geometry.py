@@ -213,3 +213,19 @@ def test_a_robot_of_primitives_is_checked_without_the_mesh_readers(tmp_path):
                                capture_output=True, text=True, timeout=120).stdout.strip()
                 for name in ("box.urdf", "mesh.urdf")]
     assert imported == ["False", "True"]
+
+
+def test_a_visual_material_of_empty_name_refers_to_no_material(tmp_path):
+    """allegro_hand_description's <material name=""/>: urdfdom looks up only a name it is
+    given (check_urdf is silent), so the visual has the default colour, as without one."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    def codes(material):
+        (tmp_path / "r.urdf").write_text(
+            '<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+            f'{material}</visual></link></robot>')
+        return [f.code for f in load_and_check(str(tmp_path / "r.urdf"), CheckOptions()).findings]
+
+    assert "U406" not in codes('<material name=""/>')
+    assert "U406" in codes('<material name="x"/>')  # check_urdf: material 'x' undefined
+

@@ -294,7 +294,10 @@ def undefined_material(robot):
     """A visual names a material that is defined nowhere, so it renders without colour.
 
     urdfdom warns ``material 'x' undefined``. A name-only reference must match a top-level
-    ``<material>`` or an earlier visual's material that has a colour or texture.
+    ``<material>`` or an earlier visual's material that has a colour or texture. An empty name
+    (``<material name=""/>``) refers to nothing: urdfdom looks up only names it is given
+    (``material_name.length() > 0``, model.cpp), and the visual is drawn in the default colour,
+    as without the element.
 
     Bad: ``<material name="gren"/>`` with only ``green`` defined
     Good: ``<material name="green"/>`` after ``<material name="green"><color .../></material>``
@@ -303,7 +306,7 @@ def undefined_material(robot):
     for link, holder in _holders(robot, ("visual",)):
         for material in robot.grouped(holder).get("material", ()):
             name = material.get("name")
-            if name is None:
+            if not name:
                 continue
             if _defines(material):
                 defined.add(name)
