@@ -229,3 +229,15 @@ def test_a_visual_material_of_empty_name_refers_to_no_material(tmp_path):
     assert "U406" not in codes('<material name=""/>')
     assert "U406" in codes('<material name="x"/>')  # check_urdf: material 'x' undefined
 
+
+def test_a_gazebo_model_uri_mesh_says_who_finds_it(tmp_path):
+    """articubot_one's dragger draws its wheels twice: model:// for Gazebo, package:// for RViz."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="model://meshes/w.stl"/>'
+        '</geometry></visual></link></robot>')
+    found = [f for f in load_and_check(str(tmp_path / "r.urdf"), CheckOptions()).findings
+             if f.code == "U410"]
+    assert len(found) == 1 and "a Gazebo model:// URI, which Gazebo finds on its resource path" \
+        in found[0].message

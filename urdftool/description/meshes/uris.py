@@ -51,6 +51,11 @@ def _resolve(robot, uri: str) -> Path:
             raise _no_package(robot, uri, package, tail, error) from None
         found = _in_package(uri, package, os.fspath(folder), tail)
     else:
+        if uri.startswith("model://"):
+            raise MeshProblem("format", f"mesh '{uri}': a Gazebo model:// URI, which Gazebo finds "
+                                        "on its resource path (GZ_SIM_RESOURCE_PATH, "
+                                        "GAZEBO_MODEL_PATH) and RViz, MoveIt and other urdfdom "
+                                        "users do not; the mesh is not checked")
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
