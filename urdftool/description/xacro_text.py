@@ -295,18 +295,20 @@ def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for
     return False
 
 
-def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> tuple[str, int] | None:
+def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> list[tuple[str, int]]:
     """Where the xacro source ``data`` writes a ``wanted`` element inside the ``tag`` element
-    whose start tag is on ``line``, but only under an ``xacro:if``/``xacro:unless``: that
-    condition's start tag as written (``xacro:if value="$(arg sim_mode)"``) and its line; None
-    when the source holds none so (or does not parse). An element the expanded robot lacks there
-    was then left out by the arguments or properties it was expanded with, not forgotten."""
+    whose start tag is on ``line``, but only under an ``xacro:if``/``xacro:unless``: each such
+    condition's start tag as written (``xacro:if value="$(arg sim_mode)"``) and its line, in
+    document order; empty when the source holds none so (or does not parse). An element the
+    expanded robot lacks there was then left out by the arguments or properties it was
+    expanded with, not forgotten."""
     from urdftool.description.xml import XmlProblem, parse
 
     try:
         root, positions = parse(data)
     except (XmlProblem, ValueError, SyntaxError):
-        return None
+        return []
+    found = []
     for element in root.iter(tag, f"{{*}}{tag}"):
         position = positions.get(element)
         if position is None or position[0] != line or local_name(element.tag) != tag:
@@ -315,8 +317,10 @@ def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> tuple[s
             if condition is element or not is_xacro(condition.tag) or \
                     local_name(condition.tag) not in ("if", "unless"):
                 continue
-            if any(local_name(inner.tag) == wanted for inner in condition.iter()):
+            if any(local_name(inner.tag) == wanted for inner in condition.iter()
+                   if inner is not condition):
                 words = " ".join(f'{name}="{value}"' for name, value in condition.attrib.items())
-                return f"xacro:{local_name(condition.tag)} {words}".strip(), \
-                    positions.get(condition, (line,))[0]
-    return None
+                found.append((f"xacro:{local_name(condition.tag)} {words}".strip(),
+                              positions.get(condition, (line,))[0]))
+        break
+    return found

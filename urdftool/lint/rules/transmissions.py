@@ -490,18 +490,21 @@ def ros2_control_no_plugin(robot):
 
 
 def _plugin_condition(robot, hardware) -> str | None:
-    """How the source of ``hardware`` gives its ``<plugin>`` only under a condition false as
-    the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> at
-    ros2_control.xacro:15``), or None."""
+    """How the source of ``hardware`` gives its ``<plugin>`` only under conditions false as
+    the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> (line
+    15) of ros2_control.xacro``), or None."""
     if hardware is None:
         return None
     location = robot.locate(hardware)
     data = robot.sources.get(location.file) if location.line is not None else None
-    found = condition_dropping(data, location.line, "hardware", "plugin") if data else None
-    if found is None or not any(mark in found[0] for mark in ("$(arg", "${")):
-        return None  # (a constant condition: no build gives the plugin)
-    written, line = found
-    return f"its <plugin> is under <{written}> at {location.file}:{line}, which is false then"
+    found = [(written, line) for written, line in (
+        condition_dropping(data, location.line, "hardware", "plugin") if data else ())
+        if "$(arg" in written or "${" in written]  # (a constant condition: no build gives it)
+    if not found:
+        return None
+    under = " or ".join(f"<{written}> (line {line})" for written, line in found[:3])
+    return (f"its <plugin> is under {under} of {location.file}, "
+            f"{'false' if len(found) == 1 else 'each false'} then")
 
 
 _LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}
