@@ -389,6 +389,11 @@ def mesh_not_found(robot):
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
     warning saying so, not an error (docs/packages.md).
 
+    The message names where the repository has the file: beside it in other capitals, or,
+    when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
+    file), the one file of its name elsewhere (never a choice among several: another robot's
+    ``base_link.STL`` is no advice).
+
     Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
     Good: the exact file name (case matters on Linux)
     """
