@@ -8,7 +8,8 @@ import textwrap
 import pytest
 
 from conftest import ROBOTS
-from urdftool.description.companions import companions, is_spec, looks_like_controllers
+from urdftool.description.companions import (companions, is_fake_controller_list, is_spec,
+                                              looks_like_controllers)
 from urdftool.description.documents import read_yaml
 from urdftool.description.robot import CompanionPaths
 from urdftool.lint.engine import CheckOptions, load_and_check
@@ -365,3 +366,19 @@ def test_a_moveit_package_s_yaml_is_the_srdf_its_setup_assistant_names(tmp_path)
     write(tmp_path, {"r_moveit_config/package.xml": "<package><buildtool_depend>catkin"
                                                     "</buildtool_depend></package>"})
     assert companions(load(str(config / "old.urdf"))).kinematics is not None
+
+
+def test_a_fake_controller_list_is_known_by_its_entries_beside_settings_of_no_controller():
+    fake = {"controller_list": [{"name": "arm", "type": "interpolate", "joints": ["j1"]}]}
+    assert is_fake_controller_list(fake)
+    assert is_fake_controller_list({**fake, "initial": [{"group": "arm", "pose": "home"}],
+                                    "moveit_sim_hw_interface": {"joint_model_group": "arm"}})
+    # a controller of ros_control beside it, or the simple controller manager named: not fake
+    assert not is_fake_controller_list(
+        {**fake, "jsc": {"type": "joint_state_controller/JointStateController"}})
+    assert not is_fake_controller_list(
+        {**fake, "moveit_controller_manager":
+         "moveit_simple_controller_manager/MoveItSimpleControllerManager"})
+    assert not is_fake_controller_list(
+        {"controller_list": [{"name": "arm", "action_ns": "follow_joint_trajectory",
+                              "type": "FollowJointTrajectory", "joints": ["j1"]}]})

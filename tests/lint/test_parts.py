@@ -216,3 +216,14 @@ def test_a_part_with_joints_and_no_link_notes_what_only_its_includer_writes(tmp_
             if f.severity.value != "info"]
     assert not loud, loud
     assert {"U105", "U106", "U611"} <= {f.code for f in findings}
+
+
+def test_a_library_of_colours_named_urdf_is_a_part(tmp_path):
+    """TurtleBot3's common_properties.urdf: only <material> definitions, for xacro to include
+    (its include is commented out); no link is a note, what its colours say stays."""
+    robot = ('<robot name="xacro_properties"><material name="black"><color rgba="0 0 0 1"/>'
+             '</material><material name="grey"><color rgba="0.5 0.5 0.5 1"/></material></robot>')
+    findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U1",))[1]
+    assert [(f.code, f.severity.value) for f in findings] == [("U106", "info")]
+    assert findings[0].message.startswith("a part of a robot defined elsewhere (no link of its "
+                                          "own, only <material> definitions")

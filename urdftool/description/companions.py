@@ -259,8 +259,12 @@ _FAKE_TYPES = ("", "interpolate", "last point", "via points")  # or a $(arg ...)
 def is_fake_controller_list(data) -> bool:
     """MoveIt's fake controller manager's list (``fake_controllers.yaml``): a
     ``controller_list`` whose entries name no ``action_ns`` and no simple controller manager
-    type (``interpolate``, ``via points`` or none), and nothing else; no controller runs it."""
-    if not isinstance(data, dict) or set(data) - {"controller_list", "initial"}:
+    type (``interpolate``, ``via points`` or none), beside nothing that configures a controller
+    (its ``initial`` poses, moveit_sim_controllers' ``moveit_sim_hw_interface``); no controller
+    runs it; a ``moveit_controller_manager`` beside it names the fake one."""
+    if not isinstance(data, dict) or looks_like_controllers(
+            {key: value for key, value in data.items() if key != "controller_list"}) or \
+            "fake" not in str(data.get("moveit_controller_manager", "fake")).lower():
         return False
     entries = data.get("controller_list")
     return isinstance(entries, list) and all(

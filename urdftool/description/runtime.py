@@ -620,6 +620,13 @@ def built_otherwise(robot) -> list[tuple[Build, list[str]]]:
     return found
 
 
+def built_as_checked(robot) -> bool:
+    """Whether a launch file (or launch test) runs the robot's file through xacro with the
+    arguments it was checked with: what xacro made as checked is then a build that runs."""
+    return robot.path != "-" and any(build.xacro for build in builds(robot.path)) and \
+        not built_otherwise(robot)
+
+
 # --- the questions rules ask --------------------------------------------------------------------
 
 @dataclass(frozen=True)

@@ -293,3 +293,34 @@ def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for
             return True
         pending.extend(entry[1])
     return False
+
+
+def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> list[tuple[str, int]]:
+    """Where the xacro source ``data`` writes a ``wanted`` element inside the ``tag`` element
+    whose start tag is on ``line``, but only under an ``xacro:if``/``xacro:unless``: each such
+    condition's start tag as written (``xacro:if value="$(arg sim_mode)"``) and its line, in
+    document order; empty when the source holds none so (or does not parse). An element the
+    expanded robot lacks there was then left out by the arguments or properties it was
+    expanded with, not forgotten."""
+    from urdftool.description.xml import XmlProblem, parse
+
+    try:
+        root, positions = parse(data)
+    except (XmlProblem, ValueError, SyntaxError):
+        return []
+    found = []
+    for element in root.iter(tag, f"{{*}}{tag}"):
+        position = positions.get(element)
+        if position is None or position[0] != line or local_name(element.tag) != tag:
+            continue
+        for condition in element.iter():
+            if condition is element or not is_xacro(condition.tag) or \
+                    local_name(condition.tag) not in ("if", "unless"):
+                continue
+            if any(local_name(inner.tag) == wanted for inner in condition.iter()
+                   if inner is not condition):
+                words = " ".join(f'{name}="{value}"' for name, value in condition.attrib.items())
+                found.append((f"xacro:{local_name(condition.tag)} {words}".strip(),
+                              positions.get(condition, (line,))[0]))
+        break
+    return found

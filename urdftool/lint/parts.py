@@ -16,8 +16,10 @@ name, links of its own) is a note stating the condition:
   ``custom_example.urdf``); judged as an **extensions** part is, and U105 notes both ends.
 - **extensions**: no link and no joint at all, only :data:`EXTENSIONS` blocks (and materials):
   Care-O-bot's ``raw_mini`` base, whose ``base.urdf.xacro`` calls only the macro writing its
-  Gazebo plugins. Every rule of :data:`ABOUT_THE_ROBOT` (a name compared with links and joints
-  it does not write, links or a simulator plugin it lacks) is a note.
+  Gazebo plugins; or only ``<material>`` definitions, a library of colours named ``.urdf``
+  (TurtleBot3's ``common_properties.urdf``, whose xacro include is commented out). Every rule
+  of :data:`ABOUT_THE_ROBOT` (a name compared with links and joints it does not write, links
+  or a simulator plugin it lacks) is a note.
 
 Whether a robot has a root link of its own is decided once (:func:`rootless`), for the
 expansion here and for a file's text in the folder walk.
@@ -115,6 +117,12 @@ def _part(robot) -> Part | None:
             return Part("extensions", frozenset(),
                         f"a part of a robot defined elsewhere (no link of its own, only "
                         f"{said} blocks)")
+        if tags == _DEFINITIONS and any(  # a library of colours, named .urdf (TurtleBot3's)
+                robot.child(m, "color") is not None or robot.child(m, "texture") is not None
+                for m in robot.children("material")):
+            return Part("extensions", frozenset(),
+                        f"{PART} (no link of its own, only <material> definitions: a library "
+                        "of colours for xacro to include)")
         return None
     return rootless(robot.links, [e["parent"][1] for e in ends.values()],
                     [e["child"][1] for e in ends.values()])

@@ -425,3 +425,19 @@ def test_a_joint_state_broadcaster_declared_and_never_started_is_named(tmp_path)
     assert findings[0].message.endswith("controller 'jsc' (joint_state_controller/"
                                         "JointStateController) is declared, but no launch file "
                                         "of the robot starts it: spawn it")
+
+
+def test_a_fake_controller_list_beside_moveit_sim_controllers_settings_is_not_checked(tmp_path):
+    # abb_dual_arm's fake_controllers.yaml: moveit_sim_controllers' settings beside the list the
+    # fake controller manager reads, whose 'interpolate' the simple controller manager never sees
+    robot = HEAD_ROBOT.format(body=TX.format(iface="hardware_interface/PositionJointInterface"))
+    yaml = """\
+        moveit_sim_hw_interface:
+          joint_model_group: head
+          joint_model_group_pose: initial
+        controller_list:
+          - name: head
+            type: interpolate
+            joints: [head_joint]
+        """
+    assert check_folder(tmp_path, {"robot.urdf": robot, "config/fake_controllers.yaml": yaml})[0] == []

@@ -213,3 +213,65 @@ def test_a_robot_of_primitives_is_checked_without_the_mesh_readers(tmp_path):
                                capture_output=True, text=True, timeout=120).stdout.strip()
                 for name in ("box.urdf", "mesh.urdf")]
     assert imported == ["False", "True"]
+
+
+def test_a_visual_material_of_empty_name_refers_to_no_material(tmp_path):
+    """allegro_hand_description's <material name=""/>: urdfdom looks up only a name it is
+    given (check_urdf is silent), so the visual has the default colour, as without one."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    def codes(material):
+        (tmp_path / "r.urdf").write_text(
+            '<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+            f'{material}</visual></link></robot>')
+        return [f.code for f in load_and_check(str(tmp_path / "r.urdf"), CheckOptions()).findings]
+
+    assert "U406" not in codes('<material name=""/>')
+    assert "U406" in codes('<material name="x"/>')  # check_urdf: material 'x' undefined
+
+
+def test_a_gazebo_model_uri_mesh_says_who_finds_it(tmp_path):
+    """articubot_one's dragger draws its wheels twice: model:// for Gazebo, package:// for RViz."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="model://meshes/w.stl"/>'
+        '</geometry></visual></link></robot>')
+    found = [f for f in load_and_check(str(tmp_path / "r.urdf"), CheckOptions()).findings
+             if f.code == "U410"]
+    assert len(found) == 1 and "a Gazebo model:// URI, which Gazebo finds on its resource path" \
+        in found[0].message
+
+
+def test_a_missing_mesh_says_where_the_repository_has_a_file_of_its_name(tmp_path):
+    """Inspire hand's URDF names right_base_link.obj beside itself, the file moved to
+    collision/; a name in other capitals (base.STL for base.stl) is the classic slip."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "collision").mkdir()
+    (tmp_path / "collision/base.stl").write_text("solid s\nendsolid s\n")
+    (tmp_path / "urdf").mkdir()
+
+    def message(filename):
+        (tmp_path / "urdf/r.urdf").write_text(
+            f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{filename}"/>'
+            '</geometry></visual></link></robot>')
+        found = [f.message for f in load_and_check(str(tmp_path / "urdf/r.urdf"),
+                                                   CheckOptions()).findings if f.code == "U408"]
+        return found[0] if found else ""
+
+    assert message("base.stl").endswith("; the repository's one file of that name is "
+                                        "collision/base.stl")
+    assert message("../collision/base.STL").endswith(
+        "; the file beside it is base.stl, in other capitals (file names are case-sensitive on "
+        "Linux)")
+    assert "the repository's" not in message("other.stl")
+    # a folder holding meshes is the right one, its file missing: another folder's file of
+    # that name is another part's (a repository of many robots has a base.stl for each)
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes/arm.stl").write_text("solid s\nendsolid s\n")
+    assert "the repository's" not in message("../meshes/base.stl")
+    (tmp_path / "other").mkdir()
+    (tmp_path / "other/base.stl").write_text("solid s\nendsolid s\n")
+    assert "the repository's" not in message("base.stl")  # two of that name: no choosing

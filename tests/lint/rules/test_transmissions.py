@@ -296,3 +296,31 @@ def test_a_custom_interface_is_a_note_a_misspelt_one_a_warning(tmp_path):
         assert severities(name) == [Severity.INFO], name
     for name in ("positon", "velocty", "efort"):
         assert severities(name) == [Severity.WARNING], name
+
+
+def test_no_plugin_as_checked_whose_source_gives_one_under_an_argument_is_a_warning(tmp_path):
+    # slgrobotics' articubot_one turtle: <plugin> only under xacro:if sim_mode (the real robot
+    # is driven by create_driver, no controller manager); its launch file's path is built from
+    # a launch argument, so no build of it is known
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "robot.urdf.xacro"
+    hardware = """<hardware>
+    <xacro:unless value="$(arg sim_mode)"><!-- a driver of its own --></xacro:unless>
+    <xacro:if value="$(arg sim_mode)"><plugin>gz_ros2_control/GazeboSimSystem</plugin></xacro:if>
+  </hardware>"""
+    robot.write_text(f"""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="sim_mode" default="false"/>
+  <link name="base"/>
+  <ros2_control name="r" type="system">{hardware}</ros2_control>
+</robot>""")
+    findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
+    assert [(f.line, f.severity) for f in findings] == [(4, Severity.WARNING)]
+    assert '<plugin> is under <xacro:if value="$(arg sim_mode)"> (line 6) of ' in \
+        findings[0].message and "robot.urdf.xacro, false then" in findings[0].message
+    # a condition on no argument or property holds in no build: an error still
+    robot.write_text(robot.read_text().replace('value="$(arg sim_mode)"><plugin>',
+                                               'value="false"><plugin>'))
+    findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
+    assert [f.severity for f in findings] == [Severity.ERROR]

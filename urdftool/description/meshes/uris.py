@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, real_path, resolved
+from urdftool.description.files import inside, kind_of, real_path, resolved, walk
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_uri_parts)
 from urdftool.description.run_memo import per_run
@@ -51,12 +51,17 @@ def _resolve(robot, uri: str) -> Path:
             raise _no_package(robot, uri, package, tail, error) from None
         found = _in_package(uri, package, os.fspath(folder), tail)
     else:
+        if uri.startswith("model://"):
+            raise MeshProblem("format", f"mesh '{uri}': a Gazebo model:// URI, which Gazebo finds "
+                                        "on its resource path (GZ_SIM_RESOURCE_PATH, "
+                                        "GAZEBO_MODEL_PATH) and RViz, MoveIt and other urdfdom "
+                                        "users do not; the mesh is not checked")
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(_checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
-                                  None), located)
+                                  None), located, os.fspath(robot.base_dir))
     if isinstance(found, MeshProblem):
         # a new one: raised once per robot
         raise MeshProblem(found.kind, found.message, certain=found.certain)
@@ -114,16 +119,21 @@ def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshPr
     folder gets the same answer."""
     located = installed(package, Path(folder), Path(folder) / tail)
     return _doubted(_checked(uri, os.fspath(located.path), os.fspath(located.within), package),
-                    located)
+                    located, os.fspath(located.within))
 
 
-def _doubted(found: Path | MeshProblem, located) -> Path | MeshProblem:
+def _doubted(found: Path | MeshProblem, located, base: str) -> Path | MeshProblem:
     """``found``, a file missing from the source tree said not certain when the package's
-    build may put it there (``located.doubt``, docs/packages.md)."""
-    if isinstance(found, MeshProblem) and found.kind == "missing" and located.doubt:
+    build may put it there (``located.doubt``, docs/packages.md), and where the repository has
+    a file of its name (:func:`_elsewhere`; ``base``: the folder it was looked for from)."""
+    if not isinstance(found, MeshProblem) or found.kind != "missing":
+        return found
+    hint = "" if "backslashes are no path separators" in found.message else \
+        _elsewhere(_real(Path(os.fspath(located.path))), base)
+    if located.doubt:
         return MeshProblem("missing", f"{found.message}: not found in the source tree; "
-                                      f"{located.doubt}", certain=False)
-    return found
+                                      f"{located.doubt}{hint}", certain=False)
+    return MeshProblem("missing", found.message + hint, certain=found.certain) if hint else found
 
 
 @per_run
@@ -171,6 +181,58 @@ def _windows_path(uri: str, named: str) -> str:
         return ""
     return ("; backslashes are no path separators on Linux, where a backslash is part of a "
             f"file name: write '{written}'")
+
+
+# Every mesh extension in either case, and folders to enter: a listing's pattern
+_MESH_GLOB = "*/|" + "|".join("*" + "".join(f"[{c.lower()}{c.upper()}]" if c.isalpha() else c
+                                            for c in suffix) for suffix in MESH_EXTENSIONS)
+
+
+def _elsewhere(path: Path, base: str) -> str:
+    """Advice for a mesh missing where it is named: the one file of its name in other capitals
+    beside it (``base.STL`` for ``base.stl``); or, when the folder it was looked for in holds
+    no mesh at all (the folder is wrong, not the file: Inspire hand's URDF naming
+    right_base_link.obj beside itself, the file moved to collision/), the repository's one file
+    of its name, or in other capitals, elsewhere; "" otherwise. Never a choice among several,
+    nor a file of another folder when the mesh's own holds meshes: a repository of many robots
+    has a base_link.STL for each, and another robot's is no advice."""
+    root = _real(containment_root(Path(base)))
+    meshes = _mesh_files(os.fspath(root))
+    here = os.path.relpath(path.parent, root)
+    paths = meshes.get(path.name.lower(), ())
+    beside = [p for p in paths if os.path.dirname(p) == here]
+    if len(beside) == 1:
+        return (f"; the file beside it is {os.path.basename(beside[0])}, in other capitals "
+                "(file names are case-sensitive on Linux)")
+    if here in _mesh_folders(os.fspath(root)):
+        return ""
+    same = [p for p in paths if os.path.basename(p) == path.name]
+    if len(same) == 1:
+        return f"; the repository's one file of that name is {same[0]}"
+    if not same and len(paths) == 1:
+        return (f"; the repository's one file of that name in other capitals is {paths[0]} "
+                "(file names are case-sensitive on Linux)")
+    return ""
+
+
+@per_run
+def _mesh_folders(root: str) -> frozenset[str]:
+    """The folders of :func:`_mesh_files` holding a mesh, from ``root``."""
+    return frozenset(os.path.dirname(p) for paths in _mesh_files(root).values() for p in paths)
+
+
+@per_run
+def _mesh_files(root: str) -> dict[str, tuple[str, ...]]:
+    """The mesh files of the repository folder ``root`` (6 levels deep, 2,000 folders at
+    most), by their name in lower case: their paths from ``root``. Once per run and
+    repository, asked only when a mesh is missing."""
+    found: dict[str, list[str]] = {}
+    for folder, entries in walk(root, _MESH_GLOB, 6, most=2000):
+        for name, kind in entries:
+            if kind == "file":
+                found.setdefault(name.lower(), []).append(
+                    os.path.relpath(os.path.join(folder, name), root))
+    return {name: tuple(paths) for name, paths in found.items()}
 
 
 def _real(path: Path) -> Path:

@@ -294,7 +294,10 @@ def undefined_material(robot):
     """A visual names a material that is defined nowhere, so it renders without colour.
 
     urdfdom warns ``material 'x' undefined``. A name-only reference must match a top-level
-    ``<material>`` or an earlier visual's material that has a colour or texture.
+    ``<material>`` or an earlier visual's material that has a colour or texture. An empty name
+    (``<material name=""/>``) refers to nothing: urdfdom looks up only names it is given
+    (``material_name.length() > 0``, model.cpp), and the visual is drawn in the default colour,
+    as without the element.
 
     Bad: ``<material name="gren"/>`` with only ``green`` defined
     Good: ``<material name="green"/>`` after ``<material name="green"><color .../></material>``
@@ -303,7 +306,7 @@ def undefined_material(robot):
     for link, holder in _holders(robot, ("visual",)):
         for material in robot.grouped(holder).get("material", ()):
             name = material.get("name")
-            if name is None:
+            if not name:
                 continue
             if _defines(material):
                 defined.add(name)
@@ -385,6 +388,11 @@ def mesh_not_found(robot):
     setup.cfg ``data_files``) installs it from. When those install rules cannot be read (a
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
     warning saying so, not an error (docs/packages.md).
+
+    The message names where the repository has the file: beside it in other capitals, or,
+    when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
+    file), the one file of its name elsewhere (never a choice among several: another robot's
+    ``base_link.STL`` is no advice).
 
     Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
     Good: the exact file name (case matters on Linux)

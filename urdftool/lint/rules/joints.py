@@ -382,12 +382,24 @@ def mimic_cycle(robot):
         done.update(chain)
 
 
+# who holds a joint still at a zero limit, and who does not read it
+_HELD_STILL_BY = {
+    "effort": "what clamps commands to it holds the joint still (gazebo_ros_control, "
+              "ros2_control's joint limits, a dynamics simulator); MoveIt and "
+              "robot_state_publisher do not read effort",
+    "velocity": "MoveIt's time parameterisation and what clamps commands to it "
+                "(ros2_control's joint limits, a simulator) hold the joint still",
+}
+
+
 @rule("U212", "zero-effort-or-velocity", Severity.WARNING)
 def zero_effort_or_velocity(robot):
     """A moving joint's limit allows zero (or negative) effort or velocity.
 
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
-    a zero makes the joint immovable.
+    a zero makes the joint immovable for them. An effort of 0 is the ROS-Industrial exporters'
+    "unknown": MoveIt and robot_state_publisher do not read effort, so the message names who
+    holds the joint still.
 
     A negative limit means something different to each consumer, so it is a warning, not an
     error: the URDF specification bounds the applied effort by its absolute value; SDFormat
@@ -408,7 +420,7 @@ def zero_effort_or_velocity(robot):
             values, _ = number_tuple(text, 1)
             if values and values[0] == 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
-                              "the joint cannot move")
+                              + _HELD_STILL_BY[attribute])
             elif values and values[0] < 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is {number(values[0])}: "
                               "Gazebo (SDFormat) and gazebo_ros_control enforce no limit when it "

@@ -14,7 +14,8 @@ from __future__ import annotations
 import functools
 
 from urdftool.description.ros_version import ros_versions
-from urdftool.description.runtime import STATE_PUBLISHERS, built_otherwise, runtime
+from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
+                                         runtime)
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
                                             exported_interface, interface_kind, is_ros2_form,
@@ -22,6 +23,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             transmission_joints, transmissions)
 from urdftool.errors import available, close_names
 from urdftool.description.values import parse_numbers
+from urdftool.description.xacro_text import condition_dropping
 from urdftool.description.xml import attribute
 
 ROS2_INTERFACES = ("position", "velocity", "acceleration", "effort", "torque", "force",
@@ -451,7 +453,12 @@ def ros2_control_no_plugin(robot):
     A warning when the launch files run the robot's file through xacro only with other
     arguments than it was checked with (its ``<xacro:arg>`` defaults, or ``--arg``), as when
     an ``xacro:if`` on a ``mode`` argument picks the plugin and no launch file builds the
-    default: the builds that run are not checked, and the message names them.
+    default: the builds that run are not checked, and the message names them. A warning too
+    when the ``<hardware>`` as written holds its ``<plugin>`` under an ``xacro:if`` or
+    ``xacro:unless`` that is false as checked (a plugin for the simulation only, the real
+    robot driven by a node of its own) and no launch file is known to build it as checked:
+    whether a controller manager reads the robot built so is the launch's choice, and the
+    message names the condition.
     """
     otherwise = None
     for block in robot.children("ros2_control"):
@@ -461,6 +468,9 @@ def ros2_control_no_plugin(robot):
             named = f"<ros2_control name='{block.get('name')}'> names no <hardware><plugin>"
             example = "e.g. gazebo_ros2_control/GazeboSystem or mock_components/GenericSystem"
             otherwise = built_otherwise(robot) if otherwise is None else otherwise
+            # a launch file building it as checked runs a build without the plugin: an error
+            dropped = None if otherwise or built_as_checked(robot) else \
+                _plugin_condition(robot, hardware)
             if otherwise:
                 build, other = otherwise[0]
                 more = f" (and {len(otherwise) - 1} more)" if len(otherwise) > 1 else ""
@@ -469,9 +479,32 @@ def ros2_control_no_plugin(robot):
                     f"{build.named_at()} builds it with {', '.join(other[:4])}{more}, and no "
                     "launch file as checked: whether their builds name one is not checked "
                     f"(--arg NAME=VALUE checks one); {example}")
+            elif dropped:
+                message = Conditional(f"{named} with the xacro arguments the robot is checked "
+                                      f"with: {dropped}; a controller manager given the robot "
+                                      "built so cannot load its hardware (--arg NAME=VALUE "
+                                      "checks another build)")
             else:
                 message = f"{named}; {example}"
             yield (hardware if hardware is not None else block), message
+
+
+def _plugin_condition(robot, hardware) -> str | None:
+    """How the source of ``hardware`` gives its ``<plugin>`` only under conditions false as
+    the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> (line
+    15) of ros2_control.xacro``), or None."""
+    if hardware is None:
+        return None
+    location = robot.locate(hardware)
+    data = robot.sources.get(location.file) if location.line is not None else None
+    found = [(written, line) for written, line in (
+        condition_dropping(data, location.line, "hardware", "plugin") if data else ())
+        if "$(arg" in written or "${" in written]  # (a constant condition: no build gives it)
+    if not found:
+        return None
+    under = " or ".join(f"<{written}> (line {line})" for written, line in found[:3])
+    return (f"its <plugin> is under {under} of {location.file}, "
+            f"{'false' if len(found) == 1 else 'each false'} then")
 
 
 _LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}
