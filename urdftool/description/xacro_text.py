@@ -233,14 +233,13 @@ def writes_no_links(path, packages, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
     that write none (:func:`calls_make_links`). ``packages``: the check's ``--package``
     paths."""
     path = Path(path)
-    data = head(path, limit) if path.name.endswith(".xacro") else None
-    if data is None or b"\0" in data:
+    written = _xacro_source(path, limit)
+    if written is None:
         return False
 
     def resolver_for(file: Path) -> PackageResolver:
         return PackageResolver(packages, start=file.parent)
 
-    written = uncommented(data)
     includes = list(included_files(path, written, resolver_for(path)))
     unfollowed = len(INCLUDE.findall(written)) > len(includes)
     return not calls_make_links(written, includes, unfollowed, resolver_for, limit)
@@ -252,12 +251,17 @@ def macro_library(path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
     (talos' sensors/xtion_pro_live.urdf.xacro). Written to be included: run alone, its own text
     makes no robot (what a file it includes writes at its top level is not known here when
     that file is not)."""
-    path = Path(path)
-    data = head(path, limit) if path.name.endswith(".xacro") else None
-    if data is None or b"\0" in data:
-        return False
+    written = _xacro_source(Path(path), limit)
     use = MacroUse()
-    return stream(uncommented(data), use) == "calls" and not use.calls and bool(use.macros)
+    return written is not None and stream(written, use) == "calls" and not use.calls and \
+        bool(use.macros)
+
+
+def _xacro_source(path: Path, limit: int) -> bytes | None:
+    """The text of a ``.xacro`` file without its comments, read through :func:`head`; None for
+    another file, one not read, or a binary one."""
+    data = head(path, limit) if path.name.endswith(".xacro") else None
+    return None if data is None or b"\0" in data else uncommented(data)
 
 
 def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for,

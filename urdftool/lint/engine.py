@@ -211,21 +211,9 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                 if robot is None and built:
                     return FileResult(path, built)
                 if robot is None:
-                    from urdftool.lint.rules.loading import part_failure
-
-                    built = part_failure(path, error, options.packages,
-                                         options.max_file_size)
-                    if built:
-                        return FileResult(path, built)
-                    raise
+                    return _part_noted(path, error, options)
             elif error.kind == "package" and not xacro_args:
-                from urdftool.lint.rules.loading import library_failure
-
-                built = library_failure(path, error, load_error_message(error),
-                                        options.max_file_size)
-                if built:
-                    return FileResult(path, built)
-                raise
+                return _part_noted(path, error, options)
             else:
                 raise
             xacro_args = {**given, **xacro_args}
@@ -244,6 +232,17 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
     if built and options.selection.allows(built[0].code):
         findings = sorted(set(findings) | set(built), key=Finding.sort_key)
     return FileResult(path, findings, robot, companions=_companion_lines(robot))
+
+
+def _part_noted(path: str, error: LoadError, options: CheckOptions) -> FileResult:
+    """The file's result when the load ``error`` is a note on a part of a robot defined
+    elsewhere (:func:`~urdftool.lint.rules.loading.part_note`); else ``error`` raised again."""
+    from urdftool.lint.rules.loading import part_note
+
+    noted = part_note(path, error, options.packages, options.max_file_size)
+    if not noted:
+        raise error
+    return FileResult(path, noted)
 
 
 def _companion_lines(robot) -> list[str]:

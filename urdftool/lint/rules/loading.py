@@ -270,51 +270,45 @@ def failing_defaults(path: str, error, build):
 _UNDEFINED = ("is not defined", "unknown macro name", "Undefined property to forward")
 
 
-def part_failure(path: str, error, packages, limit: int) -> list | None:
-    """U005 as a note, or None to report ``error`` as it is: the file is a part of a robot
-    defined elsewhere (its top level writes no link: only definitions, extension blocks and
-    calls of macros writing <transmission>, <gazebo> or <ros2_control> blocks:
-    :func:`~urdftool.description.xacro_text.writes_no_links`), no launch file here builds it,
-    and xacro fails on a name the robot including it would define (talos'
-    left_arm.transmissions.urdf.xacro: ``${name}``). As the findings of a part that expands
-    (:mod:`urdftool.lint.parts`), it is right only inside the robot that includes it; a syntax
-    error, a missing file, stay errors. ``packages``, ``limit``: the check's ``--package``
-    paths and file size limit [bytes]."""
-    from urdftool.description.runtime import builds
-    from urdftool.description.xacro_text import writes_no_links
+def part_note(path: str, error, packages, limit: int) -> list | None:
+    """The load error as a note, or None to report it as it is: the file is a part of a robot
+    defined elsewhere that no launch file here builds, so what it cannot do alone is right
+    only inside the robot that includes it (as the findings of a part that expands:
+    :mod:`urdftool.lint.parts`). Two kinds of part:
 
-    if error.kind != "xacro" or not any(said in error.message for said in _UNDEFINED) or \
-            builds(path) or not writes_no_links(path, packages, limit):
+    - U005: its top level writes no link (only definitions, extension blocks and calls of
+      macros writing <transmission>, <gazebo> or <ros2_control> blocks:
+      :func:`~urdftool.description.xacro_text.writes_no_links`) and xacro fails on a name the
+      robot including it would define (talos' left_arm.transmissions.urdf.xacro: ``${name}``);
+      a syntax error, a missing file, stay errors;
+    - U006: a library of macros (:func:`~urdftool.description.xacro_text.macro_library`:
+      talos' xtion_pro_live.urdf.xacro, including ``$(find reemc)``) whose package's name is
+      not nearly that of one found here (doosan-robot2's libraries naming the ROS 1
+      ``dsr_description`` beside dsr_description2 are wrong for any robot including them):
+      expanded with the package it would make no robot to check, so its not being expanded
+      loses nothing and does not make the run exit 2.
+
+    ``packages``, ``limit``: the check's ``--package`` paths and file size limit [bytes]."""
+    from urdftool.description.runtime import builds
+    from urdftool.description.xacro_text import macro_library, writes_no_links
+
+    if error.kind == "xacro" and any(said in error.message for said in _UNDEFINED):
+        rule, is_part = U005, lambda: writes_no_links(path, packages, limit)
+        said = ("a part of a robot defined elsewhere (its top level writes no link, only blocks "
+                "such as <transmission>, <gazebo> or <ros2_control>, through macro calls too), "
+                "right only inside the robot that includes it, which defines that name; no file "
+                "here includes it, and no launch file here builds it")
+    elif error.kind == "package" and not error.close:
+        rule, is_part = U006, lambda: macro_library(path, limit)
+        said = ("a library of macros (its top level defines macros and calls none), which no "
+                "launch file here builds: expanded, it would make no robot to check, so nothing "
+                "is lost (its macros are checked in the robots calling them)")
+    else:
         return None
-    return [U005.finding(Conditional(
-        f"{error.message}; a part of a robot defined elsewhere (its top level writes no link, "
-        "only blocks such as <transmission>, <gazebo> or <ros2_control>, through macro calls "
-        "too), right only inside the robot that includes it, which defines that name; no file "
-        "here includes it, and no launch file here builds it", Severity.INFO),
-        error.location)]
-
-
-def library_failure(path: str, error, message: str, limit: int) -> list | None:
-    """U006 as a note, or None to report ``error`` as it is: the file is a library of macros
-    (:func:`~urdftool.description.xacro_text.macro_library`: talos' xtion_pro_live.urdf.xacro,
-    including ``$(find reemc)``) that no launch file here builds, and the package's name is
-    not nearly that of one found here (doosan-robot2's libraries naming the ROS 1
-    ``dsr_description`` beside dsr_description2 are wrong for any robot including them).
-    Expanded with the package, it would make no robot to check, so its not being expanded
-    loses nothing (its macros are checked in the robots that call them) and does not make the
-    run exit 2. ``message``: the finding's text as reported, ``limit``: the check's file size
-    limit [bytes]."""
-    from urdftool.description.runtime import builds
-    from urdftool.description.xacro_text import macro_library
-
-    if error.kind != "package" or error.close or builds(path) or \
-            not macro_library(path, limit):
-        return None  # (a name nearly one found here: misspelt or stale, doosan's ROS 1 name)
-    return [U006.finding(Conditional(
-        f"{message}; a library of macros (its top level defines macros and calls none), which "
-        "no launch file here builds: expanded, it would make no robot to check, so nothing is "
-        "lost (its macros are checked in the robots calling them)", Severity.INFO),
-        error.location)]
+    if builds(path) or not is_part():
+        return None
+    return [rule.finding(Conditional(f"{error.message}; {said}", Severity.INFO),
+                         error.location)]
 
 
 def _declared(path: str, error) -> set[str]:
