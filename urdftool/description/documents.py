@@ -107,9 +107,10 @@ _LIBYAML_DIFFERS = re.compile("[\t\ufeff\u2028\u2029\x85!|>?]")
 def _fast_loader():
     """:func:`_loader`'s class reading its events from libyaml's parser (``yaml._yaml.
     CParser``, C) instead of PyYAML's Python reader, scanner and parser (7.5 M of the 667 M
-    instructions of r2d2's check, for its 22-line controller file); composing (with :class:`~urdftool.description.
-    yaml_limits.DepthLimit`'s limits, one event at a time: libyaml's parser keeps its own
-    stack, never C's) and constructing stay Python's, the same tables. Used only for a
+    instructions of r2d2's check, for its 22-line controller file); composing (with
+    :class:`~urdftool.description.yaml_limits.DepthLimit`'s limits, one event at a time:
+    libyaml's parser keeps its own stack, never C's) and constructing stay Python's, the same
+    tables. Used only for a
     document it reads whole: any error, and :func:`read_yaml` reads the text again with
     :func:`_loader`, whose messages and marks findings quote. None without libyaml."""
     try:
