@@ -526,6 +526,9 @@ def mirror_inertial(robot):
     copied part's is not at its partner's mirror image, and both are right. A zero tensor on
     one side is U304's finding; links without an inertial on either side are U303's.
 
+    Two masses of the same digits a power of ten apart (0.0070309794 and 0.070309794 kg, as
+    ROBOTIS-OP's tibias) are said to be a decimal point slipped.
+
     Bad: ``l_thigh_link`` 0.119 kg and ``r_thigh_link`` 0.191 kg
     Good: both 0.119 kg
     """
@@ -542,7 +545,8 @@ def mirror_inertial(robot):
         names = f"links '{left}' and '{right}'"
         if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
-                          f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)")
+                          f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
+                          + _decimal_slip(a.mass, b.mass))
             continue
         moments_a = moments_of(robot, robot.links[left])
         moments_b = moments_of(robot, robot.links[right])
@@ -553,6 +557,18 @@ def mirror_inertial(robot):
             yield where, (f"{names}: principal moments of inertia differ "
                           f"({', '.join(f'{number(m, 3)}' for m in moments_a)} and "
                           f"{', '.join(f'{number(m, 3)}' for m in moments_b)} kg m^2)")
+
+
+def _decimal_slip(a: float, b: float) -> str:
+    """What to add to a message comparing ``a`` and ``b`` when they are the same digits a
+    power of ten apart (ROBOTIS-OP's MP_TIBIA_L 0.0070309794 kg and MP_TIBIA_R 0.070309794):
+    a decimal point slipped, not a design."""
+    if not (a > 0 and b > 0):
+        return ""
+    power = round(math.log10(b / a))
+    if power == 0 or abs(b / a / 10.0 ** power - 1) > 1e-6:
+        return ""
+    return f": the same digits {10 ** abs(power):g} times apart, a decimal point slipped"
 
 
 def _servo_ids(robot) -> dict[str, tuple[int, object]]:
