@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import number as attribute_number
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import decimal_slip, number
 from urdftool.physics import mat3
 from urdftool.physics.frames import child_joints, joint_frames, link_frames, parent_joints, world_axis
 from urdftool.physics.mass import declared_of, moments_of
@@ -546,7 +546,7 @@ def mirror_inertial(robot):
         if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
                           f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
-                          + _decimal_slip(a.mass, b.mass))
+                          + decimal_slip(a.mass, b.mass))
             continue
         moments_a = moments_of(robot, robot.links[left])
         moments_b = moments_of(robot, robot.links[right])
@@ -557,18 +557,6 @@ def mirror_inertial(robot):
             yield where, (f"{names}: principal moments of inertia differ "
                           f"({', '.join(f'{number(m, 3)}' for m in moments_a)} and "
                           f"{', '.join(f'{number(m, 3)}' for m in moments_b)} kg m^2)")
-
-
-def _decimal_slip(a: float, b: float) -> str:
-    """What to add to a message comparing ``a`` and ``b`` when they are the same digits a
-    power of ten apart (ROBOTIS-OP's MP_TIBIA_L 0.0070309794 kg and MP_TIBIA_R 0.070309794):
-    a decimal point slipped, not a design."""
-    if not (a > 0 and b > 0):
-        return ""
-    power = round(math.log10(b / a))
-    if power == 0 or abs(b / a / 10.0 ** power - 1) > 1e-6:
-        return ""
-    return f": the same digits {10 ** abs(power):g} times apart, a decimal point slipped"
 
 
 def _servo_ids(robot) -> dict[str, tuple[int, object]]:
