@@ -193,7 +193,8 @@ def test_length_and_unit_scale_before_they_square():
 @pytest.mark.parametrize("a, b, said", [
     (0.0070309794, 0.070309794, ": the same digits 10 times apart, a decimal point slipped"),
     (0.325, 0.000325, ": the same digits 1000 times apart, a decimal point slipped"),
-    (0.325, 0.0326, ""), (0.8, 0.8, ""), (0.0, 0.5, ""), (-0.1, -1.0, ""),
+    (0.325, 0.0326, ""), (0.8, 0.8, ""), (0.0, 0.5, ""), (-0.1, -1.0, ""), (300.0, 30.0, ""),
+    (1.5, 15.0, ": the same digits 10 times apart, a decimal point slipped"),
     (float("inf"), 1.0, ""), (5e-324, 1e308, "")])
 def test_decimal_slip_is_said_of_the_same_digits_a_power_of_ten_apart(a, b, said):
     from urdftool.numbers import decimal_slip

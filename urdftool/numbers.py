@@ -153,11 +153,18 @@ def decimal_slip(a: float, b: float) -> str:
     """What a message comparing two values of one quantity adds when they are the same digits
     a power of ten apart (ROBOTIS-OP's MP_TIBIA_L 0.0070309794 kg and MP_TIBIA_R 0.070309794,
     a wheel radius 0.0325 against the URDF's 0.325): a decimal point slipped, not a design;
-    empty otherwise."""
+    empty otherwise, and for a value of one significant digit (an effort of 300 against 30
+    may be a zero too many, or two numbers chosen apart)."""
     ratio = b / a if a > 0 and b > 0 and math.isfinite(a) and math.isfinite(b) else 0.0
     if not 0.0 < ratio < math.inf:
         return ""
     power = round(math.log10(ratio))
-    if power == 0 or abs(ratio / 10.0 ** power - 1) > 1e-6:
+    if power == 0 or abs(ratio / 10.0 ** power - 1) > 1e-6 or _significant(min(a, b)) < 2:
         return ""
     return f": the same digits {10 ** abs(power):g} times apart, a decimal point slipped"
+
+
+def _significant(value: float) -> int:
+    """How many significant digits ``value`` is written with at its shortest (0.0703 -> 3)."""
+    mantissa = f"{value:.15g}".split("e")[0].replace("-", "").replace(".", "")
+    return len(mantissa.strip("0"))

@@ -206,14 +206,15 @@ def test_an_interface_written_only_in_the_actuator_is_a_warning_to_move_it(tmp_p
     assert "move it into <joint>" in findings[0].message
 
 
-def _u515(tmp_path, low: str, high: str) -> list[str]:
-    """U515's messages (min's, then max's) for head_joint's position bounds ``low``, ``high``."""
+def _u515(tmp_path, low: str, high: str, limits: str = 'lower="-1" upper="1"') -> list[str]:
+    """U515's messages (min's, then max's) for head_joint's position bounds ``low``, ``high``
+    (its URDF ``limits``)."""
     body = f"""<ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
       <joint name="head_joint"><command_interface name="position"><param name="min">{low}</param>
       <param name="max">{high}</param></command_interface><state_interface name="position"/></joint>
       </ros2_control>"""
-    _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)},
-                               select=("U515",))
+    robot = HEAD_ROBOT.format(body=body).replace('lower="-1" upper="1"', limits)
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U515",))
     return sorted((f.message for f in findings), key=lambda m: "max" in m)
 
 
@@ -226,7 +227,7 @@ def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
 
 
 def test_a_ros2_control_bound_of_the_limits_digits_a_power_of_ten_off_is_a_slipped_decimal(tmp_path):
-    said = _u515(tmp_path, "-10", "1.5")
+    said = _u515(tmp_path, "-12.5", "1.5", 'lower="-1.25" upper="1.25"')
     assert said[0].endswith("really moves that far: the same digits 10 times apart, a decimal "
                             "point slipped")
     assert said[1].endswith("really moves that far")

@@ -479,7 +479,9 @@ def _limit_findings(robot, left, right, found, pair):
         a = attribute_number(left.find("limit"), attribute) if left.find("limit") is not None else None
         b = attribute_number(right.find("limit"), attribute) if right.find("limit") is not None else None
         if a is not None and b is not None and not _near(a, b, 1e-9, 0.01):
-            differences.append(f"{attribute} {a:g} and {b:g}")
+            slip = decimal_slip(a, b)
+            differences.append(f"{attribute} {a:g} and {b:g}"
+                               + (f" ({slip[2:]})" if slip else ""))
     range_text = _range_difference(robot, left, right, found, pair)
     if range_text:
         differences.insert(0, range_text)
