@@ -106,6 +106,13 @@ def test_a_catkin_file_only_melodics_xacro_fails_on_is_expanded_as_noetics(tmp_p
     (arm / "urdf" / "r.urdf.xacro").write_text(text)
     with pytest.raises(LoadError, match='Invalid parameter "name"'):
         load(arm / "urdf" / "r.urdf.xacro")
+    # xacro's own tags unprefixed are Melodic's file (robotis_op's constants.xacro, a property
+    # 'lb-in-in_kg-m-m'): Noetic's xacro would leave them unread, which is no expansion of it
+    (arm / "urdf" / "c.xacro").write_text(
+        '<robot name="c" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <property name="lb-in-in" value="0.04"/>\n  <link name="base"/>\n</robot>\n')
+    with pytest.raises(LoadError, match="valid python identifiers"):
+        load(arm / "urdf" / "c.xacro")
 
 
 @pytest.mark.parametrize("build_tool", ["ament_cmake", None])

@@ -119,6 +119,7 @@ class _Session:
         self.text = 0
         self.ros1_tags = False  # read unprefixed xacro tags as ROS 1's xacro up to Melodic did
         self.unprefixed: dict[int, tuple[str, str, int]] = {}  # file index -> (stamp, tag, count)
+        self.renamed_tags = False  # one of xacro's own tags was read without its prefix
 
     def allow_root(self, folder) -> None:
         self.roots.append(files.real_path(folder))
@@ -244,6 +245,7 @@ def _prefix_ros1_tags(session: _Session, doc) -> None:
             continue
         stamp = element.getAttribute(STAMP)
         _record_unprefixed(session, stamp, f"<{tag}>")
+        session.renamed_tags = True
         element.tagName = element.nodeName = f"xacro:{tag}"
         if element.tagName in _UNSTAMPED and stamp:
             element.removeAttribute(STAMP)
@@ -268,6 +270,14 @@ def _unprefixed_warnings(session: _Session) -> list[tuple[Location, str]]:
             "xacro since Noetic (1.14) and ROS 2's xacro leave it in the output, and the robot "
             "loses what it does there. Prefix it: <xacro:...>")))
     return found
+
+
+def _melodic_only(session: _Session) -> bool:
+    """Whether a failure may be Melodic's reading alone: it read an element named as a macro
+    without the xacro: prefix as a call (Gazebo's ``<camera>`` in a macro ``camera``). A file
+    written with xacro's own tags unprefixed (``<property>``) is Melodic's: Noetic's xacro
+    would leave them in the output, and that is no expansion of it."""
+    return bool(session.unprefixed) and not session.renamed_tags
 
 
 def _reads_ros1_tags(path: Path) -> bool:
@@ -322,9 +332,10 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     ``allow_env`` is false). Empty means anywhere. Folders of packages found are added.
 
     A catkin package's file is read as ROS 1's xacro up to Melodic read it (unprefixed tags
-    and macro calls are xacro's). When xacro fails so, relying on that reading, and succeeds
-    as Noetic's (1.14) and ROS 2's read the file, the robot is that expansion and Melodic's
-    failure a warning: it depends on the ROS 1 distribution (curiosity_mars_rover's
+    and macro calls are xacro's). When xacro fails so, having read an element named as a macro
+    as its call (and none of xacro's own tags unprefixed: :func:`_melodic_only`), and
+    succeeds as Noetic's (1.14) and ROS 2's read the file, the robot is that expansion and
+    Melodic's failure a warning: it depends on the ROS 1 distribution (curiosity_mars_rover's
     ``<camera name="camera">`` in the body of its macro ``camera``, for Noetic).
     """
     ros1 = _reads_ros1_tags(path)
@@ -386,7 +397,7 @@ def _expand(path: Path, data: bytes, args: dict[str, str], resolver, allow_env: 
             xacro.process_doc(doc, mappings=dict(args), verbosity=1)
         root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
     except XacroFailure as failure:
-        failure.melodic = bool(session.unprefixed)
+        failure.melodic = _melodic_only(session)
         raise
     except RecursionError:
         where = _failure_location(session, sys.exc_info()[2], path)
@@ -398,7 +409,7 @@ def _expand(path: Path, data: bytes, args: dict[str, str], resolver, allow_env: 
         if _caused_by(error, MemoryError):
             raise MemoryError(str(error)) from None
         failure = _as_failure(session, error, path, doc)
-        failure.melodic = bool(session.unprefixed)
+        failure.melodic = _melodic_only(session)
         raise failure from None
     finally:
         for (module, name), function in originals.items():
