@@ -188,3 +188,14 @@ def test_length_and_unit_scale_before_they_square():
     assert unit((1e-320, 0, 0)) == (1.0, 0.0, 0.0)
     assert unit((0, 0, 0)) is None and unit((math.inf, 0, 0)) is None
     assert unit((1, math.nan, 0)) is None and math.isnan(length((math.nan, 1)))
+
+
+@pytest.mark.parametrize("a, b, said", [
+    (0.0070309794, 0.070309794, ": the same digits 10 times apart, a decimal point slipped"),
+    (0.325, 0.000325, ": the same digits 1000 times apart, a decimal point slipped"),
+    (0.325, 0.0326, ""), (0.8, 0.8, ""), (0.0, 0.5, ""), (-0.1, -1.0, ""),
+    (float("inf"), 1.0, ""), (5e-324, 1e308, "")])
+def test_decimal_slip_is_said_of_the_same_digits_a_power_of_ten_apart(a, b, said):
+    from urdftool.numbers import decimal_slip
+
+    assert decimal_slip(a, b) == said and decimal_slip(b, a) == said

@@ -147,3 +147,17 @@ def numbers(values: Iterable[float], digits: int = 4, separator: str = " ",
     finite = [abs(v) for v in values if math.isfinite(v)]
     scale = max([*finite, floor]) or None
     return separator.join(number(v, digits, scale=scale) for v in values)
+
+
+def decimal_slip(a: float, b: float) -> str:
+    """What a message comparing two values of one quantity adds when they are the same digits
+    a power of ten apart (ROBOTIS-OP's MP_TIBIA_L 0.0070309794 kg and MP_TIBIA_R 0.070309794,
+    a wheel radius 0.0325 against the URDF's 0.325): a decimal point slipped, not a design;
+    empty otherwise."""
+    ratio = b / a if a > 0 and b > 0 and math.isfinite(a) and math.isfinite(b) else 0.0
+    if not 0.0 < ratio < math.inf:
+        return ""
+    power = round(math.log10(ratio))
+    if power == 0 or abs(ratio / 10.0 ** power - 1) > 1e-6:
+        return ""
+    return f": the same digits {10 ** abs(power):g} times apart, a decimal point slipped"

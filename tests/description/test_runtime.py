@@ -261,3 +261,42 @@ def test_builds_all_giving_other_xacro_arguments_are_the_robot_built_otherwise(
     root = _repo(tmp_path, files)
     found = built_otherwise(load(str(root / "arm_description/urdf/arm.urdf.xacro")))
     assert [other for _, other in found] == otherwise
+
+
+DUAL = """<robot name="dual" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="prefix_1" default=""/><xacro:arg name="prefix_2" default=""/>
+  <xacro:arg name="side" default=""/>
+  <link name="base"/>
+  <link name="$(arg prefix_1)_tool"/><link name="$(arg prefix_2)_tool"/>
+  <xacro:if value="${'$(arg side)' != ''}"><link name="extra"/></xacro:if>
+</robot>"""
+
+
+def test_placeholder_clashes_names_the_arguments_that_name_the_clashing_elements_apart(tmp_path):
+    from urdftool.description.runtime import placeholder_clashes
+
+    path = tmp_path / "dual.urdf.xacro"
+    path.write_text(DUAL)
+    robot = load_and_check(str(path), CheckOptions()).robot
+    clash = placeholder_clashes(robot)
+    # `side` changed the elements (an `xacro:if`), so the two builds are compared as wholes,
+    # and it names nothing that clashed: only the two prefixes are said
+    assert clash is not None and clash.args == ("prefix_1", "prefix_2")
+    assert clash.links == {"_tool"} and not clash.joints
+
+
+def test_placeholder_clashes_knows_nothing_of_a_build_that_fails_or_was_not_made_by_the_engine(tmp_path):
+    from urdftool.description.runtime import placeholder_clashes
+    from urdftool.errors import LoadError
+
+    path = tmp_path / "dual.urdf.xacro"
+    path.write_text(DUAL)
+    robot = load(path)
+    assert robot.rebuild is None and placeholder_clashes(robot) is None
+    robot = load(path)
+
+    def fails(args):
+        raise LoadError("xacro", "fails", None)
+
+    robot.rebuild = fails
+    assert placeholder_clashes(robot) is None

@@ -58,6 +58,9 @@ class Robot:
     xacro_args: the xacro arguments it was checked with (the rest took their defaults)
     targets: the simulators the robot is checked for (``check --target``): name -> the version
         whose behaviour to predict (a tuple of numbers), or None for the newest known
+    rebuild: ``rebuild(args)`` loads the same file again as it was loaded (its packages,
+        environment and limits) with these xacro arguments given too (raises LoadError); None
+        where the checking engine did not load it
     """
 
     path: str
@@ -73,6 +76,7 @@ class Robot:
     mesh_limits: MeshLimits = field(default_factory=MeshLimits)
     xacro_args: Mapping = field(default_factory=dict)
     targets: dict = field(default_factory=dict)
+    rebuild: Callable | None = field(default=None, repr=False, compare=False)
     _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 

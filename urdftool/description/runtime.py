@@ -627,6 +627,95 @@ def built_as_checked(robot) -> bool:
         not built_otherwise(robot)
 
 
+@dataclass(frozen=True)
+class Placeholders:
+    """Names that clash in the robot as checked only because xacro arguments kept an empty
+    default (:func:`placeholder_clashes`): ``args`` those arguments, in the order declared;
+    ``links`` and ``joints`` the clashing names that differ once each is given a value of its
+    own."""
+
+    args: tuple
+    links: frozenset
+    joints: frozenset
+
+
+def placeholder_clashes(robot) -> Placeholders | None:
+    """What of the robot's clashing link and joint names comes from placeholder arguments: a
+    dual arm whose arms take their names from ``prefix_1`` and ``prefix_2``, both declared
+    ``default=""``, names both arms alike when xacro runs without arguments, and urdfdom
+    refuses it; the launch file building it gives each a value (abb_ros2_control reads them
+    from a YAML file at launch). The robot is built once more with each argument declared with
+    an empty default and not given a value of its own (``robot.rebuild``); a name clashing as
+    checked clashes only with the defaults when, in that build, its elements have names of
+    their own, each named from another of those arguments. A clash of ``${prefix}base_link``
+    with a ``base_link`` written as it is (HEBI's rosie: an arm kit inside a base) stays: the
+    robot's own default build, the one a single robot is meant to have, holds it. None when
+    no name clashes so, when a launch file builds the robot as checked (the clash then
+    runs), or when that build fails (nothing is known of it)."""
+    return robot.memo(placeholder_clashes, lambda: _placeholder_clashes(robot))
+
+
+def _placeholder_clashes(robot) -> Placeholders | None:
+    if robot.rebuild is None or not robot.from_xacro:
+        return None
+    clashing = {tag: _clashing(robot, tag) for tag in ("link", "joint")}
+    if not any(clashing.values()):
+        return None
+    given = getattr(robot, "xacro_args", {})
+    empty = []
+    for data in robot.sources.values():
+        for name, default in _XACRO_ARG.findall(data):
+            name = name.decode("utf-8", "replace")
+            if not default and name not in given and name not in empty:
+                empty.append(name)
+    if not empty or built_as_checked(robot):
+        return None
+    from urdftool.errors import LoadError
+
+    values = {name: f"urdftool{index}z" for index, name in enumerate(empty)}
+    try:
+        other = robot.rebuild(values)
+    except LoadError:
+        return None
+
+    def args_in(text) -> frozenset:
+        return frozenset(name for name in empty if text and values[name] in text)
+
+    found, used = {}, set()
+    for tag, names in clashing.items():
+        mine = [robot.names()[element] for element in robot.children(tag)]
+        theirs = [other.names()[element] for element in other.children(tag)]
+        still = _clashing(other, tag)
+        if len(mine) != len(theirs):  # the arguments chose other elements: the whole, or nothing
+            named = set().union(*(args_in(text) for text in theirs))
+            found[tag] = frozenset() if still or len(named) < 2 else frozenset(names)
+            used.update(named if found[tag] else ())
+            continue
+        found[tag] = frozenset()
+        for name in names:
+            each = [args_in(theirs[index]) for index, mine_name in enumerate(mine)
+                    if mine_name == name]
+            if all(each) and len(set(each)) == len(each) and not any(
+                    theirs[index] in still for index, mine_name in enumerate(mine)
+                    if mine_name == name):
+                found[tag] |= {name}
+                used.update(*each)
+    if not (found["link"] or found["joint"]):
+        return None
+    return Placeholders(tuple(name for name in empty if name in used), found["link"],
+                        found["joint"])
+
+
+def _clashing(robot, tag: str) -> set:
+    """The names two or more of the robot's ``tag`` elements have."""
+    named, seen, twice = robot.names(), set(), set()
+    for element in robot.children(tag):
+        name = named[element]
+        if name is not None:
+            (twice if name in seen else seen).add(name)
+    return twice
+
+
 # --- the questions rules ask --------------------------------------------------------------------
 
 @dataclass(frozen=True)

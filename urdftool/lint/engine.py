@@ -227,6 +227,9 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits
     robot.xacro_args = xacro_args
+    robot.rebuild = lambda more: load(path, xacro_args={**xacro_args, **more}, data=data,
+                                      packages=options.packages, allow_env=options.allow_env,
+                                      max_file_size=options.max_file_size)
     with COLLECTION[1]():
         findings = check_robot(robot, options.selection)
     if built and options.selection.allows(built[0].code):

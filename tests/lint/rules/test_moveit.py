@@ -261,3 +261,13 @@ def test_a_tree_group_is_said_at_its_kinematics_entry_without_naming_that_line_a
     assert finding.file.endswith("kinematics.yaml") and finding.line == 2
     assert finding.message.startswith("group 'left_arm' is solved by KDLKinematicsPlugin but "
                                       "is not one serial chain: a tree"), finding.message
+
+
+def test_a_moveit_limit_of_the_urdfs_digits_a_power_of_ten_off_is_a_slipped_decimal(tmp_path):
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "joint_limits.yaml":
+             "joint_limits:\n  head_joint:\n    has_velocity_limits: true\n    max_velocity: 10\n"
+             "    has_effort_limits: true\n    max_effort: 6\n"}
+    found, findings = check_folder(tmp_path, files, srdf=str(tmp_path / "robot.srdf"))
+    said = sorted(f.message for f in findings if f.code == "U816")
+    assert len(said) == 2 and not said[0].endswith("slipped")  # effort 6 against 5
+    assert said[1].endswith("use at most 1: the same digits 10 times apart, a decimal point slipped")

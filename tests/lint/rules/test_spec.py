@@ -104,3 +104,11 @@ def test_urdf_range_is_the_spec_range_times_pi_over_180(tmp_path, spec, reported
     found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec},
                                    select=("U706",))
     assert bool(found) == reported, [f.message for f in findings]
+
+
+def test_a_limit_of_the_spec_digits_a_power_of_ten_off_is_said_to_be_a_slipped_decimal_point(tmp_path):
+    spec = "unit: rad\njoints:\n  head_joint: {lower: -0.1, upper: 0.3, velocity: 0.1}\n"
+    _, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
+    said = [f.message.endswith(": the same digits 10 times apart, a decimal point slipped")
+            for f in findings]
+    assert len(findings) == 3 and said == [True, False, True]  # lower, upper, velocity

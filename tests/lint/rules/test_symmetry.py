@@ -136,3 +136,14 @@ def test_a_serial_arms_l_and_r_axes_are_not_two_sides(tmp_path):
                      '</link>')
         parent = f"link_{axis}"
     assert _found(tmp_path, f'<robot name="r">{"".join(chain)}</robot>') == []
+
+
+def test_masses_of_the_same_digits_a_power_of_ten_apart_are_a_slipped_decimal_point(tmp_path):
+    shin = '<link name="r_shin_link">\n    <inertial>\n      <origin xyz="0 0 -0.1"/>\n      '
+    slipped = _legs(**{shin + '<mass value="0.8"/>': shin + '<mass value="0.08"/>'})
+    [(code, message)] = _found(tmp_path, slipped, ("U221",))
+    assert code == "U221" and message.endswith(
+        "(0.8 and 0.08 kg, 90 %): the same digits 10 times apart, a decimal point slipped")
+    other = _legs(**{shin + '<mass value="0.8"/>': shin + '<mass value="0.09"/>'})
+    [(code, message)] = _found(tmp_path, other, ("U221",))
+    assert message.endswith("(0.8 and 0.09 kg, 89 %)")

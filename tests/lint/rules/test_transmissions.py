@@ -220,18 +220,30 @@ def test_an_interface_written_only_in_the_actuator_is_a_warning_to_move_it(tmp_p
     assert "move it into <joint>" in findings[0].message
 
 
-def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
-    # igus ReBeL's joint2: 'position min is -2.0944, beyond the URDF <limit> (-1.91986);
-    # commands up to -2.0944 pass ros2_control' read as if -2.0944 were a ceiling
-    body = """<ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
-      <joint name="head_joint"><command_interface name="position"><param name="min">-1.2</param>
-      <param name="max">1.2</param></command_interface><state_interface name="position"/></joint>
+def _u515(tmp_path, low: str, high: str) -> list[str]:
+    """U515's messages (min's, then max's) for head_joint's position bounds ``low``, ``high``."""
+    body = f"""<ros2_control name="s" type="system"><hardware><plugin>p/P</plugin></hardware>
+      <joint name="head_joint"><command_interface name="position"><param name="min">{low}</param>
+      <param name="max">{high}</param></command_interface><state_interface name="position"/></joint>
       </ros2_control>"""
     _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)},
                                select=("U515",))
-    low, high = sorted((f.message for f in findings), key=lambda m: "max" in m)
+    return sorted((f.message for f in findings), key=lambda m: "max" in m)
+
+
+def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
+    # igus ReBeL's joint2: 'position min is -2.0944, beyond the URDF <limit> (-1.91986);
+    # commands up to -2.0944 pass ros2_control' read as if -2.0944 were a ceiling
+    low, high = _u515(tmp_path, "-1.2", "1.2")
     assert "position min is -1.2, beyond the URDF <limit> (-1); commands down to -1.2 pass" in low
     assert "position max is 1.2, beyond the URDF <limit> (1); commands up to 1.2 pass" in high
+
+
+def test_a_ros2_control_bound_of_the_limits_digits_a_power_of_ten_off_is_a_slipped_decimal(tmp_path):
+    said = _u515(tmp_path, "-10", "1.5")
+    assert said[0].endswith("really moves that far: the same digits 10 times apart, a decimal "
+                            "point slipped")
+    assert said[1].endswith("really moves that far")
 def test_a_ros2_control_block_of_3000_joints_looks_for_its_plugin_once(tmp_path, monkeypatch):
     """session 9: each command interface looked for its block's hardware plugin among the
     block's children; 20,000 joints in one <ros2_control> went past the 60 s budget (U015)."""

@@ -16,7 +16,7 @@ from urdftool.description.runtime import runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
-from urdftool.numbers import number, numbers, unit
+from urdftool.numbers import decimal_slip, number, numbers, unit
 from urdftool.physics import mat3
 
 GEOMETRY_TOLERANCE = 0.05
@@ -196,7 +196,8 @@ def diff_drive_geometry(robot):
                 off = 100 * (values[0] - expected) / expected
                 yield where, _said(robot, drive, (f"{drive.label}: {tag} is {values[0]:g} m but the "
                                                   f"URDF gives {number(expected)} m "
-                                                  f"({number(off, places=1, plus=True)} %)"))
+                                                  f"({number(off, places=1, plus=True)} %)"
+                                                  + decimal_slip(values[0], expected)))
 
 
 HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg is horizontal

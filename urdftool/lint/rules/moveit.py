@@ -15,6 +15,7 @@ from urdftool.errors import available
 from urdftool.description.runtime import moveit_execution
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.lint.rules.srdf import as_moveit_runs
+from urdftool.numbers import decimal_slip
 
 TOLERANCE = 1e-9  # relative, so that a value copied from the URDF with all its digits passes
 
@@ -222,7 +223,7 @@ def moveit_limits_exceed_urdf(robot):
                 yield file.at(entry.lines[key]), (
                     f"joint '{entry.joint}': MoveIt's {key} {mine:g} is {what} the URDF's "
                     f"<limit {attribute}=\"{urdf:g}\">, so MoveIt would plan beyond what the "
-                    f"joint allows; use {bound} {urdf:g}")
+                    f"joint allows; use {bound} {urdf:g}" + decimal_slip(sign * mine, sign * urdf))
 
 
 def _rounded(written: float, urdf: float) -> bool:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from urdftool.description.companions import companions, is_spec
 from urdftool.description.documents import YamlMap
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import decimal_slip, number
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
@@ -192,12 +192,14 @@ def limit_outside_spec(robot):
                 yield where, (f"joint '{entry.name}': {key} limit {number(urdf)} {unit} is "
                               f"{number(beyond)} {unit} beyond the spec's {entry.entry[key]:g} "
                               f"{unit} "
-                              f"(tolerance {tolerance:g} {unit})")
+                              f"(tolerance {tolerance:g} {unit})"
+                              + decimal_slip(sign * urdf, sign * entry.entry[key]))
         for key in ("effort", "velocity"):
             value, allowed = _limit(joint, key), entry.entry.get(key)
             if value is not None and allowed is not None and value > allowed * (1 + SI_TOLERANCE):
                 yield where, (f"joint '{entry.name}': {key} limit {value:g} exceeds the spec's "
-                              f"{allowed:g} by {number(value - allowed)}")
+                              f"{allowed:g} by {number(value - allowed)}"
+                              + decimal_slip(value, allowed))
 
 
 @rule("U704", "joint-not-in-spec", Severity.WARNING)

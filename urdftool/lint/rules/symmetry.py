@@ -10,6 +10,10 @@ gripper) is declared with a suppression comment before either element of the pai
 the macro call that makes it: ``<!-- urdftool: ignore U221 -->``; a whole robot that is not
 symmetric by design with ``ignore = ["U218"...]`` in the settings.
 
+A place that differs between two fixed parts with nothing moving below them (cameras, IMUs,
+skin patches, logos) is a note (U218): such parts are placed asymmetrically by design far more
+often than by a slip.
+
 Nothing is said when fewer than two pairs agree with the plane they give (a robot whose sides
 are not mirror images by design: two identical arms turned 180 degrees apart, say), and each
 difference is reported once, at the first pair down the tree where it appears.
@@ -23,9 +27,9 @@ from dataclasses import dataclass
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import number as attribute_number
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import decimal_slip, number
 from urdftool.physics import mat3
-from urdftool.physics.frames import joint_frames, link_frames, parent_joints, world_axis
+from urdftool.physics.frames import child_joints, joint_frames, link_frames, parent_joints, world_axis
 from urdftool.physics.mass import declared_of, moments_of
 from urdftool.physics.mirror import joint_pairs, link_pairs, plane
 from urdftool.physics.wheels import driven_joints
@@ -304,6 +308,11 @@ def mirror_origin(robot):
     off (the joints below it move with it). Not judged unless most pairs, and at least two,
     agree with the plane.
 
+    A **note** when both joints are fixed and nothing below either moves (a camera, an IMU, a
+    skin patch, a foot's contact frame, a logo): such parts are often placed asymmetrically by
+    design, and in 281 public repositories none of these was a slip an engineer could name
+    (iCub's forearm skins, Unitree's side cameras, the Create 3's infrared sensors).
+
     Bad: ``l_knee`` at ``xyz="0 0 -0.093"`` and ``r_knee`` at ``xyz="0 0 -0.039"``
     Good: both legs from one macro, the side given as ``reflect="1"`` / ``"-1"``
     """
@@ -318,11 +327,36 @@ def mirror_origin(robot):
         above = _upstream_pair(robot, left, right)
         if above is not None and above in pairs and pairs[above].kind == "off":
             continue  # moved with the pair above, reported there
-        yield _located(robot, robot.joints[left], robot.joints[right]), (
+        message = (
             f"joints '{left}' and '{right}' are not mirror images: '{right}' is at "
             f"{_text(frames[right][0])} m, {number(pair.residual * 1000, places=0)} mm from the mirror image "
             f"of '{left}' {_text(mirror.reflect(frames[left][0]))} about the robot's mirror "
             f"plane (normal {_text(mirror.normal)}); one side's origin differs")
+        where = _located(robot, robot.joints[left], robot.joints[right])
+        if _rigid_end(robot, left) and _rigid_end(robot, right):
+            yield where, message + (" (both fixed, nothing moving below them: a sensor or "
+                                    "marker may be placed so by design)"), None, Severity.INFO
+        else:
+            yield where, message
+
+
+def _rigid_end(robot, name: str) -> bool:
+    """Whether joint ``name`` is fixed and every joint below its child link is fixed too: a
+    part rigidly attached at the end of the tree (a sensor with its optical frames)."""
+    joint, below = robot.joints[name], child_joints(robot)
+    if robot.kinds()[joint] != "fixed":
+        return False
+    links, seen = [robot.ends()[joint]["child"][1]], set()
+    while links:
+        link = links.pop()
+        if link in seen:
+            continue
+        seen.add(link)
+        for child in below.get(link, ()):
+            if robot.kinds()[child] != "fixed":
+                return False
+            links.append(robot.ends()[child]["child"][1])
+    return True
 
 
 def _limits(joint) -> tuple[float, float] | None:
@@ -492,6 +526,9 @@ def mirror_inertial(robot):
     copied part's is not at its partner's mirror image, and both are right. A zero tensor on
     one side is U304's finding; links without an inertial on either side are U303's.
 
+    Two masses of the same digits a power of ten apart (0.0070309794 and 0.070309794 kg, as
+    ROBOTIS-OP's tibias) are said to be a decimal point slipped.
+
     Bad: ``l_thigh_link`` 0.119 kg and ``r_thigh_link`` 0.191 kg
     Good: both 0.119 kg
     """
@@ -508,7 +545,8 @@ def mirror_inertial(robot):
         names = f"links '{left}' and '{right}'"
         if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
-                          f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)")
+                          f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
+                          + decimal_slip(a.mass, b.mass))
             continue
         moments_a = moments_of(robot, robot.links[left])
         moments_b = moments_of(robot, robot.links[right])

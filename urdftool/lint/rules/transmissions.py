@@ -25,6 +25,7 @@ from urdftool.errors import available, close_names
 from urdftool.description.values import parse_numbers
 from urdftool.description.xacro_text import condition_dropping
 from urdftool.description.xml import attribute
+from urdftool.numbers import decimal_slip
 
 ROS2_INTERFACES = ("position", "velocity", "acceleration", "effort", "torque", "force",
                    "current", "temperature")
@@ -566,7 +567,7 @@ def ros2_control_limits(robot):
                         f"the URDF <limit> ({edge:g}); commands {'down' if name == 'min' else 'up'} "
                         f"to {value:g} pass ros2_control "
                         f"but exceed the description: use {edge:g}, or widen <limit> if the joint "
-                        "really moves that far")
+                        "really moves that far" + decimal_slip(abs(value), abs(edge) if value * edge > 0 else 0.0))
 
 
 def _allowed_range(joint, limit, kind) -> tuple[float, float] | None:

@@ -19,8 +19,27 @@ def _duplicates(robot, tag: str):
             continue  # a missing name is U103's finding
         if name in seen:
             first = robot.locate(robot.links[name] if tag == "link" else robot.joints[name])
-            yield element, f"{tag} '{name}' is defined {counts[name]} times (first at {first})"
+            yield element, _unless_given(robot, tag, name, f"{tag} '{name}' is defined "
+                                                           f"{counts[name]} times (first at {first})")
         seen.add(name)
+
+
+def _unless_given(robot, tag: str, name: str, message: str) -> str:
+    """``message`` of a clash of ``name`` (a link's or a joint's), a warning saying so when
+    only placeholder xacro arguments make it (:func:`~urdftool.description.runtime.
+    placeholder_clashes`: both arms of a dual arm named from ``prefix_1`` and ``prefix_2``,
+    each ``default=""``): it holds for a plain ``xacro FILE``, not for a build giving them."""
+    from urdftool.description.runtime import placeholder_clashes
+
+    clash = placeholder_clashes(robot)
+    if clash is None or name not in (clash.links if tag == "link" else clash.joints):
+        return message
+    args = clash.args
+    listed = f"argument {args[0]} keeps its empty default" if len(args) == 1 else \
+        f"arguments {', '.join(args[:-1])} and {args[-1]} keep their empty defaults"
+    return Conditional(f"{message}, only while the xacro {listed}: a build giving "
+                       f"{'it a value' if len(args) == 1 else 'each a value of its own'} "
+                       f"({' '.join(f'{arg}:=...' for arg in args)}) names them apart")
 
 
 @rule("U101", "duplicate-link", Severity.ERROR)
@@ -28,6 +47,12 @@ def duplicate_link(robot):
     """Two links have the same name.
 
     urdfdom refuses the file; tools that tolerate it keep one of the two at random.
+
+    A **warning** naming the arguments when only xacro arguments declared with an empty
+    default make the clash (a dual arm whose arms are named from ``prefix_1`` and
+    ``prefix_2``, both ``default=""``): the robot built again with each given a value of its
+    own names them apart, and the launch file that gives them (abb_ros2_control's, from a YAML
+    file read at launch) builds that. An error when a launch file here builds it as checked.
 
     Bad: ``<link name="arm"/> ... <link name="arm"/>``
     Good: ``<link name="upper_arm"/> ... <link name="forearm"/>``
@@ -40,6 +65,7 @@ def duplicate_joint(robot):
     """Two joints have the same name.
 
     Joint names key /joint_states, controllers and transmissions: a duplicate makes them ambiguous.
+    A warning when only xacro arguments with empty defaults make the clash (as U101).
 
     Bad: two ``<joint name="wheel_joint">`` elements
     Good: ``left_wheel_joint`` and ``right_wheel_joint``
@@ -151,7 +177,8 @@ def multiple_parents(robot):
     """A link is the child of more than one joint.
 
     URDF describes a tree: each link has at most one parent joint. Closed chains need a
-    different format (SDF) or a mimic joint.
+    different format (SDF) or a mimic joint. A warning when the link's name clashes only
+    because xacro arguments keep their empty defaults (as U101).
 
     Bad: joints ``a_to_c`` and ``b_to_c`` both with ``<child link="c"/>``
     Good: one of them attaches a new link instead.
@@ -160,8 +187,8 @@ def multiple_parents(robot):
         if len(joints) > 1:
             names = ", ".join(f"'{j.get('name')}'" for j in joints)
             for joint in joints[1:]:
-                yield robot.ends()[joint]["child"][0], \
-                    f"link '{child}' has {len(joints)} parent joints ({names})"
+                yield robot.ends()[joint]["child"][0], _unless_given(
+                    robot, "link", child, f"link '{child}' has {len(joints)} parent joints ({names})")
 
 
 def roots(robot) -> list[str]:
