@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from urdftool.description.load import load
+from urdftool.errors import LoadError
 
 
 @pytest.mark.parametrize("text", ["0 0 0.1", "base_link", "", " spaced  out ", "a{b}(c)",
@@ -78,6 +79,40 @@ def test_a_catkin_package_is_expanded_as_ros1_xacro_read_unprefixed_tags(tmp_pat
         ("r.urdf.xacro", 2), ("parts.xacro", 2)]
     assert "<property> without the xacro: prefix (and 6 more in this file)" in warned[0][2]
     assert "Noetic (1.14)" in warned[0][2]
+
+
+def test_a_catkin_file_only_melodics_xacro_fails_on_is_expanded_as_noetics(tmp_path):
+    # curiosity_mars_rover (Noetic): its macro 'camera' writes Gazebo's <camera name="camera">,
+    # which Melodic's xacro reads as a call of that macro ('Invalid parameter "name"'); Noetic's
+    # expands the file. The robot is checked so, and Melodic's failure is a warning there.
+    arm = _package(tmp_path / "arm", "catkin")
+    (arm / "urdf").mkdir()
+    (arm / "urdf" / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="camera" params="camera_name">\n'
+        '    <link name="${camera_name}"/>\n'
+        '    <gazebo reference="${camera_name}"><sensor type="camera" name="s">\n'
+        '      <camera name="camera"/></sensor></gazebo>\n'
+        '  </xacro:macro>\n'
+        '  <xacro:camera camera_name="mast"/>\n</robot>\n')
+    robot = load(arm / "urdf" / "r.urdf.xacro")
+    assert robot.root.find("gazebo/sensor/camera").get("name") == "camera"
+    [warned] = [note for note in robot.notes if note.kind == "xacro-warning"]
+    assert warned.location.line == 5 and "Melodic (1.13) fails here: Invalid parameter" \
+        in warned.message and "Noetic (1.14)" in warned.message
+    # a file that fails as Noetic reads it too keeps its failure, as Melodic says it
+    text = (arm / "urdf" / "r.urdf.xacro").read_text().replace(
+        "</robot>", '<link name="${nowhere}"/></robot>')
+    (arm / "urdf" / "r.urdf.xacro").write_text(text)
+    with pytest.raises(LoadError, match='Invalid parameter "name"'):
+        load(arm / "urdf" / "r.urdf.xacro")
+    # xacro's own tags unprefixed are Melodic's file (robotis_op's constants.xacro, a property
+    # 'lb-in-in_kg-m-m'): Noetic's xacro would leave them unread, which is no expansion of it
+    (arm / "urdf" / "c.xacro").write_text(
+        '<robot name="c" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <property name="lb-in-in" value="0.04"/>\n  <link name="base"/>\n</robot>\n')
+    with pytest.raises(LoadError, match="valid python identifiers"):
+        load(arm / "urdf" / "c.xacro")
 
 
 @pytest.mark.parametrize("build_tool", ["ament_cmake", None])

@@ -117,13 +117,20 @@ def test_notes_become_findings_that_the_selection_and_suppressions_filter(tmp_pa
     assert "U010" not in [f.code for f in load_and_check(str(path), ignoring).findings]
 
 
+def _repository(tmp_path, files: dict[str, str]) -> None:
+    """A repository (its .git, as a clone has) of ``files``: path -> text."""
+    (tmp_path / ".git").mkdir()
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+
+
 def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_path):
     # ur.xacro needs robot_model, which has no default: load_ur5.launch gives it. The robot is
     # checked as that launch file builds it, and U005 is a note naming it (issue 30: the
     # launch files say against which xacro arguments)
     from urdftool.diagnostics import Severity
 
-    (tmp_path / ".git").mkdir()
     files = {
         "arm/package.xml": "<package format='2'><name>arm</name></package>",
         "arm/urdf/arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -136,9 +143,7 @@ def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_pat
         "arm/launch/load_m5.launch": """<launch>
   <include file="$(find arm)/launch/load_arm.launch"><arg name="model" value="m5"/></include>
 </launch>"""}
-    for name, text in files.items():
-        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text(text)
+    _repository(tmp_path, files)
     robot = str(tmp_path / "arm/urdf/arm.urdf.xacro")
     result = load_and_check(robot, CheckOptions())
     assert result.robot is not None and "m5_base" in result.robot.links
@@ -159,13 +164,34 @@ def test_a_robot_needing_an_argument_is_built_as_a_launch_file_builds_it(tmp_pat
     assert "load_arm.launch:2 builds this robot without it" in failed.findings[0].message
 
 
+def test_a_launch_files_build_failing_on_a_package_not_installed_here_is_u006s(tmp_path):
+    # mmuav_gazebo's mmcuav.gazebo.xacro needs $(arg name), which mmcuav.launch gives, and
+    # includes RotorS' $(find rotors_description): built so, xacro fails only because that
+    # package is not installed here, the environment's (U006, a warning), not an error
+    from urdftool.diagnostics import Severity
+
+    files = {
+        "uav/package.xml": "<package format='2'><name>uav</name></package>",
+        "uav/urdf/uav.urdf.xacro": """<robot name="uav" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="$(arg name)_base"/>
+  <xacro:include filename="$(find rotors_description)/urdf/component_snippets.xacro"/>
+</robot>""",
+        "uav/launch/uav.launch": """<launch>
+  <param name="robot_description" command="xacro $(find uav)/urdf/uav.urdf.xacro name:=uav"/>
+</launch>"""}
+    _repository(tmp_path, files)
+    result = load_and_check(str(tmp_path / "uav/urdf/uav.urdf.xacro"), CheckOptions())
+    [finding] = result.findings
+    assert (finding.code, finding.severity) == ("U006", Severity.WARNING)
+    assert "uav.launch builds it (name:=uav), and xacro fails so here" in finding.message
+
+
 def test_findings_name_a_launch_test_as_a_launch_test(tmp_path):
     """A build told by a launch test is named as one (launch.named), in U005's and U007's
     messages alike: a launch test builds the robot for the test alone. One that cannot be read
     is unknown: U005's 'declared nowhere' is then a note naming it."""
     from urdftool.diagnostics import Severity
 
-    (tmp_path / ".git").mkdir()
     test = ("import xacro\n\ndef generate_test_description():\n"
             "    doc = xacro.process_file(os.path.join(get_package_share_directory('arm'), "
             "'urdf', '{name}'), mappings={{'model': 'm5'}})\n"
@@ -180,9 +206,7 @@ def test_findings_name_a_launch_test_as_a_launch_test(tmp_path):
                                     '<link name="${m}_base"/>\n</robot>',
              "arm/test/arm.py": test.format(name="arm.urdf.xacro"),
              "arm/test/plain.py": test.format(name="plain.urdf")}
-    for name, text in files.items():
-        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text(text)
+    _repository(tmp_path, files)
     [u005] = [f for f in load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"),
                                         CheckOptions()).findings if f.code == "U005"]
     assert f"launch test {tmp_path}/arm/test/arm.py builds it (model:=m5)" in u005.message

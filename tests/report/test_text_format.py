@@ -107,6 +107,16 @@ def test_a_macro_line_expanded_by_several_calls_is_one_place():
     assert "expanded from 2 macro calls at robot.xacro:29, 33" in text
 
 
+def test_call_sites_are_listed_in_reading_order():
+    # KapiBara's five lasers, sorted by name, were "lasers_joints.xacro:94, 92, 93, 95, 96"
+    findings = [Finding("U615", "sensor-unknown-link", Severity.ERROR, f"'{name}' is not a link",
+                        Location("lasers_def.xacro", 47, (Location("lasers_joints.xacro", call),)))
+                for name, call in (("floor", 94), ("front_left", 92), ("front_right", 93),
+                                   ("side_left", 95), ("side_right", 96))]
+    text = _text([FileResult("robot.xacro", findings)])
+    assert "expanded from 5 macro calls at lasers_joints.xacro:92, 93, 94, 95, 96" in text
+
+
 def test_call_sites_write_each_file_once_for_its_run_of_lines():
     """ROBOTIS-OP3 named by an absolute path wrote 21 call sites with their 80-character
     folder each; a file is written once for its run, a site of another file names its own."""

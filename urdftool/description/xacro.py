@@ -20,6 +20,8 @@ ROS 1's xacro up to Melodic (1.13) read it: the seven xacro tags without the ``x
 (:data:`ROS1_TAGS`; an ``<include>`` only when it holds no element, as Gazebo's ``<include><uri>``
 does) and macro calls without it are xacro's (:func:`_prefix_ros1_tags`), each file that relies on
 it named in a warning: xacro since Noetic (1.14) and ROS 2's leave those tags in the output.
+When that reading fails and Noetic's succeeds, the robot is Noetic's expansion and Melodic's
+failure a warning (:func:`expand`).
 
 When xacro raises, the element being processed is recovered from the traceback's frames, so the
 diagnostic points at the line that failed and not just at the file.
@@ -82,6 +84,7 @@ class XacroFailure(Exception):
     subject: str | None = None
     certain: bool = True  # False: may not hold after the package's build (a file it installs)
     close: tuple = ()  # 'package': the packages found whose names are close to ``subject``
+    melodic: bool = False  # read as ROS 1's xacro up to Melodic, relying on unprefixed tags
 
 
 @dataclass
@@ -116,6 +119,7 @@ class _Session:
         self.text = 0
         self.ros1_tags = False  # read unprefixed xacro tags as ROS 1's xacro up to Melodic did
         self.unprefixed: dict[int, tuple[str, str, int]] = {}  # file index -> (stamp, tag, count)
+        self.renamed_tags = False  # one of xacro's own tags was read without its prefix
 
     def allow_root(self, folder) -> None:
         self.roots.append(files.real_path(folder))
@@ -241,6 +245,7 @@ def _prefix_ros1_tags(session: _Session, doc) -> None:
             continue
         stamp = element.getAttribute(STAMP)
         _record_unprefixed(session, stamp, f"<{tag}>")
+        session.renamed_tags = True
         element.tagName = element.nodeName = f"xacro:{tag}"
         if element.tagName in _UNSTAMPED and stamp:
             element.removeAttribute(STAMP)
@@ -265,6 +270,14 @@ def _unprefixed_warnings(session: _Session) -> list[tuple[Location, str]]:
             "xacro since Noetic (1.14) and ROS 2's xacro leave it in the output, and the robot "
             "loses what it does there. Prefix it: <xacro:...>")))
     return found
+
+
+def _melodic_only(session: _Session) -> bool:
+    """Whether a failure may be Melodic's reading alone: it read an element named as a macro
+    without the xacro: prefix as a call (Gazebo's ``<camera>`` in a macro ``camera``). A file
+    written with xacro's own tags unprefixed (``<property>``) is Melodic's: Noetic's xacro
+    would leave them in the output, and that is no expansion of it."""
+    return bool(session.unprefixed) and not session.renamed_tags
 
 
 def _reads_ros1_tags(path: Path) -> bool:
@@ -317,13 +330,42 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
 
     roots: folders included and YAML files may be in; others are reported (refused when
     ``allow_env`` is false). Empty means anywhere. Folders of packages found are added.
+
+    A catkin package's file is read as ROS 1's xacro up to Melodic read it (unprefixed tags
+    and macro calls are xacro's). When xacro fails so, having read an element named as a macro
+    as its call (and none of xacro's own tags unprefixed: :func:`_melodic_only`), and
+    succeeds as Noetic's (1.14) and ROS 2's read the file, the robot is that expansion and
+    Melodic's failure a warning: it depends on the ROS 1 distribution (curiosity_mars_rover's
+    ``<camera name="camera">`` in the body of its macro ``camera``, for Noetic).
     """
+    ros1 = _reads_ros1_tags(path)
+    try:
+        return _expand(path, data, args, resolver, allow_env, read_file, roots, ros1)
+    except XacroFailure as error:
+        if not error.melodic:
+            raise
+        failure = error
+    try:
+        expansion = _expand(path, data, args, resolver, allow_env, read_file, roots, False)
+    except XacroFailure:
+        raise failure from None
+    expansion.warnings.insert(0, (failure.location, (
+        f"ROS 1's xacro up to Melodic (1.13) fails here: {failure.message}, reading tags "
+        "without the xacro: prefix as xacro's (the package builds with catkin); xacro since "
+        "Noetic (1.14) and ROS 2's leave them in the output and expand the file, which is "
+        "checked so: prefix xacro's tags (<xacro:...>) and rename what is not xacro's")))
+    return expansion
+
+
+def _expand(path: Path, data: bytes, args: dict[str, str], resolver, allow_env: bool,
+            read_file, roots, ros1_tags: bool) -> Expansion:
+    """One expansion (:func:`expand`), ``ros1_tags``: as ROS 1's xacro up to Melodic."""
     xacro = _xacro()
     from xacro import substitution_args
 
     read_file = read_file or files.read_regular
     session = _Session(resolver, allow_env, read_file, roots)
-    session.ros1_tags = _reads_ros1_tags(path)
+    session.ros1_tags = ros1_tags
     doc = _parse_stamped(session, str(path), data)
     stderr = _BoundedText(session)
     originals = {
@@ -354,7 +396,8 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
         with contextlib.redirect_stderr(stderr):
             xacro.process_doc(doc, mappings=dict(args), verbosity=1)
         root, locations = _to_lxml(session, doc, Location(display_path(path), 1))
-    except XacroFailure:
+    except XacroFailure as failure:
+        failure.melodic = _melodic_only(session)
         raise
     except RecursionError:
         where = _failure_location(session, sys.exc_info()[2], path)
@@ -365,7 +408,9 @@ def expand(path: Path, data: bytes, *, args: dict[str, str], resolver, allow_env
     except Exception as error:  # xacro raises many kinds; each becomes a located finding
         if _caused_by(error, MemoryError):
             raise MemoryError(str(error)) from None
-        raise _as_failure(session, error, path, doc) from None
+        failure = _as_failure(session, error, path, doc)
+        failure.melodic = _melodic_only(session)
+        raise failure from None
     finally:
         for (module, name), function in originals.items():
             setattr(module, name, function)

@@ -249,7 +249,14 @@ def _group_lines(group: list, message: str, listed: dict) -> list[Line]:
     sites = max((list(dict.fromkeys(str(via[level]) for via in calls if len(via) > level))
                  for level in range(depth)), key=len)
     return out + [[(f"      expanded from {counted(len(sites), 'macro call')} at "
-                    f"{_listed(_same_file_once(sites))}", "dim")]]
+                    f"{_listed(_same_file_once(sorted(sites, key=_site_order)))}", "dim")]]
+
+
+def _site_order(site: str) -> tuple:
+    """A call site (``FILE:LINE``) in reading order: by file, then line (``92, 93, 94``, not
+    the order of the names the findings were sorted by)."""
+    file, _, line = site.rpartition(":")
+    return (file, int(line), "") if file and line.isdigit() else (site, 0, site)
 
 
 def _same_file_once(sites: list[str]) -> list[str]:

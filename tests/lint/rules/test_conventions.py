@@ -129,6 +129,8 @@ def _camera(**given) -> str:
     {"tag": "frameName", "sensor": "depth"},
     {"tag": "gz_frame_id", "sensor": "rgbd_camera"},
     {"sensor": "ray", "frame": "camera_link"},  # a lidar's frame is no image frame
+    # curiosity_mars_rover: the <camera>'s own <pose> (after the sensor's) makes its link optical
+    {"frame": "camera_link", "pose": "<camera><pose>0 0 0 0 -1.5708 1.5708</pose></camera>"},
 ])
 def test_optical_frames_that_are_right(tmp_path, given):
     assert _found(tmp_path, _camera(**given), ("U417",)) == []

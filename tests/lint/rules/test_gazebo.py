@@ -46,6 +46,17 @@ def test_force_torque_sensor_on_a_joint_is_fine(tmp_path):
     assert found == [("robot.urdf", 13, "U615")]
 
 
+def test_a_sensor_in_an_sdf_link_of_a_gazebo_block_is_that_links(tmp_path):
+    # hamster_gazebo writes an SDF <link> with its ray sensor (and the <joint> holding it) in a
+    # <gazebo> without a reference, which Gazebo copies into the model: the sensor is on it
+    tags = "<left_joint>lj</left_joint><right_joint>rj</right_joint>"
+    robot = WHEELS.format(filename="x", tags=tags).replace(
+        "</robot>", '<gazebo><link name="hokuyo"><sensor type="ray" name="laser"/></link>\n'
+                    '<sensor type="imu" name="imu"/></gazebo>\n</robot>')
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U615",))
+    assert found == [("robot.urdf", 13, "U615")]
+
+
 def test_diffbot_wheel_separation_changed(tmp_path):
     findings = broken_copy(tmp_path, "diffbot", "diffbot.urdf.xacro",
                            "<wheel_separation>${wheel_separation}</wheel_separation>",

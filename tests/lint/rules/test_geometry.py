@@ -95,6 +95,8 @@ def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path)
     _stl(tmp_path / "assets" / "part.stl")
     [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://assets/part.stl")
     assert severity == Severity.WARNING and "beside the robot file" in message
+    # the robot is checked: only the mesh is not (TM5_900_pybullet's package://meshes/...)
+    assert "the mesh is not checked" in message and "robot is not" not in message
     [(severity, _)] = _u407(tmp_path / "robot.urdf", "package://assets/other.stl")
     assert severity == Severity.ERROR
 

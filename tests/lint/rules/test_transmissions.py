@@ -30,6 +30,20 @@ def test_ros2_form_transmission_inside_ros2_control(tmp_path):
     assert codes(tmp_path, body) == ["U505"]
 
 
+def test_a_ros2_control_transmission_without_actuator_is_its_hardware_plugins(tmp_path):
+    # uwrt_mars_rover's drivetrain: ros2_control's parser accepts a transmission with no
+    # <actuator>; only a hardware plugin configuring it fails (its own does not load it yet)
+    body = """<ros2_control name="s" type="actuator"><hardware><plugin>rover/Drive</plugin></hardware>
+      <joint name="head_joint"><command_interface name="position"/><state_interface name="position"/></joint>
+      <transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>
+        <joint name="head_joint" role="j"><mechanical_reduction>2</mechanical_reduction></joint>
+      </transmission></ros2_control>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=body)})
+    [u504] = [f for f in findings if f.code == "U504"]
+    assert u504.severity == Severity.WARNING
+    assert u504.message.startswith("if hardware plugin 'rover/Drive' loads its transmissions")
+
+
 def test_different_interfaces_in_separate_transmissions_are_allowed(tmp_path):
     # franka_gazebo declares Position, Velocity and Effort transmissions per joint
     body = tx(name="a") + tx(name="b", iface="hardware_interface/EffortJointInterface") + tx(

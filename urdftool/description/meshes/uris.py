@@ -84,6 +84,8 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     ``package://moveo_urdf_4/`` beside the package moveo_urdf) or a folder of its name above
     the robot file lacks the file (the loaders that look there find the folder, not the mesh;
     ROS has no such package)."""
+    error = PackageNotFound(error.name, error.searched, close=error.close,
+                            unchecked="the mesh is not checked")  # (the robot is)
     base = os.fspath(robot.base_dir)
     root, folder = os.path.normpath(os.fspath(containment_root(Path(base)))), base
     seen = None  # the nearest folder of the package's name beside or above the robot file
@@ -93,7 +95,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
         if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
             owner, declares = declaring_package(robot.path, package) if robot.path != "-" \
                 else (None, False)
-            error = error.declared(owner, declares, unchecked="the mesh is not checked")
+            error = error.declared(owner, declares)
             lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}",
                                certain=not declares and bool(error.close or seen))

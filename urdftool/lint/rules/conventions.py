@@ -63,6 +63,15 @@ def _camera_frames(robot):
             position, rotation = frames[reference]
             placed = (mat3.add(position, mat3.apply(rotation, values[:3])),
                       mat3.multiply(rotation, mat3.rpy_matrix(values[3:])))
+            lens = sensor.findall("camera")  # its own <pose>, which Gazebo puts after the sensor's
+            own = lens[0].find("pose") if len(lens) == 1 else None
+            if own is not None:
+                values, problem = parse_numbers(own.text, 6)
+                if problem or not values:
+                    continue
+                position, rotation = placed
+                placed = (mat3.add(position, mat3.apply(rotation, values[:3])),
+                          mat3.multiply(rotation, mat3.rpy_matrix(values[3:])))
             for tag in CAMERA_FRAME_TAGS:
                 for element in sensor.iter(tag):
                     name = (element.text or "").strip().lstrip("/")
@@ -121,9 +130,11 @@ def optical_frame_rotation(robot):
     name): an optical frame fixed to a servo of a CAD export is right or wrong whatever the
     servo's axes, and is not judged from them; and for the frame a Gazebo camera
     sensor's plugin stamps its images with (``frameName``, ``frame_name``,
-    ``optical_frame_id``, ``gz_frame_id``), against the sensor itself (its link and
-    ``<pose>``: a Gazebo camera looks along its x axis). Within 1 degree (``1.57`` for pi/2
-    is 0.05 degrees off).
+    ``optical_frame_id``, ``gz_frame_id``), against the camera itself (its link, the sensor's
+    ``<pose>`` and the ``<pose>`` of its ``<camera>``, which Gazebo composes with the
+    sensor's: a Gazebo camera looks along its x axis; curiosity_mars_rover turns its cameras
+    so that their links are optical frames). Within 1 degree (``1.57`` for pi/2 is 0.05
+    degrees off).
 
     Bad: ``<frameName>camera_link</frameName>`` for a camera on ``camera_link``; an optical
     frame joint with ``rpy="0 0 0"`` or ``rpy="-1.5708 0 1.5708"``

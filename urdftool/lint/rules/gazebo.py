@@ -288,6 +288,17 @@ def _frames(robot) -> dict:
     return frames
 
 
+def _in_sdf_link(element, gazebo) -> bool:
+    """Whether ``element`` sits in an SDF ``<link>`` written in ``gazebo`` (a referenceless
+    block, which Gazebo copies into the model: a link of its own, with its sensors)."""
+    parent = element.getparent()
+    while parent is not None and parent is not gazebo:
+        if parent.tag == "link":
+            return True
+        parent = parent.getparent()
+    return False
+
+
 # Frames Gazebo itself provides: ground-truth plugins (p3d) report poses in the world frame.
 GAZEBO_FRAMES = {"world"}
 
@@ -297,7 +308,9 @@ def sensor_unknown_link(robot):
     """A Gazebo sensor is not attached to a link of the robot, or its plugin names an unknown frame.
 
     A ``<sensor>`` must sit in ``<gazebo reference="LINK">``; outside one, or under a joint
-    reference (except force_torque sensors, which belong on joints), Gazebo drops it. A sensor
+    reference (except force_torque sensors, which belong on joints), Gazebo drops it. In an SDF
+    ``<link>`` of a ``<gazebo>`` without a reference, which Gazebo copies into the model as a
+    link of its own (hamster_gazebo's hokuyo_link with its ray sensor), it is that link's. A sensor
     plugin's ``frame_name``/``frameName`` and any plugin's ``bodyName`` must be a link (or
     Gazebo's ``world``), or the data is stamped with a frame TF does not know. ROS 1's plugins
     (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``;
@@ -311,7 +324,7 @@ def sensor_unknown_link(robot):
     for gazebo in robot.children("gazebo"):
         reference = gazebo.get("reference")
         for sensor in gazebo.iter("sensor"):
-            if reference is None:
+            if reference is None and not _in_sdf_link(sensor, gazebo):
                 yield sensor, (f"sensor '{sensor.get('name')}' is in a <gazebo> without a "
                                "reference; put it in <gazebo reference=\"LINK\">")
             elif (reference not in robot.links and reference in robot.joints

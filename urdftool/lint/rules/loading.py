@@ -78,7 +78,9 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
 
     - **error** when a launch file makes the robot from this file, unconditionally, with every
       xacro argument it gives read, and does not give this one: xacro fails there, every time;
-      and when the build a launch file makes with no launch argument involved fails;
+      and when the build a launch file makes with no launch argument involved fails (on a
+      package not installed here, U006's warning: the environment's, mmuav_gazebo's RotorS;
+      on an included file its package's build may install, a warning);
     - **warning**, naming the launch file and its condition, when one makes it without the
       argument only under a condition (an ``if``, a launch argument choosing the file, or
       naming its package: "when launched with description_package's default 'x'"); and
@@ -189,9 +191,16 @@ def required_argument(path: str, error, build):
             told = f"{made.named} builds it ({made.shown_args()}" + (
                 "" if certain else f"; {', '.join(later)} known only at launch, left at the "
                 "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
+            if again.kind == "package":  # not installed here: the environment's, as U006 says
+                message = f"{again.message}; {told}, and xacro fails so here"
+                return None, given, [U006.finding(
+                    message if certain else Conditional(message, Severity.INFO), again.location)]
             message = f"{again.message}; {told}, and xacro fails so"
-            return None, given, [rule.finding(
-                message if certain else Conditional(message, Severity.INFO), again.location)]
+            if not certain:
+                message = Conditional(message, Severity.INFO)
+            elif not again.certain:  # an included file the package's build may install
+                message = Conditional(message)
+            return None, given, [rule.finding(message, again.location)]
         message = f"{error.message}; checked as {made.named} builds it ({made.shown_args()}); {hint} of your choice"
         return robot, given, [rule.finding(Conditional(message, Severity.INFO), error.location)]
     made = [b for b in builds(path) if b.xacro]

@@ -163,8 +163,12 @@ def unknown_hardware_interface(robot):
 def transmission_no_actuator(robot):
     """A transmission has no actuator.
 
-    transmission_interface needs an actuator to map commands through; the transmission is
-    rejected without one.
+    ROS 1's transmission_interface needs an actuator to map commands through; its loaders
+    reject the transmission without one. A transmission inside ``<ros2_control>`` is read by
+    the hardware plugin of its block alone, when it loads its transmissions (ros2_control's
+    parser accepts one without an actuator, and its SimpleTransmissionLoader reads only the
+    joint; configuring it with no actuator handle fails): a warning naming that plugin
+    (uwrt_mars_rover's drivetrain, whose plugin does not load them yet).
 
     Bad: ``<transmission> <type>...</type> <joint .../> </transmission>``
     Good: add ``<actuator name="head_motor"><mechanicalReduction>1</mechanicalReduction></actuator>``
@@ -172,8 +176,15 @@ def transmission_no_actuator(robot):
     for transmission in transmissions(robot):
         if not any(child.tag.lower().endswith("actuator") for child in transmission
                    if isinstance(child.tag, str)):
-            yield transmission, (f"{_label(transmission)} has no <actuator>; add "
-                                   "<actuator name=\"...\"> naming the motor that drives the joint")
+            message = (f"{_label(transmission)} has no <actuator>; add <actuator name=\"...\"> "
+                       "naming the motor that drives the joint")
+            block = transmission.getparent()
+            if block is not None and block.tag == "ros2_control":
+                plugin = (block.findtext("hardware/plugin") or "").strip() or "?"
+                message = Conditional(
+                    f"if hardware plugin '{plugin}' loads its transmissions (ros2_control's "
+                    f"parser accepts this one; configuring it with no actuator fails): {message}")
+            yield transmission, message
 
 
 @rule("U505", "zero-mechanical-reduction", Severity.ERROR)
