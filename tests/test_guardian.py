@@ -104,3 +104,39 @@ def test_the_guardian_imports_nothing_once_it_has_forked():
              "os.fork = fork\n")
     said = " {sorted(set(sys.modules) - forked[0])}"
     assert guardian_and_child(setup, said) == ["[child]", "[guardian (0, None) []]"]
+
+
+@pytest.mark.parametrize("code, said", [
+    (0, "exit code 0"), (127, "exit code 127"), (-signal.SIGSEGV, "killed by SIGSEGV "
+                                                                   "(segmentation fault)"),
+    (-signal.SIGKILL, "killed by SIGKILL (killed)"), (-200, "killed by signal 200")])
+def test_a_process_end_is_said_by_its_exit_code_or_the_signals_name(code, said):
+    from urdftool.guardian import ended
+
+    assert ended(code) == said
+
+
+def test_every_report_of_a_process_end_says_it_through_one_function():
+    """No message formats an exit code or a return code itself (``-11`` for a segfault):
+    :func:`urdftool.guardian.ended` says each."""
+    import ast
+    from pathlib import Path
+
+    import urdftool
+
+    found = []
+    for path in Path(urdftool.__file__).parent.rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        owner = [node for node in ast.walk(tree)
+                 if isinstance(node, ast.FunctionDef) and node.name == "ended"
+                 and path.name == "guardian.py"]
+        skipped = {id(n) for o in owner for n in ast.walk(o)}
+        for node in ast.walk(tree):
+            if id(node) in skipped or not isinstance(node, ast.JoinedStr):
+                continue
+            said = [v.value for v in node.values if isinstance(v, ast.Constant)]
+            formatted = {v.value.attr for v in node.values  # (not through ended)
+                         if isinstance(v, ast.FormattedValue) and isinstance(v.value, ast.Attribute)}
+            if formatted & {"returncode", "exitcode"} or any("exit code" in s for s in said):
+                found.append(f"{path.name}:{node.lineno}")
+    assert not found, found

@@ -21,6 +21,21 @@ SLOT_SIZE = 8192  # [bytes] of shared memory for the location being worked on (u
 STATE: dict = {"guardian": None, "pieces": 0, "verdict": None}
 
 
+def ended(code: int) -> str:
+    """How a process ended, from its exit code as ``subprocess``, ``multiprocessing`` and
+    ``os.waitstatus_to_exitcode`` give it (negative: the signal that ended it): ``exit code
+    1``, ``killed by SIGSEGV (segmentation fault)``. Every report of a process's death (a
+    worker, the guardian's child, a loader, git, Graphviz) says it in these words."""
+    if code >= 0:
+        return f"exit code {code}"
+    try:
+        name = signal.Signals(-code).name
+    except ValueError:
+        return f"killed by signal {-code}"
+    what = signal.strsignal(-code)
+    return f"killed by {name} ({what[0].lower() + what[1:]})" if what else f"killed by {name}"
+
+
 def guarded():
     """Fork this process, early and small, into a guardian (the parent) and the process that
     does the work (the child, which returns None): a budgeted run of one piece
@@ -121,7 +136,7 @@ def _guard(pid: int, read: int, slot):
                 continue
         code = os.waitstatus_to_exitcode(status)
         if stopped is None and piece is not None:  # it died in the piece
-            stopped = (piece, "died", f"worker process died (exit code {code})",
+            stopped = (piece, "died", f"worker process died: {ended(code)}",
                        _where(slot))
         if stopped is not None:
             return None, stopped

@@ -332,3 +332,18 @@ def test_a_piece_whose_guardian_is_gone_gives_its_result_not_a_broken_pipe(monke
     finally:
         os.close(write)
         slot.close()
+
+
+@pytest.mark.parametrize("how, said", [
+    (lambda: os.kill(os.getpid(), signal.SIGSEGV), "killed by SIGSEGV (segmentation fault)"),
+    (lambda: os._exit(3), "exit code 3")])
+def test_a_worker_that_dies_is_said_to_by_the_signal_that_ended_it(how, said):
+    """A segfault (a C library's) is said by the signal's name, not as "exit code -11"."""
+    import faulthandler
+
+    def work(index):
+        faulthandler.disable()  # (the test runner's handler would print the worker's stack)
+        how()
+
+    [stop, _] = run_budgeted(2, work, Budget(20.0, None), lambda _, stop: stop, jobs=2)
+    assert (stop.kind, stop.detail) == ("died", f"worker process died: {said}")

@@ -403,7 +403,11 @@ def load_sdformat(job: Job) -> dict:
               .splitlines() if "Error" in line and "backward" not in line]
     output = (printed.stderr + checked.stdout + checked.stderr)[-4000:]
     if printed.returncode != 0 or not printed.stdout.strip():
-        return {"loaded": False, "error": "\n".join(dict.fromkeys(errors)) or "no model",
+        from urdftool.guardian import ended
+
+        why = f"{os.path.basename(command[0])} sdf -p: {ended(printed.returncode)}" \
+            if printed.returncode else "no model"
+        return {"loaded": False, "error": "\n".join(dict.fromkeys(errors)) or why,
                 "output": output}
     from urdftool.crosscheck.sdf import model_summary
 

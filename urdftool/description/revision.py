@@ -103,8 +103,11 @@ def _git(root: Path, *args: str) -> str:
     except (OSError, subprocess.TimeoutExpired) as error:
         raise UsageError(f"git failed: {error}") from None
     if done.returncode:
-        last = (done.stderr.strip().splitlines() or ["failed"])[-1]
-        raise UsageError(f"git {args[0]}: {last}")
+        from urdftool.guardian import ended
+
+        said = done.stderr.strip().splitlines()  # (killed: the signal, whatever it said)
+        raise UsageError(f"git {args[0]}: " + (said[-1] if said and done.returncode > 0
+                                                else ended(done.returncode)))
     return done.stdout.strip()
 
 
@@ -174,8 +177,10 @@ def _tree(root: Path, commit: str) -> list[tuple[str, str, int, str]]:
     if len(listing) > MAX_LISTING:
         process.kill()
     process.stdout.close()
-    if process.wait(timeout=GIT_TIMEOUT) and len(listing) <= MAX_LISTING:
-        raise UsageError(f"git ls-tree {commit} failed")
+    if (code := process.wait(timeout=GIT_TIMEOUT)) and len(listing) <= MAX_LISTING:
+        from urdftool.guardian import ended
+
+        raise UsageError(f"git ls-tree {commit} failed: {ended(code)}")
     entries = []
     for record in listing.split(b"\0"):
         if not record:

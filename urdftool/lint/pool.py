@@ -393,6 +393,7 @@ class _Forked:
 
     def __init__(self, target, closed=()):
         self.exitcode: int | None = None
+        self.lost = False  # (its status taken by another wait)
         self.pid = os.fork()
         if self.pid:
             return
@@ -408,6 +409,10 @@ class _Forked:
 
         end_after(child)
 
+    def end(self) -> str:
+        """How the process ended (:func:`urdftool.guardian.ended`), once joined."""
+        return "its status lost" if self.lost else guardian.ended(self.exitcode)
+
     def kill(self) -> None:
         if self.exitcode is None:
             try:
@@ -422,8 +427,8 @@ class _Forked:
         while self.exitcode is None:
             try:
                 pid, status = os.waitpid(self.pid, 0 if deadline is None else os.WNOHANG)
-            except ChildProcessError:
-                self.exitcode = -1
+            except ChildProcessError:  # reaped by another: its status is lost
+                self.exitcode, self.lost = -1, True
                 return
             if pid:
                 self.exitcode = os.waitstatus_to_exitcode(status)
@@ -513,8 +518,7 @@ def _run_pool(work, queue, jobs, budget: Budget, stopped, results, finished,
                 elif message is None:  # its end of the channel closed: it died, or will
                     worker.kill()  # (the others' budgets run on: no waiting for it to end)
                     worker.process.join()
-                    stop = Stop("died", budget, "worker process died (exit code "
-                                                f"{worker.process.exitcode})")
+                    stop = Stop("died", budget, f"worker process died: {worker.process.end()}")
                 elif message[0] == "stop":
                     stop = Stop(message[2], budget, message[3])
                 else:

@@ -153,6 +153,10 @@ def write(dot: str, output: Path) -> Path:
     done = subprocess.run([program, f"-T{suffix[1:]}"], input=dot.encode(),
                           capture_output=True, check=False)
     if done.returncode != 0:
-        raise ValueError(f"dot failed: {done.stderr.decode(errors='replace').strip()}")
+        from urdftool.guardian import ended
+
+        said = done.stderr.decode(errors="replace").strip()  # (killed: the signal that ended it)
+        raise ValueError("dot failed: " + (said if said and done.returncode > 0
+                                           else ended(done.returncode)))
     write_file(output, done.stdout)
     return output
