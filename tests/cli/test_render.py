@@ -48,6 +48,17 @@ def test_render_usage_errors_exit_2(tmp_path, run_cli, args, message):
     assert result.exit_code == 2 and message in result.output
 
 
+def test_a_size_past_what_the_memory_budget_leaves_is_refused_before_drawing(tmp_path,
+                                                                             run_cli):
+    """``--size`` follows the budget: 8192x8192 (in the option's range) under 1 GiB was a
+    drawing out of memory (U018, exit 1); it is a usage error saying the largest that fits."""
+    result = run_cli("render", HUMANOID, "-o", tmp_path / "x.png", "--size", "8192x8192",
+                     "--max-memory", "1G")
+    assert result.exit_code == 2, result.output
+    assert "needs about 2.75 GiB" in result.output and "at most" in result.output
+    assert "U018" not in result.output and not (tmp_path / "x.png").exists()
+
+
 def test_render_a_robot_yourdfpy_cannot_read_exits_1_located(tmp_path, run_cli):
     path = tmp_path / "bad.urdf"
     path.write_text('<robot name="r"><link name="a"><visual><geometry/></visual></link></robot>')
