@@ -129,7 +129,9 @@ def similarity(one: str, two: str) -> float:
     return difflib.SequenceMatcher(None, one, two).ratio()
 
 
-def _shown(name: str) -> str:
+def shown_word(name: str) -> str:
+    """A name or value a message quotes from an input (a robot, a file of numbers), cut to
+    64 characters with its length said: a 10 MB cell is not repeated whole."""
     return name if len(name) <= _SHOWN_NAME else f"{name[:_SHOWN_NAME]}... ({len(name)} characters)"
 
 
@@ -148,7 +150,7 @@ def available(kind: str, wanted: str, names) -> str:
     if bare:
         hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
-    shown = ", ".join(map(_shown, names[:_LISTED])) + (
+    shown = ", ".join(map(shown_word, names[:_LISTED])) + (
         f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
     return f"{hint}available {kind}: {shown or '(none)'}"
 

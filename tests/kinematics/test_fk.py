@@ -534,3 +534,54 @@ def test_a_chain_of_3000_mimic_joints_has_its_values(tmp_path):
 
     assert mimic_source(model.robot, "j2", {"j0"}) == ("j0", 4.0, 2 * 0.001 + 0.001)
     assert mimic_source(model.robot, "j2999", {"j0"})[1] == 4.0
+
+
+@pytest.mark.parametrize("text", [
+    "l_knee,l_hip_pitch\n0.1\n0.1,0.2,0.3\n",  # rows of 1 and 3 values: 4, as 2 rows of 2 hold
+    "l_knee,l_hip_pitch\n0.1,0.2,0.3\n",
+    '[{"l_knee": true}]', '[{"l_knee": false, "l_hip_pitch": 0.1}]',
+])
+def test_the_fast_readers_refuse_what_the_row_by_row_reader_refuses(humanoid, tmp_path,
+                                                                      monkeypatch, text):
+    """The vectorised readers of a file of numbers give the row-by-row reader's answer: a CSV
+    row of another width than its header was read across rows (0.1 and 0.1, 0.2 and 0.3);
+    a JSON ``true`` was 1 rad."""
+    path = tmp_path / ("q.json" if text.startswith("[") else "q.csv")
+    path.write_text(text)
+    with pytest.raises(config.ConfigError) as fast:
+        config.from_file(humanoid.variables, str(path))
+    monkeypatch.setattr(config, "_plain_csv_table", lambda text: None)
+    with pytest.raises(config.ConfigError) as careful:
+        config.from_file(humanoid.variables, str(path))
+    assert str(fast.value) == str(careful.value)
+    assert "true" in str(fast.value) or "false" in str(fast.value) or "row has" in str(fast.value)
+
+
+def test_a_value_or_name_of_a_file_of_numbers_is_quoted_cut(humanoid, tmp_path):
+    """A 10 MB cell (or header name) was repeated whole in the one-line error."""
+    path = tmp_path / "q.csv"
+    path.write_text("l_knee\n" + "1" * 1_000_000 + "\n")
+    with pytest.raises(config.ConfigError) as error:
+        config.from_file(humanoid.variables, str(path))
+    assert len(str(error.value)) < 300 and "(1000000 characters)" in str(error.value)
+    path.write_text("j" * 1_000_000 + "\n0\n")
+    with pytest.raises(config.ConfigError) as error:
+        config.from_file(humanoid.variables, str(path))
+    assert len(str(error.value)) < 600 and "(1000000 characters)" in str(error.value)
+
+
+def test_a_name_given_twice_is_found_in_one_pass():
+    """A header of 100,000 columns took fk's 60 s budget: each name searched among those
+    before it."""
+    compared = []
+
+    class Name(str):
+        def __eq__(self, other):
+            compared.append(1)
+            return str.__eq__(self, other)
+
+        __hash__ = str.__hash__
+
+    names = [Name(f"x{i}") for i in range(2000)] + [Name("x7")]
+    assert config.named_twice(names) == "x7" and len(compared) < 100
+    assert config.named_twice(["a", "b"]) is None
