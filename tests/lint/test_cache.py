@@ -630,3 +630,24 @@ def test_results_that_cannot_be_kept_are_said_once_and_the_check_goes_on(
     said = [note for note in run.notes if "not kept" in note]
     assert len(said) == 1 and {"a file": "is not a folder", "full": "No space left",
                                "no key": "no signing key"}[where] in said[0], run.notes
+
+
+def test_an_entry_that_is_a_named_pipe_is_replaced_not_written_into(robot, tmp_path,
+                                                                     monkeypatch):
+    """A pipe planted as an entry held every run 10 s (write_file waits for a reader, as for
+    a report's ``-o``) and stayed: the results were never kept."""
+    from urdftool.description import files
+
+    cache_dir = tmp_path / "cache"
+    honest = _messages(robot, cache_dir)
+    [run] = _entries(cache_dir, "run")
+    run.unlink()
+    [entry] = _entries(cache_dir)
+    entry.unlink()
+    os.mkfifo(entry)
+    monkeypatch.setattr(files, "PIPE_READER_WAIT", 0.1)
+    checked = _counting_checks(monkeypatch)
+    assert _messages(robot, cache_dir) == honest and checked
+    assert entry.is_file() and not entry.is_symlink()
+    checked.clear()
+    assert _messages(robot, cache_dir) == honest and not checked  # kept: served

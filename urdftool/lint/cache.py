@@ -62,6 +62,7 @@ import hashlib
 import hmac
 import json
 import os
+import stat
 from pathlib import Path
 
 from urdftool.description.files import kind_of, make_folders, own_folder, read_own, \
@@ -333,7 +334,15 @@ def _finding(record: dict) -> Finding:
 
 def _write(path: Path, text: str) -> None:
     """:func:`~urdftool.description.files.write_file` (a link at ``path`` is replaced, not
-    followed); OSError when it cannot."""
+    followed); OSError when it cannot. A named pipe or a device where a file of the cache goes
+    is replaced too: ``write_file`` writes into one (a report's ``-o``), and a pipe planted as
+    an entry held every run 10 s (waiting for a reader) and was never replaced."""
+    try:
+        mode = os.lstat(path).st_mode
+    except FileNotFoundError:
+        mode = stat.S_IFREG
+    if not (stat.S_ISREG(mode) or stat.S_ISLNK(mode) or stat.S_ISDIR(mode)):
+        os.unlink(path)
     try:
         write_file(path, text, rewrites=True)
     except UsageError as error:
