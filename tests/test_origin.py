@@ -107,7 +107,9 @@ def test_no_link_rather_than_a_dead_one(came_from, where):
 
 def test_the_setting_must_be_an_address(came_from, monkeypatch):
     came_from(Origin())
-    for value in ("javascript:alert(1)", "docs/rules", "https://", " "):
+    for value in ("javascript:alert(1)", "docs/rules", "https://", " ",
+                  "https://x.org/\x1b]8;;evil\x07", 'https://x.org/a"b', "https://x.org/<x>",
+                  "https://x.org/a\u202eb", "https://x.org/a b"):
         monkeypatch.setenv(origin.DOCS_URL_VARIABLE, value)
         assert origin.rule_url("U204") is None, value
     monkeypatch.setenv(origin.DOCS_URL_VARIABLE, "file:///srv/urdftool/docs/rules/")

@@ -91,7 +91,9 @@ def docs_base() -> str | None:
     """The address of the folder of rule pages, ending with ``/``; None when nothing says where
     they are (no link beats a dead one)."""
     configured = os.environ.get(DOCS_URL_VARIABLE, "").strip()
-    if re.match(r"(https?|file)://\S+$", configured):
+    if re.match(r"(https?|file)://[!#-;=?-\[\]_a-z~]+$", configured):  # a URI's characters
+        # (RFC 3986; others percent-encoded): no control, blank, quote, angle bracket or
+        # non-ASCII character, which end an address in a SARIF reader or a hover's link
         return configured if configured.endswith("/") else configured + "/"
     where = origin()
     if where.folder is not None and (where.folder / RULE_PAGES).is_dir():
