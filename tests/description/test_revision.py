@@ -323,3 +323,35 @@ def test_a_checkout_owned_by_another_user_is_read_and_runs_nothing(hostile, monk
     assert commands and all(f"safe.directory={os.path.realpath(root)}" in command
                             for command in commands)
     assert markers_found(markers) == []
+
+
+def test_a_robot_file_that_was_a_link_at_the_revision_is_followed_within_the_tree(repo):
+    """A committed link (``robot.urdf -> urdf/real.urdf``) is read at a revision as in the
+    work tree; it was said "does not exist at revision". A link out of the tree is refused,
+    saying so."""
+    import os
+
+    from urdftool.description.load import load
+
+    def commit(message):
+        for args in (["add", "-A"], ["commit", "-qm", message]):
+            subprocess.run(["git", "-C", str(repo), "-c", "user.email=t@t", "-c", "user.name=t",
+                            *args], check=True, capture_output=True)
+
+    (repo / "urdf").mkdir()
+    (repo / "urdf" / "real.urdf").write_text('<robot name="r"><link name="old"/></robot>\n')
+    os.symlink("urdf/real.urdf", repo / "robot.urdf")
+    commit("a link")
+    (repo / "robot.urdf").unlink()
+    (repo / "robot.urdf").write_text('<robot name="r"><link name="new"/></robot>\n')
+    with checkout(repo / "robot.urdf", "HEAD") as (_, path):
+        assert list(load(path).links) == ["old"]
+    os.unlink(repo / "robot.urdf")
+    os.symlink("/etc/hostname", repo / "robot.urdf")
+    commit("a link out")
+    os.unlink(repo / "robot.urdf")
+    (repo / "robot.urdf").write_text('<robot name="r"><link name="new"/></robot>\n')
+    with pytest.raises(UsageError, match="robot.urdf' at revision 'HEAD' is a symbolic link "
+                                         "leading out of the repository"):
+        with checkout(repo / "robot.urdf", "HEAD"):
+            pass

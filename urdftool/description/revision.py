@@ -216,7 +216,8 @@ def checkout(path, revision: str, max_bytes: int = MAX_ARCHIVE_BYTES):
         raise UsageError(f"revision '{revision}' not found in {root}")
     entries = _tree(root, commit)
     blobs = [entry for entry in entries if entry[0] in _BLOB_MODES | {_LINK_MODE}]
-    if not any(mode in _BLOB_MODES and name == relative for mode, _, _, name in blobs):
+    mode = next((mode for mode, _, _, name in blobs if name == relative), None)
+    if mode is None:  # (a link is followed as in the work tree, when it stays in the tree)
         raise UsageError(f"'{relative}' does not exist at revision '{revision}'")
     if sum(size for _, _, size, _ in blobs) > max_bytes:
         raise UsageError(f"the repository at '{revision}' is over {max_bytes} bytes; not "
@@ -225,7 +226,10 @@ def checkout(path, revision: str, max_bytes: int = MAX_ARCHIVE_BYTES):
         tree = folder / "tree"
         _write_tree(root, tree, blobs, max_bytes)
         if not (tree / relative).is_file():
-            raise UsageError(f"'{relative}' at revision '{revision}' is not in the repository's "
+            raise UsageError(f"'{relative}' at revision '{revision}' is a symbolic link leading "
+                             "out of the repository or to no file; not followed"
+                             if mode == _LINK_MODE else
+                             f"'{relative}' at revision '{revision}' is not in the repository's "
                              "object store (a partial clone?); urdftool fetches nothing")
         yield tree, tree / relative
 
