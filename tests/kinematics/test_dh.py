@@ -229,7 +229,7 @@ def test_bad_table_is_located(tmp_path):
                                 "tool": np.eye(4).tolist(),
                                 "joints": [{"joint": "a", "type": "revolute", "theta": 0,
                                             "d": "x", "a": 0, "alpha": 0}]}))
-    with pytest.raises(dh.DHError, match="must all be numbers") as caught:
+    with pytest.raises(dh.DHError, match="must all be finite numbers") as caught:
         dh.load_table(str(path))
     assert caught.value.where.endswith("t.json: joints[0]")
 
@@ -394,3 +394,24 @@ def test_cli_dh_textbook(run_cli, tmp_path):
     assert all(j["a"] >= 0 for j in json.loads(result.output)["joints"])
     verified = run_cli("fk", HUMANOID, "--dh", out, "--verify", "--random", "50")
     assert verified.exit_code == 0, verified.output
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda t: t["joints"][0].update(d=True), "must all be finite numbers"),  # was 1 m
+    (lambda t: t["joints"][0].update(a=float("nan")), "must all be finite numbers"),  # nan poses
+    (lambda t: t["joints"][0].update(alpha=float("inf")), "must all be finite numbers"),
+    (lambda t: t["base"][0].__setitem__(0, 5.0), "'base' must be a rigid transform"),  # a scale
+    (lambda t: t["tool"][0].__setitem__(1, 3.0), "'tool' must be a rigid transform"),  # a shear
+    (lambda t: t["tool"][3].__setitem__(3, 2.0), "'tool' must be a rigid transform"),
+])
+def test_a_table_of_values_no_chain_holds_is_a_located_error(humanoid, tmp_path, change,
+                                                             message):
+    """What fk --dh computed with: YAML's ``true`` as 1 m, ``.nan`` as nan poses (exit 0),
+    a base scaled or sheared as poses whose rotations are no rotations."""
+    table = dh.extract(humanoid, "body_link", "r_foot_link").as_dict()
+    change(table)
+    path = tmp_path / "t.yaml"
+    path.write_text(yaml.safe_dump(table, sort_keys=False))
+    with pytest.raises(dh.DHError, match=message) as caught:
+        dh.load_table(str(path))
+    assert caught.value.where.startswith(str(path))

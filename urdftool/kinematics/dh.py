@@ -395,10 +395,13 @@ def load_table(path: str) -> DHTable:
         kind = row.get("type", "revolute")
         if kind not in ("revolute", "prismatic"):
             raise DHError(f"type '{kind}' is not revolute or prismatic", where=where)
-        try:
-            values = [float(row[key]) for key in ("theta", "d", "a", "alpha")]
+        try:  # (a boolean is no number: YAML's ``true`` was 1 m; nan and inf were poses)
+            values = [float(row[key]) if row[key].__class__ is not bool else math.nan
+                      for key in ("theta", "d", "a", "alpha")]
         except (KeyError, TypeError, ValueError):
-            raise DHError("theta, d, a and alpha must all be numbers", where=where) from None
+            values = [math.nan]
+        if not all(map(math.isfinite, values)):
+            raise DHError("theta, d, a and alpha must all be finite numbers", where=where)
         joints.append(DHJoint(row["joint"], kind, *values))
     return DHTable(convention, base, tool, joints, data.get("base_link"), data.get("tip_link"))
 
@@ -410,6 +413,11 @@ def _matrix(value, key: str, path: str) -> np.ndarray:
         matrix = None
     if matrix is None or matrix.shape != (4, 4) or not np.all(np.isfinite(matrix)):
         raise DHError(f"'{key}' must be a 4x4 matrix of numbers", where=path)
+    rotation = matrix[:3, :3]  # a pose: a rotation and a translation, as every pose fk gives
+    if not (np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-6) and
+            np.linalg.det(rotation) > 0 and np.array_equal(matrix[3], [0, 0, 0, 1])):
+        raise DHError(f"'{key}' must be a rigid transform (a rotation, a translation and the "
+                      "row 0 0 0 1)", where=path)
     return matrix
 
 
