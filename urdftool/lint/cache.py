@@ -85,7 +85,9 @@ _TAG = ("Signature: 8a477f597d28d172789f06886806bc55\n"
 def default_folder(environ=os.environ) -> Path | None:
     """``.urdftool_cache`` in the working directory; None under CI (see the module docstring)
     or with ``URDFTOOL_NO_CACHE`` set (as the test suite does)."""
-    return None if environ.get("CI") or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
+    from urdftool.lint.options import under_ci
+
+    return None if under_ci(environ) or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
 
 
 class Cache:

@@ -857,7 +857,9 @@ def env_allowed(flag: bool | None) -> bool:
     """
     if flag is not None:
         return flag
-    return os.environ.get("CI", "").strip().lower() in ("", "0", "false", "no")
+    from urdftool.lint.options import under_ci
+
+    return not under_ci()
 
 
 def _codes(values: Iterable[str]) -> list[str]:
