@@ -63,7 +63,9 @@ class PackageNotFound(UrdftoolError):
         self.declared_by = declared_by
         self.close = tuple(close)  # the packages found whose names are close to this one
         self.unchecked = unchecked
-        where = ", ".join(searched) if searched else "nowhere (no search path)"
+        where = ", ".join(searched[:_LISTED]) + (  # (a search path of 8,000 entries was a
+            f", ... ({len(searched)} places in all)" if len(searched) > _LISTED else "") \
+            if searched else "nowhere (no search path)"  # 240 KB message for every mesh)
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:

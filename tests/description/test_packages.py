@@ -325,3 +325,21 @@ def test_the_shallowest_package_of_a_name_wins_below_a_root(tmp_path):
         (tmp_path / folder).mkdir(parents=True)
         (tmp_path / folder / "package.xml").write_text("<package><name>same</name></package>")
     assert packages_below(tmp_path) == {"same": tmp_path / "b"}
+
+
+def test_a_search_path_naming_a_folder_again_walks_it_once(tmp_path):
+    """A ``setup.bash`` sourced twice repeats ROS_PACKAGE_PATH's entries; ``/usr`` given 5,000
+    times was walked 5,000 times (U015 at the 60 s budget). The places said are cut: 8,000
+    entries made each U407 a 240 KB message."""
+    from urdftool.description.record import SEARCH, recording
+
+    (tmp_path / "pkgs" / "deep").mkdir(parents=True)
+    repeated = ":".join([str(tmp_path / "pkgs"), str(tmp_path / "pkgs") + "/", str(tmp_path / "pkgs/.")] * 300)
+    with recording() as record, pytest.raises(PackageNotFound) as error:
+        PackageResolver(environ={"ROS_PACKAGE_PATH": repeated}).find("ghost")
+    listed = [key[0] for kind, key in record.entries if kind == SEARCH]
+    assert listed.count(str(tmp_path / "pkgs")) == 1, len(listed)
+    assert error.value.searched == [f"ROS_PACKAGE_PATH entry {tmp_path / 'pkgs'}"]
+    many = [f"ROS_PACKAGE_PATH entry /nope{i}" for i in range(8000)]
+    message = str(PackageNotFound("ghost", many))
+    assert len(message) < 1000 and "/nope11, ... (8000 places in all)" in message
