@@ -441,3 +441,26 @@ def test_a_fake_controller_list_beside_moveit_sim_controllers_settings_is_not_ch
             joints: [head_joint]
         """
     assert check_folder(tmp_path, {"robot.urdf": robot, "config/fake_controllers.yaml": yaml})[0] == []
+
+
+def test_a_ros1_trajectory_controller_of_3000_joints_is_searched_once(tmp_path, monkeypatch):
+    """U609 looked for each joint among those before it: 40,000 joints took 13 s of a check.
+    The joints listed twice are still each said, at their lines."""
+    from urdftool.description import controllers
+
+    from conftest import counting_str
+
+    compared = []
+    Name = counting_str(compared)
+
+    real = controllers.Controller.joints
+    monkeypatch.setattr(controllers.Controller, "joints", lambda self: [
+        controllers.JointRef(Name(ref.name), ref.line, ref.key) for ref in real(self)])
+    names = [f"j{i}" for i in range(3000)] + ["head_joint", "j7"]
+    yaml_text = ("head_controller:\n  type: position_controllers/JointTrajectoryController\n"
+                 "  joints:\n" + "".join(f"    - {name}\n" for name in names))
+    found, messages = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=""),
+                                              "config/c.yaml": yaml_text})
+    twice = [where for where in found if where[2] == "U609"]
+    assert twice == [("c.yaml", 3 + len(names), "U609")], twice
+    assert len(compared) < 100_000, len(compared)
