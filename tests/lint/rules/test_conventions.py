@@ -213,6 +213,19 @@ def test_a_link_named_for_a_wheel_that_holds_the_wheel_below_it_is_no_wheel(tmp_
     assert "'rear_wheel' is 30 mm above the lowest wheel" in message
 
 
+def test_a_wheel_standing_on_its_flat_face_is_told_to_turn_its_cylinder(tmp_path):
+    # Omron's LD AMR: the wheels' collision cylinders lack the visual's rpy, so each stands
+    # upright and reaches 44 mm less low than the casters; 'lower it by 0.044 m' was wrong
+    casters = "".join(_rolling(f"{side}_caster_wheel", "base_link", xyz=f"0.2 {y} -0.1",
+                               rpy="1.5708 0 0") for side, y in (("left", 0.1), ("right", -0.1)))
+    drive = "".join(_rolling(f"{side}_wheel", "base_link", xyz=f"0 {y} -0.1")
+                    for side, y in (("left", 0.2), ("right", -0.2)))
+    found = _found(tmp_path, _box_base("0.1 0.1 0.1") + casters + drive, codes=("U419", "U420"))
+    assert sorted(code for code, _ in found) == ["U419", "U419", "U420", "U420"]
+    assert all("collision cylinder is turned off the axle (U420): turn it, and measure again"
+               in message for code, message in found if code == "U419")
+
+
 def test_a_wheel_is_the_body_of_links_fixed_to_its_rolling_link(tmp_path):
     # Upkie's wheel: joint 'left_wheel' turns the motor's rotor, to which the hub and the tyre
     # are fixed (all three named so). U419 judged each as a wheel and said the rotor and the
