@@ -48,7 +48,7 @@ class Versions:
 
     def why(self, version: int) -> str:
         """The evidence for ``version`` in words; of several launch files, the first two and
-        how many more (PPI-PUT's A1 named its seven on each of six U640 lines)."""
+        how many more (PPI-PUT's A1 named its seven in each of six messages on its IMU)."""
         found = [e for e in self.evidence if e.version == version]
         launches = [e for e in found if e.kind == "launch"]
         if len(launches) > 2:

@@ -806,7 +806,7 @@ def _setup_assistant_robot(robot, srdf: Path) -> str:
     of the package) built with those arguments. Kinova's link6_moveit_config names
     ``link6.urdf.xacro`` with ``gripper:=robotiq_2f_85``: checked with the gripper's default
     ``''``, or as ``assets/link6.links.xacro`` (a drawing aid named like the robot), its SRDF
-    gave 23 U803 errors for joints of a gripper that build has not."""
+    named 23 joints of a gripper that build has not, each an error."""
     package = srdf.parent.parent
     marker = package / ".setup_assistant"
     if robot.path == "-" or srdf.parent.name != "config" or \
