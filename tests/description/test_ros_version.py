@@ -68,3 +68,13 @@ def test_controller_files_count_for_both_views(tmp_path):
     found = ros_versions(load(robot))
     assert found.ros2_only and [e.kind for e in found.evidence] == ["controllers"]
     assert ros_version(load(robot))[0] == 2
+
+
+def test_many_launch_files_are_named_two_and_counted(tmp_path):
+    """PPI-PUT's A1 named its seven launch files on each of six U640 lines: the first two are
+    named, the rest counted."""
+    launches = {f"launch/v{index}.launch": ROS1_LAUNCH for index in range(5)}
+    robot = _package(tmp_path, "<buildtool_depend>catkin</buildtool_depend>", extra=launches)
+    why = ros_versions(load(robot)).why(1)
+    assert why.count("launches it") == 2 and why.endswith("; 3 more launch files launch it")
+    assert why.startswith("its package builds with catkin")

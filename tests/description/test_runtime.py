@@ -228,6 +228,58 @@ def test_an_srdf_from_a_package_so_named_is_moveits_for_the_default_only(tmp_pat
                         "moveit_config_package's default 'arm_moveit_config'")
 
 
+AMENT = ("<package format='3'><name>{}</name><buildtool_depend>ament_cmake</buildtool_depend>"
+          "</package>")
+GRIPPER_ROBOT = """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="gripper" default=""/><link name="base"/>
+</robot>"""
+
+
+@pytest.mark.parametrize("robot_file, given, expected", [
+    # the URDF the .setup_assistant names, built with the arguments it gives: as before
+    ("arm_description/urdf/arm.urdf.xacro", {"gripper": "two_finger"}, ("unknown", "")),
+    # built with the gripper's default: MoveItConfigsBuilder builds it with the gripper
+    ("arm_description/urdf/arm.urdf.xacro", {}, (
+        "conditional", "arm_moveit_config/.setup_assistant writes this SRDF for the robot built "
+        "with gripper:=two_finger, as MoveItConfigsBuilder builds it")),
+    # the Setup Assistant's config/arm.urdf.xacro, which MoveItConfigsBuilder prefers: likewise
+    ("arm_moveit_config/config/arm.urdf.xacro", {}, (
+        "conditional", "arm_moveit_config/.setup_assistant writes this SRDF for the robot built "
+        "with gripper:=two_finger, as MoveItConfigsBuilder builds it")),
+    # another robot file of the package, named like the robot: not MoveIt's
+    ("arm_description/assets/arm.links.xacro", {}, (
+        "conditional", "arm_moveit_config/.setup_assistant writes this SRDF for "
+        "arm_description/urdf/arm.urdf.xacro, another robot file, which MoveItConfigsBuilder "
+        "loads")),
+])
+def test_the_setup_assistant_says_which_robot_moveit_runs_an_srdf_with(
+        tmp_path, monkeypatch, robot_file, given, expected):
+    """A ROS 2 MoveIt package no launch file read gives MoveIt: its .setup_assistant says what
+    MoveItConfigsBuilder builds (Kinova's link6_moveit_config: link6.urdf.xacro with
+    gripper:=robotiq_2f_85; 23 U803 errors on the gripper's default and on assets/)."""
+    from urdftool.description.runtime import moveit_with
+
+    root = _repo(tmp_path, {
+        "arm_description/package.xml": AMENT.format("arm_description"),
+        "arm_description/urdf/arm.urdf.xacro": GRIPPER_ROBOT,
+        "arm_description/assets/arm.links.xacro": GRIPPER_ROBOT,
+        "arm_moveit_config/package.xml": AMENT.format("arm_moveit_config"),
+        "arm_moveit_config/.setup_assistant": """moveit_setup_assistant_config:
+  urdf:
+    package: arm_description
+    relative_path: urdf/arm.urdf.xacro
+    xacro_args: gripper:=two_finger
+  srdf:
+    relative_path: config/arm.srdf
+""",
+        "arm_moveit_config/config/arm.srdf": "<robot name='arm'/>",
+        "arm_moveit_config/config/arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find arm_description)/urdf/arm.urdf.xacro"/></robot>"""})
+    monkeypatch.chdir(root)
+    robot = load_and_check(str(root / robot_file), CheckOptions(xacro_args=given)).robot
+    assert moveit_with(robot, root / "arm_moveit_config/config/arm.srdf") == expected
+
+
 MODE_ROBOT = """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="mode" default="true"/><xacro:arg name="prefix" default=""/>
   <link name="base"/>

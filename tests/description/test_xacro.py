@@ -213,6 +213,38 @@ def test_an_include_written_relative_to_the_repository_root_says_where_it_is(tmp
     assert "beside the file including it" not in caught.value.message
 
 
+def test_an_include_written_with_cwd_is_not_certain_where_it_is_there_from_a_folder_above(
+        tmp_path, monkeypatch):
+    """ridgeback-baxter's left_end_effector.urdf.xacro includes
+    "$(cwd)/src/baxter/.../rethink_electric_gripper.xacro", for xacro run from its catkin
+    workspace: run from the repository root it is missing, which said nothing certain."""
+    from urdftool.errors import LoadError
+
+    (tmp_path / ".git").mkdir()
+    workspace = tmp_path / "ws"
+    (workspace / "src" / "grip").mkdir(parents=True)
+    (workspace / "src" / "grip" / "grip.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>')
+    (workspace / "src" / "arm").mkdir(parents=True)
+    top = workspace / "src" / "arm" / "arm.xacro"
+    top.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                   '<xacro:include filename="$(cwd)/src/grip/grip.xacro"/><link name="a"/></robot>')
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(LoadError) as caught:
+        load(str(top))
+    assert not caught.value.certain
+    assert caught.value.message.endswith("src/grip/grip.xacro: written with $(cwd), the folder "
+                                         "xacro runs from; it is there when xacro runs from 'ws'")
+    # from the workspace it is read; a file there from no folder stays certain
+    monkeypatch.chdir(workspace)
+    assert load(str(top)).links
+    top.write_text(top.read_text().replace("grip/grip.xacro", "grip/gone.xacro"))
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(LoadError) as caught:
+        load(str(top))
+    assert caught.value.certain
+
+
 def test_xacro_warnings_are_not_prefixed_warning_twice(tmp_path):
     # RealMan's MoveIt configs: 'warning U010 warning: Using load_yaml() directly is
     # deprecated. Use xacro.load_yaml() instead.'

@@ -109,6 +109,13 @@ def test_a_folder_without_robots_says_which_companions_it_holds(tmp_path):
     with pytest.raises(TargetError) as raised:
         expand([str(empty)], CheckRequest())
     assert str(raised.value).endswith("files found in '" + str(empty) + "'")
+    # one file is said as one (husky_robot's quadruped neighbour: '1 launch file, which are')
+    (empty / "view.launch").write_text("")
+    with pytest.raises(TargetError) as raised:
+        expand([str(empty)], CheckRequest())
+    assert str(raised.value).endswith("; it holds 1 launch file, which is checked with the robot "
+                                      "it describes: check a folder holding that robot's .urdf "
+                                      "or .xacro too")
 
 def test_packages_of_the_settings_file_resolve_includes_when_walking(tmp_path):
     """A macro library included through $(find pkg) of a package the settings name is skipped

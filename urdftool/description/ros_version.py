@@ -47,7 +47,15 @@ class Versions:
         return self.versions == frozenset({2})
 
     def why(self, version: int) -> str:
-        return "; ".join(e.why for e in self.evidence if e.version == version)
+        """The evidence for ``version`` in words; of several launch files, the first two and
+        how many more (PPI-PUT's A1 named its seven in each of six messages on its IMU)."""
+        found = [e for e in self.evidence if e.version == version]
+        launches = [e for e in found if e.kind == "launch"]
+        if len(launches) > 2:
+            found = [e for e in found if e.kind != "launch" or e in launches[:2]]
+            found.append(Evidence(version, f"{len(launches) - 2} more launch files launch it",
+                                  "launch"))
+        return "; ".join(e.why for e in found)
 
 
 def ros_versions(robot) -> Versions:

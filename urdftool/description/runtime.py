@@ -26,13 +26,14 @@ import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from urdftool.description.files import enclosing_root, read_regular, real_path
+from urdftool.description.documents import read_yaml
+from urdftool.description.files import enclosing_root, kind_of, listing, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
 from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
                                                  Loaded, Resolved, Started, launch_files,
                                                  launch_index, launch_tests, read_launch,
                                                  reading_room, repository_modules, shown)
-from urdftool.description.packages import packages_below
+from urdftool.description.packages import build_tools, containment_root, packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 
@@ -871,7 +872,7 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     key = real_path(srdf)
     loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
     if not loads:
-        other = _other_robot_with(robot, key)
+        other = _other_robot_with(robot, key) or _setup_assistant_robot(robot, Path(srdf))
         return ("conditional", other) if other else ("unknown", "")
     certain = [c for c, relation in loads if relation == AS_CHECKED]
     if certain:
@@ -882,6 +883,55 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
                                   f"{relation}")
     configuration, relation = loads[0]
     return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
+
+
+def _setup_assistant_robot(robot, srdf: Path) -> str:
+    """Why MoveIt does not run the SRDF ``srdf`` with the robot as checked, from the
+    ``.setup_assistant`` of the ROS 2 MoveIt package holding it (``config/``), when no launch
+    file read gives MoveIt that SRDF: MoveItConfigsBuilder, given no robot_description, loads
+    the package's ``config/ROBOT.urdf.xacro`` or else the URDF the file names, built with its
+    ``xacro_args``, which the Setup Assistant wrote the SRDF for. "" when the file names no
+    URDF of this repository, or the robot as checked is that URDF (or a ``config/*.urdf.xacro``
+    of the package) built with those arguments. Kinova's link6_moveit_config names
+    ``link6.urdf.xacro`` with ``gripper:=robotiq_2f_85``: checked with the gripper's default
+    ``''``, or as ``assets/link6.links.xacro`` (a drawing aid named like the robot), its SRDF
+    named 23 joints of a gripper that build has not, each an error."""
+    package = srdf.parent.parent
+    marker = package / ".setup_assistant"
+    if robot.path == "-" or srdf.parent.name != "config" or \
+            kind_of(marker, follow=False) != "file" or \
+            [version for version, _, _ in build_tools(marker)] != [2]:
+        return ""
+    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
+    settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
+    if not isinstance(settings, dict):
+        return ""
+    urdf, written = settings.get("urdf") or settings.get("URDF"), settings.get("srdf") or \
+        settings.get("SRDF")
+    if not isinstance(urdf, dict) or not isinstance(written, dict) or \
+            real_path(package / str(written.get("relative_path") or "")) != real_path(srdf):
+        return ""
+    folder = packages_below(containment_root(package)).get(str(urdf.get("package")))
+    relative = urdf.get("relative_path")
+    if folder is None or not isinstance(relative, str) or kind_of(folder / relative) != "file":
+        return ""  # another repository's URDF: what it is built with is not known here
+    named = folder / relative
+    mine = real_path(os.path.abspath(robot.path))
+    wrappers = [package / "config" / name for name, kind in
+                listing(package / "config", "*.urdf.xacro") if kind == "file"]
+    where = display_path(marker)
+    if mine not in {real_path(p) for p in [named, *wrappers]}:
+        return (f"{where} writes this SRDF for {display_path(named)}, another robot file, "
+                f"which MoveItConfigsBuilder loads")
+    checked = _robot_args(robot)
+    wanted = dict(word.split(":=", 1) for word in str(urdf.get("xacro_args") or "").split()
+                  if ":=" in word)
+    other = [f"{name}:={value}" for name, value in wanted.items()
+             if name in checked and _normal(value) != _normal(checked[name])]
+    if other:
+        return (f"{where} writes this SRDF for the robot built with {', '.join(other[:4])}, "
+                f"as MoveItConfigsBuilder builds it")
+    return ""
 
 
 def _other_robot_with(robot, srdf_key) -> str:

@@ -513,7 +513,8 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             data = session.read_file(filename)
         except OSError as error:
             xacro.filestack.pop()
-            unsure = _unsure(session, filename, error)
+            unsure = _unsure(session, filename, error) or _from_cwd(
+                session, filename, error, xacro.filestack[-1] if xacro.filestack else None)
             if unsure:
                 raise xacro.XacroException(exc=unsure)
             hint = ""
@@ -749,6 +750,36 @@ class _Unsure(OSError):
 
     def __str__(self) -> str:
         return self.strerror
+
+
+def _from_cwd(session: _Session, filename: str, error: OSError,
+              including: str | None) -> _Unsure | None:
+    """``error`` as not certain when the include was written with ``$(cwd)`` (the folder xacro
+    runs from, here urdftool's) and the path after it is there from a folder above the
+    including file: the robot is built from that folder (ridgeback-baxter's
+    ``$(cwd)/src/baxter/...``, for xacro run from its catkin workspace). None otherwise."""
+    here = os.getcwd()
+    if not including or not filename.startswith(here + os.sep):
+        return None
+    try:
+        if b"$(cwd)" not in session.read_file(including):
+            return None
+    except OSError:
+        return None
+    from urdftool.description.packages import containment_root
+
+    written = filename[len(here) + 1:]
+    folder = os.path.dirname(os.path.abspath(including))
+    root = str(containment_root(folder))
+    while folder.startswith(root):
+        if folder != here and files.kind_of(os.path.join(folder, written)) == "file":
+            return _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: written "
+                                        f"with $(cwd), the folder xacro runs from; it is there "
+                                        f"when xacro runs from '{display_path(folder)}'")
+        if folder == root:
+            break
+        folder = os.path.dirname(folder)
+    return None
 
 
 def _unsure(session: _Session, filename: str, error: OSError) -> _Unsure | None:

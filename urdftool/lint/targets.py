@@ -91,8 +91,11 @@ def _what_it_holds(folder) -> str:
     held = [f"{n} {what}{'s' if n > 1 else ''}" for what, n in counts.items() if n]
     if not held:
         return ""
-    return (f"; it holds {', '.join(held)}, which are checked with the robot they describe: "
-            f"check a folder holding that robot's .urdf or .xacro too")
+    one = len(held) == 1 and held[0].startswith("1 ")  # "1 launch file, which is ..."
+    checked = "which is checked with the robot it describes" if one else \
+        "which are checked with the robot they describe"
+    return (f"; it holds {', '.join(held)}, {checked}: check a folder holding that robot's "
+            ".urdf or .xacro too")
 
 
 _UNREAD = object()  # (a file's bytes not yet asked of _head)

@@ -12,7 +12,9 @@ A **wheel** is the child link of a joint that rolls it:
 - a fixed joint whose child link's name says so: a wheel welded in place (a simplified model)
   still stands on the ground, but has no axle to judge; unless it hangs from a wheel through
   fixed joints: then it is a part of that wheel (a hub or tyre fixed to the rolling link), and
-  the wheel's body (:func:`wheel_body`) is what touches the ground.
+  the wheel's body (:func:`wheel_body`) is what touches the ground; nor when a wheel hangs
+  below it: then it holds that wheel (a wheel's motor or carrier, ``left_wheel_motor_Link``),
+  as a caster's fork does.
 
 A **caster** is a link whose name has ``caster``/``castor``, that carries no wheel below it
 (a caster's swivel fork is not what touches the ground; the wheel in it is), hangs below no
@@ -112,10 +114,14 @@ def _identify(robot) -> list[Wheel]:
         else:
             continue
         found[child] = Wheel(child, joint, "wheel", why, axis(joint) if moving else None)
-    for name in [name for name, wheel in found.items() if wheel.axle is None
-                 and _fixed_below(robot, name, found, parents)]:
-        del found[name]  # a part of the wheel above it (Upkie's hub and tyre on the rotor)
     children = child_joints(robot)
+    for name in [name for name, wheel in found.items() if wheel.axle is None
+                 and (_fixed_below(robot, name, found, parents)
+                      or _carries_wheel(robot, name, found, children))]:
+        # a part of the wheel above it (Upkie's hub and tyre on the rotor), or what holds the
+        # wheel below it (a wheel-legged robot's left_wheel_motor_Link, fixed to the calf,
+        # which the continuous left_wheel_joint turns the wheel on)
+        del found[name]
     for name in robot.links:
         if name in found or not _CASTER.search(name.lower()) or _NOT_CASTER.search(_words(name)):
             continue

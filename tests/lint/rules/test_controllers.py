@@ -464,3 +464,24 @@ def test_a_ros1_trajectory_controller_of_3000_joints_is_searched_once(tmp_path, 
     twice = [where for where in found if where[2] == "U609"]
     assert twice == [("c.yaml", 3 + len(names), "U609")], twice
     assert len(compared) < 100_000, len(compared)
+
+
+@pytest.mark.parametrize("plugin, severity", [
+    # a real robot's own RobotHW (Open_Mobile_Manipulator's ros_control_boilerplate registers
+    # camera_dummy_joint from its 'joints' parameter): the transmissions do not say
+    ("", Severity.WARNING),
+    # gazebo_ros_control offers only the joints of the URDF's transmissions
+    ('<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>', Severity.ERROR),
+])
+def test_a_joint_without_a_transmission_is_an_error_where_transmissions_are_read(
+        tmp_path, plugin, severity):
+    (tmp_path / ".git").mkdir()
+    files = dict(_SPARE)
+    files["robot.urdf"] = HEAD_ROBOT.format(body=TX.format(
+        iface="hardware_interface/PositionJointInterface").replace("head_joint", "other") + plugin)
+    files["config/c.yaml"] = files["config/c.yaml"].replace("joint: nek", "joint: head_joint")
+    files["launch/head.launch"] = files["launch/head.launch"].replace('args="jsc"', 'args="jsc spare"')
+    marks, findings = check_folder(tmp_path, files, select=("U603",))
+    assert marks == [("c.yaml", 2, "U603")] and findings[0].severity == severity
+    assert findings[0].message.endswith("joint 'head_joint' has no transmission or ros2_control "
+                                        "joint; add one for it, or remove it from the controller")

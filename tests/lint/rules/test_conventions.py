@@ -171,26 +171,68 @@ def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_
     assert [code for code, _ in _found(tmp_path, text, ("U417",))] == ["U417"]
 
 
+def _box_base(size: str) -> str:
+    """A base_link of a box of ``size`` for wheels to hang from."""
+    return (f'<link name="base_link"><collision><geometry><box size="{size}"/></geometry>'
+            '</collision></link>')
+
+
+def _rolling(link: str, parent: str, xyz="0 0 0", axis="0 1 0", rpy="0 0 0") -> str:
+    """A cylinder ``link`` of radius 0.05 m turned by continuous joint ``LINK_joint``."""
+    return (f'<link name="{link}"><collision><origin rpy="{rpy}"/><geometry><cylinder '
+            'radius="0.05" length="0.02"/></geometry></collision></link>'
+            f'<joint name="{link}_joint" type="continuous"><parent link="{parent}"/>'
+            f'<child link="{link}"/><origin xyz="{xyz}"/><axis xyz="{axis}"/></joint>')
+
+
 def test_wheels_whose_axles_stand_up_are_not_judged_against_the_ground(tmp_path):
     # fusion2urdf's Basic_Robot is modelled with y up: its wheels turn about z, side by side
     # along z (60 mm apart), and U419 said one hovers 63 mm above the other: 'lower it'
-    body = ('<link name="base_link"><collision><geometry><box size="0.3 0.04 0.2"/></geometry>'
-            '</collision></link>')
+    body = _box_base("0.3 0.04 0.2")
     for side, z in (("left", 0.0), ("right", -0.06)):
-        body += (f'<link name="{side}_wheel"><collision><geometry>'
-                 '<cylinder radius="0.05" length="0.02"/></geometry></collision></link>'
-                 f'<joint name="{side}_wheel_joint" type="continuous"><parent link="base_link"/>'
-                 f'<child link="{side}_wheel"/><origin xyz="0 0 {z}"/><axis xyz="0 0 1"/>'
-                 '</joint>')
+        body += _rolling(f"{side}_wheel", "base_link", xyz=f"0 0 {z}", axis="0 0 1")
     assert _found(tmp_path, body, codes=("U419",)) == []
+
+
+def test_a_link_named_for_a_wheel_that_holds_the_wheel_below_it_is_no_wheel(tmp_path):
+    # a wheel-legged robot exported from SolidWorks (wheel_legged_sim_ros' CJ-003): the fixed
+    # left_wheel_motor_Link on the calf carries the continuous left_wheel_joint's wheel; U419
+    # took the motor for a welded wheel and said it hovers 59 mm above the wheel below it
+    motors = "".join(
+        f'<link name="{side}_wheel_motor_Link"><collision><geometry><box size="0.04 0.04 0.04"/>'
+        f'</geometry></collision></link><joint name="{side}_wheel_motor" type="fixed"><parent '
+        f'link="base_link"/><child link="{side}_wheel_motor_Link"/><origin xyz="0 {y} -0.1"/>'
+        '</joint>' + _rolling(f"{side}_wheel_Link", f"{side}_wheel_motor_Link", rpy="1.5708 0 0")
+        for side, y in (("left", 0.12), ("right", -0.12)))
+    body = _box_base("0.1 0.1 0.1") + motors
+    assert _found(tmp_path, body, codes=("U419",)) == []
+    # a wheel welded in place with nothing below it is still one, and still hovers when it does
+    welded = body + ('<link name="rear_wheel"><collision><origin rpy="1.5708 0 0"/><geometry>'
+                     '<cylinder radius="0.05" length="0.02"/></geometry></collision></link>'
+                     '<joint name="rear_fix" type="fixed"><parent link="base_link"/>'
+                     '<child link="rear_wheel"/><origin xyz="-0.2 0 -0.07"/></joint>')
+    [(code, message)] = _found(tmp_path, welded, codes=("U419",))
+    assert "'rear_wheel' is 30 mm above the lowest wheel" in message
+
+
+def test_a_wheel_standing_on_its_flat_face_is_told_to_turn_its_cylinder(tmp_path):
+    # Omron's LD AMR: the wheels' collision cylinders lack the visual's rpy, so each stands
+    # upright and reaches 44 mm less low than the casters; 'lower it by 0.044 m' was wrong
+    casters = "".join(_rolling(f"{side}_caster_wheel", "base_link", xyz=f"0.2 {y} -0.1",
+                               rpy="1.5708 0 0") for side, y in (("left", 0.1), ("right", -0.1)))
+    drive = "".join(_rolling(f"{side}_wheel", "base_link", xyz=f"0 {y} -0.1")
+                    for side, y in (("left", 0.2), ("right", -0.2)))
+    found = _found(tmp_path, _box_base("0.1 0.1 0.1") + casters + drive, codes=("U419", "U420"))
+    assert sorted(code for code, _ in found) == ["U419", "U419", "U420", "U420"]
+    assert all("collision cylinder is turned off the axle (U420): turn it, and measure again"
+               in message for code, message in found if code == "U419")
 
 
 def test_a_wheel_is_the_body_of_links_fixed_to_its_rolling_link(tmp_path):
     # Upkie's wheel: joint 'left_wheel' turns the motor's rotor, to which the hub and the tyre
     # are fixed (all three named so). U419 judged each as a wheel and said the rotor and the
     # hub hover 16 and 11 mm above the tyre: they are parts of the one body that rolls.
-    body = ('<link name="base_link"><collision><geometry><box size="0.1 0.1 0.1"/></geometry>'
-            '</collision></link>')
+    body = _box_base("0.1 0.1 0.1")
     for side, y in (("left", 0.12), ("right", -0.12)):
         body += (f'<link name="{side}_wheel_rotor"><collision><origin rpy="1.5708 0 0"/>'
                  '<geometry><cylinder radius="0.03" length="0.02"/></geometry></collision></link>'

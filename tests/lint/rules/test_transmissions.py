@@ -232,6 +232,27 @@ def _u515(tmp_path, low: str, high: str, limits: str = 'lower="-1" upper="1"') -
     return sorted((f.message for f in findings), key=lambda m: "max" in m)
 
 
+@pytest.mark.parametrize("package, severity", [
+    (None, Severity.WARNING),  # nothing says ROS runs it: Drake reads it without an interface
+    ("<package format='2'><name>arm</name><buildtool_depend>catkin</buildtool_depend></package>",
+     Severity.ERROR),  # ROS 1's: its ros_control refuses the joint
+])
+def test_a_transmission_without_an_interface_is_an_error_where_ros_1_runs_it(
+        tmp_path, package, severity):
+    # kinova_drake's Gen3 models (copied into a pydrake project, no package.xml): seven U503
+    # errors each for an interface only ROS 1's ros_control reads
+    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+            '<joint name="head_joint"/><actuator name="m"/></transmission>')
+    files = {"robot.urdf": HEAD_ROBOT.format(body=body)}
+    if package:
+        files["package.xml"] = package
+    (tmp_path / ".git").mkdir()
+    _, findings = check_folder(tmp_path, files, select=("U503",))
+    assert [(f.code, f.severity) for f in findings] == [("U503", severity)]
+    assert findings[0].message.endswith("joint 'head_joint' has no <hardwareInterface>; e.g. "
+                                        "hardware_interface/PositionJointInterface")
+
+
 def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
     # igus ReBeL's joint2: 'position min is -2.0944, beyond the URDF <limit> (-1.91986);
     # commands up to -2.0944 pass ros2_control' read as if -2.0944 were a ceiling

@@ -10,8 +10,9 @@ starts a few); nothing when the robot's launch files start it nowhere (docs/cert
 from __future__ import annotations
 
 
-from urdftool.description.actuation import (command_interfaces, interface_kind, ros2_command_interfaces,
-                                            ros2_state_interfaces, transmission_joints, transmissions)
+from urdftool.description.actuation import (command_interfaces, control_plugin, interface_kind,
+                                            ros2_command_interfaces, ros2_state_interfaces,
+                                            transmission_joints, transmissions)
 from urdftool.description.companions import companions, parameter_files
 from urdftool.description.controller_classes import COUNTERPARTS, MOVEIT_TYPES, classes, known_package, lookup
 from urdftool.description import controllers as described
@@ -190,6 +191,10 @@ def controller_joint_not_actuated(robot):
 
     The hardware offers no interface for the joint, so the controller cannot claim it.
     Checked when the URDF describes its actuation (has a transmission or ``<ros2_control>``).
+    A joint without a transmission is a **warning** naming the condition when nothing in the
+    URDF reads its ROS 1 transmissions (no gazebo_ros_control): a robot's own RobotHW
+    registers the joints it is written for (ros_control_boilerplate's, from its ``joints``
+    parameter), whatever transmissions say.
 
     Bad: ``joints: [camera_joint]`` (fixed), or a joint without a transmission
     Good: a transmission or ros2_control ``<joint>`` for every commanded joint
@@ -197,6 +202,7 @@ def controller_joint_not_actuated(robot):
     if not transmissions(robot) and not robot.children("ros2_control"):
         return
     offered = command_interfaces(robot)
+    own_hardware = control_plugin(robot) is None  # ROS 1 transmissions nothing here reads
     for controller in controllers(robot):
         if controller.is_state:
             continue
@@ -208,6 +214,12 @@ def controller_joint_not_actuated(robot):
                     else "has no transmission or ros2_control joint; add one for it, or remove "
                          "it from the controller")
             message = hedged(robot, controller, f"{label(controller)}: joint '{ref.name}' {what}")
+            if message is not None and own_hardware and joint.get("type") != "fixed":
+                message = Conditional(
+                    f"if the robot's hardware interface offers only the joints of its "
+                    f"transmissions (gazebo_ros_control does, and the URDF loads none: a RobotHW "
+                    f"of its own registers the joints it is written for): {message}",
+                    getattr(message, "severity", Severity.WARNING))
             if message is not None:
                 yield controller.file.at(ref.line), message
 

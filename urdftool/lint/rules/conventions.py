@@ -312,9 +312,12 @@ def wheel_not_touching_ground(robot):
         gap = heights[wheel.link] - base
         if gap > CONTACT_TOLERANCE:
             where = _joint_or_link(robot, wheel.link)
+            fix = (f"lower it by {number(gap, 4)} m, or give it its real size"
+                   if next(_off_axle(robot, wheel), None) is None else
+                   "its collision cylinder is turned off the axle (U420): turn it, and measure "
+                   "again")
             yield where, (f"{wheel.kind} '{wheel.link}' is {number(gap * 1000, places=0)} mm above {source} at "
-                          f"the zero pose: it does not touch the ground (lower it by "
-                          f"{number(gap, 4)} m, or give it its real size)")
+                          f"the zero pose: it does not touch the ground ({fix})")
 
 
 def _upright_axles(robot, plane) -> set[str]:
@@ -344,22 +347,29 @@ def wheel_collision_off_axle(robot):
     Good: the collision ``<origin rpy="1.5708 0 0"/>``, so the cylinder's z is the joint's y
     """
     for wheel in wheels(robot):
-        if wheel.axle is None:
-            continue
         link = robot.links[wheel.link]
-        for piece in link_reach(robot, link, ("collision",)).pieces:
-            if piece.kind != "cylinder":
-                continue
-            along = tuple(piece.rotation[i][2] for i in range(3))
-            angle = math.acos(min(1.0, abs(mat3.dot(along, wheel.axle))))
-            if angle > AXLE_TOLERANCE:
-                yield _collision_of(link, piece), (
-                    f"wheel '{wheel.link}': its collision cylinder's axis "
-                    f"({', '.join(f'{number(v, 3)}' for v in along)}) is {number(math.degrees(angle), places=0)} "
-                    f"degrees from the axle of joint '{wheel.joint.get('name')}' "
-                    f"({', '.join(f'{number(v, 3)}' for v in wheel.axle)}); the simulated wheel does "
-                    "not roll on its rim (turn the collision origin so the cylinder's z is the "
-                    "axle)")
+        for piece, along, angle in _off_axle(robot, wheel):
+            yield _collision_of(link, piece), (
+                f"wheel '{wheel.link}': its collision cylinder's axis "
+                f"({', '.join(f'{number(v, 3)}' for v in along)}) is {number(math.degrees(angle), places=0)} "
+                f"degrees from the axle of joint '{wheel.joint.get('name')}' "
+                f"({', '.join(f'{number(v, 3)}' for v in wheel.axle)}); the simulated wheel does "
+                "not roll on its rim (turn the collision origin so the cylinder's z is the "
+                "axle)")
+
+
+def _off_axle(robot, wheel):
+    """(piece, its axis, its angle to the axle) of each collision cylinder of ``wheel`` more
+    than 5 degrees off its axle; none for a wheel without an axle (welded in place)."""
+    if wheel.axle is None:
+        return
+    for piece in link_reach(robot, robot.links[wheel.link], ("collision",)).pieces:
+        if piece.kind != "cylinder":
+            continue
+        along = tuple(piece.rotation[i][2] for i in range(3))
+        angle = math.acos(min(1.0, abs(mat3.dot(along, wheel.axle))))
+        if angle > AXLE_TOLERANCE:
+            yield piece, along, angle
 
 
 def _collision_of(link, piece):

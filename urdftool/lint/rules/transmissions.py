@@ -130,18 +130,24 @@ def unknown_hardware_interface(robot):
     ``<actuator>`` (the form before ROS Indigo): gazebo_ros_control reads it there, with a
     deprecation warning at every start.
 
+    A **warning** naming the condition on a robot nothing says ROS runs (no package.xml, launch
+    file, controller file or ros_control plugin): only ROS 1's ros_control reads the
+    interface, and Drake reads a transmission without one (kinova_drake's Gen3 models, loaded
+    by pydrake scripts beside them, were seven errors each).
+
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
+    unsaid = not ros_versions(robot).versions
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
             continue
         for joint in transmission_joints(transmission):
             if not joint.interfaces:
-                yield joint.element, (f"{_label(transmission)}: joint '{joint.name}' has no "
-                                      "<hardwareInterface>; e.g. hardware_interface/"
-                                      "PositionJointInterface")
+                yield joint.element, _if_ros(unsaid, (
+                    f"{_label(transmission)}: joint '{joint.name}' has no <hardwareInterface>; "
+                    "e.g. hardware_interface/PositionJointInterface"))
             elif joint.in_actuator:
                 text = (joint.interfaces[0].text or "").strip()
                 yield joint.element, Conditional(
@@ -154,8 +160,17 @@ def unknown_hardware_interface(robot):
                 if not known:
                     text = (interface.text or "").strip()
                     bare = text.split("/")[-1].split("::")[-1]
-                    yield interface, (f"{_label(transmission)}: unknown hardware interface "
-                                      f"'{text}'; {available('interfaces', bare, HARDWARE_INTERFACES)}")
+                    yield interface, _if_ros(unsaid, (
+                        f"{_label(transmission)}: unknown hardware interface '{text}'; "
+                        f"{available('interfaces', bare, HARDWARE_INTERFACES)}"))
+
+
+def _if_ros(unsaid: bool, message: str):
+    """U503's ``message``, as a warning naming the condition when nothing says ROS runs the
+    robot (``unsaid``)."""
+    return Conditional(f"if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
+                       f"package.xml, launch file, controller file or ros_control plugin; Drake "
+                       f"reads a transmission without one): {message}") if unsaid else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
