@@ -380,3 +380,27 @@ def test_xacro_only_inside_gazebo_is_a_warning_naming_gazebo(tmp_path):
     outside = gazebo.replace('<link name="a"/>', '<link name="a"/><link name="$(find pkg)"/>')
     [note] = load(write(path, "o.urdf", outside)).notes
     assert note.severity is None and "URDF parsers will not" in note.message, note
+
+
+def test_one_load_looks_for_a_repository_root_once(tmp_path, monkeypatch):
+    # A load is one view of the file system, as a check's run is: a library caller's load of
+    # a xacro with includes asks each question once (per_run answers remembered), and a
+    # second load asks again (a .git made between two loads is seen).
+    from urdftool.description import files
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "part.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>')
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/>'
+        '<xacro:include filename="part.xacro"/><xacro:include filename="part.xacro"/>'
+        '</robot>')
+    from urdftool.description.run_memo import per_run
+
+    asked, own = [], files.repository_root.__wrapped__
+    monkeypatch.setattr(files, "repository_root",
+                        per_run(lambda start: asked.append(start) or own(start)))
+    for _ in range(2):
+        robot = load(tmp_path / "r.urdf.xacro")
+    assert [link.get("name") for link in robot.root.iter("link")] == ["a", "b", "b"]
+    assert len(asked) == 2 * len(set(asked))

@@ -217,3 +217,18 @@ def test_files_are_digested_only_for_the_cache_which_compares_them_with_the_disk
     with recording() as record:  # a record made outside a run: digests, as the server's
         load_and_check(str(robot), CheckOptions())
     assert record.reads()[str(robot)].digest == real_digest(robot.read_bytes())
+
+
+def test_the_records_per_thread_state_is_threading_local_without_importing_threading():
+    # The record of the block running and the editor's unsaved buffers are per thread
+    # (threading.local, which is _thread._local): threading itself (its 40 kB of bytecode
+    # and classes) is not imported for them, and the door reads no thread of its making
+    # when it is not imported.
+    import subprocess
+    import sys
+
+    code = ("import sys; from urdftool.description import files, record; "
+            "assert 'threading' not in sys.modules, 'threading imported'; import threading; "
+            "assert threading.local in record._Active.__mro__ and "
+            "threading.local in files._Unsaved.__mro__")
+    subprocess.run([sys.executable, "-c", code], check=True)

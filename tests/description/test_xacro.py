@@ -357,3 +357,28 @@ def _load_error(folder, text: str):
         load(folder / "r.urdf.xacro")
     return raised.value
 
+
+
+@pytest.mark.parametrize("source", [b'<robot name="r"><link name="a"><visual/></link></robot>',
+                                    b'<robot name="r" xmlns:urdftool-loc="urn:loc:9:9:9">'
+                                    b'<link name="a"/></robot>'])
+def test_a_location_stamp_is_the_attribute_setattribute_makes_with_its_local_name(source):
+    # The stamps are made as minidom's setAttribute makes them, their local name given (one
+    # without it is found by an AttributeError at each asking): the same nodes, names, values
+    # and clones, whatever the source writes.
+    import xml.dom.minidom
+
+    from urdftool.description.xacro import STAMP, _StampingBuilder
+
+    stamped = _StampingBuilder(0).parseString(source)
+    plain = xml.dom.minidom.parseString(source)
+    for element, other in zip(stamped.getElementsByTagName("*"),
+                              plain.getElementsByTagName("*"), strict=True):
+        other.setAttribute(STAMP, element.getAttribute(STAMP))
+        for node, made in ((element, other), (element.cloneNode(True), other.cloneNode(True))):
+            assert [(a.name, a.namespaceURI, a.localName, a.prefix, a.value)
+                    for a in node.attributes.values()] == [
+                (a.name, a.namespaceURI, a.localName, a.prefix, a.value)
+                for a in made.attributes.values()]
+        assert element.getAttributeNode(STAMP)._localName == "urdftool-loc"
+    assert stamped.documentElement.getAttribute(STAMP).startswith("urn:loc:0:1:")

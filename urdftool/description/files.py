@@ -43,8 +43,8 @@ import functools
 import os
 import re
 import stat
-import threading
 import time
+from _thread import _local  # (threading.local: threading itself not imported for it)
 from collections.abc import Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -169,7 +169,7 @@ def _note(name, as_: str, stamp: str | None, size: int | None, data: bytes | Non
 
 # ---- unsaved buffers: what an editor holds, read in place of the disk --------------------
 
-class _Unsaved(threading.local):
+class _Unsaved(_local):
     """The buffers of the blocks running in this thread (:func:`unsaved`): real path -> (the
     path the buffer was given as, its bytes, the set its block yields)."""
 

@@ -21,6 +21,7 @@ from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of,
 from urdftool.description.inputs import SettingValue
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
+from urdftool.description.run_memo import one_run
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary, tinyxml2_comments
 from urdftool.description.urdf import is_xacro
 
@@ -89,8 +90,18 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     """Load a robot from ``path`` (``-`` reads stdin); raises a located LoadError.
 
     as_written: read a file not named .xacro as plain URDF even when it holds xacro, as
-    urdfdom (check_urdf) reads it; by default such a file is expanded, with a note."""
-    path = os.fspath(path)
+    urdfdom (check_urdf) reads it; by default such a file is expanded, with a note.
+
+    One load is one view of the file system (:func:`~urdftool.description.run_memo.one_run`,
+    the check's when it loads within one): a library caller's load asks each repository root,
+    real path and package of its includes once, as a check does."""
+    with one_run():
+        return _load(os.fspath(path), xacro_args, packages, allow_env, max_file_size, data,
+                     as_written)
+
+
+def _load(path: str, xacro_args, packages, allow_env: bool, max_file_size: int,
+          data: bytes | None, as_written: bool) -> Robot:
     shown = display_path(path) if path != "-" else "<stdin>"
     start = Path.cwd() if path == "-" else _folder_of(path)
     if data is None and path != "-":

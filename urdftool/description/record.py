@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import fnmatch
 import os
-import threading
+from _thread import _local  # (threading.local: threading itself not imported for it)
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
@@ -237,7 +237,7 @@ def matches(name: str, kind: str, pattern: str) -> bool:
 
 # ---- the record being made ------------------------------------------------------------------
 
-class _Active(threading.local):
+class _Active(_local):
     """The record of the block running in this thread (a check runs in one thread: the
     language server's worker, a worker process's main thread)."""
 

@@ -57,6 +57,7 @@ from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
+_STAMP_LOCAL = STAMP.split(":", 1)[-1]  # (its local name, as minidom's Attr finds it)
 MAX_MACRO_DEPTH = 100
 MAX_ELEMENTS = 100_000  # elements xacro may evaluate in one expansion (macro bombs)
 MAX_MACRO_CALLS = 20_000  # macro calls in one expansion
@@ -216,7 +217,17 @@ class _StampingBuilder(ExpatBuilderNS):
         # attributes onto the include's parent, so only the top file's root is stamped.
         is_root = node.parentNode is self.document
         if (not is_root or self._index == 0) and node.tagName not in _UNSTAMPED:
-            node.setAttribute(STAMP, f"{_STAMP_PREFIX}{self._index}:{line}:{column}")
+            stamp = f"{_STAMP_PREFIX}{self._index}:{line}:{column}"
+            if node.getAttributeNode(STAMP) is not None:
+                node.setAttribute(STAMP, stamp)
+                return
+            # the attribute setAttribute makes, its local name given: minidom's own (parsed
+            # with namespaces) have theirs, and one without it is asked by an AttributeError
+            # each time it is stored, cloned with a macro's body or unlinked
+            attribute = xml.dom.minidom.Attr(STAMP, localName=_STAMP_LOCAL)
+            attribute.value = stamp
+            attribute.ownerDocument = node.ownerDocument
+            node.setAttributeNode(attribute)
 
 
 def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom.Document:
