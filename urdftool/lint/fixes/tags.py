@@ -144,14 +144,20 @@ class Source:
     def tag_at(self, start: int, index) -> Tag:
         """The start tag whose ``<`` is at byte ``start`` (known from the loader's scan of this
         very buffer: nothing is parsed to find it), which is the file's ``index()``-th: asked
-        only for its end tag, when :attr:`Tag.close_name` is first read. The same tag as
-        :meth:`tag` of that index reads."""
+        only for the end tag of an element holding more than text, when :attr:`Tag.close_name`
+        is first read. The same tag as :meth:`tag` of that index reads."""
         tag = self._at.get(start)
         if tag is None:
             tag = self._at[start] = _read_tag(self.data, start,
                                               bisect.bisect_left(_newlines(self.data), start) + 1)
             if not tag.self_closing:
-                tag._close = lambda: self._closing(index())
+                # the next markup (a "<" is nothing else in a well-formed document) is its end
+                # tag when it holds nothing but text: found there, else by parsing on to it
+                at = self.data.find(b"<", start + 1)
+                if self.data[at:at + 2] == b"</":
+                    tag._close = (at + 2, at + 2 + len(tag.name.encode("utf-8")))
+                else:
+                    tag._close = lambda: self._closing(index())
         return tag
 
     def on_line(self, line: int) -> list[Tag]:
@@ -225,6 +231,8 @@ def source(robot, file: str) -> Source | None:
     """The source of one file the robot was built from (parsed once per robot)."""
     def read():
         data = robot.sources.get(file)
+        if data is not None and _start_offset(robot, robot.root, data) is not None:
+            return Source(file, data)  # a file the loader scanned: expat accepts all of it
         return parse_source(file, data) if data is not None else None
     return robot.memo(("fixes.source", file), read)
 
