@@ -6,7 +6,8 @@ file is parsed with expat as far as the tags asked for; each tag's parts (name, 
 their byte spans, end tag) are read only for the tags a fix asks for. A URDF whose start tags
 the loader found by scanning its bytes (:func:`~urdftool.description.xml.parse`) gives each
 element's tag from that offset, and is parsed (a handler call per tag before it) only as far
-as an end tag asked for: the corpus's fixes parsed 8,161 tags for it, 81 M of 6.64 G
+as the end tag of an element holding more than text, when asked for: the corpus's fixes
+parsed 8,161 tags for their 404 inertial edits and 60 interface prefixes, 133 M of 6.64 G
 instructions.
 """
 
