@@ -395,6 +395,34 @@ def test_a_source_finds_the_same_tags_whatever_its_chunks(monkeypatch):
         assert [source.tag(i) for i in range(len(whole))] == wanted and len(source) == len(whole)
 
 
+def test_a_plain_file_finds_its_tags_where_the_loader_scanned_them(tmp_path):
+    # a URDF the loader scanned (plain: its start tags' offsets known) gives each element's tag
+    # from its offset, the same tag (offset, line, name, attributes, end tag) as parsing up to
+    # it finds, without parsing there: only the end tag of an element holding more than text
+    # (children, a comment, CDATA), when asked for, parses on
+    links = "".join(f'\n  <link name="l{i}"><!-- <fake/> --><visual><geometry><box size="1 1 1"/>'
+                    f'</geometry></visual>\n  </link>\n  <joint name="j{i}" type="fixed">'
+                    f'<parent link="l{i}"/><child link="l{i + 1}"/></joint>\n  <gazebo '
+                    f'reference="l{i}"><mu1>0.{i}</mu1><kp></kp></gazebo>' for i in range(300))
+    data = (f'<?xml version="1.0"?>\n<!-- a <comment> -->\n<robot name="r">{links}\n'
+            '  <link name="l300"/>\n  <gazebo><![CDATA[ <notag> ]]></gazebo>\n</robot>\n').encode()
+    path = tmp_path / "r.urdf"
+    path.write_bytes(data)
+    robot = load(str(path))
+    file = robot.locations.get(robot.root).file
+    assert robot.locations.start_offset(robot.root, robot.sources[file]) is not None
+    elements = [element for element in robot.root.iter() if isinstance(element.tag, str)]
+    found = [fixes.source_tag(robot, element) for element in elements]
+    source = found[0][0]
+    assert source._fed == 0  # nothing parsed to find them
+    parsed = fixes.parse_source("r.urdf", data)
+    for index, (text, tag) in enumerate(found):
+        wanted = parsed.tag(index)
+        assert text is source and tag.close_name == wanted.close_name  # (parses on to it)
+        assert tag == wanted
+    assert data[found[-1][1].start:found[-1][1].end] == b"<gazebo>"
+
+
 def test_a_source_is_read_as_far_as_the_tags_asked_for():
     # 40,000 tags (over 1 MB) behind the root link, then text no XML parser accepts: the root
     # link's tag is found from the first chunks, so the broken tail is never reached (a source

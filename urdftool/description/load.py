@@ -396,6 +396,13 @@ class _StartTags(Mapping):
         found = self._positions.get(element)
         return default if found is None else Location(self._file, found[0], column=found[1])
 
+    def start_offset(self, element, data: bytes) -> int | None:
+        """The byte offset of ``element``'s start tag in ``data``, when its place was found by
+        scanning that very buffer (a plain document, :func:`~urdftool.description.xml.parse`),
+        else None."""
+        offset = getattr(self._positions, "offset", None)
+        return offset(element, data) if offset is not None else None
+
     def __iter__(self):
         return iter(self._positions)
 

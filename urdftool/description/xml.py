@@ -310,6 +310,11 @@ class _StartOffsets(Mapping):
         offset = self._offsets.get(element)
         return default if offset is None else self._position(offset)
 
+    def offset(self, element, data: bytes) -> int | None:
+        """The byte offset of ``element``'s start tag when ``data`` is the very buffer scanned
+        (the fixes find a tag there without parsing up to it), else None."""
+        return self._offsets.get(element) if data is self._data else None
+
     def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
             self._newlines = newlines(self._data)
