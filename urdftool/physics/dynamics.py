@@ -320,8 +320,9 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
                 load.worst, load.worst_pose = torque, pose
         if progress is not None:
             progress(number + 1, len(poses))
-    judged = np.array([[pose[name] for name in names] for pose, values in zip(poses, kept)
-                       if values is not None]).reshape(-1, len(names))
+    judged_rows = [[pose[name] for name in names] for pose, values in zip(poses, kept)
+                   if values is not None]
+    judged = np.array(judged_rows, dtype=float).reshape(len(judged_rows), len(names))  # 0 joints
     return loads, judged, (np.vstack(table) if table else np.zeros((0, len(loads))))
 
 
