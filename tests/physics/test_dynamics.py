@@ -335,3 +335,17 @@ def test_a_robot_without_a_moving_joint_has_no_gravity_load(tmp_path, run_cli):
         assert "no pose drawn stands" not in result.output  # it stands: the margin is 85.7 mm
     document = json.loads(run_cli("dynamics", path, "--samples", "5", "-f", "json").output)
     assert document["gravity_loads"] == []
+
+
+def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
+    """A floating joint (a free-flying base written into the URDF) is refused at its line, as
+    every refusal is; it was 'robot.urdf: error: ...', no line, nor the joint's type."""
+    path = tmp_path / "flying.urdf"
+    path.write_text(RIGID.replace('<joint name="cam_joint" type="fixed">',
+                                  '<link name="world"/>\n  <joint name="free" type="floating">'
+                                  '<parent link="world"/><child link="base"/></joint>\n'
+                                  '  <joint name="cam_joint" type="fixed">'))
+    result = run_cli("dynamics", path)
+    assert result.exit_code == 1
+    assert f"{path}:8: error: joint 'free' is floating, of 6 degrees of freedom" in result.stderr
+    assert "Traceback" not in result.output + result.stderr

@@ -72,8 +72,11 @@ def build(robot) -> Model:
                                               model.names[joint_id], axis),
                                 robot.joints.get(model.names[joint_id]))
         if model.joints[joint_id].nv != 1:
-            raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
-                                "degrees of freedom; only 1-dof joints are supported")
+            element = robot.joints.get(model.names[joint_id])
+            kind = element.get("type") if element is not None else "a joint"
+            raise DynamicsError(f"joint '{model.names[joint_id]}' is {kind}, of "
+                                f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
+                                "revolute, continuous and prismatic joints only", element)
         joints.append(model.names[joint_id])
     variables = variables_of(robot)
     names = {variable.name for variable in variables}
@@ -82,7 +85,7 @@ def build(robot) -> Model:
         mimics = {joint: mimic_source(robot, joint, names, known=known)
                   for joint in mimics_of(robot) if joint in joints}
     except MimicError as error:
-        raise DynamicsError(str(error)) from None
+        raise DynamicsError(str(error), error.element) from None
     _refuse_oversized_data(robot, model.nv)
     return Model(model, model.createData(), joints, variables, mimics)
 
