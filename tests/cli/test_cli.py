@@ -168,6 +168,26 @@ def test_a_robot_without_a_link_is_refused_alike_by_every_command(words, tmp_pat
     assert run_cli("xacro", path).exit_code == 0  # a macro library's expansion has no link
 
 
+@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph"])
+def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
+                                                                        run_cli):
+    """A package this machine lacks (U006: the environment's, not the robot's; TurtleBot's
+    create_description in the sweep) is check's exit 2, 'not checked'; the commands exited 1,
+    as for a robot in error. A xacro error in the robot stays 1."""
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '<xacro:include filename="$(find absent_description)/urdf/base.xacro"/>\n'
+                    '<link name="a"/>\n</robot>\n')
+    assert run_cli("check", path).exit_code == 2
+    result = run_cli(command, path)
+    assert result.exit_code == 2, result.output
+    assert "r.urdf.xacro:2: warning U006 package 'absent_description' not found" in result.stderr
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '<link name="${nowhere}"/>\n</robot>\n')
+    result = run_cli(command, path)
+    assert result.exit_code == 1 and "r.urdf.xacro:2: error U005" in result.stderr
+
+
 TWO_LINKS = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
 
 

@@ -166,7 +166,8 @@ def _refuse_linkless(robot) -> None:
 
 def load_robot(path: str, args: dict[str, str], packages, **load_options):
     """The robot at ``path`` loaded; one that does not load prints as located diagnostics
-    and exits 1."""
+    and exits 1, or 2 as ``check`` does when a package it needs is not installed (U006: the
+    machine's, not the robot's; nothing was computed)."""
     from urdftool.errors import LoadError
     from urdftool.description.load import load
     from urdftool.lint.settings import env_allowed
@@ -176,10 +177,11 @@ def load_robot(path: str, args: dict[str, str], packages, **load_options):
         load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
         return load(path, xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
-        from urdftool.lint.engine import load_error_findings
+        from urdftool.lint.engine import FileResult, load_error_findings
 
-        report_findings(path, load_error_findings(error))
-        raise typer.Exit(1)
+        result = FileResult(path, load_error_findings(error))
+        report_findings(path, result.findings)
+        raise typer.Exit(2 if result.unexpanded else 1)
 
 
 def budgeted(command):
