@@ -168,7 +168,8 @@ def test_a_robot_without_a_link_is_refused_alike_by_every_command(words, tmp_pat
     assert run_cli("xacro", path).exit_code == 0  # a macro library's expansion has no link
 
 
-@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph"])
+@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph",
+                                     "crosscheck"])
 def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
                                                                         run_cli):
     """A package this machine lacks (U006: the environment's, not the robot's; TurtleBot's

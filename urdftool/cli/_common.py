@@ -177,11 +177,18 @@ def load_robot(path: str, args: dict[str, str], packages, **load_options):
         load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
         return load(path, xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
-        from urdftool.lint.engine import FileResult, load_error_findings
+        refuse_unloaded(path, error)
 
-        result = FileResult(path, load_error_findings(error))
-        report_findings(path, result.findings)
-        raise typer.Exit(2 if result.unexpanded else 1)
+
+def refuse_unloaded(path: str, error) -> None:
+    """Report the :class:`~urdftool.errors.LoadError` of the robot at ``path`` as ``check``
+    does, located, and exit as it does: 2 when a package it needs is not installed (U006), else
+    1."""
+    from urdftool.lint.engine import FileResult, load_error_findings
+
+    result = FileResult(path, load_error_findings(error))
+    report_findings(path, result.findings)
+    raise typer.Exit(2 if result.unexpanded else 1)
 
 
 def budgeted(command):
