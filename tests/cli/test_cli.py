@@ -148,6 +148,47 @@ def test_a_joint_axis_without_direction_fails_instead_of_nan_poses(command, tmp_
     assert "has no direction" in result.stderr
 
 
+@pytest.mark.parametrize("words", [["tree"], ["graph"], ["fk"], ["dh", "--tip", "x"],
+                                   ["ik", "--tip", "x", "--xyz", "0", "0", "0"],
+                                   ["workspace", "--tip", "x"], ["inertia"], ["dynamics"],
+                                   ["collisions"], ["collisions", "--matrix"],
+                                   ["render", "-o", "{tmp}/x.png"]])
+def test_a_robot_without_a_link_is_refused_alike_by_every_command(words, tmp_path, run_cli):
+    """Materials only (TurtleBot3's common_properties.urdf, which check finds as a robot):
+    fk and collisions said 'no root link (a cycle?)', graph drew an empty graph, inertia
+    printed ' (0 links)', render wrote a picture of 0 triangles, all but the first two exit 0."""
+    path = tmp_path / "colours.urdf"
+    path.write_text('<robot name="colours">\n<material name="black"><color rgba="0 0 0 1"/>'
+                    '</material>\n</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *(word.format(tmp=tmp_path) for word in rest))
+    assert result.exit_code == 1, result.output
+    assert "colours.urdf:1: error U106 robot has no <link> elements" in result.stderr
+    assert "cycle" not in result.output + result.stderr and not (tmp_path / "x.png").exists()
+    assert run_cli("xacro", path).exit_code == 0  # a macro library's expansion has no link
+
+
+@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph",
+                                     "crosscheck"])
+def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
+                                                                        run_cli):
+    """A package this machine lacks (U006: the environment's, not the robot's; TurtleBot's
+    create_description in the sweep) is check's exit 2, 'not checked'; the commands exited 1,
+    as for a robot in error. A xacro error in the robot stays 1."""
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '<xacro:include filename="$(find absent_description)/urdf/base.xacro"/>\n'
+                    '<link name="a"/>\n</robot>\n')
+    assert run_cli("check", path).exit_code == 2
+    result = run_cli(command, path)
+    assert result.exit_code == 2, result.output
+    assert "r.urdf.xacro:2: warning U006 package 'absent_description' not found" in result.stderr
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '<link name="${nowhere}"/>\n</robot>\n')
+    result = run_cli(command, path)
+    assert result.exit_code == 1 and "r.urdf.xacro:2: error U005" in result.stderr
+
+
 TWO_LINKS = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
 
 

@@ -79,3 +79,17 @@ def test_collisions_render_paints_colliding_links_red(tmp_path, run_cli):
 
     assert red(crossed) > 200 and red(apart) == 0
     assert run_cli("collisions", HUMANOID, "--matrix", "--render", apart).exit_code == 2
+
+
+def test_an_empty_picture_says_why(tmp_path, run_cli):
+    """A robot of collision shapes only drew '0 triangles' and said no more (so did champ's of
+    the sweep, every mesh outside its repository: the warnings said it, not the last line)."""
+    path = tmp_path / "boxes.urdf"
+    path.write_text('<robot name="boxes"><link name="a"><collision><geometry>'
+                    '<box size="0.1 0.1 0.1"/></geometry></collision></link></robot>')
+    result = run_cli("render", path, "-o", tmp_path / "x.png")
+    assert result.exit_code == 0
+    assert ("(0 triangles): the robot has no <visual> geometry, only <collision>; "
+            "--collision draws it") in result.stderr
+    drawn = run_cli("render", path, "-o", tmp_path / "x.png", "--collision")
+    assert "(12 triangles)\n" in drawn.stderr

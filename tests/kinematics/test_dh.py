@@ -201,6 +201,25 @@ def test_mimic_joint_in_chain_is_refused(tmp_path):
         dh.extract(load(path), "b", "t")
 
 
+def test_every_joint_of_the_chain_without_a_dh_form_is_named(tmp_path):
+    """One run names them all (the first at its line): a user choosing --base and --tip around
+    them learnt one per run before."""
+    path = tmp_path / "g.urdf"
+    path.write_text("""<robot name="g"><link name="b"/><link name="m"/><link name="n"/><link name="t"/>
+      <joint name="j1" type="revolute"><parent link="b"/><child link="m"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="m"/><child link="n"/>
+        <limit lower="0" upper="1" effort="1" velocity="1"/><mimic joint="j1"/></joint>
+      <joint name="p" type="planar"><parent link="n"/><child link="t"/>
+        <axis xyz="0 0 1"/></joint></robot>""")
+    robot = load(path)
+    with pytest.raises(dh.DHError) as caught:
+        dh.extract(robot, "b", "t")
+    assert str(caught.value) == ("joint 'j2' mimics 'j1': a D-H table has one independent variable "
+                                 "per joint; 1 more joint(s) of the chain have none: 'p' (planar)")
+    assert robot.locate(caught.value.element).line == 4
+
+
 def test_tip_not_below_base(humanoid):
     with pytest.raises(dh.DHError, match="not below link 'l_foot_link'.*swap --base and --tip"):
         dh.extract(humanoid, "l_foot_link", "body_link")

@@ -42,6 +42,30 @@ def test_yourdfpy_poses_match_urdftool_fk():
         np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
 
 
+def test_a_mimic_of_a_mimic_is_posed_as_urdftool_fk_poses_it(tmp_path):
+    """yourdfpy follows one step of a mimic chain: a joint mimicking a mimic joint stayed at its
+    offset (qb SoftHand's virtual joints in the sweep), in render, collisions --render and diff
+    --render."""
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+
+    path = tmp_path / "chain.urdf"
+    path.write_text(ARM.replace("</robot>", """  <link name="tip"><visual><geometry>
+    <sphere radius="0.01"/></geometry></visual></link>
+  <joint name="nail" type="revolute"><parent link="finger"/><child link="tip"/>
+    <origin xyz="0 0 0.1"/><axis xyz="1 0 0"/>
+    <limit lower="-2" upper="2" effort="1" velocity="1"/>
+    <mimic joint="wrist" multiplier="-0.5" offset="0.1"/></joint>
+</robot>"""))
+    robot = load(path)
+    model = KinematicModel(robot)
+    chosen = config.from_words(model.variables, {"shoulder": "0.7"})
+    fk = forward_kinematics(model, chosen)
+    scene = scene_model(robot).pose({"shoulder": 0.7})
+    for link, pose in zip(fk.frames, fk.matrices[0]):
+        np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
+
+
 def test_triangles_are_posed_coloured_and_owned(tmp_path):
     robot = load_text(tmp_path, ARM)
     scene, warnings = posed(robot, {"shoulder": "90"}, degrees=True)

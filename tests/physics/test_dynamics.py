@@ -306,3 +306,46 @@ def test_a_robot_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tm
     with pytest.raises(DynamicsError, match="300 joint variables.*cube of the joints"):
         build(robot)
 
+
+
+# a base and a camera on a fixed joint: nothing moves (a sensor's own URDF, BlueROV2's of the
+# sweep); `--samples` raised "cannot reshape array of size 0" from sampled_loads, a traceback
+RIGID = """<robot name="rigid">
+  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="cam"><inertial><mass value="0.1"/>
+    <inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="cam_joint" type="fixed"><parent link="base"/><child link="cam"/>
+    <origin xyz="0.3 0 0"/></joint>
+</robot>"""
+
+
+def test_a_robot_without_a_moving_joint_has_no_gravity_load(tmp_path, run_cli):
+    from urdftool.physics.dynamics import sampled_loads
+
+    path = tmp_path / "rigid.urdf"
+    path.write_text(RIGID)
+    loads, poses, torques = sampled_loads(build(load(path)), 5)
+    assert loads == [] and poses.shape == (6, 0) and torques.shape == (6, 0)
+    for words in ((), ("--support", "base")):
+        result = run_cli("dynamics", path, "--samples", "5", *words)
+        assert result.exit_code == 0, result.output
+        assert "no moving joint: no gravity load to judge" in result.output
+        assert "no pose drawn stands" not in result.output  # it stands: the margin is 85.7 mm
+    document = json.loads(run_cli("dynamics", path, "--samples", "5", "-f", "json").output)
+    assert document["gravity_loads"] == []
+
+
+def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
+    """A floating joint (a free-flying base written into the URDF) is refused at its line, as
+    every refusal is; it was 'robot.urdf: error: ...', no line, nor the joint's type."""
+    path = tmp_path / "flying.urdf"
+    path.write_text(RIGID.replace('<joint name="cam_joint" type="fixed">',
+                                  '<link name="world"/>\n  <joint name="free" type="floating">'
+                                  '<parent link="world"/><child link="base"/></joint>\n'
+                                  '  <joint name="cam_joint" type="fixed">'))
+    result = run_cli("dynamics", path)
+    assert result.exit_code == 1
+    assert f"{path}:8: error: joint 'free' is floating, of 6 degrees of freedom" in result.stderr
+    assert "Traceback" not in result.output + result.stderr

@@ -124,7 +124,8 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
 
     Usage errors exit 2 before anything is loaded: not exactly one FILE, an option value not
     among its choices, or the first of ``problems`` that is true. A robot that does not load
-    prints as located diagnostics and exits 1.
+    prints as located diagnostics and exits 1, and so does one without a link (but for
+    ``xacro``: a macro library's expansion has none).
 
     choices: {option: (value, allowed values)}, e.g. {"--format": (fmt, ("text", "json"))}
     problems: (is wrong, message) pairs for the command's own option checks
@@ -143,12 +144,30 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
                 raise UsageError(message)
     except UsageError as error:
         fail_usage(error)
-    return load_robot(paths[0], args, packages, **load_options)
+    robot = load_robot(paths[0], args, packages, **load_options)
+    if not robot.links and command != "xacro":  # a macro library expands to no link: xacro's
+        _refuse_linkless(robot)
+    return robot
+
+
+def _refuse_linkless(robot) -> None:
+    """A robot without a link has nothing to compute or draw: urdfdom's refusal (U106) at its
+    line, exit 1, as ``tree`` gives it. Each command found its own words for it before: 'no
+    root link (a cycle?)', an empty graph, '(0 links)', a picture of 0 triangles."""
+    from urdftool.lint.engine import urdfdom_refusals
+
+    refusals = urdfdom_refusals(robot)
+    if refusals:
+        report_findings(robot.path, refusals)
+    else:
+        say(f"{robot.locate(robot.root)}: error: robot has no <link> elements", err=True)
+    raise typer.Exit(1)
 
 
 def load_robot(path: str, args: dict[str, str], packages, **load_options):
     """The robot at ``path`` loaded; one that does not load prints as located diagnostics
-    and exits 1."""
+    and exits 1, or 2 as ``check`` does when a package it needs is not installed (U006: the
+    machine's, not the robot's; nothing was computed)."""
     from urdftool.errors import LoadError
     from urdftool.description.load import load
     from urdftool.lint.settings import env_allowed
@@ -158,10 +177,18 @@ def load_robot(path: str, args: dict[str, str], packages, **load_options):
         load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
         return load(path, xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
-        from urdftool.lint.engine import load_error_findings
+        refuse_unloaded(path, error)
 
-        report_findings(path, load_error_findings(error))
-        raise typer.Exit(1)
+
+def refuse_unloaded(path: str, error) -> None:
+    """Report the :class:`~urdftool.errors.LoadError` of the robot at ``path`` as ``check``
+    does, located, and exit as it does: 2 when a package it needs is not installed (U006), else
+    1."""
+    from urdftool.lint.engine import FileResult, load_error_findings
+
+    result = FileResult(path, load_error_findings(error))
+    report_findings(path, result.findings)
+    raise typer.Exit(2 if result.unexpanded else 1)
 
 
 def budgeted(command):

@@ -49,11 +49,9 @@ def crosscheck(
     except UsageError as error:
         fail_usage(error)
     except LoadError as error:
-        from urdftool.cli._common import report_findings
-        from urdftool.lint.engine import load_error_findings
+        from urdftool.cli._common import refuse_unloaded
 
-        report_findings(paths[0], load_error_findings(error))
-        raise typer.Exit(1)
+        refuse_unloaded(paths[0], error)
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

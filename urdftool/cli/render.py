@@ -74,4 +74,20 @@ def render(
         fail_usage(UsageError(str(error)))
     except SceneError as error:
         fail_at(robot, error)
-    say(f"wrote {output} ({len(scene.triangles)} triangles)", err=True)
+    say(f"wrote {output} ({len(scene.triangles)} triangles){_why_empty(robot, scene, collision)}",
+        err=True)
+
+
+def _why_empty(robot, scene, collision: bool) -> str:
+    """Why a picture shows nothing: a robot whose geometry is all of the other kind (its
+    collision shapes only: a picture of 0 triangles said nothing of --collision), or whose
+    every shape was left out (the warnings above say why)."""
+    if len(scene.triangles):
+        return ""
+    drawn, other = ("collision", "visual") if collision else ("visual", "collision")
+    if not any(True for _ in robot.root.iter(drawn)):
+        hint = "--collision draws it" if not collision else "without --collision it is drawn"
+        return (f": the robot has no <{drawn}> geometry" +
+                (f", only <{other}>; {hint}" if any(True for _ in robot.root.iter(other)) else ""))
+    return f": every <{drawn}> shape was left out (the warnings say why)" if scene.problems else ""
+

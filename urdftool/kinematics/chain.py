@@ -119,6 +119,34 @@ def frame_jacobian(model, data, frame: int, reference) -> np.ndarray:
     return np.asarray(pin.getFrameJacobian(model, data, frame, reference)).reshape(6, model.nv)
 
 
+def reduced_model(full, locked: list[int], reference: np.ndarray):
+    """``pinocchio.buildReducedModel(full, locked, reference)`` for any URDF: Pinocchio looks
+    joints' frames up by name alone and raises "Several frames match the filter" when a link
+    has a joint's name (ANYmal's LF_HAA is both, as URDF allows). Such joints are renamed in a
+    copy while it reduces, and named back after."""
+    import pinocchio as pin
+
+    taken = {frame.name for frame in full.frames if frame.type != pin.FrameType.JOINT}
+    clashes = {joint: f"{name}\x1fjoint" for joint, name in enumerate(full.names)
+               if joint and name in taken}
+    if not clashes:
+        return pin.buildReducedModel(full, locked, reference)
+    model = full.copy()
+    renamed = {}
+    for joint, new in clashes.items():
+        renamed[new] = full.names[joint]
+        for frame in model.frames:
+            if frame.name == full.names[joint] and frame.type == pin.FrameType.JOINT:
+                frame.name = new
+        model.names[joint] = new
+    reduced = pin.buildReducedModel(model, locked, reference)
+    for frame in reduced.frames:
+        frame.name = renamed.get(frame.name, frame.name)
+    for joint, name in enumerate(reduced.names):
+        reduced.names[joint] = renamed.get(name, name)
+    return reduced
+
+
 def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None,
                 kinematics: KinematicModel | None = None, point=None) -> Chain:
     """The limb from ``base`` (default: the root link) to ``tip``; the variables off the limb
@@ -149,7 +177,7 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
                           robot.joints.get(name))
     locked = [j for j in range(1, full.njoints) if j not in path]
     reference = kinematics.pinocchio_q(row)[0]
-    model = pin.buildReducedModel(full, locked, reference) if locked else full.copy()
+    model = reduced_model(full, locked, reference) if locked else full.copy()
     joints = [model.names[j] for j in range(1, model.njoints)]
     sources = {name: kinematics._source(name) for name in joints}
     columns = sorted({column for column, _, _ in sources.values()})

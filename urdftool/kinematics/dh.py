@@ -140,6 +140,29 @@ def _is_below(parent_joint: dict, link: str, ancestor: str) -> bool:
     return link == ancestor
 
 
+def _refuse_joints_without_form(joints) -> None:
+    """DHError at the chain's first joint that has no D-H form (a mimic joint: not an
+    independent variable; planar, floating: not one axis), naming every other one as well, so
+    that one run says which joints a --base and --tip must leave out."""
+    without = []
+    for joint in joints:
+        mimic = joint.find("mimic")
+        if mimic is not None:
+            without.append((joint, f"mimics '{mimic.get('joint')}'", "a mimic",
+                            "a D-H table has one independent variable per joint"))
+        elif joint.get("type") not in MOVING + ("fixed",):
+            without.append((joint, f"is {joint.get('type')}", joint.get("type"),
+                            "only revolute, continuous and prismatic joints have a D-H form "
+                            "(one axis, one variable)"))
+    if not without:
+        return
+    (first, what, _, why), *others = without
+    more = "" if not others else (
+        f"; {len(others)} more joint(s) of the chain have none: "
+        + ", ".join(f"'{joint.get('name')}' ({kind})" for joint, _, kind, _ in others))
+    raise DHError(f"joint '{first.get('name')}' {what}: {why}{more}", first)
+
+
 def extract(robot, base: str, tip: str, convention: str = "standard",
             textbook: bool = False) -> DHTable:
     """The D-H table of the chain ``base`` -> ``tip`` with its base and tool transforms;
@@ -149,14 +172,9 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
     joints = chain(robot, base, tip)
     moving = []  # (element, type, point, direction) in base-link coordinates at zero
     pose = np.eye(4)
+    _refuse_joints_without_form(joints)
     for joint in joints:
         kind = joint.get("type")
-        if joint.find("mimic") is not None:
-            raise DHError(f"joint '{joint.get('name')}' mimics '{joint.find('mimic').get('joint')}'"
-                          ": a D-H table has one independent variable per joint", joint)
-        if kind not in MOVING + ("fixed",):
-            raise DHError(f"joint '{joint.get('name')}' is {kind}: only revolute, continuous and "
-                          "prismatic joints have a D-H form (one axis, one variable)", joint)
         pose = pose @ _origin(joint)
         if kind != "fixed":
             axis = pose[:3, :3] @ _unit_axis(joint)

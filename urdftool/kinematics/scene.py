@@ -207,6 +207,7 @@ def _yourdfpy(robot, collision: bool):
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=True, remove_blank_text=True)
     root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
+    _follow_variables(robot, root)
     try:
         model = yourdfpy.URDF._parse_robot(root)
         return yourdfpy.URDF(model, build_scene_graph=not collision,
@@ -219,6 +220,30 @@ def _yourdfpy(robot, collision: bool):
     except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
         raise SceneError(f"yourdfpy cannot build the scene ({type(error).__name__}: {error}); "
                          "run 'urdftool check' for the cause") from None
+
+
+def _follow_variables(robot, root) -> None:
+    """Point each ``<mimic>`` of ``root`` (the expanded URDF's tree given to yourdfpy) at the
+    variable it follows in the end, with the chain's multiplier and offset: yourdfpy follows one
+    step only, and posed a mimic of a mimic (28 virtual joints of the qb SoftHand in the sweep)
+    at its offset whatever its source's value ("not actuated - will assume 0")."""
+    from urdftool.errors import ConfigError, MimicError
+    from urdftool.kinematics.configuration import mimic_source, variables_of
+
+    names = {variable.name for variable in variables_of(robot)}
+    known: dict = {}
+    for joint in root.iterchildren("joint"):
+        mimic = joint.find("mimic")
+        if mimic is None:
+            continue
+        try:
+            variable, multiplier, offset = mimic_source(robot, joint.get("name"), names,
+                                                        known=known)
+        except (ConfigError, MimicError):  # a cycle, an unknown joint: yourdfpy's own reading
+            continue
+        mimic.set("joint", variable)
+        mimic.set("multiplier", repr(multiplier))
+        mimic.set("offset", repr(offset))
 
 
 def _contained(robot, fname: str) -> str:

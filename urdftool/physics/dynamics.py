@@ -72,8 +72,11 @@ def build(robot) -> Model:
                                               model.names[joint_id], axis),
                                 robot.joints.get(model.names[joint_id]))
         if model.joints[joint_id].nv != 1:
-            raise DynamicsError(f"joint '{model.names[joint_id]}' has {model.joints[joint_id].nv} "
-                                "degrees of freedom; only 1-dof joints are supported")
+            element = robot.joints.get(model.names[joint_id])
+            kind = element.get("type") if element is not None else "a joint"
+            raise DynamicsError(f"joint '{model.names[joint_id]}' is {kind}, of "
+                                f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
+                                "revolute, continuous and prismatic joints only", element)
         joints.append(model.names[joint_id])
     variables = variables_of(robot)
     names = {variable.name for variable in variables}
@@ -82,7 +85,7 @@ def build(robot) -> Model:
         mimics = {joint: mimic_source(robot, joint, names, known=known)
                   for joint in mimics_of(robot) if joint in joints}
     except MimicError as error:
-        raise DynamicsError(str(error)) from None
+        raise DynamicsError(str(error), error.element) from None
     _refuse_oversized_data(robot, model.nv)
     return Model(model, model.createData(), joints, variables, mimics)
 
@@ -320,8 +323,9 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
                 load.worst, load.worst_pose = torque, pose
         if progress is not None:
             progress(number + 1, len(poses))
-    judged = np.array([[pose[name] for name in names] for pose, values in zip(poses, kept)
-                       if values is not None]).reshape(-1, len(names))
+    judged_rows = [[pose[name] for name in names] for pose, values in zip(poses, kept)
+                   if values is not None]
+    judged = np.array(judged_rows, dtype=float).reshape(len(judged_rows), len(names))  # 0 joints
     return loads, judged, (np.vstack(table) if table else np.zeros((0, len(loads))))
 
 

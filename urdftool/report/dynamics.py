@@ -36,6 +36,9 @@ def _scale(values) -> float | None:
     return float(values.max()) if values.size and values.max() > 0 else None
 
 
+NO_JOINT = "no moving joint: no gravity load to judge"
+
+
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
     joints = [_text(j) for j in result.joints]
@@ -74,6 +77,8 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
                  "poses, then climbed to a maximum, exact along each joint):" if refined else
                  f"static gravity load over the zero pose and {samples} random poses:")
         lines += [""] + load_lines(loads, title, relevant)
+    elif samples:
+        lines += ["", NO_JOINT]
     return "\n".join(lines) + "\n"
 
 
@@ -138,7 +143,8 @@ def stance_text(stance, standing_load=None) -> str:
     joints = [_text(j) for j in stance.joints]
     width = max((len(j) for j in joints), default=5)
     lines += ["", "joint torque holding the robot [N m or N]:",
-              f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"]
+              f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"] \
+        if joints else []
     scale = _scale([*stance.torques, *stance.fixed_base])
     for joint, standing, fixed, effort in zip(joints, stance.torques, stance.fixed_base,
                                               stance.efforts):
@@ -158,6 +164,8 @@ def stance_text(stance, standing_load=None) -> str:
         if standing_load.loads:
             lines += [""] + load_lines(standing_load.loads, title,
                                        relevant={load.joint for load in standing_load.loads})
+        elif not stance.joints:
+            lines += ["", NO_JOINT]
         else:
             lines += ["", f"no pose drawn stands: all {standing_load.poses} tip over or lift a "
                           "support (more --samples, or --q for a pose that stands)"]
