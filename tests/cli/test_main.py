@@ -228,18 +228,23 @@ def test_the_rules_run_unexamined_and_leave_the_collector_as_it_was(door_collect
     assert left[0]() is None  # what the rules left is still collected
 
 
-def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path):
+def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path, monkeypatch):
     import gc
 
     robot = tmp_path / "r.urdf"
     robot.write_text('<robot name="r"><link name="a"/></robot>')
     load_and_check(str(robot), CheckOptions())  # a first check frees objects made on import
     gc.freeze()
+    unfrozen = []
+    monkeypatch.setattr(gc, "unfreeze", lambda: unfrozen.append(gc.get_freeze_count()))
     try:
         frozen = gc.get_freeze_count()
         load_and_check(str(robot), CheckOptions())
-        assert gc.get_freeze_count() == frozen
+        # never unfrozen; a frozen object the check no longer holds may be freed (a load's run
+        # sets its memory in the context, whose earlier mapping goes)
+        assert unfrozen == [] and frozen - 10 < gc.get_freeze_count() <= frozen
     finally:
+        monkeypatch.undo()
         gc.unfreeze()
 
 

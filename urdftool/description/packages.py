@@ -412,7 +412,7 @@ def exported_classes(root: Path) -> frozenset[str]:
 def _split_path(value: str) -> list[str]:
     """The entries of a search path, each once (as written, ``.`` and ``//`` folded): a
     ``setup.bash`` sourced twice repeats them, and ``/usr`` given 5,000 times was walked 5,000
-    times (U015 at the 60 s budget)."""
+    times (stopped at the 60 s budget)."""
     return list(dict.fromkeys(os.path.normpath(entry) for entry in value.split(os.pathsep)
                               if entry))
 

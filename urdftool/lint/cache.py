@@ -62,11 +62,10 @@ import hashlib
 import hmac
 import json
 import os
-import stat
 from pathlib import Path
 
 from urdftool.description.files import kind_of, make_folders, own_folder, read_own, \
-    tree_stamp, unchanged, write_file
+    remove_file, tree_stamp, unchanged, write_file
 from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
@@ -340,12 +339,8 @@ def _write(path: Path, text: str) -> None:
     is replaced too: ``write_file`` writes into one (a report's ``-o``), and a pipe planted as
     an entry held every run 10 s (waiting for a reader) and was never replaced."""
     try:
-        mode = os.lstat(path).st_mode
-    except FileNotFoundError:
-        mode = stat.S_IFREG
-    if not (stat.S_ISREG(mode) or stat.S_ISLNK(mode) or stat.S_ISDIR(mode)):
-        os.unlink(path)
-    try:
+        if kind_of(path, follow=False) == "other":
+            remove_file(path)
         write_file(path, text, rewrites=True)
     except UsageError as error:
         raise OSError(str(error)) from None

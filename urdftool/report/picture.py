@@ -22,6 +22,7 @@ where both cover the same pixels, so that what moved shows in one colour alone.
 from __future__ import annotations
 
 import io
+import math
 from dataclasses import dataclass, field
 
 from urdftool.errors import PlotError
@@ -516,7 +517,7 @@ def check_fits(size: tuple[int, int], layers: int = 1) -> None:
         return
     needed, left = size[0] * size[1] * PIXEL_BYTES * layers, max(cap - used, 0)
     if needed > left:
-        side = int((left // (PIXEL_BYTES * layers)) ** 0.5)
+        side = math.isqrt(left // (PIXEL_BYTES * layers))
         raise UsageError(
             f"a picture of {size[0]}x{size[1]} pixels needs about {format_memory(needed)} of "
             f"memory, more than the budget of {format_memory(cap)} leaves "
