@@ -88,3 +88,15 @@ def test_a_name_of_the_same_words_reordered_is_the_one_suggested():
     assert "did you mean 'gripper_finger_link_l'?" in available("links", "gripper_finger_l_link",
                                                                  names)
 
+
+
+def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
+    # Gazebo's openni_kinect: depthImageInfoTopicName means depthImageCameraInfoTopicName,
+    # which difflib ranks below depthImageTopicName (fewer characters to change)
+    from urdftool.errors import close_names
+
+    names = ["depthImageTopicName", "depthImageCameraInfoTopicName", "pointCloudTopicName"]
+    assert close_names("depthImageInfoTopicName", names)[:2] == [
+        "depthImageCameraInfoTopicName", "depthImageTopicName"]
+    assert close_names("positon", ["position", "velocity"]) == ["position"]
+    assert close_names("joint1", ["joint1_mimic", "joint_1"])[0] == "joint_1"

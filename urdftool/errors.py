@@ -117,8 +117,23 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
     words = sorted(wanted.split("_"))
     reordered = [name for name in candidates
                  if name != wanted and "_" in name and sorted(name.split("_")) == words]
-    close = difflib.get_close_matches(wanted, candidates, n=n, cutoff=cutoff)
-    return (reordered + [name for name in close if name not in reordered])[:n]
+    close = difflib.get_close_matches(wanted, candidates, n=n + 5, cutoff=cutoff)
+    # then a close name holding every word of a name of three or more, and one more (Gazebo's
+    # depthImageCameraInfoTopicName for depthImageInfoTopicName, before depthImageTopicName;
+    # not joint1_mimic for joint1, whose joint_1 difflib ranks first)
+    mine = _words(wanted)
+    fuller = [] if len(mine) < 3 else [name for name in close if name not in reordered
+                                        and mine < _words(name) and len(_words(name) - mine) == 1]
+    return (reordered + fuller + [name for name in close
+                                  if name not in reordered and name not in fuller])[:n]
+
+
+def _words(name: str) -> set[str]:
+    """The words of a name, lower case: split at ``_``, ``-``, ``.`` and camelCase humps."""
+    return {word.lower() for word in _WORD.findall(name)}
+
+
+_WORD = re.compile(r"[A-Z]?[a-z0-9]+|[A-Z]+(?![a-z])")
 
 
 def similarity(one: str, two: str) -> float:
