@@ -122,8 +122,9 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
     # depthImageCameraInfoTopicName for depthImageInfoTopicName, before depthImageTopicName;
     # not joint1_mimic for joint1, whose joint_1 difflib ranks first)
     mine = _words(wanted)
-    fuller = [] if len(mine) < 3 else [name for name in close if name not in reordered
-                                        and mine < _words(name) and len(_words(name) - mine) == 1]
+    fuller = [] if len(mine) < 3 else [
+        name for name, words in ((name, _words(name)) for name in close if name not in reordered)
+        if len(words - mine) == 1 and mine <= words]
     return (reordered + fuller + [name for name in close
                                   if name not in reordered and name not in fuller])[:n]
 

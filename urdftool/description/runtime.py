@@ -663,12 +663,7 @@ def _placeholder_clashes(robot) -> Placeholders | None:
     if not any(clashing.values()):
         return None
     given = getattr(robot, "xacro_args", {})
-    empty = []
-    for data in robot.sources.values():
-        for name, default in _XACRO_ARG.findall(data):
-            name = name.decode("utf-8", "replace")
-            if not default and name not in given and name not in empty:
-                empty.append(name)
+    empty = [name for name, value in _robot_args(robot).items() if value == "" and name not in given]
     if not empty or built_as_checked(robot):
         return None
     from urdftool.errors import LoadError
