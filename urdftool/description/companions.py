@@ -62,7 +62,7 @@ from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
 from urdftool.description.files import inside, kind_of, listing, read_regular, real_path, walk
 from urdftool.description.launch import named as launch_named
-from urdftool.description.packages import SKIP_DIRS, build_tools, containment_root
+from urdftool.description.packages import SKIP_DIRS, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
@@ -168,13 +168,8 @@ def _setup_assistant_srdf(folder: Path) -> Path | None:
     (turtlebot_arm's planning_context.launch loads ``$(arg arm_type)_arm.srdf`` with the one
     joint_limits.yaml of the package), so a ROS 1 package gives nothing here."""
     package = folder.parent
-    marker = package / ".setup_assistant"
-    if folder.name != "config" or kind_of(marker, follow=False) != "file" or \
-            [version for version, _, _ in build_tools(marker)] != [2]:
-        return None
-    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
-    settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
-    srdf = (settings.get("srdf") or settings.get("SRDF")) if isinstance(settings, dict) else None
+    settings = launched.setup_assistant(package) if folder.name == "config" else None
+    srdf = (settings.get("srdf") or settings.get("SRDF")) if settings is not None else None
     relative = srdf.get("relative_path") if isinstance(srdf, dict) else None
     if not isinstance(relative, str) or not relative:
         return None

@@ -880,6 +880,20 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
 
 
+def setup_assistant(package: Path) -> dict | None:
+    """The settings (``moveit_setup_assistant_config``) of the ``.setup_assistant`` file of the
+    ROS 2 MoveIt package ``package``, which MoveItConfigsBuilder reads (the SRDF and URDF it
+    names, the URDF's ``xacro_args``); None when there is none, it is not a regular file, the
+    package is not ROS 2's only (ROS 1's MoveIt never reads it) or it holds no mapping."""
+    marker = package / ".setup_assistant"
+    if kind_of(marker, follow=False) != "file" or \
+            [version for version, _, _ in build_tools(marker)] != [2]:
+        return None
+    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
+    settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
+    return settings if isinstance(settings, dict) else None
+
+
 def _setup_assistant_robot(robot, srdf: Path) -> str:
     """Why MoveIt does not run the SRDF ``srdf`` with the robot as checked, from the
     ``.setup_assistant`` of the ROS 2 MoveIt package holding it (``config/``), when no launch
@@ -892,15 +906,11 @@ def _setup_assistant_robot(robot, srdf: Path) -> str:
     ``''``, or as ``assets/link6.links.xacro`` (a drawing aid named like the robot), its SRDF
     named 23 joints of a gripper that build has not, each an error."""
     package = srdf.parent.parent
+    settings = None if robot.path == "-" or srdf.parent.name != "config" else \
+        setup_assistant(package)
+    if settings is None:
+        return ""
     marker = package / ".setup_assistant"
-    if robot.path == "-" or srdf.parent.name != "config" or \
-            kind_of(marker, follow=False) != "file" or \
-            [version for version, _, _ in build_tools(marker)] != [2]:
-        return ""
-    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
-    settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
-    if not isinstance(settings, dict):
-        return ""
     urdf, written = settings.get("urdf") or settings.get("URDF"), settings.get("srdf") or \
         settings.get("SRDF")
     if not isinstance(urdf, dict) or not isinstance(written, dict) or \
