@@ -221,8 +221,13 @@ def _collisions(old, new, old_values, new_values, back: dict):
     from urdftool.collision.pairs import PairChecker
 
     scenes = (Scene(old, 0.0), Scene(new, 0.0))
-    problems = [f"{label}: {p.location}: {p.message}"
-                for label, scene in zip(("old", "new"), scenes) for p in scene.geometry.problems]
+    sides: dict[str, list] = {}  # a problem's message -> (side, location) of each side with it
+    for label, scene in zip(("old", "new"), scenes):
+        for problem in scene.geometry.problems:
+            sides.setdefault(problem.message, []).append((label, problem.location))
+    # both sides' (a mesh not found in either version) said once, where the new side has it
+    problems = [f"{' and '.join(label for label, _ in found)}: {found[-1][1]}: {message}"
+                for message, found in sides.items()]
     poses = (scenes[0].poses(old_values), scenes[1].poses(new_values))
     forward = {old_name: new_name for new_name, old_name in back.items()}
     old_column = {name: i for i, name in enumerate(scenes[0].links)}
