@@ -563,3 +563,29 @@ def test_a_mesh_path_written_with_windows_backslashes_says_so(tmp_path):
         with pytest.raises(MeshProblem) as error:
             resolve(_robot(tmp_path, named), named)
         assert "backslashes" not in str(error.value)
+
+
+def test_a_mesh_written_with_cwd_is_not_certain_when_there_from_a_folder_xacro_may_run_in(
+        tmp_path, monkeypatch):
+    # pybullet_simplified_fetch: file://$(cwd)/meshes/table.stl, its README saying to run
+    # xacro in the robot's folder; xacro run from the repository's root misses it
+    robot_folder = tmp_path / "sim" / "resources"
+    (robot_folder / "meshes").mkdir(parents=True)
+    (tmp_path / ".git").mkdir()
+    (robot_folder / "meshes" / "table.stl").write_bytes(b"solid s\nendsolid s\n")
+    path = robot_folder / "fetch.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a">'
+                    '<visual><geometry><mesh filename="file://$(cwd)/meshes/table.stl"/>'
+                    '</geometry></visual></link></robot>')
+    monkeypatch.chdir(tmp_path)
+    named = f"file://{tmp_path.resolve()}/meshes/table.stl"
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(path), named)
+    assert not error.value.certain and str(error.value) == (
+        f"mesh '{named}' not found: written with $(cwd), the folder xacro runs from; it is "
+        "there when xacro runs from 'sim/resources'")
+    # a mesh there from no folder between the robot file and the root stays missing
+    (robot_folder / "meshes" / "table.stl").unlink()
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(path), named)
+    assert error.value.certain

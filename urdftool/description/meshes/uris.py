@@ -18,6 +18,7 @@ from urdftool.description.files import inside, kind_of, real_path, resolved, wal
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_uri_parts)
 from urdftool.description.run_memo import per_run
+from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
@@ -62,9 +63,35 @@ def _resolve(robot, uri: str) -> Path:
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(_checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
                                   None), located, os.fspath(robot.base_dir))
+        found = _from_cwd(robot, uri, os.fspath(located.path), found)
     if isinstance(found, MeshProblem):
         # a new one: raised once per robot
         raise MeshProblem(found.kind, found.message, certain=found.certain)
+    return found
+
+
+def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | MeshProblem:
+    """``found``, a mesh missing at ``path``, said not certain when xacro's ``$(cwd)`` made the
+    path (the robot's files write it, and ``path`` is below the folder urdftool runs from, which
+    is what xacro gives it here) and the rest of the path is a file from a folder between the
+    robot file's and its repository's root: the mesh is there when xacro runs from that folder
+    (pybullet_simplified_fetch's ``file://$(cwd)/meshes/table.stl``, whose README says to run
+    xacro in the robot's folder). ``found`` otherwise."""
+    here = os.getcwd()
+    if not isinstance(found, MeshProblem) or found.kind != "missing" or not found.certain \
+            or not robot.from_xacro or not path.startswith(here + os.sep) \
+            or not any(b"$(cwd)" in data for data in robot.sources.values()):
+        return found
+    written = path[len(here) + 1:]
+    folder, root = os.fspath(robot.base_dir), os.fspath(containment_root(robot.base_dir))
+    while inside(Path(folder), Path(root)):
+        if folder != here and kind_of(os.path.join(folder, written)) == "file":
+            return MeshProblem("missing", (
+                f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it "
+                f"is there when xacro runs from '{display_path(folder)}'"), certain=False)
+        if folder == root or os.path.dirname(folder) == folder:
+            break
+        folder = os.path.dirname(folder)
     return found
 
 
