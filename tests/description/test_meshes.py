@@ -589,3 +589,22 @@ def test_a_mesh_written_with_cwd_is_not_certain_when_there_from_a_folder_xacro_m
     with pytest.raises(MeshProblem) as error:
         resolve(load(path), named)
     assert error.value.certain
+
+
+def test_a_missing_mesh_whose_folder_holds_it_deeper_than_the_repository_listing_names_that_one(
+        tmp_path):
+    # allegro_hand_ros2: 'palm.stl' beside description/urdf/x.urdf, six folders down, is in
+    # its meshes/; the listing from the root stops above it, and the advice named another
+    # package's copy as "the repository's one file of that name"
+    deep = tmp_path / "src" / "utils" / "utils" / "description" / "urdf"
+    for folder in (deep / "meshes", tmp_path / "src" / "controllers" / "meshes"):
+        folder.mkdir(parents=True)
+        (folder / "palm.stl").write_bytes(b"solid s\nendsolid s\n")
+    (tmp_path / ".git").mkdir()
+    (deep / "hand.urdf").write_text('<robot name="r"><link name="a"><visual><geometry>'
+                                    '<mesh filename="palm.stl"/></geometry></visual></link></robot>')
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(deep / "hand.urdf"), "palm.stl")
+    assert str(error.value).endswith(
+        "; of the repository's 2 files of that name, the one below the folder looked in is "
+        "meshes/palm.stl there")

@@ -222,13 +222,20 @@ def _elsewhere(path: Path, base: str) -> str:
     beside it (``base.STL`` for ``base.stl``); or, when the folder it was looked for in holds
     no mesh at all (the folder is wrong, not the file: Inspire hand's URDF naming
     right_base_link.obj beside itself, the file moved to collision/), the repository's one file
-    of its name, or in other capitals, elsewhere; "" otherwise. Never a choice among several,
+    of its name, or in other capitals, elsewhere (of several, the one below the folder it was
+    looked for in); "" otherwise. Never a choice among several,
     nor a file of another folder when the mesh's own holds meshes: a repository of many robots
     has a base_link.STL for each, and another robot's is no advice."""
     root = _real(containment_root(Path(base)))
     meshes = _mesh_files(os.fspath(root))
     here = os.path.relpath(path.parent, root)
     paths = meshes.get(path.name.lower(), ())
+    if here != "." and not here.startswith("..") and kind_of(path.parent) == "folder":
+        # the folder's own subtree too, past the root's depth (allegro_hand_ros2's
+        # description/urdf/meshes/palm.stl, six folders down: the one copy named was another)
+        paths = tuple(dict.fromkeys(paths + tuple(
+            os.path.join(here, p) for p in _mesh_files(os.fspath(path.parent)).get(
+                path.name.lower(), ()))))
     beside = [p for p in paths if os.path.dirname(p) == here]
     if len(beside) == 1:
         return (f"; the file beside it is {os.path.basename(beside[0])}, in other capitals "
@@ -236,6 +243,10 @@ def _elsewhere(path: Path, base: str) -> str:
     if here in _mesh_folders(os.fspath(root)):
         return ""
     same = [p for p in paths if os.path.basename(p) == path.name]
+    below = [p for p in same if p.startswith(here + os.sep)]
+    if len(same) > 1 and len(below) == 1:  # the one in the folder's own subtree, of several
+        return (f"; of the repository's {len(same)} files of that name, the one below the "
+                f"folder looked in is {os.path.relpath(below[0], here)} there")
     if len(same) == 1:
         return f"; the repository's one file of that name is {same[0]}"
     if not same and len(paths) == 1:
