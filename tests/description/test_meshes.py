@@ -608,3 +608,19 @@ def test_a_missing_mesh_whose_folder_holds_it_deeper_than_the_repository_listing
     assert str(error.value).endswith(
         "; of the repository's 2 files of that name, the one below the folder looked in is "
         "meshes/palm.stl there")
+
+
+def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_missing(tmp_path):
+    # a cuRobo URDF generated on a Humble machine names /opt/ros/humble/share/ur_description/...:
+    # there wherever Humble and ur_description are installed, so not an error; a /home path is
+    named = "/opt/ros/humble/share/ur_description/meshes/ur5/visual/base.dae"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, named), named)
+    assert error.value.kind == "outside" and not error.value.certain
+    assert str(error.value) == (
+        f"mesh '{named}' is in ROS humble's install of 'ur_description' (outside the repository: "
+        "not opened), there only where ROS humble and ur_description are installed; write "
+        "package://ur_description/meshes/ur5/visual/base.dae")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "/home/me/ws/meshes/base.dae"), "/home/me/ws/meshes/base.dae")
+    assert error.value.kind == "outside" and error.value.certain

@@ -12,6 +12,7 @@ A URI is resolved and checked once per robot, a path once per run.
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, real_path, resolved, walk
@@ -20,6 +21,9 @@ from urdftool.description.packages import (containment_root, declaring_package, 
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound
+
+# a file of a ROS distribution's binary install: /opt/ros/DISTRO/share/PACKAGE/PATH
+_ROS_INSTALL = re.compile(r"/opt/ros/([^/]+)/share/([^/]+)/(.+)")
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -186,6 +190,14 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
             how = (f"is a symbolic link (or lies in one) leading outside {root}"
                    if written.startswith(str(containment_root(Path(base))) + os.sep)
                    else f"resolves to {written}, outside {root}")
+            installed_at = _ROS_INSTALL.fullmatch(written)
+            if installed_at:  # a ROS distribution's install: there wherever it is installed
+                distro, package, tail = installed_at.groups()
+                return MeshProblem("outside", (
+                    f"mesh '{uri}' is in ROS {distro}'s install of '{package}' (outside the "
+                    f"repository: not opened), there only where ROS {distro} and {package} are "
+                    f"installed; write package://{package}/{tail}"),
+                    certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
                 "repository: use package://PKG/... for files of another package"))
