@@ -23,7 +23,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             transmission_joints, transmissions)
 from urdftool.errors import available, close_names
 from urdftool.description.values import parse_numbers
-from urdftool.description.xacro_text import condition_dropping
+from urdftool.description.xacro_text import dropped_under
 from urdftool.description.xml import attribute
 from urdftool.numbers import decimal_slip
 
@@ -539,18 +539,7 @@ def _plugin_condition(robot, hardware) -> str | None:
     """How the source of ``hardware`` gives its ``<plugin>`` only under conditions false as
     the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> (line
     15) of ros2_control.xacro``), or None."""
-    if hardware is None:
-        return None
-    location = robot.locate(hardware)
-    data = robot.sources.get(location.file) if location.line is not None else None
-    found = [(written, line) for written, line in (
-        condition_dropping(data, location.line, "hardware", "plugin") if data else ())
-        if "$(arg" in written or "${" in written]  # (a constant condition: no build gives it)
-    if not found:
-        return None
-    under = " or ".join(f"<{written}> (line {line})" for written, line in found[:3])
-    return (f"its <plugin> is under {under} of {location.file}, "
-            f"{'false' if len(found) == 1 else 'each false'} then")
+    return dropped_under(robot, hardware, "plugin") if hardware is not None else None
 
 
 _LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}
