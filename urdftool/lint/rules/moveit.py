@@ -11,6 +11,7 @@ from pathlib import Path
 
 from urdftool.description import moveit_config as moveit
 from urdftool.description.documents import read_srdf
+from urdftool.description.files import listing
 from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
@@ -133,8 +134,10 @@ def _groups_beside(robot, srdf) -> dict:
     """Group name -> the other SRDF (shown) in the checked SRDF's folder that defines it."""
     def read():
         found = {}
-        for path in sorted(Path(srdf.path).parent.glob("*.srdf")):
-            other = read_srdf(path) if path != Path(srdf.path) else None
+        folder = Path(srdf.path).parent
+        for name, kind in listing(folder, "*.srdf"):
+            path = folder / name
+            other = read_srdf(path) if kind == "file" and path != Path(srdf.path) else None
             for group in other.root.iterfind("group") if other is not None and other.root is not None else ():
                 found.setdefault(group.get("name"), other.display)
         return found
