@@ -235,7 +235,8 @@ def _elsewhere(path: Path, base: str) -> str:
     no mesh at all (the folder is wrong, not the file: Inspire hand's URDF naming
     right_base_link.obj beside itself, the file moved to collision/), the repository's one file
     of its name, or in other capitals, elsewhere (of several, the one below the folder it was
-    looked for in); "" otherwise. Never a choice among several,
+    looked for in), or (none of its name) in another format; "" otherwise. Never a choice
+    among several,
     nor a file of another folder when the mesh's own holds meshes: a repository of many robots
     has a base_link.STL for each, and another robot's is no advice."""
     root = _real(containment_root(Path(base)))
@@ -264,6 +265,11 @@ def _elsewhere(path: Path, base: str) -> str:
     if not same and len(paths) == 1:
         return (f"; the repository's one file of that name in other capitals is {paths[0]} "
                 "(file names are case-sensitive on Linux)")
+    stem = path.stem.lower()  # Bolt's mesh_ext 'stl' where only meshes/obj/bolt_body.obj is
+    other = [] if paths else [p for name, found in meshes.items()
+                              if name.rsplit(".", 1)[0] == stem for p in found]
+    if len(other) == 1:
+        return f"; the repository's one mesh of that name is {other[0]}, in another format"
     return ""
 
 

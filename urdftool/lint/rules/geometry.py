@@ -11,6 +11,7 @@ from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
+from urdftool.description.xacro_text import dropped_under
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
 from urdftool.description.values import number as attribute_number
 
@@ -116,7 +117,10 @@ def missing_geometry(robot):
             yield shape, (f"{where} has unknown geometry <{kind}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
         elif (geometry := robot.child(holder, "geometry")) is None:
-            yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
+            dropped = dropped_under(robot, holder, "geometry")
+            yield holder, (f"{where} has no <geometry>: {dropped} (--arg NAME=VALUE checks "
+                           "another build)" if dropped else
+                           f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)")
         else:
             yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"
 
