@@ -399,6 +399,50 @@ def test_ranges_count_in_the_clients_units():
     assert unknown.start.character == 2
 
 
+def test_lines_are_the_protocols_a_line_separator_or_nel_ends_none():
+    """pygls and ``_range`` split with str.splitlines, which also ends a line at U+2028, NEL
+    and FF (XML holds them raw in a comment): an editor's incremental change after one went
+    into another line, and a diagnostic's range was measured on another line's text."""
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool.diagnostics import Location
+    from urdftool.server import Document, _range
+
+    text = '<robot name="r"> <!-- a\u2028b\x85c\x0cd -->\n  <link name="base"/>\n</robot>\n'
+    document = Document("file:///r.urdf", text,
+                        sync_kind=types.TextDocumentSyncKind.Incremental)
+    assert len(document.lines) == 3
+    document.apply_change(types.TextDocumentContentChangePartial(
+        range=types.Range(start=types.Position(1, 14), end=types.Position(1, 18)),
+        text="arm"))
+    assert document.source == text.replace('"base"', '"arm"')
+    span = _range(Location("r.urdf", 2, column=3), text, PositionCodec())
+    assert (span.start.line, span.start.character, span.end.character) == (1, 2, 21)
+    lines = Document("file:///r.urdf", "a\rb\r\nc\nd").lines
+    assert lines == ("a\r", "b\r\n", "c\n", "d")
+
+
+@SHARED
+async def test_an_incremental_change_after_a_line_separator_is_the_editors(
+        client: LanguageClient, tmp_path):
+    """The served document is the editor's: the robot's limits mended by an incremental change
+    below a comment holding U+2028 clear its finding (pygls changed another line: U001)."""
+    text = BROKEN.replace('<link name="base_link"/>', '<link name="base_link"/> <!-- \u2028 -->')
+    robot = write_robot(tmp_path / "bot", text)
+    uri = open_document(client, robot, text)
+    await wait_until(lambda: codes(client, uri) == [(CALL_LINE, "U204")])
+    line = text.split("\n")[CALL_LINE]
+    start = line.index('lower="1" upper="-1"')
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+        content_changes=[types.TextDocumentContentChangePartial(
+            range=types.Range(start=types.Position(CALL_LINE, start),
+                              end=types.Position(CALL_LINE, start + 20)),
+            text='lower="-1" upper="1"')]))
+    await wait_until(lambda: len(checked(client, robot)) == 2)
+    assert codes(client, uri) == []
+
+
 def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
     import re
 

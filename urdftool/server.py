@@ -59,9 +59,10 @@ from dataclasses import dataclass, field
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
+from pygls.workspace import TextDocument
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding, Location, Severity, display_path, lines_of
 from urdftool.description.companions import COMPANION_SUFFIXES
 from urdftool.description.urdf import ROBOT_SUFFIXES, is_robot_name
 
@@ -280,7 +281,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=None
 def _range(place: Location, text: str, codec) -> types.Range:
     """The element's start on ``place.line`` (its column when known, else the first non-blank
     character) to the end of that line, in the client's position units."""
-    lines = text.splitlines() or [""]
+    lines = lines_of(text) or [""]
     number = min(max((place.line or 1) - 1, 0), len(lines) - 1)
     line = lines[number]
     if place.column is not None:
@@ -779,6 +780,32 @@ ACTION_PROVIDERS = (suppress_on_line, suppress_in_file)
 
 # ---- the server -------------------------------------------------------------------------------
 
+class Document(TextDocument):
+    """An open document whose lines are the protocol's (and XML's, and every Location's): ended
+    by CR LF, LF or CR only (:func:`urdftool.diagnostics.lines_of`). pygls splits them with
+    :meth:`str.splitlines`, which also ends a line at NEL, LINE SEPARATOR, FF and the like,
+    which XML holds raw: an editor's incremental change after one was applied to another line
+    (the buffer checked was text the editor did not hold), and hovers and code actions read
+    the wrong line."""
+
+    @property
+    def lines(self):
+        return tuple(lines_of(self.source, keepends=True))
+
+
+def _documents_of_the_protocol(workspace) -> None:
+    """Make ``workspace`` (pygls's, made as the client initializes) open each document as a
+    :class:`Document`."""
+    create = workspace._create_text_document
+
+    def document(*args, **kwargs) -> Document:
+        made = create(*args, **kwargs)
+        made.__class__ = Document
+        return made
+
+    workspace._create_text_document = document
+
+
 _DOCUMENT_EVENTS = {types.TEXT_DOCUMENT_DID_OPEN: "opened",
                     types.TEXT_DOCUMENT_DID_CHANGE: "changed",
                     types.TEXT_DOCUMENT_DID_SAVE: "saved",
@@ -804,6 +831,10 @@ def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> Urdfto
     server = UrdftoolServer(debounce, limits)
     for method, event in _DOCUMENT_EVENTS.items():
         server.feature(method)(_on_document(event))
+
+    @server.feature(types.INITIALIZE)
+    def initialize(ls: UrdftoolServer, params: types.InitializeParams):
+        _documents_of_the_protocol(ls.workspace)  # (made just before, nothing opened yet)
 
     @server.feature(types.INITIALIZED)
     def initialized(ls: UrdftoolServer, params: types.InitializedParams):
