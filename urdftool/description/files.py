@@ -297,13 +297,33 @@ def identity(path) -> tuple | None:
     """(device, inode, size, modification time [ns]) of the regular file at ``path``, links
     followed, for keys of what is remembered of it; None when there is none. Recorded as
     :func:`kind_of` (its content is recorded by whoever reads it)."""
+    found = identity_or_why(path)
+    return found if isinstance(found, tuple) else None
+
+
+def identity_or_why(path) -> tuple | str:
+    """:func:`identity` of the regular file at ``path``; else why there is none, in words: ''
+    for nothing there (no entry, or a link to nothing), else what is there instead ('a
+    folder', 'a named pipe', 'a device', 'a socket') or why it cannot be reached (a link loop,
+    a folder on the way it may not search). Recorded as :func:`identity`, by the same one
+    look."""
+    why = ""
     try:
         info = os.stat(path)
-    except (OSError, ValueError):
+    except FileNotFoundError:
         info = None
+    except (OSError, ValueError) as error:
+        info = None
+        why = f"cannot be reached: {(getattr(error, 'strerror', None) or str(error)).lower()}"
     kind = "" if info is None else _kind_of_mode(info.st_mode)
     records.note(PROBE, (os.path.abspath(path), True), kind)
-    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns) if kind == "file" else None
+    if kind == "file":
+        return info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns
+    if info is None:
+        return why
+    mode = info.st_mode
+    return "a folder" if kind == "folder" else "a named pipe" if stat.S_ISFIFO(mode) else \
+        "a socket" if stat.S_ISSOCK(mode) else "a device"
 
 
 def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:

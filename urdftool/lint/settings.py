@@ -47,8 +47,8 @@ from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity, inside, kind_of, \
-    read_regular, unreachable
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity_or_why, inside, \
+    kind_of, read_regular, unreachable
 from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
@@ -135,11 +135,21 @@ def _settings_in(folder: Path) -> Settings:
     for candidate in chain:
         for name in ("urdftool.toml", "pyproject.toml"):
             file = candidate / name
-            if (known := identity(file)) is not None:
+            known = identity_or_why(file)
+            if isinstance(known, tuple):
                 found = _settings_file(file, known)
                 if found is not None:
                     return found
+            elif known:  # a name for settings that holds none: the settings meant are not
+                # known, and a check with the defaults in their place would pass in silence
+                raise SettingsError(f"settings file '{file}' {_what_is_there(known)}: the "
+                                    "settings it names cannot be read; make it a file, or "
+                                    "remove it")
     return Settings()
+
+
+def _what_is_there(why: str) -> str:
+    return why if why.startswith("cannot") else f"is {why}"
 
 
 def settings_file(path: str | os.PathLike) -> Settings:
