@@ -181,7 +181,7 @@ def urdftool_check():
     would not exit 0; returns the :class:`urdftool.Run` otherwise."""
 
     def check(*paths, **options):
-        run = _check([str(path) for path in paths], **options)
+        run = _check(list(paths), **options)  # (str() made b"urdf" the path "b'urdf'")
         if run.exit_code:
             pytest.fail(_text(run), pytrace=False)
         return run
