@@ -422,6 +422,69 @@ def test_lines_are_the_protocols_a_line_separator_or_nel_ends_none():
     assert lines == ("a\r", "b\r\n", "c\n", "d")
 
 
+def _applied(text: str, span: types.Range, new: str) -> str:
+    """The protocol's meaning of an incremental change, on the whole text: a line is ended by
+    CR LF, LF or CR, a character past a line's end is its end, a line past the last the end."""
+    from urdftool.diagnostics import lines_of
+
+    lines = lines_of(text, keepends=True)
+
+    def offset(position):
+        if position.line >= len(lines):
+            return len(text)
+        line = lines[position.line]
+        body = line[:-2] if line.endswith("\r\n") else \
+            line[:-1] if line.endswith(("\r", "\n")) else line
+        units = count = 0
+        for character in body:
+            if units >= position.character:
+                break
+            units, count = units + (2 if ord(character) > 0xFFFF else 1), count + 1
+        return sum(map(len, lines[:position.line])) + count
+
+    start, end = sorted((offset(span.start), offset(span.end)))
+    return text[:start] + new + text[end:]
+
+
+def test_incremental_changes_mean_what_the_protocol_says_and_cost_what_they_span(monkeypatch):
+    """Drawn documents of CR, LF, CR LF, U+2028, NEL and characters outside the BMP, drawn
+    changes (past a line's end, past the last line, joining a CR and a LF): the document is the
+    text the protocol means. And a replace-all of 2,000 edits in a 20,000-line robot splits
+    what the edits span, not the document 2,000 times (pygls: 5 s of the server's loop)."""
+    import random
+
+    import urdftool.server as server
+    from urdftool.diagnostics import lines_of
+
+    draw = random.Random(15)
+    pieces = ["a", "b", "\n", "\r", "\r\n", "\u2028", "\x85", "é", "\U0001f60b"]
+    for _ in range(400):
+        text = "".join(draw.choice(pieces) for _ in range(draw.randint(0, 12)))
+        document = server.Document("file:///r.urdf", text,
+                                   sync_kind=types.TextDocumentSyncKind.Incremental)
+        for _ in range(draw.randint(1, 5)):
+            most = len(lines_of(text, keepends=True)) + 1
+            span = types.Range(start=types.Position(draw.randint(0, most), draw.randint(0, 4)),
+                               end=types.Position(draw.randint(0, most), draw.randint(0, 4)))
+            new = "".join(draw.choice(pieces) for _ in range(draw.randint(0, 4)))
+            text = _applied(text, span, new)
+            document.apply_change(types.TextDocumentContentChangePartial(range=span, text=new))
+            assert (document.source, list(document.lines)) == \
+                (text, lines_of(text, keepends=True))
+    robot = "<robot>\n" + "".join(f'  <link name="link_{i}"/>\n' for i in range(20_000))
+    document = server.Document("file:///r.urdf", robot + "</robot>\n",
+                               sync_kind=types.TextDocumentSyncKind.Incremental)
+    document.lines  # noqa: B018  (split once, as the first change does)
+    split = []
+    monkeypatch.setattr(server, "lines_of", lambda text, keepends=False: split.append(
+        len(text)) or lines_of(text, keepends))
+    for line in range(1, 2_001):
+        document.apply_change(types.TextDocumentContentChangePartial(
+            range=types.Range(start=types.Position(line, 14), end=types.Position(line, 18)),
+            text="LINK"))
+    assert document.source.count("LINK") == 2_000 and sum(split) < 100_000
+
+
 @SHARED
 async def test_an_incremental_change_after_a_line_separator_is_the_editors(
         client: LanguageClient, tmp_path):
@@ -493,6 +556,37 @@ def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offl
     server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
     server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
     assert sent == [(uri, 0)]  # the check that started later wins
+
+
+def test_code_actions_are_offered_only_for_findings_this_server_published(offline_server,
+                                                                          tmp_path):
+    """A diagnostic in a codeAction request is the client's: one named "urdftool" that this
+    server never published (another extension's, or forged) had its code written into the
+    robot by the quick fix: ``<!-- urdftool: ignore U204 --><script/><!-- -->``."""
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.server import Outcome
+
+    server, _ = offline_server
+    robot = str(tmp_path / "robot.urdf")
+    uri = Path(robot).as_uri()
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=1, text="<robot>\n  <joint/>\n</robot>\n"))
+    server.open[robot] = uri
+    span = types.Range(start=types.Position(1, 2), end=types.Position(1, 10))
+    ours = types.Diagnostic(range=span, message="m", code="U204", source="urdftool")
+    finding = Finding("U204", "inverted-limits", Severity.ERROR, "m", Location(robot, 2))
+    server._publish(Outcome(robot, 1, {robot: [(ours, finding)]}), ticket=1)
+    forged = types.Diagnostic(range=span, message="m", code="U204 --><script/><!--",
+                              source="urdftool")
+
+    def actions(diagnostic):
+        return server.code_actions(types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri), range=span,
+            context=types.CodeActionContext(diagnostics=[diagnostic]))) or []
+
+    assert actions(forged) == []
+    assert [edit.new_text.strip() for action in actions(ours)
+            for edit in action.edit.changes[uri]][0] == "<!-- urdftool: ignore U204 -->"
 
 
 def test_a_result_that_read_an_older_buffer_of_an_included_file_is_never_published(
@@ -730,12 +824,25 @@ def _serve_raw(data: bytes, tmp_path) -> tuple[int, bytes, str]:
     b"Content-Length: 2\r\nContent-Length: 3\r\n\r\n{}" + _SHUTDOWN,
     b"X" * 20_000_000,  # a header line read whole, however long
     b"\n" + _SHUTDOWN,
-], ids=["100GB", "not-a-number", "zero", "no-length", "twice", "endless-line", "bare-newline"])
+    b"Content-Length: 50\r\n\r\n",  # a header, then the end of the input: no body
+    _SHUTDOWN[:-3],  # a body cut short by the end of the input (pygls parsed the part)
+], ids=["100GB", "not-a-number", "zero", "no-length", "twice", "endless-line", "bare-newline",
+        "no-body", "cut-body"])
 def test_input_that_breaks_the_framing_ends_the_server_with_one_line(framing, tmp_path):
     status, out, err = _serve_raw(_INITIALIZE + framing, tmp_path)
     assert b'"id": 1' in out and b'"id": 2' not in out  # nothing after the broken frame is read
     assert status == 1 and "Traceback" not in err and "MemoryError" not in err
     assert err.count("\n") == 1 and "the client's input: " in err, err
+
+
+def test_a_session_that_ends_without_shutdown_ends_with_status_1(tmp_path):
+    """LSP: "exit" without "shutdown" before it is status 1 (pygls's was lost: 0), and so is
+    an input that ends without one; with it, 0."""
+    exit_ = _frame({"jsonrpc": "2.0", "method": "exit"})
+    assert _serve_raw(_INITIALIZE + exit_, tmp_path)[0] == 1
+    status, _, err = _serve_raw(_INITIALIZE, tmp_path)
+    assert status == 1 and err.count("\n") == 1 and "without a shutdown request" in err, err
+    assert _serve_raw(_INITIALIZE + _SHUTDOWN + exit_, tmp_path)[0] == 0
 
 
 def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
