@@ -538,16 +538,21 @@ def offline_server(monkeypatch, tmp_path):
     return server, sent
 
 
+def _opened(server, path: Path, version: int, text: str) -> tuple[str, str]:
+    """(path, URI) of ``text`` opened in the offline server at ``version``."""
+    uri = path.as_uri()
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=version, text=text))
+    server.open[str(path)] = uri
+    return str(path), uri
+
+
 def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offline_server,
                                                                             tmp_path):
     from urdftool.server import Outcome
 
     server, sent = offline_server
-    robot = str(tmp_path / "robot.urdf")
-    uri = Path(robot).as_uri()
-    server.protocol.workspace.put_text_document(types.TextDocumentItem(
-        uri=uri, language_id="xml", version=3, text="<robot/>"))
-    server.open[robot] = uri
+    robot, uri = _opened(server, tmp_path / "robot.urdf", 3, "<robot/>")
     diagnostic = types.Diagnostic(range=types.Range(start=types.Position(0, 0),
                                                     end=types.Position(0, 8)), message="m")
 
@@ -567,11 +572,7 @@ def test_code_actions_are_offered_only_for_findings_this_server_published(offlin
     from urdftool.server import Outcome
 
     server, _ = offline_server
-    robot = str(tmp_path / "robot.urdf")
-    uri = Path(robot).as_uri()
-    server.protocol.workspace.put_text_document(types.TextDocumentItem(
-        uri=uri, language_id="xml", version=1, text="<robot>\n  <joint/>\n</robot>\n"))
-    server.open[robot] = uri
+    robot, uri = _opened(server, tmp_path / "robot.urdf", 1, "<robot>\n  <joint/>\n</robot>\n")
     span = types.Range(start=types.Position(1, 2), end=types.Position(1, 10))
     ours = types.Diagnostic(range=span, message="m", code="U204", source="urdftool")
     finding = Finding("U204", "inverted-limits", Severity.ERROR, "m", Location(robot, 2))
