@@ -871,3 +871,49 @@ def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes
     assert b'"id": 2' in out  # answered after all of it
     assert status == 0 and "Traceback" not in err and "\x1b" not in err, err
     assert all(line.startswith("urdftool server: ") for line in err.splitlines()), err
+
+
+def test_the_log_file_is_judged_as_any_output_and_a_pipe_nobody_reads_is_refused(tmp_path,
+                                                                                monkeypatch):
+    """The language server's ``--log-file`` was opened by logging's FileHandler, past the door:
+    a named pipe nobody read hung it before its first message, ``.git/HEAD`` took its log (the
+    branch gone). ``files.append_stream`` judges it as every output and waits for no reader."""
+    import os
+    import threading
+
+    from urdftool.description import files
+    from urdftool.server import _Log
+
+    monkeypatch.setattr(files, "PIPE_READER_WAIT", 0.5)  # (10 s as shipped)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / ".git" / "HEAD").write_text("ref: refs/heads/main\n")
+    os.mkfifo(tmp_path / "log")
+    done: list = []
+    worker = threading.Thread(target=lambda: done.append(_refusal(_Log, tmp_path / "log")),
+                              daemon=True)
+    worker.start()
+    worker.join(5)
+    if worker.is_alive():  # unblock the opener so the test process can end
+        with open(tmp_path / "log", "rb") as reader:
+            reader.read()
+        pytest.fail("the log file waited for a reader of a named pipe")
+    assert "no process reads" in done[0]
+    assert "version control system's own folder" in _refusal(_Log, tmp_path / ".git" / "HEAD")
+    assert (tmp_path / ".git" / "HEAD").read_text() == "ref: refs/heads/main\n"
+    handler = _Log(str(tmp_path / "server.log"))
+    handler.stream.write("one\n")
+    handler.close()
+    handler = _Log(str(tmp_path / "server.log"))
+    handler.stream.write("two\n")  # appended
+    handler.close()
+    assert (tmp_path / "server.log").read_text() == "one\ntwo\n"
+
+
+def _refusal(make, path) -> str:
+    from urdftool.errors import UsageError
+
+    try:
+        make(str(path))
+    except UsageError as error:
+        return str(error)
+    return "written"

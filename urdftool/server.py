@@ -1042,11 +1042,22 @@ def _raised_at(error: BaseException) -> str:
     return f" (at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno})" if frames else ""
 
 
-class _Log(logging.FileHandler):
-    """The log file: one that stops being written (a full disk) says so once, and the server
-    then ends with status 2 (:func:`serve`), not a traceback per message."""
+class _Log(logging.StreamHandler):
+    """The log file (:func:`urdftool.description.files.append_stream`: judged as any output
+    file, a named pipe without a reader refused): one that stops being written (a full disk)
+    says so once, and the server then ends with status 2 (:func:`serve`), not a traceback per
+    message."""
 
     failed = False
+
+    def __init__(self, path: str):
+        import io
+
+        from urdftool.description.files import append_stream
+
+        self.baseFilename = path
+        super().__init__(io.TextIOWrapper(append_stream(path), encoding="utf-8",
+                                          errors="backslashreplace", write_through=True))
 
     def handleError(self, record) -> None:
         if not self.failed:

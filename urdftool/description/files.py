@@ -927,6 +927,31 @@ def _write_in_place(path, target: str, data: bytes) -> None:
         raise UsageError(f"cannot write '{path}': {why}") from None
 
 
+def append_stream(path):
+    """A binary stream appending to ``path`` (a log), made if missing: refused as any output
+    file is (:func:`check_output`: a missing folder, a folder, a version control system's own
+    folder), and a named pipe with no reader within :data:`PIPE_READER_WAIT` seconds refused,
+    not waited for (the language server's ``--log-file`` of a pipe nobody read hung before it
+    read a message; of ``.git/HEAD`` it wrote its log into the branch). UsageError."""
+    check_output(path)
+    deadline = time.monotonic() + PIPE_READER_WAIT
+    try:
+        while True:
+            try:
+                descriptor = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT | os.O_NOCTTY |
+                                     os.O_NONBLOCK, 0o666)
+                break
+            except OSError as error:
+                if error.errno != errno.ENXIO or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+        os.set_blocking(descriptor, True)
+    except OSError as error:
+        why = "a named pipe no process reads" if error.errno == errno.ENXIO else error.strerror
+        raise UsageError(f"cannot write '{path}': {why}") from None
+    return open(descriptor, "ab", buffering=0)
+
+
 def remove_file(path) -> None:
     """Remove the regular file ``path`` (a link is removed, never its target) in the folder
     :func:`check_output` allows; UsageError when that folder is refused or the system
