@@ -121,3 +121,38 @@ def test_errors_are_urdftool_errors_without_flags(tmp_path):
     with pytest.raises(urdftool.SettingsError) as error:
         urdftool.check_file(tmp_path / "r.urdf")
     assert "--" not in str(error.value) and isinstance(error.value, urdftool.UrdftoolError)
+
+
+def test_paths_in_bytes_are_paths_and_anything_else_is_refused_by_name(broken):
+    """``check_paths(b"robots")`` checked the paths 114, 111, ... (bytes iterated), ``load`` and
+    ``check_file`` failed each in its own way; a path in bytes is one as ``os`` takes it."""
+    name = bytes(broken.relative_to(broken.parent.parent))
+    for given in (name, [name]):
+        found = [f.code for r in urdftool.check_paths(given, jobs=1).results for f in r.findings]
+        assert found == ["U204"]
+    assert [f.code for f in urdftool.check_file(bytes(broken)).findings] == ["U204"]
+    assert urdftool.load(bytes(broken)).name
+    for given in (5, [5], None):
+        with pytest.raises(TypeError, match="a path must be str, bytes or os.PathLike, not"):
+            urdftool.check_paths(given)
+    with pytest.raises(TypeError, match="data must be the file's text"):
+        urdftool.check_file(broken, data=5)  # was 5 NUL bytes: U003
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"strict": "no"}, 'strict must be True or False, not "no"'),
+    ({"timeout": float("nan")}, "timeout must be a finite number of seconds"),
+    ({"timeout": float("inf")}, "timeout must be a finite number of seconds"),
+    ({"max_triangles": float("nan")}, "max_triangles must be a whole number"),
+    ({"jobs": -5}, "jobs must be a whole number, 0 or more, not -5"),
+    ({"xacro_args": "a:=1"}, "xacro_args must map names"),
+    ({"packages": "x=/etc"}, "packages must map names"),
+    ({"select": [5]}, "select must be words"),
+    ({"use_settings": 0}, "use_settings must be True or False"),
+    ({"cache_dir": 5}, "cache_dir must be a path"),
+])
+def test_a_request_is_held_to_what_the_command_line_takes(broken, options, message):
+    """The API took what the command line and the settings refuse: ``strict="no"`` was strict,
+    ``timeout=nan`` and ``max_triangles=nan`` no limit, ``xacro_args="a:=1"`` Python's error."""
+    with pytest.raises(urdftool.UrdftoolError, match=message):
+        urdftool.check_paths(["robots"], **options)

@@ -34,6 +34,31 @@ def test_robots_become_items_and_a_broken_one_fails_with_its_findings(project):
                                  "error U204*"])
 
 
+def test_robot_files_that_are_no_regular_file_fail_as_check_reports_them(project):
+    """A named pipe, a link loop and links to devices named as robots: ``urdftool check``
+    reports each (U001, U017, exit 1), pytest's walk never handed them to the plugin, and
+    ``pytest --urdftool`` passed (or collected nothing)."""
+    import os
+
+    robots = project.path / "robots"
+    os.mkfifo(robots / "pipe.urdf")
+    (robots / "loop.urdf").symlink_to("loop.urdf")
+    (robots / "zero.urdf").symlink_to("/dev/zero")
+    (robots / "humanoid" / "null.urdf").symlink_to("/dev/null")
+    result = project.runpytest_inprocess("--urdftool", "robots", "-p", "no:cacheprovider",
+                                         "-p", "no:xdist")
+    result.assert_outcomes(passed=1, failed=5)
+    result.stdout.fnmatch_lines_random([
+        "FAILED robots/pipe.urdf::urdftool - robots/pipe.urdf: error U001*",
+        "FAILED robots/loop.urdf::urdftool - robots/loop.urdf: error*",
+        "FAILED robots/zero.urdf::urdftool - robots/zero.urdf: error*",
+        "FAILED robots/humanoid/null.urdf::urdftool - robots/humanoid/null.urdf: error*"])
+    assert "robots/zero.urdf: error U017 is a symbolic link leading outside" in \
+        result.stdout.str()
+    alone = project.runpytest_inprocess("robots", "-p", "no:cacheprovider", "-p", "no:xdist")
+    alone.assert_outcomes()  # without --urdftool: nothing of ours
+
+
 def test_the_session_s_robots_are_checked_in_one_run(project, monkeypatch):
     """As ``urdftool check FILE...``: one check of every robot item (a check per item asked
     the repository, packages and launch files again each time: 20 -> 7 s CPU for the 10

@@ -399,6 +399,113 @@ def test_ranges_count_in_the_clients_units():
     assert unknown.start.character == 2
 
 
+def test_lines_are_the_protocols_a_line_separator_or_nel_ends_none():
+    """pygls and ``_range`` split with str.splitlines, which also ends a line at U+2028, NEL
+    and FF (XML holds them raw in a comment): an editor's incremental change after one went
+    into another line, and a diagnostic's range was measured on another line's text."""
+    from pygls.workspace.position_codec import PositionCodec
+
+    from urdftool.diagnostics import Location
+    from urdftool.server import Document, _range
+
+    text = '<robot name="r"> <!-- a\u2028b\x85c\x0cd -->\n  <link name="base"/>\n</robot>\n'
+    document = Document("file:///r.urdf", text,
+                        sync_kind=types.TextDocumentSyncKind.Incremental)
+    assert len(document.lines) == 3
+    document.apply_change(types.TextDocumentContentChangePartial(
+        range=types.Range(start=types.Position(1, 14), end=types.Position(1, 18)),
+        text="arm"))
+    assert document.source == text.replace('"base"', '"arm"')
+    span = _range(Location("r.urdf", 2, column=3), text, PositionCodec())
+    assert (span.start.line, span.start.character, span.end.character) == (1, 2, 21)
+    lines = Document("file:///r.urdf", "a\rb\r\nc\nd").lines
+    assert lines == ("a\r", "b\r\n", "c\n", "d")
+
+
+def _applied(text: str, span: types.Range, new: str) -> str:
+    """The protocol's meaning of an incremental change, on the whole text: a line is ended by
+    CR LF, LF or CR, a character past a line's end is its end, a line past the last the end."""
+    from urdftool.diagnostics import lines_of
+
+    lines = lines_of(text, keepends=True)
+
+    def offset(position):
+        if position.line >= len(lines):
+            return len(text)
+        line = lines[position.line]
+        body = line[:-2] if line.endswith("\r\n") else \
+            line[:-1] if line.endswith(("\r", "\n")) else line
+        units = count = 0
+        for character in body:
+            if units >= position.character:
+                break
+            units, count = units + (2 if ord(character) > 0xFFFF else 1), count + 1
+        return sum(map(len, lines[:position.line])) + count
+
+    start, end = sorted((offset(span.start), offset(span.end)))
+    return text[:start] + new + text[end:]
+
+
+def test_incremental_changes_mean_what_the_protocol_says_and_cost_what_they_span(monkeypatch):
+    """Drawn documents of CR, LF, CR LF, U+2028, NEL and characters outside the BMP, drawn
+    changes (past a line's end, past the last line, joining a CR and a LF): the document is the
+    text the protocol means. And a replace-all of 2,000 edits in a 20,000-line robot splits
+    what the edits span, not the document 2,000 times (pygls: 5 s of the server's loop)."""
+    import random
+
+    import urdftool.server as server
+    from urdftool.diagnostics import lines_of
+
+    draw = random.Random(15)
+    pieces = ["a", "b", "\n", "\r", "\r\n", "\u2028", "\x85", "é", "\U0001f60b"]
+    for _ in range(400):
+        text = "".join(draw.choice(pieces) for _ in range(draw.randint(0, 12)))
+        document = server.Document("file:///r.urdf", text,
+                                   sync_kind=types.TextDocumentSyncKind.Incremental)
+        for _ in range(draw.randint(1, 5)):
+            most = len(lines_of(text, keepends=True)) + 1
+            span = types.Range(start=types.Position(draw.randint(0, most), draw.randint(0, 4)),
+                               end=types.Position(draw.randint(0, most), draw.randint(0, 4)))
+            new = "".join(draw.choice(pieces) for _ in range(draw.randint(0, 4)))
+            text = _applied(text, span, new)
+            document.apply_change(types.TextDocumentContentChangePartial(range=span, text=new))
+            assert (document.source, list(document.lines)) == \
+                (text, lines_of(text, keepends=True))
+    robot = "<robot>\n" + "".join(f'  <link name="link_{i}"/>\n' for i in range(20_000))
+    document = server.Document("file:///r.urdf", robot + "</robot>\n",
+                               sync_kind=types.TextDocumentSyncKind.Incremental)
+    document.lines  # noqa: B018  (split once, as the first change does)
+    split = []
+    monkeypatch.setattr(server, "lines_of", lambda text, keepends=False: split.append(
+        len(text)) or lines_of(text, keepends))
+    for line in range(1, 2_001):
+        document.apply_change(types.TextDocumentContentChangePartial(
+            range=types.Range(start=types.Position(line, 14), end=types.Position(line, 18)),
+            text="LINK"))
+    assert document.source.count("LINK") == 2_000 and sum(split) < 100_000
+
+
+@SHARED
+async def test_an_incremental_change_after_a_line_separator_is_the_editors(
+        client: LanguageClient, tmp_path):
+    """The served document is the editor's: the robot's limits mended by an incremental change
+    below a comment holding U+2028 clear its finding (pygls changed another line: U001)."""
+    text = BROKEN.replace('<link name="base_link"/>', '<link name="base_link"/> <!-- \u2028 -->')
+    robot = write_robot(tmp_path / "bot", text)
+    uri = open_document(client, robot, text)
+    await wait_until(lambda: codes(client, uri) == [(CALL_LINE, "U204")])
+    line = text.split("\n")[CALL_LINE]
+    start = line.index('lower="1" upper="-1"')
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+        content_changes=[types.TextDocumentContentChangePartial(
+            range=types.Range(start=types.Position(CALL_LINE, start),
+                              end=types.Position(CALL_LINE, start + 20)),
+            text='lower="-1" upper="1"')]))
+    await wait_until(lambda: len(checked(client, robot)) == 2)
+    assert codes(client, uri) == []
+
+
 def test_the_vscode_extension_starts_the_server_for_the_files_it_checks():
     import re
 
@@ -431,16 +538,21 @@ def offline_server(monkeypatch, tmp_path):
     return server, sent
 
 
+def _opened(server, path: Path, version: int, text: str) -> tuple[str, str]:
+    """(path, URI) of ``text`` opened in the offline server at ``version``."""
+    uri = path.as_uri()
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=version, text=text))
+    server.open[str(path)] = uri
+    return str(path), uri
+
+
 def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offline_server,
                                                                             tmp_path):
     from urdftool.server import Outcome
 
     server, sent = offline_server
-    robot = str(tmp_path / "robot.urdf")
-    uri = Path(robot).as_uri()
-    server.protocol.workspace.put_text_document(types.TextDocumentItem(
-        uri=uri, language_id="xml", version=3, text="<robot/>"))
-    server.open[robot] = uri
+    robot, uri = _opened(server, tmp_path / "robot.urdf", 3, "<robot/>")
     diagnostic = types.Diagnostic(range=types.Range(start=types.Position(0, 0),
                                                     end=types.Position(0, 8)), message="m")
 
@@ -449,6 +561,33 @@ def test_a_result_for_an_older_version_or_an_older_check_is_never_published(offl
     server._publish(Outcome(robot, 3, {robot: []}), ticket=7)
     server._publish(Outcome(robot, 3, {robot: [(diagnostic, None)]}), ticket=6)
     assert sent == [(uri, 0)]  # the check that started later wins
+
+
+def test_code_actions_are_offered_only_for_findings_this_server_published(offline_server,
+                                                                          tmp_path):
+    """A diagnostic in a codeAction request is the client's: one named "urdftool" that this
+    server never published (another extension's, or forged) had its code written into the
+    robot by the quick fix: ``<!-- urdftool: ignore U204 --><script/><!-- -->``."""
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.server import Outcome
+
+    server, _ = offline_server
+    robot, uri = _opened(server, tmp_path / "robot.urdf", 1, "<robot>\n  <joint/>\n</robot>\n")
+    span = types.Range(start=types.Position(1, 2), end=types.Position(1, 10))
+    ours = types.Diagnostic(range=span, message="m", code="U204", source="urdftool")
+    finding = Finding("U204", "inverted-limits", Severity.ERROR, "m", Location(robot, 2))
+    server._publish(Outcome(robot, 1, {robot: [(ours, finding)]}), ticket=1)
+    forged = types.Diagnostic(range=span, message="m", code="U204 --><script/><!--",
+                              source="urdftool")
+
+    def actions(diagnostic):
+        return server.code_actions(types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri), range=span,
+            context=types.CodeActionContext(diagnostics=[diagnostic]))) or []
+
+    assert actions(forged) == []
+    assert [edit.new_text.strip() for action in actions(ours)
+            for edit in action.edit.changes[uri]][0] == "<!-- urdftool: ignore U204 -->"
 
 
 def test_a_result_that_read_an_older_buffer_of_an_included_file_is_never_published(
@@ -686,12 +825,25 @@ def _serve_raw(data: bytes, tmp_path) -> tuple[int, bytes, str]:
     b"Content-Length: 2\r\nContent-Length: 3\r\n\r\n{}" + _SHUTDOWN,
     b"X" * 20_000_000,  # a header line read whole, however long
     b"\n" + _SHUTDOWN,
-], ids=["100GB", "not-a-number", "zero", "no-length", "twice", "endless-line", "bare-newline"])
+    b"Content-Length: 50\r\n\r\n",  # a header, then the end of the input: no body
+    _SHUTDOWN[:-3],  # a body cut short by the end of the input (pygls parsed the part)
+], ids=["100GB", "not-a-number", "zero", "no-length", "twice", "endless-line", "bare-newline",
+        "no-body", "cut-body"])
 def test_input_that_breaks_the_framing_ends_the_server_with_one_line(framing, tmp_path):
     status, out, err = _serve_raw(_INITIALIZE + framing, tmp_path)
     assert b'"id": 1' in out and b'"id": 2' not in out  # nothing after the broken frame is read
     assert status == 1 and "Traceback" not in err and "MemoryError" not in err
     assert err.count("\n") == 1 and "the client's input: " in err, err
+
+
+def test_a_session_that_ends_without_shutdown_ends_with_status_1(tmp_path):
+    """LSP: "exit" without "shutdown" before it is status 1 (pygls's was lost: 0), and so is
+    an input that ends without one; with it, 0."""
+    exit_ = _frame({"jsonrpc": "2.0", "method": "exit"})
+    assert _serve_raw(_INITIALIZE + exit_, tmp_path)[0] == 1
+    status, _, err = _serve_raw(_INITIALIZE, tmp_path)
+    assert status == 1 and err.count("\n") == 1 and "without a shutdown request" in err, err
+    assert _serve_raw(_INITIALIZE + _SHUTDOWN + exit_, tmp_path)[0] == 0
 
 
 def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
@@ -719,3 +871,49 @@ def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes
     assert b'"id": 2' in out  # answered after all of it
     assert status == 0 and "Traceback" not in err and "\x1b" not in err, err
     assert all(line.startswith("urdftool server: ") for line in err.splitlines()), err
+
+
+def test_the_log_file_is_judged_as_any_output_and_a_pipe_nobody_reads_is_refused(tmp_path,
+                                                                                monkeypatch):
+    """The language server's ``--log-file`` was opened by logging's FileHandler, past the door:
+    a named pipe nobody read hung it before its first message, ``.git/HEAD`` took its log (the
+    branch gone). ``files.append_stream`` judges it as every output and waits for no reader."""
+    import os
+    import threading
+
+    from urdftool.description import files
+    from urdftool.server import _Log
+
+    monkeypatch.setattr(files, "PIPE_READER_WAIT", 0.5)  # (10 s as shipped)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / ".git" / "HEAD").write_text("ref: refs/heads/main\n")
+    os.mkfifo(tmp_path / "log")
+    done: list = []
+    worker = threading.Thread(target=lambda: done.append(_refusal(_Log, tmp_path / "log")),
+                              daemon=True)
+    worker.start()
+    worker.join(5)
+    if worker.is_alive():  # unblock the opener so the test process can end
+        with open(tmp_path / "log", "rb") as reader:
+            reader.read()
+        pytest.fail("the log file waited for a reader of a named pipe")
+    assert "no process reads" in done[0]
+    assert "version control system's own folder" in _refusal(_Log, tmp_path / ".git" / "HEAD")
+    assert (tmp_path / ".git" / "HEAD").read_text() == "ref: refs/heads/main\n"
+    handler = _Log(str(tmp_path / "server.log"))
+    handler.stream.write("one\n")
+    handler.close()
+    handler = _Log(str(tmp_path / "server.log"))
+    handler.stream.write("two\n")  # appended
+    handler.close()
+    assert (tmp_path / "server.log").read_text() == "one\ntwo\n"
+
+
+def _refusal(make, path) -> str:
+    from urdftool.errors import UsageError
+
+    try:
+        make(str(path))
+    except UsageError as error:
+        return str(error)
+    return "written"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 import os
+import re
 from dataclasses import dataclass
 
 
@@ -118,6 +119,34 @@ class Finding:
         return (location.file, location.line or 0, self.code, self.message,
                 location.column or 0,
                 [(site.file, site.line or 0, site.column or 0) for site in via] if via else [])
+
+
+# A line ends at CR LF, LF or CR: where XML numbers its lines (it reads each as one LF: the
+# lines of every Location) and where the language server protocol does. Python's str.splitlines
+# also ends a line at VT, FF, FS, GS, RS, NEL, LINE SEPARATOR and PARAGRAPH SEPARATOR, which
+# XML holds raw in a comment or a value: every line after one was another line.
+_LINE_END = re.compile("\r\n|\n|\r")
+
+
+def lines_of(text: str, keepends: bool = False) -> list[str]:
+    """The lines of a file's ``text`` as :class:`Location` numbers them (line N is item N - 1):
+    split at CR LF, LF and CR only, never where :meth:`str.splitlines` also splits. With
+    ``keepends``, each line keeps its line end (joined, they are ``text``)."""
+    if not keepends:
+        return _LINE_END.split(text) if text else []
+    found, at = [], 0
+    for end in _LINE_END.finditer(text):
+        found.append(text[at:end.end()])
+        at = end.end()
+    if at < len(text):
+        found.append(text[at:])
+    return found
+
+
+def line_at(text: str, offset: int) -> int:
+    """The 1-based line (as :class:`Location` numbers it: :func:`lines_of`) holding the
+    character at ``offset`` of ``text``."""
+    return len(_LINE_END.findall(text, 0, offset)) + 1
 
 
 def display_path(path: str | os.PathLike) -> str:

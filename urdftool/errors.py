@@ -229,7 +229,7 @@ class SrdfError(LocatedError):
 class ConfigError(LocatedError):
     """A configuration that cannot be used; ``where`` is a file (and row) when it came from one,
     ``argument`` which of several inputs it came from (the parameter: q, v or a of the dynamics;
-    q, orientation, frame_q or targets of inverse kinematics), when known. The message names no
+    q, xyz, orientation, frame_q or targets of inverse kinematics), when known. The message names no
     command-line option: the command adds it."""
 
     def __init__(self, message: str, where: str | None = None):

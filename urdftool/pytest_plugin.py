@@ -42,6 +42,40 @@ def pytest_collect_file(file_path: Path, parent):
     return RobotFile.from_parent(parent, path=file_path, nodeid=_node_id(parent, file_path))
 
 
+@pytest.hookimpl(wrapper=True)
+def pytest_collect_directory(path: Path, parent):
+    """The folder's collector (pytest's, or a package's), collecting also the robot files
+    ``urdftool check FOLDER`` finds there that pytest's walk passes over: those that are no
+    regular file (a named pipe, a link to a device or out of the repository, a link loop),
+    which check reports as errors (U001, U017) and pytest never hands to
+    :func:`pytest_collect_file`: ``pytest --urdftool`` passed where check failed."""
+    collector = yield
+    if collector is None or not parent.config.getoption("urdftool"):
+        return collector
+    passed_over = _not_regular(parent.config, path)
+    if passed_over:
+        collect = collector.collect
+
+        def with_robots():
+            yield from collect()
+            for file in passed_over:
+                yield RobotFile.from_parent(collector, path=file,
+                                            nodeid=_node_id(collector, file))
+
+        collector.collect = with_robots
+    return collector
+
+
+def _not_regular(config, folder: Path) -> list[Path]:
+    """The robot files ``urdftool check`` finds directly in ``folder`` that are no regular
+    file (by their own names, links not followed out)."""
+    from urdftool.description.files import kind_of
+
+    _top_level(config, folder)
+    return [file for file in config.stash[_CACHE][("named", folder)]
+            if kind_of(file) != "file"]
+
+
 def _node_id(parent, file_path: Path) -> str:
     """The node ID pytest would give ``file_path`` (relative to the root folder, ``/``
     between folders), through the terminal-text escaper (see :class:`RobotFile`)."""
@@ -70,6 +104,8 @@ def _top_level(config, folder: Path) -> set[Path]:
             files = []
         real = [Path(real_path(file)) for file in files]
         cache[folder] = {file for file in real if file.parent == Path(real_path(folder))}
+        cache[("named", folder)] = [Path(file) for file in files
+                                    if Path(file).absolute().parent == folder.absolute()]
     return cache[folder]
 
 
@@ -181,7 +217,7 @@ def urdftool_check():
     would not exit 0; returns the :class:`urdftool.Run` otherwise."""
 
     def check(*paths, **options):
-        run = _check([str(path) for path in paths], **options)
+        run = _check(list(paths), **options)  # (str() made b"urdf" the path "b'urdf'")
         if run.exit_code:
             pytest.fail(_text(run), pytrace=False)
         return run

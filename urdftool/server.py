@@ -59,9 +59,10 @@ from dataclasses import dataclass, field
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
+from pygls.workspace import TextDocument
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding, Location, Severity, display_path, lines_of
 from urdftool.description.companions import COMPANION_SUFFIXES
 from urdftool.description.urdf import ROBOT_SUFFIXES, is_robot_name
 
@@ -280,7 +281,7 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=None
 def _range(place: Location, text: str, codec) -> types.Range:
     """The element's start on ``place.line`` (its column when known, else the first non-blank
     character) to the end of that line, in the client's position units."""
-    lines = text.splitlines() or [""]
+    lines = lines_of(text) or [""]
     number = min(max((place.line or 1) - 1, 0), len(lines) - 1)
     line = lines[number]
     if place.column is not None:
@@ -689,6 +690,9 @@ class UrdftoolServer(LanguageServer):
             if diagnostic.source != SOURCE or not isinstance(diagnostic.code, str):
                 continue
             finding = self.finding_for(path, diagnostic)
+            if finding is None:  # not one this server published: its code is no rule's (any
+                continue  # extension may name its diagnostics "urdftool": a code of
+                # "U204 --><script/>" was written into the robot as a suppression comment)
             for provider in ACTION_PROVIDERS:
                 actions.extend(provider(params.text_document.uri, lines, diagnostic, finding,
                                         self.workspace.position_codec))
@@ -779,6 +783,83 @@ ACTION_PROVIDERS = (suppress_on_line, suppress_in_file)
 
 # ---- the server -------------------------------------------------------------------------------
 
+class Document(TextDocument):
+    """An open document whose lines are the protocol's (and XML's, and every Location's): ended
+    by CR LF, LF or CR only (:func:`urdftool.diagnostics.lines_of`). pygls splits them with
+    :meth:`str.splitlines`, which also ends a line at NEL, LINE SEPARATOR, FF and the like,
+    which XML holds raw: an editor's incremental change after one was applied to another line
+    (the buffer checked was text the editor did not hold), and hovers and code actions read
+    the wrong line."""
+
+    _lines: list | None = None  # the lines, kept across incremental changes
+    _joined = True  # whether ``_source`` holds the lines joined
+
+    @property
+    def source(self) -> str:
+        if not self._joined:
+            self._source, self._joined = "".join(self._lines), True
+        return super().source
+
+    @property
+    def lines(self):
+        return tuple(self._line_list())
+
+    def _line_list(self) -> list[str]:
+        if self._lines is None:
+            self._lines = lines_of(self.source, keepends=True)
+        return self._lines
+
+    def _apply_full_change(self, change) -> None:
+        super()._apply_full_change(change)
+        self._lines, self._joined = None, True
+
+    def _apply_incremental_change(self, change) -> None:
+        """The lines the change spans replaced by the change's text split again (with the line
+        before, when it ends with CR: a change starting with LF makes it CR LF): a change costs
+        what it spans, not the document's length in Python (pygls rebuilt every line for each
+        change of a didChange: 2,000 edits of a 20,000-line robot, a replace-all, held the
+        server's loop 5 s). A position past a line's end is its end, past the last line the
+        document's end, as the protocol says."""
+        lines = self._line_list()
+        lines.append("")  # the end of the document: after its last line end
+        (first, head), (last, tail) = sorted((self._at(lines, change.range.start),
+                                              self._at(lines, change.range.end)))
+        text = lines[first][:head] + change.text + lines[last][tail:]
+        if first and not lines[first - 1].endswith("\n"):  # CR, or no line end (the end)
+            first -= 1
+            text = lines[first] + text
+        lines[first:last + 1] = lines_of(text, keepends=True)
+        if lines and not lines[-1]:
+            lines.pop()  # the end's, untouched
+        self._joined = False
+
+    def _at(self, lines: list[str], position: types.Position) -> tuple[int, int]:
+        """(line, character) of a client's ``position`` in ``lines`` (whose last is the empty
+        one after the document's end)."""
+        if position.line >= len(lines) - 1:
+            return len(lines) - 1, 0
+        line = lines[position.line]
+        body = line[:-2] if line.endswith("\r\n") else line[:-1] if line.endswith(
+            ("\r", "\n")) else line
+        if position.character >= self.position_codec.client_num_units(body):
+            return position.line, len(body)
+        return position.line, self.position_codec.position_from_client_units(
+            [body], types.Position(0, position.character)).character
+
+
+def _documents_of_the_protocol(workspace) -> None:
+    """Make ``workspace`` (pygls's, made as the client initializes) open each document as a
+    :class:`Document`."""
+    create = workspace._create_text_document
+
+    def document(*args, **kwargs) -> Document:
+        made = create(*args, **kwargs)
+        made.__class__ = Document
+        return made
+
+    workspace._create_text_document = document
+
+
 _DOCUMENT_EVENTS = {types.TEXT_DOCUMENT_DID_OPEN: "opened",
                     types.TEXT_DOCUMENT_DID_CHANGE: "changed",
                     types.TEXT_DOCUMENT_DID_SAVE: "saved",
@@ -804,6 +885,10 @@ def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> Urdfto
     server = UrdftoolServer(debounce, limits)
     for method, event in _DOCUMENT_EVENTS.items():
         server.feature(method)(_on_document(event))
+
+    @server.feature(types.INITIALIZE)
+    def initialize(ls: UrdftoolServer, params: types.InitializeParams):
+        _documents_of_the_protocol(ls.workspace)  # (made just before, nothing opened yet)
 
     @server.feature(types.INITIALIZED)
     def initialized(ls: UrdftoolServer, params: types.InitializedParams):
@@ -904,7 +989,11 @@ class Transport:
         if self.broken or size != self.length:  # pygls reads the length its pattern read
             return self._break(f"a body read of {size} bytes, not {self.length}")
         self.length, self.headers = None, 0
-        return self.stream.read(size)
+        body = self.stream.read(size)
+        if len(body) < size:  # the input ended inside the message: pygls parsed what came
+            return self._break(f"a message cut short: {len(body)} of its {size} bytes "
+                               "before the input ended")
+        return body
 
 
 _TRACEBACK = re.compile(r"\s*[ |+]*(?:Exception Group )?Traceback \(most recent call last\):")
@@ -953,11 +1042,22 @@ def _raised_at(error: BaseException) -> str:
     return f" (at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno})" if frames else ""
 
 
-class _Log(logging.FileHandler):
-    """The log file: one that stops being written (a full disk) says so once, and the server
-    then ends with status 2 (:func:`serve`), not a traceback per message."""
+class _Log(logging.StreamHandler):
+    """The log file (:func:`urdftool.description.files.append_stream`: judged as any output
+    file, a named pipe without a reader refused): one that stops being written (a full disk)
+    says so once, and the server then ends with status 2 (:func:`serve`), not a traceback per
+    message."""
 
     failed = False
+
+    def __init__(self, path: str):
+        import io
+
+        from urdftool.description.files import append_stream
+
+        self.baseFilename = path
+        super().__init__(io.TextIOWrapper(append_stream(path), encoding="utf-8",
+                                          errors="backslashreplace", write_through=True))
 
     def handleError(self, record) -> None:
         if not self.failed:
@@ -1010,12 +1110,18 @@ def serve(log_file: str | None = None, limits: Limits = Limits()) -> int:
     # it forever). ``protocol_in`` keeps the original open; the server reads no other input.
     protocol_in, sys.stdin = sys.stdin, io.StringIO()
     transport = Transport(protocol_in.buffer)
-    make_server(limits=limits).start_io(transport, PairedOutput(protocol_out))
+    server = make_server(limits=limits)
+    server.start_io(transport, PairedOutput(protocol_out))
     if any(getattr(h, "failed", False) for h in logging.getLogger().handlers):
         return 2
     if transport.broken:  # in the log (standard error without one), and on standard error
         logger.error("the client's input: %s: the server stopped", transport.broken)
         if log_file:
             streams.say(f"urdftool: error: the client's input: {transport.broken}")
+        return 1
+    if not server.protocol._shutdown:  # LSP: exit without shutdown is status 1 (pygls's
+        # sys.exit(1) in its exit handler was lost in the loop: 0), and so is an input that
+        # ended with no shutdown (the editor gone)
+        logger.warning("the session ended without a shutdown request")
         return 1
     return 0

@@ -322,6 +322,27 @@ def test_cli_text_unreachable_exits_1_with_the_closest_pose(run_cli):
     assert "out of reach" in result.output
 
 
+def test_a_target_past_what_the_solver_squares_is_refused_where_it_was_given(run_cli, tmp_path):
+    """A target at 1e308 was "UNREACHABLE ... the target is inf m from the limb's first joint"
+    after numpy's overflow warnings: the solver squares distances. Every target is made by
+    ``Target``, which refuses it, said at the option or row that gave it."""
+    table = tmp_path / "far.csv"
+    table.write_text("x,y,z\n0.1,0,0\n0,-1e200,0\n")
+    said = {}
+    for name, words in (("--xyz", ["--xyz", "1e308", "0", "0"]),
+                        ("--check-reach", ["--check-reach", str(table)])):
+        result = run_cli("ik", HUMANOID, "--tip", "l_forearm_link", "--seeds", "2", *words)
+        assert result.exit_code == 2, result.output
+        said[name] = result.output
+    assert "--xyz: target position x 1e+308 m is past what the solver computes with" \
+        in said["--xyz"]
+    assert "far.csv: row 2: target position y -1e+200 m" in said["--check-reach"]
+    assert "inf" not in "".join(said.values()) and "Warning" not in "".join(said.values())
+    with pytest.raises(ConfigError):
+        ik.Target(np.array([0.0, 0.0, math.inf]))
+    assert ik.Target(np.array([0.0, 0.0, ik.MAX_TARGET])).position[2] == 1e150
+
+
 def test_cli_check_reach(run_cli, humanoid, tmp_path):
     chain = build_chain(humanoid, "body_link", "l_forearm_link")
     pose = _fk_pose(chain, chain.row_of(np.array([0.2, 0.3, -0.4])))

@@ -144,6 +144,14 @@ def test_find_names_the_close_rules():
     assert CATALOGUE.find("u204").name == "inverted-limits"
 
 
+def test_an_empty_word_names_no_rule():
+    """``urdftool rules ''`` answered "the rules starting with  are: ..." and every rule."""
+    for word in ("", " ", "\t"):
+        with pytest.raises(UnknownRule, match="give a code \\(U204\\) or a name") as caught:
+            CATALOGUE.find(word)
+        assert "starting with" not in str(caught.value)
+
+
 def test_a_finding_may_be_less_severe_than_its_rule_never_more():
     from urdftool.diagnostics import Location
 

@@ -800,3 +800,31 @@ def test_per_file_globs_are_compiled_once_for_every_file(tmp_path, monkeypatch):
     for index in range(3):
         assert settings.ignores_for(str(tmp_path / f"sub{index}" / f"r{index}.urdf")) == ["U3"]
     assert len(compiled) == 40_001
+
+
+@pytest.mark.parametrize("kind", ["pipe", "itself", "loop", "folder", "link to a pipe"])
+def test_a_settings_name_holding_no_file_is_said_not_passed_over(run_cli, project, kind):
+    """An ``urdftool.toml`` that is a named pipe, a link to itself or to a pipe, or a folder
+    was passed over without a word: the check ran with the defaults (or a pyproject above),
+    not the settings the repository names. It is a settings error, exit 2."""
+    file = project / "urdftool.toml"
+    if kind == "pipe":
+        os.mkfifo(file)
+    elif kind == "itself":
+        file.symlink_to("urdftool.toml")
+    elif kind == "loop":
+        file.symlink_to("other.toml")
+        (project / "other.toml").symlink_to("urdftool.toml")
+    elif kind == "folder":
+        file.mkdir()
+    else:
+        os.mkfifo(project / "pipe.toml")
+        file.symlink_to("pipe.toml")
+    result = run_cli("check", project / "robots", "--format", "json")
+    assert result.exit_code == 2, result.output
+    assert f"settings file '{file}' " in result.output
+    assert ("named pipe" if "pipe" in kind else "a folder" if kind == "folder" else
+            "too many levels of symbolic links") in result.output
+    file.unlink() if kind != "folder" else file.rmdir()
+    (project / "urdftool.toml").symlink_to("nowhere.toml")  # a link to nothing: nothing there
+    assert codes(run_cli, project / "robots") == (1, ["U204", "U206"])

@@ -32,6 +32,26 @@ def test_parse_targets_the_next_element_or_the_trailed_line():
     }
 
 
+def test_lines_are_numbered_as_findings_are_at_cr_lf_or_cr_only():
+    """A LINE SEPARATOR or NEL in a comment above (str.splitlines ends a line there, XML does
+    not) made the suppression cover a later line than the one below it: a reviewer saw it over
+    one element while it silenced another. A file ending its lines with CR made each line 1."""
+    for separator in ("\u2028", "\x85", "\x0c", "\u2029"):
+        text = TEXT.replace("<robot name=\"r\">", f"<robot name=\"r\"> <!-- a{separator}b -->")
+        assert {s.line: s.target for s in parse(text, "r.urdf")} == {2: 5, 6: 6, 7: None, 8: 11}
+    for end in ("\r", "\r\n"):
+        assert {s.line: s.target for s in parse(TEXT.replace("\n", end), "r.urdf")} == \
+            {2: 5, 6: 6, 7: None, 8: 11}
+
+
+def test_an_unused_suppression_on_a_line_ended_by_cr_is_removed_with_its_line(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_bytes(b"<robot>\r  <!-- urdftool: ignore U204 -->\r<joint/>\r</robot>\r")
+    [unused] = apply([], _sources(path), lambda code: True, CATALOGUE)
+    [edit] = unused.fix.edits
+    assert (unused.location.line, edit.old) == (2, "  <!-- urdftool: ignore U204 -->\r")
+
+
 def _finding(code, file, line, via=()):
     return Finding(code, "x", Severity.ERROR, "m", Location(file, line, via))
 

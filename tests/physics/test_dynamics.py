@@ -122,6 +122,36 @@ def test_a_robot_without_mass_gets_a_warning(tmp_path):
     assert result.warnings and result.warnings[0].startswith("no link has a mass")
 
 
+def test_a_singular_mass_matrix_is_said_and_why(tmp_path):
+    """Masses of 0 are said as such (the message said "no <inertial>" of links that each had
+    one); M(q) with a joint that moves nothing, or two joints moving one body the same way, is
+    said singular (it was printed without a word: forward dynamics does not exist)."""
+    zero = ARM.replace(f'<mass value="{M1}"/>', '<mass value="0"/>') \
+        .replace(f'<mass value="{M2}"/>', '<mass value="0"/>').replace('<mass value="3"/>',
+                                                                       '<mass value="0"/>')
+    massless_tip = ARM.replace(f'<mass value="{M2}"/>', '<mass value="0"/>').replace(
+        '<inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>\n'
+        '</robot>', '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>'
+        '</link>\n</robot>')
+    coaxial = ARM.replace(f'<origin xyz="{L1} 0 0"/><axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/>') \
+        .replace(f'<mass value="{M1}"/>', '<mass value="0"/>').replace(
+        '<inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>\n'
+        '  <joint name="elbow"', '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+        '</inertial></link>\n  <joint name="elbow"')
+    said = {}
+    for name, text in (("zero", zero), ("tip", massless_tip), ("coaxial", coaxial), ("arm", ARM)):
+        path = tmp_path / f"{name}.urdf"
+        path.write_text(text)
+        said[name] = state(build(load(str(path))), {"shoulder": 0.3, "elbow": 0.2}).warnings
+    assert said["zero"] == [said["zero"][0]] and "every <inertial> is missing or of mass 0" \
+        in said["zero"][0]
+    assert said["tip"] == ["M(q) is singular: joint elbow moves no mass or inertia at this "
+                           "configuration (a zero row of M(q)), so forward dynamics (M(q)^-1) "
+                           "does not exist; give the links it carries an <inertial>"]
+    assert said["coaxial"] and said["coaxial"][0].startswith("M(q) is singular: rank 1 of 2")
+    assert said["arm"] == []
+
+
 MIMIC_ARM = ARM.replace('<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>',
                         '<limit lower="-3" upper="3" effort="1" velocity="1"/>'
                         '<mimic joint="shoulder" multiplier="-1" offset="0.2"/></joint>')

@@ -130,6 +130,14 @@ def test_dot_ids_of_names_that_differ_differ():
     assert len({escape.dot(*pair) for pair in [("a", "b"), ("a\\nb",), ("a\nb",)]}) == 3
 
 
+def test_dot_character_entities_are_text_not_characters():
+    """Graphviz reads ``&#x1b;`` and ``&#x202e;`` in a quoted string as the characters (in every
+    output; in SVG a reference to ESC, which no XML reader takes): a name holding one drew, and
+    wrote into the SVG, a control or a bidi override; ``a&amp;b`` and ``a&b`` were one label."""
+    assert escape.dot("a&#x1b;b", "c&amp;") == '"a&amp;#x1b;b\\nc&amp;amp;"'
+    assert escape.dot("a&b") != escape.dot("a&amp;b")
+
+
 def test_yaml_reads_back_exactly_and_no_scalar_starts_a_line():
     data = {"joints": [{"joint": HOSTILE, "long": "w " * 200 + "::error::x"}],
             "::k\n::error::key": "é"}

@@ -90,7 +90,7 @@ def ik(
                            degrees=deg, seeds_count=seeds, seed=seed, tolerance=tol,
                            iterations=iterations, method=method.replace("-", " "))
     except ConfigError as error:
-        fail_config(error, {"q": "--q", "orientation": "--quat", "frame_q": "--target-q",
+        fail_config(error, {"q": "--q", "xyz": "--xyz", "orientation": "--quat", "frame_q": "--target-q",
                             "targets": "--targets" if targets else "--check-reach"
                             }[error.argument])
     except (FKError, IKError, UnknownName) as error:

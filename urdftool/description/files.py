@@ -297,13 +297,33 @@ def identity(path) -> tuple | None:
     """(device, inode, size, modification time [ns]) of the regular file at ``path``, links
     followed, for keys of what is remembered of it; None when there is none. Recorded as
     :func:`kind_of` (its content is recorded by whoever reads it)."""
+    found = identity_or_why(path)
+    return found if isinstance(found, tuple) else None
+
+
+def identity_or_why(path) -> tuple | str:
+    """:func:`identity` of the regular file at ``path``; else why there is none, in words: ''
+    for nothing there (no entry, or a link to nothing), else what is there instead ('a
+    folder', 'a named pipe', 'a device', 'a socket') or why it cannot be reached (a link loop,
+    a folder on the way it may not search). Recorded as :func:`identity`, by the same one
+    look."""
+    why = ""
     try:
         info = os.stat(path)
-    except (OSError, ValueError):
+    except FileNotFoundError:
         info = None
+    except (OSError, ValueError) as error:
+        info = None
+        why = f"cannot be reached: {(getattr(error, 'strerror', None) or str(error)).lower()}"
     kind = "" if info is None else _kind_of_mode(info.st_mode)
     records.note(PROBE, (os.path.abspath(path), True), kind)
-    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns) if kind == "file" else None
+    if kind == "file":
+        return info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns
+    if info is None:
+        return why
+    mode = info.st_mode
+    return "a folder" if kind == "folder" else "a named pipe" if stat.S_ISFIFO(mode) else \
+        "a socket" if stat.S_ISSOCK(mode) else "a device"
 
 
 def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
@@ -905,6 +925,31 @@ def _write_in_place(path, target: str, data: bytes) -> None:
     except OSError as error:
         why = "a named pipe no process reads" if error.errno == errno.ENXIO else error.strerror
         raise UsageError(f"cannot write '{path}': {why}") from None
+
+
+def append_stream(path):
+    """A binary stream appending to ``path`` (a log), made if missing: refused as any output
+    file is (:func:`check_output`: a missing folder, a folder, a version control system's own
+    folder), and a named pipe with no reader within :data:`PIPE_READER_WAIT` seconds refused,
+    not waited for (the language server's ``--log-file`` of a pipe nobody read hung before it
+    read a message; of ``.git/HEAD`` it wrote its log into the branch). UsageError."""
+    check_output(path)
+    deadline = time.monotonic() + PIPE_READER_WAIT
+    try:
+        while True:
+            try:
+                descriptor = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT | os.O_NOCTTY |
+                                     os.O_NONBLOCK, 0o666)
+                break
+            except OSError as error:
+                if error.errno != errno.ENXIO or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+        os.set_blocking(descriptor, True)
+    except OSError as error:
+        why = "a named pipe no process reads" if error.errno == errno.ENXIO else error.strerror
+        raise UsageError(f"cannot write '{path}': {why}") from None
+    return open(descriptor, "ab", buffering=0)
 
 
 def remove_file(path) -> None:

@@ -95,8 +95,11 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     One load is one view of the file system (:func:`~urdftool.description.run_memo.one_run`,
     the check's when it loads within one): a library caller's load asks each repository root,
     real path and package of its includes once, as a check does."""
-    with one_run():
-        return _load(os.fspath(path), xacro_args, packages, allow_env, max_file_size, data,
+    if not isinstance(data, (bytes, type(None))):
+        raise TypeError(f"data must be the file's bytes, not {type(data).__name__}")
+    with one_run():  # (a path in bytes as os reads them: os.fspath kept bytes, and each reader
+        # failed on it in its own way)
+        return _load(os.fsdecode(path), xacro_args, packages, allow_env, max_file_size, data,
                      as_written)
 
 

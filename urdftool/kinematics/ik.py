@@ -38,6 +38,9 @@ _DAMPING = 1e-12  # as Pinocchio's CLIK example: the step bound does the rest
 _MAX_STEP = 1.0  # [rad or m]: the longest step (its 2-norm)
 _STALL = 15  # iterations without progress before the next seed
 _AT_LIMIT = 1e-9  # [rad or m]
+MAX_TARGET = 1e150  # [m] the farthest coordinate of a target: the solver squares distances (a
+# target at 1e308 overflowed to "inf m" after numpy's overflow warnings); sqrt of the largest
+# float is 1.3e154
 
 
 @dataclass
@@ -48,6 +51,17 @@ class Target:
     position: np.ndarray
     rotation: np.ndarray | None = None
     name: str = ""
+
+    def __post_init__(self):
+        """ConfigError for a position the solver cannot square (:data:`MAX_TARGET`): every
+        target, from words, a file or a frame's pose, is made here."""
+        far = [f"{axis} {number(value)}" for axis, value in zip("xyz", self.position)
+               if not abs(value) <= MAX_TARGET]
+        if far:
+            error = ConfigError(f"target position {', '.join(far)} m is past what the solver "
+                                f"computes with (at most {number(MAX_TARGET)} m each)")
+            error.argument = "xyz"
+            raise error
 
     def se3(self):
         import pinocchio as pin
@@ -345,7 +359,8 @@ def solve_limb(robot, tip: str, base: str | None = None, point=None,
             argument = "targets"
             wanted = read_targets(targets_file, degrees)
     except ConfigError as error:
-        error.argument = argument
+        error.argument = "xyz" if error.argument == "xyz" and argument == "orientation" \
+            else argument
         raise
     starts = seeds(chain, seeds_count, seed)
     return LimbSolutions(chain, [solve(chain, goal, starts, tolerance, iterations, method)

@@ -266,8 +266,12 @@ class Catalogue:
 
     def find(self, wanted: str) -> Rule:
         """A rule by code (any case) or name; :class:`UnknownRule` listing the close ones
-        otherwise."""
+        otherwise (a word without a character but blanks too: every code starts with it, and
+        ``urdftool rules ''`` answered with all of them as "the rules starting with  are")."""
         rules = self.rules
+        if not wanted.strip():
+            raise UnknownRule(f"no rule '{wanted}': give a code (U204) or a name "
+                              f"(inverted-limits); `urdftool rules` lists all {len(rules)} rules")
         for candidate in rules:
             if wanted.upper() == candidate.code or wanted == candidate.name:
                 return candidate

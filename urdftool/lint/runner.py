@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
@@ -187,8 +187,9 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
     elif options:
         raise TypeError("check_paths takes a CheckRequest or keyword options, not both")
     check_companions(request.companions)
-    if isinstance(paths, (str, os.PathLike)):
-        paths = [paths]  # one path, not its characters
+    paths = [_path(paths)] if isinstance(paths, (str, bytes, os.PathLike)) or \
+        not isinstance(paths, Iterable) else [_path(path) for path in paths]  # one path, not its
+    # characters (nor its bytes' numbers)
     from urdftool.description.record import digesting
 
     # one view of the file system (roots and settings looked up once); the files' digests only
@@ -262,7 +263,10 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
         ``record`` of what the check read, searched and followed, the settings looked for
         included (:mod:`urdftool.description.record`)
     """
-    path = os.fspath(path)
+    path = _path(path)
+    if not isinstance(data, (str, bytes, type(None))):
+        raise TypeError(f"data must be the file's text (str or bytes), not "
+                        f"{type(data).__name__}")
     request = _request(options)
     buffers = {}
     if data is not None and path != "-":
@@ -278,6 +282,16 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
         result = engine.load_and_check(path, for_file(path, request).options, data=data)
     result.record = record
     return result
+
+
+def _path(path) -> str:
+    """A path the API was given (str, bytes or os.PathLike, as ``os`` takes them) as the str
+    every reader takes (bytes that are not UTF-8 as ``os.fsdecode`` reads a folder's names);
+    TypeError naming anything else (``check_paths(b"robots")`` checked the paths 114, 111, ...,
+    ``check_paths(5)`` said "'int' object is not iterable")."""
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError(f"a path must be str, bytes or os.PathLike, not {type(path).__name__}")
+    return os.fsdecode(path)
 
 
 def _request(options: dict) -> CheckRequest:

@@ -47,8 +47,8 @@ from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.errors import SettingsError, UnknownRule, UsageError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity, inside, kind_of, \
-    read_regular, unreachable
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity_or_why, inside, \
+    kind_of, read_regular, unreachable
 from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
@@ -135,11 +135,21 @@ def _settings_in(folder: Path) -> Settings:
     for candidate in chain:
         for name in ("urdftool.toml", "pyproject.toml"):
             file = candidate / name
-            if (known := identity(file)) is not None:
+            known = identity_or_why(file)
+            if isinstance(known, tuple):
                 found = _settings_file(file, known)
                 if found is not None:
                     return found
+            elif known:  # a name for settings that holds none: the settings meant are not
+                # known, and a check with the defaults in their place would pass in silence
+                raise SettingsError(f"settings file '{file}' {_what_is_there(known)}: the "
+                                    "settings it names cannot be read; make it a file, or "
+                                    "remove it")
     return Settings()
+
+
+def _what_is_there(why: str) -> str:
+    return why if why.startswith("cannot") else f"is {why}"
 
 
 def settings_file(path: str | os.PathLike) -> Settings:
@@ -748,24 +758,48 @@ class CheckRequest:
     targets: tuple[str, ...] = ()
 
     def __post_init__(self):
-        for name in ("select", "ignore"):
+        """Every field held to what the command line and the settings take (the API's callers
+        gave ``strict="no"``: strict; ``timeout=nan`` and ``max_triangles=nan``: no limit;
+        ``jobs=-5``; ``xacro_args="a:=1"``: Python's own error), UsageError naming it."""
+        for name in ("select", "ignore", "targets"):
             value = getattr(self, name)
-            object.__setattr__(self, name, (value,) if isinstance(value, str) else tuple(value))
+            value = (value,) if isinstance(value, str) else tuple(value or ())
+            if not all(isinstance(item, str) for item in value):
+                raise UsageError(f"{name} must be words (str), not {shown(list(value))}")
+            object.__setattr__(self, name, value)
+        for name in ("select", "ignore"):
             check_selectors(getattr(self, name))
-        object.__setattr__(self, "targets", checked_targets(
-            (self.targets,) if isinstance(self.targets, str) else self.targets or ()))
+        object.__setattr__(self, "targets", checked_targets(self.targets))
+        for name in ("xacro_args", "packages"):
+            value = getattr(self, name) or {}
+            if not isinstance(value, Mapping) or not all(
+                    isinstance(key, str) and isinstance(item, (str, os.PathLike))
+                    for key, item in value.items()):
+                raise UsageError(f"{name} must map names (str) to values (str), not "
+                                 f"{shown(value)}")
         object.__setattr__(self, "xacro_args", dict(self.xacro_args or {}))
         object.__setattr__(self, "packages", {name: Path(folder) for name, folder
                                               in (self.packages or {}).items()})
         if self.companions is None:
             object.__setattr__(self, "companions", CompanionPaths())
+        for name in ("strict", "use_settings", "allow_env"):
+            value = getattr(self, name)
+            if not isinstance(value, bool) and not (name == "allow_env" and value is None):
+                raise UsageError(f"{name} must be True or False, not {shown(value)}")
+        for name in ("stdin_filename", "settings_file", "cache_dir"):
+            if not isinstance(getattr(self, name), (str, os.PathLike, type(None))):
+                raise UsageError(f"{name} must be a path, not {shown(getattr(self, name))}")
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
-        if self.timeout is not None and (isinstance(self.timeout, bool) or self.timeout < 0):
-            raise UsageError(f"timeout must not be negative, got {shown(self.timeout)}")
-        if self.max_triangles is not None and (isinstance(self.max_triangles, bool) or
-                                               self.max_triangles < 0):
-            raise UsageError(f"max_triangles must not be negative, got {shown(self.max_triangles)}")
+        if self.timeout is not None and (isinstance(self.timeout, bool) or not isinstance(
+                self.timeout, (int, float)) or not 0 <= self.timeout < math.inf):
+            raise UsageError("timeout must be a finite number of seconds, 0 for none, not "
+                             f"{shown(self.timeout)}")
+        for name in ("max_triangles", "jobs"):
+            value = getattr(self, name)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or
+                                      value < 0):
+                raise UsageError(f"{name} must be a whole number, 0 or more, not {shown(value)}")
 
 
 @dataclass(frozen=True)

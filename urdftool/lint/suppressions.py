@@ -19,7 +19,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from urdftool.diagnostics import Finding, Fix, Location
+from urdftool.diagnostics import Finding, Fix, Location, line_at, lines_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 
@@ -50,12 +50,15 @@ def _known(selector: str, catalogue: Catalogue) -> bool:
 
 
 def parse(text: str, file: str) -> list[Suppression]:
-    """Every suppression comment in ``text`` (the contents of ``file``)."""
-    lines = text.splitlines()
+    """Every suppression comment in ``text`` (the contents of ``file``), its lines numbered
+    as findings' are (:func:`~urdftool.diagnostics.lines_of`: a LINE SEPARATOR in a comment
+    above made a suppression cover a later line than the one below it, a file ending its lines
+    with CR made every one line 1)."""
+    lines = lines_of(text)
     found = []
     for match in _COMMENT.finditer(text):
-        start = text.count("\n", 0, match.start()) + 1
-        end = text.count("\n", 0, match.end()) + 1
+        start = line_at(text, match.start())
+        end = line_at(text, match.end())
         selectors = tuple(part for part in re.split(r"[\s,]+", match.group(2)) if part)
         if match.group(1) == "ignore-file":
             target = None
@@ -69,8 +72,22 @@ def parse(text: str, file: str) -> list[Suppression]:
 
 def _before_comment(text: str, offset: int) -> bool:
     """Whether an element is written before the comment on its line (a trailing comment)."""
-    line_start = text.rfind("\n", 0, offset) + 1
-    return bool(text[line_start:offset].strip())
+    return bool(text[_line_start(text, offset):offset].strip())
+
+
+def _line_start(text: str, offset: int) -> int:
+    """Where the line holding ``offset`` starts (after a CR LF, LF or CR: as
+    :func:`~urdftool.diagnostics.lines_of` splits)."""
+    return max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
+
+
+def _line_end(text: str, offset: int) -> int:
+    """Where the line holding ``offset`` ends, after its line end (CR LF, LF or CR)."""
+    found = [at for at in (text.find("\n", offset), text.find("\r", offset)) if at >= 0]
+    if not found:
+        return len(text)
+    at = min(found)
+    return at + 2 if text.startswith("\r\n", at) else at + 1
 
 
 def _next_content_line(lines: list[str], after: int) -> int:
@@ -148,9 +165,7 @@ def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | No
             return None
     text = data.decode("utf-8", errors="replace")
     start, end = suppression.span
-    line_start = text.rfind("\n", 0, start) + 1
-    line_end = text.find("\n", end)
-    line_end = len(text) if line_end < 0 else line_end + 1
+    line_start, line_end = _line_start(text, start), _line_end(text, end)
     if not text[line_start:start].strip() and not text[end:line_end].strip():
         start, end = line_start, line_end
     elif not text[line_start:start].strip():  # other content follows on the line

@@ -207,10 +207,7 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
                    mass_matrix.copy(), gravity)
-    if result.mass <= 0:
-        result.warnings.append("no link has a mass (no <inertial>): M(q) and every gravity "
-                               "torque are zero; check the description (xacro arguments?) with "
-                               "'urdftool check'")
+    result.warnings.extend(singular(model, mass_matrix, result.mass))
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})
         a = model.velocity(a_values or {})
@@ -223,6 +220,44 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         result.friction = np.asarray(m.friction) * np.sign(v) + 0.0  # no -0
     result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
+
+
+def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
+    """What makes ``mass_matrix`` (M(q)) singular, in words, or nothing: no link with a mass
+    (every ``<inertial>`` missing or of mass 0), or joints that move no mass or inertia (their
+    rows are zero: M(q)^-1, forward dynamics, does not exist), or rows that depend on each
+    other (joints moving the same body the same way). M(q) is symmetric positive semidefinite:
+    a joint's row is zero exactly when its diagonal entry is, and its rank is that of its
+    eigenvalues above round-off."""
+    if mass <= 0:
+        return ["no link has a mass (every <inertial> is missing or of mass 0): M(q) and every "
+                "gravity torque are zero; check the description (xacro arguments?) with "
+                "'urdftool check'"]
+    size = len(mass_matrix)
+    if not size:
+        return []
+    diagonal = np.abs(np.diag(mass_matrix))
+    floor = float(diagonal.max()) * size * np.finfo(float).eps
+    still = [name for name, entry in zip(model.joints, diagonal) if entry <= floor]
+    if still:
+        return [f"M(q) is singular: {_listed(still)} move{'s' if len(still) == 1 else ''} no "
+                "mass or inertia at this configuration (a zero row of M(q)), so forward "
+                "dynamics (M(q)^-1) does not exist; give the links "
+                f"{'it carries' if len(still) == 1 else 'they carry'} an <inertial>"]
+    values = np.linalg.eigvalsh(mass_matrix)
+    rank = int((values > float(np.abs(values).max()) * size * np.finfo(float).eps).sum())
+    if rank < size:
+        return [f"M(q) is singular: rank {rank} of {size} (joints moving the same mass the "
+                "same way at this configuration), so forward dynamics (M(q)^-1) does not exist"]
+    return []
+
+
+def _listed(names: list[str]) -> str:
+    from urdftool.errors import shown_word
+
+    shown = ", ".join(shown_word(name) for name in names[:12])
+    return ("joint " if len(names) == 1 else "joints ") + shown + (
+        f" and {len(names) - 12} more" if len(names) > 12 else "")
 
 
 @dataclass

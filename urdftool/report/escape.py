@@ -30,8 +30,9 @@ SVG / HTML written by hand    :func:`svg`         markup (``<img onerror>``, ``<
 CSV cells                     :func:`csv_cell`    line breaks (a row of their own) and formulas
                                                   a spreadsheet would run (``=``, ``+``, ``-``,
                                                   ``@``)
-Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's own escapes,
-                                                  two names made one ID (one to one)
+Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's own escapes
+                                                  and character entities, two names made one
+                                                  ID (one to one)
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
@@ -213,12 +214,15 @@ def csv_cell(value) -> str:
 
 def dot(*lines) -> str:
     """A Graphviz double-quoted ID or label; each argument is a line of the label (DOT's
-    ``\\n``), escaped so that neither its quotes nor DOT's escapes (``\\N``, ``\\l``) act.
-    A DOT ID is a node's identity, so the escape is one to one: a backslash of the name is
-    written twice before :func:`printable` writes its escapes (the link ``a\\nb``, with a
-    backslash, and ``a`` line feed ``b`` were one node: two roots drawn as one chain)."""
+    ``\\n``), escaped so that neither its quotes nor DOT's escapes (``\\N``, ``\\l``) nor its
+    character entities (``&#x1b;``, ``&#x202e;``: Graphviz draws a quoted string's entities as
+    the characters, and writes them into SVG as such) act: ``&`` is ``&amp;``. A DOT ID is a
+    node's identity, so the escape is one to one: a backslash of the name is written twice
+    before :func:`printable` writes its escapes (the link ``a\\nb``, with a backslash, and ``a``
+    line feed ``b`` were one node: two roots drawn as one chain)."""
     return '"' + "\\n".join(printable(str(line).replace("\\", "\\\\")).replace("\\", "\\\\")
-                            .replace('"', '\\"') for line in lines) + '"'
+                            .replace('"', '\\"').replace("&", "&amp;")
+                            for line in lines) + '"'
 
 
 def yaml_text(data) -> str:
