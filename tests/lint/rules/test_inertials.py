@@ -460,6 +460,69 @@ def test_plain_solids_give_the_rules_on_solids_what_the_per_link_solids_give(tmp
     assert len(plain) > 20 and sum(map(len, expected)) > 0
 
 
+def _tensor_robot(seed: int, links: int = 300) -> str:
+    """A random robot of ``links`` links hanging on revolute joints, each a box with an
+    inertial whose tensor is diagonal (zeros written as -0 and 0 too) or has products, with
+    negative, zero, equal and triangle-breaking moments, some turned by an rpy."""
+    import random
+
+    rng = random.Random(seed)
+    values = ["1", "0.5", "2", "0.1", "1e-6", "1e-13", "0", "-0", "-0.0", "-1", "-1e-13", "3",
+              "0.30000000000000004", "1e6"]
+    parts = ['<robot name="tensors"><link name="base"/>']
+    for i in range(links):
+        xx, yy, zz = (rng.choice(values) for _ in range(3))
+        xy, xz, yz = (rng.choice(["0", "-0", "0.0"] if rng.random() < 0.7 else values)
+                      for _ in range(3))
+        rpy = ' rpy="0 0 0.5"' if rng.random() < 0.1 else (' rpy="-0 0 0"' if rng.random() < 0.05
+                                                            else "")
+        mass = rng.choice(["1", "0.001", "5", "0", "2e-5"])
+        parts.append(f'<link name="l{i}"><inertial><origin xyz="0 0 0"{rpy}/>'
+                     f'<mass value="{mass}"/><inertia ixx="{xx}" ixy="{xy}" ixz="{xz}" '
+                     f'iyy="{yy}" iyz="{yz}" izz="{zz}"/></inertial><collision><geometry>'
+                     '<box size="0.1 0.2 0.3"/></geometry></collision></link>')
+        parts.append(f'<joint name="j{i}" type="revolute"><parent link="base"/>'
+                     f'<child link="l{i}"/><axis xyz="0 0 1"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+    parts.append("</robot>")
+    return "".join(parts)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_principal_moments_made_at_once_as_each_link_makes_them(tmp_path, monkeypatch, seed):
+    """On a large robot the principal moments of the tensors without products of inertia are
+    made at once (_principals: the diagonal sorted): the same numbers, to the bit, as
+    eigvalsh gives each link, and U304, U305, U306, U314 and U316 find the same (where,
+    message, fix) as on the per-link path, over random tensors."""
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import mat3, solids
+
+    (tmp_path / "r.urdf").write_text(_tensor_robot(seed))
+
+    def rules(robot):
+        return [[(robot.locate(where), message, *rest) for where, message, *rest in check(robot)]
+                for check in (inertials.inertia_not_positive_definite,
+                              inertials.inertia_indefinite, inertials.inertia_triangle_inequality,
+                              inertials.principal_moments_order,
+                              inertials.inertia_beyond_geometry)]
+
+    monkeypatch.setattr(solids, "BULK_LINKS", 10 ** 9)
+    alone = load(tmp_path / "r.urdf")
+    expected = rules(alone)
+    assert inertials._principals(alone).keys() <= {link for link, _ in inertials._valid(alone)}
+    monkeypatch.setattr(solids, "BULK_LINKS", 1)
+    robot = load(tmp_path / "r.urdf")
+    at_once = dict(inertials._principals(robot))  # (made before any rule asks)
+    assert len(at_once) > 50
+    for link, (moments, largest) in at_once.items():
+        each = mat3.eigvalsh(inertials.declared_of(robot, link).inertia)
+        assert [m.hex() for m in moments] == [m.hex() for m in each]
+        assert largest == max(max(abs(m) for m in each), 1e-300)
+    assert rules(robot) == expected
+    assert all(expected[:3]), expected  # each of U304, U305 and U306 finds some
+
+
 # -- session 6's sweep: a zero tensor judged on the rigid body the simulators see ----------------
 
 def _ankle(foot_inertia: str) -> str:

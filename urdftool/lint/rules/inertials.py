@@ -295,12 +295,39 @@ def _fixed_joints_below(robot) -> dict[str, list]:
 
 def _principal(robot, link, properties):
     """(principal moments, the largest magnitude) of a link's declared inertial (from
-    :func:`_valid`), once per robot and link (U305 and U306 ask)."""
-    def compute():  # (properties is the link's declared_of)
-        moments = moments_of(robot, link)
-        return moments, max(max(abs(m) for m in moments), 1e-300)
+    :func:`_valid`), once per robot and link (U305, U306, U314 and U316 ask, of every link:
+    looked up in the robot's one dict of them, no function made per asking)."""
+    known = _principals(robot)
+    found = known.get(link)
+    if found is None:  # (properties is the link's declared_of)
+        found = known[link] = _moments_and_largest(moments_of(robot, link))
+    return found
 
-    return robot.memo_for(_principal, link, compute)
+
+def _moments_and_largest(moments) -> tuple:
+    a, b, c = moments  # (the largest of the three as of a generator over them: the same one)
+    return moments, max(max(abs(a), abs(b), abs(c)), 1e-300)
+
+
+def _principals(robot) -> dict:
+    """Link -> :func:`_principal`, once per robot; on a robot of
+    :data:`~urdftool.physics.solids.BULK_LINKS` links or more, made at once for every link
+    with mass whose tensor has no products of inertia (the moments
+    :func:`~urdftool.physics.mat3.eigvalsh` gives such a one: its diagonal sorted), in one
+    loop over :func:`_valid` rather than a chain of per-link memos for each; the others are
+    added as asked."""
+    def build():
+        found = {}
+        if len(robot.links) < solids.BULK_LINKS:
+            return found
+        for link, properties in _valid(robot):
+            if properties.mass > 0:
+                (xx, _, _), (yx, yy, _), (zx, zy, zz) = properties.inertia
+                if yx == 0 and zx == 0 and zy == 0:  # (eigvalsh reads the lower triangle)
+                    found[link] = _moments_and_largest(tuple(sorted((xx, yy, zz))))
+        return found
+
+    return robot.memo(_principals, build)
 
 
 def _diagonal(properties) -> list[float]:
