@@ -387,7 +387,10 @@ def mesh_not_found(robot):
     folder is looked for where the package's build (CMakeLists.txt ``install()``, setup.py or
     setup.cfg ``data_files``) installs it from. When those install rules cannot be read (a
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
-    warning saying so, not an error (docs/packages.md).
+    warning saying so, not an error (docs/packages.md). So is a file missing from a folder
+    that holds only placeholders (``.gitkeep``, ``.keep``, ``.gitignore``): a folder kept empty
+    in the repository for files a tool, a download or a build step puts there (Stretch's
+    ``meshes/``, filled from a robot's calibration batch).
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
