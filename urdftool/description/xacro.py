@@ -534,6 +534,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             else:
                 hint = _written_from_elsewhere(session, filename,
                                                xacro.filestack[-1] if xacro.filestack else None)
+                if hint:  # a tool run from that folder reads it (upkie's xacrodoc): not certain
+                    raise xacro.XacroException(exc=_Unsure(
+                        error.errno, f"{error.strerror}: {display_path(filename)}{hint}"))
             # an OSError still (xacro skips an optional include by it), said once, plainly
             raise xacro.XacroException(suffix=hint or None, exc=_Unreadable(
                 error.errno, error.strerror, filename)) from error
@@ -733,7 +736,8 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     """Advice for an include xacro could not open beside the file including it when the path
     as written is there from a folder above (inside the repository): written for a tool run
     from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
-    repository root). "" otherwise."""
+    repository root by its Makefile), which reads it: the failure is then not certain (U005
+    a warning). "" otherwise."""
     from urdftool.description.packages import containment_root
 
     if not including:
