@@ -926,8 +926,14 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         message += (f": the macro called here has {', '.join(names)} without a default, and the "
                     f"call gives {'it' if len(names) == 1 else 'them'} no value; pass "
                     f"{names[0] if names else 'it'}=\"...\"")
+    later = ""
     if message.startswith("unknown macro name: xacro:") and doc is not None:
-        message += _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
+        later = _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
+        message += later
+    if later and session.ros1_tags:  # a catkin package: ROS 1 up to Lunar may expand it
+        return XacroFailure("xacro", message + "; not certain for a catkin package: ROS 1's "
+                            "xacro up to Lunar (Kinetic's) expands it in that order by default",
+                            where, certain=False)
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
 
 
