@@ -1015,3 +1015,19 @@ def test_an_xml_document_of_another_kind_named_is_not_checked_as_a_robot(run_cli
                      "--format", "json")
     assert '"files": 1' in result.stdout and "another kind" in result.stderr
     assert result.stdout.count("U004") == 1 and "typo.xacro" in result.stdout
+
+
+def test_a_urdf_holding_xacro_named_is_checked_through_the_robot_including_it(run_cli, tmp_path):
+    """RealMan's rm_65_gazebo.urdf (its meshes '$(find rm_description)/meshes/...') is
+    included by gazebo_65_description.urdf.xacro: the folder walk checks it there, but named
+    alone, as pre-commit names it, it was a U007 error (a .urdf holding xacro) on a file only
+    xacro reads. Nobody including it, it is still checked as it is, U007 and all."""
+    _beside_a_robot(tmp_path, part_urdf=(
+        f'<robot name="part" {XACRO_NS}><xacro:property name="n" value="b"/>'
+        '<link name="${n}"/></robot>'), top_urdf_xacro=(
+        f'<robot name="top" {XACRO_NS}><xacro:include filename="part.urdf"/></robot>'))
+    result = run_cli("check", tmp_path / "part.urdf", "--format", "json")
+    assert "U007" not in result.stdout and "top.urdf.xacro" in result.stderr, result.stderr
+    (tmp_path / "top.urdf.xacro").unlink()
+    result = run_cli("check", tmp_path / "part.urdf", "--format", "json")
+    assert "U007" in result.stdout and '"files": 1' in result.stdout

@@ -464,7 +464,25 @@ def _own_robot(path: Path, limit: int, data) -> bool:
         return True
     return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
         _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
-        _self_contained(path, limit, data) and not _borrows_macros(data)
+        _self_contained(path, limit, data) and not _borrows_macros(data) and \
+        not _urdf_for_xacro(path, data)
+
+
+_XACRO_USE = re.compile(rb"\$\{|\$\(|<xacro:")
+
+
+def _urdf_for_xacro(path: Path, data: bytes) -> bool:
+    """Whether a ``.urdf`` holds xacro (``$(find)``, ``${}``, ``<xacro:``): named, it is
+    checked through the robots that include it, as the folder walk checks it (RealMan's
+    rm_65_gazebo.urdf, whose meshes are ``$(find rm_description)/...``, included by
+    gazebo_65_description.urdf.xacro: named alone, a U007 error the walk never gave); nobody
+    including it, or a launch file loading it as it is (nextage's NextageOpen.urdf, given
+    MoveIt with ``textfile=``), it is checked as it is (U007 says what reads it)."""
+    if not (is_urdf_name(path.name) and _XACRO_USE.search(_uncommented(data))):
+        return False
+    from urdftool.description.runtime import builds
+
+    return not any(not build.xacro for build in builds(str(path)))
 
 
 _CALLED = re.compile(rb"<xacro:([\w.-]+)")  # a macro call, or one of xacro's directives
