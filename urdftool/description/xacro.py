@@ -736,8 +736,8 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     """Advice for an include xacro could not open beside the file including it when the path
     as written is there from a folder above (inside the repository): written for a tool run
     from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
-    repository root by its Makefile), which reads it: the failure is then not certain (U005
-    a warning). "" otherwise."""
+    repository root by its Makefile), which reads it: the failure is then not certain (a
+    warning when checked). "" otherwise."""
     from urdftool.description.packages import containment_root
 
     if not including:
