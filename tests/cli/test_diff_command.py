@@ -210,3 +210,17 @@ def test_no_inset_for_a_change_large_enough_to_see(tmp_path):
               picture.Layer(scene.pose({"shoulder": 0.8}), tint=picture.NEW, label="new")]
     text = picture.svg(layers, picture.PictureOptions(detail=picture.Detail(0.3, "big")))
     assert "magnified" not in text
+
+
+def test_a_warning_is_said_once_on_stderr_not_in_the_report(run_cli, pair):
+    old, new = pair
+    hand = ('<link name="hand"><collision><geometry><mesh filename="gone.stl"/></geometry>'
+            '</collision></link>')
+    for path in pair:
+        path.write_text(path.read_text().replace('<link name="hand"/>', hand))
+    result = run_cli("diff", old, new)
+    assert result.exit_code == 1, result.output
+    assert "gone.stl" not in result.stdout
+    # (the same on both sides: said once, where the new file has it)
+    assert [line.split(": ")[2:4] for line in result.stderr.splitlines()
+            if "gone.stl" in line] == [["old and new", f"{new}:25"]]

@@ -468,3 +468,12 @@ def test_srdf_overlaps_leave_out_surfaces_that_only_touch(tmp_path, gap, reporte
     path.write_text(text)
     found = srdf.overlaps(load(str(path)), etree.fromstring('<robot name="r"/>'))
     assert bool(found) == reported, found
+
+
+def test_a_tally_without_distances_counts_the_same_collisions():
+    scene = matrix.Scene(load(HUMANOID), 0.0)
+    poses = scene.poses(scene.sample(3, 40))
+    full, counted = scene.checker.tally(poses), scene.checker.tally(poses, distances=False)
+    assert full.collisions.sum() > 0 and np.isfinite(full.min_distance).any()
+    assert np.array_equal(full.collisions, counted.collisions)
+    assert np.isinf(counted.min_distance[counted.collisions == 0]).all()

@@ -192,3 +192,30 @@ def test_a_nan_compared_with_itself_is_no_change(tmp_path):
     assert result.equivalent and result.changes == []
     assert _fields(compare(tmp_path / "other", nan.replace('upper="2.0"', 'upper="2.5"'),
                            old_text=nan)) == {("changed", "joint", "elbow", "limit.upper")}
+
+
+def _asked(monkeypatch):
+    """The link pairs FCL is asked about, per side, as diff's collision comparison runs."""
+    from urdftool.collision.pairs import PairChecker
+
+    asked, tally = [], PairChecker.tally
+
+    def recording(self, *args, **kwargs):
+        asked.append(set(self.link_pairs))
+        return tally(self, *args, **kwargs)
+
+    monkeypatch.setattr(PairChecker, "tally", recording)
+    return asked
+
+
+def test_collisions_are_compared_only_for_pairs_a_change_can_move(tmp_path, monkeypatch):
+    asked = _asked(monkeypatch)
+    compare(tmp_path, ARM.replace('<mass value="0.5"/>', '<mass value="0.7"/>'))
+    assert asked == [set(), set()]  # a mass moves no part: nothing can collide otherwise
+    asked.clear()
+    compare(tmp_path, ARM.replace('<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.12"/>'))
+    assert asked == [{("base", "fore"), ("fore", "upper")}] * 2  # the elbow moves only 'fore'
+    asked.clear()
+    compare(tmp_path, ARM.replace('<box size="0.05 0.05 0.25"/>', '<box size="0.05 0.05 0.3"/>'))
+    assert asked == [{("base", "fore"), ("fore", "upper")}] * 2  # its shape, not its pose
+

@@ -328,3 +328,49 @@ def generate_launch_description():
     assert _text(first.command) == "xacro a_gripper.urdf.xacro"  # decided: the arm is given
     assert _text(second.command).startswith("xacro b<unknown:")  # either suffix, not the first
     assert "_no-arm" not in _text(second.command)
+
+
+def test_a_process_running_xacro_into_a_pipe_builds_the_file_it_names(tmp_path):
+    # a2s-institute/solo12_robot's sim_gazebo.launch.py: ExecuteProcess(cmd=["xacro",
+    # .../stand.urdf, "|", "ros2", "run", "gazebo_ros", "spawn_entity.py", "-stdin", ...],
+    # shell=True): the .urdf holding $(find ...) is expanded by xacro, a note not U007's error
+    from urdftool.description.runtime import builds
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/urdf/stand.urdf": "<robot name='stand'><link name='s'><visual><geometry>"
+                             "<mesh filename='file://$(find p)/meshes/stand.stl'/></geometry>"
+                             "</visual></link></robot>",
+        "p/launch/sim.launch.py": '''
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    spawn_stand = ExecuteProcess(
+        cmd=["xacro", PathJoinSubstitution([FindPackageShare("p"), "urdf", "stand.urdf"]),
+             "|", "ros2", "run", "gazebo_ros", "spawn_entity.py", "-stdin", "-entity", "stand"],
+        shell=True, condition=IfCondition(LaunchConfiguration("stand")))
+    return LaunchDescription([DeclareLaunchArgument("stand", default_value="true"), spawn_stand])
+'''})
+    [described] = _described(_read(root, "p/launch/sim.launch.py"))
+    assert _text(described.command) == "xacro <find:p>/urdf/stand.urdf"  # not the pipe's words
+    assert [c.kind for c in described.when] == ["if"]
+    [build] = builds(str(root / "p/urdf/stand.urdf"))
+    assert build.xacro and build.launch.endswith("sim.launch.py")
+    [note] = load_and_check(str(root / "p/urdf/stand.urdf"), CheckOptions()).robot.notes
+    assert note.kind == "xacro-in-urdf" and note.severity.name == "INFO"
+
+
+def test_a_process_running_another_program_builds_nothing(tmp_path):
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/x.launch.py": '''
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess
+
+def generate_launch_description():
+    return LaunchDescription([ExecuteProcess(cmd=["cat", "urdf/r.urdf", "|", "xacro", "-"])])
+'''})
+    assert _described(_read(root, "p/launch/x.launch.py")) == []

@@ -563,3 +563,64 @@ def test_a_mesh_path_written_with_windows_backslashes_says_so(tmp_path):
         with pytest.raises(MeshProblem) as error:
             resolve(_robot(tmp_path, named), named)
         assert "backslashes" not in str(error.value)
+
+
+def test_a_mesh_written_with_cwd_is_not_certain_when_there_from_a_folder_xacro_may_run_in(
+        tmp_path, monkeypatch):
+    # pybullet_simplified_fetch: file://$(cwd)/meshes/table.stl, its README saying to run
+    # xacro in the robot's folder; xacro run from the repository's root misses it
+    robot_folder = tmp_path / "sim" / "resources"
+    (robot_folder / "meshes").mkdir(parents=True)
+    (tmp_path / ".git").mkdir()
+    (robot_folder / "meshes" / "table.stl").write_bytes(b"solid s\nendsolid s\n")
+    path = robot_folder / "fetch.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a">'
+                    '<visual><geometry><mesh filename="file://$(cwd)/meshes/table.stl"/>'
+                    '</geometry></visual></link></robot>')
+    monkeypatch.chdir(tmp_path)
+    named = f"file://{tmp_path.resolve()}/meshes/table.stl"
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(path), named)
+    assert not error.value.certain and str(error.value) == (
+        f"mesh '{named}' not found: written with $(cwd), the folder xacro runs from; it is "
+        "there when xacro runs from 'sim/resources'")
+    # a mesh there from no folder between the robot file and the root stays missing
+    (robot_folder / "meshes" / "table.stl").unlink()
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(path), named)
+    assert error.value.certain
+
+
+def test_a_missing_mesh_whose_folder_holds_it_deeper_than_the_repository_listing_names_that_one(
+        tmp_path):
+    # allegro_hand_ros2: 'palm.stl' beside description/urdf/x.urdf, six folders down, is in
+    # its meshes/; the listing from the root stops above it, and the advice named another
+    # package's copy as "the repository's one file of that name"
+    deep = tmp_path / "src" / "utils" / "utils" / "description" / "urdf"
+    for folder in (deep / "meshes", tmp_path / "src" / "controllers" / "meshes"):
+        folder.mkdir(parents=True)
+        (folder / "palm.stl").write_bytes(b"solid s\nendsolid s\n")
+    (tmp_path / ".git").mkdir()
+    (deep / "hand.urdf").write_text('<robot name="r"><link name="a"><visual><geometry>'
+                                    '<mesh filename="palm.stl"/></geometry></visual></link></robot>')
+    with pytest.raises(MeshProblem) as error:
+        resolve(load(deep / "hand.urdf"), "palm.stl")
+    assert str(error.value).endswith(
+        "; of the repository's 2 files of that name, the one below the folder looked in is "
+        "meshes/palm.stl there")
+
+
+def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_missing(tmp_path):
+    # a cuRobo URDF generated on a Humble machine names /opt/ros/humble/share/ur_description/...:
+    # there wherever Humble and ur_description are installed, so not an error; a /home path is
+    named = "/opt/ros/humble/share/ur_description/meshes/ur5/visual/base.dae"
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, named), named)
+    assert error.value.kind == "outside" and not error.value.certain
+    assert str(error.value) == (
+        f"mesh '{named}' is in ROS humble's install of 'ur_description' (outside the repository: "
+        "not opened), there only where ROS humble and ur_description are installed; write "
+        "package://ur_description/meshes/ur5/visual/base.dae")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "/home/me/ws/meshes/base.dae"), "/home/me/ws/meshes/base.dae")
+    assert error.value.kind == "outside" and error.value.certain

@@ -352,3 +352,19 @@ def test_placeholder_clashes_knows_nothing_of_a_build_that_fails_or_was_not_made
 
     robot.rebuild = fails
     assert placeholder_clashes(robot) is None
+
+
+def test_a_file_a_launch_argument_chooses_through_a_parent_folder_is_built_by_it(tmp_path):
+    # aist_robotiq's gazebo.launch: xacro '$(dirname)/../urdf/$(arg device)_gripper.urdf'; the
+    # file another value chooses (robotiq_140_gripper.urdf) is built by it as the default's is
+    root = _repo(tmp_path, {
+        "arm_description/urdf/a_gripper.urdf.xacro": ROBOT,
+        "arm_description/urdf/b_gripper.urdf.xacro": ROBOT,
+        "arm_description/launch/show.launch": """<launch>
+  <arg name="device" default="a"/>
+  <param name="robot_description"
+         command="$(find xacro)/xacro '$(dirname)/../urdf/$(arg device)_gripper.urdf.xacro'"/>
+</launch>"""})
+    for name in ("a", "b"):
+        [build] = builds(str(root / f"arm_description/urdf/{name}_gripper.urdf.xacro"))
+        assert build.xacro and build.launch.endswith("show.launch") and build.chosen

@@ -349,6 +349,20 @@ def test_an_unknown_substitution_is_said_once_by_its_exception_name(tmp_path):
     assert said.count("Unknown substitution command") == 1 and "<class" not in said, said
 
 
+def test_a_macro_call_giving_a_parameter_it_lacks_names_those_it_takes(tmp_path):
+    """xacro says 'Invalid parameter "use_mock_hardware"' at the call (adv4ncr/motoman_ROS2's
+    hc10.xacro calls motoman_ros2_control, whose parameter is mock_hardware): the macro's
+    parameters are said, the close one first."""
+    error = _load_error(tmp_path, '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                        '  <xacro:macro name="arm" params="prefix mock_hardware:=^|false">'
+                        '<link name="${prefix}a"/></xacro:macro>\n'
+                        '  <xacro:arm prefix="r1_" use_mock_hardware="true"/>\n</robot>\n')
+    said, _, taken = error.message.partition("; the macro called here takes no parameter of that name: ")
+    assert (said, taken, error.location.line) == (
+        'Invalid parameter "use_mock_hardware"',
+        "did you mean 'mock_hardware'? available parameters: mock_hardware, prefix", 3)
+
+
 def test_a_macro_call_lacking_a_parameter_says_what_it_lacks(tmp_path):
     """xacro says "Undefined parameters [velocity]" at the call (ABB's irb_120_dual.urdf.xacro
     calls irb_120_arm, which gained a velocity parameter, without it): said as what it means."""

@@ -554,18 +554,42 @@ def test_a_part_calling_its_includers_macro_named_is_checked_through_its_robot(r
   <!-- <xacro:include filename="macros.xacro"/> -->
   <link name="arm"><inertial><mass value="1"/><xacro:box_inertia m="0.1"/></inertial></link>
 </robot>""")
-    (tmp_path / "main.xacro").write_text("""<robot name="robot" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="macros.xacro"/>
+    _checked_through_its_includer(run_cli, part, "macros.xacro", "arm", "U005")  # xacro fails alone
+
+
+def test_a_part_naming_its_includers_materials_named_is_checked_through_its_robot(run_cli, tmp_path):
+    # aip-primeca-occitanie/ros_yaskawa_hc10's cell.xacro: a named <robot> with its own links
+    # whose <material name="silver"/> the includer defines (materials.xacro, included first);
+    # alone urdfdom refuses it (U406), which the walk (hc10dt_with_env.xacro) never said
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "materials.xacro").write_text(
+        '<robot><material name="silver"><color rgba="0.7 0.7 0.7 1"/></material></robot>')
+    part = tmp_path / "cell.xacro"
+    part.write_text("""<robot name="env">
+  <link name="cell"><visual><geometry><box size="1 1 1"/></geometry><material name="silver"/></visual></link>
+  <link name="rail"><visual><geometry><box size="1 1 1"/></geometry>
+    <material name="red"><color rgba="1 0 0 1"/></material></visual></link>
+  <joint name="j" type="fixed"><parent link="cell"/><child link="rail"/></joint>
+</robot>""")
+    _checked_through_its_includer(run_cli, part, "materials.xacro", "cell", "U406")  # silver undefined alone
+
+
+def _checked_through_its_includer(run_cli, part, library: str, link: str, code: str):
+    """``part`` named: checked through main.xacro, which includes ``library`` and then it
+    (no ``code``); once nobody includes it, checked as it is (``code``)."""
+    main = part.parent / "main.xacro"
+    main.write_text(f"""<robot name="robot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="{library}"/>
   <link name="base"/>
-  <xacro:include filename="arm.xacro"/>
-  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+  <xacro:include filename="{part.name}"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="{link}"/></joint>
 </robot>""")
     result = run_cli("check", part, "--format", "json")
-    assert '"files": 1' in result.stdout and "U005" not in result.stdout, result.stdout
+    assert '"files": 1' in result.stdout and code not in result.stdout, result.stdout
     assert "included by" in result.stderr and "main.xacro" in result.stderr
-    (tmp_path / "main.xacro").unlink()  # nobody includes it: checked as it is, and xacro fails
+    main.unlink()
     result = run_cli("check", part, "--format", "json")
-    assert '"files": 1' in result.stdout and "U005" in result.stdout
+    assert '"files": 1' in result.stdout and code in result.stdout
 
 
 def test_a_library_named_including_a_package_found_nowhere_is_checked(run_cli, tmp_path):

@@ -182,6 +182,17 @@ def test_text_groups_by_file_and_shows_the_macro_call_chain():
     assert text.strip().endswith("2 files checked: 1 error, 1 warning, 0 notes")
 
 
+def test_a_macro_calling_itself_is_one_line_of_its_call_chain():
+    # ICube-Robotics/staubli_driver_ros2: staubli_macro.xacro:41 calls its own macro once a
+    # link, so a finding in the sixth link came through six calls there, said once
+    from urdftool.report.summary import via_text
+
+    site, outer = Location("m.xacro", 41), Location("r.urdf.xacro", 50)
+    assert via_text(Location("h.xacro", 3, via=(site,) * 6 + (outer,))) == [
+        "expanded from 6 nested calls of a macro calling itself at m.xacro:41",
+        "expanded from macro call at r.urdf.xacro:50"]
+
+
 def test_sarif_validates_against_the_official_schema():
     sarif_schema.validate(json.loads(rendered("sarif")))
 

@@ -84,7 +84,7 @@ def test_a_grouped_line_says_the_other_names_it_is_about():
                                        ("j5", -1.65806, -1.52716))]
     lines = [line for line in _text([FileResult("r.xacro", joints)]).splitlines() if "U515" in line]
     # (j5's two figures differ from the others': its own line, test below)
-    assert lines[0].endswith("[2 times: line 7 (2x); also 'j3']") and "'j5'" in lines[1], lines
+    assert lines[0].endswith("[2 times on this line; also 'j3']") and "'j5'" in lines[1], lines
     one = [said(7, "ros2_control joint 'j2' has no limit"), said(9, "ros2_control joint 'j2' has no limit")]
     assert "[2 times: lines 7, 9]\n" in _text([FileResult("r.xacro", one)])
     counts = [said(7, "joints 'a' and 'b' have no limit"), said(9, "joints 'a' and 'b' have no limit"),

@@ -9,6 +9,7 @@ Meshes are loaded through :mod:`urdftool.description.meshes`, with its safety li
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 
 import fcl
@@ -28,6 +29,9 @@ class Part:
     box: pose of the oriented bounding box in the link frame, 4x4 (box centre and axes)
     half: half extents of that box in [m]
     radius: radius of the bounding sphere around the box centre in [m]
+    shape: what the geometry is, comparable across robots: a primitive's sizes, a mesh's
+    digest of its vertices and faces as FCL holds them (two parts with equal ``kind``,
+    ``shape`` and ``origin`` collide alike wherever their links are)
     """
 
     link: str
@@ -36,6 +40,7 @@ class Part:
     origin: np.ndarray
     box: np.ndarray
     half: np.ndarray
+    shape: object
 
     @property
     def radius(self) -> float:
@@ -94,6 +99,7 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         if size is None or min(size) <= 0 or not np.all(np.isfinite(size)):
             return _refuse(problems, robot, shape, link, f"box size {problem or shape.get('size')}")
         geometry, center, half = fcl.Box(*size), np.zeros(3), np.array(size) / 2
+        identity = tuple(size)
     elif kind in ROUND:
         radius, length = _positive(shape, "radius"), _positive(shape, "length")
         if radius is None or (kind == "cylinder" and length is None):
@@ -103,18 +109,18 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
             geometry, half = fcl.Sphere(radius), np.full(3, radius)
         else:
             geometry, half = fcl.Cylinder(radius, length), np.array([radius, radius, length / 2])
-        center = np.zeros(3)
+        center, identity = np.zeros(3), (radius, length)
     elif kind == "mesh":
         loaded = _load_mesh(robot, shape, meshes)
         if isinstance(loaded, str):
             return _refuse(problems, robot, shape, link, loaded)
-        geometry, center, half = loaded
+        geometry, center, half, identity = loaded
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
     origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
     box = origin.copy()
     box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
-    return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9))
+    return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9), identity)
 
 
 def _positive(element, attribute: str) -> float | None:
@@ -131,7 +137,7 @@ def _refuse(problems, robot, shape, link: str, why: str) -> None:
 
 
 def _load_mesh(robot, shape, cache):
-    """(BVH model, bounding box centre, half extents) or a message saying why not.
+    """(BVH model, bounding box centre, half extents, digest) or a message saying why not.
 
     The mesh itself comes from :mod:`urdftool.description.meshes` (containment, extension whitelist, size
     and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
@@ -165,4 +171,6 @@ def _bvh(mesh):
     model.addSubModel(vertices, faces)
     model.endModel()
     low, high = vertices.min(axis=0), vertices.max(axis=0)
-    return model, (low + high) / 2, (high - low) / 2
+    digest = hashlib.blake2b(vertices.tobytes(), digest_size=16)
+    digest.update(faces.tobytes())
+    return model, (low + high) / 2, (high - low) / 2, digest.digest()

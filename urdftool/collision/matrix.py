@@ -145,7 +145,7 @@ def check_pairs(robot, max_pairs: int | None = MAX_PAIRS) -> None:
 
 def default_collisions(scene: Scene, q: np.ndarray) -> set[tuple[str, str]]:
     poses = scene.at(q)
-    tally = scene.checker.tally(poses[None])
+    tally = scene.checker.tally(poses[None], distances=False)
     return {pair for pair, hits in zip(scene.pairs, tally.collisions) if hits}
 
 

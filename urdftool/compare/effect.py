@@ -210,18 +210,43 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
 
 def _collisions(old, new, old_values, new_values, back: dict):
     """Pairs (new names) whose collision count over the samples went from 0 to some or from
-    some to 0; adjacent pairs are left out. Also the collision geometry left out, per side."""
-    from urdftool.collision.matrix import Scene
+    some to 0; adjacent pairs are left out. Also the collision geometry left out, per side.
 
-    counts, problems = [], []
-    for label, robot, values in (("old", old, old_values), ("new", new, new_values)):
-        scene = Scene(robot, 0.0)
-        problems += [f"{label}: {p.location}: {p.message}" for p in scene.geometry.problems]
-        tally = scene.checker.tally(scene.poses(values))
-        counts.append(({pair: int(hits) for pair, hits in zip(scene.pairs, tally.collisions)},
+    A pair both of whose links keep their collision parts and, at every sample, their pose to
+    the bit collides alike on both sides: it cannot change, and FCL is not asked about it (a
+    change to one joint asks only about the pairs that joint moves; a change of mass, none)."""
+    import numpy as np
+
+    from urdftool.collision.matrix import Scene
+    from urdftool.collision.pairs import PairChecker
+
+    scenes = (Scene(old, 0.0), Scene(new, 0.0))
+    sides: dict[str, list] = {}  # a problem's message -> (side, location) of each side with it
+    for label, scene in zip(("old", "new"), scenes):
+        for problem in scene.geometry.problems:
+            sides.setdefault(problem.message, []).append((label, problem.location))
+    # both sides' (a mesh not found in either version) said once, where the new side has it
+    problems = [f"{' and '.join(label for label, _ in found)}: {found[-1][1]}: {message}"
+                for message, found in sides.items()]
+    poses = (scenes[0].poses(old_values), scenes[1].poses(new_values))
+    forward = {old_name: new_name for new_name, old_name in back.items()}
+    old_column = {name: i for i, name in enumerate(scenes[0].links)}
+    kept = set()  # new names of links whose parts and poses are the old link's, to the bit
+    for column, name in enumerate(scenes[1].links):
+        before = back.get(name, name)
+        if before in old_column and _same_parts(scenes[0].geometry.parts[before],
+                                                scenes[1].geometry.parts[name]) \
+                and np.array_equal(poses[0][:, old_column[before]], poses[1][:, column]):
+            kept.add(name)
+    counts = []
+    for scene, names, values in zip(scenes, (forward, {}), poses):
+        asked = [(a, b) for a, b in scene.pairs
+                 if not {names.get(a, a), names.get(b, b)} <= kept]
+        tally = PairChecker(scene.geometry, scene.links, asked, 0.0).tally(values,
+                                                                          distances=False)
+        counts.append(({pair: int(hits) for pair, hits in zip(asked, tally.collisions)},
                        scene.adjacent))
     (old_counts, old_adjacent), (new_counts, new_adjacent) = counts
-    forward = {old_name: new_name for new_name, old_name in back.items()}
     renamed = {}
     for (a, b), hits in old_counts.items():
         one, two = sorted((forward.get(a, a), forward.get(b, b)), key=str.encode)
@@ -236,3 +261,12 @@ def _collisions(old, new, old_values, new_values, back: dict):
         if (before == 0) != (hits == 0):
             found.append(CollisionEffect(*pair, before, hits))
     return found, problems
+
+
+def _same_parts(old_parts, new_parts) -> bool:
+    """The two lists of collision parts are the same geometry at the same origins."""
+    import numpy as np
+
+    return len(old_parts) == len(new_parts) and all(
+        a.kind == b.kind and a.shape == b.shape and np.array_equal(a.origin, b.origin)
+        for a, b in zip(old_parts, new_parts))

@@ -768,6 +768,11 @@ class _Reader:
                        executable=concat(joined) if joined else unknown("?"), arguments=(), files=())
             self.acts.append(act)
             _add_condition(act, keywords.get("condition"))
+            built = _xacro_words(words)
+            if built:  # cmd=["xacro", path, "|", "ros2", "run", "gazebo_ros", "spawn_entity.py", ...]
+                described = _Act("description", when, line, command=concat(built))
+                self.acts.append(described)
+                _add_condition(described, keywords.get("condition"))
             return act
         if short == "IncludeLaunchDescription":
             source = args[0] if args else keywords.get("launch_description_source")
@@ -984,6 +989,24 @@ def _named_package(package: Value) -> Value | None:
                                 for p in package.parts):
         return None
     return package
+
+
+_SHELL_OPERATORS = ("|", "||", "&&", ";", ">", ">>", "<", "&")
+
+
+def _xacro_words(words: list) -> list:
+    """The words of an ``ExecuteProcess`` command line that run xacro, joined by spaces up to
+    the first shell operator written as a word (``xacro stand.urdf | ros2 run gazebo_ros
+    spawn_entity.py -stdin``: what xacro expands is what the rest reads); [] when its program
+    is not xacro."""
+    if not words or (words[0].literal or "").strip("'\"").rsplit("/", 1)[-1] not in ("xacro", "xacro.py"):
+        return []
+    built = []
+    for word in words:
+        if word.literal in _SHELL_OPERATORS:
+            break
+        built += [literal(" "), word] if built else [word]
+    return built
 
 
 def _add_condition(act: _Act, condition) -> None:

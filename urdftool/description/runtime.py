@@ -556,7 +556,9 @@ def _not_read(root: Path, tests: bool) -> tuple[tuple[Path, bytes, bool], ...]:
 def _template_matches(template: str | None, path: Path, packages: dict) -> bool:
     """Whether the file ``path`` is one a launch argument may choose: ``template`` (a
     description's path with WILD for the argument's value, ``\\0pkg\\0`` for a package's
-    folder) matches it, each WILD standing for part of one path segment."""
+    folder) matches it, each WILD standing for part of one path segment. The template is
+    read as the file system reads it, its ``..`` and ``.`` folded (roslaunch's
+    ``$(dirname)/../urdf/$(arg device)_gripper.urdf``, aist_robotiq)."""
     if template is None:
         return False
     parts = template.split("\0")
@@ -568,13 +570,14 @@ def _template_matches(template: str | None, path: Path, packages: dict) -> bool:
             folder = packages.get(part)
             if folder is None:
                 return False
-            texts.append(re.escape(str(folder)))
+            texts.append(str(folder))
         else:
-            texts.append("[^/]+".join(re.escape(piece) for piece in part.split(WILD)))
-    pattern = "".join(texts)
-    if not pattern.startswith("/"):
+            texts.append(part)
+    written = "".join(texts).replace("//", "/")
+    if not written.startswith("/"):
         return False
-    return re.fullmatch(pattern.replace("//", "/"), os.path.normpath(str(path))) is not None
+    pattern = "[^/]+".join(re.escape(piece) for piece in os.path.normpath(written).split(WILD))
+    return re.fullmatch(pattern, os.path.normpath(str(path))) is not None
 
 
 def launch_xacro_args(path: str, argument: str) -> list[tuple[Build, dict]]:

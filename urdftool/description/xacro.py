@@ -934,10 +934,26 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         return XacroFailure("xacro", message + "; not certain for a catkin package: ROS 1's "
                             "xacro up to Lunar (Kinetic's) expands it in that order by default",
                             where, certain=False)
+    invalid = _INVALID_PARAMETER.fullmatch(message)
+    if invalid:  # xacro names the attribute, not what the macro takes
+        message += "; the macro called here takes no parameter of that name: " + available(
+            "parameters", invalid.group(1), _called_macro_params(error))
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
 
 
 _UNDEFINED_PARAMETERS = re.compile(r"Undefined parameters \[(.*)\]")
+_INVALID_PARAMETER = re.compile(r'Invalid parameter "(.*)"')
+
+
+def _called_macro_params(error: Exception) -> list[str]:
+    """The parameter names of the macro a call gave an attribute it lacks (xacro's
+    ``XacroException(..., macro=m)``, innermost first)."""
+    cause = error
+    while cause is not None:
+        for macro in getattr(cause, "macros", None) or ():
+            return [name for name in getattr(macro, "params", ()) if isinstance(name, str)]
+        cause = getattr(cause, "exc", None) or cause.__context__
+    return []
 
 
 def _defined_later(session: _Session, doc, name: str) -> str:

@@ -299,6 +299,24 @@ def calls_make_links(data: bytes, includes: list, unfollowed: bool, resolver_for
     return False
 
 
+def dropped_under(robot, element, wanted: str) -> str | None:
+    """How the xacro source of ``element`` (of the expanded ``robot``) writes its ``<wanted>``
+    only under ``xacro:if``/``xacro:unless`` conditions on arguments or properties, false as
+    the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> (line
+    15) of ros2_control.xacro, false then``), or None. A constant condition is not one: no
+    build gives it."""
+    location = robot.locate(element)
+    data = robot.sources.get(location.file) if location is not None and location.line is not None else None
+    found = [(written, line) for written, line in (
+        condition_dropping(data, location.line, local_name(element.tag), wanted) if data else ())
+        if "$(arg" in written or "${" in written]
+    if not found:
+        return None
+    under = " or ".join(f"<{written}> (line {line})" for written, line in found[:3])
+    return (f"its <{wanted}> is under {under} of {location.file}, "
+            f"{'false' if len(found) == 1 else 'each false'} then")
+
+
 def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> list[tuple[str, int]]:
     """Where the xacro source ``data`` writes a ``wanted`` element inside the ``tag`` element
     whose start tag is on ``line``, but only under an ``xacro:if``/``xacro:unless``: each such

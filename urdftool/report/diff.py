@@ -139,8 +139,7 @@ def text(result) -> str:
     lines = [f"{old} -> {new}: {len(changes)} change(s)"]
     lines += ["  " + change_line(change) for change in changes]
     if result.effects is not None:
-        lines += _effect_lines(result.effects)
-        lines += [f"warning: {_text(warning)}" for warning in result.effects.warnings]
+        lines += _effect_lines(result.effects)  # its warnings: on stderr, as every command's
     return "\n".join(lines) + "\n"
 
 

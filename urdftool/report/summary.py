@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import groupby
 
 from urdftool.diagnostics import Finding, Severity
 
@@ -27,8 +28,15 @@ class Summary:
 
 
 def via_text(location) -> list[str]:
-    """The macro call chain of a location as lines, innermost call first."""
-    return [f"expanded from macro call at {site}" for site in location.via]
+    """The macro call chain of a location as lines, innermost call first; a call site repeated
+    in a row (a macro calling itself, xacro's way of looping: ICube's staubli_macro.xacro:41
+    six times over for six links) is one line saying how many calls."""
+    lines = []
+    for site, run in groupby(str(site) for site in location.via):
+        calls = len(list(run))
+        lines.append(f"expanded from macro call at {site}" if calls == 1 else
+                     f"expanded from {calls} nested calls of a macro calling itself at {site}")
+    return lines
 
 
 def location_dict(location) -> dict:

@@ -237,7 +237,9 @@ def _group_lines(group: list, message: str, listed: dict) -> list[Line]:
             (first.code, "bold"), (f" {_once(message, location, listed)} ", ""),
             (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
     if len(group) > 1:
-        line.append((f" [{len(group)} times: {_places(group)}{_also(group)}]", ""))
+        places = _places(group)
+        line.append((f" [{len(group)} times{f': {places}' if places else ' on this line'}"
+                     f"{_also(group)}]", ""))
     out = [line]
     calls = list(dict.fromkeys(f.location.via for f in group))
     if calls == [()]:
@@ -275,11 +277,14 @@ def _same_file_once(sites: list[str]) -> list[str]:
 
 def _places(group: list) -> str:
     """Where the findings of a group are (lines of one file), each place once, with how many
-    findings it holds when several (a macro line expanded by several calls)."""
+    findings it holds when several (a macro line expanded by several calls); '' when they are
+    all on the line the group's line names ("2 times: line 162 (2x)" said it twice)."""
     counts: dict[str, int] = {}
     for finding in group:
         place = str(finding.location.line or "?")
         counts[place] = counts.get(place, 0) + 1
+    if len(counts) == 1:
+        return ""
     places = [place if n == 1 else f"{place} ({n}x)" for place, n in counts.items()]
     return ("line " if len(places) == 1 else "lines ") + _listed(places)
 

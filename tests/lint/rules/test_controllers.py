@@ -333,6 +333,33 @@ def test_moveit2_parallel_gripper_command_is_a_moveit_type(tmp_path):
     assert found == []
 
 
+def test_a_moveit_gripper_commands_its_first_joint_and_its_mimics_follow(tmp_path):
+    """ABC-iRobotics/tm5-900_rg6_moveit_config: the Setup Assistant's rg6_controller
+    (GripperCommand) lists finger_joint and its five <mimic> joints, which have no
+    ros2_control joint: MoveIt sends the action finger_joint's position alone. A joint that
+    mimics nothing the controller lists stays U603's."""
+    mimic = ('<link name="finger"/><joint name="finger_joint" type="revolute"><parent link="head"/>'
+             '<child link="finger"/><limit lower="0" upper="1" effort="1" velocity="1"/>'
+             '<mimic joint="head_joint"/></joint>')
+    robot = HEAD_ROBOT.format(body=ROS2.format(iface="position") + mimic)
+    yaml = """\
+        moveit_simple_controller_manager:
+          controller_names: [gripper, other]
+          gripper:
+            type: GripperCommand
+            action_ns: gripper_cmd
+            joints: [head_joint, finger_joint]
+          other:
+            type: FollowJointTrajectory
+            action_ns: follow_joint_trajectory
+            joints: [finger_joint]
+        """
+    found, _ = check_folder(tmp_path, {"robot.urdf": robot, "config/moveit_controllers.yaml": yaml},
+                            controllers=[str(tmp_path / "config/moveit_controllers.yaml")],
+                            select=("U603",))
+    assert found == [("moveit_controllers.yaml", 10, "U603")]  # the trajectory controller's
+
+
 def test_a_chained_controller_names_another_controllers_reference_interfaces(tmp_path):
     """ros2_control_demos example 16: diff_drive_controller's wheels are the reference
     interfaces of two pid_controllers (pid_left/head_joint), not joints of the URDF."""

@@ -300,6 +300,9 @@ def test_a_missing_mesh_says_where_the_repository_has_a_file_of_its_name(tmp_pat
         "; the file beside it is base.stl, in other capitals (file names are case-sensitive on "
         "Linux)")
     assert "the repository's" not in message("other.stl")
+    # PaulRouanet/ros2_control_bolt: mesh_ext 'stl', only meshes/obj/bolt_body.obj committed
+    assert message("stl/base.dae").endswith(
+        "; the repository's one mesh of that name is collision/base.stl, in another format")
     # a folder holding meshes is the right one, its file missing: another folder's file of
     # that name is another part's (a repository of many robots has a base.stl for each)
     (tmp_path / "meshes").mkdir()

@@ -251,6 +251,21 @@ def test_groups_wrapped_in_a_node_pattern_say_what_moveit_reads(tmp_path):
     assert "(head) get no IK solver" in findings[0].message
 
 
+def test_a_group_of_another_srdf_beside_it_is_a_note_and_a_group_of_none_an_error(tmp_path):
+    """aip-primeca-occitanie/ros_yaskawa_hc10: one kinematics.yaml for yaskawa_LEFT.srdf and
+    yaskawa_RIGHT.srdf, which planning_context.launch chooses by left_robot; MoveIt given one
+    ignores the other's groups (a note), a group neither defines stays an error."""
+    other = SRDF.replace('"head"', '"tail"', 1)
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "robot_right.srdf": other,
+             "kinematics.yaml": "".join(f"{g}:\n  kinematics_solver: {KDL}\n"
+                                        for g in ("head", "tail", "haed"))}
+    found, findings = check_folder(tmp_path, files, srdf=str(tmp_path / "robot.srdf"),
+                                   select=("U813",))
+    assert found == [("kinematics.yaml", 3, "U813"), ("kinematics.yaml", 5, "U813")]
+    assert [f.severity.name for f in findings] == ["INFO", "ERROR"]
+    assert "robot_right.srdf beside it does" in findings[0].message, findings[0].message
+
+
 def test_a_tree_group_is_said_at_its_kinematics_entry_without_naming_that_line_again(tmp_path):
     # RH-P12-RN-A's gripper group: "kinematics.yaml:2: error U814 group 'gripper' is solved
     # by KDLKinematicsPlugin (kinematics.yaml line 2) but is not one serial chain"

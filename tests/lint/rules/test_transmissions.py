@@ -153,6 +153,19 @@ def test_a_passive_joint_is_judged_only_with_a_known_control_plugin(tmp_path, pl
     assert bool(marks) is reported
 
 
+def test_a_joint_whose_ros2_control_entry_is_misspelt_names_that_entry(tmp_path):
+    # PaulRouanet/ros2_control_bolt: <joint name="FLHAA"> for FL_HAA (U511 at the entry); the
+    # joint falling limp says which entry was meant for it
+    robot = HEAD_ROBOT.format(body='<ros2_control name="s" type="system"><hardware><plugin>'
+                                   'mock_components/GenericSystem</plugin></hardware>\n'
+                                   '<joint name="headjoint"><command_interface name="position"/>'
+                                   '</joint></ros2_control>')
+    marks, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507", "U511"))
+    assert marks == [("robot.urdf", 3, "U507"), ("robot.urdf", 9, "U511")]
+    said = findings[0].message.partition("; the <ros2_control> joint 'headjoint' at ")[2]
+    assert said.endswith("robot.urdf:9 names no joint and may be meant for it"), findings[0].message
+
+
 def test_the_added_transmissions_interface_is_the_same_whatever_the_hash_seed(tmp_path):
     """U507's fix gives a new transmission the interface most transmissions use; of interfaces
     used equally often, the first written (it was the first of a set of strings: which one

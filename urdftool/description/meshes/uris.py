@@ -12,13 +12,18 @@ A URI is resolved and checked once per robot, a path once per run.
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path, resolved, walk
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_uri_parts)
 from urdftool.description.run_memo import per_run
+from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound
+
+# a file of a ROS distribution's binary install: /opt/ros/DISTRO/share/PACKAGE/PATH
+_ROS_INSTALL = re.compile(r"/opt/ros/([^/]+)/share/([^/]+)/(.+)")
 
 MESH_EXTENSIONS = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -62,9 +67,35 @@ def _resolve(robot, uri: str) -> Path:
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(_checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
                                   None), located, os.fspath(robot.base_dir))
+        found = _from_cwd(robot, uri, os.fspath(located.path), found)
     if isinstance(found, MeshProblem):
         # a new one: raised once per robot
         raise MeshProblem(found.kind, found.message, certain=found.certain)
+    return found
+
+
+def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | MeshProblem:
+    """``found``, a mesh missing at ``path``, said not certain when xacro's ``$(cwd)`` made the
+    path (the robot's files write it, and ``path`` is below the folder urdftool runs from, which
+    is what xacro gives it here) and the rest of the path is a file from a folder between the
+    robot file's and its repository's root: the mesh is there when xacro runs from that folder
+    (pybullet_simplified_fetch's ``file://$(cwd)/meshes/table.stl``, whose README says to run
+    xacro in the robot's folder). ``found`` otherwise."""
+    here = os.getcwd()
+    if not isinstance(found, MeshProblem) or found.kind != "missing" or not found.certain \
+            or not robot.from_xacro or not path.startswith(here + os.sep) \
+            or not any(b"$(cwd)" in data for data in robot.sources.values()):
+        return found
+    written = path[len(here) + 1:]
+    folder, root = os.fspath(robot.base_dir), os.fspath(containment_root(robot.base_dir))
+    while inside(Path(folder), Path(root)):
+        if folder != here and kind_of(os.path.join(folder, written)) == "file":
+            return MeshProblem("missing", (
+                f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it "
+                f"is there when xacro runs from '{display_path(folder)}'"), certain=False)
+        if folder == root or os.path.dirname(folder) == folder:
+            break
+        folder = os.path.dirname(folder)
     return found
 
 
@@ -193,6 +224,14 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
             how = (f"is a symbolic link (or lies in one) leading outside {root}"
                    if written.startswith(str(containment_root(Path(base))) + os.sep)
                    else f"resolves to {written}, outside {root}")
+            installed_at = _ROS_INSTALL.fullmatch(written)
+            if installed_at:  # a ROS distribution's install: there wherever it is installed
+                distro, package, tail = installed_at.groups()
+                return MeshProblem("outside", (
+                    f"mesh '{uri}' is in ROS {distro}'s install of '{package}' (outside the "
+                    f"repository: not opened), there only where ROS {distro} and {package} are "
+                    f"installed; write package://{package}/{tail}"),
+                    certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
                 "repository: use package://PKG/... for files of another package"))
@@ -229,13 +268,21 @@ def _elsewhere(path: Path, base: str) -> str:
     beside it (``base.STL`` for ``base.stl``); or, when the folder it was looked for in holds
     no mesh at all (the folder is wrong, not the file: Inspire hand's URDF naming
     right_base_link.obj beside itself, the file moved to collision/), the repository's one file
-    of its name, or in other capitals, elsewhere; "" otherwise. Never a choice among several,
+    of its name, or in other capitals, elsewhere (of several, the one below the folder it was
+    looked for in), or (none of its name) in another format; "" otherwise. Never a choice
+    among several,
     nor a file of another folder when the mesh's own holds meshes: a repository of many robots
     has a base_link.STL for each, and another robot's is no advice."""
     root = _real(containment_root(Path(base)))
     meshes = _mesh_files(os.fspath(root))
     here = os.path.relpath(path.parent, root)
     paths = meshes.get(path.name.lower(), ())
+    if here != "." and not here.startswith("..") and kind_of(path.parent) == "folder":
+        # the folder's own subtree too, past the root's depth (allegro_hand_ros2's
+        # description/urdf/meshes/palm.stl, six folders down: the one copy named was another)
+        paths = tuple(dict.fromkeys(paths + tuple(
+            os.path.join(here, p) for p in _mesh_files(os.fspath(path.parent)).get(
+                path.name.lower(), ()))))
     beside = [p for p in paths if os.path.dirname(p) == here]
     if len(beside) == 1:
         return (f"; the file beside it is {os.path.basename(beside[0])}, in other capitals "
@@ -243,11 +290,20 @@ def _elsewhere(path: Path, base: str) -> str:
     if here in _mesh_folders(os.fspath(root)):
         return ""
     same = [p for p in paths if os.path.basename(p) == path.name]
+    below = [p for p in same if p.startswith(here + os.sep)]
+    if len(same) > 1 and len(below) == 1:  # the one in the folder's own subtree, of several
+        return (f"; of the repository's {len(same)} files of that name, the one below the "
+                f"folder looked in is {os.path.relpath(below[0], here)} there")
     if len(same) == 1:
         return f"; the repository's one file of that name is {same[0]}"
     if not same and len(paths) == 1:
         return (f"; the repository's one file of that name in other capitals is {paths[0]} "
                 "(file names are case-sensitive on Linux)")
+    stem = path.stem.lower()  # Bolt's mesh_ext 'stl' where only meshes/obj/bolt_body.obj is
+    other = [] if paths else [p for name, found in meshes.items()
+                              if name.rsplit(".", 1)[0] == stem for p in found]
+    if len(other) == 1:
+        return f"; the repository's one mesh of that name is {other[0]}, in another format"
     return ""
 
 

@@ -196,6 +196,9 @@ def controller_joint_not_actuated(robot):
     registers the joints it is written for (ros_control_boilerplate's, from its ``joints``
     parameter), whatever transmissions say.
 
+    A MoveIt ``GripperCommand`` controller's joint that is a ``<mimic>`` of another of its
+    joints is not commanded (MoveIt sends the action one joint's position).
+
     Bad: ``joints: [camera_joint]`` (fixed), or a joint without a transmission
     Good: a transmission or ros2_control ``<joint>`` for every commanded joint
     """
@@ -206,9 +209,10 @@ def controller_joint_not_actuated(robot):
     for controller in controllers(robot):
         if controller.is_state:
             continue
+        following = _gripper_followers(robot, controller)
         for ref in _urdf_joints(robot, controller):
             joint = robot.joints.get(ref.name)
-            if joint is None or ref.name in offered:
+            if joint is None or ref.name in offered or ref.name in following:
                 continue
             what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
                     else "has no transmission or ros2_control joint; add one for it, or remove "
@@ -222,6 +226,19 @@ def controller_joint_not_actuated(robot):
                     getattr(message, "severity", Severity.WARNING))
             if message is not None:
                 yield controller.file.at(ref.line), message
+
+
+def _gripper_followers(robot, controller: Controller) -> set[str]:
+    """The joints of a MoveIt ``GripperCommand`` controller that are ``<mimic>``s of another of
+    its joints: MoveIt sends the action one joint's position (its ``command_joint``, else the
+    first), and a mimic follows its joint (robot_state_publisher places it), needing no
+    interface of its own (the Setup Assistant lists every joint of the gripper group)."""
+    if controller.layout != "moveit" or controller.type not in ("GripperCommand", "ParallelGripperCommand"):
+        return set()
+    names = {ref.name for ref in controller.joints()}
+    return {name for name in names if robot.joints.get(name) is not None
+            and robot.joints[name].find("mimic") is not None
+            and robot.joints[name].find("mimic").get("joint") in names}
 
 
 @rule("U604", "controller-interface-mismatch", Severity.ERROR)

@@ -11,6 +11,7 @@ from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
+from urdftool.description.xacro_text import dropped_under
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
 from urdftool.description.values import number as attribute_number
 
@@ -116,7 +117,10 @@ def missing_geometry(robot):
             yield shape, (f"{where} has unknown geometry <{kind}>; valid shapes: "
                           f"{', '.join(SHAPES)}")
         elif (geometry := robot.child(holder, "geometry")) is None:
-            yield holder, f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)"
+            dropped = dropped_under(robot, holder, "geometry")
+            yield holder, (f"{where} has no <geometry>: {dropped} (--arg NAME=VALUE checks "
+                           "another build)" if dropped else
+                           f"{where} has no <geometry>; add one (box, cylinder, sphere or mesh)")
         else:
             yield geometry, f"{where} <geometry> is empty; give box, cylinder, sphere or mesh"
 
@@ -387,15 +391,17 @@ def mesh_not_found(robot):
     folder is looked for where the package's build (CMakeLists.txt ``install()``, setup.py or
     setup.cfg ``data_files``) installs it from. When those install rules cannot be read (a
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
-    warning saying so, not an error (docs/packages.md). So is a file missing from a folder
-    that holds only placeholders (``.gitkeep``, ``.keep``, ``.gitignore``): a folder kept empty
-    in the repository for files a tool, a download or a build step puts there (Stretch's
-    ``meshes/``, filled from a robot's calibration batch).
+    warning saying so, not an error (docs/packages.md). A warning too for a path xacro made
+    from ``$(cwd)`` (the folder it runs in) when the file is there from a folder between the
+    robot file and its repository's root: the message names the folder xacro must run in. So
+    is a file missing from a folder that holds only placeholders (``.gitkeep``, ``.keep``,
+    ``.gitignore``): a folder kept empty in the repository for files a tool, a download or a
+    build step puts there (Stretch's ``meshes/``, filled from a robot's calibration batch).
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
-    file), the one file of its name elsewhere (never a choice among several: another robot's
-    ``base_link.STL`` is no advice).
+    file), the one file of its name elsewhere, or of several the one below that folder (never
+    another choice among several: another robot's ``base_link.STL`` is no advice).
 
     Bad: ``<mesh filename="package://robot/meshes/base.STL"/>`` when the file is ``base.stl``
     Good: the exact file name (case matters on Linux)
@@ -410,7 +416,9 @@ def mesh_outside_root(robot):
     urdftool does not open files outside the repository holding the robot (the nearest folder
     with ``.git``; without one, the robot's package or folder), nor outside a package for
     ``package://``: a description should not reach into the rest of a machine, and an absolute
-    path works on one computer only.
+    path works on one computer only. A **warning** for a file of a ROS distribution's install
+    (``/opt/ros/DISTRO/share/PACKAGE/...``, as a generator writes it): it is there wherever
+    that distribution and package are installed; ``package://PACKAGE/...`` says so anywhere.
 
     Bad: ``<mesh filename="file:///home/me/meshes/base.stl"/>``, ``filename="../../../x.stl"``
     Good: ``<mesh filename="package://my_robot/meshes/base.stl"/>``

@@ -7,7 +7,11 @@ controller list is also read from the controller YAML the robot is checked with.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from urdftool.description import moveit_config as moveit
+from urdftool.description.documents import read_srdf
+from urdftool.description.files import listing
 from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
@@ -95,6 +99,10 @@ def kinematics_unknown_group(robot):
     MoveIt looks up a solver for each SRDF group by name and ignores other entries: the group
     meant (often a misspelt name) gets no IK solver and cannot be planned to a pose.
 
+    A group that another SRDF beside the checked one defines is a note: one kinematics.yaml
+    serves the package's SRDFs, which its launch files choose between (a cell's left and right
+    robots), and MoveIt given this SRDF ignores the other's entry.
+
     Bad: ``left_am: {kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin}``
     Good: ``left_arm:``, the SRDF's ``<group name="left_arm">``
     """
@@ -112,9 +120,28 @@ def kinematics_unknown_group(robot):
                 "robot_description_kinematics.GROUP: the SRDF's groups "
                 f"({', '.join(sorted(n for n in names if n))}) get no IK solver; write the groups at "
                 "the top of the file")
+        elif entry.group not in names and entry.group in (beside := _groups_beside(robot, found[0])):
+            yield file.at(entry.line), Conditional(
+                f"kinematics.yaml configures group '{entry.group}', which this SRDF does not "
+                f"define but {beside[entry.group]} beside it does: one kinematics.yaml serves "
+                "both, and MoveIt given this SRDF ignores the entry", Severity.INFO)
         elif entry.group not in names:
             yield file.at(entry.line), (f"kinematics.yaml configures group '{entry.group}', which "
                                         f"the SRDF does not define; {available('groups', entry.group, names)}")
+
+
+def _groups_beside(robot, srdf) -> dict:
+    """Group name -> the other SRDF (shown) in the checked SRDF's folder that defines it."""
+    def read():
+        found = {}
+        folder = Path(srdf.path).parent
+        for name, kind in listing(folder, "*.srdf"):
+            path = folder / name
+            other = read_srdf(path) if kind == "file" and path != Path(srdf.path) else None
+            for group in other.root.iterfind("group") if other is not None and other.root is not None else ():
+                found.setdefault(group.get("name"), other.display)
+        return found
+    return robot.memo(_groups_beside, read)
 
 
 @rule("U814", "kinematics-group-not-chain", Severity.ERROR)

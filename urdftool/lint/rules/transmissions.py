@@ -23,7 +23,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             transmission_joints, transmissions)
 from urdftool.errors import available, close_names
 from urdftool.description.values import parse_numbers
-from urdftool.description.xacro_text import condition_dropping
+from urdftool.description.xacro_text import dropped_under
 from urdftool.description.xml import attribute
 from urdftool.numbers import decimal_slip
 
@@ -292,10 +292,16 @@ def unactuated_joint(robot):
     if publishing and not silent:
         return  # every launch file starting the robot's controllers starts joint_state_publisher
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
+    misspelt = _misspelt_ros2_control_joints(robot)
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
             message = (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
                        f"although the robot loads {loader}; it will not be in /joint_states")
+            if name in misspelt:  # U511's unknown name: the entry is there, misspelt
+                where = robot.locate(misspelt[name])
+                at = f" at {where.file}:{where.line}" if where is not None and where.line else ""
+                message += (f"; the <ros2_control> joint '{misspelt[name].get('name')}'{at} names "
+                            "no joint and may be meant for it")
             if publishing:
                 message = Conditional(
                     f"if the robot is started by {', '.join(silent[:2])} (which start"
@@ -304,6 +310,19 @@ def unactuated_joint(robot):
             from urdftool.lint.fixes import offer  # (only for a finding)
             yield offer(joint, message, f"actuate joint '{name}'", _actuation(robot, plugin, name),
                         safe=False)
+
+
+def _misspelt_ros2_control_joints(robot) -> dict:
+    """Robot joint -> the ``<ros2_control>`` ``<joint>`` naming no joint whose closest name it
+    is (Bolt's 'FLHAA' for FL_HAA): what U511 reports, said where the joint falls limp."""
+    found = {}
+    for _, element in ros2_control_joints(robot):
+        written = element.get("name") or ""
+        if written and written not in robot.joints:
+            close = close_names(written, robot.joints, n=1)
+            if close:
+                found.setdefault(close[0], element)
+    return found
 
 
 # The control plugins whose behaviour is known: they publish only the joints they actuate
@@ -520,18 +539,7 @@ def _plugin_condition(robot, hardware) -> str | None:
     """How the source of ``hardware`` gives its ``<plugin>`` only under conditions false as
     the robot was expanded (``its <plugin> is under <xacro:if value="$(arg sim_mode)"> (line
     15) of ros2_control.xacro``), or None."""
-    if hardware is None:
-        return None
-    location = robot.locate(hardware)
-    data = robot.sources.get(location.file) if location.line is not None else None
-    found = [(written, line) for written, line in (
-        condition_dropping(data, location.line, "hardware", "plugin") if data else ())
-        if "$(arg" in written or "${" in written]  # (a constant condition: no build gives it)
-    if not found:
-        return None
-    under = " or ".join(f"<{written}> (line {line})" for written, line in found[:3])
-    return (f"its <plugin> is under {under} of {location.file}, "
-            f"{'false' if len(found) == 1 else 'each false'} then")
+    return dropped_under(robot, hardware, "plugin") if hardware is not None else None
 
 
 _LIMIT_ATTRIBUTE = {"velocity": "velocity", "effort": "effort"}

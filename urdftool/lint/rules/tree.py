@@ -7,6 +7,7 @@ from collections import Counter
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.errors import available
 from urdftool.lint.parts import part
+from urdftool.description.xacro_text import dropped_under
 
 
 def _duplicates(robot, tag: str):
@@ -98,7 +99,10 @@ def joint_missing_endpoint(robot):
         for side in ("parent", "child"):
             element, link = ends[side]
             if element is None:
-                yield joint, f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
+                dropped = dropped_under(robot, joint, side)
+                yield joint, (f"joint '{joint.get('name')}' has no <{side} link=\"...\"/>"
+                              + (f": {dropped} (--arg NAME=VALUE checks another build)"
+                                 if dropped else ""))
             elif not link:
                 yield element, f"joint '{joint.get('name')}': <{side}> has no link attribute"
 
