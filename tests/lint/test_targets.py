@@ -952,17 +952,22 @@ def test_a_named_macro_library_nobody_includes_is_read_once(monkeypatch, tmp_pat
     assert [str(path) for path in reads] == [str(lib)]
 
 
+def _beside_a_robot(folder, **files):
+    """A repository of one robot.urdf and ``files`` (name, with '.' written '_', -> text)."""
+    (folder / ".git").mkdir()
+    (folder / "robot.urdf").write_text('<robot name="r"><link name="base"/></robot>')
+    for name, text in files.items():
+        (folder / name.replace("_", ".")).write_text(text)
+
+
 def _sdf_sources(folder):
     """A Gazebo (gz) model and world built by xacro beside a robot (nav2's gz_waffle.sdf.xacro,
     tb3_sandbox.sdf.xacro: U004 'root element is <sdf>, expected <robot>' on both)."""
-    (folder / ".git").mkdir()
-    (folder / "robot.urdf").write_text('<robot name="r"><link name="base"/></robot>')
-    (folder / "waffle.sdf.xacro").write_text(
+    _beside_a_robot(folder, waffle_sdf_xacro=(
         f'<?xml version="1.0"?>\n<sdf version="1.6" {XACRO_NS}><xacro:arg name="ns" default=""/>'
-        '<model name="waffle"><link name="base"/></model></sdf>')
-    (folder / "world.xacro").write_text(
+        '<model name="waffle"><link name="base"/></model></sdf>'), world_xacro=(
         f'<sdf version="1.8" {XACRO_NS}><world name="w"><include><uri>model://sun</uri>'
-        '</include></world></sdf>')
+        '</include></world></sdf>'))
 
 
 def test_sdf_documents_built_by_xacro_are_not_robots_in_a_folder_walk(tmp_path):
@@ -1001,3 +1006,52 @@ def test_a_blank_file_nothing_loads_is_a_placeholder_not_a_robot(run_cli, tmp_pa
     assert walked.skipped[str(blank)] == BLANK
     named = run_cli("check", blank)
     assert named.exit_code == 0 and "U002" not in named.output, named.output
+
+
+def _xacro_test_harness(folder):
+    """Shadow's sr_description/test/test_process_fingers_parameter.xacro: a ``<test>`` root
+    whose macro calls print what a parameter expands to (U004 'root element is <test>,
+    expected <robot>': an error on a file no consumer reads as a robot). Beside it, a robot
+    file whose root is ``<robt>`` (a misspelling) and a ``.urdf.xacro`` with a ``<test>`` root,
+    both still checked."""
+    _beside_a_robot(folder, harness_xacro=(
+        f'<test {XACRO_NS}><xacro:macro name="test" params="msg"><xacro:message msg="${{msg}}"/>'
+        '</xacro:macro><xacro:test msg="a"/></test>'), typo_xacro=(
+        f'<robt name="t" {XACRO_NS}><xacro:macro name="m"><link name="a"/></xacro:macro>'
+        '<xacro:m/></robt>'), claims_urdf_xacro=(
+        f'<test {XACRO_NS}><xacro:macro name="m"><link name="a"/></xacro:macro><xacro:m/></test>'))
+
+
+def test_an_xml_document_of_another_kind_built_by_xacro_is_not_a_robot(tmp_path):
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import OTHER_DOCUMENT, expand
+
+    _xacro_test_harness(tmp_path)
+    targets = expand([str(tmp_path)], CheckRequest())
+    assert sorted(targets.files) == [str(tmp_path / name) for name in
+                                     ("claims.urdf.xacro", "robot.urdf", "typo.xacro")]
+    assert targets.skipped == {str(tmp_path / "harness.xacro"): OTHER_DOCUMENT}
+
+
+def test_an_xml_document_of_another_kind_named_is_not_checked_as_a_robot(run_cli, tmp_path):
+    _xacro_test_harness(tmp_path)
+    result = run_cli("check", tmp_path / "harness.xacro", tmp_path / "typo.xacro",
+                     "--format", "json")
+    assert '"files": 1' in result.stdout and "another kind" in result.stderr
+    assert result.stdout.count("U004") == 1 and "typo.xacro" in result.stdout
+
+
+def test_a_urdf_holding_xacro_named_is_checked_through_the_robot_including_it(run_cli, tmp_path):
+    """RealMan's rm_65_gazebo.urdf (its meshes '$(find rm_description)/meshes/...') is
+    included by gazebo_65_description.urdf.xacro: the folder walk checks it there, but named
+    alone, as pre-commit names it, it was a U007 error (a .urdf holding xacro) on a file only
+    xacro reads. Nobody including it, it is still checked as it is, U007 and all."""
+    _beside_a_robot(tmp_path, part_urdf=(
+        f'<robot name="part" {XACRO_NS}><xacro:property name="n" value="b"/>'
+        '<link name="${n}"/></robot>'), top_urdf_xacro=(
+        f'<robot name="top" {XACRO_NS}><xacro:include filename="part.urdf"/></robot>'))
+    result = run_cli("check", tmp_path / "part.urdf", "--format", "json")
+    assert "U007" not in result.stdout and "top.urdf.xacro" in result.stderr, result.stderr
+    (tmp_path / "top.urdf.xacro").unlink()
+    result = run_cli("check", tmp_path / "part.urdf", "--format", "json")
+    assert "U007" in result.stdout and '"files": 1' in result.stdout

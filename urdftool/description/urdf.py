@@ -42,14 +42,17 @@ class Place:
     children: child tag -> the name of its :data:`VOCABULARY` entry
     ignored: known names urdfdom reads nothing from here, with why (a warning: no effect)
     extensions: child elements urdfdom skips here that another program reads (left alone)
+    elsewhere: attributes urdfdom skips here that another program reads, with who (a note)
     source: where the names come from
     """
 
-    __slots__ = ("attributes", "required", "children", "ignored", "extensions", "source")
+    __slots__ = ("attributes", "required", "children", "ignored", "extensions", "elsewhere",
+                 "source")
 
     def __init__(self, attributes=(), required=(), children=None, ignored=None, source="",
-                 extensions=None):
+                 extensions=None, elsewhere=None):
         self.extensions = dict(extensions or {})
+        self.elsewhere = dict(elsewhere or {})
         self.attributes = tuple(attributes)
         self.required = tuple(required)
         self.children = dict(children or {})
@@ -111,7 +114,11 @@ VOCABULARY: dict[str, Place] = {
                    {"origin": _POSE, "parent": "parent", "child": "child", "axis": "axis",
                     "calibration": "calibration", "dynamics": "dynamics", "limit": "limit",
                     "safety_controller": "safety_controller", "mimic": "mimic"},
-                   source="urdfdom joint.cpp parseJoint"),
+                   elsewhere={"dont_collapse": (
+                       "Isaac Gym's and Isaac Sim's URDF importers read it: a fixed joint so "
+                       "marked is kept, not merged into its parent (a foot or sensor frame)")},
+                   source="urdfdom joint.cpp parseJoint; dont_collapse: Isaac Sim URDF "
+                          "importer"),
     "parent": Place(("link",), ("link",), source="urdfdom joint.cpp parseJoint"),
     "child": Place(("link",), ("link",), source="urdfdom joint.cpp parseJoint"),
     "axis": Place(("xyz",), (), ignored={

@@ -534,6 +534,9 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             else:
                 hint = _written_from_elsewhere(session, filename,
                                                xacro.filestack[-1] if xacro.filestack else None)
+                if hint:  # a tool run from that folder reads it (upkie's xacrodoc): not certain
+                    raise xacro.XacroException(exc=_Unsure(
+                        error.errno, f"{error.strerror}: {display_path(filename)}{hint}"))
             # an OSError still (xacro skips an optional include by it), said once, plainly
             raise xacro.XacroException(suffix=hint or None, exc=_Unreadable(
                 error.errno, error.strerror, filename)) from error
@@ -733,7 +736,8 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     """Advice for an include xacro could not open beside the file including it when the path
     as written is there from a folder above (inside the repository): written for a tool run
     from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
-    repository root). "" otherwise."""
+    repository root by its Makefile), which reads it: the failure is then not certain (a
+    warning when checked). "" otherwise."""
     from urdftool.description.packages import containment_root
 
     if not including:
@@ -922,8 +926,14 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         message += (f": the macro called here has {', '.join(names)} without a default, and the "
                     f"call gives {'it' if len(names) == 1 else 'them'} no value; pass "
                     f"{names[0] if names else 'it'}=\"...\"")
+    later = ""
     if message.startswith("unknown macro name: xacro:") and doc is not None:
-        message += _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
+        later = _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
+        message += later
+    if later and session.ros1_tags:  # a catkin package: ROS 1 up to Lunar may expand it
+        return XacroFailure("xacro", message + "; not certain for a catkin package: ROS 1's "
+                            "xacro up to Lunar (Kinetic's) expands it in that order by default",
+                            where, certain=False)
     invalid = _INVALID_PARAMETER.fullmatch(message)
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(

@@ -43,6 +43,8 @@ _SRDF_TAGS = {"group", "group_state", "end_effector", "virtual_joint", "passive_
               "link_sphere_approximation"}
 SRDF_SOURCE = "an SRDF source (MoveIt's semantic description), not a robot"
 SDF_SOURCE = "an SDF document (a Gazebo model or world, built by xacro), not a URDF robot"
+OTHER_DOCUMENT = ("an XML document of another kind built by xacro (its root is no <robot>, and it "
+                  "calls macros or writes content), not a URDF robot")
 FRAGMENT = ("a fragment of a robot defined elsewhere (only <gazebo>, <transmission>, "
             "<ros2_control> or <webots> blocks besides definitions)")
 
@@ -118,6 +120,8 @@ class _Summary:
     sdf: bool = False  # a xacro file with an <sdf> root: a Gazebo model or world (nav2's
     # gz_waffle.sdf.xacro); a .urdf holding SDF is checked (U004: it says it is a URDF)
     blank: bool = False  # no text at all, or white space only
+    document: bool = False  # a .xacro whose root is no <robot> (nor a misspelling of it), with
+    # content besides definitions: another kind of XML xacro builds (Shadow's <test> harness)
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -168,7 +172,19 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
                     answer == "empty",
                     _root_elsewhere(written, expanded=not is_urdf_name(path.name)),
-                    sdf=answer == "sdf" and not is_urdf_name(path.name))  # .urdf: U004
+                    sdf=answer == "sdf" and not is_urdf_name(path.name),  # .urdf: U004
+                    document=answer == "document" and not _urdf_named(path.name))
+
+
+def _urdf_named(name: str) -> bool:
+    """Whether a file's name says it is URDF, as it is or built by xacro (``.urdf``,
+    ``.urdf.xacro``, any case): whatever its root, it is checked (U004 names the root)."""
+    return name.lower().endswith((".urdf", ".urdf.xacro"))
+
+
+def _not_urdf(summary: _Summary) -> str:
+    """Why a file of another kind than a URDF robot is not checked (SRDF, SDF, other XML)."""
+    return SRDF_SOURCE if summary.srdf else SDF_SOURCE if summary.sdf else OTHER_DOCUMENT
 
 
 def _well_formed_for_xacro(data: bytes) -> bool:
@@ -281,10 +297,20 @@ def _yields_links(data: bytes) -> bool:
     return _stream(data, _LinksOutsideMacros()) == "links"
 
 
+def _misspelt_robot(root: str) -> bool:
+    """Whether a root element's name may be ``robot`` misspelt (``robt``, ``Robot``, an old
+    macro file's ``root``): such a file is checked, and U004 names its root."""
+    import difflib
+
+    return difflib.SequenceMatcher(None, root.lower(), "robot").ratio() >= 0.6
+
+
 class _TopLevelTags:
     """lxml parser target: answers 'robot' at a child of the root that is neither a definition
     nor an extension block (<gazebo>, ...), 'srdf' at a child only an SRDF has, 'sdf' at an
-    ``<sdf>`` root (a Gazebo model or world that xacro builds, never a URDF); at the end,
+    ``<sdf>`` root (a Gazebo model or world that xacro builds, never a URDF), 'document' at
+    such a child of a root that is no ``<robot>`` misspelt (xacro builds any XML: Shadow's
+    ``<test>`` harness, which calls macros that print); at the end,
     'fragment' when it saw extension blocks, else 'definitions' ('empty' for a <robot> with no
     child). A root other than <robot> holding only definitions is a macro library too: xacro's
     includes ignore the root element, and pre-Groovy macro files were written ``<root
@@ -292,7 +318,7 @@ class _TopLevelTags:
     nothing, it is checked (and its root reported)."""
 
     def __init__(self):
-        self.depth, self.seen_robot, self.other_root = 0, False, False
+        self.depth, self.seen_robot, self.other_root, self.root = 0, False, False, ""
         self.extensions = self.children = False
 
     def start(self, tag, attributes):
@@ -303,7 +329,7 @@ class _TopLevelTags:
         if self.depth == 1 and name == "sdf" and not _is_xacro(tag):
             raise _Answered("sdf")
         if self.depth == 1 and name != "robot":
-            self.other_root = True
+            self.other_root, self.root = True, name
             return
         self.seen_robot = True
         if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
@@ -313,7 +339,8 @@ class _TopLevelTags:
             self.extensions = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
         elif self.depth == 2 and name not in _DEFINITIONS:
-            raise _Answered("robot")
+            raise _Answered("document" if self.other_root and not _misspelt_robot(self.root)
+                            else "robot")
 
     def end(self, tag):
         self.depth -= 1
@@ -438,7 +465,24 @@ def _own_robot(path: Path, limit: int, data) -> bool:
     return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
         _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
         _self_contained(path, limit, data) and not _borrows_macros(data) and \
-        not _borrows_materials(data)
+        not _borrows_materials(data) and not _urdf_for_xacro(path, data)
+
+
+_XACRO_USE = re.compile(rb"\$\{|\$\(|<xacro:")
+
+
+def _urdf_for_xacro(path: Path, data: bytes) -> bool:
+    """Whether a ``.urdf`` holds xacro (``$(find)``, ``${}``, ``<xacro:``): named, it is
+    checked through the robots that include it, as the folder walk checks it (RealMan's
+    rm_65_gazebo.urdf, whose meshes are ``$(find rm_description)/...``, included by
+    gazebo_65_description.urdf.xacro: named alone, a U007 error the walk never gave); nobody
+    including it, or a launch file loading it as it is (nextage's NextageOpen.urdf, given
+    MoveIt with ``textfile=``), it is checked as it is (U007 says what reads it)."""
+    if not (is_urdf_name(path.name) and _XACRO_USE.search(_uncommented(data))):
+        return False
+    from urdftool.description.runtime import builds
+
+    return not any(not build.xacro for build in builds(str(path)))
 
 
 _CALLED = re.compile(rb"<xacro:([\w.-]+)")  # a macro call, or one of xacro's directives
@@ -512,8 +556,8 @@ def explicit_targets(path: Path, includers: dict, root: Path,
     if _own_robot(path, max_file_size, data):
         return [path], None  # a robot of its own: no need to look for robots including it
     summary = _summary(path, resolver_for, max_file_size, data)
-    if summary.srdf or summary.sdf:
-        return [], f"{SRDF_SOURCE if summary.srdf else SDF_SOURCE}: nothing to check"
+    if summary.srdf or summary.sdf or summary.document:
+        return [], f"{_not_urdf(summary)}: nothing to check"
     yields = None if summary.defines_robot else _includes_yield_links(summary, resolver_for,
                                                                        max_file_size)
     includers = includers({os.path.abspath(path): data}) if callable(includers) else includers
@@ -562,7 +606,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     it: the one decision for a file walked and a file named (pre-commit).
 
     yields: :func:`_includes_yield_links` when already known
-    Skipped: an SRDF source; an SDF document (its root is ``<sdf>``); an empty ``<robot>``; a
+    Skipped: an SRDF source; an SDF document (its root is ``<sdf>``); a ``.xacro`` (not
+    ``.urdf.xacro``) of another XML whose root is no ``<robot>`` misspelt; an empty ``<robot>``; a
     blank file (a placeholder; xacro fails on it, U002, where something loads it); a ``.urdf`` that is a fragment (only
     ``<gazebo>``, transmission, ros2_control or webots blocks) or a part with no root of its
     own (:func:`_root_elsewhere`, ``.xacro`` too: stretch's stretch_dry_erase_marker.xacro); a
@@ -575,8 +620,8 @@ def _not_a_robot(path: Path, summary: _Summary, resolver_for, limit: int,
     repository runs as the robot description, unconditionally, is a robot: checked
     (:mod:`urdftool.lint.parts` then judges what it lacks).
     data: the file's :func:`_head`, when the caller read it (a file named: read once)."""
-    if summary.srdf or summary.sdf:
-        return SRDF_SOURCE if summary.srdf else SDF_SOURCE
+    if summary.srdf or summary.sdf or summary.document:
+        return _not_urdf(summary)
     reason = _not_a_robot_by_text(path, summary, resolver_for, limit, yields, data)
     return None if reason is not None and _run_as_robot(path) else reason
 

@@ -84,6 +84,33 @@ def test_unknown_frame_name_suggests_the_sensor_link():
            "use 'cam', the link it sits on, or add a link 'cam_optical'" in messages
 
 
+def test_a_ros1_frame_name_without_the_namespace_its_link_carries_names_the_tf_prefix(tmp_path):
+    """RotorS writes its links ``${namespace}/camera_depth_optical_center_link`` and the
+    openni plugin's ``<frameName>camera_depth_optical_center_link</frameName>``: ROS 1's
+    sensor plugins prefix the frame with their ``tf_prefix`` parameter (spawn_mav.launch sets
+    it, from $(optenv ROS_NAMESPACE)), so the error held only without it: a warning naming
+    it. A frame no link ends with stays an error."""
+    from urdftool.diagnostics import Severity
+
+    robot = """<robot name="r"><link name="ns/base"/><link name="ns/cam"/>
+      <joint name="j" type="fixed"><parent link="ns/base"/><child link="ns/cam"/></joint>
+      <gazebo reference="ns/cam"><sensor type="depth" name="d">
+        <plugin name="p" filename="libgazebo_ros_openni_kinect.so">
+          <frameName>{frame}</frameName></plugin></sensor></gazebo></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot.format(frame="cam")},
+                                   select=("U615",))
+    assert [(f.severity, "tf_prefix parameter is 'ns'" in f.message) for f in findings] == \
+        [(Severity.WARNING, True)], findings
+    found, findings = check_folder(tmp_path / "b", {"robot.urdf": robot.format(frame="camx")},
+                                   select=("U615",))
+    assert [f.severity for f in findings] == [Severity.ERROR]
+    # with <robotNamespace>ns</robotNamespace> the plugin falls back to it: right as written
+    spaced = robot.format(frame="cam").replace(
+        "<frameName>", "<robotNamespace>/ns</robotNamespace><frameName>")
+    found, findings = check_folder(tmp_path / "c", {"robot.urdf": spaced}, select=("U615",))
+    assert findings == []
+
+
 def test_vertical_wheel_axis_is_reported_and_separation_still_measured(tmp_path):
     # issue 14: a wheel whose axis is vertical made the separation along it 0 and the check skip
     robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(

@@ -74,14 +74,37 @@ def _stl(path):
     path.write_bytes(b"\0" * 80 + struct.pack("<I", 1) + triangle)
 
 
-def _u407(robot, uri):
-    """(severity, message) of each U407 of a one-link robot at ``robot`` naming mesh ``uri``."""
+def _u407(robot, uri, code="U407"):
+    """(severity, message) of each U407 (or ``code``) of a one-link robot at ``robot`` naming
+    mesh ``uri``."""
     from urdftool.lint.engine import CheckOptions, load_and_check
 
     robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{uri}"'
                      '/></geometry></visual></link></robot>')
     result = load_and_check(str(robot), CheckOptions())
-    return [(f.severity, f.message) for f in result.findings if f.code == "U407"]
+    return [(f.severity, f.message) for f in result.findings if f.code == code]
+
+
+def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_path):
+    """hello-robot/stretch_ros2's stretch_description/meshes holds only .gitkeep: Hello
+    Robot's tools copy a robot's calibration batch (batch/NAME/meshes) into it, so the 231
+    U408 errors on every batch's stretch_main.xacro, named as pre-commit names them, held only
+    for the source tree. A folder kept empty is filled later: a warning saying so. A folder
+    holding other files (a mesh, a README) keeps the error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / ".gitkeep").write_text("")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/base.stl",
+                                  "U408")
+    assert severity == Severity.WARNING and "holds only .gitkeep" in message, message
+    (tmp_path / "meshes" / "other.stl").write_text("solid x\nendsolid x\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/base.stl",
+                                  "U408")
+    assert severity == Severity.ERROR and "kept empty" not in message, message
 
 
 def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path):
@@ -125,6 +148,14 @@ def test_a_mesh_package_not_installed_here_is_a_warning_unless_misspelt(tmp_path
         assert "the mesh is not checked" in message and "robot is not" not in message
     [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bolt_descriptio/a.stl")
     assert severity == Severity.ERROR and "did you mean 'bolt_description'?" in message
+    # a word of its own, not a misspelt one: another vendor's package (Shadow's sr_common
+    # names ur_description beside its sr_description), the environment's, a warning
+    (tmp_path / "package.xml").write_text('<package format="2"><name>sr_description</name>'
+                                          '</package>')
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://ur_description/a.stl")
+    assert severity == Severity.WARNING, message
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://sr_description_2/a.stl")
+    assert severity == Severity.ERROR, message  # a word added: an old export's name
 
 
 def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):

@@ -53,6 +53,24 @@ def test_an_attribute_written_for_an_element_says_so(tmp_path):
     assert "reads child as an element" in findings[0].message
 
 
+def test_an_attribute_another_program_reads_is_a_note_saying_which(tmp_path):
+    """Isaac Gym's assets (legged_gym, unitree_rl_gym) and the Go2 and ANYmal descriptions
+    copied from them mark feet and sensor frames ``dont_collapse="true"``: 233 U022 warnings,
+    each judged DEBATABLE, on an attribute written on purpose for the importer that reads it.
+    An unknown attribute beside it is still a warning of its own."""
+    from urdftool.diagnostics import Severity
+
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="fixed" dont_collapse="true" colour="red"><parent link="a"/>
+        <child link="b"/></joint></robot>""")
+    assert [(line, code) for _, line, code in found] == [(2, "U022"), (2, "U022")]
+    by_severity = {f.severity: f.message for f in findings}
+    assert "'dont_collapse'" in by_severity[Severity.INFO]
+    assert "Isaac Gym's and Isaac Sim's URDF importers" in by_severity[Severity.INFO]
+    assert "'colour'" in by_severity[Severity.WARNING]
+    assert "dont_collapse" not in by_severity[Severity.WARNING]
+
+
 @pytest.mark.parametrize("body", [
     '<gazebo reference="a"><mu1>1</mu1><material>Gazebo/Red</material><whatever x="1"/></gazebo>',
     '<sensor name="cam" update_rate="30"><parent link="a"/><camera><image width="640"/></camera></sensor>',

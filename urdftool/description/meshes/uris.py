@@ -15,7 +15,7 @@ import os
 import re
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, real_path, resolved, walk
+from urdftool.description.files import inside, kind_of, listing, real_path, resolved, walk
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_uri_parts)
 from urdftool.description.run_memo import per_run
@@ -128,8 +128,9 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                 else (None, False)
             error = error.declared(owner, declares)
             lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
+            misspelt = any(_misspelling(package, close) for close in error.close or ())
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}",
-                               certain=not declares and bool(error.close or seen))
+                               certain=not declares and (misspelt or bool(seen)))
         folder = os.path.dirname(folder)
     if folder == base:
         written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
@@ -142,6 +143,20 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False)
+
+
+def _misspelling(name: str, close: str) -> bool:
+    """Whether package ``name`` may be ``close`` misspelt or stale: not when both have as many
+    words and a word of one is no near spelling of the other's (Shadow's ``ur_description``
+    beside its own ``sr_description``: another vendor's package, one letter apart). A word
+    added (``moveo_urdf_4`` beside ``moveo_urdf``) is an old export's name."""
+    import difflib
+
+    words, others = name.lower().split("_"), close.lower().split("_")
+    if len(words) != len(others):
+        return True
+    return all(difflib.SequenceMatcher(None, word, other).ratio() >= 0.75
+               for word, other in zip(words, others) if word != other)
 
 
 @per_run
@@ -166,7 +181,26 @@ def _doubted(found: Path | MeshProblem, located, base: str) -> Path | MeshProble
     if located.doubt:
         return MeshProblem("missing", f"{found.message}: not found in the source tree; "
                                       f"{located.doubt}{hint}", certain=False)
+    kept = _kept_empty(os.path.dirname(os.fspath(located.path)))
+    if kept:
+        return MeshProblem("missing", f"{found.message}{hint}: not certain: its folder holds "
+                                      f"only {kept}, a folder kept empty in the repository for "
+                                      "files put there later (a tool, a download, a build step "
+                                      "or a per-robot calibration fills it)", certain=False)
     return MeshProblem("missing", found.message + hint, certain=found.certain) if hint else found
+
+
+_PLACEHOLDERS = (".gitkeep", ".keep", ".gitignore", ".placeholder", ".empty")
+
+
+def _kept_empty(folder: str) -> str:
+    """The placeholder files a folder holds when they are all it holds (Stretch's
+    ``stretch_description/meshes/.gitkeep``, filled from a robot's calibration batch by
+    Hello Robot's tools), as a listing to quote; "" otherwise."""
+    entries = listing(folder)
+    if entries and all(kind == "file" and name in _PLACEHOLDERS for name, kind in entries):
+        return ", ".join(name for name, _ in entries)
+    return ""
 
 
 @per_run

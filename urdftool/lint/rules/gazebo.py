@@ -316,7 +316,11 @@ def sensor_unknown_link(robot):
     (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``;
     ROS 2's tf2 refuses a frame id that starts with ``/``. A name ``NAMESPACE/LINK`` is the link
     under a TF prefix (robot_state_publisher's ``frame_prefix``, ROS 1's ``tf_prefix``) that a
-    launch file chooses: not judged.
+    launch file chooses: not judged. A ROS 1 ``frameName`` that is ``LINK`` where the robot's
+    link is ``NAMESPACE/LINK`` (RotorS writes its links ``${namespace}/...`` and the frames
+    without it) is right when the plugin's ``tf_prefix`` parameter is ``NAMESPACE``, which
+    ROS 1's sensor plugins prefix the frame with (or, when none is set, with their
+    ``<robotNamespace>``: nothing to report when that is ``NAMESPACE``): a warning naming it.
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -343,11 +347,29 @@ def sensor_unknown_link(robot):
                             f"that do (\"frame_id should not start with a '/'\"); write "
                             f"'{name.lstrip('/')}'")
                     continue  # link '{link}' under a TF prefix the launch gives (frame_prefix)
-                if name and name not in robot.links and name not in GAZEBO_FRAMES:
+                prefixed = [link for link in robot.links if link.endswith("/" + name)] \
+                    if name and tag in ROS1_FRAME_TAGS and name not in robot.links else []
+                if len(prefixed) == 1:  # ROS 1's plugins prefix it with their tf_prefix
+                    prefix = prefixed[0][:-len(name) - 1]
+                    if _robot_namespace(element) == prefix.strip("/"):
+                        continue  # the tf_prefix it falls back to, unless a launch sets one
+                    yield element, Conditional(
+                        f"unless the plugin's tf_prefix parameter is '{prefix}' (ROS 1's "
+                        f"sensor plugins prefix <{tag}> with it, or with their "
+                        f"<robotNamespace> when none is set): <{tag}> '{name}' is not a link, "
+                        f"'{prefixed[0]}' is, so TF cannot place the data stamped with it")
+                elif name and name not in robot.links and name not in GAZEBO_FRAMES:
                     own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
                            if reference in robot.links else available("links", name, robot.links))
                     yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
                                     f"stamped with it; {own}")
+
+
+def _robot_namespace(element) -> str:
+    """The ``<robotNamespace>`` of the plugin holding ``element``, without its slashes."""
+    plugin = next((a for a in element.iterancestors() if a.tag == "plugin"), None)
+    found = plugin.find("robotNamespace") if plugin is not None else None
+    return (found.text or "").strip().strip("/") if found is not None else ""
 
 
 @rule("U616", "diff-drive-frame", Severity.ERROR)

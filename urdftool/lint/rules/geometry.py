@@ -393,7 +393,10 @@ def mesh_not_found(robot):
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
     warning saying so, not an error (docs/packages.md). A warning too for a path xacro made
     from ``$(cwd)`` (the folder it runs in) when the file is there from a folder between the
-    robot file and its repository's root: the message names the folder xacro must run in.
+    robot file and its repository's root: the message names the folder xacro must run in. So
+    is a file missing from a folder that holds only placeholders (``.gitkeep``, ``.keep``,
+    ``.gitignore``): a folder kept empty in the repository for files a tool, a download or a
+    build step puts there (Stretch's ``meshes/``, filled from a robot's calibration batch).
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the

@@ -105,6 +105,12 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     An included file missing from the source tree below a package (``$(find NAME)/...``) is
     looked for where the package's build installs it from (docs/packages.md); when that
     package's install rules cannot be read, it may exist after the build: a warning saying so.
+    A warning too for an include xacro cannot open beside the file including it that is there
+    from a folder above (written for a tool run from that folder, as upkie's Makefile runs
+    xacrodoc from the repository root), or written after ``$(cwd)``: the message says where.
+    And for a macro used before its definition in a catkin package: ROS 1's xacro up to Lunar
+    (Kinetic's default order) read every definition first and expands it; every xacro since
+    Melodic fails (allegro_hand_ros_v4, written for Kinetic). Outside ROS 1, an error.
 
     A **note** when the file is a part of a robot defined elsewhere (its top level writes no
     link: only blocks such as ``<transmission>`` or ``<gazebo>``, through macro calls too),

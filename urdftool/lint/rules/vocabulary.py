@@ -44,11 +44,13 @@ class _Unknown:
     the unknown ``attribute``); ``close`` the known names it is close to; ``why``: when known
     but read nowhere here, the reason."""
 
-    __slots__ = ("element", "attribute", "place", "close", "why", "extension")
+    __slots__ = ("element", "attribute", "place", "close", "why", "extension", "elsewhere")
 
-    def __init__(self, element, attribute, place, close, why=None, extension=False):
+    def __init__(self, element, attribute, place, close, why=None, extension=False,
+                 elsewhere=False):
         self.element, self.attribute, self.place = element, attribute, place
         self.close, self.why, self.extension = close, why, extension
+        self.elsewhere = elsewhere  # another program reads it: ``why`` says which
 
     @property
     def name(self) -> str:
@@ -94,7 +96,10 @@ def _unknown_attributes(element, key: str, place: Place, keys, found: list) -> N
             continue
         if key == "axis" and attribute == "rpy" and _zero(element.get(attribute)):
             continue  # misleads nobody: the axis is where its author meant it
-        if attribute in place.ignored:
+        if attribute in place.elsewhere:
+            found.append(_Unknown(element, attribute, key, [], place.elsewhere[attribute],
+                                  elsewhere=True))
+        elif attribute in place.ignored:
             found.append(_Unknown(element, attribute, key, [], place.ignored[attribute]))
         else:
             found.append(_Unknown(element, attribute, key, _close(attribute, place.names())))
@@ -296,7 +301,9 @@ def no_effect(robot):
 
     It looks meaningful and changes nothing: an ``rpy`` on an ``<axis>`` does not turn the
     axis, a ``<material>`` in a ``<collision>`` colours nothing. Where a name is valid elsewhere
-    the message says where.
+    the message says where. An attribute another program is known to read (``dont_collapse``
+    on a ``<joint>``: Isaac Gym's and Isaac Sim's importers keep the fixed joint) is written
+    for it on purpose: a **note** saying which.
 
     Bad: ``<axis xyz="0 0 1" rpy="0 1.57 0"/>``, ``<collision><material name="red"/>...``
     Good: ``<axis xyz="1 0 0"/>`` (turn the joint frame with ``<origin rpy>`` instead)
@@ -305,7 +312,11 @@ def no_effect(robot):
     for unknown in _unknowns(robot):
         if unknown.close or unknown.extension:
             continue
-        if unknown.why:
+        if unknown.elsewhere:  # meant for another program: a note, saying which
+            yield unknown.element, (f"{_what(unknown)} has no effect on urdfdom and the tools "
+                                    f"that load URDF through it; {unknown.why}"), None, \
+                Severity.INFO
+        elif unknown.why:
             yield unknown.element, f"{_what(unknown)} has no effect: {unknown.why}"
         elif unknown.attribute is not None:
             unread.setdefault(unknown.element, []).append(unknown.attribute)
