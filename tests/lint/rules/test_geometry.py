@@ -182,7 +182,7 @@ def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tm
     stream = io.StringIO()
     render("text", [result], stream)
     [line] = [line for line in stream.getvalue().splitlines() if "U407" in line]
-    assert "[3 times: line" in line
+    assert "[3 times on this line" in line
 
 
 def test_a_package_mesh_in_a_folder_of_the_package_s_name_above_the_robot_is_not_certain(tmp_path):
