@@ -300,9 +300,9 @@ def _yields_links(data: bytes) -> bool:
 def _misspelt_robot(root: str) -> bool:
     """Whether a root element's name may be ``robot`` misspelt (``robt``, ``Robot``, an old
     macro file's ``root``): such a file is checked, and U004 names its root."""
-    import difflib
+    from urdftool.errors import similarity
 
-    return difflib.SequenceMatcher(None, root.lower(), "robot").ratio() >= 0.6
+    return similarity(root.lower(), "robot") >= 0.6
 
 
 class _TopLevelTags:

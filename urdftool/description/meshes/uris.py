@@ -20,7 +20,7 @@ from urdftool.description.packages import (containment_root, declaring_package, 
                                           package_uri_parts)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
-from urdftool.errors import MeshProblem, PackageNotFound
+from urdftool.errors import MeshProblem, PackageNotFound, similarity
 
 # a file of a ROS distribution's binary install: /opt/ros/DISTRO/share/PACKAGE/PATH
 _ROS_INSTALL = re.compile(r"/opt/ros/([^/]+)/share/([^/]+)/(.+)")
@@ -150,12 +150,10 @@ def _misspelling(name: str, close: str) -> bool:
     words and a word of one is no near spelling of the other's (Shadow's ``ur_description``
     beside its own ``sr_description``: another vendor's package, one letter apart). A word
     added (``moveo_urdf_4`` beside ``moveo_urdf``) is an old export's name."""
-    import difflib
-
     words, others = name.lower().split("_"), close.lower().split("_")
     if len(words) != len(others):
         return True
-    return all(difflib.SequenceMatcher(None, word, other).ratio() >= 0.75
+    return all(similarity(word, other) >= 0.75
                for word, other in zip(words, others) if word != other)
 
 
