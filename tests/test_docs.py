@@ -3,7 +3,6 @@ current in the checkout, and the generator the only source of docs/rules/."""
 
 from __future__ import annotations
 
-import dataclasses
 import re
 import shutil
 
@@ -13,6 +12,7 @@ from conftest import ROOT
 from urdftool import docs
 from urdftool.lint.catalogue import Catalogue
 from urdftool.lint.rules import CATALOGUE
+from urdftool.records import replace
 
 
 def test_the_generated_docs_are_current():
@@ -39,7 +39,7 @@ def copy(tmp_path):
 
 
 def test_a_changed_docstring_makes_its_page_stale_and_make_docs_rewrites_it(copy, monkeypatch):
-    changed = [dataclasses.replace(r, written="Changed.\n\nWhy.") if r.code == "U204" else r
+    changed = [replace(r, written="Changed.\n\nWhy.") if r.code == "U204" else r
                for r in CATALOGUE]
     monkeypatch.setattr(docs, "CATALOGUE", Catalogue(changed))
     assert docs.stale(copy) == ["docs/rules/U204.md", docs.INDEX]

@@ -19,10 +19,10 @@ Typer answers.
 Every command but those answered above starts with the compiled forms of the class methods
 :mod:`dataclasses` writes and of the regular expressions a check compiles, kept beside the
 bytecode by :mod:`urdftool.kept_code` (``make`` writes them): Python compiled the source of
-hundreds of methods and parsed a hundred patterns again on every run. A form is used only for
-the very text or pattern it was made from, and only by the Python that made it
-(:func:`kept_code`). With them, on Python 3.11, a plain dataclass is made by dataclasses' own
-steps without its questions of each field's annotation (:func:`_plain_dataclasses`).
+the methods of each dataclass (urdftool's records on a check's path are plain classes,
+:mod:`urdftool.records`) and parsed a hundred patterns again on every run. A form is used only
+for the very text or pattern it was made from, and only by the Python that made it
+(:func:`kept_code`).
 
 ``check`` imports the rules and its own work with the cyclic garbage collector off and freezes
 them, then runs the collector less often around each robot (:func:`_collect_less`, installed
@@ -388,115 +388,6 @@ def kept_code(path: str | None = None) -> None:
 
     dataclasses.exec = exec_kept  # (its module's global, found before the built-in)
     re._compile = compile_kept  # (re's functions call their module's global)
-    if sys.version_info[:2] == (3, 11):
-        dataclasses._process_class = _plain_dataclasses(dataclasses._process_class)
-
-
-# the methods a plain dataclass gets (:func:`_plain_dataclasses`), and what would change them
-_OWN_METHODS = frozenset({"__init__", "__repr__", "__eq__", "__hash__", "__setattr__",
-                          "__delattr__", "__match_args__", "__slots__", "__lt__", "__le__",
-                          "__gt__", "__ge__", "__getstate__", "__setstate__"})
-
-
-def _plain_dataclasses(process):
-    """``dataclasses._process_class`` (Python 3.11's, ``process``) making a plain dataclass as
-    it does, step for step, without asking of each field whether its annotation names
-    ``ClassVar``, ``InitVar`` or ``KW_ONLY`` three times over (regular expressions and
-    lookups) nor building each Field through ``_get_field``: a class none of whose bases is a
-    dataclass, with a docstring, no method of its own that dataclasses writes (but
-    ``__post_init__``), every annotation a string naming none of those, and ``init``,
-    ``repr``, ``eq`` and ``match_args`` (the defaults) without ``order``, ``unsafe_hash``,
-    ``kw_only`` or ``weakref_slot`` (``slots`` as dataclasses makes them). Any other class is
-    ``process``'s."""
-    import abc
-    import dataclasses as dc
-    import types
-
-    missing, field_class, member = dc.MISSING, dc.Field, types.MemberDescriptorType
-    names_a_kind = dc._MODULE_IDENTIFIER_RE.match
-
-    def plain(cls, module) -> bool:
-        own = cls.__dict__
-        if not own.get("__doc__") or not own.keys().isdisjoint(_OWN_METHODS) or any(
-                getattr(base, dc._FIELDS, None) is not None for base in cls.__mro__[1:]):
-            return False
-        annotations = own.get("__annotations__", {})
-        names, typing = module.__dict__, sys.modules.get("typing")
-        for name, kind in annotations.items():
-            if type(kind) is not str:
-                return False
-            named = names_a_kind(kind)
-            if named is not None:
-                found = names.get(named.group(1)) if named.group(1) else \
-                    names.get(named.group(2))
-                if found is not None and (found is typing or found is dc or
-                                          found is dc.KW_ONLY or found is dc.InitVar or
-                                          type(found) is dc.InitVar or typing is not None and (
-                                              found is typing.ClassVar or
-                                              type(found) is typing._GenericAlias)):
-                    return False  # (a field dataclasses may not count as one)
-            default = getattr(cls, name, missing)
-            if isinstance(default, field_class):
-                if default.kw_only not in (missing, False):
-                    return False
-                default = default.default
-            if default.__class__.__hash__ is None:
-                return False  # (dataclasses' error says it)
-        return all(name in annotations for name, value in own.items()
-                   if isinstance(value, field_class))
-
-    def process_plain(cls, init, repr, eq, order, unsafe_hash, frozen, match_args, kw_only,
-                      slots, weakref_slot):
-        module = sys.modules.get(cls.__module__)
-        if module is None or not (init and repr and eq and match_args) or order or \
-                unsafe_hash or kw_only or weakref_slot or not plain(cls, module):
-            return process(cls, init, repr, eq, order, unsafe_hash, frozen, match_args,
-                           kw_only, slots, weakref_slot)
-        names = module.__dict__
-        setattr(cls, dc._PARAMS, dc._DataclassParams(init, repr, eq, order, unsafe_hash,
-                                                     frozen))
-        fields = {}
-        for name, kind in cls.__dict__.get("__annotations__", {}).items():
-            default = getattr(cls, name, missing)
-            if isinstance(default, field_class):
-                field = default
-            else:
-                if isinstance(default, member):
-                    default = missing
-                field = dc.field(default=default)
-            field.name, field.type, field._field_type = name, kind, dc._FIELD
-            if field.kw_only is missing:
-                field.kw_only = False
-            fields[name] = field
-        for field in fields.values():
-            if isinstance(getattr(cls, field.name, None), field_class):
-                if field.default is missing:
-                    delattr(cls, field.name)
-                else:
-                    setattr(cls, field.name, field.default)
-        setattr(cls, dc._FIELDS, fields)
-        listed = list(fields.values())
-        given = tuple(f for f in listed if f.init)  # (none keyword-only)
-        dc._set_new_attribute(cls, "__init__", dc._init_fn(
-            listed, given, (), frozen, hasattr(cls, dc._POST_INIT_NAME),
-            "__dataclass_self__" if "self" in fields else "self",
-            names, slots))
-        dc._set_new_attribute(cls, "__repr__", dc._repr_fn([f for f in listed if f.repr], names))
-        compared = [f for f in listed if f.compare]
-        dc._set_new_attribute(cls, "__eq__", dc._cmp_fn(
-            "__eq__", "==", dc._tuple_str("self", compared), dc._tuple_str("other", compared),
-            globals=names))
-        if frozen:
-            for function in dc._frozen_get_del_attr(cls, listed, names):
-                dc._set_new_attribute(cls, function.__name__, function)
-        cls.__hash__ = dc._hash_action[False, True, bool(frozen), False](cls, listed, names)
-        dc._set_new_attribute(cls, "__match_args__", tuple(f.name for f in given))
-        if slots:
-            cls = dc._add_slots(cls, frozen, weakref_slot)
-        abc.update_abstractmethods(cls)
-        return cls
-
-    return process_plain
 
 
 def kept_code_header() -> tuple:

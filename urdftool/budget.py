@@ -14,10 +14,10 @@ from __future__ import annotations
 import os
 import sys
 import time
-from dataclasses import dataclass
 
 from urdftool.errors import UsageError
 from urdftool.guardian import SLOT_SIZE as _SLOT_SIZE  # (the slot of the guardian's child too)
+from urdftool.records import Frozen
 
 # ``Location`` below is urdftool.diagnostics.Location, in annotations only (never evaluated):
 # importing typing for TYPE_CHECKING would slow every command's start-up
@@ -31,16 +31,23 @@ _ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 _UNITS = {"": 1, "K": 1024, "M": 1024 ** 2, "G": 1024 ** 3, "T": 1024 ** 4}
 
 
-@dataclass(frozen=True)
-class Budget:
+class Budget(Frozen):
     """What one piece of work may use.
 
     seconds: wall-clock time in [s], None for no limit
     memory: address space of the process doing it in [bytes], None for no limit
     """
 
-    seconds: float | None = DEFAULT_TIMEOUT
-    memory: int | None = DEFAULT_MEMORY
+    seconds: float | None
+    memory: int | None
+
+    __slots__ = ("seconds", "memory")
+
+    def __init__(self, seconds: float | None = DEFAULT_TIMEOUT,
+                 memory: int | None = DEFAULT_MEMORY) -> None:
+        set_field = object.__setattr__
+        set_field(self, "seconds", seconds)
+        set_field(self, "memory", memory)
 
     @classmethod
     def of(cls, timeout: float, max_memory: str | None) -> "Budget":

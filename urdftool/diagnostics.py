@@ -5,7 +5,8 @@ from __future__ import annotations
 import enum
 import os
 import re
-from dataclasses import dataclass
+
+from urdftool.records import Frozen
 
 
 class Severity(str, enum.Enum):
@@ -14,8 +15,7 @@ class Severity(str, enum.Enum):
     INFO = "info"
 
 
-@dataclass(frozen=True)
-class Location:
+class Location(Frozen):
     """A place in a file the user wrote.
 
     file: path as shown to the user (relative to the working directory when inside it)
@@ -25,16 +25,25 @@ class Location:
     """
 
     file: str
-    line: int | None = None
-    via: tuple["Location", ...] = ()
-    column: int | None = None
+    line: int | None
+    via: tuple["Location", ...]
+    column: int | None
+
+    __slots__ = ("file", "line", "via", "column")
+
+    def __init__(self, file: str, line: int | None = None, via: tuple["Location", ...] = (),
+                 column: int | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "file", file)
+        set_field(self, "line", line)
+        set_field(self, "via", via)
+        set_field(self, "column", column)
 
     def __str__(self) -> str:
         return self.file if self.line is None else f"{self.file}:{self.line}"
 
 
-@dataclass(frozen=True)
-class Edit:
+class Edit(Frozen):
     """Replace bytes ``start``..``end`` of a file the user wrote with ``text``.
 
     file: path as findings name it (see :class:`Location`)
@@ -50,12 +59,26 @@ class Edit:
     old: str
     line: int
     column: int
-    end_line: int = 0
-    end_column: int = 0
+    end_line: int
+    end_column: int
+
+    __slots__ = ("file", "start", "end", "text", "old", "line", "column", "end_line", "end_column")
+
+    def __init__(self, file: str, start: int, end: int, text: str, old: str, line: int,
+                 column: int, end_line: int = 0, end_column: int = 0) -> None:
+        set_field = object.__setattr__
+        set_field(self, "file", file)
+        set_field(self, "start", start)
+        set_field(self, "end", end)
+        set_field(self, "text", text)
+        set_field(self, "old", old)
+        set_field(self, "line", line)
+        set_field(self, "column", column)
+        set_field(self, "end_line", end_line)
+        set_field(self, "end_column", end_column)
 
 
-@dataclass(frozen=True)
-class Derived:
+class Derived(Frozen):
     """A new file a fix writes, made from another when the fix is applied (not before: a
     converted mesh can be megabytes).
 
@@ -67,9 +90,16 @@ class Derived:
     source: str
     how: str
 
+    __slots__ = ("file", "source", "how")
 
-@dataclass(frozen=True)
-class Fix:
+    def __init__(self, file: str, source: str, how: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "file", file)
+        set_field(self, "source", source)
+        set_field(self, "how", how)
+
+
+class Fix(Frozen):
     """What would make a finding go away, as edits of the files the user wrote.
 
     safe: whether applying it keeps what the description means apart from the defect (``check
@@ -79,12 +109,21 @@ class Fix:
 
     description: str
     edits: tuple[Edit, ...]
-    safe: bool = True
-    creates: tuple[Derived, ...] = ()
+    safe: bool
+    creates: tuple[Derived, ...]
+
+    __slots__ = ("description", "edits", "safe", "creates")
+
+    def __init__(self, description: str, edits: tuple[Edit, ...], safe: bool = True,
+                 creates: tuple[Derived, ...] = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "description", description)
+        set_field(self, "edits", edits)
+        set_field(self, "safe", safe)
+        set_field(self, "creates", creates)
 
 
-@dataclass(frozen=True)
-class Finding:
+class Finding(Frozen):
     """What a rule found, where, how bad, and how to fix it.
 
     target: for a finding about one simulator or loader (``check --target``), its name
@@ -96,8 +135,21 @@ class Finding:
     severity: Severity
     message: str
     location: Location
-    fix: Fix | None = None
-    target: str | None = None
+    fix: Fix | None
+    target: str | None
+
+    __slots__ = ("code", "name", "severity", "message", "location", "fix", "target")
+
+    def __init__(self, code: str, name: str, severity: Severity, message: str, location: Location,
+                 fix: Fix | None = None, target: str | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "code", code)
+        set_field(self, "name", name)
+        set_field(self, "severity", severity)
+        set_field(self, "message", message)
+        set_field(self, "location", location)
+        set_field(self, "fix", fix)
+        set_field(self, "target", target)
 
     @property
     def file(self) -> str:

@@ -13,13 +13,12 @@ facts that changed between versions are :class:`Since` tables.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 from urdftool.errors import UsageError
+from urdftool.records import Frozen
 
 
-@dataclass(frozen=True)
-class Simulator:
+class Simulator(Frozen):
     """One program that loads a URDF.
 
     name: the target name (``--target NAME``)
@@ -33,6 +32,15 @@ class Simulator:
     title: str
     reads_with: str
     loader: str | None
+
+    __slots__ = ("name", "title", "reads_with", "loader")
+
+    def __init__(self, name: str, title: str, reads_with: str, loader: str | None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "title", title)
+        set_field(self, "reads_with", reads_with)
+        set_field(self, "loader", loader)
 
 
 SIMULATORS = {s.name: s for s in (
@@ -61,13 +69,19 @@ VERIFIED = {
 }
 
 
-@dataclass(frozen=True)
-class Target:
+class Target(Frozen):
     """A target as asked for: a simulator, and the version whose behaviour to predict (None:
     the newest known)."""
 
     name: str
-    version: tuple[int, ...] | None = None
+    version: tuple[int, ...] | None
+
+    __slots__ = ("name", "version")
+
+    def __init__(self, name: str, version: tuple[int, ...] | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "version", version)
 
     @property
     def simulator(self) -> Simulator:
@@ -100,13 +114,19 @@ def parse_target(text: str) -> Target:
     return Target(name, numbers)
 
 
-@dataclass(frozen=True)
-class Since:
+class Since(Frozen):
     """A fact that changed with a version: ``values`` is ((first version, value), ...) in
     version order; a version before the first has ``before``."""
 
     before: object
     values: tuple
+
+    __slots__ = ("before", "values")
+
+    def __init__(self, before: object, values: tuple) -> None:
+        set_field = object.__setattr__
+        set_field(self, "before", before)
+        set_field(self, "values", values)
 
     def at(self, version: tuple[int, ...] | None):
         value = self.before

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
 from urdftool.description.urdf import MOVING
+from urdftool.records import NEW, Record
 
 # ROS 1 hardware interfaces (without the hardware_interface/ prefix) -> command interface, or
 # None for the read-only ones.
@@ -45,14 +45,22 @@ def interface_kind(text: str | None):
     return False, None
 
 
-@dataclass
-class TransmissionJoint:
+class TransmissionJoint(Record):
     """A joint a transmission names, with the hardware interfaces it gives it."""
 
     element: object          # the <joint> inside the transmission
     name: str | None
-    interfaces: list = field(default_factory=list)   # <hardwareInterface> elements
-    in_actuator: bool = False  # the interfaces are the first actuator's: the joint names none
+    interfaces: list   # <hardwareInterface> elements
+    in_actuator: bool  # the interfaces are the first actuator's: the joint names none
+
+    __slots__ = ("element", "name", "interfaces", "in_actuator")
+
+    def __init__(self, element: object, name: str | None, interfaces: list = NEW,
+                 in_actuator: bool = False) -> None:
+        self.element = element
+        self.name = name
+        self.interfaces = [] if interfaces is NEW else interfaces
+        self.in_actuator = in_actuator
 
 
 def transmissions(robot) -> list:

@@ -54,7 +54,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
@@ -66,6 +65,7 @@ from urdftool.description.packages import SKIP_DIRS, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
+from urdftool.records import NEW, Record
 
 SPEC_NAMES = ("joint_limits.yaml", "joint_spec.yaml")
 MOVEIT_CONTROLLER_NAMES = ("moveit_controllers.yaml", "simple_moveit_controllers.yaml",
@@ -77,22 +77,21 @@ ROBOT_SUFFIXES = (".urdf", ".urdf.xacro")
 
 # --- discovery --------------------------------------------------------------------------------
 
-@dataclass
-class Companions:
+class Companions(Record):
     """The companion files of one robot, parsed.
 
     used: path -> why it is this robot's; unused: path found but not this robot's -> why
     """
 
-    controllers: list[YamlFile] = field(default_factory=list)
-    srdf: SrdfFile | None = None
-    spec: YamlFile | None = None
-    kinematics: YamlFile | None = None  # MoveIt's
-    planning_limits: YamlFile | None = None  # MoveIt's joint_limits.yaml
-    moveit_controllers: list[YamlFile] = field(default_factory=list)  # beside the SRDF
-    moveit_given: list[Path] = field(default_factory=list)  # MoveIt settings launch files load
-    used: dict[Path, str] = field(default_factory=dict)
-    unused: dict[Path, str] = field(default_factory=dict)
+    controllers: list[YamlFile]
+    srdf: SrdfFile | None
+    spec: YamlFile | None
+    kinematics: YamlFile | None  # MoveIt's
+    planning_limits: YamlFile | None  # MoveIt's joint_limits.yaml
+    moveit_controllers: list[YamlFile]  # beside the SRDF
+    moveit_given: list[Path]  # MoveIt settings launch files load
+    used: dict[Path, str]
+    unused: dict[Path, str]
 
     def describe(self) -> list[str]:
         """One line per file found: what it is used as and why, or why it is not used."""
@@ -105,7 +104,26 @@ class Companions:
         lines += [f"not used: {display_path(path)} ({why})" for path, why in self.unused.items()]
         return lines + self.launch
 
-    launch: list[str] = field(default_factory=list)  # what the robot's launch files told
+    launch: list[str]  # what the robot's launch files told
+
+    __slots__ = ("controllers", "srdf", "spec", "kinematics", "planning_limits",
+                 "moveit_controllers", "moveit_given", "used", "unused", "launch")
+
+    def __init__(self, controllers: list[YamlFile] = NEW, srdf: SrdfFile | None = None,
+                 spec: YamlFile | None = None, kinematics: YamlFile | None = None,
+                 planning_limits: YamlFile | None = None, moveit_controllers: list[YamlFile] = NEW,
+                 moveit_given: list[Path] = NEW, used: dict[Path, str] = NEW,
+                 unused: dict[Path, str] = NEW, launch: list[str] = NEW) -> None:
+        self.controllers = [] if controllers is NEW else controllers
+        self.srdf = srdf
+        self.spec = spec
+        self.kinematics = kinematics
+        self.planning_limits = planning_limits
+        self.moveit_controllers = [] if moveit_controllers is NEW else moveit_controllers
+        self.moveit_given = [] if moveit_given is NEW else moveit_given
+        self.used = {} if used is NEW else used
+        self.unused = {} if unused is NEW else unused
+        self.launch = [] if launch is NEW else launch
 
 
 def companions(robot) -> Companions:

@@ -14,14 +14,14 @@ taken for URDF joints without evidence.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+
+from urdftool.records import Frozen, NEW
 
 ROS2_REPO = "ros-controls/ros2_controllers"
 ROS1_REPO = "ros-controls/ros_controllers"
 
 
-@dataclass(frozen=True)
-class ControllerClass:
+class ControllerClass(Frozen):
     """One controller class.
 
     name: ``package/Class`` as written in ``type:``
@@ -37,11 +37,24 @@ class ControllerClass:
 
     name: str
     ros: int
-    joints: dict = field(default_factory=dict)
-    required: tuple[str, ...] = ()
-    commands: str | None = None
-    state: bool = False
-    source: str = ""
+    joints: dict
+    required: tuple[str, ...]
+    commands: str | None
+    state: bool
+    source: str
+
+    __slots__ = ("name", "ros", "joints", "required", "commands", "state", "source")
+
+    def __init__(self, name: str, ros: int, joints: dict = NEW, required: tuple[str, ...] = (),
+                 commands: str | None = None, state: bool = False, source: str = "") -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "ros", ros)
+        set_field(self, "joints", {} if joints is NEW else joints)
+        set_field(self, "required", required)
+        set_field(self, "commands", commands)
+        set_field(self, "state", state)
+        set_field(self, "source", source)
 
     @property
     def package(self) -> str:

@@ -22,17 +22,16 @@ from __future__ import annotations
 import functools
 import math
 import re
-from dataclasses import dataclass, field
 
 from urdftool.description import data
+from urdftool.records import Frozen, NEW
 
 # Distributions past their end of life: what only they have is reported as such.
 END_OF_LIFE = ("foxy", "galactic", "iron")
 MISSING = object()
 
 
-@dataclass(frozen=True)
-class Parameter:
+class Parameter(Frozen):
     """One parameter of a class in one distribution.
 
     name: dotted, as generate_parameter_library writes it (``gains.__map_joints.p``: a key per
@@ -46,10 +45,22 @@ class Parameter:
 
     name: str
     type: str
-    default: object = MISSING
-    read_only: bool = False
-    validation: dict = field(default_factory=dict)
-    source: str = ""
+    default: object
+    read_only: bool
+    validation: dict
+    source: str
+
+    __slots__ = ("name", "type", "default", "read_only", "validation", "source")
+
+    def __init__(self, name: str, type: str, default: object = MISSING, read_only: bool = False,
+                 validation: dict = NEW, source: str = "") -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "type", type)
+        set_field(self, "default", default)
+        set_field(self, "read_only", read_only)
+        set_field(self, "validation", {} if validation is NEW else validation)
+        set_field(self, "source", source)
 
     @property
     def required(self) -> bool:
@@ -62,14 +73,21 @@ class Parameter:
         return bool(self.validation) and bool(validation_problems(self, self.default))
 
 
-@dataclass(frozen=True)
-class Schema:
+class Schema(Frozen):
     """The parameters of one class (or of every controller, or of the controller manager) in
     one distribution."""
 
     distribution: str
     parameters: dict  # name -> Parameter
-    complete: bool = True  # whether every parameter it reads is listed (ROS 1: only required ones)
+    complete: bool  # whether every parameter it reads is listed (ROS 1: only required ones)
+
+    __slots__ = ("distribution", "parameters", "complete")
+
+    def __init__(self, distribution: str, parameters: dict, complete: bool = True) -> None:
+        set_field = object.__setattr__
+        set_field(self, "distribution", distribution)
+        set_field(self, "parameters", parameters)
+        set_field(self, "complete", complete)
 
     def find(self, name: str) -> Parameter | None:
         """The parameter a dotted ``name`` is (matching ``__map_X`` segments and ``none``

@@ -25,11 +25,11 @@ Reading only: whether a name is a URDF joint or a class exists is the rules' bus
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
 from urdftool.description.companions import companions
 from urdftool.description.controller_classes import MOVEIT_TYPES, ControllerClass, lookup
 from urdftool.description.documents import YamlFile, YamlList, YamlMap, merged
+from urdftool.records import NEW, Record
 
 WILDCARDS = ("*", "**")
 # Keys that name joints in classes nothing is known about (vendor controllers).
@@ -37,17 +37,22 @@ GUESSED_JOINT_KEYS = ("joints", "joint", "joint_names")
 _MAX_DEPTH = 12
 
 
-@dataclass
-class JointRef:
+class JointRef(Record):
     """A joint name a controller's parameters hold: ``key`` is the parameter it is under."""
 
     name: str
     line: int | None
     key: str
 
+    __slots__ = ("name", "line", "key")
 
-@dataclass
-class Controller:
+    def __init__(self, name: str, line: int | None, key: str) -> None:
+        self.name = name
+        self.line = line
+        self.key = key
+
+
+class Controller(Record):
     """One controller of a YAML file.
 
     layout: "ros1", "ros2" or "moveit"
@@ -65,10 +70,26 @@ class Controller:
     type: str
     line: int
     layout: str
-    params: YamlMap | None = None
-    block_line: int | None = None
-    namespace: str = ""
-    own: YamlMap | None = None
+    params: YamlMap | None
+    block_line: int | None
+    namespace: str
+    own: YamlMap | None
+
+    __slots__ = ("file", "name", "type", "line", "layout", "params", "block_line", "namespace",
+                 "own")
+
+    def __init__(self, file: YamlFile, name: str, type: str, line: int, layout: str,
+                 params: YamlMap | None = None, block_line: int | None = None, namespace: str = "",
+                 own: YamlMap | None = None) -> None:
+        self.file = file
+        self.name = name
+        self.type = type
+        self.line = line
+        self.layout = layout
+        self.params = params
+        self.block_line = block_line
+        self.namespace = namespace
+        self.own = own
 
     @property
     def package(self) -> str:
@@ -133,8 +154,7 @@ class Controller:
         return self.block_line or self.line
 
 
-@dataclass
-class ParameterBlock:
+class ParameterBlock(Record):
     """A ROS 2 node's ``NAME: ros__parameters:`` block."""
 
     name: str
@@ -142,14 +162,29 @@ class ParameterBlock:
     params: YamlMap
     line: int
 
+    __slots__ = ("name", "namespace", "params", "line")
 
-@dataclass
-class ControllerFile:
+    def __init__(self, name: str, namespace: str, params: YamlMap, line: int) -> None:
+        self.name = name
+        self.namespace = namespace
+        self.params = params
+        self.line = line
+
+
+class ControllerFile(Record):
     """What one YAML file declares."""
 
     file: YamlFile
-    controllers: list[Controller] = field(default_factory=list)
-    blocks: list[ParameterBlock] = field(default_factory=list)  # ROS 2 node blocks
+    controllers: list[Controller]
+    blocks: list[ParameterBlock]  # ROS 2 node blocks
+
+    __slots__ = ("file", "controllers", "blocks")
+
+    def __init__(self, file: YamlFile, controllers: list[Controller] = NEW,
+                 blocks: list[ParameterBlock] = NEW) -> None:
+        self.file = file
+        self.controllers = [] if controllers is NEW else controllers
+        self.blocks = [] if blocks is NEW else blocks
 
 
 def runs_of(robot, controller: Controller):

@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import functools
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.diagnostics import Location, display_path
 from urdftool.description.files import TooLarge, read_regular
 from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines, tinyxml2_comments
+from urdftool.records import Record
 
 MAX_SIZE = 16 * 1024 * 1024
 
@@ -170,24 +170,39 @@ def is_ros2_parameters(text: str) -> bool:
 
 
 
-@dataclass
-class CompanionFile:
+class CompanionFile(Record):
     """A parsed companion: ``data`` (YAML: YamlMap/YamlList/scalar; SRDF: the ``<robot>``
     element), or None with ``problem`` at ``line``."""
 
     path: Path
     display: str
-    data: object = None
-    problem: str | None = None
-    line: int | None = None
-    ros2: bool = False  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
-    text: str | None = None  # an SRDF's text as read, for the fixes that edit it
+    data: object
+    problem: str | None
+    line: int | None
+    ros2: bool  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
+    text: str | None  # an SRDF's text as read, for the fixes that edit it
     # an SRDF that srdfdom reads but parsers following the XML standard refuse: why, at ``line``
-    caution: str | None = None
+    caution: str | None
     # YAML: how its launch files load it: True with substitution (subst_value, allow_substs:
     # its $(arg)/$(var) are replaced, by ``substitutions`` where known), False as written (a
     # $(arg) stays as it is), None when no launch file tells
-    substituted: bool | None = None
+    substituted: bool | None
+
+    __slots__ = ("path", "display", "data", "problem", "line", "ros2", "text", "caution",
+                 "substituted")
+
+    def __init__(self, path: Path, display: str, data: object = None, problem: str | None = None,
+                 line: int | None = None, ros2: bool = False, text: str | None = None,
+                 caution: str | None = None, substituted: bool | None = None) -> None:
+        self.path = path
+        self.display = display
+        self.data = data
+        self.problem = problem
+        self.line = line
+        self.ros2 = ros2
+        self.text = text
+        self.caution = caution
+        self.substituted = substituted
 
     @property
     def root(self):

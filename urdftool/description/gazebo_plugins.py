@@ -11,9 +11,9 @@ name (ROS 1's ``leftJoint`` is ROS 2's ``left_joint``). It judges nothing.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from urdftool.description import data
+from urdftool.records import Frozen
 
 CLASSIC, GZ = "classic", "gz"
 _GZ_SYSTEM = re.compile(r"^(?:lib)?(?:gz-sim|ignition-gazebo|gz-sim-|ignition-gazebo-)\d*-(.+?)-system(?:\.so)?$")
@@ -49,8 +49,7 @@ def same_without(key: str, name: str, text: str | None) -> bool:
         return False
 
 
-@dataclass(frozen=True)
-class Plugin:
+class Plugin(Frozen):
     """The plugin a ``<plugin>`` element loads.
 
     key: its library (``gazebo_ros_diff_drive``) or gz-sim system (``gz-sim:diff-drive``)
@@ -65,8 +64,19 @@ class Plugin:
     key: str
     family: str
     versions: dict
-    hardware: tuple = ()
-    source: str = ""
+    hardware: tuple
+    source: str
+
+    __slots__ = ("key", "family", "versions", "hardware", "source")
+
+    def __init__(self, key: str, family: str, versions: dict, hardware: tuple = (),
+                 source: str = "") -> None:
+        set_field = object.__setattr__
+        set_field(self, "key", key)
+        set_field(self, "family", family)
+        set_field(self, "versions", versions)
+        set_field(self, "hardware", hardware)
+        set_field(self, "source", source)
 
     @property
     def names(self) -> set:

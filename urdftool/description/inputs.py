@@ -4,8 +4,9 @@ result cache handle them without importing it (a re-run served from the cache ne
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
+
+from urdftool.records import Frozen
 
 MAX_TRIANGLES = 2_000_000
 MAX_MESH_BYTES = 128 * 1024 * 1024
@@ -19,22 +20,38 @@ class SettingValue(str):
     __slots__ = ()
 
 
-@dataclass(frozen=True)
-class MeshLimits:
+class MeshLimits(Frozen):
     """How many triangles and bytes a mesh may have to be read."""
 
-    max_triangles: int = MAX_TRIANGLES
-    max_bytes: int = MAX_MESH_BYTES
+    max_triangles: int
+    max_bytes: int
+
+    __slots__ = ("max_triangles", "max_bytes")
+
+    def __init__(self, max_triangles: int = MAX_TRIANGLES,
+                 max_bytes: int = MAX_MESH_BYTES) -> None:
+        set_field = object.__setattr__
+        set_field(self, "max_triangles", max_triangles)
+        set_field(self, "max_bytes", max_bytes)
 
 
-@dataclass(frozen=True)
-class CompanionPaths:
+class CompanionPaths(Frozen):
     """Companion files named by the user (``check --controllers/--srdf/--spec`` or the settings
     file); what is not named is discovered beside the robot (:mod:`.companions`)."""
 
-    controllers: tuple[Path, ...] = ()
-    srdf: Path | None = None
-    spec: Path | None = None
+    controllers: tuple[Path, ...]
+    srdf: Path | None
+    spec: Path | None
+
+    __slots__ = ("controllers", "srdf", "spec")
+
+    def __init__(self, controllers: tuple[Path, ...] = (), srdf: Path | None = None,
+                 spec: Path | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "controllers", controllers)
+        set_field(self, "srdf", srdf)
+        set_field(self, "spec", spec)
+        self.__post_init__()
 
     def __post_init__(self):
         object.__setattr__(self, "controllers", tuple(Path(p) for p in self.controllers or ()))

@@ -35,11 +35,11 @@ import fnmatch
 import os
 import posixpath
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.description.files import kind_of, read_regular
 from urdftool.description.run_memo import per_run
+from urdftool.records import Frozen
 
 MAX_BUILD_FILE = 512 * 1024  # [bytes] of a CMakeLists.txt, setup.py or setup.cfg read
 MAX_COMMANDS = 20_000  # CMake commands evaluated per package
@@ -48,8 +48,7 @@ MAX_RULES = 2_000
 _MAGIC = re.compile(r"[*?[]")
 
 
-@dataclass(frozen=True)
-class InstallRule:
+class InstallRule(Frozen):
     """One thing the build puts into ``share/NAME``.
 
     destination: the folder below ``share/NAME`` ('' for the share folder itself), POSIX;
@@ -62,19 +61,38 @@ class InstallRule:
     source: str
     kind: str
     origin: str
-    as_name: str = ""
+    as_name: str
+
+    __slots__ = ("destination", "source", "kind", "origin", "as_name")
+
+    def __init__(self, destination: str, source: str, kind: str, origin: str,
+                 as_name: str = "") -> None:
+        set_field = object.__setattr__
+        set_field(self, "destination", destination)
+        set_field(self, "source", source)
+        set_field(self, "kind", kind)
+        set_field(self, "origin", origin)
+        set_field(self, "as_name", as_name)
 
 
-@dataclass(frozen=True)
-class Layout:
+class Layout(Frozen):
     """What a package's build installs into ``share/NAME``. ``build``: the build files read
     ('' when the package has none: its source folder is its only layout); ``unread``: why part
     of it could not be read (then a file missing from the source tree may exist after the
     build)."""
 
-    rules: tuple[InstallRule, ...] = ()
-    unread: tuple[tuple[str | None, str], ...] = ()  # (the destination it concerns or None, why)
-    build: str = ""
+    rules: tuple[InstallRule, ...]
+    unread: tuple[tuple[str | None, str], ...]  # (the destination it concerns or None, why)
+    build: str
+
+    __slots__ = ("rules", "unread", "build")
+
+    def __init__(self, rules: tuple[InstallRule, ...] = (),
+                 unread: tuple[tuple[str | None, str], ...] = (), build: str = "") -> None:
+        set_field = object.__setattr__
+        set_field(self, "rules", rules)
+        set_field(self, "unread", unread)
+        set_field(self, "build", build)
 
     def sources(self, tail: str) -> list[tuple[str, InstallRule]]:
         """The source paths (relative to the package folder) that ``share/NAME/tail`` may come
@@ -201,12 +219,18 @@ _VARIABLE = re.compile(r"\$\{([A-Za-z0-9_./+-]+)\}")
 _UNKNOWN = object()
 
 
-@dataclass(frozen=True)
-class _Arg:
+class _Arg(Frozen):
     """An argument of a CMake command, and whether it was quoted."""
 
     text: str
     quoted: bool
+
+    __slots__ = ("text", "quoted")
+
+    def __init__(self, text: str, quoted: bool) -> None:
+        set_field = object.__setattr__
+        set_field(self, "text", text)
+        set_field(self, "quoted", quoted)
 
 
 def cmake_commands(text: str) -> list[tuple[str, list[_Arg], int]]:
@@ -565,11 +589,16 @@ class _NotLiteral(Exception):
     """A value of setup.py that is not read without running it."""
 
 
-@dataclass(frozen=True)
-class _Glob:
+class _Glob(Frozen):
     """A ``glob(...)`` of setup.py: its pattern."""
 
     pattern: str
+
+    __slots__ = ("pattern",)
+
+    def __init__(self, pattern: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "pattern", pattern)
 
 
 def _setup_py(reader: _Reader) -> None:

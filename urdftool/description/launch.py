@@ -27,10 +27,10 @@ value computed in Python) is kept as unknown, never guessed.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.documents import read_text, read_yaml, YamlMap
+from urdftool.records import Frozen, NEW, Record
 
 MAX_LAUNCH_SIZE = 512 * 1024  # [bytes]
 MAX_ACTIONS = 5000  # per file
@@ -41,8 +41,7 @@ LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".lau
 
 # --- values: text with substitutions ----------------------------------------------------------
 
-@dataclass(frozen=True)
-class Value:
+class Value(Frozen):
     """Text as a launch file writes it: literal parts and substitutions.
 
     parts: each a ``str``, or a tuple: ``("arg", name, default Value or None)``, ``("find",
@@ -55,6 +54,13 @@ class Value:
 
     parts: tuple
     text: str
+
+    __slots__ = ("parts", "text")
+
+    def __init__(self, parts: tuple, text: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "parts", parts)
+        set_field(self, "text", text)
 
     @property
     def literal(self) -> str | None:
@@ -208,8 +214,7 @@ def _words(text: str) -> list[str]:
 
 # --- conditions ---------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Condition:
+class Condition(Frozen):
     """When an action runs: ``kind`` "if"/"unless" (``value`` true or false), "equals" /
     "differs" (``value`` against ``other``), or "unknown" (a Python test, an expression;
     ``value`` holds the arguments it reads, ``text`` what was written)."""
@@ -217,13 +222,21 @@ class Condition:
     kind: str
     value: Value
     text: str
-    other: Value | None = None
+    other: Value | None
+
+    __slots__ = ("kind", "value", "text", "other")
+
+    def __init__(self, kind: str, value: Value, text: str, other: Value | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "kind", kind)
+        set_field(self, "value", value)
+        set_field(self, "text", text)
+        set_field(self, "other", other)
 
 
 # --- actions ------------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Arg:
+class Arg(Frozen):
     """A launch argument: ``fixed`` when the file sets it (ROS 1 ``value=``, ``<let>``,
     SetLaunchConfiguration), else it may be given at launch and ``default`` is used otherwise
     (None: required)."""
@@ -231,49 +244,89 @@ class Arg:
     name: str
     default: Value | None
     fixed: bool
-    when: tuple = ()
-    line: int | None = None
+    when: tuple
+    line: int | None
+
+    __slots__ = ("name", "default", "fixed", "when", "line")
+
+    def __init__(self, name: str, default: Value | None, fixed: bool, when: tuple = (),
+                 line: int | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "default", default)
+        set_field(self, "fixed", fixed)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
 
 
-@dataclass(frozen=True)
-class Include:
+class Include(Frozen):
     """Another launch file included, with the arguments given to it (``every``: ROS 1's
     ``pass_all_args``)."""
 
     path: Value
     args: tuple  # ((name, Value), ...)
-    when: tuple = ()
-    line: int | None = None
-    every: bool = False
+    when: tuple
+    line: int | None
+    every: bool
+
+    __slots__ = ("path", "args", "when", "line", "every")
+
+    def __init__(self, path: Value, args: tuple, when: tuple = (), line: int | None = None,
+                 every: bool = False) -> None:
+        set_field = object.__setattr__
+        set_field(self, "path", path)
+        set_field(self, "args", args)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
+        set_field(self, "every", every)
 
 
-@dataclass(frozen=True)
-class ParamFile:
+class ParamFile(Frozen):
     """A parameter file loaded (``<rosparam command="load">``, a node's parameter file, a
     spawner's ``--param-file``); ``substitute``: its ``$(arg)``/``$(var)`` are replaced
     (``subst_value``, ``allow_substs``)."""
 
     path: Value
-    substitute: bool = False
-    when: tuple = ()
-    line: int | None = None
+    substitute: bool
+    when: tuple
+    line: int | None
+
+    __slots__ = ("path", "substitute", "when", "line")
+
+    def __init__(self, path: Value, substitute: bool = False, when: tuple = (),
+                 line: int | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "path", path)
+        set_field(self, "substitute", substitute)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
 
 
-@dataclass(frozen=True)
-class Start:
+class Start(Frozen):
     """A node or process started: ``package``/``executable`` (a process: empty package,
     ``executable`` its command line), its argument words, the parameter files given to it."""
 
     package: Value
     executable: Value
     arguments: tuple  # Values, each one or more words once resolved
-    files: tuple = ()  # ParamFile
-    when: tuple = ()
-    line: int | None = None
+    files: tuple  # ParamFile
+    when: tuple
+    line: int | None
+
+    __slots__ = ("package", "executable", "arguments", "files", "when", "line")
+
+    def __init__(self, package: Value, executable: Value, arguments: tuple, files: tuple = (),
+                 when: tuple = (), line: int | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "package", package)
+        set_field(self, "executable", executable)
+        set_field(self, "arguments", arguments)
+        set_field(self, "files", files)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
 
 
-@dataclass(frozen=True)
-class Description:
+class Description(Frozen):
     """A robot (or semantic) description made from a file: ``command`` a command line (xacro's,
     or ``cat``; the file and its ``name:=value`` arguments are read from it once resolved), or
     ``file`` with ``args`` given apart: run through xacro when ``xacro`` (xacro.process_file's
@@ -282,19 +335,35 @@ class Description:
     ``replaced``: for a file read as it is, the texts the launch file replaces in it before
     loading it (None for one not known without running it): a template it fills."""
 
-    command: Value | None = None
-    file: Value | None = None
-    args: tuple = ()  # ((name, Value), ...)
-    when: tuple = ()
-    line: int | None = None
-    parameter: str = ""  # the parameter it is loaded into, as written ("" when not said)
-    xacro: bool = False  # for ``file``: run through xacro
-    complete: bool = True
-    replaced: tuple = ()
+    command: Value | None
+    file: Value | None
+    args: tuple  # ((name, Value), ...)
+    when: tuple
+    line: int | None
+    parameter: str  # the parameter it is loaded into, as written ("" when not said)
+    xacro: bool  # for ``file``: run through xacro
+    complete: bool
+    replaced: tuple
+
+    __slots__ = ("command", "file", "args", "when", "line", "parameter", "xacro", "complete",
+                 "replaced")
+
+    def __init__(self, command: Value | None = None, file: Value | None = None, args: tuple = (),
+                 when: tuple = (), line: int | None = None, parameter: str = "",
+                 xacro: bool = False, complete: bool = True, replaced: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "command", command)
+        set_field(self, "file", file)
+        set_field(self, "args", args)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
+        set_field(self, "parameter", parameter)
+        set_field(self, "xacro", xacro)
+        set_field(self, "complete", complete)
+        set_field(self, "replaced", replaced)
 
 
-@dataclass
-class LaunchFile:
+class LaunchFile(Record):
     """One launch file, read. ``form``: "ros1", "ros2-xml", "ros2-yaml" or "ros2-python";
     ``actions``: Arg, Include, ParamFile, Start and Description, in the order written;
     ``problem``: why it could not be read (then it has no actions)."""
@@ -302,10 +371,23 @@ class LaunchFile:
     path: Path
     display: str
     form: str
-    actions: list = field(default_factory=list)
-    problem: str | None = None
-    problem_line: int | None = None  # the line the problem is at, when the parser said
-    test: bool = False  # a launch test (:func:`is_launch_test`), read from its entry point
+    actions: list
+    problem: str | None
+    problem_line: int | None  # the line the problem is at, when the parser said
+    test: bool  # a launch test (:func:`is_launch_test`), read from its entry point
+
+    __slots__ = ("path", "display", "form", "actions", "problem", "problem_line", "test")
+
+    def __init__(self, path: Path, display: str, form: str, actions: list = NEW,
+                 problem: str | None = None, problem_line: int | None = None,
+                 test: bool = False) -> None:
+        self.path = path
+        self.display = display
+        self.form = form
+        self.actions = [] if actions is NEW else actions
+        self.problem = problem
+        self.problem_line = problem_line
+        self.test = test
 
     @property
     def ros(self) -> int:

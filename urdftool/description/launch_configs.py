@@ -33,7 +33,6 @@ import ast
 import os
 import re
 import sys
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.documents import read_text
@@ -48,6 +47,7 @@ from urdftool.description.packages import SKIP_DIRS, containment_root, installed
     packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
+from urdftool.records import Frozen, NEW, Record
 
 MAX_LAUNCH_FILES = 1500  # per repository
 MAX_WALK_DEPTH = 10
@@ -60,21 +60,28 @@ DESCRIPTION_SUFFIXES = (".urdf", ".xacro", ".urdf.xml")
 
 # --- resolved values ----------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Resolved:
+class Resolved(Frozen):
     """A value in a configuration: ``text`` (None when not known) and the launch arguments it
     depends on that may be given at launch (their defaults were used)."""
 
     text: str | None
-    free: frozenset = frozenset()
-    pattern: str | None = None  # the text with WILD where a value given at launch goes; None: text
+    free: frozenset
+    pattern: str | None  # the text with WILD where a value given at launch goes; None: text
+
+    __slots__ = ("text", "free", "pattern")
+
+    def __init__(self, text: str | None, free: frozenset = frozenset(),
+                 pattern: str | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "text", text)
+        set_field(self, "free", free)
+        set_field(self, "pattern", pattern)
 
 
 WILD = "\1"  # in a pattern: any value a launch argument may be given
 
 
-@dataclass
-class Scope:
+class Scope(Record):
     """What resolving a launch file's values needs: its arguments so far, the repository's
     packages, the file itself."""
 
@@ -85,8 +92,20 @@ class Scope:
     ros1: bool
     # reached through an include from a package launch arguments name: that condition in words
     # (:attr:`Described.by_default`), and those arguments
-    by_default: str = ""
-    default_free: frozenset = frozenset()
+    by_default: str
+    default_free: frozenset
+
+    __slots__ = ("args", "packages", "launch", "root", "ros1", "by_default", "default_free")
+
+    def __init__(self, args: dict, packages: dict, launch: LaunchFile, root: Path, ros1: bool,
+                 by_default: str = "", default_free: frozenset = frozenset()) -> None:
+        self.args = args
+        self.packages = packages
+        self.launch = launch
+        self.root = root
+        self.ros1 = ros1
+        self.by_default = by_default
+        self.default_free = default_free
 
 
 def resolve(value: Value | None, scope: Scope, depth: int = 0) -> Resolved:
@@ -289,18 +308,27 @@ def words(value: Value | None) -> list[Value]:
 
 # --- conditions ---------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class When:
+class When(Frozen):
     """Whether an action runs in a configuration: ``truth`` True/False/None (not known), the
     arguments it depends on, and the condition in words (empty when certain)."""
 
-    truth: bool | None = True
-    free: frozenset = frozenset()
-    words: tuple = ()
+    truth: bool | None
+    free: frozenset
+    words: tuple
     # what the condition requires of launch arguments given at launch, as far as read:
     # (argument, value, True: it equals the value / False: it differs); value TRUTHY for an
     # if/unless on the argument itself (roslaunch's true/1)
-    requires: frozenset = frozenset()
+    requires: frozenset
+
+    __slots__ = ("truth", "free", "words", "requires")
+
+    def __init__(self, truth: bool | None = True, free: frozenset = frozenset(), words: tuple = (),
+                 requires: frozenset = frozenset()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "truth", truth)
+        set_field(self, "free", free)
+        set_field(self, "words", words)
+        set_field(self, "requires", requires)
 
     @property
     def certain(self) -> bool:
@@ -396,8 +424,7 @@ def _when_of(conditions, scope: Scope) -> When:
 
 # --- configurations -----------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Loaded:
+class Loaded(Frozen):
     """A parameter file a configuration loads."""
 
     path: Path | None
@@ -407,11 +434,24 @@ class Loaded:
     when: When
     launch: str
     line: int | None
-    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
+    chain: tuple  # the launch files from the one run to ``launch`` (its includers)
+
+    __slots__ = ("path", "written", "substitute", "args", "when", "launch", "line", "chain")
+
+    def __init__(self, path: Path | None, written: str, substitute: bool, args: dict, when: When,
+                 launch: str, line: int | None, chain: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "path", path)
+        set_field(self, "written", written)
+        set_field(self, "substitute", substitute)
+        set_field(self, "args", args)
+        set_field(self, "when", when)
+        set_field(self, "launch", launch)
+        set_field(self, "line", line)
+        set_field(self, "chain", chain)
 
 
-@dataclass(frozen=True)
-class Started:
+class Started(Frozen):
     """A node or process a configuration starts."""
 
     package: str | None
@@ -421,11 +461,24 @@ class Started:
     when: When
     launch: str
     line: int | None
-    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
+    chain: tuple  # the launch files from the one run to ``launch`` (its includers)
+
+    __slots__ = ("package", "executable", "arguments", "files", "when", "launch", "line", "chain")
+
+    def __init__(self, package: str | None, executable: str | None, arguments: tuple, files: tuple,
+                 when: When, launch: str, line: int | None, chain: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "package", package)
+        set_field(self, "executable", executable)
+        set_field(self, "arguments", arguments)
+        set_field(self, "files", files)
+        set_field(self, "when", when)
+        set_field(self, "launch", launch)
+        set_field(self, "line", line)
+        set_field(self, "chain", chain)
 
 
-@dataclass(frozen=True)
-class Described:
+class Described(Frozen):
     """A robot description a configuration makes: the file, and the xacro arguments given."""
 
     path: Path | None
@@ -434,28 +487,62 @@ class Described:
     when: When
     launch: str
     line: int | None
-    xacro: bool = True  # run through xacro (else read as it is: textfile=, cat, open)
-    complete: bool = True  # every argument given is in args
-    template: str | None = None  # the path, WILD where a launch argument chooses it
-    chosen_by: frozenset = frozenset()  # the launch arguments the path depends on
-    chain: tuple = ()  # the launch files from the one run to ``launch`` (its includers)
+    xacro: bool  # run through xacro (else read as it is: textfile=, cat, open)
+    complete: bool  # every argument given is in args
+    template: str | None  # the path, WILD where a launch argument chooses it
+    chosen_by: frozenset  # the launch arguments the path depends on
+    chain: tuple  # the launch files from the one run to ``launch`` (its includers)
     # when launch arguments given at launch name the package holding the file, the build holds
     # for their defaults only: that condition in words (also in ``when``), else ""
-    by_default: str = ""
-    replaced: tuple = ()  # read as it is, with these texts replaced first (Description's)
+    by_default: str
+    replaced: tuple  # read as it is, with these texts replaced first (Description's)
+
+    __slots__ = ("path", "written", "args", "when", "launch", "line", "xacro", "complete",
+                 "template", "chosen_by", "chain", "by_default", "replaced")
+
+    def __init__(self, path: Path | None, written: str, args: dict, when: When, launch: str,
+                 line: int | None, xacro: bool = True, complete: bool = True,
+                 template: str | None = None, chosen_by: frozenset = frozenset(),
+                 chain: tuple = (), by_default: str = "", replaced: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "path", path)
+        set_field(self, "written", written)
+        set_field(self, "args", args)
+        set_field(self, "when", when)
+        set_field(self, "launch", launch)
+        set_field(self, "line", line)
+        set_field(self, "xacro", xacro)
+        set_field(self, "complete", complete)
+        set_field(self, "template", template)
+        set_field(self, "chosen_by", chosen_by)
+        set_field(self, "chain", chain)
+        set_field(self, "by_default", by_default)
+        set_field(self, "replaced", replaced)
 
 
-@dataclass
-class Configuration:
+class Configuration(Record):
     """One launch file run as it is, its includes followed."""
 
     top: LaunchFile
-    loaded: list = field(default_factory=list)
-    started: list = field(default_factory=list)
-    described: list = field(default_factory=list)
-    files: list = field(default_factory=list)  # display names of the launch files it read
-    included: set = field(default_factory=set)  # the real paths of the files it includes
-    incomplete: bool = False  # an include could not be followed, or a bound was reached
+    loaded: list
+    started: list
+    described: list
+    files: list  # display names of the launch files it read
+    included: set  # the real paths of the files it includes
+    incomplete: bool  # an include could not be followed, or a bound was reached
+
+    __slots__ = ("top", "loaded", "started", "described", "files", "included", "incomplete")
+
+    def __init__(self, top: LaunchFile, loaded: list = NEW, started: list = NEW,
+                 described: list = NEW, files: list = NEW, included: set = NEW,
+                 incomplete: bool = False) -> None:
+        self.top = top
+        self.loaded = [] if loaded is NEW else loaded
+        self.started = [] if started is NEW else started
+        self.described = [] if described is NEW else described
+        self.files = [] if files is NEW else files
+        self.included = set() if included is NEW else included
+        self.incomplete = incomplete
 
     @property
     def display(self) -> str:
@@ -467,15 +554,23 @@ class Configuration:
         return self.top.named
 
 
-@dataclass
-class LaunchIndex:
+class LaunchIndex(Record):
     """Every launch file of a repository, read; and each run as a configuration (a launch
     test among them is in ``files``, not in ``configurations``: :func:`launch_tests`)."""
 
     root: Path
     files: dict  # real path -> LaunchFile
     configurations: list
-    truncated: bool = False
+    truncated: bool
+
+    __slots__ = ("root", "files", "configurations", "truncated")
+
+    def __init__(self, root: Path, files: dict, configurations: list,
+                 truncated: bool = False) -> None:
+        self.root = root
+        self.files = files
+        self.configurations = configurations
+        self.truncated = truncated
 
 
 _LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take

@@ -29,11 +29,11 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
                                          LaunchFile, ParamFile, Start, Value, concat, literal, unknown)
+from urdftool.records import NEW
 
 MAX_STEPS = 200_000  # expressions and statements evaluated per file
 MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
@@ -888,14 +888,23 @@ class _Class:
         self.name, self.attributes = name, attributes
 
 
-@dataclass(frozen=True)
 class _Instance(Value):
     """An instance of such a class made in the launch file (an unknown value as text): the
     attributes its ``__init__`` and the launch file set (crane_plus's
-    ``RobotDescriptionLoader().load()``)."""
+    ``RobotDescriptionLoader().load()``); compared and hashed as its Value."""
 
-    of: _Class | None = field(default=None, compare=False, hash=False)
-    attributes: dict = field(default_factory=dict, compare=False, hash=False)
+    of: _Class | None
+    attributes: dict
+
+    __slots__ = ("of", "attributes")
+    _compared = ("parts", "text")
+
+    def __init__(self, parts: tuple, text: str, of: _Class | None = None,
+                 attributes: dict = NEW) -> None:
+        super().__init__(parts, text)
+        set_field = object.__setattr__
+        set_field(self, "of", of)
+        set_field(self, "attributes", {} if attributes is NEW else attributes)
 
 
 _DEFINING = (_Module, _Class, _Instance)

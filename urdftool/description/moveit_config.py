@@ -19,10 +19,10 @@ wrong against the URDF or the SRDF is the rules' business.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
 from urdftool.description.documents import YamlFile, YamlList, YamlMap
 from urdftool.errors import available
+from urdftool.records import NEW, Record
 
 # Solvers that need the group to be one serial chain (moveit_kinematics: they build a KDL chain
 # and refuse a group for which JointModelGroup::isChain() is false; the cached one wraps KDL's).
@@ -87,14 +87,21 @@ def section(data, key: str, depth: int = 3):
 
 # --- kinematics.yaml -------------------------------------------------------------------------
 
-@dataclass
-class SolverEntry:
+class SolverEntry(Record):
     """A planning group of kinematics.yaml and its solver, with their lines."""
 
     group: str
     line: int
     solver: str | None
     solver_line: int
+
+    __slots__ = ("group", "line", "solver", "solver_line")
+
+    def __init__(self, group: str, line: int, solver: str | None, solver_line: int) -> None:
+        self.group = group
+        self.line = line
+        self.solver = solver
+        self.solver_line = solver_line
 
 
 def kinematics(file: YamlFile) -> tuple[list[SolverEntry], list[tuple[int, str]]]:
@@ -132,14 +139,21 @@ def kinematics(file: YamlFile) -> tuple[list[SolverEntry], list[tuple[int, str]]
 
 # --- joint_limits.yaml -----------------------------------------------------------------------
 
-@dataclass
-class LimitEntry:
+class LimitEntry(Record):
     """One joint's MoveIt limits: ``values`` {key: number} that apply (their flag is true)."""
 
     joint: str
     line: int
-    values: dict = field(default_factory=dict)
-    lines: dict = field(default_factory=dict)
+    values: dict
+    lines: dict
+
+    __slots__ = ("joint", "line", "values", "lines")
+
+    def __init__(self, joint: str, line: int, values: dict = NEW, lines: dict = NEW) -> None:
+        self.joint = joint
+        self.line = line
+        self.values = {} if values is NEW else values
+        self.lines = {} if lines is NEW else lines
 
 
 def planning_limits(file: YamlFile) -> tuple[list[LimitEntry], list[tuple[int, str]]]:
@@ -204,18 +218,31 @@ def _limit_problems(entry: LimitEntry, limits: YamlMap) -> list[tuple[int, str]]
 
 # --- MoveIt's controller list and the ros_control controllers --------------------------------
 
-@dataclass
-class ControllerEntry:
+class ControllerEntry(Record):
     """A controller MoveIt sends to: its name, type and joints as written, where."""
 
     file: YamlFile
     name: str
     line: int
     type: str
-    joints: list = field(default_factory=list)  # (name, line)
-    joints_line: int = 0
-    action_ns: str | None = None  # None when not written
-    action_line: int = 0
+    joints: list  # (name, line)
+    joints_line: int
+    action_ns: str | None  # None when not written
+    action_line: int
+
+    __slots__ = ("file", "name", "line", "type", "joints", "joints_line", "action_ns",
+                 "action_line")
+
+    def __init__(self, file: YamlFile, name: str, line: int, type: str, joints: list = NEW,
+                 joints_line: int = 0, action_ns: str | None = None, action_line: int = 0) -> None:
+        self.file = file
+        self.name = name
+        self.line = line
+        self.type = type
+        self.joints = [] if joints is NEW else joints
+        self.joints_line = joints_line
+        self.action_ns = action_ns
+        self.action_line = action_line
 
 
 def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tuple[int, str]]]:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from urdftool.errors import PackageNotFound, close_names
@@ -26,6 +25,7 @@ from urdftool.description.files import enclosing_root, environ, inside, kind_of,
     read_regular, real_path, repository_root, resolved, walk
 from urdftool.description.install_layout import layout
 from urdftool.description.run_memo import per_run
+from urdftool.records import Frozen
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SKIP_DIRS = {  # tool and build folders no walk enters
@@ -82,8 +82,7 @@ def link_out(path) -> tuple[str, Path] | None:
     return None if inside(path, root) else (real_path(path), root)
 
 
-@dataclass(frozen=True)
-class Located:
+class Located(Frozen):
     """Where a path below a package is in the source tree.
 
     path: the file (or folder) found, or, when none is, the path as named; within: the folder
@@ -93,8 +92,16 @@ class Located:
     after a build (a missing file is then not certain)."""
 
     path: Path
-    within: Path | None = None
-    doubt: str | None = None
+    within: Path | None
+    doubt: str | None
+
+    __slots__ = ("path", "within", "doubt")
+
+    def __init__(self, path: Path, within: Path | None = None, doubt: str | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "path", path)
+        set_field(self, "within", within)
+        set_field(self, "doubt", doubt)
 
 
 def installed(name: str, folder: Path, path) -> Located:

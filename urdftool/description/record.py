@@ -36,13 +36,13 @@ import fnmatch
 import os
 from _thread import _local  # (threading.local: threading itself not imported for it)
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+
+from urdftool.records import Frozen, NEW, Record
 
 READ, SEARCH, PROBE, REAL, ENV, RESOLVED = "read", "search", "probe", "real", "env", "resolved"
 
 
-@dataclass(frozen=True)
-class Read:
+class Read(Frozen):
     """A file read. real: where the path led, links followed; stamp: device, inode, size,
     modification and change times as git's index keeps them (None when the file had changed
     too recently to trust them, '' when nothing was there); size [bytes] (None when nothing
@@ -53,17 +53,38 @@ class Read:
     stamp: str | None
     size: int | None
     digest: str | None
-    failure: str | None = None
+    failure: str | None
+
+    __slots__ = ("real", "stamp", "size", "digest", "failure")
+
+    def __init__(self, real: str, stamp: str | None, size: int | None, digest: str | None,
+                 failure: str | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "real", real)
+        set_field(self, "stamp", stamp)
+        set_field(self, "size", size)
+        set_field(self, "digest", digest)
+        set_field(self, "failure", failure)
 
 
-@dataclass
-class Record:
+class Record(Record):
     """What one check (or one block of work) asked of the file system, and the answers."""
 
-    entries: dict = field(default_factory=dict)  # (kind, key) -> answer
-    labels: dict = field(default_factory=dict)  # path read -> what it was read as
-    parent: "Record | None" = field(default=None, repr=False, compare=False)
-    _index: tuple | None = field(default=None, repr=False, compare=False)
+    entries: dict  # (kind, key) -> answer
+    labels: dict  # path read -> what it was read as
+    parent: "Record | None"
+    _index: tuple | None
+
+    __slots__ = ("entries", "labels", "parent", "_index")
+    _compared = ("entries", "labels")
+    _shown = ("entries", "labels")
+
+    def __init__(self, entries: dict = NEW, labels: dict = NEW, parent: "Record | None" = None,
+                 _index: tuple | None = None) -> None:
+        self.entries = {} if entries is NEW else entries
+        self.labels = {} if labels is NEW else labels
+        self.parent = parent
+        self._index = _index
 
     def note(self, kind: str, key, answer, label: str | None = None) -> None:
         """Keep ``answer`` to (``kind``, ``key``) unless an earlier one is kept, and pass it

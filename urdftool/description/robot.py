@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 
@@ -11,6 +10,7 @@ from urdftool.diagnostics import Location, Severity
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.description.packages import PackageResolver
 from urdftool.description.xml import child_list
+from urdftool.records import Frozen, NEW, Record
 
 TYPE_CHECKING = False  # (typing.TYPE_CHECKING: typing is not imported by a check)
 if TYPE_CHECKING:  # the annotations' names, never evaluated
@@ -20,8 +20,7 @@ if TYPE_CHECKING:  # the annotations' names, never evaluated
     T = TypeVar("T")
 
 
-@dataclass(frozen=True)
-class LoadNote:
+class LoadNote(Frozen):
     """Something the loader noticed that did not stop it.
 
     kind: 'xacro-in-urdf' (a file not named .xacro that needs xacro; ``cause`` is the
@@ -37,12 +36,22 @@ class LoadNote:
     kind: str
     location: Location
     message: str
-    cause: Exception | None = None
-    severity: Severity | None = None
+    cause: Exception | None
+    severity: Severity | None
+
+    __slots__ = ("kind", "location", "message", "cause", "severity")
+
+    def __init__(self, kind: str, location: Location, message: str, cause: Exception | None = None,
+                 severity: Severity | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "kind", kind)
+        set_field(self, "location", location)
+        set_field(self, "message", message)
+        set_field(self, "cause", cause)
+        set_field(self, "severity", severity)
 
 
-@dataclass
-class Robot:
+class Robot(Record):
     """A robot description ready for rules and analysis.
 
     path: the file the user named (``-`` for stdin)
@@ -68,17 +77,49 @@ class Robot:
     root: object  # the lxml <robot> element
     locations: Mapping  # element -> Location (a dict, or made when asked)
     resolver: PackageResolver
-    files: list[str] = field(default_factory=list)
-    from_xacro: bool = False
-    notes: list[LoadNote] = field(default_factory=list)
-    sources: dict[str, bytes] = field(default_factory=dict)
-    companion_paths: CompanionPaths = field(default_factory=CompanionPaths)
-    mesh_limits: MeshLimits = field(default_factory=MeshLimits)
-    xacro_args: Mapping = field(default_factory=dict)
-    targets: dict = field(default_factory=dict)
-    rebuild: Callable | None = field(default=None, repr=False, compare=False)
-    _memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    _groups: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    files: list[str]
+    from_xacro: bool
+    notes: list[LoadNote]
+    sources: dict[str, bytes]
+    companion_paths: CompanionPaths
+    mesh_limits: MeshLimits
+    xacro_args: Mapping
+    targets: dict
+    rebuild: Callable | None
+    _memo: dict
+    _groups: dict
+
+    __slots__ = ("path", "display", "root", "locations", "resolver", "files", "from_xacro",
+                 "notes", "sources", "companion_paths", "mesh_limits", "xacro_args", "targets",
+                 "rebuild", "_memo", "_groups")
+    _compared = ("path", "display", "root", "locations", "resolver", "files", "from_xacro",
+                 "notes", "sources", "companion_paths", "mesh_limits", "xacro_args", "targets")
+    _shown = ("path", "display", "root", "locations", "resolver", "files", "from_xacro", "notes",
+              "sources", "companion_paths", "mesh_limits", "xacro_args", "targets")
+    _made = ("_memo", "_groups")
+
+    def __init__(self, path: str, display: str, root: object, locations: Mapping,
+                 resolver: PackageResolver, files: list[str] = NEW, from_xacro: bool = False,
+                 notes: list[LoadNote] = NEW, sources: dict[str, bytes] = NEW,
+                 companion_paths: CompanionPaths = NEW, mesh_limits: MeshLimits = NEW,
+                 xacro_args: Mapping = NEW, targets: dict = NEW,
+                 rebuild: Callable | None = None) -> None:
+        self.path = path
+        self.display = display
+        self.root = root
+        self.locations = locations
+        self.resolver = resolver
+        self.files = [] if files is NEW else files
+        self.from_xacro = from_xacro
+        self.notes = [] if notes is NEW else notes
+        self.sources = {} if sources is NEW else sources
+        self.companion_paths = CompanionPaths() if companion_paths is NEW else companion_paths
+        self.mesh_limits = MeshLimits() if mesh_limits is NEW else mesh_limits
+        self.xacro_args = {} if xacro_args is NEW else xacro_args
+        self.targets = {} if targets is NEW else targets
+        self.rebuild = rebuild
+        self._memo = {}
+        self._groups = {}
 
     def memo(self, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot for ``key`` (by convention the function that asks), then

@@ -18,15 +18,14 @@ what depends on the version is then not certain.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from urdftool.description.packages import build_tools
 from urdftool.diagnostics import display_path
+from urdftool.records import Frozen
 
 
 
-@dataclass(frozen=True)
-class Evidence:
+class Evidence(Frozen):
     """One reason to think ROS ``version`` reads the robot; ``kind`` is where it was read:
     'package', 'ros2_control', 'controllers', 'plugin' or 'launch'."""
 
@@ -34,13 +33,27 @@ class Evidence:
     why: str
     kind: str
 
+    __slots__ = ("version", "why", "kind")
 
-@dataclass(frozen=True)
-class Versions:
+    def __init__(self, version: int, why: str, kind: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "version", version)
+        set_field(self, "why", why)
+        set_field(self, "kind", kind)
+
+
+class Versions(Frozen):
     """The ROS versions that read the robot, and why each (``evidence``)."""
 
     versions: frozenset
     evidence: tuple
+
+    __slots__ = ("versions", "evidence")
+
+    def __init__(self, versions: frozenset, evidence: tuple) -> None:
+        set_field = object.__setattr__
+        set_field(self, "versions", versions)
+        set_field(self, "evidence", evidence)
 
     @property
     def ros2_only(self) -> bool:

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from urdftool.description.documents import read_yaml
@@ -36,6 +35,7 @@ from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration
 from urdftool.description.packages import build_tools, containment_root, packages_below
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
+from urdftool.records import Frozen, NEW, Record, replace
 
 AS_CHECKED = "as checked"  # a configuration's relation to the robot: built as it was checked
 SPAWNERS = ("spawner", "spawner.py", "controller_manager")
@@ -49,8 +49,7 @@ _XACRO_ARG = re.compile(rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^
                         re.S)
 
 
-@dataclass(frozen=True)
-class Spawn:
+class Spawn(Frozen):
     """A controller a configuration of the robot starts (or loads inactive)."""
 
     name: str
@@ -60,23 +59,43 @@ class Spawn:
     certain: bool  # unconditional, name not from an argument, robot as checked
     condition: str  # when, in words ("when gui is true"), when not certain
 
+    __slots__ = ("name", "active", "configuration", "start", "certain", "condition")
+
+    def __init__(self, name: str, active: bool, configuration: Configuration, start: Started,
+                 certain: bool, condition: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "name", name)
+        set_field(self, "active", active)
+        set_field(self, "configuration", configuration)
+        set_field(self, "start", start)
+        set_field(self, "certain", certain)
+        set_field(self, "condition", condition)
+
     def told(self) -> str:
         """Which launch file starts it, and when."""
         return f"{self.configuration.named} starts it" + (f" {self.condition}" if self.condition else "")
 
 
-@dataclass
-class Runtime:
+class Runtime(Record):
     """The robot's launch configurations and what they start.
 
     configurations: (configuration, how it describes the robot: "as checked", "with other
         xacro arguments (a:=b)", or "" when it describes no robot urdftool can tell)
     """
 
-    configurations: list = field(default_factory=list)
-    spawns: list = field(default_factory=list)
-    unread_spawners: list = field(default_factory=list)  # (configuration, start) with names not read
-    read: list = field(default_factory=list)  # every launch file read to tell it (the index's)
+    configurations: list
+    spawns: list
+    unread_spawners: list  # (configuration, start) with names not read
+    read: list  # every launch file read to tell it (the index's)
+
+    __slots__ = ("configurations", "spawns", "unread_spawners", "read")
+
+    def __init__(self, configurations: list = NEW, spawns: list = NEW, unread_spawners: list = NEW,
+                 read: list = NEW) -> None:
+        self.configurations = [] if configurations is NEW else configurations
+        self.spawns = [] if spawns is NEW else spawns
+        self.unread_spawners = [] if unread_spawners is NEW else unread_spawners
+        self.read = [] if read is NEW else read
 
     @property
     def described(self) -> list[Configuration]:
@@ -354,8 +373,7 @@ def shown_text(value: Resolved) -> str | None:
     return shown(value) if "\0" in value.text else value.text
 
 
-@dataclass(frozen=True)
-class Build:
+class Build(Frozen):
     """A launch file making a robot description from a file (:func:`builds`).
 
     launch: the launch file a user runs (its includes followed); ``written``: the one holding
@@ -381,8 +399,27 @@ class Build:
     complete: bool
     chosen: bool
     condition: str
-    test: bool = False
-    replaced: tuple = ()
+    test: bool
+    replaced: tuple
+
+    __slots__ = ("launch", "written", "line", "xacro", "args", "free", "complete", "chosen",
+                 "condition", "test", "replaced")
+
+    def __init__(self, launch: str, written: str, line: int | None, xacro: bool, args: dict,
+                 free: frozenset, complete: bool, chosen: bool, condition: str, test: bool = False,
+                 replaced: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "launch", launch)
+        set_field(self, "written", written)
+        set_field(self, "line", line)
+        set_field(self, "xacro", xacro)
+        set_field(self, "args", args)
+        set_field(self, "free", free)
+        set_field(self, "complete", complete)
+        set_field(self, "chosen", chosen)
+        set_field(self, "condition", condition)
+        set_field(self, "test", test)
+        set_field(self, "replaced", replaced)
 
     @property
     def named(self) -> str:
@@ -631,8 +668,7 @@ def built_as_checked(robot) -> bool:
         not built_otherwise(robot)
 
 
-@dataclass(frozen=True)
-class Placeholders:
+class Placeholders(Frozen):
     """Names that clash in the robot as checked only because xacro arguments kept an empty
     default (:func:`placeholder_clashes`): ``args`` those arguments, in the order declared;
     ``links`` and ``joints`` the clashing names that differ once each is given a value of its
@@ -641,6 +677,14 @@ class Placeholders:
     args: tuple
     links: frozenset
     joints: frozenset
+
+    __slots__ = ("args", "links", "joints")
+
+    def __init__(self, args: tuple, links: frozenset, joints: frozenset) -> None:
+        set_field = object.__setattr__
+        set_field(self, "args", args)
+        set_field(self, "links", links)
+        set_field(self, "joints", joints)
 
 
 def placeholder_clashes(robot) -> Placeholders | None:
@@ -717,14 +761,21 @@ def _clashing(robot, tag: str) -> set:
 
 # --- the questions rules ask --------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Runs:
+class Runs(Frozen):
     """Whether a controller runs with the robot: ``state`` certain, conditional, never or
     unknown; ``condition`` says when (conditional) or why not (never)."""
 
     state: str
-    condition: str = ""
-    spawns: tuple = ()
+    condition: str
+    spawns: tuple
+
+    __slots__ = ("state", "condition", "spawns")
+
+    def __init__(self, state: str, condition: str = "", spawns: tuple = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "state", state)
+        set_field(self, "condition", condition)
+        set_field(self, "spawns", spawns)
 
 
 def runs(robot, controller, parameter_files=()) -> Runs:

@@ -39,7 +39,7 @@ import re
 import sys
 import xml.dom
 import xml.dom.minidom
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from xml.dom.expatbuilder import ExpatBuilderNS
 from xml.parsers import expat
@@ -54,6 +54,7 @@ from urdftool.errors import available
 from urdftool.description import xacro_sandbox
 from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, malformed, \
     too_deep_message
+from urdftool.records import NEW, Record
 
 STAMP = "xmlns:urdftool-loc"
 _STAMP_PREFIX = "urn:loc:"
@@ -88,15 +89,25 @@ class XacroFailure(Exception):
     melodic: bool = False  # read as ROS 1's xacro up to Melodic, relying on unprefixed tags
 
 
-@dataclass
-class Expansion:
+class Expansion(Record):
     """The expanded URDF with the source location of each element."""
 
     root: etree._Element
     locations: dict[etree._Element, Location]
     files: list[str]
-    warnings: list[tuple[Location, str]] = field(default_factory=list)
-    outside: list[tuple[Location, str]] = field(default_factory=list)
+    warnings: list[tuple[Location, str]]
+    outside: list[tuple[Location, str]]
+
+    __slots__ = ("root", "locations", "files", "warnings", "outside")
+
+    def __init__(self, root: etree._Element, locations: dict[etree._Element, Location],
+                 files: list[str], warnings: list[tuple[Location, str]] = NEW,
+                 outside: list[tuple[Location, str]] = NEW) -> None:
+        self.root = root
+        self.locations = locations
+        self.files = files
+        self.warnings = [] if warnings is NEW else warnings
+        self.outside = [] if outside is NEW else outside
 
 
 class _Session:

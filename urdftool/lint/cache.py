@@ -57,13 +57,13 @@ findings"), so:
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import hmac
 import json
 import os
 from pathlib import Path
 
+from urdftool import records
 from urdftool.description.files import kind_of, make_folders, own_folder, read_own, \
     remove_file, tree_stamp, unchanged, write_file
 from urdftool.description.record import entry_key
@@ -121,7 +121,7 @@ class Cache:
         """Where a whole run is kept: keyed by the paths as given (reports show them so), the
         request but its cache folder, and ``CI`` (which sets ``allow_env``'s default)."""
         return self._keyed("run", [os.path.abspath(path) for path in paths], list(paths),
-                           repr(dataclasses.replace(request, cache_dir=None)),
+                           repr(records.replace(request, cache_dir=None)),
                            os.environ.get("CI"), suffix="-run")
 
     def _keyed(self, *parts, suffix: str = "") -> Path:
@@ -287,7 +287,7 @@ def _record(finding: Finding) -> dict:
               "message": finding.message, "location": _location_record(finding.location)}
     if finding.fix is not None:
         record["fix"] = {"description": finding.fix.description, "safe": finding.fix.safe,
-                         "edits": [dataclasses.astuple(edit) for edit in finding.fix.edits]}
+                         "edits": [records.astuple(edit) for edit in finding.fix.edits]}
     if finding.target is not None:
         record["target"] = finding.target
     return record

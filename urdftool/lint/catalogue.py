@@ -32,11 +32,11 @@ from __future__ import annotations
 import functools
 import inspect
 import re
-from dataclasses import dataclass
 from collections.abc import Callable  # (not typing's: a check does not import it)
 
 from urdftool.diagnostics import Finding, Fix, Location, Severity
 from urdftool.errors import UnknownRule
+from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
@@ -76,8 +76,7 @@ class Conditional(str):
         return made
 
 
-@dataclass(frozen=True)
-class Rule:
+class Rule(Frozen):
     """A rule: its code, name and severity, its check (None: reported by the engine or the
     runner) and its documentation as written (``written``: a docstring, indented as in its
     source; :attr:`doc` is it cleaned, when asked)."""
@@ -87,6 +86,17 @@ class Rule:
     severity: Severity
     check: Callable | None
     written: str
+
+    __slots__ = ("code", "name", "severity", "check", "written")
+
+    def __init__(self, code: str, name: str, severity: Severity, check: Callable | None,
+                 written: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "code", code)
+        set_field(self, "name", name)
+        set_field(self, "severity", severity)
+        set_field(self, "check", check)
+        set_field(self, "written", written)
 
     @property
     def doc(self) -> str:

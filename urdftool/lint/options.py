@@ -5,11 +5,12 @@ without importing every rule (a re-run served from the cache never does)."""
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, field
 from pathlib import Path
 
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.diagnostics import Finding, Severity
+from urdftool.records import Frozen, NEW, Record
 
 
 def under_ci(environ=None) -> bool:
@@ -24,8 +25,7 @@ def under_ci(environ=None) -> bool:
     return value.strip().lower() not in ("", "0", "false", "no")
 
 
-@dataclass(frozen=True)
-class Selection:
+class Selection(Frozen):
     """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``).
 
     targets: the simulators asked for (``check --target``, ``targets`` in the settings), as
@@ -33,9 +33,18 @@ class Selection:
         target, and ``select``/``ignore`` narrow them as any other rule
     """
 
-    select: tuple[str, ...] = ()
-    ignore: tuple[str, ...] = ()
-    targets: tuple[str, ...] = ()
+    select: tuple[str, ...]
+    ignore: tuple[str, ...]
+    targets: tuple[str, ...]
+
+    __slots__ = ("select", "ignore", "targets")
+
+    def __init__(self, select: tuple[str, ...] = (), ignore: tuple[str, ...] = (),
+                 targets: tuple[str, ...] = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "select", select)
+        set_field(self, "ignore", ignore)
+        set_field(self, "targets", targets)
 
     def allows(self, code: str) -> bool:
         target = _target_of(code)
@@ -77,21 +86,35 @@ def _target_of(code: str) -> str | None:
 _DECADES: list = [None]  # [the catalogue's TARGET_DECADES], once imported
 
 
-@dataclass
-class CheckOptions:
+class CheckOptions(Record):
     """How to load and check each file."""
 
-    xacro_args: dict[str, str] = field(default_factory=dict)
-    packages: dict[str, Path] = field(default_factory=dict)
-    selection: Selection = Selection()
-    allow_env: bool = True
-    max_file_size: int = 16 * 1024 * 1024
-    companions: CompanionPaths = CompanionPaths()
-    mesh_limits: MeshLimits = MeshLimits()
+    xacro_args: dict[str, str]
+    packages: dict[str, Path]
+    selection: Selection
+    allow_env: bool
+    max_file_size: int
+    companions: CompanionPaths
+    mesh_limits: MeshLimits
+
+    __slots__ = ("xacro_args", "packages", "selection", "allow_env", "max_file_size", "companions",
+                 "mesh_limits")
+
+    def __init__(self, xacro_args: dict[str, str] = NEW, packages: dict[str, Path] = NEW,
+                 selection: Selection = Selection(), allow_env: bool = True,
+                 max_file_size: int = DEFAULT_MAX_FILE_SIZE,
+                 companions: CompanionPaths = CompanionPaths(),
+                 mesh_limits: MeshLimits = MeshLimits()) -> None:
+        self.xacro_args = {} if xacro_args is NEW else xacro_args
+        self.packages = {} if packages is NEW else packages
+        self.selection = selection
+        self.allow_env = allow_env
+        self.max_file_size = max_file_size
+        self.companions = companions
+        self.mesh_limits = mesh_limits
 
 
-@dataclass
-class FileResult:
+class FileResult(Record):
     """What checking one file found.
 
     strict: whether a warning in it fails the check (its settings or the request)
@@ -104,11 +127,25 @@ class FileResult:
 
     path: str
     findings: list[Finding]
-    robot: object | None = None
-    strict: bool = False
-    companions: list[str] = field(default_factory=list)
-    record: object | None = field(default=None, repr=False)
-    read: tuple = field(default=(), repr=False)
+    robot: object | None
+    strict: bool
+    companions: list[str]
+    record: object | None
+    read: tuple
+
+    __slots__ = ("path", "findings", "robot", "strict", "companions", "record", "read")
+    _shown = ("path", "findings", "robot", "strict", "companions")
+
+    def __init__(self, path: str, findings: list[Finding], robot: object | None = None,
+                 strict: bool = False, companions: list[str] = NEW, record: object | None = None,
+                 read: tuple = ()) -> None:
+        self.path = path
+        self.findings = findings
+        self.robot = robot
+        self.strict = strict
+        self.companions = [] if companions is NEW else companions
+        self.record = record
+        self.read = read
 
     @property
     def unexpanded(self) -> bool:

@@ -31,10 +31,10 @@ unconditionally and as checked: whatever it lacks, it lacks where it runs.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
 
 from urdftool.diagnostics import Finding, Severity
 from urdftool.description.xacro_text import PART_BLOCKS
+from urdftool.records import Frozen, replace
 
 # What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro)
 EXTENSIONS = PART_BLOCKS
@@ -59,8 +59,7 @@ ABOUT_THE_ROBOT = frozenset({
 _HANGS = frozenset({"U011"})
 
 
-@dataclass(frozen=True)
-class Part:
+class Part(Frozen):
     """A robot checked alone that is a part of one defined elsewhere.
 
     kind: 'hangs', 'joints' or 'extensions' (see the module)
@@ -73,7 +72,17 @@ class Part:
     kind: str
     mounts: frozenset[str]
     condition: str
-    attaches: frozenset[str] = frozenset()
+    attaches: frozenset[str]
+
+    __slots__ = ("kind", "mounts", "condition", "attaches")
+
+    def __init__(self, kind: str, mounts: frozenset[str], condition: str,
+                 attaches: frozenset[str] = frozenset()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "kind", kind)
+        set_field(self, "mounts", mounts)
+        set_field(self, "condition", condition)
+        set_field(self, "attaches", attaches)
 
     def covers(self, code: str) -> bool:
         """Whether a finding of rule ``code`` on this part is right only inside the robot that

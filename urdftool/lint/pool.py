@@ -24,13 +24,13 @@ import os
 import signal
 import sys
 import time
-from dataclasses import dataclass
 
 from urdftool import budget as budgets, guardian
 from urdftool.budget import Budget
 from urdftool.guardian import end_after
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Location
+from urdftool.records import Frozen
 
 
 def default_jobs() -> int:
@@ -56,8 +56,7 @@ def auto_jobs(files: int) -> int:
     return max(1, min(idle, most))
 
 
-@dataclass(frozen=True)
-class Stop:
+class Stop(Frozen):
     """Why a piece of work ended without a result.
 
     kind: 'time' (over the time budget), 'memory' (MemoryError, over the memory budget or out of
@@ -68,8 +67,18 @@ class Stop:
 
     kind: str
     budget: Budget
-    detail: str = ""
-    where: Location | None = None
+    detail: str
+    where: Location | None
+
+    __slots__ = ("kind", "budget", "detail", "where")
+
+    def __init__(self, kind: str, budget: Budget, detail: str = "",
+                 where: Location | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "kind", kind)
+        set_field(self, "budget", budget)
+        set_field(self, "detail", detail)
+        set_field(self, "where", where)
 
 
 def run_budgeted(count: int, work, budget: Budget, stopped, jobs: int = 1,

@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.description.run_memo import one_run
@@ -24,6 +23,7 @@ from urdftool.errors import SettingsError, TargetError
 from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.pool import Stop, auto_jobs, run_budgeted
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
+from urdftool.records import NEW, Record
 
 
 def check_files(files: list[str], options_for, jobs: int | None = None,
@@ -91,8 +91,7 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
             for path, found, companions, paths in zip(named, kept, lines, read)]
 
 
-@dataclass
-class _Checking:
+class _Checking(Record):
     """Checking ``paths[i]`` as ``named[i]`` with ``options[i]``, a worker's piece ``i``.
     stdin: the bytes read for '-'; cache: where results are kept, or None."""
 
@@ -100,7 +99,17 @@ class _Checking:
     named: list[str]
     options: list[CheckOptions]
     stdin: dict[str, bytes]
-    cache: object = None
+    cache: object
+
+    __slots__ = ("paths", "named", "options", "stdin", "cache")
+
+    def __init__(self, paths: list[str], named: list[str], options: list[CheckOptions],
+                 stdin: dict[str, bytes], cache: object = None) -> None:
+        self.paths = paths
+        self.named = named
+        self.options = options
+        self.stdin = stdin
+        self.cache = cache
 
     def __call__(self, index: int
                  ) -> tuple[list[Finding], list[str], tuple[str, ...], str | None]:
@@ -116,8 +125,7 @@ class _Checking:
         return result.findings, result.companions, read, self.cache and self.cache.failure
 
 
-@dataclass
-class Run:
+class Run(Record):
     """What checking some paths found.
 
     results: one per file checked, in order
@@ -132,12 +140,27 @@ class Run:
     """
 
     results: list[FileResult]
-    skipped: dict[str, str] = field(default_factory=dict)
-    notes: list[str] = field(default_factory=list)
-    strict: list[bool] = field(default_factory=list)
-    depends: list | None = field(default=None, repr=False)
-    errors: list[str] = field(default_factory=list)
-    unbuilt: list[str] = field(default_factory=list)
+    skipped: dict[str, str]
+    notes: list[str]
+    strict: list[bool]
+    depends: list | None
+    errors: list[str]
+    unbuilt: list[str]
+
+    __slots__ = ("results", "skipped", "notes", "strict", "depends", "errors", "unbuilt")
+    _shown = ("results", "skipped", "notes", "strict", "errors", "unbuilt")
+
+    def __init__(self, results: list[FileResult], skipped: dict[str, str] = NEW,
+                 notes: list[str] = NEW, strict: list[bool] = NEW, depends: list | None = None,
+                 errors: list[str] = NEW, unbuilt: list[str] = NEW) -> None:
+        self.results = results
+        self.skipped = {} if skipped is NEW else skipped
+        self.notes = [] if notes is NEW else notes
+        self.strict = [] if strict is NEW else strict
+        self.depends = depends
+        self.errors = [] if errors is NEW else errors
+        self.unbuilt = [] if unbuilt is NEW else unbuilt
+        self.__post_init__()
 
     def __post_init__(self):
         for result, strict in zip(self.results, self.strict):

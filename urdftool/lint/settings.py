@@ -42,7 +42,6 @@ import math
 import os
 import re
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
@@ -53,6 +52,7 @@ from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimit
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
+from urdftool.records import Frozen, NEW, Record, replace
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
 # [bytes] a pyproject.toml read to tell whether it holds settings at all (another tool's may
@@ -61,28 +61,60 @@ MAX_OTHERS_SIZE = 16 * 1024 * 1024
 MAX_DEPTH = 32  # nesting of arrays, tables and dotted keys in a settings file
 
 
-@dataclass
-class Settings:
+class Settings(Record):
     """One settings file as read (``path`` None: no settings file). Shared between the files
     it applies to: do not change it."""
 
-    path: Path | None = None
-    select: list[str] = field(default_factory=list)
-    ignore: list[str] = field(default_factory=list)
-    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
-    per_file_args: dict[str, dict[str, str]] = field(default_factory=dict)
-    packages: dict[str, Path] = field(default_factory=dict)
-    companions: dict[str, Path] = field(default_factory=dict)
-    strict: bool = False
-    max_file_size: int | None = None
-    max_memory: str | None = None  # as --max-memory takes it
-    timeout: float | None = None  # [s] per file
-    max_triangles: int | None = None  # per mesh
-    targets: list[str] = field(default_factory=list)  # as --target takes them
-    notes: bool = False  # the text report shows notes (severity info)
+    path: Path | None
+    select: list[str]
+    ignore: list[str]
+    per_file_ignores: dict[str, list[str]]
+    per_file_args: dict[str, dict[str, str]]
+    packages: dict[str, Path]
+    companions: dict[str, Path]
+    strict: bool
+    max_file_size: int | None
+    max_memory: str | None  # as --max-memory takes it
+    timeout: float | None  # [s] per file
+    max_triangles: int | None  # per mesh
+    targets: list[str]  # as --target takes them
+    notes: bool  # the text report shows notes (severity info)
     # each per-file table's globs compiled once (fnmatch's cache holds 32,768: a table of more
     # was compiled again for every file, seconds each)
-    _globs: dict = field(default_factory=dict, repr=False, compare=False)
+    _globs: dict
+
+    __slots__ = ("path", "select", "ignore", "per_file_ignores", "per_file_args", "packages",
+                 "companions", "strict", "max_file_size", "max_memory", "timeout", "max_triangles",
+                 "targets", "notes", "_globs")
+    _compared = ("path", "select", "ignore", "per_file_ignores", "per_file_args", "packages",
+                 "companions", "strict", "max_file_size", "max_memory", "timeout", "max_triangles",
+                 "targets", "notes")
+    _shown = ("path", "select", "ignore", "per_file_ignores", "per_file_args", "packages",
+              "companions", "strict", "max_file_size", "max_memory", "timeout", "max_triangles",
+              "targets", "notes")
+
+    def __init__(self, path: Path | None = None, select: list[str] = NEW, ignore: list[str] = NEW,
+                 per_file_ignores: dict[str, list[str]] = NEW,
+                 per_file_args: dict[str, dict[str, str]] = NEW, packages: dict[str, Path] = NEW,
+                 companions: dict[str, Path] = NEW, strict: bool = False,
+                 max_file_size: int | None = None, max_memory: str | None = None,
+                 timeout: float | None = None, max_triangles: int | None = None,
+                 targets: list[str] = NEW, notes: bool = False, _globs: dict = NEW) -> None:
+        self.path = path
+        self.select = [] if select is NEW else select
+        self.ignore = [] if ignore is NEW else ignore
+        self.per_file_ignores = {} if per_file_ignores is NEW else per_file_ignores
+        self.per_file_args = {} if per_file_args is NEW else per_file_args
+        self.packages = {} if packages is NEW else packages
+        self.companions = {} if companions is NEW else companions
+        self.strict = strict
+        self.max_file_size = max_file_size
+        self.max_memory = max_memory
+        self.timeout = timeout
+        self.max_triangles = max_triangles
+        self.targets = [] if targets is NEW else targets
+        self.notes = notes
+        self._globs = {} if _globs is NEW else _globs
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -392,13 +424,19 @@ def _refuse_outside_text(settings: Path, key: str, value) -> None:
 
 # ---- one validation for every key -----------------------------------------------------------
 
-@dataclass(frozen=True)
-class _Key:
+class _Key(Frozen):
     """A settings key: ``read(settings file, value, key)`` checks its value and returns what
     :class:`Settings` keeps under ``attribute`` (None: in ``companions``, under the key)."""
 
     read: Callable
     attribute: str | None
+
+    __slots__ = ("read", "attribute")
+
+    def __init__(self, read: Callable, attribute: str | None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "read", read)
+        set_field(self, "attribute", attribute)
 
 
 _SHOWN = 80  # [characters] of a settings value a message quotes, at most
@@ -713,8 +751,7 @@ def _settings_companions(settings: Settings) -> CompanionPaths:
                           else (), settings.companions.get("srdf"), settings.companions.get("spec"))
 
 
-@dataclass(frozen=True)
-class CheckRequest:
+class CheckRequest(Frozen):
     """What a check was asked to do (the command line's options, or the API's arguments);
     the settings file above each target fills in what it leaves open.
 
@@ -739,23 +776,55 @@ class CheckRequest:
         (``urdftool check`` keeps them in ``.urdftool_cache`` unless --no-cache or CI)
     """
 
-    select: tuple[str, ...] = ()
-    ignore: tuple[str, ...] = ()
-    strict: bool = False
-    xacro_args: Mapping[str, str] = field(default_factory=dict)
-    packages: Mapping[str, Path] = field(default_factory=dict)
-    companions: CompanionPaths = CompanionPaths()
-    allow_env: bool | None = None
-    max_file_size: int | None = None
-    max_triangles: int | None = None
-    max_memory: str | int | None = None
-    timeout: float | None = None
-    jobs: int | None = None
-    use_settings: bool = True
-    stdin_filename: str | None = None
-    settings_file: Path | None = None
-    cache_dir: Path | None = None
-    targets: tuple[str, ...] = ()
+    select: tuple[str, ...]
+    ignore: tuple[str, ...]
+    strict: bool
+    xacro_args: Mapping[str, str]
+    packages: Mapping[str, Path]
+    companions: CompanionPaths
+    allow_env: bool | None
+    max_file_size: int | None
+    max_triangles: int | None
+    max_memory: str | int | None
+    timeout: float | None
+    jobs: int | None
+    use_settings: bool
+    stdin_filename: str | None
+    settings_file: Path | None
+    cache_dir: Path | None
+    targets: tuple[str, ...]
+
+    __slots__ = ("select", "ignore", "strict", "xacro_args", "packages", "companions", "allow_env",
+                 "max_file_size", "max_triangles", "max_memory", "timeout", "jobs", "use_settings",
+                 "stdin_filename", "settings_file", "cache_dir", "targets")
+
+    def __init__(self, select: tuple[str, ...] = (), ignore: tuple[str, ...] = (),
+                 strict: bool = False, xacro_args: Mapping[str, str] = NEW,
+                 packages: Mapping[str, Path] = NEW, companions: CompanionPaths = CompanionPaths(),
+                 allow_env: bool | None = None, max_file_size: int | None = None,
+                 max_triangles: int | None = None, max_memory: str | int | None = None,
+                 timeout: float | None = None, jobs: int | None = None, use_settings: bool = True,
+                 stdin_filename: str | None = None, settings_file: Path | None = None,
+                 cache_dir: Path | None = None, targets: tuple[str, ...] = ()) -> None:
+        set_field = object.__setattr__
+        set_field(self, "select", select)
+        set_field(self, "ignore", ignore)
+        set_field(self, "strict", strict)
+        set_field(self, "xacro_args", {} if xacro_args is NEW else xacro_args)
+        set_field(self, "packages", {} if packages is NEW else packages)
+        set_field(self, "companions", companions)
+        set_field(self, "allow_env", allow_env)
+        set_field(self, "max_file_size", max_file_size)
+        set_field(self, "max_triangles", max_triangles)
+        set_field(self, "max_memory", max_memory)
+        set_field(self, "timeout", timeout)
+        set_field(self, "jobs", jobs)
+        set_field(self, "use_settings", use_settings)
+        set_field(self, "stdin_filename", stdin_filename)
+        set_field(self, "settings_file", settings_file)
+        set_field(self, "cache_dir", cache_dir)
+        set_field(self, "targets", targets)
+        self.__post_init__()
 
     def __post_init__(self):
         """Every field held to what the command line and the settings take (the API's callers
@@ -802,8 +871,7 @@ class CheckRequest:
                 raise UsageError(f"{name} must be a whole number, 0 or more, not {shown(value)}")
 
 
-@dataclass(frozen=True)
-class FileSettings:
+class FileSettings(Frozen):
     """How one file is checked: its settings file merged with the request.
 
     strict: whether a warning in it fails the run
@@ -814,7 +882,17 @@ class FileSettings:
     options: CheckOptions
     strict: bool
     memory: int | None
-    timeout: float | None = DEFAULT_TIMEOUT
+    timeout: float | None
+
+    __slots__ = ("options", "strict", "memory", "timeout")
+
+    def __init__(self, options: CheckOptions, strict: bool, memory: int | None,
+                 timeout: float | None = DEFAULT_TIMEOUT) -> None:
+        set_field = object.__setattr__
+        set_field(self, "options", options)
+        set_field(self, "strict", strict)
+        set_field(self, "memory", memory)
+        set_field(self, "timeout", timeout)
 
 
 def _applying(path: str, request: CheckRequest) -> Settings:
@@ -861,7 +939,7 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         xacro_args={**settings.args_for(path), **request.xacro_args}, packages={**settings.packages, **request.packages},
         selection=selection, allow_env=env_allowed(request.allow_env),
         max_file_size=request.max_file_size or settings.max_file_size
-        or CheckOptions.max_file_size,
+        or DEFAULT_MAX_FILE_SIZE,
         companions=_settings_companions(settings).overridden_by(request.companions),
         mesh_limits=MeshLimits(max_triangles=_given(request.max_triangles,
                                                     settings.max_triangles, MAX_TRIANGLES)))

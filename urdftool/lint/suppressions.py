@@ -17,25 +17,35 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 from urdftool.diagnostics import Finding, Fix, Location, line_at, lines_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
+from urdftool.records import Frozen
 
 _COMMENT = re.compile(r"<!--\s*urdftool:\s*(ignore-file|ignore)\b(.*?)-->", re.S)
 _ONLY_COMMENT = re.compile(r"^\s*<!--.*-->\s*$")
 
 
-@dataclass(frozen=True)
-class Suppression:
+class Suppression(Frozen):
     """One comment: where it is, the line it covers (None: the whole file), and its codes."""
 
     file: str
     line: int
     target: int | None
     selectors: tuple[str, ...]
-    span: tuple[int, int] = (0, 0)  # [characters] of the comment in the file's text
+    span: tuple[int, int]  # [characters] of the comment in the file's text
+
+    __slots__ = ("file", "line", "target", "selectors", "span")
+
+    def __init__(self, file: str, line: int, target: int | None, selectors: tuple[str, ...],
+                 span: tuple[int, int] = (0, 0)) -> None:
+        set_field = object.__setattr__
+        set_field(self, "file", file)
+        set_field(self, "line", line)
+        set_field(self, "target", target)
+        set_field(self, "selectors", selectors)
+        set_field(self, "span", span)
 
     def covers(self, finding: Finding, location: Location, catalogue: Catalogue) -> bool:
         if self.target is not None and location.line != self.target:

@@ -12,7 +12,6 @@ from __future__ import annotations
 import os
 import re
 from fnmatch import fnmatchcase as fnmatch
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
@@ -32,6 +31,7 @@ from urdftool.description.xacro_text import (CHUNK as _CHUNK, DEFINITIONS as _DE
                                              stays_inside as _stays_inside, stream as _stream,
                                              uncommented as _uncommented)
 from urdftool.lint.parts import EXTENSIONS as _EXTENSIONS, PART, rootless
+from urdftool.records import NEW, Record
 
 
 # A robot file named in an attribute value (a macro parameter or property that a macro hands to
@@ -103,25 +103,47 @@ def _what_it_holds(folder) -> str:
 _UNREAD = object()  # (a file's bytes not yet asked of _head)
 
 
-@dataclass
-class _Summary:
+class _Summary(Record):
     """What classifying one file needs: the files it includes, and whether it is a robot."""
 
     includes: list[Path]
     defines_robot: bool
     named_robot: bool
-    srdf: bool = False
-    unfollowed: bool = False  # it includes files whose path is only known when expanding
-    fragment: bool = False  # only <gazebo>, <transmission>, <ros2_control> and definitions
-    macros: bool = False  # it defines xacro macros
-    missing_package: bool = False  # an include's $(find PKG) names a package found nowhere
-    empty: bool = False  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
-    root_elsewhere: str | None = None  # no root link of its own: why, as parts.rootless says
-    sdf: bool = False  # a xacro file with an <sdf> root: a Gazebo model or world (nav2's
+    srdf: bool
+    unfollowed: bool  # it includes files whose path is only known when expanding
+    fragment: bool  # only <gazebo>, <transmission>, <ros2_control> and definitions
+    macros: bool  # it defines xacro macros
+    missing_package: bool  # an include's $(find PKG) names a package found nowhere
+    empty: bool  # a <robot> with nothing in it (Clearpath's empty.urdf placeholders)
+    root_elsewhere: str | None  # no root link of its own: why, as parts.rootless says
+    sdf: bool  # a xacro file with an <sdf> root: a Gazebo model or world (nav2's
     # gz_waffle.sdf.xacro); a .urdf holding SDF is checked (U004: it says it is a URDF)
-    blank: bool = False  # no text at all, or white space only
-    document: bool = False  # a .xacro whose root is no <robot> (nor a misspelling of it), with
+    blank: bool  # no text at all, or white space only
+    document: bool  # a .xacro whose root is no <robot> (nor a misspelling of it), with
     # content besides definitions: another kind of XML xacro builds (Shadow's <test> harness)
+
+    __slots__ = ("includes", "defines_robot", "named_robot", "srdf", "unfollowed", "fragment",
+                 "macros", "missing_package", "empty", "root_elsewhere", "sdf", "blank",
+                 "document")
+
+    def __init__(self, includes: list[Path], defines_robot: bool, named_robot: bool,
+                 srdf: bool = False, unfollowed: bool = False, fragment: bool = False,
+                 macros: bool = False, missing_package: bool = False, empty: bool = False,
+                 root_elsewhere: str | None = None, sdf: bool = False,
+                 blank: bool = False, document: bool = False) -> None:
+        self.includes = includes
+        self.defines_robot = defines_robot
+        self.named_robot = named_robot
+        self.srdf = srdf
+        self.unfollowed = unfollowed
+        self.fragment = fragment
+        self.macros = macros
+        self.missing_package = missing_package
+        self.empty = empty
+        self.root_elsewhere = root_elsewhere
+        self.sdf = sdf
+        self.blank = blank
+        self.document = document
 
 
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
@@ -671,8 +693,7 @@ def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_F
     return includers
 
 
-@dataclass
-class Targets:
+class Targets(Record):
     """What checking some paths means.
 
     files: the files to check, in a stable order, each once
@@ -692,8 +713,18 @@ class Targets:
     files: list[str]
     skipped: dict[str, str]
     notes: list[str]
-    unchecked: list[str] = field(default_factory=list)
-    unbuilt: list[str] = field(default_factory=list)
+    unchecked: list[str]
+    unbuilt: list[str]
+
+    __slots__ = ("files", "skipped", "notes", "unchecked", "unbuilt")
+
+    def __init__(self, files: list[str], skipped: dict[str, str], notes: list[str],
+                 unchecked: list[str] = NEW, unbuilt: list[str] = NEW) -> None:
+        self.files = files
+        self.skipped = skipped
+        self.notes = notes
+        self.unchecked = [] if unchecked is NEW else unchecked
+        self.unbuilt = [] if unbuilt is NEW else unbuilt
 
 
 def expand(paths: list[str], request) -> Targets:
@@ -702,10 +733,9 @@ def expand(paths: list[str], request) -> Targets:
     from the settings above each path (:func:`~urdftool.lint.settings.for_file`) under
     ``request``. Raises TargetError for a path that does not exist or a folder without robot
     files."""
-    import dataclasses
-
     from urdftool.errors import SettingsError, TargetError
     from urdftool.lint.settings import for_file
+    from urdftool.records import replace
 
     known = {}  # path -> its options: asked for each file up to four times (its size limit,
     # the resolver of each question its classification asks)
@@ -719,7 +749,7 @@ def expand(paths: list[str], request) -> Targets:
             try:
                 known[path] = for_file(path, request).options
             except SettingsError:
-                known[path] = for_file(path, dataclasses.replace(request, use_settings=False)
+                known[path] = for_file(path, replace(request, use_settings=False)
                                        ).options
         return known[path]
 

@@ -33,12 +33,12 @@ at the zero pose (:mod:`urdftool.physics.frames`).
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from urdftool.description.urdf import VARIABLE
 from urdftool.physics import mat3
 from urdftool.physics.frames import axis, child_joints, joint_frames, link_frames, parent_joints
 from urdftool.physics.support import Reach, link_reach
+from urdftool.records import Frozen
 
 _WHEEL = re.compile(r"(?:^|[^a-z])(?:wheels?|tires?|tyres?)(?:$|[^a-z])")
 _NOT_WHEEL = re.compile(r"steer|suspension|hinge|pivot|swivel|mount|reaction|momentum|fly|"
@@ -57,8 +57,7 @@ def _words(name: str) -> str:
     return _CAMEL.sub("_", name).lower()
 
 
-@dataclass(frozen=True)
-class Wheel:
+class Wheel(Frozen):
     """A wheel or caster: ``link`` the rolling (or sliding) link, ``joint`` the joint whose
     child it is (None for a caster that is the root), ``kind`` "wheel" or "caster", ``why``:
     what identified it, ``axle``: the unit joint axis in the link's frame (None for a fixed
@@ -69,6 +68,17 @@ class Wheel:
     kind: str
     why: str
     axle: mat3.Vector | None
+
+    __slots__ = ("link", "joint", "kind", "why", "axle")
+
+    def __init__(self, link: str, joint: object, kind: str, why: str,
+                 axle: mat3.Vector | None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "link", link)
+        set_field(self, "joint", joint)
+        set_field(self, "kind", kind)
+        set_field(self, "why", why)
+        set_field(self, "axle", axle)
 
 
 def wheels(robot) -> list[Wheel]:
@@ -200,13 +210,19 @@ def _below_wheel(robot, link: str, found: dict, parents) -> bool:
     return False
 
 
-@dataclass(frozen=True)
-class Ground:
+class Ground(Frozen):
     """The ground plane: ``frame`` (position, rotation in the root frame) whose z = 0 plane it
     is; ``source``: "base_footprint" or "wheels"."""
 
     frame: tuple
     source: str
+
+    __slots__ = ("frame", "source")
+
+    def __init__(self, frame: tuple, source: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "frame", frame)
+        set_field(self, "source", source)
 
 
 def lowest(robot, link_name: str, frame=None,

@@ -2,22 +2,30 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from itertools import groupby
 
 from urdftool.diagnostics import Finding, Severity
+from urdftool.records import Frozen
 
 STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}  # rich style per severity
 
 
-@dataclass(frozen=True)
-class Summary:
+class Summary(Frozen):
     """How many files were checked, and their findings by severity."""
 
     files: int
     errors: int
     warnings: int
     infos: int
+
+    __slots__ = ("files", "errors", "warnings", "infos")
+
+    def __init__(self, files: int, errors: int, warnings: int, infos: int) -> None:
+        set_field = object.__setattr__
+        set_field(self, "files", files)
+        set_field(self, "errors", errors)
+        set_field(self, "warnings", warnings)
+        set_field(self, "infos", infos)
 
     @classmethod
     def of(cls, results) -> "Summary":

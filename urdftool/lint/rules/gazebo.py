@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 
-from dataclasses import dataclass, field
 
 from urdftool.description.actuation import WHEEL_JOINT_TAGS, diff_drive_plugins, gazebo_plugins
 from urdftool.description.controllers import controllers, names_at
@@ -18,6 +17,7 @@ from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
 from urdftool.numbers import decimal_slip, number, numbers, unit
 from urdftool.physics import mat3
+from urdftool.records import NEW, Record
 
 GEOMETRY_TOLERANCE = 0.05
 FRAME_TAGS = ("frame_name", "frameName", "bodyName", "body_name")
@@ -30,8 +30,7 @@ def _frame(name: str, ros1: bool) -> str:
     return name.lstrip("/") if ros1 and name.lstrip("/") else name
 
 
-@dataclass
-class _Drive:
+class _Drive(Record):
     """A differential drive, as a Gazebo plugin or a diff_drive_controller describes it.
 
     wheels: (side, joint name, where) for each wheel it names
@@ -40,10 +39,20 @@ class _Drive:
     """
 
     label: str
-    wheels: list = field(default_factory=list)
-    controller: object = None  # the diff_drive_controller, for a controller's drive
-    numbers: list = field(default_factory=list)
-    frames: list = field(default_factory=list)
+    wheels: list
+    controller: object  # the diff_drive_controller, for a controller's drive
+    numbers: list
+    frames: list
+
+    __slots__ = ("label", "wheels", "controller", "numbers", "frames")
+
+    def __init__(self, label: str, wheels: list = NEW, controller: object = None,
+                 numbers: list = NEW, frames: list = NEW) -> None:
+        self.label = label
+        self.wheels = [] if wheels is NEW else wheels
+        self.controller = controller
+        self.numbers = [] if numbers is NEW else numbers
+        self.frames = [] if frames is NEW else frames
 
     def side(self, robot, side: str):
         """The first joint of the robot on ``side`` ("left"/"right"), or None."""

@@ -9,7 +9,6 @@ The spec is YAML: top-level ``unit`` (deg or rad, for lower/upper and tolerance)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from urdftool.description.companions import companions, is_spec
 from urdftool.description.documents import YamlMap
@@ -19,6 +18,7 @@ from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
 from urdftool.description.values import parse_numbers
+from urdftool.records import Record
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
 TOP_KEYS = ("unit", "tolerance", "joints")
@@ -26,14 +26,21 @@ JOINT_KEYS = ("servo_id", "lower", "upper", "effort", "velocity")
 SI_TOLERANCE = 1e-3  # relative, for effort and velocity
 
 
-@dataclass
-class SpecJoint:
+class SpecJoint(Record):
     """A joint of a joint spec: its name, line, entry and the lines of its keys."""
 
     name: str
     line: int
     entry: dict
     lines: dict
+
+    __slots__ = ("name", "line", "entry", "lines")
+
+    def __init__(self, name: str, line: int, entry: dict, lines: dict) -> None:
+        self.name = name
+        self.line = line
+        self.entry = entry
+        self.lines = lines
 
 
 def _spec(robot):
