@@ -131,6 +131,13 @@ def test_pickle_and_copy_keep_every_field_and_attribute_without_init():
         assert made == box and made._seen == {"k": 1} and made.extra == "kept"
 
 
+def test_a_record_is_weakly_referenced_as_a_dataclass_instance():
+    import weakref
+
+    for made in (Point(1.0), Box((1,)), One(2.0), PointClass(1.0), BoxClass((1,))):
+        assert weakref.ref(made)() is made
+
+
 def test_replace_and_astuple_are_the_dataclasses():
     point = Point(1.0, 2.0, ["a"])
     assert records.replace(point, y=3.0) == Point(1.0, 3.0)

@@ -78,17 +78,17 @@ class _Fields:
 class Record(_Fields):
     """A record of fields that may be set again, unhashable; it may be given other attributes
     (a dataclass's ``__dict__``: a rule's parsed source kept on the file it read,
-    ``functools.cached_property``)."""
+    ``functools.cached_property``), and be weakly referenced, as a dataclass's instance."""
 
-    __slots__ = ("__dict__",)
+    __slots__ = ("__dict__", "__weakref__")
 
 
 class Frozen(_Fields):
     """A record whose fields are set once, by ``__init__`` (``object.__setattr__``): assigning
     or deleting an attribute raises dataclasses' FrozenInstanceError; hashed as the tuple of
-    its compared fields."""
+    its compared fields. Weakly referenced as a dataclass's instance is."""
 
-    __slots__ = ()
+    __slots__ = ("__weakref__",)
 
     def __setattr__(self, name: str, value) -> None:
         from dataclasses import FrozenInstanceError
