@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
@@ -109,7 +110,12 @@ class Scene:
         self.pairs = [pair_key(a, b) for i, a in enumerate(links) for b in links[i + 1:]]
         self.pairs.sort(key=lambda pair: (pair[0].encode(), pair[1].encode()))
         self.adjacent = adjacent_pairs(robot, set(links))
-        self.checker = PairChecker(self.geometry, links, self.pairs, margin)
+
+    @cached_property
+    def checker(self) -> PairChecker:
+        """FCL objects for every pair of :attr:`pairs`, made when first asked: the matrix and
+        ``diff`` each make their own for the pairs they ask about."""
+        return PairChecker(self.geometry, self.links, self.pairs, self.margin)
 
     def default(self) -> np.ndarray:
         """MoveIt's default state: 0 where the limits allow it, else the middle of the range."""
