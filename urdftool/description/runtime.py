@@ -828,7 +828,8 @@ def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
     """Whether two controllers run at once: ("certain", where) when a configuration of the robot
     as checked starts both active unconditionally; ("conditional", when) when one starts both
     active under a condition; ("apart", "") when the launch files tell both and never start
-    them active together; ("unknown", "") otherwise."""
+    them active together (conditions that exclude each other, ``if`` and ``unless`` of one
+    argument, never hold in one run); ("unknown", "") otherwise."""
     one, two = runs(robot, first, parameter_files), runs(robot, second, parameter_files)
     if "unknown" in (one.state, two.state):
         return "unknown", ""
@@ -837,7 +838,8 @@ def together(robot, first, second, parameter_files=()) -> tuple[str, str]:
     best = None
     for a in one.spawns:
         for b in two.spawns:
-            if a.configuration is not b.configuration or not (a.active and b.active):
+            if (a.configuration is not b.configuration or not (a.active and b.active)
+                    or a.start.when.excludes(b.start.when)):
                 continue
             if a.certain and b.certain:
                 return "certain", a.configuration.named
