@@ -790,6 +790,21 @@ def test_a_macro_called_inside_a_link_writes_no_root(tmp_path):
     assert "no root link" in walked.skipped[str(tmp_path / "camera.xacro")]
 
 
+def test_a_macro_library_with_a_top_level_plugin_is_a_library(tmp_path):
+    # laloutsos/Custom_Clearpath_Robot's clearpath_common do100.urdf.xacro: arguments, the
+    # do100 macro and, at the top level, a gz-sim JointStatePublisher <plugin>; checked alone
+    # it was a robot with no name and no link (U011, U106)
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    _repository(tmp_path, {
+        "do100.urdf.xacro": f'<robot {ns}><xacro:arg name="is_sim" default="false"/>'
+                            '<xacro:macro name="do100"><link name="base_link"/></xacro:macro>'
+                            '<plugin filename="gz-sim-joint-state-publisher-system" '
+                            'name="gz::sim::systems::JointStatePublisher"/></robot>',
+    })
+    walked, named = _walked_and_named(tmp_path, "do100.urdf.xacro")
+    assert walked.files == named.files == []
+
+
 def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_path):
     # osrf/vrx: wamv_gazebo.urdf.xacro calls <xacro:wamv_gazebo thruster_layout="$(find
     # wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>, whose macro includes
