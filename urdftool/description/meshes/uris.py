@@ -232,7 +232,8 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                "repository: use package://PKG/... for files of another package"))
+                "repository: use package://PKG/... for files of another package"
+                f"{_rooted_by_mistake(named, base)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
@@ -241,6 +242,18 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _rooted_by_mistake(named: str, base: str) -> str:
+    """Advice for an absolute path that, read without its leading '/', names a file beside the
+    robot (an exporter's ``/meshes/base_link.stl`` for ``meshes/base_link.stl``: Blind-Us'
+    Tancho_URDF, from StackForce SimReady); "" otherwise."""
+    relative = named.lstrip("/")
+    if named == relative or ".." in relative.split("/") or \
+            kind_of(Path(base) / relative) != "file":
+        return ""
+    return (f"; the leading '/' makes it absolute: '{relative}', relative to the robot's "
+            "folder, is there")
 
 
 def _windows_path(uri: str, named: str) -> str:
