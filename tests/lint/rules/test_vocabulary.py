@@ -93,6 +93,8 @@ def test_buoyancy_in_a_link_is_freefloating_gazebos_and_left_alone(tmp_path):
     assert found == []
     found, findings = _check(tmp_path, f'<robot name="r"><link name="a"/>\n{buoyancy}</robot>')
     assert [(line, code) for _, line, code in found] == [(2, "U022")]
+    assert findings[0].message.endswith("freefloating_gazebo's fluid plugin (ROS 1; origin, "
+                                        "compensation, limit, damping) reads it only inside <link>")
 
 
 def test_a_misspelling_in_a_known_extension_vocabulary_is_reported(tmp_path):
