@@ -610,6 +610,22 @@ def test_a_missing_mesh_whose_folder_holds_it_deeper_than_the_repository_listing
         "meshes/palm.stl there")
 
 
+def test_an_absolute_path_meaning_a_file_beside_the_robot_says_so(tmp_path):
+    # Blind-Us/Tancho_URDF's Tencho_v1.urdf (StackForce SimReady): '/meshes/base_link.stl' for
+    # the meshes/base_link.stl beside it; an absolute path naming nothing here keeps the advice
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "base_link.stl").write_text("solid x\nendsolid x\n")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "/meshes/base_link.stl"), "/meshes/base_link.stl")
+    assert error.value.kind == "outside" and error.value.certain
+    assert str(error.value).endswith("use package://PKG/... for files of another package; the "
+                                     "leading '/' makes it absolute: 'meshes/base_link.stl', "
+                                     "relative to the robot's folder, is there")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, "/meshes/other.stl"), "/meshes/other.stl")
+    assert str(error.value).endswith("for files of another package")
+
+
 def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_missing(tmp_path):
     # a cuRobo URDF generated on a Humble machine names /opt/ros/humble/share/ur_description/...:
     # there wherever Humble and ur_description are installed, so not an error; a /home path is

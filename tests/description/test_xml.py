@@ -235,3 +235,21 @@ def test_a_stray_marker_like_line_is_no_conflict_and_the_parser_is_believed():
         with pytest.raises(XmlProblem) as caught:
             parse(data)
         assert caught.value.message.startswith("malformed XML: "), data
+
+
+def test_an_empty_included_file_says_it_is_empty(tmp_path):
+    """OUXT-Polaris/wamv_description's wamv.urdf.xacro includes wamv.ros2_control.xacro, a
+    file of 0 bytes: xacro fails on it with expat's bare 'no element found'."""
+    from urdftool.description.load import load
+    from urdftool.errors import LoadError
+
+    (tmp_path / "control.xacro").write_bytes(b"")
+    (tmp_path / "blank.xacro").write_bytes(b"\n  \n")
+    for name, said in (("control.xacro", "empty"), ("blank.xacro", "only white space")):
+        (tmp_path / "top.urdf.xacro").write_text(
+            '<robot name="t" xmlns:xacro="http://ros.org/wiki/xacro"><link name="a"/>\n'
+            f'  <xacro:include filename="{name}"/>\n</robot>\n')
+        with pytest.raises(LoadError) as caught:
+            load(tmp_path / "top.urdf.xacro")
+        assert caught.value.location.file.endswith(name)
+        assert caught.value.message.endswith(f"(the file is {said})"), caught.value.message

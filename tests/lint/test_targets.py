@@ -772,6 +772,39 @@ def test_a_xacro_part_with_no_root_of_its_own_is_a_part_and_world_is_no_link(tmp
     assert "no root link" in walked.skipped[str(tmp_path / "depth_camera.xacro")]
 
 
+def test_a_macro_called_inside_a_link_writes_no_root(tmp_path):
+    # HerGousis' camera3_dokari.xacro (its include commented out, so nobody includes it): a
+    # camera on the 'dokari_link' of a robot defined elsewhere, whose <link> calls the
+    # box_inertia macro its includer takes from common_properties.xacro; alone xacro failed
+    # on it (U005). A macro called at the top level may still write the root.
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    joint = ('<joint name="j" type="fixed"><parent link="dokari_link"/><child link="camera"/>'
+             '</joint>')
+    _repository(tmp_path, {
+        "camera.xacro": f'<robot {ns}><link name="camera"><xacro:box_inertia m="0.1"/>'
+                        f'</link>{joint}</robot>',
+        "mast.xacro": f'<robot {ns}><xacro:dokari/><link name="camera"/>{joint}</robot>',
+    })
+    walked, named = _walked_and_named(tmp_path, "camera.xacro", "mast.xacro")
+    assert walked.files == [str(tmp_path / "mast.xacro")]
+    assert "no root link" in walked.skipped[str(tmp_path / "camera.xacro")]
+
+
+def test_a_macro_library_with_a_top_level_plugin_is_a_library(tmp_path):
+    # laloutsos/Custom_Clearpath_Robot's clearpath_common do100.urdf.xacro: arguments, the
+    # do100 macro and, at the top level, a gz-sim JointStatePublisher <plugin>; checked alone
+    # it was a robot with no name and no link (U011, U106)
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    _repository(tmp_path, {
+        "do100.urdf.xacro": f'<robot {ns}><xacro:arg name="is_sim" default="false"/>'
+                            '<xacro:macro name="do100"><link name="base_link"/></xacro:macro>'
+                            '<plugin filename="gz-sim-joint-state-publisher-system" '
+                            'name="gz::sim::systems::JointStatePublisher"/></robot>',
+    })
+    walked, named = _walked_and_named(tmp_path, "do100.urdf.xacro")
+    assert walked.files == named.files == []
+
+
 def test_a_file_handed_to_an_include_through_a_macro_parameter_is_included(tmp_path):
     # osrf/vrx: wamv_gazebo.urdf.xacro calls <xacro:wamv_gazebo thruster_layout="$(find
     # wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>, whose macro includes

@@ -69,6 +69,7 @@ LINK_EXTENSIONS = {
     "contact": "PyBullet (lateral_friction, rolling_friction, restitution, ...)",
     "self_filter": "robot_self_filter (ROS 1)",
     "collision_checking": "arm_navigation collision checking (ROS 1)",
+    "buoyancy": "freefloating_gazebo's fluid plugin (ROS 1; origin, compensation, limit, damping)",
 }
 
 _POSE = "origin"

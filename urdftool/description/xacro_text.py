@@ -15,8 +15,10 @@ from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regul
 from urdftool.description.packages import PackageResolver, containment_root
 
 # What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
-# blocks that extend links and joints written by the robot that includes it
-PART_BLOCKS = frozenset({"gazebo", "transmission", "ros2_control", "webots"})
+# blocks that extend links and joints written by the robot that includes it, and a top-level
+# <plugin> (legacy Gazebo's and Webots'; a Clearpath platform macro file writes one beside its
+# macro: a library all the same)
+PART_BLOCKS = frozenset({"gazebo", "transmission", "ros2_control", "webots", "plugin"})
 # [^<>]: a tag ends before the next "<", so no character is scanned from two starts (linear time
 # on files made of "<xacro:include " repeated).
 # Pre-2019 xacro wrote <include> without the prefix (ros-naoqi/nao_robot's nao_robot_v4.urdf.xacro).

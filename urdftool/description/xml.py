@@ -75,7 +75,11 @@ _CONFLICT = re.compile(rb"^(<{7}|\|{7}|={7}|>{7})(?=[ \t\r]|$)[^\n]*", re.MULTIL
 def malformed(data: bytes, reason: str, line: int | None,
               column: int | None = None) -> XmlProblem:
     """The XmlProblem of a document that is not well-formed: the parser's ``reason`` at
-    ``line``, or the unresolved merge conflict it holds (:func:`merge_conflict`)."""
+    ``line``, or the unresolved merge conflict it holds (:func:`merge_conflict`). An empty
+    file says so (expat's "no element found" for OUXT-Polaris/wamv_description's 0-byte
+    wamv.ros2_control.xacro, which its robots include)."""
+    if not data.strip():
+        reason = f"{reason} (the file is {'empty' if not data else 'only white space'})"
     return merge_conflict(data) or XmlProblem("syntax", f"malformed XML: {reason}", line, column)
 
 

@@ -294,13 +294,13 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
     elsewhere, whatever its root element says (jackal's custom_example.urdf, meant for
     $(optenv JACKAL_URDF_EXTRAS): joints on the 'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
     root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
-    definitions may write links the text does not show (macro calls, includes), unless the
-    file is not ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's
+    definitions and link bodies may write links the text does not show (macro calls,
+    includes), unless the file is not ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's
     namespace (a ``.urdf`` that does is expanded, with U007: elephantrobotics' stale
     mycobot_with_vision_copy.urdf includes a file that is gone; jackal's custom_example.urdf
     calls a macro without declaring it, which xacro cannot parse)."""
     data = _without_macro_bodies(data)
-    if (expanded or b"xmlns:xacro" in data) and _LINK_MAKER.search(data):
+    if (expanded or b"xmlns:xacro" in data) and _makes_links_outside_link_bodies(data):
         return None  # a macro call or an include may write the root
     found = rootless(*([name.decode("utf-8", "replace") for name in pattern.findall(data)]
                        for pattern in (_LINK_NAME, _PARENT, _CHILD)))
@@ -311,6 +311,27 @@ def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
 # xacro: element but the directives that write none) or an include.
 _LINK_MAKER = re.compile(rb"<xacro:(?!(?:property|arg|macro|if|unless|load_yaml)[\s/>])[\w.]|"
                          rb"<(?:xacro:)?include\s")
+# A <link>'s start and end tags, and what may write links: read in one pass, in order
+_LINK_TOKENS = re.compile(rb"<link\b[^<>]*>|</link\s*>|" + _LINK_MAKER.pattern)
+
+
+def _makes_links_outside_link_bodies(data: bytes) -> bool:
+    """Whether a macro call or an include stands outside every <link> body: one inside a
+    link writes the link's content (an inertial, a visual), never a link urdfdom reads
+    (HerGousis' camera3_dokari.xacro calls box_inertia inside its link). One linear pass,
+    after one search when there is none at all (a URDF's 10,000 links are not walked)."""
+    if _LINK_MAKER.search(data) is None:
+        return False
+    inside = False
+    for token in _LINK_TOKENS.finditer(data):
+        text = token.group(0)
+        if text.startswith(b"</link"):
+            inside = False
+        elif text.startswith(b"<link"):
+            inside = not text.endswith(b"/>")
+        elif not inside:
+            return True
+    return False
 
 
 def _yields_links(data: bytes) -> bool:

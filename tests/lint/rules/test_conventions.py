@@ -171,6 +171,31 @@ def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_
     assert [code for code, _ in _found(tmp_path, text, ("U417",))] == ["U417"]
 
 
+def test_an_optical_frame_of_a_camera_tilted_in_its_mount_is_a_note(tmp_path):
+    """Bit-Bots' Pi Plus: camera_link is a CAD part on the head, and the camera's 30-degree
+    tilt is written into the optical joints (rpy="-2.093 0 -1.57"): the optical frames look
+    where the camera does; a warning said to make them -pi/2 0 -pi/2, which would turn them
+    off the view. A turn no tilt explains (a sign slip) stays a warning."""
+    from urdftool.diagnostics import Severity
+
+    robot = """<link name="base_link"/><link name="camera_link"/><joint name="cj" type="fixed">
+  <parent link="base_link"/><child link="camera_link"/></joint>
+<link name="camera_optical_frame_right"/><joint name="oj" type="fixed">
+  <parent link="camera_link"/><child link="camera_optical_frame_right"/>
+  <origin rpy="{rpy}"/></joint>"""
+
+    def severities(rpy):
+        (tmp_path / "r.urdf").write_text(f'<robot name="r">{robot.format(rpy=rpy)}</robot>')
+        result = load_and_check(str(tmp_path / "r.urdf"),
+                                CheckOptions(selection=Selection(("U417",))))
+        return [(f.severity, f.message) for f in result.findings]
+
+    [(severity, message)] = severities("-2.093 -0.0 -1.57")
+    assert severity == Severity.INFO and "pitched 29.9 degrees" in message, message
+    assert [s for s, _ in severities("1.5708 0 -1.5708")] == [Severity.WARNING]  # a sign slip
+    assert [s for s, _ in severities("-2.093 0.4 -1.57")] == [Severity.WARNING]  # not a tilt
+
+
 def _box_base(size: str) -> str:
     """A base_link of a box of ``size`` for wheels to hang from."""
     return (f'<link name="base_link"><collision><geometry><box size="{size}"/></geometry>'

@@ -158,6 +158,25 @@ def test_a_mesh_package_not_installed_here_is_a_warning_unless_misspelt(tmp_path
     assert severity == Severity.ERROR, message  # a word added: an old export's name
 
 
+def test_a_mesh_of_an_exporters_package_name_says_the_robots_own_package_holds_it(tmp_path):
+    """Ausaurus/ranger_1s_urdf's ranger1s_urdf_3.urdf (a SolidWorks export) names
+    ``package://ranger1s_urdf_3/meshes/chassis_link.STL``, the exporter's package name, in the
+    package robot_urdf, which holds meshes/chassis_link.STL: the message said to add an
+    <exec_depend> on the missing package; it says where the file is."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>robot_urdf</name></package>')
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "chassis_link.STL").write_text("solid x\nendsolid x\n")
+    [(_, message)] = _u407(tmp_path / "urdf" / "r.urdf",
+                           "package://ranger1s_urdf_3/meshes/chassis_link.STL")
+    assert message.endswith("; the robot's own package 'robot_urdf' holds "
+                            "'meshes/chassis_link.STL': write "
+                            "package://robot_urdf/meshes/chassis_link.STL"), message
+    [(_, message)] = _u407(tmp_path / "urdf" / "r.urdf", "package://ranger1s_urdf_3/meshes/x.STL")
+    assert "own package" not in message
+
+
 def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):
     """reachy_mini's robot.urdf names 322 meshes ``package://assets/NAME.stl``: the text report
     says one thing once (report.text_format.groups) when the findings differ only in names in

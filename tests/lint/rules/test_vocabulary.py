@@ -84,6 +84,19 @@ def test_extension_blocks_are_left_alone(tmp_path, body):
     assert found == []
 
 
+def test_buoyancy_in_a_link_is_freefloating_gazebos_and_left_alone(tmp_path):
+    # Xue1iang/mallard_urdf: freefloating_gazebo's fluid plugin reads the robot_description's
+    # <link><buoyancy><compensation> (its ParseNewModel); only in a <link>: at the top level
+    # nobody reads it (mallard's thruster.xacro writes one there, after its link)
+    buoyancy = "<buoyancy><compensation>0.6</compensation></buoyancy>"
+    found, _ = _check(tmp_path, f'<robot name="r"><link name="a">{buoyancy}</link></robot>')
+    assert found == []
+    found, findings = _check(tmp_path, f'<robot name="r"><link name="a"/>\n{buoyancy}</robot>')
+    assert [(line, code) for _, line, code in found] == [(2, "U022")]
+    assert findings[0].message.endswith("freefloating_gazebo's fluid plugin (ROS 1; origin, "
+                                        "compensation, limit, damping) reads it only inside <link>")
+
+
 def test_a_misspelling_in_a_known_extension_vocabulary_is_reported(tmp_path):
     found, findings = _check(tmp_path, """<robot name="r"><link name="a"/>
       <ros2_control name="s" type="system"><hardware><plugin>p</plugin></hardware>

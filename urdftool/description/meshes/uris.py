@@ -17,7 +17,7 @@ from pathlib import Path
 
 from urdftool.description.files import inside, kind_of, listing, real_path, resolved, walk
 from urdftool.description.packages import (containment_root, declaring_package, installed,
-                                          package_uri_parts)
+                                          package_of, package_uri_parts)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound, similarity
@@ -129,7 +129,8 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             error = error.declared(owner, declares)
             lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
-            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}",
+            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"
+                                          f"{_in_own_package(robot, owner, tail)}",
                                certain=not declares and (misspelt or bool(seen)))
         folder = os.path.dirname(folder)
     if folder == base:
@@ -143,6 +144,18 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False)
+
+
+def _in_own_package(robot, owner: str | None, tail: str) -> str:
+    """Advice for a mesh of a package not found whose path is in the robot's own package (a
+    SolidWorks export names the package after the model: Ausaurus/ranger_1s_urdf's
+    ``package://ranger1s_urdf_3/meshes/chassis_link.STL`` in the package robot_urdf, which holds
+    meshes/chassis_link.STL); "" otherwise."""
+    folder = package_of(robot.path) if owner and robot.path != "-" else None
+    if folder is None or kind_of(Path(folder) / tail) != "file":
+        return ""
+    return (f"; the robot's own package '{owner}' holds '{tail}': write "
+            f"package://{owner}/{tail}")
 
 
 def _misspelling(name: str, close: str) -> bool:
@@ -232,7 +245,8 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                "repository: use package://PKG/... for files of another package"))
+                "repository: use package://PKG/... for files of another package"
+                f"{_rooted_by_mistake(named, base)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
@@ -241,6 +255,18 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _rooted_by_mistake(named: str, base: str) -> str:
+    """Advice for an absolute path that, read without its leading '/', names a file beside the
+    robot (an exporter's ``/meshes/base_link.stl`` for ``meshes/base_link.stl``: Blind-Us'
+    Tancho_URDF, from StackForce SimReady); "" otherwise."""
+    relative = named.lstrip("/")
+    if named == relative or ".." in relative.split("/") or \
+            kind_of(Path(base) / relative) != "file":
+        return ""
+    return (f"; the leading '/' makes it absolute: '{relative}', relative to the robot's "
+            "folder, is there")
 
 
 def _windows_path(uri: str, named: str) -> str:

@@ -323,13 +323,21 @@ def no_effect(robot):
         else:
             places = [p for p in where_valid(unknown.name) if p != unknown.place]
             hint = ("; urdfdom reads it only in " + ", ".join(f"<{_tag(p)}>" for p in places)
-                    if places else "")
+                    if places else _read_elsewhere(unknown))
             yield unknown.element, f"{_what(unknown)} has no effect: {_unread(1)}{hint}"
     for element, names in unread.items():
         listed = ", ".join(f"'{name}'" for name in names)
         noun = "attribute" if len(names) == 1 else "attributes"
         yield element, (f"<{element.tag}> {noun} {listed} {'has' if len(names) == 1 else 'have'} "
                         f"no effect: {_unread(len(names))}; it reads {', '.join(_attributes(_key(element)))}")
+
+
+def _read_elsewhere(unknown) -> str:
+    """Where another program reads an element misplaced here (mallard_urdf's thruster macro
+    writes freefloating_gazebo's <buoyancy> after its link, at the top level), or ""."""
+    readers = [(place, entry.extensions[unknown.name]) for place, entry in VOCABULARY.items()
+               if place != unknown.place and unknown.name in entry.extensions]
+    return "".join(f"; {reader} reads it only inside <{_tag(place)}>" for place, reader in readers)
 
 
 def _unread(count: int) -> str:
