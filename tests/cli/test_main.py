@@ -289,10 +289,11 @@ def test_a_check_collects_nothing_before_its_imports_are_frozen(tmp_path):
     program = ("import atexit, gc, sys; import urdftool.__main__ as d; seen = []; "
                "gc.callbacks.append(lambda phase, info: phase == 'start' and "
                "seen.append('collected')); "
-               "kept, frozen = d.kept_code, d._collect_less; "
+               "kept, frozen, command = d.kept_code, d._collect_less, d._command; "
                # as many young objects as the kept code and dataclasses' imports make
                "d.kept_code = lambda: (kept(), [[] for _ in range(5000)])[0]; "
                "d._collect_less = lambda: (seen.append('frozen'), frozen())[1]; "
+               "d._command = lambda words: (seen.clear(), command(words))[1]; "
                "atexit.register(lambda: print('[seen]', *(seen + ['end'])[:2], file=sys.stderr)); "
                "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
     for words, first in ((["check", "--no-cache", "--timeout", "0", "--max-memory", "0",
