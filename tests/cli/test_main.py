@@ -303,6 +303,20 @@ def test_a_check_collects_nothing_before_its_imports_are_frozen(tmp_path):
         assert done.returncode == 0 and f"[seen] {first}" in done.stderr, done.stderr
 
 
+def test_a_check_whose_rhythm_is_patched_out_runs_with_the_collector_on(tmp_path):
+    """The pause ends after the freeze whoever froze (``make bench`` times the check without
+    the rhythm: with Python's collector, not none)."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, gc, sys; import urdftool.__main__ as d; "
+               "d._collect_less = lambda: None; "
+               "atexit.register(lambda: print('[on]', gc.isenabled(), file=sys.stderr)); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
+    done = subprocess.run([sys.executable, "-c", program, "check", "--no-cache", "--timeout",
+                           "0", "--max-memory", "0", "a.urdf"], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=120)
+    assert done.returncode == 0 and "[on] True" in done.stderr, done.stderr
+
+
 def test_the_collector_is_on_again_when_a_check_fails_before_its_imports(monkeypatch):
     import gc
 
