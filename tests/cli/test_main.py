@@ -281,6 +281,57 @@ def test_the_imports_of_a_check_are_frozen_and_the_rules_still_run_unexamined(tm
     assert done.stdout.split("\n")[0] == "True True [False] 0 True", done.stderr
 
 
+def test_a_check_collects_nothing_before_its_imports_are_frozen(tmp_path):
+    """The collector is off from a check's first step through the door (the kept code, the
+    command's imports) until :func:`urdftool.__main__._collect_less` froze what they made,
+    which it examined only to find it all alive; other commands collect as Python does."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, gc, sys; import urdftool.__main__ as d; seen = []; "
+               "gc.callbacks.append(lambda phase, info: phase == 'start' and "
+               "seen.append('collected')); "
+               "kept, frozen, command = d.kept_code, d._collect_less, d._command; "
+               # as many young objects as the kept code and dataclasses' imports make
+               "d.kept_code = lambda: (kept(), [[] for _ in range(5000)])[0]; "
+               "d._collect_less = lambda: (seen.append('frozen'), frozen())[1]; "
+               "d._command = lambda words: (seen.clear(), command(words))[1]; "
+               "atexit.register(lambda: print('[seen]', *(seen + ['end'])[:2], file=sys.stderr)); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
+    for words, first in ((["check", "--no-cache", "--timeout", "0", "--max-memory", "0",
+                           "a.urdf"], "frozen"), (["tree", "a.urdf"], "collected")):
+        done = subprocess.run([sys.executable, "-c", program, *words], capture_output=True,
+                              text=True, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0 and f"[seen] {first}" in done.stderr, done.stderr
+
+
+def test_a_check_whose_rhythm_is_patched_out_runs_with_the_collector_on(tmp_path):
+    """The pause ends after the freeze whoever froze (``make bench`` times the check without
+    the rhythm: with Python's collector, not none)."""
+    (tmp_path / "a.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    program = ("import atexit, gc, sys; import urdftool.__main__ as d; "
+               "d._collect_less = lambda: None; "
+               "atexit.register(lambda: print('[on]', gc.isenabled(), file=sys.stderr)); "
+               "sys.argv = ['urdftool', *sys.argv[1:]]; d.main()")
+    done = subprocess.run([sys.executable, "-c", program, "check", "--no-cache", "--timeout",
+                           "0", "--max-memory", "0", "a.urdf"], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=120)
+    assert done.returncode == 0 and "[on] True" in done.stderr, done.stderr
+
+
+def test_the_collector_is_on_again_when_a_check_fails_before_its_imports(monkeypatch):
+    import gc
+
+    from urdftool import __main__ as door
+
+    def fails(path=None):
+        raise RuntimeError("no kept code")
+
+    monkeypatch.setattr(door, "kept_code", fails)
+    assert gc.isenabled()
+    with pytest.raises(RuntimeError):
+        door._command(["check", "a.urdf"])
+    assert gc.isenabled()
+
+
 def test_a_run_the_result_cache_serves_imports_no_rule(tmp_path):
     """The door imports the rules when files are to be checked (``runner.import_rules``), not
     before: a re-run served whole from the result cache imported them for nothing (33-75 ms
