@@ -1017,6 +1017,33 @@ def _other_robot_with(robot, srdf_key) -> str:
     return found
 
 
+# the executables that put a robot description into a simulator: (package, executables)
+SIMULATOR_SPAWNERS = (("gazebo_ros", ("spawn_model", "spawn_entity.py")),
+                      ("ros_gz_sim", ("create",)), ("ros_ign_gazebo", ("create",)))
+
+
+def simulators(robot) -> list[str]:
+    """What simulates the robot, in words, from what is read of it already: the Gazebo plugins
+    of its own ``<gazebo>`` blocks, its launch files' spawners (gazebo_ros' spawn_model and
+    spawn_entity.py, ros_gz_sim's create) and the simulators it is checked for
+    (``--target``); [] when nothing here says a simulator loads it (once per robot)."""
+    def build():
+        from urdftool.description.actuation import gazebo_plugins
+
+        found = []
+        plugin = next((p.get("filename") for p in gazebo_plugins(robot) if p.get("filename")), None)
+        if plugin:
+            found.append(f"Gazebo ({plugin})")
+        for package, executables in SIMULATOR_SPAWNERS:
+            for _, start in runtime(robot).starts(package, executables):
+                found.append(f"{Path(start.launch).name} spawns it into Gazebo")
+                break
+        found.extend(sorted(robot.targets))
+        return list(dict.fromkeys(found))
+
+    return robot.memo(simulators, build)
+
+
 def state_publishers(robot) -> list[tuple[Configuration, Started]]:
     """The joint_state_publisher nodes the robot's configurations start."""
     facts = runtime(robot)

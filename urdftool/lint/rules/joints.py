@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import length, number, unit
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
@@ -418,7 +418,9 @@ def zero_effort_or_velocity(robot):
         texts = read[limit]
         for attribute, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY])):
             values, _ = number_tuple(text, 1)
-            if values and values[0] == 0:
+            if values and values[0] == 0 and attribute == "effort":
+                yield limit, _zero_effort(robot, _name(joint))
+            elif values and values[0] == 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
                               + _HELD_STILL_BY[attribute])
             elif values and values[0] < 0:
@@ -427,6 +429,22 @@ def zero_effort_or_velocity(robot):
                               "is negative, the URDF specification reads its absolute value, and "
                               f"Pinocchio refuses the model (min_{attribute} above max_{attribute}); "
                               f"write the real {attribute} limit")
+
+
+def _zero_effort(robot, name: str):
+    """U212's message for an effort limit of 0: a warning naming what simulates the robot
+    (:func:`~urdftool.description.runtime.simulators`), which clamps the joint's force to it; a
+    note when nothing here does, as MoveIt and robot_state_publisher do not read effort."""
+    from urdftool.description.runtime import simulators
+
+    said = f"joint '{name}': effort limit is 0; " + _HELD_STILL_BY["effort"]
+    found = simulators(robot)
+    if found:
+        return Conditional(f"{said}; {', '.join(found[:2])} simulates the robot")
+    return Conditional(f"{said}; nothing here simulates the robot (no Gazebo plugin in it, no "
+                       "launch file spawning it, no --target): the ROS-Industrial exporters' "
+                       "'unknown', it matters only to an effort-limited controller or a "
+                       "simulator loading it elsewhere", Severity.INFO)
 
 
 @rule("U213", "safety-controller-incomplete", Severity.ERROR)
