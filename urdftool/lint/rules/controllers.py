@@ -140,6 +140,10 @@ def controller_unknown_joint(robot):
     arguments, a sibling robot's file): one note says so, at its first controller. One name
     alone that is missing may be a slip, and is judged as any other.
 
+    A controller that every launch file starting it starts against the robot built with other
+    xacro arguments (all known) is checked against that build (aist_robotiq's gazebo.launch,
+    ``prefix:=a_bot_gripper_``): nothing when each has the joint, else a warning naming it.
+
     A name ``CONTROLLER/NAME`` where CONTROLLER is another controller of the robot is a chained
     controller's reference interface (diff_drive_controller driving two pid_controllers,
     ros2_control_demos example 16), not a joint.

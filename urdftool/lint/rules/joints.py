@@ -399,7 +399,8 @@ def zero_effort_or_velocity(robot):
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
     a zero makes the joint immovable for them. An effort of 0 is the ROS-Industrial exporters'
     "unknown": MoveIt and robot_state_publisher do not read effort, so the message names who
-    holds the joint still.
+    holds the joint still, as a warning naming what simulates the robot (a Gazebo plugin in
+    it, a launch file spawning it, ``--target``), and as a **note** when nothing here does.
 
     A negative limit means something different to each consumer, so it is a warning, not an
     error: the URDF specification bounds the applied effort by its absolute value; SDFormat
