@@ -35,16 +35,19 @@ class LoadError(UrdftoolError):
         the source tree whose package's install rules could not be read)
     close: for 'package', the packages found whose names are close to ``subject`` (a misspelt
         or stale name, most likely)
+    whatever_args: True when it fails whatever values the xacro arguments have (a macro call
+        under no condition giving a parameter the macro lacks)
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
-                 certain: bool = True, close: tuple = ()):
+                 certain: bool = True, close: tuple = (), whatever_args: bool = False):
         self.kind = kind
         self.message = message
         self.location = location
         self.subject = subject
         self.certain = certain
         self.close = tuple(close)
+        self.whatever_args = whatever_args
         super().__init__(message)
 
 

@@ -310,3 +310,29 @@ def test_a_library_of_macros_needing_a_missing_package_is_a_note_a_robot_not_che
                      '</robot>')
     [finding] = load_and_check(str(robot), CheckOptions()).findings
     assert finding.severity == Severity.WARNING and "did you mean" in finding.message
+
+
+@pytest.mark.parametrize("conditional, severity", [(False, Severity.ERROR), (True, Severity.WARNING)])
+def test_a_parameter_the_macro_lacks_fails_whatever_the_launch_gives_unless_under_a_condition(
+        tmp_path, conditional, severity):
+    # adv4ncr/motoman_ROS2's hc10dt_b10.xacro (tests/cases/U005_invalid_parameter_whatever_the_
+    # launch_gives): xacro checks a call's parameter names before any value, so only a condition
+    # around the call can make another argument value succeed
+    call = '<xacro:c ip="$(arg ip)" use_mock="1"/>'
+    if conditional:
+        call = f'<xacro:if value="$(arg mock)">{call}</xacro:if><link name="base"/>'
+    files = {
+        "arm/package.xml": "<package format='2'><name>arm</name></package>",
+        "arm/urdf/arm.urdf.xacro": f"""<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="ip" default=""/><xacro:arg name="mock" default="true"/>
+  <xacro:macro name="c" params="ip mock"><link name="base"/></xacro:macro>
+  {call}
+</robot>""",
+        "arm/launch/load_arm.launch": """<launch>
+  <arg name="ip"/>
+  <param name="robot_description" command="xacro $(find arm)/urdf/arm.urdf.xacro ip:=$(arg ip)"/>
+</launch>"""}
+    _repository(tmp_path, files)
+    result = load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"), CheckOptions())
+    [failed] = [f for f in result.findings if f.code == "U005"]
+    assert failed.severity == severity, failed.message

@@ -161,14 +161,21 @@ def _launch_root(folder: Path) -> Path | None:
     return enclosing_root(Path(os.path.abspath(folder)))
 
 
-def _runtime(robot) -> Runtime:
-    found = Runtime()
+def _robot_root(robot) -> tuple[Path, Path] | None:
+    """(the robot file's absolute path, the root whose launch files may run it), or None."""
     if robot.path == "-":
-        return found
+        return None
     path = Path(os.path.abspath(robot.path))
     root = _launch_root(path.parent)
-    if root is None:
+    return None if root is None else (path, root)
+
+
+def _runtime(robot) -> Runtime:
+    found = Runtime()
+    placed = _robot_root(robot)
+    if placed is None:
         return found
+    path, root = placed
     index = launch_index(root)
     found.read = [launch.path for launch in index.files.values()]
     real = real_path(path)
@@ -817,6 +824,28 @@ def runs(robot, controller, parameter_files=()) -> Runs:
     return Runs("conditional", active[0].told(), tuple(relevant))
 
 
+def building_args(robot, configuration: Configuration) -> dict | None:
+    """The xacro arguments ``configuration`` builds the robot's file with, as xacro gets them
+    (name -> text), when it builds it with other arguments than the robot was checked with and
+    every value given is known; else None (built as checked, not built, or a value known only
+    at launch)."""
+    placed = _robot_root(robot)
+    if placed is None:
+        return None
+    path, root = placed
+    real, mine, packages = real_path(path), _robot_args(robot), packages_below(root)
+    for description in configuration.described:
+        if description.path is None or real_path(description.path) != real or not description.xacro:
+            continue
+        given = {name: _as_given(value, packages) for name, value in description.args.items()}
+        if not description.complete or any(text is None for text in given.values()):
+            return None
+        if all(_normal(text) == _normal(mine.get(name, text)) for name, text in given.items()):
+            return None  # as checked
+        return given
+    return None
+
+
 def _unread_starting(robot, short: str) -> Runs | None:
     """A launch file of the robot that could not be read and names controller ``short`` may
     start it: "never" is then not known (:func:`unread_naming`)."""
@@ -1017,6 +1046,33 @@ def _other_robot_with(robot, srdf_key) -> str:
             found = (f"{configuration.named} gives MoveIt this SRDF with "
                      f"{display_path(robots[0])}, another robot file")
     return found
+
+
+# the executables that put a robot description into a simulator: (package, executables)
+SIMULATOR_SPAWNERS = (("gazebo_ros", ("spawn_model", "spawn_entity.py")),
+                      ("ros_gz_sim", ("create",)), ("ros_ign_gazebo", ("create",)))
+
+
+def simulators(robot) -> list[str]:
+    """What simulates the robot, in words, from what is read of it already: the Gazebo plugins
+    of its own ``<gazebo>`` blocks, its launch files' spawners (gazebo_ros' spawn_model and
+    spawn_entity.py, ros_gz_sim's create) and the simulators it is checked for
+    (``--target``); [] when nothing here says a simulator loads it (once per robot)."""
+    def build():
+        from urdftool.description.actuation import gazebo_plugins
+
+        found = []
+        plugin = next((p.get("filename") for p in gazebo_plugins(robot) if p.get("filename")), None)
+        if plugin:
+            found.append(f"Gazebo ({plugin})")
+        for package, executables in SIMULATOR_SPAWNERS:
+            for _, start in runtime(robot).starts(package, executables):
+                found.append(f"{Path(start.launch).name} spawns it into Gazebo")
+                break
+        found.extend(sorted(robot.targets))
+        return list(dict.fromkeys(found))
+
+    return robot.memo(simulators, build)
 
 
 def state_publishers(robot) -> list[tuple[Configuration, Started]]:

@@ -87,6 +87,9 @@ class XacroFailure(Exception):
     certain: bool = True  # False: may not hold after the package's build (a file it installs)
     close: tuple = ()  # 'package': the packages found whose names are close to ``subject``
     melodic: bool = False  # read as ROS 1's xacro up to Melodic, relying on unprefixed tags
+    # fails whatever values the xacro arguments have (a macro call under no condition giving a
+    # parameter the macro lacks: xacro checks the names before any value)
+    whatever_args: bool = False
 
 
 class Expansion(Record):
@@ -949,7 +952,26 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(
             "parameters", invalid.group(1), _called_macro_params(error))
-    return XacroFailure("arg" if argument else "xacro", message, where, subject=argument)
+    return XacroFailure("arg" if argument else "xacro", message, where, subject=argument,
+                        whatever_args=bool(invalid) and not _under_condition(error.__traceback__))
+
+
+_CONDITIONS = ("xacro:if", "xacro:unless", "if", "unless")
+
+
+def _under_condition(traceback) -> bool:
+    """Whether an element xacro was working on when it raised, or one holding it (the calls
+    of the macros it is in, each a frame), is an ``xacro:if``/``xacro:unless``: whether other
+    argument values could leave the failing element unexpanded."""
+    while traceback is not None:
+        for name in ("node", "elt"):
+            node = traceback.tb_frame.f_locals.get(name)
+            while isinstance(node, xml.dom.Node):
+                if node.nodeType == xml.dom.Node.ELEMENT_NODE and node.tagName in _CONDITIONS:
+                    return True
+                node = node.parentNode
+        traceback = traceback.tb_next
+    return False
 
 
 _UNDEFINED_PARAMETERS = re.compile(r"Undefined parameters \[(.*)\]")

@@ -546,6 +546,12 @@ def _joined(boxes) -> tuple[mat3.Vector, mat3.Vector] | None:
     return (min(lx), min(ly), min(lz)), (max(hx), max(hy), max(hz))
 
 
+def link_bounds(robot, link) -> tuple[tuple | None, bool]:
+    """(the box of the link's own visual and collision geometry in its frame, or None; whether
+    every shape of it was measured), as :func:`rigid_bounds` reads it of each member."""
+    return _placed_corners(robot, link)[1:]
+
+
 def _placed_corners(robot, member) -> tuple[list[Shape], tuple | None, bool]:
     """(a link's visual and collision shapes whose box corners are placed in the link frame
     (:func:`_shape_corners`); their box as (min corner, max corner) when every coordinate is finite,

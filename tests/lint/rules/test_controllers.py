@@ -278,10 +278,12 @@ def test_a_controller_no_launch_file_starts_is_not_judged(tmp_path):
     assert marks == [("c.yaml", 2, "U602")] and findings[0].severity == Severity.ERROR
 
 
-def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_path):
+def _gripper_launch(tmp_path, body: str = ""):
+    """A robot whose launch file builds it with gripper:=true and starts controller 'grip'
+    (joint 'finger') with it; its findings."""
     (tmp_path / ".git").mkdir()
-    robot = HEAD_ROBOT.format(body="").replace('<robot name="r">', '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
-                                               '<xacro:arg name="gripper" default="false"/>')
+    robot = HEAD_ROBOT.format(body=body).replace('<robot name="r">', '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                                 '<xacro:arg name="gripper" default="false"/>')
     files = {"robot.urdf": "", "robot.urdf.xacro": robot,
              "package.xml": "<package format='2'><name>head</name></package>",
              "config/c.yaml": "jsc: {type: joint_state_controller/JointStateController}\n"
@@ -294,10 +296,25 @@ def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_pat
     for name, text in files.items():
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(text)
-    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
-    [finding] = [f for f in result.findings if f.code == "U602"]
+    return load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions()).findings
+
+
+def test_a_controller_started_against_other_xacro_arguments_is_a_warning(tmp_path):
+    # the build the launch file starts it with (gripper:=true) lacks the joint too
+    [finding] = [f for f in _gripper_launch(tmp_path) if f.code == "U602"]
     assert finding.severity == Severity.WARNING
     assert "against the robot with other xacro arguments (gripper:=true)" in finding.message
+    assert "which is not in that build of the robot either" in finding.message
+
+
+def test_a_controller_is_checked_against_the_robot_its_launch_file_builds(tmp_path):
+    # Automation-Research-Team/aist_robotiq: gazebo.launch builds the gripper with
+    # prefix:=a_bot_gripper_ and starts the controller naming a_bot_gripper_finger_joint; the
+    # robot as checked (prefix '') lacks it, the build that starts the controller has it
+    grip = ('<xacro:if value="$(arg gripper)"><link name="finger_link"/><joint name="finger" '
+            'type="prismatic"><parent link="head"/><child link="finger_link"/><axis xyz="1 0 0"/>'
+            '<limit lower="0" upper="0.01" effort="5" velocity="1"/></joint></xacro:if>')
+    assert [f.message for f in _gripper_launch(tmp_path, grip) if f.code == "U602"] == []
 
 
 def test_a_file_naming_only_another_builds_joints_is_one_note(tmp_path):

@@ -84,6 +84,32 @@ def test_inertia_far_from_geometry(tmp_path, i, com, geometry, reported):
     assert bool(found) == reported, [f.message for f in findings]
 
 
+@pytest.mark.parametrize("visual, severity", [
+    ("", "warning"),  # the collision rod is all the link has: no mass can
+    # a wheel's visual larger than its collision rod (youbot's, scout's): the visual could
+    # hold it, so it is wrong only if the collision rod is the body's shape
+    ('<visual><geometry><box size="0.2 0.2 2"/></geometry></visual>', "info"),
+    # a visual no larger: the same bound, still beyond it
+    ('<visual><geometry><box size="0.02 0.02 1"/></geometry></visual>', "warning"),
+])
+def test_inertia_beyond_a_simplified_collision_is_a_note_when_the_visual_holds_it(
+        tmp_path, visual, severity):
+    found, findings = _check(tmp_path, "U310", 1, 0.6, ROD, visual=visual)
+    assert [f.severity.value for f in findings] == [severity], [f.message for f in findings]
+    if severity == "info":
+        assert "if the collision geometry is the body's shape" in findings[0].message
+
+
+def test_an_impossible_tensor_is_told_once_by_the_rule_refusing_it(tmp_path):
+    # RokaeRobot/rokae_ros2's xMateSR4_link1, fetch's gripper fingers, legged_gym's cassie: a
+    # tensor breaking the triangle inequality (U306) was also far from its geometry (U310) and
+    # ordered against it (U314): one defect told three times; the refusal says it
+    text = LINK.format(mass=1, i=0.1, geometry=ROD, com="0 0 0", visual="").replace(
+        'izz="0.1"', 'izz="2"')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U306", "U310", "U314"))
+    assert [f.code for f in findings] == ["U306"], [f.message for f in findings]
+
+
 def test_inertia_far_from_an_open_mesh_is_not_judged(tmp_path):
     (tmp_path / "open.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n")
     found, _ = _check(tmp_path, "U310", 1, 50, '<mesh filename="open.obj" scale="0.1 0.1 0.1"/>')

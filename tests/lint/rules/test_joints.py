@@ -140,6 +140,36 @@ def test_a_negative_limit_says_what_each_consumer_makes_of_it(tmp_path, attribut
     assert finding.severity.name == "WARNING"
     assert "cannot move" not in finding.message and "enforce no limit" in finding.message
     assert f"Pinocchio refuses the model (min_{attribute} above max_{attribute})" in finding.message
+ZERO_EFFORT = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
+               '<joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>'
+               '<limit lower="0" upper="1" effort="0" velocity="2"/></joint>{body}</robot>\n')
+
+
+@pytest.mark.parametrize("body, files, severity, said", [
+    # ROS-Industrial's support packages (fanuc, abb, kuka_experimental, motoman): effort 0 is
+    # the exporters' "unknown", and nothing here simulates the robot; MoveIt and
+    # robot_state_publisher do not read it
+    ("", {}, "INFO", "nothing here simulates the robot"),
+    # a Gazebo plugin in the robot: Gazebo clamps the joint's force to 0
+    ('<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>', {}, "WARNING",
+     "Gazebo (libgazebo_ros_control.so) simulates the robot"),
+    # a launch file spawning the file into Gazebo (mathemonads' gazebo.launch)
+    ("", {"launch/gazebo.launch": '<launch><param name="robot_description" '
+          'textfile="$(find bot)/robot.urdf"/><node pkg="gazebo_ros" type="spawn_model" '
+          'name="s" args="-urdf -param robot_description -model r"/></launch>',
+          "package.xml": "<package format=\"2\"><name>bot</name><buildtool_depend>catkin"
+                         "</buildtool_depend></package>", ".git/HEAD": ""},
+     "WARNING", "gazebo.launch spawns it into Gazebo"),
+])
+def test_a_zero_effort_matters_only_where_something_simulates_the_robot(
+        tmp_path, body, files, severity, said):
+    found, findings = check_folder(tmp_path, {"robot.urdf": ZERO_EFFORT.format(body=body), **files},
+                                   select=("U212",))
+    [finding] = findings
+    assert finding.severity.name == severity, finding.message
+    assert said in finding.message, finding.message
+
+
 @pytest.mark.parametrize("lower, upper, swapped", [("inf", "1", False), ("1", "-inf", False),
                                                    ("nan", "1", False), ("2", "1", True),
                                                    ("1e308", "-1e308", True)])

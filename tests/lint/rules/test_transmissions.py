@@ -166,6 +166,21 @@ def test_a_joint_whose_ros2_control_entry_is_misspelt_names_that_entry(tmp_path)
     assert said.endswith("robot.urdf:9 names no joint and may be meant for it"), findings[0].message
 
 
+def test_a_joint_whose_transmission_is_misspelt_names_that_transmission(tmp_path):
+    # UM-ARM-Lab/kuka_iiwa_interface's stale victor.urdf: transmissions name iiwa_joint_N (U501
+    # at the transmission) for victor_left_arm_joint_N; the joint said to have no transmission
+    # names the one meant for it rather than asking for a new one
+    robot = HEAD_ROBOT.format(body='<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/>'
+                                   '</gazebo>\n<transmission name="t"><type>transmission_interface/'
+                                   'SimpleTransmission</type><joint name="head_jiont"><hardwareInterface>'
+                                   'hardware_interface/PositionJointInterface</hardwareInterface></joint>'
+                                   '<actuator name="m"/></transmission>')
+    marks, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507",))
+    assert marks == [("robot.urdf", 3, "U507")]
+    said = findings[0].message.partition("; transmission 't''s joint 'head_jiont' at ")[2]
+    assert said.endswith("robot.urdf:9 names no joint and may be meant for it"), findings[0].message
+
+
 def test_the_added_transmissions_interface_is_the_same_whatever_the_hash_seed(tmp_path):
     """U507's fix gives a new transmission the interface most transmissions use; of interfaces
     used equally often, the first written (it was the first of a set of strings: which one

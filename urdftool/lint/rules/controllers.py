@@ -140,6 +140,10 @@ def controller_unknown_joint(robot):
     arguments, a sibling robot's file): one note says so, at its first controller. One name
     alone that is missing may be a slip, and is judged as any other.
 
+    A controller that every launch file starting it starts against the robot built with other
+    xacro arguments (all known) is checked against that build (aist_robotiq's gazebo.launch,
+    ``prefix:=a_bot_gripper_``): nothing when each has the joint, else a warning naming it.
+
     A name ``CONTROLLER/NAME`` where CONTROLLER is another controller of the robot is a chained
     controller's reference interface (diff_drive_controller driving two pid_controllers,
     ros2_control_demos example 16), not a joint.
@@ -163,6 +167,18 @@ def controller_unknown_joint(robot):
             continue
         for ref in _urdf_joints(robot, controller):
             if ref.name not in robot.joints and ref.name.partition("/")[0] not in chainable:
+                builds = _starting_builds(robot, controller) if controller.known else None
+                lacking = [(spawn, built) for spawn, built in builds or ()
+                           if ref.name not in built.joints]
+                if builds and not lacking:
+                    continue  # in every robot the controller is started with
+                if lacking:  # checked against the robot it is started with, which lacks it too
+                    spawn, built = lacking[0]
+                    yield controller.file.at(ref.line), Conditional(
+                        f"if {spawn.told()}: {label(controller)} names joint '{ref.name}', "
+                        "which is not in that build of the robot either; "
+                        f"{available('joints', ref.name, built.joints)}")
+                    continue
                 literal = (" (every launch file of the robot loads the file without substitution, "
                            "so it is not replaced)" if "$(" in ref.name else "")
                 message = hedged(robot, controller, (
@@ -170,6 +186,38 @@ def controller_unknown_joint(robot):
                     f"{literal}; {available('joints', ref.name, robot.joints)}"))
                 if message is not None:
                     yield controller.file.at(ref.line), message
+
+
+def _starting_builds(robot, controller: Controller) -> list | None:
+    """(spawn, the robot as built there) for each launch configuration starting ``controller``
+    active, when every one builds the robot with other xacro arguments, all known, and xacro
+    succeeds so; else None. The controller runs with those robots, not the one checked
+    (aist_robotiq's gazebo.launch builds the gripper with prefix:=a_bot_gripper_, the joints
+    its YAML names)."""
+    from urdftool.description.runtime import building_args
+
+    active = [spawn for spawn in runs_of(robot, controller).spawns if spawn.active]
+    if not active or getattr(robot, "rebuild", None) is None:
+        return None
+    found = []
+    for spawn in active:
+        args = building_args(robot, spawn.configuration)
+        built = False if args is None else robot.memo_for(
+            _starting_builds, tuple(sorted(args.items())), lambda: _rebuilt(robot, args))
+        if built is False:
+            return None
+        found.append((spawn, built))
+    return found
+
+
+def _rebuilt(robot, args: dict):
+    """The robot built again with xacro arguments ``args``, or False when xacro fails so."""
+    from urdftool.errors import LoadError
+
+    try:
+        return robot.rebuild(args)
+    except LoadError:
+        return False
 
 
 def _foreign_files(robot) -> dict:

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers, power
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
@@ -672,10 +672,11 @@ def _unit_factor(properties, expected, ratio) -> int | None:
 FAR_RATIO = 10.0  # declared vs computed trace: beyond this, no mass distribution explains it
 
 
-def _largest_trace(properties, solid) -> float:
-    """The largest trace any mass distribution inside the geometry's bounding box can have
-    about the declared centre of mass: 2 m R^2, R the box corner farthest from it [kg m^2]."""
-    low, high = solid.bounds
+def _largest_trace(properties, solid, bounds=None) -> float:
+    """The largest trace any mass distribution inside the geometry's bounding box (``bounds``
+    when given) can have about the declared centre of mass: 2 m R^2, R the box corner farthest
+    from it [kg m^2]."""
+    low, high = bounds or solid.bounds
     reach = sum(power(max(abs(l - c), abs(h - c)), 2) for l, c, h in zip(low, properties.com, high))
     return 2 * properties.mass * reach
 
@@ -695,7 +696,14 @@ def inertia_far_from_geometry(robot):
     placeholder (``ixx="1e-3"`` copied onto every link). Only judged when the geometry is
     trustworthy: primitives and closed (watertight) meshes, all loaded, over 1 cm (smaller
     boxes mark sensor frames) and up to 5 m in size; a convex hull of an open or hollow mesh is
-    not (see U414). Unit slips of 10^3 and 10^6 are U309.
+    not (see U414). Unit slips of 10^3 and 10^6 are U309, a tensor no body has (indefinite, or
+    breaking the triangle inequality) U305's or U306's alone.
+
+    A **note** naming the condition when the tensor is beyond the collision geometry's bound
+    but within that of the link's visual and collision geometry: a collision shape simplified
+    smaller than the part (a box inside an arm's mesh) bounds nothing of the real part, and the
+    tensor is wrong only if it is the body's shape. When the visual bounds it too, the message
+    says so (youbot's and Scout's wheels, whose visual is no larger).
 
     Bad: a 0.1 kg, 10 x 3 x 3 cm camera with ``ixx="0.0016" iyy="0.0016" izz="0.0016"``
     (24 times its box's)
@@ -710,14 +718,42 @@ def inertia_far_from_geometry(robot):
             continue
         if _unit_factor(properties, expected, ratio) is not None:
             continue  # U309 says it
+        if _impossible(robot, link, properties):
+            continue  # U305 or U306 refuses it: no geometry holds it, one defect told once
         beyond = (f", more than any distribution of that mass inside it can have "
-                  f"({number(_largest_trace(properties, solid), 3)})") if larger else ""
-        yield _inertial_part(link, "inertia"), (
+                  f"({number(_largest_trace(properties, solid), 3)})") if larger else (
+            ", so that nearly all the mass would lie within a third of its size around the "
+            "centre of mass: a placeholder, another part's tensor, or a collision shape larger "
+            "than the part")
+        drawn = _drawn_bound(robot, link, properties, solid) if larger else None
+        held = drawn is not None and trace <= drawn
+        if held:  # the collision geometry is smaller than what the visual draws
+            beyond += f", though its visual geometry could hold it (up to {number(drawn, 3)})"
+        elif drawn is not None and drawn > _largest_trace(properties, solid) * (1 + 1e-9):
+            beyond += f", nor inside its visual geometry ({number(drawn, 3)})"
+        message = (
             f"link '{_name(link)}': declared inertia (trace {number(trace, 3)} kg m^2) is "
             f"{number(ratio, 3)} times that of its {solid.source} geometry as a uniform solid of "
             f"the declared {properties.mass:g} kg (trace "
             f"{number(mat3.trace(expected.inertia), 3)}){beyond}; "
             f"`urdftool inertia --link {_shell_word(_name(link))}` computes it")
+        if held:
+            message = Conditional("if the collision geometry is the body's shape, not a "
+                                  f"simplification smaller than it: {message}", Severity.INFO)
+        yield _inertial_part(link, "inertia"), message
+
+
+def _drawn_bound(robot, link, properties, solid) -> float | None:
+    """The largest trace inside the box of the link's own visual and collision geometry
+    [kg m^2], when the tensor is judged from its collision geometry and all of that geometry
+    is measured; else None. A collision shape simplified smaller than the part (a wheel's thin
+    cylinder, a box inside an arm's mesh) bounds nothing of the real part: what is drawn does."""
+    if solid.source != "collision":
+        return None
+    box, complete = solids.link_bounds(robot, link)
+    if box is None or not complete:
+        return None
+    return _largest_trace(properties, solid, box)
 
 
 def _shell_word(name: str) -> str:
@@ -1038,7 +1074,8 @@ def principal_moments_order(robot):
     about its hardest one (mass gathered in the middle of a long part lowers the moments across
     it, not that far). Typical of a tensor written for another axis convention (a
     cylinder along z whose link is a rod along x), or of ixx and izz swapped. Wheels, and the
-    hubs and tyres fixed below them, are U421's.
+    hubs and tyres fixed below them, are U421's; a tensor no body has (indefinite, or breaking
+    the triangle inequality) is U305's or U306's alone.
 
     Bad: a 0.4 x 0.05 x 0.05 m box with ``ixx="0.013" iyy="0.013" izz="0.0004"``
     Good: ``ixx="0.0004" iyy="0.013" izz="0.013"``
@@ -1052,6 +1089,8 @@ def principal_moments_order(robot):
         if (names[link] or "?") in skip or properties.mass <= PLACEHOLDER_MASS:
             continue
         easiest, _, hardest = mat3.eigvalsh(expected.inertia)
+        if _impossible(robot, link, properties):
+            continue  # U305 or U306 refuses it: no order of its moments is a body's
         if not easiest > 0 or hardest < ORDER_RATIO * easiest:
             continue
         least, _, most = _principal(robot, link, properties)[0]
@@ -1177,7 +1216,8 @@ FAR_BEYOND = 2.0  # the bound takes the whole rigid body's reach: twice it is be
 
 
 def _impossible(robot, link, properties) -> bool:
-    """Whether U305 or U306 already refuses the tensor (indefinite, or a triangle broken)."""
+    """Whether U305 or U306 already refuses the tensor (indefinite, or a triangle broken): the
+    one defect the comparisons with geometry (U310, U314, U316) then leave to them."""
     moments, largest = _principal(robot, link, properties)
     if moments[0] < -max(NEGATIVE_TOLERANCE * largest, _scaled(NEGATIVE_FLOOR, properties.mass)):
         return True

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import length, number, unit
 from urdftool.errors import available
 from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
@@ -399,7 +399,8 @@ def zero_effort_or_velocity(robot):
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
     a zero makes the joint immovable for them. An effort of 0 is the ROS-Industrial exporters'
     "unknown": MoveIt and robot_state_publisher do not read effort, so the message names who
-    holds the joint still.
+    holds the joint still, as a warning naming what simulates the robot (a Gazebo plugin in
+    it, a launch file spawning it, ``--target``), and as a **note** when nothing here does.
 
     A negative limit means something different to each consumer, so it is a warning, not an
     error: the URDF specification bounds the applied effort by its absolute value; SDFormat
@@ -418,7 +419,9 @@ def zero_effort_or_velocity(robot):
         texts = read[limit]
         for attribute, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY])):
             values, _ = number_tuple(text, 1)
-            if values and values[0] == 0:
+            if values and values[0] == 0 and attribute == "effort":
+                yield limit, _zero_effort(robot, _name(joint))
+            elif values and values[0] == 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
                               + _HELD_STILL_BY[attribute])
             elif values and values[0] < 0:
@@ -427,6 +430,22 @@ def zero_effort_or_velocity(robot):
                               "is negative, the URDF specification reads its absolute value, and "
                               f"Pinocchio refuses the model (min_{attribute} above max_{attribute}); "
                               f"write the real {attribute} limit")
+
+
+def _zero_effort(robot, name: str):
+    """U212's message for an effort limit of 0: a warning naming what simulates the robot
+    (:func:`~urdftool.description.runtime.simulators`), which clamps the joint's force to it; a
+    note when nothing here does, as MoveIt and robot_state_publisher do not read effort."""
+    from urdftool.description.runtime import simulators
+
+    said = f"joint '{name}': effort limit is 0; " + _HELD_STILL_BY["effort"]
+    found = simulators(robot)
+    if found:
+        return Conditional(f"{said}; {', '.join(found[:2])} simulates the robot")
+    return Conditional(f"{said}; nothing here simulates the robot (no Gazebo plugin in it, no "
+                       "launch file spawning it, no --target): the ROS-Industrial exporters' "
+                       "'unknown', it matters only to an effort-limited controller or a "
+                       "simulator loading it elsewhere", Severity.INFO)
 
 
 @rule("U213", "safety-controller-incomplete", Severity.ERROR)

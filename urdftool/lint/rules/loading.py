@@ -100,7 +100,10 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     holds for a plain ``xacro FILE``, not for the build the repository runs. A **warning** too
     when a launch file builds it giving arguments whose values are known only at launch
     (``arm:=$(arg arm)`` from a launch argument without a default), and that build is not
-    checked. Otherwise the failure is an error.
+    checked; but an **error** when no value can change the failure: a macro call under no
+    ``xacro:if``/``xacro:unless`` giving a parameter the macro lacks (``Invalid parameter``,
+    which xacro checks before any value: adv4ncr/motoman_ROS2's ``use_mock_hardware`` for
+    ``mock_hardware``). Otherwise the failure is an error.
 
     An included file missing from the source tree below a package (``$(find NAME)/...``) is
     looked for where the package's build installs it from (docs/packages.md); when that
@@ -272,6 +275,12 @@ def failing_defaults(path: str, error, build):
                    f"but {made.named} builds it with {made.shown_args()} and xacro succeeds: "
                    "checked as built there (--arg NAME=VALUE checks another build)")
         return robot, known, [U005.finding(Conditional(message), error.location)]
+    if unknown and error.whatever_args:  # the values given at launch cannot change it
+        made, later = unknown
+        message = (f"{error.message}; xacro fails so whatever the arguments: it checks a call's "
+                   f"parameter names before any value, and the call is under no condition, so "
+                   f"{made.named}'s build fails too, whatever {', '.join(later)} it is given")
+        return None, {}, [U005.finding(message, error.location)]
     if unknown:  # the build the repository runs depends on values given at launch
         made, later = unknown
         message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "

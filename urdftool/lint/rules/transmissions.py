@@ -292,16 +292,16 @@ def unactuated_joint(robot):
     if publishing and not silent:
         return  # every launch file starting the robot's controllers starts joint_state_publisher
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
-    misspelt = _misspelt_ros2_control_joints(robot)
+    misspelt = _misspelt_entries(robot, [name for name in moving_joints(robot) if name not in actuated])
     for name, joint in moving_joints(robot).items():
         if name not in actuated:
             message = (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
                        f"although the robot loads {loader}; it will not be in /joint_states")
-            if name in misspelt:  # U511's unknown name: the entry is there, misspelt
-                where = robot.locate(misspelt[name])
+            if name in misspelt:  # U501's or U511's unknown name: the entry is there, misspelt
+                label, element = misspelt[name]
+                where = robot.locate(element)
                 at = f" at {where.file}:{where.line}" if where is not None and where.line else ""
-                message += (f"; the <ros2_control> joint '{misspelt[name].get('name')}'{at} names "
-                            "no joint and may be meant for it")
+                message += f"; {label}{at} names no joint and may be meant for it"
             if publishing:
                 message = Conditional(
                     f"if the robot is started by {', '.join(silent[:2])} (which start"
@@ -312,16 +312,22 @@ def unactuated_joint(robot):
                         safe=False)
 
 
-def _misspelt_ros2_control_joints(robot) -> dict:
-    """Robot joint -> the ``<ros2_control>`` ``<joint>`` naming no joint whose closest name it
-    is (Bolt's 'FLHAA' for FL_HAA): what U511 reports, said where the joint falls limp."""
-    found = {}
-    for _, element in ros2_control_joints(robot):
-        written = element.get("name") or ""
+def _misspelt_entries(robot, unactuated: list) -> dict:
+    """Unactuated robot joint -> (label, element) of the ``<ros2_control>`` ``<joint>`` or
+    transmission ``<joint>`` naming no joint whose closest name it is (Bolt's 'FLHAA' for
+    FL_HAA, U511; victor.urdf's transmissions' 'iiwa_joint_1' for victor_left_arm_joint_1 and
+    then victor_right_arm_joint_1, U501): said where the joint falls limp. Each joint is
+    claimed by one entry, the first written."""
+    entries = [("the <ros2_control> joint", element, element.get("name") or "")
+               for _, element in ros2_control_joints(robot)]
+    entries += [(f"{_label(transmission)}'s joint", joint.element, joint.name or "")
+                for transmission in transmissions(robot) for joint in transmission_joints(transmission)]
+    found: dict = {}
+    for label, element, written in entries:
         if written and written not in robot.joints:
-            close = close_names(written, robot.joints, n=1)
+            close = close_names(written, [name for name in unactuated if name not in found], n=1)
             if close:
-                found.setdefault(close[0], element)
+                found[close[0]] = (f"{label} '{written}'", element)
     return found
 
 
