@@ -299,7 +299,8 @@ _FILE = (re.compile(r"Error opening file '([^']+)'"),
          re.compile(r"no decoder found for mesh file '([^']+)'"),
          re.compile(r"cannot find '([^']+)' in any directory"),
          re.compile(r"invalid mesh filename extension"),
-         re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$", re.M))
+         re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$",
+                    re.M))  # line ends: a loader's messages (LF)
 _LINK = (re.compile(r"Element name '([^']+)'"), re.compile(r"link\[@name=\"([^\"]+)\"\]"),
          re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]]*\]:\s*)?"
                                                              r"(\S+?)b3"),

@@ -20,6 +20,7 @@ import os
 import re
 from pathlib import Path
 
+from urdftool.diagnostics import LineNumbers, line_start
 from urdftool.errors import PackageNotFound, close_names
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
     read_regular, real_path, repository_root, resolved, walk
@@ -310,13 +311,11 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
     ``<xacro:if>``/``<xacro:unless>`` blocks (used in some configurations only: an optional
     dependency, often one that would be circular); a name built by xacro (``$(find ${pkg})``)
     is not one."""
-    found, line, counted = [], 1, 0
+    found, lines = [], None
     for at, name in _named(_COMMENT.sub(_blanked, data)):
-        line += data.count(b"\n", counted, at)  # the lines since the last one
-        counted = at
-        start = data.rfind(b"\n", 0, at) + 1
-        column = len(data[start:at].decode("utf-8", "replace")) + 1
-        found.append((line, column, name.decode()))
+        lines = lines or LineNumbers(data)
+        column = len(data[line_start(data, at):at].decode("utf-8", "replace")) + 1
+        found.append((lines(at), column, name.decode()))
     return found
 
 

@@ -17,6 +17,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from xml.parsers import expat
 
+from urdftool.diagnostics import AT_LINE_START_BYTES, LineNumbers, line_at, line_ends
+
 BINARY_SNIFF_BYTES = 8192
 MAX_DEPTH = 256  # element nesting libxml2 accepts without its "huge" option
 
@@ -68,8 +70,9 @@ def too_deep_message() -> str:
             "refuse it too, and no robot description needs it)")
 
 
-# git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's)
-_CONFLICT = re.compile(rb"^(<{7}|\|{7}|={7}|>{7})(?=[ \t\r]|$)[^\n]*", re.MULTILINE)
+# git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's),
+# a line as every Location numbers them (a file whose lines end with CR alone has its markers too)
+_CONFLICT = re.compile(AT_LINE_START_BYTES + rb"(<{7}|\|{7}|={7}|>{7})(?=[ \t\r\n]|\Z)[^\r\n]*")
 
 
 def malformed(data: bytes, reason: str, line: int | None,
@@ -82,8 +85,8 @@ def malformed(data: bytes, reason: str, line: int | None,
 def merge_conflict(data: bytes) -> XmlProblem | None:
     """A document holding an unresolved merge conflict (a ``<<<<<<<`` line, which is never
     XML), said as such at its first marker's line with the other markers' lines; else None."""
-    markers = [(data.count(b"\n", 0, found.start()) + 1, found.group(0))
-               for found in _CONFLICT.finditer(data)]
+    lines = LineNumbers(data)
+    markers = [(lines(found.start()), found.group(0)) for found in _CONFLICT.finditer(data)]
     opening = next((marker for marker in markers if marker[1].startswith(b"<")), None)
     if opening is None:
         return None
@@ -123,7 +126,7 @@ def tinyxml2_comments(data: bytes) -> tuple[bytes, int] | None:
         return b"<!--" + body.replace(b"-", b" ") + b"-->"
 
     rewritten = _TINYXML2_COMMENT.sub(blanked, data)
-    return None if first is None else (rewritten, data.count(b"\n", 0, first) + 1)
+    return None if first is None else (rewritten, line_at(data, first))
 
 
 def refuse_empty_or_binary(data: bytes) -> None:
@@ -330,8 +333,11 @@ class _StartOffsets(Mapping):
 
 
 def newlines(data: bytes) -> list[int]:
-    """The byte offset of each newline of ``data`` (numpy's for a document scanned in bulk:
-    see :func:`_in_bulk`)."""
+    """The byte offset where each line of ``data`` ends, as every Location numbers lines
+    (:func:`urdftool.diagnostics.line_ends`: a CR LF's LF, a CR alone); without a CR, of each
+    LF (numpy's for a document scanned in bulk: see :func:`_in_bulk`)."""
+    if b"\r" in data:
+        return line_ends(data)
     if not _in_bulk(data):
         return [match.start() for match in _NEWLINE.finditer(data)]
     import numpy as np
