@@ -326,6 +326,17 @@ def identity_or_why(path) -> tuple | str:
         "a socket" if stat.S_ISSOCK(mode) else "a device"
 
 
+def no_file_there(path) -> str:
+    """Why no regular file is at ``path``, as words following its name in a message: 'does not
+    exist', 'is a folder' ('a named pipe', 'a device', 'a socket'), or 'cannot be reached:
+    why' (:func:`identity_or_why`'s one look): a path where something else is was said "not
+    found" (a mesh that is a named pipe, a plugin's parameters file that is a folder)."""
+    why = identity_or_why(path)
+    if isinstance(why, tuple):  # (a regular file now: it appeared since the first look)
+        return "was not a file when looked at"
+    return "does not exist" if not why else why if why.startswith("cannot") else f"is {why}"
+
+
 def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
     """(name, kind) of the entries of ``folder`` whose name matches ``pattern``, sorted by
     name: alternatives separated by ``|``, each an fnmatch pattern (case-sensitive), one ending

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool import simulators as facts
-from urdftool.description.files import kind_of
+from urdftool.description.files import kind_of, no_file_there
 from urdftool.numbers import number
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
@@ -388,7 +388,7 @@ def mujoco_mesh_not_found(robot):
         path = Path(name) if Path(name).is_absolute() else folder / name
         if kind_of(path) != "file":
             yield mesh, (f"{_where(link, holder)}: {_as_of(robot, 'mujoco')} looks for mesh "
-                         f"'{filename}' at {path}, which does not exist: the load fails")
+                         f"'{filename}' at {path}, which {no_file_there(path)}: the load fails")
 
 
 def _principal(body):
