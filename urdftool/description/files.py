@@ -741,7 +741,8 @@ def _version_control_folder(target: str) -> str | None:
         folder = above
 
 
-def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> None:
+def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
+               private: bool = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
     A regular file keeps its permissions. UsageError when the folder is missing or reached
@@ -755,7 +756,8 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
     read as an SRDF, never an include named in its place). A rewrite writes the file it read:
     a link at ``path`` by which this process read a file is followed to it, and the link is
     kept (a fix of a robot file that is a committed link replaced the link with a copy and
-    left the robot unfixed)."""
+    left the robot unfixed). ``private``: readable and writable by its owner only, whatever
+    was there and whatever the umask (a secret: the cache's signing key)."""
     folder, target, existing = _written(path, rewrites)
     path = Path(path)
     if isinstance(data, str):
@@ -771,7 +773,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
                                  stat.S_ISFIFO(existing.st_mode)):
         _write_in_place(path, target, data)  # /dev/null, /dev/full, a named pipe: never replaced
         return
-    if existing is not None and stat.S_ISREG(existing.st_mode):
+    if private:
+        mode = 0o600
+    elif existing is not None and stat.S_ISREG(existing.st_mode):
         mode = stat.S_IMODE(existing.st_mode)
     else:
         umask = os.umask(0)
