@@ -313,7 +313,7 @@ def test_a_mesh_urdftool_does_not_open_is_refused_before_any_loader_opens_it(
 
 
 @pytest.mark.parametrize("shape", ["mtllib out", "texture out", "texture link out",
-                                   "texture pipe", "gltf buffer out", "inside"])
+                                   "texture pipe", "gltf buffer out", "glb image out", "inside"])
 def test_a_file_a_mesh_names_that_urdftool_does_not_open_is_refused_before_any_loader(
         tmp_path, monkeypatch, shape):
     """An OBJ's material library and its texture maps, a glTF's buffers and images: the
@@ -339,7 +339,12 @@ def test_a_file_a_mesh_names_that_urdftool_does_not_open_is_refused_before_any_l
     (tmp_path / "meshes/m.gltf").write_text(
         '{"asset": {"version": "2.0"}, "buffers": [{"uri": "%s", "byteLength": 36}]}' %
         ("/etc/passwd" if shape == "gltf buffer out" else "m.bin"))
-    mesh = "meshes/m.gltf" if shape.startswith("gltf") else "meshes/m.obj"
+    chunk = b'{"asset": {"version": "2.0"}, "images": [{"uri": "../../../../etc/passwd"}]}'
+    (tmp_path / "meshes/m.glb").write_bytes(
+        b"glTF" + (2).to_bytes(4, "little") + (20 + len(chunk)).to_bytes(4, "little") +
+        len(chunk).to_bytes(4, "little") + b"JSON" + chunk)
+    mesh = "meshes/m.gltf" if shape.startswith("gltf") else "meshes/m.glb" if \
+        shape.startswith("glb") else "meshes/m.obj"
     robot = tmp_path / "r.urdf"
     robot.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual><geometry>'
                                                       f'<mesh filename="{mesh}"/></geometry>'

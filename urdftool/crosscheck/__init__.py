@@ -224,7 +224,10 @@ def _named_by_the_mesh(path: Path) -> str | None:
                 if why:
                     return f"(an OBJ) names material library '{library}', which {why} " \
                            "as a texture"
-    elif suffix == ".gltf":
+    elif suffix in (".gltf", ".glb"):
+        if suffix == ".glb":  # the JSON chunk: after the 12-byte header, its length and type
+            length = int.from_bytes(data[12:16], "little")
+            data = data[20:20 + length] if data[16:20] == b"JSON" else b""
         try:
             document = json.loads(data)
         except (ValueError, RecursionError):
