@@ -163,14 +163,22 @@ def merged(first, second, owned: set[int] | None = None):
 # A ROS 2 parameter file: some node's parameters are under ``ros__parameters:``, at the start
 # of a line as YAML ends them (line ends: libyaml's and PyYAML's, CR LF, LF, CR, NEL, LINE and
 # PARAGRAPH SEPARATOR: ``^`` under re.M starts a line after LF only, and a file whose lines end
-# with CR was read as ROS 1)
-_ROS2_PARAMETERS = re.compile(
-    "(?:\\A|(?<=[\r\n\x85\u2028\u2029]))[ \t]*(?:-[ \t]+)?[\"']?ros__parameters[\"']?[ \t]*:")
+# with CR was read as ROS 1). Each "ros__parameters" found is matched from its line's start.
+_ROS2_PARAMETERS = re.compile(r"[ \t]*(?:-[ \t]+)?[\"']?ros__parameters[\"']?[ \t]*:")
+_YAML_LINE_ENDS = "\r\n\x85\u2028\u2029"
 
 
 def is_ros2_parameters(text: str) -> bool:
     """Whether ``text`` is a ROS 2 parameter file (it has a ``ros__parameters:`` key)."""
-    return bool(_ROS2_PARAMETERS.search(text))
+    at, before, start, tried = text.find("ros__parameters"), 0, 0, -1
+    while at >= 0:  # (each line end looked for once, each line's start matched once: linear)
+        start = max(start, max(text.rfind(end, before, at) for end in _YAML_LINE_ENDS) + 1)
+        if start != tried:
+            if _ROS2_PARAMETERS.match(text, start):
+                return True
+            tried = start
+        before, at = at, text.find("ros__parameters", at + 1)
+    return False
 
 
 
