@@ -215,6 +215,14 @@ def line_at(text: str | bytes, offset: int) -> int:
     return ends + 1
 
 
+def lines_between(text: str | bytes, start: int, end: int) -> int:
+    """How many line ends of ``text`` lie in [start, end) (neither between a CR and its LF):
+    the lines an ascending walk through a file adds from ``start`` to ``end``, at the cost of
+    that stretch only."""
+    return len((_LINE_END_BYTES if isinstance(text, bytes) else _LINE_END).findall(
+        text, start, end))
+
+
 def line_ends(text: str | bytes) -> list[int]:
     """The offset of the last character (or byte) of each line end of ``text``: a CR LF's LF
     (:func:`line_at` of an offset is 1 + how many of these come before it)."""
@@ -239,17 +247,19 @@ def line_start(text: str | bytes, offset: int) -> int:
     """Where the line holding ``offset`` of ``text`` starts (after a CR LF, LF or CR: as
     :func:`lines_of` splits), for a column or an indentation."""
     lf, cr = (b"\n", b"\r") if isinstance(text, bytes) else ("\n", "\r")
-    return max(text.rfind(lf, 0, offset), text.rfind(cr, 0, offset)) + 1
+    after = text.rfind(lf, 0, offset) + 1  # (a CR is looked for after the LF only: a file
+    return max(after, text.rfind(cr, after, offset) + 1)  # without CR is not read back whole)
 
 
 def line_end(text: str | bytes, offset: int) -> int:
     """Where the line holding ``offset`` of ``text`` ends, after its line end (CR LF, LF or
     CR), or the end of ``text``."""
     lf, cr = (b"\n", b"\r") if isinstance(text, bytes) else ("\n", "\r")
-    found = [at for at in (text.find(lf, offset), text.find(cr, offset)) if at >= 0]
-    if not found:
+    at = text.find(lf, offset)  # (a CR looked for before that LF only, as line_start does)
+    before = text.find(cr, offset, len(text) if at < 0 else at)
+    at = before if before >= 0 else at
+    if at < 0:
         return len(text)
-    at = min(found)
     return at + 2 if text[at:at + 2] in ("\r\n", b"\r\n") else at + 1
 
 

@@ -20,7 +20,7 @@ import os
 import re
 from pathlib import Path
 
-from urdftool.diagnostics import LineNumbers, line_start
+from urdftool.diagnostics import line_start, lines_between
 from urdftool.errors import PackageNotFound, close_names
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
     read_regular, real_path, repository_root, resolved, walk
@@ -311,11 +311,12 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
     ``<xacro:if>``/``<xacro:unless>`` blocks (used in some configurations only: an optional
     dependency, often one that would be circular); a name built by xacro (``$(find ${pkg})``)
     is not one."""
-    found, lines = [], None
+    found, line, counted = [], 1, 0
     for at, name in _named(_COMMENT.sub(_blanked, data)):
-        lines = lines or LineNumbers(data)
+        line += lines_between(data, counted, at)  # the lines since the last one
+        counted = at
         column = len(data[line_start(data, at):at].decode("utf-8", "replace")) + 1
-        found.append((lines(at), column, name.decode()))
+        found.append((line, column, name.decode()))
     return found
 
 
