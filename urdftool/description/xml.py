@@ -336,8 +336,8 @@ def newlines(data: bytes) -> list[int]:
     """The byte offset where each line of ``data`` ends, as every Location numbers lines
     (:func:`urdftool.diagnostics.line_ends`: a CR LF's LF, a CR alone); without a CR, of each
     LF (numpy's for a document scanned in bulk: see :func:`_in_bulk`)."""
-    if b"\r" in data:
-        return line_ends(data)
+    if b"\r" in data and data.count(b"\r") != data.count(b"\r\n"):  # a CR alone ends a line
+        return line_ends(data)  # (CR LF's end is its LF: a file of CR LF lines is LF's)
     if not _in_bulk(data):
         return [match.start() for match in _NEWLINE.finditer(data)]
     import numpy as np
