@@ -204,6 +204,7 @@ _START = re.compile(rb"<[^/!?]")
 _SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.DOTALL)
 _OPENING = re.compile(rb"<(?![/!?])")
 _NEWLINE = re.compile(rb"\n")
+_LONE_CR = re.compile(rb"\r(?!\n)")
 _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element below MAX_DEPTH
 # A document of this size or more is scanned with numpy (a match object per "<" costs 2,000
 # instructions; numpy's comparisons of the whole buffer a fiftieth of that): such a document
@@ -336,7 +337,7 @@ def newlines(data: bytes) -> list[int]:
     """The byte offset where each line of ``data`` ends, as every Location numbers lines
     (:func:`urdftool.diagnostics.line_ends`: a CR LF's LF, a CR alone); without a CR, of each
     LF (numpy's for a document scanned in bulk: see :func:`_in_bulk`)."""
-    if b"\r" in data and data.count(b"\r") != data.count(b"\r\n"):  # a CR alone ends a line
+    if b"\r" in data and _LONE_CR.search(data):  # a CR alone ends a line
         return line_ends(data)  # (CR LF's end is its LF: a file of CR LF lines is LF's)
     if not _in_bulk(data):
         return [match.start() for match in _NEWLINE.finditer(data)]
