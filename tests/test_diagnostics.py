@@ -47,7 +47,8 @@ def test_every_count_of_lines_is_the_one_owners():
 
 
 def test_line_at_and_its_index_agree_on_every_offset_of_str_and_bytes():
-    from urdftool.diagnostics import LineNumbers, line_at, line_end, line_start, lines_of
+    from urdftool.diagnostics import LineNumbers, line_at, line_end, line_start, lines_between, \
+        lines_of
 
     import random
 
@@ -62,6 +63,8 @@ def test_line_at_and_its_index_agree_on_every_offset_of_str_and_bytes():
             for offset in range(len(sample) + 1):
                 assert line_at(sample, offset) == numbers(offset)
                 line = numbers(offset)
+                if sample[offset - 1:offset + 1] not in ("\r\n", b"\r\n"):
+                    assert lines_between(sample, 0, offset) + 1 == line
                 if offset < len(sample) and sample[offset:offset + 1] not in ("\n", b"\n"):
                     assert starts[line - 1] == line_start(sample, offset)
                     assert starts[line - 1] + len(lines[line - 1]) == line_end(sample, offset)
