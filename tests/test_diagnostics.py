@@ -14,3 +14,58 @@ def test_findings_that_differ_only_in_their_call_site_sort_the_same_in_every_ord
     assert [f.location.via[0].line for f in sorted(findings, key=Finding.sort_key)] == [4, 9, 12]
     assert sorted(reversed(findings), key=Finding.sort_key) == \
         sorted(findings, key=Finding.sort_key)
+
+
+def test_every_count_of_lines_is_the_one_owners():
+    """A line is what :func:`diagnostics.lines_of` says (CR LF, LF, CR), wherever a message, a
+    finding, an edit or a reader numbers one: no code counts LF itself (a file whose lines end
+    with CR alone was line 1 in four messages), finds a line's start by LF, numbers lines by
+    PyYAML's count (which ends a line at NEL and LINE SEPARATOR too), or matches the start of
+    a line with ``^`` under re.M (LF only: a CR-only ROS 2 parameter file was read as ROS 1).
+    A reader that emulates another program's line ends says whose on that line or the one
+    before it (``line ends: ...``); the output layer writes its own LF lines."""
+    import re
+    from pathlib import Path
+
+    import urdftool
+
+    root = Path(urdftool.__file__).parent
+    owners = {root / "diagnostics.py", root / "description" / "yaml_limits.py"}
+    wrong = re.compile(r"""\.count\(b?["']\\n["']|\.rfind\(b?["']\\n["']|mark\.line\b"""
+                       r"""|\bre\.M\b|\bre\.MULTILINE\b|\(\?m\)|enumerate\([^)]*(splitlines\(|split\(b?["']\\n)""")
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        if path in owners or "report" in path.relative_to(root).parts:
+            continue
+        lines = path.read_text(encoding="utf-8").split("\n")
+        for number, line in enumerate(lines, 1):
+            said = "line ends:" in line or (number > 1 and "line ends:" in lines[number - 2])
+            if wrong.search(line) and not said:
+                found.append(f"{path.relative_to(root)}:{number}: {line.strip()}")
+    assert not found, "lines counted by another rule than diagnostics.lines_of:\n" + \
+        "\n".join(found)
+
+
+def test_line_at_and_its_index_agree_on_every_offset_of_str_and_bytes():
+    from urdftool.diagnostics import LineNumbers, line_at, line_end, line_start, lines_between, \
+        lines_of
+
+    import random
+
+    draw = random.Random(16)
+    for _ in range(400):
+        text = "".join(draw.choice("ab\r\n\u2028\x85") for _ in range(draw.randint(0, 14)))
+        data = text.replace("\u2028", "x").replace("\x85", "y").encode()
+        for sample in (text, data):
+            numbers, lines = LineNumbers(sample), lines_of(text if sample is text else
+                                                          data.decode(), keepends=True)
+            starts = [sum(map(len, lines[:i])) for i in range(len(lines))]
+            for offset in range(len(sample) + 1):
+                assert line_at(sample, offset) == numbers(offset)
+                line = numbers(offset)
+                if sample[offset - 1:offset + 1] not in ("\r\n", b"\r\n"):
+                    assert lines_between(sample, 0, offset) + 1 == line
+                if offset < len(sample) and sample[offset:offset + 1] not in ("\n", b"\n"):
+                    assert starts[line - 1] == line_start(sample, offset)
+                    assert starts[line - 1] + len(lines[line - 1]) == line_end(sample, offset)
+    assert [line_at("a\rb\r\nc\nd\u2028e", i) for i in (0, 2, 5, 7, 9)] == [1, 2, 3, 4, 4]

@@ -917,3 +917,34 @@ def _refusal(make, path) -> str:
     except UsageError as error:
         return str(error)
     return "written"
+
+
+def test_the_document_uses_only_pygls_public_names(monkeypatch):
+    """The document of the protocol's lines is made and changed through pygls's public names
+    only: with pygls's private ones gone (a release renaming them), an opened document is
+    still a Document and its changes are the protocol's (the private overrides before would
+    have let pygls's own splitlines back without a word)."""
+    from pygls.workspace import TextDocument, Workspace
+
+    from urdftool.server import Document, adopt
+
+    for name in ("_apply_incremental_change", "_apply_full_change", "_apply_none_change"):
+        monkeypatch.delattr(TextDocument, name)
+    workspace = Workspace(None)
+    uri, text = "file:///r.urdf", '<robot name="r"> <!-- a\u2028b -->\r  <link name="base"/>\r'
+    workspace.put_text_document(types.TextDocumentItem(uri=uri, language_id="xml", version=1,
+                                                       text=text))
+    adopt(workspace, uri)
+    monkeypatch.setattr(TextDocument, "_source", property(lambda self: 1 / 0,  # (pygls's text)
+                                                           lambda self, value: None),
+                        raising=False)
+    document = workspace.get_text_document(uri)
+    assert isinstance(document, Document) and document.source == text and document.version == 1
+    workspace.update_text_document(
+        types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+        types.TextDocumentContentChangePartial(
+            range=types.Range(start=types.Position(1, 14), end=types.Position(1, 18)), text="arm"))
+    assert document.source == text.replace('"base"', '"arm"') and len(document.lines) == 2
+    workspace.update_text_document(types.VersionedTextDocumentIdentifier(uri=uri, version=3),
+                                   types.TextDocumentContentChangeWholeDocument(text="x\ry"))
+    assert document.lines == ("x\r", "y") and document.version == 3

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import bisect
 import enum
 import os
 import re
@@ -178,6 +179,13 @@ class Finding(Frozen):
 # also ends a line at VT, FF, FS, GS, RS, NEL, LINE SEPARATOR and PARAGRAPH SEPARATOR, which
 # XML holds raw in a comment or a value: every line after one was another line.
 _LINE_END = re.compile("\r\n|\n|\r")
+_LINE_END_BYTES = re.compile(b"\r\n|\n|\r")
+
+# Where a line starts, for a pattern that matches at the start of any line of a file (in place
+# of ``^`` under re.MULTILINE, which starts a line after LF only: a file whose lines end with CR
+# alone is one line to it): the text's start, after LF, or after a CR that no LF follows.
+AT_LINE_START = r"(?:\A|(?<=\n)|(?<=\r)(?!\n))"
+AT_LINE_START_BYTES = AT_LINE_START.encode()
 
 
 def lines_of(text: str, keepends: bool = False) -> list[str]:
@@ -195,10 +203,64 @@ def lines_of(text: str, keepends: bool = False) -> list[str]:
     return found
 
 
-def line_at(text: str, offset: int) -> int:
+def line_at(text: str | bytes, offset: int) -> int:
     """The 1-based line (as :class:`Location` numbers it: :func:`lines_of`) holding the
-    character at ``offset`` of ``text``."""
-    return len(_LINE_END.findall(text, 0, offset)) + 1
+    character (or byte, of a file's bytes) at ``offset`` of ``text``: the one count of lines
+    before a place in a file, for every message and finding that says a line. An LF ending a
+    line with the CR before it is on that line."""
+    ends = len((_LINE_END_BYTES if isinstance(text, bytes) else _LINE_END).findall(
+        text, 0, offset))
+    if 0 < offset < len(text) and text[offset - 1:offset + 1] in ("\r\n", b"\r\n"):
+        ends -= 1  # (the CR alone was counted: the slice ended between CR and LF)
+    return ends + 1
+
+
+def lines_between(text: str | bytes, start: int, end: int) -> int:
+    """How many line ends of ``text`` lie in [start, end) (neither between a CR and its LF):
+    the lines an ascending walk through a file adds from ``start`` to ``end``, at the cost of
+    that stretch only."""
+    return len((_LINE_END_BYTES if isinstance(text, bytes) else _LINE_END).findall(
+        text, start, end))
+
+
+def line_ends(text: str | bytes) -> list[int]:
+    """The offset of the last character (or byte) of each line end of ``text``: a CR LF's LF
+    (:func:`line_at` of an offset is 1 + how many of these come before it)."""
+    pattern = _LINE_END_BYTES if isinstance(text, bytes) else _LINE_END
+    return [end.end() - 1 for end in pattern.finditer(text)]
+
+
+class LineNumbers:
+    """:func:`line_at` of many offsets of one ``text`` (str or bytes), each found by bisection
+    in its :func:`line_ends`, found once."""
+
+    __slots__ = ("_ends",)
+
+    def __init__(self, text: str | bytes):
+        self._ends = line_ends(text)
+
+    def __call__(self, offset: int) -> int:
+        return bisect.bisect_left(self._ends, offset) + 1
+
+
+def line_start(text: str | bytes, offset: int) -> int:
+    """Where the line holding ``offset`` of ``text`` starts (after a CR LF, LF or CR: as
+    :func:`lines_of` splits), for a column or an indentation."""
+    lf, cr = (b"\n", b"\r") if isinstance(text, bytes) else ("\n", "\r")
+    after = text.rfind(lf, 0, offset) + 1  # (a CR is looked for after the LF only: a file
+    return max(after, text.rfind(cr, after, offset) + 1)  # without CR is not read back whole)
+
+
+def line_end(text: str | bytes, offset: int) -> int:
+    """Where the line holding ``offset`` of ``text`` ends, after its line end (CR LF, LF or
+    CR), or the end of ``text``."""
+    lf, cr = (b"\n", b"\r") if isinstance(text, bytes) else ("\n", "\r")
+    at = text.find(lf, offset)  # (a CR looked for before that LF only, as line_start does)
+    before = text.find(cr, offset, len(text) if at < 0 else at)
+    at = before if before >= 0 else at
+    if at < 0:
+        return len(text)
+    return at + 2 if text[at:at + 2] in ("\r\n", b"\r\n") else at + 1
 
 
 def display_path(path: str | os.PathLike) -> str:

@@ -441,6 +441,7 @@ class UrdftoolServer(LanguageServer):
         return self.open.get(path) or uri_of_path(path)
 
     def opened(self, uri: str) -> None:
+        adopt(self.workspace, uri)
         path = self.path_of(uri)
         if path and kind_of(path) in ("robot", "companion"):
             self.open[path] = uri
@@ -789,16 +790,23 @@ class Document(TextDocument):
     :meth:`str.splitlines`, which also ends a line at NEL, LINE SEPARATOR, FF and the like,
     which XML holds raw: an editor's incremental change after one was applied to another line
     (the buffer checked was text the editor did not hold), and hovers and code actions read
-    the wrong line."""
+    the wrong line.
 
-    _lines: list | None = None  # the lines, kept across incremental changes
-    _joined = True  # whether ``_source`` holds the lines joined
+    It keeps its own text and lines and uses only pygls's public names (the constructor,
+    ``apply_change``, ``source``, ``lines``, ``position_codec``; the workspace's
+    ``text_documents`` and ``get_text_document``, :func:`adopt`): overriding pygls's private
+    ``_apply_incremental_change`` and ``Workspace._create_text_document`` would have stopped
+    working without a word when a release renamed them (pygls's own splitting back)."""
+
+    def __init__(self, uri: str, source: str | None = None, **kwargs):
+        super().__init__(uri, **kwargs)  # (pygls's copy of the text: none, never read)
+        self._text, self._lines, self._joined = source or "", None, True
 
     @property
     def source(self) -> str:
         if not self._joined:
-            self._source, self._joined = "".join(self._lines), True
-        return super().source
+            self._text, self._joined = "".join(self._lines), True
+        return self._text
 
     @property
     def lines(self):
@@ -809,11 +817,15 @@ class Document(TextDocument):
             self._lines = lines_of(self.source, keepends=True)
         return self._lines
 
-    def _apply_full_change(self, change) -> None:
-        super()._apply_full_change(change)
-        self._lines, self._joined = None, True
+    def apply_change(self, change) -> None:
+        """The client's ``change``: a range's text replaced (:meth:`_change_lines`), or the
+        whole document's."""
+        if isinstance(change, types.TextDocumentContentChangePartial):
+            self._change_lines(change)
+        else:
+            self._text, self._lines, self._joined = change.text, None, True
 
-    def _apply_incremental_change(self, change) -> None:
+    def _change_lines(self, change) -> None:
         """The lines the change spans replaced by the change's text split again (with the line
         before, when it ends with CR: a change starting with LF makes it CR LF): a change costs
         what it spans, not the document's length in Python (pygls rebuilt every line for each
@@ -847,17 +859,20 @@ class Document(TextDocument):
             [body], types.Position(0, position.character)).character
 
 
-def _documents_of_the_protocol(workspace) -> None:
-    """Make ``workspace`` (pygls's, made as the client initializes) open each document as a
-    :class:`Document`."""
-    create = workspace._create_text_document
-
-    def document(*args, **kwargs) -> Document:
-        made = create(*args, **kwargs)
-        made.__class__ = Document
-        return made
-
-    workspace._create_text_document = document
+def adopt(workspace, uri: str) -> None:
+    """Make the document the client just opened at ``uri`` (put into ``workspace`` by pygls's
+    own handler, which runs before ours) a :class:`Document` holding its text, through pygls's
+    public names."""
+    made = workspace.get_text_document(uri)
+    if isinstance(made, Document):
+        return
+    documents = workspace.text_documents
+    for key, held in documents.items():
+        if held is made:
+            documents[key] = Document(made.uri, made.source, version=made.version,
+                                      language_id=made.language_id,
+                                      position_codec=made.position_codec)
+            return
 
 
 _DOCUMENT_EVENTS = {types.TEXT_DOCUMENT_DID_OPEN: "opened",
@@ -885,10 +900,6 @@ def make_server(debounce: float = DEBOUNCE, limits: Limits = Limits()) -> Urdfto
     server = UrdftoolServer(debounce, limits)
     for method, event in _DOCUMENT_EVENTS.items():
         server.feature(method)(_on_document(event))
-
-    @server.feature(types.INITIALIZE)
-    def initialize(ls: UrdftoolServer, params: types.InitializeParams):
-        _documents_of_the_protocol(ls.workspace)  # (made just before, nothing opened yet)
 
     @server.feature(types.INITIALIZED)
     def initialized(ls: UrdftoolServer, params: types.InitializedParams):

@@ -310,3 +310,53 @@ def test_a_mesh_urdftool_does_not_open_is_refused_before_any_loader_opens_it(
     monkeypatch.setattr("urdftool.crosscheck._run", run)
     with pytest.raises(UsageError, match=r"r\.urdf:\d+: mesh .*; the loaders would open it"):
         crosscheck(str(robot), packages={"p": str(tmp_path)})
+
+
+@pytest.mark.parametrize("shape", ["mtllib out", "texture out", "texture link out",
+                                   "texture pipe", "gltf buffer out", "glb image out", "inside"])
+def test_a_file_a_mesh_names_that_urdftool_does_not_open_is_refused_before_any_loader(
+        tmp_path, monkeypatch, shape):
+    """An OBJ's material library and its texture maps, a glTF's buffers and images: the
+    loaders open them (PyBullet read /etc/passwd as the texture of an OBJ whose MTL said
+    ``map_Kd /etc/passwd``), urdftool never does; outside the repository or no regular file,
+    the run is refused before any loader, as for the meshes the URDF names."""
+    from urdftool.errors import UsageError
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "meshes").mkdir()
+    mtl, texture = "m.mtl", "tex.png"
+    if shape == "mtllib out":
+        mtl = "../../../../../../../etc/passwd"
+    elif shape == "texture out":
+        texture = "-clamp on /etc/passwd"
+    elif shape == "texture link out":
+        (tmp_path / "meshes/tex.png").symlink_to("/etc/passwd")
+    elif shape == "texture pipe":
+        os.mkfifo(tmp_path / "meshes/tex.png")
+    (tmp_path / "meshes/m.mtl").write_text(f"newmtl a\r\nKd 1 1 1\r\nmap_Kd {texture}\r\n")
+    (tmp_path / "meshes/m.obj").write_text(f"mtllib {mtl}\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                          "usemtl a\nf 1 2 3\n")
+    (tmp_path / "meshes/m.gltf").write_text(
+        '{"asset": {"version": "2.0"}, "buffers": [{"uri": "%s", "byteLength": 36}]}' %
+        ("/etc/passwd" if shape == "gltf buffer out" else "m.bin"))
+    chunk = b'{"asset": {"version": "2.0"}, "images": [{"uri": "../../../../etc/passwd"}]}'
+    (tmp_path / "meshes/m.glb").write_bytes(
+        b"glTF" + (2).to_bytes(4, "little") + (20 + len(chunk)).to_bytes(4, "little") +
+        len(chunk).to_bytes(4, "little") + b"JSON" + chunk)
+    mesh = "meshes/m.gltf" if shape.startswith("gltf") else "meshes/m.glb" if \
+        shape.startswith("glb") else "meshes/m.obj"
+    robot = tmp_path / "r.urdf"
+    robot.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual><geometry>'
+                                                      f'<mesh filename="{mesh}"/></geometry>'
+                                                      '</visual>'))
+    ran = []
+    monkeypatch.setattr("urdftool.crosscheck._run", lambda *_: ran.append(1) or
+                        (_ for _ in ()).throw(KeyError("ran")))
+    if shape == "inside":
+        with pytest.raises(KeyError):
+            crosscheck(str(robot))
+        assert ran
+        return
+    with pytest.raises(UsageError, match=r"r\.urdf:\d+: mesh .*; the loaders would open it"):
+        crosscheck(str(robot))
+    assert not ran

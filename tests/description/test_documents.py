@@ -221,3 +221,25 @@ def test_what_libyaml_reads_otherwise_is_read_by_pyyaml(tmp_path, text):
     assert (_shape(read.data) if read.problem is None else read.problem) == \
         (pyyaml if not isinstance(pyyaml, Exception) else read.problem)
     assert (read.problem is None) == (not isinstance(pyyaml, Exception))
+
+
+@pytest.mark.parametrize("end, comment", [("\n", ""), ("\r\n", ""), ("\r", ""),
+                                          ("\n", 'x: "a\u2028b\x85c\u2029d"\n')])
+def test_yaml_lines_are_the_files_whatever_ends_them(tmp_path, end, comment):
+    """Every line a YAML file's finding or error says is the file's line as every Location
+    numbers them (CR LF, LF, CR): PyYAML's marks also end a line at NEL, LINE and PARAGRAPH
+    SEPARATOR (three lines down after the string here), and its reader's error was counted by
+    LF (line 1 in a file ended by CR alone). A ROS 2 file ended by CR alone is ROS 2 (its
+    ``ros__parameters`` was not at a line start by LF: read as ROS 1)."""
+    path = tmp_path / "c.yaml"
+
+    def write(text):
+        path.write_bytes((comment + text).replace("\n", end).encode())
+        return read_yaml(path)
+
+    read = write("a:\n  ros__parameters:\n    joints:\n      - j1\n      - j2\n")
+    first = 1 + bool(comment)
+    assert read.ros2 and read.data["a"].lines["ros__parameters"] == first + 1
+    assert read.data["a"]["ros__parameters"]["joints"].lines == [first + 3, first + 4]
+    assert write("a: 1\nb: [\n").line == first + 1
+    assert write("a: 1\nb: \x07\n").line == first + 1

@@ -217,3 +217,11 @@ def test_a_package_xml_without_a_build_file_leaves_its_share_folder_uncertain(re
     located = PackageResolver(start=repo, environ={}).locate_uri(
         "package://built/meshes/chest.stl", repo)
     assert located.doubt is None
+
+
+@pytest.mark.parametrize("end", ["\n", "\r\n"])
+def test_cmake_commands_are_at_the_files_lines_whatever_ends_them(end):
+    """(A CR alone ends no CMake line: its lexer's line end is LF, so a comment runs on.)"""
+    commands = cmake_commands("# x\u2028y\nproject(p)\n\ninstall(DIRECTORY urdf DESTINATION share)\n"
+                              .replace("\n", end))
+    assert [(name, line) for name, _, line in commands] == [("project", 2), ("install", 4)]

@@ -739,3 +739,15 @@ def generate_launch_description():
     read = read_launch(root / "p/launch/a.launch.py")
     [described] = [a for a in read.actions if isinstance(a, Description)]
     assert not described.xacro and described.replaced == replaced
+
+
+@pytest.mark.parametrize("end", ["\n", "\r\n", "\r"])
+def test_a_launch_file_is_told_from_a_launch_test_whatever_ends_its_lines(end):
+    """``def generate_launch_description`` at the start of a line as Python ends lines: a file
+    ended by CR alone was a launch test (the multi-line ``^`` starts a line after LF only)."""
+    from urdftool.description.launch import is_launch_test
+
+    text = ("import x\ndef generate_test_description():\n    pass\n"
+            "def generate_launch_description():\n    pass\n").replace("\n", end)
+    assert not is_launch_test(text)
+    assert is_launch_test(text.replace("generate_launch", "other"))

@@ -404,3 +404,16 @@ def test_one_load_looks_for_a_repository_root_once(tmp_path, monkeypatch):
         robot = load(tmp_path / "r.urdf.xacro")
     assert [link.get("name") for link in robot.root.iter("link")] == ["a", "b", "b"]
     assert len(asked) == 2 * len(set(asked))
+
+
+@pytest.mark.parametrize("end", ["\n", "\r\n", "\r"])
+def test_text_before_the_declaration_is_said_at_its_line_whatever_ends_lines(tmp_path, end):
+    """The late declaration's note is at the declaration's line, and the blanked document keeps
+    every line end (a CR alone was blanked into a space: every line after it one up)."""
+    from urdftool.description.load import _late_declaration
+
+    data = "\n\n\n<?xml version='1.0'\n encoding='utf-8'?>\n<robot name='r'/>\n".replace(
+        "\n", end).encode()
+    blanked, line = _late_declaration(data)
+    assert line == 4
+    assert blanked.count(end.encode()) == data.count(end.encode()) and len(blanked) == len(data)

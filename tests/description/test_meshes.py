@@ -44,7 +44,8 @@ def test_a_name_too_long_for_the_file_system_is_a_problem_not_a_crash(tmp_path):
     name = "9" * 400 + ".stl"
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, name), name)
-    assert error.value.kind == "missing" and "not found" in str(error.value)
+    assert error.value.kind == "missing" and "cannot be reached: file name too long" in \
+        str(error.value)
 
 
 def test_non_mesh_extension_is_never_opened(tmp_path):
@@ -640,3 +641,25 @@ def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_miss
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "/home/me/ws/meshes/base.dae"), "/home/me/ws/meshes/base.dae")
     assert error.value.kind == "outside" and error.value.certain
+
+
+def test_a_mesh_path_holding_no_file_says_what_is_there(tmp_path):
+    """A mesh named where a named pipe or a folder is was "not found (looked at ...)": it is
+    there, never opened (U412, as session 6 had it); a link loop cannot be reached, said so;
+    a mesh truly missing is still not found (U408)."""
+    import os
+
+    os.mkfifo(tmp_path / "pipe.stl")
+    (tmp_path / "folder.stl").mkdir()
+    (tmp_path / "loop.stl").symlink_to(tmp_path / "loop.stl")
+    said = {}
+    for name in ("pipe.stl", "folder.stl", "loop.stl", "gone.stl"):
+        with pytest.raises(MeshProblem) as error:
+            resolve(_robot(tmp_path, name), name)
+        said[name] = (error.value.kind, str(error.value).split(" (looked")[0])
+    assert said == {
+        "pipe.stl": ("corrupt", "mesh 'pipe.stl' is a named pipe, not a file"),
+        "folder.stl": ("corrupt", "mesh 'folder.stl' is a folder, not a file"),
+        "loop.stl": ("missing", "mesh 'loop.stl' cannot be reached: too many levels of "
+                                "symbolic links"),
+        "gone.stl": ("missing", "mesh 'gone.stl' not found")}, said

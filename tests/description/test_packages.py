@@ -343,3 +343,12 @@ def test_a_search_path_naming_a_folder_again_walks_it_once(tmp_path):
     many = [f"ROS_PACKAGE_PATH entry /nope{i}" for i in range(8000)]
     message = str(PackageNotFound("ghost", many))
     assert len(message) < 1000 and "/nope11, ... (8000 places in all)" in message
+
+
+@pytest.mark.parametrize("end", ["\n", "\r\n", "\r"])
+def test_package_references_are_at_the_files_lines_whatever_ends_them(end):
+    from urdftool.description.packages import package_references
+
+    data = ('<robot>\n  <!-- x\u2028y -->\n'
+            '  <mesh filename="package://two/m.stl"/>\n</robot>\n').replace("\n", end).encode()
+    assert package_references(data) == [(3, 19, "two")]

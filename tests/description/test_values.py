@@ -152,3 +152,12 @@ def test_a_text_of_plain_decimals_is_read_without_a_regular_expression(monkeypat
     assert number_tuple.__wrapped__("1 1e 3", 3) == (None, "'1e' is not a number (in '1 1e 3')")
     with pytest.raises(AssertionError):  # another script's digit: matched as before
         number_tuple.__wrapped__("1 \u0663 3", 3)
+
+
+@pytest.mark.parametrize("text", ["\uff11 0 0", "0 \u0661 0", "0 0 1e\uff15", "\u0967.5 0 0"])
+def test_digits_of_another_script_are_no_number_urdfdom_reads(text):
+    """Python's float() and re's \\d take full-width, Arabic-Indic and Devanagari digits; urdfdom
+    reads with a C++ stream in the classic locale, which takes ASCII digits only (the robot
+    does not load: 'Unable to parse component'). check passed ``xyz="１ 0 0"`` as 1 m."""
+    values, problem = number_tuple(text, 3)
+    assert values is None and "is not a number" in problem

@@ -253,3 +253,26 @@ def test_an_empty_included_file_says_it_is_empty(tmp_path):
             load(tmp_path / "top.urdf.xacro")
         assert caught.value.location.file.endswith(name)
         assert caught.value.message.endswith(f"(the file is {said})"), caught.value.message
+
+
+# A file's lines end as a Location numbers them: LF, CR LF, or CR alone; a LINE SEPARATOR in
+# a comment ends none (a file ended by CR alone said every message on line 1, and its merge
+# conflict was "malformed XML": the markers were not at a line start by LF)
+LINE_ENDS = [("\n", ""), ("\r\n", ""), ("\r", ""), ("\n", "<!-- a\u2028b -->")]
+
+
+@pytest.mark.parametrize("end, comment", LINE_ENDS)
+def test_the_messages_of_a_document_say_its_lines_whatever_ends_them(tmp_path, end, comment):
+    from urdftool.description.xml import XmlProblem, merge_conflict, parse, tinyxml2_comments
+
+    def data(text: str) -> bytes:
+        return text.replace("\n", end).replace("<robot", comment + "<robot", 1).encode()
+
+    conflicted = data(CONFLICTED.decode())
+    with pytest.raises(XmlProblem) as caught:
+        parse(conflicted)
+    assert caught.value.message.startswith("unresolved merge conflict") and \
+        caught.value.line == 3 and "at lines 5, 7" in caught.value.message
+    assert merge_conflict(conflicted).line == 3
+    commented = data('<robot name="r">\n\n  <!-- a -- b -->\n  <link name="a"/>\n</robot>\n')
+    assert tinyxml2_comments(commented)[1] == 3

@@ -581,3 +581,21 @@ def test_a_name_given_twice_is_found_in_one_pass():
     names = [Name(f"x{i}") for i in range(2000)] + [Name("x7")]
     assert config.named_twice(names) == "x7" and len(compared) < 100
     assert config.named_twice(["a", "b"]) is None
+
+
+@pytest.mark.parametrize("text, line", [
+    ('j1\n"0.2\n"\n0.1,0.2\n', 4),           # a quoted cell across two lines: the row's own line
+    ("j1\r0.1\r\r0.1,0.2\r", 4),             # lines ended by CR alone, a blank line kept
+    ("j1\n0.1\u2028\n0.1,0.2\n", 3),         # a LINE SEPARATOR ends no line of the file
+])
+def test_a_row_of_a_file_of_numbers_is_said_at_its_line_of_the_file(tmp_path, text, line):
+    """A row's error names the line it starts on, as every Location numbers lines: the quoted
+    reader numbered records (a cell holding a line break put every later row a line up)."""
+    from urdftool.errors import ConfigError
+    from urdftool.kinematics.configuration import read_table
+
+    path = tmp_path / "q.csv"
+    path.write_bytes(text.encode())
+    with pytest.raises(ConfigError) as caught:
+        read_table(str(path), "q-file", "joint")
+    assert str(caught.value).split(": ")[0].endswith(f"q.csv:{line}"), str(caught.value)

@@ -659,3 +659,17 @@ def test_an_entry_that_is_a_named_pipe_is_replaced_not_written_into(robot, tmp_p
     assert entry.is_file() and not entry.is_symlink()
     checked.clear()
     assert _messages(robot, cache_dir) == honest and not checked  # kept: served
+
+
+def test_the_signing_key_is_readable_by_its_owner_only_whatever_its_folder(tmp_path, monkeypatch):
+    """The key signs entries: one readable by others lets them sign entries for a cache folder
+    they may write. Its folder is made 0700, but one that was there (made by another program,
+    a link to a shared folder) kept a 0644 key readable by every user."""
+    import stat
+
+    from urdftool.lint import cache
+
+    (tmp_path / "urdftool").mkdir(mode=0o755)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    key = cache._secret()
+    assert key and stat.S_IMODE((tmp_path / "urdftool" / "key").stat().st_mode) == 0o600

@@ -463,3 +463,25 @@ def test_edits_find_their_lines_in_an_index_not_by_counting_each_time():
             assert (edit.line, edit.column) == (
                 bytes.count(text, b"\n", 0, start) + 1,
                 len(text[line_start:start].decode("utf-8", errors="replace")))
+
+
+@pytest.mark.parametrize("end", ["\n", "\r\n", "\r"])
+def test_an_edit_says_the_line_and_column_of_the_file_whatever_ends_its_lines(tmp_path, end):
+    """An edit's line and column (JSON, the language server's quick fixes) and the lines it
+    writes are the file's as every Location numbers them: in a file ended by CR alone an
+    edit was at line 1, column of its offset in the file (an editor's change lands at the end
+    of line 1), and U308's new lines were written with LF into a CR file."""
+    robot = tmp_path / "r.urdf"
+    robot.write_bytes((CASES / "U021_misspelt_attribute.urdf").read_text().replace(
+        "\n", end).encode())
+    [finding] = [f for f in load_and_check(str(robot), CheckOptions()).findings
+                 if f.code == "U021"]
+    [edit] = finding.fix.edits
+    assert (edit.old, edit.line, edit.column) == ("uper", 6, 22), edit
+    robot.write_bytes((CASES / "U308_root_link_inertia.urdf").read_text().replace(
+        "\n", end).encode())
+    before = load_and_check(str(robot), CheckOptions())
+    [finding] = [f for f in before.findings if f.code == "U308"]
+    written = "".join(edit.text for edit in finding.fix.edits)
+    assert end in written and written.replace(end, "").count("\n") == written.replace(
+        end, "").count("\r") == 0

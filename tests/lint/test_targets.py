@@ -1088,3 +1088,28 @@ def test_a_urdf_holding_xacro_named_is_checked_through_the_robot_including_it(ru
     (tmp_path / "top.urdf.xacro").unlink()
     result = run_cli("check", tmp_path / "part.urdf", "--format", "json")
     assert "U007" in result.stdout and '"files": 1' in result.stdout
+
+
+def test_each_link_leading_outside_is_said_however_many_lead_to_one_file(run_cli, tmp_path):
+    """Files are checked once by their real path (two names of one robot, a link within the
+    repository: one check), but a link leading outside is itself the finding (U017, never
+    followed): two committed links to ``/dev/zero`` and two to one file outside were one
+    finding each pair, the second said only once the first was removed."""
+    import json
+
+    outside, repo = tmp_path / "outside", tmp_path / "repo"
+    outside.mkdir()
+    (outside / "secret.urdf").write_text('<robot name="s"><link name="a"/></robot>\n')
+    (repo / ".git").mkdir(parents=True)
+    (repo / "robots" / "sub").mkdir(parents=True)
+    shutil.copy(CASES / "U021_misspelt_attribute.urdf", repo / "robots" / "real.urdf")
+    (repo / "robots" / "alias.urdf").symlink_to("real.urdf")
+    for folder in (repo / "robots", repo / "robots" / "sub"):
+        (folder / "zero.urdf").symlink_to("/dev/zero")
+        (folder / "secret.urdf").symlink_to(outside / "secret.urdf")
+    result = run_cli("check", str(repo / "robots"), "--jobs", "1", "--timeout", "0",
+                     "--max-memory", "0", "--no-cache", "-f", "json")
+    said = sorted((Path(d["file"]).relative_to(repo / "robots").as_posix(), d["code"])
+                  for d in json.loads(result.stdout)["diagnostics"])
+    assert said == [("alias.urdf", "U021"), ("secret.urdf", "U017"), ("sub/secret.urdf", "U017"),
+                    ("sub/zero.urdf", "U017"), ("zero.urdf", "U017")], said

@@ -154,14 +154,93 @@ def _refuse_files_urdftool_does_not_open(robot) -> None:
         if not uri:
             continue
         try:
-            resolve(robot, uri)
+            path = resolve(robot, uri)
         except MeshProblem as problem:
-            there = problem.kind == "missing" and _something_at(robot, uri)
+            there = problem.kind in ("missing", "corrupt") and _something_at(robot, uri)
             if problem.kind == "outside" or there:
                 why = f"{problem}" if not there else \
                     f"{element.tag} '{uri}' is not a regular file (a named pipe, a device?)"
                 raise UsageError(f"{robot.display}:{robot.locate(element).line}: {why}; the "
                                  "loaders would open it: not run") from None
+            continue
+        why = _named_by_the_mesh(path)
+        if why:
+            raise UsageError(f"{robot.display}:{robot.locate(element).line}: {element.tag} "
+                             f"'{uri}' {why}; the loaders would open it: not run")
+
+
+# Files a mesh names in turn, which the loaders open (PyBullet, MuJoCo and Drake read OBJ with
+# tinyobjloader: its material libraries and their texture maps; Drake reads glTF's buffers and
+# images) and urdftool never does (line ends: tinyobjloader's, LF and CR LF)
+_MTLLIB = re.compile(rb"^[ \t]*mtllib[ \t]+([^\r\n]*)", re.M)
+_MAPS = re.compile(rb"^[ \t]*(?:map_\w+|bump|disp|decal|refl|norm)[ \t]+([^\r\n]*)",  # line ends:
+                   re.M | re.I)  # (the same)
+
+
+def _named_by_the_mesh(path: Path) -> str | None:
+    """Why a file the mesh at ``path`` (in the repository) names in turn may not be opened:
+    outside the mesh's repository (absolute, ``..``, a link leading out), or a named pipe or a
+    device; None when every one stays inside (or is simply missing: the loaders say so).
+    PyBullet read ``/etc/passwd`` as an OBJ's texture (``map_Kd /etc/passwd`` in its MTL)."""
+    import json
+
+    from urdftool.description.files import inside, kind_of, read_regular, real_path
+    from urdftool.description.packages import containment_root
+
+    root = real_path(containment_root(path.parent))
+
+    def refused(folder: Path, name: str) -> str | None:
+        place = os.path.join(folder, name)
+        if not inside(real_path(place), root):
+            return f"names '{name}', outside the repository ({root})"
+        if kind_of(place) == "other":
+            return f"names '{name}', which is not a regular file (a named pipe, a device?)"
+        return None
+
+    def words(found: bytes) -> list[str]:  # the whole remainder, and each word of it
+        text = found.decode("utf-8", "replace").strip()
+        return [text, *text.split()] if text else []
+
+    suffix = path.suffix.lower()
+    try:
+        data = read_regular(path, as_="mesh")
+    except OSError:
+        return None
+    if suffix == ".obj":
+        for library in (w for found in _MTLLIB.findall(data) for w in words(found)):
+            why = refused(path.parent, library)
+            if why:
+                return f"(an OBJ) {why} as its material library"
+            place = Path(path.parent, library)
+            if kind_of(place) != "file":
+                continue
+            try:
+                materials = read_regular(place, as_="mesh material library")
+            except OSError:
+                continue
+            for texture in (w for found in _MAPS.findall(materials) for w in words(found)
+                            if not w.startswith("-")):
+                why = refused(place.parent, texture)
+                if why:
+                    return f"(an OBJ) names material library '{library}', which {why} " \
+                           "as a texture"
+    elif suffix in (".gltf", ".glb"):
+        if suffix == ".glb":  # the JSON chunk: after the 12-byte header, its length and type
+            length = int.from_bytes(data[12:16], "little")
+            data = data[20:20 + length] if data[16:20] == b"JSON" else b""
+        try:
+            document = json.loads(data)
+        except (ValueError, RecursionError):
+            return None
+        named = [item.get("uri") for key in ("buffers", "images")
+                 for item in (document.get(key) or [] if isinstance(document, dict) else [])
+                 if isinstance(item, dict)]
+        for uri in named:
+            if isinstance(uri, str) and uri and not uri.startswith("data:"):
+                why = refused(path.parent, uri.removeprefix("file://"))
+                if why:
+                    return f"(a glTF) {why}"
+    return None
 
 
 def _something_at(robot, uri: str) -> bool:
@@ -299,7 +378,8 @@ _FILE = (re.compile(r"Error opening file '([^']+)'"),
          re.compile(r"no decoder found for mesh file '([^']+)'"),
          re.compile(r"cannot find '([^']+)' in any directory"),
          re.compile(r"invalid mesh filename extension"),
-         re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$", re.M))
+         re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$",
+                    re.M))  # line ends: a loader's messages (LF)
 _LINK = (re.compile(r"Element name '([^']+)'"), re.compile(r"link\[@name=\"([^\"]+)\"\]"),
          re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]]*\]:\s*)?"
                                                              r"(\S+?)b3"),

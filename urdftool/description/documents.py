@@ -10,7 +10,7 @@ import functools
 import re
 from pathlib import Path
 
-from urdftool.diagnostics import Location, display_path
+from urdftool.diagnostics import Location, display_path, line_at, lines_of
 from urdftool.description.files import TooLarge, read_regular
 from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines, tinyxml2_comments
 from urdftool.records import Record
@@ -57,7 +57,7 @@ def _loader():
 
         def construct_yaml_map(self, node):
             data = YamlMap()
-            data.line, data.lines = node.start_mark.line + 1, {}
+            data.line, data.lines = self.file_line(node.start_mark), {}
             yield data
             owned: set[int] = set()  # the maps this mapping's merges made (merged in place)
             for key_node, value_node in node.value:
@@ -71,12 +71,12 @@ def _loader():
                     data[key] = merged(data[key], value, owned)  # keeps the line it was first written at
                     continue
                 data[key] = value
-                data.lines[key] = key_node.start_mark.line + 1
+                data.lines[key] = self.file_line(key_node.start_mark)
 
         def construct_yaml_seq(self, node):
             data = YamlList()
-            data.line = node.start_mark.line + 1
-            data.lines = [item.start_mark.line + 1 for item in node.value]
+            data.line = self.file_line(node.start_mark)
+            data.lines = [self.file_line(item.start_mark) for item in node.value]
             yield data
             data.extend(self.construct_object(item, deep=True) for item in node.value)
 
@@ -160,13 +160,25 @@ def merged(first, second, owned: set[int] | None = None):
     return result
 
 
-# A ROS 2 parameter file: some node's parameters are under ``ros__parameters:``.
-_ROS2_PARAMETERS = re.compile(r"^[ \t]*(?:-[ \t]+)?[\"']?ros__parameters[\"']?[ \t]*:", re.M)
+# A ROS 2 parameter file: some node's parameters are under ``ros__parameters:``, at the start
+# of a line as YAML ends them (line ends: libyaml's and PyYAML's, CR LF, LF, CR, NEL, LINE and
+# PARAGRAPH SEPARATOR: ``^`` under re.M starts a line after LF only, and a file whose lines end
+# with CR was read as ROS 1). Each "ros__parameters" found is matched from its line's start.
+_ROS2_PARAMETERS = re.compile(r"[ \t]*(?:-[ \t]+)?[\"']?ros__parameters[\"']?[ \t]*:")
+_YAML_LINE_ENDS = "\r\n\x85\u2028\u2029"
 
 
 def is_ros2_parameters(text: str) -> bool:
     """Whether ``text`` is a ROS 2 parameter file (it has a ``ros__parameters:`` key)."""
-    return bool(_ROS2_PARAMETERS.search(text))
+    at, before, start, tried = text.find("ros__parameters"), 0, 0, -1
+    while at >= 0:  # (each line end looked for once, each line's start matched once: linear)
+        start = max(start, max(text.rfind(end, before, at) for end in _YAML_LINE_ENDS) + 1)
+        if start != tried:
+            if _ROS2_PARAMETERS.match(text, start):
+                return True
+            tried = start
+        before, at = at, text.find("ros__parameters", at + 1)
+    return False
 
 
 
@@ -249,7 +261,7 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
     try:
         loader = _loader()(text)  # (PyYAML's reader refuses a control character here)
     except yaml.reader.ReaderError as error:
-        result.line = text.count("\n", 0, error.position) + 1
+        result.line = line_at(text, error.position)
         result.problem = f"unacceptable character #x{error.character:04x}: {error.reason}"
         return result
     loader.merge_repeated = result.ros2
@@ -270,6 +282,8 @@ def _error_line(error, text: str) -> int | None:
     opened when PyYAML's context says so, or when it only noticed at the end of the file; never
     past the file's last non-blank line (PyYAML puts the end of the stream on the line after
     the final newline)."""
+    from urdftool.description.yaml_limits import line_of
+
     problem, context = error.problem_mark, error.context_mark
     at_end = problem is not None and problem.index >= len(text.rstrip())
     opened = (error.context or "").startswith(("while parsing a flow", "while scanning a quoted"))
@@ -278,8 +292,8 @@ def _error_line(error, text: str) -> int | None:
         mark = context
     if mark is None:
         return None
-    last = max(1, len(text.rstrip().splitlines()))
-    return min(mark.line + 1, last)
+    last = max(1, len(lines_of(text.rstrip())))
+    return min(line_of(mark, text), last)
 
 
 # what an SRDF is read as (the record's kind): a rewrite is meant of a file read so only
@@ -346,7 +360,7 @@ def _xml_error_line(error, text: str) -> int | None:
     end of data in tag group line 2"), not on the line after the end of the file."""
     opened = re.search(r"Premature end of data in tag \S+ line (\d+)", error.msg or "")
     line = int(opened.group(1)) if opened else error.lineno
-    return min(line, max(1, len(text.rstrip().splitlines()))) if line else line
+    return min(line, max(1, len(lines_of(text.rstrip())))) if line else line
 
 
 def _start_tag_lines(root, text: str) -> None:

@@ -326,6 +326,17 @@ def identity_or_why(path) -> tuple | str:
         "a socket" if stat.S_ISSOCK(mode) else "a device"
 
 
+def no_file_there(path) -> str:
+    """Why no regular file is at ``path``, as words following its name in a message: 'does not
+    exist', 'is a folder' ('a named pipe', 'a device', 'a socket'), or 'cannot be reached:
+    why' (:func:`identity_or_why`'s one look): a path where something else is was said "not
+    found" (a mesh that is a named pipe, a plugin's parameters file that is a folder)."""
+    why = identity_or_why(path)
+    if isinstance(why, tuple):  # (a regular file now: it appeared since the first look)
+        return "was not a file when looked at"
+    return "does not exist" if not why else why if why.startswith("cannot") else f"is {why}"
+
+
 def listing(folder, pattern: str = "*") -> list[tuple[str, str]]:
     """(name, kind) of the entries of ``folder`` whose name matches ``pattern``, sorted by
     name: alternatives separated by ``|``, each an fnmatch pattern (case-sensitive), one ending
@@ -730,7 +741,8 @@ def _version_control_folder(target: str) -> str | None:
         folder = above
 
 
-def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> None:
+def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
+               private: bool = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
     A regular file keeps its permissions. UsageError when the folder is missing or reached
@@ -744,7 +756,8 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
     read as an SRDF, never an include named in its place). A rewrite writes the file it read:
     a link at ``path`` by which this process read a file is followed to it, and the link is
     kept (a fix of a robot file that is a committed link replaced the link with a copy and
-    left the robot unfixed)."""
+    left the robot unfixed). ``private``: readable and writable by its owner only, whatever
+    was there and whatever the umask (a secret: the cache's signing key)."""
     folder, target, existing = _written(path, rewrites)
     path = Path(path)
     if isinstance(data, str):
@@ -760,7 +773,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False) -> N
                                  stat.S_ISFIFO(existing.st_mode)):
         _write_in_place(path, target, data)  # /dev/null, /dev/full, a named pipe: never replaced
         return
-    if existing is not None and stat.S_ISREG(existing.st_mode):
+    if private:
+        mode = 0o600
+    elif existing is not None and stat.S_ISREG(existing.st_mode):
         mode = stat.S_IMODE(existing.st_mode)
     else:
         umask = os.umask(0)

@@ -37,6 +37,7 @@ import posixpath
 import re
 from pathlib import Path
 
+from urdftool.diagnostics import lines_between
 from urdftool.description.files import kind_of, read_regular
 from urdftool.description.run_memo import per_run
 from urdftool.records import Frozen
@@ -236,7 +237,7 @@ class _Arg(Frozen):
 def cmake_commands(text: str) -> list[tuple[str, list[_Arg], int]]:
     """(lower-case name, arguments, line) of each command of a CMake file: comments, quoted and
     bracket arguments as CMake's grammar has them; at most MAX_COMMANDS."""
-    commands, i, n = [], 0, len(text)
+    commands, i, n, line, counted = [], 0, len(text), 1, 0
     while i < n and len(commands) < MAX_COMMANDS:
         char = text[i]
         if char == "#":
@@ -246,7 +247,7 @@ def cmake_commands(text: str) -> list[tuple[str, list[_Arg], int]]:
         if match is None:
             i += 1
             continue
-        line = text.count("\n", 0, i) + 1
+        line, counted = line + lines_between(text, counted, i), i
         args, i = _arguments(text, match.end())
         commands.append((match.group(1).lower(), args, line))
     return commands

@@ -29,6 +29,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from urdftool.diagnostics import AT_LINE_START
 from urdftool.description.documents import read_text, read_yaml, YamlMap
 from urdftool.records import Frozen, NEW, Record
 
@@ -433,8 +434,10 @@ def is_launch_file(path: Path, root: Path) -> bool:
 # launch_testing's entry point: ``launch_test FILE`` and CMake's ``add_launch_test`` run it
 LAUNCH_TEST_ENTRY = "generate_test_description"
 _TEST_FOLDERS = ("test", "tests")
-_DEFINES_TEST = re.compile(rf"^(?:async\s+)?def\s+{LAUNCH_TEST_ENTRY}\s*\(", re.M)
-_DEFINES_LAUNCH = re.compile(r"^(?:async\s+)?def\s+generate_launch_description\s*\(", re.M)
+# (at the start of a line as Python ends them, CR LF, LF or CR: a Location's; a multi-line
+# ``^`` starts one after LF only)
+_DEFINES_TEST = re.compile(AT_LINE_START + rf"(?:async\s+)?def\s+{LAUNCH_TEST_ENTRY}\s*\(")
+_DEFINES_LAUNCH = re.compile(AT_LINE_START + r"(?:async\s+)?def\s+generate_launch_description\s*\(")
 
 
 def may_be_launch_test(path: Path, root: Path) -> bool:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdftool.diagnostics import Location, Severity, display_path
+from urdftool.diagnostics import Location, Severity, display_path, line_at
 from urdftool.errors import LoadError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of, read_regular
 from urdftool.description.inputs import SettingValue
@@ -379,9 +379,8 @@ def _late_declaration(data: bytes) -> tuple[bytes, int] | None:
     if encoding and encoding.group(1).lower().replace(b"-", b"") not in (b"utf8", b"ascii",
                                                                            b"usascii"):
         return None
-    blanked = re.sub(rb"[^\n]", b" ", declaration)  # lines and columns stay where they were
-    return (data[:found.start(1)] + blanked + data[found.end(1):],
-            data.count(b"\n", 0, found.start(1)) + 1)
+    blanked = re.sub(rb"[^\r\n]", b" ", declaration)  # lines and columns stay where they were
+    return data[:found.start(1)] + blanked + data[found.end(1):], line_at(data, found.start(1))
 
 
 class _StartTags(Mapping):

@@ -20,6 +20,7 @@ import os
 import re
 from pathlib import Path
 
+from urdftool.diagnostics import line_start, lines_between
 from urdftool.errors import PackageNotFound, close_names
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
     read_regular, real_path, repository_root, resolved, walk
@@ -312,10 +313,9 @@ def package_references(data: bytes) -> list[tuple[int, int, str]]:
     is not one."""
     found, line, counted = [], 1, 0
     for at, name in _named(_COMMENT.sub(_blanked, data)):
-        line += data.count(b"\n", counted, at)  # the lines since the last one
+        line += lines_between(data, counted, at)  # the lines since the last one
         counted = at
-        start = data.rfind(b"\n", 0, at) + 1
-        column = len(data[start:at].decode("utf-8", "replace")) + 1
+        column = len(data[line_start(data, at):at].decode("utf-8", "replace")) + 1
         found.append((line, column, name.decode()))
     return found
 

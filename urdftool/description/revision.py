@@ -121,7 +121,7 @@ def _git_process(root: Path, *args: str, stdin: bool = False) -> subprocess.Pope
         raise UsageError(f"git failed: {error}") from None
 
 
-_INCLUDE = re.compile(rb"^[ \t]*\[[ \t]*include(if)?\b", re.I | re.M)
+_INCLUDE = re.compile(rb"^[ \t]*\[[ \t]*include(if)?\b", re.I | re.M)  # line ends: git's (LF)
 MAX_CONFIG = 1024 * 1024  # [bytes] of a repository's config read to look for includes
 
 

@@ -9,9 +9,11 @@ from collections import namedtuple
 
 from urdftool.description.xml import first_child
 
-# What urdfdom's parser accepts as a double (no hex, no digit separators), plus the non-finite
-# spellings, which are parsed so that a rule can say "not finite" instead of "not a number".
-_DECIMAL = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")
+# What urdfdom's parser accepts as a double (no hex, no digit separators, ASCII digits only:
+# C++'s stream reads no other script's, where re's \d and Python's float() take full-width and
+# Arabic-Indic digits), plus the non-finite spellings, which are parsed so that a rule can say
+# "not finite" instead of "not a number".
+_DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
 # A text whose whitespace-separated parts (str.split's: re's \s is the same Unicode
 # whitespace) are all _DECIMAL, matched at once: each part is then to_float's float(part).

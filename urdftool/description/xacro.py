@@ -47,7 +47,7 @@ from xml.parsers import expat
 from lxml import etree
 
 from urdftool import budget
-from urdftool.diagnostics import Location, display_path
+from urdftool.diagnostics import LineNumbers, Location, display_path, lines_of
 from urdftool.errors import PackageNotFound
 from urdftool.description import files
 from urdftool.errors import available
@@ -1181,7 +1181,8 @@ def _written_use(session: _Session, where: Location, message: str) -> Location:
             data = session.read_file(path, "xacro")
         except OSError:
             return where
-        lines = [data.count(b"\n", 0, m.start()) + 1 for m in use.finditer(data)]
+        line_of = LineNumbers(data)
+        lines = [line_of(m.start()) for m in use.finditer(data)]
         before = [line for line in lines if line <= where.line]
         return Location(where.file, max(before), where.via) if before else where
     return where
@@ -1195,7 +1196,7 @@ def _warnings(text: str, top: str, places: dict | None = None) -> list[tuple[Loc
     current: list[str] = []
     where, at = top, None
     offset, marks = 0, sorted((places or {}).items())
-    for raw in text.splitlines(keepends=True):
+    for raw in lines_of(text, keepends=True):
         start, offset = offset, offset + len(raw)
         line = raw.strip()
         if not line:

@@ -737,13 +737,14 @@ def refuse_yaml_bomb(text: str, filename: str = "YAML file") -> None:
     stack runs out."""
     import yaml
 
-    from urdftool.description.yaml_limits import BoundedLoader, LimitError
+    from urdftool.description.yaml_limits import BoundedLoader, LimitError, line_of
 
     try:
         for _ in yaml.compose_all(text, Loader=BoundedLoader):
             pass
     except LimitError as error:
-        raise SandboxViolation(f"{filename}:{error.problem_mark.line + 1}: {error.problem}") from None
+        raise SandboxViolation(f"{filename}:{line_of(error.problem_mark, text)}: {error.problem}") \
+            from None
     except yaml.YAMLError:
         return  # xacro's own load reports it
 

@@ -17,6 +17,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from xml.parsers import expat
 
+from urdftool.diagnostics import AT_LINE_START_BYTES, LineNumbers, line_at, line_ends
+
 BINARY_SNIFF_BYTES = 8192
 MAX_DEPTH = 256  # element nesting libxml2 accepts without its "huge" option
 
@@ -68,8 +70,9 @@ def too_deep_message() -> str:
             "refuse it too, and no robot description needs it)")
 
 
-# git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's)
-_CONFLICT = re.compile(rb"^(<{7}|\|{7}|={7}|>{7})(?=[ \t\r]|$)[^\n]*", re.MULTILINE)
+# git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's),
+# a line as every Location numbers them (a file whose lines end with CR alone has its markers too)
+_CONFLICT = re.compile(AT_LINE_START_BYTES + rb"(<{7}|\|{7}|={7}|>{7})(?=[ \t\r\n]|\Z)[^\r\n]*")
 
 
 def malformed(data: bytes, reason: str, line: int | None,
@@ -86,8 +89,8 @@ def malformed(data: bytes, reason: str, line: int | None,
 def merge_conflict(data: bytes) -> XmlProblem | None:
     """A document holding an unresolved merge conflict (a ``<<<<<<<`` line, which is never
     XML), said as such at its first marker's line with the other markers' lines; else None."""
-    markers = [(data.count(b"\n", 0, found.start()) + 1, found.group(0))
-               for found in _CONFLICT.finditer(data)]
+    lines = LineNumbers(data)
+    markers = [(lines(found.start()), found.group(0)) for found in _CONFLICT.finditer(data)]
     opening = next((marker for marker in markers if marker[1].startswith(b"<")), None)
     if opening is None:
         return None
@@ -127,7 +130,7 @@ def tinyxml2_comments(data: bytes) -> tuple[bytes, int] | None:
         return b"<!--" + body.replace(b"-", b" ") + b"-->"
 
     rewritten = _TINYXML2_COMMENT.sub(blanked, data)
-    return None if first is None else (rewritten, data.count(b"\n", 0, first) + 1)
+    return None if first is None else (rewritten, line_at(data, first))
 
 
 def refuse_empty_or_binary(data: bytes) -> None:
@@ -205,6 +208,7 @@ _START = re.compile(rb"<[^/!?]")
 _SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.DOTALL)
 _OPENING = re.compile(rb"<(?![/!?])")
 _NEWLINE = re.compile(rb"\n")
+_LONE_CR = re.compile(rb"\r(?!\n)")
 _TOO_DEEP = "boolean(/" + "/".join(["*"] * (MAX_DEPTH + 1)) + ")"  # an element below MAX_DEPTH
 # A document of this size or more is scanned with numpy (a match object per "<" costs 2,000
 # instructions; numpy's comparisons of the whole buffer a fiftieth of that): such a document
@@ -334,8 +338,11 @@ class _StartOffsets(Mapping):
 
 
 def newlines(data: bytes) -> list[int]:
-    """The byte offset of each newline of ``data`` (numpy's for a document scanned in bulk:
-    see :func:`_in_bulk`)."""
+    """The byte offset where each line of ``data`` ends, as every Location numbers lines
+    (:func:`urdftool.diagnostics.line_ends`: a CR LF's LF, a CR alone); without a CR, of each
+    LF (numpy's for a document scanned in bulk: see :func:`_in_bulk`)."""
+    if b"\r" in data and _LONE_CR.search(data):  # a CR alone ends a line
+        return line_ends(data)  # (CR LF's end is its LF: a file of CR LF lines is LF's)
     if not _in_bulk(data):
         return [match.start() for match in _NEWLINE.finditer(data)]
     import numpy as np

@@ -13,10 +13,26 @@ YAML error (:class:`LimitError`) at its line: every loader built on it reads wit
 
 from __future__ import annotations
 
+import re
+
 import yaml
+
+from urdftool.diagnostics import LineNumbers, line_at
 
 MAX_DEPTH = 200  # [levels] of nested collections; real configuration files use about ten
 MAX_EXPANSION = 1_000_000  # [nodes + characters] aliases may add to what the text holds
+
+
+# PyYAML and libyaml (YAML 1.1) end a line at NEL, LINE SEPARATOR and PARAGRAPH SEPARATOR too,
+# which no Location, editor or language server protocol does: a mark's line after one is not
+# the line of the file (CR LF, LF and CR they count as every Location does)
+_OTHER_BREAKS = re.compile("[\x85\u2028\u2029]")
+
+
+def line_of(mark, text: str) -> int:
+    """The 1-based line of a YAML ``mark`` (an error's, a node's) in ``text``, the text the
+    loader read, as every Location numbers lines (:func:`urdftool.diagnostics.line_at`)."""
+    return mark.line + 1 if _OTHER_BREAKS.search(text) is None else line_at(text, mark.index)
 
 
 class DepthLimit:
@@ -25,6 +41,15 @@ class DepthLimit:
     the ValueError ``int()`` raises (a traceback wherever YAML errors are caught)."""
 
     _depth = 0
+    _numbers = None  # the LineNumbers of the text read, when PyYAML's lines are not its lines
+
+    def file_line(self, mark) -> int:
+        """The 1-based line of ``mark`` in the text this loader reads (:func:`line_of`)."""
+        numbers = self._numbers
+        if numbers is None:
+            text = getattr(self, "buffer", "")  # a loader of a string holds it whole
+            numbers = self._numbers = LineNumbers(text) if _OTHER_BREAKS.search(text) else False
+        return numbers(mark.index) if numbers else mark.line + 1
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -36,7 +61,7 @@ class DepthLimit:
         text = getattr(self, "buffer", "")  # a loader of a string holds it whole
         problem = expansion_problem(node, len(text))
         if problem:
-            raise LimitError(None, None, problem[1], problem[2])
+            raise LimitError(None, None, *problem)
         return node
 
     def compose_node(self, parent, index):
@@ -90,10 +115,10 @@ class OnceLoader(BoundedLoader):
         return super().construct_mapping(node, deep)
 
 
-def expansion_problem(node, text_length: int) -> tuple[int, str, object] | None:
-    """(line, message, mark) when ``node`` (a composed document) expands, with its aliases, to
+def expansion_problem(node, text_length: int) -> tuple[str, object] | None:
+    """(message, mark) when ``node`` (a composed document) expands, with its aliases, to
     more than MAX_EXPANSION nodes and characters beyond ``text_length``, or nests deeper than
-    MAX_DEPTH through them; else None. The line is the innermost collection over a limit by
+    MAX_DEPTH through them; else None. The mark is the innermost collection's over a limit by
     itself. Walked without recursion, each node once (a node its own descendant counts once)."""
     if node is None:
         return None
@@ -120,12 +145,10 @@ def expansion_problem(node, text_length: int) -> tuple[int, str, object] | None:
             size += child_size
             depth = max(depth, child_depth)
         if size > limit:
-            return (current.start_mark.line + 1,
-                    f"YAML aliases expand to over {limit} nodes and characters (a YAML bomb?)",
+            return (f"YAML aliases expand to over {limit} nodes and characters (a YAML bomb?)",
                     current.start_mark)
         if depth + 1 > MAX_DEPTH:
-            return (current.start_mark.line + 1,
-                    f"YAML aliases nest collections deeper than {MAX_DEPTH} levels", current.start_mark)
+            return f"YAML aliases nest collections deeper than {MAX_DEPTH} levels", current.start_mark
         sizes[id(current)] = (size, depth + 1)
     return None
 

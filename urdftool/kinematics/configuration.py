@@ -17,6 +17,7 @@ from typing import Collection
 
 import numpy as np
 
+from urdftool.diagnostics import lines_of
 from urdftool.errors import ConfigError, MimicError, available, shown_word
 from urdftool.description.urdf import ANGULAR, VARIABLE
 from urdftool.description.values import number, parse_numbers
@@ -311,13 +312,19 @@ def _plain_csv_table(text: str):
 def _csv_rows(text: str, path: str, what: str, named: str) -> tuple[list[str], list[list[str]]]:
     if '"' in text:
         try:  # newline="": a line break inside a quoted cell is the cell's, as csv reads it
-            lines = list(csv.reader(io.StringIO(text, newline="")))
+            reader = csv.reader(io.StringIO(text, newline=""))
+            numbers, lines, before = [], [], 0
+            for row in reader:  # a row's number: the line it starts on (a quoted cell may
+                numbers.append(before + 1)  # hold line breaks), as every Location numbers them
+                lines.append(row)
+                before = reader.line_num
         except csv.Error as error:
             raise ConfigError(f"{what} is not CSV: {error}", path) from None
     else:  # no quoting: splitting is csv's answer, ten times faster on 10,000 rows
-        lines = [line.split(",") if line else [] for line in text.splitlines()]
+        lines = [line.split(",") if line else [] for line in lines_of(text)]
+        numbers = range(1, len(lines) + 1)
     # blank lines and comment lines (# first) are skipped; the others keep their numbers
-    numbered = [(n, line) for n, line in enumerate(lines, start=1)
+    numbered = [(n, line) for n, line in zip(numbers, lines)
                 if line and any(cell.strip() for cell in line)
                 and not line[0].lstrip().startswith("#")]
     if not numbered:

@@ -379,7 +379,7 @@ def load_table(path: str) -> DHTable:
 
     from urdftool.description.files import read_regular
     from urdftool.description.packages import link_out
-    from urdftool.description.yaml_limits import OnceLoader
+    from urdftool.description.yaml_limits import OnceLoader, line_of
 
     leads = link_out(path)
     if leads:
@@ -392,7 +392,7 @@ def load_table(path: str) -> DHTable:
         raise DHError(f"cannot read D-H table: {error}", where=path) from None
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
-        where = f"{path}:{mark.line + 1}" if mark is not None else path
+        where = f"{path}:{line_of(mark, text)}" if mark is not None else path
         raise DHError(f"invalid JSON/YAML: {getattr(error, 'problem', error)}", where=where) \
             from None
     if not isinstance(data, dict):

@@ -333,7 +333,7 @@ def _finding(record: dict) -> Finding:
                    _location(record["location"]), None if fix is None else _fix(fix), target)
 
 
-def _write(path: Path, text: str) -> None:
+def _write(path: Path, text: str, private: bool = False) -> None:
     """:func:`~urdftool.description.files.write_file` (a link at ``path`` is replaced, not
     followed); OSError when it cannot. A named pipe or a device where a file of the cache goes
     is replaced too: ``write_file`` writes into one (a report's ``-o``), and a pipe planted as
@@ -341,7 +341,7 @@ def _write(path: Path, text: str) -> None:
     try:
         if kind_of(path, follow=False) == "other":
             remove_file(path)
-        write_file(path, text, rewrites=True)
+        write_file(path, text, rewrites=True, private=private)
     except UsageError as error:
         raise OSError(str(error)) from None
 
@@ -363,7 +363,8 @@ def _secret() -> bytes | None:
         return key
     try:
         make_folders(folder, 0o700)
-        _write(path, os.urandom(32).hex())
+        _write(path, os.urandom(32).hex(), private=True)  # (a secret: its folder's mode is
+        # 0700 only when made here: one made by another, or a link, may be anyone's to read)
     except (OSError, UsageError):
         return None
     key = read_own(path, 1024)

@@ -45,6 +45,7 @@ from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
+from urdftool.diagnostics import line_at
 from urdftool.errors import SettingsError, UnknownRule, UsageError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity_or_why, inside, \
     kind_of, read_regular, unreachable
@@ -330,17 +331,16 @@ def too_deep(text: str) -> int | None:
     brackets and braces and the dots of a key on one line (``a.b.c = 1``: tomllib's cost
     grows with their square), strings and comments skipped; None when it never does. A dot
     between two digits is a number's, not a key's."""
-    depth, dots, line, at = 0, 0, 1, 0
+    depth, dots, at = 0, 0, 0
     while (found := _TOKENS.search(text, at)) is not None:
         token, at = found.group(), found.end()
-        if token == "\n":
-            line, dots = line + 1, 0
+        if token == "\n":  # (TOML's line end: LF, or CR LF)
+            dots = 0
         elif token == "#":
             end = text.find("\n", at)
             at = len(text) if end < 0 else end
         elif token in _QUOTES:
             at = _string_end(text, at, token)
-            line += text.count("\n", found.end(), at)
         elif token in "[{":
             depth += 1
         elif token in "]}":
@@ -349,7 +349,7 @@ def too_deep(text: str) -> int | None:
                   and text[at:at + 1].isdigit()):
             dots += 1
         if depth + dots > MAX_DEPTH:
-            return line
+            return line_at(text, found.start())
     return None
 
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-from urdftool.diagnostics import Finding, Fix, Location, line_at, lines_of
+from urdftool.diagnostics import Finding, Fix, Location, line_at, line_end, line_start, lines_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 from urdftool.records import Frozen
@@ -82,22 +82,7 @@ def parse(text: str, file: str) -> list[Suppression]:
 
 def _before_comment(text: str, offset: int) -> bool:
     """Whether an element is written before the comment on its line (a trailing comment)."""
-    return bool(text[_line_start(text, offset):offset].strip())
-
-
-def _line_start(text: str, offset: int) -> int:
-    """Where the line holding ``offset`` starts (after a CR LF, LF or CR: as
-    :func:`~urdftool.diagnostics.lines_of` splits)."""
-    return max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
-
-
-def _line_end(text: str, offset: int) -> int:
-    """Where the line holding ``offset`` ends, after its line end (CR LF, LF or CR)."""
-    found = [at for at in (text.find("\n", offset), text.find("\r", offset)) if at >= 0]
-    if not found:
-        return len(text)
-    at = min(found)
-    return at + 2 if text.startswith("\r\n", at) else at + 1
+    return bool(text[line_start(text, offset):offset].strip())
 
 
 def _next_content_line(lines: list[str], after: int) -> int:
@@ -175,14 +160,14 @@ def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | No
             return None
     text = data.decode("utf-8", errors="replace")
     start, end = suppression.span
-    line_start, line_end = _line_start(text, start), _line_end(text, end)
-    if not text[line_start:start].strip() and not text[end:line_end].strip():
-        start, end = line_start, line_end
-    elif not text[line_start:start].strip():  # other content follows on the line
-        while end < line_end and text[end] in " \t":
+    first, last = line_start(text, start), line_end(text, end)
+    if not text[first:start].strip() and not text[end:last].strip():
+        start, end = first, last
+    elif not text[first:start].strip():  # other content follows on the line
+        while end < last and text[end] in " \t":
             end += 1
     else:
-        while start > line_start and text[start - 1] in " \t":
+        while start > first and text[start - 1] in " \t":
             start -= 1
     offset = len(text[:start].encode("utf-8"))
     from urdftool.lint.fixes import edit_of  # (only for a finding)

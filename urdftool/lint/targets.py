@@ -146,6 +146,18 @@ class _Summary(Record):
         self.document = document
 
 
+def _checked_as(path: Path) -> Path:
+    """What checking ``path`` checks, so that a file named twice (two names, links within the
+    repository) is checked once: its real path; but a link leading outside its repository is
+    itself the finding (U017: never followed), so each such link is said, however many lead
+    to one file (two committed links to ``/dev/zero`` were one finding: the second appeared
+    only once the first was removed)."""
+    resolved = resolved_path(path)
+    if resolved == Path(os.path.abspath(path)) or _stays_inside(path):
+        return resolved
+    return Path(os.path.abspath(path))
+
+
 def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAULT_MAX_FILE_SIZE
                     ) -> tuple[list[Path], dict[Path, str]]:
     """(top-level files, {skipped file: reason}) for a set of files found in a folder.
@@ -848,6 +860,6 @@ def expand(paths: list[str], request) -> Targets:
             unchecked.append(f"{path}: no robot of its own in it: {first}: {why}{more}")
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
-        unique.setdefault(file if file == "-" else resolved_path(Path(file)), file)
+        unique.setdefault(file if file == "-" else _checked_as(Path(file)), file)
     return Targets(list(unique.values()), skipped, notes, unchecked,
                    list(dict.fromkeys(unbuilt)))  # (a launch file named twice: said once)

@@ -24,7 +24,7 @@ _CHUNK = 1 << 20
 _CORNER_CLASSES = bytes.maketrans(bytes(range(256)), bytes(
     10 if b == 10 else 32 if b in b" \t\r\x0b\x0c" else 112 if 0x21 <= b <= 0x7E else 111
     for b in range(256)))  # newline stays, white space -> " ", printable -> "p", other -> "o"
-_FACE_LINE = re.compile(rb"^[ \t]*f([^\n]*)", re.MULTILINE)
+_FACE_LINE = re.compile(rb"^[ \t]*f([^\n]*)", re.MULTILINE)  # line ends: trimesh's (LF; CR LF joined)
 
 
 def _chunks(handle):

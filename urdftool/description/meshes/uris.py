@@ -15,7 +15,8 @@ import os
 import re
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, listing, real_path, resolved, walk
+from urdftool.description.files import inside, kind_of, listing, no_file_there, real_path, resolved, \
+    walk
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_of, package_uri_parts)
 from urdftool.description.run_memo import per_run
@@ -250,7 +251,11 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
-        return MeshProblem("missing", f"mesh '{uri}' not found{looked}{_windows_path(uri, named)}")
+        why = no_file_there(path)
+        if why.startswith("is "):  # something is there, not a mesh file: never opened
+            return MeshProblem("corrupt", f"mesh '{uri}' {why}, not a file{looked}: not opened")
+        found = "not found" if why == "does not exist" else why
+        return MeshProblem("missing", f"mesh '{uri}' {found}{looked}{_windows_path(uri, named)}")
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))

@@ -19,7 +19,7 @@ from xml.parsers import expat
 
 from urdftool.description.files import kind_of
 from urdftool.description.xml import attribute
-from urdftool.diagnostics import Edit, Fix
+from urdftool.diagnostics import Edit, Fix, line_start
 from urdftool.lint.fixes.tags import EXPRESSION, Unfixable, local_name, source, source_tag
 
 
@@ -116,8 +116,7 @@ def insert_before(robot, element, *xml: str) -> list[Edit] | Unfixable:
     if isinstance(found, Unfixable):
         return found
     text, tag = found
-    line_start = text.data.rfind(b"\n", 0, tag.start) + 1
-    indent = text.data[line_start:tag.start]
+    indent = text.data[line_start(text.data, tag.start):tag.start]
     separator = text.newline + indent.decode("utf-8") if not indent.strip() else " "
     return [text.edit(tag.start, tag.start, "".join(part + separator for part in xml))]
 
@@ -133,13 +132,13 @@ def append_child(robot, element, xml: str) -> list[Edit] | Unfixable:
     if tag.close_name is None:
         return Unfixable(f"<{tag.name}> at {text.file}:{tag.line} is empty-element tag")
     close = tag.close_name[0] - 2
-    line_start = text.data.rfind(b"\n", 0, close) + 1
-    before = text.data[line_start:close]
+    start = line_start(text.data, close)
+    before = text.data[start:close]
     if before.strip():
         return [text.edit(close, close, xml)]
     indent = before.decode("utf-8") + "  "
     lines = "".join(indent + line + text.newline for line in xml.split("\n"))
-    return [text.edit(line_start, line_start, lines)]
+    return [text.edit(start, start, lines)]
 
 
 def rename_attribute(robot, element, old: str, new: str) -> list[Edit] | Unfixable:

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from xml.parsers import expat
 
 from urdftool.description.xml import newlines
-from urdftool.diagnostics import Edit
+from urdftool.diagnostics import Edit, line_start
 
 
 _ATTRIBUTE = re.compile(rb"""(\s+)([^\s/>=]+)(\s*=\s*)("([^"]*)"|'([^']*)')""")
@@ -171,8 +171,10 @@ class Source:
 
     @property
     def newline(self) -> str:
-        """The file's line ending (CRLF when it has any)."""
-        return "\r\n" if b"\r\n" in self.data else "\n"
+        """The file's line ending (CRLF when it has any; CR when it ends its lines with CR
+        alone)."""
+        return "\r\n" if b"\r\n" in self.data else "\r" if b"\r" in self.data and \
+            b"\n" not in self.data else "\n"
 
     def edit(self, start: int, end: int, text: str) -> Edit:
         return edit_of(self.file, self.data, start, end, text)
@@ -183,9 +185,8 @@ def _position(data: bytes, offset: int) -> tuple[int, int]:
     index of the file's newlines (counting them up to each edit made the fixes of a big
     generated robot quadratic, and the corpus's 824 edits in files under 64 kB counted
     their lines again each time: 65 M instructions)."""
-    line_start = data.rfind(b"\n", 0, offset) + 1
-    column = len(data[line_start:offset].decode("utf-8", errors="replace"))
-    return bisect.bisect_left(_newlines(data), offset) + 1, column  # newlines before it
+    column = len(data[line_start(data, offset):offset].decode("utf-8", errors="replace"))
+    return bisect.bisect_left(_newlines(data), offset) + 1, column  # line ends before it
 
 
 @functools.lru_cache(maxsize=4)

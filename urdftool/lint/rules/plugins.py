@@ -208,7 +208,7 @@ def gazebo_control_parameters_path(robot):
     Bad: ``<parameters>config/controllers.yaml</parameters>``
     Good: ``<parameters>$(find my_robot)/config/controllers.yaml</parameters>``
     """
-    from urdftool.description.files import inside, kind_of
+    from urdftool.description.files import inside, kind_of, no_file_there
     from urdftool.description.packages import containment_root
 
     root = containment_root(Path(robot.path).parent) if robot.path != "-" else None
@@ -229,5 +229,5 @@ def gazebo_control_parameters_path(robot):
                               f"{value}"), None, Severity.WARNING
             elif root is not None and inside(Path(value).parent, root) and \
                     kind_of(value) != "file":
-                yield child, (f"<parameters> '{value}' does not exist: the controller manager starts "
-                              "without the controllers' parameters")
+                yield child, (f"<parameters> '{value}' {no_file_there(value)}: the controller "
+                              "manager starts without the controllers' parameters")

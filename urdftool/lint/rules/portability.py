@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from urdftool import simulators as facts
-from urdftool.description.files import kind_of
+from urdftool.description.files import kind_of, no_file_there
 from urdftool.numbers import number
 from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
 from urdftool.description.values import number_tuple, origin_pose
@@ -388,7 +388,7 @@ def mujoco_mesh_not_found(robot):
         path = Path(name) if Path(name).is_absolute() else folder / name
         if kind_of(path) != "file":
             yield mesh, (f"{_where(link, holder)}: {_as_of(robot, 'mujoco')} looks for mesh "
-                         f"'{filename}' at {path}, which does not exist: the load fails")
+                         f"'{filename}' at {path}, which {no_file_there(path)}: the load fails")
 
 
 def _principal(body):
@@ -744,14 +744,16 @@ def pybullet_long_line(robot):
     if not data:
         return
     start = 0
-    for number, line in enumerate(data.split(b"\n"), 1):
+    for line in data.split(b"\n"):  # line ends: PyBullet's (it reads up to each LF)
         if len(line) > facts.PYBULLET_LINE_BUFFER:
             cuts = [cut for cut in range(facts.PYBULLET_LINE_BUFFER, len(line),
                                          facts.PYBULLET_LINE_BUFFER) if _cuts_a_name(line, cut)]
             if cuts:
-                from urdftool.diagnostics import Location, display_path
+                from urdftool.diagnostics import Location, display_path, line_at, line_start
 
-                yield Location(display_path(robot.files[0]), number, column=cuts[0] + 1), (
+                number, at = line_at(data, start), start + cuts[0]
+                yield Location(display_path(robot.files[0]), line_at(data, at),
+                               column=at - line_start(data, at) + 1), (
                     f"line {number} is {len(line)} bytes long: {_as_of(robot, 'pybullet')} "
                     f"cuts it every {facts.PYBULLET_LINE_BUFFER} bytes, and the cut at byte "
                     f"{cuts[0]} splits a tag or attribute name: the load fails")

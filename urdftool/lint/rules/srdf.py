@@ -21,6 +21,7 @@ from urdftool.errors import available
 from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import attribute
+from urdftool.diagnostics import line_end, line_start
 
 LIMIT_TOLERANCE = 1e-6
 
@@ -459,11 +460,9 @@ def _remove_entry(srdf, element):
         return Unfixable(f"the entry at {srdf.display}:{element.sourceline} is not one "
                          "<disable_collisions .../> tag on its line")
     data, (start, end) = source.data, (tags[0].start, tags[0].end)
-    line_start = data.rfind(b"\n", 0, start) + 1
-    line_end = data.find(b"\n", end)
-    line_end = len(data) if line_end < 0 else line_end + 1
-    if not data[line_start:start].strip() and not data[end:line_end].strip():
-        start, end = line_start, line_end
+    first, last = line_start(data, start), line_end(data, end)
+    if not data[first:start].strip() and not data[end:last].strip():
+        start, end = first, last
     return [source.edit(start, end, "")]
 
 
@@ -483,16 +482,16 @@ def _add_entry(srdf, pair, reason: str):
                          if srdf.caution else f"{srdf.display} has no </robot> to write before")
     data = source.data
     close = root.close_name[0] - 2  # the '<' of '</robot>'
-    line_start = data.rfind(b"\n", 0, close) + 1
-    if data[line_start:close].strip():
+    first = line_start(data, close)
+    if data[first:close].strip():
         return Unfixable(f"</robot> in {srdf.display} does not start its line")
     entries = [t for t in (source.tag(i) for i in range(len(source)))
                if t.name == "disable_collisions"]
     if entries:
-        first = entries[0].start
-        indent = data[data.rfind(b"\n", 0, first) + 1:first].decode("utf-8", "replace")
+        indent = data[line_start(data, entries[0].start):entries[0].start].decode(
+            "utf-8", "replace")
     else:
         indent = "  "
     line = (f'{indent}<disable_collisions link1="{attribute(pair[0])}" '
             f'link2="{attribute(pair[1])}" reason="{attribute(reason)}"/>{source.newline}')
-    return [source.edit(line_start, line_start, line)]
+    return [source.edit(first, first, line)]
