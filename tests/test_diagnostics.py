@@ -69,3 +69,33 @@ def test_line_at_and_its_index_agree_on_every_offset_of_str_and_bytes():
                     assert starts[line - 1] == line_start(sample, offset)
                     assert starts[line - 1] + len(lines[line - 1]) == line_end(sample, offset)
     assert [line_at("a\rb\r\nc\nd\u2028e", i) for i in (0, 2, 5, 7, 9)] == [1, 2, 3, 4, 4]
+
+
+def test_line_numbers_without_cr_are_those_of_the_three_line_ends():
+    """A text without CR is counted by LF alone (memchr's speed, session 16): the same lines as
+    the CR LF | LF | CR definition gives, checked on every offset of random mixes of both."""
+    import random
+    import re
+
+    from urdftool import diagnostics
+
+    ends = {str: re.compile("\r\n|\n|\r"), bytes: re.compile(b"\r\n|\n|\r")}
+
+    def at(text, offset):
+        found = len(ends[type(text)].findall(text, 0, offset))
+        return found + 1 - (0 < offset < len(text) and text[offset - 1:offset + 1] in ("\r\n", b"\r\n"))
+
+    rng = random.Random(16)
+    for _ in range(3000):
+        text = "".join(rng.choice("ab\r\n\u2028 ") for _ in range(rng.randint(0, 10)))
+        if rng.random() < 0.5:
+            text = text.replace("\r", "")
+        for sample in (text, text.encode()):
+            pattern = ends[type(sample)]
+            assert diagnostics.line_ends(sample) == [e.end() - 1 for e in pattern.finditer(sample)]
+            for start in range(len(sample) + 1):
+                assert diagnostics.line_at(sample, start) == at(sample, start), (sample, start)
+                for end in range(start, len(sample) + 1):
+                    assert diagnostics.lines_between(sample, start, end) == \
+                        len(pattern.findall(sample, start, end))
+        assert diagnostics.lines_of(text) == (ends[str].split(text) if text else [])

@@ -186,6 +186,28 @@ _LINE_END_BYTES = re.compile(b"\r\n|\n|\r")
 # alone is one line to it): the text's start, after LF, or after a CR that no LF follows.
 AT_LINE_START = r"(?:\A|(?<=\n)|(?<=\r)(?!\n))"
 AT_LINE_START_BYTES = AT_LINE_START.encode()
+_LF = re.compile("\n")  # the line ends of a stretch without CR (sre finds a literal at C speed)
+_LF_BYTES = re.compile(b"\n")
+
+
+def _count_ends(text: str | bytes, start: int, end: int | None) -> int:
+    """How many line ends :data:`_LINE_END` finds in ``text`` from ``start`` to ``end`` (read
+    as if the text stopped there)."""
+    if isinstance(text, bytes):
+        if text.find(b"\r", start, end) < 0:
+            return text.count(b"\n", start, end)
+        return len(_LINE_END_BYTES.findall(text, start, len(text) if end is None else end))
+    if text.find("\r", start, end) < 0:
+        return text.count("\n", start, end)
+    return len(_LINE_END.findall(text, start, len(text) if end is None else end))
+
+
+def _ends_pattern(text: str | bytes):
+    """The pattern of the line ends of ``text``: LF alone when it holds no CR (the same ends,
+    found at memchr's speed, where the alternation is tried at each character)."""
+    if isinstance(text, bytes):
+        return _LF_BYTES if b"\r" not in text else _LINE_END_BYTES
+    return _LF if "\r" not in text else _LINE_END
 
 
 def lines_of(text: str, keepends: bool = False) -> list[str]:
@@ -193,9 +215,9 @@ def lines_of(text: str, keepends: bool = False) -> list[str]:
     split at CR LF, LF and CR only, never where :meth:`str.splitlines` also splits. With
     ``keepends``, each line keeps its line end (joined, they are ``text``)."""
     if not keepends:
-        return _LINE_END.split(text) if text else []
+        return (text.split("\n") if "\r" not in text else _LINE_END.split(text)) if text else []
     found, at = [], 0
-    for end in _LINE_END.finditer(text):
+    for end in _ends_pattern(text).finditer(text):
         found.append(text[at:end.end()])
         at = end.end()
     if at < len(text):
@@ -208,8 +230,7 @@ def line_at(text: str | bytes, offset: int) -> int:
     character (or byte, of a file's bytes) at ``offset`` of ``text``: the one count of lines
     before a place in a file, for every message and finding that says a line. An LF ending a
     line with the CR before it is on that line."""
-    ends = len((_LINE_END_BYTES if isinstance(text, bytes) else _LINE_END).findall(
-        text, 0, offset))
+    ends = _count_ends(text, 0, offset)
     if 0 < offset < len(text) and text[offset - 1:offset + 1] in ("\r\n", b"\r\n"):
         ends -= 1  # (the CR alone was counted: the slice ended between CR and LF)
     return ends + 1
@@ -219,15 +240,13 @@ def lines_between(text: str | bytes, start: int, end: int) -> int:
     """How many line ends of ``text`` lie in [start, end) (neither between a CR and its LF):
     the lines an ascending walk through a file adds from ``start`` to ``end``, at the cost of
     that stretch only."""
-    return len((_LINE_END_BYTES if isinstance(text, bytes) else _LINE_END).findall(
-        text, start, end))
+    return _count_ends(text, start, end)
 
 
 def line_ends(text: str | bytes) -> list[int]:
     """The offset of the last character (or byte) of each line end of ``text``: a CR LF's LF
     (:func:`line_at` of an offset is 1 + how many of these come before it)."""
-    pattern = _LINE_END_BYTES if isinstance(text, bytes) else _LINE_END
-    return [end.end() - 1 for end in pattern.finditer(text)]
+    return [end.end() - 1 for end in _ends_pattern(text).finditer(text)]
 
 
 class LineNumbers:

@@ -463,7 +463,10 @@ def is_launch_test(text: str) -> bool:
     shows how a robot file is built (its robot description), never what a deployment starts:
     its controllers and nodes run for the test alone
     (:func:`~urdftool.description.launch_configs.launch_index` keeps it apart)."""
-    return bool(_DEFINES_TEST.search(text)) and not _DEFINES_LAUNCH.search(text)
+    # (the name looked for first: a pattern starting at any line start is tried at every
+    # character, 3 M instructions over a repository's launch files that never name it)
+    return LAUNCH_TEST_ENTRY in text and bool(_DEFINES_TEST.search(text)) and \
+        not _DEFINES_LAUNCH.search(text)
 
 
 def read_launch_text(path: Path) -> LaunchFile | str:

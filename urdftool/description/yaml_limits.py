@@ -29,10 +29,15 @@ MAX_EXPANSION = 1_000_000  # [nodes + characters] aliases may add to what the te
 _OTHER_BREAKS = re.compile("[\x85\u2028\u2029]")
 
 
+def _other_breaks(text: str) -> bool:
+    """Whether ``text`` holds one of those line ends (none in ASCII text: known at no cost)."""
+    return not text.isascii() and _OTHER_BREAKS.search(text) is not None
+
+
 def line_of(mark, text: str) -> int:
     """The 1-based line of a YAML ``mark`` (an error's, a node's) in ``text``, the text the
     loader read, as every Location numbers lines (:func:`urdftool.diagnostics.line_at`)."""
-    return mark.line + 1 if _OTHER_BREAKS.search(text) is None else line_at(text, mark.index)
+    return line_at(text, mark.index) if _other_breaks(text) else mark.line + 1
 
 
 class DepthLimit:
@@ -48,7 +53,7 @@ class DepthLimit:
         numbers = self._numbers
         if numbers is None:
             text = getattr(self, "buffer", "")  # a loader of a string holds it whole
-            numbers = self._numbers = LineNumbers(text) if _OTHER_BREAKS.search(text) else False
+            numbers = self._numbers = LineNumbers(text) if _other_breaks(text) else False
         return numbers(mark.index) if numbers else mark.line + 1
 
     def __init_subclass__(cls, **kwargs):
