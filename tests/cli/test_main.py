@@ -234,6 +234,7 @@ def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path, monkeyp
     robot = tmp_path / "r.urdf"
     robot.write_text('<robot name="r"><link name="a"/></robot>')
     load_and_check(str(robot), CheckOptions())  # a first check frees objects made on import
+    session = gc.get_freeze_count()  # (the test process's own, tests/conftest.py's lasting)
     gc.freeze()
     unfrozen = []
     monkeypatch.setattr(gc, "unfreeze", lambda: unfrozen.append(gc.get_freeze_count()))
@@ -246,6 +247,8 @@ def test_a_callers_frozen_objects_stay_frozen(door_collection, tmp_path, monkeyp
     finally:
         monkeypatch.undo()
         gc.unfreeze()
+        if session:
+            gc.freeze()  # the test process's objects out of the collector's sight again
 
 
 def test_a_full_collection_runs_once_enough_objects_went_unexamined(door_collection, monkeypatch,
