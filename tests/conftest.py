@@ -320,7 +320,6 @@ def expected_severities(case: Path) -> dict[tuple[str, int, str], str]:
 
 
 CASE_PATHS = sorted(p for p in CASES.iterdir() if re.match(r"U\d{3}_", p.name))
-_CASE_NAMES = frozenset(p.name for p in CASE_PATHS)
 
 
 # The case files are checked as ``urdftool check tests/cases/...`` checks them: in one run, whose
@@ -362,24 +361,12 @@ def pytest_collection_modifyitems(config, items):
     """Everything under tests/integration/ is marked ``integration`` (``make test-fast``
     skips it). A test that reads the corpus run says so in its module or name (it must: the
     corpus group is found by the node ID, see pytest_xdist_make_scheduler)."""
-    # the tests of the case files first (stable): they check every case in-process, and cost
-    # several times more when a worker has run hundreds of tests before them (session 16)
-    items.sort(key=lambda item: case_group(item.nodeid) is None)
     for item in items:
         if "integration" in item.path.relative_to(ROOT).parts[:2]:
             item.add_marker(pytest.mark.integration)
         if "corpus_run" in getattr(item, "fixturenames", ()) and not in_corpus_group(item.nodeid):
             raise pytest.UsageError(f"{item.nodeid} reads corpus_run: name its module or test "
                                     "for the corpus (tests/conftest.py, in_corpus_group)")
-
-
-def case_group(nodeid: str) -> str | None:
-    """The scheduling group of a test given one case file (tests/cases) as its parameter: the
-    case's name, so that its check (case_result) and check_urdf's verdict (check_urdf), both
-    kept per test process, are made by one worker, not by both (tests/lint/test_cases.py and
-    tests/integration/test_parity.py read the same ones)."""
-    parameter = nodeid.partition("[")[2].removesuffix("]")
-    return f"case:{parameter}" if parameter in _CASE_NAMES else None
 
 
 @pytest.hookimpl(optionalhook=True)
@@ -395,10 +382,7 @@ def pytest_xdist_make_scheduler(config, log):
 
     class CorpusGroup(LoadGroupScheduling):
         def _split_scope(self, nodeid: str) -> str:
-            if in_corpus_group(nodeid):
-                return "corpus"
-            case = case_group(nodeid)
-            return case if case is not None else super()._split_scope(nodeid)
+            return "corpus" if in_corpus_group(nodeid) else super()._split_scope(nodeid)
 
     return CorpusGroup(config, log)
 

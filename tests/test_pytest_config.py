@@ -22,18 +22,3 @@ def test_the_summary_lists_skipped_tests_with_their_reasons(tmp_path):
     assert done.returncode == 0, done.stdout + done.stderr
     assert "SKIPPED [1] test_skips.py:7: Graphviz dot is not installed" in done.stdout, \
         done.stdout
-
-
-def test_the_tests_of_one_case_file_are_scheduled_together():
-    """``make test``'s scheduler gives every test of one case file (tests/lint/test_cases.py's
-    and tests/integration/test_parity.py's) to one worker, which checks the case once; other
-    tests keep their own scope, the corpus's its group."""
-    from conftest import CASE_PATHS, case_group, in_corpus_group
-
-    case = CASE_PATHS[0].name
-    assert case_group(f"tests/lint/test_cases.py::test_case_findings_match_marks[{case}]") \
-        == case_group(f"tests/integration/test_parity.py::test_parity_on_case_files[{case}]") \
-        == f"case:{case}"
-    assert case_group(f"tests/lint/test_cases.py::test_case_findings_match_marks[{case}x]") is None
-    assert case_group("tests/lint/test_cases.py::test_every_rule_has_a_case") is None
-    assert in_corpus_group("tests/integration/test_corpus_xacro.py::test_x[a]")
