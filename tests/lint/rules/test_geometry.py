@@ -172,9 +172,22 @@ def test_a_mesh_of_an_exporters_package_name_says_the_robots_own_package_holds_i
                            "package://ranger1s_urdf_3/meshes/chassis_link.STL")
     assert message.endswith("; the robot's own package 'robot_urdf' holds "
                             "'meshes/chassis_link.STL': write "
-                            "package://robot_urdf/meshes/chassis_link.STL"), message
+                            "'package://robot_urdf/meshes/chassis_link.STL'"), message
     [(_, message)] = _u407(tmp_path / "urdf" / "r.urdf", "package://ranger1s_urdf_3/meshes/x.STL")
     assert "own package" not in message
+    # the meshes' findings are one line of the text report (ranger1s_urdf_3.urdf: 16 lines)
+    from urdftool.lint.engine import CheckOptions, load_and_check
+    from urdftool.report.text_format import groups
+
+    (tmp_path / "meshes" / "wheel_link.STL").write_text("solid x\nendsolid x\n")
+    robot = tmp_path / "urdf" / "two.urdf"
+    robot.write_text('<robot name="r">' + "".join(
+        f'<link name="{n}"><visual><geometry><mesh filename="package://ranger1s_urdf_3/meshes/'
+        f'{n}.STL"/></geometry></visual></link>' for n in ("chassis_link", "wheel_link"))
+        + '<joint name="j" type="fixed"><parent link="chassis_link"/><child link="wheel_link"/>'
+        '</joint></robot>')
+    found = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U407"]
+    assert len(found) == 2 and len(groups(found)) == 1, [f.message for f in found]
 
 
 def test_package_meshes_beside_the_robot_file_are_one_line_of_the_text_report(tmp_path):

@@ -156,7 +156,7 @@ def _in_own_package(robot, owner: str | None, tail: str) -> str:
     if folder is None or kind_of(Path(folder) / tail) != "file":
         return ""
     return (f"; the robot's own package '{owner}' holds '{tail}': write "
-            f"package://{owner}/{tail}")
+            f"'package://{owner}/{tail}'")  # (quoted: a name the text report sets aside)
 
 
 def _misspelling(name: str, close: str) -> bool:
