@@ -62,8 +62,9 @@ def tally_memory(links: int) -> tuple[int, int]:
         scene = matrix.Scene(load(str(generate.write(Path(folder), links, "chain"))), 0.005,
                              max_pairs=None)
     poses = scene.poses(scene.sample(0, 16))
+    checker = scene.checker  # (made when first asked, since session 15: made before, as it was)
     tracemalloc.start()
-    scene.checker.tally(poses)
+    checker.tally(poses)
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     return peak, len(scene.pairs)
