@@ -26,12 +26,12 @@ for the very text or pattern it was made from, and only by the Python that made 
 
 ``check`` imports the rules and its own work with the cyclic garbage collector off (from its
 first step, the kept code, on: the collections it made of them found nothing to free, 5 M
-instructions of r2d2's check) and freezes them, then runs the collector less often around
-each robot (:func:`_collect_less`, installed into the engine): it saves a fifth of the check
-of a 10,000-link robot, and the collector's passes over the imports, in the parent and, page
-by page, in the forked worker, of a one-file check (``make bench``). A check run without Typer ends without tearing the interpreter down
-(:func:`_end`): under 50 ms on the corpus and on a 10,000-link robot, it stays while the check of
-robots/r2d2 misses its goal without it.
+instructions of r2d2's check) and freezes them, then runs the collector less often around each
+robot (:func:`_collect_less`, installed into the engine): it saves a fifth of the check of a
+10,000-link robot, and the collector's passes over the imports, in the parent and, page by page,
+in the forked worker, of a one-file check (``make bench``). A check run without Typer ends
+without tearing the interpreter down (:func:`_end`): under 50 ms on the corpus and on a
+10,000-link robot, it stays while the check of robots/r2d2 misses its goal without it.
 
 A plain check forks first, small, into a guardian and the process that runs the command
 (:func:`_guarded`, :mod:`urdftool.guardian`): a budgeted file checked alone is checked in that

@@ -299,16 +299,17 @@ _PARENT = re.compile(rb"<parent\s[^<>]*?link\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 
 
 def _root_elsewhere(data: bytes, expanded: bool = True) -> str | None:
-    """Why the robot ``data`` writes has no root of its own, as its text shows, or None when it
-    has one (:func:`urdftool.lint.parts.rootless` decides, from the links and joints read
-    here): it has joints, every link it writes is a joint's child, and some joint names a link
-    it does not write. A robot has one root link; such a file is a part of a robot defined
-    elsewhere, whatever its root element says (jackal's custom_example.urdf, meant for
-    $(optenv JACKAL_URDF_EXTRAS): joints on the 'front_mount' of the jackal that includes it). A misspelt parent in a robot leaves its real
-    root a root; Gazebo's 'world' is no link to write. Only when nothing outside macro
-    definitions and link bodies may write links the text does not show (macro calls,
-    includes), unless the file is not ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's
-    namespace (a ``.urdf`` that does is expanded, with U007: elephantrobotics' stale
+    """Why the robot ``data`` writes has no root of its own, as its text shows, or None when
+    it has one (:func:`urdftool.lint.parts.rootless` decides, from the links and joints read
+    here): it has joints, every link it writes is a joint's child, and some joint names a
+    link it does not write. A robot has one root link; such a file is a part of a robot
+    defined elsewhere, whatever its root element says (jackal's custom_example.urdf, meant
+    for $(optenv JACKAL_URDF_EXTRAS): joints on the 'front_mount' of the jackal that
+    includes it). A misspelt parent in a robot leaves its real root a root; Gazebo's 'world'
+    is no link to write. Only when nothing outside macro definitions and link bodies may
+    write links the text does not show (macro calls, includes), unless the file is not
+    ``expanded`` (a ``.urdf`` is read as written) and does not declare xacro's namespace (a
+    ``.urdf`` that does is expanded, with U007: elephantrobotics' stale
     mycobot_with_vision_copy.urdf includes a file that is gone; jackal's custom_example.urdf
     calls a macro without declaring it, which xacro cannot parse)."""
     data = _without_macro_bodies(data)
