@@ -15,8 +15,8 @@ import os
 import re
 from pathlib import Path
 
-from urdftool.description.files import inside, kind_of, listing, no_file_there, real_path, resolved, \
-    walk
+from urdftool.description.files import (inside, kind_of, listing, no_file_there, real_path,
+                                        resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_of, package_uri_parts)
 from urdftool.description.run_memo import per_run
