@@ -232,6 +232,32 @@ def test_figures_are_what_the_plain_pattern_finds():
             [(m.span(), m.group()) for m in plain.finditer(text)], text
 
 
+def test_where_a_missing_package_was_looked_for_is_written_once_per_file():
+    from urdftool.errors import PackageNotFound
+
+    def missing(name: str, line: int, part: str, file: str = "robot.urdf") -> Finding:
+        error = PackageNotFound(name, ["package.xml above /ws/src/bot/urdf up to /ws",
+                                       "package.xml below /ws"]).declared("bot", False)
+        return Finding("U407", "mesh-package-not-found", Severity.WARNING,
+                       f"link 'base' <{part}>: mesh 'package://{name}/m.stl': {error}",
+                       Location(file, line))
+
+    findings = [missing("meshes_a", 22, "visual"), missing("meshes_a", 29, "collision"),
+                missing("meshes_b", 40, "visual")]
+    text = _text([FileResult("robot.urdf", findings),
+                  FileResult("other.urdf", [missing("meshes_a", 5, "visual", "other.urdf")])])
+    assert text.count("package.xml below /ws") == 3  # each package, in each file, once
+    assert ("<collision>: mesh 'package://meshes_a/m.stl': package 'meshes_a' not found, and the "
+            "package.xml of 'bot' does not declare it") in text
+    assert "; looked in the places listed at line 22; pass --package meshes_a=PATH as said " \
+        "there (mesh-package-not-found)" in text
+    assert text.count("looked in the places listed") == 1
+    # the machine formats keep every message whole
+    stream = io.StringIO()
+    render("json", [FileResult("robot.urdf", findings)], stream)
+    assert stream.getvalue().count("package.xml below /ws") == 3
+
+
 def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
     """A group whose messages are one text without their names (and give no value in double
     quotes) is written as its first message without looking for figures (_grouped's alike):

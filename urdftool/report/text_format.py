@@ -12,8 +12,9 @@ Text is for people, so it says each thing once (the machine formats keep every f
   links "has mass 0.59 kg but zero inertia", each its own mass): a figure that differs is
   written as the range of the group's (``0.0649 to 0.864 kg``), so the one line is true of
   each. A message that names nothing keeps its figures apart: they are what it says;
-- a long "available links: ..." list is written in full the first time in a file's report,
-  and later findings refer to it (:func:`_once`);
+- a long "available links: ..." list, and where a missing package was looked for with how
+  to pass it, are written in full the first time in a file's report, and later findings
+  refer to it (:func:`_once`);
 - notes (severity info: explanations such as "its inertia is taken from its convex hull", not
   problems) are shown only when asked for (``check --notes``, ``notes = true`` in the
   settings); the summary line counts the ones it left out.
@@ -43,6 +44,9 @@ _AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
                         r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
                         r"(?:, \.\.\. \((?P<count>\d+) in all\))?(?=$|;| \()")
 _LONG_LIST = 60  # [characters] a list shorter than this is written every time
+# "; looked in: PLACES. Pass --package NAME=PATH ..." to the message's end, as
+# urdftool.errors.PackageNotFound writes it (each mesh of a missing package says it again)
+_SEARCHED = re.compile(r"; looked in: .*?\. Pass --package (?P<name>\S+)=PATH.*\Z", re.S)
 # a figure: a number standing alone (not part of a word, a name, a unit's power like m^3 or a
 # version like 1.2.3): (?<![\w.+\-^/])[-+]?\d+..., written to start with its first character
 # ([-+\d], the character before it looked at behind that), so that the search skips from sign
@@ -317,24 +321,38 @@ def _listed(items: list[str]) -> str:
 
 
 def _once(message: str, location, listed: dict) -> str:
-    """``message`` with each long "available ..." list it repeats from an earlier finding of
-    the same report replaced by a reference to where it was written in full."""
+    """``message`` with each long "available ..." list, and each "looked in: ..." of a missing
+    package, that it repeats from an earlier finding of the same report replaced by a
+    reference to where it was written in full."""
+    def first(key: str):
+        """Where ``key`` was written before (None: nowhere, and it is written here)."""
+        if key not in listed:
+            listed[key] = location
+            return None
+        where = listed[key]
+        return f"line {where.line}" if where.file == location.file and \
+            where.line is not None else str(where)
+
     def replace(match) -> str:
         names = match.group("names")
         if len(names) < _LONG_LIST:
             return match.group()
-        key = match.group()
-        if key not in listed:
-            listed[key] = location
-            return key
-        where = listed[key]
-        at = f"line {where.line}" if where.file == location.file and where.line is not None \
-            else str(where)
+        at = first(match.group())
+        if at is None:
+            return match.group()
         count = match.group("count")
         return f"available {match.group('kind')}: " + (f"the {count} listed at {at}" if count
                                                          else f"as listed at {at}")
 
-    return _AVAILABLE.sub(replace, message)
+    def searched(match) -> str:
+        at = first(match.group())
+        if at is None:
+            return match.group()
+        return (f"; looked in the places listed at {at}; pass --package "
+                f"{match.group('name')}=PATH as said there")
+
+    message = _AVAILABLE.sub(replace, message)
+    return _SEARCHED.sub(searched, message) if "; looked in: " in message else message
 
 
 def _escaped(line: Line) -> Line:
