@@ -281,6 +281,9 @@ def moveit_controller_unknown(robot):
     those controllers, and nothing else that could serve the action (a node of another package
     than ROS's own); nothing when every launch file starting MoveIt with this list starts such a
     node beside it (aubo_driver's trajectory action); a warning naming the condition otherwise.
+    An entry with an empty name is a driver's by construction (MoveIt then sends to
+    ``/<action_ns>``, motoman_driver's ``joint_trajectory_action``, where a ros_control
+    controller never serves: its action is ``<controller>/follow_joint_trajectory``): nothing.
 
     Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
     ``arm_trajectory_controller``
@@ -291,6 +294,8 @@ def moveit_controller_unknown(robot):
         return
     for entry in _moveit_controllers(robot)[0]:
         name = entry.name.strip("/").split("/")[-1]
+        if not name:  # MoveIt sends to ``/<action_ns>`` itself: a driver's, never ros_control's
+            continue
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
                        f"robot; {available('controllers', name, declared)}")
