@@ -10,7 +10,12 @@ from pathlib import Path
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.diagnostics import Finding, Severity
+from urdftool.errors import PackageNotFound
 from urdftool.records import Frozen, NEW, Record
+
+# what U006's note on a library of macros that makes no robot says of it: nothing is lost
+# by its not being expanded, and the run does not exit 2 for it
+MACRO_LIBRARY = "a library of macros (its top level defines macros and calls none)"
 
 
 def under_ci(environ=None) -> bool:
@@ -150,10 +155,12 @@ class FileResult(Record):
     @property
     def unexpanded(self) -> bool:
         """Whether its robot was not expanded, so not checked, for a package this machine
-        lacks (U006: the environment's, not the robot's, a warning; a note for a library of
-        macros nothing here builds, which would make no robot to check)."""
-        return any(finding.code == "U006" and finding.severity != Severity.INFO
-                   for finding in self.findings)
+        lacks (U006: the environment's, not the robot's, a warning; a note for a dependency its
+        package.xml declares, the workspace's; but not for a library of macros nothing here
+        builds, a note too, which would make no robot to check)."""
+        return any(finding.code == "U006" and (
+            finding.severity != Severity.INFO or PackageNotFound.DECLARED in finding.message
+            and MACRO_LIBRARY not in finding.message) for finding in self.findings)
 
     @property
     def failures(self) -> list[Finding]:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+from urdftool.errors import PackageNotFound
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
@@ -354,6 +355,10 @@ def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
             message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            if kind == "package" and PackageNotFound.DECLARED in message:
+                # a dependency the package.xml declares, not installed here: the workspace's
+                yield shape, Conditional(message, Severity.INFO)
+                continue
             # a problem that may not hold after the package's build: a warning saying so
             yield shape, (message if outcome.certain else Conditional(message))
 
@@ -363,10 +368,11 @@ def mesh_package_not_found(robot):
     """A mesh's ``package://`` names a package that cannot be found.
 
     An error when the name is nearly that of a package found here (a misspelt or stale name)
-    or a folder of its name above the robot file lacks the file. Otherwise a **warning**: a
-    package not installed here is the environment's (as U006 reads a ``$(find)``), whether
-    the robot's package.xml declares it (install the dependencies) or not (declare it: rosdep
-    would not install it); the mesh is not checked.
+    or a folder of its name above the robot file lacks the file. Otherwise a package not
+    installed here is the environment's (as U006 reads a ``$(find)``), and the mesh is not
+    checked: a **note** when the robot's package.xml declares it (installed wherever the
+    package is built: install the dependencies; a question of the workspace, not of the
+    file), a **warning** when it does not (rosdep would not install it: declare it).
 
     A warning, too, when the file is there for loaders that do not ask ROS:
     ``PACKAGE/PATH`` beside the robot file (onshape-to-robot's ``package://assets/part.stl``:
