@@ -225,6 +225,11 @@ class MeshProblem(LocatedError):
     message: str
     certain: bool = True
 
+    # what the message of a file missing from a folder holding only placeholders says: the
+    # repository leaves it for a tool to put there, as a package.xml declaring a dependency
+    # leaves that package to the workspace
+    KEPT_EMPTY = "a folder kept empty in the repository for files put there later"
+
     def __str__(self) -> str:
         return self.message
 
