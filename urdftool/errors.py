@@ -61,6 +61,9 @@ class PackageNotFound(UrdftoolError):
     # what the message of a package a package.xml depends on says: installed wherever that
     # package is built, a question of the workspace, not of the file naming it
     DECLARED = "declares it as a dependency"
+    # what is said of a file needing it that only defines macros (no robot is lost by its not
+    # being expanded: the run does not count it as not checked)
+    LIBRARY = "a library of macros (its top level defines macros and calls none)"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
                  undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):

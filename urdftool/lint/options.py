@@ -13,10 +13,6 @@ from urdftool.diagnostics import Finding, Severity
 from urdftool.errors import PackageNotFound
 from urdftool.records import Frozen, NEW, Record
 
-# what U006's note on a library of macros that makes no robot says of it: nothing is lost
-# by its not being expanded, and the run does not exit 2 for it
-MACRO_LIBRARY = "a library of macros (its top level defines macros and calls none)"
-
 
 def under_ci(environ=None) -> bool:
     """Whether this run is a CI job's: ``CI`` set (GitHub Actions, GitLab CI and most services
@@ -160,7 +156,7 @@ class FileResult(Record):
         builds, a note too, which would make no robot to check)."""
         return any(finding.code == "U006" and (
             finding.severity != Severity.INFO or PackageNotFound.DECLARED in finding.message
-            and MACRO_LIBRARY not in finding.message) for finding in self.findings)
+            and PackageNotFound.LIBRARY not in finding.message) for finding in self.findings)
 
     @property
     def failures(self) -> list[Finding]:

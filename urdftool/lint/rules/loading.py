@@ -8,7 +8,6 @@ from urdftool.description.urdf import version_problem
 from urdftool.diagnostics import Location
 from urdftool.errors import PackageNotFound, close_names
 from urdftool.lint.catalogue import Conditional, Severity, declare, rule
-from urdftool.lint.options import MACRO_LIBRARY
 
 U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
@@ -329,9 +328,9 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
                 "here includes it, and no launch file here builds it")
     elif error.kind == "package" and not error.close:
         rule, is_part = U006, lambda: macro_library(path, limit)
-        said = (f"{MACRO_LIBRARY}, which no launch file here builds: expanded, it would make no "
-                "robot to check, so nothing is lost (its macros are checked in the robots "
-                "calling them)")
+        said = (f"{PackageNotFound.LIBRARY}, which no launch file here builds: expanded, it "
+                "would make no robot to check, so nothing is lost (its macros are checked in the "
+                "robots calling them)")
     else:
         return None
     if builds(path) or not is_part():
