@@ -448,7 +448,8 @@ def _zero_effort(robot, name: str):
     hardware = _effort_hardware(robot, name)
     if hardware is not None:  # real hardware (or mock) driven by effort through ros2_control
         return Conditional(f"{said}; its <ros2_control> joint takes effort commands (hardware "
-                           f"{hardware}), which ros2_control's joint limits clamp to this limit")
+                           f"{hardware}), which ros2_control's controller manager clamps to this limit "
+                           "(enforce_command_limits, true by default)")
     return Conditional(f"{said}; nothing here simulates the robot (no Gazebo plugin in it, no "
                        "launch file spawning it, no --target): the ROS-Industrial exporters' "
                        "'unknown', it matters only to an effort-limited controller or a "
