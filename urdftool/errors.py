@@ -58,6 +58,12 @@ class PackageNotFound(UrdftoolError):
     not expanded) or a mesh (``package://``: the robot is checked without it)."""
 
     ROBOT = "the robot is not expanded, so not checked"
+    # what the message of a package a package.xml depends on says: installed wherever that
+    # package is built, a question of the workspace, not of the file naming it
+    DECLARED = "declares it as a dependency"
+    # what is said of a file needing it that only defines macros (no robot is lost by its not
+    # being expanded: the run does not count it as not checked)
+    LIBRARY = "a library of macros (its top level defines macros and calls none)"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
                  undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):
@@ -73,9 +79,10 @@ class PackageNotFound(UrdftoolError):
                 if self.close else "")
         if declared_by:
             super().__init__(
-                f"package '{name}' not found: the package.xml of '{declared_by}' declares it as "
-                f"a dependency, which is not installed here: {unchecked} (nothing in it is "
-                f"known to be wrong); looked in: {where}. Pass --package {name}=PATH, set "
+                f"package '{name}' not found: the package.xml of '{declared_by}' "
+                f"{PackageNotFound.DECLARED}, which is not installed here: {unchecked} "
+                f"(nothing in it is known to be wrong); looked in: {where}. Pass --package "
+                f"{name}=PATH, set "
                 "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
                 "install --from-paths . --ignore-src)")
         elif undeclared_by:
@@ -220,6 +227,11 @@ class MeshProblem(LocatedError):
     kind: str
     message: str
     certain: bool = True
+
+    # what the message of a file missing from a folder holding only placeholders says: the
+    # repository leaves it for a tool to put there, as a package.xml declaring a dependency
+    # leaves that package to the workspace
+    KEPT_EMPTY = "a folder kept empty in the repository for files put there later"
 
     def __str__(self) -> str:
         return self.message

@@ -8,8 +8,8 @@ from contextlib import nullcontext
 from pathlib import Path
 
 from urdftool import budget as budgets
-from urdftool.diagnostics import Finding, Location, display_path
-from urdftool.errors import LoadError, missing_extra
+from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.errors import LoadError, PackageNotFound, missing_extra
 from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
@@ -68,9 +68,14 @@ def load_error_message(error: LoadError) -> str:
 def load_error_findings(error: LoadError) -> list[Finding]:
     """A file that did not load, as findings: one, of the rule its kind maps to; a warning
     when it may not hold after a package's build (``error.certain``: an included file that
-    package's install rules, not read, may put there)."""
+    package's install rules, not read, may put there); a note for a package the file's
+    package.xml declares as a dependency (U006)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
     message = load_error_message(error)
+    if error.kind == "package" and PackageNotFound.DECLARED in message:
+        # a dependency the package.xml declares: installed wherever the package is built, a
+        # question of the workspace, not a defect of the file (a note; the run still exits 2)
+        return [rule.finding(Conditional(message, Severity.INFO), error.location)]
     return [rule.finding(message if error.certain else Conditional(message), error.location)]
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.diagnostics import Finding, Severity
+from urdftool.errors import PackageNotFound
 from urdftool.records import Frozen, NEW, Record
 
 
@@ -150,10 +151,12 @@ class FileResult(Record):
     @property
     def unexpanded(self) -> bool:
         """Whether its robot was not expanded, so not checked, for a package this machine
-        lacks (U006: the environment's, not the robot's, a warning; a note for a library of
-        macros nothing here builds, which would make no robot to check)."""
-        return any(finding.code == "U006" and finding.severity != Severity.INFO
-                   for finding in self.findings)
+        lacks (U006: the environment's, not the robot's, a warning; a note for a dependency its
+        package.xml declares, the workspace's; but not for a library of macros nothing here
+        builds, a note too, which would make no robot to check)."""
+        return any(finding.code == "U006" and (
+            finding.severity != Severity.INFO or PackageNotFound.DECLARED in finding.message
+            and PackageNotFound.LIBRARY not in finding.message) for finding in self.findings)
 
     @property
     def failures(self) -> list[Finding]:

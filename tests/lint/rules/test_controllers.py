@@ -412,7 +412,7 @@ def test_a_controller_a_launch_file_not_read_names_is_not_started_nowhere(tmp_pa
     files = {**_SPARE, "launch/spare.launch": not_closed}
     marks, findings = check_folder(tmp_path, files, select=("U602",))
     assert marks == [("c.yaml", 2, "U602")] and findings[0].severity == Severity.WARNING
-    assert f"launch file {tmp_path}/launch/spare.launch (not read) may start it" in \
+    assert f"launch file {tmp_path}/launch/spare.launch (not read) may start 'spare'" in \
         findings[0].message, findings[0].message
 
 

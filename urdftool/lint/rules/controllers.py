@@ -5,6 +5,13 @@ finding on a controller is an error when a launch file of the robot as checked s
 and unconditionally; a warning naming when it holds when a launch file starts it only under a
 condition or no launch file says (a controller file is often a menu from which a launch file
 starts a few); nothing when the robot's launch files start it nowhere (docs/certainty.md).
+
+One convention for every controller message (U6xx, U820): ``controller 'NAME' (CLASS)``, what
+is wrong, then what to do; a defect that holds only if the controller runs says first why that
+is not known, as a clause of its own ("no launch file of the robot says whether it is started;
+if controller 'NAME' (CLASS) is started against this robot as checked, it names ..."), or last
+for a controller that fails to configure ("...; if 'NAME' is started, it fails to configure;
+WHY"). No parentheses inside another's: the condition's own (an argument value) stay one deep.
 """
 
 from __future__ import annotations
@@ -47,12 +54,18 @@ def hedged(robot, controller: Controller, message: str):
     if answer:
         return message
     verdict = runs_of(robot, controller)
-    return Conditional(f"{_if_started(controller, verdict)}: {_after(controller, message)}")
+    return Conditional(f"{_if_started(controller, verdict)}, {_after(controller, message)}")
 
 
 def _if_started(controller: Controller, verdict: Runs) -> str:
-    why = verdict.condition or "no launch file of the robot says whether it is"
-    return f"if {label(controller)} is started against this robot as checked ({why})"
+    """Why the controller may not run, then the condition: "WHY; if controller 'x' (CLASS) is
+    started against this robot as checked" (the message goes on with its defect)."""
+    import re
+
+    named = f"'{controller.name}'"  # the clause comes first: "it" would name nothing yet
+    why = re.sub(r"\bit\b", lambda _: named, verdict.condition, count=1) if verdict.condition \
+        else f"no launch file of the robot says whether {named} is started"
+    return f"{why}; if {label(controller)} is started against this robot as checked"
 
 
 def _after(controller: Controller, message: str) -> str:
@@ -77,8 +90,8 @@ def if_started(robot, controller: Controller, consequence: str) -> tuple[Severit
     if answer:
         return Severity.ERROR, consequence
     verdict = runs_of(robot, controller)
-    why = f" ({verdict.condition})" if verdict.condition else ""
-    return Severity.WARNING, f"if '{controller.name}' is started{why}, {consequence}"
+    why = f"; {verdict.condition}" if verdict.condition else ""
+    return Severity.WARNING, f"if '{controller.name}' is started, {consequence}{why}"
 
 
 def _urdf_joints(robot, controller: Controller) -> list[JointRef]:
@@ -332,7 +345,7 @@ def controller_interface_mismatch(robot):
         if verdict.state == "unknown" and any(not _mismatches(robot, rival) for rival in rivals):
             continue  # one of the file's alternatives fits the robot as checked: it is the one
         if verdict.state == "unknown" and rivals:
-            verdict = Runs("unknown", f"it is one of {len(rivals) + 1} controllers for these joints "
+            verdict = Runs("unknown", f"'{controller.name}' is one of {len(rivals) + 1} controllers for these joints "
                                       f"({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
                                       "launch file of the robot says which starts; none fits the "
                                       "robot as checked")
@@ -340,7 +353,7 @@ def controller_interface_mismatch(robot):
         ref, missing, has_set = mismatches[0]
         has = ", ".join(sorted(has_set)) or "no command interface (read-only)"
         yield controller.file.at(controller.line), Conditional(
-            f"{_if_started(controller, verdict)}: it commands {'/'.join(missing)} on {joints}, "
+            f"{_if_started(controller, verdict)}, it commands {'/'.join(missing)} on {joints}, "
             f"where {ref.name} offers {has}; {_interface_fix(controller, has_set, missing)}")
 
 
@@ -587,7 +600,7 @@ def controller_missing_parameter(robot):
                 yield controller.file.at(controller.line), (
                     f"{label(controller)} is declared but has no '{controller.name}: "
                     f"ros__parameters:' block, and {controller.type.split('/')[-1]} needs "
-                    f"{', '.join(n for n in needed if '__map_' not in n)}; add the block ({condition})"), \
+                    f"{', '.join(n for n in needed if '__map_' not in n)}; add the block; {condition}"), \
                     None, severity
             continue
         misplaced = set()
@@ -598,13 +611,13 @@ def controller_missing_parameter(robot):
                 reads = ("joints: (a list)" if key == "joints" else "joint: (one name)")
                 yield controller.file.at(controller.where(other)), (
                     f"{label(controller)}: {_ROS[controller.ros]}'s {known.name} reads {reads}; "
-                    f"its {other}: is ignored; write {key}: instead ({condition})"), None, severity
+                    f"its {other}: is ignored; write {key}: instead; {condition}"), None, severity
         missing = [name for key in needed if key not in misplaced
                    for name in schema.expand(key, params) if schema.lookup(params, name) is None]
         if missing:
             yield controller.file.at(controller.block_line or controller.line), (
                 f"{label(controller)} has no {', '.join(missing)}; {controller.type} does not "
-                "configure without " + ("it" if len(missing) == 1 else "them") + f" ({condition})"), \
+                "configure without " + ("it" if len(missing) == 1 else "them") + f"; {condition}"), \
                 None, severity
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
@@ -354,6 +355,12 @@ def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
             message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            if kind == "package" and PackageNotFound.DECLARED in message or \
+                    kind == "missing" and MeshProblem.KEPT_EMPTY in message:
+                # a dependency the package.xml declares, or a file the repository leaves for
+                # a tool to put in a folder kept empty: the workspace's, not the file's
+                yield shape, Conditional(message, Severity.INFO)
+                continue
             # a problem that may not hold after the package's build: a warning saying so
             yield shape, (message if outcome.certain else Conditional(message))
 
@@ -363,10 +370,11 @@ def mesh_package_not_found(robot):
     """A mesh's ``package://`` names a package that cannot be found.
 
     An error when the name is nearly that of a package found here (a misspelt or stale name)
-    or a folder of its name above the robot file lacks the file. Otherwise a **warning**: a
-    package not installed here is the environment's (as U006 reads a ``$(find)``), whether
-    the robot's package.xml declares it (install the dependencies) or not (declare it: rosdep
-    would not install it); the mesh is not checked.
+    or a folder of its name above the robot file lacks the file. Otherwise a package not
+    installed here is the environment's (as U006 reads a ``$(find)``), and the mesh is not
+    checked: a **note** when the robot's package.xml declares it (installed wherever the
+    package is built: install the dependencies; a question of the workspace, not of the
+    file), a **warning** when it does not (rosdep would not install it: declare it).
 
     A warning, too, when the file is there for loaders that do not ask ROS:
     ``PACKAGE/PATH`` beside the robot file (onshape-to-robot's ``package://assets/part.stl``:
@@ -393,10 +401,11 @@ def mesh_not_found(robot):
     variable set in a loop, ``data_files`` built by walking folders), a file not found is a
     warning saying so, not an error (docs/packages.md). A warning too for a path xacro made
     from ``$(cwd)`` (the folder it runs in) when the file is there from a folder between the
-    robot file and its repository's root: the message names the folder xacro must run in. So
-    is a file missing from a folder that holds only placeholders (``.gitkeep``, ``.keep``,
-    ``.gitignore``): a folder kept empty in the repository for files a tool, a download or a
-    build step puts there (Stretch's ``meshes/``, filled from a robot's calibration batch).
+    robot file and its repository's root: the message names the folder xacro must run in. A
+    **note** for a file missing from a folder that holds only placeholders (``.gitkeep``,
+    ``.keep``, ``.gitignore``): a folder kept empty in the repository for files a tool, a
+    download or a build step puts there (Stretch's ``meshes/``, filled from a robot's
+    calibration batch): the workspace's question, as U407's package a package.xml declares.
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the

@@ -702,8 +702,9 @@ def inertia_far_from_geometry(robot):
     A **note** naming the condition when the tensor is beyond the collision geometry's bound
     but within that of the link's visual and collision geometry: a collision shape simplified
     smaller than the part (a box inside an arm's mesh) bounds nothing of the real part, and the
-    tensor is wrong only if it is the body's shape. When the visual bounds it too, the message
-    says so (youbot's and Scout's wheels, whose visual is no larger).
+    tensor is wrong only if it is the body's shape. The message says what the visual geometry
+    adds: nothing (no larger: youbot's wheels; a link drawn only with a visual is judged from
+    it), or that not all of it could be measured (a mesh missing), when it could not tell.
 
     Bad: a 0.1 kg, 10 x 3 x 3 cm camera with ``ixx="0.0016" iyy="0.0016" izz="0.0016"``
     (24 times its box's)
@@ -731,6 +732,10 @@ def inertia_far_from_geometry(robot):
             beyond += f", though its visual geometry could hold it (up to {number(drawn, 3)})"
         elif drawn is not None and drawn > _largest_trace(properties, solid) * (1 + 1e-9):
             beyond += f", nor inside its visual geometry ({number(drawn, 3)})"
+        elif drawn is not None and robot.grouped(link).get("visual"):
+            beyond += ", nor inside its visual geometry, which is no larger"
+        elif larger and solid.source == "collision":  # what the visual draws is not known
+            beyond += ", its visual geometry not all measured"
         message = (
             f"link '{_name(link)}': declared inertia (trace {number(trace, 3)} kg m^2) is "
             f"{number(ratio, 3)} times that of its {solid.source} geometry as a uniform solid of "
@@ -976,7 +981,10 @@ def com_outside_hull(robot):
     meshes by their vertices (open meshes too). Collision shapes are often simplified, so the
     centre of mass may lie outside by a fifth of the geometry's largest extent (at least 1 cm);
     beyond that, the inertial origin is in another frame, has a sign flipped, or belongs to
-    another part. Skipped when some geometry cannot be measured (a mesh missing, refused or
+    another part; or the mass is right and the drawing is split otherwise (a motor drawn in
+    the next link's mesh, KUKA's link_N drawn as its flange), which the message names as the
+    other cause (a hull counting the neighbouring links told neither apart on the sweep: it
+    held Doosan's CAD-frame centres of mass and myCobot's placeholders as well). Skipped when some geometry cannot be measured (a mesh missing, refused or
     unreadable), and for a frame's placeholder inertial (a link without geometry of its own
     whose centre of mass is its origin: a tool centre point between a gripper's fingers).
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
@@ -1009,8 +1017,10 @@ def com_outside_hull(robot):
         yield first_child(link, "inertial"), (
             f"link '{_name(link)}': centre of mass ({' '.join(f'{number(v, 4)}' for v in properties.com)}) "
             f"is at least {number(outside * 1000, places=0)} mm outside the convex hull of its visual and "
-            f"collision geometry{fixed}, where no body has its centre of mass; check the "
-            "inertial origin (a sign, or another part's frame)")
+            f"collision geometry{fixed}, where no body has its centre of mass: the inertial "
+            "origin is in another part's frame or has a sign flipped, or the link's mass holds "
+            "parts drawn with a neighbouring link (a motor drawn in the next link's mesh); "
+            "check which")
 
 
 def _own_outside(robot, link, properties) -> float | None:

@@ -400,7 +400,10 @@ def zero_effort_or_velocity(robot):
     a zero makes the joint immovable for them. An effort of 0 is the ROS-Industrial exporters'
     "unknown": MoveIt and robot_state_publisher do not read effort, so the message names who
     holds the joint still, as a warning naming what simulates the robot (a Gazebo plugin in
-    it, a launch file spawning it, ``--target``), and as a **note** when nothing here does.
+    it, a launch file spawning it, ``--target``) or the ``<ros2_control>`` hardware that takes
+    the joint's effort commands (ros2_control's joint limits read ``<limit effort>`` and clamp
+    the command to it, on real hardware too), and as a **note** when nothing here does (a
+    joint commanded by position: the hardware closes the loop).
 
     A negative limit means something different to each consumer, so it is a warning, not an
     error: the URDF specification bounds the applied effort by its absolute value; SDFormat
@@ -442,10 +445,28 @@ def _zero_effort(robot, name: str):
     found = simulators(robot)
     if found:
         return Conditional(f"{said}; {', '.join(found[:2])} simulates the robot")
+    hardware = _effort_hardware(robot, name)
+    if hardware is not None:  # real hardware (or mock) driven by effort through ros2_control
+        return Conditional(f"{said}; its <ros2_control> joint takes effort commands (hardware "
+                           f"{hardware}), which ros2_control's controller manager clamps to this limit "
+                           "(enforce_command_limits, true by default)")
     return Conditional(f"{said}; nothing here simulates the robot (no Gazebo plugin in it, no "
                        "launch file spawning it, no --target): the ROS-Industrial exporters' "
                        "'unknown', it matters only to an effort-limited controller or a "
                        "simulator loading it elsewhere", Severity.INFO)
+
+
+def _effort_hardware(robot, name: str) -> str | None:
+    """The hardware plugin of the ``<ros2_control>`` block whose joint ``name`` takes effort
+    commands ("no plugin" when it names none), or None when no block commands it by effort."""
+    from urdftool.description.actuation import exported_interface, ros2_control_joints
+
+    for block, joint in ros2_control_joints(robot):
+        if joint.get("name") == name and any(
+                exported_interface(robot, block, c.get("name")) == "effort"
+                for c in joint.findall("command_interface") if c.get("name")):
+            return (block.findtext("hardware/plugin") or "").strip() or "no plugin"
+    return None
 
 
 @rule("U213", "safety-controller-incomplete", Severity.ERROR)

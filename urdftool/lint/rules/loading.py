@@ -134,14 +134,16 @@ U006 = declare("U006", "unresolved-package", Severity.WARNING, """
 
     A package not installed is the environment's, not the robot's: a dependency the file's
     package.xml declares is there wherever the package is built, and another repository's
-    package may be installed beside it. A warning, then, saying which it seems: declared
-    (install the dependencies: ``rosdep install --from-paths . --ignore-src``), not declared
-    (rosdep would not install it: add ``<exec_depend>``), or close to a package found here (a
-    misspelt name: "did you mean"). The robot is not checked, though, and a run that could not
-    check it is no pass: ``urdftool check`` exits 2 and says how many files it could not
-    check (``--package NAME=PATH`` gives it what it needs). A **note**, and no exit 2, for a
-    library of macros (its top level defines macros and calls none) that no launch file here
-    builds: expanded, it would make no robot to check (talos' sensors/xtion_pro_live.urdf.xacro,
+    package may be installed beside it. A **note** when the package.xml declares it: a
+    question of the workspace, not a defect of the file (install the dependencies: ``rosdep
+    install --from-paths . --ignore-src``; Robotnik's robots naming robotnik_sensors, 100 rows
+    of the sweep). A **warning** when it does not (rosdep would not install it: add
+    ``<exec_depend>``), or when the name is close to a package found here (a misspelt name:
+    "did you mean"). Either way the robot is not checked, and a run that could not check it is
+    no pass: ``urdftool check`` exits 2 and says how many files it could not check
+    (``--package NAME=PATH`` gives it what it needs). A note, and no exit 2, for a library of
+    macros (its top level defines macros and calls none) that no launch file here builds:
+    expanded, it would make no robot to check (talos' sensors/xtion_pro_live.urdf.xacro,
     including ``$(find reemc)``, made the whole repository exit 2).
 
     Bad: ``$(find my_robot_descripton)/urdf/arm.xacro``
@@ -202,8 +204,10 @@ def required_argument(path: str, error, build):
                 "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
             if again.kind == "package":  # not installed here: the environment's, as U006 says
                 message = f"{again.message}; {told}, and xacro fails so here"
+                declared = PackageNotFound.DECLARED in again.message  # the workspace's: a note
                 return None, given, [U006.finding(
-                    message if certain else Conditional(message, Severity.INFO), again.location)]
+                    message if certain and not declared else Conditional(message, Severity.INFO),
+                    again.location)]
             message = f"{again.message}; {told}, and xacro fails so"
             if not certain:
                 message = Conditional(message, Severity.INFO)
@@ -324,9 +328,9 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
                 "here includes it, and no launch file here builds it")
     elif error.kind == "package" and not error.close:
         rule, is_part = U006, lambda: macro_library(path, limit)
-        said = ("a library of macros (its top level defines macros and calls none), which no "
-                "launch file here builds: expanded, it would make no robot to check, so nothing "
-                "is lost (its macros are checked in the robots calling them)")
+        said = (f"{PackageNotFound.LIBRARY}, which no launch file here builds: expanded, it "
+                "would make no robot to check, so nothing is lost (its macros are checked in the "
+                "robots calling them)")
     else:
         return None
     if builds(path) or not is_part():

@@ -442,7 +442,7 @@ def moveit_controller_action(robot):
             for line, what, right in wrong:
                 yield entry.file.at(line), (
                     f"MoveIt controller '{entry.name}': {what}, but {controller.type} serves "
-                    f"{name}/{action} ({kind}); write {right} ({condition})"), None, severity
+                    f"{name}/{action} ({kind}); write {right}; {condition}"), None, severity
 
 
 @rule("U821", "moveit-controller-namespace", Severity.WARNING)

@@ -100,7 +100,7 @@ def controller_parameter_type(robot):
         if known and all(problems):
             yield controller.file.at(line), (
                 f"{label(controller)}: {name} must be {problems[0]}; {_write(name, value, known[0])}"
-                f" ({condition})"), None, severity
+                f"; {condition}"), None, severity
 
 
 def _mixed_lists(read):
@@ -181,7 +181,7 @@ def controller_parameter_invalid(robot):
             shown = f"[{', '.join(map(str, value))}]" if isinstance(value, list) else value
             yield controller.file.at(line), (
                 f"{label(controller)}: {name} is {shown!s}, but it {'; it '.join(problems[0])} "
-                f"({condition})"), None, severity
+                f"; {condition}"), None, severity
 
 
 # --- U632 ------------------------------------------------------------------------------------
