@@ -65,6 +65,32 @@ def test_a_mesh_reaching_its_links_centre_of_mass_is_the_size_it_means(tmp_path)
     assert "U413" in codes("0")
 
 
+def test_a_mesh_of_a_model_gazebo_holds_static_is_scenery_any_size_above(tmp_path):
+    """RB2023ROS/gz_ros2_examples' office_construction_geometry.urdf.xacro: a one-link model
+    spawned with ``<gazebo><static>true</static></gazebo>``, its 44 m office mesh in metres, was
+    told that scale 0.001 would make it 4.4 cm. A static model is scenery: only the lower bound
+    holds there; a link's own ``<static>`` (a fixed base's world link) is no such model."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "office.obj").write_text("v -22 -10 0\nv 22 -10 0\nv 22 10 3\nv -22 10 3\n"
+                                         "f 1 2 3\nf 1 3 4\n")
+    (tmp_path / "speck.obj").write_text("v 0 0 0\nv 0.0001 0 0\nv 0 0.0001 0\nf 1 2 3\n")
+
+    def codes(gazebo, mesh="office.obj"):
+        (tmp_path / "office.urdf").write_text(
+            f'<robot name="office"><link name="o"><visual><geometry><mesh filename="{mesh}"/>'
+            f"</geometry></visual></link>{gazebo}</robot>")
+        return {f.code for f in load_and_check(str(tmp_path / "office.urdf"),
+                                               CheckOptions()).findings}
+
+    assert "U413" not in codes("<gazebo> <static>true</static></gazebo>")
+    assert "U413" not in codes("<gazebo><static>1</static></gazebo>")
+    assert "U413" in codes("")
+    assert "U413" in codes("<gazebo><static>false</static></gazebo>")
+    assert "U413" in codes('<gazebo reference="o"><static>true</static></gazebo>')
+    assert "U413" in codes("<gazebo><static>true</static></gazebo>", "speck.obj")
+
+
 def _stl(path):
     """A one-triangle binary STL at ``path``."""
     import struct

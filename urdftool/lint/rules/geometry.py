@@ -525,6 +525,19 @@ def _link_spans(robot) -> dict[str, float]:
     return robot.memo(_link_spans, compute)
 
 
+def _static_model(robot) -> bool:
+    """Whether Gazebo holds the whole model still: a ``<gazebo>`` without a reference whose
+    ``<static>`` is true (SDF's bool: ``true`` or ``1``), as scenery spawned into a world is."""
+    def compute():
+        for gazebo in robot.children("gazebo"):
+            if gazebo.get("reference") is None:
+                static = first_child(gazebo, "static")
+                if static is not None and (static.text or "").strip().lower() in ("true", "1"):
+                    return True
+        return False
+    return robot.memo(_static_model, compute)
+
+
 @rule("U413", "mesh-implausible-size", Severity.WARNING)
 def mesh_implausible_size(robot):
     """A mesh, after its ``scale``, is over 5 m or under 1 mm across: probably the wrong unit.
@@ -540,6 +553,11 @@ def mesh_implausible_size(robot):
     inspection world's pier), is the size it means; a link with none of these is judged by the
     window alone.
 
+    A model Gazebo holds static as a whole (``<gazebo><static>true</static></gazebo>`` without
+    a reference) is scenery, not a robot: a building, a terrain or a field is the size it shows,
+    so only the lower bound holds there (a 44 m office spawned beside a robot; a dock exported
+    in millimetres without its scale goes unsaid).
+
     Fix (safe): the ``scale`` that brings it to a plausible size (x 0.001 or 0.01 for a mesh
     too large, x 1000 or 100 for one too small), written or multiplied into the one there.
 
@@ -552,6 +570,8 @@ def mesh_implausible_size(robot):
         extent = _extent(outcome)
         scale, _ = parse_numbers(shape.get("scale", "1 1 1"), 3)
         factor = None
+        if extent > 5.0 and _static_model(robot):
+            continue
         if extent > 5.0:
             factor = next((f for f in (0.001, 0.01) if extent * f <= 5.0), None)
         elif 0 < extent < 0.001:
