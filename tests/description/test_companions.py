@@ -273,6 +273,30 @@ def test_gazebo_ros2_control_parameters_are_followed_inside_the_repository(tmp_p
     outside.unlink()
 
 
+def test_a_yaml_another_robots_gazebo_plugin_names_is_not_this_robots(tmp_path):
+    """RB2023ROS/gz_ros2_examples' basic_stick/urdf holds four robots written as plain .xacro
+    (each alone in its folder to the walk); config/joint_controller.yaml is the <parameters> of
+    the gazebo_ros2_control plugin that ros2_control.gazebo.xacro gives, which only
+    moving_stick.xacro includes: its three neighbours were checked against it (a false U602 on
+    each). A robot that reads the part naming it keeps it."""
+    (tmp_path / ".git").mkdir()
+    plugin = ('<robot><gazebo><plugin filename="libgazebo_ros2_control.so" name="g">'
+              "<parameters>$(find pkg)/config/joint_controller.yaml</parameters></plugin>"
+              "</gazebo></robot>")
+    include = '<xacro:include filename="control.gazebo.xacro"/>\n</robot>'
+    write(tmp_path, {"pkg/package.xml": "<package/>", "pkg/urdf/stick.xacro": ROBOT,
+                     "pkg/urdf/control.gazebo.xacro": plugin,
+                     "pkg/config/joint_controller.yaml": HEAD_YAML})
+    found = companions(load(str(tmp_path / "pkg/urdf/stick.xacro")))
+    assert found.controllers == []
+    assert "control.gazebo.xacro" in found.unused[tmp_path / "pkg/config/joint_controller.yaml"]
+    write(tmp_path, {"pkg/urdf/stick.xacro": ROBOT.replace(
+        '<robot name="r">', '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">')
+        .replace("</robot>", include)})
+    mine = companions(load(str(tmp_path / "pkg/urdf/stick.xacro")))
+    assert [f.path.name for f in mine.controllers] == ["joint_controller.yaml"]
+
+
 def test_an_srdf_named_after_a_neighbour_is_not_claimed_by_robot_name(tmp_path):
     """Dexmate ships vega_1.urdf, vega_1.srdf and vega_1_collision_spheres.collision.urdf, all
     with <robot name="vega_1">: the SRDF is vega_1.urdf's, not the spheres model's (whose

@@ -21,7 +21,10 @@ Which files belong to the robot (an option always wins; a file named in the URDF
   ``controller_list``/``controller_names``; in a ``config/`` folder a file that is not valid
   YAML counts, so that it is reported). A file the URDF's ``<parameters>`` or a launch file
   names is the robot's controller file: a sibling demo's file in the same folder is not
-  (MoveIt's controller lists found there still are). A controller YAML is read as its launch
+  (MoveIt's controller lists found there still are), nor is a file found that the
+  ``<parameters>`` of a file the robot does not read names (another robot's Gazebo plugin's:
+  gz_ros2_examples' ``joint_controller.yaml``, which only ``moving_stick.xacro`` loads, was
+  checked against its three neighbours). A controller YAML is read as its launch
   files load it: with ``subst_value``/``allow_substs``, its ``$(arg)``/``$(var)`` take the
   launch arguments' values.
 - SRDF: ``--srdf FILE``; else the SRDF a launch file of the robot gives MoveIt
@@ -460,6 +463,10 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
             found.unused[path] = ("no launch file of the robot gives it to MoveIt (they give "
                                   f"{', '.join(display_path(p) for p in moveit_given[:2])})")
             continue
+        if namer := _named_by_another(robot, path):
+            found.unused[path] = (f"the <parameters> of {display_path(namer)}, which this robot "
+                                  "does not include, names it: another robot's controllers")
+            continue
         mine, why = owner.claims(path)
         if mine:
             files.append(parsed)
@@ -467,6 +474,35 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
         else:
             found.unused[path] = why
     return files
+
+
+_PARAMETERS = re.compile(rb"<parameters>\s*([^<]*?)\s*</parameters>")
+
+
+def _named_by_another(robot, path: Path) -> Path | None:
+    """A robot or part file of the repository that names ``path`` (its folder and file name)
+    in a ``<parameters>`` element, as a Gazebo ros2_control plugin gives its controller file,
+    and that the robot does not read; None when none does, or one the robot reads does."""
+    if robot.path == "-":
+        return None
+    tail = f"{path.parent.name}/{path.name}"
+    namers = _parameters_named(containment_root(path.parent)).get(path.name, ())
+    namers = [f for f, value in namers if value.endswith(tail) or value == path.name]
+    read = {real_path(os.path.abspath(f)) for f in robot.files}
+    return namers[0] if namers and not any(real_path(f) in read for f in namers) else None
+
+
+@per_run
+def _parameters_named(root: Path) -> dict[str, list[tuple[Path, str]]]:
+    """The ``<parameters>`` values written in the robot and part files below ``root``, by the
+    file name each ends with: (the file writing it, the value). Bounded as :func:`_robot_names`
+    is."""
+    named: dict[str, list[tuple[Path, str]]] = {}
+    for path, data in _robot_file_texts(root, "<parameters>"):
+        for value in _PARAMETERS.findall(data) if b"<parameters>" in data else ():
+            text = value.decode("utf-8", "replace").strip()
+            named.setdefault(text.rsplit("/", 1)[-1], []).append((path, text))
+    return named
 
 
 def controller_yaml(robot, path: Path, as_: str = "companion YAML") -> YamlFile:
@@ -602,6 +638,16 @@ def _robot_names(root: Path) -> dict[str, list[Path]]:
     files only (a link is not followed), of at most 1 MiB, 2,000 at most: a hostile repository
     costs what a repository of ordinary robots does."""
     names: dict[str, list[Path]] = {}
+    for path, data in _robot_file_texts(root, "robot name"):
+        found = _ROBOT_NAME.search(data[:_HEAD])
+        if found:
+            names.setdefault(found.group(1).decode("utf-8", "replace"), []).append(path)
+    return names
+
+
+def _robot_file_texts(root: Path, as_: str):
+    """(path, bytes) of the robot and part files below ``root``: regular files only (a link is
+    not followed), of at most 1 MiB, 2,000 at most; as_: what they are read for."""
     read = 0
     for folder, entries in walk(root, f"*/|{ROBOT_GLOB}", 1 << 30, SKIP_DIRS):
         for entry, kind in entries:
@@ -609,13 +655,9 @@ def _robot_names(root: Path) -> dict[str, list[Path]]:
                 continue
             path, read = Path(folder) / entry, read + 1
             try:
-                head = read_regular(path, _NAMED_MOST, as_="robot name")[:_HEAD]
+                yield path, read_regular(path, _NAMED_MOST, as_=as_)
             except OSError:  # (over the size, or not a regular file any more)
                 continue
-            found = _ROBOT_NAME.search(head)
-            if found:
-                names.setdefault(found.group(1).decode("utf-8", "replace"), []).append(path)
-    return names
 
 
 def find_srdf(robot) -> Path | None:
