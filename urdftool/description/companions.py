@@ -480,14 +480,20 @@ _PARAMETERS = re.compile(rb"<parameters>\s*([^<]*?)\s*</parameters>")
 
 
 def _named_by_another(robot, path: Path) -> Path | None:
-    """A robot or part file of the repository that names ``path`` (its folder and file name)
-    in a ``<parameters>`` element, as a Gazebo ros2_control plugin gives its controller file,
-    and that the robot does not read; None when none does, or one the robot reads does."""
+    """A robot or part file of ``path``'s ROS package that names ``path`` (its folder and file
+    name) in a ``<parameters>`` element, as a Gazebo ros2_control plugin gives its controller
+    file, and that the robot does not read; None when none does, or one the robot reads does
+    (or ``path`` is in no package: a file of another folder naming config/x.yaml may mean its
+    own)."""
     if robot.path == "-":
         return None
+    root = containment_root(path.parent)
+    package = _package(path.parent, root)
+    if package is None:
+        return None
     tail = f"{path.parent.name}/{path.name}"
-    namers = _parameters_named(containment_root(path.parent)).get(path.name, ())
-    namers = [f for f, value in namers if value.endswith(tail) or value == path.name]
+    namers = [f for f, value in _parameters_named(root).get(path.name, ())
+              if value.endswith(tail) and _package(f.parent, root) == package]
     read = {real_path(os.path.abspath(f)) for f in robot.files}
     return namers[0] if namers and not any(real_path(f) in read for f in namers) else None
 
