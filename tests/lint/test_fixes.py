@@ -485,3 +485,21 @@ def test_an_edit_says_the_line_and_column_of_the_file_whatever_ends_its_lines(tm
     written = "".join(edit.text for edit in finding.fix.edits)
     assert end in written and written.replace(end, "").count("\n") == written.replace(
         end, "").count("\r") == 0
+
+
+def test_check_diff_of_a_cr_lf_file_is_a_patch_of_its_bytes(tmp_path, run_cli, monkeypatch):
+    """``check --diff`` of a robot whose lines end with CR LF (written on Windows): each CR was
+    printed ``\\r``, so no line of the diff was a line of the file and ``git apply`` refused
+    it; the diff is now the file's bytes, as ``git diff`` writes it."""
+    import difflib
+
+    robot = tmp_path / "r.urdf"
+    text = (CASES / "U204_inverted_limits.urdf").read_text().replace("\n", "\r\n")
+    robot.write_bytes(text.encode())
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("check", "--diff", "-j1", "r.urdf")
+    assert result.exit_code == 1
+    fixed = text.replace('lower="1.57"', 'lower="-1.57"').replace('upper="-1.57"', 'upper="1.57"')
+    assert result.stdout_bytes.decode() == "".join(difflib.unified_diff(  # (click's .stdout
+        text.splitlines(keepends=True), fixed.splitlines(keepends=True), "a/r.urdf", "b/r.urdf"))
+    # reads CR LF as LF)
