@@ -23,10 +23,13 @@ class Plan:
     """What applying the fixes would do.
 
     changed: file (as findings name it) -> (bytes now, bytes after)
+    spans: file -> (start, end, length written) of each edit, in the file's order (what a
+        diff of the file compares: :func:`urdftool.report.unified.unified`)
     applied: the fixes taken; skipped: (fix, why) of those left out
     """
 
     changed: dict[str, tuple[bytes, bytes]] = field(default_factory=dict)
+    spans: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)
     applied: list[Fix] = field(default_factory=list)
     skipped: list[tuple[Fix, str]] = field(default_factory=list)
 
@@ -78,11 +81,14 @@ def _take(candidates, read) -> Plan:
     for file, edits in taken.items():
         data = current[file]
         # in the file's order; of insertions at one point, the first taken ends up first
-        pieces, at = [], 0
+        pieces, at, spans = [], 0, []
         for edit in sorted(edits.order, key=lambda e: (e.start, e.end, edits.index[e])):
-            pieces += (data[at:edit.start], edit.text.encode("utf-8"))
+            written = edit.text.encode("utf-8")
+            pieces += (data[at:edit.start], written)
+            spans.append((edit.start, edit.end, len(written)))
             at = edit.end
         result.changed[file] = (data, b"".join(pieces) + data[at:])
+        result.spans[file] = spans
     for file, data in created.items():
         result.changed[file] = (b"", data)
     return result
