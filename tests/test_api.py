@@ -139,6 +139,14 @@ def test_paths_in_bytes_are_paths_and_anything_else_is_refused_by_name(broken):
         urdftool.check_file(broken, data=5)  # was 5 NUL bytes: U003
 
 
+def test_no_path_is_nothing_checked_not_a_pass():
+    """``check_paths([])`` (a glob that matched nothing: ``urdftool_check(*glob("urdf/*"))``)
+    returned a run of no result with exit 0, where the command line says "no PATH given"."""
+    for given in ([], (), iter([])):
+        with pytest.raises(urdftool.TargetError, match="nothing checked: no path given"):
+            urdftool.check_paths(given)
+
+
 @pytest.mark.parametrize("options, message", [
     ({"strict": "no"}, 'strict must be True or False, not "no"'),
     ({"timeout": float("nan")}, "timeout must be a finite number of seconds"),

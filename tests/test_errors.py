@@ -100,3 +100,13 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
         "depthImageCameraInfoTopicName", "depthImageTopicName"]
     assert close_names("positon", ["position", "velocity"]) == ["position"]
     assert close_names("joint1", ["joint1_mimic", "joint_1"])[0] == "joint_1"
+
+
+def test_listed_names_a_dozen_each_cut_and_says_how_many():
+    from urdftool.errors import listed
+
+    assert listed([]) == "" and listed(["a", "b"]) == "'a', 'b'"
+    assert listed(["a", "b"], quote=False) == "a, b"
+    many = listed(f"n{i}" for i in range(5000))
+    assert many.endswith("'n11', ... (5000 in all)") and many.count("'") == 24
+    assert listed(["x" * 100]) == f"'{'x' * 64}... (100 characters)'"

@@ -120,6 +120,26 @@ def test_a_settings_file_that_stops_every_item_fails_each_in_one_line(project):
                                  "FAILED robots/broken.urdf::urdftool - urdftool: error: *"])
 
 
+def test_the_fixture_fails_a_refused_check_in_one_line_and_no_path_is_no_pass(project):
+    """``urdftool_check(*glob("urdf/*.urdf"))`` of a glob that matched nothing passed (an empty
+    run, exit 0); a path that does not exist failed with a traceback of urdftool's runner
+    ending in TargetError, where an item says the command line's one line."""
+    project.makepyfile(test_robots="""
+        def test_none(urdftool_check):
+            urdftool_check()
+
+        def test_missing(urdftool_check):
+            urdftool_check("robots/nope.urdf")
+        """)
+    outcome = project.runpytest_inprocess("test_robots.py", "-p", "no:cacheprovider",
+                                          "-p", "no:xdist")
+    said = [line for line in outcome.stdout.lines if line.startswith("urdftool: error: ")]
+    assert said == ["urdftool: error: nothing checked: no path given",
+                    "urdftool: error: path 'robots/nope.urdf' does not exist"]
+    assert outcome.ret == pytest.ExitCode.TESTS_FAILED and not any(
+        word in outcome.stdout.str() for word in ("Traceback", "targets.py", "another exception"))
+
+
 def test_without_the_option_nothing_is_collected(project):
     result = project.runpytest_inprocess("robots", "-p", "no:cacheprovider", "-p", "no:xdist")
     assert result.ret == pytest.ExitCode.NO_TESTS_COLLECTED

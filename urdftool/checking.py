@@ -130,7 +130,7 @@ def _apply_fixes(terminal, run, diff: bool, unsafe: bool, recheck):
         changes = fixes.plan(run.results, unsafe=unsafe)
         _skipped(terminal, changes.skipped)
         # the files' own lines, as terminal text (their tabs kept)
-        terminal.show(unified(changes.changed), nl=False, keep="\t")
+        terminal.show(unified(changes.changed, changes.spans), nl=False, keep="\t\r")  # (a CR LF file's)
         terminal.say(f"urdftool: {_fixes(len(changes.applied))} in {len(changes.changed)} "
                      "file(s) would be applied", err=True)
         raise terminal.exit(1 if changes.changed else 0)

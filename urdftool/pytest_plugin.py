@@ -217,7 +217,17 @@ def urdftool_check():
     would not exit 0; returns the :class:`urdftool.Run` otherwise."""
 
     def check(*paths, **options):
-        run = _check(list(paths), **options)  # (str() made b"urdf" the path "b'urdf'")
+        from urdftool.errors import REFUSALS
+        from urdftool.report.escape import text
+
+        try:
+            run = _check(list(paths), **options)  # (str() made b"urdf" the path "b'urdf'")
+        except REFUSALS as error:  # in one line, as an item says it: no traceback of urdftool's
+            refused = text(f"urdftool: error: {error}")
+        else:
+            refused = None
+        if refused is not None:  # (failed outside the except: no chained exception shown)
+            pytest.fail(refused, pytrace=False)
         if run.exit_code:
             pytest.fail(_text(run), pytrace=False)
         return run

@@ -252,10 +252,17 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=None
 
     uri_of = uri_of or uri_of_path
     by_path: dict[str, list[Shown]] = {}
+    measured: dict[str, _Measured] = {}  # (each file's lines split and measured once)
+
+    def measure(path: str) -> _Measured:
+        if path not in measured:
+            measured[path] = _Measured(text_of(path), codec)
+        return measured[path]
+
     for finding in findings:
         places = [place for place in (finding.location, *finding.location.via)
                   if not place.file.startswith("<")]
-        ranges = [_range(place, text_of(os.path.abspath(place.file)), codec) for place in places]
+        ranges = [_range(place, measure(os.path.abspath(place.file)), codec) for place in places]
         where = [types.Location(uri=uri_of(os.path.abspath(place.file)), range=span)
                  for place, span in zip(places, ranges)]
         seen = set()
@@ -278,20 +285,54 @@ def diagnostics_by_path(findings: list[Finding], text_of, codec, uri_of=None
     return by_path
 
 
-def _range(place: Location, text: str, codec) -> types.Range:
+def _range(place: Location, text: "str | _Measured", codec) -> types.Range:
     """The element's start on ``place.line`` (its column when known, else the first non-blank
-    character) to the end of that line, in the client's position units."""
-    lines = lines_of(text) or [""]
+    character) to the end of that line, in the client's position units. ``text``: the file's
+    text, or its :class:`_Measured` (every finding of a file: the lines split once)."""
+    measured = text if isinstance(text, _Measured) else _Measured(text, codec)
+    lines = measured.lines
     number = min(max((place.line or 1) - 1, 0), len(lines) - 1)
     line = lines[number]
     if place.column is not None:
         start = min(place.column - 1, len(line))
     else:
         start = len(line) - len(line.lstrip())
-    end = codec.client_num_units(line)
-    start = codec.client_num_units(line[:start])
+    end, narrow = measured.length(number)
+    start = start if narrow else measured.units(line[:start])
     return types.Range(start=types.Position(number, start if start < end else 0),
                        end=types.Position(number, end))
+
+
+class _Measured:
+    """A file's lines, split once, and each line's length in the client's position units,
+    measured once, by the codec's own encoding (C's speed: pygls's counters look at each
+    character in Python). Each finding's range split the whole file again and counted its line
+    twice character by character: a one-line robot of 1,000 findings took 8.5 s to publish
+    (0.5 s to check), a 5,000-line one of 5,000 findings 5.5 s."""
+
+    def __init__(self, text: str, codec):
+        self.lines = lines_of(text) or [""]
+        encoding = getattr(codec, "encoding", None)
+        encoding = str(getattr(encoding, "value", encoding) or "").lower()
+        # (pygls counts an encoding it does not know as UTF-16)
+        self.width = 1 if encoding == "utf-32" else 0 if encoding == "utf-8" else 2
+        self._lengths: dict[int, tuple[int, bool]] = {}
+
+    def units(self, text: str) -> int:
+        """``text``'s length in the client's units (a lone surrogate one UTF-16 unit, three
+        UTF-8 bytes, as pygls counts it)."""
+        if self.width == 1:
+            return len(text)
+        size = len(text.encode("utf-8" if self.width == 0 else "utf-16-le", "surrogatepass"))
+        return size if self.width == 0 else size // 2
+
+    def length(self, number: int) -> tuple[int, bool]:
+        """(line ``number``'s length in units, whether each of its characters is one unit)."""
+        if number not in self._lengths:
+            line = self.lines[number]
+            units = self.units(line)
+            self._lengths[number] = units, units == len(line)
+        return self._lengths[number]
 
 
 def _work(path: str, kind: str, targets: list[str] | None, also: list[str],

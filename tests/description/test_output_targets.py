@@ -186,3 +186,18 @@ def test_a_fix_of_a_robot_file_that_is_a_link_fixes_the_file_it_leads_to(run_cli
     assert link.is_symlink()
     fixed = real.read_text()
     assert ('lower="-1" upper="1"' in fixed) if command[0] == "check" else 'ixx="1"' not in fixed
+
+
+@pytest.mark.parametrize("writer", WRITERS)
+def test_an_output_named_dash_is_refused_not_a_file_named_dash(run_cli, tmp_path, monkeypatch,
+                                                               writer):
+    """``check -o -`` wrote a file named ``-`` where the user meant standard output; the next
+    ``urdftool check -`` of the repository's files (a hook passing them) reads standard input
+    in its place. ``-`` names standard input to every reader: no writer takes it."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    monkeypatch.chdir(tmp_path)
+    result = run_cli(*_commands(robot, Path("-"))[writer])
+    assert result.exit_code == 2, result.output
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert not (tmp_path / "-").exists()

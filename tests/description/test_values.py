@@ -99,9 +99,9 @@ def test_finite_looks_at_each_value_when_the_sum_is_not_finite():
 def _parts_one_by_one(text, count):
     """number_tuple reading each part with to_float, without the one match of a whole text
     (the reference)."""
-    from urdftool.description.values import _part_by_part
+    from urdftool.description.values import _part_by_part, split
 
-    parts = text.split() if text is not None else []
+    parts = split(text) if text is not None else []
     if text is None or count is not None and len(parts) != count:
         return number_tuple.__wrapped__(text, count)  # (no number read: nothing to compare)
     return _part_by_part(text, parts)
@@ -132,7 +132,7 @@ def test_a_text_of_decimals_is_read_in_one_match_not_part_by_part(monkeypatch):
         raise AssertionError(f"read part by part: {part}")
 
     monkeypatch.setattr(values, "to_float", refused)
-    assert number_tuple.__wrapped__("1 -2.5e3\xa0.5", 3) == ((1.0, -2500.0, 0.5), None)
+    assert number_tuple.__wrapped__("1 -2.5e3\t.5", 3) == ((1.0, -2500.0, 0.5), None)
     with pytest.raises(AssertionError):  # what is not all decimal is read part by part
         number_tuple.__wrapped__("1 inf 3", 3)
 
@@ -161,3 +161,20 @@ def test_digits_of_another_script_are_no_number_urdfdom_reads(text):
     does not load: 'Unable to parse component'). check passed ``xyz="１ 0 0"`` as 1 m."""
     values, problem = number_tuple(text, 3)
     assert values is None and "is not a number" in problem
+
+
+@pytest.mark.parametrize("text", ["1\xa00 0", "1\u20030 0", "1\u30000 0", "1 0\x850", "1\x1c0 0",
+                                  "\xa01 0 0", "1 0 0\u2028"])
+def test_white_space_not_asciis_separates_no_numbers_as_urdfdom_reads(text):
+    """urdfdom splits a vector at spaces and reads each part with a C++ stream in the classic
+    locale, whose white space is ASCII's: "1\xa00" is one component it cannot parse (the robot
+    does not load). str.split() and re's \\s split at a NO-BREAK SPACE, an IDEOGRAPHIC SPACE,
+    NEL, \\x1c and a LINE SEPARATOR too: check read ``xyz="1\xa00 0"`` as 1 0 0."""
+    values, problem = number_tuple.__wrapped__(text, 3)
+    assert values is None and "is not a number" in problem and "separates no numbers" in problem
+    assert number_tuple.__wrapped__(text, None)[0] is None
+
+
+def test_ascii_white_space_between_numbers_is_a_separator():
+    for text in ("1 0 0", " 1\t0\n0 ", "1  0\r\n0", "1\f0\v0"):
+        assert number_tuple.__wrapped__(text, 3) == ((1.0, 0.0, 0.0), None), text

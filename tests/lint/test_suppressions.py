@@ -166,3 +166,31 @@ def test_suppressions_in_standard_input_count():
     unused = LIMITS.format(comment="").replace("<link", COMMENT + "<link", 1).encode()
     assert [(f.code, f.file) for f in load_and_check("-", CheckOptions(), data=unused).findings] \
         == [("U901", "<stdin>"), ("U204", "<stdin>")]
+
+
+def test_each_finding_is_held_against_the_suppressions_of_its_lines_only(tmp_path, monkeypatch):
+    """A robot with a suppression above each of its 8,000 joints took 40 s to check (2,000:
+    6 s): each finding was held against every suppression of its file, each comment's line
+    counted from the file's start, each unused one's codes matched against every rule and the
+    file decoded again for each removal. The findings kept and the U901s are the same."""
+    import urdftool.lint.suppressions as suppressions
+
+    path = tmp_path / "r.urdf"
+    count = 3000
+    path.write_text("<robot>\n<!-- urdftool: ignore-file U1 -->\n" + "".join(
+        f"<!-- urdftool: ignore U206 -->\n<joint name='j{i}'/>\n" for i in range(count))
+        + "</robot>\n")
+    findings = [_finding("U206", str(path), 4 + 2 * i) for i in range(0, count, 2)] + \
+        [_finding("U101", str(path), 4), _finding("U204", str(path), 4)]
+    held, counted = [], []
+    covers = suppressions.Suppression.covers
+    monkeypatch.setattr(suppressions.Suppression, "covers",
+                        lambda self, *args: held.append(1) or covers(self, *args))
+    monkeypatch.setattr(suppressions, "_checkable",
+                        lambda s, ran, catalogue, real=suppressions._checkable:
+                        counted.append(1) or real(s, ran, catalogue))
+    kept = apply(findings, _sources(path), lambda code: True, CATALOGUE)
+    assert [f.code for f in kept] == ["U204"] + ["U901"] * (count // 2)
+    assert [f.location.line for f in kept[1:4]] == [5, 9, 13]
+    assert kept[1].fix.edits[0].line == 5
+    assert len(held) <= 2 * len(findings) and len(counted) == 1

@@ -46,6 +46,16 @@ def test_lines_keeps_a_renderers_lines_and_guards_each():
     assert escape.lines("\t<link/>\n\t::x\x1b", keep="\t") == "\t<link/>\n\t\\x3a:x\\x1b"
 
 
+def test_lines_keeps_a_carriage_return_that_ends_a_line_only_when_asked():
+    """``check --diff`` of a CR LF file: each line's CR was written ``\\r``, so no line of the
+    diff matched the file and ``git apply`` refused it; a CR anywhere else still hides the
+    start of its line on a terminal, and stays escaped."""
+    block = "-a\r\n+b\r\n c\rd::error::x\r\n\r"
+    assert escape.lines(block, "\t\r") == "-a\r\n+b\r\n c\\rd::error::x\r\n\r"
+    assert escape.lines(block, "\t") == "-a\\r\n+b\\r\n c\\rd::error::x\\r\n\\r"
+    assert escape.lines("\r::error::x\r", "\r") == "\\r::error::x\r"
+
+
 def test_the_lines_stream_guards_every_line_a_library_writes():
     out = io.StringIO()
     stream = escape.Lines(out)

@@ -60,7 +60,7 @@ def inertia(
         chosen = [r for r in results if r.computed is not None]
         changes, unwritten = inertia_rewrite(robot, chosen)
         if robot.from_xacro:  # the edits land in the xacro files: written as a patch of them
-            write_output(write, unified(changes.changed))
+            write_output(write, unified(changes.changed, changes.spans))
             say(f"wrote {write}: a unified diff of the xacro files ({len(changes.applied)} "
                        "inertials corrected; `urdftool check --fix --unsafe-fixes` applies "
                        "such edits in place)", err=True)

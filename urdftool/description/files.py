@@ -696,7 +696,12 @@ def check_output(path) -> str:
     it cannot be an output file: its folder is missing, leads outside its repository through a
     symbolic link, or it is a folder; or it is in a version control system's own folder
     (:func:`_version_control_folder`). Commands call it before their work, so that a typo or a
-    planted link costs no time."""
+    planted link costs no time. ``-`` is no file name: it names standard input to every
+    reader, so a file of that name would be read as standard input by the next check given
+    it (a hook passing the repository's files); an output to standard output is no ``-o``."""
+    if os.fspath(path) == "-":
+        raise UsageError("cannot write '-': it names standard input and output, not a file; "
+                         "leave the output option out to write to standard output")
     path = Path(path)
     folder = path.parent
     try:  # a name the system cannot look up (too long, a loop) is refused as one missing

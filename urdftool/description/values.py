@@ -15,9 +15,14 @@ from urdftool.description.xml import first_child
 # "not finite" instead of "not a number".
 _DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
-# A text whose whitespace-separated parts (str.split's: re's \s is the same Unicode
-# whitespace) are all _DECIMAL, matched at once: each part is then to_float's float(part).
-_DECIMALS = re.compile(rf"\s*(?:{_DECIMAL.pattern})(?:\s+(?:{_DECIMAL.pattern}))*\s*")
+# What separates a URDF's numbers: ASCII white space, as C's isspace in the classic locale
+# (urdfdom splits at spaces and its stream skips the others before a number). Not str.split's
+# or re's \s, which split at a NO-BREAK SPACE, an EM SPACE, NEL and \x1c-\x1f too: a part
+# "1\xa00" is one component urdfdom cannot parse, not two numbers.
+_SPACE = " \t\n\r\f\v"
+_SPACES = re.compile(f"[{_SPACE}]+")
+# A text whose parts are all _DECIMAL, matched at once: each part is then to_float's float(part).
+_DECIMALS = re.compile(rf"[{_SPACE}]*(?:{_DECIMAL.pattern})(?:[{_SPACE}]+(?:{_DECIMAL.pattern}))*[{_SPACE}]*")
 
 
 def to_float(text: str) -> float:
@@ -42,10 +47,12 @@ def number_tuple(text: str | None, count: int | None = None):
     call)."""
     if text is None:
         return None, "missing"
-    parts = text.split()
-    if count is not None and len(parts) != count:
-        return None, f"expected {count} numbers, found {len(parts)} in '{text}'"
-    if not text.strip(_PLAIN):  # ASCII digits, signs, points, exponents and spaces only
+    plain = not text.strip(_PLAIN)  # ASCII digits, signs, points, exponents and spaces only
+    parts = text.split() if plain else split(text)  # (str.split is split's there)
+    if count is not None and len(parts) != count:  # (a part no number said first, as urdfdom
+        unread = _part_by_part(text, parts)[1]  # does: "1\xa00 0" is no two numbers and a gap)
+        return None, unread or f"expected {count} numbers, found {len(parts)} in '{text}'"
+    if plain:
         try:  # (float reads such a part exactly when it is _DECIMAL: no regular expression
             return tuple(map(float, parts)), None  # for the 10,000 origins of a large robot)
         except ValueError:
@@ -53,6 +60,12 @@ def number_tuple(text: str | None, count: int | None = None):
     if _DECIMALS.fullmatch(text):  # every part decimal, as nearly all are: one match for all
         return tuple(map(float, parts)), None
     return _part_by_part(text, parts)
+
+
+def split(text: str) -> list[str]:
+    """The parts of a text of numbers, as urdfdom separates them (ASCII white space only)."""
+    stripped = text.strip(_SPACE)
+    return _SPACES.split(stripped) if stripped else []
 
 
 # The characters of a text of plain decimals (white space as str.split and re's \s read it,
@@ -69,8 +82,20 @@ def _part_by_part(text: str, parts: list[str]):
         try:
             values.append(to_float(part))
         except ValueError:
-            return None, f"'{part}' is not a number (in '{text}')"
+            return None, f"'{part}' is not a number{_unseen_space(part)} (in '{text}')"
     return tuple(values), None
+
+
+def _unseen_space(part: str) -> str:
+    """Why a part that looks like numbers and a gap is one part: the first white space in it
+    that is not ASCII's (it prints as a blank), by its code and name; empty when none."""
+    for character in part:
+        if character.isspace() and character not in _SPACE:
+            import unicodedata  # (only for such a part)
+
+            name = unicodedata.name(character, "white space")
+            return f": U+{ord(character):04X} {name} separates no numbers"
+    return ""
 
 
 def finite(values) -> bool:

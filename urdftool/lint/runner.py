@@ -201,9 +201,9 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
     The results' records (:mod:`urdftool.description.record`) note the digests of the files
     read only with ``cache_dir``, the one reader that compares them with the disk.
     Raises TargetError (an UrdftoolError) before anything is checked (also when nothing is to
-    be checked while a path named asked for a robot: ``Targets.unchecked``), and SettingsError
-    when the settings of every file to check are broken; broken settings that apply to some files
-    only are the run's ``errors``, and the other files are checked.
+    be checked while a path named asked for a robot: ``Targets.unchecked``, or no path is given),
+    and SettingsError when the settings of every file to check are broken; broken settings that
+    apply to some files only are the run's ``errors``, and the other files are checked.
     """
     if request is None:
         request = _request(options)
@@ -213,6 +213,8 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
     paths = [_path(paths)] if isinstance(paths, (str, bytes, os.PathLike)) or \
         not isinstance(paths, Iterable) else [_path(path) for path in paths]  # one path, not its
     # characters (nor its bytes' numbers)
+    if not paths:  # (a glob that matched nothing: the command line's "no PATH given", never a
+        raise TargetError("nothing checked: no path given")  # pass)
     from urdftool.description.record import digesting
 
     # one view of the file system (roots and settings looked up once); the files' digests only

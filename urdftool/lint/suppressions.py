@@ -18,7 +18,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-from urdftool.diagnostics import Finding, Fix, Location, line_at, line_end, line_start, lines_of
+from urdftool.diagnostics import Finding, Fix, LineNumbers, Location, line_end, line_start, lines_of
 from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 from urdftool.records import Frozen
@@ -65,10 +65,11 @@ def parse(text: str, file: str) -> list[Suppression]:
     above made a suppression cover a later line than the one below it, a file ending its lines
     with CR made every one line 1)."""
     lines = lines_of(text)
+    line_of = LineNumbers(text)  # (line_at of each comment counted the lines before it again)
     found = []
     for match in _COMMENT.finditer(text):
-        start = line_at(text, match.start())
-        end = line_at(text, match.end())
+        start = line_of(match.start())
+        end = line_of(match.end())
         selectors = tuple(part for part in re.split(r"[\s,]+", match.group(2)) if part)
         if match.group(1) == "ignore-file":
             target = None
@@ -123,20 +124,33 @@ def apply(findings: list[Finding], sources: Mapping[str, bytes], ran,
     suppressions = [s for shown in shown_files for s in _in_file(shown, sources)]
     if not suppressions:
         return findings
-    by_file: dict[str, list[Suppression]] = {}
+    # file -> line -> the suppressions covering it (None: the whole file): a finding is held
+    # against those of its lines, not every suppression of its file (a robot with a comment
+    # above each of its 8,000 joints compared 64 million pairs)
+    by_line: dict[str, dict[int | None, list[Suppression]]] = {}
     for suppression in suppressions:
-        by_file.setdefault(suppression.file, []).append(suppression)
+        by_line.setdefault(suppression.file, {}).setdefault(suppression.target, []).append(
+            suppression)
     used: set[Suppression] = set()
     kept = []
     for finding in findings:
         silenced_by = [s for location in (finding.location, *finding.location.via)
-                       for s in by_file.get(location.file, ()) if s.covers(finding, location, catalogue)]
+                       for line in ((location.line, None) if location.line is not None else (None,))
+                       for s in by_line.get(location.file, {}).get(line, ())
+                       if s.covers(finding, location, catalogue)]
         used.update(silenced_by)
         if not silenced_by:
             kept.append(finding)
     if ran("U901"):
-        kept.extend(_unused(s, catalogue, sources) for s in suppressions
-                    if s not in used and _checkable(s, ran, catalogue))
+        checkable: dict[tuple[str, ...], bool] = {}  # (each set of codes asked once)
+        texts: dict[str, str] = {}  # (each file decoded once for all its removals)
+        for s in suppressions:
+            if s in used:
+                continue
+            if s.selectors not in checkable:
+                checkable[s.selectors] = _checkable(s, ran, catalogue)
+            if checkable[s.selectors]:
+                kept.append(_unused(s, catalogue, sources, texts))
     return kept
 
 
@@ -149,16 +163,19 @@ def _checkable(suppression: Suppression, ran, catalogue: Catalogue) -> bool:
     return True
 
 
-def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | None:
+def _removal(suppression: Suppression, sources: Mapping[str, bytes],
+             texts: dict[str, str]) -> Fix | None:
     """The edit deleting an unused suppression: its line when the comment is alone on it,
-    else the comment and the blanks before it."""
+    else the comment and the blanks before it. ``texts``: each file's text, decoded once."""
     data = sources.get(suppression.file)
     if data is None:
         try:
             data = read_regular(suppression.file)
         except OSError:
             return None
-    text = data.decode("utf-8", errors="replace")
+    if suppression.file not in texts:
+        texts[suppression.file] = data.decode("utf-8", errors="replace")
+    text = texts[suppression.file]
     start, end = suppression.span
     first, last = line_start(text, start), line_end(text, end)
     if not text[first:start].strip() and not text[end:last].strip():
@@ -176,7 +193,7 @@ def _removal(suppression: Suppression, sources: Mapping[str, bytes]) -> Fix | No
 
 
 def _unused(suppression: Suppression, catalogue: Catalogue,
-            sources: Mapping[str, bytes]) -> Finding:
+            sources: Mapping[str, bytes], texts: dict[str, str]) -> Finding:
     unknown = [s for s in suppression.selectors if not _known(s, catalogue)]
     if not suppression.selectors:
         message = "suppression names no rule; write e.g. <!-- urdftool: ignore U203 -->"
@@ -190,6 +207,6 @@ def _unused(suppression: Suppression, catalogue: Catalogue,
         message = (f"suppression of {', '.join(suppression.selectors)} silences nothing on "
                    f"line {suppression.target}; delete it or move it just above the element "
                    "the finding points at")
-    fix = _removal(suppression, sources) if suppression.selectors and not unknown else None
+    fix = _removal(suppression, sources, texts) if suppression.selectors and not unknown else None
     return catalogue.get("U901").finding(message, Location(suppression.file, suppression.line),
                                          fix)

@@ -94,8 +94,15 @@ def text(value, keep: str = "") -> str:
 def lines(block: str, keep: str = "") -> str:
     """A block of terminal text (lines a renderer built, or a message) with :func:`text`
     applied to each line: whatever a value in it held, each of its lines stays one line that
-    starts as the renderer wrote it."""
-    return "\n".join(text(line, keep) for line in block.split("\n"))
+    starts as the renderer wrote it. ``"\\r"`` in ``keep`` keeps a carriage return that ends
+    a line only (a CR LF file's lines in a diff, which ``git apply`` matches by their bytes: the
+    terminal goes back to a line's start and then on to the next, hiding nothing); any other
+    stays escaped, where going back would let the rest of the line overwrite what it shows."""
+    if "\r" not in keep:
+        return "\n".join(text(line, keep) for line in block.split("\n"))
+    keep = keep.replace("\r", "")
+    return "\n".join(text(line[:-1], keep) + "\r" if line.endswith("\r") else text(line, keep)
+                     for line in block.split("\n"))
 
 
 class Lines:

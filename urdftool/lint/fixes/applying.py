@@ -23,10 +23,13 @@ class Plan:
     """What applying the fixes would do.
 
     changed: file (as findings name it) -> (bytes now, bytes after)
+    spans: file -> (start, end, length written) of each edit, in the file's order (what a
+        diff of the file compares: :func:`urdftool.report.unified.unified`)
     applied: the fixes taken; skipped: (fix, why) of those left out
     """
 
     changed: dict[str, tuple[bytes, bytes]] = field(default_factory=dict)
+    spans: dict[str, list[tuple[int, int, int]]] = field(default_factory=dict)
     applied: list[Fix] = field(default_factory=list)
     skipped: list[tuple[Fix, str]] = field(default_factory=list)
 
@@ -55,32 +58,37 @@ def _take(candidates, read) -> Plan:
 
     result = Plan()
     current: dict[str, bytes] = {}
-    taken: dict[str, list[Edit]] = {}
+    taken: dict[str, _Taken] = {}
     disputed = _disputed([fix for fix, _ in candidates])
     created: dict[str, bytes] = {}
+    skipped: set[int] = set()  # (ids, as the skipped were told apart; the applied by value)
+    applied: set[Fix] = set()
     for fix, root in candidates:
-        if fix in result.applied or any(fix is other for other, _ in result.skipped):
+        if fix in applied or id(fix) in skipped:
             continue
         why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside) \
             or _creation_refusal(fix, root, created, inside)
         if why == "":
             continue  # the same edits, already taken for another finding
         if why:
+            skipped.add(id(fix))
             result.skipped.append((fix, why))
             continue
         for edit in fix.edits:
-            if edit not in taken.get(edit.file, ()):
-                taken.setdefault(edit.file, []).append(edit)
+            taken.setdefault(edit.file, _Taken()).add(edit)
+        applied.add(fix)
         result.applied.append(fix)
     for file, edits in taken.items():
         data = current[file]
-        after = data
-        # from the end, so offsets stay true; of insertions at one point, the first taken
-        # ends up first
-        order = sorted(range(len(edits)), key=lambda i: (edits[i].start, edits[i].end, i))
-        for edit in (edits[i] for i in reversed(order)):
-            after = after[:edit.start] + edit.text.encode("utf-8") + after[edit.end:]
-        result.changed[file] = (data, after)
+        # in the file's order; of insertions at one point, the first taken ends up first
+        pieces, at, spans = [], 0, []
+        for edit in sorted(edits.order, key=lambda e: (e.start, e.end, edits.index[e])):
+            written = edit.text.encode("utf-8")
+            pieces += (data[at:edit.start], written)
+            spans.append((edit.start, edit.end, len(written)))
+            at = edit.end
+        result.changed[file] = (data, b"".join(pieces) + data[at:])
+        result.spans[file] = spans
     for file, data in created.items():
         result.changed[file] = (b"", data)
     return result
@@ -152,7 +160,8 @@ def _disputed(candidates: list[Fix]) -> dict[int, str]:
     for edits in spans.values():
         edits.sort(key=lambda pair: (pair[0].start, pair[0].end))
         for index, (edit, owner) in enumerate(edits):
-            for other, second in edits[index + 1:]:
+            for later in range(index + 1, len(edits)):  # (no copy of the rest of the list)
+                other, second = edits[later]
                 if other.start > edit.end:
                     break
                 if owner != second and _overlap(edit, other):
@@ -160,6 +169,46 @@ def _disputed(candidates: list[Fix]) -> dict[int, str]:
                            "for different elements (a macro used more than once?)")
                     disputed[owner] = disputed[second] = why
     return disputed
+
+
+class _Taken:
+    """The edits taken in one file: in the order taken, as a set, and by their spans (sorted by
+    start and end: taken edits do not overlap, so their ends rise with their starts), so that
+    whether an edit is taken or overlaps one costs its neighbours, not every edit taken before
+    it (``check --diff`` of 4,000 joints, each with two fixes: 437 s; 1,000: 25 s)."""
+
+    def __init__(self):
+        self.order: list[Edit] = []
+        self.index: dict[Edit, int] = {}
+        self.spans: list[tuple[int, int]] = []
+        self.at: list[Edit] = []  # (the edit of each span)
+
+    def __contains__(self, edit: Edit) -> bool:
+        return edit in self.index
+
+    def add(self, edit: Edit) -> None:
+        if edit not in self.index:
+            import bisect
+
+            self.index[edit] = len(self.order)
+            self.order.append(edit)
+            place = bisect.bisect_right(self.spans, (edit.start, edit.end))
+            self.spans.insert(place, (edit.start, edit.end))
+            self.at.insert(place, edit)
+
+    def overlapped(self, edit: Edit) -> bool:
+        """Whether ``edit`` overlaps an edit taken (:func:`_overlap` of each that may)."""
+        import bisect
+
+        place = bisect.bisect_left(self.spans, (edit.start, -1))
+        if place and _overlap(edit, self.at[place - 1]):  # (the latest end before it)
+            return True
+        for other, (start, _) in zip(self.at[place:], self.spans[place:]):
+            if start > edit.end:
+                return False
+            if _overlap(edit, other):
+                return True
+        return False
 
 
 def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
@@ -177,7 +226,7 @@ def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
         data = current[edit.file]
         if data[edit.start:edit.end].decode("utf-8", errors="replace") != edit.old:
             return f"{edit.file} changed since it was checked"
-        if any(_overlap(edit, other) for other in taken.get(edit.file, ())):
+        if edit.file in taken and taken[edit.file].overlapped(edit):
             return f"it overlaps another fix in {edit.file}"
     return None
 

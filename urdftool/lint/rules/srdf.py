@@ -17,7 +17,7 @@ from urdftool.description.companions import companions
 from urdftool.description.runtime import moveit_with
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
-from urdftool.errors import available
+from urdftool.errors import available, listed
 from urdftool.description.urdf import LIMITED
 from urdftool.description.values import parse_numbers
 from urdftool.description.xml import attribute
@@ -282,7 +282,7 @@ def srdf_state_foreign_joint(robot):
                 continue  # an unknown joint is U803's
             yield srdf.at(element.sourceline), (
                 f"SRDF group state '{state.get('name')}' sets joint '{name}', which is not part "
-                f"of group '{group.name}' (its joints: {', '.join(sorted(group.joints)) or 'none'}); "
+                f"of group '{group.name}' (its joints: {listed(sorted(group.joints), False) or 'none'}); "
                 "MoveIt ignores the value")
 
 

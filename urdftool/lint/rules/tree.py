@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 from urdftool.lint.catalogue import Conditional, Severity, rule
-from urdftool.errors import available
+from urdftool.errors import available, listed
 from urdftool.lint.parts import part
 from urdftool.description.xacro_text import dropped_under
 
@@ -212,10 +212,10 @@ def multiple_roots(robot):
     """
     found = roots(robot)
     if len(found) > 1 and _all_joints_wired(robot):
-        listed = ", ".join(f"'{n}'" for n in found)
+        named = listed(found)
         for name in found[1:]:
             yield robot.links[name], (f"link '{name}' has no parent joint: the robot has "
-                                      f"{len(found)} roots ({listed}); connect them with joints")
+                                      f"{len(found)} roots ({named}); connect them with joints")
 
 
 def _all_joints_wired(robot) -> bool:
