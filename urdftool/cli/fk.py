@@ -7,7 +7,7 @@ import typer
 from urdftool.errors import UnknownName
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, say, single_robot, warn)
+                                  joint_words, only_with, say, single_robot, warn)
 
 FORMATS = ("text", "json", "csv")
 VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
@@ -50,7 +50,9 @@ def fk(
          "give one of --q, --q-file, --random"),
         (verify and not dh, "--verify needs --dh TABLE"),
         (dh and len(frame) > 1, "--dh computes one chain: give at most one --frame (its tip)"),
-        (random is not None and random < 1, "--random must be at least 1")))
+        (random is not None and random < 1, "--random must be at least 1"),
+        only_with(("seed",), random is not None or verify, "--random or --verify"),
+        only_with(("deg",), bool(q or q_file), "--q or --q-file")))
     tip = frame[0] if frame else None
     try:
         table = load_table(dh) if dh else None
