@@ -24,6 +24,7 @@ def arm(tmp_path):
 @pytest.mark.parametrize("words, message", [
     (["fk", "--q", "shoulder=1", "--seed", "5"], "--seed needs --random or --verify"),
     (["fk", "--deg"], "--deg needs --q or --q-file"),
+    (["fk", "--dh", "arm.urdf", "--floating"], "--floating does not go with --dh"),
     (["dynamics", "--seed", "3"], "--seed needs --samples"),
     (["dynamics", "--deg"], "--deg needs --q, --v or --a"),
     (["workspace", "--tip", "upper", "--deg"], "--deg needs --q"),

@@ -52,6 +52,8 @@ def fk(
         (dh and len(frame) > 1, "--dh computes one chain: give at most one --frame (its tip)"),
         (random is not None and random < 1, "--random must be at least 1"),
         only_with(("seed",), random is not None or verify, "--random or --verify"),
+        (bool(dh) and floating, "--floating does not go with --dh (the table's poses are "
+                                "relative to its base link, which the free-flyer moves too)"),
         only_with(("deg",), bool(q or q_file), "--q or --q-file")))
     tip = frame[0] if frame else None
     try:
