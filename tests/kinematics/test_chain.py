@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from urdftool.description.load import load
 from urdftool.kinematics import configuration as config
@@ -51,3 +52,19 @@ def test_a_limb_whose_joints_are_named_as_links_is_built_and_solved(tmp_path):
     solution = ik.solve(chain, ik.Target(pose[:3, 3], pose[:3, :3]), ik.seeds(chain, 4, 0))
     assert solution.solved, solution.reason
     assert np.allclose(solution.x, [0.4, -1.1], atol=1e-6)
+
+
+def test_a_limb_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tmp_path,
+                                                                            monkeypatch):
+    # ik and workspace on a 999-joint limb ran out of a 2 GiB budget (U018, "raise the budget
+    # with --max-memory": to 60 GiB); dynamics said why, before allocating; now both do
+    import resource
+
+    from conftest import synthetic_robot
+    from urdftool.errors import IKError
+
+    robot = load(str(synthetic_robot(tmp_path, 301)))
+    monkeypatch.setattr(resource, "getrlimit", lambda _: (1024 ** 3, resource.RLIM_INFINITY))
+    with pytest.raises(IKError, match="300 joint variables from 'l0' to 'l300'.*cube of the"):
+        build_chain(robot, None, "l300")
+    assert build_chain(robot, "l290", "l300").tip == "l300"  # a sub-chain fits

@@ -65,6 +65,20 @@ def test_the_lines_stream_guards_every_line_a_library_writes():
     assert out.getvalue() == "a\n\\x3a:error::x\\x1b\nlast" and not stream.isatty()
 
 
+def test_the_lines_stream_drops_the_blanks_rich_pads_a_last_column_with():
+    from urdftool.report.console import plain_console
+    from rich.table import Table
+
+    out = io.StringIO()
+    table = Table("link", "status", box=None)
+    table.add_row("l_foot_link", "")  # collisions' "Closest pairs apart": no status
+    table.add_row("body_link", "disabled (User)")
+    plain_console(out).print(table)
+    assert [line.split() for line in out.getvalue().splitlines()] == [
+        ["link", "status"], ["l_foot_link"], ["body_link", "disabled", "(User)"]]
+    assert not any(line.endswith(" ") for line in out.getvalue().splitlines())
+
+
 def test_markup_is_printed_by_rich_as_written():
     from rich.console import Console
 

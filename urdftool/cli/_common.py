@@ -64,6 +64,35 @@ def fail_config(error, option: str) -> None:
     fail_usage(UsageError(str(error) if error.where else f"{option}: {error}"))
 
 
+def given(*names: str) -> list[str]:
+    """The options among ``names`` (their parameters' names: ``"min_fraction"``) that the
+    command line wrote, as its help names them (``--min-fraction``), in the command's order. One
+    left at its default was not given, whatever its value."""
+    from typer._click.core import ParameterSource  # typer's own click, not the package's
+    from typer._click.globals import get_current_context
+
+    context = get_current_context(silent=True)
+    if context is None:
+        return []
+    return [next((o for o in parameter.opts if o.startswith("--")), parameter.opts[0])
+            for parameter in context.command.params
+            if parameter.name in names and context.get_parameter_source(parameter.name)
+            in (ParameterSource.COMMANDLINE, ParameterSource.ENVIRONMENT)]
+
+
+def only_with(names: tuple[str, ...], needed: bool, what: str) -> tuple[bool, str]:
+    """A ``problems`` pair of :func:`single_robot`: the options among ``names`` given without
+    what they act on (``needed`` false; ``what``: "--matrix"). A command read them and did
+    nothing with them before (``collisions --samples 500`` at one pose, ``inertia --all``
+    without ``--write``, ``fk --seed 3`` with ``--q``), exit 0, as if they had counted."""
+    options = [] if needed else given(*names)
+    listed = ", ".join(options[:-1]) + f" and {options[-1]}" if len(options) > 1 else \
+        "".join(options)
+    return (bool(options), f"{listed} {'needs' if len(options) == 1 else 'need'} {what} "
+                           f"(without it, {'it does' if len(options) == 1 else 'they do'} "
+                           "nothing)")
+
+
 def joint_words(values: list[str], option: str) -> dict[str, str]:
     """``{joint: text}`` from an option's ``NAME=VALUE`` values; exit 2 when one is malformed."""
     try:

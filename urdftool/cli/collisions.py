@@ -10,8 +10,8 @@ from urdftool.errors import OverLimit, UnknownName
 
 from urdftool.cli._common import (MaxSceneTrianglesOption, PackageOption, XacroArgOption,
                                   budgeted, fail_at, fail_config, fail_over_limit, fail_usage,
-                                  joint_words, refuse_bad_outputs, single_robot, warn,
-                                  write_output)
+                                  given, joint_words, only_with, refuse_bad_outputs,
+                                  single_robot, warn, write_output)
 from urdftool.errors import UsageError
 
 MAX_PAIRS = 250_000  # urdftool.collision.matrix.MAX_PAIRS (not imported: numpy, FCL)
@@ -86,6 +86,12 @@ def collisions(
         (matrix and q, "--q sets the pose of a single check; it does not go with --matrix"),
         (matrix and render, "--render draws one pose; it does not go with --matrix (--plot "
                             "draws the matrix)"),
+        (matrix and bool(given("srdf")), "--srdf allows pairs at one pose; --matrix reads no "
+                                         "SRDF (--check-srdf FILE compares one with it)"),
+        only_with(("samples", "seed", "min_fraction", "margin", "max_samples", "workers",
+                   "all_pairs"), matrix, "--matrix"),
+        only_with(("deg",), bool(q) or matrix, "--q"),
+        only_with(("max_scene_triangles",), render is not None, "--render"),
         (render is not None and render.suffix.lower() not in (".png", ".svg"),
          f"--render: '{render.name if render else ''}' must end in .png or .svg"),
         *((kind_of(given) != "file",

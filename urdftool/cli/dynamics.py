@@ -5,8 +5,8 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  fail_over_limit, joint_words, refuse_bad_outputs, show,
-                                  single_robot, warn)
+                                  fail_over_limit, joint_words, only_with, refuse_bad_outputs,
+                                  show, single_robot, warn)
 
 
 FORMATS = ("text", "json")
@@ -22,7 +22,8 @@ def register(app: typer.Typer) -> None:
 def dynamics(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
-                                "(repeatable); others are 0."),
+                                "(repeatable); others take 0, or mid-range when 0 is outside "
+                                "their limits."),
     v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
                                 help="Joint velocity (for C, tau and the kinetic energy K)."),
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
@@ -56,6 +57,8 @@ def dynamics(
     robot = single_robot("dynamics", words, arg, package, {"--format": (output_format, FORMATS)},
                          [(samples < 0, "--samples must be 0 or more"),
                           (plot is not None and not support, "--plot needs --support"),
+                          only_with(("seed",), samples > 0, "--samples"),
+                          only_with(("deg",), bool(q or v or a), "--q, --v or --a"),
                           (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
                            "--plot must end in .svg or .png")])
     refuse_bad_outputs(plot, inputs=words)

@@ -7,7 +7,7 @@ import typer
 from urdftool.errors import UnknownName
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, say, single_robot, warn)
+                                  joint_words, only_with, say, single_robot, warn)
 
 FORMATS = ("text", "json", "csv")
 VERIFY_TOLERANCE = 1e-9  # [m] and [rad]
@@ -50,7 +50,11 @@ def fk(
          "give one of --q, --q-file, --random"),
         (verify and not dh, "--verify needs --dh TABLE"),
         (dh and len(frame) > 1, "--dh computes one chain: give at most one --frame (its tip)"),
-        (random is not None and random < 1, "--random must be at least 1")))
+        (random is not None and random < 1, "--random must be at least 1"),
+        only_with(("seed",), random is not None or verify, "--random or --verify"),
+        (bool(dh) and floating, "--floating does not go with --dh (the table's poses are "
+                                "relative to its base link, which the free-flyer moves too)"),
+        only_with(("deg",), bool(q or q_file), "--q or --q-file")))
     tip = frame[0] if frame else None
     try:
         table = load_table(dh) if dh else None

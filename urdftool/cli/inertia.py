@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
-                                  refuse_bad_outputs, say, show, single_robot, write_output)
+                                  only_with, refuse_bad_outputs, say, show, single_robot, write_output)
 from urdftool.errors import UsageError
 
 
@@ -45,7 +45,10 @@ def inertia(
     robot = single_robot("inertia", words, arg, package, {"--format": (output_format, FORMATS)}, [
         (density is not None and density <= 0, "--density must be positive"),
         (write is not None and not (link or all_links),
-         "--write needs --link NAME (repeatable) or --all")])
+         "--write needs --link NAME (repeatable) or --all"),
+        only_with(("all_links",), write is not None, "--write"),
+        (write is not None and output_format != "text",
+         f"--format {output_format} does not go with --write (it writes the file, no report)")])
     if not keep_mass and density is None:
         density = 1000.0  # --no-keep-mass without --density: water, as the help says
     try:

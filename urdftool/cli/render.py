@@ -8,7 +8,8 @@ import typer
 
 from urdftool.cli._common import (MaxSceneTrianglesOption, PackageOption, XacroArgOption,
                                   budgeted, fail_at, fail_config, fail_over_limit, fail_usage,
-                                  joint_words, refuse_bad_outputs, say, single_robot, warn)
+                                  joint_words, only_with, refuse_bad_outputs, say, single_robot,
+                                  warn)
 from urdftool.errors import UsageError
 
 HELP = ("Draw the robot's visual (or --collision) geometry posed at a configuration (default: "
@@ -59,7 +60,8 @@ def render(
         fail_usage(error)
     robot = single_robot("render", words, arg, package, {"--view": (view, VIEWS)}, [
         (output.suffix.lower() not in (".png", ".svg"),
-         f"--output: '{output.name}' must end in .png or .svg")])
+         f"--output: '{output.name}' must end in .png or .svg"),
+        only_with(("deg",), bool(q), "--q")])
     try:
         scene, warnings = posed(robot, joint_words(q, "--q"), deg, collision,
                                 max_scene_triangles or None)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  joint_words, refuse_bad_outputs, show, single_robot, warn)
+                                  joint_words, only_with, refuse_bad_outputs, show, single_robot,
+                                  warn)
 from urdftool.cli.ik import BaseOption, PointOption, TipOption, Triple
 
 FORMATS = ("text", "json")
@@ -41,6 +42,7 @@ def workspace(
 
     robot = single_robot("workspace", words, arg, package, {"--format": (output_format, FORMATS)},
                          ((samples < 1, "--samples must be at least 1"),
+                          only_with(("deg",), bool(q), "--q"),
                           (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
                            "--plot must end in .svg or .png")))
     refuse_bad_outputs(plot, inputs=words)

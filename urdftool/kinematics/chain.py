@@ -20,6 +20,7 @@ import numpy as np
 from urdftool.errors import IKError, UnknownLink
 from urdftool.kinematics.configuration import Variable
 from urdftool.kinematics.fk import KinematicModel
+from urdftool.kinematics.model import oversized_data
 
 
 @dataclass
@@ -202,6 +203,10 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     plain = model.nq == model.nv == len(columns) and all(
         (idx_q, idx_v, column, multiplier, offset, unbounded) == (k, k, k, 1.0, 0.0, False)
         for k, (idx_q, idx_v, column, multiplier, offset, unbounded) in enumerate(slots))
+    oversized = oversized_data(model.nv)
+    if oversized:
+        raise IKError(oversized.replace("joint variables", f"joint variables from '{base}' "
+                                                          f"to '{tip}'"), robot.root)
     data = model.createData()
     placement = None
     if not moving:

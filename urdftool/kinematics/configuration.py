@@ -181,8 +181,9 @@ def configurations(model, q: dict[str, str] | None = None, degrees: bool = False
 
 @dataclass
 class JointValues:
-    """Positions ``q`` (every variable named, others absent), velocities ``v`` and
-    accelerations ``a`` (None when not given), and warnings about positions outside limits."""
+    """Positions ``q`` (every variable named, and each other whose default is not 0: mid-range,
+    as every command poses it; the others absent, at 0), velocities ``v`` and accelerations
+    ``a`` (None when not given), and warnings about positions given outside limits."""
 
     q: dict[str, float]
     v: dict[str, float] | None
@@ -193,7 +194,9 @@ class JointValues:
 def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
                  a: dict[str, str] | None = None, degrees: bool = False) -> JointValues:
     """Positions, velocities and accelerations of ``robot``'s joints from ``{name: text}``;
-    a bad one raises ConfigError whose ``argument`` is 'q', 'v' or 'a'."""
+    a bad one raises ConfigError whose ``argument`` is 'q', 'v' or 'a'. A joint not named in
+    ``q`` takes its default, as in :func:`from_words`: 0, or mid-range when 0 is outside its
+    limits (dynamics computed G(q) at 0 there, a pose fk, collisions and render never draw)."""
     variables, mimics = variables_of(robot), mimics_of(robot)
     parsed = []
     for argument, words in (("q", q), ("v", v), ("a", a)):
@@ -205,7 +208,10 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
             raise
     given = [variable for variable in variables if variable.name in parsed[0]]
     row = np.array([[parsed[0][variable.name] for variable in given]])
-    return JointValues(*parsed, limit_warnings(given, row))
+    warnings = limit_warnings(given, row)
+    parsed[0] = {**{variable.name: variable.default for variable in variables
+                    if variable.default != 0.0}, **parsed[0]}
+    return JointValues(*parsed, warnings)
 
 
 def from_file(variables: list[Variable], path: str, degrees: bool = False,

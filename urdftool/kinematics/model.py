@@ -47,3 +47,36 @@ def build_model(robot, root_joint=None, root_name: str | None = None):
     if not ok:
         raise value
     return value
+
+
+DATA_BYTES_PER_NV_CUBED = 64  # [bytes]: pinocchio.Data holds second-order derivative tensors
+# (nv x nv x nv each); measured 59 bytes per nv^3 at nv = 200 and 400 with Pinocchio 4.1
+
+
+def data_size(nv: int) -> int:
+    """What ``model.createData()`` allocates for ``nv`` velocity variables, about [bytes]."""
+    from urdftool.numbers import power
+
+    return DATA_BYTES_PER_NV_CUBED * power(nv, 3)
+
+
+def oversized_data(nv: int) -> str | None:
+    """Why Pinocchio's Data of ``nv`` velocity variables cannot be made (it cannot fit the
+    memory this process may use: its address-space cap, else the machine's), else None. Every
+    command that makes one asks first: a 1,500-joint robot would need ~200 GB and be killed
+    instead of reported; ik and workspace on a 999-joint limb ran out of a 2 GiB budget and
+    advised raising it (to 60 GiB), where dynamics said what this says."""
+    import os
+    import resource
+
+    from urdftool.budget import format_memory
+
+    cap, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if cap == resource.RLIM_INFINITY:
+        cap = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    needed = data_size(nv)
+    if needed <= cap // 2:
+        return None
+    return (f"{nv} joint variables: Pinocchio's data (where its algorithms compute) would "
+            f"need about {format_memory(needed)} (it grows with the cube of the joints) and "
+            f"this process may use {format_memory(cap)}; analyse a sub-chain (fewer joints)")

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.errors import DynamicsError
-from urdftool.numbers import power
+from urdftool.kinematics.model import oversized_data
 
 _ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
 
@@ -86,37 +86,10 @@ def build(robot) -> Model:
                   for joint in mimics_of(robot) if joint in joints}
     except MimicError as error:
         raise DynamicsError(str(error), error.element) from None
-    _refuse_oversized_data(robot, model.nv)
+    oversized = oversized_data(model.nv)
+    if oversized:
+        raise DynamicsError(oversized, robot.root)
     return Model(model, model.createData(), joints, variables, mimics)
-
-
-DATA_BYTES_PER_NV_CUBED = 64  # [bytes]: pinocchio.Data holds second-order derivative tensors
-# (nv x nv x nv each); measured 59 bytes per nv^3 at nv = 200 and 400 with Pinocchio 4.1
-
-
-def data_size(nv: int) -> int:
-    """What ``model.createData()`` allocates for ``nv`` velocity variables, about [bytes]."""
-    return DATA_BYTES_PER_NV_CUBED * power(nv, 3)
-
-
-def _refuse_oversized_data(robot, nv: int) -> None:
-    """DynamicsError, before allocating, when Pinocchio's Data cannot fit the memory this process
-    may use (its address-space cap, else the machine's memory): a 1,500-joint robot would need
-    ~200 GB and be killed instead of reported."""
-    import os
-    import resource
-
-    from urdftool.budget import format_memory
-
-    cap, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if cap == resource.RLIM_INFINITY:
-        cap = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    needed = data_size(nv)
-    if needed > cap // 2:
-        raise DynamicsError(
-            f"{nv} joint variables: Pinocchio's dynamics data would need about "
-            f"{format_memory(needed)} (it grows with the cube of the joints) and this process may "
-            f"use {format_memory(cap)}; analyse a sub-chain (fewer joints)", robot.root)
 
 
 def total_mass(model: Model) -> float:

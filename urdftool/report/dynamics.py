@@ -37,6 +37,7 @@ def _scale(values) -> float | None:
 
 
 NO_JOINT = "no moving joint: no gravity load to judge"
+TORQUE = "[N m, or N for a prismatic joint]"  # the unit of every torque, tau and effort shown
 
 
 def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
@@ -46,18 +47,19 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     lines = [f"total mass {number(result.mass)} kg, centre of mass "
              f"({numbers(result.com, floor=MILLIMETRE)}) m in the root frame"]
     if matrices:
-        lines += ["", "G(q): gravity torque per joint [N m or N]"]
+        lines += ["", f"G(q): gravity torque per joint {TORQUE}"]
         lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
                   for name, g in zip(joints, result.G)]
-        lines += ["", "M(q): joint-space mass matrix"]
+        lines += ["", "M(q): joint-space mass matrix [kg m^2; kg between prismatic joints, kg m "
+                      "across]"]
         lines += [f"  {name:{width}s} " + " ".join(f"{entry:>10s}" for entry in row)
                   for name, row in zip(joints, symmetric_texts(result.M))]
     if result.C is not None:
-        lines += ["", "C(q, v): Coriolis matrix"]
+        lines += ["", f"C(q, v): Coriolis matrix (C v is a torque {TORQUE})"]
         lines += [f"  {name:{width}s} {_row(row, _scale(result.C))}"
                   for name, row in zip(joints, result.C)]
         lines += ["", "tau = M(q) a + C(q, v) v + G(q), and with the joints' <dynamics>: "
-                      "+ damping v + friction sign(v)"]
+                      f"+ damping v + friction sign(v) {TORQUE}"]
         lines.append(f"  {'':{width}s} {'tau':>10s} {'damping':>10s} {'friction':>10s} "
                      f"{'total':>10s}")
         columns = (result.tau, result.damping, result.friction, result.total)
@@ -89,7 +91,8 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     width = max((len(_text(load.joint)) for load in loads), default=5)
     refined = any(load.sampled is not None for load in loads)
     sampled = f" {'sampled':>10s}" if refined else ""
-    lines = [title, f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s}{sampled} "
+    lines = [f"{title.rstrip(':')} {TORQUE}:",
+             f"  {'joint':{width}s} {'effort':>8s} {'zero pose':>10s}{sampled} "
                     f"{'worst':>10s} {'margin':>10s}"]
     scale = _scale([value for load in loads for value in (load.zero_pose, load.worst)])
     for load in loads:
@@ -142,7 +145,7 @@ def stance_text(stance, standing_load=None) -> str:
         lines.append(f"assumption: {_text(stance.assumption)}")
     joints = [_text(j) for j in stance.joints]
     width = max((len(j) for j in joints), default=5)
-    lines += ["", "joint torque holding the robot [N m or N]:",
+    lines += ["", f"joint torque holding the robot {TORQUE}:",
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"] \
         if joints else []
     scale = _scale([*stance.torques, *stance.fixed_base])

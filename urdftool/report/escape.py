@@ -107,8 +107,10 @@ def lines(block: str, keep: str = "") -> str:
 
 class Lines:
     """A text stream for terminal text written by a library (rich off a terminal): every line
-    written through it goes through :func:`text` (the last guard of :func:`lines`), and it is
-    no terminal (rich writes no escape sequence of its own to it)."""
+    written through it goes through :func:`text` (the last guard of :func:`lines`) without the
+    blanks rich pads a table's last column with (an empty status cell: trailing spaces in a
+    log, a diff, a golden file), and it is no terminal (rich writes no escape sequence of its
+    own to it)."""
 
     def __init__(self, stream):
         self.stream, self._pending = stream, ""
@@ -116,7 +118,7 @@ class Lines:
     def write(self, data: str) -> int:
         *done, self._pending = (self._pending + data).split("\n")
         if done:
-            self.stream.write("".join(text(line) + "\n" for line in done))
+            self.stream.write("".join(text(line).rstrip(" ") + "\n" for line in done))
         return len(data)
 
     def flush(self) -> None:

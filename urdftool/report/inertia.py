@@ -42,8 +42,8 @@ def text(results) -> str:
                      if result.source != "none" else f"{link}: {result.verdict} (no geometry)")
         for label, properties in (("declared", result.declared), ("computed", result.computed)):
             mass, com, tensor = _fmt(properties)
-            lines.append(f"  {label:9s} mass {mass:>9s} kg  com {com:28s}  "
-                         f"ixx iyy izz ixy ixz iyz {tensor}")
+            lines.append(f"  {label:9s} mass {mass:>9s} kg  com [m] {com:28s}  "
+                         f"ixx iyy izz ixy ixz iyz [kg m^2] {tensor}")
         if result.differences:
             diff = ", ".join(f"{k} {number(100 * v, places=1)}%"
                              for k, v in result.differences.items())

@@ -1,0 +1,59 @@
+"""``urdftool.cli._common``: what every robot command shares; here, options given without what
+they act on, which the commands read and then did nothing with (exit 0, as if they counted)."""
+
+from __future__ import annotations
+
+import pytest
+
+# a slider carrying a cylinder: every command has work, none much
+ARM = ('<robot name="arm"><link name="base"/><link name="upper"><inertial><mass value="1"/>'
+       '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+       '<collision><geometry><cylinder radius="0.05" length="0.3"/></geometry></collision>'
+       '</link><joint name="shoulder" type="prismatic"><parent link="base"/>'
+       '<child link="upper"/><axis xyz="1 0 0"/>'
+       '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint></robot>')
+
+
+@pytest.fixture
+def arm(tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    return path
+
+
+@pytest.mark.parametrize("words, message", [
+    (["fk", "--q", "shoulder=1", "--seed", "5"], "--seed needs --random or --verify"),
+    (["fk", "--deg"], "--deg needs --q or --q-file"),
+    (["fk", "--dh", "arm.urdf", "--floating"], "--floating does not go with --dh"),
+    (["dynamics", "--seed", "3"], "--seed needs --samples"),
+    (["dynamics", "--deg"], "--deg needs --q, --v or --a"),
+    (["workspace", "--tip", "upper", "--deg"], "--deg needs --q"),
+    (["render", "-o", "arm.png", "--deg"], "--deg needs --q"),
+    (["inertia", "--all"], "--all needs --write"),
+    (["inertia", "--write", "out.urdf", "--all", "-f", "json"],
+     "--format json does not go with --write"),
+    (["collisions", "--samples", "100", "--margin", "0.01"],
+     "--samples and --margin need --matrix (without it, they do nothing)"),
+    (["collisions", "--all"], "--all needs --matrix"),
+    (["collisions", "--deg"], "--deg needs --q"),
+    (["collisions", "--max-scene-triangles", "5"], "--max-scene-triangles needs --render"),
+    (["collisions", "--matrix", "--srdf", "arm.urdf"], "--matrix reads no SRDF"),
+])
+def test_an_option_without_what_it_acts_on_is_a_usage_error(arm, run_cli, words, message,
+                                                               monkeypatch):
+    monkeypatch.chdir(arm.parent)
+    result = run_cli(words[0], arm, *words[1:])
+    assert result.exit_code == 2, result.output
+    assert message in result.output
+
+
+@pytest.mark.parametrize("words", [
+    ["fk", "--random", "2", "--seed", "5"],
+    ["fk", "--q", "shoulder=10", "--deg"],
+    ["dynamics", "--samples", "3", "--seed", "2"],
+    ["collisions", "--q", "shoulder=10", "--deg"],
+    ["collisions", "--matrix", "--samples", "500", "--seed", "1", "--workers", "1"],
+])
+def test_the_same_options_with_what_they_act_on_run(arm, run_cli, words):
+    result = run_cli(words[0], arm, *words[1:])
+    assert result.exit_code == 0, result.output

@@ -1,0 +1,49 @@
+"""``urdftool.kinematics.configuration``: which values a robot's joints take when not given."""
+
+from __future__ import annotations
+
+import pytest
+
+from urdftool.kinematics import configuration as config
+from urdftool.description.load import load
+
+# 'shoulder' cannot be at 0 (its limits are 0.5 to 1.5); 'elbow' can
+ARM = """<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><origin xyz="0.2 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="fore"><inertial><origin xyz="0.1 0 0"/><mass value="0.5"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>
+    <limit lower="0.5" upper="1.5" effort="10" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/>
+    <origin xyz="0.4 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+
+
+@pytest.fixture
+def arm(tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    return load(str(path))
+
+
+def test_joint_values_pose_an_unnamed_joint_as_every_command_does(arm):
+    # dynamics computed G(q) at shoulder=0, outside its limits, where fk, collisions and
+    # render pose it mid-range
+    variables = config.variables_of(arm)
+    drawn = config.from_words(variables, {}).values[0].tolist()
+    values = config.joint_values(arm, {})
+    assert values.q == {"shoulder": 1.0}
+    assert drawn == [values.q.get(v.name, 0.0) for v in variables] == [1.0, 0.0]
+    assert values.warnings == []
+
+
+def test_joint_values_keep_what_is_given_and_warn_only_about_it(arm):
+    values = config.joint_values(arm, {"shoulder": "2", "elbow": "0.5"}, {"elbow": "1"})
+    assert values.q == {"shoulder": 2.0, "elbow": 0.5} and values.v == {"elbow": 1.0}
+    assert len(values.warnings) == 1 and "shoulder" in values.warnings[0]
+    assert config.joint_values(arm, {"elbow": "0.5"}).q == {"shoulder": 1.0, "elbow": 0.5}
