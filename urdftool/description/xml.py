@@ -361,7 +361,12 @@ def _skeleton(data: bytes) -> tuple | None:
     left is every tag, attribute name and end tag as written."""
     import numpy as np
 
-    if b"'" in data or b"<!" in data or data.find(b"<?", 1) >= 0:
+    if b"'" in data or (b"!" in data and b"<!" in data):
+        return None
+    # (a processing instruction past the declaration: a "?" after it looked for first, at
+    # memchr's pace, then "<?")
+    if data.find(b"?", data.find(b"?>") + 2 if data.startswith(b"<?") else 0) >= 0 and \
+            data.find(b"<?", 1) >= 0:
         return None
     pieces = data.split(b'"')  # (outside, inside, outside, ... quotes)
     values = b"".join(pieces[1::2])
