@@ -276,3 +276,37 @@ def test_the_messages_of_a_document_say_its_lines_whatever_ends_them(tmp_path, e
     assert merge_conflict(conflicted).line == 3
     commented = data('<robot name="r">\n\n  <!-- a -- b -->\n  <link name="a"/>\n</robot>\n')
     assert tinyxml2_comments(commented)[1] == 3
+
+
+def _shapes(text: str):
+    from urdftool.description.xml import parse
+
+    root, positions = parse(text.encode("utf-8"))
+    shapes = getattr(positions, "shapes", None)  # (a plain document's: see parse)
+    return shapes(child_list(root)) if shapes is not None else None
+
+
+def test_the_shapes_of_siblings_are_their_markup_without_attribute_values():
+    """Each sibling's markup from its start tag to the next one's, values left out: the same
+    bytes for elements of the same tags, attribute names and nesting, whatever their values
+    (entities, huge or not-a-number texts, namespaced attributes keep their names)."""
+    shapes = _shapes('<?xml version="1.0"?>\n<r xmlns:x="urn:x">'
+                     '<a n="1e400" x:m="NaN"><b v="&quot;&lt;&#x3e;&amp;"/></a>\n'
+                     '<a n="1" x:m="-0"><b v=""/></a>\n'
+                     '<a n="1"><c v="1"/></a>'
+                     '<a n="?"/>text a="b"<z/></r>')
+    assert shapes == [b'<a n= x:m=><b v=/></a>\n', b'<a n= x:m=><b v=/></a>\n',
+                      b'<a n=><c v=/></a>', b'<a n=/>text a=']
+
+
+@pytest.mark.parametrize("text", [
+    "<r><a n='1'/><b/></r>",  # an apostrophe (around a value, or in a text)
+    '<r><a n="1"/><!-- c --><b/></r>', '<r><a n="1"/><![CDATA[x]]><b/></r>',
+    '<r><a n="1"/><?pi x?><b/></r>',
+    '<r><a n=">"/><b/></r>',  # a ">" in a value
+    '<r><a n = "1"/><b/></r>', '<r><a>"</a><b/></r>',  # a quote after no "="
+    '<r><a n="\u0661"/><b/></r>',  # not ASCII: the document's places are not scanned
+])
+def test_a_document_not_plain_enough_has_no_shapes(text):
+    assert _shapes(text) is None
+    assert _shapes('<r><a n="1"/><b/></r>') == [b'<a n=/>']

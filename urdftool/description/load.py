@@ -405,6 +405,12 @@ class _StartTags(Mapping):
         offset = getattr(self._positions, "offset", None)
         return offset(element, data) if offset is not None else None
 
+    def shapes(self, elements: list) -> list | None:
+        """:meth:`~urdftool.description.xml._StartOffsets.shapes` of these siblings, where
+        their places were found by scanning the file (else None)."""
+        shapes = getattr(self._positions, "shapes", None)
+        return shapes(elements) if shapes is not None else None
+
     def __iter__(self):
         return iter(self._positions)
 

@@ -192,6 +192,15 @@ class Robot(Record):
         each) and reading their tags again. A walk leaves alone an element grouped already."""
         return self._groups
 
+    def shapes(self, elements: list) -> list | None:
+        """For ``elements``, siblings in document order: the markup of each but the last as
+        written (from its start tag to the next one's), every attribute value left out, as
+        bytes; None where the loader did not scan the file (xacro's output, a document not
+        plain enough: :meth:`~urdftool.description.xml._StartOffsets.shapes`). Two elements of
+        one shape have the same tags, attribute names and nesting."""
+        shapes = getattr(self.locations, "shapes", None)
+        return shapes(elements) if shapes is not None else None
+
     def child(self, element, tag: str):
         """The first direct child of ``element`` with this tag, or None
         (:func:`~urdftool.description.xml.first_child`, remembered: see :meth:`grouped`)."""

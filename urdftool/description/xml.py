@@ -308,7 +308,7 @@ class _StartOffsets(Mapping):
 
     def __init__(self, data: bytes, elements: list, offsets: list[int]):
         self._offsets = dict(zip(elements, offsets))
-        self._data, self._newlines = data, None
+        self._data, self._newlines, self._skeleton = data, None, None
 
     def __getitem__(self, element) -> tuple[int, int]:
         return self._position(self._offsets[element])
@@ -323,6 +323,19 @@ class _StartOffsets(Mapping):
         (the fixes find a tag there without parsing up to it), else None."""
         return self._offsets.get(element) if data is self._data else None
 
+    def shapes(self, elements: list) -> list | None:
+        """For ``elements``, siblings in document order: the markup of each but the last, from
+        its start tag to the next one's, with every attribute value left out (``name=``), as
+        bytes (:func:`_skeleton`); None for a document not plain enough to be sure."""
+        if self._skeleton is None:
+            self._skeleton = _skeleton(self._data) or ()
+        if not self._skeleton:
+            return None
+        text, moved = self._skeleton
+        offsets = self._offsets
+        at = moved([offsets[element] for element in elements])
+        return [text[start:end] for start, end in zip(at, at[1:])]
+
     def _position(self, offset: int) -> tuple[int, int]:
         if self._newlines is None:
             self._newlines = newlines(self._data)
@@ -335,6 +348,43 @@ class _StartOffsets(Mapping):
 
     def __len__(self) -> int:
         return len(self._offsets)
+
+
+def _skeleton(data: bytes) -> tuple | None:
+    """(``data`` with every attribute value left out, a function of start tag offsets in
+    ``data`` giving theirs in it) for a plain document (see above) without comments, CDATA,
+    processing instructions past its declaration or apostrophes, and whose every quote is
+    one of a pair that follows a "=" and holds no "<" or ">"; else None.
+
+    Such a pair is an attribute's value (within one start tag: it crosses no "<" or ">") or
+    a pair of quotes in one text (left out too: no rule reads a text through this): what is
+    left is every tag, attribute name and end tag as written."""
+    import numpy as np
+
+    if b"'" in data or (b"!" in data and b"<!" in data):
+        return None
+    # (a processing instruction past the declaration: a "?" after it looked for first, at
+    # memchr's pace, then "<?")
+    if data.find(b"?", data.find(b"?>") + 2 if data.startswith(b"<?") else 0) >= 0 and \
+            data.find(b"<?", 1) >= 0:
+        return None
+    pieces = data.split(b'"')  # (outside, inside, outside, ... quotes)
+    values = b"".join(pieces[1::2])
+    if len(pieces) % 2 == 0 or b"<" in values or b">" in values:
+        return None
+    quotes = np.flatnonzero(np.frombuffer(data, dtype=np.uint8) == ord('"'))
+    opens, closes = quotes[0::2], quotes[1::2]
+    if len(opens) and (opens[0] == 0 or (np.frombuffer(data, dtype=np.uint8)[opens - 1] !=
+                                         ord("=")).any()):
+        return None
+    removed = np.concatenate(([0], np.cumsum(closes - opens + 1)))
+
+    def at(offsets: list) -> list:
+        """Where each start tag at these offsets is in the text left (none is in a value)."""
+        asked = np.asarray(offsets, dtype=np.intp)
+        return (asked - removed[np.searchsorted(closes, asked)]).tolist()
+
+    return b"".join(pieces[0::2]), at
 
 
 def newlines(data: bytes) -> list[int]:

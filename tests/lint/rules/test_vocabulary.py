@@ -212,3 +212,67 @@ def test_elements_the_walk_listed_are_grouped_from_its_lists_as_lxml_lists_them(
             assert not listings  # every one grouped by the walk, as it met the children
             found = shown
     assert found == shown and len(found) > 5, len(found)
+
+
+def _alike_robot(joints: list[str], links: list[str]) -> str:
+    """A robot of these joints' and links' inner text (one base link ``b``)."""
+    parts = ['<robot name="r"><link name="b"/>']
+    parts += [f'<link name="l{i}">{text}</link>' for i, text in enumerate(links)]
+    parts += [f'<joint name="j{i}" type="revolute"><parent link="b"/><child link="l{i}"/>{text}'
+              f'</joint>' for i, text in enumerate(joints)]
+    return "\n".join(parts) + "\n</robot>\n"
+
+
+ALIKE_JOINTS = ['<axis xyz="1 0 0" rpy="0 0 0"/>', '<axis xyz="1 0 0" rpy="0 0.5 0"/>',
+                '<origin xyz="1 &quot;2&gt;&lt; 3"/>', '<origin xyz="1 2 3" rpi="0"/>',
+                '<origin xyz="1 2 3"/>text a="b"', '<origin xyz="1 2 3"/><orgin/>',
+                '<origin xmlns="urn:x" foo="1"/>', '<origin xmlns="" foo="1"/>',
+                '<limit lower="0" upper="1" effort="1" velocity="1"/>',
+                '<limit lower="0" upper="1" effort="1" velocity="1" uper="1"/>',
+                '<limit lower="0" upper="1" effort="1" velocity="1"/>']
+ALIKE_LINKS = ['<visual><geometry><box size="1 1 1"/></geometry></visual>',
+               '<visual><geometry><box size="1 1 1"/><sphere radius="1"/></geometry></visual>',
+               '<visual><geometry><box size="2 2 2"/></geometry></visual>',
+               '<visual><geometry><box size="2 2 2"/></geometry><material name="m" '
+               'colour="red"/></visual>'] * 2
+
+
+def test_links_and_joints_of_one_shape_walked_once_give_the_findings_of_walking_each(
+        tmp_path, monkeypatch):
+    """A large robot's links and joints are walked once per shape (their markup without
+    attribute values): a shape found clean is clean wherever it is, and what makes two of one
+    shape differ for the walk (an axis rpy's value, a namespace declared) is walked each
+    time. The findings, as many robots as shapes apart, are those of the walk of every
+    element."""
+    from urdftool.lint.rules import vocabulary
+
+    text = _alike_robot(ALIKE_JOINTS * 2, ALIKE_LINKS)
+    walks, walk = [], vocabulary._walk_children
+    monkeypatch.setattr(vocabulary, "_walk_children", lambda *a: walks.append(a[0]) or walk(*a))
+    everyone = _check(tmp_path / "every", text)
+    walked = len(walks)
+    monkeypatch.setattr(vocabulary, "ALIKE", 2)
+    once = _check(tmp_path / "once", text)
+    assert [(f.line, f.code, f.message) for f in once[1]] == \
+        [(f.line, f.code, f.message) for f in everyone[1]]
+    assert [code for _, _, code in once[0]].count("U022") >= 4  # two rpy, two rpi, ...
+    assert len(once[0]) > 12, once[0]
+    # not walked, each after one of its shape found clean: three links of a box (the link,
+    # its visual, its geometry: 9 walks), and of the joints the second of each clean origin
+    # (2), the second and third limit (the fourth, the last element, is walked: its markup
+    # ends nowhere)
+    assert len(walks) - walked == walked - 13, (walked, len(walks))
+
+
+def test_a_robot_not_plain_enough_is_walked_whole(tmp_path, monkeypatch):
+    from urdftool.lint.rules import vocabulary
+
+    monkeypatch.setattr(vocabulary, "ALIKE", 2)
+    walks, walk = [], vocabulary._walk_children
+    monkeypatch.setattr(vocabulary, "_walk_children", lambda *a: walks.append(a[0]) or walk(*a))
+    for extra in ("", "<!-- a -->", "<x a='1'/>", '<x>"</x>', '<x a=">"/>', "<?pi?>"):
+        text = _alike_robot(ALIKE_JOINTS[8:] + ALIKE_JOINTS[8:9], [])
+        walks.clear()
+        _check(tmp_path / str(len(extra)), text.replace("</robot>", f"{extra}</robot>"))
+        # the robot and its four joints, or (plain) the third (as the first) not walked
+        assert len(walks) == (4 if not extra else 5), extra

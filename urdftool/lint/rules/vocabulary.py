@@ -12,6 +12,7 @@ where a close misspelling is reported.
 
 from __future__ import annotations
 
+import re
 
 from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
                                        is_namespaced, is_xacro, version_problem, where_valid)
@@ -64,14 +65,46 @@ class _Unknown:
 
 def _unknowns(robot) -> list[_Unknown]:
     return robot.memo(_unknowns, lambda: _walk(robot.root, "robot", VOCABULARY["robot"], [],
-                                               robot.listed()))
+                                               robot.listed(), _alike(robot)))
+
+
+# A robot of this many top-level elements or more has its links and joints walked once per
+# shape (:meth:`~urdftool.description.robot.Robot.shapes`): a generated or exported robot of
+# thousands of links repeats a few.
+ALIKE = 256
+
+
+def _alike(robot) -> dict | None:
+    """Element -> its shape, of the robot's top-level elements whose shape says all the walk
+    reads of them (no ``<axis rpy>``, whose value :func:`_zero` reads, no namespace declared:
+    an ``xmlns=""`` and an ``xmlns="..."`` are one shape); None below :data:`ALIKE` elements
+    or where the loader did not scan the file."""
+    children = child_list(robot.root)
+    if len(children) < ALIKE:
+        return None
+    shapes = robot.shapes(children)
+    if shapes is None:
+        return None
+    found, told = {}, {}  # (each distinct shape judged once: a robot repeats a few)
+    for child, shape in zip(children, shapes):
+        telling = told.get(shape)
+        if telling is None:
+            telling = told[shape] = b"xmlns" not in shape and \
+                not (b"rpy=" in shape and _AXIS_RPY.search(shape))
+        if telling:
+            found[child] = shape
+    return found
+
+
+_AXIS_RPY = re.compile(rb"<axis\b[^>]*\srpy=")
 
 
 def _skipped(tag) -> bool:
     return not isinstance(tag, str) or is_namespaced(tag) or is_xacro(tag)
 
 
-def _walk(element, key: str, place: Place, found: list, listed: dict) -> list[_Unknown]:
+def _walk(element, key: str, place: Place, found: list, listed: dict,
+          alike: dict | None = None) -> list[_Unknown]:
     """Append the unknowns of ``element`` and below to ``found``, in document order; return it.
     Calls, not nested generators, and leaves not iterated: a 10,000-link robot has 190,000
     elements. Each element's attributes are first compared as a whole with the names known
@@ -79,12 +112,12 @@ def _walk(element, key: str, place: Place, found: list, listed: dict) -> list[_U
     child that is a leaf is judged in its parent's loop, without a call of its own. Each
     element's children are grouped by tag as they are met, into ``listed`` (:meth:`~urdftool.
     description.robot.Robot.listed`), for the families that group them, but a ``<geometry>``'s
-    (its shape is read as its first element)."""
+    (its shape is read as its first element). ``alike``: see :func:`_walk_children`."""
     keys = element.keys()
     if keys and not _KNOWN[key].issuperset(keys):
         _unknown_attributes(element, key, place, keys, found)
     if len(element):
-        _walk_children(element, key, place, found, listed)
+        _walk_children(element, key, place, found, listed, alike)
     return found
 
 
@@ -105,10 +138,13 @@ def _unknown_attributes(element, key: str, place: Place, keys, found: list) -> N
             found.append(_Unknown(element, attribute, key, _close(attribute, place.names())))
 
 
-def _walk_children(element, key: str, place: Place, found: list, listed: dict) -> None:
+def _walk_children(element, key: str, place: Place, found: list, listed: dict,
+                   alike: dict | None = None) -> None:
     """Append the unknowns below ``element`` (which has children) to ``found``, in order (its
-    children grouped in ``listed``: see :func:`_walk`)."""
-    children, shapes = place.children, 0
+    children grouped in ``listed``: see :func:`_walk`). ``alike``: child -> its shape
+    (:func:`_alike`), of children walked once per shape: a known child of a shape found
+    clean is clean, and is not walked (nor its children grouped)."""
+    children, shapes, clean = place.children, 0, set()
     if key != "geometry":
         known_children = _KNOWN_CHILDREN[key]
         groups = {}  # (as _by_tag groups them; an element grouped already keeps its groups)
@@ -126,11 +162,17 @@ def _walk_children(element, key: str, place: Place, found: list, listed: dict) -
         entry = known_children.get(tag)
         if entry is not None:  # a known element (not a shape): most are; as _walk(child, ...)
             name, child_place, child_known = entry
+            if alike is not None:  # a link, joint or material like one found clean: clean
+                shape, before = alike.get(child), len(found)
+                if shape in clean:
+                    continue
             keys = child.keys()
             if keys and not child_known.issuperset(keys):
                 _unknown_attributes(child, name, child_place, keys, found)
             if len(child):
                 _walk_children(child, name, child_place, found, listed)
+            if alike is not None and shape is not None and len(found) == before:
+                clean.add(shape)
             continue
         if tag not in children and _skipped(tag):  # (a name the place knows is plain)
             continue
