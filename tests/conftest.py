@@ -169,6 +169,18 @@ def lasting() -> None:
     gc.freeze()
 
 
+def pytest_configure(config):
+    """urdftool's modules imported by the tests as installed (compiled by ``make``), not
+    rewritten: pytest marks every module of a distribution that ships a plugin for assertion
+    rewriting (urdftool ships urdftool.pytest_plugin), so each test process parsed and rewrote
+    all of urdftool again, in a fresh clone, where no rewritten copy is cached yet (185 modules,
+    3 s of CPU per worker), for nothing: urdftool holds no ``assert``. The tests' own asserts are
+    rewritten as before; the plugin module, imported before this file, stays rewritten."""
+    marked = getattr(getattr(config.pluginmanager, "rewrite_hook", None), "_must_rewrite", None)
+    if isinstance(marked, set):  # (pytest's private set: without it, all is rewritten as before)
+        marked.discard("urdftool")
+
+
 @pytest.hookimpl(trylast=True)
 def pytest_collection_finish(session):
     lasting()  # every module imported and every item collected lives as long as the session
