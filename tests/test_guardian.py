@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from conftest import guardian_and_child
+from conftest import guardian_and_child, parsed
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the guardian forks")
 
@@ -126,7 +126,7 @@ def test_every_report_of_a_process_end_says_it_through_one_function():
 
     found = []
     for path in Path(urdftool.__file__).parent.rglob("*.py"):
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        tree = parsed(path.read_text(encoding="utf-8"))
         owner = [node for node in ast.walk(tree)
                  if isinstance(node, ast.FunctionDef) and node.name == "ended"
                  and path.name == "guardian.py"]

@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from conftest import parsed
+
 ROOT = Path(__file__).resolve().parents[1]
 # where conflict markers are the data: U001's case files, the fuzz regressions, and the rule
 # pages generated from the case files
@@ -43,7 +45,7 @@ def test_no_code_searches_a_list_among_the_items_before_each():
 
     found = []
     for path in Path(urdftool.__file__).parent.rglob("*.py"):
-        for loop in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for loop in ast.walk(parsed(path.read_text(encoding="utf-8"))):
             targets = [loop.target] if isinstance(loop, ast.For) else \
                 [g.target for g in getattr(loop, "generators", ())]
             counters = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
