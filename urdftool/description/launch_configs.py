@@ -36,7 +36,7 @@ import sys
 from pathlib import Path
 
 from urdftool.description.documents import read_text
-from urdftool.description.files import inside, kind_of, real_path, walk
+from urdftool.description.files import inside, kind_of, real_path, tree, walk
 from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE,
                                          MAX_TEXT, Arg, Condition,
                                          Description, Include, LaunchFile, ParamFile, Start, Value,
@@ -589,10 +589,12 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
 @per_run
 def _launch_files(root: Path, tests: bool) -> tuple[list[Path], bool]:
     found, top = [], os.fspath(root)
-    for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+    # (the whole walk, once per run: the package walk takes its listings, packages.packages_below)
+    for current, entries in tree(root, f"{_LAUNCH_NAMES}|[!.]*/", MAX_WALK_DEPTH + 1, SKIP_DIRS):
         in_launch = os.path.basename(current) == "launch" and current != top
-        for name in files:
-            if not (in_launch or name.endswith(LAUNCH_SUFFIXES) or tests and name.endswith(".py")):
+        for name, kind in entries:
+            if kind != "file" or not (in_launch or name.endswith(LAUNCH_SUFFIXES)
+                                      or tests and name.endswith(".py")):
                 continue  # (is_launch_file's and may_be_launch_test's, before a path is made)
             path = Path(current, name)
             if (is_launch_file(path, root) or tests and may_be_launch_test(path, root)) and \
