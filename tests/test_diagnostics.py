@@ -99,3 +99,28 @@ def test_line_numbers_without_cr_are_those_of_the_three_line_ends():
                     assert diagnostics.lines_between(sample, start, end) == \
                         len(pattern.findall(sample, start, end))
         assert diagnostics.lines_of(text) == (ends[str].split(text) if text else [])
+
+
+def test_a_path_is_displayed_as_relpath_below_the_working_directory_says(tmp_path, monkeypatch):
+    """display_path: below the working directory, the path relative to it (as ``os.path.
+    relpath`` makes it, without its steps), else the absolute path; a folder named "..x"
+    below it is shown absolute, as relpath's answer starting with ".." was."""
+    import os
+
+    from urdftool.diagnostics import display_path
+
+    def relpath_rule(text):
+        absolute = os.path.abspath(text)
+        relative = os.path.relpath(absolute)
+        return absolute if relative.startswith("..") else relative
+
+    (tmp_path / "a" / "..b" / "c").mkdir(parents=True)
+    texts = ["", ".", "..", "a", "a/", "a/../b", "/", "//", "//x", "///x", "..b", "a/..b/c",
+             "./a/./b//c", str(tmp_path), str(tmp_path) + "x", str(tmp_path / "a"), "../a",
+             "a/../../x", "..."]
+    for folder in ("/", tmp_path, tmp_path / "a", tmp_path / "a" / "..b"):
+        monkeypatch.chdir(folder)
+        assert [display_path(t) for t in texts] == [relpath_rule(t) for t in texts], folder
+    assert display_path("-") == "-" and display_path("<stdin>") == "<stdin>"
+    monkeypatch.chdir(tmp_path)
+    assert display_path(tmp_path / "a" / "f.launch") == os.path.join("a", "f.launch")

@@ -288,8 +288,17 @@ def display_path(path: str | os.PathLike) -> str:
     if text == "-" or text.startswith("<"):
         return text
     absolute = os.path.abspath(text)
-    try:
-        relative = os.path.relpath(absolute)
-    except ValueError:
-        return absolute
+    here = os.getcwd()  # (the system's: already normal, as abspath would make it)
+    if absolute.startswith("//") or here.startswith("//"):  # (POSIX's other root: relpath's)
+        try:
+            relative = os.path.relpath(absolute)
+        except ValueError:
+            return absolute
+    elif absolute == here:
+        relative = os.curdir
+    else:
+        # relpath's answer for a path below the working directory, without its Python steps:
+        # both are normal, so it is the rest after the directory's name and a separator
+        below = here if here.endswith(os.sep) else here + os.sep
+        relative = absolute[len(below):] if absolute.startswith(below) else os.pardir
     return absolute if relative.startswith("..") else relative

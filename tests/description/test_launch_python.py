@@ -374,3 +374,48 @@ def generate_launch_description():
     return LaunchDescription([ExecuteProcess(cmd=["cat", "urdf/r.urdf", "|", "xacro", "-"])])
 '''})
     assert _described(_read(root, "p/launch/x.launch.py")) == []
+
+
+def test_a_node_s_source_is_what_ast_unparse_writes():
+    """_source writes the calls launch files write most without ast.unparse (names, dotted
+    names, calls, lists, keywords, non-negative integers, plain texts): as unparse writes
+    them, and leaves every other node (quotes, backslashes, u'', negative or huge numbers,
+    ``**kwargs``, other expressions) to unparse."""
+    import ast
+
+    from urdftool.description.launch_python import _plain_source, _source
+
+    text = '''
+LaunchConfiguration("prefix")
+FindPackageShare(package="p")
+launch_ros.substitutions.FindPackageShare("p", other=[1, "b", x.y])
+Node(package="controller_manager", executable="spawner", arguments=["a", "--inactive"])
+f()
+f(u"x")
+f("it's")
+f('say "x"')
+f("a\\\\b")
+f("tab\\t")
+f(-1)
+f(2 ** 70)
+f(18446744073709551616)
+f(True)
+f(None)
+f(1.5)
+f(**kw)
+f(*a)
+f(a)(b)
+"x".join(y)
+f([a for a in b])
+'''
+    plain = 0
+    for node in ast.walk(ast.parse(text)):
+        written = _plain_source(node, 0)
+        plain += written is not None
+        assert written is None or written == ast.unparse(node), ast.dump(node)
+        assert _source(node) == (lambda t: t if len(t) <= 200 else t[:197] + "...")(
+            ast.unparse(node))
+    assert plain >= 40
+    for source in ("f(u'x')", "f(\"it's\")", "f('a\\\\b')", "f(-1)", "f(True)", "f(**kw)",
+                   "f(18446744073709551616)", "f(1.5)", "f(None)"):
+        assert _plain_source(ast.parse(source).body[0].value, 0) is None, source

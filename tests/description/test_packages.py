@@ -352,3 +352,63 @@ def test_package_references_are_at_the_files_lines_whatever_ends_them(end):
     data = ('<robot>\n  <!-- x\u2028y -->\n'
             '  <mesh filename="package://two/m.stl"/>\n</robot>\n').replace("\n", end).encode()
     assert package_references(data) == [(3, 19, "two")]
+
+
+def test_packages_below_after_the_launch_walk_are_those_its_own_walk_finds(tmp_path):
+    """After the launch-file walk of a repository (``files.tree``), packages_below takes its
+    listings rather than listing every folder again: the same packages (breadth first, the
+    shallowest of a name, no deeper than its own walk goes, a folder named package.xml and a
+    link leading out not packages), and a record that holds every folder it took."""
+    from urdftool.description import files, launch_configs, packages
+    from urdftool.description.record import SEARCH, recording
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / "outside").mkdir()
+    (tmp_path / "outside" / "package.xml").write_text("<package><name>out</name></package>")
+    root = tmp_path / "repo"
+    for folder, name in (("a/deeper", "same"), ("b", "same"), ("c", None), ("d/e/f/g/h/i", "deep"),
+                         ("d/e/f/g/h/i/j", "too_deep"), ("n", ""), ("z", "last")):
+        (root / folder).mkdir(parents=True)
+        if name is not None:
+            (root / folder / "package.xml").write_text(f"<package><name>{name}</name></package>")
+    (root / "c" / "package.xml").mkdir()  # a folder named so: no package
+    (root / "l").mkdir()
+    (root / "l" / "package.xml").symlink_to(tmp_path / "outside" / "package.xml")
+    with one_run():
+        alone = packages.packages_below(root)
+    assert alone == {"same": root / "b", "deep": root / "d/e/f/g/h/i", "n": root / "n",
+                     "last": root / "z"}
+    with one_run():
+        with recording() as walked:
+            launch_configs.launch_files(root)
+        assert files.tree_made(root, "package.xml|[!.]*/", 7, packages.SKIP_DIRS) is not None
+        with recording() as record:
+            assert packages.packages_below(root) == alone
+    listed = {key[0] for kind, key in walked.entries if kind == SEARCH}
+    assert listed == {key[0] for kind, key in record.entries if kind == SEARCH} and \
+        str(root / "d/e/f/g/h/i/j") in listed
+
+
+def test_a_walk_is_taken_only_from_a_tree_listing_all_it_lists(tmp_path):
+    """tree_made: a tree walked in this run answers a walk of fewer names (package.xml after
+    the launch files' names), as deep or less, with the same folders skipped; none other, and
+    none outside a run."""
+    from urdftool.description.files import tree, tree_made
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / "a").mkdir()
+    launch = "*.launch|*.py|*.xml|*.yaml|*.yml|[!.]*/"
+    skip = frozenset({"build"})
+    assert tree_made(tmp_path, "package.xml|[!.]*/", 7, skip) is None
+    tree(tmp_path, launch, 11, skip)  # (outside a run: not kept)
+    assert tree_made(tmp_path, "package.xml|[!.]*/", 7, skip) is None
+    with one_run():
+        tree(tmp_path, launch, 11, skip)
+        assert set(tree_made(tmp_path, "package.xml|[!.]*/", 7, skip)) == {
+            str(tmp_path), str(tmp_path / "a")}
+        assert tree_made(tmp_path, "x.xml|*.py|[!.]*/", 11, skip) is not None
+        for pattern, depth, other_skip in (("*.urdf|[!.]*/", 7, skip),  # a name not listed
+                                           ("package.xml|.*/", 7, skip),  # hidden folders
+                                           ("package.xml|[!.]*/", 12, skip),  # deeper
+                                           ("package.xml|[!.]*/", 7, frozenset())):
+            assert tree_made(tmp_path, pattern, depth, other_skip) is None, pattern

@@ -389,6 +389,49 @@ def walk(root, pattern: str, depth: int, skip=frozenset(), breadth_first: bool =
             pending.extend(below if breadth_first else reversed(below))
 
 
+@per_run
+def tree(root, pattern: str, depth: int, skip: frozenset = frozenset()) -> tuple:
+    """Every (folder, its listing) :func:`walk` gives (depth first, ``root`` named as
+    given), each listing a tuple: the whole walk, once per run, its record replayed to each
+    later asker. A later walk of fewer names of the same folders takes these listings
+    (:func:`tree_made`) rather than listing every folder again."""
+    found = tuple((folder, tuple(entries)) for folder, entries in walk(root, pattern, depth, skip))
+    _trees_made(os.path.abspath(root)).append((root, pattern, depth, skip))
+    return found
+
+
+@per_run
+def _trees_made(root: str) -> list:
+    """(root as named, pattern, depth, skip) of each :func:`tree` of the folder ``root``
+    (absolute) walked in this run: one list a run, grown by :func:`tree` (none outside a run)."""
+    return []
+
+
+def tree_made(root, pattern: str, depth: int, skip: frozenset = frozenset()) -> dict | None:
+    """Folder -> its listing, from a :func:`tree` of ``root`` (named alike) walked in this run
+    to ``depth`` levels or more with the same ``skip``, whose pattern lists every entry
+    ``pattern`` lists: its record replayed, so the asker's record holds every folder and
+    listing it takes; None when no such tree was walked. A listing holds the tree's entries:
+    more than ``pattern`` may list, never fewer."""
+    wanted = _unions(pattern)
+    for made_root, made, made_depth, made_skip in _trees_made(os.path.abspath(root)):
+        if made_root == root and made_depth >= depth and made_skip == skip and all(
+                _covers(has, asked) for has, asked in zip(_unions(made), wanted)):
+            return dict(tree(made_root, made, made_depth, made_skip))
+    return None
+
+
+def _covers(has: tuple, asked: tuple) -> bool:
+    """Whether every name the alternatives ``asked`` (:func:`_union`'s) match, ``has``
+    matches (told by names, endings and ``[!.]*`` alone: False when unsure)."""
+    names, ends, visible, other = asked
+    has_names, has_ends, has_visible, _ = has
+    return other is None and all(
+        name in has_names or name.endswith(has_ends) or has_visible and name[:1] not in ("", ".")
+        for name in names) and all(end.endswith(has_ends) for end in ends) and \
+        (not visible or has_visible or "" in has_ends)
+
+
 def _same(value):
     return value
 

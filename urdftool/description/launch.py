@@ -427,7 +427,13 @@ def is_launch_file(path: Path, root: Path) -> bool:
         folders = path.parent.relative_to(root).parts
     except ValueError:
         return False
-    return bool(folders) and folders[-1] == "launch" and \
+    return is_launch_name(name, bool(folders) and folders[-1] == "launch")
+
+
+def is_launch_name(name: str, in_launch_folder: bool) -> bool:
+    """:func:`is_launch_file` of a file named ``name``, in a ``launch`` folder below the root
+    or not (a walk's listing: no path made)."""
+    return name.endswith(LAUNCH_SUFFIXES) or in_launch_folder and \
         name.endswith((".py", ".xml", ".yaml", ".yml")) and not name.startswith(("__", "test_"))
 
 
@@ -700,4 +706,4 @@ def _yaml_entries(entries, when: tuple, launch: LaunchFile, depth: int) -> None:
 
 
 __all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Start",
-           "Value", "concat", "is_launch_file", "literal", "named", "read_launch_text", "substituted", "unknown", "was_read"]
+           "Value", "concat", "is_launch_file", "is_launch_name", "literal", "named", "read_launch_text", "substituted", "unknown", "was_read"]

@@ -36,12 +36,12 @@ import sys
 from pathlib import Path
 
 from urdftool.description.documents import read_text
-from urdftool.description.files import inside, kind_of, real_path, walk
-from urdftool.description.launch import (LAUNCH_SUFFIXES, LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE,
-                                         MAX_TEXT, Arg, Condition,
-                                         Description, Include, LaunchFile, ParamFile, Start, Value,
-                                         is_launch_file, is_launch_test, may_be_launch_test,
-                                         read_launch_text, was_read)
+from urdftool.description.files import inside, kind_of, real_path, tree, walk
+from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE, MAX_TEXT, Arg,
+                                         Condition, Description, Include, LaunchFile, ParamFile,
+                                         Start, Value, is_launch_file, is_launch_name,
+                                         is_launch_test, may_be_launch_test, read_launch_text,
+                                         was_read)
 from urdftool.description.launch_python import Modules, Room, read_python_launch
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
@@ -589,15 +589,15 @@ def launch_files(root: Path, tests: bool = False) -> tuple[list[Path], bool]:
 @per_run
 def _launch_files(root: Path, tests: bool) -> tuple[list[Path], bool]:
     found, top = [], os.fspath(root)
-    for current, files in _walk(root, MAX_WALK_DEPTH + 1, _LAUNCH_NAMES):
+    # (the whole walk, once per run: the package walk takes its listings, packages.packages_below)
+    for current, entries in tree(root, f"{_LAUNCH_NAMES}|[!.]*/", MAX_WALK_DEPTH + 1, SKIP_DIRS):
         in_launch = os.path.basename(current) == "launch" and current != top
-        for name in files:
-            if not (in_launch or name.endswith(LAUNCH_SUFFIXES) or tests and name.endswith(".py")):
-                continue  # (is_launch_file's and may_be_launch_test's, before a path is made)
-            path = Path(current, name)
-            if (is_launch_file(path, root) or tests and may_be_launch_test(path, root)) and \
-                    inside(path, root):
-                found.append(path)
+        # a regular file listed (not a link) in a folder walked (no link either) is inside
+        # ``root``: the listing's record says so, no real path is asked
+        for name, kind in entries:
+            if kind == "file" and (is_launch_name(name, in_launch) or tests and name.endswith(
+                    ".py") and may_be_launch_test(Path(current, name), root)):
+                found.append(Path(current, name))
                 if len(found) >= MAX_LAUNCH_FILES:
                     return found, True
     return found, False

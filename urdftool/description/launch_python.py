@@ -151,12 +151,14 @@ class _Reader:
         order = [entry] if entry is not None else []
         # then the functions handed over rather than called (OpaqueFunction(function=f)): a
         # helper the others call is walked where it is called, with its arguments
-        handed = set()
-        for node in _calls(self.tree):
-            if isinstance(node.func, ast.Name):
-                handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
-                              if isinstance(a, ast.Name))
-        order += [f for name, f in self.functions.items() if f is not entry and name in handed]
+        others = [name for name, f in self.functions.items() if f is not entry]
+        if others:  # (every node looked at: only when there is a function to hand over)
+            handed = set()
+            for node in _calls(self.tree):
+                if isinstance(node.func, ast.Name):
+                    handed.update(a.id for a in [*node.args, *(k.value for k in node.keywords)]
+                                  if isinstance(a, ast.Name))
+            order += [self.functions[name] for name in others if name in handed]
         for function in order:
             if function.name not in self.walked:
                 self.call_function(function, [], {}, module_env, (), 0)
@@ -1140,8 +1142,51 @@ def _calls(tree):
 
 
 def _source(node) -> str:
-    try:
-        text = ast.unparse(node)
-    except Exception:  # noqa: BLE001 - only for messages
-        return "?"
+    text = _plain_source(node, 0)
+    if text is None:
+        try:
+            text = ast.unparse(node)
+        except Exception:  # noqa: BLE001 - only for messages
+            return "?"
     return text if len(text) <= 200 else text[:197] + "..."
+
+
+def _plain_source(node, depth: int) -> str | None:
+    """``ast.unparse(node)`` of the calls a launch file writes most (``LaunchConfiguration(
+    'x')``, ``FindPackageShare('p')``: names, dotted names, calls, lists, keywords, integers
+    and texts of printable characters without quotes or backslashes), each as unparse writes
+    it; None for any other node (unparse then: an _Unparser and a visit a node cost about
+    100,000 instructions a call)."""
+    kind = type(node)
+    if kind is ast.Name:
+        return node.id
+    if depth > 8:
+        return None
+    if kind is ast.Constant:
+        value = node.value
+        if node.kind is not None:  # (u'x')
+            return None
+        if type(value) is str:
+            return f"'{value}'" if value.isprintable() and "'" not in value and \
+                '"' not in value and "\\" not in value else None
+        return repr(value) if type(value) is int and 0 <= value < 1 << 64 else None
+    if kind is ast.Attribute:
+        if type(node.value) not in (ast.Name, ast.Attribute):
+            return None
+        owner = _plain_source(node.value, depth + 1)
+        return None if owner is None else f"{owner}.{node.attr}"
+    if kind is ast.Call:
+        if type(node.func) not in (ast.Name, ast.Attribute):
+            return None
+        words = [_plain_source(node.func, depth + 1)]
+        words += [_plain_source(argument, depth + 1) for argument in node.args]
+        for keyword in node.keywords:
+            if keyword.arg is None:
+                return None
+            value = _plain_source(keyword.value, depth + 1)
+            words.append(None if value is None else f"{keyword.arg}={value}")
+        return None if None in words else f"{words[0]}({', '.join(words[1:])})"
+    if kind is ast.List:
+        items = [_plain_source(item, depth + 1) for item in node.elts]
+        return None if None in items else f"[{', '.join(items)}]"
+    return None

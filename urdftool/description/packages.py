@@ -18,19 +18,20 @@ from __future__ import annotations
 
 import os
 import re
+from collections import deque
 from pathlib import Path
 
 from urdftool.diagnostics import line_start, lines_between
 from urdftool.errors import PackageNotFound, close_names
 from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
-    read_regular, real_path, repository_root, resolved, walk
+    read_regular, real_path, repository_root, resolved, tree_made, walk
 from urdftool.description.install_layout import layout
 from urdftool.description.run_memo import per_run
 from urdftool.records import Frozen
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
-SKIP_DIRS = {  # tool and build folders no walk enters
-    ".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"}
+SKIP_DIRS = frozenset({  # tool and build folders no walk enters
+    ".git", ".venv", "venv", "node_modules", "__pycache__", "build", "install", "log"})
 _MAX_SCAN_DEPTH = 6
 _MAX_SCAN_DIRS = 20000
 _MAX_MANIFEST = 1024 * 1024  # [bytes]
@@ -369,15 +370,47 @@ def packages_below(root: Path) -> dict[str, Path]:
     :class:`PackageResolver` scans them: bounded, links not followed; the first of a name
     wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
     found: dict[str, Path] = {}
-    # (as _walk_dirs walks, each folder listed once for its subfolders and its package.xml)
-    for folder, entries in walk(root, "package.xml|[!.]*/", _MAX_SCAN_DEPTH + 1, SKIP_DIRS,
-                                breadth_first=True, most=_MAX_SCAN_DIRS + 1):
-        if not any(name == "package.xml" for name, _ in entries):  # none here: nothing to read
-            continue
+    for folder, regular in _package_folders(root):
         folder = Path(folder)
-        name = package_name(folder, root)
-        if name is not None and kind_of(folder / "package.xml") == "file":
+        # (a name: its package.xml was read, as a regular file: the record holds that read);
+        # one listed as a regular file (no link) of a folder walked is inside ``root``
+        name = package_name(folder, None if regular else root)
+        if name is not None:
             found.setdefault(name, folder)
+    return found
+
+
+_PACKAGE_WALK = "package.xml|[!.]*/"
+
+
+def _package_folders(root: Path) -> list[tuple[str, bool]]:
+    """(folder, whether its package.xml is listed as a regular file) for the folders below
+    ``root`` whose listing names a package.xml, breadth first, as
+    :func:`walk` lists them for package.xml (as _walk_dirs walks, each folder listed once for
+    its subfolders and its package.xml): from the listings of the repository's launch-file
+    walk when this run made it (:func:`~urdftool.description.files.tree_made`: the same
+    folders, listed for more names; its record replayed), else walked."""
+    depth, most = _MAX_SCAN_DEPTH + 1, _MAX_SCAN_DIRS + 1
+    listings = tree_made(root, _PACKAGE_WALK, depth, SKIP_DIRS)
+    if listings is None:
+        return [(folder, ("package.xml", "file") in entries) for folder, entries in walk(
+            root, _PACKAGE_WALK, depth, SKIP_DIRS, breadth_first=True, most=most)
+                if any(name == "package.xml" for name, _ in entries)]
+    found, sep = [], os.sep
+    pending, listed = deque([(os.fspath(root), 0)]), 0
+    while pending:
+        folder, level = pending.popleft()
+        entries = listings[folder]
+        listed += 1
+        if any(name == "package.xml" for name, _ in entries):
+            found.append((folder, ("package.xml", "file") in entries))
+        if listed == most:
+            break
+        if entries and level + 1 < depth:
+            # (a folder below named as walk names it: its parent's name, a separator, its own)
+            base, level = (folder if folder.endswith(sep) else folder + sep), level + 1
+            pending.extend([(base + name, level) for name, kind in entries
+                            if kind == "folder" and name not in SKIP_DIRS and name[:1] != "."])
     return found
 
 
