@@ -79,8 +79,11 @@ def test_settings_looked_for_are_in_the_record_of_a_check_by_path(package):
 def test_answers_remembered_for_one_robot_are_in_the_record_of_the_next(package):
     # per-run answers (the repository root, discovery's folders) and the mesh read once per
     # process are given to the second robot without asking again: their entries are replayed
+    # (each in a run, as every command checks: within one, the package walk takes the
+    # launch-file walk's listings, and its record is that walk's wider search)
     meshes.run_cache.clear()
-    alone = load_and_check(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
+    with one_run():
+        alone = load_and_check(str(package / "urdf" / "two.urdf.xacro"), CheckOptions()).record
     meshes.run_cache.clear()
     with one_run():
         load_and_check(str(package / "urdf" / "one.urdf.xacro"), CheckOptions())
