@@ -258,6 +258,22 @@ def test_where_a_missing_package_was_looked_for_is_written_once_per_file():
     assert stream.getvalue().count("package.xml below /ws") == 3
 
 
+def test_a_note_saying_why_a_file_was_not_checked_is_shown_with_notes_left_out():
+    from urdftool.errors import PackageNotFound
+
+    declared = str(PackageNotFound("sensors", ["package.xml below /ws"]).declared("bot"))
+    why = Finding("U006", "package-not-found", Severity.INFO, declared, Location("bot.urdf.xacro", 9))
+    other = Finding("U212", "zero-effort-or-velocity", Severity.INFO, "a note", Location("a.urdf", 3))
+    results = [FileResult("bot.urdf.xacro", [why]), FileResult("a.urdf", [other])]
+    assert results[0].unexpanded  # (the run exits 2 for it)
+    text = _text(results, notes=False)
+    assert "bot.urdf.xacro:9: info U006 package 'sensors' not found" in text
+    assert "a note" not in text
+    assert text.splitlines()[-1] == ("1 file checked, 1 not (a package it needs is not "
+                                     "installed): 0 errors, 0 warnings, 1 note (1 note not shown: "
+                                     "--notes shows them)")
+
+
 def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
     """A group whose messages are one text without their names (and give no value in double
     quotes) is written as its first message without looking for figures (_grouped's alike):

@@ -151,12 +151,19 @@ class FileResult(Record):
     @property
     def unexpanded(self) -> bool:
         """Whether its robot was not expanded, so not checked, for a package this machine
-        lacks (U006: the environment's, not the robot's, a warning; a note for a dependency its
-        package.xml declares, the workspace's; but not for a library of macros nothing here
-        builds, a note too, which would make no robot to check)."""
-        return any(finding.code == "U006" and (
+        lacks (:attr:`not_checked_by`)."""
+        return bool(self.not_checked_by)
+
+    @property
+    def not_checked_by(self) -> list[Finding]:
+        """The findings saying its robot was not expanded, so not checked, for a package this
+        machine lacks (U006: the environment's, not the robot's, a warning; a note for a
+        dependency its package.xml declares, the workspace's, which a report shows even where
+        it leaves notes out: the run exits 2 for it; but not for a library of macros nothing
+        here builds, a note too, which would make no robot to check)."""
+        return [finding for finding in self.findings if finding.code == "U006" and (
             finding.severity != Severity.INFO or PackageNotFound.DECLARED in finding.message
-            and PackageNotFound.LIBRARY not in finding.message) for finding in self.findings)
+            and PackageNotFound.LIBRARY not in finding.message)]
 
     @property
     def failures(self) -> list[Finding]:

@@ -68,7 +68,9 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     for result in results:
         shown = result.findings
         if not (notes(result) if callable(notes) else notes):
-            shown = [f for f in shown if f.severity is not Severity.INFO]
+            # (but a note saying why the file was not checked, which the exit code counts)
+            kept = {id(f) for f in result.not_checked_by}
+            shown = [f for f in shown if f.severity is not Severity.INFO or id(f) in kept]
             hidden += len(result.findings) - len(shown)
         if not shown:
             continue
