@@ -706,4 +706,5 @@ def _yaml_entries(entries, when: tuple, launch: LaunchFile, depth: int) -> None:
 
 
 __all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Start",
-           "Value", "concat", "is_launch_file", "is_launch_name", "literal", "named", "read_launch_text", "substituted", "unknown", "was_read"]
+           "Value", "concat", "is_launch_file", "is_launch_name", "literal", "named",
+           "read_launch_text", "substituted", "unknown", "was_read"]

@@ -345,8 +345,8 @@ def controller_interface_mismatch(robot):
         if verdict.state == "unknown" and any(not _mismatches(robot, rival) for rival in rivals):
             continue  # one of the file's alternatives fits the robot as checked: it is the one
         if verdict.state == "unknown" and rivals:
-            verdict = Runs("unknown", f"'{controller.name}' is one of {len(rivals) + 1} controllers for these joints "
-                                      f"({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
+            verdict = Runs("unknown", f"'{controller.name}' is one of {len(rivals) + 1} "
+                                      f"controllers for these joints ({', '.join(sorted({r.name for r in rivals})[:3])}, ...), and no "
                                       "launch file of the robot says which starts; none fits the "
                                       "robot as checked")
         joints = ", ".join(dict.fromkeys(ref.name for ref, _, _ in mismatches))

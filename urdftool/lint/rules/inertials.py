@@ -984,9 +984,10 @@ def com_outside_hull(robot):
     another part; or the mass is right and the drawing is split otherwise (a motor drawn in
     the next link's mesh, KUKA's link_N drawn as its flange), which the message names as the
     other cause (a hull counting the neighbouring links told neither apart on the sweep: it
-    held Doosan's CAD-frame centres of mass and myCobot's placeholders as well). Skipped when some geometry cannot be measured (a mesh missing, refused or
-    unreadable), and for a frame's placeholder inertial (a link without geometry of its own
-    whose centre of mass is its origin: a tool centre point between a gripper's fingers).
+    held Doosan's CAD-frame centres of mass and myCobot's placeholders as well). Skipped when
+    some geometry cannot be measured (a mesh missing, refused or unreadable), and for a
+    frame's placeholder inertial (a link without geometry of its own whose centre of mass is
+    its origin: a tool centre point between a gripper's fingers).
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
 
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
