@@ -396,12 +396,35 @@ def robot_name_missing(robot):
 
     urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name. On a part of a
     robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
+    A warning naming the condition on a file xacro expands that no launch file of its
+    repository builds: a file another package's robot includes needs no name, since xacro keeps
+    only the includer's ``<robot>`` (Autoware's ``<model>_description/urdf/vehicle.xacro``,
+    included by tier4_vehicle_launch's robot ``vehicle``); loaded alone, urdfdom refuses it.
 
     Bad: ``<robot>``
     Good: ``<robot name="my_robot">``
     """
     if not robot.root.get("name"):
-        yield robot.root, "<robot> has no name attribute; add name=\"...\""
+        message = "<robot> has no name attribute; add name=\"...\""
+        if _built_by_nothing_here(robot):
+            message = Conditional(
+                "<robot> has no name attribute: urdfdom refuses it if it is loaded alone (add "
+                "name=\"...\"); no launch file here builds it, and a file another robot's xacro "
+                "includes needs none (xacro keeps only the includer's <robot>)")
+        yield robot.root, message
+
+
+def _built_by_nothing_here(robot) -> bool:
+    """Whether ``robot`` is a file xacro expands (not a ``.urdf``, which its consumers read as
+    written) that no launch configuration of its repository describes, however built."""
+    from pathlib import Path
+
+    from urdftool.description.runtime import runtime
+    from urdftool.description.urdf import is_urdf_name
+
+    if robot.path == "-" or is_urdf_name(Path(robot.path).name):
+        return False
+    return not runtime(robot).described
 
 
 @rule("U012", "unsupported-version", Severity.ERROR)

@@ -1,0 +1,60 @@
+"""U011 (robot-name-missing) over a folder check: a nameless <robot> is an error where a launch
+file of its repository loads it as the robot, and a warning naming the condition in a xacro
+file nothing here builds (Autoware's <model>_description/urdf/vehicle.xacro, which
+tier4_vehicle_launch's named robot includes)."""
+
+from __future__ import annotations
+
+PACKAGE = """<?xml version="1.0"?>
+<package format="3"><name>car_description</name><version>0.1.0</version>
+<description>d</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
+<buildtool_depend>ament_cmake</buildtool_depend><exec_depend>xacro</exec_depend></package>
+"""
+VEHICLE = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://ros.org/wiki/xacro">
+  <link name="base_link">
+    <visual><geometry><box size="4 2 1.5"/></geometry></visual>
+  </link>
+</robot>
+"""
+LAUNCH = """<launch>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description"
+           value="$(command 'xacro $(find-pkg-share car_description)/urdf/vehicle.xacro')"/>
+  </node>
+</launch>
+"""
+
+
+def _package(tmp_path, launched: bool):
+    folder = tmp_path / "car_description"
+    (folder / "urdf").mkdir(parents=True)
+    (folder / ".git").mkdir()
+    (folder / "package.xml").write_text(PACKAGE)
+    (folder / "urdf" / "vehicle.xacro").write_text(VEHICLE)
+    if launched:
+        (folder / "launch").mkdir()
+        (folder / "launch" / "vehicle.launch.xml").write_text(LAUNCH)
+    return folder
+
+
+def _u011(folder):
+    from urdftool.lint.runner import check_paths
+    from urdftool.lint.settings import CheckRequest
+
+    run = check_paths([str(folder)], CheckRequest(jobs=1))
+    return [finding for result in run.results for finding in result.findings
+            if finding.code == "U011"]
+
+
+def test_a_nameless_xacro_robot_nothing_here_builds_is_a_warning_naming_the_condition(tmp_path):
+    found = _u011(_package(tmp_path, launched=False))
+    assert [f.severity.value for f in found] == ["warning"]
+    assert "no launch file here builds it" in found[0].message
+    assert "urdfdom refuses it" in found[0].message
+
+
+def test_a_nameless_xacro_robot_a_launch_file_loads_is_an_error(tmp_path):
+    found = _u011(_package(tmp_path, launched=True))
+    assert [(f.severity.value, f.message) for f in found] == [
+        ("error", '<robot> has no name attribute; add name="..."')]
