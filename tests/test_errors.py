@@ -78,6 +78,17 @@ def test_a_name_holding_a_substitution_without_its_dollar_says_so():
     assert "substitution" not in errors.available("links", "${name}_thigh", names)
 
 
+def test_a_name_differing_only_in_white_space_says_so_and_the_list_is_quoted():
+    """Kristine23/Shadow_Hand_Public's shadow_hand (1).urdf writes '   rh_forearm' (three spaces)
+    as the link's name and 'rh_forearm' in its joint: the hint and the list showed the two
+    alike ('did you mean '   rh_forearm'? available links:    rh_ff_taxel_15, ...')."""
+    names = ["   rh_forearm", "   rh_palm", "rh_wrist"]
+    text = errors.available("links", "rh_forearm", names)
+    assert text.startswith("did you mean '   rh_forearm'? the two differ only in white space")
+    assert "available links: '   rh_forearm', '   rh_palm', 'rh_wrist'" in text
+    assert "white space" not in errors.available("links", "rh_wirst", ["rh_wrist", "rh_palm"])
+
+
 def test_a_name_of_the_same_words_reordered_is_the_one_suggested():
     """youbot_gz_ros2's <gazebo reference='gripper_finger_l_link'>: difflib ranked the other
     finger's gripper_finger_link_r first; the link meant is gripper_finger_link_l."""

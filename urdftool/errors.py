@@ -173,12 +173,19 @@ def available(kind: str, wanted: str, names) -> str:
     name (one leg's of four, for ``{name}_hip``) would mislead."""
     names = sorted({name for name in names if name})  # unnamed elements are another rule's business
     bare = _BARE_SUBSTITUTION.search(wanted)
-    close = [] if bare else close_names(wanted, names, n=1)
+    # a name written with white space at an end, which readers keep: shown alike unquoted
+    spaced = None if bare else next((name for name in names if name != wanted
+                                     and name.strip() == wanted.strip()), None)
+    close = [] if bare or spaced else close_names(wanted, names, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
+    if spaced is not None:
+        hint = (f"did you mean '{spaced}'? the two differ only in white space, which URDF "
+                "readers keep (names are compared as written); ")
     if bare:
         hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
-    return f"{hint}available {kind}: {listed(names, quote=False) or '(none)'}"
+    quote = any(name != name.strip() for name in names)
+    return f"{hint}available {kind}: {listed(names, quote=quote) or '(none)'}"
 
 
 def listed(names, quote: bool = True) -> str:
