@@ -50,3 +50,26 @@ def test_an_element_left_out_by_every_condition_says_which_arguments_dropped_it(
     assert "<visual> has no <geometry>: its <geometry>" + under.format(4) in findings["U401"]
     assert "has no <parent link=\"...\"/>: its <parent>" + under.format(8) in findings["U104"]
     assert findings["U104"].endswith(", false then (--arg NAME=VALUE checks another build)")
+
+
+def test_a_robot_root_without_a_name_is_told_from_one_with_a_name(tmp_path):
+    """A file written for xacro to include (Autoware's vehicle.xacro, bluerov2's
+    actuators.xacro) has a nameless <robot>; the xacro namespace's xmlns is no name, and a
+    comment or a <robot> of a macro body does not count."""
+    from urdftool.description.xacro_text import nameless_robot
+
+    cases = {
+        "part.xacro": '<robot xmlns:xacro="http://ros.org/wiki/xacro"><link name="a"/></robot>',
+        "named.xacro": '<robot xmlns:xacro="http://ros.org/wiki/xacro"\n name="car"/>',
+        "commented.xacro": '<!-- <robot name="x"> --><robot xmlns:xacro="x"/>',
+        "plain.urdf": '<robot><link name="a"/></robot>',
+    }
+    for name, text in cases.items():
+        (tmp_path / name).write_text(text)
+    assert [nameless_robot(tmp_path / name) for name in cases] == [True, False, True, False]
+    # own_links=False: and no <link> or <joint> of its own outside macro definitions
+    (tmp_path / "calls.xacro").write_text(
+        '<robot xmlns:xacro="x"><xacro:macro name="m"><link name="in_macro"/></xacro:macro>'
+        '<xacro:thruster_macro id="0"/></robot>')
+    assert [nameless_robot(tmp_path / name, own_links=False)
+            for name in ("part.xacro", "calls.xacro")] == [False, True]

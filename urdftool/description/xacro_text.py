@@ -247,6 +247,25 @@ def writes_no_links(path, packages, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
     return not calls_make_links(written, includes, unfollowed, resolver_for, limit)
 
 
+def nameless_robot(path, limit: int = DEFAULT_MAX_FILE_SIZE, own_links: bool = True) -> bool:
+    """Whether the ``.xacro`` file ``path`` has a ``<robot>`` root without a name: what a file
+    written for xacro to include looks like (xacro keeps only the includer's root, so its name
+    is not needed), and what urdfdom refuses loaded alone. ``own_links`` False: and it writes
+    no ``<link>`` or ``<joint>`` of its own outside macro definitions (its links, if any, come
+    from the macros it calls: bluerov2's actuators.xacro)."""
+    written = _xacro_source(Path(path), limit)
+    root = _ROBOT_TAG.search(written) if written is not None else None
+    if root is None or _NAME_ATTRIBUTE.search(root.group(0)) is not None:
+        return False
+    return own_links or _OWN_LINK.search(_MACRO_BODY.sub(b"", written)) is None
+
+
+_ROBOT_TAG = re.compile(rb"<robot\b[^<>]*>")
+_NAME_ATTRIBUTE = re.compile(rb"\sname\s*=")
+_OWN_LINK = re.compile(rb"<(?:link|joint)\b")
+_MACRO_BODY = re.compile(rb"<(?:xacro:)?macro\s.*?</(?:xacro:)?macro\s*>", re.S)
+
+
 def macro_library(path, limit: int = DEFAULT_MAX_FILE_SIZE) -> bool:
     """Whether the xacro file ``path`` is a library of macros: it defines one or more, and its
     own top level calls none and writes nothing but definitions, includes and extension blocks

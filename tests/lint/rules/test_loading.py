@@ -58,3 +58,38 @@ def test_a_nameless_xacro_robot_a_launch_file_loads_is_an_error(tmp_path):
     found = _u011(_package(tmp_path, launched=True))
     assert [(f.severity.value, f.message) for f in found] == [
         ("error", '<robot> has no name attribute; add name="..."')]
+
+
+FRAGMENT = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro"{name}>
+  <xacro:thruster_macro robot_namespace="${{namespace}}" thruster_id="0">
+    <origin xyz="0.1 -0.1 0" rpy="0 0 0.785"/>
+  </xacro:thruster_macro>
+</robot>
+"""
+
+
+def _u005(tmp_path, name: str):
+    folder = tmp_path / "rov_description"
+    (folder / "urdf").mkdir(parents=True)
+    (folder / ".git").mkdir()
+    (folder / "package.xml").write_text(PACKAGE.replace("car_description", "rov_description"))
+    (folder / "urdf" / "actuators.xacro").write_text(FRAGMENT.format(name=name))
+    from urdftool.lint.runner import check_paths
+    from urdftool.lint.settings import CheckRequest
+
+    run = check_paths([str(folder)], CheckRequest(jobs=1))
+    return [finding for result in run.results for finding in result.findings
+            if finding.code == "U005"]
+
+
+def test_a_nameless_fragment_calling_a_macro_its_includer_defines_is_a_warning(tmp_path):
+    """DTUAqua-ObsTek/bluerov2's urdf/gazebo/actuators.xacro: thruster macro calls inside a
+    nameless <robot>, for base.xacro to include inside its macro (which defines ${namespace}
+    and includes the thruster macro); base.xacro names it by a path that moved, so nothing
+    here reaches it, and alone xacro fails on the macro. A named robot stays an error."""
+    found = _u005(tmp_path / "nameless", "")
+    assert [f.severity.value for f in found] == ["warning"]
+    assert "its <robot> has no name" in found[0].message
+    named = _u005(tmp_path / "named", ' name="rov"')
+    assert [f.severity.value for f in named] == ["error"]

@@ -120,6 +120,12 @@ U005 = declare("U005", "xacro-error", Severity.ERROR, """
     nothing here includes it nor builds it, and xacro fails on a name the robot including it
     would define (``${name}``, a macro): as the other findings of such a part, right only
     inside that robot (talos_description's left_arm.transmissions.urdf.xacro).
+    A **warning** naming the condition when such a file calls macros defined nowhere here,
+    writes no link of its own and its ``<robot>`` has no name, as a file written for xacro to
+    include needs none (xacro keeps only the includer's root): it fails if built alone, and
+    inside the robot including it that robot may define the name (bluerov2's
+    urdf/gazebo/actuators.xacro, thruster macro calls with ``${namespace}``, which base.xacro's
+    macro defines).
 
     Bad: ``<origin xyz="${wheel_radus} 0 0"/>`` (misspelt property)
     Good: ``<origin xyz="${wheel_radius} 0 0"/>``
@@ -308,7 +314,12 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
       macros writing <transmission>, <gazebo> or <ros2_control> blocks:
       :func:`~urdftool.description.xacro_text.writes_no_links`) and xacro fails on a name the
       robot including it would define (talos' left_arm.transmissions.urdf.xacro: ``${name}``);
-      a syntax error, a missing file, stay errors;
+      a syntax error, a missing file, stay errors. A warning, not a note, when it calls
+      macros not known here, writes no link of its own and its ``<robot>`` has no name, as a
+      file written for xacro to include
+      (:func:`~urdftool.description.xacro_text.nameless_robot`: bluerov2's
+      urdf/gazebo/actuators.xacro, thruster macro calls with ``${namespace}`` that its
+      includer's macro defines, named by a path that moved);
     - U006: a library of macros (:func:`~urdftool.description.xacro_text.macro_library`:
       talos' xtion_pro_live.urdf.xacro, including ``$(find reemc)``) whose package's name is
       not nearly that of one found here (doosan-robot2's libraries naming the ROS 1
@@ -318,25 +329,35 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
 
     ``packages``, ``limit``: the check's ``--package`` paths and file size limit [bytes]."""
     from urdftool.description.runtime import builds
-    from urdftool.description.xacro_text import macro_library, writes_no_links
+    from urdftool.description.xacro_text import macro_library, nameless_robot, writes_no_links
 
+    severity = Severity.INFO
     if error.kind == "xacro" and any(said in error.message for said in _UNDEFINED):
-        rule, is_part = U005, lambda: writes_no_links(path, packages, limit)
-        said = ("a part of a robot defined elsewhere (its top level writes no link, only blocks "
-                "such as <transmission>, <gazebo> or <ros2_control>, through macro calls too), "
-                "right only inside the robot that includes it, which defines that name; no file "
-                "here includes it, and no launch file here builds it")
+        if builds(path):
+            return None
+        rule = U005
+        if writes_no_links(path, packages, limit):
+            said = ("a part of a robot defined elsewhere (its top level writes no link, only "
+                    "blocks such as <transmission>, <gazebo> or <ros2_control>, through macro "
+                    "calls too), right only inside the robot that includes it, which defines "
+                    "that name; no file here includes it, and no launch file here builds it")
+        elif nameless_robot(path, limit, own_links=False):
+            severity = Severity.WARNING
+            said = ("when it is built alone: its <robot> has no name and writes no link of its "
+                    "own, as a file written for xacro to include, and no file or launch file here "
+                    "builds it (inside the robot including it, that robot may define the name)")
+        else:
+            return None
     elif error.kind == "package" and not error.close:
-        rule, is_part = U006, lambda: macro_library(path, limit)
+        if builds(path) or not macro_library(path, limit):
+            return None
+        rule = U006
         said = (f"{PackageNotFound.LIBRARY}, which no launch file here builds: expanded, it "
                 "would make no robot to check, so nothing is lost (its macros are checked in the "
                 "robots calling them)")
     else:
         return None
-    if builds(path) or not is_part():
-        return None
-    return [rule.finding(Conditional(f"{error.message}; {said}", Severity.INFO),
-                         error.location)]
+    return [rule.finding(Conditional(f"{error.message}; {said}", severity), error.location)]
 
 
 def _declared(path: str, error) -> set[str]:
