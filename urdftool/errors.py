@@ -14,6 +14,16 @@ class UsageError(UrdftoolError):
     """The command line asked for something impossible (exit code 2)."""
 
 
+class OptionError(UsageError, TypeError, ValueError):
+    """An option given to urdftool's Python API of a kind or value the command line and the
+    settings refuse; ``option`` names it. A TypeError and a ValueError too, as Python's
+    callers expect of a wrong argument (raised by :mod:`urdftool.description.inputs`' guard)."""
+
+    def __init__(self, option: str, message: str):
+        super().__init__(message)
+        self.option = option
+
+
 class SettingsError(UrdftoolError):
     """A settings file, or a setting passed to the API, is malformed or names a path it may
     not."""
