@@ -368,3 +368,22 @@ def test_a_listings_pattern_matches_as_fnmatch_does(pattern):
                     for kind in ("file", "folder", "link", "other"))
     assert files._selected(pattern)(entries) == \
         tuple(entry for entry in entries if matches(*entry, pattern))
+
+
+def test_a_file_replaced_keeps_its_owner_and_group_where_the_writer_may_give_them(tmp_path):
+    """``sudo urdftool check --fix`` (and ``-o`` over a file of another's) left the file root's:
+    the temporary file that replaces it kept the writer's owner."""
+    target = tmp_path / "robot.urdf"
+    target.write_text("<robot/>")
+    others = [group for group in os.getgroups() if group != os.getegid()]
+    if os.geteuid() == 0:
+        owner, group = 4321, 4321
+    elif others:
+        owner, group = os.geteuid(), others[0]
+    else:
+        pytest.skip("not root and in no other group: no owner to give a file")
+    os.chown(target, owner, group)
+    files.write_file(target, "<robot name='x'/>", rewrites=True)
+    kept = target.stat()
+    assert (kept.st_uid, kept.st_gid) == (owner, group)
+    assert target.read_text() == "<robot name='x'/>"

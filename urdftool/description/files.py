@@ -805,7 +805,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     a link at ``path`` by which this process read a file is followed to it, and the link is
     kept (a fix of a robot file that is a committed link replaced the link with a copy and
     left the robot unfixed). ``private``: readable and writable by its owner only, whatever
-    was there and whatever the umask (a secret: the cache's signing key)."""
+    was there and whatever the umask (a secret: the cache's signing key). A regular file
+    replaced keeps its owner and group where this process may give them
+    (:func:`_keep_owner`)."""
     folder, target, existing = _written(path, rewrites)
     path = Path(path)
     if isinstance(data, str):
@@ -837,6 +839,8 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     try:
+        if existing is not None and stat.S_ISREG(existing.st_mode) and not private:
+            _keep_owner(descriptor, existing)
         with open(descriptor, "wb") as handle:
             handle.write(data)
         os.chmod(temporary, mode)
@@ -844,6 +848,18 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _keep_owner(descriptor: int, existing: os.stat_result) -> None:
+    """Give the temporary file that replaces ``existing`` its owner and group, as far as this
+    process may (root: both; another user: a group of theirs; else they stay the writer's, as
+    ``sed -i`` leaves them): ``sudo urdftool check --fix`` made a user's robot root's."""
+    for owner, group in ((existing.st_uid, existing.st_gid), (-1, existing.st_gid)):
+        try:
+            os.fchown(descriptor, owner, group)
+            return
+        except PermissionError:
+            continue
 
 
 def check_write(path, rewrites: bool | frozenset = False) -> None:
