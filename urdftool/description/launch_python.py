@@ -114,8 +114,10 @@ def read_python_launch(path: Path, display: str, text: str,
     try:
         tree = ast.parse(text, filename=display)
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
-        launch.problem = f"not valid Python: {type(error).__name__}: {error}"
-        launch.problem_line = getattr(error, "lineno", None)
+        launch.problem = f"not valid Python: {type(error).__name__}: {error}" if str(error) \
+            else "not valid Python: nested too deeply for Python's parser"  # (MemoryError,
+        launch.problem_line = getattr(error, "lineno", None)  # RecursionError: no text; the
+        # launch file does not start either: "s_push: parser stack overflow")
         return launch
     reader = _Reader(tree, entry, room, path, modules or Modules())
     try:
