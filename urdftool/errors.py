@@ -350,6 +350,15 @@ class PlotError(UrdftoolError, ValueError):
     """A picture cannot be written in the asked format; the caller names the option."""
 
 
+def described(error: BaseException) -> str:
+    """An exception as a message says it: ``Name: text``, the one way urdftool quotes an error
+    it did not make. Its name once when its text already starts with it (pycollada's said
+    "DaeMalformedError: DaeMalformedError: XML Parsing Error..."), alone when it has no text
+    (a MemoryError said "MemoryError: " and nothing)."""
+    name, text = type(error).__name__, str(error)
+    return text if text.startswith(f"{name}:") else f"{name}: {text}" if text else name
+
+
 # The libraries only the analysis commands and a few rules need, by import name; they come
 # with urdftool's ``analysis`` extra (a lint-only install has none of them).
 ANALYSIS_MODULES = {"pinocchio": "pin", "fcl": "python-fcl", "yourdfpy": "yourdfpy",

@@ -29,7 +29,7 @@ from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
-from urdftool.errors import MeshProblem
+from urdftool.errors import MeshProblem, described
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
@@ -217,8 +217,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
             loaded = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh",
                                   process=True, resolver=_geometry_resolver(path, limits))
     except Exception as error:  # trimesh raises many types for a bad file
-        raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {type(error).__name__}: "
-                                     f"{error}") from None
+        raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {described(error)}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
                                      f"{_binary_stl_mismatch(data) if suffix == '.stl' else ''}")
