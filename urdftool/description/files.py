@@ -793,8 +793,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
                private: bool = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
-    A regular file keeps its permissions. UsageError when the folder is missing or reached
-    through a link leading outside its repository, ``path`` is a folder, or the system
+    A regular file keeps its permissions, and one no one may write (mode 0444: a generated or
+    installed file) is refused, as ``>`` refuses it. UsageError when the folder is missing or
+    reached through a link leading outside its repository, ``path`` is a folder, or the system
     refuses; and when the file at ``path`` is one this process read (or was told a worker
     read: :func:`read_elsewhere`), by any spelling, bind or link of its folder: a robot, an
     include, a mesh or a companion the command's output would replace (a hard link of one is
@@ -823,6 +824,10 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
                                  stat.S_ISFIFO(existing.st_mode)):
         _write_in_place(path, target, data)  # /dev/null, /dev/full, a named pipe: never replaced
         return
+    if existing is not None and stat.S_ISREG(existing.st_mode) and \
+            not existing.st_mode & 0o222 and not private:  # (replacing it by a rename would
+        raise UsageError(f"cannot write '{path}': it is read-only (mode "  # pass over that,
+                         f"{stat.S_IMODE(existing.st_mode):04o})")  # as root or not)
     if private:
         mode = 0o600
     elif existing is not None and stat.S_ISREG(existing.st_mode):
