@@ -365,7 +365,7 @@ def _xml_error_line(error, text: str) -> int | None:
 
 # The largest line lxml's sourceline setter takes (libxml2's unsigned short); lxml reads larger
 # lines itself (XML_PARSE_BIG_LINES). An SRDF of 100,000 entries crashed 61 rules with
-# "OverflowError: value too large to convert to unsigned short" (U900 each).
+# "OverflowError: value too large to convert to unsigned short" (a crash of each rule).
 _MOST_SOURCELINE = 65535
 
 
