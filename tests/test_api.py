@@ -164,3 +164,44 @@ def test_a_request_is_held_to_what_the_command_line_takes(broken, options, messa
     ``timeout=nan`` and ``max_triangles=nan`` no limit, ``xacro_args="a:=1"`` Python's error."""
     with pytest.raises(urdftool.UrdftoolError, match=message):
         urdftool.check_paths(["robots"], **options)
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"xacro_args": ["a:=1"]}, r"xacro_args must map names \(str\) to values \(str\), not \["),
+    ({"packages": "x"}, r'packages must map names \(str\) to values \(str\), not "x"'),
+    ({"packages": {"a": 5}}, r"packages must map names .* not \{ a = 5 \}"),
+    ({"allow_env": "no"}, 'allow_env must be True or False, not "no"'),
+    ({"as_written": 1}, "as_written must be True or False, not 1"),
+    ({"max_file_size": -1}, "max_file_size must be a whole number of bytes from 1 to"),
+    ({"max_file_size": "1M"}, 'max_file_size must be a whole number of bytes .* not "1M"'),
+])
+def test_load_holds_its_options_by_the_one_guard_of_a_callers_options(options, message):
+    """The same guard as ``check_paths``' (a size limit is SettingsError there, as here):
+    ``load(packages="x")`` was Python's AttributeError from inside the resolver,
+    ``xacro_args=["a:=1"]`` another, ``allow_env="no"`` and ``as_written=1`` true, ``max_file_size
+    ="1M"`` a TypeError of a comparison: now the guard ``check_paths`` uses names the option, an
+    error that is a TypeError, a ValueError and a UsageError at once."""
+    with pytest.raises(urdftool.UrdftoolError, match=message) as caught:
+        urdftool.load(ROBOTS / "r2d2" / "r2d2.urdf.xacro", **options)
+    if "max_file_size" not in options:
+        assert isinstance(caught.value, TypeError) and isinstance(caught.value, ValueError)
+        assert caught.value.option == next(iter(options))
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: urdftool.check_paths(["robots"], progress=5), "progress must be callable, not 5"),
+    (lambda: urdftool.check_paths(["robots"], {"strict": True}),
+     "request must be a CheckRequest, not dict"),
+    (lambda: urdftool.check_paths(["robots"], companions=5),
+     "companions must be a Companions or a map of its fields, not 5"),
+    (lambda: urdftool.check_paths(["robots"], companions={"srfd": "x.srdf"}),
+     "no option 'srfd'; did you mean 'srdf'"),
+    (lambda: urdftool.check_file("robots/r2d2/r2d2.urdf.xacro", strictt=True),
+     "no option 'strictt'; did you mean 'strict'"),
+])
+def test_the_api_names_an_option_it_does_not_take(broken, call, message):
+    """Each was Python's error from inside (``'int' object is not callable`` after the targets
+    were walked, ``'dict' object has no attribute 'companions'``, ``unexpected keyword
+    argument``), now an OptionError naming the option (and the close one)."""
+    with pytest.raises(urdftool.OptionError, match=message):
+        call()

@@ -121,3 +121,19 @@ def test_listed_names_a_dozen_each_cut_and_says_how_many():
     many = listed(f"n{i}" for i in range(5000))
     assert many.endswith("'n11', ... (5000 in all)") and many.count("'") == 24
     assert listed(["x" * 100]) == f"'{'x' * 64}... (100 characters)'"
+
+
+def test_described_names_an_error_once_and_says_one_without_text():
+    """pycollada's error said its own name: "does not load: DaeMalformedError:
+    DaeMalformedError: XML Parsing Error: ..." (a binary STL named .dae); a MemoryError said
+    "MemoryError: " and nothing."""
+    from urdftool.errors import described
+
+    class DaeMalformedError(Exception):
+        pass
+
+    assert described(DaeMalformedError("DaeMalformedError: XML Parsing Error: x")) == \
+        "DaeMalformedError: XML Parsing Error: x"
+    assert described(ValueError("bad")) == "ValueError: bad"
+    assert described(MemoryError()) == "MemoryError"
+    assert described(KeyError("k")) == "KeyError: 'k'"

@@ -140,6 +140,25 @@ def test_the_fixture_fails_a_refused_check_in_one_line_and_no_path_is_no_pass(pr
         word in outcome.stdout.str() for word in ("Traceback", "targets.py", "another exception"))
 
 
+def test_the_fixture_fails_an_option_it_does_not_take_in_one_line(project):
+    """``urdftool_check("robots", strictt=True)`` or ``strict="yes"``: a traceback of
+    CheckRequest's "unexpected keyword argument", or strict; now the one guard's one line."""
+    project.makepyfile(test_robots="""
+        def test_misspelt(urdftool_check):
+            urdftool_check("robots", strictt=True)
+
+        def test_not_a_flag(urdftool_check):
+            urdftool_check("robots", strict="yes")
+        """)
+    outcome = project.runpytest_inprocess("test_robots.py", "-p", "no:cacheprovider",
+                                          "-p", "no:xdist")
+    said = [line for line in outcome.stdout.lines if line.startswith("urdftool: error: ")]
+    assert [line.split(";")[0] for line in said] == [
+        "urdftool: error: no option 'strictt'", 'urdftool: error: strict must be True or False, '
+        'not "yes"']
+    assert outcome.ret == pytest.ExitCode.TESTS_FAILED and "Traceback" not in outcome.stdout.str()
+
+
 def test_without_the_option_nothing_is_collected(project):
     result = project.runpytest_inprocess("robots", "-p", "no:cacheprovider", "-p", "no:xdist")
     assert result.ret == pytest.ExitCode.NO_TESTS_COLLECTED

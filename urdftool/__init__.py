@@ -24,6 +24,7 @@ _LAZY = {
     "Edit": "urdftool.diagnostics",
     "UrdftoolError": "urdftool.errors", "LoadError": "urdftool.errors",
     "SettingsError": "urdftool.errors", "TargetError": "urdftool.errors",
+    "OptionError": "urdftool.errors",
 }
 __all__ = ["__version__", *_LAZY]
 
@@ -42,7 +43,7 @@ def __getattr__(name: str):
         from urdftool.lint import settings as module
     elif name in ("Finding", "Location", "Severity", "Fix", "Edit"):
         from urdftool import diagnostics as module
-    elif name in ("UrdftoolError", "LoadError", "SettingsError", "TargetError"):
+    elif name in ("UrdftoolError", "LoadError", "SettingsError", "TargetError", "OptionError"):
         from urdftool import errors as module
     else:
         raise AttributeError(f"module 'urdftool' has no attribute {name!r}")

@@ -14,6 +14,16 @@ class UsageError(UrdftoolError):
     """The command line asked for something impossible (exit code 2)."""
 
 
+class OptionError(UsageError, TypeError, ValueError):
+    """An option given to urdftool's Python API of a kind or value the command line and the
+    settings refuse; ``option`` names it. A TypeError and a ValueError too, as Python's
+    callers expect of a wrong argument (raised by :mod:`urdftool.description.inputs`' guard)."""
+
+    def __init__(self, option: str, message: str):
+        super().__init__(message)
+        self.option = option
+
+
 class SettingsError(UrdftoolError):
     """A settings file, or a setting passed to the API, is malformed or names a path it may
     not."""
@@ -345,6 +355,15 @@ class UnknownRule(UnknownName):
 
 class PlotError(UrdftoolError, ValueError):
     """A picture cannot be written in the asked format; the caller names the option."""
+
+
+def described(error: BaseException) -> str:
+    """An exception as a message says it: ``Name: text``, the one way urdftool quotes an error
+    it did not make. Its name once when its text already starts with it (pycollada's said
+    "DaeMalformedError: DaeMalformedError: XML Parsing Error..."), alone when it has no text
+    (a MemoryError said "MemoryError: " and nothing)."""
+    name, text = type(error).__name__, str(error)
+    return text if text.startswith(f"{name}:") else f"{name}: {text}" if text else name
 
 
 # The libraries only the analysis commands and a few rules need, by import name; they come

@@ -1062,12 +1062,13 @@ class OneLine(logging.Formatter):
     with a traceback per malformed message."""
 
     def format(self, record: logging.LogRecord) -> str:
+        from urdftool.errors import described
         from urdftool.report.escape import text
 
         message = _without_traceback(record.getMessage())
         error = record.exc_info[1] if record.exc_info else None
         if error is not None:
-            message += f": {type(error).__name__}: {error}{_raised_at(error)}"
+            message += f": {described(error)}{_raised_at(error)}"
         if len(message) > MAX_LOG_RECORD:
             message = f"{message[:MAX_LOG_RECORD]}... ({len(message) - MAX_LOG_RECORD} more)"
         record.message = message

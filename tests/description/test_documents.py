@@ -51,6 +51,23 @@ def test_an_srdf_left_open_is_located_where_the_open_tag_is(tmp_path):
     assert parsed.data is None and "Premature end" in parsed.problem and parsed.line == 2
 
 
+def test_an_srdf_past_line_65535_is_read_with_lxmls_lines_there(tmp_path):
+    """lxml's sourceline setter takes an unsigned short: an SRDF of 100,000 entries (8 MB,
+    under the size limit) crashed 61 rules with OverflowError (U900 each). Past line 65,535 an
+    element keeps lxml's own line (libxml2 counts one more than the file there)."""
+    from lxml import etree
+
+    path = tmp_path / "r.srdf"
+    path.write_text('<robot name="r">\n<group\n  name="g"/>\n' + '<disable_collisions '
+                    'link1="a" link2="b" reason="Never"/>\n' * 70_000 + '</robot>\n')
+    parsed = read_srdf(path)
+    assert parsed.problem is None
+    assert parsed.data.find("group").sourceline == 2  # its "<", not lxml's ">" (line 3)
+    entries = [element.sourceline for element in parsed.data.iter("disable_collisions")]
+    lxml = [element.sourceline for element in etree.parse(str(path)).iter("disable_collisions")]
+    assert entries[:65_531] == list(range(4, 65_535)) and entries[65_532:] == lxml[65_532:]
+
+
 def _alias_chain(count: int) -> str:
     return "c0: &c0 [x]\n" + "".join(f"c{i}: &c{i} [*c{i - 1}]\n" for i in range(1, count))
 

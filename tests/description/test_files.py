@@ -368,3 +368,40 @@ def test_a_listings_pattern_matches_as_fnmatch_does(pattern):
                     for kind in ("file", "folder", "link", "other"))
     assert files._selected(pattern)(entries) == \
         tuple(entry for entry in entries if matches(*entry, pattern))
+
+
+def test_a_file_replaced_keeps_its_owner_and_group_where_the_writer_may_give_them(tmp_path):
+    """``sudo urdftool check --fix`` (and ``-o`` over a file of another's) left the file root's:
+    the temporary file that replaces it kept the writer's owner."""
+    target = tmp_path / "robot.urdf"
+    target.write_text("<robot/>")
+    others = [group for group in os.getgroups() if group != os.getegid()]
+    if os.geteuid() == 0:
+        owner, group = 4321, 4321
+    elif others:
+        owner, group = os.geteuid(), others[0]
+    else:
+        pytest.skip("not root and in no other group: no owner to give a file")
+    os.chown(target, owner, group)
+    files.write_file(target, "<robot name='x'/>", rewrites=True)
+    kept = target.stat()
+    assert (kept.st_uid, kept.st_gid) == (owner, group)
+    assert target.read_text() == "<robot name='x'/>"
+
+
+def test_a_file_no_one_may_write_is_not_replaced(tmp_path):
+    """``check --fix`` of a robot at mode 0444 (a generated or installed file) replaced it by a
+    rename, which the file's mode does not guard (as root or not), where ``>`` refuses it."""
+    from urdftool.errors import UsageError
+
+    target = tmp_path / "robot.urdf"
+    target.write_text("<robot/>")
+    target.chmod(0o444)
+    with pytest.raises(UsageError, match=r"cannot write '.*robot.urdf': it is read-only "
+                                         r"\(mode 0444\)"):
+        files.write_file(target, "<robot name='x'/>", rewrites=True)
+    assert target.read_text() == "<robot/>" and [p.name for p in tmp_path.iterdir()] == \
+        ["robot.urdf"]
+    target.chmod(0o644)
+    files.write_file(target, "<robot name='x'/>", rewrites=True)
+    assert target.read_text() == "<robot name='x'/>"

@@ -419,3 +419,14 @@ f([a for a in b])
     for source in ("f(u'x')", "f(\"it's\")", "f('a\\\\b')", "f(-1)", "f(True)", "f(**kw)",
                    "f(18446744073709551616)", "f(1.5)", "f(None)"):
         assert _plain_source(ast.parse(source).body[0].value, 0) is None, source
+
+
+def test_a_python_launch_file_too_deep_for_the_parser_says_why():
+    """200,000 unary minus signs or 3,000 nested lambdas: ``ast.parse`` raises MemoryError or
+    RecursionError with no text, and U620 said "not valid Python: MemoryError: " (nothing
+    after the colon)."""
+    from urdftool.description.launch_python import read_python_launch
+
+    for text in ("x = " + "-" * 200_000 + "1\n", "x = " + "lambda: " * 3000 + "1\n"):
+        launch = read_python_launch(Path("a.launch.py"), "a.launch.py", text)
+        assert launch.problem == "not valid Python: nested too deeply for Python's parser"

@@ -663,3 +663,24 @@ def test_a_mesh_path_holding_no_file_says_what_is_there(tmp_path):
         "loop.stl": ("missing", "mesh 'loop.stl' cannot be reached: too many levels of "
                                 "symbolic links"),
         "gone.stl": ("missing", "mesh 'gone.stl' not found")}, said
+
+
+@pytest.mark.parametrize("declared", [0, 10])
+def test_a_binary_stl_whose_header_miscounts_says_so(tmp_path, declared):
+    """A binary STL holding 12 triangles whose header says 10 (or 0): trimesh reads it as ASCII
+    and finds none, and the finding said only "holds no triangles"."""
+    triangle = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0)
+    (tmp_path / "m.stl").write_bytes(b"\0" * 80 + struct.pack("<I", declared) + triangle * 12)
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path), "m.stl")
+    assert str(error.value).endswith(
+        f"holds no triangles: its binary STL header says {declared} triangles "
+        f"({84 + 50 * declared} bytes), the file has 684 bytes")
+
+
+def test_a_binary_stl_named_dae_names_pycolladas_error_once(tmp_path):
+    triangle = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0)
+    (tmp_path / "m.dae").write_bytes(b"\0" * 80 + struct.pack("<I", 2) + triangle * 2)
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path, "m.dae"), "m.dae")
+    assert "does not load: DaeMalformedError: XML Parsing Error" in str(error.value)

@@ -578,3 +578,30 @@ def test_a_plan_of_thousands_of_fixes_compares_each_edit_with_its_neighbours_onl
             for i in range(4000)]
     plan = applying._take([(fix, str(tmp_path)) for fix in many], lambda path: b"\0" * 28000)
     assert len(plan.applied) == 4000 and len(compared) < 3 * 4000
+
+
+def test_a_fix_that_cannot_be_written_says_which_files_were_fixed_before_it(
+        tmp_path, run_cli, monkeypatch):
+    """``check a.urdf b.urdf --fix`` on a disk that fills at b (``prlimit --fsize``): a.urdf was
+    fixed and the run said only "cannot write 'b.urdf': File too large"."""
+    from urdftool.description import files
+    from urdftool.errors import UsageError
+
+    first = _copy(CASES / "U204_inverted_limits.urdf", tmp_path)
+    second = first.with_name("second.urdf")
+    second.write_bytes(first.read_bytes())
+    write_file = files.write_file
+
+    def full_at_the_second(path, data, **options):
+        if Path(path).name == "second.urdf":
+            raise UsageError(f"cannot write '{path}': File too large")
+        write_file(path, data, **options)
+
+    monkeypatch.setattr(files, "write_file", full_at_the_second)
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("check", "--fix", "-j1", "--no-cache", first.name, second.name)
+    assert result.exit_code == 2
+    said = result.stderr if hasattr(result, "stderr") else result.output
+    assert "cannot write" in said and "File too large; fixed before it: " in said, said
+    assert said.split("fixed before it: ")[1].strip() == f"'{first.name}'"
+    assert 'lower="-1.57"' in first.read_text() and 'lower="-1.57"' not in second.read_text()

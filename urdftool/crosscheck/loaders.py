@@ -193,7 +193,9 @@ def printed_errors(output: str) -> list[str]:
 
 
 def _failed(error: BaseException | str) -> dict:
-    text = error if isinstance(error, str) else f"{type(error).__name__}: {error}"
+    from urdftool.errors import described
+
+    text = error if isinstance(error, str) else described(error)
     return {"loaded": False, "error": text.strip()}
 
 

@@ -363,8 +363,16 @@ def _xml_error_line(error, text: str) -> int | None:
     return min(line, max(1, len(lines_of(text.rstrip())))) if line else line
 
 
+# The largest line lxml's sourceline setter takes (libxml2's unsigned short); lxml reads larger
+# lines itself (XML_PARSE_BIG_LINES). An SRDF of 100,000 entries crashed 61 rules with
+# "OverflowError: value too large to convert to unsigned short" (a crash of each rule).
+_MOST_SOURCELINE = 65535
+
+
 def _start_tag_lines(root, text: str) -> None:
-    """Give each element the line of its ``<`` (lxml keeps the line of the closing ``>``)."""
+    """Give each element the line of its ``<`` (lxml keeps the line of the closing ``>``),
+    where lxml can hold it: past line 65,535 an element keeps lxml's own line, its ``>``'s
+    (the same line unless the start tag is written across lines)."""
     from lxml import etree
 
     elements = list(root.iter(etree.Element))
@@ -374,7 +382,8 @@ def _start_tag_lines(root, text: str) -> None:
         return
     if len(lines) == len(elements):
         for element, line in zip(elements, lines):
-            element.sourceline = line
+            if line <= _MOST_SOURCELINE:
+                element.sourceline = line
 
 
 def read_text(path: Path, limit: int = MAX_SIZE, as_: str = "launch file") -> CompanionFile:

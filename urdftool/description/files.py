@@ -793,8 +793,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
                private: bool = False) -> None:
     """Write ``data`` (text as UTF-8) to ``path`` through a temporary file beside it that then
     replaces it: a symbolic link at ``path`` is replaced by the file, its target left alone.
-    A regular file keeps its permissions. UsageError when the folder is missing or reached
-    through a link leading outside its repository, ``path`` is a folder, or the system
+    A regular file keeps its permissions, and one no one may write (mode 0444: a generated or
+    installed file) is refused, as ``>`` refuses it. UsageError when the folder is missing or
+    reached through a link leading outside its repository, ``path`` is a folder, or the system
     refuses; and when the file at ``path`` is one this process read (or was told a worker
     read: :func:`read_elsewhere`), by any spelling, bind or link of its folder: a robot, an
     include, a mesh or a companion the command's output would replace (a hard link of one is
@@ -805,7 +806,9 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     a link at ``path`` by which this process read a file is followed to it, and the link is
     kept (a fix of a robot file that is a committed link replaced the link with a copy and
     left the robot unfixed). ``private``: readable and writable by its owner only, whatever
-    was there and whatever the umask (a secret: the cache's signing key)."""
+    was there and whatever the umask (a secret: the cache's signing key). A regular file
+    replaced keeps its owner and group where this process may give them
+    (:func:`_keep_owner`)."""
     folder, target, existing = _written(path, rewrites)
     path = Path(path)
     if isinstance(data, str):
@@ -821,6 +824,10 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
                                  stat.S_ISFIFO(existing.st_mode)):
         _write_in_place(path, target, data)  # /dev/null, /dev/full, a named pipe: never replaced
         return
+    if existing is not None and stat.S_ISREG(existing.st_mode) and \
+            not existing.st_mode & 0o222 and not private:  # (replacing it by a rename would
+        raise UsageError(f"cannot write '{path}': it is read-only (mode "  # pass over that,
+                         f"{stat.S_IMODE(existing.st_mode):04o})")  # as root or not)
     if private:
         mode = 0o600
     elif existing is not None and stat.S_ISREG(existing.st_mode):
@@ -837,6 +844,8 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     try:
+        if existing is not None and stat.S_ISREG(existing.st_mode) and not private:
+            _keep_owner(descriptor, existing)
         with open(descriptor, "wb") as handle:
             handle.write(data)
         os.chmod(temporary, mode)
@@ -844,6 +853,18 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _keep_owner(descriptor: int, existing: os.stat_result) -> None:
+    """Give the temporary file that replaces ``existing`` its owner and group, as far as this
+    process may (root: both; another user: a group of theirs; else they stay the writer's, as
+    ``sed -i`` leaves them): ``sudo urdftool check --fix`` made a user's robot root's."""
+    for owner, group in ((existing.st_uid, existing.st_gid), (-1, existing.st_gid)):
+        try:
+            os.fchown(descriptor, owner, group)
+            return
+        except PermissionError:
+            continue
 
 
 def check_write(path, rewrites: bool | frozenset = False) -> None:

@@ -31,6 +31,7 @@ from pathlib import Path
 
 from urdftool.diagnostics import AT_LINE_START
 from urdftool.description.documents import read_text, read_yaml, YamlMap
+from urdftool.errors import described
 from urdftool.records import Frozen, NEW, Record
 
 MAX_LAUNCH_SIZE = 512 * 1024  # [bytes]
@@ -512,7 +513,7 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
         launch.problem = f"not well-formed XML: {error}"
         return launch
     except Exception as error:  # noqa: BLE001 - a stranger's file must not stop the check
-        launch.problem = f"not read: {type(error).__name__}: {error}"
+        launch.problem = f"not read: {described(error)}"
         return launch
     if root.tag != "launch":
         launch.problem = f"root element is <{root.tag}>, not <launch>"

@@ -34,6 +34,7 @@ from pathlib import Path
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
                                          LaunchFile, ParamFile, Start, Value, concat, literal, unknown)
 from urdftool.records import NEW
+from urdftool.errors import described
 
 MAX_STEPS = 200_000  # expressions and statements evaluated per file
 MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
@@ -114,8 +115,10 @@ def read_python_launch(path: Path, display: str, text: str,
     try:
         tree = ast.parse(text, filename=display)
     except (SyntaxError, ValueError, RecursionError, MemoryError) as error:
-        launch.problem = f"not valid Python: {type(error).__name__}: {error}"
-        launch.problem_line = getattr(error, "lineno", None)
+        launch.problem = f"not valid Python: {described(error)}" if str(error) \
+            else "not valid Python: nested too deeply for Python's parser"  # (MemoryError,
+        launch.problem_line = getattr(error, "lineno", None)  # RecursionError: no text; the
+        # launch file does not start either: "s_push: parser stack overflow")
         return launch
     reader = _Reader(tree, entry, room, path, modules or Modules())
     try:

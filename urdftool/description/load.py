@@ -18,7 +18,7 @@ from lxml import etree
 from urdftool.diagnostics import Location, Severity, display_path, line_at
 from urdftool.errors import LoadError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of, read_regular
-from urdftool.description.inputs import SettingValue
+from urdftool.description.inputs import SettingValue, checked_file_size, held
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.run_memo import one_run
@@ -97,6 +97,11 @@ def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
     real path and package of its includes once, as a check does."""
     if not isinstance(data, (bytes, type(None))):
         raise TypeError(f"data must be the file's bytes, not {type(data).__name__}")
+    xacro_args = held("xacro_args", xacro_args, "names", none=True)  # the one guard of a
+    packages = held("packages", packages, "paths", none=True)  # caller's options, as
+    held("allow_env", allow_env, "flag")  # check_paths' (packages="x" was an AttributeError
+    held("as_written", as_written, "flag")  # from inside, allow_env="no" true)
+    checked_file_size(max_file_size, "max_file_size")
     with one_run():  # (a path in bytes as os reads them: os.fspath kept bytes, and each reader
         # failed on it in its own way)
         return _load(os.fsdecode(path), xacro_args, packages, allow_env, max_file_size, data,

@@ -18,7 +18,7 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, field
 
-from urdftool.errors import MeshProblem, SceneError
+from urdftool.errors import MeshProblem, SceneError, described
 from urdftool.description.urdf import MOVING
 from urdftool.numbers import power, unit
 
@@ -218,7 +218,7 @@ def _yourdfpy(robot, collision: bool):
         raise SceneError(f"yourdfpy cannot build the scene: an element lacks its "
                          f"'{error.args[0]}' attribute; run 'urdftool check' for where") from None
     except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
-        raise SceneError(f"yourdfpy cannot build the scene ({type(error).__name__}: {error}); "
+        raise SceneError(f"yourdfpy cannot build the scene ({described(error)}); "
                          "run 'urdftool check' for the cause") from None
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, Severity, display_path
-from urdftool.errors import LoadError, PackageNotFound, missing_extra
+from urdftool.errors import LoadError, PackageNotFound, described, missing_extra
 from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
@@ -56,7 +56,7 @@ def _crash(what: str, error: BaseException, location: Location) -> Finding:
     frame = traceback.extract_tb(error.__traceback__)[-1] if error.__traceback__ else None
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
     return CATALOGUE.get("U900").finding(
-        f"{what} crashed: {type(error).__name__}: {error}{where}", location)
+        f"{what} crashed: {described(error)}{where}", location)
 
 
 def load_error_message(error: LoadError) -> str:
@@ -259,7 +259,7 @@ def _companion_lines(robot) -> list[str]:
     try:
         return companions(robot).describe()
     except Exception as error:  # noqa: BLE001 - the rules already reported what broke
-        return [f"companions not found: {type(error).__name__}: {error}"]
+        return [f"companions not found: {described(error)}"]
 
 
 def stop_finding(path: str, stop: Stop, doing: str) -> Finding:

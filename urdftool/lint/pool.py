@@ -29,6 +29,7 @@ from urdftool import budget as budgets, guardian
 from urdftool.budget import Budget
 from urdftool.guardian import end_after
 from urdftool.description.run_memo import one_run
+from urdftool.errors import described
 from urdftool.diagnostics import Location
 from urdftool.records import Frozen
 
@@ -254,7 +255,7 @@ def _serve_pieces(connection, work, memory: int | None = None) -> None:
         try:
             connection.send((*message, True) if retiring else message)
         except Exception as error:  # a result that does not pickle, or memory to pickle it
-            connection.send(("stop", index, "crash", f"{type(error).__name__}: {error}"))
+            connection.send(("stop", index, "crash", described(error)))
         if retiring:
             return
 

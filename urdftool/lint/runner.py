@@ -19,7 +19,8 @@ from collections.abc import Iterable, Mapping
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding
-from urdftool.errors import SettingsError, TargetError
+from urdftool.description.inputs import held
+from urdftool.errors import OptionError, SettingsError, TargetError, available
 from urdftool.lint.options import CheckOptions, FileResult
 from urdftool.lint.pool import Stop, auto_jobs, run_budgeted
 from urdftool.lint.settings import CheckRequest, Companions, check_companions, for_file
@@ -209,6 +210,11 @@ def check_paths(paths, request: CheckRequest | None = None, /, *, progress=None,
         request = _request(options)
     elif options:
         raise TypeError("check_paths takes a CheckRequest or keyword options, not both")
+    elif not isinstance(request, CheckRequest):
+        raise OptionError("request", f"request must be a CheckRequest, not "
+                                     f"{type(request).__name__} (its fields as keywords: "
+                                     "check_paths(paths, strict=True))")
+    progress = held("progress", progress, "call", none=True)
     check_companions(request.companions)
     paths = [_path(paths)] if isinstance(paths, (str, bytes, os.PathLike)) or \
         not isinstance(paths, Iterable) else [_path(path) for path in paths]  # one path, not its
@@ -320,6 +326,15 @@ def _path(path) -> str:
 
 
 def _request(options: dict) -> CheckRequest:
+    """The request of an API call's keywords, each held by the one guard of a caller's options
+    (``CheckRequest``'s): a keyword no field has, or a companion no map has, an OptionError
+    naming the ones there are (not Python's "unexpected keyword argument" from inside)."""
+    for given, fields in ((options, CheckRequest.__slots__),
+                          (options.get("companions"), Companions.__slots__)):
+        for name in (given if isinstance(given, Mapping) else ()):
+            if name not in fields:
+                raise OptionError(str(name), f"no option {name!r}; "
+                                             f"{available('options', str(name), fields)}")
     companions = options.get("companions")
     if isinstance(companions, Mapping):
         options = {**options, "companions": Companions(**companions)}

@@ -34,10 +34,8 @@ every key goes through :func:`_validated`, so that a key added later cannot skip
 
 from __future__ import annotations
 
-import datetime
 import fnmatch
 import functools
-import json
 import math
 import os
 import re
@@ -46,10 +44,11 @@ from pathlib import Path
 
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.diagnostics import line_at
-from urdftool.errors import SettingsError, UnknownRule, UsageError
+from urdftool.errors import OptionError, SettingsError, UnknownRule, UsageError
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity_or_why, inside, \
     kind_of, read_regular, unreachable
-from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue
+from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue, \
+    checked_file_size, held, shown
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
@@ -439,58 +438,6 @@ class _Key(Frozen):
         set_field(self, "attribute", attribute)
 
 
-_SHOWN = 80  # [characters] of a settings value a message quotes, at most
-
-
-def shown(value) -> str:
-    """A settings value as TOML writes it, the one way a settings message quotes one: in the
-    words the user wrote (``1979-05-27T07:32:00-08:00``, ``true``, ``nan``, ``"a"`` with TOML's
-    escapes, ``[1, 2]``, ``{ a = 1 }``), not Python's (``datetime.datetime(1979, ...)``,
-    ``True``), and cut to 80 characters (a 100,000-character string is not repeated whole). A
-    value TOML cannot hold (the Python API's) is its ``repr``."""
-    pieces, length = [], 0
-    for piece in _toml(value):
-        pieces.append(piece)
-        length += len(piece)
-        if length > _SHOWN:
-            return "".join(pieces)[:_SHOWN - 3] + "..."
-    return "".join(pieces)
-
-
-def _toml(value):
-    """The pieces of ``value`` written as TOML (:func:`shown`), lazily: the text past what a
-    message quotes is never made."""
-    if isinstance(value, bool):
-        yield "true" if value else "false"
-    elif isinstance(value, int) and value.bit_length() > 14_000:  # past what str() writes
-        yield f"a whole number of {int(value.bit_length() * math.log10(2))} digits or so"
-    elif isinstance(value, (int, float)) and math.isfinite(value):
-        yield repr(value)
-    elif isinstance(value, float):
-        yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
-    elif isinstance(value, str):
-        yield json.dumps(value, ensure_ascii=False)  # TOML's basic string: JSON's escapes
-    elif isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
-        yield value.isoformat()
-    elif isinstance(value, list):
-        yield "["
-        for index, item in enumerate(value):
-            yield ", " if index else ""
-            yield from _toml(item)
-        yield "]"
-    elif isinstance(value, dict):
-        yield "{ " if value else "{"
-        for index, (key, item) in enumerate(value.items()):
-            bare = isinstance(key, str) and _BARE_KEY.fullmatch(key)
-            written = key if bare else json.dumps(str(key), ensure_ascii=False)
-            yield (", " if index else "") + written + " = "
-            yield from _toml(item)
-        yield " }" if value else "}"
-    else:
-        yield repr(value)
-
-
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
 def _validated(path: Path, key: str, value):
@@ -587,16 +534,6 @@ def _per_file_args(settings: Path, value, key: str) -> dict[str, dict[str, str]]
             for pattern, args in _table(settings, value, key).items()}
 
 
-MAX_FILE_SIZE = 2 ** 40  # [bytes] the largest size limit the command line can set (1 TiB)
-
-
-def checked_file_size(value, what: str, most: int = MAX_FILE_SIZE, why: str = "") -> int:
-    """``value`` as a file size limit in [bytes]; SettingsError naming ``what`` (and saying
-    ``why``) unless it is a whole number from 1 to ``most``."""
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 < value <= most:
-        raise SettingsError(f"{what} must be a whole number of bytes from 1 to {most}, "
-                            f"not {shown(value)}{why}")
-    return value
 
 
 def _file_size(settings: Path, value, key: str) -> int:
@@ -829,46 +766,30 @@ class CheckRequest(Frozen):
     def __post_init__(self):
         """Every field held to what the command line and the settings take (the API's callers
         gave ``strict="no"``: strict; ``timeout=nan`` and ``max_triangles=nan``: no limit;
-        ``jobs=-5``; ``xacro_args="a:=1"``: Python's own error), UsageError naming it."""
+        ``jobs=-5``; ``xacro_args="a:=1"``: Python's own error) by the one guard of a caller's
+        options (:func:`~urdftool.description.inputs.held`: an OptionError naming it)."""
+        set_field = object.__setattr__
         for name in ("select", "ignore", "targets"):
-            value = getattr(self, name)
-            value = (value,) if isinstance(value, str) else tuple(value or ())
-            if not all(isinstance(item, str) for item in value):
-                raise UsageError(f"{name} must be words (str), not {shown(list(value))}")
-            object.__setattr__(self, name, value)
+            set_field(self, name, held(name, getattr(self, name) or (), "words"))
         for name in ("select", "ignore"):
             check_selectors(getattr(self, name))
-        object.__setattr__(self, "targets", checked_targets(self.targets))
-        for name in ("xacro_args", "packages"):
-            value = getattr(self, name) or {}
-            if not isinstance(value, Mapping) or not all(
-                    isinstance(key, str) and isinstance(item, (str, os.PathLike))
-                    for key, item in value.items()):
-                raise UsageError(f"{name} must map names (str) to values (str), not "
-                                 f"{shown(value)}")
-        object.__setattr__(self, "xacro_args", dict(self.xacro_args or {}))
-        object.__setattr__(self, "packages", {name: Path(folder) for name, folder
-                                              in (self.packages or {}).items()})
+        set_field(self, "targets", checked_targets(self.targets))
+        set_field(self, "xacro_args", held("xacro_args", self.xacro_args or {}, "names"))
+        set_field(self, "packages", held("packages", self.packages or {}, "paths"))
         if self.companions is None:
-            object.__setattr__(self, "companions", CompanionPaths())
+            set_field(self, "companions", CompanionPaths())
+        elif not isinstance(self.companions, CompanionPaths):
+            raise OptionError("companions", "companions must be a Companions or a map of its "
+                              f"fields, not {shown(self.companions)}")
         for name in ("strict", "use_settings", "allow_env"):
-            value = getattr(self, name)
-            if not isinstance(value, bool) and not (name == "allow_env" and value is None):
-                raise UsageError(f"{name} must be True or False, not {shown(value)}")
+            held(name, getattr(self, name), "flag", none=name == "allow_env")
         for name in ("stdin_filename", "settings_file", "cache_dir"):
-            if not isinstance(getattr(self, name), (str, os.PathLike, type(None))):
-                raise UsageError(f"{name} must be a path, not {shown(getattr(self, name))}")
+            held(name, getattr(self, name), "path", none=True)
         if self.max_file_size is not None:
             checked_file_size(self.max_file_size, "max_file_size")
-        if self.timeout is not None and (isinstance(self.timeout, bool) or not isinstance(
-                self.timeout, (int, float)) or not 0 <= self.timeout < math.inf):
-            raise UsageError("timeout must be a finite number of seconds, 0 for none, not "
-                             f"{shown(self.timeout)}")
+        held("timeout", self.timeout, "seconds", none=True)
         for name in ("max_triangles", "jobs"):
-            value = getattr(self, name)
-            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or
-                                      value < 0):
-                raise UsageError(f"{name} must be a whole number, 0 or more, not {shown(value)}")
+            held(name, getattr(self, name), "count", none=True)
 
 
 class FileSettings(Frozen):

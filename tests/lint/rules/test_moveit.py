@@ -287,3 +287,19 @@ def test_a_moveit_limit_of_the_urdfs_digits_a_power_of_ten_off_is_a_slipped_deci
     said = sorted(f.message for f in findings if f.code == "U816")
     assert len(said) == 2 and not said[0].endswith("slipped")  # effort 6 against 5
     assert said[1].endswith("use at most 1.5: the same digits 10 times apart, a decimal point slipped")
+
+
+def test_false_adjacent_entries_walk_the_tree_once_not_once_each(tmp_path, monkeypatch):
+    """An SRDF of 100,000 ``Adjacent`` entries of a pair two joints apart: U822 built the
+    robot's tree again for each entry's message and the check ran past its 60 s budget (U015);
+    10,000 took 15 s."""
+    from urdftool.kinematics import tree
+
+    built = []
+    children_by_link = tree.children_by_link
+    monkeypatch.setattr(tree, "children_by_link",
+                        lambda robot: built.append(1) or children_by_link(robot))
+    found, findings = _srdf(tmp_path, 0.4, [("base_link", "lower", "Adjacent")] * 500)
+    assert [code for _, _, code in found] == ["U822"] * 500
+    assert all("3 joints apart" in finding.message for finding in findings)
+    assert len(built) <= 3

@@ -29,7 +29,7 @@ from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
-from urdftool.errors import MeshProblem
+from urdftool.errors import MeshProblem, described
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
@@ -179,6 +179,20 @@ _END_OF_ZIP = b"PK\005\006"  # zipfile.stringEndArchive
 _ZIP_TAIL = (1 << 16) + 22  # [bytes]: the longest comment and the record (zipfile._EndRecData)
 
 
+def _binary_stl_mismatch(data: bytes) -> str:
+    """Why trimesh found no triangles in an STL that is binary by its header: the count the
+    header gives does not match the file's size (trimesh then reads it as ASCII and finds
+    none; "holds no triangles" was all it said of a file holding 12 whose header says 10)."""
+    if len(data) < 84 or data[:84].lstrip().lower().startswith(b"solid") or \
+            b"facet" in data[:1024]:
+        return ""
+    count = int.from_bytes(data[80:84], "little")
+    if 84 + 50 * count == len(data):
+        return ""
+    return (f": its binary STL header says {count} triangles ({84 + 50 * count} bytes), the "
+            f"file has {len(data)} bytes")
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     import logging
 
@@ -203,10 +217,10 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
             loaded = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh",
                                   process=True, resolver=_geometry_resolver(path, limits))
     except Exception as error:  # trimesh raises many types for a bad file
-        raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {type(error).__name__}: "
-                                     f"{error}") from None
+        raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {described(error)}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles")
+        raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
+                                     f"{_binary_stl_mismatch(data) if suffix == '.stl' else ''}")
     refuse_too_many(uri, len(loaded.faces), limits)
     unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:

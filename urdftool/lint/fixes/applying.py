@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from urdftool.description.files import kind_of
 from urdftool.diagnostics import Edit, Fix
+from urdftool.errors import UsageError, listed
 from urdftool.lint.fixes.building import inertial_edits
 from urdftool.lint.fixes.tags import Unfixable
 
@@ -246,16 +247,32 @@ def apply(results, recheck, unsafe: bool = False):
         skipped = changes.skipped
         if not changes.changed:
             break
-        write(changes)
+        write(changes, changed)
         applied += len(changes.applied)
         changed.update(changes.changed)
         results = recheck()
     return results, applied, changed, skipped
 
 
-def write(changes: Plan) -> None:
-    """Write the changed files, each atomically (a temporary file replaces it)."""
+def write(changes: Plan, written: set | frozenset = frozenset()) -> None:
+    """Write the changed files, each atomically (a temporary file replaces it). When one
+    cannot be written (a full disk, a read-only folder), the UsageError says which files were
+    written before it (``written``: by earlier passes; then this one's), whose fixes stand,
+    and that the rest were not: a run fixing two files said only "cannot write 'b.urdf'", and
+    'a.urdf' was changed without a word."""
     from urdftool.description.files import write_file
 
-    for file, (_, after) in changes.changed.items():
-        write_file(file, after, rewrites=True)  # the fixes: meant
+    done = list(dict.fromkeys(written))
+    files = list(changes.changed.items())
+    for index, (file, (_, after)) in enumerate(files):
+        try:
+            write_file(file, after, rewrites=True)  # the fixes: meant
+        except UsageError as error:
+            if not done:
+                raise
+            left = len(files) - index - 1
+            raise UsageError(f"{error}; fixed before it: {listed(done)}"
+                             f"{f'; {left} other file(s) not written' if left else ''}") \
+                from None
+        if file not in done:
+            done.append(file)

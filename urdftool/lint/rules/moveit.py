@@ -528,12 +528,18 @@ def srdf_adjacent_not_adjacent(robot):
             "collision matrix gives")
 
 
-def _path(robot, one: str, two: str) -> str:
-    """The joints between two links, as words."""
+def _parents(robot) -> dict:
+    """Child link -> (its joint, its parent link)."""
     from urdftool.kinematics.tree import children_by_link
 
-    parent = {child: (joint, up) for up, children in children_by_link(robot).items()
-              for joint, child in children}
+    return {child: (joint, up) for up, children in children_by_link(robot).items()
+            for joint, child in children}
+
+
+def _path(robot, one: str, two: str) -> str:
+    """The joints between two links, as words."""
+    parent = robot.memo(_path, lambda: _parents(robot))  # once per robot, not per entry: an
+    # SRDF of 100,000 false Adjacent entries built the tree 100,000 times (past the 60 s budget)
 
     def chain(link):
         found = [link]
