@@ -113,6 +113,25 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     assert close_names("joint1", ["joint1_mimic", "joint_1"])[0] == "joint_1"
 
 
+@pytest.mark.parametrize("wanted, name, suggested", [
+    # the real sweep's suggestions, judged: a word added, dropped, reordered or misspelt ...
+    ("FRHAA", "FR_HAA", True), ("link3", "Link3", True), ("link2", "link_02", True),
+    ("arm_left_7_joint", "arm_7_joint", True), ("gazebo_HEAD_JOINT1_Link", "HEAD_JOINT1_Link", True),
+    ("rightThumbMotorPitch1", "rightThumbPitch1", True), ("base", "base_link", True),
+    ("hardware_interface/EffortJoinInterface", "EffortJointInterface", True),
+    ("LF_Rollert2", "LF_Roller2", True), ("left_gripper_joint", "l_gripper_finger_joint", True),
+    # ... and a word replaced, which misled (fresh17: wheel_left_joint on a TIAGo)
+    ("wheel_left_joint", "torso_lift_joint", False), ("wrist_3_joint", "hand_3_joint", False),
+    ("ur_description", "sr_description", False), ("arm_0_link", "arm_6_link", False),
+    ("shoulder_pan_joint", "forearm_hand_joint", False), ("link4", "imu_link", False),
+])
+def test_a_close_name_is_suggested_only_with_the_same_words(wanted, name, suggested):
+    from urdftool.errors import close_names, same_words
+
+    assert same_words(wanted, name) is suggested
+    assert close_names(wanted, [name, "zzz"]) == ([name] if suggested else [])
+
+
 def test_listed_names_a_dozen_each_cut_and_says_how_many():
     from urdftool.errors import listed
 

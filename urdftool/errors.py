@@ -128,7 +128,9 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
     MAX_SIMILAR_NAME characters, longer candidates are skipped, and at most
     MAX_SIMILAR_CANDIDATES are compared. A name of the same words in another order
     (``gripper_finger_l_link`` for ``gripper_finger_link_l``) comes first: difflib's ratio may
-    rank the other finger's name above it."""
+    rank the other finger's name above it. A name difflib finds close is suggested only when
+    it has the same words (:func:`same_words`): 'torso_lift_joint' is no suggestion for
+    'wheel_left_joint' (ratio 0.62, two words of three differ)."""
     import difflib
 
     if len(wanted) > MAX_SIMILAR_NAME:
@@ -137,7 +139,8 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
     words = sorted(wanted.split("_"))
     reordered = [name for name in candidates
                  if name != wanted and "_" in name and sorted(name.split("_")) == words]
-    close = difflib.get_close_matches(wanted, candidates, n=n + 5, cutoff=cutoff)
+    close = [name for name in difflib.get_close_matches(wanted, candidates, n=n + 5, cutoff=cutoff)
+             if same_words(wanted, name)]
     # then a close name holding every word of a name of three or more, and one more (Gazebo's
     # depthImageCameraInfoTopicName for depthImageInfoTopicName, before depthImageTopicName;
     # not joint1_mimic for joint1, whose joint_1 difflib ranks first)
@@ -147,6 +150,56 @@ def close_names(wanted: str, names, n: int = 3, cutoff: float = 0.6) -> list[str
         if len(words - mine) == 1 and mine <= words]
     return (reordered + fuller + [name for name in close
                                   if name not in reordered and name not in fuller])[:n]
+
+
+def same_words(wanted: str, name: str) -> bool:
+    """Whether ``name`` may be what was meant by ``wanted``, word by word: the same letters and
+    digits once case and separators are dropped (``FRHAA``, ``FR_HAA``; ``link2``,
+    ``link_02``), or every word of one found in the other, in any order, each the same word,
+    a near miss (difflib's ratio 0.75 or more: ``Join``/``Joint``, ``Rollert``/``Roller``) or
+    its initial (``l``/``left``), digits equal as numbers. So a word added or dropped is a
+    suggestion (``gazebo_HEAD_JOINT1_Link``, ``arm_left_1_joint`` for ``arm_1_joint``) and a
+    word replaced is not (``wrist_3_joint``/``hand_3_joint``, ``ur_description``/
+    ``sr_description``, ``arm_0_link``/``arm_6_link``). Chosen on 60 suggestions of the real
+    sweep judged by hand: 24 useful and 3 misleading kept, of 28 and 32 (difflib's ratio
+    alone: 22 and 8 at 0.75)."""
+    mine, theirs = _pieces(wanted), _pieces(name)
+    if "".join(mine) == "".join(theirs):
+        return True
+    left, unmatched = list(theirs), 0
+    for word in mine:
+        match = next((i for i, other in enumerate(left) if other == word), None)
+        if match is None:
+            match = next((i for i, other in enumerate(left) if _alike(word, other)), None)
+        if match is None:
+            unmatched += 1
+        else:
+            left.pop(match)
+    return unmatched == 0 or not left
+
+
+_PIECE = re.compile(r"[a-z]+|[0-9]+")
+
+
+def _pieces(name: str) -> list[str]:
+    """The words of a name (:func:`_words`) in order, letters and digits apart, numbers without
+    leading zeros."""
+    found = []
+    for word in _WORD.findall(name):
+        for piece in _PIECE.findall(word.lower()):
+            found.append((piece.lstrip("0") or "0") if piece.isdigit() else piece)
+    return found
+
+
+def _alike(one: str, two: str) -> bool:
+    """Two words that are not equal, one a near miss or the initial of the other."""
+    import difflib
+
+    if not (one.isalpha() and two.isalpha()):
+        return False
+    if min(len(one), len(two)) == 1:
+        return one[0] == two[0]
+    return difflib.SequenceMatcher(None, one, two).ratio() >= 0.75
 
 
 def _words(name: str) -> set[str]:

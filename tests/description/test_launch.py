@@ -241,6 +241,56 @@ def test_an_eval_comparing_an_argument_with_a_word_is_read_as_that_comparison(tm
     assert started["odd"].truth is None
 
 
+def _remaps(configuration) -> dict:
+    """executable -> its remaps as (from, to, certain, condition in words)."""
+    return {s.executable: [(r.source, r.target, r.when.certain, r.when.text()) for r in s.remaps]
+            for s in configuration.started}
+
+
+def test_remaps_of_each_form_reach_the_nodes_of_their_scope(tmp_path):
+    """ROS 1's ``<remap>`` beside nodes holds for those after it in its scope, included files'
+    too, and a group's ends with it; a node's own comes last (roslaunch applies it last);
+    ROS 2's ``remappings=[(from, to)]`` and YAML's ``remap:`` hold for their node."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch": """<launch>
+      <arg name="sim" default="true"/>
+      <node name="early" pkg="p" type="early"/>
+      <remap from="/follow_joint_trajectory" to="/arm/arm_controller/follow_joint_trajectory"/>
+      <group>
+        <remap if="$(arg sim)" from="g/gripper_cmd" to="/arm/gripper/gripper_cmd"/>
+        <node name="grouped" pkg="p" type="grouped"/>
+      </group>
+      <include file="$(find p)/launch/b.launch"/>
+      <node name="late" pkg="p" type="late"><remap from="a" to="b"/></node>
+    </launch>""", "p/launch/b.launch": '<launch><node name="inner" pkg="p" type="inner"/></launch>',
+        "q/package.xml": PACKAGE.format("q"), "q/launch/c.launch.py": """
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    return LaunchDescription([Node(package="q", executable="python_node",
+                                   remappings=[("/follow_joint_trajectory", "/c/follow_joint_trajectory")])])
+""", "q/launch/d.launch.yaml": """launch:
+- arg: {name: controller, default: arm_controller}
+- node:
+    pkg: q
+    exec: yaml_node
+    remap:
+    - {from: /follow_joint_trajectory, to: $(var controller)/follow_joint_trajectory}
+"""})
+    found = {}
+    for configuration in launch_index(root).configurations:
+        found.update(_remaps(configuration))
+    arm = ("/follow_joint_trajectory", "/arm/arm_controller/follow_joint_trajectory", True, "")
+    assert found["early"] == []
+    assert found["grouped"] == [arm, ("g/gripper_cmd", "/arm/gripper/gripper_cmd", False,
+                                      'when if="$(arg sim)"')]
+    assert found["inner"] == [arm]  # into the include
+    assert found["late"] == [arm, ("a", "b", True, "")]  # the group's remap ended with it
+    assert found["python_node"] == [("/follow_joint_trajectory", "/c/follow_joint_trajectory", True, "")]
+    assert found["yaml_node"] == [("/follow_joint_trajectory", "arm_controller/follow_joint_trajectory",
+                                   False, "as launch argument controller is given")]
+
+
 # --- hostile launch files -----------------------------------------------------------------------
 
 def test_a_python_launch_file_is_never_run_or_imported(tmp_path):

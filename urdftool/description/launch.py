@@ -4,14 +4,16 @@ Readers, one per form, all giving the same :class:`LaunchFile`:
 
 - ROS 1 XML (``.launch``, ``.launch.xml``): ``<arg>`` (``default=`` may be given at launch,
   ``value=`` may not), ``<include file>`` with its ``<arg>``\\s, ``<group>``, ``<node pkg type
-  args>`` with its ``<param>``/``<rosparam>`` children, ``<param name command|textfile>``
-  (``robot_description`` from xacro with its arguments), ``<rosparam command="load" file
-  subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``, ``$(find)`` (of a
-  package named there or by an argument, ``$(find $(arg pkg))``),
+  args>`` with its ``<param>``/``<rosparam>``/``<remap>`` children, ``<remap from to>`` beside
+  nodes (for the nodes after it in its scope, those of included files too), ``<param name
+  command|textfile>`` (``robot_description`` from xacro with its arguments), ``<rosparam
+  command="load" file subst_value>``, and ``if``/``unless`` on each; substitutions ``$(arg)``,
+  ``$(find)`` (of a package named there or by an argument, ``$(find $(arg pkg))``),
   ``$(optenv)``/``$(env)``, ``$(dirname)``.
 - ROS 2 XML and YAML (``.launch.xml``, ``.launch.yaml``): the same elements with ``exec``,
   ``<let>`` (one holding ``$(command 'xacro ...')`` builds the robot where a ``<param>`` takes
-  it by ``$(var ...)``), ``<param from>``, ``<executable cmd>``; ``$(var)``,
+  it by ``$(var ...)``), ``<param from>``, ``<executable cmd>``, a node's ``<remap>`` (YAML's
+  ``remap:`` list) and ``<set_remap>``; ``$(var)``,
   ``$(find-pkg-share)``, ``$(find-exec)`` (the program's name), ``$(command '...')``.
 - ROS 2 Python (``.launch.py``): by static analysis of its syntax tree,
   :mod:`urdftool.description.launch_python` (:func:`~urdftool.description.launch_configs.read_launch`
@@ -263,24 +265,27 @@ class Arg(Frozen):
 
 class Include(Frozen):
     """Another launch file included, with the arguments given to it (``every``: ROS 1's
-    ``pass_all_args``)."""
+    ``pass_all_args``) and the remaps of its scope (:class:`Remap`), which hold for the nodes
+    it starts."""
 
     path: Value
     args: tuple  # ((name, Value), ...)
     when: tuple
     line: int | None
     every: bool
+    remaps: tuple  # Remap
 
-    __slots__ = ("path", "args", "when", "line", "every")
+    __slots__ = ("path", "args", "when", "line", "every", "remaps")
 
     def __init__(self, path: Value, args: tuple, when: tuple = (), line: int | None = None,
-                 every: bool = False) -> None:
+                 every: bool = False, remaps: tuple = ()) -> None:
         set_field = object.__setattr__
         set_field(self, "path", path)
         set_field(self, "args", args)
         set_field(self, "when", when)
         set_field(self, "line", line)
         set_field(self, "every", every)
+        set_field(self, "remaps", remaps)
 
 
 class ParamFile(Frozen):
@@ -304,9 +309,32 @@ class ParamFile(Frozen):
         set_field(self, "line", line)
 
 
+class Remap(Frozen):
+    """A name remapped for a node: ROS 1's ``<remap from to>`` (a node's child, or beside
+    nodes: then for every node after it in its scope, included files' too), ROS 2's
+    ``remappings=[(from, to)]``, ``<remap>``/``<set_remap>``, YAML's ``remap: [{from, to}]``.
+    ``when``: its own conditions (those of its scope are the node's)."""
+
+    source: Value
+    target: Value
+    when: tuple
+    line: int | None
+
+    __slots__ = ("source", "target", "when", "line")
+
+    def __init__(self, source: Value, target: Value, when: tuple = (),
+                 line: int | None = None) -> None:
+        set_field = object.__setattr__
+        set_field(self, "source", source)
+        set_field(self, "target", target)
+        set_field(self, "when", when)
+        set_field(self, "line", line)
+
+
 class Start(Frozen):
     """A node or process started: ``package``/``executable`` (a process: empty package,
-    ``executable`` its command line), its argument words, the parameter files given to it."""
+    ``executable`` its command line), its argument words, the parameter files given to it, the
+    names remapped for it (:class:`Remap`, those of its scope first)."""
 
     package: Value
     executable: Value
@@ -314,11 +342,12 @@ class Start(Frozen):
     files: tuple  # ParamFile
     when: tuple
     line: int | None
+    remaps: tuple  # Remap
 
-    __slots__ = ("package", "executable", "arguments", "files", "when", "line")
+    __slots__ = ("package", "executable", "arguments", "files", "when", "line", "remaps")
 
     def __init__(self, package: Value, executable: Value, arguments: tuple, files: tuple = (),
-                 when: tuple = (), line: int | None = None) -> None:
+                 when: tuple = (), line: int | None = None, remaps: tuple = ()) -> None:
         set_field = object.__setattr__
         set_field(self, "package", package)
         set_field(self, "executable", executable)
@@ -326,6 +355,7 @@ class Start(Frozen):
         set_field(self, "files", files)
         set_field(self, "when", when)
         set_field(self, "line", line)
+        set_field(self, "remaps", remaps)
 
 
 class Description(Frozen):
@@ -523,7 +553,7 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
         position = positions.get(element)
         return position[0] if position else element.sourceline
 
-    _xml_children(root, (), launch, line, 0)
+    _xml_children(root, (), launch, line, 0, [])
     return launch
 
 
@@ -549,7 +579,17 @@ def _when(element) -> tuple:
     return tuple(found)
 
 
-def _xml_children(parent, when: tuple, launch: LaunchFile, line, depth: int) -> None:
+def _xml_remap(element, when: tuple, line) -> Remap | None:
+    source, target = element.get("from"), element.get("to")
+    if not source or target is None:
+        return None
+    return Remap(substituted(source), substituted(target), when, line(element))
+
+
+def _xml_children(parent, when: tuple, launch: LaunchFile, line, depth: int, remaps: list) -> None:
+    """The actions of ``parent``'s children; ``remaps``: those of the scope so far (a
+    ``<remap>`` beside nodes holds for the nodes after it in its scope, a group's own ending
+    with it)."""
     for element in parent:
         if not isinstance(element.tag, str) or len(launch.actions) >= MAX_ACTIONS or depth > 64:
             continue
@@ -568,11 +608,15 @@ def _xml_children(parent, when: tuple, launch: LaunchFile, line, depth: int) -> 
                          for a in element if a.tag == "arg" and a.get("name"))
             every = (element.get("pass_all_args") or "").strip().lower() in ("true", "1")
             launch.actions.append(Include(substituted(element.get("file")), args, own, line(element),
-                                          every))
+                                          every, tuple(remaps)))
         elif tag == "group":
-            _xml_children(element, own, launch, line, depth + 1)
+            _xml_children(element, own, launch, line, depth + 1, list(remaps))
+        elif tag in ("remap", "set_remap"):
+            remap = _xml_remap(element, _when(element), line)
+            if remap is not None:
+                remaps.append(remap)
         elif tag == "node" and element.get("pkg"):
-            _xml_node(element, own, launch, line)
+            _xml_node(element, own, launch, line, remaps)
         elif tag == "executable" and element.get("cmd"):
             launch.actions.append(Start(literal(""), substituted(element.get("cmd")), (), (), own,
                                         line(element)))
@@ -584,12 +628,16 @@ def _xml_children(parent, when: tuple, launch: LaunchFile, line, depth: int) -> 
                 launch.actions.append(loaded)
 
 
-def _xml_node(element, when, launch, line) -> None:
-    files = []
+def _xml_node(element, when, launch, line, remaps: list) -> None:
+    files, remaps = [], list(remaps)
     for child in element:
         if not isinstance(child.tag, str):
             continue
-        if child.tag == "rosparam":
+        if child.tag == "remap":
+            remap = _xml_remap(child, _when(child), line)
+            if remap is not None:
+                remaps.append(remap)
+        elif child.tag == "rosparam":
             loaded = _rosparam(child, when + _when(child), line)
             if loaded is not None:
                 files.append(loaded)
@@ -601,7 +649,7 @@ def _xml_node(element, when, launch, line) -> None:
     executable = element.get("type") or element.get("exec") or ""
     arguments = (substituted(element.get("args")),) if element.get("args") else ()
     launch.actions.append(Start(substituted(element.get("pkg")), substituted(executable),
-                                arguments, tuple(files), when, line(element)))
+                                arguments, tuple(files), when, line(element), tuple(remaps)))
 
 
 _LET_VALUE = re.compile(r"\$\((?:var|arg)\s+([\w/-]+)\)")
@@ -700,12 +748,16 @@ def _yaml_entries(entries, when: tuple, launch: LaunchFile, depth: int) -> None:
                         launch.actions.append(Description(_text(param["value"]), None, (), own,
                                                           _yaml_line(param)))
                 arguments = (_text(entry["args"]),) if _text(entry.get("args")) is not None else ()
+                remaps = entry.get("remap") if isinstance(entry.get("remap"), list) else []
+                remaps = tuple(Remap(_text(r["from"]), _text(r["to"]), _yaml_when(r), _yaml_line(r))
+                               for r in remaps if isinstance(r, dict) and _text(r.get("from"))
+                               is not None and _text(r.get("to")) is not None)
                 launch.actions.append(Start(_text(entry["pkg"]), _text(entry.get("exec")) or literal(""),
-                                            arguments, tuple(files), own, at))
+                                            arguments, tuple(files), own, at, remaps))
             elif kind == "executable" and _text(entry.get("cmd")) is not None:
                 launch.actions.append(Start(literal(""), _text(entry["cmd"]), (), (), own, at))
 
 
-__all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Start",
-           "Value", "concat", "is_launch_file", "is_launch_name", "literal", "named",
+__all__ = ["Arg", "Condition", "Description", "Include", "LaunchFile", "ParamFile", "Remap",
+           "Start", "Value", "concat", "is_launch_file", "is_launch_name", "literal", "named",
            "read_launch_text", "substituted", "unknown", "was_read"]

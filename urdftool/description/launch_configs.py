@@ -451,8 +451,40 @@ class Loaded(Frozen):
         set_field(self, "chain", chain)
 
 
+class Remapped(Frozen):
+    """A name a started node has remapped (:class:`~urdftool.description.launch.Remap`):
+    ``source`` and ``target`` as resolved (None: not known without running the launch file),
+    ``when`` the remap's own conditions (and the launch arguments it reads); ``chosen``: the
+    target reads launch arguments that may be given at launch; where written."""
+
+    source: str | None
+    target: str | None
+    when: When
+    launch: str
+    line: int | None
+    chosen: bool
+
+    __slots__ = ("source", "target", "when", "launch", "line", "chosen")
+
+    def __init__(self, source: str | None, target: str | None, when: When, launch: str,
+                 line: int | None, chosen: bool = False) -> None:
+        set_field = object.__setattr__
+        set_field(self, "source", source)
+        set_field(self, "target", target)
+        set_field(self, "when", when)
+        set_field(self, "launch", launch)
+        set_field(self, "line", line)
+        set_field(self, "chosen", chosen)
+
+    @property
+    def written(self) -> str:
+        """Where it is written, as a finding names it."""
+        return f"{self.launch}:{self.line}" if self.line else self.launch
+
+
 class Started(Frozen):
-    """A node or process a configuration starts."""
+    """A node or process a configuration starts; ``remaps``: the names remapped for it
+    (:class:`Remapped`, in the order roslaunch applies them: the scope's, then its own)."""
 
     package: str | None
     executable: str | None
@@ -462,11 +494,14 @@ class Started(Frozen):
     launch: str
     line: int | None
     chain: tuple  # the launch files from the one run to ``launch`` (its includers)
+    remaps: tuple  # Remapped
 
-    __slots__ = ("package", "executable", "arguments", "files", "when", "launch", "line", "chain")
+    __slots__ = ("package", "executable", "arguments", "files", "when", "launch", "line", "chain",
+                 "remaps")
 
     def __init__(self, package: str | None, executable: str | None, arguments: tuple, files: tuple,
-                 when: When, launch: str, line: int | None, chain: tuple = ()) -> None:
+                 when: When, launch: str, line: int | None, chain: tuple = (),
+                 remaps: tuple = ()) -> None:
         set_field = object.__setattr__
         set_field(self, "package", package)
         set_field(self, "executable", executable)
@@ -476,6 +511,7 @@ class Started(Frozen):
         set_field(self, "launch", launch)
         set_field(self, "line", line)
         set_field(self, "chain", chain)
+        set_field(self, "remaps", remaps)
 
 
 class Described(Frozen):
@@ -753,7 +789,8 @@ def _expand_top(index: LaunchIndex, launch: LaunchFile, packages: dict) -> Confi
 
 def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             configuration: Configuration, packages: dict, via: tuple, depth: int,
-            by_default: tuple = ("", frozenset())) -> None:
+            by_default: tuple = ("", frozenset()), remaps: tuple = ()) -> None:
+    """``remaps``: the :class:`Remapped` of the includer's scope, for every node started."""
     configuration.files.append(launch.display)
     scope = Scope(dict(given) if launch.ros == 2 else {}, packages, launch, index.root, launch.ros == 1,
                   *by_default)
@@ -767,7 +804,8 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
         if isinstance(action, Arg):
             _bind(action, scope, given, top or launch.ros == 2, when)
         elif isinstance(action, Include):
-            _include(index, action, scope, when, configuration, packages, via + (launch.display,), depth)
+            _include(index, action, scope, when, configuration, packages, via + (launch.display,),
+                     depth, remaps)
         elif isinstance(action, ParamFile):
             configuration.loaded.append(_loaded(action, scope, when, launch, via))
         elif isinstance(action, Start):
@@ -783,7 +821,8 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
                 when = when.also(When(True, package.free | executable.free, ()))
             configuration.started.append(Started(package.text, executable.text, arguments, files, when,
                                                  launch.display, action.line,
-                                                 via + (launch.display,)))
+                                                 via + (launch.display,),
+                                                 remaps + _remapped(action.remaps, scope, launch)))
             configuration.loaded.extend(files)
         elif isinstance(action, Description) and _describes(action.parameter):
             configuration.described.append(_described(action, scope, when, launch, via))
@@ -807,7 +846,7 @@ def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> Non
 
 
 def _include(index, action: Include, scope: Scope, when: When, configuration: Configuration,
-             packages: dict, via: tuple, depth: int) -> None:
+             packages: dict, via: tuple, depth: int, remaps: tuple = ()) -> None:
     path, _ = resolve_path(action.path, scope)
     target = index.files.get(_key(path)) if path is not None else None
     # a launch test cannot be included (ros2 launch asks it for generate_launch_description):
@@ -824,7 +863,25 @@ def _include(index, action: Include, scope: Scope, when: When, configuration: Co
     if by_default:
         when = when.also(When(True, free, (by_default,)))
     _expand(index, target, given, False, when, configuration, packages, via, depth + 1,
-            (_joined_words(scope.by_default, by_default), scope.default_free | free))
+            (_joined_words(scope.by_default, by_default), scope.default_free | free),
+            remaps + _remapped(action.remaps, scope, scope.launch))
+
+
+def _remapped(remaps: tuple, scope: Scope, launch: LaunchFile) -> tuple:
+    """Each :class:`~urdftool.description.launch.Remap` resolved in ``scope``: a value read
+    from launch arguments holds for what they are given (their names join its condition)."""
+    found = []
+    for remap in remaps:
+        source, target = resolve(remap.source, scope), resolve(remap.target, scope)
+        when = _when_of(remap.when, scope)
+        if source.free or target.free:
+            names = sorted(source.free | target.free)
+            words = (f"as launch arguments {', '.join(names)} are given" if len(names) > 1
+                     else f"as launch argument {names[0]} is given")
+            when = when.also(When(True, source.free | target.free, (words,)))
+        found.append(Remapped(source.text, target.text, when, launch.display, remap.line,
+                              bool(target.free)))
+    return tuple(found)
 
 
 def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple) -> Loaded:
@@ -947,5 +1004,6 @@ def _template(resolved: Resolved) -> str | None:
     return resolved.pattern if resolved.pattern is not None and WILD in resolved.pattern else None
 
 
-__all__ = ["BY_DEFAULT", "TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded", "Resolved", "Started", "When",
+__all__ = ["BY_DEFAULT", "TRUTHY", "WILD", "Configuration", "Described", "LaunchIndex", "Loaded",
+           "Remapped", "Resolved", "Started", "When",
            "launch_index", "resolve", "shown", "words"]

@@ -5,7 +5,8 @@ functions it hands to ``OpaqueFunction`` or calls), their assignments followed, 
 that make launch actions read into :class:`~urdftool.description.launch.LaunchFile` actions:
 
 - ``DeclareLaunchArgument(name, default_value=...)``, ``SetLaunchConfiguration``;
-- ``Node(package=..., executable=..., arguments=[...], parameters=[...], condition=...)``,
+- ``Node(package=..., executable=..., arguments=[...], parameters=[...], remappings=[...],
+  condition=...)``,
   ``ExecuteProcess(cmd=[...])``; parameter files given as paths, ``ParameterFile(path,
   allow_substs=True)``;
 - ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
@@ -32,7 +33,8 @@ import ast
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
-                                         LaunchFile, ParamFile, Start, Value, concat, literal, unknown)
+                                         LaunchFile, ParamFile, Remap, Start, Value, concat,
+                                         literal, unknown)
 from urdftool.records import NEW
 from urdftool.errors import described
 
@@ -838,9 +840,13 @@ class _Reader:
                     if isinstance(value, _Opened):
                         self.acts.append(_Act("description", when, line, file=value.path, args=(),
                                               replaced=value.replaced))
+        pairs = keywords.get("remappings")  # [(from, to), ...]: each a list once read
+        remaps = tuple(Remap(pair[0], pair[1], (), line) for pair in
+                       (pairs if isinstance(pairs, list) else []) if isinstance(pair, list)
+                       and len(pair) == 2 and all(isinstance(name, Value) for name in pair))
         act = _Act("start", when, line, package=package if isinstance(package, Value) else unknown("?"),
                    executable=executable if isinstance(executable, Value) else unknown("?"),
-                   arguments=tuple(arguments), files=tuple(files))
+                   arguments=tuple(arguments), files=tuple(files), remaps=remaps)
         self.acts.append(act)
         _add_condition(act, keywords.get("condition"))
         return act
@@ -856,7 +862,7 @@ class _Reader:
         if act.kind == "start":
             files = tuple(ParamFile(f.path, f.substitute, when, f.line) for f in fields["files"])
             return Start(fields["package"], fields["executable"], fields["arguments"], files, when,
-                         act.line)
+                         act.line, fields.get("remaps", ()))
         if act.kind == "description":
             return Description(fields.get("command"), fields.get("file"), fields.get("args", ()),
                                when, act.line, xacro=fields.get("xacro", False),

@@ -926,6 +926,72 @@ def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
     return "unknown", ""
 
 
+class ActionRemap(Frozen):
+    """A remap of the action MoveIt sends to, in a launch file that starts MoveIt with the
+    controller list (:func:`moveit_action_remaps`): the controller the action reaches (the
+    name before the action's in the target; None when the target is not known without running
+    the launch file or is chosen by launch arguments given at launch), whether it holds on
+    every run of that launch file (the remap, move_group and the list unconditional), the
+    condition in words otherwise, where it is written."""
+
+    controller: str | None
+    target: str | None
+    certain: bool
+    condition: str
+    launch: str
+    written: str
+
+    __slots__ = ("controller", "target", "certain", "condition", "launch", "written")
+
+    def __init__(self, controller: str | None, target: str | None, certain: bool, condition: str,
+                 launch: str, written: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "controller", controller)
+        set_field(self, "target", target)
+        set_field(self, "certain", certain)
+        set_field(self, "condition", condition)
+        set_field(self, "launch", launch)
+        set_field(self, "written", written)
+
+
+def moveit_action_remaps(robot, moveit_file: Path, action: str) -> list[ActionRemap]:
+    """The remaps that send MoveIt's ``action`` (``NAME/ACTION_NS`` of an entry of the
+    controller list ``moveit_file``; ``/ACTION_NS`` for an empty name) elsewhere, one per launch
+    file that starts MoveIt (move_group) with that list and the robot and remaps it: the last of
+    move_group's remaps from that name (roslaunch's ``<remap>`` before the node or inside it,
+    ROS 2's ``remappings``). Names are compared without their leading ``/`` (a namespace
+    before them is not followed). xArm's Gazebo launch remaps ``/follow_joint_trajectory`` to
+    its ros_control controller's ``follow_joint_trajectory``."""
+    key, wanted = real_path(moveit_file), action.strip("/")
+    found = []
+    for configuration, relation in runtime(robot).configurations:
+        if not relation:
+            continue
+        lists = [loaded for loaded in configuration.loaded
+                 if loaded.path is not None and real_path(loaded.path) == key]
+        if not lists:
+            continue
+        for group in configuration.started:
+            if group.package != "moveit_ros_move_group":
+                continue
+            remap = next((r for r in reversed(group.remaps)
+                          if r.source is not None and r.source.strip("/") == wanted), None)
+            if remap is None:
+                continue
+            when = remap.when.also(group.when)
+            certain = relation == AS_CHECKED and when.certain and all(x.when.certain for x in lists)
+            condition = when.text() or ("when the launch arguments keep their defaults"
+                                        if when.free else "") or \
+                ("" if relation == AS_CHECKED else f"with the robot {relation}")
+            parts = [p for p in (remap.target or "").split("/") if p]
+            controller = parts[-2] if remap.target is not None and len(parts) >= 2 \
+                and not remap.chosen else None
+            found.append(ActionRemap(controller, remap.target, certain, condition,
+                                     configuration.named, remap.written))
+            break
+    return found
+
+
 def semantic_files(robot) -> list[tuple[Path, Configuration, str]]:
     """(SRDF, configuration, how it describes the robot) for each SRDF the robot's
     configurations give MoveIt (``robot_description_semantic``), the robot as checked first."""

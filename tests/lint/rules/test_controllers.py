@@ -116,7 +116,7 @@ def test_yaml_alias_bomb_is_a_located_error(tmp_path):
 # --- the example robots, broken in a temporary copy ------------------------------------------
 
 @pytest.mark.parametrize("file, old, new, code, message", [
-    ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, neck_tilt]",
+    ("config/controllers.yaml", "joints: [head_pan, head_tilt]", "joints: [head_pan, head_tlit]",
      "U602", "did you mean 'head_tilt'"),
     ("parts.xacro", 'interface="Position"', """interface="${'Velocity' if name == 'head_pan' else 'Position'}\"""",
      "U604", "commands position on joint 'head_pan', which offers velocity; use "

@@ -139,24 +139,70 @@ DRIVER_LAUNCH = """<launch>
 </launch>"""
 
 
+def _arm_package(tmp_path, launch: str, joints: str = "head_joint") -> dict:
+    """An arm package whose MoveIt list names arm_driver_controller (with ``joints``) and whose
+    ros_control YAML declares arm_controller, started by ``launch``."""
+    (tmp_path / ".git").mkdir()
+    return {"package.xml": "<package format='2'><name>arm</name></package>",
+            "robot.urdf": HEAD_ROBOT.format(body="""<transmission name="t">
+               <type>transmission_interface/SimpleTransmission</type>
+               <joint name="head_joint"><hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint>
+               <actuator name="m"/></transmission>"""),
+            "config/controllers.yaml": "jsc: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
+                                       "arm_controller: {type: position_controllers/JointTrajectoryController, joints: [head_joint]}\n",
+            "config/moveit_list.yaml": "controller_list:\n- {name: arm_driver_controller, action_ns: follow_joint_trajectory,"
+                                       f" type: FollowJointTrajectory, joints: [{joints}]}}\n",
+            "launch/moveit.launch": launch}
+
+
 @pytest.mark.parametrize("driver, expected", [
     ("", ("U817", "error")),  # MoveIt and ros_control alone: the name misses for certain
     ('<node name="d" pkg="arm_driver" type="trajectory_action_server"/>', None),  # the driver's
 ])
 def test_a_moveit_controller_a_driver_serves_is_not_ros_controls(tmp_path, driver, expected):
-    (tmp_path / ".git").mkdir()
-    files = {"package.xml": "<package format='2'><name>arm</name></package>",
-             "robot.urdf": HEAD_ROBOT.format(body="""<transmission name="t">
-               <type>transmission_interface/SimpleTransmission</type>
-               <joint name="head_joint"><hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint>
-               <actuator name="m"/></transmission>"""),
-             "config/controllers.yaml": "jsc: {type: joint_state_controller/JointStateController, publish_rate: 50}\n"
-                                        "arm_controller: {type: position_controllers/JointTrajectoryController, joints: [head_joint]}\n",
-             "config/moveit_list.yaml": "controller_list:\n- {name: arm_driver_controller, action_ns: follow_joint_trajectory,"
-                                        " type: FollowJointTrajectory, joints: [head_joint]}\n",
-             "launch/moveit.launch": DRIVER_LAUNCH.format(driver=driver)}
+    files = _arm_package(tmp_path, DRIVER_LAUNCH.format(driver=driver))
     _, findings = check_folder(tmp_path, files, select=("U817",))
     assert [(f.code, f.severity.value) for f in findings] == ([expected] if expected else [])
+
+
+REMAP_LAUNCH = """<launch>
+  <arg name="sim" default="true"/>
+  <param name="robot_description" textfile="$(find arm)/robot.urdf"/>
+  <rosparam file="$(find arm)/config/controllers.yaml" command="load"/>
+  <rosparam file="$(find arm)/config/moveit_list.yaml" command="load" ns="move_group"/>
+  <node name="s" pkg="controller_manager" type="spawner" args="jsc arm_controller"/>
+  {before}
+  <node name="move_group" pkg="moveit_ros_move_group" type="move_group">{inside}</node>
+</launch>"""
+SENT = "arm_driver_controller/follow_joint_trajectory"
+
+
+@pytest.mark.parametrize("before, inside, expected, joints", [
+    ("", "", ("U817", "error"), "head_joint"),  # the name misses for certain
+    # xArm's Gazebo launch: remapped before move_group (and so into an include) to the served one
+    (f'<remap from="/{SENT}" to="/arm_controller/follow_joint_trajectory"/>', "", None, "head_joint"),
+    ("", f'<remap from="{SENT}" to="arm_controller/follow_joint_trajectory"/>', None, "head_joint"),
+    # ... and then the joints are compared with that controller's
+    ("", f'<remap from="{SENT}" to="arm_controller/follow_joint_trajectory"/>', ("U818", "error"),
+     "head_joint, nope"),
+    # remapped with some launch arguments only: a warning naming the condition
+    (f'<remap if="$(arg sim)" from="{SENT}" to="arm_controller/follow_joint_trajectory"/>', "",
+     ("U817", "warning"), "head_joint"),
+    (f'<remap from="{SENT}" to="$(arg sim)/follow_joint_trajectory"/>', "", ("U817", "warning"),
+     "head_joint"),
+    # remapped to what no ros_control controller serves: still the error
+    (f'<remap from="{SENT}" to="other/follow_joint_trajectory"/>', "", ("U817", "error"), "head_joint"),
+    # a remap of a group that ended before move_group does not hold for it
+    (f'<group><remap from="{SENT}" to="arm_controller/follow_joint_trajectory"/></group>', "",
+     ("U817", "error"), "head_joint"),
+])
+def test_a_launch_remap_of_moveits_action_to_a_served_controller(tmp_path, before, inside, expected,
+                                                                  joints):
+    files = _arm_package(tmp_path, REMAP_LAUNCH.format(before=before, inside=inside), joints)
+    _, findings = check_folder(tmp_path, files, select=("U817", "U818"))
+    assert [(f.code, f.severity.value) for f in findings] == ([expected] if expected else [])
+    if expected and expected[1] == "warning":
+        assert "sim" in findings[0].message and "remap" in findings[0].message, findings[0].message
 
 
 def _kinematics(tmp_path, solver):

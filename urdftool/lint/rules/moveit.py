@@ -16,7 +16,7 @@ from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
 from urdftool.description.values import parse_numbers
 from urdftool.errors import available
-from urdftool.description.runtime import moveit_execution
+from urdftool.description.runtime import moveit_action_remaps, moveit_execution
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.lint.rules.srdf import as_moveit_runs
 from urdftool.numbers import decimal_slip
@@ -266,6 +266,24 @@ def _ros_control(robot) -> dict[str, set[str]]:
     return robot.memo(_ros_control, lambda: moveit.ros_control_controllers(_controller_files(robot)))
 
 
+def _remaps(robot, entry) -> list:
+    """The launch files' remaps of the action MoveIt sends ``entry``'s trajectories to
+    (:func:`~urdftool.description.runtime.moveit_action_remaps`)."""
+    action = f"{entry.name.strip('/')}/{entry.action_ns or ''}".strip("/")
+    return moveit_action_remaps(robot, entry.file.path, f"/{action}" if not entry.name.strip("/")
+                                else action)
+
+
+def _target(remap) -> str:
+    """The remap's target as a message names it, and its condition."""
+    if remap.target is None:
+        target = "a name urdftool cannot read"
+    else:
+        target = f"'{remap.target}'" + (", named by launch arguments" if remap.controller is None
+                                       else "")
+    return target + (f"; {remap.condition}" if remap.condition else "")
+
+
 @rule("U817", "moveit-controller-unknown", Severity.ERROR)
 def moveit_controller_unknown(robot):
     """MoveIt's controller list names a controller that ros_control does not declare.
@@ -284,6 +302,11 @@ def moveit_controller_unknown(robot):
     An entry with an empty name is a driver's by construction (MoveIt then sends to
     ``/<action_ns>``, motoman_driver's ``joint_trajectory_action``, where a ros_control
     controller never serves: its action is ``<controller>/follow_joint_trajectory``): nothing.
+    A launch file starting MoveIt may remap the action to a ros_control controller's (xArm's
+    Gazebo launch: ``<remap from="/follow_joint_trajectory" to="/xarm/xarm7_traj_controller/
+    follow_joint_trajectory"/>`` before move_group; ROS 2's ``remappings``): nothing when it
+    does so on every run; a warning naming the condition when only with some launch arguments
+    (an ``if=``, a target read from an argument), or to a name not known without running it.
 
     Bad: ``controller_list: [{name: arm_controller, ...}]`` when ros_control declares
     ``arm_trajectory_controller``
@@ -299,10 +322,19 @@ def moveit_controller_unknown(robot):
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
                        f"robot; {available('controllers', name, declared)}")
+            remaps = _remaps(robot, entry)
+            if any(r.certain and r.controller in declared for r in remaps):
+                continue  # a launch file remaps MoveIt's action to a served controller's
             who, where = moveit_execution(robot, entry.file.path)
             if who == "other":
                 continue  # a launch file starts MoveIt with it beside the driver serving it
-            if who == "unknown":
+            remap = next((r for r in remaps if r.controller in declared or r.controller is None),
+                         None)
+            if remap is not None:  # served by a remap with some launch arguments only
+                message = Conditional(
+                    f"unless {remap.written} remaps MoveIt's action to a ros_control "
+                    f"controller's ({_target(remap)}): {message}")
+            elif who == "unknown":
                 message = Conditional(
                     f"if MoveIt executes through the ros_control controllers the robot is checked "
                     f"with (a driver may serve '{entry.name}' with its own action server; no "
@@ -324,29 +356,45 @@ def moveit_controller_joints(robot):
 
     An error when a launch file of the robot starts MoveIt with this list and ros_control
     with that controller (and nothing else that could serve the action, as for U817); a
-    warning naming the condition otherwise.
+    warning naming the condition otherwise. When a launch file starting MoveIt remaps the
+    entry's action to another ros_control controller's (U817), that controller's joints are
+    compared, with the remap's condition when it has one.
 
     Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
     Good: the same joints (in any order)
     """
     declared = _ros_control(robot)
     for entry in _moveit_controllers(robot)[0]:
-        theirs = declared.get(entry.name.strip("/").split("/")[-1])
+        name = entry.name.strip("/").split("/")[-1]
+        remap = next((r for r in _remaps(robot, entry) if r.controller in declared), None) \
+            if declared else None
+        if remap is not None and remap.controller != name:
+            name = remap.controller  # MoveIt's action reaches that controller
+        else:
+            remap = None
+        theirs = declared.get(name)
         if not theirs:
             continue
-        mine = {name for name, _ in entry.joints}
+        mine = {joint for joint, _ in entry.joints}
         gripper = entry.type == "GripperCommand"
         if (theirs <= mine) if gripper else (theirs == mine):
             continue
         missing, extra = sorted(theirs - mine), sorted(mine - theirs)
         parts = ([f"lacks {', '.join(missing)}"] if missing else []) + \
                 ([f"adds {', '.join(extra)}"] if extra and not gripper else [])
+        whose = f"ros_control controller '{name}' it is remapped to" if remap \
+            else "ros_control controller"
         message = (f"MoveIt controller '{entry.name}' {' and '.join(parts)} compared with the "
-                   f"ros_control controller's joints ({', '.join(sorted(theirs))})")
+                   f"joints of the {whose} ({', '.join(sorted(theirs))})")
         who, _ = moveit_execution(robot, entry.file.path)
         if who == "other":
             continue
-        if who == "unknown":
+        if remap is not None and not remap.certain:
+            message = Conditional(f"when {remap.written} remaps MoveIt's action to "
+                                  f"{_target(remap)}: {message}")
+        elif remap is not None:
+            message = f"{remap.written} remaps MoveIt's action to '{remap.target}': {message}"
+        elif who == "unknown":
             message = Conditional(f"if MoveIt executes through the ros_control controller of that "
                                   f"name the robot is checked with (a driver may serve "
                                   f"'{entry.name}' itself): {message}")
