@@ -379,3 +379,30 @@ def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
     assert result.exit_code == 1
     assert f"{path}:8: error: joint 'free' is floating, of 6 degrees of freedom" in result.stderr
     assert "Traceback" not in result.output + result.stderr
+
+
+PASSIVE_ARM = UNLIMITED.replace('<joint name="j1" type="continuous">', '<joint name="j1" type="revolute">').replace(
+    '<child link="l1"/><axis xyz="0 1 0"/></joint>',
+    '<child link="l1"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="0" velocity="0"/></joint>')
+
+
+def test_an_effort_limit_of_0_is_a_passive_joint_not_judged(run_cli, tmp_path):
+    """Cassie's knee-to-shin springs are effort="0": a joint no actuator drives. Its gravity load
+    is shown but not held against a limit of 0 (it made the command exit 1, 'cannot hold
+    itself'); the joints with a limit are judged as before."""
+    from urdftool.physics.dynamics import JointLoad, judged_effort
+
+    (tmp_path / "arm.urdf").write_text(PASSIVE_ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10")
+    assert result.exit_code == 0, result.output
+    assert "ERROR" not in result.stdout
+    assert re.search(r"not judged \(effort 0 in the URDF: no actuator torque declared.*\): j1$",
+                     result.stdout, re.M)
+    assert "every joint with an effort limit holds" in result.stdout
+    data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
+                              "--format", "json").stdout)
+    j1, j2 = data["gravity_loads"]
+    assert (j1["effort"], j1["judged"], j1["margin"], j1["holds"]) == (0, False, None, None)
+    assert j1["worst"] > 0 and (j2["judged"], j2["holds"]) == (True, True)
+    assert [judged_effort(e) for e in (math.inf, 0.0, -1.0, 2.0)] == [False, False, False, True]
+    assert JointLoad("j", 0.0, 5.0).holds is None

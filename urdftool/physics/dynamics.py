@@ -233,12 +233,24 @@ def _listed(names: list[str]) -> str:
         f" and {len(names) - 12} more" if len(names) > 12 else "")
 
 
+def judged_effort(effort: float) -> bool:
+    """Whether an effort limit [N m or N] is one a torque can be judged against: finite and
+    above 0. ``inf`` is no ``<limit effort>`` (a continuous joint without ``<limit>``); 0 (or
+    below) is no actuator torque declared: a passive joint (Cassie's knee-to-shin springs), a
+    spring, a mimic, or the ROS-Industrial exporters' "unknown" (Fanuc, Motoman). Pinocchio
+    reads 0 as ``effortLimit`` 0, Gazebo and PyBullet clamp a commanded force to it (the joint
+    gets none), MuJoCo's URDF import ignores it: gravity on such a joint is carried by the
+    structure or a spring, never by a motor of 0, so it has no margin."""
+    return math.isfinite(effort) and effort > 0
+
+
 @dataclass
 class JointLoad:
     """Worst static gravity torque of one joint over the sampled poses, against its limit.
 
-    A joint without an effort limit (``effort`` inf: no ``<limit effort>``, a continuous joint
-    without ``<limit>``) has no margin (None) and is not judged (``holds`` None)."""
+    A joint without a usable effort limit (:func:`judged_effort`: ``effort`` inf, no ``<limit
+    effort>``; or 0, a passive joint) has no margin (None) and is not judged (``holds``
+    None)."""
 
     joint: str
     effort: float
@@ -250,7 +262,12 @@ class JointLoad:
 
     @property
     def limited(self) -> bool:
-        return bool(np.isfinite(self.effort))
+        return judged_effort(self.effort)
+
+    @property
+    def passive(self) -> bool:
+        """``<limit effort="0">`` (or below): no actuator torque declared."""
+        return self.effort <= 0
 
     @property
     def margin(self) -> float | None:
@@ -261,7 +278,8 @@ class JointLoad:
         return self.worst <= self.effort if self.limited else None
 
     def as_dict(self) -> dict:
-        return {"joint": self.joint, "effort": self.effort if self.limited else None,
+        return {"joint": self.joint, "effort": None if math.isinf(self.effort) else self.effort,
+                "judged": self.limited,
                 "worst": self.worst, "sampled_worst": self.sampled,
                 "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
