@@ -381,9 +381,11 @@ def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
     assert "Traceback" not in result.output + result.stderr
 
 
-PASSIVE_ARM = UNLIMITED.replace('<joint name="j1" type="continuous">', '<joint name="j1" type="revolute">').replace(
+PASSIVE_ARM = UNLIMITED.replace(
+    '<joint name="j1" type="continuous">', '<joint name="j1" type="revolute">').replace(
     '<child link="l1"/><axis xyz="0 1 0"/></joint>',
-    '<child link="l1"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="0" velocity="0"/></joint>')
+    '<child link="l1"/><axis xyz="0 1 0"/>'
+    '<limit lower="-1" upper="1" effort="0" velocity="0"/></joint>')
 
 
 def test_an_effort_limit_of_0_is_a_passive_joint_not_judged(run_cli, tmp_path):
