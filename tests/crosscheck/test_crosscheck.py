@@ -135,13 +135,7 @@ def test_pybullet_finds_package_meshes_of_an_expanded_xacro(tmp_path):
     with "Cannot load URDF file" on every xacro robot with package meshes, UR5 included).
     Removing the folder removes the links, never the package's files."""
     _installed("pybullet")
-    import trimesh
-
-    package = tmp_path / "src" / "my_arm"
-    (package / "meshes").mkdir(parents=True)
-    (package / "package.xml").write_text(
-        '<package format="3"><name>my_arm</name><version>1.0.0</version></package>')
-    trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "box.stl")
+    package = _package(tmp_path / "src")
     (package / "urdf").mkdir()
     path = package / "urdf" / "arm.urdf.xacro"
     mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
@@ -154,15 +148,21 @@ def test_pybullet_finds_package_meshes_of_an_expanded_xacro(tmp_path):
     assert (package / "meshes" / "box.stl").is_file()
 
 
-def _package_arm(tmp_path):
-    """A plain URDF in one folder whose mesh is in package my_arm in another."""
+def _package(folder):
+    """Package my_arm in ``folder``, with meshes/box.stl."""
     import trimesh
 
-    package = tmp_path / "elsewhere" / "my_arm"
+    package = folder / "my_arm"
     (package / "meshes").mkdir(parents=True)
     (package / "package.xml").write_text(
         '<package format="3"><name>my_arm</name><version>1.0.0</version></package>')
     trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "box.stl")
+    return package
+
+
+def _package_arm(tmp_path):
+    """A plain URDF in one folder whose mesh is in package my_arm in another."""
+    package = _package(tmp_path / "elsewhere")
     (tmp_path / "out").mkdir()
     path = tmp_path / "out" / "arm.urdf"
     mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
