@@ -408,3 +408,55 @@ def test_an_effort_limit_of_0_is_a_passive_joint_not_judged(run_cli, tmp_path):
     assert j1["worst"] > 0 and (j2["judged"], j2["holds"]) == (True, True)
     assert [judged_effort(e) for e in (math.inf, 0.0, -1.0, 2.0)] == [False, False, False, True]
     assert JointLoad("j", 0.0, 5.0).holds is None
+
+
+def test_a_free_base_matches_pinocchios_free_flyer(arm, tmp_path):
+    """build(robot, floating=True) is Pinocchio's JointModelFreeFlyer root: M(q) (crba), the
+    nonlinear effects C v + G and tau against Pinocchio called directly at a base pose given as
+    x, y, z, roll, pitch, yaw (the quaternion of pinocchio.rpy) and a base twist in its frame."""
+    import pinocchio as pin
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    model = build(load(path), floating=True)
+    assert model.joints == ["root_joint.x", "root_joint.y", "root_joint.z", "root_joint.roll",
+                            "root_joint.pitch", "root_joint.yaw", "shoulder", "elbow"]
+    pose = {"root_joint.x": 0.3, "root_joint.y": -0.2, "root_joint.z": 1.1,
+            "root_joint.roll": 0.4, "root_joint.pitch": -0.3, "root_joint.yaw": 1.2,
+            "shoulder": 0.7, "elbow": -0.5}
+    twist = dict(zip(model.joints, [0.5, -0.1, 0.2, 0.3, -0.6, 0.9, 1.5, -2.0]))
+    accel = dict(zip(model.joints, [0.1, 0.2, -0.3, 0.4, 0.5, -0.6, 0.7, 0.8]))
+    result = state(model, pose, twist, accel)
+
+    reference = pin.buildModelFromXML(ARM, pin.JointModelFreeFlyer())
+    data = reference.createData()
+    q = np.concatenate([[0.3, -0.2, 1.1],
+                        pin.Quaternion(pin.rpy.rpyToMatrix(0.4, -0.3, 1.2)).coeffs(),
+                        [0.7, -0.5]])
+    v = np.array(list(twist.values()))
+    a = np.array(list(accel.values()))
+    crba = pin.crba(reference, data, q)
+    assert np.allclose(result.M, np.triu(crba) + np.triu(crba, 1).T, atol=1e-12)
+    nle = pin.nonLinearEffects(reference, data, q, v)
+    assert np.allclose(result.C @ v + result.G, nle, atol=1e-10)
+    assert np.allclose(result.tau, pin.rnea(reference, data, q, v, a), atol=1e-10)
+    assert result.mass == pytest.approx(M1 + M2 + 3.0)
+    # the weight on the base: with the base level and the arm's links too, G's z row is m g
+    level = state(model, {})
+    assert level.G[2] == pytest.approx((M1 + M2 + 3.0) * G0, rel=1e-3)
+    assert level.potential == pytest.approx(state(build(load(path)), {}).potential)
+
+
+def test_cli_floating_dynamics(run_cli, tmp_path):
+    (tmp_path / "arm.urdf").write_text(ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--floating", "--q", "root_joint.z=2",
+                     "--v", "root_joint.yaw=1", "-f", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["base"] == "floating" and data["joints"][:2] == ["root_joint.x", "root_joint.y"]
+    assert data["com"][2] == pytest.approx(2.0)  # the masses sit at the base's height
+    text = run_cli("dynamics", tmp_path / "arm.urdf", "--floating").stdout
+    assert "in the world frame (free base)" in text and "root_joint.roll" in text
+    for extra in (["--samples", "5"], ["--support", "base"]):
+        refused = run_cli("dynamics", tmp_path / "arm.urdf", "--floating", *extra)
+        assert refused.exit_code == 2 and "--floating does not go with" in refused.output

@@ -1,8 +1,17 @@
-"""Rigid-body dynamics of a robot with a fixed base, through Pinocchio.
+"""Rigid-body dynamics of a robot with a fixed base, or with a free-flying one, through Pinocchio.
 
 Joint values are by joint name: angles in [rad], travel in [m]; velocities in [rad/s] or [m/s];
 accelerations in [rad/s^2] or [m/s^2]; torques in [N m] or forces in [N]. Continuous joints,
 which Pinocchio stores as (cos, sin), take one angle here like any revolute joint.
+
+A free-flying base (``build(robot, floating=True)``: Pinocchio's ``JointModelFreeFlyer`` as the
+root joint ``root_joint``, as ``fk --floating``) is six variables, named as fk names them:
+``root_joint.x``, ``.y``, ``.z`` [m] and ``.roll``, ``.pitch``, ``.yaw`` [rad] place the root
+link in the world (roll, pitch, yaw about the fixed x, y, z axes, as URDF's ``rpy``). Its
+velocity and acceleration are Pinocchio's: the root link's twist in its own frame, linear
+(``.x``, ``.y``, ``.z`` [m/s]) then angular (``.roll``, ``.pitch``, ``.yaw``: about its own x, y,
+z axes [rad/s], not rates of the angles); its rows of M(q), G(q), C(q, v) and tau are that
+frame's force [N] and moment [N m] on the base: what a floating robot's contacts must supply.
 """
 
 from __future__ import annotations
@@ -13,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.errors import DynamicsError
+from urdftool.kinematics.configuration import FLOATING_COORDINATES
 from urdftool.kinematics.model import oversized_data
 
 _ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
@@ -24,9 +34,10 @@ class Model:
 
     model: object
     data: object
-    joints: list[str]  # one per velocity variable (1-dof joints only)
+    joints: list[str]  # one per velocity variable (1-dof joints; a free root's six first)
     variables: list = field(default_factory=list)  # the settable ones: mimic joints follow
     mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
+    root: str | None = None  # the free-flyer root joint's name, or None for a fixed base
 
     def _expanded(self, values: dict[str, float], offsets: bool) -> dict[str, float]:
         """Variable values plus every mimic joint's (unnamed variables count as 0)."""
@@ -40,7 +51,13 @@ class Model:
         import pinocchio as pin
 
         q = pin.neutral(self.model)
+        if self.root:  # position, then the quaternion (x, y, z, w) of roll, pitch, yaw
+            pose = [values.get(f"{self.root}.{c}", 0.0) for c in FLOATING_COORDINATES]
+            q[:3] = pose[:3]
+            q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(*pose[3:])).coeffs()
         for name, value in self._expanded(values, offsets=True).items():
+            if self.root and name.startswith(f"{self.root}."):
+                continue
             joint = self.model.joints[self.model.getJointId(name)]
             if joint.nq == 2:  # continuous: (cos, sin)
                 q[joint.idx_q:joint.idx_q + 2] = (math.cos(value), math.sin(value))
@@ -52,20 +69,27 @@ class Model:
         """Pinocchio's v (or a) by name; a mimic joint moves at multiplier times its variable."""
         v = np.zeros(self.model.nv)
         for name, value in self._expanded(values, offsets=False).items():
+            if self.root and name.startswith(f"{self.root}."):  # the twist, in the root's order
+                v[FLOATING_COORDINATES.index(name[len(self.root) + 1:])] = value
+                continue
             v[self.model.joints[self.model.getJointId(name)].idx_v] = value
         return v
 
 
-def build(robot) -> Model:
-    """A fixed-base Pinocchio model of the robot (1-dof joints; planar/floating refused)."""
+def build(robot, floating: bool = False) -> Model:
+    """A Pinocchio model of the robot (1-dof joints; planar/floating joints refused), its base
+    fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
+    --floating``), whose six velocity variables come first."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
+    from urdftool.kinematics.fk import FLOATING_ROOT
     from urdftool.kinematics.native import build_model
 
-    model = build_model(robot)
-    joints = []
-    for joint_id in range(1, model.njoints):
+    root = FLOATING_ROOT if floating else None
+    model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating else ()))
+    joints = [f"{root}.{c}" for c in FLOATING_COORDINATES] if floating else []
+    for joint_id in range(2 if floating else 1, model.njoints):
         axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
         if axis is not None and not abs(np.linalg.norm(axis) - 1) <= 1e-6:
             raise DynamicsError(_axis_problem(robot.joints.get(model.names[joint_id]),
@@ -78,7 +102,7 @@ def build(robot) -> Model:
                                 f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
                                 "revolute, continuous and prismatic joints only", element)
         joints.append(model.names[joint_id])
-    variables = variables_of(robot)
+    variables = variables_of(robot, root)
     names = {variable.name for variable in variables}
     try:
         known: dict = {}  # each joint's source found once along a chain of mimics
@@ -89,7 +113,7 @@ def build(robot) -> Model:
     oversized = oversized_data(model.nv)
     if oversized:
         raise DynamicsError(oversized, robot.root)
-    return Model(model, model.createData(), joints, variables, mimics)
+    return Model(model, model.createData(), joints, variables, mimics, root)
 
 
 def total_mass(model: Model) -> float:
@@ -118,7 +142,7 @@ class State:
     joints: list[str]
     q: dict
     mass: float
-    com: np.ndarray
+    com: np.ndarray  # [m] in the root link's frame, or with a free root the world's
     M: np.ndarray
     G: np.ndarray
     C: np.ndarray | None = None
@@ -129,6 +153,7 @@ class State:
     damping: np.ndarray | None = None  # <dynamics damping> * v [N m or N]
     friction: np.ndarray | None = None  # <dynamics friction> * sign(v)
     warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
+    root: str | None = None  # the free-flyer root joint, None for a fixed base
 
     @property
     def lagrangian(self) -> float:
@@ -144,7 +169,8 @@ class State:
         def listed(a):
             return None if a is None else np.asarray(a).tolist()
 
-        return {"joints": self.joints, "q": self.q, "total_mass": self.mass,
+        return {"joints": self.joints, "q": self.q, "base": "floating" if self.root else "fixed",
+                "total_mass": self.mass,
                 "com": listed(self.com), "M": listed(self.M), "G": listed(self.G),
                 "C": listed(self.C), "tau": listed(self.tau),
                 "rnea_residual": self.rnea_residual, "kinetic_energy": self.kinetic,
@@ -179,7 +205,7 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
-                   mass_matrix.copy(), gravity)
+                   mass_matrix.copy(), gravity, root=model.root)
     result.warnings.extend(singular(model, mass_matrix, result.mass))
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})

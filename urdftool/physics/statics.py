@@ -112,11 +112,11 @@ def build_standing(robot, supports: list[str]) -> Standing:
     from urdftool.physics.solids import surface_points
 
     fixed = build(robot)
-    try:
-        floating = pin.buildModelFromXML(robot.urdf, pin.JointModelFreeFlyer())
-    except (RuntimeError, ValueError) as error:
-        raise DynamicsError(f"Pinocchio cannot build the model: {error}") from None
-    model = Model(floating, floating.createData(), fixed.joints, fixed.variables, fixed.mimics)
+    # the free root as dynamics --floating builds it (its rows are the wrenches' here, so the
+    # joints are the fixed model's); the fixed model's build has refused what urdfdom refuses
+    free = build(robot, floating=True)
+    floating = free.model
+    model = Model(floating, free.data, fixed.joints, fixed.variables, fixed.mimics)
     frames, points = [], []
     UnknownLink.unless_among(supports, robot.links)  # (a usage error in every command)
     for name in supports:

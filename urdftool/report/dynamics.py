@@ -47,8 +47,12 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
     joints = [_text(j) for j in result.joints]
     width = max((len(j) for j in joints), default=5)
+    frame = "the world frame (free base)" if result.root else "the root frame"
     lines = [f"total mass {number(result.mass)} kg, centre of mass "
-             f"({numbers(result.com, floor=MILLIMETRE)}) m in the root frame"]
+             f"({numbers(result.com, floor=MILLIMETRE)}) m in {frame}"]
+    if result.root:
+        lines.append(f"free base: the rows {_text(result.root)}.x, .y, .z are the force [N] and "
+                     ".roll, .pitch, .yaw the moment [N m] on the root link, in its frame")
     if matrices:
         lines += ["", f"G(q): gravity torque per joint {TORQUE}"]
         lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
