@@ -199,6 +199,17 @@ def test_pybullet_says_which_mesh_it_cannot_find_and_what_to_do(tmp_path):
                                  "there; 'urdftool check' says where each mesh was looked for")
 
 
+def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
+    """MuJoCo failed every ROS robot with package:// meshes (G1, H1, iCub, Pepper of the
+    sweep) with "Error opening file 'package:/...'", nothing more."""
+    _installed("mujoco")
+    from urdftool.crosscheck import MUJOCO_PACKAGES
+
+    path, package = _package_arm(tmp_path)
+    [result] = crosscheck(str(path), ["mujoco"], packages={"my_arm": package}).loaders
+    assert not result.loaded and result.error.endswith(f"; {MUJOCO_PACKAGES}")
+
+
 def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_path):
     """The fact U932 and the links beside xacro's output rest on (PyBullet 3.2.7): a
     package:// mesh is found from the working folder, not from setAdditionalSearchPath."""

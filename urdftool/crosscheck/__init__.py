@@ -422,7 +422,17 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
         unfound = _UNFOUND_MESH.findall(result.output)
         if unfound:
             result.error = f"{(result.error or '').rstrip('.')}: {_unfound_advice(robot, unfound)}"
+        if name == "mujoco" and _PACKAGE_OPENED.search(result.error or ""):
+            result.error = f"{result.error.rstrip()}; {MUJOCO_PACKAGES}"
     return result
+
+
+# MuJoCo (3, 4) opens a package:// URI as a file name, its "//" made one "/"
+_PACKAGE_OPENED = re.compile(r"Error opening file 'package:/")
+MUJOCO_PACKAGES = ("MuJoCo's URDF import resolves no package:// URI (no ROS package path): "
+                   "for MuJoCo, write mesh paths relative to a folder and name it with "
+                   "<mujoco><compiler meshdir=\"...\"/></mujoco> in the <robot>, or convert "
+                   "the robot to MJCF with its paths resolved")
 
 
 # PyBullet (3.2)'s warning for a mesh it cannot find, before "Cannot load URDF file."
