@@ -460,3 +460,23 @@ def test_cli_floating_dynamics(run_cli, tmp_path):
     for extra in (["--samples", "5"], ["--support", "base"]):
         refused = run_cli("dynamics", tmp_path / "arm.urdf", "--floating", *extra)
         assert refused.exit_code == 2 and "--floating does not go with" in refused.output
+
+
+def test_a_limit_that_holds_times_its_transmissions_reduction_is_said(run_cli, tmp_path):
+    """Cassie's hips: effort 4.5 N m behind a 25:1 transmission cannot hold 20.9 N m, but 4.5 is
+    the motor's torque: the joint's is 112.5. The verdict stays (URDF's limit is the joint's),
+    and the reading that would hold is said; JSON gives each joint's reduction."""
+    from urdftool.physics.dynamics import reductions
+
+    transmission = ('<transmission name="t"><type>transmission_interface/SimpleTransmission'
+                    '</type><joint name="elbow"/><actuator name="m">'
+                    '<mechanicalReduction>10</mechanicalReduction></actuator></transmission>')
+    (tmp_path / "arm.urdf").write_text(ARM.replace("</robot>", transmission + "</robot>"))
+    assert reductions(load(tmp_path / "arm.urdf")) == {"elbow": 10.0}
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10")
+    assert result.exit_code == 1, result.output
+    assert "effort limits that may be the motor's" in result.stdout
+    assert "elbow 1 x 10 = 10 would hold 3.92" in result.stdout
+    data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
+                              "-f", "json").stdout)
+    assert [load["reduction"] for load in data["gravity_loads"]] == [1.0, 10.0]

@@ -38,6 +38,7 @@ class Model:
     variables: list = field(default_factory=list)  # the settable ones: mimic joints follow
     mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
     root: str | None = None  # the free-flyer root joint's name, or None for a fixed base
+    reductions: dict = field(default_factory=dict)  # joint -> its transmission's reduction
 
     def _expanded(self, values: dict[str, float], offsets: bool) -> dict[str, float]:
         """Variable values plus every mimic joint's (unnamed variables count as 0)."""
@@ -113,7 +114,28 @@ def build(robot, floating: bool = False) -> Model:
     oversized = oversized_data(model.nv)
     if oversized:
         raise DynamicsError(oversized, robot.root)
-    return Model(model, model.createData(), joints, variables, mimics, root)
+    return Model(model, model.createData(), joints, variables, mimics, root, reductions(robot))
+
+
+def reductions(robot) -> dict[str, float]:
+    """Joint -> the ``<mechanicalReduction>`` of the transmission that drives it, where it is
+    a number other than 1 (in the transmission, its joint or its actuator, as ROS 1 and ROS 2
+    transmissions write it). URDF's ``<limit effort>`` is the joint's; ros_control's
+    SimpleTransmission gives the joint the actuator's effort times the reduction, so a limit
+    written for the motor (Cassie: 4.5 N m at 25:1) is the reduction times too small."""
+    from urdftool.description.actuation import transmission_joints, transmissions
+    from urdftool.description.values import parse_numbers
+
+    found = {}
+    for transmission in transmissions(robot):
+        texts = [e.text for e in transmission.iter("mechanicalReduction")]
+        values, _ = parse_numbers((texts[0] or "").strip(), 1) if texts else (None, None)
+        if not values or not math.isfinite(values[0]) or values[0] in (0.0, 1.0):
+            continue
+        for joint in transmission_joints(transmission):
+            if joint.name:
+                found[joint.name] = abs(values[0])
+    return found
 
 
 def total_mass(model: Model) -> float:
@@ -285,6 +307,14 @@ class JointLoad:
     zero_pose: float = 0.0
     sampled: float | None = None  # the worst of the samples, when ``worst`` was refined
     evaluations: int = 0  # of G(q) while refining
+    reduction: float = 1.0  # of the transmission driving the joint (:func:`reductions`)
+
+    @property
+    def held_at_the_motor(self) -> bool:
+        """It cannot hold with its effort limit, but could with that limit times its
+        transmission's reduction: the limit may be the motor's, not the joint's."""
+        return self.holds is False and self.reduction > 1 and \
+            self.worst <= self.effort * self.reduction
 
     @property
     def limited(self) -> bool:
@@ -307,7 +337,8 @@ class JointLoad:
         return {"joint": self.joint, "effort": None if math.isinf(self.effort) else self.effort,
                 "judged": self.limited,
                 "worst": self.worst, "sampled_worst": self.sampled,
-                "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
+                "margin": self.margin, "holds": self.holds, "reduction": self.reduction,
+                "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
 
 
@@ -351,7 +382,8 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
     poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
-    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
+    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0,
+                       reduction=model.reductions.get(name, 1.0))
              for name, i in zip(model.joints, ids)]
     if torques is None:
         rows = [m.joints[joint_id].idx_v for joint_id in ids]

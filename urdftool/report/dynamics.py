@@ -128,6 +128,14 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
         lines.append(f"  not judged (effort 0 in the URDF: {PASSIVE}): {', '.join(passive)}")
     unlimited += passive
     failing = [_text(load.joint) for load in loads if load.holds is False]
+    motor = [load for load in loads if load.held_at_the_motor]
+    if motor:
+        lines.append("  effort limits that may be the motor's: URDF's <limit effort> is the "
+                     "joint's, and the transmission multiplies a motor's torque by its "
+                     "mechanicalReduction: " + ", ".join(
+                         f"{_text(load.joint)} {number(load.effort)} x {number(load.reduction)}"
+                         f" = {number(load.effort * load.reduction)} would hold "
+                         f"{number(load.worst, 3)}" for load in motor))
     every = "every joint with an effort limit" if unlimited else "every joint"
     lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
                  f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
