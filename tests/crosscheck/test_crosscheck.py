@@ -208,6 +208,9 @@ def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
     path, package = _package_arm(tmp_path)
     [result] = crosscheck(str(path), ["mujoco"], packages={"my_arm": package}).loaders
     assert not result.loaded and result.error.endswith(f"; {MUJOCO_PACKAGES}")
+    from urdftool.crosscheck import _PACKAGE_OPENED  # the crazyflie's file:// meshes too
+
+    assert _PACKAGE_OPENED.search("Error: Error opening file 'file:/work/m.dae'")
 
 
 def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_path):

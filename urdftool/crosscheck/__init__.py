@@ -427,10 +427,10 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
     return result
 
 
-# MuJoCo (3, 4) opens a package:// URI as a file name, its "//" made one "/"
-_PACKAGE_OPENED = re.compile(r"Error opening file 'package:/")
-MUJOCO_PACKAGES = ("MuJoCo's URDF import resolves no package:// URI (no ROS package path): "
-                   "for MuJoCo, write mesh paths relative to a folder and name it with "
+# MuJoCo (3, 4) opens a package:// or file:// URI as a file name, its "//" made one "/"
+_PACKAGE_OPENED = re.compile(r"Error opening file '(?:package|file):/")
+MUJOCO_PACKAGES = ("MuJoCo's URDF import resolves no package:// or file:// URI (no ROS package "
+                   "path): for MuJoCo, write mesh paths relative to a folder and name it with "
                    "<mujoco><compiler meshdir=\"...\"/></mujoco> in the <robot>, or convert "
                    "the robot to MJCF with its paths resolved")
 
