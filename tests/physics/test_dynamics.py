@@ -480,3 +480,18 @@ def test_a_limit_that_holds_times_its_transmissions_reduction_is_said(run_cli, t
     data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
                               "-f", "json").stdout)
     assert [load["reduction"] for load in data["gravity_loads"]] == [1.0, 10.0]
+
+
+def test_a_velocity_or_torque_over_a_limit_is_warned_where_the_limit_is_one(run_cli, tmp_path):
+    """--v over <limit velocity>, tau (with damping, friction) over <limit effort>: a warning
+    naming the joint, value and limit with units; a limit of 0 (PASSIVE_ARM's j1) is none."""
+    (tmp_path / "arm.urdf").write_text(ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--v", "shoulder=2", "--v", "elbow=0.5")
+    assert result.exit_code == 0
+    assert ("urdftool: warning: joint 'shoulder': velocity 2 rad/s is over its <limit velocity> "
+            "of 1 rad/s") in result.stderr
+    assert "joint 'elbow': torque 3.924 N m is over its <limit effort> of 1 N m" in result.stderr
+    assert "'elbow': velocity" not in result.stderr
+    (tmp_path / "passive.urdf").write_text(PASSIVE_ARM)
+    quiet = run_cli("dynamics", tmp_path / "passive.urdf", "--v", "j1=9", "--a", "j1=90")
+    assert "over its" not in quiet.stderr, quiet.stderr

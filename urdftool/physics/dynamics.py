@@ -239,8 +239,31 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         result.kinetic = float(0.5 * v @ mass_matrix @ v)
         result.damping = np.asarray(m.damping) * v
         result.friction = np.asarray(m.friction) * np.sign(v) + 0.0  # no -0
+        result.warnings.extend(over_limits(model, v, result.total))
     result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
+
+
+def over_limits(model: Model, v: np.ndarray, total: np.ndarray) -> list[str]:
+    """Joints given a velocity over their ``<limit velocity>``, or needing a torque (tau with
+    damping and friction) over their ``<limit effort>``, in words; only where the limit is one
+    to judge against (:func:`judged_effort`: finite and above 0: a limit of 0 is no limit
+    declared, Cassie's springs, an exporter's "unknown")."""
+    from urdftool.numbers import number
+
+    m, said = model.model, []
+    for row, name in enumerate(model.joints):
+        if row < 6 and model.root:  # a free root's rows: Pinocchio's limits of the largest float
+            continue
+        linear = m.joints[m.getJointId(name)].shortname().startswith("JointModelP")
+        for kind, value, limit, unit in (
+                ("velocity", v[row], m.velocityLimit[row], "m/s" if linear else "rad/s"),
+                ("torque", total[row], m.effortLimit[row], "N" if linear else "N m")):
+            if judged_effort(float(limit)) and abs(value) > limit:
+                said.append(f"joint '{name}': {kind} {number(abs(value))} {unit} is over its "
+                            f"<limit {'effort' if kind == 'torque' else kind}> of "
+                            f"{number(limit)} {unit}")
+    return said
 
 
 def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
