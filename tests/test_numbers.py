@@ -200,3 +200,10 @@ def test_decimal_slip_is_said_of_the_same_digits_a_power_of_ten_apart(a, b, said
     from urdftool.numbers import decimal_slip
 
     assert decimal_slip(a, b) == said and decimal_slip(b, a) == said
+
+
+def test_exact_is_every_digit_and_no_signed_zero():
+    from urdftool.numbers import exact
+
+    assert [exact(v) for v in (-0.0, 0.0, 0.1 + 0.2, -1e-300, 3)] == \
+        ["0.0", "0.0", "0.30000000000000004", "-1e-300", "3.0"]

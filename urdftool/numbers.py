@@ -1,5 +1,6 @@
 """How numbers are printed for people: one function, :func:`number`, for every table, report
-line, message and generated XML value that shows a float.
+line, message and generated XML value that shows a float; and for machines, :func:`exact`
+(every digit, never ``-0.0``), for every CSV cell and JSON number.
 
 A number is rounded to the precision it is printed with before it is written, and the sign of
 a value that rounds to zero is dropped: an inertia tensor whose off-diagonal is ``-9e-21``
@@ -109,6 +110,15 @@ def fixed_texts(values: Iterable[float], places: int = 6) -> list[str]:
     texts = [form % value if -1e15 < value < 1e15 else number(value, places=places)
              for value in values]  # (past 1e15, and not finite: as number writes them)
     return [zero if text == negative_zero else text for text in texts]
+
+
+def exact(value: float) -> str:
+    """A float as a machine format writes it (CSV cells; JSON through
+    :func:`urdftool.report.json_output.dumps`, which writes the same): every digit (``repr``,
+    read back to the same float), and no sign on a zero (``-0.0`` is written ``0.0``: a pitch
+    of ``-0.0`` from ``atan2`` is no rotation, and a script comparing texts or signs, or a
+    spreadsheet showing ``-0``, read it as one)."""
+    return repr(float(value) + 0.0)
 
 
 MILLIMETRE = 1e-3  # [m] the smallest scale of a position: a centre of mass of round-off only

@@ -3,6 +3,8 @@ they act on, which the commands read and then did nothing with (exit 0, as if th
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 # a slider carrying a cylinder: every command has work, none much
@@ -57,3 +59,46 @@ def test_an_option_without_what_it_acts_on_is_a_usage_error(arm, run_cli, words,
 def test_the_same_options_with_what_they_act_on_run(arm, run_cli, words):
     result = run_cli(words[0], arm, *words[1:])
     assert result.exit_code == 0, result.output
+
+
+# every command with a JSON format, and the words it needs besides the file
+JSON_COMMANDS = [("fk", []), ("dynamics", []), ("inertia", []), ("collisions", []),
+                 ("dh", ["--tip", "a"]), ("ik", ["--tip", "a", "--xyz", "0", "0", "0"]),
+                 ("workspace", ["--tip", "a"]), ("crosscheck", ["-l", "pinocchio"]),
+                 ("diff", ["SAME"])]
+
+
+@pytest.mark.parametrize("command, words", JSON_COMMANDS, ids=[c for c, _ in JSON_COMMANDS])
+def test_a_json_command_that_cannot_compute_writes_an_error_document(run_cli, tmp_path,
+                                                                     command, words):
+    """With --format json an error about the robot is also a document on standard output
+    (check's schema and 'error'), as ruff and mypy report an unreadable file among their JSON
+    diagnostics; a script reading stdout got nothing (stderr only)."""
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="x"><link name="a">\n')
+    words = [str(path) if word == "SAME" else word for word in words]
+    result = run_cli(command, path, *words, "-f", "json")
+    assert result.exit_code == 1, result.output
+    document = json.loads(result.stdout)
+    assert document["error"].startswith("malformed XML")
+    assert [d["code"] for d in document["diagnostics"]] == ["U001"]
+    assert document["version"] == 1 and document["summary"]["errors"] == 1
+
+
+def test_an_error_that_is_no_finding_is_a_diagnostic_without_code(run_cli, tmp_path):
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="x"><link name="a"/><joint name="j" type="revolute">'
+                    '<parent link="a"/><child link="b"/></joint></robot>')
+    result = run_cli("fk", path, "-f", "json")
+    assert result.exit_code == 1
+    document = json.loads(result.stdout)
+    [diagnostic] = document["diagnostics"]
+    assert (diagnostic["code"], diagnostic["line"], diagnostic["severity"]) == \
+        (None, 1, "error")
+    assert document["error"] == diagnostic["message"] == \
+        "joint 'j': child link 'b' does not exist"
+    text = run_cli("fk", path)  # text: stderr only, as before
+    assert text.exit_code == 1 and text.stdout == ""
+    path.write_text('<robot name="x"><link name="a"/></robot>')
+    usage = run_cli("fk", path, "-f", "json", "--q", "nope=1")  # usage: stderr only
+    assert usage.exit_code == 2 and usage.stdout == ""

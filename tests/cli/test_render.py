@@ -93,3 +93,18 @@ def test_an_empty_picture_says_why(tmp_path, run_cli):
             "--collision draws it") in result.stderr
     drawn = run_cli("render", path, "-o", tmp_path / "x.png", "--collision")
     assert "(12 triangles)\n" in drawn.stderr
+
+
+def test_a_picture_of_nothing_because_every_shape_was_left_out_exits_1(tmp_path, run_cli):
+    """NAO, Pepper and iCub without their mesh packages drew 0 triangles and exited 0; a
+    picture missing some shapes is still drawn, exit 0, the warnings saying which."""
+    missing = '<visual><geometry><mesh filename="package://nowhere/m.stl"/></geometry></visual>'
+    box = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    path = tmp_path / "r.urdf"
+    path.write_text(f'<robot name="r"><link name="a">{missing}</link></robot>')
+    result = run_cli("render", path, "-o", tmp_path / "x.png")
+    assert result.exit_code == 1
+    assert "(0 triangles): every <visual> shape was left out" in result.stderr
+    path.write_text(f'<robot name="r"><link name="a">{missing}{box}</link></robot>')
+    result = run_cli("render", path, "-o", tmp_path / "x.png")
+    assert result.exit_code == 0 and "(12 triangles)" in result.stderr

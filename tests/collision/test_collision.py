@@ -58,6 +58,42 @@ def test_two_boxes_collide_with_depth(tmp_path):
     assert report.forbidden == [contact]
 
 
+@pytest.mark.parametrize("slider, touching", [(0.1, True), (0.0995, True), (0.098, False)])
+def test_boxes_that_touch_do_not_collide(run_cli, tmp_path, slider, touching):
+    """Two boxes sharing a face are an FCL contact of depth 0: they touch (exit 0), as up to
+    pairs.TOUCHING (1 mm) deep; deeper is a collision. They were COLLIDING, exit 1."""
+    from urdftool.collision.pairs import TOUCHING
+
+    report = pose_report(robot_of(tmp_path, two_boxes(0, 1)), slider=slider)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.touching is touching and TOUCHING == 0.001
+    assert report.forbidden == ([] if touching else [contact])
+    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", f"slider={slider}")
+    assert result.exit_code == (0 if touching else 1), result.output
+    assert ("no self-collision (1 pair(s) touching)" in result.stdout) is touching
+    assert ("touching: in contact at most 1 mm deep" in result.stdout) is touching
+    data = json.loads(run_cli("collisions", tmp_path / "robot.urdf", "--q", f"slider={slider}",
+                              "-f", "json").stdout)
+    assert data["touching_depth"] == TOUCHING
+    assert [c["touching"] for c in data["colliding"]] == [touching]
+
+
+def test_a_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):
+    """FCL gives a triangle mesh's contact a depth of 0 (or 1 m for boxes a third inside each
+    other): the depth is unknown (None, '? (mesh)'), and the contact is never only touching."""
+    import trimesh
+
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "box.stl")
+    mesh = '<mesh filename="box.stl"/>'
+    text = two_boxes(0, 1).replace('<box size="0.1 0.1 0.1"/></geometry></collision>',
+                                   f"{mesh}</geometry></collision>")
+    report = pose_report(robot_of(tmp_path, text), slider=0.05)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth is None and not contact.touching and report.forbidden == [contact]
+    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", "slider=0.05")
+    assert result.exit_code == 1 and "? (mesh)" in result.stdout, result.output
+
+
 def test_a_pose_check_places_the_parts_once_for_all_pairs(tmp_path, monkeypatch):
     scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
     placed = []

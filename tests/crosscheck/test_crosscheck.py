@@ -135,13 +135,7 @@ def test_pybullet_finds_package_meshes_of_an_expanded_xacro(tmp_path):
     with "Cannot load URDF file" on every xacro robot with package meshes, UR5 included).
     Removing the folder removes the links, never the package's files."""
     _installed("pybullet")
-    import trimesh
-
-    package = tmp_path / "src" / "my_arm"
-    (package / "meshes").mkdir(parents=True)
-    (package / "package.xml").write_text(
-        '<package format="3"><name>my_arm</name><version>1.0.0</version></package>')
-    trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "box.stl")
+    package = _package(tmp_path / "src")
     (package / "urdf").mkdir()
     path = package / "urdf" / "arm.urdf.xacro"
     mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
@@ -152,6 +146,71 @@ def test_pybullet_finds_package_meshes_of_an_expanded_xacro(tmp_path):
     [result] = crosscheck(str(path), ["pybullet"]).loaders
     assert result.loaded, result.error
     assert (package / "meshes" / "box.stl").is_file()
+
+
+def _package(folder):
+    """Package my_arm in ``folder``, with meshes/box.stl."""
+    import trimesh
+
+    package = folder / "my_arm"
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text(
+        '<package format="3"><name>my_arm</name><version>1.0.0</version></package>')
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(package / "meshes" / "box.stl")
+    return package
+
+
+def _package_arm(tmp_path):
+    """A plain URDF in one folder whose mesh is in package my_arm in another."""
+    package = _package(tmp_path / "elsewhere")
+    (tmp_path / "out").mkdir()
+    path = tmp_path / "out" / "arm.urdf"
+    mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
+    path.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                                f'<collision>{mesh}</collision>'))
+    return path, package
+
+
+def test_pybullet_finds_the_packages_of_a_urdf_outside_them(tmp_path):
+    """A plain URDF (xacro's output in /tmp) whose package is given with --package: PyBullet
+    looks for it only above the file, so it is read from the temporary folder with the
+    package linked beside it (it failed with 'Cannot load URDF file.', nothing else)."""
+    _installed("pybullet")
+    path, package = _package_arm(tmp_path)
+    [result] = crosscheck(str(path), ["pybullet"], packages={"my_arm": package}).loaders
+    assert result.loaded, result.error
+
+
+def test_pybullet_says_which_mesh_it_cannot_find_and_what_to_do(tmp_path):
+    """Without the package, PyBullet's 'Cannot load URDF file.' says which mesh, and that the
+    package is given with --package; with the package but not the file, to ask check."""
+    _installed("pybullet")
+    path, package = _package_arm(tmp_path)
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert not result.loaded
+    assert result.error == ("error: Cannot load URDF file: it cannot find mesh "
+                            "'my_arm/meshes/box.stl'; "
+                            "package 'my_arm' is not found by urdftool either: give it with "
+                            "--package my_arm=PATH (urdftool links each package it knows beside "
+                            "the file PyBullet reads)")
+    (package / "meshes" / "box.stl").unlink()
+    [result] = crosscheck(str(path), ["pybullet"], packages={"my_arm": package}).loaders
+    assert result.error.endswith("it cannot find mesh 'my_arm/meshes/box.stl', which is not "
+                                 "there; 'urdftool check' says where each mesh was looked for")
+
+
+def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
+    """MuJoCo failed every ROS robot with package:// meshes (G1, H1, iCub, Pepper of the
+    sweep) with "Error opening file 'package:/...'", nothing more."""
+    _installed("mujoco")
+    from urdftool.crosscheck import MUJOCO_PACKAGES
+
+    path, package = _package_arm(tmp_path)
+    [result] = crosscheck(str(path), ["mujoco"], packages={"my_arm": package}).loaders
+    assert not result.loaded and result.error.endswith(f"; {MUJOCO_PACKAGES}")
+    from urdftool.crosscheck import _PACKAGE_OPENED  # the crazyflie's file:// meshes too
+
+    assert _PACKAGE_OPENED.search("Error: Error opening file 'file:/work/m.dae'")
 
 
 def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_path):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -599,3 +600,11 @@ def test_a_row_of_a_file_of_numbers_is_said_at_its_line_of_the_file(tmp_path, te
     with pytest.raises(ConfigError) as caught:
         read_table(str(path), "q-file", "joint")
     assert str(caught.value).split(": ")[0].endswith(f"q.csv:{line}"), str(caught.value)
+
+
+@pytest.mark.parametrize("output_format", ["json", "csv"])
+def test_cli_machine_formats_write_no_signed_zero(run_cli, output_format):
+    """A level frame's pitch is atan2's -0.0; the humanoid's JSON and CSV wrote it 22 times."""
+    result = run_cli("fk", HUMANOID, "-f", output_format, "--matrix")
+    assert result.exit_code == 0, result.output
+    assert not re.search(r"(?<![\w.])-0\.0(?![\w.])", result.stdout)

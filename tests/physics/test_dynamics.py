@@ -379,3 +379,119 @@ def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
     assert result.exit_code == 1
     assert f"{path}:8: error: joint 'free' is floating, of 6 degrees of freedom" in result.stderr
     assert "Traceback" not in result.output + result.stderr
+
+
+PASSIVE_ARM = UNLIMITED.replace(
+    '<joint name="j1" type="continuous">', '<joint name="j1" type="revolute">').replace(
+    '<child link="l1"/><axis xyz="0 1 0"/></joint>',
+    '<child link="l1"/><axis xyz="0 1 0"/>'
+    '<limit lower="-1" upper="1" effort="0" velocity="0"/></joint>')
+
+
+def test_an_effort_limit_of_0_is_a_passive_joint_not_judged(run_cli, tmp_path):
+    """Cassie's knee-to-shin springs are effort="0": a joint no actuator drives. Its gravity load
+    is shown but not held against a limit of 0 (it made the command exit 1, 'cannot hold
+    itself'); the joints with a limit are judged as before."""
+    from urdftool.physics.dynamics import JointLoad, judged_effort
+
+    (tmp_path / "arm.urdf").write_text(PASSIVE_ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10")
+    assert result.exit_code == 0, result.output
+    assert "ERROR" not in result.stdout
+    assert re.search(r"not judged \(effort 0 in the URDF: no actuator torque declared.*\): j1$",
+                     result.stdout, re.M)
+    assert "every joint with an effort limit holds" in result.stdout
+    data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
+                              "--format", "json").stdout)
+    j1, j2 = data["gravity_loads"]
+    assert (j1["effort"], j1["judged"], j1["margin"], j1["holds"]) == (0, False, None, None)
+    assert j1["worst"] > 0 and (j2["judged"], j2["holds"]) == (True, True)
+    assert [judged_effort(e) for e in (math.inf, 0.0, -1.0, 2.0)] == [False, False, False, True]
+    assert JointLoad("j", 0.0, 5.0).holds is None
+
+
+def test_a_free_base_matches_pinocchios_free_flyer(arm, tmp_path):
+    """build(robot, floating=True) is Pinocchio's JointModelFreeFlyer root: M(q) (crba), the
+    nonlinear effects C v + G and tau against Pinocchio called directly at a base pose given as
+    x, y, z, roll, pitch, yaw (the quaternion of pinocchio.rpy) and a base twist in its frame."""
+    import pinocchio as pin
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    model = build(load(path), floating=True)
+    assert model.joints == ["root_joint.x", "root_joint.y", "root_joint.z", "root_joint.roll",
+                            "root_joint.pitch", "root_joint.yaw", "shoulder", "elbow"]
+    pose = {"root_joint.x": 0.3, "root_joint.y": -0.2, "root_joint.z": 1.1,
+            "root_joint.roll": 0.4, "root_joint.pitch": -0.3, "root_joint.yaw": 1.2,
+            "shoulder": 0.7, "elbow": -0.5}
+    twist = dict(zip(model.joints, [0.5, -0.1, 0.2, 0.3, -0.6, 0.9, 1.5, -2.0]))
+    accel = dict(zip(model.joints, [0.1, 0.2, -0.3, 0.4, 0.5, -0.6, 0.7, 0.8]))
+    result = state(model, pose, twist, accel)
+
+    reference = pin.buildModelFromXML(ARM, pin.JointModelFreeFlyer())
+    data = reference.createData()
+    q = np.concatenate([[0.3, -0.2, 1.1],
+                        pin.Quaternion(pin.rpy.rpyToMatrix(0.4, -0.3, 1.2)).coeffs(),
+                        [0.7, -0.5]])
+    v = np.array(list(twist.values()))
+    a = np.array(list(accel.values()))
+    crba = pin.crba(reference, data, q)
+    assert np.allclose(result.M, np.triu(crba) + np.triu(crba, 1).T, atol=1e-12)
+    nle = pin.nonLinearEffects(reference, data, q, v)
+    assert np.allclose(result.C @ v + result.G, nle, atol=1e-10)
+    assert np.allclose(result.tau, pin.rnea(reference, data, q, v, a), atol=1e-10)
+    assert result.mass == pytest.approx(M1 + M2 + 3.0)
+    # the weight on the base: with the base level and the arm's links too, G's z row is m g
+    level = state(model, {})
+    assert level.G[2] == pytest.approx((M1 + M2 + 3.0) * G0, rel=1e-3)
+    assert level.potential == pytest.approx(state(build(load(path)), {}).potential)
+
+
+def test_cli_floating_dynamics(run_cli, tmp_path):
+    (tmp_path / "arm.urdf").write_text(ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--floating", "--q", "root_joint.z=2",
+                     "--v", "root_joint.yaw=1", "-f", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["base"] == "floating" and data["joints"][:2] == ["root_joint.x", "root_joint.y"]
+    assert data["com"][2] == pytest.approx(2.0)  # the masses sit at the base's height
+    text = run_cli("dynamics", tmp_path / "arm.urdf", "--floating").stdout
+    assert "in the world frame (free base)" in text and "root_joint.roll" in text
+    for extra in (["--samples", "5"], ["--support", "base"]):
+        refused = run_cli("dynamics", tmp_path / "arm.urdf", "--floating", *extra)
+        assert refused.exit_code == 2 and "--floating does not go with" in refused.output
+
+
+def test_a_limit_that_holds_times_its_transmissions_reduction_is_said(run_cli, tmp_path):
+    """Cassie's hips: effort 4.5 N m behind a 25:1 transmission cannot hold 20.9 N m, but 4.5 is
+    the motor's torque: the joint's is 112.5. The verdict stays (URDF's limit is the joint's),
+    and the reading that would hold is said; JSON gives each joint's reduction."""
+    from urdftool.physics.dynamics import reductions
+
+    transmission = ('<transmission name="t"><type>transmission_interface/SimpleTransmission'
+                    '</type><joint name="elbow"/><actuator name="m">'
+                    '<mechanicalReduction>10</mechanicalReduction></actuator></transmission>')
+    (tmp_path / "arm.urdf").write_text(ARM.replace("</robot>", transmission + "</robot>"))
+    assert reductions(load(tmp_path / "arm.urdf")) == {"elbow": 10.0}
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10")
+    assert result.exit_code == 1, result.output
+    assert "effort limits that may be the motor's" in result.stdout
+    assert "elbow 1 x 10 = 10 would hold 3.92" in result.stdout
+    data = json.loads(run_cli("dynamics", tmp_path / "arm.urdf", "--samples", "10",
+                              "-f", "json").stdout)
+    assert [load["reduction"] for load in data["gravity_loads"]] == [1.0, 10.0]
+
+
+def test_a_velocity_or_torque_over_a_limit_is_warned_where_the_limit_is_one(run_cli, tmp_path):
+    """--v over <limit velocity>, tau (with damping, friction) over <limit effort>: a warning
+    naming the joint, value and limit with units; a limit of 0 (PASSIVE_ARM's j1) is none."""
+    (tmp_path / "arm.urdf").write_text(ARM)
+    result = run_cli("dynamics", tmp_path / "arm.urdf", "--v", "shoulder=2", "--v", "elbow=0.5")
+    assert result.exit_code == 0
+    assert ("urdftool: warning: joint 'shoulder': velocity 2 rad/s is over its <limit velocity> "
+            "of 1 rad/s") in result.stderr
+    assert "joint 'elbow': torque 3.924 N m is over its <limit effort> of 1 N m" in result.stderr
+    assert "'elbow': velocity" not in result.stderr
+    (tmp_path / "passive.urdf").write_text(PASSIVE_ARM)
+    quiet = run_cli("dynamics", tmp_path / "passive.urdf", "--v", "j1=9", "--a", "j1=90")
+    assert "over its" not in quiet.stderr, quiet.stderr

@@ -74,3 +74,16 @@ def test_paired_writes_a_lone_surrogates_escape_as_the_replacement_character_at_
     assert json.loads(fixed) == {"a": "x\ufffd \U0001F600 \ufffd", "b": "\\udcff",
                                  "c": "\\\ufffd", "d": "\ufffd\\ude00"}
     assert paired(b'{"a": "plain"}') == b'{"a": "plain"}'
+
+
+def test_no_zero_is_signed_and_a_string_is_left_as_it_is():
+    """-0.0 (atan2's pitch of a level frame) is written 0.0, in both writers; the same text in a
+    string stays, and -0.05 is a number of its own."""
+    from urdftool.report.json_output import line
+
+    data = {"rpy": [0.0, -0.0, -0.05], "name": "j -0.0", "nested": [{"q": -0.0}]}
+    for text in (dumps(data), line(data)):
+        assert "-0.0," not in text and "-0.0]" not in text and "-0.0}" not in text
+        back = json.loads(text)
+        assert back["rpy"] == [0.0, 0.0, -0.05] and math.copysign(1, back["rpy"][1]) == 1
+        assert back["name"] == "j -0.0" and math.copysign(1, back["nested"][0]["q"]) == 1

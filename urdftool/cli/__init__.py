@@ -30,8 +30,8 @@ COMMANDS = {
             "mass, reach of --chain, pairs that newly collide or no longer do; the SRDF's "
             "groups and disabled pairs and the controller YAML beside each.",
     "dynamics": "Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), torques with "
-                "damping and friction, standing on --support, and gravity margins against "
-                "effort limits.",
+                "damping and friction, with a fixed or a --floating base, standing on "
+                "--support, and gravity margins against effort limits.",
     "fk": "Forward kinematics: link poses for joint configurations.",
     "graph": "Draw the kinematic tree as Graphviz DOT: links as boxes (red: errors, orange: "
              "warnings), joints as edges labelled with type and limits.",

@@ -106,6 +106,27 @@ def warn(warnings) -> None:
         say(f"urdftool: warning: {warning}", err=True)
 
 
+# the --format of the command running (the one owner of "errors as JSON"): with json, an error
+# about the robot (exit 1) is also a JSON document on standard output (report.json_format's
+# error_document), so that a script reading it gets one; set by ``budgeted`` before the work
+# forks, by ``single_robot`` and by the commands that use neither
+ERROR_FORMAT: dict = {"format": None}
+
+
+def errors_as(output_format: str | None) -> None:
+    """Errors of the command now running are also written as ``output_format`` (json) on
+    standard output."""
+    ERROR_FORMAT["format"] = output_format
+
+
+def _error_document(results=(), message=None, location=None) -> None:
+    if ERROR_FORMAT["format"] == "json":
+        from urdftool.report.json_format import error_document
+        from urdftool.report.json_output import dumps
+
+        show(dumps(error_document(results, message, location)))
+
+
 def fail_at(robot, error: Exception) -> None:
     """Print ``error`` where it is (its ``where``, else its ``element`` in ``robot``, else the
     robot's file) and exit 1; a name given on the command line that the robot does not have
@@ -116,6 +137,7 @@ def fail_at(robot, error: Exception) -> None:
         fail_usage(error)
     where = getattr(error, "where", None) or robot.locate(getattr(error, "element", None))
     say(f"{where}: error: {error}", err=True)
+    _error_document(message=str(error), location=where)
     raise typer.Exit(1)
 
 
@@ -143,6 +165,7 @@ def fail_unbuildable(error) -> int:
         report_findings(robot.path, errors)
     else:
         say(f"{robot.locate(error.element)}: error: {error}", err=True)
+        _error_document(message=str(error), location=robot.locate(error.element))
     return 1
 
 
@@ -161,6 +184,7 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     load_options: passed to ``urdftool.description.load.load`` (``allow_env``: None, the
         default, is the safe mode when ``CI`` is set, see lint.settings.env_allowed)
     """
+    errors_as((choices or {}).get("--format", (None,))[0])
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
         if len(paths) != 1:
@@ -190,6 +214,7 @@ def _refuse_linkless(robot) -> None:
         report_findings(robot.path, refusals)
     else:
         say(f"{robot.locate(robot.root)}: error: robot has no <link> elements", err=True)
+        _error_document(message="robot has no <link> elements", location=robot.locate(robot.root))
     raise typer.Exit(1)
 
 
@@ -232,6 +257,7 @@ def budgeted(command):
         from urdftool.budget import Budget
         from urdftool.lint.pool import Stop, run_budgeted
 
+        errors_as(kwargs.get("output_format", kwargs.get("format")))  # (a Stop's too)
         try:
             budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
         except UsageError as error:
@@ -301,8 +327,10 @@ def _bytes_stdin(data: bytes):
 
 
 def report_findings(path: str, findings) -> None:
-    """Print findings about the robot at ``path`` to stderr as ``check`` would."""
+    """Print findings about the robot at ``path`` to stderr as ``check`` would (and with
+    ``--format json`` as a JSON document on stdout: :data:`ERROR_FORMAT`)."""
     from urdftool.lint.engine import FileResult
     from urdftool.report import render
 
     render("text", [FileResult(path, findings)], sys.stderr)
+    _error_document([FileResult(path, findings)])

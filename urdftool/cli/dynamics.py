@@ -15,8 +15,9 @@ MAX_MATRIX_ROWS = 1000  # urdftool.physics.dynamics.MAX_MATRIX_SIZE (not importe
 
 def register(app: typer.Typer) -> None:
     app.command("dynamics", help="Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), "
-                                 "torques with damping and friction, standing on --support, and "
-                                 "gravity margins against effort limits.")(budgeted(dynamics))
+                                 "torques with damping and friction, with a fixed or a "
+                                 "--floating base, standing on --support, and gravity margins "
+                                 "against effort limits.")(budgeted(dynamics))
 
 
 def dynamics(
@@ -40,6 +41,12 @@ def dynamics(
     plot: str = typer.Option(None, "--plot", metavar="FILE.png|svg",
                              help="With --support: the support polygon and centre of mass seen "
                                   "from above, as .svg or .png."),
+    floating: bool = typer.Option(False, "--floating", help="A free-flying base: a free-flyer "
+                                  "root joint 'root_joint' (as fk --floating), placed with --q "
+                                  "root_joint.x/.y/.z/.roll/.pitch/.yaw; --v and --a on it are "
+                                  "its twist in its own frame (x, y, z, then roll, pitch, yaw: "
+                                  "about its x, y, z axes); its six rows are the force and "
+                                  "moment on the base."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     max_matrix_rows: int = typer.Option(MAX_MATRIX_ROWS, "--max-matrix-rows", min=0, metavar="N",
                                         help="Refuse, before any work, a robot with more joint "
@@ -60,16 +67,22 @@ def dynamics(
                           only_with(("seed",), samples > 0, "--samples"),
                           only_with(("deg",), bool(q or v or a), "--q, --v or --a"),
                           (plot is not None and not str(plot).lower().endswith((".svg", ".png")),
-                           "--plot must end in .svg or .png")])
+                           "--plot must end in .svg or .png"),
+                          (floating and bool(support), "--floating does not go with --support "
+                                                       "(standing frees the base itself)"),
+                          (floating and samples > 0, "--floating does not go with --samples "
+                                                     "(the gravity margins hold the base fixed; "
+                                                     "a free base stands with --support)")])
     refuse_bad_outputs(plot, inputs=words)
     try:
-        model = build(robot)
+        model = build(robot, floating=floating)
     except DynamicsError as error:
         fail_at(robot, error)
     given = {name: joint_words(values, f"--{name}") for name, values in (("q", q), ("v", v),
                                                                          ("a", a))}
     try:
-        values = joint_values(robot, **given, degrees=deg)
+        values = joint_values(robot, **given, degrees=deg,
+                              floating_root=model.root)
     except ConfigError as error:
         fail_config(error, f"--{error.argument}")
     if support:

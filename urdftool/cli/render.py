@@ -78,6 +78,9 @@ def render(
         fail_at(robot, error)
     say(f"wrote {output} ({len(scene.triangles)} triangles){_why_empty(robot, scene, collision)}",
         err=True)
+    # a picture of nothing because every shape was left out (NAO, Pepper and iCub without their
+    # mesh packages) is a failure, as collisions' "not established"; a partial one is drawn
+    raise typer.Exit(1 if not len(scene.triangles) and scene.problems else 0)
 
 
 def _why_empty(robot, scene, collision: bool) -> str:

@@ -50,6 +50,12 @@ class Tally:
                      np.where(take, other.bound_sample, self.bound_sample))
 
 
+# [m] the one tolerance of contact: shapes whose penetration depth is at most this touch (a lift
+# on its base, parts exported to share a face, FCL's contact of exactly touching boxes, depth 0)
+# and do not collide: `collisions` at a pose, and the SRDF overlaps check's rules report
+TOUCHING = 0.001
+
+
 class PairChecker:
     """FCL objects and bounding boxes for a fixed list of link pairs."""
 
@@ -69,6 +75,7 @@ class PairChecker:
         self.half = np.array([part.half for part in parts]).reshape(-1, 3)
         self.radius = np.linalg.norm(self.half, axis=1)
         self.is_box = np.array([part.kind == "box" for part in parts], dtype=bool)
+        self.is_mesh = np.array([part.kind == "mesh" for part in parts], dtype=bool)
         self.fixed = [fcl.CollisionObject(part.geometry, fcl.Transform()) for part in parts]
         self.moving = [fcl.CollisionObject(part.geometry, fcl.Transform()) for part in parts]
         rows = [(a, b, index) for index, (one, two) in enumerate(link_pairs)
@@ -196,8 +203,12 @@ class PairChecker:
                 distance[pair] = gap
 
     def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False,
-              part_poses: np.ndarray | None = None, placed: bool = False):
-        """(colliding, distance [m], penetration depth [m]) of one link pair at one pose.
+              part_poses: np.ndarray | None = None, placed: bool = False,
+              known_depth: bool = False):
+        """(colliding, distance [m], penetration depth [m]) of one link pair at one pose. With
+        ``known_depth`` the depth is None when a mesh is among the parts in contact: FCL
+        computes no penetration depth between triangles (it gives 0, or 1 for boxes a third
+        inside each other), so that contact's depth is unknown.
 
         part_poses: :meth:`part_poses` of ``link_poses`` when the caller asks about many pairs
         at the same pose (then ``link_poses`` is not read); placed: :meth:`place` has put
@@ -216,7 +227,11 @@ class PairChecker:
             result = fcl.CollisionResult()
             if fcl.collide(one, two, request, result):
                 hit = True
-                depth = max([depth, *(c.penetration_depth for c in result.contacts)])
+                if depth is not None and known_depth and (self.is_mesh[self.pa[row]] or
+                                                          self.is_mesh[self.pb[row]]):
+                    depth = None
+                elif depth is not None:
+                    depth = max([depth, *(c.penetration_depth for c in result.contacts)])
             else:
                 nearest = min(nearest, fcl.distance(one, two, self._distance_request,
                                                     fcl.DistanceResult()))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,8 +22,17 @@ class Contact:
     link2: str
     colliding: bool
     distance: float
-    depth: float
+    depth: float | None  # None: a mesh in contact, whose depth FCL does not compute
     allowed: str = ""
+
+    @property
+    def touching(self) -> bool:
+        """In contact without penetrating more than :data:`~urdftool.collision.pairs.TOUCHING`:
+        surfaces that meet (FCL reports exactly touching shapes as a contact of depth 0), not a
+        collision. A mesh's contact has no depth, so it is never only touching."""
+        from urdftool.collision.pairs import TOUCHING
+
+        return self.colliding and self.depth is not None and self.depth <= TOUCHING
 
 
 @dataclass
@@ -41,7 +51,8 @@ class PoseReport:
 
     @property
     def forbidden(self) -> list[Contact]:
-        return [contact for contact in self.colliding if not contact.allowed]
+        return [contact for contact in self.colliding if not contact.allowed and
+                not contact.touching]
 
 
 def check_pose(robot, values: dict[str, str], degrees: bool = False,
@@ -85,10 +96,12 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
     contacts = []
     for index, pair in enumerate(scene.pairs):
         hit, distance, depth = scene.checker.exact(poses, index, contacts=True, part_poses=parts,
-                                                   placed=True)
+                                                   placed=True, known_depth=True)
         reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "")
         contacts.append(Contact(*pair, hit, distance, depth, reason))
-    colliding = sorted((c for c in contacts if c.colliding), key=lambda c: -c.depth)
+    # deepest first, a mesh's contact (depth unknown) before all
+    colliding = sorted((c for c in contacts if c.colliding),
+                       key=lambda c: -math.inf if c.depth is None else -c.depth)
     apart = sorted((c for c in contacts if not c.colliding and c.allowed != "Adjacent"),
                    key=lambda c: c.distance)
     values = {v.name: float(x) for v, x in zip(scene.variables, q)}

@@ -16,6 +16,7 @@ from urdftool.description.urdf import is_xacro
 from urdftool.description.xml import attribute
 from urdftool.errors import SrdfError, available
 from urdftool.collision.matrix import Matrix
+from urdftool.collision.pairs import TOUCHING  # [m]: overlapping less than this touches
 from urdftool.kinematics.tree import pair_key
 
 AUTOMATIC = ("Adjacent", "Default", "Always", "Never")
@@ -258,7 +259,6 @@ def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
     return poses
 
 
-TOUCHING = 0.001  # [m]: meshes that overlap less than this touch by design (seams, contacts)
 
 
 def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:

@@ -126,8 +126,8 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     from urdftool.description.files import temporary_folder
 
     with temporary_folder("urdftool-crosscheck-") as folder:
-        urdf, lines = _urdf_file(robot, folder)
         packages = _packages(robot)
+        urdf, lines = _urdf_file(robot, folder, in_place=_found_above(robot, packages))
         if os.path.dirname(urdf) == os.path.abspath(folder):
             _packages_beside(folder, packages)
         job = Job(urdf, packages, tuple(configurations))
@@ -291,12 +291,32 @@ def joint_configurations(robot) -> list[dict]:
     return configurations
 
 
-def _urdf_file(robot, folder: str) -> tuple[str, dict]:
+def _found_above(robot, packages: dict) -> bool:
+    """Whether PyBullet finds every package of ``packages`` (name -> folder) from the robot's
+    own file: it looks for ``package://NAME/rest`` as ``NAME/rest`` in the file's folder and
+    those above it, never through ROS_PACKAGE_PATH, so a URDF outside its package's parent
+    (``ros2 run xacro`` output in /tmp, a package found by ``--package``) loads nowhere but
+    there."""
+    from urdftool.description.files import kind_of, real_path
+
+    if robot.from_xacro or robot.path == "-":
+        return False
+    above = Path(os.path.abspath(robot.path)).parent
+    for name, place in packages.items():
+        folders = [above, *above.parents]
+        if not any(kind_of(folder / name) == "folder" and
+                   real_path(folder / name) == real_path(place) for folder in folders):
+            return False
+    return True
+
+
+def _urdf_file(robot, folder: str, in_place: bool = True) -> tuple[str, dict]:
     """The file the loaders read, and its line -> the element there (for the loaders' errors):
-    the user's URDF itself, or xacro's output written in ``folder``."""
+    the user's URDF itself (``in_place``: PyBullet finds its packages from there), or xacro's
+    output (or the URDF as read) written in ``folder``, with its packages linked beside it."""
     from lxml import etree
 
-    if not robot.from_xacro and robot.path != "-":
+    if in_place and not robot.from_xacro and robot.path != "-":
         lines: dict = {}
         for element in robot.root.iter():
             if isinstance(element.tag, str):
@@ -399,7 +419,55 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
         result.dropped_links = [link for link in robot.links if link not in set(result.links)]
     if not result.loaded:
         result.location = _located(robot, lines, result.error or "", result.output, urdf)
+        unfound = _UNFOUND_MESH.findall(result.output)
+        if unfound:
+            result.error = f"{(result.error or '').rstrip('.')}: {_unfound_advice(robot, unfound)}"
+        if name == "mujoco" and _PACKAGE_OPENED.search(result.error or ""):
+            result.error = f"{result.error.rstrip()}; {MUJOCO_PACKAGES}"
     return result
+
+
+# MuJoCo (3, 4) opens a package:// or file:// URI as a file name, its "//" made one "/"
+_PACKAGE_OPENED = re.compile(r"Error opening file '(?:package|file):/")
+MUJOCO_PACKAGES = ("MuJoCo's URDF import resolves no package:// or file:// URI (no ROS package "
+                   "path): for MuJoCo, write mesh paths relative to a folder and name it with "
+                   "<mujoco><compiler meshdir=\"...\"/></mujoco> in the <robot>, or convert "
+                   "the robot to MJCF with its paths resolved")
+
+
+# PyBullet (3.2)'s warning for a mesh it cannot find, before "Cannot load URDF file."
+_UNFOUND_MESH = re.compile(r"cannot find '([^']+)' in any directory in urdf path")
+
+
+def _unfound_advice(robot, names: list[str]) -> str:
+    """What to do about the meshes PyBullet printed it cannot find (``names``, as it cuts
+    ``package://`` off): the package urdftool cannot find either (give it), or the file that is
+    not there ('urdftool check' says where it was looked for)."""
+    from urdftool.description.packages import package_uri_parts
+
+    names = list(dict.fromkeys(names))
+    unknown, missing = [], []
+    for name in names:
+        uri = next((e.get("filename") for e in robot.root.iter("mesh")
+                    if _names(robot, e.get("filename") or "", name)), None)
+        package = package_uri_parts(uri)[0] if uri and uri.startswith("package://") else None
+        try:
+            known = package is None or bool(robot.resolver.find(package))
+        except Exception:  # noqa: BLE001 - an unknown package
+            known = False
+        if not known:
+            unknown.append(package)
+        else:
+            missing.append(uri or name)
+    said = f"it cannot find mesh '{names[0]}'" + (f" and {len(names) - 1} more" if
+                                                 len(names) > 1 else "")
+    if unknown:
+        first = list(dict.fromkeys(unknown))[0]
+        return (f"{said}; package '{first}' is not found by urdftool either: give it with "
+                f"--package {first}=PATH (urdftool links each package it knows beside the file "
+                "PyBullet reads)")
+    return (f"{said}, which is not there; 'urdftool check' says where each mesh was looked "
+            "for")
 
 
 def _located(robot, lines: dict, error: str, output: str, urdf: str):

@@ -434,5 +434,6 @@ def forward_kinematics(model: KinematicModel, configurations: Configurations,
 def pose_components(matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(positions [..., 3] in [m], rpy [..., 3] in [rad], quaternions [..., 4] as x, y, z, w)."""
     rotations = matrices[..., :3, :3]
-    return (matrices[..., :3, 3], transforms.rpy_from_rotation(rotations),
-            transforms.quaternion_from_rotation(rotations))
+    # + 0.0: no -0.0 (atan2's pitch of a level frame), which JSON would otherwise clean again
+    return (matrices[..., :3, 3] + 0.0, transforms.rpy_from_rotation(rotations) + 0.0,
+            transforms.quaternion_from_rotation(rotations) + 0.0)

@@ -1,8 +1,17 @@
-"""Rigid-body dynamics of a robot with a fixed base, through Pinocchio.
+"""Rigid-body dynamics of a robot with a fixed base, or with a free-flying one, through Pinocchio.
 
 Joint values are by joint name: angles in [rad], travel in [m]; velocities in [rad/s] or [m/s];
 accelerations in [rad/s^2] or [m/s^2]; torques in [N m] or forces in [N]. Continuous joints,
 which Pinocchio stores as (cos, sin), take one angle here like any revolute joint.
+
+A free-flying base (``build(robot, floating=True)``: Pinocchio's ``JointModelFreeFlyer`` as the
+root joint ``root_joint``, as ``fk --floating``) is six variables, named as fk names them:
+``root_joint.x``, ``.y``, ``.z`` [m] and ``.roll``, ``.pitch``, ``.yaw`` [rad] place the root
+link in the world (roll, pitch, yaw about the fixed x, y, z axes, as URDF's ``rpy``). Its
+velocity and acceleration are Pinocchio's: the root link's twist in its own frame, linear
+(``.x``, ``.y``, ``.z`` [m/s]) then angular (``.roll``, ``.pitch``, ``.yaw``: about its own x, y,
+z axes [rad/s], not rates of the angles); its rows of M(q), G(q), C(q, v) and tau are that
+frame's force [N] and moment [N m] on the base: what a floating robot's contacts must supply.
 """
 
 from __future__ import annotations
@@ -13,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from urdftool.errors import DynamicsError
+from urdftool.kinematics.configuration import FLOATING_COORDINATES
 from urdftool.kinematics.model import oversized_data
 
 _ROUND_OFF = 1e-12  # [N m] or [N]: gravity torques below this are floating-point noise
@@ -24,9 +34,11 @@ class Model:
 
     model: object
     data: object
-    joints: list[str]  # one per velocity variable (1-dof joints only)
+    joints: list[str]  # one per velocity variable (1-dof joints; a free root's six first)
     variables: list = field(default_factory=list)  # the settable ones: mimic joints follow
     mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
+    root: str | None = None  # the free-flyer root joint's name, or None for a fixed base
+    reductions: dict = field(default_factory=dict)  # joint -> its transmission's reduction
 
     def _expanded(self, values: dict[str, float], offsets: bool) -> dict[str, float]:
         """Variable values plus every mimic joint's (unnamed variables count as 0)."""
@@ -40,7 +52,13 @@ class Model:
         import pinocchio as pin
 
         q = pin.neutral(self.model)
+        if self.root:  # position, then the quaternion (x, y, z, w) of roll, pitch, yaw
+            pose = [values.get(f"{self.root}.{c}", 0.0) for c in FLOATING_COORDINATES]
+            q[:3] = pose[:3]
+            q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(*pose[3:])).coeffs()
         for name, value in self._expanded(values, offsets=True).items():
+            if self.root and name.startswith(f"{self.root}."):
+                continue
             joint = self.model.joints[self.model.getJointId(name)]
             if joint.nq == 2:  # continuous: (cos, sin)
                 q[joint.idx_q:joint.idx_q + 2] = (math.cos(value), math.sin(value))
@@ -52,20 +70,27 @@ class Model:
         """Pinocchio's v (or a) by name; a mimic joint moves at multiplier times its variable."""
         v = np.zeros(self.model.nv)
         for name, value in self._expanded(values, offsets=False).items():
+            if self.root and name.startswith(f"{self.root}."):  # the twist, in the root's order
+                v[FLOATING_COORDINATES.index(name[len(self.root) + 1:])] = value
+                continue
             v[self.model.joints[self.model.getJointId(name)].idx_v] = value
         return v
 
 
-def build(robot) -> Model:
-    """A fixed-base Pinocchio model of the robot (1-dof joints; planar/floating refused)."""
+def build(robot, floating: bool = False) -> Model:
+    """A Pinocchio model of the robot (1-dof joints; planar/floating joints refused), its base
+    fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
+    --floating``), whose six velocity variables come first."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
+    from urdftool.kinematics.fk import FLOATING_ROOT
     from urdftool.kinematics.native import build_model
 
-    model = build_model(robot)
-    joints = []
-    for joint_id in range(1, model.njoints):
+    root = FLOATING_ROOT if floating else None
+    model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating else ()))
+    joints = [f"{root}.{c}" for c in FLOATING_COORDINATES] if floating else []
+    for joint_id in range(2 if floating else 1, model.njoints):
         axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
         if axis is not None and not abs(np.linalg.norm(axis) - 1) <= 1e-6:
             raise DynamicsError(_axis_problem(robot.joints.get(model.names[joint_id]),
@@ -78,7 +103,7 @@ def build(robot) -> Model:
                                 f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
                                 "revolute, continuous and prismatic joints only", element)
         joints.append(model.names[joint_id])
-    variables = variables_of(robot)
+    variables = variables_of(robot, root)
     names = {variable.name for variable in variables}
     try:
         known: dict = {}  # each joint's source found once along a chain of mimics
@@ -89,7 +114,28 @@ def build(robot) -> Model:
     oversized = oversized_data(model.nv)
     if oversized:
         raise DynamicsError(oversized, robot.root)
-    return Model(model, model.createData(), joints, variables, mimics)
+    return Model(model, model.createData(), joints, variables, mimics, root, reductions(robot))
+
+
+def reductions(robot) -> dict[str, float]:
+    """Joint -> the ``<mechanicalReduction>`` of the transmission that drives it, where it is
+    a number other than 1 (in the transmission, its joint or its actuator, as ROS 1 and ROS 2
+    transmissions write it). URDF's ``<limit effort>`` is the joint's; ros_control's
+    SimpleTransmission gives the joint the actuator's effort times the reduction, so a limit
+    written for the motor (Cassie: 4.5 N m at 25:1) is the reduction times too small."""
+    from urdftool.description.actuation import transmission_joints, transmissions
+    from urdftool.description.values import parse_numbers
+
+    found = {}
+    for transmission in transmissions(robot):
+        texts = [e.text for e in transmission.iter("mechanicalReduction")]
+        values, _ = parse_numbers((texts[0] or "").strip(), 1) if texts else (None, None)
+        if not values or not math.isfinite(values[0]) or values[0] in (0.0, 1.0):
+            continue
+        for joint in transmission_joints(transmission):
+            if joint.name:
+                found[joint.name] = abs(values[0])
+    return found
 
 
 def total_mass(model: Model) -> float:
@@ -118,7 +164,7 @@ class State:
     joints: list[str]
     q: dict
     mass: float
-    com: np.ndarray
+    com: np.ndarray  # [m] in the root link's frame, or with a free root the world's
     M: np.ndarray
     G: np.ndarray
     C: np.ndarray | None = None
@@ -129,6 +175,7 @@ class State:
     damping: np.ndarray | None = None  # <dynamics damping> * v [N m or N]
     friction: np.ndarray | None = None  # <dynamics friction> * sign(v)
     warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
+    root: str | None = None  # the free-flyer root joint, None for a fixed base
 
     @property
     def lagrangian(self) -> float:
@@ -144,7 +191,8 @@ class State:
         def listed(a):
             return None if a is None else np.asarray(a).tolist()
 
-        return {"joints": self.joints, "q": self.q, "total_mass": self.mass,
+        return {"joints": self.joints, "q": self.q, "base": "floating" if self.root else "fixed",
+                "total_mass": self.mass,
                 "com": listed(self.com), "M": listed(self.M), "G": listed(self.G),
                 "C": listed(self.C), "tau": listed(self.tau),
                 "rnea_residual": self.rnea_residual, "kinetic_energy": self.kinetic,
@@ -179,7 +227,7 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
-                   mass_matrix.copy(), gravity)
+                   mass_matrix.copy(), gravity, root=model.root)
     result.warnings.extend(singular(model, mass_matrix, result.mass))
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})
@@ -191,8 +239,31 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         result.kinetic = float(0.5 * v @ mass_matrix @ v)
         result.damping = np.asarray(m.damping) * v
         result.friction = np.asarray(m.friction) * np.sign(v) + 0.0  # no -0
+        result.warnings.extend(over_limits(model, v, result.total))
     result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
+
+
+def over_limits(model: Model, v: np.ndarray, total: np.ndarray) -> list[str]:
+    """Joints given a velocity over their ``<limit velocity>``, or needing a torque (tau with
+    damping and friction) over their ``<limit effort>``, in words; only where the limit is one
+    to judge against (:func:`judged_effort`: finite and above 0: a limit of 0 is no limit
+    declared, Cassie's springs, an exporter's "unknown")."""
+    from urdftool.numbers import number
+
+    m, said = model.model, []
+    for row, name in enumerate(model.joints):
+        if row < 6 and model.root:  # a free root's rows: Pinocchio's limits of the largest float
+            continue
+        linear = m.joints[m.getJointId(name)].shortname().startswith("JointModelP")
+        for kind, value, limit, unit in (
+                ("velocity", v[row], m.velocityLimit[row], "m/s" if linear else "rad/s"),
+                ("torque", total[row], m.effortLimit[row], "N" if linear else "N m")):
+            if judged_effort(float(limit)) and abs(value) > limit:
+                said.append(f"joint '{name}': {kind} {number(abs(value))} {unit} is over its "
+                            f"<limit {'effort' if kind == 'torque' else kind}> of "
+                            f"{number(limit)} {unit}")
+    return said
 
 
 def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
@@ -233,12 +304,24 @@ def _listed(names: list[str]) -> str:
         f" and {len(names) - 12} more" if len(names) > 12 else "")
 
 
+def judged_effort(effort: float) -> bool:
+    """Whether an effort limit [N m or N] is one a torque can be judged against: finite and
+    above 0. ``inf`` is no ``<limit effort>`` (a continuous joint without ``<limit>``); 0 (or
+    below) is no actuator torque declared: a passive joint (Cassie's knee-to-shin springs), a
+    spring, a mimic, or the ROS-Industrial exporters' "unknown" (Fanuc, Motoman). Pinocchio
+    reads 0 as ``effortLimit`` 0, Gazebo and PyBullet clamp a commanded force to it (the joint
+    gets none), MuJoCo's URDF import ignores it: gravity on such a joint is carried by the
+    structure or a spring, never by a motor of 0, so it has no margin."""
+    return math.isfinite(effort) and effort > 0
+
+
 @dataclass
 class JointLoad:
     """Worst static gravity torque of one joint over the sampled poses, against its limit.
 
-    A joint without an effort limit (``effort`` inf: no ``<limit effort>``, a continuous joint
-    without ``<limit>``) has no margin (None) and is not judged (``holds`` None)."""
+    A joint without a usable effort limit (:func:`judged_effort`: ``effort`` inf, no ``<limit
+    effort>``; or 0, a passive joint) has no margin (None) and is not judged (``holds``
+    None)."""
 
     joint: str
     effort: float
@@ -247,10 +330,23 @@ class JointLoad:
     zero_pose: float = 0.0
     sampled: float | None = None  # the worst of the samples, when ``worst`` was refined
     evaluations: int = 0  # of G(q) while refining
+    reduction: float = 1.0  # of the transmission driving the joint (:func:`reductions`)
+
+    @property
+    def held_at_the_motor(self) -> bool:
+        """It cannot hold with its effort limit, but could with that limit times its
+        transmission's reduction: the limit may be the motor's, not the joint's."""
+        return self.holds is False and self.reduction > 1 and \
+            self.worst <= self.effort * self.reduction
 
     @property
     def limited(self) -> bool:
-        return bool(np.isfinite(self.effort))
+        return judged_effort(self.effort)
+
+    @property
+    def passive(self) -> bool:
+        """``<limit effort="0">`` (or below): no actuator torque declared."""
+        return self.effort <= 0
 
     @property
     def margin(self) -> float | None:
@@ -261,9 +357,11 @@ class JointLoad:
         return self.worst <= self.effort if self.limited else None
 
     def as_dict(self) -> dict:
-        return {"joint": self.joint, "effort": self.effort if self.limited else None,
+        return {"joint": self.joint, "effort": None if math.isinf(self.effort) else self.effort,
+                "judged": self.limited,
                 "worst": self.worst, "sampled_worst": self.sampled,
-                "margin": self.margin, "holds": self.holds, "zero_pose": self.zero_pose,
+                "margin": self.margin, "holds": self.holds, "reduction": self.reduction,
+                "zero_pose": self.zero_pose,
                 "worst_pose": self.worst_pose}
 
 
@@ -307,7 +405,8 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
     poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
-    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0)
+    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0,
+                       reduction=model.reductions.get(name, 1.0))
              for name, i in zip(model.joints, ids)]
     if torques is None:
         rows = [m.joints[joint_id].idx_v for joint_id in ids]

@@ -28,7 +28,7 @@ import numpy as np
 
 from urdftool.numbers import number
 from urdftool.errors import DynamicsError, UnknownLink
-from urdftool.physics.dynamics import JointLoad, Model, gravity_loads
+from urdftool.physics.dynamics import JointLoad, Model, gravity_loads, judged_effort
 from urdftool.kinematics.chain import frame_jacobian
 
 CONTACT = 1e-3  # [m]: support points this close to the ground touch it
@@ -83,8 +83,15 @@ class Stance:
 
     @property
     def holds(self) -> bool:
-        """Every joint's standing torque is within its effort limit."""
-        return bool(np.all(np.abs(self.torques) <= self.efforts))
+        """Every joint's standing torque is within its effort limit, where it has one to judge
+        against (:func:`urdftool.physics.dynamics.judged_effort`: not inf, not 0)."""
+        return not any(self.beyond)
+
+    @property
+    def beyond(self) -> list[bool]:
+        """Per joint, whether its standing torque is over a judged effort limit."""
+        return [judged_effort(float(effort)) and abs(float(torque)) > effort
+                for torque, effort in zip(self.torques, self.efforts)]
 
     def as_dict(self) -> dict:
         return {"supports": self.supports, "joints": self.joints, "q": self.q,
@@ -105,11 +112,11 @@ def build_standing(robot, supports: list[str]) -> Standing:
     from urdftool.physics.solids import surface_points
 
     fixed = build(robot)
-    try:
-        floating = pin.buildModelFromXML(robot.urdf, pin.JointModelFreeFlyer())
-    except (RuntimeError, ValueError) as error:
-        raise DynamicsError(f"Pinocchio cannot build the model: {error}") from None
-    model = Model(floating, floating.createData(), fixed.joints, fixed.variables, fixed.mimics)
+    # the free root as dynamics --floating builds it (its rows are the wrenches' here, so the
+    # joints are the fixed model's); the fixed model's build has refused what urdfdom refuses
+    free = build(robot, floating=True)
+    floating = free.model
+    model = Model(floating, free.data, fixed.joints, fixed.variables, fixed.mimics)
     frames, points = [], []
     UnknownLink.unless_among(supports, robot.links)  # (a usage error in every command)
     for name in supports:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
+from urdftool.numbers import number
 from urdftool.report.console import fixed, plain_console
 from urdftool.report.escape import markup
 
@@ -53,8 +54,11 @@ def _problems(problems) -> list[dict]:
 
 
 def pose_json(robot_name: str, report) -> dict:
+    from urdftool.collision.pairs import TOUCHING
+
     return {"robot": robot_name, "q": report.q, "srdf": report.srdf,
-            "colliding": [vars(c) for c in report.colliding],
+            "touching_depth": TOUCHING,
+            "colliding": [{**vars(c), "touching": c.touching} for c in report.colliding],
             "closest": [vars(c) for c in report.closest],
             "visual_only": report.visual_only,
             "problems": _problems(report.problems)}
@@ -66,14 +70,27 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
     where = "the given configuration" if custom else "the default configuration"
     console.print(f"[bold]{markup(robot_name)}[/] at {where} ({len(report.q)} joints), "
                   f"SRDF: {markup(report.srdf or 'none')}")
+    from urdftool.collision.pairs import TOUCHING
+
     touching = [c for c in report.colliding if c.allowed == "Adjacent"]
     listed = [c for c in report.colliding if c.allowed != "Adjacent"]
     if listed:
         table = _table("link 1", "link 2", "depth (mm)", "status")
         for c in listed:
-            status = f"allowed ({c.allowed})" if c.allowed else "[bold red]COLLIDING[/]"
-            table.add_row(markup(c.link1), markup(c.link2), fixed(c.depth * 1000, 2), status)
+            status = f"allowed ({c.allowed})" if c.allowed else \
+                "touching" if c.touching else "[bold red]COLLIDING[/]"
+            table.add_row(markup(c.link1), markup(c.link2),
+                          "? (mesh)" if c.depth is None else fixed(c.depth * 1000, 2), status)
         console.print(table)
+        if any(c.depth is None for c in listed):
+            console.print("? (mesh): FCL computes no penetration depth between triangles, so a "
+                          "mesh's contact is a collision however deep")
+        if any(c.touching and not c.allowed for c in listed):
+            console.print(f"touching: in contact at most {number(TOUCHING * 1000)} mm deep, "
+                          "surfaces that meet, not a collision; MoveIt (FCL, padding 0) "
+                          "counts the contact as one unless the SRDF disables the pair (its "
+                          "Setup Assistant does, 'Default', for pairs in contact at the "
+                          "default pose)")
     if touching:
         console.print(f"{len(touching)} adjacent pair(s) overlap at their joints (allowed): "
                       + ", ".join(f"{markup(c.link1)}/{markup(c.link2)}" for c in touching))
@@ -94,9 +111,12 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
                       f"checked, but {len(report.problems)} collision element(s) were left out "
                       "(above), and they may collide")
     else:
-        allowed = len(report.colliding)
-        console.print(f"[bold green]no self-collision[/]"
-                      + (f" ({allowed} allowed contact(s))" if allowed else ""))
+        meeting = sum(c.touching and not c.allowed for c in report.colliding)
+        allowed = len(report.colliding) - meeting
+        said = [f"{allowed} allowed contact(s)"] * bool(allowed) + \
+            [f"{meeting} pair(s) touching"] * bool(meeting)
+        console.print("[bold green]no self-collision[/]"
+                      + (f" ({', '.join(said)})" if said else ""))
 
 
 def matrix_json(robot_name: str, result, stale) -> dict:

@@ -37,6 +37,9 @@ def _scale(values) -> float | None:
 
 
 NO_JOINT = "no moving joint: no gravity load to judge"
+# why a joint of <limit effort="0"> is not judged (urdftool.physics.dynamics.judged_effort)
+PASSIVE = ("no actuator torque declared: a passive or spring joint, or a limit left unknown; "
+           "gravity there is carried by the structure, not a motor")
 TORQUE = "[N m, or N for a prismatic joint]"  # the unit of every torque, tau and effort shown
 
 
@@ -44,8 +47,12 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     """matrices: show G(q) and M(q); relevant: joints whose values in the worst pose matter"""
     joints = [_text(j) for j in result.joints]
     width = max((len(j) for j in joints), default=5)
+    frame = "the world frame (free base)" if result.root else "the root frame"
     lines = [f"total mass {number(result.mass)} kg, centre of mass "
-             f"({numbers(result.com, floor=MILLIMETRE)}) m in the root frame"]
+             f"({numbers(result.com, floor=MILLIMETRE)}) m in {frame}"]
+    if result.root:
+        lines.append(f"free base: the rows {_text(result.root)}.x, .y, .z are the force [N] and "
+                     ".roll, .pitch, .yaw the moment [N m] on the root link, in its frame")
     if matrices:
         lines += ["", f"G(q): gravity torque per joint {TORQUE}"]
         lines += [f"  {name:{width}s} {_row([g], _scale(result.G))}"
@@ -98,7 +105,8 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
     for load in loads:
         flag = "" if load.holds is not False else "  ERROR: cannot hold itself against gravity"
         effort, margin = (f"{number(load.effort):>8s}", f"{number(load.margin):>10s}") \
-            if load.limited else (f"{'none':>8s}", f"{'-':>10s}")
+            if load.limited else (f"{number(load.effort) if load.passive else 'none':>8s}",
+                                  f"{'-':>10s}")
         drawn = "" if not refined else f" {number(load.sampled, scale=scale):>10s}" \
             if load.sampled is not None else f" {'':10s}"
         lines.append(f"  {_text(load.joint):{width}s} {effort} "
@@ -111,16 +119,29 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
                          if k in relevant and number(v, places=3) != "0.000")
         lines.append(f"  smallest margin: {_text(least.joint)} ({number(least.margin, 3)} of "
                      f"{number(least.effort, 3)}) at {pose or 'the zero pose'}")
-    unlimited = [_text(load.joint) for load in loads if not load.limited]
+    unlimited = [_text(load.joint) for load in loads if not load.limited and not load.passive]
     if unlimited:
         lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
                      f"{', '.join(unlimited)}")
+    passive = [_text(load.joint) for load in loads if load.passive]
+    if passive:
+        lines.append(f"  not judged (effort 0 in the URDF: {PASSIVE}): {', '.join(passive)}")
+    unlimited += passive
     failing = [_text(load.joint) for load in loads if load.holds is False]
+    motor = [load for load in loads if load.held_at_the_motor]
+    if motor:
+        lines.append("  effort limits that may be the motor's: URDF's <limit effort> is the "
+                     "joint's, and the transmission multiplies a motor's torque by its "
+                     "mechanicalReduction: " + ", ".join(
+                         f"{_text(load.joint)} {number(load.effort)} x {number(load.reduction)}"
+                         f" = {number(load.effort * load.reduction)} would hold "
+                         f"{number(load.worst, 3)}" for load in motor))
     every = "every joint with an effort limit" if unlimited else "every joint"
     lines.append(f"  {len(failing)} joint{'s' if len(failing) > 1 else ''} cannot hold "
                  f"{'themselves' if len(failing) > 1 else 'itself'}: {', '.join(failing)}"
                  if failing else f"  {every} holds the robot against gravity"
-                 if least is not None else "  no joint has an effort limit: nothing judged")
+                 if least is not None else "  no joint has an effort limit above 0: nothing "
+                                           "judged")
     return lines
 
 
@@ -149,11 +170,14 @@ def stance_text(stance, standing_load=None) -> str:
               f"  {'joint':{width}s} {'standing':>10s} {'root fixed':>10s} {'effort':>8s}"] \
         if joints else []
     scale = _scale([*stance.torques, *stance.fixed_base])
-    for joint, standing, fixed, effort in zip(joints, stance.torques, stance.fixed_base,
-                                              stance.efforts):
-        flag = "  ERROR: beyond its effort limit" if abs(standing) > effort else ""
+    for joint, standing, fixed, effort, beyond in zip(joints, stance.torques, stance.fixed_base,
+                                                      stance.efforts, stance.beyond):
+        flag = "  ERROR: beyond its effort limit" if beyond else ""
         lines.append(f"  {joint:{width}s} {number(standing, scale=scale):>10s} "
                      f"{number(fixed, scale=scale):>10s} {number(effort):>8s}{flag}")
+    passive = [joint for joint, effort in zip(joints, stance.efforts) if effort <= 0]
+    if passive:
+        lines.append(f"  not judged (effort 0 in the URDF: {PASSIVE}): {', '.join(passive)}")
     lines += ["", "ground wrench on each support at its frame origin (force [N], torque [N m]):"]
     for name, wrench in stance.wrenches.items():
         lines.append(f"  {_text(name)}: force ({_vector(wrench[:3])}), "

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.numbers import number, numbers
+from urdftool.numbers import exact, number, numbers
 from urdftool.report.escape import csv_cell, text as _text
 
 
@@ -90,8 +90,8 @@ def csv_text(chain, solutions) -> str:
     for number, solution in enumerate(solutions, start=1):
         writer.writerow([csv_cell(solution.target.name) if solution.target.name else number,
                          int(solution.solved),
-                         repr(solution.position_error), repr(solution.rotation_error),
-                         solution.iterations, *(repr(float(v)) for v in solution.x)])
+                         exact(solution.position_error), exact(solution.rotation_error),
+                         solution.iterations, *(exact(v) for v in solution.x)])
     return stream.getvalue()
 
 

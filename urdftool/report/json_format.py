@@ -26,6 +26,30 @@ def as_dict(results) -> dict:
     }
 
 
+def error_document(results=(), message: str | None = None, location=None) -> dict:
+    """What an analysis command (fk, dynamics, ... with ``--format json``) writes on standard
+    output when it cannot compute, as ruff and mypy write a file they cannot read among their
+    JSON diagnostics: :func:`as_dict`'s document (the findings of a robot that does not load,
+    as ``check`` gives them) with ``error``, the reason in one line; an error that is no finding
+    (``message``: a joint dynamics refuses, a support without geometry) is a diagnostic of its
+    own at ``location`` (a Location, or a file name), without a code. Usage errors (exit 2)
+    are not documents: as for ruff and mypy, they go to standard error only."""
+    document = as_dict(results)
+    if message is not None:
+        where = location_dict(location) if hasattr(location, "via") else \
+            {"file": None if location is None else str(location), "line": None, "column": None,
+             "via": []}
+        document["diagnostics"].append({"file": where["file"], "line": where["line"],
+                                        "column": where["column"], "code": None, "name": None,
+                                        "severity": "error", "message": message,
+                                        "via": where["via"]})
+        document["summary"]["errors"] += 1
+        document["summary"]["files"] = max(document["summary"]["files"], 1)
+    first = document["diagnostics"][0]["message"] if document["diagnostics"] else None
+    document["error"] = message or first
+    return document
+
+
 def _fix(fix) -> dict:
     """A fix as data: what it does, whether --fix applies it (safe) or only --unsafe-fixes,
     and its edits (byte offsets; 1-based lines and 0-based columns in characters)."""

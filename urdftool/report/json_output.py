@@ -19,11 +19,15 @@ def dumps(data) -> str:
     (``json.dumps(indent=...)`` runs the slower pure-Python one). Always JSON (RFC 8259): a
     float that is infinite or NaN (a declared mass of ``inf``, a pose past what a float holds)
     is written null, which every reader takes (``NaN``/``Infinity`` are no JSON: `inertia -f
-    json` of such a robot was refused by every strict reader)."""
+    json` of such a robot was refused by every strict reader). No zero is signed: ``-0.0`` is
+    written ``0.0`` (:func:`urdftool.numbers.exact`)."""
     try:
         text = _dumps(data, _ENCODE)
     except ValueError:  # (rare: looked for by the encoder, and only then the data cleaned)
         data = _finite(data)
+        text = _dumps(data, _ENCODE)
+    if _NEGATIVE_ZERO.search(text):  # as numbers.exact writes a float: looked for, then cleaned
+        data = _unsigned(data)
         text = _dumps(data, _ENCODE)
     # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
     # an escape no strict reader takes (I-JSON, RFC 7493; SARIF uploads, serde, Go): rare, so
@@ -38,6 +42,9 @@ def line(data) -> str:
         text = _ENCODE(data)
     except ValueError:
         data = _finite(data)
+        text = _ENCODE(data)
+    if _NEGATIVE_ZERO.search(text):
+        data = _unsigned(data)
         text = _ENCODE(data)
     return _ENCODE(_whole(data)) if "\\ud" in text else text
 
@@ -142,6 +149,22 @@ def write_json(data, stream=None) -> None:
     """``data`` as :func:`dumps` writes it and a newline on ``stream`` (default: standard output),
     in one write (``json.dump`` writes token by token)."""
     (stream or sys.stdout).write(dumps(data) + "\n")
+
+
+# a number token -0.0 (json writes a float as repr does); in a string too, which only costs the
+# cleaning, never changes the string
+_NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0\.0(?![\w.])")
+
+
+def _unsigned(value):
+    """``value`` with every float zero unsigned (``-0.0`` -> ``0.0``, :func:`urdftool.numbers.exact`)."""
+    if isinstance(value, float):
+        return value + 0.0
+    if isinstance(value, dict):
+        return {key: _unsigned(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_unsigned(item) for item in value]
+    return value
 
 
 def _finite(value):
