@@ -125,9 +125,10 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     configurations = joint_configurations(robot)
     from urdftool.description.files import temporary_folder
 
+    given = set(packages or {})
     with temporary_folder("urdftool-crosscheck-") as folder:
         packages = _packages(robot)
-        urdf, lines = _urdf_file(robot, folder, in_place=_found_above(robot, packages))
+        urdf, lines = _urdf_file(robot, folder, in_place=_read_in_place(robot, packages, given))
         if os.path.dirname(urdf) == os.path.abspath(folder):
             _packages_beside(folder, packages)
         job = Job(urdf, packages, tuple(configurations))
@@ -289,6 +290,18 @@ def joint_configurations(robot) -> list[dict]:
             configuration[joint.get("name")] = round(value, 6)
         configurations.append(configuration)
     return configurations
+
+
+def _read_in_place(robot, packages: dict, given: set) -> bool:
+    """Whether the loaders read the user's own file: always, but for a plain URDF one of whose
+    packages the user gave (``--package``) where PyBullet, which looks only above the file,
+    cannot find it, and that names no mesh by a path relative to its folder (which a copy
+    elsewhere would lose). What a loader does with the file as it is is what U932 and the
+    other portability rules predict, so nothing else is moved."""
+    if not given & set(packages) or _found_above(robot, packages):
+        return True
+    return any("://" not in (element.get("filename") or "://")
+               for element in robot.root.iter("mesh", "texture"))
 
 
 def _found_above(robot, packages: dict) -> bool:
