@@ -47,10 +47,14 @@ class LoadError(UrdftoolError):
         or stale name, most likely)
     whatever_args: True when it fails whatever values the xacro arguments have (a macro call
         under no condition giving a parameter the macro lacks)
+    declared: for 'package', True when the package.xml of the file's package declares it as a
+        dependency (:attr:`PackageNotFound.declared_by`): installed wherever that package is
+        built, a question of the workspace, not of the file
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
-                 certain: bool = True, close: tuple = (), whatever_args: bool = False):
+                 certain: bool = True, close: tuple = (), whatever_args: bool = False,
+                 declared: bool = False):
         self.kind = kind
         self.message = message
         self.location = location
@@ -58,6 +62,7 @@ class LoadError(UrdftoolError):
         self.certain = certain
         self.close = tuple(close)
         self.whatever_args = whatever_args
+        self.declared = declared
         super().__init__(message)
 
 
@@ -65,15 +70,11 @@ class PackageNotFound(UrdftoolError):
     """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path.
 
     ``unchecked`` says what is not checked for want of it: the robot (a ``$(find)``: it is
-    not expanded) or a mesh (``package://``: the robot is checked without it)."""
+    not expanded) or a mesh (``package://``: the robot is checked without it). ``declared_by``:
+    the package whose package.xml declares it as a dependency (installed wherever that package
+    is built, a question of the workspace, not of the file naming it), or None."""
 
     ROBOT = "the robot is not expanded, so not checked"
-    # what the message of a package a package.xml depends on says: installed wherever that
-    # package is built, a question of the workspace, not of the file naming it
-    DECLARED = "declares it as a dependency"
-    # what is said of a file needing it that only defines macros (no robot is lost by its not
-    # being expanded: the run does not count it as not checked)
-    LIBRARY = "a library of macros (its top level defines macros and calls none)"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
                  undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):
@@ -90,7 +91,7 @@ class PackageNotFound(UrdftoolError):
         if declared_by:
             super().__init__(
                 f"package '{name}' not found: the package.xml of '{declared_by}' "
-                f"{PackageNotFound.DECLARED}, which is not installed here: {unchecked} "
+                f"declares it as a dependency, which is not installed here: {unchecked} "
                 f"(nothing in it is known to be wrong); looked in: {where}. Pass --package "
                 f"{name}=PATH, set "
                 "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
@@ -301,16 +302,19 @@ class MeshProblem(LocatedError):
     message: what a user should read, naming the file and the fix
     certain: False when the problem may not hold after the package's build (a file missing
     from the source tree whose package's install rules could not be read)
+    declared: for ``package``, True when the robot's package.xml declares the package as a
+    dependency (:attr:`PackageNotFound.declared_by`): the workspace's, not the file's
+    kept_empty: for ``missing``, True when the file's folder holds only placeholders, kept
+    empty in the repository for files put there later (a tool, a download, a build step):
+    the repository leaves it for a tool to put there, as a declared dependency is left to the
+    workspace
     """
 
     kind: str
     message: str
     certain: bool = True
-
-    # what the message of a file missing from a folder holding only placeholders says: the
-    # repository leaves it for a tool to put there, as a package.xml declaring a dependency
-    # leaves that package to the workspace
-    KEPT_EMPTY = "a folder kept empty in the repository for files put there later"
+    declared: bool = False
+    kept_empty: bool = False
 
     def __str__(self) -> str:
         return self.message

@@ -262,7 +262,8 @@ def test_a_note_saying_why_a_file_was_not_checked_is_shown_with_notes_left_out()
     from urdftool.errors import PackageNotFound
 
     declared = str(PackageNotFound("sensors", ["package.xml below /ws"]).declared("bot"))
-    why = Finding("U006", "package-not-found", Severity.INFO, declared, Location("bot.urdf.xacro", 9))
+    why = Finding("U006", "package-not-found", Severity.INFO, declared, Location("bot.urdf.xacro", 9),
+                  not_checked=True)
     other = Finding("U212", "zero-effort-or-velocity", Severity.INFO, "a note", Location("a.urdf", 3))
     results = [FileResult("bot.urdf.xacro", [why]), FileResult("a.urdf", [other])]
     assert results[0].unexpanded  # (the run exits 2 for it)
