@@ -83,9 +83,9 @@ class PackageNotFound(UrdftoolError):
         self.declared_by = declared_by
         self.close = tuple(close)  # the packages found whose names are close to this one
         self.unchecked = unchecked
-        where = ", ".join(searched[:_LISTED]) + (  # (a search path of 8,000 entries was a
-            f", ... ({len(searched)} places in all)" if len(searched) > _LISTED else "") \
-            if searched else "nowhere (no search path)"  # 240 KB message for every mesh)
+        # (a search path of 8,000 entries was a 240 KB message for every mesh)
+        where = first_listed(searched, len(searched), "places") if searched \
+            else "nowhere (no search path)"
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:
@@ -116,7 +116,7 @@ class PackageNotFound(UrdftoolError):
                                None if declares else owner, self.close,
                                unchecked or self.unchecked)
 
-_LISTED = 12
+LISTED = 12  # items a list in a message or a report shows; more are counted
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested
 MAX_SIMILAR_CANDIDATES = 5000  # names compared with one that is not known
 _SHOWN_NAME = 64  # [characters] of a name listed among the available ones
@@ -259,8 +259,17 @@ def listed(names, quote: bool = True) -> str:
     check's output grew as the square of the input (54 MB of JSON for 2,500 roots).
     ``quote``: each in single quotes."""
     names = list(names)
-    shown = [f"'{shown_word(name)}'" if quote else shown_word(name) for name in names[:_LISTED]]
-    return ", ".join(shown) + (f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
+    return first_listed([f"'{shown_word(name)}'" if quote else shown_word(name)
+                         for name in names[:LISTED]], len(names))
+
+
+def first_listed(shown: list[str], count: int, unit: str = "") -> str:
+    """A list of ``count`` items as a message or a report says it: the first :data:`LISTED` of
+    ``shown`` (the items as written), then how many in all when there are more: ``a, b, ...
+    (31 in all)``; ``unit`` names them in the count (``(8000 places in all)``). The one way
+    every list is cut (:func:`listed` for names of an input)."""
+    counted = f"{count} {unit}" if unit else str(count)
+    return ", ".join(shown[:LISTED]) + (f", ... ({counted} in all)" if count > LISTED else "")
 
 
 class OverLimit(UrdftoolError):

@@ -27,13 +27,13 @@ import re
 from typing import Callable
 
 from urdftool.diagnostics import Severity, display_path
+from urdftool.errors import LISTED, first_listed
 from urdftool.report.escape import text as escaped
 from urdftool.report.summary import STYLES, Summary, counted, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
 
-PLACES_SHOWN = 12  # places listed on a grouped line; more are counted
 # a name in quotes or an absolute path: what differs between findings that say the same thing.
 # Each branch starts with its character (the path's "/" then looks behind it for the space or
 # "(" before): the search jumps from quote to slash instead of trying the look-behind at every
@@ -313,13 +313,13 @@ def _also(group: list) -> str:
         return ""  # (the same names)
     others = [name for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
-        return f"; also {', '.join(others[:PLACES_SHOWN])}, ..."
+        return f"; also {', '.join(others[:LISTED])}, ..."
     return f"; also {_listed(others)}"
 
 
 def _listed(items: list[str]) -> str:
-    shown = ", ".join(items[:PLACES_SHOWN])
-    return shown + (f", ... ({len(items)} in all)" if len(items) > PLACES_SHOWN else "")
+    """Places or names on a grouped line, cut as every list is (``errors.first_listed``)."""
+    return first_listed(items, len(items))
 
 
 def _once(message: str, location, listed: dict) -> str:
