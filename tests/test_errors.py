@@ -156,3 +156,20 @@ def test_described_names_an_error_once_and_says_one_without_text():
     assert described(ValueError("bad")) == "ValueError: bad"
     assert described(MemoryError()) == "MemoryError"
     assert described(KeyError("k")) == "KeyError: 'k'"
+
+
+def test_every_list_is_cut_by_one_function():
+    """``first_listed`` owns the cut ("first 12, ... (N in all)"): the names of a message
+    (``listed``), where a package was looked for, the places and call sites of the text
+    report's grouped lines; they were three copies of it."""
+    from urdftool.errors import LISTED, PackageNotFound, first_listed
+    from urdftool.report import text_format
+
+    items = [str(i) for i in range(LISTED + 1)]
+    assert first_listed(items[:LISTED], LISTED) == ", ".join(items[:LISTED])
+    assert first_listed(items, len(items)) == ", ".join(items[:LISTED]) + ", ... (13 in all)"
+    assert first_listed(items, 8000, "places").endswith("11, ... (8000 places in all)")
+    assert text_format._listed(items) == first_listed(items, len(items))
+    searched = [f"/p{i}" for i in range(20)]
+    assert f"looked in: {first_listed(searched, 20, 'places')}. Pass" in \
+        str(PackageNotFound("x", searched))

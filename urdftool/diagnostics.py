@@ -129,6 +129,10 @@ class Finding(Frozen):
 
     target: for a finding about one simulator or loader (``check --target``), its name
         (``mujoco``, ``gz``...); None for the others
+    not_checked: True for a finding saying its file's robot was not expanded, so not checked,
+        for a package this machine lacks: nothing in it is known to be wrong, and the run says
+        so and exits 2 (a file that only defines macros, which expanded would make no robot,
+        loses nothing and says False)
     """
 
     code: str
@@ -138,11 +142,14 @@ class Finding(Frozen):
     location: Location
     fix: Fix | None
     target: str | None
+    not_checked: bool
 
-    __slots__ = ("code", "name", "severity", "message", "location", "fix", "target")
+    __slots__ = ("code", "name", "severity", "message", "location", "fix", "target",
+                 "not_checked")
 
     def __init__(self, code: str, name: str, severity: Severity, message: str, location: Location,
-                 fix: Fix | None = None, target: str | None = None) -> None:
+                 fix: Fix | None = None, target: str | None = None,
+                 not_checked: bool = False) -> None:
         set_field = object.__setattr__
         set_field(self, "code", code)
         set_field(self, "name", name)
@@ -151,6 +158,7 @@ class Finding(Frozen):
         set_field(self, "location", location)
         set_field(self, "fix", fix)
         set_field(self, "target", target)
+        set_field(self, "not_checked", not_checked)
 
     @property
     def file(self) -> str:

@@ -47,10 +47,14 @@ class LoadError(UrdftoolError):
         or stale name, most likely)
     whatever_args: True when it fails whatever values the xacro arguments have (a macro call
         under no condition giving a parameter the macro lacks)
+    declared: for 'package', True when the package.xml of the file's package declares it as a
+        dependency (:attr:`PackageNotFound.declared_by`): installed wherever that package is
+        built, a question of the workspace, not of the file
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
-                 certain: bool = True, close: tuple = (), whatever_args: bool = False):
+                 certain: bool = True, close: tuple = (), whatever_args: bool = False,
+                 declared: bool = False):
         self.kind = kind
         self.message = message
         self.location = location
@@ -58,6 +62,7 @@ class LoadError(UrdftoolError):
         self.certain = certain
         self.close = tuple(close)
         self.whatever_args = whatever_args
+        self.declared = declared
         super().__init__(message)
 
 
@@ -65,15 +70,11 @@ class PackageNotFound(UrdftoolError):
     """A ROS package named by ``$(find)`` or ``package://`` is nowhere on the search path.
 
     ``unchecked`` says what is not checked for want of it: the robot (a ``$(find)``: it is
-    not expanded) or a mesh (``package://``: the robot is checked without it)."""
+    not expanded) or a mesh (``package://``: the robot is checked without it). ``declared_by``:
+    the package whose package.xml declares it as a dependency (installed wherever that package
+    is built, a question of the workspace, not of the file naming it), or None."""
 
     ROBOT = "the robot is not expanded, so not checked"
-    # what the message of a package a package.xml depends on says: installed wherever that
-    # package is built, a question of the workspace, not of the file naming it
-    DECLARED = "declares it as a dependency"
-    # what is said of a file needing it that only defines macros (no robot is lost by its not
-    # being expanded: the run does not count it as not checked)
-    LIBRARY = "a library of macros (its top level defines macros and calls none)"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
                  undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):
@@ -82,15 +83,15 @@ class PackageNotFound(UrdftoolError):
         self.declared_by = declared_by
         self.close = tuple(close)  # the packages found whose names are close to this one
         self.unchecked = unchecked
-        where = ", ".join(searched[:_LISTED]) + (  # (a search path of 8,000 entries was a
-            f", ... ({len(searched)} places in all)" if len(searched) > _LISTED else "") \
-            if searched else "nowhere (no search path)"  # 240 KB message for every mesh)
+        # (a search path of 8,000 entries was a 240 KB message for every mesh)
+        where = first_listed(searched, len(searched), "places") if searched \
+            else "nowhere (no search path)"
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:
             super().__init__(
                 f"package '{name}' not found: the package.xml of '{declared_by}' "
-                f"{PackageNotFound.DECLARED}, which is not installed here: {unchecked} "
+                f"declares it as a dependency, which is not installed here: {unchecked} "
                 f"(nothing in it is known to be wrong); looked in: {where}. Pass --package "
                 f"{name}=PATH, set "
                 "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
@@ -115,7 +116,7 @@ class PackageNotFound(UrdftoolError):
                                None if declares else owner, self.close,
                                unchecked or self.unchecked)
 
-_LISTED = 12
+LISTED = 12  # items a list in a message or a report shows; more are counted
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested
 MAX_SIMILAR_CANDIDATES = 5000  # names compared with one that is not known
 _SHOWN_NAME = 64  # [characters] of a name listed among the available ones
@@ -258,8 +259,17 @@ def listed(names, quote: bool = True) -> str:
     check's output grew as the square of the input (54 MB of JSON for 2,500 roots).
     ``quote``: each in single quotes."""
     names = list(names)
-    shown = [f"'{shown_word(name)}'" if quote else shown_word(name) for name in names[:_LISTED]]
-    return ", ".join(shown) + (f", ... ({len(names)} in all)" if len(names) > _LISTED else "")
+    return first_listed([f"'{shown_word(name)}'" if quote else shown_word(name)
+                         for name in names[:LISTED]], len(names))
+
+
+def first_listed(shown: list[str], count: int, unit: str = "") -> str:
+    """A list of ``count`` items as a message or a report says it: the first :data:`LISTED` of
+    ``shown`` (the items as written), then how many in all when there are more: ``a, b, ...
+    (31 in all)``; ``unit`` names them in the count (``(8000 places in all)``). The one way
+    every list is cut (:func:`listed` for names of an input)."""
+    counted = f"{count} {unit}" if unit else str(count)
+    return ", ".join(shown[:LISTED]) + (f", ... ({counted} in all)" if count > LISTED else "")
 
 
 class OverLimit(UrdftoolError):
@@ -301,16 +311,19 @@ class MeshProblem(LocatedError):
     message: what a user should read, naming the file and the fix
     certain: False when the problem may not hold after the package's build (a file missing
     from the source tree whose package's install rules could not be read)
+    declared: for ``package``, True when the robot's package.xml declares the package as a
+    dependency (:attr:`PackageNotFound.declared_by`): the workspace's, not the file's
+    kept_empty: for ``missing``, True when the file's folder holds only placeholders, kept
+    empty in the repository for files put there later (a tool, a download, a build step):
+    the repository leaves it for a tool to put there, as a declared dependency is left to the
+    workspace
     """
 
     kind: str
     message: str
     certain: bool = True
-
-    # what the message of a file missing from a folder holding only placeholders says: the
-    # repository leaves it for a tool to put there, as a package.xml declaring a dependency
-    # leaves that package to the workspace
-    KEPT_EMPTY = "a folder kept empty in the repository for files put there later"
+    declared: bool = False
+    kept_empty: bool = False
 
     def __str__(self) -> str:
         return self.message

@@ -566,6 +566,19 @@ def test_a_mesh_path_written_with_windows_backslashes_says_so(tmp_path):
         assert "backslashes" not in str(error.value)
 
 
+def test_a_missing_mesh_named_with_the_words_of_the_backslash_advice_gets_its_own(tmp_path):
+    """Where the repository has a file of a missing mesh's name is said unless the Windows
+    separators' advice is (one advice); which one was read back from the message's words, and
+    a file named with those words got neither."""
+    named = "backslashes are no path separators.stl"
+    (tmp_path / "collision").mkdir()
+    (tmp_path / "collision" / named).write_bytes(b"solid s\nendsolid s\n")
+    with pytest.raises(MeshProblem) as error:
+        resolve(_robot(tmp_path, named), named)
+    assert str(error.value).endswith(f"; the repository's one file of that name is "
+                                     f"collision/{named}"), str(error.value)
+
+
 def test_a_mesh_written_with_cwd_is_not_certain_when_there_from_a_folder_xacro_may_run_in(
         tmp_path, monkeypatch):
     # pybullet_simplified_fetch: file://$(cwd)/meshes/table.stl, its README saying to run

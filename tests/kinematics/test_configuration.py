@@ -47,3 +47,16 @@ def test_joint_values_keep_what_is_given_and_warn_only_about_it(arm):
     assert values.q == {"shoulder": 2.0, "elbow": 0.5} and values.v == {"elbow": 1.0}
     assert len(values.warnings) == 1 and "shoulder" in values.warnings[0]
     assert config.joint_values(arm, {"elbow": "0.5"}).q == {"shoulder": 1.0, "elbow": 0.5}
+
+
+def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
+    """Cut as every list is (``errors.listed``): it had its own copy of the cut."""
+    import json
+
+    from urdftool.errors import ConfigError
+
+    names = {f"j{i}": 0 for i in range(13)}
+    with pytest.raises(ConfigError) as error:
+        config._json_rows(json.dumps([names, {}]), "q.json", "joint")
+    assert str(error.value) == ("q.json: row 2: row lacks j0, j1, j2, j3, j4, j5, j6, j7, j8, j9, "
+                                "j10, j11, ... (13 in all) (every row must name the same joints)")

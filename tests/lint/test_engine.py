@@ -337,6 +337,43 @@ def test_a_robot_needing_a_package_its_package_xml_declares_is_a_note_not_checke
         assert result.unexpanded is unexpanded
 
 
+def test_a_package_is_declared_by_the_package_xml_not_by_the_words_of_a_path(tmp_path):
+    """Whether a missing package is one the package.xml declares travels with the error
+    (``LoadError.declared``), set where the package.xml was read; it was read back from the
+    message's words, and the folder a repository was cloned into is in that message (where
+    the package was looked for): a folder named "x declares it as a dependency" made an
+    undeclared package a note."""
+    from urdftool.diagnostics import Severity
+
+    folder = tmp_path / "x declares it as a dependency"
+    (folder / ".git").mkdir(parents=True)
+    (folder / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    robot = folder / "r.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include '
+                     'filename="$(find no_such_pkg)/a.xacro"/><link name="a"/></robot>')
+    result = load_and_check(str(robot), CheckOptions())
+    [finding] = result.findings
+    assert "does not declare it" in finding.message and "declares it as a" in finding.message
+    assert (finding.code, finding.severity) == ("U006", Severity.WARNING), finding.message
+    assert finding.not_checked and result.unexpanded
+
+
+def test_a_file_is_not_checked_when_a_finding_says_so_not_when_its_words_do():
+    """``FileResult.not_checked_by`` reads each finding's ``not_checked``, set where the load
+    error became the finding; a note whose words are those of a declared dependency (a path, a
+    package's name) is not one, and a finding saying so in any words is."""
+    from urdftool.diagnostics import Finding, Location
+    from urdftool.lint.engine import FileResult
+
+    words = ("package 'a' not found: the package.xml of 'b' declares it as a dependency, which "
+             "is not installed here")
+    said = Finding("U006", "unresolved-package", Severity.INFO, words, Location("r.xacro", 1))
+    told = Finding("U006", "unresolved-package", Severity.INFO, "any words", Location("r.xacro", 1),
+                   not_checked=True)
+    assert not FileResult("r.xacro", [said]).unexpanded
+    assert FileResult("r.xacro", [said, told]).not_checked_by == [told]
+
+
 @pytest.mark.parametrize("conditional, severity", [(False, Severity.ERROR), (True, Severity.WARNING)])
 def test_a_parameter_the_macro_lacks_fails_whatever_the_launch_gives_unless_under_a_condition(
         tmp_path, conditional, severity):

@@ -505,6 +505,23 @@ def test_check_diff_of_a_cr_lf_file_is_a_patch_of_its_bytes(tmp_path, run_cli, m
     # reads CR LF as LF)
 
 
+def test_a_fix_whose_edits_another_fix_took_is_taken_too(tmp_path):
+    """Two findings whose fixes make the same edits under other descriptions (a macro's literal
+    serving two elements): both are taken, each finding fixed, the file edited once. (A branch
+    meant to leave the second out had been unreachable since fixes could create files: the
+    creation's verdict replaced its "already taken".)"""
+    from urdftool.diagnostics import Edit, Fix
+    from urdftool.lint.fixes import applying
+
+    robot = tmp_path / "r.urdf"
+    edit = Edit(str(robot), 3, 4, "X", "d", 1, 3)
+    one, other = Fix("link 'a': set it", (edit,), True), Fix("link 'b': set it", (edit,), True)
+    plan = applying._take([(one, str(tmp_path)), (other, str(tmp_path))], lambda path: b"abcdef")
+    assert plan.applied == [one, other] and not plan.skipped
+    assert plan.changed == {str(robot): (b"abcdef", b"abcXef")}
+    assert plan.spans == {str(robot): [(3, 4, 1)]}
+
+
 def _plan_one_by_one(fixes_given, data: bytes):
     """The plan as it was made before: each fix's edits compared with every edit taken before
     (the reference of the test below)."""
@@ -517,7 +534,7 @@ def _plan_one_by_one(fixes_given, data: bytes):
             continue
         why = disputed.get(id(fix))
         if why is None and not all(edit in taken for edit in fix.edits):  # (taken again when
-            for edit in fix.edits:  # all are: "" or no creation refusal, as the plan reads it)
+            for edit in fix.edits:  # all are, as the plan takes it)
                 if data[edit.start:edit.end].decode("utf-8", errors="replace") != edit.old:
                     why = "changed"
                 elif any(_overlap(edit, other) for other in taken):

@@ -235,14 +235,17 @@ def test_figures_are_what_the_plain_pattern_finds():
 def test_where_a_missing_package_was_looked_for_is_written_once_per_file():
     from urdftool.errors import PackageNotFound
 
-    def missing(name: str, line: int, part: str, file: str = "robot.urdf") -> Finding:
+    def missing(name: str, line: int, part: str, file: str = "robot.urdf",
+                severity: Severity = Severity.WARNING) -> Finding:
         error = PackageNotFound(name, ["package.xml above /ws/src/bot/urdf up to /ws",
                                        "package.xml below /ws"]).declared("bot", False)
-        return Finding("U407", "mesh-package-not-found", Severity.WARNING,
+        return Finding("U407", "mesh-package-not-found", severity,
                        f"link 'base' <{part}>: mesh 'package://{name}/m.stl': {error}",
                        Location(file, line))
 
-    findings = [missing("meshes_a", 22, "visual"), missing("meshes_a", 29, "collision"),
+    # (an error and a warning: two lines; of one severity, <visual> and <collision> are one)
+    findings = [missing("meshes_a", 22, "visual"),
+                missing("meshes_a", 29, "collision", severity=Severity.ERROR),
                 missing("meshes_b", 40, "visual")]
     text = _text([FileResult("robot.urdf", findings),
                   FileResult("other.urdf", [missing("meshes_a", 5, "visual", "other.urdf")])])
@@ -251,6 +254,9 @@ def test_where_a_missing_package_was_looked_for_is_written_once_per_file():
             "package.xml of 'bot' does not declare it") in text
     assert "; looked in the places listed at line 22; pass --package meshes_a=PATH as said " \
         "there (mesh-package-not-found)" in text
+    alike = _text([FileResult("robot.urdf", [missing("meshes_a", 22, "visual"),
+                                             missing("meshes_a", 29, "collision")])])
+    assert "(mesh-package-not-found) [2 times: lines 22, 29; also <collision>]" in alike
     assert text.count("looked in the places listed") == 1
     # the machine formats keep every message whole
     stream = io.StringIO()
@@ -262,7 +268,8 @@ def test_a_note_saying_why_a_file_was_not_checked_is_shown_with_notes_left_out()
     from urdftool.errors import PackageNotFound
 
     declared = str(PackageNotFound("sensors", ["package.xml below /ws"]).declared("bot"))
-    why = Finding("U006", "package-not-found", Severity.INFO, declared, Location("bot.urdf.xacro", 9))
+    why = Finding("U006", "package-not-found", Severity.INFO, declared, Location("bot.urdf.xacro", 9),
+                  not_checked=True)
     other = Finding("U212", "zero-effort-or-velocity", Severity.INFO, "a note", Location("a.urdf", 3))
     results = [FileResult("bot.urdf.xacro", [why]), FileResult("a.urdf", [other])]
     assert results[0].unexpanded  # (the run exits 2 for it)
@@ -283,12 +290,17 @@ def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
     from urdftool.report.text_format import _figures, _grouped
 
     chance = random.Random(5)
-    pieces = _random_texts(11, 3000, "0123456789.+-e^/ab_ ()x,;E\u0661", 8)
+    pieces = _random_texts(11, 3000, "0123456789.+-e^/ab_ ()x,;E<>\u0661", 8)
     inside = "0123456789.+-e^/ab_()x,E\u0661"
 
     def name() -> str:
         letters = "".join(chance.choice(inside) for _ in range(chance.randint(0, 6)))
-        return f"'{letters}'" if chance.random() < 0.5 else "/" + letters.replace(")", "")
+        kind = chance.random()
+        if kind < 0.3:  # a tag: <a1>, </b.c-d>
+            tag = chance.choice("ab_") + "".join(c for c in letters if c.isascii() and
+                                                 (c.isalnum() or c in "_.-"))
+            return f"<{chance.choice(['', '/'])}{tag}>"
+        return f"'{letters}'" if kind < 0.65 else "/" + letters.replace(")", "")
 
     compared = 0  # alike pairs whose messages differ (in their names)
     for _ in range(12000):
@@ -305,6 +317,87 @@ def test_messages_alike_once_their_names_are_set_aside_give_the_same_figures():
             first, second = (_figures(f.message) for f in group)
             assert [t for _, _, t in first] == [t for _, _, t in second], group
     assert compared > 500
+
+
+def test_tags_in_angle_brackets_are_names_that_a_line_sets_aside():
+    """session 18, read as a stranger (sam_bot_description, of the corpus): a camera plugin's
+    nine ROS 1 parameters were nine U640 lines differing only in the tag (``<updateRate>``,
+    ``<distortionK1>``...), each repeating the same evidence; U022's "<kinematic> in <link>"
+    and "<gravity> in <link>" likewise. A tag is a name: one line naming the others. A tag
+    with attributes, another file or another rule stays apart; the machine formats keep every
+    finding."""
+    def said(line: int, message: str, code: str = "U640", file: str = "r.urdf") -> Finding:
+        return Finding(code, "x", Severity.WARNING, message, Location(file, line))
+
+    ros1 = [said(380 + i, f"plugin 'cam' (gazebo_ros_camera): <{tag}> is the ROS 1 plugin's "
+                          "name; 0 asks for what the ROS 2 one does without it (not what "
+                          f"<{new}>0</{new}> asks): remove it")
+            for i, (tag, new) in enumerate((("Cx", "cx"), ("Cy", "cy"), ("focalLength",
+                                                                      "focal_length")))]
+    effect = [said(5, "<kinematic> in <link> has no effect", "U022"),
+              said(9, "<gravity> in <link> has no effect", "U022")]
+    apart = [said(7, "<gravity> in <link> has no effect", "U022", "arm.xacro"),
+             said(8, "<gazebo reference=x> in <link> has no effect", "U022"),
+             said(9, "<gravity> in <link> has no effect", "U021")]
+    results = [FileResult("r.urdf", ros1 + effect + apart)]
+    lines = [line.strip() for line in _text(results).splitlines() if " U0" in line or " U6" in line]
+    assert lines[0].endswith("[3 times: lines 380, 381, 382; also <Cy> (<cy>), <focalLength> "
+                             "(<focal_length>)]"), lines
+    assert "(not what <cx>0</cx> asks)" in lines[0]
+    assert [line for line in lines if "U022" in line and "r.urdf" in line] == [
+        "r.urdf:5: warning U022 <kinematic> in <link> has no effect (x) [2 times: lines 5, 9; "
+        "also <gravity>]",
+        "r.urdf:8: warning U022 <gazebo reference=x> in <link> has no effect (x)"], lines
+    assert len(lines) == 5 and "arm.xacro:7: warning U022" in lines[2] and "U021" in lines[4], lines
+    for kind, count in (("json", lambda out: len(json.loads(out)["diagnostics"])),
+                        ("sarif", lambda out: len(json.loads(out)["runs"][0]["results"]))):
+        stream = io.StringIO()
+        render(kind, results, stream)
+        assert count(stream.getvalue()) == 8, kind
+
+
+def test_findings_naming_things_of_different_kinds_are_lines_of_their_own():
+    """session 18, with tags as names (agilexrobotics/ugv_gazebo_sim's limo_xacro.xacro): "<pose>
+    in <link>" and "<ambient>, <diffuse>... in <material>" were one line saying "<pose> in
+    <link> [15 times; also <ambient>, ...]", as if each were in a <link>. Where findings name
+    different things at two places, one a kind they fall into (a tag not one to one with the
+    names differing most: the element they are in; the plugin of tags differing most), each
+    kind is its own line; places going one to one (a transmission and its joint, a tag and
+    the one suggested) stay one line, the other place's tag said beside each name."""
+    def said(line: int, message: str) -> Finding:
+        return Finding("U022", "x", Severity.WARNING, message, Location("r.xacro", line))
+
+    def shown(findings) -> list[str]:
+        return [line.strip().split(" U022 ", 1)[1] for line in
+                _text([FileResult("r.xacro", findings)]).splitlines() if " U022 " in line]
+
+    kinds = [said(35, "<pose> in <link> has no effect"), said(76, "<pose> in <link> has no effect")]
+    kinds += [said(51 + i, f"<{tag}> in <material> has no effect")
+              for i, tag in enumerate(("ambient", "diffuse", "specular"))]
+    assert shown(kinds) == ["<pose> in <link> has no effect (x) [2 times: lines 35, 76]",
+                            "<ambient> in <material> has no effect (x) [3 times: lines 51, 52, 53; "
+                            "also <diffuse>, <specular>]"]
+    plugins = [said(i, f"plugin '{plugin}': <{tag}> is ignored") for i, (plugin, tag) in
+               enumerate((("a", "x"), ("a", "y"), ("a", "z"), ("b", "x")), start=1)]
+    assert shown(plugins) == [
+        "plugin 'a': <x> is ignored (x) [3 times: lines 1, 2, 3; also <y>, <z>]",
+        "plugin 'b': <x> is ignored (x)"]
+    meshes = [said(i, f"link '{link}' <{holder}>: mesh '{link}.{kind}' not found")
+              for i, (link, holder, kind) in enumerate((
+                  ("a", "visual", "dae"), ("a", "collision", "stl"), ("b", "visual", "dae"),
+                  ("b", "collision", "stl"), ("c", "visual", "dae")), start=1)]
+    assert shown(meshes) == [  # (a link and its mesh: "also" names the links, as before)
+        "link 'a' <visual>: mesh 'a.dae' not found (x) [3 times: lines 1, 3, 5; also 'b', 'c']",
+        "link 'a' <collision>: mesh 'a.stl' not found (x) [2 times: lines 2, 4; also 'b']"]
+    pairs = [said(i, f"<{old}> is ignored; did you mean <{new}>?") for i, (old, new) in
+             enumerate((("xyzOffsets", "xyz_offsets"), ("rpyOffsets", "rpy_offsets")), start=1)]
+    assert shown(pairs) == ["<xyzOffsets> is ignored; did you mean <xyz_offsets>? (x) [2 times: "
+                            "lines 1, 2; also <rpyOffsets> (<rpy_offsets>)]"]
+    # (OpenQuadruped/spot_mini_mini: each tag in its own element, one to one, said with it)
+    parents = [said(1, "<joint_properties> in <joint> has no effect"),
+               said(2, "<contact_coefficients> in <collision> has no effect")]
+    assert shown(parents) == ["<joint_properties> in <joint> has no effect (x) [2 times: lines 1, "
+                              "2; also <contact_coefficients> (<collision>)]"]
 
 
 def test_figures_folded_only_where_the_line_stays_true_and_readable():

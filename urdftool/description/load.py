@@ -444,7 +444,8 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
         if path == "-" and location.file.endswith("stdin.xacro"):
             location = Location(shown, location.line, location.via)
         raise LoadError(failure.kind, failure.message, location, failure.subject,
-                        failure.certain, failure.close, failure.whatever_args) from None
+                        failure.certain, failure.close, failure.whatever_args,
+                        failure.declared) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True, sources=sources)

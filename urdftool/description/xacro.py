@@ -90,6 +90,8 @@ class XacroFailure(Exception):
     # fails whatever values the xacro arguments have (a macro call under no condition giving a
     # parameter the macro lacks: xacro checks the names before any value)
     whatever_args: bool = False
+    # 'package': the package.xml of the file's package declares it as a dependency
+    declared: bool = False
 
 
 class Expansion(Record):
@@ -917,7 +919,8 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         # a package not installed here: the environment's (a dependency declared, another
         # repository's, or a misspelt name: the message says which it seems), never certain
         return XacroFailure("package", str(cause.error), where, subject=cause.error.name,
-                            certain=False, close=cause.error.close)
+                            certain=False, close=cause.error.close,
+                            declared=cause.error.declared_by is not None)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):

@@ -18,7 +18,7 @@ from typing import Collection
 import numpy as np
 
 from urdftool.diagnostics import lines_of
-from urdftool.errors import ConfigError, MimicError, available, shown_word
+from urdftool.errors import ConfigError, MimicError, available, listed, shown_word
 from urdftool.description.urdf import ANGULAR, VARIABLE
 from urdftool.description.values import number, parse_numbers
 
@@ -373,9 +373,8 @@ def _json_rows(text: str, path: str, named: str) -> tuple[list[str], list[list]]
     for number, row in enumerate(data, start=1):
         missing = [name for name in names if name not in row]
         if missing:
-            lacks = ", ".join(map(shown_word, missing[:12])) + (
-                f", ... ({len(missing)} in all)" if len(missing) > 12 else "")
-            raise ConfigError(f"row lacks {lacks} (every row must name the same {named}s)",
+            raise ConfigError(f"row lacks {listed(missing, quote=False)} (every row must name "
+                              f"the same {named}s)",
                               f"{path}: row {number}")
         rows.append([row[name] for name in names])
     return names, rows

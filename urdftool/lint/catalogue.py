@@ -122,21 +122,22 @@ class Rule(Frozen):
         return TARGET_DECADES.get(self.code[:3])
 
     def finding(self, message: str, location: Location, fix: Fix | None = None,
-                severity: Severity | None = None) -> Finding:
+                severity: Severity | None = None, not_checked: bool = False) -> Finding:
         """A finding of this rule at ``location``, with the fix that would remove it if any;
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
         never raised: ValueError); a :class:`Conditional` message is reported at its own
-        severity when that is below the rule's."""
+        severity when that is below the rule's. ``not_checked``: the finding says its file's
+        robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`)."""
         if severity is None and type(message) is str:  # most findings: as the rule says
             return Finding(self.code, self.name, self.severity, message, location, fix,
-                           self.target)
+                           self.target, not_checked)
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")
         if severity is None and isinstance(message, Conditional):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
-                       location, fix, self.target)
+                       location, fix, self.target, not_checked)
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, Severity, display_path
-from urdftool.errors import LoadError, PackageNotFound, described, missing_extra
+from urdftool.errors import LoadError, described, missing_extra
 from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
@@ -69,14 +69,18 @@ def load_error_findings(error: LoadError) -> list[Finding]:
     """A file that did not load, as findings: one, of the rule its kind maps to; a warning
     when it may not hold after a package's build (``error.certain``: an included file that
     package's install rules, not read, may put there); a note for a package the file's
-    package.xml declares as a dependency (U006)."""
+    package.xml declares as a dependency (U006). A package not installed here leaves the robot
+    not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
     message = load_error_message(error)
-    if error.kind == "package" and PackageNotFound.DECLARED in message:
+    unexpanded = error.kind == "package"
+    if unexpanded and error.declared:
         # a dependency the package.xml declares: installed wherever the package is built, a
         # question of the workspace, not a defect of the file (a note; the run still exits 2)
-        return [rule.finding(Conditional(message, Severity.INFO), error.location)]
-    return [rule.finding(message if error.certain else Conditional(message), error.location)]
+        return [rule.finding(Conditional(message, Severity.INFO), error.location,
+                             not_checked=True)]
+    return [rule.finding(message if error.certain else Conditional(message), error.location,
+                         not_checked=unexpanded)]
 
 
 def note_findings(robot) -> list[Finding]:

@@ -10,7 +10,6 @@ from pathlib import Path
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE
 from urdftool.description.inputs import CompanionPaths, MeshLimits
 from urdftool.diagnostics import Finding, Severity
-from urdftool.errors import PackageNotFound
 from urdftool.records import Frozen, NEW, Record
 
 
@@ -160,10 +159,10 @@ class FileResult(Record):
         machine lacks (U006: the environment's, not the robot's, a warning; a note for a
         dependency its package.xml declares, the workspace's, which a report shows even where
         it leaves notes out: the run exits 2 for it; but not for a library of macros nothing
-        here builds, a note too, which would make no robot to check)."""
-        return [finding for finding in self.findings if finding.code == "U006" and (
-            finding.severity != Severity.INFO or PackageNotFound.DECLARED in finding.message
-            and PackageNotFound.LIBRARY not in finding.message)]
+        here builds, a note too, which would make no robot to check). Each says so itself
+        (:attr:`~urdftool.diagnostics.Finding.not_checked`, set where the load error became
+        it), never read from its words."""
+        return [finding for finding in self.findings if finding.not_checked]
 
     @property
     def failures(self) -> list[Finding]:

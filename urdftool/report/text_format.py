@@ -7,7 +7,8 @@ rich would write there too, without paying for importing it.
 Text is for people, so it says each thing once (the machine formats keep every finding):
 
 - findings of one rule that say the same thing about different names (24 transmissions whose
-  interface lacks ``hardware_interface/``) are one line, the first of them, followed by how
+  interface lacks ``hardware_interface/``; nine parameters of a camera plugin, each its own
+  tag, ``<updateRate>``, ``<distortionK1>``...) are one line, the first of them, followed by how
   many there are and where (:func:`groups`); the figures of what they name may differ (six
   links "has mass 0.59 kg but zero inertia", each its own mass): a figure that differs is
   written as the range of the group's (``0.0649 to 0.864 kg``), so the one line is true of
@@ -22,23 +23,25 @@ Text is for people, so it says each thing once (the machine formats keep every f
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 from typing import Callable
 
 from urdftool.diagnostics import Severity, display_path
+from urdftool.errors import LISTED, first_listed
 from urdftool.report.escape import text as escaped
 from urdftool.report.summary import STYLES, Summary, counted, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
 
-PLACES_SHOWN = 12  # places listed on a grouped line; more are counted
-# a name in quotes or an absolute path: what differs between findings that say the same thing.
-# Each branch starts with its character (the path's "/" then looks behind it for the space or
-# "(" before): the search jumps from quote to slash instead of trying the look-behind at every
-# character of every message (10,000 findings' messages: a quarter of the time).
-_NAME = re.compile(r"'[^'\s]*'|/(?<=[\s(]/)[^\s)]*")
+# a name in quotes, an absolute path or an XML tag written without attributes (``<updateRate>``,
+# ``</cx>``): what differs between findings that say the same thing. Each branch starts with
+# its character (the path's "/" then looks behind it for the space or "(" before): the search
+# jumps from quote to slash to "<" instead of trying the look-behind at every character of every
+# message (10,000 findings' messages: a quarter of the time).
+_NAME = re.compile(r"'[^'\s]*'|/(?<=[\s(]/)[^\s)]*|</?[A-Za-z_][\w:.\-]*>")
 # "available links: a, b, c" or "... (31 in all)", as urdftool.errors.available writes it
 _AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
                         r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
@@ -77,8 +80,9 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         out.append([(display_path(result.path), "bold underline")])
         listed: dict = {}  # each long list of names -> where it was written in full
         for whole, alike in _grouped(shown):
-            for group, message in _foldable(whole, alike):
-                out.extend(_group_lines(group, message, listed))
+            for part in _apart(whole):
+                for group, message in _foldable(part, alike):
+                    out.extend(_group_lines(group, message, listed))
         if not quiet:
             out.append([])
     if quiet:
@@ -113,9 +117,9 @@ def _summary(results, hidden: int) -> Line:
 
 def groups(findings) -> list[list]:
     """The findings in groups that say the same thing in one file: one rule, severity, target
-    and kind of fix, and the same message once the names in quotes and the absolute paths are
-    set aside. Each group is in the order of its first finding; a finding alone is a group of
-    one."""
+    and kind of fix, and the same message once the names in quotes, the absolute paths and the
+    tags in angle brackets are set aside. Each group is in the order of its first finding; a
+    finding alone is a group of one."""
     return [group for group, _ in _grouped(findings)]
 
 
@@ -124,8 +128,9 @@ def _grouped(findings) -> list[tuple[list, bool]]:
     without finding them (:func:`_foldable` then need not look): no message gives a value in
     double quotes, and the messages are one text once their names are set aside. A figure
     outside a name neither reaches into one nor starts right after a path, and the character
-    of a name it looks at beside it (a quote, a slash) reads as the ``'`` left in the name's
-    place, so such messages have the same figures outside their names, in the same order."""
+    of a name it looks at beside it (a quote, a slash, an angle bracket) reads as the ``'`` left
+    in the name's place, so such messages have the same figures outside their names, in the
+    same order."""
     found: dict[tuple, list] = {}  # key -> [group, its first message without names, alike]
     unnamed: dict[str, str] = {}  # a message without its names -> without its figures too
     for finding in findings:
@@ -176,6 +181,45 @@ def _figures(message: str) -> list:
             if not (quoted and _in_value(message, start)):
                 found.append((start, m.end(), m.group()))
     return found
+
+
+def _apart(group: list) -> list[list]:
+    """``group`` as the groups of its lines by what its findings name: one, unless they name
+    different things at several places of their message and one of those places is a kind
+    they fall into, which a line naming the others at one place (:func:`_also`) would hide,
+    saying something false of some: a tag not going one to one with the names that differ
+    most (the element they are in: "<pose> in <link>" and "<ambient>, <diffuse>... in
+    <material>"; a link's <visual> and <collision>), or any such name where a tag differs most
+    (the plugin its tags are of). Then a group for each kind, each split so again. Places going
+    one to one stay one line (a tag and the one suggested for it), and so do names where no
+    tag differs (a transmission and its joint, a link and its mesh: "also" names the first, as
+    before tags were names). The kinds are read in the first findings of a long group, as
+    :func:`_also` reads the names."""
+    if len(group) == 1:
+        return [group]
+    named = [_names(finding.message) for finding in group[:_NAMES_READ]]
+    first = named[0]
+    if len(first) < 2 or any(len(names) != len(first) for names in named):
+        return [group]  # (one name, or messages naming another count of things)
+    ways = [len({names[i] for names in named}) for i in range(len(first))]
+    most = ways.index(max(ways))
+    kinds = [i for i, count in enumerate(ways) if count > 1 and i != most
+             and "<" in (first[i][0], first[most][0])
+             and not _one_to_one([(names[most], names[i]) for names in named])]
+    if not kinds:
+        return [group]
+    parts: dict[tuple, list] = {}
+    for index, finding in enumerate(group):
+        names = named[index] if index < len(named) else _names(finding.message)
+        parts.setdefault(tuple(names[i] for i in kinds) if len(names) == len(first) else (),
+                         []).append(finding)
+    return [split for part in parts.values() for split in _apart(part)]
+
+
+def _one_to_one(pairs: list[tuple]) -> bool:
+    """Whether the pairs' first and second items go one to one (each first with one second,
+    each second with one first)."""
+    return len(set(pairs)) == len({a for a, _ in pairs}) == len({b for _, b in pairs})
 
 
 def _foldable(group: list, alike: bool) -> list[tuple[list, str]]:
@@ -298,28 +342,39 @@ def _places(group: list) -> str:
 _NAMES_READ = 1000  # findings of a group whose names are looked at (10,000 may say one thing)
 
 
+@functools.lru_cache(maxsize=2 * _NAMES_READ)
+def _names(message: str) -> tuple[str, ...]:
+    """The names ``message`` says (:data:`_NAME`), in order; kept for the messages read last
+    (:func:`_apart` and then :func:`_also` read those of a group's first findings)."""
+    return tuple(_NAME.findall(message))
+
+
 def _also(group: list) -> str:
     """The other names a group's line is about, where its findings name different things
     (three joints of one macro line, each its own limit): "; also 'b', 'c'". The names
     compared are the first place their findings' names differ, in the first findings of a
-    long group."""
-    named = [tuple(_NAME.findall(finding.message)) for finding in group[:_NAMES_READ]]
+    long group; a tag another place gives with each (one to one: :func:`_apart` split the
+    others) is said after it, as the line says the first's: "also <contact_coefficients>
+    (<collision>)" on a line of "<joint_properties> in <joint>" (a closing tag is not)."""
+    named = [_names(finding.message) for finding in group[:_NAMES_READ]]
     first = named[0]
     if any(len(names) != len(first) for names in named):
         return ""  # (messages naming another count of things)
-    at = next((i for i in range(len(first)) if any(names[i] != first[i] for names in named)),
-              None)
-    if at is None:
+    differ = [i for i in range(len(first)) if any(names[i] != first[i] for names in named)]
+    if not differ:
         return ""  # (the same names)
-    others = [name for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
+    at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] == "<"]
+    said = {names[at]: tuple(names[i] for i in with_it) for names in reversed(named)}
+    others = [name + (f" ({', '.join(said[name])})" if with_it else "")
+              for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
-        return f"; also {', '.join(others[:PLACES_SHOWN])}, ..."
+        return f"; also {', '.join(others[:LISTED])}, ..."
     return f"; also {_listed(others)}"
 
 
 def _listed(items: list[str]) -> str:
-    shown = ", ".join(items[:PLACES_SHOWN])
-    return shown + (f", ... ({len(items)} in all)" if len(items) > PLACES_SHOWN else "")
+    """Places or names on a grouped line, cut as every list is (``errors.first_listed``)."""
+    return first_listed(items, len(items))
 
 
 def _once(message: str, location, listed: dict) -> str:

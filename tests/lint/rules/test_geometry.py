@@ -135,6 +135,26 @@ def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_pa
     assert severity == Severity.ERROR and "kept empty" not in message, message
 
 
+def test_a_mesh_named_with_the_words_of_a_note_is_judged_by_what_was_found(tmp_path):
+    """A package the package.xml declares and a folder kept empty travel with the mesh's
+    problem (``MeshProblem.declared``, ``kept_empty``), set where they are found; they were
+    read back from the message's words, which quote the mesh's file name: a mesh of an
+    undeclared package, or missing from a folder holding another mesh, whose name says those
+    words was a note."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    [(severity, message)] = _u407(tmp_path / "robot.urdf",
+                                  "package://no_meshes/declares it as a dependency.stl")
+    assert severity == Severity.WARNING and "does not declare it" in message, message
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "other.stl").write_text("solid x\nendsolid x\n")
+    named = "a folder kept empty in the repository for files put there later"
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", f"meshes/{named}.stl", "U408")
+    assert severity == Severity.ERROR and named in message, message
+
+
 def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path):
     """onshape-to-robot writes ``package://assets/part.stl`` with no ROS package: PyBullet and
     Pinocchio (given the robot's folder) drop ``package://`` and open ``assets/part.stl``

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import re
+from dataclasses import replace
 from pathlib import Path
 
 from urdftool.description.files import (inside, kind_of, listing, no_file_there, real_path,
@@ -66,12 +67,11 @@ def _resolve(robot, uri: str) -> Path:
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
         located = robot.resolver.locate_uri(uri, robot.base_dir)
-        found = _doubted(_checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
-                                  None), located, os.fspath(robot.base_dir))
+        found = _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
+                                       None), located, os.fspath(robot.base_dir))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
     if isinstance(found, MeshProblem):
-        # a new one: raised once per robot
-        raise MeshProblem(found.kind, found.message, certain=found.certain)
+        raise replace(found)  # a new one: raised once per robot
     return found
 
 
@@ -132,7 +132,8 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             misspelt = any(_misspelling(package, close) for close in error.close or ())
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"
                                           f"{_in_own_package(robot, owner, tail)}",
-                               certain=not declares and (misspelt or bool(seen)))
+                               certain=not declares and (misspelt or bool(seen)),
+                               declared=error.declared_by is not None)
         folder = os.path.dirname(folder)
     if folder == base:
         written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
@@ -178,27 +179,33 @@ def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshPr
     MeshProblem. Once per run: every robot that names the mesh in a package found in the same
     folder gets the same answer."""
     located = installed(package, Path(folder), Path(folder) / tail)
-    return _doubted(_checked(uri, os.fspath(located.path), os.fspath(located.within), package),
-                    located, os.fspath(located.within))
+    return _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(located.within),
+                                  package), located, os.fspath(located.within))
 
 
-def _doubted(found: Path | MeshProblem, located, base: str) -> Path | MeshProblem:
-    """``found``, a file missing from the source tree said not certain when the package's
-    build may put it there (``located.doubt``, docs/packages.md), and where the repository has
-    a file of its name (:func:`_elsewhere`; ``base``: the folder it was looked for from)."""
+def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | MeshProblem:
+    """``found``, the file of mesh ``uri`` missing from the source tree, said not certain when
+    the package's build may put it there (``located.doubt``, docs/packages.md), and with
+    advice: the file meant by a path written with Windows separators (:func:`_windows_path`),
+    else where the repository has a file of its name (:func:`_elsewhere`; ``base``: the folder
+    it was looked for from)."""
     if not isinstance(found, MeshProblem) or found.kind != "missing":
         return found
-    hint = "" if "backslashes are no path separators" in found.message else \
-        _elsewhere(_real(Path(os.fspath(located.path))), base)
+    path = os.fspath(located.path)
+    windows = _windows_path(uri, path)
+    said = found.message + windows
+    hint = "" if windows else _elsewhere(_real(Path(path)), base)
     if located.doubt:
-        return MeshProblem("missing", f"{found.message}: not found in the source tree; "
+        return MeshProblem("missing", f"{said}: not found in the source tree; "
                                       f"{located.doubt}{hint}", certain=False)
-    kept = _kept_empty(os.path.dirname(os.fspath(located.path)))
+    kept = _kept_empty(os.path.dirname(path))
     if kept:
-        return MeshProblem("missing", f"{found.message}{hint}: not certain: its folder holds "
-                                      f"only {kept}, {MeshProblem.KEPT_EMPTY} (a tool, a download, a build "
-                                      "step or a per-robot calibration fills it)", certain=False)
-    return MeshProblem("missing", found.message + hint, certain=found.certain) if hint else found
+        return MeshProblem("missing", f"{said}{hint}: not certain: its folder holds only "
+                                      f"{kept}, a folder kept empty in the repository for files "
+                                      "put there later (a tool, a download, a build step or a "
+                                      "per-robot calibration fills it)", certain=False,
+                           kept_empty=True)
+    return replace(found, message=said + hint) if windows or hint else found
 
 
 _PLACEHOLDERS = (".gitkeep", ".keep", ".gitignore", ".placeholder", ".empty")
@@ -254,7 +261,7 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         if why.startswith("is "):  # something is there, not a mesh file: never opened
             return MeshProblem("corrupt", f"mesh '{uri}' {why}, not a file{looked}: not opened")
         found = "not found" if why == "does not exist" else why
-        return MeshProblem("missing", f"mesh '{uri}' {found}{looked}{_windows_path(uri, named)}")
+        return MeshProblem("missing", f"mesh '{uri}' {found}{looked}")  # (advice: _doubted)
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))

@@ -69,8 +69,6 @@ def _take(candidates, read) -> Plan:
             continue
         why = disputed.get(id(fix)) or _refusal(fix, root, current, taken, read, inside) \
             or _creation_refusal(fix, root, created, inside)
-        if why == "":
-            continue  # the same edits, already taken for another finding
         if why:
             skipped.add(id(fix))
             result.skipped.append((fix, why))
@@ -213,9 +211,12 @@ class _Taken:
 
 
 def _refusal(fix: Fix, root, current, taken, read, inside) -> str | None:
-    """Why ``fix`` cannot be taken; "" when all its edits are taken already; None: take it."""
+    """Why the edits of ``fix`` cannot be taken; None: take it. A fix whose edits are all
+    taken already (another finding's fix making the same edits under another description: a
+    macro's literal serving two elements) is taken too: its finding is fixed, and the files it
+    creates are made (:func:`_creation_refusal`)."""
     if all(edit in taken.get(edit.file, ()) for edit in fix.edits):
-        return ""
+        return None  # (each was read and compared when first taken)
     for edit in fix.edits:
         if not inside(edit.file, root):
             return f"{edit.file} is outside the repository ({root})"

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 
-from urdftool.errors import MeshProblem, PackageNotFound
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
@@ -355,8 +354,8 @@ def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
             message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
-            if kind == "package" and PackageNotFound.DECLARED in message or \
-                    kind == "missing" and MeshProblem.KEPT_EMPTY in message:
+            if kind == "package" and outcome.declared or \
+                    kind == "missing" and outcome.kept_empty:
                 # a dependency the package.xml declares, or a file the repository leaves for
                 # a tool to put in a folder kept empty: the workspace's, not the file's
                 yield shape, Conditional(message, Severity.INFO)

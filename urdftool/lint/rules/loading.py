@@ -210,10 +210,10 @@ def required_argument(path: str, error, build):
                 "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
             if again.kind == "package":  # not installed here: the environment's, as U006 says
                 message = f"{again.message}; {told}, and xacro fails so here"
-                declared = PackageNotFound.DECLARED in again.message  # the workspace's: a note
+                declared = again.declared  # the workspace's: a note
                 return None, given, [U006.finding(
                     message if certain and not declared else Conditional(message, Severity.INFO),
-                    again.location)]
+                    again.location, not_checked=certain or declared)]
             message = f"{again.message}; {told}, and xacro fails so"
             if not certain:
                 message = Conditional(message, Severity.INFO)
@@ -352,9 +352,9 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
         if builds(path) or not macro_library(path, limit):
             return None
         rule = U006
-        said = (f"{PackageNotFound.LIBRARY}, which no launch file here builds: expanded, it "
-                "would make no robot to check, so nothing is lost (its macros are checked in the "
-                "robots calling them)")
+        said = ("a library of macros (its top level defines macros and calls none), which no "
+                "launch file here builds: expanded, it would make no robot to check, so nothing "
+                "is lost (its macros are checked in the robots calling them)")
     else:
         return None
     return [rule.finding(Conditional(f"{error.message}; {said}", severity), error.location)]
