@@ -69,19 +69,48 @@ def analysis_imported():
             pass
 
 
+def one_piece_here(monkeypatch) -> None:
+    """A budgeted command of one piece (one file checked, one robot analysed) done in this
+    process, as ``--timeout 0 --max-memory 0`` does it, not in a worker forked from the test
+    process: the fork of a pytest worker (hundreds of MB mapped) and its exit cost 0.05-0.1 s
+    of CPU, most of it system time, for each of about 2,000 commands the tests run, and prove
+    nothing the test is about. A MemoryError is still the budget's Stop (``pool._here``). The
+    tests of budgets, and one command of each kind (test_cli, ``@pytest.mark.worker``), keep
+    the forked worker; tests/lint/test_pool.py and test_budgets.py test it."""
+    from urdftool.lint import pool
+
+    forked = pool._run_pool
+
+    def run_pool(work, queue, jobs, budget, stopped, results, finished, cancel=None):
+        if len(queue) != 1 or cancel is not None:
+            return forked(work, queue, jobs, budget, stopped, results, finished, cancel)
+        [index] = queue
+        results[index] = pool._here(index, work, budget, stopped)
+        finished(1)
+        return None
+
+    monkeypatch.setattr(pool, "_run_pool", run_pool)
+
+
 @pytest.fixture
-def run_cli(analysis_imported):
-    """Invoke the CLI in-process with a fixed width and no colour; returns the Result."""
+def run_cli(analysis_imported, request, monkeypatch):
+    """Invoke the CLI in-process with a fixed width and no colour; returns the Result. A
+    command of one piece runs in this process too (:func:`one_piece_here`), unless the test
+    is marked ``worker`` (what it proves needs the forked worker: a budget, a death)."""
     from typer.testing import CliRunner
 
     from urdftool.cli import app
 
     runner = CliRunner()
+    forked = request.node.get_closest_marker("worker") is not None
 
     def run(*args, input=None):
-        return runner.invoke(app, [str(a) for a in args], input=input,
-                             env={"COLUMNS": "120", "NO_COLOR": "1", "TERM": "dumb",
-                                  "GITHUB_ACTIONS": "", "CI": ""})  # CI: the full mode
+        with monkeypatch.context() as patches:
+            if not forked:
+                one_piece_here(patches)
+            return runner.invoke(app, [str(a) for a in args], input=input,
+                                 env={"COLUMNS": "120", "NO_COLOR": "1", "TERM": "dumb",
+                                      "GITHUB_ACTIONS": "", "CI": ""})  # CI: the full mode
 
     return run
 
@@ -177,6 +206,8 @@ def pytest_configure(config):
     and anyio's 0.7 s), for nothing: urdftool holds no ``assert``, and no test reads theirs.
     The tests' own asserts are rewritten as before (and pytest_lsp's checks); a plugin module,
     imported before this file, stays rewritten."""
+    config.addinivalue_line("markers", "worker: the CLI's commands of one piece (run_cli) run in "
+                            "a forked worker, as outside the tests (a budget, a death)")
     marked = getattr(getattr(config.pluginmanager, "rewrite_hook", None), "_must_rewrite", None)
     if isinstance(marked, set):  # (pytest's private set: without it, all is rewritten as before)
         marked.difference_update({"urdftool", "hypothesis", "anyio"})

@@ -18,6 +18,8 @@ import pytest
 import urdftool
 from conftest import ROOT, parsed
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 PACKAGE = Path(urdftool.__file__).parent
 BODY = ('<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" '
         'iyz="0"/></inertial><collision><geometry><box size="0.01 0.01 0.01"/></geometry>'

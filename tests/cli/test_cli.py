@@ -148,6 +148,7 @@ def test_a_joint_axis_without_direction_fails_instead_of_nan_poses(command, tmp_
     assert "has no direction" in result.stderr
 
 
+@pytest.mark.worker  # each command's result through the forked worker, as outside the tests
 @pytest.mark.parametrize("words", [["tree"], ["graph"], ["fk"], ["dh", "--tip", "x"],
                                    ["ik", "--tip", "x", "--xyz", "0", "0", "0"],
                                    ["workspace", "--tip", "x"], ["inertia"], ["dynamics"],

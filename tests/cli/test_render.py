@@ -48,6 +48,7 @@ def test_render_usage_errors_exit_2(tmp_path, run_cli, args, message):
     assert result.exit_code == 2 and message in result.output
 
 
+@pytest.mark.worker  # the memory budget applies in the forked worker
 def test_a_size_past_what_the_memory_budget_leaves_is_refused_before_drawing(tmp_path,
                                                                              run_cli):
     """``--size`` follows the budget: 8192x8192 (in the option's range) under 1 GiB was a

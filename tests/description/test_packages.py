@@ -9,6 +9,8 @@ import pytest
 from urdftool.errors import PackageNotFound
 from urdftool.description.packages import PackageResolver
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 
 def make_package(folder, name):
     folder.mkdir(parents=True, exist_ok=True)

@@ -19,6 +19,8 @@ from conftest import ROOT
 from urdftool.description import inputs, meshes
 from urdftool.description.meshes import triangle_count
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 
 # A process that imports trimesh and refuses a mesh peaks near 150 MB; the bombs below took
 # 450 MB (OBJ n-gon) and over 600 MB (ZAE) before their limits were checked ahead of loading.

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import pytest
 
+from conftest import one_piece_here
 from tests.fuzz import forge
 
 
@@ -35,7 +36,9 @@ PARTS = 4  # the invocations in four tests, which the suite's workers share (one
 
 
 @pytest.mark.parametrize("part", range(PARTS))
-def test_no_name_forges_output_in_any_command_or_format(hostile_repository, part):
+def test_no_name_forges_output_in_any_command_or_format(hostile_repository, part, monkeypatch):
+    one_piece_here(monkeypatch)  # each command in this process, as under its guardian outside
+    # the tests (not in a worker forked from the test's: 100 forks, 7 s of CPU in children)
     repo = hostile_repository
     found = []
     for run in forge.invocations(repo)[part::PARTS]:

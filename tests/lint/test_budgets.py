@@ -18,6 +18,8 @@ from urdftool.lint.engine import CheckOptions, load_and_check
 from urdftool.errors import UsageError
 from urdftool.lint.runner import check_files
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 XACRO = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 # One C call: no signal handler can interrupt it, only killing the process stops it.
 FACTORIAL = (f'<robot name="r" {XACRO}>\n'

@@ -15,6 +15,8 @@ from urdftool.lint import cache as cache_module
 from urdftool.lint import engine
 from urdftool.lint.runner import check_paths
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 ROBOT = """<?xml version="1.0"?>
 <robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="parts.xacro"/>

@@ -398,3 +398,36 @@ def test_a_parameter_the_macro_lacks_fails_whatever_the_launch_gives_unless_unde
     result = load_and_check(str(tmp_path / "arm/urdf/arm.urdf.xacro"), CheckOptions())
     [failed] = [f for f in result.findings if f.code == "U005"]
     assert failed.severity == severity, failed.message
+
+
+FRAME_NOT_PUSHED = "error return without exception set"  # Python 3.11's, at the memory cap
+
+
+@pytest.mark.parametrize("where", ["rule", "loading"])
+def test_a_call_refused_at_the_memory_cap_stops_the_piece_as_over_its_memory(monkeypatch, where):
+    """In a worker at its address-space cap, Python 3.11 could not map the next chunk of its
+    frame stack for a call (rule U222 reading its companions: SystemError "error return
+    without exception set"); the U900 then built for it was the next call refused, and the
+    worker died of a segmentation fault ("Fatal Python error" in every ``make test`` log, from
+    tests/lint/test_settings.py under ``max-memory = "1G"``). Such an error is the budget's:
+    U018, no U900, no death."""
+    from urdftool.lint.runner import check_files
+
+    def refused(*args, **kwargs):
+        raise SystemError(FRAME_NOT_PUSHED)
+
+    def refused_rule(robot):
+        yield from refused()
+
+    if where == "rule":
+        original = CATALOGUE.get("U204")
+        monkeypatch.setattr(engine, "CATALOGUE", Catalogue(
+            [Rule("U204", original.name, original.severity, refused_rule, original.doc)
+             if r.code == "U204" else r for r in CATALOGUE.rules]))
+    else:
+        import urdftool.description.load
+
+        monkeypatch.setattr(urdftool.description.load, "load", refused)
+    [result] = check_files([str(ROBOT)], lambda path: CheckOptions(), jobs=1, timeout=60,
+                           memory=4 << 30)  # (in a forked worker, the memory capped)
+    assert [f.code for f in result.findings] == ["U018"], [str(f) for f in result.findings]

@@ -8,6 +8,8 @@ import pytest
 from urdftool.lint.engine import CheckOptions
 from urdftool.lint.runner import check_files
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 GOOD = '<robot name="r"><link name="a"/></robot>\n'
 BAD = '<robot name="r"><link name="a"></robot>\n'
 # Slow but legal arithmetic: the sandbox lets it through, only the budget stops it.

@@ -575,6 +575,7 @@ def test_the_command_line_may_raise_a_limit(run_cli, repo_project):
                    "--select", "U008").exit_code == 0
 
 
+@pytest.mark.worker  # a budget applies in the forked worker
 @pytest.mark.parametrize("text", ["max-file-size = 1024\n", 'max-memory = "1G"\n',
                                   'max-memory = "2G"\n', "max-file-size = 16777216\n",
                                   "timeout = 30\n", "timeout = 0.5\n", "timeout = 60\n",

@@ -12,6 +12,8 @@ import pytest
 
 from urdftool.lint.engine import CheckOptions, load_and_check
 
+pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
+
 XACRO_NS = ' xmlns:xacro="http://www.ros.org/wiki/xacro"'
 LAUGHS = ('<!DOCTYPE robot [<!ENTITY lol "lol">'
           + "".join(f'<!ENTITY lol{i} "{("&lol%s;" % (i - 1 if i > 1 else "")) * 10}">'

@@ -25,8 +25,9 @@ from urdftool.lint.engine import load_error_findings
 from urdftool.description.load import load
 from urdftool.description.packages import PackageResolver
 
-pytestmark = pytest.mark.skipif(not hasattr(os, "symlink") or not hasattr(os, "mkfifo"),
-                                reason="needs symbolic links and FIFOs")
+pytestmark = [pytest.mark.skipif(not hasattr(os, "symlink") or not hasattr(os, "mkfifo"),
+                                 reason="needs symbolic links and FIFOs"),
+              pytest.mark.worker]  # budgets and deaths: run_cli's commands in the forked worker
 
 XACRO = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 BOX = '<geometry><box size="0.1 0.1 0.1"/></geometry>'

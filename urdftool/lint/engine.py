@@ -49,6 +49,16 @@ def stamp(rule: Rule, where, message: str, robot, fix=None, severity=None) -> Fi
     return rule.finding(message, location, fix, severity)
 
 
+def _raise_if_out_of_memory(error: Exception) -> None:
+    """Raise ``error`` again when it is the memory budget's doing though not a MemoryError
+    (:func:`urdftool.lint.pool.out_of_memory`): the pool stops the piece (U018), where a U900
+    built at the memory ceiling is the next allocation refused, or a segmentation fault."""
+    from urdftool.lint.pool import out_of_memory  # (imported wherever a budget applies)
+
+    if out_of_memory(error):
+        raise error
+
+
 def _crash(what: str, error: BaseException, location: Location) -> Finding:
     """U900 for a crash in urdftool itself, naming the code line that raised."""
     import traceback  # only for a crash
@@ -123,6 +133,7 @@ def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
         except MemoryError:
             raise  # over the memory budget: the pool stops it (U018)
         except ImportError as error:  # a lint-only install: say what did not run, and why
+            _raise_if_out_of_memory(error)  # (a library not mapped under the memory budget)
             if (advice := missing_extra(error)) is None:
                 findings.append(_crash(f"rule {rule.code} ({rule.name})", error,
                                        robot.locate(None)))
@@ -130,6 +141,7 @@ def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
                 findings.append(CATALOGUE.get("U902").finding(
                     f"rule {rule.code} ({rule.name}) did not run: it {advice}", robot.locate(None)))
         except Exception as error:  # a bug in a rule must not hide the other findings
+            _raise_if_out_of_memory(error)
             findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
     return findings
 
@@ -232,6 +244,7 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
     except MemoryError:
         raise  # over the memory budget: the pool stops it where loading was (U018)
     except Exception as error:  # a loader bug (RecursionError too): a finding, not a traceback
+        _raise_if_out_of_memory(error)
         shown = display_path(path) if path != "-" else "<stdin>"
         return FileResult(path, [_crash("loading", error, Location(shown))])
     robot.companion_paths, robot.mesh_limits = options.companions, options.mesh_limits

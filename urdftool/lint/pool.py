@@ -129,10 +129,17 @@ CANCEL_POLL = 0.1  # [s] how often a pool looks whether it was cancelled
 def out_of_memory(error: BaseException) -> bool:
     """Whether ``error`` is the memory budget's doing though not a MemoryError: under a small
     address-space cap, importing a module fails to map its shared library (ImportError) and
-    the system refuses allocations (ENOMEM). Such a piece is stopped as over its memory
-    (U018), as a MemoryError is, never reported as a crash with a traceback."""
+    the system refuses allocations (ENOMEM); Python 3.11 that cannot map the next chunk of its
+    frame stack for a call raises SystemError ("error return without exception set"), and the
+    next call made there (a U900 finding built) ended the worker with a segmentation fault.
+    Such a piece is stopped as over its memory (U018), as a MemoryError is, never reported as
+    a crash with a traceback."""
     if isinstance(error, OSError) and error.errno == errno.ENOMEM:
         return True
+    if isinstance(error, SystemError) and str(error) == "error return without exception set":
+        import resource
+
+        return resource.getrlimit(resource.RLIMIT_AS)[0] != resource.RLIM_INFINITY
     return isinstance(error, ImportError) and any(
         words in str(error) for words in ("failed to map segment", "Cannot allocate memory"))
 
