@@ -364,6 +364,22 @@ def test_principal_moments_order(tmp_path, tensor, reported):
     assert bool(found) == reported, [f.message for f in findings]
 
 
+def test_principal_moments_order_writes_axes_without_round_off(tmp_path):
+    # a geometry turned a quarter turn has axes with round-off (cos(pi/2) = 6.1e-17); the
+    # message writes them as the vector they are, counted from the largest component
+    # (numbers.numbers), as every rule writing a direction or a place does
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><mass value="1"/><inertia ixx="0.00771" ixy="0" ixz="0"
+        iyy="0.00833" iyz="0" izz="0.00104"/></inertial>
+        <collision><origin rpy="0 0 1.5707963267948966"/><geometry><box size="0.3 0.1 0.05"/>
+        </geometry></collision></link></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U314",))
+    [message] = [f.message for f in findings]
+    assert "easiest about (0, -1, 0) and hardest about (0, 0, 1)" in message, message
+
+
 def test_principal_moments_order_leaves_a_tyre_fixed_below_its_wheel_to_u421(tmp_path):
     # a tyre fixed to the rolling rotor is part of the wheel (physics/wheels.wheel_body): U314
     # left wheels to U421 by their link, and the tyre, no wheel of its own any more, was judged

@@ -13,7 +13,7 @@ import re
 
 from urdftool.description.values import parse_numbers
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import number
+from urdftool.numbers import MILLIMETRE, number, numbers
 from urdftool.physics import mat3
 from urdftool.physics.frames import child_joints, link_frames, parent_joints, relative
 from urdftool.physics.mass import declared
@@ -264,7 +264,7 @@ def footprint_not_on_ground(robot):
         offset, turn = relative(footprint_frame, frames["base_link"])
         if math.hypot(offset[0], offset[1]) > BELOW_TOLERANCE or offset[2] < -BELOW_TOLERANCE:
             yield where, (f"'{FOOTPRINT}' is not right below 'base_link': base_link is at "
-                          f"({', '.join(f'{number(v, 4)}' for v in offset)}) m in it; the footprint is "
+                          f"({numbers(offset, 4, ', ', floor=MILLIMETRE)}) m in it; the footprint is "
                           "base_link's projection on the floor (x = y = 0)")
         elif _angle(mat3.IDENTITY, turn) > ANGLE_TOLERANCE:
             tilt = math.degrees(_angle(mat3.IDENTITY, turn))
@@ -377,9 +377,9 @@ def wheel_collision_off_axle(robot):
         for piece, along, angle in _off_axle(robot, wheel):
             yield _collision_of(link, piece), (
                 f"wheel '{wheel.link}': its collision cylinder's axis "
-                f"({', '.join(f'{number(v, 3)}' for v in along)}) is {number(math.degrees(angle), places=0)} "
+                f"({numbers(along, 3, ', ')}) is {number(math.degrees(angle), places=0)} "
                 f"degrees from the axle of joint '{wheel.joint.get('name')}' "
-                f"({', '.join(f'{number(v, 3)}' for v in wheel.axle)}); the simulated wheel does "
+                f"({numbers(wheel.axle, 3, ', ')}); the simulated wheel does "
                 "not roll on its rim (turn the collision origin so the cylinder's z is the "
                 "axle)")
 

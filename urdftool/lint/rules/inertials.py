@@ -1122,7 +1122,7 @@ def principal_moments_order(robot):
 
 
 def _axis_text(v) -> str:
-    return ", ".join(f"{number(a + 0.0, 3)}" for a in v)
+    return numbers(v, 3, ", ")  # (1, 0, 0), not (1, 4.9e-12, 1.74e-39): counted from the largest
 
 
 def _declared_about(declared, geometry, value: float, pick) -> tuple[mat3.Vector, float]:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import number as attribute_number
 from urdftool.lint.catalogue import Severity, rule
-from urdftool.numbers import decimal_slip, number
+from urdftool.numbers import decimal_slip, number, numbers
 from urdftool.physics import mat3
 from urdftool.physics.frames import child_joints, joint_frames, link_frames, parent_joints, world_axis
 from urdftool.physics.mass import declared_of, moments_of
@@ -294,7 +294,7 @@ def _walk_up(robot, joint_name: str) -> tuple[str, ...]:
 
 
 def _text(v) -> str:
-    return f"({', '.join(f'{number(x + 0.0, 4)}' for x in v)})"
+    return f"({numbers(v, 4, ', ')})"  # round-off beside the largest component written 0
 
 
 @rule("U218", "mirror-origin", Severity.WARNING)
