@@ -346,6 +346,19 @@ def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):
     assert not found, [f.message for f in findings]
 
 
+def _bar(tensor: str, size: str = "0.4 0.05 0.05", rpy: str = "0 0 0") -> str:
+    """A robot of one moving link: a box ``size`` turned by ``rpy``, its declared moments
+    ``tensor`` (ixx iyy izz)."""
+    ixx, iyy, izz = tensor.split()
+    return f"""<robot name="r"><link name="base_link"/>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="a"><inertial><mass value="1"/><inertia ixx="{ixx}" ixy="0" ixz="0"
+        iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
+        <collision><origin rpy="{rpy}"/><geometry><box size="{size}"/></geometry></collision>
+      </link></robot>"""
+
+
 @pytest.mark.parametrize("tensor, reported", [
     ("0.0135 0.0135 0.00042", True),   # written for a bar along z
     ("0.00042 0.0135 0.0135", False),  # the bar's own
@@ -353,14 +366,7 @@ def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):
     ("0.006 0.006 0.006", False),      # a placeholder sphere (U310's, if anything)
 ])
 def test_principal_moments_order(tmp_path, tensor, reported):
-    ixx, iyy, izz = tensor.split()
-    text = f"""<robot name="r"><link name="base_link"/>
-      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
-        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-      <link name="a"><inertial><mass value="1"/><inertia ixx="{ixx}" ixy="0" ixz="0"
-        iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
-        <collision><geometry><box size="0.4 0.05 0.05"/></geometry></collision></link></robot>"""
-    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U314",))
+    found, findings = check_folder(tmp_path, {"robot.urdf": _bar(tensor)}, select=("U314",))
     assert bool(found) == reported, [f.message for f in findings]
 
 
@@ -368,13 +374,7 @@ def test_principal_moments_order_writes_axes_without_round_off(tmp_path):
     # a geometry turned a quarter turn has axes with round-off (cos(pi/2) = 6.1e-17); the
     # message writes them as the vector they are, counted from the largest component
     # (numbers.numbers), as every rule writing a direction or a place does
-    text = """<robot name="r"><link name="base_link"/>
-      <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>
-        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-      <link name="a"><inertial><mass value="1"/><inertia ixx="0.00771" ixy="0" ixz="0"
-        iyy="0.00833" iyz="0" izz="0.00104"/></inertial>
-        <collision><origin rpy="0 0 1.5707963267948966"/><geometry><box size="0.3 0.1 0.05"/>
-        </geometry></collision></link></robot>"""
+    text = _bar("0.00771 0.00833 0.00104", "0.3 0.1 0.05", "0 0 1.5707963267948966")
     found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U314",))
     [message] = [f.message for f in findings]
     assert "easiest about (0, -1, 0) and hardest about (0, 0, 1)" in message, message
