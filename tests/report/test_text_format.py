@@ -433,3 +433,33 @@ def test_figures_folded_only_where_the_line_stays_true_and_readable():
     same = shown([said(1, "joint 'a': min 1 is above max 0"), said(2, "joint 'b': min 3 is above "
                   "max 2"), said(3, "joint 'c': min 1 is above max 0")])
     assert len(same) == 2 and same[0].endswith("[2 times: lines 1, 3; also 'c']"), same
+
+
+def test_names_holding_the_grouped_name_in_different_patterns_are_lines_of_their_own():
+    """session 18 (fresh18's OpenLoong): a link's mesh missing, 'meshes/base_link.STL', and nine
+    whose package is written twice, 'loong_control/loong_control/meshes/Link_arm_r_01.STL',
+    were one line saying only the first: "also" names the links, and the meshes' other pattern
+    was nowhere. Where each finding's name at another place holds the name the line groups by
+    (a mesh named after its link), a pattern of its own is a line of its own; names that do
+    not hold it (a transmission and its joint) stay one line."""
+    def said(line: int, link: str, mesh: str) -> Finding:
+        return Finding("U408", "x", Severity.ERROR,
+                       f"link '{link}' <visual>: mesh '{mesh}' not found", Location("r.urdf", line))
+
+    def shown(findings) -> list[str]:
+        return [line.strip().split(" U408 ", 1)[1] for line in
+                _text([FileResult("r.urdf", findings)]).splitlines() if " U408 " in line]
+
+    links = ["base_link", "arm_01", "arm_02", "arm_03"]
+    found = [said(1, links[0], "package://p/meshes/base_link.STL")]
+    found += [said(2 + i, link, f"package://p/p/meshes/{link}.STL")
+              for i, link in enumerate(links[1:])]
+    assert shown(found) == [
+        "link 'base_link' <visual>: mesh 'package://p/meshes/base_link.STL' not found (x)",
+        "link 'arm_01' <visual>: mesh 'package://p/p/meshes/arm_01.STL' not found (x) [3 times: "
+        "lines 2, 3, 4; also 'arm_02', 'arm_03']"]
+    one_pattern = [said(1 + i, link, f"package://p/meshes/{link}.STL")
+                   for i, link in enumerate(links)]
+    assert len(shown(one_pattern)) == 1
+    shared = [said(1 + i, link, "package://p/meshes/part.STL") for i, link in enumerate(links)]
+    assert len(shown(shared)) == 1  # (a mesh not named after its link: one line, as before)

@@ -206,14 +206,44 @@ def _apart(group: list) -> list[list]:
     kinds = [i for i, count in enumerate(ways) if count > 1 and i != most
              and "<" in (first[i][0], first[most][0])
              and not _one_to_one([(names[most], names[i]) for names in named])]
-    if not kinds:
+    shapes = _shapes(named, ways)
+    if not kinds and not shapes:
         return [group]
     parts: dict[tuple, list] = {}
     for index, finding in enumerate(group):
         names = named[index] if index < len(named) else _names(finding.message)
-        parts.setdefault(tuple(names[i] for i in kinds) if len(names) == len(first) else (),
-                         []).append(finding)
+        key = () if len(names) != len(first) else (
+            *(names[i] for i in kinds), *(_shape(names, at, i) for at, i in shapes))
+        parts.setdefault(key, []).append(finding)
+    if len(parts) == 1:
+        return [group]
     return [split for part in parts.values() for split in _apart(part)]
+
+
+def _shapes(named: list[tuple], ways: list[int]) -> list[tuple[int, int]]:
+    """The places (at, i) where each finding's name at ``i`` holds its name at ``at``, the
+    first place their names differ (a mesh named after its link: 'package://p/meshes/
+    base_link.STL' of link 'base_link'), and the rest of it is not one for all: the line
+    naming the others after ``at`` (:func:`_also`) would show one pattern of several (nine
+    meshes of OpenLoong's whose package is written twice, 'package://loong_control/
+    loong_control/...', behind one simply missing)."""
+    differ = [i for i, count in enumerate(ways) if count > 1]
+    if not differ or named[0][differ[0]][0] != "'":
+        return []
+    at = differ[0]
+    found = []
+    for i in differ[1:]:
+        if named[0][i][0] == "<":
+            continue  # (a tag: a kind, which the caller splits by)
+        held = [names for names in named if len(names[at]) > 4 and names[at][1:-1] in names[i]]
+        if len(held) == len(named) and len({_shape(names, at, i) for names in held}) > 1:
+            found.append((at, i))
+    return found
+
+
+def _shape(names: tuple, at: int, i: int) -> str:
+    """The name at ``i`` with the name at ``at`` taken out of it (``{}`` in its place)."""
+    return names[i].replace(names[at][1:-1], "{}")
 
 
 def _one_to_one(pairs: list[tuple]) -> bool:
