@@ -194,6 +194,22 @@ def test_an_include_of_a_package_uri_says_xacro_does_not_resolve_it(tmp_path):
     assert "does not resolve package:// URIs" in message and "Errno" not in message, message
 
 
+@pytest.mark.parametrize("given, said", [({}, True), ({"arm": "wx200"}, False)])
+def test_an_include_naming_an_empty_argument_says_which(tmp_path, given, said):
+    """Interbotix's locobot built without arm_model includes 'arms/.urdf.xacro', which xacro
+    reports only as not found: the argument the path names, empty, is said."""
+    (tmp_path / "robot.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="arm" default=""/>'
+        '<xacro:include filename="arms/$(arg arm).urdf.xacro"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "robot.xacro"), xacro_args=given)
+    message = caught.value.message
+    assert "No such file or directory" in message, message
+    assert ("names argument 'arm', which is empty here: pass arm:=VALUE" in message) == said, \
+        message
+
+
 def test_an_include_written_relative_to_the_repository_root_says_where_it_is(tmp_path):
     """Upkie's xacro/upkie.xacro includes "xacro/utils/box_inertia.xacro", written from the
     repository root (its build, xacrodoc, runs there); xacro reads it beside the including

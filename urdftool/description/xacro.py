@@ -951,12 +951,35 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         return XacroFailure("xacro", message + "; not certain for a catkin package: ROS 1's "
                             "xacro up to Lunar (Kinetic's) expands it in that order by default",
                             where, certain=False)
+    if "No such file or directory" in message:
+        empty = _empty_arguments(error.__traceback__)
+        if empty:  # a path with nothing where it names an argument: say which
+            message += (f"; the include's filename names argument '{empty[0]}', which is empty "
+                        f"here: pass {empty[0]}:=VALUE")
     invalid = _INVALID_PARAMETER.fullmatch(message)
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(
             "parameters", invalid.group(1), _called_macro_params(error))
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument,
                         whatever_args=bool(invalid) and not _under_condition(error.__traceback__))
+
+
+_ARGUMENT_USE = re.compile(r"\$\(arg\s+([^\s)]+)\)")
+
+
+def _empty_arguments(traceback) -> list[str]:
+    """The xacro arguments the filename of the include xacro was doing when it raised names
+    (``$(arg NAME)``, as written) whose value is empty: Interbotix's locobot built without
+    ``arm_model`` includes ``arms/.urdf.xacro``, which xacro reports only as not found."""
+    spec = None
+    while traceback is not None:  # (the innermost include: xacro.process_include's local)
+        value = traceback.tb_frame.f_locals.get("filename_spec")
+        if isinstance(value, str) and traceback.tb_frame.f_code.co_name == "process_include":
+            spec = value
+        traceback = traceback.tb_next
+    arguments = _xacro().substitution_args_context.get("arg") or {}
+    return [name for name in dict.fromkeys(_ARGUMENT_USE.findall(spec or ""))
+            if arguments.get(name) == ""]
 
 
 _CONDITIONS = ("xacro:if", "xacro:unless", "if", "unless")
