@@ -259,8 +259,6 @@ def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
     return poses
 
 
-
-
 def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
     """Pairs of links that overlap by more than :data:`TOUCHING` at the default configuration
     or at a group state of the SRDF (adjacent ones marked so): one FCL check of every pair per

@@ -84,10 +84,11 @@ class CompanionPaths(Frozen):
 
 # The kinds of option a caller gives, what each takes (said in the message) and its test.
 # words: str or an iterable of str (one word alone is a tuple of it); names: a mapping of str
-# to str (xacro arguments) or to paths (packages); flag: True or False (not "no", not 0);
-# (paths: the same, its values as Path); path: str or os.PathLike; seconds: a finite number, 0 or more; count: a whole number, 0 or
-# more; call: a callable. A size limit is :func:`checked_file_size`'s (a SettingsError, as the
-# settings files' and ``--max-file-size``'s).
+# to str (xacro arguments) or to paths (packages); paths: the same, its values as Path; flag:
+# True or False (not "no", not 0); path: str or os.PathLike; seconds: a finite number, 0 or
+# more; count: a whole number, 0 or more; call: a callable. A size limit is
+# :func:`checked_file_size`'s (a SettingsError, as the settings files' and
+# ``--max-file-size``'s).
 _KINDS = {
     "words": "be words (str)", "names": "map names (str) to values (str)",
     "flag": "be True or False", "path": "be a path", "seconds": "be a finite number of "

@@ -438,8 +438,6 @@ class _Key(Frozen):
         set_field(self, "attribute", attribute)
 
 
-
-
 def _validated(path: Path, key: str, value):
     """The one gate of a settings key: known, no path outside the repository anywhere in its
     value, then its own check (a limit no higher than the built-in one). SettingsError
@@ -532,8 +530,6 @@ def _per_file_ignores(settings: Path, value, key: str) -> dict[str, list[str]]:
 def _per_file_args(settings: Path, value, key: str) -> dict[str, dict[str, str]]:
     return {pattern: _xacro_args(settings, pattern, args)
             for pattern, args in _table(settings, value, key).items()}
-
-
 
 
 def _file_size(settings: Path, value, key: str) -> int:
