@@ -4,6 +4,7 @@ they act on, which the commands read and then did nothing with (exit 0, as if th
 from __future__ import annotations
 
 import json
+import sys
 
 import pytest
 
@@ -102,3 +103,55 @@ def test_an_error_that_is_no_finding_is_a_diagnostic_without_code(run_cli, tmp_p
     path.write_text('<robot name="x"><link name="a"/></robot>')
     usage = run_cli("fk", path, "-f", "json", "--q", "nope=1")  # usage: stderr only
     assert usage.exit_code == 2 and usage.stdout == ""
+
+
+@pytest.mark.parametrize("command, words", [("check", []), *JSON_COMMANDS],
+                         ids=["check", *(c for c, _ in JSON_COMMANDS)])
+def test_an_error_document_is_the_same_through_the_door_and_through_typer(
+        run_cli, tmp_path, monkeypatch, capsys, command, words):
+    """The error format is read from the command line where the error is reported
+    (``error_format``), not set by each command beforehand: ``python -m urdftool`` (the door,
+    ``urdftool.__main__``: check answered without Typer, the others handed to it) and the
+    Typer app give the same standard output, the JSON document, for every command with a JSON
+    format."""
+    import urdftool.__main__ as door
+    from conftest import one_piece_here
+
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="x"><link name="a">\n')
+    words = [str(path) if word == "SAME" else word for word in words]
+    words = [*words, "-f", "json", *(["--no-cache"] if command == "check" else [])]
+    typer = run_cli(command, path, *words)
+    assert typer.exit_code == 1, typer.output
+    monkeypatch.setattr(door, "PROGRAM", {"entry": None})  # a caller's: nothing forked, ended
+    monkeypatch.setattr(sys, "argv", ["urdftool", command, str(path), *words])
+    one_piece_here(monkeypatch)
+    capsys.readouterr()
+    with pytest.raises(SystemExit) as ended:
+        door.main()
+    assert ended.value.code == 1
+    assert json.loads(capsys.readouterr().out) == json.loads(typer.stdout)
+
+
+def test_a_command_that_sets_nothing_reports_its_errors_in_its_format(tmp_path, capsys):
+    """A command is not asked to say its format before it fails: ``fail_at`` reads it from the
+    command line (before, a command that did not call ``errors_as`` wrote text only)."""
+    import typer
+    from typer.testing import CliRunner
+
+    from urdftool.cli import _common
+
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="x"><link name="a"/></robot>\n')
+    app = typer.Typer()
+
+    @app.command()
+    def new(word: str, output_format: str = typer.Option("text", "--format")) -> None:
+        from urdftool.description.load import load
+
+        _common.fail_at(load(word), ValueError("cannot compute"))
+
+    for given, stdout in (("json", True), ("text", False)):
+        result = CliRunner().invoke(app, [str(path), "--format", given])
+        assert result.exit_code == 1
+        assert ('"error": "cannot compute"' in result.stdout) is stdout, result.stdout

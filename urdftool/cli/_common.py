@@ -106,21 +106,26 @@ def warn(warnings) -> None:
         say(f"urdftool: warning: {warning}", err=True)
 
 
-# the --format of the command running (the one owner of "errors as JSON"): with json, an error
-# about the robot (exit 1) is also a JSON document on standard output (report.json_format's
-# error_document), so that a script reading it gets one; set by ``budgeted`` before the work
-# forks, by ``single_robot`` and by the commands that use neither
-ERROR_FORMAT: dict = {"format": None}
+def error_format() -> str | None:
+    """The ``--format`` of the command now running, as its command line gave it (click's
+    context, read where an error is reported): the one owner of "errors as JSON". With json, an
+    error about the robot (exit 1) is also a JSON document on standard output
+    (report.json_format's error_document), so that a script reading it gets one. None outside a
+    command, or for one without ``--format``. (Each command set a module-level value before, by
+    ``budgeted``, ``single_robot`` or itself: one that forgot, or a value left by the command
+    before it in the same process, gave the wrong format. The door's plain ``check``, which
+    runs without click, writes its errors in its own report: urdftool.checking.)"""
+    from typer._click.globals import get_current_context  # typer's own click
 
-
-def errors_as(output_format: str | None) -> None:
-    """Errors of the command now running are also written as ``output_format`` (json) on
-    standard output."""
-    ERROR_FORMAT["format"] = output_format
+    context = get_current_context(silent=True)
+    if context is None:
+        return None
+    return next((context.params.get(parameter.name) for parameter in context.command.params
+                 if "--format" in parameter.opts), None)
 
 
 def _error_document(results=(), message=None, location=None) -> None:
-    if ERROR_FORMAT["format"] == "json":
+    if error_format() == "json":
         from urdftool.report.json_format import error_document
         from urdftool.report.json_output import dumps
 
@@ -184,7 +189,6 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     load_options: passed to ``urdftool.description.load.load`` (``allow_env``: None, the
         default, is the safe mode when ``CI`` is set, see lint.settings.env_allowed)
     """
-    errors_as((choices or {}).get("--format", (None,))[0])
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
         if len(paths) != 1:
@@ -257,7 +261,6 @@ def budgeted(command):
         from urdftool.budget import Budget
         from urdftool.lint.pool import Stop, run_budgeted
 
-        errors_as(kwargs.get("output_format", kwargs.get("format")))  # (a Stop's too)
         try:
             budget = Budget.of(kwargs.pop("timeout"), kwargs.pop("max_memory"))
         except UsageError as error:
@@ -328,7 +331,7 @@ def _bytes_stdin(data: bytes):
 
 def report_findings(path: str, findings) -> None:
     """Print findings about the robot at ``path`` to stderr as ``check`` would (and with
-    ``--format json`` as a JSON document on stdout: :data:`ERROR_FORMAT`)."""
+    ``--format json`` as a JSON document on stdout: :func:`error_format`)."""
     from urdftool.lint.engine import FileResult
     from urdftool.report import render
 

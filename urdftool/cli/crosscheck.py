@@ -36,10 +36,6 @@ def crosscheck(
     from urdftool.crosscheck import crosscheck as run
     from urdftool.errors import LoadError, UsageError
     from urdftool.report import crosscheck as render
-
-    from urdftool.cli._common import errors_as
-
-    errors_as(output_format)
     try:
         paths, args, packages = robot_inputs(words, arg, package)
         if len(paths) != 1:
