@@ -124,3 +124,17 @@ def test_a_path_is_displayed_as_relpath_below_the_working_directory_says(tmp_pat
     assert display_path("-") == "-" and display_path("<stdin>") == "<stdin>"
     monkeypatch.chdir(tmp_path)
     assert display_path(tmp_path / "a" / "f.launch") == os.path.join("a", "f.launch")
+
+
+def test_a_patchs_lines_end_at_line_feeds_only():
+    """``feeds_only``: the lines of a patch (report.unified's diff), numbered by the same owner
+    as every line: a CR stays in its line, a CR-only text is one line."""
+    from urdftool.diagnostics import LineNumbers, lines_of
+
+    text = "a\r\nb\rc\nd"
+    assert lines_of(text, keepends=True, feeds_only=True) == ["a\r\n", "b\rc\n", "d"]
+    assert lines_of(text, keepends=True) == ["a\r\n", "b\r", "c\n", "d"]
+    numbers = LineNumbers(text.encode(), feeds_only=True)
+    assert [numbers(offset) for offset in range(len(text))] == [1, 1, 1, 2, 2, 2, 2, 3]
+    assert [numbers.start(line) for line in (1, 2, 3)] == [0, 3, 7]
+    assert [LineNumbers(text).start(line) for line in (1, 2, 3, 4)] == [0, 3, 5, 7]

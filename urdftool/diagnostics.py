@@ -210,22 +210,25 @@ def _count_ends(text: str | bytes, start: int, end: int | None) -> int:
     return len(_LINE_END.findall(text, start, len(text) if end is None else end))
 
 
-def _ends_pattern(text: str | bytes):
+def _ends_pattern(text: str | bytes, feeds_only: bool = False):
     """The pattern of the line ends of ``text``: LF alone when it holds no CR (the same ends,
-    found at memchr's speed, where the alternation is tried at each character)."""
+    found at memchr's speed, where the alternation is tried at each character), or when
+    ``feeds_only`` (a patch's lines: :func:`lines_of`)."""
     if isinstance(text, bytes):
-        return _LF_BYTES if b"\r" not in text else _LINE_END_BYTES
-    return _LF if "\r" not in text else _LINE_END
+        return _LF_BYTES if feeds_only or b"\r" not in text else _LINE_END_BYTES
+    return _LF if feeds_only or "\r" not in text else _LINE_END
 
 
-def lines_of(text: str, keepends: bool = False) -> list[str]:
+def lines_of(text: str, keepends: bool = False, feeds_only: bool = False) -> list[str]:
     """The lines of a file's ``text`` as :class:`Location` numbers them (line N is item N - 1):
     split at CR LF, LF and CR only, never where :meth:`str.splitlines` also splits. With
-    ``keepends``, each line keeps its line end (joined, they are ``text``)."""
+    ``keepends``, each line keeps its line end (joined, they are ``text``). ``feeds_only``: the
+    lines of a patch instead (``git apply``, ``patch``, difflib's unified diff of them: split
+    at line feeds only, a CR part of its line; a CR-only file is one line), with their ends."""
     if not keepends:
         return (text.split("\n") if "\r" not in text else _LINE_END.split(text)) if text else []
     found, at = [], 0
-    for end in _ends_pattern(text).finditer(text):
+    for end in _ends_pattern(text, feeds_only).finditer(text):
         found.append(text[at:end.end()])
         at = end.end()
     if at < len(text):
@@ -251,23 +254,28 @@ def lines_between(text: str | bytes, start: int, end: int) -> int:
     return _count_ends(text, start, end)
 
 
-def line_ends(text: str | bytes) -> list[int]:
+def line_ends(text: str | bytes, feeds_only: bool = False) -> list[int]:
     """The offset of the last character (or byte) of each line end of ``text``: a CR LF's LF
-    (:func:`line_at` of an offset is 1 + how many of these come before it)."""
-    return [end.end() - 1 for end in _ends_pattern(text).finditer(text)]
+    (:func:`line_at` of an offset is 1 + how many of these come before it). ``feeds_only``:
+    a patch's lines (:func:`lines_of`)."""
+    return [end.end() - 1 for end in _ends_pattern(text, feeds_only).finditer(text)]
 
 
 class LineNumbers:
     """:func:`line_at` of many offsets of one ``text`` (str or bytes), each found by bisection
-    in its :func:`line_ends`, found once."""
+    in its :func:`line_ends`, found once; ``feeds_only``: a patch's lines (:func:`lines_of`)."""
 
     __slots__ = ("_ends",)
 
-    def __init__(self, text: str | bytes):
-        self._ends = line_ends(text)
+    def __init__(self, text: str | bytes, feeds_only: bool = False):
+        self._ends = line_ends(text, feeds_only)
 
     def __call__(self, offset: int) -> int:
         return bisect.bisect_left(self._ends, offset) + 1
+
+    def start(self, line: int) -> int:
+        """Where the 1-based ``line`` starts (after the line end before it)."""
+        return self._ends[line - 2] + 1 if line > 1 else 0
 
 
 def line_start(text: str | bytes, offset: int) -> int:

@@ -64,3 +64,29 @@ def test_a_diff_from_the_edits_spans_is_the_edits_and_compares_only_the_lines_th
                         lambda self: compared.append(len(self.a)) or real(self))
     diff = unified({"f": (lines, after)}, {"f": spans})
     assert diff.count("\n-    <axis") == 3000 and max(compared) == 1
+
+
+def test_the_hunks_are_difflibs_unified_diff_given_its_matcher():
+    """``_unified`` is difflib.unified_diff's loop over a matcher given to it (unified_diff
+    takes none: it would compare the whole files, the quadratic cost the edits' spans avoid):
+    the same text, hunk ranges included, for any two files."""
+    rng = random.Random(7)
+    words = ["<a/>\n", "<b/>\n", "\n", "<c x='1'/>\n", "<d>", "\r\n"]
+    for _ in range(2000):
+        old, new = ([rng.choice(words) for _ in range(rng.randrange(0, 25))] for _ in "ab")
+        matcher = difflib.SequenceMatcher(None, old, new)
+        assert list(module._unified(old, new, "a/f", "b/f", matcher)) == \
+            list(difflib.unified_diff(old, new, "a/f", "b/f"))
+
+
+def test_a_diff_splits_lines_as_a_patch_does_a_crlf_or_cr_only_file_too():
+    """A patch's lines end at line feeds (``git apply``, ``patch``): a CR LF file's lines keep
+    their CR, and a CR-only file is one line, as ``diff -u`` shows it; the diff drawn from the
+    edits' spans, applied, gives the file after the edits."""
+    for end in (b"\n", b"\r\n", b"\r"):
+        data = end.join([b"<robot>", b"  <a x='1'/>", b"  <b/>", b"</robot>", b""])
+        at = data.index(b"1")
+        after = data[:at] + b"2" + data[at + 1:]
+        diff = unified({"f": (data, after)}, {"f": [(at, at + 1, 1)]})
+        assert _patched(data, diff) == after, diff
+        assert diff.count("\n-") == 1 and ("@@ -1 +1 @@" in diff) is (end == b"\r")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import difflib
 
-from urdftool.diagnostics import display_path
+from urdftool.diagnostics import LineNumbers, display_path, lines_of
 
 
 def unified(changed: dict[str, tuple[bytes, bytes]], spans=None) -> str:
@@ -16,8 +16,8 @@ def unified(changed: dict[str, tuple[bytes, bytes]], spans=None) -> str:
     for file, (before, after) in changed.items():
         shown = display_path(file)
         names = (shown, shown) if shown.startswith("/") else (f"a/{shown}", f"b/{shown}")
-        old = _lines(before.decode("utf-8", errors="replace"))
-        new = _lines(after.decode("utf-8", errors="replace"))
+        old = lines_of(before.decode("utf-8", errors="replace"), keepends=True, feeds_only=True)
+        new = lines_of(after.decode("utf-8", errors="replace"), keepends=True, feeds_only=True)
         opcodes = _opcodes(old, new, before, after, (spans or {}).get(file))
         matcher = difflib.SequenceMatcher(None, old, new) if opcodes is None else _Known(opcodes)
         for line in _unified(old, new, *map(_quoted, names), matcher):
@@ -45,17 +45,18 @@ def _opcodes(old: list[str], new: list[str], before: bytes, after: bytes, spans)
     diff (1,000: 10 s). None when there are no spans: difflib over the whole file."""
     if not spans:
         return None
-    import bisect
+    # (a patch's lines, numbered by diagnostics as every line number is: those of old and new)
+    numbers_old, numbers_new = LineNumbers(before, True), LineNumbers(after, True)
 
-    starts_old, starts_new = _starts(before), _starts(after)
-
-    def line_at(starts, offset: int) -> int:  # (the line holding a byte, or past the last)
-        return bisect.bisect_right(starts, offset) - 1
+    def line_at(numbers, data: bytes, offset: int) -> int:
+        """The 0-based line holding the byte at ``offset`` of ``data``, or its last line."""
+        return numbers(min(offset, len(data) - 1)) - 1
 
     groups: list[list[int]] = []  # [first line, line after the last, growth in bytes]
     for start, end, length in spans:
-        first = min(line_at(starts_old, start), len(old))
-        last = min(max(first + 1, line_at(starts_old, max(end - 1, start)) + 1), len(old))
+        first = min(line_at(numbers_old, before, start), len(old))
+        last = min(max(first + 1, line_at(numbers_old, before, max(end - 1, start)) + 1),
+                   len(old))
         growth = length - (end - start)
         if groups and first <= groups[-1][1]:  # (touching: one block, as difflib shows it)
             groups[-1][1] = max(groups[-1][1], last)
@@ -64,11 +65,12 @@ def _opcodes(old: list[str], new: list[str], before: bytes, after: bytes, spans)
             groups.append([first, last, growth])
     opcodes, at, grown = [], 0, 0
     for first, last, growth in groups:
-        begin = starts_old[first] if first < len(old) else len(before)
-        stop = starts_old[last] if last < len(old) else len(before)
-        j1 = line_at(starts_new, begin + grown) if begin + grown < len(after) else len(new)
+        begin = numbers_old.start(first + 1) if first < len(old) else len(before)
+        stop = numbers_old.start(last + 1) if last < len(old) else len(before)
+        j1 = line_at(numbers_new, after, begin + grown) if begin + grown < len(after) else \
+            len(new)
         grown += growth
-        j2 = line_at(starts_new, stop + grown) if stop + grown < len(after) else len(new)
+        j2 = line_at(numbers_new, after, stop + grown) if stop + grown < len(after) else len(new)
         if first > at:
             opcodes.append(("equal", at, first, j1 - (first - at), j1))
         for tag, i1, i2, k1, k2 in difflib.SequenceMatcher(
@@ -90,19 +92,10 @@ def _opcodes(old: list[str], new: list[str], before: bytes, after: bytes, spans)
     return merged
 
 
-def _starts(data: bytes) -> list[int]:
-    """Where each line of ``data`` starts, as :func:`_lines` splits them (at line feeds)."""
-    starts, at = [0], data.find(b"\n")
-    while at >= 0:
-        starts.append(at + 1)
-        at = data.find(b"\n", at + 1)
-    if starts[-1] == len(data) and len(starts) > 1:
-        starts.pop()  # (a final line feed starts no line)
-    return starts
-
-
 def _unified(old: list[str], new: list[str], from_name: str, to_name: str, matcher):
-    """difflib.unified_diff's lines from ``matcher``'s grouped opcodes (3 lines of context)."""
+    """difflib.unified_diff's lines from ``matcher``'s grouped opcodes (3 lines of context):
+    its loop, which builds its own matcher over the whole files (no argument takes one, nor
+    opcodes), the quadratic cost :func:`_opcodes` avoids (tested to give its very text)."""
     started = False
     for group in matcher.get_grouped_opcodes(3):
         if not started:
@@ -122,7 +115,8 @@ def _unified(old: list[str], new: list[str], from_name: str, to_name: str, match
 
 
 def _range(start: int, stop: int) -> str:
-    """A hunk's range as a unified diff writes it (difflib's ``_format_range_unified``)."""
+    """A hunk's range as a unified diff writes it (difflib's ``_format_range_unified``,
+    private)."""
     length = stop - start
     if length == 1:
         return f"{start + 1}"
@@ -141,10 +135,3 @@ def _quoted(name: str) -> str:
                          else f"\\{b:03o}"
                          for b in name.encode("utf-8", "surrogateescape")) + '"'
 
-
-def _lines(text: str) -> list[str]:
-    """The file's lines with their ends, split where a patch splits them: at line feeds only
-    (``str.splitlines`` also splits at NEL, LINE SEPARATOR and the like, which a name may hold
-    raw in XML)."""
-    parts = text.split("\n")
-    return [part + "\n" for part in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
