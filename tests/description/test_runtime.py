@@ -368,3 +368,31 @@ def test_a_file_a_launch_argument_chooses_through_a_parent_folder_is_built_by_it
     for name in ("a", "b"):
         [build] = builds(str(root / f"arm_description/urdf/{name}_gripper.urdf.xacro"))
         assert build.xacro and build.launch.endswith("show.launch") and build.chosen
+
+
+def test_moveits_facts_about_a_file_are_found_once_per_robot(monkeypatch):
+    """moveit_action_remaps, moveit_execution and moveit_with are asked by several rules for
+    the same file (U817 and U818 for each entry of the controller list; moveit_with by each
+    of 19 rules on MoveIt's files): each is computed once per robot and file, the same value
+    given again (before, each question walked the launch files' configurations again)."""
+    from urdftool.description import runtime as module
+    from urdftool.description.companions import companions
+
+    case = Path(__file__).parent.parent / "cases" / "U818_moveit_action_remapped_in_launch"
+    robot = load(case / "arm.urdf")
+    listing = case / "config" / "moveit_controllers.yaml"
+    remaps = module.moveit_action_remaps(robot, listing, "/follow_joint_trajectory")
+    assert [r.controller for r in remaps] == ["arm_traj_controller"]
+    assert module.moveit_action_remaps(robot, listing, "/follow_joint_trajectory") is remaps
+    assert module.moveit_execution(robot, listing) is module.moveit_execution(robot, listing)
+    srdf = companions(robot).srdf
+    if srdf is not None:
+        assert module.moveit_with(robot, srdf.path) is module.moveit_with(robot, srdf.path)
+    computed = []
+    real = module._moveit_action_remaps
+    monkeypatch.setattr(module, "_moveit_action_remaps",
+                        lambda *args: computed.append(args[1:]) or real(*args))
+    result = load_and_check(str(case / "arm.urdf"), CheckOptions())
+    assert sorted(f.code for f in result.findings if f.code in ("U817", "U818")) == \
+        ["U817", "U818"]
+    assert len(computed) == len(set(computed)) == 2  # (both entries, each once)

@@ -463,3 +463,18 @@ def test_names_holding_the_grouped_name_in_different_patterns_are_lines_of_their
     assert len(shown(one_pattern)) == 1
     shared = [said(1 + i, link, "package://p/meshes/part.STL") for i, link in enumerate(links)]
     assert len(shown(shared)) == 1  # (a mesh not named after its link: one line, as before)
+
+
+def test_a_groups_names_are_read_once_for_its_line(monkeypatch):
+    """The names of a group's findings are read once (:func:`text_format._apart`) and said by
+    the line (``_also``) from that reading: each finding's names asked for once, the line as
+    before (24 transmissions, each its joint: one line, "also" naming the others)."""
+    from urdftool.report import text_format
+
+    asked = []
+    real = text_format._names
+    monkeypatch.setattr(text_format, "_names", lambda message: asked.append(message) or
+                        real(message))
+    text = _text([FileResult("robot.urdf", [_prefix(i) for i in range(24)])])
+    assert "[24 times: lines 100, 112, 124," in text and "also 't_j1', " in text
+    assert len(asked) == len(set(asked)) == 24

@@ -900,7 +900,12 @@ def moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
     serve a trajectory action itself (a node of a package other than ROS's own), all
     unconditionally, with the robot as checked; ("other", launch file) when every one starting
     MoveIt with it also starts such a node (a driver: aubo_driver, kortex_driver); ("unknown",
-    "") otherwise."""
+    "") otherwise. Once per robot and file (each entry of the list, in two rules, asks)."""
+    return robot.memo_for(moveit_execution, moveit_file,
+                          lambda: _moveit_execution(robot, moveit_file))
+
+
+def _moveit_execution(robot, moveit_file: Path) -> tuple[str, str]:
     key = real_path(moveit_file)
     facts = runtime(robot)
     starting, served = [], []
@@ -961,7 +966,13 @@ def moveit_action_remaps(robot, moveit_file: Path, action: str) -> list[ActionRe
     move_group's remaps from that name (roslaunch's ``<remap>`` before the node or inside it,
     ROS 2's ``remappings``). Names are compared without their leading ``/`` (a namespace
     before them is not followed). xArm's Gazebo launch remaps ``/follow_joint_trajectory`` to
-    its ros_control controller's ``follow_joint_trajectory``."""
+    its ros_control controller's ``follow_joint_trajectory``. Once per robot, file and action
+    (each entry of the list, in two rules, asks)."""
+    return robot.memo_for(moveit_action_remaps, (moveit_file, action),
+                          lambda: _moveit_action_remaps(robot, moveit_file, action))
+
+
+def _moveit_action_remaps(robot, moveit_file: Path, action: str) -> list[ActionRemap]:
     key, wanted = real_path(moveit_file), action.strip("/")
     found = []
     for configuration, relation in runtime(robot).configurations:
@@ -1014,7 +1025,12 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     does only with the defaults of the launch arguments naming the package of the robot or of
     the SRDF; ("conditional", why) when launch files give it that SRDF only with the robot built
     with other xacro arguments, or only with another robot file (a ``.urdf`` generated beside
-    the ``.xacro`` that the launch files build); ("unknown", "") when none gives it."""
+    the ``.xacro`` that the launch files build); ("unknown", "") when none gives it. Once per
+    robot and SRDF (each of the rules on MoveIt's files asks: lint.rules.srdf.as_moveit_runs)."""
+    return robot.memo_for(moveit_with, srdf, lambda: _moveit_with(robot, srdf))
+
+
+def _moveit_with(robot, srdf: Path) -> tuple[str, str]:
     key = real_path(srdf)
     loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
     if not loads:

@@ -80,9 +80,10 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         out.append([(display_path(result.path), "bold underline")])
         listed: dict = {}  # each long list of names -> where it was written in full
         for whole, alike in _grouped(shown):
-            for part in _apart(whole):
+            for part, named in _apart(whole):
                 for group, message in _foldable(part, alike):
-                    out.extend(_group_lines(group, message, listed))
+                    out.extend(_group_lines(group, message, listed,
+                                            named if group is part else None))
         if not quiet:
             out.append([])
     if quiet:
@@ -183,7 +184,7 @@ def _figures(message: str) -> list:
     return found
 
 
-def _apart(group: list) -> list[list]:
+def _apart(group: list, named: list | None = None) -> list[tuple[list, list | None]]:
     """``group`` as the groups of its lines by what its findings name: one, unless they name
     different things at several places of their message and one of those places is a kind
     they fall into, which a line naming the others at one place (:func:`_also`) would hide,
@@ -194,13 +195,15 @@ def _apart(group: list) -> list[list]:
     one to one stay one line (a tag and the one suggested for it), and so do names where no
     tag differs (a transmission and its joint, a link and its mesh: "also" names the first, as
     before tags were names). The kinds are read in the first findings of a long group, as
-    :func:`_also` reads the names."""
+    :func:`_also` reads the names. Each group comes with the names of its first findings
+    (``named``: read once, and said by :func:`_also`); None for a finding alone."""
     if len(group) == 1:
-        return [group]
-    named = [_names(finding.message) for finding in group[:_NAMES_READ]]
+        return [(group, None)]
+    if named is None:
+        named = [_names(finding.message) for finding in group[:_NAMES_READ]]
     first = named[0]
     if len(first) < 2 or any(len(names) != len(first) for names in named):
-        return [group]  # (one name, or messages naming another count of things)
+        return [(group, named)]  # (one name, or messages naming another count of things)
     ways = [len({names[i] for names in named}) for i in range(len(first))]
     most = ways.index(max(ways))
     kinds = [i for i, count in enumerate(ways) if count > 1 and i != most
@@ -208,16 +211,19 @@ def _apart(group: list) -> list[list]:
              and not _one_to_one([(names[most], names[i]) for names in named])]
     shapes = _shapes(named, ways)
     if not kinds and not shapes:
-        return [group]
-    parts: dict[tuple, list] = {}
+        return [(group, named)]
+    parts: dict[tuple, tuple[list, list]] = {}  # key -> (findings, the names of the first)
     for index, finding in enumerate(group):
         names = named[index] if index < len(named) else _names(finding.message)
         key = () if len(names) != len(first) else (
             *(names[i] for i in kinds), *(_shape(names, at, i) for at, i in shapes))
-        parts.setdefault(key, []).append(finding)
+        part = parts.setdefault(key, ([], []))
+        part[0].append(finding)
+        if len(part[1]) < _NAMES_READ:
+            part[1].append(names)
     if len(parts) == 1:
-        return [group]
-    return [split for part in parts.values() for split in _apart(part)]
+        return [(group, named)]
+    return [split for part, names in parts.values() for split in _apart(part, names)]
 
 
 def _shapes(named: list[tuple], ways: list[int]) -> list[tuple[int, int]]:
@@ -310,7 +316,9 @@ def _ranged(message: str, mine: list, others: list, differ: list) -> str:
     return message
 
 
-def _group_lines(group: list, message: str, listed: dict) -> list[Line]:
+def _group_lines(group: list, message: str, listed: dict, named: list | None) -> list[Line]:
+    """The lines of ``group``, which says ``message``; ``named``: the names of its first
+    findings when :func:`_apart` read them (else None)."""
     first = group[0]
     location, severity = first.location, first.severity.value
     line = [(f"  {location}: ", ""), (severity, STYLES[severity]), (" ", ""), *_marker(first),
@@ -319,7 +327,7 @@ def _group_lines(group: list, message: str, listed: dict) -> list[Line]:
     if len(group) > 1:
         places = _places(group)
         line.append((f" [{len(group)} times{f': {places}' if places else ' on this line'}"
-                     f"{_also(group)}]", ""))
+                     f"{_also(group, named)}]", ""))
     out = [line]
     calls = list(dict.fromkeys(f.location.via for f in group))
     if calls == [()]:
@@ -379,14 +387,16 @@ def _names(message: str) -> tuple[str, ...]:
     return tuple(_NAME.findall(message))
 
 
-def _also(group: list) -> str:
+def _also(group: list, named: list | None = None) -> str:
     """The other names a group's line is about, where its findings name different things
     (three joints of one macro line, each its own limit): "; also 'b', 'c'". The names
     compared are the first place their findings' names differ, in the first findings of a
     long group; a tag another place gives with each (one to one: :func:`_apart` split the
     others) is said after it, as the line says the first's: "also <contact_coefficients>
-    (<collision>)" on a line of "<joint_properties> in <joint>" (a closing tag is not)."""
-    named = [_names(finding.message) for finding in group[:_NAMES_READ]]
+    (<collision>)" on a line of "<joint_properties> in <joint>" (a closing tag is not).
+    ``named``: those names when read already (:func:`_apart`)."""
+    if named is None:
+        named = [_names(finding.message) for finding in group[:_NAMES_READ]]
     first = named[0]
     if any(len(names) != len(first) for names in named):
         return ""  # (messages naming another count of things)
