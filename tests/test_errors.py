@@ -173,3 +173,13 @@ def test_every_list_is_cut_by_one_function():
     searched = [f"/p{i}" for i in range(20)]
     assert f"looked in: {first_listed(searched, 20, 'places')}. Pass" in \
         str(PackageNotFound("x", searched))
+
+
+def test_where_a_package_was_looked_for_is_a_part_of_its_message_named():
+    """PackageNotFound.repeated: the part of its message every file and mesh naming the package
+    says again (where it was looked for, how to pass it), for a report to write once."""
+    for owner, declares in ((None, True), ("bot", True), ("bot", False)):
+        error = errors.PackageNotFound("pkg", ["/a", "/b"]).declared(owner, declares)
+        [(kind, part, name)] = error.repeated
+        assert (kind, name) == ("searched", "pkg") and str(error).endswith(part)
+        assert part.startswith("; looked in: /a, /b. Pass --package pkg=PATH")

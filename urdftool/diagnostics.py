@@ -133,6 +133,12 @@ class Finding(Frozen):
         for a package this machine lacks: nothing in it is known to be wrong, and the run says
         so and exits 2 (a file that only defines macros, which expanded would make no robot,
         loses nothing and says False)
+    repeated: the parts of the message that other findings of one report say word for word,
+        ``(kind, text, detail)`` each, ``text`` as it stands in the message: the evidence a
+        rule gives for what it assumed (``why``: U640's "(its package builds with ament_cmake
+        ...)"), where a package not found was looked for (``searched``, detail: its name). A
+        report for people writes each once per file and refers to it after
+        (urdftool.report.text_format); the machine formats keep every message whole
     """
 
     code: str
@@ -143,13 +149,14 @@ class Finding(Frozen):
     fix: Fix | None
     target: str | None
     not_checked: bool
+    repeated: tuple[tuple[str, str, str], ...]
 
     __slots__ = ("code", "name", "severity", "message", "location", "fix", "target",
-                 "not_checked")
+                 "not_checked", "repeated")
 
     def __init__(self, code: str, name: str, severity: Severity, message: str, location: Location,
                  fix: Fix | None = None, target: str | None = None,
-                 not_checked: bool = False) -> None:
+                 not_checked: bool = False, repeated: tuple = ()) -> None:
         set_field = object.__setattr__
         set_field(self, "code", code)
         set_field(self, "name", name)
@@ -159,6 +166,7 @@ class Finding(Frozen):
         set_field(self, "fix", fix)
         set_field(self, "target", target)
         set_field(self, "not_checked", not_checked)
+        set_field(self, "repeated", repeated)
 
     @property
     def file(self) -> str:

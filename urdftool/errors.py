@@ -50,11 +50,15 @@ class LoadError(UrdftoolError):
     declared: for 'package', True when the package.xml of the file's package declares it as a
         dependency (:attr:`PackageNotFound.declared_by`): installed wherever that package is
         built, a question of the workspace, not of the file
+    undefined: for 'xacro', True when it fails on a name the file uses and does not define (a
+        property, a macro, a property to forward), which a robot including it may define
+    repeated: the parts of the message other findings say word for word (for 'package', where
+        it was looked for: :attr:`PackageNotFound.repeated`)
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
                  certain: bool = True, close: tuple = (), whatever_args: bool = False,
-                 declared: bool = False):
+                 declared: bool = False, undefined: bool = False, repeated: tuple = ()):
         self.kind = kind
         self.message = message
         self.location = location
@@ -63,6 +67,8 @@ class LoadError(UrdftoolError):
         self.close = tuple(close)
         self.whatever_args = whatever_args
         self.declared = declared
+        self.undefined = undefined
+        self.repeated = tuple(repeated)
         super().__init__(message)
 
 
@@ -72,7 +78,10 @@ class PackageNotFound(UrdftoolError):
     ``unchecked`` says what is not checked for want of it: the robot (a ``$(find)``: it is
     not expanded) or a mesh (``package://``: the robot is checked without it). ``declared_by``:
     the package whose package.xml declares it as a dependency (installed wherever that package
-    is built, a question of the workspace, not of the file naming it), or None."""
+    is built, a question of the workspace, not of the file naming it), or None. ``repeated``:
+    the part of its message from "; looked in: " to its end (where it looked, how to pass it),
+    which every file or mesh naming the package says again, ``("searched", text, name)``
+    (:attr:`urdftool.diagnostics.Finding.repeated`)."""
 
     ROBOT = "the robot is not expanded, so not checked"
 
@@ -89,24 +98,24 @@ class PackageNotFound(UrdftoolError):
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:
-            super().__init__(
-                f"package '{name}' not found: the package.xml of '{declared_by}' "
-                f"declares it as a dependency, which is not installed here: {unchecked} "
-                f"(nothing in it is known to be wrong); looked in: {where}. Pass --package "
-                f"{name}=PATH, set "
-                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies (rosdep "
-                "install --from-paths . --ignore-src)")
+            said = (f"package '{name}' not found: the package.xml of '{declared_by}' declares "
+                    f"it as a dependency, which is not installed here: {unchecked} (nothing in "
+                    "it is known to be wrong)")
+            searched = (f"; looked in: {where}. Pass --package {name}=PATH, set "
+                        "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies "
+                        "(rosdep install --from-paths . --ignore-src)")
         elif undeclared_by:
-            super().__init__(
-                f"package '{name}' not found, and the package.xml of '{undeclared_by}' does not "
-                f"declare it, so rosdep would not install it: {hint}if it is another "
-                f"repository's, add <exec_depend>{name}</exec_depend>; not installed here, "
-                f"{unchecked}; looked in: {where}. Pass --package {name}=PATH or set "
-                "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH")
+            said = (f"package '{name}' not found, and the package.xml of '{undeclared_by}' does "
+                    f"not declare it, so rosdep would not install it: {hint}if it is another "
+                    f"repository's, add <exec_depend>{name}</exec_depend>; not installed here, "
+                    f"{unchecked}")
+            searched = (f"; looked in: {where}. Pass --package {name}=PATH or set "
+                        "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH")
         else:
-            super().__init__(
-                f"package '{name}' not found; {hint}{unchecked}; looked in: {where}. Pass "
-                f"--package {name}=PATH or set ROS_PACKAGE_PATH")
+            said = f"package '{name}' not found; {hint}{unchecked}"
+            searched = f"; looked in: {where}. Pass --package {name}=PATH or set ROS_PACKAGE_PATH"
+        super().__init__(said + searched)
+        self.repeated = (("searched", searched, name),)
 
     def declared(self, owner: str | None, declares: bool = True,
                  unchecked: str | None = None) -> "PackageNotFound":
@@ -317,6 +326,8 @@ class MeshProblem(LocatedError):
     empty in the repository for files put there later (a tool, a download, a build step):
     the repository leaves it for a tool to put there, as a declared dependency is left to the
     workspace
+    repeated: for ``package``, the parts of the message every mesh of that package says again
+    (:attr:`PackageNotFound.repeated`)
     """
 
     kind: str
@@ -324,6 +335,7 @@ class MeshProblem(LocatedError):
     certain: bool = True
     declared: bool = False
     kept_empty: bool = False
+    repeated: tuple = ()
 
     def __str__(self) -> str:
         return self.message

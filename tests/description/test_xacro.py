@@ -425,3 +425,24 @@ def test_a_location_stamp_is_the_attribute_setattribute_makes_with_its_local_nam
                 for a in made.attributes.values()]
         assert element.getAttributeNode(STAMP)._localName == "urdftool-loc"
     assert stamped.documentElement.getAttribute(STAMP).startswith("urn:loc:0:1:")
+
+
+@pytest.mark.parametrize("body, undefined", [
+    ('<link name="${nope}"/>', True),  # a property (Python's NameError)
+    ('<xacro:wheel side="l"/>', True),  # a macro
+    ('<xacro:macro name="m" params="x:=^"><link name="a"/></xacro:macro><xacro:m/>', True),
+    ('<xacro:include filename="x is not defined.xacro"/>', False),  # the words, in a file name
+    ('<xacro:include filename="unknown macro name.xacro"/>', False),
+])
+def test_a_failure_on_a_name_the_file_does_not_define_is_said_by_a_flag(tmp_path, body,
+                                                                         undefined):
+    """``LoadError.undefined``: xacro failed on a name the file uses and does not define (a
+    robot including it may define it), read from the exceptions xacro raised; the loading
+    rules read the message's words before, which a file name holding them fooled."""
+    path = tmp_path / "part.urdf.xacro"
+    path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                    f'{body}</robot>')
+    with pytest.raises(LoadError) as raised:
+        load(path)
+    assert raised.value.kind == "xacro" and raised.value.undefined is undefined, \
+        raised.value.message

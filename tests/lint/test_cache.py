@@ -675,3 +675,15 @@ def test_the_signing_key_is_readable_by_its_owner_only_whatever_its_folder(tmp_p
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     key = cache._secret()
     assert key and stat.S_IMODE((tmp_path / "urdftool" / "key").stat().st_mode) == 0o600
+
+
+def test_a_kept_finding_keeps_the_parts_a_report_says_once():
+    """Finding.repeated is kept with the finding: a result the cache serves is reported as the
+    check's own (U640's evidence, a package's places, written once per file)."""
+    from urdftool.diagnostics import Finding, Location, Severity
+
+    finding = Finding("U640", "gazebo-plugin-other-version", Severity.ERROR, "a (why) b",
+                      Location("r.urdf", 3), repeated=(("why", " (why)", ""),))
+    assert cache_module._finding(json.loads(json.dumps(cache_module._record(finding)))) == finding
+    with pytest.raises(TypeError):
+        cache_module._finding({**cache_module._record(finding), "repeated": [["why", 1]]})

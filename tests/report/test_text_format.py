@@ -241,7 +241,7 @@ def test_where_a_missing_package_was_looked_for_is_written_once_per_file():
                                        "package.xml below /ws"]).declared("bot", False)
         return Finding("U407", "mesh-package-not-found", severity,
                        f"link 'base' <{part}>: mesh 'package://{name}/m.stl': {error}",
-                       Location(file, line))
+                       Location(file, line), repeated=error.repeated)
 
     # (an error and a warning: two lines; of one severity, <visual> and <collision> are one)
     findings = [missing("meshes_a", 22, "visual"),
@@ -478,3 +478,23 @@ def test_a_groups_names_are_read_once_for_its_line(monkeypatch):
     text = _text([FileResult("robot.urdf", [_prefix(i) for i in range(24)])])
     assert "[24 times: lines 100, 112, 124," in text and "also 't_j1', " in text
     assert len(asked) == len(set(asked)) == 24
+
+
+def test_only_the_parts_a_finding_names_are_said_once():
+    """What a report writes once per file is what the finding says it repeats
+    (``Finding.repeated``), never words read back from its message: a message whose file name
+    reads "; looked in: x. Pass --package p=PATH" (fooled the pattern before) is written
+    whole each time, and so is one whose part is not in the message."""
+    odd = "mesh 'a; looked in: x. Pass --package p=PATH.stl' is missing"
+    findings = [Finding(code, name, Severity.ERROR, odd, Location("r.urdf", n))
+                for code, name, n in (("U408", "mesh-file-missing", 3),
+                                      ("U409", "mesh-format-unsupported", 9))]
+    text = _text([FileResult("r.urdf", findings)])
+    assert text.count("looked in: x. Pass --package p=PATH") == 2, text
+    said = ("why", " (because)", "")
+    marked = [Finding("U640", "gazebo-plugin-other-version", severity,
+                      f"plugin 'p': <{tag}> is ROS 1's, and the robot is ROS 2 (because); fix it",
+                      Location("r.urdf", n), repeated=(said,))
+              for n, tag, severity in ((3, "a", Severity.ERROR), (9, "b", Severity.WARNING))]
+    text = _text([FileResult("r.urdf", marked)])
+    assert text.count("(because)") == 1 and "ROS 2 (as said at line 3); fix it" in text, text

@@ -445,7 +445,7 @@ def _load_xacro(path, shown, data, args, resolver, allow_env, limit) -> Robot:
             location = Location(shown, location.line, location.via)
         raise LoadError(failure.kind, failure.message, location, failure.subject,
                         failure.certain, failure.close, failure.whatever_args,
-                        failure.declared) from None
+                        failure.declared, failure.undefined, failure.repeated) from None
     robot = Robot(path=path, display=shown, root=expansion.root, locations=expansion.locations,
                   resolver=resolver, files=[display_path(f) for f in expansion.files],
                   from_xacro=True, sources=sources)

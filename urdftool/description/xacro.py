@@ -92,6 +92,11 @@ class XacroFailure(Exception):
     whatever_args: bool = False
     # 'package': the package.xml of the file's package declares it as a dependency
     declared: bool = False
+    # 'xacro': it fails on a name the file uses and does not define (a property, a macro, a
+    # property to forward), which a robot including it may define (:func:`_on_undefined`)
+    undefined: bool = False
+    # 'package': the parts of the message other findings say again (PackageNotFound.repeated)
+    repeated: tuple = ()
 
 
 class Expansion(Record):
@@ -920,7 +925,8 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         # repository's, or a misspelt name: the message says which it seems), never certain
         return XacroFailure("package", str(cause.error), where, subject=cause.error.name,
                             certain=False, close=cause.error.close,
-                            declared=cause.error.declared_by is not None)
+                            declared=cause.error.declared_by is not None,
+                            repeated=cause.error.repeated)
     if isinstance(cause, _Outside):
         return XacroFailure("outside", str(cause), where)
     if isinstance(cause, xacro_sandbox.SandboxViolation):
@@ -961,7 +967,31 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         message += "; the macro called here takes no parameter of that name: " + available(
             "parameters", invalid.group(1), _called_macro_params(error))
     return XacroFailure("arg" if argument else "xacro", message, where, subject=argument,
-                        whatever_args=bool(invalid) and not _under_condition(error.__traceback__))
+                        whatever_args=bool(invalid) and not _under_condition(error.__traceback__),
+                        undefined=not argument and _on_undefined(error))
+
+
+# what xacro says when a macro, or a property to forward, is not defined (its own words, never
+# the file's: read from the exception it raised, not from the message a name may be part of)
+_UNDEFINED_SAID = ("unknown macro name", "Undefined property to forward")
+
+
+def _on_undefined(error: Exception) -> bool:
+    """Whether xacro failed on a name the file uses and does not define: a property or a name
+    of an expression (a NameError, xacro's or Python's), a macro, a property to forward. Read
+    from the exceptions xacro raised (each wrapping the next), where the loading rules read
+    the message's words before (a file named 'x is not defined.xacro' was such a failure)."""
+    import xacro
+
+    cause = error
+    while cause is not None:
+        if isinstance(cause, NameError):
+            return True
+        if isinstance(cause, xacro.XacroException) and cause.args and \
+                isinstance(cause.args[0], str) and cause.args[0].startswith(_UNDEFINED_SAID):
+            return True
+        cause = getattr(cause, "exc", None) or cause.__context__
+    return False
 
 
 _ARGUMENT_USE = re.compile(r"\$\(arg\s+([^\s)]+)\)")

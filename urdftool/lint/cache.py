@@ -70,7 +70,7 @@ from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
-SCHEMA = 3  # 3: an entry's dependencies are its check's record
+SCHEMA = 4  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 _NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "
@@ -290,6 +290,8 @@ def _record(finding: Finding) -> dict:
                          "edits": [records.astuple(edit) for edit in finding.fix.edits]}
     if finding.target is not None:
         record["target"] = finding.target
+    if finding.repeated:
+        record["repeated"] = [list(part) for part in finding.repeated]
     return record
 
 
@@ -329,8 +331,12 @@ def _finding(record: dict) -> Finding:
     fix, target = record.get("fix"), record.get("target")
     if target is not None and type(target) is not str:
         raise TypeError("malformed finding")
+    repeated = tuple(tuple(part) for part in record.get("repeated", ()))
+    if not all(len(part) == 3 and all(type(item) is str for item in part) for part in repeated):
+        raise TypeError("malformed finding")
     return Finding(code, name, _SEVERITIES[record["severity"]], message,
-                   _location(record["location"]), None if fix is None else _fix(fix), target)
+                   _location(record["location"]), None if fix is None else _fix(fix), target,
+                   repeated=repeated)
 
 
 def _write(path: Path, text: str, private: bool = False) -> None:

@@ -63,16 +63,31 @@ _CODE = re.compile(r"U\d{3}")
 _RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 
+class Said(str):
+    """A finding's message holding parts that other findings of one report say word for word
+    (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each)."""
+
+    repeated: tuple
+
+    def __new__(cls, text: str, repeated: tuple):
+        made = super().__new__(cls, text)
+        made.repeated = tuple(repeated)
+        return made
+
+
 class Conditional(str):
     """A finding's message when the defect holds only in some configurations the robot's
     consumers can run; the text names the condition ("if controller 'x' is started ...").
-    Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower."""
+    Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower.
+    ``repeated``: as a :class:`Said`'s."""
 
     severity: Severity
+    repeated: tuple
 
-    def __new__(cls, text: str, severity: Severity = Severity.WARNING):
+    def __new__(cls, text: str, severity: Severity = Severity.WARNING, repeated: tuple = ()):
         made = super().__new__(cls, text)
         made.severity = Severity(severity)
+        made.repeated = tuple(repeated)
         return made
 
 
@@ -122,22 +137,26 @@ class Rule(Frozen):
         return TARGET_DECADES.get(self.code[:3])
 
     def finding(self, message: str, location: Location, fix: Fix | None = None,
-                severity: Severity | None = None, not_checked: bool = False) -> Finding:
+                severity: Severity | None = None, not_checked: bool = False,
+                repeated: tuple = ()) -> Finding:
         """A finding of this rule at ``location``, with the fix that would remove it if any;
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
         never raised: ValueError); a :class:`Conditional` message is reported at its own
         severity when that is below the rule's. ``not_checked``: the finding says its file's
-        robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`)."""
+        robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`).
+        ``repeated``: the parts of the message others say word for word
+        (:attr:`~urdftool.diagnostics.Finding.repeated`), or those of a :class:`Said`."""
         if severity is None and type(message) is str:  # most findings: as the rule says
             return Finding(self.code, self.name, self.severity, message, location, fix,
-                           self.target, not_checked)
+                           self.target, not_checked, repeated)
+        repeated = repeated or getattr(message, "repeated", ())
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")
         if severity is None and isinstance(message, Conditional):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
-                       location, fix, self.target, not_checked)
+                       location, fix, self.target, not_checked, repeated)
 
 
 def rule(code: str, name: str, severity: Severity):

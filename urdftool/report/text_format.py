@@ -13,9 +13,11 @@ Text is for people, so it says each thing once (the machine formats keep every f
   links "has mass 0.59 kg but zero inertia", each its own mass): a figure that differs is
   written as the range of the group's (``0.0649 to 0.864 kg``), so the one line is true of
   each. A message that names nothing keeps its figures apart: they are what it says;
-- a long "available links: ..." list, and where a missing package was looked for with how
-  to pass it, are written in full the first time in a file's report, and later findings
-  refer to it (:func:`_once`);
+- a long "available links: ..." list, where a missing package was looked for with how to
+  pass it, and the evidence a rule gives for what it assumed (U640: why the robot is ROS 2),
+  are written in full the first time in a file's report, and later findings refer to it
+  (:func:`_once`; the last two are parts of the message its finding names:
+  :attr:`~urdftool.diagnostics.Finding.repeated`);
 - notes (severity info: explanations such as "its inertia is taken from its convex hull", not
   problems) are shown only when asked for (``check --notes``, ``notes = true`` in the
   settings); the summary line counts the ones it left out.
@@ -47,9 +49,6 @@ _AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
                         r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
                         r"(?:, \.\.\. \((?P<count>\d+) in all\))?(?=$|;| \()")
 _LONG_LIST = 60  # [characters] a list shorter than this is written every time
-# "; looked in: PLACES. Pass --package NAME=PATH ..." to the message's end, as
-# urdftool.errors.PackageNotFound writes it (each mesh of a missing package says it again)
-_SEARCHED = re.compile(r"; looked in: .*?\. Pass --package (?P<name>\S+)=PATH.*\Z", re.S)
 # a figure: a number standing alone (not part of a word, a name, a unit's power like m^3 or a
 # version like 1.2.3): (?<![\w.+\-^/])[-+]?\d+..., written to start with its first character
 # ([-+\d], the character before it looked at behind that), so that the search skips from sign
@@ -322,7 +321,7 @@ def _group_lines(group: list, message: str, listed: dict, named: list | None) ->
     first = group[0]
     location, severity = first.location, first.severity.value
     line = [(f"  {location}: ", ""), (severity, STYLES[severity]), (" ", ""), *_marker(first),
-            (first.code, "bold"), (f" {_once(message, location, listed)} ", ""),
+            (first.code, "bold"), (f" {_once(message, location, listed, first.repeated)} ", ""),
             (f"({first.name}, {first.target})" if first.target else f"({first.name})", "dim")]
     if len(group) > 1:
         places = _places(group)
@@ -417,10 +416,12 @@ def _listed(items: list[str]) -> str:
     return first_listed(items, len(items))
 
 
-def _once(message: str, location, listed: dict) -> str:
-    """``message`` with each long "available ..." list, and each "looked in: ..." of a missing
-    package, that it repeats from an earlier finding of the same report replaced by a
-    reference to where it was written in full."""
+def _once(message: str, location, listed: dict, repeated: tuple = ()) -> str:
+    """``message`` with each long "available ..." list, each "looked in: ..." of a missing
+    package, and each part its finding says other findings repeat (``repeated``: the evidence
+    for what a rule assumed, :attr:`~urdftool.diagnostics.Finding.repeated`), that it repeats
+    from an earlier finding of the same report replaced by a reference to where it was written
+    in full."""
     def first(key: str):
         """Where ``key`` was written before (None: nowhere, and it is written here)."""
         if key not in listed:
@@ -441,15 +442,21 @@ def _once(message: str, location, listed: dict) -> str:
         return f"available {match.group('kind')}: " + (f"the {count} listed at {at}" if count
                                                          else f"as listed at {at}")
 
-    def searched(match) -> str:
-        at = first(match.group())
-        if at is None:
-            return match.group()
-        return (f"; looked in the places listed at {at}; pass --package "
-                f"{match.group('name')}=PATH as said there")
+    for kind, part, detail in repeated:  # (Finding.repeated: the parts others say again)
+        if part not in message or kind not in _SAID_AGAIN:
+            continue
+        at = first(part)
+        if at is not None:
+            message = message.replace(part, _SAID_AGAIN[kind].format(at=at, detail=detail), 1)
+    return _AVAILABLE.sub(replace, message)
 
-    message = _AVAILABLE.sub(replace, message)
-    return _SEARCHED.sub(searched, message) if "; looked in: " in message else message
+
+# what a part of a message that other findings repeat (Finding.repeated) becomes after the
+# first: the evidence for what a rule assumed (U640's ROS version), where a package not found
+# was looked for and how to pass it (each mesh and file of a missing package says it again)
+_SAID_AGAIN = {"why": " (as said at {at})",
+               "searched": "; looked in the places listed at {at}; pass --package "
+                           "{detail}=PATH as said there"}
 
 
 def _escaped(line: Line) -> Line:

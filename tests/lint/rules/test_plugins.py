@@ -27,6 +27,10 @@ def test_the_other_rosversions_names_with_the_version_from_the_package(tmp_path)
     assert "its package builds with ament_cmake" in findings[0].message
     # ROS 2's diff drive has no torque limit of that name: nothing of the value is lost
     assert findings[1].severity == Severity.WARNING and "remove it" in findings[1].message
+    # the evidence each line of the plugin gives, named for a report to say once per file
+    [(kind, evidence, _)] = findings[0].repeated
+    assert kind == "why" and evidence.startswith(" (its package builds with ament_cmake")
+    assert findings[1].repeated == findings[0].repeated and evidence in findings[1].message
 
 
 def test_a_ros1_camera_value_that_asks_for_what_ros2_does_without_it_loses_nothing(tmp_path):

@@ -133,19 +133,20 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"
                                           f"{_in_own_package(robot, owner, tail)}",
                                certain=not declares and (misspelt or bool(seen)),
-                               declared=error.declared_by is not None)
+                               declared=error.declared_by is not None, repeated=error.repeated)
         folder = os.path.dirname(folder)
     if folder == base:
         written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')
         return MeshProblem("package", f"mesh '{uri}': {error}; not certain: '{written}' is "
                                       "beside the robot file, where loaders that drop "
                                       "'package://' (PyBullet; Pinocchio given this folder) "
-                                      "find it", certain=False)
+                                      "find it", certain=False, repeated=error.repeated)
     return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
                                   f"folder '{package}' (no package.xml) with this file, where "
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
-                                  "package_dirs) find it", certain=False)
+                                  "package_dirs) find it", certain=False,
+                       repeated=error.repeated)
 
 
 def _in_own_package(robot, owner: str | None, tail: str) -> str:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.catalogue import Conditional, Said, Severity, rule
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
@@ -358,10 +358,12 @@ def _problems(robot, kind: str):
                     kind == "missing" and outcome.kept_empty:
                 # a dependency the package.xml declares, or a file the repository leaves for
                 # a tool to put in a folder kept empty: the workspace's, not the file's
-                yield shape, Conditional(message, Severity.INFO)
+                yield shape, Conditional(message, Severity.INFO, outcome.repeated)
                 continue
             # a problem that may not hold after the package's build: a warning saying so
-            yield shape, (message if outcome.certain else Conditional(message))
+            repeated = getattr(outcome, "repeated", ())  # (a package's: where it was looked for)
+            yield shape, (Said(message, repeated) if outcome.certain else
+                          Conditional(message, repeated=repeated))
 
 
 @rule("U407", "mesh-package-not-found", Severity.ERROR)

@@ -213,7 +213,7 @@ def required_argument(path: str, error, build):
                 declared = again.declared  # the workspace's: a note
                 return None, given, [U006.finding(
                     message if certain and not declared else Conditional(message, Severity.INFO),
-                    again.location, not_checked=certain or declared)]
+                    again.location, not_checked=certain or declared, repeated=again.repeated)]
             message = f"{again.message}; {told}, and xacro fails so"
             if not certain:
                 message = Conditional(message, Severity.INFO)
@@ -300,10 +300,6 @@ def failing_defaults(path: str, error, build):
     return None, {}, []
 
 
-# What xacro says of a name the file uses and does not define: one a robot including it defines
-_UNDEFINED = ("is not defined", "unknown macro name", "Undefined property to forward")
-
-
 def part_note(path: str, error, packages, limit: int) -> list | None:
     """The load error as a note, or None to report it as it is: the file is a part of a robot
     defined elsewhere that no launch file here builds, so what it cannot do alone is right
@@ -332,7 +328,7 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
     from urdftool.description.xacro_text import macro_library, nameless_robot, writes_no_links
 
     severity = Severity.INFO
-    if error.kind == "xacro" and any(said in error.message for said in _UNDEFINED):
+    if error.kind == "xacro" and error.undefined:  # (a name a robot including it may define)
         if builds(path):
             return None
         rule = U005
@@ -357,7 +353,8 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
                 "is lost (its macros are checked in the robots calling them)")
     else:
         return None
-    return [rule.finding(Conditional(f"{error.message}; {said}", severity), error.location)]
+    return [rule.finding(Conditional(f"{error.message}; {said}", severity), error.location,
+                         repeated=error.repeated)]
 
 
 def _declared(path: str, error) -> set[str]:

@@ -14,7 +14,7 @@ from urdftool.description.actuation import gazebo_plugins, transmissions
 from urdftool.description.controllers import controllers
 from urdftool.description.ros_version import ros_version
 from urdftool.errors import available
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Said, Severity, rule
 
 _ROS = {"ros1": "ROS 1", "ros2": "ROS 2"}
 
@@ -62,6 +62,7 @@ def gazebo_plugin_other_version(robot):
         if version is not None:
             mine = f"ros{version}"
             other = "ros1" if mine == "ros2" else "ros2"
+            evidence = (("why", f" ({why})", ""),)  # (each line of a plugin gives it)
             for child in used[other]:
                 right = vocabulary.counterpart(child.tag, found.versions[mine], mine)
                 said = (f"{_label(element, found)}: <{child.tag}> is the {_ROS[other]} plugin's "
@@ -69,14 +70,14 @@ def gazebo_plugin_other_version(robot):
                         "ignores it")
                 if right and vocabulary.same_without(found.key, child.tag, child.text):
                     value = child.text.strip()
-                    yield child, (f"{said}, which loses nothing: {value} asks the {_ROS[other]} "
-                                  f"plugin for what the {_ROS[mine]} one does without it (not "
-                                  f"what <{right}>{value}</{right}> asks): remove it"), None, \
-                        Severity.WARNING
+                    yield child, Said(f"{said}, which loses nothing: {value} asks the "
+                                      f"{_ROS[other]} plugin for what the {_ROS[mine]} one does "
+                                      f"without it (not what <{right}>{value}</{right}> asks): "
+                                      "remove it", evidence), None, Severity.WARNING
                     continue
-                yield child, (said + (f": write {_tag(right)}" if right else
-                                      " and has no such parameter: remove it")), None, \
-                    (Severity.ERROR if right else Severity.WARNING)
+                yield child, Said(said + (f": write {_tag(right)}" if right else
+                                          " and has no such parameter: remove it"), evidence), \
+                    None, (Severity.ERROR if right else Severity.WARNING)
         elif used["ros1"] and used["ros2"]:
             names = {v: ", ".join(f"<{c.tag}>" for c in used[v]) for v in used}
             yield used["ros1"][0], (
