@@ -124,6 +124,9 @@ def test_an_error_document_is_the_same_through_the_door_and_through_typer(
     typer = run_cli(command, path, *words)
     assert typer.exit_code == 1, typer.output
     monkeypatch.setattr(door, "PROGRAM", {"entry": None})  # a caller's: nothing forked, ended
+    # (the collector's rhythm and the kept code are the program's, not this test process's)
+    monkeypatch.setattr(door, "kept_code", lambda path=None: None)
+    monkeypatch.setattr(door, "_collect_less", lambda: None)
     monkeypatch.setattr(sys, "argv", ["urdftool", command, str(path), *words])
     one_piece_here(monkeypatch)
     capsys.readouterr()
