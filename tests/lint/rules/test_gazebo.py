@@ -149,6 +149,35 @@ def test_diff_drive_plugin_wheels_count_as_actuated(tmp_path):
     assert found == [("robot.urdf", 13, "U507")]  # hj only
 
 
+def test_a_frame_the_plugin_of_the_robots_ros_version_does_not_read_is_not_judged(tmp_path):
+    """ros2_jazzy_p3at's pioneer3at.urdf (a ROS 2 package) keeps ROS 1's camera
+    ``<frameName>camera</frameName>`` and ROS 1's ``libgazebo_ros_laser.so`` with
+    ``<frameName>base_laser</frameName>``: the ROS 2 camera ignores frameName (U640 says so)
+    and ROS 2 has no such laser plugin, so no data is stamped with either frame. The same
+    names in a ROS 1 robot are errors."""
+    robot = """<robot name="r"><link name="base"/><link name="cam"/><link name="hokuyo"/>
+      <joint name="j" type="fixed"><parent link="base"/><child link="cam"/></joint>
+      <joint name="k" type="fixed"><parent link="base"/><child link="hokuyo"/></joint>
+      <gazebo reference="cam"><sensor type="camera" name="c">
+        <plugin name="p" filename="libgazebo_ros_camera.so"><frameName>camera</frameName>
+        </plugin></sensor></gazebo>
+      <gazebo reference="hokuyo"><sensor type="ray" name="l">
+        <plugin name="q" filename="libgazebo_ros_laser.so"><frameName>base_laser</frameName>
+        </plugin></sensor></gazebo></robot>"""
+    package = """<package format="3"><name>p</name><version>0.0.0</version><description>d</description>
+      <maintainer email="a@b.c">m</maintainer><license>BSD</license>
+      <buildtool_depend>{tool}</buildtool_depend><export><build_type>{tool}</build_type></export>
+    </package>"""
+    found, _ = check_folder(tmp_path / "ros2", {"robot.urdf": robot,
+                                                "package.xml": package.format(tool="ament_cmake")},
+                            select=("U615", "U640"))
+    assert found == [("robot.urdf", 5, "U640")]
+    found, _ = check_folder(tmp_path / "ros1", {"robot.urdf": robot,
+                                                "package.xml": package.format(tool="catkin")},
+                            select=("U615",))
+    assert found == [("robot.urdf", 5, "U615"), ("robot.urdf", 8, "U615")]
+
+
 def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):
     robot = WHEELS.format(filename="libgazebo_ros_control.so", tags="").replace("</robot>", """
       <ros2_control name="s" type="system"><hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>

@@ -10,7 +10,8 @@ from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
-from urdftool.description.ros_version import ros_versions
+from urdftool.description import gazebo_plugins as vocabulary
+from urdftool.description.ros_version import ros_version, ros_versions
 from urdftool.description.runtime import runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
@@ -330,6 +331,10 @@ def sensor_unknown_link(robot):
     without it) is right when the plugin's ``tf_prefix`` parameter is ``NAMESPACE``, which
     ROS 1's sensor plugins prefix the frame with (or, when none is set, with their
     ``<robotNamespace>``: nothing to report when that is ``NAMESPACE``): a warning naming it.
+    A frame the plugin of the robot's ROS version does not read stamps nothing, so it is not
+    judged: a ROS 1 ``frameName`` in a ROS 2 robot (the ROS 2 plugin ignores it; U640 says so),
+    or any frame of a plugin that version has not (ROS 1's ``gazebo_ros_laser`` in a ROS 2
+    robot).
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -347,6 +352,8 @@ def sensor_unknown_link(robot):
         for tag in FRAME_TAGS:
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
+                if _unread(robot, element):
+                    continue  # no plugin of the robot's ROS version stamps data with it (U640)
                 name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
                 namespace, _, link = name.rpartition("/")
                 if namespace.strip("/") and link in robot.links:
@@ -372,6 +379,22 @@ def sensor_unknown_link(robot):
                            if reference in robot.links else available("links", name, robot.links))
                     yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
                                     f"stamped with it; {own}")
+
+
+def _unread(robot, element) -> bool:
+    """Whether the plugin holding ``element`` does not read it under the robot's ROS version
+    (when that is known): a ROS 1 name (``frameName``) that the ROS 2 plugin ignores, or a
+    plugin that ROS version has not (ROS 1's ``gazebo_ros_laser``), so no data is stamped with
+    the frame it names."""
+    plugin = next((a for a in element.iterancestors() if a.tag == "plugin"), None)
+    found = vocabulary.plugin(plugin) if plugin is not None else None
+    if found is None or found.family != vocabulary.CLASSIC:
+        return False
+    version, _ = ros_version(robot)
+    if version is None:
+        return False
+    reads = found.versions.get(f"ros{version}")
+    return reads is None or element.tag not in reads
 
 
 def _robot_namespace(element) -> str:
