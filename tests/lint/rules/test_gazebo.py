@@ -129,6 +129,22 @@ def test_left_wheel_on_the_right_side(tmp_path):
     assert "left wheel 'rj' is on the right (y = -0.1 m" in findings[0].message
 
 
+def test_axles_along_x_are_said_to_be_not_sideways_rather_than_left_on_the_right(tmp_path):
+    """ros2_jazzy_p3at turns its base_link -90 degrees under base_footprint, so the axles point
+    along the root's x and the wheels' y differ by their front/back offset: U617 said 'left
+    wheel is on the right (y = 1.86 m, right wheel at y = 1.87 m); swap them', which swapping
+    does not mend."""
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so",
+                          tags="<left_joint>lj</left_joint><right_joint>rj</right_joint>")
+    for old, new in (('xyz="0 0.1 0" rpy="0 0 1.5707963"', 'xyz="0.1 0 0"'),
+                     ('xyz="0.03 -0.1 0" rpy="0 0 1.5707963"', 'xyz="-0.1 0.01 0"')):
+        robot = robot.replace(old, new)
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 10, "U617")]
+    assert "wheel joint 'lj' turns about (1, 0, 0) in the root frame, not sideways" in \
+        findings[0].message and "swap" not in findings[0].message
+
+
 def test_plugin_base_frame_must_be_a_link(tmp_path):
     robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(
         "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"

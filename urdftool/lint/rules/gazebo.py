@@ -434,6 +434,7 @@ def diff_drive_frame(robot):
                 yield where, message
 
 
+SIDEWAYS = math.cos(math.radians(45))  # an axle closer to x than to y does not point sideways
 CASTER_CLEARANCE = 0.005  # [m] a caster this far below the wheels' contact plane lifts a wheel
 
 
@@ -443,7 +444,8 @@ def diff_drive_wheel_layout(robot):
 
     Checked at the zero pose, in the robot's root frame (REP-103: x forward, y left, z up):
     the left wheel must be on the +y side of the right one (else the robot turns the wrong
-    way); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
+    way), the axles pointing sideways (an axle along x rolls the robot along y: a base link
+    turned 90 degrees under its footprint, as ros2_jazzy_p3at's); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
     ground, and the separation measured along it is 0) and parallel to the other wheel's;
     each wheel link needs collision geometry (Gazebo's wheels touch nothing without it); a
     caster (a link named ``*caster*`` with a sphere) must not reach below the wheels' contact
@@ -479,11 +481,21 @@ def _layout_problems(robot, drive: _Drive):
     if left is None or right is None:
         return
     names = left.get("name"), right.get("name")
-    if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
+    axes = _world_axis(robot, left), _world_axis(robot, right)
+    if axes[0] is not None and left.get("type") in ("continuous", "revolute") and \
+            abs(axes[0][2]) <= HORIZONTAL and abs(axes[0][1]) < SIDEWAYS:
+        yield where[names[0]], (f"{drive.label}: wheel joint '{names[0]}' turns about "
+                                f"({numbers(axes[0], 3, ', ')}) in the root frame, not sideways "
+                                "(REP-103: x forward, y left): the wheels roll the robot along "
+                                "y while the drive takes x as forward (set the wheels' or the "
+                                "base's origin rpy so the axles point along y)")
+    offset = [a - b for a, b in zip(poses[names[0]][0], poses[names[1]][0])] \
+        if names[0] in poses and names[1] in poses else None
+    if offset is not None and abs(offset[1]) >= abs(offset[0]) and offset[1] < 0:
+        # (wheels one behind the other, an axle along x under a turned base, have no side)
         yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
                                 f"(y = {number(poses[names[0]][0][1], 3)} m, right wheel at y = "
                                 f"{number(poses[names[1]][0][1], 3)} m; REP-103: +y is left); swap them")
-    axes = _world_axis(robot, left), _world_axis(robot, right)
     if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
         yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
                                 "are not parallel; both wheels must turn about the same line")
