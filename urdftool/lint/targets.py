@@ -379,19 +379,18 @@ class _TopLevelTags:
     def __init__(self):
         self.depth, self.seen_robot, self.other_root, self.root = 0, False, False, ""
         self.extensions = self.children = False
-        self.lifted, self.conditions = 0, []  # top-level xacro:if/unless: their children count
+        self.conditions: list[int] = []  # depths of the top-level xacro:if/unless open
 
     def start(self, tag, attributes):
         self.depth += 1
-        level = self.depth - self.lifted
-        name = _local_name(tag)
-        lift = level == 2 and name in ("if", "unless") and _is_xacro(tag)
-        self.conditions.append(lift)
-        if lift:  # a condition choosing among definitions (MiR's imu frame property)
-            self.lifted += 1
-            self.seen_robot = self.children = True
-            return
+        level = self.depth - len(self.conditions)  # their children count as the root's
         if level > 2:
+            return
+        name = _local_name(tag)
+        if level == 2 and name in ("if", "unless") and _is_xacro(tag):
+            # a condition choosing among definitions (MiR's imu frame property)
+            self.conditions.append(self.depth)
+            self.seen_robot = self.children = True
             return
         if self.depth == 1 and name == "sdf" and not _is_xacro(tag):
             raise _Answered("sdf")
@@ -410,9 +409,9 @@ class _TopLevelTags:
                             else "robot")
 
     def end(self, tag):
+        if self.conditions and self.conditions[-1] == self.depth:
+            self.conditions.pop()
         self.depth -= 1
-        if self.conditions.pop():
-            self.lifted -= 1
 
     def close(self):
         return None
