@@ -654,6 +654,13 @@ def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_miss
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "/home/me/ws/meshes/base.dae"), "/home/me/ws/meshes/base.dae")
     assert error.value.kind == "outside" and error.value.certain
+    # the path written is the path meant: said once (it was "mesh '/home/...' resolves to
+    # /home/..., outside ..." in delta_robot_simulation's and uned_crazyflie_ros_pkg's URDFs)
+    for written in ("/home/me/ws/meshes/base.dae", "file:///home/me/ws/meshes/base.dae"):
+        with pytest.raises(MeshProblem) as error:
+            resolve(_robot(tmp_path, written), written)
+        assert str(error.value).startswith(f"mesh '{written}' is an absolute path, outside ")
+        assert str(error.value).count("/home/me/ws/meshes/base.dae") == 1
 
 
 def test_a_mesh_path_holding_no_file_says_what_is_there(tmp_path):

@@ -210,6 +210,22 @@ def test_an_include_naming_an_empty_argument_says_which(tmp_path, given, said):
         message
 
 
+def test_an_include_of_an_absolute_path_found_nowhere_says_it_is_absolute(tmp_path):
+    """uned_crazyflie_ros_pkg's crazyflie2.xacro includes /home/kiko-hp-omen/RoboticPark/...:
+    xacro says only 'No such file or directory'; the path is absolute, there only on its
+    author's machine. A relative path that is missing is not said to be absolute."""
+    for written, said in (("/nowhere-at-all/multirotor_base.xacro", True), ("parts/gone.xacro", False)):
+        (tmp_path / "robot.xacro").write_text(
+            '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            f'<xacro:include filename="{written}"/></robot>')
+        with pytest.raises(LoadError) as caught:
+            load(str(tmp_path / "robot.xacro"))
+        message = caught.value.message
+        assert "No such file or directory" in message, message
+        assert ("the include names an absolute path, there only on the machine it was written "
+                "on" in message) == said, message
+
+
 def test_an_include_written_relative_to_the_repository_root_says_where_it_is(tmp_path):
     """Upkie's xacro/upkie.xacro includes "xacro/utils/box_inertia.xacro", written from the
     repository root (its build, xacrodoc, runs there); xacro reads it beside the including

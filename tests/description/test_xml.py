@@ -255,6 +255,33 @@ def test_an_empty_included_file_says_it_is_empty(tmp_path):
         assert caught.value.message.endswith(f"(the file is {said})"), caught.value.message
 
 
+def test_a_mismatched_end_tag_names_the_element_still_open_and_its_line(tmp_path):
+    """delta_robot_simulation's codian.urdf said only 'malformed XML: mismatched tag' at its
+    last line: the <gazebo> left open 184 lines above is what to look for. The same through
+    xacro (an included file); a file of comments only says so (match_mobile_robotics_jazzy's
+    common_wheel.gazebo.xacro, every macro commented out)."""
+    from urdftool.description.load import load
+    from urdftool.errors import LoadError
+
+    (tmp_path / "r.urdf").write_text('<robot name="r">\n  <link name="a">\n  <gazebo>\n'
+                                     '  </gazebo>\n</robot>\n')
+    with pytest.raises(LoadError) as caught:
+        load(tmp_path / "r.urdf")
+    assert caught.value.message.endswith("mismatched tag: </robot> comes while <link>, opened "
+                                         "at line 2, is still open"), caught.value.message
+    (tmp_path / "part.xacro").write_text('<robot xmlns:xacro="http://ros.org/wiki/xacro">\n'
+                                         '<link name="b"></joint></robot>\n')
+    (tmp_path / "gone.xacro").write_text("<!-- <xacro:macro name='m'/> -->\n")
+    for name, said in (("part.xacro", "</joint> comes while <link>, opened at line 2, is still open"),
+                       ("gone.xacro", "no element found (the file holds only comments)")):
+        (tmp_path / "top.urdf.xacro").write_text(
+            '<robot name="t" xmlns:xacro="http://ros.org/wiki/xacro"><link name="a"/>\n'
+            f'  <xacro:include filename="{name}"/>\n</robot>\n')
+        with pytest.raises(LoadError) as caught:
+            load(tmp_path / "top.urdf.xacro")
+        assert caught.value.message.endswith(said), caught.value.message
+
+
 # A file's lines end as a Location numbers them: LF, CR LF, or CR alone; a LINE SEPARATOR in
 # a comment ends none (a file ended by CR alone said every message on line 1, and its merge
 # conflict was "malformed XML": the markers were not at a line start by LF)

@@ -212,6 +212,29 @@ def test_a_folder_walk_classifies_a_file_by_what_its_includes_produce(tmp_path):
     assert targets.skipped[str(tmp_path / "macros.xacro")].startswith("defines only macros")
 
 
+def test_a_condition_choosing_a_property_leaves_a_macro_library_a_library(tmp_path):
+    """MiR's imu.gazebo.urdf.xacro chooses its frame's name in a top-level ``xacro:if`` /
+    ``xacro:unless`` and defines a macro: a macro library (its copy nobody includes, in
+    match_mobile_robotics_jazzy, was checked as a robot: U106 'robot has no <link> elements').
+    A condition holding a link, or a macro call, is a robot's."""
+    from urdftool.lint.settings import CheckRequest
+    from urdftool.lint.targets import expand
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "imu.urdf.xacro").write_text(
+        f'<robot {XACRO_NS}><xacro:arg name="p" default=""/>'
+        '<xacro:if value="${p == \'\'}"><xacro:property name="f" value="imu"/></xacro:if>'
+        '<xacro:unless value="${p == \'\'}"><xacro:property name="f" value="$(arg p)/imu"/>'
+        '</xacro:unless><xacro:macro name="imu"><gazebo reference="${f}"/></xacro:macro></robot>')
+    for name, body in {"linked.urdf.xacro": '<link name="a"/>', "called.urdf.xacro": "<xacro:m/>"}.items():
+        (tmp_path / name).write_text(
+            f'<robot name="r" {XACRO_NS}><xacro:macro name="m"><link name="b"/></xacro:macro>'
+            f'<xacro:if value="true">{body}</xacro:if></robot>')
+    targets = expand([str(tmp_path)], CheckRequest())
+    assert targets.files == [str(tmp_path / "called.urdf.xacro"), str(tmp_path / "linked.urdf.xacro")]
+    assert targets.skipped[str(tmp_path / "imu.urdf.xacro")].startswith("defines only macros")
+
+
 def test_a_robot_named_whose_includes_cannot_be_followed_is_checked(run_cli, tmp_path):
     robot = _robot_built_by_includes(tmp_path, include="$(find nowhere_pkg)/core.xacro")
     result = run_cli("check", robot)  # (a package not installed: not checked, exit 2)

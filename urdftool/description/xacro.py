@@ -958,10 +958,14 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
                             "xacro up to Lunar (Kinetic's) expands it in that order by default",
                             where, certain=False)
     if "No such file or directory" in message:
-        empty = _empty_arguments(error.__traceback__)
+        spec = _include_spec(error.__traceback__)
+        empty = _empty_arguments(spec)
         if empty:  # a path with nothing where it names an argument: say which
             message += (f"; the include's filename names argument '{empty[0]}', which is empty "
                         f"here: pass {empty[0]}:=VALUE")
+        elif spec.startswith("/"):  # uned_crazyflie_ros_pkg's /home/kiko-hp-omen/... includes
+            message += ("; the include names an absolute path, there only on the machine it was "
+                        "written on: name the file relative to this one, or $(find PKG)/...")
     invalid = _INVALID_PARAMETER.fullmatch(message)
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(
@@ -997,18 +1001,24 @@ def _on_undefined(error: Exception) -> bool:
 _ARGUMENT_USE = re.compile(r"\$\(arg\s+([^\s)]+)\)")
 
 
-def _empty_arguments(traceback) -> list[str]:
-    """The xacro arguments the filename of the include xacro was doing when it raised names
-    (``$(arg NAME)``, as written) whose value is empty: Interbotix's locobot built without
-    ``arm_model`` includes ``arms/.urdf.xacro``, which xacro reports only as not found."""
-    spec = None
-    while traceback is not None:  # (the innermost include: xacro.process_include's local)
+def _include_spec(traceback) -> str:
+    """The filename, as written, of the include xacro was doing when it raised ("" when none):
+    the innermost ``xacro.process_include``'s ``filename_spec``."""
+    spec = ""
+    while traceback is not None:
         value = traceback.tb_frame.f_locals.get("filename_spec")
         if isinstance(value, str) and traceback.tb_frame.f_code.co_name == "process_include":
             spec = value
         traceback = traceback.tb_next
+    return spec
+
+
+def _empty_arguments(spec: str) -> list[str]:
+    """The xacro arguments an include's filename ``spec`` names (``$(arg NAME)``, as written)
+    whose value is empty: Interbotix's locobot built without ``arm_model`` includes
+    ``arms/.urdf.xacro``, which xacro reports only as not found."""
     arguments = _xacro().substitution_args_context.get("arg") or {}
-    return [name for name in dict.fromkeys(_ARGUMENT_USE.findall(spec or ""))
+    return [name for name in dict.fromkeys(_ARGUMENT_USE.findall(spec))
             if arguments.get(name) == ""]
 
 

@@ -83,7 +83,42 @@ def malformed(data: bytes, reason: str, line: int | None,
     wamv.ros2_control.xacro, which its robots include)."""
     if not data.strip():
         reason = f"{reason} (the file is {'empty' if not data else 'only white space'})"
+    elif reason == "mismatched tag":
+        reason += _mismatch(data)
+    elif reason == "no element found" and not _COMMENTS.sub(b"", data).strip():
+        reason += " (the file holds only comments)"  # match_mobile_robotics_jazzy's, all one
     return merge_conflict(data) or XmlProblem("syntax", f"malformed XML: {reason}", line, column)
+
+
+_COMMENTS = re.compile(rb"<!--.*?-->|<\?.*?\?>", re.S)
+
+
+def _mismatch(data: bytes) -> str:
+    """Which element a mismatched closing tag meets still open, and where it was opened
+    (delta_robot_simulation's codian.urdf: ``</robot>`` at its end, with a ``<gazebo>``
+    opened 184 lines above and never closed), read again on the failure path only; "" when
+    that cannot be told."""
+    open_elements: list[tuple[str, int]] = []
+    parser = expat.ParserCreate()
+
+    def refuse(*args):  # no entity is expanded here either (an XML bomb before the mismatch)
+        raise _Refused(args[0])
+
+    _refusing(parser, None, refuse)
+    parser.StartElementHandler = lambda name, attributes: open_elements.append(
+        (name, parser.CurrentLineNumber))
+    parser.EndElementHandler = lambda name: open_elements.pop()
+    try:
+        parser.Parse(data, True)
+    except Exception:  # noqa: BLE001 - the error being explained, or one before it
+        pass
+    if not open_elements or expat.ErrorString(parser.ErrorCode) != "mismatched tag":
+        return ""
+    name, opened = open_elements[-1]
+    row = data.split(b"\n")[parser.ErrorLineNumber - 1]  # expat points at the end tag's name
+    closing = re.match(rb"</([^\s>/]+)", row[max(parser.ErrorColumnNumber - 2, 0):])
+    closes = f"</{closing.group(1).decode('utf-8', 'replace')}>" if closing else "another end tag"
+    return f": {closes} comes while <{name}>, opened at line {opened}, is still open"
 
 
 def merge_conflict(data: bytes) -> XmlProblem | None:

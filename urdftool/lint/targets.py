@@ -371,34 +371,46 @@ class _TopLevelTags:
     child). A root other than <robot> holding only definitions is a macro library too: xacro's
     includes ignore the root element, and pre-Groovy macro files were written ``<root
     xmlns:xacro=...>`` (mas-group/youbot_description's sensors); with anything else, or
-    nothing, it is checked (and its root reported)."""
+    nothing, it is checked (and its root reported). The children of a ``xacro:if``/``unless``
+    child of the root are judged as the root's own: a condition choosing a property (MiR's
+    ``imu.gazebo.urdf.xacro``) leaves a macro library one; a condition holding a link makes a
+    robot."""
 
     def __init__(self):
         self.depth, self.seen_robot, self.other_root, self.root = 0, False, False, ""
         self.extensions = self.children = False
+        self.conditions: list[int] = []  # depths of the top-level xacro:if/unless open
 
     def start(self, tag, attributes):
         self.depth += 1
-        if self.depth > 2:
+        level = self.depth - len(self.conditions)  # their children count as the root's
+        if level > 2:
             return
         name = _local_name(tag)
+        if level == 2 and name in ("if", "unless") and _is_xacro(tag):
+            # a condition choosing among definitions (MiR's imu frame property)
+            self.conditions.append(self.depth)
+            self.seen_robot = self.children = True
+            return
         if self.depth == 1 and name == "sdf" and not _is_xacro(tag):
             raise _Answered("sdf")
         if self.depth == 1 and name != "robot":
             self.other_root, self.root = True, name
             return
         self.seen_robot = True
-        if self.depth == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
+        if level == 2 and name in _SRDF_TAGS and not _is_xacro(tag):
             raise _Answered("srdf")
-        self.children = self.children or self.depth == 2
-        if self.depth == 2 and name in _EXTENSIONS and not _is_xacro(tag):
+        self.children = self.children or level == 2
+        if level == 2 and name in _EXTENSIONS and not _is_xacro(tag):
             self.extensions = True
         # Pre-2019 xacro wrote the same tags without the xacro: prefix.
-        elif self.depth == 2 and name not in _DEFINITIONS:
+        elif level == 2 and name not in _DEFINITIONS:
             raise _Answered("document" if self.other_root and not _misspelt_robot(self.root)
                             else "robot")
 
     def end(self, tag):
+        if self.conditions and self.conditions[-1] == self.depth:
+            self.conditions.pop()
         self.depth -= 1
 
     def close(self):

@@ -129,6 +129,22 @@ def test_left_wheel_on_the_right_side(tmp_path):
     assert "left wheel 'rj' is on the right (y = -0.1 m" in findings[0].message
 
 
+def test_axles_along_x_are_said_to_be_not_sideways_rather_than_left_on_the_right(tmp_path):
+    """ros2_jazzy_p3at turns its base_link -90 degrees under base_footprint, so the axles point
+    along the root's x and the wheels' y differ by their front/back offset: U617 said 'left
+    wheel is on the right (y = 1.86 m, right wheel at y = 1.87 m); swap them', which swapping
+    does not mend."""
+    robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so",
+                          tags="<left_joint>lj</left_joint><right_joint>rj</right_joint>")
+    for old, new in (('xyz="0 0.1 0" rpy="0 0 1.5707963"', 'xyz="0.1 0 0"'),
+                     ('xyz="0.03 -0.1 0" rpy="0 0 1.5707963"', 'xyz="-0.1 0.01 0"')):
+        robot = robot.replace(old, new)
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot})
+    assert found == [("robot.urdf", 10, "U617")]
+    assert "wheel joint 'lj' turns about (1, 0, 0) in the root frame, not sideways" in \
+        findings[0].message and "swap" not in findings[0].message
+
+
 def test_plugin_base_frame_must_be_a_link(tmp_path):
     robot = WHEELS.format(filename="libgazebo_ros_diff_drive.so", tags=(
         "<left_joint>lj</left_joint><right_joint>rj</right_joint>\n"
@@ -147,6 +163,35 @@ def test_diff_drive_plugin_wheels_count_as_actuated(tmp_path):
                     '<child link="h"/></joint>\n</robot>')
     found, _ = check_folder(tmp_path, {"robot.urdf": robot}, select=("U5", "U60", "U61"))
     assert found == [("robot.urdf", 13, "U507")]  # hj only
+
+
+def test_a_frame_the_plugin_of_the_robots_ros_version_does_not_read_is_not_judged(tmp_path):
+    """ros2_jazzy_p3at's pioneer3at.urdf (a ROS 2 package) keeps ROS 1's camera
+    ``<frameName>camera</frameName>`` and ROS 1's ``libgazebo_ros_laser.so`` with
+    ``<frameName>base_laser</frameName>``: the ROS 2 camera ignores frameName (U640 says so)
+    and ROS 2 has no such laser plugin, so no data is stamped with either frame. The same
+    names in a ROS 1 robot are errors."""
+    robot = """<robot name="r"><link name="base"/><link name="cam"/><link name="hokuyo"/>
+      <joint name="j" type="fixed"><parent link="base"/><child link="cam"/></joint>
+      <joint name="k" type="fixed"><parent link="base"/><child link="hokuyo"/></joint>
+      <gazebo reference="cam"><sensor type="camera" name="c">
+        <plugin name="p" filename="libgazebo_ros_camera.so"><frameName>camera</frameName>
+        </plugin></sensor></gazebo>
+      <gazebo reference="hokuyo"><sensor type="ray" name="l">
+        <plugin name="q" filename="libgazebo_ros_laser.so"><frameName>base_laser</frameName>
+        </plugin></sensor></gazebo></robot>"""
+    package = """<package format="3"><name>p</name><version>0.0.0</version><description>d</description>
+      <maintainer email="a@b.c">m</maintainer><license>BSD</license>
+      <buildtool_depend>{tool}</buildtool_depend><export><build_type>{tool}</build_type></export>
+    </package>"""
+    found, _ = check_folder(tmp_path / "ros2", {"robot.urdf": robot,
+                                                "package.xml": package.format(tool="ament_cmake")},
+                            select=("U615", "U640"))
+    assert found == [("robot.urdf", 5, "U640")]
+    found, _ = check_folder(tmp_path / "ros1", {"robot.urdf": robot,
+                                                "package.xml": package.format(tool="catkin")},
+                            select=("U615",))
+    assert found == [("robot.urdf", 5, "U615"), ("robot.urdf", 8, "U615")]
 
 
 def test_ros1_gazebo_ros_control_in_a_ros2_robot(tmp_path):

@@ -123,6 +123,15 @@ def test_unread_attributes_of_one_element_are_one_finding(tmp_path):
     assert "attributes 'iyx', 'izx', 'izy' have no effect" in findings[0].message
 
 
+def test_an_attribute_of_an_element_that_has_none_says_so(tmp_path):
+    # ros2_jazzy_p3at's <geometry name="pioneer_geom">: the message ended "; it reads " and
+    # nothing, <geometry> having no attributes to list
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"><visual>
+      <geometry name="g"><box size="1 1 1"/></geometry></visual></link></robot>""")
+    assert [c for _, _, c in found] == ["U022"]
+    assert findings[0].message.endswith("; URDF gives <geometry> no attributes"), findings[0].message
+
+
 def test_an_element_in_the_wrong_place_says_where_it_belongs(tmp_path):
     found, findings = _check(tmp_path, """<robot name="r"><link name="a">
       <limit lower="0" upper="1" effort="1" velocity="1"/></link></robot>""")

@@ -242,6 +242,8 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
             written = os.path.normpath(os.path.join(base, named))
             how = (f"is a symbolic link (or lies in one) leading outside {root}"
                    if written.startswith(str(containment_root(Path(base))) + os.sep)
+                   else f"is an absolute path, outside {root}"
+                   if uri.removeprefix("file://") == written  # said once, not twice
                    else f"resolves to {written}, outside {root}")
             installed_at = _ROS_INSTALL.fullmatch(written)
             if installed_at:  # a ROS distribution's install: there wherever it is installed

@@ -10,7 +10,8 @@ from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
-from urdftool.description.ros_version import ros_versions
+from urdftool.description import gazebo_plugins as vocabulary
+from urdftool.description.ros_version import ros_version, ros_versions
 from urdftool.description.runtime import runtime
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
@@ -330,6 +331,10 @@ def sensor_unknown_link(robot):
     without it) is right when the plugin's ``tf_prefix`` parameter is ``NAMESPACE``, which
     ROS 1's sensor plugins prefix the frame with (or, when none is set, with their
     ``<robotNamespace>``: nothing to report when that is ``NAMESPACE``): a warning naming it.
+    A frame the plugin of the robot's ROS version does not read stamps nothing, so it is not
+    judged: a ROS 1 ``frameName`` in a ROS 2 robot (the ROS 2 plugin ignores it; U640 says so),
+    or any frame of a plugin that version has not (ROS 1's ``gazebo_ros_laser`` in a ROS 2
+    robot).
 
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
@@ -347,6 +352,8 @@ def sensor_unknown_link(robot):
         for tag in FRAME_TAGS:
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
+                if _unread(robot, element):
+                    continue  # no plugin of the robot's ROS version stamps data with it (U640)
                 name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
                 namespace, _, link = name.rpartition("/")
                 if namespace.strip("/") and link in robot.links:
@@ -372,6 +379,22 @@ def sensor_unknown_link(robot):
                            if reference in robot.links else available("links", name, robot.links))
                     yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
                                     f"stamped with it; {own}")
+
+
+def _unread(robot, element) -> bool:
+    """Whether the plugin holding ``element`` does not read it under the robot's ROS version
+    (when that is known): a ROS 1 name (``frameName``) that the ROS 2 plugin ignores, or a
+    plugin that ROS version has not (ROS 1's ``gazebo_ros_laser``), so no data is stamped with
+    the frame it names."""
+    plugin = next((a for a in element.iterancestors() if a.tag == "plugin"), None)
+    found = vocabulary.plugin(plugin) if plugin is not None else None
+    if found is None or found.family != vocabulary.CLASSIC:
+        return False
+    version, _ = ros_version(robot)
+    if version is None:
+        return False
+    reads = found.versions.get(f"ros{version}")
+    return reads is None or element.tag not in reads
 
 
 def _robot_namespace(element) -> str:
@@ -411,6 +434,7 @@ def diff_drive_frame(robot):
                 yield where, message
 
 
+SIDEWAYS = math.cos(math.radians(45))  # an axle closer to x than to y does not point sideways
 CASTER_CLEARANCE = 0.005  # [m] a caster this far below the wheels' contact plane lifts a wheel
 
 
@@ -420,7 +444,8 @@ def diff_drive_wheel_layout(robot):
 
     Checked at the zero pose, in the robot's root frame (REP-103: x forward, y left, z up):
     the left wheel must be on the +y side of the right one (else the robot turns the wrong
-    way); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
+    way), the axles pointing sideways (an axle along x rolls the robot along y: a base link
+    turned 90 degrees under its footprint, as ros2_jazzy_p3at's); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
     ground, and the separation measured along it is 0) and parallel to the other wheel's;
     each wheel link needs collision geometry (Gazebo's wheels touch nothing without it); a
     caster (a link named ``*caster*`` with a sphere) must not reach below the wheels' contact
@@ -456,11 +481,21 @@ def _layout_problems(robot, drive: _Drive):
     if left is None or right is None:
         return
     names = left.get("name"), right.get("name")
-    if names[0] in poses and names[1] in poses and poses[names[0]][0][1] < poses[names[1]][0][1]:
+    axes = _world_axis(robot, left), _world_axis(robot, right)
+    if axes[0] is not None and left.get("type") in ("continuous", "revolute") and \
+            abs(axes[0][2]) <= HORIZONTAL and abs(axes[0][1]) < SIDEWAYS:
+        yield where[names[0]], (f"{drive.label}: wheel joint '{names[0]}' turns about "
+                                f"({numbers(axes[0], 3, ', ')}) in the root frame, not sideways "
+                                "(REP-103: x forward, y left): the wheels roll the robot along "
+                                "y while the drive takes x as forward (set the wheels' or the "
+                                "base's origin rpy so the axles point along y)")
+    offset = [a - b for a, b in zip(poses[names[0]][0], poses[names[1]][0])] \
+        if names[0] in poses and names[1] in poses else None
+    if offset is not None and abs(offset[1]) >= abs(offset[0]) and offset[1] < 0:
+        # (wheels one behind the other, an axle along x under a turned base, have no side)
         yield where[names[0]], (f"{drive.label}: left wheel '{names[0]}' is on the right "
                                 f"(y = {number(poses[names[0]][0][1], 3)} m, right wheel at y = "
                                 f"{number(poses[names[1]][0][1], 3)} m; REP-103: +y is left); swap them")
-    axes = _world_axis(robot, left), _world_axis(robot, right)
     if None not in axes and abs(abs(mat3.dot(*axes)) - 1) > 1 - math.cos(math.radians(5)):
         yield where[names[1]], (f"{drive.label}: wheel axes of '{names[0]}' and '{names[1]}' "
                                 "are not parallel; both wheels must turn about the same line")

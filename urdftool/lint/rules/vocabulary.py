@@ -370,8 +370,10 @@ def no_effect(robot):
     for element, names in unread.items():
         listed = ", ".join(f"'{name}'" for name in names)
         noun = "attribute" if len(names) == 1 else "attributes"
+        read = _attributes(_key(element))  # <geometry> reads none (ros2_jazzy_p3at's name=)
+        reads = f"it reads {', '.join(read)}" if read else f"URDF gives <{element.tag}> no attributes"
         yield element, (f"<{element.tag}> {noun} {listed} {'has' if len(names) == 1 else 'have'} "
-                        f"no effect: {_unread(len(names))}; it reads {', '.join(_attributes(_key(element)))}")
+                        f"no effect: {_unread(len(names))}; {reads}")
 
 
 def _read_elsewhere(unknown) -> str:
