@@ -49,6 +49,19 @@ def test_joint_values_keep_what_is_given_and_warn_only_about_it(arm):
     assert config.joint_values(arm, {"elbow": "0.5"}).q == {"shoulder": 1.0, "elbow": 0.5}
 
 
+@pytest.mark.parametrize("v, a", [({"elbow": "1e308"}, None), ({"elbow": "-1e151"}, None),
+                                  (None, {"shoulder": "1e200"})])
+def test_a_velocity_or_acceleration_the_dynamics_cannot_square_is_refused(arm, v, a):
+    # dynamics --v 1e308 gave numpy's overflow warnings and torques of "inf N m" (the class of
+    # ik's targets past numbers.SQUARABLE, session 14)
+    from urdftool.errors import ConfigError
+
+    with pytest.raises(ConfigError, match="past what the dynamics computes with") as raised:
+        config.joint_values(arm, {}, v, a)
+    assert raised.value.argument == ("v" if v else "a")
+    assert config.joint_values(arm, {}, {"elbow": "1e150"}).v == {"elbow": 1e150}
+
+
 def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
     """Cut as every list is (``errors.listed``): it had its own copy of the cut."""
     import json

@@ -205,6 +205,8 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
         try:
             parsed.append(assignments(variables, words, degrees, mimics)
                           if words or argument == "q" else None)
+            if argument != "q" and parsed[-1]:
+                _squarable(parsed[-1], {"v": "velocity", "a": "acceleration"}[argument])
         except ConfigError as error:
             error.argument = argument
             raise
@@ -214,6 +216,19 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
     parsed[0] = {**{variable.name: variable.default for variable in variables
                     if variable.default != 0.0}, **parsed[0]}
     return JointValues(*parsed, warnings)
+
+
+def _squarable(values: dict[str, float], what: str) -> None:
+    """ConfigError for a joint velocity or acceleration past :data:`~urdftool.numbers.
+    SQUARABLE`: the dynamics squares velocities (C(q, v)) and multiplies accelerations by
+    M(q); a --v of 1e308 rad/s gave numpy's overflow warnings and torques of inf N m."""
+    from urdftool.numbers import SQUARABLE, number as number_text
+
+    far = [f"joint '{name}' {what} {number_text(value)}" for name, value in values.items()
+           if not abs(value) <= SQUARABLE]
+    if far:
+        raise ConfigError(f"{', '.join(far)}: past what the dynamics computes with (at most "
+                          f"{number_text(SQUARABLE)} each)")
 
 
 def from_file(variables: list[Variable], path: str, degrees: bool = False,

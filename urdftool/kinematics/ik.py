@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urdftool.numbers import length, number, power
+from urdftool.numbers import SQUARABLE, length, number, power
 from urdftool.errors import ConfigError, available
 from urdftool.kinematics.chain import Chain, frame_jacobian
 
@@ -38,9 +38,8 @@ _DAMPING = 1e-12  # as Pinocchio's CLIK example: the step bound does the rest
 _MAX_STEP = 1.0  # [rad or m]: the longest step (its 2-norm)
 _STALL = 15  # iterations without progress before the next seed
 _AT_LIMIT = 1e-9  # [rad or m]
-MAX_TARGET = 1e150  # [m] the farthest coordinate of a target: the solver squares distances (a
-# target at 1e308 overflowed to "inf m" after numpy's overflow warnings); sqrt of the largest
-# float is 1.3e154
+MAX_TARGET = SQUARABLE  # [m] the farthest coordinate of a target: the solver squares distances
+# (a target at 1e308 overflowed to "inf m" after numpy's overflow warnings)
 
 
 @dataclass
