@@ -373,13 +373,11 @@ def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) 
     first = _wrap(chain, first, chain.continuous)
     if count <= 1:
         return first[None, :]
-    from urdftool.kinematics.configuration import random_stream
+    from urdftool.kinematics.configuration import random_stream, within
 
-    generator = random_stream(seed)
     lower = np.where(np.isfinite(chain.lower), chain.lower, -math.pi)
     upper = np.where(np.isfinite(chain.upper), chain.upper, math.pi)
-    return np.vstack([first, generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
-                                               size=(count - 1, len(first)))])
+    return np.vstack([first, within(random_stream(seed), lower, upper, (count - 1, len(first)))])
 
 
 def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,
