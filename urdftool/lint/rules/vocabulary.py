@@ -433,10 +433,9 @@ def number_white_space(robot):
     Bad: ``<mass value="2 "/>``, ``<origin xyz="0.1&#9;0 0"/>``
     Good: ``<mass value="2"/>``, ``<origin xyz="0.1 0 0"/>``
     """
-    from urdftool.lint.fixes import offer, set_attribute
-
     if robot.sources and not any(map(_suspect, filter(None, robot.sources.values()))):
         return  # (nothing written so, as in nearly every robot: no walk)
+    from urdftool.lint.fixes import offer, set_attribute
     raw = None if robot.from_xacro else _raw_spaced(robot)
     for element in robot.root.iter(*NUMBERS):
         fields = NUMBERS[element.tag]
