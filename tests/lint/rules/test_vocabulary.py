@@ -331,3 +331,16 @@ def test_numbers_with_white_space_in_a_xacro_are_judged_as_expanded(tmp_path):
     # space stays, and the fix cannot edit an expression
     assert [(f.line, f.code) for f in result.findings] == [(1, "U023")]
     assert "no automatic fix" in result.findings[0].message
+
+
+def test_a_vector_written_across_lines_is_found_among_values_of_the_same_text(tmp_path):
+    # the only sign in the file is a line break after a number (no tab, no space before a
+    # quote): the byte search passed it over; and 300 origins "0 0 0" written on one line
+    # are the same text to lxml, which only the one written across lines is
+    joints = "".join(f'<link name="l{i}"/><joint name="j{i}" type="fixed"><parent link="a"/>'
+                     f'<child link="l{i}"/><origin xyz="0 0 0"/></joint>\n' for i in range(300))
+    text = (f'<robot name="r"><link name="a"><visual><origin xyz="0\n0 0"/><geometry>'
+            f'<box size="1 1 1"/></geometry></visual></link>\n{joints}</robot>\n')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
+    assert found == [("robot.urdf", 1, "U023")]
+    assert '"0\\n0"' in findings[0].message

@@ -433,7 +433,9 @@ def number_white_space(robot):
     Bad: ``<mass value="2 "/>``, ``<origin xyz="0.1&#9;0 0"/>``
     Good: ``<mass value="2"/>``, ``<origin xyz="0.1 0 0"/>``
     """
-    if robot.sources and not any(map(_suspect, filter(None, robot.sources.values()))):
+    sources = [data for data in robot.sources.values() if data]
+    if robot.sources and not any(map(_suspect, sources)) and \
+            (robot.from_xacro or not any(map(_raw_line_break, sources))):
         return  # (nothing written so, as in nearly every robot: no walk)
     from urdftool.lint.fixes import offer, set_attribute
     raw = None if robot.from_xacro else _raw_spaced(robot)
@@ -444,7 +446,8 @@ def number_white_space(robot):
             if text is None:
                 continue
             part = urdfdom_refuses(text, count)
-            if part is None and raw and count > 1 and text in raw:
+            if part is None and raw and count > 1 and text in raw and \
+                    _written_there(element, raw[text]):
                 text, part = _as_written(robot, element, attribute, count)
             if part is None or _place(element) != element.tag:
                 continue
@@ -464,23 +467,50 @@ def _suspect(data: bytes) -> bool:
 _SUSPECT = (b"\t", b"\r", b"&#", b' "', b" '", b'\n"', b"\n'")
 
 
+def _raw_line_break(data: bytes) -> bool:
+    """Whether a URDF's bytes hold a line break inside a value of number characters (a vector
+    written across lines, which lxml reads as a space and TinyXML2 keeps), looked for only
+    where some line does not end a tag (a 5 MB robot whose every line ends one: two counts)."""
+    return data.count(b"\n") != data.count(b">\n") and _RAW_SPACED.search(data) is not None
+
+
 # A quoted value of number characters holding a tab, line feed or carriage return as written:
 # lxml reads each as a space (attribute-value normalisation), TinyXML2 keeps it.
 _RAW_SPACED = re.compile(rb"""=[ \t\r\n]*(?:"([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.eE \t\r\n]*)"|"""
                          rb"""'([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.eE \t\r\n]*)')""")
 
 
-def _raw_spaced(robot) -> set[str]:
+def _raw_spaced(robot) -> dict[str, list[tuple[int, int]]]:
     """The values (as lxml reads them) written with a raw tab or line break in the robot's
-    files, which are read from their bytes; empty for nearly every robot."""
-    found = set()
+    file, read from its bytes, each with the lines it spans (first, last); empty for nearly
+    every robot."""
+    found: dict[str, list[tuple[int, int]]] = {}
     for data in robot.sources.values():
         if data is None:
             continue
+        line, counted = 1, 0
         for match in _RAW_SPACED.finditer(data):
-            value = (match.group(1) if match.group(1) is not None else match.group(2)).decode()
-            found.add(value.replace("\r\n", " ").translate(_NORMALISED))
+            line += data.count(b"\n", counted, match.start())
+            counted = match.start()
+            raw = match.group(1) if match.group(1) is not None else match.group(2)
+            value = raw.decode().replace("\r\n", " ").translate(_NORMALISED)
+            found.setdefault(value, []).append((line, line + raw.count(b"\n")))
     return found
+
+
+# [lines] from the last line of a value to the '>' of its start tag, at most (the attributes
+# after it, one a line, as the SolidWorks exporter writes them): where lxml puts an element's
+# line, which is compared with each value's lines before the tag is looked at
+_TAG_TAIL = 64
+
+
+def _written_there(element, spans: list[tuple[int, int]]) -> bool:
+    """Whether ``element``'s start tag may hold a value spanning one of ``spans``: lxml's line
+    of the element (its start tag's '>') is within :data:`_TAG_TAIL` lines after it. An
+    integer comparison per element: one look at the tag then confirms it (a robot repeats its
+    values, 20,000 origins ``0 0 0`` beside one written across lines)."""
+    end = element.sourceline
+    return end is not None and any(first <= end <= last + _TAG_TAIL for first, last in spans)
 
 
 _NORMALISED = str.maketrans("\t\r\n", "   ")
