@@ -633,6 +633,53 @@ def test_code_actions_are_offered_only_for_findings_this_server_published(offlin
             for edit in action.edit.changes[uri]][0] == "<!-- urdftool: ignore U204 -->"
 
 
+@pytest.mark.parametrize("before", [
+    '  <origin xyz="0 0\n 0"/>',  # the line starts inside an attribute value
+    '  <origin xyz="0 0 0"\n  rpy="0 0 0"/>',  # between a tag's attributes
+    '  <!-- a comment\n  ending here -->',  # inside a comment
+])
+def test_a_suppression_is_never_offered_where_a_comment_breaks_the_document(offline_server,
+                                                                            tmp_path, before):
+    """"Ignore here" writes a comment at the start of the finding's line: where that line
+    starts inside the tag before it (written across lines, or with a line break in a value) or
+    inside a comment, the comment made the robot not well-formed (a raw tab or line break in
+    an origin, U023's finding on the next element of the line)."""
+    from xml.parsers import expat
+
+    from urdftool.diagnostics import Finding, Location, Severity
+    from urdftool.server import Outcome
+
+    server, _ = offline_server
+    text = f"<robot>\n{before}<mass value='1 '/>\n  <joint/>\n</robot>\n"
+    robot, uri = _opened(server, tmp_path / "robot.urdf", 1, text)
+    line = text.count("\n", 0, text.index("<mass"))
+    published = []
+    for number, code in [(line, "U023"), (line + 1, "U204")]:
+        span = types.Range(start=types.Position(number, 0), end=types.Position(number, 5))
+        published.append((types.Diagnostic(range=span, message="m", code=code,
+                                           source="urdftool"),
+                          Finding(code, "x", Severity.ERROR, "m", Location(robot, number + 1))))
+    server._publish(Outcome(robot, 1, {robot: published}), ticket=1)
+
+    def edited(diagnostic) -> list[str]:
+        actions = server.code_actions(types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri), range=diagnostic.range,
+            context=types.CodeActionContext(diagnostics=[diagnostic]))) or []
+        texts = []
+        for action in actions:
+            [edit] = action.edit.changes[uri]
+            lines = text.splitlines(keepends=True)
+            at = sum(map(len, lines[:edit.range.start.line]))
+            texts.append(text[:at] + edit.new_text + text[at:])
+        return texts
+
+    inside, outside = edited(published[0][0]), edited(published[1][0])
+    assert len(inside) == 1 and "ignore-file" in inside[0]  # "here" cannot be written
+    assert len(outside) == 2  # the element's line starts outside every tag: both offered
+    for document in inside + outside:
+        expat.ParserCreate().Parse(document, True)  # every edit offered keeps it well-formed
+
+
 def test_a_result_that_read_an_older_buffer_of_an_included_file_is_never_published(
         offline_server, monkeypatch, tmp_path):
     from urdftool.server import Outcome, check_robot

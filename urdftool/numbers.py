@@ -28,6 +28,12 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+# The largest magnitude a computation may square, a number from the command line or a file the
+# user gives (an ik target's coordinate, a joint velocity or acceleration of dynamics): the
+# square root of the largest float is 1.3e154, and past it numpy warns of an overflow and the
+# answer is inf (a target "inf m" away, a torque of "inf N m").
+SQUARABLE = 1e150
+
 
 def power(base, exponent):
     """``base ** exponent`` as IEEE arithmetic: an infinity of the right sign where the result

@@ -738,6 +738,11 @@ class UrdftoolServer(LanguageServer):
             for provider in ACTION_PROVIDERS:
                 actions.extend(provider(params.text_document.uri, lines, diagnostic, finding,
                                         self.workspace.position_codec))
+        if actions:
+            inside = starts_inside_markup(lines)
+            actions = [action for action in actions if not any(
+                edit.range.start.character == 0 and edit.range.start.line in inside
+                for edits in action.edit.changes.values() for edit in edits)]
         return actions or None
 
 
@@ -820,7 +825,34 @@ def suppress_in_file(uri: str, lines: list[str], diagnostic: types.Diagnostic,
 
 
 # Each provider: (uri, document lines, diagnostic, finding or None, position codec) -> actions.
+# An action whose edit writes at the start of a line that starts inside markup is dropped
+# (:func:`starts_inside_markup`, in UrdftoolServer.code_actions: the one guard of every edit).
 ACTION_PROVIDERS = (suppress_on_line, suppress_in_file)
+
+# What a comment cannot be written inside: a tag (its quoted values may hold '>'), a comment, a
+# CDATA section, a processing instruction or declaration, a document type declaration
+_MARKUP = re.compile(r"""<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!(?:"[^"]*"|'[^']*'|[^>"'])*>"""
+                     r"""|<(?:"[^"]*"|'[^']*'|[^>"'])*>""", re.S)
+
+
+def starts_inside_markup(lines: list[str]) -> set[int]:
+    """The numbers of the document's lines (its lines as the server keeps them, ends kept)
+    that start inside a tag, comment, CDATA section or processing instruction: a comment
+    written at such a line's start breaks the document (an element whose start tag begins on
+    the line an attribute value of the tag before it ends on; a tag written across lines)."""
+    text = "".join(lines)
+    starts, at = [], 0
+    for line in lines:
+        starts.append(at)
+        at += len(line)
+    inside: set[int] = set()
+    import bisect
+
+    for match in _MARKUP.finditer(text):
+        first = bisect.bisect_right(starts, match.start())  # the first line starting after '<'
+        last = bisect.bisect_left(starts, match.end())  # lines starting at or past the end
+        inside.update(range(first, last))
+    return inside
 
 
 # ---- the server -------------------------------------------------------------------------------

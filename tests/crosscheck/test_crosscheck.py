@@ -57,6 +57,18 @@ def test_loaders_agree_on_a_small_arm(tmp_path):
     assert mujoco.frames[0]["tip"] != mujoco.frames[1]["tip"]
 
 
+def test_a_file_named_with_bytes_that_are_not_utf8_is_loaded_by_every_loader(tmp_path):
+    """The loaders take a file name as UTF-8 text: a robot named ``arm\\xff.urdf`` (U+DCFF to
+    Python) failed in each with "UnicodeEncodeError", a file each would read; it is read from a
+    copy with a name they take."""
+    _installed("pinocchio", "mujoco")
+    path = Path(os.fsdecode(bytes(tmp_path / "arm") + b"\xff.urdf"))
+    path.write_text(ARM)
+    report = crosscheck(str(path), [n for n in ("pinocchio", "mujoco") if available(n)])
+    assert not report.failed and report.exit_code == 0
+    assert {loader.name for loader in report.loaders} == {"pinocchio", "mujoco"}
+
+
 def test_a_loader_that_dies_is_a_failure_not_a_crash(tmp_path, monkeypatch):
     path = tmp_path / "arm.urdf"
     path.write_text(ARM)

@@ -4,6 +4,7 @@ build then tells the rules (docs/launch.md)."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -396,3 +397,18 @@ def test_moveits_facts_about_a_file_are_found_once_per_robot(monkeypatch):
     assert sorted(f.code for f in result.findings if f.code in ("U817", "U818")) == \
         ["U817", "U818"]
     assert len(computed) == len(set(computed)) == 2  # (both entries, each once)
+
+
+def test_a_robot_file_named_with_bytes_that_are_not_utf8_is_looked_for_by_its_bytes(tmp_path):
+    # a file system name is bytes: os.fsdecode gives U+DCFF for 0xff, which the strict codec
+    # cannot write back (every check of such a robot was U900 from U620 before)
+    from urdftool.description.runtime import unread_naming
+
+    (tmp_path / ".git").mkdir()
+    robot = Path(os.fsdecode(bytes(tmp_path / "r") + b"\xff.urdf"))
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    (tmp_path / "launch").mkdir()
+    (tmp_path / "launch" / "bad.launch").write_bytes(b'<launch><param name="r" textfile="r\xff.urdf"')
+    assert [Path(p).name for p in unread_naming(str(robot))] == ["bad.launch (not read)"]
+    result = load_and_check(str(robot), CheckOptions())
+    assert not [f for f in result.findings if f.code == "U900"]

@@ -10,7 +10,7 @@ from lxml import etree
 
 from urdftool.description.load import load
 from urdftool.description.values import (Origin, number_tuple, origin, origin_pose,
-                                         parse_numbers)
+                                         parse_numbers, urdfdom_refuses, urdfdom_spelling)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -178,3 +178,20 @@ def test_white_space_not_asciis_separates_no_numbers_as_urdfdom_reads(text):
 def test_ascii_white_space_between_numbers_is_a_separator():
     for text in ("1 0 0", " 1\t0\n0 ", "1  0\r\n0", "1\f0\v0"):
         assert number_tuple.__wrapped__(text, 3) == ((1.0, 0.0, 0.0), None), text
+
+
+@pytest.mark.parametrize("text, count, refused", [
+    ("2 ", 1, "2 "), ("2\t", 1, "2\t"), ("2\n", 1, "2\n"),  # strToDouble: nothing after it
+    (" 2", 1, None), ("\t2", 1, None), ("2", 1, None),  # white space before is skipped
+    ("0.1\t0 0", 3, "0.1\t0"), ("0.1\n0 0", 3, "0.1\n0"), ("0.1 0 0\t", 3, "0\t"),
+    ("1 0\t 0", 3, "0\t"), ("1 1 1 1\r", 4, "1\r"),  # a part holding white space after a digit
+    ("\t0.1 0 0", 3, None), ("0.1 \t0 0", 3, None), (" 0 0 0 ", 3, None),  # split at spaces
+    ("x ", 1, None), ("1\t1 1", 4, None), ("1\xa00 0", 3, None),  # malformed: another rule's
+])
+def test_urdfdom_refuses_white_space_after_a_number_only(text, count, refused):
+    # urdf_model's strToDouble (a stream that must reach the end) and Vector3/Color's split
+    # at ' ': measured with Pinocchio 4.1's urdfdom in session 18
+    assert urdfdom_refuses(text, count) == refused
+    if refused:
+        assert urdfdom_refuses(urdfdom_spelling(text), count) is None
+        assert number_tuple(urdfdom_spelling(text), count) == number_tuple(text, count)

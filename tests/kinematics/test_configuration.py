@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from urdftool.kinematics import configuration as config
@@ -49,6 +50,19 @@ def test_joint_values_keep_what_is_given_and_warn_only_about_it(arm):
     assert config.joint_values(arm, {"elbow": "0.5"}).q == {"shoulder": 1.0, "elbow": 0.5}
 
 
+@pytest.mark.parametrize("v, a", [({"elbow": "1e308"}, None), ({"elbow": "-1e151"}, None),
+                                  (None, {"shoulder": "1e200"})])
+def test_a_velocity_or_acceleration_the_dynamics_cannot_square_is_refused(arm, v, a):
+    # dynamics --v 1e308 gave numpy's overflow warnings and torques of "inf N m" (the class of
+    # ik's targets past numbers.SQUARABLE, session 14)
+    from urdftool.errors import ConfigError
+
+    with pytest.raises(ConfigError, match="past what the dynamics computes with") as raised:
+        config.joint_values(arm, {}, v, a)
+    assert raised.value.argument == ("v" if v else "a")
+    assert config.joint_values(arm, {}, {"elbow": "1e150"}).v == {"elbow": 1e150}
+
+
 def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
     """Cut as every list is (``errors.listed``): it had its own copy of the cut."""
     import json
@@ -60,3 +74,37 @@ def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
         config._json_rows(json.dumps([names, {}]), "q.json", "joint")
     assert str(error.value) == ("q.json: row 2: row lacks j0, j1, j2, j3, j4, j5, j6, j7, j8, j9, "
                                 "j10, j11, ... (13 in all) (every row must name the same joints)")
+
+
+def test_every_draw_between_limits_is_one_that_takes_any_span():
+    """Limits of -1e308 and 1e308 (a span past the largest float) made numpy's uniform raise
+    "Range exceeds valid bounds": a traceback of workspace, ik and dynamics --samples. Every
+    draw between limits is configuration.within (an ast scan holds it), which draws such a
+    span with each bound weighted and any other as numpy draws it."""
+    import ast
+    import math
+    from pathlib import Path
+
+    import numpy as np
+
+    import urdftool
+
+    wide = config.within(config.random_stream(0), [-1e308, 0.0], [1e308, 1.0], (200, 2))
+    assert np.isfinite(wide).all() and wide[:, 0].min() < -1e307 and wide[:, 0].max() > 1e307
+    assert (0 <= wide[:, 1]).all() and (wide[:, 1] <= 1).all()
+    assert (config.within(config.random_stream(3), [2.0, -1.0], [1.0, math.pi], (5, 2)) ==
+            config.random_stream(3).uniform([1.0, -1.0], [2.0, math.pi], (5, 2))).all()
+    draws = [f"{path.name}:{node.lineno}" for path in Path(urdftool.__file__).parent.rglob("*.py")
+             for node in ast.walk(ast.parse(path.read_text()))
+             if isinstance(node, ast.Attribute) and node.attr == "uniform"]
+    assert [d for d in draws if not d.startswith("configuration.py:")] == [] and draws
+
+
+def test_a_joint_whose_limits_span_past_the_largest_float_is_sampled(tmp_path):
+    robot = tmp_path / "p.urdf"
+    robot.write_text(
+        '<robot name="p"><link name="a"/><link name="b"/><joint name="s" type="prismatic">'
+        '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1e308" upper="1e308" effort="1" velocity="1"/></joint></robot>')
+    values = config.random(config.variables_of(load(str(robot))), 50, 0).values
+    assert np.isfinite(values).all() and values.min() < -1e306 < 1e306 < values.max()

@@ -291,6 +291,30 @@ def test_a_macro_literal_that_would_need_two_values_is_not_fixed(tmp_path):
     assert "would need different values for different elements" in changes.skipped[0][1]
 
 
+def test_two_rules_fixing_one_attribute_are_applied_one_pass_after_the_other(tmp_path):
+    """U023 respaces an ``xyz`` that U206 normalises and a ``lower`` U204 swaps: the overlap
+    was taken for a macro literal serving two elements, none was applied, and the reason said
+    "a macro used more than once?". One element's fixes wait their turn: the first is taken,
+    the other overlaps it, and the next pass reads the text the first wrote."""
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="o"><link name="a"/><link name="b"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<axis xyz="0 0 2&#9;"/><limit lower="1 " upper="-1" effort="1" velocity="1"/>'
+        '</joint></robot>\n')
+    options = CheckOptions()
+    result = load_and_check(str(robot), options)
+    assert sorted(f.code for f in result.findings if f.fix) == ["U023", "U023", "U204", "U206"]
+    changes = fixes.plan([result], unsafe=True)
+    assert len(changes.applied) == 2
+    assert all(why.startswith("it overlaps another fix") for _, why in changes.skipped)
+    final, applied, _, _ = fixes.apply([result], lambda: [load_and_check(str(robot), options)],
+                                       unsafe=True)
+    assert not [f for f in final[0].findings if f.fix] and applied >= 3
+    assert '<axis xyz="0 0 1"/><limit lower="-1" upper="1"' in robot.read_text()
+
+
 def test_an_edit_knows_the_line_and_column_of_both_ends_and_keeps_crlf(tmp_path):
     robot = tmp_path / "r.urdf"
     robot.write_bytes(b'<robot name="r">\r\n  <link name="base">\r\n    <inertial>\r\n'

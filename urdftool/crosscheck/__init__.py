@@ -323,20 +323,34 @@ def _found_above(robot, packages: dict) -> bool:
     return True
 
 
+def _as_text(path: str) -> bool:
+    """Whether the loaders can be given ``path``: Pinocchio, MuJoCo and PyBullet take a file name
+    as UTF-8 text, which a name holding bytes that are not UTF-8 (0xff: U+DCFF to Python) is
+    not; each failed with "UnicodeEncodeError" (or a TypeError) for a file it would read."""
+    try:
+        path.encode("utf-8")
+    except UnicodeEncodeError:
+        return False
+    return True
+
+
 def _urdf_file(robot, folder: str, in_place: bool = True) -> tuple[str, dict]:
     """The file the loaders read, and its line -> the element there (for the loaders' errors):
-    the user's URDF itself (``in_place``: PyBullet finds its packages from there), or xacro's
-    output (or the URDF as read) written in ``folder``, with its packages linked beside it."""
+    the user's URDF itself (``in_place``: PyBullet finds its packages from there, when its path
+    is text the loaders take: :func:`_as_text`), or xacro's output (or the URDF as read)
+    written in ``folder``, with its packages linked beside it."""
     from lxml import etree
 
-    if in_place and not robot.from_xacro and robot.path != "-":
+    if in_place and not robot.from_xacro and robot.path != "-" and \
+            _as_text(os.path.abspath(robot.path)):
         lines: dict = {}
         for element in robot.root.iter():
             if isinstance(element.tag, str):
                 lines.setdefault(robot.locate(element).line, element)
         return os.path.abspath(robot.path), lines
     text = etree.tostring(robot.root, pretty_print=True, encoding="unicode")
-    target = Path(folder) / (Path(robot.display).name.removesuffix(".xacro") or "robot.urdf")
+    name = Path(robot.display).name.removesuffix(".xacro")
+    target = Path(folder) / (name if name and _as_text(name) else "robot.urdf")
     if not target.name.endswith(".urdf"):
         target = target.with_suffix(".urdf")
     from urdftool.description.files import write_new

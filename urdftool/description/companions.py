@@ -730,7 +730,7 @@ def may_use(robot_path: Path, companion: Path, text: bytes = b"") -> bool:
     robot is alone there or the file is named after it (an SRDF may also match by its
     ``<robot name>``, known only once the robot is loaded), or the robot's file names it (a
     ``<parameters>`` path). Errs on the side of yes: the check itself decides exactly."""
-    if companion.name.encode() in text:
+    if os.fsencode(companion.name) in text:  # (a name's bytes as the file system gives them)
         return True
     real = Path(real_path(companion))
     if not any(real.parent == Path(real_path(folder)) for folder in search_folders(robot_path)):

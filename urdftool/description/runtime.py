@@ -562,7 +562,8 @@ def _unread_naming(path: str, words: tuple[str, ...], tests: bool) -> list[tuple
     absolute, root = _file_root(path)
     if root is None:
         return []
-    names = [word.encode() for word in words] or [absolute.name.encode()]
+    names = [os.fsencode(word) for word in words] or [os.fsencode(absolute.name)]  # (a name
+    # may hold bytes that are not UTF-8: a file name's as the file system gives them)
     return [(launch, test) for launch, data, test in _not_read(root, tests)
             if any(name in data for name in names)]
 

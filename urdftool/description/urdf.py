@@ -138,6 +138,30 @@ VOCABULARY: dict[str, Place] = {
                    source="urdfdom joint.cpp parseJointMimic"),
 }
 
+# The numbers urdfdom reads, by VOCABULARY place: (attribute, count). A count of 1 is a scalar,
+# read by urdf::strToDouble of the whole text; 3 and 4 are a Vector3 (pose.h) and a Color
+# (color.h), split at spaces and each part read so (values.urdfdom_refuses holds the grammar).
+NUMBERS: dict[str, tuple[tuple[str, int], ...]] = {
+    "origin": (("xyz", 3), ("rpy", 3)),
+    "axis": (("xyz", 3),),
+    "limit": (("lower", 1), ("upper", 1), ("effort", 1), ("velocity", 1)),
+    "dynamics": (("damping", 1), ("friction", 1)),
+    "mimic": (("multiplier", 1), ("offset", 1)),
+    "calibration": (("rising", 1), ("falling", 1)),
+    "safety_controller": (("soft_lower_limit", 1), ("soft_upper_limit", 1), ("k_position", 1),
+                          ("k_velocity", 1)),
+    "mass": (("value", 1),),
+    "inertia": tuple((name, 1) for name in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")),
+    "box": (("size", 3),),
+    "cylinder": (("radius", 1), ("length", 1)),
+    "sphere": (("radius", 1),),
+    "mesh": (("scale", 3),),
+    "color": (("rgba", 4),),
+}
+# a <joint>'s children that hold numbers, in the order the joint rules read them
+JOINT_NUMBER_PLACES = ("origin", "axis", "limit", "dynamics", "mimic", "calibration",
+                       "safety_controller")
+
 # Blocks at the top level that urdfdom skips and other programs read. Their content is theirs:
 # only what ``EXTENSION_VOCABULARY`` knows of one is checked (for misspellings, never for
 # "no effect", since the reader may take more than is listed).

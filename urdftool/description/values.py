@@ -68,6 +68,33 @@ def split(text: str) -> list[str]:
     return _SPACES.split(stripped) if stripped else []
 
 
+# urdfdom's grammar is narrower than the one above in its white space alone (urdf_model's
+# utils.h strToDouble, pose.h Vector3::init, color.h Color::init). A scalar is a C++ stream's
+# read of the whole text: white space before the number is skipped, anything after it, a
+# space too, makes it "not a float". A vector is split at spaces (' ') only, empty parts
+# skipped, each part read as a scalar: a tab, line break or carriage return after a digit and
+# before the next space leaves a part that is no number ("Unable to parse component").
+def urdfdom_refuses(text: str, count: int) -> str | None:
+    """The part of ``text`` (``count`` numbers to :func:`number_tuple`) that urdfdom reads as no
+    number for its white space alone: the whole text for a scalar (``count`` 1) with white
+    space after its number, else a vector's first part holding white space after a number;
+    None when urdfdom reads it as this module does, or when this module does not (another
+    rule's finding)."""
+    if count == 1:
+        refused = text if text[-1:] in _SPACE and text.strip(_SPACE) else None
+    elif text.isprintable():  # (no tab, line break or carriage return: as nearly every text)
+        return None
+    else:
+        refused = next((part for part in text.split(" ")
+                        if any(c in _SPACE for c in part.lstrip(_SPACE))), None)
+    return refused if refused and not number_tuple(text, count)[1] else None
+
+
+def urdfdom_spelling(text: str) -> str:
+    """``text``'s numbers as every reader takes them: one space between them, none around."""
+    return " ".join(split(text))
+
+
 # The characters of a text of plain decimals (white space as str.split and re's \s read it,
 # ASCII's): strip() of them leaves nothing of such a text. Over these characters, float()
 # takes a part exactly when _DECIMAL matches it (no underscore, letter of inf or nan, nor

@@ -205,6 +205,8 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
         try:
             parsed.append(assignments(variables, words, degrees, mimics)
                           if words or argument == "q" else None)
+            if argument != "q" and parsed[-1]:
+                _squarable(parsed[-1], {"v": "velocity", "a": "acceleration"}[argument])
         except ConfigError as error:
             error.argument = argument
             raise
@@ -214,6 +216,19 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
     parsed[0] = {**{variable.name: variable.default for variable in variables
                     if variable.default != 0.0}, **parsed[0]}
     return JointValues(*parsed, warnings)
+
+
+def _squarable(values: dict[str, float], what: str) -> None:
+    """ConfigError for a joint velocity or acceleration past :data:`~urdftool.numbers.
+    SQUARABLE`: the dynamics squares velocities (C(q, v)) and multiplies accelerations by
+    M(q); a --v of 1e308 rad/s gave numpy's overflow warnings and torques of inf N m."""
+    from urdftool.numbers import SQUARABLE, number as number_text
+
+    far = [f"joint '{name}' {what} {number_text(value)}" for name, value in values.items()
+           if not abs(value) <= SQUARABLE]
+    if far:
+        raise ConfigError(f"{', '.join(far)}: past what the dynamics computes with (at most "
+                          f"{number_text(SQUARABLE)} each)")
 
 
 def from_file(variables: list[Variable], path: str, degrees: bool = False,
@@ -462,6 +477,23 @@ def random_stream(seed):
         raise UsageError(f"--seed must be an integer, 0 or more, not {given}") from None
 
 
+def within(generator, lower, upper, size: tuple[int, int]) -> np.ndarray:
+    """Values drawn uniformly between ``lower`` and ``upper`` (per column), ``size`` of them: the
+    one uniform draw between joint limits (a scan holds it). Limits written the wrong way round
+    are a range all the same (numpy refuses them); a span past the largest float (limits of
+    -1e308 and 1e308, where numpy's uniform raises "Range exceeds valid bounds": a traceback of
+    workspace, dynamics --samples and ik) is drawn with each bound weighted, which never
+    overflows; other spans as numpy draws them."""
+    low, high = np.minimum(lower, upper), np.maximum(lower, upper)
+    with np.errstate(over="ignore"):
+        wide = ~np.isfinite(high - low)
+    if not wide.any():
+        return generator.uniform(low, high, size=size)
+    drawn = generator.random(size=size)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return np.where(wide, low * (1 - drawn) + high * drawn, low + (high - low) * drawn)
+
+
 def random(variables: list[Variable], count: int, seed=None,
            hold: Collection[str] = ()) -> Configurations:
     """``count`` configurations drawn uniformly within the limits (continuous: [-pi, pi]).
@@ -483,7 +515,5 @@ def random(variables: list[Variable], count: int, seed=None,
             span = _RANDOM_SPAN.get(v.kind, math.pi)
             lower.append(-span)
             upper.append(span)
-    # limits written the wrong way round are a range all the same (numpy refuses them)
-    values = generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
-                               size=(count, len(variables)))
+    values = within(generator, lower, upper, (count, len(variables)))
     return Configurations(variables, values, [])

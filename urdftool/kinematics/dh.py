@@ -237,9 +237,9 @@ def textbook_form(table: DHTable) -> DHTable:
             for j in rows]
     result = DHTable(table.convention, _clean_matrix(base), _clean_matrix(tool), rows,
                      table.base_link, table.tip_link, table.residual)
-    from urdftool.kinematics.configuration import random_stream
+    from urdftool.kinematics.configuration import random_stream, within
 
-    probe = random_stream(0).uniform(-math.pi, math.pi, (16, len(rows)))
+    probe = within(random_stream(0), -math.pi, math.pi, (16, len(rows)))
     error = float(np.abs(table_fk(result, probe) - table_fk(table, probe)).max())
     if not error <= 1e-9:
         raise DHError(f"the textbook form of the table does not reproduce it ({number(error, 2)})")

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from urdftool.numbers import length, number, power
+from urdftool.numbers import SQUARABLE, length, number, power
 from urdftool.errors import ConfigError, available
 from urdftool.kinematics.chain import Chain, frame_jacobian
 
@@ -38,9 +38,8 @@ _DAMPING = 1e-12  # as Pinocchio's CLIK example: the step bound does the rest
 _MAX_STEP = 1.0  # [rad or m]: the longest step (its 2-norm)
 _STALL = 15  # iterations without progress before the next seed
 _AT_LIMIT = 1e-9  # [rad or m]
-MAX_TARGET = 1e150  # [m] the farthest coordinate of a target: the solver squares distances (a
-# target at 1e308 overflowed to "inf m" after numpy's overflow warnings); sqrt of the largest
-# float is 1.3e154
+MAX_TARGET = SQUARABLE  # [m] the farthest coordinate of a target: the solver squares distances
+# (a target at 1e308 overflowed to "inf m" after numpy's overflow warnings)
 
 
 @dataclass
@@ -374,13 +373,11 @@ def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) 
     first = _wrap(chain, first, chain.continuous)
     if count <= 1:
         return first[None, :]
-    from urdftool.kinematics.configuration import random_stream
+    from urdftool.kinematics.configuration import random_stream, within
 
-    generator = random_stream(seed)
     lower = np.where(np.isfinite(chain.lower), chain.lower, -math.pi)
     upper = np.where(np.isfinite(chain.upper), chain.upper, math.pi)
-    return np.vstack([first, generator.uniform(np.minimum(lower, upper), np.maximum(lower, upper),
-                                               size=(count - 1, len(first)))])
+    return np.vstack([first, within(random_stream(seed), lower, upper, (count - 1, len(first)))])
 
 
 def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,

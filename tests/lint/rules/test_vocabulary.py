@@ -285,3 +285,71 @@ def test_a_robot_not_plain_enough_is_walked_whole(tmp_path, monkeypatch):
         _check(tmp_path / str(len(extra)), text.replace("</robot>", f"{extra}</robot>"))
         # the robot and its four joints, or (plain) the third (as the first) not walked
         assert len(walks) == (4 if not extra else 5), extra
+
+
+NUMBERS_SPACED = """<robot name="r"><link name="a"/>
+<link name="b"><visual><origin xyz="0.1\t0 0"/><geometry><box size="1 1 1&#9;"/></geometry>
+  <material name="m"><color rgba="1 1 1 1&#9;"/></material></visual>
+  <inertial><origin xyz=" 0 0 0.1 " rpy="\t0 0 0"/><mass value="2 "/>
+  <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+  <origin xyz="0.1&#10;0 0"/><limit lower="-1 " upper="1" effort="1" velocity="1"/></joint>
+<gazebo reference="b"><origin xyz="1\t0 0"/><mu1>0.5 </mu1></gazebo>
+</robot>
+"""
+
+
+def test_numbers_with_white_space_urdfdom_refuses_are_found_as_written(tmp_path):
+    # a raw tab inside a vector is a space to lxml and a tab to TinyXML2 (urdfdom): the file's
+    # bytes are judged; white space before a number and spaces around a vector are read by
+    # all; a <gazebo> block is not urdfdom's
+    found, findings = check_folder(tmp_path, {"robot.urdf": NUMBERS_SPACED}, select=("U023",))
+    assert found == [("robot.urdf", 2, "U023"), ("robot.urdf", 2, "U023"),
+                     ("robot.urdf", 3, "U023"), ("robot.urdf", 4, "U023"), ("robot.urdf", 7, "U023"),
+                     ("robot.urdf", 7, "U023")]
+    messages = {f.line: [] for f in findings}
+    for f in findings:
+        messages[f.line].append(f.message)
+    # measured with urdfdom 6.0's check_urdf and Pinocchio 4.1: a joint's number refuses the
+    # robot, a link's inertial or visual ends the link's reading there, a colour is dropped
+    assert any('<origin xyz="0.1\\t0 0">' in m and "refuses the robot" not in m and
+               "PyBullet reads the vector as zeros" in m and 'write "0.1 0 0"' in m
+               for m in messages[2])
+    assert "drops the colour" in messages[3][0]
+    assert any('<mass value="2 ">' in m and "without its mass (0 to KDL and Pinocchio)" in m
+               and "PyBullet" not in m for m in messages[4])
+    assert all("refuses the robot" in m for m in messages[7])
+    assert sorted(edit.text for f in findings for edit in f.fix.edits) == \
+        ["-1", "0.1 0 0", "0.1 0 0", "1 1 1", "1 1 1 1", "2"]
+
+
+def test_numbers_with_white_space_in_a_xacro_are_judged_as_expanded(tmp_path):
+    from urdftool.lint.options import CheckOptions, Selection
+    from urdftool.lint.engine import load_and_check
+
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:property name="m" value="2"/><link name="a"/><link name="b"><inertial>'
+        '<mass value="${m} "/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial><visual><origin xyz="0\t0 0"/><geometry><sphere radius="1"/></geometry>'
+        '</visual></link><joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        '</joint></robot>')
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"),
+                            CheckOptions(selection=Selection(("U023",))))
+    # xacro's parser makes the raw tab a space, as urdfdom then reads it; the expression's
+    # space stays, and the fix cannot edit an expression
+    assert [(f.line, f.code) for f in result.findings] == [(1, "U023")]
+    assert "no automatic fix" in result.findings[0].message
+
+
+def test_a_vector_written_across_lines_is_found_among_values_of_the_same_text(tmp_path):
+    # the only sign in the file is a line break after a number (no tab, no space before a
+    # quote): the byte search passed it over; and 300 origins "0 0 0" written on one line
+    # are the same text to lxml, which only the one written across lines is
+    joints = "".join(f'<link name="l{i}"/><joint name="j{i}" type="fixed"><parent link="a"/>'
+                     f'<child link="l{i}"/><origin xyz="0 0 0"/></joint>\n' for i in range(300))
+    text = (f'<robot name="r"><link name="a"><visual><origin xyz="0\n0 0"/><geometry>'
+            f'<box size="1 1 1"/></geometry></visual></link>\n{joints}</robot>\n')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
+    assert found == [("robot.urdf", 1, "U023")]
+    assert '"0\\n0"' in findings[0].message

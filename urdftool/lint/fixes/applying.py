@@ -43,24 +43,27 @@ def plan(results, unsafe: bool = False, read=None) -> Plan:
     from urdftool.description.files import read_regular
     from urdftool.description.packages import containment_root
 
-    candidates = []
+    candidates, sites = [], {}
     for checked in results:
         if checked is None or checked.path == "-":
             continue
         root = containment_root(os.path.dirname(os.path.abspath(checked.path)))
-        candidates.extend((finding.fix, root) for finding in checked.findings
-                          if finding.fix is not None and (finding.fix.safe or unsafe))
-    return _take(candidates, read or read_regular)
+        for finding in checked.findings:
+            if finding.fix is not None and (finding.fix.safe or unsafe):
+                candidates.append((finding.fix, root))
+                sites[id(finding.fix)] = finding.location.via
+    return _take(candidates, read or read_regular, sites)
 
 
-def _take(candidates, read) -> Plan:
-    """The plan of ``candidates``: (fix, containment root) pairs, in order."""
+def _take(candidates, read, sites: dict | None = None) -> Plan:
+    """The plan of ``candidates``: (fix, containment root) pairs, in order; ``sites``: id of a
+    fix -> the macro call sites of its finding's element (:func:`_disputed`)."""
     from urdftool.description.files import inside
 
     result = Plan()
     current: dict[str, bytes] = {}
     taken: dict[str, _Taken] = {}
-    disputed = _disputed([fix for fix, _ in candidates])
+    disputed = _disputed([fix for fix, _ in candidates], sites)
     created: dict[str, bytes] = {}
     skipped: set[int] = set()  # (ids, as the skipped were told apart; the applied by value)
     applied: set[Fix] = set()
@@ -148,9 +151,14 @@ def _overlap(one: Edit, other: Edit) -> bool:
     return one.start < other.end and other.start < one.end
 
 
-def _disputed(candidates: list[Fix]) -> dict[int, str]:
-    """Fixes (by id) whose edits overlap a different edit of another fix: a literal in a macro
-    that serves several elements needing different values. None of them is taken."""
+def _disputed(candidates: list[Fix], sites: dict | None = None) -> dict[int, str]:
+    """Fixes (by id) whose edits overlap a different edit of another fix made for another
+    element: a literal in a macro that serves several elements needing different values. None
+    of them is taken. ``sites`` (id of a fix -> its element's macro call sites): two fixes of
+    one element (the same call sites: U023's spacing and U206's unit axis of one ``xyz``) are
+    no dispute; the first is taken, the other waits for the next pass (:func:`_refusal`:
+    it overlaps), whose check reads the text the first wrote. Without ``sites`` every overlap
+    is one."""
     spans: dict[str, list[tuple[Edit, int]]] = {}
     for fix in candidates:
         for edit in fix.edits:
@@ -163,7 +171,8 @@ def _disputed(candidates: list[Fix]) -> dict[int, str]:
                 other, second = edits[later]
                 if other.start > edit.end:
                     break
-                if owner != second and _overlap(edit, other):
+                if owner != second and _overlap(edit, other) and (
+                        sites is None or sites.get(owner) != sites.get(second)):
                     why = (f"the text at {edit.file}:{edit.line} would need different values "
                            "for different elements (a macro used more than once?)")
                     disputed[owner] = disputed[second] = why

@@ -7,7 +7,8 @@ import math
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import length, number, unit
 from urdftool.errors import available
-from urdftool.description.urdf import AXIS, JOINT_TYPES, LIMITED, MOVING
+from urdftool.description.urdf import (AXIS, JOINT_NUMBER_PLACES, JOINT_TYPES, LIMITED, MOVING,
+                                       NUMBERS)
 from urdftool.description.values import finite, number_tuple, parse_numbers
 
 # An axis is a unit vector when its length is within this of 1. CAD exporters round each
@@ -17,15 +18,8 @@ from urdftool.description.values import finite, number_tuple, parse_numbers
 UNIT_TOLERANCE = 1e-4
 
 # (child tag, attribute, how many numbers) read as numbers in a joint
-NUMERIC_FIELDS = (
-    ("origin", "xyz", 3), ("origin", "rpy", 3), ("axis", "xyz", 3),
-    ("limit", "lower", 1), ("limit", "upper", 1), ("limit", "effort", 1), ("limit", "velocity", 1),
-    ("dynamics", "damping", 1), ("dynamics", "friction", 1),
-    ("mimic", "multiplier", 1), ("mimic", "offset", 1),
-    ("calibration", "rising", 1), ("calibration", "falling", 1),
-    ("safety_controller", "soft_lower_limit", 1), ("safety_controller", "soft_upper_limit", 1),
-    ("safety_controller", "k_position", 1), ("safety_controller", "k_velocity", 1),
-)
+NUMERIC_FIELDS = tuple((tag, attribute, count) for tag in JOINT_NUMBER_PLACES
+                       for attribute, count in NUMBERS[tag])  # (urdf.NUMBERS: one owner)
 
 
 def _name(joint) -> str:

@@ -7,16 +7,17 @@ word. The names it reads, where, and which it requires are the data of
 (``drake:``, ``xacro:``) and the blocks other programs read (``<gazebo>``, ``<transmission>``,
 ``<ros2_control>``, ``<sensor>``, ``<mujoco>``: :data:`~urdftool.description.urdf.EXTENSIONS`)
 are left alone, except for the parts of transmissions and ros2_control whose names are known,
-where a close misspelling is reported.
+where a close misspelling is reported. The numbers it reads are read by its own grammar, whose
+white space is narrower than XML's and other loaders' (U023).
 """
 
 from __future__ import annotations
 
 import re
 
-from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, VOCABULARY, Place,
-                                       is_namespaced, is_xacro, version_problem, where_valid)
-from urdftool.description.values import parse_numbers
+from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, NUMBERS, VOCABULARY,
+                                       Place, is_namespaced, is_xacro, version_problem, where_valid)
+from urdftool.description.values import parse_numbers, urdfdom_refuses, urdfdom_spelling
 from urdftool.description.xml import child_list
 from urdftool.lint.catalogue import Severity, rule
 
@@ -407,3 +408,182 @@ def _reader(unknown: _Unknown) -> str:
         return "ros2_control" if unknown.place.startswith("ros2_control") else \
             "the transmission parser"
     return "urdfdom"
+
+
+@rule("U023", "number-white-space", Severity.WARNING)
+def number_white_space(robot):
+    """A number written with white space urdfdom refuses: after a scalar, or a tab inside a vector.
+
+    urdfdom reads a single number (a mass, a limit, a radius) only when nothing follows it, not
+    even a space (``value="2 "``: "mass [2 ] is not a float"), and splits a vector (``xyz``,
+    ``rpy``, ``size``, ``scale``, ``rgba``) at spaces only, so that a tab, line break or carriage
+    return after a number leaves a part that is no number ("Unable to parse component"). In a
+    joint it then refuses the robot: robot_state_publisher, RViz, MoveIt and Gazebo (through
+    sdformat) do not load it. In a link it logs an error and reads no more of the link: an
+    ``<inertial>`` so written leaves the link without mass (0 to KDL and Pinocchio), visuals
+    and collisions. A colour so written is dropped. PyBullet reads a vector with a tab or line
+    break between its numbers as ``0 0 0``. MuJoCo and yourdfpy read every such spelling as
+    meant: a warning. White space before a number, and spaces around a vector's numbers, every
+    reader takes.
+
+    A tab or line break written raw in an attribute is a space to the XML parsers that
+    normalise attributes (lxml, expat: xacro's output has none) and stays what it is to
+    TinyXML2 (urdfdom, PyBullet): a URDF's own bytes are judged. ``&#9;`` is a tab to all.
+
+    Fix (safe): the numbers written with one space between them and none around.
+
+    Bad: ``<mass value="2 "/>``, ``<origin xyz="0.1&#9;0 0"/>``
+    Good: ``<mass value="2"/>``, ``<origin xyz="0.1 0 0"/>``
+    """
+    sources = [data for data in robot.sources.values() if data]
+    if robot.sources and not any(map(_suspect, sources)) and \
+            (robot.from_xacro or not any(map(_raw_line_break, sources))):
+        return  # (nothing written so, as in nearly every robot: no walk)
+    from urdftool.lint.fixes import offer, set_attribute
+    raw = None if robot.from_xacro else _raw_spaced(robot)
+    for element in robot.root.iter(*NUMBERS):
+        fields = NUMBERS[element.tag]
+        for attribute, count in fields:
+            text = element.get(attribute)
+            if text is None:
+                continue
+            part = urdfdom_refuses(text, count)
+            if part is None and raw and count > 1 and text in raw and \
+                    _written_there(element, raw[text]):
+                text, part = _as_written(robot, element, attribute, count)
+            if part is None or _place(element) != element.tag:
+                continue
+            yield offer(element, _refused(element, attribute, text, part, count),
+                        "write the numbers with one space between them",
+                        set_attribute(robot, element, attribute, urdfdom_spelling(text)))
+
+
+def _suspect(data: bytes) -> bool:
+    """Whether ``data`` (a file read) holds what every spelling U023 finds is written with, a
+    xacro's too (in a property's value or a literal): white space before a quote, a character
+    reference (``&#9;``), a tab or a carriage return. Byte searches, not a pattern: a 5 MB
+    robot is searched in a few ms, where the walk of its 10,000 links' numbers costs 0.2 s."""
+    return any(needle in data for needle in _SUSPECT)
+
+
+_SUSPECT = (b"\t", b"\r", b"&#", b' "', b" '", b'\n"', b"\n'")
+
+
+def _raw_line_break(data: bytes) -> bool:
+    """Whether a URDF's bytes hold a line break inside a value of number characters (a vector
+    written across lines, which lxml reads as a space and TinyXML2 keeps), looked for only
+    where some line does not end a tag (a 5 MB robot whose every line ends one: two counts)."""
+    return data.count(b"\n") != data.count(b">\n") and _RAW_SPACED.search(data) is not None
+
+
+# A quoted value of number characters holding a tab, line feed or carriage return as written:
+# lxml reads each as a space (attribute-value normalisation), TinyXML2 keeps it.
+_RAW_SPACED = re.compile(rb"""=[ \t\r\n]*(?:"([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.eE \t\r\n]*)"|"""
+                         rb"""'([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.eE \t\r\n]*)')""")
+
+
+def _raw_spaced(robot) -> dict[str, list[tuple[int, int]]]:
+    """The values (as lxml reads them) written with a raw tab or line break in the robot's
+    file, read from its bytes, each with the lines it spans (first, last); empty for nearly
+    every robot."""
+    found: dict[str, list[tuple[int, int]]] = {}
+    for data in robot.sources.values():
+        if data is None:
+            continue
+        line, counted = 1, 0
+        for match in _RAW_SPACED.finditer(data):
+            line += data.count(b"\n", counted, match.start())
+            counted = match.start()
+            raw = match.group(1) if match.group(1) is not None else match.group(2)
+            value = raw.decode().replace("\r\n", " ").translate(_NORMALISED)
+            found.setdefault(value, []).append((line, line + raw.count(b"\n")))
+    return found
+
+
+# [lines] from the last line of a value to the '>' of its start tag, at most (the attributes
+# after it, one a line, as the SolidWorks exporter writes them): where lxml puts an element's
+# line, which is compared with each value's lines before the tag is looked at
+_TAG_TAIL = 64
+
+
+def _written_there(element, spans: list[tuple[int, int]]) -> bool:
+    """Whether ``element``'s start tag may hold a value spanning one of ``spans``: lxml's line
+    of the element (its start tag's '>') is within :data:`_TAG_TAIL` lines after it. An
+    integer comparison per element: one look at the tag then confirms it (a robot repeats its
+    values, 20,000 origins ``0 0 0`` beside one written across lines)."""
+    end = element.sourceline
+    return end is not None and any(first <= end <= last + _TAG_TAIL for first, last in spans)
+
+
+_NORMALISED = str.maketrans("\t\r\n", "   ")
+
+
+def _as_written(robot, element, attribute: str, count: int) -> tuple[str, str | None]:
+    """(the value as written, :func:`urdfdom_refuses` of it) where ``element``'s start tag is
+    found; (its value, None) otherwise."""
+    from urdftool.lint.fixes.tags import Unfixable, source_tag
+
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable) or attribute not in found[1].attributes:
+        return element.get(attribute), None
+    written = found[1].attributes[attribute][2].replace("\r\n", "\n")
+    return written, urdfdom_refuses(written, count)
+
+
+def _place(element) -> str | None:
+    """The :data:`VOCABULARY` place of ``element`` (None outside what urdfdom reads)."""
+    path = [element.tag, *(ancestor.tag for ancestor in element.iterancestors())][::-1]
+    if path[0] != "robot":
+        return None
+    key = "robot"
+    for tag in path[1:]:
+        key = VOCABULARY[key].children.get(tag)
+        if key is None:
+            return None
+    return key
+
+
+def _refused(element, attribute: str, text: str, part: str, count: int) -> str:
+    """U023's message: the text, why urdfdom refuses it, what each consumer then does (urdfdom
+    6.0's check_urdf and Pinocchio 4.1, measured: a joint's number refuses the robot; a link's
+    inertial, visual or collision ends urdfdom's reading of the link there, with an error on
+    its log; a colour is dropped)."""
+    said = f"<{element.tag} {attribute}=\"{_shown(text)}\">"
+    if count == 1:
+        why = "urdfdom reads a number only when nothing follows it, not even white space,"
+    else:
+        why = f"urdfdom splits a vector at spaces only, so \"{_shown(part)}\" is no number to it,"
+    ancestors = [element, *element.iterancestors()]
+    holder = next((a for a in ancestors if a.tag in ("joint", "link", "material")), None)
+    if holder is None or holder.tag == "joint":
+        effect = ("and refuses the robot: robot_state_publisher, RViz, MoveIt and Gazebo "
+                  "(sdformat) do not load it")
+    elif element.tag == "color":
+        effect = ("and drops the colour (an error on its log): RViz and Gazebo (sdformat) draw "
+                  "the visual without it")
+    else:
+        part_of = next(a for a in ancestors if a.getparent() is holder)
+        lost = _LOST.get(part_of.tag, f"this <{part_of.tag}>")
+        effect = (f"and reads no more of the link from this <{part_of.tag}> on (an error on its "
+                  "log): robot_state_publisher, RViz, MoveIt and Gazebo (sdformat) get the link "
+                  f"without {lost}")
+    if count > 1 and any(c in "\t\n\r\f\v" for c in text.strip(" \t\n\r\f\v")):
+        effect += ", and PyBullet reads the vector as zeros"
+    where = f"{holder.tag} '{holder.get('name')}': " if holder is not None else ""
+    return f"{where}{said}: {why} {effect}; write \"{urdfdom_spelling(text)}\""
+
+
+# What a link loses where urdfdom stops reading it, by the element it stopped at: it reads the
+# first <inertial>, then the visuals, then the collisions (urdfdom link.cpp parseLink)
+_LOST = {"inertial": "its mass (0 to KDL and Pinocchio), visuals and collisions",
+         "visual": "this visual and the visuals and collisions after it",
+         "collision": "this collision and the collisions after it"}
+
+
+def _shown(text: str) -> str:
+    """A text as the message quotes it: a tab, line feed or carriage return as its escape
+    (the finding's line in any format, the text report's escaping aside)."""
+    return text.translate(_ESCAPES)
+
+
+_ESCAPES = str.maketrans({"\t": "\\t", "\n": "\\n", "\r": "\\r"})
