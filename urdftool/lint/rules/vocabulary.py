@@ -439,7 +439,6 @@ def number_white_space(robot):
     if robot.sources and not any(map(_suspect, sources)) and \
             (robot.from_xacro or not any(map(_raw_line_break, sources))):
         return  # (nothing written so, as in nearly every robot: no walk)
-    from urdftool.lint.fixes import offer, set_attribute
     raw = None if robot.from_xacro else _raw_spaced(robot)
     for element in robot.root.iter(*NUMBERS):
         fields = NUMBERS[element.tag]
@@ -453,6 +452,7 @@ def number_white_space(robot):
                 text, part = _as_written(robot, element, attribute, count)
             if part is None or _place(element) != element.tag:
                 continue
+            from urdftool.lint.fixes import offer, set_attribute  # (only for a finding: 4 M)
             yield offer(element, _refused(element, attribute, text, part, count),
                         "write the numbers with one space between them",
                         set_attribute(robot, element, attribute, urdfdom_spelling(text)))
