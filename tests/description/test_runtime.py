@@ -412,3 +412,91 @@ def test_a_robot_file_named_with_bytes_that_are_not_utf8_is_looked_for_by_its_by
     assert [Path(p).name for p in unread_naming(str(robot))] == ["bad.launch (not read)"]
     result = load_and_check(str(robot), CheckOptions())
     assert not [f for f in result.findings if f.code == "U900"]
+
+
+# --- whose a launch file is: may_run ---------------------------------------------------------
+
+SPAWNING = """<launch>
+  <node name="spawner" pkg="controller_manager" type="spawner" args="{}"/>
+</launch>"""
+
+
+def _may_run(root: Path) -> set[str] | None:
+    from urdftool.description.run_memo import one_run
+    from urdftool.description.runtime import may_run
+
+    with one_run():
+        found = may_run(root, root / "arm_description/urdf/arm.urdf.xacro")
+    return None if found is None else {str(Path(p).relative_to(root)) for p in found}
+
+
+def test_a_launch_file_that_cannot_name_the_robot_may_not_run_it(tmp_path):
+    root = _repo(tmp_path, {
+        "arm_description/launch/view.launch": SPAWNING.format("view_controller"),  # its package
+        "arm_bringup/launch/states.launch": SPAWNING.format("joint_state_controller"),
+        "other_robot/package.xml": PACKAGE.format("other_robot"),
+        "other_robot/launch/other.launch": SPAWNING.format("other_controller"),
+        # names are words: another file, another package
+        "other_robot/launch/words.launch": '<launch><param name="robot_description" textfile='
+                                           '"$(find arm_description_extra)/my_arm.urdf"/></launch>'})
+    assert _may_run(root) == {"arm_description/launch/view.launch"}
+
+
+def test_a_launch_file_may_run_the_robot_that_its_package_depends_on(tmp_path):
+    root = _repo(tmp_path, {
+        "arm_bringup/package.xml": "<package format='2'><name>arm_bringup</name>"
+                                   "<exec_depend>arm_description</exec_depend></package>",
+        "arm_bringup/launch/states.launch": SPAWNING.format("joint_state_controller"),
+        "other_robot/package.xml": PACKAGE.format("other_robot"),
+        "other_robot/launch/other.launch": SPAWNING.format("other_controller")})
+    assert _may_run(root) == {"arm_bringup/launch/states.launch"}
+
+
+def test_a_launch_file_naming_the_package_or_the_file_or_including_one_that_does_may_run_it(
+        tmp_path):
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/package.launch": '<launch><param name="robot_description" '
+                                             'textfile="$(find arm_description)/urdf/x.urdf"/></launch>',
+        "arm_bringup/launch/file.launch.py": 'robot = "arm" + ".urdf.xacro"',
+        # includes one that may: by its file's name, and by its package's
+        "sim/package.xml": PACKAGE.format("sim"),
+        "sim/launch/sim.launch": '<launch><include file="$(dirname)/../../arm_bringup/launch/'
+                                 'package.launch"/></launch>',
+        "world/package.xml": PACKAGE.format("world"),
+        "world/launch/world.launch": '<launch><include file="$(find sim)/launch/x.launch"/></launch>',
+        "other_robot/package.xml": PACKAGE.format("other_robot"),
+        "other_robot/launch/other.launch": SPAWNING.format("joint_state_controller")})
+    assert _may_run(root) == {"arm_bringup/launch/package.launch",
+                              "arm_bringup/launch/file.launch.py", "sim/launch/sim.launch",
+                              "world/launch/world.launch"}
+
+
+def test_every_launch_file_may_run_the_robot_is_none(tmp_path):
+    root = _repo(tmp_path, {"arm_description/launch/view.launch": SPAWNING.format("c")})
+    assert _may_run(root) is None
+
+
+def test_what_a_launch_file_that_cannot_name_the_robot_starts_is_not_the_robots(tmp_path):
+    # before: a configuration describing no robot was every robot's, its spawns too
+    root = _repo(tmp_path, {
+        "arm_bringup/launch/states.launch": SPAWNING.format("joint_state_controller"),
+        "arm_description/launch/view.launch": SPAWNING.format("view_controller")})
+    robot = load_and_check(str(root / "arm_description/urdf/arm.urdf.xacro"), CheckOptions()).robot
+    facts = runtime(robot)
+    assert [Path(c.top.path).name for c, _ in facts.configurations] == ["view.launch"]
+    assert [s.name for s in facts.spawns] == ["view_controller"]
+
+
+def test_an_index_of_some_launch_files_reads_what_they_include(tmp_path):
+    from urdftool.description.run_memo import one_run
+
+    root = _repo(tmp_path, {
+        "arm_description/launch/view.launch": '<launch><include file="$(find arm_bringup)/'
+                                              'launch/control.launch"/></launch>',
+        "arm_bringup/launch/control.launch": SPAWNING.format("arm_controller"),
+        "arm_bringup/launch/other.launch": SPAWNING.format("other_controller")})
+    with one_run():
+        index = launch_index(root, frozenset({str(root / "arm_description/launch/view.launch")}))
+        [configuration] = index.configurations
+        assert [s.arguments[0].text for s in configuration.started] == ["arm_controller"]
+        assert sorted(Path(p).name for p in index.files) == ["control.launch", "view.launch"]

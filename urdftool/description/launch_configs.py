@@ -36,7 +36,7 @@ import sys
 from pathlib import Path
 
 from urdftool.description.documents import read_text
-from urdftool.description.files import inside, kind_of, real_path, tree, walk
+from urdftool.description.files import inside, kind_of, listing, real_path, tree, tree_made, walk
 from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE, MAX_TEXT, Arg,
                                          Condition, Description, Include, LaunchFile, ParamFile,
                                          Start, Value, is_launch_file, is_launch_name,
@@ -592,21 +592,39 @@ class Configuration(Record):
 
 class LaunchIndex(Record):
     """Every launch file of a repository, read; and each run as a configuration (a launch
-    test among them is in ``files``, not in ``configurations``: :func:`launch_tests`)."""
+    test among them is in ``files``, not in ``configurations``: :func:`launch_tests`). An
+    index of some of them (:func:`launch_index`'s ``only``) reads the others only as those
+    include them (:meth:`included`)."""
 
     root: Path
     files: dict  # real path -> LaunchFile
     configurations: list
     truncated: bool
+    rest: list | dict | None  # the launch files not read yet (None: every one read); by real
+    # path once an include asks
 
-    __slots__ = ("root", "files", "configurations", "truncated")
+    __slots__ = ("root", "files", "configurations", "truncated", "rest")
 
     def __init__(self, root: Path, files: dict, configurations: list,
-                 truncated: bool = False) -> None:
+                 truncated: bool = False, rest: list | dict | None = None) -> None:
         self.root = root
         self.files = files
         self.configurations = configurations
         self.truncated = truncated
+        self.rest = rest
+
+    def included(self, key: str) -> LaunchFile | None:
+        """The launch file of real path ``key`` as an include finds it: read when first
+        included, in an index of some launch files."""
+        found = self.files.get(key)
+        if found is None and isinstance(self.rest, list):
+            self.rest = {_key(path): path for path in self.rest}
+        if found is None and self.rest is not None and key in self.rest:
+            launch = read_launch(self.rest.pop(key), room=reading_room(self.root),
+                                 modules=repository_modules(self.root))
+            if was_read(launch):
+                self.files[key] = found = launch
+        return found
 
 
 _LAUNCH_NAMES = "*.launch|*.py|*.xml|*.yaml|*.yml"  # what is_launch_file may take
@@ -637,6 +655,30 @@ def _launch_files(root: Path, tests: bool) -> tuple[list[Path], bool]:
                 if len(found) >= MAX_LAUNCH_FILES:
                     return found, True
     return found, False
+
+
+@per_run
+def launch_file_packages(root: Path) -> dict[str, str | None]:
+    """Each launch file of ``root`` (named as :func:`launch_files` names it) -> the folder of
+    the package holding it (the nearest folder at or above its own, up to ``root``, whose
+    listing names a package.xml), None in no package; from the launch-file walk's listings."""
+    paths = launch_files(root)[0]
+    listings = tree_made(root, "package.xml|[!.]*/", MAX_WALK_DEPTH + 1, SKIP_DIRS) or {}
+    top, holders, found = os.fspath(root), {}, {}
+
+    def holder(folder: str) -> str | None:
+        if folder not in holders:
+            entries = listings[folder] if folder in listings else listing(folder, "package.xml")
+            if any(name == "package.xml" for name, _ in entries):
+                holders[folder] = folder
+            else:
+                parent = os.path.dirname(folder)
+                holders[folder] = None if folder == top or parent == folder else holder(parent)
+        return holders[folder]
+
+    for path in paths:
+        found[os.fspath(path)] = holder(os.path.dirname(os.fspath(path)))
+    return found
 
 
 def read_launch(path: Path, only_test: bool = False, room: Room | None = None,
@@ -736,19 +778,25 @@ def reading_room(root: Path) -> Room:
 
 
 @per_run
-def launch_index(root: Path) -> LaunchIndex:
-    """The launch files of the repository ``root`` read and expanded (once per run)."""
+def launch_index(root: Path, only: frozenset | None = None) -> LaunchIndex:
+    """The launch files of the repository ``root`` read and expanded (once per run); with
+    ``only`` (paths as :func:`launch_files` names them), those launch files, and the others
+    as they include them: what a user runs is one of ``only`` that none of them includes."""
     paths, truncated = launch_files(root)
+    chosen = paths if only is None else [p for p in paths if os.fspath(p) in only]
     files = {}
+    if not chosen:
+        return LaunchIndex(root, files, [], truncated)
     # (asked once: each answer remembered per run is replayed into the record at each asking)
     room, modules = reading_room(root), repository_modules(root)
-    for path in paths:
+    for path in chosen:
         launch = read_launch(path, room=room, modules=modules)
         if was_read(launch):
             files[_key(path)] = launch
     packages = packages_below(root)
-    index = LaunchIndex(root, files, [], truncated)
-    expanded = [_expand_top(index, launch, packages) for launch in files.values()
+    index = LaunchIndex(root, files, [], truncated, None if only is None else [
+        p for p in paths if os.fspath(p) not in only])
+    expanded = [_expand_top(index, launch, packages) for launch in list(files.values())
                 if not launch.test]
     # what a user runs is a launch file no other includes: an included one (a controllers-only
     # launch file, planning_context.launch) runs as part of those including it
@@ -848,7 +896,7 @@ def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> Non
 def _include(index, action: Include, scope: Scope, when: When, configuration: Configuration,
              packages: dict, via: tuple, depth: int, remaps: tuple = ()) -> None:
     path, _ = resolve_path(action.path, scope)
-    target = index.files.get(_key(path)) if path is not None else None
+    target = index.included(_key(path)) if path is not None else None
     # a launch test cannot be included (ros2 launch asks it for generate_launch_description):
     # what it starts is never a deployment's
     if target is None or target.test or depth >= MAX_INCLUDE_DEPTH or target.display in via:

@@ -29,10 +29,12 @@ from urdftool.description.documents import read_yaml
 from urdftool.description.files import enclosing_root, kind_of, listing, read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
 from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
-                                                 Loaded, Resolved, Started, launch_files,
-                                                 launch_index, launch_tests, read_launch,
-                                                 reading_room, repository_modules, shown)
-from urdftool.description.packages import build_tools, containment_root, packages_below
+                                                 Loaded, Resolved, Started, launch_file_packages,
+                                                 launch_files, launch_index, launch_tests,
+                                                 read_launch, reading_room, repository_modules,
+                                                 shown)
+from urdftool.description.packages import (build_tools, containment_root, declared_dependencies,
+                                           package_name, package_of, packages_below)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.records import Frozen, NEW, Record, replace
@@ -176,7 +178,7 @@ def _runtime(robot) -> Runtime:
     if placed is None:
         return found
     path, root = placed
-    index = launch_index(root)
+    index = launch_index(root, may_run(root, path))
     found.read = [launch.path for launch in index.files.values()]
     real = real_path(path)
     mine = None
@@ -197,6 +199,65 @@ def _runtime(robot) -> Runtime:
     for configuration, relation in found.configurations:
         _spawns(configuration, relation, found)
     return found
+
+
+@per_run
+def may_run(root: Path, path: Path) -> frozenset | None:
+    """The launch files of the repository ``root`` (named as
+    :func:`~urdftool.description.launch_configs.launch_files` names them) that may run the
+    robot file ``path``, told from their bytes, never parsed; None when every one may. The one
+    owner of whose a launch configuration is before it is read: a launch file finds a robot
+    through its package or its file, so it may run the robot when
+
+    - it is in the robot's package (or, the robot in no package, in none either), or its
+      package's package.xml depends on the robot's package;
+    - its text names the robot's package, or its file (the name before its first ``.``:
+      ``r2d2`` of ``r2d2.urdf.xacro``, as ``f"{robot}.urdf.xacro"`` builds it), as a word
+      (``robot`` is not named by ``robot_description``, nor ``arm`` by ``my_arm.urdf``);
+    - its text names a launch file that may run it (its file name), or the package holding
+      one: an include of it.
+
+    Any other is another robot's, or no robot's: what it loads and starts, even describing no
+    robot, is not this robot's (a launch file that cannot be read may run it: it is read, and
+    its problem is told). What it includes is read as it includes it."""
+    paths = launch_files(root)[0]
+    holders = launch_file_packages(root)
+    folder = package_of(path)
+    own = None if folder is None else os.fspath(folder)
+    name = None if folder is None else package_name(folder)
+    names = [os.fsencode(word) for word in (name, path.name.split(".")[0] or path.name) if word]
+    may, texts, depending = [], {}, {own: True}
+    for launch in paths:
+        key = os.fspath(launch)
+        holder = holders.get(key)
+        if holder not in depending:
+            depending[holder] = name is not None and holder is not None and \
+                name in (declared_dependencies(Path(holder)) or ())
+        if depending[holder]:
+            may.append(key)
+            continue
+        try:
+            texts[key] = read_regular(launch, MAX_LAUNCH_SIZE, as_="launch")
+        except OSError:
+            may.append(key)
+    if not texts:
+        return None
+    told, grown = 0, True
+    while grown and texts:  # each launch file that may run it names more: its includers may
+        for key in may[told:]:
+            holder = holders.get(key)
+            names.append(os.fsencode(os.path.basename(key)))
+            if holder is not None and holder != own:
+                names.append(os.fsencode(package_name(Path(holder)) or ""))
+        told, names = len(may), [word for word in dict.fromkeys(names) if word]
+        # a name as a word: not arm of my_arm.urdf, nor robot of robot_description
+        naming = re.compile(rb"(?<!\w)(?:" + b"|".join(map(re.escape, names)) + rb")(?!\w)")
+        for key, data in list(texts.items()):
+            if naming.search(data):
+                may.append(key)
+                del texts[key]
+        grown = len(may) > told
+    return frozenset(may) if texts else None
 
 
 def _narrowed(configuration: Configuration, real: str, path: Path, root: Path) -> Configuration:
@@ -556,15 +617,18 @@ def unread_naming(path: str, words: tuple[str, ...] = (), tests: bool = True) ->
             for launch, test in _unread_naming(path, words, tests)]
 
 
-def _unread_naming(path: str, words: tuple[str, ...], tests: bool) -> list[tuple[Path, bool]]:
+def _unread_naming(path: str, words: tuple[str, ...], tests: bool,
+                   running: bool = False) -> list[tuple[Path, bool]]:
     """(path, whether a launch test) of each launch file not read that :func:`unread_naming`
-    names."""
+    names; with ``running``, only those that may run the robot file ``path``
+    (:func:`may_run`): the question is what runs with it."""
     absolute, root = _file_root(path)
     if root is None:
         return []
     names = [os.fsencode(word) for word in words] or [os.fsencode(absolute.name)]  # (a name
     # may hold bytes that are not UTF-8: a file name's as the file system gives them)
-    return [(launch, test) for launch, data, test in _not_read(root, tests)
+    only = may_run(root, absolute) if running else None
+    return [(launch, test) for launch, data, test in _not_read(root, tests, only)
             if any(name in data for name in names)]
 
 
@@ -575,18 +639,20 @@ def unread_describing(path: str) -> list[tuple[str, str, int | None]]:
     robot with is not known, and is not checked."""
     root = _file_root(path)[1]
     return [(display_path(launch), *_problem(launch, root))
-            for launch, _ in _unread_naming(path, (), tests=False)]
+            for launch, _ in _unread_naming(path, (), tests=False, running=True)]
 
 
 @per_run
-def _not_read(root: Path, tests: bool) -> tuple[tuple[Path, bytes, bool], ...]:
+def _not_read(root: Path, tests: bool,
+              only: frozenset | None = None) -> tuple[tuple[Path, bytes, bool], ...]:
     """(path, text, whether it is a launch test) of each launch file (and, with ``tests``,
-    each launch test) of the repository ``root`` that was not read (:func:`unread_naming`)."""
-    read = set(launch_index(root).files) | (
+    each launch test) of the repository ``root`` that was not read (:func:`unread_naming`);
+    with ``only``, of those launch files (:func:`may_run`)."""
+    read = set(launch_index(root, only).files) | (
         {real_path(c.top.path) for c in launch_tests(root)} if tests else set())
     found = []
     for launch in launch_files(root, tests=tests)[0]:
-        if real_path(launch) in read:
+        if only is not None and os.fspath(launch) not in only or real_path(launch) in read:
             continue
         try:
             data = read_regular(launch, MAX_LAUNCH_SIZE, as_="launch")
@@ -850,7 +916,8 @@ def building_args(robot, configuration: Configuration) -> dict | None:
 def _unread_starting(robot, short: str) -> Runs | None:
     """A launch file of the robot that could not be read and names controller ``short`` may
     start it: "never" is then not known (:func:`unread_naming`)."""
-    unread = unread_naming(robot.path, (short,), tests=False) if robot.path != "-" else []
+    unread = [named(display_path(launch), False, read=False) for launch, _ in _unread_naming(
+        robot.path, (short,), tests=False, running=True)] if robot.path != "-" else []
     return Runs("conditional", f"{unread[0]} may start it", ()) if unread else None
 
 
