@@ -163,7 +163,11 @@ def same_words(wanted: str, name: str) -> bool:
     word replaced is not (``wrist_3_joint``/``hand_3_joint``, ``ur_description``/
     ``sr_description``, ``arm_0_link``/``arm_6_link``). Chosen on 60 suggestions of the real
     sweep judged by hand: 24 useful and 3 misleading kept, of 28 and 32 (difflib's ratio
-    alone: 22 and 8 at 0.75)."""
+    alone: 22 and 8 at 0.75). A name that drops words must keep one that is not a kind
+    (:data:`KIND_WORDS`) or a number: ``joint1`` names no part, and is no suggestion for
+    ``finger_joint1`` (a gripper's joint on an arm without one), nor ``interfaces`` for
+    ``state_interfaces``; of the sweep's 48 suggestions dropping a word, 3 misleading went, no
+    useful one (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays)."""
     mine, theirs = _pieces(wanted), _pieces(name)
     if "".join(mine) == "".join(theirs):
         return True
@@ -176,7 +180,36 @@ def same_words(wanted: str, name: str) -> bool:
             unmatched += 1
         else:
             left.pop(match)
-    return unmatched == 0 or not left
+    if unmatched == 0:
+        return True
+    return not left and any(word.isalpha() and word not in KIND_WORDS for word in theirs)
+
+
+# what a name's words say of its kind, not which part it is
+KIND_WORDS = frozenset(("link", "joint", "frame", "group", "interface", "interfaces", "names",
+                        "name", "controller", "transmission", "trans"))
+
+
+def renamed(wanted: str, names) -> list[str]:
+    """The names that are ``wanted`` with its first word replaced by other words, its other
+    words (two or more pieces, one of them a number) ending the name: victor.urdf's
+    transmissions name ``iiwa_joint_7``, written before the arms took their prefixes, where the
+    joints are ``victor_left_arm_joint_7`` and ``victor_right_arm_joint_7`` (difflib's ratio
+    0.57: not close). In the order given."""
+    if len(wanted) > MAX_SIMILAR_NAME:
+        return []
+    mine = _pieces(wanted)
+    first = _WORD.findall(wanted)[:1]
+    rest = mine[len(_pieces(first[0])):] if first else []
+    if len(rest) < 2 or not any(piece.isdigit() for piece in rest):
+        return []
+    found = []
+    for name in list(names)[:MAX_SIMILAR_CANDIDATES]:
+        theirs = _pieces(name) if len(name) <= MAX_SIMILAR_NAME else []
+        if len(theirs) > len(rest) and theirs[-len(rest):] == rest and \
+                theirs[:len(theirs) - len(rest)] != mine[:len(mine) - len(rest)]:
+            found.append(name)
+    return found
 
 
 _PIECE = re.compile(r"[a-z]+|[0-9]+")
