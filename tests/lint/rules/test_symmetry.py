@@ -149,3 +149,16 @@ def test_masses_of_the_same_digits_a_power_of_ten_apart_are_a_slipped_decimal_po
     other = _legs(**{shin + '<mass value="0.8"/>': shin + '<mass value="0.09"/>'})
     [(code, message)] = _found(tmp_path, other, ("U221",))
     assert message.endswith("(0.8 and 0.09 kg, 89 %)")
+
+
+def test_a_place_or_an_axis_that_differs_is_a_note_naming_the_condition(tmp_path):
+    # the real sweep: none of 36 U218/U219 findings was a slip anyone could name from the files
+    # (vendors' left and right hand models, asymmetric mountings)
+    from urdftool.diagnostics import Severity
+
+    for case in ("U218_mirror_origin.urdf", "U219_mirror_axis.urdf"):
+        (tmp_path / "r.urdf").write_text((CASES / case).read_text())
+        result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(CODES)))
+        [finding] = [f for f in result.findings if f.code == case[:4]]
+        assert finding.severity == Severity.INFO
+        assert "if the two sides are built as mirror images" in finding.message, finding.message
