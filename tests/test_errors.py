@@ -125,9 +125,9 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     ("ur_description", "sr_description", False), ("arm_0_link", "arm_6_link", False),
     ("shoulder_pan_joint", "forearm_hand_joint", False), ("link4", "imu_link", False),
     # ... and words dropped down to a kind and a number (session 19: xArm Lite 6's gripper
-    # controller on the arm alone; ros2_control's parameters)
-    ("finger_joint1", "joint1", False), ("state_interfaces", "interfaces", False),
-    ("state_interface_names", "interface_names", False), ("LR_foot_link", "LR_foot", True),
+    # controller on the arm alone), not down to a parameter's word (joint_state_broadcaster's)
+    ("finger_joint1", "joint1", False), ("state_interfaces", "interfaces", True),
+    ("state_interface_names", "interface_names", True), ("LR_foot_link", "LR_foot", True),
 ])
 def test_a_close_name_is_suggested_only_with_the_same_words(wanted, name, suggested):
     from urdftool.errors import close_names, same_words

@@ -165,9 +165,10 @@ def same_words(wanted: str, name: str) -> bool:
     sweep judged by hand: 24 useful and 3 misleading kept, of 28 and 32 (difflib's ratio
     alone: 22 and 8 at 0.75). A name that drops words must keep one that is not a kind
     (:data:`KIND_WORDS`) or a number: ``joint1`` names no part, and is no suggestion for
-    ``finger_joint1`` (a gripper's joint on an arm without one), nor ``interfaces`` for
-    ``state_interfaces``; of the sweep's 48 suggestions dropping a word, 3 misleading went, no
-    useful one (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays)."""
+    ``finger_joint1`` (a gripper's joint on an arm without one); ``interfaces`` stays for
+    ``state_interfaces`` (joint_state_broadcaster's parameter of that meaning). Of the sweep's
+    48 suggestions dropping a word, the misleading one went, no useful one
+    (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays)."""
     mine, theirs = _pieces(wanted), _pieces(name)
     if "".join(mine) == "".join(theirs):
         return True
@@ -186,8 +187,8 @@ def same_words(wanted: str, name: str) -> bool:
 
 
 # what a name's words say of its kind, not which part it is
-KIND_WORDS = frozenset(("link", "joint", "frame", "group", "interface", "interfaces", "names",
-                        "name", "controller", "transmission", "trans"))
+KIND_WORDS = frozenset(("link", "joint", "frame", "group", "controller", "transmission",
+                        "trans"))
 
 
 def renamed(wanted: str, names) -> list[str]:
