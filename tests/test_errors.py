@@ -128,6 +128,7 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     # controller on the arm alone), not down to a parameter's word (joint_state_broadcaster's)
     ("finger_joint1", "joint1", False), ("state_interfaces", "interfaces", True),
     ("state_interface_names", "interface_names", True), ("LR_foot_link", "LR_foot", True),
+    ("g_base", "gripper_base", True), ("r_gripper_aft_link", "gripper_roll_link", False),
 ])
 def test_a_close_name_is_suggested_only_with_the_same_words(wanted, name, suggested):
     from urdftool.errors import close_names, same_words

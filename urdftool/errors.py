@@ -168,15 +168,18 @@ def same_words(wanted: str, name: str) -> bool:
     ``finger_joint1`` (a gripper's joint on an arm without one); ``interfaces`` stays for
     ``state_interfaces`` (joint_state_broadcaster's parameter of that meaning). Of the sweep's
     48 suggestions dropping a word, the misleading one went, no useful one
-    (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays)."""
+    (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays). An initial stands for a
+    word in its own place only (``g_base``, ``gripper_base``): the ``r`` of
+    ``r_gripper_aft_link`` is no ``roll`` of ``gripper_roll_link``."""
     mine, theirs = _pieces(wanted), _pieces(name)
     if "".join(mine) == "".join(theirs):
         return True
-    left, unmatched = list(theirs), 0
-    for word in mine:
-        match = next((i for i, other in enumerate(left) if other == word), None)
-        if match is None:
-            match = next((i for i, other in enumerate(left) if _alike(word, other)), None)
+    left, unmatched = list(enumerate(theirs)), 0
+    for place, word in enumerate(mine):
+        match = next((i for i, (_, other) in enumerate(left) if other == word), None)
+        if match is None:  # an initial stands for the word in its own place only
+            match = next((i for i, (at, other) in enumerate(left) if _alike(word, other)
+                          and (min(len(word), len(other)) > 1 or at == place)), None)
         if match is None:
             unmatched += 1
         else:
