@@ -349,6 +349,10 @@ def test_a_centre_of_mass_inside_the_drawing_of_the_link_a_joint_moves_against_i
         '<origin xyz="0 0 0.2"/>', '<origin xyz="0 0 0.1"/>')},
                                select=("U312",))
     assert [f.severity for f in findings] == [Severity.WARNING]
+    # inside its own drawing with the sign of z flipped (Rokae's): a warning
+    _, findings = check_folder(tmp_path, {"robot.urdf": text.replace("0 0 0.08", "0 0 0.06").replace(
+        '<origin xyz="0 0 0.2"/>', '<origin xyz="0 0 -0.06"/>')}, select=("U312",))
+    assert [f.severity for f in findings] == [Severity.WARNING]
 
 
 def test_the_bound_skips_a_marker_box(tmp_path):

@@ -998,7 +998,9 @@ def com_outside_hull(robot):
     files and 2 were wrong inertials, both kept as warnings by what follows. Not a note for a
     centre of mass at the link's origin (a placeholder: the origin is on the joint, inside the
     parent's drawing by construction), nor in a robot where another link's centre of mass is
-    far outside its geometry (U307: its inertials are in another frame).
+    far outside its geometry (U307: its inertials are in another frame), nor when the centre
+    of mass read in the robot's root frame, or with a sign flipped, falls inside the link's
+    own drawing (Rokae's CAD-frame centres of mass).
 
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
@@ -1060,6 +1062,8 @@ def _drawn_by_neighbour(robot, link, properties, reach) -> str | None:
     if name not in frames:
         return None
     p, rotation = frames[name]
+    if _explained_inside(reach, properties.com, p, rotation):
+        return None
     point = tuple(a + b for a, b in zip(p, mat3.apply(rotation, properties.com)))
     body = set(reach.links) | {name}
     joined = [robot.ends()[joint]["parent"][1] for joint in
@@ -1076,6 +1080,20 @@ def _drawn_by_neighbour(robot, link, properties, reach) -> str | None:
         if drawn.outside(local, beyond=_margin) <= max(_hull_margin(drawn), COM_HULL_MIN):
             return other
     return None
+
+
+def _explained_inside(reach, com, p, rotation) -> bool:
+    """Whether the centre of mass ``com`` falls inside the link's own drawing (``reach``, the
+    link's frame at ``p``, ``rotation`` at the zero pose) once read as a common slip: given in
+    the robot's root frame (a CAD export's world frame), or with one or more signs flipped."""
+    def inside(point) -> bool:
+        return reach.outside(point, beyond=_margin) <= max(_hull_margin(reach), COM_HULL_MIN)
+
+    world = mat3.apply(mat3.transpose(rotation), tuple(a - b for a, b in zip(com, p)))
+    flipped = (tuple(c * s for c, s in zip(com, signs)) for signs in
+               ((-1, 1, 1), (1, -1, 1), (1, 1, -1), (-1, -1, 1), (-1, 1, -1), (1, -1, -1),
+                (-1, -1, -1)))
+    return inside(world) or any(inside(point) for point in flipped)
 
 
 def _frames_astray(robot) -> bool:
