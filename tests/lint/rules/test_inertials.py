@@ -353,6 +353,12 @@ def test_a_centre_of_mass_inside_the_drawing_of_the_link_a_joint_moves_against_i
     _, findings = check_folder(tmp_path, {"robot.urdf": text.replace("0 0 0.08", "0 0 0.06").replace(
         '<origin xyz="0 0 0.2"/>', '<origin xyz="0 0 -0.06"/>')}, select=("U312",))
     assert [f.severity for f in findings] == [Severity.WARNING]
+    # inside it with x and z swapped (FZI's link4, drawn along y, its mass along z): a warning
+    swapped = text.replace("0 0 0.08", "0 0 0.06").replace(
+        '<origin xyz="0 0 0.2"/>', '<origin xyz="0.06 0 0"/>').replace(
+        '<box size="0.1 0.1 0.1"/>', '<box size="0.06 0.06 0.06"/>')
+    _, findings = check_folder(tmp_path, {"robot.urdf": swapped}, select=("U312",))
+    assert [f.severity for f in findings] == [Severity.WARNING]
 
 
 def test_the_bound_skips_a_marker_box(tmp_path):

@@ -999,8 +999,8 @@ def com_outside_hull(robot):
     centre of mass at the link's origin (a placeholder: the origin is on the joint, inside the
     parent's drawing by construction), nor in a robot where another link's centre of mass is
     far outside its geometry (U307: its inertials are in another frame), nor when the centre
-    of mass read in the robot's root frame, or with a sign flipped, falls inside the link's
-    own drawing (Rokae's CAD-frame centres of mass).
+    of mass read in the robot's root frame, or with its axes swapped or a sign flipped, falls
+    inside the link's own drawing (Rokae's CAD-frame centres of mass, FZI's link4).
 
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
@@ -1085,15 +1085,18 @@ def _drawn_by_neighbour(robot, link, properties, reach) -> str | None:
 def _explained_inside(reach, com, p, rotation) -> bool:
     """Whether the centre of mass ``com`` falls inside the link's own drawing (``reach``, the
     link's frame at ``p``, ``rotation`` at the zero pose) once read as a common slip: given in
-    the robot's root frame (a CAD export's world frame), or with one or more signs flipped."""
+    the robot's root frame (a CAD export's world frame), or with its axes swapped or signs
+    flipped (FZI's link4 drawn along y, its centre of mass written along z)."""
     def inside(point) -> bool:
         return reach.outside(point, beyond=_margin) <= max(_hull_margin(reach), COM_HULL_MIN)
 
     world = mat3.apply(mat3.transpose(rotation), tuple(a - b for a, b in zip(com, p)))
-    flipped = (tuple(c * s for c, s in zip(com, signs)) for signs in
-               ((-1, 1, 1), (1, -1, 1), (1, 1, -1), (-1, -1, 1), (-1, 1, -1), (1, -1, -1),
-                (-1, -1, -1)))
-    return inside(world) or any(inside(point) for point in flipped)
+    x, y, z = com
+    slipped = [(c * s[0], d * s[1], e * s[2]) for c, d, e in ((x, y, z), (y, x, z), (z, y, x),
+                                                              (x, z, y), (y, z, x), (z, x, y))
+               for s in ((1, 1, 1), (-1, 1, 1), (1, -1, 1), (1, 1, -1), (-1, -1, 1),
+                         (-1, 1, -1), (1, -1, -1), (-1, -1, -1))][1:]
+    return inside(world) or any(inside(point) for point in slipped)
 
 
 def _frames_astray(robot) -> bool:
