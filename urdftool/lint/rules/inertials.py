@@ -994,9 +994,9 @@ def com_outside_hull(robot):
     against this one (its parent, a child): Gazebo, Bullet, MuJoCo and Pinocchio put the mass
     where the inertial says and never look at the drawing, so the dynamics are right when the
     parts drawn there move with this link (a motor's rotor, a gear on the joint's axis), which
-    only the CAD tells; in 281 public repositories 69 such findings were undecidable from the
-    files and 2 were wrong inertials, both kept as warnings by what follows. Not a note for a
-    centre of mass at the link's origin (a placeholder: the origin is on the joint, inside the
+    only the CAD tells: in the real sweep (363 repositories) 20 findings of 84 DEBATABLE rows,
+    none of a TRUE one (Fourier's GR1 legs, Romeo's and TIAGo's arms, KUKA's iiwa and iisy).
+    Not a note for a centre of mass at the link's origin (a placeholder: the origin is on the joint, inside the
     parent's drawing by construction), nor in a robot where another link's centre of mass is
     far outside its geometry (U307: its inertials are in another frame), nor when the centre
     of mass read in the robot's root frame, or with its axes swapped or a sign flipped, falls
