@@ -10,10 +10,11 @@ gripper) is declared with a suppression comment before either element of the pai
 the macro call that makes it: ``<!-- urdftool: ignore U221 -->``; a whole robot that is not
 symmetric by design with ``ignore = ["U218"...]`` in the settings.
 
-A place (U218) or an axis (U219) that differs is a note: in the real sweep none of 36 was a
-slip anyone could name from the files (vendors' left and right hand models, asymmetric
-mountings, sensors placed by design), where limits (U220) and inertials (U221) that differ were
-slips in a third of their rows (one side not updated, a decimal point).
+A place (U218) that differs, or an axis tilted less than 45 degrees from its mirror image
+(U219), is a note: in the real sweep none of 31 was a slip anyone could name from the files
+(vendors' left and right hand models, asymmetric mountings, sensors placed by design), where
+limits (U220) and inertials (U221) that differ were slips in a third of their rows (one side
+not updated, a decimal point), and an axis along another direction was one (MuR620's lifts).
 
 Nothing is said when fewer than two pairs agree with the plane they give (a robot whose sides
 are not mirror images by design: two identical arms turned 180 degrees apart, say), and each
@@ -38,6 +39,7 @@ from urdftool.physics.wheels import driven_joints
 POSITION_TOLERANCE = 0.002  # [m]: CAD exports round to 0.1 mm; a slip is a centimetre
 RELATIVE_POSITION = 0.01  # and 1 % of the distance from the plane (big robots round coarser)
 AXIS_TOLERANCE = math.radians(2.0)
+TURNED = math.radians(45.0)  # an axis this far from its mirror image is another axis (U219)
 LIMIT_TOLERANCE = 1e-3  # [rad or m] absolute, and 1 % of the range
 MASS_TOLERANCE = 0.05  # relative: left and right parts differ by cables and screws, not 5 %
 INERTIA_TOLERANCE = 0.10  # relative, on the principal moments (a tensor is rounded harder)
@@ -422,7 +424,7 @@ def _typed_pairs(robot):
             yield a, b, found, pair
 
 
-@rule("U219", "mirror-axis", Severity.INFO)
+@rule("U219", "mirror-axis", Severity.WARNING)
 def mirror_axis(robot):
     """Two joints named as a left/right pair turn about axes that are not mirror images.
 
@@ -430,11 +432,12 @@ def mirror_axis(robot):
     pairs give), up to its sign: robots choose per joint whether the same value moves both
     sides as mirror images (pitch axes both along y) or the same way (roll axes both along x,
     limits negated); U220 checks that the limits agree with that choice. An axis along
-    another direction (more than 2 degrees off) turns that limb in another plane, if the two
-    sides are built as mirror images: a **note**, as nothing that loads a robot needs them to
-    be, and in the real sweep none of 14 such findings was a slip anyone could name from the
-    files (Unitree's and iCub's left and right hand models, mecanum rollers of one handedness,
-    a SolidWorks export's thrusters 2 degrees apart).
+    another direction (45 degrees off or more) turns that limb in another plane: a warning
+    (MuR620's lift joints about y on the left and z on the right). An axis tilted from it (more
+    than 2 degrees, less than 45) is a **note** saying "if the two sides are built as mirror
+    images": in the real sweep none of these was a slip anyone could name from the files
+    (Unitree's and iCub's left and right hand models 7 and 10 degrees apart, a SolidWorks
+    export's thrusters 2 degrees apart).
 
     Bad: ``l_hip_roll`` about ``1 0 0`` and ``r_hip_roll`` about ``0 1 0``
     Good: both about ``1 0 0``, or ``1 0 0`` and ``-1 0 0``
@@ -451,7 +454,8 @@ def mirror_axis(robot):
             f"mirror images: {_text(world_axis(robot, left))} and {_text(a_right)} at the zero "
             f"pose ({what} the first is {_text(_expected_axis(robot, left, found, pair))}, up "
             f"to sign), {number(math.degrees(relation[1]), places=0)} degrees apart, if the two "
-            "sides are built as mirror images")
+            "sides are built as mirror images"), None, \
+            Severity.WARNING if relation[1] >= TURNED else Severity.INFO
 
 
 def _mirrored_limits(lower, upper):
