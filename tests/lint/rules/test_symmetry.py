@@ -152,7 +152,7 @@ def test_masses_of_the_same_digits_a_power_of_ten_apart_are_a_slipped_decimal_po
 
 
 def test_a_place_or_an_axis_tilted_is_a_note_an_axis_along_another_direction_a_warning(tmp_path):
-    # the real sweep: none of 31 U218 and tilted U219 findings was a slip anyone could name
+    # the real sweep: none of 33 U218 and tilted U219 rows was a slip anyone could name
     # from the files (vendors' left and right hand models, asymmetric mountings); MuR620's
     # lifts about y on the left and z on the right were one
     from urdftool.diagnostics import Severity

@@ -11,7 +11,7 @@ the macro call that makes it: ``<!-- urdftool: ignore U221 -->``; a whole robot 
 symmetric by design with ``ignore = ["U218"...]`` in the settings.
 
 A place (U218) that differs, or an axis tilted less than 45 degrees from its mirror image
-(U219), is a note: in the real sweep none of 31 was a slip anyone could name from the files
+(U219), is a note: in the real sweep none of 33 rows was a slip anyone could name from the files
 (vendors' left and right hand models, asymmetric mountings, sensors placed by design), where
 limits (U220) and inertials (U221) that differ were slips in a third of their rows (one side
 not updated, a decimal point), and an axis along another direction was one (MuR620's lifts).
