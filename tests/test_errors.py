@@ -124,12 +124,26 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     ("wheel_left_joint", "torso_lift_joint", False), ("wrist_3_joint", "hand_3_joint", False),
     ("ur_description", "sr_description", False), ("arm_0_link", "arm_6_link", False),
     ("shoulder_pan_joint", "forearm_hand_joint", False), ("link4", "imu_link", False),
+    # ... and words dropped down to a kind and a number (session 19: xArm Lite 6's gripper
+    # controller on the arm alone), not down to a parameter's word (joint_state_broadcaster's)
+    ("finger_joint1", "joint1", False), ("state_interfaces", "interfaces", True),
+    ("state_interface_names", "interface_names", True), ("LR_foot_link", "LR_foot", True),
+    ("g_base", "gripper_base", True), ("r_gripper_aft_link", "gripper_roll_link", False),
 ])
 def test_a_close_name_is_suggested_only_with_the_same_words(wanted, name, suggested):
     from urdftool.errors import close_names, same_words
 
     assert same_words(wanted, name) is suggested
     assert close_names(wanted, [name, "zzz"]) == ([name] if suggested else [])
+
+
+def test_a_name_whose_first_word_was_replaced_is_found_by_its_other_words():
+    from urdftool.errors import renamed
+
+    names = ["victor_left_arm_joint_6", "victor_left_arm_joint_7", "victor_right_arm_joint_7"]
+    assert renamed("iiwa_joint_7", names) == ["victor_left_arm_joint_7", "victor_right_arm_joint_7"]
+    assert renamed("iiwa_joint_7", ["iiwa_joint_7", "joint_7"]) == []  # itself; no word before
+    assert renamed("finger_joint", ["left_finger_joint"]) == []  # no number: too loose
 
 
 def test_listed_names_a_dozen_each_cut_and_says_how_many():

@@ -172,20 +172,57 @@ def same_words(wanted: str, name: str) -> bool:
     word replaced is not (``wrist_3_joint``/``hand_3_joint``, ``ur_description``/
     ``sr_description``, ``arm_0_link``/``arm_6_link``). Chosen on 60 suggestions of the real
     sweep judged by hand: 24 useful and 3 misleading kept, of 28 and 32 (difflib's ratio
-    alone: 22 and 8 at 0.75)."""
+    alone: 22 and 8 at 0.75). A name that drops words must keep one that is not a kind
+    (:data:`KIND_WORDS`) or a number: ``joint1`` names no part, and is no suggestion for
+    ``finger_joint1`` (a gripper's joint on an arm without one); ``interfaces`` stays for
+    ``state_interfaces`` (joint_state_broadcaster's parameter of that meaning). Of the sweep's
+    48 suggestions dropping a word, the misleading one went, no useful one
+    (``gazebo_CHEST_JOINT0_Link``'s ``CHEST_JOINT0_Link`` stays). An initial stands for a
+    word in its own place only (``g_base``, ``gripper_base``): the ``r`` of
+    ``r_gripper_aft_link`` is no ``roll`` of ``gripper_roll_link``."""
     mine, theirs = _pieces(wanted), _pieces(name)
     if "".join(mine) == "".join(theirs):
         return True
-    left, unmatched = list(theirs), 0
-    for word in mine:
-        match = next((i for i, other in enumerate(left) if other == word), None)
-        if match is None:
-            match = next((i for i, other in enumerate(left) if _alike(word, other)), None)
+    left, unmatched = list(enumerate(theirs)), 0
+    for place, word in enumerate(mine):
+        match = next((i for i, (_, other) in enumerate(left) if other == word), None)
+        if match is None:  # an initial stands for the word in its own place only
+            match = next((i for i, (at, other) in enumerate(left) if _alike(word, other)
+                          and (min(len(word), len(other)) > 1 or at == place)), None)
         if match is None:
             unmatched += 1
         else:
             left.pop(match)
-    return unmatched == 0 or not left
+    if unmatched == 0:
+        return True
+    return not left and any(word.isalpha() and word not in KIND_WORDS for word in theirs)
+
+
+# what a name's words say of its kind, not which part it is
+KIND_WORDS = frozenset(("link", "joint", "frame", "group", "controller", "transmission",
+                        "trans"))
+
+
+def renamed(wanted: str, names) -> list[str]:
+    """The names that are ``wanted`` with its first word replaced by other words, its other
+    words (two or more pieces, one of them a number) ending the name: victor.urdf's
+    transmissions name ``iiwa_joint_7``, written before the arms took their prefixes, where the
+    joints are ``victor_left_arm_joint_7`` and ``victor_right_arm_joint_7`` (difflib's ratio
+    0.57: not close). In the order given."""
+    if len(wanted) > MAX_SIMILAR_NAME:
+        return []
+    mine = _pieces(wanted)
+    first = _WORD.findall(wanted)[:1]
+    rest = mine[len(_pieces(first[0])):] if first else []
+    if len(rest) < 2 or not any(piece.isdigit() for piece in rest):
+        return []
+    found = []
+    for name in list(names)[:MAX_SIMILAR_CANDIDATES]:
+        theirs = _pieces(name) if len(name) <= MAX_SIMILAR_NAME else []
+        if len(theirs) > len(rest) and theirs[-len(rest):] == rest and \
+                theirs[:len(theirs) - len(rest)] != mine[:len(mine) - len(rest)]:
+            found.append(name)
+    return found
 
 
 _PIECE = re.compile(r"[a-z]+|[0-9]+")

@@ -247,6 +247,46 @@ def _remaps(configuration) -> dict:
             for s in configuration.started}
 
 
+def test_a_python_set_remap_holds_for_what_follows_it_in_its_group(tmp_path):
+    """``SetRemap`` in a ``GroupAction`` holds for the nodes after it there (in nested groups
+    and included files too), before a node's own remaps, with its own condition; not for the
+    nodes before it, nor after its group."""
+    root = _repo(tmp_path, {"q/package.xml": PACKAGE.format("q"), "q/launch/a.launch.py": """
+from launch import LaunchDescription
+from launch.actions import GroupAction, IncludeLaunchDescription
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node, SetRemap
+
+def generate_launch_description():
+    return LaunchDescription([
+        GroupAction([
+            Node(package="q", executable="before"),
+            SetRemap(src="/follow_joint_trajectory", dst="/arm/arm_controller/follow_joint_trajectory"),
+            SetRemap("g/gripper_cmd", "/arm/gripper/gripper_cmd",
+                     condition=IfCondition(LaunchConfiguration("sim"))),
+            Node(package="q", executable="move_group", remappings=[("a", "b")]),
+            GroupAction(actions=[Node(package="q", executable="nested")]),
+            IncludeLaunchDescription(PythonLaunchDescriptionSource(
+                [FindPackageShare("q"), "/launch/b.launch.py"])),
+        ]),
+        Node(package="q", executable="after"),
+    ])
+""", "q/launch/b.launch.py": """
+def generate_launch_description():
+    return LaunchDescription([Node(package="q", executable="included")])
+"""})
+    found = {}
+    for configuration in launch_index(root).configurations:
+        found.update(_remaps(configuration))
+    arm = ("/follow_joint_trajectory", "/arm/arm_controller/follow_joint_trajectory", True, "")
+    gripper = ("g/gripper_cmd", "/arm/gripper/gripper_cmd", False,
+               "when IfCondition(LaunchConfiguration('sim'))")
+    assert found["before"] == [] and found["after"] == []
+    assert found["move_group"] == [arm, gripper, ("a", "b", True, "")]
+    assert found["nested"] == found["included"] == [arm, gripper]
+
+
 def test_remaps_of_each_form_reach_the_nodes_of_their_scope(tmp_path):
     """ROS 1's ``<remap>`` beside nodes holds for those after it in its scope, included files'
     too, and a group's ends with it; a node's own comes last (roslaunch applies it last);

@@ -11,6 +11,7 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
   allow_substs=True)``;
 - ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
 - ``GroupAction(actions, condition=...)``, ``TimerAction``, ``RegisterEventHandler``;
+  ``SetRemap(src, dst)``, for the nodes and includes after it in its group;
 - robot descriptions: ``Command([FindExecutable(name="xacro"), " ", path, " name:=", ...])``,
   ``xacro.process_file(path, mappings={...})``, ``xacro.process_doc`` of a file ``xacro.parse`` read,
   MoveItConfigsBuilder's
@@ -677,7 +678,9 @@ class _Reader:
     def construct(self, name: str, node, args, keywords, when, line):
         short = name.rsplit(".", 1)[-1]
         if short == "LaunchDescription":
-            return args[0] if args and isinstance(args[0], list) else []
+            actions = args[0] if args and isinstance(args[0], list) else []
+            _scope_remaps(_acts_in(actions))  # a SetRemap holds for what follows it
+            return actions
         if short == "LaunchConfiguration":
             key = keywords.get("variable_name") or (args[0] if args else None)
             if isinstance(key, Value) and key.literal:
@@ -797,11 +800,19 @@ class _Reader:
                 path = concat(_flat(path))
             return _Act("source", (), line, path=path)
         if short in ("GroupAction", "TimerAction"):
-            children = keywords.get("actions", args[0] if args and short == "GroupAction" else None)
-            group = _Act("group", when, line)
-            for child in _acts_in(children):
+            children = _acts_in(keywords.get("actions", args[0] if args and short == "GroupAction"
+                                              else None))
+            group = _Act("group", when, line, children=children)
+            for child in children:
                 _add_condition(child, keywords.get("condition"))
+            _scope_remaps(children)
             return group
+        if short == "SetRemap":
+            source, target = keywords.get("src", args[0] if args else None), \
+                keywords.get("dst", args[1] if len(args) > 1 else None)
+            act = _Act("remap", (), line, source=source, target=target)
+            _add_condition(act, keywords.get("condition"))
+            return act
         if short in ("RegisterEventHandler", "OnProcessExit", "OnProcessStart", "OnExecutionComplete"):
             return _Act("group", when, line)
         if short == "ParameterFile":
@@ -858,7 +869,8 @@ class _Reader:
         if act.kind == "arg":
             return Arg(fields["name"], fields["default"], fields["fixed"], when, act.line)
         if act.kind == "include":
-            return Include(fields["path"], fields["args"], when, act.line)
+            return Include(fields["path"], fields["args"], when, act.line,
+                           remaps=fields.get("remaps", ()))
         if act.kind == "start":
             files = tuple(ParamFile(f.path, f.substitute, when, f.line) for f in fields["files"])
             return Start(fields["package"], fields["executable"], fields["arguments"], files, when,
@@ -1032,6 +1044,27 @@ def _xacro_words(words: list) -> list:
 def _add_condition(act: _Act, condition) -> None:
     if isinstance(condition, Condition):
         act.when.append(condition)
+
+
+def _scope_remaps(acts: list) -> None:
+    """Give the ``SetRemap`` among ``acts`` (the actions of one scope, in order) to the nodes
+    and includes after it, inside the groups after it too, before their own remaps (launch_ros
+    puts the scope's remaps first); the scope's ends with it."""
+    remaps: list = []
+    for act in acts:
+        if act.kind == "remap":
+            source, target = act.fields["source"], act.fields["target"]
+            if isinstance(source, Value) and isinstance(target, Value):
+                remaps.append(Remap(source, target, tuple(act.when), act.line))
+        elif remaps:
+            _add_remaps(act, tuple(remaps))
+
+
+def _add_remaps(act: _Act, remaps: tuple) -> None:
+    if act.kind in ("start", "include"):
+        act.fields["remaps"] = remaps + tuple(act.fields.get("remaps", ()))
+    for child in act.fields.get("children", ()) if act.kind == "group" else ():
+        _add_remaps(child, remaps)
 
 
 def _acts_in(value) -> list:

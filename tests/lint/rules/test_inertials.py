@@ -326,6 +326,41 @@ def test_a_frame_placeholder_between_the_fingers_is_not_judged(tmp_path):
     assert found  # an offset given: a centre of mass, judged
 
 
+def test_a_centre_of_mass_inside_the_drawing_of_the_link_a_joint_moves_against_is_a_note(tmp_path):
+    # Gepetto's robots, Fourier's GR1: the wrist's mass sits where its parent's mesh draws the
+    # motor that turns it; right if those drawn parts move with the wrist, which only the CAD
+    # tells: a note naming that link. At the wrist's origin (a placeholder) still a warning.
+    from urdftool.diagnostics import Severity
+
+    text = """<robot name="r"><link name="base_link">
+        <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+      <joint name="j" type="revolute"><parent link="base_link"/><child link="wrist"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <link name="wrist"><inertial><origin xyz="0 0 0.08"/><mass value="0.5"/><inertia
+        ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial>
+        <collision><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.1"/></geometry>
+        </collision></link></robot>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    [finding] = findings
+    assert finding.severity == Severity.INFO, finding.message
+    assert "inside that of link 'base_link', which a joint moves against it: right if parts " \
+           "drawn with 'base_link' move with 'wrist'" in finding.message
+    _, findings = check_folder(tmp_path, {"robot.urdf": text.replace("0 0 0.08", "0 0 0").replace(
+        '<origin xyz="0 0 0.2"/>', '<origin xyz="0 0 0.1"/>')},
+                               select=("U312",))
+    assert [f.severity for f in findings] == [Severity.WARNING]
+    # inside its own drawing with the sign of z flipped (Rokae's): a warning
+    _, findings = check_folder(tmp_path, {"robot.urdf": text.replace("0 0 0.08", "0 0 0.06").replace(
+        '<origin xyz="0 0 0.2"/>', '<origin xyz="0 0 -0.06"/>')}, select=("U312",))
+    assert [f.severity for f in findings] == [Severity.WARNING]
+    # inside it with x and z swapped (FZI's link4, drawn along y, its mass along z): a warning
+    swapped = text.replace("0 0 0.08", "0 0 0.06").replace(
+        '<origin xyz="0 0 0.2"/>', '<origin xyz="0.06 0 0"/>').replace(
+        '<box size="0.1 0.1 0.1"/>', '<box size="0.06 0.06 0.06"/>')
+    _, findings = check_folder(tmp_path, {"robot.urdf": swapped}, select=("U312",))
+    assert [f.severity for f in findings] == [Severity.WARNING]
+
+
 def test_the_bound_skips_a_marker_box(tmp_path):
     found, _ = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.005 0.005 0.005"/>')
     assert not found  # a 5 mm marker is no body (40 times the bound)

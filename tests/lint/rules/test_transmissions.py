@@ -181,6 +181,26 @@ def test_a_joint_whose_transmission_is_misspelt_names_that_transmission(tmp_path
     assert said.endswith("robot.urdf:9 names no joint and may be meant for it"), findings[0].message
 
 
+def test_transmissions_written_before_the_arms_took_their_prefixes_name_each_arm_in_turn(tmp_path):
+    # victor.urdf: both arms' transmissions name iiwa_joint_7 (written before the prefixes),
+    # the joints are victor_left_arm_joint_7 and victor_right_arm_joint_7 (difflib's ratio
+    # 0.57, not close): the first transmission written is meant for the first arm
+    arm = '<joint name="victor_{side}_arm_joint_7" type="revolute"><parent link="base_link"/>' \
+          '<child link="{side}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" ' \
+          'velocity="1"/></joint><link name="{side}"/>\n'
+    transmission = '<transmission name="t_{n}"><type>transmission_interface/SimpleTransmission' \
+                   '</type><joint name="iiwa_joint_7"><hardwareInterface>hardware_interface/' \
+                   'PositionJointInterface</hardwareInterface></joint><actuator name="m"/>' \
+                   '</transmission>\n'
+    robot = HEAD_ROBOT.format(body=arm.format(side="left") + arm.format(side="right") +
+                              '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/>'
+                              '</gazebo>\n' + transmission.format(n=1) + transmission.format(n=2))
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U507",))
+    said = {f.message.split("'")[1]: f.message.partition("/joint_states; ")[2] for f in findings}
+    assert said["victor_left_arm_joint_7"].startswith("transmission 't_1''s joint 'iiwa_joint_7'")
+    assert said["victor_right_arm_joint_7"].startswith("transmission 't_2''s joint 'iiwa_joint_7'")
+
+
 def test_the_added_transmissions_interface_is_the_same_whatever_the_hash_seed(tmp_path):
     """U507's fix gives a new transmission the interface most transmissions use; of interfaces
     used equally often, the first written (it was the first of a set of strings: which one

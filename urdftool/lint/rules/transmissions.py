@@ -21,7 +21,7 @@ from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin,
                                             exported_interface, interface_kind, is_ros2_form,
                                             moving_joints, published_by_gazebo, ros2_control_joints,
                                             transmission_joints, transmissions)
-from urdftool.errors import available, close_names
+from urdftool.errors import available, close_names, renamed
 from urdftool.description.values import parse_numbers
 from urdftool.description.xacro_text import dropped_under
 from urdftool.description.xml import attribute
@@ -325,7 +325,8 @@ def _misspelt_entries(robot, unactuated: list) -> dict:
     found: dict = {}
     for label, element, written in entries:
         if written and written not in robot.joints:
-            close = close_names(written, [name for name in unactuated if name not in found], n=1)
+            free = [name for name in unactuated if name not in found]
+            close = close_names(written, free, n=1) or renamed(written, free)[:1]
             if close:
                 found[close[0]] = (f"{label} '{written}'", element)
     return found
