@@ -122,6 +122,7 @@ def assert_tree_matches(path, run_cli, robot) -> None:
         result = run_cli("tree", *IN_PROCESS, path)
         assert result.exit_code == 1 and "Successfully Parsed XML" not in result.stdout
         assert f"{path.name}:" in result.stderr and " error U" in result.stderr, result.output
+        assert "--fix" not in result.stderr.replace("urdftool check --fix", ""), result.output
         return
     if robot() is None:
         pytest.skip("urdftool refuses to load it (e.g. entity declarations, U009)")

@@ -333,7 +333,12 @@ def report_findings(path: str, findings) -> None:
     """Print findings about the robot at ``path`` to stderr as ``check`` would (and with
     ``--format json`` as a JSON document on stdout: :func:`error_format`)."""
     from urdftool.lint.engine import FileResult
+    from urdftool.records import replace
     from urdftool.report import render
 
-    render("text", [FileResult(path, findings)], sys.stderr)
+    # (text as check's, without its "[*] fixable with --fix": this command has no --fix)
+    render("text", [FileResult(path, [replace(f, fix=None) for f in findings])], sys.stderr)
+    fixable = sum(f.fix is not None and f.fix.safe for f in findings)
+    if fixable:
+        say(f"[*] {fixable} fixable with `urdftool check --fix`", err=True)
     _error_document([FileResult(path, findings)])

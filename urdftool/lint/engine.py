@@ -38,7 +38,8 @@ NOTE_CODES = {"xacro-in-urdf": "U007", "xacro-warning": "U010", "outside-file": 
 # there). tests/integration/test_parity.py holds this set to check_urdf's verdicts.
 URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U101", "U102", "U103", "U104", "U105", "U106", "U108", "U109",
-                             "U110", "U201", "U202", "U203", "U207", "U208", "U213"})
+                             "U110", "U201", "U202", "U203", "U207", "U208", "U213",
+                             "U023"})
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 

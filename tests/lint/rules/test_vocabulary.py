@@ -353,3 +353,22 @@ def test_a_vector_written_across_lines_is_found_among_values_of_the_same_text(tm
     found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
     assert found == [("robot.urdf", 1, "U023")]
     assert '"0\\n0"' in findings[0].message
+
+
+def test_a_number_urdfdom_refuses_is_an_error_in_a_joint_and_a_warning_elsewhere(tmp_path):
+    # urdfdom refuses the robot for a joint's number (as for every URDFDOM_REFUSES error: tree
+    # fails as check_urdf does) and loads it without a link's part or a colour otherwise
+    found, findings = check_folder(tmp_path, {"robot.urdf": NUMBERS_SPACED}, select=("U023",))
+    assert {f.line: f.severity.value for f in findings} == \
+        {2: "warning", 3: "warning", 4: "warning", 7: "error"}
+
+
+def test_a_vector_across_lines_of_a_file_whose_lines_end_with_cr_is_found_on_its_line(tmp_path):
+    # lxml's sourceline counts LF only (line 1 here), which the value's place is compared
+    # with; the finding's line is the one owner's (a CR ends a line)
+    lines = ['<robot name="r">', '<link name="a"/>', '<link name="b"><visual>',
+             '<origin xyz="0', '0 0"/>', '<geometry><box size="1 1 1"/></geometry>',
+             '</visual></link>', '<joint name="j" type="fixed"><parent link="a"/>',
+             '<child link="b"/></joint>', '</robot>', '']
+    found, findings = check_folder(tmp_path, {"robot.urdf": "\r".join(lines)}, select=("U023",))
+    assert found == [("robot.urdf", 4, "U023")]  # (where its start tag starts)

@@ -19,7 +19,7 @@ from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, NUMBERS
                                        Place, is_namespaced, is_xacro, version_problem, where_valid)
 from urdftool.description.values import parse_numbers, urdfdom_refuses, urdfdom_spelling
 from urdftool.description.xml import child_list
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule
 
 CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a known one
 
@@ -410,7 +410,7 @@ def _reader(unknown: _Unknown) -> str:
     return "urdfdom"
 
 
-@rule("U023", "number-white-space", Severity.WARNING)
+@rule("U023", "number-white-space", Severity.ERROR)
 def number_white_space(robot):
     """A number written with white space urdfdom refuses: after a scalar, or a tab inside a vector.
 
@@ -423,8 +423,10 @@ def number_white_space(robot):
     ``<inertial>`` so written leaves the link without mass (0 to KDL and Pinocchio), visuals
     and collisions. A colour so written is dropped. PyBullet reads a vector with a tab or line
     break between its numbers as ``0 0 0``. MuJoCo and yourdfpy read every such spelling as
-    meant: a warning. White space before a number, and spaces around a vector's numbers, every
-    reader takes.
+    meant. In a joint it is an error, as every other robot urdfdom refuses is (the parser
+    ROS's tools share; ``urdftool tree`` fails as check_urdf does); in a link or a colour a
+    warning: urdfdom loads the robot without the part. White space before a number, and spaces
+    around a vector's numbers, every reader takes.
 
     A tab or line break written raw in an attribute is a space to the XML parsers that
     normalise attributes (lxml, expat: xacro's output has none) and stays what it is to
@@ -453,9 +455,12 @@ def number_white_space(robot):
             if part is None or _place(element) != element.tag:
                 continue
             from urdftool.lint.fixes import offer, set_attribute  # (only for a finding: 4 M)
-            yield offer(element, _refused(element, attribute, text, part, count),
-                        "write the numbers with one space between them",
-                        set_attribute(robot, element, attribute, urdfdom_spelling(text)))
+            where, message, fix = offer(
+                element, _refused(element, attribute, text, part, count),
+                "write the numbers with one space between them",
+                set_attribute(robot, element, attribute, urdfdom_spelling(text)))
+            yield where, message if _refuses_robot(element) else \
+                Conditional(message, Severity.WARNING), fix
 
 
 def _suspect(data: bytes) -> bool:
@@ -473,6 +478,7 @@ def _raw_line_break(data: bytes) -> bool:
     """Whether a URDF's bytes hold a line break inside a value of number characters (a vector
     written across lines, which lxml reads as a space and TinyXML2 keeps), looked for only
     where some line does not end a tag (a 5 MB robot whose every line ends one: two counts)."""
+    # line ends: LF only; a file holding a CR is searched whatever this says (_SUSPECT)
     return data.count(b"\n") != data.count(b">\n") and _RAW_SPACED.search(data) is not None
 
 
@@ -484,7 +490,8 @@ _RAW_SPACED = re.compile(rb"""=[ \t\r\n]*(?:"([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.e
 
 def _raw_spaced(robot) -> dict[str, list[tuple[int, int]]]:
     """The values (as lxml reads them) written with a raw tab or line break in the robot's
-    file, read from its bytes, each with the lines it spans (first, last); empty for nearly
+    file, read from its bytes, each with the lines it spans (first, last) as lxml's
+    ``sourceline`` counts them (LF only: a CR-only file is line 1 to it); empty for nearly
     every robot."""
     found: dict[str, list[tuple[int, int]]] = {}
     for data in robot.sources.values():
@@ -492,10 +499,12 @@ def _raw_spaced(robot) -> dict[str, list[tuple[int, int]]]:
             continue
         line, counted = 1, 0
         for match in _RAW_SPACED.finditer(data):
+            # line ends: libxml2's (LF only), as lxml's sourceline they are compared with
             line += data.count(b"\n", counted, match.start())
             counted = match.start()
             raw = match.group(1) if match.group(1) is not None else match.group(2)
             value = raw.decode().replace("\r\n", " ").translate(_NORMALISED)
+            # line ends: libxml2's, as above
             found.setdefault(value, []).append((line, line + raw.count(b"\n")))
     return found
 
@@ -543,6 +552,19 @@ def _place(element) -> str | None:
     return key
 
 
+def _holder(element):
+    """The joint, link or material ``element`` is a number of (None: none of them)."""
+    return next((a for a in (element, *element.iterancestors())
+                 if a.tag in ("joint", "link", "material")), None)
+
+
+def _refuses_robot(element) -> bool:
+    """Whether urdfdom refuses the whole robot for a number of ``element`` it cannot read (a
+    joint's); in a link it stops reading the link, in a material it drops the colour."""
+    holder = _holder(element)
+    return holder is None or holder.tag == "joint"
+
+
 def _refused(element, attribute: str, text: str, part: str, count: int) -> str:
     """U023's message: the text, why urdfdom refuses it, what each consumer then does (urdfdom
     6.0's check_urdf and Pinocchio 4.1, measured: a joint's number refuses the robot; a link's
@@ -554,7 +576,7 @@ def _refused(element, attribute: str, text: str, part: str, count: int) -> str:
     else:
         why = f"urdfdom splits a vector at spaces only, so \"{_shown(part)}\" is no number to it,"
     ancestors = [element, *element.iterancestors()]
-    holder = next((a for a in ancestors if a.tag in ("joint", "link", "material")), None)
+    holder = _holder(element)
     if holder is None or holder.tag == "joint":
         effect = ("and refuses the robot: robot_state_publisher, RViz, MoveIt and Gazebo "
                   "(sdformat) do not load it")
