@@ -59,18 +59,20 @@ def test_a_rules_findings_stamped_together_are_those_stamped_one_by_one(tmp_path
 def test_a_finding_a_rule_cannot_stamp_is_its_crash_after_the_findings_before_it(monkeypatch):
     def broken(robot):
         yield robot.root, "first"
-        yield robot.root, "too severe", None, Severity.ERROR  # (a warning rule's)
+        yield robot.root, "too severe", None, Severity.ERROR  # (a rule below errors)
         yield robot.root, "never stamped"
         raise ZeroDivisionError("later")
 
-    original = CATALOGUE.get("U218")  # (a warning)
+    original = CATALOGUE.get("U218")
+    assert original.severity is not Severity.ERROR
     crashing = Rule("U218", original.name, original.severity, broken, original.doc)
     monkeypatch.setattr(engine, "CATALOGUE", Catalogue(
         [crashing if r.code == "U218" else r for r in CATALOGUE.rules]))
     findings = load_and_check(str(ROBOT), CheckOptions(selection=Selection(select=("U218", "U900")))).findings
     assert [f.message for f in findings if f.code == "U218"] == ["first"]
     crash = [f for f in findings if f.code == "U900"]
-    assert len(crash) == 1 and "crashed: ValueError: U218 is a warning rule" in crash[0].message
+    assert len(crash) == 1 and "crashed: ValueError: U218 is a" in crash[0].message and \
+        "a finding of it cannot be more severe (error)" in crash[0].message
 
 
 def test_a_crashing_loader_is_u900_naming_the_file(monkeypatch):
