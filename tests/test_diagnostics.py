@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.diagnostics import Finding, Location, Severity
+from urdftool.diagnostics import Finding, Location, Severity, distinct_sorted
 
 
 def test_findings_that_differ_only_in_their_call_site_sort_the_same_in_every_order():
@@ -14,6 +14,24 @@ def test_findings_that_differ_only_in_their_call_site_sort_the_same_in_every_ord
     assert [f.location.via[0].line for f in sorted(findings, key=Finding.sort_key)] == [4, 9, 12]
     assert sorted(reversed(findings), key=Finding.sort_key) == \
         sorted(findings, key=Finding.sort_key)
+
+
+def test_findings_distinct_and_sorted_as_a_set_of_them_sorted():
+    import random
+
+    chance = random.Random(19)
+    made = [Finding(chance.choice(["U101", "U311"]), "x",
+                    chance.choice([Severity.ERROR, Severity.WARNING]), chance.choice("ab"),
+                    Location(chance.choice(["a.urdf", "b.urdf"]), chance.choice([None, 1, 2]),
+                             column=chance.choice([None, 3])))
+            for _ in range(300)]
+    found = distinct_sorted(made)
+    assert len(found) == len(set(found)) == len(set(made)) < len(made)
+    assert found == sorted(found, key=Finding.sort_key) and set(found) == set(made)
+    # findings of one key that differ (here in severity only) keep the order given
+    one, other = made[0], Finding(made[0].code, "x", Severity.INFO, made[0].message,
+                                  made[0].location)
+    assert distinct_sorted([other, one, other]) == [other, one]
 
 
 def test_every_count_of_lines_is_the_one_owners():

@@ -191,6 +191,10 @@ def test_a_record_takes_its_fields_in_order_and_sets_each(cls):
     for name in cls._fields:
         assert hasattr(made, name)
     assert pickle.loads(pickle.dumps(made)) == made
+    assert len(cls._setters) == len(cls._fields)
+    for name, set_field in zip(cls._fields, cls._setters):  # (each field's own setter)
+        set_field(made, f"[{name}]")
+        assert getattr(made, name) == f"[{name}]"
     if issubclass(cls, Frozen):
         with pytest.raises(dataclasses.FrozenInstanceError):
             setattr(made, cls._fields[0], None)

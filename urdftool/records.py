@@ -43,6 +43,7 @@ class _Fields:
     _fields: tuple = ()
     _shown: tuple = ()
     _made: tuple = ()
+    _setters: tuple = ()
 
     def __init_subclass__(cls, **kwargs) -> None:
         super().__init_subclass__(**kwargs)
@@ -51,6 +52,10 @@ class _Fields:
                                      kind.__dict__.get("__slots__", ()) if name[:2] != "__")
         cls._key = staticmethod(_values(own.get("_compared", fields)))
         cls._shown = own.get("_shown", fields)
+        # each field's slot descriptor's setter, in the order of the fields: setting a field
+        # through it costs half of object.__setattr__, which looks the name up first (a frozen
+        # record made many times sets its fields by these: a finding and its location)
+        cls._setters = tuple(getattr(cls, name).__set__ for name in fields)
 
     def __eq__(self, other):
         if other.__class__ is self.__class__:
@@ -84,9 +89,10 @@ class Record(_Fields):
 
 
 class Frozen(_Fields):
-    """A record whose fields are set once, by ``__init__`` (``object.__setattr__``): assigning
-    or deleting an attribute raises dataclasses' FrozenInstanceError; hashed as the tuple of
-    its compared fields. Weakly referenced as a dataclass's instance is."""
+    """A record whose fields are set once, by ``__init__`` (``object.__setattr__``, or the
+    fields' setters ``_setters`` in a record made many times): assigning or deleting an
+    attribute raises dataclasses' FrozenInstanceError; hashed as the tuple of its compared
+    fields. Weakly referenced as a dataclass's instance is."""
 
     __slots__ = ("__weakref__",)
 

@@ -25,6 +25,26 @@ def _folder(tmp_path) -> Path:
     return tmp_path / "r.urdf"
 
 
+def test_places_located_together_are_where_each_is_located(tmp_path):
+    from lxml import etree
+
+    from urdftool.diagnostics import Location
+
+    text = '<robot name="r">\n<link name="a">\n  <visual/></link>\n<joint name="j"/>\n</robot>\n'
+    (tmp_path / "r.urdf").write_text(text)
+    (tmp_path / "x.urdf.xacro").write_text(text.replace('<robot name="r">', '<robot name="r" '
+                                           'xmlns:xacro="http://www.ros.org/wiki/xacro">'))
+    for robot in (load(tmp_path / "r.urdf"), load(tmp_path / "x.urdf.xacro")):
+        link = robot.root.find("link")
+        added = etree.SubElement(link, "collision")  # (not loaded: located as its parent)
+        places = [link, link[0], None, Location("other.urdf", 3), added, robot.root.find("joint"),
+                  robot.root]
+        located = robot.locate_all(places)
+        assert located == [p if isinstance(p, Location) else robot.locate(p) for p in places]
+        assert [(p.line, p.column) for p in located] == [(2, 1), (3, 3), (None, None), (3, None),
+                                                         (2, 1), (4, 1), (1, 1)]
+
+
 def test_memo_computes_once_per_key(tmp_path):
     (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
     robot = load(tmp_path / "r.urdf")

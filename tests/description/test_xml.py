@@ -40,6 +40,9 @@ def test_start_tags_found_by_scanning_are_where_expat_puts_them():
         assert [positions[e] for e in root.iter(etree.Element)] == \
             start_tag_positions(document)
         assert positions[root.find("link")] == (4, 3)  # its "<", not its ">" (line 5)
+        elements = [*root.iter(etree.Element), etree.Element("elsewhere")]
+        assert positions.positions(elements) == [positions.get(e) for e in elements]
+        assert positions.positions(elements)[-1] is None
 
 
 _TOKENS = [b"<", b">", b"&", b"&amp;", b"&#0;", b"&#x41;", b"--", b"]]>", b'"', b"'", b"=", b" ",

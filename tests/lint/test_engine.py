@@ -35,6 +35,46 @@ def test_a_crashing_rule_is_u900_and_the_other_rules_still_run(monkeypatch):
     assert any(f.code == "U204" and f.message == "about to fail" for f in findings)
 
 
+def test_a_rules_findings_stamped_together_are_those_stamped_one_by_one(tmp_path):
+    from urdftool.diagnostics import Edit, Fix, Location
+    from urdftool.lint.catalogue import Conditional
+
+    (tmp_path / "r.urdf").write_text('<robot name="r">\n<link name="a">\n  <visual/></link>\n'
+                                     '<!-- c --><link name="b"/>\n</robot>\n')
+    robot = load(tmp_path / "r.urdf")
+    a, b = robot.root.findall("link")
+    elsewhere = Location("other.urdf", 7, column=2)
+    fix = Fix("f", (Edit("r.urdf", 0, 1, "x", "<", 1, 0),))
+    yielded = [(a, "plain", []), (a[0], "a visual", []), (None, "the file", []),
+               (elsewhere, "in another file", []), (b, "with a fix", [fix]),
+               (b, "lowered", [None, Severity.WARNING]), (a, Conditional("conditional"), []),
+               (robot.root, "plain", [])]
+    rule = CATALOGUE.get("U204")
+    each = [engine.stamp(rule, where, message, robot, *rest) for where, message, rest in yielded]
+    assert engine.stamp_all(rule, yielded, robot) == each
+    assert [(f.line, f.column) for f in each[:2]] == [(2, 1), (3, 3)]
+    assert each[4].line == 4 and each[4].fix == fix and each[5].severity is Severity.WARNING
+
+
+def test_a_finding_a_rule_cannot_stamp_is_its_crash_after_the_findings_before_it(monkeypatch):
+    def broken(robot):
+        yield robot.root, "first"
+        yield robot.root, "too severe", None, Severity.ERROR  # (a rule below errors)
+        yield robot.root, "never stamped"
+        raise ZeroDivisionError("later")
+
+    original = CATALOGUE.get("U218")
+    assert original.severity is not Severity.ERROR
+    crashing = Rule("U218", original.name, original.severity, broken, original.doc)
+    monkeypatch.setattr(engine, "CATALOGUE", Catalogue(
+        [crashing if r.code == "U218" else r for r in CATALOGUE.rules]))
+    findings = load_and_check(str(ROBOT), CheckOptions(selection=Selection(select=("U218", "U900")))).findings
+    assert [f.message for f in findings if f.code == "U218"] == ["first"]
+    crash = [f for f in findings if f.code == "U900"]
+    assert len(crash) == 1 and "crashed: ValueError: U218 is a" in crash[0].message and \
+        "a finding of it cannot be more severe (error)" in crash[0].message
+
+
 def test_a_crashing_loader_is_u900_naming_the_file(monkeypatch):
     import urdftool.description.load
 

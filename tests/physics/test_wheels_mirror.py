@@ -162,6 +162,45 @@ def test_partner_names_one_pass_gives_the_two_passes_answers():
         assert _side_words(name) == words and _side_words(name, strong=True) == strong, name
 
 
+def _pairs_asking_every_name(names):
+    """pairs as first written: every name asked for its partners."""
+    from urdftool.physics.mirror import _is_left, partner_names
+
+    known, found, used = set(names), [], set()
+    for name in names:
+        if name in used:
+            continue
+        for mirror in partner_names(name):
+            if mirror in known and mirror not in used:
+                found.append((name, mirror) if _is_left(name, mirror) else (mirror, name))
+                used.update((name, mirror))
+                break
+    order = {name: index for index, name in enumerate(names)}
+    return sorted(found, key=lambda pair: order[pair[0]])
+
+
+def test_pairs_ask_only_names_sharing_their_text_without_side_characters():
+    import random
+
+    from urdftool.physics.mirror import _SIDE_CHARACTERS, _SWAPS, partner_names
+
+    parts = [*_SWAPS, "arm", "Hip", "HIP", "foot", "b", "e", "t", "ll", "x", "_", "-", "1", "2",
+             ".", "/", "OW"]
+    chance = random.Random(19)
+    paired = 0
+    for _ in range(2000):
+        names = list(dict.fromkeys("".join(chance.choice(parts) for _ in range(
+            chance.randint(1, 4))) for _ in range(chance.randint(1, 30))))
+        expected = _pairs_asking_every_name(names)
+        assert pairs(names) == expected, names
+        paired += len(expected)
+        for name in names:  # (what makes skipping the others exact)
+            rest = name.translate(_SIDE_CHARACTERS)
+            assert all(other.translate(_SIDE_CHARACTERS) == rest for other in partner_names(name))
+    assert paired > 100  # (the names do pair)
+    assert pairs([f"l{i}" for i in range(100)] + ["r7", "left7"]) == [("l7", "r7")]
+
+
 def test_named_wheel_skips_only_names_without_a_wheel_word():
     import random
     import re

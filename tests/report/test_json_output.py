@@ -87,3 +87,16 @@ def test_no_zero_is_signed_and_a_string_is_left_as_it_is():
         back = json.loads(text)
         assert back["rpy"] == [0.0, 0.0, -0.05] and math.copysign(1, back["rpy"][1]) == 1
         assert back["name"] == "j -0.0" and math.copysign(1, back["nested"][0]["q"]) == 1
+
+
+def test_a_signed_zero_is_found_as_the_pattern_finds_it():
+    import random
+
+    from urdftool.report.json_output import _NEGATIVE_ZERO, _signed_zero
+
+    parts = ["-0.0", "0.0", "-", "0", ".", "a", "_", " ", ",", "[", "1", "-0.05", "e", "\u00e9", "\u0661"]
+    chance = random.Random(19)
+    texts = ["".join(chance.choice(parts) for _ in range(chance.randint(0, 8)))
+             for _ in range(3000)]
+    assert sum(_signed_zero(t) for t in texts) > 100
+    assert all(_signed_zero(t) == (_NEGATIVE_ZERO.search(t) is not None) for t in texts)

@@ -403,6 +403,17 @@ class _StartTags(Mapping):
         found = self._positions.get(element)
         return default if found is None else Location(self._file, found[0], column=found[1])
 
+    def get_all(self, elements: list) -> list:
+        """:meth:`get` of each of ``elements`` (None for one not found): in one call where
+        their places were found by scanning the file (the findings of one rule, located
+        together), else one by one."""
+        bulk = getattr(self._positions, "positions", None)
+        found = bulk(elements) if bulk is not None else [self._positions.get(element)
+                                                         for element in elements]
+        file = self._file
+        return [None if place is None else Location(file, place[0], column=place[1])
+                for place in found]
+
     def start_offset(self, element, data: bytes) -> int | None:
         """The byte offset of ``element``'s start tag in ``data``, when its place was found by
         scanning that very buffer (a plain document, :func:`~urdftool.description.xml.parse`),

@@ -353,6 +353,21 @@ class _StartOffsets(Mapping):
         offset = self._offsets.get(element)
         return default if offset is None else self._position(offset)
 
+    def positions(self, elements: list) -> list:
+        """:meth:`get` of each of ``elements`` (None for one not found), without a call for
+        each: the findings of one rule are located together (10,000 on a large robot)."""
+        if self._newlines is None:
+            self._newlines = newlines(self._data)
+        offsets, ends, found = self._offsets, self._newlines, []
+        for element in elements:  # (as _position, written out)
+            offset = offsets.get(element)
+            if offset is None:
+                found.append(None)
+                continue
+            before = bisect.bisect_left(ends, offset)  # newlines before the "<"
+            found.append((before + 1, offset - (ends[before - 1] + 1 if before else 0) + 1))
+        return found
+
     def offset(self, element, data: bytes) -> int | None:
         """The byte offset of ``element``'s start tag when ``data`` is the very buffer scanned
         (the fixes find a tag there without parsing up to it), else None."""

@@ -8,7 +8,7 @@ from contextlib import nullcontext
 from pathlib import Path
 
 from urdftool import budget as budgets
-from urdftool.diagnostics import Finding, Location, Severity, display_path
+from urdftool.diagnostics import Finding, Location, Severity, display_path, distinct_sorted
 from urdftool.errors import LoadError, described, missing_extra
 from urdftool.lint.catalogue import Conditional, Rule
 from urdftool.lint.options import CheckOptions, FileResult, Selection
@@ -48,6 +48,48 @@ def stamp(rule: Rule, where, message: str, robot, fix=None, severity=None) -> Fi
     its severity when lower than the rule's (a condition the rule cannot decide)."""
     location = where if isinstance(where, Location) else robot.locate(where)
     return rule.finding(message, location, fix, severity)
+
+
+def stamp_all(rule: Rule, yielded: list, robot) -> list[Finding]:
+    """:func:`stamp` of each (where, message, [fix, severity]) a rule yielded, in order: the
+    elements located together (:meth:`~urdftool.description.robot.Robot.locate_all`), a plain
+    message (a str without fix or severity) made into its finding here, as
+    :meth:`~urdftool.lint.catalogue.Rule.finding` makes it (10,000 findings on a large
+    robot: a call less for each)."""
+    locations = robot.locate_all([where for where, _, _ in yielded])
+    code, name, severity, target = rule.code, rule.name, rule.severity, rule.target
+    found = []
+    for (_, message, rest), location in zip(yielded, locations):
+        if not rest and type(message) is str:
+            found.append(Finding(code, name, severity, message, location, None, target, False))
+        else:
+            found.append(rule.finding(message, location, *rest))
+    return found
+
+
+def _stamped_before(rule: Rule, yielded: list, robot) -> tuple[list[Finding], Exception | None]:
+    """(the findings of what a rule yielded before it failed, each stamped as it came; the
+    error stamping one raised, which came first, or None)."""
+    found = []
+    for where, message, rest in yielded:
+        try:
+            found.append(stamp(rule, where, message, robot, *rest))
+        except MemoryError:
+            raise
+        except Exception as error:
+            return found, error
+    return found, None
+
+
+def _failure(rule: Rule, error: Exception, robot) -> Finding:
+    """The finding for a rule that raised ``error``: what a lint-only install did not run
+    (U902), else a crash (U900); ``error`` raised again when it is the memory budget's."""
+    _raise_if_out_of_memory(error)  # (a library not mapped under the memory budget, too)
+    advice = missing_extra(error) if isinstance(error, ImportError) else None
+    if advice is None:
+        return _crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None))
+    return CATALOGUE.get("U902").finding(
+        f"rule {rule.code} ({rule.name}) did not run: it {advice}", robot.locate(None))
 
 
 def _raise_if_out_of_memory(error: Exception) -> None:
@@ -120,7 +162,7 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     findings = [f for f in note_findings(robot) if selection.allows(f.code)]
     findings += judged(robot, _run_rules(robot, selection.allows, bool(selection.targets)))
     findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
-    return sorted(set(findings), key=Finding.sort_key)
+    return distinct_sorted(findings)
 
 
 def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
@@ -128,22 +170,20 @@ def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
     for rule in CATALOGUE.running(targets):  # (without targets, no target's family imported)
         if rule.check is None or not allows(rule.code):
             continue
+        yielded = []  # (where, message, [fix, severity]): stamped together once the rule ends
         try:
             for where, message, *rest in rule.check(robot):
-                findings.append(stamp(rule, where, message, robot, *rest))
+                yielded.append((where, message, rest))
+            if yielded:  # (most rules find nothing)
+                findings += stamp_all(rule, yielded, robot)
         except MemoryError:
             raise  # over the memory budget: the pool stops it (U018)
-        except ImportError as error:  # a lint-only install: say what did not run, and why
-            _raise_if_out_of_memory(error)  # (a library not mapped under the memory budget)
-            if (advice := missing_extra(error)) is None:
-                findings.append(_crash(f"rule {rule.code} ({rule.name})", error,
-                                       robot.locate(None)))
-            else:
-                findings.append(CATALOGUE.get("U902").finding(
-                    f"rule {rule.code} ({rule.name}) did not run: it {advice}", robot.locate(None)))
-        except Exception as error:  # a bug in a rule must not hide the other findings
-            _raise_if_out_of_memory(error)
-            findings.append(_crash(f"rule {rule.code} ({rule.name})", error, robot.locate(None)))
+        except Exception as error:  # a bug in a rule must not hide the other findings; a
+            # lint-only install says what did not run, and why. What came before the error is
+            # stamped as it came, and a finding that cannot be is the failure (it came first).
+            stamped, failed = _stamped_before(rule, yielded, robot)
+            findings += stamped
+            findings.append(_failure(rule, failed or error, robot))
     return findings
 
 

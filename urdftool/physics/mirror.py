@@ -112,13 +112,23 @@ def _is_left(name: str, mirror: str) -> bool:
     return name < mirror
 
 
+# Every character of a side word or of its mirror: a name and each name it may pair with are
+# one text without them (a side word swapped is one run of these replaced by another)
+_SIDE_CHARACTERS = str.maketrans("", "", "".join(set("".join(_SWAPS) + "".join(_SWAPS.values()))))
+
+
 def pairs(names) -> list[tuple[str, str]]:
     """(left, right) name pairs among ``names`` (each name in one pair at most), in the order
-    of the left names."""
+    of the left names. Only a name whose text without side characters another name shares is
+    asked for its partners (a 10,000-link robot of names ``l0`` ... ``l9999`` asks none)."""
     known = set(names)
+    rests = [name.translate(_SIDE_CHARACTERS) for name in names]
+    shared: dict[str, bool] = {}
+    for rest in rests:
+        shared[rest] = rest in shared
     found, used = [], set()
-    for name in names:
-        if name in used:
+    for name, rest in zip(names, rests):
+        if not shared[rest] or name in used:
             continue
         for mirror in partner_names(name):
             if mirror in known and mirror not in used:

@@ -26,7 +26,7 @@ def dumps(data) -> str:
     except ValueError:  # (rare: looked for by the encoder, and only then the data cleaned)
         data = _finite(data)
         text = _dumps(data, _ENCODE)
-    if _NEGATIVE_ZERO.search(text):  # as numbers.exact writes a float: looked for, then cleaned
+    if _signed_zero(text):  # as numbers.exact writes a float: looked for, then cleaned
         data = _unsigned(data)
         text = _dumps(data, _ENCODE)
     # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
@@ -43,7 +43,7 @@ def line(data) -> str:
     except ValueError:
         data = _finite(data)
         text = _ENCODE(data)
-    if _NEGATIVE_ZERO.search(text):
+    if _signed_zero(text):
         data = _unsigned(data)
         text = _ENCODE(data)
     return _ENCODE(_whole(data)) if "\\ud" in text else text
@@ -154,6 +154,20 @@ def write_json(data, stream=None) -> None:
 # a number token -0.0 (json writes a float as repr does); in a string too, which only costs the
 # cleaning, never changes the string
 _NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0\.0(?![\w.])")
+
+
+def _signed_zero(text: str) -> bool:
+    """Whether ``text`` holds a number token -0.0 (:data:`_NEGATIVE_ZERO`), as its search says:
+    each "-0.0" found at memchr's pace, then the pattern matched there (it looks behind into
+    the text before). Its search tried it at every character (the lookbehind leaves sre no
+    literal to skip to): 0.6 s over the 3 MB of a 10,000-link robot's findings, where a
+    "-0.05" in a message is found too."""
+    at = text.find("-0.0")
+    while at >= 0:
+        if _NEGATIVE_ZERO.match(text, at):
+            return True
+        at = text.find("-0.0", at + 1)
+    return False
 
 
 def _unsigned(value):
