@@ -526,6 +526,62 @@ def test_macro_definitions_are_removed_only_where_a_macro_is_written():
         assert _without_macro_bodies(data) == _MACRO_BODY.sub(b"", data), data
 
 
+@pytest.mark.parametrize("name, words", [
+    ("_ANY_INCLUDE", [b"include"]), ("_INCLUDE", [b"include"]), ("_MACRO", [b"macro"]),
+    ("_LINK_MAKER", [b"<xacro:", b"include"]), ("_NAMED_FILE", [b".xacro", b".urdf"])])
+def test_a_pattern_is_searched_only_where_a_word_it_needs_is(name, words):
+    """The classification looks for a word with bytes' own search before a pattern tried at
+    each "<" or "=" of a file: a text without any of the words must hold no match."""
+    import random
+
+    from urdftool.lint import targets
+
+    pattern = getattr(targets, name)
+    parts = [b"<xacro:include filename='a.xacro'/>", b"<include ", b"<xacro:macro name='m'>",
+             b"<macro ", b"<xacro:m/>", b"<xacro:property name='p'/>", b'value="x.urdf"',
+             b"= 'y.xacro'", b"<link name='a'/>", b"incl", b"ude", b"mac", b"ro", b".xac",
+             b"ro'", b".ur", b'df"', b"<xacro", b":", b"=", b"'", b'"', b" ", b"\n", b"<"]
+    chance = random.Random(19)
+    for _ in range(3000):
+        data = b"".join(chance.choice(parts) for _ in range(chance.randint(0, 10)))
+        assert any(word in data for word in words) or pattern.search(data) is None, data
+
+
+def test_the_include_graph_is_what_the_summaries_include(tmp_path):
+    """``includers_below`` reads only each file's includes, not its whole summary: the same
+    graph as the summaries' includes (an include, a file named by a macro's parameter, one
+    commented out, one through $(arg) and a file that includes nothing)."""
+    from urdftool.lint import targets
+    from urdftool.lint.settings import CheckRequest, for_file
+
+    (tmp_path / ".git").mkdir()
+    files = {
+        "robot.urdf.xacro": '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                            '<xacro:arg name="part" default="part.xacro"/>'
+                            '<xacro:include filename="arm.xacro"/>'
+                            '<xacro:include filename="$(arg part)"/>'
+                            '<!-- <xacro:include filename="old.xacro"/> -->'
+                            '<xacro:arm layout="legs.xacro"/></robot>',
+        "arm.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro '
+                     'name="arm" params="layout"><xacro:include filename="${layout}"/>'
+                     '<link name="a"/></xacro:macro></robot>',
+        "part.xacro": '<robot><link name="p"/></robot>', "legs.xacro": "<robot/>",
+        "old.xacro": "<robot/>", "alone.urdf": '<robot name="x"><link name="x"/></robot>'}
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+
+    def resolver_for(path):
+        return targets.PackageResolver(for_file(str(path), CheckRequest()).options.packages,
+                                       start=path.parent)
+
+    graph = {}
+    for path in targets.robot_files(tmp_path):
+        for target in targets._summary(path, resolver_for, 1 << 20).includes:
+            graph.setdefault(target, []).append(path)
+    assert targets.includers_below(tmp_path, resolver_for) == graph
+    assert sorted(target.name for target in graph) == ["arm.xacro", "legs.xacro", "part.xacro"]
+
+
 def test_a_part_that_only_calls_macros_named_is_checked_through_its_robot(run_cli, tmp_path):
     # niryo's niryo_ned.transmission.xacro: a named <robot> whose content is transmissions made
     # by macro calls; alone it has no link (U106) and no joint its transmissions name (U501)

@@ -191,8 +191,9 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
     if not data.strip():  # nothing a consumer could read as a robot, unless one loads it
         return _Summary([], False, False, blank=True)
     written = _uncommented(data)
-    includes = list(_included_files(path, written, resolver_for(path))) if resolver_for else []
-    unfollowed = resolver_for is not None and len(_INCLUDE.findall(written)) > len(includes)
+    includes = _included(path, written, resolver_for(path)) if resolver_for else []
+    unfollowed = resolver_for is not None and _INCLUDE_WORD in written and \
+        len(_INCLUDE.findall(written)) > len(includes)
     if resolver_for:
         includes += _named_files(path, written, resolver_for(path), includes)
     answer = _top_level_answer(data)
@@ -202,7 +203,8 @@ def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
     return _Summary(includes, answer not in ("definitions", "fragment", "empty"),
                     bool(_NAMED_ROBOT.search(data)),
                     answer == "srdf" or path.name.endswith(".srdf.xacro"),
-                    unfollowed, answer == "fragment", bool(_MACRO.search(written)),
+                    unfollowed, answer == "fragment",
+                    b"macro" in written and bool(_MACRO.search(written)),
                     resolver_for is not None and _misses_a_package(written, resolver_for(path)),
                     answer == "empty",
                     _root_elsewhere(written, expanded=not is_urdf_name(path.name)),
@@ -333,7 +335,7 @@ def _makes_links_outside_link_bodies(data: bytes) -> bool:
     link writes the link's content (an inertial, a visual), never a link urdfdom reads
     (HerGousis' camera3_dokari.xacro calls box_inertia inside its link). One linear pass,
     after one search when there is none at all (a URDF's 10,000 links are not walked)."""
-    if _LINK_MAKER.search(data) is None:
+    if (b"<xacro:" not in data and _INCLUDE_WORD not in data) or _LINK_MAKER.search(data) is None:
         return False
     inside = False
     for token in _LINK_TOKENS.finditer(data):
@@ -479,6 +481,8 @@ def _named_files(path: Path, data: bytes, resolver: PackageResolver, includes) -
     (``<xacro:wamv_gazebo thruster_layout="$(find wamv_gazebo)/urdf/.../wamv_aft_thrusters.xacro"/>``
     handed to ``<xacro:include filename="${thruster_layout}"/>``), which the include graph
     counts as included by ``path``."""
+    if b".xacro" not in data and b".urdf" not in data:  # (what every name it finds ends with)
+        return []
     named, defaults = [], _arg_defaults(data)
     for match in _NAMED_FILE.finditer(data):
         found = _resolved_spec(path, match.group(1).decode("utf-8", "replace"), defaults,
@@ -561,6 +565,16 @@ _CALLED = re.compile(rb"<xacro:([\w.-]+)")  # a macro call, or one of xacro's di
 _DIRECTIVE_NAMES = frozenset(name.encode() for name in _XACRO_DIRECTIVES)
 _DEFINED_MACRO = re.compile(rb"<xacro:macro\s[^<>]*?name\s*=\s*[\"']([^\"'<>]*)[\"']", re.S)
 _ANY_INCLUDE = re.compile(rb"<(?:xacro:)?include\s")
+# A word every include's tag holds, looked for first (bytes' own search) before a pattern that
+# is tried at each "<" of a file: most robot files include nothing (so for "macro", ".xacro").
+_INCLUDE_WORD = b"include"
+
+
+def _included(path: Path, written: bytes, resolver: PackageResolver) -> list[Path]:
+    """The files ``written`` (``path``'s text without comments) includes, resolved
+    (:func:`~urdftool.description.xacro_text.included_files`); none looked for in a text
+    without the word."""
+    return list(_included_files(path, written, resolver)) if _INCLUDE_WORD in written else []
 
 
 def _borrows_macros(data: bytes) -> bool:
@@ -573,7 +587,7 @@ def _borrows_macros(data: bytes) -> bool:
     if b"<xacro:" not in data:
         return False
     data = _uncommented(data)
-    if _ANY_INCLUDE.search(data):
+    if _INCLUDE_WORD in data and _ANY_INCLUDE.search(data):
         return False
     calls = set(_CALLED.findall(data)) - _DIRECTIVE_NAMES
     return bool(calls - set(_DEFINED_MACRO.findall(data)))
@@ -593,7 +607,7 @@ def _borrows_materials(data: bytes) -> bool:
     if b"<material" not in data:
         return False
     data = _uncommented(data)
-    if _ANY_INCLUDE.search(data):
+    if _INCLUDE_WORD in data and _ANY_INCLUDE.search(data):
         return False
     named = _MATERIAL_NAMED.findall(data)
     return bool({name for name, closed in named if closed} - {name for name, closed in named if not closed})
@@ -738,9 +752,22 @@ def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_F
     read = read or {}
     for path in robot_files(root):
         data = read.get(os.path.abspath(path), _UNREAD)
-        for target in _summary(path, resolver_for, max_file_size, data).includes:
+        for target in _includes(path, resolver_for, max_file_size, data):
             includers.setdefault(target, []).append(path)
     return includers
+
+
+def _includes(path: Path, resolver_for, limit: int, data=_UNREAD) -> list[Path]:
+    """The files ``path`` includes, as its :func:`_summary` lists them, without the rest of the
+    summary (whether it is a robot, its root, its macros: an include graph needs none of it,
+    and its questions searched each robot file of a repository once more)."""
+    if data is _UNREAD:
+        data = _head(path, limit)
+    if data is None or b"\0" in data or not data.strip():
+        return []
+    written = _uncommented(data)
+    includes = _included(path, written, resolver_for(path))
+    return includes + _named_files(path, written, resolver_for(path), includes)
 
 
 class Targets(Record):
