@@ -80,8 +80,7 @@ def test_boxes_that_touch_do_not_collide(run_cli, tmp_path, slider, touching):
 
 def _mesh_boxes(tmp_path, mesh) -> str:
     """two_boxes with every box's collision the mesh ``mesh`` (a trimesh) instead; the slider
-    from 0.02 (its default pose mid-range, apart: libccd's EPA gives cubes at the very same
-    place sqrt(2) times their depth)."""
+    from 0.02 (its default pose mid-range, apart)."""
     mesh.export(tmp_path / "part.stl")
     return two_boxes(0.02, 1).replace('<box size="0.1 0.1 0.1"/></geometry></collision>',
                                    '<mesh filename="part.stl"/></geometry></collision>')
@@ -138,6 +137,43 @@ def test_a_non_convex_mesh_contact_has_its_hulls_depth_as_a_bound(run_cli, tmp_p
     data = json.loads(run_cli("collisions", tmp_path / "robot.urdf", "--q",
                               f"slider={0.2 + slider}", "-f", "json").stdout)
     assert [(c["depth"], c["touching"]) for c in data["colliding"]] == [(None, touching)]
+
+
+@pytest.mark.parametrize("shape, depth", [
+    ('<cylinder radius="0.025" length="0.09"/>', 0.037),  # EPA: 62 mm
+    ('<box size="0.1 0.1 0.1"/>', 0.1)])  # FCL's box-box: right; the mesh cubes' EPA: 141 mm
+def test_parts_centred_on_each_other_have_their_depth(tmp_path, shape, depth):
+    """Parts placed at one origin, as CAD exports place them: libccd's EPA overshoots there
+    (crossing cylinders 37 mm into each other were 62 mm; coincident cube meshes 141 mm), so
+    the depth is bounded by the least overlap along the parts' axes."""
+    import trimesh
+
+    first = shape if "cylinder" in shape else '<mesh filename="part.stl"/>'
+    second = '<cylinder radius="0.012" length="0.26"/>' if "cylinder" in shape else first
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
+    text = two_boxes(-1, 1).replace(
+        '<collision><origin xyz="0 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>',
+        f'<collision><origin rpy="0 1.5707963 0"/><geometry>{first}</geometry>', 1).replace(
+        '<collision><origin xyz="0 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>',
+        f'<collision><origin rpy="1.5707963 0 0"/><geometry>{second}</geometry>', 1)
+    report = pose_report(robot_of(tmp_path, text), slider=0.0)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth == pytest.approx(depth, abs=1e-6)
+
+
+def test_parts_welded_by_fixed_joints_are_allowed_at_a_pose(run_cli, tmp_path):
+    """Two links fixed to one body overlap in every configuration (Upkie's femur inside its
+    hip horn, both fixed to the motor's rotor): 'Welded', not a collision that exits 1."""
+    text = two_boxes(0, 1).replace('<joint name="slider" type="prismatic">',
+                                   '<joint name="slider" type="fixed">').replace(
+        '<axis xyz="1 0 0"/><limit lower="0" upper="1" effort="1" velocity="1"/>',
+        '<origin xyz="0.05 0 0"/>')
+    robot = robot_of(tmp_path, text)
+    report = pose.check(matrix.Scene(robot, 0.0), np.zeros(0), {})
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.allowed == "Welded" and not report.forbidden
+    result = run_cli("collisions", tmp_path / "robot.urdf")
+    assert result.exit_code == 0 and "allowed (Welded)" in result.stdout, result.output
 
 
 def test_a_flat_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):

@@ -95,6 +95,11 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
                           "(FCL's contacts between triangles carry none): at most that of the "
                           "convex hulls, a collision unless the hulls only touch; "
                           "? (flat mesh): a mesh without volume, whose contact is a collision")
+        if any(c.allowed == "Welded" for c in listed):
+            console.print("Welded: held together by fixed joints alone (one rigid body), so in "
+                          "contact in every configuration, which no motion changes; MoveIt "
+                          "checks the pair unless the SRDF disables it (its Setup Assistant "
+                          "does, 'Default')")
         if any(c.touching and not c.allowed for c in listed):
             console.print(f"touching: in contact at most {number(TOUCHING * 1000)} mm deep, "
                           "surfaces that meet, not a collision; MoveIt (FCL, padding 0) "
