@@ -134,6 +134,7 @@ def test_a_non_convex_mesh_contact_has_its_hulls_depth_as_a_bound(run_cli, tmp_p
     result = run_cli("collisions", tmp_path / "robot.urdf", "--q", f"slider={0.2 + slider}")
     assert result.exit_code == (0 if touching else 1), result.output
     assert f"<= {1000 * (0.1 - slider):.2f} (hulls)" in result.stdout
+    assert "(flat mesh)" not in result.stdout
     data = json.loads(run_cli("collisions", tmp_path / "robot.urdf", "--q",
                               f"slider={0.2 + slider}", "-f", "json").stdout)
     assert [(c["depth"], c["touching"]) for c in data["colliding"]] == [(None, touching)]
@@ -191,6 +192,7 @@ def test_a_flat_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):
     assert (contact.depth, contact.depth_at_most, contact.touching) == (None, None, False)
     result = run_cli("collisions", tmp_path / "robot.urdf", "--q", "slider=0.03")
     assert result.exit_code == 1 and "? (flat mesh)" in result.stdout, result.output
+    assert "<= (hulls)" not in result.stdout
 
 
 def test_a_pose_check_places_the_parts_once_for_all_pairs(tmp_path, monkeypatch):

@@ -213,6 +213,30 @@ def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
     assert _PACKAGE_OPENED.search("Error: Error opening file 'file:/work/m.dae'")
 
 
+def test_pybullet_finds_the_meshes_a_package_installs_from_elsewhere(tmp_path):
+    """Bolt's meshes are package://robot_properties_bolt/resources/..., which its build
+    installs from src/robot_properties_bolt/resources: urdftool found them, but the package's
+    source folder linked beside the expansion does not hold them, and PyBullet said "it cannot
+    find mesh ..., which is not there"."""
+    _installed("pybullet")
+    import trimesh
+
+    (tmp_path / ".git").mkdir()
+    package = _package(tmp_path)
+    (package / "CMakeLists.txt").write_text(
+        "project(my_arm)\ninstall(DIRECTORY src/my_arm/resources/ DESTINATION "
+        "share/${PROJECT_NAME}/resources)\n")
+    (package / "src" / "my_arm" / "resources" / "stl").mkdir(parents=True)
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(
+        package / "src" / "my_arm" / "resources" / "stl" / "part.stl")
+    mesh = '<geometry><mesh filename="package://my_arm/resources/stl/part.stl"/></geometry>'
+    path = package / "arm.urdf.xacro"
+    path.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                                f'<collision>{mesh}</collision>'))
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert result.loaded, result.error
+
+
 def test_the_advice_for_mujoco_loads_the_package_meshes(tmp_path):
     """MUJOCO_PACKAGES's block, meshdir with strippath (MuJoCo 3.7+ reads the URI as a path
     without it: the advice said meshdir alone, which still failed)."""

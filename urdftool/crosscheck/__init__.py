@@ -130,7 +130,7 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
         packages = _packages(robot)
         urdf, lines = _urdf_file(robot, folder, in_place=_read_in_place(robot, packages, given))
         if os.path.dirname(urdf) == os.path.abspath(folder):
-            _packages_beside(folder, packages)
+            _packages_beside(folder, packages, robot)
         job = Job(urdf, packages, tuple(configurations))
         raw = _run(present, job, budget)
     results = [_result(name, raw[index], robot, lines, urdf)
@@ -399,16 +399,45 @@ def _packages(robot) -> dict:
     return found
 
 
-def _packages_beside(folder: str, packages: dict) -> None:
+def _packages_beside(folder: str, packages: dict, robot) -> None:
     """Each package as a link beside xacro's output: PyBullet (3.2) finds a ``package://``
     mesh only below the folders above the file it reads (its search path is not asked for
     meshes), as they are when a robot is loaded from its own repository; written to a
     temporary folder, the expansion would lose them and PyBullet would fail where a user's
-    load does not. A name taken (the expanded file's own) is left as it is."""
-    from urdftool.description.files import link_folder_new
+    load does not. A package whose install puts a file the robot names elsewhere than its
+    source folder holds it (Bolt's ``package://robot_properties_bolt/resources/...``, in
+    ``src/robot_properties_bolt/resources`` installed to ``share``) gets a folder of links to
+    each file the robot names, where urdftool resolves it. A name taken (the expanded file's
+    own) is left as it is."""
+    from urdftool.description.files import link_file_new, link_folder_new, real_path
 
     for name, place in packages.items():
-        link_folder_new(Path(folder), name, place)
+        named = _package_files(robot, name)
+        if all(real_path(path) == real_path(Path(place) / rest) for rest, path in named.items()):
+            link_folder_new(Path(folder), name, place)
+            continue
+        for rest, path in named.items():
+            link_file_new(Path(folder), f"{name}/{rest}", os.fspath(path))
+
+
+def _package_files(robot, name: str) -> dict:
+    """``rest`` -> the file urdftool resolves, for each ``package://NAME/rest`` the robot's
+    meshes and textures name that resolves to a file."""
+    from urdftool.description.files import kind_of
+
+    found = {}
+    for element in robot.root.iter("mesh", "texture"):
+        uri = element.get("filename") or ""
+        rest = uri[len(f"package://{name}/"):] if uri.startswith(f"package://{name}/") else ""
+        if not rest or rest in found:
+            continue
+        try:
+            path = robot.resolve_uri(uri)
+        except Exception:  # noqa: BLE001 - the loader will say it is missing
+            continue
+        if kind_of(path) == "file":
+            found[rest] = path
+    return found
 
 
 def _run(names: list[str], job: Job, budget: Budget) -> list:

@@ -90,11 +90,13 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
                 "touching" if c.touching else "[bold red]COLLIDING[/]"
             table.add_row(markup(c.link1), markup(c.link2), _depth(c), status)
         console.print(table)
-        if any(c.depth is None for c in listed):
+        if any(c.depth is None and c.depth_at_most is not None for c in listed):
             console.print("<= (hulls): a non-convex mesh's contact, whose depth is not known "
                           "(FCL's contacts between triangles carry none): at most that of the "
-                          "convex hulls, a collision unless the hulls only touch; "
-                          "? (flat mesh): a mesh without volume, whose contact is a collision")
+                          "convex hulls, a collision unless the hulls only touch")
+        if any(c.depth_at_most is None for c in listed):
+            console.print("? (flat mesh): a mesh without volume, whose contact is a collision "
+                          "of unknown depth")
         if any(c.allowed == "Welded" for c in listed):
             console.print("Welded: held together by fixed joints alone (one rigid body), so in "
                           "contact in every configuration, which no motion changes; MoveIt "
