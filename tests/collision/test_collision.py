@@ -195,6 +195,19 @@ def test_a_flat_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):
     assert "<= (hulls)" not in result.stdout
 
 
+def test_a_comment_before_the_shape_is_not_the_geometry(tmp_path):
+    """youBot's base: <geometry><!--<box .../>--><mesh .../></geometry>. The comment was taken
+    for the shape: "<collision> has no geometry; ignored", so every pose with the base was
+    "not established" (exit 1)."""
+    text = two_boxes(0, 1).replace('<geometry><box size="0.1 0.1 0.1"/></geometry></collision>',
+                                   '<geometry><!-- <sphere radius="1"/> --><box size="0.1 0.1 '
+                                   '0.1"/></geometry></collision>')
+    report = pose_report(robot_of(tmp_path, text), slider=0.06)
+    assert not report.problems
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth == pytest.approx(0.04, abs=1e-6)
+
+
 def test_a_pose_check_places_the_parts_once_for_all_pairs(tmp_path, monkeypatch):
     scene = matrix.Scene(robot_of(tmp_path, two_boxes(0, 1)), 0.0)
     placed = []

@@ -92,8 +92,11 @@ def build(robot) -> Geometry:
 def _part(robot, link: str, collision, meshes, problems) -> Part | None:
     where = robot.locate(collision)
     shape = collision.find("geometry")
-    shape = shape[0] if shape is not None and len(shape) else None
-    if shape is None or not isinstance(shape.tag, str):
+    # the first element: a comment before it (youBot's base, its box left commented out
+    # above the mesh) made the collision "no geometry", left out
+    shape = next((child for child in shape if isinstance(child.tag, str)), None) \
+        if shape is not None else None
+    if shape is None:
         problems.append(Problem(where, f"link '{link}': <collision> has no geometry; ignored"))
         return None
     kind, mesh = shape.tag, None
