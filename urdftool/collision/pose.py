@@ -27,8 +27,12 @@ class Contact:
     colliding: bool
     distance: float
     depth: float | None
-    depth_at_most: float | None = None
     allowed: str = ""
+    depth_at_most: float | None = math.nan  # nan: the depth, when not given
+
+    def __post_init__(self):
+        if self.depth_at_most is not None and math.isnan(self.depth_at_most):
+            self.depth_at_most = self.depth
 
     @property
     def touching(self) -> bool:
@@ -109,7 +113,7 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
                                                           part_poses=parts, placed=True)
         reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "") or \
             ("Welded" if pair in welded else "")
-        contacts.append(Contact(*pair, hit, distance, depth, bound, reason))
+        contacts.append(Contact(*pair, hit, distance, depth, reason, depth_at_most=bound))
     # deepest first (a bound counts as its depth), a contact of no known bound before all
     colliding = sorted((c for c in contacts if c.colliding),
                        key=lambda c: -math.inf if c.depth_at_most is None else -c.depth_at_most)
