@@ -78,20 +78,134 @@ def test_boxes_that_touch_do_not_collide(run_cli, tmp_path, slider, touching):
     assert [c["touching"] for c in data["colliding"]] == [touching]
 
 
-def test_a_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):
-    """FCL gives a triangle mesh's contact a depth of 0 (or 1 m for boxes a third inside each
-    other): the depth is unknown (None, '? (mesh)'), and the contact is never only touching."""
+def _mesh_boxes(tmp_path, mesh) -> str:
+    """two_boxes with every box's collision the mesh ``mesh`` (a trimesh) instead; the slider
+    from 0.02 (its default pose mid-range, apart)."""
+    mesh.export(tmp_path / "part.stl")
+    return two_boxes(0.02, 1).replace('<box size="0.1 0.1 0.1"/></geometry></collision>',
+                                   '<mesh filename="part.stl"/></geometry></collision>')
+
+
+def _dumbbell():
+    """Two 10 cm cubes 10 cm apart in one mesh: closed, not convex (its hull is 30 cm long)."""
     import trimesh
 
-    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "box.stl")
-    mesh = '<mesh filename="box.stl"/>'
-    text = two_boxes(0, 1).replace('<box size="0.1 0.1 0.1"/></geometry></collision>',
-                                   f"{mesh}</geometry></collision>")
-    report = pose_report(robot_of(tmp_path, text), slider=0.05)
+    cube = trimesh.creation.box((0.1, 0.1, 0.1))
+    return trimesh.util.concatenate([cube, cube.copy().apply_translation((0.2, 0, 0))])
+
+
+@pytest.mark.parametrize("slider, depth, touching", [(0.05, 0.05, False), (0.0995, 0.0005, True)])
+def test_a_convex_mesh_contact_has_its_depth(run_cli, tmp_path, slider, depth, touching):
+    """Box meshes (convex) take their depth from their convex hulls, as boxes from FCL: FCL's
+    contacts between triangles carry one triangle's depth through the other's plane (0.098 m
+    for these cubes at any overlap), so half a millimetre of overlap was '? (mesh)' and a
+    collision (exit 1), and the SRDF overlaps said 98 mm."""
+    import trimesh
+    from lxml import etree
+
+    text = _mesh_boxes(tmp_path, trimesh.creation.box((0.1, 0.1, 0.1)))
+    robot = robot_of(tmp_path, text)
+    report = pose_report(robot, slider=slider)
     [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
-    assert contact.depth is None and not contact.touching and report.forbidden == [contact]
-    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", "slider=0.05")
-    assert result.exit_code == 1 and "? (mesh)" in result.stdout, result.output
+    assert contact.depth == pytest.approx(depth, abs=1e-6) == contact.depth_at_most
+    assert contact.touching is touching and report.forbidden == ([] if touching else [contact])
+    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", f"slider={slider}")
+    assert result.exit_code == (0 if touching else 1), result.output
+    assert "(hulls)" not in result.stdout and "?" not in result.stdout
+    state = ('<group name="g"><joint name="slider"/></group><group_state name="s" group="g">'
+             f'<joint name="slider" value="{slider}"/></group_state>')
+    found = srdf.overlaps(robot, etree.fromstring(f'<robot name="boxes">{state}</robot>'))
+    assert [(pair, o.depth) for pair, o in found.items()] == \
+        ([] if touching else [(("fixed_box", "sliding_box"), pytest.approx(depth, abs=1e-6))])
+
+
+@pytest.mark.parametrize("slider, touching", [(0.05, False), (0.0995, True)])
+def test_a_non_convex_mesh_contact_has_its_hulls_depth_as_a_bound(run_cli, tmp_path, slider,
+                                                                  touching):
+    """Dumbbells whose cubes meet: the depth is not known (None, JSON null), at most the hulls'
+    (the same here, as the cubes that meet are the hulls' ends); hulls that only touch make
+    the meshes touch."""
+    report = pose_report(robot_of(tmp_path, _mesh_boxes(tmp_path, _dumbbell())),
+                         slider=0.2 + slider)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth is None and contact.depth_at_most == pytest.approx(
+        0.1 - slider, abs=1e-6)
+    assert contact.touching is touching and report.forbidden == ([] if touching else [contact])
+    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", f"slider={0.2 + slider}")
+    assert result.exit_code == (0 if touching else 1), result.output
+    assert f"<= {1000 * (0.1 - slider):.2f} (hulls)" in result.stdout
+    assert "(flat mesh)" not in result.stdout
+    data = json.loads(run_cli("collisions", tmp_path / "robot.urdf", "--q",
+                              f"slider={0.2 + slider}", "-f", "json").stdout)
+    assert [(c["depth"], c["touching"]) for c in data["colliding"]] == [(None, touching)]
+
+
+@pytest.mark.parametrize("shape, depth", [
+    ('<cylinder radius="0.025" length="0.09"/>', 0.037),  # EPA: 62 mm
+    ('<box size="0.1 0.1 0.1"/>', 0.1)])  # FCL's box-box: right; the mesh cubes' EPA: 141 mm
+def test_parts_centred_on_each_other_have_their_depth(tmp_path, shape, depth):
+    """Parts placed at one origin, as CAD exports place them: libccd's EPA overshoots there
+    (crossing cylinders 37 mm into each other were 62 mm; coincident cube meshes 141 mm), so
+    the depth is bounded by the least overlap along the parts' axes."""
+    import trimesh
+
+    first = shape if "cylinder" in shape else '<mesh filename="part.stl"/>'
+    second = '<cylinder radius="0.012" length="0.26"/>' if "cylinder" in shape else first
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "part.stl")
+    text = two_boxes(-1, 1).replace(
+        '<collision><origin xyz="0 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>',
+        f'<collision><origin rpy="0 1.5707963 0"/><geometry>{first}</geometry>', 1).replace(
+        '<collision><origin xyz="0 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>',
+        f'<collision><origin rpy="1.5707963 0 0"/><geometry>{second}</geometry>', 1)
+    report = pose_report(robot_of(tmp_path, text), slider=0.0)
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth == pytest.approx(depth, abs=1e-6)
+
+
+def test_parts_welded_by_fixed_joints_are_allowed_at_a_pose(run_cli, tmp_path):
+    """Two links fixed to one body overlap in every configuration (Upkie's femur inside its
+    hip horn, both fixed to the motor's rotor): 'Welded', not a collision that exits 1."""
+    text = two_boxes(0, 1).replace('<joint name="slider" type="prismatic">',
+                                   '<joint name="slider" type="fixed">').replace(
+        '<axis xyz="1 0 0"/><limit lower="0" upper="1" effort="1" velocity="1"/>',
+        '<origin xyz="0.05 0 0"/>')
+    robot = robot_of(tmp_path, text)
+    report = pose.check(matrix.Scene(robot, 0.0), np.zeros(0), {})
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.allowed == "Welded" and not report.forbidden
+    result = run_cli("collisions", tmp_path / "robot.urdf")
+    assert result.exit_code == 0 and "allowed (Welded)" in result.stdout, result.output
+
+
+def test_a_flat_mesh_contact_has_no_depth_and_is_a_collision(run_cli, tmp_path):
+    """A mesh without volume (a square; the fixed one stood on its edge, crossed by the
+    sliding one) has no hull: its contact is a collision of unknown depth, never only
+    touching."""
+    import trimesh
+
+    square = trimesh.Trimesh([[-0.05, -0.05, 0], [0.05, -0.05, 0], [0.05, 0.05, 0],
+                              [-0.05, 0.05, 0]], [[0, 1, 2], [0, 2, 3]])
+    text = _mesh_boxes(tmp_path, square).replace('<origin xyz="0 0 0"/><geometry><mesh',
+                                                  '<origin rpy="0 1.5708 0"/><geometry><mesh', 1)
+    report = pose_report(robot_of(tmp_path, text), slider=0.03)
+    contact = next(c for c in report.colliding if c.link2 == "sliding_box")
+    assert (contact.depth, contact.depth_at_most, contact.touching) == (None, None, False)
+    result = run_cli("collisions", tmp_path / "robot.urdf", "--q", "slider=0.03")
+    assert result.exit_code == 1 and "? (flat mesh)" in result.stdout, result.output
+    assert "<= (hulls)" not in result.stdout
+
+
+def test_a_comment_before_the_shape_is_not_the_geometry(tmp_path):
+    """youBot's base: <geometry><!--<box .../>--><mesh .../></geometry>. The comment was taken
+    for the shape: "<collision> has no geometry; ignored", so every pose with the base was
+    "not established" (exit 1)."""
+    text = two_boxes(0, 1).replace('<geometry><box size="0.1 0.1 0.1"/></geometry></collision>',
+                                   '<geometry><!-- <sphere radius="1"/> --><box size="0.1 0.1 '
+                                   '0.1"/></geometry></collision>')
+    report = pose_report(robot_of(tmp_path, text), slider=0.06)
+    assert not report.problems
+    [contact] = [c for c in report.colliding if c.link2 == "sliding_box"]
+    assert contact.depth == pytest.approx(0.04, abs=1e-6)
 
 
 def test_a_pose_check_places_the_parts_once_for_all_pairs(tmp_path, monkeypatch):

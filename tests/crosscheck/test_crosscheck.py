@@ -225,6 +225,78 @@ def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
     assert _PACKAGE_OPENED.search("Error: Error opening file 'file:/work/m.dae'")
 
 
+def test_pybullet_finds_the_meshes_a_package_installs_from_elsewhere(tmp_path):
+    """Bolt's meshes are package://robot_properties_bolt/resources/..., which its build
+    installs from src/robot_properties_bolt/resources: urdftool found them, but the package's
+    source folder linked beside the expansion does not hold them, and PyBullet said "it cannot
+    find mesh ..., which is not there"."""
+    _installed("pybullet")
+    import trimesh
+
+    (tmp_path / ".git").mkdir()
+    package = _package(tmp_path)
+    (package / "CMakeLists.txt").write_text(
+        "project(my_arm)\ninstall(DIRECTORY src/my_arm/resources/ DESTINATION "
+        "share/${PROJECT_NAME}/resources)\n")
+    (package / "src" / "my_arm" / "resources" / "stl").mkdir(parents=True)
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(
+        package / "src" / "my_arm" / "resources" / "stl" / "part.stl")
+    mesh = '<geometry><mesh filename="package://my_arm/resources/stl/part.stl"/></geometry>'
+    path = package / "arm.urdf.xacro"
+    path.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                                f'<collision>{mesh}</collision>'))
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert result.loaded, result.error
+
+
+def test_the_advice_for_mujoco_loads_the_package_meshes(tmp_path):
+    """MUJOCO_PACKAGES's block, meshdir with strippath (MuJoCo 3.7+ reads the URI as a path
+    without it: the advice said meshdir alone, which still failed)."""
+    _installed("mujoco")
+    path, package = _package_arm(tmp_path)
+    meshdir = os.path.relpath(package / "meshes", path.parent)
+    path.write_text(path.read_text().replace(
+        '<robot name="arm">', f'<robot name="arm"><mujoco><compiler meshdir="{meshdir}" '
+        'strippath="true"/></mujoco>'))
+    [result] = crosscheck(str(path), ["mujoco"], packages={"my_arm": package}).loaders
+    assert result.loaded, result.error
+    from urdftool.crosscheck import MUJOCO_PACKAGES
+
+    assert '<compiler meshdir="..." strippath="true"/>' in MUJOCO_PACKAGES
+
+
+def test_a_robots_own_mujoco_element_is_honoured_and_said(tmp_path):
+    """A xacro robot whose <mujoco><compiler> names its meshes' folder relative to itself and
+    balances inertias: its expansion, read from a temporary folder, lost the folder (MuJoCo:
+    "Error opening file '../meshes/box.stl'"), and the inertias MuJoCo changed went unsaid."""
+    _installed("mujoco")
+    import trimesh
+
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "urdf").mkdir()
+    trimesh.creation.box((0.1, 0.1, 0.1)).export(tmp_path / "meshes" / "box.stl")
+    mesh = '<geometry><mesh filename="box.stl"/></geometry>'
+    text = ARM.replace('<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org'
+                       '/wiki/xacro"><mujoco><compiler meshdir="../meshes" '
+                       'balanceinertia="true"/></mujoco>')
+    text = text.replace('<link name="tip"><inertial><mass value="0.5"/><inertia ixx="0.01" '
+                        'iyy="0.01" izz="0.01"', f'<link name="tip"><collision>{mesh}</collision>'
+                        '<inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" '
+                        'izz="0.01"')
+    path = tmp_path / "urdf" / "arm.urdf.xacro"
+    path.write_text(text)
+    report = crosscheck(str(path), ["mujoco"])
+    [result] = report.loaders
+    assert result.loaded, result.error
+    assert report.differences == [
+        "mujoco has no link world, base (fused, lumped or dropped)",
+        "mujoco read the robot's <mujoco><compiler>: balanceinertia=\"true\" (principal moments "
+        "that break the triangle inequality raised)",
+        "mujoco holds another mass or inertia [kg m^2] than the URDF declares for 1 link(s): "
+        "tip: URDF 0.5 kg, moments 0.001 0.001 0.01, MuJoCo 0.5 kg, moments 0.004 0.004 "
+        "0.004"]
+
+
 def test_pybullet_asks_the_working_folder_not_its_search_path_for_meshes(tmp_path):
     """The fact U932 and the links beside xacro's output rest on (PyBullet 3.2.7): a
     package:// mesh is found from the working folder, not from setAdditionalSearchPath."""

@@ -54,6 +54,20 @@ def test_a_limb_whose_joints_are_named_as_links_is_built_and_solved(tmp_path):
     assert np.allclose(solution.x, [0.4, -1.1], atol=1e-6)
 
 
+def test_a_limb_beside_a_fixed_joint_named_as_its_link_is_built(tmp_path):
+    """Locking the left leg, whose fixed joint LF_FOOT is its link's name and holds a link of
+    its own (Baxter's left_hand, which holds its camera): buildReducedModel raised "Several frames match the filter" for the right arm's
+    ik and workspace, a traceback."""
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(SAME_NAMES.replace(b"</robot>", b'<link name="LF_SENSOR"/><joint '
+                                        b'name="LF_SENSOR" type="fixed"><parent link="LF_FOOT"/>'
+                                        b'<child link="LF_SENSOR"/></joint></robot>'))
+    chain = build_chain(load(path), "base", "RF_KFE")
+    assert chain.joints == ["RF_HAA", "RF_KFE"]
+    names = [frame.name for frame in chain.model.frames]
+    assert names.count("LF_FOOT") == 2 and not any("\x1f" in name for name in names)
+
+
 def test_a_limb_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tmp_path,
                                                                             monkeypatch):
     # ik and workspace on a 999-joint limb ran out of a 2 GiB budget (U018, "raise the budget

@@ -217,6 +217,20 @@ def test_target_behind_a_limit_names_the_joint(tmp_path):
         assert solution.x[1] == 2.0
 
 
+def test_a_joint_of_no_range_is_never_at_a_limit(tmp_path):
+    """HSR's wrist_ft_sensor_frame_joint has limits 0 and 0: every solution said it was at
+    its lower and its upper limit."""
+    robot = _robot(tmp_path, PLANAR.replace(b'<limit lower="-2" upper="2" effort="1" '
+                                            b'velocity="1"/></joint>\n  <joint name="spin"',
+                                            b'<limit lower="0" upper="0" effort="1" '
+                                            b'velocity="1"/></joint>\n  <joint name="spin"'))
+    chain = build_chain(robot, "upper", "hand")
+    target = ik.Target(np.array([0.3 + 0.25 * np.cos(0.4), 0.05, 0.1 + 0.25 * np.sin(0.4)]))
+    solution = ik.solve(chain, target, ik.seeds(chain, 4, 0), method="numeric")
+    assert [v.name for v in chain.variables][-1] == "wrist"
+    assert solution.solved and not solution.at_limits
+
+
 def test_orientation_a_short_limb_cannot_take(humanoid):
     chain = build_chain(humanoid, "body_link", "l_forearm_link")
     x = np.array([0.3, 0.4, -0.5])

@@ -173,6 +173,34 @@ def test_mimic_joint_follows_its_variable(mimic_arm, q1):
     assert np.allclose(mimic_arm.velocity({"shoulder": 1.5}), [1.5, -1.5])
 
 
+@pytest.mark.parametrize("multiplier, offset", [("-1", "0.2"), ("2", "0.3")])
+def test_a_leader_with_its_mimic_joints_is_pinocchios_mimic_model(tmp_path, run_cli, multiplier,
+                                                                  offset):
+    """One actuator driving the shoulder and the elbow that mimics it supplies J^T of their
+    columns: Pinocchio's model read with mimic=True has it as its G and rnea (urdftool gave
+    only the per-joint columns, of a model where each joint has an actuator)."""
+    import pinocchio as pin
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(MIMIC_ARM.replace('multiplier="-1" offset="0.2"',
+                                      f'multiplier="{multiplier}" offset="{offset}"'))
+    result = state(build(load(str(path))), {"shoulder": 0.7}, {"shoulder": 1.5},
+                   {"shoulder": -0.4})
+    model = pin.buildModelFromUrdf(str(path), mimic=True)
+    data = model.createData()
+    q, v, a = np.array([0.7]), np.array([1.5]), np.array([-0.4])
+    [leader] = result.leaders().items()
+    assert leader[0] == "shoulder" and leader[1]["followers"] == {"elbow": float(multiplier)}
+    assert leader[1]["G"] == pytest.approx(pin.computeGeneralizedGravity(model, data, q)[0],
+                                           abs=1e-12)
+    assert leader[1]["tau"] == pytest.approx(pin.rnea(model, data, q, v, a)[0], abs=1e-12)
+    shown = run_cli("dynamics", path, "--q", "shoulder=0.7", "--v", "shoulder=1.5", "--a",
+                    "shoulder=-0.4")
+    assert f"shoulder (itself + {multiplier} x elbow): G " in shown.stdout, shown.output
+    data = json.loads(run_cli("dynamics", path, "--q", "shoulder=0.7", "-f", "json").stdout)
+    assert set(data["mimic_leaders"]) == {"shoulder"}
+
+
 def test_gravity_loads_draw_mimic_joints_from_their_variable(mimic_arm):
     loads = {load.joint: load for load in gravity_loads(mimic_arm, 30, seed=3)}
     for load in loads.values():

@@ -32,6 +32,8 @@ class Part:
     shape: what the geometry is, comparable across robots: a primitive's sizes, a mesh's
     digest of its vertices and faces as FCL holds them (two parts with equal ``kind``,
     ``shape`` and ``origin`` collide alike wherever their links are)
+    mesh: a mesh's (vertices [m], triangles) in the geometry frame, for the convex hull that
+    gives a contact its depth (FCL's contacts between triangles have none); None for a primitive
     """
 
     link: str
@@ -41,6 +43,7 @@ class Part:
     box: np.ndarray
     half: np.ndarray
     shape: object
+    mesh: tuple | None = None
 
     @property
     def radius(self) -> float:
@@ -89,11 +92,14 @@ def build(robot) -> Geometry:
 def _part(robot, link: str, collision, meshes, problems) -> Part | None:
     where = robot.locate(collision)
     shape = collision.find("geometry")
-    shape = shape[0] if shape is not None and len(shape) else None
-    if shape is None or not isinstance(shape.tag, str):
+    # the first element: a comment before it (youBot's base, its box left commented out
+    # above the mesh) made the collision "no geometry", left out
+    shape = next((child for child in shape if isinstance(child.tag, str)), None) \
+        if shape is not None else None
+    if shape is None:
         problems.append(Problem(where, f"link '{link}': <collision> has no geometry; ignored"))
         return None
-    kind = shape.tag
+    kind, mesh = shape.tag, None
     if kind == "box":
         size, problem = parse_numbers(shape.get("size"), 3)
         if size is None or min(size) <= 0 or not np.all(np.isfinite(size)):
@@ -114,13 +120,14 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         loaded = _load_mesh(robot, shape, meshes)
         if isinstance(loaded, str):
             return _refuse(problems, robot, shape, link, loaded)
-        geometry, center, half, identity = loaded
+        geometry, center, half, identity, mesh = loaded
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
     origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
     box = origin.copy()
     box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
-    return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9), identity)
+    return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9), identity,
+                mesh)
 
 
 def _positive(element, attribute: str) -> float | None:
@@ -137,7 +144,8 @@ def _refuse(problems, robot, shape, link: str, why: str) -> None:
 
 
 def _load_mesh(robot, shape, cache):
-    """(BVH model, bounding box centre, half extents, digest) or a message saying why not.
+    """(BVH model, bounding box centre, half extents, digest, (vertices, triangles)) or a
+    message saying why not.
 
     The mesh itself comes from :mod:`urdftool.description.meshes` (containment, extension whitelist, size
     and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
@@ -173,4 +181,4 @@ def _bvh(mesh):
     low, high = vertices.min(axis=0), vertices.max(axis=0)
     digest = hashlib.blake2b(vertices.tobytes(), digest_size=16)
     digest.update(faces.tobytes())
-    return model, (low + high) / 2, (high - low) / 2, digest.digest()
+    return model, (low + high) / 2, (high - low) / 2, digest.digest(), (vertices, faces)

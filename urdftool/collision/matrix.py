@@ -99,6 +99,7 @@ class Scene:
         from urdftool.kinematics.fk import KinematicModel
 
         check_pairs(robot, max_pairs)
+        self.robot = robot
         self.geometry = geometry_module.build(robot)
         self.kinematics = KinematicModel(robot)
         self.variables = self.kinematics.variables

@@ -15,24 +15,35 @@ from urdftool.collision.matrix import MAX_PAIRS
 class Contact:
     """A link pair at the pose: colliding with ``depth`` [m], or ``distance`` [m] apart.
 
-    allowed: why the pair may touch ('Adjacent', an SRDF reason), or '' when it must not
+    depth_at_most: a bound on the depth [m] (the depth when it is known; for a non-convex mesh
+    in contact the depth of the convex hulls, and ``depth`` None); None when not even that is
+    known (a flat mesh)
+    allowed: why the pair may touch ('Adjacent', an SRDF reason, 'Welded': held together by
+    fixed joints alone, so in contact in every configuration), or '' when it must not
     """
 
     link1: str
     link2: str
     colliding: bool
     distance: float
-    depth: float | None  # None: a mesh in contact, whose depth FCL does not compute
+    depth: float | None
     allowed: str = ""
+    depth_at_most: float | None = math.nan  # nan: the depth, when not given
+
+    def __post_init__(self):
+        if self.depth_at_most is not None and math.isnan(self.depth_at_most):
+            self.depth_at_most = self.depth
 
     @property
     def touching(self) -> bool:
-        """In contact without penetrating more than :data:`~urdftool.collision.pairs.TOUCHING`:
-        surfaces that meet (FCL reports exactly touching shapes as a contact of depth 0), not a
-        collision. A mesh's contact has no depth, so it is never only touching."""
+        """In contact no deeper than :data:`~urdftool.collision.pairs.TOUCHING`: surfaces that
+        meet (FCL reports exactly touching shapes as a contact of depth 0), not a collision.
+        Non-convex meshes touch when their convex hulls do; whose hulls overlap deeper collide
+        (FCL sees their surfaces cross, and how deep is not known)."""
         from urdftool.collision.pairs import TOUCHING
 
-        return self.colliding and self.depth is not None and self.depth <= TOUCHING
+        return self.colliding and self.depth_at_most is not None and \
+            self.depth_at_most <= TOUCHING
 
 
 @dataclass
@@ -90,18 +101,22 @@ def configuration(scene, values: dict[str, str], degrees: bool = False):
 def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: int = 5,
           srdf: str | None = None) -> PoseReport:
     """Every pair of links with geometry at configuration ``q``."""
+    from urdftool.kinematics.tree import welded_pairs
+
     poses = scene.at(q)
+    welded = welded_pairs(scene.robot, set(scene.links))
     # Parts placed once, not once per pair (that was n^3 at 1,500 links)
     scene.checker.place(parts := scene.checker.part_poses(poses))
     contacts = []
     for index, pair in enumerate(scene.pairs):
-        hit, distance, depth = scene.checker.exact(poses, index, contacts=True, part_poses=parts,
-                                                   placed=True, known_depth=True)
-        reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "")
-        contacts.append(Contact(*pair, hit, distance, depth, reason))
-    # deepest first, a mesh's contact (depth unknown) before all
+        hit, distance, depth, bound = scene.checker.exact(poses, index, contacts=True,
+                                                          part_poses=parts, placed=True)
+        reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "") or \
+            ("Welded" if pair in welded else "")
+        contacts.append(Contact(*pair, hit, distance, depth, reason, depth_at_most=bound))
+    # deepest first (a bound counts as its depth), a contact of no known bound before all
     colliding = sorted((c for c in contacts if c.colliding),
-                       key=lambda c: -math.inf if c.depth is None else -c.depth)
+                       key=lambda c: -math.inf if c.depth_at_most is None else -c.depth_at_most)
     apart = sorted((c for c in contacts if not c.colliding and c.allowed != "Adjacent"),
                    key=lambda c: c.distance)
     values = {v.name: float(x) for v, x in zip(scene.variables, q)}

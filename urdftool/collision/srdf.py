@@ -226,11 +226,14 @@ MAY_TOUCH = ("Adjacent", "Default", "Always")
 @dataclass
 class Overlap:
     """Two links in contact at some of the SRDF's poses: the deepest ``depth`` [m] and the poses
-    as (label, group_state element or None for the default configuration)."""
+    as (label, group_state element or None for the default configuration). ``depth`` is None
+    where non-convex meshes are in contact, whose depth is not known; ``depth_at_most`` is then
+    their convex hulls' (and None when not even that is known: a flat mesh)."""
 
     link1: str
     link2: str
-    depth: float = 0.0
+    depth: float | None = 0.0
+    depth_at_most: float | None = 0.0
     poses: list = field(default_factory=list)
     adjacent: bool = False  # joined by a joint (MoveIt's "Adjacent"): contact is expected there
 
@@ -262,8 +265,10 @@ def named_poses(scene, srdf_root) -> list[tuple[str, object, object]]:
 def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
     """Pairs of links that overlap by more than :data:`TOUCHING` at the default configuration
     or at a group state of the SRDF (adjacent ones marked so): one FCL check of every pair per
-    pose, as in :func:`urdftool.collision.matrix.default_collisions`. Surfaces that only touch
-    (a lift on its base, meshes exported to share a face) are not reported."""
+    pose, as in :func:`urdftool.collision.matrix.default_collisions`, the depth of a mesh's
+    contact from the convex hulls (:meth:`~urdftool.collision.pairs.PairChecker.exact`).
+    Surfaces that only touch (a lift on its base, meshes exported to share a face, non-convex
+    meshes whose hulls overlap by no more) are not reported."""
     from urdftool.collision.matrix import Scene, default_collisions
 
     scene = Scene(robot, 0.0)
@@ -274,9 +279,12 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
         for pair in sorted(default_collisions(scene, q)):
             if parts is None:  # every part placed once for the pairs at this pose (as pose.py)
                 scene.checker.place(parts := scene.checker.part_poses(scene.at(q)))
-            depth = scene.checker.exact(None, index[pair], contacts=True, part_poses=parts,
-                                        placed=True)[2]
+            depth, bound = scene.checker.exact(None, index[pair], contacts=True,
+                                               part_poses=parts, placed=True)[2:]
             overlap = found.setdefault(pair, Overlap(*pair, adjacent=pair in scene.adjacent))
-            overlap.depth = max(overlap.depth, depth)
+            overlap.depth = None if None in (overlap.depth, depth) else max(overlap.depth, depth)
+            overlap.depth_at_most = None if None in (overlap.depth_at_most, bound) else \
+                max(overlap.depth_at_most, bound)
             overlap.poses.append((label, element))
-    return {pair: overlap for pair, overlap in found.items() if overlap.depth > TOUCHING}
+    return {pair: overlap for pair, overlap in found.items()
+            if overlap.depth_at_most is None or overlap.depth_at_most > TOUCHING}

@@ -130,13 +130,14 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
         packages = _packages(robot)
         urdf, lines = _urdf_file(robot, folder, in_place=_read_in_place(robot, packages, given))
         if os.path.dirname(urdf) == os.path.abspath(folder):
-            _packages_beside(folder, packages)
+            _packages_beside(folder, packages, robot)
         job = Job(urdf, packages, tuple(configurations))
         raw = _run(present, job, budget)
     results = [_result(name, raw[index], robot, lines, urdf)
                for index, name in enumerate(present)]
     report = Crosscheck(path, results, missing, configurations)
     _compare(report, robot)
+    _mujoco_changes(report, robot)
     return report
 
 
@@ -348,7 +349,8 @@ def _urdf_file(robot, folder: str, in_place: bool = True) -> tuple[str, dict]:
             if isinstance(element.tag, str):
                 lines.setdefault(robot.locate(element).line, element)
         return os.path.abspath(robot.path), lines
-    text = etree.tostring(robot.root, pretty_print=True, encoding="unicode")
+    text = _mujoco_folders_kept(robot, etree.tostring(robot.root, pretty_print=True,
+                                                      encoding="unicode"))
     name = Path(robot.display).name.removesuffix(".xacro")
     target = Path(folder) / (name if name and _as_text(name) else "robot.urdf")
     if not target.name.endswith(".urdf"):
@@ -361,6 +363,37 @@ def _urdf_file(robot, folder: str, in_place: bool = True) -> tuple[str, dict]:
     for mine, theirs in zip(robot.root.iter(), reread.iter()):
         lines.setdefault(theirs.sourceline, mine)
     return os.fspath(target), lines
+
+
+# <mujoco><compiler> attributes naming a folder, which MuJoCo takes relative to the file it reads
+MUJOCO_FOLDERS = ("meshdir", "texturedir", "assetdir")
+
+
+def _mujoco_folders_kept(robot, text: str) -> str:
+    """``text`` (the robot written out) with the relative folders of its ``<mujoco><compiler>``
+    made absolute against the robot's own file's folder, which MuJoCo takes them relative to:
+    written to a temporary folder (xacro's output), ``meshdir="../meshes"`` pointed nowhere
+    and MuJoCo failed ("Error opening file '../meshes/box.stl'") where the expansion written
+    beside the xacro file loads. Only the attributes' values change, so lines stay."""
+    compiler = _mujoco_compiler(robot)
+    if compiler is None or not any(compiler.get(name) for name in MUJOCO_FOLDERS):
+        return text
+    from lxml import etree
+
+    base = Path(robot.files[0]).parent if robot.files else robot.base_dir
+    copy = etree.fromstring(text.encode("utf-8"))
+    for element in copy.iterfind("mujoco/compiler"):
+        for name in MUJOCO_FOLDERS:
+            value = element.get(name)
+            if value and not os.path.isabs(value):
+                element.set(name, os.path.normpath(os.path.join(os.path.abspath(base), value)))
+    return etree.tostring(copy, encoding="unicode")
+
+
+def _mujoco_compiler(robot):
+    """The robot's ``<mujoco><compiler>`` (MuJoCo reads the first of each), or None."""
+    block = robot.root.find("mujoco")
+    return block.find("compiler") if block is not None else None
 
 
 def _packages(robot) -> dict:
@@ -380,16 +413,45 @@ def _packages(robot) -> dict:
     return found
 
 
-def _packages_beside(folder: str, packages: dict) -> None:
+def _packages_beside(folder: str, packages: dict, robot) -> None:
     """Each package as a link beside xacro's output: PyBullet (3.2) finds a ``package://``
     mesh only below the folders above the file it reads (its search path is not asked for
     meshes), as they are when a robot is loaded from its own repository; written to a
     temporary folder, the expansion would lose them and PyBullet would fail where a user's
-    load does not. A name taken (the expanded file's own) is left as it is."""
-    from urdftool.description.files import link_folder_new
+    load does not. A package whose install puts a file the robot names elsewhere than its
+    source folder holds it (Bolt's ``package://robot_properties_bolt/resources/...``, in
+    ``src/robot_properties_bolt/resources`` installed to ``share``) gets a folder of links to
+    each file the robot names, where urdftool resolves it. A name taken (the expanded file's
+    own) is left as it is."""
+    from urdftool.description.files import link_file_new, link_folder_new, real_path
 
     for name, place in packages.items():
-        link_folder_new(Path(folder), name, place)
+        named = _package_files(robot, name)
+        if all(real_path(path) == real_path(Path(place) / rest) for rest, path in named.items()):
+            link_folder_new(Path(folder), name, place)
+            continue
+        for rest, path in named.items():
+            link_file_new(Path(folder), f"{name}/{rest}", os.fspath(path))
+
+
+def _package_files(robot, name: str) -> dict:
+    """``rest`` -> the file urdftool resolves, for each ``package://NAME/rest`` the robot's
+    meshes and textures name that resolves to a file."""
+    from urdftool.description.files import kind_of
+
+    found = {}
+    for element in robot.root.iter("mesh", "texture"):
+        uri = element.get("filename") or ""
+        rest = uri[len(f"package://{name}/"):] if uri.startswith(f"package://{name}/") else ""
+        if not rest or rest in found:
+            continue
+        try:
+            path = robot.resolve_uri(uri)
+        except Exception:  # noqa: BLE001 - the loader will say it is missing
+            continue
+        if kind_of(path) == "file":
+            found[rest] = path
+    return found
 
 
 def _run(names: list[str], job: Job, budget: Budget) -> list:
@@ -457,8 +519,9 @@ def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult
 # MuJoCo (3, 4) opens a package:// or file:// URI as a file name, its "//" made one "/"
 _PACKAGE_OPENED = re.compile(r"Error opening file '(?:package|file):/")
 MUJOCO_PACKAGES = ("MuJoCo's URDF import resolves no package:// or file:// URI (no ROS package "
-                   "path): for MuJoCo, write mesh paths relative to a folder and name it with "
-                   "<mujoco><compiler meshdir=\"...\"/></mujoco> in the <robot>, or convert "
+                   "path): for MuJoCo, put the meshes in one folder and name it with "
+                   "<mujoco><compiler meshdir=\"...\" strippath=\"true\"/></mujoco> in the "
+                   "<robot> (MuJoCo then looks for each by its file name there), or convert "
                    "the robot to MJCF with its paths resolved")
 
 
@@ -613,6 +676,89 @@ def _compare(report: Crosscheck, robot) -> None:
                 len(result.dropped_links) > 6 else ""
             report.differences.append(f"{result.name} has no link {listed}{more} "
                                       "(fused, lumped or dropped)")
+
+
+# <mujoco><compiler> attributes that change what MuJoCo holds of a URDF, and what each does
+MUJOCO_SETTINGS = {
+    "balanceinertia": ("principal moments that break the triangle inequality raised",
+                       "inertias as declared"),
+    "inertiafromgeom": ("every body's inertia computed from its geoms", "inertias as declared",
+                        "the inertia of a body without <inertial> computed from its geoms"),
+    "boundmass": ("masses below it raised",), "boundinertia": ("moments below it raised",),
+    "fusestatic": ("a body welded by a fixed joint fused into its parent",
+                   "bodies welded by fixed joints kept"),
+    "discardvisual": ("<visual> geoms dropped", "<visual> geoms kept"),
+}
+
+
+def _setting(name: str, value: str) -> str:
+    """What MuJoCo does with ``name="value"`` of its compiler (:data:`MUJOCO_SETTINGS`)."""
+    said = MUJOCO_SETTINGS[name]
+    if len(said) == 1:
+        return said[0]
+    return {"true": said[0], "false": said[1]}.get(value.strip().lower(), said[-1])
+
+
+def _mujoco_changes(report: Crosscheck, robot) -> None:
+    """What MuJoCo changed of the URDF, as ``differences``: the ``<mujoco><compiler>`` settings
+    it read (:data:`MUJOCO_SETTINGS`) and the links whose mass or principal moments it holds
+    other than the URDF declares (a body something was fused into is not compared: its
+    inertia is the sum). A robot's own ``balanceinertia="true"`` changed inertias silently."""
+    result = next((r for r in report.loaders if r.name == "mujoco" and r.loaded), None)
+    if result is None:
+        return
+    compiler = _mujoco_compiler(robot)
+    read = {name: compiler.get(name) for name in MUJOCO_SETTINGS
+            if compiler is not None and compiler.get(name) is not None}
+    if read:
+        report.differences.append(
+            "mujoco read the robot's <mujoco><compiler>: " + "; ".join(
+                f'{name}="{value}" ({_setting(name, value)})' for name, value in read.items()))
+    changed = _inertias_changed(result, robot)
+    if changed:
+        shown = "; ".join(
+            f"{link}: URDF {number(urdf[0], 6)} kg, moments {' '.join(number(m, 6) for m in urdf[1])}"
+            f", MuJoCo {number(theirs[0], 6)} kg, moments "
+            f"{' '.join(number(m, 6) for m in theirs[1])}"
+            for link, urdf, theirs in changed[:3])
+        more = f" and {len(changed) - 3} more" if len(changed) > 3 else ""
+        report.differences.append(
+            f"mujoco holds another mass or inertia [kg m^2] than the URDF declares for "
+            f"{len(changed)} link(s): {shown}{more}")
+
+
+def _inertias_changed(result: LoaderResult, robot) -> list:
+    """(link, (mass, moments) declared, (mass, moments) MuJoCo holds) for each body MuJoCo
+    keeps as the URDF link alone, whose mass or sorted principal moments differ from the
+    declared ones by more than 1e-6 of the largest."""
+    from urdftool.physics.mass import declared_of, moments_of
+
+    parents = {}
+    for joint in robot.joints.values():
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is not None and child is not None:
+            parents.setdefault(child.get("link"), parent.get("link"))
+    fused, dropped = set(), set(result.dropped_links)
+    for link in dropped:  # fused into the nearest ancestor MuJoCo keeps
+        parent, seen = parents.get(link), {link}
+        while parent in dropped and parent not in seen:
+            seen.add(parent)
+            parent = parents.get(parent)
+        fused.add(parent)
+    changed = []
+    for link, held in result.inertia.items():
+        element = robot.links.get(link)
+        body = declared_of(robot, element) if element is not None else None
+        moments = moments_of(robot, element) if body is not None else None
+        if moments is None or link in fused or held.get("inertia") is None:
+            continue
+        mine = (float(body.mass), sorted(float(m) for m in moments))
+        theirs = (float(held["mass"]), sorted(float(m) for m in held["inertia"]))
+        scale = max([abs(mine[0]), *map(abs, mine[1]), 1e-12])
+        if abs(mine[0] - theirs[0]) > 1e-6 * abs(mine[0]) or any(
+                abs(a - b) > 1e-6 * max(scale, 1e-12) for a, b in zip(mine[1], theirs[1])):
+            changed.append((link, mine, theirs))
+    return changed
 
 
 __all__ = ["TOLERANCE", "Crosscheck", "LoaderResult", "crosscheck", "joint_configurations"]

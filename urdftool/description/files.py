@@ -1131,6 +1131,23 @@ def link_folder_new(root: Path, name: str, folder: str) -> bool:
     return True
 
 
+def link_file_new(root: Path, relative: str, file: str) -> bool:
+    """Create the symbolic link ``relative`` (``/``-separated plain names) below ``root``, a
+    folder made by :func:`temporary_folder`, to the existing file ``file`` (made real): for a
+    loader that finds a package's files only beside the file it reads, where the package's
+    install puts a file elsewhere than its source folder holds it. It leads out of ``root`` on
+    purpose, as :func:`link_folder_new`'s. False, and nothing made, when ``relative`` is not
+    plain or exists, or ``file`` is no file."""
+    if kind_of(file) != "file":
+        return False
+    try:
+        target = _new_path(root, relative)
+        os.symlink(real_path(file), target)
+    except (ValueError, OSError):
+        return False
+    return True
+
+
 def remove_links_out(root: Path, relatives: list[str]) -> list[str]:
     """Remove those of the links ``relatives`` below ``root`` that, every link followed, lead
     outside it (until none does: a removal can change where others lead); the ones left."""

@@ -122,24 +122,28 @@ def frame_jacobian(model, data, frame: int, reference) -> np.ndarray:
 
 def reduced_model(full, locked: list[int], reference: np.ndarray):
     """``pinocchio.buildReducedModel(full, locked, reference)`` for any URDF: Pinocchio looks
-    joints' frames up by name alone and raises "Several frames match the filter" when a link
-    has a joint's name (ANYmal's LF_HAA is both, as URDF allows). Such joints are renamed in a
-    copy while it reduces, and named back after."""
+    frames up by name alone and raises "Several frames match the filter" when a link has a
+    joint's name (ANYmal's LF_HAA is both, and Baxter's fixed joint left_hand is its link's
+    name, as URDF allows). Such joints' frames are renamed in a copy while it reduces, and
+    named back after."""
     import pinocchio as pin
+    from collections import Counter
 
-    taken = {frame.name for frame in full.frames if frame.type != pin.FrameType.JOINT}
-    clashes = {joint: f"{name}\x1fjoint" for joint, name in enumerate(full.names)
-               if joint and name in taken}
+    count = Counter(frame.name for frame in full.frames)
+    clashes = {name for name, times in count.items() if times > 1}
     if not clashes:
         return pin.buildReducedModel(full, locked, reference)
     model = full.copy()
     renamed = {}
-    for joint, new in clashes.items():
-        renamed[new] = full.names[joint]
-        for frame in model.frames:
-            if frame.name == full.names[joint] and frame.type == pin.FrameType.JOINT:
-                frame.name = new
-        model.names[joint] = new
+    for frame in model.frames:
+        if frame.name in clashes and frame.type in (pin.FrameType.JOINT,
+                                                    pin.FrameType.FIXED_JOINT):
+            new = f"{frame.name}\x1f{int(frame.type)}"
+            renamed[new] = frame.name
+            frame.name = new
+    for joint, name in enumerate(model.names):
+        if joint and name in clashes:
+            model.names[joint] = f"{name}\x1f{int(pin.FrameType.JOINT)}"
     reduced = pin.buildReducedModel(model, locked, reference)
     for frame in reduced.frames:
         frame.name = renamed.get(frame.name, frame.name)

@@ -412,7 +412,10 @@ def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,
 def _solution(chain, target, x, iterations, tried, method, tolerance) -> Solution:
     pose, position, rotation = residuals(chain, x, target)
     solved = position <= tolerance and rotation <= tolerance
+    # a joint of no range (HSR's wrist_ft_sensor_frame_joint, limits 0 and 0) is held, not
+    # stopped: it was "at a limit: ... (lower), ... (upper)" on every solution
     at_limits = [(v.name, side) for v, value in zip(chain.variables, x)
+                 if not v.upper - v.lower <= _AT_LIMIT
                  for side, limit in (("lower", v.lower), ("upper", v.upper))
                  if math.isfinite(limit) and abs(value - limit) <= _AT_LIMIT]
     result = Solution(target, solved, x, chain.row_of(x), pose, position, rotation, iterations,

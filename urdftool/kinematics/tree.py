@@ -56,3 +56,24 @@ def adjacent_pairs(robot, with_geometry: set[str]) -> set[tuple[str, str]]:
                 else:
                     stack.append(other)
     return result
+
+
+def welded_pairs(robot, links: set[str]) -> set[tuple[str, str]]:
+    """Pairs of ``links`` held together by fixed joints alone (siblings on one rigid body, a
+    bracket on a motor): no configuration moves one against the other."""
+    body = {name: name for name in robot.links}
+
+    def find(name: str) -> str:
+        while body.setdefault(name, name) != name:
+            body[name] = body[body[name]]
+            name = body[name]
+        return name
+    for joint in robot.children("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if joint.get("type") == "fixed" and parent is not None and child is not None:
+            body[find(child.get("link"))] = find(parent.get("link"))
+    groups: dict[str, list[str]] = {}
+    for name in links:
+        groups.setdefault(find(name), []).append(name)
+    return {pair_key(a, b) for members in groups.values()
+            for i, a in enumerate(members) for b in members[i + 1:]}

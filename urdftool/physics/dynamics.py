@@ -176,6 +176,7 @@ class State:
     friction: np.ndarray | None = None  # <dynamics friction> * sign(v)
     warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
     root: str | None = None  # the free-flyer root joint, None for a fixed base
+    mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
 
     @property
     def lagrangian(self) -> float:
@@ -198,7 +199,28 @@ class State:
                 "rnea_residual": self.rnea_residual, "kinetic_energy": self.kinetic,
                 "potential_energy": self.potential, "lagrangian": self.lagrangian,
                 "damping_torque": listed(self.damping), "friction_torque": listed(self.friction),
-                "tau_total": listed(self.total)}
+                "tau_total": listed(self.total), "mimic_leaders": self.leaders()}
+
+    def leaders(self) -> dict:
+        """For each joint that mimic joints follow: its followers with their multipliers, and
+        G and tau (with damping and friction) as one actuator driving them all supplies them,
+        J^T of the per-joint columns (the leader's plus each follower's times its multiplier:
+        the power v^T tau is the same) [N m or N]: Pinocchio's model of a URDF read with its
+        mimic joints (``mimic=True``) has these as its G and rnea."""
+        found: dict = {}
+        index = {name: i for i, name in enumerate(self.joints)}
+        for joint, (leader, multiplier, _) in self.mimics.items():
+            if joint in index and leader in index:
+                found.setdefault(leader, {})[joint] = multiplier
+
+        def reduced(column):
+            return {leader: float(column[index[leader]] + sum(
+                m * column[index[j]] for j, m in followers.items()))
+                for leader, followers in found.items()}
+        G = reduced(self.G)
+        tau = reduced(self.total) if self.tau is not None else {}
+        return {leader: {"followers": followers, "G": G[leader], "tau": tau.get(leader)}
+                for leader, followers in found.items()}
 
 
 MAX_MATRIX_SIZE = 1000  # rows of M(q): 8 MB each matrix, 11 MB of text; 10,000 were 0.8 GB
@@ -227,7 +249,7 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
-                   mass_matrix.copy(), gravity, root=model.root)
+                   mass_matrix.copy(), gravity, root=model.root, mimics=model.mimics)
     result.warnings.extend(singular(model, mass_matrix, result.mass))
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})

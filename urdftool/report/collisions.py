@@ -64,6 +64,15 @@ def pose_json(robot_name: str, report) -> dict:
             "problems": _problems(report.problems)}
 
 
+def _depth(contact) -> str:
+    """A colliding pair's depth [mm] as the table shows it: known, bounded or unknown."""
+    if contact.depth is not None:
+        return fixed(contact.depth * 1000, 2)
+    if contact.depth_at_most is not None:
+        return f"<= {fixed(contact.depth_at_most * 1000, 2)} (hulls)"
+    return "? (flat mesh)"
+
+
 def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
     """custom: the configuration was given (else it is the default one)"""
     console = plain_console(stream)
@@ -79,12 +88,20 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
         for c in listed:
             status = f"allowed ({c.allowed})" if c.allowed else \
                 "touching" if c.touching else "[bold red]COLLIDING[/]"
-            table.add_row(markup(c.link1), markup(c.link2),
-                          "? (mesh)" if c.depth is None else fixed(c.depth * 1000, 2), status)
+            table.add_row(markup(c.link1), markup(c.link2), _depth(c), status)
         console.print(table)
-        if any(c.depth is None for c in listed):
-            console.print("? (mesh): FCL computes no penetration depth between triangles, so a "
-                          "mesh's contact is a collision however deep")
+        if any(c.depth is None and c.depth_at_most is not None for c in listed):
+            console.print("<= (hulls): a non-convex mesh's contact, whose depth is not known "
+                          "(FCL's contacts between triangles carry none): at most that of the "
+                          "convex hulls, a collision unless the hulls only touch")
+        if any(c.depth_at_most is None for c in listed):
+            console.print("? (flat mesh): a mesh without volume, whose contact is a collision "
+                          "of unknown depth")
+        if any(c.allowed == "Welded" for c in listed):
+            console.print("Welded: held together by fixed joints alone (one rigid body), so in "
+                          "contact in every configuration, which no motion changes; MoveIt "
+                          "checks the pair unless the SRDF disables it (its Setup Assistant "
+                          "does, 'Default')")
         if any(c.touching and not c.allowed for c in listed):
             console.print(f"touching: in contact at most {number(TOUCHING * 1000)} mm deep, "
                           "surfaces that meet, not a collision; MoveIt (FCL, padding 0) "

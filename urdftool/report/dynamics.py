@@ -75,6 +75,7 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
                   + " ".join(f"{number(v, scale=s):>10s}" for v, s in zip(values, scales))
                   for name, *values in zip(joints, *columns)]
         lines.append(f"  (tau matches rnea to {number(result.rnea_residual, 2)})")
+    lines += _leader_lines(result, matrices)
     if matrices or result.C is not None:
         energies = (result.kinetic, result.potential, result.lagrangian)
         kinetic, potential, lagrangian = (number(e, 6, scale=_scale(energies)) for e in energies)
@@ -89,6 +90,21 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     elif samples:
         lines += ["", NO_JOINT]
     return "\n".join(lines) + "\n"
+
+
+def _leader_lines(result, matrices: bool) -> list[str]:
+    """G and tau of each joint with mimic joints, as one actuator driving them supplies them."""
+    leaders = result.leaders()
+    if not leaders or not (matrices or result.C is not None):
+        return []
+    lines = ["", f"one actuator for a joint and the joints that mimic it (J^T of the columns "
+                 f"above, as Pinocchio's mimic model has them) {TORQUE}:"]
+    for leader, found in leaders.items():
+        terms = " + ".join(f"{number(m)} x {_text(j)}" for j, m in found["followers"].items())
+        said = [f"G {number(found['G'])}"] + \
+            ([f"total tau {number(found['tau'])}"] if found["tau"] is not None else [])
+        lines.append(f"  {_text(leader)} (itself + {terms}): {', '.join(said)}")
+    return lines
 
 
 def load_lines(loads, title: str, relevant=()) -> list[str]:

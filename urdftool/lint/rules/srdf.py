@@ -338,8 +338,14 @@ def _at_default(overlap) -> bool:
 def _where(overlap) -> str:
     labels = [label for label, _ in overlap.poses]
     shown = ", ".join(labels[:3]) + (f" and {len(labels) - 3} more" if len(labels) > 3 else "")
-    return (f"collide (FCL penetration depth {number(overlap.depth * 1000, places=1)} mm) at "
-            f"{shown}")
+    if overlap.depth is not None:
+        how = f"penetration depth {number(overlap.depth * 1000, places=1)} mm"
+    elif overlap.depth_at_most is not None:
+        how = ("their meshes' surfaces cross; the depth of a non-convex mesh is not known, at "
+               f"most {number(overlap.depth_at_most * 1000, places=1)} mm by the convex hulls")
+    else:
+        how = "their meshes' surfaces cross; a flat mesh has no depth"
+    return f"collide ({how}) at {shown}"
 
 
 @rule("U810", "srdf-disabled-pair-collides", Severity.WARNING)
