@@ -151,6 +151,14 @@ MUJOCO_STRIPS_PATHS = Since(True, (((3, 7, 0), False),))
 # every <visual> is dropped, so a visual mesh that is missing or in an unknown format is never
 # opened (observed 4.0.0).
 MUJOCO_DISCARDS_VISUALS = True
+
+
+def mujoco_compiler(root):
+    """The ``<mujoco><compiler>`` of a robot's ``<robot>`` element that MuJoCo's URDF importer
+    reads (the first ``<mujoco>`` child and its first ``<compiler>``: xml_urdf.cc), or None."""
+    block = root.find("mujoco")
+    return block.find("compiler") if block is not None else None
+
 # An explicit <inertial> is checked for every body, moving or not (user_objects.cc): principal
 # moments must be positive ("inertia must have positive eigenvalues") and satisfy A + B >= C
 # ("inertia must satisfy A + B >= C; use 'balanceinertia' to fix"); a moving body needs mass

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from urdftool.budget import Budget
 from urdftool.numbers import number
+from urdftool.simulators import mujoco_compiler
 from urdftool.crosscheck.loaders import LOADERS, Job, available, version
 
 TOLERANCE = 1e-9  # [m]: frame positions of two loaders that keep a frame must agree within it
@@ -375,7 +376,7 @@ def _mujoco_folders_kept(robot, text: str) -> str:
     written to a temporary folder (xacro's output), ``meshdir="../meshes"`` pointed nowhere
     and MuJoCo failed ("Error opening file '../meshes/box.stl'") where the expansion written
     beside the xacro file loads. Only the attributes' values change, so lines stay."""
-    compiler = _mujoco_compiler(robot)
+    compiler = mujoco_compiler(robot.root)
     if compiler is None or not any(compiler.get(name) for name in MUJOCO_FOLDERS):
         return text
     from lxml import etree
@@ -388,12 +389,6 @@ def _mujoco_folders_kept(robot, text: str) -> str:
             if value and not os.path.isabs(value):
                 element.set(name, os.path.normpath(os.path.join(os.path.abspath(base), value)))
     return etree.tostring(copy, encoding="unicode")
-
-
-def _mujoco_compiler(robot):
-    """The robot's ``<mujoco><compiler>`` (MuJoCo reads the first of each), or None."""
-    block = robot.root.find("mujoco")
-    return block.find("compiler") if block is not None else None
 
 
 def _packages(robot) -> dict:
@@ -707,7 +702,7 @@ def _mujoco_changes(report: Crosscheck, robot) -> None:
     result = next((r for r in report.loaders if r.name == "mujoco" and r.loaded), None)
     if result is None:
         return
-    compiler = _mujoco_compiler(robot)
+    compiler = mujoco_compiler(robot.root)
     read = {name: compiler.get(name) for name in MUJOCO_SETTINGS
             if compiler is not None and compiler.get(name) is not None}
     if read:

@@ -224,14 +224,8 @@ def _inverted(robot):
 
 # ==== MuJoCo (U92x) ===========================================================================
 
-def _mujoco_compiler(robot):
-    """The ``<mujoco><compiler>`` of the robot, or None."""
-    block = first_child(robot.root, "mujoco")
-    return first_child(block, "compiler") if block is not None else None
-
-
 def _mujoco_setting(robot, name: str, default: bool) -> bool:
-    compiler = _mujoco_compiler(robot)
+    compiler = facts.mujoco_compiler(robot.root)
     value = compiler.get(name) if compiler is not None else None
     return default if value is None else value.strip().lower() == "true"
 
@@ -246,7 +240,7 @@ def _compiler_fix(robot, where, message: str, attributes: dict, description: str
     """The finding with a fix adding (or completing) ``<mujoco><compiler .../></mujoco>``, which
     only MuJoCo reads."""
     text = " ".join(f'{key}="{attribute(str(value))}"' for key, value in attributes.items())
-    compiler = _mujoco_compiler(robot)
+    compiler = facts.mujoco_compiler(robot.root)
     from urdftool.lint.fixes import Unfixable, append_child, insert_before, offer, set_attribute
 
     if compiler is not None:
@@ -375,7 +369,7 @@ def mujoco_mesh_not_found(robot):
     """
     version = _version(robot, "mujoco")
     strips = _mujoco_setting(robot, "strippath", facts.MUJOCO_STRIPS_PATHS.at(version))
-    compiler = _mujoco_compiler(robot)
+    compiler = facts.mujoco_compiler(robot.root)
     base = Path(robot.files[0]).parent if robot.files else robot.base_dir
     meshdir = compiler.get("meshdir") if compiler is not None else None
     folder = base / meshdir if meshdir else base
