@@ -70,7 +70,11 @@ ENTRIES = {
     (f"{ERD}/anymal_c_simple_description/urdf/anymal.urdf", "", (),
      f"{ERD}/anymal_c_simple_description/srdf/anymal.srdf"): {},
     # bolt.srdf says robot name "finger_edu" (copied), finger_edu.srdf "finger_edu" for "fingeredu".
-    (f"{ERD}/bolt_description/robots/bolt.urdf", "", (), f"{ERD}/bolt_description/srdf/bolt.srdf"): {"U802": 1},
+    # U823: each foot's mesh crosses its lower leg's (FCL's triangle test, which MoveIt takes for
+    # a collision; at most 14.2 mm deep by the convex hulls) and the SRDF disables neither pair
+    # (FCL's mesh depth, 0, had made them touching until session 19).
+    (f"{ERD}/bolt_description/robots/bolt.urdf", "", (), f"{ERD}/bolt_description/srdf/bolt.srdf"):
+        {"U802": 1, "U823": 2},
     # finger_edu.srdf's state "hanging" of group "leg" sets base_to_finger, the fixed joint above
     # the chain's base link (not in the group; a 7-value free-flyer value on a fixed joint) (U808).
     (f"{ERD}/finger_edu_description/robots/finger_edu.urdf", "", (),
@@ -84,14 +88,16 @@ ENTRIES = {
     # icub.srdf is for robot "icub", the URDF is "iCub". U811: at the zero configuration (and
     # half_sitting) 16 non-adjacent pairs of collision meshes intersect with no disable_collisions
     # entry (forearms in the torso, feet and lower legs in each other; checked independently with
-    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull). U823: 9 adjacent pairs
+    # trimesh: 93 of l_forearm's 123 vertices lie inside torso_1's hull). U823: 8 adjacent pairs
     # overlap by 4.5 to 46 mm (chest in torso_1, each upper arm in its shoulder, the feet in the
     # ankles at half_sitting) and the SRDF, not written by the Setup Assistant, has no Adjacent
     # entry: MoveIt (and Pinocchio's collision pairs minus the SRDF's) see them in collision.
+    # (r_shoulder_1/r_shoulder_2, a ninth until session 19, overlap by 1 mm or less by their
+    # convex hulls: touching, as l_shoulder_1/l_shoulder_2 always were.)
     (f"{ERD}/icub_description/robots/icub.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1, "U811": 16, "U823": 9},
+        {"U802": 1, "U811": 16, "U823": 8},
     (f"{ERD}/icub_description/robots/icub_reduced.urdf", "", (), f"{ERD}/icub_description/srdf/icub.srdf"):
-        {"U802": 1, "U811": 16, "U823": 9},
+        {"U802": 1, "U811": 16, "U823": 8},
     # This pr2.urdf made the caster and gripper joints fixed but kept their transmissions (U502),
     # and its gazebo references double_stereo_double_stereo_link and sensor_mount_sensor_link (U611).
     (f"{ERD}/pr2_description/urdf/pr2.urdf", "", (), f"{ERD}/pr2_description/srdf/pr2.srdf"):
@@ -105,11 +111,12 @@ ENTRIES = {
      f"{ERD}/simple_humanoid_description/srdf/simple_humanoid_classical.srdf"):
         {"U802": 1, "U804": 4, "U805": 1, "U806": 3},
     # solo.srdf (used for both Solo 8 and Solo 12) names the HAA joints and SHOULDER links that only
-    # solo12 has, and the same missing subgroups as hyq.
+    # solo12 has, and the same missing subgroups as hyq. U823: as bolt's, each foot's mesh crosses
+    # its lower leg's, and on Solo 8 (no shoulder) each upper leg's crosses the base's.
     (f"{ERD}/solo_description/robots/solo.urdf", "", (), f"{ERD}/solo_description/srdf/solo.srdf"):
-        {"U803": 12, "U804": 8, "U805": 16},
+        {"U803": 12, "U804": 8, "U805": 16, "U823": 8},
     (f"{ERD}/solo_description/robots/solo12.urdf", "", (), f"{ERD}/solo_description/srdf/solo.srdf"):
-        {"U805": 16},
+        {"U805": 16, "U823": 4},
     # talos_reduced at zero: the grippers and wrists hang inside the thighs (leg_*_3_link) with no
     # entry (U811, 12 pairs; trimesh: 68 of the gripper motor mesh's 101 vertices inside hip_y),
     # and the knee and ankle meshes (leg_*_4/leg_*_6), disabled as Never, intersect (U810; 7 knee
