@@ -6,8 +6,7 @@ users run, or while a goal is missed without it.
 - ``urdftool check`` of robots/r2d2 against urdfdom's way, ``xacro`` then the ELF ``check_urdf``
   (target: 2x), xacro finding r2d2's package through an ament index as on a ROS 2 machine.
 - the kept help texts (``--help``), the kept compiled class methods and patterns
-  (:mod:`urdftool.kept_code`, on r2d2), check's plain words read without Typer (r2d2), xacro
-  imported without its command line module (``description.xacro._xacro``, r2d2), the
+  (:mod:`urdftool.kept_code`, on r2d2), check's plain words read without Typer (r2d2), the
   collector's rhythm (r2d2, whose
   imports it freezes; ``check --jobs 1 --no-cache`` of the corpus URDFs, the CI path; a
   10,000-link robot): each timed with the door as it is and with that trick patched out. (A
@@ -143,11 +142,7 @@ def main() -> list[dict]:
                              "no kept code": door("door.kept_code = lambda path=None: None",
                                                   "check", "--no-cache", str(ROBOT)),
                              "through typer": door("door._check = lambda words: None",
-                                                   "check", "--no-cache", str(ROBOT)),
-                             # xacro imported whole (with xacro.cli) before the check: what
-                             # description.xacro._xacro's stand-in avoids
-                             "xacro whole": door("import xacro", "check", "--no-cache",
-                                                 str(ROBOT))},
+                                                   "check", "--no-cache", str(ROBOT))},
                             9)
     results.append(_ratio("urdftool check r2d2 vs xacro + check_urdf", found["ours"],
                           found["reference"], 2.0))
@@ -155,8 +150,6 @@ def main() -> list[dict]:
                           found["no kept code"], ("check of r2d2", found["reference"], 2.0)))
     results.append(_trick("plain words without Typer (check r2d2)", found["door"],
                           found["through typer"], ("check of r2d2", found["reference"], 2.0)))
-    results.append(_trick("xacro without its command line (check r2d2)", found["door"],
-                          found["xacro whole"], ("check of r2d2", found["reference"], 2.0)))
     r2d2 = {"door": found["door"], "no collector rhythm": found["no collector rhythm"]}
 
     # the collector's rhythm: on the corpus (the CI path) and on a

@@ -340,34 +340,6 @@ def _run(program: str, *paths) -> list[str]:
     return done.stdout.split()
 
 
-def test_xacro_is_expanded_without_its_command_line_and_main_still_reads_one(tmp_path):
-    """xacro's command line (optparse, gettext, locale: a sixth of r2d2's expansion) is not
-    imported to expand a file; xacro's process_args, called, imports the real one."""
-    (tmp_path / "r.urdf.xacro").write_text(
-        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
-        '<xacro:property name="n" value="a"/><link name="${n}"/></robot>\n')
-    program = (
-        "import sys\nfrom urdftool.description.load import load\n"
-        f"robot = load({str(tmp_path / 'r.urdf.xacro')!r})\n"
-        "print(robot.links and 'loaded', *(m for m in ('optparse', 'gettext', 'xacro.cli')\n"
-        "                                    if m in sys.modules))\n"
-        "import xacro\nopts, name = xacro.process_args(['--inorder', 'x.xacro'])\n"
-        "print(name, type(sys.modules['xacro.cli']).__name__, 'optparse' in sys.modules)\n")
-    assert _run(program) == ["loaded", "x.xacro", "module", "True"]
-
-
-def test_a_xacro_asking_more_of_its_command_line_is_imported_as_it_is(tmp_path):
-    """A xacro whose __init__ imports more from xacro.cli than process_args (another version)
-    is imported with its real command line: expanding still works."""
-    package = tmp_path / "xacro"
-    package.mkdir()
-    (package / "cli.py").write_text("def process_args(argv):\n    return argv\nOTHER = 'real'\n")
-    (package / "__init__.py").write_text("from .cli import process_args, OTHER\n")
-    program = ("import sys\nfrom urdftool.description.xacro import _xacro\n"
-               "print(_xacro().OTHER, sys.modules['xacro.cli'].OTHER)\n")
-    assert _run(program, tmp_path) == ["real", "real"]
-
-
 def test_an_unknown_substitution_is_said_once_by_its_exception_name(tmp_path):
     """xacro writes ``f"{type(e)}: {e}"`` and ``e`` again: "<class 'xacro.substitution_args.
     SubstitutionException'>: Unknown substitution command [x]. ... Unknown substitution command

@@ -322,37 +322,10 @@ def _reads_ros1_tags(path: Path) -> bool:
 
 
 def _xacro():
-    """The xacro library, imported without its command line: its ``__init__`` imports
-    ``xacro.cli`` (optparse, gettext, locale, textwrap: 16 M instructions and 114 page faults,
-    a sixth of what expanding r2d2 costs) for ``main()``, which urdftool never runs. A stand-in
-    module gives it a ``process_args`` that imports the real one when called, and leaves
-    ``sys.modules`` once xacro is imported (an ``import xacro.cli`` later gets the real one).
-    A xacro asking more of its command line than that is imported as it is."""
-    if "xacro" in sys.modules or "xacro.cli" in sys.modules:
-        import xacro
+    """The xacro library (imported where first used: a robot without xacro never pays for it,
+    nor for the command line module its ``__init__`` imports)."""
+    import xacro
 
-        return xacro
-    import types
-
-    stand_in = types.ModuleType("xacro.cli")
-
-    def process_args(*args, **kwargs):
-        from importlib import import_module
-
-        if sys.modules.get("xacro.cli") is stand_in:
-            del sys.modules["xacro.cli"]
-        return import_module("xacro.cli").process_args(*args, **kwargs)
-
-    stand_in.process_args = process_args
-    sys.modules["xacro.cli"] = stand_in
-    try:
-        import xacro
-    except ImportError:  # (a xacro importing more from its command line: not in sys.modules)
-        del sys.modules["xacro.cli"]
-        import xacro
-    finally:
-        if sys.modules.get("xacro.cli") is stand_in:
-            del sys.modules["xacro.cli"]
     return xacro
 
 
