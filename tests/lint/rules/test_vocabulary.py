@@ -372,3 +372,15 @@ def test_a_vector_across_lines_of_a_file_whose_lines_end_with_cr_is_found_on_its
              '<child link="b"/></joint>', '</robot>', '']
     found, findings = check_folder(tmp_path, {"robot.urdf": "\r".join(lines)}, select=("U023",))
     assert found == [("robot.urdf", 4, "U023")]  # (where its start tag starts)
+
+
+def test_a_scalar_ending_with_a_raw_line_break_is_quoted_as_written(tmp_path):
+    # lxml reads the CR LF before the closing quote as a space; the message quotes the line
+    # break the file has (unitree_ros' hands: ixz="-3.261e-11<CR><LF>"), and the fix removes it
+    text = ('<robot name="r"><link name="a"><inertial><mass value="1"/>\r\n'
+            '<inertia ixx="1" ixy="0" ixz="-0.5\r\n" iyy="1" iyz="0" izz="1"/></inertial>'
+            '</link></robot>\r\n')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
+    assert found == [("robot.urdf", 2, "U023")]
+    assert '<inertia ixz="-0.5\\n">' in findings[0].message  # (a line break, CR LF or LF)
+    assert [edit.text for edit in findings[0].fix.edits] == ["-0.5"]

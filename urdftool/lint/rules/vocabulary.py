@@ -449,9 +449,12 @@ def number_white_space(robot):
             if text is None:
                 continue
             part = urdfdom_refuses(text, count)
-            if part is None and raw and count > 1 and text in raw and \
+            if raw and text in raw and (count > 1 or part is not None) and \
                     _written_there(element, raw[text]):
-                text, part = _as_written(robot, element, attribute, count)
+                # (as written: a tab or line break lxml reads as a space, quoted as it is)
+                written, again = _as_written(robot, element, attribute, count)
+                if part is None or again is not None:
+                    text, part = written, again
             if part is None or _place(element) != element.tag:
                 continue
             from urdftool.lint.fixes import offer, set_attribute  # (only for a finding: 4 M)
