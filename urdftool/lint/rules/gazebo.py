@@ -442,14 +442,14 @@ CASTER_CLEARANCE = 0.005  # [m] a caster this far below the wheels' contact plan
 def diff_drive_wheel_layout(robot):
     """A diff drive's wheels are laid out in a way it cannot drive.
 
-    Checked at the zero pose, in the robot's root frame (REP-103: x forward, y left, z up):
-    the left wheel must be on the +y side of the right one (else the robot turns the wrong
-    way), the axles pointing sideways (an axle along x rolls the robot along y: a base link
-    turned 90 degrees under its footprint, as ros2_jazzy_p3at's); each wheel axis must be horizontal (a vertical axis spins the wheel flat on the
-    ground, and the separation measured along it is 0) and parallel to the other wheel's;
-    each wheel link needs collision geometry (Gazebo's wheels touch nothing without it); a
-    caster (a link named ``*caster*`` with a sphere) must not reach below the wheels' contact
-    plane, or it lifts the drive wheels.
+    Checked at the zero pose, in the robot's root frame (REP-103: x forward, y left, z up): the
+    left wheel must be on the +y side of the right one (else the robot turns the wrong way),
+    the axles pointing sideways (an axle along x rolls the robot along y: a base link turned 90
+    degrees under its footprint, as ros2_jazzy_p3at's); each wheel axis must be horizontal (a
+    vertical axis spins the wheel flat on the ground, and the separation measured along it is
+    0) and parallel to the other wheel's; each wheel link needs collision geometry (Gazebo's
+    wheels touch nothing without it); a caster (a link named ``*caster*`` with a sphere) must
+    not reach below the wheels' contact plane, or it lifts the drive wheels.
 
     Bad: ``<axis xyz="0 0 1"/>`` on a wheel joint whose origin has no rotation
     Good: ``<axis xyz="0 1 0"/>``

@@ -996,11 +996,12 @@ def com_outside_hull(robot):
     parts drawn there move with this link (a motor's rotor, a gear on the joint's axis), which
     only the CAD tells: in the real sweep (363 repositories) 20 findings of 84 DEBATABLE rows,
     none of a TRUE one (Fourier's GR1 legs, Romeo's and TIAGo's arms, KUKA's iiwa and iisy).
-    Not a note for a centre of mass at the link's origin (a placeholder: the origin is on the joint, inside the
-    parent's drawing by construction), nor in a robot where another link's centre of mass is
-    far outside its geometry (U307: its inertials are in another frame), nor when the centre
-    of mass read in the robot's root frame, or with its axes swapped or a sign flipped, falls
-    inside the link's own drawing (Rokae's CAD-frame centres of mass, FZI's link4).
+    Not a note for a centre of mass at the link's origin (a placeholder: the origin is on the
+    joint, inside the parent's drawing by construction), nor in a robot where another link's
+    centre of mass is far outside its geometry (U307: its inertials are in another frame), nor
+    when the centre of mass read in the robot's root frame, or with its axes swapped or a sign
+    flipped, falls inside the link's own drawing (Rokae's CAD-frame centres of mass, FZI's
+    link4).
 
     Bad: a palm drawn from z = -0.095 to 0 with ``<inertial><origin xyz="0 0 0.0475"/>``
     Good: ``<origin xyz="0 0 -0.0475"/>``
