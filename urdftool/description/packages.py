@@ -6,6 +6,8 @@ package, or has it as a child), then package.xml files below the repository root
 folder holding ``.git``). A folder or package.xml in the repository that is a symbolic link
 leading outside it is not a package: it is not read, and the not-found message says so. Without
 a ``.git`` above the input there is no repository to keep to, and the walk goes up to ``/``.
+A folder holding a manifest.xml and no package.xml is a rosbuild package (ROS 1's), as rospack
+takes it: named by its folder (:data:`~urdftool.description.files.MANIFESTS`).
 
 A path below a package found (``$(find NAME)/urdf/x.xacro``, ``package://NAME/meshes/x.stl``)
 names the package's installed ``share/NAME``: when the source folder has no such file, the
